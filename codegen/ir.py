@@ -1,0 +1,446 @@
+"""The resolved model (IR) of a protocol spec: what every target renders from.
+
+Everything a target needs is decided here once: scalar sizes, fixed sizes of layouts, which
+enum table applies to which software version, which codes are known but not laid out.
+Targets never look at the YAML.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field as dc_field
+from typing import Optional, Union
+
+Version = tuple[int, int]
+
+
+def parse_version(text: str) -> Version:
+    major, minor = text.split(".")
+    return int(major), int(minor)
+
+
+def version_text(version: Version) -> str:
+    return f"{version[0]}.{version[1]}"
+
+
+@dataclass(frozen=True)
+class VersionRange:
+    """Inclusive range of "major.minor" software versions; None means unbounded."""
+
+    low: Optional[Version] = None
+    high: Optional[Version] = None
+
+    def contains(self, version: Version) -> bool:
+        return (self.low is None or version >= self.low) and (self.high is None or version <= self.high)
+
+    @property
+    def unbounded(self) -> bool:
+        return self.low is None and self.high is None
+
+    def describe(self) -> str:
+        if self.low and self.high:
+            return f"{version_text(self.low)} to {version_text(self.high)}"
+        if self.low:
+            return f"{version_text(self.low)} and later"
+        if self.high:
+            return f"up to {version_text(self.high)}"
+        return "all versions"
+
+
+ALL_VERSIONS = VersionRange()
+
+
+@dataclass(frozen=True)
+class Scalar:
+    name: str
+    size: int
+    signed: bool
+    is_float: bool = False
+    is_bool: bool = False
+
+    @property
+    def is_integer(self) -> bool:
+        return not self.is_float and not self.is_bool
+
+    @property
+    def bits(self) -> int:
+        return self.size * 8
+
+    @property
+    def min(self) -> int:
+        return -(1 << (self.bits - 1)) if self.signed else 0
+
+    @property
+    def max(self) -> int:
+        return (1 << (self.bits - 1)) - 1 if self.signed else (1 << self.bits) - 1
+
+
+SCALARS: dict[str, Scalar] = {
+    s.name: s
+    for s in (
+        Scalar("bool", 1, False, is_bool=True),
+        Scalar("int8", 1, True),
+        Scalar("uint8", 1, False),
+        Scalar("int16", 2, True),
+        Scalar("uint16", 2, False),
+        Scalar("int32", 4, True),
+        Scalar("uint32", 4, False),
+        Scalar("int64", 8, True),
+        Scalar("uint64", 8, False),
+        Scalar("float32", 4, True, is_float=True),
+        Scalar("float64", 8, True, is_float=True),
+    )
+}
+
+
+@dataclass
+class EnumValue:
+    name: str
+    value: int
+    doc: str = ""
+    undocumented: bool = False
+    versions: VersionRange = ALL_VERSIONS
+
+
+@dataclass
+class EnumTable:
+    versions: VersionRange
+    values: list[EnumValue]
+
+
+@dataclass
+class Enum:
+    name: str
+    scalar: Scalar
+    doc: str
+    field_note: str
+    tables: list[EnumTable]
+
+    @property
+    def versioned(self) -> bool:
+        """True when the codes depend on the software version (the value-type tables)."""
+        return len(self.tables) > 1
+
+    @property
+    def values(self) -> list[EnumValue]:
+        """Every member of every table, once per (name, value), in table order."""
+        seen, out = set(), []
+        for table in self.tables:
+            for v in table.values:
+                if (v.name, v.value) not in seen:
+                    seen.add((v.name, v.value))
+                    out.append(v)
+        return out
+
+    @property
+    def names(self) -> list[str]:
+        """Every member name once, in first-seen order."""
+        return list(dict.fromkeys(v.name for v in self.values))
+
+    def member(self, name: str) -> EnumValue:
+        for v in self.values:
+            if v.name == name:
+                return v
+        raise KeyError(name)
+
+    def table_for(self, version: Version) -> EnumTable:
+        for table in self.tables:
+            if table.versions.contains(version):
+                return table
+        return self.tables[-1]
+
+
+# ---- fields -------------------------------------------------------------------------------
+
+@dataclass
+class Field:
+    name: str
+    doc: str = ""
+    field_note: str = ""
+    present_if: Optional[str] = None        # name of an earlier field: present when it is nonzero
+    versions: VersionRange = ALL_VERSIONS   # present only for streams of these versions
+
+    @property
+    def conditional(self) -> bool:
+        return self.present_if is not None or not self.versions.unbounded
+
+    @property
+    def fixed_size(self) -> Optional[int]:
+        """Bytes on the wire when known without reading; None for variable-size fields."""
+        return None
+
+    @property
+    def min_size(self) -> int:
+        return self.fixed_size or 0
+
+
+@dataclass
+class ScalarField(Field):
+    scalar: Scalar = SCALARS["uint8"]
+    enum: Optional[Enum] = None
+    bits: list[str] = dc_field(default_factory=list)
+
+    @property
+    def fixed_size(self) -> Optional[int]:
+        return self.scalar.size
+
+
+@dataclass
+class ArrayField(Field):
+    """`count` scalars in a row."""
+
+    scalar: Scalar = SCALARS["uint8"]
+    count: int = 1
+    enum: Optional[Enum] = None
+
+    @property
+    def fixed_size(self) -> Optional[int]:
+        return self.scalar.size * self.count
+
+
+@dataclass
+class GroupField(Field):
+    """A repeated group of fields: `count` times, or until the end of the layout."""
+
+    item: "Struct" = None  # type: ignore[assignment]
+    count: Optional[int] = None
+    item_label: str = "Item"
+
+    @property
+    def to_end(self) -> bool:
+        return self.count is None
+
+    @property
+    def fixed_size(self) -> Optional[int]:
+        if self.count is None or self.item.fixed_size is None:
+            return None
+        return self.count * self.item.fixed_size
+
+    @property
+    def min_size(self) -> int:
+        return 0 if self.count is None else self.count * self.item.min_size
+
+
+@dataclass
+class StringField(Field):
+    """Bytes shown as text: length-prefixed (`length`), or running to the end of the layout."""
+
+    length: Optional[Scalar] = None
+
+    @property
+    def to_end(self) -> bool:
+        return self.length is None
+
+    @property
+    def min_size(self) -> int:
+        return self.length.size if self.length else 0
+
+
+@dataclass
+class StringListField(Field):
+    """Strings each ended by `terminator`, until the end of the layout."""
+
+    terminator: int = 0x0A
+
+
+@dataclass
+class BytesField(Field):
+    """Opaque bytes until the end of the layout."""
+
+
+@dataclass
+class SwitchField(Field):
+    """One scalar whose type is chosen by the value of an earlier field."""
+
+    selector: ScalarField = None  # type: ignore[assignment]
+    cases: dict[int, Scalar] = dc_field(default_factory=dict)
+    default: Scalar = SCALARS["uint32"]
+
+    @property
+    def fixed_size(self) -> Optional[int]:
+        sizes = {s.size for s in self.cases.values()} | {self.default.size}
+        return sizes.pop() if len(sizes) == 1 else None
+
+    @property
+    def min_size(self) -> int:
+        return min([s.size for s in self.cases.values()] + [self.default.size])
+
+
+@dataclass
+class ValueListField(Field):
+    """Typed values (a type byte, its data, `terminator`) until the end of the layout."""
+
+    value_type: Enum = None  # type: ignore[assignment]
+    terminator: int = 0x0A
+
+
+AnyField = Union[ScalarField, ArrayField, GroupField, StringField, StringListField, BytesField,
+                 SwitchField, ValueListField]
+
+
+@dataclass
+class Struct:
+    name: str
+    doc: str
+    fields: list[AnyField]
+
+    @property
+    def fixed_size(self) -> Optional[int]:
+        total = 0
+        for f in self.fields:
+            if f.conditional or f.fixed_size is None:
+                return None
+            total += f.fixed_size
+        return total
+
+    @property
+    def min_size(self) -> int:
+        return sum(0 if f.conditional else f.min_size for f in self.fields)
+
+    def field(self, name: str) -> AnyField:
+        for f in self.fields:
+            if f.name == name:
+                return f
+        raise KeyError(name)
+
+    @property
+    def needs_version(self) -> bool:
+        """True when decoding depends on the stream's software version."""
+        for f in self.fields:
+            if not f.versions.unbounded or isinstance(f, ValueListField):
+                return True
+            if isinstance(f, GroupField) and f.item.needs_version:
+                return True
+        return False
+
+
+# ---- values of global variables -----------------------------------------------------------
+
+@dataclass
+class ValueLayout:
+    type_name: str               # NONE, STRING, POSE, ...
+    layout: str                  # empty | string | array | scalar | list | matrix
+    length: Optional[Scalar]     # string length, list count, matrix rows and columns
+    item: Optional[Scalar]       # scalar and array item
+    count: int                   # array count
+    doc: str
+
+
+# ---- messages -----------------------------------------------------------------------------
+
+@dataclass
+class Layout:
+    """A laid-out sub-package or message subtype."""
+
+    name: str
+    code: EnumValue
+    doc: str
+    field_note: str
+    struct: Struct
+    sets_version: Optional[tuple[str, str]] = None   # (major field, minor field)
+
+
+@dataclass
+class HeaderField:
+    scalar: Scalar
+    enum: Optional[Enum]
+    doc: str
+
+
+@dataclass
+class PackageListMessage:
+    """A message made of length-framed sub-packages (robot state)."""
+
+    name: str
+    code: EnumValue
+    doc: str
+    field_note: str
+    packages: list[Layout]
+    package_type: Enum
+
+    @property
+    def unlaid_codes(self) -> list[EnumValue]:
+        """Codes the spec names but does not lay out: kept raw, never an error."""
+        laid = {p.code.value for p in self.packages}
+        return [v for v in self.package_type.values if v.value not in laid]
+
+
+@dataclass
+class DispatchMessage:
+    """A message with a common header and then a subtype byte choosing the layout."""
+
+    name: str
+    code: EnumValue
+    doc: str
+    field_note: str
+    header: Struct
+    subtype: ScalarField
+    subtypes: list[Layout]
+
+    @property
+    def subtype_enum(self) -> Enum:
+        assert self.subtype.enum is not None
+        return self.subtype.enum
+
+    @property
+    def unlaid_codes(self) -> list[EnumValue]:
+        laid = {s.code.value for s in self.subtypes}
+        return [v for v in self.subtype_enum.values if v.value not in laid]
+
+    @property
+    def header_size(self) -> int:
+        assert self.header.fixed_size is not None
+        return self.header.fixed_size + self.subtype.scalar.size
+
+
+Message = Union[PackageListMessage, DispatchMessage]
+
+
+@dataclass
+class Protocol:
+    name: str
+    title: str
+    doc: str
+    ports: list[int]
+    max_message_length: int
+    max_value_depth: int
+    documented_versions: list[Version]
+    default_version: Version
+    enums: dict[str, Enum]
+    value_layouts: dict[str, ValueLayout]
+    message_length: HeaderField
+    message_type: HeaderField
+    package_length: HeaderField
+    package_type: HeaderField
+    messages: list[Message]
+
+    @property
+    def message_type_enum(self) -> Enum:
+        assert self.message_type.enum is not None
+        return self.message_type.enum
+
+    @property
+    def header_size(self) -> int:
+        return self.message_length.scalar.size + self.message_type.scalar.size
+
+    @property
+    def package_header_size(self) -> int:
+        return self.package_length.scalar.size + self.package_type.scalar.size
+
+    @property
+    def known_message_codes(self) -> list[int]:
+        """Every message type the spec names: the codes a plausible header may carry."""
+        return sorted(v.value for v in self.message_type_enum.values)
+
+    @property
+    def unlaid_message_codes(self) -> list[EnumValue]:
+        laid = {m.code.value for m in self.messages}
+        return [v for v in self.message_type_enum.values if v.value not in laid]
+
+    @property
+    def value_type(self) -> Enum:
+        return self.enums["value_type"]
+
+    def all_layouts(self) -> list[Layout]:
+        out: list[Layout] = []
+        for m in self.messages:
+            out.extend(m.packages if isinstance(m, PackageListMessage) else m.subtypes)
+        return out
