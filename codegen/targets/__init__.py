@@ -1,0 +1,35 @@
+"""The targets: each module here with a `render(protocol, banner) -> {path: text}` function
+turns the IR into files under generated/<target>/. Adding a target is adding a module."""
+from __future__ import annotations
+
+import importlib
+import pkgutil
+from typing import Callable, Optional
+
+from .. import ir
+
+Render = Callable[[ir.Protocol, list[str]], dict[str, str]]
+
+
+def _discover() -> dict[str, Render]:
+    found = {}
+    for info in sorted(pkgutil.iter_modules(__path__), key=lambda i: i.name):
+        module = importlib.import_module(f"{__name__}.{info.name}")
+        if callable(getattr(module, "render", None)):
+            found[info.name] = module.render
+    return found
+
+
+TARGETS: dict[str, Render] = _discover()
+
+
+def render_all(protocol: ir.Protocol, spec_path: str, spec_text: str,
+               only: Optional[list[str]] = None) -> dict[str, str]:
+    from ..emit import banner_lines
+
+    banner = banner_lines(spec_path, spec_text)
+    outputs: dict[str, str] = {}
+    for name, render in TARGETS.items():
+        if only is None or name in only:
+            outputs.update(render(protocol, banner))
+    return outputs

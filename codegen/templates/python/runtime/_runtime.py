@@ -1,0 +1,294 @@
+"""Decoding helpers shared by the generated layouts: errors, text, bounds checks, values.
+
+Hand-written; copied verbatim into generated/python/urwire/ by `make generate`.
+"""
+from __future__ import annotations
+
+import struct
+from dataclasses import dataclass
+from typing import Any, Optional, Union
+
+# Any nonzero byte is true; the tuple keeps the byte itself for 2..255 so that encoding
+# gives back exactly what was read.
+BOOL: tuple = (False, True) + tuple(range(2, 256))
+
+
+class DecodeError(Exception):
+    """A field could not be read: carries its path and the byte offset in the message."""
+
+    def __init__(self, path: str, offset: int, problem: str):
+        super().__init__(f"{path} at offset {offset}: {problem}")
+        self.path = path
+        self.offset = offset
+        self.problem = problem
+
+    def within(self, prefix: str) -> "DecodeError":
+        path = prefix + ("." + self.path if not self.path.startswith("[") else self.path)
+        return DecodeError(path, self.offset, self.problem)
+
+    @property
+    def text(self) -> str:
+        return str(self)
+
+
+class EncodeError(ValueError):
+    """An object cannot be written in the layout of its type."""
+
+
+def short(path: str, offset: int, need: int, end: int) -> DecodeError:
+    return DecodeError(path, offset, f"needs {need} bytes, {max(end - offset, 0)} left")
+
+
+def short_in_run(run: tuple, pos: int, end: int) -> DecodeError:
+    """The first field of a fixed run that does not fit: run holds (path, offset, size)."""
+    for path, rel, size in run:
+        if pos + rel + size > end:
+            return short(path, pos + rel, size, end)
+    raise AssertionError("short_in_run called on a run that fits")
+
+
+def text(raw) -> str:
+    """Bytes as text; invalid UTF-8 is kept (surrogateescape) so that encoding is lossless."""
+    return bytes(raw).decode("utf-8", "surrogateescape")
+
+
+def text_bytes(value: str) -> bytes:
+    return value.encode("utf-8", "surrogateescape")
+
+
+def read_prefixed_text(buf, pos: int, end: int, prefix: struct.Struct, path: str) -> tuple[str, int]:
+    size = prefix.size
+    if pos + size > end:
+        raise short(path, pos, size, end)
+    (n,) = prefix.unpack_from(buf, pos)
+    if n < 0:
+        raise DecodeError(path, pos, f"negative length {n}")
+    pos += size
+    if pos + n > end:
+        raise short(path, pos, n, end)
+    return text(buf[pos:pos + n]), pos + n
+
+
+def write_prefixed_text(out: bytearray, value: str, prefix: struct.Struct) -> None:
+    raw = text_bytes(value)
+    try:
+        out += prefix.pack(len(raw))
+    except struct.error:
+        raise EncodeError(f"text of {len(raw)} bytes does not fit its length prefix") from None
+    out += raw
+
+
+def read_terminated_texts(buf, pos: int, end: int, terminator: int) -> tuple[list[str], int]:
+    """Strings each ended by terminator; a trailing unterminated part is left unread (extra)."""
+    raw = bytes(buf[pos:end])
+    sep = bytes((terminator,))
+    last = raw.rfind(sep)
+    if last < 0:
+        return [], pos
+    return [text(p) for p in raw[:last].split(sep)], pos + last + 1
+
+
+def write_terminated_texts(out: bytearray, values: list[str], terminator: int) -> None:
+    for v in values:
+        out += text_bytes(v)
+        out.append(terminator)
+
+
+# ---- global variable values ---------------------------------------------------------------
+
+@dataclass(slots=True)
+class GlobalValue:
+    """One typed value of a global variable: its type name and code (per software version)."""
+
+    type: str
+    value: Any
+    code: int
+
+
+# A value kind: (type name, layout, struct of its fixed part or None, True for a bool scalar)
+ValueKind = tuple
+
+
+_I16 = struct.Struct(">h")
+_I16x2 = struct.Struct(">hh")
+
+
+class ValueCodec:
+    """Reads and writes the typed values of one value-type table."""
+
+    def __init__(self, kinds: dict[int, ValueKind], names: dict[str, int], max_depth: int):
+        self.kinds = kinds
+        self.codes = names
+        self.max_depth = max_depth
+
+    def decode_list(self, buf, pos: int, end: int, terminator: int, path: str) -> tuple[list, int]:
+        values = []
+        while pos < end:
+            item_path = f"{path}[{len(values)}]"
+            value, pos = self.decode(buf, pos, end, item_path, 1)
+            if pos >= end:
+                raise short(item_path, pos, 1, end)
+            if buf[pos] != terminator:
+                raise DecodeError(item_path, pos, f"expected terminator 0x{terminator:02x}, found 0x{buf[pos]:02x}")
+            values.append(value)
+            pos += 1
+        return values, pos
+
+    def decode(self, buf, pos: int, end: int, path: str, depth: int) -> tuple[GlobalValue, int]:
+        if pos >= end:
+            raise short(path + ".type", pos, 1, end)
+        code = buf[pos]
+        if depth > self.max_depth:
+            raise DecodeError(path, pos, f"nesting deeper than {self.max_depth}")
+        kind = self.kinds.get(code)
+        if kind is None:
+            raise DecodeError(path + ".type", pos, f"unknown value type {code}")
+        name, layout, fixed, _ = kind
+        pos += 1
+        if layout == "empty":
+            return GlobalValue(name, None, code), pos
+        if layout == "scalar" or layout == "array":
+            if pos + fixed.size > end:
+                raise short(path, pos, fixed.size, end)
+            items = fixed.unpack_from(buf, pos)
+            pos += fixed.size
+            if layout == "array":
+                return GlobalValue(name, list(items), code), pos
+            value = BOOL[items[0]] if kind[3] else items[0]
+            return GlobalValue(name, value, code), pos
+        if layout == "string":
+            value, pos = read_prefixed_text(buf, pos, end, fixed, path)
+            return GlobalValue(name, value, code), pos
+        if layout == "list":
+            if pos + fixed.size > end:
+                raise short(path, pos, fixed.size, end)
+            (count,) = fixed.unpack_from(buf, pos)
+            if count < 0:
+                raise DecodeError(path, pos, f"negative length {count}")
+            pos += fixed.size
+            items = []
+            for i in range(count):
+                item, pos = self.decode(buf, pos, end, f"{path}[{i}]", depth + 1)
+                items.append(item)
+            return GlobalValue(name, items, code), pos
+        # matrix: rows and columns are read together
+        if pos + fixed.size > end:
+            raise short(path, pos, fixed.size, end)
+        rows, cols = fixed.unpack_from(buf, pos)
+        if rows < 0:
+            raise DecodeError(path, pos, f"negative length {rows}")
+        if cols < 0:
+            raise DecodeError(path, pos + fixed.size // 2, f"negative length {cols}")
+        pos += fixed.size
+        matrix = []
+        for r in range(rows):
+            row = []
+            for c in range(cols):
+                item, pos = self.decode(buf, pos, end, f"{path}[{r}][{c}]", depth + 1)
+                row.append(item)
+            matrix.append(row)
+        return GlobalValue(name, matrix, code), pos
+
+    def encode_list(self, out: bytearray, values: list, terminator: int) -> None:
+        for v in values:
+            self.encode(out, v)
+            out.append(terminator)
+
+    def encode(self, out: bytearray, v: GlobalValue) -> None:
+        kind = self.kinds.get(v.code)
+        if kind is None:
+            raise EncodeError(f"value type code {v.code} is not in this version's table")
+        _, layout, fixed, _ = kind
+        out.append(v.code)
+        if layout == "empty":
+            return
+        if layout == "scalar":
+            out += fixed.pack(v.value)
+        elif layout == "array":
+            out += fixed.pack(*v.value)
+        elif layout == "string":
+            write_prefixed_text(out, v.value, fixed)
+        elif layout == "list":
+            out += fixed.pack(len(v.value))
+            for item in v.value:
+                self.encode(out, item)
+        else:
+            cols = len(v.value[0]) if v.value else 0
+            if any(len(row) != cols for row in v.value):
+                raise EncodeError("matrix rows differ in length")
+            out += fixed.pack(len(v.value), cols)
+            for row in v.value:
+                for item in row:
+                    self.encode(out, item)
+
+    def make(self, type_name: str, value: Any) -> GlobalValue:
+        """A value of the named type, coded for this table (for building messages by hand)."""
+        return GlobalValue(type_name, value, self.codes[type_name])
+
+
+# ---- what is kept raw: unknown and malformed parts, stream faults ---------------------------
+
+@dataclass(slots=True)
+class UnknownMessage:
+    """A message whose type the spec does not lay out (or too short for its own header)."""
+
+    message_type: int
+    raw: bytes
+    error: Optional[str] = None
+    TYPE = "unknown"
+
+
+@dataclass(slots=True)
+class UnknownPackage:
+    """A robot-state sub-package whose type the spec does not lay out."""
+
+    package_type: int
+    raw: bytes
+    TYPE = "unknown"
+
+
+@dataclass(slots=True)
+class MalformedPackage:
+    """A known sub-package that could not be read: its name, the reason and its bytes."""
+
+    name: str
+    package_type: int
+    error: str
+    raw: bytes
+
+
+@dataclass(slots=True)
+class UnknownSubtype:
+    """A robot or program-state message whose subtype the spec does not lay out."""
+
+    message_type: int
+    robot_message_type: int
+    timestamp: int
+    source: Optional[int]
+    raw: bytes
+    TYPE = "unknown"
+
+
+@dataclass(slots=True)
+class MalformedSubtype:
+    """A known robot or program-state message that could not be read."""
+
+    name: str
+    message_type: int
+    robot_message_type: int
+    timestamp: int
+    source: Optional[int]
+    error: str
+    raw: bytes
+
+
+@dataclass(slots=True)
+class StreamError:
+    """A stream-level fault: bad length, unknown type, or a truncated tail."""
+
+    offset: int
+    error: str
+    TYPE = "error"
+
+
+Unknown = Union[UnknownMessage, UnknownPackage, UnknownSubtype]

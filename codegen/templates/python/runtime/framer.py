@@ -1,0 +1,114 @@
+"""Streaming framer: bytes in chunks of any size in, decoded records out, in stream order.
+
+Frames by the declared lengths, learns the software version from each Version message, and
+reports stream faults (bad length, unknown type, truncated tail) then resynchronises on the
+next plausible header. Hand-written; copied into generated/python/urwire/ by `make generate`.
+"""
+from __future__ import annotations
+
+import struct
+from typing import Iterable, Iterator, Optional, Union
+
+from ._runtime import StreamError
+from .messages import decode_message
+from .spec import DEFAULT_VERSION, HEADER_SIZE, KNOWN_MESSAGE_TYPES, MAX_MESSAGE_LENGTH
+
+_HEADER = struct.Struct(">iB")
+
+VersionLike = Union[str, tuple, None]
+
+
+def parse_version(version: VersionLike) -> Optional[tuple[int, int]]:
+    """'5.9', '5.9.1', (5, 9) or None -> (5, 9) or None."""
+    if version is None:
+        return None
+    if isinstance(version, str):
+        parts = version.strip().split(".")
+        if len(parts) < 2 or not all(p.isdigit() for p in parts):
+            raise ValueError(f"not a software version: {version!r} (expected e.g. 5.9)")
+        return int(parts[0]), int(parts[1])
+    return int(version[0]), int(version[1])
+
+
+def _fault(length: int, mtype: int) -> Optional[str]:
+    if length < HEADER_SIZE:
+        return f"length {length} is below {HEADER_SIZE}"
+    if length > MAX_MESSAGE_LENGTH:
+        return f"length {length} is above {MAX_MESSAGE_LENGTH}"
+    if mtype not in KNOWN_MESSAGE_TYPES:
+        return f"unknown message type {mtype}"
+    return None
+
+
+class Framer:
+    """Feed bytes with feed(); call close() at the end of the stream for a truncated tail."""
+
+    def __init__(self, version_hint: VersionLike = None):
+        self.hint = parse_version(version_hint)
+        self.version: tuple[int, int] = self.hint or DEFAULT_VERSION
+        """Software version in force: the stream's last Version message, else the hint."""
+        self.version_seen = False
+        self._buf = bytearray()
+        self._base = 0          # stream offset of _buf[0]
+        self._resyncing = False
+
+    def feed(self, data: bytes) -> list:
+        self._buf += data
+        return list(self._drain(final=False))
+
+    def close(self) -> list:
+        return list(self._drain(final=True))
+
+    def _drain(self, final: bool) -> Iterator:
+        buf = self._buf
+        n = len(buf)
+        pos = 0
+        while True:
+            if self._resyncing:
+                while n - pos >= HEADER_SIZE:
+                    length, mtype = _HEADER.unpack_from(buf, pos)
+                    if _fault(length, mtype) is None:
+                        self._resyncing = False
+                        break
+                    pos += 1
+                if self._resyncing:
+                    if final:
+                        pos = n  # the last few bytes belong to the fault already reported
+                    break
+            left = n - pos
+            if left < HEADER_SIZE:
+                if final and left:
+                    yield StreamError(self._base + pos, f"truncated header: {left} bytes left")
+                    pos = n
+                break
+            length, mtype = _HEADER.unpack_from(buf, pos)
+            fault = _fault(length, mtype)
+            if fault is not None:
+                yield StreamError(self._base + pos, fault)
+                self._resyncing = True
+                pos += 1
+                continue
+            if length > left:
+                if final:
+                    yield StreamError(self._base + pos, f"truncated message: length {length}, {left} bytes left")
+                    pos = n
+                break
+            msg = decode_message(bytes(buf[pos:pos + length]), self.version)
+            sets = getattr(msg, "SETS_VERSION", None)
+            if sets is not None:
+                self.version = (getattr(msg, sets[0]), getattr(msg, sets[1]))
+                self.version_seen = True
+            pos += length
+            yield msg
+        if pos:
+            del buf[:pos]
+            self._base += pos
+
+
+def decode_stream(data: Union[bytes, Iterable[bytes]], version_hint: VersionLike = None) -> Iterator:
+    """Every record of a whole stream (bytes, or an iterable of chunks such as a socket reader)."""
+    framer = Framer(version_hint)
+    chunks = [data] if isinstance(data, (bytes, bytearray, memoryview)) else data
+    for chunk in chunks:
+        yield from framer.feed(bytes(chunk))
+    yield from framer.close()
