@@ -16,6 +16,7 @@ class _Resolver:
         self.spec = spec
         self.problems: list[Problem] = []
         self.enums: dict[str, ir.Enum] = {}
+        self.unresolved: set[int] = set()
 
     def fail(self, parts, message: str) -> None:
         self.problems.append(self.spec.problem(parts, message))
@@ -75,7 +76,9 @@ class _Resolver:
                 if v.name == name:
                     return v
             self.fail(parts, f"'{name}' is not a member of enum '{enum.name}'")
-        return ir.EnumValue(name, 0)
+        placeholder = ir.EnumValue(name, 0)
+        self.unresolved.add(id(placeholder))  # reported once; kept out of later checks
+        return placeholder
 
     # ---- fields ----
 
@@ -136,8 +139,11 @@ class _Resolver:
         if kind == "bytes":
             return ir.BytesField(**common)
         scalar = ir.SCALARS[kind]
-        if enum is not None and enum.scalar.size != scalar.size:
-            self.fail(parts + ["enum"], f"enum '{enum.name}' is {enum.scalar.name}, the field is {scalar.name}")
+        if enum is not None:
+            misfits = [v.name for v in enum.values if not scalar.min <= v.value <= scalar.max]
+            if misfits:
+                self.fail(parts + ["enum"], f"enum '{enum.name}' has values that do not fit the field's "
+                                            f"{scalar.name}: {', '.join(misfits)}")
         if raw.get("bits") and not scalar.is_integer:
             self.fail(parts + ["bits"], "bit names need an integer field")
         if raw.get("bits") and len(raw["bits"]) > scalar.bits:
@@ -168,6 +174,8 @@ class _Resolver:
     def unique_codes(self, layouts: list[ir.Layout], parts) -> None:
         seen: dict[int, str] = {}
         for lay in layouts:
+            if id(lay.code) in self.unresolved:
+                continue
             if lay.code.value in seen:
                 self.fail(parts + [lay.name, "code"], f"code {lay.code.name} is already used by '{seen[lay.code.value]}'")
             seen[lay.code.value] = lay.name

@@ -1,3 +1,4 @@
+# Copied from codegen/templates/python/runtime/canonical.py: edit it there and run `make generate`.
 """Canonical JSON of decoded records (docs/canonical-json.md): the form every target prints.
 
 Hand-written; copied verbatim into generated/python/urwire/ by `make generate`.

@@ -1,3 +1,4 @@
+# Copied from codegen/templates/python/runtime/framer.py: edit it there and run `make generate`.
 """Streaming framer: bytes in chunks of any size in, decoded records out, in stream order.
 
 Frames by the declared lengths, learns the software version from each Version message, and

@@ -1,0 +1,131 @@
+"""Robot->client byte streams out of .pcap/.pcapng captures, reassembled from TCP segments.
+
+dpkt reads the capture formats and parses the link, IP and TCP layers; reassembly is ours:
+segments in sequence order, retransmitted and overlapping bytes dropped, out-of-order ones
+held until the gap closes. Hand-written; copied into generated/python/urwire/.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import BinaryIO, Iterator, Optional
+
+PCAP_MAGICS = {b"\xa1\xb2\xc3\xd4", b"\xd4\xc3\xb2\xa1", b"\xa1\xb2\x3c\x4d", b"\x4d\x3c\xb2\xa1"}
+PCAPNG_MAGIC = b"\x0a\x0d\x0d\x0a"
+MAX_PENDING = 16 << 20   # out-of-order bytes held per stream before the gap is given up
+
+
+def is_capture(head: bytes) -> bool:
+    return head[:4] in PCAP_MAGICS or head[:4] == PCAPNG_MAGIC
+
+
+@dataclass
+class _Reassembly:
+    next_seq: Optional[int] = None
+    pending: dict = field(default_factory=dict)  # seq -> bytes, ahead of next_seq
+    pending_bytes: int = 0
+
+    def add(self, seq: int, data: bytes) -> bytes:
+        if self.next_seq is None:
+            self.next_seq = seq  # the capture starts mid-stream
+        ahead = _delta(seq, self.next_seq)
+        if ahead > 0:
+            if seq not in self.pending or len(self.pending[seq]) < len(data):
+                self.pending_bytes += len(data) - len(self.pending.get(seq, b""))
+                self.pending[seq] = data
+            if self.pending_bytes > MAX_PENDING:
+                return self._skip_gap()
+            return b""
+        out = data[-ahead:] if ahead < 0 else data
+        if ahead < 0 and -ahead >= len(data):
+            return b""  # a retransmission of bytes already delivered
+        self.next_seq = (self.next_seq + len(out)) & 0xFFFFFFFF
+        return out + self._drain()
+
+    def _drain(self) -> bytes:
+        out = b""
+        progressed = True
+        while progressed and self.pending:
+            progressed = False
+            for seq in list(self.pending):
+                ahead = _delta(seq, self.next_seq)
+                if ahead <= 0:
+                    data = self.pending.pop(seq)
+                    self.pending_bytes -= len(data)
+                    if -ahead < len(data):
+                        piece = data[-ahead:] if ahead < 0 else data
+                        out += piece
+                        self.next_seq = (self.next_seq + len(piece)) & 0xFFFFFFFF
+                    progressed = True
+        return out
+
+    def _skip_gap(self) -> bytes:
+        """Give up on missing bytes: go on from the earliest segment held."""
+        first = min(self.pending, key=lambda s: _delta(s, self.next_seq))
+        self.next_seq = first
+        return self._drain()
+
+    def flush(self) -> bytes:
+        return self._skip_gap() if self.pending else b""
+
+
+def _delta(seq: int, ref: int) -> int:
+    """seq - ref in 32-bit sequence space, as a signed number."""
+    d = (seq - ref) & 0xFFFFFFFF
+    return d - (1 << 32) if d >= 1 << 31 else d
+
+
+def _ip_layer(linktype: int, frame: bytes):
+    import dpkt
+
+    if linktype == 1:
+        pkt = dpkt.ethernet.Ethernet(frame).data
+    elif linktype == 113:
+        pkt = dpkt.sll.SLL(frame).data
+    elif linktype == 276:
+        pkt = dpkt.sll2.SLL2(frame).data
+    elif linktype == 0:
+        pkt = dpkt.loopback.Loopback(frame).data
+    elif linktype in (12, 14, 101, 228, 229):
+        pkt = dpkt.ip.IP(frame) if frame[:1] and frame[0] >> 4 == 4 else dpkt.ip6.IP6(frame)
+    else:
+        return None
+    return pkt if isinstance(pkt, (dpkt.ip.IP, dpkt.ip6.IP6)) else None
+
+
+StreamKey = tuple  # (robot address, robot port, client address, client port)
+
+
+def robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[tuple[StreamKey, bytes, bool]]:
+    """(stream, bytes in order, stream ended) for each robot->client TCP stream on `ports`."""
+    import dpkt
+    import socket
+
+    head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+    reader = dpkt.pcapng.Reader(fh) if head == PCAPNG_MAGIC else dpkt.pcap.Reader(fh)
+    linktype = reader.datalink()
+    streams: dict[StreamKey, _Reassembly] = {}
+    for _, frame in reader:
+        try:
+            ip = _ip_layer(linktype, frame)
+        except (dpkt.UnpackError, ValueError, IndexError):
+            continue
+        tcp = getattr(ip, "data", None)
+        if not isinstance(tcp, dpkt.tcp.TCP) or tcp.sport not in ports:
+            continue
+        family = socket.AF_INET if isinstance(ip, dpkt.ip.IP) else socket.AF_INET6
+        key = (socket.inet_ntop(family, ip.src), tcp.sport, socket.inet_ntop(family, ip.dst), tcp.dport)
+        stream = streams.get(key)
+        if tcp.flags & dpkt.tcp.TH_SYN:
+            stream = streams[key] = _Reassembly((tcp.seq + 1) & 0xFFFFFFFF)
+            continue
+        if stream is None:
+            stream = streams[key] = _Reassembly()
+        data = stream.add(tcp.seq, bytes(tcp.data)) if tcp.data else b""
+        ended = bool(tcp.flags & (dpkt.tcp.TH_FIN | dpkt.tcp.TH_RST))
+        if ended:
+            data += stream.flush()
+            del streams[key]
+        if data or ended:
+            yield key, data, ended
+    for key, stream in streams.items():
+        yield key, stream.flush(), True

@@ -1,0 +1,140 @@
+# Copied from codegen/templates/python/runtime/cli.py: edit it there and run `make generate`.
+"""The `urwire` command: decode raw streams and .pcap/.pcapng captures to canonical JSON Lines.
+
+Exit codes: 0 everything decoded, 1 the output holds error records, 2 usage or I/O error.
+Hand-written; copied into generated/python/urwire/ by `make generate`.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from typing import BinaryIO, Callable, Iterable, Optional
+
+from . import __version__
+from .canonical import has_error, to_json_line
+from .capture import is_capture, robot_streams
+from .framer import Framer, parse_version
+from .human import line as human_line
+from .spec import DEFAULT_VERSION, PORTS
+
+CHUNK = 1 << 20
+PROGRESS_MIN_BYTES = 8 << 20
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str):  # one line on stderr, exit 2, as the contract says
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def _version_arg(text: str) -> tuple[int, int]:
+    try:
+        return parse_version(text)  # type: ignore[return-value]
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def build_parser() -> argparse.ArgumentParser:
+    default = f"{DEFAULT_VERSION[0]}.{DEFAULT_VERSION[1]}"
+    parser = _Parser(prog="urwire", description="Decode the Universal Robots primary/secondary client interface.")
+    parser.add_argument("--version", action="version", version=f"urwire {__version__}")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    dec = sub.add_parser("decode", help="decode a raw stream, .pcap or .pcapng to canonical JSON Lines",
+                         description="Decode a raw robot->client stream, or every robot->client TCP stream "
+                                     "of a .pcap/.pcapng capture, and print one JSON object per message.")
+    dec.add_argument("file", help="a raw stream, a .pcap or a .pcapng file; - for standard input")
+    dec.add_argument("--version-hint", type=_version_arg, metavar="X.Y",
+                     help=f"software version to assume until a Version message is seen; it chooses the "
+                          f"value-type table of global variables (default: {default}, i.e. {default} and later)")
+    dec.add_argument("--format", choices=("json", "text"), default="json",
+                     help="json: canonical JSON Lines (default); text: one readable line per message")
+    dec.add_argument("--port", type=int, action="append", metavar="PORT",
+                     help=f"robot-side TCP port(s) to decode in captures (default: {' '.join(map(str, PORTS))})")
+    dec.add_argument("--no-progress", action="store_true", help="never show a progress bar")
+    return parser
+
+
+def _open(path: str) -> tuple[BinaryIO, Optional[int]]:
+    if path == "-":
+        return sys.stdin.buffer, None
+    fh = open(path, "rb")
+    size = os.fstat(fh.fileno()).st_size
+    return fh, size
+
+
+def _progress(size: Optional[int], disabled: bool) -> Callable[[int], None]:
+    if disabled or size is None or size < PROGRESS_MIN_BYTES or not sys.stderr.isatty():
+        return lambda n: None
+    from tqdm import tqdm
+
+    bar = tqdm(total=size, unit="B", unit_scale=True, desc="decoding", file=sys.stderr, leave=False)
+    return bar.update
+
+
+def _records_raw(fh: BinaryIO, hint, advance) -> Iterable:
+    framer = Framer(hint)
+    while True:
+        chunk = fh.read(CHUNK)
+        if not chunk:
+            break
+        advance(len(chunk))
+        yield from framer.feed(chunk)
+    yield from framer.close()
+
+
+def _records_capture(fh: BinaryIO, hint, ports: set[int], advance) -> Iterable:
+    framers: dict = {}
+    last = 0
+    for key, data, ended in robot_streams(fh, ports):
+        framer = framers.get(key) or framers.setdefault(key, Framer(hint))
+        if data:
+            yield from framer.feed(data)
+        if ended:
+            yield from framer.close()
+            del framers[key]
+        pos = fh.tell() if fh.seekable() else last
+        advance(pos - last)
+        last = pos
+
+
+def decode_command(args: argparse.Namespace) -> int:
+    try:
+        fh, size = _open(args.file)
+    except OSError as exc:
+        print(f"urwire: cannot read {args.file}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
+    advance = _progress(size, args.no_progress)
+    render = to_json_line if args.format == "json" else human_line
+    head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+    if is_capture(head):
+        records = _records_capture(fh, args.version_hint, set(args.port or PORTS), advance)
+    else:
+        records = _records_raw(fh, args.version_hint, advance)
+    failed = False
+    out = sys.stdout
+    try:
+        for record in records:
+            failed = failed or has_error(record)
+            out.write(render(record))
+            out.write("\n")
+        out.flush()
+    except BrokenPipeError:
+        # The reader went away (| head): stop quietly, as command-line tools do.
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except OSError as exc:
+        print(f"urwire: cannot decode {args.file}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
+    except ValueError as exc:  # dpkt: a damaged capture file
+        print(f"urwire: cannot read capture {args.file}: {exc}", file=sys.stderr)
+        return 2
+    return 1 if failed else 0
+
+
+def main(argv: Optional[list[str]] = None) -> int:
+    args = build_parser().parse_args(argv)
+    return decode_command(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

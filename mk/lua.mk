@@ -1,0 +1,44 @@
+# Lua Wireshark dissector: generated/lua/urwire.lua (written by `make generate`), its tests,
+# benchmark, sample captures and installation into the user's personal plugins folder.
+
+TSHARK ?= tshark
+LUA_PLUGIN := generated/lua/urwire.lua
+
+TEST_TARGETS += test-lua
+BENCH_TARGETS += bench-lua
+DEMO_TARGETS += demo-lua
+
+.PHONY: test-lua bench-lua demo-lua samples install-dissector uninstall-dissector
+
+# The personal Lua plugins folder, as tshark reports it ("Personal Lua Plugins:" in 4.0+).
+LUA_PLUGIN_DIR = $(shell $(TSHARK) -G folders 2>/dev/null | awk -F'\t' '/^Personal Lua Plugins:/ {print $$2; exit}')
+
+## test-lua: the dissector in real tshark against every vector, segmentation and mutated stream
+test-lua:
+	$(PYTEST) -q tests/lua
+
+## bench-lua: tshark with the dissector against tshark with `--disable-protocol ur`, same file
+bench-lua:
+	$(PYTHON) tests/bench/bench_lua.py
+
+## demo-lua: the dissector on the bundled primary-port capture
+demo-lua:
+	@echo "== Wireshark (tshark + $(LUA_PLUGIN)): dissector/samples/primary_session.pcapng"
+	@$(TSHARK) -r dissector/samples/primary_session.pcapng -X lua_script:$(LUA_PLUGIN) -Y ur \
+		-T fields -e frame.number -e _ws.col.Info 2>&1 | head -n 20
+	@echo "== the Version message and the first robot state, as a tree (excerpt)"
+	@$(TSHARK) -r dissector/samples/primary_session.pcapng -X lua_script:$(LUA_PLUGIN) -O ur \
+		-Y 'ur.type == 16' -c 5 2>&1 | sed -n '/^Universal Robots/,$$p' | head -n 40
+
+## samples: rewrite dissector/samples/ from the conformance bytes (deterministic)
+samples:
+	$(PYTHON) dissector/make_samples.py
+
+## install-dissector: copy the plugin into the personal Lua plugins folder of tshark/Wireshark
+install-dissector: $(LUA_PLUGIN)
+	@dir="$(LUA_PLUGIN_DIR)"; if [ -z "$$dir" ]; then echo "install-dissector: cannot find the personal Lua plugins folder with '$(TSHARK) -G folders'" >&2; exit 2; fi; \
+	mkdir -p "$$dir" && cp $(LUA_PLUGIN) "$$dir/urwire.lua" && echo "installed $$dir/urwire.lua"
+
+## uninstall-dissector: remove it again
+uninstall-dissector:
+	@dir="$(LUA_PLUGIN_DIR)"; if [ -n "$$dir" ] && [ -f "$$dir/urwire.lua" ]; then rm -f "$$dir/urwire.lua" && echo "removed $$dir/urwire.lua"; else echo "urwire.lua is not installed"; fi

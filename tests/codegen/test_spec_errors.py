@@ -1,0 +1,97 @@
+"""A broken spec fails with the YAML path (and line) of what is wrong, and every problem at once."""
+from __future__ import annotations
+
+import pytest
+import yaml
+
+from codegen.compile import DEFAULT_SPEC, compile_text
+from codegen.errors import SpecError
+
+SPEC_TEXT = DEFAULT_SPEC.read_text(encoding="utf-8")
+
+
+def spec_with(edit) -> str:
+    data = yaml.safe_load(SPEC_TEXT)
+    edit(data)
+    return yaml.safe_dump(data, sort_keys=False)
+
+
+def problems_of(text: str) -> list[str]:
+    with pytest.raises(SpecError) as info:
+        compile_text(text, "bad.yaml")
+    return [str(p) for p in info.value.problems]
+
+
+def robot_mode_fields(d):
+    return d["messages"]["robot_state"]["packages"]["robot_mode_data"]["fields"]
+
+
+def test_the_real_spec_compiles():
+    protocol = compile_text(SPEC_TEXT)
+    assert len(protocol.messages) == 3
+
+
+def test_yaml_syntax_error_names_the_line():
+    (problem,) = problems_of("spec_format: 1\nprotocol: [unclosed\n")
+    assert "line" in problem
+
+
+@pytest.mark.parametrize("edit, path, words", [
+    (lambda d: robot_mode_fields(d)[8].update(type="int9"),
+     "messages.robot_state.packages.robot_mode_data.fields[8].type", "is not one of"),
+    (lambda d: d["protocol"].pop("default_version"), "protocol", "'default_version' is a required property"),
+    (lambda d: d["enums"]["robot_mode"]["values"][0].update(name="no controller"),
+     "enums.robot_mode.values[0].name", "does not match"),
+    (lambda d: d["protocol"].update(documented_versions=["5"]), "protocol.documented_versions[0]", "does not match"),
+    (lambda d: robot_mode_fields(d)[0].update(colour="red"),
+     "messages.robot_state.packages.robot_mode_data.fields[0]", "Additional properties"),
+])
+def test_schema_errors_name_the_yaml_path(edit, path, words):
+    problems = problems_of(spec_with(edit))
+    assert any(p.startswith(path) and words in p for p in problems), problems
+
+
+@pytest.mark.parametrize("edit, path, words", [
+    (lambda d: robot_mode_fields(d)[8].update(enum="robot_moods"),
+     "messages.robot_state.packages.robot_mode_data.fields[8].enum", "unknown enum 'robot_moods'"),
+    (lambda d: d["messages"]["robot_state"]["packages"]["joint_data"].update(code="JOINT_DATUM"),
+     "messages.robot_state.packages.joint_data.code", "not a member of enum 'package_type'"),
+    (lambda d: robot_mode_fields(d)[1].update(name="timestamp"),
+     "messages.robot_state.packages.robot_mode_data.fields[1].name", "duplicate field name"),
+    (lambda d: d["enums"]["robot_mode"]["values"].append({"name": "TOO_BIG", "value": 300}),
+     "enums.robot_mode.values[10].value", "does not fit in int8"),
+    (lambda d: d["enums"]["control_mode"]["values"].append({"name": "POSITION", "value": 9}),
+     "enums.control_mode.values[4].name", "duplicate enum member"),
+    (lambda d: d["enums"]["value_type"]["tables"][1]["versions"].update({"from": "3.0"}),
+     "enums.value_type.tables[1].versions", "overlaps"),
+    (lambda d: d["enums"]["joint_mode"]["values"][4]["versions"].update({"from": "5.1", "until": "4.0"}),
+     "enums.joint_mode.values[4].versions", "starts after it ends"),
+    (lambda d: d["messages"]["robot_message"]["subtypes"]["text"]["fields"].append({"name": "more", "type": "int32"}),
+     "messages.robot_message.subtypes.text.fields[1]", "runs to the end"),
+    (lambda d: d["messages"]["robot_state"]["packages"]["masterboard_data"]["fields"][17].update(present_if="nothing"),
+     "messages.robot_state.packages.masterboard_data.fields[17].present_if", "must name an earlier"),
+    (lambda d: d["messages"]["robot_message"]["subtypes"]["safety_mode"]["fields"][4].update(switch="later"),
+     "messages.robot_message.subtypes.safety_mode.fields[4].switch", "must name an earlier integer field"),
+    (lambda d: d["value_layouts"].pop("MATRIX"), "enums.value_type", "MATRIX has no entry in value_layouts"),
+    (lambda d: robot_mode_fields(d)[8].update(enum="joint_mode"),
+     "messages.robot_state.packages.robot_mode_data.fields[8].enum", "do not fit the field's int8: RESET"),
+])
+def test_semantic_errors_name_the_yaml_path(edit, path, words):
+    problems = problems_of(spec_with(edit))
+    assert any(p.startswith(path) and words in p for p in problems), problems
+
+
+def test_every_problem_is_reported_at_once():
+    def two_mistakes(d):
+        robot_mode_fields(d)[8].update(enum="robot_moods")
+        d["messages"]["robot_state"]["packages"]["joint_data"].update(code="JOINT_DATUM")
+    assert len(problems_of(spec_with(two_mistakes))) == 2
+
+
+def test_problems_carry_the_line_of_the_node():
+    text = spec_with(lambda d: robot_mode_fields(d)[8].update(enum="robot_moods"))
+    with pytest.raises(SpecError) as info:
+        compile_text(text, "bad.yaml")
+    (problem,) = info.value.problems
+    line = text.splitlines()[problem.line - 1]
+    assert "robot_moods" in line

@@ -1,0 +1,118 @@
+"""Write TCP sessions of the UR interface into .pcap/.pcapng files, for tests and samples.
+
+A session is a handshake, then data segments in either direction with real sequence and
+acknowledgement numbers and correct checksums (dpkt computes them), then a FIN exchange.
+"""
+from __future__ import annotations
+
+import random
+import socket
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Iterable, Sequence
+
+import dpkt
+
+ROBOT = "192.168.56.101"
+CLIENT = "192.168.56.1"
+ROBOT_MAC = b"\x00\x30\x64\x11\x22\x33"
+CLIENT_MAC = b"\x02\x00\x00\x00\x00\x01"
+
+
+@dataclass
+class Segment:
+    from_robot: bool
+    payload: bytes
+
+
+def _frame(src, dst, sport, dport, seq, ack, flags, payload, src_mac, dst_mac) -> bytes:
+    tcp = dpkt.tcp.TCP(sport=sport, dport=dport, seq=seq, ack=ack, flags=flags, win=65535, data=payload)
+    ip = dpkt.ip.IP(src=socket.inet_aton(src), dst=socket.inet_aton(dst), p=dpkt.ip.IP_PROTO_TCP, ttl=64,
+                    data=tcp)
+    ip.len = len(ip)
+    eth = dpkt.ethernet.Ethernet(src=src_mac, dst=dst_mac, type=dpkt.ethernet.ETH_TYPE_IP, data=ip)
+    return bytes(eth)
+
+
+def session_frames(segments: Iterable[Segment], port: int = 30001, client_port: int = 50123,
+                   handshake: bool = True, robot_isn: int = 1000, client_isn: int = 5000,
+                   retransmit: Sequence[int] = ()) -> list[bytes]:
+    """Ethernet frames of one TCP session; indices in `retransmit` are sent twice."""
+    A, PA, S, SA, F = (dpkt.tcp.TH_ACK, dpkt.tcp.TH_PUSH | dpkt.tcp.TH_ACK, dpkt.tcp.TH_SYN,
+                       dpkt.tcp.TH_SYN | dpkt.tcp.TH_ACK, dpkt.tcp.TH_FIN | dpkt.tcp.TH_ACK)
+    r_seq, c_seq = robot_isn, client_isn
+
+    def robot(flags, data=b""):
+        return _frame(ROBOT, CLIENT, port, client_port, r_seq, c_seq, flags, data, ROBOT_MAC, CLIENT_MAC)
+
+    def client(flags, data=b""):
+        return _frame(CLIENT, ROBOT, client_port, port, c_seq, r_seq, flags, data, CLIENT_MAC, ROBOT_MAC)
+
+    frames = []
+    if handshake:
+        frames.append(_frame(CLIENT, ROBOT, client_port, port, c_seq - 1, 0, S, b"", CLIENT_MAC, ROBOT_MAC))
+        frames.append(_frame(ROBOT, CLIENT, port, client_port, r_seq - 1, c_seq, SA, b"", ROBOT_MAC, CLIENT_MAC))
+        frames.append(client(A))
+    for i, seg in enumerate(segments):
+        if seg.from_robot:
+            frames.append(robot(PA, seg.payload))
+            if i in retransmit:
+                frames.append(robot(PA, seg.payload))
+            r_seq = (r_seq + len(seg.payload)) & 0xFFFFFFFF
+            frames.append(client(A))
+        else:
+            frames.append(client(PA, seg.payload))
+            c_seq = (c_seq + len(seg.payload)) & 0xFFFFFFFF
+            frames.append(robot(A))
+    frames.append(robot(F))
+    r_seq += 1
+    frames.append(client(F))
+    c_seq += 1
+    frames.append(robot(A))
+    return frames
+
+
+def write(path: Path, frames: Iterable[bytes], pcapng: bool = False, start: float = 1_700_000_000.0,
+          step: float = 0.1) -> Path:
+    """Write frames, 100 ms apart (the robot-state rate), as .pcap or .pcapng."""
+    path = Path(path)
+    with path.open("wb") as fh:
+        writer = dpkt.pcapng.Writer(fh) if pcapng else dpkt.pcap.Writer(fh)
+        for i, frame in enumerate(frames):
+            writer.writepkt(frame, ts=start + i * step)
+    return path
+
+
+# ---- how a robot's byte stream is cut into segments ----
+
+def whole(messages: Sequence[bytes]) -> list[bytes]:
+    """One message per segment."""
+    return list(messages)
+
+
+def bytewise(messages: Sequence[bytes]) -> list[bytes]:
+    """One byte per segment."""
+    data = b"".join(messages)
+    return [data[i:i + 1] for i in range(len(data))]
+
+
+def random_cuts(messages: Sequence[bytes], seed: int = 0, max_len: int = 700) -> list[bytes]:
+    """Cut anywhere, with segment sizes from 1 to max_len."""
+    data = b"".join(messages)
+    rng = random.Random(seed)
+    out, pos = [], 0
+    while pos < len(data):
+        n = rng.randint(1, max_len)
+        out.append(data[pos:pos + n])
+        pos += n
+    return out
+
+
+def packed(messages: Sequence[bytes], per_segment: int = 3) -> list[bytes]:
+    """Several whole messages per segment."""
+    return [b"".join(messages[i:i + per_segment]) for i in range(0, len(messages), per_segment)]
+
+
+def robot_session(payloads: Sequence[bytes], **kwargs) -> list[bytes]:
+    """Frames of a session in which the robot sends the given segment payloads."""
+    return session_frames([Segment(True, p) for p in payloads], **kwargs)
