@@ -112,13 +112,15 @@ def _is_number(v) -> bool:
 
 
 def _numbers_equal(expected, actual, tolerance: float) -> bool:
+    if expected == actual:  # exact; Python compares an int with a float exactly
+        return True
     if isinstance(expected, int) and isinstance(actual, int):
-        return expected == actual
+        return False
     e, a = float(expected), float(actual)
     if math.isnan(e) or math.isnan(a):
         return math.isnan(e) and math.isnan(a)
-    if math.isinf(e) or math.isinf(a):
-        return e == a
+    if math.isinf(e) or math.isinf(a) or tolerance == 0.0:
+        return False
     return abs(a - e) <= tolerance * max(1.0, abs(e))
 
 

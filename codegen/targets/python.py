@@ -44,7 +44,8 @@ class Step:
 class StructConst:
     name: str
     fmt: str
-    run: list          # (path, offset in run, size)
+    run: list                     # (path, offset in run, size)
+    out_fmt: Optional[str] = None  # encoding format when it differs (float32 packed as bits)
 
 
 @dataclass
@@ -122,12 +123,26 @@ def json_kind(f: ir.AnyField) -> str:
     return "values"
 
 
-def leaf_expr(s: ir.Scalar, enum: Optional[ir.Enum], ref: str) -> str:
+def leaf_expr(s: ir.Scalar, enum: Optional[ir.Enum], ref: str, at: str = "") -> str:
+    """Decode expression of one scalar read as `ref`; `at` is its byte offset (for float32 NaNs)."""
     if enum is not None:
         return f"_e.{py_lookup(enum)}.get({ref}, {ref})"
     if s.is_bool:
         return f"_BOOL[{ref}]"
+    if s.is_float and s.size == 4 and at:
+        # struct quiets signalling NaNs of float32; keep their bits so encoding is lossless.
+        return f"({ref} if {ref} == {ref} else _rt.f32_nan(buf, {at}))"
     return ref
+
+
+def encode_expr(s: ir.Scalar, ref: str) -> str:
+    """Encode argument of one scalar; float32 goes out as its bits (see leaf_expr)."""
+    return f"_rt.f32_bits({ref})" if s.is_float and s.size == 4 else ref
+
+
+def out_code(s: ir.Scalar) -> str:
+    """struct code for encoding: float32 is packed from its bits."""
+    return "I" if s.is_float and s.size == 4 else STRUCT_CODES[s.name]
 
 
 def index(base: str, k: int) -> str:
@@ -147,55 +162,65 @@ class _ClassBuilder:
     # ---- fixed runs ----
 
     def run_leaves(self, f: ir.AnyField, path: str, base: int):
-        """(fmt chars, run entries, decode expr builder, encode args) for one fixed field."""
+        """For one fixed field: (decode fmt, encode fmt, run entries, decode expr(v, i, at),
+        encode args, number of values). `at` is the expression of the field's byte offset."""
         if isinstance(f, ir.ScalarField):
-            return (STRUCT_CODES[f.scalar.name], [(path, base, f.scalar.size)],
-                    lambda v, i: leaf_expr(f.scalar, f.enum, f"{v}[{i}]"), [f"self.{f.name}"], 1)
+            return (STRUCT_CODES[f.scalar.name], out_code(f.scalar), [(path, base, f.scalar.size)],
+                    lambda v, i, at: leaf_expr(f.scalar, f.enum, f"{v}[{i}]", at),
+                    [encode_expr(f.scalar, f"self.{f.name}")], 1)
         if isinstance(f, ir.ArrayField):
             n, size = f.count, f.scalar.size
             entries = [(f"{path}[{k}]", base + k * size, size) for k in range(n)]
 
-            def array_expr(v, i, f=f, n=n):
+            def array_expr(v, i, at, f=f, n=n):
                 ref = f"{v}[{i}:{i} + {n}]" if not i.isdigit() else f"{v}[{i}:{int(i) + n}]"
+                if f.scalar.is_float and f.scalar.size == 4:
+                    return f"_rt.f32_list({ref}, buf, {at})"
                 if f.enum is None and not f.scalar.is_bool:
                     return f"list({ref})"
                 return f"[{leaf_expr(f.scalar, f.enum, 'x')} for x in {ref}]"
-            return STRUCT_CODES[f.scalar.name] * n, entries, array_expr, [f"*self.{f.name}"], n
+            enc = (f"*map(_rt.f32_bits, self.{f.name})" if f.scalar.is_float and f.scalar.size == 4
+                   else f"*self.{f.name}")
+            return (STRUCT_CODES[f.scalar.name] * n, out_code(f.scalar) * n, entries, array_expr, [enc], n)
         assert isinstance(f, ir.GroupField) and f.count is not None
         item_cls = self.target.item_classes[id(f)]
-        fmt, entries, width, offset = "", [], 0, base
+        fmt, ofmt, entries, width, offset = "", "", [], 0, base
         for k in range(f.count):
             for g in f.item.fields:
-                gfmt, gentries, _, _, gwidth = self.run_leaves(g, f"{path}[{k}].{g.name}", offset)
+                gfmt, gofmt, gentries, _, _, gwidth = self.run_leaves(g, f"{path}[{k}].{g.name}", offset)
                 fmt += gfmt
+                ofmt += gofmt
                 entries += gentries
                 offset += g.fixed_size or 0
                 if k == 0:
                     width += gwidth
-        total = width * f.count
+        item_size = f.item.fixed_size
 
-        def group_expr(v, i, cls=item_cls.name, total=total, width=width):
-            start = int(i)
-            return f"[{cls}._from({v}, k) for k in range({start}, {start + total}, {width})]"
-        return fmt, entries, group_expr, [f"*[x for item in self.{f.name} for x in item._values()]"], total
+        def group_expr(v, i, at, cls=item_cls.name, n=f.count, width=width, item_size=item_size):
+            first = f"{i} + j * {width}" if i != "0" else f"j * {width}"
+            return f"[{cls}._from({v}, {first}, buf, {at} + j * {item_size}) for j in range({n})]"
+        return fmt, ofmt, entries, group_expr, [f"*[x for item in self.{f.name} for x in item._values()]"], width * f.count
 
     def flush_run(self, run: list[ir.AnyField], decode: list[Step], encode: list[Step], prefix: str) -> None:
         if not run:
             return
         const = f"_{self.owner.upper()}_{len(self.structs)}"
-        fmt, entries, assigns, args, index_ = ">", [], [], [], 0
+        fmt, ofmt, entries, assigns, args, index_ = ">", ">", [], [], [], 0
         offset = 0
         for f in run:
-            ffmt, fentries, expr, fargs, width = self.run_leaves(f, prefix + f.name, offset)
+            ffmt, fofmt, fentries, expr, fargs, width = self.run_leaves(f, prefix + f.name, offset)
             fmt += ffmt
+            ofmt += fofmt
             entries += fentries
-            assigns.append((f.name, expr("v", str(index_))))
+            assigns.append((f.name, expr("v", str(index_), f"pos + {offset}" if offset else "pos")))
             args += fargs
             index_ += width
             offset += f.fixed_size or 0
-        self.structs.append(StructConst(const, fmt, entries))
-        decode.append(Step("run", dict(const=const, size=offset, assigns=assigns, single=index_ == 1)))
-        encode.append(Step("run", dict(const=const, args=args)))
+        out_const = const if ofmt == fmt else const + "_OUT"
+        self.structs.append(StructConst(const, fmt, entries, ofmt if ofmt != fmt else None))
+        single = index_ == 1 and "f32_nan" not in assigns[0][1]
+        decode.append(Step("run", dict(const=const, size=offset, assigns=assigns, single=single)))
+        encode.append(Step("run", dict(const=out_const, args=args)))
         run.clear()
 
     # ---- steps ----
@@ -318,13 +343,13 @@ class _Target:
                       sets_version=sets_version)
         if role == "item" and struct.fixed_size is not None:
             cls.fixed = True
-            k = 0
+            k, offset = 0, 0
             for f in struct.fields:
-                _, _, expr, args, width = builder.run_leaves(f, f.name, 0)
-                cls.from_exprs.append(expr("v", index("i", k)) if width == 1 or not isinstance(f, ir.ArrayField)
-                                      else expr("v", index("i", k)))
+                _, _, _, expr, args, width = builder.run_leaves(f, f.name, 0)
+                cls.from_exprs.append(expr("v", index("i", k), index("at", offset)))
                 cls.values_exprs += args
                 k += width
+                offset += f.fixed_size or 0
         cls.summary = [f.name for f in struct.fields if isinstance(f, ir.ScalarField) and f.enum is not None]
         cls.summary += [f.name for f in struct.fields if isinstance(f, ir.StringField)]
         self.classes.append(cls)
@@ -345,7 +370,7 @@ class _Target:
                 for f in list(m.header.fields) + [m.subtype]:
                     run.append((f.name, off, f.scalar.size))
                     off += f.scalar.size
-                header_exprs = [leaf_expr(f.scalar, f.enum, f.name) for f in m.header.fields]
+                header_exprs = [leaf_expr(f.scalar, f.enum, f.name, str(self.p.header_size)) for f in m.header.fields]
                 names = [f.name for f in m.header.fields]
                 layouts = [self.build_class(st.struct, py_layout_class(st, True), "subtype", st.name,
                                             st.code.value, one_line(st.doc, st.field_note), m.header,

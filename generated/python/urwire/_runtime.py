@@ -14,6 +14,33 @@ from typing import Any, Optional, Union
 BOOL: tuple = (False, True) + tuple(range(2, 256))
 
 
+_F32 = struct.Struct(">f")
+_U32 = struct.Struct(">I")
+
+
+class F32NaN(float):
+    """A float32 NaN with its exact bits: struct would quiet a signalling NaN on the way."""
+
+    __slots__ = ("bits",)
+
+
+def f32_nan(buf, at: int) -> F32NaN:
+    x = F32NaN("nan")
+    (x.bits,) = _U32.unpack_from(buf, at)
+    return x
+
+
+def f32_bits(x: float) -> int:
+    """The float32 bits to write for x (exact for NaNs read from the wire)."""
+    if type(x) is F32NaN:
+        return x.bits
+    return _U32.unpack(_F32.pack(x))[0]
+
+
+def f32_list(values, buf, at: int) -> list:
+    return [x if x == x else f32_nan(buf, at + 4 * k) for k, x in enumerate(values)]
+
+
 class DecodeError(Exception):
     """A field could not be read: carries its path and the byte offset in the message."""
 
@@ -152,7 +179,10 @@ class ValueCodec:
             if pos + fixed.size > end:
                 raise short(path, pos, fixed.size, end)
             items = fixed.unpack_from(buf, pos)
+            at = pos
             pos += fixed.size
+            if fixed.format.endswith("f"):
+                items = f32_list(items, buf, at)
             if layout == "array":
                 return GlobalValue(name, list(items), code), pos
             value = BOOL[items[0]] if kind[3] else items[0]
@@ -203,10 +233,12 @@ class ValueCodec:
         out.append(v.code)
         if layout == "empty":
             return
-        if layout == "scalar":
-            out += fixed.pack(v.value)
-        elif layout == "array":
-            out += fixed.pack(*v.value)
+        if layout == "scalar" or layout == "array":
+            items = v.value if layout == "array" else [v.value]
+            if fixed.format.endswith("f"):
+                out += struct.pack(f">{len(items)}I", *map(f32_bits, items))
+            else:
+                out += fixed.pack(*items)
         elif layout == "string":
             write_prefixed_text(out, v.value, fixed)
         elif layout == "list":

@@ -128,6 +128,7 @@ class RobotModeData:
 
 
 _JOINT_0 = struct.Struct(">dddffffB")
+_JOINT_0_OUT = struct.Struct(">dddIIIIB")  # float32 written from its bits
 _JOINT_0_RUN = (
     ("q_actual", 0, 8),
     ("q_target", 8, 8),
@@ -174,14 +175,33 @@ class Joint:
     """Joint mode."""
 
     @classmethod
-    def _from(cls, v: tuple, i: int) -> "Joint":
-        return cls(v[i], v[i + 1], v[i + 2], v[i + 3], v[i + 4], v[i + 5], v[i + 6], _e.JOINT_MODE_BY_VALUE.get(v[i + 7], v[i + 7]))
+    def _from(cls, v: tuple, i: int, buf, at: int) -> "Joint":
+        return cls(
+            v[i],
+            v[i + 1],
+            v[i + 2],
+            (v[i + 3] if v[i + 3] == v[i + 3] else _rt.f32_nan(buf, at + 24)),
+            (v[i + 4] if v[i + 4] == v[i + 4] else _rt.f32_nan(buf, at + 28)),
+            (v[i + 5] if v[i + 5] == v[i + 5] else _rt.f32_nan(buf, at + 32)),
+            (v[i + 6] if v[i + 6] == v[i + 6] else _rt.f32_nan(buf, at + 36)),
+            _e.JOINT_MODE_BY_VALUE.get(v[i + 7], v[i + 7]),
+        )
 
     def _values(self) -> tuple:
-        return (self.q_actual, self.q_target, self.qd_actual, self.i_actual, self.v_actual, self.t_motor, self.t_micro, self.joint_mode,)
+        return (
+            self.q_actual,
+            self.q_target,
+            self.qd_actual,
+            _rt.f32_bits(self.i_actual),
+            _rt.f32_bits(self.v_actual),
+            _rt.f32_bits(self.t_motor),
+            _rt.f32_bits(self.t_micro),
+            self.joint_mode,
+        )
 
 
 _JOINT_DATA_0 = struct.Struct(">dddffffBdddffffBdddffffBdddffffBdddffffBdddffffB")
+_JOINT_DATA_0_OUT = struct.Struct(">dddIIIIBdddIIIIBdddIIIIBdddIIIIBdddIIIIBdddIIIIB")  # float32 written from its bits
 _JOINT_DATA_0_RUN = (
     ("joints[0].q_actual", 0, 8),
     ("joints[0].q_target", 8, 8),
@@ -255,12 +275,12 @@ class JointData:
         if pos + 246 > end:
             raise _rt.short_in_run(_JOINT_DATA_0_RUN, pos, end)
         v = _JOINT_DATA_0.unpack_from(buf, pos)
-        joints = [Joint._from(v, k) for k in range(0, 48, 8)]
+        joints = [Joint._from(v, j * 8, buf, pos + j * 41) for j in range(6)]
         pos += 246
         return cls(joints), pos
 
     def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        out += _JOINT_DATA_0.pack(*[x for item in self.joints for x in item._values()])
+        out += _JOINT_DATA_0_OUT.pack(*[x for item in self.joints for x in item._values()])
         out += self.extra
 
     def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
@@ -275,6 +295,7 @@ class JointData:
 
 
 _TOOL_DATA_0 = struct.Struct(">BBddfBffB")
+_TOOL_DATA_0_OUT = struct.Struct(">BBddIBIIB")  # float32 written from its bits
 _TOOL_DATA_0_RUN = (
     ("analog_input_range0", 0, 1),
     ("analog_input_range1", 1, 1),
@@ -329,16 +350,16 @@ class ToolData:
         analog_input_range1 = v[1]
         analog_input0 = v[2]
         analog_input1 = v[3]
-        tool_voltage_48v = v[4]
+        tool_voltage_48v = (v[4] if v[4] == v[4] else _rt.f32_nan(buf, pos + 18))
         tool_output_voltage = v[5]
-        tool_current = v[6]
-        tool_temperature = v[7]
+        tool_current = (v[6] if v[6] == v[6] else _rt.f32_nan(buf, pos + 23))
+        tool_temperature = (v[7] if v[7] == v[7] else _rt.f32_nan(buf, pos + 27))
         tool_mode = _e.TOOL_MODE_BY_VALUE.get(v[8], v[8])
         pos += 32
         return cls(analog_input_range0, analog_input_range1, analog_input0, analog_input1, tool_voltage_48v, tool_output_voltage, tool_current, tool_temperature, tool_mode), pos
 
     def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        out += _TOOL_DATA_0.pack(self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.tool_voltage_48v, self.tool_output_voltage, self.tool_current, self.tool_temperature, self.tool_mode)
+        out += _TOOL_DATA_0_OUT.pack(self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, _rt.f32_bits(self.tool_voltage_48v), self.tool_output_voltage, _rt.f32_bits(self.tool_current), _rt.f32_bits(self.tool_temperature), self.tool_mode)
         out += self.extra
 
     def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
@@ -353,6 +374,7 @@ class ToolData:
 
 
 _MASTERBOARD_DATA_0 = struct.Struct(">iiBBddbbddffffBBB")
+_MASTERBOARD_DATA_0_OUT = struct.Struct(">iiBBddbbddIIIIBBB")  # float32 written from its bits
 _MASTERBOARD_DATA_0_RUN = (
     ("digital_input_bits", 0, 4),
     ("digital_output_bits", 4, 4),
@@ -375,6 +397,7 @@ _MASTERBOARD_DATA_0_RUN = (
 
 
 _MASTERBOARD_DATA_1 = struct.Struct(">IIff")
+_MASTERBOARD_DATA_1_OUT = struct.Struct(">IIII")  # float32 written from its bits
 _MASTERBOARD_DATA_1_RUN = (
     ("euromap_input_bits", 0, 4),
     ("euromap_output_bits", 4, 4),
@@ -476,10 +499,10 @@ class MasterboardData:
         analog_output_domain1 = v[7]
         analog_output0 = v[8]
         analog_output1 = v[9]
-        master_board_temperature = v[10]
-        robot_voltage_48v = v[11]
-        robot_current = v[12]
-        master_io_current = v[13]
+        master_board_temperature = (v[10] if v[10] == v[10] else _rt.f32_nan(buf, pos + 44))
+        robot_voltage_48v = (v[11] if v[11] == v[11] else _rt.f32_nan(buf, pos + 48))
+        robot_current = (v[12] if v[12] == v[12] else _rt.f32_nan(buf, pos + 52))
+        master_io_current = (v[13] if v[13] == v[13] else _rt.f32_nan(buf, pos + 56))
         safety_mode = _e.SAFETY_MODE_BY_VALUE.get(v[14], v[14])
         in_reduced_mode = v[15]
         euromap67_interface_installed = _BOOL[v[16]]
@@ -490,8 +513,8 @@ class MasterboardData:
             v = _MASTERBOARD_DATA_1.unpack_from(buf, pos)
             euromap_input_bits = v[0]
             euromap_output_bits = v[1]
-            euromap_voltage_24v = v[2]
-            euromap_current = v[3]
+            euromap_voltage_24v = (v[2] if v[2] == v[2] else _rt.f32_nan(buf, pos + 8))
+            euromap_current = (v[3] if v[3] == v[3] else _rt.f32_nan(buf, pos + 12))
             pos += 16
         else:
             euromap_input_bits = euromap_output_bits = euromap_voltage_24v = euromap_current = None
@@ -506,9 +529,9 @@ class MasterboardData:
         return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1), pos
 
     def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        out += _MASTERBOARD_DATA_0.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, self.master_board_temperature, self.robot_voltage_48v, self.robot_current, self.master_io_current, self.safety_mode, self.in_reduced_mode, self.euromap67_interface_installed)
+        out += _MASTERBOARD_DATA_0_OUT.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current), self.safety_mode, self.in_reduced_mode, self.euromap67_interface_installed)
         if self.euromap67_interface_installed:
-            out += _MASTERBOARD_DATA_1.pack(self.euromap_input_bits, self.euromap_output_bits, self.euromap_voltage_24v, self.euromap_current)
+            out += _MASTERBOARD_DATA_1_OUT.pack(self.euromap_input_bits, self.euromap_output_bits, _rt.f32_bits(self.euromap_voltage_24v), _rt.f32_bits(self.euromap_current))
         out += _MASTERBOARD_DATA_2.pack(self.reserved_0, self.operational_mode_selector_input, self.three_position_enabling_device_input, self.reserved_1)
         out += self.extra
 
@@ -732,11 +755,17 @@ class JointPositionLimit:
     """jointMaxLimitt in the document."""
 
     @classmethod
-    def _from(cls, v: tuple, i: int) -> "JointPositionLimit":
-        return cls(v[i], v[i + 1])
+    def _from(cls, v: tuple, i: int, buf, at: int) -> "JointPositionLimit":
+        return cls(
+            v[i],
+            v[i + 1],
+        )
 
     def _values(self) -> tuple:
-        return (self.joint_min_limit, self.joint_max_limit,)
+        return (
+            self.joint_min_limit,
+            self.joint_max_limit,
+        )
 
 
 _JOINT_MOTION_LIMIT_0 = struct.Struct(">dd")
@@ -760,11 +789,17 @@ class JointMotionLimit:
     joint_max_acceleration: float
 
     @classmethod
-    def _from(cls, v: tuple, i: int) -> "JointMotionLimit":
-        return cls(v[i], v[i + 1])
+    def _from(cls, v: tuple, i: int, buf, at: int) -> "JointMotionLimit":
+        return cls(
+            v[i],
+            v[i + 1],
+        )
 
     def _values(self) -> tuple:
-        return (self.joint_max_speed, self.joint_max_acceleration,)
+        return (
+            self.joint_max_speed,
+            self.joint_max_acceleration,
+        )
 
 
 _CONFIGURATION_DATA_0 = struct.Struct(">dddddddddddddddddddddddddddddddddddddddddddddddddddddiiii")
@@ -877,8 +912,8 @@ class ConfigurationData:
         if pos + 440 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_0_RUN, pos, end)
         v = _CONFIGURATION_DATA_0.unpack_from(buf, pos)
-        joint_position_limits = [JointPositionLimit._from(v, k) for k in range(0, 12, 2)]
-        joint_motion_limits = [JointMotionLimit._from(v, k) for k in range(12, 24, 2)]
+        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16) for j in range(6)]
+        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16) for j in range(6)]
         v_joint_default = v[24]
         a_joint_default = v[25]
         v_tool_default = v[26]
@@ -1139,6 +1174,7 @@ class SafetyData:
 
 
 _TOOL_COMM_INFO_0 = struct.Struct(">Biiiff")
+_TOOL_COMM_INFO_0_OUT = struct.Struct(">BiiiII")  # float32 written from its bits
 _TOOL_COMM_INFO_0_RUN = (
     ("tool_communication_is_enabled", 0, 1),
     ("baud_rate", 1, 4),
@@ -1183,13 +1219,13 @@ class ToolCommInfo:
         baud_rate = v[1]
         parity = v[2]
         stop_bits = v[3]
-        rx_idle_chars = v[4]
-        tx_idle_chars = v[5]
+        rx_idle_chars = (v[4] if v[4] == v[4] else _rt.f32_nan(buf, pos + 13))
+        tx_idle_chars = (v[5] if v[5] == v[5] else _rt.f32_nan(buf, pos + 17))
         pos += 21
         return cls(tool_communication_is_enabled, baud_rate, parity, stop_bits, rx_idle_chars, tx_idle_chars), pos
 
     def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        out += _TOOL_COMM_INFO_0.pack(self.tool_communication_is_enabled, self.baud_rate, self.parity, self.stop_bits, self.rx_idle_chars, self.tx_idle_chars)
+        out += _TOOL_COMM_INFO_0_OUT.pack(self.tool_communication_is_enabled, self.baud_rate, self.parity, self.stop_bits, _rt.f32_bits(self.rx_idle_chars), _rt.f32_bits(self.tx_idle_chars))
         out += self.extra
 
     def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
@@ -1425,12 +1461,15 @@ class SafetyModeMessage:
         if pos + fmt.size > end:
             raise _rt.short("report_data", pos, fmt.size, end)
         (report_data,) = fmt.unpack_from(buf, pos)
+        if report_data != report_data:
+            report_data = _rt.f32_nan(buf, pos) if fmt.size == 4 else report_data
         pos += fmt.size
         return cls(*header, robot_message_code, robot_message_argument, safety_mode_type, report_data_type, report_data), pos
 
     def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
         out += _SAFETY_MODE_0.pack(self.robot_message_code, self.robot_message_argument, self.safety_mode_type, self.report_data_type)
-        out += _SAFETY_MODE_REPORT_DATA_BY_REPORT_DATA_TYPE.get(self.report_data_type, _UINT32).pack(self.report_data)
+        fmt = _SAFETY_MODE_REPORT_DATA_BY_REPORT_DATA_TYPE.get(self.report_data_type, _UINT32)
+        out += _UINT32.pack(_rt.f32_bits(self.report_data)) if fmt is _FLOAT32 else fmt.pack(self.report_data)
         out += self.extra
 
     def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
@@ -2051,7 +2090,7 @@ _ROBOT_MESSAGE_SUBTYPES: dict[int, type] = {
 def _decode_robot_message(buf, version: tuple[int, int]):
     end = len(buf)
     if end < 15:
-        error = _rt.short_in_run(_ROBOT_MESSAGE_HEADER_RUN, 5, end).text
+        error = _rt.short_in_run(_ROBOT_MESSAGE_HEADER_RUN, 0, end).text
         return UnknownMessage(20, bytes(buf[5:]), error)
     timestamp, source, robot_message_type = _ROBOT_MESSAGE_HEADER.unpack_from(buf, 5)
     source = _e.MESSAGE_SOURCE_BY_VALUE.get(source, source)
@@ -2100,7 +2139,7 @@ _PROGRAM_STATE_SUBTYPES: dict[int, type] = {
 def _decode_program_state(buf, version: tuple[int, int]):
     end = len(buf)
     if end < 14:
-        error = _rt.short_in_run(_PROGRAM_STATE_HEADER_RUN, 5, end).text
+        error = _rt.short_in_run(_PROGRAM_STATE_HEADER_RUN, 0, end).text
         return UnknownMessage(25, bytes(buf[5:]), error)
     timestamp, robot_message_type = _PROGRAM_STATE_HEADER.unpack_from(buf, 5)
     cls = _PROGRAM_STATE_SUBTYPES.get(robot_message_type)
