@@ -29,7 +29,7 @@ def mutate(data: bytes, rng: random.Random) -> bytes:
         # A sub-package or message length somewhere: nudge it.
         at = rng.randrange(len(b) - 3)
         (n,) = struct.unpack_from(">i", b, at)
-        struct.pack_into(">i", b, at, n + rng.choice((-5, -1, 1, 3, 1 << 20, -n)))
+        struct.pack_into(">I", b, at, (n + rng.choice((-5, -1, 1, 3, 1 << 20, -n))) & 0xFFFFFFFF)
     elif kind == 4 and b:
         at = rng.randrange(len(b))
         del b[at:at + rng.randint(1, 40)]

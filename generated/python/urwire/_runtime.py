@@ -131,6 +131,8 @@ class GlobalValue:
     type: str
     value: Any
     code: int
+    columns: Optional[int] = None
+    """MATRIX only: the declared column count, which a matrix of no rows cannot show."""
 
 
 # A value kind: (type name, layout, struct of its fixed part or None, True for a bool scalar)
@@ -218,7 +220,7 @@ class ValueCodec:
                 item, pos = self.decode(buf, pos, end, f"{path}[{r}][{c}]", depth + 1)
                 row.append(item)
             matrix.append(row)
-        return GlobalValue(name, matrix, code), pos
+        return GlobalValue(name, matrix, code, cols), pos
 
     def encode_list(self, out: bytearray, values: list, terminator: int) -> None:
         for v in values:
@@ -246,7 +248,7 @@ class ValueCodec:
             for item in v.value:
                 self.encode(out, item)
         else:
-            cols = len(v.value[0]) if v.value else 0
+            cols = len(v.value[0]) if v.value else (v.columns or 0)
             if any(len(row) != cols for row in v.value):
                 raise EncodeError("matrix rows differ in length")
             out += fixed.pack(len(v.value), cols)

@@ -1,0 +1,114 @@
+"""The urwire command, as CONTRACT.md §3 says: inputs, JSON Lines, --version-hint, exit codes."""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.tools import capture
+from tests.vectors import all_cases
+
+ROOT = Path(__file__).resolve().parents[2]
+ENV = dict(os.environ, PYTHONPATH=str(ROOT / "generated" / "python"))
+GOOD = [c for c in all_cases() if c.name.startswith("Universal_Robots_Client_Library/")
+        and "template" not in c.name and "runtime_exception" not in c.name]
+
+
+def urwire(*args: str, stdin: bytes | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "urwire", *args], input=stdin, capture_output=True, env=ENV)
+
+
+def records(result) -> list[dict]:
+    return [json.loads(line) for line in result.stdout.decode().splitlines()]
+
+
+def test_a_clean_stream_exits_0_and_prints_one_line_per_message(tmp_path):
+    data = b"".join(c.data for c in GOOD)
+    path = tmp_path / "stream.bin"
+    path.write_bytes(data)
+    result = urwire("decode", str(path))
+    assert result.returncode == 0, result.stderr
+    assert len(records(result)) == len(GOOD)
+
+
+def test_standard_input_is_read_with_a_dash():
+    result = urwire("decode", "-", stdin=GOOD[0].data)
+    assert result.returncode == 0
+    assert records(result)[0]["type"] == "key"
+
+
+def test_error_records_exit_1():
+    (case,) = [c for c in all_cases() if c.name == "Universal_Robots_Client_Library/runtime_exception_message"]
+    result = urwire("decode", "-", stdin=case.data)
+    assert result.returncode == 1
+    assert records(result)[-1] == {"type": "error", "offset": 57, "error": "truncated header: 2 bytes left"}
+
+
+def test_a_malformed_package_also_exits_1():
+    (case,) = [c for c in all_cases() if c.name == "robot_state_package_short"]
+    assert urwire("decode", "-", stdin=case.data).returncode == 1
+
+
+@pytest.mark.parametrize("args", [["decode", "/no/such/file"], ["decode"], ["frobnicate", "x"],
+                                  ["decode", "--version-hint", "five", "-"]])
+def test_usage_and_io_errors_exit_2_with_one_line(args):
+    result = urwire(*args, stdin=b"")
+    assert result.returncode == 2
+    assert len(result.stderr.decode().strip().splitlines()) == 1, result.stderr
+
+
+def test_version_hint_chooses_the_value_table():
+    (case,) = [c for c in all_cases() if c.name == "global_variables_update_doc_example_5_0"]
+    under_hint = records(urwire("decode", "--version-hint", "5.0", "-", stdin=case.data))
+    assert [v["type"] for v in under_hint[0]["variables"]] == ["BOOL", "CONST_STRING"]
+    default = urwire("decode", "-", stdin=case.data)
+    assert default.returncode == 1 and "error" in records(default)[0]
+
+
+def test_help_states_the_default_version():
+    result = urwire("decode", "--help")
+    assert "default: 5.9" in result.stdout.decode()
+
+
+@pytest.mark.parametrize("pcapng", [False, True])
+def test_captures_are_reassembled(tmp_path, pcapng):
+    messages = [c.data for c in GOOD]
+    frames = capture.robot_session(capture.random_cuts(messages, seed=7, max_len=90), retransmit=[2, 5])
+    path = capture.write(tmp_path / ("s.pcapng" if pcapng else "s.pcap"), frames, pcapng=pcapng)
+    result = urwire("decode", str(path))
+    assert result.returncode == 0, result.stderr
+    raw = urwire("decode", "-", stdin=b"".join(messages))
+    assert records(result) == records(raw)
+
+
+def test_client_to_robot_script_is_not_decoded(tmp_path):
+    segs = [capture.Segment(False, b"def prog():\n  textmsg(\"hi\")\nend\n"), capture.Segment(True, GOOD[0].data)]
+    path = capture.write(tmp_path / "s.pcap", capture.session_frames(segs))
+    assert [r["type"] for r in records(urwire("decode", str(path)))] == ["key"]
+
+
+def test_a_capture_starting_mid_stream_resynchronises(tmp_path):
+    data = b"".join(c.data for c in GOOD)
+    frames = capture.robot_session(capture.packed([data[37:]], 1), handshake=False)
+    path = capture.write(tmp_path / "mid.pcap", frames)
+    out = records(urwire("decode", str(path)))
+    assert out[0]["type"] == "error"
+    assert [r["type"] for r in out[1:]] == [r["type"] for r in records(urwire("decode", "-", stdin=data))][1:]
+
+
+def test_text_format_names_enums():
+    (case,) = [c for c in all_cases() if c.name.endswith("robot_state_real_robot_5.11_pr137")]
+    text = urwire("decode", "--format", "text", "-", stdin=case.data).stdout.decode()
+    assert "robot_mode=RUNNING" in text and "safety_mode=NORMAL" in text and len(text.splitlines()) == 1
+
+
+def test_output_to_a_closed_pipe_is_quiet(tmp_path):
+    path = tmp_path / "big.bin"
+    path.write_bytes(b"".join(c.data for c in GOOD) * 200)
+    proc = subprocess.run(f"{sys.executable} -m urwire decode {path} | head -n 1", shell=True, env=ENV,
+                          capture_output=True)
+    assert b"Traceback" not in proc.stderr and len(proc.stdout.splitlines()) == 1

@@ -1,0 +1,34 @@
+"""`pip install .` gives the urwire package and command; the bindings need no third-party module."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_bindings_import_nothing_from_outside_the_standard_library():
+    code = (
+        "import sys, urwire\n"
+        "data = bytes.fromhex('0000001c140000000000000000fe030255520518000000000000002a')\n"
+        "assert [urwire.to_json_line(r) for r in urwire.decode_stream(data)]\n"
+        "third = {m.split('.')[0] for m in sys.modules} & {'dpkt', 'tqdm', 'yaml', 'jinja2', 'numpy'}\n"
+        "assert not third, third\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(ROOT / "generated" / "python"))
+    subprocess.run([sys.executable, "-c", code], check=True, env=env)
+
+
+def test_pip_install_gives_the_package_its_types_and_command(tmp_path):
+    target = tmp_path / "site"
+    subprocess.run([sys.executable, "-m", "pip", "install", "-q", "--no-deps",
+                    "--target", str(target), str(ROOT)], check=True, capture_output=True)
+    assert (target / "urwire" / "py.typed").exists()
+    assert (target / "urwire" / "messages.py").exists()
+    assert (target / "bin" / "urwire").exists()
+    env = dict(os.environ, PYTHONPATH=str(target))
+    out = subprocess.run([sys.executable, str(target / "bin" / "urwire"), "--version"], env=env,
+                         capture_output=True, text=True, check=True)
+    assert out.stdout.startswith("urwire ")

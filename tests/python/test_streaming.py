@@ -1,0 +1,74 @@
+"""The framer takes bytes in chunks of any size, split anywhere, and gives the same records."""
+from __future__ import annotations
+
+import urwire
+from hypothesis import given, settings, strategies as st
+
+from tests.vectors import all_cases
+
+# The conformance sample of a fake server: project "UR", software 5.24, build 42.
+MINIMAL_VERSION = bytes.fromhex("0000001c140000000000000000fe030255520518000000000000002a")
+
+CASES = all_cases()
+STREAM = b"".join(c.data for c in CASES if c.version is None)
+
+
+def lines(records) -> list[str]:
+    return [urwire.to_json_line(r) for r in records]
+
+
+WHOLE = lines(urwire.decode_stream(STREAM))
+
+
+def chunked(data: bytes, cuts: list[int]):
+    points = sorted({c % (len(data) + 1) for c in cuts})
+    edges = [0] + points + [len(data)]
+    return [data[a:b] for a, b in zip(edges, edges[1:])]
+
+
+def test_one_byte_chunks_give_the_same_records():
+    assert lines(urwire.decode_stream(STREAM[i:i + 1] for i in range(len(STREAM)))) == WHOLE
+
+
+def test_one_mebibyte_chunks_give_the_same_records():
+    data = STREAM * 40
+    expected = lines(urwire.decode_stream(data))
+    assert lines(urwire.decode_stream(data[i:i + (1 << 20)] for i in range(0, len(data), 1 << 20))) == expected
+    assert len(expected) > 40 * len(WHOLE) // 2
+
+
+@settings(max_examples=150, deadline=None)
+@given(cuts=st.lists(st.integers(min_value=0), max_size=60))
+def test_any_split_gives_the_same_records(cuts):
+    assert lines(urwire.decode_stream(chunked(STREAM, cuts))) == WHOLE
+
+
+def test_version_is_learned_from_the_version_message():
+    framer = urwire.Framer()
+    assert framer.version == urwire.DEFAULT_VERSION and not framer.version_seen
+    version_5_0 = MINIMAL_VERSION[:19] + b"\x00" + MINIMAL_VERSION[20:]
+    framer.feed(version_5_0)
+    assert framer.version == (5, 0) and framer.version_seen
+    # The document's example, in 3.3/5.0 codes: BOOL true, CONST_STRING "aaaa".
+    body = bytes(8) + b"\x01" + b"\x00\x00" + bytes.fromhex("0c010a030004616161610a")
+    (msg,) = framer.feed((len(body) + 5).to_bytes(4, "big") + b"\x19" + body)
+    assert [(v.type, v.value) for v in msg.variables] == [("BOOL", True), ("CONST_STRING", "aaaa")]
+
+
+def test_hint_applies_until_a_version_message():
+    body = bytes(8) + b"\x01" + b"\x00\x00" + bytes.fromhex("0c010a030004616161610a")
+    update = (len(body) + 5).to_bytes(4, "big") + b"\x19" + body
+    (under_5_0,) = urwire.decode_stream(update, "5.0")
+    (under_5_9,) = urwire.decode_stream(update)
+    assert under_5_0.variables[0].type == "BOOL"
+    assert isinstance(under_5_9, urwire.MalformedSubtype)  # 0x0c is POSE under 5.9: too short
+
+
+def test_resynchronises_without_losing_what_follows():
+    good = MINIMAL_VERSION
+    garbage = b"\xff\xff\xff\xff\x01\x02\x03"  # no 5 bytes of it make a plausible header
+    records = list(urwire.decode_stream(good + garbage + good + b"\x00\x00\x00"))
+    kinds = [type(r).__name__ for r in records]
+    assert kinds == ["VersionMessage", "StreamError", "VersionMessage", "StreamError"]
+    assert records[1].offset == len(good)
+    assert records[3].error == "truncated header: 3 bytes left"
