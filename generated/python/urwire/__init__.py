@@ -3,8 +3,8 @@
 """urwire: decode and encode the Universal Robots primary/secondary client interface.
 
     import urwire
-    for record in urwire.decode_stream(open("capture.bin", "rb").read()):
-        print(record)
+    for record in urwire.decode_file("session.pcapng"):   # or a raw stream
+        print(urwire.to_json_line(record))
 
 Stream in chunks with `urwire.Framer`; decode one framed message with `urwire.decode_message`;
 print canonical JSON with `urwire.to_json_line`.
@@ -16,6 +16,7 @@ from .enums import *  # noqa: F401,F403  (every enum of the document)
 from .framer import Framer, decode_stream, parse_version
 from .messages import *  # noqa: F401,F403  (every message and sub-package class)
 from .messages import decode_message, encode_message
+from .reading import decode_file
 from .spec import DEFAULT_VERSION, DOCUMENTED_VERSIONS, PORTS
 
 __version__ = "0.1.0"
@@ -23,6 +24,6 @@ __version__ = "0.1.0"
 __all__ = [
     "DecodeError", "EncodeError", "GlobalValue", "MalformedPackage", "MalformedSubtype", "StreamError",
     "UnknownMessage", "UnknownPackage", "UnknownSubtype", "Framer", "decode_stream", "parse_version",
-    "decode_message", "encode_message", "to_dict", "to_json_line", "DEFAULT_VERSION",
+    "decode_file", "decode_message", "encode_message", "to_dict", "to_json_line", "DEFAULT_VERSION",
     "DOCUMENTED_VERSIONS", "PORTS",
 ]

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import struct
 from dataclasses import dataclass
-from typing import ClassVar, Optional, Union
+from typing import ClassVar, Optional, TypeVar, Union
 
 from . import _runtime as _rt
 from . import enums as _e
@@ -19,6 +19,7 @@ from .enums import *  # noqa: F401,F403
 from .spec import DEFAULT_VERSION, value_codec
 
 _BOOL = _rt.BOOL
+_P = TypeVar("_P")
 _HEADER = struct.Struct(">iB")
 _INT8 = struct.Struct(">b")
 _INT32 = struct.Struct(">i")
@@ -2000,6 +2001,13 @@ class RobotStateMessage:
     """Why the sub-packages after `packages` could not be framed, if they could not."""
     raw: bytes = b""
     """The bytes that could not be framed."""
+
+    def package(self, kind: type[_P]) -> Optional[_P]:
+        """The first sub-package of the given class, e.g. `state.package(JointData)`, or None."""
+        for pkg in self.packages:
+            if type(pkg) is kind:
+                return pkg
+        return None
 
     def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
         """The whole message, its length and every sub-package length computed."""

@@ -8,16 +8,15 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from typing import BinaryIO, Callable, Iterable, Optional
+from typing import BinaryIO, Callable, Optional
 
 from . import __version__
 from .canonical import has_error, to_json_line
-from .capture import is_capture, robot_streams
-from .framer import Framer, parse_version
+from .framer import parse_version
 from .human import line as human_line
+from .reading import records_of
 from .spec import DEFAULT_VERSION, PORTS
 
-CHUNK = 1 << 20
 PROGRESS_MIN_BYTES = 8 << 20
 
 
@@ -70,32 +69,6 @@ def _progress(size: Optional[int], disabled: bool) -> Callable[[int], None]:
     return bar.update
 
 
-def _records_raw(fh: BinaryIO, hint, advance) -> Iterable:
-    framer = Framer(hint)
-    while True:
-        chunk = fh.read(CHUNK)
-        if not chunk:
-            break
-        advance(len(chunk))
-        yield from framer.feed(chunk)
-    yield from framer.close()
-
-
-def _records_capture(fh: BinaryIO, hint, ports: set[int], advance) -> Iterable:
-    framers: dict = {}
-    last = 0
-    for key, data, ended in robot_streams(fh, ports):
-        framer = framers.get(key) or framers.setdefault(key, Framer(hint))
-        if data:
-            yield from framer.feed(data)
-        if ended:
-            yield from framer.close()
-            del framers[key]
-        pos = fh.tell() if fh.seekable() else last
-        advance(pos - last)
-        last = pos
-
-
 def decode_command(args: argparse.Namespace) -> int:
     try:
         fh, size = _open(args.file)
@@ -104,11 +77,7 @@ def decode_command(args: argparse.Namespace) -> int:
         return 2
     advance = _progress(size, args.no_progress)
     render = to_json_line if args.format == "json" else human_line
-    head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
-    if is_capture(head):
-        records = _records_capture(fh, args.version_hint, set(args.port or PORTS), advance)
-    else:
-        records = _records_raw(fh, args.version_hint, advance)
+    records = records_of(fh, args.version_hint, args.port or PORTS, advance)
     failed = False
     out = sys.stdout
     try:

@@ -1,0 +1,62 @@
+# Copied from codegen/templates/python/runtime/reading.py: edit it there and run `make generate`.
+"""Records out of files: raw streams read in chunks, captures split into robot->client streams.
+
+Hand-written; copied into generated/python/urwire/ by `make generate`. Captures need dpkt,
+which is imported only when a capture is read.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import BinaryIO, Callable, Iterable, Iterator, Optional, Union
+
+from .capture import is_capture, robot_streams
+from .framer import Framer, VersionLike
+from .spec import PORTS
+
+CHUNK = 1 << 20
+
+
+def records_of_raw(fh: BinaryIO, hint: VersionLike, advance: Callable[[int], None]) -> Iterator:
+    framer = Framer(hint)
+    while True:
+        chunk = fh.read(CHUNK)
+        if not chunk:
+            break
+        advance(len(chunk))
+        yield from framer.feed(chunk)
+    yield from framer.close()
+
+
+def records_of_capture(fh: BinaryIO, hint: VersionLike, ports: Iterable[int],
+                       advance: Callable[[int], None]) -> Iterator:
+    """Each robot->client TCP stream gets its own framer, so each learns its own version."""
+    framers: dict = {}
+    last = 0
+    for key, data, ended in robot_streams(fh, set(ports)):
+        framer = framers.get(key) or framers.setdefault(key, Framer(hint))
+        if data:
+            yield from framer.feed(data)
+        if ended:
+            yield from framer.close()
+            del framers[key]
+        if fh.seekable():
+            pos = fh.tell()
+            advance(pos - last)
+            last = pos
+
+
+def records_of(fh: BinaryIO, hint: VersionLike = None, ports: Iterable[int] = PORTS,
+               advance: Callable[[int], None] = lambda n: None) -> Iterator:
+    """Records of an open binary file: a raw stream, a .pcap or a .pcapng (told by its magic)."""
+    head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+    if is_capture(head):
+        return records_of_capture(fh, hint, ports, advance)
+    return records_of_raw(fh, hint, advance)
+
+
+def decode_file(path: Union[str, os.PathLike], version_hint: VersionLike = None,
+                ports: Optional[Iterable[int]] = None) -> Iterator:
+    """Every record of a raw stream, .pcap or .pcapng file, in order."""
+    with open(Path(path), "rb") as fh:
+        yield from records_of(fh, version_hint, ports or PORTS)
