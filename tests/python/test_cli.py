@@ -112,3 +112,33 @@ def test_output_to_a_closed_pipe_is_quiet(tmp_path):
     proc = subprocess.run(f"{sys.executable} -m urwire decode {path} | head -n 1", shell=True, env=ENV,
                           capture_output=True)
     assert b"Traceback" not in proc.stderr and len(proc.stdout.splitlines()) == 1
+
+
+def test_a_large_file_shows_a_progress_bar_on_a_terminal(tmp_path):
+    import pty
+
+    path = tmp_path / "large.bin"
+    path.write_bytes(b"".join(c.data for c in GOOD) * 3000)  # about 9.5 MB: above the 8 MiB threshold
+    controller, terminal = pty.openpty()
+    proc = subprocess.Popen([sys.executable, "-m", "urwire", "decode", str(path)], env=ENV,
+                            stdout=subprocess.DEVNULL, stderr=terminal)
+    os.close(terminal)
+    shown = b""
+    while True:
+        try:
+            chunk = os.read(controller, 4096)
+        except OSError:
+            break
+        if not chunk:
+            break
+        shown += chunk
+    assert proc.wait() == 0
+    assert b"decoding" in shown and b"%" in shown
+
+
+def test_no_progress_bar_when_stderr_is_not_a_terminal(tmp_path):
+    path = tmp_path / "large.bin"
+    path.write_bytes(b"".join(c.data for c in GOOD) * 3000)
+    result = subprocess.run([sys.executable, "-m", "urwire", "decode", str(path)], env=ENV,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    assert result.returncode == 0 and result.stderr == b""
