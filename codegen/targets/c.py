@@ -1,0 +1,528 @@
+"""C target: the IR -> a view model of C declarations and statements -> templates/c/*.j2.
+
+Every decision is made here: C types, struct members, offsets inside fixed runs, the statement
+text of each read, write and visit. The templates only lay these strings out (Emboss style).
+The output is C99 with no malloc and no stdio: one header and one source, generated/c/urwire.{h,c}.
+"""
+from __future__ import annotations
+
+import textwrap
+from dataclasses import dataclass, field
+from typing import Optional
+
+from .. import ir
+from ..emit import environment
+
+FOLDER = "c"
+C_TYPES = {"bool": "uint8_t", "int8": "int8_t", "uint8": "uint8_t", "int16": "int16_t", "uint16": "uint16_t",
+           "int32": "int32_t", "uint32": "uint32_t", "int64": "int64_t", "uint64": "uint64_t",
+           "float32": "float", "float64": "double"}
+READERS = {"bool": "urwire__u8", "int8": "urwire__i8", "uint8": "urwire__u8", "int16": "urwire__i16",
+           "uint16": "urwire__u16", "int32": "urwire__i32", "uint32": "urwire__u32", "int64": "urwire__i64",
+           "uint64": "urwire__u64", "float32": "urwire__f32", "float64": "urwire__f64"}
+WRITERS = {"bool": "urwire__put_u8", "int8": "urwire__put_i8", "uint8": "urwire__put_u8", "int16": "urwire__put_i16",
+           "uint16": "urwire__put_u16", "int32": "urwire__put_i32", "uint32": "urwire__put_u32",
+           "int64": "urwire__put_i64", "uint64": "urwire__put_u64", "float32": "urwire__put_f32",
+           "float64": "urwire__put_f64"}
+# Visitor callback for each scalar: signed integers as int64, unsigned as uint64.
+VISIT = {"bool": "on_bool", "int8": "on_int", "int16": "on_int", "int32": "on_int", "int64": "on_int",
+         "uint8": "on_uint", "uint16": "on_uint", "uint32": "on_uint", "uint64": "on_uint",
+         "float32": "on_f32", "float64": "on_f64"}
+C_KEYWORDS = {"auto", "break", "case", "char", "const", "continue", "default", "do", "double", "else", "enum",
+              "extern", "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return",
+              "short", "signed", "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void",
+              "volatile", "while", "_Bool"}
+# Value layouts the hand-written value decoder in urwire.c.j2 knows.
+VALUE_ITEMS = {"bool": "URWIRE__ITEM_BOOL", "int32": "URWIRE__ITEM_I32", "float32": "URWIRE__ITEM_F32"}
+VALUE_LAYOUTS = {"empty": "URWIRE__LAYOUT_EMPTY", "string": "URWIRE__LAYOUT_STRING", "array": "URWIRE__LAYOUT_ARRAY",
+                 "scalar": "URWIRE__LAYOUT_SCALAR", "list": "URWIRE__LAYOUT_LIST", "matrix": "URWIRE__LAYOUT_MATRIX"}
+
+
+def comment(*texts: str, width: int = 92) -> list[str]:
+    """Doc strings as the lines of a C comment body (no delimiters), wrapped."""
+    text = " ".join(t.strip() for t in texts if t and t.strip()).replace("*/", "* /")
+    return textwrap.wrap(text, width) if text else []
+
+
+def inline(*texts: str) -> str:
+    return " ".join(t.strip() for t in texts if t and t.strip()).replace("*/", "* /")
+
+
+def c_ident(name: str) -> str:
+    if name in C_KEYWORDS:
+        raise ValueError(f"field name '{name}' is a C keyword")
+    return name
+
+
+def plus(base: str, k: int) -> str:
+    return base if k == 0 else f"{base} + {k}"
+
+
+@dataclass
+class Member:
+    decl: str
+    doc: str = ""
+
+
+@dataclass
+class Span:
+    path: str
+    offset: int
+    size: int
+
+
+@dataclass
+class Run:
+    table: str
+    size: int
+    spans: list[Span]
+
+
+@dataclass
+class Step:
+    """One decode, encode or visit step; `kind` picks the template fragment."""
+
+    kind: str
+    data: dict
+
+    def __getattr__(self, key):
+        try:
+            return self.__dict__["data"][key]
+        except KeyError:
+            raise AttributeError(key) from None
+
+
+@dataclass
+class CStruct:
+    name: str             # spec name (robot_mode_data, joint, version)
+    ctype: str            # urwire_robot_mode_data
+    doc: list[str]
+    members: list[Member]
+    role: str             # package | subtype | item
+    runs: list[Run] = field(default_factory=list)
+    decode: list[Step] = field(default_factory=list)
+    encode: list[Step] = field(default_factory=list)
+    visit: list[Step] = field(default_factory=list)
+    fixed_item: bool = False        # laid out in its parent's fixed run: read/write/visit helpers
+    item_reads: list[str] = field(default_factory=list)
+    item_writes: list[str] = field(default_factory=list)
+    item_size: int = 0
+    needs_index: bool = False
+    needs_p: bool = False
+    decode_index: bool = False
+    encode_index: bool = False
+    visit_index: bool = False
+    item_index: bool = False
+    can_fail: bool = True
+    to_end_item: bool = False       # items of a to_end group: public iteration function
+    code: Optional[int] = None
+    code_const: str = ""
+    kind_const: str = ""
+    sets_version: Optional[tuple[str, str]] = None
+
+
+class _Builder:
+    def __init__(self, p: ir.Protocol):
+        self.p = p
+        self.structs: list[CStruct] = []
+        self.items: dict[int, CStruct] = {}
+
+    # ---- one struct ----
+
+    def build(self, struct: ir.Struct, name: str, ctype: str, role: str, doc: list[str]) -> CStruct:
+        for f in struct.fields:
+            if isinstance(f, ir.GroupField):
+                item = self.build(f.item, f.item.name, f"urwire_{f.item.name}", "item",
+                                  comment(f.doc) or [f"One entry of {f.name}."])
+                self.items[id(f)] = item
+        cs = CStruct(name, ctype, doc, [], role)
+        for f in struct.fields:
+            cs.members.append(self.member(f))
+        if role != "item":
+            cs.members.append(Member("urwire_bytes extra", "Bytes after the known layout (flagged; kept for encoding)."))
+        cs.decode, cs.encode = self.steps(cs, struct.fields, "")
+        cs.visit = self.visit_steps(cs, struct.fields)
+        if role == "item" and struct.fixed_size is not None:
+            cs.fixed_item = True
+            cs.item_size = struct.fixed_size
+            off = 0
+            for f in struct.fields:
+                cs.item_reads += self.read_lines(cs, f, "out->", off)
+                cs.item_writes += self.write_lines(cs, f, "in->", off)
+                off += f.fixed_size or 0
+        if role == "item" and struct.fixed_size is None:
+            cs.to_end_item = True
+            if struct.needs_version:
+                raise NotImplementedError("a repeated group whose items depend on the software version")
+        cs.decode_index = uses_index(cs.decode)
+        cs.encode_index = uses_index(cs.encode)
+        cs.visit_index = uses_index(cs.visit)
+        cs.item_index = any("for (i" in line for line in cs.item_reads)
+        cs.needs_p = has_run(cs.decode)
+        cs.can_fail = can_fail(cs.decode)
+        self.structs.append(cs)
+        return cs
+
+    def member(self, f: ir.AnyField) -> Member:
+        name = c_ident(f.name)
+        doc = inline(f.doc, f.field_note)
+        if f.present_if:
+            doc = inline(doc, f"Present only when {f.present_if} is nonzero (else 0).")
+        if isinstance(f, ir.ScalarField):
+            if f.scalar.is_bool:
+                doc = inline(doc, "The wire byte: nonzero is true.")
+            if f.enum is not None:
+                doc = inline(doc, f"See enum urwire_{f.enum.name}.")
+            if f.bits:
+                doc = inline(doc, f"Bits (urwire_{f.name}_bit): " + ", ".join(f.bits) + ".")
+            return Member(f"{C_TYPES[f.scalar.name]} {name}", doc)
+        if isinstance(f, ir.ArrayField):
+            return Member(f"{C_TYPES[f.scalar.name]} {name}[{f.count}]", doc)
+        if isinstance(f, ir.GroupField):
+            item = self.items[id(f)]
+            if f.count is not None:
+                return Member(f"{item.ctype} {name}[{f.count}]", doc)
+            return Member(f"urwire_seq {name}",
+                          inline(doc, f"Iterate with urwire_next_{item.name}() on a copy."))
+        if isinstance(f, ir.StringField):
+            return Member(f"urwire_bytes {name}", inline(doc, "UTF-8 text as sent, a view into the message."))
+        if isinstance(f, ir.BytesField):
+            return Member(f"urwire_bytes {name}", doc)
+        if isinstance(f, ir.StringListField):
+            return Member(f"urwire_seq {name}", inline(doc, "Iterate with urwire_next_text() on a copy."))
+        if isinstance(f, ir.ValueListField):
+            return Member(f"urwire_seq {name}", inline(doc, "Iterate with urwire_next_value() on a copy."))
+        assert isinstance(f, ir.SwitchField)
+        cases = "; ".join(f"{k}: .{s.name}" for k, s in f.cases.items())
+        scalars = sorted({s.name for s in list(f.cases.values()) + [f.default]}, key=list(C_TYPES).index)
+        body = " ".join(f"{C_TYPES[s]} {s};" for s in scalars)
+        return Member(f"union {{ {body} }} {name}",
+                      inline(doc, f"Chosen by {f.selector.name}: {cases}; otherwise .{f.default.name}."))
+
+    # ---- fixed runs ----
+
+    def spans(self, f: ir.AnyField, path: str, base: int) -> list[Span]:
+        if isinstance(f, ir.ScalarField):
+            return [Span(path, base, f.scalar.size)]
+        if isinstance(f, ir.ArrayField):
+            return [Span(f"{path}[{k}]", base + k * f.scalar.size, f.scalar.size) for k in range(f.count)]
+        assert isinstance(f, ir.GroupField) and f.count is not None
+        out, off = [], base
+        for k in range(f.count):
+            for g in f.item.fields:
+                out += self.spans(g, f"{path}[{k}].{g.name}", off)
+                off += g.fixed_size or 0
+        return out
+
+    def read_lines(self, cs: CStruct, f: ir.AnyField, ref: str, off: int) -> list[str]:
+        if isinstance(f, ir.ScalarField):
+            return [f"{ref}{f.name} = {READERS[f.scalar.name]}({plus('p', off)});"]
+        if isinstance(f, ir.ArrayField):
+            cs.needs_index = True
+            return [f"for (i = 0; i < {f.count}; i++) {ref}{f.name}[i] = "
+                    f"{READERS[f.scalar.name]}({plus('p', off)} + {f.scalar.size} * i);"]
+        assert isinstance(f, ir.GroupField)
+        cs.needs_index = True
+        item = self.items[id(f)]
+        return [f"for (i = 0; i < {f.count}; i++) urwire__read_{item.name}({plus('p', off)} + "
+                f"{item.item_size} * i, &{ref}{f.name}[i]);"]
+
+    def write_lines(self, cs: CStruct, f: ir.AnyField, ref: str, off: int) -> list[str]:
+        if isinstance(f, ir.ScalarField):
+            return [f"{WRITERS[f.scalar.name]}({plus('p', off)}, {ref}{f.name});"]
+        if isinstance(f, ir.ArrayField):
+            cs.needs_index = True
+            return [f"for (i = 0; i < {f.count}; i++) {WRITERS[f.scalar.name]}({plus('p', off)} + "
+                    f"{f.scalar.size} * i, {ref}{f.name}[i]);"]
+        assert isinstance(f, ir.GroupField)
+        cs.needs_index = True
+        item = self.items[id(f)]
+        return [f"for (i = 0; i < {f.count}; i++) urwire__write_{item.name}({plus('p', off)} + "
+                f"{item.item_size} * i, &{ref}{f.name}[i]);"]
+
+    def flush(self, cs: CStruct, run: list[ir.AnyField], dec: list[Step], enc: list[Step], prefix: str) -> None:
+        if not run:
+            return
+        table = f"urwire__{cs.name}_run{len(cs.runs)}"
+        spans, reads, writes, off = [], [], [], 0
+        for f in run:
+            spans += self.spans(f, prefix + f.name, off)
+            reads += self.read_lines(cs, f, "out->", off)
+            writes += self.write_lines(cs, f, "in->", off)
+            off += f.fixed_size or 0
+        cs.runs.append(Run(table, off, spans))
+        cs.needs_p = True
+        dec.append(Step("run", dict(table=table, size=off, lines=reads)))
+        enc.append(Step("run", dict(size=off, lines=writes)))
+        run.clear()
+
+    # ---- decode and encode steps ----
+
+    def condition(self, f: ir.AnyField, ref: str) -> str:
+        tests = []
+        if f.present_if:
+            tests.append(f"{ref}{f.present_if} != 0")
+        if f.versions.low:
+            tests.append(f"urwire__version_cmp(version, {f.versions.low[0]}, {f.versions.low[1]}) >= 0")
+        if f.versions.high:
+            tests.append(f"urwire__version_cmp(version, {f.versions.high[0]}, {f.versions.high[1]}) <= 0")
+        return " && ".join(tests)
+
+    def steps(self, cs: CStruct, fields: list[ir.AnyField], prefix: str) -> tuple[list[Step], list[Step]]:
+        dec: list[Step] = []
+        enc: list[Step] = []
+        run: list[ir.AnyField] = []
+        i = 0
+        while i < len(fields):
+            f = fields[i]
+            if f.conditional:
+                self.flush(cs, run, dec, enc, prefix)
+                group = [f]
+                while i + 1 < len(fields) and (fields[i + 1].present_if, fields[i + 1].versions) == (f.present_if, f.versions):
+                    i += 1
+                    group.append(fields[i])
+                inner_d, inner_e = self.steps(cs, [_unconditional(g) for g in group], prefix)
+                zero = [f"memset(&out->{g.name}, 0, sizeof out->{g.name});" for g in group]
+                dec.append(Step("cond", dict(test=self.condition(f, "out->"), steps=inner_d, zero=zero)))
+                enc.append(Step("cond", dict(test=self.condition(f, "in->"), steps=inner_e)))
+            elif f.fixed_size is not None and not isinstance(f, ir.SwitchField):
+                run.append(f)
+            else:
+                self.flush(cs, run, dec, enc, prefix)
+                d, e = self.dynamic(cs, f, prefix + f.name)
+                dec.append(d)
+                enc.append(e)
+            i += 1
+        self.flush(cs, run, dec, enc, prefix)
+        return dec, enc
+
+    def dynamic(self, cs: CStruct, f: ir.AnyField, path: str) -> tuple[Step, Step]:
+        if isinstance(f, ir.StringField) and f.length is not None:
+            s = f.length
+            data = dict(name=f.name, path=path, size=s.size, reader=READERS[s.name],
+                        max=f"{s.max}u" if not s.signed else str(s.max), signed=s.signed)
+            return Step("prefixed_text", data), Step("prefixed_text", data)
+        if isinstance(f, (ir.StringField, ir.BytesField)):
+            return Step("rest", dict(name=f.name)), Step("bytes", dict(name=f.name))
+        if isinstance(f, ir.StringListField):
+            return (Step("texts", dict(name=f.name, terminator=f"0x{f.terminator:02x}")),
+                    Step("seq", dict(name=f.name)))
+        if isinstance(f, ir.ValueListField):
+            return (Step("values", dict(name=f.name, terminator=f"0x{f.terminator:02x}", path=path)),
+                    Step("seq", dict(name=f.name)))
+        if isinstance(f, ir.SwitchField):
+            cases = [dict(value=k, size=s.size, reader=READERS[s.name], writer=WRITERS[s.name], member=s.name)
+                     for k, s in f.cases.items()]
+            d = f.default
+            data = dict(name=f.name, selector=f.selector.name, path=path, cases=cases,
+                        default=dict(size=d.size, reader=READERS[d.name], writer=WRITERS[d.name], member=d.name))
+            cs.needs_p = True
+            return Step("switch", data), Step("switch", data)
+        assert isinstance(f, ir.GroupField)
+        if f.count is not None:
+            raise NotImplementedError("a fixed-count group of variable-size items")
+        item = self.items[id(f)]
+        return (Step("group_to_end", dict(name=f.name, item=item.name, ctype=item.ctype)),
+                Step("seq", dict(name=f.name)))
+
+    # ---- visiting (the canonical JSON order: spec order) ----
+
+    def visit_steps(self, cs: CStruct, fields: list[ir.AnyField]) -> list[Step]:
+        out: list[Step] = []
+        for f in fields:
+            out.append(self.visit_one(cs, f))
+        return out
+
+    def visit_one(self, cs: CStruct, f: ir.AnyField) -> Step:
+        test = self.condition(f, "in->") if f.conditional else ""
+        if isinstance(f, ir.ScalarField):
+            return Step("scalar", dict(name=f.name, cb=VISIT[f.scalar.name], test=test,
+                                       arg=visit_arg(f.scalar, f"in->{f.name}")))
+        if isinstance(f, ir.ArrayField):
+            return Step("array", dict(name=f.name, cb=VISIT[f.scalar.name], count=f.count, test=test,
+                                      arg=visit_arg(f.scalar, f"in->{f.name}[i]")))
+        if isinstance(f, ir.GroupField):
+            item = self.items[id(f)]
+            if f.count is not None:
+                return Step("group", dict(name=f.name, item=item.name, count=f.count, test=test))
+            return Step("group_to_end", dict(name=f.name, item=item.name, ctype=item.ctype, test=test))
+        if isinstance(f, ir.StringField):
+            return Step("text", dict(name=f.name, test=test))
+        if isinstance(f, ir.BytesField):
+            return Step("hex", dict(name=f.name, test=test))
+        if isinstance(f, ir.StringListField):
+            return Step("texts", dict(name=f.name, test=test))
+        if isinstance(f, ir.ValueListField):
+            return Step("values", dict(name=f.name, test=test))
+        assert isinstance(f, ir.SwitchField)
+        cases = [dict(value=k, cb=VISIT[s.name], arg=visit_arg(s, f"in->{f.name}.{s.name}"))
+                 for k, s in f.cases.items()]
+        d = f.default
+        return Step("switch", dict(name=f.name, selector=f.selector.name, cases=cases, test=test,
+                                   default=dict(cb=VISIT[d.name], arg=visit_arg(d, f"in->{f.name}.{d.name}"))))
+
+
+def visit_arg(s: ir.Scalar, ref: str) -> str:
+    cb = VISIT[s.name]
+    if cb == "on_int":
+        return f"(int64_t){ref}"
+    if cb == "on_uint":
+        return f"(uint64_t){ref}"
+    if cb == "on_bool":
+        return f"{ref} != 0"
+    return ref
+
+
+def has_run(steps: list[Step]) -> bool:
+    return any(s.kind == "run" or (s.kind == "cond" and has_run(s.steps)) for s in steps)
+
+
+def can_fail(steps: list[Step]) -> bool:
+    """False when every step of a decoder always succeeds (rest-of-message views only)."""
+    return any(s.kind not in ("rest", "texts", "cond") or (s.kind == "cond" and can_fail(s.steps)) for s in steps)
+
+
+def uses_index(steps: list[Step]) -> bool:
+    """True when a step's statements loop on i (the template then declares it)."""
+    for s in steps:
+        if s.kind in ("array", "group"):
+            return True
+        if s.kind == "run" and any("for (i" in line for line in s.lines):
+            return True
+        if s.kind == "cond" and uses_index(s.steps):
+            return True
+    return False
+
+
+def _unconditional(f: ir.AnyField) -> ir.AnyField:
+    import copy
+    g = copy.copy(f)
+    g.present_if = None
+    g.versions = ir.ALL_VERSIONS
+    return g
+
+
+# ---- enums ----------------------------------------------------------------------------------
+
+def table_suffix(t: ir.EnumTable) -> str:
+    r = t.versions
+    low = f"{r.low[0]}_{r.low[1]}" if r.low else ""
+    high = f"{r.high[0]}_{r.high[1]}" if r.high else ""
+    if low and high:
+        return f"{low}_TO_{high}"
+    return f"{low}_ON" if low else f"UP_TO_{high}"
+
+
+def enum_views(p: ir.Protocol) -> list[dict]:
+    views = []
+    for e in p.enums.values():
+        tables = []
+        for t in e.tables:
+            prefix = f"URWIRE_{e.name.upper()}" + (f"_{table_suffix(t)}" if e.versioned else "")
+            members = [dict(const=f"{prefix}_{v.name}", value=v.value, name=v.name,
+                            doc=inline(v.doc, "(not in the document)" if v.undocumented else "",
+                                       f"(from {v.versions.describe()})" if not v.versions.unbounded else ""))
+                       for v in t.values]
+            tables.append(dict(versions=t.versions.describe(), members=members,
+                               low=t.versions.low, high=t.versions.high,
+                               tag=f"urwire_{e.name}_{table_suffix(t).lower()}" if e.versioned else f"urwire_{e.name}"))
+        # Name lookup: one case per distinct value (first name wins, as in the document's table).
+        seen, cases = set(), []
+        for v in e.values:
+            if v.value not in seen:
+                seen.add(v.value)
+                cases.append(dict(value=v.value, name=v.name))
+        views.append(dict(name=e.name, doc=comment(e.doc, e.field_note), wire=C_TYPES[e.scalar.name],
+                          versioned=e.versioned, tables=tables, cases=cases))
+    return views
+
+
+def value_views(p: ir.Protocol) -> dict:
+    kinds = list(p.value_layouts)
+    tables = []
+    for t in p.value_type.tables:
+        entries = []
+        for v in t.values:
+            lay = p.value_layouts[v.name]
+            if lay.layout in ("string", "list", "matrix") and lay.length.name != "int16":
+                raise NotImplementedError(f"value length type {lay.length.name}")
+            item = VALUE_ITEMS[lay.item.name] if lay.item is not None else "URWIRE__ITEM_NONE"
+            entries.append(dict(code=v.value, name=v.name, kind=f"URWIRE_VALUE_{v.name}",
+                                layout=VALUE_LAYOUTS[lay.layout], item=item,
+                                count=lay.count if lay.layout == "array" else 1))
+        r = t.versions
+        tables.append(dict(tag=f"urwire__values_{table_suffix(t).lower()}", versions=r.describe(), entries=entries,
+                           low=f"{r.low[0]}, {r.low[1]}" if r.low else "",
+                           high=f"{r.high[0]}, {r.high[1]}" if r.high else "",
+                           has_low=r.low is not None, has_high=r.high is not None))
+    arrays = [lay.count for lay in p.value_layouts.values() if lay.layout == "array"]
+    return dict(kinds=[dict(const=f"URWIRE_VALUE_{k}", name=k, doc=inline(p.value_layouts[k].doc)) for k in kinds],
+                tables=tables, array_max=max(arrays) if arrays else 1, max_depth=p.max_value_depth)
+
+
+# ---- messages -------------------------------------------------------------------------------
+
+def build(p: ir.Protocol) -> dict:
+    b = _Builder(p)
+    messages = []
+    kinds = []
+    packages = []
+    for m in p.messages:
+        if isinstance(m, ir.PackageListMessage):
+            for pk in m.packages:
+                if pk.code.value > 31:
+                    raise NotImplementedError("package codes above 31 do not fit the present bit mask")
+                cs = b.build(pk.struct, pk.name, f"urwire_{pk.name}", "package", comment(pk.doc, pk.field_note))
+                cs.code = pk.code.value
+                cs.code_const = f"URWIRE_{m.package_type.name.upper()}_{pk.code.name}"
+                packages.append(cs)
+            kinds.append(dict(const=f"URWIRE_KIND_{m.name.upper()}", doc=inline(m.doc)))
+            messages.append(dict(kind="packages", name=m.name, code=m.code.value,
+                                 code_const=f"URWIRE_MESSAGE_TYPE_{m.code.name}",
+                                 kind_const=f"URWIRE_KIND_{m.name.upper()}", doc=comment(m.doc, m.field_note)))
+        else:
+            header, hspans, off = [], [], p.header_size
+            for f in list(m.header.fields) + [m.subtype]:
+                hspans.append(Span(f.name, off, f.scalar.size))
+                header.append(dict(name=f.name, ctype=C_TYPES[f.scalar.name], reader=READERS[f.scalar.name],
+                                   writer=WRITERS[f.scalar.name], offset=off, cb=VISIT[f.scalar.name],
+                                   cast="(int64_t)" if VISIT[f.scalar.name] == "on_int" else "(uint64_t)",
+                                   doc=inline(f.doc, f.field_note), subtype=f is m.subtype))
+                off += f.scalar.size
+            subtypes = []
+            for st in m.subtypes:
+                cs = b.build(st.struct, st.name, f"urwire_{st.name}_message", "subtype",
+                             comment(st.doc, st.field_note))
+                cs.code = st.code.value
+                cs.code_const = f"URWIRE_{m.subtype_enum.name.upper()}_{st.code.name}"
+                cs.kind_const = f"URWIRE_KIND_{st.name.upper()}"
+                cs.sets_version = st.sets_version
+                subtypes.append(cs)
+                kinds.append(dict(const=cs.kind_const, doc=inline(st.doc)))
+            messages.append(dict(kind="dispatch", name=m.name, code=m.code.value,
+                                 code_const=f"URWIRE_MESSAGE_TYPE_{m.code.name}",
+                                 doc=comment(m.doc, m.field_note), header=header, header_table=f"urwire__{m.name}_header",
+                                 header_spans=hspans, body_offset=off, subtypes=subtypes,
+                                 subtype_name=m.subtype.name,
+                                 has_source=any(h["name"] == "source" for h in header)))
+    versions = [(st, m) for m in messages if m["kind"] == "dispatch" for st in m["subtypes"] if st.sets_version]
+    if len(versions) != 1:
+        raise NotImplementedError("the C framer expects exactly one layout that sets the version")
+    vst, vmsg = versions[0]
+    return dict(structs=b.structs, messages=messages, kinds=kinds, packages=packages,
+                version_layout=dict(name=vst.name, code_const=vst.code_const, kind_const=vst.kind_const,
+                                    major=vst.sets_version[0], minor=vst.sets_version[1],
+                                    message_code=vmsg["code"], subtype_offset=vmsg["body_offset"] - 1,
+                                    body_offset=vmsg["body_offset"]))
+
+
+def render(p: ir.Protocol, banner: list[str]) -> dict[str, str]:
+    env = environment(FOLDER)
+    model = build(p)
+    ctx = dict(banner=banner, p=p, enums=enum_views(p), values=value_views(p),
+               default_version=p.default_version, known_codes=p.known_message_codes,
+               laid_codes=[m["code"] for m in model["messages"]],
+               documented=", ".join(ir.version_text(v) for v in p.documented_versions),
+               title=p.title, doc=comment(p.doc), **model)
+    return {f"{FOLDER}/urwire.h": env.get_template("urwire.h.j2").render(**ctx),
+            f"{FOLDER}/urwire.c": env.get_template("urwire.c.j2").render(**ctx)}

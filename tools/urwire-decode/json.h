@@ -1,0 +1,27 @@
+/* Canonical JSON Lines writer for urwire records (docs/canonical-json.md), built on the
+ * library's visitor. Hand-written; part of the CLI, not of the parser. */
+#ifndef URWIRE_JSON_H
+#define URWIRE_JSON_H
+
+#include <stdio.h>
+
+#include "urwire.h"
+
+/* A visitor that prints one record as one line of canonical JSON on out. */
+typedef struct json_writer {
+    FILE *out;
+    int depth;
+    unsigned char first[128];   /* per open object/array: nothing written in it yet */
+} json_writer;
+
+urwire_visitor json_visitor(json_writer *w);
+
+/* Shortest "%.{p}g" that reads back as the same float (p = 1..9) or double (p = 1..17). */
+void json_f32_text(float x, char *buf, size_t cap);
+void json_f64_text(double x, char *buf, size_t cap);
+
+/* Bytes as a JSON string: invalid UTF-8 replaced by U+FFFD exactly as Python's
+ * bytes.decode("utf-8", "replace") does (one U+FFFD per maximal invalid subpart). */
+void json_write_text(FILE *out, const unsigned char *p, size_t n);
+
+#endif
