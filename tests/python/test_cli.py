@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import json
 import os
+import struct
 import subprocess
 import sys
 from pathlib import Path
@@ -115,11 +116,15 @@ def test_output_to_a_closed_pipe_is_quiet(tmp_path):
 
 
 def test_a_large_file_shows_a_progress_bar_on_a_terminal(tmp_path):
+    import fcntl
     import pty
+    import termios
 
     path = tmp_path / "large.bin"
     path.write_bytes(b"".join(c.data for c in GOOD) * 3000)  # about 9.5 MB: above the 8 MiB threshold
     controller, terminal = pty.openpty()
+    # A terminal of 24 x 100: a fresh pty has no size, and a bar needs a width.
+    fcntl.ioctl(terminal, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))
     proc = subprocess.Popen([sys.executable, "-m", "urwire", "decode", str(path)], env=ENV,
                             stdout=subprocess.DEVNULL, stderr=terminal)
     os.close(terminal)
