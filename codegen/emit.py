@@ -19,7 +19,6 @@ def environment(target: str) -> jinja2.Environment:
         keep_trailing_newline=True,
         autoescape=False,
     )
-    env.globals["zip"] = zip
     return env
 
 

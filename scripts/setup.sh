@@ -2,6 +2,8 @@
 # Installs what urwire's tests and demo need on a Debian machine: system packages (tshark,
 # compilers, Lua), then the Python packages. Safe to run again: it skips what is there.
 set -euo pipefail
+# Debian marks its Python as externally managed; this project installs into it on purpose.
+export PIP_BREAK_SYSTEM_PACKAGES=1
 cd "$(dirname "$0")/.."
 
 APT_PACKAGES=(tshark clang lua5.2 lua5.3 lua5.4 libclang-rt-14-dev llvm make gcc)

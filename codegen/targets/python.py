@@ -218,8 +218,12 @@ class _ClassBuilder:
             offset += f.fixed_size or 0
         out_const = const if ofmt == fmt else const + "_OUT"
         self.structs.append(StructConst(const, fmt, entries, ofmt if ofmt != fmt else None))
+        # One plain value: unpack straight into its name, then convert it in place if needed.
         single = index_ == 1 and "f32_nan" not in assigns[0][1]
-        decode.append(Step("run", dict(const=const, size=offset, assigns=assigns, single=single)))
+        name = assigns[0][0]
+        convert = assigns[0][1].replace("v[0]", name) if single and assigns[0][1] != "v[0]" else None
+        decode.append(Step("run", dict(const=const, size=offset, assigns=assigns, single=single, name=name,
+                                       convert=convert)))
         encode.append(Step("run", dict(const=out_const, args=args)))
         run.clear()
 
@@ -370,7 +374,10 @@ class _Target:
                 for f in list(m.header.fields) + [m.subtype]:
                     run.append((f.name, off, f.scalar.size))
                     off += f.scalar.size
-                header_exprs = [leaf_expr(f.scalar, f.enum, f.name, str(self.p.header_size)) for f in m.header.fields]
+                # Header values that need converting after the unpack (enums): (name, expression).
+                header_converts = [(f.name, leaf_expr(f.scalar, f.enum, f.name, str(self.p.header_size)))
+                                   for f in m.header.fields]
+                header_converts = [(n, e) for n, e in header_converts if n != e]
                 names = [f.name for f in m.header.fields]
                 layouts = [self.build_class(st.struct, py_layout_class(st, True), "subtype", st.name,
                                             st.code.value, one_line(st.doc, st.field_note), m.header,
@@ -378,7 +385,7 @@ class _Target:
                 messages.append(dict(
                     kind="dispatch", name=m.name, code=m.code.value, code_name=m.code.name,
                     doc=one_line(m.doc, m.field_note), layouts=layouts, header_fmt=hdr_fmt, header_run=run,
-                    header_names=names, header_exprs=header_exprs, subtype=m.subtype.name,
+                    header_names=names, header_converts=header_converts, subtype=m.subtype.name,
                     body_offset=off, source_arg="source" if "source" in names else "None"))
         return dict(messages=messages, classes=self.classes, prefixes=self.prefixes, switches=self.switches)
 
