@@ -310,7 +310,9 @@ class _Builder:
             else:
                 sub_field = self.scalar_field(m.name, m.subtype.name, m.subtype.scalar, m.subtype.enum,
                                               one_line(m.subtype.doc, "Subtype of the message."))
-                hdr = self.layout(m.name, m.header, f"Header of every {words(m.name).lower()}.")
+                # The header then the subtype: shown as such when the subtype is unknown.
+                hdr = self.layout(m.name, ir.Struct(m.header.name, m.header.doc, list(m.header.fields) + [m.subtype]),
+                                  f"Header and subtype of every {words(m.name).lower()}.")
                 view = DispatchView(m.name, m.code.value, words(m.name), one_line(m.doc, m.field_note),
                                     m.header_size + p.header_size, sub_field, hdr, self.enum_var[m.subtype_enum.name])
                 for st in m.subtypes:

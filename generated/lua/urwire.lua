@@ -552,6 +552,7 @@ local X = {
     skipped = ProtoField.bytes("ur.skipped", "Skipped bytes", base.NONE, "Bytes skipped while looking for the next plausible message header."),
     version = ProtoField.string("ur.software_version", "Software version", base.ASCII, "The software version whose value-type table decodes this message."),
     assumed = ProtoField.bool("ur.version_assumed", "Version assumed", base.NONE, nil, nil, "True when no Version message was seen on this stream and the ur.version preference applies."),
+    unknown_package = ProtoField.none("ur.unknown_package", "Unknown package", "A sub-package type the spec does not lay out, kept raw."),
     urscript = ProtoField.string("ur.urscript", "URScript", base.UNICODE, "Bytes from the client to the robot: URScript program text."),
 }
 ur.fields = {
@@ -823,7 +824,7 @@ ur.fields = {
     F["global_variables_update.value_int32"],
     F["global_variables_update.value_string"],
     F["global_variables_update"],
-    X.raw, X.extra, X.skipped, X.version, X.assumed, X.urscript,
+    X.raw, X.extra, X.skipped, X.version, X.assumed, X.unknown_package, X.urscript,
 }
 
 -- ---------------------------------------------------------------------------------------------
@@ -1060,10 +1061,11 @@ local L_singularity_info = {
     { k = "scalar", f = F["singularity_info.singularity_type"], n = 1, path = "singularity_type", signed = false },
 }
 
--- Header of every robot message.
+-- Header and subtype of every robot message.
 local L_robot_message = {
     { k = "scalar", f = F["robot_message.timestamp"], n = 8, path = "timestamp", signed = false },
     { k = "scalar", f = F["robot_message.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["robot_message.robot_message_type"], n = 1, path = "robot_message_type", signed = false, vs = VS_ROBOT_MESSAGE_TYPE },
 }
 
 -- Header of the version message.
@@ -1199,9 +1201,10 @@ local L_runtime_exception = {
     { k = "string", f = F["runtime_exception.text"], path = "text", show = ": " },
 }
 
--- Header of every program state.
+-- Header and subtype of every program state.
 local L_program_state = {
     { k = "scalar", f = F["program_state.timestamp"], n = 8, path = "timestamp", signed = false },
+    { k = "scalar", f = F["program_state.robot_message_type"], n = 1, path = "robot_message_type", signed = false, vs = VS_PROGRAM_STATE_MESSAGE_TYPE },
 }
 
 -- Header of the global_variables_setup message.
@@ -1571,12 +1574,13 @@ MESSAGE[16] = {
                 err = fmt("package at offset %d: length %d exceeds the %d bytes left", p - st.base, size, left)
             end
             if err then
-                tree:add(X.raw, tvb(p, left)):add_proto_expert_info(E.malformed, err)
+                tree:add(X.raw, tvb(p, left))
+                tree:add_proto_expert_info(E.malformed, err)
                 return
             end
             local code = byte(raw, p + 5)
             local pk = ROBOT_STATE_PACKAGES[code]
-            local item = tree:add(pk and pk.item or X.raw, tvb(p, size))
+            local item = tree:add(pk and pk.item or X.unknown_package, tvb(p, size))
             item:set_text(pk and pk.label or fmt("Unknown package %d (%s)", code, VS_PACKAGE_TYPE[code] or "not in the spec"))
             item:add(F["package.length"], tvb(p, 4))
             item:add(F["package.type"], tvb(p + 4, 1))
@@ -1630,27 +1634,25 @@ MESSAGE[20] = {
     tree = function(tvb, tree, o, e, st)
         if e - o < 15 then
             local _, err = walk(tvb, tree, o + HEADER, e, st, L_robot_message, nil)
-            tree:add(X.raw, tvb(o + HEADER, e - o - HEADER)):add_proto_expert_info(E.malformed, err or "too short")
+            if e - o > HEADER then tree:add(X.raw, tvb(o + HEADER, e - o - HEADER)) end
+            tree:add_proto_expert_info(E.malformed, err or "too short")
             return
         end
         local code = byte(st.raw, o + 15)
         local s = ROBOT_MESSAGE_SUBTYPES[code]
         local body = o + 15
         local item = tree
-        if s then
-            item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
-            walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
-        else
-            walk(tvb, tree, o + HEADER, body - 1, st, L_robot_message, nil)
-        end
-        item:add(F["robot_message.robot_message_type"], tvb(body - 1, 1))
         if not s then
+            walk(tvb, tree, o + HEADER, body, st, L_robot_message, nil)
             if body < e then tree:add(X.raw, tvb(body, e - body)) end
             if not VS_ROBOT_MESSAGE_TYPE[code] then
                 tree:add_proto_expert_info(E.unknown, fmt("robot message subtype %d is not in the spec, kept raw", code))
             end
             return
         end
+        item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
+        walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
+        item:add(F["robot_message.robot_message_type"], tvb(body - 1, 1))
         if s.needs_version then
             item:add(X.version, version_text(st.version)):set_generated()
             if st.assumed then
@@ -1689,27 +1691,25 @@ MESSAGE[25] = {
     tree = function(tvb, tree, o, e, st)
         if e - o < 14 then
             local _, err = walk(tvb, tree, o + HEADER, e, st, L_program_state, nil)
-            tree:add(X.raw, tvb(o + HEADER, e - o - HEADER)):add_proto_expert_info(E.malformed, err or "too short")
+            if e - o > HEADER then tree:add(X.raw, tvb(o + HEADER, e - o - HEADER)) end
+            tree:add_proto_expert_info(E.malformed, err or "too short")
             return
         end
         local code = byte(st.raw, o + 14)
         local s = PROGRAM_STATE_SUBTYPES[code]
         local body = o + 14
         local item = tree
-        if s then
-            item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
-            walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
-        else
-            walk(tvb, tree, o + HEADER, body - 1, st, L_program_state, nil)
-        end
-        item:add(F["program_state.robot_message_type"], tvb(body - 1, 1))
         if not s then
+            walk(tvb, tree, o + HEADER, body, st, L_program_state, nil)
             if body < e then tree:add(X.raw, tvb(body, e - body)) end
             if not VS_PROGRAM_STATE_MESSAGE_TYPE[code] then
                 tree:add_proto_expert_info(E.unknown, fmt("program state subtype %d is not in the spec, kept raw", code))
             end
             return
         end
+        item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
+        walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
+        item:add(F["program_state.robot_message_type"], tvb(body - 1, 1))
         if s.needs_version then
             item:add(X.version, version_text(st.version)):set_generated()
             if st.assumed then
@@ -1732,10 +1732,11 @@ MESSAGE[25] = {
 -- The software version of each TCP stream. First pass: the state per stream moves along, and a
 -- snapshot of it is kept for each dissector call (frame number and tvb length). Later passes
 -- (tshark -2, clicks in the GUI, in any order) reuse the snapshot, so both agree.
+-- Streams are keyed by their addresses and ports: Field.new("tcp.stream") gives nothing on a
+-- first pass without a tree (tshark -2), and Conversation only exists from Wireshark 4.6.
 -- ---------------------------------------------------------------------------------------------
-local f_tcp_stream = Field.new("tcp.stream")
-local stream_version, stream_resync = {}, {}   -- by tcp.stream: learned version (or nil), resyncing
-local snap_version, snap_resync = {}, {}       -- by call key: the same, as the call started
+local stream_version, stream_resync = {}, {}   -- by stream: learned version (or nil), resyncing
+local snap_version, snap_resync = {}, {}       -- by call key and by frame: the same, as the call started
 
 function ur.init()
     stream_version, stream_resync, snap_version, snap_resync = {}, {}, {}, {}
@@ -1799,15 +1800,20 @@ local function dissect(tvb, pinfo, tree)
     local detail = tree.visible or tree:referenced(ur_handle)
 
     -- The stream's version and resync state as this call starts.
-    local field = f_tcp_stream()
-    local stream = field and field.value or -1
+    local stream = tostring(pinfo.src) .. ":" .. pinfo.src_port .. ">" .. tostring(pinfo.dst) .. ":" .. pinfo.dst_port
     local key = pinfo.number * 1048576 + n % 1048576
     local version, resync
+    local frame = pinfo.number
     if pinfo.visited and snap_resync[key] ~= nil then
         version, resync = snap_version[key], snap_resync[key]
+    elseif pinfo.visited and snap_resync[-frame] ~= nil then
+        -- Later passes may hand over different bytes (a segment without the bytes carried
+        -- while resynchronising): fall back to the state of the frame's first call.
+        version, resync = snap_version[-frame], snap_resync[-frame]
     else
         version, resync = stream_version[stream], stream_resync[stream] or false
         if snap_resync[key] == nil then snap_version[key], snap_resync[key] = version, resync end
+        if snap_resync[-frame] == nil then snap_version[-frame], snap_resync[-frame] = version, resync end
     end
 
     pinfo.cols.protocol:set("UR")
