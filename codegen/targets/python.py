@@ -10,6 +10,7 @@ from typing import Optional
 
 from .. import ir
 from ..emit import environment, runtime_files
+from ..view import Step, one_line
 from ..naming import (camel, py_enum_class, py_item_class, py_layout_class, py_lookup,
                       py_message_class, py_table_class)
 
@@ -26,18 +27,6 @@ class Attr:
     doc: str
     json_kind: str
     optional: bool = False
-
-
-@dataclass
-class Step:
-    kind: str
-    data: dict
-
-    def __getattr__(self, key):
-        try:
-            return self.__dict__["data"][key]
-        except KeyError:
-            raise AttributeError(key) from None
 
 
 @dataclass
@@ -69,10 +58,6 @@ class PyClass:
     @property
     def field_names(self) -> list[str]:
         return [a.name for a in self.attrs if a.name not in self.header_names]
-
-
-def one_line(*texts: str) -> str:
-    return " ".join(t.strip() for t in texts if t and t.strip()).replace('"""', "'''")
 
 
 def annotation(f: ir.AnyField, items: dict[str, str]) -> str:
