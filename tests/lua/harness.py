@@ -297,11 +297,23 @@ def to_records(u: dict) -> list[dict]:
 
 # ---- expectations ----
 
+def _cut_at_nul(v):
+    """Wireshark string fields end at the first NUL byte; the canonical text keeps it."""
+    if isinstance(v, str):
+        return v.split("\x00", 1)[0]
+    if isinstance(v, list):
+        return [_cut_at_nul(x) for x in v]
+    if isinstance(v, dict):
+        return {k: (_cut_at_nul(x) if k not in ("raw", "extra", "error", "type") else x) for k, x in v.items()}
+    return v
+
+
 def comparable(records: list[dict]) -> list[dict]:
     """Canonical records as tshark can show them: a truncated tail never completes in TCP
-    reassembly, so it gives no record; stream-fault offsets are stream positions tshark lacks."""
+    reassembly, so it gives no record; stream-fault offsets are stream positions tshark lacks;
+    texts end at a NUL byte."""
     out = []
-    for r in records:
+    for r in _cut_at_nul(records):
         if r.get("type") == "error":
             if r["error"].startswith("truncated"):
                 continue

@@ -1,0 +1,80 @@
+"""Random and mutated streams through tshark and through the Python decoder: same records.
+Also: mutated and truncated pcaps never make a Lua error, and the samples decode cleanly."""
+from __future__ import annotations
+
+import random
+
+from harness import (ROOT, comparable, run_tshark, to_records, tshark_json, ur_items_by_stream,
+                     write_sessions, F32_TOL)
+from tests.tools import capture
+from tests.tools.streams import streams
+from tests.vectors import all_cases, mismatches
+
+import urwire
+
+MESSAGES = [m for c in all_cases() for m in [c.data] if 5 <= len(m) <= 4000]
+COUNT = 150
+
+
+def test_random_and_mutated_streams_agree_with_python(tmp_path):
+    data = list(streams(MESSAGES, COUNT, seed=11))
+    sessions = [capture.random_cuts([d], seed=i, max_len=300) for i, d in enumerate(data)]
+    by_stream = ur_items_by_stream(tshark_json(write_sessions(tmp_path / "diff.pcap", sessions)))
+    failures = []
+    for i, d in enumerate(data):
+        expected = comparable([urwire.to_dict(r) for r in urwire.decode_stream(d)])
+        actual = [r for u in by_stream.get(i, []) for r in to_records(u)]
+        problems = mismatches(expected, actual, partial=False, tolerance=F32_TOL)
+        if problems:
+            failures.append(f"stream {i} ({d.hex()[:80]}...): " + "; ".join(problems[:5]))
+    assert not failures, f"{len(failures)} of {COUNT} streams differ:\n" + "\n".join(failures[:10])
+
+
+def test_mutated_and_truncated_pcaps_never_raise_a_lua_error(tmp_path):
+    import dpkt
+    rng = random.Random(5)
+    for sample in ("primary_session.pcapng", "secondary_session.pcap"):
+        path = ROOT / "dissector" / "samples" / sample
+        with path.open("rb") as fh:
+            reader = dpkt.pcapng.Reader(fh) if sample.endswith("ng") else dpkt.pcap.Reader(fh)
+            frames = [bytes(buf) for _, buf in reader]
+        for k in range(3):
+            out = []
+            for fr in frames[: rng.randrange(len(frames) // 2, len(frames))]:   # truncated capture
+                b = bytearray(fr)
+                if len(b) > 54 and rng.random() < 0.5:   # damage the TCP payload only
+                    for _ in range(rng.randint(1, 12)):
+                        b[rng.randrange(54, len(b))] = rng.randrange(256)
+                out.append(bytes(b))
+            out[-1] = out[-1][: max(54, len(out[-1]) - 7)]   # and a last frame cut short
+            mutated = capture.write(tmp_path / f"mut{k}.pcap", out)
+            for opts in (("-2", "-V"), ("-q", "-z", "io,stat,0"), ("-T", "fields", "-e", "ur.type")):
+                run_tshark(mutated, *opts)   # raises on any Lua error
+
+
+def test_hostile_bytes_are_caught(tmp_path):
+    """Deep nesting, huge counts, every type byte: experts, never a Lua error."""
+    rng = random.Random(9)
+    sessions = []
+    for _ in range(60):
+        body = bytes([rng.choice((16, 20, 25))]) + bytes(rng.randrange(256) for _ in range(rng.randrange(0, 60)))
+        deep = b"\x00" * 8 + b"\x01\x00\x00" + b"\x11\x7f\xff" * 40
+        for payload in (body, b"\x19" + deep):
+            msg = (5 + len(payload) - 1).to_bytes(4, "big") + payload
+            sessions.append([msg])
+    out = run_tshark(write_sessions(tmp_path / "hostile.pcap", sessions), "-2", "-V")
+    assert "nesting deeper than 8" in out
+
+
+def test_samples_decode_without_faults():
+    for sample in ("primary_session.pcapng", "secondary_session.pcap"):
+        out = run_tshark(ROOT / "dissector" / "samples" / sample, "-q", "-z", "expert,error")
+        assert "Malformed" not in out, out
+        fields = run_tshark(ROOT / "dissector" / "samples" / sample, "-Y", "ur.robot_mode_data.robot_mode == \"RUNNING\"",
+                            "-T", "fields", "-e", "frame.number")
+        assert fields.split(), "no RUNNING robot state found by its value string"
+    q = run_tshark(ROOT / "dissector" / "samples" / "primary_session.pcapng", "-Y", "ur.joint_data.q_actual > 1.5")
+    assert q.strip()
+    script = run_tshark(ROOT / "dissector" / "samples" / "primary_session.pcapng", "-Y", "ur.urscript",
+                        "-T", "fields", "-e", "ur.urscript")
+    assert "movej" in script
