@@ -1,0 +1,196 @@
+/* Test driver for tests/c: exercises the library where the CLI cannot.
+ *
+ *   driver chunks K FILE     print the records like urwire-decode, feeding K bytes at a time
+ *                            (K = 0: sizes from 1 to 97 in a fixed pseudo-random order)
+ *   driver roundtrip FILE    encode(decode(m)) == m for every framed message and sub-package;
+ *                            prints "messages N packages P" or the first mismatch (exit 1)
+ *   driver text              stdin bytes -> one JSON string (UTF-8 replaced as Python does)
+ *   driver f32 | f64         stdin big-endian floats -> their canonical texts, one per line
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "json.h"
+#include "urwire.h"
+
+static uint8_t framer_buffer[URWIRE_FRAMER_MIN_BUFFER];
+static uint8_t encoded[URWIRE_MAX_MESSAGE_LENGTH + 64];
+
+static uint8_t *slurp(FILE *in, size_t *len)
+{
+    size_t cap = 1 << 16, n = 0, got;
+    uint8_t *buf = malloc(cap);
+    while (buf && (got = fread(buf + n, 1, cap - n, in)) > 0) {
+        n += got;
+        if (n == cap)
+            buf = realloc(buf, cap *= 2);
+    }
+    *len = n;
+    return buf;
+}
+
+static uint8_t *read_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    uint8_t *buf;
+    if (!f) {
+        perror(path);
+        exit(2);
+    }
+    buf = slurp(f, len);
+    fclose(f);
+    return buf;
+}
+
+typedef int (*frame_fn)(const urwire_frame *frame, void *ctx);
+
+/* Frame data in chunks of k bytes (k = 0: varying sizes), calling fn on every frame. */
+static int frame_all(const uint8_t *data, size_t len, size_t k, frame_fn fn, void *ctx)
+{
+    urwire_framer fr;
+    urwire_frame frame;
+    size_t off = 0, step = 0, rc = 0;
+    urwire_framer_init(&fr, framer_buffer, sizeof framer_buffer, URWIRE_DEFAULT_VERSION);
+    for (;;) {
+        size_t want = k ? k : 1 + (step++ * 37) % 97;
+        if (off < len) {
+            if (want > len - off)
+                want = len - off;
+            off += urwire_framer_feed(&fr, data + off, want);
+        } else {
+            urwire_framer_finish(&fr);
+        }
+        for (;;) {
+            urwire_frame_kind kind = urwire_framer_next(&fr, &frame);
+            if (kind == URWIRE_FRAME_END)
+                return (int)rc;
+            if (kind == URWIRE_FRAME_NEED_MORE)
+                break;
+            rc |= (size_t)fn(&frame, ctx);
+        }
+    }
+}
+
+static int print_frame(const urwire_frame *frame, void *ctx)
+{
+    json_writer *w = (json_writer *)ctx;
+    urwire_visitor v = json_visitor(w);
+    urwire_message m;
+    int err;
+    w->depth = 0;
+    if (frame->kind == URWIRE_FRAME_FAULT) {
+        urwire_visit_fault(&frame->fault, &v);
+        err = 1;
+    } else {
+        urwire_decode_message(frame->bytes, frame->length, frame->version, &m);
+        urwire_visit_message(&m, &v);
+        err = urwire_message_has_error(&m);
+    }
+    putc('\n', w->out);
+    return err;
+}
+
+typedef struct counts {
+    size_t messages;
+    size_t packages;
+} counts;
+
+static int mismatch(const char *what, const urwire_frame *frame, size_t n)
+{
+    printf("MISMATCH %s at stream offset %lu (length %lu, encoded %lu)\n", what, (unsigned long)frame->offset,
+           (unsigned long)frame->length, (unsigned long)n);
+    return 1;
+}
+
+static int roundtrip_frame(const urwire_frame *frame, void *ctx)
+{
+    counts *c = (counts *)ctx;
+    urwire_message m;
+    urwire_package pkg;
+    urwire_robot_state state;
+    urwire_seq seq;
+    urwire_error err;
+    size_t n;
+    if (frame->kind != URWIRE_FRAME_MESSAGE)
+        return 0;
+    urwire_decode_message(frame->bytes, frame->length, frame->version, &m);
+    n = urwire_encode_message(&m, encoded, sizeof encoded, &err);
+    if (n != frame->length || memcmp(encoded, frame->bytes, n) != 0)
+        return mismatch("message", frame, n);
+    /* Too little room must fail cleanly, never write past cap. */
+    if (n > 5 && urwire_encode_message(&m, encoded, n - 1, &err) != 0)
+        return mismatch("encode into a short buffer succeeded", frame, n);
+    c->messages++;
+    if (m.kind == URWIRE_KIND_ROBOT_STATE) {
+        seq = m.packages;
+        while (urwire_next_package(&seq, &pkg)) {
+            n = urwire_encode_package(&pkg, encoded, sizeof encoded, &err);
+            if (n != pkg.raw.len + 5 || memcmp(encoded, frame->bytes + pkg.offset, n) != 0)
+                return mismatch("package", frame, n);
+            c->packages++;
+        }
+        /* The all-at-once decoder agrees with the iterator about errors. */
+        if (urwire_decode_robot_state(&m, &state) == urwire_message_has_error(&m))
+            return mismatch("urwire_decode_robot_state disagrees with urwire_message_has_error", frame, 0);
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    size_t len, i;
+    uint8_t *data;
+    json_writer w;
+    char buf[64];
+    if (argc == 4 && strcmp(argv[1], "chunks") == 0) {
+        data = read_file(argv[3], &len);
+        memset(&w, 0, sizeof w);
+        w.out = stdout;
+        i = (size_t)frame_all(data, len, (size_t)atol(argv[2]), print_frame, &w);
+        free(data);
+        return i ? 1 : 0;
+    }
+    if (argc == 3 && strcmp(argv[1], "roundtrip") == 0) {
+        counts c = {0, 0};
+        int rc;
+        data = read_file(argv[2], &len);
+        rc = frame_all(data, len, 0, roundtrip_frame, &c);
+        printf("messages %lu packages %lu\n", (unsigned long)c.messages, (unsigned long)c.packages);
+        free(data);
+        return rc;
+    }
+    if (argc == 2 && strcmp(argv[1], "text") == 0) {
+        data = slurp(stdin, &len);
+        json_write_text(stdout, data, len);
+        putchar('\n');
+        free(data);
+        return 0;
+    }
+    if (argc == 2 && (strcmp(argv[1], "f32") == 0 || strcmp(argv[1], "f64") == 0)) {
+        bool wide = argv[1][1] == '6';
+        size_t size = wide ? 8 : 4;
+        data = slurp(stdin, &len);
+        for (i = 0; i + size <= len; i += size) {
+            uint64_t bits = 0;
+            size_t k;
+            for (k = 0; k < size; k++)
+                bits = bits << 8 | data[i + k];
+            if (wide) {
+                double d;
+                memcpy(&d, &bits, sizeof d);
+                json_f64_text(d, buf, sizeof buf);
+            } else {
+                uint32_t b32 = (uint32_t)bits;
+                float f;
+                memcpy(&f, &b32, sizeof f);
+                json_f32_text(f, buf, sizeof buf);
+            }
+            puts(buf);
+        }
+        free(data);
+        return 0;
+    }
+    fprintf(stderr, "usage: driver chunks K FILE | roundtrip FILE | text | f32 | f64\n");
+    return 2;
+}

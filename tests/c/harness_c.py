@@ -1,0 +1,85 @@
+"""Helpers for the C tests: builds: the CLI and the test driver, under gcc, clang and the sanitizers.
+
+Every build uses the strict flags the library promises to pass (C99, -Wall -Wextra -Werror
+-pedantic -Wconversion -Wshadow). Outputs go to build/c-tests/<variant>/.
+"""
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+GEN = ROOT / "generated" / "c"
+CLI = ROOT / "tools" / "urwire-decode"
+OUT = ROOT / "build" / "c-tests"
+STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Wconversion", "-Wshadow"]
+SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-omit-frame-pointer"]
+VARIANTS = {
+    "gcc": ("gcc", ["-O2"]),
+    "clang": ("clang", ["-O2"]),
+    "asan-gcc": ("gcc", ["-O1", "-g"] + SANITIZE),
+    "asan-clang": ("clang", ["-O1", "-g"] + SANITIZE),
+}
+
+sys.path.insert(0, str(ROOT / "generated" / "python"))
+sys.path.insert(0, str(ROOT / "tests"))
+
+
+@dataclass(frozen=True)
+class Build:
+    name: str
+    cli: Path
+    driver: Path
+
+
+def compile_c(cc: str, flags: list[str], sources: list[Path], output: Path, extra: list[str] = ()) -> None:
+    output.parent.mkdir(parents=True, exist_ok=True)
+    cmd = [cc, *STRICT, *flags, f"-I{GEN}", f"-I{CLI}", "-o", str(output), *map(str, sources), *extra]
+    result = subprocess.run(cmd, capture_output=True, text=True)
+    assert result.returncode == 0, f"{' '.join(cmd)}\n{result.stderr}"
+    assert result.stderr == "", result.stderr  # not even a note
+
+
+def build_variant(name: str) -> Build:
+    cc, flags = VARIANTS[name]
+    if shutil.which(cc) is None:
+        pytest.fail(f"{cc} is not installed (scripts/setup.sh installs it)")
+    folder = OUT / name
+    cli, driver = folder / "urwire-decode", folder / "driver"
+    compile_c(cc, flags, [CLI / "main.c", CLI / "json.c", GEN / "urwire.c"], cli, ["-lm"])
+    # The driver is test code: strict too, except that it uses malloc and stdio freely.
+    compile_c(cc, flags, [ROOT / "tests" / "c" / "driver.c", CLI / "json.c", GEN / "urwire.c"], driver, ["-lm"])
+    return Build(name, cli, driver)
+
+
+_BUILDS: dict[str, Build] = {}
+
+
+def get_build(name: str) -> Build:
+    if name not in _BUILDS:
+        _BUILDS[name] = build_variant(name)
+    return _BUILDS[name]
+
+
+def run_cli(b: Build, data: bytes, *args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([str(b.cli), *args, "-"], input=data, capture_output=True)
+
+
+def parse_lines(out: bytes) -> list:
+    return [json.loads(line) for line in out.decode("utf-8").splitlines()]
+
+
+def python_records(data: bytes, version: str | None) -> tuple[list, int]:
+    """What the Python reference decoder prints for a stream, and its exit code."""
+    import urwire
+    from urwire.canonical import has_error
+
+    records = list(urwire.decode_stream(data, version_hint=version))
+    lines = [json.loads(urwire.to_json_line(r)) for r in records]
+    return lines, 1 if any(has_error(r) for r in records) else 0
