@@ -1,0 +1,57 @@
+"""build/urwire-decode as CONTRACT.md §3 says: FILE or -, --version-hint, exit codes 0/1/2 with
+a one-line stderr message for usage and I/O errors."""
+from __future__ import annotations
+
+import subprocess
+
+import pytest
+
+from tests.c.harness_c import parse_lines, run_cli
+from tests.vectors import all_cases
+
+CASES = {c.name: c for c in all_cases()}
+
+
+def test_file_and_stdin_give_the_same_records(fast, tmp_path):
+    case = CASES["stream_several_messages"]
+    path = tmp_path / "s.bin"
+    path.write_bytes(case.data)
+    by_file = subprocess.run([str(fast.cli), str(path)], capture_output=True)
+    assert by_file.returncode == 0
+    assert by_file.stdout == run_cli(fast, case.data).stdout
+    assert len(parse_lines(by_file.stdout)) == len(case.expect)
+
+
+def test_error_records_exit_1(fast):
+    result = run_cli(fast, CASES["stream_fault_truncated_message"].data)
+    assert result.returncode == 1
+    assert parse_lines(result.stdout)[-1]["type"] == "error"
+
+
+def test_version_hint_chooses_the_value_table(fast):
+    data = CASES["global_variables_update_doc_example_5_0"].data
+    under_5_9 = parse_lines(run_cli(fast, data).stdout)
+    under_5_0 = parse_lines(run_cli(fast, data, "--version-hint", "5.0").stdout)
+    assert under_5_9 != under_5_0
+    assert under_5_0 == parse_lines(run_cli(fast, data, "--version-hint=5.0").stdout)
+
+
+def test_help_states_the_default_version(fast):
+    result = subprocess.run([str(fast.cli), "--help"], capture_output=True, text=True)
+    assert result.returncode == 0
+    assert "5.9" in result.stdout and "default" in result.stdout
+
+
+@pytest.mark.parametrize("args", [[], ["/no/such/file"], ["--version-hint", "five", "-"], ["--version-hint"],
+                                  ["--frobnicate", "-"], ["a", "b"], ["--version-hint", "5", "-"]])
+def test_usage_and_io_errors_exit_2_with_one_line(fast, args):
+    result = subprocess.run([str(fast.cli), *args], input="", capture_output=True, text=True)
+    assert result.returncode == 2
+    assert result.stdout == ""
+    assert len(result.stderr.splitlines()) == 1 and result.stderr.startswith("urwire-decode: ")
+
+
+def test_a_directory_is_an_io_error(fast, tmp_path):
+    result = subprocess.run([str(fast.cli), str(tmp_path)], capture_output=True, text=True)
+    assert result.returncode == 2
+    assert len(result.stderr.splitlines()) == 1
