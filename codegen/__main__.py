@@ -31,11 +31,16 @@ def main(argv: list[str] | None = None) -> int:
     return _check(args.out, outputs) if args.check else _write(args.out, outputs)
 
 
+def _is_build_artifact(path: Path) -> bool:
+    """What Python and pip leave beside the sources (bytecode, `pip install .` metadata)."""
+    return any(part == "__pycache__" or part.endswith(".egg-info") for part in path.parts)
+
+
 def _owned(out: Path, outputs: dict[str, str]) -> set[Path]:
     """Files under each target folder we render into; anything else there is stale."""
     tops = {rel.split("/")[0] for rel in outputs}
     return {p for top in tops if (out / top).is_dir() for p in (out / top).rglob("*")
-            if p.is_file() and "__pycache__" not in p.parts}
+            if p.is_file() and not _is_build_artifact(p.relative_to(out))}
 
 
 def _write(out: Path, outputs: dict[str, str]) -> int:
