@@ -327,6 +327,9 @@ class _Builder:
                                               needs_version=str(st.struct.needs_version).lower(),
                                               item=self.add_item(st.name, words(st.name), one_line(st.doc))))
                 dispatch.append(view)
+        for m in package_messages:
+            for pk in m["packages"]:
+                pk["refs"] = [f'F["{k}"]' for k in sorted(self.keys) if k.startswith(pk["name"] + ".")]
         version = self.version_reader()
         value_tables = []
         for t in p.value_type.tables:

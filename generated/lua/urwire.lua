@@ -1512,6 +1512,14 @@ local function scan_info(tvb, raw, o, e, layout)
     return text
 end
 
+-- True when a filter, column or tap asks for one of these fields.
+local function referenced(tree, fields)
+    for _, f in ipairs(fields) do
+        if tree:referenced(f) then return true end
+    end
+    return false
+end
+
 -- ---------------------------------------------------------------------------------------------
 -- Messages: a table of small functions keyed by message type
 -- ---------------------------------------------------------------------------------------------
@@ -1519,20 +1527,34 @@ local MESSAGE = {}
 
 -- Sub-packages of the robot state, by package type.
 local ROBOT_STATE_PACKAGES = {
-    [0] = { name = "robot_mode_data", label = "Robot mode data", item = F["robot_mode_data"], layout = L_robot_mode_data, info = { { at = 15, n = 1, vs = VS_ROBOT_MODE }, } },
-    [1] = { name = "joint_data", label = "Joint data", item = F["joint_data"], layout = L_joint_data },
-    [2] = { name = "tool_data", label = "Tool data", item = F["tool_data"], layout = L_tool_data },
-    [3] = { name = "masterboard_data", label = "Masterboard data", item = F["masterboard_data"], layout = L_masterboard_data, info = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, } },
-    [4] = { name = "cartesian_info", label = "Cartesian info", item = F["cartesian_info"], layout = L_cartesian_info },
-    [5] = { name = "kinematics_info", label = "Kinematics info", item = F["kinematics_info"], layout = L_kinematics_info },
-    [6] = { name = "configuration_data", label = "Configuration data", item = F["configuration_data"], layout = L_configuration_data },
-    [7] = { name = "force_mode_data", label = "Force mode data", item = F["force_mode_data"], layout = L_force_mode_data },
-    [8] = { name = "additional_info", label = "Additional info", item = F["additional_info"], layout = L_additional_info },
-    [9] = { name = "calibration_data", label = "Calibration data", item = F["calibration_data"], layout = L_calibration_data },
-    [10] = { name = "safety_data", label = "Safety data", item = F["safety_data"], layout = L_safety_data },
-    [11] = { name = "tool_comm_info", label = "Tool comm info", item = F["tool_comm_info"], layout = L_tool_comm_info },
-    [12] = { name = "tool_mode_info", label = "Tool mode info", item = F["tool_mode_info"], layout = L_tool_mode_info },
-    [13] = { name = "singularity_info", label = "Singularity info", item = F["singularity_info"], layout = L_singularity_info },
+    [0] = { name = "robot_mode_data", label = "Robot mode data", item = F["robot_mode_data"], layout = L_robot_mode_data, info = { { at = 15, n = 1, vs = VS_ROBOT_MODE }, },
+        refs = { F["robot_mode_data.control_mode"], F["robot_mode_data.is_emergency_stopped"], F["robot_mode_data.is_program_paused"], F["robot_mode_data.is_program_running"], F["robot_mode_data.is_protective_stopped"], F["robot_mode_data.is_real_robot_connected"], F["robot_mode_data.is_real_robot_enabled"], F["robot_mode_data.is_robot_power_on"], F["robot_mode_data.reserved"], F["robot_mode_data.robot_mode"], F["robot_mode_data.speed_scaling"], F["robot_mode_data.target_speed_fraction"], F["robot_mode_data.target_speed_fraction_limit"], F["robot_mode_data.timestamp"] } },
+    [1] = { name = "joint_data", label = "Joint data", item = F["joint_data"], layout = L_joint_data,
+        refs = { F["joint_data.i_actual"], F["joint_data.joint_mode"], F["joint_data.joints"], F["joint_data.q_actual"], F["joint_data.q_target"], F["joint_data.qd_actual"], F["joint_data.t_micro"], F["joint_data.t_motor"], F["joint_data.v_actual"] } },
+    [2] = { name = "tool_data", label = "Tool data", item = F["tool_data"], layout = L_tool_data,
+        refs = { F["tool_data.analog_input0"], F["tool_data.analog_input1"], F["tool_data.analog_input_range0"], F["tool_data.analog_input_range1"], F["tool_data.tool_current"], F["tool_data.tool_mode"], F["tool_data.tool_output_voltage"], F["tool_data.tool_temperature"], F["tool_data.tool_voltage_48v"] } },
+    [3] = { name = "masterboard_data", label = "Masterboard data", item = F["masterboard_data"], layout = L_masterboard_data, info = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, },
+        refs = { F["masterboard_data.analog_input0"], F["masterboard_data.analog_input1"], F["masterboard_data.analog_input_range0"], F["masterboard_data.analog_input_range1"], F["masterboard_data.analog_output0"], F["masterboard_data.analog_output1"], F["masterboard_data.analog_output_domain0"], F["masterboard_data.analog_output_domain1"], F["masterboard_data.digital_input_bits"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"], F["masterboard_data.digital_output_bits"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.tool_0"], F["masterboard_data.digital_output_bits.tool_1"], F["masterboard_data.euromap67_interface_installed"], F["masterboard_data.euromap_current"], F["masterboard_data.euromap_input_bits"], F["masterboard_data.euromap_output_bits"], F["masterboard_data.euromap_voltage_24v"], F["masterboard_data.in_reduced_mode"], F["masterboard_data.master_board_temperature"], F["masterboard_data.master_io_current"], F["masterboard_data.operational_mode_selector_input"], F["masterboard_data.reserved_0"], F["masterboard_data.reserved_1"], F["masterboard_data.robot_current"], F["masterboard_data.robot_voltage_48v"], F["masterboard_data.safety_mode"], F["masterboard_data.three_position_enabling_device_input"] } },
+    [4] = { name = "cartesian_info", label = "Cartesian info", item = F["cartesian_info"], layout = L_cartesian_info,
+        refs = { F["cartesian_info.rx"], F["cartesian_info.ry"], F["cartesian_info.rz"], F["cartesian_info.tcp_offset_rx"], F["cartesian_info.tcp_offset_ry"], F["cartesian_info.tcp_offset_rz"], F["cartesian_info.tcp_offset_x"], F["cartesian_info.tcp_offset_y"], F["cartesian_info.tcp_offset_z"], F["cartesian_info.x"], F["cartesian_info.y"], F["cartesian_info.z"] } },
+    [5] = { name = "kinematics_info", label = "Kinematics info", item = F["kinematics_info"], layout = L_kinematics_info,
+        refs = { F["kinematics_info.calibration_status"], F["kinematics_info.checksum"], F["kinematics_info.dh_a"], F["kinematics_info.dh_alpha"], F["kinematics_info.dh_d"], F["kinematics_info.dh_theta"] } },
+    [6] = { name = "configuration_data", label = "Configuration data", item = F["configuration_data"], layout = L_configuration_data,
+        refs = { F["configuration_data.a_joint_default"], F["configuration_data.a_tool_default"], F["configuration_data.controller_box_type"], F["configuration_data.dh_a"], F["configuration_data.dh_alpha"], F["configuration_data.dh_d"], F["configuration_data.dh_theta"], F["configuration_data.eq_radius"], F["configuration_data.joint_max_acceleration"], F["configuration_data.joint_max_limit"], F["configuration_data.joint_max_speed"], F["configuration_data.joint_min_limit"], F["configuration_data.joint_motion_limits"], F["configuration_data.joint_position_limits"], F["configuration_data.masterboard_version"], F["configuration_data.robot_sub_type"], F["configuration_data.robot_type"], F["configuration_data.v_joint_default"], F["configuration_data.v_tool_default"] } },
+    [7] = { name = "force_mode_data", label = "Force mode data", item = F["force_mode_data"], layout = L_force_mode_data,
+        refs = { F["force_mode_data.frx"], F["force_mode_data.fry"], F["force_mode_data.frz"], F["force_mode_data.fx"], F["force_mode_data.fy"], F["force_mode_data.fz"], F["force_mode_data.robot_dexterity"] } },
+    [8] = { name = "additional_info", label = "Additional info", item = F["additional_info"], layout = L_additional_info,
+        refs = { F["additional_info.freedrive_button_enabled"], F["additional_info.io_enabled_freedrive"], F["additional_info.reserved"], F["additional_info.tp_button_state"] } },
+    [9] = { name = "calibration_data", label = "Calibration data", item = F["calibration_data"], layout = L_calibration_data,
+        refs = { F["calibration_data.frx"], F["calibration_data.fry"], F["calibration_data.frz"], F["calibration_data.fx"], F["calibration_data.fy"], F["calibration_data.fz"] } },
+    [10] = { name = "safety_data", label = "Safety data", item = F["safety_data"], layout = L_safety_data,
+        refs = { F["safety_data.raw"] } },
+    [11] = { name = "tool_comm_info", label = "Tool comm info", item = F["tool_comm_info"], layout = L_tool_comm_info,
+        refs = { F["tool_comm_info.baud_rate"], F["tool_comm_info.parity"], F["tool_comm_info.rx_idle_chars"], F["tool_comm_info.stop_bits"], F["tool_comm_info.tool_communication_is_enabled"], F["tool_comm_info.tx_idle_chars"] } },
+    [12] = { name = "tool_mode_info", label = "Tool mode info", item = F["tool_mode_info"], layout = L_tool_mode_info,
+        refs = { F["tool_mode_info.digital_output_mode_output_0"], F["tool_mode_info.digital_output_mode_output_1"], F["tool_mode_info.output_mode"] } },
+    [13] = { name = "singularity_info", label = "Singularity info", item = F["singularity_info"], layout = L_singularity_info,
+        refs = { F["singularity_info.singularity_severity"], F["singularity_info.singularity_type"] } },
 }
 
 -- Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in any order, each framed by its own length.
@@ -1585,7 +1607,9 @@ MESSAGE[16] = {
             item:add(F["package.length"], tvb(p, 4))
             item:add(F["package.type"], tvb(p + 4, 1))
             local body, stop = p + HEADER, p + size
-            if pk then
+            if pk and not st.visible and not referenced(item, pk.refs) then
+                -- No tree shown and no field of this package asked for: skip its fields.
+            elseif pk then
                 local used
                 used, err = walk(tvb, item, body, stop, st, pk.layout, nil)
                 if not used then
@@ -1729,17 +1753,20 @@ MESSAGE[25] = {
 }
 
 -- ---------------------------------------------------------------------------------------------
--- The software version of each TCP stream. First pass: the state per stream moves along, and a
--- snapshot of it is kept for each dissector call (frame number and tvb length). Later passes
--- (tshark -2, clicks in the GUI, in any order) reuse the snapshot, so both agree.
+-- State of each TCP stream: the software version its Version message announced (nil: none
+-- yet), whether the dissector is resynchronising after a bad header, and the bytes carried over
+-- from earlier segments while it does. First pass: the state moves along, and a snapshot of it
+-- is kept for each dissector call (frame number and tvb length). Later passes (tshark -2, clicks
+-- in the GUI, in any order) reuse the snapshot, so both agree.
 -- Streams are keyed by their addresses and ports: Field.new("tcp.stream") gives nothing on a
 -- first pass without a tree (tshark -2), and Conversation only exists from Wireshark 4.6.
 -- ---------------------------------------------------------------------------------------------
-local stream_version, stream_resync = {}, {}   -- by stream: learned version (or nil), resyncing
-local snap_version, snap_resync = {}, {}       -- by call key and by frame: the same, as the call started
+local stream_version, stream_resync, stream_carry = {}, {}, {}
+local snap_version, snap_resync, snap_carry = {}, {}, {}   -- by call key (frame, tvb length)
 
 function ur.init()
-    stream_version, stream_resync, snap_version, snap_resync = {}, {}, {}, {}
+    stream_version, stream_resync, stream_carry = {}, {}, {}
+    snap_version, snap_resync, snap_carry = {}, {}, {}
 end
 
 -- The version a Version message announces, read from the raw bytes; nil when it is malformed.
@@ -1789,6 +1816,42 @@ local function dissect_client(tvb, pinfo, tree)
 end
 
 local ur_handle = nil
+local cur = { version = nil, first = true, detail = false }   -- the call being dissected
+
+-- One whole message from o to e (its declared length): Info column, version, tree.
+local function message(tvb, raw, pinfo, tree, o, e, mtype)
+    local m = MESSAGE[mtype]
+    if mtype == 20 then
+        cur.version = announced_version(raw, o, e) or cur.version
+    end
+    set_info(pinfo, cur.first, m and m.info(tvb, raw, o, e) or fmt("Type %d (%s)", mtype, VS_MESSAGE_TYPE[mtype]))
+    cur.first = false
+    if not cur.detail then return end
+    local item = tree:add(ur, tvb(o, e - o))
+    item:add(F.length, tvb(o, 4))
+    item:add(F.type, tvb(o + 4, 1))
+    st.raw, st.base, st.visible = raw, o, tree.visible
+    st.version = cur.version or pref_version
+    st.assumed = cur.version == nil
+    if m then
+        item:append_text(", " .. m.label)
+        m.tree(tvb, item, o, e, st)
+    elseif e - o > HEADER then
+        -- A known type without a layout (e.g. 24): kept raw, not an error.
+        item:add(X.raw, tvb(o + HEADER, e - o - HEADER))
+    end
+end
+
+-- Resynchronising: scan buf (bytes carried from earlier segments, then this tvb's) from p for
+-- the next plausible header. Returns its position, or nil and the first position not tested.
+local function scan(buf, p, max_length)
+    local n = #buf
+    while n - p >= HEADER do
+        if plausible(buf, p, max_length) then return p end
+        p = p + 1
+    end
+    return nil, p
+end
 
 local function dissect(tvb, pinfo, tree)
     if pinfo.src_port ~= pinfo.match_uint then return dissect_client(tvb, pinfo, tree) end
@@ -1797,44 +1860,56 @@ local function dissect(tvb, pinfo, tree)
     local max_length = ur.prefs.max_length
     ur_handle = ur_handle or Dissector.get("ur")
     -- Field work only when someone looks: a visible tree, or a filter or column naming ur.
-    local detail = tree.visible or tree:referenced(ur_handle)
+    cur.detail = tree.visible or tree:referenced(ur_handle)
+    cur.first = true
 
-    -- The stream's version and resync state as this call starts.
+    -- The stream's state as this call starts.
     local stream = tostring(pinfo.src) .. ":" .. pinfo.src_port .. ">" .. tostring(pinfo.dst) .. ":" .. pinfo.dst_port
     local key = pinfo.number * 1048576 + n % 1048576
-    local version, resync
-    local frame = pinfo.number
+    local resync, carry
     if pinfo.visited and snap_resync[key] ~= nil then
-        version, resync = snap_version[key], snap_resync[key]
-    elseif pinfo.visited and snap_resync[-frame] ~= nil then
-        -- Later passes may hand over different bytes (a segment without the bytes carried
-        -- while resynchronising): fall back to the state of the frame's first call.
-        version, resync = snap_version[-frame], snap_resync[-frame]
+        cur.version, resync, carry = snap_version[key], snap_resync[key], snap_carry[key]
     else
-        version, resync = stream_version[stream], stream_resync[stream] or false
-        if snap_resync[key] == nil then snap_version[key], snap_resync[key] = version, resync end
-        if snap_resync[-frame] == nil then snap_version[-frame], snap_resync[-frame] = version, resync end
+        cur.version, resync, carry = stream_version[stream], stream_resync[stream] or false, stream_carry[stream]
+        if snap_resync[key] == nil then
+            snap_version[key], snap_resync[key], snap_carry[key] = cur.version, resync, carry
+        end
     end
 
     pinfo.cols.protocol:set("UR")
-    local first = true
     local o = 0
-    while o < n do
-        if resync then
-            -- Scan forward to the next plausible header; the skipped bytes belong to the fault.
-            local p = o
-            while n - p >= HEADER and not plausible(raw, p, max_length) do p = p + 1 end
-            if p > o and detail then tree:add(ur, tvb(o, p - o)):add(X.skipped, tvb(o, p - o)) end
-            o = p
-            if n - o < HEADER then
-                if pinfo.can_desegment > 0 then
-                    pinfo.desegment_offset = o
-                    pinfo.desegment_len = DESEGMENT_ONE_MORE_SEGMENT
-                end
-                break
+    if resync then
+        -- Go on scanning, over the bytes carried from the previous segments too.
+        local c = carry and #carry or 0
+        local buf = carry and (carry .. raw) or raw
+        local p, stop = scan(buf, 0, max_length)
+        if p and p < c then
+            -- A header that starts in the carried bytes: the message spans segments.
+            local size = be_int(buf, p, 4)
+            if #buf - p >= size then
+                local whole = ByteArray.new(string.sub(buf, p + 1, p + size), true):tvb("UR message")
+                message(whole, whole:raw(), pinfo, tree, 0, size, byte(buf, p + 5))
+                o, resync, carry = p + size - c, false, nil
+            else
+                carry = string.sub(buf, p + 1)          -- keep it all until the message is whole
+                if cur.detail then tree:add(ur, tvb()):add(X.skipped, tvb()):set_text("Part of a message that started in an earlier segment") end
+                set_info(pinfo, true, "Part of a message (resynchronised)")
+                cur.first = false
+                o = n
             end
-            resync = false
+        elseif p then
+            o, resync, carry = p - c, false, nil
+            if o > 0 and cur.detail then tree:add(ur, tvb(0, o)):add(X.skipped, tvb(0, o)) end
+        else
+            -- Nothing yet: keep the last bytes, which may start a header, and take the segment.
+            carry = string.sub(buf, stop + 1)
+            if n > 0 and cur.detail then tree:add(ur, tvb()):add(X.skipped, tvb()) end
+            set_info(pinfo, true, "Resynchronising: no message header in this segment")
+            cur.first = false
+            o = n
         end
+    end
+    while o < n do
         local left = n - o
         if left < HEADER then
             -- A header split inside its first bytes: ask for one more segment.
@@ -1851,10 +1926,19 @@ local function dissect(tvb, pinfo, tree)
             item:add(F.length, tvb(o, 4))
             item:add(F.type, tvb(o + 4, 1))
             item:add_proto_expert_info(ex, text)
-            set_info(pinfo, first, "Bad header: " .. text)
-            first = false
-            resync = true
-            o = o + 1
+            set_info(pinfo, cur.first, "Bad header: " .. text)
+            cur.first = false
+            -- Scan forward from the next byte; the skipped bytes belong to this fault.
+            local p, stop = scan(raw, o + 1, max_length)
+            if p then
+                if p > o + 1 and cur.detail then tree:add(ur, tvb(o + 1, p - o - 1)):add(X.skipped, tvb(o + 1, p - o - 1)) end
+                o = p
+            else
+                -- Not without the next segment: carry the last bytes over (no TCP reassembly,
+                -- so that later passes see the same segments).
+                resync, carry = true, string.sub(raw, stop + 1)
+                o = n
+            end
         elseif size > left then
             if pinfo.can_desegment > 0 then
                 pinfo.desegment_offset = o
@@ -1863,35 +1947,15 @@ local function dissect(tvb, pinfo, tree)
             end
             -- No reassembly possible (preference off): show what is there.
             tree:add(ur, tvb(o, left)):add(X.raw, tvb(o, left))
-            set_info(pinfo, first, "Continuation")
+            set_info(pinfo, cur.first, "Continuation")
             break
         else
-            local e = o + size
-            local m = MESSAGE[mtype]
-            local v = announced_version(raw, o, e)
-            if mtype == 20 and v then version = v end
-            set_info(pinfo, first, m and m.info(tvb, raw, o, e) or fmt("Type %d (%s)", mtype, VS_MESSAGE_TYPE[mtype]))
-            first = false
-            if detail then
-                local item = tree:add(ur, tvb(o, size))
-                item:add(F.length, tvb(o, 4))
-                item:add(F.type, tvb(o + 4, 1))
-                st.raw, st.base = raw, o
-                st.version = version or pref_version
-                st.assumed = version == nil
-                if m then
-                    item:append_text(", " .. m.label)
-                    m.tree(tvb, item, o, e, st)
-                else
-                    -- A known type without a layout (e.g. 24): kept raw, not an error.
-                    if size > HEADER then item:add(X.raw, tvb(o + HEADER, size - HEADER)) end
-                end
-            end
-            o = e
+            message(tvb, raw, pinfo, tree, o, o + size, mtype)
+            o = o + size
         end
     end
     if not pinfo.visited then
-        stream_version[stream], stream_resync[stream] = version, resync
+        stream_version[stream], stream_resync[stream], stream_carry[stream] = cur.version, resync, carry
     end
     return n
 end

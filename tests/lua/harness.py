@@ -70,7 +70,7 @@ def ur_items_by_stream(frames: list) -> dict[int, list]:
             continue
         stream = int(layers["tcp"]["tcp.stream"])
         items = layers["ur"] if isinstance(layers["ur"], list) else [layers["ur"]]
-        out.setdefault(stream, []).extend(items)
+        out.setdefault(stream, []).extend(i for i in items if isinstance(i, dict))
     return out
 
 
