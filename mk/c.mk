@@ -36,10 +36,11 @@ test-c: build/urwire-decode
 
 ## fuzz: libFuzzer over the framer and every decoder, seeded with the vectors (FUZZ_SECONDS=60)
 fuzz: fuzz-c
-fuzz-c: $(C_LIB) tests/c/fuzz_urwire.c
+fuzz-c: $(C_LIB) tests/c/fuzz_urwire.c tools/urwire-decode/json.c
 	@mkdir -p build/fuzz/corpus build/fuzz/crashes
 	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-		-Igenerated/c -o build/fuzz/fuzz_urwire tests/c/fuzz_urwire.c generated/c/urwire.c
+		-Igenerated/c -Itools/urwire-decode -o build/fuzz/fuzz_urwire tests/c/fuzz_urwire.c \
+		tools/urwire-decode/json.c generated/c/urwire.c -lm
 	$(PYTHON) tests/c/seeds.py build/fuzz/seeds
 	build/fuzz/fuzz_urwire -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
 		-artifact_prefix=build/fuzz/crashes/ build/fuzz/corpus build/fuzz/seeds tests/c/regressions

@@ -3092,10 +3092,39 @@ static void urwire__visit_global_variables_update(const urwire_global_variables_
 
 /* ---- messages ----------------------------------------------------------------------------- */
 
+static void urwire__init_message(urwire_message *out, const uint8_t *bytes, size_t len, urwire_sw_version version)
+{
+    out->bytes = bytes;
+    out->length = len;
+    out->message_type = len > 4 ? bytes[4] : 0;
+    out->failed = false;
+    out->error.status = URWIRE_OK;
+    out->error.path[0] = '\0';
+    out->raw = urwire__view(bytes, 0);
+    out->packages = urwire__seq(bytes, len, version, -1);
+}
+
 static void urwire__fail_message(urwire_message *out, size_t raw_from)
 {
     out->failed = true;
     out->raw = urwire__view(out->bytes + raw_from, out->length - raw_from);
+}
+
+/* Checks the sub-package header at pos; false (and *err set) when it cannot be framed. */
+static bool urwire__frame_package(const uint8_t *msg, size_t pos, size_t end, size_t *size, urwire_error *err)
+{
+    size_t left = end - pos;
+    int32_t declared;
+    if (left < URWIRE_PACKAGE_HEADER_SIZE)
+        return urwire__fail(err, URWIRE_E_PACKAGE_HEADER_CUT, pos, "package", URWIRE_PACKAGE_HEADER_SIZE,
+                            (int64_t)left);
+    declared = urwire__i32(msg + pos);
+    if (declared < (int32_t)URWIRE_PACKAGE_HEADER_SIZE)
+        return urwire__fail(err, URWIRE_E_PACKAGE_LENGTH_LOW, pos, "package", declared, 0);
+    if ((size_t)declared > left)
+        return urwire__fail(err, URWIRE_E_PACKAGE_LENGTH_HIGH, pos, "package", declared, (int64_t)left);
+    *size = (size_t)declared;
+    return true;
 }
 
 /* Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in any order, each framed by its own length.
@@ -3103,27 +3132,11 @@ static void urwire__fail_message(urwire_message *out, size_t raw_from)
 static bool urwire__decode_robot_state(urwire_message *out, urwire_sw_version version)
 {
     const uint8_t *msg = out->bytes;
-    size_t pos = URWIRE_HEADER_SIZE, end = out->length, left;
-    int32_t size;
+    size_t pos = URWIRE_HEADER_SIZE, end = out->length, size = 0;
     out->kind = URWIRE_KIND_ROBOT_STATE;
     out->packages = urwire__seq(msg, pos, version, -1);
-    while (pos < end) {
-        left = end - pos;
-        if (left < URWIRE_PACKAGE_HEADER_SIZE) {
-            urwire__fail(&out->error, URWIRE_E_PACKAGE_HEADER_CUT, pos, "package", URWIRE_PACKAGE_HEADER_SIZE,
-                         (int64_t)left);
-            break;
-        }
-        size = urwire__i32(msg + pos);
-        if (size < (int32_t)URWIRE_PACKAGE_HEADER_SIZE) {
-            urwire__fail(&out->error, URWIRE_E_PACKAGE_LENGTH_LOW, pos, "package", size, 0);
-            break;
-        }
-        if ((size_t)size > left) {
-            urwire__fail(&out->error, URWIRE_E_PACKAGE_LENGTH_HIGH, pos, "package", size, (int64_t)left);
-            break;
-        }
-        pos += (size_t)size;
+    while (pos < end && urwire__frame_package(msg, pos, end, &size, &out->error)) {
+        pos += size;
         out->packages.count++;
     }
     out->packages.end = pos;
@@ -3132,6 +3145,66 @@ static bool urwire__decode_robot_state(urwire_message *out, urwire_sw_version ve
         return false;
     }
     return true;
+}
+
+/* One framed sub-package straight into its slot of a robot state. */
+static void urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t stop, urwire_sw_version version,
+                                      urwire_robot_state *out)
+{
+    urwire_error err;
+    size_t body = pos + URWIRE_PACKAGE_HEADER_SIZE;
+    bool ok;
+    switch (msg[pos + 4]) {
+    case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:
+        ok = urwire__decode_robot_mode_data(msg, &body, stop, version, &out->robot_mode_data, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_JOINT_DATA:
+        ok = urwire__decode_joint_data(msg, &body, stop, version, &out->joint_data, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_TOOL_DATA:
+        ok = urwire__decode_tool_data(msg, &body, stop, version, &out->tool_data, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA:
+        ok = urwire__decode_masterboard_data(msg, &body, stop, version, &out->masterboard_data, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO:
+        ok = urwire__decode_cartesian_info(msg, &body, stop, version, &out->cartesian_info, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO:
+        ok = urwire__decode_kinematics_info(msg, &body, stop, version, &out->kinematics_info, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA:
+        ok = urwire__decode_configuration_data(msg, &body, stop, version, &out->configuration_data, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA:
+        ok = urwire__decode_force_mode_data(msg, &body, stop, version, &out->force_mode_data, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO:
+        ok = urwire__decode_additional_info(msg, &body, stop, version, &out->additional_info, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA:
+        ok = urwire__decode_calibration_data(msg, &body, stop, version, &out->calibration_data, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_SAFETY_DATA:
+        ok = urwire__decode_safety_data(msg, &body, stop, version, &out->safety_data, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO:
+        ok = urwire__decode_tool_comm_info(msg, &body, stop, version, &out->tool_comm_info, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO:
+        ok = urwire__decode_tool_mode_info(msg, &body, stop, version, &out->tool_mode_info, &err);
+        break;
+    case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO:
+        ok = urwire__decode_singularity_info(msg, &body, stop, version, &out->singularity_info, &err);
+        break;
+    default:
+        out->unknown++;
+        return;
+    }
+    if (ok)
+        out->present |= (uint32_t)URWIRE_BIT(msg[pos + 4]);
+    else
+        out->malformed |= (uint32_t)URWIRE_BIT(msg[pos + 4]);
 }
 
 bool urwire_next_package(urwire_seq *seq, urwire_package *out)
@@ -3205,72 +3278,46 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
 
 bool urwire_decode_robot_state(const urwire_message *m, urwire_robot_state *out)
 {
-    urwire_seq seq = m->packages;
-    urwire_error err;
-    const uint8_t *msg = seq.msg;
-    size_t pos, body, stop;
-    bool ok;
+    const urwire_seq *seq = &m->packages;
+    size_t pos, count;
     out->present = 0;
     out->malformed = 0;
     out->unknown = 0;
     if (m->kind != URWIRE_KIND_ROBOT_STATE)
         return false;
-    /* The frames were checked by urwire_decode_message; decode each straight into its slot. */
-    for (pos = seq.pos; seq.count > 0 && seq.end - pos >= URWIRE_PACKAGE_HEADER_SIZE; seq.count--, pos = stop) {
-        body = pos + URWIRE_PACKAGE_HEADER_SIZE;
-        stop = pos + urwire__u32(msg + pos);
-        switch (msg[pos + 4]) {
-        case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:
-            ok = urwire__decode_robot_mode_data(msg, &body, stop, seq.version, &out->robot_mode_data, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_JOINT_DATA:
-            ok = urwire__decode_joint_data(msg, &body, stop, seq.version, &out->joint_data, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_TOOL_DATA:
-            ok = urwire__decode_tool_data(msg, &body, stop, seq.version, &out->tool_data, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA:
-            ok = urwire__decode_masterboard_data(msg, &body, stop, seq.version, &out->masterboard_data, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO:
-            ok = urwire__decode_cartesian_info(msg, &body, stop, seq.version, &out->cartesian_info, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO:
-            ok = urwire__decode_kinematics_info(msg, &body, stop, seq.version, &out->kinematics_info, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA:
-            ok = urwire__decode_configuration_data(msg, &body, stop, seq.version, &out->configuration_data, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA:
-            ok = urwire__decode_force_mode_data(msg, &body, stop, seq.version, &out->force_mode_data, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO:
-            ok = urwire__decode_additional_info(msg, &body, stop, seq.version, &out->additional_info, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA:
-            ok = urwire__decode_calibration_data(msg, &body, stop, seq.version, &out->calibration_data, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_SAFETY_DATA:
-            ok = urwire__decode_safety_data(msg, &body, stop, seq.version, &out->safety_data, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO:
-            ok = urwire__decode_tool_comm_info(msg, &body, stop, seq.version, &out->tool_comm_info, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO:
-            ok = urwire__decode_tool_mode_info(msg, &body, stop, seq.version, &out->tool_mode_info, &err);
-            break;
-        case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO:
-            ok = urwire__decode_singularity_info(msg, &body, stop, seq.version, &out->singularity_info, &err);
-            break;
-        default:
-            out->unknown++;
-            continue;
-        }
-        if (ok)
-            out->present |= (uint32_t)URWIRE_BIT(msg[pos + 4]);
-        else
-            out->malformed |= (uint32_t)URWIRE_BIT(msg[pos + 4]);
+    /* The frames were checked by urwire_decode_message. */
+    for (pos = seq->pos, count = seq->count; count > 0; count--) {
+        size_t stop = pos + urwire__u32(seq->msg + pos);
+        urwire__decode_into_state(seq->msg, pos, stop, seq->version, out);
+        pos = stop;
     }
+    return !m->failed && out->malformed == 0;
+}
+
+bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                       urwire_message *m, urwire_robot_state *out)
+{
+    size_t pos = URWIRE_HEADER_SIZE, size = 0, count = 0;
+    out->present = 0;
+    out->malformed = 0;
+    out->unknown = 0;
+    if (len < URWIRE_HEADER_SIZE || bytes[4] != URWIRE_MESSAGE_TYPE_ROBOT_STATE) {
+        urwire_decode_message(bytes, len, version, m);
+        return false;
+    }
+    urwire__init_message(m, bytes, len, version);
+    m->kind = URWIRE_KIND_ROBOT_STATE;
+    m->packages = urwire__seq(bytes, pos, version, -1);
+    /* One pass: framing each sub-package and decoding it overlap in the CPU. */
+    while (pos < len && urwire__frame_package(bytes, pos, len, &size, &m->error)) {
+        urwire__decode_into_state(bytes, pos, pos + size, version, out);
+        pos += size;
+        count++;
+    }
+    m->packages.count = count;
+    m->packages.end = pos;
+    if (pos < len)
+        urwire__fail_message(m, pos);
     return !m->failed && out->malformed == 0;
 }
 
@@ -3439,13 +3486,7 @@ static size_t urwire__put_program_state_header(const urwire_program_state_header
 
 bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version version, urwire_message *out)
 {
-    out->bytes = bytes;
-    out->length = len;
-    out->failed = false;
-    out->error.status = URWIRE_OK;
-    out->error.path[0] = '\0';
-    out->raw = urwire__view(bytes, 0);
-    out->packages = urwire__seq(bytes, len, version, -1);
+    urwire__init_message(out, bytes, len, version);
     if (len < URWIRE_HEADER_SIZE) {
         /* The framer never hands out such a message; a direct caller may. */
         out->kind = URWIRE_KIND_UNKNOWN_MESSAGE;

@@ -974,6 +974,10 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
 bool urwire_next_package(urwire_seq *seq, urwire_package *out);
 /* Every sub-package of a robot state into one struct; false when any failed or framing stopped. */
 bool urwire_decode_robot_state(const urwire_message *m, urwire_robot_state *out);
+/* urwire_decode_message and urwire_decode_robot_state in one pass over the bytes (the fast
+ * path for a robot-state stream). Any other message is decoded into *m and false returned. */
+bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                       urwire_message *m, urwire_robot_state *out);
 /* True when the message is failed or holds a malformed sub-package (the CLI's exit code 1). */
 bool urwire_message_has_error(const urwire_message *m);
 

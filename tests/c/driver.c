@@ -108,7 +108,8 @@ static int roundtrip_frame(const urwire_frame *frame, void *ctx)
     counts *c = (counts *)ctx;
     urwire_message m;
     urwire_package pkg;
-    urwire_robot_state state;
+    urwire_robot_state state, state2;
+    urwire_message m2;
     urwire_seq seq;
     urwire_error err;
     size_t n;
@@ -133,6 +134,16 @@ static int roundtrip_frame(const urwire_frame *frame, void *ctx)
         /* The all-at-once decoder agrees with the iterator about errors. */
         if (urwire_decode_robot_state(&m, &state) == urwire_message_has_error(&m))
             return mismatch("urwire_decode_robot_state disagrees with urwire_message_has_error", frame, 0);
+        /* And the one-pass decoder with the two calls. */
+        if (urwire_decode_robot_state_message(frame->bytes, frame->length, frame->version, &m2, &state2) ==
+                urwire_message_has_error(&m) ||
+            state2.present != state.present || state2.malformed != state.malformed ||
+            state2.unknown != state.unknown || m2.failed != m.failed || m2.packages.count != m.packages.count ||
+            m2.packages.end != m.packages.end || m2.raw.len != m.raw.len ||
+            ((state.present & URWIRE_BIT(URWIRE_PACKAGE_TYPE_JOINT_DATA)) &&
+             (memcmp(&state2.joint_data.joints[5].q_actual, &state.joint_data.joints[5].q_actual, sizeof(double)) ||
+              state2.joint_data.joints[5].joint_mode != state.joint_data.joints[5].joint_mode)))
+            return mismatch("urwire_decode_robot_state_message disagrees with the two calls", frame, 0);
     }
     return 0;
 }
