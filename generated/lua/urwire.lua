@@ -11,7 +11,6 @@
 -- Preferences: ur.ports, ur.version (assumed until a Version message is seen), ur.max_length.
 
 local ur = Proto("ur", "Universal Robots primary/secondary client interface")
-local unpack = table.unpack or unpack  -- luacheck: ignore (5.1 compatibility)
 local fmt = string.format
 local byte = string.byte
 
