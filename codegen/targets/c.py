@@ -62,6 +62,20 @@ def plus(base: str, k: int) -> str:
 class Member:
     decl: str
     doc: str = ""
+    above: list[str] = field(default_factory=list)   # a long doc, as comment lines above
+
+    def place(self) -> "Member":
+        """Short docs stay at the end of the line; long ones go above the member."""
+        if len(self.decl) + len(self.doc) > 88:
+            self.above, self.doc = comment(self.doc, width=88), ""
+        return self
+
+
+@dataclass
+class BitSet:
+    tag: str
+    field: str
+    members: list[dict]
 
 
 @dataclass
@@ -114,6 +128,7 @@ class CStruct:
     visit_index: bool = False
     item_index: bool = False
     can_fail: bool = True
+    bitsets: list = field(default_factory=list)
     to_end_item: bool = False       # items of a to_end group: public iteration function
     code: Optional[int] = None
     code_const: str = ""
@@ -137,7 +152,11 @@ class _Builder:
                 self.items[id(f)] = item
         cs = CStruct(name, ctype, doc, [], role)
         for f in struct.fields:
-            cs.members.append(self.member(f))
+            cs.members.append(self.member(f, name).place())
+            if isinstance(f, ir.ScalarField) and f.bits:
+                prefix = f"URWIRE_{name.upper()}_{f.name.upper()}"
+                cs.bitsets.append(BitSet(f"urwire_{name}_{f.name}_bit", f.name,
+                                         [dict(const=f"{prefix}_{b.upper()}", bit=k) for k, b in enumerate(f.bits)]))
         if role != "item":
             cs.members.append(Member("urwire_bytes extra", "Bytes after the known layout (flagged; kept for encoding)."))
         cs.decode, cs.encode = self.steps(cs, struct.fields, "")
@@ -163,7 +182,7 @@ class _Builder:
         self.structs.append(cs)
         return cs
 
-    def member(self, f: ir.AnyField) -> Member:
+    def member(self, f: ir.AnyField, owner: str) -> Member:
         name = c_ident(f.name)
         doc = inline(f.doc, f.field_note)
         if f.present_if:
@@ -174,7 +193,7 @@ class _Builder:
             if f.enum is not None:
                 doc = inline(doc, f"See enum urwire_{f.enum.name}.")
             if f.bits:
-                doc = inline(doc, f"Bits (urwire_{f.name}_bit): " + ", ".join(f.bits) + ".")
+                doc = inline(doc, f"Masks: enum urwire_{owner}_{f.name}_bit.")
             return Member(f"{C_TYPES[f.scalar.name]} {name}", doc)
         if isinstance(f, ir.ArrayField):
             return Member(f"{C_TYPES[f.scalar.name]} {name}[{f.count}]", doc)
@@ -282,7 +301,8 @@ class _Builder:
                     i += 1
                     group.append(fields[i])
                 inner_d, inner_e = self.steps(cs, [_unconditional(g) for g in group], prefix)
-                zero = [f"memset(&out->{g.name}, 0, sizeof out->{g.name});" for g in group]
+                zero = [f"out->{g.name} = 0;" if isinstance(g, ir.ScalarField) else
+                        f"memset(&out->{g.name}, 0, sizeof out->{g.name});" for g in group]
                 dec.append(Step("cond", dict(test=self.condition(f, "out->"), steps=inner_d, zero=zero)))
                 enc.append(Step("cond", dict(test=self.condition(f, "in->"), steps=inner_e)))
             elif f.fixed_size is not None and not isinstance(f, ir.SwitchField):

@@ -1484,10 +1484,10 @@ static bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *at, size
         out->euromap_current = urwire__f32(p + 12);
         pos += 16u;
     } else {
-        memset(&out->euromap_input_bits, 0, sizeof out->euromap_input_bits);
-        memset(&out->euromap_output_bits, 0, sizeof out->euromap_output_bits);
-        memset(&out->euromap_voltage_24v, 0, sizeof out->euromap_voltage_24v);
-        memset(&out->euromap_current, 0, sizeof out->euromap_current);
+        out->euromap_input_bits = 0;
+        out->euromap_output_bits = 0;
+        out->euromap_voltage_24v = 0;
+        out->euromap_current = 0;
     }
     if (end - pos < 7u)
         return urwire__short_in_run(err, urwire__masterboard_data_run2, URWIRE__COUNT(urwire__masterboard_data_run2), pos, end);

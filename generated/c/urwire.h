@@ -12,37 +12,49 @@
  * (pointer + length) into the bytes you passed in: keep those bytes alive while you use them.
  * Every read is bounds-checked; nothing here trusts a length from the wire.
  *
- * Usage: frame a TCP stream, decode each message, walk a robot state's sub-packages.
+ * Usage: frame a TCP stream (chunks of any size), decode each message, use the values.
  *
- *     static uint8_t buffer[URWIRE_FRAMER_MIN_BUFFER];
+ *     static uint8_t buffer[URWIRE_FRAMER_MIN_BUFFER];   // frames every legal message
  *     urwire_framer fr;
  *     urwire_frame frame;
+ *     urwire_frame_kind kind;
+ *     urwire_message m;
+ *     urwire_robot_state state;
+ *
  *     urwire_framer_init(&fr, buffer, sizeof buffer, URWIRE_DEFAULT_VERSION);
- *     for (;;) {
- *         n = recv(sock, chunk, sizeof chunk, 0);          // any chunk size
- *         if (n <= 0) urwire_framer_finish(&fr);           // end of stream: report a cut tail
- *         for (off = 0; off < (size_t)n; off += urwire_framer_feed(&fr, chunk + off, n - off))
- *             while (urwire_framer_next(&fr, &frame) != URWIRE_FRAME_NEED_MORE)
- *                 handle(&frame);
- *         while (urwire_framer_next(&fr, &frame) == ... ) ...  // after finish, drain to URWIRE_FRAME_END
- *     }
+ *     do {
+ *         size_t n = receive(chunk, sizeof chunk), used = 0;  // 0 at the end of the stream
+ *         if (n == 0)
+ *             urwire_framer_finish(&fr);                      // a cut tail becomes a fault
+ *         do {
+ *             used += urwire_framer_feed(&fr, chunk + used, n - used);
+ *             while ((kind = urwire_framer_next(&fr, &frame)) == URWIRE_FRAME_MESSAGE ||
+ *                    kind == URWIRE_FRAME_FAULT) {
+ *                 if (kind == URWIRE_FRAME_FAULT)
+ *                     continue;                               // frame.fault says what and where
+ *                 // false when a part failed: the parts in state.present are still good
+ *                 urwire_decode_robot_state_message(frame.bytes, frame.length, frame.version,
+ *                                                   &m, &state);
+ *                 if (state.present & URWIRE_BIT(URWIRE_PACKAGE_TYPE_JOINT_DATA))
+ *                     use(state.joint_data.joints[0].q_actual);
+ *                 else if (m.kind == URWIRE_KIND_TEXT && !m.failed)
+ *                     show(m.as.text.text.ptr, m.as.text.text.len);  // a view, not a C string
+ *             }
+ *         } while (used < n);
+ *     } while (kind != URWIRE_FRAME_END);
  *
- *     void handle(const urwire_frame *frame) {
- *         urwire_message m;
- *         urwire_package pkg;
- *         urwire_seq it;
- *         if (frame->kind != URWIRE_FRAME_MESSAGE) return;        // a stream fault: frame->fault
- *         urwire_decode_message(frame->bytes, frame->length, frame->version, &m);
- *         if (m.kind == URWIRE_KIND_ROBOT_STATE) {
- *             it = m.packages;                                     // iterate on a copy
- *             while (urwire_next_package(&it, &pkg))
- *                 if (pkg.known && !pkg.failed && pkg.type == URWIRE_PACKAGE_TYPE_JOINT_DATA)
- *                     use(pkg.as.joint_data.joints[0].q_actual);
- *         }
- *     }
+ * A robot state can also be walked in wire order, unknown and malformed sub-packages included:
  *
- * Or decode a whole robot state at once into one struct of every sub-package:
- * urwire_decode_robot_state(&m, &state), then test state.present & URWIRE_BIT(code).
+ *     urwire_seq it = m.packages;                             // iterate a copy
+ *     urwire_package pkg;
+ *     while (urwire_next_package(&it, &pkg))
+ *         if (pkg.known && !pkg.failed && pkg.type == URWIRE_PACKAGE_TYPE_TOOL_DATA)
+ *             use(pkg.as.tool_data.tool_temperature);
+ *
+ * Repeated parts with no fixed bound (program threads, variable names, global-variable values
+ * and their nested LIST/MATRIX items) are urwire_seq views walked with urwire_next_*(): no
+ * fixed capacity ever truncates them. Software version: the framer learns it from each
+ * Version message; URWIRE_DEFAULT_VERSION (5.9 and later) or your hint applies until then.
  *
  * Errors: urwire_error holds a status, the byte offset from the message's first byte (the
  * stream's, for stream faults), the field path and the numbers of the problem;
@@ -469,7 +481,9 @@ typedef struct urwire_robot_mode_data {
     uint8_t is_protective_stopped;  /* The wire byte: nonzero is true. */
     uint8_t is_program_running;  /* The wire byte: nonzero is true. */
     uint8_t is_program_paused;  /* The wire byte: nonzero is true. */
-    int8_t robot_mode;  /* Robot mode. Documented as unsigned char; it is an int8 (NO_CONTROLLER is -1). See enum urwire_robot_mode. */
+    /* Robot mode. Documented as unsigned char; it is an int8 (NO_CONTROLLER is -1). See enum
+     * urwire_robot_mode. */
+    int8_t robot_mode;
     uint8_t control_mode;  /* Control mode. See enum urwire_control_mode. */
     double target_speed_fraction;
     double speed_scaling;
@@ -523,8 +537,12 @@ typedef struct urwire_tool_data {
  * Code 3 (URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA).
  */
 typedef struct urwire_masterboard_data {
-    int32_t digital_input_bits;  /* Digital inputs: bits 0-7 standard, 8-15 configurable, 16-17 tool. Bits (urwire_digital_input_bits_bit): standard_0, standard_1, standard_2, standard_3, standard_4, standard_5, standard_6, standard_7, configurable_0, configurable_1, configurable_2, configurable_3, configurable_4, configurable_5, configurable_6, configurable_7, tool_0, tool_1. */
-    int32_t digital_output_bits;  /* Digital outputs: bits 0-7 standard, 8-15 configurable, 16-17 tool. Bits (urwire_digital_output_bits_bit): standard_0, standard_1, standard_2, standard_3, standard_4, standard_5, standard_6, standard_7, configurable_0, configurable_1, configurable_2, configurable_3, configurable_4, configurable_5, configurable_6, configurable_7, tool_0, tool_1. */
+    /* Digital inputs: bits 0-7 standard, 8-15 configurable, 16-17 tool. Masks: enum
+     * urwire_masterboard_data_digital_input_bits_bit. */
+    int32_t digital_input_bits;
+    /* Digital outputs: bits 0-7 standard, 8-15 configurable, 16-17 tool. Masks: enum
+     * urwire_masterboard_data_digital_output_bits_bit. */
+    int32_t digital_output_bits;
     uint8_t analog_input_range0;
     uint8_t analog_input_range1;
     double analog_input0;
@@ -539,17 +557,67 @@ typedef struct urwire_masterboard_data {
     float master_io_current;
     uint8_t safety_mode;  /* Safety mode. See enum urwire_safety_mode. */
     uint8_t in_reduced_mode;
-    uint8_t euromap67_interface_installed;  /* Nonzero when a Euromap67 interface is installed; euomap67InterfaceInstalled in the document. The wire byte: nonzero is true. */
-    uint32_t euromap_input_bits;  /* Present only when euromap67_interface_installed is nonzero (else 0). */
-    uint32_t euromap_output_bits;  /* Present only when euromap67_interface_installed is nonzero (else 0). */
-    float euromap_voltage_24v;  /* Present only when euromap67_interface_installed is nonzero (else 0). */
-    float euromap_current;  /* Present only when euromap67_interface_installed is nonzero (else 0). */
+    /* Nonzero when a Euromap67 interface is installed; euomap67InterfaceInstalled in the
+     * document. The wire byte: nonzero is true. */
+    uint8_t euromap67_interface_installed;
+    /* Present only when euromap67_interface_installed is nonzero (else 0). */
+    uint32_t euromap_input_bits;
+    /* Present only when euromap67_interface_installed is nonzero (else 0). */
+    uint32_t euromap_output_bits;
+    /* Present only when euromap67_interface_installed is nonzero (else 0). */
+    float euromap_voltage_24v;
+    /* Present only when euromap67_interface_installed is nonzero (else 0). */
+    float euromap_current;
     uint32_t reserved_0;  /* Used by Universal Robots software only. */
     uint8_t operational_mode_selector_input;
     uint8_t three_position_enabling_device_input;
     uint8_t reserved_1;  /* Used by Universal Robots software only. */
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_masterboard_data;
+
+/* Masks of the bits of masterboard_data.digital_input_bits. */
+typedef enum urwire_masterboard_data_digital_input_bits_bit {
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_0 = 1 << 0,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_1 = 1 << 1,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_2 = 1 << 2,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_3 = 1 << 3,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_4 = 1 << 4,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_5 = 1 << 5,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_6 = 1 << 6,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_7 = 1 << 7,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_0 = 1 << 8,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_1 = 1 << 9,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_2 = 1 << 10,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_3 = 1 << 11,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_4 = 1 << 12,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_5 = 1 << 13,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_6 = 1 << 14,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_7 = 1 << 15,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_TOOL_0 = 1 << 16,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_TOOL_1 = 1 << 17,
+} urwire_masterboard_data_digital_input_bits_bit;
+
+/* Masks of the bits of masterboard_data.digital_output_bits. */
+typedef enum urwire_masterboard_data_digital_output_bits_bit {
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_0 = 1 << 0,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_1 = 1 << 1,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_2 = 1 << 2,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_3 = 1 << 3,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_4 = 1 << 4,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_5 = 1 << 5,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_6 = 1 << 6,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_7 = 1 << 7,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_0 = 1 << 8,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_1 = 1 << 9,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_2 = 1 << 10,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_3 = 1 << 11,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_4 = 1 << 12,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_5 = 1 << 13,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_6 = 1 << 14,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_7 = 1 << 15,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_TOOL_0 = 1 << 16,
+    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_TOOL_1 = 1 << 17,
+} urwire_masterboard_data_digital_output_bits_bit;
 
 /*
  * Cartesian info.
@@ -717,12 +785,15 @@ typedef struct urwire_singularity_info {
  * Code 3 (URWIRE_ROBOT_MESSAGE_TYPE_VERSION).
  */
 typedef struct urwire_version_message {
-    urwire_bytes project_name;  /* projectNameSize, then projectName. UTF-8 text as sent, a view into the message. */
+    /* projectNameSize, then projectName. UTF-8 text as sent, a view into the message. */
+    urwire_bytes project_name;
     uint8_t major_version;
     uint8_t minor_version;
     int32_t bugfix_version;
     int32_t build_number;
-    urwire_bytes build_date;  /* The rest of the message, with no terminator. UTF-8 text as sent, a view into the message. */
+    /* The rest of the message, with no terminator. UTF-8 text as sent, a view into the
+     * message. */
+    urwire_bytes build_date;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_version_message;
 
@@ -735,7 +806,10 @@ typedef struct urwire_safety_mode_message {
     int32_t robot_message_argument;
     uint8_t safety_mode_type;  /* See enum urwire_safety_mode. */
     uint32_t report_data_type;
-    union { int32_t int32; uint32_t uint32; float float32; } report_data;  /* Its type follows report_data_type. int32 when report_data_type is 2, float32 when it is 3, uint32 otherwise (as the reference client library does). Chosen by report_data_type: 2: .int32; 3: .float32; otherwise .uint32. */
+    /* Its type follows report_data_type. int32 when report_data_type is 2, float32 when it is
+     * 3, uint32 otherwise (as the reference client library does). Chosen by report_data_type:
+     * 2: .int32; 3: .float32; otherwise .uint32. */
+    union { int32_t int32; uint32_t uint32; float float32; } report_data;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_safety_mode_message;
 
@@ -760,7 +834,9 @@ typedef struct urwire_robot_comm_message {
 typedef struct urwire_key_message {
     int32_t robot_message_code;
     int32_t robot_message_argument;
-    urwire_bytes title;  /* robotMessageTitleSize, then robotMessageTitle. UTF-8 text as sent, a view into the message. */
+    /* robotMessageTitleSize, then robotMessageTitle. UTF-8 text as sent, a view into the
+     * message. */
+    urwire_bytes title;
     urwire_bytes text;  /* keyTextMessage. UTF-8 text as sent, a view into the message. */
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_key_message;
@@ -797,7 +873,9 @@ typedef struct urwire_popup_message {
     uint8_t warning;  /* The wire byte: nonzero is true. */
     uint8_t error;  /* The wire byte: nonzero is true. */
     uint8_t blocking;  /* The wire byte: nonzero is true. */
-    urwire_bytes title;  /* popupMessageTitleSize, then popupMessageTitle. UTF-8 text as sent, a view into the message. */
+    /* popupMessageTitleSize, then popupMessageTitle. UTF-8 text as sent, a view into the
+     * message. */
+    urwire_bytes title;
     urwire_bytes text;  /* popupTextMessage. UTF-8 text as sent, a view into the message. */
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_popup_message;
@@ -829,7 +907,8 @@ typedef struct urwire_text_message {
 typedef struct urwire_runtime_exception_message {
     int32_t script_line_number;
     int32_t script_column_number;
-    urwire_bytes text;  /* runtimeExceptionTextMessage. UTF-8 text as sent, a view into the message. */
+    /* runtimeExceptionTextMessage. UTF-8 text as sent, a view into the message. */
+    urwire_bytes text;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_runtime_exception_message;
 
@@ -839,7 +918,9 @@ typedef struct urwire_runtime_exception_message {
  */
 typedef struct urwire_global_variables_setup_message {
     uint16_t start_index;
-    urwire_seq variable_names;  /* Names, each ended by a new line character, e.g. var_1\nvar_2\n. Iterate with urwire_next_text() on a copy. */
+    /* Names, each ended by a new line character, e.g. var_1\nvar_2\n. Iterate with
+     * urwire_next_text() on a copy. */
+    urwire_seq variable_names;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_global_variables_setup_message;
 
@@ -849,7 +930,9 @@ typedef struct urwire_global_variables_setup_message {
  */
 typedef struct urwire_global_variables_update_message {
     uint16_t start_index;
-    urwire_seq variables;  /* Values, each a type byte, its data and a new line character. Iterate with urwire_next_value() on a copy. */
+    /* Values, each a type byte, its data and a new line character. Iterate with
+     * urwire_next_value() on a copy. */
+    urwire_seq variables;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_global_variables_update_message;
 
