@@ -1352,8 +1352,10 @@ end
 -- An integer whose bits are shown one by one.
 function KIND.bits(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
-    local item = tree:add(d.f, tvb(o, d.n))
-    for _, b in ipairs(d.bits) do item:add(b, tvb(o, d.n)) end
+    local range = tvb(o, d.n)
+    local item = tree:add(d.f, range)
+    local bits = d.bits
+    for i = 1, #bits do item:add(bits[i], range) end
     return o + d.n
 end
 
@@ -1367,20 +1369,37 @@ function KIND.array(tvb, tree, o, e, st, d, pre)
     return o
 end
 
+-- Labels ("Joint 0") and error paths ("joints[0].") of group items, made once and kept.
+local labels, prefixes = {}, {}
+local function item_names(d, pre, i)
+    local l = labels[d]
+    if not l then l = {}; labels[d] = l end
+    local label = l[i]
+    if not label then label = fmt("%s %d", d.label, i); l[i] = label end
+    if pre then return label, fmt("%s%s[%d].", pre, d.path, i) end
+    local p = prefixes[d]
+    if not p then p = {}; prefixes[d] = p end
+    local prefix = p[i]
+    if not prefix then prefix = fmt("%s[%d].", d.path, i); p[i] = prefix end
+    return label, prefix
+end
+
 -- A repeated group ("Joint 0".."Joint 5"), count times or to the end of the layout.
 function KIND.group(tvb, tree, o, e, st, d, pre)
-    local i = 0
-    while (d.count and i < d.count) or (not d.count and o < e) do
+    local i, count, size = 0, d.count, d.size
+    while (count and i < count) or (not count and o < e) do
         local start = o
-        local item = tree:add(d.f, tvb(o, 0))
-        item:set_text(fmt("%s %d", d.label, i))
+        local fits = size and o + size <= e
+        local item = tree:add(d.f, tvb(o, fits and size or 0))
+        local label, prefix = item_names(d, pre, i)
+        item:set_text(label)
         local err
-        o, err = walk(tvb, item, o, e, st, d.item, fmt("%s%s[%d].", pre or "", d.path, i))
+        o, err = walk(tvb, item, o, e, st, d.item, prefix)
         if not o then
             item:set_len(e - start)
             return nil, err
         end
-        item:set_len(o - start)
+        if not fits then item:set_len(o - start) end
         i = i + 1
     end
     return o
@@ -1459,7 +1478,8 @@ end
 
 -- Walk a layout from o to at most e: the offset after it, or nil and the canonical error text.
 walk = function(tvb, tree, o, e, st, layout, pre)
-    for _, d in ipairs(layout) do
+    for i = 1, #layout do
+        local d = layout[i]
         local err
         o, err = KIND[d.k](tvb, tree, o, e, st, d, pre)
         if not o then return nil, err end
@@ -1559,6 +1579,7 @@ local ROBOT_STATE_PACKAGES = {
 -- Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in any order, each framed by its own length.
 MESSAGE[16] = {
     label = "Robot state",
+    suffix = ", Robot state",
     -- Info column: the enums marked in the packages, read from the raw bytes.
     info = function(tvb, raw, o, e)
         local n, p = 0, o + HEADER
@@ -1602,7 +1623,7 @@ MESSAGE[16] = {
             local code = byte(raw, p + 5)
             local pk = ROBOT_STATE_PACKAGES[code]
             local item = tree:add(pk and pk.item or X.unknown_package, tvb(p, size))
-            item:set_text(pk and pk.label or fmt("Unknown package %d (%s)", code, VS_PACKAGE_TYPE[code] or "not in the spec"))
+            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, VS_PACKAGE_TYPE[code] or "not in the spec")) end
             item:add(F["package.length"], tvb(p, 4))
             item:add(F["package.type"], tvb(p + 4, 1))
             local body, stop = p + HEADER, p + size
@@ -1645,6 +1666,7 @@ local ROBOT_MESSAGE_SUBTYPES = {
 
 MESSAGE[20] = {
     label = "Robot message",
+    suffix = ", Robot message",
     info = function(tvb, raw, o, e)
         if e - o < 15 then return "Robot message (too short)" end
         local code = byte(raw, o + 15)
@@ -1702,6 +1724,7 @@ local PROGRAM_STATE_SUBTYPES = {
 
 MESSAGE[25] = {
     label = "Program state",
+    suffix = ", Program state",
     info = function(tvb, raw, o, e)
         if e - o < 14 then return "Program state (too short)" end
         local code = byte(raw, o + 14)
@@ -1833,7 +1856,7 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     st.version = cur.version or pref_version
     st.assumed = cur.version == nil
     if m then
-        item:append_text(", " .. m.label)
+        item:append_text(m.suffix)
         m.tree(tvb, item, o, e, st)
     elseif e - o > HEADER then
         -- A known type without a layout (e.g. 24): kept raw, not an error.
