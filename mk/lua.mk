@@ -23,12 +23,15 @@ bench-lua:
 
 ## demo-lua: the dissector on the bundled primary-port capture
 demo-lua:
-	@echo "== Wireshark (tshark + $(LUA_PLUGIN)): dissector/samples/primary_session.pcapng"
+	@echo "== Wireshark (tshark + $(LUA_PLUGIN)): dissector/samples/primary_session.pcapng, Info column"
 	@$(TSHARK) -r dissector/samples/primary_session.pcapng -X lua_script:$(LUA_PLUGIN) -Y ur \
-		-T fields -e frame.number -e _ws.col.Info 2>&1 | head -n 20
-	@echo "== the Version message and the first robot state, as a tree (excerpt)"
+		-T fields -e frame.number -e _ws.col.Info 2>/dev/null | head -n 20
+	@echo "== a robot state and a global-variables update in one segment (tree excerpt)"
 	@$(TSHARK) -r dissector/samples/primary_session.pcapng -X lua_script:$(LUA_PLUGIN) -O ur \
-		-Y 'ur.type == 16' -c 5 2>&1 | sed -n '/^Universal Robots/,$$p' | head -n 40
+		-Y 'frame.number == 30' 2>/dev/null | sed -n '/^Universal Robots/,$$p' | head -n 40
+	@echo "== filter: ur.robot_mode_data.robot_mode == \"RUNNING\" && ur.joint_data.q_actual > 1.5"
+	@$(TSHARK) -r dissector/samples/primary_session.pcapng -X lua_script:$(LUA_PLUGIN) \
+		-Y 'ur.robot_mode_data.robot_mode == "RUNNING" && ur.joint_data.q_actual > 1.5' 2>/dev/null | head -n 5
 
 ## samples: rewrite dissector/samples/ from the conformance bytes (deterministic)
 samples:
