@@ -6,6 +6,7 @@ The output is C99 with no malloc and no stdio: one header and one source, genera
 """
 from __future__ import annotations
 
+import re
 import textwrap
 from dataclasses import dataclass, field
 from typing import Optional
@@ -536,9 +537,47 @@ def build(p: ir.Protocol) -> dict:
                                     body_offset=vmsg["body_offset"]))
 
 
+# The hand-written parts of urwire.c.j2 (framing, values, lengths) use these helpers.
+RUNTIME_HELPERS = {"urwire__u8", "urwire__i16", "urwire__i32", "urwire__u32", "urwire__f32", "urwire__put_u32"}
+HELPER_NEEDS = {"urwire__i8": "urwire__u8", "urwire__i16": "urwire__u16", "urwire__i32": "urwire__u32",
+                "urwire__u64": "urwire__u32", "urwire__i64": "urwire__u64", "urwire__f32": "urwire__u32",
+                "urwire__f64": "urwire__u64", "urwire__put_i8": "urwire__put_u8", "urwire__put_i16": "urwire__put_u16",
+                "urwire__put_i32": "urwire__put_u32", "urwire__put_u64": "urwire__put_u32",
+                "urwire__put_i64": "urwire__put_u64", "urwire__put_f32": "urwire__put_u32",
+                "urwire__put_f64": "urwire__put_u64"}
+
+
+def helpers_used(model) -> set[str]:
+    """The big-endian load/store helpers the generated statements name, with what they build on,
+    so that urwire.c defines no unused static function (-Wunused-function under -Werror)."""
+    found: set[str] = set(RUNTIME_HELPERS)
+
+    def walk(x) -> None:
+        if isinstance(x, str):
+            found.update(re.findall(r"urwire__(?:put_)?[iuf]\d+(?![\w])", x))
+        elif isinstance(x, dict):
+            for v in x.values():
+                walk(v)
+        elif isinstance(x, (list, tuple)):
+            for v in x:
+                walk(v)
+        elif hasattr(x, "__dict__"):
+            walk(vars(x))
+
+    walk(model)
+    pending = list(found)
+    while pending:
+        need = HELPER_NEEDS.get(pending.pop())
+        if need and need not in found:
+            found.add(need)
+            pending.append(need)
+    return found
+
+
 def render(p: ir.Protocol, banner: list[str]) -> dict[str, str]:
     env = environment(FOLDER)
     model = build(p)
+    model["helpers"] = helpers_used(model)
     ctx = dict(banner=banner, p=p, enums=enum_views(p), values=value_views(p),
                default_version=p.default_version, known_codes=p.known_message_codes,
                laid_codes=[m["code"] for m in model["messages"]],

@@ -25,7 +25,6 @@ static uint32_t urwire__u32(const uint8_t *p)
 }
 static int32_t urwire__i32(const uint8_t *p) { return (int32_t)urwire__u32(p); }
 static uint64_t urwire__u64(const uint8_t *p) { return (uint64_t)urwire__u32(p) << 32 | urwire__u32(p + 4); }
-static int64_t urwire__i64(const uint8_t *p) { return (int64_t)urwire__u64(p); }
 /* Floats are read as their bit pattern, never byte-swapped as numbers. */
 static float urwire__f32(const uint8_t *p)
 {
@@ -45,7 +44,6 @@ static double urwire__f64(const uint8_t *p)
 static void urwire__put_u8(uint8_t *p, uint8_t v) { p[0] = v; }
 static void urwire__put_i8(uint8_t *p, int8_t v) { p[0] = (uint8_t)v; }
 static void urwire__put_u16(uint8_t *p, uint16_t v) { p[0] = (uint8_t)(v >> 8); p[1] = (uint8_t)v; }
-static void urwire__put_i16(uint8_t *p, int16_t v) { urwire__put_u16(p, (uint16_t)v); }
 static void urwire__put_u32(uint8_t *p, uint32_t v)
 {
     p[0] = (uint8_t)(v >> 24);
@@ -55,7 +53,6 @@ static void urwire__put_u32(uint8_t *p, uint32_t v)
 }
 static void urwire__put_i32(uint8_t *p, int32_t v) { urwire__put_u32(p, (uint32_t)v); }
 static void urwire__put_u64(uint8_t *p, uint64_t v) { urwire__put_u32(p, (uint32_t)(v >> 32)); urwire__put_u32(p + 4, (uint32_t)v); }
-static void urwire__put_i64(uint8_t *p, int64_t v) { urwire__put_u64(p, (uint64_t)v); }
 static void urwire__put_f32(uint8_t *p, float v)
 {
     uint32_t bits;
@@ -68,16 +65,6 @@ static void urwire__put_f64(uint8_t *p, double v)
     memcpy(&bits, &v, sizeof bits);
     urwire__put_u64(p, bits);
 }
-
-/* Every width is here for every spec; a spec that leaves one unused must not warn. */
-typedef struct urwire__unused_t {
-    int8_t (*i8)(const uint8_t *);
-    int64_t (*i64)(const uint8_t *);
-    void (*put_i8)(uint8_t *, int8_t);
-    void (*put_i64)(uint8_t *, int64_t);
-    void (*put_i16)(uint8_t *, int16_t);
-} urwire__unused_t;
-const urwire__unused_t urwire__unused = {urwire__i8, urwire__i64, urwire__put_i8, urwire__put_i64, urwire__put_i16};
 
 static urwire_bytes urwire__view(const uint8_t *ptr, size_t len)
 {

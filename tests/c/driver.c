@@ -1,7 +1,8 @@
 /* Test driver for tests/c: exercises the library where the CLI cannot.
  *
- *   driver chunks K FILE     print the records like urwire-decode, feeding K bytes at a time
- *                            (K = 0: sizes from 1 to 97 in a fixed pseudo-random order)
+ *   driver chunks K FILE [CAP]  print the records like urwire-decode, feeding K bytes at a time
+ *                            (K = 0: sizes from 1 to 97 in a fixed pseudo-random order), with a
+ *                            framer buffer of CAP bytes (default URWIRE_FRAMER_MIN_BUFFER)
  *   driver roundtrip FILE    encode(decode(m)) == m for every framed message and sub-package;
  *                            prints "messages N packages P" or the first mismatch (exit 1)
  *   driver text              stdin bytes -> one JSON string (UTF-8 replaced as Python does)
@@ -46,12 +47,14 @@ static uint8_t *read_file(const char *path, size_t *len)
 typedef int (*frame_fn)(const urwire_frame *frame, void *ctx);
 
 /* Frame data in chunks of k bytes (k = 0: varying sizes), calling fn on every frame. */
+static size_t framer_cap = sizeof framer_buffer;
+
 static int frame_all(const uint8_t *data, size_t len, size_t k, frame_fn fn, void *ctx)
 {
     urwire_framer fr;
     urwire_frame frame;
     size_t off = 0, step = 0, rc = 0;
-    urwire_framer_init(&fr, framer_buffer, sizeof framer_buffer, URWIRE_DEFAULT_VERSION);
+    urwire_framer_init(&fr, framer_buffer, framer_cap, URWIRE_DEFAULT_VERSION);
     for (;;) {
         size_t want = k ? k : 1 + (step++ * 37) % 97;
         if (off < len) {
@@ -154,7 +157,9 @@ int main(int argc, char **argv)
     uint8_t *data;
     json_writer w;
     char buf[64];
-    if (argc == 4 && strcmp(argv[1], "chunks") == 0) {
+    if ((argc == 4 || argc == 5) && strcmp(argv[1], "chunks") == 0) {
+        if (argc == 5 && (size_t)atol(argv[4]) < framer_cap)
+            framer_cap = (size_t)atol(argv[4]);
         data = read_file(argv[3], &len);
         memset(&w, 0, sizeof w);
         w.out = stdout;

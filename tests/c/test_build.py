@@ -38,6 +38,15 @@ def test_parser_object_references_no_malloc_free_or_stdio(cc):
     assert undefined <= ALLOWED_UNDEFINED, undefined - ALLOWED_UNDEFINED
 
 
+def test_every_exported_symbol_is_prefixed_urwire():
+    obj = OUT / "objects" / "urwire-gcc-nm.o"
+    compile_c("gcc", ["-O2", "-c"], [GEN / "urwire.c"], obj)
+    result = subprocess.run(["nm", "-g", "--defined-only", str(obj)], capture_output=True, text=True, check=True)
+    exported = [line.split()[-1] for line in result.stdout.splitlines() if line.strip()]
+    assert exported
+    assert [s for s in exported if not s.lower().startswith("urwire_") or s.startswith("urwire__")] == []
+
+
 def test_generated_files_include_only_the_allowed_headers():
     for name in ("urwire.h", "urwire.c"):
         text = (GEN / name).read_text()
