@@ -51,11 +51,11 @@ bench-c: $(C_LIB) tests/bench/bench_c.c tests/bench/bench_c.py
 	$(CC) -std=c99 -O3 -Igenerated/c -o build/bench_c tests/bench/bench_c.c generated/c/urwire.c
 	$(PYTHON) tests/bench/bench_c.py build/bench_c
 
-## demo-c: the C decoder on a raw stream built from the bundled conformance messages
+## demo-c: the C decoder on the bundled capture's robot->client stream (urwire-decode reads raw streams)
 demo-c: build/urwire-decode
-	@$(PYTHON) tests/c/seeds.py --stream build/demo-stream.bin
-	@echo "== C: build/urwire-decode build/demo-stream.bin (first records, cut at 160 characters)"
-	@build/urwire-decode build/demo-stream.bin | cut -c1-160 | head -n 12; true
+	@$(PYTHON) tests/c/seeds.py --capture dissector/samples/primary_session.pcapng build/primary_session.bin
+	@echo "== C: build/urwire-decode build/primary_session.bin (the TCP payload of dissector/samples/primary_session.pcapng; first records, cut at 160 characters)"
+	@build/urwire-decode build/primary_session.bin | cut -c1-160 | head -n 12; true
 
 ## install: copy urwire.h, liburwire.a and urwire-decode under PREFIX (DESTDIR honoured)
 install: install-c

@@ -2,6 +2,9 @@
 
     python3 tests/c/seeds.py DIR              one fuzz seed per vector (and per message) in DIR
     python3 tests/c/seeds.py --stream FILE    a raw stream: every conformance message, in order
+    python3 tests/c/seeds.py --capture PCAP FILE
+                                              the robot->client bytes of the first TCP stream
+                                              of a .pcap/.pcapng (urwire-decode reads raw streams)
 
 A fuzz input is one control byte (software version and chunking, see fuzz_urwire.c), then
 the stream.
@@ -46,7 +49,26 @@ def stream() -> bytes:
     return b"".join(case.data for case in vectors.conformance_cases())
 
 
+def capture_stream(pcap: Path) -> bytes:
+    """The first robot->client stream of a capture, reassembled by the Python bindings."""
+    sys.path.insert(0, str(ROOT / "generated" / "python"))
+    from urwire.capture import robot_streams
+    from urwire.spec import PORTS
+
+    first, out = None, bytearray()
+    with pcap.open("rb") as fh:
+        for key, data, _ in robot_streams(fh, set(PORTS)):
+            first = first or key
+            if key == first and data:
+                out += data
+    return bytes(out)
+
+
 def main(argv: list[str]) -> int:
+    if len(argv) == 3 and argv[0] == "--capture":
+        Path(argv[2]).parent.mkdir(parents=True, exist_ok=True)
+        Path(argv[2]).write_bytes(capture_stream(Path(argv[1])))
+        return 0
     if len(argv) == 2 and argv[0] == "--stream":
         Path(argv[1]).parent.mkdir(parents=True, exist_ok=True)
         Path(argv[1]).write_bytes(stream())

@@ -55,3 +55,20 @@ def test_a_directory_is_an_io_error(fast, tmp_path):
     result = subprocess.run([str(fast.cli), str(tmp_path)], capture_output=True, text=True)
     assert result.returncode == 2
     assert len(result.stderr.splitlines()) == 1
+
+
+def test_the_bundled_capture_decodes_as_in_python(fast, tmp_path):
+    """The robot->client stream of dissector/samples/primary_session.pcapng (what `make demo-c`
+    shows): the C CLI prints what the Python decoder prints for the capture itself."""
+    import urwire
+    from tests.c.harness_c import ROOT
+
+    pcap = ROOT / "dissector" / "samples" / "primary_session.pcapng"
+    if not pcap.is_file():
+        pytest.fail(f"{pcap} is missing (the Lua target bundles it)")
+    raw = tmp_path / "primary.bin"
+    subprocess.run(["python3", str(ROOT / "tests" / "c" / "seeds.py"), "--capture", str(pcap), str(raw)], check=True)
+    result = subprocess.run([str(fast.cli), str(raw)], capture_output=True)
+    expected = [urwire.to_dict(r) for r in urwire.decode_file(pcap)]
+    assert len(expected) > 10
+    assert parse_lines(result.stdout) == expected
