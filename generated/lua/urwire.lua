@@ -1780,8 +1780,10 @@ MESSAGE[25] = {
 -- from earlier segments while it does. First pass: the state moves along, and a snapshot of it
 -- is kept for each dissector call (frame number and tvb length). Later passes (tshark -2, clicks
 -- in the GUI, in any order) reuse the snapshot, so both agree.
--- Streams are keyed by their addresses and ports: Field.new("tcp.stream") gives nothing on a
--- first pass without a tree (tshark -2), and Conversation only exists from Wireshark 4.6.
+-- Streams are keyed by their two ports (a number: no string is made per packet). Field.new(
+-- "tcp.stream") gives nothing on a first pass without a tree (tshark -2), and Conversation only
+-- exists from Wireshark 4.6. Two robots talking to clients that use the same port number at the
+-- same time would share a state; a reused port pair starts over with its Version message.
 -- ---------------------------------------------------------------------------------------------
 local stream_version, stream_resync, stream_carry = {}, {}, {}
 local snap_version, snap_resync, snap_carry = {}, {}, {}   -- by call key (frame, tvb length)
@@ -1886,7 +1888,7 @@ local function dissect(tvb, pinfo, tree)
     cur.first = true
 
     -- The stream's state as this call starts.
-    local stream = tostring(pinfo.src) .. ":" .. pinfo.src_port .. ">" .. tostring(pinfo.dst) .. ":" .. pinfo.dst_port
+    local stream = pinfo.src_port * 65536 + pinfo.dst_port
     local key = pinfo.number * 1048576 + n % 1048576
     local resync, carry
     if pinfo.visited and snap_resync[key] ~= nil then
