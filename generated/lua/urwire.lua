@@ -1786,7 +1786,7 @@ MESSAGE[25] = {
 -- same time would share a state; a reused port pair starts over with its Version message.
 -- ---------------------------------------------------------------------------------------------
 local stream_version, stream_resync, stream_carry = {}, {}, {}
-local snap_version, snap_resync, snap_carry = {}, {}, {}   -- by call key (frame, tvb length)
+local snap_version, snap_resync, snap_carry = {}, {}, {}   -- by call (frame, tvb length), and by -frame
 
 function ur.init()
     stream_version, stream_resync, stream_carry = {}, {}, {}
@@ -1891,12 +1891,20 @@ local function dissect(tvb, pinfo, tree)
     local stream = pinfo.src_port * 65536 + pinfo.dst_port
     local key = pinfo.number * 1048576 + n % 1048576
     local resync, carry
+    local frame = -pinfo.number
     if pinfo.visited and snap_resync[key] ~= nil then
         cur.version, resync, carry = snap_version[key], snap_resync[key], snap_carry[key]
+    elseif pinfo.visited and snap_resync[frame] ~= nil then
+        -- Later passes may hand over other bytes than the first (TCP reassembly replays
+        -- differently): fall back to the state of the frame's first call.
+        cur.version, resync, carry = snap_version[frame], snap_resync[frame], snap_carry[frame]
     else
         cur.version, resync, carry = stream_version[stream], stream_resync[stream] or false, stream_carry[stream]
         if snap_resync[key] == nil then
             snap_version[key], snap_resync[key], snap_carry[key] = cur.version, resync, carry
+        end
+        if snap_resync[frame] == nil then
+            snap_version[frame], snap_resync[frame], snap_carry[frame] = cur.version, resync, carry
         end
     end
 

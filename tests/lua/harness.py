@@ -28,6 +28,11 @@ F32_TOL = 5e-6
 PROTOCOL = compile_file()
 
 
+# How a Lua error caught by the dissector's pcall guard shows: an expert, in JSON and in text.
+INTERNAL_JSON = '"ur.internal_error"'
+INTERNAL_TEXT = "(Error/Malformed): urwire: "
+
+
 class TsharkError(AssertionError):
     pass
 
@@ -39,8 +44,8 @@ def run_tshark(pcap: Path, *args: str, check_tree: bool = True) -> str:
         raise TsharkError(f"Lua error: {res.stderr[:2000]}")
     if "_ws.lua.error" in res.stdout:
         raise TsharkError("_ws.lua.error in the output")
-    if "ur.internal_error" in res.stdout or "urwire: " in res.stdout and "internal" in res.stdout:
-        raise TsharkError("the dissector caught an internal Lua error: " + res.stdout[res.stdout.find("urwire: "):][:500])
+    if INTERNAL_JSON in res.stdout or INTERNAL_TEXT in res.stdout:
+        raise TsharkError("the dissector caught an internal Lua error: " + res.stdout[:2000])
     if res.returncode != 0:
         raise TsharkError(f"tshark exited {res.returncode}: {res.stderr[:2000]}")
     return res.stdout
@@ -52,12 +57,15 @@ def tshark_json(pcap: Path, *opts: str) -> list:
 
 # ---- pcaps holding many sessions ----
 
-def write_sessions(path: Path, streams: list[list[bytes]], pcapng: bool = False, handshake: bool = True) -> Path:
-    """One TCP session per entry (a list of robot segment payloads), one after the other."""
+def write_sessions(path: Path, streams: list[list[bytes]], pcapng: bool = False, handshake: bool = True,
+                   retransmit_every: int = 0) -> Path:
+    """One TCP session per entry (a list of robot segment payloads), one after the other;
+    with retransmit_every=k, every k-th segment is sent twice."""
     frames = []
     for i, segments in enumerate(streams):
+        again = range(0, len(segments), retransmit_every) if retransmit_every else ()
         frames += capture.session_frames([Segment(True, s) for s in segments], port=30001,
-                                         client_port=20000 + i, handshake=handshake)
+                                         client_port=20000 + i, handshake=handshake, retransmit=again)
     return capture.write(path, frames, pcapng=pcapng)
 
 

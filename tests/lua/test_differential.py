@@ -13,7 +13,7 @@ from tests.vectors import all_cases, mismatches
 import urwire
 
 MESSAGES = [m for c in all_cases() for m in [c.data] if 5 <= len(m) <= 4000]
-COUNT = 150
+COUNT = 400
 
 
 def test_random_and_mutated_streams_agree_with_python(tmp_path):
@@ -78,3 +78,19 @@ def test_samples_decode_without_faults():
     script = run_tshark(ROOT / "dissector" / "samples" / "primary_session.pcapng", "-Y", "ur.urscript",
                         "-T", "fields", "-e", "ur.urscript")
     assert "movej" in script
+
+
+def test_a_lua_error_is_caught_and_shown(tmp_path):
+    """The pcall guard: make a copy of the plugin whose robot-side path throws; tshark shows an
+    expert on the packet and no Lua error reaches the user."""
+    from harness import INTERNAL_TEXT, PLUGIN
+    import subprocess
+    text = PLUGIN.read_text(encoding="utf-8")
+    anchor = "    local raw = tvb:raw()\n"
+    assert text.count(anchor) == 1
+    broken = tmp_path / "broken.lua"
+    broken.write_text(text.replace(anchor, anchor + '    if #raw > 0 then error("boom") end\n'), encoding="utf-8")
+    res = subprocess.run(["tshark", "-r", str(ROOT / "dissector" / "samples" / "primary_session.pcapng"),
+                          "-X", f"lua_script:{broken}", "-V"], capture_output=True, text=True)
+    assert "Lua: Error" not in res.stderr and "_ws.lua.error" not in res.stdout
+    assert INTERNAL_TEXT in res.stdout and "boom" in res.stdout

@@ -30,6 +30,7 @@ SEGMENTATIONS = {
     "random_cuts": lambda msgs: capture.random_cuts(msgs, seed=7, max_len=40),
     "packed": lambda msgs: capture.packed(msgs, per_segment=3),
     "mid_stream": lambda msgs: capture.random_cuts([MID_STREAM] + list(msgs), seed=3, max_len=300),
+    "retransmitted": lambda msgs: capture.random_cuts(msgs, seed=5, max_len=200),
 }
 
 
@@ -64,7 +65,7 @@ def decoded(request, tmp_path_factory):
         cases = [c for c in CASES if c.version == hint]
         streams = [SEGMENTATIONS[seg](split_messages(c.data)) for c in cases]
         pcap = write_sessions(tmp_path_factory.mktemp(seg) / f"{seg}_{hint}.pcap", streams,
-                              handshake=seg != "mid_stream")
+                              handshake=seg != "mid_stream", retransmit_every=3 if seg == "retransmitted" else 0)
         opts = ("-o", f"ur.version:{hint}") if hint else ()
         by_stream = ur_items_by_stream(tshark_json(pcap, *opts))
         for i, c in enumerate(cases):
