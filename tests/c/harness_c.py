@@ -75,11 +75,16 @@ def parse_lines(out: bytes) -> list:
     return [json.loads(line) for line in out.decode("utf-8").splitlines()]
 
 
-def python_records(data: bytes, version: str | None) -> tuple[list, int]:
-    """What the Python reference decoder prints for a stream, and its exit code."""
+def python_lines(data: bytes, version: str | None) -> tuple[list[str], int]:
+    """The lines the Python reference decoder prints for a stream, and its exit code."""
     import urwire
     from urwire.canonical import has_error
 
     records = list(urwire.decode_stream(data, version_hint=version))
-    lines = [json.loads(urwire.to_json_line(r)) for r in records]
-    return lines, 1 if any(has_error(r) for r in records) else 0
+    return [urwire.to_json_line(r) for r in records], 1 if any(has_error(r) for r in records) else 0
+
+
+def python_records(data: bytes, version: str | None) -> tuple[list, int]:
+    """The same, parsed."""
+    lines, code = python_lines(data, version)
+    return [json.loads(line) for line in lines], code

@@ -2,7 +2,7 @@
 
 The streams come from tests/tools/streams.py (real messages from every vector, shuffled,
 then damaged: flipped bytes, cuts, garbage, nudged lengths, splices). Both decoders must print
-the same records, error records and texts included, and exit with the same code.
+the same records, error records and texts included, byte for byte, and exit with the same code.
 """
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import subprocess
 
 import pytest
 
-from tests.c.harness_c import parse_lines, python_records, run_cli
+from tests.c.harness_c import parse_lines, python_lines, python_records, run_cli
 from tests.c.seeds import messages
 from tests.tools.streams import streams
 from tests.vectors import all_cases
@@ -30,6 +30,7 @@ def compare(build, data: bytes, hint: str | None) -> None:
     got = parse_lines(result.stdout)
     assert got == expected, f"stream {data.hex()}"
     assert result.returncode == code, f"stream {data.hex()}"
+    assert result.stdout.decode("utf-8").splitlines() == python_lines(data, hint)[0], f"stream {data.hex()}"
 
 
 @pytest.mark.parametrize("seed", range(4))

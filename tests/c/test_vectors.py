@@ -1,10 +1,11 @@
 """Every golden and conformance vector through build/urwire-decode (gcc, clang, sanitizers):
-the expected records, and value for value what the Python decoder prints, exit code included."""
+the expected records, and what the Python decoder prints (values, then the exact text), exit
+code included."""
 from __future__ import annotations
 
 import pytest
 
-from tests.c.harness_c import parse_lines, python_records, run_cli
+from tests.c.harness_c import parse_lines, python_lines, python_records, run_cli
 from tests.vectors import all_cases, mismatches
 
 CASES = all_cases()
@@ -26,3 +27,5 @@ def test_vector(build, case):
     expected, code = python_records(case.data, case.version)
     assert records == expected
     assert result.returncode == code
+    # Not only the same values: the same text, byte for byte, as the Python CLI prints.
+    assert result.stdout.decode("utf-8").splitlines() == python_lines(case.data, case.version)[0]

@@ -25,23 +25,77 @@ void json_f32_text(float x, char *buf, size_t cap)
     snprintf(buf, cap, "%.9g", (double)x);
 }
 
+/* Does the decimal 0.digits * 10^(exp10 + 1), with this sign, read back as x? */
+static int f64_reads_back(double x, const char *digits, int exp10)
+{
+    char text[48];
+    snprintf(text, sizeof text, "%s%c.%se%d", x < 0 || (x == 0 && signbit(x)) ? "-" : "", digits[0], digits + 1,
+             exp10);
+    return strtod(text, NULL) == x;
+}
+
+/* The shortest digits that read back as x, laid out as Python's repr() lays them out: fixed
+ * notation with at least one decimal when the decimal exponent is from -4 to 15 ("1.0",
+ * "0.0001", "1e+16", "1e-05"), so that the CLI's lines are the Python CLI's byte for byte.
+ * For each length p = 1..17: the correctly rounded %.{p-1}e, else its neighbour towards x
+ * (at a power of two the rounding interval is lopsided, and only the neighbour may fit). */
 void json_f64_text(double x, char *buf, size_t cap)
 {
-    int p;
-    if (isnan(x)) {
-        snprintf(buf, cap, "NaN");
+    char sci[40], digits[24], near[24];
+    const char *e;
+    int p, exp10 = 0, n = 0, decpt, k, found = 0;
+    size_t at = 0;
+    if (isnan(x) || isinf(x)) {
+        snprintf(buf, cap, isnan(x) ? "NaN" : x > 0 ? "Infinity" : "-Infinity");
         return;
     }
-    if (isinf(x)) {
-        snprintf(buf, cap, x > 0 ? "Infinity" : "-Infinity");
-        return;
+    for (p = 1; p <= 17 && !found; p++) {
+        snprintf(sci, sizeof sci, "%.*e", p - 1, x);
+        for (n = 0, e = sci; *e && *e != 'e'; e++)
+            if (*e >= '0' && *e <= '9')
+                digits[n++] = *e;
+        digits[n] = '\0';
+        exp10 = atoi(e + 1);
+        found = strtod(sci, NULL) == x;
+        if (!found && p > 1) {
+            /* The neighbour on x's side: up when the rounded text lies below |x|. */
+            int up = fabs(strtod(sci, NULL)) < fabs(x);
+            memcpy(near, digits, (size_t)n + 1);
+            if (up ? near[n - 1] < '9' : near[n - 1] > '0') {
+                near[n - 1] = (char)(near[n - 1] + (up ? 1 : -1));
+                if (f64_reads_back(x, near, exp10)) {
+                    memcpy(digits, near, (size_t)n + 1);
+                    found = 1;
+                }
+            }
+        }
     }
-    for (p = 1; p <= 17; p++) {
-        snprintf(buf, cap, "%.*g", p, x);
-        if (strtod(buf, NULL) == x)
-            return;
+    while (n > 1 && digits[n - 1] == '0')
+        digits[--n] = '\0';
+    decpt = exp10 + 1;  /* x = 0.digits * 10^decpt */
+    if (sci[0] == '-' && at + 1 < cap)
+        buf[at++] = '-';
+    if (decpt > -4 && decpt <= 16) {
+        if (decpt <= 0) {
+            at += (size_t)snprintf(buf + at, cap - at, "0.");
+            for (k = 0; k < -decpt; k++)
+                at += (size_t)snprintf(buf + at, cap - at, "0");
+            snprintf(buf + at, cap - at, "%s", digits);
+        } else {
+            for (k = 0; k < decpt || k < n; k++) {
+                if (k == decpt)
+                    at += (size_t)snprintf(buf + at, cap - at, ".");
+                at += (size_t)snprintf(buf + at, cap - at, "%c", k < n ? digits[k] : '0');
+            }
+            if (decpt >= n)
+                snprintf(buf + at, cap - at, ".0");
+        }
+    } else {
+        at += (size_t)snprintf(buf + at, cap - at, "%c", digits[0]);
+        if (n > 1)
+            at += (size_t)snprintf(buf + at, cap - at, ".%s", digits + 1);
+        snprintf(buf + at, cap - at, "e%c%02d", exp10 < 0 ? '-' : '+', exp10 < 0 ? -exp10 : exp10);
     }
-    snprintf(buf, cap, "%.17g", x);
 }
 
 /* Length of the valid UTF-8 sequence at p (1..4), or 0 with *bad set to the length of the

@@ -16,7 +16,9 @@ typedef struct json_writer {
 
 urwire_visitor json_visitor(json_writer *w);
 
-/* Shortest "%.{p}g" that reads back as the same float (p = 1..9) or double (p = 1..17). */
+/* float32: the shortest "%.{p}g" (p = 1..9) that strtof reads back as x (the canonical rule).
+ * float64: the shortest digits (p = 1..17) that strtod reads back as x, written as Python's
+ * repr() writes them ("1.0", "1e-05"), so that lines equal the Python CLI's byte for byte. */
 void json_f32_text(float x, char *buf, size_t cap);
 void json_f64_text(double x, char *buf, size_t cap);
 
