@@ -29,10 +29,11 @@ build/liburwire.a: $(C_LIB)
 	$(CC) $(C_STRICT) $(C_OPT) -c generated/c/urwire.c -o build/obj/urwire.o
 	ar rcs $@ build/obj/urwire.o
 
-## test-c: the C library and CLI under gcc and clang, sanitizers, vectors, differential, fuzz (bounded)
+## test-c: fuzz (bounded), then the C library and CLI under gcc, clang and the sanitizers: vectors,
+## differential against Python (the fuzzer's corpus included), round trips, build checks
 test-c: build/urwire-decode
-	$(PYTEST) -q tests/c
 	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(FUZZ_CI_SECONDS)
+	$(PYTEST) -q tests/c
 
 ## fuzz: libFuzzer over the framer and every decoder, seeded with the vectors (FUZZ_SECONDS=60)
 fuzz: fuzz-c
