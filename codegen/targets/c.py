@@ -130,6 +130,22 @@ class CStruct:
     item_index: bool = False
     can_fail: bool = True
     bitsets: list = field(default_factory=list)
+
+    def indent(self, verb: str, ret: str) -> str:
+        """Spaces that align a wrapped parameter list under `static <ret> urwire__<verb>_<name>(`."""
+        return " " * len(f"static {ret} urwire__{verb}_{self.name}(")
+
+    @property
+    def decode_indent(self) -> str:
+        return self.indent("decode", "bool")
+
+    @property
+    def encode_indent(self) -> str:
+        return self.indent("encode", "bool")
+
+    @property
+    def visit_indent(self) -> str:
+        return self.indent("visit", "void")
     to_end_item: bool = False       # items of a to_end group: public iteration function
     code: Optional[int] = None
     code_const: str = ""
@@ -441,7 +457,7 @@ def enum_views(p: ir.Protocol) -> list[dict]:
         for t in e.tables:
             prefix = f"URWIRE_{e.name.upper()}" + (f"_{table_suffix(t)}" if e.versioned else "")
             members = [dict(const=f"{prefix}_{v.name}", value=v.value, name=v.name,
-                            doc=inline(v.doc, "(not in the document)" if v.undocumented else "",
+                            doc=inline(v.doc, "(undocumented)" if v.undocumented else "",
                                        f"(from {v.versions.describe()})" if not v.versions.unbounded else ""))
                        for v in t.values]
             tables.append(dict(versions=t.versions.describe(), members=members,

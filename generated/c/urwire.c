@@ -52,7 +52,11 @@ static void urwire__put_u32(uint8_t *p, uint32_t v)
     p[3] = (uint8_t)v;
 }
 static void urwire__put_i32(uint8_t *p, int32_t v) { urwire__put_u32(p, (uint32_t)v); }
-static void urwire__put_u64(uint8_t *p, uint64_t v) { urwire__put_u32(p, (uint32_t)(v >> 32)); urwire__put_u32(p + 4, (uint32_t)v); }
+static void urwire__put_u64(uint8_t *p, uint64_t v)
+{
+    urwire__put_u32(p, (uint32_t)(v >> 32));
+    urwire__put_u32(p + 4, (uint32_t)v);
+}
 static void urwire__put_f32(uint8_t *p, float v)
 {
     uint32_t bits;
@@ -169,13 +173,12 @@ static bool urwire__short(urwire_error *e, const char *path, size_t offset, size
     return urwire__fail(e, URWIRE_E_SHORT, offset, path, (int64_t)need, end > offset ? (int64_t)(end - offset) : 0);
 }
 
-/* The first field of a fixed run that does not fit names the error. */
-static bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t n, size_t pos, size_t end)
+/* The first field of a fixed run (ended by a NULL path) that does not fit names the error. */
+static bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
 {
-    size_t k;
-    for (k = 0; k < n; k++)
-        if (pos + run[k].offset + run[k].size > end)
-            return urwire__short(e, run[k].path, pos + run[k].offset, run[k].size, end);
+    for (; run->path; run++)
+        if (pos + run->offset + run->size > end)
+            return urwire__short(e, run->path, pos + run->offset, run->size, end);
     return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
 }
 
@@ -801,7 +804,9 @@ static const urwire__value_entry urwire__values_up_to_3_2_entries[] = {
     {13, URWIRE_VALUE_INT, "INT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 1},
     {14, URWIRE_VALUE_FLOAT, "FLOAT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
 };
-static const struct urwire_value_table urwire__values_up_to_3_2 = {urwire__values_up_to_3_2_entries, URWIRE__COUNT(urwire__values_up_to_3_2_entries)};
+static const struct urwire_value_table urwire__values_up_to_3_2 = {
+    urwire__values_up_to_3_2_entries, URWIRE__COUNT(urwire__values_up_to_3_2_entries)
+};
 
 /* Value types of software 3.3 to 5.8. */
 static const urwire__value_entry urwire__values_3_3_to_5_8_entries[] = {
@@ -815,7 +820,9 @@ static const urwire__value_entry urwire__values_3_3_to_5_8_entries[] = {
     {14, URWIRE_VALUE_INT, "INT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 1},
     {15, URWIRE_VALUE_FLOAT, "FLOAT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
 };
-static const struct urwire_value_table urwire__values_3_3_to_5_8 = {urwire__values_3_3_to_5_8_entries, URWIRE__COUNT(urwire__values_3_3_to_5_8_entries)};
+static const struct urwire_value_table urwire__values_3_3_to_5_8 = {
+    urwire__values_3_3_to_5_8_entries, URWIRE__COUNT(urwire__values_3_3_to_5_8_entries)
+};
 
 /* Value types of software 5.9 and later. */
 static const urwire__value_entry urwire__values_5_9_on_entries[] = {
@@ -830,7 +837,9 @@ static const urwire__value_entry urwire__values_5_9_on_entries[] = {
     {17, URWIRE_VALUE_LIST, "LIST", URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 1},
     {18, URWIRE_VALUE_MATRIX, "MATRIX", URWIRE__LAYOUT_MATRIX, URWIRE__ITEM_NONE, 1},
 };
-static const struct urwire_value_table urwire__values_5_9_on = {urwire__values_5_9_on_entries, URWIRE__COUNT(urwire__values_5_9_on_entries)};
+static const struct urwire_value_table urwire__values_5_9_on = {
+    urwire__values_5_9_on_entries, URWIRE__COUNT(urwire__values_5_9_on_entries)
+};
 
 static const struct urwire_value_table *urwire__value_table(urwire_sw_version v)
 {
@@ -1105,17 +1114,18 @@ static const urwire__span urwire__robot_mode_data_run0[] = {
     {"speed_scaling", 25, 8},
     {"target_speed_fraction_limit", 33, 8},
     {"reserved", 41, 1},
+    {NULL, 0, 0},
 };
 
 /* Robot mode data. */
 static bool urwire__decode_robot_mode_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                          urwire_robot_mode_data *out, urwire_error *err)
+                                           urwire_robot_mode_data *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 42u)
-        return urwire__short_in_run(err, urwire__robot_mode_data_run0, URWIRE__COUNT(urwire__robot_mode_data_run0), pos, end);
+        return urwire__short_in_run(err, urwire__robot_mode_data_run0, pos, end);
     p = msg + pos;
     out->timestamp = urwire__u64(p);
     out->is_real_robot_connected = urwire__u8(p + 8);
@@ -1138,9 +1148,11 @@ static bool urwire__decode_robot_mode_data(const uint8_t *msg, size_t *at, size_
     return true;
 }
 
-static bool urwire__encode_robot_mode_data(const urwire_robot_mode_data *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_robot_mode_data(const urwire_robot_mode_data *in, urwire_sw_version version,
+                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 42u)
         return urwire__no_space(err, pos, 42u, cap);
@@ -1166,8 +1178,10 @@ static bool urwire__encode_robot_mode_data(const urwire_robot_mode_data *in, uin
     return true;
 }
 
-static void urwire__visit_robot_mode_data(const urwire_robot_mode_data *in, const urwire_visitor *v)
+static void urwire__visit_robot_mode_data(const urwire_robot_mode_data *in, urwire_sw_version version,
+                                          const urwire_visitor *v)
 {
+    (void)version;
     v->on_uint(v->ctx, "timestamp", (uint64_t)in->timestamp);
     v->on_bool(v->ctx, "is_real_robot_connected", in->is_real_robot_connected != 0);
     v->on_bool(v->ctx, "is_real_robot_enabled", in->is_real_robot_enabled != 0);
@@ -1211,8 +1225,10 @@ static void urwire__write_joint(uint8_t *p, const urwire_joint *in)
     urwire__put_u8(p + 40, in->joint_mode);
 }
 
-static void urwire__visit_joint(const urwire_joint *in, const urwire_visitor *v)
+static void urwire__visit_joint(const urwire_joint *in, urwire_sw_version version,
+                                const urwire_visitor *v)
 {
+    (void)version;
     v->on_f64(v->ctx, "q_actual", in->q_actual);
     v->on_f64(v->ctx, "q_target", in->q_target);
     v->on_f64(v->ctx, "qd_actual", in->qd_actual);
@@ -1272,18 +1288,19 @@ static const urwire__span urwire__joint_data_run0[] = {
     {"joints[5].t_motor", 237, 4},
     {"joints[5].t_micro", 241, 4},
     {"joints[5].joint_mode", 245, 1},
+    {NULL, 0, 0},
 };
 
 /* Joint data, one group per joint. */
 static bool urwire__decode_joint_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                     urwire_joint_data *out, urwire_error *err)
+                                      urwire_joint_data *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     size_t i;
     (void)version;
     if (end - pos < 246u)
-        return urwire__short_in_run(err, urwire__joint_data_run0, URWIRE__COUNT(urwire__joint_data_run0), pos, end);
+        return urwire__short_in_run(err, urwire__joint_data_run0, pos, end);
     p = msg + pos;
     for (i = 0; i < 6; i++) urwire__read_joint(p + 41 * i, &out->joints[i]);
     pos += 246u;
@@ -1293,9 +1310,11 @@ static bool urwire__decode_joint_data(const uint8_t *msg, size_t *at, size_t end
     return true;
 }
 
-static bool urwire__encode_joint_data(const urwire_joint_data *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_joint_data(const urwire_joint_data *in, urwire_sw_version version,
+                                      uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     size_t i;
     if (cap - pos < 246u)
@@ -1309,13 +1328,15 @@ static bool urwire__encode_joint_data(const urwire_joint_data *in, uint8_t *out,
     return true;
 }
 
-static void urwire__visit_joint_data(const urwire_joint_data *in, const urwire_visitor *v)
+static void urwire__visit_joint_data(const urwire_joint_data *in, urwire_sw_version version,
+                                     const urwire_visitor *v)
 {
     size_t i;
+    (void)version;
     v->begin_array(v->ctx, "joints");
     for (i = 0; i < 6; i++) {
         v->begin_object(v->ctx, NULL);
-        urwire__visit_joint(&in->joints[i], v);
+        urwire__visit_joint(&in->joints[i], version, v);
         v->end_object(v->ctx);
     }
     v->end_array(v->ctx);
@@ -1333,17 +1354,18 @@ static const urwire__span urwire__tool_data_run0[] = {
     {"tool_current", 23, 4},
     {"tool_temperature", 27, 4},
     {"tool_mode", 31, 1},
+    {NULL, 0, 0},
 };
 
 /* Tool data. */
 static bool urwire__decode_tool_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                    urwire_tool_data *out, urwire_error *err)
+                                     urwire_tool_data *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 32u)
-        return urwire__short_in_run(err, urwire__tool_data_run0, URWIRE__COUNT(urwire__tool_data_run0), pos, end);
+        return urwire__short_in_run(err, urwire__tool_data_run0, pos, end);
     p = msg + pos;
     out->analog_input_range0 = urwire__u8(p);
     out->analog_input_range1 = urwire__u8(p + 1);
@@ -1361,9 +1383,11 @@ static bool urwire__decode_tool_data(const uint8_t *msg, size_t *at, size_t end,
     return true;
 }
 
-static bool urwire__encode_tool_data(const urwire_tool_data *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_tool_data(const urwire_tool_data *in, urwire_sw_version version,
+                                     uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 32u)
         return urwire__no_space(err, pos, 32u, cap);
@@ -1384,8 +1408,10 @@ static bool urwire__encode_tool_data(const urwire_tool_data *in, uint8_t *out, s
     return true;
 }
 
-static void urwire__visit_tool_data(const urwire_tool_data *in, const urwire_visitor *v)
+static void urwire__visit_tool_data(const urwire_tool_data *in, urwire_sw_version version,
+                                    const urwire_visitor *v)
 {
+    (void)version;
     v->on_uint(v->ctx, "analog_input_range0", (uint64_t)in->analog_input_range0);
     v->on_uint(v->ctx, "analog_input_range1", (uint64_t)in->analog_input_range1);
     v->on_f64(v->ctx, "analog_input0", in->analog_input0);
@@ -1417,6 +1443,7 @@ static const urwire__span urwire__masterboard_data_run0[] = {
     {"safety_mode", 60, 1},
     {"in_reduced_mode", 61, 1},
     {"euromap67_interface_installed", 62, 1},
+    {NULL, 0, 0},
 };
 
 static const urwire__span urwire__masterboard_data_run1[] = {
@@ -1424,6 +1451,7 @@ static const urwire__span urwire__masterboard_data_run1[] = {
     {"euromap_output_bits", 4, 4},
     {"euromap_voltage_24v", 8, 4},
     {"euromap_current", 12, 4},
+    {NULL, 0, 0},
 };
 
 static const urwire__span urwire__masterboard_data_run2[] = {
@@ -1431,17 +1459,18 @@ static const urwire__span urwire__masterboard_data_run2[] = {
     {"operational_mode_selector_input", 4, 1},
     {"three_position_enabling_device_input", 5, 1},
     {"reserved_1", 6, 1},
+    {NULL, 0, 0},
 };
 
 /* Masterboard data. */
 static bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                           urwire_masterboard_data *out, urwire_error *err)
+                                            urwire_masterboard_data *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 63u)
-        return urwire__short_in_run(err, urwire__masterboard_data_run0, URWIRE__COUNT(urwire__masterboard_data_run0), pos, end);
+        return urwire__short_in_run(err, urwire__masterboard_data_run0, pos, end);
     p = msg + pos;
     out->digital_input_bits = urwire__i32(p);
     out->digital_output_bits = urwire__i32(p + 4);
@@ -1463,7 +1492,7 @@ static bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *at, size
     pos += 63u;
     if (out->euromap67_interface_installed != 0) {
         if (end - pos < 16u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run1, URWIRE__COUNT(urwire__masterboard_data_run1), pos, end);
+            return urwire__short_in_run(err, urwire__masterboard_data_run1, pos, end);
         p = msg + pos;
         out->euromap_input_bits = urwire__u32(p);
         out->euromap_output_bits = urwire__u32(p + 4);
@@ -1477,7 +1506,7 @@ static bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *at, size
         out->euromap_current = 0;
     }
     if (end - pos < 7u)
-        return urwire__short_in_run(err, urwire__masterboard_data_run2, URWIRE__COUNT(urwire__masterboard_data_run2), pos, end);
+        return urwire__short_in_run(err, urwire__masterboard_data_run2, pos, end);
     p = msg + pos;
     out->reserved_0 = urwire__u32(p);
     out->operational_mode_selector_input = urwire__u8(p + 4);
@@ -1490,9 +1519,11 @@ static bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *at, size
     return true;
 }
 
-static bool urwire__encode_masterboard_data(const urwire_masterboard_data *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_masterboard_data(const urwire_masterboard_data *in, urwire_sw_version version,
+                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 63u)
         return urwire__no_space(err, pos, 63u, cap);
@@ -1539,8 +1570,10 @@ static bool urwire__encode_masterboard_data(const urwire_masterboard_data *in, u
     return true;
 }
 
-static void urwire__visit_masterboard_data(const urwire_masterboard_data *in, const urwire_visitor *v)
+static void urwire__visit_masterboard_data(const urwire_masterboard_data *in, urwire_sw_version version,
+                                           const urwire_visitor *v)
 {
+    (void)version;
     v->on_int(v->ctx, "digital_input_bits", (int64_t)in->digital_input_bits);
     v->on_int(v->ctx, "digital_output_bits", (int64_t)in->digital_output_bits);
     v->on_uint(v->ctx, "analog_input_range0", (uint64_t)in->analog_input_range0);
@@ -1591,17 +1624,18 @@ static const urwire__span urwire__cartesian_info_run0[] = {
     {"tcp_offset_rx", 72, 8},
     {"tcp_offset_ry", 80, 8},
     {"tcp_offset_rz", 88, 8},
+    {NULL, 0, 0},
 };
 
 /* Cartesian info. */
 static bool urwire__decode_cartesian_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                         urwire_cartesian_info *out, urwire_error *err)
+                                          urwire_cartesian_info *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 96u)
-        return urwire__short_in_run(err, urwire__cartesian_info_run0, URWIRE__COUNT(urwire__cartesian_info_run0), pos, end);
+        return urwire__short_in_run(err, urwire__cartesian_info_run0, pos, end);
     p = msg + pos;
     out->x = urwire__f64(p);
     out->y = urwire__f64(p + 8);
@@ -1622,9 +1656,11 @@ static bool urwire__decode_cartesian_info(const uint8_t *msg, size_t *at, size_t
     return true;
 }
 
-static bool urwire__encode_cartesian_info(const urwire_cartesian_info *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_cartesian_info(const urwire_cartesian_info *in, urwire_sw_version version,
+                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 96u)
         return urwire__no_space(err, pos, 96u, cap);
@@ -1648,8 +1684,10 @@ static bool urwire__encode_cartesian_info(const urwire_cartesian_info *in, uint8
     return true;
 }
 
-static void urwire__visit_cartesian_info(const urwire_cartesian_info *in, const urwire_visitor *v)
+static void urwire__visit_cartesian_info(const urwire_cartesian_info *in, urwire_sw_version version,
+                                         const urwire_visitor *v)
 {
+    (void)version;
     v->on_f64(v->ctx, "x", in->x);
     v->on_f64(v->ctx, "y", in->y);
     v->on_f64(v->ctx, "z", in->z);
@@ -1698,18 +1736,19 @@ static const urwire__span urwire__kinematics_info_run0[] = {
     {"dh_alpha[4]", 200, 8},
     {"dh_alpha[5]", 208, 8},
     {"calibration_status", 216, 4},
+    {NULL, 0, 0},
 };
 
 /* Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is changed. */
 static bool urwire__decode_kinematics_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                          urwire_kinematics_info *out, urwire_error *err)
+                                           urwire_kinematics_info *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     size_t i;
     (void)version;
     if (end - pos < 220u)
-        return urwire__short_in_run(err, urwire__kinematics_info_run0, URWIRE__COUNT(urwire__kinematics_info_run0), pos, end);
+        return urwire__short_in_run(err, urwire__kinematics_info_run0, pos, end);
     p = msg + pos;
     for (i = 0; i < 6; i++) out->checksum[i] = urwire__u32(p + 4 * i);
     for (i = 0; i < 6; i++) out->dh_theta[i] = urwire__f64(p + 24 + 8 * i);
@@ -1724,9 +1763,11 @@ static bool urwire__decode_kinematics_info(const uint8_t *msg, size_t *at, size_
     return true;
 }
 
-static bool urwire__encode_kinematics_info(const urwire_kinematics_info *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_kinematics_info(const urwire_kinematics_info *in, urwire_sw_version version,
+                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     size_t i;
     if (cap - pos < 220u)
@@ -1745,9 +1786,11 @@ static bool urwire__encode_kinematics_info(const urwire_kinematics_info *in, uin
     return true;
 }
 
-static void urwire__visit_kinematics_info(const urwire_kinematics_info *in, const urwire_visitor *v)
+static void urwire__visit_kinematics_info(const urwire_kinematics_info *in, urwire_sw_version version,
+                                          const urwire_visitor *v)
 {
     size_t i;
+    (void)version;
     v->begin_array(v->ctx, "checksum");
     for (i = 0; i < 6; i++)
         v->on_uint(v->ctx, NULL, (uint64_t)in->checksum[i]);
@@ -1786,8 +1829,10 @@ static void urwire__write_joint_position_limit(uint8_t *p, const urwire_joint_po
     urwire__put_f64(p + 8, in->joint_max_limit);
 }
 
-static void urwire__visit_joint_position_limit(const urwire_joint_position_limit *in, const urwire_visitor *v)
+static void urwire__visit_joint_position_limit(const urwire_joint_position_limit *in, urwire_sw_version version,
+                                               const urwire_visitor *v)
 {
+    (void)version;
     v->on_f64(v->ctx, "joint_min_limit", in->joint_min_limit);
     v->on_f64(v->ctx, "joint_max_limit", in->joint_max_limit);
 }
@@ -1805,8 +1850,10 @@ static void urwire__write_joint_motion_limit(uint8_t *p, const urwire_joint_moti
     urwire__put_f64(p + 8, in->joint_max_acceleration);
 }
 
-static void urwire__visit_joint_motion_limit(const urwire_joint_motion_limit *in, const urwire_visitor *v)
+static void urwire__visit_joint_motion_limit(const urwire_joint_motion_limit *in, urwire_sw_version version,
+                                             const urwire_visitor *v)
 {
+    (void)version;
     v->on_f64(v->ctx, "joint_max_speed", in->joint_max_speed);
     v->on_f64(v->ctx, "joint_max_acceleration", in->joint_max_acceleration);
 }
@@ -1869,18 +1916,19 @@ static const urwire__span urwire__configuration_data_run0[] = {
     {"controller_box_type", 428, 4},
     {"robot_type", 432, 4},
     {"robot_sub_type", 436, 4},
+    {NULL, 0, 0},
 };
 
 /* Configuration data. Sent when leaving initializing mode and/or if the kinematics configuration is changed. */
 static bool urwire__decode_configuration_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                             urwire_configuration_data *out, urwire_error *err)
+                                              urwire_configuration_data *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     size_t i;
     (void)version;
     if (end - pos < 440u)
-        return urwire__short_in_run(err, urwire__configuration_data_run0, URWIRE__COUNT(urwire__configuration_data_run0), pos, end);
+        return urwire__short_in_run(err, urwire__configuration_data_run0, pos, end);
     p = msg + pos;
     for (i = 0; i < 6; i++) urwire__read_joint_position_limit(p + 16 * i, &out->joint_position_limits[i]);
     for (i = 0; i < 6; i++) urwire__read_joint_motion_limit(p + 96 + 16 * i, &out->joint_motion_limits[i]);
@@ -1904,9 +1952,11 @@ static bool urwire__decode_configuration_data(const uint8_t *msg, size_t *at, si
     return true;
 }
 
-static bool urwire__encode_configuration_data(const urwire_configuration_data *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_configuration_data(const urwire_configuration_data *in, urwire_sw_version version,
+                                              uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     size_t i;
     if (cap - pos < 440u)
@@ -1934,20 +1984,22 @@ static bool urwire__encode_configuration_data(const urwire_configuration_data *i
     return true;
 }
 
-static void urwire__visit_configuration_data(const urwire_configuration_data *in, const urwire_visitor *v)
+static void urwire__visit_configuration_data(const urwire_configuration_data *in, urwire_sw_version version,
+                                             const urwire_visitor *v)
 {
     size_t i;
+    (void)version;
     v->begin_array(v->ctx, "joint_position_limits");
     for (i = 0; i < 6; i++) {
         v->begin_object(v->ctx, NULL);
-        urwire__visit_joint_position_limit(&in->joint_position_limits[i], v);
+        urwire__visit_joint_position_limit(&in->joint_position_limits[i], version, v);
         v->end_object(v->ctx);
     }
     v->end_array(v->ctx);
     v->begin_array(v->ctx, "joint_motion_limits");
     for (i = 0; i < 6; i++) {
         v->begin_object(v->ctx, NULL);
-        urwire__visit_joint_motion_limit(&in->joint_motion_limits[i], v);
+        urwire__visit_joint_motion_limit(&in->joint_motion_limits[i], version, v);
         v->end_object(v->ctx);
     }
     v->end_array(v->ctx);
@@ -1988,17 +2040,18 @@ static const urwire__span urwire__force_mode_data_run0[] = {
     {"fry", 32, 8},
     {"frz", 40, 8},
     {"robot_dexterity", 48, 8},
+    {NULL, 0, 0},
 };
 
 /* Force mode data. */
 static bool urwire__decode_force_mode_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                          urwire_force_mode_data *out, urwire_error *err)
+                                           urwire_force_mode_data *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 56u)
-        return urwire__short_in_run(err, urwire__force_mode_data_run0, URWIRE__COUNT(urwire__force_mode_data_run0), pos, end);
+        return urwire__short_in_run(err, urwire__force_mode_data_run0, pos, end);
     p = msg + pos;
     out->fx = urwire__f64(p);
     out->fy = urwire__f64(p + 8);
@@ -2014,9 +2067,11 @@ static bool urwire__decode_force_mode_data(const uint8_t *msg, size_t *at, size_
     return true;
 }
 
-static bool urwire__encode_force_mode_data(const urwire_force_mode_data *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_force_mode_data(const urwire_force_mode_data *in, urwire_sw_version version,
+                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 56u)
         return urwire__no_space(err, pos, 56u, cap);
@@ -2035,8 +2090,10 @@ static bool urwire__encode_force_mode_data(const urwire_force_mode_data *in, uin
     return true;
 }
 
-static void urwire__visit_force_mode_data(const urwire_force_mode_data *in, const urwire_visitor *v)
+static void urwire__visit_force_mode_data(const urwire_force_mode_data *in, urwire_sw_version version,
+                                          const urwire_visitor *v)
 {
+    (void)version;
     v->on_f64(v->ctx, "fx", in->fx);
     v->on_f64(v->ctx, "fy", in->fy);
     v->on_f64(v->ctx, "fz", in->fz);
@@ -2053,17 +2110,18 @@ static const urwire__span urwire__additional_info_run0[] = {
     {"freedrive_button_enabled", 1, 1},
     {"io_enabled_freedrive", 2, 1},
     {"reserved", 3, 1},
+    {NULL, 0, 0},
 };
 
 /* Additional info. */
 static bool urwire__decode_additional_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                          urwire_additional_info *out, urwire_error *err)
+                                           urwire_additional_info *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 4u)
-        return urwire__short_in_run(err, urwire__additional_info_run0, URWIRE__COUNT(urwire__additional_info_run0), pos, end);
+        return urwire__short_in_run(err, urwire__additional_info_run0, pos, end);
     p = msg + pos;
     out->tp_button_state = urwire__u8(p);
     out->freedrive_button_enabled = urwire__u8(p + 1);
@@ -2076,9 +2134,11 @@ static bool urwire__decode_additional_info(const uint8_t *msg, size_t *at, size_
     return true;
 }
 
-static bool urwire__encode_additional_info(const urwire_additional_info *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_additional_info(const urwire_additional_info *in, urwire_sw_version version,
+                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 4u)
         return urwire__no_space(err, pos, 4u, cap);
@@ -2094,8 +2154,10 @@ static bool urwire__encode_additional_info(const urwire_additional_info *in, uin
     return true;
 }
 
-static void urwire__visit_additional_info(const urwire_additional_info *in, const urwire_visitor *v)
+static void urwire__visit_additional_info(const urwire_additional_info *in, urwire_sw_version version,
+                                          const urwire_visitor *v)
 {
+    (void)version;
     v->on_uint(v->ctx, "tp_button_state", (uint64_t)in->tp_button_state);
     v->on_bool(v->ctx, "freedrive_button_enabled", in->freedrive_button_enabled != 0);
     v->on_bool(v->ctx, "io_enabled_freedrive", in->io_enabled_freedrive != 0);
@@ -2111,17 +2173,18 @@ static const urwire__span urwire__calibration_data_run0[] = {
     {"frx", 24, 8},
     {"fry", 32, 8},
     {"frz", 40, 8},
+    {NULL, 0, 0},
 };
 
 /* Calibration data. Used internally by Universal Robots software only. */
 static bool urwire__decode_calibration_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                           urwire_calibration_data *out, urwire_error *err)
+                                            urwire_calibration_data *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 48u)
-        return urwire__short_in_run(err, urwire__calibration_data_run0, URWIRE__COUNT(urwire__calibration_data_run0), pos, end);
+        return urwire__short_in_run(err, urwire__calibration_data_run0, pos, end);
     p = msg + pos;
     out->fx = urwire__f64(p);
     out->fy = urwire__f64(p + 8);
@@ -2136,9 +2199,11 @@ static bool urwire__decode_calibration_data(const uint8_t *msg, size_t *at, size
     return true;
 }
 
-static bool urwire__encode_calibration_data(const urwire_calibration_data *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_calibration_data(const urwire_calibration_data *in, urwire_sw_version version,
+                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 48u)
         return urwire__no_space(err, pos, 48u, cap);
@@ -2156,8 +2221,10 @@ static bool urwire__encode_calibration_data(const urwire_calibration_data *in, u
     return true;
 }
 
-static void urwire__visit_calibration_data(const urwire_calibration_data *in, const urwire_visitor *v)
+static void urwire__visit_calibration_data(const urwire_calibration_data *in, urwire_sw_version version,
+                                           const urwire_visitor *v)
 {
+    (void)version;
     v->on_f64(v->ctx, "fx", in->fx);
     v->on_f64(v->ctx, "fy", in->fy);
     v->on_f64(v->ctx, "fz", in->fz);
@@ -2170,7 +2237,7 @@ static void urwire__visit_calibration_data(const urwire_calibration_data *in, co
 
 /* Safety data. Used internally by Universal Robots software only; its layout is not documented. */
 static bool urwire__decode_safety_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                      urwire_safety_data *out, urwire_error *err)
+                                       urwire_safety_data *out, urwire_error *err)
 {
     size_t pos = *at;
     (void)version;
@@ -2183,9 +2250,11 @@ static bool urwire__decode_safety_data(const uint8_t *msg, size_t *at, size_t en
     return true;
 }
 
-static bool urwire__encode_safety_data(const urwire_safety_data *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_safety_data(const urwire_safety_data *in, urwire_sw_version version,
+                                       uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     if (!urwire__put_view(out, cap, &pos, in->raw, err))
         return false;
     if (!urwire__put_view(out, cap, &pos, in->extra, err))
@@ -2194,8 +2263,10 @@ static bool urwire__encode_safety_data(const urwire_safety_data *in, uint8_t *ou
     return true;
 }
 
-static void urwire__visit_safety_data(const urwire_safety_data *in, const urwire_visitor *v)
+static void urwire__visit_safety_data(const urwire_safety_data *in, urwire_sw_version version,
+                                      const urwire_visitor *v)
 {
+    (void)version;
     v->on_hex(v->ctx, "raw", in->raw);
     if (in->extra.len)
         v->on_hex(v->ctx, "extra", in->extra);
@@ -2208,17 +2279,18 @@ static const urwire__span urwire__tool_comm_info_run0[] = {
     {"stop_bits", 9, 4},
     {"rx_idle_chars", 13, 4},
     {"tx_idle_chars", 17, 4},
+    {NULL, 0, 0},
 };
 
 /* Tool communication info. */
 static bool urwire__decode_tool_comm_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                         urwire_tool_comm_info *out, urwire_error *err)
+                                          urwire_tool_comm_info *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 21u)
-        return urwire__short_in_run(err, urwire__tool_comm_info_run0, URWIRE__COUNT(urwire__tool_comm_info_run0), pos, end);
+        return urwire__short_in_run(err, urwire__tool_comm_info_run0, pos, end);
     p = msg + pos;
     out->tool_communication_is_enabled = urwire__u8(p);
     out->baud_rate = urwire__i32(p + 1);
@@ -2233,9 +2305,11 @@ static bool urwire__decode_tool_comm_info(const uint8_t *msg, size_t *at, size_t
     return true;
 }
 
-static bool urwire__encode_tool_comm_info(const urwire_tool_comm_info *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_tool_comm_info(const urwire_tool_comm_info *in, urwire_sw_version version,
+                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 21u)
         return urwire__no_space(err, pos, 21u, cap);
@@ -2253,8 +2327,10 @@ static bool urwire__encode_tool_comm_info(const urwire_tool_comm_info *in, uint8
     return true;
 }
 
-static void urwire__visit_tool_comm_info(const urwire_tool_comm_info *in, const urwire_visitor *v)
+static void urwire__visit_tool_comm_info(const urwire_tool_comm_info *in, urwire_sw_version version,
+                                         const urwire_visitor *v)
 {
+    (void)version;
     v->on_bool(v->ctx, "tool_communication_is_enabled", in->tool_communication_is_enabled != 0);
     v->on_int(v->ctx, "baud_rate", (int64_t)in->baud_rate);
     v->on_int(v->ctx, "parity", (int64_t)in->parity);
@@ -2269,17 +2345,18 @@ static const urwire__span urwire__tool_mode_info_run0[] = {
     {"output_mode", 0, 1},
     {"digital_output_mode_output_0", 1, 1},
     {"digital_output_mode_output_1", 2, 1},
+    {NULL, 0, 0},
 };
 
 /* Tool mode info. */
 static bool urwire__decode_tool_mode_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                         urwire_tool_mode_info *out, urwire_error *err)
+                                          urwire_tool_mode_info *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 3u)
-        return urwire__short_in_run(err, urwire__tool_mode_info_run0, URWIRE__COUNT(urwire__tool_mode_info_run0), pos, end);
+        return urwire__short_in_run(err, urwire__tool_mode_info_run0, pos, end);
     p = msg + pos;
     out->output_mode = urwire__u8(p);
     out->digital_output_mode_output_0 = urwire__u8(p + 1);
@@ -2291,9 +2368,11 @@ static bool urwire__decode_tool_mode_info(const uint8_t *msg, size_t *at, size_t
     return true;
 }
 
-static bool urwire__encode_tool_mode_info(const urwire_tool_mode_info *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_tool_mode_info(const urwire_tool_mode_info *in, urwire_sw_version version,
+                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 3u)
         return urwire__no_space(err, pos, 3u, cap);
@@ -2308,8 +2387,10 @@ static bool urwire__encode_tool_mode_info(const urwire_tool_mode_info *in, uint8
     return true;
 }
 
-static void urwire__visit_tool_mode_info(const urwire_tool_mode_info *in, const urwire_visitor *v)
+static void urwire__visit_tool_mode_info(const urwire_tool_mode_info *in, urwire_sw_version version,
+                                         const urwire_visitor *v)
 {
+    (void)version;
     v->on_uint(v->ctx, "output_mode", (uint64_t)in->output_mode);
     v->on_uint(v->ctx, "digital_output_mode_output_0", (uint64_t)in->digital_output_mode_output_0);
     v->on_uint(v->ctx, "digital_output_mode_output_1", (uint64_t)in->digital_output_mode_output_1);
@@ -2320,17 +2401,18 @@ static void urwire__visit_tool_mode_info(const urwire_tool_mode_info *in, const 
 static const urwire__span urwire__singularity_info_run0[] = {
     {"singularity_severity", 0, 1},
     {"singularity_type", 1, 1},
+    {NULL, 0, 0},
 };
 
 /* Singularity info. Used internally by Universal Robots software only. */
 static bool urwire__decode_singularity_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                           urwire_singularity_info *out, urwire_error *err)
+                                            urwire_singularity_info *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 2u)
-        return urwire__short_in_run(err, urwire__singularity_info_run0, URWIRE__COUNT(urwire__singularity_info_run0), pos, end);
+        return urwire__short_in_run(err, urwire__singularity_info_run0, pos, end);
     p = msg + pos;
     out->singularity_severity = urwire__u8(p);
     out->singularity_type = urwire__u8(p + 1);
@@ -2341,9 +2423,11 @@ static bool urwire__decode_singularity_info(const uint8_t *msg, size_t *at, size
     return true;
 }
 
-static bool urwire__encode_singularity_info(const urwire_singularity_info *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_singularity_info(const urwire_singularity_info *in, urwire_sw_version version,
+                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 2u)
         return urwire__no_space(err, pos, 2u, cap);
@@ -2357,8 +2441,10 @@ static bool urwire__encode_singularity_info(const urwire_singularity_info *in, u
     return true;
 }
 
-static void urwire__visit_singularity_info(const urwire_singularity_info *in, const urwire_visitor *v)
+static void urwire__visit_singularity_info(const urwire_singularity_info *in, urwire_sw_version version,
+                                           const urwire_visitor *v)
 {
+    (void)version;
     v->on_uint(v->ctx, "singularity_severity", (uint64_t)in->singularity_severity);
     v->on_uint(v->ctx, "singularity_type", (uint64_t)in->singularity_type);
     if (in->extra.len)
@@ -2370,11 +2456,12 @@ static const urwire__span urwire__version_run0[] = {
     {"minor_version", 1, 1},
     {"bugfix_version", 2, 4},
     {"build_number", 6, 4},
+    {NULL, 0, 0},
 };
 
 /* Version message, the first message on both the primary and secondary interfaces. */
 static bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                  urwire_version_message *out, urwire_error *err)
+                                   urwire_version_message *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
@@ -2382,7 +2469,7 @@ static bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t end, u
     if (!urwire__read_prefixed(msg, &pos, end, 1u, true, "project_name", &out->project_name, err))
         return false;
     if (end - pos < 10u)
-        return urwire__short_in_run(err, urwire__version_run0, URWIRE__COUNT(urwire__version_run0), pos, end);
+        return urwire__short_in_run(err, urwire__version_run0, pos, end);
     p = msg + pos;
     out->major_version = urwire__u8(p);
     out->minor_version = urwire__u8(p + 1);
@@ -2397,9 +2484,11 @@ static bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t end, u
     return true;
 }
 
-static bool urwire__encode_version(const urwire_version_message *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_version(const urwire_version_message *in, urwire_sw_version version,
+                                   uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (!urwire__put_prefixed(out, cap, &pos, 1u, 127, in->project_name, "project_name", err))
         return false;
@@ -2419,8 +2508,10 @@ static bool urwire__encode_version(const urwire_version_message *in, uint8_t *ou
     return true;
 }
 
-static void urwire__visit_version(const urwire_version_message *in, const urwire_visitor *v)
+static void urwire__visit_version(const urwire_version_message *in, urwire_sw_version version,
+                                  const urwire_visitor *v)
 {
+    (void)version;
     v->on_text(v->ctx, "project_name", in->project_name);
     v->on_uint(v->ctx, "major_version", (uint64_t)in->major_version);
     v->on_uint(v->ctx, "minor_version", (uint64_t)in->minor_version);
@@ -2436,17 +2527,18 @@ static const urwire__span urwire__safety_mode_run0[] = {
     {"robot_message_argument", 4, 4},
     {"safety_mode_type", 8, 1},
     {"report_data_type", 9, 4},
+    {NULL, 0, 0},
 };
 
 /* Safety mode message. */
 static bool urwire__decode_safety_mode(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                      urwire_safety_mode_message *out, urwire_error *err)
+                                       urwire_safety_mode_message *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 13u)
-        return urwire__short_in_run(err, urwire__safety_mode_run0, URWIRE__COUNT(urwire__safety_mode_run0), pos, end);
+        return urwire__short_in_run(err, urwire__safety_mode_run0, pos, end);
     p = msg + pos;
     out->robot_message_code = urwire__i32(p);
     out->robot_message_argument = urwire__i32(p + 4);
@@ -2479,9 +2571,11 @@ static bool urwire__decode_safety_mode(const uint8_t *msg, size_t *at, size_t en
     return true;
 }
 
-static bool urwire__encode_safety_mode(const urwire_safety_mode_message *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_safety_mode(const urwire_safety_mode_message *in, urwire_sw_version version,
+                                       uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 13u)
         return urwire__no_space(err, pos, 13u, cap);
@@ -2517,8 +2611,10 @@ static bool urwire__encode_safety_mode(const urwire_safety_mode_message *in, uin
     return true;
 }
 
-static void urwire__visit_safety_mode(const urwire_safety_mode_message *in, const urwire_visitor *v)
+static void urwire__visit_safety_mode(const urwire_safety_mode_message *in, urwire_sw_version version,
+                                      const urwire_visitor *v)
 {
+    (void)version;
     v->on_int(v->ctx, "robot_message_code", (int64_t)in->robot_message_code);
     v->on_int(v->ctx, "robot_message_argument", (int64_t)in->robot_message_argument);
     v->on_uint(v->ctx, "safety_mode_type", (uint64_t)in->safety_mode_type);
@@ -2544,17 +2640,18 @@ static const urwire__span urwire__robot_comm_run0[] = {
     {"robot_message_report_level", 8, 4},
     {"robot_message_data_type", 12, 4},
     {"robot_message_data", 16, 4},
+    {NULL, 0, 0},
 };
 
 /* Robot comm message (an error code report). */
 static bool urwire__decode_robot_comm(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                     urwire_robot_comm_message *out, urwire_error *err)
+                                      urwire_robot_comm_message *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 20u)
-        return urwire__short_in_run(err, urwire__robot_comm_run0, URWIRE__COUNT(urwire__robot_comm_run0), pos, end);
+        return urwire__short_in_run(err, urwire__robot_comm_run0, pos, end);
     p = msg + pos;
     out->robot_message_code = urwire__i32(p);
     out->robot_message_argument = urwire__i32(p + 4);
@@ -2570,9 +2667,11 @@ static bool urwire__decode_robot_comm(const uint8_t *msg, size_t *at, size_t end
     return true;
 }
 
-static bool urwire__encode_robot_comm(const urwire_robot_comm_message *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_robot_comm(const urwire_robot_comm_message *in, urwire_sw_version version,
+                                      uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 20u)
         return urwire__no_space(err, pos, 20u, cap);
@@ -2591,8 +2690,10 @@ static bool urwire__encode_robot_comm(const urwire_robot_comm_message *in, uint8
     return true;
 }
 
-static void urwire__visit_robot_comm(const urwire_robot_comm_message *in, const urwire_visitor *v)
+static void urwire__visit_robot_comm(const urwire_robot_comm_message *in, urwire_sw_version version,
+                                     const urwire_visitor *v)
 {
+    (void)version;
     v->on_int(v->ctx, "robot_message_code", (int64_t)in->robot_message_code);
     v->on_int(v->ctx, "robot_message_argument", (int64_t)in->robot_message_argument);
     v->on_int(v->ctx, "robot_message_report_level", (int64_t)in->robot_message_report_level);
@@ -2606,17 +2707,18 @@ static void urwire__visit_robot_comm(const urwire_robot_comm_message *in, const 
 static const urwire__span urwire__key_run0[] = {
     {"robot_message_code", 0, 4},
     {"robot_message_argument", 4, 4},
+    {NULL, 0, 0},
 };
 
 /* Key message. */
 static bool urwire__decode_key(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                              urwire_key_message *out, urwire_error *err)
+                               urwire_key_message *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 8u)
-        return urwire__short_in_run(err, urwire__key_run0, URWIRE__COUNT(urwire__key_run0), pos, end);
+        return urwire__short_in_run(err, urwire__key_run0, pos, end);
     p = msg + pos;
     out->robot_message_code = urwire__i32(p);
     out->robot_message_argument = urwire__i32(p + 4);
@@ -2631,9 +2733,11 @@ static bool urwire__decode_key(const uint8_t *msg, size_t *at, size_t end, urwir
     return true;
 }
 
-static bool urwire__encode_key(const urwire_key_message *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_key(const urwire_key_message *in, urwire_sw_version version,
+                               uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 8u)
         return urwire__no_space(err, pos, 8u, cap);
@@ -2651,8 +2755,10 @@ static bool urwire__encode_key(const urwire_key_message *in, uint8_t *out, size_
     return true;
 }
 
-static void urwire__visit_key(const urwire_key_message *in, const urwire_visitor *v)
+static void urwire__visit_key(const urwire_key_message *in, urwire_sw_version version,
+                              const urwire_visitor *v)
 {
+    (void)version;
     v->on_int(v->ctx, "robot_message_code", (int64_t)in->robot_message_code);
     v->on_int(v->ctx, "robot_message_argument", (int64_t)in->robot_message_argument);
     v->on_text(v->ctx, "title", in->title);
@@ -2663,17 +2769,18 @@ static void urwire__visit_key(const urwire_key_message *in, const urwire_visitor
 
 static const urwire__span urwire__program_thread_run0[] = {
     {"label_id", 0, 4},
+    {NULL, 0, 0},
 };
 
 /* One entry of threads. */
 static bool urwire__decode_program_thread(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                         urwire_program_thread *out, urwire_error *err)
+                                          urwire_program_thread *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 4u)
-        return urwire__short_in_run(err, urwire__program_thread_run0, URWIRE__COUNT(urwire__program_thread_run0), pos, end);
+        return urwire__short_in_run(err, urwire__program_thread_run0, pos, end);
     p = msg + pos;
     out->label_id = urwire__i32(p);
     pos += 4u;
@@ -2685,9 +2792,11 @@ static bool urwire__decode_program_thread(const uint8_t *msg, size_t *at, size_t
     return true;
 }
 
-static bool urwire__encode_program_thread(const urwire_program_thread *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_program_thread(const urwire_program_thread *in, urwire_sw_version version,
+                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 4u)
         return urwire__no_space(err, pos, 4u, cap);
@@ -2713,11 +2822,13 @@ bool urwire_next_program_thread(urwire_seq *seq, urwire_program_thread *out)
 
 bool urwire_append_program_thread(const urwire_program_thread *in, uint8_t *out, size_t cap, size_t *pos, urwire_error *err)
 {
-    return urwire__encode_program_thread(in, out, cap, pos, err);
+    return urwire__encode_program_thread(in, URWIRE_DEFAULT_VERSION, out, cap, pos, err);
 }
 
-static void urwire__visit_program_thread(const urwire_program_thread *in, const urwire_visitor *v)
+static void urwire__visit_program_thread(const urwire_program_thread *in, urwire_sw_version version,
+                                         const urwire_visitor *v)
 {
+    (void)version;
     v->on_int(v->ctx, "label_id", (int64_t)in->label_id);
     v->on_text(v->ctx, "label_name", in->label_name);
     v->on_text(v->ctx, "thread_name", in->thread_name);
@@ -2725,7 +2836,7 @@ static void urwire__visit_program_thread(const urwire_program_thread *in, const 
 
 /* Program threads message, one entry per running program thread. */
 static bool urwire__decode_program_threads(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                          urwire_program_threads_message *out, urwire_error *err)
+                                           urwire_program_threads_message *out, urwire_error *err)
 {
     size_t pos = *at;
     (void)version;
@@ -2743,9 +2854,11 @@ static bool urwire__decode_program_threads(const uint8_t *msg, size_t *at, size_
     return true;
 }
 
-static bool urwire__encode_program_threads(const urwire_program_threads_message *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_program_threads(const urwire_program_threads_message *in, urwire_sw_version version,
+                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     if (!urwire__put_view(out, cap, &pos, urwire__seq_bytes(&in->threads), err))
         return false;
     if (!urwire__put_view(out, cap, &pos, in->extra, err))
@@ -2754,15 +2867,17 @@ static bool urwire__encode_program_threads(const urwire_program_threads_message 
     return true;
 }
 
-static void urwire__visit_program_threads(const urwire_program_threads_message *in, const urwire_visitor *v)
+static void urwire__visit_program_threads(const urwire_program_threads_message *in, urwire_sw_version version,
+                                          const urwire_visitor *v)
 {
+    (void)version;
     {
         urwire_seq seq = in->threads;
         urwire_program_thread item;
         v->begin_array(v->ctx, "threads");
         while (urwire_next_program_thread(&seq, &item)) {
             v->begin_object(v->ctx, NULL);
-            urwire__visit_program_thread(&item, v);
+            urwire__visit_program_thread(&item, version, v);
             v->end_object(v->ctx);
         }
         v->end_array(v->ctx);
@@ -2777,17 +2892,18 @@ static const urwire__span urwire__popup_run0[] = {
     {"warning", 8, 1},
     {"error", 9, 1},
     {"blocking", 10, 1},
+    {NULL, 0, 0},
 };
 
 /* Popup message. */
 static bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                urwire_popup_message *out, urwire_error *err)
+                                 urwire_popup_message *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 11u)
-        return urwire__short_in_run(err, urwire__popup_run0, URWIRE__COUNT(urwire__popup_run0), pos, end);
+        return urwire__short_in_run(err, urwire__popup_run0, pos, end);
     p = msg + pos;
     out->request_id = urwire__u32(p);
     out->requested_type = urwire__u32(p + 4);
@@ -2805,9 +2921,11 @@ static bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t end, urw
     return true;
 }
 
-static bool urwire__encode_popup(const urwire_popup_message *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_popup(const urwire_popup_message *in, urwire_sw_version version,
+                                 uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 11u)
         return urwire__no_space(err, pos, 11u, cap);
@@ -2828,8 +2946,10 @@ static bool urwire__encode_popup(const urwire_popup_message *in, uint8_t *out, s
     return true;
 }
 
-static void urwire__visit_popup(const urwire_popup_message *in, const urwire_visitor *v)
+static void urwire__visit_popup(const urwire_popup_message *in, urwire_sw_version version,
+                                const urwire_visitor *v)
 {
+    (void)version;
     v->on_uint(v->ctx, "request_id", (uint64_t)in->request_id);
     v->on_uint(v->ctx, "requested_type", (uint64_t)in->requested_type);
     v->on_bool(v->ctx, "warning", in->warning != 0);
@@ -2844,17 +2964,18 @@ static void urwire__visit_popup(const urwire_popup_message *in, const urwire_vis
 static const urwire__span urwire__request_value_run0[] = {
     {"request_id", 0, 4},
     {"requested_type", 4, 4},
+    {NULL, 0, 0},
 };
 
 /* Request value message. */
 static bool urwire__decode_request_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                        urwire_request_value_message *out, urwire_error *err)
+                                         urwire_request_value_message *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 8u)
-        return urwire__short_in_run(err, urwire__request_value_run0, URWIRE__COUNT(urwire__request_value_run0), pos, end);
+        return urwire__short_in_run(err, urwire__request_value_run0, pos, end);
     p = msg + pos;
     out->request_id = urwire__u32(p);
     out->requested_type = urwire__u32(p + 4);
@@ -2867,9 +2988,11 @@ static bool urwire__decode_request_value(const uint8_t *msg, size_t *at, size_t 
     return true;
 }
 
-static bool urwire__encode_request_value(const urwire_request_value_message *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_request_value(const urwire_request_value_message *in, urwire_sw_version version,
+                                         uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 8u)
         return urwire__no_space(err, pos, 8u, cap);
@@ -2885,8 +3008,10 @@ static bool urwire__encode_request_value(const urwire_request_value_message *in,
     return true;
 }
 
-static void urwire__visit_request_value(const urwire_request_value_message *in, const urwire_visitor *v)
+static void urwire__visit_request_value(const urwire_request_value_message *in, urwire_sw_version version,
+                                        const urwire_visitor *v)
 {
+    (void)version;
     v->on_uint(v->ctx, "request_id", (uint64_t)in->request_id);
     v->on_uint(v->ctx, "requested_type", (uint64_t)in->requested_type);
     v->on_text(v->ctx, "text", in->text);
@@ -2896,7 +3021,7 @@ static void urwire__visit_request_value(const urwire_request_value_message *in, 
 
 /* Text message. */
 static bool urwire__decode_text(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                               urwire_text_message *out, urwire_error *err)
+                                urwire_text_message *out, urwire_error *err)
 {
     size_t pos = *at;
     (void)version;
@@ -2909,9 +3034,11 @@ static bool urwire__decode_text(const uint8_t *msg, size_t *at, size_t end, urwi
     return true;
 }
 
-static bool urwire__encode_text(const urwire_text_message *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_text(const urwire_text_message *in, urwire_sw_version version,
+                                uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     if (!urwire__put_view(out, cap, &pos, in->text, err))
         return false;
     if (!urwire__put_view(out, cap, &pos, in->extra, err))
@@ -2920,8 +3047,10 @@ static bool urwire__encode_text(const urwire_text_message *in, uint8_t *out, siz
     return true;
 }
 
-static void urwire__visit_text(const urwire_text_message *in, const urwire_visitor *v)
+static void urwire__visit_text(const urwire_text_message *in, urwire_sw_version version,
+                               const urwire_visitor *v)
 {
+    (void)version;
     v->on_text(v->ctx, "text", in->text);
     if (in->extra.len)
         v->on_hex(v->ctx, "extra", in->extra);
@@ -2930,17 +3059,18 @@ static void urwire__visit_text(const urwire_text_message *in, const urwire_visit
 static const urwire__span urwire__runtime_exception_run0[] = {
     {"script_line_number", 0, 4},
     {"script_column_number", 4, 4},
+    {NULL, 0, 0},
 };
 
 /* Runtime exception message. */
 static bool urwire__decode_runtime_exception(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                            urwire_runtime_exception_message *out, urwire_error *err)
+                                             urwire_runtime_exception_message *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 8u)
-        return urwire__short_in_run(err, urwire__runtime_exception_run0, URWIRE__COUNT(urwire__runtime_exception_run0), pos, end);
+        return urwire__short_in_run(err, urwire__runtime_exception_run0, pos, end);
     p = msg + pos;
     out->script_line_number = urwire__i32(p);
     out->script_column_number = urwire__i32(p + 4);
@@ -2953,9 +3083,11 @@ static bool urwire__decode_runtime_exception(const uint8_t *msg, size_t *at, siz
     return true;
 }
 
-static bool urwire__encode_runtime_exception(const urwire_runtime_exception_message *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_runtime_exception(const urwire_runtime_exception_message *in, urwire_sw_version version,
+                                             uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 8u)
         return urwire__no_space(err, pos, 8u, cap);
@@ -2971,8 +3103,10 @@ static bool urwire__encode_runtime_exception(const urwire_runtime_exception_mess
     return true;
 }
 
-static void urwire__visit_runtime_exception(const urwire_runtime_exception_message *in, const urwire_visitor *v)
+static void urwire__visit_runtime_exception(const urwire_runtime_exception_message *in, urwire_sw_version version,
+                                            const urwire_visitor *v)
 {
+    (void)version;
     v->on_int(v->ctx, "script_line_number", (int64_t)in->script_line_number);
     v->on_int(v->ctx, "script_column_number", (int64_t)in->script_column_number);
     v->on_text(v->ctx, "text", in->text);
@@ -2982,17 +3116,18 @@ static void urwire__visit_runtime_exception(const urwire_runtime_exception_messa
 
 static const urwire__span urwire__global_variables_setup_run0[] = {
     {"start_index", 0, 2},
+    {NULL, 0, 0},
 };
 
 /* Global variables setup message. */
 static bool urwire__decode_global_variables_setup(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                                 urwire_global_variables_setup_message *out, urwire_error *err)
+                                                  urwire_global_variables_setup_message *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 2u)
-        return urwire__short_in_run(err, urwire__global_variables_setup_run0, URWIRE__COUNT(urwire__global_variables_setup_run0), pos, end);
+        return urwire__short_in_run(err, urwire__global_variables_setup_run0, pos, end);
     p = msg + pos;
     out->start_index = urwire__u16(p);
     pos += 2u;
@@ -3003,9 +3138,11 @@ static bool urwire__decode_global_variables_setup(const uint8_t *msg, size_t *at
     return true;
 }
 
-static bool urwire__encode_global_variables_setup(const urwire_global_variables_setup_message *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_global_variables_setup(const urwire_global_variables_setup_message *in, urwire_sw_version version,
+                                                  uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 2u)
         return urwire__no_space(err, pos, 2u, cap);
@@ -3020,8 +3157,10 @@ static bool urwire__encode_global_variables_setup(const urwire_global_variables_
     return true;
 }
 
-static void urwire__visit_global_variables_setup(const urwire_global_variables_setup_message *in, const urwire_visitor *v)
+static void urwire__visit_global_variables_setup(const urwire_global_variables_setup_message *in, urwire_sw_version version,
+                                                 const urwire_visitor *v)
 {
+    (void)version;
     v->on_uint(v->ctx, "start_index", (uint64_t)in->start_index);
     urwire__visit_texts(&in->variable_names, "variable_names", v);
     if (in->extra.len)
@@ -3030,17 +3169,18 @@ static void urwire__visit_global_variables_setup(const urwire_global_variables_s
 
 static const urwire__span urwire__global_variables_update_run0[] = {
     {"start_index", 0, 2},
+    {NULL, 0, 0},
 };
 
 /* Global variables update message. */
 static bool urwire__decode_global_variables_update(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                                  urwire_global_variables_update_message *out, urwire_error *err)
+                                                   urwire_global_variables_update_message *out, urwire_error *err)
 {
     size_t pos = *at;
     const uint8_t *p;
     (void)version;
     if (end - pos < 2u)
-        return urwire__short_in_run(err, urwire__global_variables_update_run0, URWIRE__COUNT(urwire__global_variables_update_run0), pos, end);
+        return urwire__short_in_run(err, urwire__global_variables_update_run0, pos, end);
     p = msg + pos;
     out->start_index = urwire__u16(p);
     pos += 2u;
@@ -3052,9 +3192,11 @@ static bool urwire__decode_global_variables_update(const uint8_t *msg, size_t *a
     return true;
 }
 
-static bool urwire__encode_global_variables_update(const urwire_global_variables_update_message *in, uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_global_variables_update(const urwire_global_variables_update_message *in, urwire_sw_version version,
+                                                   uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     size_t pos = *at;
+    (void)version;
     uint8_t *p;
     if (cap - pos < 2u)
         return urwire__no_space(err, pos, 2u, cap);
@@ -3069,8 +3211,10 @@ static bool urwire__encode_global_variables_update(const urwire_global_variables
     return true;
 }
 
-static void urwire__visit_global_variables_update(const urwire_global_variables_update_message *in, const urwire_visitor *v)
+static void urwire__visit_global_variables_update(const urwire_global_variables_update_message *in, urwire_sw_version version,
+                                                  const urwire_visitor *v)
 {
+    (void)version;
     v->on_uint(v->ctx, "start_index", (uint64_t)in->start_index);
     urwire__visit_values(&in->variables, "variables", v);
     if (in->extra.len)
@@ -3089,6 +3233,7 @@ static void urwire__init_message(urwire_message *out, const uint8_t *bytes, size
     out->error.path[0] = '\0';
     out->raw = urwire__view(bytes, 0);
     out->packages = urwire__seq(bytes, len, version, -1);
+    out->version = version;
 }
 
 static void urwire__fail_message(urwire_message *out, size_t raw_from)
@@ -3114,8 +3259,11 @@ static bool urwire__frame_package(const uint8_t *msg, size_t pos, size_t end, si
     return true;
 }
 
-/* Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in any order, each framed by its own length.
- * Frames the sub-packages by their lengths; each is decoded when iterated. */
+/*
+ * Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages,
+ * in any order, each framed by its own length.
+ * Frames the sub-packages by their lengths; each is decoded when iterated.
+ */
 static bool urwire__decode_robot_state(urwire_message *out, urwire_sw_version version)
 {
     const uint8_t *msg = out->bytes;
@@ -3198,6 +3346,8 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
 {
     const uint8_t *msg = seq->msg;
     size_t pos = seq->pos, body, stop, size;
+    urwire_sw_version v = seq->version;
+    urwire_error *err = &out->error;
     if (seq->count == 0 || seq->end - pos < URWIRE_PACKAGE_HEADER_SIZE)
         return false;
     size = urwire__u32(msg + pos);
@@ -3206,6 +3356,7 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
     body = pos + URWIRE_PACKAGE_HEADER_SIZE;
     stop = pos + size;
     out->type = msg[pos + 4];
+    out->version = seq->version;
     out->offset = pos;
     out->raw = urwire__view(msg + body, stop - body);
     out->known = true;
@@ -3213,46 +3364,46 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
     out->error.status = URWIRE_OK;
     switch (out->type) {
     case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:
-        out->failed = !urwire__decode_robot_mode_data(msg, &body, stop, seq->version, &out->as.robot_mode_data, &out->error);
+        out->failed = !urwire__decode_robot_mode_data(msg, &body, stop, v, &out->as.robot_mode_data, err);
         break;
     case URWIRE_PACKAGE_TYPE_JOINT_DATA:
-        out->failed = !urwire__decode_joint_data(msg, &body, stop, seq->version, &out->as.joint_data, &out->error);
+        out->failed = !urwire__decode_joint_data(msg, &body, stop, v, &out->as.joint_data, err);
         break;
     case URWIRE_PACKAGE_TYPE_TOOL_DATA:
-        out->failed = !urwire__decode_tool_data(msg, &body, stop, seq->version, &out->as.tool_data, &out->error);
+        out->failed = !urwire__decode_tool_data(msg, &body, stop, v, &out->as.tool_data, err);
         break;
     case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA:
-        out->failed = !urwire__decode_masterboard_data(msg, &body, stop, seq->version, &out->as.masterboard_data, &out->error);
+        out->failed = !urwire__decode_masterboard_data(msg, &body, stop, v, &out->as.masterboard_data, err);
         break;
     case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO:
-        out->failed = !urwire__decode_cartesian_info(msg, &body, stop, seq->version, &out->as.cartesian_info, &out->error);
+        out->failed = !urwire__decode_cartesian_info(msg, &body, stop, v, &out->as.cartesian_info, err);
         break;
     case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO:
-        out->failed = !urwire__decode_kinematics_info(msg, &body, stop, seq->version, &out->as.kinematics_info, &out->error);
+        out->failed = !urwire__decode_kinematics_info(msg, &body, stop, v, &out->as.kinematics_info, err);
         break;
     case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA:
-        out->failed = !urwire__decode_configuration_data(msg, &body, stop, seq->version, &out->as.configuration_data, &out->error);
+        out->failed = !urwire__decode_configuration_data(msg, &body, stop, v, &out->as.configuration_data, err);
         break;
     case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA:
-        out->failed = !urwire__decode_force_mode_data(msg, &body, stop, seq->version, &out->as.force_mode_data, &out->error);
+        out->failed = !urwire__decode_force_mode_data(msg, &body, stop, v, &out->as.force_mode_data, err);
         break;
     case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO:
-        out->failed = !urwire__decode_additional_info(msg, &body, stop, seq->version, &out->as.additional_info, &out->error);
+        out->failed = !urwire__decode_additional_info(msg, &body, stop, v, &out->as.additional_info, err);
         break;
     case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA:
-        out->failed = !urwire__decode_calibration_data(msg, &body, stop, seq->version, &out->as.calibration_data, &out->error);
+        out->failed = !urwire__decode_calibration_data(msg, &body, stop, v, &out->as.calibration_data, err);
         break;
     case URWIRE_PACKAGE_TYPE_SAFETY_DATA:
-        out->failed = !urwire__decode_safety_data(msg, &body, stop, seq->version, &out->as.safety_data, &out->error);
+        out->failed = !urwire__decode_safety_data(msg, &body, stop, v, &out->as.safety_data, err);
         break;
     case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO:
-        out->failed = !urwire__decode_tool_comm_info(msg, &body, stop, seq->version, &out->as.tool_comm_info, &out->error);
+        out->failed = !urwire__decode_tool_comm_info(msg, &body, stop, v, &out->as.tool_comm_info, err);
         break;
     case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO:
-        out->failed = !urwire__decode_tool_mode_info(msg, &body, stop, seq->version, &out->as.tool_mode_info, &out->error);
+        out->failed = !urwire__decode_tool_mode_info(msg, &body, stop, v, &out->as.tool_mode_info, err);
         break;
     case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO:
-        out->failed = !urwire__decode_singularity_info(msg, &body, stop, seq->version, &out->as.singularity_info, &out->error);
+        out->failed = !urwire__decode_singularity_info(msg, &body, stop, v, &out->as.singularity_info, err);
         break;
     default:
         out->known = false;
@@ -3315,17 +3466,21 @@ static const urwire__span urwire__robot_message_header[] = {
     {"timestamp", 5, 8},
     {"source", 13, 1},
     {"robot_message_type", 14, 1},
+    {NULL, 0, 0},
 };
 
-/* Robot message. The version message goes to every client, the others to primary clients only. */
+/*
+ * Robot message. The version message goes to every client, the others to primary clients only.
+ */
 static bool urwire__decode_robot_message(urwire_message *out, urwire_sw_version version)
 {
     const uint8_t *msg = out->bytes;
     size_t pos = 15, end = out->length;
     urwire_robot_message_header *h = &out->header.robot_message;
+    urwire_error *err = &out->error;
     if (end < 15u) {
         out->kind = URWIRE_KIND_UNKNOWN_MESSAGE;
-        urwire__short_in_run(&out->error, urwire__robot_message_header, URWIRE__COUNT(urwire__robot_message_header), 0, end);
+        urwire__short_in_run(err, urwire__robot_message_header, 0, end);
         urwire__fail_message(out, URWIRE_HEADER_SIZE);
         return false;
     }
@@ -3335,63 +3490,63 @@ static bool urwire__decode_robot_message(urwire_message *out, urwire_sw_version 
     switch (h->robot_message_type) {
     case URWIRE_ROBOT_MESSAGE_TYPE_VERSION:
         out->kind = URWIRE_KIND_VERSION;
-        if (!urwire__decode_version(msg, &pos, end, version, &out->as.version, &out->error)) {
+        if (!urwire__decode_version(msg, &pos, end, version, &out->as.version, err)) {
             urwire__fail_message(out, 15);
             return false;
         }
         return true;
     case URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE:
         out->kind = URWIRE_KIND_SAFETY_MODE;
-        if (!urwire__decode_safety_mode(msg, &pos, end, version, &out->as.safety_mode, &out->error)) {
+        if (!urwire__decode_safety_mode(msg, &pos, end, version, &out->as.safety_mode, err)) {
             urwire__fail_message(out, 15);
             return false;
         }
         return true;
     case URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE:
         out->kind = URWIRE_KIND_ROBOT_COMM;
-        if (!urwire__decode_robot_comm(msg, &pos, end, version, &out->as.robot_comm, &out->error)) {
+        if (!urwire__decode_robot_comm(msg, &pos, end, version, &out->as.robot_comm, err)) {
             urwire__fail_message(out, 15);
             return false;
         }
         return true;
     case URWIRE_ROBOT_MESSAGE_TYPE_KEY:
         out->kind = URWIRE_KIND_KEY;
-        if (!urwire__decode_key(msg, &pos, end, version, &out->as.key, &out->error)) {
+        if (!urwire__decode_key(msg, &pos, end, version, &out->as.key, err)) {
             urwire__fail_message(out, 15);
             return false;
         }
         return true;
     case URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS:
         out->kind = URWIRE_KIND_PROGRAM_THREADS;
-        if (!urwire__decode_program_threads(msg, &pos, end, version, &out->as.program_threads, &out->error)) {
+        if (!urwire__decode_program_threads(msg, &pos, end, version, &out->as.program_threads, err)) {
             urwire__fail_message(out, 15);
             return false;
         }
         return true;
     case URWIRE_ROBOT_MESSAGE_TYPE_POPUP:
         out->kind = URWIRE_KIND_POPUP;
-        if (!urwire__decode_popup(msg, &pos, end, version, &out->as.popup, &out->error)) {
+        if (!urwire__decode_popup(msg, &pos, end, version, &out->as.popup, err)) {
             urwire__fail_message(out, 15);
             return false;
         }
         return true;
     case URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE:
         out->kind = URWIRE_KIND_REQUEST_VALUE;
-        if (!urwire__decode_request_value(msg, &pos, end, version, &out->as.request_value, &out->error)) {
+        if (!urwire__decode_request_value(msg, &pos, end, version, &out->as.request_value, err)) {
             urwire__fail_message(out, 15);
             return false;
         }
         return true;
     case URWIRE_ROBOT_MESSAGE_TYPE_TEXT:
         out->kind = URWIRE_KIND_TEXT;
-        if (!urwire__decode_text(msg, &pos, end, version, &out->as.text, &out->error)) {
+        if (!urwire__decode_text(msg, &pos, end, version, &out->as.text, err)) {
             urwire__fail_message(out, 15);
             return false;
         }
         return true;
     case URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION:
         out->kind = URWIRE_KIND_RUNTIME_EXCEPTION;
-        if (!urwire__decode_runtime_exception(msg, &pos, end, version, &out->as.runtime_exception, &out->error)) {
+        if (!urwire__decode_runtime_exception(msg, &pos, end, version, &out->as.runtime_exception, err)) {
             urwire__fail_message(out, 15);
             return false;
         }
@@ -3421,17 +3576,22 @@ static size_t urwire__put_robot_message_header(const urwire_robot_message_header
 static const urwire__span urwire__program_state_header[] = {
     {"timestamp", 5, 8},
     {"robot_message_type", 13, 1},
+    {NULL, 0, 0},
 };
 
-/* Program-state message, sent to primary clients only. There is NO source byte; the subtype follows the timestamp. */
+/*
+ * Program-state message, sent to primary clients only. There is NO source byte; the subtype
+ * follows the timestamp.
+ */
 static bool urwire__decode_program_state(urwire_message *out, urwire_sw_version version)
 {
     const uint8_t *msg = out->bytes;
     size_t pos = 14, end = out->length;
     urwire_program_state_header *h = &out->header.program_state;
+    urwire_error *err = &out->error;
     if (end < 14u) {
         out->kind = URWIRE_KIND_UNKNOWN_MESSAGE;
-        urwire__short_in_run(&out->error, urwire__program_state_header, URWIRE__COUNT(urwire__program_state_header), 0, end);
+        urwire__short_in_run(err, urwire__program_state_header, 0, end);
         urwire__fail_message(out, URWIRE_HEADER_SIZE);
         return false;
     }
@@ -3440,14 +3600,14 @@ static bool urwire__decode_program_state(urwire_message *out, urwire_sw_version 
     switch (h->robot_message_type) {
     case URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP:
         out->kind = URWIRE_KIND_GLOBAL_VARIABLES_SETUP;
-        if (!urwire__decode_global_variables_setup(msg, &pos, end, version, &out->as.global_variables_setup, &out->error)) {
+        if (!urwire__decode_global_variables_setup(msg, &pos, end, version, &out->as.global_variables_setup, err)) {
             urwire__fail_message(out, 14);
             return false;
         }
         return true;
     case URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE:
         out->kind = URWIRE_KIND_GLOBAL_VARIABLES_UPDATE;
-        if (!urwire__decode_global_variables_update(msg, &pos, end, version, &out->as.global_variables_update, &out->error)) {
+        if (!urwire__decode_global_variables_update(msg, &pos, end, version, &out->as.global_variables_update, err)) {
             urwire__fail_message(out, 14);
             return false;
         }
@@ -3534,46 +3694,46 @@ size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap
     } else {
         switch (pkg->type) {
         case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:
-            ok = urwire__encode_robot_mode_data(&pkg->as.robot_mode_data, out, cap, &pos, err);
+            ok = urwire__encode_robot_mode_data(&pkg->as.robot_mode_data, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_JOINT_DATA:
-            ok = urwire__encode_joint_data(&pkg->as.joint_data, out, cap, &pos, err);
+            ok = urwire__encode_joint_data(&pkg->as.joint_data, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_TOOL_DATA:
-            ok = urwire__encode_tool_data(&pkg->as.tool_data, out, cap, &pos, err);
+            ok = urwire__encode_tool_data(&pkg->as.tool_data, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA:
-            ok = urwire__encode_masterboard_data(&pkg->as.masterboard_data, out, cap, &pos, err);
+            ok = urwire__encode_masterboard_data(&pkg->as.masterboard_data, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO:
-            ok = urwire__encode_cartesian_info(&pkg->as.cartesian_info, out, cap, &pos, err);
+            ok = urwire__encode_cartesian_info(&pkg->as.cartesian_info, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO:
-            ok = urwire__encode_kinematics_info(&pkg->as.kinematics_info, out, cap, &pos, err);
+            ok = urwire__encode_kinematics_info(&pkg->as.kinematics_info, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA:
-            ok = urwire__encode_configuration_data(&pkg->as.configuration_data, out, cap, &pos, err);
+            ok = urwire__encode_configuration_data(&pkg->as.configuration_data, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA:
-            ok = urwire__encode_force_mode_data(&pkg->as.force_mode_data, out, cap, &pos, err);
+            ok = urwire__encode_force_mode_data(&pkg->as.force_mode_data, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO:
-            ok = urwire__encode_additional_info(&pkg->as.additional_info, out, cap, &pos, err);
+            ok = urwire__encode_additional_info(&pkg->as.additional_info, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA:
-            ok = urwire__encode_calibration_data(&pkg->as.calibration_data, out, cap, &pos, err);
+            ok = urwire__encode_calibration_data(&pkg->as.calibration_data, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_SAFETY_DATA:
-            ok = urwire__encode_safety_data(&pkg->as.safety_data, out, cap, &pos, err);
+            ok = urwire__encode_safety_data(&pkg->as.safety_data, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO:
-            ok = urwire__encode_tool_comm_info(&pkg->as.tool_comm_info, out, cap, &pos, err);
+            ok = urwire__encode_tool_comm_info(&pkg->as.tool_comm_info, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO:
-            ok = urwire__encode_tool_mode_info(&pkg->as.tool_mode_info, out, cap, &pos, err);
+            ok = urwire__encode_tool_mode_info(&pkg->as.tool_mode_info, pkg->version, out, cap, &pos, err);
             break;
         case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO:
-            ok = urwire__encode_singularity_info(&pkg->as.singularity_info, out, cap, &pos, err);
+            ok = urwire__encode_singularity_info(&pkg->as.singularity_info, pkg->version, out, cap, &pos, err);
             break;
         default:
             ok = urwire__put_view(out, cap, &pos, pkg->raw, err);
@@ -3627,31 +3787,31 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
         }
         switch (m->kind) {
         case URWIRE_KIND_VERSION:
-            ok = urwire__encode_version(&m->as.version, out, cap, &pos, err);
+            ok = urwire__encode_version(&m->as.version, m->version, out, cap, &pos, err);
             break;
         case URWIRE_KIND_SAFETY_MODE:
-            ok = urwire__encode_safety_mode(&m->as.safety_mode, out, cap, &pos, err);
+            ok = urwire__encode_safety_mode(&m->as.safety_mode, m->version, out, cap, &pos, err);
             break;
         case URWIRE_KIND_ROBOT_COMM:
-            ok = urwire__encode_robot_comm(&m->as.robot_comm, out, cap, &pos, err);
+            ok = urwire__encode_robot_comm(&m->as.robot_comm, m->version, out, cap, &pos, err);
             break;
         case URWIRE_KIND_KEY:
-            ok = urwire__encode_key(&m->as.key, out, cap, &pos, err);
+            ok = urwire__encode_key(&m->as.key, m->version, out, cap, &pos, err);
             break;
         case URWIRE_KIND_PROGRAM_THREADS:
-            ok = urwire__encode_program_threads(&m->as.program_threads, out, cap, &pos, err);
+            ok = urwire__encode_program_threads(&m->as.program_threads, m->version, out, cap, &pos, err);
             break;
         case URWIRE_KIND_POPUP:
-            ok = urwire__encode_popup(&m->as.popup, out, cap, &pos, err);
+            ok = urwire__encode_popup(&m->as.popup, m->version, out, cap, &pos, err);
             break;
         case URWIRE_KIND_REQUEST_VALUE:
-            ok = urwire__encode_request_value(&m->as.request_value, out, cap, &pos, err);
+            ok = urwire__encode_request_value(&m->as.request_value, m->version, out, cap, &pos, err);
             break;
         case URWIRE_KIND_TEXT:
-            ok = urwire__encode_text(&m->as.text, out, cap, &pos, err);
+            ok = urwire__encode_text(&m->as.text, m->version, out, cap, &pos, err);
             break;
         case URWIRE_KIND_RUNTIME_EXCEPTION:
-            ok = urwire__encode_runtime_exception(&m->as.runtime_exception, out, cap, &pos, err);
+            ok = urwire__encode_runtime_exception(&m->as.runtime_exception, m->version, out, cap, &pos, err);
             break;
         default:
             break;
@@ -3670,10 +3830,10 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
         }
         switch (m->kind) {
         case URWIRE_KIND_GLOBAL_VARIABLES_SETUP:
-            ok = urwire__encode_global_variables_setup(&m->as.global_variables_setup, out, cap, &pos, err);
+            ok = urwire__encode_global_variables_setup(&m->as.global_variables_setup, m->version, out, cap, &pos, err);
             break;
         case URWIRE_KIND_GLOBAL_VARIABLES_UPDATE:
-            ok = urwire__encode_global_variables_update(&m->as.global_variables_update, out, cap, &pos, err);
+            ok = urwire__encode_global_variables_update(&m->as.global_variables_update, m->version, out, cap, &pos, err);
             break;
         default:
             break;
@@ -3716,7 +3876,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_robot_mode_data(&pkg->as.robot_mode_data, v);
+            urwire__visit_robot_mode_data(&pkg->as.robot_mode_data, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_JOINT_DATA:
@@ -3725,7 +3885,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_joint_data(&pkg->as.joint_data, v);
+            urwire__visit_joint_data(&pkg->as.joint_data, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_TOOL_DATA:
@@ -3734,7 +3894,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_tool_data(&pkg->as.tool_data, v);
+            urwire__visit_tool_data(&pkg->as.tool_data, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA:
@@ -3743,7 +3903,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_masterboard_data(&pkg->as.masterboard_data, v);
+            urwire__visit_masterboard_data(&pkg->as.masterboard_data, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO:
@@ -3752,7 +3912,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_cartesian_info(&pkg->as.cartesian_info, v);
+            urwire__visit_cartesian_info(&pkg->as.cartesian_info, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO:
@@ -3761,7 +3921,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_kinematics_info(&pkg->as.kinematics_info, v);
+            urwire__visit_kinematics_info(&pkg->as.kinematics_info, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA:
@@ -3770,7 +3930,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_configuration_data(&pkg->as.configuration_data, v);
+            urwire__visit_configuration_data(&pkg->as.configuration_data, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA:
@@ -3779,7 +3939,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_force_mode_data(&pkg->as.force_mode_data, v);
+            urwire__visit_force_mode_data(&pkg->as.force_mode_data, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO:
@@ -3788,7 +3948,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_additional_info(&pkg->as.additional_info, v);
+            urwire__visit_additional_info(&pkg->as.additional_info, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA:
@@ -3797,7 +3957,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_calibration_data(&pkg->as.calibration_data, v);
+            urwire__visit_calibration_data(&pkg->as.calibration_data, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_SAFETY_DATA:
@@ -3806,7 +3966,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_safety_data(&pkg->as.safety_data, v);
+            urwire__visit_safety_data(&pkg->as.safety_data, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO:
@@ -3815,7 +3975,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_tool_comm_info(&pkg->as.tool_comm_info, v);
+            urwire__visit_tool_comm_info(&pkg->as.tool_comm_info, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO:
@@ -3824,7 +3984,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_tool_mode_info(&pkg->as.tool_mode_info, v);
+            urwire__visit_tool_mode_info(&pkg->as.tool_mode_info, pkg->version, v);
         }
         break;
     case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO:
@@ -3833,7 +3993,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
             urwire__visit_error(&pkg->error, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
         } else {
-            urwire__visit_singularity_info(&pkg->as.singularity_info, v);
+            urwire__visit_singularity_info(&pkg->as.singularity_info, pkg->version, v);
         }
         break;
     default:
@@ -3877,7 +4037,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             urwire__visit_error(&m->error, v);
             v->on_hex(v->ctx, "raw", m->raw);
         } else {
-            urwire__visit_version(&m->as.version, v);
+            urwire__visit_version(&m->as.version, m->version, v);
         }
         break;
     case URWIRE_KIND_SAFETY_MODE:
@@ -3887,7 +4047,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             urwire__visit_error(&m->error, v);
             v->on_hex(v->ctx, "raw", m->raw);
         } else {
-            urwire__visit_safety_mode(&m->as.safety_mode, v);
+            urwire__visit_safety_mode(&m->as.safety_mode, m->version, v);
         }
         break;
     case URWIRE_KIND_ROBOT_COMM:
@@ -3897,7 +4057,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             urwire__visit_error(&m->error, v);
             v->on_hex(v->ctx, "raw", m->raw);
         } else {
-            urwire__visit_robot_comm(&m->as.robot_comm, v);
+            urwire__visit_robot_comm(&m->as.robot_comm, m->version, v);
         }
         break;
     case URWIRE_KIND_KEY:
@@ -3907,7 +4067,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             urwire__visit_error(&m->error, v);
             v->on_hex(v->ctx, "raw", m->raw);
         } else {
-            urwire__visit_key(&m->as.key, v);
+            urwire__visit_key(&m->as.key, m->version, v);
         }
         break;
     case URWIRE_KIND_PROGRAM_THREADS:
@@ -3917,7 +4077,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             urwire__visit_error(&m->error, v);
             v->on_hex(v->ctx, "raw", m->raw);
         } else {
-            urwire__visit_program_threads(&m->as.program_threads, v);
+            urwire__visit_program_threads(&m->as.program_threads, m->version, v);
         }
         break;
     case URWIRE_KIND_POPUP:
@@ -3927,7 +4087,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             urwire__visit_error(&m->error, v);
             v->on_hex(v->ctx, "raw", m->raw);
         } else {
-            urwire__visit_popup(&m->as.popup, v);
+            urwire__visit_popup(&m->as.popup, m->version, v);
         }
         break;
     case URWIRE_KIND_REQUEST_VALUE:
@@ -3937,7 +4097,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             urwire__visit_error(&m->error, v);
             v->on_hex(v->ctx, "raw", m->raw);
         } else {
-            urwire__visit_request_value(&m->as.request_value, v);
+            urwire__visit_request_value(&m->as.request_value, m->version, v);
         }
         break;
     case URWIRE_KIND_TEXT:
@@ -3947,7 +4107,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             urwire__visit_error(&m->error, v);
             v->on_hex(v->ctx, "raw", m->raw);
         } else {
-            urwire__visit_text(&m->as.text, v);
+            urwire__visit_text(&m->as.text, m->version, v);
         }
         break;
     case URWIRE_KIND_RUNTIME_EXCEPTION:
@@ -3957,7 +4117,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             urwire__visit_error(&m->error, v);
             v->on_hex(v->ctx, "raw", m->raw);
         } else {
-            urwire__visit_runtime_exception(&m->as.runtime_exception, v);
+            urwire__visit_runtime_exception(&m->as.runtime_exception, m->version, v);
         }
         break;
     case URWIRE_KIND_GLOBAL_VARIABLES_SETUP:
@@ -3967,7 +4127,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             urwire__visit_error(&m->error, v);
             v->on_hex(v->ctx, "raw", m->raw);
         } else {
-            urwire__visit_global_variables_setup(&m->as.global_variables_setup, v);
+            urwire__visit_global_variables_setup(&m->as.global_variables_setup, m->version, v);
         }
         break;
     case URWIRE_KIND_GLOBAL_VARIABLES_UPDATE:
@@ -3977,7 +4137,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             urwire__visit_error(&m->error, v);
             v->on_hex(v->ctx, "raw", m->raw);
         } else {
-            urwire__visit_global_variables_update(&m->as.global_variables_update, v);
+            urwire__visit_global_variables_update(&m->as.global_variables_update, m->version, v);
         }
         break;
     case URWIRE_KIND_UNKNOWN_SUBTYPE:

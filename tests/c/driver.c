@@ -3,7 +3,8 @@
  *   driver chunks K FILE [CAP]  print the records like urwire-decode, feeding K bytes at a time
  *                            (K = 0: sizes from 1 to 97 in a fixed pseudo-random order), with a
  *                            framer buffer of CAP bytes (default URWIRE_FRAMER_MIN_BUFFER)
- *   driver roundtrip FILE    encode(decode(m)) == m for every framed message and sub-package;
+ *   driver roundtrip FILE [V]  encode(decode(m)) == m for every framed message and sub-package
+ *                            (V: the version hint, e.g. 5.12);
  *                            prints "messages N packages P" or the first mismatch (exit 1)
  *   driver text              stdin bytes -> one JSON string (UTF-8 replaced as Python does)
  *   driver f32 | f64         stdin big-endian floats -> their canonical texts, one per line
@@ -48,13 +49,14 @@ typedef int (*frame_fn)(const urwire_frame *frame, void *ctx);
 
 /* Frame data in chunks of k bytes (k = 0: varying sizes), calling fn on every frame. */
 static size_t framer_cap = sizeof framer_buffer;
+static urwire_sw_version hint = URWIRE_DEFAULT_VERSION_INIT;
 
 static int frame_all(const uint8_t *data, size_t len, size_t k, frame_fn fn, void *ctx)
 {
     urwire_framer fr;
     urwire_frame frame;
     size_t off = 0, step = 0, rc = 0;
-    urwire_framer_init(&fr, framer_buffer, framer_cap, URWIRE_DEFAULT_VERSION);
+    urwire_framer_init(&fr, framer_buffer, framer_cap, hint);
     for (;;) {
         size_t want = k ? k : 1 + (step++ * 37) % 97;
         if (off < len) {
@@ -167,9 +169,11 @@ int main(int argc, char **argv)
         free(data);
         return i ? 1 : 0;
     }
-    if (argc == 3 && strcmp(argv[1], "roundtrip") == 0) {
+    if ((argc == 3 || argc == 4) && strcmp(argv[1], "roundtrip") == 0) {
         counts c = {0, 0};
         int rc;
+        if (argc == 4 && !urwire_parse_version(argv[3], &hint))
+            return 2;
         data = read_file(argv[2], &len);
         rc = frame_all(data, len, 0, roundtrip_frame, &c);
         printf("messages %lu packages %lu\n", (unsigned long)c.messages, (unsigned long)c.packages);
