@@ -456,10 +456,12 @@ def enum_views(p: ir.Protocol) -> list[dict]:
         tables = []
         for t in e.tables:
             prefix = f"URWIRE_{e.name.upper()}" + (f"_{table_suffix(t)}" if e.versioned else "")
-            members = [dict(const=f"{prefix}_{v.name}", value=v.value, name=v.name,
-                            doc=inline(v.doc, "(undocumented)" if v.undocumented else "",
-                                       f"(from {v.versions.describe()})" if not v.versions.unbounded else ""))
-                       for v in t.values]
+            members = []
+            for v in t.values:
+                m = Member(f"{prefix}_{v.name} = {v.value}",
+                           inline(v.doc, "(undocumented)" if v.undocumented else "",
+                                  f"(from {v.versions.describe()})" if not v.versions.unbounded else "")).place()
+                members.append(dict(const=f"{prefix}_{v.name}", value=v.value, name=v.name, doc=m.doc, above=m.above))
             tables.append(dict(versions=t.versions.describe(), members=members,
                                low=t.versions.low, high=t.versions.high,
                                tag=f"urwire_{e.name}_{table_suffix(t).lower()}" if e.versioned else f"urwire_{e.name}"))

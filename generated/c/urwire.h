@@ -158,13 +158,18 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap);
 
 /* Type of a top-level message, the byte after messageSize. */
 typedef enum urwire_message_type {
-    URWIRE_MESSAGE_TYPE_DISCONNECT = 255,  /* MESSAGE_TYPE_DISCONNECT, -1 in the document: 255 as the unsigned byte on the wire. */
-    URWIRE_MESSAGE_TYPE_MODBUS_INFO_MESSAGE = 5,  /* Named by the document, layout not described. (undocumented) */
+    /* MESSAGE_TYPE_DISCONNECT, -1 in the document: 255 as the unsigned byte on the wire. */
+    URWIRE_MESSAGE_TYPE_DISCONNECT = 255,
+    /* Named by the document, layout not described. (undocumented) */
+    URWIRE_MESSAGE_TYPE_MODBUS_INFO_MESSAGE = 5,
     URWIRE_MESSAGE_TYPE_ROBOT_STATE = 16,
     URWIRE_MESSAGE_TYPE_ROBOT_MESSAGE = 20,
-    URWIRE_MESSAGE_TYPE_HMC_MESSAGE = 22,  /* Named by the document, layout not described. (undocumented) */
-    URWIRE_MESSAGE_TYPE_SAFETY_SETUP_BROADCAST_MESSAGE = 23,  /* Named by the document, layout not described. (undocumented) */
-    URWIRE_MESSAGE_TYPE_SAFETY_COMPLIANCE_TOLERANCES_MESSAGE = 24,  /* Named by the document, layout not described. (undocumented) */
+    /* Named by the document, layout not described. (undocumented) */
+    URWIRE_MESSAGE_TYPE_HMC_MESSAGE = 22,
+    /* Named by the document, layout not described. (undocumented) */
+    URWIRE_MESSAGE_TYPE_SAFETY_SETUP_BROADCAST_MESSAGE = 23,
+    /* Named by the document, layout not described. (undocumented) */
+    URWIRE_MESSAGE_TYPE_SAFETY_COMPLIANCE_TOLERANCES_MESSAGE = 24,
     URWIRE_MESSAGE_TYPE_PROGRAM_STATE_MESSAGE = 25,
 } urwire_message_type;
 /* The document's name of a value ("DISCONNECT"), or NULL when the value is not in the table. */
@@ -186,7 +191,9 @@ typedef enum urwire_package_type {
     URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO = 11,
     URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO = 12,
     URWIRE_PACKAGE_TYPE_SINGULARITY_INFO = 13,
-    URWIRE_PACKAGE_TYPE_PAYLOAD_INFO = 14,  /* Not in the document. 85 bytes on a 5.11 robot, plausibly payload mass, centre of gravity and inertia (an inference); kept raw. (undocumented) */
+    /* Not in the document. 85 bytes on a 5.11 robot, plausibly payload mass, centre of gravity
+     * and inertia (an inference); kept raw. (undocumented) */
+    URWIRE_PACKAGE_TYPE_PAYLOAD_INFO = 14,
 } urwire_package_type;
 /* The document's name of a value ("ROBOT_MODE_DATA"), or NULL when the value is not in the table. */
 const char *urwire_package_type_name(int64_t value);
@@ -201,9 +208,12 @@ typedef enum urwire_robot_message_type {
     URWIRE_ROBOT_MESSAGE_TYPE_KEY = 7,
     URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE = 9,
     URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION = 10,
-    URWIRE_ROBOT_MESSAGE_TYPE_UNDOCUMENTED_12 = 12,  /* Not in the document; seen 24 bytes long in all. Kept raw. (undocumented) */
+    /* Not in the document; seen 24 bytes long in all. Kept raw. (undocumented) */
+    URWIRE_ROBOT_MESSAGE_TYPE_UNDOCUMENTED_12 = 12,
     URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS = 14,
-    URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO = 18,  /* Not in the document (PolyScope 5.26+): int32 robotType, u16 reserved, u16 controlBoxType, u16 reserved, u16 toolFlangeType. Kept raw. (undocumented) */
+    /* Not in the document (PolyScope 5.26+): int32 robotType, u16 reserved, u16
+     * controlBoxType, u16 reserved, u16 toolFlangeType. Kept raw. (undocumented) */
+    URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO = 18,
 } urwire_robot_message_type;
 /* The document's name of a value ("TEXT"), or NULL when the value is not in the table. */
 const char *urwire_robot_message_type_name(int64_t value);
@@ -212,7 +222,8 @@ const char *urwire_robot_message_type_name(int64_t value);
 typedef enum urwire_program_state_message_type {
     URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP = 0,
     URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE = 1,
-    URWIRE_PROGRAM_STATE_MESSAGE_TYPE_VARIABLES_UPDATE = 2,  /* TYPE_VARIABLES_UPDATE, not in the document. Kept raw. (undocumented) */
+    /* TYPE_VARIABLES_UPDATE, not in the document. Kept raw. (undocumented) */
+    URWIRE_PROGRAM_STATE_MESSAGE_TYPE_VARIABLES_UPDATE = 2,
 } urwire_program_state_message_type;
 /* The document's name of a value ("GLOBAL_VARIABLES_SETUP"), or NULL when the value is not in the table. */
 const char *urwire_program_state_message_type_name(int64_t value);
@@ -326,8 +337,10 @@ typedef enum urwire_safety_mode {
     URWIRE_SAFETY_MODE_PROTECTIVE_STOP = 3,
     URWIRE_SAFETY_MODE_RECOVERY = 4,
     URWIRE_SAFETY_MODE_SAFEGUARD_STOP = 5,  /* (SI0 + SI1 + SBUS) Physical s-stop interface input */
-    URWIRE_SAFETY_MODE_SYSTEM_EMERGENCY_STOP = 6,  /* (EA + EB + SBUS->Screen) Physical e-stop interface input activated */
-    URWIRE_SAFETY_MODE_ROBOT_EMERGENCY_STOP = 7,  /* (EA + EB + SBUS->Euromap67) Physical e-stop interface input activated */
+    /* (EA + EB + SBUS->Screen) Physical e-stop interface input activated */
+    URWIRE_SAFETY_MODE_SYSTEM_EMERGENCY_STOP = 6,
+    /* (EA + EB + SBUS->Euromap67) Physical e-stop interface input activated */
+    URWIRE_SAFETY_MODE_ROBOT_EMERGENCY_STOP = 7,
     URWIRE_SAFETY_MODE_VIOLATION = 8,
     URWIRE_SAFETY_MODE_FAULT = 9,
     URWIRE_SAFETY_MODE_VALIDATE_JOINT_ID = 10,
@@ -342,9 +355,12 @@ typedef enum urwire_safety_status {
     URWIRE_SAFETY_STATUS_REDUCED = 2,
     URWIRE_SAFETY_STATUS_PROTECTIVE_STOP = 3,
     URWIRE_SAFETY_STATUS_RECOVERY = 4,
-    URWIRE_SAFETY_STATUS_SAFEGUARD_STOP = 5,  /* (SI0 + SI1 + SBUS) Physical s-stop interface input */
-    URWIRE_SAFETY_STATUS_SYSTEM_EMERGENCY_STOP = 6,  /* (EA + EB + SBUS->Screen) Physical e-stop interface input activated */
-    URWIRE_SAFETY_STATUS_ROBOT_EMERGENCY_STOP = 7,  /* (EA + EB + SBUS->Euromap67) Physical e-stop interface input activated */
+    /* (SI0 + SI1 + SBUS) Physical s-stop interface input */
+    URWIRE_SAFETY_STATUS_SAFEGUARD_STOP = 5,
+    /* (EA + EB + SBUS->Screen) Physical e-stop interface input activated */
+    URWIRE_SAFETY_STATUS_SYSTEM_EMERGENCY_STOP = 6,
+    /* (EA + EB + SBUS->Euromap67) Physical e-stop interface input activated */
+    URWIRE_SAFETY_STATUS_ROBOT_EMERGENCY_STOP = 7,
     URWIRE_SAFETY_STATUS_VIOLATION = 8,
     URWIRE_SAFETY_STATUS_FAULT = 9,
     URWIRE_SAFETY_STATUS_VALIDATE_JOINT_ID = 10,
@@ -363,13 +379,15 @@ typedef enum urwire_report_level {
     URWIRE_REPORT_LEVEL_WARNING = 2,
     URWIRE_REPORT_LEVEL_VIOLATION = 3,
     URWIRE_REPORT_LEVEL_FAULT = 4,
-    URWIRE_REPORT_LEVEL_CRITICAL_FAULT = 5,  /* Seen on real robots; not in the table. (undocumented) */
+    /* Seen on real robots; not in the table. (undocumented) */
+    URWIRE_REPORT_LEVEL_CRITICAL_FAULT = 5,
     URWIRE_REPORT_LEVEL_DEVL_DEBUG = 128,  /* Internal use only. */
     URWIRE_REPORT_LEVEL_DEVL_INFO = 129,
     URWIRE_REPORT_LEVEL_DEVL_WARNING = 130,
     URWIRE_REPORT_LEVEL_DEVL_VIOLATION = 131,
     URWIRE_REPORT_LEVEL_DEVL_FAULT = 132,
-    URWIRE_REPORT_LEVEL_DEVL_CRITICAL_FAULT = 133,  /* Seen on real robots; not in the table. (undocumented) */
+    /* Seen on real robots; not in the table. (undocumented) */
+    URWIRE_REPORT_LEVEL_DEVL_CRITICAL_FAULT = 133,
 } urwire_report_level;
 /* The document's name of a value ("DEBUG"), or NULL when the value is not in the table. */
 const char *urwire_report_level_name(int64_t value);
