@@ -13,6 +13,7 @@ from typing import Optional
 
 from .. import ir
 from ..emit import environment
+from ..view import Step
 
 FOLDER = "c"
 C_TYPES = {"bool": "uint8_t", "int8": "int8_t", "uint8": "uint8_t", "int16": "int16_t", "uint16": "uint16_t",
@@ -91,20 +92,6 @@ class Run:
     table: str
     size: int
     spans: list[Span]
-
-
-@dataclass
-class Step:
-    """One decode, encode or visit step; `kind` picks the template fragment."""
-
-    kind: str
-    data: dict
-
-    def __getattr__(self, key):
-        try:
-            return self.__dict__["data"][key]
-        except KeyError:
-            raise AttributeError(key) from None
 
 
 @dataclass
