@@ -1866,6 +1866,11 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     end
 end
 
+-- Bytes skipped while resynchronising, or carried over to the next segment.
+local function data_item(tree, data, o, len)
+    tree:add(ur, data(o, len)):add(X.skipped, data(o, len))
+end
+
 -- Resynchronising: scan buf (bytes carried from earlier segments, then this tvb's) from p for
 -- the next plausible header. Returns its position, or nil and the first position not tested.
 local function scan(buf, p, max_length)
@@ -1909,68 +1914,67 @@ local function dissect(tvb, pinfo, tree)
     end
 
     pinfo.cols.protocol:set("UR")
+    -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
+    -- stream state) until it is back in step, instead of by TCP reassembly: asking TCP for more
+    -- bytes after a fault makes later passes hand over other bytes, and the fault would not
+    -- show there. Carried bytes come first, in a tvb of their own.
+    local by_hand = carry ~= nil or resync
+    local data, buf = tvb, raw
+    if carry then
+        buf = carry .. raw
+        data = ByteArray.new(buf, true):tvb("UR bytes carried over")
+    end
+    n = #buf
+    carry = nil
     local o = 0
     if resync then
-        -- Go on scanning, over the bytes carried from the previous segments too.
-        local c = carry and #carry or 0
-        local buf = carry and (carry .. raw) or raw
+        -- Go on scanning for the next plausible header.
         local p, stop = scan(buf, 0, max_length)
-        if p and p < c then
-            -- A header that starts in the carried bytes: the message spans segments.
-            local size = be_int(buf, p, 4)
-            if #buf - p >= size then
-                local whole = ByteArray.new(string.sub(buf, p + 1, p + size), true):tvb("UR message")
-                message(whole, whole:raw(), pinfo, tree, 0, size, byte(buf, p + 5))
-                o, resync, carry = p + size - c, false, nil
-            else
-                carry = string.sub(buf, p + 1)          -- keep it all until the message is whole
-                if cur.detail then tree:add(ur, tvb()):add(X.skipped, tvb()):set_text("Part of a message that started in an earlier segment") end
-                set_info(pinfo, true, "Part of a message (resynchronised)")
-                cur.first = false
-                o = n
-            end
-        elseif p then
-            o, resync, carry = p - c, false, nil
-            if o > 0 and cur.detail then tree:add(ur, tvb(0, o)):add(X.skipped, tvb(0, o)) end
+        if p then
+            if p > 0 and cur.detail then data_item(tree, data, 0, p) end
+            o, resync = p, false
         else
-            -- Nothing yet: keep the last bytes, which may start a header, and take the segment.
-            carry = string.sub(buf, stop + 1)
-            if n > 0 and cur.detail then tree:add(ur, tvb()):add(X.skipped, tvb()) end
-            set_info(pinfo, true, "Resynchronising: no message header in this segment")
+            -- Nothing yet: keep the last bytes, which may start a header.
+            if stop > 0 and cur.detail then data_item(tree, data, 0, stop) end
+            set_info(pinfo, true, "Resynchronising: no message header yet")
             cur.first = false
-            o = n
+            o, carry = n, string.sub(buf, stop + 1)
         end
     end
     while o < n do
         local left = n - o
-        if left < HEADER then
+        local size, mtype = 0, 0
+        if left >= HEADER then size, mtype = be_int(buf, o, 4), byte(buf, o + 5) end
+        if left >= HEADER and (size < HEADER or size > max_length or not KNOWN_TYPE[mtype]) then
+            local ex, text = header_fault(buf, o, max_length)
+            local item = tree:add(ur, data(o, HEADER))
+            item:add(F.length, data(o, 4))
+            item:add(F.type, data(o + 4, 1))
+            item:add_proto_expert_info(ex, text)
+            set_info(pinfo, cur.first, "Bad header: " .. text)
+            cur.first = false
+            by_hand = true
+            -- Scan forward from the next byte; the skipped bytes belong to this fault.
+            local p, stop = scan(buf, o + 1, max_length)
+            if p then
+                if p > o + 1 and cur.detail then data_item(tree, data, o + 1, p - o - 1) end
+                o = p
+            else
+                if stop > o + 1 and cur.detail then data_item(tree, data, o + 1, stop - o - 1) end
+                resync, carry = true, string.sub(buf, stop + 1)
+                o = n
+            end
+        elseif (left < HEADER or size > left) and by_hand then
+            -- Carried as it is until the message is whole.
+            carry = string.sub(buf, o + 1)
+            o = n
+        elseif left < HEADER then
             -- A header split inside its first bytes: ask for one more segment.
             if pinfo.can_desegment > 0 then
                 pinfo.desegment_offset = o
                 pinfo.desegment_len = DESEGMENT_ONE_MORE_SEGMENT
             end
             break
-        end
-        local size, mtype = be_int(raw, o, 4), byte(raw, o + 5)
-        if size < HEADER or size > max_length or not KNOWN_TYPE[mtype] then
-            local ex, text = header_fault(raw, o, max_length)
-            local item = tree:add(ur, tvb(o, HEADER))
-            item:add(F.length, tvb(o, 4))
-            item:add(F.type, tvb(o + 4, 1))
-            item:add_proto_expert_info(ex, text)
-            set_info(pinfo, cur.first, "Bad header: " .. text)
-            cur.first = false
-            -- Scan forward from the next byte; the skipped bytes belong to this fault.
-            local p, stop = scan(raw, o + 1, max_length)
-            if p then
-                if p > o + 1 and cur.detail then tree:add(ur, tvb(o + 1, p - o - 1)):add(X.skipped, tvb(o + 1, p - o - 1)) end
-                o = p
-            else
-                -- Not without the next segment: carry the last bytes over (no TCP reassembly,
-                -- so that later passes see the same segments).
-                resync, carry = true, string.sub(raw, stop + 1)
-                o = n
-            end
         elseif size > left then
             if pinfo.can_desegment > 0 then
                 pinfo.desegment_offset = o
@@ -1978,18 +1982,18 @@ local function dissect(tvb, pinfo, tree)
                 break
             end
             -- No reassembly possible (preference off): show what is there.
-            tree:add(ur, tvb(o, left)):add(X.raw, tvb(o, left))
+            tree:add(ur, data(o, left)):add(X.raw, data(o, left))
             set_info(pinfo, cur.first, "Continuation")
             break
         else
-            message(tvb, raw, pinfo, tree, o, o + size, mtype)
+            message(data, buf, pinfo, tree, o, o + size, mtype)
             o = o + size
         end
     end
     if not pinfo.visited then
         stream_version[stream], stream_resync[stream], stream_carry[stream] = cur.version, resync, carry
     end
-    return n
+    return tvb:len()
 end
 
 function ur.dissector(tvb, pinfo, tree)

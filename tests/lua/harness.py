@@ -51,8 +51,29 @@ def run_tshark(pcap: Path, *args: str, check_tree: bool = True) -> str:
     return res.stdout
 
 
+def _pairs(pairs: list) -> dict:
+    """A JSON object whose repeated keys become lists (as --no-duplicate-keys does), which also
+    keeps its pairs in order under "__pairs__" (the order of a robot state's packages)."""
+    out: dict = {}
+    for k, v in pairs:
+        if k in out:
+            out[k] = (out[k] if isinstance(out[k], list) and k in out["__lists__"] else [out[k]]) + [v]
+            out["__lists__"].add(k)
+        else:
+            out.setdefault("__lists__", set())
+            out[k] = v
+    out["__pairs__"] = pairs
+    out.setdefault("__lists__", set())
+    return out
+
+
 def tshark_json(pcap: Path, *opts: str) -> list:
-    return json.loads(run_tshark(pcap, "-2", "-T", "json", "--no-duplicate-keys", *opts) or "[]")
+    """tshark's JSON with duplicate keys kept (several messages or packages of one type)."""
+    return parse_json(run_tshark(pcap, "-2", "-T", "json", *opts))
+
+
+def parse_json(text: str) -> list:
+    return json.loads(text or "[]", object_pairs_hook=_pairs)
 
 
 # ---- pcaps holding many sessions ----
@@ -250,16 +271,17 @@ def _dispatch_message(code: int) -> Optional[ir.DispatchMessage]:
 def to_records(u: dict) -> list[dict]:
     """Canonical records from one `ur` tree item (a bad header gives an error record)."""
     errors = _errors(u)
-    if "ur.type" in u and len(u) <= 4 and errors and not any(k.startswith("ur.") and k not in ("ur.length", "ur.type") for k in u):
-        return [{"type": "error", "error": errors[0]}]
+    bad_header = [e.get("_ws.expert.message") for e in _experts(u) if "ur.bad_length" in e or "ur.bad_type" in e]
+    if bad_header:
+        return [{"type": "error", "error": bad_header[0]}]
     if "ur.type" not in u:           # bytes skipped while resynchronising
         return []
     mtype = int(u["ur.type"])
     if mtype == 16:
         rec: dict = {"type": "robot_state", "packages": []}
-        for key, v in u.items():
+        for key, obj in u["__pairs__"]:
             if key.startswith("ur.") and key[3:] in PACKAGE_NAMES:
-                for obj in _as_list(v):
+                for obj in [obj]:
                     pkg = {"type": key[3:]}
                     errs = _errors(obj)
                     if errs:
@@ -270,7 +292,7 @@ def to_records(u: dict) -> list[dict]:
                         _empty_lists(LAYOUTS[key[3:]].struct.fields, pkg)
                     rec["packages"].append(pkg)
             elif key == "ur.unknown_package":
-                for obj in _as_list(v):
+                for obj in [obj]:
                     rec["packages"].append({"type": "unknown", "package_type": int(obj["ur.package.type"]),
                                             "raw": _hex(obj.get("ur.raw", ""))})
         if errors:
