@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import random
 
+import pytest
+
 from harness import (ROOT, comparable, run_tshark, to_records, tshark_json, ur_items_by_stream,
                      write_sessions, F32_TOL)
 from tests.tools import capture
@@ -16,9 +18,11 @@ MESSAGES = [m for c in all_cases() for m in [c.data] if 5 <= len(m) <= 4000]
 COUNT = 400
 
 
-def test_random_and_mutated_streams_agree_with_python(tmp_path):
-    data = list(streams(MESSAGES, COUNT, seed=11))
-    sessions = [capture.random_cuts([d], seed=i, max_len=300) for i, d in enumerate(data)]
+@pytest.mark.parametrize("seed,max_len", [(11, 300), (12, 5)])
+def test_random_and_mutated_streams_agree_with_python(tmp_path, seed, max_len):
+    """Cut anywhere: into segments of up to 300 bytes, and of up to 5 (headers split often)."""
+    data = list(streams(MESSAGES, COUNT, seed=seed))
+    sessions = [capture.random_cuts([d], seed=i, max_len=max_len) for i, d in enumerate(data)]
     by_stream = ur_items_by_stream(tshark_json(write_sessions(tmp_path / "diff.pcap", sessions)))
     failures = []
     for i, d in enumerate(data):
