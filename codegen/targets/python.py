@@ -383,7 +383,7 @@ def enum_views(p: ir.Protocol) -> list[dict]:
             cls = py_enum_class(e) if not e.versioned else py_table_class(e, t)
             tables.append(dict(cls=cls, versions=t.versions.describe(), low=t.versions.low, high=t.versions.high,
                                members=[dict(name=v.name, value=v.value,
-                                            doc=one_line(v.doc, "(not in the document)" if v.undocumented else "",
+                                            doc=one_line(v.doc, "(undocumented)" if v.undocumented else "",
                                                          f"(from {v.versions.describe()})" if not v.versions.unbounded else ""))
                                        for v in t.values]))
         views.append(dict(name=e.name, cls=py_enum_class(e), lookup=py_lookup(e), doc=one_line(e.doc, e.field_note),

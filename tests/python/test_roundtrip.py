@@ -72,3 +72,13 @@ def test_float32_signalling_nan_keeps_its_bits():
     (state,) = urwire.decode_stream(data)
     assert urwire.to_dict(state)["packages"][0]["rx_idle_chars"] != urwire.to_dict(state)["packages"][0]["rx_idle_chars"]
     assert state.encode() == data
+
+
+def test_the_largest_float32_prints_and_reencodes():
+    body = b"\x00" + bytes(12) + bytes.fromhex("7f7fffff") + bytes.fromhex("ff7fffff")  # +-FLT_MAX
+    pkg = (len(body) + 5).to_bytes(4, "big") + b"\x0b" + body
+    data = (len(pkg) + 5).to_bytes(4, "big") + b"\x10" + pkg
+    (state,) = urwire.decode_stream(data)
+    line = urwire.to_json_line(state)
+    assert '"rx_idle_chars": 3.4028235e+38' in line and '"tx_idle_chars": -3.4028235e+38' in line
+    assert state.encode() == data

@@ -5,6 +5,7 @@ Hand-written; copied verbatim into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 
+import ctypes
 import json
 import math
 import struct
@@ -17,13 +18,22 @@ _F32 = struct.Struct(">f")
 _encode_text = json.JSONEncoder(ensure_ascii=False).encode
 
 
+def _as_f32(x: float) -> float:
+    """x rounded to float32, as C's (float) cast does; struct refuses values past FLT_MAX
+    even when they round to it, so those go through ctypes."""
+    try:
+        return _F32.unpack(_F32.pack(x))[0]
+    except OverflowError:
+        return ctypes.c_float(x).value
+
+
 def f32_text(x: float) -> str:
     """Shortest %.{p}g (p = 1..9) that reads back as the same float32."""
     if x != x or x in (math.inf, -math.inf):
         return _nonfinite(x)
     for p in range(1, 10):
         s = "%.*g" % (p, x)
-        if _F32.unpack(_F32.pack(float(s)))[0] == x:
+        if _as_f32(float(s)) == x:
             return s
     return "%.9g" % x
 

@@ -12,15 +12,15 @@ class MessageType(IntEnum):
     DISCONNECT = 255
     """MESSAGE_TYPE_DISCONNECT, -1 in the document: 255 as the unsigned byte on the wire."""
     MODBUS_INFO_MESSAGE = 5
-    """Named by the document, layout not described. (not in the document)"""
+    """Named by the document, layout not described. (undocumented)"""
     ROBOT_STATE = 16
     ROBOT_MESSAGE = 20
     HMC_MESSAGE = 22
-    """Named by the document, layout not described. (not in the document)"""
+    """Named by the document, layout not described. (undocumented)"""
     SAFETY_SETUP_BROADCAST_MESSAGE = 23
-    """Named by the document, layout not described. (not in the document)"""
+    """Named by the document, layout not described. (undocumented)"""
     SAFETY_COMPLIANCE_TOLERANCES_MESSAGE = 24
-    """Named by the document, layout not described. (not in the document)"""
+    """Named by the document, layout not described. (undocumented)"""
     PROGRAM_STATE_MESSAGE = 25
 
 
@@ -45,7 +45,7 @@ class PackageType(IntEnum):
     TOOL_MODE_INFO = 12
     SINGULARITY_INFO = 13
     PAYLOAD_INFO = 14
-    """Not in the document. 85 bytes on a 5.11 robot, plausibly payload mass, centre of gravity and inertia (an inference); kept raw. (not in the document)"""
+    """Not in the document. 85 bytes on a 5.11 robot, plausibly payload mass, centre of gravity and inertia (an inference); kept raw. (undocumented)"""
 
 
 PACKAGE_TYPE_BY_VALUE: dict[int, PackageType] = {m.value: m for m in PackageType}
@@ -63,10 +63,10 @@ class RobotMessageType(IntEnum):
     REQUEST_VALUE = 9
     RUNTIME_EXCEPTION = 10
     UNDOCUMENTED_12 = 12
-    """Not in the document; seen 24 bytes long in all. Kept raw. (not in the document)"""
+    """Not in the document; seen 24 bytes long in all. Kept raw. (undocumented)"""
     PROGRAM_LABEL_THREADS = 14
     HARDWARE_INFO = 18
-    """Not in the document (PolyScope 5.26+): int32 robotType, u16 reserved, u16 controlBoxType, u16 reserved, u16 toolFlangeType. Kept raw. (not in the document)"""
+    """Not in the document (PolyScope 5.26+): int32 robotType, u16 reserved, u16 controlBoxType, u16 reserved, u16 toolFlangeType. Kept raw. (undocumented)"""
 
 
 ROBOT_MESSAGE_TYPE_BY_VALUE: dict[int, RobotMessageType] = {m.value: m for m in RobotMessageType}
@@ -78,7 +78,7 @@ class ProgramStateMessageType(IntEnum):
     GLOBAL_VARIABLES_SETUP = 0
     GLOBAL_VARIABLES_UPDATE = 1
     VARIABLES_UPDATE = 2
-    """TYPE_VARIABLES_UPDATE, not in the document. Kept raw. (not in the document)"""
+    """TYPE_VARIABLES_UPDATE, not in the document. Kept raw. (undocumented)"""
 
 
 PROGRAM_STATE_MESSAGE_TYPE_BY_VALUE: dict[int, ProgramStateMessageType] = {m.value: m for m in ProgramStateMessageType}
@@ -251,7 +251,7 @@ class ReportLevel(IntEnum):
     VIOLATION = 3
     FAULT = 4
     CRITICAL_FAULT = 5
-    """Seen on real robots; not in the table. (not in the document)"""
+    """Seen on real robots; not in the table. (undocumented)"""
     DEVL_DEBUG = 128
     """Internal use only."""
     DEVL_INFO = 129
@@ -259,7 +259,7 @@ class ReportLevel(IntEnum):
     DEVL_VIOLATION = 131
     DEVL_FAULT = 132
     DEVL_CRITICAL_FAULT = 133
-    """Seen on real robots; not in the table. (not in the document)"""
+    """Seen on real robots; not in the table. (undocumented)"""
 
 
 REPORT_LEVEL_BY_VALUE: dict[int, ReportLevel] = {m.value: m for m in ReportLevel}
