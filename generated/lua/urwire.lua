@@ -1824,8 +1824,18 @@ local function header_fault(raw, o, max_length)
     return E.bad_type, fmt("unknown message type %d", byte(raw, o + 5))
 end
 
+-- TCP may call the dissector twice for one frame (a reassembled message, then the rest of the
+-- segment): the first message of the later call appends to what the earlier one wrote.
+local info_frame, info_text = -1, ""
 local function set_info(pinfo, first, text)
-    if first then pinfo.cols.info:set(text) else pinfo.cols.info:append("; " .. text) end
+    if first and not (info_frame == pinfo.number and tostring(pinfo.cols.info) == info_text) then
+        info_text = text
+        pinfo.cols.info:set(text)
+    else
+        info_text = info_text .. "; " .. text
+        pinfo.cols.info:append("; " .. text)
+    end
+    info_frame = pinfo.number
 end
 
 -- Client to robot: URScript text, not UR messages.

@@ -119,3 +119,12 @@ def test_install_and_uninstall(tmp_path):
     assert "urwire.lua" in plugins
     subprocess.run([make, "-C", str(ROOT), "uninstall-dissector"], env=env, check=True, capture_output=True)
     assert not installed.exists()
+
+
+def test_info_of_a_frame_called_twice_joins_both_calls(tmp_path):
+    """A message completed by reassembly, then whole ones from the rest of the segment."""
+    a, b, c = text_message(b"first"), text_message(b"second"), text_message(b"third")
+    pcap = capture.write(tmp_path / "info.pcap", capture.robot_session([a[:10], a[10:] + b + c[:3], c[3:]]))
+    for opts in ((), ("-2",)):
+        lines = run_tshark(pcap, *opts, "-Y", "ur", "-T", "fields", "-e", "_ws.col.Info").splitlines()
+        assert lines == ["Text: first; Text: second", "Text: third"]
