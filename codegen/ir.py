@@ -336,6 +336,7 @@ class Layout:
     field_note: str
     struct: Struct
     sets_version: Optional[tuple[str, str]] = None   # (major field, minor field)
+    summary: list[tuple[str, str]] = dc_field(default_factory=list)  # (text before, field name)
 
 
 @dataclass

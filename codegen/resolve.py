@@ -4,6 +4,7 @@ Checks collect problems instead of stopping at the first, so one run shows every
 """
 from __future__ import annotations
 
+import re
 from typing import Optional
 
 from . import ir
@@ -164,8 +165,24 @@ class _Resolver:
                 if not isinstance(f, ir.ScalarField) or not f.scalar.is_integer:
                     self.fail(parts + ["sets_version", key], f"'{sv[key]}' must name an integer field of this layout")
             sets_version = (sv["major"], sv["minor"])
+        summary = self.summary(raw.get("summary"), struct, parts + ["summary"])
         return ir.Layout(name, self.member(code_enum, raw["code"], parts + ["code"]), raw["doc"],
-                         raw.get("field_note", ""), struct, sets_version)
+                         raw.get("field_note", ""), struct, sets_version, summary)
+
+    def summary(self, text: Optional[str], struct: ir.Struct, parts) -> list[tuple[str, str]]:
+        """'{title}: {text}' -> [('', 'title'), (': ', 'text')]; only scalar and string fields."""
+        if not text:
+            return []
+        pieces = re.split(r"\{([a-z][a-z0-9_]*)\}", text)
+        if pieces[-1]:
+            self.fail(parts, f"text after the last field ('{pieces[-1]}') is not shown; end with a field")
+        out = []
+        for before, name in zip(pieces[0::2], pieces[1::2]):
+            f = _find(struct.fields, name)
+            if not isinstance(f, (ir.ScalarField, ir.StringField)):
+                self.fail(parts, f"'{name}' is not a scalar or string field of this layout")
+            out.append((before, name))
+        return out
 
     def header_field(self, raw: dict, parts) -> ir.HeaderField:
         enum = self.enum_ref(raw["enum"], parts + ["enum"]) if "enum" in raw else None

@@ -25,15 +25,6 @@ PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16"
 # (The spec has no summary hint yet; these names are checked against it at generation time.)
 # Robot-state packages: enum fields at a fixed offset. Messages: (field, text before it); by
 # default their enum fields, then title and text.
-INFO_ENUMS = {"robot_mode_data": ["robot_mode"], "masterboard_data": ["safety_mode"]}
-INFO_SHOW = {"version": [("project_name", ""), ("major_version", " "), ("minor_version", "."),
-                         ("bugfix_version", "."), ("build_number", ".")],
-             "runtime_exception": [("script_line_number", "line "), ("script_column_number", ":"),
-                                   ("text", ": ")],
-             "popup": [("title", ""), ("text", ": ")]}
-INFO_TEXTS = ("title", "text")
-
-
 def lua_str(text: str) -> str:
     """A Lua double-quoted string literal."""
     out = []
@@ -239,32 +230,26 @@ class _Builder:
         self.layouts.append(LayoutView(var, doc, lines))
         return var
 
-    def package_info(self, owner: str, struct: ir.Struct) -> list[dict]:
-        """Enum fields of a robot-state package that the Info column shows, at fixed offsets."""
+    def package_info(self, layout: ir.Layout) -> list[dict]:
+        """The spec's summary of a robot-state package: enum fields read at fixed offsets, so
+        the Info column costs no field work."""
+        wanted = [name for _, name in layout.summary]
         enums, offset = [], 0
-        for f in struct.fields:
+        for f in layout.struct.fields:
             if offset is None:
                 break
-            if isinstance(f, ir.ScalarField) and f.enum is not None and f.name in INFO_ENUMS.get(owner, ()):
+            if isinstance(f, ir.ScalarField) and f.enum is not None and f.name in wanted:
                 enums.append(dict(offset=offset, size=f.scalar.size, signed=str(f.scalar.signed).lower(),
                                   vs=self.enum_var[f.enum.name], name=f.name))
             offset = offset + f.fixed_size if f.fixed_size is not None and not f.conditional else None
-        if len(enums) != len(INFO_ENUMS.get(owner, ())):
-            raise ValueError(f"lua target: the Info column wants {INFO_ENUMS[owner]} of {owner} at fixed offsets")
+        if len(enums) != len(wanted):
+            raise ValueError(f"lua target: the summary of {layout.name} must name enum fields at fixed offsets")
         return enums
 
-    def message_show(self, owner: str, struct: ir.Struct) -> dict:
+    @staticmethod
+    def message_show(layout: ir.Layout) -> dict:
         """Fields of a message the Info column shows, each with the text put before it."""
-        if owner in INFO_SHOW:
-            wanted = INFO_SHOW[owner]
-            names = [f.name for f in struct.fields]
-            for name, _ in wanted:
-                if name not in names:
-                    raise ValueError(f"lua target: the Info column wants {owner}.{name}")
-            return dict(wanted)
-        picked = [f.name for f in struct.fields if isinstance(f, ir.ScalarField) and f.enum is not None]
-        picked += [f.name for f in struct.fields if isinstance(f, ir.StringField) and f.name in INFO_TEXTS]
-        return {name: ("" if i == 0 else ": ") for i, name in enumerate(picked)}
+        return {name: before for before, name in layout.summary}
 
     def add_item(self, name: str, label: str, doc: str) -> str:
         """The subtree field of a package or message: ur.<name>, true when it is present."""
@@ -303,7 +288,7 @@ class _Builder:
                     var = self.layout(pk.name, pk.struct, one_line(pk.doc, pk.field_note))
                     label = words(pk.name)
                     pkgs.append(dict(code=pk.code.value, var=var, name=pk.name, label=label,
-                                     info=self.package_info(pk.name, pk.struct),
+                                     info=self.package_info(pk),
                                      item=self.add_item(pk.name, label, one_line(pk.doc))))
                 package_messages.append(dict(name=m.name, code=m.code.value, label=words(m.name),
                                              doc=one_line(m.doc, m.field_note), packages=pkgs))
@@ -321,7 +306,7 @@ class _Builder:
                     self.layouts.append(LayoutView(sub_hdr, f"Header of the {st.name} message.",
                                                    self.descriptors(st.name, m.header, set(), "    ")))
                     body = self.layout(st.name, st.struct, one_line(st.doc, st.field_note),
-                                       show=self.message_show(st.name, st.struct))
+                                       show=self.message_show(st))
                     view.subtypes.append(dict(code=st.code.value, name=st.name, label=words(st.name),
                                               header=sub_hdr, body=body,
                                               needs_version=str(st.struct.needs_version).lower(),

@@ -310,7 +310,8 @@ class _Target:
 
     def build_class(self, struct: ir.Struct, name: str, role: str, json_type: str, code: Optional[int],
                     doc: str, header: Optional[ir.Struct] = None,
-                    sets_version: Optional[tuple[str, str]] = None) -> PyClass:
+                    sets_version: Optional[tuple[str, str]] = None,
+                    summary: Optional[list[tuple[str, str]]] = None) -> PyClass:
         # Group items first, so the parent can refer to them.
         for f in struct.fields:
             if isinstance(f, ir.GroupField):
@@ -330,6 +331,7 @@ class _Target:
             attrs.append(Attr(f.name, annotation(f, items), one_line(f.doc, f.field_note), json_kind(f), f.conditional))
         cls = PyClass(name, doc, role, json_type, code, attrs, header_names, decode, encode, builder.structs,
                       sets_version=sets_version)
+        summary = summary or []
         if role == "item" and struct.fixed_size is not None:
             cls.fixed = True
             k, offset = 0, 0
@@ -339,8 +341,7 @@ class _Target:
                 cls.values_exprs += args
                 k += width
                 offset += f.fixed_size or 0
-        cls.summary = [f.name for f in struct.fields if isinstance(f, ir.ScalarField) and f.enum is not None]
-        cls.summary += [f.name for f in struct.fields if isinstance(f, ir.StringField)]
+        cls.summary = [name for _, name in summary]
         self.classes.append(cls)
         return cls
 
@@ -349,7 +350,8 @@ class _Target:
         for m in self.p.messages:
             if isinstance(m, ir.PackageListMessage):
                 layouts = [self.build_class(pk.struct, py_layout_class(pk, False), "package", pk.name,
-                                            pk.code.value, one_line(pk.doc, pk.field_note)) for pk in m.packages]
+                                            pk.code.value, one_line(pk.doc, pk.field_note), summary=pk.summary)
+                           for pk in m.packages]
                 messages.append(dict(kind="packages", name=m.name, cls=py_message_class(m), code=m.code.value,
                                      code_name=m.code.name, doc=one_line(m.doc, m.field_note), layouts=layouts))
             else:
@@ -366,7 +368,7 @@ class _Target:
                 names = [f.name for f in m.header.fields]
                 layouts = [self.build_class(st.struct, py_layout_class(st, True), "subtype", st.name,
                                             st.code.value, one_line(st.doc, st.field_note), m.header,
-                                            st.sets_version) for st in m.subtypes]
+                                            st.sets_version, st.summary) for st in m.subtypes]
                 messages.append(dict(
                     kind="dispatch", name=m.name, code=m.code.value, code_name=m.code.name,
                     doc=one_line(m.doc, m.field_note), layouts=layouts, header_fmt=hdr_fmt, header_run=run,

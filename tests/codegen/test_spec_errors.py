@@ -73,6 +73,10 @@ def test_schema_errors_name_the_yaml_path(edit, path, words):
     (lambda d: d["messages"]["robot_message"]["subtypes"]["safety_mode"]["fields"][4].update(switch="later"),
      "messages.robot_message.subtypes.safety_mode.fields[4].switch", "must name an earlier integer field"),
     (lambda d: d["value_layouts"].pop("MATRIX"), "enums.value_type", "MATRIX has no entry in value_layouts"),
+    (lambda d: d["messages"]["robot_message"]["subtypes"]["key"].update(summary="{title}: {colour}"),
+     "messages.robot_message.subtypes.key.summary", "'colour' is not a scalar or string field"),
+    (lambda d: d["messages"]["robot_message"]["subtypes"]["key"].update(summary="{title}!"),
+     "messages.robot_message.subtypes.key.summary", "end with a field"),
     (lambda d: robot_mode_fields(d)[8].update(enum="joint_mode"),
      "messages.robot_state.packages.robot_mode_data.fields[8].enum", "do not fit the field's int8: RESET"),
 ])
