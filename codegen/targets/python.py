@@ -271,9 +271,9 @@ class _ClassBuilder:
                     Step("values", dict(name=f.name, terminator=f"0x{f.terminator:02x}")))
         if isinstance(f, ir.SwitchField):
             const = f"_{self.owner.upper()}_{f.name.upper()}_BY_{f.selector.name.upper()}"
-            cases = {k: self.target.scalar_const(s) for k, s in f.cases.items()}
+            cases = {k: self.target.prefix_const(s) for k, s in f.cases.items()}
             self.target.switches.append((const, cases))
-            default = self.target.scalar_const(f.default)
+            default = self.target.prefix_const(f.default)
             data = dict(name=f.name, const=const, default=default, selector=f.selector.name, path=path)
             return Step("switch", data), Step("switch", data)
         assert isinstance(f, ir.GroupField)
@@ -300,10 +300,8 @@ class _Target:
         self.prefixes: dict[str, str] = {}
         self.switches: list[tuple[str, dict]] = []
 
-    def scalar_const(self, s: ir.Scalar) -> str:
-        return self.prefix_const(s)
-
     def prefix_const(self, s: ir.Scalar) -> str:
+        """Module constant: a struct of one scalar (length prefixes, switch cases)."""
         name = f"_{s.name.upper()}"
         self.prefixes[name] = ">" + STRUCT_CODES[s.name]
         return name

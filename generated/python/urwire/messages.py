@@ -2039,9 +2039,7 @@ _ROBOT_STATE_PACKAGES: dict[int, type] = {
 
 def encode_package(pkg, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
     """Bytes of one sub-package, known, unknown or malformed."""
-    if isinstance(pkg, UnknownPackage):
-        return _HEADER.pack(5 + len(pkg.raw), pkg.package_type) + pkg.raw
-    if isinstance(pkg, MalformedPackage):
+    if isinstance(pkg, (UnknownPackage, MalformedPackage)):
         return _HEADER.pack(5 + len(pkg.raw), pkg.package_type) + pkg.raw
     return pkg.encode(version)
 
@@ -2117,13 +2115,11 @@ def _decode_robot_message(buf, version: tuple[int, int]):
 
 def _encode_robot_message(msg, version: tuple[int, int]) -> bytes:
     out = bytearray(5)
-    if isinstance(msg, (UnknownSubtype, MalformedSubtype)):
-        subtype, raw = msg.robot_message_type, msg.raw
-    else:
-        subtype, raw = msg.CODE, b""
+    kept_raw = isinstance(msg, (UnknownSubtype, MalformedSubtype))
+    subtype = msg.robot_message_type if kept_raw else msg.CODE
     out += _ROBOT_MESSAGE_HEADER.pack(msg.timestamp, msg.source, subtype)
-    if raw or isinstance(msg, (UnknownSubtype, MalformedSubtype)):
-        out += raw
+    if kept_raw:
+        out += msg.raw
     else:
         try:
             msg._encode(out, version)
@@ -2165,13 +2161,11 @@ def _decode_program_state(buf, version: tuple[int, int]):
 
 def _encode_program_state(msg, version: tuple[int, int]) -> bytes:
     out = bytearray(5)
-    if isinstance(msg, (UnknownSubtype, MalformedSubtype)):
-        subtype, raw = msg.robot_message_type, msg.raw
-    else:
-        subtype, raw = msg.CODE, b""
+    kept_raw = isinstance(msg, (UnknownSubtype, MalformedSubtype))
+    subtype = msg.robot_message_type if kept_raw else msg.CODE
     out += _PROGRAM_STATE_HEADER.pack(msg.timestamp, subtype)
-    if raw or isinstance(msg, (UnknownSubtype, MalformedSubtype)):
-        out += raw
+    if kept_raw:
+        out += msg.raw
     else:
         try:
             msg._encode(out, version)
