@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import hashlib
+import re
 from pathlib import Path
 
 import jinja2
@@ -44,3 +45,15 @@ def runtime_files(target: str, comment: str = "#") -> dict[str, str]:
                       f"and run `{REGENERATE}`.\n")
             out[p.name] = origin + p.read_text(encoding="utf-8")
     return out
+
+
+# A runtime file compiles (or runs) on its own; lines it needs only then, such as an #include of
+# a test header or a stub, sit between these markers and are dropped when the file is joined.
+_STANDALONE = re.compile(r"^[^\n]*<standalone>[^\n]*\n.*?^[^\n]*</standalone>[^\n]*\n", re.M | re.S)
+
+
+def runtime_source(target: str, name: str) -> str:
+    """One hand-written runtime file of a target (codegen/templates/<target>/runtime/<name>), as
+    it is joined into a generated file: its standalone-only lines removed."""
+    text = (TEMPLATES / target / "runtime" / name).read_text(encoding="utf-8")
+    return _STANDALONE.sub("", text)
