@@ -21,13 +21,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--check", action="store_true",
                         help="write nothing; exit 1 if generated/ differs from what would be written")
     args = parser.parse_args(argv)
+    spec_rel = args.spec.resolve().relative_to(ROOT) if args.spec.resolve().is_relative_to(ROOT) else args.spec
     try:
         protocol = compile_file(args.spec)
+        outputs = render_all(protocol, str(spec_rel), args.spec.read_text(encoding="utf-8"), args.target)
     except SpecError as exc:
+        # A target that cannot render a node reports it like a spec error: path, line, what.
         print(exc, file=sys.stderr)
         return 2
-    spec_rel = args.spec.resolve().relative_to(ROOT) if args.spec.resolve().is_relative_to(ROOT) else args.spec
-    outputs = render_all(protocol, str(spec_rel), args.spec.read_text(encoding="utf-8"), args.target)
     return _check(args.out, outputs) if args.check else _write(args.out, outputs)
 
 

@@ -9,7 +9,24 @@ from __future__ import annotations
 from dataclasses import dataclass, field as dc_field
 from typing import Optional, Union
 
+from .errors import Problem
+
 Version = tuple[int, int]
+
+
+@dataclass(frozen=True)
+class Where:
+    """Where a node stands in the spec: its YAML path and line, for problems found after
+    resolving (a target that cannot render a node names it like a spec error)."""
+
+    path: str = "(top)"
+    line: Optional[int] = None
+
+    def problem(self, message: str) -> Problem:
+        return Problem(self.path, message, self.line)
+
+
+NOWHERE = Where()
 
 
 def parse_version(text: str) -> Version:
@@ -157,6 +174,7 @@ class Field:
     field_note: str = ""
     present_if: Optional[str] = None        # name of an earlier field: present when it is nonzero
     versions: VersionRange = ALL_VERSIONS   # present only for streams of these versions
+    where: Where = NOWHERE
 
     @property
     def conditional(self) -> bool:
@@ -337,6 +355,7 @@ class Layout:
     struct: Struct
     sets_version: Optional[tuple[str, str]] = None   # (major field, minor field)
     summary: list[tuple[str, str]] = dc_field(default_factory=list)  # (text before, field name)
+    where: Where = NOWHERE
 
 
 @dataclass
@@ -356,6 +375,7 @@ class PackageListMessage:
     field_note: str
     packages: list[Layout]
     package_type: Enum
+    where: Where = NOWHERE
 
     @property
     def unlaid_codes(self) -> list[EnumValue]:
@@ -375,6 +395,7 @@ class DispatchMessage:
     header: Struct
     subtype: ScalarField
     subtypes: list[Layout]
+    where: Where = NOWHERE
 
     @property
     def subtype_enum(self) -> Enum:
@@ -412,6 +433,7 @@ class Protocol:
     package_length: HeaderField
     package_type: HeaderField
     messages: list[Message]
+    source: str = "<spec>"           # the spec file, for problems found after resolving
 
     @property
     def message_type_enum(self) -> Enum:

@@ -22,6 +22,10 @@ class _Resolver:
     def fail(self, parts, message: str) -> None:
         self.problems.append(self.spec.problem(parts, message))
 
+    def where(self, parts) -> ir.Where:
+        found = self.spec.problem(parts, "")
+        return ir.Where(found.path, found.line)
+
     # ---- versions and enums ----
 
     def versions(self, raw: Optional[dict], parts) -> ir.VersionRange:
@@ -98,7 +102,7 @@ class _Resolver:
     def field(self, raw: dict, parts, earlier: list[ir.AnyField]) -> ir.AnyField:
         common = dict(name=raw["name"], doc=raw.get("doc", ""), field_note=raw.get("field_note", ""),
                       present_if=raw.get("present_if"),
-                      versions=self.versions(raw.get("versions"), parts + ["versions"]))
+                      versions=self.versions(raw.get("versions"), parts + ["versions"]), where=self.where(parts))
         if common["present_if"] is not None:
             cond = _find(earlier, common["present_if"])
             if not isinstance(cond, ir.ScalarField) or cond.scalar.is_float:
@@ -167,7 +171,7 @@ class _Resolver:
             sets_version = (sv["major"], sv["minor"])
         summary = self.summary(raw.get("summary"), struct, parts + ["summary"])
         return ir.Layout(name, self.member(code_enum, raw["code"], parts + ["code"]), raw["doc"],
-                         raw.get("field_note", ""), struct, sets_version, summary)
+                         raw.get("field_note", ""), struct, sets_version, summary, self.where(parts))
 
     def summary(self, text: Optional[str], struct: ir.Struct, parts) -> list[tuple[str, str]]:
         """'{title}: {text}' -> [('', 'title'), (': ', 'text')]; only scalar and string fields."""
@@ -220,7 +224,7 @@ class _Resolver:
                 packages = [self.layout(n, r, ph["type"].enum, parts + ["packages", n]) for n, r in raw["packages"].items()]
                 self.unique_codes(packages, parts + ["packages"])
                 messages.append(ir.PackageListMessage(name, code, raw["doc"], raw.get("field_note", ""), packages,
-                                                      ph["type"].enum))
+                                                      ph["type"].enum, self.where(parts)))
                 layouts = packages
             else:
                 header = ir.Struct(name + "_header", raw["doc"], self.fields(raw["header"], parts + ["header"]))
@@ -228,11 +232,12 @@ class _Resolver:
                     self.fail(parts + ["header"], "a message header must have a fixed size")
                 st = raw["subtype"]
                 sub_enum = self.enum_ref(st["enum"], parts + ["subtype", "enum"])
-                subtype = ir.ScalarField(name=st["name"], doc=st.get("doc", ""), scalar=ir.SCALARS[st["type"]], enum=sub_enum)
+                subtype = ir.ScalarField(name=st["name"], doc=st.get("doc", ""), scalar=ir.SCALARS[st["type"]], enum=sub_enum,
+                                         where=self.where(parts + ["subtype"]))
                 subtypes = [self.layout(n, r, sub_enum, parts + ["subtypes", n]) for n, r in raw["subtypes"].items()]
                 self.unique_codes(subtypes, parts + ["subtypes"])
                 messages.append(ir.DispatchMessage(name, code, raw["doc"], raw.get("field_note", ""), header,
-                                                   subtype, subtypes))
+                                                   subtype, subtypes, self.where(parts)))
                 layouts = subtypes
             for lay in layouts:
                 layouts_by_name.setdefault(lay.name, []).append(parts)
@@ -263,7 +268,7 @@ class _Resolver:
             documented_versions=documented, default_version=ir.parse_version(proto["default_version"]),
             enums=self.enums, value_layouts=value_layouts,
             message_length=mh["length"], message_type=mh["type"],
-            package_length=ph["length"], package_type=ph["type"], messages=messages)
+            package_length=ph["length"], package_type=ph["type"], messages=messages, source=self.spec.source)
         if self.problems:
             raise SpecError(self.spec.source, self.problems)
         return protocol

@@ -1,5 +1,6 @@
-"""The targets: each module here with a `render(protocol, banner) -> {path: text}` function
-turns the IR into files under generated/<target>/. Adding a target is adding a module."""
+"""The targets: each module here with a `render(plan, banner) -> {path: text}` function turns
+the planned IR (codegen/plan.py) into files under generated/<target>/. Adding a target is
+adding a module and its templates."""
 from __future__ import annotations
 
 import importlib
@@ -7,8 +8,9 @@ import pkgutil
 from typing import Callable, Optional
 
 from .. import ir
+from ..plan import ProtocolPlan, plan
 
-Render = Callable[[ir.Protocol, list[str]], dict[str, str]]
+Render = Callable[[ProtocolPlan, list[str]], dict[str, str]]
 
 
 def _discover() -> dict[str, Render]:
@@ -28,8 +30,9 @@ def render_all(protocol: ir.Protocol, spec_path: str, spec_text: str,
     from ..emit import banner_lines
 
     banner = banner_lines(spec_path, spec_text)
+    planned = plan(protocol)
     outputs: dict[str, str] = {}
     for name, render in TARGETS.items():
         if only is None or name in only:
-            outputs.update(render(protocol, banner))
+            outputs.update(render(planned, banner))
     return outputs

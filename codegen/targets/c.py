@@ -579,7 +579,8 @@ def helpers_used(model) -> set[str]:
     return found
 
 
-def render(p: ir.Protocol, banner: list[str]) -> dict[str, str]:
+def render(protocol_plan, banner: list[str]) -> dict[str, str]:
+    p = protocol_plan.protocol
     env = environment(FOLDER)
     model = build(p)
     model["helpers"] = helpers_used(model)

@@ -373,7 +373,8 @@ def _unconditional(f: ir.AnyField) -> ir.Struct:
     return ir.Struct(f.name, "", [g])
 
 
-def render(p: ir.Protocol, banner: list[str]) -> dict[str, str]:
+def render(protocol_plan, banner: list[str]) -> dict[str, str]:
+    p = protocol_plan.protocol
     env = environment("lua")
     model = _Builder(p).build()
     ctx = dict(banner=banner, p=p, title=lua_str(p.title), doc=one_line(p.doc), **model)

@@ -8,8 +8,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Optional
 
-from .. import ir
+from .. import ir, plan
 from ..emit import environment, runtime_files
+from ..errors import Problem, SpecError
 from ..view import Step, one_line
 from ..naming import (camel, py_enum_class, py_item_class, py_layout_class, py_lookup,
                       py_message_class, py_table_class)
@@ -137,124 +138,81 @@ def index(base: str, k: int) -> str:
 
 
 class _ClassBuilder:
-    """Builds the PyClass of one struct (and, first, of its group items)."""
+    """Maps the plan of one layout to Python steps (and, first, of its group items)."""
 
     def __init__(self, target: "_Target", owner: str):
         self.target = target
         self.owner = owner
         self.structs: list[StructConst] = []
 
-    # ---- fixed runs ----
+    # ---- fixed runs: what each member of a run becomes ----
 
-    def run_leaves(self, f: ir.AnyField, path: str, base: int):
-        """For one fixed field: (decode fmt, encode fmt, run entries, decode expr(v, i, at),
-        encode args, number of values). `at` is the expression of the field's byte offset."""
+    def member_decode(self, m: plan.Member, v: str, i: str, at: str) -> str:
+        """Decode expression of one member whose first scalar is v[i] and whose bytes start at `at`."""
+        f = m.field
         if isinstance(f, ir.ScalarField):
-            return (STRUCT_CODES[f.scalar.name], out_code(f.scalar), [(path, base, f.scalar.size)],
-                    lambda v, i, at: leaf_expr(f.scalar, f.enum, f"{v}[{i}]", at),
-                    [encode_expr(f.scalar, f"self.{f.name}")], 1)
+            return leaf_expr(f.scalar, f.enum, f"{v}[{i}]", at)
         if isinstance(f, ir.ArrayField):
-            n, size = f.count, f.scalar.size
-            entries = [(f"{path}[{k}]", base + k * size, size) for k in range(n)]
+            n = m.leaf_count
+            ref = f"{v}[{i}:{int(i) + n}]" if i.isdigit() else f"{v}[{i}:{i} + {n}]"
+            if f.scalar.is_float and f.scalar.size == 4:
+                return f"_rt.f32_list({ref}, buf, {at})"
+            if f.enum is None and not f.scalar.is_bool:
+                return f"list({ref})"
+            return f"[{leaf_expr(f.scalar, f.enum, 'x')} for x in {ref}]"
+        item = self.target.item_classes[id(f)]
+        width, size = m.item.leaf_count, m.item.layout.fixed_size
+        first = f"{i} + j * {width}" if i != "0" else f"j * {width}"
+        return f"[{item.name}._from({v}, {first}, buf, {at} + j * {size}) for j in range({f.count})]"
 
-            def array_expr(v, i, at, f=f, n=n):
-                ref = f"{v}[{i}:{i} + {n}]" if not i.isdigit() else f"{v}[{i}:{int(i) + n}]"
-                if f.scalar.is_float and f.scalar.size == 4:
-                    return f"_rt.f32_list({ref}, buf, {at})"
-                if f.enum is None and not f.scalar.is_bool:
-                    return f"list({ref})"
-                return f"[{leaf_expr(f.scalar, f.enum, 'x')} for x in {ref}]"
-            enc = (f"*map(_rt.f32_bits, self.{f.name})" if f.scalar.is_float and f.scalar.size == 4
-                   else f"*self.{f.name}")
-            return (STRUCT_CODES[f.scalar.name] * n, out_code(f.scalar) * n, entries, array_expr, [enc], n)
-        assert isinstance(f, ir.GroupField) and f.count is not None
-        item_cls = self.target.item_classes[id(f)]
-        fmt, ofmt, entries, width, offset = "", "", [], 0, base
-        for k in range(f.count):
-            for g in f.item.fields:
-                gfmt, gofmt, gentries, _, _, gwidth = self.run_leaves(g, f"{path}[{k}].{g.name}", offset)
-                fmt += gfmt
-                ofmt += gofmt
-                entries += gentries
-                offset += g.fixed_size or 0
-                if k == 0:
-                    width += gwidth
-        item_size = f.item.fixed_size
+    @staticmethod
+    def member_encode(m: plan.Member) -> str:
+        f = m.field
+        if isinstance(f, ir.ScalarField):
+            return encode_expr(f.scalar, f"self.{f.name}")
+        if isinstance(f, ir.ArrayField):
+            return f"*map(_rt.f32_bits, self.{f.name})" if _is_f32(f.scalar) else f"*self.{f.name}"
+        return f"*[x for item in self.{f.name} for x in item._values()]"
 
-        def group_expr(v, i, at, cls=item_cls.name, n=f.count, width=width, item_size=item_size):
-            first = f"{i} + j * {width}" if i != "0" else f"j * {width}"
-            return f"[{cls}._from({v}, {first}, buf, {at} + j * {item_size}) for j in range({n})]"
-        return fmt, ofmt, entries, group_expr, [f"*[x for item in self.{f.name} for x in item._values()]"], width * f.count
-
-    def flush_run(self, run: list[ir.AnyField], decode: list[Step], encode: list[Step], prefix: str) -> None:
-        if not run:
-            return
-        const = f"_{self.owner.upper()}_{len(self.structs)}"
-        fmt, ofmt, entries, assigns, args, index_ = ">", ">", [], [], [], 0
-        offset = 0
-        for f in run:
-            ffmt, fofmt, fentries, expr, fargs, width = self.run_leaves(f, prefix + f.name, offset)
-            fmt += ffmt
-            ofmt += fofmt
-            entries += fentries
-            assigns.append((f.name, expr("v", str(index_), f"pos + {offset}" if offset else "pos")))
-            args += fargs
-            index_ += width
-            offset += f.fixed_size or 0
-        out_const = const if ofmt == fmt else const + "_OUT"
+    def run_step(self, run: plan.FixedRun) -> tuple[Step, Step]:
+        const = f"_{self.owner.upper()}_{run.index}"
+        fmt = ">" + "".join(STRUCT_CODES[leaf.scalar.name] for leaf in run.leaves)
+        ofmt = ">" + "".join(out_code(leaf.scalar) for leaf in run.leaves)
+        entries = [(leaf.path, leaf.offset, leaf.scalar.size) for leaf in run.leaves]
+        assigns = [(m.field.name, self.member_decode(m, "v", str(m.first_leaf), index("pos", m.offset)))
+                   for m in run.members]
         self.structs.append(StructConst(const, fmt, entries, ofmt if ofmt != fmt else None))
         # One plain value: unpack straight into its name, then convert it in place if needed.
-        single = index_ == 1 and "f32_nan" not in assigns[0][1]
+        single = len(run.leaves) == 1 and not _is_f32(run.leaves[0].scalar)
         name = assigns[0][0]
         convert = assigns[0][1].replace("v[0]", name) if single and assigns[0][1] != "v[0]" else None
-        decode.append(Step("run", dict(const=const, size=offset, assigns=assigns, single=single, name=name,
-                                       convert=convert)))
-        encode.append(Step("run", dict(const=out_const, args=args)))
-        run.clear()
+        decode = Step("run", dict(const=const, size=run.size, assigns=assigns, single=single, name=name,
+                                  convert=convert))
+        encode = Step("run", dict(const=const if ofmt == fmt else const + "_OUT",
+                                  args=[self.member_encode(m) for m in run.members]))
+        return decode, encode
 
     # ---- steps ----
 
-    def steps(self, fields: list[ir.AnyField], prefix: str) -> tuple[list[Step], list[Step]]:
+    def steps(self, steps: list[plan.Step]) -> tuple[list[Step], list[Step]]:
         decode: list[Step] = []
         encode: list[Step] = []
-        run: list[ir.AnyField] = []
-        i = 0
-        while i < len(fields):
-            f = fields[i]
-            if f.name in RESERVED_LOCALS:
-                raise ValueError(f"field name '{f.name}' clashes with a local of the generated Python")
-            if f.conditional:
-                self.flush_run(run, decode, encode, prefix)
-                group = [f]
-                while i + 1 < len(fields) and (fields[i + 1].present_if, fields[i + 1].versions) == (f.present_if, f.versions):
-                    i += 1
-                    group.append(fields[i])
-                inner_d, inner_e = self.steps([_unconditional(g) for g in group], prefix)
-                decode.append(Step("cond", dict(test=self.condition(f, ""), steps=inner_d,
-                                                names=[g.name for g in group])))
-                encode.append(Step("cond", dict(test=self.condition(f, "self."), steps=inner_e)))
-            elif f.fixed_size is not None and not isinstance(f, ir.SwitchField):
-                run.append(f)
+        for step in steps:
+            if isinstance(step, plan.FixedRun):
+                d, e = self.run_step(step)
+            elif isinstance(step, plan.CondGroup):
+                inner_d, inner_e = self.steps(step.steps)
+                d = Step("cond", dict(test=condition(step.condition, ""), steps=inner_d,
+                                      names=[f.name for f in step.fields]))
+                e = Step("cond", dict(test=condition(step.condition, "self."), steps=inner_e))
             else:
-                self.flush_run(run, decode, encode, prefix)
-                d, e = self.dynamic_step(f, prefix + f.name)
-                decode.append(d)
-                encode.append(e)
-            i += 1
-        self.flush_run(run, decode, encode, prefix)
+                d, e = self.var_step(step)
+            decode.append(d)
+            encode.append(e)
         return decode, encode
 
-    def condition(self, f: ir.AnyField, ref: str) -> str:
-        tests = []
-        if f.present_if:
-            tests.append(f"{ref}{f.present_if}")
-        if f.versions.low:
-            tests.append(f"version >= {f.versions.low}")
-        if f.versions.high:
-            tests.append(f"version <= {f.versions.high}")
-        return " and ".join(tests)
-
-    def dynamic_step(self, f: ir.AnyField, path: str) -> tuple[Step, Step]:
+    def var_step(self, step: plan.VarField) -> tuple[Step, Step]:
+        f, path = step.field, step.path
         if isinstance(f, ir.StringField) and f.length is not None:
             prefix = self.target.prefix_const(f.length)
             return (Step("prefixed_text", dict(name=f.name, prefix=prefix, path=path)),
@@ -264,8 +222,8 @@ class _ClassBuilder:
         if isinstance(f, ir.BytesField):
             return Step("rest_bytes", dict(name=f.name)), Step("rest_bytes", dict(name=f.name))
         if isinstance(f, ir.StringListField):
-            return (Step("texts", dict(name=f.name, terminator=f"0x{f.terminator:02x}")),
-                    Step("texts", dict(name=f.name, terminator=f"0x{f.terminator:02x}")))
+            data = dict(name=f.name, terminator=f"0x{f.terminator:02x}")
+            return Step("texts", data), Step("texts", data)
         if isinstance(f, ir.ValueListField):
             return (Step("values", dict(name=f.name, terminator=f"0x{f.terminator:02x}", path=path)),
                     Step("values", dict(name=f.name, terminator=f"0x{f.terminator:02x}")))
@@ -278,27 +236,35 @@ class _ClassBuilder:
             return Step("switch", data), Step("switch", data)
         assert isinstance(f, ir.GroupField)
         item = self.target.item_classes[id(f)]
-        if f.count is not None:
-            raise NotImplementedError("a fixed-count group of variable-size items")
         return (Step("group_to_end", dict(name=f.name, item=item.name, path=path)),
                 Step("group_to_end", dict(name=f.name)))
 
 
-def _unconditional(f: ir.AnyField) -> ir.AnyField:
-    import copy
-    g = copy.copy(f)
-    g.present_if = None
-    g.versions = ir.ALL_VERSIONS
-    return g
+def condition(c: plan.Condition, ref: str) -> str:
+    """A plan's condition as a Python test; `ref` is where field values live (self. or locals)."""
+    tests = []
+    if c.flag:
+        tests.append(f"{ref}{c.flag}")
+    if c.low:
+        tests.append(f"version >= {c.low}")
+    if c.high:
+        tests.append(f"version <= {c.high}")
+    return " and ".join(tests)
+
+
+def _is_f32(s: ir.Scalar) -> bool:
+    return s.is_float and s.size == 4
 
 
 class _Target:
-    def __init__(self, protocol: ir.Protocol):
-        self.p = protocol
+    def __init__(self, protocol_plan: plan.ProtocolPlan):
+        self.plan = protocol_plan
+        self.p = protocol_plan.protocol
         self.item_classes: dict[int, PyClass] = {}
         self.classes: list[PyClass] = []
         self.prefixes: dict[str, str] = {}
         self.switches: list[tuple[str, dict]] = []
+        self.problems: list[Problem] = []
 
     def prefix_const(self, s: ir.Scalar) -> str:
         """Module constant: a struct of one scalar (length prefixes, switch cases)."""
@@ -306,73 +272,81 @@ class _Target:
         self.prefixes[name] = ">" + STRUCT_CODES[s.name]
         return name
 
-    def build_class(self, struct: ir.Struct, name: str, role: str, json_type: str, code: Optional[int],
-                    doc: str, header: Optional[ir.Struct] = None,
+    def check_names(self, struct: ir.Struct) -> None:
+        for f in struct.fields:
+            if f.name in RESERVED_LOCALS:
+                self.problems.append(f.where.problem(
+                    f"python target: field name '{f.name}' clashes with a local of the generated decoder"))
+
+    def build_class(self, layout: plan.LayoutPlan, name: str, role: str, json_type: str, code: Optional[int],
+                    doc: str, header: Optional[list[plan.HeaderSlot]] = None,
                     sets_version: Optional[tuple[str, str]] = None,
                     summary: Optional[list[tuple[str, str]]] = None) -> PyClass:
+        struct = layout.struct
+        self.check_names(struct)
         # Group items first, so the parent can refer to them.
         for f in struct.fields:
             if isinstance(f, ir.GroupField):
-                item = self.build_class(f.item, py_item_class(f), "item", f.item.name, None,
-                                        one_line(f.doc) or f"One entry of {f.name}.")
-                self.item_classes[id(f)] = item
+                item = self.plan.item_of(f)
+                self.item_classes[id(f)] = self.build_class(
+                    item.layout, py_item_class(f), "item", f.item.name, None,
+                    one_line(f.doc) or f"One entry of {f.name}.")
         builder = _ClassBuilder(self, json_type)
-        decode, encode = builder.steps(struct.fields, "")
+        decode, encode = builder.steps(layout.steps)
         items = {f.name: self.item_classes[id(f)].name for f in struct.fields if isinstance(f, ir.GroupField)}
-        attrs = []
-        header_names = []
-        if header is not None:
-            for f in header.fields:
-                attrs.append(Attr(f.name, annotation(f, {}), one_line(f.doc, f.field_note), json_kind(f)))
-                header_names.append(f.name)
-        for f in struct.fields:
-            attrs.append(Attr(f.name, annotation(f, items), one_line(f.doc, f.field_note), json_kind(f), f.conditional))
-        cls = PyClass(name, doc, role, json_type, code, attrs, header_names, decode, encode, builder.structs,
-                      sets_version=sets_version)
-        summary = summary or []
-        if role == "item" and struct.fixed_size is not None:
+        header_fields = [slot.field for slot in header or [] if not slot.is_subtype]
+        attrs = [Attr(f.name, annotation(f, {}), one_line(f.doc, f.field_note), json_kind(f)) for f in header_fields]
+        attrs += [Attr(f.name, annotation(f, items), one_line(f.doc, f.field_note), json_kind(f), f.conditional)
+                  for f in struct.fields]
+        cls = PyClass(name, doc, role, json_type, code, attrs, [f.name for f in header_fields], decode, encode,
+                      builder.structs, sets_version=sets_version)
+        if role == "item" and self.is_fixed_item(layout):
+            # A fixed item is read inside its parent's run: from the parent's values and offset.
             cls.fixed = True
-            k, offset = 0, 0
-            for f in struct.fields:
-                _, _, _, expr, args, width = builder.run_leaves(f, f.name, 0)
-                cls.from_exprs.append(expr("v", index("i", k), index("at", offset)))
-                cls.values_exprs += args
-                k += width
-                offset += f.fixed_size or 0
-        cls.summary = [name for _, name in summary]
+            for m in layout.runs[0].members:
+                cls.from_exprs.append(builder.member_decode(m, "v", index("i", m.first_leaf), index("at", m.offset)))
+                cls.values_exprs.append(builder.member_encode(m))
+        cls.summary = [field_name for _, field_name in summary or []]
         self.classes.append(cls)
         return cls
 
+    def is_fixed_item(self, layout: plan.LayoutPlan) -> bool:
+        return any(it.layout is layout and it.fixed for it in self.plan.items)
+
     def build(self) -> dict:
         messages = []
-        for m in self.p.messages:
-            if isinstance(m, ir.PackageListMessage):
-                layouts = [self.build_class(pk.struct, py_layout_class(pk, False), "package", pk.name,
-                                            pk.code.value, one_line(pk.doc, pk.field_note), summary=pk.summary)
-                           for pk in m.packages]
+        for mp in self.plan.messages:
+            m = mp.message
+            if not mp.is_dispatch:
+                layouts = [self.build_class(c.plan, py_layout_class(c.layout, False), "package", c.layout.name,
+                                            c.layout.code.value, one_line(c.layout.doc, c.layout.field_note),
+                                            summary=c.layout.summary)
+                           for c in mp.layouts]
                 messages.append(dict(kind="packages", name=m.name, cls=py_message_class(m), code=m.code.value,
-                                     code_name=m.code.name, doc=one_line(m.doc, m.field_note), layouts=layouts))
-            else:
-                hdr_fmt = ">" + "".join(STRUCT_CODES[f.scalar.name] for f in m.header.fields) \
-                    + STRUCT_CODES[m.subtype.scalar.name]
-                run, off = [], self.p.header_size
-                for f in list(m.header.fields) + [m.subtype]:
-                    run.append((f.name, off, f.scalar.size))
-                    off += f.scalar.size
-                # Header values that need converting after the unpack (enums): (name, expression).
-                header_converts = [(f.name, leaf_expr(f.scalar, f.enum, f.name, str(self.p.header_size)))
-                                   for f in m.header.fields]
-                header_converts = [(n, e) for n, e in header_converts if n != e]
-                names = [f.name for f in m.header.fields]
-                layouts = [self.build_class(st.struct, py_layout_class(st, True), "subtype", st.name,
-                                            st.code.value, one_line(st.doc, st.field_note), m.header,
-                                            st.sets_version, st.summary) for st in m.subtypes]
-                messages.append(dict(
-                    kind="dispatch", name=m.name, code=m.code.value, code_name=m.code.name,
-                    doc=one_line(m.doc, m.field_note), layouts=layouts, header_fmt=hdr_fmt, header_run=run,
-                    header_names=names, header_converts=header_converts, subtype=m.subtype.name,
-                    body_offset=off, source_arg="source" if "source" in names else "None"))
-        return dict(messages=messages, classes=self.classes, prefixes=self.prefixes, switches=self.switches)
+                                     code_name=m.code.name, doc=one_line(m.doc, m.field_note), layouts=layouts,
+                                     header_size=self.plan.header_size,
+                                     package_header_size=self.plan.package_header_size))
+                continue
+            fields = [slot.field for slot in mp.header if not slot.is_subtype]
+            subtype = mp.header[-1].field
+            # Header values that need converting after the unpack (enums): (name, expression).
+            converts = [(f.name, leaf_expr(f.scalar, f.enum, f.name, str(mp.header[0].offset))) for f in fields]
+            layouts = [self.build_class(c.plan, py_layout_class(c.layout, True), "subtype", c.layout.name,
+                                        c.layout.code.value, one_line(c.layout.doc, c.layout.field_note), mp.header,
+                                        c.layout.sets_version, c.layout.summary) for c in mp.layouts]
+            source = mp.header_field("source")
+            messages.append(dict(
+                kind="dispatch", name=m.name, code=m.code.value, code_name=m.code.name,
+                doc=one_line(m.doc, m.field_note), layouts=layouts,
+                header_fmt=">" + "".join(STRUCT_CODES[slot.field.scalar.name] for slot in mp.header),
+                header_run=[(slot.field.name, slot.offset, slot.field.scalar.size) for slot in mp.header],
+                header_offset=mp.header[0].offset, header_names=[f.name for f in fields],
+                header_converts=[(n, e) for n, e in converts if n != e], subtype=subtype.name,
+                body_offset=mp.body_offset, source_arg=source.field.name if source else "None"))
+        if self.problems:
+            raise SpecError(self.p.source, self.problems)
+        return dict(messages=messages, classes=self.classes, prefixes=self.prefixes, switches=self.switches,
+                    header_size=self.plan.header_size)
 
 
 def enum_views(p: ir.Protocol) -> list[dict]:
@@ -413,9 +387,10 @@ def value_kind_views(p: ir.Protocol) -> list[dict]:
     return out
 
 
-def render(p: ir.Protocol, banner: list[str]) -> dict[str, str]:
+def render(protocol_plan: plan.ProtocolPlan, banner: list[str]) -> dict[str, str]:
+    p = protocol_plan.protocol
     env = environment("python")
-    model = _Target(p).build()
+    model = _Target(protocol_plan).build()
     ctx = dict(banner=banner, p=p, enums=enum_views(p), value_tables=value_kind_views(p),
                version_text=ir.version_text, **model)
     out = {f"{PACKAGE}/{name[:-3]}": env.get_template(name).render(**ctx)

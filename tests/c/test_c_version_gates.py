@@ -9,6 +9,7 @@ import subprocess
 
 import yaml
 
+from codegen.plan import plan
 from codegen.compile import DEFAULT_SPEC, compile_text
 from codegen.targets import c as c_target
 from tests.c.harness_c import CLI, ROOT, compile_c
@@ -18,7 +19,7 @@ def variant_cli(tmp_path):
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
     fields = data["messages"]["robot_state"]["packages"]["additional_info"]["fields"]
     fields.append({"name": "gated_flag", "type": "uint16", "versions": {"from": "5.12"}})
-    for rel, text in c_target.render(compile_text(yaml.safe_dump(data, sort_keys=False)), ["test build"]).items():
+    for rel, text in c_target.render(plan(compile_text(yaml.safe_dump(data, sort_keys=False))), ["test build"]).items():
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / rel).write_text(text)
     exe, driver = tmp_path / "urwire-decode", tmp_path / "driver"

@@ -11,6 +11,7 @@ import sys
 
 import yaml
 
+from codegen.plan import plan
 from codegen.compile import DEFAULT_SPEC, compile_text
 from codegen.targets import python as python_target
 
@@ -19,7 +20,7 @@ def render_variant(tmp_path, edit):
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
     edit(data)
     protocol = compile_text(yaml.safe_dump(data, sort_keys=False))
-    for rel, text in python_target.render(protocol, ["test build"]).items():
+    for rel, text in python_target.render(plan(protocol), ["test build"]).items():
         path = tmp_path / rel
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)

@@ -1,0 +1,392 @@
+"""Pass 4: plan every layout once, for every target.
+
+A plan says how the bytes of a layout are walked, in the order they come:
+- a `FixedRun` is fields whose sizes are known without reading: one bounds check covers them,
+  and every field and scalar in it has its offset from the run's start;
+- a `CondGroup` is consecutive fields present under one condition (a flag field, a version
+  range), with the plan of its inside;
+- a `VarField` is one field whose size is known only by reading it.
+
+Messages get their header slots with absolute offsets, the offset where their body starts and
+the layouts each type code can have; the protocol gets where the software version is read.
+Targets render these plans and decide nothing about layout themselves: no target splits a
+struct, computes an offset or builds a condition from the IR on its own.
+"""
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass, field
+from typing import Optional, Union
+
+from . import ir
+from .errors import Problem, SpecError
+
+
+# ---- conditions ---------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Condition:
+    """When a field is on the wire: `flag` (an earlier field) is nonzero, and the stream's
+    version lies within `versions`. Targets render each part in their own syntax."""
+
+    flag: Optional[str]
+    versions: ir.VersionRange
+
+    @property
+    def low(self) -> Optional[ir.Version]:
+        return self.versions.low
+
+    @property
+    def high(self) -> Optional[ir.Version]:
+        return self.versions.high
+
+
+def condition_of(f: ir.AnyField) -> Optional[Condition]:
+    return Condition(f.present_if, f.versions) if f.conditional else None
+
+
+# ---- layout plans -------------------------------------------------------------------------
+
+@dataclass
+class Leaf:
+    """One scalar inside a fixed run: its path from the layout (joints[2].q_actual)."""
+
+    path: str
+    offset: int          # from the start of the run
+    scalar: ir.Scalar
+
+
+@dataclass
+class Member:
+    """One field inside a fixed run."""
+
+    field: ir.AnyField
+    offset: int          # from the start of the run
+    first_leaf: int      # index of its first scalar among the run's leaves
+    leaf_count: int
+    item: Optional["ItemPlan"] = None   # for a fixed-count group: the plan of one item
+
+
+@dataclass
+class FixedRun:
+    index: int                      # the n-th run of its layout, counting inside conditions
+    size: int
+    members: list[Member]
+    leaves: list[Leaf]
+    offset: Optional[int]           # from the layout's start, when nothing variable precedes it
+    kind: str = "run"
+
+    @property
+    def fields(self) -> list[ir.AnyField]:
+        return [m.field for m in self.members]
+
+
+@dataclass
+class CondGroup:
+    condition: Condition
+    fields: list[ir.AnyField]
+    steps: list["Step"]
+    kind: str = "cond"
+
+
+@dataclass
+class VarField:
+    field: ir.AnyField
+    path: str
+    item: Optional["ItemPlan"] = None   # for a group repeated to the end
+    kind: str = "var"
+
+
+Step = Union[FixedRun, CondGroup, VarField]
+
+
+@dataclass
+class LayoutPlan:
+    """How one struct (a package, a message body, or a group item) is walked."""
+
+    struct: ir.Struct
+    steps: list[Step]
+    runs: list[FixedRun]             # every run, nested ones included, in order
+    fixed_size: Optional[int]
+    min_size: int
+    offsets: dict[str, int]          # fields at a fixed offset from the start: name -> offset
+
+    def field_offset(self, name: str) -> Optional[int]:
+        return self.offsets.get(name)
+
+
+@dataclass
+class ItemPlan:
+    """One item of a repeated group. A fixed item is read inside its parent's run: `leaves`
+    and `members` are then relative to the item's start."""
+
+    group: ir.GroupField
+    layout: LayoutPlan
+    fixed: bool
+    leaf_count: int                  # scalars per item (fixed items)
+
+
+class _Planner:
+    def __init__(self, problems: list[Problem]):
+        self.problems = problems
+        self.items: dict[int, ItemPlan] = {}
+
+    def item(self, group: ir.GroupField) -> ItemPlan:
+        if id(group) not in self.items:
+            layout = self.layout(group.item)
+            fixed = _all_in_run(group.item)
+            leaves = len(layout.runs[0].leaves) if fixed else 0
+            if not fixed and group.count is not None:
+                self.problems.append(group.where.problem(
+                    "a fixed-count group of variable-size items is not supported: give the items a fixed size "
+                    "or repeat them to the end"))
+            if not fixed and group.item.needs_version:
+                self.problems.append(group.where.problem(
+                    "the items of a repeated group cannot depend on the software version"))
+            self.items[id(group)] = ItemPlan(group, layout, fixed, leaves)
+        return self.items[id(group)]
+
+    def layout(self, struct: ir.Struct) -> LayoutPlan:
+        runs: list[FixedRun] = []
+        steps = self.steps(struct.fields, runs, 0)
+        offsets, at = {}, 0
+        for f in struct.fields:
+            if at is None or f.conditional:
+                break
+            offsets[f.name] = at
+            at = at + f.fixed_size if f.fixed_size is not None else None
+        return LayoutPlan(struct, steps, runs, struct.fixed_size, struct.min_size, offsets)
+
+    def steps(self, fields: list[ir.AnyField], runs: list[FixedRun], start: Optional[int]) -> list[Step]:
+        out: list[Step] = []
+        pending: list[ir.AnyField] = []
+        at = start
+
+        def flush() -> None:
+            nonlocal at
+            if pending:
+                run = self.run(list(pending), len(runs), at)
+                runs.append(run)
+                out.append(run)
+                at = None if at is None else at + run.size
+                pending.clear()
+
+        i = 0
+        while i < len(fields):
+            f = fields[i]
+            if f.conditional:
+                flush()
+                group = [f]
+                while i + 1 < len(fields) and condition_of(fields[i + 1]) == condition_of(f):
+                    i += 1
+                    group.append(fields[i])
+                inner = self.steps([_unconditional(g) for g in group], runs, None)
+                out.append(CondGroup(condition_of(f), group, inner))
+                at = None
+            elif _in_run(f):
+                pending.append(f)
+            else:
+                flush()
+                item = self.item(f) if isinstance(f, ir.GroupField) else None
+                out.append(VarField(f, f.name, item))
+                at = None
+            i += 1
+        flush()
+        return out
+
+    def run(self, fields: list[ir.AnyField], index: int, offset: Optional[int]) -> FixedRun:
+        members, leaves, at = [], [], 0
+        for f in fields:
+            item = self.item(f) if isinstance(f, ir.GroupField) else None
+            mine = self.leaves(f, f.name, at)
+            members.append(Member(f, at, len(leaves), len(mine), item))
+            leaves += mine
+            at += f.fixed_size
+        return FixedRun(index, at, members, leaves, offset)
+
+    def leaves(self, f: ir.AnyField, path: str, at: int) -> list[Leaf]:
+        if isinstance(f, ir.ScalarField):
+            return [Leaf(path, at, f.scalar)]
+        if isinstance(f, ir.ArrayField):
+            return [Leaf(f"{path}[{k}]", at + k * f.scalar.size, f.scalar) for k in range(f.count)]
+        assert isinstance(f, ir.GroupField) and f.count is not None
+        out = []
+        for k in range(f.count):
+            for g in f.item.fields:
+                out += self.leaves(g, f"{path}[{k}].{g.name}", at)
+                at += g.fixed_size
+        return out
+
+
+def _in_run(f: ir.AnyField) -> bool:
+    """Fields a fixed run can hold: known size, and no choice made while reading."""
+    if isinstance(f, ir.GroupField):
+        return f.count is not None and _all_in_run(f.item)
+    return f.fixed_size is not None and not isinstance(f, ir.SwitchField)
+
+
+def _all_in_run(struct: ir.Struct) -> bool:
+    return all(_in_run(g) and not g.conditional for g in struct.fields)
+
+
+def _unconditional(f: ir.AnyField) -> ir.AnyField:
+    """The same field planned inside its condition group."""
+    g = copy.copy(f)
+    g.present_if = None
+    g.versions = ir.ALL_VERSIONS
+    return g
+
+
+# ---- messages and the protocol ------------------------------------------------------------
+
+@dataclass
+class HeaderSlot:
+    """One fixed field of a message's common header, or its subtype byte."""
+
+    field: ir.ScalarField
+    offset: int                      # from the message's first byte
+    is_subtype: bool = False
+
+
+@dataclass
+class LayoutChoice:
+    """A layout a type code can have."""
+
+    layout: ir.Layout
+    plan: LayoutPlan
+
+
+@dataclass
+class MessagePlan:
+    message: ir.Message
+    header: list[HeaderSlot]         # dispatch messages: the common header, then the subtype
+    body_offset: int                 # the first sub-package, or the subtype's first field
+    subtype_offset: Optional[int]
+    choices: dict[int, list[LayoutChoice]]   # type code -> the layouts it can have
+
+    @property
+    def is_dispatch(self) -> bool:
+        return isinstance(self.message, ir.DispatchMessage)
+
+    @property
+    def layouts(self) -> list[LayoutChoice]:
+        return [c for choices in self.choices.values() for c in choices]
+
+    def header_field(self, name: str) -> Optional[HeaderSlot]:
+        for slot in self.header:
+            if slot.field.name == name and not slot.is_subtype:
+                return slot
+        return None
+
+
+@dataclass
+class VersionSkip:
+    """On the way to the version numbers: `fixed` bytes, then a string whose length prefix is
+    `prefix` bytes (signed or not)."""
+
+    fixed: int
+    prefix: int
+    signed: bool
+
+
+@dataclass
+class VersionSource:
+    """Where a stream announces its software version: which message and subtype, and how to
+    reach the major and minor numbers from the body's start."""
+
+    message_code: int
+    subtype_code: int
+    subtype_offset: int
+    body_offset: int
+    layout: ir.Layout
+    major: ir.ScalarField
+    minor: ir.ScalarField
+    skips: list[VersionSkip]
+    tail: int                        # bytes after the last skip up to major
+    rest: int                        # least bytes after minor
+
+
+@dataclass
+class ProtocolPlan:
+    protocol: ir.Protocol
+    header_size: int
+    package_header_size: int
+    messages: list[MessagePlan]
+    version: VersionSource
+    items: list[ItemPlan]
+
+    def message(self, name: str) -> MessagePlan:
+        for m in self.messages:
+            if m.message.name == name:
+                return m
+        raise KeyError(name)
+
+    def plan_of(self, layout: ir.Layout) -> LayoutPlan:
+        for m in self.messages:
+            for c in m.layouts:
+                if c.layout is layout:
+                    return c.plan
+        raise KeyError(layout.name)
+
+    def item_of(self, group: ir.GroupField) -> ItemPlan:
+        for it in self.items:
+            if it.group is group:
+                return it
+        raise KeyError(group.name)
+
+
+def _version_source(p: ir.Protocol, messages: list[MessagePlan], problems: list[Problem]) -> Optional[VersionSource]:
+    found = [(m, c.layout) for m in messages for c in m.layouts if c.layout.sets_version]
+    if len(found) != 1:
+        where = found[1][1].where if found[1:] else p.messages[0].where if p.messages else ir.NOWHERE
+        problems.append(where.problem(f"exactly one layout must set the version ({len(found)} do)"))
+        return None
+    m, lay = found[0]
+    major_name, minor_name = lay.sets_version
+    names = [f.name for f in lay.struct.fields]
+    if names.index(minor_name) != names.index(major_name) + 1:
+        problems.append(lay.where.problem("sets_version: the minor number must follow the major number"))
+        return None
+    skips, at = [], 0
+    for f in lay.struct.fields[:names.index(major_name)]:
+        if isinstance(f, ir.StringField) and f.length is not None and not f.conditional:
+            skips.append(VersionSkip(at, f.length.size, f.length.signed))
+            at = 0
+        elif f.fixed_size is not None and not f.conditional:
+            at += f.fixed_size
+        else:
+            problems.append(f.where.problem("the version numbers must be reachable through fixed fields and "
+                                            "length-prefixed strings"))
+            return None
+    after = lay.struct.fields[names.index(minor_name) + 1:]
+    return VersionSource(m.message.code.value, lay.code.value, m.subtype_offset, m.body_offset, lay,
+                         lay.struct.field(major_name), lay.struct.field(minor_name), skips, at,
+                         sum(0 if f.conditional else f.min_size for f in after))
+
+
+def plan(p: ir.Protocol) -> ProtocolPlan:
+    """Plan every layout of the protocol; problems name the spec's path and line."""
+    problems: list[Problem] = []
+    planner = _Planner(problems)
+    messages = []
+    for m in p.messages:
+        choices: dict[int, list[LayoutChoice]] = {}
+        if isinstance(m, ir.PackageListMessage):
+            header, body, subtype_offset = [], p.header_size, None
+            layouts = m.packages
+        else:
+            header, at = [], p.header_size
+            for f in m.header.fields:
+                header.append(HeaderSlot(f, at))
+                at += f.scalar.size
+            header.append(HeaderSlot(m.subtype, at, is_subtype=True))
+            subtype_offset, body = at, at + m.subtype.scalar.size
+            layouts = m.subtypes
+        for lay in layouts:
+            choices.setdefault(lay.code.value, []).append(LayoutChoice(lay, planner.layout(lay.struct)))
+        messages.append(MessagePlan(m, header, body, subtype_offset, choices))
+    version = _version_source(p, messages, problems)
+    if problems:
+        raise SpecError(p.source, problems)
+    return ProtocolPlan(p, p.header_size, p.package_header_size, messages, version,
+                        list(planner.items.values()))
