@@ -57,6 +57,10 @@ class PyClass:
     summary: list[str] = field(default_factory=list)
 
     @property
+    def base(self) -> str:
+        return {"package": "_Package", "subtype": "_Subtype", "item": "_Item"}[self.role]
+
+    @property
     def field_names(self) -> list[str]:
         return [a.name for a in self.attrs if a.name not in self.header_names]
 
@@ -324,8 +328,7 @@ class _Target:
                            for c in mp.layouts]
                 messages.append(dict(kind="packages", name=m.name, cls=py_message_class(m), code=m.code.value,
                                      code_name=m.code.name, doc=one_line(m.doc, m.field_note), layouts=layouts,
-                                     header_size=self.plan.header_size,
-                                     package_header_size=self.plan.package_header_size))
+                                     body_offset=mp.body_offset))
                 continue
             fields = [slot.field for slot in mp.header if not slot.is_subtype]
             subtype = mp.header[-1].field
@@ -334,7 +337,6 @@ class _Target:
             layouts = [self.build_class(c.plan, py_layout_class(c.layout, True), "subtype", c.layout.name,
                                         c.layout.code.value, one_line(c.layout.doc, c.layout.field_note), mp.header,
                                         c.layout.sets_version, c.layout.summary) for c in mp.layouts]
-            source = mp.header_field("source")
             messages.append(dict(
                 kind="dispatch", name=m.name, code=m.code.value, code_name=m.code.name,
                 doc=one_line(m.doc, m.field_note), layouts=layouts,
@@ -342,11 +344,16 @@ class _Target:
                 header_run=[(slot.field.name, slot.offset, slot.field.scalar.size) for slot in mp.header],
                 header_offset=mp.header[0].offset, header_names=[f.name for f in fields],
                 header_converts=[(n, e) for n, e in converts if n != e], subtype=subtype.name,
-                body_offset=mp.body_offset, source_arg=source.field.name if source else "None"))
+                body_offset=mp.body_offset))
         if self.problems:
             raise SpecError(self.p.source, self.problems)
+        p = self.p
         return dict(messages=messages, classes=self.classes, prefixes=self.prefixes, switches=self.switches,
-                    header_size=self.plan.header_size)
+                    header_size=self.plan.header_size, package_header_size=self.plan.package_header_size,
+                    type_offset=p.message_length.scalar.size,
+                    header_fmt=">" + STRUCT_CODES[p.message_length.scalar.name] + STRUCT_CODES[p.message_type.scalar.name],
+                    package_header_fmt=">" + STRUCT_CODES[p.package_length.scalar.name]
+                    + STRUCT_CODES[p.package_type.scalar.name])
 
 
 def enum_views(p: ir.Protocol) -> list[dict]:

@@ -292,27 +292,42 @@ class MalformedPackage:
     raw: bytes
 
 
+class _HeaderFields:
+    """The common header of a robot or program-state message, kept as the spec names it: its
+    fields read by name (`record.timestamp`), and the subtype by the spec's subtype name too."""
+
+    __slots__ = ()
+
+    def __getattr__(self, name: str):
+        if name == self.subtype_name:
+            return self.subtype
+        for key, value in self.header:
+            if key == name:
+                return value
+        raise AttributeError(f"{type(self).__name__} has no field {name!r}")
+
+
 @dataclass(slots=True)
-class UnknownSubtype:
+class UnknownSubtype(_HeaderFields):
     """A robot or program-state message whose subtype the spec does not lay out."""
 
     message_type: int
-    robot_message_type: int
-    timestamp: int
-    source: Optional[int]
+    subtype_name: str    # the spec's name of the subtype field
+    subtype: int
+    header: tuple        # ((name, value), ...): the decoded common header, in spec order
     raw: bytes
     TYPE = "unknown"
 
 
 @dataclass(slots=True)
-class MalformedSubtype:
+class MalformedSubtype(_HeaderFields):
     """A known robot or program-state message that could not be read."""
 
     name: str
     message_type: int
-    robot_message_type: int
-    timestamp: int
-    source: Optional[int]
+    subtype_name: str
+    subtype: int
+    header: tuple
     error: str
     raw: bytes
 

@@ -133,10 +133,8 @@ def _record(obj: Any) -> str:
     if isinstance(obj, (UnknownSubtype, MalformedSubtype)):
         unknown = isinstance(obj, UnknownSubtype)
         parts = ['"type": "unknown"', f'"message_type": {obj.message_type}',
-                 f'"robot_message_type": {obj.robot_message_type}'] if unknown else [f'"type": "{obj.name}"']
-        parts.append(f'"timestamp": {obj.timestamp}')
-        if obj.source is not None:
-            parts.append(f'"source": {int(obj.source)}')
+                 f'"{obj.subtype_name}": {obj.subtype}'] if unknown else [f'"type": "{obj.name}"']
+        parts += [f'"{name}": {int(value)}' for name, value in obj.header]
         if not unknown:
             parts.append(f'"error": {_text(obj.error)}')
         parts.append(f'"raw": "{obj.raw.hex()}"')

@@ -7,14 +7,12 @@ next plausible header. Hand-written; copied into generated/python/urwire/ by `ma
 """
 from __future__ import annotations
 
-import struct
 from typing import Iterable, Iterator, Optional, Union
 
 from ._runtime import StreamError
 from .messages import decode_message
-from .spec import DEFAULT_VERSION, HEADER_SIZE, KNOWN_MESSAGE_TYPES, MAX_MESSAGE_LENGTH
+from .spec import DEFAULT_VERSION, HEADER, HEADER_SIZE, KNOWN_MESSAGE_TYPES, MAX_MESSAGE_LENGTH
 
-_HEADER = struct.Struct(">iB")
 
 VersionLike = Union[str, tuple, None]
 
@@ -67,7 +65,7 @@ class Framer:
         while True:
             if self._resyncing:
                 while n - pos >= HEADER_SIZE:
-                    length, mtype = _HEADER.unpack_from(buf, pos)
+                    length, mtype = HEADER.unpack_from(buf, pos)
                     if _fault(length, mtype) is None:
                         self._resyncing = False
                         break
@@ -82,7 +80,7 @@ class Framer:
                     yield StreamError(self._base + pos, f"truncated header: {left} bytes left")
                     pos = n
                 break
-            length, mtype = _HEADER.unpack_from(buf, pos)
+            length, mtype = HEADER.unpack_from(buf, pos)
             fault = _fault(length, mtype)
             if fault is not None:
                 yield StreamError(self._base + pos, fault)

@@ -49,7 +49,7 @@ def line(record: Any) -> str:
         why = f" ! {record.error}" if record.error else ""
         return f"{'unknown':<24} message type {record.message_type} ({len(record.raw)} bytes){why}"
     if isinstance(record, UnknownSubtype):
-        return (f"{'unknown':<24} message type {record.message_type} subtype {record.robot_message_type} "
+        return (f"{'unknown':<24} message type {record.message_type} subtype {record.subtype} "
                 f"({len(record.raw)} bytes)")
     if isinstance(record, MalformedSubtype):
         return f"{record.name:<24} ! {record.error}"

@@ -16,17 +16,51 @@ from . import enums as _e
 from ._runtime import (DecodeError, EncodeError, GlobalValue, MalformedPackage, MalformedSubtype,
                        UnknownMessage, UnknownPackage, UnknownSubtype)
 from .enums import *  # noqa: F401,F403
-from .spec import DEFAULT_VERSION, value_codec
+from .spec import DEFAULT_VERSION, HEADER, value_codec
 
 _BOOL = _rt.BOOL
 _P = TypeVar("_P")
-_HEADER = struct.Struct(">iB")
+_HEADER = HEADER
+_PACKAGE_HEADER = struct.Struct(">iB")
+"""A sub-package's length and type."""
 _INT8 = struct.Struct(">b")
 _INT32 = struct.Struct(">i")
 _FLOAT32 = struct.Struct(">f")
 _UINT32 = struct.Struct(">I")
 _UINT8 = struct.Struct(">B")
 _SAFETY_MODE_REPORT_DATA_BY_REPORT_DATA_TYPE = {2: _INT32, 3: _FLOAT32}
+
+
+class _Package:
+    """What every sub-package class shares."""
+
+    __slots__ = ()
+
+    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
+        """The sub-package's bytes, header included; the length is computed."""
+        out = bytearray(_PACKAGE_HEADER.size)
+        try:
+            self._encode(out, version)
+        except struct.error as exc:
+            raise EncodeError(f"{self.TYPE}: {exc}") from None
+        _PACKAGE_HEADER.pack_into(out, 0, len(out), self.CODE)
+        return bytes(out)
+
+
+class _Subtype:
+    """What every robot-message and program-state class shares."""
+
+    __slots__ = ()
+
+    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
+        """The whole message, header included; the length is computed."""
+        return encode_message(self, version)
+
+
+class _Item:
+    """One entry of a repeated group."""
+
+    __slots__ = ()
 
 
 _ROBOT_MODE_DATA_0 = struct.Struct(">QBBBBBBBbBdddB")
@@ -49,7 +83,7 @@ _ROBOT_MODE_DATA_0_RUN = (
 
 
 @dataclass(slots=True)
-class RobotModeData:
+class RobotModeData(_Package):
     """Robot mode data."""
 
     TYPE: ClassVar[str] = "robot_mode_data"
@@ -117,16 +151,6 @@ class RobotModeData:
         out += _ROBOT_MODE_DATA_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled, self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped, self.is_program_running, self.is_program_paused, self.robot_mode, self.control_mode, self.target_speed_fraction, self.speed_scaling, self.target_speed_fraction_limit, self.reserved)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"robot_mode_data: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _JOINT_0 = struct.Struct(">dddffffB")
 _JOINT_0_OUT = struct.Struct(">dddIIIIB")  # float32 written from its bits
@@ -143,7 +167,7 @@ _JOINT_0_RUN = (
 
 
 @dataclass(slots=True)
-class Joint:
+class Joint(_Item):
     """One entry per joint, base first."""
 
     JSON: ClassVar[tuple] = (
@@ -256,7 +280,7 @@ _JOINT_DATA_0_RUN = (
 
 
 @dataclass(slots=True)
-class JointData:
+class JointData(_Package):
     """Joint data, one group per joint."""
 
     TYPE: ClassVar[str] = "joint_data"
@@ -284,16 +308,6 @@ class JointData:
         out += _JOINT_DATA_0_OUT.pack(*[x for item in self.joints for x in item._values()])
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"joint_data: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _TOOL_DATA_0 = struct.Struct(">BBddfBffB")
 _TOOL_DATA_0_OUT = struct.Struct(">BBddIBIIB")  # float32 written from its bits
@@ -311,7 +325,7 @@ _TOOL_DATA_0_RUN = (
 
 
 @dataclass(slots=True)
-class ToolData:
+class ToolData(_Package):
     """Tool data."""
 
     TYPE: ClassVar[str] = "tool_data"
@@ -363,16 +377,6 @@ class ToolData:
         out += _TOOL_DATA_0_OUT.pack(self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, _rt.f32_bits(self.tool_voltage_48v), self.tool_output_voltage, _rt.f32_bits(self.tool_current), _rt.f32_bits(self.tool_temperature), self.tool_mode)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"tool_data: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _MASTERBOARD_DATA_0 = struct.Struct(">iiBBddbbddffffBBB")
 _MASTERBOARD_DATA_0_OUT = struct.Struct(">iiBBddbbddIIIIBBB")  # float32 written from its bits
@@ -417,7 +421,7 @@ _MASTERBOARD_DATA_2_RUN = (
 
 
 @dataclass(slots=True)
-class MasterboardData:
+class MasterboardData(_Package):
     """Masterboard data."""
 
     TYPE: ClassVar[str] = "masterboard_data"
@@ -536,16 +540,6 @@ class MasterboardData:
         out += _MASTERBOARD_DATA_2.pack(self.reserved_0, self.operational_mode_selector_input, self.three_position_enabling_device_input, self.reserved_1)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"masterboard_data: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _CARTESIAN_INFO_0 = struct.Struct(">dddddddddddd")
 _CARTESIAN_INFO_0_RUN = (
@@ -565,7 +559,7 @@ _CARTESIAN_INFO_0_RUN = (
 
 
 @dataclass(slots=True)
-class CartesianInfo:
+class CartesianInfo(_Package):
     """Cartesian info."""
 
     TYPE: ClassVar[str] = "cartesian_info"
@@ -631,16 +625,6 @@ class CartesianInfo:
         out += _CARTESIAN_INFO_0.pack(self.x, self.y, self.z, self.rx, self.ry, self.rz, self.tcp_offset_x, self.tcp_offset_y, self.tcp_offset_z, self.tcp_offset_rx, self.tcp_offset_ry, self.tcp_offset_rz)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"cartesian_info: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _KINEMATICS_INFO_0 = struct.Struct(">IIIIIIddddddddddddddddddddddddI")
 _KINEMATICS_INFO_0_RUN = (
@@ -679,7 +663,7 @@ _KINEMATICS_INFO_0_RUN = (
 
 
 @dataclass(slots=True)
-class KinematicsInfo:
+class KinematicsInfo(_Package):
     """Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is changed."""
 
     TYPE: ClassVar[str] = "kinematics_info"
@@ -723,16 +707,6 @@ class KinematicsInfo:
         out += _KINEMATICS_INFO_0.pack(*self.checksum, *self.dh_theta, *self.dh_a, *self.dh_d, *self.dh_alpha, self.calibration_status)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"kinematics_info: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _JOINT_POSITION_LIMIT_0 = struct.Struct(">dd")
 _JOINT_POSITION_LIMIT_0_RUN = (
@@ -742,7 +716,7 @@ _JOINT_POSITION_LIMIT_0_RUN = (
 
 
 @dataclass(slots=True)
-class JointPositionLimit:
+class JointPositionLimit(_Item):
     """One entry of joint_position_limits."""
 
     JSON: ClassVar[tuple] = (
@@ -777,7 +751,7 @@ _JOINT_MOTION_LIMIT_0_RUN = (
 
 
 @dataclass(slots=True)
-class JointMotionLimit:
+class JointMotionLimit(_Item):
     """One entry of joint_motion_limits."""
 
     JSON: ClassVar[tuple] = (
@@ -866,7 +840,7 @@ _CONFIGURATION_DATA_0_RUN = (
 
 
 @dataclass(slots=True)
-class ConfigurationData:
+class ConfigurationData(_Package):
     """Configuration data. Sent when leaving initializing mode and/or if the kinematics configuration is changed."""
 
     TYPE: ClassVar[str] = "configuration_data"
@@ -935,16 +909,6 @@ class ConfigurationData:
         out += _CONFIGURATION_DATA_0.pack(*[x for item in self.joint_position_limits for x in item._values()], *[x for item in self.joint_motion_limits for x in item._values()], self.v_joint_default, self.a_joint_default, self.v_tool_default, self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha, *self.dh_theta, self.masterboard_version, self.controller_box_type, self.robot_type, self.robot_sub_type)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"configuration_data: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _FORCE_MODE_DATA_0 = struct.Struct(">ddddddd")
 _FORCE_MODE_DATA_0_RUN = (
@@ -959,7 +923,7 @@ _FORCE_MODE_DATA_0_RUN = (
 
 
 @dataclass(slots=True)
-class ForceModeData:
+class ForceModeData(_Package):
     """Force mode data."""
 
     TYPE: ClassVar[str] = "force_mode_data"
@@ -1004,16 +968,6 @@ class ForceModeData:
         out += _FORCE_MODE_DATA_0.pack(self.fx, self.fy, self.fz, self.frx, self.fry, self.frz, self.robot_dexterity)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"force_mode_data: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _ADDITIONAL_INFO_0 = struct.Struct(">BBBB")
 _ADDITIONAL_INFO_0_RUN = (
@@ -1025,7 +979,7 @@ _ADDITIONAL_INFO_0_RUN = (
 
 
 @dataclass(slots=True)
-class AdditionalInfo:
+class AdditionalInfo(_Package):
     """Additional info."""
 
     TYPE: ClassVar[str] = "additional_info"
@@ -1061,16 +1015,6 @@ class AdditionalInfo:
         out += _ADDITIONAL_INFO_0.pack(self.tp_button_state, self.freedrive_button_enabled, self.io_enabled_freedrive, self.reserved)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"additional_info: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _CALIBRATION_DATA_0 = struct.Struct(">dddddd")
 _CALIBRATION_DATA_0_RUN = (
@@ -1084,7 +1028,7 @@ _CALIBRATION_DATA_0_RUN = (
 
 
 @dataclass(slots=True)
-class CalibrationData:
+class CalibrationData(_Package):
     """Calibration data. Used internally by Universal Robots software only."""
 
     TYPE: ClassVar[str] = "calibration_data"
@@ -1126,19 +1070,9 @@ class CalibrationData:
         out += _CALIBRATION_DATA_0.pack(self.fx, self.fy, self.fz, self.frx, self.fry, self.frz)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"calibration_data: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 @dataclass(slots=True)
-class SafetyData:
+class SafetyData(_Package):
     """Safety data. Used internally by Universal Robots software only; its layout is not documented."""
 
     TYPE: ClassVar[str] = "safety_data"
@@ -1163,16 +1097,6 @@ class SafetyData:
         out += self.raw
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"safety_data: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _TOOL_COMM_INFO_0 = struct.Struct(">Biiiff")
 _TOOL_COMM_INFO_0_OUT = struct.Struct(">BiiiII")  # float32 written from its bits
@@ -1187,7 +1111,7 @@ _TOOL_COMM_INFO_0_RUN = (
 
 
 @dataclass(slots=True)
-class ToolCommInfo:
+class ToolCommInfo(_Package):
     """Tool communication info."""
 
     TYPE: ClassVar[str] = "tool_comm_info"
@@ -1229,16 +1153,6 @@ class ToolCommInfo:
         out += _TOOL_COMM_INFO_0_OUT.pack(self.tool_communication_is_enabled, self.baud_rate, self.parity, self.stop_bits, _rt.f32_bits(self.rx_idle_chars), _rt.f32_bits(self.tx_idle_chars))
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"tool_comm_info: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _TOOL_MODE_INFO_0 = struct.Struct(">BBB")
 _TOOL_MODE_INFO_0_RUN = (
@@ -1249,7 +1163,7 @@ _TOOL_MODE_INFO_0_RUN = (
 
 
 @dataclass(slots=True)
-class ToolModeInfo:
+class ToolModeInfo(_Package):
     """Tool mode info."""
 
     TYPE: ClassVar[str] = "tool_mode_info"
@@ -1282,16 +1196,6 @@ class ToolModeInfo:
         out += _TOOL_MODE_INFO_0.pack(self.output_mode, self.digital_output_mode_output_0, self.digital_output_mode_output_1)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"tool_mode_info: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _SINGULARITY_INFO_0 = struct.Struct(">BB")
 _SINGULARITY_INFO_0_RUN = (
@@ -1301,7 +1205,7 @@ _SINGULARITY_INFO_0_RUN = (
 
 
 @dataclass(slots=True)
-class SingularityInfo:
+class SingularityInfo(_Package):
     """Singularity info. Used internally by Universal Robots software only."""
 
     TYPE: ClassVar[str] = "singularity_info"
@@ -1331,16 +1235,6 @@ class SingularityInfo:
         out += _SINGULARITY_INFO_0.pack(self.singularity_severity, self.singularity_type)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
-        out = bytearray(5)
-        try:
-            self._encode(out, version)
-        except struct.error as exc:
-            raise EncodeError(f"singularity_info: {exc}") from None
-        _HEADER.pack_into(out, 0, len(out), self.CODE)
-        return bytes(out)
-
 
 _VERSION_0 = struct.Struct(">BBii")
 _VERSION_0_RUN = (
@@ -1352,7 +1246,7 @@ _VERSION_0_RUN = (
 
 
 @dataclass(slots=True)
-class VersionMessage:
+class VersionMessage(_Subtype):
     """Version message, the first message on both the primary and secondary interfaces."""
 
     TYPE: ClassVar[str] = "version"
@@ -1405,10 +1299,6 @@ class VersionMessage:
         out += _rt.text_bytes(self.build_date)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The whole message, header included; the length is computed."""
-        return encode_message(self, version)
-
 
 _SAFETY_MODE_0 = struct.Struct(">iiBI")
 _SAFETY_MODE_0_RUN = (
@@ -1420,7 +1310,7 @@ _SAFETY_MODE_0_RUN = (
 
 
 @dataclass(slots=True)
-class SafetyModeMessage:
+class SafetyModeMessage(_Subtype):
     """Safety mode message."""
 
     TYPE: ClassVar[str] = "safety_mode"
@@ -1473,10 +1363,6 @@ class SafetyModeMessage:
         out += _UINT32.pack(_rt.f32_bits(self.report_data)) if fmt is _FLOAT32 else fmt.pack(self.report_data)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The whole message, header included; the length is computed."""
-        return encode_message(self, version)
-
 
 _ROBOT_COMM_0 = struct.Struct(">iiiII")
 _ROBOT_COMM_0_RUN = (
@@ -1489,7 +1375,7 @@ _ROBOT_COMM_0_RUN = (
 
 
 @dataclass(slots=True)
-class RobotCommMessage:
+class RobotCommMessage(_Subtype):
     """Robot comm message (an error code report)."""
 
     TYPE: ClassVar[str] = "robot_comm"
@@ -1539,10 +1425,6 @@ class RobotCommMessage:
         out += _rt.text_bytes(self.text)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The whole message, header included; the length is computed."""
-        return encode_message(self, version)
-
 
 _KEY_0 = struct.Struct(">ii")
 _KEY_0_RUN = (
@@ -1552,7 +1434,7 @@ _KEY_0_RUN = (
 
 
 @dataclass(slots=True)
-class KeyMessage:
+class KeyMessage(_Subtype):
     """Key message."""
 
     TYPE: ClassVar[str] = "key"
@@ -1598,10 +1480,6 @@ class KeyMessage:
         out += _rt.text_bytes(self.text)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The whole message, header included; the length is computed."""
-        return encode_message(self, version)
-
 
 _PROGRAM_THREAD_0 = struct.Struct(">i")
 _PROGRAM_THREAD_0_RUN = (
@@ -1610,7 +1488,7 @@ _PROGRAM_THREAD_0_RUN = (
 
 
 @dataclass(slots=True)
-class ProgramThread:
+class ProgramThread(_Item):
     """One entry of threads."""
 
     JSON: ClassVar[tuple] = (
@@ -1643,7 +1521,7 @@ class ProgramThread:
 
 
 @dataclass(slots=True)
-class ProgramThreadsMessage:
+class ProgramThreadsMessage(_Subtype):
     """Program threads message, one entry per running program thread."""
 
     TYPE: ClassVar[str] = "program_threads"
@@ -1678,10 +1556,6 @@ class ProgramThreadsMessage:
             item._encode(out, version)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The whole message, header included; the length is computed."""
-        return encode_message(self, version)
-
 
 _POPUP_0 = struct.Struct(">IIBBB")
 _POPUP_0_RUN = (
@@ -1694,7 +1568,7 @@ _POPUP_0_RUN = (
 
 
 @dataclass(slots=True)
-class PopupMessage:
+class PopupMessage(_Subtype):
     """Popup message."""
 
     TYPE: ClassVar[str] = "popup"
@@ -1749,10 +1623,6 @@ class PopupMessage:
         out += _rt.text_bytes(self.text)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The whole message, header included; the length is computed."""
-        return encode_message(self, version)
-
 
 _REQUEST_VALUE_0 = struct.Struct(">II")
 _REQUEST_VALUE_0_RUN = (
@@ -1762,7 +1632,7 @@ _REQUEST_VALUE_0_RUN = (
 
 
 @dataclass(slots=True)
-class RequestValueMessage:
+class RequestValueMessage(_Subtype):
     """Request value message."""
 
     TYPE: ClassVar[str] = "request_value"
@@ -1803,13 +1673,9 @@ class RequestValueMessage:
         out += _rt.text_bytes(self.text)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The whole message, header included; the length is computed."""
-        return encode_message(self, version)
-
 
 @dataclass(slots=True)
-class TextMessage:
+class TextMessage(_Subtype):
     """Text message."""
 
     TYPE: ClassVar[str] = "text"
@@ -1839,10 +1705,6 @@ class TextMessage:
         out += _rt.text_bytes(self.text)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The whole message, header included; the length is computed."""
-        return encode_message(self, version)
-
 
 _RUNTIME_EXCEPTION_0 = struct.Struct(">ii")
 _RUNTIME_EXCEPTION_0_RUN = (
@@ -1852,7 +1714,7 @@ _RUNTIME_EXCEPTION_0_RUN = (
 
 
 @dataclass(slots=True)
-class RuntimeExceptionMessage:
+class RuntimeExceptionMessage(_Subtype):
     """Runtime exception message."""
 
     TYPE: ClassVar[str] = "runtime_exception"
@@ -1893,10 +1755,6 @@ class RuntimeExceptionMessage:
         out += _rt.text_bytes(self.text)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The whole message, header included; the length is computed."""
-        return encode_message(self, version)
-
 
 _GLOBAL_VARIABLES_SETUP_0 = struct.Struct(">H")
 _GLOBAL_VARIABLES_SETUP_0_RUN = (
@@ -1905,7 +1763,7 @@ _GLOBAL_VARIABLES_SETUP_0_RUN = (
 
 
 @dataclass(slots=True)
-class GlobalVariablesSetupMessage:
+class GlobalVariablesSetupMessage(_Subtype):
     """Global variables setup message."""
 
     TYPE: ClassVar[str] = "global_variables_setup"
@@ -1938,10 +1796,6 @@ class GlobalVariablesSetupMessage:
         _rt.write_terminated_texts(out, self.variable_names, 0x0a)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The whole message, header included; the length is computed."""
-        return encode_message(self, version)
-
 
 _GLOBAL_VARIABLES_UPDATE_0 = struct.Struct(">H")
 _GLOBAL_VARIABLES_UPDATE_0_RUN = (
@@ -1950,7 +1804,7 @@ _GLOBAL_VARIABLES_UPDATE_0_RUN = (
 
 
 @dataclass(slots=True)
-class GlobalVariablesUpdateMessage:
+class GlobalVariablesUpdateMessage(_Subtype):
     """Global variables update message."""
 
     TYPE: ClassVar[str] = "global_variables_update"
@@ -1983,10 +1837,6 @@ class GlobalVariablesUpdateMessage:
         value_codec(version).encode_list(out, self.variables, 0x0a)
         out += self.extra
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The whole message, header included; the length is computed."""
-        return encode_message(self, version)
-
 
 @dataclass(slots=True)
 class RobotStateMessage:
@@ -2011,7 +1861,7 @@ class RobotStateMessage:
 
     def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
         """The whole message, its length and every sub-package length computed."""
-        out = bytearray(5)
+        out = bytearray(_HEADER.size)
         for pkg in self.packages:
             out += encode_package(pkg, version)
         out += self.raw
@@ -2040,7 +1890,7 @@ _ROBOT_STATE_PACKAGES: dict[int, type] = {
 def encode_package(pkg, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
     """Bytes of one sub-package, known, unknown or malformed."""
     if isinstance(pkg, (UnknownPackage, MalformedPackage)):
-        return _HEADER.pack(5 + len(pkg.raw), pkg.package_type) + pkg.raw
+        return _PACKAGE_HEADER.pack(_PACKAGE_HEADER.size + len(pkg.raw), pkg.package_type) + pkg.raw
     return pkg.encode(version)
 
 
@@ -2051,10 +1901,12 @@ def _decode_robot_state(buf, version: tuple[int, int]) -> RobotStateMessage:
     while pos < end:
         left = end - pos
         if left < 5:
-            return RobotStateMessage(packages, f"package at offset {pos}: needs 5 bytes, {left} left", bytes(buf[pos:]))
-        size, code = _HEADER.unpack_from(buf, pos)
+            return RobotStateMessage(packages, f"package at offset {pos}: needs 5 bytes, {left} left",
+                               bytes(buf[pos:]))
+        size, code = _PACKAGE_HEADER.unpack_from(buf, pos)
         if size < 5:
-            return RobotStateMessage(packages, f"package at offset {pos}: length {size} is below 5", bytes(buf[pos:]))
+            return RobotStateMessage(packages, f"package at offset {pos}: length {size} is below 5",
+                               bytes(buf[pos:]))
         if size > left:
             return RobotStateMessage(packages, f"package at offset {pos}: length {size} exceeds the {left} bytes left",
                                bytes(buf[pos:]))
@@ -2075,6 +1927,7 @@ def _decode_robot_state(buf, version: tuple[int, int]) -> RobotStateMessage:
 
 
 _ROBOT_MESSAGE_HEADER = struct.Struct(">QbB")
+_ROBOT_MESSAGE_HEADER_NAMES = ("timestamp", "source", )
 _ROBOT_MESSAGE_HEADER_RUN = (
     ("timestamp", 5, 8),
     ("source", 13, 1),
@@ -2100,23 +1953,25 @@ def _decode_robot_message(buf, version: tuple[int, int]):
         return UnknownMessage(20, bytes(buf[5:]), error)
     timestamp, source, robot_message_type = _ROBOT_MESSAGE_HEADER.unpack_from(buf, 5)
     source = _e.MESSAGE_SOURCE_BY_VALUE.get(source, source)
+    header = (timestamp, source,)
     cls = _ROBOT_MESSAGE_SUBTYPES.get(robot_message_type)
     if cls is None:
-        return UnknownSubtype(20, robot_message_type, timestamp, source, bytes(buf[15:]))
+        return UnknownSubtype(20, "robot_message_type", robot_message_type, tuple(zip(_ROBOT_MESSAGE_HEADER_NAMES, header)),
+                              bytes(buf[15:]))
     try:
-        msg, used = cls._decode(buf, 15, end, version, (timestamp, source,))
+        msg, used = cls._decode(buf, 15, end, version, header)
     except DecodeError as exc:
-        return MalformedSubtype(cls.TYPE, 20, robot_message_type, timestamp, source, exc.text,
-                                bytes(buf[15:]))
+        return MalformedSubtype(cls.TYPE, 20, "robot_message_type", robot_message_type,
+                                tuple(zip(_ROBOT_MESSAGE_HEADER_NAMES, header)), exc.text, bytes(buf[15:]))
     if used < end:
         msg.extra = bytes(buf[used:end])
     return msg
 
 
 def _encode_robot_message(msg, version: tuple[int, int]) -> bytes:
-    out = bytearray(5)
+    out = bytearray(_HEADER.size)
     kept_raw = isinstance(msg, (UnknownSubtype, MalformedSubtype))
-    subtype = msg.robot_message_type if kept_raw else msg.CODE
+    subtype = msg.subtype if kept_raw else msg.CODE
     out += _ROBOT_MESSAGE_HEADER.pack(msg.timestamp, msg.source, subtype)
     if kept_raw:
         out += msg.raw
@@ -2130,6 +1985,7 @@ def _encode_robot_message(msg, version: tuple[int, int]) -> bytes:
 
 
 _PROGRAM_STATE_HEADER = struct.Struct(">QB")
+_PROGRAM_STATE_HEADER_NAMES = ("timestamp", )
 _PROGRAM_STATE_HEADER_RUN = (
     ("timestamp", 5, 8),
     ("robot_message_type", 13, 1),
@@ -2146,23 +2002,25 @@ def _decode_program_state(buf, version: tuple[int, int]):
         error = _rt.short_in_run(_PROGRAM_STATE_HEADER_RUN, 0, end).text
         return UnknownMessage(25, bytes(buf[5:]), error)
     timestamp, robot_message_type = _PROGRAM_STATE_HEADER.unpack_from(buf, 5)
+    header = (timestamp,)
     cls = _PROGRAM_STATE_SUBTYPES.get(robot_message_type)
     if cls is None:
-        return UnknownSubtype(25, robot_message_type, timestamp, None, bytes(buf[14:]))
+        return UnknownSubtype(25, "robot_message_type", robot_message_type, tuple(zip(_PROGRAM_STATE_HEADER_NAMES, header)),
+                              bytes(buf[14:]))
     try:
-        msg, used = cls._decode(buf, 14, end, version, (timestamp,))
+        msg, used = cls._decode(buf, 14, end, version, header)
     except DecodeError as exc:
-        return MalformedSubtype(cls.TYPE, 25, robot_message_type, timestamp, None, exc.text,
-                                bytes(buf[14:]))
+        return MalformedSubtype(cls.TYPE, 25, "robot_message_type", robot_message_type,
+                                tuple(zip(_PROGRAM_STATE_HEADER_NAMES, header)), exc.text, bytes(buf[14:]))
     if used < end:
         msg.extra = bytes(buf[used:end])
     return msg
 
 
 def _encode_program_state(msg, version: tuple[int, int]) -> bytes:
-    out = bytearray(5)
+    out = bytearray(_HEADER.size)
     kept_raw = isinstance(msg, (UnknownSubtype, MalformedSubtype))
-    subtype = msg.robot_message_type if kept_raw else msg.CODE
+    subtype = msg.subtype if kept_raw else msg.CODE
     out += _PROGRAM_STATE_HEADER.pack(msg.timestamp, subtype)
     if kept_raw:
         out += msg.raw
@@ -2206,7 +2064,7 @@ def decode_message(buf, version: tuple[int, int] = DEFAULT_VERSION):
 def encode_message(msg, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
     """The bytes of a decoded or hand-built message; lengths are computed, never taken."""
     if isinstance(msg, UnknownMessage):
-        return _HEADER.pack(5 + len(msg.raw), msg.message_type) + msg.raw
+        return _HEADER.pack(_HEADER.size + len(msg.raw), msg.message_type) + msg.raw
     if isinstance(msg, (UnknownSubtype, MalformedSubtype)):
         return _SUBTYPE_ENCODERS[msg.message_type](msg, version)
     code = getattr(msg, "MESSAGE_TYPE", None)

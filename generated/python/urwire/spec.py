@@ -12,6 +12,8 @@ PORTS = [30001, 30002, 30011, 30012]
 MAX_MESSAGE_LENGTH = 1048576
 MAX_VALUE_DEPTH = 8
 HEADER_SIZE = 5
+HEADER = struct.Struct(">iB")
+"""A message's length and type, the first HEADER_SIZE bytes of every message."""
 DOCUMENTED_VERSIONS = [(5, 9), (5, 10)]
 DEFAULT_VERSION = (5, 9)
 """Software version assumed when a stream has shown no Version message and no hint was given."""
