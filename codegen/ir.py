@@ -340,6 +340,7 @@ class ValueLayout:
     item: Optional[Scalar]       # scalar and array item
     count: int                   # array count
     doc: str
+    where: Where = NOWHERE
 
 
 # ---- messages -----------------------------------------------------------------------------

@@ -254,7 +254,7 @@ class _Resolver:
         for tname, raw in data["value_layouts"].items():
             value_layouts[tname] = ir.ValueLayout(
                 tname, raw["layout"], ir.SCALARS.get(raw.get("length", "")), ir.SCALARS.get(raw.get("item", "")),
-                raw.get("count", 0), raw.get("doc", ""))
+                raw.get("count", 0), raw.get("doc", ""), self.where(["value_layouts", tname]))
         for ename, enum in self.enums.items():
             if enum.versioned:
                 for name in enum.names:

@@ -11,8 +11,9 @@ import textwrap
 from dataclasses import dataclass, field
 from typing import Optional
 
-from .. import ir
+from .. import ir, plan
 from ..emit import environment
+from ..errors import Problem, SpecError
 from ..view import Step
 
 FOLDER = "c"
@@ -48,12 +49,6 @@ def comment(*texts: str, width: int = 92) -> list[str]:
 
 def inline(*texts: str) -> str:
     return " ".join(t.strip() for t in texts if t and t.strip()).replace("*/", "* /")
-
-
-def c_ident(name: str) -> str:
-    if name in C_KEYWORDS:
-        raise ValueError(f"field name '{name}' is a C keyword")
-    return name
 
 
 def plus(base: str, k: int) -> str:
@@ -141,17 +136,21 @@ class CStruct:
 
 
 class _Builder:
-    def __init__(self, p: ir.Protocol):
-        self.p = p
+    def __init__(self, protocol_plan: plan.ProtocolPlan):
+        self.plan = protocol_plan
+        self.p = protocol_plan.protocol
         self.structs: list[CStruct] = []
         self.items: dict[int, CStruct] = {}
+        self.problems: list[Problem] = []
 
     # ---- one struct ----
 
-    def build(self, struct: ir.Struct, name: str, ctype: str, role: str, doc: list[str]) -> CStruct:
+    def build(self, layout: plan.LayoutPlan, name: str, ctype: str, role: str, doc: list[str]) -> CStruct:
+        struct = layout.struct
         for f in struct.fields:
             if isinstance(f, ir.GroupField):
-                item = self.build(f.item, f.item.name, f"urwire_{f.item.name}", "item",
+                item_plan = self.plan.item_of(f)
+                item = self.build(item_plan.layout, f.item.name, f"urwire_{f.item.name}", "item",
                                   comment(f.doc) or [f"One entry of {f.name}."])
                 self.items[id(f)] = item
         cs = CStruct(name, ctype, doc, [], role)
@@ -163,31 +162,31 @@ class _Builder:
                                          [dict(const=f"{prefix}_{b.upper()}", bit=k) for k, b in enumerate(f.bits)]))
         if role != "item":
             cs.members.append(Member("urwire_bytes extra", "Bytes after the known layout (flagged; kept for encoding)."))
-        cs.decode, cs.encode = self.steps(cs, struct.fields, "")
+        cs.decode, cs.encode = self.steps(cs, layout.steps)
         cs.visit = self.visit_steps(cs, struct.fields)
-        if role == "item" and struct.fixed_size is not None:
+        fixed = role == "item" and any(it.layout is layout and it.fixed for it in self.plan.items)
+        if fixed:
+            # Read and written inside its parent's checked run.
             cs.fixed_item = True
-            cs.item_size = struct.fixed_size
-            off = 0
-            for f in struct.fields:
-                cs.item_reads += self.read_lines(cs, f, "out->", off)
-                cs.item_writes += self.write_lines(cs, f, "in->", off)
-                off += f.fixed_size or 0
-        if role == "item" and struct.fixed_size is None:
+            cs.item_size = layout.fixed_size
+            for m in layout.runs[0].members:
+                cs.item_reads.append(self.read_line(m, "out->"))
+                cs.item_writes.append(self.write_line(m, "in->"))
+            cs.item_index = any(_loops(m) for m in layout.runs[0].members)
+        elif role == "item":
             cs.to_end_item = True
-            if struct.needs_version:
-                raise NotImplementedError("a repeated group whose items depend on the software version")
         cs.decode_index = uses_index(cs.decode)
         cs.encode_index = uses_index(cs.encode)
         cs.visit_index = uses_index(cs.visit)
-        cs.item_index = any("for (i" in line for line in cs.item_reads)
         cs.needs_p = has_run(cs.decode)
         cs.can_fail = can_fail(cs.decode)
         self.structs.append(cs)
         return cs
 
     def member(self, f: ir.AnyField, owner: str) -> Member:
-        name = c_ident(f.name)
+        name = f.name
+        if name in C_KEYWORDS:
+            self.problems.append(f.where.problem(f"c target: field name '{name}' is a C keyword"))
         doc = inline(f.doc, f.field_note)
         if f.present_if:
             doc = inline(doc, f"Present only when {f.present_if} is nonzero (else 0).")
@@ -222,102 +221,54 @@ class _Builder:
         return Member(f"union {{ {body} }} {name}",
                       inline(doc, f"Chosen by {f.selector.name}: {cases}; otherwise .{f.default.name}."))
 
-    # ---- fixed runs ----
+    # ---- fixed runs: one statement per member ----
 
-    def spans(self, f: ir.AnyField, path: str, base: int) -> list[Span]:
+    def read_line(self, m: plan.Member, ref: str) -> str:
+        f, at = m.field, plus("p", m.offset)
         if isinstance(f, ir.ScalarField):
-            return [Span(path, base, f.scalar.size)]
+            return f"{ref}{f.name} = {READERS[f.scalar.name]}({at});"
         if isinstance(f, ir.ArrayField):
-            return [Span(f"{path}[{k}]", base + k * f.scalar.size, f.scalar.size) for k in range(f.count)]
-        assert isinstance(f, ir.GroupField) and f.count is not None
-        out, off = [], base
-        for k in range(f.count):
-            for g in f.item.fields:
-                out += self.spans(g, f"{path}[{k}].{g.name}", off)
-                off += g.fixed_size or 0
-        return out
+            return (f"for (i = 0; i < {f.count}; i++) {ref}{f.name}[i] = "
+                    f"{READERS[f.scalar.name]}({at} + {f.scalar.size} * i);")
+        return (f"for (i = 0; i < {f.count}; i++) urwire__read_{f.item.name}({at} + "
+                f"{m.item.layout.fixed_size} * i, &{ref}{f.name}[i]);")
 
-    def read_lines(self, cs: CStruct, f: ir.AnyField, ref: str, off: int) -> list[str]:
+    def write_line(self, m: plan.Member, ref: str) -> str:
+        f, at = m.field, plus("p", m.offset)
         if isinstance(f, ir.ScalarField):
-            return [f"{ref}{f.name} = {READERS[f.scalar.name]}({plus('p', off)});"]
+            return f"{WRITERS[f.scalar.name]}({at}, {ref}{f.name});"
         if isinstance(f, ir.ArrayField):
-            cs.needs_index = True
-            return [f"for (i = 0; i < {f.count}; i++) {ref}{f.name}[i] = "
-                    f"{READERS[f.scalar.name]}({plus('p', off)} + {f.scalar.size} * i);"]
-        assert isinstance(f, ir.GroupField)
-        cs.needs_index = True
-        item = self.items[id(f)]
-        return [f"for (i = 0; i < {f.count}; i++) urwire__read_{item.name}({plus('p', off)} + "
-                f"{item.item_size} * i, &{ref}{f.name}[i]);"]
+            return (f"for (i = 0; i < {f.count}; i++) {WRITERS[f.scalar.name]}({at} + "
+                    f"{f.scalar.size} * i, {ref}{f.name}[i]);")
+        return (f"for (i = 0; i < {f.count}; i++) urwire__write_{f.item.name}({at} + "
+                f"{m.item.layout.fixed_size} * i, &{ref}{f.name}[i]);")
 
-    def write_lines(self, cs: CStruct, f: ir.AnyField, ref: str, off: int) -> list[str]:
-        if isinstance(f, ir.ScalarField):
-            return [f"{WRITERS[f.scalar.name]}({plus('p', off)}, {ref}{f.name});"]
-        if isinstance(f, ir.ArrayField):
-            cs.needs_index = True
-            return [f"for (i = 0; i < {f.count}; i++) {WRITERS[f.scalar.name]}({plus('p', off)} + "
-                    f"{f.scalar.size} * i, {ref}{f.name}[i]);"]
-        assert isinstance(f, ir.GroupField)
-        cs.needs_index = True
-        item = self.items[id(f)]
-        return [f"for (i = 0; i < {f.count}; i++) urwire__write_{item.name}({plus('p', off)} + "
-                f"{item.item_size} * i, &{ref}{f.name}[i]);"]
-
-    def flush(self, cs: CStruct, run: list[ir.AnyField], dec: list[Step], enc: list[Step], prefix: str) -> None:
-        if not run:
-            return
-        table = f"urwire__{cs.name}_run{len(cs.runs)}"
-        spans, reads, writes, off = [], [], [], 0
-        for f in run:
-            spans += self.spans(f, prefix + f.name, off)
-            reads += self.read_lines(cs, f, "out->", off)
-            writes += self.write_lines(cs, f, "in->", off)
-            off += f.fixed_size or 0
-        cs.runs.append(Run(table, off, spans))
-        cs.needs_p = True
-        dec.append(Step("run", dict(table=table, size=off, lines=reads)))
-        enc.append(Step("run", dict(size=off, lines=writes)))
-        run.clear()
+    def run_steps(self, cs: CStruct, run: plan.FixedRun) -> tuple[Step, Step]:
+        table = f"urwire__{cs.name}_run{run.index}"
+        cs.runs.append(Run(table, run.size, [Span(leaf.path, leaf.offset, leaf.scalar.size) for leaf in run.leaves]))
+        loops = any(_loops(m) for m in run.members)
+        return (Step("run", dict(table=table, size=run.size, loops=loops,
+                                 lines=[self.read_line(m, "out->") for m in run.members])),
+                Step("run", dict(size=run.size, loops=loops, lines=[self.write_line(m, "in->") for m in run.members])))
 
     # ---- decode and encode steps ----
 
-    def condition(self, f: ir.AnyField, ref: str) -> str:
-        tests = []
-        if f.present_if:
-            tests.append(f"{ref}{f.present_if} != 0")
-        if f.versions.low:
-            tests.append(f"urwire__version_cmp(version, {f.versions.low[0]}, {f.versions.low[1]}) >= 0")
-        if f.versions.high:
-            tests.append(f"urwire__version_cmp(version, {f.versions.high[0]}, {f.versions.high[1]}) <= 0")
-        return " && ".join(tests)
-
-    def steps(self, cs: CStruct, fields: list[ir.AnyField], prefix: str) -> tuple[list[Step], list[Step]]:
+    def steps(self, cs: CStruct, steps: list[plan.Step]) -> tuple[list[Step], list[Step]]:
         dec: list[Step] = []
         enc: list[Step] = []
-        run: list[ir.AnyField] = []
-        i = 0
-        while i < len(fields):
-            f = fields[i]
-            if f.conditional:
-                self.flush(cs, run, dec, enc, prefix)
-                group = [f]
-                while i + 1 < len(fields) and (fields[i + 1].present_if, fields[i + 1].versions) == (f.present_if, f.versions):
-                    i += 1
-                    group.append(fields[i])
-                inner_d, inner_e = self.steps(cs, [_unconditional(g) for g in group], prefix)
+        for step in steps:
+            if isinstance(step, plan.FixedRun):
+                d, e = self.run_steps(cs, step)
+            elif isinstance(step, plan.CondGroup):
+                inner_d, inner_e = self.steps(cs, step.steps)
                 zero = [f"out->{g.name} = 0;" if isinstance(g, ir.ScalarField) else
-                        f"memset(&out->{g.name}, 0, sizeof out->{g.name});" for g in group]
-                dec.append(Step("cond", dict(test=self.condition(f, "out->"), steps=inner_d, zero=zero)))
-                enc.append(Step("cond", dict(test=self.condition(f, "in->"), steps=inner_e)))
-            elif f.fixed_size is not None and not isinstance(f, ir.SwitchField):
-                run.append(f)
+                        f"memset(&out->{g.name}, 0, sizeof out->{g.name});" for g in step.fields]
+                d = Step("cond", dict(test=condition(step.condition, "out->"), steps=inner_d, zero=zero))
+                e = Step("cond", dict(test=condition(step.condition, "in->"), steps=inner_e))
             else:
-                self.flush(cs, run, dec, enc, prefix)
-                d, e = self.dynamic(cs, f, prefix + f.name)
-                dec.append(d)
-                enc.append(e)
-            i += 1
-        self.flush(cs, run, dec, enc, prefix)
+                d, e = self.dynamic(cs, step.field, step.path)
+            dec.append(d)
+            enc.append(e)
         return dec, enc
 
     def dynamic(self, cs: CStruct, f: ir.AnyField, path: str) -> tuple[Step, Step]:
@@ -343,8 +294,6 @@ class _Builder:
             cs.needs_p = True
             return Step("switch", data), Step("switch", data)
         assert isinstance(f, ir.GroupField)
-        if f.count is not None:
-            raise NotImplementedError("a fixed-count group of variable-size items")
         item = self.items[id(f)]
         return (Step("group_to_end", dict(name=f.name, item=item.name, ctype=item.ctype)),
                 Step("seq", dict(name=f.name)))
@@ -358,7 +307,8 @@ class _Builder:
         return out
 
     def visit_one(self, cs: CStruct, f: ir.AnyField) -> Step:
-        test = self.condition(f, "in->") if f.conditional else ""
+        cond = plan.condition_of(f)
+        test = condition(cond, "in->") if cond else ""
         if isinstance(f, ir.ScalarField):
             return Step("scalar", dict(name=f.name, cb=VISIT[f.scalar.name], test=test,
                                        arg=visit_arg(f.scalar, f"in->{f.name}")))
@@ -397,6 +347,23 @@ def visit_arg(s: ir.Scalar, ref: str) -> str:
     return ref
 
 
+def condition(c: plan.Condition, ref: str) -> str:
+    """A plan's condition as a C test; `ref` is where field values live (out-> or in->)."""
+    tests = []
+    if c.flag:
+        tests.append(f"{ref}{c.flag} != 0")
+    if c.low:
+        tests.append(f"urwire__version_cmp(version, {c.low[0]}, {c.low[1]}) >= 0")
+    if c.high:
+        tests.append(f"urwire__version_cmp(version, {c.high[0]}, {c.high[1]}) <= 0")
+    return " && ".join(tests)
+
+
+def _loops(m: plan.Member) -> bool:
+    """A member read or written in a loop on i (arrays and fixed-count groups)."""
+    return not isinstance(m.field, ir.ScalarField)
+
+
 def has_run(steps: list[Step]) -> bool:
     return any(s.kind == "run" or (s.kind == "cond" and has_run(s.steps)) for s in steps)
 
@@ -407,23 +374,13 @@ def can_fail(steps: list[Step]) -> bool:
 
 
 def uses_index(steps: list[Step]) -> bool:
-    """True when a step's statements loop on i (the template then declares it)."""
+    """True when a step loops on i (the template then declares it)."""
     for s in steps:
-        if s.kind in ("array", "group"):
-            return True
-        if s.kind == "run" and any("for (i" in line for line in s.lines):
+        if s.kind in ("array", "group") or (s.kind == "run" and s.loops):
             return True
         if s.kind == "cond" and uses_index(s.steps):
             return True
     return False
-
-
-def _unconditional(f: ir.AnyField) -> ir.AnyField:
-    import copy
-    g = copy.copy(f)
-    g.present_if = None
-    g.versions = ir.ALL_VERSIONS
-    return g
 
 
 # ---- enums ----------------------------------------------------------------------------------
@@ -464,6 +421,7 @@ def enum_views(p: ir.Protocol) -> list[dict]:
 
 
 def value_views(p: ir.Protocol) -> dict:
+    problems: list[Problem] = []
     kinds = list(p.value_layouts)
     tables = []
     for t in p.value_type.tables:
@@ -471,7 +429,8 @@ def value_views(p: ir.Protocol) -> dict:
         for v in t.values:
             lay = p.value_layouts[v.name]
             if lay.layout in ("string", "list", "matrix") and lay.length.name != "int16":
-                raise NotImplementedError(f"value length type {lay.length.name}")
+                problems.append(lay.where.problem(
+                    f"c target: the value decoder reads int16 lengths, not {lay.length.name}"))
             item = VALUE_ITEMS[lay.item.name] if lay.item is not None else "URWIRE__ITEM_NONE"
             entries.append(dict(code=v.value, name=v.name, kind=f"URWIRE_VALUE_{v.name}",
                                 layout=VALUE_LAYOUTS[lay.layout], item=item,
@@ -481,6 +440,8 @@ def value_views(p: ir.Protocol) -> dict:
                            low=f"{r.low[0]}, {r.low[1]}" if r.low else "",
                            high=f"{r.high[0]}, {r.high[1]}" if r.high else "",
                            has_low=r.low is not None, has_high=r.high is not None))
+    if problems:
+        raise SpecError(p.source, problems)
     arrays = [lay.count for lay in p.value_layouts.values() if lay.layout == "array"]
     return dict(kinds=[dict(const=f"URWIRE_VALUE_{k}", name=k, doc=inline(p.value_layouts[k].doc)) for k in kinds],
                 tables=tables, array_max=max(arrays) if arrays else 1, max_depth=p.max_value_depth)
@@ -488,17 +449,20 @@ def value_views(p: ir.Protocol) -> dict:
 
 # ---- messages -------------------------------------------------------------------------------
 
-def build(p: ir.Protocol) -> dict:
-    b = _Builder(p)
+def build(protocol_plan: plan.ProtocolPlan) -> dict:
+    b = _Builder(protocol_plan)
     messages = []
     kinds = []
     packages = []
-    for m in p.messages:
-        if isinstance(m, ir.PackageListMessage):
-            for pk in m.packages:
+    layout_structs: dict[int, CStruct] = {}
+    for mp in protocol_plan.messages:
+        m = mp.message
+        if not mp.is_dispatch:
+            for c in mp.layouts:
+                pk = c.layout
                 if pk.code.value > 31:
-                    raise NotImplementedError("package codes above 31 do not fit the present bit mask")
-                cs = b.build(pk.struct, pk.name, f"urwire_{pk.name}", "package", comment(pk.doc, pk.field_note))
+                    b.problems.append(pk.where.problem("c target: package codes above 31 do not fit the present bit mask"))
+                cs = b.build(c.plan, pk.name, f"urwire_{pk.name}", "package", comment(pk.doc, pk.field_note))
                 cs.code = pk.code.value
                 cs.code_const = f"URWIRE_{m.package_type.name.upper()}_{pk.code.name}"
                 packages.append(cs)
@@ -506,40 +470,40 @@ def build(p: ir.Protocol) -> dict:
             messages.append(dict(kind="packages", name=m.name, code=m.code.value,
                                  code_const=f"URWIRE_MESSAGE_TYPE_{m.code.name}",
                                  kind_const=f"URWIRE_KIND_{m.name.upper()}", doc=comment(m.doc, m.field_note)))
-        else:
-            header, hspans, off = [], [], p.header_size
-            for f in list(m.header.fields) + [m.subtype]:
-                hspans.append(Span(f.name, off, f.scalar.size))
-                header.append(dict(name=f.name, ctype=C_TYPES[f.scalar.name], reader=READERS[f.scalar.name],
-                                   writer=WRITERS[f.scalar.name], offset=off, cb=VISIT[f.scalar.name],
-                                   cast="(int64_t)" if VISIT[f.scalar.name] == "on_int" else "(uint64_t)",
-                                   doc=inline(f.doc, f.field_note), subtype=f is m.subtype))
-                off += f.scalar.size
-            subtypes = []
-            for st in m.subtypes:
-                cs = b.build(st.struct, st.name, f"urwire_{st.name}_message", "subtype",
-                             comment(st.doc, st.field_note))
-                cs.code = st.code.value
-                cs.code_const = f"URWIRE_{m.subtype_enum.name.upper()}_{st.code.name}"
-                cs.kind_const = f"URWIRE_KIND_{st.name.upper()}"
-                cs.sets_version = st.sets_version
-                subtypes.append(cs)
-                kinds.append(dict(const=cs.kind_const, doc=inline(st.doc)))
-            messages.append(dict(kind="dispatch", name=m.name, code=m.code.value,
-                                 code_const=f"URWIRE_MESSAGE_TYPE_{m.code.name}",
-                                 doc=comment(m.doc, m.field_note), header=header, header_table=f"urwire__{m.name}_header",
-                                 header_spans=hspans, body_offset=off, subtypes=subtypes,
-                                 subtype_name=m.subtype.name,
-                                 has_source=any(h["name"] == "source" for h in header)))
-    versions = [(st, m) for m in messages if m["kind"] == "dispatch" for st in m["subtypes"] if st.sets_version]
-    if len(versions) != 1:
-        raise NotImplementedError("the C framer expects exactly one layout that sets the version")
-    vst, vmsg = versions[0]
+            continue
+        header = [dict(name=slot.field.name, ctype=C_TYPES[slot.field.scalar.name],
+                       reader=READERS[slot.field.scalar.name], writer=WRITERS[slot.field.scalar.name],
+                       offset=slot.offset, cb=VISIT[slot.field.scalar.name],
+                       cast="(int64_t)" if VISIT[slot.field.scalar.name] == "on_int" else "(uint64_t)",
+                       doc=inline(slot.field.doc, slot.field.field_note), subtype=slot.is_subtype)
+                  for slot in mp.header]
+        subtypes = []
+        for c in mp.layouts:
+            st = c.layout
+            cs = b.build(c.plan, st.name, f"urwire_{st.name}_message", "subtype", comment(st.doc, st.field_note))
+            cs.code = st.code.value
+            cs.code_const = f"URWIRE_{m.subtype_enum.name.upper()}_{st.code.name}"
+            cs.kind_const = f"URWIRE_KIND_{st.name.upper()}"
+            cs.sets_version = st.sets_version
+            layout_structs[id(st)] = cs
+            subtypes.append(cs)
+            kinds.append(dict(const=cs.kind_const, doc=inline(st.doc)))
+        messages.append(dict(kind="dispatch", name=m.name, code=m.code.value,
+                             code_const=f"URWIRE_MESSAGE_TYPE_{m.code.name}",
+                             doc=comment(m.doc, m.field_note), header=header, header_table=f"urwire__{m.name}_header",
+                             header_spans=[Span(slot.field.name, slot.offset, slot.field.scalar.size)
+                                           for slot in mp.header],
+                             body_offset=mp.body_offset, subtypes=subtypes, subtype_name=m.subtype.name,
+                             has_source=mp.header_field("source") is not None))
+    if b.problems:
+        raise SpecError(protocol_plan.protocol.source, b.problems)
+    vs = protocol_plan.version
+    vst = layout_structs[id(vs.layout)]
     return dict(structs=b.structs, messages=messages, kinds=kinds, packages=packages,
                 version_layout=dict(name=vst.name, code_const=vst.code_const, kind_const=vst.kind_const,
-                                    major=vst.sets_version[0], minor=vst.sets_version[1],
-                                    message_code=vmsg["code"], subtype_offset=vmsg["body_offset"] - 1,
-                                    body_offset=vmsg["body_offset"]))
+                                    major=vs.major.name, minor=vs.minor.name,
+                                    message_code=vs.message_code, subtype_offset=vs.subtype_offset,
+                                    body_offset=vs.body_offset))
 
 
 # The hand-written parts of urwire.c.j2 (framing, values, lengths) use these helpers.
@@ -582,7 +546,7 @@ def helpers_used(model) -> set[str]:
 def render(protocol_plan, banner: list[str]) -> dict[str, str]:
     p = protocol_plan.protocol
     env = environment(FOLDER)
-    model = build(p)
+    model = build(protocol_plan)
     model["helpers"] = helpers_used(model)
     ctx = dict(banner=banner, p=p, enums=enum_views(p), values=value_views(p),
                default_version=p.default_version, known_codes=p.known_message_codes,

@@ -66,3 +66,15 @@ def test_an_unknown_step_kind_fails_at_generation_time(target, template, macro):
     module = environment(target).get_template(template).module
     with pytest.raises(jinja2.UndefinedError):
         getattr(module, macro)([Step("no_such_kind", {})], "")
+
+
+def test_a_c_keyword_as_a_field_name_is_a_c_target_problem():
+    from codegen.targets import c as c_target
+
+    def edit(data):
+        data["messages"]["robot_state"]["packages"]["tool_data"]["fields"][1]["name"] = "switch"
+
+    with pytest.raises(SpecError) as caught:
+        c_target.render(plan(compile_text(spec_with(edit))), ["test"])
+    (problem,) = caught.value.problems
+    assert problem.path == "messages.robot_state.packages.tool_data.fields[1]" and "C keyword" in problem.message
