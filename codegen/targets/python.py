@@ -31,6 +31,23 @@ class Attr:
 
 
 @dataclass
+class MemberView:
+    """One member of a fixed run, as the templates write its decode and encode expressions."""
+
+    name: str
+    kind: str            # scalar | array | group
+    conv: str            # scalar and array items: plain | enum | bool | f32
+    lookup: str = ""     # enum: the module constant mapping wire values to members
+    first: str = "0"     # index of its first value in the unpacked tuple
+    last: str = "1"      # arrays: index after its last value
+    at: str = "pos"      # its byte offset in buf (float32 NaNs are re-read from there)
+    count: int = 1       # groups: items
+    item: str = ""       # groups: the item class
+    width: int = 0       # groups: values per item
+    size: int = 0        # groups: bytes per item
+
+
+@dataclass
 class StructConst:
     name: str
     fmt: str
@@ -51,8 +68,7 @@ class PyClass:
     encode_steps: list[Step]
     structs: list[StructConst]
     fixed: bool = False            # item laid out in its parent's run
-    from_exprs: list[str] = field(default_factory=list)    # fixed items: v[i + k] expressions
-    values_exprs: list[str] = field(default_factory=list)  # fixed items: encode expressions
+    members: list[MemberView] = field(default_factory=list)  # fixed items: read from the parent's run
     sets_version: Optional[tuple[str, str]] = None
     summary: list[str] = field(default_factory=list)
 
@@ -113,21 +129,14 @@ def json_kind(f: ir.AnyField) -> str:
     return "values"
 
 
-def leaf_expr(s: ir.Scalar, enum: Optional[ir.Enum], ref: str, at: str = "") -> str:
-    """Decode expression of one scalar read as `ref`; `at` is its byte offset (for float32 NaNs)."""
+def conversion(s: ir.Scalar, enum: Optional[ir.Enum]) -> tuple[str, str]:
+    """How a value unpacked by struct becomes the attribute: (kind, enum lookup constant).
+    float32 keeps the bits of signalling NaNs, which struct quiets, so encoding is lossless."""
     if enum is not None:
-        return f"_e.{py_lookup(enum)}.get({ref}, {ref})"
+        return "enum", py_lookup(enum)
     if s.is_bool:
-        return f"_BOOL[{ref}]"
-    if s.is_float and s.size == 4 and at:
-        # struct quiets signalling NaNs of float32; keep their bits so encoding is lossless.
-        return f"({ref} if {ref} == {ref} else _rt.f32_nan(buf, {at}))"
-    return ref
-
-
-def encode_expr(s: ir.Scalar, ref: str) -> str:
-    """Encode argument of one scalar; float32 goes out as its bits (see leaf_expr)."""
-    return f"_rt.f32_bits({ref})" if s.is_float and s.size == 4 else ref
+        return "bool", ""
+    return ("f32" if _is_f32(s) else "plain"), ""
 
 
 def out_code(s: ir.Scalar) -> str:
@@ -149,51 +158,33 @@ class _ClassBuilder:
         self.owner = owner
         self.structs: list[StructConst] = []
 
-    # ---- fixed runs: what each member of a run becomes ----
+    # ---- fixed runs: what each member of a run is ----
 
-    def member_decode(self, m: plan.Member, v: str, i: str, at: str) -> str:
-        """Decode expression of one member whose first scalar is v[i] and whose bytes start at `at`."""
+    def member(self, m: plan.Member, values: str, offsets: str) -> MemberView:
+        """The view of one member; `values` and `offsets` are the bases its tuple index and byte
+        offset count from (`0` and `pos` in a run, `i` and `at` inside a fixed item)."""
         f = m.field
-        if isinstance(f, ir.ScalarField):
-            return leaf_expr(f.scalar, f.enum, f"{v}[{i}]", at)
-        if isinstance(f, ir.ArrayField):
-            n = m.leaf_count
-            ref = f"{v}[{i}:{int(i) + n}]" if i.isdigit() else f"{v}[{i}:{i} + {n}]"
-            if f.scalar.is_float and f.scalar.size == 4:
-                return f"_rt.f32_list({ref}, buf, {at})"
-            if f.enum is None and not f.scalar.is_bool:
-                return f"list({ref})"
-            return f"[{leaf_expr(f.scalar, f.enum, 'x')} for x in {ref}]"
-        item = self.target.item_classes[id(f)]
-        width, size = m.item.leaf_count, m.item.layout.fixed_size
-        first = f"{i} + j * {width}" if i != "0" else f"j * {width}"
-        return f"[{item.name}._from({v}, {first}, buf, {at} + j * {size}) for j in range({f.count})]"
-
-    @staticmethod
-    def member_encode(m: plan.Member) -> str:
-        f = m.field
-        if isinstance(f, ir.ScalarField):
-            return encode_expr(f.scalar, f"self.{f.name}")
-        if isinstance(f, ir.ArrayField):
-            return f"*map(_rt.f32_bits, self.{f.name})" if _is_f32(f.scalar) else f"*self.{f.name}"
-        return f"*[x for item in self.{f.name} for x in item._values()]"
+        view = MemberView(f.name, "scalar", "plain", first=index(values, m.first_leaf),
+                          last=index(values, m.first_leaf + m.leaf_count), at=index(offsets, m.offset))
+        if isinstance(f, ir.GroupField):
+            view.kind, view.count, view.item = "group", f.count, self.target.item_classes[id(f)].name
+            view.width, view.size = m.item.leaf_count, m.item.layout.fixed_size
+            return view
+        view.kind = "array" if isinstance(f, ir.ArrayField) else "scalar"
+        view.conv, view.lookup = conversion(f.scalar, f.enum)
+        return view
 
     def run_step(self, run: plan.FixedRun) -> tuple[Step, Step]:
         const = f"_{self.owner.upper()}_{run.index}"
         fmt = ">" + "".join(STRUCT_CODES[leaf.scalar.name] for leaf in run.leaves)
         ofmt = ">" + "".join(out_code(leaf.scalar) for leaf in run.leaves)
         entries = [(leaf.path, leaf.offset, leaf.scalar.size) for leaf in run.leaves]
-        assigns = [(m.field.name, self.member_decode(m, "v", str(m.first_leaf), index("pos", m.offset)))
-                   for m in run.members]
+        members = [self.member(m, "0", "pos") for m in run.members]
         self.structs.append(StructConst(const, fmt, entries, ofmt if ofmt != fmt else None))
         # One plain value: unpack straight into its name, then convert it in place if needed.
-        single = len(run.leaves) == 1 and not _is_f32(run.leaves[0].scalar)
-        name = assigns[0][0]
-        convert = assigns[0][1].replace("v[0]", name) if single and assigns[0][1] != "v[0]" else None
-        decode = Step("run", dict(const=const, size=run.size, assigns=assigns, single=single, name=name,
-                                  convert=convert))
-        encode = Step("run", dict(const=const if ofmt == fmt else const + "_OUT",
-                                  args=[self.member_encode(m) for m in run.members]))
+        single = len(run.leaves) == 1 and members[0].conv != "f32"
+        decode = Step("run", dict(const=const, size=run.size, members=members, single=single))
+        encode = Step("run", dict(const=const if ofmt == fmt else const + "_OUT", members=members))
         return decode, encode
 
     # ---- steps ----
@@ -206,9 +197,8 @@ class _ClassBuilder:
                 d, e = self.run_step(step)
             elif isinstance(step, plan.CondGroup):
                 inner_d, inner_e = self.steps(step.steps)
-                d = Step("cond", dict(test=condition(step.condition, ""), steps=inner_d,
-                                      names=[f.name for f in step.fields]))
-                e = Step("cond", dict(test=condition(step.condition, "self."), steps=inner_e))
+                d = Step("cond", dict(condition=step.condition, steps=inner_d, names=[f.name for f in step.fields]))
+                e = Step("cond", dict(condition=step.condition, steps=inner_e))
             else:
                 d, e = self.var_step(step)
             decode.append(d)
@@ -242,18 +232,6 @@ class _ClassBuilder:
         item = self.target.item_classes[id(f)]
         return (Step("group_to_end", dict(name=f.name, item=item.name, path=path)),
                 Step("group_to_end", dict(name=f.name)))
-
-
-def condition(c: plan.Condition, ref: str) -> str:
-    """A plan's condition as a Python test; `ref` is where field values live (self. or locals)."""
-    tests = []
-    if c.flag:
-        tests.append(f"{ref}{c.flag}")
-    if c.low:
-        tests.append(f"version >= {c.low}")
-    if c.high:
-        tests.append(f"version <= {c.high}")
-    return " and ".join(tests)
 
 
 def _is_f32(s: ir.Scalar) -> bool:
@@ -307,9 +285,7 @@ class _Target:
         if role == "item" and self.is_fixed_item(layout):
             # A fixed item is read inside its parent's run: from the parent's values and offset.
             cls.fixed = True
-            for m in layout.runs[0].members:
-                cls.from_exprs.append(builder.member_decode(m, "v", index("i", m.first_leaf), index("at", m.offset)))
-                cls.values_exprs.append(builder.member_encode(m))
+            cls.members = [builder.member(m, "i", "at") for m in layout.runs[0].members]
         cls.summary = [field_name for _, field_name in summary or []]
         self.classes.append(cls)
         return cls
@@ -332,8 +308,8 @@ class _Target:
                 continue
             fields = [slot.field for slot in mp.header if not slot.is_subtype]
             subtype = mp.header[-1].field
-            # Header values that need converting after the unpack (enums): (name, expression).
-            converts = [(f.name, leaf_expr(f.scalar, f.enum, f.name, str(mp.header[0].offset))) for f in fields]
+            # Header values that need converting after the unpack (enums).
+            converts = [MemberView(f.name, "scalar", *conversion(f.scalar, f.enum)) for f in fields]
             layouts = [self.build_class(c.plan, py_layout_class(c.layout, True), "subtype", c.layout.name,
                                         c.layout.code.value, one_line(c.layout.doc, c.layout.field_note), mp.header,
                                         c.layout.sets_version, c.layout.summary) for c in mp.layouts]
@@ -343,7 +319,7 @@ class _Target:
                 header_fmt=">" + "".join(STRUCT_CODES[slot.field.scalar.name] for slot in mp.header),
                 header_run=[(slot.field.name, slot.offset, slot.field.scalar.size) for slot in mp.header],
                 header_offset=mp.header[0].offset, header_names=[f.name for f in fields],
-                header_converts=[(n, e) for n, e in converts if n != e], subtype=subtype.name,
+                header_converts=[c for c in converts if c.conv != "plain"], subtype=subtype.name,
                 body_offset=mp.body_offset))
         if self.problems:
             raise SpecError(self.p.source, self.problems)
