@@ -1,0 +1,91 @@
+"""The planning pass: what every target renders, said once per layout."""
+from __future__ import annotations
+
+import pytest
+import yaml
+
+from codegen import ir
+from codegen.compile import DEFAULT_SPEC, compile_file, compile_text
+from codegen.plan import CondGroup, FixedRun, VarField, plan
+
+
+@pytest.fixture(scope="module")
+def planned():
+    return plan(compile_file())
+
+
+def layout(planned, message, name):
+    for choice in planned.message(message).layouts:
+        if choice.layout.name == name:
+            return choice.plan
+    raise KeyError(name)
+
+
+def test_message_headers_and_body_offsets(planned):
+    assert planned.header_size == 5 and planned.package_header_size == 5
+    state = planned.message("robot_state")
+    assert state.body_offset == 5 and state.header == [] and state.subtype_offset is None
+    robot = planned.message("robot_message")
+    assert [(s.field.name, s.offset, s.is_subtype) for s in robot.header] == [
+        ("timestamp", 5, False), ("source", 13, False), ("robot_message_type", 14, True)]
+    assert robot.body_offset == 15 and robot.subtype_offset == 14
+    program = planned.message("program_state")
+    assert [(s.field.name, s.offset) for s in program.header] == [("timestamp", 5), ("robot_message_type", 13)]
+    assert program.body_offset == 14
+
+
+def test_a_fixed_package_is_one_run_with_member_and_leaf_offsets(planned):
+    mode = layout(planned, "robot_state", "robot_mode_data")
+    (run,) = mode.steps
+    assert isinstance(run, FixedRun) and run.offset == 0 and run.size == mode.fixed_size == 42
+    first = {m.field.name: (m.offset, m.first_leaf) for m in run.members}
+    assert first["timestamp"] == (0, 0) and first["robot_mode"] == (15, 8) and first["reserved"] == (41, 13)
+    assert mode.field_offset("robot_mode") == 15
+
+
+def test_fixed_count_groups_are_read_inside_the_run(planned):
+    (run,) = layout(planned, "robot_state", "joint_data").steps
+    (joints,) = run.members
+    assert joints.item.fixed and joints.item.leaf_count == 8 and joints.item.layout.fixed_size == 41
+    assert joints.leaf_count == 48 and len(run.leaves) == 48
+    leaf = run.leaves[9]
+    assert (leaf.path, leaf.offset, leaf.scalar.name) == ("joints[1].q_target", 49, "float64")
+
+
+def test_a_flag_makes_one_condition_group_between_runs(planned):
+    steps = layout(planned, "robot_state", "masterboard_data").steps
+    assert [s.kind for s in steps] == ["run", "cond", "run"]
+    head, cond, tail = steps
+    assert cond.condition.flag == "euromap67_interface_installed" and cond.condition.versions.unbounded
+    assert [f.name for f in cond.fields] == ["euromap_input_bits", "euromap_output_bits", "euromap_voltage_24v",
+                                             "euromap_current"]
+    (inner,) = cond.steps
+    assert isinstance(inner, FixedRun) and inner.size == 16 and inner.index == 1
+    assert head.offset == 0 and tail.offset is None and tail.index == 2
+
+
+def test_variable_fields_and_groups_repeated_to_the_end(planned):
+    steps = layout(planned, "robot_message", "program_threads").steps
+    (threads,) = steps
+    assert isinstance(threads, VarField) and not threads.item.fixed
+    assert [s.kind for s in threads.item.layout.steps] == ["run", "var", "var"]
+
+
+def test_where_the_version_is_read(planned):
+    v = planned.version
+    assert (v.message_code, v.subtype_code, v.subtype_offset, v.body_offset) == (20, 3, 14, 15)
+    assert (v.major.name, v.minor.name) == ("major_version", "minor_version")
+    assert [(s.fixed, s.prefix, s.signed) for s in v.skips] == [(0, 1, True)] and v.tail == 0 and v.rest == 8
+
+
+def test_version_gated_fields_group_by_their_range():
+    data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
+    fields = data["messages"]["robot_state"]["packages"]["additional_info"]["fields"]
+    fields += [{"name": "a", "type": "uint8", "versions": {"from": "5.12"}},
+               {"name": "b", "type": "uint8", "versions": {"from": "5.12"}},
+               {"name": "c", "type": "uint8", "versions": {"from": "5.13"}}]
+    planned = plan(compile_text(yaml.safe_dump(data, sort_keys=False)))
+    steps = layout(planned, "robot_state", "additional_info").steps
+    assert [s.kind for s in steps] == ["run", "cond", "cond"]
+    assert [f.name for f in steps[1].fields] == ["a", "b"] and steps[1].condition.low == (5, 12)
+    assert isinstance(steps[2], CondGroup) and steps[2].condition.versions == ir.VersionRange((5, 13), None)
