@@ -9,15 +9,13 @@
 -- Display filters: ur, ur.type == 16, ur.robot_mode_data.robot_mode == "RUNNING",
 -- ur.joint_data.q_actual > 1.5, ur.key.title contains "PROGRAM", ur.global_variables_update.
 -- Preferences: ur.ports, ur.version (assumed until a Version message is seen), ur.max_length.
+--
+-- The file has two parts. First the tables generated from the spec: value strings, fields,
+-- layouts (one descriptor per field), messages; all handed over in one table, `spec`. Then the
+-- hand-written runtime that walks them (codegen/templates/lua/runtime/*.lua), one chunk per
+-- file, each called with (spec, rt); `rt` holds what earlier chunks export.
 
 local ur = Proto("ur", "Universal Robots primary/secondary client interface")
-local fmt = string.format
-local byte = string.byte
-
-local HEADER = 5
-local MAX_VALUE_DEPTH = 8
-local DEFAULT_PORTS = "30001,30002,30011,30012"
-local DEFAULT_VERSION = "5.9"
 
 -- ---------------------------------------------------------------------------------------------
 -- Value strings: every enum of the spec, by wire value
@@ -544,17 +542,8 @@ local F = {
     ["global_variables_update.value_string"] = ProtoField.string("ur.global_variables_update.value_string", "value", base.UNICODE, "A string value."),
     ["global_variables_update"] = ProtoField.none("ur.global_variables_update", "Global variables update", "Global variables update message."),
 }
--- Not in the spec's layouts: what the dissector adds around them.
-local X = {
-    raw = ProtoField.bytes("ur.raw", "Raw", base.NONE, "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),
-    extra = ProtoField.bytes("ur.extra", "Extra bytes", base.NONE, "Bytes after the known layout of a package or message."),
-    skipped = ProtoField.bytes("ur.skipped", "Skipped bytes", base.NONE, "Bytes skipped while looking for the next plausible message header."),
-    version = ProtoField.string("ur.software_version", "Software version", base.ASCII, "The software version whose value-type table decodes this message."),
-    assumed = ProtoField.bool("ur.version_assumed", "Version assumed", base.NONE, nil, nil, "True when no Version message was seen on this stream and the ur.version preference applies."),
-    unknown_package = ProtoField.none("ur.unknown_package", "Unknown package", "A sub-package type the spec does not lay out, kept raw."),
-    urscript = ProtoField.string("ur.urscript", "URScript", base.UNICODE, "Bytes from the client to the robot: URScript program text."),
-}
-ur.fields = {
+-- In the order they are registered (runtime/declare.lua adds the dissector's own).
+local FIELDS = {
     F["length"],
     F["type"],
     F["package.length"],
@@ -823,42 +812,10 @@ ur.fields = {
     F["global_variables_update.value_int32"],
     F["global_variables_update.value_string"],
     F["global_variables_update"],
-    X.raw, X.extra, X.skipped, X.version, X.assumed, X.unknown_package, X.urscript,
 }
 
 -- ---------------------------------------------------------------------------------------------
--- Expert infos
--- ---------------------------------------------------------------------------------------------
-local E = {
-    bad_length = ProtoExpert.new("ur.bad_length", "Message length out of range (resynchronising)", expert.group.MALFORMED, expert.severity.ERROR),
-    bad_type = ProtoExpert.new("ur.bad_type", "Unknown message type (resynchronising)", expert.group.MALFORMED, expert.severity.ERROR),
-    malformed = ProtoExpert.new("ur.malformed", "Package or message too short or malformed", expert.group.MALFORMED, expert.severity.ERROR),
-    extra = ProtoExpert.new("ur.extra_bytes", "Bytes after the known layout", expert.group.PROTOCOL, expert.severity.WARN),
-    unknown = ProtoExpert.new("ur.unknown", "Type not laid out by the spec, kept raw", expert.group.UNDECODED, expert.severity.NOTE),
-    assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)", expert.group.ASSUMPTION, expert.severity.NOTE),
-    internal = ProtoExpert.new("ur.internal_error", "urwire dissector error", expert.group.MALFORMED, expert.severity.ERROR),
-}
-ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.internal }
-
--- ---------------------------------------------------------------------------------------------
--- Preferences
--- ---------------------------------------------------------------------------------------------
-ur.prefs.ports = Pref.range("TCP ports", DEFAULT_PORTS, "Robot-side TCP ports of the primary/secondary interfaces", 65535)
-ur.prefs.version = Pref.string("Software version", DEFAULT_VERSION, "Controller software version (major.minor) assumed until a Version message is seen on a stream; it chooses the global-variable value-type table")
-ur.prefs.max_length = Pref.uint("Maximum message length", 1048576, "Longer declared lengths are treated as malformed, and the dissector resynchronises")
-
-local pref_version = 5009
-local function parse_version(text)
-    local major, minor = string.match(text or "", "^%s*(%d+)%.(%d+)")
-    if not major then return nil end
-    return tonumber(major) * 1000 + tonumber(minor)
-end
-local function version_text(v)
-    return fmt("%d.%d", math.floor(v / 1000), v % 1000)
-end
-
--- ---------------------------------------------------------------------------------------------
--- Layouts: one descriptor per field, in wire order, walked by walk() below
+-- Layouts: one descriptor per field, in wire order, walked by walk() in runtime/walk.lua
 -- ---------------------------------------------------------------------------------------------
 
 -- Robot mode data.
@@ -1229,17 +1186,176 @@ local L_global_variables_update = {
 }
 
 -- ---------------------------------------------------------------------------------------------
--- Generic walking of a layout. st holds the message being dissected: its bytes (raw), its first
--- byte (base, for error offsets) and its software version. Offsets are tvb offsets.
+-- Messages by type: data for the runtime's message kinds (runtime/messages.lua)
 -- ---------------------------------------------------------------------------------------------
-local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
+local MESSAGE = {}
 
+-- Sub-packages of the robot state, by package type.
+local ROBOT_STATE_PACKAGES = {
+    [0] = { name = "robot_mode_data", label = "Robot mode data", item = F["robot_mode_data"], layout = L_robot_mode_data, info = { { at = 15, n = 1, vs = VS_ROBOT_MODE }, },
+        refs = { F["robot_mode_data.control_mode"], F["robot_mode_data.is_emergency_stopped"], F["robot_mode_data.is_program_paused"], F["robot_mode_data.is_program_running"], F["robot_mode_data.is_protective_stopped"], F["robot_mode_data.is_real_robot_connected"], F["robot_mode_data.is_real_robot_enabled"], F["robot_mode_data.is_robot_power_on"], F["robot_mode_data.reserved"], F["robot_mode_data.robot_mode"], F["robot_mode_data.speed_scaling"], F["robot_mode_data.target_speed_fraction"], F["robot_mode_data.target_speed_fraction_limit"], F["robot_mode_data.timestamp"] } },
+    [1] = { name = "joint_data", label = "Joint data", item = F["joint_data"], layout = L_joint_data,
+        refs = { F["joint_data.i_actual"], F["joint_data.joint_mode"], F["joint_data.joints"], F["joint_data.q_actual"], F["joint_data.q_target"], F["joint_data.qd_actual"], F["joint_data.t_micro"], F["joint_data.t_motor"], F["joint_data.v_actual"] } },
+    [2] = { name = "tool_data", label = "Tool data", item = F["tool_data"], layout = L_tool_data,
+        refs = { F["tool_data.analog_input0"], F["tool_data.analog_input1"], F["tool_data.analog_input_range0"], F["tool_data.analog_input_range1"], F["tool_data.tool_current"], F["tool_data.tool_mode"], F["tool_data.tool_output_voltage"], F["tool_data.tool_temperature"], F["tool_data.tool_voltage_48v"] } },
+    [3] = { name = "masterboard_data", label = "Masterboard data", item = F["masterboard_data"], layout = L_masterboard_data, info = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, },
+        refs = { F["masterboard_data.analog_input0"], F["masterboard_data.analog_input1"], F["masterboard_data.analog_input_range0"], F["masterboard_data.analog_input_range1"], F["masterboard_data.analog_output0"], F["masterboard_data.analog_output1"], F["masterboard_data.analog_output_domain0"], F["masterboard_data.analog_output_domain1"], F["masterboard_data.digital_input_bits"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"], F["masterboard_data.digital_output_bits"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.tool_0"], F["masterboard_data.digital_output_bits.tool_1"], F["masterboard_data.euromap67_interface_installed"], F["masterboard_data.euromap_current"], F["masterboard_data.euromap_input_bits"], F["masterboard_data.euromap_output_bits"], F["masterboard_data.euromap_voltage_24v"], F["masterboard_data.in_reduced_mode"], F["masterboard_data.master_board_temperature"], F["masterboard_data.master_io_current"], F["masterboard_data.operational_mode_selector_input"], F["masterboard_data.reserved_0"], F["masterboard_data.reserved_1"], F["masterboard_data.robot_current"], F["masterboard_data.robot_voltage_48v"], F["masterboard_data.safety_mode"], F["masterboard_data.three_position_enabling_device_input"] } },
+    [4] = { name = "cartesian_info", label = "Cartesian info", item = F["cartesian_info"], layout = L_cartesian_info,
+        refs = { F["cartesian_info.rx"], F["cartesian_info.ry"], F["cartesian_info.rz"], F["cartesian_info.tcp_offset_rx"], F["cartesian_info.tcp_offset_ry"], F["cartesian_info.tcp_offset_rz"], F["cartesian_info.tcp_offset_x"], F["cartesian_info.tcp_offset_y"], F["cartesian_info.tcp_offset_z"], F["cartesian_info.x"], F["cartesian_info.y"], F["cartesian_info.z"] } },
+    [5] = { name = "kinematics_info", label = "Kinematics info", item = F["kinematics_info"], layout = L_kinematics_info,
+        refs = { F["kinematics_info.calibration_status"], F["kinematics_info.checksum"], F["kinematics_info.dh_a"], F["kinematics_info.dh_alpha"], F["kinematics_info.dh_d"], F["kinematics_info.dh_theta"] } },
+    [6] = { name = "configuration_data", label = "Configuration data", item = F["configuration_data"], layout = L_configuration_data,
+        refs = { F["configuration_data.a_joint_default"], F["configuration_data.a_tool_default"], F["configuration_data.controller_box_type"], F["configuration_data.dh_a"], F["configuration_data.dh_alpha"], F["configuration_data.dh_d"], F["configuration_data.dh_theta"], F["configuration_data.eq_radius"], F["configuration_data.joint_max_acceleration"], F["configuration_data.joint_max_limit"], F["configuration_data.joint_max_speed"], F["configuration_data.joint_min_limit"], F["configuration_data.joint_motion_limits"], F["configuration_data.joint_position_limits"], F["configuration_data.masterboard_version"], F["configuration_data.robot_sub_type"], F["configuration_data.robot_type"], F["configuration_data.v_joint_default"], F["configuration_data.v_tool_default"] } },
+    [7] = { name = "force_mode_data", label = "Force mode data", item = F["force_mode_data"], layout = L_force_mode_data,
+        refs = { F["force_mode_data.frx"], F["force_mode_data.fry"], F["force_mode_data.frz"], F["force_mode_data.fx"], F["force_mode_data.fy"], F["force_mode_data.fz"], F["force_mode_data.robot_dexterity"] } },
+    [8] = { name = "additional_info", label = "Additional info", item = F["additional_info"], layout = L_additional_info,
+        refs = { F["additional_info.freedrive_button_enabled"], F["additional_info.io_enabled_freedrive"], F["additional_info.reserved"], F["additional_info.tp_button_state"] } },
+    [9] = { name = "calibration_data", label = "Calibration data", item = F["calibration_data"], layout = L_calibration_data,
+        refs = { F["calibration_data.frx"], F["calibration_data.fry"], F["calibration_data.frz"], F["calibration_data.fx"], F["calibration_data.fy"], F["calibration_data.fz"] } },
+    [10] = { name = "safety_data", label = "Safety data", item = F["safety_data"], layout = L_safety_data,
+        refs = { F["safety_data.raw"] } },
+    [11] = { name = "tool_comm_info", label = "Tool comm info", item = F["tool_comm_info"], layout = L_tool_comm_info,
+        refs = { F["tool_comm_info.baud_rate"], F["tool_comm_info.parity"], F["tool_comm_info.rx_idle_chars"], F["tool_comm_info.stop_bits"], F["tool_comm_info.tool_communication_is_enabled"], F["tool_comm_info.tx_idle_chars"] } },
+    [12] = { name = "tool_mode_info", label = "Tool mode info", item = F["tool_mode_info"], layout = L_tool_mode_info,
+        refs = { F["tool_mode_info.digital_output_mode_output_0"], F["tool_mode_info.digital_output_mode_output_1"], F["tool_mode_info.output_mode"] } },
+    [13] = { name = "singularity_info", label = "Singularity info", item = F["singularity_info"], layout = L_singularity_info,
+        refs = { F["singularity_info.singularity_severity"], F["singularity_info.singularity_type"] } },
+}
+
+-- Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in any order, each framed by its own length.
+MESSAGE[16] = {
+    kind = "packages", label = "Robot state", packages = ROBOT_STATE_PACKAGES, types = VS_PACKAGE_TYPE,
+    length = F["package.length"], type = F["package.type"],
+}
+
+-- Subtypes of the robot message, by subtype byte.
+local ROBOT_MESSAGE_SUBTYPES = {
+    [3] = { name = "version", label = "Version", item = F["version"], header = L_version_header, layout = L_version, needs_version = false },
+    [5] = { name = "safety_mode", label = "Safety mode", item = F["safety_mode"], header = L_safety_mode_header, layout = L_safety_mode, needs_version = false },
+    [6] = { name = "robot_comm", label = "Robot comm", item = F["robot_comm"], header = L_robot_comm_header, layout = L_robot_comm, needs_version = false },
+    [7] = { name = "key", label = "Key", item = F["key"], header = L_key_header, layout = L_key, needs_version = false },
+    [14] = { name = "program_threads", label = "Program threads", item = F["program_threads"], header = L_program_threads_header, layout = L_program_threads, needs_version = false },
+    [2] = { name = "popup", label = "Popup", item = F["popup"], header = L_popup_header, layout = L_popup, needs_version = false },
+    [9] = { name = "request_value", label = "Request value", item = F["request_value"], header = L_request_value_header, layout = L_request_value, needs_version = false },
+    [0] = { name = "text", label = "Text", item = F["text"], header = L_text_header, layout = L_text, needs_version = false },
+    [10] = { name = "runtime_exception", label = "Runtime exception", item = F["runtime_exception"], header = L_runtime_exception_header, layout = L_runtime_exception, needs_version = false },
+}
+
+-- Robot message. The version message goes to every client, the others to primary clients only.
+MESSAGE[20] = {
+    kind = "subtypes", label = "Robot message", body_offset = 15, header = L_robot_message,
+    subtype_field = F["robot_message.robot_message_type"], subtype_names = VS_ROBOT_MESSAGE_TYPE, subtypes = ROBOT_MESSAGE_SUBTYPES,
+}
+
+-- Subtypes of the program state, by subtype byte.
+local PROGRAM_STATE_SUBTYPES = {
+    [0] = { name = "global_variables_setup", label = "Global variables setup", item = F["global_variables_setup"], header = L_global_variables_setup_header, layout = L_global_variables_setup, needs_version = false },
+    [1] = { name = "global_variables_update", label = "Global variables update", item = F["global_variables_update"], header = L_global_variables_update_header, layout = L_global_variables_update, needs_version = true },
+}
+
+-- Program-state message, sent to primary clients only. There is NO source byte; the subtype follows the timestamp.
+MESSAGE[25] = {
+    kind = "subtypes", label = "Program state", body_offset = 14, header = L_program_state,
+    subtype_field = F["program_state.robot_message_type"], subtype_names = VS_PROGRAM_STATE_MESSAGE_TYPE, subtypes = PROGRAM_STATE_SUBTYPES,
+}
+
+-- Where the Version message keeps its numbers: the subtype byte, then steps over fixed bytes
+-- and length-prefixed texts, then major and minor (one byte each), then `rest` more bytes.
+local VERSION_READER = {
+    message = 20, subtype = 3, subtype_offset = 14,
+    steps = {
+        { fixed = 15, prefix = 1, signed = true },
+    },
+    tail = 0, rest = 8,
+}
+
+-- ---------------------------------------------------------------------------------------------
+-- What the runtime is handed
+-- ---------------------------------------------------------------------------------------------
+local spec = {
+    proto = ur,
+    title = "Universal Robots primary/secondary client interface",
+    header_size = 5,
+    length_size = 4,
+    package_header_size = 5,
+    package_length_size = 4,
+    max_message_length = 1048576,
+    max_value_depth = 8,
+    default_ports = "30001,30002,30011,30012",
+    default_version = "5.9",
+    F = F,
+    fields = FIELDS,
+    message_types = VS_MESSAGE_TYPE,
+    known_types = KNOWN_TYPE,
+    value_tables = VALUE_TABLES,
+    messages = MESSAGE,
+    version_reader = VERSION_READER,
+}
+local rt = {}
+
+-- =============================================================================================
+-- Runtime: declare.lua (codegen/templates/lua/runtime/declare.lua)
+-- =============================================================================================
+do
+(function(...)
+-- What the dissector adds around the spec's layouts: its own fields (raw and extra bytes, the
+-- software version a message was read with, URScript text) and its expert infos. Registers
+-- them, after every field of the spec, with the protocol. Runs once, at load time.
+local spec, rt = ...
+local ur = spec.proto
+
+local X = {
+    raw = ProtoField.bytes("ur.raw", "Raw", base.NONE, "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),
+    extra = ProtoField.bytes("ur.extra", "Extra bytes", base.NONE, "Bytes after the known layout of a package or message."),
+    skipped = ProtoField.bytes("ur.skipped", "Skipped bytes", base.NONE, "Bytes skipped while looking for the next plausible message header."),
+    version = ProtoField.string("ur.software_version", "Software version", base.ASCII, "The software version whose value-type table decodes this message."),
+    assumed = ProtoField.bool("ur.version_assumed", "Version assumed", base.NONE, nil, nil, "True when no Version message was seen on this stream and the ur.version preference applies."),
+    unknown_package = ProtoField.none("ur.unknown_package", "Unknown package", "A sub-package type the spec does not lay out, kept raw."),
+    urscript = ProtoField.string("ur.urscript", "URScript", base.UNICODE, "Bytes from the client to the robot: URScript program text."),
+}
+
+local E = {
+    bad_length = ProtoExpert.new("ur.bad_length", "Message length out of range (resynchronising)", expert.group.MALFORMED, expert.severity.ERROR),
+    bad_type = ProtoExpert.new("ur.bad_type", "Unknown message type (resynchronising)", expert.group.MALFORMED, expert.severity.ERROR),
+    malformed = ProtoExpert.new("ur.malformed", "Package or message too short or malformed", expert.group.MALFORMED, expert.severity.ERROR),
+    extra = ProtoExpert.new("ur.extra_bytes", "Bytes after the known layout", expert.group.PROTOCOL, expert.severity.WARN),
+    unknown = ProtoExpert.new("ur.unknown", "Type not laid out by the spec, kept raw", expert.group.UNDECODED, expert.severity.NOTE),
+    assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)", expert.group.ASSUMPTION, expert.severity.NOTE),
+    internal = ProtoExpert.new("ur.internal_error", "urwire dissector error", expert.group.MALFORMED, expert.severity.ERROR),
+}
+
+-- The spec's fields in the order they are declared, then the dissector's own.
+local fields = {}
+for i, f in ipairs(spec.fields) do fields[i] = f end
+for _, f in ipairs({ X.raw, X.extra, X.skipped, X.version, X.assumed, X.unknown_package, X.urscript }) do
+    fields[#fields + 1] = f
+end
+ur.fields = fields
+ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.internal }
+
+rt.X, rt.E = X, E
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- Runtime: bytes.lua (codegen/templates/lua/runtime/bytes.lua)
+-- =============================================================================================
+do
+(function(...)
+-- Big-endian numbers read from a message's raw bytes (the Lua string of tvb:raw(), offsets
+-- counted from 0 as in the tvb), and the canonical texts of a read that does not fit.
+-- string.byte on the raw string costs a seventh of tvb(o, n):uint() in tshark 4.0.
+local spec, rt = ...
+local fmt, byte = string.format, string.byte
+
+-- An unsigned integer of n bytes at offset o.
 local function be_uint(raw, o, n)
     local v = 0
     for i = o + 1, o + n do v = v * 256 + byte(raw, i) end
     return v
 end
 
+-- A two's-complement integer of n bytes at offset o.
 local function be_int(raw, o, n)
     local v = be_uint(raw, o, n)
     local half = 2 ^ (8 * n - 1)
@@ -1247,97 +1363,110 @@ local function be_int(raw, o, n)
     return v
 end
 
+-- "<path> at offset <o>: needs <need> bytes, <left> left"; offsets from the message's first
+-- byte (st.base), as every target words it.
 local function short(st, path, o, need, e)
     local left = e - o
     if left < 0 then left = 0 end
     return fmt("%s at offset %d: needs %d bytes, %d left", path, o - st.base, need, left)
 end
 
+-- A length prefix, list count or matrix size below zero.
+local function negative(st, path, o, n)
+    return fmt("%s at offset %d: negative length %d", path, o - st.base, n)
+end
+
+rt.be_uint, rt.be_int, rt.short, rt.negative = be_uint, be_int, short, negative
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- Runtime: versions.lua (codegen/templates/lua/runtime/versions.lua)
+-- =============================================================================================
+do
+(function(...)
+-- Software versions as one number, major * 1000 + minor (5.9 is 5009): parsed from the
+-- preference's text, shown back as text, tested against a range; the value-type table that
+-- a version uses; and the version a Version message announces, read from its raw bytes.
+local spec, rt = ...
+local fmt, byte = string.format, string.byte
+local be_int, be_uint = rt.be_int, rt.be_uint
+
+-- "5.9" (leading spaces and a third part allowed) -> 5009; nil when it is no version.
+local function parse_version(text)
+    local major, minor = string.match(text or "", "^%s*(%d+)%.(%d+)")
+    if not major then return nil end
+    return tonumber(major) * 1000 + tonumber(minor)
+end
+
+local function version_text(v)
+    return fmt("%d.%d", math.floor(v / 1000), v % 1000)
+end
+
+-- True when v is inside the inclusive range; a nil bound is open.
+local function version_in(v, low, high)
+    return (low == nil or v >= low) and (high == nil or v <= high)
+end
+
+-- The value-type codes of version v: the first table whose range holds it, else the last.
+local function value_table(tables, v)
+    for _, t in ipairs(tables) do
+        if version_in(v, t.low, t.high) then return t.kinds end
+    end
+    return tables[#tables].kinds
+end
+
+-- The version a Version message from o to e announces, or nil when it is not one or is
+-- malformed. r (spec.version_reader) says where its numbers are: the subtype byte, then
+-- steps over fixed bytes and length-prefixed texts, then the major and minor bytes.
+local function announced_version(raw, o, e, r)
+    if e - o <= r.subtype_offset or byte(raw, o + r.subtype_offset + 1) ~= r.subtype then return nil end
+    local p = o
+    local steps = r.steps
+    for i = 1, #steps do
+        local s = steps[i]
+        p = p + s.fixed
+        if p + s.prefix > e then return nil end
+        local n
+        if s.signed then n = be_int(raw, p, s.prefix) else n = be_uint(raw, p, s.prefix) end
+        if n < 0 then return nil end
+        p = p + s.prefix + n
+    end
+    p = p + r.tail
+    if p + 2 + r.rest > e then return nil end
+    return byte(raw, p + 1) * 1000 + byte(raw, p + 2)
+end
+
+rt.parse_version, rt.version_text, rt.version_in = parse_version, version_text, version_in
+rt.value_table, rt.announced_version = value_table, announced_version
+-- The version assumed when neither a Version message nor the preference gives one.
+rt.default_version = parse_version(spec.default_version)
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- Runtime: walk.lua (codegen/templates/lua/runtime/walk.lua)
+-- =============================================================================================
+do
+(function(...)
+-- The generic walk of a layout: a list of field descriptors in wire order ({ k = "scalar",
+-- f = <ProtoField>, n = 8, path = "timestamp", ... }), each added to the tree by the function
+-- KIND[d.k]. st is the message being dissected: its raw bytes (raw), its first byte (base, for
+-- error offsets) and its software version. Offsets are tvb offsets; o is where a field starts
+-- and e where the layout ends. Every KIND function returns the offset after the field, or nil
+-- and the canonical error text. values.lua adds KIND.values.
+local spec, rt = ...
+local fmt, byte = string.format, string.byte
+local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
+local version_in = rt.version_in
+
+local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
+local walk
+
 -- A text field; a zero-length one still shows, at its offset.
 local function add_text(tree, f, tvb, o, n)
     return tree:add_packet_field(f, tvb(o, n), ENC_UTF_8)
 end
-
-local function version_in(st, low, high)
-    return (low == nil or st.version >= low) and (high == nil or st.version <= high)
-end
-
-local function value_table(v)
-    for _, t in ipairs(VALUE_TABLES) do
-        if (t.low == nil or v >= t.low) and (t.high == nil or v <= t.high) then return t.kinds end
-    end
-    return VALUE_TABLES[#VALUE_TABLES].kinds
-end
-
--- One typed value (type byte and data) of a global variable, nested for LIST and MATRIX.
-local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
-    local raw = st.raw
-    if o >= e then return nil, short(st, path .. ".type", o, 1, e) end
-    local code = byte(raw, o + 1)
-    if depth > MAX_VALUE_DEPTH then
-        return nil, fmt("%s at offset %d: nesting deeper than %d", path, o - st.base, MAX_VALUE_DEPTH)
-    end
-    local kind = kinds[code]
-    if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
-    local start = o
-    local item = tree:add(vf.item, tvb(o, 1))
-    item:set_text(path .. ": " .. kind.name)
-    item:add(vf.type, tvb(o, 1), kind.name)
-    item:add(vf.code, tvb(o, 1))
-    o = o + 1
-    local layout = kind.layout
-    if layout == "scalar" or layout == "array" then
-        local need = kind.n * kind.count
-        if o + need > e then return nil, short(st, path, o, need, e) end
-        for _ = 1, kind.count do
-            item:add(vf[kind.item], tvb(o, kind.n))
-            o = o + kind.n
-        end
-    elseif layout == "string" then
-        if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
-        local n = be_int(raw, o, kind.len)
-        if n < 0 then return nil, fmt("%s at offset %d: negative length %d", path, o - st.base, n) end
-        item:add(vf.count, tvb(o, kind.len))
-        o = o + kind.len
-        if o + n > e then return nil, short(st, path, o, n, e) end
-        add_text(item, vf.string, tvb, o, n)
-        o = o + n
-    elseif layout == "list" then
-        if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
-        local n = be_int(raw, o, kind.len)
-        if n < 0 then return nil, fmt("%s at offset %d: negative length %d", path, o - st.base, n) end
-        item:add(vf.count, tvb(o, kind.len))
-        o = o + kind.len
-        for i = 0, n - 1 do
-            local err
-            o, err = walk_value(tvb, item, o, e, st, vf, kinds, path .. "[" .. i .. "]", depth + 1)
-            if not o then return nil, err end
-        end
-    elseif layout == "matrix" then
-        if o + 2 * kind.len > e then return nil, short(st, path, o, 2 * kind.len, e) end
-        local rows, cols = be_int(raw, o, kind.len), be_int(raw, o + kind.len, kind.len)
-        if rows < 0 then return nil, fmt("%s at offset %d: negative length %d", path, o - st.base, rows) end
-        if cols < 0 then return nil, fmt("%s at offset %d: negative length %d", path, o + kind.len - st.base, cols) end
-        item:add(vf.rows, tvb(o, kind.len))
-        item:add(vf.cols, tvb(o + kind.len, kind.len))
-        o = o + 2 * kind.len
-        for r = 0, rows - 1 do
-            local row = item:add(vf.row, tvb(o, 0))
-            row:set_text(fmt("Row %d", r))
-            local row_start = o
-            for c = 0, cols - 1 do
-                local err
-                o, err = walk_value(tvb, row, o, e, st, vf, kinds, path .. "[" .. r .. "][" .. c .. "]", depth + 1)
-                if not o then return nil, err end
-            end
-            row:set_len(o - row_start)
-        end
-    end
-    item:set_len(o - start)
-    return o
-end
-
-local walk
 
 local KIND = {}
 
@@ -1410,7 +1539,7 @@ function KIND.pstring(tvb, tree, o, e, st, d, pre)
     local path = (pre or "") .. d.path
     if o + d.n > e then return nil, short(st, path, o, d.n, e) end
     local n = d.signed and be_int(st.raw, o, d.n) or be_uint(st.raw, o, d.n)
-    if n < 0 then return nil, fmt("%s at offset %d: negative length %d", path, o - st.base, n) end
+    if n < 0 then return nil, negative(st, path, o, n) end
     o = o + d.n
     if o + n > e then return nil, short(st, path, o, n, e) end
     add_text(tree, d.f, tvb, o, n)
@@ -1449,9 +1578,117 @@ function KIND.switch(tvb, tree, o, e, st, d, pre)
     return o + c.n
 end
 
+-- Fields present only when an earlier field is nonzero, or for some software versions.
+function KIND.cond(tvb, tree, o, e, st, d, pre)
+    if d.present_if and (kept[d.present_if] or 0) == 0 then return o end
+    if not version_in(st.version, d.low, d.high) then return o end
+    return walk(tvb, tree, o, e, st, d.fields, pre)
+end
+
+-- Walk a layout from o to at most e: the offset after it, or nil and the canonical error text.
+-- pre is the error path of the enclosing group item ("joints[2]."), nil at the top.
+walk = function(tvb, tree, o, e, st, layout, pre)
+    for i = 1, #layout do
+        local d = layout[i]
+        local err
+        o, err = KIND[d.k](tvb, tree, o, e, st, d, pre)
+        if not o then return nil, err end
+    end
+    return o
+end
+
+rt.KIND, rt.walk, rt.add_text = KIND, walk, add_text
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- Runtime: values.lua (codegen/templates/lua/runtime/values.lua)
+-- =============================================================================================
+do
+(function(...)
+-- Typed values of global variables: a type byte, then its data, nested for LIST and MATRIX.
+-- The meaning of a type byte depends on the software version (spec.value_tables: one table
+-- per version range). Adds the descriptor kind "values" to the walker.
+local spec, rt = ...
+local fmt, byte = string.format, string.byte
+local be_int, short, negative = rt.be_int, rt.short, rt.negative
+local value_table, add_text = rt.value_table, rt.add_text
+
+local MAX_VALUE_DEPTH = spec.max_value_depth
+local VALUE_TABLES = spec.value_tables
+
+-- One typed value at o, under tree; vf holds the fields values are shown with, kinds the
+-- version's value types. Returns the offset after it, or nil and the canonical error text.
+local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
+    local raw = st.raw
+    if o >= e then return nil, short(st, path .. ".type", o, 1, e) end
+    local code = byte(raw, o + 1)
+    if depth > MAX_VALUE_DEPTH then
+        return nil, fmt("%s at offset %d: nesting deeper than %d", path, o - st.base, MAX_VALUE_DEPTH)
+    end
+    local kind = kinds[code]
+    if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
+    local start = o
+    local item = tree:add(vf.item, tvb(o, 1))
+    item:set_text(path .. ": " .. kind.name)
+    item:add(vf.type, tvb(o, 1), kind.name)
+    item:add(vf.code, tvb(o, 1))
+    o = o + 1
+    local layout = kind.layout
+    if layout == "scalar" or layout == "array" then
+        local need = kind.n * kind.count
+        if o + need > e then return nil, short(st, path, o, need, e) end
+        for _ = 1, kind.count do
+            item:add(vf[kind.item], tvb(o, kind.n))
+            o = o + kind.n
+        end
+    elseif layout == "string" then
+        if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
+        local n = be_int(raw, o, kind.len)
+        if n < 0 then return nil, negative(st, path, o, n) end
+        item:add(vf.count, tvb(o, kind.len))
+        o = o + kind.len
+        if o + n > e then return nil, short(st, path, o, n, e) end
+        add_text(item, vf.string, tvb, o, n)
+        o = o + n
+    elseif layout == "list" then
+        if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
+        local n = be_int(raw, o, kind.len)
+        if n < 0 then return nil, negative(st, path, o, n) end
+        item:add(vf.count, tvb(o, kind.len))
+        o = o + kind.len
+        for i = 0, n - 1 do
+            local err
+            o, err = walk_value(tvb, item, o, e, st, vf, kinds, path .. "[" .. i .. "]", depth + 1)
+            if not o then return nil, err end
+        end
+    elseif layout == "matrix" then
+        if o + 2 * kind.len > e then return nil, short(st, path, o, 2 * kind.len, e) end
+        local rows, cols = be_int(raw, o, kind.len), be_int(raw, o + kind.len, kind.len)
+        if rows < 0 then return nil, negative(st, path, o, rows) end
+        if cols < 0 then return nil, negative(st, path, o + kind.len, cols) end
+        item:add(vf.rows, tvb(o, kind.len))
+        item:add(vf.cols, tvb(o + kind.len, kind.len))
+        o = o + 2 * kind.len
+        for r = 0, rows - 1 do
+            local row = item:add(vf.row, tvb(o, 0))
+            row:set_text(fmt("Row %d", r))
+            local row_start = o
+            for c = 0, cols - 1 do
+                local err
+                o, err = walk_value(tvb, row, o, e, st, vf, kinds, path .. "[" .. r .. "][" .. c .. "]", depth + 1)
+                if not o then return nil, err end
+            end
+            row:set_len(o - row_start)
+        end
+    end
+    item:set_len(o - start)
+    return o
+end
+
 -- Typed values, each followed by a terminator, to the end of the layout.
-function KIND.values(tvb, tree, o, e, st, d, pre)
-    local kinds = value_table(st.version)
+function rt.KIND.values(tvb, tree, o, e, st, d, pre)
+    local kinds = value_table(VALUE_TABLES, st.version)
     local i = 0
     while o < e do
         local path = fmt("%s%s[%d]", pre or "", d.path, i)
@@ -1469,28 +1706,29 @@ function KIND.values(tvb, tree, o, e, st, d, pre)
     return o
 end
 
--- Fields present only when an earlier field is nonzero, or for some software versions.
-function KIND.cond(tvb, tree, o, e, st, d, pre)
-    if d.present_if and (kept[d.present_if] or 0) == 0 then return o end
-    if not version_in(st, d.low, d.high) then return o end
-    return walk(tvb, tree, o, e, st, d.fields, pre)
+rt.walk_value = walk_value
+end)(spec, rt)
 end
 
--- Walk a layout from o to at most e: the offset after it, or nil and the canonical error text.
-walk = function(tvb, tree, o, e, st, layout, pre)
-    for i = 1, #layout do
-        local d = layout[i]
-        local err
-        o, err = KIND[d.k](tvb, tree, o, e, st, d, pre)
-        if not o then return nil, err end
-    end
-    return o
-end
+-- =============================================================================================
+-- Runtime: info.lua (codegen/templates/lua/runtime/info.lua)
+-- =============================================================================================
+do
+(function(...)
+-- The Info column. It is written on every pass, tree or not, so it reads the raw bytes and
+-- builds no tree: the descriptors marked `show` of a message layout, and the enums a
+-- robot-state package lists in its `info`. One buffer of parts is reused for every message.
+local spec, rt = ...
+local fmt, byte = string.format, string.byte
+local be_int, be_uint = rt.be_int, rt.be_uint
+local PACKAGE_HEADER = spec.package_header_size
+local PACKAGE_LENGTH = spec.package_length_size
 
--- The Info column's view of a message: the fields marked `show`, read from the raw bytes
--- without building a tree (runs on every pass). Stops at the first field it cannot step over.
-local info_parts = {}
-local function scan_info(tvb, raw, o, e, layout)
+local parts = {}
+
+-- The fields marked `show` of a layout from o to e, each after its text: "PROGRAM_STARTED:
+-- demo". Stops at the first field it cannot step over without walking it.
+local function layout_summary(tvb, raw, o, e, layout)
     local n = 0
     for _, d in ipairs(layout) do
         local k, size = d.k, nil
@@ -1503,7 +1741,7 @@ local function scan_info(tvb, raw, o, e, layout)
             if d.show then
                 local v = d.signed and be_int(raw, o, d.n) or be_uint(raw, o, d.n)
                 n = n + 1
-                info_parts[n] = d.show .. (d.vs and (d.vs[v] or fmt("%d", v)) or fmt("%d", v))
+                parts[n] = d.show .. (d.vs and (d.vs[v] or fmt("%d", v)) or fmt("%d", v))
             end
             o = o + size
         elseif k == "pstring" then
@@ -1512,7 +1750,7 @@ local function scan_info(tvb, raw, o, e, layout)
             if len < 0 or o + d.n + len > e then break end
             if d.show then
                 n = n + 1
-                info_parts[n] = d.show .. tvb(o + d.n, len):string(ENC_UTF_8)
+                parts[n] = d.show .. tvb(o + d.n, len):string(ENC_UTF_8)
             end
             o = o + d.n + len
         elseif k == "string" then
@@ -1520,308 +1758,43 @@ local function scan_info(tvb, raw, o, e, layout)
                 local len = e - o
                 if len > 120 then len = 120 end
                 n = n + 1
-                info_parts[n] = d.show .. tvb(o, len):string(ENC_UTF_8)
+                parts[n] = d.show .. tvb(o, len):string(ENC_UTF_8)
             end
             o = e
         else
             break
         end
     end
-    local text = table.concat(info_parts, "", 1, n)
-    return text
+    return table.concat(parts, "", 1, n)
 end
 
--- True when a filter, column or tap asks for one of these fields.
-local function referenced(tree, fields)
-    for _, f in ipairs(fields) do
-        if tree:referenced(f) then return true end
+-- The enums that the robot-state packages from p to e list in their `info` ({ at = offset
+-- in the package body, n = size, vs = value string }), joined by ", ". Stops at the first
+-- package whose length does not fit.
+local function package_summary(raw, p, e, packages)
+    local n = 0
+    while e - p >= PACKAGE_HEADER do
+        local size, code = be_int(raw, p, PACKAGE_LENGTH), byte(raw, p + PACKAGE_LENGTH + 1)
+        if size < PACKAGE_HEADER or size > e - p then break end
+        local pk = packages[code]
+        if pk and pk.info then
+            for _, i in ipairs(pk.info) do
+                if i.at + i.n <= size - PACKAGE_HEADER then
+                    local v = be_int(raw, p + PACKAGE_HEADER + i.at, i.n)
+                    n = n + 1
+                    parts[n] = i.vs[v] or fmt("%d", v)
+                end
+            end
+        end
+        p = p + size
     end
-    return false
+    return table.concat(parts, ", ", 1, n)
 end
 
--- ---------------------------------------------------------------------------------------------
--- Messages: a table of small functions keyed by message type
--- ---------------------------------------------------------------------------------------------
-local MESSAGE = {}
-
--- Sub-packages of the robot state, by package type.
-local ROBOT_STATE_PACKAGES = {
-    [0] = { name = "robot_mode_data", label = "Robot mode data", item = F["robot_mode_data"], layout = L_robot_mode_data, info = { { at = 15, n = 1, vs = VS_ROBOT_MODE }, },
-        refs = { F["robot_mode_data.control_mode"], F["robot_mode_data.is_emergency_stopped"], F["robot_mode_data.is_program_paused"], F["robot_mode_data.is_program_running"], F["robot_mode_data.is_protective_stopped"], F["robot_mode_data.is_real_robot_connected"], F["robot_mode_data.is_real_robot_enabled"], F["robot_mode_data.is_robot_power_on"], F["robot_mode_data.reserved"], F["robot_mode_data.robot_mode"], F["robot_mode_data.speed_scaling"], F["robot_mode_data.target_speed_fraction"], F["robot_mode_data.target_speed_fraction_limit"], F["robot_mode_data.timestamp"] } },
-    [1] = { name = "joint_data", label = "Joint data", item = F["joint_data"], layout = L_joint_data,
-        refs = { F["joint_data.i_actual"], F["joint_data.joint_mode"], F["joint_data.joints"], F["joint_data.q_actual"], F["joint_data.q_target"], F["joint_data.qd_actual"], F["joint_data.t_micro"], F["joint_data.t_motor"], F["joint_data.v_actual"] } },
-    [2] = { name = "tool_data", label = "Tool data", item = F["tool_data"], layout = L_tool_data,
-        refs = { F["tool_data.analog_input0"], F["tool_data.analog_input1"], F["tool_data.analog_input_range0"], F["tool_data.analog_input_range1"], F["tool_data.tool_current"], F["tool_data.tool_mode"], F["tool_data.tool_output_voltage"], F["tool_data.tool_temperature"], F["tool_data.tool_voltage_48v"] } },
-    [3] = { name = "masterboard_data", label = "Masterboard data", item = F["masterboard_data"], layout = L_masterboard_data, info = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, },
-        refs = { F["masterboard_data.analog_input0"], F["masterboard_data.analog_input1"], F["masterboard_data.analog_input_range0"], F["masterboard_data.analog_input_range1"], F["masterboard_data.analog_output0"], F["masterboard_data.analog_output1"], F["masterboard_data.analog_output_domain0"], F["masterboard_data.analog_output_domain1"], F["masterboard_data.digital_input_bits"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"], F["masterboard_data.digital_output_bits"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.tool_0"], F["masterboard_data.digital_output_bits.tool_1"], F["masterboard_data.euromap67_interface_installed"], F["masterboard_data.euromap_current"], F["masterboard_data.euromap_input_bits"], F["masterboard_data.euromap_output_bits"], F["masterboard_data.euromap_voltage_24v"], F["masterboard_data.in_reduced_mode"], F["masterboard_data.master_board_temperature"], F["masterboard_data.master_io_current"], F["masterboard_data.operational_mode_selector_input"], F["masterboard_data.reserved_0"], F["masterboard_data.reserved_1"], F["masterboard_data.robot_current"], F["masterboard_data.robot_voltage_48v"], F["masterboard_data.safety_mode"], F["masterboard_data.three_position_enabling_device_input"] } },
-    [4] = { name = "cartesian_info", label = "Cartesian info", item = F["cartesian_info"], layout = L_cartesian_info,
-        refs = { F["cartesian_info.rx"], F["cartesian_info.ry"], F["cartesian_info.rz"], F["cartesian_info.tcp_offset_rx"], F["cartesian_info.tcp_offset_ry"], F["cartesian_info.tcp_offset_rz"], F["cartesian_info.tcp_offset_x"], F["cartesian_info.tcp_offset_y"], F["cartesian_info.tcp_offset_z"], F["cartesian_info.x"], F["cartesian_info.y"], F["cartesian_info.z"] } },
-    [5] = { name = "kinematics_info", label = "Kinematics info", item = F["kinematics_info"], layout = L_kinematics_info,
-        refs = { F["kinematics_info.calibration_status"], F["kinematics_info.checksum"], F["kinematics_info.dh_a"], F["kinematics_info.dh_alpha"], F["kinematics_info.dh_d"], F["kinematics_info.dh_theta"] } },
-    [6] = { name = "configuration_data", label = "Configuration data", item = F["configuration_data"], layout = L_configuration_data,
-        refs = { F["configuration_data.a_joint_default"], F["configuration_data.a_tool_default"], F["configuration_data.controller_box_type"], F["configuration_data.dh_a"], F["configuration_data.dh_alpha"], F["configuration_data.dh_d"], F["configuration_data.dh_theta"], F["configuration_data.eq_radius"], F["configuration_data.joint_max_acceleration"], F["configuration_data.joint_max_limit"], F["configuration_data.joint_max_speed"], F["configuration_data.joint_min_limit"], F["configuration_data.joint_motion_limits"], F["configuration_data.joint_position_limits"], F["configuration_data.masterboard_version"], F["configuration_data.robot_sub_type"], F["configuration_data.robot_type"], F["configuration_data.v_joint_default"], F["configuration_data.v_tool_default"] } },
-    [7] = { name = "force_mode_data", label = "Force mode data", item = F["force_mode_data"], layout = L_force_mode_data,
-        refs = { F["force_mode_data.frx"], F["force_mode_data.fry"], F["force_mode_data.frz"], F["force_mode_data.fx"], F["force_mode_data.fy"], F["force_mode_data.fz"], F["force_mode_data.robot_dexterity"] } },
-    [8] = { name = "additional_info", label = "Additional info", item = F["additional_info"], layout = L_additional_info,
-        refs = { F["additional_info.freedrive_button_enabled"], F["additional_info.io_enabled_freedrive"], F["additional_info.reserved"], F["additional_info.tp_button_state"] } },
-    [9] = { name = "calibration_data", label = "Calibration data", item = F["calibration_data"], layout = L_calibration_data,
-        refs = { F["calibration_data.frx"], F["calibration_data.fry"], F["calibration_data.frz"], F["calibration_data.fx"], F["calibration_data.fy"], F["calibration_data.fz"] } },
-    [10] = { name = "safety_data", label = "Safety data", item = F["safety_data"], layout = L_safety_data,
-        refs = { F["safety_data.raw"] } },
-    [11] = { name = "tool_comm_info", label = "Tool comm info", item = F["tool_comm_info"], layout = L_tool_comm_info,
-        refs = { F["tool_comm_info.baud_rate"], F["tool_comm_info.parity"], F["tool_comm_info.rx_idle_chars"], F["tool_comm_info.stop_bits"], F["tool_comm_info.tool_communication_is_enabled"], F["tool_comm_info.tx_idle_chars"] } },
-    [12] = { name = "tool_mode_info", label = "Tool mode info", item = F["tool_mode_info"], layout = L_tool_mode_info,
-        refs = { F["tool_mode_info.digital_output_mode_output_0"], F["tool_mode_info.digital_output_mode_output_1"], F["tool_mode_info.output_mode"] } },
-    [13] = { name = "singularity_info", label = "Singularity info", item = F["singularity_info"], layout = L_singularity_info,
-        refs = { F["singularity_info.singularity_severity"], F["singularity_info.singularity_type"] } },
-}
-
--- Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in any order, each framed by its own length.
-MESSAGE[16] = {
-    label = "Robot state",
-    suffix = ", Robot state",
-    -- Info column: the enums marked in the packages, read from the raw bytes.
-    info = function(tvb, raw, o, e)
-        local n, p = 0, o + HEADER
-        while e - p >= HEADER do
-            local size, code = be_int(raw, p, 4), byte(raw, p + 5)
-            if size < HEADER or size > e - p then break end
-            local pk = ROBOT_STATE_PACKAGES[code]
-            if pk and pk.info then
-                for _, i in ipairs(pk.info) do
-                    if i.at + i.n <= size - HEADER then
-                        local v = be_int(raw, p + HEADER + i.at, i.n)
-                        n = n + 1
-                        info_parts[n] = i.vs[v] or fmt("%d", v)
-                    end
-                end
-            end
-            p = p + size
-        end
-        if n == 0 then return "Robot state" end
-        return "Robot state: " .. table.concat(info_parts, ", ", 1, n)
-    end,
-    tree = function(tvb, tree, o, e, st)
-        local raw = st.raw
-        local p = o + HEADER
-        while p < e do
-            local left = e - p
-            local err
-            local size = left >= HEADER and be_int(raw, p, 4) or 0
-            if left < HEADER then
-                err = fmt("package at offset %d: needs %d bytes, %d left", p - st.base, HEADER, left)
-            elseif size < HEADER then
-                err = fmt("package at offset %d: length %d is below %d", p - st.base, size, HEADER)
-            elseif size > left then
-                err = fmt("package at offset %d: length %d exceeds the %d bytes left", p - st.base, size, left)
-            end
-            if err then
-                tree:add(X.raw, tvb(p, left))
-                tree:add_proto_expert_info(E.malformed, err)
-                return
-            end
-            local code = byte(raw, p + 5)
-            local pk = ROBOT_STATE_PACKAGES[code]
-            local item = tree:add(pk and pk.item or X.unknown_package, tvb(p, size))
-            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, VS_PACKAGE_TYPE[code] or "not in the spec")) end
-            item:add(F["package.length"], tvb(p, 4))
-            item:add(F["package.type"], tvb(p + 4, 1))
-            local body, stop = p + HEADER, p + size
-            if pk and not st.visible and not referenced(item, pk.refs) then
-                -- No tree shown and no field of this package asked for: skip its fields.
-            elseif pk then
-                local used
-                used, err = walk(tvb, item, body, stop, st, pk.layout, nil)
-                if not used then
-                    item:add(X.raw, tvb(body, stop - body))
-                    item:add_proto_expert_info(E.malformed, pk.name .. ": " .. err)
-                elseif used < stop then
-                    item:add(X.extra, tvb(used, stop - used))
-                    item:add_proto_expert_info(E.extra, fmt("%s: %d bytes after the layout", pk.name, stop - used))
-                end
-            else
-                item:add(X.raw, tvb(body, stop - body))
-                -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
-                if not VS_PACKAGE_TYPE[code] then
-                    item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
-                end
-            end
-            p = stop
-        end
-    end,
-}
-
--- Robot message. The version message goes to every client, the others to primary clients only.
-local ROBOT_MESSAGE_SUBTYPES = {
-    [3] = { name = "version", label = "Version", item = F["version"], header = L_version_header, layout = L_version, needs_version = false },
-    [5] = { name = "safety_mode", label = "Safety mode", item = F["safety_mode"], header = L_safety_mode_header, layout = L_safety_mode, needs_version = false },
-    [6] = { name = "robot_comm", label = "Robot comm", item = F["robot_comm"], header = L_robot_comm_header, layout = L_robot_comm, needs_version = false },
-    [7] = { name = "key", label = "Key", item = F["key"], header = L_key_header, layout = L_key, needs_version = false },
-    [14] = { name = "program_threads", label = "Program threads", item = F["program_threads"], header = L_program_threads_header, layout = L_program_threads, needs_version = false },
-    [2] = { name = "popup", label = "Popup", item = F["popup"], header = L_popup_header, layout = L_popup, needs_version = false },
-    [9] = { name = "request_value", label = "Request value", item = F["request_value"], header = L_request_value_header, layout = L_request_value, needs_version = false },
-    [0] = { name = "text", label = "Text", item = F["text"], header = L_text_header, layout = L_text, needs_version = false },
-    [10] = { name = "runtime_exception", label = "Runtime exception", item = F["runtime_exception"], header = L_runtime_exception_header, layout = L_runtime_exception, needs_version = false },
-}
-
-MESSAGE[20] = {
-    label = "Robot message",
-    suffix = ", Robot message",
-    info = function(tvb, raw, o, e)
-        if e - o < 15 then return "Robot message (too short)" end
-        local code = byte(raw, o + 15)
-        local s = ROBOT_MESSAGE_SUBTYPES[code]
-        if not s then return fmt("Robot message subtype %d", code) end
-        local text = scan_info(tvb, raw, o + 15, e, s.layout)
-        if text == "" then return s.label end
-        return s.label .. ": " .. text
-    end,
-    tree = function(tvb, tree, o, e, st)
-        if e - o < 15 then
-            local _, err = walk(tvb, tree, o + HEADER, e, st, L_robot_message, nil)
-            if e - o > HEADER then tree:add(X.raw, tvb(o + HEADER, e - o - HEADER)) end
-            tree:add_proto_expert_info(E.malformed, err or "too short")
-            return
-        end
-        local code = byte(st.raw, o + 15)
-        local s = ROBOT_MESSAGE_SUBTYPES[code]
-        local body = o + 15
-        local item = tree
-        if not s then
-            walk(tvb, tree, o + HEADER, body, st, L_robot_message, nil)
-            if body < e then tree:add(X.raw, tvb(body, e - body)) end
-            if not VS_ROBOT_MESSAGE_TYPE[code] then
-                tree:add_proto_expert_info(E.unknown, fmt("robot message subtype %d is not in the spec, kept raw", code))
-            end
-            return
-        end
-        item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
-        walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
-        item:add(F["robot_message.robot_message_type"], tvb(body - 1, 1))
-        if s.needs_version then
-            item:add(X.version, version_text(st.version)):set_generated()
-            if st.assumed then
-                item:add(X.assumed, true):set_generated()
-                item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(st.version)))
-            end
-        end
-        local used, err = walk(tvb, item, body, e, st, s.layout, nil)
-        if not used then
-            item:add(X.raw, tvb(body, e - body))
-            item:add_proto_expert_info(E.malformed, s.name .. ": " .. err)
-        elseif used < e then
-            item:add(X.extra, tvb(used, e - used))
-            item:add_proto_expert_info(E.extra, fmt("%s: %d bytes after the layout", s.name, e - used))
-        end
-    end,
-}
-
--- Program-state message, sent to primary clients only. There is NO source byte; the subtype follows the timestamp.
-local PROGRAM_STATE_SUBTYPES = {
-    [0] = { name = "global_variables_setup", label = "Global variables setup", item = F["global_variables_setup"], header = L_global_variables_setup_header, layout = L_global_variables_setup, needs_version = false },
-    [1] = { name = "global_variables_update", label = "Global variables update", item = F["global_variables_update"], header = L_global_variables_update_header, layout = L_global_variables_update, needs_version = true },
-}
-
-MESSAGE[25] = {
-    label = "Program state",
-    suffix = ", Program state",
-    info = function(tvb, raw, o, e)
-        if e - o < 14 then return "Program state (too short)" end
-        local code = byte(raw, o + 14)
-        local s = PROGRAM_STATE_SUBTYPES[code]
-        if not s then return fmt("Program state subtype %d", code) end
-        local text = scan_info(tvb, raw, o + 14, e, s.layout)
-        if text == "" then return s.label end
-        return s.label .. ": " .. text
-    end,
-    tree = function(tvb, tree, o, e, st)
-        if e - o < 14 then
-            local _, err = walk(tvb, tree, o + HEADER, e, st, L_program_state, nil)
-            if e - o > HEADER then tree:add(X.raw, tvb(o + HEADER, e - o - HEADER)) end
-            tree:add_proto_expert_info(E.malformed, err or "too short")
-            return
-        end
-        local code = byte(st.raw, o + 14)
-        local s = PROGRAM_STATE_SUBTYPES[code]
-        local body = o + 14
-        local item = tree
-        if not s then
-            walk(tvb, tree, o + HEADER, body, st, L_program_state, nil)
-            if body < e then tree:add(X.raw, tvb(body, e - body)) end
-            if not VS_PROGRAM_STATE_MESSAGE_TYPE[code] then
-                tree:add_proto_expert_info(E.unknown, fmt("program state subtype %d is not in the spec, kept raw", code))
-            end
-            return
-        end
-        item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
-        walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
-        item:add(F["program_state.robot_message_type"], tvb(body - 1, 1))
-        if s.needs_version then
-            item:add(X.version, version_text(st.version)):set_generated()
-            if st.assumed then
-                item:add(X.assumed, true):set_generated()
-                item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(st.version)))
-            end
-        end
-        local used, err = walk(tvb, item, body, e, st, s.layout, nil)
-        if not used then
-            item:add(X.raw, tvb(body, e - body))
-            item:add_proto_expert_info(E.malformed, s.name .. ": " .. err)
-        elseif used < e then
-            item:add(X.extra, tvb(used, e - used))
-            item:add_proto_expert_info(E.extra, fmt("%s: %d bytes after the layout", s.name, e - used))
-        end
-    end,
-}
-
--- ---------------------------------------------------------------------------------------------
--- State of each TCP stream: the software version its Version message announced (nil: none
--- yet), whether the dissector is resynchronising after a bad header, and the bytes carried over
--- from earlier segments while it does. First pass: the state moves along, and a snapshot of it
--- is kept for each dissector call (frame number and tvb length). Later passes (tshark -2, clicks
--- in the GUI, in any order) reuse the snapshot, so both agree.
--- Streams are keyed by their two ports (a number: no string is made per packet). Field.new(
--- "tcp.stream") gives nothing on a first pass without a tree (tshark -2), and Conversation only
--- exists from Wireshark 4.6. Two robots talking to clients that use the same port number at the
--- same time would share a state; a reused port pair starts over with its Version message.
--- ---------------------------------------------------------------------------------------------
-local stream_version, stream_resync, stream_carry = {}, {}, {}
-local snap_version, snap_resync, snap_carry = {}, {}, {}   -- by call (frame, tvb length), and by -frame
-
-function ur.init()
-    stream_version, stream_resync, stream_carry = {}, {}, {}
-    snap_version, snap_resync, snap_carry = {}, {}, {}
-end
-
--- The version a Version message announces, read from the raw bytes; nil when it is malformed.
-local function announced_version(raw, o, e)
-    if e - o <= 14 or byte(raw, o + 14 + 1) ~= 3 then return nil end
-    local p = o
-    p = p + 15
-    if p + 1 > e then return nil end
-    local n1 = be_int(raw, p, 1)
-    if n1 < 0 then return nil end
-    p = p + 1 + n1
-    p = p + 0
-    if p + 2 + 8 > e then return nil end
-    return byte(raw, p + 1) * 1000 + byte(raw, p + 2)
-end
-
--- ---------------------------------------------------------------------------------------------
--- Framing: split and reassemble messages over TCP, resynchronise after a bad header
--- ---------------------------------------------------------------------------------------------
-local st = { raw = "", base = 0, version = 5009, assumed = true }   -- reused for every message
-
-local function plausible(raw, o, max_length)
-    local size = be_int(raw, o, 4)
-    return size >= HEADER and size <= max_length and KNOWN_TYPE[byte(raw, o + 5)] == true
-end
-
-local function header_fault(raw, o, max_length)
-    local size = be_int(raw, o, 4)
-    if size < HEADER then return E.bad_length, fmt("length %d is below %d", size, HEADER) end
-    if size > max_length then return E.bad_length, fmt("length %d is above %d", size, max_length) end
-    return E.bad_type, fmt("unknown message type %d", byte(raw, o + 5))
+-- "Label" alone, or "Label: text".
+local function labelled(label, text)
+    if text == "" then return label end
+    return label .. ": " .. text
 end
 
 -- TCP may call the dissector twice for one frame (a reassembled message, then the rest of the
@@ -1836,6 +1809,267 @@ local function set_info(pinfo, first, text)
         pinfo.cols.info:append("; " .. text)
     end
     info_frame = pinfo.number
+end
+
+rt.layout_summary, rt.package_summary, rt.labelled, rt.set_info = layout_summary, package_summary, labelled, set_info
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- Runtime: messages.lua (codegen/templates/lua/runtime/messages.lua)
+-- =============================================================================================
+do
+(function(...)
+-- Messages: spec.messages holds one data table per message type, and its kind names the pair
+-- of functions that dissect it: info (the Info column text, from the raw bytes) and tree (the
+-- fields under the message's item). Two kinds:
+--   packages  a list of sub-packages, each framed by its own length (robot state);
+--   subtypes  a header, then a subtype byte that chooses the layout of the rest (robot
+--             messages, program-state messages).
+local spec, rt = ...
+local fmt, byte = string.format, string.byte
+local be_int, walk, version_text = rt.be_int, rt.walk, rt.version_text
+local layout_summary, package_summary, labelled = rt.layout_summary, rt.package_summary, rt.labelled
+local X, E = rt.X, rt.E
+local HEADER = spec.header_size
+local PACKAGE_HEADER = spec.package_header_size
+local PACKAGE_LENGTH = spec.package_length_size
+
+-- True when a filter, column or tap asks for one of these fields.
+local function referenced(tree, fields)
+    for _, f in ipairs(fields) do
+        if tree:referenced(f) then return true end
+    end
+    return false
+end
+
+-- The body of a package or message from body to stop, walked with its layout; what cannot be
+-- read is kept raw, what is left over is shown as extra bytes, each with its expert.
+local function walk_body(tvb, item, body, stop, st, layout, name)
+    local used, err = walk(tvb, item, body, stop, st, layout, nil)
+    if not used then
+        item:add(X.raw, tvb(body, stop - body))
+        item:add_proto_expert_info(E.malformed, name .. ": " .. err)
+    elseif used < stop then
+        item:add(X.extra, tvb(used, stop - used))
+        item:add_proto_expert_info(E.extra, fmt("%s: %d bytes after the layout", name, stop - used))
+    end
+end
+
+local KINDS = {}
+
+-- m: { packages = { [type] = { name, item, layout, info, refs } }, types = value string of
+-- package types, length, type = the fields of a package header }.
+KINDS.packages = {
+    info = function(m, tvb, raw, o, e)
+        return labelled(m.label, package_summary(raw, o + HEADER, e, m.packages))
+    end,
+    tree = function(m, tvb, tree, o, e, st)
+        local raw = st.raw
+        local p = o + HEADER
+        while p < e do
+            local left = e - p
+            local err
+            local size = left >= PACKAGE_HEADER and be_int(raw, p, PACKAGE_LENGTH) or 0
+            if left < PACKAGE_HEADER then
+                err = fmt("package at offset %d: needs %d bytes, %d left", p - st.base, PACKAGE_HEADER, left)
+            elseif size < PACKAGE_HEADER then
+                err = fmt("package at offset %d: length %d is below %d", p - st.base, size, PACKAGE_HEADER)
+            elseif size > left then
+                err = fmt("package at offset %d: length %d exceeds the %d bytes left", p - st.base, size, left)
+            end
+            if err then
+                tree:add(X.raw, tvb(p, left))
+                tree:add_proto_expert_info(E.malformed, err)
+                return
+            end
+            local code = byte(raw, p + PACKAGE_LENGTH + 1)
+            local pk = m.packages[code]
+            local item = tree:add(pk and pk.item or X.unknown_package, tvb(p, size))
+            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, m.types[code] or "not in the spec")) end
+            item:add(m.length, tvb(p, PACKAGE_LENGTH))
+            item:add(m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH))
+            local body, stop = p + PACKAGE_HEADER, p + size
+            if pk and not st.visible and not referenced(item, pk.refs) then
+                -- No tree shown and no field of this package asked for: skip its fields.
+            elseif pk then
+                walk_body(tvb, item, body, stop, st, pk.layout, pk.name)
+            else
+                item:add(X.raw, tvb(body, stop - body))
+                -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
+                if not m.types[code] then
+                    item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
+                end
+            end
+            p = stop
+        end
+    end,
+}
+
+-- m: { header = layout of the header and subtype, body_offset = where the body starts (the
+-- subtype is the byte before it), subtype_field, subtype_names = value string of subtypes,
+-- subtypes = { [subtype] = { name, label, item, header, layout, needs_version } } }.
+KINDS.subtypes = {
+    info = function(m, tvb, raw, o, e)
+        if e - o < m.body_offset then return m.label .. " (too short)" end
+        local code = byte(raw, o + m.body_offset)
+        local s = m.subtypes[code]
+        if not s then return fmt("%s subtype %d", m.label, code) end
+        return labelled(s.label, layout_summary(tvb, raw, o + m.body_offset, e, s.layout))
+    end,
+    tree = function(m, tvb, tree, o, e, st)
+        local body = o + m.body_offset
+        if e < body then
+            local _, err = walk(tvb, tree, o + HEADER, e, st, m.header, nil)
+            if e - o > HEADER then tree:add(X.raw, tvb(o + HEADER, e - o - HEADER)) end
+            tree:add_proto_expert_info(E.malformed, err or "too short")
+            return
+        end
+        local code = byte(st.raw, body)
+        local s = m.subtypes[code]
+        if not s then
+            walk(tvb, tree, o + HEADER, body, st, m.header, nil)
+            if body < e then tree:add(X.raw, tvb(body, e - body)) end
+            if not m.subtype_names[code] then
+                tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
+            end
+            return
+        end
+        local item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
+        -- The header again, under the subtype's own names (ur.key.timestamp).
+        walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
+        item:add(m.subtype_field, tvb(body - 1, 1))
+        if s.needs_version then
+            item:add(X.version, version_text(st.version)):set_generated()
+            if st.assumed then
+                item:add(X.assumed, true):set_generated()
+                item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(st.version)))
+            end
+        end
+        walk_body(tvb, item, body, e, st, s.layout, s.name)
+    end,
+}
+
+-- One handler per message type, made at load time: its data, its kind's functions, and the
+-- text appended to the message's item.
+local handlers = {}
+for code, m in pairs(spec.messages) do
+    local kind = KINDS[m.kind]
+    if not kind then error(fmt("urwire: message type %d has an unknown kind %s", code, tostring(m.kind))) end
+    handlers[code] = { m = m, info = kind.info, tree = kind.tree, suffix = ", " .. m.label }
+end
+
+rt.KINDS, rt.handlers, rt.walk_body = KINDS, handlers, walk_body
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- Runtime: stream.lua (codegen/templates/lua/runtime/stream.lua)
+-- =============================================================================================
+do
+(function(...)
+-- State of each TCP stream: the software version its Version message announced (nil: none
+-- yet), whether the dissector is resynchronising after a bad header, and the bytes carried over
+-- from earlier segments while it does. First pass: the state moves along, and a snapshot of it
+-- is kept for each dissector call (frame number and tvb length). Later passes (tshark -2, clicks
+-- in the GUI, in any order) reuse the snapshot, so both agree.
+-- Streams are keyed by their two ports (a number: no string is made per packet). Field.new(
+-- "tcp.stream") gives nothing on a first pass without a tree (tshark -2), and Conversation only
+-- exists from Wireshark 4.6. Two robots talking to clients that use the same port number at the
+-- same time would share a state; a reused port pair starts over with its Version message.
+local spec, rt = ...
+
+local CALL_SPAN = 1048576   -- a call's key: frame number * CALL_SPAN + tvb length mod CALL_SPAN
+
+local stream_version, stream_resync, stream_carry = {}, {}, {}
+local snap_version, snap_resync, snap_carry = {}, {}, {}   -- by call (frame, tvb length), and by -frame
+
+-- A new capture: forget every stream.
+local function reset()
+    stream_version, stream_resync, stream_carry = {}, {}, {}
+    snap_version, snap_resync, snap_carry = {}, {}, {}
+end
+
+-- The state as a call with n bytes starts: version, resync, carry, and the stream's key for
+-- stream_save.
+local function stream_load(pinfo, n)
+    local stream = pinfo.src_port * 65536 + pinfo.dst_port
+    local key = pinfo.number * CALL_SPAN + n % CALL_SPAN
+    local frame = -pinfo.number
+    if pinfo.visited and snap_resync[key] ~= nil then
+        return snap_version[key], snap_resync[key], snap_carry[key], stream
+    elseif pinfo.visited and snap_resync[frame] ~= nil then
+        -- Later passes may hand over other bytes than the first (TCP reassembly replays
+        -- differently): fall back to the state of the frame's first call.
+        return snap_version[frame], snap_resync[frame], snap_carry[frame], stream
+    end
+    local version, resync, carry = stream_version[stream], stream_resync[stream] or false, stream_carry[stream]
+    if snap_resync[key] == nil then
+        snap_version[key], snap_resync[key], snap_carry[key] = version, resync, carry
+    end
+    if snap_resync[frame] == nil then
+        snap_version[frame], snap_resync[frame], snap_carry[frame] = version, resync, carry
+    end
+    return version, resync, carry, stream
+end
+
+-- The state as a call ends; kept on the first pass only.
+local function stream_save(pinfo, stream, version, resync, carry)
+    if not pinfo.visited then
+        stream_version[stream], stream_resync[stream], stream_carry[stream] = version, resync, carry
+    end
+end
+
+spec.proto.init = reset
+rt.stream_load, rt.stream_save, rt.stream_reset = stream_load, stream_save, reset
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- Runtime: framing.lua (codegen/templates/lua/runtime/framing.lua)
+-- =============================================================================================
+do
+(function(...)
+-- Framing: split the robot's bytes into messages over TCP, reassemble the split ones, and
+-- resynchronise after a bad header. Client-to-robot bytes are URScript text. Everything the
+-- dissector does per call starts in dissect(), behind a pcall guard.
+local spec, rt = ...
+local fmt, byte = string.format, string.byte
+local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
+local stream_load, stream_save = rt.stream_load, rt.stream_save
+local X, E, handlers = rt.X, rt.E, rt.handlers
+local ur, F = spec.proto, spec.F
+local HEADER, LENGTH = spec.header_size, spec.length_size
+local KNOWN_TYPE, MESSAGE_TYPES, VERSION = spec.known_types, spec.message_types, spec.version_reader
+
+-- The version assumed when no Version message was seen: the ur.version preference.
+local pref_version = rt.default_version
+local function assume_version(v) pref_version = v end
+
+local st = { raw = "", base = 0, version = pref_version, assumed = true }   -- reused for every message
+
+local function plausible(raw, o, max_length)
+    local size = be_int(raw, o, LENGTH)
+    return size >= HEADER and size <= max_length and KNOWN_TYPE[byte(raw, o + LENGTH + 1)] == true
+end
+
+-- What is wrong with an implausible header at o: its expert and text.
+local function header_fault(raw, o, max_length)
+    local size = be_int(raw, o, LENGTH)
+    if size < HEADER then return E.bad_length, fmt("length %d is below %d", size, HEADER) end
+    if size > max_length then return E.bad_length, fmt("length %d is above %d", size, max_length) end
+    return E.bad_type, fmt("unknown message type %d", byte(raw, o + LENGTH + 1))
+end
+
+-- Resynchronising: scan buf (bytes carried from earlier segments, then this tvb's) from p for
+-- the next plausible header. Returns its position, or nil and the first position not tested.
+local function scan(buf, p, max_length)
+    local n = #buf
+    while n - p >= HEADER do
+        if plausible(buf, p, max_length) then return p end
+        p = p + 1
+    end
+    return nil, p
 end
 
 -- Client to robot: URScript text, not UR messages.
@@ -1854,22 +2088,22 @@ local cur = { version = nil, first = true, detail = false }   -- the call being 
 
 -- One whole message from o to e (its declared length): Info column, version, tree.
 local function message(tvb, raw, pinfo, tree, o, e, mtype)
-    local m = MESSAGE[mtype]
-    if mtype == 20 then
-        cur.version = announced_version(raw, o, e) or cur.version
+    local h = handlers[mtype]
+    if mtype == VERSION.message then
+        cur.version = announced_version(raw, o, e, VERSION) or cur.version
     end
-    set_info(pinfo, cur.first, m and m.info(tvb, raw, o, e) or fmt("Type %d (%s)", mtype, VS_MESSAGE_TYPE[mtype]))
+    set_info(pinfo, cur.first, h and h.info(h.m, tvb, raw, o, e) or fmt("Type %d (%s)", mtype, MESSAGE_TYPES[mtype]))
     cur.first = false
     if not cur.detail then return end
     local item = tree:add(ur, tvb(o, e - o))
-    item:add(F.length, tvb(o, 4))
-    item:add(F.type, tvb(o + 4, 1))
+    item:add(F.length, tvb(o, LENGTH))
+    item:add(F.type, tvb(o + LENGTH, HEADER - LENGTH))
     st.raw, st.base, st.visible = raw, o, tree.visible
     st.version = cur.version or pref_version
     st.assumed = cur.version == nil
-    if m then
-        item:append_text(m.suffix)
-        m.tree(tvb, item, o, e, st)
+    if h then
+        item:append_text(h.suffix)
+        h.tree(h.m, tvb, item, o, e, st)
     elseif e - o > HEADER then
         -- A known type without a layout (e.g. 24): kept raw, not an error.
         item:add(X.raw, tvb(o + HEADER, e - o - HEADER))
@@ -1879,17 +2113,6 @@ end
 -- Bytes skipped while resynchronising, or carried over to the next segment.
 local function data_item(tree, data, o, len)
     tree:add(ur, data(o, len)):add(X.skipped, data(o, len))
-end
-
--- Resynchronising: scan buf (bytes carried from earlier segments, then this tvb's) from p for
--- the next plausible header. Returns its position, or nil and the first position not tested.
-local function scan(buf, p, max_length)
-    local n = #buf
-    while n - p >= HEADER do
-        if plausible(buf, p, max_length) then return p end
-        p = p + 1
-    end
-    return nil, p
 end
 
 local function dissect(tvb, pinfo, tree)
@@ -1903,25 +2126,8 @@ local function dissect(tvb, pinfo, tree)
     cur.first = true
 
     -- The stream's state as this call starts.
-    local stream = pinfo.src_port * 65536 + pinfo.dst_port
-    local key = pinfo.number * 1048576 + n % 1048576
-    local resync, carry
-    local frame = -pinfo.number
-    if pinfo.visited and snap_resync[key] ~= nil then
-        cur.version, resync, carry = snap_version[key], snap_resync[key], snap_carry[key]
-    elseif pinfo.visited and snap_resync[frame] ~= nil then
-        -- Later passes may hand over other bytes than the first (TCP reassembly replays
-        -- differently): fall back to the state of the frame's first call.
-        cur.version, resync, carry = snap_version[frame], snap_resync[frame], snap_carry[frame]
-    else
-        cur.version, resync, carry = stream_version[stream], stream_resync[stream] or false, stream_carry[stream]
-        if snap_resync[key] == nil then
-            snap_version[key], snap_resync[key], snap_carry[key] = cur.version, resync, carry
-        end
-        if snap_resync[frame] == nil then
-            snap_version[frame], snap_resync[frame], snap_carry[frame] = cur.version, resync, carry
-        end
-    end
+    local resync, carry, stream
+    cur.version, resync, carry, stream = stream_load(pinfo, n)
 
     pinfo.cols.protocol:set("UR")
     -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
@@ -1954,12 +2160,12 @@ local function dissect(tvb, pinfo, tree)
     while o < n do
         local left = n - o
         local size, mtype = 0, 0
-        if left >= HEADER then size, mtype = be_int(buf, o, 4), byte(buf, o + 5) end
+        if left >= HEADER then size, mtype = be_int(buf, o, LENGTH), byte(buf, o + LENGTH + 1) end
         if left >= HEADER and (size < HEADER or size > max_length or not KNOWN_TYPE[mtype]) then
             local ex, text = header_fault(buf, o, max_length)
             local item = tree:add(ur, data(o, HEADER))
-            item:add(F.length, data(o, 4))
-            item:add(F.type, data(o + 4, 1))
+            item:add(F.length, data(o, LENGTH))
+            item:add(F.type, data(o + LENGTH, HEADER - LENGTH))
             item:add_proto_expert_info(ex, text)
             set_info(pinfo, cur.first, "Bad header: " .. text)
             cur.first = false
@@ -2000,9 +2206,7 @@ local function dissect(tvb, pinfo, tree)
             o = o + size
         end
     end
-    if not pinfo.visited then
-        stream_version[stream], stream_resync[stream], stream_carry[stream] = cur.version, resync, carry
-    end
+    stream_save(pinfo, stream, cur.version, resync, carry)
     return tvb:len()
 end
 
@@ -2014,9 +2218,26 @@ function ur.dissector(tvb, pinfo, tree)
     return tvb:len()
 end
 
--- ---------------------------------------------------------------------------------------------
--- Registration: the ports (a preference) taken over from MRCPv2; "Decode As" works on others
--- ---------------------------------------------------------------------------------------------
+rt.plausible, rt.header_fault, rt.scan, rt.assume_version = plausible, header_fault, scan, assume_version
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- Runtime: register.lua (codegen/templates/lua/runtime/register.lua)
+-- =============================================================================================
+do
+(function(...)
+-- Preferences and registration: the robot-side ports (taken over from MRCPv2, which claims
+-- TCP 30000-30200 in Wireshark 4.0; "Decode As" works on others), the software version assumed
+-- until a Version message is seen, and the longest plausible message.
+local spec, rt = ...
+local ur = spec.proto
+local parse_version, assume_version = rt.parse_version, rt.assume_version
+
+ur.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of the primary/secondary interfaces", 65535)
+ur.prefs.version = Pref.string("Software version", spec.default_version, "Controller software version (major.minor) assumed until a Version message is seen on a stream; it chooses the global-variable value-type table")
+ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length, "Longer declared lengths are treated as malformed, and the dissector resynchronises")
+
 local tcp_port = DissectorTable.get("tcp.port")
 local registered = nil
 
@@ -2027,15 +2248,16 @@ local function register_ports()
 end
 
 function ur.prefs_changed()
-    pref_version = parse_version(ur.prefs.version) or parse_version(DEFAULT_VERSION)
+    assume_version(parse_version(ur.prefs.version) or rt.default_version)
     register_ports()
 end
 
-pref_version = parse_version(DEFAULT_VERSION)
 register_ports()
 
 set_plugin_info({
     version = "0.1.0",
-    description = "Universal Robots primary/secondary client interface" .. " (urwire, generated from the spec)",
+    description = spec.title .. " (urwire, generated from the spec)",
     repository = "urwire",
 })
+end)(spec, rt)
+end

@@ -1,0 +1,189 @@
+-- Framing: split the robot's bytes into messages over TCP, reassemble the split ones, and
+-- resynchronise after a bad header. Client-to-robot bytes are URScript text. Everything the
+-- dissector does per call starts in dissect(), behind a pcall guard.
+local spec, rt = ...
+local fmt, byte = string.format, string.byte
+local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
+local stream_load, stream_save = rt.stream_load, rt.stream_save
+local X, E, handlers = rt.X, rt.E, rt.handlers
+local ur, F = spec.proto, spec.F
+local HEADER, LENGTH = spec.header_size, spec.length_size
+local KNOWN_TYPE, MESSAGE_TYPES, VERSION = spec.known_types, spec.message_types, spec.version_reader
+
+-- The version assumed when no Version message was seen: the ur.version preference.
+local pref_version = rt.default_version
+local function assume_version(v) pref_version = v end
+
+local st = { raw = "", base = 0, version = pref_version, assumed = true }   -- reused for every message
+
+local function plausible(raw, o, max_length)
+    local size = be_int(raw, o, LENGTH)
+    return size >= HEADER and size <= max_length and KNOWN_TYPE[byte(raw, o + LENGTH + 1)] == true
+end
+
+-- What is wrong with an implausible header at o: its expert and text.
+local function header_fault(raw, o, max_length)
+    local size = be_int(raw, o, LENGTH)
+    if size < HEADER then return E.bad_length, fmt("length %d is below %d", size, HEADER) end
+    if size > max_length then return E.bad_length, fmt("length %d is above %d", size, max_length) end
+    return E.bad_type, fmt("unknown message type %d", byte(raw, o + LENGTH + 1))
+end
+
+-- Resynchronising: scan buf (bytes carried from earlier segments, then this tvb's) from p for
+-- the next plausible header. Returns its position, or nil and the first position not tested.
+local function scan(buf, p, max_length)
+    local n = #buf
+    while n - p >= HEADER do
+        if plausible(buf, p, max_length) then return p end
+        p = p + 1
+    end
+    return nil, p
+end
+
+-- Client to robot: URScript text, not UR messages.
+local function dissect_client(tvb, pinfo, tree)
+    pinfo.cols.protocol:set("UR")
+    local n = tvb:len()
+    local item = tree:add(ur, tvb())
+    item:add_packet_field(X.urscript, tvb(), ENC_UTF_8)
+    local line = tvb(0, n > 60 and 60 or n):string(ENC_UTF_8)
+    pinfo.cols.info:set("URScript: " .. (string.match(line, "^[^\n]*") or ""))
+    return n
+end
+
+local ur_handle = nil
+local cur = { version = nil, first = true, detail = false }   -- the call being dissected
+
+-- One whole message from o to e (its declared length): Info column, version, tree.
+local function message(tvb, raw, pinfo, tree, o, e, mtype)
+    local h = handlers[mtype]
+    if mtype == VERSION.message then
+        cur.version = announced_version(raw, o, e, VERSION) or cur.version
+    end
+    set_info(pinfo, cur.first, h and h.info(h.m, tvb, raw, o, e) or fmt("Type %d (%s)", mtype, MESSAGE_TYPES[mtype]))
+    cur.first = false
+    if not cur.detail then return end
+    local item = tree:add(ur, tvb(o, e - o))
+    item:add(F.length, tvb(o, LENGTH))
+    item:add(F.type, tvb(o + LENGTH, HEADER - LENGTH))
+    st.raw, st.base, st.visible = raw, o, tree.visible
+    st.version = cur.version or pref_version
+    st.assumed = cur.version == nil
+    if h then
+        item:append_text(h.suffix)
+        h.tree(h.m, tvb, item, o, e, st)
+    elseif e - o > HEADER then
+        -- A known type without a layout (e.g. 24): kept raw, not an error.
+        item:add(X.raw, tvb(o + HEADER, e - o - HEADER))
+    end
+end
+
+-- Bytes skipped while resynchronising, or carried over to the next segment.
+local function data_item(tree, data, o, len)
+    tree:add(ur, data(o, len)):add(X.skipped, data(o, len))
+end
+
+local function dissect(tvb, pinfo, tree)
+    if pinfo.src_port ~= pinfo.match_uint then return dissect_client(tvb, pinfo, tree) end
+    local raw = tvb:raw()
+    local n = #raw
+    local max_length = ur.prefs.max_length
+    ur_handle = ur_handle or Dissector.get("ur")
+    -- Field work only when someone looks: a visible tree, or a filter or column naming ur.
+    cur.detail = tree.visible or tree:referenced(ur_handle)
+    cur.first = true
+
+    -- The stream's state as this call starts.
+    local resync, carry, stream
+    cur.version, resync, carry, stream = stream_load(pinfo, n)
+
+    pinfo.cols.protocol:set("UR")
+    -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
+    -- stream state) until it is back in step, instead of by TCP reassembly: asking TCP for more
+    -- bytes after a fault makes later passes hand over other bytes, and the fault would not
+    -- show there. Carried bytes come first, in a tvb of their own.
+    local by_hand = carry ~= nil or resync
+    local data, buf = tvb, raw
+    if carry then
+        buf = carry .. raw
+        data = ByteArray.new(buf, true):tvb("UR bytes carried over")
+    end
+    n = #buf
+    carry = nil
+    local o = 0
+    if resync then
+        -- Go on scanning for the next plausible header.
+        local p, stop = scan(buf, 0, max_length)
+        if p then
+            if p > 0 and cur.detail then data_item(tree, data, 0, p) end
+            o, resync = p, false
+        else
+            -- Nothing yet: keep the last bytes, which may start a header.
+            if stop > 0 and cur.detail then data_item(tree, data, 0, stop) end
+            set_info(pinfo, true, "Resynchronising: no message header yet")
+            cur.first = false
+            o, carry = n, string.sub(buf, stop + 1)
+        end
+    end
+    while o < n do
+        local left = n - o
+        local size, mtype = 0, 0
+        if left >= HEADER then size, mtype = be_int(buf, o, LENGTH), byte(buf, o + LENGTH + 1) end
+        if left >= HEADER and (size < HEADER or size > max_length or not KNOWN_TYPE[mtype]) then
+            local ex, text = header_fault(buf, o, max_length)
+            local item = tree:add(ur, data(o, HEADER))
+            item:add(F.length, data(o, LENGTH))
+            item:add(F.type, data(o + LENGTH, HEADER - LENGTH))
+            item:add_proto_expert_info(ex, text)
+            set_info(pinfo, cur.first, "Bad header: " .. text)
+            cur.first = false
+            by_hand = true
+            -- Scan forward from the next byte; the skipped bytes belong to this fault.
+            local p, stop = scan(buf, o + 1, max_length)
+            if p then
+                if p > o + 1 and cur.detail then data_item(tree, data, o + 1, p - o - 1) end
+                o = p
+            else
+                if stop > o + 1 and cur.detail then data_item(tree, data, o + 1, stop - o - 1) end
+                resync, carry = true, string.sub(buf, stop + 1)
+                o = n
+            end
+        elseif (left < HEADER or size > left) and by_hand then
+            -- Carried as it is until the message is whole.
+            carry = string.sub(buf, o + 1)
+            o = n
+        elseif left < HEADER then
+            -- A header split inside its first bytes: ask for one more segment.
+            if pinfo.can_desegment > 0 then
+                pinfo.desegment_offset = o
+                pinfo.desegment_len = DESEGMENT_ONE_MORE_SEGMENT
+            end
+            break
+        elseif size > left then
+            if pinfo.can_desegment > 0 then
+                pinfo.desegment_offset = o
+                pinfo.desegment_len = size - left
+                break
+            end
+            -- No reassembly possible (preference off): show what is there.
+            tree:add(ur, data(o, left)):add(X.raw, data(o, left))
+            set_info(pinfo, cur.first, "Continuation")
+            break
+        else
+            message(data, buf, pinfo, tree, o, o + size, mtype)
+            o = o + size
+        end
+    end
+    stream_save(pinfo, stream, cur.version, resync, carry)
+    return tvb:len()
+end
+
+function ur.dissector(tvb, pinfo, tree)
+    local ok, result = pcall(dissect, tvb, pinfo, tree)
+    if ok then return result end
+    -- Never let a Lua error reach the user: show it as an expert info on the packet.
+    tree:add(ur, tvb()):add_proto_expert_info(E.internal, "urwire: " .. tostring(result))
+    return tvb:len()
+end
+
+rt.plausible, rt.header_fault, rt.scan, rt.assume_version = plausible, header_fault, scan, assume_version

@@ -1,0 +1,101 @@
+-- Typed values of global variables: a type byte, then its data, nested for LIST and MATRIX.
+-- The meaning of a type byte depends on the software version (spec.value_tables: one table
+-- per version range). Adds the descriptor kind "values" to the walker.
+local spec, rt = ...
+local fmt, byte = string.format, string.byte
+local be_int, short, negative = rt.be_int, rt.short, rt.negative
+local value_table, add_text = rt.value_table, rt.add_text
+
+local MAX_VALUE_DEPTH = spec.max_value_depth
+local VALUE_TABLES = spec.value_tables
+
+-- One typed value at o, under tree; vf holds the fields values are shown with, kinds the
+-- version's value types. Returns the offset after it, or nil and the canonical error text.
+local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
+    local raw = st.raw
+    if o >= e then return nil, short(st, path .. ".type", o, 1, e) end
+    local code = byte(raw, o + 1)
+    if depth > MAX_VALUE_DEPTH then
+        return nil, fmt("%s at offset %d: nesting deeper than %d", path, o - st.base, MAX_VALUE_DEPTH)
+    end
+    local kind = kinds[code]
+    if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
+    local start = o
+    local item = tree:add(vf.item, tvb(o, 1))
+    item:set_text(path .. ": " .. kind.name)
+    item:add(vf.type, tvb(o, 1), kind.name)
+    item:add(vf.code, tvb(o, 1))
+    o = o + 1
+    local layout = kind.layout
+    if layout == "scalar" or layout == "array" then
+        local need = kind.n * kind.count
+        if o + need > e then return nil, short(st, path, o, need, e) end
+        for _ = 1, kind.count do
+            item:add(vf[kind.item], tvb(o, kind.n))
+            o = o + kind.n
+        end
+    elseif layout == "string" then
+        if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
+        local n = be_int(raw, o, kind.len)
+        if n < 0 then return nil, negative(st, path, o, n) end
+        item:add(vf.count, tvb(o, kind.len))
+        o = o + kind.len
+        if o + n > e then return nil, short(st, path, o, n, e) end
+        add_text(item, vf.string, tvb, o, n)
+        o = o + n
+    elseif layout == "list" then
+        if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
+        local n = be_int(raw, o, kind.len)
+        if n < 0 then return nil, negative(st, path, o, n) end
+        item:add(vf.count, tvb(o, kind.len))
+        o = o + kind.len
+        for i = 0, n - 1 do
+            local err
+            o, err = walk_value(tvb, item, o, e, st, vf, kinds, path .. "[" .. i .. "]", depth + 1)
+            if not o then return nil, err end
+        end
+    elseif layout == "matrix" then
+        if o + 2 * kind.len > e then return nil, short(st, path, o, 2 * kind.len, e) end
+        local rows, cols = be_int(raw, o, kind.len), be_int(raw, o + kind.len, kind.len)
+        if rows < 0 then return nil, negative(st, path, o, rows) end
+        if cols < 0 then return nil, negative(st, path, o + kind.len, cols) end
+        item:add(vf.rows, tvb(o, kind.len))
+        item:add(vf.cols, tvb(o + kind.len, kind.len))
+        o = o + 2 * kind.len
+        for r = 0, rows - 1 do
+            local row = item:add(vf.row, tvb(o, 0))
+            row:set_text(fmt("Row %d", r))
+            local row_start = o
+            for c = 0, cols - 1 do
+                local err
+                o, err = walk_value(tvb, row, o, e, st, vf, kinds, path .. "[" .. r .. "][" .. c .. "]", depth + 1)
+                if not o then return nil, err end
+            end
+            row:set_len(o - row_start)
+        end
+    end
+    item:set_len(o - start)
+    return o
+end
+
+-- Typed values, each followed by a terminator, to the end of the layout.
+function rt.KIND.values(tvb, tree, o, e, st, d, pre)
+    local kinds = value_table(VALUE_TABLES, st.version)
+    local i = 0
+    while o < e do
+        local path = fmt("%s%s[%d]", pre or "", d.path, i)
+        local err
+        o, err = walk_value(tvb, tree, o, e, st, d.vf, kinds, path, 1)
+        if not o then return nil, err end
+        if o >= e then return nil, short(st, path, o, 1, e) end
+        local b = byte(st.raw, o + 1)
+        if b ~= d.term then
+            return nil, fmt("%s at offset %d: expected terminator 0x%02x, found 0x%02x", path, o - st.base, d.term, b)
+        end
+        o = o + 1
+        i = i + 1
+    end
+    return o
+end
+
+rt.walk_value = walk_value

@@ -1,0 +1,149 @@
+-- The generic walk of a layout: a list of field descriptors in wire order ({ k = "scalar",
+-- f = <ProtoField>, n = 8, path = "timestamp", ... }), each added to the tree by the function
+-- KIND[d.k]. st is the message being dissected: its raw bytes (raw), its first byte (base, for
+-- error offsets) and its software version. Offsets are tvb offsets; o is where a field starts
+-- and e where the layout ends. Every KIND function returns the offset after the field, or nil
+-- and the canonical error text. values.lua adds KIND.values.
+local spec, rt = ...
+local fmt, byte = string.format, string.byte
+local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
+local version_in = rt.version_in
+
+local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
+local walk
+
+-- A text field; a zero-length one still shows, at its offset.
+local function add_text(tree, f, tvb, o, n)
+    return tree:add_packet_field(f, tvb(o, n), ENC_UTF_8)
+end
+
+local KIND = {}
+
+-- A scalar (integer, float or bool); kept when a later field depends on it.
+function KIND.scalar(tvb, tree, o, e, st, d, pre)
+    if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
+    tree:add(d.f, tvb(o, d.n))
+    if d.keep then kept[d.keep] = d.signed and be_int(st.raw, o, d.n) or be_uint(st.raw, o, d.n) end
+    return o + d.n
+end
+
+-- An integer whose bits are shown one by one.
+function KIND.bits(tvb, tree, o, e, st, d, pre)
+    if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
+    local range = tvb(o, d.n)
+    local item = tree:add(d.f, range)
+    local bits = d.bits
+    for i = 1, #bits do item:add(bits[i], range) end
+    return o + d.n
+end
+
+-- count scalars in a row.
+function KIND.array(tvb, tree, o, e, st, d, pre)
+    for i = 0, d.count - 1 do
+        if o + d.n > e then return nil, short(st, fmt("%s%s[%d]", pre or "", d.path, i), o, d.n, e) end
+        tree:add(d.f, tvb(o, d.n))
+        o = o + d.n
+    end
+    return o
+end
+
+-- Labels ("Joint 0") and error paths ("joints[0].") of group items, made once and kept.
+local labels, prefixes = {}, {}
+local function item_names(d, pre, i)
+    local l = labels[d]
+    if not l then l = {}; labels[d] = l end
+    local label = l[i]
+    if not label then label = fmt("%s %d", d.label, i); l[i] = label end
+    if pre then return label, fmt("%s%s[%d].", pre, d.path, i) end
+    local p = prefixes[d]
+    if not p then p = {}; prefixes[d] = p end
+    local prefix = p[i]
+    if not prefix then prefix = fmt("%s[%d].", d.path, i); p[i] = prefix end
+    return label, prefix
+end
+
+-- A repeated group ("Joint 0".."Joint 5"), count times or to the end of the layout.
+function KIND.group(tvb, tree, o, e, st, d, pre)
+    local i, count, size = 0, d.count, d.size
+    while (count and i < count) or (not count and o < e) do
+        local start = o
+        local fits = size and o + size <= e
+        local item = tree:add(d.f, tvb(o, fits and size or 0))
+        local label, prefix = item_names(d, pre, i)
+        item:set_text(label)
+        local err
+        o, err = walk(tvb, item, o, e, st, d.item, prefix)
+        if not o then
+            item:set_len(e - start)
+            return nil, err
+        end
+        if not fits then item:set_len(o - start) end
+        i = i + 1
+    end
+    return o
+end
+
+-- A text with a length prefix.
+function KIND.pstring(tvb, tree, o, e, st, d, pre)
+    local path = (pre or "") .. d.path
+    if o + d.n > e then return nil, short(st, path, o, d.n, e) end
+    local n = d.signed and be_int(st.raw, o, d.n) or be_uint(st.raw, o, d.n)
+    if n < 0 then return nil, negative(st, path, o, n) end
+    o = o + d.n
+    if o + n > e then return nil, short(st, path, o, n, e) end
+    add_text(tree, d.f, tvb, o, n)
+    return o + n
+end
+
+-- A text running to the end of the layout, with no terminator.
+function KIND.string(tvb, tree, o, e, st, d)
+    add_text(tree, d.f, tvb, o, e - o)
+    return e
+end
+
+-- Opaque bytes to the end of the layout.
+function KIND.bytes(tvb, tree, o, e, st, d)
+    tree:add(d.f, tvb(o, e - o))
+    return e
+end
+
+-- Texts each ended by a terminator; bytes after the last terminator are extra.
+function KIND.strings(tvb, tree, o, e, st, d)
+    local raw, start = st.raw, o
+    for i = o, e - 1 do
+        if byte(raw, i + 1) == d.term then
+            add_text(tree, d.f, tvb, start, i - start)
+            start = i + 1
+        end
+    end
+    return start
+end
+
+-- One scalar whose type follows an earlier field.
+function KIND.switch(tvb, tree, o, e, st, d, pre)
+    local c = d.cases[kept[d.sel]] or d.default
+    if o + c.n > e then return nil, short(st, (pre or "") .. d.path, o, c.n, e) end
+    tree:add(c.f, tvb(o, c.n))
+    return o + c.n
+end
+
+-- Fields present only when an earlier field is nonzero, or for some software versions.
+function KIND.cond(tvb, tree, o, e, st, d, pre)
+    if d.present_if and (kept[d.present_if] or 0) == 0 then return o end
+    if not version_in(st.version, d.low, d.high) then return o end
+    return walk(tvb, tree, o, e, st, d.fields, pre)
+end
+
+-- Walk a layout from o to at most e: the offset after it, or nil and the canonical error text.
+-- pre is the error path of the enclosing group item ("joints[2]."), nil at the top.
+walk = function(tvb, tree, o, e, st, layout, pre)
+    for i = 1, #layout do
+        local d = layout[i]
+        local err
+        o, err = KIND[d.k](tvb, tree, o, e, st, d, pre)
+        if not o then return nil, err end
+    end
+    return o
+end
+
+rt.KIND, rt.walk, rt.add_text = KIND, walk, add_text

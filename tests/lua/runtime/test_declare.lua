@@ -1,0 +1,33 @@
+-- runtime/declare.lua and runtime/register.lua: what is registered with Wireshark at load time.
+local S = dofile("stubs.lua")
+S.wireshark_globals()
+
+local ur = Proto("ur", "UR")
+local spec = { proto = ur, fields = { "ur.length", "ur.type", "ur.key.text" }, title = "Universal Robots",
+               default_ports = "30001,30002", default_version = "5.9", max_message_length = 4096 }
+local rt = S.base_rt(spec)
+S.load("declare.lua", spec, rt)
+S.eq(table.concat(ur.fields, " "), "ur.length ur.type ur.key.text ur.raw ur.extra ur.skipped ur.software_version " ..
+     "ur.version_assumed ur.unknown_package ur.urscript", "the spec's fields, then the dissector's own")
+S.eq(#ur.experts, 7, "experts")
+S.eq(rt.X.raw, "ur.raw", "extra fields exported")
+S.eq(rt.E.assumed, "ur.assumed_version", "experts exported")
+
+local assumed
+rt.assume_version = function(v) assumed = v end
+S.load("register.lua", spec, rt)
+S.eq(ur.prefs.ports, "30001,30002", "ports preference from the spec")
+S.eq(ur.prefs.version, "5.9", "version preference from the spec")
+S.eq(ur.prefs.max_length, 4096, "maximum length from the spec")
+S.eq(S.ports["tcp.port"], "30001,30002", "ports registered")
+S.eq(S.plugin_info.description, "Universal Robots (urwire, generated from the spec)", "plugin info")
+
+rawset(getmetatable(ur.prefs).__index, "version", "5.12")
+rawset(getmetatable(ur.prefs).__index, "ports", "40000")
+ur.prefs_changed()
+S.eq(assumed, 5012, "a new version preference")
+S.eq(S.ports["tcp.port"], "40000", "ports registered again")
+rawset(getmetatable(ur.prefs).__index, "version", "latest")
+ur.prefs_changed()
+S.eq(assumed, 5009, "no version in the preference: the spec's default")
+print("ok")

@@ -1,0 +1,88 @@
+-- runtime/framing.lua: header faults, the resynchronising scan, and whole calls of the
+-- dissector over a stub tvb: messages split, packed, and after a bad header.
+local S = dofile("stubs.lua")
+S.wireshark_globals()
+
+local seen = {}
+local handler = {
+    m = { label = "Text" }, suffix = ", Text",
+    info = function(m, tvb, raw, o, e) return "Text: " .. string.sub(raw, o + 6, e) end,
+    tree = function(m, tvb, tree, o, e, st) seen[#seen + 1] = st.version end,
+}
+local ur = Proto("ur", "UR")
+ur.prefs.max_length = { default = 100 }
+local spec = { proto = ur, F = { length = "ur.length", type = "ur.type" }, header_size = 5, length_size = 4,
+               known_types = { [16] = true, [20] = true, [24] = true }, message_types = { [24] = "SAFETY" },
+               version_reader = { message = 99 }, default_version = "5.9" }
+local rt = S.base_rt(spec)
+rt.X, rt.E, rt.handlers = S.X, S.E, { [20] = handler }
+S.load("info.lua", spec, rt)
+S.load("stream.lua", spec, rt)
+S.load("framing.lua", spec, rt)
+
+local function header(len, mtype) return S.bytes(0, 0, 0, len, mtype) end
+S.eq(rt.plausible(header(5, 20), 0, 100), true, "a plausible header")
+S.eq(rt.plausible(header(4, 20), 0, 100), false, "too short")
+S.eq(rt.plausible(header(101, 20), 0, 100), false, "too long")
+S.eq(rt.plausible(header(9, 21), 0, 100), false, "unknown type")
+local e, text = rt.header_fault(header(2, 20), 0, 100)
+S.eq(e, "bad_length", "below the header: expert"); S.eq(text, "length 2 is below 5", "below the header: text")
+e, text = rt.header_fault(S.bytes(0x7f, 0xff, 0xff, 0xff, 16), 0, 1048576)
+S.eq(e, "bad_length", "above the maximum: expert"); S.eq(text, "length 2147483647 is above 1048576", "above the maximum")
+e, text = rt.header_fault(S.bytes(0xff, 0xff, 0xff, 0xff, 16), 0, 100)
+S.eq(text, "length -1 is below 5", "a negative length")
+e, text = rt.header_fault(header(9, 21), 0, 100)
+S.eq(e, "bad_type", "unknown type: expert"); S.eq(text, "unknown message type 21", "unknown type: text")
+S.eq(rt.scan("xx" .. header(6, 20) .. "a", 0, 100), 2, "the next plausible header")
+local p, stop = rt.scan("xxxx" .. header(6, 20):sub(1, 3), 0, 100)
+S.eq(p, nil, "none yet"); S.eq(stop, 3, "the last bytes may start a header")
+
+local function msg(text) return header(5 + #text, 20) .. text end
+local function call(number, bytes, visited)
+    local pinfo, tree = S.pinfo(number, visited), S.tree()
+    S.eq(ur.dissector(S.tvb(bytes), pinfo, tree), #bytes, "the whole tvb is taken")
+    return pinfo, tree
+end
+
+-- Two messages in one segment, then one split over two: TCP is asked for the rest.
+local pinfo, tree = call(1, msg("a") .. msg("bc") .. msg("def"):sub(1, 4))
+S.eq(tostring(pinfo.cols.info), "Text: a; Text: bc", "Info of both")
+S.eq(tostring(pinfo.cols.protocol), "UR", "protocol column")
+S.eq(pinfo.desegment_offset, 13, "reassembly from the split message")
+S.eq(pinfo.desegment_len, DESEGMENT_ONE_MORE_SEGMENT, "a split header asks for one more segment")
+S.eq(S.dump(tree):match("ur.length @0%+4") ~= nil, true, "header fields")
+S.eq(seen[1], 5009, "no Version message: the default version")
+pinfo = call(2, msg("ghij"):sub(1, 7))
+S.eq(pinfo.desegment_len, 2, "the bytes still missing")
+
+-- A known type without a layout is kept raw.
+pinfo, tree = call(3, header(7, 24) .. "zz")
+S.eq(tostring(pinfo.cols.info), "Type 24 (SAFETY)", "Info of a type without a layout")
+S.eq(S.dump(tree):match("ur.raw @5%+2") ~= nil, true, "raw")
+
+-- A bad header: expert, skipped bytes, and the stream carried by hand until back in step.
+pinfo, tree = call(4, header(2, 20) .. "junk" .. msg("ok") .. header(9, 20))
+S.eq(tostring(pinfo.cols.info), "Bad header: length 2 is below 5; Text: ok", "Info")
+S.eq(S.dump(tree):match("!bad_length: length 2 is below 5") ~= nil, true, "expert")
+S.eq(S.dump(tree):match("ur.skipped @1%+8") ~= nil, true, "skipped bytes: from after the fault to the next plausible header")
+S.eq(pinfo.desegment_len, nil, "after a fault, no reassembly is asked for")
+pinfo, tree = call(5, "wxyz")
+S.eq(tostring(pinfo.cols.info), "Text: wxyz", "the carried header completes the message")
+
+-- Client to robot: URScript text.
+pinfo = S.pinfo(6)
+pinfo.src_port, pinfo.dst_port = 50000, 30001
+ur.dissector(S.tvb("def main():\n  popup(1)\nend\n"), pinfo, S.tree())
+S.eq(tostring(pinfo.cols.info), "URScript: def main():", "URScript line")
+
+-- A Lua error inside is shown as an expert, not thrown at Wireshark.
+handler.tree = function() error("boom") end
+pinfo, tree = call(7, msg("x"))
+S.eq(S.dump(tree):match("!internal: urwire: .*boom") ~= nil, true, "internal error expert")
+
+-- The version preference.
+handler.tree = function(m, tvb, tree, o, e, st) seen[#seen + 1] = st.version end
+rt.assume_version(5012)
+call(8, msg("y"))
+S.eq(seen[#seen], 5012, "the assumed version follows the preference")
+print("ok")

@@ -1,0 +1,39 @@
+-- runtime/stream.lua: per-stream state on the first pass, snapshots on later ones.
+local S = dofile("stubs.lua")
+local spec = { proto = {} }
+local rt = S.load("stream.lua", spec)
+S.eq(spec.proto.init, rt.stream_reset, "ur.init forgets every stream")
+
+local function call(number, n, visited)
+    return rt.stream_load(S.pinfo(number, visited), n)
+end
+
+-- First pass: a new stream starts with nothing; what a call saves the next one loads.
+local v, resync, carry, stream = call(1, 100)
+S.eq(v, nil, "no version yet"); S.eq(resync, false, "in step"); S.eq(carry, nil, "nothing carried")
+S.eq(stream, 30001 * 65536 + 50000, "keyed by the port pair")
+rt.stream_save(S.pinfo(1), stream, 5009, false, nil)
+v = call(2, 50)
+S.eq(v, 5009, "the version moves along")
+rt.stream_save(S.pinfo(2), stream, 5009, true, "ab")
+v, resync, carry = call(3, 10)
+S.eq(resync, true, "resynchronising"); S.eq(carry, "ab", "carried bytes")
+rt.stream_save(S.pinfo(3), stream, 5010, false, nil)
+
+-- Later passes, in any order: each call gets the state its first-pass call started with.
+v, resync, carry = call(2, 50, true)
+S.eq(v, 5009, "frame 2"); S.eq(resync, false, "frame 2 in step"); S.eq(carry, nil, "frame 2 carried nothing")
+v, resync, carry = call(3, 10, true)
+S.eq(resync, true, "frame 3"); S.eq(carry, "ab", "frame 3 carried")
+v = call(1, 100, true)
+S.eq(v, nil, "frame 1")
+-- Other bytes for a known frame (reassembly replays differently): the frame's first call.
+v, resync, carry = call(3, 77, true)
+S.eq(carry, "ab", "fallback to the frame's first call")
+-- Saving on a later pass changes nothing.
+rt.stream_save(S.pinfo(3, true), stream, 1, true, "zz")
+S.eq((call(4, 1)), 5010, "the first pass's state")
+
+rt.stream_reset()
+S.eq((call(4, 1)), nil, "a new capture starts over")
+print("ok")

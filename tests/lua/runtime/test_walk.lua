@@ -1,0 +1,92 @@
+-- runtime/walk.lua: a small descriptor list walked into a stub tree, and the error paths.
+local S = dofile("stubs.lua")
+local rt = S.walker_rt()
+local walk = rt.walk
+
+local L_joint = {
+    { k = "scalar", f = "ur.p.q", n = 2, path = "q", signed = false },
+}
+local L = {
+    { k = "scalar", f = "ur.p.flag", n = 1, path = "flag", signed = false, keep = "flag" },
+    { k = "cond", present_if = "flag", fields = {
+        { k = "scalar", f = "ur.p.extra", n = 1, path = "extra", signed = false },
+    } },
+    { k = "cond", low = 5010, fields = {
+        { k = "scalar", f = "ur.p.new", n = 1, path = "new", signed = false },
+    } },
+    { k = "bits", f = "ur.p.bits", n = 1, path = "bits", signed = false, bits = { "ur.p.bits.a", "ur.p.bits.b" } },
+    { k = "array", f = "ur.p.arr", n = 1, count = 2, path = "arr" },
+    { k = "group", f = "ur.p.joints", label = "Joint", count = 2, size = 2, item = L_joint, path = "joints" },
+    { k = "switch", sel = "flag", path = "sw", default = { f = "ur.p.sw", n = 4 }, cases = { [1] = { f = "ur.p.sw_uint8", n = 1 } } },
+    { k = "pstring", f = "ur.p.name", n = 1, signed = true, path = "name" },
+    { k = "strings", f = "ur.p.names", term = 10, path = "names" },
+}
+
+local raw = S.bytes(1, 7, 3, 10, 11, 0, 1, 0, 2, 5, 2) .. "hi" .. "a\nb\nc"
+local tree = S.tree()
+S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5009), L, nil), #raw - 1, "offset after the layout: before the unterminated c")
+S.eq(S.dump(tree), S.lines(
+    "ur.p.flag @0+1",
+    "ur.p.extra @1+1",
+    "ur.p.bits @2+1",
+    "  ur.p.bits.a @2+1",
+    "  ur.p.bits.b @2+1",
+    "ur.p.arr @3+1",
+    "ur.p.arr @4+1",
+    "ur.p.joints @5+2 (Joint 0)",
+    "  ur.p.q @5+2",
+    "ur.p.joints @7+2 (Joint 1)",
+    "  ur.p.q @7+2",
+    "ur.p.sw_uint8 @9+1",
+    "ur.p.name @11+2 = hi",
+    "ur.p.names @13+1 = a",
+    "ur.p.names @15+1 = b"), "tree")
+
+-- flag 0: no extra byte, the switch takes its default (4 bytes); version 5.10: the new byte.
+raw = S.bytes(0, 9, 3, 10, 11, 0, 1, 0, 2, 0, 0, 0, 5, 0)
+tree = S.tree()
+S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5010), L, nil), #raw, "end")
+S.eq(S.dump(tree):match("ur.p.new @1%+1") ~= nil, true, "version-gated field read from 5.10")
+S.eq(S.dump(tree):match("ur.p.extra") == nil, true, "present_if field absent when flag is 0")
+S.eq(S.dump(tree):match("ur.p.sw @9%+4") ~= nil, true, "switch default")
+
+-- Errors name the field's path and the offset from the message's first byte.
+raw = S.bytes(0, 3, 10, 11, 0, 1, 0)
+tree = S.tree()
+local o, err = walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5009), L, nil)
+S.eq(o, nil, "no offset on error")
+S.eq(err, "joints[1].q at offset 6: needs 2 bytes, 1 left", "short group item")
+S.eq(S.dump(tree):match("ur.p.joints @6%+1 %(Joint 1%)") ~= nil, true, "the broken item spans what is left")
+
+o, err = walk(S.tvb(raw), S.tree(), 0, 3, S.st(raw), { L[5], L[5] }, nil)
+S.eq(err, "arr[1] at offset 3: needs 1 bytes, 0 left", "second array, second item")
+o, err = walk(S.tvb(raw), S.tree(), 0, 3, S.st(raw), L_joint, "joints[4].")
+S.eq(err, nil, "fits")
+o, err = walk(S.tvb(raw), S.tree(), 2, 3, S.st(raw), L_joint, "joints[4].")
+S.eq(err, "joints[4].q at offset 2: needs 2 bytes, 1 left", "prefix of an enclosing group")
+
+local neg = S.bytes(0xfe) .. "xx"
+o, err = walk(S.tvb(neg), S.tree(), 0, #neg, S.st(neg), { L[8] }, nil)
+S.eq(err, "name at offset 0: negative length -2", "negative length")
+
+-- A group to the end of the layout, items of variable size, and text and bytes to the end.
+local L_to_end = {
+    { k = "group", f = "ur.p.threads", label = "Thread", path = "threads", item = {
+        { k = "pstring", f = "ur.p.label", n = 1, signed = false, path = "label" },
+    } },
+}
+raw = S.bytes(1) .. "a" .. S.bytes(2) .. "bc"
+tree = S.tree()
+S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw), L_to_end, nil), #raw, "group to the end")
+S.eq(S.dump(tree), S.lines(
+    "ur.p.threads @0+2 (Thread 0)",
+    "  ur.p.label @1+1 = a",
+    "ur.p.threads @2+3 (Thread 1)",
+    "  ur.p.label @3+2 = bc"), "items sized after walking them")
+tree = S.tree()
+S.eq(walk(S.tvb("abc"), tree, 1, 3, S.st("abc"), { { k = "string", f = "ur.p.text", path = "text" } }, nil), 3, "string")
+S.eq(S.dump(tree), "ur.p.text @1+2 = bc", "string to the end")
+tree = S.tree()
+S.eq(walk(S.tvb("abc"), tree, 3, 3, S.st("abc"), { { k = "bytes", f = "ur.p.raw", path = "raw" } }, nil), 3, "bytes")
+S.eq(S.dump(tree), "ur.p.raw @3+0", "empty bytes still show")
+print("ok")
