@@ -10,6 +10,7 @@ import jinja2
 import pytest
 
 from codegen.compile import DEFAULT_SPEC, compile_text
+from codegen.plan import plan
 from codegen.targets import lua
 from codegen.view import Step
 
@@ -28,7 +29,7 @@ def test_an_unknown_descriptor_kind_is_an_error(protocol, monkeypatch):
 
     monkeypatch.setattr(lua._Builder, "descriptor", descriptor)
     with pytest.raises(jinja2.UndefinedError, match="tlv"):
-        lua.render(protocol, ["test"])
+        lua.render(plan(protocol), ["test"])
 
 
 def test_an_unknown_field_shape_is_an_error(protocol, monkeypatch):
@@ -41,7 +42,7 @@ def test_an_unknown_field_shape_is_an_error(protocol, monkeypatch):
 
     monkeypatch.setattr(lua._Builder, "add_field", add_field)
     with pytest.raises(jinja2.UndefinedError, match="timestamp"):
-        lua.render(protocol, ["test"])
+        lua.render(plan(protocol), ["test"])
 
 
 def test_every_runtime_file_is_joined_in_a_known_order(monkeypatch):
@@ -56,7 +57,7 @@ def test_constants_come_from_the_spec(protocol):
     p.ports = [40000, 40001]
     p.max_message_length = 4096
     p.max_value_depth = 3
-    text = lua.render(p, ["test"])[lua.OUT]
+    text = lua.render(plan(p), ["test"])[lua.OUT]
     spec_table = text[text.index("local spec = {"):text.index("local rt = {}")]
     for expected in ('default_version = "5.12"', 'default_ports = "40000,40001"', "max_message_length = 4096",
                      "max_value_depth = 3", "header_size = 5", "package_header_size = 5"):
