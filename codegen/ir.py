@@ -364,6 +364,7 @@ class HeaderField:
     scalar: Scalar
     enum: Optional[Enum]
     doc: str
+    where: Where = NOWHERE
 
 
 @dataclass

@@ -190,7 +190,7 @@ class _Resolver:
 
     def header_field(self, raw: dict, parts) -> ir.HeaderField:
         enum = self.enum_ref(raw["enum"], parts + ["enum"]) if "enum" in raw else None
-        return ir.HeaderField(ir.SCALARS[raw["type"]], enum, raw.get("doc", ""))
+        return ir.HeaderField(ir.SCALARS[raw["type"]], enum, raw.get("doc", ""), self.where(parts))
 
     def unique_codes(self, layouts: list[ir.Layout], parts) -> None:
         seen: dict[int, str] = {}

@@ -10,12 +10,12 @@ descriptors is hand-written Lua in templates/lua/runtime/, joined after the gene
 """
 from __future__ import annotations
 
-import copy
 from dataclasses import dataclass
 from typing import Optional
 
-from .. import ir
+from .. import ir, plan
 from ..emit import TEMPLATES, environment, runtime_source
+from ..errors import Problem, SpecError
 from ..naming import wireshark_field, words
 from ..view import Step
 
@@ -96,8 +96,10 @@ class LayoutView:
 
 
 class _Builder:
-    def __init__(self, p: ir.Protocol):
-        self.p = p
+    def __init__(self, protocol_plan: plan.ProtocolPlan):
+        self.plan = protocol_plan
+        self.p = protocol_plan.protocol
+        self.problems: list[Problem] = []
         self.fields: list[PField] = []
         self.keys: set[str] = set()
         self.layouts: list[LayoutView] = []
@@ -132,28 +134,27 @@ class _Builder:
         return self.add_field(PField(key, "integer", PROTOFIELD[h.scalar.name], f"ur.{key}", label, h.doc,
                                      base="DEC", vs=self.enum_var[h.enum.name] if h.enum is not None else None))
 
-    def add_item(self, name: str, label: str, doc: str) -> str:
+    def add_item(self, name: str, label: str, doc: str, where: ir.Where) -> str:
         """The subtree field of a package or message: ur.<name>, true when it is present."""
         if name in self.keys:
-            raise ValueError(f"lua target: two items named {name}")
+            self.problems.append(where.problem(f"lua target: the filter name ur.{name} is taken already"))
         return self.add_field(PField(name, "none", "none", f"ur.{name}", label, doc))
 
     # ---- descriptors: what the runtime walks, one per field ----
 
-    def descriptors(self, owner: str, struct: ir.Struct, keep: set[str], prefix: str = "",
-                    show: Optional[dict] = None) -> list[Step]:
-        """The descriptors of a struct's fields, in wire order; a conditional field is a `cond`
-        descriptor around the field's own."""
+    def descriptors(self, owner: str, steps: list[plan.Step], keep: set[str], show: Optional[dict] = None) -> list[Step]:
+        """The descriptors of a layout's plan, in wire order: one per field, and a `cond`
+        descriptor around the fields of each condition group."""
         out = []
         show = show or {}
-        for f in struct.fields:
-            if f.conditional:
-                out.append(Step("cond", dict(present_if=f.present_if, low=version_number(f.versions.low),
-                                             high=version_number(f.versions.high),
-                                             fields=self.descriptors(owner, _unconditional(f), keep, prefix))))
+        for step in steps:
+            if isinstance(step, plan.CondGroup):
+                c = step.condition
+                out.append(Step("cond", dict(present_if=c.flag, low=version_number(c.low), high=version_number(c.high),
+                                             fields=self.descriptors(owner, step.steps, keep, show))))
                 continue
-            out.append(self.descriptor(owner, f, one_line(f.doc, f.field_note), prefix + f.name, keep,
-                                       show.get(f.name)))
+            for f in step.fields if isinstance(step, plan.FixedRun) else [step.field]:
+                out.append(self.descriptor(owner, f, one_line(f.doc, f.field_note), f.name, keep, show.get(f.name)))
         return out
 
     def descriptor(self, owner: str, f: ir.AnyField, doc: str, path: str, keep: set[str],
@@ -176,11 +177,12 @@ class _Builder:
             return Step("array", dict(common, field=key, size=f.scalar.size, count=f.count))
         if isinstance(f, ir.GroupField):
             key = self.owned_field(owner, f.name, "none", "none", f.item_label, doc)
+            item = self.plan.item_of(f)
             item_var = f"L_{owner}_{f.item.name}"
             self.layouts.append(LayoutView(item_var, one_line(f.doc) or f"One entry of {f.name}.",
-                                           self.descriptors(owner, f.item, keep)))
+                                           self.descriptors(owner, item.layout.steps, keep)))
             return Step("group", dict(common, field=key, label=f.item_label, count=f.count,
-                                      size=f.item.fixed_size, item=item_var))
+                                      size=item.layout.fixed_size if item.fixed else None, item=item_var))
         if isinstance(f, ir.StringField):
             key = self.owned_field(owner, f.name, "text", "string", f.name, doc, base="UNICODE")
             if f.length is None:
@@ -202,7 +204,8 @@ class _Builder:
             return Step("switch", dict(common, sel=f.selector.name, default=default, cases=cases))
         if isinstance(f, ir.ValueListField):
             return Step("values", dict(common, term=f.terminator, **self.value_fields(owner, f)))
-        raise ValueError(f"lua target: no descriptor for {type(f).__name__} {path}")
+        self.problems.append(f.where.problem(f"lua target: no descriptor for a {type(f).__name__}"))
+        return Step("bytes", dict(common, field=None))
 
     def value_fields(self, owner: str, f: ir.ValueListField) -> dict:
         """The fields of typed values: one item per value, its type, and one field per data kind."""
@@ -238,25 +241,30 @@ class _Builder:
                 out.add(f.selector.name)
         return out
 
-    def layout(self, owner: str, struct: ir.Struct, doc: str, show: Optional[dict] = None) -> str:
+    def layout(self, owner: str, layout: plan.LayoutPlan, doc: str, show: Optional[dict] = None) -> str:
         var = f"L_{owner}"
-        self.layouts.append(LayoutView(var, doc, self.descriptors(owner, struct, self.keep_names(struct), show=show)))
+        self.layouts.append(LayoutView(var, doc, self.descriptors(owner, layout.steps, self.keep_names(layout.struct),
+                                                                  show=show)))
         return var
 
-    def package_info(self, layout: ir.Layout) -> list[dict]:
+    def header_layout(self, var: str, owner: str, slots: list[plan.HeaderSlot], doc: str) -> str:
+        """A message header (a fixed run of scalars), its fields named under `owner`."""
+        self.layouts.append(LayoutView(var, doc, [self.descriptor(owner, s.field, one_line(s.field.doc, s.field.field_note),
+                                                                  s.field.name, set(), None) for s in slots]))
+        return var
+
+    def package_info(self, choice: plan.LayoutChoice) -> list[dict]:
         """The spec's summary of a robot-state package: enum fields read at fixed offsets, so
         the Info column costs no field work."""
-        wanted = [name for _, name in layout.summary]
-        enums, offset = [], 0
-        for f in layout.struct.fields:
-            if offset is None:
-                break
-            if isinstance(f, ir.ScalarField) and f.enum is not None and f.name in wanted:
-                enums.append(dict(offset=offset, size=f.scalar.size, signed=f.scalar.signed,
-                                  vs=self.enum_var[f.enum.name], name=f.name))
-            offset = offset + f.fixed_size if f.fixed_size is not None and not f.conditional else None
-        if len(enums) != len(wanted):
-            raise ValueError(f"lua target: the summary of {layout.name} must name enum fields at fixed offsets")
+        lay, enums = choice.layout, []
+        for _, name in lay.summary:
+            f, offset = lay.struct.field(name), choice.plan.field_offset(name)
+            if not isinstance(f, ir.ScalarField) or f.enum is None or offset is None:
+                self.problems.append(lay.where.problem(
+                    f"lua target: the summary may only name enum fields at fixed offsets, not '{name}'"))
+                continue
+            enums.append(dict(offset=offset, size=f.scalar.size, signed=f.scalar.signed,
+                              vs=self.enum_var[f.enum.name], name=f.name))
         return enums
 
     @staticmethod
@@ -264,38 +272,41 @@ class _Builder:
         """Fields of a message the Info column shows, each with the text put before it."""
         return {name: before for before, name in layout.summary}
 
-    def package_message(self, m: ir.PackageListMessage) -> Step:
+    def package_message(self, mp: plan.MessagePlan) -> Step:
+        m = mp.message
         pkgs = []
-        for pk in m.packages:
+        for c in mp.layouts:
+            pk = c.layout
             label = words(pk.name)
             pkgs.append(dict(code=pk.code.value, name=pk.name, label=label,
-                             layout=self.layout(pk.name, pk.struct, one_line(pk.doc, pk.field_note)),
-                             info=self.package_info(pk),
-                             item=self.add_item(pk.name, label, one_line(pk.doc))))
+                             layout=self.layout(pk.name, c.plan, one_line(pk.doc, pk.field_note)),
+                             info=self.package_info(c),
+                             item=self.add_item(pk.name, label, one_line(pk.doc), pk.where)))
         return Step("packages", dict(code=m.code.value, label=words(m.name), doc=one_line(m.doc, m.field_note),
                                      var=f"{m.name.upper()}_PACKAGES", packages=pkgs,
                                      types=self.enum_var[m.package_type.name],
                                      length="package.length", type="package.type"))
 
-    def dispatch_message(self, m: ir.DispatchMessage) -> Step:
-        p = self.p
+    def dispatch_message(self, mp: plan.MessagePlan) -> Step:
+        m = mp.message
         sub_field = self.scalar_field(m.name, m.subtype.name, m.subtype.scalar, m.subtype.enum,
                                       one_line(m.subtype.doc, "Subtype of the message."))
         # The header then the subtype: shown as such when the subtype is unknown.
-        header = self.layout(m.name, ir.Struct(m.header.name, m.header.doc, list(m.header.fields) + [m.subtype]),
-                             f"Header and subtype of every {words(m.name).lower()}.")
+        header = self.header_layout(f"L_{m.name}", m.name, mp.header,
+                                    f"Header and subtype of every {words(m.name).lower()}.")
         subtypes = []
-        for st in m.subtypes:
+        for c in mp.layouts:
+            st = c.layout
             # The header fields of a subtype are filterable under its own name (ur.key.timestamp).
-            sub_header = f"L_{st.name}_header"
-            self.layouts.append(LayoutView(sub_header, f"Header of the {st.name} message.",
-                                           self.descriptors(st.name, m.header, set())))
-            body = self.layout(st.name, st.struct, one_line(st.doc, st.field_note), show=self.message_show(st))
+            sub_header = self.header_layout(f"L_{st.name}_header", st.name,
+                                            [slot for slot in mp.header if not slot.is_subtype],
+                                            f"Header of the {st.name} message.")
+            body = self.layout(st.name, c.plan, one_line(st.doc, st.field_note), show=self.message_show(st))
             subtypes.append(dict(code=st.code.value, name=st.name, label=words(st.name), header=sub_header,
                                  layout=body, needs_version=st.struct.needs_version,
-                                 item=self.add_item(st.name, words(st.name), one_line(st.doc))))
+                                 item=self.add_item(st.name, words(st.name), one_line(st.doc), st.where)))
         return Step("subtypes", dict(code=m.code.value, label=words(m.name), doc=one_line(m.doc, m.field_note),
-                                     var=f"{m.name.upper()}_SUBTYPES", body_offset=m.header_size + p.header_size,
+                                     var=f"{m.name.upper()}_SUBTYPES", body_offset=mp.body_offset,
                                      header=header, subtype_field=sub_field,
                                      subtype_names=self.enum_var[m.subtype_enum.name], subtypes=subtypes))
 
@@ -321,7 +332,8 @@ class _Builder:
         p = self.p
         for what, h in (("message type", p.message_type), ("package type", p.package_type)):
             if h.scalar.size != 1:
-                raise ValueError(f"lua target: the {what} must be one byte (the runtime reads it with string.byte)")
+                self.problems.append(h.where.problem(
+                    f"lua target: the {what} must be one byte (the runtime reads it with string.byte)"))
         return dict(title=p.title, header_size=p.header_size, length_size=p.message_length.scalar.size,
                     package_header_size=p.package_header_size, package_length_size=p.package_length.scalar.size,
                     max_message_length=p.max_message_length, max_value_depth=p.max_value_depth,
@@ -342,55 +354,29 @@ class _Builder:
         self.header_field("type", "Type", p.message_type)
         self.header_field("package.length", "Length", p.package_length)
         self.header_field("package.type", "Type", p.package_type)
-        messages = [self.package_message(m) if isinstance(m, ir.PackageListMessage) else self.dispatch_message(m)
-                    for m in p.messages]
+        messages = [self.dispatch_message(mp) if mp.is_dispatch else self.package_message(mp)
+                    for mp in self.plan.messages]
         # Which fields of a package a filter or column may ask for (TreeItem:referenced).
         for m in messages:
             for pk in m.packages if m.kind == "packages" else []:
                 pk["refs"] = [k for k in sorted(self.keys) if k.startswith(pk["name"] + ".")]
+        version, constants = self.version_reader(), self.constants()
+        if self.problems:
+            raise SpecError(p.source, self.problems)
         return dict(enums=enums, fields=self.fields, layouts=self.layouts, messages=messages,
-                    version=self.version_reader(), value_tables=self.value_tables(),
+                    version=version, value_tables=self.value_tables(),
                     known_codes=p.known_message_codes, message_type_names=self.enum_var[p.message_type_enum.name],
-                    constants=self.constants())
+                    constants=constants)
 
     def version_reader(self) -> dict:
         """Where the Version message keeps major and minor: fixed bytes and length-prefixed strings."""
-        for m in self.p.messages:
-            if not isinstance(m, ir.DispatchMessage):
-                continue
-            for st in m.subtypes:
-                if not st.sets_version:
-                    continue
-                major, minor = st.sets_version
-                steps, offset = [], m.header_size + self.p.header_size
-                for f in st.struct.fields:
-                    if f.name in (major, minor):
-                        break
-                    if isinstance(f, ir.StringField) and f.length is not None:
-                        steps.append(dict(fixed=offset, prefix=f.length.size, signed=f.length.signed))
-                        offset = 0
-                    elif f.fixed_size is not None and not f.conditional:
-                        offset += f.fixed_size
-                    else:
-                        raise ValueError("lua target: cannot locate the version numbers")
-                names = [f.name for f in st.struct.fields]
-                if names.index(minor) != names.index(major) + 1:
-                    raise ValueError("lua target: minor_version must follow major_version")
-                if any(st.struct.field(n).fixed_size != 1 for n in (major, minor)):
-                    raise ValueError("lua target: major and minor versions must be one byte each")
-                after = st.struct.fields[names.index(minor) + 1:]
-                rest = sum(0 if f.conditional else f.min_size for f in after)
-                return dict(message=m.code.value, subtype=st.code.value,
-                            subtype_offset=m.header_size + self.p.header_size - 1,
-                            steps=steps, tail=offset, rest=rest)
-        raise ValueError("lua target: no layout sets the version")
-
-
-def _unconditional(f: ir.AnyField) -> ir.Struct:
-    g = copy.copy(f)
-    g.present_if = None
-    g.versions = ir.ALL_VERSIONS
-    return ir.Struct(f.name, "", [g])
+        v = self.plan.version
+        if any(f.fixed_size != 1 for f in (v.major, v.minor)):
+            self.problems.append(v.layout.where.problem("lua target: major and minor versions must be one byte each"))
+        steps = [dict(fixed=skip.fixed + (v.body_offset if i == 0 else 0), prefix=skip.prefix, signed=skip.signed)
+                 for i, skip in enumerate(v.skips)]
+        return dict(message=v.message_code, subtype=v.subtype_code, subtype_offset=v.subtype_offset,
+                    steps=steps, tail=v.tail + (0 if v.skips else v.body_offset), rest=v.rest)
 
 
 def runtime() -> list[dict]:
@@ -406,6 +392,6 @@ def render(protocol_plan, banner: list[str]) -> dict[str, str]:
     p = protocol_plan.protocol
     env = environment("lua")
     env.filters["lua"] = lua_literal
-    model = _Builder(p).build()
+    model = _Builder(protocol_plan).build()
     ctx = dict(banner=banner, p=p, doc=one_line(p.doc), runtime=runtime(), **model)
     return {OUT: env.get_template("urwire.lua.j2").render(**ctx)}

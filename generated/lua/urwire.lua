@@ -887,14 +887,8 @@ local L_masterboard_data = {
     { k = "scalar", f = F["masterboard_data.euromap67_interface_installed"], n = 1, path = "euromap67_interface_installed", signed = false, keep = "euromap67_interface_installed" },
     { k = "cond", present_if = "euromap67_interface_installed", low = nil, high = nil, fields = {
         { k = "scalar", f = F["masterboard_data.euromap_input_bits"], n = 4, path = "euromap_input_bits", signed = false },
-    } },
-    { k = "cond", present_if = "euromap67_interface_installed", low = nil, high = nil, fields = {
         { k = "scalar", f = F["masterboard_data.euromap_output_bits"], n = 4, path = "euromap_output_bits", signed = false },
-    } },
-    { k = "cond", present_if = "euromap67_interface_installed", low = nil, high = nil, fields = {
         { k = "scalar", f = F["masterboard_data.euromap_voltage_24v"], n = 4, path = "euromap_voltage_24v", signed = false },
-    } },
-    { k = "cond", present_if = "euromap67_interface_installed", low = nil, high = nil, fields = {
         { k = "scalar", f = F["masterboard_data.euromap_current"], n = 4, path = "euromap_current", signed = false },
     } },
     { k = "scalar", f = F["masterboard_data.reserved_0"], n = 4, path = "reserved_0", signed = false },
