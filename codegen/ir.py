@@ -11,7 +11,11 @@ from typing import Optional, Union
 
 from .errors import Problem
 
-Version = tuple[int, int]
+Version = tuple[int, int, int]   # major, minor, bugfix
+
+# An upper bound written as major.minor covers every bugfix release of it ("until 5.8" takes in
+# 5.8.3); bugfix numbers run far below this.
+BUGFIX_ANY = 999
 
 
 @dataclass(frozen=True)
@@ -29,24 +33,41 @@ class Where:
 NOWHERE = Where()
 
 
-def parse_version(text: str) -> Version:
-    major, minor = text.split(".")
-    return int(major), int(minor)
+def parse_version(text: str, upper: bool = False) -> Version:
+    """"5.9" -> (5, 9, 0); "5.25.1" -> (5, 25, 1). As an upper bound, "5.8" is (5, 8, BUGFIX_ANY)."""
+    parts = [int(x) for x in text.split(".")]
+    if len(parts) == 2:
+        parts.append(BUGFIX_ANY if upper else 0)
+    major, minor, bugfix = parts
+    return major, minor, bugfix
 
 
 def version_text(version: Version) -> str:
-    return f"{version[0]}.{version[1]}"
+    """(5, 9, 0) -> "5.9"; (5, 25, 1) -> "5.25.1"; an upper bound (5, 8, BUGFIX_ANY) -> "5.8"."""
+    major, minor, bugfix = version
+    return f"{major}.{minor}" if bugfix in (0, BUGFIX_ANY) else f"{major}.{minor}.{bugfix}"
+
+
+def version_number(version: Version) -> int:
+    """One integer per version, in version order: what targets without tuples compare."""
+    major, minor, bugfix = version
+    return (major * 1000 + minor) * 1000 + min(bugfix, BUGFIX_ANY)
 
 
 @dataclass(frozen=True)
 class VersionRange:
-    """Inclusive range of "major.minor" software versions; None means unbounded."""
+    """Inclusive range of software versions; None means unbounded."""
 
     low: Optional[Version] = None
     high: Optional[Version] = None
 
     def contains(self, version: Version) -> bool:
         return (self.low is None or version >= self.low) and (self.high is None or version <= self.high)
+
+    def overlaps(self, other: "VersionRange") -> bool:
+        lo = max(self.low or (0, 0, 0), other.low or (0, 0, 0))
+        hi = min(self.high or (1 << 30, 0, 0), other.high or (1 << 30, 0, 0))
+        return lo <= hi
 
     @property
     def unbounded(self) -> bool:
@@ -325,9 +346,27 @@ class Struct:
         for f in self.fields:
             if not f.versions.unbounded or isinstance(f, ValueListField):
                 return True
+            if isinstance(f, (ScalarField, ArrayField)) and f.enum is not None and f.enum.versioned:
+                return True
             if isinstance(f, GroupField) and f.item.needs_version:
                 return True
         return False
+
+    def named(self, name: str) -> list[AnyField]:
+        """Every entry of a name: one, or several in disjoint version ranges."""
+        return [f for f in self.fields if f.name == name]
+
+    @property
+    def public_fields(self) -> list[AnyField]:
+        """One field per name, in first-seen order: what a record holds (its attributes,
+        members, filter fields). A name with several entries takes the widest scalar."""
+        out: dict[str, AnyField] = {}
+        for f in self.fields:
+            if f.name not in out:
+                out[f.name] = f
+            elif isinstance(f, ScalarField) and f.scalar.size > out[f.name].scalar.size:
+                out[f.name] = f
+        return list(out.values())
 
 
 # ---- values of global variables -----------------------------------------------------------
@@ -354,9 +393,10 @@ class Layout:
     doc: str
     field_note: str
     struct: Struct
-    sets_version: Optional[tuple[str, str]] = None   # (major field, minor field)
+    sets_version: Optional[tuple[str, str, Optional[str]]] = None   # (major, minor, bugfix field)
     summary: list[tuple[str, str]] = dc_field(default_factory=list)  # (text before, field name)
     where: Where = NOWHERE
+    versions: VersionRange = ALL_VERSIONS     # the software versions that send this layout
 
 
 @dataclass

@@ -19,16 +19,23 @@ def py_enum_class(enum: ir.Enum) -> str:
     return camel(enum.name)
 
 
-def py_table_class(enum: ir.Enum, table: ir.EnumTable) -> str:
-    """One IntEnum per version table: ValueType5_9On, ValueType3_3To5_8, ValueTypeUpTo3_2."""
+def table_suffix(table: ir.EnumTable) -> str:
+    """The versions of an enum table as an identifier part: UpTo3_2, 3_3To5_8, 5_25_1On."""
     r = table.versions
-    low = f"{r.low[0]}_{r.low[1]}" if r.low else ""
-    high = f"{r.high[0]}_{r.high[1]}" if r.high else ""
+    low = ir.version_text(r.low).replace(".", "_") if r.low else ""
+    high = ir.version_text(r.high).replace(".", "_") if r.high else ""
     if low and high:
-        return f"{camel(enum.name)}{low}To{high}"
-    if low:
-        return f"{camel(enum.name)}{low}On"
-    return f"{camel(enum.name)}UpTo{high}"
+        return f"{low}To{high}"
+    return f"{low}On" if low else f"UpTo{high}"
+
+
+def py_table_class(enum: ir.Enum, table: ir.EnumTable) -> str:
+    """One IntEnum per version table. The newest keeps the plain name (RobotMode), so code
+    written for today's controllers reads the same; older ones say their versions
+    (RobotModeUpTo1_8, ValueType3_3To5_8)."""
+    if table is enum.tables[-1]:
+        return camel(enum.name)
+    return camel(enum.name) + table_suffix(table)
 
 
 def py_lookup(enum: ir.Enum) -> str:

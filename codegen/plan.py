@@ -257,12 +257,38 @@ class LayoutChoice:
 
 
 @dataclass
+class Variant:
+    """One form a type code takes on the wire: a layout with the fields that a set of software
+    versions sends. `ranges` are the versions (as ir.version_number pairs, inclusive); `sizes`
+    the body sizes it can have (its flag-conditioned parts in or out), or None when a variable
+    part makes it open-ended (then it needs at least `min_size`). A stream whose version is not
+    known decodes a variant chosen by length with `rep`, the version it stands for."""
+
+    choice: LayoutChoice
+    ranges: list[tuple[int, int]]
+    sizes: Optional[frozenset[int]]
+    min_size: int
+    rep: ir.Version
+
+    @property
+    def layout(self) -> ir.Layout:
+        return self.choice.layout
+
+    def describe(self) -> str:
+        return " or ".join(_range_text(lo, hi) for lo, hi in self.ranges)
+
+    def fits(self, size: int) -> bool:
+        return size in self.sizes if self.sizes is not None else size >= self.min_size
+
+
+@dataclass
 class MessagePlan:
     message: ir.Message
     header: list[HeaderSlot]         # dispatch messages: the common header, then the subtype
     body_offset: int                 # the first sub-package, or the subtype's first field
     subtype_offset: Optional[int]
     choices: dict[int, list[LayoutChoice]]   # type code -> the layouts it can have
+    variants: dict[int, list[Variant]] = field(default_factory=dict)   # type code -> its forms
 
     @property
     def is_dispatch(self) -> bool:
@@ -301,6 +327,7 @@ class VersionSource:
     layout: ir.Layout
     major: ir.ScalarField
     minor: ir.ScalarField
+    bugfix: Optional[ir.ScalarField]  # right after minor, in the versions its condition gives
     skips: list[VersionSkip]
     tail: int                        # bytes after the last skip up to major
     rest: int                        # least bytes after minor
@@ -342,11 +369,15 @@ def _version_source(p: ir.Protocol, messages: list[MessagePlan], problems: list[
         problems.append(where.problem(f"exactly one layout must set the version ({len(found)} do)"))
         return None
     m, lay = found[0]
-    major_name, minor_name = lay.sets_version
+    major_name, minor_name, bugfix_name = lay.sets_version
     names = [f.name for f in lay.struct.fields]
     if names.index(minor_name) != names.index(major_name) + 1:
         problems.append(lay.where.problem("sets_version: the minor number must follow the major number"))
         return None
+    bugfix = lay.struct.field(bugfix_name) if bugfix_name else None
+    between = lay.struct.fields[names.index(minor_name) + 1:names.index(bugfix_name)] if bugfix else []
+    if bugfix is not None and any(g.present_if or g.versions.overlaps(bugfix.versions) for g in between):
+        problems.append(lay.where.problem("sets_version: the bugfix number must follow the minor number"))
     skips, at = [], 0
     for f in lay.struct.fields[:names.index(major_name)]:
         if isinstance(f, ir.StringField) and f.length is not None and not f.conditional:
@@ -360,8 +391,93 @@ def _version_source(p: ir.Protocol, messages: list[MessagePlan], problems: list[
             return None
     after = lay.struct.fields[names.index(minor_name) + 1:]
     return VersionSource(m.message.code.value, lay.code.value, m.subtype_offset, m.body_offset, lay,
-                         lay.struct.field(major_name), lay.struct.field(minor_name), skips, at,
+                         lay.struct.field(major_name), lay.struct.field(minor_name), bugfix, skips, at,
                          sum(0 if f.conditional else f.min_size for f in after))
+
+
+# ---- variants: the forms of a type code across software versions ---------------------------
+
+_TOP = ir.version_number((1 << 20, 0, 0))
+
+
+def _bounds(r: ir.VersionRange) -> tuple[int, int]:
+    return (ir.version_number(r.low) if r.low else 0, ir.version_number(r.high) if r.high else _TOP)
+
+
+def _from_number(n: int) -> ir.Version:
+    return n // 1_000_000, n // 1000 % 1000, n % 1000
+
+
+def _range_text(lo: int, hi: int) -> str:
+    return ir.VersionRange(_from_number(lo) if lo else None, _from_number(hi) if hi < _TOP else None).describe()
+
+
+def _fields_by_version(struct: ir.Struct) -> list[ir.AnyField]:
+    return [f for f in struct.fields if not f.versions.unbounded]
+
+
+def _variants(options: list[LayoutChoice], default: ir.Version) -> list[Variant]:
+    """Cut the version axis wherever a layout or a field of one starts or ends; each piece
+    sends one layout with one set of fields. Pieces that send the same are one variant."""
+    cuts = {0, _TOP + 1}
+    for c in options:
+        for r in [c.layout.versions] + [f.versions for f in _fields_by_version(c.layout.struct)]:
+            lo, hi = _bounds(r)
+            cuts |= {lo, hi + 1}
+    points = sorted(cuts)
+    found: dict[tuple, Variant] = {}
+    for lo, nxt in zip(points, points[1:]):
+        sample = _from_number(lo)
+        for c in options:
+            if not c.layout.versions.contains(sample):
+                continue
+            present = tuple(id(f) for f in c.layout.struct.fields if f.versions.contains(sample))
+            key = (id(c), present)
+            if key in found:
+                found[key].ranges.append((lo, nxt - 1))
+            else:
+                fields = [f for f in c.layout.struct.fields if f.versions.contains(sample)]
+                sizes, least = _sizes(fields)
+                found[key] = Variant(c, [(lo, nxt - 1)], sizes, least, default)
+    variants = list(found.values())
+    for v in variants:
+        _merge_adjacent(v.ranges)
+        v.rep = _representative(v.ranges, default)
+    return variants
+
+
+def _sizes(fields: list[ir.AnyField]) -> tuple[Optional[frozenset[int]], int]:
+    """The body sizes of a field list: fixed parts, plus each flag's fields in or out."""
+    base, flagged = 0, {}
+    for f in fields:
+        if f.fixed_size is None:
+            return None, sum(g.min_size for g in fields if not g.present_if)
+        if f.present_if:
+            flagged[f.present_if] = flagged.get(f.present_if, 0) + f.fixed_size
+        else:
+            base += f.fixed_size
+    sizes = {base}
+    for extra in flagged.values():
+        sizes |= {s + extra for s in sizes}
+    return frozenset(sizes), base
+
+
+def _merge_adjacent(ranges: list[tuple[int, int]]) -> None:
+    ranges.sort()
+    i = 0
+    while i + 1 < len(ranges):
+        if ranges[i][1] + 1 >= ranges[i + 1][0]:
+            ranges[i:i + 2] = [(ranges[i][0], max(ranges[i][1], ranges[i + 1][1]))]
+        else:
+            i += 1
+
+
+def _representative(ranges: list[tuple[int, int]], default: ir.Version) -> ir.Version:
+    """The version a variant stands for: the default where it covers it, else its newest
+    version below the default, else its oldest."""
+    d = ir.version_number(default)
+    below = [min(hi, d) for lo, hi in ranges if lo <= d]
+    return _from_number(max(below)) if below else _from_number(ranges[0][0])
 
 
 def plan(p: ir.Protocol) -> ProtocolPlan:
@@ -384,7 +500,8 @@ def plan(p: ir.Protocol) -> ProtocolPlan:
             layouts = m.subtypes
         for lay in layouts:
             choices.setdefault(lay.code.value, []).append(LayoutChoice(lay, planner.layout(lay.struct)))
-        messages.append(MessagePlan(m, header, body, subtype_offset, choices))
+        variants = {code: _variants(options, p.default_version) for code, options in choices.items()}
+        messages.append(MessagePlan(m, header, body, subtype_offset, choices, variants))
     version = _version_source(p, messages, problems)
     if problems:
         raise SpecError(p.source, problems)

@@ -18,6 +18,7 @@ class _Resolver:
         self.problems: list[Problem] = []
         self.enums: dict[str, ir.Enum] = {}
         self.unresolved: set[int] = set()
+        self.value_enums: set[str] = set()     # enums that value fields take their type codes from
 
     def fail(self, parts, message: str) -> None:
         self.problems.append(self.spec.problem(parts, message))
@@ -32,39 +33,41 @@ class _Resolver:
         if not raw:
             return ir.ALL_VERSIONS
         low = ir.parse_version(raw["from"]) if "from" in raw else None
-        high = ir.parse_version(raw["until"]) if "until" in raw else None
+        high = ir.parse_version(raw["until"], upper=True) if "until" in raw else None
         if low and high and low > high:
             self.fail(parts, f"version range starts after it ends ({raw['from']} > {raw['until']})")
         return ir.VersionRange(low, high)
 
     def enum_values(self, raw_values, scalar: ir.Scalar, parts) -> list[ir.EnumValue]:
-        out, names, codes = [], set(), set()
+        out: list[ir.EnumValue] = []
         for i, v in enumerate(raw_values):
             where = parts + [i]
-            if v["name"] in names:
-                self.fail(where + ["name"], f"duplicate enum member {v['name']}")
-            if v["value"] in codes:
-                self.fail(where + ["value"], f"duplicate enum value {v['value']}")
+            member = ir.EnumValue(v["name"], v["value"], v.get("doc", ""), v.get("undocumented", False),
+                                  self.versions(v.get("versions"), where + ["versions"]))
+            # A name or a value may repeat only for versions that do not overlap.
+            for earlier in out:
+                if earlier.versions.overlaps(member.versions):
+                    if earlier.name == member.name:
+                        self.fail(where + ["name"], f"duplicate enum member {member.name}")
+                    if earlier.value == member.value:
+                        self.fail(where + ["value"], f"duplicate enum value {member.value}")
             if not scalar.min <= v["value"] <= scalar.max:
                 self.fail(where + ["value"], f"{v['value']} does not fit in {scalar.name}")
-            names.add(v["name"])
-            codes.add(v["value"])
-            out.append(ir.EnumValue(v["name"], v["value"], v.get("doc", ""), v.get("undocumented", False),
-                                    self.versions(v.get("versions"), where + ["versions"])))
+            out.append(member)
         return out
 
     def enum(self, name: str, raw: dict) -> ir.Enum:
         parts = ["enums", name]
         scalar = ir.SCALARS[raw["type"]]
         if "values" in raw:
-            tables = [ir.EnumTable(ir.ALL_VERSIONS, self.enum_values(raw["values"], scalar, parts + ["values"]))]
+            tables = _tables_by_member(self.enum_values(raw["values"], scalar, parts + ["values"]))
         else:
             tables = []
             for i, t in enumerate(raw["tables"]):
                 where = parts + ["tables", i]
                 rng = self.versions(t["versions"], where + ["versions"])
                 for earlier in tables:
-                    if _overlap(earlier.versions, rng):
+                    if earlier.versions.overlaps(rng):
                         self.fail(where + ["versions"], f"overlaps the table for {earlier.versions.describe()}")
                 tables.append(ir.EnumTable(rng, self.enum_values(t["values"], scalar, where + ["values"])))
         return ir.Enum(name, scalar, raw["doc"], raw.get("field_note", ""), tables)
@@ -75,10 +78,13 @@ class _Resolver:
             return None
         return self.enums[name]
 
-    def member(self, enum: Optional[ir.Enum], name: str, parts) -> ir.EnumValue:
+    def member(self, enum: Optional[ir.Enum], name: str, parts,
+               versions: ir.VersionRange = ir.ALL_VERSIONS) -> ir.EnumValue:
         if enum is not None:
             for v in enum.values:
                 if v.name == name:
+                    if not v.versions.unbounded and not versions.unbounded and not versions.overlaps(v.versions):
+                        self.fail(parts, f"'{name}' is not a member for {versions.describe()}")
                     return v
             self.fail(parts, f"'{name}' is not a member of enum '{enum.name}'")
         placeholder = ir.EnumValue(name, 0)
@@ -91,13 +97,27 @@ class _Resolver:
         out: list[ir.AnyField] = []
         for i, raw in enumerate(raw_fields):
             where = parts + [i]
-            if raw["name"] in {f.name for f in out}:
-                self.fail(where + ["name"], f"duplicate field name '{raw['name']}'")
             f = self.field(raw, where, out)
+            for earlier in out:
+                if earlier.name == f.name:
+                    self.same_name(earlier, f, where)
             if out and _runs_to_end(out[-1]) and not out[-1].conditional:
                 self.fail(where, f"field '{f.name}' follows '{out[-1].name}', which runs to the end of the layout")
             out.append(f)
         return out
+
+    def same_name(self, earlier: ir.AnyField, f: ir.AnyField, where) -> None:
+        """A name may stand twice in a layout only for versions that do not overlap, as one value
+        of one kind: the entries differ in their wire type at most (int16 before int32)."""
+        if earlier.versions.overlaps(f.versions):
+            self.fail(where + ["name"], f"duplicate field name '{f.name}' (give the entries version ranges "
+                                        f"that do not overlap)")
+            return
+        if not (isinstance(f, ir.ScalarField) and isinstance(earlier, ir.ScalarField)
+                and _kind(f.scalar) == _kind(earlier.scalar) and f.enum is earlier.enum and f.bits == earlier.bits
+                and f.present_if == earlier.present_if):
+            self.fail(where + ["name"], f"'{f.name}' stands twice with another kind of value: give the older "
+                                        f"form a name of its own")
 
     def field(self, raw: dict, parts, earlier: list[ir.AnyField]) -> ir.AnyField:
         common = dict(name=raw["name"], doc=raw.get("doc", ""), field_note=raw.get("field_note", ""),
@@ -131,6 +151,8 @@ class _Resolver:
         if kind == "value":
             if enum is None or not enum.versioned:
                 self.fail(parts + ["enum"], "a value field needs 'enum' naming a versioned type table")
+            else:
+                self.value_enums.add(enum.name)
             if repeat != "to_end" or "terminator" not in raw:
                 self.fail(parts, "a value field needs 'repeat: to_end' and a 'terminator'")
             return ir.ValueListField(**common, value_type=enum, terminator=raw.get("terminator", 0x0A))
@@ -164,14 +186,19 @@ class _Resolver:
         sets_version = None
         if "sets_version" in raw:
             sv = raw["sets_version"]
-            for key in ("major", "minor"):
+            for key in ("major", "minor", "bugfix"):
+                if key not in sv:
+                    continue
                 f = _find(struct.fields, sv[key])
                 if not isinstance(f, ir.ScalarField) or not f.scalar.is_integer:
                     self.fail(parts + ["sets_version", key], f"'{sv[key]}' must name an integer field of this layout")
-            sets_version = (sv["major"], sv["minor"])
+                elif key != "bugfix" and f.conditional:
+                    self.fail(parts + ["sets_version", key], f"'{sv[key]}' must be in every form of the layout")
+            sets_version = (sv["major"], sv["minor"], sv.get("bugfix"))
         summary = self.summary(raw.get("summary"), struct, parts + ["summary"])
-        return ir.Layout(name, self.member(code_enum, raw["code"], parts + ["code"]), raw["doc"],
-                         raw.get("field_note", ""), struct, sets_version, summary, self.where(parts))
+        versions = self.versions(raw.get("versions"), parts + ["versions"])
+        return ir.Layout(name, self.member(code_enum, raw["code"], parts + ["code"], versions), raw["doc"],
+                         raw.get("field_note", ""), struct, sets_version, summary, self.where(parts), versions)
 
     def summary(self, text: Optional[str], struct: ir.Struct, parts) -> list[tuple[str, str]]:
         """'{title}: {text}' -> [('', 'title'), (': ', 'text')]; only scalar and string fields."""
@@ -193,13 +220,16 @@ class _Resolver:
         return ir.HeaderField(ir.SCALARS[raw["type"]], enum, raw.get("doc", ""), self.where(parts))
 
     def unique_codes(self, layouts: list[ir.Layout], parts) -> None:
-        seen: dict[int, str] = {}
+        """Two layouts may share a code only for software versions that do not overlap."""
+        seen: list[ir.Layout] = []
         for lay in layouts:
             if id(lay.code) in self.unresolved:
                 continue
-            if lay.code.value in seen:
-                self.fail(parts + [lay.name, "code"], f"code {lay.code.name} is already used by '{seen[lay.code.value]}'")
-            seen[lay.code.value] = lay.name
+            for other in seen:
+                if other.code.value == lay.code.value and other.versions.overlaps(lay.versions):
+                    self.fail(parts + [lay.name, "code"], f"code {lay.code.name} is already used by '{other.name}' "
+                                                          f"for {other.versions.describe()}")
+            seen.append(lay)
 
     def resolve(self) -> ir.Protocol:
         data = self.spec.data
@@ -255,11 +285,10 @@ class _Resolver:
             value_layouts[tname] = ir.ValueLayout(
                 tname, raw["layout"], ir.SCALARS.get(raw.get("length", "")), ir.SCALARS.get(raw.get("item", "")),
                 raw.get("count", 0), raw.get("doc", ""), self.where(["value_layouts", tname]))
-        for ename, enum in self.enums.items():
-            if enum.versioned:
-                for name in enum.names:
-                    if name not in value_layouts:
-                        self.fail(["enums", ename], f"value type {name} has no entry in value_layouts")
+        for ename in sorted(self.value_enums):
+            for name in self.enums[ename].names:
+                if name not in value_layouts:
+                    self.fail(["enums", ename], f"value type {name} has no entry in value_layouts")
 
         documented = [ir.parse_version(v) for v in proto["documented_versions"]]
         protocol = ir.Protocol(
@@ -274,6 +303,45 @@ class _Resolver:
         return protocol
 
 
+def _tables_by_member(values: list[ir.EnumValue]) -> list[ir.EnumTable]:
+    """One table, or, where members carry version ranges, one table per stretch of versions in
+    which the same members hold (oldest first): what a code means then depends on the version."""
+    if all(v.versions.unbounded for v in values):
+        return [ir.EnumTable(ir.ALL_VERSIONS, values)]
+    cuts = {(0, 0, 0)}
+    for v in values:
+        if v.versions.low:
+            cuts.add(v.versions.low)
+        if v.versions.high:
+            cuts.add(_next_version(v.versions.high))
+    points = sorted(cuts)
+    tables: list[ir.EnumTable] = []
+    for i, low in enumerate(points):
+        members = [v for v in values if v.versions.contains(low)]
+        high = _previous_version(points[i + 1]) if i + 1 < len(points) else None
+        if tables and [id(v) for v in tables[-1].values] == [id(v) for v in members]:
+            tables[-1] = ir.EnumTable(ir.VersionRange(tables[-1].versions.low, high), members)
+        else:
+            tables.append(ir.EnumTable(ir.VersionRange(low if i else None, high), members))
+    return tables
+
+
+def _next_version(v: ir.Version) -> ir.Version:
+    major, minor, bugfix = v
+    return (major, minor + 1, 0) if bugfix >= ir.BUGFIX_ANY else (major, minor, bugfix + 1)
+
+
+def _previous_version(v: ir.Version) -> ir.Version:
+    major, minor, bugfix = v
+    if bugfix:
+        return major, minor, bugfix - 1
+    return (major, minor - 1, ir.BUGFIX_ANY) if minor else (major - 1, 999, ir.BUGFIX_ANY)
+
+
+def _kind(s: ir.Scalar) -> str:
+    return "bool" if s.is_bool else "float" if s.is_float else "int"
+
+
 def _find(fields: list, name: str):
     for f in fields:
         if f.name == name:
@@ -285,12 +353,6 @@ def _runs_to_end(f: ir.AnyField) -> bool:
     return (isinstance(f, (ir.StringListField, ir.BytesField, ir.ValueListField))
             or (isinstance(f, ir.StringField) and f.to_end)
             or (isinstance(f, ir.GroupField) and f.to_end))
-
-
-def _overlap(a: ir.VersionRange, b: ir.VersionRange) -> bool:
-    lo = max(a.low or (0, 0), b.low or (0, 0))
-    hi = min(a.high or (1 << 30, 0), b.high or (1 << 30, 0))
-    return lo <= hi
 
 
 def resolve(spec: LoadedSpec) -> ir.Protocol:

@@ -344,12 +344,13 @@ class _Builder:
         p = self.p
         enums = []
         for e in p.enums.values():
-            if e.versioned:
-                continue
+            if e is p.value_type:
+                continue   # value types are named by the runtime, from the version's table
             var = f"VS_{e.name.upper()}"
             self.enum_var[e.name] = var
+            # The newest table names the codes (and filters by name use it).
             enums.append(dict(var=var, doc=one_line(e.doc, e.field_note),
-                              entries=[(v.value, v.name) for v in e.values]))
+                              entries=[(v.value, v.name) for v in e.tables[-1].values]))
         self.header_field("length", "Length", p.message_length)
         self.header_field("type", "Type", p.message_type)
         self.header_field("package.length", "Length", p.package_length)

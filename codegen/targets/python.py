@@ -103,7 +103,7 @@ def annotation(f: ir.AnyField, items: dict[str, str]) -> str:
 
 def scalar_annotation(s: ir.Scalar, enum: Optional[ir.Enum]) -> str:
     if enum is not None:
-        return f"Union[{py_enum_class(enum)}, int]"
+        return f"Union[{', '.join(py_table_class(enum, t) for t in reversed(enum.tables))}, int]"
     return "bool" if s.is_bool else "float" if s.is_float else "int"
 
 
@@ -131,9 +131,10 @@ def json_kind(f: ir.AnyField) -> str:
 
 def conversion(s: ir.Scalar, enum: Optional[ir.Enum]) -> tuple[str, str]:
     """How a value unpacked by struct becomes the attribute: (kind, enum lookup constant).
-    float32 keeps the bits of signalling NaNs, which struct quiets, so encoding is lossless."""
+    float32 keeps the bits of signalling NaNs, which struct quiets, so encoding is lossless.
+    An enum whose codes mean other things in other versions is looked up by version."""
     if enum is not None:
-        return "enum", py_lookup(enum)
+        return ("venum" if enum.versioned else "enum"), py_lookup(enum)
     if s.is_bool:
         return "bool", ""
     return ("f32" if _is_f32(s) else "plain"), ""
@@ -234,6 +235,11 @@ class _ClassBuilder:
                 Step("group_to_end", dict(name=f.name)))
 
 
+def version_tuple(number: int) -> tuple[int, int, int]:
+    """A version number of the plan (ir.version_number) as the tuple the bindings compare."""
+    return number // 1_000_000, number // 1000 % 1000, number % 1000
+
+
 def _is_f32(s: ir.Scalar) -> bool:
     return s.is_float and s.size == 4
 
@@ -290,6 +296,19 @@ class _Target:
         self.classes.append(cls)
         return cls
 
+    def forms(self, mp: plan.MessagePlan, classes: dict[int, PyClass]) -> list:
+        """Per type code, the forms it takes: the class, version ranges, sizes and the version
+        it stands for (see plan.Variant)."""
+        out = []
+        for code, variants in mp.variants.items():
+            out.append((code, [dict(cls=classes[id(v.layout)].name,
+                                    ranges=[(version_tuple(lo), version_tuple(hi)) for lo, hi in v.ranges],
+                                    sizes=f"frozenset({{{', '.join(map(str, sorted(v.sizes)))}}})"
+                                    if v.sizes is not None else "None",
+                                    min_size=v.min_size, rep=v.rep, versions=v.describe())
+                               for v in variants]))
+        return out
+
     def is_fixed_item(self, layout: plan.LayoutPlan) -> bool:
         return any(it.layout is layout and it.fixed for it in self.plan.items)
 
@@ -298,21 +317,26 @@ class _Target:
         for mp in self.plan.messages:
             m = mp.message
             if not mp.is_dispatch:
-                layouts = [self.build_class(c.plan, py_layout_class(c.layout, False), "package", c.layout.name,
-                                            c.layout.code.value, one_line(c.layout.doc, c.layout.field_note),
-                                            summary=c.layout.summary)
-                           for c in mp.layouts]
+                classes = {id(c.layout): self.build_class(c.plan, py_layout_class(c.layout, False), "package",
+                                                          c.layout.name, c.layout.code.value,
+                                                          one_line(c.layout.doc, c.layout.field_note),
+                                                          summary=c.layout.summary)
+                           for c in mp.layouts}
                 messages.append(dict(kind="packages", name=m.name, cls=py_message_class(m), code=m.code.value,
-                                     code_name=m.code.name, doc=one_line(m.doc, m.field_note), layouts=layouts,
+                                     code_name=m.code.name, doc=one_line(m.doc, m.field_note),
+                                     layouts=list(classes.values()), forms=self.forms(mp, classes),
                                      body_offset=mp.body_offset))
                 continue
             fields = [slot.field for slot in mp.header if not slot.is_subtype]
             subtype = mp.header[-1].field
             # Header values that need converting after the unpack (enums).
             converts = [MemberView(f.name, "scalar", *conversion(f.scalar, f.enum)) for f in fields]
-            layouts = [self.build_class(c.plan, py_layout_class(c.layout, True), "subtype", c.layout.name,
-                                        c.layout.code.value, one_line(c.layout.doc, c.layout.field_note), mp.header,
-                                        c.layout.sets_version, c.layout.summary) for c in mp.layouts]
+            classes = {id(c.layout): self.build_class(c.plan, py_layout_class(c.layout, True), "subtype",
+                                                      c.layout.name, c.layout.code.value,
+                                                      one_line(c.layout.doc, c.layout.field_note), mp.header,
+                                                      c.layout.sets_version, c.layout.summary) for c in mp.layouts}
+            layouts = list(classes.values())
+            announces = self.plan.version.subtype_code if self.plan.version.message_code == m.code.value else None
             messages.append(dict(
                 kind="dispatch", name=m.name, code=m.code.value, code_name=m.code.name,
                 doc=one_line(m.doc, m.field_note), layouts=layouts,
@@ -320,12 +344,15 @@ class _Target:
                 header_run=[(slot.field.name, slot.offset, slot.field.scalar.size) for slot in mp.header],
                 header_offset=mp.header[0].offset, header_names=[f.name for f in fields],
                 header_converts=[c for c in converts if c.conv != "plain"], subtype=subtype.name,
-                body_offset=mp.body_offset))
+                body_offset=mp.body_offset, forms=self.forms(mp, classes), announces=announces))
         if self.problems:
             raise SpecError(self.p.source, self.problems)
         p = self.p
+        v = self.plan.version
+        skips = [dict(fixed=k.fixed, prefix=self.prefix_const(ir.SCALARS[("int" if k.signed else "uint") + str(8 * k.prefix)]))
+                 for k in v.skips]
         return dict(messages=messages, classes=self.classes, prefixes=self.prefixes, switches=self.switches,
-                    header_size=self.plan.header_size, package_header_size=self.plan.package_header_size,
+                    version=dict(skips=skips, tail=v.tail), header_size=self.plan.header_size, package_header_size=self.plan.package_header_size,
                     type_offset=p.message_length.scalar.size,
                     header_fmt=">" + STRUCT_CODES[p.message_length.scalar.name] + STRUCT_CODES[p.message_type.scalar.name],
                     package_header_fmt=">" + STRUCT_CODES[p.package_length.scalar.name]
@@ -337,8 +364,8 @@ def enum_views(p: ir.Protocol) -> list[dict]:
     for e in p.enums.values():
         tables = []
         for t in e.tables:
-            cls = py_enum_class(e) if not e.versioned else py_table_class(e, t)
-            tables.append(dict(cls=cls, versions=t.versions.describe(), low=t.versions.low, high=t.versions.high,
+            tables.append(dict(cls=py_table_class(e, t), versions=t.versions.describe(), low=t.versions.low,
+                               high=t.versions.high,
                                members=[dict(name=v.name, value=v.value,
                                             doc=one_line(v.doc, "(undocumented)" if v.undocumented else "",
                                                          f"(from {v.versions.describe()})" if not v.versions.unbounded else ""))

@@ -507,23 +507,42 @@ const char *urwire_robot_mode_name(int64_t value)
     }
 }
 
-const char *urwire_joint_mode_name(int64_t value)
+const char *urwire_joint_mode_name(urwire_sw_version version, int64_t code)
 {
-    switch (value) {
-    case 235: return "RESET";
-    case 236: return "SHUTTING_DOWN";
-    case 238: return "BACKDRIVE";
-    case 239: return "POWER_OFF";
-    case 240: return "READY_FOR_POWER_OFF";
-    case 245: return "NOT_RESPONDING";
-    case 246: return "MOTOR_INITIALISATION";
-    case 247: return "BOOTING";
-    case 251: return "VIOLATION";
-    case 252: return "FAULT";
-    case 253: return "RUNNING";
-    case 255: return "IDLE";
-    default: return NULL;
+if (1 && urwire__version_cmp(version, 5, 0) <= 0) {
+        switch (code) {
+        case URWIRE_JOINT_MODE_UP_TO_5_0_RESET: return "RESET";
+        case URWIRE_JOINT_MODE_UP_TO_5_0_SHUTTING_DOWN: return "SHUTTING_DOWN";
+        case URWIRE_JOINT_MODE_UP_TO_5_0_BACKDRIVE: return "BACKDRIVE";
+        case URWIRE_JOINT_MODE_UP_TO_5_0_POWER_OFF: return "POWER_OFF";
+        case URWIRE_JOINT_MODE_UP_TO_5_0_NOT_RESPONDING: return "NOT_RESPONDING";
+        case URWIRE_JOINT_MODE_UP_TO_5_0_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
+        case URWIRE_JOINT_MODE_UP_TO_5_0_BOOTING: return "BOOTING";
+        case URWIRE_JOINT_MODE_UP_TO_5_0_VIOLATION: return "VIOLATION";
+        case URWIRE_JOINT_MODE_UP_TO_5_0_FAULT: return "FAULT";
+        case URWIRE_JOINT_MODE_UP_TO_5_0_RUNNING: return "RUNNING";
+        case URWIRE_JOINT_MODE_UP_TO_5_0_IDLE: return "IDLE";
+        default: return NULL;
+        }
     }
+else if (urwire__version_cmp(version, 5, 1) >= 0 && 1) {
+        switch (code) {
+        case URWIRE_JOINT_MODE_5_1_ON_RESET: return "RESET";
+        case URWIRE_JOINT_MODE_5_1_ON_SHUTTING_DOWN: return "SHUTTING_DOWN";
+        case URWIRE_JOINT_MODE_5_1_ON_BACKDRIVE: return "BACKDRIVE";
+        case URWIRE_JOINT_MODE_5_1_ON_POWER_OFF: return "POWER_OFF";
+        case URWIRE_JOINT_MODE_5_1_ON_READY_FOR_POWER_OFF: return "READY_FOR_POWER_OFF";
+        case URWIRE_JOINT_MODE_5_1_ON_NOT_RESPONDING: return "NOT_RESPONDING";
+        case URWIRE_JOINT_MODE_5_1_ON_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
+        case URWIRE_JOINT_MODE_5_1_ON_BOOTING: return "BOOTING";
+        case URWIRE_JOINT_MODE_5_1_ON_VIOLATION: return "VIOLATION";
+        case URWIRE_JOINT_MODE_5_1_ON_FAULT: return "FAULT";
+        case URWIRE_JOINT_MODE_5_1_ON_RUNNING: return "RUNNING";
+        case URWIRE_JOINT_MODE_5_1_ON_IDLE: return "IDLE";
+        default: return NULL;
+        }
+    }
+    return NULL;
 }
 
 const char *urwire_tool_mode_name(int64_t value)

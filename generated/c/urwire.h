@@ -256,22 +256,37 @@ typedef enum urwire_robot_mode {
 const char *urwire_robot_mode_name(int64_t value);
 
 /* Joint status, as shown on the initialisation screen (document section "Joint Modes"). */
-typedef enum urwire_joint_mode {
-    URWIRE_JOINT_MODE_RESET = 235,
-    URWIRE_JOINT_MODE_SHUTTING_DOWN = 236,
-    URWIRE_JOINT_MODE_BACKDRIVE = 238,
-    URWIRE_JOINT_MODE_POWER_OFF = 239,
-    URWIRE_JOINT_MODE_READY_FOR_POWER_OFF = 240,  /* (from 5.1 and later) */
-    URWIRE_JOINT_MODE_NOT_RESPONDING = 245,
-    URWIRE_JOINT_MODE_MOTOR_INITIALISATION = 246,
-    URWIRE_JOINT_MODE_BOOTING = 247,
-    URWIRE_JOINT_MODE_VIOLATION = 251,
-    URWIRE_JOINT_MODE_FAULT = 252,
-    URWIRE_JOINT_MODE_RUNNING = 253,
-    URWIRE_JOINT_MODE_IDLE = 255,
-} urwire_joint_mode;
-/* The document's name of a value ("RESET"), or NULL when the value is not in the table. */
-const char *urwire_joint_mode_name(int64_t value);
+/* Codes for software up to 5.0. */
+typedef enum urwire_joint_mode_up_to_5_0 {
+    URWIRE_JOINT_MODE_UP_TO_5_0_RESET = 235,
+    URWIRE_JOINT_MODE_UP_TO_5_0_SHUTTING_DOWN = 236,
+    URWIRE_JOINT_MODE_UP_TO_5_0_BACKDRIVE = 238,
+    URWIRE_JOINT_MODE_UP_TO_5_0_POWER_OFF = 239,
+    URWIRE_JOINT_MODE_UP_TO_5_0_NOT_RESPONDING = 245,
+    URWIRE_JOINT_MODE_UP_TO_5_0_MOTOR_INITIALISATION = 246,
+    URWIRE_JOINT_MODE_UP_TO_5_0_BOOTING = 247,
+    URWIRE_JOINT_MODE_UP_TO_5_0_VIOLATION = 251,
+    URWIRE_JOINT_MODE_UP_TO_5_0_FAULT = 252,
+    URWIRE_JOINT_MODE_UP_TO_5_0_RUNNING = 253,
+    URWIRE_JOINT_MODE_UP_TO_5_0_IDLE = 255,
+} urwire_joint_mode_up_to_5_0;
+/* Codes for software 5.1 and later. */
+typedef enum urwire_joint_mode_5_1_on {
+    URWIRE_JOINT_MODE_5_1_ON_RESET = 235,
+    URWIRE_JOINT_MODE_5_1_ON_SHUTTING_DOWN = 236,
+    URWIRE_JOINT_MODE_5_1_ON_BACKDRIVE = 238,
+    URWIRE_JOINT_MODE_5_1_ON_POWER_OFF = 239,
+    URWIRE_JOINT_MODE_5_1_ON_READY_FOR_POWER_OFF = 240,  /* (from 5.1 and later) */
+    URWIRE_JOINT_MODE_5_1_ON_NOT_RESPONDING = 245,
+    URWIRE_JOINT_MODE_5_1_ON_MOTOR_INITIALISATION = 246,
+    URWIRE_JOINT_MODE_5_1_ON_BOOTING = 247,
+    URWIRE_JOINT_MODE_5_1_ON_VIOLATION = 251,
+    URWIRE_JOINT_MODE_5_1_ON_FAULT = 252,
+    URWIRE_JOINT_MODE_5_1_ON_RUNNING = 253,
+    URWIRE_JOINT_MODE_5_1_ON_IDLE = 255,
+} urwire_joint_mode_5_1_on;
+/* The name of a code in the table of the given software version, or NULL. */
+const char *urwire_joint_mode_name(urwire_sw_version version, int64_t code);
 
 /* Tool status (document section "Tool Modes", whose rows are named JOINT_MODE_*). */
 typedef enum urwire_tool_mode {

@@ -53,7 +53,7 @@ def test_every_runtime_file_is_joined_in_a_known_order(monkeypatch):
 
 def test_constants_come_from_the_spec(protocol):
     p = copy.deepcopy(protocol)
-    p.default_version = (5, 12)
+    p.default_version = (5, 12, 0)
     p.ports = [40000, 40001]
     p.max_message_length = 4096
     p.max_value_depth = 3

@@ -87,5 +87,5 @@ def test_version_gated_fields_group_by_their_range():
     planned = plan(compile_text(yaml.safe_dump(data, sort_keys=False)))
     steps = layout(planned, "robot_state", "additional_info").steps
     assert [s.kind for s in steps] == ["run", "cond", "cond"]
-    assert [f.name for f in steps[1].fields] == ["a", "b"] and steps[1].condition.low == (5, 12)
-    assert isinstance(steps[2], CondGroup) and steps[2].condition.versions == ir.VersionRange((5, 13), None)
+    assert [f.name for f in steps[1].fields] == ["a", "b"] and steps[1].condition.low == (5, 12, 0)
+    assert isinstance(steps[2], CondGroup) and steps[2].condition.versions == ir.VersionRange((5, 13, 0), None)

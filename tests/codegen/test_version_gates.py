@@ -32,7 +32,14 @@ def add_gated_field(data):
     fields.append({"name": "gated_flag", "type": "uint16", "versions": {"from": "5.12"}})
 
 
-def test_a_gated_field_is_read_only_from_its_version(tmp_path):
+def robot_state(body: bytes) -> bytes:
+    pkg = struct.pack(">iB", 5 + len(body), 8) + body
+    return struct.pack(">iB", 5 + len(pkg), 16) + pkg
+
+
+def test_a_gated_field_follows_the_version_and_else_the_length(tmp_path):
+    """CONTRACT §5: the version's layout when it fits the declared length; else the one layout
+    whose size equals it; else the version's layout with its short or extra bytes."""
     root = render_variant(tmp_path, add_gated_field)
     saved = {k: v for k, v in sys.modules.items() if k == "urwire" or k.startswith("urwire.")}
     for k in saved:
@@ -40,15 +47,22 @@ def test_a_gated_field_is_read_only_from_its_version(tmp_path):
     sys.path.insert(0, str(root))
     try:
         variant = importlib.import_module("urwire")
-        body = bytes([1, 0, 1, 0]) + struct.pack(">H", 0xBEEF)
-        pkg = struct.pack(">iB", 5 + len(body), 8) + body
-        msg = struct.pack(">iB", 5 + len(pkg), 16) + pkg
-        (new,) = variant.decode_stream(msg, "5.12")
-        (old,) = variant.decode_stream(msg, "5.9")
+        long = robot_state(bytes([1, 0, 1, 0]) + struct.pack(">H", 0xBEEF))
+        short = robot_state(bytes([1, 0, 1, 0]))
+        neither = robot_state(bytes([1, 0, 1, 0, 7]))
+
+        (new,) = variant.decode_stream(long, "5.12")
         assert new.packages[0].gated_flag == 0xBEEF and new.packages[0].extra == b""
-        assert old.packages[0].gated_flag is None and old.packages[0].extra == b"\xbe\xef"
-        assert "gated_flag" not in variant.to_dict(old)["packages"][0]
-        assert new.encode((5, 12)) == msg and old.encode((5, 9)) == msg
+        (by_length,) = variant.decode_stream(long, "5.9")        # 5.9's 4 bytes do not fit: 5.12's do
+        assert by_length.packages[0].gated_flag == 0xBEEF and by_length.packages[0].decoded_version == (5, 12, 0)
+        (old,) = variant.decode_stream(short, "5.9")
+        assert old.packages[0].gated_flag is None and "gated_flag" not in variant.to_dict(old)["packages"][0]
+        (old_by_length,) = variant.decode_stream(short, "5.12")
+        assert old_by_length.packages[0].gated_flag is None and old_by_length.packages[0].extra == b""
+        (extra,) = variant.decode_stream(neither, "5.9")         # fits no layout: 5.9's, one extra byte
+        assert extra.packages[0].gated_flag is None and extra.packages[0].extra == b"\x07"
+        for msg, record in ((long, new), (long, by_length), (short, old), (short, old_by_length), (neither, extra)):
+            assert record.encode() == msg
     finally:
         sys.path.remove(str(root))
         for k in [k for k in sys.modules if k == "urwire" or k.startswith("urwire.")]:
@@ -62,5 +76,6 @@ def test_enum_members_carry_their_version_range():
     assert member.versions.describe() == "5.1 and later"
     tables = protocol.enums["value_type"].tables
     assert [t.versions.describe() for t in tables] == ["up to 3.2", "3.3 to 5.8", "5.9 and later"]
-    assert protocol.enums["value_type"].table_for((5, 10)) is tables[2]
-    assert protocol.enums["value_type"].table_for((5, 4)) is tables[1]
+    assert protocol.enums["value_type"].table_for((5, 10, 0)) is tables[2]
+    assert protocol.enums["value_type"].table_for((5, 4, 2)) is tables[1]
+    assert protocol.enums["value_type"].table_for((5, 8, 7)) is tables[1]   # "until 5.8" takes every 5.8.x

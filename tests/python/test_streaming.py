@@ -48,7 +48,7 @@ def test_version_is_learned_from_the_version_message():
     assert framer.version == urwire.DEFAULT_VERSION and not framer.version_seen
     version_5_0 = MINIMAL_VERSION[:19] + b"\x00" + MINIMAL_VERSION[20:]
     framer.feed(version_5_0)
-    assert framer.version == (5, 0) and framer.version_seen
+    assert framer.version == (5, 0, 0) and framer.version_seen
     # The document's example, in 3.3/5.0 codes: BOOL true, CONST_STRING "aaaa".
     body = bytes(8) + b"\x01" + b"\x00\x00" + bytes.fromhex("0c010a030004616161610a")
     (msg,) = framer.feed((len(body) + 5).to_bytes(4, "big") + b"\x19" + body)

@@ -114,8 +114,24 @@ class RobotMode(IntEnum):
 ROBOT_MODE_BY_VALUE: dict[int, RobotMode] = {m.value: m for m in RobotMode}
 
 
+class JointModeUpTo5_0(IntEnum):
+    """Joint status, as shown on the initialisation screen (document section "Joint Modes"). Codes for software up to 5.0."""
+
+    RESET = 235
+    SHUTTING_DOWN = 236
+    BACKDRIVE = 238
+    POWER_OFF = 239
+    NOT_RESPONDING = 245
+    MOTOR_INITIALISATION = 246
+    BOOTING = 247
+    VIOLATION = 251
+    FAULT = 252
+    RUNNING = 253
+    IDLE = 255
+
+
 class JointMode(IntEnum):
-    """Joint status, as shown on the initialisation screen (document section "Joint Modes")."""
+    """Joint status, as shown on the initialisation screen (document section "Joint Modes"). Codes for software 5.1 and later."""
 
     RESET = 235
     SHUTTING_DOWN = 236
@@ -132,7 +148,11 @@ class JointMode(IntEnum):
     IDLE = 255
 
 
-JOINT_MODE_BY_VALUE: dict[int, JointMode] = {m.value: m for m in JointMode}
+# The joint_mode table in force for each range of software versions: (low, high, {code: member}).
+JOINT_MODE_BY_VALUE = (
+    (None, (5, 0, 999), {m.value: m for m in JointModeUpTo5_0}),  # up to 5.0
+    ((5, 1, 0), None, {m.value: m for m in JointMode}),  # 5.1 and later
+)
 
 
 class ToolMode(IntEnum):
@@ -312,7 +332,7 @@ class ValueType3_3To5_8(IntEnum):
     FLOAT = 15
 
 
-class ValueType5_9On(IntEnum):
+class ValueType(IntEnum):
     """Type byte of a global variable value (document section "Value Types"). The codes depend on the controller software, so the table is chosen by the stream's software version. Codes for software 5.9 and later."""
 
     NONE = 0
@@ -327,16 +347,32 @@ class ValueType5_9On(IntEnum):
     MATRIX = 18
 
 
-# The value-type table in force for each range of software versions: (low, high, enum).
-VALUE_TYPE_TABLES = (
-    (None, (3, 2), ValueTypeUpTo3_2),  # up to 3.2
-    ((3, 3), (5, 8), ValueType3_3To5_8),  # 3.3 to 5.8
-    ((5, 9), None, ValueType5_9On),  # 5.9 and later
+# The value_type table in force for each range of software versions: (low, high, {code: member}).
+VALUE_TYPE_BY_VALUE = (
+    (None, (3, 2, 999), {m.value: m for m in ValueTypeUpTo3_2}),  # up to 3.2
+    ((3, 3, 0), (5, 8, 999), {m.value: m for m in ValueType3_3To5_8}),  # 3.3 to 5.8
+    ((5, 9, 0), None, {m.value: m for m in ValueType}),  # 5.9 and later
 )
 
 
-def value_type_table(version: tuple[int, int]) -> type[IntEnum]:
-    """The value-type codes of the given software version (major, minor)."""
+def by_version(tables: tuple, version: tuple[int, int, int]) -> dict:
+    """The {code: member} table of a versioned enum in force for a software version."""
+    for low, high, table in tables:
+        if (low is None or version >= low) and (high is None or version <= high):
+            return table
+    return tables[-1][2]
+
+
+# The value-type table in force for each range of software versions: (low, high, enum).
+VALUE_TYPE_TABLES = (
+    (None, (3, 2, 999), ValueTypeUpTo3_2),  # up to 3.2
+    ((3, 3, 0), (5, 8, 999), ValueType3_3To5_8),  # 3.3 to 5.8
+    ((5, 9, 0), None, ValueType),  # 5.9 and later
+)
+
+
+def value_type_table(version: tuple[int, int, int]) -> type[IntEnum]:
+    """The value-type codes of the given software version (major, minor, bugfix)."""
     for low, high, table in VALUE_TYPE_TABLES:
         if (low is None or version >= low) and (high is None or version <= high):
             return table

@@ -17,16 +17,19 @@ from .spec import DEFAULT_VERSION, HEADER, HEADER_SIZE, KNOWN_MESSAGE_TYPES, MAX
 VersionLike = Union[str, tuple, None]
 
 
-def parse_version(version: VersionLike) -> Optional[tuple[int, int]]:
-    """'5.9', '5.9.1', (5, 9) or None -> (5, 9) or None."""
+def parse_version(version: VersionLike) -> Optional[tuple[int, int, int]]:
+    """'5.9', '5.25.1', (5, 9), (5, 25, 1) or None -> (major, minor, bugfix) or None."""
     if version is None:
         return None
     if isinstance(version, str):
         parts = version.strip().split(".")
-        if len(parts) < 2 or not all(p.isdigit() for p in parts):
-            raise ValueError(f"not a software version: {version!r} (expected e.g. 5.9)")
-        return int(parts[0]), int(parts[1])
-    return int(version[0]), int(version[1])
+        if not 2 <= len(parts) <= 3 or not all(p.isdigit() for p in parts):
+            raise ValueError(f"not a software version: {version!r} (expected e.g. 5.9 or 5.25.1)")
+        numbers = [int(p) for p in parts]
+    else:
+        numbers = [int(x) for x in version]
+    major, minor, bugfix = (numbers + [0])[:3]
+    return major, minor, bugfix
 
 
 def _fault(length: int, mtype: int) -> Optional[str]:
@@ -44,8 +47,13 @@ class Framer:
 
     def __init__(self, version_hint: VersionLike = None):
         self.hint = parse_version(version_hint)
-        self.version: tuple[int, int] = self.hint or DEFAULT_VERSION
-        """Software version in force: the stream's last Version message, else the hint."""
+        self.announced: Optional[tuple[int, int, int]] = None
+        """The version of the stream's last Version message."""
+        self.implied: Optional[tuple[int, int, int]] = None
+        """The version the layout sizes of a robot state showed, when none was known."""
+        self.version: tuple[int, int, int] = self.hint or DEFAULT_VERSION
+        """Software version in force: the stream's last Version message, else the hint, else
+        what the layout sizes show, else DEFAULT_VERSION."""
         self.version_seen = False
         self._buf = bytearray()
         self._base = 0          # stream offset of _buf[0]
@@ -92,11 +100,17 @@ class Framer:
                     yield StreamError(self._base + pos, f"truncated message: length {length}, {left} bytes left")
                     pos = n
                 break
-            msg = decode_message(bytes(buf[pos:pos + length]), self.version)
+            known = self.version_seen or self.hint is not None
+            msg = decode_message(bytes(buf[pos:pos + length]), self.version, known=known)
             sets = getattr(msg, "SETS_VERSION", None)
             if sets is not None:
-                self.version = (getattr(msg, sets[0]), getattr(msg, sets[1]))
+                major, minor, bugfix = sets
+                self.announced = (getattr(msg, major), getattr(msg, minor),
+                                  (getattr(msg, bugfix) or 0) if bugfix else 0)
+                self.version = self.announced
                 self.version_seen = True
+            elif not known and getattr(msg, "implied_version", None) is not None:
+                self.version = self.implied = msg.implied_version
             pos += length
             yield msg
         if pos:

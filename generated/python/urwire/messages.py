@@ -8,7 +8,7 @@ as `.extra`, and a part that cannot be read as a Malformed* record naming the fi
 from __future__ import annotations
 
 import struct
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import ClassVar, Optional, TypeVar, Union
 
 from . import _runtime as _rt
@@ -29,6 +29,8 @@ _FLOAT32 = struct.Struct(">f")
 _UINT32 = struct.Struct(">I")
 _UINT8 = struct.Struct(">B")
 _SAFETY_MODE_REPORT_DATA_BY_REPORT_DATA_TYPE = {2: _INT32, 3: _FLOAT32}
+# Where a Version message keeps its numbers: (fixed bytes, length prefix) on the way there.
+_VERSION_SKIPS = ((0, _INT8), )
 
 
 class _Package:
@@ -36,11 +38,12 @@ class _Package:
 
     __slots__ = ()
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
-        """The sub-package's bytes, header included; the length is computed."""
+    def encode(self, version: Optional[tuple] = None) -> bytes:
+        """The sub-package's bytes, header included; the length is computed. A decoded package
+        is written in the form it was read in; a new one in the form of `version`."""
         out = bytearray(_PACKAGE_HEADER.size)
         try:
-            self._encode(out, version)
+            self._encode(out, self.decoded_version or version or DEFAULT_VERSION)
         except struct.error as exc:
             raise EncodeError(f"{self.TYPE}: {exc}") from None
         _PACKAGE_HEADER.pack_into(out, 0, len(out), self.CODE)
@@ -52,7 +55,7 @@ class _Subtype:
 
     __slots__ = ()
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
+    def encode(self, version: Optional[tuple] = None) -> bytes:
         """The whole message, header included; the length is computed."""
         return encode_message(self, version)
 
@@ -124,6 +127,8 @@ class RobotModeData(_Package):
     reserved: int
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["RobotModeData", int]:
@@ -196,11 +201,11 @@ class Joint(_Item):
     """Motor temperature (degrees C)."""
     t_micro: float
     """Deprecated - ignore."""
-    joint_mode: Union[JointMode, int]
+    joint_mode: Union[JointMode, JointModeUpTo5_0, int]
     """Joint mode."""
 
     @classmethod
-    def _from(cls, v: tuple, i: int, buf, at: int) -> "Joint":
+    def _from(cls, v: tuple, i: int, buf, at: int, version: tuple[int, int, int]) -> "Joint":
         return cls(
             v[i],
             v[i + 1],
@@ -209,7 +214,7 @@ class Joint(_Item):
             (v[i + 4] if v[i + 4] == v[i + 4] else _rt.f32_nan(buf, at + 28)),
             (v[i + 5] if v[i + 5] == v[i + 5] else _rt.f32_nan(buf, at + 32)),
             (v[i + 6] if v[i + 6] == v[i + 6] else _rt.f32_nan(buf, at + 36)),
-            _e.JOINT_MODE_BY_VALUE.get(v[i + 7], v[i + 7]),
+            _e.by_version(_e.JOINT_MODE_BY_VALUE, version).get(v[i + 7], v[i + 7]),
         )
 
     def _values(self) -> tuple:
@@ -294,13 +299,15 @@ class JointData(_Package):
     """One entry per joint, base first."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["JointData", int]:
         if pos + 246 > end:
             raise _rt.short_in_run(_JOINT_DATA_0_RUN, pos, end)
         v = _JOINT_DATA_0.unpack_from(buf, pos)
-        joints = [Joint._from(v, j * 8, buf, pos + j * 41) for j in range(6)]
+        joints = [Joint._from(v, j * 8, buf, pos + j * 41, version) for j in range(6)]
         pos += 246
         return cls(joints), pos
 
@@ -355,6 +362,8 @@ class ToolData(_Package):
     """Tool mode."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["ToolData", int]:
@@ -488,6 +497,8 @@ class MasterboardData(_Package):
     """Used by Universal Robots software only."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["MasterboardData", int]:
@@ -600,6 +611,8 @@ class CartesianInfo(_Package):
     tcp_offset_rz: float
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["CartesianInfo", int]:
@@ -688,6 +701,8 @@ class KinematicsInfo(_Package):
     calibration_status: int
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["KinematicsInfo", int]:
@@ -730,7 +745,7 @@ class JointPositionLimit(_Item):
     """jointMaxLimitt in the document."""
 
     @classmethod
-    def _from(cls, v: tuple, i: int, buf, at: int) -> "JointPositionLimit":
+    def _from(cls, v: tuple, i: int, buf, at: int, version: tuple[int, int, int]) -> "JointPositionLimit":
         return cls(
             v[i],
             v[i + 1],
@@ -764,7 +779,7 @@ class JointMotionLimit(_Item):
     joint_max_acceleration: float
 
     @classmethod
-    def _from(cls, v: tuple, i: int, buf, at: int) -> "JointMotionLimit":
+    def _from(cls, v: tuple, i: int, buf, at: int, version: tuple[int, int, int]) -> "JointMotionLimit":
         return cls(
             v[i],
             v[i + 1],
@@ -881,14 +896,16 @@ class ConfigurationData(_Package):
     robot_sub_type: int
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["ConfigurationData", int]:
         if pos + 440 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_0_RUN, pos, end)
         v = _CONFIGURATION_DATA_0.unpack_from(buf, pos)
-        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16) for j in range(6)]
-        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16) for j in range(6)]
+        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, version) for j in range(6)]
+        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, version) for j in range(6)]
         v_joint_default = v[24]
         a_joint_default = v[25]
         v_tool_default = v[26]
@@ -948,6 +965,8 @@ class ForceModeData(_Package):
     robot_dexterity: float
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["ForceModeData", int]:
@@ -998,6 +1017,8 @@ class AdditionalInfo(_Package):
     reserved: int
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["AdditionalInfo", int]:
@@ -1051,6 +1072,8 @@ class CalibrationData(_Package):
     frz: float
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["CalibrationData", int]:
@@ -1086,6 +1109,8 @@ class SafetyData(_Package):
     """The package's bytes after its header."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["SafetyData", int]:
@@ -1134,6 +1159,8 @@ class ToolCommInfo(_Package):
     tx_idle_chars: float
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["ToolCommInfo", int]:
@@ -1180,6 +1207,8 @@ class ToolModeInfo(_Package):
     digital_output_mode_output_1: int
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["ToolModeInfo", int]:
@@ -1220,6 +1249,8 @@ class SingularityInfo(_Package):
     singularity_type: int
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["SingularityInfo", int]:
@@ -1251,7 +1282,8 @@ class VersionMessage(_Subtype):
 
     TYPE: ClassVar[str] = "version"
     CODE: ClassVar[int] = 3
-    SETS_VERSION: ClassVar[tuple[str, str]] = ("major_version", "minor_version")
+    SETS_VERSION: ClassVar[tuple] = ("major_version", "minor_version", None)
+    """The fields that announce the stream's software version: major, minor and bugfix."""
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
         ("source", "int", False),
@@ -1277,6 +1309,8 @@ class VersionMessage(_Subtype):
     """The rest of the message, with no terminator."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["VersionMessage", int]:
@@ -1337,6 +1371,8 @@ class SafetyModeMessage(_Subtype):
     """Its type follows report_data_type. int32 when report_data_type is 2, float32 when it is 3, uint32 otherwise (as the reference client library does)."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["SafetyModeMessage", int]:
@@ -1404,6 +1440,8 @@ class RobotCommMessage(_Subtype):
     """robotCommTextMessage."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["RobotCommMessage", int]:
@@ -1460,6 +1498,8 @@ class KeyMessage(_Subtype):
     """keyTextMessage."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["KeyMessage", int]:
@@ -1539,6 +1579,8 @@ class ProgramThreadsMessage(_Subtype):
     threads: list[ProgramThread]
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["ProgramThreadsMessage", int]:
@@ -1600,6 +1642,8 @@ class PopupMessage(_Subtype):
     """popupTextMessage."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["PopupMessage", int]:
@@ -1655,6 +1699,8 @@ class RequestValueMessage(_Subtype):
     """requestTextMessage."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["RequestValueMessage", int]:
@@ -1694,6 +1740,8 @@ class TextMessage(_Subtype):
     """textTextMessage."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["TextMessage", int]:
@@ -1737,6 +1785,8 @@ class RuntimeExceptionMessage(_Subtype):
     """runtimeExceptionTextMessage."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["RuntimeExceptionMessage", int]:
@@ -1781,6 +1831,8 @@ class GlobalVariablesSetupMessage(_Subtype):
     """Names, each ended by a new line character, e.g. var_1\nvar_2\n."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["GlobalVariablesSetupMessage", int]:
@@ -1822,6 +1874,8 @@ class GlobalVariablesUpdateMessage(_Subtype):
     """Values, each a type byte, its data and a new line character."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
+    decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
     def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["GlobalVariablesUpdateMessage", int]:
@@ -1851,6 +1905,8 @@ class RobotStateMessage:
     """Why the sub-packages after `packages` could not be framed, if they could not."""
     raw: bytes = b""
     """The bytes that could not be framed."""
+    implied_version: Optional[tuple] = field(default=None, compare=False, repr=False)
+    """The software version its layout sizes showed, when the version was not known."""
 
     def package(self, kind: type[_P]) -> Optional[_P]:
         """The first sub-package of the given class, e.g. `state.package(JointData)`, or None."""
@@ -1859,7 +1915,7 @@ class RobotStateMessage:
                 return pkg
         return None
 
-    def encode(self, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
+    def encode(self, version: Optional[tuple] = None) -> bytes:
         """The whole message, its length and every sub-package length computed."""
         out = bytearray(_HEADER.size)
         for pkg in self.packages:
@@ -1869,33 +1925,76 @@ class RobotStateMessage:
         return bytes(out)
 
 
-_ROBOT_STATE_PACKAGES: dict[int, type] = {
-    0: RobotModeData,
-    1: JointData,
-    2: ToolData,
-    3: MasterboardData,
-    4: CartesianInfo,
-    5: KinematicsInfo,
-    6: ConfigurationData,
-    7: ForceModeData,
-    8: AdditionalInfo,
-    9: CalibrationData,
-    10: SafetyData,
-    11: ToolCommInfo,
-    12: ToolModeInfo,
-    13: SingularityInfo,
+_ROBOT_STATE_FORMS: dict[int, tuple] = {
+    0: (
+        _rt.Form(RobotModeData, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({42}), 42,
+                 (5, 9, 0), "all versions"),
+    ),
+    1: (
+        _rt.Form(JointData, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({246}), 246,
+                 (5, 9, 0), "all versions"),
+    ),
+    2: (
+        _rt.Form(ToolData, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({32}), 32,
+                 (5, 9, 0), "all versions"),
+    ),
+    3: (
+        _rt.Form(MasterboardData, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({70, 86}), 70,
+                 (5, 9, 0), "all versions"),
+    ),
+    4: (
+        _rt.Form(CartesianInfo, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({96}), 96,
+                 (5, 9, 0), "all versions"),
+    ),
+    5: (
+        _rt.Form(KinematicsInfo, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({220}), 220,
+                 (5, 9, 0), "all versions"),
+    ),
+    6: (
+        _rt.Form(ConfigurationData, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({440}), 440,
+                 (5, 9, 0), "all versions"),
+    ),
+    7: (
+        _rt.Form(ForceModeData, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({56}), 56,
+                 (5, 9, 0), "all versions"),
+    ),
+    8: (
+        _rt.Form(AdditionalInfo, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({4}), 4,
+                 (5, 9, 0), "all versions"),
+    ),
+    9: (
+        _rt.Form(CalibrationData, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({48}), 48,
+                 (5, 9, 0), "all versions"),
+    ),
+    10: (
+        _rt.Form(SafetyData, (((0, 0, 0), (1048576, 0, 0)), ), None, 0,
+                 (5, 9, 0), "all versions"),
+    ),
+    11: (
+        _rt.Form(ToolCommInfo, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({21}), 21,
+                 (5, 9, 0), "all versions"),
+    ),
+    12: (
+        _rt.Form(ToolModeInfo, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({3}), 3,
+                 (5, 9, 0), "all versions"),
+    ),
+    13: (
+        _rt.Form(SingularityInfo, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({2}), 2,
+                 (5, 9, 0), "all versions"),
+    ),
 }
 
 
-def encode_package(pkg, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
+def encode_package(pkg, version: Optional[tuple] = None) -> bytes:
     """Bytes of one sub-package, known, unknown or malformed."""
     if isinstance(pkg, (UnknownPackage, MalformedPackage)):
         return _PACKAGE_HEADER.pack(_PACKAGE_HEADER.size + len(pkg.raw), pkg.package_type) + pkg.raw
     return pkg.encode(version)
 
 
-def _decode_robot_state(buf, version: tuple[int, int]) -> RobotStateMessage:
+def _decode_robot_state(buf, version: tuple, known: bool) -> RobotStateMessage:
     end = len(buf)
+    implied = None
     pos = 5
     packages: list = []
     while pos < end:
@@ -1911,19 +2010,24 @@ def _decode_robot_state(buf, version: tuple[int, int]) -> RobotStateMessage:
             return RobotStateMessage(packages, f"package at offset {pos}: length {size} exceeds the {left} bytes left",
                                bytes(buf[pos:]))
         body, stop = pos + 5, pos + size
-        cls = _ROBOT_STATE_PACKAGES.get(code)
-        if cls is None:
+        forms = _ROBOT_STATE_FORMS.get(code)
+        if forms is None:
             packages.append(UnknownPackage(code, bytes(buf[body:stop])))
         else:
+            form, use, by_length = _rt.choose(forms, stop - body, version)
+            if by_length and not known:
+                # The layout sizes tell the version: the rest of the message follows it.
+                version = implied = use
             try:
-                pkg, used = cls._decode(buf, body, stop, version)
+                pkg, used = form.cls._decode(buf, body, stop, use)
                 if used < stop:
                     pkg.extra = bytes(buf[used:stop])
+                pkg.decoded_version = use
                 packages.append(pkg)
             except DecodeError as exc:
-                packages.append(MalformedPackage(cls.TYPE, code, exc.text, bytes(buf[body:stop])))
+                packages.append(MalformedPackage(form.cls.TYPE, code, exc.text, bytes(buf[body:stop])))
         pos = stop
-    return RobotStateMessage(packages)
+    return RobotStateMessage(packages, implied_version=implied)
 
 
 _ROBOT_MESSAGE_HEADER = struct.Struct(">QbB")
@@ -1933,20 +2037,47 @@ _ROBOT_MESSAGE_HEADER_RUN = (
     ("source", 13, 1),
     ("robot_message_type", 14, 1),
 )
-_ROBOT_MESSAGE_SUBTYPES: dict[int, type] = {
-    3: VersionMessage,
-    5: SafetyModeMessage,
-    6: RobotCommMessage,
-    7: KeyMessage,
-    14: ProgramThreadsMessage,
-    2: PopupMessage,
-    9: RequestValueMessage,
-    0: TextMessage,
-    10: RuntimeExceptionMessage,
+_ROBOT_MESSAGE_FORMS: dict[int, tuple] = {
+    3: (
+        _rt.Form(VersionMessage, (((0, 0, 0), (1048576, 0, 0)), ), None, 11,
+                 (5, 9, 0), "all versions"),
+    ),
+    5: (
+        _rt.Form(SafetyModeMessage, (((0, 0, 0), (1048576, 0, 0)), ), frozenset({17}), 17,
+                 (5, 9, 0), "all versions"),
+    ),
+    6: (
+        _rt.Form(RobotCommMessage, (((0, 0, 0), (1048576, 0, 0)), ), None, 20,
+                 (5, 9, 0), "all versions"),
+    ),
+    7: (
+        _rt.Form(KeyMessage, (((0, 0, 0), (1048576, 0, 0)), ), None, 9,
+                 (5, 9, 0), "all versions"),
+    ),
+    14: (
+        _rt.Form(ProgramThreadsMessage, (((0, 0, 0), (1048576, 0, 0)), ), None, 0,
+                 (5, 9, 0), "all versions"),
+    ),
+    2: (
+        _rt.Form(PopupMessage, (((0, 0, 0), (1048576, 0, 0)), ), None, 12,
+                 (5, 9, 0), "all versions"),
+    ),
+    9: (
+        _rt.Form(RequestValueMessage, (((0, 0, 0), (1048576, 0, 0)), ), None, 8,
+                 (5, 9, 0), "all versions"),
+    ),
+    0: (
+        _rt.Form(TextMessage, (((0, 0, 0), (1048576, 0, 0)), ), None, 0,
+                 (5, 9, 0), "all versions"),
+    ),
+    10: (
+        _rt.Form(RuntimeExceptionMessage, (((0, 0, 0), (1048576, 0, 0)), ), None, 8,
+                 (5, 9, 0), "all versions"),
+    ),
 }
 
 
-def _decode_robot_message(buf, version: tuple[int, int]):
+def _decode_robot_message(buf, version: tuple, known: bool):
     end = len(buf)
     if end < 15:
         error = _rt.short_in_run(_ROBOT_MESSAGE_HEADER_RUN, 0, end).text
@@ -1954,21 +2085,26 @@ def _decode_robot_message(buf, version: tuple[int, int]):
     timestamp, source, robot_message_type = _ROBOT_MESSAGE_HEADER.unpack_from(buf, 5)
     source = _e.MESSAGE_SOURCE_BY_VALUE.get(source, source)
     header = (timestamp, source,)
-    cls = _ROBOT_MESSAGE_SUBTYPES.get(robot_message_type)
-    if cls is None:
+    forms = _ROBOT_MESSAGE_FORMS.get(robot_message_type)
+    if forms is None:
         return UnknownSubtype(20, "robot_message_type", robot_message_type, tuple(zip(_ROBOT_MESSAGE_HEADER_NAMES, header)),
                               bytes(buf[15:]))
+    if robot_message_type == 3:
+        # The Version message is read in the form of the version it carries.
+        version = _rt.peek_version(buf, 15, _VERSION_SKIPS, 0) or version
+    form, use, _ = _rt.choose(forms, end - 15, version)
     try:
-        msg, used = cls._decode(buf, 15, end, version, header)
+        msg, used = form.cls._decode(buf, 15, end, use, header)
     except DecodeError as exc:
-        return MalformedSubtype(cls.TYPE, 20, "robot_message_type", robot_message_type,
+        return MalformedSubtype(form.cls.TYPE, 20, "robot_message_type", robot_message_type,
                                 tuple(zip(_ROBOT_MESSAGE_HEADER_NAMES, header)), exc.text, bytes(buf[15:]))
     if used < end:
         msg.extra = bytes(buf[used:end])
+    msg.decoded_version = use
     return msg
 
 
-def _encode_robot_message(msg, version: tuple[int, int]) -> bytes:
+def _encode_robot_message(msg, version: tuple) -> bytes:
     out = bytearray(_HEADER.size)
     kept_raw = isinstance(msg, (UnknownSubtype, MalformedSubtype))
     subtype = msg.subtype if kept_raw else msg.CODE
@@ -1977,7 +2113,7 @@ def _encode_robot_message(msg, version: tuple[int, int]) -> bytes:
         out += msg.raw
     else:
         try:
-            msg._encode(out, version)
+            msg._encode(out, msg.decoded_version or version)
         except struct.error as exc:
             raise EncodeError(f"{msg.TYPE}: {exc}") from None
     _HEADER.pack_into(out, 0, len(out), 20)
@@ -1990,34 +2126,42 @@ _PROGRAM_STATE_HEADER_RUN = (
     ("timestamp", 5, 8),
     ("robot_message_type", 13, 1),
 )
-_PROGRAM_STATE_SUBTYPES: dict[int, type] = {
-    0: GlobalVariablesSetupMessage,
-    1: GlobalVariablesUpdateMessage,
+_PROGRAM_STATE_FORMS: dict[int, tuple] = {
+    0: (
+        _rt.Form(GlobalVariablesSetupMessage, (((0, 0, 0), (1048576, 0, 0)), ), None, 2,
+                 (5, 9, 0), "all versions"),
+    ),
+    1: (
+        _rt.Form(GlobalVariablesUpdateMessage, (((0, 0, 0), (1048576, 0, 0)), ), None, 2,
+                 (5, 9, 0), "all versions"),
+    ),
 }
 
 
-def _decode_program_state(buf, version: tuple[int, int]):
+def _decode_program_state(buf, version: tuple, known: bool):
     end = len(buf)
     if end < 14:
         error = _rt.short_in_run(_PROGRAM_STATE_HEADER_RUN, 0, end).text
         return UnknownMessage(25, bytes(buf[5:]), error)
     timestamp, robot_message_type = _PROGRAM_STATE_HEADER.unpack_from(buf, 5)
     header = (timestamp,)
-    cls = _PROGRAM_STATE_SUBTYPES.get(robot_message_type)
-    if cls is None:
+    forms = _PROGRAM_STATE_FORMS.get(robot_message_type)
+    if forms is None:
         return UnknownSubtype(25, "robot_message_type", robot_message_type, tuple(zip(_PROGRAM_STATE_HEADER_NAMES, header)),
                               bytes(buf[14:]))
+    form, use, _ = _rt.choose(forms, end - 14, version)
     try:
-        msg, used = cls._decode(buf, 14, end, version, header)
+        msg, used = form.cls._decode(buf, 14, end, use, header)
     except DecodeError as exc:
-        return MalformedSubtype(cls.TYPE, 25, "robot_message_type", robot_message_type,
+        return MalformedSubtype(form.cls.TYPE, 25, "robot_message_type", robot_message_type,
                                 tuple(zip(_PROGRAM_STATE_HEADER_NAMES, header)), exc.text, bytes(buf[14:]))
     if used < end:
         msg.extra = bytes(buf[used:end])
+    msg.decoded_version = use
     return msg
 
 
-def _encode_program_state(msg, version: tuple[int, int]) -> bytes:
+def _encode_program_state(msg, version: tuple) -> bytes:
     out = bytearray(_HEADER.size)
     kept_raw = isinstance(msg, (UnknownSubtype, MalformedSubtype))
     subtype = msg.subtype if kept_raw else msg.CODE
@@ -2026,7 +2170,7 @@ def _encode_program_state(msg, version: tuple[int, int]) -> bytes:
         out += msg.raw
     else:
         try:
-            msg._encode(out, version)
+            msg._encode(out, msg.decoded_version or version)
         except struct.error as exc:
             raise EncodeError(f"{msg.TYPE}: {exc}") from None
     _HEADER.pack_into(out, 0, len(out), 25)
@@ -2043,31 +2187,36 @@ _SUBTYPE_ENCODERS = {
     20: _encode_robot_message,
     25: _encode_program_state,
 }
-for _cls in _ROBOT_MESSAGE_SUBTYPES.values():
+for _cls in (VersionMessage, SafetyModeMessage, RobotCommMessage, KeyMessage, ProgramThreadsMessage, PopupMessage, RequestValueMessage, TextMessage, RuntimeExceptionMessage, ):
     _cls.MESSAGE_TYPE = 20
-for _cls in _PROGRAM_STATE_SUBTYPES.values():
+for _cls in (GlobalVariablesSetupMessage, GlobalVariablesUpdateMessage, ):
     _cls.MESSAGE_TYPE = 25
 
 
-def decode_message(buf, version: tuple[int, int] = DEFAULT_VERSION):
+def decode_message(buf, version: Optional[tuple] = None, *, known: Optional[bool] = None):
     """Decode one framed message (its declared length is len(buf)); never raises on bad bytes.
 
-    `version` (major, minor) chooses the global-variable value table; the framer passes the
-    version learned from the stream's Version message.
+    `version` (major, minor, bugfix) is the stream's software version: it chooses the layout of
+    each part and the meaning of version-dependent codes. Without it, DEFAULT_VERSION is
+    assumed and a robot state's layout sizes may overrule it (`implied_version`). `known`
+    says whether `version` is known (announced or hinted) rather than assumed.
     """
+    if known is None:
+        known = version is not None
+    version = version or DEFAULT_VERSION
     decoder = _DECODERS.get(buf[4])
     if decoder is None:
         return UnknownMessage(buf[4], bytes(buf[5:]))
-    return decoder(buf, version)
+    return decoder(buf, version, known)
 
 
-def encode_message(msg, version: tuple[int, int] = DEFAULT_VERSION) -> bytes:
+def encode_message(msg, version: Optional[tuple] = None) -> bytes:
     """The bytes of a decoded or hand-built message; lengths are computed, never taken."""
     if isinstance(msg, UnknownMessage):
         return _HEADER.pack(_HEADER.size + len(msg.raw), msg.message_type) + msg.raw
     if isinstance(msg, (UnknownSubtype, MalformedSubtype)):
-        return _SUBTYPE_ENCODERS[msg.message_type](msg, version)
+        return _SUBTYPE_ENCODERS[msg.message_type](msg, version or DEFAULT_VERSION)
     code = getattr(msg, "MESSAGE_TYPE", None)
     if code is not None:
-        return _SUBTYPE_ENCODERS[code](msg, version)
+        return _SUBTYPE_ENCODERS[code](msg, version or DEFAULT_VERSION)
     return msg.encode(version)

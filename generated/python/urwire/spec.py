@@ -14,8 +14,8 @@ MAX_VALUE_DEPTH = 8
 HEADER_SIZE = 5
 HEADER = struct.Struct(">iB")
 """A message's length and type, the first HEADER_SIZE bytes of every message."""
-DOCUMENTED_VERSIONS = [(5, 9), (5, 10)]
-DEFAULT_VERSION = (5, 9)
+DOCUMENTED_VERSIONS = [(5, 9, 0), (5, 10, 0)]
+DEFAULT_VERSION = (5, 9, 0)
 """Software version assumed when a stream has shown no Version message and no hint was given."""
 
 KNOWN_MESSAGE_TYPES = frozenset([5, 16, 20, 22, 23, 24, 25, 255])
@@ -23,7 +23,7 @@ KNOWN_MESSAGE_TYPES = frozenset([5, 16, 20, 22, 23, 24, 25, 255])
 
 # Value-type tables: (low, high, codec), inclusive (major, minor) bounds.
 _VALUE_CODECS = (
-    (None, (3, 2), ValueCodec({  # up to 3.2
+    (None, (3, 2, 999), ValueCodec({  # up to 3.2
         0: ("NONE", "empty", None, False),
         3: ("STRING", "string", struct.Struct(">h"), False),
         4: ("LIST", "list", struct.Struct(">h"), False),
@@ -42,7 +42,7 @@ _VALUE_CODECS = (
         "INT": 13,
         "FLOAT": 14,
     }, MAX_VALUE_DEPTH)),
-    ((3, 3), (5, 8), ValueCodec({  # 3.3 to 5.8
+    ((3, 3, 0), (5, 8, 999), ValueCodec({  # 3.3 to 5.8
         0: ("NONE", "empty", None, False),
         3: ("CONST_STRING", "string", struct.Struct(">h"), False),
         4: ("VAR_STRING", "string", struct.Struct(">h"), False),
@@ -63,7 +63,7 @@ _VALUE_CODECS = (
         "INT": 14,
         "FLOAT": 15,
     }, MAX_VALUE_DEPTH)),
-    ((5, 9), None, ValueCodec({  # 5.9 and later
+    ((5, 9, 0), None, ValueCodec({  # 5.9 and later
         0: ("NONE", "empty", None, False),
         3: ("CONST_STRING", "string", struct.Struct(">h"), False),
         4: ("VAR_STRING", "string", struct.Struct(">h"), False),

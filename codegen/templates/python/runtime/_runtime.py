@@ -260,6 +260,69 @@ class ValueCodec:
         return GlobalValue(type_name, value, self.codes[type_name])
 
 
+# ---- choosing a layout by software version and by length ------------------------------------
+
+class Form:
+    """One form a type code takes on the wire: the class that reads it, the software versions
+    that send it (inclusive (low, high) pairs), the body sizes it can have (None: open-ended,
+    at least `min_size`), and `rep`, the version a stream is taken to run when this form is
+    recognised by its length alone."""
+
+    __slots__ = ("cls", "ranges", "sizes", "min_size", "rep", "versions")
+
+    def __init__(self, cls: type, ranges: tuple, sizes: Optional[frozenset], min_size: int, rep: tuple,
+                 versions: str):
+        self.cls, self.ranges, self.sizes, self.min_size = cls, ranges, sizes, min_size
+        self.rep, self.versions = rep, versions
+
+    def sent_by(self, version: tuple) -> bool:
+        return any(low <= version <= high for low, high in self.ranges)
+
+    def fits(self, size: int) -> bool:
+        return size in self.sizes if self.sizes is not None else size >= self.min_size
+
+
+_CHOICES: dict = {}
+
+
+def choose(forms: tuple, size: int, version: tuple) -> tuple:
+    """(form, version to decode it with, chosen by length?) for a body of `size` bytes: the
+    version's form when it fits; else the one form that fits; else the version's form, whose
+    short or extra bytes are then reported. Remembered, since sizes and versions repeat."""
+    key = (id(forms), size, version)
+    found = _CHOICES.get(key)
+    if found is None:
+        if len(_CHOICES) > 4096:
+            _CHOICES.clear()
+        found = _CHOICES[key] = _choose(forms, size, version)
+    return found
+
+
+def _choose(forms: tuple, size: int, version: tuple) -> tuple:
+    mine = next((f for f in forms if f.sent_by(version)), None)
+    if mine is not None and mine.fits(size):
+        return mine, version, False
+    fitting = [f for f in forms if f.fits(size)]
+    if len(fitting) == 1:
+        return fitting[0], fitting[0].rep, True
+    return mine or forms[-1], version, False
+
+
+def peek_version(buf, pos: int, skips: tuple, tail: int) -> Optional[tuple]:
+    """(major, minor, 0) of a Version message from its bytes, before its layout is chosen:
+    `skips` are (fixed bytes, length-prefix struct) pairs on the way, `tail` the bytes after."""
+    for fixed, prefix in skips:
+        pos += fixed
+        if pos + prefix.size > len(buf):
+            return None
+        (n,) = prefix.unpack_from(buf, pos)
+        pos += prefix.size + max(n, 0)
+    pos += tail
+    if pos + 2 > len(buf):
+        return None
+    return buf[pos], buf[pos + 1], 0
+
+
 # ---- what is kept raw: unknown and malformed parts, stream faults ---------------------------
 
 @dataclass(slots=True)
