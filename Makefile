@@ -10,7 +10,7 @@ TEST_TARGETS :=
 DEMO_TARGETS :=
 BENCH_TARGETS :=
 
-.PHONY: all generate check-generated setup test test-codegen test-python demo demo-python bench bench-python
+.PHONY: all generate check-generated spec-diff setup test test-codegen test-python demo demo-python bench bench-python
 
 all: build-all
 
@@ -18,13 +18,21 @@ all: build-all
 
 build-all: $(ALL_TARGETS)
 
-## generate: rewrite generated/ from the spec
+## generate: rewrite generated/ and docs/protocol.md from the spec
 generate:
 	$(PYTHON) -m codegen
+	$(PYTHON) -m codegen reference
 
-## check-generated: fail if generated/ is not exactly what the spec gives
+## check-generated: fail if generated/ or docs/protocol.md is not exactly what the spec gives
 check-generated:
 	$(PYTHON) -m codegen --check
+	$(PYTHON) -m codegen reference --check
+
+## spec-diff: what changes between two software versions (make spec-diff FROM=3.15 TO=5.11)
+FROM ?= 3.15
+TO ?= 5.11
+spec-diff:
+	@$(PYTHON) -m codegen diff $(FROM) $(TO)
 
 ## setup: install the system and Python packages that the tests and the demo need
 setup:

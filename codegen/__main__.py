@@ -1,19 +1,32 @@
-"""python -m codegen [--check]: write generated/ from the spec, or check that it is current."""
+"""python -m codegen [--check]: write generated/ from the spec, or check that it is current.
+
+Also: `python -m codegen diff 3.15 5.11` prints what changed between two software versions, and
+`python -m codegen reference [--check]` writes docs/protocol.md, the protocol reference.
+"""
 from __future__ import annotations
 
 import argparse
 import sys
 from pathlib import Path
 
+from . import ir
 from .compile import DEFAULT_SPEC, compile_file
 from .errors import SpecError
+from .plan import plan
+from .reference import diff, protocol_markdown
 from .targets import TARGETS, render_all
 
 ROOT = Path(__file__).resolve().parent.parent
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m codegen", description=__doc__)
+    argv = sys.argv[1:] if argv is None else argv
+    if argv[:1] == ["diff"]:
+        return _diff(argv[1:])
+    if argv[:1] == ["reference"]:
+        return _reference(argv[1:])
+    parser = argparse.ArgumentParser(prog="python -m codegen", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--spec", type=Path, default=DEFAULT_SPEC)
     parser.add_argument("--out", type=Path, default=ROOT / "generated")
     parser.add_argument("--target", action="append", choices=sorted(TARGETS),
@@ -30,6 +43,59 @@ def main(argv: list[str] | None = None) -> int:
         print(exc, file=sys.stderr)
         return 2
     return _check(args.out, outputs) if args.check else _write(args.out, outputs)
+
+
+def _planned(spec: Path):
+    try:
+        return plan(compile_file(spec))
+    except SpecError as exc:
+        print(exc, file=sys.stderr)
+        return None
+
+
+def _diff(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(prog="python -m codegen diff",
+                                     description="What changes in the protocol from one software version to another.")
+    parser.add_argument("old", help="software version, e.g. 3.15")
+    parser.add_argument("new", help="software version, e.g. 5.11 or 5.25.1")
+    parser.add_argument("--spec", type=Path, default=DEFAULT_SPEC)
+    args = parser.parse_args(argv)
+    try:
+        old, new = ir.parse_version(args.old), ir.parse_version(args.new)
+    except ValueError:
+        parser.error("versions are written like 5.9 or 5.25.1")
+    planned = _planned(args.spec)
+    if planned is None:
+        return 2
+    lines = diff(planned, old, new)
+    print(f"{args.old} -> {args.new}: " + (f"{len([x for x in lines if not x.startswith(' ')])} change(s)"
+                                           if lines else "no change"))
+    for line in lines:
+        print(line)
+    return 0
+
+
+def _reference(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(prog="python -m codegen reference", description="Write docs/protocol.md.")
+    parser.add_argument("--spec", type=Path, default=DEFAULT_SPEC)
+    parser.add_argument("--out", type=Path, default=ROOT / "docs" / "protocol.md")
+    parser.add_argument("--check", action="store_true", help="write nothing; exit 1 if the file is out of date")
+    args = parser.parse_args(argv)
+    planned = _planned(args.spec)
+    if planned is None:
+        return 2
+    spec_rel = args.spec.resolve().relative_to(ROOT) if args.spec.resolve().is_relative_to(ROOT) else args.spec
+    text = protocol_markdown(planned, str(spec_rel))
+    current = args.out.read_text(encoding="utf-8") if args.out.exists() else None
+    if args.check:
+        if current != text:
+            print(f"out of date: {args.out.relative_to(ROOT) if args.out.is_relative_to(ROOT) else args.out} "
+                  f"(run `make generate`)", file=sys.stderr)
+            return 1
+        return 0
+    if current != text:
+        args.out.write_text(text, encoding="utf-8")
+    return 0
 
 
 def _is_build_artifact(path: Path) -> bool:

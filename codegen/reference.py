@@ -1,0 +1,152 @@
+"""What the spec says per software version, for people: `python -m codegen diff 3.15 5.11`
+prints what changed between two versions, and `python -m codegen reference` writes the
+protocol reference (docs/protocol.md). Both read the plan's variants (plan.Variant), so they
+show exactly what the decoders do."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+from . import ir, plan
+from .naming import words
+
+
+@dataclass
+class Form:
+    """What one type code looks like for one software version."""
+
+    message: str
+    code: int
+    layout: str
+    fields: list[tuple[str, str]]      # (name, wire type) in wire order
+    sizes: str                         # "47", "76 or 88 (with euromap67_interface_installed)", "at least 13"
+
+
+def _field_type(f: ir.AnyField) -> str:
+    if isinstance(f, ir.ScalarField):
+        return f.scalar.name + (f" ({f.enum.name})" if f.enum else "")
+    if isinstance(f, ir.ArrayField):
+        return f"{f.scalar.name}[{f.count}]"
+    if isinstance(f, ir.GroupField):
+        return f"{f.item.name}[{f.count if f.count is not None else '...'}]"
+    if isinstance(f, ir.StringField):
+        return f"string (length {f.length.name})" if f.length else "string (to the end)"
+    if isinstance(f, ir.SwitchField):
+        return f"by {f.selector.name}"
+    if isinstance(f, ir.ValueListField):
+        return "values (to the end)"
+    return "bytes (to the end)" if isinstance(f, ir.BytesField) else "strings (to the end)"
+
+
+def sizes_text(v: plan.Variant, header: int) -> str:
+    """Whole sizes, header included, as a reader of the document counts them."""
+    if v.sizes is None:
+        return f"at least {v.min_size + header}"
+    flags = sorted({f.present_if for f in v.layout.struct.fields if f.present_if and _present(f, v)})
+    sizes = sorted(s + header for s in v.sizes)
+    if len(sizes) == 1:
+        return str(sizes[0])
+    return f"{sizes[0]}, or {' / '.join(map(str, sizes[1:]))} with {', '.join(flags)}"
+
+
+def _present(f: ir.AnyField, v: plan.Variant) -> bool:
+    lo = v.ranges[0][0]
+    return f.versions.contains(plan._from_number(lo))
+
+
+def _header_size(p: plan.ProtocolPlan, mp: plan.MessagePlan) -> int:
+    return p.package_header_size if not mp.is_dispatch else mp.body_offset
+
+
+def forms_at(p: plan.ProtocolPlan, version: ir.Version) -> dict[tuple[str, int], Form]:
+    """Every type code's form for one software version."""
+    number = ir.version_number(version)
+    out = {}
+    for mp in p.messages:
+        for code, variants in mp.variants.items():
+            for v in variants:
+                if any(lo <= number <= hi for lo, hi in v.ranges):
+                    fields = [(f.name, _field_type(f)) for f in v.layout.struct.fields if _present(f, v)]
+                    out[(mp.message.name, code)] = Form(mp.message.name, code, v.layout.name, fields,
+                                                        sizes_text(v, _header_size(p, mp)))
+    return out
+
+
+def _enum_names(e: ir.Enum, version: ir.Version) -> dict[int, str]:
+    return {m.value: m.name for m in e.table_for(version).values}
+
+
+def diff(p: plan.ProtocolPlan, a: ir.Version, b: ir.Version) -> list[str]:
+    """What changes from software `a` to software `b`: layouts, fields, sizes, enum members."""
+    old, new = forms_at(p, a), forms_at(p, b)
+    lines = []
+    for key in sorted(set(old) | set(new), key=lambda k: (k[0], k[1])):
+        x, y = old.get(key), new.get(key)
+        where = f"{key[0]} {key[1]}"
+        if x is None:
+            lines.append(f"+ {where}: {y.layout} ({y.sizes} bytes)")
+            continue
+        if y is None:
+            lines.append(f"- {where}: {x.layout} ({x.sizes} bytes)")
+            continue
+        if x.layout != y.layout:
+            lines.append(f"~ {where}: {x.layout} ({x.sizes} bytes) becomes {y.layout} ({y.sizes} bytes)")
+            continue
+        changes = []
+        if x.sizes != y.sizes:
+            changes.append(f"  size {x.sizes} -> {y.sizes}")
+        xf, yf = dict(x.fields), dict(y.fields)
+        changes += [f"  - {n}: {t}" for n, t in x.fields if n not in yf]
+        changes += [f"  + {n}: {t}" for n, t in y.fields if n not in xf]
+        changes += [f"  ~ {n}: {xf[n]} -> {t}" for n, t in y.fields if n in xf and xf[n] != t]
+        if changes:
+            lines.append(f"~ {where}: {y.layout}")
+            lines += changes
+    for e in p.protocol.enums.values():
+        xa, xb = _enum_names(e, a), _enum_names(e, b)
+        if xa == xb:
+            continue
+        lines.append(f"~ enum {e.name}")
+        for code in sorted(set(xa) | set(xb)):
+            if xa.get(code) != xb.get(code):
+                lines.append(f"  {code}: {xa.get(code, '(none)')} -> {xb.get(code, '(none)')}")
+    return lines
+
+
+def protocol_markdown(p: plan.ProtocolPlan, spec_path: str) -> str:
+    """The protocol reference: every message and sub-package, its forms by software version with
+    their sizes and fields, and every enum table."""
+    proto = p.protocol
+    out = [f"# {proto.title}: protocol reference", "",
+           f"Written by `make generate` from `{spec_path}`; do not edit. Sizes count the whole package "
+           "or message, header included. Each type code lists the forms it takes by software version: "
+           "the decoders use the stream's version's form when it fits the declared length, else the one "
+           "form whose size matches it (see docs/adding-a-firmware.md).", ""]
+    for mp in p.messages:
+        m = mp.message
+        out += [f"## {words(m.name)} (message type {m.code.value})", "", _one_line(m.doc, m.field_note), ""]
+        header = _header_size(p, mp)
+        for code, variants in mp.variants.items():
+            names = sorted({v.layout.name for v in variants}, key=[v.layout.name for v in variants].index)
+            out += [f"### {code}: {' / '.join(names)}", ""]
+            for lay in {id(v.layout): v.layout for v in variants}.values():
+                out += [_one_line(lay.doc, lay.field_note), ""]
+            out += ["| software | size | fields |", "|---|---|---|"]
+            for v in variants:
+                fields = ", ".join(f"`{f.name}` {_field_type(f)}" for f in v.layout.struct.fields if _present(f, v))
+                out.append(f"| {v.describe()} | {sizes_text(v, header)} | {fields} |")
+            out.append("")
+    out += ["## Enums", ""]
+    for e in proto.enums.values():
+        out += [f"### {e.name} ({e.scalar.name})", "", _one_line(e.doc, e.field_note), ""]
+        for t in e.tables:
+            if e.versioned:
+                out += [f"Software {t.versions.describe()}:", ""]
+            out += ["| code | name | note |", "|---|---|---|"]
+            out += [f"| {v.value} | {v.name} | {_one_line(v.doc)} |" for v in t.values]
+            out.append("")
+    return "\n".join(out).rstrip() + "\n"
+
+
+def _one_line(*texts: Optional[str]) -> str:
+    return " ".join(t.strip().replace("\n", " ").replace("|", "\\|") for t in texts if t and t.strip())
