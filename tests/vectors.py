@@ -82,10 +82,23 @@ def golden_cases() -> list[Case]:
         doc = _load_yaml(path)
         if "hex" not in doc:
             raise VectorError(f"{path}: no 'hex'")
-        cases.append(Case(name=path.stem, path=path, data=parse_hex(doc["hex"], path),
-                          version=_version(doc, path), expect=_expect(doc, path),
-                          partial=False, tolerance=0.0))
+        case = Case(name=path.stem, path=path, data=parse_hex(doc["hex"], path),
+                    version=_version(doc, path), expect=_expect(doc, path), partial=False, tolerance=0.0)
+        cases.append(case)
+        if doc.get("also_without_version_message"):
+            cases.append(_without_version_message(case))
     return cases
+
+
+def _without_version_message(case: Case) -> Case:
+    """The same stream with its first message, a Version message, cut off: what a capture that
+    starts mid-stream holds. The layout sizes must then tell the version, and the canonical JSON
+    of what follows (integers, not names) must not change."""
+    if not case.expect or case.expect[0].get("type") != "version" or case.version is not None:
+        raise VectorError(f"{case.path}: also_without_version_message needs a Version message first and no hint")
+    length = int.from_bytes(case.data[:4], "big")
+    return Case(name=f"{case.name}~no_version_message", path=case.path, data=case.data[length:], version=None,
+                expect=case.expect[1:], partial=False, tolerance=0.0)
 
 
 def conformance_cases() -> list[Case]:
