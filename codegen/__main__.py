@@ -12,6 +12,7 @@ from pathlib import Path
 from . import ir
 from .compile import DEFAULT_SPEC, compile_file
 from .errors import SpecError
+from .pin import pin
 from .plan import plan
 from .reference import diff, protocol_markdown
 from .targets import TARGETS, render_all
@@ -33,10 +34,17 @@ def main(argv: list[str] | None = None) -> int:
                         help="only these targets (default: all)")
     parser.add_argument("--check", action="store_true",
                         help="write nothing; exit 1 if generated/ differs from what would be written")
+    parser.add_argument("--pin", metavar="VERSION",
+                        help="only what this software version sends, with no version branches (needs --out "
+                             "outside generated/), e.g. --pin 5.11 --target c --out build/pinned")
     args = parser.parse_args(argv)
+    if args.pin and args.out.resolve() == (ROOT / "generated").resolve():
+        parser.error("--pin writes a build for one version: give --out a folder outside generated/")
     spec_rel = args.spec.resolve().relative_to(ROOT) if args.spec.resolve().is_relative_to(ROOT) else args.spec
     try:
         protocol = compile_file(args.spec)
+        if args.pin:
+            protocol = pin(protocol, ir.parse_version(args.pin))
         outputs = render_all(protocol, str(spec_rel), args.spec.read_text(encoding="utf-8"), args.target)
     except SpecError as exc:
         # A target that cannot render a node reports it like a spec error: path, line, what.

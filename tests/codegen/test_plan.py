@@ -89,3 +89,23 @@ def test_version_gated_fields_group_by_their_range():
     assert [s.kind for s in steps] == ["run", "cond", "cond"]
     assert [f.name for f in steps[1].fields] == ["a", "b"] and steps[1].condition.low == (5, 12, 0)
     assert isinstance(steps[2], CondGroup) and steps[2].condition.versions == ir.VersionRange((5, 13, 0), None)
+
+
+def test_a_pinned_protocol_has_no_version_branches():
+    from codegen.pin import pin
+
+    data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
+    fields = data["messages"]["robot_state"]["packages"]["additional_info"]["fields"]
+    fields += [{"name": "a", "type": "uint8", "versions": {"from": "5.12"}},
+               {"name": "b", "type": "uint8", "versions": {"until": "5.11"}}]
+    protocol = compile_text(yaml.safe_dump(data, sort_keys=False))
+    for version, kept, gone in (((5, 11, 0), "b", "a"), ((5, 12, 0), "a", "b")):
+        pinned = pin(protocol, version)
+        planned = plan(pinned)
+        steps = layout(planned, "robot_state", "additional_info").steps
+        assert [s.kind for s in steps] == ["run"] and kept in [f.name for f in steps[0].fields]
+        assert gone not in [f.name for f in steps[0].fields]
+        assert all(len(e.tables) == 1 for e in pinned.enums.values())
+        assert not any(lay.struct.needs_version and lay.name != "global_variables_update"
+                       for lay in pinned.all_layouts())
+    assert len(protocol.enums["value_type"].tables) == 3   # the full protocol is left alone

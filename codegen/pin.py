@@ -1,0 +1,50 @@
+"""An optional pass between resolve and plan: the protocol as one software version sends it.
+
+`pin(protocol, (5, 11, 0))` keeps only the layouts, fields, enum tables and value-type table of
+that version, and drops their version ranges, so that the targets render no version branches at
+all. Small firmware that talks to one controller generation builds this
+(`make pinned-c PIN=5.11`).
+"""
+from __future__ import annotations
+
+import copy
+import dataclasses
+
+from . import ir
+
+
+def pin(protocol: ir.Protocol, version: ir.Version) -> ir.Protocol:
+    p = copy.deepcopy(protocol)
+    for e in p.enums.values():
+        e.tables = [_table_for(e, version)]
+    for m in p.messages:
+        if isinstance(m, ir.PackageListMessage):
+            m.packages = [_layout(lay, version) for lay in m.packages if lay.versions.contains(version)]
+        else:
+            m.header = _struct(m.header, version)
+            m.subtypes = [_layout(lay, version) for lay in m.subtypes if lay.versions.contains(version)]
+    p.documented_versions = [version]
+    p.default_version = version
+    return p
+
+
+def _table_for(e: ir.Enum, version: ir.Version) -> ir.EnumTable:
+    table = e.table_for(version)
+    return ir.EnumTable(ir.ALL_VERSIONS, [dataclasses.replace(v, versions=ir.ALL_VERSIONS) for v in table.values])
+
+
+def _layout(lay: ir.Layout, version: ir.Version) -> ir.Layout:
+    return dataclasses.replace(lay, struct=_struct(lay.struct, version), versions=ir.ALL_VERSIONS)
+
+
+def _struct(struct: ir.Struct, version: ir.Version) -> ir.Struct:
+    fields = []
+    for f in struct.fields:
+        if not f.versions.contains(version):
+            continue
+        g = copy.copy(f)
+        g.versions = ir.ALL_VERSIONS
+        if isinstance(g, ir.GroupField):
+            g.item = _struct(g.item, version)
+        fields.append(g)
+    return ir.Struct(struct.name, struct.doc, fields)
