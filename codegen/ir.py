@@ -74,12 +74,14 @@ class VersionRange:
         return self.low is None and self.high is None
 
     def describe(self) -> str:
+        # An upper bound keeps its bugfix 0 ("up to 5.25.0", before 5.25.1); "up to 5.8" is any 5.8.x.
+        high = self.high and (version_text(self.high) if self.high[2] else "%d.%d.0" % self.high[:2])
         if self.low and self.high:
-            return f"{version_text(self.low)} to {version_text(self.high)}"
+            return f"{version_text(self.low)} to {high}"
         if self.low:
             return f"{version_text(self.low)} and later"
         if self.high:
-            return f"up to {version_text(self.high)}"
+            return f"up to {high}"
         return "all versions"
 
 
@@ -476,6 +478,7 @@ class Protocol:
     package_type: HeaderField
     messages: list[Message]
     source: str = "<spec>"           # the spec file, for problems found after resolving
+    generations: list[tuple[str, VersionRange]] = dc_field(default_factory=list)  # released series
 
     @property
     def message_type_enum(self) -> Enum:

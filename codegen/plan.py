@@ -269,16 +269,47 @@ class Variant:
     sizes: Optional[frozenset[int]]
     min_size: int
     rep: ir.Version
+    releases: list[tuple[int, int]] = field(default_factory=list)   # the released series (numbers)
 
     @property
     def layout(self) -> ir.Layout:
         return self.choice.layout
 
     def describe(self) -> str:
-        return " or ".join(_range_text(lo, hi) for lo, hi in self.ranges)
+        """"3.5 and later", "3.2 to 3.9 or 5.0 to 5.3": ranges that only unreleased versions
+        separate read as one."""
+        shown: list[tuple[int, int]] = []
+        for lo, hi in self.ranges:
+            if shown and not any(a < lo and b > shown[-1][1] for a, b in self.releases):
+                shown[-1] = (shown[-1][0], hi)
+            else:
+                shown.append((lo, hi))
+        first = self.releases[0][0] if self.releases else 0
+        return " or ".join(_range_text(lo, hi, first) for lo, hi in shown)
 
     def fits(self, size: int) -> bool:
         return size in self.sizes if self.sizes is not None else size >= self.min_size
+
+    def offsets_by_size(self) -> dict[int, dict[str, int]]:
+        """For each body size this variant can have (each choice of its flag-conditioned parts),
+        where its fields start: what a reader that does not walk the layout can find."""
+        present = [f for f in self.layout.struct.fields if f.versions.contains(self.rep)]
+        flags = list(dict.fromkeys(f.present_if for f in present if f.present_if))
+        out: dict[int, dict[str, int]] = {}
+        for mask in range(1 << len(flags)):
+            on = {flag for k, flag in enumerate(flags) if mask >> k & 1}
+            at: Optional[int] = 0
+            offsets: dict[str, int] = {}
+            for f in present:
+                if f.present_if and f.present_if not in on:
+                    continue
+                if at is None:
+                    break
+                offsets.setdefault(f.name, at)
+                at = at + f.fixed_size if f.fixed_size is not None else None
+            if at is not None:
+                out.setdefault(at, offsets)
+        return out
 
 
 @dataclass
@@ -408,17 +439,23 @@ def _from_number(n: int) -> ir.Version:
     return n // 1_000_000, n // 1000 % 1000, n % 1000
 
 
-def _range_text(lo: int, hi: int) -> str:
-    return ir.VersionRange(_from_number(lo) if lo else None, _from_number(hi) if hi < _TOP else None).describe()
+def _range_text(lo: int, hi: int, first: int = 0) -> str:
+    """A range as a reader says it; one that starts with the first release is "up to"."""
+    if lo == hi - hi % 1000 and hi % 1000 == ir.BUGFIX_ANY:
+        return ir.version_text(_from_number(lo))              # one minor release: "1.8"
+    low = _from_number(lo) if lo > first else None
+    return ir.VersionRange(low, _from_number(hi) if hi < _TOP else None).describe()
 
 
 def _fields_by_version(struct: ir.Struct) -> list[ir.AnyField]:
     return [f for f in struct.fields if not f.versions.unbounded]
 
 
-def _variants(options: list[LayoutChoice], default: ir.Version) -> list[Variant]:
+def _variants(options: list[LayoutChoice], default: ir.Version,
+              releases: list[tuple[int, int]]) -> list[Variant]:
     """Cut the version axis wherever a layout or a field of one starts or ends; each piece
-    sends one layout with one set of fields. Pieces that send the same are one variant."""
+    sends one layout with one set of fields. Pieces that send the same are one variant. Only
+    released versions count (`releases`): a piece between two series is no one's."""
     cuts = {0, _TOP + 1}
     for c in options:
         for r in [c.layout.versions] + [f.versions for f in _fields_by_version(c.layout.struct)]:
@@ -431,19 +468,37 @@ def _variants(options: list[LayoutChoice], default: ir.Version) -> list[Variant]
         for c in options:
             if not c.layout.versions.contains(sample):
                 continue
-            present = tuple(id(f) for f in c.layout.struct.fields if f.versions.contains(sample))
+            released = [(max(lo, a), min(nxt - 1, b)) for a, b in releases if max(lo, a) <= min(nxt - 1, b)]
+            if not released:
+                continue
+            present = tuple(_signature(f) for f in c.layout.struct.fields if f.versions.contains(sample))
             key = (id(c), present)
             if key in found:
-                found[key].ranges.append((lo, nxt - 1))
+                found[key].ranges += released
             else:
                 fields = [f for f in c.layout.struct.fields if f.versions.contains(sample)]
                 sizes, least = _sizes(fields)
-                found[key] = Variant(c, [(lo, nxt - 1)], sizes, least, default)
+                found[key] = Variant(c, released, sizes, least, default)
     variants = list(found.values())
     for v in variants:
         _merge_adjacent(v.ranges)
         v.rep = _representative(v.ranges, default)
+        v.releases = releases
     return variants
+
+
+def _signature(f: ir.AnyField) -> tuple:
+    """What a field puts on the wire: two entries alike in this read the same bytes alike."""
+    scalar = getattr(f, "scalar", None)
+    return (f.name, type(f).__name__, scalar.name if scalar else None, f.present_if, getattr(f, "count", None),
+            id(getattr(f, "enum", None)))
+
+
+def _releases(p: ir.Protocol) -> list[tuple[int, int]]:
+    """The released version series as number ranges; the whole axis when the spec names none."""
+    ranges = [_bounds(r) for _, r in p.generations] or [(0, _TOP)]
+    _merge_adjacent(ranges)
+    return ranges
 
 
 def _sizes(fields: list[ir.AnyField]) -> tuple[Optional[frozenset[int]], int]:
@@ -484,6 +539,7 @@ def plan(p: ir.Protocol) -> ProtocolPlan:
     """Plan every layout of the protocol; problems name the spec's path and line."""
     problems: list[Problem] = []
     planner = _Planner(problems)
+    releases = _releases(p)
     messages = []
     for m in p.messages:
         choices: dict[int, list[LayoutChoice]] = {}
@@ -500,7 +556,7 @@ def plan(p: ir.Protocol) -> ProtocolPlan:
             layouts = m.subtypes
         for lay in layouts:
             choices.setdefault(lay.code.value, []).append(LayoutChoice(lay, planner.layout(lay.struct)))
-        variants = {code: _variants(options, p.default_version) for code, options in choices.items()}
+        variants = {code: _variants(options, p.default_version, releases) for code, options in choices.items()}
         messages.append(MessagePlan(m, header, body, subtype_offset, choices, variants))
     version = _version_source(p, messages, problems)
     if problems:

@@ -114,8 +114,8 @@ class _Resolver:
                                         f"that do not overlap)")
             return
         if not (isinstance(f, ir.ScalarField) and isinstance(earlier, ir.ScalarField)
-                and _kind(f.scalar) == _kind(earlier.scalar) and f.enum is earlier.enum and f.bits == earlier.bits
-                and f.present_if == earlier.present_if):
+                and _kind(f.scalar) == _kind(earlier.scalar) and f.enum is earlier.enum
+                and _prefix(f.bits, earlier.bits) and f.present_if == earlier.present_if):
             self.fail(where + ["name"], f"'{f.name}' stands twice with another kind of value: give the older "
                                         f"form a name of its own")
 
@@ -297,7 +297,9 @@ class _Resolver:
             documented_versions=documented, default_version=ir.parse_version(proto["default_version"]),
             enums=self.enums, value_layouts=value_layouts,
             message_length=mh["length"], message_type=mh["type"],
-            package_length=ph["length"], package_type=ph["type"], messages=messages, source=self.spec.source)
+            package_length=ph["length"], package_type=ph["type"], messages=messages, source=self.spec.source,
+            generations=[(g["name"], self.versions(g["versions"], ["protocol", "generations", i, "versions"]))
+                         for i, g in enumerate(proto.get("generations", []))])
         if self.problems:
             raise SpecError(self.spec.source, self.problems)
         return protocol
@@ -336,6 +338,11 @@ def _previous_version(v: ir.Version) -> ir.Version:
     if bugfix:
         return major, minor, bugfix - 1
     return (major, minor - 1, ir.BUGFIX_ANY) if minor else (major - 1, 999, ir.BUGFIX_ANY)
+
+
+def _prefix(a: list, b: list) -> bool:
+    """Bit names of two entries of one name: a narrower one names the first bits alike."""
+    return a[:len(b)] == b[:len(a)]
 
 
 def _kind(s: ir.Scalar) -> str:

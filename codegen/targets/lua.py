@@ -253,19 +253,26 @@ class _Builder:
                                                                   s.field.name, set(), None) for s in slots]))
         return var
 
-    def package_info(self, choice: plan.LayoutChoice) -> list[dict]:
-        """The spec's summary of a robot-state package: enum fields read at fixed offsets, so
-        the Info column costs no field work."""
-        lay, enums = choice.layout, []
-        for _, name in lay.summary:
-            f, offset = lay.struct.field(name), choice.plan.field_offset(name)
-            if not isinstance(f, ir.ScalarField) or f.enum is None or offset is None:
-                self.problems.append(lay.where.problem(
-                    f"lua target: the summary may only name enum fields at fixed offsets, not '{name}'"))
-                continue
-            enums.append(dict(offset=offset, size=f.scalar.size, signed=f.scalar.signed,
-                              vs=self.enum_var[f.enum.name], name=f.name))
-        return enums
+    def package_info(self, variants: list[plan.Variant]) -> list[dict]:
+        """The spec's summary of a robot-state package: per body size (each form of the code),
+        its enum fields and where they start, so the Info column reads them without a walk."""
+        out = []
+        for v in variants:
+            for size, offsets in v.offsets_by_size().items():
+                enums = []
+                for _, name in v.layout.summary:
+                    f = next((g for g in v.layout.struct.named(name) if g.versions.contains(v.rep)), None)
+                    if f is None or name not in offsets:
+                        continue    # not in this form: the Info column leaves it out
+                    if not isinstance(f, ir.ScalarField) or f.enum is None:
+                        self.problems.append(v.layout.where.problem(
+                            f"lua target: a package summary may only name enum fields, not '{name}'"))
+                        continue
+                    enums.append(dict(offset=offsets[name], size=f.scalar.size, signed=f.scalar.signed,
+                                      vs=self.enum_var[f.enum.name], name=f.name))
+                if enums:
+                    out.append(dict(size=size, enums=enums))
+        return out
 
     @staticmethod
     def message_show(layout: ir.Layout) -> dict:
@@ -280,7 +287,7 @@ class _Builder:
             label = words(pk.name)
             pkgs.append(dict(code=pk.code.value, name=pk.name, label=label,
                              layout=self.layout(pk.name, c.plan, one_line(pk.doc, pk.field_note)),
-                             info=self.package_info(c),
+                             info=self.package_info([v for v in mp.variants[pk.code.value] if v.layout is pk]),
                              item=self.add_item(pk.name, label, one_line(pk.doc), pk.where)))
         return Step("packages", dict(code=m.code.value, label=words(m.name), doc=one_line(m.doc, m.field_note),
                                      var=f"{m.name.upper()}_PACKAGES", packages=pkgs,

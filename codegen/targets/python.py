@@ -154,10 +154,12 @@ def index(base: str, k: int) -> str:
 class _ClassBuilder:
     """Maps the plan of one layout to Python steps (and, first, of its group items)."""
 
-    def __init__(self, target: "_Target", owner: str):
+    def __init__(self, target: "_Target", owner: str, struct: ir.Struct):
         self.target = target
         self.owner = owner
         self.structs: list[StructConst] = []
+        # Names with several entries (in disjoint version ranges): one attribute for them all.
+        self.repeated = [f.name for f in struct.public_fields if len(struct.named(f.name)) > 1]
 
     # ---- fixed runs: what each member of a run is ----
 
@@ -198,7 +200,9 @@ class _ClassBuilder:
                 d, e = self.run_step(step)
             elif isinstance(step, plan.CondGroup):
                 inner_d, inner_e = self.steps(step.steps)
-                d = Step("cond", dict(condition=step.condition, steps=inner_d, names=[f.name for f in step.fields]))
+                # A name with entries in other conditions is set to None up front instead.
+                absent = [f.name for f in step.fields if f.name not in self.repeated]
+                d = Step("cond", dict(condition=step.condition, steps=inner_d, names=absent))
                 e = Step("cond", dict(condition=step.condition, steps=inner_e))
             else:
                 d, e = self.var_step(step)
@@ -279,13 +283,15 @@ class _Target:
                 self.item_classes[id(f)] = self.build_class(
                     item.layout, py_item_class(f), "item", f.item.name, None,
                     one_line(f.doc) or f"One entry of {f.name}.")
-        builder = _ClassBuilder(self, json_type)
+        builder = _ClassBuilder(self, json_type, struct)
         decode, encode = builder.steps(layout.steps)
+        if builder.repeated:
+            decode.insert(0, Step("absent", dict(names=builder.repeated)))
         items = {f.name: self.item_classes[id(f)].name for f in struct.fields if isinstance(f, ir.GroupField)}
         header_fields = [slot.field for slot in header or [] if not slot.is_subtype]
         attrs = [Attr(f.name, annotation(f, {}), one_line(f.doc, f.field_note), json_kind(f)) for f in header_fields]
         attrs += [Attr(f.name, annotation(f, items), one_line(f.doc, f.field_note), json_kind(f), f.conditional)
-                  for f in struct.fields]
+                  for f in struct.public_fields]
         cls = PyClass(name, doc, role, json_type, code, attrs, [f.name for f in header_fields], decode, encode,
                       builder.structs, sets_version=sets_version)
         if role == "item" and self.is_fixed_item(layout):

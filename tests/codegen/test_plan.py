@@ -11,6 +11,14 @@ from codegen.plan import CondGroup, FixedRun, VarField, plan
 
 @pytest.fixture(scope="module")
 def planned():
+    """The plan of what software 5.10 sends (codegen.pin): one form per code, no version gates."""
+    from codegen.pin import pin
+
+    return plan(pin(compile_file(), (5, 10, 0)))
+
+
+@pytest.fixture(scope="module")
+def full():
     return plan(compile_file())
 
 
@@ -80,12 +88,12 @@ def test_where_the_version_is_read(planned):
 
 def test_version_gated_fields_group_by_their_range():
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
-    fields = data["messages"]["robot_state"]["packages"]["additional_info"]["fields"]
+    fields = data["messages"]["robot_state"]["packages"]["tool_mode_info"]["fields"]
     fields += [{"name": "a", "type": "uint8", "versions": {"from": "5.12"}},
                {"name": "b", "type": "uint8", "versions": {"from": "5.12"}},
                {"name": "c", "type": "uint8", "versions": {"from": "5.13"}}]
     planned = plan(compile_text(yaml.safe_dump(data, sort_keys=False)))
-    steps = layout(planned, "robot_state", "additional_info").steps
+    steps = layout(planned, "robot_state", "tool_mode_info").steps
     assert [s.kind for s in steps] == ["run", "cond", "cond"]
     assert [f.name for f in steps[1].fields] == ["a", "b"] and steps[1].condition.low == (5, 12, 0)
     assert isinstance(steps[2], CondGroup) and steps[2].condition.versions == ir.VersionRange((5, 13, 0), None)
@@ -95,17 +103,42 @@ def test_a_pinned_protocol_has_no_version_branches():
     from codegen.pin import pin
 
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
-    fields = data["messages"]["robot_state"]["packages"]["additional_info"]["fields"]
+    fields = data["messages"]["robot_state"]["packages"]["tool_mode_info"]["fields"]
     fields += [{"name": "a", "type": "uint8", "versions": {"from": "5.12"}},
                {"name": "b", "type": "uint8", "versions": {"until": "5.11"}}]
     protocol = compile_text(yaml.safe_dump(data, sort_keys=False))
     for version, kept, gone in (((5, 11, 0), "b", "a"), ((5, 12, 0), "a", "b")):
         pinned = pin(protocol, version)
         planned = plan(pinned)
-        steps = layout(planned, "robot_state", "additional_info").steps
+        steps = layout(planned, "robot_state", "tool_mode_info").steps
         assert [s.kind for s in steps] == ["run"] and kept in [f.name for f in steps[0].fields]
         assert gone not in [f.name for f in steps[0].fields]
         assert all(len(e.tables) == 1 for e in pinned.enums.values())
         assert not any(lay.struct.needs_version and lay.name != "global_variables_update"
                        for lay in pinned.all_layouts())
     assert len(protocol.enums["value_type"].tables) == 3   # the full protocol is left alone
+
+
+def test_every_form_of_a_code_with_its_versions_sizes_and_representative(full):
+    state = full.message("robot_state")
+
+    def forms(code):
+        return [(v.layout.name, v.describe(), sorted(v.sizes), v.rep) for v in state.variants[code]]
+
+    assert [(d, sizes) for _, d, sizes, _ in forms(0)] == [
+        ("up to 1.8", [24]), ("3.0 to 3.1", [33]), ("3.2 to 3.4", [41]), ("3.5 and later", [42])]
+    assert forms(0)[0][3] == (1, 8, 999) and forms(0)[3][3] == (5, 9, 0)
+    masterboard = {d: sizes for _, d, sizes, _ in forms(3)}
+    assert masterboard["3.0 to 3.1"] == [67, 83] and masterboard["3.10 to 3.15 or 5.4 and later"] == [70, 86]
+    assert masterboard["up to 1.5"] == [56] and masterboard["3.2 to 3.9 or 5.0 to 5.3"] == [69, 85]
+    assert [(name, d) for name, d, _, _ in forms(5)] == [("laser_pointer", "up to 1.7"),
+                                                        ("kinematics_info", "1.8 and later")]
+    assert [(d, sizes, rep) for _, d, sizes, rep in forms(6)] == [
+        ("up to 1.8", [464], (1, 8, 999)), ("3.0 to 5.25.0", [440], (5, 9, 0)), ("5.25.1 and later", [444], (5, 25, 1))]
+
+
+def test_offsets_by_size_follow_each_form_and_its_flags(full):
+    (v,) = [v for v in full.message("robot_state").variants[3] if v.describe() == "3.0 to 3.1"]
+    offsets = v.offsets_by_size()
+    assert offsets[67]["safety_mode"] == offsets[83]["safety_mode"] == 60
+    assert offsets[67]["reserved_0"] == 63 and offsets[83]["reserved_0"] == 79

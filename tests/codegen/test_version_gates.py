@@ -28,12 +28,12 @@ def render_variant(tmp_path, edit):
 
 
 def add_gated_field(data):
-    fields = data["messages"]["robot_state"]["packages"]["additional_info"]["fields"]
+    fields = data["messages"]["robot_state"]["packages"]["tool_mode_info"]["fields"]
     fields.append({"name": "gated_flag", "type": "uint16", "versions": {"from": "5.12"}})
 
 
 def robot_state(body: bytes) -> bytes:
-    pkg = struct.pack(">iB", 5 + len(body), 8) + body
+    pkg = struct.pack(">iB", 5 + len(body), 12) + body
     return struct.pack(">iB", 5 + len(pkg), 16) + pkg
 
 
@@ -47,13 +47,13 @@ def test_a_gated_field_follows_the_version_and_else_the_length(tmp_path):
     sys.path.insert(0, str(root))
     try:
         variant = importlib.import_module("urwire")
-        long = robot_state(bytes([1, 0, 1, 0]) + struct.pack(">H", 0xBEEF))
-        short = robot_state(bytes([1, 0, 1, 0]))
-        neither = robot_state(bytes([1, 0, 1, 0, 7]))
+        long = robot_state(bytes([1, 0, 1]) + struct.pack(">H", 0xBEEF))
+        short = robot_state(bytes([1, 0, 1]))
+        neither = robot_state(bytes([1, 0, 1, 7]))
 
         (new,) = variant.decode_stream(long, "5.12")
         assert new.packages[0].gated_flag == 0xBEEF and new.packages[0].extra == b""
-        (by_length,) = variant.decode_stream(long, "5.9")        # 5.9's 4 bytes do not fit: 5.12's do
+        (by_length,) = variant.decode_stream(long, "5.9")        # 5.9's 3 bytes do not fit: 5.12's do
         assert by_length.packages[0].gated_flag == 0xBEEF and by_length.packages[0].decoded_version == (5, 12, 0)
         (old,) = variant.decode_stream(short, "5.9")
         assert old.packages[0].gated_flag is None and "gated_flag" not in variant.to_dict(old)["packages"][0]
@@ -72,8 +72,14 @@ def test_a_gated_field_follows_the_version_and_else_the_length(tmp_path):
 
 def test_enum_members_carry_their_version_range():
     protocol = compile_text(DEFAULT_SPEC.read_text(encoding="utf-8"))
-    member = protocol.enums["joint_mode"].member("READY_FOR_POWER_OFF")
-    assert member.versions.describe() == "5.1 and later"
+    laser, kinematics = (protocol.enums["package_type"].member(n) for n in ("LASER_POINTER", "KINEMATICS_INFO"))
+    assert laser.value == kinematics.value == 5
+    assert laser.versions.describe() == "up to 1.7" and kinematics.versions.describe() == "1.8 and later"
+    by_table = [{v.name for v in t.values} for t in protocol.enums["package_type"].tables]
+    assert [t.versions.describe() for t in protocol.enums["package_type"].tables] == ["up to 1.7", "1.8 and later"]
+    assert "LASER_POINTER" in by_table[0] and "KINEMATICS_INFO" in by_table[1]
+    modes = protocol.enums["robot_mode"]
+    assert modes.table_for((1, 8, 3)).values[0].name != modes.table_for((3, 0, 0)).values[0].name
     tables = protocol.enums["value_type"].tables
     assert [t.versions.describe() for t in tables] == ["up to 3.2", "3.3 to 5.8", "5.9 and later"]
     assert protocol.enums["value_type"].table_for((5, 10, 0)) is tables[2]

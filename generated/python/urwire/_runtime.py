@@ -288,8 +288,9 @@ _CHOICES: dict = {}
 
 def choose(forms: tuple, size: int, version: tuple) -> tuple:
     """(form, version to decode it with, chosen by length?) for a body of `size` bytes: the
-    version's form when it fits; else the one form that fits; else the version's form, whose
-    short or extra bytes are then reported. Remembered, since sizes and versions repeat."""
+    version's form when it fits; else the one form whose size is exactly `size`; else the
+    version's form, whose short or extra bytes are then reported. Remembered, since sizes and
+    versions repeat."""
     key = (id(forms), size, version)
     found = _CHOICES.get(key)
     if found is None:
@@ -303,7 +304,8 @@ def _choose(forms: tuple, size: int, version: tuple) -> tuple:
     mine = next((f for f in forms if f.sent_by(version)), None)
     if mine is not None and mine.fits(size):
         return mine, version, False
-    fitting = [f for f in forms if f.fits(size)]
+    # Only a form of fixed sizes can be recognised by its length: an open-ended one fits too much.
+    fitting = [f for f in forms if f.sizes is not None and size in f.sizes]
     if len(fitting) == 1:
         return fitting[0], fitting[0].rep, True
     return mine or forms[-1], version, False

@@ -51,17 +51,19 @@ local function layout_summary(tvb, raw, o, e, layout)
     return table.concat(parts, "", 1, n)
 end
 
--- The enums that the robot-state packages from p to e list in their `info` ({ at = offset
--- in the package body, n = size, vs = value string }), joined by ", ". Stops at the first
--- package whose length does not fit.
+-- The enums that the robot-state packages from p to e list in their `info` (per body size,
+-- one form of the package each: { at = offset in the body, n = size, vs = value string }),
+-- joined by ", ". Stops at the first package whose length does not fit.
 local function package_summary(raw, p, e, packages)
     local n = 0
     while e - p >= PACKAGE_HEADER do
         local size, code = be_int(raw, p, PACKAGE_LENGTH), byte(raw, p + PACKAGE_LENGTH + 1)
         if size < PACKAGE_HEADER or size > e - p then break end
         local pk = packages[code]
-        if pk and pk.info then
-            for _, i in ipairs(pk.info) do
+        -- The form of the package's size, else (extra bytes of a newer release) the newest form.
+        local info = pk and pk.info and (pk.info[size - PACKAGE_HEADER] or pk.info_newest)
+        if info then
+            for _, i in ipairs(info) do
                 if i.at + i.n <= size - PACKAGE_HEADER then
                     local v = be_int(raw, p + PACKAGE_HEADER + i.at, i.n)
                     n = n + 1
