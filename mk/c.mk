@@ -11,6 +11,7 @@ C_CLI := tools/urwire-decode/main.c tools/urwire-decode/json.c tools/urwire-deco
 PREFIX ?= /usr/local
 FUZZ_SECONDS ?= 60
 FUZZ_CI_SECONDS ?= 60
+BENCH_C_LEVELS ?= -O3 -O2 -Os
 
 ALL_TARGETS += build/urwire-decode
 TEST_TARGETS += test-c
@@ -46,11 +47,14 @@ fuzz-c: $(C_LIB) tests/c/fuzz_urwire.c tools/urwire-decode/json.c
 	build/fuzz/fuzz_urwire -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
 		-artifact_prefix=build/fuzz/crashes/ build/fuzz/corpus build/fuzz/seeds tests/c/regressions
 
-## bench-c: robot-state decode throughput against memcpy of the same bytes, same run
+## bench-c: robot-state decode throughput against memcpy of the same bytes, same run, with the
+## library built at each of BENCH_C_LEVELS (ns per state, and each level against -O3)
 bench-c: $(C_LIB) tests/bench/bench_c.c tests/bench/bench_c.py
 	@mkdir -p build
-	$(CC) -std=c99 -O3 -Igenerated/c -o build/bench_c tests/bench/bench_c.c generated/c/urwire.c
-	$(PYTHON) tests/bench/bench_c.py build/bench_c
+	for opt in $(BENCH_C_LEVELS); do \
+		$(CC) -std=c99 $$opt -Igenerated/c -o build/bench_c$$opt tests/bench/bench_c.c generated/c/urwire.c || exit 1; \
+	done
+	$(PYTHON) tests/bench/bench_c.py $(BENCH_C_LEVELS:%=build/bench_c%)
 
 ## demo-c: the C decoder on the bundled capture's robot->client stream (urwire-decode reads raw streams)
 demo-c: build/urwire-decode

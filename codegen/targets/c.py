@@ -6,13 +6,12 @@ The output is C99 with no malloc and no stdio: one header and one source, genera
 """
 from __future__ import annotations
 
-import re
 import textwrap
 from dataclasses import dataclass, field
 from typing import Optional
 
 from .. import ir, plan
-from ..emit import environment
+from ..emit import environment, runtime_source
 from ..errors import Problem, SpecError
 from ..view import Step
 
@@ -35,7 +34,7 @@ C_KEYWORDS = {"auto", "break", "case", "char", "const", "continue", "default", "
               "extern", "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return",
               "short", "signed", "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void",
               "volatile", "while", "_Bool"}
-# Value layouts the hand-written value decoder in urwire.c.j2 knows.
+# Value layouts the hand-written value decoder (templates/c/runtime/values.c) knows.
 VALUE_ITEMS = {"bool": "URWIRE__ITEM_BOOL", "int32": "URWIRE__ITEM_I32", "float32": "URWIRE__ITEM_F32"}
 VALUE_LAYOUTS = {"empty": "URWIRE__LAYOUT_EMPTY", "string": "URWIRE__LAYOUT_STRING", "array": "URWIRE__LAYOUT_ARRAY",
                  "scalar": "URWIRE__LAYOUT_SCALAR", "list": "URWIRE__LAYOUT_LIST", "matrix": "URWIRE__LAYOUT_MATRIX"}
@@ -119,7 +118,7 @@ class CStruct:
 
     @property
     def decode_indent(self) -> str:
-        return self.indent("decode", "bool")
+        return self.indent("decode", "inline bool")
 
     @property
     def encode_indent(self) -> str:
@@ -435,16 +434,20 @@ def value_views(p: ir.Protocol) -> dict:
             entries.append(dict(code=v.value, name=v.name, kind=f"URWIRE_VALUE_{v.name}",
                                 layout=VALUE_LAYOUTS[lay.layout], item=item,
                                 count=lay.count if lay.layout == "array" else 1))
-        r = t.versions
-        tables.append(dict(tag=f"urwire__values_{table_suffix(t).lower()}", versions=r.describe(), entries=entries,
-                           low=f"{r.low[0]}, {r.low[1]}" if r.low else "",
-                           high=f"{r.high[0]}, {r.high[1]}" if r.high else "",
-                           has_low=r.low is not None, has_high=r.high is not None))
+        tables.append(dict(tag=f"urwire__values_{table_suffix(t).lower()}", versions=t.versions.describe(),
+                           entries=entries, range=versions_init(t.versions)))
     if problems:
         raise SpecError(p.source, problems)
     arrays = [lay.count for lay in p.value_layouts.values() if lay.layout == "array"]
     return dict(kinds=[dict(const=f"URWIRE_VALUE_{k}", name=k, doc=inline(p.value_layouts[k].doc)) for k in kinds],
                 tables=tables, array_max=max(arrays) if arrays else 1, max_depth=p.max_value_depth)
+
+
+def versions_init(r: ir.VersionRange) -> str:
+    """A version range as the initializer of an urwire__versions (runtime/private.h)."""
+    def bound(v: Optional[ir.Version]) -> str:
+        return f"true, {{{v[0]}, {v[1]}}}" if v else "false, {0, 0}"
+    return f"{{{bound(r.low)}, {bound(r.high)}}}"
 
 
 # ---- messages -------------------------------------------------------------------------------
@@ -493,65 +496,106 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
                              doc=comment(m.doc, m.field_note), header=header, header_table=f"urwire__{m.name}_header",
                              header_spans=[Span(slot.field.name, slot.offset, slot.field.scalar.size)
                                            for slot in mp.header],
-                             body_offset=mp.body_offset, subtypes=subtypes, subtype_name=m.subtype.name,
-                             has_source=mp.header_field("source") is not None))
+                             body_offset=mp.body_offset, subtypes=subtypes, subtype_name=m.subtype.name))
+    lists = [m for m in messages if m["kind"] == "packages"]
+    if len(lists) != 1:
+        b.problems.append(protocol_plan.protocol.messages[0].where.problem(
+            "c target: the C runtime expects exactly one message that is a list of sub-packages"))
     if b.problems:
         raise SpecError(protocol_plan.protocol.source, b.problems)
     vs = protocol_plan.version
     vst = layout_structs[id(vs.layout)]
+    vmsg = next(m for m in messages if m["code"] == vs.message_code)
     return dict(structs=b.structs, messages=messages, kinds=kinds, packages=packages,
-                version_layout=dict(name=vst.name, code_const=vst.code_const, kind_const=vst.kind_const,
-                                    major=vs.major.name, minor=vs.minor.name,
-                                    message_code=vs.message_code, subtype_offset=vs.subtype_offset,
-                                    body_offset=vs.body_offset))
+                numbers=protocol_numbers(protocol_plan.protocol, lists[0], vst, vmsg),
+                known_types=known_types(protocol_plan.protocol), **kind_tables(messages, packages))
 
 
-# The hand-written parts of urwire.c.j2 (framing, values, lengths) use these helpers.
-RUNTIME_HELPERS = {"urwire__u8", "urwire__i16", "urwire__i32", "urwire__u32", "urwire__f32", "urwire__put_u32"}
-HELPER_NEEDS = {"urwire__i8": "urwire__u8", "urwire__i16": "urwire__u16", "urwire__i32": "urwire__u32",
-                "urwire__u64": "urwire__u32", "urwire__i64": "urwire__u64", "urwire__f32": "urwire__u32",
-                "urwire__f64": "urwire__u64", "urwire__put_i8": "urwire__put_u8", "urwire__put_i16": "urwire__put_u16",
-                "urwire__put_i32": "urwire__put_u32", "urwire__put_u64": "urwire__put_u32",
-                "urwire__put_i64": "urwire__put_u64", "urwire__put_f32": "urwire__put_u32",
-                "urwire__put_f64": "urwire__put_u64"}
+def protocol_numbers(p: ir.Protocol, packages: dict, vst: CStruct, vmsg: dict) -> list[dict]:
+    """The private macros through which the runtime reads the spec's framing: where the header
+    fields are, which message is the sub-package list, which layout announces the version."""
+    problems = [h.where.problem("c target: a message or sub-package type wider than one byte")
+                for h in (p.message_type, p.package_type) if h.scalar.size != 1]
+    if problems:
+        raise SpecError(p.source, problems)
+    ml, pl = p.message_length.scalar, p.package_length.scalar
+    (subtype,) = [h for h in vmsg["header"] if h["subtype"]]
+    return [
+        dict(name="URWIRE__LENGTH(p)", value=f"{READERS[ml.name]}(p)",
+             doc=f"message header: {ml.name} length, then the type"),
+        dict(name="URWIRE__PUT_LENGTH(p, n)", value=f"{WRITERS[ml.name]}((p), ({C_TYPES[ml.name]})(n))", doc=""),
+        dict(name="URWIRE__TYPE_AT", value=f"{ml.size}u", doc=""),
+        dict(name="URWIRE__PACKAGE_LENGTH(p)", value=f"{READERS[pl.name]}(p)",
+             doc=f"sub-package header: {pl.name} length, then the type"),
+        dict(name="URWIRE__PUT_PACKAGE_LENGTH(p, n)", value=f"{WRITERS[pl.name]}((p), ({C_TYPES[pl.name]})(n))",
+             doc=""),
+        dict(name="URWIRE__PACKAGE_TYPE_AT", value=f"{pl.size}u", doc=""),
+        dict(name="URWIRE__PACKAGES_TYPE", value=packages["code_const"], doc=f"{packages['name']}: the sub-package list"),
+        dict(name="URWIRE__PACKAGES_KIND", value=packages["kind_const"], doc=""),
+        dict(name="URWIRE__VERSION_TYPE", value=vmsg["code_const"],
+             doc=f"{vst.name}: the layout that announces the software version"),
+        dict(name="URWIRE__VERSION_SUBTYPE_AT", value=f"{subtype['offset']}u", doc=""),
+        dict(name="URWIRE__VERSION_SUBTYPE", value=vst.code_const, doc=""),
+        dict(name="URWIRE__VERSION_BODY", value=f"{vmsg['body_offset']}u", doc=""),
+        dict(name="URWIRE__VERSION_KIND", value=vst.kind_const, doc=""),
+        dict(name="URWIRE__VERSION_MAJOR(m)", value=f"((m)->as.{vst.name}.{vst.sets_version[0]})", doc=""),
+        dict(name="URWIRE__VERSION_MINOR(m)", value=f"((m)->as.{vst.name}.{vst.sets_version[1]})", doc=""),
+    ]
 
 
-def helpers_used(model) -> set[str]:
-    """The big-endian load/store helpers the generated statements name, with what they build on,
-    so that urwire.c defines no unused static function (-Wunused-function under -Werror)."""
-    found: set[str] = set(RUNTIME_HELPERS)
+def known_types(p: ir.Protocol) -> list[str]:
+    """The message types a plausible header may carry (the framer resynchronises on the others)."""
+    seen: dict[int, str] = {}
+    for v in p.message_type_enum.values:
+        seen.setdefault(v.value, f"URWIRE_{p.message_type_enum.name.upper()}_{v.name}")
+    return [seen[k] for k in sorted(seen)]
 
-    def walk(x) -> None:
-        if isinstance(x, str):
-            found.update(re.findall(r"urwire__(?:put_)?[iuf]\d+(?![\w])", x))
-        elif isinstance(x, dict):
-            for v in x.values():
-                walk(v)
-        elif isinstance(x, (list, tuple)):
-            for v in x:
-                walk(v)
-        elif hasattr(x, "__dict__"):
-            walk(vars(x))
 
-    walk(model)
-    pending = list(found)
-    while pending:
-        need = HELPER_NEEDS.get(pending.pop())
-        if need and need not in found:
-            found.add(need)
-            pending.append(need)
-    return found
+def kind_tables(messages: list[dict], packages: list[CStruct]) -> dict:
+    """The rows of the tables the runtime walks (runtime/private.h), each a list of (member,
+    initializer) pairs; a member left out is NULL or 0: urwire__package_kinds (by sub-package
+    code; decoded through the generated switches instead), urwire__message_types (one per
+    laid-out message type) and urwire__message_kinds (by urwire_message_kind)."""
+    def functions(name: str) -> list[tuple[str, str]]:
+        return [(verb, f"urwire__{verb}_{name}") for verb in ("decode", "encode", "visit")]
+
+    package_rows = [dict(index=s.code_const, fields=[("name", f'"{s.name}"'), *functions(s.name)[1:]])
+                    for s in packages]
+    types, kinds = [], [dict(index="URWIRE_KIND_UNKNOWN_MESSAGE", fields=[("name", '"unknown"')])]
+    for i, m in enumerate(messages):
+        ref = ("type", f"&urwire__message_types[{i}]")
+        if m["kind"] == "packages":
+            types.append([("code", m["code_const"]), ("packages", "true"), ("body", "URWIRE_HEADER_SIZE")])
+            kinds.append(dict(index=m["kind_const"], fields=[("name", f'"{m["name"]}"'), ref]))
+            continue
+        types.append([("code", m["code_const"]), ("body", f"{m['body_offset']}u"), ("header", m["header_table"]),
+                      *[(f"{verb}_header", f"urwire__{verb}_{m['name']}_header") for verb in ("read", "visit", "put")]])
+        for s in m["subtypes"]:
+            kinds.append(dict(index=s.kind_const, fields=[("name", f'"{s.name}"'), ref, ("subtype", s.code_const),
+                                                          *functions(s.name)]))
+    kinds.append(dict(index="URWIRE_KIND_UNKNOWN_SUBTYPE", fields=[("name", '"unknown"')]))
+    return dict(package_kinds=package_rows, message_types=types, message_kinds=kinds)
+
+
+# The hand-written runtime (templates/c/runtime/), in the order each part is joined to the
+# generated ones: public headers around the spec's types, then private code before the layouts
+# and, after them, the code that walks their tables.
+RUNTIME = {
+    "types": ("version.h", "views.h", "errors.h"),
+    "value": ("value.h",),
+    "api": ("messages.h", "visitor.h", "framer.h"),
+    "base": ("private.h", "loads.h", "views.c", "version.c", "format.c", "errors.c", "text.c", "put.c"),
+    "walkers": ("values.c", "kinds.c", "decode.c", "encode.c", "visit.c", "framer.c"),
+}
 
 
 def render(protocol_plan, banner: list[str]) -> dict[str, str]:
     p = protocol_plan.protocol
     env = environment(FOLDER)
-    model = build(protocol_plan)
-    model["helpers"] = helpers_used(model)
-    ctx = dict(banner=banner, p=p, enums=enum_views(p), values=value_views(p),
-               default_version=p.default_version, known_codes=p.known_message_codes,
-               laid_codes=[m["code"] for m in model["messages"]],
+    runtime = {part: "\n".join(runtime_source(FOLDER, name) for name in names) for part, names in RUNTIME.items()}
+    ctx = dict(banner=banner, p=p, enums=enum_views(p), values=value_views(p), runtime=runtime,
+               default_version=p.default_version,
                documented=", ".join(ir.version_text(v) for v in p.documented_versions),
-               title=p.title, doc=comment(p.doc), **model)
+               title=p.title, doc=comment(p.doc), **build(protocol_plan))
     return {f"{FOLDER}/urwire.h": env.get_template("urwire.h.j2").render(**ctx),
             f"{FOLDER}/urwire.c": env.get_template("urwire.c.j2").render(**ctx)}

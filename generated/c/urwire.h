@@ -78,10 +78,13 @@ extern "C" {
 #define URWIRE_HEADER_SIZE 5u              /* int32 length, uint8 type */
 #define URWIRE_PACKAGE_HEADER_SIZE 5u      /* int32 length, uint8 package type */
 #define URWIRE_MAX_VALUE_DEPTH 8           /* LIST/MATRIX nesting bound of global variables */
-#define URWIRE_PATH_MAX 192                /* room for the longest field path of an error */
-/* A framer buffer this large frames every legal message; smaller ones skip bigger messages. */
-#define URWIRE_FRAMER_MIN_BUFFER (URWIRE_MAX_MESSAGE_LENGTH + 4096u)
-#define URWIRE_BIT(code) (1ul << (code))
+#define URWIRE_VALUE_ARRAY_MAX 6           /* items of the longest array value */
+
+/* URWIRE_DEFAULT_VERSION: assumed when a stream has shown no Version message and no hint was
+ * given: 5.9 and later. Documented versions: 1.6, 1.7, 1.8, 3.0, 3.1, 3.2, 3.3, 3.4, 5.9, 5.10. */
+#define URWIRE_DEFAULT_VERSION_INIT {5, 9}
+
+/* ---- software versions -------------------------------------------------------------------- */
 
 /* Software version ("major.minor") that chooses the global-variable value-type table. */
 typedef struct urwire_sw_version {
@@ -89,9 +92,8 @@ typedef struct urwire_sw_version {
     int minor;
 } urwire_sw_version;
 
-/* Assumed when a stream has shown no Version message and no hint was given: 5.9 and later.
- * Documented versions: 1.6, 1.7, 1.8, 3.0, 3.1, 3.2, 3.3, 3.4, 5.9, 5.10. */
-#define URWIRE_DEFAULT_VERSION_INIT {5, 9}
+/* Assumed when a stream has shown no Version message and no hint was given (see
+ * URWIRE_DEFAULT_VERSION_INIT). */
 extern const urwire_sw_version URWIRE_DEFAULT_VERSION;
 
 /* "5.9", "5.10.1" -> {5, 9}, {5, 10}; false (and *out untouched) for anything else. */
@@ -119,6 +121,8 @@ typedef struct urwire_seq {
 
 /* ---- errors ------------------------------------------------------------------------------- */
 
+#define URWIRE_PATH_MAX 192                /* room for the longest field path of an error */
+
 typedef enum urwire_status {
     URWIRE_OK = 0,
     /* inside a message */
@@ -127,12 +131,12 @@ typedef enum urwire_status {
     URWIRE_E_VALUE_TYPE,          /* <path> at offset <o>: unknown value type <value> */
     URWIRE_E_TERMINATOR,          /* <path> at offset <o>: expected terminator 0x<left>, found 0x<value> */
     URWIRE_E_TOO_DEEP,            /* <path> at offset <o>: nesting deeper than <value> */
-    URWIRE_E_PACKAGE_HEADER_CUT,  /* package at offset <o>: needs 5 bytes, <left> left */
-    URWIRE_E_PACKAGE_LENGTH_LOW,  /* package at offset <o>: length <value> is below 5 */
+    URWIRE_E_PACKAGE_HEADER_CUT,  /* package at offset <o>: needs <value> bytes, <left> left */
+    URWIRE_E_PACKAGE_LENGTH_LOW,  /* package at offset <o>: length <value> is below URWIRE_PACKAGE_HEADER_SIZE */
     URWIRE_E_PACKAGE_LENGTH_HIGH, /* package at offset <o>: length <value> exceeds the <left> bytes left */
     /* stream faults (offset from the stream's first byte) */
-    URWIRE_E_LENGTH_LOW,          /* length <value> is below 5 */
-    URWIRE_E_LENGTH_HIGH,         /* length <value> is above 1048576 */
+    URWIRE_E_LENGTH_LOW,          /* length <value> is below URWIRE_HEADER_SIZE */
+    URWIRE_E_LENGTH_HIGH,         /* length <value> is above URWIRE_MAX_MESSAGE_LENGTH */
     URWIRE_E_MESSAGE_TYPE,        /* unknown message type <value> */
     URWIRE_E_TRUNCATED_MESSAGE,   /* truncated message: length <value>, <left> bytes left */
     URWIRE_E_TRUNCATED_HEADER,    /* truncated header: <left> bytes left */
@@ -694,13 +698,18 @@ typedef struct urwire_value {
         uint8_t boolean;      /* BOOL: the wire byte, nonzero is true */
         int32_t integer;      /* INT */
         float number;         /* NUM and FLOAT */
-        float pose[6];       /* POSE: X, Y, Z, Rx, Ry, Rz */
+        float pose[URWIRE_VALUE_ARRAY_MAX]; /* POSE: X, Y, Z, Rx, Ry, Rz */
         urwire_bytes text;    /* STRING, CONST_STRING, VAR_STRING */
     } as;
     int16_t rows;             /* LIST: its length; MATRIX: nRows */
     int16_t cols;             /* MATRIX: nColumns */
     urwire_seq items;         /* LIST and MATRIX: the items, row by row */
 } urwire_value;
+
+/* The next name of a names seq (without its terminator); false at the end. */
+bool urwire_next_text(urwire_seq *seq, urwire_bytes *out);
+/* The next value of a value seq (a message's values, or a LIST/MATRIX's items); false at the end. */
+bool urwire_next_value(urwire_seq *seq, urwire_value *out);
 
 /* ---- messages and sub-packages ------------------------------------------------------------ */
 
@@ -1443,11 +1452,6 @@ typedef struct urwire_global_variables_update_message {
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_global_variables_update_message;
 
-/* The next name of a names seq (without its terminator); false at the end. */
-bool urwire_next_text(urwire_seq *seq, urwire_bytes *out);
-/* The next value of a value seq (a message's values, or a LIST/MATRIX's items); false at the end. */
-bool urwire_next_value(urwire_seq *seq, urwire_value *out);
-
 /* Which struct of urwire_message.as is valid. */
 typedef enum urwire_message_kind {
     URWIRE_KIND_UNKNOWN_MESSAGE,    /* a type with no layout, or too short for its header: raw */
@@ -1525,7 +1529,7 @@ typedef struct urwire_package {
     bool failed;                    /* known but malformed: error and raw are set */
     urwire_error error;
     size_t offset;                  /* of its header, from the message's first byte */
-    urwire_bytes raw;               /* bytes after its 5-byte header */
+    urwire_bytes raw;               /* bytes after its header */
     union {
         urwire_robot_mode_data robot_mode_data;
         urwire_joint_data joint_data;
@@ -1567,6 +1571,11 @@ typedef struct urwire_robot_state {
     urwire_singularity_info singularity_info;
 } urwire_robot_state;
 
+/* ---- decoding messages -------------------------------------------------------------------- */
+
+/* The bit of a sub-package type in urwire_robot_state.present and .malformed. */
+#define URWIRE_BIT(code) (1ul << (code))
+
 /* Decode one framed message (len = its declared length). Never fails as a call: a message
  * that cannot be read comes back failed with error and raw. Returns !out->failed. */
 bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version version, urwire_message *out);
@@ -1587,7 +1596,7 @@ bool urwire_message_has_error(const urwire_message *m);
  * fields. For a robot state, the sub-packages come from its seq and its unframed raw tail.
  * Returns the bytes written, or 0 with *err set. encode(decode(b)) == b. */
 size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, urwire_error *err);
-/* One sub-package, its 5-byte header included. */
+/* One sub-package, its header included. */
 size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err);
 
 /* ---- visiting: the canonical record shape, for JSON writers and the like ------------------ */
@@ -1615,6 +1624,9 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v);
 void urwire_visit_fault(const urwire_error *fault, const urwire_visitor *v);
 
 /* ---- framing a stream --------------------------------------------------------------------- */
+
+/* A framer buffer this large frames every legal message; smaller ones skip bigger messages. */
+#define URWIRE_FRAMER_MIN_BUFFER (URWIRE_MAX_MESSAGE_LENGTH + 4096u)
 
 typedef enum urwire_frame_kind {
     URWIRE_FRAME_NEED_MORE,         /* feed more bytes (or finish) */

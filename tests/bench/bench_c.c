@@ -2,6 +2,7 @@
  *
  *     bench_c FILE [BYTES]
  *
+ * (make bench-c builds it at -O3, -O2 and -Os and tests/bench/bench_c.py runs each in turn.)
  * FILE holds robot-state messages back to back (tests/bench/bench_c.py writes it from the
  * conformance captures). They are repeated into a buffer of BYTES (default 256 KiB, hot in
  * L2), which is then decoded whole many times with urwire_decode_robot_state_message: every
@@ -116,6 +117,8 @@ int main(int argc, char **argv)
     printf("memcpy of the same bytes:             %8.0f MB/s\n", len / best_copy / 1e6);
     printf("ratio decode / memcpy: %.3f   framer+decode / memcpy: %.3f   (checksum %g)\n",
            best_copy / best_decode, best_copy / best_frame, (double)sink * 0);
+    printf("ns per state: decode %.1f  framer+decode %.1f  memcpy %.1f\n", best_decode / (double)nmsg * 1e9,
+           best_frame / (double)nmsg * 1e9, best_copy / (double)nmsg * 1e9);
     free(src);
     free(buf);
     free(dst);

@@ -1,10 +1,15 @@
 """make bench-c: write the robot-state messages of the conformance captures into one raw file,
-then run the C benchmark on it (decode vs memcpy of the same bytes, measured in the same run).
+then run the C benchmark on it, built at each optimisation level (decode vs memcpy of the same
+bytes, measured in the same run), and compare the levels.
 
-    python3 tests/bench/bench_c.py build/bench_c [BYTES]
+    python3 tests/bench/bench_c.py build/bench_c-O3 build/bench_c-O2 build/bench_c-Os [BYTES]
+
+Each binary is named after its level (bench_c-O3: -O3) and runs ROUNDS times, the levels taking
+turns so that a busy moment of a shared machine falls on all of them; the best run counts.
 """
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -19,6 +24,11 @@ import vectors  # noqa: E402
 sys.path.insert(0, str(ROOT / "tests" / "c"))
 from seeds import messages  # noqa: E402
 
+ROUNDS = 3
+NS = re.compile(r"ns per state: decode ([\d.]+)\s+framer\+decode ([\d.]+)\s+memcpy ([\d.]+)")
+# Goals for the decoder built without -O3, against -O3 (the ratio of ns per state).
+GOALS = {"-O2": 1.3, "-Os": 1.8}
+
 
 def robot_states() -> list[bytes]:
     """Every conformance robot state that decodes cleanly (real captures, not damaged ones)."""
@@ -30,14 +40,41 @@ def robot_states() -> list[bytes]:
     return out
 
 
+def level(binary: str) -> str:
+    return Path(binary).name.rpartition("bench_c")[2] or "?"
+
+
 def main(argv: list[str]) -> int:
+    binaries = [a for a in argv if not a.isdigit()]
+    extra = [a for a in argv if a.isdigit()]
     states = robot_states()
     assert states, "no robot-state messages in tests/conformance"
     path = ROOT / "build" / "bench-robot-states.bin"
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_bytes(b"".join(states))
     print(f"== C: {len(states)} distinct conformance robot states, sizes {sorted(len(s) for s in states)}")
-    return subprocess.run([argv[0], str(path), *argv[1:]]).returncode
+    best: dict[str, tuple[float, float, float]] = {}
+    last: dict[str, str] = {}
+    for _ in range(ROUNDS):
+        for binary in binaries:
+            result = subprocess.run([binary, str(path), *extra], capture_output=True, text=True)
+            if result.returncode != 0:
+                sys.stderr.write(result.stdout + result.stderr)
+                return result.returncode
+            ns = tuple(float(x) for x in NS.search(result.stdout).groups())
+            if level(binary) not in best or ns[0] < best[level(binary)][0]:
+                best[level(binary)], last[level(binary)] = ns, result.stdout
+    for name, out in last.items():
+        print(f"-- {name} (best of {ROUNDS} runs)")
+        sys.stdout.write(out)
+    base = best.get("-O3")
+    print(f"== ns per robot state, every field of every sub-package decoded (best of {ROUNDS} runs each):")
+    for name, (decode, frame, copy) in best.items():
+        ratio = f"{decode / base[0]:.2f}x -O3" if base else ""
+        goal = f" (goal: within {GOALS[name]}x)" if name in GOALS else ""
+        print(f"   {name:4} decode {decode:6.1f} ns   framer + decode {frame:6.1f} ns   "
+              f"memcpy of the same bytes {copy:5.1f} ns   {ratio}{goal}")
+    return 0
 
 
 if __name__ == "__main__":

@@ -1,0 +1,159 @@
+/* <standalone> */
+#include "runtime_support.h"
+/* </standalone> */
+/* ---- the framer --------------------------------------------------------------------------- */
+
+/* A header the spec could have sent: a length from the header's size to the maximum, and a
+ * type it names (urwire__known_message_types). */
+static urwire_status urwire__header_fault(int64_t length, uint8_t type)
+{
+    if (length < (int64_t)URWIRE_HEADER_SIZE)
+        return URWIRE_E_LENGTH_LOW;
+    if (length > (int64_t)URWIRE_MAX_MESSAGE_LENGTH)
+        return URWIRE_E_LENGTH_HIGH;
+    return urwire__known_message_types[type] ? URWIRE_OK : URWIRE_E_MESSAGE_TYPE;
+}
+
+void urwire_framer_init(urwire_framer *f, uint8_t *buf, size_t cap, urwire_sw_version hint)
+{
+    f->buf = buf;
+    f->cap = cap;
+    f->head = 0;
+    f->len = 0;
+    f->base = 0;
+    f->skip = 0;
+    f->resyncing = false;
+    f->finished = false;
+    f->version_seen = false;
+    f->version = hint;
+}
+
+size_t urwire_framer_feed(urwire_framer *f, const uint8_t *data, size_t n)
+{
+    size_t take;
+    if (f->head) {
+        memmove(f->buf, f->buf + f->head, f->len - f->head);
+        f->len -= f->head;
+        f->base += f->head;
+        f->head = 0;
+    }
+    take = n < f->cap - f->len ? n : f->cap - f->len;
+    if (take)
+        memcpy(f->buf + f->len, data, take);
+    f->len += take;
+    return take;
+}
+
+void urwire_framer_finish(urwire_framer *f)
+{
+    f->finished = true;
+}
+
+static urwire_frame_kind urwire__fault(urwire_framer *f, urwire_frame *out, urwire_status status, int64_t value,
+                                       int64_t left)
+{
+    out->kind = URWIRE_FRAME_FAULT;
+    out->bytes = NULL;
+    out->length = 0;
+    out->offset = f->base + f->head;
+    out->version = f->version;
+    urwire__fail(&out->fault, status, (size_t)out->offset, "", value, left);
+    return URWIRE_FRAME_FAULT;
+}
+
+/* The layout that announces the software version (URWIRE__VERSION_*) sets it for what follows;
+ * its type and subtype bytes are looked at before anything is decoded. */
+static void urwire__learn_version(urwire_framer *f, const uint8_t *bytes, size_t len)
+{
+    urwire_message m;
+    if (bytes[URWIRE__TYPE_AT] != URWIRE__VERSION_TYPE || len < URWIRE__VERSION_BODY ||
+        bytes[URWIRE__VERSION_SUBTYPE_AT] != URWIRE__VERSION_SUBTYPE)
+        return;
+    if (urwire_decode_message(bytes, len, f->version, &m) && m.kind == URWIRE__VERSION_KIND) {
+        f->version.major = URWIRE__VERSION_MAJOR(&m);
+        f->version.minor = URWIRE__VERSION_MINOR(&m);
+        f->version_seen = true;
+    }
+}
+
+urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out)
+{
+    size_t left, drop;
+    int64_t length;
+    urwire_status status;
+    for (;;) {
+        left = f->len - f->head;
+        if (f->skip) {
+            drop = f->skip < left ? (size_t)f->skip : left;
+            f->head += drop;
+            f->skip -= drop;
+            if (f->skip) {
+                if (f->finished) {
+                    f->head = f->len;
+                    out->kind = URWIRE_FRAME_END;
+                    return URWIRE_FRAME_END;
+                }
+                out->kind = URWIRE_FRAME_NEED_MORE;
+                return URWIRE_FRAME_NEED_MORE;
+            }
+            continue;
+        }
+        if (f->resyncing) {
+            while (f->len - f->head >= URWIRE_HEADER_SIZE &&
+                   urwire__header_fault(URWIRE__LENGTH(f->buf + f->head), f->buf[f->head + URWIRE__TYPE_AT]) !=
+                       URWIRE_OK)
+                f->head++;
+            if (f->len - f->head < URWIRE_HEADER_SIZE) {
+                if (f->finished) {
+                    f->head = f->len;  /* the last few bytes belong to the fault already reported */
+                    out->kind = URWIRE_FRAME_END;
+                    return URWIRE_FRAME_END;
+                }
+                out->kind = URWIRE_FRAME_NEED_MORE;
+                return URWIRE_FRAME_NEED_MORE;
+            }
+            f->resyncing = false;
+            left = f->len - f->head;
+        }
+        if (left < URWIRE_HEADER_SIZE) {
+            if (f->finished && left) {
+                urwire__fault(f, out, URWIRE_E_TRUNCATED_HEADER, 0, (int64_t)left);
+                f->head = f->len;
+                return URWIRE_FRAME_FAULT;
+            }
+            out->kind = f->finished ? URWIRE_FRAME_END : URWIRE_FRAME_NEED_MORE;
+            return out->kind;
+        }
+        length = URWIRE__LENGTH(f->buf + f->head);
+        status = urwire__header_fault(length, f->buf[f->head + URWIRE__TYPE_AT]);
+        if (status != URWIRE_OK) {
+            urwire__fault(f, out, status, status == URWIRE_E_MESSAGE_TYPE ? f->buf[f->head + URWIRE__TYPE_AT] : length,
+                          0);
+            f->resyncing = true;
+            f->head++;
+            return URWIRE_FRAME_FAULT;
+        }
+        if ((size_t)length > f->cap) {
+            urwire__fault(f, out, URWIRE_E_TOO_BIG_FOR_BUFFER, length, (int64_t)f->cap);
+            f->skip = (uint64_t)length;
+            return URWIRE_FRAME_FAULT;
+        }
+        if ((size_t)length > left) {
+            if (f->finished) {
+                urwire__fault(f, out, URWIRE_E_TRUNCATED_MESSAGE, length, (int64_t)left);
+                f->head = f->len;
+                return URWIRE_FRAME_FAULT;
+            }
+            out->kind = URWIRE_FRAME_NEED_MORE;
+            return URWIRE_FRAME_NEED_MORE;
+        }
+        out->kind = URWIRE_FRAME_MESSAGE;
+        out->bytes = f->buf + f->head;
+        out->length = (size_t)length;
+        out->offset = f->base + f->head;
+        out->version = f->version;
+        urwire__learn_version(f, out->bytes, out->length);
+        f->head += (size_t)length;
+        return URWIRE_FRAME_MESSAGE;
+    }
+}

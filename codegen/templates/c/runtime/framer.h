@@ -1,0 +1,53 @@
+/* <standalone> */
+#ifndef URWIRE_RUNTIME_FRAMER_H
+#define URWIRE_RUNTIME_FRAMER_H
+#include "version.h"
+#include "errors.h"
+/* </standalone> */
+/* ---- framing a stream --------------------------------------------------------------------- */
+
+/* A framer buffer this large frames every legal message; smaller ones skip bigger messages. */
+#define URWIRE_FRAMER_MIN_BUFFER (URWIRE_MAX_MESSAGE_LENGTH + 4096u)
+
+typedef enum urwire_frame_kind {
+    URWIRE_FRAME_NEED_MORE,         /* feed more bytes (or finish) */
+    URWIRE_FRAME_MESSAGE,           /* bytes, length, offset and version are set */
+    URWIRE_FRAME_FAULT,             /* fault is set; the framer resynchronises by itself */
+    URWIRE_FRAME_END                /* finished and drained */
+} urwire_frame_kind;
+
+typedef struct urwire_frame {
+    urwire_frame_kind kind;
+    const uint8_t *bytes;           /* inside the framer's buffer: valid until the next feed */
+    size_t length;
+    uint64_t offset;                /* of the message or fault, from the stream's first byte */
+    urwire_sw_version version;      /* to decode this message with */
+    urwire_error fault;
+} urwire_frame;
+
+/* Frames a byte stream in a caller-provided buffer. Tracks the software version from the
+ * stream's Version messages (else the hint). After a bad length or type it scans forward
+ * byte by byte to the next plausible header; the skipped bytes belong to that one fault. */
+typedef struct urwire_framer {
+    uint8_t *buf;
+    size_t cap;
+    size_t head;                    /* first byte not yet framed */
+    size_t len;                     /* bytes held */
+    uint64_t base;                  /* stream offset of buf[0] */
+    uint64_t skip;                  /* bytes still to drop of a message bigger than buf */
+    bool resyncing;
+    bool finished;
+    bool version_seen;              /* a Version message set the version */
+    urwire_sw_version version;      /* in force: the last Version message's, else the hint */
+} urwire_framer;
+
+void urwire_framer_init(urwire_framer *f, uint8_t *buf, size_t cap, urwire_sw_version hint);
+/* Copies up to n bytes in; returns how many it took (fewer when the buffer is full: call
+ * urwire_framer_next until URWIRE_FRAME_NEED_MORE, then feed the rest). */
+size_t urwire_framer_feed(urwire_framer *f, const uint8_t *data, size_t n);
+/* The stream has ended: what is left becomes a truncated-message or truncated-header fault. */
+void urwire_framer_finish(urwire_framer *f);
+urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out);
+/* <standalone> */
+#endif
+/* </standalone> */

@@ -1,0 +1,134 @@
+/* <standalone> */
+#ifndef URWIRE_RUNTIME_LOADS_H
+#define URWIRE_RUNTIME_LOADS_H
+#include <stdint.h>
+#include <string.h>
+/* </standalone> */
+/* ---- big-endian loads and stores ---------------------------------------------------------- */
+
+/* Every field is read with memcpy into an integer (one unaligned load) and a byte swap built of
+ * shifts, which compilers fold into one instruction. They must be inlined to be fast: gcc does
+ * so on its own at -O2 and -O3 but, at -Os, takes the shifts for more code than a call and
+ * calls them; always_inline says what `inline` means here. Unused ones never warn (gcc does not
+ * warn on an unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+
+/* The host's byte order, a constant once optimised: 1 on a big-endian machine. */
+URWIRE__INLINE int urwire__host_is_big_endian(void)
+{
+    const uint16_t one = 1u;
+    uint8_t first;
+    memcpy(&first, &one, 1);
+    return first == 0;
+}
+
+URWIRE__INLINE uint16_t urwire__swap16(uint16_t v)
+{
+    return (uint16_t)((unsigned)v << 8 | (unsigned)v >> 8);
+}
+
+URWIRE__INLINE uint32_t urwire__swap32(uint32_t v)
+{
+    return (v & 0x000000ffu) << 24 | (v & 0x0000ff00u) << 8 | (v & 0x00ff0000u) >> 8 | (v & 0xff000000u) >> 24;
+}
+
+URWIRE__INLINE uint64_t urwire__swap64(uint64_t v)
+{
+    return (uint64_t)urwire__swap32((uint32_t)v) << 32 | urwire__swap32((uint32_t)(v >> 32));
+}
+
+/* Big-endian bytes at p as a host integer, and back. */
+URWIRE__INLINE uint16_t urwire__from_be16(uint16_t v) { return urwire__host_is_big_endian() ? v : urwire__swap16(v); }
+URWIRE__INLINE uint32_t urwire__from_be32(uint32_t v) { return urwire__host_is_big_endian() ? v : urwire__swap32(v); }
+URWIRE__INLINE uint64_t urwire__from_be64(uint64_t v) { return urwire__host_is_big_endian() ? v : urwire__swap64(v); }
+
+URWIRE__INLINE uint8_t urwire__u8(const uint8_t *p) { return p[0]; }
+URWIRE__INLINE int8_t urwire__i8(const uint8_t *p) { return (int8_t)p[0]; }
+
+URWIRE__INLINE uint16_t urwire__u16(const uint8_t *p)
+{
+    uint16_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be16(v);
+}
+
+URWIRE__INLINE uint32_t urwire__u32(const uint8_t *p)
+{
+    uint32_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be32(v);
+}
+
+URWIRE__INLINE uint64_t urwire__u64(const uint8_t *p)
+{
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be64(v);
+}
+
+URWIRE__INLINE int16_t urwire__i16(const uint8_t *p) { return (int16_t)urwire__u16(p); }
+URWIRE__INLINE int32_t urwire__i32(const uint8_t *p) { return (int32_t)urwire__u32(p); }
+URWIRE__INLINE int64_t urwire__i64(const uint8_t *p) { return (int64_t)urwire__u64(p); }
+
+/* Floats are read as their bit pattern, never byte-swapped as numbers. */
+URWIRE__INLINE float urwire__f32(const uint8_t *p)
+{
+    uint32_t bits = urwire__u32(p);
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+URWIRE__INLINE double urwire__f64(const uint8_t *p)
+{
+    uint64_t bits = urwire__u64(p);
+    double d;
+    memcpy(&d, &bits, sizeof d);
+    return d;
+}
+
+URWIRE__INLINE void urwire__put_u8(uint8_t *p, uint8_t v) { p[0] = v; }
+URWIRE__INLINE void urwire__put_i8(uint8_t *p, int8_t v) { p[0] = (uint8_t)v; }
+
+URWIRE__INLINE void urwire__put_u16(uint8_t *p, uint16_t v)
+{
+    v = urwire__from_be16(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_u32(uint8_t *p, uint32_t v)
+{
+    v = urwire__from_be32(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_u64(uint8_t *p, uint64_t v)
+{
+    v = urwire__from_be64(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_i16(uint8_t *p, int16_t v) { urwire__put_u16(p, (uint16_t)v); }
+URWIRE__INLINE void urwire__put_i32(uint8_t *p, int32_t v) { urwire__put_u32(p, (uint32_t)v); }
+URWIRE__INLINE void urwire__put_i64(uint8_t *p, int64_t v) { urwire__put_u64(p, (uint64_t)v); }
+
+URWIRE__INLINE void urwire__put_f32(uint8_t *p, float v)
+{
+    uint32_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    urwire__put_u32(p, bits);
+}
+
+URWIRE__INLINE void urwire__put_f64(uint8_t *p, double v)
+{
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    urwire__put_u64(p, bits);
+}
+/* <standalone> */
+#endif
+/* </standalone> */

@@ -1,0 +1,152 @@
+/* <standalone> */
+#include "runtime_support.h"
+/* </standalone> */
+/* ---- global-variable values --------------------------------------------------------------- */
+/* The value types of each software version are the generated urwire__value_tables. String
+ * lengths and LIST/MATRIX counts are int16 (the generator refuses any other). */
+
+/* The value types of a software version: the first table whose range holds it, else the newest. */
+URWIRE__PRIVATE const urwire__value_table *urwire__values_of(urwire_sw_version v)
+{
+    size_t k;
+    for (k = 0; k + 1 < URWIRE__COUNT(urwire__value_tables); k++)
+        if (urwire__in_versions(v, &urwire__value_tables[k].versions))
+            return &urwire__value_tables[k];
+    return &urwire__value_tables[URWIRE__COUNT(urwire__value_tables) - 1];
+}
+
+URWIRE__PRIVATE const urwire__value_entry *urwire__value_entry_of(const urwire__value_table *t, uint8_t code)
+{
+    size_t k;
+    for (k = 0; k < t->count; k++)
+        if (t->entries[k].code == code)
+            return &t->entries[k];
+    return NULL;
+}
+
+/* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
+ * skipped) here, so that iterating them later cannot fail; depth bounds the recursion.
+ * Error paths are relative ("", ".type", "[2][0]") and prefixed by the callers. */
+static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+                               const urwire__value_table *t, unsigned depth, urwire_value *out, urwire_error *err)
+{
+    size_t pos = *at, r, c, k;
+    const urwire__value_entry *e;
+    urwire_value item;
+    if (pos >= end)
+        return urwire__short(err, ".type", pos, 1, end);
+    if (depth > URWIRE_MAX_VALUE_DEPTH)
+        return urwire__fail(err, URWIRE_E_TOO_DEEP, pos, "", URWIRE_MAX_VALUE_DEPTH, 0);
+    e = urwire__value_entry_of(t, msg[pos]);
+    if (e == NULL)
+        return urwire__fail(err, URWIRE_E_VALUE_TYPE, pos, ".type", msg[pos], 0);
+    out->code = e->code;
+    out->kind = e->kind;
+    out->type_name = e->name;
+    out->rows = 0;
+    out->cols = 0;
+    out->items = urwire__seq(msg, pos + 1, version, -1);
+    pos++;
+    switch (e->layout) {
+    case URWIRE__LAYOUT_EMPTY:
+        break;
+    case URWIRE__LAYOUT_SCALAR:
+        if (end - pos < (e->item == URWIRE__ITEM_BOOL ? 1u : 4u))
+            return urwire__short(err, "", pos, e->item == URWIRE__ITEM_BOOL ? 1u : 4u, end);
+        if (e->item == URWIRE__ITEM_BOOL)
+            out->as.boolean = msg[pos++];
+        else if (e->item == URWIRE__ITEM_I32)
+            out->as.integer = urwire__i32(msg + pos), pos += 4;
+        else
+            out->as.number = urwire__f32(msg + pos), pos += 4;
+        break;
+    case URWIRE__LAYOUT_ARRAY:
+        if (end - pos < 4u * e->count)
+            return urwire__short(err, "", pos, 4u * e->count, end);
+        for (k = 0; k < e->count; k++)
+            out->as.pose[k] = urwire__f32(msg + pos + 4 * k);
+        pos += 4u * e->count;
+        break;
+    case URWIRE__LAYOUT_STRING:
+        if (!urwire__read_prefixed(msg, &pos, end, 2, true, "", &out->as.text, err))
+            return false;
+        break;
+    case URWIRE__LAYOUT_LIST:
+        if (end - pos < 2)
+            return urwire__short(err, "", pos, 2, end);
+        out->rows = urwire__i16(msg + pos);
+        if (out->rows < 0)
+            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", out->rows, 0);
+        pos += 2;
+        out->items.pos = pos;
+        for (k = 0; k < (size_t)out->rows; k++)
+            if (!urwire__read_value(msg, &pos, end, version, t, depth + 1, &item, err))
+                return urwire__within(err, "", k);
+        out->items.end = pos;
+        out->items.count = (size_t)out->rows;
+        break;
+    case URWIRE__LAYOUT_MATRIX:
+        if (end - pos < 4)
+            return urwire__short(err, "", pos, 4, end);
+        out->rows = urwire__i16(msg + pos);
+        out->cols = urwire__i16(msg + pos + 2);
+        if (out->rows < 0)
+            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", out->rows, 0);
+        if (out->cols < 0)
+            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos + 2, "", out->cols, 0);
+        pos += 4;
+        out->items.pos = pos;
+        for (r = 0; r < (size_t)out->rows; r++)
+            for (c = 0; c < (size_t)out->cols; c++)
+                if (!urwire__read_value(msg, &pos, end, version, t, depth + 1, &item, err))
+                    return urwire__within2(err, "", r, c, true);
+        out->items.end = pos;
+        out->items.count = (size_t)out->rows * (size_t)out->cols;
+        break;
+    }
+    *at = pos;
+    return true;
+}
+
+/* Top-level values: each a value and the terminator, until the end of the layout. */
+URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+                                         uint8_t terminator, const char *path, urwire_seq *out, urwire_error *err)
+{
+    const urwire__value_table *t = urwire__values_of(version);
+    size_t pos = *at;
+    urwire_value value;
+    *out = urwire__seq(msg, pos, version, terminator);
+    while (pos < end) {
+        if (!urwire__read_value(msg, &pos, end, version, t, 1, &value, err))
+            return urwire__within(err, path, out->count);
+        if (pos >= end) {
+            urwire__short(err, "", pos, 1, end);
+            return urwire__within(err, path, out->count);
+        }
+        if (msg[pos] != terminator) {
+            urwire__fail(err, URWIRE_E_TERMINATOR, pos, "", msg[pos], terminator);
+            return urwire__within(err, path, out->count);
+        }
+        pos++;
+        out->count++;
+    }
+    out->end = pos;
+    *at = pos;
+    return true;
+}
+
+bool urwire_next_value(urwire_seq *seq, urwire_value *out)
+{
+    urwire_error ignored;
+    if (seq->count == 0)
+        return false;
+    if (!urwire__read_value(seq->msg, &seq->pos, seq->end, seq->version, urwire__values_of(seq->version), 1,
+                            out, &ignored)) {
+        seq->count = 0;  /* not reached for a seq from a decoded message: it was checked whole */
+        return false;
+    }
+    if (seq->terminator >= 0)
+        seq->pos++;
+    seq->count--;
+    return true;
+}

@@ -1,0 +1,260 @@
+/* Unit checks of the hand-written C runtime (codegen/templates/c/runtime/) on its own: every
+ * runtime .c file compiled standalone (its private functions external, see private.h) and
+ * linked with this file, over the made-up protocol of runtime_spec.h and runtime_support.h.
+ * Prints one line per failed check; exit 1 if any failed. */
+#include <stdio.h>
+
+#include "runtime_support.h"
+
+static int failures;
+
+#define CHECK(cond)                                                          \
+    do {                                                                     \
+        if (!(cond)) {                                                       \
+            printf("FAILED %s:%d: %s\n", __FILE__, __LINE__, #cond);         \
+            failures++;                                                      \
+        }                                                                    \
+    } while (0)
+
+static int text_is(const urwire_error *e, const char *want)
+{
+    char buf[URWIRE_PATH_MAX + 128];
+    urwire_error_text(e, buf, sizeof buf);
+    if (strcmp(buf, want) != 0)
+        printf("  text: \"%s\"\n  want: \"%s\"\n", buf, want);
+    return strcmp(buf, want) == 0;
+}
+
+static void loads_and_stores(void)
+{
+    uint8_t b[17];
+    float f = -1.5f, g;
+    double d = 6.02214076e23, e;
+    size_t at;
+    memset(b, 0xee, sizeof b);
+    for (at = 0; at < 2; at++) {  /* aligned and not */
+        urwire__put_u16(b + at, 0x0102);
+        CHECK(b[at] == 0x01 && b[at + 1] == 0x02 && urwire__u16(b + at) == 0x0102);
+        urwire__put_u32(b + at, 0x01020304u);
+        CHECK(b[at] == 0x01 && b[at + 3] == 0x04 && urwire__u32(b + at) == 0x01020304u);
+        urwire__put_u64(b + at, 0x0102030405060708u);
+        CHECK(b[at] == 0x01 && b[at + 7] == 0x08 && urwire__u64(b + at) == 0x0102030405060708u);
+        urwire__put_i16(b + at, -2);
+        CHECK(b[at] == 0xff && b[at + 1] == 0xfe && urwire__i16(b + at) == -2);
+        urwire__put_i32(b + at, INT32_MIN);
+        CHECK(b[at] == 0x80 && b[at + 3] == 0x00 && urwire__i32(b + at) == INT32_MIN);
+        urwire__put_i64(b + at, -3);
+        CHECK(b[at] == 0xff && b[at + 7] == 0xfd && urwire__i64(b + at) == -3);
+        urwire__put_i8(b + at, -128);
+        CHECK(b[at] == 0x80 && urwire__i8(b + at) == -128 && urwire__u8(b + at) == 0x80);
+        urwire__put_f32(b + at, f);
+        g = urwire__f32(b + at);
+        CHECK(b[at] == 0xbf && b[at + 1] == 0xc0 && memcmp(&f, &g, sizeof f) == 0);
+        urwire__put_f64(b + at, d);
+        e = urwire__f64(b + at);
+        CHECK(memcmp(&d, &e, sizeof d) == 0);
+    }
+    b[0] = 0x7f, b[1] = 0x80, b[2] = 0x00, b[3] = 0x00;  /* +inf, read as its bit pattern */
+    CHECK(urwire__u32(b) == 0x7f800000u && urwire__f32(b) > 3.4e38f);
+    CHECK(urwire__swap16(0x1234) == 0x3412 && urwire__swap32(0x12345678u) == 0x78563412u);
+    CHECK(urwire__swap64(0x0102030405060708u) == 0x0807060504030201u);
+}
+
+static void versions(void)
+{
+    urwire_sw_version v = {0, 0};
+    urwire__versions up_to_3_2 = {false, {0, 0}, true, {3, 2}}, from_3_3 = {true, {3, 3}, false, {0, 0}};
+    CHECK(urwire_parse_version("5.9", &v) && v.major == 5 && v.minor == 9);
+    CHECK(urwire_parse_version(" 5.10.1\n", &v) && v.major == 5 && v.minor == 10);
+    CHECK(urwire_parse_version("3.15", &v) && v.major == 3 && v.minor == 15);
+    v.major = 7;
+    CHECK(!urwire_parse_version("5", &v) && !urwire_parse_version("5.", &v) && !urwire_parse_version(".9", &v));
+    CHECK(!urwire_parse_version("5..9", &v) && !urwire_parse_version("5.9b", &v) && !urwire_parse_version("", &v));
+    CHECK(!urwire_parse_version("1234567.1", &v) && v.major == 7);  /* untouched on failure */
+    v.major = 5, v.minor = 9;
+    CHECK(urwire__version_cmp(v, 5, 9) == 0 && urwire__version_cmp(v, 5, 10) < 0 && urwire__version_cmp(v, 4, 99) > 0);
+    CHECK(!urwire__in_versions(v, &up_to_3_2) && urwire__in_versions(v, &from_3_3));
+    v.major = 3, v.minor = 2;
+    CHECK(urwire__in_versions(v, &up_to_3_2) && !urwire__in_versions(v, &from_3_3));
+    CHECK(URWIRE_DEFAULT_VERSION.major == 5 && URWIRE_DEFAULT_VERSION.minor == 9);
+}
+
+static void error_texts(void)
+{
+    urwire_error e;
+    char small[8], digits[24];
+    CHECK(urwire__digits(digits, INT64_MIN) == 20 && memcmp(digits, "-9223372036854775808", 20) == 0);
+    CHECK(!urwire__short(&e, "speed", 27, 8, 34));
+    CHECK(e.status == URWIRE_E_SHORT && text_is(&e, "speed at offset 27: needs 8 bytes, 7 left"));
+    CHECK(urwire_error_text(&e, small, sizeof small) == 41 && strcmp(small, "speed a") == 0);
+    CHECK(urwire_error_text(&e, small, 0) == 41);
+    urwire__fail(&e, URWIRE_E_TERMINATOR, 9, "values[0]", 0x0b, 0x0a);
+    CHECK(text_is(&e, "values[0] at offset 9: expected terminator 0x0a, found 0x0b"));
+    urwire__fail(&e, URWIRE_E_PACKAGE_LENGTH_LOW, 5, "package", 4, 0);
+    CHECK(text_is(&e, "package at offset 5: length 4 is below 5"));
+    urwire__fail(&e, URWIRE_E_LENGTH_HIGH, 0, "", 1048577, 0);
+    CHECK(text_is(&e, "length 1048577 is above 1048576"));
+    urwire__fail(&e, URWIRE_E_TOO_LONG, 0, "title", 300, 255);
+    CHECK(text_is(&e, "title: 300 bytes do not fit the length prefix (max 255)"));
+    CHECK(strcmp(urwire_status_name(URWIRE_E_TOO_DEEP), "URWIRE_E_TOO_DEEP") == 0);
+    CHECK(strcmp(urwire_status_name((urwire_status)99), "URWIRE_E_UNKNOWN") == 0);
+    /* Paths are joined from the inside out, as the decoders unwind. */
+    urwire__fail(&e, URWIRE_E_VALUE_TYPE, 40, ".type", 99, 0);
+    urwire__within2(&e, "", 2, 0, true);
+    urwire__within(&e, "variables", 1);
+    CHECK(strcmp(e.path, "variables[1][2][0].type") == 0);
+    urwire__short(&e, "label_name", 12, 2, 13);
+    urwire__within(&e, "threads", 3);
+    CHECK(strcmp(e.path, "threads[3].label_name") == 0);
+    memset(e.path, 'x', sizeof e.path - 1);  /* a path at its limit stays cut, never overflows */
+    e.path[sizeof e.path - 1] = '\0';
+    urwire__within(&e, "variables", 1);
+    CHECK(strlen(e.path) == URWIRE_PATH_MAX - 1 && memcmp(e.path, "variables[1].xxx", 16) == 0);
+}
+
+static void texts(void)
+{
+    static const uint8_t prefixed[] = {0x00, 0x03, 'a', 'b', 'c', 0xff, 0xfe};
+    static const uint8_t names[] = {'a', 0, 'b', 'c', 0, 'x'};
+    urwire_bytes b;
+    urwire_seq seq;
+    urwire_error e;
+    size_t at = 0;
+    CHECK(urwire__read_prefixed(prefixed, &at, sizeof prefixed, 2, true, "name", &b, &e));
+    CHECK(at == 5 && b.len == 3 && memcmp(b.ptr, "abc", 3) == 0);
+    CHECK(!urwire__read_prefixed(prefixed, &at, sizeof prefixed, 2, true, "name", &b, &e));
+    CHECK(text_is(&e, "name at offset 5: negative length -2"));
+    at = 5;  /* the same bytes unsigned: 65534, past the end */
+    CHECK(!urwire__read_prefixed(prefixed, &at, sizeof prefixed, 2, false, "name", &b, &e));
+    CHECK(text_is(&e, "name at offset 7: needs 65534 bytes, 0 left"));
+    at = 0;
+    urwire__read_texts(names, &at, sizeof names, 0, &seq);
+    CHECK(at == 5 && seq.count == 2);  /* "x" has no terminator: it is extra, not a name */
+    CHECK(urwire_next_text(&seq, &b) && b.len == 1 && b.ptr[0] == 'a');
+    CHECK(urwire_next_text(&seq, &b) && b.len == 2 && b.ptr[0] == 'b');
+    CHECK(!urwire_next_text(&seq, &b));
+}
+
+static void values(void)
+{
+    static const uint8_t good[] = {
+        15, 0, 0, 0, 7, '\n',                      /* INT 7 */
+        17, 0, 2, 13, 1, 3, 0, 2, 'h', 'i', '\n',  /* LIST of BOOL true and CONST_STRING "hi" */
+        0, '\n',                                   /* NONE */
+    };
+    static const uint8_t deep[] = {17, 0, 1, 17, 0, 1, 17, 0, 1, 17, 0, 0, '\n'};
+    static const uint8_t old_list[] = {17, '\n'};  /* 17 is not a type up to 3.2 */
+    urwire_sw_version v59 = {5, 9}, v32 = {3, 2};
+    urwire_seq seq, items;
+    urwire_value val, item;
+    urwire_error e;
+    size_t at = 0;
+    CHECK(urwire__values_of(v32)->count == 2 && urwire__values_of(v59)->count == 8);
+    CHECK(urwire__read_values(good, &at, sizeof good, v59, '\n', "values", &seq, &e));
+    CHECK(at == sizeof good && seq.count == 3);
+    CHECK(urwire_next_value(&seq, &val) && val.kind == URWIRE_VALUE_INT && val.as.integer == 7);
+    CHECK(urwire_next_value(&seq, &val) && val.kind == URWIRE_VALUE_LIST && val.rows == 2);
+    items = val.items;
+    CHECK(urwire_next_value(&items, &item) && item.kind == URWIRE_VALUE_BOOL && item.as.boolean == 1);
+    CHECK(urwire_next_value(&items, &item) && strcmp(item.type_name, "CONST_STRING") == 0 && item.as.text.len == 2);
+    CHECK(!urwire_next_value(&items, &item));
+    CHECK(urwire_next_value(&seq, &val) && val.kind == URWIRE_VALUE_NONE && !urwire_next_value(&seq, &val));
+    at = 0;
+    CHECK(!urwire__read_values(deep, &at, sizeof deep, v59, '\n', "values", &seq, &e));
+    CHECK(text_is(&e, "values[0][0][0][0] at offset 9: nesting deeper than 3"));
+    at = 0;
+    CHECK(!urwire__read_values(old_list, &at, sizeof old_list, v32, '\n', "values", &seq, &e));
+    CHECK(text_is(&e, "values[0].type at offset 0: unknown value type 17"));
+    at = 0;
+    CHECK(!urwire__read_values(good, &at, 4, v59, '\n', "values", &seq, &e));
+    CHECK(text_is(&e, "values[0] at offset 1: needs 4 bytes, 3 left"));
+}
+
+static void puts_and_lengths(void)
+{
+    uint8_t out[8];
+    urwire_bytes abc = {(const uint8_t *)"abc", 3};
+    urwire_error e;
+    size_t pos = 0;
+    CHECK(urwire__put_prefixed(out, sizeof out, &pos, 2, 32767, abc, "name", &e));
+    CHECK(pos == 5 && out[0] == 0 && out[1] == 3 && memcmp(out + 2, "abc", 3) == 0);
+    CHECK(!urwire__put_prefixed(out, sizeof out, &pos, 1, 2, abc, "name", &e));
+    CHECK(text_is(&e, "name: 3 bytes do not fit the length prefix (max 2)"));
+    CHECK(urwire__put_view(out, sizeof out, &pos, abc, &e) && pos == 8);
+    CHECK(!urwire__put_view(out, sizeof out, &pos, abc, &e));
+    CHECK(text_is(&e, " at offset 8: needs 3 bytes, 0 left in the output"));
+}
+
+/* The made-up protocol's state message: a counter (type 1) and a type with no layout (9). */
+static const uint8_t state[] = {
+    0, 0, 0, 24, 16,
+    0, 0, 0, 9, 1, 0, 0, 1, 0,
+    0, 0, 0, 10, 9, 'r', 'a', 'w', '!', '!',
+};
+
+static void messages(void)
+{
+    urwire_message m;
+    urwire_robot_state rs;
+    urwire_package pkg;
+    urwire_seq seq;
+    urwire_error e;
+    uint8_t out[64], cut[sizeof state];
+    CHECK(urwire_decode_robot_state_message(state, sizeof state, URWIRE_DEFAULT_VERSION, &m, &rs));
+    CHECK(m.kind == URWIRE_KIND_STATE && m.packages.count == 2 && rs.unknown == 1);
+    CHECK(rs.present == URWIRE_BIT(1) && rs.counter.count == 256);
+    CHECK(urwire_decode_message(state, sizeof state, URWIRE_DEFAULT_VERSION, &m) && !urwire_message_has_error(&m));
+    seq = m.packages;
+    CHECK(urwire_next_package(&seq, &pkg) && pkg.known && !pkg.failed && pkg.as.counter.count == 256);
+    CHECK(urwire_next_package(&seq, &pkg) && !pkg.known && pkg.type == 9 && pkg.raw.len == 5);
+    CHECK(!urwire_next_package(&seq, &pkg));
+    CHECK(urwire_encode_message(&m, out, sizeof out, &e) == sizeof state && memcmp(out, state, sizeof state) == 0);
+    CHECK(urwire_encode_message(&m, out, 10, &e) == 0 && e.status == URWIRE_E_NO_SPACE);
+    /* A sub-package whose length runs past the message: framing stops, the rest is raw. */
+    memcpy(cut, state, sizeof state);
+    cut[17] = 11;
+    CHECK(!urwire_decode_message(cut, sizeof cut, URWIRE_DEFAULT_VERSION, &m) && m.failed);
+    CHECK(text_is(&m.error, "package at offset 14: length 11 exceeds the 10 bytes left") && m.raw.len == 10);
+    CHECK(urwire_encode_message(&m, out, sizeof out, &e) == sizeof cut && memcmp(out, cut, sizeof cut) == 0);
+    CHECK(urwire_decode_message(state, 4, URWIRE_DEFAULT_VERSION, &m) == false);
+    CHECK(m.kind == URWIRE_KIND_UNKNOWN_MESSAGE && text_is(&m.error, "length at offset 0: needs 5 bytes, 4 left"));
+}
+
+static void framer(void)
+{
+    static uint8_t buf[64];
+    uint8_t stream[2 + 2 * sizeof state];
+    urwire_framer f;
+    urwire_frame fr;
+    memcpy(stream, "\x01\x02", 2);  /* garbage, then two messages */
+    memcpy(stream + 2, state, sizeof state);
+    memcpy(stream + 2 + sizeof state, state, sizeof state);
+    urwire_framer_init(&f, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
+    CHECK(urwire_framer_feed(&f, stream, sizeof stream) == sizeof stream);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_FAULT && fr.offset == 0);
+    CHECK(text_is(&fr.fault, "length 16908288 is above 1048576"));
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.offset == 2 && fr.length == sizeof state);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.offset == 2 + sizeof state);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_NEED_MORE);
+    CHECK(urwire_framer_feed(&f, state, 7) == 7);
+    urwire_framer_finish(&f);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_FAULT);
+    CHECK(text_is(&fr.fault, "truncated message: length 24, 7 bytes left"));
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_END);
+}
+
+int main(void)
+{
+    loads_and_stores();
+    versions();
+    error_texts();
+    texts();
+    values();
+    puts_and_lengths();
+    messages();
+    framer();
+    if (failures)
+        return 1;
+    printf("all runtime checks passed\n");
+    return 0;
+}

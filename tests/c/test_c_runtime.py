@@ -1,0 +1,79 @@
+"""The hand-written C runtime (codegen/templates/c/runtime/) on its own: each file compiles
+alone under the strict flags with gcc and clang (tests/c/runtime_spec.h and runtime_support.h
+stand in for the generated part), tests/c/runtime_unit.c checks it over a made-up protocol, and
+the generator joins the files into generated/c/urwire.{h,c} minus their standalone-only lines.
+Also: a step kind with no template fragment is an error when generating."""
+from __future__ import annotations
+
+import subprocess
+
+import jinja2
+import pytest
+
+from codegen.emit import TEMPLATES, environment, runtime_source
+from codegen.targets.c import FOLDER, RUNTIME
+from codegen.view import Step
+from tests.c.harness_c import GEN, OUT, ROOT, SANITIZE, STRICT
+
+RUNTIME_DIR = TEMPLATES / "c" / "runtime"
+FILES = sorted(p.name for p in RUNTIME_DIR.iterdir())
+STANDALONE = [f"-I{RUNTIME_DIR}", f"-I{ROOT / 'tests' / 'c'}"]
+
+
+def compile_standalone(cc: str, flags: list[str], sources: list, output) -> None:
+    output.parent.mkdir(parents=True, exist_ok=True)
+    cmd = [cc, *STRICT, *flags, *STANDALONE, "-o", str(output), *map(str, sources)]
+    result = subprocess.run(cmd, capture_output=True, text=True)
+    assert result.returncode == 0 and result.stderr == "", f"{' '.join(cmd)}\n{result.stderr}"
+
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+@pytest.mark.parametrize("name", FILES)
+def test_each_runtime_file_compiles_on_its_own(cc, name):
+    header = ["-x", "c"] if name.endswith(".h") else []
+    compile_standalone(cc, ["-O2", "-c", *header], [RUNTIME_DIR / name], OUT / "runtime" / f"{name}-{cc}.o")
+
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+def test_runtime_unit_checks(cc):
+    exe = OUT / "runtime" / f"runtime-unit-{cc}"
+    sources = [ROOT / "tests" / "c" / "runtime_unit.c", *sorted(RUNTIME_DIR.glob("*.c"))]
+    compile_standalone(cc, ["-O1", "-g", *SANITIZE], sources, exe)
+    result = subprocess.run([str(exe)], capture_output=True, text=True)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert result.stdout.strip() == "all runtime checks passed"
+
+
+def test_every_runtime_file_is_joined_once():
+    joined = [name for names in RUNTIME.values() for name in names]
+    assert sorted(joined) == FILES
+
+
+def test_joined_files_are_the_runtime_minus_its_standalone_lines():
+    generated = (GEN / "urwire.h").read_text() + (GEN / "urwire.c").read_text()
+    for name in FILES:
+        text = runtime_source(FOLDER, name)
+        assert "standalone>" not in text and "runtime_support.h" not in text and "runtime_spec.h" not in text
+        assert text.strip() and text in generated, name
+    assert "standalone>" not in generated
+
+
+def test_standalone_blocks_only_include_or_guard():
+    """What a runtime file needs only on its own is an include, a guard or the linkage of its
+    private functions: never code that the joined file would lack."""
+    for name in FILES:
+        raw = (RUNTIME_DIR / name).read_text()
+        kept = runtime_source(FOLDER, name)
+        dropped = [line for line in raw.splitlines() if line not in kept.splitlines()]
+        for line in dropped:
+            assert line.startswith(("/*", "#include", "#ifndef", "#define", "#endif", "#undef")), (name, line)
+
+
+@pytest.mark.parametrize("macro", ["decode", "encode", "visit"])
+def test_an_unknown_step_kind_is_an_error_when_generating(macro):
+    steps = environment(FOLDER).get_template("steps.c.j2").module
+    known = {"decode": Step("rest", dict(name="x")), "encode": Step("bytes", dict(name="x")),
+             "visit": Step("text", dict(name="x", test=""))}[macro]
+    assert '"x"' in str(getattr(steps, macro)([known], "    ")) or "->x" in str(getattr(steps, macro)([known], "    "))
+    with pytest.raises(jinja2.UndefinedError):
+        getattr(steps, macro)([Step("no_such_kind", dict(name="x", test=""))], "    ")
