@@ -6,6 +6,7 @@ Targets never look at the YAML.
 """
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field as dc_field
 from typing import Optional, Union
 
@@ -353,6 +354,19 @@ class Struct:
             if isinstance(f, GroupField) and f.item.needs_version:
                 return True
         return False
+
+    def at(self, version: Version) -> "Struct":
+        """The struct as a stream of `version` sends it: its fields of that version, with no
+        version ranges left (flag conditions stay)."""
+        fields = []
+        for f in self.fields:
+            if f.versions.contains(version):
+                g = copy.copy(f)
+                g.versions = ALL_VERSIONS
+                if isinstance(g, GroupField):
+                    g.item = g.item.at(version)
+                fields.append(g)
+        return Struct(self.name, self.doc, fields)
 
     def named(self, name: str) -> list[AnyField]:
         """Every entry of a name: one, or several in disjoint version ranges."""

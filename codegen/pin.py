@@ -21,7 +21,7 @@ def pin(protocol: ir.Protocol, version: ir.Version) -> ir.Protocol:
         if isinstance(m, ir.PackageListMessage):
             m.packages = [_layout(lay, version) for lay in m.packages if lay.versions.contains(version)]
         else:
-            m.header = _struct(m.header, version)
+            m.header = m.header.at(version)
             m.subtypes = [_layout(lay, version) for lay in m.subtypes if lay.versions.contains(version)]
     p.documented_versions = [version]
     p.default_version = version
@@ -34,17 +34,4 @@ def _table_for(e: ir.Enum, version: ir.Version) -> ir.EnumTable:
 
 
 def _layout(lay: ir.Layout, version: ir.Version) -> ir.Layout:
-    return dataclasses.replace(lay, struct=_struct(lay.struct, version), versions=ir.ALL_VERSIONS)
-
-
-def _struct(struct: ir.Struct, version: ir.Version) -> ir.Struct:
-    fields = []
-    for f in struct.fields:
-        if not f.versions.contains(version):
-            continue
-        g = copy.copy(f)
-        g.versions = ir.ALL_VERSIONS
-        if isinstance(g, ir.GroupField):
-            g.item = _struct(g.item, version)
-        fields.append(g)
-    return ir.Struct(struct.name, struct.doc, fields)
+    return dataclasses.replace(lay, struct=lay.struct.at(version), versions=ir.ALL_VERSIONS)

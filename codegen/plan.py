@@ -269,6 +269,7 @@ class Variant:
     sizes: Optional[frozenset[int]]
     min_size: int
     rep: ir.Version
+    plan: Optional[LayoutPlan] = None   # the layout as this form sends it: no version conditions
     releases: list[tuple[int, int]] = field(default_factory=list)   # the released series (numbers)
 
     @property
@@ -328,6 +329,10 @@ class MessagePlan:
     @property
     def layouts(self) -> list[LayoutChoice]:
         return [c for choices in self.choices.values() for c in choices]
+
+    def forms_of(self, layout: ir.Layout) -> list["Variant"]:
+        """The forms of one layout (a code with two layouts has forms of each)."""
+        return [v for v in self.variants.get(layout.code.value, []) if v.layout is layout]
 
     def header_field(self, name: str) -> Optional[HeaderSlot]:
         for slot in self.header:
@@ -557,6 +562,9 @@ def plan(p: ir.Protocol) -> ProtocolPlan:
         for lay in layouts:
             choices.setdefault(lay.code.value, []).append(LayoutChoice(lay, planner.layout(lay.struct)))
         variants = {code: _variants(options, p.default_version, releases) for code, options in choices.items()}
+        for forms in variants.values():
+            for v in forms:
+                v.plan = planner.layout(v.layout.struct.at(v.rep))
         messages.append(MessagePlan(m, header, body, subtype_offset, choices, variants))
     version = _version_source(p, messages, problems)
     if problems:

@@ -45,6 +45,7 @@ class MemberView:
     item: str = ""       # groups: the item class
     width: int = 0       # groups: values per item
     size: int = 0        # groups: bytes per item
+    enums: list = field(default_factory=list)   # groups: the versioned enums its items look up
 
 
 @dataclass
@@ -56,6 +57,16 @@ class StructConst:
 
 
 @dataclass
+class Codec:
+    """The decoder and encoder of one form of a layout (`suffix` names the pair: _decode_1)."""
+
+    suffix: str
+    decode: list[Step]
+    encode: list[Step]
+    ranges: list = field(default_factory=list)   # (low, high) version tuples of the form
+
+
+@dataclass
 class PyClass:
     name: str
     doc: str
@@ -64,8 +75,7 @@ class PyClass:
     code: Optional[int]
     attrs: list[Attr]
     header_names: list[str]
-    decode_steps: list[Step]
-    encode_steps: list[Step]
+    codecs: list["Codec"]          # one decoder and encoder per form (one for most layouts)
     structs: list[StructConst]
     fixed: bool = False            # item laid out in its parent's run
     members: list[MemberView] = field(default_factory=list)  # fixed items: read from the parent's run
@@ -160,6 +170,8 @@ class _ClassBuilder:
         self.structs: list[StructConst] = []
         # Names with several entries (in disjoint version ranges): one attribute for them all.
         self.repeated = [f.name for f in struct.public_fields if len(struct.named(f.name)) > 1]
+        self.item_venums = [f.name for f in struct.fields
+                            if isinstance(f, (ir.ScalarField, ir.ArrayField)) and f.enum is not None and f.enum.versioned]
 
     # ---- fixed runs: what each member of a run is ----
 
@@ -170,11 +182,15 @@ class _ClassBuilder:
         view = MemberView(f.name, "scalar", "plain", first=index(values, m.first_leaf),
                           last=index(values, m.first_leaf + m.leaf_count), at=index(offsets, m.offset))
         if isinstance(f, ir.GroupField):
-            view.kind, view.count, view.item = "group", f.count, self.target.item_classes[id(f)].name
+            view.kind, view.count, view.item = "group", f.count, self.target.item_classes[f.item.name].name
             view.width, view.size = m.item.leaf_count, m.item.layout.fixed_size
+            view.enums = item_enums(f.item)
             return view
         view.kind = "array" if isinstance(f, ir.ArrayField) else "scalar"
         view.conv, view.lookup = conversion(f.scalar, f.enum)
+        if view.conv == "venum" and values == "i":
+            # Inside a fixed item: the parent looks the table up once for all items.
+            view.conv, view.lookup = "item_enum", str(self.item_venums.index(f.name))
         return view
 
     def run_step(self, run: plan.FixedRun) -> tuple[Step, Step]:
@@ -234,9 +250,15 @@ class _ClassBuilder:
             data = dict(name=f.name, const=const, default=default, selector=f.selector.name, path=path)
             return Step("switch", data), Step("switch", data)
         assert isinstance(f, ir.GroupField)
-        item = self.target.item_classes[id(f)]
+        item = self.target.item_classes[f.item.name]
         return (Step("group_to_end", dict(name=f.name, item=item.name, path=path)),
                 Step("group_to_end", dict(name=f.name)))
+
+
+def item_enums(item: ir.Struct) -> list[str]:
+    """The lookups of the versioned enums a fixed item's fields use, in field order."""
+    return [py_lookup(f.enum) for f in item.fields
+            if isinstance(f, (ir.ScalarField, ir.ArrayField)) and f.enum is not None and f.enum.versioned]
 
 
 def version_tuple(number: int) -> tuple[int, int, int]:
@@ -273,27 +295,44 @@ class _Target:
     def build_class(self, layout: plan.LayoutPlan, name: str, role: str, json_type: str, code: Optional[int],
                     doc: str, header: Optional[list[plan.HeaderSlot]] = None,
                     sets_version: Optional[tuple[str, str]] = None,
-                    summary: Optional[list[tuple[str, str]]] = None) -> PyClass:
+                    summary: Optional[list[tuple[str, str]]] = None,
+                    forms: Optional[list[plan.Variant]] = None) -> PyClass:
         struct = layout.struct
         self.check_names(struct)
         # Group items first, so the parent can refer to them.
         for f in struct.fields:
             if isinstance(f, ir.GroupField):
                 item = self.plan.item_of(f)
-                self.item_classes[id(f)] = self.build_class(
+                self.item_classes[f.item.name] = self.build_class(
                     item.layout, py_item_class(f), "item", f.item.name, None,
                     one_line(f.doc) or f"One entry of {f.name}.")
         builder = _ClassBuilder(self, json_type, struct)
-        decode, encode = builder.steps(layout.steps)
-        if builder.repeated:
-            decode.insert(0, Step("absent", dict(names=builder.repeated)))
-        items = {f.name: self.item_classes[id(f)].name for f in struct.fields if isinstance(f, ir.GroupField)}
+        structs: list[StructConst] = []
+        if len(forms or []) > 1:
+            # One flat decoder per form: no version test on the way (the form is chosen first).
+            codecs = []
+            for k, v in enumerate(forms):
+                form_builder = _ClassBuilder(self, f"{json_type}_{k}", v.plan.struct)
+                decode, encode = form_builder.steps(v.plan.steps)
+                absent = [f.name for f in struct.public_fields if not v.plan.struct.named(f.name)]
+                if absent:
+                    decode.insert(0, Step("absent", dict(names=absent)))
+                codecs.append(Codec(f"_{k}", decode, encode,
+                                    [(version_tuple(lo), version_tuple(hi)) for lo, hi in v.ranges]))
+                structs += form_builder.structs
+        else:
+            decode, encode = builder.steps(layout.steps)
+            if builder.repeated:
+                decode.insert(0, Step("absent", dict(names=builder.repeated)))
+            codecs = [Codec("", decode, encode)]
+            structs = builder.structs
+        items = {f.name: self.item_classes[f.item.name].name for f in struct.fields if isinstance(f, ir.GroupField)}
         header_fields = [slot.field for slot in header or [] if not slot.is_subtype]
         attrs = [Attr(f.name, annotation(f, {}), one_line(f.doc, f.field_note), json_kind(f)) for f in header_fields]
         attrs += [Attr(f.name, annotation(f, items), one_line(f.doc, f.field_note), json_kind(f), f.conditional)
                   for f in struct.public_fields]
-        cls = PyClass(name, doc, role, json_type, code, attrs, [f.name for f in header_fields], decode, encode,
-                      builder.structs, sets_version=sets_version)
+        cls = PyClass(name, doc, role, json_type, code, attrs, [f.name for f in header_fields], codecs,
+                      structs, sets_version=sets_version)
         if role == "item" and self.is_fixed_item(layout):
             # A fixed item is read inside its parent's run: from the parent's values and offset.
             cls.fixed = True
@@ -307,13 +346,19 @@ class _Target:
         it stands for (see plan.Variant)."""
         out = []
         for code, variants in mp.variants.items():
-            out.append((code, [dict(cls=classes[id(v.layout)].name,
+            out.append((code, [dict(cls=classes[id(v.layout)].name, decode=self.decoder_of(classes[id(v.layout)], mp, v),
                                     ranges=[(version_tuple(lo), version_tuple(hi)) for lo, hi in v.ranges],
                                     sizes=f"frozenset({{{', '.join(map(str, sorted(v.sizes)))}}})"
                                     if v.sizes is not None else "None",
                                     min_size=v.min_size, rep=v.rep, versions=v.describe())
                                for v in variants]))
         return out
+
+    @staticmethod
+    def decoder_of(cls: PyClass, mp: plan.MessagePlan, v: plan.Variant) -> str:
+        forms = mp.forms_of(v.layout)
+        suffix = f"_{forms.index(v)}" if len(forms) > 1 else ""
+        return f"{cls.name}._decode{suffix}"
 
     def is_fixed_item(self, layout: plan.LayoutPlan) -> bool:
         return any(it.layout is layout and it.fixed for it in self.plan.items)
@@ -326,7 +371,7 @@ class _Target:
                 classes = {id(c.layout): self.build_class(c.plan, py_layout_class(c.layout, False), "package",
                                                           c.layout.name, c.layout.code.value,
                                                           one_line(c.layout.doc, c.layout.field_note),
-                                                          summary=c.layout.summary)
+                                                          summary=c.layout.summary, forms=mp.forms_of(c.layout))
                            for c in mp.layouts}
                 messages.append(dict(kind="packages", name=m.name, cls=py_message_class(m), code=m.code.value,
                                      code_name=m.code.name, doc=one_line(m.doc, m.field_note),
@@ -340,7 +385,8 @@ class _Target:
             classes = {id(c.layout): self.build_class(c.plan, py_layout_class(c.layout, True), "subtype",
                                                       c.layout.name, c.layout.code.value,
                                                       one_line(c.layout.doc, c.layout.field_note), mp.header,
-                                                      c.layout.sets_version, c.layout.summary) for c in mp.layouts}
+                                                      c.layout.sets_version, c.layout.summary,
+                                                      forms=mp.forms_of(c.layout)) for c in mp.layouts}
             layouts = list(classes.values())
             announces = self.plan.version.subtype_code if self.plan.version.message_code == m.code.value else None
             messages.append(dict(

@@ -15,7 +15,7 @@ MINIMAL_VERSION = bytes.fromhex("0000001c140000000000000000fe0302555205180000000
 
 CASES = [c for c in all_cases() if not any(isinstance(r, urwire.StreamError)
                                            for r in urwire.decode_stream(c.data, c.version))]
-VERSIONS = [(3, 2), (5, 0), (5, 9), (5, 10)]
+VERSIONS = valid.versions()   # one version per form of every type code: every generation
 
 
 def reencode(data: bytes, hint) -> bytes:

@@ -1,4 +1,6 @@
-"""Random VALID messages, generated from the spec's IR: every layout, every field kind.
+"""Random VALID messages, generated from the spec's IR: every layout, every field kind, in the
+form a given software version sends (`versions()` lists one version per form of every type code,
+so every controller generation is covered).
 
 Used by property tests: whatever these bytes hold, a decoder must read them without error,
 unknown part or extra bytes, and encoding must give the same bytes back.
@@ -10,14 +12,25 @@ import struct
 
 from codegen import ir
 from codegen.compile import compile_file
+from codegen.plan import plan
 
 PROTOCOL = compile_file()
+
+
+def versions() -> list[tuple[int, int, int]]:
+    """One software version for every form of every type code (the version each form stands
+    for), the default included: every generation the spec knows, oldest first."""
+    found = {PROTOCOL.default_version} | {r.low for _, r in PROTOCOL.generations if r.low}
+    for mp in plan(PROTOCOL).messages:
+        for forms in mp.variants.values():
+            found |= {(v.rep[0], v.rep[1], 0 if v.rep[2] == ir.BUGFIX_ANY else v.rep[2]) for v in forms}
+    return sorted(found)
 _CODES = {"bool": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H", "int32": "i", "uint32": "I",
           "int64": "q", "uint64": "Q", "float32": "f", "float64": "d"}
 
 
 class _Gen:
-    def __init__(self, rng: random.Random, version: tuple[int, int]):
+    def __init__(self, rng: random.Random, version: tuple[int, int, int]):
         self.rng = rng
         self.version = version
 
@@ -28,19 +41,25 @@ class _Gen:
 
     def scalar(self, s: ir.Scalar, enum: ir.Enum | None = None) -> tuple[bytes, int]:
         if enum is not None and self.rng.random() < 0.7:
-            value = self.rng.choice(enum.values).value
+            value = self.rng.choice(enum.table_for(self.version).values).value
             return struct.pack(">" + _CODES[s.name], value), value
         raw = bytes(self.rng.randrange(256) for _ in range(s.size))
         value = struct.unpack(">" + _CODES[s.name], raw)[0] if s.is_integer or s.is_bool else 0
         return raw, value
 
-    def struct(self, st: ir.Struct) -> bytes:
+    def struct(self, st: ir.Struct, announce: tuple = ()) -> bytes:
+        """`announce` names the major, minor and bugfix fields of a Version message: they carry
+        the generator's own version, as a controller's do."""
         out = b""
         values: dict[str, int] = {}
+        numbers = dict(zip(announce, self.version))
         for f in st.fields:
             if f.present_if is not None and not values.get(f.present_if):
                 continue
             if not f.versions.contains(self.version):
+                continue
+            if f.name in numbers:
+                out += struct.pack(">" + _CODES[f.scalar.name], numbers[f.name])
                 continue
             out += self.field(f, values)
         return out
@@ -95,17 +114,18 @@ class _Gen:
             self.value(table, depth + 1) for _ in range(rows * cols))
 
 
-def message(rng: random.Random, version: tuple[int, int] = PROTOCOL.default_version) -> bytes:
-    """One valid message of a random laid-out kind."""
+def message(rng: random.Random, version: tuple[int, int, int] = PROTOCOL.default_version) -> bytes:
+    """One valid message of a random laid-out kind, in the form `version` sends it."""
     gen = _Gen(rng, version)
     m = rng.choice(PROTOCOL.messages)
     if isinstance(m, ir.PackageListMessage):
         body = b""
-        for pkg in rng.sample(m.packages, rng.randint(0, len(m.packages))):
+        packages = [pkg for pkg in m.packages if pkg.versions.contains(version)]
+        for pkg in rng.sample(packages, rng.randint(0, len(packages))):
             payload = gen.struct(pkg.struct)
             body += struct.pack(">iB", len(payload) + 5, pkg.code.value) + payload
     else:
-        sub = rng.choice(m.subtypes)
+        sub = rng.choice([s for s in m.subtypes if s.versions.contains(version)])
         header = b"".join(gen.field(f, {}) for f in m.header.fields)
-        body = header + struct.pack(">B", sub.code.value) + gen.struct(sub.struct)
+        body = header + struct.pack(">B", sub.code.value) + gen.struct(sub.struct, sub.sets_version or ())
     return struct.pack(">iB", len(body) + 5, m.code.value) + body

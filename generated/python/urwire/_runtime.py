@@ -264,16 +264,16 @@ class ValueCodec:
 # ---- choosing a layout by software version and by length ------------------------------------
 
 class Form:
-    """One form a type code takes on the wire: the class that reads it, the software versions
+    """One form a type code takes on the wire: its class and the decoder of this form, the software versions
     that send it (inclusive (low, high) pairs), the body sizes it can have (None: open-ended,
     at least `min_size`), and `rep`, the version a stream is taken to run when this form is
     recognised by its length alone."""
 
-    __slots__ = ("cls", "ranges", "sizes", "min_size", "rep", "versions")
+    __slots__ = ("cls", "decode", "ranges", "sizes", "min_size", "rep", "versions")
 
-    def __init__(self, cls: type, ranges: tuple, sizes: Optional[frozenset], min_size: int, rep: tuple,
+    def __init__(self, cls: type, decode, ranges: tuple, sizes: Optional[frozenset], min_size: int, rep: tuple,
                  versions: str):
-        self.cls, self.ranges, self.sizes, self.min_size = cls, ranges, sizes, min_size
+        self.cls, self.decode, self.ranges, self.sizes, self.min_size = cls, decode, ranges, sizes, min_size
         self.rep, self.versions = rep, versions
 
     def sent_by(self, version: tuple) -> bool:
@@ -283,21 +283,46 @@ class Form:
         return size in self.sizes if self.sizes is not None else size >= self.min_size
 
 
-_CHOICES: dict = {}
+_UNKNOWN = (None, None, False, None)
+
+
+class Forms:
+    """The forms of every type code of one message. `at(version)` is a table, filled on first
+    use, from `code << 32 | body size` to (decoder, version to decode with, chosen by length?,
+    form): what `choose` says, with no work after the first time, since codes, sizes and versions
+    repeat. A code the spec does not lay out maps to _UNKNOWN."""
+
+    __slots__ = ("by_code", "resolved")
+
+    def __init__(self, by_code: dict):
+        self.by_code = by_code
+        self.resolved: dict = {}     # version -> its table
+
+    def at(self, version: tuple) -> dict:
+        table = self.resolved.get(version)
+        if table is None:
+            table = self.resolved[version] = {}
+        return table
+
+    def pick(self, version: tuple, code: int, size: int) -> tuple:
+        table = self.at(version)
+        if len(table) > 4096:        # open-ended forms come in any size: keep the table small
+            table.clear()
+        forms = self.by_code.get(code)
+        if forms is None:
+            found = _UNKNOWN
+        else:
+            form, use, by_length = _choose(forms, size, version)
+            found = (form.decode, use, by_length, form)
+        table[code << 32 | size] = found
+        return found
 
 
 def choose(forms: tuple, size: int, version: tuple) -> tuple:
     """(form, version to decode it with, chosen by length?) for a body of `size` bytes: the
     version's form when it fits; else the one form whose size is exactly `size`; else the
-    version's form, whose short or extra bytes are then reported. Remembered, since sizes and
-    versions repeat."""
-    key = (id(forms), size, version)
-    found = _CHOICES.get(key)
-    if found is None:
-        if len(_CHOICES) > 4096:
-            _CHOICES.clear()
-        found = _CHOICES[key] = _choose(forms, size, version)
-    return found
+    version's form, whose short or extra bytes are then reported."""
+    return _choose(forms, size, version)
 
 
 def _choose(forms: tuple, size: int, version: tuple) -> tuple:

@@ -6,6 +6,24 @@ from __future__ import annotations
 from enum import IntEnum
 
 
+class _ByVersion(dict):
+    """Software version -> the {code: member} table of a versioned enum in force then (the
+    newest when none is), looked up once per version."""
+
+    def __init__(self, tables: tuple):
+        super().__init__()
+        self.tables = tables
+
+    def __missing__(self, version: tuple) -> dict:
+        for low, high, table in self.tables:
+            if (low is None or version >= low) and (high is None or version <= high):
+                break
+        else:
+            table = self.tables[-1][2]
+        self[version] = table
+        return table
+
+
 class MessageType(IntEnum):
     """Type of a top-level message, the byte after messageSize."""
 
@@ -71,11 +89,11 @@ class PackageType(IntEnum):
     """Not in any document. 85 bytes on a real 5.11 robot (FIRMWARE-LAYOUTS 2.14: the capture of URCL pull request 137); absent from URSim 5.8 and 5.10 states, so its first version is unknown. Read as ten doubles it looks like payload mass, centre of gravity and inertia, but that layout is only an inference (no source names the package or its fields), so it stays raw. (undocumented)"""
 
 
-# The package_type table in force for each range of software versions: (low, high, {code: member}).
-PACKAGE_TYPE_BY_VALUE = (
+# {code: member} of the package_type table in force, by software version.
+PACKAGE_TYPE_BY_VALUE = _ByVersion((
     (None, (1, 7, 999), {m.value: m for m in PackageTypeUpTo1_7}),  # up to 1.7
     ((1, 8, 0), None, {m.value: m for m in PackageType}),  # 1.8 and later
-)
+))
 
 
 class RobotMessageTypeUpTo1_8(IntEnum):
@@ -122,11 +140,11 @@ class RobotMessageType(IntEnum):
     """Not in the 5.9 document: sent from PolyScope 5.26 and 10.13 (FIRMWARE-LAYOUTS 1b, 2.16, 3.13; its layout is URCL's)."""
 
 
-# The robot_message_type table in force for each range of software versions: (low, high, {code: member}).
-ROBOT_MESSAGE_TYPE_BY_VALUE = (
+# {code: member} of the robot_message_type table in force, by software version.
+ROBOT_MESSAGE_TYPE_BY_VALUE = _ByVersion((
     (None, (1, 8, 999), {m.value: m for m in RobotMessageTypeUpTo1_8}),  # up to 1.8
     ((1, 9, 0), None, {m.value: m for m in RobotMessageType}),  # 1.9 and later
-)
+))
 
 
 class ProgramStateMessageType(IntEnum):
@@ -184,11 +202,11 @@ class RobotMode(IntEnum):
     UPDATING_FIRMWARE = 8
 
 
-# The robot_mode table in force for each range of software versions: (low, high, {code: member}).
-ROBOT_MODE_BY_VALUE = (
+# {code: member} of the robot_mode table in force, by software version.
+ROBOT_MODE_BY_VALUE = _ByVersion((
     (None, (1, 8, 999), {m.value: m for m in RobotModeUpTo1_8}),  # up to 1.8
     ((3, 0, 0), None, {m.value: m for m in RobotMode}),  # 3.0 and later
-)
+))
 
 
 class JointModeUpTo1_8(IntEnum):
@@ -266,13 +284,13 @@ class JointMode(IntEnum):
     IDLE = 255
 
 
-# The joint_mode table in force for each range of software versions: (low, high, {code: member}).
-JOINT_MODE_BY_VALUE = (
+# {code: member} of the joint_mode table in force, by software version.
+JOINT_MODE_BY_VALUE = _ByVersion((
     (None, (1, 8, 999), {m.value: m for m in JointModeUpTo1_8}),  # up to 1.8
     ((3, 0, 0), (3, 15, 999), {m.value: m for m in JointMode3_0To3_15}),  # 3.0 to 3.15
     ((5, 0, 0), (5, 0, 999), {m.value: m for m in JointMode5_0To5_0}),  # 5.0 to 5.0
     ((5, 1, 0), None, {m.value: m for m in JointMode}),  # 5.1 and later
-)
+))
 
 
 class ToolMode(IntEnum):
@@ -350,11 +368,11 @@ class MessageSource(IntEnum):
     RTDE = 8
 
 
-# The message_source table in force for each range of software versions: (low, high, {code: member}).
-MESSAGE_SOURCE_BY_VALUE = (
+# {code: member} of the message_source table in force, by software version.
+MESSAGE_SOURCE_BY_VALUE = _ByVersion((
     (None, (1, 8, 999), {m.value: m for m in MessageSourceUpTo1_8}),  # up to 1.8
     ((3, 0, 0), None, {m.value: m for m in MessageSource}),  # 3.0 and later
-)
+))
 
 
 class SafetyMode(IntEnum):
@@ -552,20 +570,14 @@ class ValueType(IntEnum):
     MATRIX = 18
 
 
-# The value_type table in force for each range of software versions: (low, high, {code: member}).
-VALUE_TYPE_BY_VALUE = (
+# {code: member} of the value_type table in force, by software version.
+VALUE_TYPE_BY_VALUE = _ByVersion((
     (None, (3, 2, 999), {m.value: m for m in ValueTypeUpTo3_2}),  # up to 3.2
     ((3, 3, 0), (5, 8, 999), {m.value: m for m in ValueType3_3To5_8}),  # 3.3 to 5.8
     ((5, 9, 0), None, {m.value: m for m in ValueType}),  # 5.9 and later
-)
+))
 
 
-def by_version(tables: tuple, version: tuple[int, int, int]) -> dict:
-    """The {code: member} table of a versioned enum in force for a software version."""
-    for low, high, table in tables:
-        if (low is None or version >= low) and (high is None or version <= high):
-            return table
-    return tables[-1][2]
 
 
 # The value-type table in force for each range of software versions: (low, high, enum).

@@ -28,7 +28,7 @@ _INT32 = struct.Struct(">i")
 _FLOAT32 = struct.Struct(">f")
 _UINT32 = struct.Struct(">I")
 _UINT8 = struct.Struct(">B")
-_SAFETY_MODE_REPORT_DATA_BY_REPORT_DATA_TYPE = {2: _INT32, 3: _FLOAT32}
+_SAFETY_MODE_1_REPORT_DATA_BY_REPORT_DATA_TYPE = {2: _INT32, 3: _FLOAT32}
 # Where a Version message keeps its numbers: (fixed bytes, length prefix) on the way there.
 _VERSION_SKIPS = ((0, _INT8), )
 
@@ -66,8 +66,8 @@ class _Item:
     __slots__ = ()
 
 
-_ROBOT_MODE_DATA_0 = struct.Struct(">QBBBBBBBb")
-_ROBOT_MODE_DATA_0_RUN = (
+_ROBOT_MODE_DATA_0_0 = struct.Struct(">QBBBBBBBbd")
+_ROBOT_MODE_DATA_0_0_RUN = (
     ("timestamp", 0, 8),
     ("is_real_robot_connected", 8, 1),
     ("is_real_robot_enabled", 9, 1),
@@ -77,36 +77,61 @@ _ROBOT_MODE_DATA_0_RUN = (
     ("is_program_running", 13, 1),
     ("is_program_paused", 14, 1),
     ("robot_mode", 15, 1),
+    ("target_speed_fraction", 16, 8),
 )
 
 
-_ROBOT_MODE_DATA_1 = struct.Struct(">B")
-_ROBOT_MODE_DATA_1_RUN = (
-    ("control_mode", 0, 1),
+_ROBOT_MODE_DATA_1_0 = struct.Struct(">QBBBBBBBbBdd")
+_ROBOT_MODE_DATA_1_0_RUN = (
+    ("timestamp", 0, 8),
+    ("is_real_robot_connected", 8, 1),
+    ("is_real_robot_enabled", 9, 1),
+    ("is_robot_power_on", 10, 1),
+    ("is_emergency_stopped", 11, 1),
+    ("is_protective_stopped", 12, 1),
+    ("is_program_running", 13, 1),
+    ("is_program_paused", 14, 1),
+    ("robot_mode", 15, 1),
+    ("control_mode", 16, 1),
+    ("target_speed_fraction", 17, 8),
+    ("speed_scaling", 25, 8),
 )
 
 
-_ROBOT_MODE_DATA_2 = struct.Struct(">d")
-_ROBOT_MODE_DATA_2_RUN = (
-    ("target_speed_fraction", 0, 8),
+_ROBOT_MODE_DATA_2_0 = struct.Struct(">QBBBBBBBbBddd")
+_ROBOT_MODE_DATA_2_0_RUN = (
+    ("timestamp", 0, 8),
+    ("is_real_robot_connected", 8, 1),
+    ("is_real_robot_enabled", 9, 1),
+    ("is_robot_power_on", 10, 1),
+    ("is_emergency_stopped", 11, 1),
+    ("is_protective_stopped", 12, 1),
+    ("is_program_running", 13, 1),
+    ("is_program_paused", 14, 1),
+    ("robot_mode", 15, 1),
+    ("control_mode", 16, 1),
+    ("target_speed_fraction", 17, 8),
+    ("speed_scaling", 25, 8),
+    ("target_speed_fraction_limit", 33, 8),
 )
 
 
-_ROBOT_MODE_DATA_3 = struct.Struct(">d")
-_ROBOT_MODE_DATA_3_RUN = (
-    ("speed_scaling", 0, 8),
-)
-
-
-_ROBOT_MODE_DATA_4 = struct.Struct(">d")
-_ROBOT_MODE_DATA_4_RUN = (
-    ("target_speed_fraction_limit", 0, 8),
-)
-
-
-_ROBOT_MODE_DATA_5 = struct.Struct(">B")
-_ROBOT_MODE_DATA_5_RUN = (
-    ("reserved", 0, 1),
+_ROBOT_MODE_DATA_3_0 = struct.Struct(">QBBBBBBBbBdddB")
+_ROBOT_MODE_DATA_3_0_RUN = (
+    ("timestamp", 0, 8),
+    ("is_real_robot_connected", 8, 1),
+    ("is_real_robot_enabled", 9, 1),
+    ("is_robot_power_on", 10, 1),
+    ("is_emergency_stopped", 11, 1),
+    ("is_protective_stopped", 12, 1),
+    ("is_program_running", 13, 1),
+    ("is_program_paused", 14, 1),
+    ("robot_mode", 15, 1),
+    ("control_mode", 16, 1),
+    ("target_speed_fraction", 17, 8),
+    ("speed_scaling", 25, 8),
+    ("target_speed_fraction_limit", 33, 8),
+    ("reserved", 41, 1),
 )
 
 
@@ -163,10 +188,12 @@ class RobotModeData(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["RobotModeData", int]:
-        if pos + 16 > end:
-            raise _rt.short_in_run(_ROBOT_MODE_DATA_0_RUN, pos, end)
-        v = _ROBOT_MODE_DATA_0.unpack_from(buf, pos)
+    def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
+        """Read the form of software (1, 0, 0) to (1, 8, 999)."""
+        control_mode = speed_scaling = target_speed_fraction_limit = reserved = None
+        if pos + 24 > end:
+            raise _rt.short_in_run(_ROBOT_MODE_DATA_0_0_RUN, pos, end)
+        v = _ROBOT_MODE_DATA_0_0.unpack_from(buf, pos)
         timestamp = v[0]
         is_real_robot_connected = _BOOL[v[1]]
         is_real_robot_enabled = _BOOL[v[2]]
@@ -175,55 +202,102 @@ class RobotModeData(_Package):
         is_protective_stopped = _BOOL[v[5]]
         is_program_running = _BOOL[v[6]]
         is_program_paused = _BOOL[v[7]]
-        robot_mode = _e.by_version(_e.ROBOT_MODE_BY_VALUE, version).get(v[8], v[8])
-        pos += 16
-        if version >= (3, 0, 0):
-            if pos + 1 > end:
-                raise _rt.short_in_run(_ROBOT_MODE_DATA_1_RUN, pos, end)
-            (control_mode,) = _ROBOT_MODE_DATA_1.unpack_from(buf, pos)
-            control_mode = _e.CONTROL_MODE_BY_VALUE.get(control_mode, control_mode)
-            pos += 1
-        else:
-            control_mode = None
-        if pos + 8 > end:
-            raise _rt.short_in_run(_ROBOT_MODE_DATA_2_RUN, pos, end)
-        (target_speed_fraction,) = _ROBOT_MODE_DATA_2.unpack_from(buf, pos)
-        pos += 8
-        if version >= (3, 0, 0):
-            if pos + 8 > end:
-                raise _rt.short_in_run(_ROBOT_MODE_DATA_3_RUN, pos, end)
-            (speed_scaling,) = _ROBOT_MODE_DATA_3.unpack_from(buf, pos)
-            pos += 8
-        else:
-            speed_scaling = None
-        if version >= (3, 2, 0):
-            if pos + 8 > end:
-                raise _rt.short_in_run(_ROBOT_MODE_DATA_4_RUN, pos, end)
-            (target_speed_fraction_limit,) = _ROBOT_MODE_DATA_4.unpack_from(buf, pos)
-            pos += 8
-        else:
-            target_speed_fraction_limit = None
-        if version >= (3, 5, 0):
-            if pos + 1 > end:
-                raise _rt.short_in_run(_ROBOT_MODE_DATA_5_RUN, pos, end)
-            (reserved,) = _ROBOT_MODE_DATA_5.unpack_from(buf, pos)
-            pos += 1
-        else:
-            reserved = None
-        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped, is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode, target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved), pos
+        robot_mode = _e.ROBOT_MODE_BY_VALUE[version].get(v[8], v[8])
+        target_speed_fraction = v[9]
+        pos += 24
+        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped, is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode, target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        out += _ROBOT_MODE_DATA_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled, self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped, self.is_program_running, self.is_program_paused, self.robot_mode)
-        if version >= (3, 0, 0):
-            out += _ROBOT_MODE_DATA_1.pack(self.control_mode)
-        out += _ROBOT_MODE_DATA_2.pack(self.target_speed_fraction)
-        if version >= (3, 0, 0):
-            out += _ROBOT_MODE_DATA_3.pack(self.speed_scaling)
-        if version >= (3, 2, 0):
-            out += _ROBOT_MODE_DATA_4.pack(self.target_speed_fraction_limit)
-        if version >= (3, 5, 0):
-            out += _ROBOT_MODE_DATA_5.pack(self.reserved)
+    def _encode_0(self, out: bytearray, version: tuple) -> None:
+        out += _ROBOT_MODE_DATA_0_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled, self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped, self.is_program_running, self.is_program_paused, self.robot_mode, self.target_speed_fraction)
         out += self.extra
+
+    @classmethod
+    def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
+        """Read the form of software (3, 0, 0) to (3, 1, 999)."""
+        target_speed_fraction_limit = reserved = None
+        if pos + 33 > end:
+            raise _rt.short_in_run(_ROBOT_MODE_DATA_1_0_RUN, pos, end)
+        v = _ROBOT_MODE_DATA_1_0.unpack_from(buf, pos)
+        timestamp = v[0]
+        is_real_robot_connected = _BOOL[v[1]]
+        is_real_robot_enabled = _BOOL[v[2]]
+        is_robot_power_on = _BOOL[v[3]]
+        is_emergency_stopped = _BOOL[v[4]]
+        is_protective_stopped = _BOOL[v[5]]
+        is_program_running = _BOOL[v[6]]
+        is_program_paused = _BOOL[v[7]]
+        robot_mode = _e.ROBOT_MODE_BY_VALUE[version].get(v[8], v[8])
+        control_mode = _e.CONTROL_MODE_BY_VALUE.get(v[9], v[9])
+        target_speed_fraction = v[10]
+        speed_scaling = v[11]
+        pos += 33
+        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped, is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode, target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
+
+    def _encode_1(self, out: bytearray, version: tuple) -> None:
+        out += _ROBOT_MODE_DATA_1_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled, self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped, self.is_program_running, self.is_program_paused, self.robot_mode, self.control_mode, self.target_speed_fraction, self.speed_scaling)
+        out += self.extra
+
+    @classmethod
+    def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
+        """Read the form of software (3, 2, 0) to (3, 4, 999)."""
+        reserved = None
+        if pos + 41 > end:
+            raise _rt.short_in_run(_ROBOT_MODE_DATA_2_0_RUN, pos, end)
+        v = _ROBOT_MODE_DATA_2_0.unpack_from(buf, pos)
+        timestamp = v[0]
+        is_real_robot_connected = _BOOL[v[1]]
+        is_real_robot_enabled = _BOOL[v[2]]
+        is_robot_power_on = _BOOL[v[3]]
+        is_emergency_stopped = _BOOL[v[4]]
+        is_protective_stopped = _BOOL[v[5]]
+        is_program_running = _BOOL[v[6]]
+        is_program_paused = _BOOL[v[7]]
+        robot_mode = _e.ROBOT_MODE_BY_VALUE[version].get(v[8], v[8])
+        control_mode = _e.CONTROL_MODE_BY_VALUE.get(v[9], v[9])
+        target_speed_fraction = v[10]
+        speed_scaling = v[11]
+        target_speed_fraction_limit = v[12]
+        pos += 41
+        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped, is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode, target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
+
+    def _encode_2(self, out: bytearray, version: tuple) -> None:
+        out += _ROBOT_MODE_DATA_2_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled, self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped, self.is_program_running, self.is_program_paused, self.robot_mode, self.control_mode, self.target_speed_fraction, self.speed_scaling, self.target_speed_fraction_limit)
+        out += self.extra
+
+    @classmethod
+    def _decode_3(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
+        """Read the form of software (3, 5, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        if pos + 42 > end:
+            raise _rt.short_in_run(_ROBOT_MODE_DATA_3_0_RUN, pos, end)
+        v = _ROBOT_MODE_DATA_3_0.unpack_from(buf, pos)
+        timestamp = v[0]
+        is_real_robot_connected = _BOOL[v[1]]
+        is_real_robot_enabled = _BOOL[v[2]]
+        is_robot_power_on = _BOOL[v[3]]
+        is_emergency_stopped = _BOOL[v[4]]
+        is_protective_stopped = _BOOL[v[5]]
+        is_program_running = _BOOL[v[6]]
+        is_program_paused = _BOOL[v[7]]
+        robot_mode = _e.ROBOT_MODE_BY_VALUE[version].get(v[8], v[8])
+        control_mode = _e.CONTROL_MODE_BY_VALUE.get(v[9], v[9])
+        target_speed_fraction = v[10]
+        speed_scaling = v[11]
+        target_speed_fraction_limit = v[12]
+        reserved = v[13]
+        pos += 42
+        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped, is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode, target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
+
+    def _encode_3(self, out: bytearray, version: tuple) -> None:
+        out += _ROBOT_MODE_DATA_3_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled, self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped, self.is_program_running, self.is_program_paused, self.robot_mode, self.control_mode, self.target_speed_fraction, self.speed_scaling, self.target_speed_fraction_limit, self.reserved)
+        out += self.extra
+
+    def _encode(self, out: bytearray, version: tuple) -> None:
+        """Write the form of `version` (the one it was read in, for a decoded package)."""
+        for ranges, encode in self._FORMS:
+            if any(low <= version <= high for low, high in ranges):
+                return encode(self, out, version)
+        return self._FORMS[-1][1](self, out, version)
+
 
 
 _JOINT_0 = struct.Struct(">dddffffB")
@@ -274,7 +348,8 @@ class Joint(_Item):
     """Joint mode."""
 
     @classmethod
-    def _from(cls, v: tuple, i: int, buf, at: int, version: tuple[int, int, int]) -> "Joint":
+    def _from(cls, v: tuple, i: int, buf, at: int, enums: tuple) -> "Joint":
+        """One item from its parent's unpacked run; `enums` are its versioned enum tables."""
         return cls(
             v[i],
             v[i + 1],
@@ -283,7 +358,7 @@ class Joint(_Item):
             (v[i + 4] if v[i + 4] == v[i + 4] else _rt.f32_nan(buf, at + 28)),
             (v[i + 5] if v[i + 5] == v[i + 5] else _rt.f32_nan(buf, at + 32)),
             (v[i + 6] if v[i + 6] == v[i + 6] else _rt.f32_nan(buf, at + 36)),
-            _e.by_version(_e.JOINT_MODE_BY_VALUE, version).get(v[i + 7], v[i + 7]),
+            enums[0].get(v[i + 7], v[i + 7]),
         )
 
     def _values(self) -> tuple:
@@ -372,17 +447,18 @@ class JointData(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["JointData", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple) -> tuple["JointData", int]:
         if pos + 246 > end:
             raise _rt.short_in_run(_JOINT_DATA_0_RUN, pos, end)
         v = _JOINT_DATA_0.unpack_from(buf, pos)
-        joints = [Joint._from(v, j * 8, buf, pos + j * 41, version) for j in range(6)]
+        joints = [Joint._from(v, j * 8, buf, pos + j * 41, enums) for enums in [(_e.JOINT_MODE_BY_VALUE[version], )] for j in range(6)]
         pos += 246
-        return cls(joints), pos
+        return cls(joints, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _JOINT_DATA_0_OUT.pack(*[x for item in self.joints for x in item._values()])
         out += self.extra
+
 
 
 _TOOL_DATA_0 = struct.Struct(">BBddfBffB")
@@ -435,7 +511,7 @@ class ToolData(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["ToolData", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple) -> tuple["ToolData", int]:
         if pos + 32 > end:
             raise _rt.short_in_run(_TOOL_DATA_0_RUN, pos, end)
         v = _TOOL_DATA_0.unpack_from(buf, pos)
@@ -449,119 +525,185 @@ class ToolData(_Package):
         tool_temperature = (v[7] if v[7] == v[7] else _rt.f32_nan(buf, pos + 27))
         tool_mode = _e.TOOL_MODE_BY_VALUE.get(v[8], v[8])
         pos += 32
-        return cls(analog_input_range0, analog_input_range1, analog_input0, analog_input1, tool_voltage_48v, tool_output_voltage, tool_current, tool_temperature, tool_mode), pos
+        return cls(analog_input_range0, analog_input_range1, analog_input0, analog_input1, tool_voltage_48v, tool_output_voltage, tool_current, tool_temperature, tool_mode, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _TOOL_DATA_0_OUT.pack(self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, _rt.f32_bits(self.tool_voltage_48v), self.tool_output_voltage, _rt.f32_bits(self.tool_current), _rt.f32_bits(self.tool_temperature), self.tool_mode)
         out += self.extra
 
 
-_MASTERBOARD_DATA_0 = struct.Struct(">h")
-_MASTERBOARD_DATA_0_RUN = (
+
+_MASTERBOARD_DATA_0_0 = struct.Struct(">hhBBddbbddffff")
+_MASTERBOARD_DATA_0_0_OUT = struct.Struct(">hhBBddbbddIIII")  # float32 written from its bits
+_MASTERBOARD_DATA_0_0_RUN = (
     ("digital_input_bits", 0, 2),
+    ("digital_output_bits", 2, 2),
+    ("analog_input_range0", 4, 1),
+    ("analog_input_range1", 5, 1),
+    ("analog_input0", 6, 8),
+    ("analog_input1", 14, 8),
+    ("analog_output_domain0", 22, 1),
+    ("analog_output_domain1", 23, 1),
+    ("analog_output0", 24, 8),
+    ("analog_output1", 32, 8),
+    ("master_board_temperature", 40, 4),
+    ("robot_voltage_48v", 44, 4),
+    ("robot_current", 48, 4),
+    ("master_io_current", 52, 4),
 )
 
 
-_MASTERBOARD_DATA_1 = struct.Struct(">i")
-_MASTERBOARD_DATA_1_RUN = (
-    ("digital_input_bits", 0, 4),
+_MASTERBOARD_DATA_1_0 = struct.Struct(">hhBBddbbddffffBBB")
+_MASTERBOARD_DATA_1_0_OUT = struct.Struct(">hhBBddbbddIIIIBBB")  # float32 written from its bits
+_MASTERBOARD_DATA_1_0_RUN = (
+    ("digital_input_bits", 0, 2),
+    ("digital_output_bits", 2, 2),
+    ("analog_input_range0", 4, 1),
+    ("analog_input_range1", 5, 1),
+    ("analog_input0", 6, 8),
+    ("analog_input1", 14, 8),
+    ("analog_output_domain0", 22, 1),
+    ("analog_output_domain1", 23, 1),
+    ("analog_output0", 24, 8),
+    ("analog_output1", 32, 8),
+    ("master_board_temperature", 40, 4),
+    ("robot_voltage_48v", 44, 4),
+    ("robot_current", 48, 4),
+    ("master_io_current", 52, 4),
+    ("master_safety_state", 56, 1),
+    ("master_on_off_state", 57, 1),
+    ("euromap67_interface_installed", 58, 1),
 )
 
 
-_MASTERBOARD_DATA_2 = struct.Struct(">h")
-_MASTERBOARD_DATA_2_RUN = (
-    ("digital_output_bits", 0, 2),
-)
-
-
-_MASTERBOARD_DATA_3 = struct.Struct(">i")
-_MASTERBOARD_DATA_3_RUN = (
-    ("digital_output_bits", 0, 4),
-)
-
-
-_MASTERBOARD_DATA_4 = struct.Struct(">BBddbbddffff")
-_MASTERBOARD_DATA_4_OUT = struct.Struct(">BBddbbddIIII")  # float32 written from its bits
-_MASTERBOARD_DATA_4_RUN = (
-    ("analog_input_range0", 0, 1),
-    ("analog_input_range1", 1, 1),
-    ("analog_input0", 2, 8),
-    ("analog_input1", 10, 8),
-    ("analog_output_domain0", 18, 1),
-    ("analog_output_domain1", 19, 1),
-    ("analog_output0", 20, 8),
-    ("analog_output1", 28, 8),
-    ("master_board_temperature", 36, 4),
-    ("robot_voltage_48v", 40, 4),
-    ("robot_current", 44, 4),
-    ("master_io_current", 48, 4),
-)
-
-
-_MASTERBOARD_DATA_5 = struct.Struct(">BB")
-_MASTERBOARD_DATA_5_RUN = (
-    ("master_safety_state", 0, 1),
-    ("master_on_off_state", 1, 1),
-)
-
-
-_MASTERBOARD_DATA_6 = struct.Struct(">BB")
-_MASTERBOARD_DATA_6_RUN = (
-    ("safety_mode", 0, 1),
-    ("in_reduced_mode", 1, 1),
-)
-
-
-_MASTERBOARD_DATA_7 = struct.Struct(">B")
-_MASTERBOARD_DATA_7_RUN = (
-    ("euromap67_interface_installed", 0, 1),
-)
-
-
-_MASTERBOARD_DATA_8 = struct.Struct(">II")
-_MASTERBOARD_DATA_8_RUN = (
+_MASTERBOARD_DATA_1_1 = struct.Struct(">IIhh")
+_MASTERBOARD_DATA_1_1_RUN = (
     ("euromap_input_bits", 0, 4),
     ("euromap_output_bits", 4, 4),
+    ("euromap_voltage_cb2", 8, 2),
+    ("euromap_current_cb2", 10, 2),
 )
 
 
-_MASTERBOARD_DATA_9 = struct.Struct(">hh")
-_MASTERBOARD_DATA_9_RUN = (
-    ("euromap_voltage_cb2", 0, 2),
-    ("euromap_current_cb2", 2, 2),
+_MASTERBOARD_DATA_2_0 = struct.Struct(">iiBBddbbddffffBBB")
+_MASTERBOARD_DATA_2_0_OUT = struct.Struct(">iiBBddbbddIIIIBBB")  # float32 written from its bits
+_MASTERBOARD_DATA_2_0_RUN = (
+    ("digital_input_bits", 0, 4),
+    ("digital_output_bits", 4, 4),
+    ("analog_input_range0", 8, 1),
+    ("analog_input_range1", 9, 1),
+    ("analog_input0", 10, 8),
+    ("analog_input1", 18, 8),
+    ("analog_output_domain0", 26, 1),
+    ("analog_output_domain1", 27, 1),
+    ("analog_output0", 28, 8),
+    ("analog_output1", 36, 8),
+    ("master_board_temperature", 44, 4),
+    ("robot_voltage_48v", 48, 4),
+    ("robot_current", 52, 4),
+    ("master_io_current", 56, 4),
+    ("safety_mode", 60, 1),
+    ("in_reduced_mode", 61, 1),
+    ("euromap67_interface_installed", 62, 1),
 )
 
 
-_MASTERBOARD_DATA_10 = struct.Struct(">ff")
-_MASTERBOARD_DATA_10_OUT = struct.Struct(">II")  # float32 written from its bits
-_MASTERBOARD_DATA_10_RUN = (
-    ("euromap_voltage_24v", 0, 4),
-    ("euromap_current", 4, 4),
+_MASTERBOARD_DATA_2_1 = struct.Struct(">IIff")
+_MASTERBOARD_DATA_2_1_OUT = struct.Struct(">IIII")  # float32 written from its bits
+_MASTERBOARD_DATA_2_1_RUN = (
+    ("euromap_input_bits", 0, 4),
+    ("euromap_output_bits", 4, 4),
+    ("euromap_voltage_24v", 8, 4),
+    ("euromap_current", 12, 4),
 )
 
 
-_MASTERBOARD_DATA_11 = struct.Struct(">I")
-_MASTERBOARD_DATA_11_RUN = (
+_MASTERBOARD_DATA_2_2 = struct.Struct(">I")
+_MASTERBOARD_DATA_2_2_RUN = (
     ("reserved_0", 0, 4),
 )
 
 
-_MASTERBOARD_DATA_12 = struct.Struct(">BB")
-_MASTERBOARD_DATA_12_RUN = (
-    ("operational_mode_selector_input", 0, 1),
-    ("three_position_enabling_device_input", 1, 1),
+_MASTERBOARD_DATA_3_0 = struct.Struct(">iiBBddbbddffffBBB")
+_MASTERBOARD_DATA_3_0_OUT = struct.Struct(">iiBBddbbddIIIIBBB")  # float32 written from its bits
+_MASTERBOARD_DATA_3_0_RUN = (
+    ("digital_input_bits", 0, 4),
+    ("digital_output_bits", 4, 4),
+    ("analog_input_range0", 8, 1),
+    ("analog_input_range1", 9, 1),
+    ("analog_input0", 10, 8),
+    ("analog_input1", 18, 8),
+    ("analog_output_domain0", 26, 1),
+    ("analog_output_domain1", 27, 1),
+    ("analog_output0", 28, 8),
+    ("analog_output1", 36, 8),
+    ("master_board_temperature", 44, 4),
+    ("robot_voltage_48v", 48, 4),
+    ("robot_current", 52, 4),
+    ("master_io_current", 56, 4),
+    ("safety_mode", 60, 1),
+    ("in_reduced_mode", 61, 1),
+    ("euromap67_interface_installed", 62, 1),
 )
 
 
-_MASTERBOARD_DATA_13 = struct.Struct(">B")
-_MASTERBOARD_DATA_13_RUN = (
-    ("reserved_1", 0, 1),
+_MASTERBOARD_DATA_3_1 = struct.Struct(">IIff")
+_MASTERBOARD_DATA_3_1_OUT = struct.Struct(">IIII")  # float32 written from its bits
+_MASTERBOARD_DATA_3_1_RUN = (
+    ("euromap_input_bits", 0, 4),
+    ("euromap_output_bits", 4, 4),
+    ("euromap_voltage_24v", 8, 4),
+    ("euromap_current", 12, 4),
 )
 
 
-_MASTERBOARD_DATA_14 = struct.Struct(">B")
-_MASTERBOARD_DATA_14_RUN = (
-    ("reserved_1", 0, 1),
+_MASTERBOARD_DATA_3_2 = struct.Struct(">IBB")
+_MASTERBOARD_DATA_3_2_RUN = (
+    ("reserved_0", 0, 4),
+    ("operational_mode_selector_input", 4, 1),
+    ("three_position_enabling_device_input", 5, 1),
+)
+
+
+_MASTERBOARD_DATA_4_0 = struct.Struct(">iiBBddbbddffffBBB")
+_MASTERBOARD_DATA_4_0_OUT = struct.Struct(">iiBBddbbddIIIIBBB")  # float32 written from its bits
+_MASTERBOARD_DATA_4_0_RUN = (
+    ("digital_input_bits", 0, 4),
+    ("digital_output_bits", 4, 4),
+    ("analog_input_range0", 8, 1),
+    ("analog_input_range1", 9, 1),
+    ("analog_input0", 10, 8),
+    ("analog_input1", 18, 8),
+    ("analog_output_domain0", 26, 1),
+    ("analog_output_domain1", 27, 1),
+    ("analog_output0", 28, 8),
+    ("analog_output1", 36, 8),
+    ("master_board_temperature", 44, 4),
+    ("robot_voltage_48v", 48, 4),
+    ("robot_current", 52, 4),
+    ("master_io_current", 56, 4),
+    ("safety_mode", 60, 1),
+    ("in_reduced_mode", 61, 1),
+    ("euromap67_interface_installed", 62, 1),
+)
+
+
+_MASTERBOARD_DATA_4_1 = struct.Struct(">IIff")
+_MASTERBOARD_DATA_4_1_OUT = struct.Struct(">IIII")  # float32 written from its bits
+_MASTERBOARD_DATA_4_1_RUN = (
+    ("euromap_input_bits", 0, 4),
+    ("euromap_output_bits", 4, 4),
+    ("euromap_voltage_24v", 8, 4),
+    ("euromap_current", 12, 4),
+)
+
+
+_MASTERBOARD_DATA_4_2 = struct.Struct(">IBBB")
+_MASTERBOARD_DATA_4_2_RUN = (
+    ("reserved_0", 0, 4),
+    ("operational_mode_selector_input", 4, 1),
+    ("three_position_enabling_device_input", 5, 1),
+    ("reserved_1", 6, 1),
 )
 
 
@@ -657,160 +799,242 @@ class MasterboardData(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["MasterboardData", int]:
-        digital_input_bits = digital_output_bits = reserved_1 = None
-        if version <= (1, 8, 999):
-            if pos + 2 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_0_RUN, pos, end)
-            (digital_input_bits,) = _MASTERBOARD_DATA_0.unpack_from(buf, pos)
-            pos += 2
-        if version >= (3, 0, 0):
-            if pos + 4 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_1_RUN, pos, end)
-            (digital_input_bits,) = _MASTERBOARD_DATA_1.unpack_from(buf, pos)
-            pos += 4
-        if version <= (1, 8, 999):
-            if pos + 2 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_2_RUN, pos, end)
-            (digital_output_bits,) = _MASTERBOARD_DATA_2.unpack_from(buf, pos)
-            pos += 2
-        if version >= (3, 0, 0):
-            if pos + 4 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_3_RUN, pos, end)
-            (digital_output_bits,) = _MASTERBOARD_DATA_3.unpack_from(buf, pos)
-            pos += 4
-        if pos + 52 > end:
-            raise _rt.short_in_run(_MASTERBOARD_DATA_4_RUN, pos, end)
-        v = _MASTERBOARD_DATA_4.unpack_from(buf, pos)
-        analog_input_range0 = v[0]
-        analog_input_range1 = v[1]
-        analog_input0 = v[2]
-        analog_input1 = v[3]
-        analog_output_domain0 = v[4]
-        analog_output_domain1 = v[5]
-        analog_output0 = v[6]
-        analog_output1 = v[7]
-        master_board_temperature = (v[8] if v[8] == v[8] else _rt.f32_nan(buf, pos + 36))
-        robot_voltage_48v = (v[9] if v[9] == v[9] else _rt.f32_nan(buf, pos + 40))
-        robot_current = (v[10] if v[10] == v[10] else _rt.f32_nan(buf, pos + 44))
-        master_io_current = (v[11] if v[11] == v[11] else _rt.f32_nan(buf, pos + 48))
-        pos += 52
-        if version >= (1, 6, 0) and version <= (1, 8, 999):
-            if pos + 2 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_5_RUN, pos, end)
-            v = _MASTERBOARD_DATA_5.unpack_from(buf, pos)
-            master_safety_state = _e.MASTER_SAFETY_STATE_BY_VALUE.get(v[0], v[0])
-            master_on_off_state = _e.MASTER_ON_OFF_STATE_BY_VALUE.get(v[1], v[1])
-            pos += 2
-        else:
-            master_safety_state = master_on_off_state = None
-        if version >= (3, 0, 0):
-            if pos + 2 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_6_RUN, pos, end)
-            v = _MASTERBOARD_DATA_6.unpack_from(buf, pos)
-            safety_mode = _e.SAFETY_MODE_BY_VALUE.get(v[0], v[0])
-            in_reduced_mode = v[1]
-            pos += 2
-        else:
-            safety_mode = in_reduced_mode = None
-        if version >= (1, 6, 0):
-            if pos + 1 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_7_RUN, pos, end)
-            (euromap67_interface_installed,) = _MASTERBOARD_DATA_7.unpack_from(buf, pos)
-            euromap67_interface_installed = _BOOL[euromap67_interface_installed]
-            pos += 1
-        else:
-            euromap67_interface_installed = None
-        if euromap67_interface_installed and version >= (1, 6, 0):
-            if pos + 8 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_8_RUN, pos, end)
-            v = _MASTERBOARD_DATA_8.unpack_from(buf, pos)
-            euromap_input_bits = v[0]
-            euromap_output_bits = v[1]
-            pos += 8
-        else:
-            euromap_input_bits = euromap_output_bits = None
-        if euromap67_interface_installed and version >= (1, 6, 0) and version <= (1, 8, 999):
-            if pos + 4 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_9_RUN, pos, end)
-            v = _MASTERBOARD_DATA_9.unpack_from(buf, pos)
-            euromap_voltage_cb2 = v[0]
-            euromap_current_cb2 = v[1]
-            pos += 4
-        else:
-            euromap_voltage_cb2 = euromap_current_cb2 = None
-        if euromap67_interface_installed and version >= (3, 0, 0):
-            if pos + 8 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_10_RUN, pos, end)
-            v = _MASTERBOARD_DATA_10.unpack_from(buf, pos)
-            euromap_voltage_24v = (v[0] if v[0] == v[0] else _rt.f32_nan(buf, pos))
-            euromap_current = (v[1] if v[1] == v[1] else _rt.f32_nan(buf, pos + 4))
-            pos += 8
-        else:
-            euromap_voltage_24v = euromap_current = None
-        if version >= (3, 0, 0):
-            if pos + 4 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_11_RUN, pos, end)
-            (reserved_0,) = _MASTERBOARD_DATA_11.unpack_from(buf, pos)
-            pos += 4
-        else:
-            reserved_0 = None
-        if version >= (3, 2, 0):
-            if pos + 2 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_12_RUN, pos, end)
-            v = _MASTERBOARD_DATA_12.unpack_from(buf, pos)
-            operational_mode_selector_input = v[0]
-            three_position_enabling_device_input = v[1]
-            pos += 2
-        else:
-            operational_mode_selector_input = three_position_enabling_device_input = None
-        if version >= (3, 10, 0) and version <= (3, 15, 999):
-            if pos + 1 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_13_RUN, pos, end)
-            (reserved_1,) = _MASTERBOARD_DATA_13.unpack_from(buf, pos)
-            pos += 1
-        if version >= (5, 4, 0):
-            if pos + 1 > end:
-                raise _rt.short_in_run(_MASTERBOARD_DATA_14_RUN, pos, end)
-            (reserved_1,) = _MASTERBOARD_DATA_14.unpack_from(buf, pos)
-            pos += 1
-        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state, master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1), pos
+    def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
+        """Read the form of software (1, 0, 0) to (1, 5, 999)."""
+        master_safety_state = master_on_off_state = safety_mode = in_reduced_mode = euromap67_interface_installed = euromap_input_bits = euromap_output_bits = euromap_voltage_cb2 = euromap_current_cb2 = euromap_voltage_24v = euromap_current = reserved_0 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
+        if pos + 56 > end:
+            raise _rt.short_in_run(_MASTERBOARD_DATA_0_0_RUN, pos, end)
+        v = _MASTERBOARD_DATA_0_0.unpack_from(buf, pos)
+        digital_input_bits = v[0]
+        digital_output_bits = v[1]
+        analog_input_range0 = v[2]
+        analog_input_range1 = v[3]
+        analog_input0 = v[4]
+        analog_input1 = v[5]
+        analog_output_domain0 = v[6]
+        analog_output_domain1 = v[7]
+        analog_output0 = v[8]
+        analog_output1 = v[9]
+        master_board_temperature = (v[10] if v[10] == v[10] else _rt.f32_nan(buf, pos + 40))
+        robot_voltage_48v = (v[11] if v[11] == v[11] else _rt.f32_nan(buf, pos + 44))
+        robot_current = (v[12] if v[12] == v[12] else _rt.f32_nan(buf, pos + 48))
+        master_io_current = (v[13] if v[13] == v[13] else _rt.f32_nan(buf, pos + 52))
+        pos += 56
+        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state, master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        if version <= (1, 8, 999):
-            out += _MASTERBOARD_DATA_0.pack(self.digital_input_bits)
-        if version >= (3, 0, 0):
-            out += _MASTERBOARD_DATA_1.pack(self.digital_input_bits)
-        if version <= (1, 8, 999):
-            out += _MASTERBOARD_DATA_2.pack(self.digital_output_bits)
-        if version >= (3, 0, 0):
-            out += _MASTERBOARD_DATA_3.pack(self.digital_output_bits)
-        out += _MASTERBOARD_DATA_4_OUT.pack(self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current))
-        if version >= (1, 6, 0) and version <= (1, 8, 999):
-            out += _MASTERBOARD_DATA_5.pack(self.master_safety_state, self.master_on_off_state)
-        if version >= (3, 0, 0):
-            out += _MASTERBOARD_DATA_6.pack(self.safety_mode, self.in_reduced_mode)
-        if version >= (1, 6, 0):
-            out += _MASTERBOARD_DATA_7.pack(self.euromap67_interface_installed)
-        if self.euromap67_interface_installed and version >= (1, 6, 0):
-            out += _MASTERBOARD_DATA_8.pack(self.euromap_input_bits, self.euromap_output_bits)
-        if self.euromap67_interface_installed and version >= (1, 6, 0) and version <= (1, 8, 999):
-            out += _MASTERBOARD_DATA_9.pack(self.euromap_voltage_cb2, self.euromap_current_cb2)
-        if self.euromap67_interface_installed and version >= (3, 0, 0):
-            out += _MASTERBOARD_DATA_10_OUT.pack(_rt.f32_bits(self.euromap_voltage_24v), _rt.f32_bits(self.euromap_current))
-        if version >= (3, 0, 0):
-            out += _MASTERBOARD_DATA_11.pack(self.reserved_0)
-        if version >= (3, 2, 0):
-            out += _MASTERBOARD_DATA_12.pack(self.operational_mode_selector_input, self.three_position_enabling_device_input)
-        if version >= (3, 10, 0) and version <= (3, 15, 999):
-            out += _MASTERBOARD_DATA_13.pack(self.reserved_1)
-        if version >= (5, 4, 0):
-            out += _MASTERBOARD_DATA_14.pack(self.reserved_1)
+    def _encode_0(self, out: bytearray, version: tuple) -> None:
+        out += _MASTERBOARD_DATA_0_0_OUT.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current))
         out += self.extra
 
+    @classmethod
+    def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
+        """Read the form of software (1, 6, 0) to (1, 8, 999)."""
+        safety_mode = in_reduced_mode = euromap_voltage_24v = euromap_current = reserved_0 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
+        if pos + 59 > end:
+            raise _rt.short_in_run(_MASTERBOARD_DATA_1_0_RUN, pos, end)
+        v = _MASTERBOARD_DATA_1_0.unpack_from(buf, pos)
+        digital_input_bits = v[0]
+        digital_output_bits = v[1]
+        analog_input_range0 = v[2]
+        analog_input_range1 = v[3]
+        analog_input0 = v[4]
+        analog_input1 = v[5]
+        analog_output_domain0 = v[6]
+        analog_output_domain1 = v[7]
+        analog_output0 = v[8]
+        analog_output1 = v[9]
+        master_board_temperature = (v[10] if v[10] == v[10] else _rt.f32_nan(buf, pos + 40))
+        robot_voltage_48v = (v[11] if v[11] == v[11] else _rt.f32_nan(buf, pos + 44))
+        robot_current = (v[12] if v[12] == v[12] else _rt.f32_nan(buf, pos + 48))
+        master_io_current = (v[13] if v[13] == v[13] else _rt.f32_nan(buf, pos + 52))
+        master_safety_state = _e.MASTER_SAFETY_STATE_BY_VALUE.get(v[14], v[14])
+        master_on_off_state = _e.MASTER_ON_OFF_STATE_BY_VALUE.get(v[15], v[15])
+        euromap67_interface_installed = _BOOL[v[16]]
+        pos += 59
+        if euromap67_interface_installed:
+            if pos + 12 > end:
+                raise _rt.short_in_run(_MASTERBOARD_DATA_1_1_RUN, pos, end)
+            v = _MASTERBOARD_DATA_1_1.unpack_from(buf, pos)
+            euromap_input_bits = v[0]
+            euromap_output_bits = v[1]
+            euromap_voltage_cb2 = v[2]
+            euromap_current_cb2 = v[3]
+            pos += 12
+        else:
+            euromap_input_bits = euromap_output_bits = euromap_voltage_cb2 = euromap_current_cb2 = None
+        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state, master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"", version), pos
 
-_CARTESIAN_INFO_0 = struct.Struct(">dddddd")
-_CARTESIAN_INFO_0_RUN = (
+    def _encode_1(self, out: bytearray, version: tuple) -> None:
+        out += _MASTERBOARD_DATA_1_0_OUT.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current), self.master_safety_state, self.master_on_off_state, self.euromap67_interface_installed)
+        if self.euromap67_interface_installed:
+            out += _MASTERBOARD_DATA_1_1.pack(self.euromap_input_bits, self.euromap_output_bits, self.euromap_voltage_cb2, self.euromap_current_cb2)
+        out += self.extra
+
+    @classmethod
+    def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
+        """Read the form of software (3, 0, 0) to (3, 1, 999)."""
+        master_safety_state = master_on_off_state = euromap_voltage_cb2 = euromap_current_cb2 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
+        if pos + 63 > end:
+            raise _rt.short_in_run(_MASTERBOARD_DATA_2_0_RUN, pos, end)
+        v = _MASTERBOARD_DATA_2_0.unpack_from(buf, pos)
+        digital_input_bits = v[0]
+        digital_output_bits = v[1]
+        analog_input_range0 = v[2]
+        analog_input_range1 = v[3]
+        analog_input0 = v[4]
+        analog_input1 = v[5]
+        analog_output_domain0 = v[6]
+        analog_output_domain1 = v[7]
+        analog_output0 = v[8]
+        analog_output1 = v[9]
+        master_board_temperature = (v[10] if v[10] == v[10] else _rt.f32_nan(buf, pos + 44))
+        robot_voltage_48v = (v[11] if v[11] == v[11] else _rt.f32_nan(buf, pos + 48))
+        robot_current = (v[12] if v[12] == v[12] else _rt.f32_nan(buf, pos + 52))
+        master_io_current = (v[13] if v[13] == v[13] else _rt.f32_nan(buf, pos + 56))
+        safety_mode = _e.SAFETY_MODE_BY_VALUE.get(v[14], v[14])
+        in_reduced_mode = v[15]
+        euromap67_interface_installed = _BOOL[v[16]]
+        pos += 63
+        if euromap67_interface_installed:
+            if pos + 16 > end:
+                raise _rt.short_in_run(_MASTERBOARD_DATA_2_1_RUN, pos, end)
+            v = _MASTERBOARD_DATA_2_1.unpack_from(buf, pos)
+            euromap_input_bits = v[0]
+            euromap_output_bits = v[1]
+            euromap_voltage_24v = (v[2] if v[2] == v[2] else _rt.f32_nan(buf, pos + 8))
+            euromap_current = (v[3] if v[3] == v[3] else _rt.f32_nan(buf, pos + 12))
+            pos += 16
+        else:
+            euromap_input_bits = euromap_output_bits = euromap_voltage_24v = euromap_current = None
+        if pos + 4 > end:
+            raise _rt.short_in_run(_MASTERBOARD_DATA_2_2_RUN, pos, end)
+        (reserved_0,) = _MASTERBOARD_DATA_2_2.unpack_from(buf, pos)
+        pos += 4
+        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state, master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"", version), pos
+
+    def _encode_2(self, out: bytearray, version: tuple) -> None:
+        out += _MASTERBOARD_DATA_2_0_OUT.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current), self.safety_mode, self.in_reduced_mode, self.euromap67_interface_installed)
+        if self.euromap67_interface_installed:
+            out += _MASTERBOARD_DATA_2_1_OUT.pack(self.euromap_input_bits, self.euromap_output_bits, _rt.f32_bits(self.euromap_voltage_24v), _rt.f32_bits(self.euromap_current))
+        out += _MASTERBOARD_DATA_2_2.pack(self.reserved_0)
+        out += self.extra
+
+    @classmethod
+    def _decode_3(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
+        """Read the form of software (3, 2, 0) to (3, 9, 999), (5, 0, 0) to (5, 3, 999)."""
+        master_safety_state = master_on_off_state = euromap_voltage_cb2 = euromap_current_cb2 = reserved_1 = None
+        if pos + 63 > end:
+            raise _rt.short_in_run(_MASTERBOARD_DATA_3_0_RUN, pos, end)
+        v = _MASTERBOARD_DATA_3_0.unpack_from(buf, pos)
+        digital_input_bits = v[0]
+        digital_output_bits = v[1]
+        analog_input_range0 = v[2]
+        analog_input_range1 = v[3]
+        analog_input0 = v[4]
+        analog_input1 = v[5]
+        analog_output_domain0 = v[6]
+        analog_output_domain1 = v[7]
+        analog_output0 = v[8]
+        analog_output1 = v[9]
+        master_board_temperature = (v[10] if v[10] == v[10] else _rt.f32_nan(buf, pos + 44))
+        robot_voltage_48v = (v[11] if v[11] == v[11] else _rt.f32_nan(buf, pos + 48))
+        robot_current = (v[12] if v[12] == v[12] else _rt.f32_nan(buf, pos + 52))
+        master_io_current = (v[13] if v[13] == v[13] else _rt.f32_nan(buf, pos + 56))
+        safety_mode = _e.SAFETY_MODE_BY_VALUE.get(v[14], v[14])
+        in_reduced_mode = v[15]
+        euromap67_interface_installed = _BOOL[v[16]]
+        pos += 63
+        if euromap67_interface_installed:
+            if pos + 16 > end:
+                raise _rt.short_in_run(_MASTERBOARD_DATA_3_1_RUN, pos, end)
+            v = _MASTERBOARD_DATA_3_1.unpack_from(buf, pos)
+            euromap_input_bits = v[0]
+            euromap_output_bits = v[1]
+            euromap_voltage_24v = (v[2] if v[2] == v[2] else _rt.f32_nan(buf, pos + 8))
+            euromap_current = (v[3] if v[3] == v[3] else _rt.f32_nan(buf, pos + 12))
+            pos += 16
+        else:
+            euromap_input_bits = euromap_output_bits = euromap_voltage_24v = euromap_current = None
+        if pos + 6 > end:
+            raise _rt.short_in_run(_MASTERBOARD_DATA_3_2_RUN, pos, end)
+        v = _MASTERBOARD_DATA_3_2.unpack_from(buf, pos)
+        reserved_0 = v[0]
+        operational_mode_selector_input = v[1]
+        three_position_enabling_device_input = v[2]
+        pos += 6
+        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state, master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"", version), pos
+
+    def _encode_3(self, out: bytearray, version: tuple) -> None:
+        out += _MASTERBOARD_DATA_3_0_OUT.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current), self.safety_mode, self.in_reduced_mode, self.euromap67_interface_installed)
+        if self.euromap67_interface_installed:
+            out += _MASTERBOARD_DATA_3_1_OUT.pack(self.euromap_input_bits, self.euromap_output_bits, _rt.f32_bits(self.euromap_voltage_24v), _rt.f32_bits(self.euromap_current))
+        out += _MASTERBOARD_DATA_3_2.pack(self.reserved_0, self.operational_mode_selector_input, self.three_position_enabling_device_input)
+        out += self.extra
+
+    @classmethod
+    def _decode_4(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
+        """Read the form of software (3, 10, 0) to (3, 15, 999), (5, 4, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        master_safety_state = master_on_off_state = euromap_voltage_cb2 = euromap_current_cb2 = None
+        if pos + 63 > end:
+            raise _rt.short_in_run(_MASTERBOARD_DATA_4_0_RUN, pos, end)
+        v = _MASTERBOARD_DATA_4_0.unpack_from(buf, pos)
+        digital_input_bits = v[0]
+        digital_output_bits = v[1]
+        analog_input_range0 = v[2]
+        analog_input_range1 = v[3]
+        analog_input0 = v[4]
+        analog_input1 = v[5]
+        analog_output_domain0 = v[6]
+        analog_output_domain1 = v[7]
+        analog_output0 = v[8]
+        analog_output1 = v[9]
+        master_board_temperature = (v[10] if v[10] == v[10] else _rt.f32_nan(buf, pos + 44))
+        robot_voltage_48v = (v[11] if v[11] == v[11] else _rt.f32_nan(buf, pos + 48))
+        robot_current = (v[12] if v[12] == v[12] else _rt.f32_nan(buf, pos + 52))
+        master_io_current = (v[13] if v[13] == v[13] else _rt.f32_nan(buf, pos + 56))
+        safety_mode = _e.SAFETY_MODE_BY_VALUE.get(v[14], v[14])
+        in_reduced_mode = v[15]
+        euromap67_interface_installed = _BOOL[v[16]]
+        pos += 63
+        if euromap67_interface_installed:
+            if pos + 16 > end:
+                raise _rt.short_in_run(_MASTERBOARD_DATA_4_1_RUN, pos, end)
+            v = _MASTERBOARD_DATA_4_1.unpack_from(buf, pos)
+            euromap_input_bits = v[0]
+            euromap_output_bits = v[1]
+            euromap_voltage_24v = (v[2] if v[2] == v[2] else _rt.f32_nan(buf, pos + 8))
+            euromap_current = (v[3] if v[3] == v[3] else _rt.f32_nan(buf, pos + 12))
+            pos += 16
+        else:
+            euromap_input_bits = euromap_output_bits = euromap_voltage_24v = euromap_current = None
+        if pos + 7 > end:
+            raise _rt.short_in_run(_MASTERBOARD_DATA_4_2_RUN, pos, end)
+        v = _MASTERBOARD_DATA_4_2.unpack_from(buf, pos)
+        reserved_0 = v[0]
+        operational_mode_selector_input = v[1]
+        three_position_enabling_device_input = v[2]
+        reserved_1 = v[3]
+        pos += 7
+        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state, master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"", version), pos
+
+    def _encode_4(self, out: bytearray, version: tuple) -> None:
+        out += _MASTERBOARD_DATA_4_0_OUT.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current), self.safety_mode, self.in_reduced_mode, self.euromap67_interface_installed)
+        if self.euromap67_interface_installed:
+            out += _MASTERBOARD_DATA_4_1_OUT.pack(self.euromap_input_bits, self.euromap_output_bits, _rt.f32_bits(self.euromap_voltage_24v), _rt.f32_bits(self.euromap_current))
+        out += _MASTERBOARD_DATA_4_2.pack(self.reserved_0, self.operational_mode_selector_input, self.three_position_enabling_device_input, self.reserved_1)
+        out += self.extra
+
+    def _encode(self, out: bytearray, version: tuple) -> None:
+        """Write the form of `version` (the one it was read in, for a decoded package)."""
+        for ranges, encode in self._FORMS:
+            if any(low <= version <= high for low, high in ranges):
+                return encode(self, out, version)
+        return self._FORMS[-1][1](self, out, version)
+
+
+
+_CARTESIAN_INFO_0_0 = struct.Struct(">dddddd")
+_CARTESIAN_INFO_0_0_RUN = (
     ("x", 0, 8),
     ("y", 8, 8),
     ("z", 16, 8),
@@ -820,14 +1044,20 @@ _CARTESIAN_INFO_0_RUN = (
 )
 
 
-_CARTESIAN_INFO_1 = struct.Struct(">dddddd")
-_CARTESIAN_INFO_1_RUN = (
-    ("tcp_offset_x", 0, 8),
-    ("tcp_offset_y", 8, 8),
-    ("tcp_offset_z", 16, 8),
-    ("tcp_offset_rx", 24, 8),
-    ("tcp_offset_ry", 32, 8),
-    ("tcp_offset_rz", 40, 8),
+_CARTESIAN_INFO_1_0 = struct.Struct(">dddddddddddd")
+_CARTESIAN_INFO_1_0_RUN = (
+    ("x", 0, 8),
+    ("y", 8, 8),
+    ("z", 16, 8),
+    ("rx", 24, 8),
+    ("ry", 32, 8),
+    ("rz", 40, 8),
+    ("tcp_offset_x", 48, 8),
+    ("tcp_offset_y", 56, 8),
+    ("tcp_offset_z", 64, 8),
+    ("tcp_offset_rx", 72, 8),
+    ("tcp_offset_ry", 80, 8),
+    ("tcp_offset_rz", 88, 8),
 )
 
 
@@ -883,10 +1113,12 @@ class CartesianInfo(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["CartesianInfo", int]:
+    def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["CartesianInfo", int]:
+        """Read the form of software (1, 0, 0) to (1, 8, 999), (3, 0, 0) to (3, 0, 999)."""
+        tcp_offset_x = tcp_offset_y = tcp_offset_z = tcp_offset_rx = tcp_offset_ry = tcp_offset_rz = None
         if pos + 48 > end:
-            raise _rt.short_in_run(_CARTESIAN_INFO_0_RUN, pos, end)
-        v = _CARTESIAN_INFO_0.unpack_from(buf, pos)
+            raise _rt.short_in_run(_CARTESIAN_INFO_0_0_RUN, pos, end)
+        v = _CARTESIAN_INFO_0_0.unpack_from(buf, pos)
         x = v[0]
         y = v[1]
         z = v[2]
@@ -894,26 +1126,44 @@ class CartesianInfo(_Package):
         ry = v[4]
         rz = v[5]
         pos += 48
-        if version >= (3, 1, 0):
-            if pos + 48 > end:
-                raise _rt.short_in_run(_CARTESIAN_INFO_1_RUN, pos, end)
-            v = _CARTESIAN_INFO_1.unpack_from(buf, pos)
-            tcp_offset_x = v[0]
-            tcp_offset_y = v[1]
-            tcp_offset_z = v[2]
-            tcp_offset_rx = v[3]
-            tcp_offset_ry = v[4]
-            tcp_offset_rz = v[5]
-            pos += 48
-        else:
-            tcp_offset_x = tcp_offset_y = tcp_offset_z = tcp_offset_rx = tcp_offset_ry = tcp_offset_rz = None
-        return cls(x, y, z, rx, ry, rz, tcp_offset_x, tcp_offset_y, tcp_offset_z, tcp_offset_rx, tcp_offset_ry, tcp_offset_rz), pos
+        return cls(x, y, z, rx, ry, rz, tcp_offset_x, tcp_offset_y, tcp_offset_z, tcp_offset_rx, tcp_offset_ry, tcp_offset_rz, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        out += _CARTESIAN_INFO_0.pack(self.x, self.y, self.z, self.rx, self.ry, self.rz)
-        if version >= (3, 1, 0):
-            out += _CARTESIAN_INFO_1.pack(self.tcp_offset_x, self.tcp_offset_y, self.tcp_offset_z, self.tcp_offset_rx, self.tcp_offset_ry, self.tcp_offset_rz)
+    def _encode_0(self, out: bytearray, version: tuple) -> None:
+        out += _CARTESIAN_INFO_0_0.pack(self.x, self.y, self.z, self.rx, self.ry, self.rz)
         out += self.extra
+
+    @classmethod
+    def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["CartesianInfo", int]:
+        """Read the form of software (3, 1, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        if pos + 96 > end:
+            raise _rt.short_in_run(_CARTESIAN_INFO_1_0_RUN, pos, end)
+        v = _CARTESIAN_INFO_1_0.unpack_from(buf, pos)
+        x = v[0]
+        y = v[1]
+        z = v[2]
+        rx = v[3]
+        ry = v[4]
+        rz = v[5]
+        tcp_offset_x = v[6]
+        tcp_offset_y = v[7]
+        tcp_offset_z = v[8]
+        tcp_offset_rx = v[9]
+        tcp_offset_ry = v[10]
+        tcp_offset_rz = v[11]
+        pos += 96
+        return cls(x, y, z, rx, ry, rz, tcp_offset_x, tcp_offset_y, tcp_offset_z, tcp_offset_rx, tcp_offset_ry, tcp_offset_rz, b"", version), pos
+
+    def _encode_1(self, out: bytearray, version: tuple) -> None:
+        out += _CARTESIAN_INFO_1_0.pack(self.x, self.y, self.z, self.rx, self.ry, self.rz, self.tcp_offset_x, self.tcp_offset_y, self.tcp_offset_z, self.tcp_offset_rx, self.tcp_offset_ry, self.tcp_offset_rz)
+        out += self.extra
+
+    def _encode(self, out: bytearray, version: tuple) -> None:
+        """Write the form of `version` (the one it was read in, for a decoded package)."""
+        for ranges, encode in self._FORMS:
+            if any(low <= version <= high for low, high in ranges):
+                return encode(self, out, version)
+        return self._FORMS[-1][1](self, out, version)
+
 
 
 _LASER_POINTER_0 = struct.Struct(">ddd")
@@ -946,7 +1196,7 @@ class LaserPointer(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["LaserPointer", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple) -> tuple["LaserPointer", int]:
         if pos + 24 > end:
             raise _rt.short_in_run(_LASER_POINTER_0_RUN, pos, end)
         v = _LASER_POINTER_0.unpack_from(buf, pos)
@@ -954,11 +1204,12 @@ class LaserPointer(_Package):
         y = v[1]
         z = v[2]
         pos += 24
-        return cls(x, y, z), pos
+        return cls(x, y, z, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _LASER_POINTER_0.pack(self.x, self.y, self.z)
         out += self.extra
+
 
 
 _KINEMATICS_INFO_0 = struct.Struct(">IIIIIIddddddddddddddddddddddddI")
@@ -1027,7 +1278,7 @@ class KinematicsInfo(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["KinematicsInfo", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple) -> tuple["KinematicsInfo", int]:
         if pos + 220 > end:
             raise _rt.short_in_run(_KINEMATICS_INFO_0_RUN, pos, end)
         v = _KINEMATICS_INFO_0.unpack_from(buf, pos)
@@ -1038,11 +1289,12 @@ class KinematicsInfo(_Package):
         dh_alpha = list(v[24:30])
         calibration_status = v[30]
         pos += 220
-        return cls(checksum, dh_theta, dh_a, dh_d, dh_alpha, calibration_status), pos
+        return cls(checksum, dh_theta, dh_a, dh_d, dh_alpha, calibration_status, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _KINEMATICS_INFO_0.pack(*self.checksum, *self.dh_theta, *self.dh_a, *self.dh_d, *self.dh_alpha, self.calibration_status)
         out += self.extra
+
 
 
 _JOINT_POSITION_LIMIT_0 = struct.Struct(">dd")
@@ -1067,7 +1319,8 @@ class JointPositionLimit(_Item):
     """jointMaxLimitt in the document."""
 
     @classmethod
-    def _from(cls, v: tuple, i: int, buf, at: int, version: tuple[int, int, int]) -> "JointPositionLimit":
+    def _from(cls, v: tuple, i: int, buf, at: int, enums: tuple) -> "JointPositionLimit":
+        """One item from its parent's unpacked run; `enums` are its versioned enum tables."""
         return cls(
             v[i],
             v[i + 1],
@@ -1101,7 +1354,8 @@ class JointMotionLimit(_Item):
     joint_max_acceleration: float
 
     @classmethod
-    def _from(cls, v: tuple, i: int, buf, at: int, version: tuple[int, int, int]) -> "JointMotionLimit":
+    def _from(cls, v: tuple, i: int, buf, at: int, enums: tuple) -> "JointMotionLimit":
+        """One item from its parent's unpacked run; `enums` are its versioned enum tables."""
         return cls(
             v[i],
             v[i + 1],
@@ -1114,8 +1368,76 @@ class JointMotionLimit(_Item):
         )
 
 
-_CONFIGURATION_DATA_0 = struct.Struct(">dddddddddddddddddddddddddddddddddddddddddddddddddddddiiii")
-_CONFIGURATION_DATA_0_RUN = (
+_CONFIGURATION_DATA_0_0 = struct.Struct(">dddddddddddddddddddddddddddddddddddddddddddddddddddddiiiiiiiiii")
+_CONFIGURATION_DATA_0_0_RUN = (
+    ("joint_position_limits[0].joint_min_limit", 0, 8),
+    ("joint_position_limits[0].joint_max_limit", 8, 8),
+    ("joint_position_limits[1].joint_min_limit", 16, 8),
+    ("joint_position_limits[1].joint_max_limit", 24, 8),
+    ("joint_position_limits[2].joint_min_limit", 32, 8),
+    ("joint_position_limits[2].joint_max_limit", 40, 8),
+    ("joint_position_limits[3].joint_min_limit", 48, 8),
+    ("joint_position_limits[3].joint_max_limit", 56, 8),
+    ("joint_position_limits[4].joint_min_limit", 64, 8),
+    ("joint_position_limits[4].joint_max_limit", 72, 8),
+    ("joint_position_limits[5].joint_min_limit", 80, 8),
+    ("joint_position_limits[5].joint_max_limit", 88, 8),
+    ("joint_motion_limits[0].joint_max_speed", 96, 8),
+    ("joint_motion_limits[0].joint_max_acceleration", 104, 8),
+    ("joint_motion_limits[1].joint_max_speed", 112, 8),
+    ("joint_motion_limits[1].joint_max_acceleration", 120, 8),
+    ("joint_motion_limits[2].joint_max_speed", 128, 8),
+    ("joint_motion_limits[2].joint_max_acceleration", 136, 8),
+    ("joint_motion_limits[3].joint_max_speed", 144, 8),
+    ("joint_motion_limits[3].joint_max_acceleration", 152, 8),
+    ("joint_motion_limits[4].joint_max_speed", 160, 8),
+    ("joint_motion_limits[4].joint_max_acceleration", 168, 8),
+    ("joint_motion_limits[5].joint_max_speed", 176, 8),
+    ("joint_motion_limits[5].joint_max_acceleration", 184, 8),
+    ("v_joint_default", 192, 8),
+    ("a_joint_default", 200, 8),
+    ("v_tool_default", 208, 8),
+    ("a_tool_default", 216, 8),
+    ("eq_radius", 224, 8),
+    ("dh_a[0]", 232, 8),
+    ("dh_a[1]", 240, 8),
+    ("dh_a[2]", 248, 8),
+    ("dh_a[3]", 256, 8),
+    ("dh_a[4]", 264, 8),
+    ("dh_a[5]", 272, 8),
+    ("dh_d[0]", 280, 8),
+    ("dh_d[1]", 288, 8),
+    ("dh_d[2]", 296, 8),
+    ("dh_d[3]", 304, 8),
+    ("dh_d[4]", 312, 8),
+    ("dh_d[5]", 320, 8),
+    ("dh_alpha[0]", 328, 8),
+    ("dh_alpha[1]", 336, 8),
+    ("dh_alpha[2]", 344, 8),
+    ("dh_alpha[3]", 352, 8),
+    ("dh_alpha[4]", 360, 8),
+    ("dh_alpha[5]", 368, 8),
+    ("dh_theta[0]", 376, 8),
+    ("dh_theta[1]", 384, 8),
+    ("dh_theta[2]", 392, 8),
+    ("dh_theta[3]", 400, 8),
+    ("dh_theta[4]", 408, 8),
+    ("dh_theta[5]", 416, 8),
+    ("masterboard_version", 424, 4),
+    ("controller_box_type", 428, 4),
+    ("robot_type", 432, 4),
+    ("robot_sub_type", 436, 4),
+    ("motor_type[0]", 440, 4),
+    ("motor_type[1]", 444, 4),
+    ("motor_type[2]", 448, 4),
+    ("motor_type[3]", 452, 4),
+    ("motor_type[4]", 456, 4),
+    ("motor_type[5]", 460, 4),
+)
+
+
+_CONFIGURATION_DATA_1_0 = struct.Struct(">dddddddddddddddddddddddddddddddddddddddddddddddddddddiiii")
+_CONFIGURATION_DATA_1_0_RUN = (
     ("joint_position_limits[0].joint_min_limit", 0, 8),
     ("joint_position_limits[0].joint_max_limit", 8, 8),
     ("joint_position_limits[1].joint_min_limit", 16, 8),
@@ -1176,21 +1498,67 @@ _CONFIGURATION_DATA_0_RUN = (
 )
 
 
-_CONFIGURATION_DATA_1 = struct.Struct(">iiiiii")
-_CONFIGURATION_DATA_1_RUN = (
-    ("motor_type[0]", 0, 4),
-    ("motor_type[1]", 4, 4),
-    ("motor_type[2]", 8, 4),
-    ("motor_type[3]", 12, 4),
-    ("motor_type[4]", 16, 4),
-    ("motor_type[5]", 20, 4),
-)
-
-
-_CONFIGURATION_DATA_2 = struct.Struct(">hh")
-_CONFIGURATION_DATA_2_RUN = (
-    ("reserved_1", 0, 2),
-    ("reserved_2", 2, 2),
+_CONFIGURATION_DATA_2_0 = struct.Struct(">dddddddddddddddddddddddddddddddddddddddddddddddddddddiiiihh")
+_CONFIGURATION_DATA_2_0_RUN = (
+    ("joint_position_limits[0].joint_min_limit", 0, 8),
+    ("joint_position_limits[0].joint_max_limit", 8, 8),
+    ("joint_position_limits[1].joint_min_limit", 16, 8),
+    ("joint_position_limits[1].joint_max_limit", 24, 8),
+    ("joint_position_limits[2].joint_min_limit", 32, 8),
+    ("joint_position_limits[2].joint_max_limit", 40, 8),
+    ("joint_position_limits[3].joint_min_limit", 48, 8),
+    ("joint_position_limits[3].joint_max_limit", 56, 8),
+    ("joint_position_limits[4].joint_min_limit", 64, 8),
+    ("joint_position_limits[4].joint_max_limit", 72, 8),
+    ("joint_position_limits[5].joint_min_limit", 80, 8),
+    ("joint_position_limits[5].joint_max_limit", 88, 8),
+    ("joint_motion_limits[0].joint_max_speed", 96, 8),
+    ("joint_motion_limits[0].joint_max_acceleration", 104, 8),
+    ("joint_motion_limits[1].joint_max_speed", 112, 8),
+    ("joint_motion_limits[1].joint_max_acceleration", 120, 8),
+    ("joint_motion_limits[2].joint_max_speed", 128, 8),
+    ("joint_motion_limits[2].joint_max_acceleration", 136, 8),
+    ("joint_motion_limits[3].joint_max_speed", 144, 8),
+    ("joint_motion_limits[3].joint_max_acceleration", 152, 8),
+    ("joint_motion_limits[4].joint_max_speed", 160, 8),
+    ("joint_motion_limits[4].joint_max_acceleration", 168, 8),
+    ("joint_motion_limits[5].joint_max_speed", 176, 8),
+    ("joint_motion_limits[5].joint_max_acceleration", 184, 8),
+    ("v_joint_default", 192, 8),
+    ("a_joint_default", 200, 8),
+    ("v_tool_default", 208, 8),
+    ("a_tool_default", 216, 8),
+    ("eq_radius", 224, 8),
+    ("dh_a[0]", 232, 8),
+    ("dh_a[1]", 240, 8),
+    ("dh_a[2]", 248, 8),
+    ("dh_a[3]", 256, 8),
+    ("dh_a[4]", 264, 8),
+    ("dh_a[5]", 272, 8),
+    ("dh_d[0]", 280, 8),
+    ("dh_d[1]", 288, 8),
+    ("dh_d[2]", 296, 8),
+    ("dh_d[3]", 304, 8),
+    ("dh_d[4]", 312, 8),
+    ("dh_d[5]", 320, 8),
+    ("dh_alpha[0]", 328, 8),
+    ("dh_alpha[1]", 336, 8),
+    ("dh_alpha[2]", 344, 8),
+    ("dh_alpha[3]", 352, 8),
+    ("dh_alpha[4]", 360, 8),
+    ("dh_alpha[5]", 368, 8),
+    ("dh_theta[0]", 376, 8),
+    ("dh_theta[1]", 384, 8),
+    ("dh_theta[2]", 392, 8),
+    ("dh_theta[3]", 400, 8),
+    ("dh_theta[4]", 408, 8),
+    ("dh_theta[5]", 416, 8),
+    ("masterboard_version", 424, 4),
+    ("controller_box_type", 428, 4),
+    ("robot_type", 432, 4),
+    ("robot_sub_type", 436, 4),
+    ("reserved_1", 440, 2),
+    ("reserved_2", 442, 2),
 )
 
 
@@ -1249,12 +1617,44 @@ class ConfigurationData(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["ConfigurationData", int]:
+    def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["ConfigurationData", int]:
+        """Read the form of software (1, 0, 0) to (1, 8, 999)."""
+        reserved_1 = reserved_2 = None
+        if pos + 464 > end:
+            raise _rt.short_in_run(_CONFIGURATION_DATA_0_0_RUN, pos, end)
+        v = _CONFIGURATION_DATA_0_0.unpack_from(buf, pos)
+        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, enums) for enums in [()] for j in range(6)]
+        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, enums) for enums in [()] for j in range(6)]
+        v_joint_default = v[24]
+        a_joint_default = v[25]
+        v_tool_default = v[26]
+        a_tool_default = v[27]
+        eq_radius = v[28]
+        dh_a = list(v[29:35])
+        dh_d = list(v[35:41])
+        dh_alpha = list(v[41:47])
+        dh_theta = list(v[47:53])
+        masterboard_version = v[53]
+        controller_box_type = v[54]
+        robot_type = v[55]
+        robot_sub_type = v[56]
+        motor_type = list(v[57:63])
+        pos += 464
+        return cls(joint_position_limits, joint_motion_limits, v_joint_default, a_joint_default, v_tool_default, a_tool_default, eq_radius, dh_a, dh_d, dh_alpha, dh_theta, masterboard_version, controller_box_type, robot_type, robot_sub_type, motor_type, reserved_1, reserved_2, b"", version), pos
+
+    def _encode_0(self, out: bytearray, version: tuple) -> None:
+        out += _CONFIGURATION_DATA_0_0.pack(*[x for item in self.joint_position_limits for x in item._values()], *[x for item in self.joint_motion_limits for x in item._values()], self.v_joint_default, self.a_joint_default, self.v_tool_default, self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha, *self.dh_theta, self.masterboard_version, self.controller_box_type, self.robot_type, self.robot_sub_type, *self.motor_type)
+        out += self.extra
+
+    @classmethod
+    def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["ConfigurationData", int]:
+        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 25, 0)."""
+        motor_type = reserved_1 = reserved_2 = None
         if pos + 440 > end:
-            raise _rt.short_in_run(_CONFIGURATION_DATA_0_RUN, pos, end)
-        v = _CONFIGURATION_DATA_0.unpack_from(buf, pos)
-        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, version) for j in range(6)]
-        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, version) for j in range(6)]
+            raise _rt.short_in_run(_CONFIGURATION_DATA_1_0_RUN, pos, end)
+        v = _CONFIGURATION_DATA_1_0.unpack_from(buf, pos)
+        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, enums) for enums in [()] for j in range(6)]
+        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, enums) for enums in [()] for j in range(6)]
         v_joint_default = v[24]
         a_joint_default = v[25]
         v_tool_default = v[26]
@@ -1269,32 +1669,50 @@ class ConfigurationData(_Package):
         robot_type = v[55]
         robot_sub_type = v[56]
         pos += 440
-        if version <= (1, 8, 999):
-            if pos + 24 > end:
-                raise _rt.short_in_run(_CONFIGURATION_DATA_1_RUN, pos, end)
-            v = _CONFIGURATION_DATA_1.unpack_from(buf, pos)
-            motor_type = list(v[0:6])
-            pos += 24
-        else:
-            motor_type = None
-        if version >= (5, 25, 1):
-            if pos + 4 > end:
-                raise _rt.short_in_run(_CONFIGURATION_DATA_2_RUN, pos, end)
-            v = _CONFIGURATION_DATA_2.unpack_from(buf, pos)
-            reserved_1 = v[0]
-            reserved_2 = v[1]
-            pos += 4
-        else:
-            reserved_1 = reserved_2 = None
-        return cls(joint_position_limits, joint_motion_limits, v_joint_default, a_joint_default, v_tool_default, a_tool_default, eq_radius, dh_a, dh_d, dh_alpha, dh_theta, masterboard_version, controller_box_type, robot_type, robot_sub_type, motor_type, reserved_1, reserved_2), pos
+        return cls(joint_position_limits, joint_motion_limits, v_joint_default, a_joint_default, v_tool_default, a_tool_default, eq_radius, dh_a, dh_d, dh_alpha, dh_theta, masterboard_version, controller_box_type, robot_type, robot_sub_type, motor_type, reserved_1, reserved_2, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        out += _CONFIGURATION_DATA_0.pack(*[x for item in self.joint_position_limits for x in item._values()], *[x for item in self.joint_motion_limits for x in item._values()], self.v_joint_default, self.a_joint_default, self.v_tool_default, self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha, *self.dh_theta, self.masterboard_version, self.controller_box_type, self.robot_type, self.robot_sub_type)
-        if version <= (1, 8, 999):
-            out += _CONFIGURATION_DATA_1.pack(*self.motor_type)
-        if version >= (5, 25, 1):
-            out += _CONFIGURATION_DATA_2.pack(self.reserved_1, self.reserved_2)
+    def _encode_1(self, out: bytearray, version: tuple) -> None:
+        out += _CONFIGURATION_DATA_1_0.pack(*[x for item in self.joint_position_limits for x in item._values()], *[x for item in self.joint_motion_limits for x in item._values()], self.v_joint_default, self.a_joint_default, self.v_tool_default, self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha, *self.dh_theta, self.masterboard_version, self.controller_box_type, self.robot_type, self.robot_sub_type)
         out += self.extra
+
+    @classmethod
+    def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["ConfigurationData", int]:
+        """Read the form of software (5, 25, 1) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        motor_type = None
+        if pos + 444 > end:
+            raise _rt.short_in_run(_CONFIGURATION_DATA_2_0_RUN, pos, end)
+        v = _CONFIGURATION_DATA_2_0.unpack_from(buf, pos)
+        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, enums) for enums in [()] for j in range(6)]
+        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, enums) for enums in [()] for j in range(6)]
+        v_joint_default = v[24]
+        a_joint_default = v[25]
+        v_tool_default = v[26]
+        a_tool_default = v[27]
+        eq_radius = v[28]
+        dh_a = list(v[29:35])
+        dh_d = list(v[35:41])
+        dh_alpha = list(v[41:47])
+        dh_theta = list(v[47:53])
+        masterboard_version = v[53]
+        controller_box_type = v[54]
+        robot_type = v[55]
+        robot_sub_type = v[56]
+        reserved_1 = v[57]
+        reserved_2 = v[58]
+        pos += 444
+        return cls(joint_position_limits, joint_motion_limits, v_joint_default, a_joint_default, v_tool_default, a_tool_default, eq_radius, dh_a, dh_d, dh_alpha, dh_theta, masterboard_version, controller_box_type, robot_type, robot_sub_type, motor_type, reserved_1, reserved_2, b"", version), pos
+
+    def _encode_2(self, out: bytearray, version: tuple) -> None:
+        out += _CONFIGURATION_DATA_2_0.pack(*[x for item in self.joint_position_limits for x in item._values()], *[x for item in self.joint_motion_limits for x in item._values()], self.v_joint_default, self.a_joint_default, self.v_tool_default, self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha, *self.dh_theta, self.masterboard_version, self.controller_box_type, self.robot_type, self.robot_sub_type, self.reserved_1, self.reserved_2)
+        out += self.extra
+
+    def _encode(self, out: bytearray, version: tuple) -> None:
+        """Write the form of `version` (the one it was read in, for a decoded package)."""
+        for ranges, encode in self._FORMS:
+            if any(low <= version <= high for low, high in ranges):
+                return encode(self, out, version)
+        return self._FORMS[-1][1](self, out, version)
+
 
 
 _FORCE_MODE_DATA_0 = struct.Struct(">ddddddd")
@@ -1339,7 +1757,7 @@ class ForceModeData(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["ForceModeData", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple) -> tuple["ForceModeData", int]:
         if pos + 56 > end:
             raise _rt.short_in_run(_FORCE_MODE_DATA_0_RUN, pos, end)
         v = _FORCE_MODE_DATA_0.unpack_from(buf, pos)
@@ -1351,36 +1769,42 @@ class ForceModeData(_Package):
         frz = v[5]
         robot_dexterity = v[6]
         pos += 56
-        return cls(fx, fy, fz, frx, fry, frz, robot_dexterity), pos
+        return cls(fx, fy, fz, frx, fry, frz, robot_dexterity, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _FORCE_MODE_DATA_0.pack(self.fx, self.fy, self.fz, self.frx, self.fry, self.frz, self.robot_dexterity)
         out += self.extra
 
 
-_ADDITIONAL_INFO_0 = struct.Struct(">IB")
-_ADDITIONAL_INFO_0_RUN = (
+
+_ADDITIONAL_INFO_0_0 = struct.Struct(">IB")
+_ADDITIONAL_INFO_0_0_RUN = (
     ("ctrl_bits", 0, 4),
     ("teach_button", 4, 1),
 )
 
 
-_ADDITIONAL_INFO_1 = struct.Struct(">BB")
-_ADDITIONAL_INFO_1_RUN = (
+_ADDITIONAL_INFO_1_0 = struct.Struct(">BB")
+_ADDITIONAL_INFO_1_0_RUN = (
     ("tp_button_state", 0, 1),
     ("freedrive_button_enabled", 1, 1),
 )
 
 
-_ADDITIONAL_INFO_2 = struct.Struct(">B")
-_ADDITIONAL_INFO_2_RUN = (
-    ("io_enabled_freedrive", 0, 1),
+_ADDITIONAL_INFO_2_0 = struct.Struct(">BBB")
+_ADDITIONAL_INFO_2_0_RUN = (
+    ("tp_button_state", 0, 1),
+    ("freedrive_button_enabled", 1, 1),
+    ("io_enabled_freedrive", 2, 1),
 )
 
 
-_ADDITIONAL_INFO_3 = struct.Struct(">B")
-_ADDITIONAL_INFO_3_RUN = (
-    ("reserved", 0, 1),
+_ADDITIONAL_INFO_3_0 = struct.Struct(">BBBB")
+_ADDITIONAL_INFO_3_0_RUN = (
+    ("tp_button_state", 0, 1),
+    ("freedrive_button_enabled", 1, 1),
+    ("io_enabled_freedrive", 2, 1),
+    ("reserved", 3, 1),
 )
 
 
@@ -1418,52 +1842,79 @@ class AdditionalInfo(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["AdditionalInfo", int]:
-        if version <= (1, 7, 999):
-            if pos + 5 > end:
-                raise _rt.short_in_run(_ADDITIONAL_INFO_0_RUN, pos, end)
-            v = _ADDITIONAL_INFO_0.unpack_from(buf, pos)
-            ctrl_bits = v[0]
-            teach_button = v[1]
-            pos += 5
-        else:
-            ctrl_bits = teach_button = None
-        if version >= (1, 8, 0):
-            if pos + 2 > end:
-                raise _rt.short_in_run(_ADDITIONAL_INFO_1_RUN, pos, end)
-            v = _ADDITIONAL_INFO_1.unpack_from(buf, pos)
-            tp_button_state = v[0]
-            freedrive_button_enabled = _BOOL[v[1]]
-            pos += 2
-        else:
-            tp_button_state = freedrive_button_enabled = None
-        if version >= (3, 2, 0):
-            if pos + 1 > end:
-                raise _rt.short_in_run(_ADDITIONAL_INFO_2_RUN, pos, end)
-            (io_enabled_freedrive,) = _ADDITIONAL_INFO_2.unpack_from(buf, pos)
-            io_enabled_freedrive = _BOOL[io_enabled_freedrive]
-            pos += 1
-        else:
-            io_enabled_freedrive = None
-        if version >= (5, 0, 0):
-            if pos + 1 > end:
-                raise _rt.short_in_run(_ADDITIONAL_INFO_3_RUN, pos, end)
-            (reserved,) = _ADDITIONAL_INFO_3.unpack_from(buf, pos)
-            pos += 1
-        else:
-            reserved = None
-        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved), pos
+    def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
+        """Read the form of software (1, 0, 0) to (1, 7, 999)."""
+        tp_button_state = freedrive_button_enabled = io_enabled_freedrive = reserved = None
+        if pos + 5 > end:
+            raise _rt.short_in_run(_ADDITIONAL_INFO_0_0_RUN, pos, end)
+        v = _ADDITIONAL_INFO_0_0.unpack_from(buf, pos)
+        ctrl_bits = v[0]
+        teach_button = v[1]
+        pos += 5
+        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        if version <= (1, 7, 999):
-            out += _ADDITIONAL_INFO_0.pack(self.ctrl_bits, self.teach_button)
-        if version >= (1, 8, 0):
-            out += _ADDITIONAL_INFO_1.pack(self.tp_button_state, self.freedrive_button_enabled)
-        if version >= (3, 2, 0):
-            out += _ADDITIONAL_INFO_2.pack(self.io_enabled_freedrive)
-        if version >= (5, 0, 0):
-            out += _ADDITIONAL_INFO_3.pack(self.reserved)
+    def _encode_0(self, out: bytearray, version: tuple) -> None:
+        out += _ADDITIONAL_INFO_0_0.pack(self.ctrl_bits, self.teach_button)
         out += self.extra
+
+    @classmethod
+    def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
+        """Read the form of software (1, 8, 0) to (1, 8, 999), (3, 0, 0) to (3, 1, 999)."""
+        ctrl_bits = teach_button = io_enabled_freedrive = reserved = None
+        if pos + 2 > end:
+            raise _rt.short_in_run(_ADDITIONAL_INFO_1_0_RUN, pos, end)
+        v = _ADDITIONAL_INFO_1_0.unpack_from(buf, pos)
+        tp_button_state = v[0]
+        freedrive_button_enabled = _BOOL[v[1]]
+        pos += 2
+        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved, b"", version), pos
+
+    def _encode_1(self, out: bytearray, version: tuple) -> None:
+        out += _ADDITIONAL_INFO_1_0.pack(self.tp_button_state, self.freedrive_button_enabled)
+        out += self.extra
+
+    @classmethod
+    def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
+        """Read the form of software (3, 2, 0) to (3, 15, 999)."""
+        ctrl_bits = teach_button = reserved = None
+        if pos + 3 > end:
+            raise _rt.short_in_run(_ADDITIONAL_INFO_2_0_RUN, pos, end)
+        v = _ADDITIONAL_INFO_2_0.unpack_from(buf, pos)
+        tp_button_state = v[0]
+        freedrive_button_enabled = _BOOL[v[1]]
+        io_enabled_freedrive = _BOOL[v[2]]
+        pos += 3
+        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved, b"", version), pos
+
+    def _encode_2(self, out: bytearray, version: tuple) -> None:
+        out += _ADDITIONAL_INFO_2_0.pack(self.tp_button_state, self.freedrive_button_enabled, self.io_enabled_freedrive)
+        out += self.extra
+
+    @classmethod
+    def _decode_3(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
+        """Read the form of software (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        ctrl_bits = teach_button = None
+        if pos + 4 > end:
+            raise _rt.short_in_run(_ADDITIONAL_INFO_3_0_RUN, pos, end)
+        v = _ADDITIONAL_INFO_3_0.unpack_from(buf, pos)
+        tp_button_state = v[0]
+        freedrive_button_enabled = _BOOL[v[1]]
+        io_enabled_freedrive = _BOOL[v[2]]
+        reserved = v[3]
+        pos += 4
+        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved, b"", version), pos
+
+    def _encode_3(self, out: bytearray, version: tuple) -> None:
+        out += _ADDITIONAL_INFO_3_0.pack(self.tp_button_state, self.freedrive_button_enabled, self.io_enabled_freedrive, self.reserved)
+        out += self.extra
+
+    def _encode(self, out: bytearray, version: tuple) -> None:
+        """Write the form of `version` (the one it was read in, for a decoded package)."""
+        for ranges, encode in self._FORMS:
+            if any(low <= version <= high for low, high in ranges):
+                return encode(self, out, version)
+        return self._FORMS[-1][1](self, out, version)
+
 
 
 _CALIBRATION_DATA_0 = struct.Struct(">dddddd")
@@ -1505,7 +1956,7 @@ class CalibrationData(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["CalibrationData", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple) -> tuple["CalibrationData", int]:
         if pos + 48 > end:
             raise _rt.short_in_run(_CALIBRATION_DATA_0_RUN, pos, end)
         v = _CALIBRATION_DATA_0.unpack_from(buf, pos)
@@ -1516,11 +1967,12 @@ class CalibrationData(_Package):
         fry = v[4]
         frz = v[5]
         pos += 48
-        return cls(fx, fy, fz, frx, fry, frz), pos
+        return cls(fx, fy, fz, frx, fry, frz, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _CALIBRATION_DATA_0.pack(self.fx, self.fy, self.fz, self.frx, self.fry, self.frz)
         out += self.extra
+
 
 
 @dataclass(slots=True)
@@ -1542,14 +1994,15 @@ class SafetyData(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["SafetyData", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple) -> tuple["SafetyData", int]:
         raw = bytes(buf[pos:end])
         pos = end
-        return cls(raw), pos
+        return cls(raw, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += self.raw
         out += self.extra
+
 
 
 _TOOL_COMM_INFO_0 = struct.Struct(">Biiiff")
@@ -1592,7 +2045,7 @@ class ToolCommInfo(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["ToolCommInfo", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple) -> tuple["ToolCommInfo", int]:
         if pos + 21 > end:
             raise _rt.short_in_run(_TOOL_COMM_INFO_0_RUN, pos, end)
         v = _TOOL_COMM_INFO_0.unpack_from(buf, pos)
@@ -1603,11 +2056,12 @@ class ToolCommInfo(_Package):
         rx_idle_chars = (v[4] if v[4] == v[4] else _rt.f32_nan(buf, pos + 13))
         tx_idle_chars = (v[5] if v[5] == v[5] else _rt.f32_nan(buf, pos + 17))
         pos += 21
-        return cls(tool_communication_is_enabled, baud_rate, parity, stop_bits, rx_idle_chars, tx_idle_chars), pos
+        return cls(tool_communication_is_enabled, baud_rate, parity, stop_bits, rx_idle_chars, tx_idle_chars, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _TOOL_COMM_INFO_0_OUT.pack(self.tool_communication_is_enabled, self.baud_rate, self.parity, self.stop_bits, _rt.f32_bits(self.rx_idle_chars), _rt.f32_bits(self.tx_idle_chars))
         out += self.extra
+
 
 
 _TOOL_MODE_INFO_0 = struct.Struct(">BBB")
@@ -1640,7 +2094,7 @@ class ToolModeInfo(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["ToolModeInfo", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple) -> tuple["ToolModeInfo", int]:
         if pos + 3 > end:
             raise _rt.short_in_run(_TOOL_MODE_INFO_0_RUN, pos, end)
         v = _TOOL_MODE_INFO_0.unpack_from(buf, pos)
@@ -1648,11 +2102,12 @@ class ToolModeInfo(_Package):
         digital_output_mode_output_0 = v[1]
         digital_output_mode_output_1 = v[2]
         pos += 3
-        return cls(output_mode, digital_output_mode_output_0, digital_output_mode_output_1), pos
+        return cls(output_mode, digital_output_mode_output_0, digital_output_mode_output_1, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _TOOL_MODE_INFO_0.pack(self.output_mode, self.digital_output_mode_output_0, self.digital_output_mode_output_1)
         out += self.extra
+
 
 
 _SINGULARITY_INFO_0 = struct.Struct(">BB")
@@ -1682,37 +2137,35 @@ class SingularityInfo(_Package):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["SingularityInfo", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple) -> tuple["SingularityInfo", int]:
         if pos + 2 > end:
             raise _rt.short_in_run(_SINGULARITY_INFO_0_RUN, pos, end)
         v = _SINGULARITY_INFO_0.unpack_from(buf, pos)
         singularity_severity = v[0]
         singularity_type = v[1]
         pos += 2
-        return cls(singularity_severity, singularity_type), pos
+        return cls(singularity_severity, singularity_type, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _SINGULARITY_INFO_0.pack(self.singularity_severity, self.singularity_type)
         out += self.extra
 
 
-_VERSION_0 = struct.Struct(">BB")
-_VERSION_0_RUN = (
+
+_VERSION_0_0 = struct.Struct(">BBi")
+_VERSION_0_0_RUN = (
     ("major_version", 0, 1),
     ("minor_version", 1, 1),
+    ("svn_revision", 2, 4),
 )
 
 
-_VERSION_1 = struct.Struct(">i")
-_VERSION_1_RUN = (
-    ("svn_revision", 0, 4),
-)
-
-
-_VERSION_2 = struct.Struct(">ii")
-_VERSION_2_RUN = (
-    ("bugfix_version", 0, 4),
-    ("build_number", 4, 4),
+_VERSION_1_0 = struct.Struct(">BBii")
+_VERSION_1_0_RUN = (
+    ("major_version", 0, 1),
+    ("minor_version", 1, 1),
+    ("bugfix_version", 2, 4),
+    ("build_number", 6, 4),
 )
 
 
@@ -1758,56 +2211,72 @@ class VersionMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["VersionMessage", int]:
+    def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["VersionMessage", int]:
+        """Read the form of software (1, 0, 0) to (1, 8, 999), (3, 0, 0) to (3, 2, 999)."""
+        bugfix_version = build_number = None
         project_name, pos = _rt.read_prefixed_text(buf, pos, end, _INT8, "project_name")
-        if pos + 2 > end:
-            raise _rt.short_in_run(_VERSION_0_RUN, pos, end)
-        v = _VERSION_0.unpack_from(buf, pos)
+        if pos + 6 > end:
+            raise _rt.short_in_run(_VERSION_0_0_RUN, pos, end)
+        v = _VERSION_0_0.unpack_from(buf, pos)
         major_version = v[0]
         minor_version = v[1]
-        pos += 2
-        if version <= (3, 2, 999):
-            if pos + 4 > end:
-                raise _rt.short_in_run(_VERSION_1_RUN, pos, end)
-            (svn_revision,) = _VERSION_1.unpack_from(buf, pos)
-            pos += 4
-        else:
-            svn_revision = None
-        if version >= (3, 3, 0):
-            if pos + 8 > end:
-                raise _rt.short_in_run(_VERSION_2_RUN, pos, end)
-            v = _VERSION_2.unpack_from(buf, pos)
-            bugfix_version = v[0]
-            build_number = v[1]
-            pos += 8
-        else:
-            bugfix_version = build_number = None
+        svn_revision = v[2]
+        pos += 6
         build_date = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, project_name, major_version, minor_version, svn_revision, bugfix_version, build_number, build_date), pos
+        return cls(*header, project_name, major_version, minor_version, svn_revision, bugfix_version, build_number, build_date, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode_0(self, out: bytearray, version: tuple) -> None:
         _rt.write_prefixed_text(out, self.project_name, _INT8)
-        out += _VERSION_0.pack(self.major_version, self.minor_version)
-        if version <= (3, 2, 999):
-            out += _VERSION_1.pack(self.svn_revision)
-        if version >= (3, 3, 0):
-            out += _VERSION_2.pack(self.bugfix_version, self.build_number)
+        out += _VERSION_0_0.pack(self.major_version, self.minor_version, self.svn_revision)
         out += _rt.text_bytes(self.build_date)
         out += self.extra
 
+    @classmethod
+    def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["VersionMessage", int]:
+        """Read the form of software (3, 3, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        svn_revision = None
+        project_name, pos = _rt.read_prefixed_text(buf, pos, end, _INT8, "project_name")
+        if pos + 10 > end:
+            raise _rt.short_in_run(_VERSION_1_0_RUN, pos, end)
+        v = _VERSION_1_0.unpack_from(buf, pos)
+        major_version = v[0]
+        minor_version = v[1]
+        bugfix_version = v[2]
+        build_number = v[3]
+        pos += 10
+        build_date = _rt.text(buf[pos:end])
+        pos = end
+        return cls(*header, project_name, major_version, minor_version, svn_revision, bugfix_version, build_number, build_date, b"", version), pos
 
-_SAFETY_MODE_0 = struct.Struct(">ii")
-_SAFETY_MODE_0_RUN = (
+    def _encode_1(self, out: bytearray, version: tuple) -> None:
+        _rt.write_prefixed_text(out, self.project_name, _INT8)
+        out += _VERSION_1_0.pack(self.major_version, self.minor_version, self.bugfix_version, self.build_number)
+        out += _rt.text_bytes(self.build_date)
+        out += self.extra
+
+    def _encode(self, out: bytearray, version: tuple) -> None:
+        """Write the form of `version` (the one it was read in, for a decoded package)."""
+        for ranges, encode in self._FORMS:
+            if any(low <= version <= high for low, high in ranges):
+                return encode(self, out, version)
+        return self._FORMS[-1][1](self, out, version)
+
+
+
+_SAFETY_MODE_0_0 = struct.Struct(">ii")
+_SAFETY_MODE_0_0_RUN = (
     ("robot_message_code", 0, 4),
     ("robot_message_argument", 4, 4),
 )
 
 
-_SAFETY_MODE_1 = struct.Struct(">BI")
-_SAFETY_MODE_1_RUN = (
-    ("safety_mode_type", 0, 1),
-    ("report_data_type", 1, 4),
+_SAFETY_MODE_1_0 = struct.Struct(">iiBI")
+_SAFETY_MODE_1_0_RUN = (
+    ("robot_message_code", 0, 4),
+    ("robot_message_argument", 4, 4),
+    ("safety_mode_type", 8, 1),
+    ("report_data_type", 9, 4),
 )
 
 
@@ -1848,59 +2317,74 @@ class SafetyModeMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["SafetyModeMessage", int]:
+    def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["SafetyModeMessage", int]:
+        """Read the form of software (1, 0, 0) to (1, 8, 999)."""
+        safety_mode_type = report_data_type = report_data = None
         if pos + 8 > end:
-            raise _rt.short_in_run(_SAFETY_MODE_0_RUN, pos, end)
-        v = _SAFETY_MODE_0.unpack_from(buf, pos)
+            raise _rt.short_in_run(_SAFETY_MODE_0_0_RUN, pos, end)
+        v = _SAFETY_MODE_0_0.unpack_from(buf, pos)
         robot_message_code = v[0]
         robot_message_argument = v[1]
         pos += 8
-        if version >= (3, 0, 0):
-            if pos + 5 > end:
-                raise _rt.short_in_run(_SAFETY_MODE_1_RUN, pos, end)
-            v = _SAFETY_MODE_1.unpack_from(buf, pos)
-            safety_mode_type = _e.SAFETY_MODE_BY_VALUE.get(v[0], v[0])
-            report_data_type = v[1]
-            pos += 5
-            fmt = _SAFETY_MODE_REPORT_DATA_BY_REPORT_DATA_TYPE.get(report_data_type, _UINT32)
-            if pos + fmt.size > end:
-                raise _rt.short("report_data", pos, fmt.size, end)
-            (report_data,) = fmt.unpack_from(buf, pos)
-            if report_data != report_data:
-                report_data = _rt.f32_nan(buf, pos) if fmt.size == 4 else report_data
-            pos += fmt.size
-        else:
-            safety_mode_type = report_data_type = report_data = None
-        if version <= (1, 8, 999):
-            text = _rt.text(buf[pos:end])
-            pos = end
-        else:
-            text = None
-        return cls(*header, robot_message_code, robot_message_argument, safety_mode_type, report_data_type, report_data, text), pos
+        text = _rt.text(buf[pos:end])
+        pos = end
+        return cls(*header, robot_message_code, robot_message_argument, safety_mode_type, report_data_type, report_data, text, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        out += _SAFETY_MODE_0.pack(self.robot_message_code, self.robot_message_argument)
-        if version >= (3, 0, 0):
-            out += _SAFETY_MODE_1.pack(self.safety_mode_type, self.report_data_type)
-            fmt = _SAFETY_MODE_REPORT_DATA_BY_REPORT_DATA_TYPE.get(self.report_data_type, _UINT32)
-            out += _UINT32.pack(_rt.f32_bits(self.report_data)) if fmt is _FLOAT32 else fmt.pack(self.report_data)
-        if version <= (1, 8, 999):
-            out += _rt.text_bytes(self.text)
+    def _encode_0(self, out: bytearray, version: tuple) -> None:
+        out += _SAFETY_MODE_0_0.pack(self.robot_message_code, self.robot_message_argument)
+        out += _rt.text_bytes(self.text)
         out += self.extra
 
+    @classmethod
+    def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["SafetyModeMessage", int]:
+        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        text = None
+        if pos + 13 > end:
+            raise _rt.short_in_run(_SAFETY_MODE_1_0_RUN, pos, end)
+        v = _SAFETY_MODE_1_0.unpack_from(buf, pos)
+        robot_message_code = v[0]
+        robot_message_argument = v[1]
+        safety_mode_type = _e.SAFETY_MODE_BY_VALUE.get(v[2], v[2])
+        report_data_type = v[3]
+        pos += 13
+        fmt = _SAFETY_MODE_1_REPORT_DATA_BY_REPORT_DATA_TYPE.get(report_data_type, _UINT32)
+        if pos + fmt.size > end:
+            raise _rt.short("report_data", pos, fmt.size, end)
+        (report_data,) = fmt.unpack_from(buf, pos)
+        if report_data != report_data:
+            report_data = _rt.f32_nan(buf, pos) if fmt.size == 4 else report_data
+        pos += fmt.size
+        return cls(*header, robot_message_code, robot_message_argument, safety_mode_type, report_data_type, report_data, text, b"", version), pos
 
-_ROBOT_COMM_0 = struct.Struct(">ii")
-_ROBOT_COMM_0_RUN = (
+    def _encode_1(self, out: bytearray, version: tuple) -> None:
+        out += _SAFETY_MODE_1_0.pack(self.robot_message_code, self.robot_message_argument, self.safety_mode_type, self.report_data_type)
+        fmt = _SAFETY_MODE_1_REPORT_DATA_BY_REPORT_DATA_TYPE.get(self.report_data_type, _UINT32)
+        out += _UINT32.pack(_rt.f32_bits(self.report_data)) if fmt is _FLOAT32 else fmt.pack(self.report_data)
+        out += self.extra
+
+    def _encode(self, out: bytearray, version: tuple) -> None:
+        """Write the form of `version` (the one it was read in, for a decoded package)."""
+        for ranges, encode in self._FORMS:
+            if any(low <= version <= high for low, high in ranges):
+                return encode(self, out, version)
+        return self._FORMS[-1][1](self, out, version)
+
+
+
+_ROBOT_COMM_0_0 = struct.Struct(">ii")
+_ROBOT_COMM_0_0_RUN = (
     ("robot_message_code", 0, 4),
     ("robot_message_argument", 4, 4),
 )
 
 
-_ROBOT_COMM_1 = struct.Struct(">iII")
-_ROBOT_COMM_1_RUN = (
-    ("robot_message_report_level", 0, 4),
-    ("robot_message_data_type", 4, 4),
-    ("robot_message_data", 8, 4),
+_ROBOT_COMM_1_0 = struct.Struct(">iiiII")
+_ROBOT_COMM_1_0_RUN = (
+    ("robot_message_code", 0, 4),
+    ("robot_message_argument", 4, 4),
+    ("robot_message_report_level", 8, 4),
+    ("robot_message_data_type", 12, 4),
+    ("robot_message_data", 16, 4),
 )
 
 
@@ -1941,33 +2425,52 @@ class RobotCommMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["RobotCommMessage", int]:
+    def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["RobotCommMessage", int]:
+        """Read the form of software (1, 0, 0) to (1, 8, 999)."""
+        robot_message_report_level = robot_message_data_type = robot_message_data = None
         if pos + 8 > end:
-            raise _rt.short_in_run(_ROBOT_COMM_0_RUN, pos, end)
-        v = _ROBOT_COMM_0.unpack_from(buf, pos)
+            raise _rt.short_in_run(_ROBOT_COMM_0_0_RUN, pos, end)
+        v = _ROBOT_COMM_0_0.unpack_from(buf, pos)
         robot_message_code = v[0]
         robot_message_argument = v[1]
         pos += 8
-        if version >= (3, 0, 0):
-            if pos + 12 > end:
-                raise _rt.short_in_run(_ROBOT_COMM_1_RUN, pos, end)
-            v = _ROBOT_COMM_1.unpack_from(buf, pos)
-            robot_message_report_level = _e.REPORT_LEVEL_BY_VALUE.get(v[0], v[0])
-            robot_message_data_type = v[1]
-            robot_message_data = v[2]
-            pos += 12
-        else:
-            robot_message_report_level = robot_message_data_type = robot_message_data = None
         text = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, robot_message_code, robot_message_argument, robot_message_report_level, robot_message_data_type, robot_message_data, text), pos
+        return cls(*header, robot_message_code, robot_message_argument, robot_message_report_level, robot_message_data_type, robot_message_data, text, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        out += _ROBOT_COMM_0.pack(self.robot_message_code, self.robot_message_argument)
-        if version >= (3, 0, 0):
-            out += _ROBOT_COMM_1.pack(self.robot_message_report_level, self.robot_message_data_type, self.robot_message_data)
+    def _encode_0(self, out: bytearray, version: tuple) -> None:
+        out += _ROBOT_COMM_0_0.pack(self.robot_message_code, self.robot_message_argument)
         out += _rt.text_bytes(self.text)
         out += self.extra
+
+    @classmethod
+    def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["RobotCommMessage", int]:
+        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        if pos + 20 > end:
+            raise _rt.short_in_run(_ROBOT_COMM_1_0_RUN, pos, end)
+        v = _ROBOT_COMM_1_0.unpack_from(buf, pos)
+        robot_message_code = v[0]
+        robot_message_argument = v[1]
+        robot_message_report_level = _e.REPORT_LEVEL_BY_VALUE.get(v[2], v[2])
+        robot_message_data_type = v[3]
+        robot_message_data = v[4]
+        pos += 20
+        text = _rt.text(buf[pos:end])
+        pos = end
+        return cls(*header, robot_message_code, robot_message_argument, robot_message_report_level, robot_message_data_type, robot_message_data, text, b"", version), pos
+
+    def _encode_1(self, out: bytearray, version: tuple) -> None:
+        out += _ROBOT_COMM_1_0.pack(self.robot_message_code, self.robot_message_argument, self.robot_message_report_level, self.robot_message_data_type, self.robot_message_data)
+        out += _rt.text_bytes(self.text)
+        out += self.extra
+
+    def _encode(self, out: bytearray, version: tuple) -> None:
+        """Write the form of `version` (the one it was read in, for a decoded package)."""
+        for ranges, encode in self._FORMS:
+            if any(low <= version <= high for low, high in ranges):
+                return encode(self, out, version)
+        return self._FORMS[-1][1](self, out, version)
+
 
 
 _KEY_0 = struct.Struct(">ii")
@@ -2008,7 +2511,7 @@ class KeyMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["KeyMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["KeyMessage", int]:
         if pos + 8 > end:
             raise _rt.short_in_run(_KEY_0_RUN, pos, end)
         v = _KEY_0.unpack_from(buf, pos)
@@ -2018,13 +2521,14 @@ class KeyMessage(_Subtype):
         title, pos = _rt.read_prefixed_text(buf, pos, end, _UINT8, "title")
         text = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, robot_message_code, robot_message_argument, title, text), pos
+        return cls(*header, robot_message_code, robot_message_argument, title, text, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _KEY_0.pack(self.robot_message_code, self.robot_message_argument)
         _rt.write_prefixed_text(out, self.title, _UINT8)
         out += _rt.text_bytes(self.text)
         out += self.extra
+
 
 
 _PROGRAM_THREAD_0 = struct.Struct(">i")
@@ -2050,7 +2554,7 @@ class ProgramThread(_Item):
     thread_name: str
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int]) -> tuple["ProgramThread", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple) -> tuple["ProgramThread", int]:
         if pos + 4 > end:
             raise _rt.short_in_run(_PROGRAM_THREAD_0_RUN, pos, end)
         (label_id,) = _PROGRAM_THREAD_0.unpack_from(buf, pos)
@@ -2059,11 +2563,12 @@ class ProgramThread(_Item):
         thread_name, pos = _rt.read_prefixed_text(buf, pos, end, _INT32, "thread_name")
         return cls(label_id, label_name, thread_name), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _PROGRAM_THREAD_0.pack(self.label_id)
         _rt.write_prefixed_text(out, self.label_name, _INT32)
         _rt.write_prefixed_text(out, self.thread_name, _INT32)
         return
+
 
 
 @dataclass(slots=True)
@@ -2089,7 +2594,7 @@ class ProgramThreadsMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["ProgramThreadsMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["ProgramThreadsMessage", int]:
         threads = []
         while pos < end:
             try:
@@ -2097,31 +2602,29 @@ class ProgramThreadsMessage(_Subtype):
             except DecodeError as exc:
                 raise exc.within(f"threads[{len(threads)}]") from None
             threads.append(item)
-        return cls(*header, threads), pos
+        return cls(*header, threads, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         for item in self.threads:
             item._encode(out, version)
         out += self.extra
 
 
-_POPUP_0 = struct.Struct(">II")
-_POPUP_0_RUN = (
-    ("request_id", 0, 4),
-    ("requested_type", 4, 4),
-)
 
-
-_POPUP_1 = struct.Struct(">BB")
-_POPUP_1_RUN = (
+_POPUP_0_0 = struct.Struct(">BB")
+_POPUP_0_0_RUN = (
     ("warning", 0, 1),
     ("error", 1, 1),
 )
 
 
-_POPUP_2 = struct.Struct(">B")
-_POPUP_2_RUN = (
-    ("blocking", 0, 1),
+_POPUP_1_0 = struct.Struct(">IIBBB")
+_POPUP_1_0_RUN = (
+    ("request_id", 0, 4),
+    ("requested_type", 4, 4),
+    ("warning", 8, 1),
+    ("error", 9, 1),
+    ("blocking", 10, 1),
 )
 
 
@@ -2165,44 +2668,56 @@ class PopupMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["PopupMessage", int]:
-        if version >= (3, 0, 0):
-            if pos + 8 > end:
-                raise _rt.short_in_run(_POPUP_0_RUN, pos, end)
-            v = _POPUP_0.unpack_from(buf, pos)
-            request_id = v[0]
-            requested_type = _e.REQUESTED_TYPE_BY_VALUE.get(v[1], v[1])
-            pos += 8
-        else:
-            request_id = requested_type = None
+    def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["PopupMessage", int]:
+        """Read the form of software (1, 0, 0) to (1, 8, 999)."""
+        request_id = requested_type = blocking = None
         if pos + 2 > end:
-            raise _rt.short_in_run(_POPUP_1_RUN, pos, end)
-        v = _POPUP_1.unpack_from(buf, pos)
+            raise _rt.short_in_run(_POPUP_0_0_RUN, pos, end)
+        v = _POPUP_0_0.unpack_from(buf, pos)
         warning = _BOOL[v[0]]
         error = _BOOL[v[1]]
         pos += 2
-        if version >= (3, 0, 0):
-            if pos + 1 > end:
-                raise _rt.short_in_run(_POPUP_2_RUN, pos, end)
-            (blocking,) = _POPUP_2.unpack_from(buf, pos)
-            blocking = _BOOL[blocking]
-            pos += 1
-        else:
-            blocking = None
         title, pos = _rt.read_prefixed_text(buf, pos, end, _UINT8, "title")
         text = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, request_id, requested_type, warning, error, blocking, title, text), pos
+        return cls(*header, request_id, requested_type, warning, error, blocking, title, text, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
-        if version >= (3, 0, 0):
-            out += _POPUP_0.pack(self.request_id, self.requested_type)
-        out += _POPUP_1.pack(self.warning, self.error)
-        if version >= (3, 0, 0):
-            out += _POPUP_2.pack(self.blocking)
+    def _encode_0(self, out: bytearray, version: tuple) -> None:
+        out += _POPUP_0_0.pack(self.warning, self.error)
         _rt.write_prefixed_text(out, self.title, _UINT8)
         out += _rt.text_bytes(self.text)
         out += self.extra
+
+    @classmethod
+    def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["PopupMessage", int]:
+        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        if pos + 11 > end:
+            raise _rt.short_in_run(_POPUP_1_0_RUN, pos, end)
+        v = _POPUP_1_0.unpack_from(buf, pos)
+        request_id = v[0]
+        requested_type = _e.REQUESTED_TYPE_BY_VALUE.get(v[1], v[1])
+        warning = _BOOL[v[2]]
+        error = _BOOL[v[3]]
+        blocking = _BOOL[v[4]]
+        pos += 11
+        title, pos = _rt.read_prefixed_text(buf, pos, end, _UINT8, "title")
+        text = _rt.text(buf[pos:end])
+        pos = end
+        return cls(*header, request_id, requested_type, warning, error, blocking, title, text, b"", version), pos
+
+    def _encode_1(self, out: bytearray, version: tuple) -> None:
+        out += _POPUP_1_0.pack(self.request_id, self.requested_type, self.warning, self.error, self.blocking)
+        _rt.write_prefixed_text(out, self.title, _UINT8)
+        out += _rt.text_bytes(self.text)
+        out += self.extra
+
+    def _encode(self, out: bytearray, version: tuple) -> None:
+        """Write the form of `version` (the one it was read in, for a decoded package)."""
+        for ranges, encode in self._FORMS:
+            if any(low <= version <= high for low, high in ranges):
+                return encode(self, out, version)
+        return self._FORMS[-1][1](self, out, version)
+
 
 
 _LABEL_0 = struct.Struct(">i")
@@ -2238,19 +2753,20 @@ class LabelMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["LabelMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["LabelMessage", int]:
         if pos + 4 > end:
             raise _rt.short_in_run(_LABEL_0_RUN, pos, end)
         (id,) = _LABEL_0.unpack_from(buf, pos)
         pos += 4
         text = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, id, text), pos
+        return cls(*header, id, text, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _LABEL_0.pack(self.id)
         out += _rt.text_bytes(self.text)
         out += self.extra
+
 
 
 _VAR_0 = struct.Struct(">ii")
@@ -2293,7 +2809,7 @@ class VarMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["VarMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["VarMessage", int]:
         if pos + 8 > end:
             raise _rt.short_in_run(_VAR_0_RUN, pos, end)
         v = _VAR_0.unpack_from(buf, pos)
@@ -2303,13 +2819,14 @@ class VarMessage(_Subtype):
         title, pos = _rt.read_prefixed_text(buf, pos, end, _UINT8, "title")
         text = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, robot_message_code, robot_message_argument, title, text), pos
+        return cls(*header, robot_message_code, robot_message_argument, title, text, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _VAR_0.pack(self.robot_message_code, self.robot_message_argument)
         _rt.write_prefixed_text(out, self.title, _UINT8)
         out += _rt.text_bytes(self.text)
         out += self.extra
+
 
 
 _HARDWARE_INFO_0 = struct.Struct(">iHHHH")
@@ -2354,7 +2871,7 @@ class HardwareInfoMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["HardwareInfoMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["HardwareInfoMessage", int]:
         if pos + 12 > end:
             raise _rt.short_in_run(_HARDWARE_INFO_0_RUN, pos, end)
         v = _HARDWARE_INFO_0.unpack_from(buf, pos)
@@ -2364,11 +2881,12 @@ class HardwareInfoMessage(_Subtype):
         reserved_2 = v[3]
         tool_flange_type = _e.TOOL_FLANGE_TYPE_BY_VALUE.get(v[4], v[4])
         pos += 12
-        return cls(*header, robot_type, reserved_1, control_box_type, reserved_2, tool_flange_type), pos
+        return cls(*header, robot_type, reserved_1, control_box_type, reserved_2, tool_flange_type, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _HARDWARE_INFO_0.pack(self.robot_type, self.reserved_1, self.control_box_type, self.reserved_2, self.tool_flange_type)
         out += self.extra
+
 
 
 _REQUEST_VALUE_0 = struct.Struct(">II")
@@ -2406,7 +2924,7 @@ class RequestValueMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["RequestValueMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["RequestValueMessage", int]:
         if pos + 8 > end:
             raise _rt.short_in_run(_REQUEST_VALUE_0_RUN, pos, end)
         v = _REQUEST_VALUE_0.unpack_from(buf, pos)
@@ -2415,12 +2933,13 @@ class RequestValueMessage(_Subtype):
         pos += 8
         text = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, request_id, requested_type, text), pos
+        return cls(*header, request_id, requested_type, text, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _REQUEST_VALUE_0.pack(self.request_id, self.requested_type)
         out += _rt.text_bytes(self.text)
         out += self.extra
+
 
 
 @dataclass(slots=True)
@@ -2447,14 +2966,15 @@ class TextMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["TextMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["TextMessage", int]:
         text = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, text), pos
+        return cls(*header, text, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _rt.text_bytes(self.text)
         out += self.extra
+
 
 
 _RUNTIME_EXCEPTION_0 = struct.Struct(">ii")
@@ -2492,7 +3012,7 @@ class RuntimeExceptionMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["RuntimeExceptionMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["RuntimeExceptionMessage", int]:
         if pos + 8 > end:
             raise _rt.short_in_run(_RUNTIME_EXCEPTION_0_RUN, pos, end)
         v = _RUNTIME_EXCEPTION_0.unpack_from(buf, pos)
@@ -2501,12 +3021,13 @@ class RuntimeExceptionMessage(_Subtype):
         pos += 8
         text = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, script_line_number, script_column_number, text), pos
+        return cls(*header, script_line_number, script_column_number, text, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _RUNTIME_EXCEPTION_0.pack(self.script_line_number, self.script_column_number)
         out += _rt.text_bytes(self.text)
         out += self.extra
+
 
 
 _GLOBAL_VARIABLES_SETUP_0 = struct.Struct(">H")
@@ -2538,18 +3059,19 @@ class GlobalVariablesSetupMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["GlobalVariablesSetupMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["GlobalVariablesSetupMessage", int]:
         if pos + 2 > end:
             raise _rt.short_in_run(_GLOBAL_VARIABLES_SETUP_0_RUN, pos, end)
         (start_index,) = _GLOBAL_VARIABLES_SETUP_0.unpack_from(buf, pos)
         pos += 2
         variable_names, pos = _rt.read_terminated_texts(buf, pos, end, 0x0a)
-        return cls(*header, start_index, variable_names), pos
+        return cls(*header, start_index, variable_names, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _GLOBAL_VARIABLES_SETUP_0.pack(self.start_index)
         _rt.write_terminated_texts(out, self.variable_names, 0x0a)
         out += self.extra
+
 
 
 _GLOBAL_VARIABLES_UPDATE_0 = struct.Struct(">H")
@@ -2581,18 +3103,28 @@ class GlobalVariablesUpdateMessage(_Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple[int, int], header: tuple) -> tuple["GlobalVariablesUpdateMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["GlobalVariablesUpdateMessage", int]:
         if pos + 2 > end:
             raise _rt.short_in_run(_GLOBAL_VARIABLES_UPDATE_0_RUN, pos, end)
         (start_index,) = _GLOBAL_VARIABLES_UPDATE_0.unpack_from(buf, pos)
         pos += 2
         variables, pos = value_codec(version).decode_list(buf, pos, end, 0x0a, "variables")
-        return cls(*header, start_index, variables), pos
+        return cls(*header, start_index, variables, b"", version), pos
 
-    def _encode(self, out: bytearray, version: tuple[int, int]) -> None:
+    def _encode(self, out: bytearray, version: tuple) -> None:
         out += _GLOBAL_VARIABLES_UPDATE_0.pack(self.start_index)
         value_codec(version).encode_list(out, self.variables, 0x0a)
         out += self.extra
+
+RobotModeData._FORMS = (((((1, 0, 0), (1, 8, 999)), ), RobotModeData._encode_0), ((((3, 0, 0), (3, 1, 999)), ), RobotModeData._encode_1), ((((3, 2, 0), (3, 4, 999)), ), RobotModeData._encode_2), ((((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), RobotModeData._encode_3), )
+MasterboardData._FORMS = (((((1, 0, 0), (1, 5, 999)), ), MasterboardData._encode_0), ((((1, 6, 0), (1, 8, 999)), ), MasterboardData._encode_1), ((((3, 0, 0), (3, 1, 999)), ), MasterboardData._encode_2), ((((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)), ), MasterboardData._encode_3), ((((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), MasterboardData._encode_4), )
+CartesianInfo._FORMS = (((((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)), ), CartesianInfo._encode_0), ((((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), CartesianInfo._encode_1), )
+ConfigurationData._FORMS = (((((1, 0, 0), (1, 8, 999)), ), ConfigurationData._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)), ), ConfigurationData._encode_1), ((((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), ConfigurationData._encode_2), )
+AdditionalInfo._FORMS = (((((1, 0, 0), (1, 7, 999)), ), AdditionalInfo._encode_0), ((((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)), ), AdditionalInfo._encode_1), ((((3, 2, 0), (3, 15, 999)), ), AdditionalInfo._encode_2), ((((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), AdditionalInfo._encode_3), )
+VersionMessage._FORMS = (((((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)), ), VersionMessage._encode_0), ((((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), VersionMessage._encode_1), )
+SafetyModeMessage._FORMS = (((((1, 0, 0), (1, 8, 999)), ), SafetyModeMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), SafetyModeMessage._encode_1), )
+RobotCommMessage._FORMS = (((((1, 0, 0), (1, 8, 999)), ), RobotCommMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), RobotCommMessage._encode_1), )
+PopupMessage._FORMS = (((((1, 0, 0), (1, 8, 999)), ), PopupMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), PopupMessage._encode_1), )
 
 
 @dataclass(slots=True)
@@ -2628,92 +3160,92 @@ class RobotStateMessage:
         return bytes(out)
 
 
-_ROBOT_STATE_FORMS: dict[int, tuple] = {
+_ROBOT_STATE_FORMS = _rt.Forms({
     0: (
-        _rt.Form(RobotModeData, (((1, 0, 0), (1, 8, 999)), ), frozenset({24}), 24,
+        _rt.Form(RobotModeData, RobotModeData._decode_0, (((1, 0, 0), (1, 8, 999)), ), frozenset({24}), 24,
                  (1, 8, 999), "up to 1.8"),
-        _rt.Form(RobotModeData, (((3, 0, 0), (3, 1, 999)), ), frozenset({33}), 33,
+        _rt.Form(RobotModeData, RobotModeData._decode_1, (((3, 0, 0), (3, 1, 999)), ), frozenset({33}), 33,
                  (3, 1, 999), "3.0 to 3.1"),
-        _rt.Form(RobotModeData, (((3, 2, 0), (3, 4, 999)), ), frozenset({41}), 41,
+        _rt.Form(RobotModeData, RobotModeData._decode_2, (((3, 2, 0), (3, 4, 999)), ), frozenset({41}), 41,
                  (3, 4, 999), "3.2 to 3.4"),
-        _rt.Form(RobotModeData, (((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({42}), 42,
+        _rt.Form(RobotModeData, RobotModeData._decode_3, (((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({42}), 42,
                  (5, 9, 0), "3.5 and later"),
     ),
     1: (
-        _rt.Form(JointData, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({246}), 246,
+        _rt.Form(JointData, JointData._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({246}), 246,
                  (5, 9, 0), "all versions"),
     ),
     2: (
-        _rt.Form(ToolData, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({32}), 32,
+        _rt.Form(ToolData, ToolData._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({32}), 32,
                  (5, 9, 0), "all versions"),
     ),
     3: (
-        _rt.Form(MasterboardData, (((1, 0, 0), (1, 5, 999)), ), frozenset({56}), 56,
+        _rt.Form(MasterboardData, MasterboardData._decode_0, (((1, 0, 0), (1, 5, 999)), ), frozenset({56}), 56,
                  (1, 5, 999), "up to 1.5"),
-        _rt.Form(MasterboardData, (((1, 6, 0), (1, 8, 999)), ), frozenset({59, 71}), 59,
+        _rt.Form(MasterboardData, MasterboardData._decode_1, (((1, 6, 0), (1, 8, 999)), ), frozenset({59, 71}), 59,
                  (1, 8, 999), "1.6 to 1.8"),
-        _rt.Form(MasterboardData, (((3, 0, 0), (3, 1, 999)), ), frozenset({67, 83}), 67,
+        _rt.Form(MasterboardData, MasterboardData._decode_2, (((3, 0, 0), (3, 1, 999)), ), frozenset({67, 83}), 67,
                  (3, 1, 999), "3.0 to 3.1"),
-        _rt.Form(MasterboardData, (((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)), ), frozenset({69, 85}), 69,
+        _rt.Form(MasterboardData, MasterboardData._decode_3, (((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)), ), frozenset({69, 85}), 69,
                  (5, 3, 999), "3.2 to 3.9 or 5.0 to 5.3"),
-        _rt.Form(MasterboardData, (((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({70, 86}), 70,
+        _rt.Form(MasterboardData, MasterboardData._decode_4, (((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({70, 86}), 70,
                  (5, 9, 0), "3.10 to 3.15 or 5.4 and later"),
     ),
     4: (
-        _rt.Form(CartesianInfo, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)), ), frozenset({48}), 48,
+        _rt.Form(CartesianInfo, CartesianInfo._decode_0, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)), ), frozenset({48}), 48,
                  (3, 0, 999), "up to 3.0"),
-        _rt.Form(CartesianInfo, (((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({96}), 96,
+        _rt.Form(CartesianInfo, CartesianInfo._decode_1, (((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({96}), 96,
                  (5, 9, 0), "3.1 and later"),
     ),
     5: (
-        _rt.Form(LaserPointer, (((1, 0, 0), (1, 7, 999)), ), frozenset({24}), 24,
+        _rt.Form(LaserPointer, LaserPointer._decode, (((1, 0, 0), (1, 7, 999)), ), frozenset({24}), 24,
                  (1, 7, 999), "up to 1.7"),
-        _rt.Form(KinematicsInfo, (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({220}), 220,
+        _rt.Form(KinematicsInfo, KinematicsInfo._decode, (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({220}), 220,
                  (5, 9, 0), "1.8 and later"),
     ),
     6: (
-        _rt.Form(ConfigurationData, (((1, 0, 0), (1, 8, 999)), ), frozenset({464}), 464,
+        _rt.Form(ConfigurationData, ConfigurationData._decode_0, (((1, 0, 0), (1, 8, 999)), ), frozenset({464}), 464,
                  (1, 8, 999), "up to 1.8"),
-        _rt.Form(ConfigurationData, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)), ), frozenset({440}), 440,
+        _rt.Form(ConfigurationData, ConfigurationData._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)), ), frozenset({440}), 440,
                  (5, 9, 0), "3.0 to 5.25.0"),
-        _rt.Form(ConfigurationData, (((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({444}), 444,
+        _rt.Form(ConfigurationData, ConfigurationData._decode_2, (((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({444}), 444,
                  (5, 25, 1), "5.25.1 and later"),
     ),
     7: (
-        _rt.Form(ForceModeData, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({56}), 56,
+        _rt.Form(ForceModeData, ForceModeData._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({56}), 56,
                  (5, 9, 0), "all versions"),
     ),
     8: (
-        _rt.Form(AdditionalInfo, (((1, 0, 0), (1, 7, 999)), ), frozenset({5}), 5,
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_0, (((1, 0, 0), (1, 7, 999)), ), frozenset({5}), 5,
                  (1, 7, 999), "up to 1.7"),
-        _rt.Form(AdditionalInfo, (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)), ), frozenset({2}), 2,
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_1, (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)), ), frozenset({2}), 2,
                  (3, 1, 999), "1.8 to 3.1"),
-        _rt.Form(AdditionalInfo, (((3, 2, 0), (3, 15, 999)), ), frozenset({3}), 3,
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_2, (((3, 2, 0), (3, 15, 999)), ), frozenset({3}), 3,
                  (3, 15, 999), "3.2 to 3.15"),
-        _rt.Form(AdditionalInfo, (((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({4}), 4,
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_3, (((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({4}), 4,
                  (5, 9, 0), "5.0 and later"),
     ),
     9: (
-        _rt.Form(CalibrationData, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({48}), 48,
+        _rt.Form(CalibrationData, CalibrationData._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({48}), 48,
                  (5, 9, 0), "all versions"),
     ),
     10: (
-        _rt.Form(SafetyData, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
+        _rt.Form(SafetyData, SafetyData._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
                  (5, 9, 0), "all versions"),
     ),
     11: (
-        _rt.Form(ToolCommInfo, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({21}), 21,
+        _rt.Form(ToolCommInfo, ToolCommInfo._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({21}), 21,
                  (5, 9, 0), "all versions"),
     ),
     12: (
-        _rt.Form(ToolModeInfo, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({3}), 3,
+        _rt.Form(ToolModeInfo, ToolModeInfo._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({3}), 3,
                  (5, 9, 0), "all versions"),
     ),
     13: (
-        _rt.Form(SingularityInfo, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({2}), 2,
+        _rt.Form(SingularityInfo, SingularityInfo._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({2}), 2,
                  (5, 9, 0), "all versions"),
     ),
-}
+})
 
 
 def encode_package(pkg, version: Optional[tuple] = None) -> bytes:
@@ -2728,6 +3260,8 @@ def _decode_robot_state(buf, version: tuple, known: bool) -> RobotStateMessage:
     implied = None
     pos = 5
     packages: list = []
+    forms = _ROBOT_STATE_FORMS
+    picks = forms.at(version)
     while pos < end:
         left = end - pos
         if left < 5:
@@ -2741,23 +3275,25 @@ def _decode_robot_state(buf, version: tuple, known: bool) -> RobotStateMessage:
             return RobotStateMessage(packages, f"package at offset {pos}: length {size} exceeds the {left} bytes left",
                                bytes(buf[pos:]))
         body, stop = pos + 5, pos + size
-        forms = _ROBOT_STATE_FORMS.get(code)
-        if forms is None:
+        decode, use, by_length, form = picks.get(code << 32 | size - 5) \
+            or forms.pick(version, code, size - 5)
+        if decode is None:
             packages.append(UnknownPackage(code, bytes(buf[body:stop])))
         else:
-            form, use, by_length = _rt.choose(forms, stop - body, version)
             if by_length and not known:
                 # The layout sizes tell the version: the rest of the message follows it.
                 version = implied = use
+                picks = forms.at(version)
             try:
-                pkg, used = form.cls._decode(buf, body, stop, use)
+                pkg, used = decode(buf, body, stop, use)
                 if used < stop:
                     pkg.extra = bytes(buf[used:stop])
-                pkg.decoded_version = use
                 packages.append(pkg)
             except DecodeError as exc:
                 packages.append(MalformedPackage(form.cls.TYPE, code, exc.text, bytes(buf[body:stop])))
         pos = stop
+    if implied is None:
+        return RobotStateMessage(packages)
     return RobotStateMessage(packages, implied_version=implied)
 
 
@@ -2768,64 +3304,64 @@ _ROBOT_MESSAGE_HEADER_RUN = (
     ("source", 13, 1),
     ("robot_message_type", 14, 1),
 )
-_ROBOT_MESSAGE_FORMS: dict[int, tuple] = {
+_ROBOT_MESSAGE_FORMS = _rt.Forms({
     3: (
-        _rt.Form(VersionMessage, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)), ), None, 7,
+        _rt.Form(VersionMessage, VersionMessage._decode_0, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)), ), None, 7,
                  (3, 2, 999), "up to 3.2"),
-        _rt.Form(VersionMessage, (((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 11,
+        _rt.Form(VersionMessage, VersionMessage._decode_1, (((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 11,
                  (5, 9, 0), "3.3 and later"),
     ),
     5: (
-        _rt.Form(SafetyModeMessage, (((1, 0, 0), (1, 8, 999)), ), None, 8,
+        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_0, (((1, 0, 0), (1, 8, 999)), ), None, 8,
                  (1, 8, 999), "up to 1.8"),
-        _rt.Form(SafetyModeMessage, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({17}), 17,
+        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({17}), 17,
                  (5, 9, 0), "3.0 and later"),
     ),
     6: (
-        _rt.Form(RobotCommMessage, (((1, 0, 0), (1, 8, 999)), ), None, 8,
+        _rt.Form(RobotCommMessage, RobotCommMessage._decode_0, (((1, 0, 0), (1, 8, 999)), ), None, 8,
                  (1, 8, 999), "up to 1.8"),
-        _rt.Form(RobotCommMessage, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 20,
+        _rt.Form(RobotCommMessage, RobotCommMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 20,
                  (5, 9, 0), "3.0 and later"),
     ),
     7: (
-        _rt.Form(KeyMessage, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 9,
+        _rt.Form(KeyMessage, KeyMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 9,
                  (5, 9, 0), "all versions"),
     ),
     14: (
-        _rt.Form(ProgramThreadsMessage, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
+        _rt.Form(ProgramThreadsMessage, ProgramThreadsMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
                  (5, 9, 0), "all versions"),
     ),
     2: (
-        _rt.Form(PopupMessage, (((1, 0, 0), (1, 8, 999)), ), None, 3,
+        _rt.Form(PopupMessage, PopupMessage._decode_0, (((1, 0, 0), (1, 8, 999)), ), None, 3,
                  (1, 8, 999), "up to 1.8"),
-        _rt.Form(PopupMessage, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 12,
+        _rt.Form(PopupMessage, PopupMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 12,
                  (5, 9, 0), "3.0 and later"),
     ),
     1: (
-        _rt.Form(LabelMessage, (((1, 0, 0), (1, 8, 999)), ), None, 4,
+        _rt.Form(LabelMessage, LabelMessage._decode, (((1, 0, 0), (1, 8, 999)), ), None, 4,
                  (1, 8, 999), "up to 1.8"),
     ),
     8: (
-        _rt.Form(VarMessage, (((1, 0, 0), (1, 8, 999)), ), None, 9,
+        _rt.Form(VarMessage, VarMessage._decode, (((1, 0, 0), (1, 8, 999)), ), None, 9,
                  (1, 8, 999), "up to 1.8"),
     ),
     18: (
-        _rt.Form(HardwareInfoMessage, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({12}), 12,
+        _rt.Form(HardwareInfoMessage, HardwareInfoMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({12}), 12,
                  (5, 9, 0), "all versions"),
     ),
     9: (
-        _rt.Form(RequestValueMessage, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
+        _rt.Form(RequestValueMessage, RequestValueMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
                  (5, 9, 0), "all versions"),
     ),
     0: (
-        _rt.Form(TextMessage, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
+        _rt.Form(TextMessage, TextMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
                  (5, 9, 0), "all versions"),
     ),
     10: (
-        _rt.Form(RuntimeExceptionMessage, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
+        _rt.Form(RuntimeExceptionMessage, RuntimeExceptionMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
                  (5, 9, 0), "all versions"),
     ),
-}
+})
 
 
 def _decode_robot_message(buf, version: tuple, known: bool):
@@ -2834,24 +3370,25 @@ def _decode_robot_message(buf, version: tuple, known: bool):
         error = _rt.short_in_run(_ROBOT_MESSAGE_HEADER_RUN, 0, end).text
         return UnknownMessage(20, bytes(buf[5:]), error)
     timestamp, source, robot_message_type = _ROBOT_MESSAGE_HEADER.unpack_from(buf, 5)
-    source = _e.by_version(_e.MESSAGE_SOURCE_BY_VALUE, version).get(source, source)
+    source = _e.MESSAGE_SOURCE_BY_VALUE[version].get(source, source)
     header = (timestamp, source,)
-    forms = _ROBOT_MESSAGE_FORMS.get(robot_message_type)
+    forms = _ROBOT_MESSAGE_FORMS.by_code.get(robot_message_type)
     if forms is None:
         return UnknownSubtype(20, "robot_message_type", robot_message_type, tuple(zip(_ROBOT_MESSAGE_HEADER_NAMES, header)),
                               bytes(buf[15:]))
     if robot_message_type == 3:
         # The Version message is read in the form of the version it carries.
         version = _rt.peek_version(buf, 15, _VERSION_SKIPS, 0) or version
-    form, use, _ = _rt.choose(forms, end - 15, version)
+    size = end - 15
+    decode, use, _, form = (_ROBOT_MESSAGE_FORMS.at(version).get(robot_message_type << 32 | size)
+                            or _ROBOT_MESSAGE_FORMS.pick(version, robot_message_type, size))
     try:
-        msg, used = form.cls._decode(buf, 15, end, use, header)
+        msg, used = decode(buf, 15, end, use, header)
     except DecodeError as exc:
         return MalformedSubtype(form.cls.TYPE, 20, "robot_message_type", robot_message_type,
                                 tuple(zip(_ROBOT_MESSAGE_HEADER_NAMES, header)), exc.text, bytes(buf[15:]))
     if used < end:
         msg.extra = bytes(buf[used:end])
-    msg.decoded_version = use
     return msg
 
 
@@ -2877,16 +3414,16 @@ _PROGRAM_STATE_HEADER_RUN = (
     ("timestamp", 5, 8),
     ("robot_message_type", 13, 1),
 )
-_PROGRAM_STATE_FORMS: dict[int, tuple] = {
+_PROGRAM_STATE_FORMS = _rt.Forms({
     0: (
-        _rt.Form(GlobalVariablesSetupMessage, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
+        _rt.Form(GlobalVariablesSetupMessage, GlobalVariablesSetupMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
                  (5, 9, 0), "all versions"),
     ),
     1: (
-        _rt.Form(GlobalVariablesUpdateMessage, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
+        _rt.Form(GlobalVariablesUpdateMessage, GlobalVariablesUpdateMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
                  (5, 9, 0), "all versions"),
     ),
-}
+})
 
 
 def _decode_program_state(buf, version: tuple, known: bool):
@@ -2896,19 +3433,20 @@ def _decode_program_state(buf, version: tuple, known: bool):
         return UnknownMessage(25, bytes(buf[5:]), error)
     timestamp, robot_message_type = _PROGRAM_STATE_HEADER.unpack_from(buf, 5)
     header = (timestamp,)
-    forms = _PROGRAM_STATE_FORMS.get(robot_message_type)
+    forms = _PROGRAM_STATE_FORMS.by_code.get(robot_message_type)
     if forms is None:
         return UnknownSubtype(25, "robot_message_type", robot_message_type, tuple(zip(_PROGRAM_STATE_HEADER_NAMES, header)),
                               bytes(buf[14:]))
-    form, use, _ = _rt.choose(forms, end - 14, version)
+    size = end - 14
+    decode, use, _, form = (_PROGRAM_STATE_FORMS.at(version).get(robot_message_type << 32 | size)
+                            or _PROGRAM_STATE_FORMS.pick(version, robot_message_type, size))
     try:
-        msg, used = form.cls._decode(buf, 14, end, use, header)
+        msg, used = decode(buf, 14, end, use, header)
     except DecodeError as exc:
         return MalformedSubtype(form.cls.TYPE, 25, "robot_message_type", robot_message_type,
                                 tuple(zip(_PROGRAM_STATE_HEADER_NAMES, header)), exc.text, bytes(buf[14:]))
     if used < end:
         msg.extra = bytes(buf[used:end])
-    msg.decoded_version = use
     return msg
 
 
