@@ -70,9 +70,28 @@ def test_version_hint_chooses_the_value_table():
     assert default.returncode == 1 and "error" in records(default)[0]
 
 
+def test_version_hint_takes_a_bugfix_number():
+    (case,) = [c for c in all_cases() if c.name == "robot_state_configuration_data_449"]
+    hinted = urwire("decode", "--version-hint", "5.25.1", "-", stdin=case.data)
+    assert hinted.returncode == 0 and records(hinted) == case.expect
+    assert "reserved_1" in records(hinted)[0]["packages"][0]
+    bad = urwire("decode", "--version-hint", "5.25.x", "-", stdin=case.data)
+    assert bad.returncode == 2 and "5.25.1" in bad.stderr.decode()
+
+
+def test_text_view_names_codes_as_the_stream_version_does():
+    (case,) = [c for c in all_cases() if c.name == "generation_cb2_1_8_robot_state"]
+    text = urwire("decode", "--format", "text", "-", stdin=case.data).stdout.decode()
+    robot_mode = case.expect[1]["packages"][0]["robot_mode"]
+    names_1x = {0: "RUNNING", 1: "FREEDRIVE", 2: "READY", 3: "INITIALIZING", 4: "SECURITY_STOPPED",
+                5: "EMERGENCY_STOPPED", 6: "FATAL_ERROR", 7: "NO_POWER", 8: "NOT_CONNECTED", 9: "SHUTDOWN",
+                10: "SAFEGUARD_STOP"}
+    assert names_1x[robot_mode] in text.splitlines()[1]
+
+
 def test_help_states_the_default_version():
     result = urwire("decode", "--help")
-    assert "default: 5.9" in result.stdout.decode()
+    assert "default: 5.9" in " ".join(result.stdout.decode().split())   # as argparse wraps it
 
 
 @pytest.mark.parametrize("pcapng", [False, True])

@@ -26,7 +26,7 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
-def _version_arg(text: str) -> tuple[int, int]:
+def _version_arg(text: str) -> tuple[int, int, int]:
     try:
         return parse_version(text)  # type: ignore[return-value]
     except ValueError as exc:
@@ -42,9 +42,11 @@ def build_parser() -> argparse.ArgumentParser:
                          description="Decode a raw robot->client stream, or every robot->client TCP stream "
                                      "of a .pcap/.pcapng capture, and print one JSON object per message.")
     dec.add_argument("file", help="a raw stream, a .pcap or a .pcapng file; - for standard input")
-    dec.add_argument("--version-hint", type=_version_arg, metavar="X.Y",
-                     help=f"software version to assume until a Version message is seen; it chooses the "
-                          f"value-type table of global variables (default: {default}, i.e. {default} and later)")
+    dec.add_argument("--version-hint", type=_version_arg, metavar="X.Y[.Z]",
+                     help=f"software version to assume until a Version message is seen (e.g. 3.2 or 5.25.1): it "
+                          f"chooses each part's layout and the meaning of version-dependent codes, such as the "
+                          f"value types of global variables (default: {default}, i.e. {default} and later, "
+                          f"unless the layout sizes of a robot state tell the version)")
     dec.add_argument("--format", choices=("json", "text"), default="json",
                      help="json: canonical JSON Lines (default); text: one readable line per message")
     dec.add_argument("--port", type=int, action="append", metavar="PORT",
