@@ -129,3 +129,21 @@ def message(rng: random.Random, version: tuple[int, int, int] = PROTOCOL.default
         header = b"".join(gen.field(f, {}) for f in m.header.fields)
         body = header + struct.pack(">B", sub.code.value) + gen.struct(sub.struct, sub.sets_version or ())
     return struct.pack(">iB", len(body) + 5, m.code.value) + body
+
+
+def version_message(rng: random.Random, version: tuple[int, int, int]) -> bytes:
+    """A Version message that announces `version`, in that version's form."""
+    gen = _Gen(rng, version)
+    for m in PROTOCOL.messages:
+        for sub in getattr(m, "subtypes", []):
+            if sub.sets_version:
+                header = b"".join(gen.field(f, {}) for f in m.header.fields)
+                body = header + struct.pack(">B", sub.code.value) + gen.struct(sub.struct, sub.sets_version)
+                return struct.pack(">iB", len(body) + 5, m.code.value) + body
+    raise LookupError("no layout sets the version")
+
+
+def session(rng: random.Random, version: tuple[int, int, int], count: int) -> bytes:
+    """What a controller of `version` sends a new client: its Version message, then `count`
+    random valid messages of its forms."""
+    return version_message(rng, version) + b"".join(message(rng, version) for _ in range(count))
