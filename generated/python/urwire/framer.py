@@ -101,7 +101,7 @@ class Framer:
                     pos = n
                 break
             known = self.version_seen or self.hint is not None
-            msg = decode_message(bytes(buf[pos:pos + length]), self.version, known=known)
+            msg = decode_message(bytes(buf[pos:pos + length]), self.version, known)
             sets = getattr(msg, "SETS_VERSION", None)
             if sets is not None:
                 major, minor, bugfix = sets

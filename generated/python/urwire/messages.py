@@ -451,7 +451,8 @@ class JointData(_Package):
         if pos + 246 > end:
             raise _rt.short_in_run(_JOINT_DATA_0_RUN, pos, end)
         v = _JOINT_DATA_0.unpack_from(buf, pos)
-        joints = [Joint._from(v, j * 8, buf, pos + j * 41, enums) for enums in [(_e.JOINT_MODE_BY_VALUE[version], )] for j in range(6)]
+        joints_enums = (_e.JOINT_MODE_BY_VALUE[version], )  # the items' versioned enum tables
+        joints = [Joint._from(v, j * 8, buf, pos + j * 41, joints_enums) for j in range(6)]
         pos += 246
         return cls(joints, b"", version), pos
 
@@ -1623,8 +1624,10 @@ class ConfigurationData(_Package):
         if pos + 464 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_0_0_RUN, pos, end)
         v = _CONFIGURATION_DATA_0_0.unpack_from(buf, pos)
-        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, enums) for enums in [()] for j in range(6)]
-        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, enums) for enums in [()] for j in range(6)]
+        joint_position_limits_enums = ()  # the items' versioned enum tables
+        joint_motion_limits_enums = ()  # the items' versioned enum tables
+        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, joint_position_limits_enums) for j in range(6)]
+        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, joint_motion_limits_enums) for j in range(6)]
         v_joint_default = v[24]
         a_joint_default = v[25]
         v_tool_default = v[26]
@@ -1653,8 +1656,10 @@ class ConfigurationData(_Package):
         if pos + 440 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_1_0_RUN, pos, end)
         v = _CONFIGURATION_DATA_1_0.unpack_from(buf, pos)
-        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, enums) for enums in [()] for j in range(6)]
-        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, enums) for enums in [()] for j in range(6)]
+        joint_position_limits_enums = ()  # the items' versioned enum tables
+        joint_motion_limits_enums = ()  # the items' versioned enum tables
+        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, joint_position_limits_enums) for j in range(6)]
+        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, joint_motion_limits_enums) for j in range(6)]
         v_joint_default = v[24]
         a_joint_default = v[25]
         v_tool_default = v[26]
@@ -1682,8 +1687,10 @@ class ConfigurationData(_Package):
         if pos + 444 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_2_0_RUN, pos, end)
         v = _CONFIGURATION_DATA_2_0.unpack_from(buf, pos)
-        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, enums) for enums in [()] for j in range(6)]
-        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, enums) for enums in [()] for j in range(6)]
+        joint_position_limits_enums = ()  # the items' versioned enum tables
+        joint_motion_limits_enums = ()  # the items' versioned enum tables
+        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, joint_position_limits_enums) for j in range(6)]
+        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, joint_motion_limits_enums) for j in range(6)]
         v_joint_default = v[24]
         a_joint_default = v[25]
         v_tool_default = v[26]
@@ -3245,7 +3252,7 @@ _ROBOT_STATE_FORMS = _rt.Forms({
         _rt.Form(SingularityInfo, SingularityInfo._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({2}), 2,
                  (5, 9, 0), "all versions"),
     ),
-})
+}, header=5)
 
 
 def encode_package(pkg, version: Optional[tuple] = None) -> bytes:
@@ -3261,7 +3268,7 @@ def _decode_robot_state(buf, version: tuple, known: bool) -> RobotStateMessage:
     pos = 5
     packages: list = []
     forms = _ROBOT_STATE_FORMS
-    picks = forms.at(version)
+    fast = forms.fast(version)
     while pos < end:
         left = end - pos
         if left < 5:
@@ -3275,22 +3282,23 @@ def _decode_robot_state(buf, version: tuple, known: bool) -> RobotStateMessage:
             return RobotStateMessage(packages, f"package at offset {pos}: length {size} exceeds the {left} bytes left",
                                bytes(buf[pos:]))
         body, stop = pos + 5, pos + size
-        decode, use, by_length, form = picks.get(code << 32 | size - 5) \
-            or forms.pick(version, code, size - 5)
-        if decode is None:
-            packages.append(UnknownPackage(code, bytes(buf[body:stop])))
-        else:
-            if by_length and not known:
-                # The layout sizes tell the version: the rest of the message follows it.
-                version = implied = use
-                picks = forms.at(version)
+        decode = fast.get(code)
+        if decode is not None:
+            # The version's form, when it reads the part to its last byte: the common case.
             try:
-                pkg, used = decode(buf, body, stop, use)
-                if used < stop:
-                    pkg.extra = bytes(buf[used:stop])
+                pkg, used = decode(buf, body, stop, version)
+            except DecodeError:
+                used = -1
+            if used == stop:
                 packages.append(pkg)
-            except DecodeError as exc:
-                packages.append(MalformedPackage(form.cls.TYPE, code, exc.text, bytes(buf[body:stop])))
+                pos = stop
+                continue
+        pkg, shown = forms.part(buf, body, stop, code, version, known)
+        packages.append(pkg)
+        if shown is not None:
+            # The layout size tells the version: the rest of the message follows it.
+            version = implied = shown
+            fast = forms.fast(version)
         pos = stop
     if implied is None:
         return RobotStateMessage(packages)
@@ -3379,9 +3387,8 @@ def _decode_robot_message(buf, version: tuple, known: bool):
     if robot_message_type == 3:
         # The Version message is read in the form of the version it carries.
         version = _rt.peek_version(buf, 15, _VERSION_SKIPS, 0) or version
-    size = end - 15
-    decode, use, _, form = (_ROBOT_MESSAGE_FORMS.at(version).get(robot_message_type << 32 | size)
-                            or _ROBOT_MESSAGE_FORMS.pick(version, robot_message_type, size))
+    decode, use, _, form = (_ROBOT_MESSAGE_FORMS.at(version).get(end << 8 | robot_message_type)
+                            or _ROBOT_MESSAGE_FORMS.pick(version, robot_message_type, end, 15))
     try:
         msg, used = decode(buf, 15, end, use, header)
     except DecodeError as exc:
@@ -3437,9 +3444,8 @@ def _decode_program_state(buf, version: tuple, known: bool):
     if forms is None:
         return UnknownSubtype(25, "robot_message_type", robot_message_type, tuple(zip(_PROGRAM_STATE_HEADER_NAMES, header)),
                               bytes(buf[14:]))
-    size = end - 14
-    decode, use, _, form = (_PROGRAM_STATE_FORMS.at(version).get(robot_message_type << 32 | size)
-                            or _PROGRAM_STATE_FORMS.pick(version, robot_message_type, size))
+    decode, use, _, form = (_PROGRAM_STATE_FORMS.at(version).get(end << 8 | robot_message_type)
+                            or _PROGRAM_STATE_FORMS.pick(version, robot_message_type, end, 14))
     try:
         msg, used = decode(buf, 14, end, use, header)
     except DecodeError as exc:
@@ -3482,7 +3488,7 @@ for _cls in (GlobalVariablesSetupMessage, GlobalVariablesUpdateMessage, ):
     _cls.MESSAGE_TYPE = 25
 
 
-def decode_message(buf, version: Optional[tuple] = None, *, known: Optional[bool] = None):
+def decode_message(buf, version: Optional[tuple] = None, known: Optional[bool] = None):
     """Decode one framed message (its declared length is len(buf)); never raises on bad bytes.
 
     `version` (major, minor, bugfix) is the stream's software version: it chooses the layout of
@@ -3490,13 +3496,12 @@ def decode_message(buf, version: Optional[tuple] = None, *, known: Optional[bool
     assumed and a robot state's layout sizes may overrule it (`implied_version`). `known`
     says whether `version` is known (announced or hinted) rather than assumed.
     """
-    if known is None:
-        known = version is not None
-    version = version or DEFAULT_VERSION
     decoder = _DECODERS.get(buf[4])
     if decoder is None:
         return UnknownMessage(buf[4], bytes(buf[5:]))
-    return decoder(buf, version, known)
+    if version is None:
+        return decoder(buf, DEFAULT_VERSION, bool(known))
+    return decoder(buf, version, known is not False)
 
 
 def encode_message(msg, version: Optional[tuple] = None) -> bytes:

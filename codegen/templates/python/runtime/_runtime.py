@@ -286,16 +286,29 @@ _UNKNOWN = (None, None, False, None)
 
 
 class Forms:
-    """The forms of every type code of one message. `at(version)` is a table, filled on first
-    use, from `code << 32 | body size` to (decoder, version to decode with, chosen by length?,
-    form): what `choose` says, with no work after the first time, since codes, sizes and versions
-    repeat. A code the spec does not lay out maps to _UNKNOWN."""
+    """The forms of every type code of one message.
 
-    __slots__ = ("by_code", "resolved")
+    `fast(version)` maps each code to the decoder of the version's form: a part that it reads to
+    its last byte is that form (the common case, one dict lookup). Anything else goes through
+    `part()`, which applies the whole rule. `at(version)` is a table, filled on first use, from
+    `size << 8 | code` (the part's whole size, header included) to (decoder, version to decode
+    with, chosen by length?, form): what `choose` says, since codes, sizes and versions repeat. A
+    code the spec does not lay out maps to _UNKNOWN."""
 
-    def __init__(self, by_code: dict):
+    __slots__ = ("by_code", "resolved", "fast_by_version", "header")
+
+    def __init__(self, by_code: dict, header: int = 0):
         self.by_code = by_code
-        self.resolved: dict = {}     # version -> its table
+        self.header = header
+        self.resolved: dict = {}          # version -> its table of choices
+        self.fast_by_version: dict = {}   # version -> {code: decoder of the version's form}
+
+    def fast(self, version: tuple) -> dict:
+        table = self.fast_by_version.get(version)
+        if table is None:
+            table = self.fast_by_version[version] = {
+                code: form.decode for code, forms in self.by_code.items() for form in forms if form.sent_by(version)}
+        return table
 
     def at(self, version: tuple) -> dict:
         table = self.resolved.get(version)
@@ -303,7 +316,8 @@ class Forms:
             table = self.resolved[version] = {}
         return table
 
-    def pick(self, version: tuple, code: int, size: int) -> tuple:
+    def pick(self, version: tuple, code: int, size: int, header: int) -> tuple:
+        """The entry for a part of `size` bytes, its header of `header` bytes included."""
         table = self.at(version)
         if len(table) > 4096:        # open-ended forms come in any size: keep the table small
             table.clear()
@@ -311,10 +325,27 @@ class Forms:
         if forms is None:
             found = _UNKNOWN
         else:
-            form, use, by_length = _choose(forms, size, version)
+            form, use, by_length = _choose(forms, size - header, version)
             found = (form.decode, use, by_length, form)
-        table[code << 32 | size] = found
+        table[size << 8 | code] = found
         return found
+
+    def part(self, buf, body: int, stop: int, code: int, version: tuple, known: bool) -> tuple:
+        """(the record of a sub-package whose version's form did not read it exactly, the version
+        its layout size shows when the stream's is not known, else None)."""
+        decode, use, by_length, form = self.pick(version, code, stop - body + self.header, self.header)
+        if decode is None:
+            # Kept raw; next time straight from the fast table.
+            self.fast(version)[code] = lambda buf, body, stop, version: (
+                UnknownPackage(code, bytes(buf[body:stop])), stop)
+            return UnknownPackage(code, bytes(buf[body:stop])), None
+        try:
+            pkg, used = decode(buf, body, stop, use)
+        except DecodeError as exc:
+            return MalformedPackage(form.cls.TYPE, code, exc.text, bytes(buf[body:stop])), None
+        if used < stop:
+            pkg.extra = bytes(buf[used:stop])
+        return pkg, (use if by_length and not known else None)
 
 
 def choose(forms: tuple, size: int, version: tuple) -> tuple:
