@@ -277,6 +277,11 @@ class Variant:
     def describe(self) -> str:
         return " or ".join(_range_text(lo, hi) for lo, hi in self.ranges)
 
+    @property
+    def bounds(self) -> list[tuple[Optional[int], Optional[int]]]:
+        """`ranges` with None for an open end: for targets that test a bound only when there is one."""
+        return [(lo or None, hi if hi < _TOP else None) for lo, hi in self.ranges]
+
     def fits(self, size: int) -> bool:
         return size in self.sizes if self.sizes is not None else size >= self.min_size
 
