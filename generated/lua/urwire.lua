@@ -8,7 +8,8 @@
 -- (or run `make install-dissector`). Wireshark 4.0 and later; Lua 5.2 to 5.4.
 -- Display filters: ur, ur.type == 16, ur.robot_mode_data.robot_mode == "RUNNING",
 -- ur.joint_data.q_actual > 1.5, ur.key.title contains "PROGRAM", ur.global_variables_update.
--- Preferences: ur.ports, ur.version (assumed until a Version message is seen), ur.max_length.
+-- Preferences: ur.ports; ur.version, the software version assumed until a Version message is
+-- seen (5.9, 5.25.1; empty by default: the layout sizes tell it where they can); ur.max_length.
 --
 -- The file has two parts. First the tables generated from the spec: value strings, fields,
 -- layouts (one descriptor per field), messages; all handed over in one table, `spec`. Then the
@@ -18,11 +19,14 @@
 local ur = Proto("ur", "Universal Robots primary/secondary client interface")
 
 -- ---------------------------------------------------------------------------------------------
--- Value strings: every enum of the spec, by wire value
+-- Value strings: every enum of the spec, by wire value. Where a code's name depends on the
+-- software version, one per version range: VS.<NAME> is the newest (the field's value string,
+-- so filters by name follow today's firmware), NAMES.<NAME> lists them by version.
 -- ---------------------------------------------------------------------------------------------
+local VS, NAMES = {}, {}
 
 -- Type of a top-level message, the byte after messageSize.
-local VS_MESSAGE_TYPE = {
+VS.MESSAGE_TYPE = {
     [255] = "DISCONNECT",
     [5] = "MODBUS_INFO_MESSAGE",
     [16] = "ROBOT_STATE",
@@ -34,7 +38,7 @@ local VS_MESSAGE_TYPE = {
 }
 
 -- Type of a robot-state sub-package (ROBOT_STATE_PACKAGE_TYPE_*).
-local VS_PACKAGE_TYPE = {
+VS.PACKAGE_TYPE = {
     [0] = "ROBOT_MODE_DATA",
     [1] = "JOINT_DATA",
     [2] = "TOOL_DATA",
@@ -53,7 +57,7 @@ local VS_PACKAGE_TYPE = {
 }
 
 -- Subtype of a robot message (ROBOT_MESSAGE_TYPE_*), the byte after source.
-local VS_ROBOT_MESSAGE_TYPE = {
+VS.ROBOT_MESSAGE_TYPE = {
     [0] = "TEXT",
     [2] = "POPUP",
     [3] = "VERSION",
@@ -68,14 +72,14 @@ local VS_ROBOT_MESSAGE_TYPE = {
 }
 
 -- Subtype of a program-state message (PROGRAM_STATE_MESSAGE_TYPE_*).
-local VS_PROGRAM_STATE_MESSAGE_TYPE = {
+VS.PROGRAM_STATE_MESSAGE_TYPE = {
     [0] = "GLOBAL_VARIABLES_SETUP",
     [1] = "GLOBAL_VARIABLES_UPDATE",
     [2] = "VARIABLES_UPDATE",
 }
 
 -- Control mode of the robot (document section "Control Modes").
-local VS_CONTROL_MODE = {
+VS.CONTROL_MODE = {
     [0] = "POSITION",
     [1] = "TEACH",
     [2] = "FORCE",
@@ -83,7 +87,7 @@ local VS_CONTROL_MODE = {
 }
 
 -- Robot mode (document section "Robot Modes"). Documented as unsigned char, but NO_CONTROLLER is -1, so it is an int8.
-local VS_ROBOT_MODE = {
+VS.ROBOT_MODE = {
     [-1] = "NO_CONTROLLER",
     [0] = "DISCONNECTED",
     [1] = "CONFIRM_SAFETY",
@@ -96,8 +100,23 @@ local VS_ROBOT_MODE = {
     [8] = "UPDATING_FIRMWARE",
 }
 
--- Joint status, as shown on the initialisation screen (document section "Joint Modes").
-local VS_JOINT_MODE = {
+-- Joint status, as shown on the initialisation screen (document section "Joint Modes"). (up to 5.0)
+VS.JOINT_MODE_UpTo5_0 = {
+    [235] = "RESET",
+    [236] = "SHUTTING_DOWN",
+    [238] = "BACKDRIVE",
+    [239] = "POWER_OFF",
+    [245] = "NOT_RESPONDING",
+    [246] = "MOTOR_INITIALISATION",
+    [247] = "BOOTING",
+    [251] = "VIOLATION",
+    [252] = "FAULT",
+    [253] = "RUNNING",
+    [255] = "IDLE",
+}
+
+-- Joint status, as shown on the initialisation screen (document section "Joint Modes"). (5.1 and later)
+VS.JOINT_MODE = {
     [235] = "RESET",
     [236] = "SHUTTING_DOWN",
     [238] = "BACKDRIVE",
@@ -112,8 +131,14 @@ local VS_JOINT_MODE = {
     [255] = "IDLE",
 }
 
+-- joint_mode by software version.
+NAMES.JOINT_MODE = { newest = VS.JOINT_MODE,
+    { low = nil, high = 5000999, names = VS.JOINT_MODE_UpTo5_0 },   -- up to 5.0
+    { low = 5001000, high = nil, names = VS.JOINT_MODE },   -- 5.1 and later
+}
+
 -- Tool status (document section "Tool Modes", whose rows are named JOINT_MODE_*).
-local VS_TOOL_MODE = {
+VS.TOOL_MODE = {
     [235] = "RESET",
     [236] = "SHUTTING_DOWN",
     [239] = "POWER_OFF",
@@ -126,7 +151,7 @@ local VS_TOOL_MODE = {
 }
 
 -- Sender of a robot message (document section "Message Sources"). The source byte is signed; -2 to -5 occur.
-local VS_MESSAGE_SOURCE = {
+VS.MESSAGE_SOURCE = {
     [100] = "JOINT_0_FPGA",
     [110] = "JOINT_0_A",
     [120] = "JOINT_0_B",
@@ -165,7 +190,7 @@ local VS_MESSAGE_SOURCE = {
 }
 
 -- Safety mode (document section "Safety Mode Types").
-local VS_SAFETY_MODE = {
+VS.SAFETY_MODE = {
     [1] = "NORMAL",
     [2] = "REDUCED",
     [3] = "PROTECTIVE_STOP",
@@ -180,7 +205,7 @@ local VS_SAFETY_MODE = {
 }
 
 -- Safety status (document section "Safety Status Types").
-local VS_SAFETY_STATUS = {
+VS.SAFETY_STATUS = {
     [1] = "NORMAL",
     [2] = "REDUCED",
     [3] = "PROTECTIVE_STOP",
@@ -197,7 +222,7 @@ local VS_SAFETY_STATUS = {
 }
 
 -- Report level of a robot comm message (document section "Report Levels"). Levels 5 and 133 occur on real robots although the table lacks them.
-local VS_REPORT_LEVEL = {
+VS.REPORT_LEVEL = {
     [0] = "DEBUG",
     [1] = "INFO",
     [2] = "WARNING",
@@ -213,7 +238,7 @@ local VS_REPORT_LEVEL = {
 }
 
 -- Type of value a popup or request asks for (document section "Requested Types").
-local VS_REQUESTED_TYPE = {
+VS.REQUESTED_TYPE = {
     [0] = "BOOLEAN",
     [1] = "INTEGER",
     [2] = "FLOAT",
@@ -228,11 +253,12 @@ local VS_REQUESTED_TYPE = {
 -- Message types a plausible header may carry (documented or known undocumented ones).
 local KNOWN_TYPE = { [5] = true, [16] = true, [20] = true, [22] = true, [23] = true, [24] = true, [25] = true, [255] = true, }
 
--- Global variable value types. The codes depend on the software version (major * 1000 + minor);
+-- Global variable value types. The codes depend on the software version
+-- ((major * 1000 + minor) * 1000 + bugfix);
 -- the table is chosen by the stream's Version message, else by the ur.version preference.
 local VALUE_TABLES = {
     -- up to 3.2
-    { low = nil, high = 3002, kinds = {
+    { low = nil, high = 3002999, kinds = {
         [0] = { name = "NONE", layout = "empty", item = nil, n = 0, count = 1, len = 0 },
         [3] = { name = "STRING", layout = "string", item = nil, n = 0, count = 1, len = 2 },
         [4] = { name = "LIST", layout = "list", item = nil, n = 0, count = 1, len = 2 },
@@ -243,7 +269,7 @@ local VALUE_TABLES = {
         [14] = { name = "FLOAT", layout = "scalar", item = "float32", n = 4, count = 1, len = 0 },
     } },
     -- 3.3 to 5.8
-    { low = 3003, high = 5008, kinds = {
+    { low = 3003000, high = 5008999, kinds = {
         [0] = { name = "NONE", layout = "empty", item = nil, n = 0, count = 1, len = 0 },
         [3] = { name = "CONST_STRING", layout = "string", item = nil, n = 0, count = 1, len = 2 },
         [4] = { name = "VAR_STRING", layout = "string", item = nil, n = 0, count = 1, len = 2 },
@@ -255,7 +281,7 @@ local VALUE_TABLES = {
         [15] = { name = "FLOAT", layout = "scalar", item = "float32", n = 4, count = 1, len = 0 },
     } },
     -- 5.9 and later
-    { low = 5009, high = nil, kinds = {
+    { low = 5009000, high = nil, kinds = {
         [0] = { name = "NONE", layout = "empty", item = nil, n = 0, count = 1, len = 0 },
         [3] = { name = "CONST_STRING", layout = "string", item = nil, n = 0, count = 1, len = 2 },
         [4] = { name = "VAR_STRING", layout = "string", item = nil, n = 0, count = 1, len = 2 },
@@ -274,9 +300,9 @@ local VALUE_TABLES = {
 -- ---------------------------------------------------------------------------------------------
 local F = {
     ["length"] = ProtoField.int32("ur.length", "Length", base.DEC, nil, nil, "Length of the whole message, this field included."),
-    ["type"] = ProtoField.uint8("ur.type", "Type", base.DEC, VS_MESSAGE_TYPE, nil, "Message type."),
+    ["type"] = ProtoField.uint8("ur.type", "Type", base.DEC, VS.MESSAGE_TYPE, nil, "Message type."),
     ["package.length"] = ProtoField.int32("ur.package.length", "Length", base.DEC, nil, nil, "Length of the sub-package, this field included."),
-    ["package.type"] = ProtoField.uint8("ur.package.type", "Type", base.DEC, VS_PACKAGE_TYPE, nil, "Sub-package type."),
+    ["package.type"] = ProtoField.uint8("ur.package.type", "Type", base.DEC, VS.PACKAGE_TYPE, nil, "Sub-package type."),
     ["robot_mode_data.timestamp"] = ProtoField.uint64("ur.robot_mode_data.timestamp", "timestamp", base.DEC, nil, nil, ""),
     ["robot_mode_data.is_real_robot_connected"] = ProtoField.bool("ur.robot_mode_data.is_real_robot_connected", "is_real_robot_connected", base.NONE, nil, nil, ""),
     ["robot_mode_data.is_real_robot_enabled"] = ProtoField.bool("ur.robot_mode_data.is_real_robot_enabled", "is_real_robot_enabled", base.NONE, nil, nil, ""),
@@ -285,8 +311,8 @@ local F = {
     ["robot_mode_data.is_protective_stopped"] = ProtoField.bool("ur.robot_mode_data.is_protective_stopped", "is_protective_stopped", base.NONE, nil, nil, ""),
     ["robot_mode_data.is_program_running"] = ProtoField.bool("ur.robot_mode_data.is_program_running", "is_program_running", base.NONE, nil, nil, ""),
     ["robot_mode_data.is_program_paused"] = ProtoField.bool("ur.robot_mode_data.is_program_paused", "is_program_paused", base.NONE, nil, nil, ""),
-    ["robot_mode_data.robot_mode"] = ProtoField.int8("ur.robot_mode_data.robot_mode", "robot_mode", base.DEC, VS_ROBOT_MODE, nil, "Robot mode. Documented as unsigned char; it is an int8 (NO_CONTROLLER is -1)."),
-    ["robot_mode_data.control_mode"] = ProtoField.uint8("ur.robot_mode_data.control_mode", "control_mode", base.DEC, VS_CONTROL_MODE, nil, "Control mode."),
+    ["robot_mode_data.robot_mode"] = ProtoField.int8("ur.robot_mode_data.robot_mode", "robot_mode", base.DEC, VS.ROBOT_MODE, nil, "Robot mode. Documented as unsigned char; it is an int8 (NO_CONTROLLER is -1)."),
+    ["robot_mode_data.control_mode"] = ProtoField.uint8("ur.robot_mode_data.control_mode", "control_mode", base.DEC, VS.CONTROL_MODE, nil, "Control mode."),
     ["robot_mode_data.target_speed_fraction"] = ProtoField.double("ur.robot_mode_data.target_speed_fraction", "target_speed_fraction", ""),
     ["robot_mode_data.speed_scaling"] = ProtoField.double("ur.robot_mode_data.speed_scaling", "speed_scaling", ""),
     ["robot_mode_data.target_speed_fraction_limit"] = ProtoField.double("ur.robot_mode_data.target_speed_fraction_limit", "target_speed_fraction_limit", ""),
@@ -300,7 +326,7 @@ local F = {
     ["joint_data.v_actual"] = ProtoField.float("ur.joint_data.v_actual", "v_actual", "Actual joint voltage (V)."),
     ["joint_data.t_motor"] = ProtoField.float("ur.joint_data.t_motor", "t_motor", "Motor temperature (degrees C)."),
     ["joint_data.t_micro"] = ProtoField.float("ur.joint_data.t_micro", "t_micro", "Deprecated - ignore."),
-    ["joint_data.joint_mode"] = ProtoField.uint8("ur.joint_data.joint_mode", "joint_mode", base.DEC, VS_JOINT_MODE, nil, "Joint mode."),
+    ["joint_data.joint_mode"] = ProtoField.uint8("ur.joint_data.joint_mode", "joint_mode", base.DEC, VS.JOINT_MODE, nil, "Joint mode."),
     ["joint_data"] = ProtoField.none("ur.joint_data", "Joint data", "Joint data, one group per joint."),
     ["tool_data.analog_input_range0"] = ProtoField.uint8("ur.tool_data.analog_input_range0", "analog_input_range0", base.DEC, nil, nil, ""),
     ["tool_data.analog_input_range1"] = ProtoField.uint8("ur.tool_data.analog_input_range1", "analog_input_range1", base.DEC, nil, nil, ""),
@@ -310,7 +336,7 @@ local F = {
     ["tool_data.tool_output_voltage"] = ProtoField.uint8("ur.tool_data.tool_output_voltage", "tool_output_voltage", base.DEC, nil, nil, ""),
     ["tool_data.tool_current"] = ProtoField.float("ur.tool_data.tool_current", "tool_current", ""),
     ["tool_data.tool_temperature"] = ProtoField.float("ur.tool_data.tool_temperature", "tool_temperature", ""),
-    ["tool_data.tool_mode"] = ProtoField.uint8("ur.tool_data.tool_mode", "tool_mode", base.DEC, VS_TOOL_MODE, nil, "Tool mode."),
+    ["tool_data.tool_mode"] = ProtoField.uint8("ur.tool_data.tool_mode", "tool_mode", base.DEC, VS.TOOL_MODE, nil, "Tool mode."),
     ["tool_data"] = ProtoField.none("ur.tool_data", "Tool data", "Tool data."),
     ["masterboard_data.digital_input_bits"] = ProtoField.int32("ur.masterboard_data.digital_input_bits", "digital_input_bits", base.DEC, nil, nil, "Digital inputs: bits 0-7 standard, 8-15 configurable, 16-17 tool."),
     ["masterboard_data.digital_input_bits.standard_0"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_0", "standard_0", 32, nil, 0x1, "Bit 0 of digital_input_bits."),
@@ -362,7 +388,7 @@ local F = {
     ["masterboard_data.robot_voltage_48v"] = ProtoField.float("ur.masterboard_data.robot_voltage_48v", "robot_voltage_48v", ""),
     ["masterboard_data.robot_current"] = ProtoField.float("ur.masterboard_data.robot_current", "robot_current", ""),
     ["masterboard_data.master_io_current"] = ProtoField.float("ur.masterboard_data.master_io_current", "master_io_current", ""),
-    ["masterboard_data.safety_mode"] = ProtoField.uint8("ur.masterboard_data.safety_mode", "safety_mode", base.DEC, VS_SAFETY_MODE, nil, "Safety mode."),
+    ["masterboard_data.safety_mode"] = ProtoField.uint8("ur.masterboard_data.safety_mode", "safety_mode", base.DEC, VS.SAFETY_MODE, nil, "Safety mode."),
     ["masterboard_data.in_reduced_mode"] = ProtoField.uint8("ur.masterboard_data.in_reduced_mode", "in_reduced_mode", base.DEC, nil, nil, ""),
     ["masterboard_data.euromap67_interface_installed"] = ProtoField.bool("ur.masterboard_data.euromap67_interface_installed", "euromap67_interface_installed", base.NONE, nil, nil, "Nonzero when a Euromap67 interface is installed; euomap67InterfaceInstalled in the document."),
     ["masterboard_data.euromap_input_bits"] = ProtoField.uint32("ur.masterboard_data.euromap_input_bits", "euromap_input_bits", base.DEC, nil, nil, ""),
@@ -450,11 +476,11 @@ local F = {
     ["singularity_info.singularity_severity"] = ProtoField.uint8("ur.singularity_info.singularity_severity", "singularity_severity", base.DEC, nil, nil, ""),
     ["singularity_info.singularity_type"] = ProtoField.uint8("ur.singularity_info.singularity_type", "singularity_type", base.DEC, nil, nil, ""),
     ["singularity_info"] = ProtoField.none("ur.singularity_info", "Singularity info", "Singularity info. Used internally by Universal Robots software only."),
-    ["robot_message.robot_message_type"] = ProtoField.uint8("ur.robot_message.robot_message_type", "robot_message_type", base.DEC, VS_ROBOT_MESSAGE_TYPE, nil, "Subtype of the message."),
+    ["robot_message.robot_message_type"] = ProtoField.uint8("ur.robot_message.robot_message_type", "robot_message_type", base.DEC, VS.ROBOT_MESSAGE_TYPE, nil, "Subtype of the message."),
     ["robot_message.timestamp"] = ProtoField.uint64("ur.robot_message.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["robot_message.source"] = ProtoField.int8("ur.robot_message.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["robot_message.source"] = ProtoField.int8("ur.robot_message.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["version.timestamp"] = ProtoField.uint64("ur.version.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["version.source"] = ProtoField.int8("ur.version.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["version.source"] = ProtoField.int8("ur.version.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["version.project_name"] = ProtoField.string("ur.version.project_name", "project_name", base.UNICODE, "projectNameSize, then projectName."),
     ["version.major_version"] = ProtoField.uint8("ur.version.major_version", "major_version", base.DEC, nil, nil, ""),
     ["version.minor_version"] = ProtoField.uint8("ur.version.minor_version", "minor_version", base.DEC, nil, nil, ""),
@@ -463,42 +489,42 @@ local F = {
     ["version.build_date"] = ProtoField.string("ur.version.build_date", "build_date", base.UNICODE, "The rest of the message, with no terminator."),
     ["version"] = ProtoField.none("ur.version", "Version", "Version message, the first message on both the primary and secondary interfaces."),
     ["safety_mode.timestamp"] = ProtoField.uint64("ur.safety_mode.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["safety_mode.source"] = ProtoField.int8("ur.safety_mode.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["safety_mode.source"] = ProtoField.int8("ur.safety_mode.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["safety_mode.robot_message_code"] = ProtoField.int32("ur.safety_mode.robot_message_code", "robot_message_code", base.DEC, nil, nil, ""),
     ["safety_mode.robot_message_argument"] = ProtoField.int32("ur.safety_mode.robot_message_argument", "robot_message_argument", base.DEC, nil, nil, ""),
-    ["safety_mode.safety_mode_type"] = ProtoField.uint8("ur.safety_mode.safety_mode_type", "safety_mode_type", base.DEC, VS_SAFETY_MODE, nil, ""),
+    ["safety_mode.safety_mode_type"] = ProtoField.uint8("ur.safety_mode.safety_mode_type", "safety_mode_type", base.DEC, VS.SAFETY_MODE, nil, ""),
     ["safety_mode.report_data_type"] = ProtoField.uint32("ur.safety_mode.report_data_type", "report_data_type", base.DEC, nil, nil, ""),
     ["safety_mode.report_data"] = ProtoField.uint32("ur.safety_mode.report_data", "report_data", base.DEC, nil, nil, "Its type follows report_data_type. int32 when report_data_type is 2, float32 when it is 3, uint32 otherwise (as the reference client library does)."),
     ["safety_mode.report_data_int32"] = ProtoField.int32("ur.safety_mode.report_data_int32", "report_data", base.DEC, nil, nil, "Its type follows report_data_type. int32 when report_data_type is 2, float32 when it is 3, uint32 otherwise (as the reference client library does). (as int32: report_data_type is 2)"),
     ["safety_mode.report_data_float32"] = ProtoField.float("ur.safety_mode.report_data_float32", "report_data", "Its type follows report_data_type. int32 when report_data_type is 2, float32 when it is 3, uint32 otherwise (as the reference client library does). (as float32: report_data_type is 3)"),
     ["safety_mode"] = ProtoField.none("ur.safety_mode", "Safety mode", "Safety mode message."),
     ["robot_comm.timestamp"] = ProtoField.uint64("ur.robot_comm.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["robot_comm.source"] = ProtoField.int8("ur.robot_comm.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["robot_comm.source"] = ProtoField.int8("ur.robot_comm.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["robot_comm.robot_message_code"] = ProtoField.int32("ur.robot_comm.robot_message_code", "robot_message_code", base.DEC, nil, nil, ""),
     ["robot_comm.robot_message_argument"] = ProtoField.int32("ur.robot_comm.robot_message_argument", "robot_message_argument", base.DEC, nil, nil, ""),
-    ["robot_comm.robot_message_report_level"] = ProtoField.int32("ur.robot_comm.robot_message_report_level", "robot_message_report_level", base.DEC, VS_REPORT_LEVEL, nil, ""),
+    ["robot_comm.robot_message_report_level"] = ProtoField.int32("ur.robot_comm.robot_message_report_level", "robot_message_report_level", base.DEC, VS.REPORT_LEVEL, nil, ""),
     ["robot_comm.robot_message_data_type"] = ProtoField.uint32("ur.robot_comm.robot_message_data_type", "robot_message_data_type", base.DEC, nil, nil, ""),
     ["robot_comm.robot_message_data"] = ProtoField.uint32("ur.robot_comm.robot_message_data", "robot_message_data", base.DEC, nil, nil, ""),
     ["robot_comm.text"] = ProtoField.string("ur.robot_comm.text", "text", base.UNICODE, "robotCommTextMessage."),
     ["robot_comm"] = ProtoField.none("ur.robot_comm", "Robot comm", "Robot comm message (an error code report)."),
     ["key.timestamp"] = ProtoField.uint64("ur.key.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["key.source"] = ProtoField.int8("ur.key.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["key.source"] = ProtoField.int8("ur.key.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["key.robot_message_code"] = ProtoField.int32("ur.key.robot_message_code", "robot_message_code", base.DEC, nil, nil, ""),
     ["key.robot_message_argument"] = ProtoField.int32("ur.key.robot_message_argument", "robot_message_argument", base.DEC, nil, nil, ""),
     ["key.title"] = ProtoField.string("ur.key.title", "title", base.UNICODE, "robotMessageTitleSize, then robotMessageTitle."),
     ["key.text"] = ProtoField.string("ur.key.text", "text", base.UNICODE, "keyTextMessage."),
     ["key"] = ProtoField.none("ur.key", "Key", "Key message."),
     ["program_threads.timestamp"] = ProtoField.uint64("ur.program_threads.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["program_threads.source"] = ProtoField.int8("ur.program_threads.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["program_threads.source"] = ProtoField.int8("ur.program_threads.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["program_threads.threads"] = ProtoField.none("ur.program_threads.threads", "Thread", ""),
     ["program_threads.label_id"] = ProtoField.int32("ur.program_threads.label_id", "label_id", base.DEC, nil, nil, "Line number."),
     ["program_threads.label_name"] = ProtoField.string("ur.program_threads.label_name", "label_name", base.UNICODE, ""),
     ["program_threads.thread_name"] = ProtoField.string("ur.program_threads.thread_name", "thread_name", base.UNICODE, ""),
     ["program_threads"] = ProtoField.none("ur.program_threads", "Program threads", "Program threads message, one entry per running program thread."),
     ["popup.timestamp"] = ProtoField.uint64("ur.popup.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["popup.source"] = ProtoField.int8("ur.popup.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["popup.source"] = ProtoField.int8("ur.popup.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["popup.request_id"] = ProtoField.uint32("ur.popup.request_id", "request_id", base.DEC, nil, nil, ""),
-    ["popup.requested_type"] = ProtoField.uint32("ur.popup.requested_type", "requested_type", base.DEC, VS_REQUESTED_TYPE, nil, ""),
+    ["popup.requested_type"] = ProtoField.uint32("ur.popup.requested_type", "requested_type", base.DEC, VS.REQUESTED_TYPE, nil, ""),
     ["popup.warning"] = ProtoField.bool("ur.popup.warning", "warning", base.NONE, nil, nil, ""),
     ["popup.error"] = ProtoField.bool("ur.popup.error", "error", base.NONE, nil, nil, ""),
     ["popup.blocking"] = ProtoField.bool("ur.popup.blocking", "blocking", base.NONE, nil, nil, ""),
@@ -506,22 +532,22 @@ local F = {
     ["popup.text"] = ProtoField.string("ur.popup.text", "text", base.UNICODE, "popupTextMessage."),
     ["popup"] = ProtoField.none("ur.popup", "Popup", "Popup message."),
     ["request_value.timestamp"] = ProtoField.uint64("ur.request_value.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["request_value.source"] = ProtoField.int8("ur.request_value.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["request_value.source"] = ProtoField.int8("ur.request_value.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["request_value.request_id"] = ProtoField.uint32("ur.request_value.request_id", "request_id", base.DEC, nil, nil, ""),
-    ["request_value.requested_type"] = ProtoField.uint32("ur.request_value.requested_type", "requested_type", base.DEC, VS_REQUESTED_TYPE, nil, ""),
+    ["request_value.requested_type"] = ProtoField.uint32("ur.request_value.requested_type", "requested_type", base.DEC, VS.REQUESTED_TYPE, nil, ""),
     ["request_value.text"] = ProtoField.string("ur.request_value.text", "text", base.UNICODE, "requestTextMessage."),
     ["request_value"] = ProtoField.none("ur.request_value", "Request value", "Request value message."),
     ["text.timestamp"] = ProtoField.uint64("ur.text.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["text.source"] = ProtoField.int8("ur.text.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["text.source"] = ProtoField.int8("ur.text.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["text.text"] = ProtoField.string("ur.text.text", "text", base.UNICODE, "textTextMessage."),
     ["text"] = ProtoField.none("ur.text", "Text", "Text message."),
     ["runtime_exception.timestamp"] = ProtoField.uint64("ur.runtime_exception.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["runtime_exception.source"] = ProtoField.int8("ur.runtime_exception.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["runtime_exception.source"] = ProtoField.int8("ur.runtime_exception.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["runtime_exception.script_line_number"] = ProtoField.int32("ur.runtime_exception.script_line_number", "script_line_number", base.DEC, nil, nil, ""),
     ["runtime_exception.script_column_number"] = ProtoField.int32("ur.runtime_exception.script_column_number", "script_column_number", base.DEC, nil, nil, ""),
     ["runtime_exception.text"] = ProtoField.string("ur.runtime_exception.text", "text", base.UNICODE, "runtimeExceptionTextMessage."),
     ["runtime_exception"] = ProtoField.none("ur.runtime_exception", "Runtime exception", "Runtime exception message."),
-    ["program_state.robot_message_type"] = ProtoField.uint8("ur.program_state.robot_message_type", "robot_message_type", base.DEC, VS_PROGRAM_STATE_MESSAGE_TYPE, nil, "robotMessageType in the document. Subtype of the message."),
+    ["program_state.robot_message_type"] = ProtoField.uint8("ur.program_state.robot_message_type", "robot_message_type", base.DEC, VS.PROGRAM_STATE_MESSAGE_TYPE, nil, "robotMessageType in the document. Subtype of the message."),
     ["program_state.timestamp"] = ProtoField.uint64("ur.program_state.timestamp", "timestamp", base.DEC, nil, nil, ""),
     ["global_variables_setup.timestamp"] = ProtoField.uint64("ur.global_variables_setup.timestamp", "timestamp", base.DEC, nil, nil, ""),
     ["global_variables_setup.start_index"] = ProtoField.uint16("ur.global_variables_setup.start_index", "start_index", base.DEC, nil, nil, ""),
@@ -817,9 +843,10 @@ local FIELDS = {
 -- ---------------------------------------------------------------------------------------------
 -- Layouts: one descriptor per field, in wire order, walked by walk() in runtime/walk.lua
 -- ---------------------------------------------------------------------------------------------
+local L = {}
 
 -- Robot mode data.
-local L_robot_mode_data = {
+L.robot_mode_data = {
     { k = "scalar", f = F["robot_mode_data.timestamp"], n = 8, path = "timestamp", signed = false },
     { k = "scalar", f = F["robot_mode_data.is_real_robot_connected"], n = 1, path = "is_real_robot_connected", signed = false },
     { k = "scalar", f = F["robot_mode_data.is_real_robot_enabled"], n = 1, path = "is_real_robot_enabled", signed = false },
@@ -828,8 +855,8 @@ local L_robot_mode_data = {
     { k = "scalar", f = F["robot_mode_data.is_protective_stopped"], n = 1, path = "is_protective_stopped", signed = false },
     { k = "scalar", f = F["robot_mode_data.is_program_running"], n = 1, path = "is_program_running", signed = false },
     { k = "scalar", f = F["robot_mode_data.is_program_paused"], n = 1, path = "is_program_paused", signed = false },
-    { k = "scalar", f = F["robot_mode_data.robot_mode"], n = 1, path = "robot_mode", signed = true, vs = VS_ROBOT_MODE },
-    { k = "scalar", f = F["robot_mode_data.control_mode"], n = 1, path = "control_mode", signed = false, vs = VS_CONTROL_MODE },
+    { k = "scalar", f = F["robot_mode_data.robot_mode"], n = 1, path = "robot_mode", signed = true, vs = VS.ROBOT_MODE, show = "" },
+    { k = "scalar", f = F["robot_mode_data.control_mode"], n = 1, path = "control_mode", signed = false, vs = VS.CONTROL_MODE },
     { k = "scalar", f = F["robot_mode_data.target_speed_fraction"], n = 8, path = "target_speed_fraction", signed = false },
     { k = "scalar", f = F["robot_mode_data.speed_scaling"], n = 8, path = "speed_scaling", signed = false },
     { k = "scalar", f = F["robot_mode_data.target_speed_fraction_limit"], n = 8, path = "target_speed_fraction_limit", signed = false },
@@ -837,7 +864,7 @@ local L_robot_mode_data = {
 }
 
 -- One entry per joint, base first.
-local L_joint_data_joint = {
+L.joint_data_joint = {
     { k = "scalar", f = F["joint_data.q_actual"], n = 8, path = "q_actual", signed = false },
     { k = "scalar", f = F["joint_data.q_target"], n = 8, path = "q_target", signed = false },
     { k = "scalar", f = F["joint_data.qd_actual"], n = 8, path = "qd_actual", signed = false },
@@ -845,16 +872,16 @@ local L_joint_data_joint = {
     { k = "scalar", f = F["joint_data.v_actual"], n = 4, path = "v_actual", signed = false },
     { k = "scalar", f = F["joint_data.t_motor"], n = 4, path = "t_motor", signed = false },
     { k = "scalar", f = F["joint_data.t_micro"], n = 4, path = "t_micro", signed = false },
-    { k = "scalar", f = F["joint_data.joint_mode"], n = 1, path = "joint_mode", signed = false, vs = VS_JOINT_MODE },
+    { k = "scalar", f = F["joint_data.joint_mode"], n = 1, path = "joint_mode", signed = false, tables = NAMES.JOINT_MODE, label = "joint_mode", vs = VS.JOINT_MODE },
 }
 
 -- Joint data, one group per joint.
-local L_joint_data = {
-    { k = "group", f = F["joint_data.joints"], label = "Joint", count = 6, size = 41, item = L_joint_data_joint, path = "joints" },
+L.joint_data = {
+    { k = "group", f = F["joint_data.joints"], label = "Joint", count = 6, size = 41, item = L.joint_data_joint, path = "joints" },
 }
 
 -- Tool data.
-local L_tool_data = {
+L.tool_data = {
     { k = "scalar", f = F["tool_data.analog_input_range0"], n = 1, path = "analog_input_range0", signed = false },
     { k = "scalar", f = F["tool_data.analog_input_range1"], n = 1, path = "analog_input_range1", signed = false },
     { k = "scalar", f = F["tool_data.analog_input0"], n = 8, path = "analog_input0", signed = false },
@@ -863,11 +890,11 @@ local L_tool_data = {
     { k = "scalar", f = F["tool_data.tool_output_voltage"], n = 1, path = "tool_output_voltage", signed = false },
     { k = "scalar", f = F["tool_data.tool_current"], n = 4, path = "tool_current", signed = false },
     { k = "scalar", f = F["tool_data.tool_temperature"], n = 4, path = "tool_temperature", signed = false },
-    { k = "scalar", f = F["tool_data.tool_mode"], n = 1, path = "tool_mode", signed = false, vs = VS_TOOL_MODE },
+    { k = "scalar", f = F["tool_data.tool_mode"], n = 1, path = "tool_mode", signed = false, vs = VS.TOOL_MODE },
 }
 
 -- Masterboard data.
-local L_masterboard_data = {
+L.masterboard_data = {
     { k = "bits", f = F["masterboard_data.digital_input_bits"], n = 4, path = "digital_input_bits", signed = true, bits = { F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"] } },
     { k = "bits", f = F["masterboard_data.digital_output_bits"], n = 4, path = "digital_output_bits", signed = true, bits = { F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.tool_0"], F["masterboard_data.digital_output_bits.tool_1"] } },
     { k = "scalar", f = F["masterboard_data.analog_input_range0"], n = 1, path = "analog_input_range0", signed = false },
@@ -882,7 +909,7 @@ local L_masterboard_data = {
     { k = "scalar", f = F["masterboard_data.robot_voltage_48v"], n = 4, path = "robot_voltage_48v", signed = false },
     { k = "scalar", f = F["masterboard_data.robot_current"], n = 4, path = "robot_current", signed = false },
     { k = "scalar", f = F["masterboard_data.master_io_current"], n = 4, path = "master_io_current", signed = false },
-    { k = "scalar", f = F["masterboard_data.safety_mode"], n = 1, path = "safety_mode", signed = false, vs = VS_SAFETY_MODE },
+    { k = "scalar", f = F["masterboard_data.safety_mode"], n = 1, path = "safety_mode", signed = false, vs = VS.SAFETY_MODE, show = "" },
     { k = "scalar", f = F["masterboard_data.in_reduced_mode"], n = 1, path = "in_reduced_mode", signed = false },
     { k = "scalar", f = F["masterboard_data.euromap67_interface_installed"], n = 1, path = "euromap67_interface_installed", signed = false, keep = "euromap67_interface_installed" },
     { k = "cond", present_if = "euromap67_interface_installed", low = nil, high = nil, fields = {
@@ -898,7 +925,7 @@ local L_masterboard_data = {
 }
 
 -- Cartesian info.
-local L_cartesian_info = {
+L.cartesian_info = {
     { k = "scalar", f = F["cartesian_info.x"], n = 8, path = "x", signed = false },
     { k = "scalar", f = F["cartesian_info.y"], n = 8, path = "y", signed = false },
     { k = "scalar", f = F["cartesian_info.z"], n = 8, path = "z", signed = false },
@@ -914,40 +941,40 @@ local L_cartesian_info = {
 }
 
 -- Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is changed.
-local L_kinematics_info = {
-    { k = "array", f = F["kinematics_info.checksum"], n = 4, count = 6, path = "checksum" },
-    { k = "array", f = F["kinematics_info.dh_theta"], n = 8, count = 6, path = "dh_theta" },
-    { k = "array", f = F["kinematics_info.dh_a"], n = 8, count = 6, path = "dh_a" },
-    { k = "array", f = F["kinematics_info.dh_d"], n = 8, count = 6, path = "dh_d" },
-    { k = "array", f = F["kinematics_info.dh_alpha"], n = 8, count = 6, path = "dh_alpha" },
+L.kinematics_info = {
+    { k = "array", f = F["kinematics_info.checksum"], n = 4, count = 6, path = "checksum", signed = false },
+    { k = "array", f = F["kinematics_info.dh_theta"], n = 8, count = 6, path = "dh_theta", signed = false },
+    { k = "array", f = F["kinematics_info.dh_a"], n = 8, count = 6, path = "dh_a", signed = false },
+    { k = "array", f = F["kinematics_info.dh_d"], n = 8, count = 6, path = "dh_d", signed = false },
+    { k = "array", f = F["kinematics_info.dh_alpha"], n = 8, count = 6, path = "dh_alpha", signed = false },
     { k = "scalar", f = F["kinematics_info.calibration_status"], n = 4, path = "calibration_status", signed = false },
 }
 
 -- One entry of joint_position_limits.
-local L_configuration_data_joint_position_limit = {
+L.configuration_data_joint_position_limit = {
     { k = "scalar", f = F["configuration_data.joint_min_limit"], n = 8, path = "joint_min_limit", signed = false },
     { k = "scalar", f = F["configuration_data.joint_max_limit"], n = 8, path = "joint_max_limit", signed = false },
 }
 
 -- One entry of joint_motion_limits.
-local L_configuration_data_joint_motion_limit = {
+L.configuration_data_joint_motion_limit = {
     { k = "scalar", f = F["configuration_data.joint_max_speed"], n = 8, path = "joint_max_speed", signed = false },
     { k = "scalar", f = F["configuration_data.joint_max_acceleration"], n = 8, path = "joint_max_acceleration", signed = false },
 }
 
 -- Configuration data. Sent when leaving initializing mode and/or if the kinematics configuration is changed.
-local L_configuration_data = {
-    { k = "group", f = F["configuration_data.joint_position_limits"], label = "Joint", count = 6, size = 16, item = L_configuration_data_joint_position_limit, path = "joint_position_limits" },
-    { k = "group", f = F["configuration_data.joint_motion_limits"], label = "Joint", count = 6, size = 16, item = L_configuration_data_joint_motion_limit, path = "joint_motion_limits" },
+L.configuration_data = {
+    { k = "group", f = F["configuration_data.joint_position_limits"], label = "Joint", count = 6, size = 16, item = L.configuration_data_joint_position_limit, path = "joint_position_limits" },
+    { k = "group", f = F["configuration_data.joint_motion_limits"], label = "Joint", count = 6, size = 16, item = L.configuration_data_joint_motion_limit, path = "joint_motion_limits" },
     { k = "scalar", f = F["configuration_data.v_joint_default"], n = 8, path = "v_joint_default", signed = false },
     { k = "scalar", f = F["configuration_data.a_joint_default"], n = 8, path = "a_joint_default", signed = false },
     { k = "scalar", f = F["configuration_data.v_tool_default"], n = 8, path = "v_tool_default", signed = false },
     { k = "scalar", f = F["configuration_data.a_tool_default"], n = 8, path = "a_tool_default", signed = false },
     { k = "scalar", f = F["configuration_data.eq_radius"], n = 8, path = "eq_radius", signed = false },
-    { k = "array", f = F["configuration_data.dh_a"], n = 8, count = 6, path = "dh_a" },
-    { k = "array", f = F["configuration_data.dh_d"], n = 8, count = 6, path = "dh_d" },
-    { k = "array", f = F["configuration_data.dh_alpha"], n = 8, count = 6, path = "dh_alpha" },
-    { k = "array", f = F["configuration_data.dh_theta"], n = 8, count = 6, path = "dh_theta" },
+    { k = "array", f = F["configuration_data.dh_a"], n = 8, count = 6, path = "dh_a", signed = false },
+    { k = "array", f = F["configuration_data.dh_d"], n = 8, count = 6, path = "dh_d", signed = false },
+    { k = "array", f = F["configuration_data.dh_alpha"], n = 8, count = 6, path = "dh_alpha", signed = false },
+    { k = "array", f = F["configuration_data.dh_theta"], n = 8, count = 6, path = "dh_theta", signed = false },
     { k = "scalar", f = F["configuration_data.masterboard_version"], n = 4, path = "masterboard_version", signed = true },
     { k = "scalar", f = F["configuration_data.controller_box_type"], n = 4, path = "controller_box_type", signed = true },
     { k = "scalar", f = F["configuration_data.robot_type"], n = 4, path = "robot_type", signed = true },
@@ -955,7 +982,7 @@ local L_configuration_data = {
 }
 
 -- Force mode data.
-local L_force_mode_data = {
+L.force_mode_data = {
     { k = "scalar", f = F["force_mode_data.fx"], n = 8, path = "fx", signed = false },
     { k = "scalar", f = F["force_mode_data.fy"], n = 8, path = "fy", signed = false },
     { k = "scalar", f = F["force_mode_data.fz"], n = 8, path = "fz", signed = false },
@@ -966,7 +993,7 @@ local L_force_mode_data = {
 }
 
 -- Additional info.
-local L_additional_info = {
+L.additional_info = {
     { k = "scalar", f = F["additional_info.tp_button_state"], n = 1, path = "tp_button_state", signed = false },
     { k = "scalar", f = F["additional_info.freedrive_button_enabled"], n = 1, path = "freedrive_button_enabled", signed = false },
     { k = "scalar", f = F["additional_info.io_enabled_freedrive"], n = 1, path = "io_enabled_freedrive", signed = false },
@@ -974,7 +1001,7 @@ local L_additional_info = {
 }
 
 -- Calibration data. Used internally by Universal Robots software only.
-local L_calibration_data = {
+L.calibration_data = {
     { k = "scalar", f = F["calibration_data.fx"], n = 8, path = "fx", signed = false },
     { k = "scalar", f = F["calibration_data.fy"], n = 8, path = "fy", signed = false },
     { k = "scalar", f = F["calibration_data.fz"], n = 8, path = "fz", signed = false },
@@ -984,12 +1011,12 @@ local L_calibration_data = {
 }
 
 -- Safety data. Used internally by Universal Robots software only; its layout is not documented.
-local L_safety_data = {
+L.safety_data = {
     { k = "bytes", f = F["safety_data.raw"], path = "raw" },
 }
 
 -- Tool communication info.
-local L_tool_comm_info = {
+L.tool_comm_info = {
     { k = "scalar", f = F["tool_comm_info.tool_communication_is_enabled"], n = 1, path = "tool_communication_is_enabled", signed = false },
     { k = "scalar", f = F["tool_comm_info.baud_rate"], n = 4, path = "baud_rate", signed = true },
     { k = "scalar", f = F["tool_comm_info.parity"], n = 4, path = "parity", signed = true },
@@ -999,33 +1026,33 @@ local L_tool_comm_info = {
 }
 
 -- Tool mode info.
-local L_tool_mode_info = {
+L.tool_mode_info = {
     { k = "scalar", f = F["tool_mode_info.output_mode"], n = 1, path = "output_mode", signed = false },
     { k = "scalar", f = F["tool_mode_info.digital_output_mode_output_0"], n = 1, path = "digital_output_mode_output_0", signed = false },
     { k = "scalar", f = F["tool_mode_info.digital_output_mode_output_1"], n = 1, path = "digital_output_mode_output_1", signed = false },
 }
 
 -- Singularity info. Used internally by Universal Robots software only.
-local L_singularity_info = {
+L.singularity_info = {
     { k = "scalar", f = F["singularity_info.singularity_severity"], n = 1, path = "singularity_severity", signed = false },
     { k = "scalar", f = F["singularity_info.singularity_type"], n = 1, path = "singularity_type", signed = false },
 }
 
 -- Header and subtype of every robot message.
-local L_robot_message = {
+L.robot_message = {
     { k = "scalar", f = F["robot_message.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["robot_message.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
-    { k = "scalar", f = F["robot_message.robot_message_type"], n = 1, path = "robot_message_type", signed = false, vs = VS_ROBOT_MESSAGE_TYPE },
+    { k = "scalar", f = F["robot_message.source"], n = 1, path = "source", signed = true, vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["robot_message.robot_message_type"], n = 1, path = "robot_message_type", signed = false, vs = VS.ROBOT_MESSAGE_TYPE },
 }
 
 -- Header of the version message.
-local L_version_header = {
+L.version_header = {
     { k = "scalar", f = F["version.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["version.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["version.source"], n = 1, path = "source", signed = true, vs = VS.MESSAGE_SOURCE },
 }
 
 -- Version message, the first message on both the primary and secondary interfaces.
-local L_version = {
+L.version = {
     { k = "pstring", f = F["version.project_name"], n = 1, signed = true, path = "project_name", show = "" },
     { k = "scalar", f = F["version.major_version"], n = 1, path = "major_version", signed = false, show = " " },
     { k = "scalar", f = F["version.minor_version"], n = 1, path = "minor_version", signed = false, show = "." },
@@ -1035,44 +1062,44 @@ local L_version = {
 }
 
 -- Header of the safety_mode message.
-local L_safety_mode_header = {
+L.safety_mode_header = {
     { k = "scalar", f = F["safety_mode.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["safety_mode.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["safety_mode.source"], n = 1, path = "source", signed = true, vs = VS.MESSAGE_SOURCE },
 }
 
 -- Safety mode message.
-local L_safety_mode = {
+L.safety_mode = {
     { k = "scalar", f = F["safety_mode.robot_message_code"], n = 4, path = "robot_message_code", signed = true },
     { k = "scalar", f = F["safety_mode.robot_message_argument"], n = 4, path = "robot_message_argument", signed = true },
-    { k = "scalar", f = F["safety_mode.safety_mode_type"], n = 1, path = "safety_mode_type", signed = false, vs = VS_SAFETY_MODE, show = "" },
+    { k = "scalar", f = F["safety_mode.safety_mode_type"], n = 1, path = "safety_mode_type", signed = false, vs = VS.SAFETY_MODE, show = "" },
     { k = "scalar", f = F["safety_mode.report_data_type"], n = 4, path = "report_data_type", signed = false, keep = "report_data_type" },
     { k = "switch", sel = "report_data_type", path = "report_data", default = { f = F["safety_mode.report_data"], n = 4 }, cases = { [2] = { f = F["safety_mode.report_data_int32"], n = 4 }, [3] = { f = F["safety_mode.report_data_float32"], n = 4 } } },
 }
 
 -- Header of the robot_comm message.
-local L_robot_comm_header = {
+L.robot_comm_header = {
     { k = "scalar", f = F["robot_comm.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["robot_comm.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["robot_comm.source"], n = 1, path = "source", signed = true, vs = VS.MESSAGE_SOURCE },
 }
 
 -- Robot comm message (an error code report).
-local L_robot_comm = {
+L.robot_comm = {
     { k = "scalar", f = F["robot_comm.robot_message_code"], n = 4, path = "robot_message_code", signed = true },
     { k = "scalar", f = F["robot_comm.robot_message_argument"], n = 4, path = "robot_message_argument", signed = true },
-    { k = "scalar", f = F["robot_comm.robot_message_report_level"], n = 4, path = "robot_message_report_level", signed = true, vs = VS_REPORT_LEVEL, show = "" },
+    { k = "scalar", f = F["robot_comm.robot_message_report_level"], n = 4, path = "robot_message_report_level", signed = true, vs = VS.REPORT_LEVEL, show = "" },
     { k = "scalar", f = F["robot_comm.robot_message_data_type"], n = 4, path = "robot_message_data_type", signed = false },
     { k = "scalar", f = F["robot_comm.robot_message_data"], n = 4, path = "robot_message_data", signed = false },
     { k = "string", f = F["robot_comm.text"], path = "text", show = ": " },
 }
 
 -- Header of the key message.
-local L_key_header = {
+L.key_header = {
     { k = "scalar", f = F["key.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["key.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["key.source"], n = 1, path = "source", signed = true, vs = VS.MESSAGE_SOURCE },
 }
 
 -- Key message.
-local L_key = {
+L.key = {
     { k = "scalar", f = F["key.robot_message_code"], n = 4, path = "robot_message_code", signed = true },
     { k = "scalar", f = F["key.robot_message_argument"], n = 4, path = "robot_message_argument", signed = true },
     { k = "pstring", f = F["key.title"], n = 1, signed = false, path = "title", show = "" },
@@ -1080,33 +1107,33 @@ local L_key = {
 }
 
 -- Header of the program_threads message.
-local L_program_threads_header = {
+L.program_threads_header = {
     { k = "scalar", f = F["program_threads.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["program_threads.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["program_threads.source"], n = 1, path = "source", signed = true, vs = VS.MESSAGE_SOURCE },
 }
 
 -- One entry of threads.
-local L_program_threads_program_thread = {
+L.program_threads_program_thread = {
     { k = "scalar", f = F["program_threads.label_id"], n = 4, path = "label_id", signed = true },
     { k = "pstring", f = F["program_threads.label_name"], n = 4, signed = true, path = "label_name" },
     { k = "pstring", f = F["program_threads.thread_name"], n = 4, signed = true, path = "thread_name" },
 }
 
 -- Program threads message, one entry per running program thread.
-local L_program_threads = {
-    { k = "group", f = F["program_threads.threads"], label = "Thread", count = nil, size = nil, item = L_program_threads_program_thread, path = "threads" },
+L.program_threads = {
+    { k = "group", f = F["program_threads.threads"], label = "Thread", count = nil, size = nil, item = L.program_threads_program_thread, path = "threads" },
 }
 
 -- Header of the popup message.
-local L_popup_header = {
+L.popup_header = {
     { k = "scalar", f = F["popup.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["popup.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["popup.source"], n = 1, path = "source", signed = true, vs = VS.MESSAGE_SOURCE },
 }
 
 -- Popup message.
-local L_popup = {
+L.popup = {
     { k = "scalar", f = F["popup.request_id"], n = 4, path = "request_id", signed = false },
-    { k = "scalar", f = F["popup.requested_type"], n = 4, path = "requested_type", signed = false, vs = VS_REQUESTED_TYPE },
+    { k = "scalar", f = F["popup.requested_type"], n = 4, path = "requested_type", signed = false, vs = VS.REQUESTED_TYPE },
     { k = "scalar", f = F["popup.warning"], n = 1, path = "warning", signed = false },
     { k = "scalar", f = F["popup.error"], n = 1, path = "error", signed = false },
     { k = "scalar", f = F["popup.blocking"], n = 1, path = "blocking", signed = false },
@@ -1115,66 +1142,66 @@ local L_popup = {
 }
 
 -- Header of the request_value message.
-local L_request_value_header = {
+L.request_value_header = {
     { k = "scalar", f = F["request_value.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["request_value.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["request_value.source"], n = 1, path = "source", signed = true, vs = VS.MESSAGE_SOURCE },
 }
 
 -- Request value message.
-local L_request_value = {
+L.request_value = {
     { k = "scalar", f = F["request_value.request_id"], n = 4, path = "request_id", signed = false },
-    { k = "scalar", f = F["request_value.requested_type"], n = 4, path = "requested_type", signed = false, vs = VS_REQUESTED_TYPE, show = "" },
+    { k = "scalar", f = F["request_value.requested_type"], n = 4, path = "requested_type", signed = false, vs = VS.REQUESTED_TYPE, show = "" },
     { k = "string", f = F["request_value.text"], path = "text", show = ": " },
 }
 
 -- Header of the text message.
-local L_text_header = {
+L.text_header = {
     { k = "scalar", f = F["text.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["text.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["text.source"], n = 1, path = "source", signed = true, vs = VS.MESSAGE_SOURCE },
 }
 
 -- Text message.
-local L_text = {
+L.text = {
     { k = "string", f = F["text.text"], path = "text", show = "" },
 }
 
 -- Header of the runtime_exception message.
-local L_runtime_exception_header = {
+L.runtime_exception_header = {
     { k = "scalar", f = F["runtime_exception.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["runtime_exception.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["runtime_exception.source"], n = 1, path = "source", signed = true, vs = VS.MESSAGE_SOURCE },
 }
 
 -- Runtime exception message.
-local L_runtime_exception = {
+L.runtime_exception = {
     { k = "scalar", f = F["runtime_exception.script_line_number"], n = 4, path = "script_line_number", signed = true, show = "line " },
     { k = "scalar", f = F["runtime_exception.script_column_number"], n = 4, path = "script_column_number", signed = true, show = ":" },
     { k = "string", f = F["runtime_exception.text"], path = "text", show = ": " },
 }
 
 -- Header and subtype of every program state.
-local L_program_state = {
+L.program_state = {
     { k = "scalar", f = F["program_state.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["program_state.robot_message_type"], n = 1, path = "robot_message_type", signed = false, vs = VS_PROGRAM_STATE_MESSAGE_TYPE },
+    { k = "scalar", f = F["program_state.robot_message_type"], n = 1, path = "robot_message_type", signed = false, vs = VS.PROGRAM_STATE_MESSAGE_TYPE },
 }
 
 -- Header of the global_variables_setup message.
-local L_global_variables_setup_header = {
+L.global_variables_setup_header = {
     { k = "scalar", f = F["global_variables_setup.timestamp"], n = 8, path = "timestamp", signed = false },
 }
 
 -- Global variables setup message.
-local L_global_variables_setup = {
+L.global_variables_setup = {
     { k = "scalar", f = F["global_variables_setup.start_index"], n = 2, path = "start_index", signed = false },
     { k = "strings", f = F["global_variables_setup.variable_names"], term = 10, path = "variable_names" },
 }
 
 -- Header of the global_variables_update message.
-local L_global_variables_update_header = {
+L.global_variables_update_header = {
     { k = "scalar", f = F["global_variables_update.timestamp"], n = 8, path = "timestamp", signed = false },
 }
 
 -- Global variables update message.
-local L_global_variables_update = {
+L.global_variables_update = {
     { k = "scalar", f = F["global_variables_update.start_index"], n = 2, path = "start_index", signed = false },
     { k = "values", term = 10, path = "variables", vf = { item = F["global_variables_update.variables"], type = F["global_variables_update.type"], code = F["global_variables_update.type_code"], count = F["global_variables_update.length"], rows = F["global_variables_update.rows"], cols = F["global_variables_update.columns"], row = F["global_variables_update.row"], ["bool"] = F["global_variables_update.value_bool"], ["float32"] = F["global_variables_update.value_float32"], ["int32"] = F["global_variables_update.value_int32"], string = F["global_variables_update.value_string"] } },
 }
@@ -1182,79 +1209,169 @@ local L_global_variables_update = {
 -- ---------------------------------------------------------------------------------------------
 -- Messages by type: data for the runtime's message kinds (runtime/messages.lua)
 -- ---------------------------------------------------------------------------------------------
-local MESSAGE = {}
+local MESSAGE, PART = {}, {}
 
--- Sub-packages of the robot state, by package type.
+-- Sub-packages of the robot state, one entry per layout.
+PART.robot_mode_data = { name = "robot_mode_data", label = "Robot mode data", item = F["robot_mode_data"], layout = L.robot_mode_data, summary = true,
+    refs = { F["robot_mode_data.control_mode"], F["robot_mode_data.is_emergency_stopped"], F["robot_mode_data.is_program_paused"], F["robot_mode_data.is_program_running"], F["robot_mode_data.is_protective_stopped"], F["robot_mode_data.is_real_robot_connected"], F["robot_mode_data.is_real_robot_enabled"], F["robot_mode_data.is_robot_power_on"], F["robot_mode_data.reserved"], F["robot_mode_data.robot_mode"], F["robot_mode_data.speed_scaling"], F["robot_mode_data.target_speed_fraction"], F["robot_mode_data.target_speed_fraction_limit"], F["robot_mode_data.timestamp"] } }
+PART.joint_data = { name = "joint_data", label = "Joint data", item = F["joint_data"], layout = L.joint_data, summary = false,
+    refs = { F["joint_data.i_actual"], F["joint_data.joint_mode"], F["joint_data.joints"], F["joint_data.q_actual"], F["joint_data.q_target"], F["joint_data.qd_actual"], F["joint_data.t_micro"], F["joint_data.t_motor"], F["joint_data.v_actual"] } }
+PART.tool_data = { name = "tool_data", label = "Tool data", item = F["tool_data"], layout = L.tool_data, summary = false,
+    refs = { F["tool_data.analog_input0"], F["tool_data.analog_input1"], F["tool_data.analog_input_range0"], F["tool_data.analog_input_range1"], F["tool_data.tool_current"], F["tool_data.tool_mode"], F["tool_data.tool_output_voltage"], F["tool_data.tool_temperature"], F["tool_data.tool_voltage_48v"] } }
+PART.masterboard_data = { name = "masterboard_data", label = "Masterboard data", item = F["masterboard_data"], layout = L.masterboard_data, summary = true,
+    refs = { F["masterboard_data.analog_input0"], F["masterboard_data.analog_input1"], F["masterboard_data.analog_input_range0"], F["masterboard_data.analog_input_range1"], F["masterboard_data.analog_output0"], F["masterboard_data.analog_output1"], F["masterboard_data.analog_output_domain0"], F["masterboard_data.analog_output_domain1"], F["masterboard_data.digital_input_bits"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"], F["masterboard_data.digital_output_bits"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.tool_0"], F["masterboard_data.digital_output_bits.tool_1"], F["masterboard_data.euromap67_interface_installed"], F["masterboard_data.euromap_current"], F["masterboard_data.euromap_input_bits"], F["masterboard_data.euromap_output_bits"], F["masterboard_data.euromap_voltage_24v"], F["masterboard_data.in_reduced_mode"], F["masterboard_data.master_board_temperature"], F["masterboard_data.master_io_current"], F["masterboard_data.operational_mode_selector_input"], F["masterboard_data.reserved_0"], F["masterboard_data.reserved_1"], F["masterboard_data.robot_current"], F["masterboard_data.robot_voltage_48v"], F["masterboard_data.safety_mode"], F["masterboard_data.three_position_enabling_device_input"] } }
+PART.cartesian_info = { name = "cartesian_info", label = "Cartesian info", item = F["cartesian_info"], layout = L.cartesian_info, summary = false,
+    refs = { F["cartesian_info.rx"], F["cartesian_info.ry"], F["cartesian_info.rz"], F["cartesian_info.tcp_offset_rx"], F["cartesian_info.tcp_offset_ry"], F["cartesian_info.tcp_offset_rz"], F["cartesian_info.tcp_offset_x"], F["cartesian_info.tcp_offset_y"], F["cartesian_info.tcp_offset_z"], F["cartesian_info.x"], F["cartesian_info.y"], F["cartesian_info.z"] } }
+PART.kinematics_info = { name = "kinematics_info", label = "Kinematics info", item = F["kinematics_info"], layout = L.kinematics_info, summary = false,
+    refs = { F["kinematics_info.calibration_status"], F["kinematics_info.checksum"], F["kinematics_info.dh_a"], F["kinematics_info.dh_alpha"], F["kinematics_info.dh_d"], F["kinematics_info.dh_theta"] } }
+PART.configuration_data = { name = "configuration_data", label = "Configuration data", item = F["configuration_data"], layout = L.configuration_data, summary = false,
+    refs = { F["configuration_data.a_joint_default"], F["configuration_data.a_tool_default"], F["configuration_data.controller_box_type"], F["configuration_data.dh_a"], F["configuration_data.dh_alpha"], F["configuration_data.dh_d"], F["configuration_data.dh_theta"], F["configuration_data.eq_radius"], F["configuration_data.joint_max_acceleration"], F["configuration_data.joint_max_limit"], F["configuration_data.joint_max_speed"], F["configuration_data.joint_min_limit"], F["configuration_data.joint_motion_limits"], F["configuration_data.joint_position_limits"], F["configuration_data.masterboard_version"], F["configuration_data.robot_sub_type"], F["configuration_data.robot_type"], F["configuration_data.v_joint_default"], F["configuration_data.v_tool_default"] } }
+PART.force_mode_data = { name = "force_mode_data", label = "Force mode data", item = F["force_mode_data"], layout = L.force_mode_data, summary = false,
+    refs = { F["force_mode_data.frx"], F["force_mode_data.fry"], F["force_mode_data.frz"], F["force_mode_data.fx"], F["force_mode_data.fy"], F["force_mode_data.fz"], F["force_mode_data.robot_dexterity"] } }
+PART.additional_info = { name = "additional_info", label = "Additional info", item = F["additional_info"], layout = L.additional_info, summary = false,
+    refs = { F["additional_info.freedrive_button_enabled"], F["additional_info.io_enabled_freedrive"], F["additional_info.reserved"], F["additional_info.tp_button_state"] } }
+PART.calibration_data = { name = "calibration_data", label = "Calibration data", item = F["calibration_data"], layout = L.calibration_data, summary = false,
+    refs = { F["calibration_data.frx"], F["calibration_data.fry"], F["calibration_data.frz"], F["calibration_data.fx"], F["calibration_data.fy"], F["calibration_data.fz"] } }
+PART.safety_data = { name = "safety_data", label = "Safety data", item = F["safety_data"], layout = L.safety_data, summary = false,
+    refs = { F["safety_data.raw"] } }
+PART.tool_comm_info = { name = "tool_comm_info", label = "Tool comm info", item = F["tool_comm_info"], layout = L.tool_comm_info, summary = false,
+    refs = { F["tool_comm_info.baud_rate"], F["tool_comm_info.parity"], F["tool_comm_info.rx_idle_chars"], F["tool_comm_info.stop_bits"], F["tool_comm_info.tool_communication_is_enabled"], F["tool_comm_info.tx_idle_chars"] } }
+PART.tool_mode_info = { name = "tool_mode_info", label = "Tool mode info", item = F["tool_mode_info"], layout = L.tool_mode_info, summary = false,
+    refs = { F["tool_mode_info.digital_output_mode_output_0"], F["tool_mode_info.digital_output_mode_output_1"], F["tool_mode_info.output_mode"] } }
+PART.singularity_info = { name = "singularity_info", label = "Singularity info", item = F["singularity_info"], layout = L.singularity_info, summary = false,
+    refs = { F["singularity_info.singularity_severity"], F["singularity_info.singularity_type"] } }
+
+-- The forms each type code of the robot state takes: chosen by the software version, else by
+-- the body size (runtime/versions.lua); `single` when one form serves every version.
 local ROBOT_STATE_PACKAGES = {
-    [0] = { name = "robot_mode_data", label = "Robot mode data", item = F["robot_mode_data"], layout = L_robot_mode_data, info = { { at = 15, n = 1, vs = VS_ROBOT_MODE }, },
-        refs = { F["robot_mode_data.control_mode"], F["robot_mode_data.is_emergency_stopped"], F["robot_mode_data.is_program_paused"], F["robot_mode_data.is_program_running"], F["robot_mode_data.is_protective_stopped"], F["robot_mode_data.is_real_robot_connected"], F["robot_mode_data.is_real_robot_enabled"], F["robot_mode_data.is_robot_power_on"], F["robot_mode_data.reserved"], F["robot_mode_data.robot_mode"], F["robot_mode_data.speed_scaling"], F["robot_mode_data.target_speed_fraction"], F["robot_mode_data.target_speed_fraction_limit"], F["robot_mode_data.timestamp"] } },
-    [1] = { name = "joint_data", label = "Joint data", item = F["joint_data"], layout = L_joint_data,
-        refs = { F["joint_data.i_actual"], F["joint_data.joint_mode"], F["joint_data.joints"], F["joint_data.q_actual"], F["joint_data.q_target"], F["joint_data.qd_actual"], F["joint_data.t_micro"], F["joint_data.t_motor"], F["joint_data.v_actual"] } },
-    [2] = { name = "tool_data", label = "Tool data", item = F["tool_data"], layout = L_tool_data,
-        refs = { F["tool_data.analog_input0"], F["tool_data.analog_input1"], F["tool_data.analog_input_range0"], F["tool_data.analog_input_range1"], F["tool_data.tool_current"], F["tool_data.tool_mode"], F["tool_data.tool_output_voltage"], F["tool_data.tool_temperature"], F["tool_data.tool_voltage_48v"] } },
-    [3] = { name = "masterboard_data", label = "Masterboard data", item = F["masterboard_data"], layout = L_masterboard_data, info = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, },
-        refs = { F["masterboard_data.analog_input0"], F["masterboard_data.analog_input1"], F["masterboard_data.analog_input_range0"], F["masterboard_data.analog_input_range1"], F["masterboard_data.analog_output0"], F["masterboard_data.analog_output1"], F["masterboard_data.analog_output_domain0"], F["masterboard_data.analog_output_domain1"], F["masterboard_data.digital_input_bits"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"], F["masterboard_data.digital_output_bits"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.tool_0"], F["masterboard_data.digital_output_bits.tool_1"], F["masterboard_data.euromap67_interface_installed"], F["masterboard_data.euromap_current"], F["masterboard_data.euromap_input_bits"], F["masterboard_data.euromap_output_bits"], F["masterboard_data.euromap_voltage_24v"], F["masterboard_data.in_reduced_mode"], F["masterboard_data.master_board_temperature"], F["masterboard_data.master_io_current"], F["masterboard_data.operational_mode_selector_input"], F["masterboard_data.reserved_0"], F["masterboard_data.reserved_1"], F["masterboard_data.robot_current"], F["masterboard_data.robot_voltage_48v"], F["masterboard_data.safety_mode"], F["masterboard_data.three_position_enabling_device_input"] } },
-    [4] = { name = "cartesian_info", label = "Cartesian info", item = F["cartesian_info"], layout = L_cartesian_info,
-        refs = { F["cartesian_info.rx"], F["cartesian_info.ry"], F["cartesian_info.rz"], F["cartesian_info.tcp_offset_rx"], F["cartesian_info.tcp_offset_ry"], F["cartesian_info.tcp_offset_rz"], F["cartesian_info.tcp_offset_x"], F["cartesian_info.tcp_offset_y"], F["cartesian_info.tcp_offset_z"], F["cartesian_info.x"], F["cartesian_info.y"], F["cartesian_info.z"] } },
-    [5] = { name = "kinematics_info", label = "Kinematics info", item = F["kinematics_info"], layout = L_kinematics_info,
-        refs = { F["kinematics_info.calibration_status"], F["kinematics_info.checksum"], F["kinematics_info.dh_a"], F["kinematics_info.dh_alpha"], F["kinematics_info.dh_d"], F["kinematics_info.dh_theta"] } },
-    [6] = { name = "configuration_data", label = "Configuration data", item = F["configuration_data"], layout = L_configuration_data,
-        refs = { F["configuration_data.a_joint_default"], F["configuration_data.a_tool_default"], F["configuration_data.controller_box_type"], F["configuration_data.dh_a"], F["configuration_data.dh_alpha"], F["configuration_data.dh_d"], F["configuration_data.dh_theta"], F["configuration_data.eq_radius"], F["configuration_data.joint_max_acceleration"], F["configuration_data.joint_max_limit"], F["configuration_data.joint_max_speed"], F["configuration_data.joint_min_limit"], F["configuration_data.joint_motion_limits"], F["configuration_data.joint_position_limits"], F["configuration_data.masterboard_version"], F["configuration_data.robot_sub_type"], F["configuration_data.robot_type"], F["configuration_data.v_joint_default"], F["configuration_data.v_tool_default"] } },
-    [7] = { name = "force_mode_data", label = "Force mode data", item = F["force_mode_data"], layout = L_force_mode_data,
-        refs = { F["force_mode_data.frx"], F["force_mode_data.fry"], F["force_mode_data.frz"], F["force_mode_data.fx"], F["force_mode_data.fy"], F["force_mode_data.fz"], F["force_mode_data.robot_dexterity"] } },
-    [8] = { name = "additional_info", label = "Additional info", item = F["additional_info"], layout = L_additional_info,
-        refs = { F["additional_info.freedrive_button_enabled"], F["additional_info.io_enabled_freedrive"], F["additional_info.reserved"], F["additional_info.tp_button_state"] } },
-    [9] = { name = "calibration_data", label = "Calibration data", item = F["calibration_data"], layout = L_calibration_data,
-        refs = { F["calibration_data.frx"], F["calibration_data.fry"], F["calibration_data.frz"], F["calibration_data.fx"], F["calibration_data.fy"], F["calibration_data.fz"] } },
-    [10] = { name = "safety_data", label = "Safety data", item = F["safety_data"], layout = L_safety_data,
-        refs = { F["safety_data.raw"] } },
-    [11] = { name = "tool_comm_info", label = "Tool comm info", item = F["tool_comm_info"], layout = L_tool_comm_info,
-        refs = { F["tool_comm_info.baud_rate"], F["tool_comm_info.parity"], F["tool_comm_info.rx_idle_chars"], F["tool_comm_info.stop_bits"], F["tool_comm_info.tool_communication_is_enabled"], F["tool_comm_info.tx_idle_chars"] } },
-    [12] = { name = "tool_mode_info", label = "Tool mode info", item = F["tool_mode_info"], layout = L_tool_mode_info,
-        refs = { F["tool_mode_info.digital_output_mode_output_0"], F["tool_mode_info.digital_output_mode_output_1"], F["tool_mode_info.output_mode"] } },
-    [13] = { name = "singularity_info", label = "Singularity info", item = F["singularity_info"], layout = L_singularity_info,
-        refs = { F["singularity_info.singularity_severity"], F["singularity_info.singularity_type"] } },
+    [0] = { single = true, summary = true,
+        { of = PART.robot_mode_data, ranges = { { low = nil, high = nil } }, sizes = { [42] = true }, min = 42, rep = 5009000, versions = "all versions" },
+    },
+    [1] = { single = true, summary = false,
+        { of = PART.joint_data, ranges = { { low = nil, high = nil } }, sizes = { [246] = true }, min = 246, rep = 5009000, versions = "all versions" },
+    },
+    [2] = { single = true, summary = false,
+        { of = PART.tool_data, ranges = { { low = nil, high = nil } }, sizes = { [32] = true }, min = 32, rep = 5009000, versions = "all versions" },
+    },
+    [3] = { single = true, summary = true,
+        { of = PART.masterboard_data, ranges = { { low = nil, high = nil } }, sizes = { [70] = true, [86] = true }, min = 70, rep = 5009000, versions = "all versions" },
+    },
+    [4] = { single = true, summary = false,
+        { of = PART.cartesian_info, ranges = { { low = nil, high = nil } }, sizes = { [96] = true }, min = 96, rep = 5009000, versions = "all versions" },
+    },
+    [5] = { single = true, summary = false,
+        { of = PART.kinematics_info, ranges = { { low = nil, high = nil } }, sizes = { [220] = true }, min = 220, rep = 5009000, versions = "all versions" },
+    },
+    [6] = { single = true, summary = false,
+        { of = PART.configuration_data, ranges = { { low = nil, high = nil } }, sizes = { [440] = true }, min = 440, rep = 5009000, versions = "all versions" },
+    },
+    [7] = { single = true, summary = false,
+        { of = PART.force_mode_data, ranges = { { low = nil, high = nil } }, sizes = { [56] = true }, min = 56, rep = 5009000, versions = "all versions" },
+    },
+    [8] = { single = true, summary = false,
+        { of = PART.additional_info, ranges = { { low = nil, high = nil } }, sizes = { [4] = true }, min = 4, rep = 5009000, versions = "all versions" },
+    },
+    [9] = { single = true, summary = false,
+        { of = PART.calibration_data, ranges = { { low = nil, high = nil } }, sizes = { [48] = true }, min = 48, rep = 5009000, versions = "all versions" },
+    },
+    [10] = { single = true, summary = false,
+        { of = PART.safety_data, ranges = { { low = nil, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+    },
+    [11] = { single = true, summary = false,
+        { of = PART.tool_comm_info, ranges = { { low = nil, high = nil } }, sizes = { [21] = true }, min = 21, rep = 5009000, versions = "all versions" },
+    },
+    [12] = { single = true, summary = false,
+        { of = PART.tool_mode_info, ranges = { { low = nil, high = nil } }, sizes = { [3] = true }, min = 3, rep = 5009000, versions = "all versions" },
+    },
+    [13] = { single = true, summary = false,
+        { of = PART.singularity_info, ranges = { { low = nil, high = nil } }, sizes = { [2] = true }, min = 2, rep = 5009000, versions = "all versions" },
+    },
 }
+
 
 -- Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in any order, each framed by its own length.
 MESSAGE[16] = {
-    kind = "packages", label = "Robot state", packages = ROBOT_STATE_PACKAGES, types = VS_PACKAGE_TYPE,
-    length = F["package.length"], type = F["package.type"],
+    kind = "packages", label = "Robot state", packages = ROBOT_STATE_PACKAGES, types = VS.PACKAGE_TYPE, type_tables = nil,
+    length = F["package.length"], type = F["package.type"], needs_version = true,
 }
 
--- Subtypes of the robot message, by subtype byte.
+-- Subtypes of the robot message, one entry per layout.
+PART.version = { name = "version", label = "Version", item = F["version"], header = L.version_header, layout = L.version, needs_version = false }
+PART.safety_mode = { name = "safety_mode", label = "Safety mode", item = F["safety_mode"], header = L.safety_mode_header, layout = L.safety_mode, needs_version = false }
+PART.robot_comm = { name = "robot_comm", label = "Robot comm", item = F["robot_comm"], header = L.robot_comm_header, layout = L.robot_comm, needs_version = false }
+PART.key = { name = "key", label = "Key", item = F["key"], header = L.key_header, layout = L.key, needs_version = false }
+PART.program_threads = { name = "program_threads", label = "Program threads", item = F["program_threads"], header = L.program_threads_header, layout = L.program_threads, needs_version = false }
+PART.popup = { name = "popup", label = "Popup", item = F["popup"], header = L.popup_header, layout = L.popup, needs_version = false }
+PART.request_value = { name = "request_value", label = "Request value", item = F["request_value"], header = L.request_value_header, layout = L.request_value, needs_version = false }
+PART.text = { name = "text", label = "Text", item = F["text"], header = L.text_header, layout = L.text, needs_version = false }
+PART.runtime_exception = { name = "runtime_exception", label = "Runtime exception", item = F["runtime_exception"], header = L.runtime_exception_header, layout = L.runtime_exception, needs_version = false }
+
+-- The forms each type code of the robot message takes: chosen by the software version, else by
+-- the body size (runtime/versions.lua); `single` when one form serves every version.
 local ROBOT_MESSAGE_SUBTYPES = {
-    [3] = { name = "version", label = "Version", item = F["version"], header = L_version_header, layout = L_version, needs_version = false },
-    [5] = { name = "safety_mode", label = "Safety mode", item = F["safety_mode"], header = L_safety_mode_header, layout = L_safety_mode, needs_version = false },
-    [6] = { name = "robot_comm", label = "Robot comm", item = F["robot_comm"], header = L_robot_comm_header, layout = L_robot_comm, needs_version = false },
-    [7] = { name = "key", label = "Key", item = F["key"], header = L_key_header, layout = L_key, needs_version = false },
-    [14] = { name = "program_threads", label = "Program threads", item = F["program_threads"], header = L_program_threads_header, layout = L_program_threads, needs_version = false },
-    [2] = { name = "popup", label = "Popup", item = F["popup"], header = L_popup_header, layout = L_popup, needs_version = false },
-    [9] = { name = "request_value", label = "Request value", item = F["request_value"], header = L_request_value_header, layout = L_request_value, needs_version = false },
-    [0] = { name = "text", label = "Text", item = F["text"], header = L_text_header, layout = L_text, needs_version = false },
-    [10] = { name = "runtime_exception", label = "Runtime exception", item = F["runtime_exception"], header = L_runtime_exception_header, layout = L_runtime_exception, needs_version = false },
+    [0] = { single = true,
+        { of = PART.text, ranges = { { low = nil, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+    },
+    [2] = { single = true,
+        { of = PART.popup, ranges = { { low = nil, high = nil } }, sizes = nil, min = 12, rep = 5009000, versions = "all versions" },
+    },
+    [3] = { single = true,
+        { of = PART.version, ranges = { { low = nil, high = nil } }, sizes = nil, min = 11, rep = 5009000, versions = "all versions" },
+    },
+    [5] = { single = true,
+        { of = PART.safety_mode, ranges = { { low = nil, high = nil } }, sizes = { [17] = true }, min = 17, rep = 5009000, versions = "all versions" },
+    },
+    [6] = { single = true,
+        { of = PART.robot_comm, ranges = { { low = nil, high = nil } }, sizes = nil, min = 20, rep = 5009000, versions = "all versions" },
+    },
+    [7] = { single = true,
+        { of = PART.key, ranges = { { low = nil, high = nil } }, sizes = nil, min = 9, rep = 5009000, versions = "all versions" },
+    },
+    [9] = { single = true,
+        { of = PART.request_value, ranges = { { low = nil, high = nil } }, sizes = nil, min = 8, rep = 5009000, versions = "all versions" },
+    },
+    [10] = { single = true,
+        { of = PART.runtime_exception, ranges = { { low = nil, high = nil } }, sizes = nil, min = 8, rep = 5009000, versions = "all versions" },
+    },
+    [14] = { single = true,
+        { of = PART.program_threads, ranges = { { low = nil, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+    },
 }
+
 
 -- Robot message. The version message goes to every client, the others to primary clients only.
 MESSAGE[20] = {
-    kind = "subtypes", label = "Robot message", body_offset = 15, header = L_robot_message,
-    subtype_field = F["robot_message.robot_message_type"], subtype_names = VS_ROBOT_MESSAGE_TYPE, subtypes = ROBOT_MESSAGE_SUBTYPES,
+    kind = "subtypes", label = "Robot message", body_offset = 15, header = L.robot_message,
+    subtype_field = F["robot_message.robot_message_type"], subtype_label = "robot_message_type", subtype_names = VS.ROBOT_MESSAGE_TYPE, subtype_tables = nil,
+    subtypes = ROBOT_MESSAGE_SUBTYPES,
 }
 
--- Subtypes of the program state, by subtype byte.
+-- Subtypes of the program state, one entry per layout.
+PART.global_variables_setup = { name = "global_variables_setup", label = "Global variables setup", item = F["global_variables_setup"], header = L.global_variables_setup_header, layout = L.global_variables_setup, needs_version = false }
+PART.global_variables_update = { name = "global_variables_update", label = "Global variables update", item = F["global_variables_update"], header = L.global_variables_update_header, layout = L.global_variables_update, needs_version = true }
+
+-- The forms each type code of the program state takes: chosen by the software version, else by
+-- the body size (runtime/versions.lua); `single` when one form serves every version.
 local PROGRAM_STATE_SUBTYPES = {
-    [0] = { name = "global_variables_setup", label = "Global variables setup", item = F["global_variables_setup"], header = L_global_variables_setup_header, layout = L_global_variables_setup, needs_version = false },
-    [1] = { name = "global_variables_update", label = "Global variables update", item = F["global_variables_update"], header = L_global_variables_update_header, layout = L_global_variables_update, needs_version = true },
+    [0] = { single = true,
+        { of = PART.global_variables_setup, ranges = { { low = nil, high = nil } }, sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
+    },
+    [1] = { single = true,
+        { of = PART.global_variables_update, ranges = { { low = nil, high = nil } }, sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
+    },
 }
+
 
 -- Program-state message, sent to primary clients only. There is NO source byte; the subtype follows the timestamp.
 MESSAGE[25] = {
-    kind = "subtypes", label = "Program state", body_offset = 14, header = L_program_state,
-    subtype_field = F["program_state.robot_message_type"], subtype_names = VS_PROGRAM_STATE_MESSAGE_TYPE, subtypes = PROGRAM_STATE_SUBTYPES,
+    kind = "subtypes", label = "Program state", body_offset = 14, header = L.program_state,
+    subtype_field = F["program_state.robot_message_type"], subtype_label = "robot_message_type", subtype_names = VS.PROGRAM_STATE_MESSAGE_TYPE, subtype_tables = nil,
+    subtypes = PROGRAM_STATE_SUBTYPES,
 }
 
 -- Where the Version message keeps its numbers: the subtype byte, then steps over fixed bytes
--- and length-prefixed texts, then major and minor (one byte each), then `rest` more bytes.
+-- and length-prefixed texts, then major and minor (one byte each), then `rest` more bytes; in
+-- the versions `bugfix` gives, the bugfix number follows minor.
 local VERSION_READER = {
     message = 20, subtype = 3, subtype_offset = 14,
     steps = {
@@ -1279,7 +1396,8 @@ local spec = {
     default_version = "5.9",
     F = F,
     fields = FIELDS,
-    message_types = VS_MESSAGE_TYPE,
+    message_types = VS.MESSAGE_TYPE,
+    message_type_tables = nil,
     known_types = KNOWN_TYPE,
     value_tables = VALUE_TABLES,
     messages = MESSAGE,
@@ -1302,8 +1420,8 @@ local X = {
     raw = ProtoField.bytes("ur.raw", "Raw", base.NONE, "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),
     extra = ProtoField.bytes("ur.extra", "Extra bytes", base.NONE, "Bytes after the known layout of a package or message."),
     skipped = ProtoField.bytes("ur.skipped", "Skipped bytes", base.NONE, "Bytes skipped while looking for the next plausible message header."),
-    version = ProtoField.string("ur.software_version", "Software version", base.ASCII, "The software version whose value-type table decodes this message."),
-    assumed = ProtoField.bool("ur.version_assumed", "Version assumed", base.NONE, nil, nil, "True when no Version message was seen on this stream and the ur.version preference applies."),
+    version = ProtoField.string("ur.software_version", "Software version", base.ASCII, "The software version this message is read with (its layouts, enum names and value types): the stream's Version message, else the ur.version preference, else what the layout sizes show (\"3.2 to 3.4 (from layout sizes)\"), else the default."),
+    assumed = ProtoField.bool("ur.version_assumed", "Version assumed", base.NONE, nil, nil, "True when no Version message was seen on this stream: the version comes from the ur.version preference, the layout sizes or the default."),
     unknown_package = ProtoField.none("ur.unknown_package", "Unknown package", "A sub-package type the spec does not lay out, kept raw."),
     urscript = ProtoField.string("ur.urscript", "URScript", base.UNICODE, "Bytes from the client to the robot: URScript program text."),
 }
@@ -1315,6 +1433,7 @@ local E = {
     extra = ProtoExpert.new("ur.extra_bytes", "Bytes after the known layout", expert.group.PROTOCOL, expert.severity.WARN),
     unknown = ProtoExpert.new("ur.unknown", "Type not laid out by the spec, kept raw", expert.group.UNDECODED, expert.severity.NOTE),
     assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)", expert.group.ASSUMPTION, expert.severity.NOTE),
+    by_length = ProtoExpert.new("ur.layout_by_length", "Layout chosen by its length, not by the software version", expert.group.ASSUMPTION, expert.severity.NOTE),
     internal = ProtoExpert.new("ur.internal_error", "urwire dissector error", expert.group.MALFORMED, expert.severity.ERROR),
 }
 
@@ -1325,7 +1444,7 @@ for _, f in ipairs({ X.raw, X.extra, X.skipped, X.version, X.assumed, X.unknown_
     fields[#fields + 1] = f
 end
 ur.fields = fields
-ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.internal }
+ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.by_length, E.internal }
 
 rt.X, rt.E = X, E
 end)(spec, rt)
@@ -1349,10 +1468,19 @@ local function be_uint(raw, o, n)
     return v
 end
 
+-- 2^(8n - 1) for n = 1..4, made by multiplying so that it stays an integer on Lua 5.3 and 5.4:
+-- be_int then returns integers there (Wireshark's TreeItem:add takes them as they are).
+local HALF = {}
+for n = 1, 4 do
+    local h = 1
+    for _ = 1, 8 * n - 1 do h = h * 2 end
+    HALF[n] = h
+end
+
 -- A two's-complement integer of n bytes at offset o.
 local function be_int(raw, o, n)
     local v = be_uint(raw, o, n)
-    local half = 2 ^ (8 * n - 1)
+    local half = HALF[n] or 2 ^ (8 * n - 1)
     if v >= half then v = v - 2 * half end
     return v
 end
@@ -1379,22 +1507,39 @@ end
 -- =============================================================================================
 do
 (function(...)
--- Software versions as one number, major * 1000 + minor (5.9 is 5009): parsed from the
--- preference's text, shown back as text, tested against a range; the value-type table that
--- a version uses; and the version a Version message announces, read from its raw bytes.
+-- Software versions as one number, (major * 1000 + minor) * 1000 + bugfix (5.9 is 5009000,
+-- 5.25.1 is 5025001; an upper bound written 5.8 is 5008999, any 5.8.x): parsed from the
+-- preference's text, shown back as text, tested against a range. What follows the version: the
+-- value-type table and the names of an enum whose codes depend on it, and the form (layout) of
+-- a package or subtype, chosen by the version or else by the length. And the version a Version
+-- message announces, read from its raw bytes.
 local spec, rt = ...
-local fmt, byte = string.format, string.byte
+local fmt, byte, floor = string.format, string.byte, math.floor
 local be_int, be_uint = rt.be_int, rt.be_uint
 
--- "5.9" (leading spaces and a third part allowed) -> 5009; nil when it is no version.
-local function parse_version(text)
-    local major, minor = string.match(text or "", "^%s*(%d+)%.(%d+)")
-    if not major then return nil end
-    return tonumber(major) * 1000 + tonumber(minor)
+local BUGFIX_ANY = 999   -- a bugfix number that stands for every bugfix release of its minor
+
+local function version_number(major, minor, bugfix)
+    if bugfix > BUGFIX_ANY then bugfix = BUGFIX_ANY end
+    if bugfix < 0 then bugfix = 0 end
+    return (major * 1000 + minor) * 1000 + bugfix
 end
 
+-- "5.9" -> 5009000, "5.25.1" -> 5025001 (leading spaces allowed); nil when it is no version.
+local function parse_version(text)
+    local major, minor, rest = string.match(text or "", "^%s*(%d+)%.(%d+)(.*)$")
+    if not major then return nil end
+    local bugfix = string.match(rest, "^%.(%d+)") or "0"
+    return version_number(tonumber(major), tonumber(minor), tonumber(bugfix))
+end
+
+-- 5009000 -> "5.9", 5025001 -> "5.25.1", 5008999 (any 5.8.x) -> "5.8".
 local function version_text(v)
-    return fmt("%d.%d", math.floor(v / 1000), v % 1000)
+    local bugfix = v % 1000
+    local minor = floor(v / 1000) % 1000
+    local major = floor(v / 1000000)
+    if bugfix == 0 or bugfix == BUGFIX_ANY then return fmt("%d.%d", major, minor) end
+    return fmt("%d.%d.%d", major, minor, bugfix)
 end
 
 -- True when v is inside the inclusive range; a nil bound is open.
@@ -1402,17 +1547,88 @@ local function version_in(v, low, high)
     return (low == nil or v >= low) and (high == nil or v <= high)
 end
 
--- The value-type codes of version v: the first table whose range holds it, else the last.
-local function value_table(tables, v)
-    for _, t in ipairs(tables) do
-        if version_in(v, t.low, t.high) then return t.kinds end
+-- The entry of a list of { low, high, ... } tables that holds version v, else the last.
+local function in_force(tables, v)
+    for i = 1, #tables do
+        local t = tables[i]
+        if version_in(v, t.low, t.high) then return t end
     end
-    return tables[#tables].kinds
+    return tables[#tables]
+end
+
+-- The value-type codes of version v.
+local function value_table(tables, v)
+    return in_force(tables, v).kinds
+end
+
+-- The names of an enum whose codes depend on the version ({ newest = <value string>,
+-- { low, high, names }, ... }) for version v.
+local function enum_names(tables, v)
+    for i = 1, #tables do
+        local t = tables[i]
+        if version_in(v, t.low, t.high) then return t.names end
+    end
+    return tables.newest
+end
+
+-- True when some version's table names the code.
+local function named_in_any(tables, code)
+    for i = 1, #tables do
+        if tables[i].names[code] ~= nil then return true end
+    end
+    return false
+end
+
+-- The forms of a package type or subtype: a list of { of = <its layout's data>, ranges = { {
+-- low, high }, ... } (the versions that send it), sizes = { [body size] = true } or nil when
+-- open-ended (then at least min), rep = the version a stream is taken to run when this form is
+-- recognised by its length alone, versions = those versions as text }; `single` when one form
+-- serves every version.
+local function sent_by(form, v)
+    local ranges = form.ranges
+    for i = 1, #ranges do
+        local r = ranges[i]
+        if version_in(v, r.low, r.high) then return true end
+    end
+    return false
+end
+
+local function fits(form, size)
+    if form.sizes then return form.sizes[size] == true end
+    return size >= form.min
+end
+
+-- The form of a body of `size` bytes for version v, the version to read it with, and whether
+-- the length chose it: the version's form when it fits; else the one form that fits; else the
+-- version's form (or the newest), whose short or extra bytes are then reported.
+local function choose(forms, size, v)
+    if forms.single then return forms[1], v, false end
+    local mine
+    for i = 1, #forms do
+        if sent_by(forms[i], v) then mine = forms[i]; break end
+    end
+    if mine and fits(mine, size) then return mine, v, false end
+    local found, count = nil, 0
+    for i = 1, #forms do
+        if fits(forms[i], size) then found, count = forms[i], count + 1 end
+    end
+    if count == 1 then return found, found.rep, true end
+    return mine or forms[#forms], v, false
+end
+
+-- choose() for the message being dissected (st): when the stream's version is not known (no
+-- Version message, no preference), a form chosen by length sets it for the rest of the message
+-- (st.version), and says so (st.implied: the form's versions).
+local function pick(forms, size, st)
+    local form, use, by_length = choose(forms, size, st.version)
+    if by_length and not st.known then st.version, st.implied = use, form.versions end
+    return form, use, by_length
 end
 
 -- The version a Version message from o to e announces, or nil when it is not one or is
--- malformed. r (spec.version_reader) says where its numbers are: the subtype byte, then
--- steps over fixed bytes and length-prefixed texts, then the major and minor bytes.
+-- malformed. r (spec.version_reader) says where its numbers are: the subtype byte, then steps
+-- over fixed bytes and length-prefixed texts, then the major and minor bytes, then (in the
+-- versions r.bugfix names) the bugfix number.
 local function announced_version(raw, o, e, r)
     if e - o <= r.subtype_offset or byte(raw, o + r.subtype_offset + 1) ~= r.subtype then return nil end
     local p = o
@@ -1428,12 +1644,21 @@ local function announced_version(raw, o, e, r)
     end
     p = p + r.tail
     if p + 2 + r.rest > e then return nil end
-    return byte(raw, p + 1) * 1000 + byte(raw, p + 2)
+    local major, minor = byte(raw, p + 1), byte(raw, p + 2)
+    local v = version_number(major, minor, 0)
+    local b = r.bugfix
+    if b and version_in(v, b.low, b.high) and p + 2 + b.n <= e then
+        local bugfix
+        if b.signed then bugfix = be_int(raw, p + 2, b.n) else bugfix = be_uint(raw, p + 2, b.n) end
+        v = version_number(major, minor, bugfix)
+    end
+    return v
 end
 
-rt.parse_version, rt.version_text, rt.version_in = parse_version, version_text, version_in
-rt.value_table, rt.announced_version = value_table, announced_version
--- The version assumed when neither a Version message nor the preference gives one.
+rt.version_number, rt.parse_version, rt.version_text, rt.version_in = version_number, parse_version, version_text, version_in
+rt.value_table, rt.enum_names, rt.named_in_any = value_table, enum_names, named_in_any
+rt.choose, rt.pick, rt.announced_version = choose, pick, announced_version
+-- The version assumed when neither a Version message, the preference nor the layout sizes give one.
 rt.default_version = parse_version(spec.default_version)
 end)(spec, rt)
 end
@@ -1449,10 +1674,13 @@ do
 -- error offsets) and its software version. Offsets are tvb offsets; o is where a field starts
 -- and e where the layout ends. Every KIND function returns the offset after the field, or nil
 -- and the canonical error text. values.lua adds KIND.values.
+-- A scalar descriptor may carry: `value` (its wire type is narrower than its field's, which
+-- another version's entry of the same name gives: the number is added explicitly; `float` when
+-- it is a float), `tables` and `label` (its enum's names depend on the version).
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
-local version_in = rt.version_in
+local version_in, enum_names = rt.version_in, rt.enum_names
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
@@ -1462,13 +1690,40 @@ local function add_text(tree, f, tvb, o, n)
     return tree:add_packet_field(f, tvb(o, n), ENC_UTF_8)
 end
 
+-- The number of a scalar descriptor at o (range is tvb(o, d.n)), in its own wire type.
+local function number_at(range, raw, o, d)
+    if d.float then return range:float() end
+    if d.signed then return be_int(raw, o, d.n) end
+    return be_uint(raw, o, d.n)
+end
+
+-- An enum item whose names depend on the software version v: its field shows the newest
+-- table's name; under another version's table the item says that table's name instead.
+local function rename(item, label, tables, v, value)
+    local names = enum_names(tables, v)
+    if names ~= tables.newest then
+        item:set_text(fmt("%s: %s (%d)", label, names[value] or "Unknown", value))
+    end
+end
+
+-- One scalar into the tree: explicitly when its wire type is narrower than its field's, named
+-- by the version when its enum needs it. Its item, and its number when it was read.
+local function add_scalar(tree, range, o, st, d)
+    if not (d.value or d.tables or d.keep) then return tree:add(d.f, range), nil end
+    local v = number_at(range, st.raw, o, d)
+    local item
+    if d.value then item = tree:add(d.f, range, v) else item = tree:add(d.f, range) end
+    if d.tables then rename(item, d.label, d.tables, st.version, v) end
+    return item, v
+end
+
 local KIND = {}
 
 -- A scalar (integer, float or bool); kept when a later field depends on it.
 function KIND.scalar(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
-    tree:add(d.f, tvb(o, d.n))
-    if d.keep then kept[d.keep] = d.signed and be_int(st.raw, o, d.n) or be_uint(st.raw, o, d.n) end
+    local _, v = add_scalar(tree, tvb(o, d.n), o, st, d)
+    if d.keep then kept[d.keep] = v end
     return o + d.n
 end
 
@@ -1476,7 +1731,8 @@ end
 function KIND.bits(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
     local range = tvb(o, d.n)
-    local item = tree:add(d.f, range)
+    -- The bits read the range itself (a narrower range holds the low bits).
+    local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
     for i = 1, #bits do item:add(bits[i], range) end
     return o + d.n
@@ -1486,7 +1742,7 @@ end
 function KIND.array(tvb, tree, o, e, st, d, pre)
     for i = 0, d.count - 1 do
         if o + d.n > e then return nil, short(st, fmt("%s%s[%d]", pre or "", d.path, i), o, d.n, e) end
-        tree:add(d.f, tvb(o, d.n))
+        add_scalar(tree, tvb(o, d.n), o, st, d)
         o = o + d.n
     end
     return o
@@ -1591,7 +1847,7 @@ walk = function(tvb, tree, o, e, st, layout, pre)
     return o
 end
 
-rt.KIND, rt.walk, rt.add_text = KIND, walk, add_text
+rt.KIND, rt.walk, rt.add_text, rt.rename = KIND, walk, add_text, rename
 end)(spec, rt)
 end
 
@@ -1710,38 +1966,65 @@ end
 do
 (function(...)
 -- The Info column. It is written on every pass, tree or not, so it reads the raw bytes and
--- builds no tree: the descriptors marked `show` of a message layout, and the enums a
--- robot-state package lists in its `info`. One buffer of parts is reused for every message.
+-- builds no tree: the descriptors marked `show` of a layout (a message's, or a robot-state
+-- package's whose layout has a summary). One buffer of parts is reused for every message.
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, be_uint = rt.be_int, rt.be_uint
+local version_in, enum_names, pick = rt.version_in, rt.enum_names, rt.pick
 local PACKAGE_HEADER = spec.package_header_size
 local PACKAGE_LENGTH = spec.package_length_size
 
 local parts = {}
 
--- The fields marked `show` of a layout from o to e, each after its text: "PROGRAM_STARTED:
--- demo". Stops at the first field it cannot step over without walking it.
-local function layout_summary(tvb, raw, o, e, layout)
-    local n = 0
-    for _, d in ipairs(layout) do
+-- How many descriptors of a layout the summary walks: up to its last shown one (a `cond`
+-- holding one counts). Found once per layout and kept.
+local reach = {}
+local function shown_in(layout)
+    for i = 1, #layout do
+        local d = layout[i]
+        if d.show or (d.k == "cond" and shown_in(d.fields)) then return true end
+    end
+    return false
+end
+local function reach_of(layout)
+    local n = reach[layout]
+    if not n then
+        n = 0
+        for i = 1, #layout do
+            local d = layout[i]
+            if d.show or (d.k == "cond" and shown_in(d.fields)) then n = i end
+        end
+        reach[layout] = n
+    end
+    return n
+end
+
+-- The fields marked `show` of descriptors 1..last from o to e, for software version v, each
+-- after its text, into parts from n + 1 ("PROGRAM_STARTED: demo"). Returns the offset after
+-- them and the new n; the offset is nil where it stopped at a field it cannot step over
+-- without walking it, or one that does not fit.
+local function summarise(tvb, raw, o, e, layout, last, v, n)
+    for i = 1, last do
+        local d = layout[i]
         local k, size = d.k, nil
         if k == "scalar" or k == "bits" then size = d.n
         elseif k == "array" then size = d.n * d.count
         elseif k == "group" and d.count and d.size then size = d.count * d.size
         end
         if size then
-            if o + size > e then break end
+            if o + size > e then return nil, n end
             if d.show then
-                local v = d.signed and be_int(raw, o, d.n) or be_uint(raw, o, d.n)
+                local x = d.signed and be_int(raw, o, d.n) or be_uint(raw, o, d.n)
+                local names = d.tables and enum_names(d.tables, v) or d.vs
                 n = n + 1
-                parts[n] = d.show .. (d.vs and (d.vs[v] or fmt("%d", v)) or fmt("%d", v))
+                parts[n] = d.show .. (names and (names[x] or fmt("%d", x)) or fmt("%d", x))
             end
             o = o + size
         elseif k == "pstring" then
-            if o + d.n > e then break end
+            if o + d.n > e then return nil, n end
             local len = d.signed and be_int(raw, o, d.n) or be_uint(raw, o, d.n)
-            if len < 0 or o + d.n + len > e then break end
+            if len < 0 or o + d.n + len > e then return nil, n end
             if d.show then
                 n = n + 1
                 parts[n] = d.show .. tvb(o + d.n, len):string(ENC_UTF_8)
@@ -1755,28 +2038,45 @@ local function layout_summary(tvb, raw, o, e, layout)
                 parts[n] = d.show .. tvb(o, len):string(ENC_UTF_8)
             end
             o = e
+        elseif k == "cond" and not d.present_if then
+            if version_in(v, d.low, d.high) then
+                o, n = summarise(tvb, raw, o, e, d.fields, #d.fields, v, n)
+                if not o then return nil, n end
+            end
         else
-            break
+            return nil, n
         end
     end
+    return o, n
+end
+
+-- The summary of a layout from o to e for version v: its shown fields, each after its text.
+local function layout_summary(tvb, raw, o, e, layout, v)
+    local _, n = summarise(tvb, raw, o, e, layout, reach_of(layout), v, 0)
     return table.concat(parts, "", 1, n)
 end
 
--- The enums that the robot-state packages from p to e list in their `info` ({ at = offset
--- in the package body, n = size, vs = value string }), joined by ", ". Stops at the first
--- package whose length does not fit.
-local function package_summary(raw, p, e, packages)
+-- The summaries of the robot-state packages from p to e, joined by ", ". packages: the forms
+-- of each package type (see versions.lua), `summary` when one of them has a summary. Each
+-- package's form is chosen as the tree chooses it (pick), so that layout sizes set the
+-- version of a stream that has not told it, tree or not. Stops at the first package whose
+-- length does not fit.
+local function package_summary(tvb, raw, p, e, packages, st)
     local n = 0
     while e - p >= PACKAGE_HEADER do
         local size, code = be_int(raw, p, PACKAGE_LENGTH), byte(raw, p + PACKAGE_LENGTH + 1)
         if size < PACKAGE_HEADER or size > e - p then break end
-        local pk = packages[code]
-        if pk and pk.info then
-            for _, i in ipairs(pk.info) do
-                if i.at + i.n <= size - PACKAGE_HEADER then
-                    local v = be_int(raw, p + PACKAGE_HEADER + i.at, i.n)
-                    n = n + 1
-                    parts[n] = i.vs[v] or fmt("%d", v)
+        local forms = packages[code]
+        if forms and (forms.summary or not st.known) then
+            local form, use = pick(forms, size - PACKAGE_HEADER, st)
+            local part = form.of
+            if part.summary then
+                local first = n + 1
+                local _
+                _, n = summarise(tvb, raw, p + PACKAGE_HEADER, p + size, part.layout, reach_of(part.layout), use, n)
+                if n > first then
+                    parts[first] = table.concat(parts, "", first, n)
+                    n = first
                 end
             end
         end
@@ -1823,6 +2123,7 @@ do
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, walk, version_text = rt.be_int, rt.walk, rt.version_text
+local choose, pick, enum_names, named_in_any, rename = rt.choose, rt.pick, rt.enum_names, rt.named_in_any, rt.rename
 local layout_summary, package_summary, labelled = rt.layout_summary, rt.package_summary, rt.labelled
 local X, E = rt.X, rt.E
 local HEADER = spec.header_size
@@ -1837,10 +2138,14 @@ local function referenced(tree, fields)
     return false
 end
 
--- The body of a package or message from body to stop, walked with its layout; what cannot be
--- read is kept raw, what is left over is shown as extra bytes, each with its expert.
-local function walk_body(tvb, item, body, stop, st, layout, name)
+-- The body of a package or message from body to stop, walked with its layout for version v;
+-- what cannot be read is kept raw, what is left over is shown as extra bytes, each with its
+-- expert.
+local function walk_body(tvb, item, body, stop, st, layout, name, v)
+    local keep = st.version
+    st.version = v
     local used, err = walk(tvb, item, body, stop, st, layout, nil)
+    st.version = keep
     if not used then
         item:add(X.raw, tvb(body, stop - body))
         item:add_proto_expert_info(E.malformed, name .. ": " .. err)
@@ -1850,15 +2155,62 @@ local function walk_body(tvb, item, body, stop, st, layout, name)
     end
 end
 
+-- A type or subtype code: its field, and under a version whose table names it otherwise, that
+-- name. tables: the enum's tables by version, nil when its names do not depend on it.
+local function add_code(tree, f, range, label, tables, v, code)
+    local item = tree:add(f, range)
+    if tables then rename(item, label, tables, v, code) end
+    return item
+end
+
+-- The name of a code for version v, and whether the spec names it in any version.
+local function code_name(names, tables, v, code)
+    local name = (tables and enum_names(tables, v) or names)[code]
+    return name, name ~= nil or (tables ~= nil and named_in_any(tables, code))
+end
+
+-- What the message was read with (st.message_version; see framing.lua): the version, and how it
+-- was found when no Version message told it: from layout sizes (the versions of the form that
+-- showed it), from the ur.version preference, or the default; each of these with a note.
+local FROM_SIZES = setmetatable({}, { __index = function(t, versions)
+    local text = versions .. " (from layout sizes)"
+    t[versions] = text
+    return text
+end })
+local function show_version(item, st)
+    local v, implied = st.message_version, st.message_implied
+    if implied then
+        item:add(X.version, FROM_SIZES[implied]):set_generated()
+    else
+        item:add(X.version, version_text(v)):set_generated()
+    end
+    if st.announced then return end
+    item:add(X.assumed, true):set_generated()
+    if implied then
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: software %s, as the layout sizes show", implied))
+    elseif st.from_pref then
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(v)))
+    else
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (the default; preference ur.version)", version_text(v)))
+    end
+end
+
+-- A form chosen by its length, not by the version: a note on its item.
+local function note_length(item, form, length)
+    item:add_proto_expert_info(E.by_length, fmt("laid out as software %s (chosen by length %d)", form.versions, length))
+end
+
 local KINDS = {}
 
--- m: { packages = { [type] = { name, item, layout, info, refs } }, types = value string of
--- package types, length, type = the fields of a package header }.
+-- m: { packages = { [type] = its forms, each of = { name, label, item, layout, summary, refs } },
+-- types = value string of package types (type_tables: by version, when they depend on it),
+-- length, type = the fields of a package header, needs_version }.
 KINDS.packages = {
-    info = function(m, tvb, raw, o, e)
-        return labelled(m.label, package_summary(raw, o + HEADER, e, m.packages))
+    info = function(m, tvb, raw, o, e, st)
+        return labelled(m.label, package_summary(tvb, raw, o + HEADER, e, m.packages, st))
     end,
     tree = function(m, tvb, tree, o, e, st)
+        if m.needs_version then show_version(tree, st) end
         local raw = st.raw
         local p = o + HEADER
         while p < e do
@@ -1878,20 +2230,28 @@ KINDS.packages = {
                 return
             end
             local code = byte(raw, p + PACKAGE_LENGTH + 1)
-            local pk = m.packages[code]
+            local forms = m.packages[code]
+            local form, use, by_length, pk
+            if forms then
+                form, use, by_length = pick(forms, size - PACKAGE_HEADER, st)
+                pk = form.of
+            end
+            local v = use or st.version
             local item = tree:add(pk and pk.item or X.unknown_package, tvb(p, size))
-            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, m.types[code] or "not in the spec")) end
+            local name, named = code_name(m.types, m.type_tables, v, code)
+            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
             item:add(m.length, tvb(p, PACKAGE_LENGTH))
-            item:add(m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH))
+            add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+            if by_length then note_length(item, form, size) end
             local body, stop = p + PACKAGE_HEADER, p + size
             if pk and not st.visible and not referenced(item, pk.refs) then
                 -- No tree shown and no field of this package asked for: skip its fields.
             elseif pk then
-                walk_body(tvb, item, body, stop, st, pk.layout, pk.name)
+                walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
             else
                 item:add(X.raw, tvb(body, stop - body))
                 -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
-                if not m.types[code] then
+                if not named then
                     item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
                 end
             end
@@ -1901,15 +2261,17 @@ KINDS.packages = {
 }
 
 -- m: { header = layout of the header and subtype, body_offset = where the body starts (the
--- subtype is the byte before it), subtype_field, subtype_names = value string of subtypes,
--- subtypes = { [subtype] = { name, label, item, header, layout, needs_version } } }.
+-- subtype is the byte before it), subtype_field, subtype_names = value string of subtypes
+-- (subtype_tables: by version, when they depend on it), subtypes = { [subtype] = its forms,
+-- each of = { name, label, item, header, layout, needs_version } } }.
 KINDS.subtypes = {
-    info = function(m, tvb, raw, o, e)
+    info = function(m, tvb, raw, o, e, st)
         if e - o < m.body_offset then return m.label .. " (too short)" end
         local code = byte(raw, o + m.body_offset)
-        local s = m.subtypes[code]
-        if not s then return fmt("%s subtype %d", m.label, code) end
-        return labelled(s.label, layout_summary(tvb, raw, o + m.body_offset, e, s.layout))
+        local forms = m.subtypes[code]
+        if not forms then return fmt("%s subtype %d", m.label, code) end
+        local form, use = choose(forms, e - o - m.body_offset, st.version)
+        return labelled(form.of.label, layout_summary(tvb, raw, o + m.body_offset, e, form.of.layout, use))
     end,
     tree = function(m, tvb, tree, o, e, st)
         local body = o + m.body_offset
@@ -1920,27 +2282,25 @@ KINDS.subtypes = {
             return
         end
         local code = byte(st.raw, body)
-        local s = m.subtypes[code]
-        if not s then
+        local forms = m.subtypes[code]
+        if not forms then
             walk(tvb, tree, o + HEADER, body, st, m.header, nil)
             if body < e then tree:add(X.raw, tvb(body, e - body)) end
-            if not m.subtype_names[code] then
+            local _, named = code_name(m.subtype_names, m.subtype_tables, st.version, code)
+            if not named then
                 tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
             end
             return
         end
+        local form, use, by_length = choose(forms, e - body, st.version)
+        local s = form.of
         local item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
         -- The header again, under the subtype's own names (ur.key.timestamp).
         walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
-        item:add(m.subtype_field, tvb(body - 1, 1))
-        if s.needs_version then
-            item:add(X.version, version_text(st.version)):set_generated()
-            if st.assumed then
-                item:add(X.assumed, true):set_generated()
-                item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(st.version)))
-            end
-        end
-        walk_body(tvb, item, body, e, st, s.layout, s.name)
+        add_code(item, m.subtype_field, tvb(body - 1, 1), m.subtype_label, m.subtype_tables, use, code)
+        if by_length then note_length(item, form, e - o) end
+        if s.needs_version then show_version(item, st) end
+        walk_body(tvb, item, body, e, st, s.layout, s.name, use)
     end,
 }
 
@@ -1962,8 +2322,9 @@ end
 -- =============================================================================================
 do
 (function(...)
--- State of each TCP stream: the software version its Version message announced (nil: none
--- yet), whether the dissector is resynchronising after a bad header, and the bytes carried over
+-- State of each TCP stream: the software version its Version message announced or its layout
+-- sizes showed (nil: none yet; `implied` names the versions of the form whose size showed it),
+-- whether the dissector is resynchronising after a bad header, and the bytes carried over
 -- from earlier segments while it does. First pass: the state moves along, and a snapshot of it
 -- is kept for each dissector call (frame number and tvb length). Later passes (tshark -2, clicks
 -- in the GUI, in any order) reuse the snapshot, so both agree.
@@ -1975,42 +2336,45 @@ local spec, rt = ...
 
 local CALL_SPAN = 1048576   -- a call's key: frame number * CALL_SPAN + tvb length mod CALL_SPAN
 
-local stream_version, stream_resync, stream_carry = {}, {}, {}
-local snap_version, snap_resync, snap_carry = {}, {}, {}   -- by call (frame, tvb length), and by -frame
+local stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
+-- by call (frame, tvb length), and by -frame
+local snap_version, snap_implied, snap_resync, snap_carry = {}, {}, {}, {}
 
 -- A new capture: forget every stream.
 local function reset()
-    stream_version, stream_resync, stream_carry = {}, {}, {}
-    snap_version, snap_resync, snap_carry = {}, {}, {}
+    stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
+    snap_version, snap_implied, snap_resync, snap_carry = {}, {}, {}, {}
 end
 
--- The state as a call with n bytes starts: version, resync, carry, and the stream's key for
--- stream_save.
+-- The state as a call with n bytes starts: version, implied, resync, carry, and the stream's
+-- key for stream_save.
 local function stream_load(pinfo, n)
     local stream = pinfo.src_port * 65536 + pinfo.dst_port
     local key = pinfo.number * CALL_SPAN + n % CALL_SPAN
     local frame = -pinfo.number
     if pinfo.visited and snap_resync[key] ~= nil then
-        return snap_version[key], snap_resync[key], snap_carry[key], stream
+        return snap_version[key], snap_implied[key], snap_resync[key], snap_carry[key], stream
     elseif pinfo.visited and snap_resync[frame] ~= nil then
         -- Later passes may hand over other bytes than the first (TCP reassembly replays
         -- differently): fall back to the state of the frame's first call.
-        return snap_version[frame], snap_resync[frame], snap_carry[frame], stream
+        return snap_version[frame], snap_implied[frame], snap_resync[frame], snap_carry[frame], stream
     end
-    local version, resync, carry = stream_version[stream], stream_resync[stream] or false, stream_carry[stream]
+    local version, implied = stream_version[stream], stream_implied[stream]
+    local resync, carry = stream_resync[stream] or false, stream_carry[stream]
     if snap_resync[key] == nil then
-        snap_version[key], snap_resync[key], snap_carry[key] = version, resync, carry
+        snap_version[key], snap_implied[key], snap_resync[key], snap_carry[key] = version, implied, resync, carry
     end
     if snap_resync[frame] == nil then
-        snap_version[frame], snap_resync[frame], snap_carry[frame] = version, resync, carry
+        snap_version[frame], snap_implied[frame], snap_resync[frame], snap_carry[frame] = version, implied, resync, carry
     end
-    return version, resync, carry, stream
+    return version, implied, resync, carry, stream
 end
 
 -- The state as a call ends; kept on the first pass only.
-local function stream_save(pinfo, stream, version, resync, carry)
+local function stream_save(pinfo, stream, version, implied, resync, carry)
     if not pinfo.visited then
-        stream_version[stream], stream_resync[stream], stream_carry[stream] = version, resync, carry
+        stream_version[stream], stream_implied[stream] = version, implied
+        stream_resync[stream], stream_carry[stream] = resync, carry
     end
 end
 
@@ -2030,17 +2394,35 @@ do
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
+local enum_names, rename = rt.enum_names, rt.rename
 local stream_load, stream_save = rt.stream_load, rt.stream_save
 local X, E, handlers = rt.X, rt.E, rt.handlers
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
-local KNOWN_TYPE, MESSAGE_TYPES, VERSION = spec.known_types, spec.message_types, spec.version_reader
+local KNOWN_TYPE, VERSION = spec.known_types, spec.version_reader
+local MESSAGE_TYPES, MESSAGE_TYPE_TABLES = spec.message_types, spec.message_type_tables
+local DEFAULT_VERSION = rt.default_version
 
--- The version assumed when no Version message was seen: the ur.version preference.
-local pref_version = rt.default_version
+-- The version the ur.version preference gives until a Version message is seen; nil when the
+-- preference is empty: then the layout sizes tell the version where they can, else the default.
+local pref_version = nil
 local function assume_version(v) pref_version = v end
 
-local st = { raw = "", base = 0, version = pref_version, assumed = true }   -- reused for every message
+-- The message being dissected, reused for every message: its raw bytes and first byte; the
+-- software version it is read with (version: it may move on within a robot state, when layout
+-- sizes tell it), and how that version is known: announced (a Version message), from_pref, or
+-- neither (known is false: then implied, when set, names the versions the layout sizes showed);
+-- message_version and message_implied: the version shown on the message.
+local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false }
+
+-- st as a message starts, from the stream's version (nil: none yet) and how it was found.
+local function begin(version, implied)
+    st.version = version or pref_version or DEFAULT_VERSION
+    st.implied = implied
+    st.announced = version ~= nil and implied == nil
+    st.from_pref = not st.announced and pref_version ~= nil
+    st.known = st.announced or st.from_pref
+end
 
 local function plausible(raw, o, max_length)
     local size = be_int(raw, o, LENGTH)
@@ -2077,24 +2459,40 @@ local function dissect_client(tvb, pinfo, tree)
     return n
 end
 
-local ur_handle = nil
-local cur = { version = nil, first = true, detail = false }   -- the call being dissected
+-- The Info column of a message type the spec names but does not lay out.
+local function unlaid_info(mtype, v)
+    local names = MESSAGE_TYPE_TABLES and enum_names(MESSAGE_TYPE_TABLES, v) or MESSAGE_TYPES
+    return fmt("Type %d (%s)", mtype, names[mtype] or "named in another version")
+end
 
--- One whole message from o to e (its declared length): Info column, version, tree.
+local ur_handle = nil
+-- The call being dissected: the stream's version (nil: none yet) and, when the layout sizes
+-- told it, the versions of the form that did.
+local cur = { version = nil, implied = nil, first = true, detail = false }
+
+-- One whole message from o to e (its declared length): version, Info column, tree.
 local function message(tvb, raw, pinfo, tree, o, e, mtype)
     local h = handlers[mtype]
     if mtype == VERSION.message then
-        cur.version = announced_version(raw, o, e, VERSION) or cur.version
+        local v = announced_version(raw, o, e, VERSION)
+        if v then cur.version, cur.implied = v, nil end
     end
-    set_info(pinfo, cur.first, h and h.info(h.m, tvb, raw, o, e) or fmt("Type %d (%s)", mtype, MESSAGE_TYPES[mtype]))
+    local version, implied = cur.version, cur.implied
+    st.raw, st.base = raw, o
+    begin(version, implied)
+    set_info(pinfo, cur.first, h and h.info(h.m, tvb, raw, o, e, st) or unlaid_info(mtype, st.version))
     cur.first = false
+    -- Layout sizes told the version of a stream that had not: this message and the next ones.
+    if st.implied and not st.known then cur.version, cur.implied = st.version, st.implied end
     if not cur.detail then return end
     local item = tree:add(ur, tvb(o, e - o))
     item:add(F.length, tvb(o, LENGTH))
-    item:add(F.type, tvb(o + LENGTH, HEADER - LENGTH))
-    st.raw, st.base, st.visible = raw, o, tree.visible
-    st.version = cur.version or pref_version
-    st.assumed = cur.version == nil
+    local type_item = item:add(F.type, tvb(o + LENGTH, HEADER - LENGTH))
+    if MESSAGE_TYPE_TABLES then rename(type_item, "Type", MESSAGE_TYPE_TABLES, st.version, mtype) end
+    -- The tree walks the message again from the version it started with.
+    st.message_version, st.message_implied = st.version, st.implied
+    begin(version, implied)
+    st.visible = tree.visible
     if h then
         item:append_text(h.suffix)
         h.tree(h.m, tvb, item, o, e, st)
@@ -2121,7 +2519,7 @@ local function dissect(tvb, pinfo, tree)
 
     -- The stream's state as this call starts.
     local resync, carry, stream
-    cur.version, resync, carry, stream = stream_load(pinfo, n)
+    cur.version, cur.implied, resync, carry, stream = stream_load(pinfo, n)
 
     pinfo.cols.protocol:set("UR")
     -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
@@ -2200,7 +2598,7 @@ local function dissect(tvb, pinfo, tree)
             o = o + size
         end
     end
-    stream_save(pinfo, stream, cur.version, resync, carry)
+    stream_save(pinfo, stream, cur.version, cur.implied, resync, carry)
     return tvb:len()
 end
 
@@ -2223,13 +2621,13 @@ do
 (function(...)
 -- Preferences and registration: the robot-side ports (taken over from MRCPv2, which claims
 -- TCP 30000-30200 in Wireshark 4.0; "Decode As" works on others), the software version assumed
--- until a Version message is seen, and the longest plausible message.
+-- until a Version message is seen (empty: none), and the longest plausible message.
 local spec, rt = ...
 local ur = spec.proto
 local parse_version, assume_version = rt.parse_version, rt.assume_version
 
 ur.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of the primary/secondary interfaces", 65535)
-ur.prefs.version = Pref.string("Software version", spec.default_version, "Controller software version (major.minor) assumed until a Version message is seen on a stream; it chooses the global-variable value-type table")
+ur.prefs.version = Pref.string("Software version", "", "Controller software version (major.minor or major.minor.bugfix, as 5.25.1) assumed until a Version message is seen on a stream: it chooses the layouts, the enum names and the global-variable value types. Empty: the layout sizes tell it where they can, else " .. spec.default_version .. ".")
 ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length, "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
 local tcp_port = DissectorTable.get("tcp.port")
@@ -2242,7 +2640,7 @@ local function register_ports()
 end
 
 function ur.prefs_changed()
-    assume_version(parse_version(ur.prefs.version) or rt.default_version)
+    assume_version(parse_version(ur.prefs.version))
     register_ports()
 end
 

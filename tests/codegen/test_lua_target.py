@@ -25,7 +25,7 @@ def test_an_unknown_descriptor_kind_is_an_error(protocol, monkeypatch):
 
     def descriptor(self, owner, f, doc, path, keep, show):
         step = real(self, owner, f, doc, path, keep, show)
-        return Step("tlv", step.data) if path == "timestamp" else step
+        return Step("tlv", step.data) if path == "tool_temperature" else step
 
     monkeypatch.setattr(lua._Builder, "descriptor", descriptor)
     with pytest.raises(jinja2.UndefinedError, match="tlv"):
@@ -35,10 +35,10 @@ def test_an_unknown_descriptor_kind_is_an_error(protocol, monkeypatch):
 def test_an_unknown_field_shape_is_an_error(protocol, monkeypatch):
     real = lua._Builder.add_field
 
-    def add_field(self, pf):
+    def add_field(self, pf, *where):
         if pf.key == "robot_mode_data.timestamp":
             pf = dataclasses.replace(pf, shape="timestamp")
-        return real(self, pf)
+        return real(self, pf, *where)
 
     monkeypatch.setattr(lua._Builder, "add_field", add_field)
     with pytest.raises(jinja2.UndefinedError, match="timestamp"):
