@@ -288,29 +288,14 @@ class Variant:
         first = self.releases[0][0] if self.releases else 0
         return " or ".join(_range_text(lo, hi, first) for lo, hi in shown)
 
+    @property
+    def bounds(self) -> list[tuple[Optional[int], Optional[int]]]:
+        """`ranges` with None for an open end: for targets that test a bound only when there is one."""
+        return [(lo or None, hi if hi < _TOP else None) for lo, hi in self.ranges]
+
     def fits(self, size: int) -> bool:
         return size in self.sizes if self.sizes is not None else size >= self.min_size
 
-    def offsets_by_size(self) -> dict[int, dict[str, int]]:
-        """For each body size this variant can have (each choice of its flag-conditioned parts),
-        where its fields start: what a reader that does not walk the layout can find."""
-        present = [f for f in self.layout.struct.fields if f.versions.contains(self.rep)]
-        flags = list(dict.fromkeys(f.present_if for f in present if f.present_if))
-        out: dict[int, dict[str, int]] = {}
-        for mask in range(1 << len(flags)):
-            on = {flag for k, flag in enumerate(flags) if mask >> k & 1}
-            at: Optional[int] = 0
-            offsets: dict[str, int] = {}
-            for f in present:
-                if f.present_if and f.present_if not in on:
-                    continue
-                if at is None:
-                    break
-                offsets.setdefault(f.name, at)
-                at = at + f.fixed_size if f.fixed_size is not None else None
-            if at is not None:
-                out.setdefault(at, offsets)
-        return out
 
 
 @dataclass

@@ -1,10 +1,12 @@
 """Lua target: the IR -> plain data -> templates/lua/urwire.lua.j2 + runtime/*.lua, one Wireshark
 dissector in one self-contained file.
 
-Every decision is made here: which ProtoField each field becomes, its abbreviation
-(`ur.<message_or_package>.<field>`, CONTRACT §4), value strings, the field descriptors each
-layout is walked with, the offsets of the Version message's numbers and of the fields the Info
-column shows. The builder hands the template data only (dicts and `Step`s); the template writes
+Every decision is made here: which ProtoField each field becomes (one per name, of the widest
+type among the name's entries in every version), its abbreviation
+(`ur.<message_or_package>.<field>`, CONTRACT §4), value strings (one per version table of an
+enum), the field descriptors each layout is walked with, the forms each type code takes across
+software versions (plan.Variant), where the Version message keeps its numbers, and which fields
+the Info column shows. Versions reach the runtime as ir.version_number integers. The builder hands the template data only (dicts and `Step`s); the template writes
 each descriptor kind and each ProtoField shape with a macro of its own. The code that walks the
 descriptors is hand-written Lua in templates/lua/runtime/, joined after the generated tables.
 """
@@ -16,7 +18,7 @@ from typing import Optional
 from .. import ir, plan
 from ..emit import TEMPLATES, environment, runtime_source
 from ..errors import Problem, SpecError
-from ..naming import wireshark_field, words
+from ..naming import table_suffix, wireshark_field, words
 from ..view import Step
 
 OUT = "lua/urwire.lua"
@@ -67,9 +69,23 @@ def one_line(*texts: str) -> str:
 
 
 def version_number(v: Optional[ir.Version]) -> Optional[int]:
-    """A version as the runtime compares it: major * 1000 + minor."""
-    return None if v is None else v[0] * 1000 + v[1]
+    """A version as the runtime compares it: ir.version_number (5.25.1 is 5025001); None stays nil."""
+    return None if v is None else ir.version_number(v)
 
+
+def holds(wide: ir.Scalar, narrow: ir.Scalar) -> bool:
+    """True when a field of type `wide` can show every value of type `narrow`."""
+    if wide.is_float or narrow.is_float:
+        return wide.is_float and narrow.is_float and narrow.size <= wide.size
+    if wide.is_bool or narrow.is_bool:
+        return wide.is_bool and narrow.is_bool
+    return wide.min <= narrow.min and narrow.max <= wide.max
+
+
+# Descriptor kinds the Info column can step over on its way to a summary field, and the kinds it
+# can show (runtime/info.lua).
+STEPS_OVER = {"scalar", "bits", "array", "pstring", "string"}
+SHOWS = {"scalar", "bits", "pstring", "string"}
 
 @dataclass
 class PField:
@@ -83,16 +99,20 @@ class PField:
     label: str
     desc: str
     base: str = "NONE"         # base.<base>
-    vs: Optional[str] = None   # value-string variable
+    vs: Optional[str] = None   # value string (Lua expression)
     bits: int = 0              # flag: width of the parent integer
     mask: int = 0              # flag: its bit
+    parent: Optional[str] = None   # flag: the key of its integer
 
 
 @dataclass
 class LayoutView:
-    var: str                   # Lua local holding the descriptor list
+    var: str                   # Lua expression holding the descriptor list (L.<name>)
     doc: str
     descriptors: list[Step]
+
+
+SCALAR_SHAPES = {"integer", "float", "bool"}
 
 
 class _Builder:
@@ -101,44 +121,108 @@ class _Builder:
         self.p = protocol_plan.protocol
         self.problems: list[Problem] = []
         self.fields: list[PField] = []
-        self.keys: set[str] = set()
+        self.by_key: dict[str, PField] = {}
         self.layouts: list[LayoutView] = []
-        self.enum_var: dict[str, str] = {}
+        self.names: set[str] = set()          # L.<name> and PART.<name> taken
+        self.enum_var: dict[str, str] = {}    # enum -> its newest value string (VS.<NAME>)
+        self.enum_tables: dict[str, str] = {} # versioned enum -> its names by version (NAMES.<NAME>)
+        # Every scalar entry of a field key (a name may repeat in other versions, with another
+        # wire type): the ProtoField takes the widest; narrower reads add their value explicitly.
+        self.entries: dict[str, list[tuple[ir.Scalar, ir.Where, Optional[ir.Enum]]]] = {}
+        self.reads: list[tuple[dict, str, ir.Scalar]] = []
+        self.wide: dict[str, ir.Scalar] = {}
 
     # ---- fields ----
 
-    def add_field(self, pf: PField) -> str:
-        """Declare a field once (a header layout shared by subtypes names it again); its key."""
-        if pf.key not in self.keys:
-            self.keys.add(pf.key)
+    def add_field(self, pf: PField, where: ir.Where = ir.NOWHERE) -> str:
+        """Declare a field once (a header layout shared by subtypes names it again, a name may
+        repeat in another version's entry); its key."""
+        known = self.by_key.get(pf.key)
+        if known is None:
+            self.by_key[pf.key] = pf
             self.fields.append(pf)
+        elif known.shape != pf.shape and not {known.shape, pf.shape} <= SCALAR_SHAPES:
+            self.problems.append(where.problem(
+                f"lua target: {pf.abbr} would be both a {known.shape} and a {pf.shape} field: "
+                "a Wireshark filter name has one type, give one of them a name of its own"))
+        elif known.shape == "flag" and known.mask != pf.mask:
+            self.problems.append(where.problem(f"lua target: the bit {pf.abbr} stands at two places"))
         return pf.key
 
-    def owned_field(self, owner: str, name: str, shape: str, ctor: str, label: str, desc: str, **more) -> str:
+    def owned_field(self, owner: str, name: str, shape: str, ctor: str, label: str, desc: str,
+                    where: ir.Where = ir.NOWHERE, **more) -> str:
         return self.add_field(PField(f"{owner}.{name}", shape, ctor, wireshark_field(owner, name), label, desc,
-                                     **more))
+                                     **more), where)
 
     def scalar_field(self, owner: str, name: str, s: ir.Scalar, enum: Optional[ir.Enum], doc: str,
-                     label: Optional[str] = None, hex_base: bool = False) -> str:
+                     where: ir.Where = ir.NOWHERE, label: Optional[str] = None, hex_base: bool = False) -> str:
         label = label or name
+        self.entries.setdefault(f"{owner}.{name}", []).append((s, where, enum))
         if s.is_float:
-            return self.owned_field(owner, name, "float", PROTOFIELD[s.name], label, doc)
+            return self.owned_field(owner, name, "float", PROTOFIELD[s.name], label, doc, where)
         if s.is_bool:
-            return self.owned_field(owner, name, "bool", "bool", label, doc)
-        return self.owned_field(owner, name, "integer", PROTOFIELD[s.name], label, doc,
+            return self.owned_field(owner, name, "bool", "bool", label, doc, where)
+        return self.owned_field(owner, name, "integer", PROTOFIELD[s.name], label, doc, where,
                                 base="HEX" if hex_base else "DEC",
                                 vs=self.enum_var[enum.name] if enum is not None else None)
+
+    def read(self, data: dict, key: str, s: ir.Scalar) -> dict:
+        """A descriptor that reads a scalar into field `key`: told after every layout is built
+        whether its wire type is narrower than the field's (settle)."""
+        self.reads.append((data, key, s))
+        data["float"] = s.is_float
+        return data
+
+    def settle(self) -> None:
+        """One ProtoField per key, of the widest type among its entries (CONTRACT §5: a filter
+        name has one type); narrower reads then add their value explicitly."""
+        for key, entries in self.entries.items():
+            scalars = list({s.name: s for s, _, _ in entries}.values())
+            enums = {e.name for _, _, e in entries if e is not None}
+            if len(scalars) == 1 and len(enums) <= 1:
+                continue
+            wide = max(scalars, key=lambda s: s.size)
+            if not all(holds(wide, s) for s in scalars) or len(enums) > 1:
+                types = ", ".join(s.name for s in scalars) + (f" (enums {', '.join(sorted(enums))})" if len(enums) > 1 else "")
+                self.problems.append(entries[-1][1].problem(
+                    f"lua target: the entries of {wireshark_field(*key.split('.', 1))} ({types}) cannot share one "
+                    "Wireshark field: give the older one a name of its own"))
+                continue
+            self.wide[key] = wide
+            pf = self.by_key[key]
+            pf.ctor = PROTOFIELD[wide.name]
+            for flag in self.fields:
+                if flag.parent == key:
+                    flag.bits = wide.bits
+        for data, key, s in self.reads:
+            wide = self.wide.get(key, s)
+            data["value"] = s.name != wide.name
 
     def header_field(self, key: str, label: str, h: ir.HeaderField) -> str:
         """ur.length, ur.type, ur.package.*: outside the owner.field scheme."""
         return self.add_field(PField(key, "integer", PROTOFIELD[h.scalar.name], f"ur.{key}", label, h.doc,
-                                     base="DEC", vs=self.enum_var[h.enum.name] if h.enum is not None else None))
+                                     base="DEC", vs=self.enum_var[h.enum.name] if h.enum is not None else None),
+                              h.where)
 
     def add_item(self, name: str, label: str, doc: str, where: ir.Where) -> str:
         """The subtree field of a package or message: ur.<name>, true when it is present."""
-        if name in self.keys:
+        if name in self.by_key:
             self.problems.append(where.problem(f"lua target: the filter name ur.{name} is taken already"))
-        return self.add_field(PField(name, "none", "none", f"ur.{name}", label, doc))
+        return self.add_field(PField(name, "none", "none", f"ur.{name}", label, doc), where)
+
+    def names_of(self, enum: Optional[ir.Enum], label: str) -> dict:
+        """How a field of this enum is named: by the version's table when its codes depend on it."""
+        if enum is not None and enum.name in self.enum_tables:
+            return dict(tables=self.enum_tables[enum.name], label=label)
+        return dict(tables=None, label=None)
+
+    def unique(self, table: str, name: str) -> str:
+        """A Lua name in table L or PART, once (two group items may share a name in other versions)."""
+        var, n = f"{table}.{name}", 2
+        while var in self.names:
+            var, n = f"{table}.{name}_{n}", n + 1
+        self.names.add(var)
+        return var
 
     # ---- descriptors: what the runtime walks, one per field ----
 
@@ -162,44 +246,50 @@ class _Builder:
         """One field's descriptor; `show` is the text the Info column puts before its value."""
         common = dict(path=path, show=show)
         if isinstance(f, ir.ScalarField):
-            key = self.scalar_field(owner, f.name, f.scalar, f.enum, doc, hex_base=bool(f.bits) and not f.scalar.signed)
-            data = dict(common, field=key, size=f.scalar.size, signed=f.scalar.signed and not f.scalar.is_float,
-                        vs=self.enum_var[f.enum.name] if f.enum is not None else None,
-                        keep=f.name if f.name in keep else None)
+            key = self.scalar_field(owner, f.name, f.scalar, f.enum, doc, f.where,
+                                    hex_base=bool(f.bits) and not f.scalar.signed)
+            data = self.read(dict(common, field=key, size=f.scalar.size, signed=f.scalar.signed and not f.scalar.is_float,
+                                  vs=self.enum_var[f.enum.name] if f.enum is not None else None,
+                                  keep=f.name if f.name in keep else None, **self.names_of(f.enum, f.name)),
+                             key, f.scalar)
             if not f.bits:
                 return Step("scalar", data)
-            bits = [self.owned_field(owner, f"{f.name}.{b}", "flag", "bool", b, f"Bit {i} of {f.name}.",
-                                     bits=f.scalar.bits, mask=1 << i)
+            bits = [self.owned_field(owner, f"{f.name}.{b}", "flag", "bool", b, f"Bit {i} of {f.name}.", f.where,
+                                     bits=f.scalar.bits, mask=1 << i, parent=key)
                     for i, b in enumerate(f.bits)]
-            return Step("bits", dict(data, bits=bits))
+            data["bits"] = bits
+            return Step("bits", data)
         if isinstance(f, ir.ArrayField):
-            key = self.scalar_field(owner, f.name, f.scalar, f.enum, doc)
-            return Step("array", dict(common, field=key, size=f.scalar.size, count=f.count))
+            key = self.scalar_field(owner, f.name, f.scalar, f.enum, doc, f.where)
+            return Step("array", self.read(dict(common, field=key, size=f.scalar.size, count=f.count,
+                                                signed=f.scalar.signed and not f.scalar.is_float,
+                                                **self.names_of(f.enum, f.name)), key, f.scalar))
         if isinstance(f, ir.GroupField):
-            key = self.owned_field(owner, f.name, "none", "none", f.item_label, doc)
+            key = self.owned_field(owner, f.name, "none", "none", f.item_label, doc, f.where)
             item = self.plan.item_of(f)
-            item_var = f"L_{owner}_{f.item.name}"
+            item_var = self.unique("L", f"{owner}_{f.item.name}")
             self.layouts.append(LayoutView(item_var, one_line(f.doc) or f"One entry of {f.name}.",
                                            self.descriptors(owner, item.layout.steps, keep)))
             return Step("group", dict(common, field=key, label=f.item_label, count=f.count,
                                       size=item.layout.fixed_size if item.fixed else None, item=item_var))
         if isinstance(f, ir.StringField):
-            key = self.owned_field(owner, f.name, "text", "string", f.name, doc, base="UNICODE")
+            key = self.owned_field(owner, f.name, "text", "string", f.name, doc, f.where, base="UNICODE")
             if f.length is None:
                 return Step("string", dict(common, field=key))
             return Step("pstring", dict(common, field=key, size=f.length.size, signed=f.length.signed))
         if isinstance(f, ir.StringListField):
-            key = self.owned_field(owner, f.name, "text", "string", f.name, doc, base="UNICODE")
+            key = self.owned_field(owner, f.name, "text", "string", f.name, doc, f.where, base="UNICODE")
             return Step("strings", dict(common, field=key, term=f.terminator))
         if isinstance(f, ir.BytesField):
-            key = self.owned_field(owner, f.name, "bytes", "bytes", f.name, doc)
+            key = self.owned_field(owner, f.name, "bytes", "bytes", f.name, doc, f.where)
             return Step("bytes", dict(common, field=key))
         if isinstance(f, ir.SwitchField):
-            default = dict(field=self.scalar_field(owner, f.name, f.default, None, doc), size=f.default.size)
+            default = dict(field=self.scalar_field(owner, f.name, f.default, None, doc, f.where), size=f.default.size)
             cases = []
             for code, s in sorted(f.cases.items()):
                 key = self.scalar_field(owner, f"{f.name}_{s.name}", s, None,
-                                        one_line(doc, f"(as {s.name}: {f.selector.name} is {code})"), label=f.name)
+                                        one_line(doc, f"(as {s.name}: {f.selector.name} is {code})"), f.where,
+                                        label=f.name)
                 cases.append(dict(code=code, field=key, size=s.size))
             return Step("switch", dict(common, sel=f.selector.name, default=default, cases=cases))
         if isinstance(f, ir.ValueListField):
@@ -210,7 +300,7 @@ class _Builder:
     def value_fields(self, owner: str, f: ir.ValueListField) -> dict:
         """The fields of typed values: one item per value, its type, and one field per data kind."""
         def add(name: str, shape: str, ctor: str, label: str, desc: str, **more) -> str:
-            return self.owned_field(owner, name, shape, ctor, label, desc, **more)
+            return self.owned_field(owner, name, shape, ctor, label, desc, f.where, **more)
 
         roles = [
             ("item", add(f.name, "none", "none", f.name, one_line(f.doc))),
@@ -226,7 +316,7 @@ class _Builder:
         kinds = []
         for kind in sorted({lay.item.name for lay in self.p.value_layouts.values() if lay.item is not None}):
             kinds.append((kind, self.scalar_field(owner, f"value_{kind}", ir.SCALARS[kind], None,
-                                                  f"A value of type {kind}.", label="value")))
+                                                  f"A value of type {kind}.", f.where, label="value")))
         string = add("value_string", "text", "string", "value", "A string value.", base="UNICODE")
         return dict(roles=roles, kinds=kinds, string=string)
 
@@ -241,81 +331,127 @@ class _Builder:
                 out.add(f.selector.name)
         return out
 
-    def layout(self, owner: str, layout: plan.LayoutPlan, doc: str, show: Optional[dict] = None) -> str:
-        var = f"L_{owner}"
-        self.layouts.append(LayoutView(var, doc, self.descriptors(owner, layout.steps, self.keep_names(layout.struct),
-                                                                  show=show)))
-        return var
+    def layout(self, owner: str, layout: plan.LayoutPlan, doc: str, show: dict) -> LayoutView:
+        view = LayoutView(self.unique("L", owner), doc,
+                          self.descriptors(owner, layout.steps, self.keep_names(layout.struct), show=show))
+        self.layouts.append(view)
+        return view
 
-    def header_layout(self, var: str, owner: str, slots: list[plan.HeaderSlot], doc: str) -> str:
+    def header_layout(self, name: str, owner: str, slots: list[plan.HeaderSlot], doc: str) -> str:
         """A message header (a fixed run of scalars), its fields named under `owner`."""
+        var = self.unique("L", name)
         self.layouts.append(LayoutView(var, doc, [self.descriptor(owner, s.field, one_line(s.field.doc, s.field.field_note),
                                                                   s.field.name, set(), None) for s in slots]))
         return var
 
-    def package_info(self, variants: list[plan.Variant]) -> list[dict]:
-        """The spec's summary of a robot-state package: per body size (each form of the code),
-        its enum fields and where they start, so the Info column reads them without a walk."""
+    def check_summary(self, layout: ir.Layout, descriptors: list[Step], show: dict) -> None:
+        """The Info column reads a summary from the raw bytes (runtime/info.lua): each field must
+        be one it can show, after fields it can step over (fixed ones, texts, version-gated parts)."""
+        missing = set(show)
+
+        def check(steps: list[Step]) -> bool:
+            """False where the Info column stops: at a field it cannot step over, or when every
+            summary field is found."""
+            for d in steps:
+                if d.kind == "cond" and d.present_if is None:
+                    if not check(d.fields):
+                        return False
+                    continue
+                if d.path in missing:
+                    is_float = d.kind in ("scalar", "bits") and d.float
+                    if d.kind not in SHOWS or is_float:
+                        self.problems.append(layout.where.problem(
+                            f"lua target: the summary cannot show '{d.path}', a {'float' if is_float else d.kind} field"))
+                    missing.discard(d.path)
+                if not missing:
+                    return False
+                if d.kind not in STEPS_OVER and not (d.kind == "group" and d.count is not None and d.size is not None):
+                    return False
+            return True
+
+        check(descriptors)
+        for name in sorted(missing):
+            self.problems.append(layout.where.problem(
+                f"lua target: the summary's field '{name}' comes after a field the Info column cannot step over"))
+
+    def shown_layout(self, lay: ir.Layout, choice_plan: plan.LayoutPlan) -> tuple[str, bool]:
+        """The descriptor list of a package or subtype, its summary fields marked `show` with the
+        text put before each; and whether it has a summary."""
+        show = {name: before for before, name in lay.summary}
+        view = self.layout(lay.name, choice_plan, one_line(lay.doc, lay.field_note), show)
+        if show:
+            self.check_summary(lay, view.descriptors, show)
+        return view.var, bool(show)
+
+    def forms(self, mp: plan.MessagePlan, parts: dict[int, str]) -> list[dict]:
+        """Per type code, the forms it takes (plan.Variant): its layout's data, the versions that
+        send it, its body sizes, the version it stands for when its length alone chose it."""
         out = []
-        for v in variants:
-            for size, offsets in v.offsets_by_size().items():
-                enums = []
-                for _, name in v.layout.summary:
-                    f = next((g for g in v.layout.struct.named(name) if g.versions.contains(v.rep)), None)
-                    if f is None or name not in offsets:
-                        continue    # not in this form: the Info column leaves it out
-                    if not isinstance(f, ir.ScalarField) or f.enum is None:
-                        self.problems.append(v.layout.where.problem(
-                            f"lua target: a package summary may only name enum fields, not '{name}'"))
-                        continue
-                    enums.append(dict(offset=offsets[name], size=f.scalar.size, signed=f.scalar.signed,
-                                      vs=self.enum_var[f.enum.name], name=f.name))
-                if enums:
-                    out.append(dict(size=size, enums=enums))
+        for code, variants in sorted(mp.variants.items()):
+            forms = [dict(part=parts[id(v.layout)],
+                          ranges=[dict(low=lo, high=hi) for lo, hi in v.bounds],
+                          sizes=sorted(v.sizes) if v.sizes is not None else None,
+                          min=v.min_size, rep=version_number(v.rep), versions=v.describe())
+                     for v in variants]
+            single = len(variants) == 1 and variants[0].bounds == [(None, None)]
+            out.append(dict(code=code, single=single, forms=forms))
         return out
 
     @staticmethod
-    def message_show(layout: ir.Layout) -> dict:
-        """Fields of a message the Info column shows, each with the text put before it."""
-        return {name: before for before, name in layout.summary}
+    def version_dependent(mp: plan.MessagePlan, lay: ir.Layout) -> bool:
+        """True when reading this layout, or choosing it, depends on the software version."""
+        return lay.struct.needs_version or not lay.versions.unbounded or len(mp.variants[lay.code.value]) > 1
+
+    def code_names(self, enum: ir.Enum) -> Optional[str]:
+        return self.enum_tables.get(enum.name)
 
     def package_message(self, mp: plan.MessagePlan) -> Step:
         m = mp.message
-        pkgs = []
+        parts, summaries, parts_of = [], {}, {}
         for c in mp.layouts:
             pk = c.layout
             label = words(pk.name)
-            pkgs.append(dict(code=pk.code.value, name=pk.name, label=label,
-                             layout=self.layout(pk.name, c.plan, one_line(pk.doc, pk.field_note)),
-                             info=self.package_info([v for v in mp.variants[pk.code.value] if v.layout is pk]),
-                             item=self.add_item(pk.name, label, one_line(pk.doc), pk.where)))
+            layout, summary = self.shown_layout(pk, c.plan)
+            var = self.unique("PART", pk.name)
+            parts_of[id(pk)] = var
+            summaries[var] = summary
+            parts.append(dict(var=var, name=pk.name, label=label, layout=layout, summary=summary,
+                              item=self.add_item(pk.name, label, one_line(pk.doc), pk.where)))
+        codes = self.forms(mp, parts_of)
+        for code in codes:
+            code["summary"] = any(summaries[f["part"]] for f in code["forms"])
         return Step("packages", dict(code=m.code.value, label=words(m.name), doc=one_line(m.doc, m.field_note),
-                                     var=f"{m.name.upper()}_PACKAGES", packages=pkgs,
+                                     var=f"{m.name.upper()}_PACKAGES", parts=parts, codes=codes,
                                      types=self.enum_var[m.package_type.name],
+                                     type_tables=self.code_names(m.package_type),
+                                     needs_version=any(self.version_dependent(mp, c.layout) for c in mp.layouts),
                                      length="package.length", type="package.type"))
 
     def dispatch_message(self, mp: plan.MessagePlan) -> Step:
         m = mp.message
         sub_field = self.scalar_field(m.name, m.subtype.name, m.subtype.scalar, m.subtype.enum,
-                                      one_line(m.subtype.doc, "Subtype of the message."))
+                                      one_line(m.subtype.doc, "Subtype of the message."), m.subtype.where)
         # The header then the subtype: shown as such when the subtype is unknown.
-        header = self.header_layout(f"L_{m.name}", m.name, mp.header,
-                                    f"Header and subtype of every {words(m.name).lower()}.")
-        subtypes = []
+        header = self.header_layout(m.name, m.name, mp.header, f"Header and subtype of every {words(m.name).lower()}.")
+        parts, parts_of = [], {}
         for c in mp.layouts:
             st = c.layout
             # The header fields of a subtype are filterable under its own name (ur.key.timestamp).
-            sub_header = self.header_layout(f"L_{st.name}_header", st.name,
+            sub_header = self.header_layout(f"{st.name}_header", st.name,
                                             [slot for slot in mp.header if not slot.is_subtype],
                                             f"Header of the {st.name} message.")
-            body = self.layout(st.name, c.plan, one_line(st.doc, st.field_note), show=self.message_show(st))
-            subtypes.append(dict(code=st.code.value, name=st.name, label=words(st.name), header=sub_header,
-                                 layout=body, needs_version=st.struct.needs_version,
-                                 item=self.add_item(st.name, words(st.name), one_line(st.doc), st.where)))
+            body, _ = self.shown_layout(st, c.plan)
+            var = self.unique("PART", st.name)
+            parts_of[id(st)] = var
+            parts.append(dict(var=var, name=st.name, label=words(st.name), header=sub_header, layout=body,
+                              needs_version=self.version_dependent(mp, st),
+                              item=self.add_item(st.name, words(st.name), one_line(st.doc), st.where)))
         return Step("subtypes", dict(code=m.code.value, label=words(m.name), doc=one_line(m.doc, m.field_note),
                                      var=f"{m.name.upper()}_SUBTYPES", body_offset=mp.body_offset,
-                                     header=header, subtype_field=sub_field,
-                                     subtype_names=self.enum_var[m.subtype_enum.name], subtypes=subtypes))
+                                     header=header, subtype_field=sub_field, subtype_label=m.subtype.name,
+                                     subtype_names=self.enum_var[m.subtype_enum.name],
+                                     subtype_tables=self.code_names(m.subtype_enum),
+                                     parts=parts, codes=self.forms(mp, parts_of)))
 
     def value_tables(self) -> list[dict]:
         """The value-type codes of each software-version range, with how each type is laid out."""
@@ -347,44 +483,69 @@ class _Builder:
                     default_ports=",".join(str(x) for x in p.ports),
                     default_version=ir.version_text(p.default_version))
 
+    def enums(self) -> list[dict]:
+        """Every enum's value strings: one per version table (the newest is VS.<NAME>, the
+        field's value string, so filters by name follow today's firmware), and for an enum whose
+        codes depend on the version, the tables by version (NAMES.<NAME>)."""
+        out = []
+        for e in self.p.enums.values():
+            if e is self.p.value_type:
+                continue   # value types are named by the runtime, from the version's table
+            upper = e.name.upper()
+            self.enum_var[e.name] = f"VS.{upper}"
+            tables = []
+            for t in e.tables:
+                var = f"VS.{upper}" if t is e.tables[-1] else f"VS.{upper}_{table_suffix(t)}"
+                tables.append(dict(var=var, versions=t.versions.describe(), low=version_number(t.versions.low),
+                                   high=version_number(t.versions.high),
+                                   entries=[(v.value, v.name) for v in t.values]))
+            if e.versioned:
+                self.enum_tables[e.name] = f"NAMES.{upper}"
+            out.append(dict(name=e.name, upper=upper, doc=one_line(e.doc, e.field_note), tables=tables,
+                            versioned=e.versioned, newest=f"VS.{upper}"))
+        return out
+
     def build(self) -> dict:
         p = self.p
-        enums = []
-        for e in p.enums.values():
-            if e is p.value_type:
-                continue   # value types are named by the runtime, from the version's table
-            var = f"VS_{e.name.upper()}"
-            self.enum_var[e.name] = var
-            # The newest table names the codes (and filters by name use it).
-            enums.append(dict(var=var, doc=one_line(e.doc, e.field_note),
-                              entries=[(v.value, v.name) for v in e.tables[-1].values]))
+        enums = self.enums()
         self.header_field("length", "Length", p.message_length)
         self.header_field("type", "Type", p.message_type)
         self.header_field("package.length", "Length", p.package_length)
         self.header_field("package.type", "Type", p.package_type)
         messages = [self.dispatch_message(mp) if mp.is_dispatch else self.package_message(mp)
                     for mp in self.plan.messages]
+        self.settle()
         # Which fields of a package a filter or column may ask for (TreeItem:referenced).
         for m in messages:
-            for pk in m.packages if m.kind == "packages" else []:
-                pk["refs"] = [k for k in sorted(self.keys) if k.startswith(pk["name"] + ".")]
+            for pk in m.parts if m.kind == "packages" else []:
+                pk["refs"] = [pf.key for pf in sorted(self.fields, key=lambda pf: pf.key)
+                              if pf.key.startswith(pk["name"] + ".")]
         version, constants = self.version_reader(), self.constants()
         if self.problems:
             raise SpecError(p.source, self.problems)
         return dict(enums=enums, fields=self.fields, layouts=self.layouts, messages=messages,
                     version=version, value_tables=self.value_tables(),
                     known_codes=p.known_message_codes, message_type_names=self.enum_var[p.message_type_enum.name],
-                    constants=constants)
+                    message_type_tables=self.code_names(p.message_type_enum), constants=constants)
 
     def version_reader(self) -> dict:
-        """Where the Version message keeps major and minor: fixed bytes and length-prefixed strings."""
+        """Where the Version message keeps its numbers: fixed bytes and length-prefixed strings,
+        then major and minor, then (in the versions its range gives) the bugfix number."""
         v = self.plan.version
         if any(f.fixed_size != 1 for f in (v.major, v.minor)):
             self.problems.append(v.layout.where.problem("lua target: major and minor versions must be one byte each"))
+        bugfix = None
+        if v.bugfix is not None:
+            s = v.bugfix.scalar
+            if s.is_float or s.is_bool or s.size > 4:
+                self.problems.append(v.bugfix.where.problem(
+                    "lua target: the bugfix number must be an integer of at most 4 bytes"))
+            bugfix = dict(size=s.size, signed=s.signed, low=version_number(v.bugfix.versions.low),
+                          high=version_number(v.bugfix.versions.high))
         steps = [dict(fixed=skip.fixed + (v.body_offset if i == 0 else 0), prefix=skip.prefix, signed=skip.signed)
                  for i, skip in enumerate(v.skips)]
         return dict(message=v.message_code, subtype=v.subtype_code, subtype_offset=v.subtype_offset,
-                    steps=steps, tail=v.tail + (0 if v.skips else v.body_offset), rest=v.rest)
+                    steps=steps, tail=v.tail + (0 if v.skips else v.body_offset), rest=v.rest, bugfix=bugfix)
 
 
 def runtime() -> list[dict]:

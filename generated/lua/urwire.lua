@@ -8,7 +8,8 @@
 -- (or run `make install-dissector`). Wireshark 4.0 and later; Lua 5.2 to 5.4.
 -- Display filters: ur, ur.type == 16, ur.robot_mode_data.robot_mode == "RUNNING",
 -- ur.joint_data.q_actual > 1.5, ur.key.title contains "PROGRAM", ur.global_variables_update.
--- Preferences: ur.ports, ur.version (assumed until a Version message is seen), ur.max_length.
+-- Preferences: ur.ports; ur.version, the software version assumed until a Version message is
+-- seen (5.9, 5.25.1; empty by default: the layout sizes tell it where they can); ur.max_length.
 --
 -- The file has two parts. First the tables generated from the spec: value strings, fields,
 -- layouts (one descriptor per field), messages; all handed over in one table, `spec`. Then the
@@ -18,11 +19,14 @@
 local ur = Proto("ur", "Universal Robots primary/secondary client interface")
 
 -- ---------------------------------------------------------------------------------------------
--- Value strings: every enum of the spec, by wire value
+-- Value strings: every enum of the spec, by wire value. Where a code's name depends on the
+-- software version, one per version range: VS.<NAME> is the newest (the field's value string,
+-- so filters by name follow today's firmware), NAMES.<NAME> lists them by version.
 -- ---------------------------------------------------------------------------------------------
+local VS, NAMES = {}, {}
 
 -- Type of a top-level message, the byte after messageSize.
-local VS_MESSAGE_TYPE = {
+VS.MESSAGE_TYPE = {
     [255] = "DISCONNECT",
     [5] = "MODBUS_INFO_MESSAGE",
     [16] = "ROBOT_STATE",
@@ -33,8 +37,27 @@ local VS_MESSAGE_TYPE = {
     [25] = "PROGRAM_STATE_MESSAGE",
 }
 
--- Type of a robot-state sub-package (ROBOT_STATE_PACKAGE_TYPE_*).
-local VS_PACKAGE_TYPE = {
+-- Type of a robot-state sub-package (ROBOT_STATE_PACKAGE_TYPE_*). (up to 1.7)
+VS.PACKAGE_TYPE_UpTo1_7 = {
+    [0] = "ROBOT_MODE_DATA",
+    [1] = "JOINT_DATA",
+    [2] = "TOOL_DATA",
+    [3] = "MASTERBOARD_DATA",
+    [4] = "CARTESIAN_INFO",
+    [5] = "LASER_POINTER",
+    [6] = "CONFIGURATION_DATA",
+    [7] = "FORCE_MODE_DATA",
+    [8] = "ADDITIONAL_INFO",
+    [9] = "NEEDED_FOR_CALIB_DATA",
+    [10] = "SAFETY_DATA",
+    [11] = "TOOL_COMM_INFO",
+    [12] = "TOOL_MODE_INFO",
+    [13] = "SINGULARITY_INFO",
+    [14] = "PAYLOAD_INFO",
+}
+
+-- Type of a robot-state sub-package (ROBOT_STATE_PACKAGE_TYPE_*). (1.8 and later)
+VS.PACKAGE_TYPE = {
     [0] = "ROBOT_MODE_DATA",
     [1] = "JOINT_DATA",
     [2] = "TOOL_DATA",
@@ -52,8 +75,31 @@ local VS_PACKAGE_TYPE = {
     [14] = "PAYLOAD_INFO",
 }
 
--- Subtype of a robot message (ROBOT_MESSAGE_TYPE_*), the byte after source.
-local VS_ROBOT_MESSAGE_TYPE = {
+-- package_type by software version.
+NAMES.PACKAGE_TYPE = { newest = VS.PACKAGE_TYPE,
+    { low = nil, high = 1007999, names = VS.PACKAGE_TYPE_UpTo1_7 },   -- up to 1.7
+    { low = 1008000, high = nil, names = VS.PACKAGE_TYPE },   -- 1.8 and later
+}
+
+-- Subtype of a robot message (ROBOT_MESSAGE_TYPE_*), the byte after source. (up to 1.8)
+VS.ROBOT_MESSAGE_TYPE_UpTo1_8 = {
+    [0] = "TEXT",
+    [1] = "LABEL",
+    [2] = "POPUP",
+    [3] = "VERSION",
+    [5] = "SAFETY_MODE",
+    [6] = "ERROR_CODE",
+    [7] = "KEY",
+    [8] = "VAR",
+    [9] = "REQUEST_VALUE",
+    [10] = "RUNTIME_EXCEPTION",
+    [12] = "UNDOCUMENTED_12",
+    [14] = "PROGRAM_LABEL_THREADS",
+    [18] = "HARDWARE_INFO",
+}
+
+-- Subtype of a robot message (ROBOT_MESSAGE_TYPE_*), the byte after source. (1.9 and later)
+VS.ROBOT_MESSAGE_TYPE = {
     [0] = "TEXT",
     [2] = "POPUP",
     [3] = "VERSION",
@@ -67,23 +113,44 @@ local VS_ROBOT_MESSAGE_TYPE = {
     [18] = "HARDWARE_INFO",
 }
 
+-- robot_message_type by software version.
+NAMES.ROBOT_MESSAGE_TYPE = { newest = VS.ROBOT_MESSAGE_TYPE,
+    { low = nil, high = 1008999, names = VS.ROBOT_MESSAGE_TYPE_UpTo1_8 },   -- up to 1.8
+    { low = 1009000, high = nil, names = VS.ROBOT_MESSAGE_TYPE },   -- 1.9 and later
+}
+
 -- Subtype of a program-state message (PROGRAM_STATE_MESSAGE_TYPE_*).
-local VS_PROGRAM_STATE_MESSAGE_TYPE = {
+VS.PROGRAM_STATE_MESSAGE_TYPE = {
     [0] = "GLOBAL_VARIABLES_SETUP",
     [1] = "GLOBAL_VARIABLES_UPDATE",
     [2] = "VARIABLES_UPDATE",
 }
 
 -- Control mode of the robot (document section "Control Modes").
-local VS_CONTROL_MODE = {
+VS.CONTROL_MODE = {
     [0] = "POSITION",
     [1] = "TEACH",
     [2] = "FORCE",
     [3] = "TORQUE",
 }
 
--- Robot mode (document section "Robot Modes"). The codes changed meaning at 3.0: on CB2, 0 is RUNNING; from 3.0, 0 is DISCONNECTED and 7 is RUNNING. Documented as unsigned char, but NO_CONTROLLER is -1, so it is an int8. The CB2 table applies up to 1.8 (FIRMWARE-LAYOUTS 2.0: UR_DRIVER L16-L27, ur_modern_driver robot_mode_V1_X, the CB2 C header); the 3.0 table from 3.0 (FIRMWARE-LAYOUTS 1b: NIST table, 3.0 column); high confidence. NO_CONTROLLER is in the 5.9 document only; no CB3 source has it, and it stays in the 3.0 table.
-local VS_ROBOT_MODE = {
+-- Robot mode (document section "Robot Modes"). The codes changed meaning at 3.0: on CB2, 0 is RUNNING; from 3.0, 0 is DISCONNECTED and 7 is RUNNING. Documented as unsigned char, but NO_CONTROLLER is -1, so it is an int8. The CB2 table applies up to 1.8 (FIRMWARE-LAYOUTS 2.0: UR_DRIVER L16-L27, ur_modern_driver robot_mode_V1_X, the CB2 C header); the 3.0 table from 3.0 (FIRMWARE-LAYOUTS 1b: NIST table, 3.0 column); high confidence. NO_CONTROLLER is in the 5.9 document only; no CB3 source has it, and it stays in the 3.0 table. (up to 1.8)
+VS.ROBOT_MODE_UpTo1_8 = {
+    [0] = "RUNNING",
+    [1] = "FREEDRIVE",
+    [2] = "READY",
+    [3] = "INITIALIZING",
+    [4] = "SECURITY_STOPPED",
+    [5] = "EMERGENCY_STOPPED",
+    [6] = "FATAL_ERROR",
+    [7] = "NO_POWER",
+    [8] = "NOT_CONNECTED",
+    [9] = "SHUTDOWN",
+    [10] = "SAFEGUARD_STOP",
+}
+
+-- Robot mode (document section "Robot Modes"). The codes changed meaning at 3.0: on CB2, 0 is RUNNING; from 3.0, 0 is DISCONNECTED and 7 is RUNNING. Documented as unsigned char, but NO_CONTROLLER is -1, so it is an int8. The CB2 table applies up to 1.8 (FIRMWARE-LAYOUTS 2.0: UR_DRIVER L16-L27, ur_modern_driver robot_mode_V1_X, the CB2 C header); the 3.0 table from 3.0 (FIRMWARE-LAYOUTS 1b: NIST table, 3.0 column); high confidence. NO_CONTROLLER is in the 5.9 document only; no CB3 source has it, and it stays in the 3.0 table. (3.0 and later)
+VS.ROBOT_MODE = {
     [-1] = "NO_CONTROLLER",
     [0] = "DISCONNECTED",
     [1] = "CONFIRM_SAFETY",
@@ -96,8 +163,69 @@ local VS_ROBOT_MODE = {
     [8] = "UPDATING_FIRMWARE",
 }
 
--- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.1: UR_DRIVER L29-L48, the CB2 C header); CB3 table for 3.x (FIRMWARE-LAYOUTS 2.1: NIST UrEnums.h 3afb367a); from 5.0 the 5.9 document's table, with 240 READY_FOR_POWER_OFF only from 5.1 (the document: "FROM VERSION 5.1"). Whether 5.0 already used the 5.9 document's codes rather than the CB3 ones is not stated by any source.
-local VS_JOINT_MODE = {
+-- robot_mode by software version.
+NAMES.ROBOT_MODE = { newest = VS.ROBOT_MODE,
+    { low = nil, high = 1008999, names = VS.ROBOT_MODE_UpTo1_8 },   -- up to 1.8
+    { low = 3000000, high = nil, names = VS.ROBOT_MODE },   -- 3.0 and later
+}
+
+-- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.1: UR_DRIVER L29-L48, the CB2 C header); CB3 table for 3.x (FIRMWARE-LAYOUTS 2.1: NIST UrEnums.h 3afb367a); from 5.0 the 5.9 document's table, with 240 READY_FOR_POWER_OFF only from 5.1 (the document: "FROM VERSION 5.1"). Whether 5.0 already used the 5.9 document's codes rather than the CB3 ones is not stated by any source. (up to 1.8)
+VS.JOINT_MODE_UpTo1_8 = {
+    [237] = "PART_D_CALIBRATION",
+    [238] = "BACKDRIVE",
+    [239] = "POWER_OFF",
+    [240] = "EMERGENCY_STOPPED",
+    [241] = "CALVAL_INITIALIZATION",
+    [242] = "ERROR",
+    [243] = "FREEDRIVE",
+    [244] = "SIMULATED",
+    [245] = "NOT_RESPONDING",
+    [246] = "MOTOR_INITIALISATION",
+    [247] = "ADC_CALIBRATION",
+    [248] = "DEAD_COMMUTATION",
+    [249] = "BOOTLOADER",
+    [250] = "CALIBRATION",
+    [251] = "STOPPED",
+    [252] = "FAULT",
+    [253] = "RUNNING",
+    [254] = "INITIALIZATION",
+    [255] = "IDLE",
+}
+
+-- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.1: UR_DRIVER L29-L48, the CB2 C header); CB3 table for 3.x (FIRMWARE-LAYOUTS 2.1: NIST UrEnums.h 3afb367a); from 5.0 the 5.9 document's table, with 240 READY_FOR_POWER_OFF only from 5.1 (the document: "FROM VERSION 5.1"). Whether 5.0 already used the 5.9 document's codes rather than the CB3 ones is not stated by any source. (3.0 to 3.15)
+VS.JOINT_MODE_3_0To3_15 = {
+    [236] = "SHUTTING_DOWN",
+    [237] = "PART_D_CALIBRATION",
+    [238] = "BACKDRIVE",
+    [239] = "POWER_OFF",
+    [245] = "NOT_RESPONDING",
+    [246] = "MOTOR_INITIALISATION",
+    [247] = "BOOTING",
+    [248] = "PART_D_CALIBRATION_ERROR",
+    [249] = "BOOTLOADER",
+    [250] = "CALIBRATION",
+    [252] = "FAULT",
+    [253] = "RUNNING",
+    [255] = "IDLE",
+}
+
+-- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.1: UR_DRIVER L29-L48, the CB2 C header); CB3 table for 3.x (FIRMWARE-LAYOUTS 2.1: NIST UrEnums.h 3afb367a); from 5.0 the 5.9 document's table, with 240 READY_FOR_POWER_OFF only from 5.1 (the document: "FROM VERSION 5.1"). Whether 5.0 already used the 5.9 document's codes rather than the CB3 ones is not stated by any source. (5.0 to 5.0)
+VS.JOINT_MODE_5_0To5_0 = {
+    [235] = "RESET",
+    [236] = "SHUTTING_DOWN",
+    [238] = "BACKDRIVE",
+    [239] = "POWER_OFF",
+    [245] = "NOT_RESPONDING",
+    [246] = "MOTOR_INITIALISATION",
+    [247] = "BOOTING",
+    [251] = "VIOLATION",
+    [252] = "FAULT",
+    [253] = "RUNNING",
+    [255] = "IDLE",
+}
+
+-- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.1: UR_DRIVER L29-L48, the CB2 C header); CB3 table for 3.x (FIRMWARE-LAYOUTS 2.1: NIST UrEnums.h 3afb367a); from 5.0 the 5.9 document's table, with 240 READY_FOR_POWER_OFF only from 5.1 (the document: "FROM VERSION 5.1"). Whether 5.0 already used the 5.9 document's codes rather than the CB3 ones is not stated by any source. (5.1 and later)
+VS.JOINT_MODE = {
     [235] = "RESET",
     [236] = "SHUTTING_DOWN",
     [238] = "BACKDRIVE",
@@ -112,8 +240,16 @@ local VS_JOINT_MODE = {
     [255] = "IDLE",
 }
 
+-- joint_mode by software version.
+NAMES.JOINT_MODE = { newest = VS.JOINT_MODE,
+    { low = nil, high = 1008999, names = VS.JOINT_MODE_UpTo1_8 },   -- up to 1.8
+    { low = 3000000, high = 3015999, names = VS.JOINT_MODE_3_0To3_15 },   -- 3.0 to 3.15
+    { low = 5000000, high = 5000999, names = VS.JOINT_MODE_5_0To5_0 },   -- 5.0 to 5.0
+    { low = 5001000, high = nil, names = VS.JOINT_MODE },   -- 5.1 and later
+}
+
 -- Tool status (document section "Tool Modes", whose rows are named JOINT_MODE_*). CB2 sends the same codes for the same states (249 BOOTLOADER, 253 RUNNING, 255 IDLE: UR_DRIVER, confirmed by captures; the CB2 C header's 249/250/251 is wrong, FIRMWARE-LAYOUTS 3.9), so one table serves every version.
-local VS_TOOL_MODE = {
+VS.TOOL_MODE = {
     [235] = "RESET",
     [236] = "SHUTTING_DOWN",
     [239] = "POWER_OFF",
@@ -125,8 +261,25 @@ local VS_TOOL_MODE = {
     [255] = "IDLE",
 }
 
--- Sender of a robot message (document section "Message Sources"). CB2 numbered the senders differently: -2 is CONTROLLER on CB2 and ROBOTINTERFACE from 3.0. The source byte is signed; -2 to -5 occur. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.16: the CB2 C header); the 5.9 document's table from 3.0. No CB3 source lists the senders, so the 3.0 boundary is an inference: it is where the other CB2 tables changed.
-local VS_MESSAGE_SOURCE = {
+-- Sender of a robot message (document section "Message Sources"). CB2 numbered the senders differently: -2 is CONTROLLER on CB2 and ROBOTINTERFACE from 3.0. The source byte is signed; -2 to -5 occur. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.16: the CB2 C header); the 5.9 document's table from 3.0. No CB3 source lists the senders, so the 3.0 boundary is an inference: it is where the other CB2 tables changed. (up to 1.8)
+VS.MESSAGE_SOURCE_UpTo1_8 = {
+    [0] = "BASE",
+    [1] = "SHOULDER",
+    [2] = "ELBOW",
+    [3] = "WRIST1",
+    [4] = "WRIST2",
+    [5] = "WRIST3",
+    [6] = "TOOL",
+    [-1] = "SAFETYSYS",
+    [-2] = "CONTROLLER",
+    [-3] = "RTMACHINE",
+    [-4] = "SIMULATED_ROBOT",
+    [-5] = "GUI",
+    [-6] = "CONTROL_BOX",
+}
+
+-- Sender of a robot message (document section "Message Sources"). CB2 numbered the senders differently: -2 is CONTROLLER on CB2 and ROBOTINTERFACE from 3.0. The source byte is signed; -2 to -5 occur. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.16: the CB2 C header); the 5.9 document's table from 3.0. No CB3 source lists the senders, so the 3.0 boundary is an inference: it is where the other CB2 tables changed. (3.0 and later)
+VS.MESSAGE_SOURCE = {
     [100] = "JOINT_0_FPGA",
     [110] = "JOINT_0_A",
     [120] = "JOINT_0_B",
@@ -164,8 +317,14 @@ local VS_MESSAGE_SOURCE = {
     [8] = "RTDE",
 }
 
+-- message_source by software version.
+NAMES.MESSAGE_SOURCE = { newest = VS.MESSAGE_SOURCE,
+    { low = nil, high = 1008999, names = VS.MESSAGE_SOURCE_UpTo1_8 },   -- up to 1.8
+    { low = 3000000, high = nil, names = VS.MESSAGE_SOURCE },   -- 3.0 and later
+}
+
 -- Safety mode (document section "Safety Mode Types").
-local VS_SAFETY_MODE = {
+VS.SAFETY_MODE = {
     [1] = "NORMAL",
     [2] = "REDUCED",
     [3] = "PROTECTIVE_STOP",
@@ -180,7 +339,7 @@ local VS_SAFETY_MODE = {
 }
 
 -- Safety state of the masterboard on CB2 (masterSafetyState, table "Master Safety State" of the CB2 documents). CB3 and later send safety_mode and in_reduced_mode instead. FIRMWARE-LAYOUTS 2.3 (the CB2 C header and UR_DRIVER L55-L70 agree).
-local VS_MASTER_SAFETY_STATE = {
+VS.MASTER_SAFETY_STATE = {
     [0] = "UNDEFINED",
     [1] = "BOOTLOADER",
     [2] = "FAULT",
@@ -193,7 +352,7 @@ local VS_MASTER_SAFETY_STATE = {
 }
 
 -- State of the robot's 48 V supply on CB2 (masterOnOffState, table "Robot On Off State"). FIRMWARE-LAYOUTS 2.3 (the CB2 C header and UR_DRIVER L55-L70 agree).
-local VS_MASTER_ON_OFF_STATE = {
+VS.MASTER_ON_OFF_STATE = {
     [0] = "OFF",
     [1] = "TURNING_ON",
     [2] = "ON",
@@ -201,7 +360,7 @@ local VS_MASTER_ON_OFF_STATE = {
 }
 
 -- Safety status (document section "Safety Status Types").
-local VS_SAFETY_STATUS = {
+VS.SAFETY_STATUS = {
     [1] = "NORMAL",
     [2] = "REDUCED",
     [3] = "PROTECTIVE_STOP",
@@ -218,7 +377,7 @@ local VS_SAFETY_STATUS = {
 }
 
 -- Report level of a robot comm message (document section "Report Levels"). Levels 5 and 133 occur on real robots although the table lacks them.
-local VS_REPORT_LEVEL = {
+VS.REPORT_LEVEL = {
     [0] = "DEBUG",
     [1] = "INFO",
     [2] = "WARNING",
@@ -234,7 +393,7 @@ local VS_REPORT_LEVEL = {
 }
 
 -- Type of value a popup or request asks for (document section "Requested Types").
-local VS_REQUESTED_TYPE = {
+VS.REQUESTED_TYPE = {
     [0] = "BOOLEAN",
     [1] = "INTEGER",
     [2] = "FLOAT",
@@ -247,7 +406,7 @@ local VS_REQUESTED_TYPE = {
 }
 
 -- Control box of a hardware info message. Two numberings have been used: early patch releases of 5.26 and 10.13 sent 1 and 2, later ones 5 and 7 (the numbering of the RTDE properties). FIRMWARE-LAYOUTS 2.16 (URCL datatypes.h, controlBoxTypeFromWire).
-local VS_CONTROL_BOX_TYPE = {
+VS.CONTROL_BOX_TYPE = {
     [1] = "CB5_EARLY_NUMBERING",
     [2] = "CB7_EARLY_NUMBERING",
     [5] = "CB5",
@@ -255,7 +414,7 @@ local VS_CONTROL_BOX_TYPE = {
 }
 
 -- Tool flange of a hardware info message. FIRMWARE-LAYOUTS 2.16 (URCL datatypes.h, toolFlangeTypeFromWire).
-local VS_TOOL_FLANGE_TYPE = {
+VS.TOOL_FLANGE_TYPE = {
     [1] = "V1",
     [2] = "V2",
 }
@@ -263,11 +422,12 @@ local VS_TOOL_FLANGE_TYPE = {
 -- Message types a plausible header may carry (documented or known undocumented ones).
 local KNOWN_TYPE = { [5] = true, [16] = true, [20] = true, [22] = true, [23] = true, [24] = true, [25] = true, [255] = true, }
 
--- Global variable value types. The codes depend on the software version (major * 1000 + minor);
+-- Global variable value types. The codes depend on the software version
+-- ((major * 1000 + minor) * 1000 + bugfix);
 -- the table is chosen by the stream's Version message, else by the ur.version preference.
 local VALUE_TABLES = {
     -- up to 3.2
-    { low = nil, high = 3002, kinds = {
+    { low = nil, high = 3002999, kinds = {
         [0] = { name = "NONE", layout = "empty", item = nil, n = 0, count = 1, len = 0 },
         [3] = { name = "STRING", layout = "string", item = nil, n = 0, count = 1, len = 2 },
         [4] = { name = "LIST", layout = "list", item = nil, n = 0, count = 1, len = 2 },
@@ -278,7 +438,7 @@ local VALUE_TABLES = {
         [14] = { name = "FLOAT", layout = "scalar", item = "float32", n = 4, count = 1, len = 0 },
     } },
     -- 3.3 to 5.8
-    { low = 3003, high = 5008, kinds = {
+    { low = 3003000, high = 5008999, kinds = {
         [0] = { name = "NONE", layout = "empty", item = nil, n = 0, count = 1, len = 0 },
         [3] = { name = "CONST_STRING", layout = "string", item = nil, n = 0, count = 1, len = 2 },
         [4] = { name = "VAR_STRING", layout = "string", item = nil, n = 0, count = 1, len = 2 },
@@ -290,7 +450,7 @@ local VALUE_TABLES = {
         [15] = { name = "FLOAT", layout = "scalar", item = "float32", n = 4, count = 1, len = 0 },
     } },
     -- 5.9 and later
-    { low = 5009, high = nil, kinds = {
+    { low = 5009000, high = nil, kinds = {
         [0] = { name = "NONE", layout = "empty", item = nil, n = 0, count = 1, len = 0 },
         [3] = { name = "CONST_STRING", layout = "string", item = nil, n = 0, count = 1, len = 2 },
         [4] = { name = "VAR_STRING", layout = "string", item = nil, n = 0, count = 1, len = 2 },
@@ -309,9 +469,9 @@ local VALUE_TABLES = {
 -- ---------------------------------------------------------------------------------------------
 local F = {
     ["length"] = ProtoField.int32("ur.length", "Length", base.DEC, nil, nil, "Length of the whole message, this field included."),
-    ["type"] = ProtoField.uint8("ur.type", "Type", base.DEC, VS_MESSAGE_TYPE, nil, "Message type."),
+    ["type"] = ProtoField.uint8("ur.type", "Type", base.DEC, VS.MESSAGE_TYPE, nil, "Message type."),
     ["package.length"] = ProtoField.int32("ur.package.length", "Length", base.DEC, nil, nil, "Length of the sub-package, this field included."),
-    ["package.type"] = ProtoField.uint8("ur.package.type", "Type", base.DEC, VS_PACKAGE_TYPE, nil, "Sub-package type."),
+    ["package.type"] = ProtoField.uint8("ur.package.type", "Type", base.DEC, VS.PACKAGE_TYPE, nil, "Sub-package type."),
     ["robot_mode_data.timestamp"] = ProtoField.uint64("ur.robot_mode_data.timestamp", "timestamp", base.DEC, nil, nil, ""),
     ["robot_mode_data.is_real_robot_connected"] = ProtoField.bool("ur.robot_mode_data.is_real_robot_connected", "is_real_robot_connected", base.NONE, nil, nil, "isRobotConnected in the CB2 documents (CONTRACT 5)."),
     ["robot_mode_data.is_real_robot_enabled"] = ProtoField.bool("ur.robot_mode_data.is_real_robot_enabled", "is_real_robot_enabled", base.NONE, nil, nil, ""),
@@ -320,8 +480,8 @@ local F = {
     ["robot_mode_data.is_protective_stopped"] = ProtoField.bool("ur.robot_mode_data.is_protective_stopped", "is_protective_stopped", base.NONE, nil, nil, "isSecurityStopped in the CB2 documents (CONTRACT 5)."),
     ["robot_mode_data.is_program_running"] = ProtoField.bool("ur.robot_mode_data.is_program_running", "is_program_running", base.NONE, nil, nil, ""),
     ["robot_mode_data.is_program_paused"] = ProtoField.bool("ur.robot_mode_data.is_program_paused", "is_program_paused", base.NONE, nil, nil, ""),
-    ["robot_mode_data.robot_mode"] = ProtoField.int8("ur.robot_mode_data.robot_mode", "robot_mode", base.DEC, VS_ROBOT_MODE, nil, "Robot mode; CB2 numbers the modes differently (see the enum's tables). Documented as unsigned char; it is an int8 (NO_CONTROLLER is -1)."),
-    ["robot_mode_data.control_mode"] = ProtoField.uint8("ur.robot_mode_data.control_mode", "control_mode", base.DEC, VS_CONTROL_MODE, nil, "Control mode. From 3.0 (FIRMWARE-LAYOUTS 1b, 2.0: NIST table, 3.0 column; UR_DRIVER 8ce9f4ab; ur_modern_driver RobotModeData_V3_0__1, 33 bytes of payload); high confidence."),
+    ["robot_mode_data.robot_mode"] = ProtoField.int8("ur.robot_mode_data.robot_mode", "robot_mode", base.DEC, VS.ROBOT_MODE, nil, "Robot mode; CB2 numbers the modes differently (see the enum's tables). Documented as unsigned char; it is an int8 (NO_CONTROLLER is -1)."),
+    ["robot_mode_data.control_mode"] = ProtoField.uint8("ur.robot_mode_data.control_mode", "control_mode", base.DEC, VS.CONTROL_MODE, nil, "Control mode. From 3.0 (FIRMWARE-LAYOUTS 1b, 2.0: NIST table, 3.0 column; UR_DRIVER 8ce9f4ab; ur_modern_driver RobotModeData_V3_0__1, 33 bytes of payload); high confidence."),
     ["robot_mode_data.target_speed_fraction"] = ProtoField.double("ur.robot_mode_data.target_speed_fraction", "target_speed_fraction", "speedFraction in the CB2 documents (CONTRACT 5); it follows robot_mode there."),
     ["robot_mode_data.speed_scaling"] = ProtoField.double("ur.robot_mode_data.speed_scaling", "speed_scaling", "From 3.0, like control_mode (FIRMWARE-LAYOUTS 1b, 2.0); high confidence."),
     ["robot_mode_data.target_speed_fraction_limit"] = ProtoField.double("ur.robot_mode_data.target_speed_fraction_limit", "target_speed_fraction_limit", "From 3.2 (FIRMWARE-LAYOUTS 1b and 3.1: NIST table and decoder, python-urx 77ef7b07 \"It's 46 bytes in 3.2\", ur_modern_driver issue 352 on a real 3.2.20175); high confidence. ur_modern_driver's factory implied 3.3; the 3.2 log rules that out."),
@@ -335,7 +495,7 @@ local F = {
     ["joint_data.v_actual"] = ProtoField.float("ur.joint_data.v_actual", "v_actual", "Actual joint voltage (V)."),
     ["joint_data.t_motor"] = ProtoField.float("ur.joint_data.t_motor", "t_motor", "Motor temperature (degrees C)."),
     ["joint_data.t_micro"] = ProtoField.float("ur.joint_data.t_micro", "t_micro", "Deprecated - ignore."),
-    ["joint_data.joint_mode"] = ProtoField.uint8("ur.joint_data.joint_mode", "joint_mode", base.DEC, VS_JOINT_MODE, nil, "Joint mode."),
+    ["joint_data.joint_mode"] = ProtoField.uint8("ur.joint_data.joint_mode", "joint_mode", base.DEC, VS.JOINT_MODE, nil, "Joint mode."),
     ["joint_data"] = ProtoField.none("ur.joint_data", "Joint data", "Joint data, one group per joint; 251 bytes in every version (FIRMWARE-LAYOUTS 2.1)."),
     ["tool_data.analog_input_range0"] = ProtoField.uint8("ur.tool_data.analog_input_range0", "analog_input_range0", base.DEC, nil, nil, ""),
     ["tool_data.analog_input_range1"] = ProtoField.uint8("ur.tool_data.analog_input_range1", "analog_input_range1", base.DEC, nil, nil, ""),
@@ -345,44 +505,44 @@ local F = {
     ["tool_data.tool_output_voltage"] = ProtoField.uint8("ur.tool_data.tool_output_voltage", "tool_output_voltage", base.DEC, nil, nil, ""),
     ["tool_data.tool_current"] = ProtoField.float("ur.tool_data.tool_current", "tool_current", ""),
     ["tool_data.tool_temperature"] = ProtoField.float("ur.tool_data.tool_temperature", "tool_temperature", ""),
-    ["tool_data.tool_mode"] = ProtoField.uint8("ur.tool_data.tool_mode", "tool_mode", base.DEC, VS_TOOL_MODE, nil, "Tool mode."),
+    ["tool_data.tool_mode"] = ProtoField.uint8("ur.tool_data.tool_mode", "tool_mode", base.DEC, VS.TOOL_MODE, nil, "Tool mode."),
     ["tool_data"] = ProtoField.none("ur.tool_data", "Tool data", "Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes (FIRMWARE-LAYOUTS 2.2)."),
-    ["masterboard_data.digital_input_bits"] = ProtoField.int16("ur.masterboard_data.digital_input_bits", "digital_input_bits", base.DEC, nil, nil, "Digital inputs (CB2: a short). int16 up to 1.8, int32 from 3.0 (FIRMWARE-LAYOUTS 2.3: NIST table, UR_DRIVER L152-L216, ur_modern_driver parse<uint16_t,10> for 1.x); high confidence. No CB2 source names the bits (ur_modern_driver keeps 10 of the 16); the names are those of 3.0 and later, as far as 16 bits go (the tool bits 16-17 do not fit a short)."),
-    ["masterboard_data.digital_input_bits.standard_0"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_0", "standard_0", 16, nil, 0x1, "Bit 0 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.standard_1"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_1", "standard_1", 16, nil, 0x2, "Bit 1 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.standard_2"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_2", "standard_2", 16, nil, 0x4, "Bit 2 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.standard_3"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_3", "standard_3", 16, nil, 0x8, "Bit 3 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.standard_4"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_4", "standard_4", 16, nil, 0x10, "Bit 4 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.standard_5"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_5", "standard_5", 16, nil, 0x20, "Bit 5 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.standard_6"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_6", "standard_6", 16, nil, 0x40, "Bit 6 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.standard_7"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_7", "standard_7", 16, nil, 0x80, "Bit 7 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.configurable_0"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_0", "configurable_0", 16, nil, 0x100, "Bit 8 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.configurable_1"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_1", "configurable_1", 16, nil, 0x200, "Bit 9 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.configurable_2"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_2", "configurable_2", 16, nil, 0x400, "Bit 10 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.configurable_3"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_3", "configurable_3", 16, nil, 0x800, "Bit 11 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.configurable_4"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_4", "configurable_4", 16, nil, 0x1000, "Bit 12 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.configurable_5"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_5", "configurable_5", 16, nil, 0x2000, "Bit 13 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.configurable_6"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_6", "configurable_6", 16, nil, 0x4000, "Bit 14 of digital_input_bits."),
-    ["masterboard_data.digital_input_bits.configurable_7"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_7", "configurable_7", 16, nil, 0x8000, "Bit 15 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits"] = ProtoField.int32("ur.masterboard_data.digital_input_bits", "digital_input_bits", base.DEC, nil, nil, "Digital inputs (CB2: a short). int16 up to 1.8, int32 from 3.0 (FIRMWARE-LAYOUTS 2.3: NIST table, UR_DRIVER L152-L216, ur_modern_driver parse<uint16_t,10> for 1.x); high confidence. No CB2 source names the bits (ur_modern_driver keeps 10 of the 16); the names are those of 3.0 and later, as far as 16 bits go (the tool bits 16-17 do not fit a short)."),
+    ["masterboard_data.digital_input_bits.standard_0"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_0", "standard_0", 32, nil, 0x1, "Bit 0 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.standard_1"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_1", "standard_1", 32, nil, 0x2, "Bit 1 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.standard_2"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_2", "standard_2", 32, nil, 0x4, "Bit 2 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.standard_3"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_3", "standard_3", 32, nil, 0x8, "Bit 3 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.standard_4"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_4", "standard_4", 32, nil, 0x10, "Bit 4 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.standard_5"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_5", "standard_5", 32, nil, 0x20, "Bit 5 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.standard_6"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_6", "standard_6", 32, nil, 0x40, "Bit 6 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.standard_7"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_7", "standard_7", 32, nil, 0x80, "Bit 7 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.configurable_0"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_0", "configurable_0", 32, nil, 0x100, "Bit 8 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.configurable_1"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_1", "configurable_1", 32, nil, 0x200, "Bit 9 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.configurable_2"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_2", "configurable_2", 32, nil, 0x400, "Bit 10 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.configurable_3"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_3", "configurable_3", 32, nil, 0x800, "Bit 11 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.configurable_4"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_4", "configurable_4", 32, nil, 0x1000, "Bit 12 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.configurable_5"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_5", "configurable_5", 32, nil, 0x2000, "Bit 13 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.configurable_6"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_6", "configurable_6", 32, nil, 0x4000, "Bit 14 of digital_input_bits."),
+    ["masterboard_data.digital_input_bits.configurable_7"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_7", "configurable_7", 32, nil, 0x8000, "Bit 15 of digital_input_bits."),
     ["masterboard_data.digital_input_bits.tool_0"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.tool_0", "tool_0", 32, nil, 0x10000, "Bit 16 of digital_input_bits."),
     ["masterboard_data.digital_input_bits.tool_1"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.tool_1", "tool_1", 32, nil, 0x20000, "Bit 17 of digital_input_bits."),
-    ["masterboard_data.digital_output_bits"] = ProtoField.int16("ur.masterboard_data.digital_output_bits", "digital_output_bits", base.DEC, nil, nil, "Digital outputs (CB2: a short). int16 up to 1.8, int32 from 3.0, like digital_input_bits."),
-    ["masterboard_data.digital_output_bits.standard_0"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_0", "standard_0", 16, nil, 0x1, "Bit 0 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.standard_1"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_1", "standard_1", 16, nil, 0x2, "Bit 1 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.standard_2"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_2", "standard_2", 16, nil, 0x4, "Bit 2 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.standard_3"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_3", "standard_3", 16, nil, 0x8, "Bit 3 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.standard_4"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_4", "standard_4", 16, nil, 0x10, "Bit 4 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.standard_5"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_5", "standard_5", 16, nil, 0x20, "Bit 5 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.standard_6"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_6", "standard_6", 16, nil, 0x40, "Bit 6 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.standard_7"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_7", "standard_7", 16, nil, 0x80, "Bit 7 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.configurable_0"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_0", "configurable_0", 16, nil, 0x100, "Bit 8 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.configurable_1"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_1", "configurable_1", 16, nil, 0x200, "Bit 9 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.configurable_2"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_2", "configurable_2", 16, nil, 0x400, "Bit 10 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.configurable_3"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_3", "configurable_3", 16, nil, 0x800, "Bit 11 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.configurable_4"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_4", "configurable_4", 16, nil, 0x1000, "Bit 12 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.configurable_5"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_5", "configurable_5", 16, nil, 0x2000, "Bit 13 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.configurable_6"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_6", "configurable_6", 16, nil, 0x4000, "Bit 14 of digital_output_bits."),
-    ["masterboard_data.digital_output_bits.configurable_7"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_7", "configurable_7", 16, nil, 0x8000, "Bit 15 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits"] = ProtoField.int32("ur.masterboard_data.digital_output_bits", "digital_output_bits", base.DEC, nil, nil, "Digital outputs (CB2: a short). int16 up to 1.8, int32 from 3.0, like digital_input_bits."),
+    ["masterboard_data.digital_output_bits.standard_0"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_0", "standard_0", 32, nil, 0x1, "Bit 0 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.standard_1"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_1", "standard_1", 32, nil, 0x2, "Bit 1 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.standard_2"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_2", "standard_2", 32, nil, 0x4, "Bit 2 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.standard_3"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_3", "standard_3", 32, nil, 0x8, "Bit 3 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.standard_4"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_4", "standard_4", 32, nil, 0x10, "Bit 4 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.standard_5"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_5", "standard_5", 32, nil, 0x20, "Bit 5 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.standard_6"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_6", "standard_6", 32, nil, 0x40, "Bit 6 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.standard_7"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_7", "standard_7", 32, nil, 0x80, "Bit 7 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.configurable_0"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_0", "configurable_0", 32, nil, 0x100, "Bit 8 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.configurable_1"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_1", "configurable_1", 32, nil, 0x200, "Bit 9 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.configurable_2"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_2", "configurable_2", 32, nil, 0x400, "Bit 10 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.configurable_3"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_3", "configurable_3", 32, nil, 0x800, "Bit 11 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.configurable_4"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_4", "configurable_4", 32, nil, 0x1000, "Bit 12 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.configurable_5"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_5", "configurable_5", 32, nil, 0x2000, "Bit 13 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.configurable_6"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_6", "configurable_6", 32, nil, 0x4000, "Bit 14 of digital_output_bits."),
+    ["masterboard_data.digital_output_bits.configurable_7"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_7", "configurable_7", 32, nil, 0x8000, "Bit 15 of digital_output_bits."),
     ["masterboard_data.digital_output_bits.tool_0"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.tool_0", "tool_0", 32, nil, 0x10000, "Bit 16 of digital_output_bits."),
     ["masterboard_data.digital_output_bits.tool_1"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.tool_1", "tool_1", 32, nil, 0x20000, "Bit 17 of digital_output_bits."),
     ["masterboard_data.analog_input_range0"] = ProtoField.uint8("ur.masterboard_data.analog_input_range0", "analog_input_range0", base.DEC, nil, nil, ""),
@@ -397,9 +557,9 @@ local F = {
     ["masterboard_data.robot_voltage_48v"] = ProtoField.float("ur.masterboard_data.robot_voltage_48v", "robot_voltage_48v", ""),
     ["masterboard_data.robot_current"] = ProtoField.float("ur.masterboard_data.robot_current", "robot_current", ""),
     ["masterboard_data.master_io_current"] = ProtoField.float("ur.masterboard_data.master_io_current", "master_io_current", "The last field of the early CB2 form (61 bytes)."),
-    ["masterboard_data.master_safety_state"] = ProtoField.uint8("ur.masterboard_data.master_safety_state", "master_safety_state", base.DEC, VS_MASTER_SAFETY_STATE, nil, "Masterboard safety state (CB2 masterSafetyState). CB2 1.6-1.8 (FIRMWARE-LAYOUTS 1b, 2.3: NIST table, 1.6 column; UR_DRIVER L158 \"(plen == 64) or (plen == 76)\"; ur_modern_driver MasterBoardData_V1_X; the python-urx capture); high confidence. Early CB2 (a real 61-byte capture) lacks it and the two fields after it; that early CB2 means up to 1.5 is an inference (FIRMWARE-LAYOUTS 3.6), the capture's version being unknown. CB3 replaced it with safety_mode."),
-    ["masterboard_data.master_on_off_state"] = ProtoField.uint8("ur.masterboard_data.master_on_off_state", "master_on_off_state", base.DEC, VS_MASTER_ON_OFF_STATE, nil, "State of the robot's 48 V supply (CB2 masterOnOffState). CB2 1.6-1.8, like master_safety_state."),
-    ["masterboard_data.safety_mode"] = ProtoField.uint8("ur.masterboard_data.safety_mode", "safety_mode", base.DEC, VS_SAFETY_MODE, nil, "Safety mode. From 3.0 (FIRMWARE-LAYOUTS 1b, 2.3: NIST table, 3.0 column; UR_DRIVER 8ce9f4ab; ur_modern_driver MasterBoardData_V3_0__1); high confidence."),
+    ["masterboard_data.master_safety_state"] = ProtoField.uint8("ur.masterboard_data.master_safety_state", "master_safety_state", base.DEC, VS.MASTER_SAFETY_STATE, nil, "Masterboard safety state (CB2 masterSafetyState). CB2 1.6-1.8 (FIRMWARE-LAYOUTS 1b, 2.3: NIST table, 1.6 column; UR_DRIVER L158 \"(plen == 64) or (plen == 76)\"; ur_modern_driver MasterBoardData_V1_X; the python-urx capture); high confidence. Early CB2 (a real 61-byte capture) lacks it and the two fields after it; that early CB2 means up to 1.5 is an inference (FIRMWARE-LAYOUTS 3.6), the capture's version being unknown. CB3 replaced it with safety_mode."),
+    ["masterboard_data.master_on_off_state"] = ProtoField.uint8("ur.masterboard_data.master_on_off_state", "master_on_off_state", base.DEC, VS.MASTER_ON_OFF_STATE, nil, "State of the robot's 48 V supply (CB2 masterOnOffState). CB2 1.6-1.8, like master_safety_state."),
+    ["masterboard_data.safety_mode"] = ProtoField.uint8("ur.masterboard_data.safety_mode", "safety_mode", base.DEC, VS.SAFETY_MODE, nil, "Safety mode. From 3.0 (FIRMWARE-LAYOUTS 1b, 2.3: NIST table, 3.0 column; UR_DRIVER 8ce9f4ab; ur_modern_driver MasterBoardData_V3_0__1); high confidence."),
     ["masterboard_data.in_reduced_mode"] = ProtoField.uint8("ur.masterboard_data.in_reduced_mode", "in_reduced_mode", base.DEC, nil, nil, "From 3.0, like safety_mode."),
     ["masterboard_data.euromap67_interface_installed"] = ProtoField.bool("ur.masterboard_data.euromap67_interface_installed", "euromap67_interface_installed", base.NONE, nil, nil, "Nonzero when a Euromap67 interface is installed; euomap67InterfaceInstalled in the document. From 1.6, like master_safety_state (early CB2 lacks it)."),
     ["masterboard_data.euromap_input_bits"] = ProtoField.uint32("ur.masterboard_data.euromap_input_bits", "euromap_input_bits", base.DEC, nil, nil, "The CB2 documents say int, the later ones unsigned int: the same 4 bytes of bits, read unsigned in every version."),
@@ -498,11 +658,11 @@ local F = {
     ["singularity_info.singularity_severity"] = ProtoField.uint8("ur.singularity_info.singularity_severity", "singularity_severity", base.DEC, nil, nil, ""),
     ["singularity_info.singularity_type"] = ProtoField.uint8("ur.singularity_info.singularity_type", "singularity_type", base.DEC, nil, nil, ""),
     ["singularity_info"] = ProtoField.none("ur.singularity_info", "Singularity info", "Singularity info. Used internally by Universal Robots software only."),
-    ["robot_message.robot_message_type"] = ProtoField.uint8("ur.robot_message.robot_message_type", "robot_message_type", base.DEC, VS_ROBOT_MESSAGE_TYPE, nil, "Subtype of the message."),
+    ["robot_message.robot_message_type"] = ProtoField.uint8("ur.robot_message.robot_message_type", "robot_message_type", base.DEC, VS.ROBOT_MESSAGE_TYPE, nil, "Subtype of the message."),
     ["robot_message.timestamp"] = ProtoField.uint64("ur.robot_message.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["robot_message.source"] = ProtoField.int8("ur.robot_message.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["robot_message.source"] = ProtoField.int8("ur.robot_message.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["version.timestamp"] = ProtoField.uint64("ur.version.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["version.source"] = ProtoField.int8("ur.version.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["version.source"] = ProtoField.int8("ur.version.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["version.project_name"] = ProtoField.string("ur.version.project_name", "project_name", base.UNICODE, "projectNameSize, then projectName."),
     ["version.major_version"] = ProtoField.uint8("ur.version.major_version", "major_version", base.DEC, nil, nil, ""),
     ["version.minor_version"] = ProtoField.uint8("ur.version.minor_version", "minor_version", base.DEC, nil, nil, ""),
@@ -512,10 +672,10 @@ local F = {
     ["version.build_date"] = ProtoField.string("ur.version.build_date", "build_date", base.UNICODE, "The rest of the message, with no terminator."),
     ["version"] = ProtoField.none("ur.version", "Version", "Version message, the first message on both the primary and secondary interfaces. It is read in the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from 3.3 the bugfix version and the build number (FIRMWARE-LAYOUTS 2.15). PolyScope X sends major version 10."),
     ["safety_mode.timestamp"] = ProtoField.uint64("ur.safety_mode.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["safety_mode.source"] = ProtoField.int8("ur.safety_mode.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["safety_mode.source"] = ProtoField.int8("ur.safety_mode.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["safety_mode.robot_message_code"] = ProtoField.int32("ur.safety_mode.robot_message_code", "robot_message_code", base.DEC, nil, nil, ""),
     ["safety_mode.robot_message_argument"] = ProtoField.int32("ur.safety_mode.robot_message_argument", "robot_message_argument", base.DEC, nil, nil, ""),
-    ["safety_mode.safety_mode_type"] = ProtoField.uint8("ur.safety_mode.safety_mode_type", "safety_mode_type", base.DEC, VS_SAFETY_MODE, nil, "The 5.9 document's form, from 3.0. The CB2 form (up to 1.8) is python-urx's (2013) and the CB2 C header's (FIRMWARE-LAYOUTS 1c). The CB3 forms are not documented anywhere found, so the 3.0 boundary is an inference."),
+    ["safety_mode.safety_mode_type"] = ProtoField.uint8("ur.safety_mode.safety_mode_type", "safety_mode_type", base.DEC, VS.SAFETY_MODE, nil, "The 5.9 document's form, from 3.0. The CB2 form (up to 1.8) is python-urx's (2013) and the CB2 C header's (FIRMWARE-LAYOUTS 1c). The CB3 forms are not documented anywhere found, so the 3.0 boundary is an inference."),
     ["safety_mode.report_data_type"] = ProtoField.uint32("ur.safety_mode.report_data_type", "report_data_type", base.DEC, nil, nil, "The 5.9 document's form, from 3.0. The CB2 form (up to 1.8) is python-urx's (2013) and the CB2 C header's (FIRMWARE-LAYOUTS 1c). The CB3 forms are not documented anywhere found, so the 3.0 boundary is an inference."),
     ["safety_mode.report_data"] = ProtoField.uint32("ur.safety_mode.report_data", "report_data", base.DEC, nil, nil, "Its type follows report_data_type. int32 when report_data_type is 2, float32 when it is 3, uint32 otherwise (as the reference client library does). From 3.0: the CB3 form is not documented, so that boundary is an inference (FIRMWARE-LAYOUTS 1c)."),
     ["safety_mode.report_data_int32"] = ProtoField.int32("ur.safety_mode.report_data_int32", "report_data", base.DEC, nil, nil, "Its type follows report_data_type. int32 when report_data_type is 2, float32 when it is 3, uint32 otherwise (as the reference client library does). From 3.0: the CB3 form is not documented, so that boundary is an inference (FIRMWARE-LAYOUTS 1c). (as int32: report_data_type is 2)"),
@@ -523,32 +683,32 @@ local F = {
     ["safety_mode.text"] = ProtoField.string("ur.safety_mode.text", "text", base.UNICODE, "The message text (CB2 only), to the end of the message. CB2, up to 1.8 (FIRMWARE-LAYOUTS 1c: python-urx 2013, the CB2 C header SecurityMessage). The CB3 form is not documented: the 1.8/3.0 boundary is an inference."),
     ["safety_mode"] = ProtoField.none("ur.safety_mode", "Safety mode", "Safety mode message; the security message of CB2, which carries a text instead of the safety mode and its report data (FIRMWARE-LAYOUTS 1c)."),
     ["robot_comm.timestamp"] = ProtoField.uint64("ur.robot_comm.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["robot_comm.source"] = ProtoField.int8("ur.robot_comm.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["robot_comm.source"] = ProtoField.int8("ur.robot_comm.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["robot_comm.robot_message_code"] = ProtoField.int32("ur.robot_comm.robot_message_code", "robot_message_code", base.DEC, nil, nil, ""),
     ["robot_comm.robot_message_argument"] = ProtoField.int32("ur.robot_comm.robot_message_argument", "robot_message_argument", base.DEC, nil, nil, ""),
-    ["robot_comm.robot_message_report_level"] = ProtoField.int32("ur.robot_comm.robot_message_report_level", "robot_message_report_level", base.DEC, VS_REPORT_LEVEL, nil, "The 5.9 document's form, from 3.0. The CB2 form (up to 1.8) is python-urx's (2013) and the CB2 C header's (FIRMWARE-LAYOUTS 1c). The CB3 forms are not documented anywhere found, so the 3.0 boundary is an inference."),
+    ["robot_comm.robot_message_report_level"] = ProtoField.int32("ur.robot_comm.robot_message_report_level", "robot_message_report_level", base.DEC, VS.REPORT_LEVEL, nil, "The 5.9 document's form, from 3.0. The CB2 form (up to 1.8) is python-urx's (2013) and the CB2 C header's (FIRMWARE-LAYOUTS 1c). The CB3 forms are not documented anywhere found, so the 3.0 boundary is an inference."),
     ["robot_comm.robot_message_data_type"] = ProtoField.uint32("ur.robot_comm.robot_message_data_type", "robot_message_data_type", base.DEC, nil, nil, "The 5.9 document's form, from 3.0. The CB2 form (up to 1.8) is python-urx's (2013) and the CB2 C header's (FIRMWARE-LAYOUTS 1c). The CB3 forms are not documented anywhere found, so the 3.0 boundary is an inference."),
     ["robot_comm.robot_message_data"] = ProtoField.uint32("ur.robot_comm.robot_message_data", "robot_message_data", base.DEC, nil, nil, "The 5.9 document's form, from 3.0. The CB2 form (up to 1.8) is python-urx's (2013) and the CB2 C header's (FIRMWARE-LAYOUTS 1c). The CB3 forms are not documented anywhere found, so the 3.0 boundary is an inference."),
     ["robot_comm.text"] = ProtoField.string("ur.robot_comm.text", "text", base.UNICODE, "robotCommTextMessage."),
     ["robot_comm"] = ProtoField.none("ur.robot_comm", "Robot comm", "Robot comm message (an error code report). On CB2 the code and argument are followed by the text alone (FIRMWARE-LAYOUTS 1c)."),
     ["key.timestamp"] = ProtoField.uint64("ur.key.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["key.source"] = ProtoField.int8("ur.key.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["key.source"] = ProtoField.int8("ur.key.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["key.robot_message_code"] = ProtoField.int32("ur.key.robot_message_code", "robot_message_code", base.DEC, nil, nil, ""),
     ["key.robot_message_argument"] = ProtoField.int32("ur.key.robot_message_argument", "robot_message_argument", base.DEC, nil, nil, ""),
     ["key.title"] = ProtoField.string("ur.key.title", "title", base.UNICODE, "robotMessageTitleSize, then robotMessageTitle."),
     ["key.text"] = ProtoField.string("ur.key.text", "text", base.UNICODE, "keyTextMessage."),
     ["key"] = ProtoField.none("ur.key", "Key", "Key message."),
     ["program_threads.timestamp"] = ProtoField.uint64("ur.program_threads.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["program_threads.source"] = ProtoField.int8("ur.program_threads.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["program_threads.source"] = ProtoField.int8("ur.program_threads.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["program_threads.threads"] = ProtoField.none("ur.program_threads.threads", "Thread", ""),
     ["program_threads.label_id"] = ProtoField.int32("ur.program_threads.label_id", "label_id", base.DEC, nil, nil, "Line number."),
     ["program_threads.label_name"] = ProtoField.string("ur.program_threads.label_name", "label_name", base.UNICODE, ""),
     ["program_threads.thread_name"] = ProtoField.string("ur.program_threads.thread_name", "thread_name", base.UNICODE, ""),
     ["program_threads"] = ProtoField.none("ur.program_threads", "Program threads", "Program threads message, one entry per running program thread."),
     ["popup.timestamp"] = ProtoField.uint64("ur.popup.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["popup.source"] = ProtoField.int8("ur.popup.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["popup.source"] = ProtoField.int8("ur.popup.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["popup.request_id"] = ProtoField.uint32("ur.popup.request_id", "request_id", base.DEC, nil, nil, "The 5.9 document's form, from 3.0. The CB2 form (up to 1.8) is python-urx's (2013) and the CB2 C header's (FIRMWARE-LAYOUTS 1c). The CB3 forms are not documented anywhere found, so the 3.0 boundary is an inference."),
-    ["popup.requested_type"] = ProtoField.uint32("ur.popup.requested_type", "requested_type", base.DEC, VS_REQUESTED_TYPE, nil, "The 5.9 document's form, from 3.0. The CB2 form (up to 1.8) is python-urx's (2013) and the CB2 C header's (FIRMWARE-LAYOUTS 1c). The CB3 forms are not documented anywhere found, so the 3.0 boundary is an inference."),
+    ["popup.requested_type"] = ProtoField.uint32("ur.popup.requested_type", "requested_type", base.DEC, VS.REQUESTED_TYPE, nil, "The 5.9 document's form, from 3.0. The CB2 form (up to 1.8) is python-urx's (2013) and the CB2 C header's (FIRMWARE-LAYOUTS 1c). The CB3 forms are not documented anywhere found, so the 3.0 boundary is an inference."),
     ["popup.warning"] = ProtoField.bool("ur.popup.warning", "warning", base.NONE, nil, nil, ""),
     ["popup.error"] = ProtoField.bool("ur.popup.error", "error", base.NONE, nil, nil, ""),
     ["popup.blocking"] = ProtoField.bool("ur.popup.blocking", "blocking", base.NONE, nil, nil, "The 5.9 document's form, from 3.0. The CB2 form (up to 1.8) is python-urx's (2013) and the CB2 C header's (FIRMWARE-LAYOUTS 1c). The CB3 forms are not documented anywhere found, so the 3.0 boundary is an inference."),
@@ -556,42 +716,42 @@ local F = {
     ["popup.text"] = ProtoField.string("ur.popup.text", "text", base.UNICODE, "popupTextMessage."),
     ["popup"] = ProtoField.none("ur.popup", "Popup", "Popup message. On CB2 it has no request id, requested type or blocking flag (FIRMWARE-LAYOUTS 1c)."),
     ["label.timestamp"] = ProtoField.uint64("ur.label.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["label.source"] = ProtoField.int8("ur.label.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["label.source"] = ProtoField.int8("ur.label.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["label.id"] = ProtoField.int32("ur.label.id", "id", base.DEC, nil, nil, "id in the CB2 documents."),
     ["label.text"] = ProtoField.string("ur.label.text", "text", base.UNICODE, "The label text, to the end of the message."),
     ["label"] = ProtoField.none("ur.label", "Label", "Label message (CB2 only)."),
     ["var.timestamp"] = ProtoField.uint64("ur.var.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["var.source"] = ProtoField.int8("ur.var.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["var.source"] = ProtoField.int8("ur.var.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["var.robot_message_code"] = ProtoField.int32("ur.var.robot_message_code", "robot_message_code", base.DEC, nil, nil, "code in the CB2 documents; the name of the same field in the key message."),
     ["var.robot_message_argument"] = ProtoField.int32("ur.var.robot_message_argument", "robot_message_argument", base.DEC, nil, nil, "argument in the CB2 documents; the name of the same field in the key message."),
     ["var.title"] = ProtoField.string("ur.var.title", "title", base.UNICODE, "titleSize, then messageTitle."),
     ["var.text"] = ProtoField.string("ur.var.text", "text", base.UNICODE, "The message text, to the end of the message."),
     ["var"] = ProtoField.none("ur.var", "Var", "Var message (CB2 only)."),
     ["hardware_info.timestamp"] = ProtoField.uint64("ur.hardware_info.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["hardware_info.source"] = ProtoField.int8("ur.hardware_info.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["hardware_info.source"] = ProtoField.int8("ur.hardware_info.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["hardware_info.robot_type"] = ProtoField.int32("ur.hardware_info.robot_type", "robot_type", base.DEC, nil, nil, "1 UR5 ... 9 UR15, 12 UR10g-1750, 13 UR17g-1300, 14 UR18g-950 (URCL); the full list is not in FIRMWARE-LAYOUTS."),
     ["hardware_info.reserved_1"] = ProtoField.uint16("ur.hardware_info.reserved_1", "reserved_1", base.DEC, nil, nil, ""),
-    ["hardware_info.control_box_type"] = ProtoField.uint16("ur.hardware_info.control_box_type", "control_box_type", base.DEC, VS_CONTROL_BOX_TYPE, nil, ""),
+    ["hardware_info.control_box_type"] = ProtoField.uint16("ur.hardware_info.control_box_type", "control_box_type", base.DEC, VS.CONTROL_BOX_TYPE, nil, ""),
     ["hardware_info.reserved_2"] = ProtoField.uint16("ur.hardware_info.reserved_2", "reserved_2", base.DEC, nil, nil, ""),
-    ["hardware_info.tool_flange_type"] = ProtoField.uint16("ur.hardware_info.tool_flange_type", "tool_flange_type", base.DEC, VS_TOOL_FLANGE_TYPE, nil, ""),
+    ["hardware_info.tool_flange_type"] = ProtoField.uint16("ur.hardware_info.tool_flange_type", "tool_flange_type", base.DEC, VS.TOOL_FLANGE_TYPE, nil, ""),
     ["hardware_info"] = ProtoField.none("ur.hardware_info", "Hardware info", "Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13 (FIRMWARE-LAYOUTS 1b, 2.16: URCL hardware_info_message.h \"introduced in PolyScope 5.26 / 10.14\"; URCL datatypes.h on early 5.26 and 10.13 patch releases). 27 bytes in all."),
     ["request_value.timestamp"] = ProtoField.uint64("ur.request_value.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["request_value.source"] = ProtoField.int8("ur.request_value.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["request_value.source"] = ProtoField.int8("ur.request_value.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["request_value.request_id"] = ProtoField.uint32("ur.request_value.request_id", "request_id", base.DEC, nil, nil, ""),
-    ["request_value.requested_type"] = ProtoField.uint32("ur.request_value.requested_type", "requested_type", base.DEC, VS_REQUESTED_TYPE, nil, ""),
+    ["request_value.requested_type"] = ProtoField.uint32("ur.request_value.requested_type", "requested_type", base.DEC, VS.REQUESTED_TYPE, nil, ""),
     ["request_value.text"] = ProtoField.string("ur.request_value.text", "text", base.UNICODE, "requestTextMessage."),
     ["request_value"] = ProtoField.none("ur.request_value", "Request value", "Request value message."),
     ["text.timestamp"] = ProtoField.uint64("ur.text.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["text.source"] = ProtoField.int8("ur.text.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["text.source"] = ProtoField.int8("ur.text.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["text.text"] = ProtoField.string("ur.text.text", "text", base.UNICODE, "textTextMessage."),
     ["text"] = ProtoField.none("ur.text", "Text", "Text message."),
     ["runtime_exception.timestamp"] = ProtoField.uint64("ur.runtime_exception.timestamp", "timestamp", base.DEC, nil, nil, ""),
-    ["runtime_exception.source"] = ProtoField.int8("ur.runtime_exception.source", "source", base.DEC, VS_MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
+    ["runtime_exception.source"] = ProtoField.int8("ur.runtime_exception.source", "source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message. A signed char: -2 to -5 occur."),
     ["runtime_exception.script_line_number"] = ProtoField.int32("ur.runtime_exception.script_line_number", "script_line_number", base.DEC, nil, nil, ""),
     ["runtime_exception.script_column_number"] = ProtoField.int32("ur.runtime_exception.script_column_number", "script_column_number", base.DEC, nil, nil, ""),
     ["runtime_exception.text"] = ProtoField.string("ur.runtime_exception.text", "text", base.UNICODE, "runtimeExceptionTextMessage."),
     ["runtime_exception"] = ProtoField.none("ur.runtime_exception", "Runtime exception", "Runtime exception message."),
-    ["program_state.robot_message_type"] = ProtoField.uint8("ur.program_state.robot_message_type", "robot_message_type", base.DEC, VS_PROGRAM_STATE_MESSAGE_TYPE, nil, "robotMessageType in the document. Subtype of the message."),
+    ["program_state.robot_message_type"] = ProtoField.uint8("ur.program_state.robot_message_type", "robot_message_type", base.DEC, VS.PROGRAM_STATE_MESSAGE_TYPE, nil, "robotMessageType in the document. Subtype of the message."),
     ["program_state.timestamp"] = ProtoField.uint64("ur.program_state.timestamp", "timestamp", base.DEC, nil, nil, ""),
     ["global_variables_setup.timestamp"] = ProtoField.uint64("ur.global_variables_setup.timestamp", "timestamp", base.DEC, nil, nil, ""),
     ["global_variables_setup.start_index"] = ProtoField.uint16("ur.global_variables_setup.start_index", "start_index", base.DEC, nil, nil, ""),
@@ -922,9 +1082,10 @@ local FIELDS = {
 -- ---------------------------------------------------------------------------------------------
 -- Layouts: one descriptor per field, in wire order, walked by walk() in runtime/walk.lua
 -- ---------------------------------------------------------------------------------------------
+local L = {}
 
 -- Robot mode data: 29 bytes on CB2 (1.x), 38 on 3.0-3.1, 46 on 3.2-3.4, 47 from 3.5 (FIRMWARE-LAYOUTS 1a, 2.0).
-local L_robot_mode_data = {
+L.robot_mode_data = {
     { k = "scalar", f = F["robot_mode_data.timestamp"], n = 8, path = "timestamp", signed = false },
     { k = "scalar", f = F["robot_mode_data.is_real_robot_connected"], n = 1, path = "is_real_robot_connected", signed = false },
     { k = "scalar", f = F["robot_mode_data.is_real_robot_enabled"], n = 1, path = "is_real_robot_enabled", signed = false },
@@ -933,24 +1094,24 @@ local L_robot_mode_data = {
     { k = "scalar", f = F["robot_mode_data.is_protective_stopped"], n = 1, path = "is_protective_stopped", signed = false },
     { k = "scalar", f = F["robot_mode_data.is_program_running"], n = 1, path = "is_program_running", signed = false },
     { k = "scalar", f = F["robot_mode_data.is_program_paused"], n = 1, path = "is_program_paused", signed = false },
-    { k = "scalar", f = F["robot_mode_data.robot_mode"], n = 1, path = "robot_mode", signed = true, vs = VS_ROBOT_MODE },
-    { k = "cond", present_if = nil, low = 3000, high = nil, fields = {
-        { k = "scalar", f = F["robot_mode_data.control_mode"], n = 1, path = "control_mode", signed = false, vs = VS_CONTROL_MODE },
+    { k = "scalar", f = F["robot_mode_data.robot_mode"], n = 1, path = "robot_mode", signed = true, tables = NAMES.ROBOT_MODE, label = "robot_mode", vs = VS.ROBOT_MODE, show = "" },
+    { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
+        { k = "scalar", f = F["robot_mode_data.control_mode"], n = 1, path = "control_mode", signed = false, vs = VS.CONTROL_MODE },
     } },
     { k = "scalar", f = F["robot_mode_data.target_speed_fraction"], n = 8, path = "target_speed_fraction", signed = false },
-    { k = "cond", present_if = nil, low = 3000, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
         { k = "scalar", f = F["robot_mode_data.speed_scaling"], n = 8, path = "speed_scaling", signed = false },
     } },
-    { k = "cond", present_if = nil, low = 3002, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 3002000, high = nil, fields = {
         { k = "scalar", f = F["robot_mode_data.target_speed_fraction_limit"], n = 8, path = "target_speed_fraction_limit", signed = false },
     } },
-    { k = "cond", present_if = nil, low = 3005, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 3005000, high = nil, fields = {
         { k = "scalar", f = F["robot_mode_data.reserved"], n = 1, path = "reserved", signed = false },
     } },
 }
 
 -- One entry per joint, base first.
-local L_joint_data_joint = {
+L.joint_data_joint = {
     { k = "scalar", f = F["joint_data.q_actual"], n = 8, path = "q_actual", signed = false },
     { k = "scalar", f = F["joint_data.q_target"], n = 8, path = "q_target", signed = false },
     { k = "scalar", f = F["joint_data.qd_actual"], n = 8, path = "qd_actual", signed = false },
@@ -958,16 +1119,16 @@ local L_joint_data_joint = {
     { k = "scalar", f = F["joint_data.v_actual"], n = 4, path = "v_actual", signed = false },
     { k = "scalar", f = F["joint_data.t_motor"], n = 4, path = "t_motor", signed = false },
     { k = "scalar", f = F["joint_data.t_micro"], n = 4, path = "t_micro", signed = false },
-    { k = "scalar", f = F["joint_data.joint_mode"], n = 1, path = "joint_mode", signed = false, vs = VS_JOINT_MODE },
+    { k = "scalar", f = F["joint_data.joint_mode"], n = 1, path = "joint_mode", signed = false, tables = NAMES.JOINT_MODE, label = "joint_mode", vs = VS.JOINT_MODE },
 }
 
 -- Joint data, one group per joint; 251 bytes in every version (FIRMWARE-LAYOUTS 2.1).
-local L_joint_data = {
-    { k = "group", f = F["joint_data.joints"], label = "Joint", count = 6, size = 41, item = L_joint_data_joint, path = "joints" },
+L.joint_data = {
+    { k = "group", f = F["joint_data.joints"], label = "Joint", count = 6, size = 41, item = L.joint_data_joint, path = "joints" },
 }
 
 -- Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes (FIRMWARE-LAYOUTS 2.2).
-local L_tool_data = {
+L.tool_data = {
     { k = "scalar", f = F["tool_data.analog_input_range0"], n = 1, path = "analog_input_range0", signed = false },
     { k = "scalar", f = F["tool_data.analog_input_range1"], n = 1, path = "analog_input_range1", signed = false },
     { k = "scalar", f = F["tool_data.analog_input0"], n = 8, path = "analog_input0", signed = false },
@@ -976,21 +1137,21 @@ local L_tool_data = {
     { k = "scalar", f = F["tool_data.tool_output_voltage"], n = 1, path = "tool_output_voltage", signed = false },
     { k = "scalar", f = F["tool_data.tool_current"], n = 4, path = "tool_current", signed = false },
     { k = "scalar", f = F["tool_data.tool_temperature"], n = 4, path = "tool_temperature", signed = false },
-    { k = "scalar", f = F["tool_data.tool_mode"], n = 1, path = "tool_mode", signed = false, vs = VS_TOOL_MODE },
+    { k = "scalar", f = F["tool_data.tool_mode"], n = 1, path = "tool_mode", signed = false, vs = VS.TOOL_MODE },
 }
 
 -- Masterboard data: 61 bytes on early CB2, 64 on 1.6-1.8 (76 with Euromap67), 72 on 3.0-3.1, 74 on 3.2-3.9 and 5.0-5.3, 75 on 3.10-3.15 and from 5.4; from 3.0, 16 more with Euromap67 (FIRMWARE-LAYOUTS 1a, 2.3).
-local L_masterboard_data = {
-    { k = "cond", present_if = nil, low = nil, high = 1008, fields = {
-        { k = "bits", f = F["masterboard_data.digital_input_bits"], n = 2, path = "digital_input_bits", signed = true, bits = { F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"] } },
+L.masterboard_data = {
+    { k = "cond", present_if = nil, low = nil, high = 1008999, fields = {
+        { k = "bits", f = F["masterboard_data.digital_input_bits"], n = 2, path = "digital_input_bits", signed = true, value = true, bits = { F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"] } },
     } },
-    { k = "cond", present_if = nil, low = 3000, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
         { k = "bits", f = F["masterboard_data.digital_input_bits"], n = 4, path = "digital_input_bits", signed = true, bits = { F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"] } },
     } },
-    { k = "cond", present_if = nil, low = nil, high = 1008, fields = {
-        { k = "bits", f = F["masterboard_data.digital_output_bits"], n = 2, path = "digital_output_bits", signed = true, bits = { F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"] } },
+    { k = "cond", present_if = nil, low = nil, high = 1008999, fields = {
+        { k = "bits", f = F["masterboard_data.digital_output_bits"], n = 2, path = "digital_output_bits", signed = true, value = true, bits = { F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"] } },
     } },
-    { k = "cond", present_if = nil, low = 3000, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
         { k = "bits", f = F["masterboard_data.digital_output_bits"], n = 4, path = "digital_output_bits", signed = true, bits = { F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.tool_0"], F["masterboard_data.digital_output_bits.tool_1"] } },
     } },
     { k = "scalar", f = F["masterboard_data.analog_input_range0"], n = 1, path = "analog_input_range0", signed = false },
@@ -1005,53 +1166,53 @@ local L_masterboard_data = {
     { k = "scalar", f = F["masterboard_data.robot_voltage_48v"], n = 4, path = "robot_voltage_48v", signed = false },
     { k = "scalar", f = F["masterboard_data.robot_current"], n = 4, path = "robot_current", signed = false },
     { k = "scalar", f = F["masterboard_data.master_io_current"], n = 4, path = "master_io_current", signed = false },
-    { k = "cond", present_if = nil, low = 1006, high = 1008, fields = {
-        { k = "scalar", f = F["masterboard_data.master_safety_state"], n = 1, path = "master_safety_state", signed = false, vs = VS_MASTER_SAFETY_STATE },
-        { k = "scalar", f = F["masterboard_data.master_on_off_state"], n = 1, path = "master_on_off_state", signed = false, vs = VS_MASTER_ON_OFF_STATE },
+    { k = "cond", present_if = nil, low = 1006000, high = 1008999, fields = {
+        { k = "scalar", f = F["masterboard_data.master_safety_state"], n = 1, path = "master_safety_state", signed = false, vs = VS.MASTER_SAFETY_STATE },
+        { k = "scalar", f = F["masterboard_data.master_on_off_state"], n = 1, path = "master_on_off_state", signed = false, vs = VS.MASTER_ON_OFF_STATE },
     } },
-    { k = "cond", present_if = nil, low = 3000, high = nil, fields = {
-        { k = "scalar", f = F["masterboard_data.safety_mode"], n = 1, path = "safety_mode", signed = false, vs = VS_SAFETY_MODE },
+    { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
+        { k = "scalar", f = F["masterboard_data.safety_mode"], n = 1, path = "safety_mode", signed = false, vs = VS.SAFETY_MODE, show = "" },
         { k = "scalar", f = F["masterboard_data.in_reduced_mode"], n = 1, path = "in_reduced_mode", signed = false },
     } },
-    { k = "cond", present_if = nil, low = 1006, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 1006000, high = nil, fields = {
         { k = "scalar", f = F["masterboard_data.euromap67_interface_installed"], n = 1, path = "euromap67_interface_installed", signed = false, keep = "euromap67_interface_installed" },
     } },
-    { k = "cond", present_if = "euromap67_interface_installed", low = 1006, high = nil, fields = {
+    { k = "cond", present_if = "euromap67_interface_installed", low = 1006000, high = nil, fields = {
         { k = "scalar", f = F["masterboard_data.euromap_input_bits"], n = 4, path = "euromap_input_bits", signed = false },
         { k = "scalar", f = F["masterboard_data.euromap_output_bits"], n = 4, path = "euromap_output_bits", signed = false },
     } },
-    { k = "cond", present_if = "euromap67_interface_installed", low = 1006, high = 1008, fields = {
+    { k = "cond", present_if = "euromap67_interface_installed", low = 1006000, high = 1008999, fields = {
         { k = "scalar", f = F["masterboard_data.euromap_voltage_cb2"], n = 2, path = "euromap_voltage_cb2", signed = true },
         { k = "scalar", f = F["masterboard_data.euromap_current_cb2"], n = 2, path = "euromap_current_cb2", signed = true },
     } },
-    { k = "cond", present_if = "euromap67_interface_installed", low = 3000, high = nil, fields = {
+    { k = "cond", present_if = "euromap67_interface_installed", low = 3000000, high = nil, fields = {
         { k = "scalar", f = F["masterboard_data.euromap_voltage_24v"], n = 4, path = "euromap_voltage_24v", signed = false },
         { k = "scalar", f = F["masterboard_data.euromap_current"], n = 4, path = "euromap_current", signed = false },
     } },
-    { k = "cond", present_if = nil, low = 3000, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
         { k = "scalar", f = F["masterboard_data.reserved_0"], n = 4, path = "reserved_0", signed = false },
     } },
-    { k = "cond", present_if = nil, low = 3002, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 3002000, high = nil, fields = {
         { k = "scalar", f = F["masterboard_data.operational_mode_selector_input"], n = 1, path = "operational_mode_selector_input", signed = false },
         { k = "scalar", f = F["masterboard_data.three_position_enabling_device_input"], n = 1, path = "three_position_enabling_device_input", signed = false },
     } },
-    { k = "cond", present_if = nil, low = 3010, high = 3015, fields = {
+    { k = "cond", present_if = nil, low = 3010000, high = 3015999, fields = {
         { k = "scalar", f = F["masterboard_data.reserved_1"], n = 1, path = "reserved_1", signed = false },
     } },
-    { k = "cond", present_if = nil, low = 5004, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 5004000, high = nil, fields = {
         { k = "scalar", f = F["masterboard_data.reserved_1"], n = 1, path = "reserved_1", signed = false },
     } },
 }
 
 -- Cartesian info; 53 bytes up to 3.0, 101 (with the TCP offset) from 3.1 (FIRMWARE-LAYOUTS 2.4).
-local L_cartesian_info = {
+L.cartesian_info = {
     { k = "scalar", f = F["cartesian_info.x"], n = 8, path = "x", signed = false },
     { k = "scalar", f = F["cartesian_info.y"], n = 8, path = "y", signed = false },
     { k = "scalar", f = F["cartesian_info.z"], n = 8, path = "z", signed = false },
     { k = "scalar", f = F["cartesian_info.rx"], n = 8, path = "rx", signed = false },
     { k = "scalar", f = F["cartesian_info.ry"], n = 8, path = "ry", signed = false },
     { k = "scalar", f = F["cartesian_info.rz"], n = 8, path = "rz", signed = false },
-    { k = "cond", present_if = nil, low = 3001, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 3001000, high = nil, fields = {
         { k = "scalar", f = F["cartesian_info.tcp_offset_x"], n = 8, path = "tcp_offset_x", signed = false },
         { k = "scalar", f = F["cartesian_info.tcp_offset_y"], n = 8, path = "tcp_offset_y", signed = false },
         { k = "scalar", f = F["cartesian_info.tcp_offset_z"], n = 8, path = "tcp_offset_z", signed = false },
@@ -1062,62 +1223,62 @@ local L_cartesian_info = {
 }
 
 -- The early CB2 package of type 5: three doubles, 29 bytes. python-urx (2013) calls it "LaserPointer(OBSOLETE)" and reads it as 'iBddd' without naming the values; a real early CB2 capture holds 1000.0 three times (FIRMWARE-LAYOUTS 2.5). The field names x, y, z are an inference (a laser pointer's position): no source names them. Up to 1.7: type 5 is not sent on 1.6-1.7 (UR_DRIVER: "KinematicsInfo is not available in 1.6 and 1.7") and is kinematics info from 1.8 (FIRMWARE-LAYOUTS 1a, 2.5); medium confidence, the early capture's version being unknown. The length (29 or 225) decides.
-local L_laser_pointer = {
+L.laser_pointer = {
     { k = "scalar", f = F["laser_pointer.x"], n = 8, path = "x", signed = false },
     { k = "scalar", f = F["laser_pointer.y"], n = 8, path = "y", signed = false },
     { k = "scalar", f = F["laser_pointer.z"], n = 8, path = "z", signed = false },
 }
 
 -- Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is changed. From 1.8 (FIRMWARE-LAYOUTS 1b, 2.5: NIST table, 1.8 column; UR_DRIVER comments; a real 1.8 capture decodes cleanly); high confidence. 225 bytes in every version since; calibration_status is 4 bytes although an older UR document said uint8 (FIRMWARE-LAYOUTS 3.10).
-local L_kinematics_info = {
-    { k = "array", f = F["kinematics_info.checksum"], n = 4, count = 6, path = "checksum" },
-    { k = "array", f = F["kinematics_info.dh_theta"], n = 8, count = 6, path = "dh_theta" },
-    { k = "array", f = F["kinematics_info.dh_a"], n = 8, count = 6, path = "dh_a" },
-    { k = "array", f = F["kinematics_info.dh_d"], n = 8, count = 6, path = "dh_d" },
-    { k = "array", f = F["kinematics_info.dh_alpha"], n = 8, count = 6, path = "dh_alpha" },
+L.kinematics_info = {
+    { k = "array", f = F["kinematics_info.checksum"], n = 4, count = 6, path = "checksum", signed = false },
+    { k = "array", f = F["kinematics_info.dh_theta"], n = 8, count = 6, path = "dh_theta", signed = false },
+    { k = "array", f = F["kinematics_info.dh_a"], n = 8, count = 6, path = "dh_a", signed = false },
+    { k = "array", f = F["kinematics_info.dh_d"], n = 8, count = 6, path = "dh_d", signed = false },
+    { k = "array", f = F["kinematics_info.dh_alpha"], n = 8, count = 6, path = "dh_alpha", signed = false },
     { k = "scalar", f = F["kinematics_info.calibration_status"], n = 4, path = "calibration_status", signed = false },
 }
 
 -- One entry of joint_position_limits.
-local L_configuration_data_joint_position_limit = {
+L.configuration_data_joint_position_limit = {
     { k = "scalar", f = F["configuration_data.joint_min_limit"], n = 8, path = "joint_min_limit", signed = false },
     { k = "scalar", f = F["configuration_data.joint_max_limit"], n = 8, path = "joint_max_limit", signed = false },
 }
 
 -- One entry of joint_motion_limits.
-local L_configuration_data_joint_motion_limit = {
+L.configuration_data_joint_motion_limit = {
     { k = "scalar", f = F["configuration_data.joint_max_speed"], n = 8, path = "joint_max_speed", signed = false },
     { k = "scalar", f = F["configuration_data.joint_max_acceleration"], n = 8, path = "joint_max_acceleration", signed = false },
 }
 
 -- Configuration data. Sent when leaving initializing mode and/or if the kinematics configuration is changed. 469 bytes on 1.8, 445 from 3.0, 449 from 5.25.1; not sent before 1.8 (FIRMWARE-LAYOUTS 1a, 2.6).
-local L_configuration_data = {
-    { k = "group", f = F["configuration_data.joint_position_limits"], label = "Joint", count = 6, size = 16, item = L_configuration_data_joint_position_limit, path = "joint_position_limits" },
-    { k = "group", f = F["configuration_data.joint_motion_limits"], label = "Joint", count = 6, size = 16, item = L_configuration_data_joint_motion_limit, path = "joint_motion_limits" },
+L.configuration_data = {
+    { k = "group", f = F["configuration_data.joint_position_limits"], label = "Joint", count = 6, size = 16, item = L.configuration_data_joint_position_limit, path = "joint_position_limits" },
+    { k = "group", f = F["configuration_data.joint_motion_limits"], label = "Joint", count = 6, size = 16, item = L.configuration_data_joint_motion_limit, path = "joint_motion_limits" },
     { k = "scalar", f = F["configuration_data.v_joint_default"], n = 8, path = "v_joint_default", signed = false },
     { k = "scalar", f = F["configuration_data.a_joint_default"], n = 8, path = "a_joint_default", signed = false },
     { k = "scalar", f = F["configuration_data.v_tool_default"], n = 8, path = "v_tool_default", signed = false },
     { k = "scalar", f = F["configuration_data.a_tool_default"], n = 8, path = "a_tool_default", signed = false },
     { k = "scalar", f = F["configuration_data.eq_radius"], n = 8, path = "eq_radius", signed = false },
-    { k = "array", f = F["configuration_data.dh_a"], n = 8, count = 6, path = "dh_a" },
-    { k = "array", f = F["configuration_data.dh_d"], n = 8, count = 6, path = "dh_d" },
-    { k = "array", f = F["configuration_data.dh_alpha"], n = 8, count = 6, path = "dh_alpha" },
-    { k = "array", f = F["configuration_data.dh_theta"], n = 8, count = 6, path = "dh_theta" },
+    { k = "array", f = F["configuration_data.dh_a"], n = 8, count = 6, path = "dh_a", signed = false },
+    { k = "array", f = F["configuration_data.dh_d"], n = 8, count = 6, path = "dh_d", signed = false },
+    { k = "array", f = F["configuration_data.dh_alpha"], n = 8, count = 6, path = "dh_alpha", signed = false },
+    { k = "array", f = F["configuration_data.dh_theta"], n = 8, count = 6, path = "dh_theta", signed = false },
     { k = "scalar", f = F["configuration_data.masterboard_version"], n = 4, path = "masterboard_version", signed = true },
     { k = "scalar", f = F["configuration_data.controller_box_type"], n = 4, path = "controller_box_type", signed = true },
     { k = "scalar", f = F["configuration_data.robot_type"], n = 4, path = "robot_type", signed = true },
     { k = "scalar", f = F["configuration_data.robot_sub_type"], n = 4, path = "robot_sub_type", signed = true },
-    { k = "cond", present_if = nil, low = nil, high = 1008, fields = {
-        { k = "array", f = F["configuration_data.motor_type"], n = 4, count = 6, path = "motor_type" },
+    { k = "cond", present_if = nil, low = nil, high = 1008999, fields = {
+        { k = "array", f = F["configuration_data.motor_type"], n = 4, count = 6, path = "motor_type", signed = true },
     } },
-    { k = "cond", present_if = nil, low = 5025, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 5025001, high = nil, fields = {
         { k = "scalar", f = F["configuration_data.reserved_1"], n = 2, path = "reserved_1", signed = true },
         { k = "scalar", f = F["configuration_data.reserved_2"], n = 2, path = "reserved_2", signed = true },
     } },
 }
 
 -- Force mode data; 61 bytes in every version that sends it (FIRMWARE-LAYOUTS 2.7).
-local L_force_mode_data = {
+L.force_mode_data = {
     { k = "scalar", f = F["force_mode_data.fx"], n = 8, path = "fx", signed = false },
     { k = "scalar", f = F["force_mode_data.fy"], n = 8, path = "fy", signed = false },
     { k = "scalar", f = F["force_mode_data.fz"], n = 8, path = "fz", signed = false },
@@ -1128,25 +1289,25 @@ local L_force_mode_data = {
 }
 
 -- Additional info: 10 bytes up to early 1.8 builds, 7 from late 1.8 builds to 3.1, 8 on 3.2-3.15, 9 from 5.0 (FIRMWARE-LAYOUTS 1a, 2.8, 3.4). 1.8 sends either 10 or 7 bytes: the 10-byte form is gated to 1.7 and its length selects it on 1.8.
-local L_additional_info = {
-    { k = "cond", present_if = nil, low = nil, high = 1007, fields = {
+L.additional_info = {
+    { k = "cond", present_if = nil, low = nil, high = 1007999, fields = {
         { k = "scalar", f = F["additional_info.ctrl_bits"], n = 4, path = "ctrl_bits", signed = false },
         { k = "scalar", f = F["additional_info.teach_button"], n = 1, path = "teach_button", signed = false },
     } },
-    { k = "cond", present_if = nil, low = 1008, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 1008000, high = nil, fields = {
         { k = "scalar", f = F["additional_info.tp_button_state"], n = 1, path = "tp_button_state", signed = false },
         { k = "scalar", f = F["additional_info.freedrive_button_enabled"], n = 1, path = "freedrive_button_enabled", signed = false },
     } },
-    { k = "cond", present_if = nil, low = 3002, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 3002000, high = nil, fields = {
         { k = "scalar", f = F["additional_info.io_enabled_freedrive"], n = 1, path = "io_enabled_freedrive", signed = false },
     } },
-    { k = "cond", present_if = nil, low = 5000, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 5000000, high = nil, fields = {
         { k = "scalar", f = F["additional_info.reserved"], n = 1, path = "reserved", signed = false },
     } },
 }
 
 -- Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8 builds on (FIRMWARE-LAYOUTS 2.9).
-local L_calibration_data = {
+L.calibration_data = {
     { k = "scalar", f = F["calibration_data.fx"], n = 8, path = "fx", signed = false },
     { k = "scalar", f = F["calibration_data.fy"], n = 8, path = "fy", signed = false },
     { k = "scalar", f = F["calibration_data.fz"], n = 8, path = "fz", signed = false },
@@ -1156,12 +1317,12 @@ local L_calibration_data = {
 }
 
 -- Safety data. Used internally by Universal Robots software only; its layout is not documented. 43 bytes in every e-Series capture; no CB2 or CB3 source has it (FIRMWARE-LAYOUTS 2.10).
-local L_safety_data = {
+L.safety_data = {
     { k = "bytes", f = F["safety_data.raw"], path = "raw" },
 }
 
 -- Tool communication info. e-Series only; its first version is unknown (FIRMWARE-LAYOUTS 2.11).
-local L_tool_comm_info = {
+L.tool_comm_info = {
     { k = "scalar", f = F["tool_comm_info.tool_communication_is_enabled"], n = 1, path = "tool_communication_is_enabled", signed = false },
     { k = "scalar", f = F["tool_comm_info.baud_rate"], n = 4, path = "baud_rate", signed = true },
     { k = "scalar", f = F["tool_comm_info.parity"], n = 4, path = "parity", signed = true },
@@ -1171,40 +1332,40 @@ local L_tool_comm_info = {
 }
 
 -- Tool mode info. e-Series only; its first version is unknown (FIRMWARE-LAYOUTS 2.12).
-local L_tool_mode_info = {
+L.tool_mode_info = {
     { k = "scalar", f = F["tool_mode_info.output_mode"], n = 1, path = "output_mode", signed = false },
     { k = "scalar", f = F["tool_mode_info.digital_output_mode_output_0"], n = 1, path = "digital_output_mode_output_0", signed = false },
     { k = "scalar", f = F["tool_mode_info.digital_output_mode_output_1"], n = 1, path = "digital_output_mode_output_1", signed = false },
 }
 
 -- Singularity info. Used internally by Universal Robots software only.
-local L_singularity_info = {
+L.singularity_info = {
     { k = "scalar", f = F["singularity_info.singularity_severity"], n = 1, path = "singularity_severity", signed = false },
     { k = "scalar", f = F["singularity_info.singularity_type"], n = 1, path = "singularity_type", signed = false },
 }
 
 -- Header and subtype of every robot message.
-local L_robot_message = {
+L.robot_message = {
     { k = "scalar", f = F["robot_message.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["robot_message.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
-    { k = "scalar", f = F["robot_message.robot_message_type"], n = 1, path = "robot_message_type", signed = false, vs = VS_ROBOT_MESSAGE_TYPE },
+    { k = "scalar", f = F["robot_message.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["robot_message.robot_message_type"], n = 1, path = "robot_message_type", signed = false, tables = NAMES.ROBOT_MESSAGE_TYPE, label = "robot_message_type", vs = VS.ROBOT_MESSAGE_TYPE },
 }
 
 -- Header of the version message.
-local L_version_header = {
+L.version_header = {
     { k = "scalar", f = F["version.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["version.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["version.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Version message, the first message on both the primary and secondary interfaces. It is read in the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from 3.3 the bugfix version and the build number (FIRMWARE-LAYOUTS 2.15). PolyScope X sends major version 10.
-local L_version = {
+L.version = {
     { k = "pstring", f = F["version.project_name"], n = 1, signed = true, path = "project_name", show = "" },
     { k = "scalar", f = F["version.major_version"], n = 1, path = "major_version", signed = false, show = " " },
     { k = "scalar", f = F["version.minor_version"], n = 1, path = "minor_version", signed = false, show = "." },
-    { k = "cond", present_if = nil, low = nil, high = 3002, fields = {
+    { k = "cond", present_if = nil, low = nil, high = 3002999, fields = {
         { k = "scalar", f = F["version.svn_revision"], n = 4, path = "svn_revision", signed = true },
     } },
-    { k = "cond", present_if = nil, low = 3003, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 3003000, high = nil, fields = {
         { k = "scalar", f = F["version.bugfix_version"], n = 4, path = "bugfix_version", signed = true, show = "." },
         { k = "scalar", f = F["version.build_number"], n = 4, path = "build_number", signed = true, show = "." },
     } },
@@ -1212,37 +1373,37 @@ local L_version = {
 }
 
 -- Header of the safety_mode message.
-local L_safety_mode_header = {
+L.safety_mode_header = {
     { k = "scalar", f = F["safety_mode.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["safety_mode.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["safety_mode.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Safety mode message; the security message of CB2, which carries a text instead of the safety mode and its report data (FIRMWARE-LAYOUTS 1c).
-local L_safety_mode = {
+L.safety_mode = {
     { k = "scalar", f = F["safety_mode.robot_message_code"], n = 4, path = "robot_message_code", signed = true },
     { k = "scalar", f = F["safety_mode.robot_message_argument"], n = 4, path = "robot_message_argument", signed = true },
-    { k = "cond", present_if = nil, low = 3000, high = nil, fields = {
-        { k = "scalar", f = F["safety_mode.safety_mode_type"], n = 1, path = "safety_mode_type", signed = false, vs = VS_SAFETY_MODE, show = "" },
+    { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
+        { k = "scalar", f = F["safety_mode.safety_mode_type"], n = 1, path = "safety_mode_type", signed = false, vs = VS.SAFETY_MODE, show = "" },
         { k = "scalar", f = F["safety_mode.report_data_type"], n = 4, path = "report_data_type", signed = false, keep = "report_data_type" },
         { k = "switch", sel = "report_data_type", path = "report_data", default = { f = F["safety_mode.report_data"], n = 4 }, cases = { [2] = { f = F["safety_mode.report_data_int32"], n = 4 }, [3] = { f = F["safety_mode.report_data_float32"], n = 4 } } },
     } },
-    { k = "cond", present_if = nil, low = nil, high = 1008, fields = {
+    { k = "cond", present_if = nil, low = nil, high = 1008999, fields = {
         { k = "string", f = F["safety_mode.text"], path = "text" },
     } },
 }
 
 -- Header of the robot_comm message.
-local L_robot_comm_header = {
+L.robot_comm_header = {
     { k = "scalar", f = F["robot_comm.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["robot_comm.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["robot_comm.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Robot comm message (an error code report). On CB2 the code and argument are followed by the text alone (FIRMWARE-LAYOUTS 1c).
-local L_robot_comm = {
+L.robot_comm = {
     { k = "scalar", f = F["robot_comm.robot_message_code"], n = 4, path = "robot_message_code", signed = true },
     { k = "scalar", f = F["robot_comm.robot_message_argument"], n = 4, path = "robot_message_argument", signed = true },
-    { k = "cond", present_if = nil, low = 3000, high = nil, fields = {
-        { k = "scalar", f = F["robot_comm.robot_message_report_level"], n = 4, path = "robot_message_report_level", signed = true, vs = VS_REPORT_LEVEL, show = "" },
+    { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
+        { k = "scalar", f = F["robot_comm.robot_message_report_level"], n = 4, path = "robot_message_report_level", signed = true, vs = VS.REPORT_LEVEL, show = "" },
         { k = "scalar", f = F["robot_comm.robot_message_data_type"], n = 4, path = "robot_message_data_type", signed = false },
         { k = "scalar", f = F["robot_comm.robot_message_data"], n = 4, path = "robot_message_data", signed = false },
     } },
@@ -1250,13 +1411,13 @@ local L_robot_comm = {
 }
 
 -- Header of the key message.
-local L_key_header = {
+L.key_header = {
     { k = "scalar", f = F["key.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["key.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["key.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Key message.
-local L_key = {
+L.key = {
     { k = "scalar", f = F["key.robot_message_code"], n = 4, path = "robot_message_code", signed = true },
     { k = "scalar", f = F["key.robot_message_argument"], n = 4, path = "robot_message_argument", signed = true },
     { k = "pstring", f = F["key.title"], n = 1, signed = false, path = "title", show = "" },
@@ -1264,38 +1425,38 @@ local L_key = {
 }
 
 -- Header of the program_threads message.
-local L_program_threads_header = {
+L.program_threads_header = {
     { k = "scalar", f = F["program_threads.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["program_threads.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["program_threads.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- One entry of threads.
-local L_program_threads_program_thread = {
+L.program_threads_program_thread = {
     { k = "scalar", f = F["program_threads.label_id"], n = 4, path = "label_id", signed = true },
     { k = "pstring", f = F["program_threads.label_name"], n = 4, signed = true, path = "label_name" },
     { k = "pstring", f = F["program_threads.thread_name"], n = 4, signed = true, path = "thread_name" },
 }
 
 -- Program threads message, one entry per running program thread.
-local L_program_threads = {
-    { k = "group", f = F["program_threads.threads"], label = "Thread", count = nil, size = nil, item = L_program_threads_program_thread, path = "threads" },
+L.program_threads = {
+    { k = "group", f = F["program_threads.threads"], label = "Thread", count = nil, size = nil, item = L.program_threads_program_thread, path = "threads" },
 }
 
 -- Header of the popup message.
-local L_popup_header = {
+L.popup_header = {
     { k = "scalar", f = F["popup.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["popup.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["popup.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Popup message. On CB2 it has no request id, requested type or blocking flag (FIRMWARE-LAYOUTS 1c).
-local L_popup = {
-    { k = "cond", present_if = nil, low = 3000, high = nil, fields = {
+L.popup = {
+    { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
         { k = "scalar", f = F["popup.request_id"], n = 4, path = "request_id", signed = false },
-        { k = "scalar", f = F["popup.requested_type"], n = 4, path = "requested_type", signed = false, vs = VS_REQUESTED_TYPE },
+        { k = "scalar", f = F["popup.requested_type"], n = 4, path = "requested_type", signed = false, vs = VS.REQUESTED_TYPE },
     } },
     { k = "scalar", f = F["popup.warning"], n = 1, path = "warning", signed = false },
     { k = "scalar", f = F["popup.error"], n = 1, path = "error", signed = false },
-    { k = "cond", present_if = nil, low = 3000, high = nil, fields = {
+    { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
         { k = "scalar", f = F["popup.blocking"], n = 1, path = "blocking", signed = false },
     } },
     { k = "pstring", f = F["popup.title"], n = 1, signed = false, path = "title", show = "" },
@@ -1303,25 +1464,25 @@ local L_popup = {
 }
 
 -- Header of the label message.
-local L_label_header = {
+L.label_header = {
     { k = "scalar", f = F["label.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["label.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["label.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Label message (CB2 only). CB2, up to 1.8 (FIRMWARE-LAYOUTS 1c: python-urx 2013 labelMessage, the CB2 C header LabelMessage). Later documents drop subtype 1 and no CB3 form is known, so the 1.8 boundary is an inference; later streams keep it raw.
-local L_label = {
+L.label = {
     { k = "scalar", f = F["label.id"], n = 4, path = "id", signed = true, show = "" },
     { k = "string", f = F["label.text"], path = "text", show = ": " },
 }
 
 -- Header of the var message.
-local L_var_header = {
+L.var_header = {
     { k = "scalar", f = F["var.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["var.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["var.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Var message (CB2 only). CB2, up to 1.8 (FIRMWARE-LAYOUTS 1c: python-urx 2013 varMessage, the CB2 C header VarMessage). Later documents drop subtype 8 and no CB3 form is known, so the 1.8 boundary is an inference; later streams keep it raw.
-local L_var = {
+L.var = {
     { k = "scalar", f = F["var.robot_message_code"], n = 4, path = "robot_message_code", signed = true },
     { k = "scalar", f = F["var.robot_message_argument"], n = 4, path = "robot_message_argument", signed = true },
     { k = "pstring", f = F["var.title"], n = 1, signed = false, path = "title", show = "" },
@@ -1329,81 +1490,81 @@ local L_var = {
 }
 
 -- Header of the hardware_info message.
-local L_hardware_info_header = {
+L.hardware_info_header = {
     { k = "scalar", f = F["hardware_info.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["hardware_info.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["hardware_info.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13 (FIRMWARE-LAYOUTS 1b, 2.16: URCL hardware_info_message.h "introduced in PolyScope 5.26 / 10.14"; URCL datatypes.h on early 5.26 and 10.13 patch releases). 27 bytes in all. Not gated by version: one range cannot say "5.26 and later, and 10.13 and later", and subtype 18 never meant anything else, so it is read in every version (FIRMWARE-LAYOUTS 3.13: keep it tolerant). The layout is URCL's parse order; high confidence.
-local L_hardware_info = {
+L.hardware_info = {
     { k = "scalar", f = F["hardware_info.robot_type"], n = 4, path = "robot_type", signed = true, show = "robot type " },
     { k = "scalar", f = F["hardware_info.reserved_1"], n = 2, path = "reserved_1", signed = false },
-    { k = "scalar", f = F["hardware_info.control_box_type"], n = 2, path = "control_box_type", signed = false, vs = VS_CONTROL_BOX_TYPE, show = ", control box " },
+    { k = "scalar", f = F["hardware_info.control_box_type"], n = 2, path = "control_box_type", signed = false, vs = VS.CONTROL_BOX_TYPE, show = ", control box " },
     { k = "scalar", f = F["hardware_info.reserved_2"], n = 2, path = "reserved_2", signed = false },
-    { k = "scalar", f = F["hardware_info.tool_flange_type"], n = 2, path = "tool_flange_type", signed = false, vs = VS_TOOL_FLANGE_TYPE, show = ", tool flange " },
+    { k = "scalar", f = F["hardware_info.tool_flange_type"], n = 2, path = "tool_flange_type", signed = false, vs = VS.TOOL_FLANGE_TYPE, show = ", tool flange " },
 }
 
 -- Header of the request_value message.
-local L_request_value_header = {
+L.request_value_header = {
     { k = "scalar", f = F["request_value.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["request_value.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["request_value.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Request value message.
-local L_request_value = {
+L.request_value = {
     { k = "scalar", f = F["request_value.request_id"], n = 4, path = "request_id", signed = false },
-    { k = "scalar", f = F["request_value.requested_type"], n = 4, path = "requested_type", signed = false, vs = VS_REQUESTED_TYPE, show = "" },
+    { k = "scalar", f = F["request_value.requested_type"], n = 4, path = "requested_type", signed = false, vs = VS.REQUESTED_TYPE, show = "" },
     { k = "string", f = F["request_value.text"], path = "text", show = ": " },
 }
 
 -- Header of the text message.
-local L_text_header = {
+L.text_header = {
     { k = "scalar", f = F["text.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["text.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["text.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Text message.
-local L_text = {
+L.text = {
     { k = "string", f = F["text.text"], path = "text", show = "" },
 }
 
 -- Header of the runtime_exception message.
-local L_runtime_exception_header = {
+L.runtime_exception_header = {
     { k = "scalar", f = F["runtime_exception.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["runtime_exception.source"], n = 1, path = "source", signed = true, vs = VS_MESSAGE_SOURCE },
+    { k = "scalar", f = F["runtime_exception.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Runtime exception message.
-local L_runtime_exception = {
+L.runtime_exception = {
     { k = "scalar", f = F["runtime_exception.script_line_number"], n = 4, path = "script_line_number", signed = true, show = "line " },
     { k = "scalar", f = F["runtime_exception.script_column_number"], n = 4, path = "script_column_number", signed = true, show = ":" },
     { k = "string", f = F["runtime_exception.text"], path = "text", show = ": " },
 }
 
 -- Header and subtype of every program state.
-local L_program_state = {
+L.program_state = {
     { k = "scalar", f = F["program_state.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["program_state.robot_message_type"], n = 1, path = "robot_message_type", signed = false, vs = VS_PROGRAM_STATE_MESSAGE_TYPE },
+    { k = "scalar", f = F["program_state.robot_message_type"], n = 1, path = "robot_message_type", signed = false, vs = VS.PROGRAM_STATE_MESSAGE_TYPE },
 }
 
 -- Header of the global_variables_setup message.
-local L_global_variables_setup_header = {
+L.global_variables_setup_header = {
     { k = "scalar", f = F["global_variables_setup.timestamp"], n = 8, path = "timestamp", signed = false },
 }
 
 -- Global variables setup message.
-local L_global_variables_setup = {
+L.global_variables_setup = {
     { k = "scalar", f = F["global_variables_setup.start_index"], n = 2, path = "start_index", signed = false },
     { k = "strings", f = F["global_variables_setup.variable_names"], term = 10, path = "variable_names" },
 }
 
 -- Header of the global_variables_update message.
-local L_global_variables_update_header = {
+L.global_variables_update_header = {
     { k = "scalar", f = F["global_variables_update.timestamp"], n = 8, path = "timestamp", signed = false },
 }
 
 -- Global variables update message.
-local L_global_variables_update = {
+L.global_variables_update = {
     { k = "scalar", f = F["global_variables_update.start_index"], n = 2, path = "start_index", signed = false },
     { k = "values", term = 10, path = "variables", vf = { item = F["global_variables_update.variables"], type = F["global_variables_update.type"], code = F["global_variables_update.type_code"], count = F["global_variables_update.length"], rows = F["global_variables_update.rows"], cols = F["global_variables_update.columns"], row = F["global_variables_update.row"], ["bool"] = F["global_variables_update.value_bool"], ["float32"] = F["global_variables_update.value_float32"], ["int32"] = F["global_variables_update.value_int32"], string = F["global_variables_update.value_string"] } },
 }
@@ -1411,90 +1572,208 @@ local L_global_variables_update = {
 -- ---------------------------------------------------------------------------------------------
 -- Messages by type: data for the runtime's message kinds (runtime/messages.lua)
 -- ---------------------------------------------------------------------------------------------
-local MESSAGE = {}
+local MESSAGE, PART = {}, {}
 
--- Sub-packages of the robot state, by package type.
+-- Sub-packages of the robot state, one entry per layout.
+PART.robot_mode_data = { name = "robot_mode_data", label = "Robot mode data", item = F["robot_mode_data"], layout = L.robot_mode_data, summary = true,
+    refs = { F["robot_mode_data.control_mode"], F["robot_mode_data.is_emergency_stopped"], F["robot_mode_data.is_program_paused"], F["robot_mode_data.is_program_running"], F["robot_mode_data.is_protective_stopped"], F["robot_mode_data.is_real_robot_connected"], F["robot_mode_data.is_real_robot_enabled"], F["robot_mode_data.is_robot_power_on"], F["robot_mode_data.reserved"], F["robot_mode_data.robot_mode"], F["robot_mode_data.speed_scaling"], F["robot_mode_data.target_speed_fraction"], F["robot_mode_data.target_speed_fraction_limit"], F["robot_mode_data.timestamp"] } }
+PART.joint_data = { name = "joint_data", label = "Joint data", item = F["joint_data"], layout = L.joint_data, summary = false,
+    refs = { F["joint_data.i_actual"], F["joint_data.joint_mode"], F["joint_data.joints"], F["joint_data.q_actual"], F["joint_data.q_target"], F["joint_data.qd_actual"], F["joint_data.t_micro"], F["joint_data.t_motor"], F["joint_data.v_actual"] } }
+PART.tool_data = { name = "tool_data", label = "Tool data", item = F["tool_data"], layout = L.tool_data, summary = false,
+    refs = { F["tool_data.analog_input0"], F["tool_data.analog_input1"], F["tool_data.analog_input_range0"], F["tool_data.analog_input_range1"], F["tool_data.tool_current"], F["tool_data.tool_mode"], F["tool_data.tool_output_voltage"], F["tool_data.tool_temperature"], F["tool_data.tool_voltage_48v"] } }
+PART.masterboard_data = { name = "masterboard_data", label = "Masterboard data", item = F["masterboard_data"], layout = L.masterboard_data, summary = true,
+    refs = { F["masterboard_data.analog_input0"], F["masterboard_data.analog_input1"], F["masterboard_data.analog_input_range0"], F["masterboard_data.analog_input_range1"], F["masterboard_data.analog_output0"], F["masterboard_data.analog_output1"], F["masterboard_data.analog_output_domain0"], F["masterboard_data.analog_output_domain1"], F["masterboard_data.digital_input_bits"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"], F["masterboard_data.digital_output_bits"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.tool_0"], F["masterboard_data.digital_output_bits.tool_1"], F["masterboard_data.euromap67_interface_installed"], F["masterboard_data.euromap_current"], F["masterboard_data.euromap_current_cb2"], F["masterboard_data.euromap_input_bits"], F["masterboard_data.euromap_output_bits"], F["masterboard_data.euromap_voltage_24v"], F["masterboard_data.euromap_voltage_cb2"], F["masterboard_data.in_reduced_mode"], F["masterboard_data.master_board_temperature"], F["masterboard_data.master_io_current"], F["masterboard_data.master_on_off_state"], F["masterboard_data.master_safety_state"], F["masterboard_data.operational_mode_selector_input"], F["masterboard_data.reserved_0"], F["masterboard_data.reserved_1"], F["masterboard_data.robot_current"], F["masterboard_data.robot_voltage_48v"], F["masterboard_data.safety_mode"], F["masterboard_data.three_position_enabling_device_input"] } }
+PART.cartesian_info = { name = "cartesian_info", label = "Cartesian info", item = F["cartesian_info"], layout = L.cartesian_info, summary = false,
+    refs = { F["cartesian_info.rx"], F["cartesian_info.ry"], F["cartesian_info.rz"], F["cartesian_info.tcp_offset_rx"], F["cartesian_info.tcp_offset_ry"], F["cartesian_info.tcp_offset_rz"], F["cartesian_info.tcp_offset_x"], F["cartesian_info.tcp_offset_y"], F["cartesian_info.tcp_offset_z"], F["cartesian_info.x"], F["cartesian_info.y"], F["cartesian_info.z"] } }
+PART.laser_pointer = { name = "laser_pointer", label = "Laser pointer", item = F["laser_pointer"], layout = L.laser_pointer, summary = false,
+    refs = { F["laser_pointer.x"], F["laser_pointer.y"], F["laser_pointer.z"] } }
+PART.kinematics_info = { name = "kinematics_info", label = "Kinematics info", item = F["kinematics_info"], layout = L.kinematics_info, summary = false,
+    refs = { F["kinematics_info.calibration_status"], F["kinematics_info.checksum"], F["kinematics_info.dh_a"], F["kinematics_info.dh_alpha"], F["kinematics_info.dh_d"], F["kinematics_info.dh_theta"] } }
+PART.configuration_data = { name = "configuration_data", label = "Configuration data", item = F["configuration_data"], layout = L.configuration_data, summary = false,
+    refs = { F["configuration_data.a_joint_default"], F["configuration_data.a_tool_default"], F["configuration_data.controller_box_type"], F["configuration_data.dh_a"], F["configuration_data.dh_alpha"], F["configuration_data.dh_d"], F["configuration_data.dh_theta"], F["configuration_data.eq_radius"], F["configuration_data.joint_max_acceleration"], F["configuration_data.joint_max_limit"], F["configuration_data.joint_max_speed"], F["configuration_data.joint_min_limit"], F["configuration_data.joint_motion_limits"], F["configuration_data.joint_position_limits"], F["configuration_data.masterboard_version"], F["configuration_data.motor_type"], F["configuration_data.reserved_1"], F["configuration_data.reserved_2"], F["configuration_data.robot_sub_type"], F["configuration_data.robot_type"], F["configuration_data.v_joint_default"], F["configuration_data.v_tool_default"] } }
+PART.force_mode_data = { name = "force_mode_data", label = "Force mode data", item = F["force_mode_data"], layout = L.force_mode_data, summary = false,
+    refs = { F["force_mode_data.frx"], F["force_mode_data.fry"], F["force_mode_data.frz"], F["force_mode_data.fx"], F["force_mode_data.fy"], F["force_mode_data.fz"], F["force_mode_data.robot_dexterity"] } }
+PART.additional_info = { name = "additional_info", label = "Additional info", item = F["additional_info"], layout = L.additional_info, summary = false,
+    refs = { F["additional_info.ctrl_bits"], F["additional_info.freedrive_button_enabled"], F["additional_info.io_enabled_freedrive"], F["additional_info.reserved"], F["additional_info.teach_button"], F["additional_info.tp_button_state"] } }
+PART.calibration_data = { name = "calibration_data", label = "Calibration data", item = F["calibration_data"], layout = L.calibration_data, summary = false,
+    refs = { F["calibration_data.frx"], F["calibration_data.fry"], F["calibration_data.frz"], F["calibration_data.fx"], F["calibration_data.fy"], F["calibration_data.fz"] } }
+PART.safety_data = { name = "safety_data", label = "Safety data", item = F["safety_data"], layout = L.safety_data, summary = false,
+    refs = { F["safety_data.raw"] } }
+PART.tool_comm_info = { name = "tool_comm_info", label = "Tool comm info", item = F["tool_comm_info"], layout = L.tool_comm_info, summary = false,
+    refs = { F["tool_comm_info.baud_rate"], F["tool_comm_info.parity"], F["tool_comm_info.rx_idle_chars"], F["tool_comm_info.stop_bits"], F["tool_comm_info.tool_communication_is_enabled"], F["tool_comm_info.tx_idle_chars"] } }
+PART.tool_mode_info = { name = "tool_mode_info", label = "Tool mode info", item = F["tool_mode_info"], layout = L.tool_mode_info, summary = false,
+    refs = { F["tool_mode_info.digital_output_mode_output_0"], F["tool_mode_info.digital_output_mode_output_1"], F["tool_mode_info.output_mode"] } }
+PART.singularity_info = { name = "singularity_info", label = "Singularity info", item = F["singularity_info"], layout = L.singularity_info, summary = false,
+    refs = { F["singularity_info.singularity_severity"], F["singularity_info.singularity_type"] } }
+
+-- The forms each type code of the robot state takes: chosen by the software version, else by
+-- the body size (runtime/versions.lua); `single` when one form serves every version.
 local ROBOT_STATE_PACKAGES = {
-    [0] = { name = "robot_mode_data", label = "Robot mode data", item = F["robot_mode_data"], layout = L_robot_mode_data, info = { [24] = { { at = 15, n = 1, vs = VS_ROBOT_MODE }, }, [33] = { { at = 15, n = 1, vs = VS_ROBOT_MODE }, }, [41] = { { at = 15, n = 1, vs = VS_ROBOT_MODE }, }, [42] = { { at = 15, n = 1, vs = VS_ROBOT_MODE }, }, }, info_newest = { { at = 15, n = 1, vs = VS_ROBOT_MODE }, },
-        refs = { F["robot_mode_data.control_mode"], F["robot_mode_data.is_emergency_stopped"], F["robot_mode_data.is_program_paused"], F["robot_mode_data.is_program_running"], F["robot_mode_data.is_protective_stopped"], F["robot_mode_data.is_real_robot_connected"], F["robot_mode_data.is_real_robot_enabled"], F["robot_mode_data.is_robot_power_on"], F["robot_mode_data.reserved"], F["robot_mode_data.robot_mode"], F["robot_mode_data.speed_scaling"], F["robot_mode_data.target_speed_fraction"], F["robot_mode_data.target_speed_fraction_limit"], F["robot_mode_data.timestamp"] } },
-    [1] = { name = "joint_data", label = "Joint data", item = F["joint_data"], layout = L_joint_data,
-        refs = { F["joint_data.i_actual"], F["joint_data.joint_mode"], F["joint_data.joints"], F["joint_data.q_actual"], F["joint_data.q_target"], F["joint_data.qd_actual"], F["joint_data.t_micro"], F["joint_data.t_motor"], F["joint_data.v_actual"] } },
-    [2] = { name = "tool_data", label = "Tool data", item = F["tool_data"], layout = L_tool_data,
-        refs = { F["tool_data.analog_input0"], F["tool_data.analog_input1"], F["tool_data.analog_input_range0"], F["tool_data.analog_input_range1"], F["tool_data.tool_current"], F["tool_data.tool_mode"], F["tool_data.tool_output_voltage"], F["tool_data.tool_temperature"], F["tool_data.tool_voltage_48v"] } },
-    [3] = { name = "masterboard_data", label = "Masterboard data", item = F["masterboard_data"], layout = L_masterboard_data, info = { [67] = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, }, [83] = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, }, [69] = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, }, [85] = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, }, [70] = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, }, [86] = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, }, }, info_newest = { { at = 60, n = 1, vs = VS_SAFETY_MODE }, },
-        refs = { F["masterboard_data.analog_input0"], F["masterboard_data.analog_input1"], F["masterboard_data.analog_input_range0"], F["masterboard_data.analog_input_range1"], F["masterboard_data.analog_output0"], F["masterboard_data.analog_output1"], F["masterboard_data.analog_output_domain0"], F["masterboard_data.analog_output_domain1"], F["masterboard_data.digital_input_bits"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"], F["masterboard_data.digital_output_bits"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.tool_0"], F["masterboard_data.digital_output_bits.tool_1"], F["masterboard_data.euromap67_interface_installed"], F["masterboard_data.euromap_current"], F["masterboard_data.euromap_current_cb2"], F["masterboard_data.euromap_input_bits"], F["masterboard_data.euromap_output_bits"], F["masterboard_data.euromap_voltage_24v"], F["masterboard_data.euromap_voltage_cb2"], F["masterboard_data.in_reduced_mode"], F["masterboard_data.master_board_temperature"], F["masterboard_data.master_io_current"], F["masterboard_data.master_on_off_state"], F["masterboard_data.master_safety_state"], F["masterboard_data.operational_mode_selector_input"], F["masterboard_data.reserved_0"], F["masterboard_data.reserved_1"], F["masterboard_data.robot_current"], F["masterboard_data.robot_voltage_48v"], F["masterboard_data.safety_mode"], F["masterboard_data.three_position_enabling_device_input"] } },
-    [4] = { name = "cartesian_info", label = "Cartesian info", item = F["cartesian_info"], layout = L_cartesian_info,
-        refs = { F["cartesian_info.rx"], F["cartesian_info.ry"], F["cartesian_info.rz"], F["cartesian_info.tcp_offset_rx"], F["cartesian_info.tcp_offset_ry"], F["cartesian_info.tcp_offset_rz"], F["cartesian_info.tcp_offset_x"], F["cartesian_info.tcp_offset_y"], F["cartesian_info.tcp_offset_z"], F["cartesian_info.x"], F["cartesian_info.y"], F["cartesian_info.z"] } },
-    [5] = { name = "laser_pointer", label = "Laser pointer", item = F["laser_pointer"], layout = L_laser_pointer,
-        refs = { F["laser_pointer.x"], F["laser_pointer.y"], F["laser_pointer.z"] } },
-    [5] = { name = "kinematics_info", label = "Kinematics info", item = F["kinematics_info"], layout = L_kinematics_info,
-        refs = { F["kinematics_info.calibration_status"], F["kinematics_info.checksum"], F["kinematics_info.dh_a"], F["kinematics_info.dh_alpha"], F["kinematics_info.dh_d"], F["kinematics_info.dh_theta"] } },
-    [6] = { name = "configuration_data", label = "Configuration data", item = F["configuration_data"], layout = L_configuration_data,
-        refs = { F["configuration_data.a_joint_default"], F["configuration_data.a_tool_default"], F["configuration_data.controller_box_type"], F["configuration_data.dh_a"], F["configuration_data.dh_alpha"], F["configuration_data.dh_d"], F["configuration_data.dh_theta"], F["configuration_data.eq_radius"], F["configuration_data.joint_max_acceleration"], F["configuration_data.joint_max_limit"], F["configuration_data.joint_max_speed"], F["configuration_data.joint_min_limit"], F["configuration_data.joint_motion_limits"], F["configuration_data.joint_position_limits"], F["configuration_data.masterboard_version"], F["configuration_data.motor_type"], F["configuration_data.reserved_1"], F["configuration_data.reserved_2"], F["configuration_data.robot_sub_type"], F["configuration_data.robot_type"], F["configuration_data.v_joint_default"], F["configuration_data.v_tool_default"] } },
-    [7] = { name = "force_mode_data", label = "Force mode data", item = F["force_mode_data"], layout = L_force_mode_data,
-        refs = { F["force_mode_data.frx"], F["force_mode_data.fry"], F["force_mode_data.frz"], F["force_mode_data.fx"], F["force_mode_data.fy"], F["force_mode_data.fz"], F["force_mode_data.robot_dexterity"] } },
-    [8] = { name = "additional_info", label = "Additional info", item = F["additional_info"], layout = L_additional_info,
-        refs = { F["additional_info.ctrl_bits"], F["additional_info.freedrive_button_enabled"], F["additional_info.io_enabled_freedrive"], F["additional_info.reserved"], F["additional_info.teach_button"], F["additional_info.tp_button_state"] } },
-    [9] = { name = "calibration_data", label = "Calibration data", item = F["calibration_data"], layout = L_calibration_data,
-        refs = { F["calibration_data.frx"], F["calibration_data.fry"], F["calibration_data.frz"], F["calibration_data.fx"], F["calibration_data.fy"], F["calibration_data.fz"] } },
-    [10] = { name = "safety_data", label = "Safety data", item = F["safety_data"], layout = L_safety_data,
-        refs = { F["safety_data.raw"] } },
-    [11] = { name = "tool_comm_info", label = "Tool comm info", item = F["tool_comm_info"], layout = L_tool_comm_info,
-        refs = { F["tool_comm_info.baud_rate"], F["tool_comm_info.parity"], F["tool_comm_info.rx_idle_chars"], F["tool_comm_info.stop_bits"], F["tool_comm_info.tool_communication_is_enabled"], F["tool_comm_info.tx_idle_chars"] } },
-    [12] = { name = "tool_mode_info", label = "Tool mode info", item = F["tool_mode_info"], layout = L_tool_mode_info,
-        refs = { F["tool_mode_info.digital_output_mode_output_0"], F["tool_mode_info.digital_output_mode_output_1"], F["tool_mode_info.output_mode"] } },
-    [13] = { name = "singularity_info", label = "Singularity info", item = F["singularity_info"], layout = L_singularity_info,
-        refs = { F["singularity_info.singularity_severity"], F["singularity_info.singularity_type"] } },
+    [0] = { single = false, summary = true,
+        { of = PART.robot_mode_data, ranges = { { low = 1000000, high = 1008999 } }, sizes = { [24] = true }, min = 24, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.robot_mode_data, ranges = { { low = 3000000, high = 3001999 } }, sizes = { [33] = true }, min = 33, rep = 3001999, versions = "3.0 to 3.1" },
+        { of = PART.robot_mode_data, ranges = { { low = 3002000, high = 3004999 } }, sizes = { [41] = true }, min = 41, rep = 3004999, versions = "3.2 to 3.4" },
+        { of = PART.robot_mode_data, ranges = { { low = 3005000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [42] = true }, min = 42, rep = 5009000, versions = "3.5 and later" },
+    },
+    [1] = { single = false, summary = false,
+        { of = PART.joint_data, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [246] = true }, min = 246, rep = 5009000, versions = "all versions" },
+    },
+    [2] = { single = false, summary = false,
+        { of = PART.tool_data, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [32] = true }, min = 32, rep = 5009000, versions = "all versions" },
+    },
+    [3] = { single = false, summary = true,
+        { of = PART.masterboard_data, ranges = { { low = 1000000, high = 1005999 } }, sizes = { [56] = true }, min = 56, rep = 1005999, versions = "up to 1.5" },
+        { of = PART.masterboard_data, ranges = { { low = 1006000, high = 1008999 } }, sizes = { [59] = true, [71] = true }, min = 59, rep = 1008999, versions = "1.6 to 1.8" },
+        { of = PART.masterboard_data, ranges = { { low = 3000000, high = 3001999 } }, sizes = { [67] = true, [83] = true }, min = 67, rep = 3001999, versions = "3.0 to 3.1" },
+        { of = PART.masterboard_data, ranges = { { low = 3002000, high = 3009999 }, { low = 5000000, high = 5003999 } }, sizes = { [69] = true, [85] = true }, min = 69, rep = 5003999, versions = "3.2 to 3.9 or 5.0 to 5.3" },
+        { of = PART.masterboard_data, ranges = { { low = 3010000, high = 3015999 }, { low = 5004000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [70] = true, [86] = true }, min = 70, rep = 5009000, versions = "3.10 to 3.15 or 5.4 and later" },
+    },
+    [4] = { single = false, summary = false,
+        { of = PART.cartesian_info, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3000999 } }, sizes = { [48] = true }, min = 48, rep = 3000999, versions = "up to 3.0" },
+        { of = PART.cartesian_info, ranges = { { low = 3001000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [96] = true }, min = 96, rep = 5009000, versions = "3.1 and later" },
+    },
+    [5] = { single = false, summary = false,
+        { of = PART.laser_pointer, ranges = { { low = 1000000, high = 1007999 } }, sizes = { [24] = true }, min = 24, rep = 1007999, versions = "up to 1.7" },
+        { of = PART.kinematics_info, ranges = { { low = 1008000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [220] = true }, min = 220, rep = 5009000, versions = "1.8 and later" },
+    },
+    [6] = { single = false, summary = false,
+        { of = PART.configuration_data, ranges = { { low = 1000000, high = 1008999 } }, sizes = { [464] = true }, min = 464, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.configuration_data, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5025000 } }, sizes = { [440] = true }, min = 440, rep = 5009000, versions = "3.0 to 5.25.0" },
+        { of = PART.configuration_data, ranges = { { low = 5025001, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [444] = true }, min = 444, rep = 5025001, versions = "5.25.1 and later" },
+    },
+    [7] = { single = false, summary = false,
+        { of = PART.force_mode_data, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [56] = true }, min = 56, rep = 5009000, versions = "all versions" },
+    },
+    [8] = { single = false, summary = false,
+        { of = PART.additional_info, ranges = { { low = 1000000, high = 1007999 } }, sizes = { [5] = true }, min = 5, rep = 1007999, versions = "up to 1.7" },
+        { of = PART.additional_info, ranges = { { low = 1008000, high = 1008999 }, { low = 3000000, high = 3001999 } }, sizes = { [2] = true }, min = 2, rep = 3001999, versions = "1.8 to 3.1" },
+        { of = PART.additional_info, ranges = { { low = 3002000, high = 3015999 } }, sizes = { [3] = true }, min = 3, rep = 3015999, versions = "3.2 to 3.15" },
+        { of = PART.additional_info, ranges = { { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [4] = true }, min = 4, rep = 5009000, versions = "5.0 and later" },
+    },
+    [9] = { single = false, summary = false,
+        { of = PART.calibration_data, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [48] = true }, min = 48, rep = 5009000, versions = "all versions" },
+    },
+    [10] = { single = false, summary = false,
+        { of = PART.safety_data, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+    },
+    [11] = { single = false, summary = false,
+        { of = PART.tool_comm_info, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [21] = true }, min = 21, rep = 5009000, versions = "all versions" },
+    },
+    [12] = { single = false, summary = false,
+        { of = PART.tool_mode_info, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [3] = true }, min = 3, rep = 5009000, versions = "all versions" },
+    },
+    [13] = { single = false, summary = false,
+        { of = PART.singularity_info, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [2] = true }, min = 2, rep = 5009000, versions = "all versions" },
+    },
 }
+
 
 -- Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in any order, each framed by its own length.
 MESSAGE[16] = {
-    kind = "packages", label = "Robot state", packages = ROBOT_STATE_PACKAGES, types = VS_PACKAGE_TYPE,
-    length = F["package.length"], type = F["package.type"],
+    kind = "packages", label = "Robot state", packages = ROBOT_STATE_PACKAGES, types = VS.PACKAGE_TYPE, type_tables = NAMES.PACKAGE_TYPE,
+    length = F["package.length"], type = F["package.type"], needs_version = true,
 }
 
--- Subtypes of the robot message, by subtype byte.
+-- Subtypes of the robot message, one entry per layout.
+PART.version = { name = "version", label = "Version", item = F["version"], header = L.version_header, layout = L.version, needs_version = true }
+PART.safety_mode = { name = "safety_mode", label = "Safety mode", item = F["safety_mode"], header = L.safety_mode_header, layout = L.safety_mode, needs_version = true }
+PART.robot_comm = { name = "robot_comm", label = "Robot comm", item = F["robot_comm"], header = L.robot_comm_header, layout = L.robot_comm, needs_version = true }
+PART.key = { name = "key", label = "Key", item = F["key"], header = L.key_header, layout = L.key, needs_version = false }
+PART.program_threads = { name = "program_threads", label = "Program threads", item = F["program_threads"], header = L.program_threads_header, layout = L.program_threads, needs_version = false }
+PART.popup = { name = "popup", label = "Popup", item = F["popup"], header = L.popup_header, layout = L.popup, needs_version = true }
+PART.label = { name = "label", label = "Label", item = F["label"], header = L.label_header, layout = L.label, needs_version = true }
+PART.var = { name = "var", label = "Var", item = F["var"], header = L.var_header, layout = L.var, needs_version = true }
+PART.hardware_info = { name = "hardware_info", label = "Hardware info", item = F["hardware_info"], header = L.hardware_info_header, layout = L.hardware_info, needs_version = false }
+PART.request_value = { name = "request_value", label = "Request value", item = F["request_value"], header = L.request_value_header, layout = L.request_value, needs_version = false }
+PART.text = { name = "text", label = "Text", item = F["text"], header = L.text_header, layout = L.text, needs_version = false }
+PART.runtime_exception = { name = "runtime_exception", label = "Runtime exception", item = F["runtime_exception"], header = L.runtime_exception_header, layout = L.runtime_exception, needs_version = false }
+
+-- The forms each type code of the robot message takes: chosen by the software version, else by
+-- the body size (runtime/versions.lua); `single` when one form serves every version.
 local ROBOT_MESSAGE_SUBTYPES = {
-    [3] = { name = "version", label = "Version", item = F["version"], header = L_version_header, layout = L_version, needs_version = true },
-    [5] = { name = "safety_mode", label = "Safety mode", item = F["safety_mode"], header = L_safety_mode_header, layout = L_safety_mode, needs_version = true },
-    [6] = { name = "robot_comm", label = "Robot comm", item = F["robot_comm"], header = L_robot_comm_header, layout = L_robot_comm, needs_version = true },
-    [7] = { name = "key", label = "Key", item = F["key"], header = L_key_header, layout = L_key, needs_version = false },
-    [14] = { name = "program_threads", label = "Program threads", item = F["program_threads"], header = L_program_threads_header, layout = L_program_threads, needs_version = false },
-    [2] = { name = "popup", label = "Popup", item = F["popup"], header = L_popup_header, layout = L_popup, needs_version = true },
-    [1] = { name = "label", label = "Label", item = F["label"], header = L_label_header, layout = L_label, needs_version = false },
-    [8] = { name = "var", label = "Var", item = F["var"], header = L_var_header, layout = L_var, needs_version = false },
-    [18] = { name = "hardware_info", label = "Hardware info", item = F["hardware_info"], header = L_hardware_info_header, layout = L_hardware_info, needs_version = false },
-    [9] = { name = "request_value", label = "Request value", item = F["request_value"], header = L_request_value_header, layout = L_request_value, needs_version = false },
-    [0] = { name = "text", label = "Text", item = F["text"], header = L_text_header, layout = L_text, needs_version = false },
-    [10] = { name = "runtime_exception", label = "Runtime exception", item = F["runtime_exception"], header = L_runtime_exception_header, layout = L_runtime_exception, needs_version = false },
+    [0] = { single = false,
+        { of = PART.text, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+    },
+    [1] = { single = false,
+        { of = PART.label, ranges = { { low = 1000000, high = 1008999 } }, sizes = nil, min = 4, rep = 1008999, versions = "up to 1.8" },
+    },
+    [2] = { single = false,
+        { of = PART.popup, ranges = { { low = 1000000, high = 1008999 } }, sizes = nil, min = 3, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.popup, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 12, rep = 5009000, versions = "3.0 and later" },
+    },
+    [3] = { single = false,
+        { of = PART.version, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3002999 } }, sizes = nil, min = 7, rep = 3002999, versions = "up to 3.2" },
+        { of = PART.version, ranges = { { low = 3003000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 11, rep = 5009000, versions = "3.3 and later" },
+    },
+    [5] = { single = false,
+        { of = PART.safety_mode, ranges = { { low = 1000000, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.safety_mode, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [17] = true }, min = 17, rep = 5009000, versions = "3.0 and later" },
+    },
+    [6] = { single = false,
+        { of = PART.robot_comm, ranges = { { low = 1000000, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.robot_comm, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 20, rep = 5009000, versions = "3.0 and later" },
+    },
+    [7] = { single = false,
+        { of = PART.key, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 9, rep = 5009000, versions = "all versions" },
+    },
+    [8] = { single = false,
+        { of = PART.var, ranges = { { low = 1000000, high = 1008999 } }, sizes = nil, min = 9, rep = 1008999, versions = "up to 1.8" },
+    },
+    [9] = { single = false,
+        { of = PART.request_value, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000, versions = "all versions" },
+    },
+    [10] = { single = false,
+        { of = PART.runtime_exception, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000, versions = "all versions" },
+    },
+    [14] = { single = false,
+        { of = PART.program_threads, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+    },
+    [18] = { single = false,
+        { of = PART.hardware_info, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [12] = true }, min = 12, rep = 5009000, versions = "all versions" },
+    },
 }
+
 
 -- Robot message. The version message goes to every client, the others to primary clients only.
 MESSAGE[20] = {
-    kind = "subtypes", label = "Robot message", body_offset = 15, header = L_robot_message,
-    subtype_field = F["robot_message.robot_message_type"], subtype_names = VS_ROBOT_MESSAGE_TYPE, subtypes = ROBOT_MESSAGE_SUBTYPES,
+    kind = "subtypes", label = "Robot message", body_offset = 15, header = L.robot_message,
+    subtype_field = F["robot_message.robot_message_type"], subtype_label = "robot_message_type", subtype_names = VS.ROBOT_MESSAGE_TYPE, subtype_tables = NAMES.ROBOT_MESSAGE_TYPE,
+    subtypes = ROBOT_MESSAGE_SUBTYPES,
 }
 
--- Subtypes of the program state, by subtype byte.
+-- Subtypes of the program state, one entry per layout.
+PART.global_variables_setup = { name = "global_variables_setup", label = "Global variables setup", item = F["global_variables_setup"], header = L.global_variables_setup_header, layout = L.global_variables_setup, needs_version = false }
+PART.global_variables_update = { name = "global_variables_update", label = "Global variables update", item = F["global_variables_update"], header = L.global_variables_update_header, layout = L.global_variables_update, needs_version = true }
+
+-- The forms each type code of the program state takes: chosen by the software version, else by
+-- the body size (runtime/versions.lua); `single` when one form serves every version.
 local PROGRAM_STATE_SUBTYPES = {
-    [0] = { name = "global_variables_setup", label = "Global variables setup", item = F["global_variables_setup"], header = L_global_variables_setup_header, layout = L_global_variables_setup, needs_version = false },
-    [1] = { name = "global_variables_update", label = "Global variables update", item = F["global_variables_update"], header = L_global_variables_update_header, layout = L_global_variables_update, needs_version = true },
+    [0] = { single = false,
+        { of = PART.global_variables_setup, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
+    },
+    [1] = { single = false,
+        { of = PART.global_variables_update, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
+    },
 }
+
 
 -- Program-state message, sent to primary clients only. There is NO source byte; the subtype follows the timestamp.
 MESSAGE[25] = {
-    kind = "subtypes", label = "Program state", body_offset = 14, header = L_program_state,
-    subtype_field = F["program_state.robot_message_type"], subtype_names = VS_PROGRAM_STATE_MESSAGE_TYPE, subtypes = PROGRAM_STATE_SUBTYPES,
+    kind = "subtypes", label = "Program state", body_offset = 14, header = L.program_state,
+    subtype_field = F["program_state.robot_message_type"], subtype_label = "robot_message_type", subtype_names = VS.PROGRAM_STATE_MESSAGE_TYPE, subtype_tables = nil,
+    subtypes = PROGRAM_STATE_SUBTYPES,
 }
 
 -- Where the Version message keeps its numbers: the subtype byte, then steps over fixed bytes
--- and length-prefixed texts, then major and minor (one byte each), then `rest` more bytes.
+-- and length-prefixed texts, then major and minor (one byte each), then `rest` more bytes; in
+-- the versions `bugfix` gives, the bugfix number follows minor.
 local VERSION_READER = {
     message = 20, subtype = 3, subtype_offset = 14,
     steps = {
         { fixed = 15, prefix = 1, signed = true },
     },
     tail = 0, rest = 0,
+    bugfix = { n = 4, signed = true, low = 3003000, high = nil },
 }
 
 -- ---------------------------------------------------------------------------------------------
@@ -1513,7 +1792,8 @@ local spec = {
     default_version = "5.9",
     F = F,
     fields = FIELDS,
-    message_types = VS_MESSAGE_TYPE,
+    message_types = VS.MESSAGE_TYPE,
+    message_type_tables = nil,
     known_types = KNOWN_TYPE,
     value_tables = VALUE_TABLES,
     messages = MESSAGE,
@@ -1536,8 +1816,8 @@ local X = {
     raw = ProtoField.bytes("ur.raw", "Raw", base.NONE, "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),
     extra = ProtoField.bytes("ur.extra", "Extra bytes", base.NONE, "Bytes after the known layout of a package or message."),
     skipped = ProtoField.bytes("ur.skipped", "Skipped bytes", base.NONE, "Bytes skipped while looking for the next plausible message header."),
-    version = ProtoField.string("ur.software_version", "Software version", base.ASCII, "The software version whose value-type table decodes this message."),
-    assumed = ProtoField.bool("ur.version_assumed", "Version assumed", base.NONE, nil, nil, "True when no Version message was seen on this stream and the ur.version preference applies."),
+    version = ProtoField.string("ur.software_version", "Software version", base.ASCII, "The software version this message is read with (its layouts, enum names and value types): the stream's Version message, else the ur.version preference, else what the layout sizes show (\"3.2 to 3.4 (from layout sizes)\"), else the default."),
+    assumed = ProtoField.bool("ur.version_assumed", "Version assumed", base.NONE, nil, nil, "True when no Version message was seen on this stream: the version comes from the ur.version preference, the layout sizes or the default."),
     unknown_package = ProtoField.none("ur.unknown_package", "Unknown package", "A sub-package type the spec does not lay out, kept raw."),
     urscript = ProtoField.string("ur.urscript", "URScript", base.UNICODE, "Bytes from the client to the robot: URScript program text."),
 }
@@ -1549,6 +1829,7 @@ local E = {
     extra = ProtoExpert.new("ur.extra_bytes", "Bytes after the known layout", expert.group.PROTOCOL, expert.severity.WARN),
     unknown = ProtoExpert.new("ur.unknown", "Type not laid out by the spec, kept raw", expert.group.UNDECODED, expert.severity.NOTE),
     assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)", expert.group.ASSUMPTION, expert.severity.NOTE),
+    by_length = ProtoExpert.new("ur.layout_by_length", "Layout chosen by its length, not by the software version", expert.group.ASSUMPTION, expert.severity.NOTE),
     internal = ProtoExpert.new("ur.internal_error", "urwire dissector error", expert.group.MALFORMED, expert.severity.ERROR),
 }
 
@@ -1559,7 +1840,7 @@ for _, f in ipairs({ X.raw, X.extra, X.skipped, X.version, X.assumed, X.unknown_
     fields[#fields + 1] = f
 end
 ur.fields = fields
-ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.internal }
+ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.by_length, E.internal }
 
 rt.X, rt.E = X, E
 end)(spec, rt)
@@ -1583,10 +1864,19 @@ local function be_uint(raw, o, n)
     return v
 end
 
+-- 2^(8n - 1) for n = 1..4, made by multiplying so that it stays an integer on Lua 5.3 and 5.4:
+-- be_int then returns integers there (Wireshark's TreeItem:add takes them as they are).
+local HALF = {}
+for n = 1, 4 do
+    local h = 1
+    for _ = 1, 8 * n - 1 do h = h * 2 end
+    HALF[n] = h
+end
+
 -- A two's-complement integer of n bytes at offset o.
 local function be_int(raw, o, n)
     local v = be_uint(raw, o, n)
-    local half = 2 ^ (8 * n - 1)
+    local half = HALF[n] or 2 ^ (8 * n - 1)
     if v >= half then v = v - 2 * half end
     return v
 end
@@ -1613,22 +1903,39 @@ end
 -- =============================================================================================
 do
 (function(...)
--- Software versions as one number, major * 1000 + minor (5.9 is 5009): parsed from the
--- preference's text, shown back as text, tested against a range; the value-type table that
--- a version uses; and the version a Version message announces, read from its raw bytes.
+-- Software versions as one number, (major * 1000 + minor) * 1000 + bugfix (5.9 is 5009000,
+-- 5.25.1 is 5025001; an upper bound written 5.8 is 5008999, any 5.8.x): parsed from the
+-- preference's text, shown back as text, tested against a range. What follows the version: the
+-- value-type table and the names of an enum whose codes depend on it, and the form (layout) of
+-- a package or subtype, chosen by the version or else by the length. And the version a Version
+-- message announces, read from its raw bytes.
 local spec, rt = ...
-local fmt, byte = string.format, string.byte
+local fmt, byte, floor = string.format, string.byte, math.floor
 local be_int, be_uint = rt.be_int, rt.be_uint
 
--- "5.9" (leading spaces and a third part allowed) -> 5009; nil when it is no version.
-local function parse_version(text)
-    local major, minor = string.match(text or "", "^%s*(%d+)%.(%d+)")
-    if not major then return nil end
-    return tonumber(major) * 1000 + tonumber(minor)
+local BUGFIX_ANY = 999   -- a bugfix number that stands for every bugfix release of its minor
+
+local function version_number(major, minor, bugfix)
+    if bugfix > BUGFIX_ANY then bugfix = BUGFIX_ANY end
+    if bugfix < 0 then bugfix = 0 end
+    return (major * 1000 + minor) * 1000 + bugfix
 end
 
+-- "5.9" -> 5009000, "5.25.1" -> 5025001 (leading spaces allowed); nil when it is no version.
+local function parse_version(text)
+    local major, minor, rest = string.match(text or "", "^%s*(%d+)%.(%d+)(.*)$")
+    if not major then return nil end
+    local bugfix = string.match(rest, "^%.(%d+)") or "0"
+    return version_number(tonumber(major), tonumber(minor), tonumber(bugfix))
+end
+
+-- 5009000 -> "5.9", 5025001 -> "5.25.1", 5008999 (any 5.8.x) -> "5.8".
 local function version_text(v)
-    return fmt("%d.%d", math.floor(v / 1000), v % 1000)
+    local bugfix = v % 1000
+    local minor = floor(v / 1000) % 1000
+    local major = floor(v / 1000000)
+    if bugfix == 0 or bugfix == BUGFIX_ANY then return fmt("%d.%d", major, minor) end
+    return fmt("%d.%d.%d", major, minor, bugfix)
 end
 
 -- True when v is inside the inclusive range; a nil bound is open.
@@ -1636,17 +1943,88 @@ local function version_in(v, low, high)
     return (low == nil or v >= low) and (high == nil or v <= high)
 end
 
--- The value-type codes of version v: the first table whose range holds it, else the last.
-local function value_table(tables, v)
-    for _, t in ipairs(tables) do
-        if version_in(v, t.low, t.high) then return t.kinds end
+-- The entry of a list of { low, high, ... } tables that holds version v, else the last.
+local function in_force(tables, v)
+    for i = 1, #tables do
+        local t = tables[i]
+        if version_in(v, t.low, t.high) then return t end
     end
-    return tables[#tables].kinds
+    return tables[#tables]
+end
+
+-- The value-type codes of version v.
+local function value_table(tables, v)
+    return in_force(tables, v).kinds
+end
+
+-- The names of an enum whose codes depend on the version ({ newest = <value string>,
+-- { low, high, names }, ... }) for version v.
+local function enum_names(tables, v)
+    for i = 1, #tables do
+        local t = tables[i]
+        if version_in(v, t.low, t.high) then return t.names end
+    end
+    return tables.newest
+end
+
+-- True when some version's table names the code.
+local function named_in_any(tables, code)
+    for i = 1, #tables do
+        if tables[i].names[code] ~= nil then return true end
+    end
+    return false
+end
+
+-- The forms of a package type or subtype: a list of { of = <its layout's data>, ranges = { {
+-- low, high }, ... } (the versions that send it), sizes = { [body size] = true } or nil when
+-- open-ended (then at least min), rep = the version a stream is taken to run when this form is
+-- recognised by its length alone, versions = those versions as text }; `single` when one form
+-- serves every version.
+local function sent_by(form, v)
+    local ranges = form.ranges
+    for i = 1, #ranges do
+        local r = ranges[i]
+        if version_in(v, r.low, r.high) then return true end
+    end
+    return false
+end
+
+local function fits(form, size)
+    if form.sizes then return form.sizes[size] == true end
+    return size >= form.min
+end
+
+-- The form of a body of `size` bytes for version v, the version to read it with, and whether
+-- the length chose it: the version's form when it fits; else the one form that fits; else the
+-- version's form (or the newest), whose short or extra bytes are then reported.
+local function choose(forms, size, v)
+    if forms.single then return forms[1], v, false end
+    local mine
+    for i = 1, #forms do
+        if sent_by(forms[i], v) then mine = forms[i]; break end
+    end
+    if mine and fits(mine, size) then return mine, v, false end
+    local found, count = nil, 0
+    for i = 1, #forms do
+        if fits(forms[i], size) then found, count = forms[i], count + 1 end
+    end
+    if count == 1 then return found, found.rep, true end
+    return mine or forms[#forms], v, false
+end
+
+-- choose() for the message being dissected (st): when the stream's version is not known (no
+-- Version message, no preference), a form chosen by length sets it for the rest of the message
+-- (st.version), and says so (st.implied: the form's versions).
+local function pick(forms, size, st)
+    local form, use, by_length = choose(forms, size, st.version)
+    if by_length and not st.known then st.version, st.implied = use, form.versions end
+    return form, use, by_length
 end
 
 -- The version a Version message from o to e announces, or nil when it is not one or is
--- malformed. r (spec.version_reader) says where its numbers are: the subtype byte, then
--- steps over fixed bytes and length-prefixed texts, then the major and minor bytes.
+-- malformed. r (spec.version_reader) says where its numbers are: the subtype byte, then steps
+-- over fixed bytes and length-prefixed texts, then the major and minor bytes, then (in the
+-- versions r.bugfix names) the bugfix number.
 local function announced_version(raw, o, e, r)
     if e - o <= r.subtype_offset or byte(raw, o + r.subtype_offset + 1) ~= r.subtype then return nil end
     local p = o
@@ -1662,12 +2040,21 @@ local function announced_version(raw, o, e, r)
     end
     p = p + r.tail
     if p + 2 + r.rest > e then return nil end
-    return byte(raw, p + 1) * 1000 + byte(raw, p + 2)
+    local major, minor = byte(raw, p + 1), byte(raw, p + 2)
+    local v = version_number(major, minor, 0)
+    local b = r.bugfix
+    if b and version_in(v, b.low, b.high) and p + 2 + b.n <= e then
+        local bugfix
+        if b.signed then bugfix = be_int(raw, p + 2, b.n) else bugfix = be_uint(raw, p + 2, b.n) end
+        v = version_number(major, minor, bugfix)
+    end
+    return v
 end
 
-rt.parse_version, rt.version_text, rt.version_in = parse_version, version_text, version_in
-rt.value_table, rt.announced_version = value_table, announced_version
--- The version assumed when neither a Version message nor the preference gives one.
+rt.version_number, rt.parse_version, rt.version_text, rt.version_in = version_number, parse_version, version_text, version_in
+rt.value_table, rt.enum_names, rt.named_in_any = value_table, enum_names, named_in_any
+rt.choose, rt.pick, rt.announced_version = choose, pick, announced_version
+-- The version assumed when neither a Version message, the preference nor the layout sizes give one.
 rt.default_version = parse_version(spec.default_version)
 end)(spec, rt)
 end
@@ -1683,10 +2070,13 @@ do
 -- error offsets) and its software version. Offsets are tvb offsets; o is where a field starts
 -- and e where the layout ends. Every KIND function returns the offset after the field, or nil
 -- and the canonical error text. values.lua adds KIND.values.
+-- A scalar descriptor may carry: `value` (its wire type is narrower than its field's, which
+-- another version's entry of the same name gives: the number is added explicitly; `float` when
+-- it is a float), `tables` and `label` (its enum's names depend on the version).
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
-local version_in = rt.version_in
+local version_in, enum_names = rt.version_in, rt.enum_names
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
@@ -1696,13 +2086,40 @@ local function add_text(tree, f, tvb, o, n)
     return tree:add_packet_field(f, tvb(o, n), ENC_UTF_8)
 end
 
+-- The number of a scalar descriptor at o (range is tvb(o, d.n)), in its own wire type.
+local function number_at(range, raw, o, d)
+    if d.float then return range:float() end
+    if d.signed then return be_int(raw, o, d.n) end
+    return be_uint(raw, o, d.n)
+end
+
+-- An enum item whose names depend on the software version v: its field shows the newest
+-- table's name; under another version's table the item says that table's name instead.
+local function rename(item, label, tables, v, value)
+    local names = enum_names(tables, v)
+    if names ~= tables.newest then
+        item:set_text(fmt("%s: %s (%d)", label, names[value] or "Unknown", value))
+    end
+end
+
+-- One scalar into the tree: explicitly when its wire type is narrower than its field's, named
+-- by the version when its enum needs it. Its item, and its number when it was read.
+local function add_scalar(tree, range, o, st, d)
+    if not (d.value or d.tables or d.keep) then return tree:add(d.f, range), nil end
+    local v = number_at(range, st.raw, o, d)
+    local item
+    if d.value then item = tree:add(d.f, range, v) else item = tree:add(d.f, range) end
+    if d.tables then rename(item, d.label, d.tables, st.version, v) end
+    return item, v
+end
+
 local KIND = {}
 
 -- A scalar (integer, float or bool); kept when a later field depends on it.
 function KIND.scalar(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
-    tree:add(d.f, tvb(o, d.n))
-    if d.keep then kept[d.keep] = d.signed and be_int(st.raw, o, d.n) or be_uint(st.raw, o, d.n) end
+    local _, v = add_scalar(tree, tvb(o, d.n), o, st, d)
+    if d.keep then kept[d.keep] = v end
     return o + d.n
 end
 
@@ -1710,7 +2127,8 @@ end
 function KIND.bits(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
     local range = tvb(o, d.n)
-    local item = tree:add(d.f, range)
+    -- The bits read the range itself (a narrower range holds the low bits).
+    local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
     for i = 1, #bits do item:add(bits[i], range) end
     return o + d.n
@@ -1720,7 +2138,7 @@ end
 function KIND.array(tvb, tree, o, e, st, d, pre)
     for i = 0, d.count - 1 do
         if o + d.n > e then return nil, short(st, fmt("%s%s[%d]", pre or "", d.path, i), o, d.n, e) end
-        tree:add(d.f, tvb(o, d.n))
+        add_scalar(tree, tvb(o, d.n), o, st, d)
         o = o + d.n
     end
     return o
@@ -1825,7 +2243,7 @@ walk = function(tvb, tree, o, e, st, layout, pre)
     return o
 end
 
-rt.KIND, rt.walk, rt.add_text = KIND, walk, add_text
+rt.KIND, rt.walk, rt.add_text, rt.rename = KIND, walk, add_text, rename
 end)(spec, rt)
 end
 
@@ -1944,38 +2362,65 @@ end
 do
 (function(...)
 -- The Info column. It is written on every pass, tree or not, so it reads the raw bytes and
--- builds no tree: the descriptors marked `show` of a message layout, and the enums a
--- robot-state package lists in its `info`. One buffer of parts is reused for every message.
+-- builds no tree: the descriptors marked `show` of a layout (a message's, or a robot-state
+-- package's whose layout has a summary). One buffer of parts is reused for every message.
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, be_uint = rt.be_int, rt.be_uint
+local version_in, enum_names, pick = rt.version_in, rt.enum_names, rt.pick
 local PACKAGE_HEADER = spec.package_header_size
 local PACKAGE_LENGTH = spec.package_length_size
 
 local parts = {}
 
--- The fields marked `show` of a layout from o to e, each after its text: "PROGRAM_STARTED:
--- demo". Stops at the first field it cannot step over without walking it.
-local function layout_summary(tvb, raw, o, e, layout)
-    local n = 0
-    for _, d in ipairs(layout) do
+-- How many descriptors of a layout the summary walks: up to its last shown one (a `cond`
+-- holding one counts). Found once per layout and kept.
+local reach = {}
+local function shown_in(layout)
+    for i = 1, #layout do
+        local d = layout[i]
+        if d.show or (d.k == "cond" and shown_in(d.fields)) then return true end
+    end
+    return false
+end
+local function reach_of(layout)
+    local n = reach[layout]
+    if not n then
+        n = 0
+        for i = 1, #layout do
+            local d = layout[i]
+            if d.show or (d.k == "cond" and shown_in(d.fields)) then n = i end
+        end
+        reach[layout] = n
+    end
+    return n
+end
+
+-- The fields marked `show` of descriptors 1..last from o to e, for software version v, each
+-- after its text, into parts from n + 1 ("PROGRAM_STARTED: demo"). Returns the offset after
+-- them and the new n; the offset is nil where it stopped at a field it cannot step over
+-- without walking it, or one that does not fit.
+local function summarise(tvb, raw, o, e, layout, last, v, n)
+    for i = 1, last do
+        local d = layout[i]
         local k, size = d.k, nil
         if k == "scalar" or k == "bits" then size = d.n
         elseif k == "array" then size = d.n * d.count
         elseif k == "group" and d.count and d.size then size = d.count * d.size
         end
         if size then
-            if o + size > e then break end
+            if o + size > e then return nil, n end
             if d.show then
-                local v = d.signed and be_int(raw, o, d.n) or be_uint(raw, o, d.n)
+                local x = d.signed and be_int(raw, o, d.n) or be_uint(raw, o, d.n)
+                local names = d.tables and enum_names(d.tables, v) or d.vs
                 n = n + 1
-                parts[n] = d.show .. (d.vs and (d.vs[v] or fmt("%d", v)) or fmt("%d", v))
+                parts[n] = d.show .. (names and (names[x] or fmt("%d", x)) or fmt("%d", x))
             end
             o = o + size
         elseif k == "pstring" then
-            if o + d.n > e then break end
+            if o + d.n > e then return nil, n end
             local len = d.signed and be_int(raw, o, d.n) or be_uint(raw, o, d.n)
-            if len < 0 or o + d.n + len > e then break end
+            if len < 0 or o + d.n + len > e then return nil, n end
             if d.show then
                 n = n + 1
                 parts[n] = d.show .. tvb(o + d.n, len):string(ENC_UTF_8)
@@ -1989,30 +2434,45 @@ local function layout_summary(tvb, raw, o, e, layout)
                 parts[n] = d.show .. tvb(o, len):string(ENC_UTF_8)
             end
             o = e
+        elseif k == "cond" and not d.present_if then
+            if version_in(v, d.low, d.high) then
+                o, n = summarise(tvb, raw, o, e, d.fields, #d.fields, v, n)
+                if not o then return nil, n end
+            end
         else
-            break
+            return nil, n
         end
     end
+    return o, n
+end
+
+-- The summary of a layout from o to e for version v: its shown fields, each after its text.
+local function layout_summary(tvb, raw, o, e, layout, v)
+    local _, n = summarise(tvb, raw, o, e, layout, reach_of(layout), v, 0)
     return table.concat(parts, "", 1, n)
 end
 
--- The enums that the robot-state packages from p to e list in their `info` (per body size,
--- one form of the package each: { at = offset in the body, n = size, vs = value string }),
--- joined by ", ". Stops at the first package whose length does not fit.
-local function package_summary(raw, p, e, packages)
+-- The summaries of the robot-state packages from p to e, joined by ", ". packages: the forms
+-- of each package type (see versions.lua), `summary` when one of them has a summary. Each
+-- package's form is chosen as the tree chooses it (pick), so that layout sizes set the
+-- version of a stream that has not told it, tree or not. Stops at the first package whose
+-- length does not fit.
+local function package_summary(tvb, raw, p, e, packages, st)
     local n = 0
     while e - p >= PACKAGE_HEADER do
         local size, code = be_int(raw, p, PACKAGE_LENGTH), byte(raw, p + PACKAGE_LENGTH + 1)
         if size < PACKAGE_HEADER or size > e - p then break end
-        local pk = packages[code]
-        -- The form of the package's size, else (extra bytes of a newer release) the newest form.
-        local info = pk and pk.info and (pk.info[size - PACKAGE_HEADER] or pk.info_newest)
-        if info then
-            for _, i in ipairs(info) do
-                if i.at + i.n <= size - PACKAGE_HEADER then
-                    local v = be_int(raw, p + PACKAGE_HEADER + i.at, i.n)
-                    n = n + 1
-                    parts[n] = i.vs[v] or fmt("%d", v)
+        local forms = packages[code]
+        if forms and (forms.summary or not st.known) then
+            local form, use = pick(forms, size - PACKAGE_HEADER, st)
+            local part = form.of
+            if part.summary then
+                local first = n + 1
+                local _
+                _, n = summarise(tvb, raw, p + PACKAGE_HEADER, p + size, part.layout, reach_of(part.layout), use, n)
+                if n > first then
+                    parts[first] = table.concat(parts, "", first, n)
+                    n = first
                 end
             end
         end
@@ -2059,6 +2519,7 @@ do
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, walk, version_text = rt.be_int, rt.walk, rt.version_text
+local choose, pick, enum_names, named_in_any, rename = rt.choose, rt.pick, rt.enum_names, rt.named_in_any, rt.rename
 local layout_summary, package_summary, labelled = rt.layout_summary, rt.package_summary, rt.labelled
 local X, E = rt.X, rt.E
 local HEADER = spec.header_size
@@ -2073,10 +2534,14 @@ local function referenced(tree, fields)
     return false
 end
 
--- The body of a package or message from body to stop, walked with its layout; what cannot be
--- read is kept raw, what is left over is shown as extra bytes, each with its expert.
-local function walk_body(tvb, item, body, stop, st, layout, name)
+-- The body of a package or message from body to stop, walked with its layout for version v;
+-- what cannot be read is kept raw, what is left over is shown as extra bytes, each with its
+-- expert.
+local function walk_body(tvb, item, body, stop, st, layout, name, v)
+    local keep = st.version
+    st.version = v
     local used, err = walk(tvb, item, body, stop, st, layout, nil)
+    st.version = keep
     if not used then
         item:add(X.raw, tvb(body, stop - body))
         item:add_proto_expert_info(E.malformed, name .. ": " .. err)
@@ -2086,15 +2551,62 @@ local function walk_body(tvb, item, body, stop, st, layout, name)
     end
 end
 
+-- A type or subtype code: its field, and under a version whose table names it otherwise, that
+-- name. tables: the enum's tables by version, nil when its names do not depend on it.
+local function add_code(tree, f, range, label, tables, v, code)
+    local item = tree:add(f, range)
+    if tables then rename(item, label, tables, v, code) end
+    return item
+end
+
+-- The name of a code for version v, and whether the spec names it in any version.
+local function code_name(names, tables, v, code)
+    local name = (tables and enum_names(tables, v) or names)[code]
+    return name, name ~= nil or (tables ~= nil and named_in_any(tables, code))
+end
+
+-- What the message was read with (st.message_version; see framing.lua): the version, and how it
+-- was found when no Version message told it: from layout sizes (the versions of the form that
+-- showed it), from the ur.version preference, or the default; each of these with a note.
+local FROM_SIZES = setmetatable({}, { __index = function(t, versions)
+    local text = versions .. " (from layout sizes)"
+    t[versions] = text
+    return text
+end })
+local function show_version(item, st)
+    local v, implied = st.message_version, st.message_implied
+    if implied then
+        item:add(X.version, FROM_SIZES[implied]):set_generated()
+    else
+        item:add(X.version, version_text(v)):set_generated()
+    end
+    if st.announced then return end
+    item:add(X.assumed, true):set_generated()
+    if implied then
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: software %s, as the layout sizes show", implied))
+    elseif st.from_pref then
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(v)))
+    else
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (the default; preference ur.version)", version_text(v)))
+    end
+end
+
+-- A form chosen by its length, not by the version: a note on its item.
+local function note_length(item, form, length)
+    item:add_proto_expert_info(E.by_length, fmt("laid out as software %s (chosen by length %d)", form.versions, length))
+end
+
 local KINDS = {}
 
--- m: { packages = { [type] = { name, item, layout, info, refs } }, types = value string of
--- package types, length, type = the fields of a package header }.
+-- m: { packages = { [type] = its forms, each of = { name, label, item, layout, summary, refs } },
+-- types = value string of package types (type_tables: by version, when they depend on it),
+-- length, type = the fields of a package header, needs_version }.
 KINDS.packages = {
-    info = function(m, tvb, raw, o, e)
-        return labelled(m.label, package_summary(raw, o + HEADER, e, m.packages))
+    info = function(m, tvb, raw, o, e, st)
+        return labelled(m.label, package_summary(tvb, raw, o + HEADER, e, m.packages, st))
     end,
     tree = function(m, tvb, tree, o, e, st)
+        if m.needs_version then show_version(tree, st) end
         local raw = st.raw
         local p = o + HEADER
         while p < e do
@@ -2114,20 +2626,28 @@ KINDS.packages = {
                 return
             end
             local code = byte(raw, p + PACKAGE_LENGTH + 1)
-            local pk = m.packages[code]
+            local forms = m.packages[code]
+            local form, use, by_length, pk
+            if forms then
+                form, use, by_length = pick(forms, size - PACKAGE_HEADER, st)
+                pk = form.of
+            end
+            local v = use or st.version
             local item = tree:add(pk and pk.item or X.unknown_package, tvb(p, size))
-            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, m.types[code] or "not in the spec")) end
+            local name, named = code_name(m.types, m.type_tables, v, code)
+            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
             item:add(m.length, tvb(p, PACKAGE_LENGTH))
-            item:add(m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH))
+            add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+            if by_length then note_length(item, form, size) end
             local body, stop = p + PACKAGE_HEADER, p + size
             if pk and not st.visible and not referenced(item, pk.refs) then
                 -- No tree shown and no field of this package asked for: skip its fields.
             elseif pk then
-                walk_body(tvb, item, body, stop, st, pk.layout, pk.name)
+                walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
             else
                 item:add(X.raw, tvb(body, stop - body))
                 -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
-                if not m.types[code] then
+                if not named then
                     item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
                 end
             end
@@ -2137,15 +2657,17 @@ KINDS.packages = {
 }
 
 -- m: { header = layout of the header and subtype, body_offset = where the body starts (the
--- subtype is the byte before it), subtype_field, subtype_names = value string of subtypes,
--- subtypes = { [subtype] = { name, label, item, header, layout, needs_version } } }.
+-- subtype is the byte before it), subtype_field, subtype_names = value string of subtypes
+-- (subtype_tables: by version, when they depend on it), subtypes = { [subtype] = its forms,
+-- each of = { name, label, item, header, layout, needs_version } } }.
 KINDS.subtypes = {
-    info = function(m, tvb, raw, o, e)
+    info = function(m, tvb, raw, o, e, st)
         if e - o < m.body_offset then return m.label .. " (too short)" end
         local code = byte(raw, o + m.body_offset)
-        local s = m.subtypes[code]
-        if not s then return fmt("%s subtype %d", m.label, code) end
-        return labelled(s.label, layout_summary(tvb, raw, o + m.body_offset, e, s.layout))
+        local forms = m.subtypes[code]
+        if not forms then return fmt("%s subtype %d", m.label, code) end
+        local form, use = choose(forms, e - o - m.body_offset, st.version)
+        return labelled(form.of.label, layout_summary(tvb, raw, o + m.body_offset, e, form.of.layout, use))
     end,
     tree = function(m, tvb, tree, o, e, st)
         local body = o + m.body_offset
@@ -2156,27 +2678,25 @@ KINDS.subtypes = {
             return
         end
         local code = byte(st.raw, body)
-        local s = m.subtypes[code]
-        if not s then
+        local forms = m.subtypes[code]
+        if not forms then
             walk(tvb, tree, o + HEADER, body, st, m.header, nil)
             if body < e then tree:add(X.raw, tvb(body, e - body)) end
-            if not m.subtype_names[code] then
+            local _, named = code_name(m.subtype_names, m.subtype_tables, st.version, code)
+            if not named then
                 tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
             end
             return
         end
+        local form, use, by_length = choose(forms, e - body, st.version)
+        local s = form.of
         local item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
         -- The header again, under the subtype's own names (ur.key.timestamp).
         walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
-        item:add(m.subtype_field, tvb(body - 1, 1))
-        if s.needs_version then
-            item:add(X.version, version_text(st.version)):set_generated()
-            if st.assumed then
-                item:add(X.assumed, true):set_generated()
-                item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(st.version)))
-            end
-        end
-        walk_body(tvb, item, body, e, st, s.layout, s.name)
+        add_code(item, m.subtype_field, tvb(body - 1, 1), m.subtype_label, m.subtype_tables, use, code)
+        if by_length then note_length(item, form, e - o) end
+        if s.needs_version then show_version(item, st) end
+        walk_body(tvb, item, body, e, st, s.layout, s.name, use)
     end,
 }
 
@@ -2198,8 +2718,9 @@ end
 -- =============================================================================================
 do
 (function(...)
--- State of each TCP stream: the software version its Version message announced (nil: none
--- yet), whether the dissector is resynchronising after a bad header, and the bytes carried over
+-- State of each TCP stream: the software version its Version message announced or its layout
+-- sizes showed (nil: none yet; `implied` names the versions of the form whose size showed it),
+-- whether the dissector is resynchronising after a bad header, and the bytes carried over
 -- from earlier segments while it does. First pass: the state moves along, and a snapshot of it
 -- is kept for each dissector call (frame number and tvb length). Later passes (tshark -2, clicks
 -- in the GUI, in any order) reuse the snapshot, so both agree.
@@ -2211,42 +2732,45 @@ local spec, rt = ...
 
 local CALL_SPAN = 1048576   -- a call's key: frame number * CALL_SPAN + tvb length mod CALL_SPAN
 
-local stream_version, stream_resync, stream_carry = {}, {}, {}
-local snap_version, snap_resync, snap_carry = {}, {}, {}   -- by call (frame, tvb length), and by -frame
+local stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
+-- by call (frame, tvb length), and by -frame
+local snap_version, snap_implied, snap_resync, snap_carry = {}, {}, {}, {}
 
 -- A new capture: forget every stream.
 local function reset()
-    stream_version, stream_resync, stream_carry = {}, {}, {}
-    snap_version, snap_resync, snap_carry = {}, {}, {}
+    stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
+    snap_version, snap_implied, snap_resync, snap_carry = {}, {}, {}, {}
 end
 
--- The state as a call with n bytes starts: version, resync, carry, and the stream's key for
--- stream_save.
+-- The state as a call with n bytes starts: version, implied, resync, carry, and the stream's
+-- key for stream_save.
 local function stream_load(pinfo, n)
     local stream = pinfo.src_port * 65536 + pinfo.dst_port
     local key = pinfo.number * CALL_SPAN + n % CALL_SPAN
     local frame = -pinfo.number
     if pinfo.visited and snap_resync[key] ~= nil then
-        return snap_version[key], snap_resync[key], snap_carry[key], stream
+        return snap_version[key], snap_implied[key], snap_resync[key], snap_carry[key], stream
     elseif pinfo.visited and snap_resync[frame] ~= nil then
         -- Later passes may hand over other bytes than the first (TCP reassembly replays
         -- differently): fall back to the state of the frame's first call.
-        return snap_version[frame], snap_resync[frame], snap_carry[frame], stream
+        return snap_version[frame], snap_implied[frame], snap_resync[frame], snap_carry[frame], stream
     end
-    local version, resync, carry = stream_version[stream], stream_resync[stream] or false, stream_carry[stream]
+    local version, implied = stream_version[stream], stream_implied[stream]
+    local resync, carry = stream_resync[stream] or false, stream_carry[stream]
     if snap_resync[key] == nil then
-        snap_version[key], snap_resync[key], snap_carry[key] = version, resync, carry
+        snap_version[key], snap_implied[key], snap_resync[key], snap_carry[key] = version, implied, resync, carry
     end
     if snap_resync[frame] == nil then
-        snap_version[frame], snap_resync[frame], snap_carry[frame] = version, resync, carry
+        snap_version[frame], snap_implied[frame], snap_resync[frame], snap_carry[frame] = version, implied, resync, carry
     end
-    return version, resync, carry, stream
+    return version, implied, resync, carry, stream
 end
 
 -- The state as a call ends; kept on the first pass only.
-local function stream_save(pinfo, stream, version, resync, carry)
+local function stream_save(pinfo, stream, version, implied, resync, carry)
     if not pinfo.visited then
-        stream_version[stream], stream_resync[stream], stream_carry[stream] = version, resync, carry
+        stream_version[stream], stream_implied[stream] = version, implied
+        stream_resync[stream], stream_carry[stream] = resync, carry
     end
 end
 
@@ -2266,17 +2790,35 @@ do
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
+local enum_names, rename = rt.enum_names, rt.rename
 local stream_load, stream_save = rt.stream_load, rt.stream_save
 local X, E, handlers = rt.X, rt.E, rt.handlers
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
-local KNOWN_TYPE, MESSAGE_TYPES, VERSION = spec.known_types, spec.message_types, spec.version_reader
+local KNOWN_TYPE, VERSION = spec.known_types, spec.version_reader
+local MESSAGE_TYPES, MESSAGE_TYPE_TABLES = spec.message_types, spec.message_type_tables
+local DEFAULT_VERSION = rt.default_version
 
--- The version assumed when no Version message was seen: the ur.version preference.
-local pref_version = rt.default_version
+-- The version the ur.version preference gives until a Version message is seen; nil when the
+-- preference is empty: then the layout sizes tell the version where they can, else the default.
+local pref_version = nil
 local function assume_version(v) pref_version = v end
 
-local st = { raw = "", base = 0, version = pref_version, assumed = true }   -- reused for every message
+-- The message being dissected, reused for every message: its raw bytes and first byte; the
+-- software version it is read with (version: it may move on within a robot state, when layout
+-- sizes tell it), and how that version is known: announced (a Version message), from_pref, or
+-- neither (known is false: then implied, when set, names the versions the layout sizes showed);
+-- message_version and message_implied: the version shown on the message.
+local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false }
+
+-- st as a message starts, from the stream's version (nil: none yet) and how it was found.
+local function begin(version, implied)
+    st.version = version or pref_version or DEFAULT_VERSION
+    st.implied = implied
+    st.announced = version ~= nil and implied == nil
+    st.from_pref = not st.announced and pref_version ~= nil
+    st.known = st.announced or st.from_pref
+end
 
 local function plausible(raw, o, max_length)
     local size = be_int(raw, o, LENGTH)
@@ -2313,24 +2855,40 @@ local function dissect_client(tvb, pinfo, tree)
     return n
 end
 
-local ur_handle = nil
-local cur = { version = nil, first = true, detail = false }   -- the call being dissected
+-- The Info column of a message type the spec names but does not lay out.
+local function unlaid_info(mtype, v)
+    local names = MESSAGE_TYPE_TABLES and enum_names(MESSAGE_TYPE_TABLES, v) or MESSAGE_TYPES
+    return fmt("Type %d (%s)", mtype, names[mtype] or "named in another version")
+end
 
--- One whole message from o to e (its declared length): Info column, version, tree.
+local ur_handle = nil
+-- The call being dissected: the stream's version (nil: none yet) and, when the layout sizes
+-- told it, the versions of the form that did.
+local cur = { version = nil, implied = nil, first = true, detail = false }
+
+-- One whole message from o to e (its declared length): version, Info column, tree.
 local function message(tvb, raw, pinfo, tree, o, e, mtype)
     local h = handlers[mtype]
     if mtype == VERSION.message then
-        cur.version = announced_version(raw, o, e, VERSION) or cur.version
+        local v = announced_version(raw, o, e, VERSION)
+        if v then cur.version, cur.implied = v, nil end
     end
-    set_info(pinfo, cur.first, h and h.info(h.m, tvb, raw, o, e) or fmt("Type %d (%s)", mtype, MESSAGE_TYPES[mtype]))
+    local version, implied = cur.version, cur.implied
+    st.raw, st.base = raw, o
+    begin(version, implied)
+    set_info(pinfo, cur.first, h and h.info(h.m, tvb, raw, o, e, st) or unlaid_info(mtype, st.version))
     cur.first = false
+    -- Layout sizes told the version of a stream that had not: this message and the next ones.
+    if st.implied and not st.known then cur.version, cur.implied = st.version, st.implied end
     if not cur.detail then return end
     local item = tree:add(ur, tvb(o, e - o))
     item:add(F.length, tvb(o, LENGTH))
-    item:add(F.type, tvb(o + LENGTH, HEADER - LENGTH))
-    st.raw, st.base, st.visible = raw, o, tree.visible
-    st.version = cur.version or pref_version
-    st.assumed = cur.version == nil
+    local type_item = item:add(F.type, tvb(o + LENGTH, HEADER - LENGTH))
+    if MESSAGE_TYPE_TABLES then rename(type_item, "Type", MESSAGE_TYPE_TABLES, st.version, mtype) end
+    -- The tree walks the message again from the version it started with.
+    st.message_version, st.message_implied = st.version, st.implied
+    begin(version, implied)
+    st.visible = tree.visible
     if h then
         item:append_text(h.suffix)
         h.tree(h.m, tvb, item, o, e, st)
@@ -2357,7 +2915,7 @@ local function dissect(tvb, pinfo, tree)
 
     -- The stream's state as this call starts.
     local resync, carry, stream
-    cur.version, resync, carry, stream = stream_load(pinfo, n)
+    cur.version, cur.implied, resync, carry, stream = stream_load(pinfo, n)
 
     pinfo.cols.protocol:set("UR")
     -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
@@ -2436,7 +2994,7 @@ local function dissect(tvb, pinfo, tree)
             o = o + size
         end
     end
-    stream_save(pinfo, stream, cur.version, resync, carry)
+    stream_save(pinfo, stream, cur.version, cur.implied, resync, carry)
     return tvb:len()
 end
 
@@ -2459,13 +3017,13 @@ do
 (function(...)
 -- Preferences and registration: the robot-side ports (taken over from MRCPv2, which claims
 -- TCP 30000-30200 in Wireshark 4.0; "Decode As" works on others), the software version assumed
--- until a Version message is seen, and the longest plausible message.
+-- until a Version message is seen (empty: none), and the longest plausible message.
 local spec, rt = ...
 local ur = spec.proto
 local parse_version, assume_version = rt.parse_version, rt.assume_version
 
 ur.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of the primary/secondary interfaces", 65535)
-ur.prefs.version = Pref.string("Software version", spec.default_version, "Controller software version (major.minor) assumed until a Version message is seen on a stream; it chooses the global-variable value-type table")
+ur.prefs.version = Pref.string("Software version", "", "Controller software version (major.minor or major.minor.bugfix, as 5.25.1) assumed until a Version message is seen on a stream: it chooses the layouts, the enum names and the global-variable value types. Empty: the layout sizes tell it where they can, else " .. spec.default_version .. ".")
 ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length, "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
 local tcp_port = DissectorTable.get("tcp.port")
@@ -2478,7 +3036,7 @@ local function register_ports()
 end
 
 function ur.prefs_changed()
-    assume_version(parse_version(ur.prefs.version) or rt.default_version)
+    assume_version(parse_version(ur.prefs.version))
     register_ports()
 end
 

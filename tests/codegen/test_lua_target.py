@@ -8,8 +8,10 @@ import dataclasses
 
 import jinja2
 import pytest
+import yaml
 
 from codegen.compile import DEFAULT_SPEC, compile_text
+from codegen.errors import SpecError
 from codegen.plan import plan
 from codegen.targets import lua
 from codegen.view import Step
@@ -25,7 +27,7 @@ def test_an_unknown_descriptor_kind_is_an_error(protocol, monkeypatch):
 
     def descriptor(self, owner, f, doc, path, keep, show):
         step = real(self, owner, f, doc, path, keep, show)
-        return Step("tlv", step.data) if path == "timestamp" else step
+        return Step("tlv", step.data) if path == "tool_temperature" else step
 
     monkeypatch.setattr(lua._Builder, "descriptor", descriptor)
     with pytest.raises(jinja2.UndefinedError, match="tlv"):
@@ -35,10 +37,10 @@ def test_an_unknown_descriptor_kind_is_an_error(protocol, monkeypatch):
 def test_an_unknown_field_shape_is_an_error(protocol, monkeypatch):
     real = lua._Builder.add_field
 
-    def add_field(self, pf):
+    def add_field(self, pf, *where):
         if pf.key == "robot_mode_data.timestamp":
             pf = dataclasses.replace(pf, shape="timestamp")
-        return real(self, pf)
+        return real(self, pf, *where)
 
     monkeypatch.setattr(lua._Builder, "add_field", add_field)
     with pytest.raises(jinja2.UndefinedError, match="timestamp"):
@@ -69,3 +71,94 @@ def test_the_template_is_mostly_data():
     assert len(template.splitlines()) < 600
     for statement in ("function", "while ", "local function"):
         assert statement not in template.replace("(function(...)", ""), statement
+
+
+# ---- several generations: versions as numbers, forms, repeated names, names by version ----
+
+def variant(edit):
+    data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
+    edit(data)
+    return plan(compile_text(yaml.safe_dump(data, sort_keys=False)))
+
+
+def render_text(protocol_plan) -> str:
+    return lua.render(protocol_plan, ["test"])[lua.OUT]
+
+
+def test_versions_reach_the_runtime_as_numbers():
+    """(major * 1000 + minor) * 1000 + bugfix: a bound written 5.8 takes in every 5.8.x."""
+    def edit(data):
+        data["messages"]["robot_state"]["packages"]["additional_info"]["fields"].append(
+            {"name": "gated", "type": "uint8", "versions": {"from": "5.25.1", "until": "6.2"}})
+
+    text = render_text(variant(edit))
+    assert '{ k = "cond", present_if = nil, low = 5025001, high = 6002999, fields = {' in text
+    assert "{ low = 3003000, high = 5008999, kinds = {" in text   # value types of 3.3 to 5.8
+    assert ('{ of = PART.additional_info, ranges = { { low = 5025001, high = 6002999 } }, sizes = { [5] = true }, '
+            'min = 5, rep = 5025001, versions = "5.25.1 to 6.2" }') in text
+
+
+def test_a_repeated_name_is_one_protofield_of_its_widest_type():
+    def edit(data):
+        fields = data["messages"]["robot_state"]["packages"]["tool_data"]["fields"]
+        fields[0] = dict(fields[0], versions={"from": "3.0"}, type="int32")
+        fields.insert(0, dict(fields[0], type="uint8", versions={"until": "1.8"}))
+
+    text = render_text(variant(edit))
+    assert text.count('ProtoField.int32("ur.tool_data.analog_input_range0"') == 1
+    assert 'ProtoField.uint8("ur.tool_data.analog_input_range0"' not in text
+    narrow = '{ k = "scalar", f = F["tool_data.analog_input_range0"], n = 1, path = "analog_input_range0", signed = false, value = true }'
+    wide = '{ k = "scalar", f = F["tool_data.analog_input_range0"], n = 4, path = "analog_input_range0", signed = true }'
+    assert narrow in text and wide in text
+
+
+def test_entries_no_one_field_holds_are_a_problem():
+    def edit(data):
+        fields = data["messages"]["robot_state"]["packages"]["tool_data"]["fields"]
+        fields[0] = dict(fields[0], versions={"from": "3.0"}, type="uint32")
+        fields.insert(0, dict(fields[0], type="int32", versions={"until": "1.8"}))
+
+    with pytest.raises(SpecError) as caught:
+        render_text(variant(edit))
+    (problem,) = caught.value.problems
+    assert problem.path.startswith("messages.robot_state.packages.tool_data.fields[")
+    assert "ur.tool_data.analog_input_range0" in problem.message and "int32, uint32" in problem.message
+
+
+def test_a_versioned_enum_has_its_names_by_version():
+    text = render_text(plan(compile_text(DEFAULT_SPEC.read_text(encoding="utf-8"))))
+    assert "NAMES.JOINT_MODE = { newest = VS.JOINT_MODE," in text
+    assert "{ low = nil, high = 5000999, names = VS.JOINT_MODE_UpTo5_0 },   -- up to 5.0" in text
+    assert 'tables = NAMES.JOINT_MODE, label = "joint_mode"' in text
+    assert 'ProtoField.uint8("ur.joint_data.joint_mode", "joint_mode", base.DEC, VS.JOINT_MODE,' in text
+
+
+def test_the_version_reader_reads_the_bugfix_in_its_versions():
+    def edit(data):
+        version = data["messages"]["robot_message"]["subtypes"]["version"]
+        version["sets_version"]["bugfix"] = "bugfix_version"
+        fields = version["fields"]
+        fields[3] = dict(fields[3], versions={"from": "3.3"})
+        fields.insert(3, {"name": "svn_revision", "type": "int32", "versions": {"until": "3.2"}})
+
+    text = render_text(variant(edit))
+    assert "bugfix = { n = 4, signed = true, low = 3003000, high = nil }," in text
+    assert "bugfix = {" not in render_text(plan(compile_text(DEFAULT_SPEC.read_text(encoding="utf-8"))))
+
+
+def test_a_summary_the_info_column_cannot_read_is_a_problem():
+    """The Info column reads summaries from the raw bytes: it steps over fixed fields, texts and
+    version-gated parts, not over a switch; and it shows integers and texts."""
+    def edit(data):
+        safety = data["messages"]["robot_message"]["subtypes"]["safety_mode"]
+        safety["fields"].append({"name": "after", "type": "uint8"})
+        safety["summary"] = "{safety_mode_type} {after}"
+        data["messages"]["robot_state"]["packages"]["robot_mode_data"]["summary"] = "{robot_mode} {speed_scaling}"
+
+    with pytest.raises(SpecError) as caught:
+        render_text(variant(edit))
+    found = {(p.path, p.message) for p in caught.value.problems}
+    assert ("messages.robot_message.subtypes.safety_mode",
+            "lua target: the summary's field 'after' comes after a field the Info column cannot step over") in found
+    assert ("messages.robot_state.packages.robot_mode_data",
+            "lua target: the summary cannot show 'speed_scaling', a float field") in found

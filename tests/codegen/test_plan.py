@@ -135,10 +135,3 @@ def test_every_form_of_a_code_with_its_versions_sizes_and_representative(full):
                                                         ("kinematics_info", "1.8 and later")]
     assert [(d, sizes, rep) for _, d, sizes, rep in forms(6)] == [
         ("up to 1.8", [464], (1, 8, 999)), ("3.0 to 5.25.0", [440], (5, 9, 0)), ("5.25.1 and later", [444], (5, 25, 1))]
-
-
-def test_offsets_by_size_follow_each_form_and_its_flags(full):
-    (v,) = [v for v in full.message("robot_state").variants[3] if v.describe() == "3.0 to 3.1"]
-    offsets = v.offsets_by_size()
-    assert offsets[67]["safety_mode"] == offsets[83]["safety_mode"] == 60
-    assert offsets[67]["reserved_0"] == 63 and offsets[83]["reserved_0"] == 79

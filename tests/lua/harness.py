@@ -37,8 +37,9 @@ class TsharkError(AssertionError):
     pass
 
 
-def run_tshark(pcap: Path, *args: str, check_tree: bool = True) -> str:
-    cmd = ["tshark", "-r", str(pcap), "-X", f"lua_script:{PLUGIN}", *args]
+def run_tshark(pcap: Path, *args: str, check_tree: bool = True, plugin: Path = PLUGIN) -> str:
+    """tshark with the dissector (the generated one, or `plugin`); fails on any Lua error."""
+    cmd = ["tshark", "-r", str(pcap), "-X", f"lua_script:{plugin}", *args]
     res = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     if "Lua: Error" in res.stderr or "Lua: Error" in res.stdout:
         raise TsharkError(f"Lua error: {res.stderr[:2000]}")

@@ -27,6 +27,14 @@ function S.tvb(raw)
         return {
             offset = o, len = n,
             string = function() return string.sub(raw, o + 1, o + n) end,
+            float = function()   -- big-endian float32 (enough for the tests: normal numbers)
+                local b1, b2, b3, b4 = string.byte(raw, o + 1, o + 4)
+                local sign = b1 >= 128 and -1 or 1
+                local exp = (b1 % 128) * 2 + math.floor(b2 / 128)
+                local mant = ((b2 % 128) * 256 + b3) * 256 + b4
+                if exp == 0 and mant == 0 then return 0.0 end
+                return sign * (1 + mant / 8388608) * 2 ^ (exp - 127)
+            end,
         }
     end
     function tvb:len() return #raw end
@@ -93,14 +101,15 @@ end
 
 -- The message being dissected, as the walker sees it.
 function S.st(raw, version)
-    return { raw = raw, base = 0, version = version or 5009, assumed = false, visible = true }
+    return { raw = raw, base = 0, version = version or 5009000, known = true, announced = true, visible = true,
+             message_version = version or 5009000 }
 end
 
 -- The expert infos and extra fields of runtime/declare.lua, as plain strings.
 S.X = { raw = "ur.raw", extra = "ur.extra", skipped = "ur.skipped", version = "ur.software_version",
         assumed = "ur.version_assumed", unknown_package = "ur.unknown_package", urscript = "ur.urscript" }
 S.E = { bad_length = "bad_length", bad_type = "bad_type", malformed = "malformed", extra = "extra",
-        unknown = "unknown", assumed = "assumed", internal = "internal" }
+        unknown = "unknown", assumed = "assumed", by_length = "by_length", internal = "internal" }
 
 -- rt after bytes.lua and versions.lua, and after the walker.
 function S.base_rt(spec)

@@ -13,6 +13,8 @@ S.eq(rt.be_uint(raw, 6, 4), 2147483648, "uint32 80 00 00 00")
 S.eq(rt.be_int(raw, 10, 1), 127, "int8 7f")
 S.eq(rt.be_int(raw, 0, 0), 0, "no bytes")
 S.eq(string.format("%d", rt.be_int(raw, 4, 2)), "-2", "a negative read prints with %d on every Lua")
+S.eq(tostring(rt.be_int(raw, 4, 2)), "-2", "an integer on every Lua (no -2.0 on 5.3 and 5.4)")
+S.eq(tostring(rt.be_int(raw, 6, 4)), "-2147483648", "int32 as an integer too")
 
 local st = { base = 10 }
 S.eq(rt.short(st, "joints[2].q_actual", 30, 8, 34), "joints[2].q_actual at offset 20: needs 8 bytes, 4 left", "short")

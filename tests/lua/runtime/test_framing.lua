@@ -51,7 +51,7 @@ S.eq(tostring(pinfo.cols.protocol), "UR", "protocol column")
 S.eq(pinfo.desegment_offset, 13, "reassembly from the split message")
 S.eq(pinfo.desegment_len, DESEGMENT_ONE_MORE_SEGMENT, "a split header asks for one more segment")
 S.eq(S.dump(tree):match("ur.length @0%+4") ~= nil, true, "header fields")
-S.eq(seen[1], 5009, "no Version message: the default version")
+S.eq(seen[1], 5009000, "no Version message: the default version")
 pinfo = call(2, msg("ghij"):sub(1, 7))
 S.eq(pinfo.desegment_len, 2, "the bytes still missing")
 
@@ -80,9 +80,41 @@ handler.tree = function() error("boom") end
 pinfo, tree = call(7, msg("x"))
 S.eq(S.dump(tree):match("!internal: urwire: .*boom") ~= nil, true, "internal error expert")
 
--- The version preference.
-handler.tree = function(m, tvb, tree, o, e, st) seen[#seen + 1] = st.version end
-rt.assume_version(5012)
-call(8, msg("y"))
-S.eq(seen[#seen], 5012, "the assumed version follows the preference")
+-- A robot state whose layout sizes tell the version (as KINDS.packages does, in its Info and
+-- again in its tree): this message's tree starts from the version it started with, is shown
+-- with what the sizes told, and later messages of the stream are read with it.
+local shown = {}
+handler.tree = function(m, tvb, tree, o, e, st)
+    seen[#seen + 1] = st.version
+    shown[#shown + 1] = st.message_implied or "-"
+end
+rt.handlers[16] = {
+    m = { label = "State" }, suffix = ", State",
+    info = function(m, tvb, raw, o, e, st)
+        if not st.known then st.version, st.implied = 3004999, "3.2 to 3.4" end
+        return "State"
+    end,
+    tree = function(m, tvb, tree, o, e, st)
+        seen[#seen + 1] = st.version
+        shown[#shown + 1] = st.message_implied or "-"
+    end,
+}
+local count = #seen
+local function session(number, port)
+    local pinfo = S.pinfo(number)
+    pinfo.dst_port = port
+    ur.dissector(S.tvb(msg("a") .. header(5, 16) .. msg("b")), pinfo, S.tree())
+end
+session(8, 50100)
+S.eq(table.concat(seen, " ", count + 1), "5009000 5009000 3004999", "the default, then the version the sizes told")
+S.eq(table.concat(shown, " "), "- 3.2 to 3.4 3.2 to 3.4", "shown on the message that told it, and after")
+session(9, 50100)
+S.eq(seen[#seen], 3004999, "kept for the stream's next calls")
+
+-- The version preference: a known version, which the layout sizes do not overrule.
+rt.assume_version(5012000)
+count = #seen
+session(10, 50200)
+S.eq(table.concat(seen, " ", count + 1), "5012000 5012000 5012000", "the assumed version follows the preference")
+rt.assume_version(nil)
 print("ok")

@@ -11,28 +11,73 @@ local L = {
     { k = "pstring", f = "ur.k.title", n = 1, signed = false, path = "title", show = " " },
     { k = "string", f = "ur.k.text", path = "text", show = ": " },
 }
+local V = 5009000
+local function summary(raw, o, e, layout, v) return rt.layout_summary(S.tvb(raw), raw, o, e, layout, v or V) end
 local raw = S.bytes(0, 0, 0, 1, 7, 0, 0, 0, 0, 5) .. "Hello" .. "world"
-S.eq(rt.layout_summary(S.tvb(raw), raw, 0, #raw, L), "RUNNING Hello: world", "shown fields")
+S.eq(summary(raw, 0, #raw, L), "RUNNING Hello: world", "shown fields")
 raw = S.bytes(0, 0, 0, 1, 0xff, 0, 0, 0, 0, 0)
-S.eq(rt.layout_summary(S.tvb(raw), raw, 0, #raw, L), "NO_CONTROLLER ", "signed enum, empty title, no text")
+S.eq(summary(raw, 0, #raw, L), "NO_CONTROLLER ", "signed enum, empty title, no text")
 raw = S.bytes(0, 0, 0, 1, 9, 0, 0, 0, 0, 9) .. "cut"
-S.eq(rt.layout_summary(S.tvb(raw), raw, 0, #raw, L), "9", "a number without a name; stops at a title that does not fit")
-S.eq(rt.layout_summary(S.tvb(raw), raw, 0, 3, L), "", "nothing fits")
-S.eq(rt.layout_summary(S.tvb(raw), raw, 0, #raw, { { k = "values" }, L[2] }), "", "stops at a kind it cannot step over")
+S.eq(summary(raw, 0, #raw, L), "9", "a number without a name; stops at a title that does not fit")
+S.eq(summary(raw, 0, 3, L), "", "nothing fits")
+S.eq(summary(raw, 0, #raw, { { k = "values" }, L[2] }), "", "stops at a kind it cannot step over")
+S.eq(summary(raw, 0, #raw, { L[2], { k = "values" } }), "0", "walks no further than its last shown field")
 local long = string.rep("x", 200)
-S.eq(#rt.layout_summary(S.tvb(long), long, 0, #long, { L[5] }), 2 + 120, "a text is cut at 120 bytes")
+S.eq(#summary(long, 0, #long, { L[5] }), 2 + 120, "a text is cut at 120 bytes")
 
--- Robot-state packages: the enums each package lists in its info.
+-- Fields gated by version are stepped over or into; names follow the version.
+local EARLY = { [7] = "EARLY_RUNNING" }
+local GATED = {
+    { k = "cond", high = 3001999, fields = { { k = "scalar", f = "ur.k.old", n = 2, path = "old", signed = true } } },
+    { k = "cond", low = 3002000, fields = { { k = "scalar", f = "ur.k.new", n = 4, path = "new", signed = true } } },
+    { k = "scalar", f = "ur.k.level", n = 1, path = "level", signed = true, vs = MODE, show = "",
+      tables = { newest = MODE, { high = 1008999, names = EARLY }, { low = 3000000, names = MODE } }, label = "level" },
+}
+raw = S.bytes(0, 0, 7)
+S.eq(summary(raw, 0, #raw, GATED, 1008000), "EARLY_RUNNING", "1.8: the two-byte form, the early names")
+raw = S.bytes(0, 0, 0, 0, 7)
+S.eq(summary(raw, 0, #raw, GATED, 5009000), "RUNNING", "5.9: the four-byte form")
+S.eq(summary(raw, 0, #raw, { { k = "cond", present_if = "flag", fields = {} }, L[2] }), "", "a flag's fields: stops")
+
+-- Robot-state packages: each package's summary, by its form.
+local function part(layout, summary_) return { layout = layout, summary = summary_ } end
+local function forms(...) return { single = true, summary = true, { of = part(...), ranges = { {} }, min = 0, rep = V, versions = "all versions" } } end
 local PACKAGES = {
-    [0] = { info = { { at = 1, n = 1, vs = MODE } } },
-    [3] = { info = { { at = 0, n = 1, vs = { [5] = "NORMAL" } } } },
-    [1] = {},
+    [0] = forms({ { k = "scalar", f = "ur.m.pad", n = 1, path = "pad", signed = false },
+                  { k = "scalar", f = "ur.m.mode", n = 1, path = "mode", signed = true, vs = MODE, show = "" } }, true),
+    [3] = forms({ { k = "scalar", f = "ur.s.safety", n = 1, path = "safety", signed = false, vs = { [5] = "NORMAL" }, show = "" } }, true),
+    [1] = { single = true, summary = false, { of = part({}, false), ranges = { {} }, min = 0, rep = V, versions = "all versions" } },
 }
 local function package(code, body) return S.bytes(0, 0, 0, 5 + #body, code) .. body end
+local function packages(raw, st) return rt.package_summary(S.tvb(raw), raw, 0, #raw, PACKAGES, st or S.st(raw)) end
 raw = package(1, "abc") .. package(0, S.bytes(9, 7)) .. package(3, S.bytes(5)) .. package(0, S.bytes(1))
-S.eq(rt.package_summary(raw, 0, #raw, PACKAGES), "RUNNING, NORMAL", "enums in package order; one too short is skipped")
+S.eq(packages(raw), "RUNNING, NORMAL", "summaries in package order; one too short is skipped")
 raw = package(0, S.bytes(9, 0xff)) .. S.bytes(0, 0, 0, 99, 3, 5)
-S.eq(rt.package_summary(raw, 0, #raw, PACKAGES), "NO_CONTROLLER", "stops at a length that does not fit")
+S.eq(packages(raw), "NO_CONTROLLER", "stops at a length that does not fit")
+raw = package(7, "x") .. package(3, S.bytes(5))
+S.eq(packages(raw), "NORMAL", "a package type without forms is passed over")
+
+-- A version not known: each package's form is chosen as the tree does, and a form chosen by
+-- its length tells the version, for the summaries that follow too.
+local OLD_MODE = { [2] = "OLD_RUNNING" }
+local EARLY_STATE = { of = part({ { k = "scalar", f = "ur.e.mode", n = 1, path = "mode", signed = true, vs = MODE, show = "",
+                                    tables = { newest = MODE, { high = 1008999, names = OLD_MODE }, { low = 3000000, names = MODE } },
+                                    label = "mode" } }, true),
+                      ranges = { { high = 1008999 } }, sizes = { [1] = true }, min = 1, rep = 1008999, versions = "up to 1.8" }
+local NEW_STATE = { of = part({ { k = "scalar", f = "ur.n.pad", n = 1, path = "pad", signed = false } }, false),
+                    ranges = { { low = 3000000 } }, sizes = { [2] = true }, min = 2, rep = 5009000, versions = "3.0 and later" }
+PACKAGES[5] = { single = false, summary = true, EARLY_STATE, NEW_STATE }
+PACKAGES[6] = forms({ { k = "scalar", f = "ur.x.mode", n = 1, path = "mode", signed = true, vs = MODE, show = "",
+                        tables = { newest = MODE, { high = 1008999, names = OLD_MODE }, { low = 3000000, names = MODE } },
+                        label = "mode" } }, true)
+raw = package(6, S.bytes(2)) .. package(5, S.bytes(2)) .. package(6, S.bytes(2))
+local st = S.st(raw)
+st.known = false
+S.eq(packages(raw, st), "2, OLD_RUNNING, OLD_RUNNING", "names follow the version the layout sizes show, from there on")
+S.eq(st.version, 1008999, "the version they show"); S.eq(st.implied, "up to 1.8", "and which form showed it")
+st = S.st(raw)
+S.eq(packages(raw, st), "2, OLD_RUNNING, 2", "a known version: only the form chosen by length reads with its version")
+S.eq(st.implied, nil, "a known version is not overruled")
 S.eq(rt.labelled("Robot state", ""), "Robot state", "label alone")
 S.eq(rt.labelled("Key", "PROGRAM_STARTED"), "Key: PROGRAM_STARTED", "label and text")
 

@@ -11,7 +11,7 @@ local NEW = {   -- as from 5.9 (shape only: codes and names are the test's own)
     [5] = { name = "POSE", layout = "array", item = "float32", n = 4, count = 2, len = 0 },
 }
 local OLD = { [5] = { name = "BOOL", layout = "scalar", item = "bool", n = 1, count = 1, len = 0 } }
-local rt = S.walker_rt({ max_value_depth = 2, value_tables = { { high = 5008, kinds = OLD }, { low = 5009, kinds = NEW } } })
+local rt = S.walker_rt({ max_value_depth = 2, value_tables = { { high = 5008999, kinds = OLD }, { low = 5009000, kinds = NEW } } })
 
 local vf = { item = "ur.v.item", type = "ur.v.type", code = "ur.v.code", count = "ur.v.length", rows = "ur.v.rows",
              cols = "ur.v.cols", row = "ur.v.row", int32 = "ur.v.int32", float32 = "ur.v.float32", bool = "ur.v.bool",
@@ -28,7 +28,7 @@ local raw = S.bytes(1, 0, 0, 0, 7, 10) ..
             S.bytes(2, 0, 2) .. "hi" .. S.bytes(10) ..
             S.bytes(3, 0, 2, 1, 0, 0, 0, 1, 0, 10) ..
             S.bytes(4, 0, 1, 0, 2, 0, 0, 10)
-local tree, o, err = run(raw, 5009)
+local tree, o, err = run(raw, 5009000)
 S.eq(err, nil, "no error")
 S.eq(o, #raw, "to the end")
 S.eq(S.dump(tree), S.lines(
@@ -67,22 +67,22 @@ S.eq(S.dump(tree), S.lines(
 
 -- The same byte is a POSE from 5.9 and a BOOL before.
 raw = S.bytes(5, 1, 10)
-_, o, err = run(raw, 5009)
+_, o, err = run(raw, 5009000)
 S.eq(err, "variables[0] at offset 1: needs 8 bytes, 2 left", "POSE in 5.9")
-tree, o, err = run(raw, 5000)
+tree, o, err = run(raw, 5000000)
 S.eq(err, nil, "BOOL in 5.0")
 S.eq(S.dump(tree):match("ur.v.bool @1%+1") ~= nil, true, "the bool")
 
-_, o, err = run(S.bytes(9, 10), 5009)
+_, o, err = run(S.bytes(9, 10), 5009000)
 S.eq(err, "variables[0].type at offset 0: unknown value type 9", "unknown type")
-_, o, err = run(S.bytes(0, 11), 5009)
+_, o, err = run(S.bytes(0, 11), 5009000)
 S.eq(err, "variables[0] at offset 1: expected terminator 0x0a, found 0x0b", "terminator")
-_, o, err = run(S.bytes(0), 5009)
+_, o, err = run(S.bytes(0), 5009000)
 S.eq(err, "variables[0] at offset 1: needs 1 bytes, 0 left", "missing terminator")
-_, o, err = run(S.bytes(3, 0, 1, 3, 0, 1, 0, 10), 5009)
+_, o, err = run(S.bytes(3, 0, 1, 3, 0, 1, 0, 10), 5009000)
 S.eq(err, "variables[0][0][0] at offset 6: nesting deeper than 2", "depth")
-_, o, err = run(S.bytes(2, 0xff, 0xff, 10), 5009)
+_, o, err = run(S.bytes(2, 0xff, 0xff, 10), 5009000)
 S.eq(err, "variables[0] at offset 1: negative length -1", "negative string length")
-_, o, err = run(S.bytes(4, 0, 1, 0xff, 0xff, 10), 5009)
+_, o, err = run(S.bytes(4, 0, 1, 0xff, 0xff, 10), 5009000)
 S.eq(err, "variables[0] at offset 3: negative length -1", "negative column count, at its own offset")
 print("ok")

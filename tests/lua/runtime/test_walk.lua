@@ -11,7 +11,7 @@ local L = {
     { k = "cond", present_if = "flag", fields = {
         { k = "scalar", f = "ur.p.extra", n = 1, path = "extra", signed = false },
     } },
-    { k = "cond", low = 5010, fields = {
+    { k = "cond", low = 5010000, fields = {
         { k = "scalar", f = "ur.p.new", n = 1, path = "new", signed = false },
     } },
     { k = "bits", f = "ur.p.bits", n = 1, path = "bits", signed = false, bits = { "ur.p.bits.a", "ur.p.bits.b" } },
@@ -24,7 +24,7 @@ local L = {
 
 local raw = S.bytes(1, 7, 3, 10, 11, 0, 1, 0, 2, 5, 2) .. "hi" .. "a\nb\nc"
 local tree = S.tree()
-S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5009), L, nil), #raw - 1, "offset after the layout: before the unterminated c")
+S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5009000), L, nil), #raw - 1, "offset after the layout: before the unterminated c")
 S.eq(S.dump(tree), S.lines(
     "ur.p.flag @0+1",
     "ur.p.extra @1+1",
@@ -45,7 +45,7 @@ S.eq(S.dump(tree), S.lines(
 -- flag 0: no extra byte, the switch takes its default (4 bytes); version 5.10: the new byte.
 raw = S.bytes(0, 9, 3, 10, 11, 0, 1, 0, 2, 0, 0, 0, 5, 0)
 tree = S.tree()
-S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5010), L, nil), #raw, "end")
+S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5010000), L, nil), #raw, "end")
 S.eq(S.dump(tree):match("ur.p.new @1%+1") ~= nil, true, "version-gated field read from 5.10")
 S.eq(S.dump(tree):match("ur.p.extra") == nil, true, "present_if field absent when flag is 0")
 S.eq(S.dump(tree):match("ur.p.sw @9%+4") ~= nil, true, "switch default")
@@ -53,7 +53,7 @@ S.eq(S.dump(tree):match("ur.p.sw @9%+4") ~= nil, true, "switch default")
 -- Errors name the field's path and the offset from the message's first byte.
 raw = S.bytes(0, 3, 10, 11, 0, 1, 0)
 tree = S.tree()
-local o, err = walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5009), L, nil)
+local o, err = walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5009000), L, nil)
 S.eq(o, nil, "no offset on error")
 S.eq(err, "joints[1].q at offset 6: needs 2 bytes, 1 left", "short group item")
 S.eq(S.dump(tree):match("ur.p.joints @6%+1 %(Joint 1%)") ~= nil, true, "the broken item spans what is left")
@@ -89,4 +89,40 @@ S.eq(S.dump(tree), "ur.p.text @1+2 = bc", "string to the end")
 tree = S.tree()
 S.eq(walk(S.tvb("abc"), tree, 3, 3, S.st("abc"), { { k = "bytes", f = "ur.p.raw", path = "raw" } }, nil), 3, "bytes")
 S.eq(S.dump(tree), "ur.p.raw @3+0", "empty bytes still show")
+-- A name whose entry in this version is narrower than its field (int16 bits of an int32
+-- field, a float32 of a float64 field): the number is added explicitly, its bits read the range.
+local L_narrow = {
+    { k = "bits", f = "ur.p.inputs", n = 2, path = "inputs", signed = true, value = true, bits = { "ur.p.inputs.a" } },
+    { k = "scalar", f = "ur.p.x", n = 4, path = "x", signed = false, value = true, float = true },
+    { k = "array", f = "ur.p.ids", n = 1, count = 2, path = "ids", signed = true, value = true },
+}
+raw = S.bytes(0xff, 0xfe, 0x3f, 0xc0, 0, 0, 0xff, 2)
+tree = S.tree()
+S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw), L_narrow, nil), #raw, "narrow entries")
+S.eq(S.dump(tree), S.lines(
+    "ur.p.inputs @0+2 = -2",
+    "  ur.p.inputs.a @0+2",
+    "ur.p.x @2+4 = 1.5",
+    "ur.p.ids @6+1 = -1",
+    "ur.p.ids @7+1 = 2"), "explicit values in their own wire type")
+
+-- An enum whose names depend on the version: the field's value string is the newest table;
+-- another version's table names the item in its text.
+local NEWEST, EARLY = { [240] = "READY_FOR_POWER_OFF" }, { [240] = "EMERGENCY_STOPPED" }
+local NAMES = { newest = NEWEST, { high = 5000999, names = EARLY }, { low = 5001000, names = NEWEST } }
+local L_mode = {
+    { k = "scalar", f = "ur.p.joint_mode", n = 1, path = "joint_mode", signed = false, vs = NEWEST, tables = NAMES, label = "joint_mode" },
+    { k = "array", f = "ur.p.modes", n = 1, count = 1, path = "modes", signed = false, tables = NAMES, label = "modes" },
+}
+raw = S.bytes(240, 7)
+tree = S.tree()
+walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 3002000), L_mode, nil)
+S.eq(S.dump(tree), S.lines(
+    "ur.p.joint_mode @0+1 (joint_mode: EMERGENCY_STOPPED (240))",
+    "ur.p.modes @1+1 (modes: Unknown (7))"), "names of an early version")
+tree = S.tree()
+walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5001000), L_mode, nil)
+S.eq(S.dump(tree), S.lines(
+    "ur.p.joint_mode @0+1",
+    "ur.p.modes @1+1"), "the newest names: the field's own")
 print("ok")

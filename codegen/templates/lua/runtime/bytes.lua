@@ -11,10 +11,19 @@ local function be_uint(raw, o, n)
     return v
 end
 
+-- 2^(8n - 1) for n = 1..4, made by multiplying so that it stays an integer on Lua 5.3 and 5.4:
+-- be_int then returns integers there (Wireshark's TreeItem:add takes them as they are).
+local HALF = {}
+for n = 1, 4 do
+    local h = 1
+    for _ = 1, 8 * n - 1 do h = h * 2 end
+    HALF[n] = h
+end
+
 -- A two's-complement integer of n bytes at offset o.
 local function be_int(raw, o, n)
     local v = be_uint(raw, o, n)
-    local half = 2 ^ (8 * n - 1)
+    local half = HALF[n] or 2 ^ (8 * n - 1)
     if v >= half then v = v - 2 * half end
     return v
 end

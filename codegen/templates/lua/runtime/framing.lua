@@ -4,17 +4,35 @@
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
+local enum_names, rename = rt.enum_names, rt.rename
 local stream_load, stream_save = rt.stream_load, rt.stream_save
 local X, E, handlers = rt.X, rt.E, rt.handlers
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
-local KNOWN_TYPE, MESSAGE_TYPES, VERSION = spec.known_types, spec.message_types, spec.version_reader
+local KNOWN_TYPE, VERSION = spec.known_types, spec.version_reader
+local MESSAGE_TYPES, MESSAGE_TYPE_TABLES = spec.message_types, spec.message_type_tables
+local DEFAULT_VERSION = rt.default_version
 
--- The version assumed when no Version message was seen: the ur.version preference.
-local pref_version = rt.default_version
+-- The version the ur.version preference gives until a Version message is seen; nil when the
+-- preference is empty: then the layout sizes tell the version where they can, else the default.
+local pref_version = nil
 local function assume_version(v) pref_version = v end
 
-local st = { raw = "", base = 0, version = pref_version, assumed = true }   -- reused for every message
+-- The message being dissected, reused for every message: its raw bytes and first byte; the
+-- software version it is read with (version: it may move on within a robot state, when layout
+-- sizes tell it), and how that version is known: announced (a Version message), from_pref, or
+-- neither (known is false: then implied, when set, names the versions the layout sizes showed);
+-- message_version and message_implied: the version shown on the message.
+local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false }
+
+-- st as a message starts, from the stream's version (nil: none yet) and how it was found.
+local function begin(version, implied)
+    st.version = version or pref_version or DEFAULT_VERSION
+    st.implied = implied
+    st.announced = version ~= nil and implied == nil
+    st.from_pref = not st.announced and pref_version ~= nil
+    st.known = st.announced or st.from_pref
+end
 
 local function plausible(raw, o, max_length)
     local size = be_int(raw, o, LENGTH)
@@ -51,24 +69,40 @@ local function dissect_client(tvb, pinfo, tree)
     return n
 end
 
-local ur_handle = nil
-local cur = { version = nil, first = true, detail = false }   -- the call being dissected
+-- The Info column of a message type the spec names but does not lay out.
+local function unlaid_info(mtype, v)
+    local names = MESSAGE_TYPE_TABLES and enum_names(MESSAGE_TYPE_TABLES, v) or MESSAGE_TYPES
+    return fmt("Type %d (%s)", mtype, names[mtype] or "named in another version")
+end
 
--- One whole message from o to e (its declared length): Info column, version, tree.
+local ur_handle = nil
+-- The call being dissected: the stream's version (nil: none yet) and, when the layout sizes
+-- told it, the versions of the form that did.
+local cur = { version = nil, implied = nil, first = true, detail = false }
+
+-- One whole message from o to e (its declared length): version, Info column, tree.
 local function message(tvb, raw, pinfo, tree, o, e, mtype)
     local h = handlers[mtype]
     if mtype == VERSION.message then
-        cur.version = announced_version(raw, o, e, VERSION) or cur.version
+        local v = announced_version(raw, o, e, VERSION)
+        if v then cur.version, cur.implied = v, nil end
     end
-    set_info(pinfo, cur.first, h and h.info(h.m, tvb, raw, o, e) or fmt("Type %d (%s)", mtype, MESSAGE_TYPES[mtype]))
+    local version, implied = cur.version, cur.implied
+    st.raw, st.base = raw, o
+    begin(version, implied)
+    set_info(pinfo, cur.first, h and h.info(h.m, tvb, raw, o, e, st) or unlaid_info(mtype, st.version))
     cur.first = false
+    -- Layout sizes told the version of a stream that had not: this message and the next ones.
+    if st.implied and not st.known then cur.version, cur.implied = st.version, st.implied end
     if not cur.detail then return end
     local item = tree:add(ur, tvb(o, e - o))
     item:add(F.length, tvb(o, LENGTH))
-    item:add(F.type, tvb(o + LENGTH, HEADER - LENGTH))
-    st.raw, st.base, st.visible = raw, o, tree.visible
-    st.version = cur.version or pref_version
-    st.assumed = cur.version == nil
+    local type_item = item:add(F.type, tvb(o + LENGTH, HEADER - LENGTH))
+    if MESSAGE_TYPE_TABLES then rename(type_item, "Type", MESSAGE_TYPE_TABLES, st.version, mtype) end
+    -- The tree walks the message again from the version it started with.
+    st.message_version, st.message_implied = st.version, st.implied
+    begin(version, implied)
+    st.visible = tree.visible
     if h then
         item:append_text(h.suffix)
         h.tree(h.m, tvb, item, o, e, st)
@@ -95,7 +129,7 @@ local function dissect(tvb, pinfo, tree)
 
     -- The stream's state as this call starts.
     local resync, carry, stream
-    cur.version, resync, carry, stream = stream_load(pinfo, n)
+    cur.version, cur.implied, resync, carry, stream = stream_load(pinfo, n)
 
     pinfo.cols.protocol:set("UR")
     -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
@@ -174,7 +208,7 @@ local function dissect(tvb, pinfo, tree)
             o = o + size
         end
     end
-    stream_save(pinfo, stream, cur.version, resync, carry)
+    stream_save(pinfo, stream, cur.version, cur.implied, resync, carry)
     return tvb:len()
 end
 

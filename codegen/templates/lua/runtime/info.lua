@@ -1,36 +1,63 @@
 -- The Info column. It is written on every pass, tree or not, so it reads the raw bytes and
--- builds no tree: the descriptors marked `show` of a message layout, and the enums a
--- robot-state package lists in its `info`. One buffer of parts is reused for every message.
+-- builds no tree: the descriptors marked `show` of a layout (a message's, or a robot-state
+-- package's whose layout has a summary). One buffer of parts is reused for every message.
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, be_uint = rt.be_int, rt.be_uint
+local version_in, enum_names, pick = rt.version_in, rt.enum_names, rt.pick
 local PACKAGE_HEADER = spec.package_header_size
 local PACKAGE_LENGTH = spec.package_length_size
 
 local parts = {}
 
--- The fields marked `show` of a layout from o to e, each after its text: "PROGRAM_STARTED:
--- demo". Stops at the first field it cannot step over without walking it.
-local function layout_summary(tvb, raw, o, e, layout)
-    local n = 0
-    for _, d in ipairs(layout) do
+-- How many descriptors of a layout the summary walks: up to its last shown one (a `cond`
+-- holding one counts). Found once per layout and kept.
+local reach = {}
+local function shown_in(layout)
+    for i = 1, #layout do
+        local d = layout[i]
+        if d.show or (d.k == "cond" and shown_in(d.fields)) then return true end
+    end
+    return false
+end
+local function reach_of(layout)
+    local n = reach[layout]
+    if not n then
+        n = 0
+        for i = 1, #layout do
+            local d = layout[i]
+            if d.show or (d.k == "cond" and shown_in(d.fields)) then n = i end
+        end
+        reach[layout] = n
+    end
+    return n
+end
+
+-- The fields marked `show` of descriptors 1..last from o to e, for software version v, each
+-- after its text, into parts from n + 1 ("PROGRAM_STARTED: demo"). Returns the offset after
+-- them and the new n; the offset is nil where it stopped at a field it cannot step over
+-- without walking it, or one that does not fit.
+local function summarise(tvb, raw, o, e, layout, last, v, n)
+    for i = 1, last do
+        local d = layout[i]
         local k, size = d.k, nil
         if k == "scalar" or k == "bits" then size = d.n
         elseif k == "array" then size = d.n * d.count
         elseif k == "group" and d.count and d.size then size = d.count * d.size
         end
         if size then
-            if o + size > e then break end
+            if o + size > e then return nil, n end
             if d.show then
-                local v = d.signed and be_int(raw, o, d.n) or be_uint(raw, o, d.n)
+                local x = d.signed and be_int(raw, o, d.n) or be_uint(raw, o, d.n)
+                local names = d.tables and enum_names(d.tables, v) or d.vs
                 n = n + 1
-                parts[n] = d.show .. (d.vs and (d.vs[v] or fmt("%d", v)) or fmt("%d", v))
+                parts[n] = d.show .. (names and (names[x] or fmt("%d", x)) or fmt("%d", x))
             end
             o = o + size
         elseif k == "pstring" then
-            if o + d.n > e then break end
+            if o + d.n > e then return nil, n end
             local len = d.signed and be_int(raw, o, d.n) or be_uint(raw, o, d.n)
-            if len < 0 or o + d.n + len > e then break end
+            if len < 0 or o + d.n + len > e then return nil, n end
             if d.show then
                 n = n + 1
                 parts[n] = d.show .. tvb(o + d.n, len):string(ENC_UTF_8)
@@ -44,30 +71,45 @@ local function layout_summary(tvb, raw, o, e, layout)
                 parts[n] = d.show .. tvb(o, len):string(ENC_UTF_8)
             end
             o = e
+        elseif k == "cond" and not d.present_if then
+            if version_in(v, d.low, d.high) then
+                o, n = summarise(tvb, raw, o, e, d.fields, #d.fields, v, n)
+                if not o then return nil, n end
+            end
         else
-            break
+            return nil, n
         end
     end
+    return o, n
+end
+
+-- The summary of a layout from o to e for version v: its shown fields, each after its text.
+local function layout_summary(tvb, raw, o, e, layout, v)
+    local _, n = summarise(tvb, raw, o, e, layout, reach_of(layout), v, 0)
     return table.concat(parts, "", 1, n)
 end
 
--- The enums that the robot-state packages from p to e list in their `info` (per body size,
--- one form of the package each: { at = offset in the body, n = size, vs = value string }),
--- joined by ", ". Stops at the first package whose length does not fit.
-local function package_summary(raw, p, e, packages)
+-- The summaries of the robot-state packages from p to e, joined by ", ". packages: the forms
+-- of each package type (see versions.lua), `summary` when one of them has a summary. Each
+-- package's form is chosen as the tree chooses it (pick), so that layout sizes set the
+-- version of a stream that has not told it, tree or not. Stops at the first package whose
+-- length does not fit.
+local function package_summary(tvb, raw, p, e, packages, st)
     local n = 0
     while e - p >= PACKAGE_HEADER do
         local size, code = be_int(raw, p, PACKAGE_LENGTH), byte(raw, p + PACKAGE_LENGTH + 1)
         if size < PACKAGE_HEADER or size > e - p then break end
-        local pk = packages[code]
-        -- The form of the package's size, else (extra bytes of a newer release) the newest form.
-        local info = pk and pk.info and (pk.info[size - PACKAGE_HEADER] or pk.info_newest)
-        if info then
-            for _, i in ipairs(info) do
-                if i.at + i.n <= size - PACKAGE_HEADER then
-                    local v = be_int(raw, p + PACKAGE_HEADER + i.at, i.n)
-                    n = n + 1
-                    parts[n] = i.vs[v] or fmt("%d", v)
+        local forms = packages[code]
+        if forms and (forms.summary or not st.known) then
+            local form, use = pick(forms, size - PACKAGE_HEADER, st)
+            local part = form.of
+            if part.summary then
+                local first = n + 1
+                local _
+                _, n = summarise(tvb, raw, p + PACKAGE_HEADER, p + size, part.layout, reach_of(part.layout), use, n)
+                if n > first then
+                    parts[first] = table.concat(parts, "", first, n)
+                    n = first
                 end
             end
         end

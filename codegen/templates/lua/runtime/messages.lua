@@ -7,6 +7,7 @@
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, walk, version_text = rt.be_int, rt.walk, rt.version_text
+local choose, pick, enum_names, named_in_any, rename = rt.choose, rt.pick, rt.enum_names, rt.named_in_any, rt.rename
 local layout_summary, package_summary, labelled = rt.layout_summary, rt.package_summary, rt.labelled
 local X, E = rt.X, rt.E
 local HEADER = spec.header_size
@@ -21,10 +22,14 @@ local function referenced(tree, fields)
     return false
 end
 
--- The body of a package or message from body to stop, walked with its layout; what cannot be
--- read is kept raw, what is left over is shown as extra bytes, each with its expert.
-local function walk_body(tvb, item, body, stop, st, layout, name)
+-- The body of a package or message from body to stop, walked with its layout for version v;
+-- what cannot be read is kept raw, what is left over is shown as extra bytes, each with its
+-- expert.
+local function walk_body(tvb, item, body, stop, st, layout, name, v)
+    local keep = st.version
+    st.version = v
     local used, err = walk(tvb, item, body, stop, st, layout, nil)
+    st.version = keep
     if not used then
         item:add(X.raw, tvb(body, stop - body))
         item:add_proto_expert_info(E.malformed, name .. ": " .. err)
@@ -34,15 +39,62 @@ local function walk_body(tvb, item, body, stop, st, layout, name)
     end
 end
 
+-- A type or subtype code: its field, and under a version whose table names it otherwise, that
+-- name. tables: the enum's tables by version, nil when its names do not depend on it.
+local function add_code(tree, f, range, label, tables, v, code)
+    local item = tree:add(f, range)
+    if tables then rename(item, label, tables, v, code) end
+    return item
+end
+
+-- The name of a code for version v, and whether the spec names it in any version.
+local function code_name(names, tables, v, code)
+    local name = (tables and enum_names(tables, v) or names)[code]
+    return name, name ~= nil or (tables ~= nil and named_in_any(tables, code))
+end
+
+-- What the message was read with (st.message_version; see framing.lua): the version, and how it
+-- was found when no Version message told it: from layout sizes (the versions of the form that
+-- showed it), from the ur.version preference, or the default; each of these with a note.
+local FROM_SIZES = setmetatable({}, { __index = function(t, versions)
+    local text = versions .. " (from layout sizes)"
+    t[versions] = text
+    return text
+end })
+local function show_version(item, st)
+    local v, implied = st.message_version, st.message_implied
+    if implied then
+        item:add(X.version, FROM_SIZES[implied]):set_generated()
+    else
+        item:add(X.version, version_text(v)):set_generated()
+    end
+    if st.announced then return end
+    item:add(X.assumed, true):set_generated()
+    if implied then
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: software %s, as the layout sizes show", implied))
+    elseif st.from_pref then
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(v)))
+    else
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (the default; preference ur.version)", version_text(v)))
+    end
+end
+
+-- A form chosen by its length, not by the version: a note on its item.
+local function note_length(item, form, length)
+    item:add_proto_expert_info(E.by_length, fmt("laid out as software %s (chosen by length %d)", form.versions, length))
+end
+
 local KINDS = {}
 
--- m: { packages = { [type] = { name, item, layout, info, refs } }, types = value string of
--- package types, length, type = the fields of a package header }.
+-- m: { packages = { [type] = its forms, each of = { name, label, item, layout, summary, refs } },
+-- types = value string of package types (type_tables: by version, when they depend on it),
+-- length, type = the fields of a package header, needs_version }.
 KINDS.packages = {
-    info = function(m, tvb, raw, o, e)
-        return labelled(m.label, package_summary(raw, o + HEADER, e, m.packages))
+    info = function(m, tvb, raw, o, e, st)
+        return labelled(m.label, package_summary(tvb, raw, o + HEADER, e, m.packages, st))
     end,
     tree = function(m, tvb, tree, o, e, st)
+        if m.needs_version then show_version(tree, st) end
         local raw = st.raw
         local p = o + HEADER
         while p < e do
@@ -62,20 +114,28 @@ KINDS.packages = {
                 return
             end
             local code = byte(raw, p + PACKAGE_LENGTH + 1)
-            local pk = m.packages[code]
+            local forms = m.packages[code]
+            local form, use, by_length, pk
+            if forms then
+                form, use, by_length = pick(forms, size - PACKAGE_HEADER, st)
+                pk = form.of
+            end
+            local v = use or st.version
             local item = tree:add(pk and pk.item or X.unknown_package, tvb(p, size))
-            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, m.types[code] or "not in the spec")) end
+            local name, named = code_name(m.types, m.type_tables, v, code)
+            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
             item:add(m.length, tvb(p, PACKAGE_LENGTH))
-            item:add(m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH))
+            add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+            if by_length then note_length(item, form, size) end
             local body, stop = p + PACKAGE_HEADER, p + size
             if pk and not st.visible and not referenced(item, pk.refs) then
                 -- No tree shown and no field of this package asked for: skip its fields.
             elseif pk then
-                walk_body(tvb, item, body, stop, st, pk.layout, pk.name)
+                walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
             else
                 item:add(X.raw, tvb(body, stop - body))
                 -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
-                if not m.types[code] then
+                if not named then
                     item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
                 end
             end
@@ -85,15 +145,17 @@ KINDS.packages = {
 }
 
 -- m: { header = layout of the header and subtype, body_offset = where the body starts (the
--- subtype is the byte before it), subtype_field, subtype_names = value string of subtypes,
--- subtypes = { [subtype] = { name, label, item, header, layout, needs_version } } }.
+-- subtype is the byte before it), subtype_field, subtype_names = value string of subtypes
+-- (subtype_tables: by version, when they depend on it), subtypes = { [subtype] = its forms,
+-- each of = { name, label, item, header, layout, needs_version } } }.
 KINDS.subtypes = {
-    info = function(m, tvb, raw, o, e)
+    info = function(m, tvb, raw, o, e, st)
         if e - o < m.body_offset then return m.label .. " (too short)" end
         local code = byte(raw, o + m.body_offset)
-        local s = m.subtypes[code]
-        if not s then return fmt("%s subtype %d", m.label, code) end
-        return labelled(s.label, layout_summary(tvb, raw, o + m.body_offset, e, s.layout))
+        local forms = m.subtypes[code]
+        if not forms then return fmt("%s subtype %d", m.label, code) end
+        local form, use = choose(forms, e - o - m.body_offset, st.version)
+        return labelled(form.of.label, layout_summary(tvb, raw, o + m.body_offset, e, form.of.layout, use))
     end,
     tree = function(m, tvb, tree, o, e, st)
         local body = o + m.body_offset
@@ -104,27 +166,25 @@ KINDS.subtypes = {
             return
         end
         local code = byte(st.raw, body)
-        local s = m.subtypes[code]
-        if not s then
+        local forms = m.subtypes[code]
+        if not forms then
             walk(tvb, tree, o + HEADER, body, st, m.header, nil)
             if body < e then tree:add(X.raw, tvb(body, e - body)) end
-            if not m.subtype_names[code] then
+            local _, named = code_name(m.subtype_names, m.subtype_tables, st.version, code)
+            if not named then
                 tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
             end
             return
         end
+        local form, use, by_length = choose(forms, e - body, st.version)
+        local s = form.of
         local item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
         -- The header again, under the subtype's own names (ur.key.timestamp).
         walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
-        item:add(m.subtype_field, tvb(body - 1, 1))
-        if s.needs_version then
-            item:add(X.version, version_text(st.version)):set_generated()
-            if st.assumed then
-                item:add(X.assumed, true):set_generated()
-                item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(st.version)))
-            end
-        end
-        walk_body(tvb, item, body, e, st, s.layout, s.name)
+        add_code(item, m.subtype_field, tvb(body - 1, 1), m.subtype_label, m.subtype_tables, use, code)
+        if by_length then note_length(item, form, e - o) end
+        if s.needs_version then show_version(item, st) end
+        walk_body(tvb, item, body, e, st, s.layout, s.name, use)
     end,
 }
 

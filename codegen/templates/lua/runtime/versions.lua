@@ -1,19 +1,36 @@
--- Software versions as one number, major * 1000 + minor (5.9 is 5009): parsed from the
--- preference's text, shown back as text, tested against a range; the value-type table that
--- a version uses; and the version a Version message announces, read from its raw bytes.
+-- Software versions as one number, (major * 1000 + minor) * 1000 + bugfix (5.9 is 5009000,
+-- 5.25.1 is 5025001; an upper bound written 5.8 is 5008999, any 5.8.x): parsed from the
+-- preference's text, shown back as text, tested against a range. What follows the version: the
+-- value-type table and the names of an enum whose codes depend on it, and the form (layout) of
+-- a package or subtype, chosen by the version or else by the length. And the version a Version
+-- message announces, read from its raw bytes.
 local spec, rt = ...
-local fmt, byte = string.format, string.byte
+local fmt, byte, floor = string.format, string.byte, math.floor
 local be_int, be_uint = rt.be_int, rt.be_uint
 
--- "5.9" (leading spaces and a third part allowed) -> 5009; nil when it is no version.
-local function parse_version(text)
-    local major, minor = string.match(text or "", "^%s*(%d+)%.(%d+)")
-    if not major then return nil end
-    return tonumber(major) * 1000 + tonumber(minor)
+local BUGFIX_ANY = 999   -- a bugfix number that stands for every bugfix release of its minor
+
+local function version_number(major, minor, bugfix)
+    if bugfix > BUGFIX_ANY then bugfix = BUGFIX_ANY end
+    if bugfix < 0 then bugfix = 0 end
+    return (major * 1000 + minor) * 1000 + bugfix
 end
 
+-- "5.9" -> 5009000, "5.25.1" -> 5025001 (leading spaces allowed); nil when it is no version.
+local function parse_version(text)
+    local major, minor, rest = string.match(text or "", "^%s*(%d+)%.(%d+)(.*)$")
+    if not major then return nil end
+    local bugfix = string.match(rest, "^%.(%d+)") or "0"
+    return version_number(tonumber(major), tonumber(minor), tonumber(bugfix))
+end
+
+-- 5009000 -> "5.9", 5025001 -> "5.25.1", 5008999 (any 5.8.x) -> "5.8".
 local function version_text(v)
-    return fmt("%d.%d", math.floor(v / 1000), v % 1000)
+    local bugfix = v % 1000
+    local minor = floor(v / 1000) % 1000
+    local major = floor(v / 1000000)
+    if bugfix == 0 or bugfix == BUGFIX_ANY then return fmt("%d.%d", major, minor) end
+    return fmt("%d.%d.%d", major, minor, bugfix)
 end
 
 -- True when v is inside the inclusive range; a nil bound is open.
@@ -21,17 +38,88 @@ local function version_in(v, low, high)
     return (low == nil or v >= low) and (high == nil or v <= high)
 end
 
--- The value-type codes of version v: the first table whose range holds it, else the last.
-local function value_table(tables, v)
-    for _, t in ipairs(tables) do
-        if version_in(v, t.low, t.high) then return t.kinds end
+-- The entry of a list of { low, high, ... } tables that holds version v, else the last.
+local function in_force(tables, v)
+    for i = 1, #tables do
+        local t = tables[i]
+        if version_in(v, t.low, t.high) then return t end
     end
-    return tables[#tables].kinds
+    return tables[#tables]
+end
+
+-- The value-type codes of version v.
+local function value_table(tables, v)
+    return in_force(tables, v).kinds
+end
+
+-- The names of an enum whose codes depend on the version ({ newest = <value string>,
+-- { low, high, names }, ... }) for version v.
+local function enum_names(tables, v)
+    for i = 1, #tables do
+        local t = tables[i]
+        if version_in(v, t.low, t.high) then return t.names end
+    end
+    return tables.newest
+end
+
+-- True when some version's table names the code.
+local function named_in_any(tables, code)
+    for i = 1, #tables do
+        if tables[i].names[code] ~= nil then return true end
+    end
+    return false
+end
+
+-- The forms of a package type or subtype: a list of { of = <its layout's data>, ranges = { {
+-- low, high }, ... } (the versions that send it), sizes = { [body size] = true } or nil when
+-- open-ended (then at least min), rep = the version a stream is taken to run when this form is
+-- recognised by its length alone, versions = those versions as text }; `single` when one form
+-- serves every version.
+local function sent_by(form, v)
+    local ranges = form.ranges
+    for i = 1, #ranges do
+        local r = ranges[i]
+        if version_in(v, r.low, r.high) then return true end
+    end
+    return false
+end
+
+local function fits(form, size)
+    if form.sizes then return form.sizes[size] == true end
+    return size >= form.min
+end
+
+-- The form of a body of `size` bytes for version v, the version to read it with, and whether
+-- the length chose it: the version's form when it fits; else the one form that fits; else the
+-- version's form (or the newest), whose short or extra bytes are then reported.
+local function choose(forms, size, v)
+    if forms.single then return forms[1], v, false end
+    local mine
+    for i = 1, #forms do
+        if sent_by(forms[i], v) then mine = forms[i]; break end
+    end
+    if mine and fits(mine, size) then return mine, v, false end
+    local found, count = nil, 0
+    for i = 1, #forms do
+        if fits(forms[i], size) then found, count = forms[i], count + 1 end
+    end
+    if count == 1 then return found, found.rep, true end
+    return mine or forms[#forms], v, false
+end
+
+-- choose() for the message being dissected (st): when the stream's version is not known (no
+-- Version message, no preference), a form chosen by length sets it for the rest of the message
+-- (st.version), and says so (st.implied: the form's versions).
+local function pick(forms, size, st)
+    local form, use, by_length = choose(forms, size, st.version)
+    if by_length and not st.known then st.version, st.implied = use, form.versions end
+    return form, use, by_length
 end
 
 -- The version a Version message from o to e announces, or nil when it is not one or is
--- malformed. r (spec.version_reader) says where its numbers are: the subtype byte, then
--- steps over fixed bytes and length-prefixed texts, then the major and minor bytes.
+-- malformed. r (spec.version_reader) says where its numbers are: the subtype byte, then steps
+-- over fixed bytes and length-prefixed texts, then the major and minor bytes, then (in the
+-- versions r.bugfix names) the bugfix number.
 local function announced_version(raw, o, e, r)
     if e - o <= r.subtype_offset or byte(raw, o + r.subtype_offset + 1) ~= r.subtype then return nil end
     local p = o
@@ -47,10 +135,19 @@ local function announced_version(raw, o, e, r)
     end
     p = p + r.tail
     if p + 2 + r.rest > e then return nil end
-    return byte(raw, p + 1) * 1000 + byte(raw, p + 2)
+    local major, minor = byte(raw, p + 1), byte(raw, p + 2)
+    local v = version_number(major, minor, 0)
+    local b = r.bugfix
+    if b and version_in(v, b.low, b.high) and p + 2 + b.n <= e then
+        local bugfix
+        if b.signed then bugfix = be_int(raw, p + 2, b.n) else bugfix = be_uint(raw, p + 2, b.n) end
+        v = version_number(major, minor, bugfix)
+    end
+    return v
 end
 
-rt.parse_version, rt.version_text, rt.version_in = parse_version, version_text, version_in
-rt.value_table, rt.announced_version = value_table, announced_version
--- The version assumed when neither a Version message nor the preference gives one.
+rt.version_number, rt.parse_version, rt.version_text, rt.version_in = version_number, parse_version, version_text, version_in
+rt.value_table, rt.enum_names, rt.named_in_any = value_table, enum_names, named_in_any
+rt.choose, rt.pick, rt.announced_version = choose, pick, announced_version
+-- The version assumed when neither a Version message, the preference nor the layout sizes give one.
 rt.default_version = parse_version(spec.default_version)

@@ -4,10 +4,13 @@
 -- error offsets) and its software version. Offsets are tvb offsets; o is where a field starts
 -- and e where the layout ends. Every KIND function returns the offset after the field, or nil
 -- and the canonical error text. values.lua adds KIND.values.
+-- A scalar descriptor may carry: `value` (its wire type is narrower than its field's, which
+-- another version's entry of the same name gives: the number is added explicitly; `float` when
+-- it is a float), `tables` and `label` (its enum's names depend on the version).
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
-local version_in = rt.version_in
+local version_in, enum_names = rt.version_in, rt.enum_names
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
@@ -17,13 +20,40 @@ local function add_text(tree, f, tvb, o, n)
     return tree:add_packet_field(f, tvb(o, n), ENC_UTF_8)
 end
 
+-- The number of a scalar descriptor at o (range is tvb(o, d.n)), in its own wire type.
+local function number_at(range, raw, o, d)
+    if d.float then return range:float() end
+    if d.signed then return be_int(raw, o, d.n) end
+    return be_uint(raw, o, d.n)
+end
+
+-- An enum item whose names depend on the software version v: its field shows the newest
+-- table's name; under another version's table the item says that table's name instead.
+local function rename(item, label, tables, v, value)
+    local names = enum_names(tables, v)
+    if names ~= tables.newest then
+        item:set_text(fmt("%s: %s (%d)", label, names[value] or "Unknown", value))
+    end
+end
+
+-- One scalar into the tree: explicitly when its wire type is narrower than its field's, named
+-- by the version when its enum needs it. Its item, and its number when it was read.
+local function add_scalar(tree, range, o, st, d)
+    if not (d.value or d.tables or d.keep) then return tree:add(d.f, range), nil end
+    local v = number_at(range, st.raw, o, d)
+    local item
+    if d.value then item = tree:add(d.f, range, v) else item = tree:add(d.f, range) end
+    if d.tables then rename(item, d.label, d.tables, st.version, v) end
+    return item, v
+end
+
 local KIND = {}
 
 -- A scalar (integer, float or bool); kept when a later field depends on it.
 function KIND.scalar(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
-    tree:add(d.f, tvb(o, d.n))
-    if d.keep then kept[d.keep] = d.signed and be_int(st.raw, o, d.n) or be_uint(st.raw, o, d.n) end
+    local _, v = add_scalar(tree, tvb(o, d.n), o, st, d)
+    if d.keep then kept[d.keep] = v end
     return o + d.n
 end
 
@@ -31,7 +61,8 @@ end
 function KIND.bits(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
     local range = tvb(o, d.n)
-    local item = tree:add(d.f, range)
+    -- The bits read the range itself (a narrower range holds the low bits).
+    local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
     for i = 1, #bits do item:add(bits[i], range) end
     return o + d.n
@@ -41,7 +72,7 @@ end
 function KIND.array(tvb, tree, o, e, st, d, pre)
     for i = 0, d.count - 1 do
         if o + d.n > e then return nil, short(st, fmt("%s%s[%d]", pre or "", d.path, i), o, d.n, e) end
-        tree:add(d.f, tvb(o, d.n))
+        add_scalar(tree, tvb(o, d.n), o, st, d)
         o = o + d.n
     end
     return o
@@ -146,4 +177,4 @@ walk = function(tvb, tree, o, e, st, layout, pre)
     return o
 end
 
-rt.KIND, rt.walk, rt.add_text = KIND, walk, add_text
+rt.KIND, rt.walk, rt.add_text, rt.rename = KIND, walk, add_text, rename
