@@ -485,9 +485,12 @@ def _signature(f: ir.AnyField) -> tuple:
 
 
 def _releases(p: ir.Protocol) -> list[tuple[int, int]]:
-    """The released version series as number ranges; the whole axis when the spec names none."""
+    """The released version series as number ranges: only the gaps between them are left out,
+    so that a version before the first or after the last still has its forms."""
     ranges = [_bounds(r) for _, r in p.generations] or [(0, _TOP)]
     _merge_adjacent(ranges)
+    ranges[0] = (0, ranges[0][1])
+    ranges[-1] = (ranges[-1][0], _TOP)
     return ranges
 
 

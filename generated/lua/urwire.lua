@@ -1610,60 +1610,60 @@ PART.singularity_info = { name = "singularity_info", label = "Singularity info",
 -- the body size (runtime/versions.lua); `single` when one form serves every version.
 local ROBOT_STATE_PACKAGES = {
     [0] = { single = false, summary = true,
-        { of = PART.robot_mode_data, ranges = { { low = 1000000, high = 1008999 } }, sizes = { [24] = true }, min = 24, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.robot_mode_data, ranges = { { low = nil, high = 1008999 } }, sizes = { [24] = true }, min = 24, rep = 1008999, versions = "up to 1.8" },
         { of = PART.robot_mode_data, ranges = { { low = 3000000, high = 3001999 } }, sizes = { [33] = true }, min = 33, rep = 3001999, versions = "3.0 to 3.1" },
         { of = PART.robot_mode_data, ranges = { { low = 3002000, high = 3004999 } }, sizes = { [41] = true }, min = 41, rep = 3004999, versions = "3.2 to 3.4" },
         { of = PART.robot_mode_data, ranges = { { low = 3005000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [42] = true }, min = 42, rep = 5009000, versions = "3.5 and later" },
     },
     [1] = { single = false, summary = false,
-        { of = PART.joint_data, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [246] = true }, min = 246, rep = 5009000, versions = "all versions" },
+        { of = PART.joint_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [246] = true }, min = 246, rep = 5009000, versions = "all versions" },
     },
     [2] = { single = false, summary = false,
-        { of = PART.tool_data, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [32] = true }, min = 32, rep = 5009000, versions = "all versions" },
+        { of = PART.tool_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [32] = true }, min = 32, rep = 5009000, versions = "all versions" },
     },
     [3] = { single = false, summary = true,
-        { of = PART.masterboard_data, ranges = { { low = 1000000, high = 1005999 } }, sizes = { [56] = true }, min = 56, rep = 1005999, versions = "up to 1.5" },
+        { of = PART.masterboard_data, ranges = { { low = nil, high = 1005999 } }, sizes = { [56] = true }, min = 56, rep = 1005999, versions = "up to 1.5" },
         { of = PART.masterboard_data, ranges = { { low = 1006000, high = 1008999 } }, sizes = { [59] = true, [71] = true }, min = 59, rep = 1008999, versions = "1.6 to 1.8" },
         { of = PART.masterboard_data, ranges = { { low = 3000000, high = 3001999 } }, sizes = { [67] = true, [83] = true }, min = 67, rep = 3001999, versions = "3.0 to 3.1" },
         { of = PART.masterboard_data, ranges = { { low = 3002000, high = 3009999 }, { low = 5000000, high = 5003999 } }, sizes = { [69] = true, [85] = true }, min = 69, rep = 5003999, versions = "3.2 to 3.9 or 5.0 to 5.3" },
         { of = PART.masterboard_data, ranges = { { low = 3010000, high = 3015999 }, { low = 5004000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [70] = true, [86] = true }, min = 70, rep = 5009000, versions = "3.10 to 3.15 or 5.4 and later" },
     },
     [4] = { single = false, summary = false,
-        { of = PART.cartesian_info, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3000999 } }, sizes = { [48] = true }, min = 48, rep = 3000999, versions = "up to 3.0" },
+        { of = PART.cartesian_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3000999 } }, sizes = { [48] = true }, min = 48, rep = 3000999, versions = "up to 3.0" },
         { of = PART.cartesian_info, ranges = { { low = 3001000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [96] = true }, min = 96, rep = 5009000, versions = "3.1 and later" },
     },
     [5] = { single = false, summary = false,
-        { of = PART.laser_pointer, ranges = { { low = 1000000, high = 1007999 } }, sizes = { [24] = true }, min = 24, rep = 1007999, versions = "up to 1.7" },
+        { of = PART.laser_pointer, ranges = { { low = nil, high = 1007999 } }, sizes = { [24] = true }, min = 24, rep = 1007999, versions = "up to 1.7" },
         { of = PART.kinematics_info, ranges = { { low = 1008000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [220] = true }, min = 220, rep = 5009000, versions = "1.8 and later" },
     },
     [6] = { single = false, summary = false,
-        { of = PART.configuration_data, ranges = { { low = 1000000, high = 1008999 } }, sizes = { [464] = true }, min = 464, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.configuration_data, ranges = { { low = nil, high = 1008999 } }, sizes = { [464] = true }, min = 464, rep = 1008999, versions = "up to 1.8" },
         { of = PART.configuration_data, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5025000 } }, sizes = { [440] = true }, min = 440, rep = 5009000, versions = "3.0 to 5.25.0" },
         { of = PART.configuration_data, ranges = { { low = 5025001, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [444] = true }, min = 444, rep = 5025001, versions = "5.25.1 and later" },
     },
     [7] = { single = false, summary = false,
-        { of = PART.force_mode_data, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [56] = true }, min = 56, rep = 5009000, versions = "all versions" },
+        { of = PART.force_mode_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [56] = true }, min = 56, rep = 5009000, versions = "all versions" },
     },
     [8] = { single = false, summary = false,
-        { of = PART.additional_info, ranges = { { low = 1000000, high = 1007999 } }, sizes = { [5] = true }, min = 5, rep = 1007999, versions = "up to 1.7" },
+        { of = PART.additional_info, ranges = { { low = nil, high = 1007999 } }, sizes = { [5] = true }, min = 5, rep = 1007999, versions = "up to 1.7" },
         { of = PART.additional_info, ranges = { { low = 1008000, high = 1008999 }, { low = 3000000, high = 3001999 } }, sizes = { [2] = true }, min = 2, rep = 3001999, versions = "1.8 to 3.1" },
         { of = PART.additional_info, ranges = { { low = 3002000, high = 3015999 } }, sizes = { [3] = true }, min = 3, rep = 3015999, versions = "3.2 to 3.15" },
         { of = PART.additional_info, ranges = { { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [4] = true }, min = 4, rep = 5009000, versions = "5.0 and later" },
     },
     [9] = { single = false, summary = false,
-        { of = PART.calibration_data, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [48] = true }, min = 48, rep = 5009000, versions = "all versions" },
+        { of = PART.calibration_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [48] = true }, min = 48, rep = 5009000, versions = "all versions" },
     },
     [10] = { single = false, summary = false,
-        { of = PART.safety_data, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+        { of = PART.safety_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
     },
     [11] = { single = false, summary = false,
-        { of = PART.tool_comm_info, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [21] = true }, min = 21, rep = 5009000, versions = "all versions" },
+        { of = PART.tool_comm_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [21] = true }, min = 21, rep = 5009000, versions = "all versions" },
     },
     [12] = { single = false, summary = false,
-        { of = PART.tool_mode_info, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [3] = true }, min = 3, rep = 5009000, versions = "all versions" },
+        { of = PART.tool_mode_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [3] = true }, min = 3, rep = 5009000, versions = "all versions" },
     },
     [13] = { single = false, summary = false,
-        { of = PART.singularity_info, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [2] = true }, min = 2, rep = 5009000, versions = "all versions" },
+        { of = PART.singularity_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [2] = true }, min = 2, rep = 5009000, versions = "all versions" },
     },
 }
 
@@ -1692,44 +1692,44 @@ PART.runtime_exception = { name = "runtime_exception", label = "Runtime exceptio
 -- the body size (runtime/versions.lua); `single` when one form serves every version.
 local ROBOT_MESSAGE_SUBTYPES = {
     [0] = { single = false,
-        { of = PART.text, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+        { of = PART.text, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
     },
     [1] = { single = false,
-        { of = PART.label, ranges = { { low = 1000000, high = 1008999 } }, sizes = nil, min = 4, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.label, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 4, rep = 1008999, versions = "up to 1.8" },
     },
     [2] = { single = false,
-        { of = PART.popup, ranges = { { low = 1000000, high = 1008999 } }, sizes = nil, min = 3, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.popup, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 3, rep = 1008999, versions = "up to 1.8" },
         { of = PART.popup, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 12, rep = 5009000, versions = "3.0 and later" },
     },
     [3] = { single = false,
-        { of = PART.version, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3002999 } }, sizes = nil, min = 7, rep = 3002999, versions = "up to 3.2" },
+        { of = PART.version, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3002999 } }, sizes = nil, min = 7, rep = 3002999, versions = "up to 3.2" },
         { of = PART.version, ranges = { { low = 3003000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 11, rep = 5009000, versions = "3.3 and later" },
     },
     [5] = { single = false,
-        { of = PART.safety_mode, ranges = { { low = 1000000, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.safety_mode, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999, versions = "up to 1.8" },
         { of = PART.safety_mode, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [17] = true }, min = 17, rep = 5009000, versions = "3.0 and later" },
     },
     [6] = { single = false,
-        { of = PART.robot_comm, ranges = { { low = 1000000, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.robot_comm, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999, versions = "up to 1.8" },
         { of = PART.robot_comm, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 20, rep = 5009000, versions = "3.0 and later" },
     },
     [7] = { single = false,
-        { of = PART.key, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 9, rep = 5009000, versions = "all versions" },
+        { of = PART.key, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 9, rep = 5009000, versions = "all versions" },
     },
     [8] = { single = false,
-        { of = PART.var, ranges = { { low = 1000000, high = 1008999 } }, sizes = nil, min = 9, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.var, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 9, rep = 1008999, versions = "up to 1.8" },
     },
     [9] = { single = false,
-        { of = PART.request_value, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000, versions = "all versions" },
+        { of = PART.request_value, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000, versions = "all versions" },
     },
     [10] = { single = false,
-        { of = PART.runtime_exception, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000, versions = "all versions" },
+        { of = PART.runtime_exception, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000, versions = "all versions" },
     },
     [14] = { single = false,
-        { of = PART.program_threads, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+        { of = PART.program_threads, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
     },
     [18] = { single = false,
-        { of = PART.hardware_info, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [12] = true }, min = 12, rep = 5009000, versions = "all versions" },
+        { of = PART.hardware_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [12] = true }, min = 12, rep = 5009000, versions = "all versions" },
     },
 }
 
@@ -1749,10 +1749,10 @@ PART.global_variables_update = { name = "global_variables_update", label = "Glob
 -- the body size (runtime/versions.lua); `single` when one form serves every version.
 local PROGRAM_STATE_SUBTYPES = {
     [0] = { single = false,
-        { of = PART.global_variables_setup, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
+        { of = PART.global_variables_setup, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
     },
     [1] = { single = false,
-        { of = PART.global_variables_update, ranges = { { low = 1000000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
+        { of = PART.global_variables_update, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
     },
 }
 
@@ -1995,21 +1995,36 @@ local function fits(form, size)
 end
 
 -- The form of a body of `size` bytes for version v, the version to read it with, and whether
--- the length chose it: the version's form when it fits; else the one form that fits; else the
--- version's form (or the newest), whose short or extra bytes are then reported.
+-- the length chose it: the version's form when it fits; else the one form whose exact size it
+-- is (an open-ended form fits too much to be recognised by length); else the version's form (or
+-- the nearest below), whose short or extra bytes are then reported.
 local function choose(forms, size, v)
     if forms.single then return forms[1], v, false end
     local mine
     for i = 1, #forms do
         if sent_by(forms[i], v) then mine = forms[i]; break end
     end
-    if mine and fits(mine, size) then return mine, v, false end
+    if not mine then
+        -- A version no form is sent by (between series, or newer than the spec knows): the
+        -- form of the nearest version below it, else the first.
+        local best = nil
+        for i = 1, #forms do
+            local ranges = forms[i].ranges
+            for j = 1, #ranges do
+                local low = ranges[j].low or 0
+                if low <= v and (not best or low > best) then best, mine = low, forms[i] end
+            end
+        end
+        mine = mine or forms[1]
+        v = mine.rep   -- read as the version it stands for
+    end
+    if fits(mine, size) then return mine, v, false end
     local found, count = nil, 0
     for i = 1, #forms do
-        if fits(forms[i], size) then found, count = forms[i], count + 1 end
+        if forms[i].sizes and forms[i].sizes[size] then found, count = forms[i], count + 1 end
     end
     if count == 1 then return found, found.rep, true end
-    return mine or forms[#forms], v, false
+    return mine, v, false
 end
 
 -- choose() for the message being dissected (st): when the stream's version is not known (no

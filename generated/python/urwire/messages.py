@@ -189,7 +189,7 @@ class RobotModeData(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
-        """Read the form of software (1, 0, 0) to (1, 8, 999)."""
+        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
         control_mode = speed_scaling = target_speed_fraction_limit = reserved = None
         if pos + 24 > end:
             raise _rt.short_in_run(_ROBOT_MODE_DATA_0_0_RUN, pos, end)
@@ -801,7 +801,7 @@ class MasterboardData(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
-        """Read the form of software (1, 0, 0) to (1, 5, 999)."""
+        """Read the form of software (0, 0, 0) to (1, 5, 999)."""
         master_safety_state = master_on_off_state = safety_mode = in_reduced_mode = euromap67_interface_installed = euromap_input_bits = euromap_output_bits = euromap_voltage_cb2 = euromap_current_cb2 = euromap_voltage_24v = euromap_current = reserved_0 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
         if pos + 56 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_0_0_RUN, pos, end)
@@ -1115,7 +1115,7 @@ class CartesianInfo(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["CartesianInfo", int]:
-        """Read the form of software (1, 0, 0) to (1, 8, 999), (3, 0, 0) to (3, 0, 999)."""
+        """Read the form of software (0, 0, 0) to (1, 8, 999), (3, 0, 0) to (3, 0, 999)."""
         tcp_offset_x = tcp_offset_y = tcp_offset_z = tcp_offset_rx = tcp_offset_ry = tcp_offset_rz = None
         if pos + 48 > end:
             raise _rt.short_in_run(_CARTESIAN_INFO_0_0_RUN, pos, end)
@@ -1619,7 +1619,7 @@ class ConfigurationData(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["ConfigurationData", int]:
-        """Read the form of software (1, 0, 0) to (1, 8, 999)."""
+        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
         reserved_1 = reserved_2 = None
         if pos + 464 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_0_0_RUN, pos, end)
@@ -1850,7 +1850,7 @@ class AdditionalInfo(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
-        """Read the form of software (1, 0, 0) to (1, 7, 999)."""
+        """Read the form of software (0, 0, 0) to (1, 7, 999)."""
         tp_button_state = freedrive_button_enabled = io_enabled_freedrive = reserved = None
         if pos + 5 > end:
             raise _rt.short_in_run(_ADDITIONAL_INFO_0_0_RUN, pos, end)
@@ -2219,7 +2219,7 @@ class VersionMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["VersionMessage", int]:
-        """Read the form of software (1, 0, 0) to (1, 8, 999), (3, 0, 0) to (3, 2, 999)."""
+        """Read the form of software (0, 0, 0) to (1, 8, 999), (3, 0, 0) to (3, 2, 999)."""
         bugfix_version = build_number = None
         project_name, pos = _rt.read_prefixed_text(buf, pos, end, _INT8, "project_name")
         if pos + 6 > end:
@@ -2325,7 +2325,7 @@ class SafetyModeMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["SafetyModeMessage", int]:
-        """Read the form of software (1, 0, 0) to (1, 8, 999)."""
+        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
         safety_mode_type = report_data_type = report_data = None
         if pos + 8 > end:
             raise _rt.short_in_run(_SAFETY_MODE_0_0_RUN, pos, end)
@@ -2433,7 +2433,7 @@ class RobotCommMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["RobotCommMessage", int]:
-        """Read the form of software (1, 0, 0) to (1, 8, 999)."""
+        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
         robot_message_report_level = robot_message_data_type = robot_message_data = None
         if pos + 8 > end:
             raise _rt.short_in_run(_ROBOT_COMM_0_0_RUN, pos, end)
@@ -2676,7 +2676,7 @@ class PopupMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["PopupMessage", int]:
-        """Read the form of software (1, 0, 0) to (1, 8, 999)."""
+        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
         request_id = requested_type = blocking = None
         if pos + 2 > end:
             raise _rt.short_in_run(_POPUP_0_0_RUN, pos, end)
@@ -3123,15 +3123,15 @@ class GlobalVariablesUpdateMessage(_Subtype):
         value_codec(version).encode_list(out, self.variables, 0x0a)
         out += self.extra
 
-RobotModeData._FORMS = (((((1, 0, 0), (1, 8, 999)), ), RobotModeData._encode_0), ((((3, 0, 0), (3, 1, 999)), ), RobotModeData._encode_1), ((((3, 2, 0), (3, 4, 999)), ), RobotModeData._encode_2), ((((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), RobotModeData._encode_3), )
-MasterboardData._FORMS = (((((1, 0, 0), (1, 5, 999)), ), MasterboardData._encode_0), ((((1, 6, 0), (1, 8, 999)), ), MasterboardData._encode_1), ((((3, 0, 0), (3, 1, 999)), ), MasterboardData._encode_2), ((((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)), ), MasterboardData._encode_3), ((((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), MasterboardData._encode_4), )
-CartesianInfo._FORMS = (((((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)), ), CartesianInfo._encode_0), ((((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), CartesianInfo._encode_1), )
-ConfigurationData._FORMS = (((((1, 0, 0), (1, 8, 999)), ), ConfigurationData._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)), ), ConfigurationData._encode_1), ((((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), ConfigurationData._encode_2), )
-AdditionalInfo._FORMS = (((((1, 0, 0), (1, 7, 999)), ), AdditionalInfo._encode_0), ((((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)), ), AdditionalInfo._encode_1), ((((3, 2, 0), (3, 15, 999)), ), AdditionalInfo._encode_2), ((((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), AdditionalInfo._encode_3), )
-VersionMessage._FORMS = (((((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)), ), VersionMessage._encode_0), ((((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), VersionMessage._encode_1), )
-SafetyModeMessage._FORMS = (((((1, 0, 0), (1, 8, 999)), ), SafetyModeMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), SafetyModeMessage._encode_1), )
-RobotCommMessage._FORMS = (((((1, 0, 0), (1, 8, 999)), ), RobotCommMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), RobotCommMessage._encode_1), )
-PopupMessage._FORMS = (((((1, 0, 0), (1, 8, 999)), ), PopupMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), PopupMessage._encode_1), )
+RobotModeData._FORMS = (((((0, 0, 0), (1, 8, 999)), ), RobotModeData._encode_0), ((((3, 0, 0), (3, 1, 999)), ), RobotModeData._encode_1), ((((3, 2, 0), (3, 4, 999)), ), RobotModeData._encode_2), ((((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), RobotModeData._encode_3), )
+MasterboardData._FORMS = (((((0, 0, 0), (1, 5, 999)), ), MasterboardData._encode_0), ((((1, 6, 0), (1, 8, 999)), ), MasterboardData._encode_1), ((((3, 0, 0), (3, 1, 999)), ), MasterboardData._encode_2), ((((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)), ), MasterboardData._encode_3), ((((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), MasterboardData._encode_4), )
+CartesianInfo._FORMS = (((((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)), ), CartesianInfo._encode_0), ((((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), CartesianInfo._encode_1), )
+ConfigurationData._FORMS = (((((0, 0, 0), (1, 8, 999)), ), ConfigurationData._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)), ), ConfigurationData._encode_1), ((((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), ConfigurationData._encode_2), )
+AdditionalInfo._FORMS = (((((0, 0, 0), (1, 7, 999)), ), AdditionalInfo._encode_0), ((((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)), ), AdditionalInfo._encode_1), ((((3, 2, 0), (3, 15, 999)), ), AdditionalInfo._encode_2), ((((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), AdditionalInfo._encode_3), )
+VersionMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)), ), VersionMessage._encode_0), ((((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), VersionMessage._encode_1), )
+SafetyModeMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ), SafetyModeMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), SafetyModeMessage._encode_1), )
+RobotCommMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ), RobotCommMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), RobotCommMessage._encode_1), )
+PopupMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ), PopupMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), PopupMessage._encode_1), )
 
 
 @dataclass(slots=True)
@@ -3169,7 +3169,7 @@ class RobotStateMessage:
 
 _ROBOT_STATE_FORMS = _rt.Forms({
     0: (
-        _rt.Form(RobotModeData, RobotModeData._decode_0, (((1, 0, 0), (1, 8, 999)), ), frozenset({24}), 24,
+        _rt.Form(RobotModeData, RobotModeData._decode_0, (((0, 0, 0), (1, 8, 999)), ), frozenset({24}), 24,
                  (1, 8, 999), "up to 1.8"),
         _rt.Form(RobotModeData, RobotModeData._decode_1, (((3, 0, 0), (3, 1, 999)), ), frozenset({33}), 33,
                  (3, 1, 999), "3.0 to 3.1"),
@@ -3179,15 +3179,15 @@ _ROBOT_STATE_FORMS = _rt.Forms({
                  (5, 9, 0), "3.5 and later"),
     ),
     1: (
-        _rt.Form(JointData, JointData._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({246}), 246,
+        _rt.Form(JointData, JointData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({246}), 246,
                  (5, 9, 0), "all versions"),
     ),
     2: (
-        _rt.Form(ToolData, ToolData._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({32}), 32,
+        _rt.Form(ToolData, ToolData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({32}), 32,
                  (5, 9, 0), "all versions"),
     ),
     3: (
-        _rt.Form(MasterboardData, MasterboardData._decode_0, (((1, 0, 0), (1, 5, 999)), ), frozenset({56}), 56,
+        _rt.Form(MasterboardData, MasterboardData._decode_0, (((0, 0, 0), (1, 5, 999)), ), frozenset({56}), 56,
                  (1, 5, 999), "up to 1.5"),
         _rt.Form(MasterboardData, MasterboardData._decode_1, (((1, 6, 0), (1, 8, 999)), ), frozenset({59, 71}), 59,
                  (1, 8, 999), "1.6 to 1.8"),
@@ -3199,19 +3199,19 @@ _ROBOT_STATE_FORMS = _rt.Forms({
                  (5, 9, 0), "3.10 to 3.15 or 5.4 and later"),
     ),
     4: (
-        _rt.Form(CartesianInfo, CartesianInfo._decode_0, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)), ), frozenset({48}), 48,
+        _rt.Form(CartesianInfo, CartesianInfo._decode_0, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)), ), frozenset({48}), 48,
                  (3, 0, 999), "up to 3.0"),
         _rt.Form(CartesianInfo, CartesianInfo._decode_1, (((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({96}), 96,
                  (5, 9, 0), "3.1 and later"),
     ),
     5: (
-        _rt.Form(LaserPointer, LaserPointer._decode, (((1, 0, 0), (1, 7, 999)), ), frozenset({24}), 24,
+        _rt.Form(LaserPointer, LaserPointer._decode, (((0, 0, 0), (1, 7, 999)), ), frozenset({24}), 24,
                  (1, 7, 999), "up to 1.7"),
         _rt.Form(KinematicsInfo, KinematicsInfo._decode, (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({220}), 220,
                  (5, 9, 0), "1.8 and later"),
     ),
     6: (
-        _rt.Form(ConfigurationData, ConfigurationData._decode_0, (((1, 0, 0), (1, 8, 999)), ), frozenset({464}), 464,
+        _rt.Form(ConfigurationData, ConfigurationData._decode_0, (((0, 0, 0), (1, 8, 999)), ), frozenset({464}), 464,
                  (1, 8, 999), "up to 1.8"),
         _rt.Form(ConfigurationData, ConfigurationData._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)), ), frozenset({440}), 440,
                  (5, 9, 0), "3.0 to 5.25.0"),
@@ -3219,11 +3219,11 @@ _ROBOT_STATE_FORMS = _rt.Forms({
                  (5, 25, 1), "5.25.1 and later"),
     ),
     7: (
-        _rt.Form(ForceModeData, ForceModeData._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({56}), 56,
+        _rt.Form(ForceModeData, ForceModeData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({56}), 56,
                  (5, 9, 0), "all versions"),
     ),
     8: (
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_0, (((1, 0, 0), (1, 7, 999)), ), frozenset({5}), 5,
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_0, (((0, 0, 0), (1, 7, 999)), ), frozenset({5}), 5,
                  (1, 7, 999), "up to 1.7"),
         _rt.Form(AdditionalInfo, AdditionalInfo._decode_1, (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)), ), frozenset({2}), 2,
                  (3, 1, 999), "1.8 to 3.1"),
@@ -3233,23 +3233,23 @@ _ROBOT_STATE_FORMS = _rt.Forms({
                  (5, 9, 0), "5.0 and later"),
     ),
     9: (
-        _rt.Form(CalibrationData, CalibrationData._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({48}), 48,
+        _rt.Form(CalibrationData, CalibrationData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({48}), 48,
                  (5, 9, 0), "all versions"),
     ),
     10: (
-        _rt.Form(SafetyData, SafetyData._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
+        _rt.Form(SafetyData, SafetyData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
                  (5, 9, 0), "all versions"),
     ),
     11: (
-        _rt.Form(ToolCommInfo, ToolCommInfo._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({21}), 21,
+        _rt.Form(ToolCommInfo, ToolCommInfo._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({21}), 21,
                  (5, 9, 0), "all versions"),
     ),
     12: (
-        _rt.Form(ToolModeInfo, ToolModeInfo._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({3}), 3,
+        _rt.Form(ToolModeInfo, ToolModeInfo._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({3}), 3,
                  (5, 9, 0), "all versions"),
     ),
     13: (
-        _rt.Form(SingularityInfo, SingularityInfo._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({2}), 2,
+        _rt.Form(SingularityInfo, SingularityInfo._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({2}), 2,
                  (5, 9, 0), "all versions"),
     ),
 }, header=5)
@@ -3314,59 +3314,59 @@ _ROBOT_MESSAGE_HEADER_RUN = (
 )
 _ROBOT_MESSAGE_FORMS = _rt.Forms({
     3: (
-        _rt.Form(VersionMessage, VersionMessage._decode_0, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)), ), None, 7,
+        _rt.Form(VersionMessage, VersionMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)), ), None, 7,
                  (3, 2, 999), "up to 3.2"),
         _rt.Form(VersionMessage, VersionMessage._decode_1, (((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 11,
                  (5, 9, 0), "3.3 and later"),
     ),
     5: (
-        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_0, (((1, 0, 0), (1, 8, 999)), ), None, 8,
+        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ), None, 8,
                  (1, 8, 999), "up to 1.8"),
         _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({17}), 17,
                  (5, 9, 0), "3.0 and later"),
     ),
     6: (
-        _rt.Form(RobotCommMessage, RobotCommMessage._decode_0, (((1, 0, 0), (1, 8, 999)), ), None, 8,
+        _rt.Form(RobotCommMessage, RobotCommMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ), None, 8,
                  (1, 8, 999), "up to 1.8"),
         _rt.Form(RobotCommMessage, RobotCommMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 20,
                  (5, 9, 0), "3.0 and later"),
     ),
     7: (
-        _rt.Form(KeyMessage, KeyMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 9,
+        _rt.Form(KeyMessage, KeyMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 9,
                  (5, 9, 0), "all versions"),
     ),
     14: (
-        _rt.Form(ProgramThreadsMessage, ProgramThreadsMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
+        _rt.Form(ProgramThreadsMessage, ProgramThreadsMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
                  (5, 9, 0), "all versions"),
     ),
     2: (
-        _rt.Form(PopupMessage, PopupMessage._decode_0, (((1, 0, 0), (1, 8, 999)), ), None, 3,
+        _rt.Form(PopupMessage, PopupMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ), None, 3,
                  (1, 8, 999), "up to 1.8"),
         _rt.Form(PopupMessage, PopupMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 12,
                  (5, 9, 0), "3.0 and later"),
     ),
     1: (
-        _rt.Form(LabelMessage, LabelMessage._decode, (((1, 0, 0), (1, 8, 999)), ), None, 4,
+        _rt.Form(LabelMessage, LabelMessage._decode, (((0, 0, 0), (1, 8, 999)), ), None, 4,
                  (1, 8, 999), "up to 1.8"),
     ),
     8: (
-        _rt.Form(VarMessage, VarMessage._decode, (((1, 0, 0), (1, 8, 999)), ), None, 9,
+        _rt.Form(VarMessage, VarMessage._decode, (((0, 0, 0), (1, 8, 999)), ), None, 9,
                  (1, 8, 999), "up to 1.8"),
     ),
     18: (
-        _rt.Form(HardwareInfoMessage, HardwareInfoMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({12}), 12,
+        _rt.Form(HardwareInfoMessage, HardwareInfoMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({12}), 12,
                  (5, 9, 0), "all versions"),
     ),
     9: (
-        _rt.Form(RequestValueMessage, RequestValueMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
+        _rt.Form(RequestValueMessage, RequestValueMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
                  (5, 9, 0), "all versions"),
     ),
     0: (
-        _rt.Form(TextMessage, TextMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
+        _rt.Form(TextMessage, TextMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
                  (5, 9, 0), "all versions"),
     ),
     10: (
-        _rt.Form(RuntimeExceptionMessage, RuntimeExceptionMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
+        _rt.Form(RuntimeExceptionMessage, RuntimeExceptionMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
                  (5, 9, 0), "all versions"),
     ),
 })
@@ -3423,11 +3423,11 @@ _PROGRAM_STATE_HEADER_RUN = (
 )
 _PROGRAM_STATE_FORMS = _rt.Forms({
     0: (
-        _rt.Form(GlobalVariablesSetupMessage, GlobalVariablesSetupMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
+        _rt.Form(GlobalVariablesSetupMessage, GlobalVariablesSetupMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
                  (5, 9, 0), "all versions"),
     ),
     1: (
-        _rt.Form(GlobalVariablesUpdateMessage, GlobalVariablesUpdateMessage._decode, (((1, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
+        _rt.Form(GlobalVariablesUpdateMessage, GlobalVariablesUpdateMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
                  (5, 9, 0), "all versions"),
     ),
 })

@@ -90,21 +90,36 @@ local function fits(form, size)
 end
 
 -- The form of a body of `size` bytes for version v, the version to read it with, and whether
--- the length chose it: the version's form when it fits; else the one form that fits; else the
--- version's form (or the newest), whose short or extra bytes are then reported.
+-- the length chose it: the version's form when it fits; else the one form whose exact size it
+-- is (an open-ended form fits too much to be recognised by length); else the version's form (or
+-- the nearest below), whose short or extra bytes are then reported.
 local function choose(forms, size, v)
     if forms.single then return forms[1], v, false end
     local mine
     for i = 1, #forms do
         if sent_by(forms[i], v) then mine = forms[i]; break end
     end
-    if mine and fits(mine, size) then return mine, v, false end
+    if not mine then
+        -- A version no form is sent by (between series, or newer than the spec knows): the
+        -- form of the nearest version below it, else the first.
+        local best = nil
+        for i = 1, #forms do
+            local ranges = forms[i].ranges
+            for j = 1, #ranges do
+                local low = ranges[j].low or 0
+                if low <= v and (not best or low > best) then best, mine = low, forms[i] end
+            end
+        end
+        mine = mine or forms[1]
+        v = mine.rep   -- read as the version it stands for
+    end
+    if fits(mine, size) then return mine, v, false end
     local found, count = nil, 0
     for i = 1, #forms do
-        if fits(forms[i], size) then found, count = forms[i], count + 1 end
+        if forms[i].sizes and forms[i].sizes[size] then found, count = forms[i], count + 1 end
     end
     if count == 1 then return found, found.rep, true end
-    return mine or forms[#forms], v, false
+    return mine, v, false
 end
 
 -- choose() for the message being dissected (st): when the stream's version is not known (no

@@ -357,13 +357,25 @@ def choose(forms: tuple, size: int, version: tuple) -> tuple:
 
 def _choose(forms: tuple, size: int, version: tuple) -> tuple:
     mine = next((f for f in forms if f.sent_by(version)), None)
+    if mine is None:
+        # No form of this version (between series, or newer than the spec knows): the form of
+        # the nearest version below, read as the version it stands for.
+        mine = _nearest_below(forms, version)
+        version = mine.rep
     if mine is not None and mine.fits(size):
         return mine, version, False
     # Only a form of fixed sizes can be recognised by its length: an open-ended one fits too much.
     fitting = [f for f in forms if f.sizes is not None and size in f.sizes]
     if len(fitting) == 1:
         return fitting[0], fitting[0].rep, True
-    return mine or forms[-1], version, False
+    return mine, version, False
+
+
+def _nearest_below(forms: tuple, version: tuple):
+    """For a version no form is sent by (one between series, or not yet known): the form of the
+    nearest version below it, else the first."""
+    below = [(low, f) for f in forms for low, _ in f.ranges if low <= version]
+    return max(below, key=lambda pair: pair[0])[1] if below else forms[0]
 
 
 def peek_version(buf, pos: int, skips: tuple, tail: int) -> Optional[tuple]:
