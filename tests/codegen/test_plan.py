@@ -142,3 +142,15 @@ def test_offsets_by_size_follow_each_form_and_its_flags(full):
     offsets = v.offsets_by_size()
     assert offsets[67]["safety_mode"] == offsets[83]["safety_mode"] == 60
     assert offsets[67]["reserved_0"] == 63 and offsets[83]["reserved_0"] == 79
+
+
+def test_a_pinned_version_message_without_a_bugfix_number_plans():
+    """Up to 3.2 the Version message has an svn revision where later ones have the bugfix
+    number: pinned there, the version is announced without a bugfix (0)."""
+    from codegen.pin import pin
+
+    protocol = compile_text(DEFAULT_SPEC.read_text(encoding="utf-8"))
+    for version, bugfix in (((3, 2, 0), None), ((1, 8, 0), None), ((5, 11, 0), "bugfix_version")):
+        planned = plan(pin(protocol, version))
+        assert planned.version.layout.sets_version[2] == bugfix
+        assert (planned.version.bugfix.name if planned.version.bugfix else None) == bugfix
