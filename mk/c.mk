@@ -18,7 +18,10 @@ TEST_TARGETS += test-c
 BENCH_TARGETS += bench-c
 DEMO_TARGETS += demo-c
 
-.PHONY: test-c fuzz fuzz-c bench-c demo-c install install-c uninstall-c
+PIN ?= 5.11
+PINNED_C := build/pinned
+
+.PHONY: test-c fuzz fuzz-c bench-c demo-c install install-c uninstall-c pinned-c
 
 build/urwire-decode: $(C_LIB) $(C_CLI)
 	@mkdir -p build
@@ -29,6 +32,13 @@ build/liburwire.a: $(C_LIB)
 	@mkdir -p build/obj
 	$(CC) $(C_STRICT) $(C_OPT) -c generated/c/urwire.c -o build/obj/urwire.o
 	ar rcs $@ build/obj/urwire.o
+
+## pinned-c: the C parser of one software version only, with no version branches (PIN=5.11):
+## build/pinned/c/urwire.{h,c}, and build/pinned/urwire.o at -Os with its size
+pinned-c:
+	$(PYTHON) -m codegen --pin $(PIN) --target c --out $(PINNED_C)
+	$(CC) $(C_STRICT) -Os -c $(PINNED_C)/c/urwire.c -o $(PINNED_C)/urwire.o
+	@if command -v size >/dev/null; then size $(PINNED_C)/urwire.o; fi
 
 ## test-c: fuzz (bounded), then the C library and CLI under gcc, clang and the sanitizers: vectors,
 ## differential against Python (the fuzzer's corpus included), round trips, build checks
