@@ -59,12 +59,24 @@ fuzz-c: $(C_LIB) tests/c/fuzz_urwire.c tools/urwire-decode/json.c
 
 ## bench-c: robot-state decode throughput against memcpy of the same bytes, same run, with the
 ## library built at each of BENCH_C_LEVELS (ns per state, and each level against -O3)
+## (BENCH_C_BASE=<git revision>: also the library that revision generated, level by level, in the
+## same run, e.g. make bench-c BENCH_C_BASE=b8aabfa)
 bench-c: $(C_LIB) tests/bench/bench_c.c tests/bench/bench_c.py
 	@mkdir -p build
 	for opt in $(BENCH_C_LEVELS); do \
 		$(CC) -std=c99 $$opt -Igenerated/c -o build/bench_c$$opt tests/bench/bench_c.c generated/c/urwire.c || exit 1; \
 	done
-	$(PYTHON) tests/bench/bench_c.py $(BENCH_C_LEVELS:%=build/bench_c%)
+ifneq ($(BENCH_C_BASE),)
+	@mkdir -p build/bench-base
+	git show $(BENCH_C_BASE):generated/c/urwire.h > build/bench-base/urwire.h
+	git show $(BENCH_C_BASE):generated/c/urwire.c > build/bench-base/urwire.c
+	for opt in $(BENCH_C_LEVELS); do \
+		$(CC) -std=c99 $$opt -Ibuild/bench-base -o build/bench_c-base$$opt tests/bench/bench_c.c \
+			build/bench-base/urwire.c || exit 1; \
+	done
+endif
+	$(PYTHON) tests/bench/bench_c.py $(BENCH_C_LEVELS:%=build/bench_c%) \
+		$(if $(BENCH_C_BASE),$(BENCH_C_LEVELS:%=build/bench_c-base%))
 
 ## demo-c: the C decoder on the bundled capture's robot->client stream (urwire-decode reads raw streams)
 demo-c: build/urwire-decode
