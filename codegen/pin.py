@@ -34,4 +34,9 @@ def _table_for(e: ir.Enum, version: ir.Version) -> ir.EnumTable:
 
 
 def _layout(lay: ir.Layout, version: ir.Version) -> ir.Layout:
-    return dataclasses.replace(lay, struct=lay.struct.at(version), versions=ir.ALL_VERSIONS)
+    struct = lay.struct.at(version)
+    sets_version = lay.sets_version
+    if sets_version and sets_version[2] and not struct.named(sets_version[2]):
+        # The version's form has no bugfix number (the Version message up to 3.2): 0 then.
+        sets_version = (sets_version[0], sets_version[1], None)
+    return dataclasses.replace(lay, struct=struct, versions=ir.ALL_VERSIONS, sets_version=sets_version)

@@ -33,7 +33,8 @@ static void on_message(const urwire_frame *frame)
         printf("robot state cut short: %s\n", why);
     }
     if (state.present & URWIRE_BIT(URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA)) {
-        mode = urwire_robot_mode_name(state.robot_mode_data.robot_mode);
+        /* Robot modes meant other things on CB2: the name follows the version it was read in. */
+        mode = urwire_robot_mode_name(state.robot_mode_data.version, state.robot_mode_data.robot_mode);
         printf("robot mode %s\n", mode ? mode : "(unknown)");
     }
     if (state.present & URWIRE_BIT(URWIRE_PACKAGE_TYPE_JOINT_DATA))

@@ -18,7 +18,10 @@ TEST_TARGETS += test-c
 BENCH_TARGETS += bench-c
 DEMO_TARGETS += demo-c
 
-.PHONY: test-c fuzz fuzz-c bench-c demo-c install install-c uninstall-c
+PIN ?= 5.11
+PINNED_C := build/pinned
+
+.PHONY: test-c fuzz fuzz-c bench-c demo-c install install-c uninstall-c pinned-c
 
 build/urwire-decode: $(C_LIB) $(C_CLI)
 	@mkdir -p build
@@ -29,6 +32,13 @@ build/liburwire.a: $(C_LIB)
 	@mkdir -p build/obj
 	$(CC) $(C_STRICT) $(C_OPT) -c generated/c/urwire.c -o build/obj/urwire.o
 	ar rcs $@ build/obj/urwire.o
+
+## pinned-c: the C parser of one software version only, with no version branches (PIN=5.11):
+## build/pinned/c/urwire.{h,c}, and build/pinned/urwire.o at -Os with its size
+pinned-c:
+	$(PYTHON) -m codegen --pin $(PIN) --target c --out $(PINNED_C)
+	$(CC) $(C_STRICT) -Os -c $(PINNED_C)/c/urwire.c -o $(PINNED_C)/urwire.o
+	@if command -v size >/dev/null; then size $(PINNED_C)/urwire.o; fi
 
 ## test-c: fuzz (bounded), then the C library and CLI under gcc, clang and the sanitizers: vectors,
 ## differential against Python (the fuzzer's corpus included), round trips, build checks
@@ -49,12 +59,24 @@ fuzz-c: $(C_LIB) tests/c/fuzz_urwire.c tools/urwire-decode/json.c
 
 ## bench-c: robot-state decode throughput against memcpy of the same bytes, same run, with the
 ## library built at each of BENCH_C_LEVELS (ns per state, and each level against -O3)
+## (BENCH_C_BASE=<git revision>: also the library that revision generated, level by level, in the
+## same run, e.g. make bench-c BENCH_C_BASE=b8aabfa)
 bench-c: $(C_LIB) tests/bench/bench_c.c tests/bench/bench_c.py
 	@mkdir -p build
 	for opt in $(BENCH_C_LEVELS); do \
 		$(CC) -std=c99 $$opt -Igenerated/c -o build/bench_c$$opt tests/bench/bench_c.c generated/c/urwire.c || exit 1; \
 	done
-	$(PYTHON) tests/bench/bench_c.py $(BENCH_C_LEVELS:%=build/bench_c%)
+ifneq ($(BENCH_C_BASE),)
+	@mkdir -p build/bench-base
+	git show $(BENCH_C_BASE):generated/c/urwire.h > build/bench-base/urwire.h
+	git show $(BENCH_C_BASE):generated/c/urwire.c > build/bench-base/urwire.c
+	for opt in $(BENCH_C_LEVELS); do \
+		$(CC) -std=c99 $$opt -Ibuild/bench-base -o build/bench_c-base$$opt tests/bench/bench_c.c \
+			build/bench-base/urwire.c || exit 1; \
+	done
+endif
+	$(PYTHON) tests/bench/bench_c.py $(BENCH_C_LEVELS:%=build/bench_c%) \
+		$(if $(BENCH_C_BASE),$(BENCH_C_LEVELS:%=build/bench_c-base%))
 
 ## demo-c: the C decoder on the bundled capture's robot->client stream (urwire-decode reads raw streams)
 demo-c: build/urwire-decode

@@ -1,8 +1,11 @@
-"""C target: the IR -> a view model of C declarations and statements -> templates/c/*.j2.
+"""C target: the plan -> a view model of plain data -> templates/c/*.j2 (+ runtime/*.c, *.h).
 
-Every decision is made here: C types, struct members, offsets inside fixed runs, the statement
-text of each read, write and visit. The templates only lay these strings out (Emboss style).
-The output is C99 with no malloc and no stdio: one header and one source, generated/c/urwire.{h,c}.
+Every decision is made here: C types, struct members, the offset, reader and writer of every
+member of a fixed run, conditions as terms (a flag, a version bound), the forms of every type
+code and the segments of the version axis that choose them. The view model holds data only
+(names, numbers, kinds); the templates render each kind with a macro of its own, chosen
+through a table (Emboss style), and hold no arithmetic. The output is C99 with no malloc and
+no stdio: one header and one source, generated/c/urwire.{h,c}.
 """
 from __future__ import annotations
 
@@ -13,6 +16,7 @@ from typing import Optional
 from .. import ir, plan
 from ..emit import environment, runtime_source
 from ..errors import Problem, SpecError
+from ..naming import c_enum_const, c_enum_prefix, c_enum_tag, c_member_const, c_table_suffix
 from ..view import Step
 
 FOLDER = "c"
@@ -34,10 +38,15 @@ C_KEYWORDS = {"auto", "break", "case", "char", "const", "continue", "default", "
               "extern", "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return",
               "short", "signed", "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void",
               "volatile", "while", "_Bool"}
+# Names the generated decoders, encoders and visitors use for themselves: no member may be
+# called so (the struct's own `version` and `extra` are added by the generator).
+RESERVED_MEMBERS = {"version", "extra"}
 # Value layouts the hand-written value decoder (templates/c/runtime/values.c) knows.
 VALUE_ITEMS = {"bool": "URWIRE__ITEM_BOOL", "int32": "URWIRE__ITEM_I32", "float32": "URWIRE__ITEM_F32"}
 VALUE_LAYOUTS = {"empty": "URWIRE__LAYOUT_EMPTY", "string": "URWIRE__LAYOUT_STRING", "array": "URWIRE__LAYOUT_ARRAY",
                  "scalar": "URWIRE__LAYOUT_SCALAR", "list": "URWIRE__LAYOUT_LIST", "matrix": "URWIRE__LAYOUT_MATRIX"}
+# A bit per sub-package code (urwire_robot_state.present) and per sub-package layout (.layouts).
+MASK_BITS = 32
 
 
 def comment(*texts: str, width: int = 92) -> list[str]:
@@ -50,19 +59,57 @@ def inline(*texts: str) -> str:
     return " ".join(t.strip() for t in texts if t and t.strip()).replace("*/", "* /")
 
 
-def plus(base: str, k: int) -> str:
-    return base if k == 0 else f"{base} + {k}"
+# ---- versions and conditions, as data -----------------------------------------------------
 
+# The largest parts urwire__version_key (runtime/private.h) orders exactly: bounds must stay below.
+KEY_MAJOR, KEY_PART = 1 << 21, 1 << 20
+
+
+def version_view(v: ir.Version) -> dict:
+    major, minor, bugfix = v
+    if not (0 <= major < KEY_MAJOR and 0 <= minor < KEY_PART and 0 <= bugfix < KEY_PART):
+        raise SpecError("<spec>", [ir.NOWHERE.problem(f"c target: version {v} is beyond what the C runtime "
+                                                      f"compares exactly")])
+    return dict(major=major, minor=minor, bugfix=bugfix)
+
+
+def range_view(r: ir.VersionRange) -> dict:
+    """A version range as the initializer of an urwire__versions (runtime/private.h) renders it."""
+    return dict(low=version_view(r.low) if r.low else None, high=version_view(r.high) if r.high else None)
+
+
+def condition_view(c: plan.Condition) -> dict:
+    """A plan's condition as terms the template joins with &&: a flag field that must be
+    nonzero, a lowest and a highest version."""
+    terms = []
+    if c.flag:
+        terms.append(dict(kind="flag", name=c.flag))
+    if c.low:
+        terms.append(dict(kind="from", **version_view(c.low)))
+    if c.high:
+        terms.append(dict(kind="until", **version_view(c.high)))
+    return dict(terms=terms)
+
+
+# ---- the view model -----------------------------------------------------------------------
 
 @dataclass
 class Member:
-    decl: str
+    """One member of a C struct: `kind` names the template macro that declares it (scalar:
+    `ctype name`, array: `ctype name[count]`, union: one alternative per scalar type)."""
+
+    kind: str
+    ctype: str
+    name: str
+    count: int = 0
+    alternatives: list[dict] = field(default_factory=list)
     doc: str = ""
     above: list[str] = field(default_factory=list)   # a long doc, as comment lines above
 
     def place(self) -> "Member":
         """Short docs stay at the end of the line; long ones go above the member."""
-        if len(self.decl) + len(self.doc) > 88:
+        width = len(self.ctype) + len(self.name) + 8 * len(self.alternatives) + 6
+        if width + len(self.doc) > 88:
             self.above, self.doc = comment(self.doc, width=88), ""
         return self
 
@@ -100,10 +147,8 @@ class CStruct:
     encode: list[Step] = field(default_factory=list)
     visit: list[Step] = field(default_factory=list)
     fixed_item: bool = False        # laid out in its parent's fixed run: read/write/visit helpers
-    item_reads: list[str] = field(default_factory=list)
-    item_writes: list[str] = field(default_factory=list)
+    item_members: list[dict] = field(default_factory=list)
     item_size: int = 0
-    needs_index: bool = False
     needs_p: bool = False
     decode_index: bool = False
     encode_index: bool = False
@@ -111,6 +156,10 @@ class CStruct:
     item_index: bool = False
     can_fail: bool = True
     bitsets: list = field(default_factory=list)
+    to_end_item: bool = False       # items of a to_end group: public iteration function
+    code: Optional[int] = None
+    code_const: str = ""
+    kind_const: str = ""            # subtypes: URWIRE_KIND_<NAME>; packages: URWIRE_LAYOUT_<NAME>
 
     def indent(self, verb: str, ret: str) -> str:
         """Spaces that align a wrapped parameter list under `static <ret> urwire__<verb>_<name>(`."""
@@ -127,11 +176,6 @@ class CStruct:
     @property
     def visit_indent(self) -> str:
         return self.indent("visit", "void")
-    to_end_item: bool = False       # items of a to_end group: public iteration function
-    code: Optional[int] = None
-    code_const: str = ""
-    kind_const: str = ""
-    sets_version: Optional[tuple[str, str]] = None
 
 
 class _Builder:
@@ -141,54 +185,82 @@ class _Builder:
         self.structs: list[CStruct] = []
         self.items: dict[int, CStruct] = {}
         self.problems: list[Problem] = []
+        # The struct being built: its members by name (each name's widest entry), and the names
+        # with several entries (in disjoint version ranges).
+        self.public: dict[str, ir.AnyField] = {}
+        self.repeated: list[str] = []
 
     # ---- one struct ----
 
     def build(self, layout: plan.LayoutPlan, name: str, ctype: str, role: str, doc: list[str]) -> CStruct:
         struct = layout.struct
         for f in struct.fields:
-            if isinstance(f, ir.GroupField):
+            if isinstance(f, ir.GroupField) and id(f) not in self.items:
                 item_plan = self.plan.item_of(f)
-                item = self.build(item_plan.layout, f.item.name, f"urwire_{f.item.name}", "item",
-                                  comment(f.doc) or [f"One entry of {f.name}."])
-                self.items[id(f)] = item
+                self.items[id(f)] = self.build(item_plan.layout, f.item.name, f"urwire_{f.item.name}", "item",
+                                               comment(f.doc) or [f"One entry of {f.name}."])
         cs = CStruct(name, ctype, doc, [], role)
-        for f in struct.fields:
-            cs.members.append(self.member(f, name).place())
+        # One member per name: a name with entries in disjoint version ranges is one member of
+        # the widest type, each entry read, written and visited under its own condition.
+        self.public = {f.name: f for f in struct.public_fields}
+        self.repeated = [n for n in self.public if len(struct.named(n)) > 1]
+        self.check_repeated(struct)
+        for f in struct.public_fields:
+            cs.members.append(self.member(f, name, struct).place())
             if isinstance(f, ir.ScalarField) and f.bits:
                 prefix = f"URWIRE_{name.upper()}_{f.name.upper()}"
                 cs.bitsets.append(BitSet(f"urwire_{name}_{f.name}_bit", f.name,
                                          [dict(const=f"{prefix}_{b.upper()}", bit=k) for k, b in enumerate(f.bits)]))
         if role != "item":
-            cs.members.append(Member("urwire_bytes extra", "Bytes after the known layout (flagged; kept for encoding)."))
+            cs.members.append(Member("scalar", "urwire_sw_version", "version",
+                                     doc="The software version it was read in (its form's, when chosen by "
+                                         "length): its encoding and visiting follow it.").place())
+            cs.members.append(Member("scalar", "urwire_bytes", "extra",
+                                     doc="Bytes after the known layout (flagged; kept for encoding)."))
         cs.decode, cs.encode = self.steps(cs, layout.steps)
-        cs.visit = self.visit_steps(cs, struct.fields)
+        if self.repeated:
+            cs.decode.insert(0, Step("absent", dict(zero=[self.zero(self.public[n]) for n in self.repeated])))
+        cs.visit = self.visit_steps(struct)
         fixed = role == "item" and any(it.layout is layout and it.fixed for it in self.plan.items)
         if fixed:
             # Read and written inside its parent's checked run.
             cs.fixed_item = True
             cs.item_size = layout.fixed_size
-            for m in layout.runs[0].members:
-                cs.item_reads.append(self.read_line(m, "out->"))
-                cs.item_writes.append(self.write_line(m, "in->"))
-            cs.item_index = any(_loops(m) for m in layout.runs[0].members)
+            cs.item_members = [self.run_member(m) for m in layout.runs[0].members]
+            cs.item_index = any(m["kind"] != "scalar" for m in cs.item_members)
         elif role == "item":
             cs.to_end_item = True
         cs.decode_index = uses_index(cs.decode)
         cs.encode_index = uses_index(cs.encode)
         cs.visit_index = uses_index(cs.visit)
-        cs.needs_p = has_run(cs.decode)
+        cs.needs_p = needs_p(cs.decode)
         cs.can_fail = can_fail(cs.decode)
         self.structs.append(cs)
         return cs
 
-    def member(self, f: ir.AnyField, owner: str) -> Member:
+    def check_repeated(self, struct: ir.Struct) -> None:
+        for name in self.repeated:
+            entries = struct.named(name)
+            if not all(isinstance(f, ir.ScalarField) for f in entries):
+                self.problems.append(entries[1].where.problem(
+                    f"c target: '{name}' repeats as a field that is not a scalar; only scalars share a member"))
+            elif len({(f.scalar.signed, f.scalar.is_float, f.scalar.is_bool) for f in entries}) > 1:
+                self.problems.append(entries[1].where.problem(
+                    f"c target: the entries of '{name}' differ in signedness or kind; they cannot share a member"))
+
+    def member(self, f: ir.AnyField, owner: str, struct: ir.Struct) -> Member:
         name = f.name
         if name in C_KEYWORDS:
             self.problems.append(f.where.problem(f"c target: field name '{name}' is a C keyword"))
-        doc = inline(f.doc, f.field_note)
+        if name in RESERVED_MEMBERS:
+            self.problems.append(f.where.problem(f"c target: field name '{name}' is a member every layout has"))
+        entries = struct.named(name)
+        doc = inline(*[t for e in entries for t in (e.doc, e.field_note)])
         if f.present_if:
             doc = inline(doc, f"Present only when {f.present_if} is nonzero (else 0).")
+        if len(entries) > 1:
+            forms = "; ".join(f"{e.scalar.name} {e.versions.describe()}" for e in entries)
+            doc = inline(doc, f"On the wire: {forms} (else 0).")
         if isinstance(f, ir.ScalarField):
             if f.scalar.is_bool:
                 doc = inline(doc, "The wire byte: nonzero is true.")
@@ -196,59 +268,60 @@ class _Builder:
                 doc = inline(doc, f"See enum urwire_{f.enum.name}.")
             if f.bits:
                 doc = inline(doc, f"Masks: enum urwire_{owner}_{f.name}_bit.")
-            return Member(f"{C_TYPES[f.scalar.name]} {name}", doc)
+            return Member("scalar", C_TYPES[f.scalar.name], name, doc=doc)
         if isinstance(f, ir.ArrayField):
-            return Member(f"{C_TYPES[f.scalar.name]} {name}[{f.count}]", doc)
+            return Member("array", C_TYPES[f.scalar.name], name, f.count, doc=doc)
         if isinstance(f, ir.GroupField):
             item = self.items[id(f)]
             if f.count is not None:
-                return Member(f"{item.ctype} {name}[{f.count}]", doc)
-            return Member(f"urwire_seq {name}",
-                          inline(doc, f"Iterate with urwire_next_{item.name}() on a copy."))
+                return Member("array", item.ctype, name, f.count, doc=doc)
+            return Member("scalar", "urwire_seq", name,
+                          doc=inline(doc, f"Iterate with urwire_next_{item.name}() on a copy."))
         if isinstance(f, ir.StringField):
-            return Member(f"urwire_bytes {name}", inline(doc, "UTF-8 text as sent, a view into the message."))
+            return Member("scalar", "urwire_bytes", name,
+                          doc=inline(doc, "UTF-8 text as sent, a view into the message."))
         if isinstance(f, ir.BytesField):
-            return Member(f"urwire_bytes {name}", doc)
+            return Member("scalar", "urwire_bytes", name, doc=doc)
         if isinstance(f, ir.StringListField):
-            return Member(f"urwire_seq {name}", inline(doc, "Iterate with urwire_next_text() on a copy."))
+            return Member("scalar", "urwire_seq", name, doc=inline(doc, "Iterate with urwire_next_text() on a copy."))
         if isinstance(f, ir.ValueListField):
-            return Member(f"urwire_seq {name}", inline(doc, "Iterate with urwire_next_value() on a copy."))
+            return Member("scalar", "urwire_seq", name, doc=inline(doc, "Iterate with urwire_next_value() on a copy."))
         assert isinstance(f, ir.SwitchField)
         cases = "; ".join(f"{k}: .{s.name}" for k, s in f.cases.items())
         scalars = sorted({s.name for s in list(f.cases.values()) + [f.default]}, key=list(C_TYPES).index)
-        body = " ".join(f"{C_TYPES[s]} {s};" for s in scalars)
-        return Member(f"union {{ {body} }} {name}",
-                      inline(doc, f"Chosen by {f.selector.name}: {cases}; otherwise .{f.default.name}."))
+        return Member("union", "union", name, alternatives=[dict(ctype=C_TYPES[s], name=s) for s in scalars],
+                      doc=inline(doc, f"Chosen by {f.selector.name}: {cases}; otherwise .{f.default.name}."))
 
-    # ---- fixed runs: one statement per member ----
+    # ---- fixed runs: one entry per member ----
 
-    def read_line(self, m: plan.Member, ref: str) -> str:
-        f, at = m.field, plus("p", m.offset)
+    def run_member(self, m: plan.Member) -> dict:
+        """What the template needs to read or write one member of a fixed run at p + offset:
+        a scalar, an array of scalars (count, stride) or fixed-size items (read by their
+        own helper). A repeated name whose member is wider than this entry is cast."""
+        f = m.field
         if isinstance(f, ir.ScalarField):
-            return f"{ref}{f.name} = {READERS[f.scalar.name]}({at});"
+            member = C_TYPES[self.public[f.name].scalar.name] if f.name in self.public else C_TYPES[f.scalar.name]
+            wire = C_TYPES[f.scalar.name]
+            cast = wire != member
+            return dict(kind="scalar", name=f.name, offset=m.offset, reader=READERS[f.scalar.name],
+                        writer=WRITERS[f.scalar.name], into=member if cast else "", out=wire if cast else "")
         if isinstance(f, ir.ArrayField):
-            return (f"for (i = 0; i < {f.count}; i++) {ref}{f.name}[i] = "
-                    f"{READERS[f.scalar.name]}({at} + {f.scalar.size} * i);")
-        return (f"for (i = 0; i < {f.count}; i++) urwire__read_{f.item.name}({at} + "
-                f"{m.item.layout.fixed_size} * i, &{ref}{f.name}[i]);")
-
-    def write_line(self, m: plan.Member, ref: str) -> str:
-        f, at = m.field, plus("p", m.offset)
-        if isinstance(f, ir.ScalarField):
-            return f"{WRITERS[f.scalar.name]}({at}, {ref}{f.name});"
-        if isinstance(f, ir.ArrayField):
-            return (f"for (i = 0; i < {f.count}; i++) {WRITERS[f.scalar.name]}({at} + "
-                    f"{f.scalar.size} * i, {ref}{f.name}[i]);")
-        return (f"for (i = 0; i < {f.count}; i++) urwire__write_{f.item.name}({at} + "
-                f"{m.item.layout.fixed_size} * i, &{ref}{f.name}[i]);")
+            return dict(kind="array", name=f.name, offset=m.offset, count=f.count, stride=f.scalar.size,
+                        reader=READERS[f.scalar.name], writer=WRITERS[f.scalar.name])
+        return dict(kind="items", name=f.name, offset=m.offset, count=f.count, stride=m.item.layout.fixed_size,
+                    item=f.item.name)
 
     def run_steps(self, cs: CStruct, run: plan.FixedRun) -> tuple[Step, Step]:
         table = f"urwire__{cs.name}_run{run.index}"
         cs.runs.append(Run(table, run.size, [Span(leaf.path, leaf.offset, leaf.scalar.size) for leaf in run.leaves]))
-        loops = any(_loops(m) for m in run.members)
-        return (Step("run", dict(table=table, size=run.size, loops=loops,
-                                 lines=[self.read_line(m, "out->") for m in run.members])),
-                Step("run", dict(size=run.size, loops=loops, lines=[self.write_line(m, "in->") for m in run.members])))
+        members = [self.run_member(m) for m in run.members]
+        loops = any(m["kind"] != "scalar" for m in members)
+        return (Step("run", dict(table=table, size=run.size, loops=loops, members=members)),
+                Step("run", dict(size=run.size, loops=loops, members=members)))
+
+    def zero(self, f: ir.AnyField) -> dict:
+        """How an absent field is cleared: a scalar is set to 0, anything else memset."""
+        return dict(kind="scalar" if isinstance(f, ir.ScalarField) else "whole", name=f.name)
 
     # ---- decode and encode steps ----
 
@@ -260,10 +333,12 @@ class _Builder:
                 d, e = self.run_steps(cs, step)
             elif isinstance(step, plan.CondGroup):
                 inner_d, inner_e = self.steps(cs, step.steps)
-                zero = [f"out->{g.name} = 0;" if isinstance(g, ir.ScalarField) else
-                        f"memset(&out->{g.name}, 0, sizeof out->{g.name});" for g in step.fields]
-                d = Step("cond", dict(test=condition(step.condition, "out->"), steps=inner_d, zero=zero))
-                e = Step("cond", dict(test=condition(step.condition, "in->"), steps=inner_e))
+                # A name with entries under other conditions is cleared up front instead, so
+                # that this branch never clears what another entry of the name read.
+                zero = [self.zero(g) for g in step.fields if g.name not in self.repeated]
+                test = condition_view(step.condition)
+                d = Step("cond", dict(test=test, steps=inner_d, zero=zero))
+                e = Step("cond", dict(test=test, steps=inner_e))
             else:
                 d, e = self.dynamic(cs, step.field, step.path)
             dec.append(d)
@@ -273,16 +348,15 @@ class _Builder:
     def dynamic(self, cs: CStruct, f: ir.AnyField, path: str) -> tuple[Step, Step]:
         if isinstance(f, ir.StringField) and f.length is not None:
             s = f.length
-            data = dict(name=f.name, path=path, size=s.size, reader=READERS[s.name],
-                        max=f"{s.max}u" if not s.signed else str(s.max), signed=s.signed)
+            data = dict(name=f.name, path=path, size=s.size, max=s.max, signed=s.signed)
             return Step("prefixed_text", data), Step("prefixed_text", data)
         if isinstance(f, (ir.StringField, ir.BytesField)):
             return Step("rest", dict(name=f.name)), Step("bytes", dict(name=f.name))
         if isinstance(f, ir.StringListField):
-            return (Step("texts", dict(name=f.name, terminator=f"0x{f.terminator:02x}")),
+            return (Step("texts", dict(name=f.name, terminator=f.terminator)),
                     Step("seq", dict(name=f.name)))
         if isinstance(f, ir.ValueListField):
-            return (Step("values", dict(name=f.name, terminator=f"0x{f.terminator:02x}", path=path)),
+            return (Step("values", dict(name=f.name, terminator=f.terminator, path=path)),
                     Step("seq", dict(name=f.name)))
         if isinstance(f, ir.SwitchField):
             cases = [dict(value=k, size=s.size, reader=READERS[s.name], writer=WRITERS[s.name], member=s.name)
@@ -290,86 +364,58 @@ class _Builder:
             d = f.default
             data = dict(name=f.name, selector=f.selector.name, path=path, cases=cases,
                         default=dict(size=d.size, reader=READERS[d.name], writer=WRITERS[d.name], member=d.name))
-            cs.needs_p = True
             return Step("switch", data), Step("switch", data)
         assert isinstance(f, ir.GroupField)
         item = self.items[id(f)]
         return (Step("group_to_end", dict(name=f.name, item=item.name, ctype=item.ctype)),
                 Step("seq", dict(name=f.name)))
 
-    # ---- visiting (the canonical JSON order: spec order) ----
+    # ---- visiting (the canonical JSON order: one entry per name, in first-seen order) ----
 
-    def visit_steps(self, cs: CStruct, fields: list[ir.AnyField]) -> list[Step]:
+    def visit_steps(self, struct: ir.Struct) -> list[Step]:
         out: list[Step] = []
-        for f in fields:
-            out.append(self.visit_one(cs, f))
+        for f in struct.public_fields:
+            entries = struct.named(f.name)
+            # When any entry of the name is on the wire; an unconditional entry: always.
+            conds = [] if any(not e.conditional for e in entries) else \
+                [condition_view(plan.condition_of(e)) for e in entries]
+            out.append(self.visit_one(f, conds))
         return out
 
-    def visit_one(self, cs: CStruct, f: ir.AnyField) -> Step:
-        cond = plan.condition_of(f)
-        test = condition(cond, "in->") if cond else ""
+    def visit_one(self, f: ir.AnyField, when: list[dict]) -> Step:
         if isinstance(f, ir.ScalarField):
-            return Step("scalar", dict(name=f.name, cb=VISIT[f.scalar.name], test=test,
-                                       arg=visit_arg(f.scalar, f"in->{f.name}")))
+            return Step("scalar", dict(name=f.name, cb=VISIT[f.scalar.name], when=when))
         if isinstance(f, ir.ArrayField):
-            return Step("array", dict(name=f.name, cb=VISIT[f.scalar.name], count=f.count, test=test,
-                                      arg=visit_arg(f.scalar, f"in->{f.name}[i]")))
+            return Step("array", dict(name=f.name, cb=VISIT[f.scalar.name], count=f.count, when=when))
         if isinstance(f, ir.GroupField):
             item = self.items[id(f)]
             if f.count is not None:
-                return Step("group", dict(name=f.name, item=item.name, count=f.count, test=test))
-            return Step("group_to_end", dict(name=f.name, item=item.name, ctype=item.ctype, test=test))
+                return Step("group", dict(name=f.name, item=item.name, count=f.count, when=when))
+            return Step("group_to_end", dict(name=f.name, item=item.name, ctype=item.ctype, when=when))
         if isinstance(f, ir.StringField):
-            return Step("text", dict(name=f.name, test=test))
+            return Step("text", dict(name=f.name, when=when))
         if isinstance(f, ir.BytesField):
-            return Step("hex", dict(name=f.name, test=test))
+            return Step("hex", dict(name=f.name, when=when))
         if isinstance(f, ir.StringListField):
-            return Step("texts", dict(name=f.name, test=test))
+            return Step("texts", dict(name=f.name, when=when))
         if isinstance(f, ir.ValueListField):
-            return Step("values", dict(name=f.name, test=test))
+            return Step("values", dict(name=f.name, when=when))
         assert isinstance(f, ir.SwitchField)
-        cases = [dict(value=k, cb=VISIT[s.name], arg=visit_arg(s, f"in->{f.name}.{s.name}"))
-                 for k, s in f.cases.items()]
+        cases = [dict(value=k, cb=VISIT[s.name], member=s.name) for k, s in f.cases.items()]
         d = f.default
-        return Step("switch", dict(name=f.name, selector=f.selector.name, cases=cases, test=test,
-                                   default=dict(cb=VISIT[d.name], arg=visit_arg(d, f"in->{f.name}.{d.name}"))))
+        return Step("switch", dict(name=f.name, selector=f.selector.name, cases=cases, when=when,
+                                   default=dict(cb=VISIT[d.name], member=d.name)))
 
 
-def visit_arg(s: ir.Scalar, ref: str) -> str:
-    cb = VISIT[s.name]
-    if cb == "on_int":
-        return f"(int64_t){ref}"
-    if cb == "on_uint":
-        return f"(uint64_t){ref}"
-    if cb == "on_bool":
-        return f"{ref} != 0"
-    return ref
-
-
-def condition(c: plan.Condition, ref: str) -> str:
-    """A plan's condition as a C test; `ref` is where field values live (out-> or in->)."""
-    tests = []
-    if c.flag:
-        tests.append(f"{ref}{c.flag} != 0")
-    if c.low:
-        tests.append(f"urwire__version_cmp(version, {c.low[0]}, {c.low[1]}) >= 0")
-    if c.high:
-        tests.append(f"urwire__version_cmp(version, {c.high[0]}, {c.high[1]}) <= 0")
-    return " && ".join(tests)
-
-
-def _loops(m: plan.Member) -> bool:
-    """A member read or written in a loop on i (arrays and fixed-count groups)."""
-    return not isinstance(m.field, ir.ScalarField)
-
-
-def has_run(steps: list[Step]) -> bool:
-    return any(s.kind == "run" or (s.kind == "cond" and has_run(s.steps)) for s in steps)
+def needs_p(steps: list[Step]) -> bool:
+    """A fixed run or a switch reads through p."""
+    return any(s.kind in ("run", "switch") or (s.kind == "cond" and needs_p(s.steps)) for s in steps)
 
 
 def can_fail(steps: list[Step]) -> bool:
     """False when every step of a decoder always succeeds (rest-of-message views only)."""
-    return any(s.kind not in ("rest", "texts", "cond") or (s.kind == "cond" and can_fail(s.steps)) for s in steps)
+    return any(s.kind not in ("rest", "texts", "cond", "absent") or (s.kind == "cond" and can_fail(s.steps))
+               for s in steps)
 
 
 def uses_index(steps: list[Step]) -> bool:
@@ -384,38 +430,29 @@ def uses_index(steps: list[Step]) -> bool:
 
 # ---- enums ----------------------------------------------------------------------------------
 
-def table_suffix(t: ir.EnumTable) -> str:
-    r = t.versions
-    low = f"{r.low[0]}_{r.low[1]}" if r.low else ""
-    high = f"{r.high[0]}_{r.high[1]}" if r.high else ""
-    if low and high:
-        return f"{low}_TO_{high}"
-    return f"{low}_ON" if low else f"UP_TO_{high}"
-
-
 def enum_views(p: ir.Protocol) -> list[dict]:
     views = []
     for e in p.enums.values():
         tables = []
         for t in e.tables:
-            prefix = f"URWIRE_{e.name.upper()}" + (f"_{table_suffix(t)}" if e.versioned else "")
+            prefix = c_enum_prefix(e, t)
             members = []
             for v in t.values:
-                m = Member(f"{prefix}_{v.name} = {v.value}",
-                           inline(v.doc, "(undocumented)" if v.undocumented else "",
-                                  f"(from {v.versions.describe()})" if not v.versions.unbounded else "")).place()
+                m = Member("scalar", prefix, v.name,
+                           doc=inline(v.doc, "(undocumented)" if v.undocumented else "",
+                                      f"(from {v.versions.describe()})" if not v.versions.unbounded else "")).place()
                 members.append(dict(const=f"{prefix}_{v.name}", value=v.value, name=v.name, doc=m.doc, above=m.above))
-            tables.append(dict(versions=t.versions.describe(), members=members,
-                               low=t.versions.low, high=t.versions.high,
-                               tag=f"urwire_{e.name}_{table_suffix(t).lower()}" if e.versioned else f"urwire_{e.name}"))
-        # Name lookup: one case per distinct value (first name wins, as in the document's table).
-        seen, cases = set(), []
-        for v in e.values:
-            if v.value not in seen:
-                seen.add(v.value)
-                cases.append(dict(value=v.value, name=v.name))
+            # Name lookup: one case per distinct value (the first name wins, as in Python).
+            seen, cases = set(), []
+            for m in members:
+                if m["value"] not in seen:
+                    seen.add(m["value"])
+                    cases.append(m)
+            tables.append(dict(versions=t.versions.describe(), members=members, cases=cases, range=range_view(t.versions),
+                               tag=c_enum_tag(e, t),
+                               names=f"urwire__{e.name}_{c_table_suffix(t).lower()}_name" if e.versioned else ""))
         views.append(dict(name=e.name, doc=comment(e.doc, e.field_note), wire=C_TYPES[e.scalar.name],
-                          versioned=e.versioned, tables=tables, cases=cases))
+                          versioned=e.versioned, tables=tables, first=tables[-1]["members"][0]["name"]))
     return views
 
 
@@ -434,8 +471,8 @@ def value_views(p: ir.Protocol) -> dict:
             entries.append(dict(code=v.value, name=v.name, kind=f"URWIRE_VALUE_{v.name}",
                                 layout=VALUE_LAYOUTS[lay.layout], item=item,
                                 count=lay.count if lay.layout == "array" else 1))
-        tables.append(dict(tag=f"urwire__values_{table_suffix(t).lower()}", versions=t.versions.describe(),
-                           entries=entries, range=versions_init(t.versions)))
+        tables.append(dict(tag=f"urwire__values_{c_table_suffix(t).lower()}", versions=t.versions.describe(),
+                           entries=entries, range=range_view(t.versions)))
     if problems:
         raise SpecError(p.source, problems)
     arrays = [lay.count for lay in p.value_layouts.values() if lay.layout == "array"]
@@ -443,41 +480,117 @@ def value_views(p: ir.Protocol) -> dict:
                 tables=tables, array_max=max(arrays) if arrays else 1, max_depth=p.max_value_depth)
 
 
-def versions_init(r: ir.VersionRange) -> str:
-    """A version range as the initializer of an urwire__versions (runtime/private.h)."""
-    def bound(v: Optional[ir.Version]) -> str:
-        return f"true, {{{v[0]}, {v[1]}}}" if v else "false, {0, 0}"
-    return f"{{{bound(r.low)}, {bound(r.high)}}}"
+# ---- forms: which layout a type code is read in ---------------------------------------------
+
+def _tuple(number: int) -> ir.Version:
+    """A version number of the plan (ir.version_number) as the (major, minor, bugfix) it counts."""
+    return number // 1_000_000, number // 1000 % 1000, number % 1000
+
+
+class _Forms:
+    """The version axis cut wherever any form of any type code starts or ends: within one
+    segment every type code sends the same form, so a version's form is one table lookup
+    (urwire__segment, then the segment's row). Bounds compare as the spec's version tuples do,
+    so a bound "up to 5.8" (5.8.999) ends just before 5.8.1000, as in Python."""
+
+    def __init__(self, protocol_plan: plan.ProtocolPlan):
+        self.source = protocol_plan.protocol.source
+        ranges = [(_tuple(lo), _tuple(hi)) for mp in protocol_plan.messages for variants in mp.variants.values()
+                  for v in variants for lo, hi in v.ranges]
+        cuts = {(0, 0, 0)}
+        for lo, hi in ranges:
+            cuts |= {lo, (hi[0], hi[1], hi[2] + 1)}
+        self.starts = sorted(cuts)
+        # A version in each segment: segment 0 is everything below the first start.
+        self.samples = [(-1, 0, 0)] + self.starts
+        self.size_slots = max([len(v.sizes or ()) for mp in protocol_plan.messages for vs in mp.variants.values()
+                               for v in vs] + [1])
+
+    @staticmethod
+    def nearest_below(code: dict, sample: ir.Version) -> int:
+        """A segment no form of the code is sent in: the form of the nearest version below (else
+        the first), marked URWIRE__NEAREST (the runtime reads it as the version it stands for)."""
+        below = [(_tuple(lo), n) for n, f in enumerate(code["forms"]) for lo, _ in f["ranges"] if _tuple(lo) <= sample]
+        n = max(below)[1] if below else 0
+        return (code["first"] + n + 1) | 0x80
+
+    def table(self, tag: str, what: str, mp: plan.MessagePlan, enum: ir.Enum, layouts: dict[int, str],
+              first_sizes: bool = False) -> dict:
+        """The forms of every code of one type byte (the sub-package types, or a message's
+        subtypes), in one list; the forms of each code; and, segment by segment, the form each
+        code's versions send (its number in the list plus one, 0 for none)."""
+        codes, count = [], 0
+        for code, variants in mp.variants.items():
+            forms = []
+            for v in variants:
+                sizes = sorted(v.sizes) if v.sizes is not None else []
+                forms.append(dict(layout=layouts[id(v.layout)], nsizes=len(sizes),
+                                  sizes=sizes + [0] * (self.size_slots - len(sizes)), min_size=v.min_size,
+                                  rep=version_view(v.rep), versions=v.describe(), ranges=v.ranges))
+            codes.append(dict(code=code, index=c_enum_const(enum, code), first=count, count=len(forms), forms=forms,
+                              names=", ".join(c.layout.name for c in mp.choices[code]),
+                              layouts=[dict(name=c.layout.name, const=layouts[id(c.layout)])
+                                       for c in mp.choices[code]]))
+            count += len(forms)
+        if count >= 128:
+            raise SpecError(self.source, [mp.message.where.problem(
+                "c target: more than 127 forms of one type byte do not fit the form tables")])
+        ncodes = max(mp.variants) + 1
+        rows = []
+        for k, sample in enumerate(self.samples):
+            row = [0] * ncodes
+            first = [dict(kind="none")] * ncodes
+            for c in codes:
+                sent = [n for n, f in enumerate(c["forms"])
+                        if any(_tuple(lo) <= sample <= _tuple(hi) for lo, hi in f["ranges"])]
+                row[c["code"]] = c["first"] + sent[0] + 1 if sent else self.nearest_below(c, sample)
+                if sent:
+                    f = c["forms"][sent[0]]
+                    first[c["code"]] = dict(kind="exact", size=f["sizes"][0]) if f["nsizes"] else \
+                        dict(kind="open", size=f["min_size"])
+            start = "below %d.%d.%d" % self.starts[0] if k == 0 else "from %d.%d.%d" % sample
+            rows.append(dict(forms=row, first=first, start=start))
+        return dict(tag=tag, what=what, codes=codes, ncodes=ncodes, rows=rows, first_sizes=first_sizes)
 
 
 # ---- messages -------------------------------------------------------------------------------
 
 def build(protocol_plan: plan.ProtocolPlan) -> dict:
     b = _Builder(protocol_plan)
+    p = protocol_plan.protocol
+    axis = _Forms(protocol_plan)
     messages = []
     kinds = []
-    packages = []
+    packages: list[CStruct] = []
+    package_forms: dict = {}
     layout_structs: dict[int, CStruct] = {}
     for mp in protocol_plan.messages:
         m = mp.message
         if not mp.is_dispatch:
             for c in mp.layouts:
                 pk = c.layout
-                if pk.code.value > 31:
+                if pk.code.value >= MASK_BITS:
                     b.problems.append(pk.where.problem("c target: package codes above 31 do not fit the present bit mask"))
                 cs = b.build(c.plan, pk.name, f"urwire_{pk.name}", "package", comment(pk.doc, pk.field_note))
                 cs.code = pk.code.value
-                cs.code_const = f"URWIRE_{m.package_type.name.upper()}_{pk.code.name}"
+                cs.code_const = c_member_const(m.package_type, pk.code)
+                cs.kind_const = f"URWIRE_LAYOUT_{pk.name.upper()}"
+                layout_structs[id(pk)] = cs
                 packages.append(cs)
+            if len(packages) > MASK_BITS:
+                b.problems.append(m.where.problem("c target: more than 32 sub-package layouts do not fit the "
+                                                  "layouts bit mask"))
+            package_forms = axis.table("urwire__package", "sub-package type", mp, m.package_type,
+                                       {id(c.layout): layout_structs[id(c.layout)].kind_const for c in mp.layouts},
+                                       first_sizes=True)
             kinds.append(dict(const=f"URWIRE_KIND_{m.name.upper()}", doc=inline(m.doc)))
-            messages.append(dict(kind="packages", name=m.name, code=m.code.value,
-                                 code_const=f"URWIRE_MESSAGE_TYPE_{m.code.name}",
+            messages.append(dict(kind="packages", name=m.name, code=m.code.value, type_index=len(messages),
+                                 code_const=c_member_const(p.message_type_enum, m.code),
                                  kind_const=f"URWIRE_KIND_{m.name.upper()}", doc=comment(m.doc, m.field_note)))
             continue
         header = [dict(name=slot.field.name, ctype=C_TYPES[slot.field.scalar.name],
                        reader=READERS[slot.field.scalar.name], writer=WRITERS[slot.field.scalar.name],
                        offset=slot.offset, cb=VISIT[slot.field.scalar.name],
-                       cast="(int64_t)" if VISIT[slot.field.scalar.name] == "on_int" else "(uint64_t)",
                        doc=inline(slot.field.doc, slot.field.field_note), subtype=slot.is_subtype)
                   for slot in mp.header]
         subtypes = []
@@ -485,18 +598,20 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
             st = c.layout
             cs = b.build(c.plan, st.name, f"urwire_{st.name}_message", "subtype", comment(st.doc, st.field_note))
             cs.code = st.code.value
-            cs.code_const = f"URWIRE_{m.subtype_enum.name.upper()}_{st.code.name}"
+            cs.code_const = c_member_const(m.subtype_enum, st.code)
             cs.kind_const = f"URWIRE_KIND_{st.name.upper()}"
-            cs.sets_version = st.sets_version
             layout_structs[id(st)] = cs
             subtypes.append(cs)
             kinds.append(dict(const=cs.kind_const, doc=inline(st.doc)))
-        messages.append(dict(kind="dispatch", name=m.name, code=m.code.value,
-                             code_const=f"URWIRE_MESSAGE_TYPE_{m.code.name}",
+        forms = axis.table(f"urwire__{m.name}", f"{m.name} subtype", mp, m.subtype_enum,
+                           {id(c.layout): layout_structs[id(c.layout)].kind_const for c in mp.layouts})
+        messages.append(dict(kind="dispatch", name=m.name, code=m.code.value, type_index=len(messages),
+                             code_const=c_member_const(p.message_type_enum, m.code),
                              doc=comment(m.doc, m.field_note), header=header, header_table=f"urwire__{m.name}_header",
                              header_spans=[Span(slot.field.name, slot.offset, slot.field.scalar.size)
                                            for slot in mp.header],
-                             body_offset=mp.body_offset, subtypes=subtypes, subtype_name=m.subtype.name))
+                             body_offset=mp.body_offset, subtypes=subtypes, subtype_name=m.subtype.name,
+                             forms=forms))
     lists = [m for m in messages if m["kind"] == "packages"]
     if len(lists) != 1:
         b.problems.append(protocol_plan.protocol.messages[0].where.problem(
@@ -506,75 +621,41 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     vs = protocol_plan.version
     vst = layout_structs[id(vs.layout)]
     vmsg = next(m for m in messages if m["code"] == vs.message_code)
-    return dict(structs=b.structs, messages=messages, kinds=kinds, packages=packages,
-                numbers=protocol_numbers(protocol_plan.protocol, lists[0], vst, vmsg),
-                known_types=known_types(protocol_plan.protocol), **kind_tables(messages, packages))
+    return dict(structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
+                segment_starts=[version_view(v) for v in axis.starts], form_sizes=axis.size_slots,
+                framing=framing(p, lists[0], vst, vmsg, vs), known_types=known_types(p))
 
 
-def protocol_numbers(p: ir.Protocol, packages: dict, vst: CStruct, vmsg: dict) -> list[dict]:
-    """The private macros through which the runtime reads the spec's framing: where the header
-    fields are, which message is the sub-package list, which layout announces the version."""
+def framing(p: ir.Protocol, packages: dict, vst: CStruct, vmsg: dict, vs: plan.VersionSource) -> dict:
+    """What the runtime reads of the spec's framing through private macros: where the header
+    fields are, which message is the sub-package list, which layout announces the version and
+    how to reach its numbers before its layout is chosen."""
     problems = [h.where.problem("c target: a message or sub-package type wider than one byte")
                 for h in (p.message_type, p.package_type) if h.scalar.size != 1]
+    if vs.major.scalar.size != 1 or vs.minor.scalar.size != 1:
+        problems.append(vs.layout.where.problem("c target: the version numbers must be single bytes"))
     if problems:
         raise SpecError(p.source, problems)
     ml, pl = p.message_length.scalar, p.package_length.scalar
     (subtype,) = [h for h in vmsg["header"] if h["subtype"]]
-    return [
-        dict(name="URWIRE__LENGTH(p)", value=f"{READERS[ml.name]}(p)",
-             doc=f"message header: {ml.name} length, then the type"),
-        dict(name="URWIRE__PUT_LENGTH(p, n)", value=f"{WRITERS[ml.name]}((p), ({C_TYPES[ml.name]})(n))", doc=""),
-        dict(name="URWIRE__TYPE_AT", value=f"{ml.size}u", doc=""),
-        dict(name="URWIRE__PACKAGE_LENGTH(p)", value=f"{READERS[pl.name]}(p)",
-             doc=f"sub-package header: {pl.name} length, then the type"),
-        dict(name="URWIRE__PUT_PACKAGE_LENGTH(p, n)", value=f"{WRITERS[pl.name]}((p), ({C_TYPES[pl.name]})(n))",
-             doc=""),
-        dict(name="URWIRE__PACKAGE_TYPE_AT", value=f"{pl.size}u", doc=""),
-        dict(name="URWIRE__PACKAGES_TYPE", value=packages["code_const"], doc=f"{packages['name']}: the sub-package list"),
-        dict(name="URWIRE__PACKAGES_KIND", value=packages["kind_const"], doc=""),
-        dict(name="URWIRE__VERSION_TYPE", value=vmsg["code_const"],
-             doc=f"{vst.name}: the layout that announces the software version"),
-        dict(name="URWIRE__VERSION_SUBTYPE_AT", value=f"{subtype['offset']}u", doc=""),
-        dict(name="URWIRE__VERSION_SUBTYPE", value=vst.code_const, doc=""),
-        dict(name="URWIRE__VERSION_BODY", value=f"{vmsg['body_offset']}u", doc=""),
-        dict(name="URWIRE__VERSION_KIND", value=vst.kind_const, doc=""),
-        dict(name="URWIRE__VERSION_MAJOR(m)", value=f"((m)->as.{vst.name}.{vst.sets_version[0]})", doc=""),
-        dict(name="URWIRE__VERSION_MINOR(m)", value=f"((m)->as.{vst.name}.{vst.sets_version[1]})", doc=""),
-    ]
+    # An empty C array is not C99: a list with no skips is one skip of nothing.
+    skips = [dict(fixed=k.fixed, prefix=k.prefix, signed=k.signed) for k in vs.skips] or \
+        [dict(fixed=0, prefix=0, signed=False)]
+    return dict(length=dict(reader=READERS[ml.name], writer=WRITERS[ml.name], ctype=C_TYPES[ml.name],
+                            scalar=ml.name, size=ml.size),
+                package_length=dict(reader=READERS[pl.name], writer=WRITERS[pl.name], ctype=C_TYPES[pl.name],
+                                    scalar=pl.name, size=pl.size),
+                packages=dict(name=packages["name"], code_const=packages["code_const"],
+                              kind_const=packages["kind_const"]),
+                version=dict(name=vst.name, type_const=vmsg["code_const"], subtype_at=subtype["offset"],
+                             subtype_const=vst.code_const, body=vmsg["body_offset"], kind_const=vst.kind_const,
+                             major=vs.major.name, minor=vs.minor.name, bugfix=vs.bugfix.name if vs.bugfix else None,
+                             skips=skips, tail=vs.tail))
 
 
 def known_types(p: ir.Protocol) -> list[str]:
     """The message types a plausible header may carry (the framer resynchronises on the others)."""
-    seen: dict[int, str] = {}
-    for v in p.message_type_enum.values:
-        seen.setdefault(v.value, f"URWIRE_{p.message_type_enum.name.upper()}_{v.name}")
-    return [seen[k] for k in sorted(seen)]
-
-
-def kind_tables(messages: list[dict], packages: list[CStruct]) -> dict:
-    """The rows of the tables the runtime walks (runtime/private.h), each a list of (member,
-    initializer) pairs; a member left out is NULL or 0: urwire__package_kinds (by sub-package
-    code; decoded through the generated switches instead), urwire__message_types (one per
-    laid-out message type) and urwire__message_kinds (by urwire_message_kind)."""
-    def functions(name: str) -> list[tuple[str, str]]:
-        return [(verb, f"urwire__{verb}_{name}") for verb in ("decode", "encode", "visit")]
-
-    package_rows = [dict(index=s.code_const, fields=[("name", f'"{s.name}"'), *functions(s.name)[1:]])
-                    for s in packages]
-    types, kinds = [], [dict(index="URWIRE_KIND_UNKNOWN_MESSAGE", fields=[("name", '"unknown"')])]
-    for i, m in enumerate(messages):
-        ref = ("type", f"&urwire__message_types[{i}]")
-        if m["kind"] == "packages":
-            types.append([("code", m["code_const"]), ("packages", "true"), ("body", "URWIRE_HEADER_SIZE")])
-            kinds.append(dict(index=m["kind_const"], fields=[("name", f'"{m["name"]}"'), ref]))
-            continue
-        types.append([("code", m["code_const"]), ("body", f"{m['body_offset']}u"), ("header", m["header_table"]),
-                      *[(f"{verb}_header", f"urwire__{verb}_{m['name']}_header") for verb in ("read", "visit", "put")]])
-        for s in m["subtypes"]:
-            kinds.append(dict(index=s.kind_const, fields=[("name", f'"{s.name}"'), ref, ("subtype", s.code_const),
-                                                          *functions(s.name)]))
-    kinds.append(dict(index="URWIRE_KIND_UNKNOWN_SUBTYPE", fields=[("name", '"unknown"')]))
-    return dict(package_kinds=package_rows, message_types=types, message_kinds=kinds)
+    return [c_enum_const(p.message_type_enum, code) for code in sorted({v.value for v in p.message_type_enum.values})]
 
 
 # The hand-written runtime (templates/c/runtime/), in the order each part is joined to the
@@ -585,7 +666,7 @@ RUNTIME = {
     "value": ("value.h",),
     "api": ("messages.h", "visitor.h", "framer.h"),
     "base": ("private.h", "loads.h", "views.c", "version.c", "format.c", "errors.c", "text.c", "put.c"),
-    "walkers": ("values.c", "kinds.c", "decode.c", "encode.c", "visit.c", "framer.c"),
+    "walkers": ("values.c", "kinds.c", "forms.c", "decode.c", "encode.c", "visit.c", "framer.c"),
 }
 
 
@@ -594,7 +675,7 @@ def render(protocol_plan, banner: list[str]) -> dict[str, str]:
     env = environment(FOLDER)
     runtime = {part: "\n".join(runtime_source(FOLDER, name) for name in names) for part, names in RUNTIME.items()}
     ctx = dict(banner=banner, p=p, enums=enum_views(p), values=value_views(p), runtime=runtime,
-               default_version=p.default_version,
+               default_version=version_view(p.default_version), default_text=ir.version_text(p.default_version),
                documented=", ".join(ir.version_text(v) for v in p.documented_versions),
                title=p.title, doc=comment(p.doc), **build(protocol_plan))
     return {f"{FOLDER}/urwire.h": env.get_template("urwire.h.j2").render(**ctx),

@@ -32,13 +32,57 @@
 #define URWIRE__VERSION_KIND URWIRE_KIND_VERSION
 #define URWIRE__VERSION_MAJOR(m) ((m)->as.version.major_version)
 #define URWIRE__VERSION_MINOR(m) ((m)->as.version.minor_version)
+#define URWIRE__VERSION_BUGFIX(m) ((m)->as.version.bugfix_version)
+/* after the last length-prefixed string on the way, the bytes up to the major number */
+#define URWIRE__VERSION_TAIL 0u
+/* exact body sizes a form of a type code can have, at most (its flag-conditioned parts in or out) */
+#define URWIRE__FORM_SIZES 2
 
 /* ---- what the runtime and the generated layouts share ------------------------------------- */
+
+/* A range of software versions; a missing bound is open. */
+typedef struct urwire__versions {
+    bool has_low;
+    urwire_sw_version low;
+    bool has_high;
+    urwire_sw_version high;
+} urwire__versions;
 
 /* Private functions live in urwire.c alone. */
 #define URWIRE__PRIVATE static
 
 #define URWIRE__COUNT(a) (sizeof(a) / sizeof((a)[0]))
+
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+
+/* A software version as one number that orders as the spec's (major, minor, bugfix) tuples do
+ * against every version the spec names: the generated conditions are one comparison with
+ * URWIRE__V(major, minor, bugfix) of a bound. Each part counts from -1 (0 stands for any
+ * negative part) and stops just past the largest the spec could name (a major above 2^21, or a
+ * minor or bugfix above 2^20, compares with every bound as that limit does). */
+#define URWIRE__V(major, minor, bugfix) \
+    (((uint64_t)(major) + 1u) << 42 | ((uint64_t)(minor) + 1u) << 21 | ((uint64_t)(bugfix) + 1u))
+
+URWIRE__INLINE uint64_t urwire__version_part(int part, int most)
+{
+    return part < 0 ? 0u : part > most ? (uint64_t)most + 1u : (uint64_t)part + 1u;
+}
+
+URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
+{
+    if ((unsigned)v.major <= 1u << 21 && (unsigned)v.minor <= 1u << 20 && (unsigned)v.bugfix <= 1u << 20)
+        return URWIRE__V((unsigned)v.major, (unsigned)v.minor, (unsigned)v.bugfix);  /* every real version */
+    return urwire__version_part(v.major, 1 << 21) << 42 | urwire__version_part(v.minor, 1 << 20) << 21 |
+           urwire__version_part(v.bugfix, 1 << 20);
+}
 
 /* One field of a fixed run of fields, read after one bounds check of the whole run. A table
  * of them (ended by a NULL path) names the field that a short run stops in. */
@@ -48,24 +92,102 @@ typedef struct urwire__span {
     uint32_t size;
 } urwire__span;
 
+/* A software version as the layouts read it: the version, and its key (urwire__version_key),
+ * which their version conditions compare. */
+typedef struct urwire__ver {
+    urwire_sw_version version;
+    uint64_t key;
+} urwire__ver;
+
+URWIRE__INLINE urwire__ver urwire__ver_of(urwire_sw_version version)
+{
+    urwire__ver v;
+    v.version = version;
+    v.key = urwire__version_key(version);
+    return v;
+}
+
 /* ---- the tables the generated part fills ---- */
 
 /* What each layout (a sub-package or a message subtype) has: a decoder into its struct, an
  * encoder from it and a visitor of it, all taking the struct as void *. */
-typedef bool (*urwire__decode_fn)(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                  void *out, urwire_error *err);
-typedef bool (*urwire__encode_fn)(const void *in, urwire_sw_version version, uint8_t *out, size_t cap,
-                                  size_t *at, urwire_error *err);
-typedef void (*urwire__visit_fn)(const void *in, urwire_sw_version version, const urwire_visitor *v);
+typedef bool (*urwire__decode_fn)(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *out,
+                                  urwire_error *err);
+typedef bool (*urwire__encode_fn)(const void *in, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                  urwire_error *err);
+typedef void (*urwire__visit_fn)(const void *in, const urwire__ver *ver, const urwire_visitor *v);
 
-/* A sub-package type, indexed by its code; name is NULL for a code with no layout. Its decoder
- * is reached through the generated urwire__decode_package(type, ...) and, into a robot state,
- * urwire__decode_member(type, ...): switches, for speed (see there). */
+/* A sub-package layout, indexed by its urwire_package_layout; its decoder is reached through
+ * the generated urwire__decode_package(layout, ...) and, into a robot state,
+ * urwire__decode_member(layout, ...): switches, for speed (see there). */
 typedef struct urwire__package_kind {
     const char *name;               /* the record's type: "joint_data" */
     urwire__encode_fn encode;
     urwire__visit_fn visit;
 } urwire__package_kind;
+
+/* One form a type code takes on the wire (the plan's Variant): the layout it is read in, the
+ * exact body sizes it can have (nsizes of them; none: open-ended, at least min_size), and rep,
+ * the version a stream is taken to run when this form is recognised by its length alone. */
+typedef struct urwire__form {
+    uint8_t layout;                 /* a urwire_package_layout, or a urwire_message_kind */
+    uint8_t nsizes;
+    uint32_t sizes[URWIRE__FORM_SIZES];
+    uint32_t min_size;
+    urwire_sw_version rep;
+} urwire__form;
+
+/* Whether a body of `size` bytes fits a form (inlined on the robot-state fast path). */
+URWIRE__INLINE bool urwire__fits(const urwire__form *f, size_t size)
+{
+    uint8_t k;
+    if (f->nsizes == 0)
+        return size >= f->min_size;
+    for (k = 0; k < f->nsizes; k++)
+        if (f->sizes[k] == size)
+            return true;
+    return false;
+}
+
+/* The robot-state fast path's brief of the version's form of each sub-package type
+ * (urwire__package_first_sizes): its first exact size, or URWIRE__OPEN(its least size) when
+ * it is open-ended, or URWIRE__NONE when the version sends no form of that type. */
+#define URWIRE__OPEN(least) (0x80000000u | (least))
+#define URWIRE__NONE URWIRE__OPEN(0x7fffffffu)
+
+/* Whether a body of `size` bytes fits such a brief (URWIRE__NONE never does). */
+URWIRE__INLINE bool urwire__fits_brief(uint32_t brief, size_t size)
+{
+    return brief == size || ((brief & 0x80000000u) && size >= (brief & 0x7fffffffu));
+}
+
+/* The forms of one type code, in a table of all the forms of its type byte (count 0: the code
+ * has no layout). */
+typedef struct urwire__forms {
+    const urwire__form *forms;
+    uint8_t count;
+} urwire__forms;
+
+/* The forms of the codes of one type byte (sub-package types, or the subtypes of a message):
+ * `codes` by code, and which form each segment of the version axis sends, `mine[segment *
+ * ncodes + code]`: its number in `all` plus one, 0 for none. */
+/* In a segment's row: the form is that of the nearest version below (no form is sent there). */
+#define URWIRE__NEAREST 0x80u
+
+typedef struct urwire__form_table {
+    const urwire__form *all;
+    const urwire__forms *codes;
+    size_t ncodes;
+    const uint8_t *mine;
+} urwire__form_table;
+
+/* How to reach the numbers of a Version message before its layout is chosen: fixed bytes,
+ * then a string whose length prefix has `prefix` bytes (signed or not). */
+typedef struct urwire__version_skip {
+    uint8_t fixed;
+    uint8_t prefix;
+    bool is_signed;
+} urwire__version_skip;
 
 /* A top-level message type with a layout: a list of sub-packages, or a common header and a
  * subtype byte that chooses the layout of the rest. */
@@ -73,6 +195,7 @@ typedef struct urwire__message_type {
     uint8_t code;                   /* urwire_message_type */
     bool packages;                  /* a list of sub-packages (no header, no subtype) */
     size_t body;                    /* where the subtype's layout starts: the header's size */
+    const urwire__form_table *forms; /* its subtypes' */
     const urwire__span *header;     /* the header's fields, for a message too short for them */
     /* Reads the header into m->header and returns the subtype code. */
     int64_t (*read_header)(urwire_message *m);
@@ -93,13 +216,6 @@ typedef struct urwire__message_kind {
     urwire__visit_fn visit;
 } urwire__message_kind;
 
-/* A range of software versions; a missing bound is open. */
-typedef struct urwire__versions {
-    bool has_low;
-    urwire_sw_version low;
-    bool has_high;
-    urwire_sw_version high;
-} urwire__versions;
 
 /* How the data of a global-variable value type is laid out, whatever its code. */
 typedef enum urwire__layout {
@@ -128,9 +244,8 @@ typedef struct urwire__value_entry {
     uint8_t count;                  /* array items */
 } urwire__value_entry;
 
-/* The value types of a range of software versions. */
+/* The value types of a range of software versions (urwire__value_ranges, beside them). */
 typedef struct urwire__value_table {
-    urwire__versions versions;
     const urwire__value_entry *entries;
     size_t count;
 } urwire__value_table;
@@ -150,8 +265,9 @@ URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len);
 URWIRE__PRIVATE urwire_seq urwire__seq(const uint8_t *msg, size_t pos, urwire_sw_version version, int terminator);
 URWIRE__PRIVATE urwire_bytes urwire__seq_bytes(const urwire_seq *s);
 /* version.c */
-URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor);
+URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix);
 URWIRE__PRIVATE bool urwire__in_versions(urwire_sw_version v, const urwire__versions *range);
+URWIRE__PRIVATE size_t urwire__table_index(urwire_sw_version v, const urwire__versions *ranges, size_t count);
 /* format.c */
 URWIRE__PRIVATE size_t urwire__digits(char *buf, int64_t v);
 URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s);
@@ -182,8 +298,17 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
 /* kinds.c */
 URWIRE__PRIVATE const urwire__message_type *urwire__message_type_of(uint8_t code);
 URWIRE__PRIVATE const urwire__message_kind *urwire__message_kind_of(urwire_message_kind kind);
-URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(uint8_t type);
+URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(urwire_package_layout layout);
 URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_message *m);
+/* forms.c */
+URWIRE__PRIVATE size_t urwire__segment(uint64_t key);
+URWIRE__PRIVATE const urwire__form *urwire__mine(const urwire__form_table *t, size_t segment, size_t code,
+                                                bool *nearest);
+URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, size_t code, size_t segment, size_t size,
+                                                  urwire_sw_version *version, bool *by_length);
+URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out);
+/* decode.c */
+URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);
 /* visit.c */
 URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);
 URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v);
@@ -191,15 +316,8 @@ URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *
 /* ---- big-endian loads and stores ---------------------------------------------------------- */
 
 /* Every field is read with memcpy into an integer (one unaligned load) and a byte swap built of
- * shifts, which compilers fold into one instruction. They must be inlined to be fast: gcc does
- * so on its own at -O2 and -O3 but, at -Os, takes the shifts for more code than a call and
- * calls them; always_inline says what `inline` means here. Unused ones never warn (gcc does not
- * warn on an unused static inline function, clang does in a .c file unless told `unused`). */
-#if defined(__GNUC__)
-#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
-#else
-#define URWIRE__INLINE static inline
-#endif
+ * shifts, which compilers fold into one instruction. They must be inlined to be fast (see
+ * URWIRE__INLINE in private.h). */
 
 /* The host's byte order, a constant once optimised: 1 on a big-endian machine. */
 URWIRE__INLINE int urwire__host_is_big_endian(void)
@@ -347,18 +465,33 @@ URWIRE__PRIVATE urwire_bytes urwire__seq_bytes(const urwire_seq *s)
 
 const urwire_sw_version URWIRE_DEFAULT_VERSION = URWIRE_DEFAULT_VERSION_INIT;
 
-/* Below, equal to or above major.minor: -1, 0 or 1. */
-URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor)
+/* Below, equal to or above major.minor.bugfix: -1, 0 or 1 (part by part, as the spec's
+ * version tuples compare; an upper bound written "5.8" is 5.8.999). */
+URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix)
 {
     if (v.major != major)
         return v.major < major ? -1 : 1;
-    return v.minor < minor ? -1 : v.minor > minor;
+    if (v.minor != minor)
+        return v.minor < minor ? -1 : 1;
+    return v.bugfix < bugfix ? -1 : v.bugfix > bugfix;
 }
 
 URWIRE__PRIVATE bool urwire__in_versions(urwire_sw_version v, const urwire__versions *range)
 {
-    return (!range->has_low || urwire__version_cmp(v, range->low.major, range->low.minor) >= 0) &&
-           (!range->has_high || urwire__version_cmp(v, range->high.major, range->high.minor) <= 0);
+    return (!range->has_low || urwire__version_cmp(v, range->low.major, range->low.minor, range->low.bugfix) >= 0) &&
+           (!range->has_high ||
+            urwire__version_cmp(v, range->high.major, range->high.minor, range->high.bugfix) <= 0);
+}
+
+/* The first of count ranges that holds v, else the last: which table of a versioned enum (or
+ * of value types) a version reads. */
+URWIRE__PRIVATE size_t urwire__table_index(urwire_sw_version v, const urwire__versions *ranges, size_t count)
+{
+    size_t k;
+    for (k = 0; k + 1 < count; k++)
+        if (urwire__in_versions(v, &ranges[k]))
+            return k;
+    return count - 1;
 }
 
 static bool urwire__is_space(char c)
@@ -368,8 +501,9 @@ static bool urwire__is_space(char c)
 
 bool urwire_parse_version(const char *text, urwire_sw_version *out)
 {
-    /* As Python's urwire.parse_version: at least "major.minor", every part digits. */
-    long parts[2] = {0, 0};
+    /* As Python's urwire.parse_version: "major.minor" or "major.minor.bugfix", every part
+     * digits. */
+    long parts[3] = {0, 0, 0};
     size_t len = strlen(text), start = 0, i, nparts = 0, digits = 0;
     while (start < len && urwire__is_space(text[start]))
         start++;
@@ -377,14 +511,14 @@ bool urwire_parse_version(const char *text, urwire_sw_version *out)
         len--;
     for (i = start; i <= len; i++) {
         if (i == len || text[i] == '.') {
-            if (digits == 0)
+            if (digits == 0 || nparts == 3)
                 return false;
             nparts++;
             digits = 0;
         } else if (text[i] >= '0' && text[i] <= '9') {
             if (++digits > 6)
                 return false;  /* no real version has such parts; keeps the ints small */
-            if (nparts < 2)
+            if (nparts < 3)
                 parts[nparts] = parts[nparts] * 10 + (text[i] - '0');
         } else {
             return false;
@@ -394,6 +528,8 @@ bool urwire_parse_version(const char *text, urwire_sw_version *out)
         return false;
     out->major = (int)parts[0];
     out->minor = (int)parts[1];
+    out->bugfix = (int)parts[2];
+    out->assumed = false;
     return true;
 }
 
@@ -769,88 +905,124 @@ const char *urwire_message_type_name(int64_t value)
     }
 }
 
+/* package_type, software up to 1.7 */
+static const char *urwire__package_type_up_to_1_7_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_ROBOT_MODE_DATA: return "ROBOT_MODE_DATA";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_JOINT_DATA: return "JOINT_DATA";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_DATA: return "TOOL_DATA";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_MASTERBOARD_DATA: return "MASTERBOARD_DATA";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_CARTESIAN_INFO: return "CARTESIAN_INFO";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_LASER_POINTER: return "LASER_POINTER";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_CONFIGURATION_DATA: return "CONFIGURATION_DATA";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_FORCE_MODE_DATA: return "FORCE_MODE_DATA";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_ADDITIONAL_INFO: return "ADDITIONAL_INFO";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_NEEDED_FOR_CALIB_DATA: return "NEEDED_FOR_CALIB_DATA";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_SAFETY_DATA: return "SAFETY_DATA";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_COMM_INFO: return "TOOL_COMM_INFO";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_MODE_INFO: return "TOOL_MODE_INFO";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_SINGULARITY_INFO: return "SINGULARITY_INFO";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_PAYLOAD_INFO: return "PAYLOAD_INFO";
+    default: return NULL;
+    }
+}
+
+/* package_type, software 1.8 and later */
+static const char *urwire__package_type_1_8_on_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA: return "ROBOT_MODE_DATA";
+    case URWIRE_PACKAGE_TYPE_JOINT_DATA: return "JOINT_DATA";
+    case URWIRE_PACKAGE_TYPE_TOOL_DATA: return "TOOL_DATA";
+    case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA: return "MASTERBOARD_DATA";
+    case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO: return "CARTESIAN_INFO";
+    case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO: return "KINEMATICS_INFO";
+    case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA: return "CONFIGURATION_DATA";
+    case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA: return "FORCE_MODE_DATA";
+    case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO: return "ADDITIONAL_INFO";
+    case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA: return "NEEDED_FOR_CALIB_DATA";
+    case URWIRE_PACKAGE_TYPE_SAFETY_DATA: return "SAFETY_DATA";
+    case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO: return "TOOL_COMM_INFO";
+    case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO: return "TOOL_MODE_INFO";
+    case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO: return "SINGULARITY_INFO";
+    case URWIRE_PACKAGE_TYPE_PAYLOAD_INFO: return "PAYLOAD_INFO";
+    default: return NULL;
+    }
+}
+
+/* Each version's package_type table: the first whose range holds it, else the last. */
+static const urwire__versions urwire__package_type_ranges[] = {
+    {false, {0, 0, 0, false}, true, {1, 7, 999, false}},
+    {true, {1, 8, 0, false}, false, {0, 0, 0, false}},
+};
+
+static const char *(*const urwire__package_type_names[])(int64_t) = {
+    urwire__package_type_up_to_1_7_name,
+    urwire__package_type_1_8_on_name,
+};
+
 const char *urwire_package_type_name(urwire_sw_version version, int64_t code)
 {
-if (1 && urwire__version_cmp(version, 1, 7) <= 0) {
-        switch (code) {
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_ROBOT_MODE_DATA: return "ROBOT_MODE_DATA";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_JOINT_DATA: return "JOINT_DATA";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_DATA: return "TOOL_DATA";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_MASTERBOARD_DATA: return "MASTERBOARD_DATA";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_CARTESIAN_INFO: return "CARTESIAN_INFO";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_LASER_POINTER: return "LASER_POINTER";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_CONFIGURATION_DATA: return "CONFIGURATION_DATA";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_FORCE_MODE_DATA: return "FORCE_MODE_DATA";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_ADDITIONAL_INFO: return "ADDITIONAL_INFO";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_NEEDED_FOR_CALIB_DATA: return "NEEDED_FOR_CALIB_DATA";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_SAFETY_DATA: return "SAFETY_DATA";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_COMM_INFO: return "TOOL_COMM_INFO";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_MODE_INFO: return "TOOL_MODE_INFO";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_SINGULARITY_INFO: return "SINGULARITY_INFO";
-        case URWIRE_PACKAGE_TYPE_UP_TO_1_7_PAYLOAD_INFO: return "PAYLOAD_INFO";
-        default: return NULL;
-        }
-    }
-else if (urwire__version_cmp(version, 1, 8) >= 0 && 1) {
-        switch (code) {
-        case URWIRE_PACKAGE_TYPE_1_8_ON_ROBOT_MODE_DATA: return "ROBOT_MODE_DATA";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_JOINT_DATA: return "JOINT_DATA";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_TOOL_DATA: return "TOOL_DATA";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_MASTERBOARD_DATA: return "MASTERBOARD_DATA";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_CARTESIAN_INFO: return "CARTESIAN_INFO";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_KINEMATICS_INFO: return "KINEMATICS_INFO";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_CONFIGURATION_DATA: return "CONFIGURATION_DATA";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_FORCE_MODE_DATA: return "FORCE_MODE_DATA";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_ADDITIONAL_INFO: return "ADDITIONAL_INFO";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_NEEDED_FOR_CALIB_DATA: return "NEEDED_FOR_CALIB_DATA";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_SAFETY_DATA: return "SAFETY_DATA";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_TOOL_COMM_INFO: return "TOOL_COMM_INFO";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_TOOL_MODE_INFO: return "TOOL_MODE_INFO";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_SINGULARITY_INFO: return "SINGULARITY_INFO";
-        case URWIRE_PACKAGE_TYPE_1_8_ON_PAYLOAD_INFO: return "PAYLOAD_INFO";
-        default: return NULL;
-        }
-    }
-    return NULL;
+    return urwire__package_type_names[urwire__table_index(version, urwire__package_type_ranges,
+                                                          URWIRE__COUNT(urwire__package_type_ranges))](code);
 }
+
+/* robot_message_type, software up to 1.8 */
+static const char *urwire__robot_message_type_up_to_1_8_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_TEXT: return "TEXT";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL: return "LABEL";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_POPUP: return "POPUP";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VERSION: return "VERSION";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_SAFETY_MODE: return "SAFETY_MODE";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_ERROR_CODE: return "ERROR_CODE";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_KEY: return "KEY";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR: return "VAR";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_REQUEST_VALUE: return "REQUEST_VALUE";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_RUNTIME_EXCEPTION: return "RUNTIME_EXCEPTION";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_UNDOCUMENTED_12: return "UNDOCUMENTED_12";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_PROGRAM_LABEL_THREADS: return "PROGRAM_LABEL_THREADS";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_HARDWARE_INFO: return "HARDWARE_INFO";
+    default: return NULL;
+    }
+}
+
+/* robot_message_type, software 1.9 and later */
+static const char *urwire__robot_message_type_1_9_on_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_ROBOT_MESSAGE_TYPE_TEXT: return "TEXT";
+    case URWIRE_ROBOT_MESSAGE_TYPE_POPUP: return "POPUP";
+    case URWIRE_ROBOT_MESSAGE_TYPE_VERSION: return "VERSION";
+    case URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE: return "SAFETY_MODE";
+    case URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE: return "ERROR_CODE";
+    case URWIRE_ROBOT_MESSAGE_TYPE_KEY: return "KEY";
+    case URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE: return "REQUEST_VALUE";
+    case URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION: return "RUNTIME_EXCEPTION";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UNDOCUMENTED_12: return "UNDOCUMENTED_12";
+    case URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS: return "PROGRAM_LABEL_THREADS";
+    case URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO: return "HARDWARE_INFO";
+    default: return NULL;
+    }
+}
+
+/* Each version's robot_message_type table: the first whose range holds it, else the last. */
+static const urwire__versions urwire__robot_message_type_ranges[] = {
+    {false, {0, 0, 0, false}, true, {1, 8, 999, false}},
+    {true, {1, 9, 0, false}, false, {0, 0, 0, false}},
+};
+
+static const char *(*const urwire__robot_message_type_names[])(int64_t) = {
+    urwire__robot_message_type_up_to_1_8_name,
+    urwire__robot_message_type_1_9_on_name,
+};
 
 const char *urwire_robot_message_type_name(urwire_sw_version version, int64_t code)
 {
-if (1 && urwire__version_cmp(version, 1, 8) <= 0) {
-        switch (code) {
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_TEXT: return "TEXT";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL: return "LABEL";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_POPUP: return "POPUP";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VERSION: return "VERSION";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_SAFETY_MODE: return "SAFETY_MODE";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_ERROR_CODE: return "ERROR_CODE";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_KEY: return "KEY";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR: return "VAR";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_REQUEST_VALUE: return "REQUEST_VALUE";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_RUNTIME_EXCEPTION: return "RUNTIME_EXCEPTION";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_UNDOCUMENTED_12: return "UNDOCUMENTED_12";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_PROGRAM_LABEL_THREADS: return "PROGRAM_LABEL_THREADS";
-        case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_HARDWARE_INFO: return "HARDWARE_INFO";
-        default: return NULL;
-        }
-    }
-else if (urwire__version_cmp(version, 1, 9) >= 0 && 1) {
-        switch (code) {
-        case URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_TEXT: return "TEXT";
-        case URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_POPUP: return "POPUP";
-        case URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_VERSION: return "VERSION";
-        case URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_SAFETY_MODE: return "SAFETY_MODE";
-        case URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_ERROR_CODE: return "ERROR_CODE";
-        case URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_KEY: return "KEY";
-        case URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_REQUEST_VALUE: return "REQUEST_VALUE";
-        case URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_RUNTIME_EXCEPTION: return "RUNTIME_EXCEPTION";
-        case URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_UNDOCUMENTED_12: return "UNDOCUMENTED_12";
-        case URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_PROGRAM_LABEL_THREADS: return "PROGRAM_LABEL_THREADS";
-        case URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_HARDWARE_INFO: return "HARDWARE_INFO";
-        default: return NULL;
-        }
-    }
-    return NULL;
+    return urwire__robot_message_type_names[urwire__table_index(version, urwire__robot_message_type_ranges,
+                                                          URWIRE__COUNT(urwire__robot_message_type_ranges))](code);
 }
 
 const char *urwire_program_state_message_type_name(int64_t value)
@@ -874,120 +1046,166 @@ const char *urwire_control_mode_name(int64_t value)
     }
 }
 
+/* robot_mode, software up to 1.8 */
+static const char *urwire__robot_mode_up_to_1_8_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_RUNNING: return "RUNNING";
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_FREEDRIVE: return "FREEDRIVE";
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_READY: return "READY";
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_INITIALIZING: return "INITIALIZING";
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_SECURITY_STOPPED: return "SECURITY_STOPPED";
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_EMERGENCY_STOPPED: return "EMERGENCY_STOPPED";
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_FATAL_ERROR: return "FATAL_ERROR";
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_NO_POWER: return "NO_POWER";
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_NOT_CONNECTED: return "NOT_CONNECTED";
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_SHUTDOWN: return "SHUTDOWN";
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_SAFEGUARD_STOP: return "SAFEGUARD_STOP";
+    default: return NULL;
+    }
+}
+
+/* robot_mode, software 3.0 and later */
+static const char *urwire__robot_mode_3_0_on_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_ROBOT_MODE_NO_CONTROLLER: return "NO_CONTROLLER";
+    case URWIRE_ROBOT_MODE_DISCONNECTED: return "DISCONNECTED";
+    case URWIRE_ROBOT_MODE_CONFIRM_SAFETY: return "CONFIRM_SAFETY";
+    case URWIRE_ROBOT_MODE_BOOTING: return "BOOTING";
+    case URWIRE_ROBOT_MODE_POWER_OFF: return "POWER_OFF";
+    case URWIRE_ROBOT_MODE_POWER_ON: return "POWER_ON";
+    case URWIRE_ROBOT_MODE_IDLE: return "IDLE";
+    case URWIRE_ROBOT_MODE_BACKDRIVE: return "BACKDRIVE";
+    case URWIRE_ROBOT_MODE_RUNNING: return "RUNNING";
+    case URWIRE_ROBOT_MODE_UPDATING_FIRMWARE: return "UPDATING_FIRMWARE";
+    default: return NULL;
+    }
+}
+
+/* Each version's robot_mode table: the first whose range holds it, else the last. */
+static const urwire__versions urwire__robot_mode_ranges[] = {
+    {false, {0, 0, 0, false}, true, {1, 8, 999, false}},
+    {true, {3, 0, 0, false}, false, {0, 0, 0, false}},
+};
+
+static const char *(*const urwire__robot_mode_names[])(int64_t) = {
+    urwire__robot_mode_up_to_1_8_name,
+    urwire__robot_mode_3_0_on_name,
+};
+
 const char *urwire_robot_mode_name(urwire_sw_version version, int64_t code)
 {
-if (1 && urwire__version_cmp(version, 1, 8) <= 0) {
-        switch (code) {
-        case URWIRE_ROBOT_MODE_UP_TO_1_8_RUNNING: return "RUNNING";
-        case URWIRE_ROBOT_MODE_UP_TO_1_8_FREEDRIVE: return "FREEDRIVE";
-        case URWIRE_ROBOT_MODE_UP_TO_1_8_READY: return "READY";
-        case URWIRE_ROBOT_MODE_UP_TO_1_8_INITIALIZING: return "INITIALIZING";
-        case URWIRE_ROBOT_MODE_UP_TO_1_8_SECURITY_STOPPED: return "SECURITY_STOPPED";
-        case URWIRE_ROBOT_MODE_UP_TO_1_8_EMERGENCY_STOPPED: return "EMERGENCY_STOPPED";
-        case URWIRE_ROBOT_MODE_UP_TO_1_8_FATAL_ERROR: return "FATAL_ERROR";
-        case URWIRE_ROBOT_MODE_UP_TO_1_8_NO_POWER: return "NO_POWER";
-        case URWIRE_ROBOT_MODE_UP_TO_1_8_NOT_CONNECTED: return "NOT_CONNECTED";
-        case URWIRE_ROBOT_MODE_UP_TO_1_8_SHUTDOWN: return "SHUTDOWN";
-        case URWIRE_ROBOT_MODE_UP_TO_1_8_SAFEGUARD_STOP: return "SAFEGUARD_STOP";
-        default: return NULL;
-        }
-    }
-else if (urwire__version_cmp(version, 3, 0) >= 0 && 1) {
-        switch (code) {
-        case URWIRE_ROBOT_MODE_3_0_ON_NO_CONTROLLER: return "NO_CONTROLLER";
-        case URWIRE_ROBOT_MODE_3_0_ON_DISCONNECTED: return "DISCONNECTED";
-        case URWIRE_ROBOT_MODE_3_0_ON_CONFIRM_SAFETY: return "CONFIRM_SAFETY";
-        case URWIRE_ROBOT_MODE_3_0_ON_BOOTING: return "BOOTING";
-        case URWIRE_ROBOT_MODE_3_0_ON_POWER_OFF: return "POWER_OFF";
-        case URWIRE_ROBOT_MODE_3_0_ON_POWER_ON: return "POWER_ON";
-        case URWIRE_ROBOT_MODE_3_0_ON_IDLE: return "IDLE";
-        case URWIRE_ROBOT_MODE_3_0_ON_BACKDRIVE: return "BACKDRIVE";
-        case URWIRE_ROBOT_MODE_3_0_ON_RUNNING: return "RUNNING";
-        case URWIRE_ROBOT_MODE_3_0_ON_UPDATING_FIRMWARE: return "UPDATING_FIRMWARE";
-        default: return NULL;
-        }
-    }
-    return NULL;
+    return urwire__robot_mode_names[urwire__table_index(version, urwire__robot_mode_ranges,
+                                                          URWIRE__COUNT(urwire__robot_mode_ranges))](code);
 }
+
+/* joint_mode, software up to 1.8 */
+static const char *urwire__joint_mode_up_to_1_8_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_JOINT_MODE_UP_TO_1_8_PART_D_CALIBRATION: return "PART_D_CALIBRATION";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_BACKDRIVE: return "BACKDRIVE";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_POWER_OFF: return "POWER_OFF";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_EMERGENCY_STOPPED: return "EMERGENCY_STOPPED";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_CALVAL_INITIALIZATION: return "CALVAL_INITIALIZATION";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_ERROR: return "ERROR";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_FREEDRIVE: return "FREEDRIVE";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_SIMULATED: return "SIMULATED";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_NOT_RESPONDING: return "NOT_RESPONDING";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_ADC_CALIBRATION: return "ADC_CALIBRATION";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_DEAD_COMMUTATION: return "DEAD_COMMUTATION";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_BOOTLOADER: return "BOOTLOADER";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_CALIBRATION: return "CALIBRATION";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_STOPPED: return "STOPPED";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_FAULT: return "FAULT";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_RUNNING: return "RUNNING";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_INITIALIZATION: return "INITIALIZATION";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_IDLE: return "IDLE";
+    default: return NULL;
+    }
+}
+
+/* joint_mode, software 3.0 to 3.15 */
+static const char *urwire__joint_mode_3_0_to_3_15_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_SHUTTING_DOWN: return "SHUTTING_DOWN";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_PART_D_CALIBRATION: return "PART_D_CALIBRATION";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_BACKDRIVE: return "BACKDRIVE";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_POWER_OFF: return "POWER_OFF";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_NOT_RESPONDING: return "NOT_RESPONDING";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_BOOTING: return "BOOTING";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_PART_D_CALIBRATION_ERROR: return "PART_D_CALIBRATION_ERROR";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_BOOTLOADER: return "BOOTLOADER";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_CALIBRATION: return "CALIBRATION";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_FAULT: return "FAULT";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_RUNNING: return "RUNNING";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_IDLE: return "IDLE";
+    default: return NULL;
+    }
+}
+
+/* joint_mode, software 5.0 to 5.0 */
+static const char *urwire__joint_mode_5_0_to_5_0_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_RESET: return "RESET";
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_SHUTTING_DOWN: return "SHUTTING_DOWN";
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_BACKDRIVE: return "BACKDRIVE";
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_POWER_OFF: return "POWER_OFF";
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_NOT_RESPONDING: return "NOT_RESPONDING";
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_BOOTING: return "BOOTING";
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_VIOLATION: return "VIOLATION";
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_FAULT: return "FAULT";
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_RUNNING: return "RUNNING";
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_IDLE: return "IDLE";
+    default: return NULL;
+    }
+}
+
+/* joint_mode, software 5.1 and later */
+static const char *urwire__joint_mode_5_1_on_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_JOINT_MODE_RESET: return "RESET";
+    case URWIRE_JOINT_MODE_SHUTTING_DOWN: return "SHUTTING_DOWN";
+    case URWIRE_JOINT_MODE_BACKDRIVE: return "BACKDRIVE";
+    case URWIRE_JOINT_MODE_POWER_OFF: return "POWER_OFF";
+    case URWIRE_JOINT_MODE_READY_FOR_POWER_OFF: return "READY_FOR_POWER_OFF";
+    case URWIRE_JOINT_MODE_NOT_RESPONDING: return "NOT_RESPONDING";
+    case URWIRE_JOINT_MODE_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
+    case URWIRE_JOINT_MODE_BOOTING: return "BOOTING";
+    case URWIRE_JOINT_MODE_VIOLATION: return "VIOLATION";
+    case URWIRE_JOINT_MODE_FAULT: return "FAULT";
+    case URWIRE_JOINT_MODE_RUNNING: return "RUNNING";
+    case URWIRE_JOINT_MODE_IDLE: return "IDLE";
+    default: return NULL;
+    }
+}
+
+/* Each version's joint_mode table: the first whose range holds it, else the last. */
+static const urwire__versions urwire__joint_mode_ranges[] = {
+    {false, {0, 0, 0, false}, true, {1, 8, 999, false}},
+    {true, {3, 0, 0, false}, true, {3, 15, 999, false}},
+    {true, {5, 0, 0, false}, true, {5, 0, 999, false}},
+    {true, {5, 1, 0, false}, false, {0, 0, 0, false}},
+};
+
+static const char *(*const urwire__joint_mode_names[])(int64_t) = {
+    urwire__joint_mode_up_to_1_8_name,
+    urwire__joint_mode_3_0_to_3_15_name,
+    urwire__joint_mode_5_0_to_5_0_name,
+    urwire__joint_mode_5_1_on_name,
+};
 
 const char *urwire_joint_mode_name(urwire_sw_version version, int64_t code)
 {
-if (1 && urwire__version_cmp(version, 1, 8) <= 0) {
-        switch (code) {
-        case URWIRE_JOINT_MODE_UP_TO_1_8_PART_D_CALIBRATION: return "PART_D_CALIBRATION";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_BACKDRIVE: return "BACKDRIVE";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_POWER_OFF: return "POWER_OFF";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_EMERGENCY_STOPPED: return "EMERGENCY_STOPPED";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_CALVAL_INITIALIZATION: return "CALVAL_INITIALIZATION";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_ERROR: return "ERROR";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_FREEDRIVE: return "FREEDRIVE";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_SIMULATED: return "SIMULATED";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_NOT_RESPONDING: return "NOT_RESPONDING";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_ADC_CALIBRATION: return "ADC_CALIBRATION";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_DEAD_COMMUTATION: return "DEAD_COMMUTATION";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_BOOTLOADER: return "BOOTLOADER";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_CALIBRATION: return "CALIBRATION";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_STOPPED: return "STOPPED";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_FAULT: return "FAULT";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_RUNNING: return "RUNNING";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_INITIALIZATION: return "INITIALIZATION";
-        case URWIRE_JOINT_MODE_UP_TO_1_8_IDLE: return "IDLE";
-        default: return NULL;
-        }
-    }
-else if (urwire__version_cmp(version, 3, 0) >= 0 && urwire__version_cmp(version, 3, 15) <= 0) {
-        switch (code) {
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_SHUTTING_DOWN: return "SHUTTING_DOWN";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_PART_D_CALIBRATION: return "PART_D_CALIBRATION";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_BACKDRIVE: return "BACKDRIVE";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_POWER_OFF: return "POWER_OFF";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_NOT_RESPONDING: return "NOT_RESPONDING";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_BOOTING: return "BOOTING";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_PART_D_CALIBRATION_ERROR: return "PART_D_CALIBRATION_ERROR";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_BOOTLOADER: return "BOOTLOADER";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_CALIBRATION: return "CALIBRATION";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_FAULT: return "FAULT";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_RUNNING: return "RUNNING";
-        case URWIRE_JOINT_MODE_3_0_TO_3_15_IDLE: return "IDLE";
-        default: return NULL;
-        }
-    }
-else if (urwire__version_cmp(version, 5, 0) >= 0 && urwire__version_cmp(version, 5, 0) <= 0) {
-        switch (code) {
-        case URWIRE_JOINT_MODE_5_0_TO_5_0_RESET: return "RESET";
-        case URWIRE_JOINT_MODE_5_0_TO_5_0_SHUTTING_DOWN: return "SHUTTING_DOWN";
-        case URWIRE_JOINT_MODE_5_0_TO_5_0_BACKDRIVE: return "BACKDRIVE";
-        case URWIRE_JOINT_MODE_5_0_TO_5_0_POWER_OFF: return "POWER_OFF";
-        case URWIRE_JOINT_MODE_5_0_TO_5_0_NOT_RESPONDING: return "NOT_RESPONDING";
-        case URWIRE_JOINT_MODE_5_0_TO_5_0_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
-        case URWIRE_JOINT_MODE_5_0_TO_5_0_BOOTING: return "BOOTING";
-        case URWIRE_JOINT_MODE_5_0_TO_5_0_VIOLATION: return "VIOLATION";
-        case URWIRE_JOINT_MODE_5_0_TO_5_0_FAULT: return "FAULT";
-        case URWIRE_JOINT_MODE_5_0_TO_5_0_RUNNING: return "RUNNING";
-        case URWIRE_JOINT_MODE_5_0_TO_5_0_IDLE: return "IDLE";
-        default: return NULL;
-        }
-    }
-else if (urwire__version_cmp(version, 5, 1) >= 0 && 1) {
-        switch (code) {
-        case URWIRE_JOINT_MODE_5_1_ON_RESET: return "RESET";
-        case URWIRE_JOINT_MODE_5_1_ON_SHUTTING_DOWN: return "SHUTTING_DOWN";
-        case URWIRE_JOINT_MODE_5_1_ON_BACKDRIVE: return "BACKDRIVE";
-        case URWIRE_JOINT_MODE_5_1_ON_POWER_OFF: return "POWER_OFF";
-        case URWIRE_JOINT_MODE_5_1_ON_READY_FOR_POWER_OFF: return "READY_FOR_POWER_OFF";
-        case URWIRE_JOINT_MODE_5_1_ON_NOT_RESPONDING: return "NOT_RESPONDING";
-        case URWIRE_JOINT_MODE_5_1_ON_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
-        case URWIRE_JOINT_MODE_5_1_ON_BOOTING: return "BOOTING";
-        case URWIRE_JOINT_MODE_5_1_ON_VIOLATION: return "VIOLATION";
-        case URWIRE_JOINT_MODE_5_1_ON_FAULT: return "FAULT";
-        case URWIRE_JOINT_MODE_5_1_ON_RUNNING: return "RUNNING";
-        case URWIRE_JOINT_MODE_5_1_ON_IDLE: return "IDLE";
-        default: return NULL;
-        }
-    }
-    return NULL;
+    return urwire__joint_mode_names[urwire__table_index(version, urwire__joint_mode_ranges,
+                                                          URWIRE__COUNT(urwire__joint_mode_ranges))](code);
 }
 
 const char *urwire_tool_mode_name(int64_t value)
@@ -1006,67 +1224,85 @@ const char *urwire_tool_mode_name(int64_t value)
     }
 }
 
+/* message_source, software up to 1.8 */
+static const char *urwire__message_source_up_to_1_8_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_BASE: return "BASE";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SHOULDER: return "SHOULDER";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_ELBOW: return "ELBOW";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST1: return "WRIST1";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST2: return "WRIST2";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST3: return "WRIST3";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_TOOL: return "TOOL";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SAFETYSYS: return "SAFETYSYS";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_CONTROLLER: return "CONTROLLER";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_RTMACHINE: return "RTMACHINE";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SIMULATED_ROBOT: return "SIMULATED_ROBOT";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_GUI: return "GUI";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_CONTROL_BOX: return "CONTROL_BOX";
+    default: return NULL;
+    }
+}
+
+/* message_source, software 3.0 and later */
+static const char *urwire__message_source_3_0_on_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_MESSAGE_SOURCE_JOINT_0_FPGA: return "JOINT_0_FPGA";
+    case URWIRE_MESSAGE_SOURCE_JOINT_0_A: return "JOINT_0_A";
+    case URWIRE_MESSAGE_SOURCE_JOINT_0_B: return "JOINT_0_B";
+    case URWIRE_MESSAGE_SOURCE_JOINT_1_FPGA: return "JOINT_1_FPGA";
+    case URWIRE_MESSAGE_SOURCE_JOINT_1_A: return "JOINT_1_A";
+    case URWIRE_MESSAGE_SOURCE_JOINT_1_B: return "JOINT_1_B";
+    case URWIRE_MESSAGE_SOURCE_JOINT_2_FPGA: return "JOINT_2_FPGA";
+    case URWIRE_MESSAGE_SOURCE_JOINT_2_A: return "JOINT_2_A";
+    case URWIRE_MESSAGE_SOURCE_JOINT_2_B: return "JOINT_2_B";
+    case URWIRE_MESSAGE_SOURCE_JOINT_3_FPGA: return "JOINT_3_FPGA";
+    case URWIRE_MESSAGE_SOURCE_JOINT_3_A: return "JOINT_3_A";
+    case URWIRE_MESSAGE_SOURCE_JOINT_3_B: return "JOINT_3_B";
+    case URWIRE_MESSAGE_SOURCE_JOINT_4_FPGA: return "JOINT_4_FPGA";
+    case URWIRE_MESSAGE_SOURCE_JOINT_4_A: return "JOINT_4_A";
+    case URWIRE_MESSAGE_SOURCE_JOINT_4_B: return "JOINT_4_B";
+    case URWIRE_MESSAGE_SOURCE_JOINT_5_FPGA: return "JOINT_5_FPGA";
+    case URWIRE_MESSAGE_SOURCE_JOINT_5_A: return "JOINT_5_A";
+    case URWIRE_MESSAGE_SOURCE_JOINT_5_B: return "JOINT_5_B";
+    case URWIRE_MESSAGE_SOURCE_TOOL_FPGA: return "TOOL_FPGA";
+    case URWIRE_MESSAGE_SOURCE_TOOL_A: return "TOOL_A";
+    case URWIRE_MESSAGE_SOURCE_TOOL_B: return "TOOL_B";
+    case URWIRE_MESSAGE_SOURCE_EUROMAP_FPGA: return "EUROMAP_FPGA";
+    case URWIRE_MESSAGE_SOURCE_EUROMAP_A: return "EUROMAP_A";
+    case URWIRE_MESSAGE_SOURCE_EUROMAP_B: return "EUROMAP_B";
+    case URWIRE_MESSAGE_SOURCE_TEACH_PENDANT_A: return "TEACH_PENDANT_A";
+    case URWIRE_MESSAGE_SOURCE_TEACH_PENDANT_B: return "TEACH_PENDANT_B";
+    case URWIRE_MESSAGE_SOURCE_SCB_FPGA: return "SCB_FPGA";
+    case URWIRE_MESSAGE_SOURCE_SAFETY_PROCESSOR_UA: return "SAFETY_PROCESSOR_UA";
+    case URWIRE_MESSAGE_SOURCE_SAFETY_PROCESSOR_UB: return "SAFETY_PROCESSOR_UB";
+    case URWIRE_MESSAGE_SOURCE_ROBOTINTERFACE: return "ROBOTINTERFACE";
+    case URWIRE_MESSAGE_SOURCE_RTMACHINE: return "RTMACHINE";
+    case URWIRE_MESSAGE_SOURCE_SIMULATED_ROBOT: return "SIMULATED_ROBOT";
+    case URWIRE_MESSAGE_SOURCE_GUI: return "GUI";
+    case URWIRE_MESSAGE_SOURCE_CONTROLLER: return "CONTROLLER";
+    case URWIRE_MESSAGE_SOURCE_RTDE: return "RTDE";
+    default: return NULL;
+    }
+}
+
+/* Each version's message_source table: the first whose range holds it, else the last. */
+static const urwire__versions urwire__message_source_ranges[] = {
+    {false, {0, 0, 0, false}, true, {1, 8, 999, false}},
+    {true, {3, 0, 0, false}, false, {0, 0, 0, false}},
+};
+
+static const char *(*const urwire__message_source_names[])(int64_t) = {
+    urwire__message_source_up_to_1_8_name,
+    urwire__message_source_3_0_on_name,
+};
+
 const char *urwire_message_source_name(urwire_sw_version version, int64_t code)
 {
-if (1 && urwire__version_cmp(version, 1, 8) <= 0) {
-        switch (code) {
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_BASE: return "BASE";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SHOULDER: return "SHOULDER";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_ELBOW: return "ELBOW";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST1: return "WRIST1";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST2: return "WRIST2";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST3: return "WRIST3";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_TOOL: return "TOOL";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SAFETYSYS: return "SAFETYSYS";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_CONTROLLER: return "CONTROLLER";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_RTMACHINE: return "RTMACHINE";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SIMULATED_ROBOT: return "SIMULATED_ROBOT";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_GUI: return "GUI";
-        case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_CONTROL_BOX: return "CONTROL_BOX";
-        default: return NULL;
-        }
-    }
-else if (urwire__version_cmp(version, 3, 0) >= 0 && 1) {
-        switch (code) {
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_0_FPGA: return "JOINT_0_FPGA";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_0_A: return "JOINT_0_A";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_0_B: return "JOINT_0_B";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_1_FPGA: return "JOINT_1_FPGA";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_1_A: return "JOINT_1_A";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_1_B: return "JOINT_1_B";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_2_FPGA: return "JOINT_2_FPGA";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_2_A: return "JOINT_2_A";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_2_B: return "JOINT_2_B";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_3_FPGA: return "JOINT_3_FPGA";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_3_A: return "JOINT_3_A";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_3_B: return "JOINT_3_B";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_4_FPGA: return "JOINT_4_FPGA";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_4_A: return "JOINT_4_A";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_4_B: return "JOINT_4_B";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_5_FPGA: return "JOINT_5_FPGA";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_5_A: return "JOINT_5_A";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_5_B: return "JOINT_5_B";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_TOOL_FPGA: return "TOOL_FPGA";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_TOOL_A: return "TOOL_A";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_TOOL_B: return "TOOL_B";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_EUROMAP_FPGA: return "EUROMAP_FPGA";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_EUROMAP_A: return "EUROMAP_A";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_EUROMAP_B: return "EUROMAP_B";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_TEACH_PENDANT_A: return "TEACH_PENDANT_A";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_TEACH_PENDANT_B: return "TEACH_PENDANT_B";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_SCB_FPGA: return "SCB_FPGA";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_SAFETY_PROCESSOR_UA: return "SAFETY_PROCESSOR_UA";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_SAFETY_PROCESSOR_UB: return "SAFETY_PROCESSOR_UB";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_ROBOTINTERFACE: return "ROBOTINTERFACE";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_RTMACHINE: return "RTMACHINE";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_SIMULATED_ROBOT: return "SIMULATED_ROBOT";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_GUI: return "GUI";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_CONTROLLER: return "CONTROLLER";
-        case URWIRE_MESSAGE_SOURCE_3_0_ON_RTDE: return "RTDE";
-        default: return NULL;
-        }
-    }
-    return NULL;
+    return urwire__message_source_names[urwire__table_index(version, urwire__message_source_ranges,
+                                                          URWIRE__COUNT(urwire__message_source_ranges))](code);
 }
 
 const char *urwire_safety_mode_name(int64_t value)
@@ -1189,51 +1425,74 @@ const char *urwire_tool_flange_type_name(int64_t value)
     }
 }
 
+/* value_type, software up to 3.2 */
+static const char *urwire__value_type_up_to_3_2_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_NONE: return "NONE";
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_STRING: return "STRING";
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_LIST: return "LIST";
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_POSE: return "POSE";
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_BOOL: return "BOOL";
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_NUM: return "NUM";
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_INT: return "INT";
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_FLOAT: return "FLOAT";
+    default: return NULL;
+    }
+}
+
+/* value_type, software 3.3 to 5.8 */
+static const char *urwire__value_type_3_3_to_5_8_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_NONE: return "NONE";
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_CONST_STRING: return "CONST_STRING";
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_VAR_STRING: return "VAR_STRING";
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_LIST: return "LIST";
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_POSE: return "POSE";
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_BOOL: return "BOOL";
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_NUM: return "NUM";
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_INT: return "INT";
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_FLOAT: return "FLOAT";
+    default: return NULL;
+    }
+}
+
+/* value_type, software 5.9 and later */
+static const char *urwire__value_type_5_9_on_name(int64_t code)
+{
+    switch (code) {
+    case URWIRE_VALUE_TYPE_NONE: return "NONE";
+    case URWIRE_VALUE_TYPE_CONST_STRING: return "CONST_STRING";
+    case URWIRE_VALUE_TYPE_VAR_STRING: return "VAR_STRING";
+    case URWIRE_VALUE_TYPE_POSE: return "POSE";
+    case URWIRE_VALUE_TYPE_BOOL: return "BOOL";
+    case URWIRE_VALUE_TYPE_NUM: return "NUM";
+    case URWIRE_VALUE_TYPE_INT: return "INT";
+    case URWIRE_VALUE_TYPE_FLOAT: return "FLOAT";
+    case URWIRE_VALUE_TYPE_LIST: return "LIST";
+    case URWIRE_VALUE_TYPE_MATRIX: return "MATRIX";
+    default: return NULL;
+    }
+}
+
+/* Each version's value_type table: the first whose range holds it, else the last. */
+static const urwire__versions urwire__value_type_ranges[] = {
+    {false, {0, 0, 0, false}, true, {3, 2, 999, false}},
+    {true, {3, 3, 0, false}, true, {5, 8, 999, false}},
+    {true, {5, 9, 0, false}, false, {0, 0, 0, false}},
+};
+
+static const char *(*const urwire__value_type_names[])(int64_t) = {
+    urwire__value_type_up_to_3_2_name,
+    urwire__value_type_3_3_to_5_8_name,
+    urwire__value_type_5_9_on_name,
+};
+
 const char *urwire_value_type_name(urwire_sw_version version, int64_t code)
 {
-if (1 && urwire__version_cmp(version, 3, 2) <= 0) {
-        switch (code) {
-        case URWIRE_VALUE_TYPE_UP_TO_3_2_NONE: return "NONE";
-        case URWIRE_VALUE_TYPE_UP_TO_3_2_STRING: return "STRING";
-        case URWIRE_VALUE_TYPE_UP_TO_3_2_LIST: return "LIST";
-        case URWIRE_VALUE_TYPE_UP_TO_3_2_POSE: return "POSE";
-        case URWIRE_VALUE_TYPE_UP_TO_3_2_BOOL: return "BOOL";
-        case URWIRE_VALUE_TYPE_UP_TO_3_2_NUM: return "NUM";
-        case URWIRE_VALUE_TYPE_UP_TO_3_2_INT: return "INT";
-        case URWIRE_VALUE_TYPE_UP_TO_3_2_FLOAT: return "FLOAT";
-        default: return NULL;
-        }
-    }
-else if (urwire__version_cmp(version, 3, 3) >= 0 && urwire__version_cmp(version, 5, 8) <= 0) {
-        switch (code) {
-        case URWIRE_VALUE_TYPE_3_3_TO_5_8_NONE: return "NONE";
-        case URWIRE_VALUE_TYPE_3_3_TO_5_8_CONST_STRING: return "CONST_STRING";
-        case URWIRE_VALUE_TYPE_3_3_TO_5_8_VAR_STRING: return "VAR_STRING";
-        case URWIRE_VALUE_TYPE_3_3_TO_5_8_LIST: return "LIST";
-        case URWIRE_VALUE_TYPE_3_3_TO_5_8_POSE: return "POSE";
-        case URWIRE_VALUE_TYPE_3_3_TO_5_8_BOOL: return "BOOL";
-        case URWIRE_VALUE_TYPE_3_3_TO_5_8_NUM: return "NUM";
-        case URWIRE_VALUE_TYPE_3_3_TO_5_8_INT: return "INT";
-        case URWIRE_VALUE_TYPE_3_3_TO_5_8_FLOAT: return "FLOAT";
-        default: return NULL;
-        }
-    }
-else if (urwire__version_cmp(version, 5, 9) >= 0 && 1) {
-        switch (code) {
-        case URWIRE_VALUE_TYPE_5_9_ON_NONE: return "NONE";
-        case URWIRE_VALUE_TYPE_5_9_ON_CONST_STRING: return "CONST_STRING";
-        case URWIRE_VALUE_TYPE_5_9_ON_VAR_STRING: return "VAR_STRING";
-        case URWIRE_VALUE_TYPE_5_9_ON_POSE: return "POSE";
-        case URWIRE_VALUE_TYPE_5_9_ON_BOOL: return "BOOL";
-        case URWIRE_VALUE_TYPE_5_9_ON_NUM: return "NUM";
-        case URWIRE_VALUE_TYPE_5_9_ON_INT: return "INT";
-        case URWIRE_VALUE_TYPE_5_9_ON_FLOAT: return "FLOAT";
-        case URWIRE_VALUE_TYPE_5_9_ON_LIST: return "LIST";
-        case URWIRE_VALUE_TYPE_5_9_ON_MATRIX: return "MATRIX";
-        default: return NULL;
-        }
-    }
-    return NULL;
+    return urwire__value_type_names[urwire__table_index(version, urwire__value_type_ranges,
+                                                          URWIRE__COUNT(urwire__value_type_ranges))](code);
 }
 
 /* ---- global-variable value types ---------------------------------------------------------- */
@@ -1278,10 +1537,16 @@ static const urwire__value_entry urwire__values_5_9_on[] = {
 };
 
 /* Each version's table: the first whose range holds it, else the last. */
+static const urwire__versions urwire__value_ranges[] = {
+    {false, {0, 0, 0, false}, true, {3, 2, 999, false}},
+    {true, {3, 3, 0, false}, true, {5, 8, 999, false}},
+    {true, {5, 9, 0, false}, false, {0, 0, 0, false}},
+};
+
 static const urwire__value_table urwire__value_tables[] = {
-    {{false, {0, 0}, true, {3, 2}}, urwire__values_up_to_3_2, URWIRE__COUNT(urwire__values_up_to_3_2)},
-    {{true, {3, 3}, true, {5, 8}}, urwire__values_3_3_to_5_8, URWIRE__COUNT(urwire__values_3_3_to_5_8)},
-    {{true, {5, 9}, false, {0, 0}}, urwire__values_5_9_on, URWIRE__COUNT(urwire__values_5_9_on)},
+    {urwire__values_up_to_3_2, URWIRE__COUNT(urwire__values_up_to_3_2)},
+    {urwire__values_3_3_to_5_8, URWIRE__COUNT(urwire__values_3_3_to_5_8)},
+    {urwire__values_5_9_on, URWIRE__COUNT(urwire__values_5_9_on)},
 };
 
 /* ---- layouts: one decoder, encoder and visitor each (the struct as void *: see the tables) - */
@@ -1325,13 +1590,13 @@ static const urwire__span urwire__robot_mode_data_run5[] = {
 };
 
 /* Robot mode data: 29 bytes on CB2 (1.x), 38 on 3.0-3.1, 46 on 3.2-3.4, 47 from 3.5 (FIRMWARE- LAYOUTS 1a, 2.0). */
-static inline bool urwire__decode_robot_mode_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_robot_mode_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                   void *into, urwire_error *err)
 {
     urwire_robot_mode_data *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 16u)
         return urwire__short_in_run(err, urwire__robot_mode_data_run0, pos, end);
     p = msg + pos;
@@ -1345,7 +1610,7 @@ static inline bool urwire__decode_robot_mode_data(const uint8_t *msg, size_t *at
     out->is_program_paused = urwire__u8(p + 14);
     out->robot_mode = urwire__i8(p + 15);
     pos += 16u;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (end - pos < 1u)
             return urwire__short_in_run(err, urwire__robot_mode_data_run1, pos, end);
         p = msg + pos;
@@ -1359,7 +1624,7 @@ static inline bool urwire__decode_robot_mode_data(const uint8_t *msg, size_t *at
     p = msg + pos;
     out->target_speed_fraction = urwire__f64(p);
     pos += 8u;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (end - pos < 8u)
             return urwire__short_in_run(err, urwire__robot_mode_data_run3, pos, end);
         p = msg + pos;
@@ -1368,7 +1633,7 @@ static inline bool urwire__decode_robot_mode_data(const uint8_t *msg, size_t *at
     } else {
         out->speed_scaling = 0;
     }
-    if (urwire__version_cmp(version, 3, 2) >= 0) {
+    if (ver->key >= URWIRE__V(3, 2, 0)) {
         if (end - pos < 8u)
             return urwire__short_in_run(err, urwire__robot_mode_data_run4, pos, end);
         p = msg + pos;
@@ -1377,7 +1642,7 @@ static inline bool urwire__decode_robot_mode_data(const uint8_t *msg, size_t *at
     } else {
         out->target_speed_fraction_limit = 0;
     }
-    if (urwire__version_cmp(version, 3, 5) >= 0) {
+    if (ver->key >= URWIRE__V(3, 5, 0)) {
         if (end - pos < 1u)
             return urwire__short_in_run(err, urwire__robot_mode_data_run5, pos, end);
         p = msg + pos;
@@ -1386,19 +1651,20 @@ static inline bool urwire__decode_robot_mode_data(const uint8_t *msg, size_t *at
     } else {
         out->reserved = 0;
     }
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_robot_mode_data(const void *from, urwire_sw_version version,
+static bool urwire__encode_robot_mode_data(const void *from, const urwire__ver *ver,
                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_robot_mode_data *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 16u)
         return urwire__no_space(err, pos, 16u, cap);
     p = out + pos;
@@ -1412,7 +1678,7 @@ static bool urwire__encode_robot_mode_data(const void *from, urwire_sw_version v
     urwire__put_u8(p + 14, in->is_program_paused);
     urwire__put_i8(p + 15, in->robot_mode);
     pos += 16u;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (cap - pos < 1u)
             return urwire__no_space(err, pos, 1u, cap);
         p = out + pos;
@@ -1424,21 +1690,21 @@ static bool urwire__encode_robot_mode_data(const void *from, urwire_sw_version v
     p = out + pos;
     urwire__put_f64(p, in->target_speed_fraction);
     pos += 8u;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (cap - pos < 8u)
             return urwire__no_space(err, pos, 8u, cap);
         p = out + pos;
         urwire__put_f64(p, in->speed_scaling);
         pos += 8u;
     }
-    if (urwire__version_cmp(version, 3, 2) >= 0) {
+    if (ver->key >= URWIRE__V(3, 2, 0)) {
         if (cap - pos < 8u)
             return urwire__no_space(err, pos, 8u, cap);
         p = out + pos;
         urwire__put_f64(p, in->target_speed_fraction_limit);
         pos += 8u;
     }
-    if (urwire__version_cmp(version, 3, 5) >= 0) {
+    if (ver->key >= URWIRE__V(3, 5, 0)) {
         if (cap - pos < 1u)
             return urwire__no_space(err, pos, 1u, cap);
         p = out + pos;
@@ -1451,11 +1717,11 @@ static bool urwire__encode_robot_mode_data(const void *from, urwire_sw_version v
     return true;
 }
 
-static void urwire__visit_robot_mode_data(const void *from, urwire_sw_version version,
+static void urwire__visit_robot_mode_data(const void *from, const urwire__ver *ver,
                                           const urwire_visitor *v)
 {
     const urwire_robot_mode_data *in = from;
-    (void)version;
+    (void)ver;
     v->on_uint(v->ctx, "timestamp", (uint64_t)in->timestamp);
     v->on_bool(v->ctx, "is_real_robot_connected", in->is_real_robot_connected != 0);
     v->on_bool(v->ctx, "is_real_robot_enabled", in->is_real_robot_enabled != 0);
@@ -1465,17 +1731,17 @@ static void urwire__visit_robot_mode_data(const void *from, urwire_sw_version ve
     v->on_bool(v->ctx, "is_program_running", in->is_program_running != 0);
     v->on_bool(v->ctx, "is_program_paused", in->is_program_paused != 0);
     v->on_int(v->ctx, "robot_mode", (int64_t)in->robot_mode);
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_uint(v->ctx, "control_mode", (uint64_t)in->control_mode);
     }
     v->on_f64(v->ctx, "target_speed_fraction", in->target_speed_fraction);
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_f64(v->ctx, "speed_scaling", in->speed_scaling);
     }
-    if (urwire__version_cmp(version, 3, 2) >= 0) {
+    if (ver->key >= URWIRE__V(3, 2, 0)) {
         v->on_f64(v->ctx, "target_speed_fraction_limit", in->target_speed_fraction_limit);
     }
-    if (urwire__version_cmp(version, 3, 5) >= 0) {
+    if (ver->key >= URWIRE__V(3, 5, 0)) {
         v->on_uint(v->ctx, "reserved", (uint64_t)in->reserved);
     }
     if (in->extra.len)
@@ -1493,6 +1759,7 @@ static void urwire__read_joint(const uint8_t *p, urwire_joint *out)
     out->t_motor = urwire__f32(p + 32);
     out->t_micro = urwire__f32(p + 36);
     out->joint_mode = urwire__u8(p + 40);
+
 }
 
 static void urwire__write_joint(uint8_t *p, const urwire_joint *in)
@@ -1505,13 +1772,14 @@ static void urwire__write_joint(uint8_t *p, const urwire_joint *in)
     urwire__put_f32(p + 32, in->t_motor);
     urwire__put_f32(p + 36, in->t_micro);
     urwire__put_u8(p + 40, in->joint_mode);
+
 }
 
-static void urwire__visit_joint(const void *from, urwire_sw_version version,
+static void urwire__visit_joint(const void *from, const urwire__ver *ver,
                                 const urwire_visitor *v)
 {
     const urwire_joint *in = from;
-    (void)version;
+    (void)ver;
     v->on_f64(v->ctx, "q_actual", in->q_actual);
     v->on_f64(v->ctx, "q_target", in->q_target);
     v->on_f64(v->ctx, "qd_actual", in->qd_actual);
@@ -1575,33 +1843,34 @@ static const urwire__span urwire__joint_data_run0[] = {
 };
 
 /* Joint data, one group per joint; 251 bytes in every version (FIRMWARE-LAYOUTS 2.1). */
-static inline bool urwire__decode_joint_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_joint_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                              void *into, urwire_error *err)
 {
     urwire_joint_data *out = into;
     size_t pos = *at;
     const uint8_t *p;
     size_t i;
-    (void)version;
+    (void)ver;
     if (end - pos < 246u)
         return urwire__short_in_run(err, urwire__joint_data_run0, pos, end);
     p = msg + pos;
     for (i = 0; i < 6; i++) urwire__read_joint(p + 41 * i, &out->joints[i]);
     pos += 246u;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_joint_data(const void *from, urwire_sw_version version,
+static bool urwire__encode_joint_data(const void *from, const urwire__ver *ver,
                                       uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_joint_data *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
     size_t i;
+    (void)ver;
     if (cap - pos < 246u)
         return urwire__no_space(err, pos, 246u, cap);
     p = out + pos;
@@ -1613,16 +1882,16 @@ static bool urwire__encode_joint_data(const void *from, urwire_sw_version versio
     return true;
 }
 
-static void urwire__visit_joint_data(const void *from, urwire_sw_version version,
+static void urwire__visit_joint_data(const void *from, const urwire__ver *ver,
                                      const urwire_visitor *v)
 {
     const urwire_joint_data *in = from;
     size_t i;
-    (void)version;
+    (void)ver;
     v->begin_array(v->ctx, "joints");
     for (i = 0; i < 6; i++) {
         v->begin_object(v->ctx, NULL);
-        urwire__visit_joint(&in->joints[i], version, v);
+        urwire__visit_joint(&in->joints[i], ver, v);
         v->end_object(v->ctx);
     }
     v->end_array(v->ctx);
@@ -1644,13 +1913,13 @@ static const urwire__span urwire__tool_data_run0[] = {
 };
 
 /* Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes (FIRMWARE-LAYOUTS 2.2). */
-static inline bool urwire__decode_tool_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_tool_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                             void *into, urwire_error *err)
 {
     urwire_tool_data *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 32u)
         return urwire__short_in_run(err, urwire__tool_data_run0, pos, end);
     p = msg + pos;
@@ -1664,19 +1933,20 @@ static inline bool urwire__decode_tool_data(const uint8_t *msg, size_t *at, size
     out->tool_temperature = urwire__f32(p + 27);
     out->tool_mode = urwire__u8(p + 31);
     pos += 32u;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_tool_data(const void *from, urwire_sw_version version,
+static bool urwire__encode_tool_data(const void *from, const urwire__ver *ver,
                                      uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_tool_data *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 32u)
         return urwire__no_space(err, pos, 32u, cap);
     p = out + pos;
@@ -1696,11 +1966,11 @@ static bool urwire__encode_tool_data(const void *from, urwire_sw_version version
     return true;
 }
 
-static void urwire__visit_tool_data(const void *from, urwire_sw_version version,
+static void urwire__visit_tool_data(const void *from, const urwire__ver *ver,
                                     const urwire_visitor *v)
 {
     const urwire_tool_data *in = from;
-    (void)version;
+    (void)ver;
     v->on_uint(v->ctx, "analog_input_range0", (uint64_t)in->analog_input_range0);
     v->on_uint(v->ctx, "analog_input_range1", (uint64_t)in->analog_input_range1);
     v->on_f64(v->ctx, "analog_input0", in->analog_input0);
@@ -1807,48 +2077,43 @@ static const urwire__span urwire__masterboard_data_run14[] = {
 };
 
 /* Masterboard data: 61 bytes on early CB2, 64 on 1.6-1.8 (76 with Euromap67), 72 on 3.0-3.1, 74 on 3.2-3.9 and 5.0-5.3, 75 on 3.10-3.15 and from 5.4; from 3.0, 16 more with Euromap67 (FIRMWARE-LAYOUTS 1a, 2.3). */
-static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                    void *into, urwire_error *err)
 {
     urwire_masterboard_data *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
+    (void)ver;
+    out->digital_input_bits = 0;
+    out->digital_output_bits = 0;
+    out->reserved_1 = 0;
+    if (ver->key <= URWIRE__V(1, 8, 999)) {
         if (end - pos < 2u)
             return urwire__short_in_run(err, urwire__masterboard_data_run0, pos, end);
         p = msg + pos;
-        out->digital_input_bits = urwire__i16(p);
+        out->digital_input_bits = (int32_t)urwire__i16(p);
         pos += 2u;
-    } else {
-        out->digital_input_bits = 0;
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (end - pos < 4u)
             return urwire__short_in_run(err, urwire__masterboard_data_run1, pos, end);
         p = msg + pos;
         out->digital_input_bits = urwire__i32(p);
         pos += 4u;
-    } else {
-        out->digital_input_bits = 0;
     }
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key <= URWIRE__V(1, 8, 999)) {
         if (end - pos < 2u)
             return urwire__short_in_run(err, urwire__masterboard_data_run2, pos, end);
         p = msg + pos;
-        out->digital_output_bits = urwire__i16(p);
+        out->digital_output_bits = (int32_t)urwire__i16(p);
         pos += 2u;
-    } else {
-        out->digital_output_bits = 0;
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (end - pos < 4u)
             return urwire__short_in_run(err, urwire__masterboard_data_run3, pos, end);
         p = msg + pos;
         out->digital_output_bits = urwire__i32(p);
         pos += 4u;
-    } else {
-        out->digital_output_bits = 0;
     }
     if (end - pos < 52u)
         return urwire__short_in_run(err, urwire__masterboard_data_run4, pos, end);
@@ -1866,7 +2131,7 @@ static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *a
     out->robot_current = urwire__f32(p + 44);
     out->master_io_current = urwire__f32(p + 48);
     pos += 52u;
-    if (urwire__version_cmp(version, 1, 6) >= 0 && urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key >= URWIRE__V(1, 6, 0) && ver->key <= URWIRE__V(1, 8, 999)) {
         if (end - pos < 2u)
             return urwire__short_in_run(err, urwire__masterboard_data_run5, pos, end);
         p = msg + pos;
@@ -1877,7 +2142,7 @@ static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *a
         out->master_safety_state = 0;
         out->master_on_off_state = 0;
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (end - pos < 2u)
             return urwire__short_in_run(err, urwire__masterboard_data_run6, pos, end);
         p = msg + pos;
@@ -1888,7 +2153,7 @@ static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *a
         out->safety_mode = 0;
         out->in_reduced_mode = 0;
     }
-    if (urwire__version_cmp(version, 1, 6) >= 0) {
+    if (ver->key >= URWIRE__V(1, 6, 0)) {
         if (end - pos < 1u)
             return urwire__short_in_run(err, urwire__masterboard_data_run7, pos, end);
         p = msg + pos;
@@ -1897,7 +2162,7 @@ static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *a
     } else {
         out->euromap67_interface_installed = 0;
     }
-    if (out->euromap67_interface_installed != 0 && urwire__version_cmp(version, 1, 6) >= 0) {
+    if (out->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(1, 6, 0)) {
         if (end - pos < 8u)
             return urwire__short_in_run(err, urwire__masterboard_data_run8, pos, end);
         p = msg + pos;
@@ -1908,7 +2173,7 @@ static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *a
         out->euromap_input_bits = 0;
         out->euromap_output_bits = 0;
     }
-    if (out->euromap67_interface_installed != 0 && urwire__version_cmp(version, 1, 6) >= 0 && urwire__version_cmp(version, 1, 8) <= 0) {
+    if (out->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(1, 6, 0) && ver->key <= URWIRE__V(1, 8, 999)) {
         if (end - pos < 4u)
             return urwire__short_in_run(err, urwire__masterboard_data_run9, pos, end);
         p = msg + pos;
@@ -1919,7 +2184,7 @@ static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *a
         out->euromap_voltage_cb2 = 0;
         out->euromap_current_cb2 = 0;
     }
-    if (out->euromap67_interface_installed != 0 && urwire__version_cmp(version, 3, 0) >= 0) {
+    if (out->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(3, 0, 0)) {
         if (end - pos < 8u)
             return urwire__short_in_run(err, urwire__masterboard_data_run10, pos, end);
         p = msg + pos;
@@ -1930,7 +2195,7 @@ static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *a
         out->euromap_voltage_24v = 0;
         out->euromap_current = 0;
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (end - pos < 4u)
             return urwire__short_in_run(err, urwire__masterboard_data_run11, pos, end);
         p = msg + pos;
@@ -1939,7 +2204,7 @@ static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *a
     } else {
         out->reserved_0 = 0;
     }
-    if (urwire__version_cmp(version, 3, 2) >= 0) {
+    if (ver->key >= URWIRE__V(3, 2, 0)) {
         if (end - pos < 2u)
             return urwire__short_in_run(err, urwire__masterboard_data_run12, pos, end);
         p = msg + pos;
@@ -1950,59 +2215,56 @@ static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *a
         out->operational_mode_selector_input = 0;
         out->three_position_enabling_device_input = 0;
     }
-    if (urwire__version_cmp(version, 3, 10) >= 0 && urwire__version_cmp(version, 3, 15) <= 0) {
+    if (ver->key >= URWIRE__V(3, 10, 0) && ver->key <= URWIRE__V(3, 15, 999)) {
         if (end - pos < 1u)
             return urwire__short_in_run(err, urwire__masterboard_data_run13, pos, end);
         p = msg + pos;
         out->reserved_1 = urwire__u8(p);
         pos += 1u;
-    } else {
-        out->reserved_1 = 0;
     }
-    if (urwire__version_cmp(version, 5, 4) >= 0) {
+    if (ver->key >= URWIRE__V(5, 4, 0)) {
         if (end - pos < 1u)
             return urwire__short_in_run(err, urwire__masterboard_data_run14, pos, end);
         p = msg + pos;
         out->reserved_1 = urwire__u8(p);
         pos += 1u;
-    } else {
-        out->reserved_1 = 0;
     }
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_masterboard_data(const void *from, urwire_sw_version version,
+static bool urwire__encode_masterboard_data(const void *from, const urwire__ver *ver,
                                             uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_masterboard_data *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
+    (void)ver;
+    if (ver->key <= URWIRE__V(1, 8, 999)) {
         if (cap - pos < 2u)
             return urwire__no_space(err, pos, 2u, cap);
         p = out + pos;
-        urwire__put_i16(p, in->digital_input_bits);
+        urwire__put_i16(p, (int16_t)in->digital_input_bits);
         pos += 2u;
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (cap - pos < 4u)
             return urwire__no_space(err, pos, 4u, cap);
         p = out + pos;
         urwire__put_i32(p, in->digital_input_bits);
         pos += 4u;
     }
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key <= URWIRE__V(1, 8, 999)) {
         if (cap - pos < 2u)
             return urwire__no_space(err, pos, 2u, cap);
         p = out + pos;
-        urwire__put_i16(p, in->digital_output_bits);
+        urwire__put_i16(p, (int16_t)in->digital_output_bits);
         pos += 2u;
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (cap - pos < 4u)
             return urwire__no_space(err, pos, 4u, cap);
         p = out + pos;
@@ -2025,7 +2287,7 @@ static bool urwire__encode_masterboard_data(const void *from, urwire_sw_version 
     urwire__put_f32(p + 44, in->robot_current);
     urwire__put_f32(p + 48, in->master_io_current);
     pos += 52u;
-    if (urwire__version_cmp(version, 1, 6) >= 0 && urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key >= URWIRE__V(1, 6, 0) && ver->key <= URWIRE__V(1, 8, 999)) {
         if (cap - pos < 2u)
             return urwire__no_space(err, pos, 2u, cap);
         p = out + pos;
@@ -2033,7 +2295,7 @@ static bool urwire__encode_masterboard_data(const void *from, urwire_sw_version 
         urwire__put_u8(p + 1, in->master_on_off_state);
         pos += 2u;
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (cap - pos < 2u)
             return urwire__no_space(err, pos, 2u, cap);
         p = out + pos;
@@ -2041,14 +2303,14 @@ static bool urwire__encode_masterboard_data(const void *from, urwire_sw_version 
         urwire__put_u8(p + 1, in->in_reduced_mode);
         pos += 2u;
     }
-    if (urwire__version_cmp(version, 1, 6) >= 0) {
+    if (ver->key >= URWIRE__V(1, 6, 0)) {
         if (cap - pos < 1u)
             return urwire__no_space(err, pos, 1u, cap);
         p = out + pos;
         urwire__put_u8(p, in->euromap67_interface_installed);
         pos += 1u;
     }
-    if (in->euromap67_interface_installed != 0 && urwire__version_cmp(version, 1, 6) >= 0) {
+    if (in->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(1, 6, 0)) {
         if (cap - pos < 8u)
             return urwire__no_space(err, pos, 8u, cap);
         p = out + pos;
@@ -2056,7 +2318,7 @@ static bool urwire__encode_masterboard_data(const void *from, urwire_sw_version 
         urwire__put_u32(p + 4, in->euromap_output_bits);
         pos += 8u;
     }
-    if (in->euromap67_interface_installed != 0 && urwire__version_cmp(version, 1, 6) >= 0 && urwire__version_cmp(version, 1, 8) <= 0) {
+    if (in->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(1, 6, 0) && ver->key <= URWIRE__V(1, 8, 999)) {
         if (cap - pos < 4u)
             return urwire__no_space(err, pos, 4u, cap);
         p = out + pos;
@@ -2064,7 +2326,7 @@ static bool urwire__encode_masterboard_data(const void *from, urwire_sw_version 
         urwire__put_i16(p + 2, in->euromap_current_cb2);
         pos += 4u;
     }
-    if (in->euromap67_interface_installed != 0 && urwire__version_cmp(version, 3, 0) >= 0) {
+    if (in->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(3, 0, 0)) {
         if (cap - pos < 8u)
             return urwire__no_space(err, pos, 8u, cap);
         p = out + pos;
@@ -2072,14 +2334,14 @@ static bool urwire__encode_masterboard_data(const void *from, urwire_sw_version 
         urwire__put_f32(p + 4, in->euromap_current);
         pos += 8u;
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (cap - pos < 4u)
             return urwire__no_space(err, pos, 4u, cap);
         p = out + pos;
         urwire__put_u32(p, in->reserved_0);
         pos += 4u;
     }
-    if (urwire__version_cmp(version, 3, 2) >= 0) {
+    if (ver->key >= URWIRE__V(3, 2, 0)) {
         if (cap - pos < 2u)
             return urwire__no_space(err, pos, 2u, cap);
         p = out + pos;
@@ -2087,14 +2349,14 @@ static bool urwire__encode_masterboard_data(const void *from, urwire_sw_version 
         urwire__put_u8(p + 1, in->three_position_enabling_device_input);
         pos += 2u;
     }
-    if (urwire__version_cmp(version, 3, 10) >= 0 && urwire__version_cmp(version, 3, 15) <= 0) {
+    if (ver->key >= URWIRE__V(3, 10, 0) && ver->key <= URWIRE__V(3, 15, 999)) {
         if (cap - pos < 1u)
             return urwire__no_space(err, pos, 1u, cap);
         p = out + pos;
         urwire__put_u8(p, in->reserved_1);
         pos += 1u;
     }
-    if (urwire__version_cmp(version, 5, 4) >= 0) {
+    if (ver->key >= URWIRE__V(5, 4, 0)) {
         if (cap - pos < 1u)
             return urwire__no_space(err, pos, 1u, cap);
         p = out + pos;
@@ -2107,21 +2369,15 @@ static bool urwire__encode_masterboard_data(const void *from, urwire_sw_version 
     return true;
 }
 
-static void urwire__visit_masterboard_data(const void *from, urwire_sw_version version,
+static void urwire__visit_masterboard_data(const void *from, const urwire__ver *ver,
                                            const urwire_visitor *v)
 {
     const urwire_masterboard_data *in = from;
-    (void)version;
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
+    (void)ver;
+    if ((ver->key <= URWIRE__V(1, 8, 999)) || (ver->key >= URWIRE__V(3, 0, 0))) {
         v->on_int(v->ctx, "digital_input_bits", (int64_t)in->digital_input_bits);
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
-        v->on_int(v->ctx, "digital_input_bits", (int64_t)in->digital_input_bits);
-    }
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
-        v->on_int(v->ctx, "digital_output_bits", (int64_t)in->digital_output_bits);
-    }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if ((ver->key <= URWIRE__V(1, 8, 999)) || (ver->key >= URWIRE__V(3, 0, 0))) {
         v->on_int(v->ctx, "digital_output_bits", (int64_t)in->digital_output_bits);
     }
     v->on_uint(v->ctx, "analog_input_range0", (uint64_t)in->analog_input_range0);
@@ -2136,52 +2392,49 @@ static void urwire__visit_masterboard_data(const void *from, urwire_sw_version v
     v->on_f32(v->ctx, "robot_voltage_48v", in->robot_voltage_48v);
     v->on_f32(v->ctx, "robot_current", in->robot_current);
     v->on_f32(v->ctx, "master_io_current", in->master_io_current);
-    if (urwire__version_cmp(version, 1, 6) >= 0 && urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key >= URWIRE__V(1, 6, 0) && ver->key <= URWIRE__V(1, 8, 999)) {
         v->on_uint(v->ctx, "master_safety_state", (uint64_t)in->master_safety_state);
     }
-    if (urwire__version_cmp(version, 1, 6) >= 0 && urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key >= URWIRE__V(1, 6, 0) && ver->key <= URWIRE__V(1, 8, 999)) {
         v->on_uint(v->ctx, "master_on_off_state", (uint64_t)in->master_on_off_state);
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_uint(v->ctx, "safety_mode", (uint64_t)in->safety_mode);
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_uint(v->ctx, "in_reduced_mode", (uint64_t)in->in_reduced_mode);
     }
-    if (urwire__version_cmp(version, 1, 6) >= 0) {
+    if (ver->key >= URWIRE__V(1, 6, 0)) {
         v->on_bool(v->ctx, "euromap67_interface_installed", in->euromap67_interface_installed != 0);
     }
-    if (in->euromap67_interface_installed != 0 && urwire__version_cmp(version, 1, 6) >= 0) {
+    if (in->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(1, 6, 0)) {
         v->on_uint(v->ctx, "euromap_input_bits", (uint64_t)in->euromap_input_bits);
     }
-    if (in->euromap67_interface_installed != 0 && urwire__version_cmp(version, 1, 6) >= 0) {
+    if (in->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(1, 6, 0)) {
         v->on_uint(v->ctx, "euromap_output_bits", (uint64_t)in->euromap_output_bits);
     }
-    if (in->euromap67_interface_installed != 0 && urwire__version_cmp(version, 1, 6) >= 0 && urwire__version_cmp(version, 1, 8) <= 0) {
+    if (in->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(1, 6, 0) && ver->key <= URWIRE__V(1, 8, 999)) {
         v->on_int(v->ctx, "euromap_voltage_cb2", (int64_t)in->euromap_voltage_cb2);
     }
-    if (in->euromap67_interface_installed != 0 && urwire__version_cmp(version, 1, 6) >= 0 && urwire__version_cmp(version, 1, 8) <= 0) {
+    if (in->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(1, 6, 0) && ver->key <= URWIRE__V(1, 8, 999)) {
         v->on_int(v->ctx, "euromap_current_cb2", (int64_t)in->euromap_current_cb2);
     }
-    if (in->euromap67_interface_installed != 0 && urwire__version_cmp(version, 3, 0) >= 0) {
+    if (in->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_f32(v->ctx, "euromap_voltage_24v", in->euromap_voltage_24v);
     }
-    if (in->euromap67_interface_installed != 0 && urwire__version_cmp(version, 3, 0) >= 0) {
+    if (in->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_f32(v->ctx, "euromap_current", in->euromap_current);
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_uint(v->ctx, "reserved_0", (uint64_t)in->reserved_0);
     }
-    if (urwire__version_cmp(version, 3, 2) >= 0) {
+    if (ver->key >= URWIRE__V(3, 2, 0)) {
         v->on_uint(v->ctx, "operational_mode_selector_input", (uint64_t)in->operational_mode_selector_input);
     }
-    if (urwire__version_cmp(version, 3, 2) >= 0) {
+    if (ver->key >= URWIRE__V(3, 2, 0)) {
         v->on_uint(v->ctx, "three_position_enabling_device_input", (uint64_t)in->three_position_enabling_device_input);
     }
-    if (urwire__version_cmp(version, 3, 10) >= 0 && urwire__version_cmp(version, 3, 15) <= 0) {
-        v->on_uint(v->ctx, "reserved_1", (uint64_t)in->reserved_1);
-    }
-    if (urwire__version_cmp(version, 5, 4) >= 0) {
+    if ((ver->key >= URWIRE__V(3, 10, 0) && ver->key <= URWIRE__V(3, 15, 999)) || (ver->key >= URWIRE__V(5, 4, 0))) {
         v->on_uint(v->ctx, "reserved_1", (uint64_t)in->reserved_1);
     }
     if (in->extra.len)
@@ -2209,13 +2462,13 @@ static const urwire__span urwire__cartesian_info_run1[] = {
 };
 
 /* Cartesian info; 53 bytes up to 3.0, 101 (with the TCP offset) from 3.1 (FIRMWARE-LAYOUTS 2.4). */
-static inline bool urwire__decode_cartesian_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_cartesian_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                  void *into, urwire_error *err)
 {
     urwire_cartesian_info *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 48u)
         return urwire__short_in_run(err, urwire__cartesian_info_run0, pos, end);
     p = msg + pos;
@@ -2226,7 +2479,7 @@ static inline bool urwire__decode_cartesian_info(const uint8_t *msg, size_t *at,
     out->ry = urwire__f64(p + 32);
     out->rz = urwire__f64(p + 40);
     pos += 48u;
-    if (urwire__version_cmp(version, 3, 1) >= 0) {
+    if (ver->key >= URWIRE__V(3, 1, 0)) {
         if (end - pos < 48u)
             return urwire__short_in_run(err, urwire__cartesian_info_run1, pos, end);
         p = msg + pos;
@@ -2245,19 +2498,20 @@ static inline bool urwire__decode_cartesian_info(const uint8_t *msg, size_t *at,
         out->tcp_offset_ry = 0;
         out->tcp_offset_rz = 0;
     }
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_cartesian_info(const void *from, urwire_sw_version version,
+static bool urwire__encode_cartesian_info(const void *from, const urwire__ver *ver,
                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_cartesian_info *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 48u)
         return urwire__no_space(err, pos, 48u, cap);
     p = out + pos;
@@ -2268,7 +2522,7 @@ static bool urwire__encode_cartesian_info(const void *from, urwire_sw_version ve
     urwire__put_f64(p + 32, in->ry);
     urwire__put_f64(p + 40, in->rz);
     pos += 48u;
-    if (urwire__version_cmp(version, 3, 1) >= 0) {
+    if (ver->key >= URWIRE__V(3, 1, 0)) {
         if (cap - pos < 48u)
             return urwire__no_space(err, pos, 48u, cap);
         p = out + pos;
@@ -2286,33 +2540,33 @@ static bool urwire__encode_cartesian_info(const void *from, urwire_sw_version ve
     return true;
 }
 
-static void urwire__visit_cartesian_info(const void *from, urwire_sw_version version,
+static void urwire__visit_cartesian_info(const void *from, const urwire__ver *ver,
                                          const urwire_visitor *v)
 {
     const urwire_cartesian_info *in = from;
-    (void)version;
+    (void)ver;
     v->on_f64(v->ctx, "x", in->x);
     v->on_f64(v->ctx, "y", in->y);
     v->on_f64(v->ctx, "z", in->z);
     v->on_f64(v->ctx, "rx", in->rx);
     v->on_f64(v->ctx, "ry", in->ry);
     v->on_f64(v->ctx, "rz", in->rz);
-    if (urwire__version_cmp(version, 3, 1) >= 0) {
+    if (ver->key >= URWIRE__V(3, 1, 0)) {
         v->on_f64(v->ctx, "tcp_offset_x", in->tcp_offset_x);
     }
-    if (urwire__version_cmp(version, 3, 1) >= 0) {
+    if (ver->key >= URWIRE__V(3, 1, 0)) {
         v->on_f64(v->ctx, "tcp_offset_y", in->tcp_offset_y);
     }
-    if (urwire__version_cmp(version, 3, 1) >= 0) {
+    if (ver->key >= URWIRE__V(3, 1, 0)) {
         v->on_f64(v->ctx, "tcp_offset_z", in->tcp_offset_z);
     }
-    if (urwire__version_cmp(version, 3, 1) >= 0) {
+    if (ver->key >= URWIRE__V(3, 1, 0)) {
         v->on_f64(v->ctx, "tcp_offset_rx", in->tcp_offset_rx);
     }
-    if (urwire__version_cmp(version, 3, 1) >= 0) {
+    if (ver->key >= URWIRE__V(3, 1, 0)) {
         v->on_f64(v->ctx, "tcp_offset_ry", in->tcp_offset_ry);
     }
-    if (urwire__version_cmp(version, 3, 1) >= 0) {
+    if (ver->key >= URWIRE__V(3, 1, 0)) {
         v->on_f64(v->ctx, "tcp_offset_rz", in->tcp_offset_rz);
     }
     if (in->extra.len)
@@ -2327,13 +2581,13 @@ static const urwire__span urwire__laser_pointer_run0[] = {
 };
 
 /* The early CB2 package of type 5: three doubles, 29 bytes. python-urx (2013) calls it "LaserPointer(OBSOLETE)" and reads it as 'iBddd' without naming the values; a real early CB2 capture holds 1000.0 three times (FIRMWARE-LAYOUTS 2.5). The field names x, y, z are an inference (a laser pointer's position): no source names them. Up to 1.7: type 5 is not sent on 1.6-1.7 (UR_DRIVER: "KinematicsInfo is not available in 1.6 and 1.7") and is kinematics info from 1.8 (FIRMWARE-LAYOUTS 1a, 2.5); medium confidence, the early capture's version being unknown. The length (29 or 225) decides. */
-static inline bool urwire__decode_laser_pointer(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_laser_pointer(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                 void *into, urwire_error *err)
 {
     urwire_laser_pointer *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 24u)
         return urwire__short_in_run(err, urwire__laser_pointer_run0, pos, end);
     p = msg + pos;
@@ -2341,19 +2595,20 @@ static inline bool urwire__decode_laser_pointer(const uint8_t *msg, size_t *at, 
     out->y = urwire__f64(p + 8);
     out->z = urwire__f64(p + 16);
     pos += 24u;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_laser_pointer(const void *from, urwire_sw_version version,
+static bool urwire__encode_laser_pointer(const void *from, const urwire__ver *ver,
                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_laser_pointer *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 24u)
         return urwire__no_space(err, pos, 24u, cap);
     p = out + pos;
@@ -2367,11 +2622,11 @@ static bool urwire__encode_laser_pointer(const void *from, urwire_sw_version ver
     return true;
 }
 
-static void urwire__visit_laser_pointer(const void *from, urwire_sw_version version,
+static void urwire__visit_laser_pointer(const void *from, const urwire__ver *ver,
                                         const urwire_visitor *v)
 {
     const urwire_laser_pointer *in = from;
-    (void)version;
+    (void)ver;
     v->on_f64(v->ctx, "x", in->x);
     v->on_f64(v->ctx, "y", in->y);
     v->on_f64(v->ctx, "z", in->z);
@@ -2415,14 +2670,14 @@ static const urwire__span urwire__kinematics_info_run0[] = {
 };
 
 /* Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is changed. From 1.8 (FIRMWARE-LAYOUTS 1b, 2.5: NIST table, 1.8 column; UR_DRIVER comments; a real 1.8 capture decodes cleanly); high confidence. 225 bytes in every version since; calibration_status is 4 bytes although an older UR document said uint8 (FIRMWARE-LAYOUTS 3.10). */
-static inline bool urwire__decode_kinematics_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_kinematics_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                   void *into, urwire_error *err)
 {
     urwire_kinematics_info *out = into;
     size_t pos = *at;
     const uint8_t *p;
     size_t i;
-    (void)version;
+    (void)ver;
     if (end - pos < 220u)
         return urwire__short_in_run(err, urwire__kinematics_info_run0, pos, end);
     p = msg + pos;
@@ -2433,20 +2688,21 @@ static inline bool urwire__decode_kinematics_info(const uint8_t *msg, size_t *at
     for (i = 0; i < 6; i++) out->dh_alpha[i] = urwire__f64(p + 168 + 8 * i);
     out->calibration_status = urwire__u32(p + 216);
     pos += 220u;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_kinematics_info(const void *from, urwire_sw_version version,
+static bool urwire__encode_kinematics_info(const void *from, const urwire__ver *ver,
                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_kinematics_info *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
     size_t i;
+    (void)ver;
     if (cap - pos < 220u)
         return urwire__no_space(err, pos, 220u, cap);
     p = out + pos;
@@ -2463,12 +2719,12 @@ static bool urwire__encode_kinematics_info(const void *from, urwire_sw_version v
     return true;
 }
 
-static void urwire__visit_kinematics_info(const void *from, urwire_sw_version version,
+static void urwire__visit_kinematics_info(const void *from, const urwire__ver *ver,
                                           const urwire_visitor *v)
 {
     const urwire_kinematics_info *in = from;
     size_t i;
-    (void)version;
+    (void)ver;
     v->begin_array(v->ctx, "checksum");
     for (i = 0; i < 6; i++)
         v->on_uint(v->ctx, NULL, (uint64_t)in->checksum[i]);
@@ -2499,19 +2755,21 @@ static void urwire__read_joint_position_limit(const uint8_t *p, urwire_joint_pos
 {
     out->joint_min_limit = urwire__f64(p);
     out->joint_max_limit = urwire__f64(p + 8);
+
 }
 
 static void urwire__write_joint_position_limit(uint8_t *p, const urwire_joint_position_limit *in)
 {
     urwire__put_f64(p, in->joint_min_limit);
     urwire__put_f64(p + 8, in->joint_max_limit);
+
 }
 
-static void urwire__visit_joint_position_limit(const void *from, urwire_sw_version version,
+static void urwire__visit_joint_position_limit(const void *from, const urwire__ver *ver,
                                                const urwire_visitor *v)
 {
     const urwire_joint_position_limit *in = from;
-    (void)version;
+    (void)ver;
     v->on_f64(v->ctx, "joint_min_limit", in->joint_min_limit);
     v->on_f64(v->ctx, "joint_max_limit", in->joint_max_limit);
 }
@@ -2521,19 +2779,21 @@ static void urwire__read_joint_motion_limit(const uint8_t *p, urwire_joint_motio
 {
     out->joint_max_speed = urwire__f64(p);
     out->joint_max_acceleration = urwire__f64(p + 8);
+
 }
 
 static void urwire__write_joint_motion_limit(uint8_t *p, const urwire_joint_motion_limit *in)
 {
     urwire__put_f64(p, in->joint_max_speed);
     urwire__put_f64(p + 8, in->joint_max_acceleration);
+
 }
 
-static void urwire__visit_joint_motion_limit(const void *from, urwire_sw_version version,
+static void urwire__visit_joint_motion_limit(const void *from, const urwire__ver *ver,
                                              const urwire_visitor *v)
 {
     const urwire_joint_motion_limit *in = from;
-    (void)version;
+    (void)ver;
     v->on_f64(v->ctx, "joint_max_speed", in->joint_max_speed);
     v->on_f64(v->ctx, "joint_max_acceleration", in->joint_max_acceleration);
 }
@@ -2616,14 +2876,14 @@ static const urwire__span urwire__configuration_data_run2[] = {
 };
 
 /* Configuration data. Sent when leaving initializing mode and/or if the kinematics configuration is changed. 469 bytes on 1.8, 445 from 3.0, 449 from 5.25.1; not sent before 1.8 (FIRMWARE-LAYOUTS 1a, 2.6). */
-static inline bool urwire__decode_configuration_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_configuration_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                      void *into, urwire_error *err)
 {
     urwire_configuration_data *out = into;
     size_t pos = *at;
     const uint8_t *p;
     size_t i;
-    (void)version;
+    (void)ver;
     if (end - pos < 440u)
         return urwire__short_in_run(err, urwire__configuration_data_run0, pos, end);
     p = msg + pos;
@@ -2643,7 +2903,7 @@ static inline bool urwire__decode_configuration_data(const uint8_t *msg, size_t 
     out->robot_type = urwire__i32(p + 432);
     out->robot_sub_type = urwire__i32(p + 436);
     pos += 440u;
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key <= URWIRE__V(1, 8, 999)) {
         if (end - pos < 24u)
             return urwire__short_in_run(err, urwire__configuration_data_run1, pos, end);
         p = msg + pos;
@@ -2652,7 +2912,7 @@ static inline bool urwire__decode_configuration_data(const uint8_t *msg, size_t 
     } else {
         memset(&out->motor_type, 0, sizeof out->motor_type);
     }
-    if (urwire__version_cmp(version, 5, 25) >= 0) {
+    if (ver->key >= URWIRE__V(5, 25, 1)) {
         if (end - pos < 4u)
             return urwire__short_in_run(err, urwire__configuration_data_run2, pos, end);
         p = msg + pos;
@@ -2663,20 +2923,21 @@ static inline bool urwire__decode_configuration_data(const uint8_t *msg, size_t 
         out->reserved_1 = 0;
         out->reserved_2 = 0;
     }
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_configuration_data(const void *from, urwire_sw_version version,
+static bool urwire__encode_configuration_data(const void *from, const urwire__ver *ver,
                                               uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_configuration_data *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
     size_t i;
+    (void)ver;
     if (cap - pos < 440u)
         return urwire__no_space(err, pos, 440u, cap);
     p = out + pos;
@@ -2696,14 +2957,14 @@ static bool urwire__encode_configuration_data(const void *from, urwire_sw_versio
     urwire__put_i32(p + 432, in->robot_type);
     urwire__put_i32(p + 436, in->robot_sub_type);
     pos += 440u;
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key <= URWIRE__V(1, 8, 999)) {
         if (cap - pos < 24u)
             return urwire__no_space(err, pos, 24u, cap);
         p = out + pos;
         for (i = 0; i < 6; i++) urwire__put_i32(p + 4 * i, in->motor_type[i]);
         pos += 24u;
     }
-    if (urwire__version_cmp(version, 5, 25) >= 0) {
+    if (ver->key >= URWIRE__V(5, 25, 1)) {
         if (cap - pos < 4u)
             return urwire__no_space(err, pos, 4u, cap);
         p = out + pos;
@@ -2717,23 +2978,23 @@ static bool urwire__encode_configuration_data(const void *from, urwire_sw_versio
     return true;
 }
 
-static void urwire__visit_configuration_data(const void *from, urwire_sw_version version,
+static void urwire__visit_configuration_data(const void *from, const urwire__ver *ver,
                                              const urwire_visitor *v)
 {
     const urwire_configuration_data *in = from;
     size_t i;
-    (void)version;
+    (void)ver;
     v->begin_array(v->ctx, "joint_position_limits");
     for (i = 0; i < 6; i++) {
         v->begin_object(v->ctx, NULL);
-        urwire__visit_joint_position_limit(&in->joint_position_limits[i], version, v);
+        urwire__visit_joint_position_limit(&in->joint_position_limits[i], ver, v);
         v->end_object(v->ctx);
     }
     v->end_array(v->ctx);
     v->begin_array(v->ctx, "joint_motion_limits");
     for (i = 0; i < 6; i++) {
         v->begin_object(v->ctx, NULL);
-        urwire__visit_joint_motion_limit(&in->joint_motion_limits[i], version, v);
+        urwire__visit_joint_motion_limit(&in->joint_motion_limits[i], ver, v);
         v->end_object(v->ctx);
     }
     v->end_array(v->ctx);
@@ -2762,16 +3023,16 @@ static void urwire__visit_configuration_data(const void *from, urwire_sw_version
     v->on_int(v->ctx, "controller_box_type", (int64_t)in->controller_box_type);
     v->on_int(v->ctx, "robot_type", (int64_t)in->robot_type);
     v->on_int(v->ctx, "robot_sub_type", (int64_t)in->robot_sub_type);
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key <= URWIRE__V(1, 8, 999)) {
         v->begin_array(v->ctx, "motor_type");
         for (i = 0; i < 6; i++)
             v->on_int(v->ctx, NULL, (int64_t)in->motor_type[i]);
         v->end_array(v->ctx);
     }
-    if (urwire__version_cmp(version, 5, 25) >= 0) {
+    if (ver->key >= URWIRE__V(5, 25, 1)) {
         v->on_int(v->ctx, "reserved_1", (int64_t)in->reserved_1);
     }
-    if (urwire__version_cmp(version, 5, 25) >= 0) {
+    if (ver->key >= URWIRE__V(5, 25, 1)) {
         v->on_int(v->ctx, "reserved_2", (int64_t)in->reserved_2);
     }
     if (in->extra.len)
@@ -2790,13 +3051,13 @@ static const urwire__span urwire__force_mode_data_run0[] = {
 };
 
 /* Force mode data; 61 bytes in every version that sends it (FIRMWARE-LAYOUTS 2.7). */
-static inline bool urwire__decode_force_mode_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_force_mode_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                   void *into, urwire_error *err)
 {
     urwire_force_mode_data *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 56u)
         return urwire__short_in_run(err, urwire__force_mode_data_run0, pos, end);
     p = msg + pos;
@@ -2808,19 +3069,20 @@ static inline bool urwire__decode_force_mode_data(const uint8_t *msg, size_t *at
     out->frz = urwire__f64(p + 40);
     out->robot_dexterity = urwire__f64(p + 48);
     pos += 56u;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_force_mode_data(const void *from, urwire_sw_version version,
+static bool urwire__encode_force_mode_data(const void *from, const urwire__ver *ver,
                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_force_mode_data *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 56u)
         return urwire__no_space(err, pos, 56u, cap);
     p = out + pos;
@@ -2838,11 +3100,11 @@ static bool urwire__encode_force_mode_data(const void *from, urwire_sw_version v
     return true;
 }
 
-static void urwire__visit_force_mode_data(const void *from, urwire_sw_version version,
+static void urwire__visit_force_mode_data(const void *from, const urwire__ver *ver,
                                           const urwire_visitor *v)
 {
     const urwire_force_mode_data *in = from;
-    (void)version;
+    (void)ver;
     v->on_f64(v->ctx, "fx", in->fx);
     v->on_f64(v->ctx, "fy", in->fy);
     v->on_f64(v->ctx, "fz", in->fz);
@@ -2877,14 +3139,14 @@ static const urwire__span urwire__additional_info_run3[] = {
 };
 
 /* Additional info: 10 bytes up to early 1.8 builds, 7 from late 1.8 builds to 3.1, 8 on 3.2-3.15, 9 from 5.0 (FIRMWARE-LAYOUTS 1a, 2.8, 3.4). 1.8 sends either 10 or 7 bytes: the 10-byte form is gated to 1.7 and its length selects it on 1.8. */
-static inline bool urwire__decode_additional_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_additional_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                   void *into, urwire_error *err)
 {
     urwire_additional_info *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
-    if (urwire__version_cmp(version, 1, 7) <= 0) {
+    (void)ver;
+    if (ver->key <= URWIRE__V(1, 7, 999)) {
         if (end - pos < 5u)
             return urwire__short_in_run(err, urwire__additional_info_run0, pos, end);
         p = msg + pos;
@@ -2895,7 +3157,7 @@ static inline bool urwire__decode_additional_info(const uint8_t *msg, size_t *at
         out->ctrl_bits = 0;
         out->teach_button = 0;
     }
-    if (urwire__version_cmp(version, 1, 8) >= 0) {
+    if (ver->key >= URWIRE__V(1, 8, 0)) {
         if (end - pos < 2u)
             return urwire__short_in_run(err, urwire__additional_info_run1, pos, end);
         p = msg + pos;
@@ -2906,7 +3168,7 @@ static inline bool urwire__decode_additional_info(const uint8_t *msg, size_t *at
         out->tp_button_state = 0;
         out->freedrive_button_enabled = 0;
     }
-    if (urwire__version_cmp(version, 3, 2) >= 0) {
+    if (ver->key >= URWIRE__V(3, 2, 0)) {
         if (end - pos < 1u)
             return urwire__short_in_run(err, urwire__additional_info_run2, pos, end);
         p = msg + pos;
@@ -2915,7 +3177,7 @@ static inline bool urwire__decode_additional_info(const uint8_t *msg, size_t *at
     } else {
         out->io_enabled_freedrive = 0;
     }
-    if (urwire__version_cmp(version, 5, 0) >= 0) {
+    if (ver->key >= URWIRE__V(5, 0, 0)) {
         if (end - pos < 1u)
             return urwire__short_in_run(err, urwire__additional_info_run3, pos, end);
         p = msg + pos;
@@ -2924,20 +3186,21 @@ static inline bool urwire__decode_additional_info(const uint8_t *msg, size_t *at
     } else {
         out->reserved = 0;
     }
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_additional_info(const void *from, urwire_sw_version version,
+static bool urwire__encode_additional_info(const void *from, const urwire__ver *ver,
                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_additional_info *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
-    if (urwire__version_cmp(version, 1, 7) <= 0) {
+    (void)ver;
+    if (ver->key <= URWIRE__V(1, 7, 999)) {
         if (cap - pos < 5u)
             return urwire__no_space(err, pos, 5u, cap);
         p = out + pos;
@@ -2945,7 +3208,7 @@ static bool urwire__encode_additional_info(const void *from, urwire_sw_version v
         urwire__put_u8(p + 4, in->teach_button);
         pos += 5u;
     }
-    if (urwire__version_cmp(version, 1, 8) >= 0) {
+    if (ver->key >= URWIRE__V(1, 8, 0)) {
         if (cap - pos < 2u)
             return urwire__no_space(err, pos, 2u, cap);
         p = out + pos;
@@ -2953,14 +3216,14 @@ static bool urwire__encode_additional_info(const void *from, urwire_sw_version v
         urwire__put_u8(p + 1, in->freedrive_button_enabled);
         pos += 2u;
     }
-    if (urwire__version_cmp(version, 3, 2) >= 0) {
+    if (ver->key >= URWIRE__V(3, 2, 0)) {
         if (cap - pos < 1u)
             return urwire__no_space(err, pos, 1u, cap);
         p = out + pos;
         urwire__put_u8(p, in->io_enabled_freedrive);
         pos += 1u;
     }
-    if (urwire__version_cmp(version, 5, 0) >= 0) {
+    if (ver->key >= URWIRE__V(5, 0, 0)) {
         if (cap - pos < 1u)
             return urwire__no_space(err, pos, 1u, cap);
         p = out + pos;
@@ -2973,27 +3236,27 @@ static bool urwire__encode_additional_info(const void *from, urwire_sw_version v
     return true;
 }
 
-static void urwire__visit_additional_info(const void *from, urwire_sw_version version,
+static void urwire__visit_additional_info(const void *from, const urwire__ver *ver,
                                           const urwire_visitor *v)
 {
     const urwire_additional_info *in = from;
-    (void)version;
-    if (urwire__version_cmp(version, 1, 7) <= 0) {
+    (void)ver;
+    if (ver->key <= URWIRE__V(1, 7, 999)) {
         v->on_uint(v->ctx, "ctrl_bits", (uint64_t)in->ctrl_bits);
     }
-    if (urwire__version_cmp(version, 1, 7) <= 0) {
+    if (ver->key <= URWIRE__V(1, 7, 999)) {
         v->on_uint(v->ctx, "teach_button", (uint64_t)in->teach_button);
     }
-    if (urwire__version_cmp(version, 1, 8) >= 0) {
+    if (ver->key >= URWIRE__V(1, 8, 0)) {
         v->on_uint(v->ctx, "tp_button_state", (uint64_t)in->tp_button_state);
     }
-    if (urwire__version_cmp(version, 1, 8) >= 0) {
+    if (ver->key >= URWIRE__V(1, 8, 0)) {
         v->on_bool(v->ctx, "freedrive_button_enabled", in->freedrive_button_enabled != 0);
     }
-    if (urwire__version_cmp(version, 3, 2) >= 0) {
+    if (ver->key >= URWIRE__V(3, 2, 0)) {
         v->on_bool(v->ctx, "io_enabled_freedrive", in->io_enabled_freedrive != 0);
     }
-    if (urwire__version_cmp(version, 5, 0) >= 0) {
+    if (ver->key >= URWIRE__V(5, 0, 0)) {
         v->on_uint(v->ctx, "reserved", (uint64_t)in->reserved);
     }
     if (in->extra.len)
@@ -3011,13 +3274,13 @@ static const urwire__span urwire__calibration_data_run0[] = {
 };
 
 /* Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8 builds on (FIRMWARE-LAYOUTS 2.9). */
-static inline bool urwire__decode_calibration_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_calibration_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                    void *into, urwire_error *err)
 {
     urwire_calibration_data *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 48u)
         return urwire__short_in_run(err, urwire__calibration_data_run0, pos, end);
     p = msg + pos;
@@ -3028,19 +3291,20 @@ static inline bool urwire__decode_calibration_data(const uint8_t *msg, size_t *a
     out->fry = urwire__f64(p + 32);
     out->frz = urwire__f64(p + 40);
     pos += 48u;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_calibration_data(const void *from, urwire_sw_version version,
+static bool urwire__encode_calibration_data(const void *from, const urwire__ver *ver,
                                             uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_calibration_data *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 48u)
         return urwire__no_space(err, pos, 48u, cap);
     p = out + pos;
@@ -3057,11 +3321,11 @@ static bool urwire__encode_calibration_data(const void *from, urwire_sw_version 
     return true;
 }
 
-static void urwire__visit_calibration_data(const void *from, urwire_sw_version version,
+static void urwire__visit_calibration_data(const void *from, const urwire__ver *ver,
                                            const urwire_visitor *v)
 {
     const urwire_calibration_data *in = from;
-    (void)version;
+    (void)ver;
     v->on_f64(v->ctx, "fx", in->fx);
     v->on_f64(v->ctx, "fy", in->fy);
     v->on_f64(v->ctx, "fz", in->fz);
@@ -3073,27 +3337,28 @@ static void urwire__visit_calibration_data(const void *from, urwire_sw_version v
 }
 
 /* Safety data. Used internally by Universal Robots software only; its layout is not documented. 43 bytes in every e-Series capture; no CB2 or CB3 source has it (FIRMWARE- LAYOUTS 2.10). */
-static inline bool urwire__decode_safety_data(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_safety_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                               void *into, urwire_error *err)
 {
     urwire_safety_data *out = into;
     size_t pos = *at;
-    (void)version;
+    (void)ver;
     (void)err;
     out->raw = urwire__view(msg + pos, end - pos);
     pos = end;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_safety_data(const void *from, urwire_sw_version version,
+static bool urwire__encode_safety_data(const void *from, const urwire__ver *ver,
                                        uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_safety_data *in = from;
     size_t pos = *at;
-    (void)version;
+    (void)ver;
     if (!urwire__put_view(out, cap, &pos, in->raw, err))
         return false;
     if (!urwire__put_view(out, cap, &pos, in->extra, err))
@@ -3102,11 +3367,11 @@ static bool urwire__encode_safety_data(const void *from, urwire_sw_version versi
     return true;
 }
 
-static void urwire__visit_safety_data(const void *from, urwire_sw_version version,
+static void urwire__visit_safety_data(const void *from, const urwire__ver *ver,
                                       const urwire_visitor *v)
 {
     const urwire_safety_data *in = from;
-    (void)version;
+    (void)ver;
     v->on_hex(v->ctx, "raw", in->raw);
     if (in->extra.len)
         v->on_hex(v->ctx, "extra", in->extra);
@@ -3123,13 +3388,13 @@ static const urwire__span urwire__tool_comm_info_run0[] = {
 };
 
 /* Tool communication info. e-Series only; its first version is unknown (FIRMWARE-LAYOUTS 2.11). */
-static inline bool urwire__decode_tool_comm_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_tool_comm_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                  void *into, urwire_error *err)
 {
     urwire_tool_comm_info *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 21u)
         return urwire__short_in_run(err, urwire__tool_comm_info_run0, pos, end);
     p = msg + pos;
@@ -3140,19 +3405,20 @@ static inline bool urwire__decode_tool_comm_info(const uint8_t *msg, size_t *at,
     out->rx_idle_chars = urwire__f32(p + 13);
     out->tx_idle_chars = urwire__f32(p + 17);
     pos += 21u;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_tool_comm_info(const void *from, urwire_sw_version version,
+static bool urwire__encode_tool_comm_info(const void *from, const urwire__ver *ver,
                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_tool_comm_info *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 21u)
         return urwire__no_space(err, pos, 21u, cap);
     p = out + pos;
@@ -3169,11 +3435,11 @@ static bool urwire__encode_tool_comm_info(const void *from, urwire_sw_version ve
     return true;
 }
 
-static void urwire__visit_tool_comm_info(const void *from, urwire_sw_version version,
+static void urwire__visit_tool_comm_info(const void *from, const urwire__ver *ver,
                                          const urwire_visitor *v)
 {
     const urwire_tool_comm_info *in = from;
-    (void)version;
+    (void)ver;
     v->on_bool(v->ctx, "tool_communication_is_enabled", in->tool_communication_is_enabled != 0);
     v->on_int(v->ctx, "baud_rate", (int64_t)in->baud_rate);
     v->on_int(v->ctx, "parity", (int64_t)in->parity);
@@ -3192,13 +3458,13 @@ static const urwire__span urwire__tool_mode_info_run0[] = {
 };
 
 /* Tool mode info. e-Series only; its first version is unknown (FIRMWARE-LAYOUTS 2.12). */
-static inline bool urwire__decode_tool_mode_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_tool_mode_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                  void *into, urwire_error *err)
 {
     urwire_tool_mode_info *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 3u)
         return urwire__short_in_run(err, urwire__tool_mode_info_run0, pos, end);
     p = msg + pos;
@@ -3206,19 +3472,20 @@ static inline bool urwire__decode_tool_mode_info(const uint8_t *msg, size_t *at,
     out->digital_output_mode_output_0 = urwire__u8(p + 1);
     out->digital_output_mode_output_1 = urwire__u8(p + 2);
     pos += 3u;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_tool_mode_info(const void *from, urwire_sw_version version,
+static bool urwire__encode_tool_mode_info(const void *from, const urwire__ver *ver,
                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_tool_mode_info *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 3u)
         return urwire__no_space(err, pos, 3u, cap);
     p = out + pos;
@@ -3232,11 +3499,11 @@ static bool urwire__encode_tool_mode_info(const void *from, urwire_sw_version ve
     return true;
 }
 
-static void urwire__visit_tool_mode_info(const void *from, urwire_sw_version version,
+static void urwire__visit_tool_mode_info(const void *from, const urwire__ver *ver,
                                          const urwire_visitor *v)
 {
     const urwire_tool_mode_info *in = from;
-    (void)version;
+    (void)ver;
     v->on_uint(v->ctx, "output_mode", (uint64_t)in->output_mode);
     v->on_uint(v->ctx, "digital_output_mode_output_0", (uint64_t)in->digital_output_mode_output_0);
     v->on_uint(v->ctx, "digital_output_mode_output_1", (uint64_t)in->digital_output_mode_output_1);
@@ -3251,32 +3518,33 @@ static const urwire__span urwire__singularity_info_run0[] = {
 };
 
 /* Singularity info. Used internally by Universal Robots software only. */
-static inline bool urwire__decode_singularity_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_singularity_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                    void *into, urwire_error *err)
 {
     urwire_singularity_info *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 2u)
         return urwire__short_in_run(err, urwire__singularity_info_run0, pos, end);
     p = msg + pos;
     out->singularity_severity = urwire__u8(p);
     out->singularity_type = urwire__u8(p + 1);
     pos += 2u;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_singularity_info(const void *from, urwire_sw_version version,
+static bool urwire__encode_singularity_info(const void *from, const urwire__ver *ver,
                                             uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_singularity_info *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 2u)
         return urwire__no_space(err, pos, 2u, cap);
     p = out + pos;
@@ -3289,11 +3557,11 @@ static bool urwire__encode_singularity_info(const void *from, urwire_sw_version 
     return true;
 }
 
-static void urwire__visit_singularity_info(const void *from, urwire_sw_version version,
+static void urwire__visit_singularity_info(const void *from, const urwire__ver *ver,
                                            const urwire_visitor *v)
 {
     const urwire_singularity_info *in = from;
-    (void)version;
+    (void)ver;
     v->on_uint(v->ctx, "singularity_severity", (uint64_t)in->singularity_severity);
     v->on_uint(v->ctx, "singularity_type", (uint64_t)in->singularity_type);
     if (in->extra.len)
@@ -3318,13 +3586,13 @@ static const urwire__span urwire__version_run2[] = {
 };
 
 /* Version message, the first message on both the primary and secondary interfaces. It is read in the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from 3.3 the bugfix version and the build number (FIRMWARE-LAYOUTS 2.15). PolyScope X sends major version 10. */
-static inline bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                           void *into, urwire_error *err)
 {
     urwire_version_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (!urwire__read_prefixed(msg, &pos, end, 1u, true, "project_name", &out->project_name, err))
         return false;
     if (end - pos < 2u)
@@ -3333,7 +3601,7 @@ static inline bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t
     out->major_version = urwire__u8(p);
     out->minor_version = urwire__u8(p + 1);
     pos += 2u;
-    if (urwire__version_cmp(version, 3, 2) <= 0) {
+    if (ver->key <= URWIRE__V(3, 2, 999)) {
         if (end - pos < 4u)
             return urwire__short_in_run(err, urwire__version_run1, pos, end);
         p = msg + pos;
@@ -3342,7 +3610,7 @@ static inline bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t
     } else {
         out->svn_revision = 0;
     }
-    if (urwire__version_cmp(version, 3, 3) >= 0) {
+    if (ver->key >= URWIRE__V(3, 3, 0)) {
         if (end - pos < 8u)
             return urwire__short_in_run(err, urwire__version_run2, pos, end);
         p = msg + pos;
@@ -3355,19 +3623,20 @@ static inline bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t
     }
     out->build_date = urwire__view(msg + pos, end - pos);
     pos = end;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_version(const void *from, urwire_sw_version version,
+static bool urwire__encode_version(const void *from, const urwire__ver *ver,
                                    uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_version_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (!urwire__put_prefixed(out, cap, &pos, 1u, 127, in->project_name, "project_name", err))
         return false;
     if (cap - pos < 2u)
@@ -3376,14 +3645,14 @@ static bool urwire__encode_version(const void *from, urwire_sw_version version,
     urwire__put_u8(p, in->major_version);
     urwire__put_u8(p + 1, in->minor_version);
     pos += 2u;
-    if (urwire__version_cmp(version, 3, 2) <= 0) {
+    if (ver->key <= URWIRE__V(3, 2, 999)) {
         if (cap - pos < 4u)
             return urwire__no_space(err, pos, 4u, cap);
         p = out + pos;
         urwire__put_i32(p, in->svn_revision);
         pos += 4u;
     }
-    if (urwire__version_cmp(version, 3, 3) >= 0) {
+    if (ver->key >= URWIRE__V(3, 3, 0)) {
         if (cap - pos < 8u)
             return urwire__no_space(err, pos, 8u, cap);
         p = out + pos;
@@ -3399,21 +3668,21 @@ static bool urwire__encode_version(const void *from, urwire_sw_version version,
     return true;
 }
 
-static void urwire__visit_version(const void *from, urwire_sw_version version,
+static void urwire__visit_version(const void *from, const urwire__ver *ver,
                                   const urwire_visitor *v)
 {
     const urwire_version_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_text(v->ctx, "project_name", in->project_name);
     v->on_uint(v->ctx, "major_version", (uint64_t)in->major_version);
     v->on_uint(v->ctx, "minor_version", (uint64_t)in->minor_version);
-    if (urwire__version_cmp(version, 3, 2) <= 0) {
+    if (ver->key <= URWIRE__V(3, 2, 999)) {
         v->on_int(v->ctx, "svn_revision", (int64_t)in->svn_revision);
     }
-    if (urwire__version_cmp(version, 3, 3) >= 0) {
+    if (ver->key >= URWIRE__V(3, 3, 0)) {
         v->on_int(v->ctx, "bugfix_version", (int64_t)in->bugfix_version);
     }
-    if (urwire__version_cmp(version, 3, 3) >= 0) {
+    if (ver->key >= URWIRE__V(3, 3, 0)) {
         v->on_int(v->ctx, "build_number", (int64_t)in->build_number);
     }
     v->on_text(v->ctx, "build_date", in->build_date);
@@ -3434,20 +3703,20 @@ static const urwire__span urwire__safety_mode_run1[] = {
 };
 
 /* Safety mode message; the security message of CB2, which carries a text instead of the safety mode and its report data (FIRMWARE-LAYOUTS 1c). */
-static inline bool urwire__decode_safety_mode(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_safety_mode(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                               void *into, urwire_error *err)
 {
     urwire_safety_mode_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 8u)
         return urwire__short_in_run(err, urwire__safety_mode_run0, pos, end);
     p = msg + pos;
     out->robot_message_code = urwire__i32(p);
     out->robot_message_argument = urwire__i32(p + 4);
     pos += 8u;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (end - pos < 5u)
             return urwire__short_in_run(err, urwire__safety_mode_run1, pos, end);
         p = msg + pos;
@@ -3479,32 +3748,33 @@ static inline bool urwire__decode_safety_mode(const uint8_t *msg, size_t *at, si
         out->report_data_type = 0;
         memset(&out->report_data, 0, sizeof out->report_data);
     }
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key <= URWIRE__V(1, 8, 999)) {
         out->text = urwire__view(msg + pos, end - pos);
         pos = end;
     } else {
         memset(&out->text, 0, sizeof out->text);
     }
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_safety_mode(const void *from, urwire_sw_version version,
+static bool urwire__encode_safety_mode(const void *from, const urwire__ver *ver,
                                        uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_safety_mode_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 8u)
         return urwire__no_space(err, pos, 8u, cap);
     p = out + pos;
     urwire__put_i32(p, in->robot_message_code);
     urwire__put_i32(p + 4, in->robot_message_argument);
     pos += 8u;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (cap - pos < 5u)
             return urwire__no_space(err, pos, 5u, cap);
         p = out + pos;
@@ -3532,7 +3802,7 @@ static bool urwire__encode_safety_mode(const void *from, urwire_sw_version versi
             break;
         }
     }
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key <= URWIRE__V(1, 8, 999)) {
         if (!urwire__put_view(out, cap, &pos, in->text, err))
             return false;
     }
@@ -3542,20 +3812,20 @@ static bool urwire__encode_safety_mode(const void *from, urwire_sw_version versi
     return true;
 }
 
-static void urwire__visit_safety_mode(const void *from, urwire_sw_version version,
+static void urwire__visit_safety_mode(const void *from, const urwire__ver *ver,
                                       const urwire_visitor *v)
 {
     const urwire_safety_mode_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_int(v->ctx, "robot_message_code", (int64_t)in->robot_message_code);
     v->on_int(v->ctx, "robot_message_argument", (int64_t)in->robot_message_argument);
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_uint(v->ctx, "safety_mode_type", (uint64_t)in->safety_mode_type);
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_uint(v->ctx, "report_data_type", (uint64_t)in->report_data_type);
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         switch (in->report_data_type) {
         case 2:
             v->on_int(v->ctx, "report_data", (int64_t)in->report_data.int32);
@@ -3568,7 +3838,7 @@ static void urwire__visit_safety_mode(const void *from, urwire_sw_version versio
             break;
         }
     }
-    if (urwire__version_cmp(version, 1, 8) <= 0) {
+    if (ver->key <= URWIRE__V(1, 8, 999)) {
         v->on_text(v->ctx, "text", in->text);
     }
     if (in->extra.len)
@@ -3589,20 +3859,20 @@ static const urwire__span urwire__robot_comm_run1[] = {
 };
 
 /* Robot comm message (an error code report). On CB2 the code and argument are followed by the text alone (FIRMWARE-LAYOUTS 1c). */
-static inline bool urwire__decode_robot_comm(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_robot_comm(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                              void *into, urwire_error *err)
 {
     urwire_robot_comm_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 8u)
         return urwire__short_in_run(err, urwire__robot_comm_run0, pos, end);
     p = msg + pos;
     out->robot_message_code = urwire__i32(p);
     out->robot_message_argument = urwire__i32(p + 4);
     pos += 8u;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (end - pos < 12u)
             return urwire__short_in_run(err, urwire__robot_comm_run1, pos, end);
         p = msg + pos;
@@ -3617,26 +3887,27 @@ static inline bool urwire__decode_robot_comm(const uint8_t *msg, size_t *at, siz
     }
     out->text = urwire__view(msg + pos, end - pos);
     pos = end;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_robot_comm(const void *from, urwire_sw_version version,
+static bool urwire__encode_robot_comm(const void *from, const urwire__ver *ver,
                                       uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_robot_comm_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 8u)
         return urwire__no_space(err, pos, 8u, cap);
     p = out + pos;
     urwire__put_i32(p, in->robot_message_code);
     urwire__put_i32(p + 4, in->robot_message_argument);
     pos += 8u;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (cap - pos < 12u)
             return urwire__no_space(err, pos, 12u, cap);
         p = out + pos;
@@ -3653,20 +3924,20 @@ static bool urwire__encode_robot_comm(const void *from, urwire_sw_version versio
     return true;
 }
 
-static void urwire__visit_robot_comm(const void *from, urwire_sw_version version,
+static void urwire__visit_robot_comm(const void *from, const urwire__ver *ver,
                                      const urwire_visitor *v)
 {
     const urwire_robot_comm_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_int(v->ctx, "robot_message_code", (int64_t)in->robot_message_code);
     v->on_int(v->ctx, "robot_message_argument", (int64_t)in->robot_message_argument);
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_int(v->ctx, "robot_message_report_level", (int64_t)in->robot_message_report_level);
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_uint(v->ctx, "robot_message_data_type", (uint64_t)in->robot_message_data_type);
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_uint(v->ctx, "robot_message_data", (uint64_t)in->robot_message_data);
     }
     v->on_text(v->ctx, "text", in->text);
@@ -3681,13 +3952,13 @@ static const urwire__span urwire__key_run0[] = {
 };
 
 /* Key message. */
-static inline bool urwire__decode_key(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_key(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                       void *into, urwire_error *err)
 {
     urwire_key_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 8u)
         return urwire__short_in_run(err, urwire__key_run0, pos, end);
     p = msg + pos;
@@ -3698,19 +3969,20 @@ static inline bool urwire__decode_key(const uint8_t *msg, size_t *at, size_t end
         return false;
     out->text = urwire__view(msg + pos, end - pos);
     pos = end;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_key(const void *from, urwire_sw_version version,
+static bool urwire__encode_key(const void *from, const urwire__ver *ver,
                                uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_key_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 8u)
         return urwire__no_space(err, pos, 8u, cap);
     p = out + pos;
@@ -3727,11 +3999,11 @@ static bool urwire__encode_key(const void *from, urwire_sw_version version,
     return true;
 }
 
-static void urwire__visit_key(const void *from, urwire_sw_version version,
+static void urwire__visit_key(const void *from, const urwire__ver *ver,
                               const urwire_visitor *v)
 {
     const urwire_key_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_int(v->ctx, "robot_message_code", (int64_t)in->robot_message_code);
     v->on_int(v->ctx, "robot_message_argument", (int64_t)in->robot_message_argument);
     v->on_text(v->ctx, "title", in->title);
@@ -3746,13 +4018,13 @@ static const urwire__span urwire__program_thread_run0[] = {
 };
 
 /* One entry of threads. */
-static inline bool urwire__decode_program_thread(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_program_thread(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                  void *into, urwire_error *err)
 {
     urwire_program_thread *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 4u)
         return urwire__short_in_run(err, urwire__program_thread_run0, pos, end);
     p = msg + pos;
@@ -3766,13 +4038,13 @@ static inline bool urwire__decode_program_thread(const uint8_t *msg, size_t *at,
     return true;
 }
 
-static bool urwire__encode_program_thread(const void *from, urwire_sw_version version,
+static bool urwire__encode_program_thread(const void *from, const urwire__ver *ver,
                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_program_thread *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 4u)
         return urwire__no_space(err, pos, 4u, cap);
     p = out + pos;
@@ -3788,8 +4060,9 @@ static bool urwire__encode_program_thread(const void *from, urwire_sw_version ve
 
 bool urwire_next_program_thread(urwire_seq *seq, urwire_program_thread *out)
 {
+    urwire__ver ver = urwire__ver_of(seq->version);
     urwire_error ignored;
-    if (seq->count == 0 || !urwire__decode_program_thread(seq->msg, &seq->pos, seq->end, seq->version, out, &ignored))
+    if (seq->count == 0 || !urwire__decode_program_thread(seq->msg, &seq->pos, seq->end, &ver, out, &ignored))
         return false;
     seq->count--;
     return true;
@@ -3797,46 +4070,48 @@ bool urwire_next_program_thread(urwire_seq *seq, urwire_program_thread *out)
 
 bool urwire_append_program_thread(const urwire_program_thread *in, uint8_t *out, size_t cap, size_t *pos, urwire_error *err)
 {
-    return urwire__encode_program_thread(in, URWIRE_DEFAULT_VERSION, out, cap, pos, err);
+    urwire__ver ver = urwire__ver_of(URWIRE_DEFAULT_VERSION);
+    return urwire__encode_program_thread(in, &ver, out, cap, pos, err);
 }
 
-static void urwire__visit_program_thread(const void *from, urwire_sw_version version,
+static void urwire__visit_program_thread(const void *from, const urwire__ver *ver,
                                          const urwire_visitor *v)
 {
     const urwire_program_thread *in = from;
-    (void)version;
+    (void)ver;
     v->on_int(v->ctx, "label_id", (int64_t)in->label_id);
     v->on_text(v->ctx, "label_name", in->label_name);
     v->on_text(v->ctx, "thread_name", in->thread_name);
 }
 
 /* Program threads message, one entry per running program thread. */
-static inline bool urwire__decode_program_threads(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_program_threads(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                   void *into, urwire_error *err)
 {
     urwire_program_threads_message *out = into;
     size_t pos = *at;
-    (void)version;
-    out->threads = urwire__seq(msg, pos, version, -1);
+    (void)ver;
+    out->threads = urwire__seq(msg, pos, ver->version, -1);
     while (pos < end) {
         urwire_program_thread item;
-        if (!urwire__decode_program_thread(msg, &pos, end, version, &item, err))
+        if (!urwire__decode_program_thread(msg, &pos, end, ver, &item, err))
             return urwire__within(err, "threads", out->threads.count);
         out->threads.count++;
     }
     out->threads.end = pos;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_program_threads(const void *from, urwire_sw_version version,
+static bool urwire__encode_program_threads(const void *from, const urwire__ver *ver,
                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_program_threads_message *in = from;
     size_t pos = *at;
-    (void)version;
+    (void)ver;
     if (!urwire__put_view(out, cap, &pos, urwire__seq_bytes(&in->threads), err))
         return false;
     if (!urwire__put_view(out, cap, &pos, in->extra, err))
@@ -3845,18 +4120,18 @@ static bool urwire__encode_program_threads(const void *from, urwire_sw_version v
     return true;
 }
 
-static void urwire__visit_program_threads(const void *from, urwire_sw_version version,
+static void urwire__visit_program_threads(const void *from, const urwire__ver *ver,
                                           const urwire_visitor *v)
 {
     const urwire_program_threads_message *in = from;
-    (void)version;
+    (void)ver;
     {
         urwire_seq seq = in->threads;
         urwire_program_thread item;
         v->begin_array(v->ctx, "threads");
         while (urwire_next_program_thread(&seq, &item)) {
             v->begin_object(v->ctx, NULL);
-            urwire__visit_program_thread(&item, version, v);
+            urwire__visit_program_thread(&item, ver, v);
             v->end_object(v->ctx);
         }
         v->end_array(v->ctx);
@@ -3883,14 +4158,14 @@ static const urwire__span urwire__popup_run2[] = {
 };
 
 /* Popup message. On CB2 it has no request id, requested type or blocking flag (FIRMWARE- LAYOUTS 1c). */
-static inline bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                         void *into, urwire_error *err)
 {
     urwire_popup_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    (void)ver;
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (end - pos < 8u)
             return urwire__short_in_run(err, urwire__popup_run0, pos, end);
         p = msg + pos;
@@ -3907,7 +4182,7 @@ static inline bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t e
     out->warning = urwire__u8(p);
     out->error = urwire__u8(p + 1);
     pos += 2u;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (end - pos < 1u)
             return urwire__short_in_run(err, urwire__popup_run2, pos, end);
         p = msg + pos;
@@ -3920,20 +4195,21 @@ static inline bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t e
         return false;
     out->text = urwire__view(msg + pos, end - pos);
     pos = end;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_popup(const void *from, urwire_sw_version version,
+static bool urwire__encode_popup(const void *from, const urwire__ver *ver,
                                  uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_popup_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    (void)ver;
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (cap - pos < 8u)
             return urwire__no_space(err, pos, 8u, cap);
         p = out + pos;
@@ -3947,7 +4223,7 @@ static bool urwire__encode_popup(const void *from, urwire_sw_version version,
     urwire__put_u8(p, in->warning);
     urwire__put_u8(p + 1, in->error);
     pos += 2u;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         if (cap - pos < 1u)
             return urwire__no_space(err, pos, 1u, cap);
         p = out + pos;
@@ -3964,20 +4240,20 @@ static bool urwire__encode_popup(const void *from, urwire_sw_version version,
     return true;
 }
 
-static void urwire__visit_popup(const void *from, urwire_sw_version version,
+static void urwire__visit_popup(const void *from, const urwire__ver *ver,
                                 const urwire_visitor *v)
 {
     const urwire_popup_message *in = from;
-    (void)version;
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    (void)ver;
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_uint(v->ctx, "request_id", (uint64_t)in->request_id);
     }
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_uint(v->ctx, "requested_type", (uint64_t)in->requested_type);
     }
     v->on_bool(v->ctx, "warning", in->warning != 0);
     v->on_bool(v->ctx, "error", in->error != 0);
-    if (urwire__version_cmp(version, 3, 0) >= 0) {
+    if (ver->key >= URWIRE__V(3, 0, 0)) {
         v->on_bool(v->ctx, "blocking", in->blocking != 0);
     }
     v->on_text(v->ctx, "title", in->title);
@@ -3992,13 +4268,13 @@ static const urwire__span urwire__label_run0[] = {
 };
 
 /* Label message (CB2 only). CB2, up to 1.8 (FIRMWARE-LAYOUTS 1c: python-urx 2013 labelMessage, the CB2 C header LabelMessage). Later documents drop subtype 1 and no CB3 form is known, so the 1.8 boundary is an inference; later streams keep it raw. */
-static inline bool urwire__decode_label(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_label(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                         void *into, urwire_error *err)
 {
     urwire_label_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 4u)
         return urwire__short_in_run(err, urwire__label_run0, pos, end);
     p = msg + pos;
@@ -4006,19 +4282,20 @@ static inline bool urwire__decode_label(const uint8_t *msg, size_t *at, size_t e
     pos += 4u;
     out->text = urwire__view(msg + pos, end - pos);
     pos = end;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_label(const void *from, urwire_sw_version version,
+static bool urwire__encode_label(const void *from, const urwire__ver *ver,
                                  uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_label_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 4u)
         return urwire__no_space(err, pos, 4u, cap);
     p = out + pos;
@@ -4032,11 +4309,11 @@ static bool urwire__encode_label(const void *from, urwire_sw_version version,
     return true;
 }
 
-static void urwire__visit_label(const void *from, urwire_sw_version version,
+static void urwire__visit_label(const void *from, const urwire__ver *ver,
                                 const urwire_visitor *v)
 {
     const urwire_label_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_int(v->ctx, "id", (int64_t)in->id);
     v->on_text(v->ctx, "text", in->text);
     if (in->extra.len)
@@ -4050,13 +4327,13 @@ static const urwire__span urwire__var_run0[] = {
 };
 
 /* Var message (CB2 only). CB2, up to 1.8 (FIRMWARE-LAYOUTS 1c: python-urx 2013 varMessage, the CB2 C header VarMessage). Later documents drop subtype 8 and no CB3 form is known, so the 1.8 boundary is an inference; later streams keep it raw. */
-static inline bool urwire__decode_var(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_var(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                       void *into, urwire_error *err)
 {
     urwire_var_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 8u)
         return urwire__short_in_run(err, urwire__var_run0, pos, end);
     p = msg + pos;
@@ -4067,19 +4344,20 @@ static inline bool urwire__decode_var(const uint8_t *msg, size_t *at, size_t end
         return false;
     out->text = urwire__view(msg + pos, end - pos);
     pos = end;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_var(const void *from, urwire_sw_version version,
+static bool urwire__encode_var(const void *from, const urwire__ver *ver,
                                uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_var_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 8u)
         return urwire__no_space(err, pos, 8u, cap);
     p = out + pos;
@@ -4096,11 +4374,11 @@ static bool urwire__encode_var(const void *from, urwire_sw_version version,
     return true;
 }
 
-static void urwire__visit_var(const void *from, urwire_sw_version version,
+static void urwire__visit_var(const void *from, const urwire__ver *ver,
                               const urwire_visitor *v)
 {
     const urwire_var_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_int(v->ctx, "robot_message_code", (int64_t)in->robot_message_code);
     v->on_int(v->ctx, "robot_message_argument", (int64_t)in->robot_message_argument);
     v->on_text(v->ctx, "title", in->title);
@@ -4119,13 +4397,13 @@ static const urwire__span urwire__hardware_info_run0[] = {
 };
 
 /* Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13 (FIRMWARE-LAYOUTS 1b, 2.16: URCL hardware_info_message.h "introduced in PolyScope 5.26 / 10.14"; URCL datatypes.h on early 5.26 and 10.13 patch releases). 27 bytes in all. Not gated by version: one range cannot say "5.26 and later, and 10.13 and later", and subtype 18 never meant anything else, so it is read in every version (FIRMWARE-LAYOUTS 3.13: keep it tolerant). The layout is URCL's parse order; high confidence. */
-static inline bool urwire__decode_hardware_info(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_hardware_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                 void *into, urwire_error *err)
 {
     urwire_hardware_info_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 12u)
         return urwire__short_in_run(err, urwire__hardware_info_run0, pos, end);
     p = msg + pos;
@@ -4135,19 +4413,20 @@ static inline bool urwire__decode_hardware_info(const uint8_t *msg, size_t *at, 
     out->reserved_2 = urwire__u16(p + 8);
     out->tool_flange_type = urwire__u16(p + 10);
     pos += 12u;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_hardware_info(const void *from, urwire_sw_version version,
+static bool urwire__encode_hardware_info(const void *from, const urwire__ver *ver,
                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_hardware_info_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 12u)
         return urwire__no_space(err, pos, 12u, cap);
     p = out + pos;
@@ -4163,11 +4442,11 @@ static bool urwire__encode_hardware_info(const void *from, urwire_sw_version ver
     return true;
 }
 
-static void urwire__visit_hardware_info(const void *from, urwire_sw_version version,
+static void urwire__visit_hardware_info(const void *from, const urwire__ver *ver,
                                         const urwire_visitor *v)
 {
     const urwire_hardware_info_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_int(v->ctx, "robot_type", (int64_t)in->robot_type);
     v->on_uint(v->ctx, "reserved_1", (uint64_t)in->reserved_1);
     v->on_uint(v->ctx, "control_box_type", (uint64_t)in->control_box_type);
@@ -4184,13 +4463,13 @@ static const urwire__span urwire__request_value_run0[] = {
 };
 
 /* Request value message. */
-static inline bool urwire__decode_request_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_request_value(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                 void *into, urwire_error *err)
 {
     urwire_request_value_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 8u)
         return urwire__short_in_run(err, urwire__request_value_run0, pos, end);
     p = msg + pos;
@@ -4199,19 +4478,20 @@ static inline bool urwire__decode_request_value(const uint8_t *msg, size_t *at, 
     pos += 8u;
     out->text = urwire__view(msg + pos, end - pos);
     pos = end;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_request_value(const void *from, urwire_sw_version version,
+static bool urwire__encode_request_value(const void *from, const urwire__ver *ver,
                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_request_value_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 8u)
         return urwire__no_space(err, pos, 8u, cap);
     p = out + pos;
@@ -4226,11 +4506,11 @@ static bool urwire__encode_request_value(const void *from, urwire_sw_version ver
     return true;
 }
 
-static void urwire__visit_request_value(const void *from, urwire_sw_version version,
+static void urwire__visit_request_value(const void *from, const urwire__ver *ver,
                                         const urwire_visitor *v)
 {
     const urwire_request_value_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_uint(v->ctx, "request_id", (uint64_t)in->request_id);
     v->on_uint(v->ctx, "requested_type", (uint64_t)in->requested_type);
     v->on_text(v->ctx, "text", in->text);
@@ -4239,27 +4519,28 @@ static void urwire__visit_request_value(const void *from, urwire_sw_version vers
 }
 
 /* Text message. */
-static inline bool urwire__decode_text(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_text(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                        void *into, urwire_error *err)
 {
     urwire_text_message *out = into;
     size_t pos = *at;
-    (void)version;
+    (void)ver;
     (void)err;
     out->text = urwire__view(msg + pos, end - pos);
     pos = end;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_text(const void *from, urwire_sw_version version,
+static bool urwire__encode_text(const void *from, const urwire__ver *ver,
                                 uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_text_message *in = from;
     size_t pos = *at;
-    (void)version;
+    (void)ver;
     if (!urwire__put_view(out, cap, &pos, in->text, err))
         return false;
     if (!urwire__put_view(out, cap, &pos, in->extra, err))
@@ -4268,11 +4549,11 @@ static bool urwire__encode_text(const void *from, urwire_sw_version version,
     return true;
 }
 
-static void urwire__visit_text(const void *from, urwire_sw_version version,
+static void urwire__visit_text(const void *from, const urwire__ver *ver,
                                const urwire_visitor *v)
 {
     const urwire_text_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_text(v->ctx, "text", in->text);
     if (in->extra.len)
         v->on_hex(v->ctx, "extra", in->extra);
@@ -4285,13 +4566,13 @@ static const urwire__span urwire__runtime_exception_run0[] = {
 };
 
 /* Runtime exception message. */
-static inline bool urwire__decode_runtime_exception(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_runtime_exception(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                     void *into, urwire_error *err)
 {
     urwire_runtime_exception_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 8u)
         return urwire__short_in_run(err, urwire__runtime_exception_run0, pos, end);
     p = msg + pos;
@@ -4300,19 +4581,20 @@ static inline bool urwire__decode_runtime_exception(const uint8_t *msg, size_t *
     pos += 8u;
     out->text = urwire__view(msg + pos, end - pos);
     pos = end;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_runtime_exception(const void *from, urwire_sw_version version,
+static bool urwire__encode_runtime_exception(const void *from, const urwire__ver *ver,
                                              uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_runtime_exception_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 8u)
         return urwire__no_space(err, pos, 8u, cap);
     p = out + pos;
@@ -4327,11 +4609,11 @@ static bool urwire__encode_runtime_exception(const void *from, urwire_sw_version
     return true;
 }
 
-static void urwire__visit_runtime_exception(const void *from, urwire_sw_version version,
+static void urwire__visit_runtime_exception(const void *from, const urwire__ver *ver,
                                             const urwire_visitor *v)
 {
     const urwire_runtime_exception_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_int(v->ctx, "script_line_number", (int64_t)in->script_line_number);
     v->on_int(v->ctx, "script_column_number", (int64_t)in->script_column_number);
     v->on_text(v->ctx, "text", in->text);
@@ -4345,32 +4627,33 @@ static const urwire__span urwire__global_variables_setup_run0[] = {
 };
 
 /* Global variables setup message. */
-static inline bool urwire__decode_global_variables_setup(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_global_variables_setup(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                          void *into, urwire_error *err)
 {
     urwire_global_variables_setup_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 2u)
         return urwire__short_in_run(err, urwire__global_variables_setup_run0, pos, end);
     p = msg + pos;
     out->start_index = urwire__u16(p);
     pos += 2u;
     urwire__read_texts(msg, &pos, end, 0x0a, &out->variable_names);
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_global_variables_setup(const void *from, urwire_sw_version version,
+static bool urwire__encode_global_variables_setup(const void *from, const urwire__ver *ver,
                                                   uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_global_variables_setup_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 2u)
         return urwire__no_space(err, pos, 2u, cap);
     p = out + pos;
@@ -4384,11 +4667,11 @@ static bool urwire__encode_global_variables_setup(const void *from, urwire_sw_ve
     return true;
 }
 
-static void urwire__visit_global_variables_setup(const void *from, urwire_sw_version version,
+static void urwire__visit_global_variables_setup(const void *from, const urwire__ver *ver,
                                                  const urwire_visitor *v)
 {
     const urwire_global_variables_setup_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_uint(v->ctx, "start_index", (uint64_t)in->start_index);
     urwire__visit_texts(&in->variable_names, "variable_names", v);
     if (in->extra.len)
@@ -4401,33 +4684,34 @@ static const urwire__span urwire__global_variables_update_run0[] = {
 };
 
 /* Global variables update message. */
-static inline bool urwire__decode_global_variables_update(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static inline bool urwire__decode_global_variables_update(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                           void *into, urwire_error *err)
 {
     urwire_global_variables_update_message *out = into;
     size_t pos = *at;
     const uint8_t *p;
-    (void)version;
+    (void)ver;
     if (end - pos < 2u)
         return urwire__short_in_run(err, urwire__global_variables_update_run0, pos, end);
     p = msg + pos;
     out->start_index = urwire__u16(p);
     pos += 2u;
-    if (!urwire__read_values(msg, &pos, end, version, 0x0a, "variables", &out->variables, err))
+    if (!urwire__read_values(msg, &pos, end, ver->version, 0x0a, "variables", &out->variables, err))
         return false;
+    out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
     *at = pos;
     return true;
 }
 
-static bool urwire__encode_global_variables_update(const void *from, urwire_sw_version version,
+static bool urwire__encode_global_variables_update(const void *from, const urwire__ver *ver,
                                                    uint8_t *out, size_t cap, size_t *at, urwire_error *err)
 {
     const urwire_global_variables_update_message *in = from;
     size_t pos = *at;
-    (void)version;
     uint8_t *p;
+    (void)ver;
     if (cap - pos < 2u)
         return urwire__no_space(err, pos, 2u, cap);
     p = out + pos;
@@ -4441,11 +4725,11 @@ static bool urwire__encode_global_variables_update(const void *from, urwire_sw_v
     return true;
 }
 
-static void urwire__visit_global_variables_update(const void *from, urwire_sw_version version,
+static void urwire__visit_global_variables_update(const void *from, const urwire__ver *ver,
                                                   const urwire_visitor *v)
 {
     const urwire_global_variables_update_message *in = from;
-    (void)version;
+    (void)ver;
     v->on_uint(v->ctx, "start_index", (uint64_t)in->start_index);
     urwire__visit_values(&in->variables, "variables", v);
     if (in->extra.len)
@@ -4518,166 +4802,424 @@ static void urwire__put_program_state_header(const urwire_message *m, uint8_t *o
     urwire__put_u8(out + 13, h->robot_message_type);
 }
 
+/* ---- forms: which layout a type code is read in, by software version and by length ------- */
+
+/* Where the segments of the version axis start (as urwire__version_key orders versions):
+ * segment k >= 1 from urwire__segment_starts[k - 1] up to the next start, segment 0 below the
+ * first. Within a segment every type code sends one form. */
+static const uint64_t urwire__segment_starts[] = {
+    URWIRE__V(0, 0, 0),
+    URWIRE__V(1, 5, 1000),
+    URWIRE__V(1, 6, 0),
+    URWIRE__V(1, 7, 1000),
+    URWIRE__V(1, 8, 0),
+    URWIRE__V(1, 8, 1000),
+    URWIRE__V(3, 0, 0),
+    URWIRE__V(3, 0, 1000),
+    URWIRE__V(3, 1, 0),
+    URWIRE__V(3, 1, 1000),
+    URWIRE__V(3, 2, 0),
+    URWIRE__V(3, 2, 1000),
+    URWIRE__V(3, 3, 0),
+    URWIRE__V(3, 4, 1000),
+    URWIRE__V(3, 5, 0),
+    URWIRE__V(3, 9, 1000),
+    URWIRE__V(3, 10, 0),
+    URWIRE__V(3, 15, 1000),
+    URWIRE__V(5, 0, 0),
+    URWIRE__V(5, 3, 1000),
+    URWIRE__V(5, 4, 0),
+    URWIRE__V(5, 25, 1),
+    URWIRE__V(5, 99, 1000),
+    URWIRE__V(10, 0, 0),
+    URWIRE__V(1048576, 0, 1),
+};
+
+/* The forms of every sub-package type, code by code. */
+static const urwire__form urwire__package_form_list[] = {
+    /* 0: robot_mode_data */
+    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {24, 0}, 24u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {33, 0}, 33u, {3, 1, 999, false}},  /* 3.0 to 3.1 */
+    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {41, 0}, 41u, {3, 4, 999, false}},  /* 3.2 to 3.4 */
+    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {42, 0}, 42u, {5, 9, 0, false}},  /* 3.5 and later */
+    /* 1: joint_data */
+    {URWIRE_LAYOUT_JOINT_DATA, 1, {246, 0}, 246u, {5, 9, 0, false}},  /* all versions */
+    /* 2: tool_data */
+    {URWIRE_LAYOUT_TOOL_DATA, 1, {32, 0}, 32u, {5, 9, 0, false}},  /* all versions */
+    /* 3: masterboard_data */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 1, {56, 0}, 56u, {1, 5, 999, false}},  /* up to 1.5 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {59, 71}, 59u, {1, 8, 999, false}},  /* 1.6 to 1.8 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {67, 83}, 67u, {3, 1, 999, false}},  /* 3.0 to 3.1 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {69, 85}, 69u, {5, 3, 999, false}},  /* 3.2 to 3.9 or 5.0 to 5.3 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {70, 86}, 70u, {5, 9, 0, false}},  /* 3.10 to 3.15 or 5.4 and later */
+    /* 4: cartesian_info */
+    {URWIRE_LAYOUT_CARTESIAN_INFO, 1, {48, 0}, 48u, {3, 0, 999, false}},  /* up to 3.0 */
+    {URWIRE_LAYOUT_CARTESIAN_INFO, 1, {96, 0}, 96u, {5, 9, 0, false}},  /* 3.1 and later */
+    /* 5: laser_pointer, kinematics_info */
+    {URWIRE_LAYOUT_LASER_POINTER, 1, {24, 0}, 24u, {1, 7, 999, false}},  /* up to 1.7 */
+    {URWIRE_LAYOUT_KINEMATICS_INFO, 1, {220, 0}, 220u, {5, 9, 0, false}},  /* 1.8 and later */
+    /* 6: configuration_data */
+    {URWIRE_LAYOUT_CONFIGURATION_DATA, 1, {464, 0}, 464u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_LAYOUT_CONFIGURATION_DATA, 1, {440, 0}, 440u, {5, 9, 0, false}},  /* 3.0 to 5.25.0 */
+    {URWIRE_LAYOUT_CONFIGURATION_DATA, 1, {444, 0}, 444u, {5, 25, 1, false}},  /* 5.25.1 and later */
+    /* 7: force_mode_data */
+    {URWIRE_LAYOUT_FORCE_MODE_DATA, 1, {56, 0}, 56u, {5, 9, 0, false}},  /* all versions */
+    /* 8: additional_info */
+    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {5, 0}, 5u, {1, 7, 999, false}},  /* up to 1.7 */
+    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {2, 0}, 2u, {3, 1, 999, false}},  /* 1.8 to 3.1 */
+    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {3, 0}, 3u, {3, 15, 999, false}},  /* 3.2 to 3.15 */
+    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {4, 0}, 4u, {5, 9, 0, false}},  /* 5.0 and later */
+    /* 9: calibration_data */
+    {URWIRE_LAYOUT_CALIBRATION_DATA, 1, {48, 0}, 48u, {5, 9, 0, false}},  /* all versions */
+    /* 10: safety_data */
+    {URWIRE_LAYOUT_SAFETY_DATA, 0, {0, 0}, 0u, {5, 9, 0, false}},  /* all versions */
+    /* 11: tool_comm_info */
+    {URWIRE_LAYOUT_TOOL_COMM_INFO, 1, {21, 0}, 21u, {5, 9, 0, false}},  /* all versions */
+    /* 12: tool_mode_info */
+    {URWIRE_LAYOUT_TOOL_MODE_INFO, 1, {3, 0}, 3u, {5, 9, 0, false}},  /* all versions */
+    /* 13: singularity_info */
+    {URWIRE_LAYOUT_SINGULARITY_INFO, 1, {2, 0}, 2u, {5, 9, 0, false}},  /* all versions */
+};
+
+/* The forms of each sub-package type with a layout, by code. */
+static const urwire__forms urwire__package_forms[] = {
+    [URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA] = {&urwire__package_form_list[0], 4},
+    [URWIRE_PACKAGE_TYPE_JOINT_DATA] = {&urwire__package_form_list[4], 1},
+    [URWIRE_PACKAGE_TYPE_TOOL_DATA] = {&urwire__package_form_list[5], 1},
+    [URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA] = {&urwire__package_form_list[6], 5},
+    [URWIRE_PACKAGE_TYPE_CARTESIAN_INFO] = {&urwire__package_form_list[11], 2},
+    [URWIRE_PACKAGE_TYPE_KINEMATICS_INFO] = {&urwire__package_form_list[13], 2},
+    [URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA] = {&urwire__package_form_list[15], 3},
+    [URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA] = {&urwire__package_form_list[18], 1},
+    [URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO] = {&urwire__package_form_list[19], 4},
+    [URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA] = {&urwire__package_form_list[23], 1},
+    [URWIRE_PACKAGE_TYPE_SAFETY_DATA] = {&urwire__package_form_list[24], 1},
+    [URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO] = {&urwire__package_form_list[25], 1},
+    [URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO] = {&urwire__package_form_list[26], 1},
+    [URWIRE_PACKAGE_TYPE_SINGULARITY_INFO] = {&urwire__package_form_list[27], 1},
+};
+
+/* Segment by segment (a row each), code by code: the form the segment's versions send, as its
+ * number in urwire__package_form_list plus one; 0 for none. */
+static const uint8_t urwire__package_mine[] = {
+    129, 133, 134, 135, 140, 142, 144, 147, 148, 152, 153, 154, 155, 156,  /* below 0.0.0 */
+    1, 5, 6, 7, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,  /* from 0.0.0 */
+    1, 5, 6, 135, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,  /* from 1.5.1000 */
+    1, 5, 6, 8, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,  /* from 1.6.0 */
+    1, 5, 6, 8, 12, 142, 16, 19, 148, 24, 25, 26, 27, 28,  /* from 1.7.1000 */
+    1, 5, 6, 8, 12, 15, 16, 19, 21, 24, 25, 26, 27, 28,  /* from 1.8.0 */
+    129, 133, 134, 136, 140, 143, 144, 147, 149, 152, 153, 154, 155, 156,  /* from 1.8.1000 */
+    2, 5, 6, 9, 12, 15, 17, 19, 21, 24, 25, 26, 27, 28,  /* from 3.0.0 */
+    2, 5, 6, 9, 140, 15, 17, 19, 21, 24, 25, 26, 27, 28,  /* from 3.0.1000 */
+    2, 5, 6, 9, 13, 15, 17, 19, 21, 24, 25, 26, 27, 28,  /* from 3.1.0 */
+    130, 5, 6, 137, 13, 15, 17, 19, 149, 24, 25, 26, 27, 28,  /* from 3.1.1000 */
+    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.2.0 */
+    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.2.1000 */
+    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.3.0 */
+    131, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.4.1000 */
+    4, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.5.0 */
+    4, 5, 6, 138, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.9.1000 */
+    4, 5, 6, 11, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.10.0 */
+    132, 133, 134, 139, 141, 143, 145, 147, 150, 152, 153, 154, 155, 156,  /* from 3.15.1000 */
+    4, 5, 6, 10, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,  /* from 5.0.0 */
+    4, 5, 6, 138, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,  /* from 5.3.1000 */
+    4, 5, 6, 11, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,  /* from 5.4.0 */
+    4, 5, 6, 11, 13, 15, 18, 19, 23, 24, 25, 26, 27, 28,  /* from 5.25.1 */
+    132, 133, 134, 139, 141, 143, 146, 147, 151, 152, 153, 154, 155, 156,  /* from 5.99.1000 */
+    4, 5, 6, 11, 13, 15, 18, 19, 23, 24, 25, 26, 27, 28,  /* from 10.0.0 */
+    132, 133, 134, 139, 141, 143, 146, 147, 151, 152, 153, 154, 155, 156,  /* from 1048576.0.1 */
+};
+
+
+/* The same rows in brief, for the robot-state fast path: the first exact size of the form the
+ * segment sends, URWIRE__OPEN(least) for an open-ended one, URWIRE__NONE for none. */
+static const uint32_t urwire__package_first_sizes[] = {
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* below 0.0.0 */
+    24u, 246u, 32u, 56u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 0.0.0 */
+    24u, 246u, 32u, URWIRE__NONE, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.5.1000 */
+    24u, 246u, 32u, 59u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.6.0 */
+    24u, 246u, 32u, 59u, 48u, URWIRE__NONE, 464u, 56u, URWIRE__NONE, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.7.1000 */
+    24u, 246u, 32u, 59u, 48u, 220u, 464u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.8.0 */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 1.8.1000 */
+    33u, 246u, 32u, 67u, 48u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.0.0 */
+    33u, 246u, 32u, 67u, URWIRE__NONE, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.0.1000 */
+    33u, 246u, 32u, 67u, 96u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.1.0 */
+    URWIRE__NONE, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, URWIRE__NONE, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.1.1000 */
+    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.2.0 */
+    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.2.1000 */
+    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.3.0 */
+    URWIRE__NONE, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.4.1000 */
+    42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.5.0 */
+    42u, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.9.1000 */
+    42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.10.0 */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 3.15.1000 */
+    42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.0.0 */
+    42u, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.3.1000 */
+    42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.4.0 */
+    42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.25.1 */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 5.99.1000 */
+    42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 10.0.0 */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 1048576.0.1 */
+};
+
+static const urwire__form_table urwire__package_form_table = {
+    urwire__package_form_list, urwire__package_forms, 14, urwire__package_mine,
+};
+
+/* The forms of every robot_message subtype, code by code. */
+static const urwire__form urwire__robot_message_form_list[] = {
+    /* 3: version */
+    {URWIRE_KIND_VERSION, 0, {0, 0}, 7u, {3, 2, 999, false}},  /* up to 3.2 */
+    {URWIRE_KIND_VERSION, 0, {0, 0}, 11u, {5, 9, 0, false}},  /* 3.3 and later */
+    /* 5: safety_mode */
+    {URWIRE_KIND_SAFETY_MODE, 0, {0, 0}, 8u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_SAFETY_MODE, 1, {17, 0}, 17u, {5, 9, 0, false}},  /* 3.0 and later */
+    /* 6: robot_comm */
+    {URWIRE_KIND_ROBOT_COMM, 0, {0, 0}, 8u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_ROBOT_COMM, 0, {0, 0}, 20u, {5, 9, 0, false}},  /* 3.0 and later */
+    /* 7: key */
+    {URWIRE_KIND_KEY, 0, {0, 0}, 9u, {5, 9, 0, false}},  /* all versions */
+    /* 14: program_threads */
+    {URWIRE_KIND_PROGRAM_THREADS, 0, {0, 0}, 0u, {5, 9, 0, false}},  /* all versions */
+    /* 2: popup */
+    {URWIRE_KIND_POPUP, 0, {0, 0}, 3u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_POPUP, 0, {0, 0}, 12u, {5, 9, 0, false}},  /* 3.0 and later */
+    /* 1: label */
+    {URWIRE_KIND_LABEL, 0, {0, 0}, 4u, {1, 8, 999, false}},  /* up to 1.8 */
+    /* 8: var */
+    {URWIRE_KIND_VAR, 0, {0, 0}, 9u, {1, 8, 999, false}},  /* up to 1.8 */
+    /* 18: hardware_info */
+    {URWIRE_KIND_HARDWARE_INFO, 1, {12, 0}, 12u, {5, 9, 0, false}},  /* all versions */
+    /* 9: request_value */
+    {URWIRE_KIND_REQUEST_VALUE, 0, {0, 0}, 8u, {5, 9, 0, false}},  /* all versions */
+    /* 0: text */
+    {URWIRE_KIND_TEXT, 0, {0, 0}, 0u, {5, 9, 0, false}},  /* all versions */
+    /* 10: runtime_exception */
+    {URWIRE_KIND_RUNTIME_EXCEPTION, 0, {0, 0}, 8u, {5, 9, 0, false}},  /* all versions */
+};
+
+/* The forms of each robot_message subtype with a layout, by code. */
+static const urwire__forms urwire__robot_message_forms[] = {
+    [URWIRE_ROBOT_MESSAGE_TYPE_VERSION] = {&urwire__robot_message_form_list[0], 2},
+    [URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE] = {&urwire__robot_message_form_list[2], 2},
+    [URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE] = {&urwire__robot_message_form_list[4], 2},
+    [URWIRE_ROBOT_MESSAGE_TYPE_KEY] = {&urwire__robot_message_form_list[6], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS] = {&urwire__robot_message_form_list[7], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_POPUP] = {&urwire__robot_message_form_list[8], 2},
+    [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL] = {&urwire__robot_message_form_list[10], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR] = {&urwire__robot_message_form_list[11], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO] = {&urwire__robot_message_form_list[12], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE] = {&urwire__robot_message_form_list[13], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_TEXT] = {&urwire__robot_message_form_list[14], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION] = {&urwire__robot_message_form_list[15], 1},
+};
+
+/* Segment by segment (a row each), code by code: the form the segment's versions send, as its
+ * number in urwire__robot_message_form_list plus one; 0 for none. */
+static const uint8_t urwire__robot_message_mine[] = {
+    143, 139, 137, 129, 0, 131, 133, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* below 0.0.0 */
+    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 0.0.0 */
+    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.5.1000 */
+    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.6.0 */
+    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.7.1000 */
+    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.8.0 */
+    143, 139, 137, 129, 0, 131, 133, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 1.8.1000 */
+    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.0.0 */
+    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.0.1000 */
+    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.1.0 */
+    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.1.1000 */
+    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.2.0 */
+    15, 139, 10, 129, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.2.1000 */
+    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.3.0 */
+    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.4.1000 */
+    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.5.0 */
+    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.9.1000 */
+    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.10.0 */
+    143, 139, 138, 130, 0, 132, 134, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 3.15.1000 */
+    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.0.0 */
+    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.3.1000 */
+    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.4.0 */
+    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.25.1 */
+    143, 139, 138, 130, 0, 132, 134, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 5.99.1000 */
+    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 10.0.0 */
+    143, 139, 138, 130, 0, 132, 134, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 1048576.0.1 */
+};
+
+
+static const urwire__form_table urwire__robot_message_form_table = {
+    urwire__robot_message_form_list, urwire__robot_message_forms, 19, urwire__robot_message_mine,
+};
+
+/* The forms of every program_state subtype, code by code. */
+static const urwire__form urwire__program_state_form_list[] = {
+    /* 0: global_variables_setup */
+    {URWIRE_KIND_GLOBAL_VARIABLES_SETUP, 0, {0, 0}, 2u, {5, 9, 0, false}},  /* all versions */
+    /* 1: global_variables_update */
+    {URWIRE_KIND_GLOBAL_VARIABLES_UPDATE, 0, {0, 0}, 2u, {5, 9, 0, false}},  /* all versions */
+};
+
+/* The forms of each program_state subtype with a layout, by code. */
+static const urwire__forms urwire__program_state_forms[] = {
+    [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP] = {&urwire__program_state_form_list[0], 1},
+    [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE] = {&urwire__program_state_form_list[1], 1},
+};
+
+/* Segment by segment (a row each), code by code: the form the segment's versions send, as its
+ * number in urwire__program_state_form_list plus one; 0 for none. */
+static const uint8_t urwire__program_state_mine[] = {
+    129, 130,  /* below 0.0.0 */
+    1, 2,  /* from 0.0.0 */
+    1, 2,  /* from 1.5.1000 */
+    1, 2,  /* from 1.6.0 */
+    1, 2,  /* from 1.7.1000 */
+    1, 2,  /* from 1.8.0 */
+    129, 130,  /* from 1.8.1000 */
+    1, 2,  /* from 3.0.0 */
+    1, 2,  /* from 3.0.1000 */
+    1, 2,  /* from 3.1.0 */
+    1, 2,  /* from 3.1.1000 */
+    1, 2,  /* from 3.2.0 */
+    1, 2,  /* from 3.2.1000 */
+    1, 2,  /* from 3.3.0 */
+    1, 2,  /* from 3.4.1000 */
+    1, 2,  /* from 3.5.0 */
+    1, 2,  /* from 3.9.1000 */
+    1, 2,  /* from 3.10.0 */
+    129, 130,  /* from 3.15.1000 */
+    1, 2,  /* from 5.0.0 */
+    1, 2,  /* from 5.3.1000 */
+    1, 2,  /* from 5.4.0 */
+    1, 2,  /* from 5.25.1 */
+    129, 130,  /* from 5.99.1000 */
+    1, 2,  /* from 10.0.0 */
+    129, 130,  /* from 1048576.0.1 */
+};
+
+
+static const urwire__form_table urwire__program_state_form_table = {
+    urwire__program_state_form_list, urwire__program_state_forms, 2, urwire__program_state_mine,
+};
+
 /* ---- the tables the runtime walks --------------------------------------------------------- */
 
-/* Sub-package types with a layout, by code. */
+/* Sub-package layouts, by urwire_package_layout. */
 static const urwire__package_kind urwire__package_kinds[] = {
-    [URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA] = {
-        .name = "robot_mode_data",
-        .encode = urwire__encode_robot_mode_data,
-        .visit = urwire__visit_robot_mode_data,
-    },
-    [URWIRE_PACKAGE_TYPE_JOINT_DATA] = {
-        .name = "joint_data",
-        .encode = urwire__encode_joint_data,
-        .visit = urwire__visit_joint_data,
-    },
-    [URWIRE_PACKAGE_TYPE_TOOL_DATA] = {
-        .name = "tool_data",
-        .encode = urwire__encode_tool_data,
-        .visit = urwire__visit_tool_data,
-    },
-    [URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA] = {
-        .name = "masterboard_data",
-        .encode = urwire__encode_masterboard_data,
-        .visit = urwire__visit_masterboard_data,
-    },
-    [URWIRE_PACKAGE_TYPE_CARTESIAN_INFO] = {
-        .name = "cartesian_info",
-        .encode = urwire__encode_cartesian_info,
-        .visit = urwire__visit_cartesian_info,
-    },
-    [URWIRE_PACKAGE_TYPE_LASER_POINTER] = {
-        .name = "laser_pointer",
-        .encode = urwire__encode_laser_pointer,
-        .visit = urwire__visit_laser_pointer,
-    },
-    [URWIRE_PACKAGE_TYPE_KINEMATICS_INFO] = {
-        .name = "kinematics_info",
-        .encode = urwire__encode_kinematics_info,
-        .visit = urwire__visit_kinematics_info,
-    },
-    [URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA] = {
-        .name = "configuration_data",
-        .encode = urwire__encode_configuration_data,
-        .visit = urwire__visit_configuration_data,
-    },
-    [URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA] = {
-        .name = "force_mode_data",
-        .encode = urwire__encode_force_mode_data,
-        .visit = urwire__visit_force_mode_data,
-    },
-    [URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO] = {
-        .name = "additional_info",
-        .encode = urwire__encode_additional_info,
-        .visit = urwire__visit_additional_info,
-    },
-    [URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA] = {
-        .name = "calibration_data",
-        .encode = urwire__encode_calibration_data,
-        .visit = urwire__visit_calibration_data,
-    },
-    [URWIRE_PACKAGE_TYPE_SAFETY_DATA] = {
-        .name = "safety_data",
-        .encode = urwire__encode_safety_data,
-        .visit = urwire__visit_safety_data,
-    },
-    [URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO] = {
-        .name = "tool_comm_info",
-        .encode = urwire__encode_tool_comm_info,
-        .visit = urwire__visit_tool_comm_info,
-    },
-    [URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO] = {
-        .name = "tool_mode_info",
-        .encode = urwire__encode_tool_mode_info,
-        .visit = urwire__visit_tool_mode_info,
-    },
-    [URWIRE_PACKAGE_TYPE_SINGULARITY_INFO] = {
-        .name = "singularity_info",
-        .encode = urwire__encode_singularity_info,
-        .visit = urwire__visit_singularity_info,
-    },
+    [URWIRE_LAYOUT_ROBOT_MODE_DATA] = {"robot_mode_data", urwire__encode_robot_mode_data, urwire__visit_robot_mode_data},
+    [URWIRE_LAYOUT_JOINT_DATA] = {"joint_data", urwire__encode_joint_data, urwire__visit_joint_data},
+    [URWIRE_LAYOUT_TOOL_DATA] = {"tool_data", urwire__encode_tool_data, urwire__visit_tool_data},
+    [URWIRE_LAYOUT_MASTERBOARD_DATA] = {"masterboard_data", urwire__encode_masterboard_data, urwire__visit_masterboard_data},
+    [URWIRE_LAYOUT_CARTESIAN_INFO] = {"cartesian_info", urwire__encode_cartesian_info, urwire__visit_cartesian_info},
+    [URWIRE_LAYOUT_LASER_POINTER] = {"laser_pointer", urwire__encode_laser_pointer, urwire__visit_laser_pointer},
+    [URWIRE_LAYOUT_KINEMATICS_INFO] = {"kinematics_info", urwire__encode_kinematics_info, urwire__visit_kinematics_info},
+    [URWIRE_LAYOUT_CONFIGURATION_DATA] = {"configuration_data", urwire__encode_configuration_data, urwire__visit_configuration_data},
+    [URWIRE_LAYOUT_FORCE_MODE_DATA] = {"force_mode_data", urwire__encode_force_mode_data, urwire__visit_force_mode_data},
+    [URWIRE_LAYOUT_ADDITIONAL_INFO] = {"additional_info", urwire__encode_additional_info, urwire__visit_additional_info},
+    [URWIRE_LAYOUT_CALIBRATION_DATA] = {"calibration_data", urwire__encode_calibration_data, urwire__visit_calibration_data},
+    [URWIRE_LAYOUT_SAFETY_DATA] = {"safety_data", urwire__encode_safety_data, urwire__visit_safety_data},
+    [URWIRE_LAYOUT_TOOL_COMM_INFO] = {"tool_comm_info", urwire__encode_tool_comm_info, urwire__visit_tool_comm_info},
+    [URWIRE_LAYOUT_TOOL_MODE_INFO] = {"tool_mode_info", urwire__encode_tool_mode_info, urwire__visit_tool_mode_info},
+    [URWIRE_LAYOUT_SINGULARITY_INFO] = {"singularity_info", urwire__encode_singularity_info, urwire__visit_singularity_info},
 };
 
 /* Decoding a sub-package is a switch of direct calls, not a decoder in urwire__package_kinds:
- * gcc specialises and inlines a decoder whose address is never taken, and the robot-state
- * fast path (urwire__decode_member, called once) is 10% faster for it at -O3. */
+ * gcc specialises and inlines a decoder whose address is never taken. */
 
-/* A sub-package with a layout into its member of *out: the robot-state fast path. */
-static bool urwire__decode_member(uint8_t type, const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                  urwire_robot_state *out, urwire_error *err)
+/* A sub-package of type `type`, read in its form `form` (its number in
+ * urwire__package_form_list plus one), into its member of *out, whose bit it sets in
+ * out->layouts: the robot-state fast path. It switches on the type, which comes straight from
+ * the message, rather than on the form's layout, which takes table lookups to find: the jump
+ * is known sooner. */
+static bool urwire__decode_member(uint8_t type, uint8_t form, const uint8_t *msg, size_t *at, size_t end,
+                                  const urwire__ver *ver, urwire_robot_state *out, urwire_error *err)
 {
+    (void)form;
     switch (type) {
     case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:
-        return urwire__decode_robot_mode_data(msg, at, end, version, &out->robot_mode_data, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ROBOT_MODE_DATA);
+        return urwire__decode_robot_mode_data(msg, at, end, ver, &out->robot_mode_data, err);
     case URWIRE_PACKAGE_TYPE_JOINT_DATA:
-        return urwire__decode_joint_data(msg, at, end, version, &out->joint_data, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_JOINT_DATA);
+        return urwire__decode_joint_data(msg, at, end, ver, &out->joint_data, err);
     case URWIRE_PACKAGE_TYPE_TOOL_DATA:
-        return urwire__decode_tool_data(msg, at, end, version, &out->tool_data, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_TOOL_DATA);
+        return urwire__decode_tool_data(msg, at, end, ver, &out->tool_data, err);
     case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA:
-        return urwire__decode_masterboard_data(msg, at, end, version, &out->masterboard_data, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_MASTERBOARD_DATA);
+        return urwire__decode_masterboard_data(msg, at, end, ver, &out->masterboard_data, err);
     case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO:
-        return urwire__decode_cartesian_info(msg, at, end, version, &out->cartesian_info, err);
-    case URWIRE_PACKAGE_TYPE_LASER_POINTER:
-        return urwire__decode_laser_pointer(msg, at, end, version, &out->laser_pointer, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CARTESIAN_INFO);
+        return urwire__decode_cartesian_info(msg, at, end, ver, &out->cartesian_info, err);
     case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO:
-        return urwire__decode_kinematics_info(msg, at, end, version, &out->kinematics_info, err);
+        if (urwire__package_form_list[form - 1].layout == URWIRE_LAYOUT_LASER_POINTER) {
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_LASER_POINTER);
+            return urwire__decode_laser_pointer(msg, at, end, ver, &out->laser_pointer, err);
+        }
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_KINEMATICS_INFO);
+        return urwire__decode_kinematics_info(msg, at, end, ver, &out->kinematics_info, err);
     case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA:
-        return urwire__decode_configuration_data(msg, at, end, version, &out->configuration_data, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CONFIGURATION_DATA);
+        return urwire__decode_configuration_data(msg, at, end, ver, &out->configuration_data, err);
     case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA:
-        return urwire__decode_force_mode_data(msg, at, end, version, &out->force_mode_data, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_FORCE_MODE_DATA);
+        return urwire__decode_force_mode_data(msg, at, end, ver, &out->force_mode_data, err);
     case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO:
-        return urwire__decode_additional_info(msg, at, end, version, &out->additional_info, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ADDITIONAL_INFO);
+        return urwire__decode_additional_info(msg, at, end, ver, &out->additional_info, err);
     case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA:
-        return urwire__decode_calibration_data(msg, at, end, version, &out->calibration_data, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CALIBRATION_DATA);
+        return urwire__decode_calibration_data(msg, at, end, ver, &out->calibration_data, err);
     case URWIRE_PACKAGE_TYPE_SAFETY_DATA:
-        return urwire__decode_safety_data(msg, at, end, version, &out->safety_data, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_SAFETY_DATA);
+        return urwire__decode_safety_data(msg, at, end, ver, &out->safety_data, err);
     case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO:
-        return urwire__decode_tool_comm_info(msg, at, end, version, &out->tool_comm_info, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_TOOL_COMM_INFO);
+        return urwire__decode_tool_comm_info(msg, at, end, ver, &out->tool_comm_info, err);
     case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO:
-        return urwire__decode_tool_mode_info(msg, at, end, version, &out->tool_mode_info, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_TOOL_MODE_INFO);
+        return urwire__decode_tool_mode_info(msg, at, end, ver, &out->tool_mode_info, err);
     case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO:
-        return urwire__decode_singularity_info(msg, at, end, version, &out->singularity_info, err);
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_SINGULARITY_INFO);
+        return urwire__decode_singularity_info(msg, at, end, ver, &out->singularity_info, err);
     default:
         return false;  /* not reached: the caller skips types with no layout */
     }
 }
 
-/* A sub-package with a layout into *into, its struct. */
-static bool urwire__decode_package(uint8_t type, const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                  void *into, urwire_error *err)
+/* A sub-package into *into, the struct of its layout. */
+static bool urwire__decode_package(urwire_package_layout layout, const uint8_t *msg, size_t *at, size_t end,
+                                   const urwire__ver *ver, void *into, urwire_error *err)
 {
-    switch (type) {
-    case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:
-        return urwire__decode_robot_mode_data(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_JOINT_DATA:
-        return urwire__decode_joint_data(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_TOOL_DATA:
-        return urwire__decode_tool_data(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA:
-        return urwire__decode_masterboard_data(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO:
-        return urwire__decode_cartesian_info(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_LASER_POINTER:
-        return urwire__decode_laser_pointer(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO:
-        return urwire__decode_kinematics_info(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA:
-        return urwire__decode_configuration_data(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA:
-        return urwire__decode_force_mode_data(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO:
-        return urwire__decode_additional_info(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA:
-        return urwire__decode_calibration_data(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_SAFETY_DATA:
-        return urwire__decode_safety_data(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO:
-        return urwire__decode_tool_comm_info(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO:
-        return urwire__decode_tool_mode_info(msg, at, end, version, into, err);
-    case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO:
-        return urwire__decode_singularity_info(msg, at, end, version, into, err);
+    switch (layout) {
+    case URWIRE_LAYOUT_ROBOT_MODE_DATA:
+        return urwire__decode_robot_mode_data(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_JOINT_DATA:
+        return urwire__decode_joint_data(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_TOOL_DATA:
+        return urwire__decode_tool_data(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_MASTERBOARD_DATA:
+        return urwire__decode_masterboard_data(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_CARTESIAN_INFO:
+        return urwire__decode_cartesian_info(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_LASER_POINTER:
+        return urwire__decode_laser_pointer(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_KINEMATICS_INFO:
+        return urwire__decode_kinematics_info(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_CONFIGURATION_DATA:
+        return urwire__decode_configuration_data(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_FORCE_MODE_DATA:
+        return urwire__decode_force_mode_data(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_ADDITIONAL_INFO:
+        return urwire__decode_additional_info(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_CALIBRATION_DATA:
+        return urwire__decode_calibration_data(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_SAFETY_DATA:
+        return urwire__decode_safety_data(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_TOOL_COMM_INFO:
+        return urwire__decode_tool_comm_info(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_TOOL_MODE_INFO:
+        return urwire__decode_tool_mode_info(msg, at, end, ver, into, err);
+    case URWIRE_LAYOUT_SINGULARITY_INFO:
+        return urwire__decode_singularity_info(msg, at, end, ver, into, err);
     default:
         return false;  /* not reached: the caller skips types with no layout */
     }
@@ -4693,6 +5235,7 @@ static const urwire__message_type urwire__message_types[] = {
     {
         .code = URWIRE_MESSAGE_TYPE_ROBOT_MESSAGE,
         .body = 15u,
+        .forms = &urwire__robot_message_form_table,
         .header = urwire__robot_message_header,
         .read_header = urwire__read_robot_message_header,
         .visit_header = urwire__visit_robot_message_header,
@@ -4701,6 +5244,7 @@ static const urwire__message_type urwire__message_types[] = {
     {
         .code = URWIRE_MESSAGE_TYPE_PROGRAM_STATE_MESSAGE,
         .body = 14u,
+        .forms = &urwire__program_state_form_table,
         .header = urwire__program_state_header,
         .read_header = urwire__read_program_state_header,
         .visit_header = urwire__visit_program_state_header,
@@ -4708,130 +5252,45 @@ static const urwire__message_type urwire__message_types[] = {
     },
 };
 
-/* Every urwire_message_kind. */
+/* Every urwire_message_kind: its record's type, its message type, and for a subtype its code
+ * and the functions of its layout. */
 static const urwire__message_kind urwire__message_kinds[] = {
-    [URWIRE_KIND_UNKNOWN_MESSAGE] = {
-        .name = "unknown",
-    },
-    [URWIRE_KIND_ROBOT_STATE] = {
-        .name = "robot_state",
-        .type = &urwire__message_types[0],
-    },
-    [URWIRE_KIND_VERSION] = {
-        .name = "version",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_VERSION,
-        .decode = urwire__decode_version,
-        .encode = urwire__encode_version,
-        .visit = urwire__visit_version,
-    },
-    [URWIRE_KIND_SAFETY_MODE] = {
-        .name = "safety_mode",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE,
-        .decode = urwire__decode_safety_mode,
-        .encode = urwire__encode_safety_mode,
-        .visit = urwire__visit_safety_mode,
-    },
-    [URWIRE_KIND_ROBOT_COMM] = {
-        .name = "robot_comm",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE,
-        .decode = urwire__decode_robot_comm,
-        .encode = urwire__encode_robot_comm,
-        .visit = urwire__visit_robot_comm,
-    },
-    [URWIRE_KIND_KEY] = {
-        .name = "key",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_KEY,
-        .decode = urwire__decode_key,
-        .encode = urwire__encode_key,
-        .visit = urwire__visit_key,
-    },
-    [URWIRE_KIND_PROGRAM_THREADS] = {
-        .name = "program_threads",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS,
-        .decode = urwire__decode_program_threads,
-        .encode = urwire__encode_program_threads,
-        .visit = urwire__visit_program_threads,
-    },
-    [URWIRE_KIND_POPUP] = {
-        .name = "popup",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_POPUP,
-        .decode = urwire__decode_popup,
-        .encode = urwire__encode_popup,
-        .visit = urwire__visit_popup,
-    },
-    [URWIRE_KIND_LABEL] = {
-        .name = "label",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_LABEL,
-        .decode = urwire__decode_label,
-        .encode = urwire__encode_label,
-        .visit = urwire__visit_label,
-    },
-    [URWIRE_KIND_VAR] = {
-        .name = "var",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_VAR,
-        .decode = urwire__decode_var,
-        .encode = urwire__encode_var,
-        .visit = urwire__visit_var,
-    },
-    [URWIRE_KIND_HARDWARE_INFO] = {
-        .name = "hardware_info",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO,
-        .decode = urwire__decode_hardware_info,
-        .encode = urwire__encode_hardware_info,
-        .visit = urwire__visit_hardware_info,
-    },
-    [URWIRE_KIND_REQUEST_VALUE] = {
-        .name = "request_value",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE,
-        .decode = urwire__decode_request_value,
-        .encode = urwire__encode_request_value,
-        .visit = urwire__visit_request_value,
-    },
-    [URWIRE_KIND_TEXT] = {
-        .name = "text",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_TEXT,
-        .decode = urwire__decode_text,
-        .encode = urwire__encode_text,
-        .visit = urwire__visit_text,
-    },
-    [URWIRE_KIND_RUNTIME_EXCEPTION] = {
-        .name = "runtime_exception",
-        .type = &urwire__message_types[1],
-        .subtype = URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION,
-        .decode = urwire__decode_runtime_exception,
-        .encode = urwire__encode_runtime_exception,
-        .visit = urwire__visit_runtime_exception,
-    },
-    [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {
-        .name = "global_variables_setup",
-        .type = &urwire__message_types[2],
-        .subtype = URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP,
-        .decode = urwire__decode_global_variables_setup,
-        .encode = urwire__encode_global_variables_setup,
-        .visit = urwire__visit_global_variables_setup,
-    },
-    [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {
-        .name = "global_variables_update",
-        .type = &urwire__message_types[2],
-        .subtype = URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE,
-        .decode = urwire__decode_global_variables_update,
-        .encode = urwire__encode_global_variables_update,
-        .visit = urwire__visit_global_variables_update,
-    },
-    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {
-        .name = "unknown",
-    },
+    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, 0, NULL, NULL, NULL},
+    [URWIRE_KIND_ROBOT_STATE] = {"robot_state", &urwire__message_types[0], 0, NULL, NULL, NULL},
+    [URWIRE_KIND_VERSION] = {"version", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_VERSION,
+        urwire__decode_version, urwire__encode_version, urwire__visit_version},
+    [URWIRE_KIND_SAFETY_MODE] = {"safety_mode", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE,
+        urwire__decode_safety_mode, urwire__encode_safety_mode, urwire__visit_safety_mode},
+    [URWIRE_KIND_ROBOT_COMM] = {"robot_comm", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE,
+        urwire__decode_robot_comm, urwire__encode_robot_comm, urwire__visit_robot_comm},
+    [URWIRE_KIND_KEY] = {"key", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_KEY,
+        urwire__decode_key, urwire__encode_key, urwire__visit_key},
+    [URWIRE_KIND_PROGRAM_THREADS] = {"program_threads", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS,
+        urwire__decode_program_threads, urwire__encode_program_threads, urwire__visit_program_threads},
+    [URWIRE_KIND_POPUP] = {"popup", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_POPUP,
+        urwire__decode_popup, urwire__encode_popup, urwire__visit_popup},
+    [URWIRE_KIND_LABEL] = {"label", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL,
+        urwire__decode_label, urwire__encode_label, urwire__visit_label},
+    [URWIRE_KIND_VAR] = {"var", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR,
+        urwire__decode_var, urwire__encode_var, urwire__visit_var},
+    [URWIRE_KIND_HARDWARE_INFO] = {"hardware_info", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO,
+        urwire__decode_hardware_info, urwire__encode_hardware_info, urwire__visit_hardware_info},
+    [URWIRE_KIND_REQUEST_VALUE] = {"request_value", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE,
+        urwire__decode_request_value, urwire__encode_request_value, urwire__visit_request_value},
+    [URWIRE_KIND_TEXT] = {"text", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_TEXT,
+        urwire__decode_text, urwire__encode_text, urwire__visit_text},
+    [URWIRE_KIND_RUNTIME_EXCEPTION] = {"runtime_exception", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION,
+        urwire__decode_runtime_exception, urwire__encode_runtime_exception, urwire__visit_runtime_exception},
+    [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {"global_variables_setup", &urwire__message_types[2], URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP,
+        urwire__decode_global_variables_setup, urwire__encode_global_variables_setup, urwire__visit_global_variables_setup},
+    [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {"global_variables_update", &urwire__message_types[2], URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE,
+        urwire__decode_global_variables_update, urwire__encode_global_variables_update, urwire__visit_global_variables_update},
+    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, 0, NULL, NULL, NULL},
+};
+
+/* How to reach the numbers of a Version message before its layout is chosen. */
+static const urwire__version_skip urwire__version_skips[] = {
+    {0, 1, true},
 };
 
 /* The message types a plausible header carries: the framer resynchronises on any other. */
@@ -4847,17 +5306,14 @@ static const bool urwire__known_message_types[256] = {
 };
 
 /* ---- global-variable values --------------------------------------------------------------- */
-/* The value types of each software version are the generated urwire__value_tables. String
+/* The value types of each software version are the generated urwire__value_tables, each for
+ * the versions of its urwire__value_ranges. String
  * lengths and LIST/MATRIX counts are int16 (the generator refuses any other). */
 
 /* The value types of a software version: the first table whose range holds it, else the newest. */
 URWIRE__PRIVATE const urwire__value_table *urwire__values_of(urwire_sw_version v)
 {
-    size_t k;
-    for (k = 0; k + 1 < URWIRE__COUNT(urwire__value_tables); k++)
-        if (urwire__in_versions(v, &urwire__value_tables[k].versions))
-            return &urwire__value_tables[k];
-    return &urwire__value_tables[URWIRE__COUNT(urwire__value_tables) - 1];
+    return &urwire__value_tables[urwire__table_index(v, urwire__value_ranges, URWIRE__COUNT(urwire__value_ranges))];
 }
 
 URWIRE__PRIVATE const urwire__value_entry *urwire__value_entry_of(const urwire__value_table *t, uint8_t code)
@@ -4998,8 +5454,8 @@ bool urwire_next_value(urwire_seq *seq, urwire_value *out)
 
 /* ---- the tables of kinds ------------------------------------------------------------------ */
 /* Lookups in the generated tables: urwire__message_types (top-level types with a layout),
- * urwire__message_kinds (by urwire_message_kind) and urwire__package_kinds (by sub-package
- * type). decode.c, encode.c and visit.c walk them. */
+ * urwire__message_kinds (by urwire_message_kind) and urwire__package_kinds (by
+ * urwire_package_layout). decode.c, encode.c and visit.c walk them. */
 
 /* NULL for a type with no layout. */
 URWIRE__PRIVATE const urwire__message_type *urwire__message_type_of(uint8_t code)
@@ -5017,12 +5473,10 @@ URWIRE__PRIVATE const urwire__message_kind *urwire__message_kind_of(urwire_messa
     return (size_t)kind < URWIRE__COUNT(urwire__message_kinds) ? &urwire__message_kinds[kind] : NULL;
 }
 
-/* NULL for a sub-package type with no layout. */
-URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(uint8_t type)
+/* NULL for a value outside the enum. */
+URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(urwire_package_layout layout)
 {
-    if (type >= URWIRE__COUNT(urwire__package_kinds) || urwire__package_kinds[type].name == NULL)
-        return NULL;
-    return &urwire__package_kinds[type];
+    return (size_t)layout < URWIRE__COUNT(urwire__package_kinds) ? &urwire__package_kinds[layout] : NULL;
 }
 
 /* The type whose header m carries: its layout's, or for an unknown subtype its message
@@ -5038,20 +5492,114 @@ URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_mes
     return k != NULL && k->type != NULL && !k->type->packages ? k->type : NULL;
 }
 
-/* ---- decoding messages -------------------------------------------------------------------- */
-/* The one sub-package list is URWIRE__PACKAGES_TYPE, decoded as URWIRE__PACKAGES_KIND; its
- * sub-packages go through the generated switches urwire__decode_package and, on the robot-state
- * fast path, urwire__decode_member. */
+/* ---- forms: the layout a type code is read in, by software version and by length ---------- */
+/* The generated part cuts the version axis where any form of any type code starts or ends
+ * (urwire__segment_starts) and gives, for each type byte (the sub-package types, the subtypes
+ * of each message), an urwire__form_table: the forms of each code and the form each segment
+ * sends. The rule (CONTRACT §5), for every sub-package and subtype: the version's form when it
+ * fits the body; else the one form whose exact size the body has, read in that form's version;
+ * else the version's form, whose short or extra bytes are then reported. */
 
-/* The kind of a subtype of type t. */
-static urwire_message_kind urwire__subtype_kind(const urwire__message_type *t, int64_t subtype)
+/* The segment of the version axis that holds a version (its urwire__version_key): how many
+ * segment starts lie at or below it. Searched from the newest, which streams run most. */
+URWIRE__PRIVATE size_t urwire__segment(uint64_t key)
 {
-    int k;
-    for (k = 0; k < (int)URWIRE__COUNT(urwire__message_kinds); k++)
-        if (urwire__message_kinds[k].type == t && urwire__message_kinds[k].subtype == subtype)
-            return (urwire_message_kind)k;
-    return URWIRE_KIND_UNKNOWN_SUBTYPE;
+    size_t k = URWIRE__COUNT(urwire__segment_starts);
+    while (k > 0 && key < urwire__segment_starts[k - 1])
+        k--;
+    return k;
 }
+
+/* The form that the versions of a segment send for a code of t (which has a layout), or NULL.
+ * In a segment that no form of the code is sent in (between series, or newer than the spec
+ * knows), the form of the nearest version below, marked URWIRE__NEAREST: it is read as the
+ * version it stands for. */
+URWIRE__PRIVATE const urwire__form *urwire__mine(const urwire__form_table *t, size_t segment, size_t code,
+                                                bool *nearest)
+{
+    uint8_t k = t->mine[segment * t->ncodes + code];
+    *nearest = (k & URWIRE__NEAREST) != 0;
+    k = (uint8_t)(k & ~URWIRE__NEAREST);
+    return k ? &t->all[k - 1] : NULL;
+}
+
+static bool urwire__has_size(const urwire__form *f, size_t size)
+{
+    return f->nsizes && urwire__fits(f, size);
+}
+
+/* The form of a body of `size` bytes, for a code of t (which has a layout) in a stream of
+ * *version (in `segment`). A form chosen by its length alone sets *version to the version it
+ * stands for and *by_length. */
+URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, size_t code, size_t segment,
+                                                  size_t size, urwire_sw_version *version, bool *by_length)
+{
+    const urwire__forms *fs = &t->codes[code];
+    bool nearest;
+    const urwire__form *mine = urwire__mine(t, segment, code, &nearest), *fit = NULL;
+    uint8_t k;
+    *by_length = false;
+    if (nearest)
+        *version = mine->rep;
+    if (mine != NULL && urwire__fits(mine, size))
+        return mine;
+    /* Only a form of exact sizes is recognised by its length: an open-ended one fits too much. */
+    for (k = 0; k < fs->count; k++)
+        if (urwire__has_size(&fs->forms[k], size)) {
+            if (fit != NULL)
+                return mine != NULL ? mine : &fs->forms[fs->count - 1];
+            fit = &fs->forms[k];
+        }
+    if (fit == NULL)
+        return mine != NULL ? mine : &fs->forms[fs->count - 1];
+    version->major = fit->rep.major;
+    version->minor = fit->rep.minor;
+    version->bugfix = fit->rep.bugfix;  /* whether it was assumed stays as it was */
+    *by_length = true;
+    return fit;
+}
+
+/* A length prefix of size bytes, big-endian, signed or not. */
+static int64_t urwire__prefix(const uint8_t *p, size_t size, bool is_signed)
+{
+    uint64_t raw = 0;
+    size_t k;
+    for (k = 0; k < size; k++)
+        raw = raw << 8 | p[k];
+    if (is_signed && size && (raw >> (size * 8 - 1)) & 1u)
+        return (int64_t)(raw | ~(uint64_t)0 << (size * 8 - 1));
+    return (int64_t)raw;
+}
+
+/* The major and minor numbers of a Version message (bugfix 0), read from its bytes before its
+ * layout is chosen, so that it is read in the form of the version it carries; false when the
+ * message is too short to hold them (as Python's peek_version). */
+URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out)
+{
+    uint64_t pos = URWIRE__VERSION_BODY;
+    int64_t n;
+    size_t k;
+    for (k = 0; k < URWIRE__COUNT(urwire__version_skips); k++) {
+        const urwire__version_skip *s = &urwire__version_skips[k];
+        pos += s->fixed;
+        if (pos + s->prefix > len)
+            return false;
+        n = urwire__prefix(msg + pos, s->prefix, s->is_signed);
+        pos += s->prefix + (uint64_t)(n > 0 ? n : 0);
+    }
+    pos += URWIRE__VERSION_TAIL;
+    if (pos + 2 > len)
+        return false;
+    out->major = msg[pos];
+    out->minor = msg[pos + 1];
+    out->bugfix = 0;
+    return true;
+}
+
+/* ---- decoding messages -------------------------------------------------------------------- */
+/* The one sub-package list is URWIRE__PACKAGES_TYPE, decoded as URWIRE__PACKAGES_KIND; each
+ * sub-package is read in the form urwire__choose gives (forms.c), through the generated
+ * switches urwire__decode_package and, on the robot-state fast path, urwire__decode_member. */
 
 static void urwire__init_message(urwire_message *out, const uint8_t *bytes, size_t len, urwire_sw_version version)
 {
@@ -5064,6 +5612,8 @@ static void urwire__init_message(urwire_message *out, const uint8_t *bytes, size
     out->raw = urwire__view(bytes, 0);
     out->packages = urwire__seq(bytes, len, version, -1);
     out->version = version;
+    out->implied = false;
+    out->implied_version = version;
 }
 
 static void urwire__fail_message(urwire_message *out, size_t raw_from)
@@ -5089,43 +5639,137 @@ static bool urwire__frame_package(const uint8_t *msg, size_t pos, size_t end, si
     return true;
 }
 
+/* The version a sub-package list is read under, as it goes: a form chosen by its length while
+ * the version is only assumed sets the version for the rest of the message, and for the
+ * stream (`implied`). `mine` and `first_sizes` are the rows of the segment's forms. */
+typedef struct urwire__running {
+    urwire__ver now;
+    size_t segment;
+    const uint8_t *mine;
+    const uint32_t *first_sizes;
+    bool implied;
+} urwire__running;
+
+static void urwire__run_at(urwire__running *r, urwire_sw_version version)
+{
+    size_t row;
+    r->now = urwire__ver_of(version);
+    r->segment = urwire__segment(r->now.key);
+    row = r->segment * urwire__package_form_table.ncodes;
+    r->mine = urwire__package_form_table.mine + row;
+    r->first_sizes = urwire__package_first_sizes + row;
+}
+
+static void urwire__start(urwire__running *r, urwire_sw_version version)
+{
+    urwire__run_at(r, version);
+    r->implied = false;
+}
+
+/* The form of a sub-package of type `type` (which has a layout) and body `size` that is not
+ * simply the version's own, and the version to read it with. */
+static const urwire__form *urwire__other_form(uint8_t type, size_t size, urwire__running *r, urwire__ver *use)
+{
+    urwire_sw_version v = r->now.version;
+    bool by_length;
+    const urwire__form *f = urwire__choose(&urwire__package_form_table, type, r->segment, size, &v, &by_length);
+    *use = by_length ? urwire__ver_of(v) : r->now;
+    if (by_length && r->now.version.assumed) {
+        urwire__run_at(r, v);
+        r->implied = true;
+    }
+    return f;
+}
+
+/* The form of the sub-package of type `type` and body `size` (NULL: no layout), and the
+ * version to read it with. */
+static const urwire__form *urwire__package_form(uint8_t type, size_t size, urwire__running *r, urwire__ver *use)
+{
+    if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0)
+        return NULL;
+    if (urwire__fits_brief(r->first_sizes[type], size)) {
+        *use = r->now;
+        return &urwire__package_form_list[r->mine[type] - 1];
+    }
+    return urwire__other_form(type, size, r, use);
+}
+
+/* Frames the sub-packages of a robot state from pos and chooses the form of each, decoding
+ * none: how many framed, where framing stopped (end, or a header that cannot be framed: *err),
+ * and the version the layout sizes showed. */
+static bool urwire__walk_packages(const uint8_t *msg, size_t pos, size_t end, urwire__running *r, size_t *count,
+                                  size_t *stop, urwire_error *err)
+{
+    size_t size = 0;
+    urwire__ver use;
+    uint8_t type;
+    *count = 0;
+    while (pos < end && urwire__frame_package(msg, pos, end, &size, err)) {
+        type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
+        /* Only a body that the version's form does not fit can show another version. */
+        if (type < URWIRE__COUNT(urwire__package_forms) &&
+            !urwire__fits_brief(r->first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE) &&
+            urwire__package_forms[type].count != 0)
+            urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &use);
+        pos += size;
+        ++*count;
+    }
+    *stop = pos;
+    return pos == end;
+}
+
 /* A robot state: frames the sub-packages by their lengths; each is decoded when iterated. */
 static bool urwire__decode_packages(urwire_message *out, urwire_sw_version version)
 {
-    const uint8_t *msg = out->bytes;
-    size_t pos = URWIRE_HEADER_SIZE, end = out->length, size = 0;
+    urwire__running r;
+    size_t end = 0;
+    urwire__start(&r, version);
     out->kind = URWIRE__PACKAGES_KIND;
-    out->packages = urwire__seq(msg, pos, version, -1);
-    while (pos < end && urwire__frame_package(msg, pos, end, &size, &out->error)) {
-        pos += size;
-        out->packages.count++;
+    out->packages = urwire__seq(out->bytes, URWIRE_HEADER_SIZE, version, -1);
+    if (!urwire__walk_packages(out->bytes, URWIRE_HEADER_SIZE, out->length, &r, &out->packages.count, &end,
+                               &out->error)) {
+        out->packages.end = end;
+        urwire__fail_message(out, end);
+        return false;  /* a list that cannot be framed implies no version */
     }
-    out->packages.end = pos;
-    if (pos < end) {
-        urwire__fail_message(out, pos);
-        return false;
-    }
+    out->packages.end = end;
+    out->implied = r.implied;
+    out->implied_version = r.now.version;
     return true;
 }
 
-/* A message with a common header and a subtype: the header, then the subtype's layout. */
+/* A message with a common header and a subtype: the header, then the subtype's layout in the
+ * form its version and length choose. The Version message is read in the form of the version
+ * it carries. */
 static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t, urwire_sw_version version)
 {
     const urwire__message_kind *k;
+    const urwire__form *f;
+    urwire__ver ver;
+    int64_t subtype;
     size_t pos = t->body;
+    bool by_length;
     if (out->length < t->body) {
         out->kind = URWIRE_KIND_UNKNOWN_MESSAGE;
         urwire__short_in_run(&out->error, t->header, 0, out->length);
         urwire__fail_message(out, URWIRE_HEADER_SIZE);
         return false;
     }
-    out->kind = urwire__subtype_kind(t, t->read_header(out));
-    k = &urwire__message_kinds[out->kind];
-    if (k->decode == NULL) {
+    subtype = t->read_header(out);
+    if (subtype < 0 || (uint64_t)subtype >= t->forms->ncodes || t->forms->codes[subtype].count == 0) {
+        out->kind = URWIRE_KIND_UNKNOWN_SUBTYPE;
         out->raw = urwire__view(out->bytes + t->body, out->length - t->body);
         return true;
     }
-    if (!k->decode(out->bytes, &pos, out->length, version, &out->as, &out->error)) {
+    if (t->code == URWIRE__VERSION_TYPE && subtype == URWIRE__VERSION_SUBTYPE)
+        urwire__peek_version(out->bytes, out->length, &version);
+    f = urwire__choose(t->forms, (size_t)subtype, urwire__segment(urwire__version_key(version)),
+                       out->length - t->body, &version, &by_length);
+    out->kind = (urwire_message_kind)f->layout;
+    out->version = version;
+    k = &urwire__message_kinds[out->kind];
+    ver = urwire__ver_of(version);
+    if (!k->decode(out->bytes, &pos, out->length, &ver, &out->as, &out->error)) {
         urwire__fail_message(out, t->body);
         return false;
     }
@@ -5154,27 +5798,52 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
     return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t, version);
 }
 
-/* One framed sub-package straight into its member of a robot state. */
-static void urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t stop, urwire_sw_version version,
-                                      urwire_robot_state *out)
+/* Frames the sub-packages of a robot state from pos and decodes each straight into its member
+ * of *out, until end or a header that cannot be framed (*err): where it stopped. One loop for
+ * the whole message, so that the work per sub-package is only its own. */
+static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
+                                        urwire_robot_state *out, size_t *count, urwire_error *err)
 {
-    uint8_t type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-    urwire_error err;
-    size_t body = pos + URWIRE_PACKAGE_HEADER_SIZE;
-    /* urwire__package_kind_of(type) == NULL, spelt out: gcc -Os calls it, and the call made
-     * the whole fast path a third slower there. */
-    if (type >= URWIRE__COUNT(urwire__package_kinds) || urwire__package_kinds[type].name == NULL)
-        out->unknown++;
-    else if (urwire__decode_member(type, msg, &body, stop, version, out, &err))
-        out->present |= (uint32_t)URWIRE_BIT(type);
-    else
-        out->malformed |= (uint32_t)URWIRE_BIT(type);
+    urwire_error ignored;
+    urwire__ver other;
+    const urwire__ver *use;
+    size_t size = 0, body;
+    uint8_t type, form;
+    out->present = 0;
+    out->malformed = 0;
+    out->layouts = 0;
+    out->unknown = 0;
+    /* One pass: framing each sub-package and decoding it overlap in the CPU. */
+    for (*count = 0; pos < end && urwire__frame_package(msg, pos, end, &size, err); pos += size, ++*count) {
+        type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
+        body = pos + URWIRE_PACKAGE_HEADER_SIZE;
+        use = &r->now;
+        /* The common case first: the version's form, which fits the body by its brief. */
+        if (type < URWIRE__COUNT(urwire__package_forms) &&
+            urwire__fits_brief(r->first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE)) {
+            form = r->mine[type];
+        } else if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
+            out->unknown++;
+            continue;
+        } else {
+            form = (uint8_t)(urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &other) -
+                             urwire__package_form_list + 1);
+            use = &other;
+        }
+        if (urwire__decode_member(type, form, msg, &body, pos + size, use, out, &ignored))
+            out->present |= (uint32_t)URWIRE_BIT(type);
+        else
+            out->malformed |= (uint32_t)URWIRE_BIT(type);
+    }
+    return pos;
 }
 
 bool urwire_next_package(urwire_seq *seq, urwire_package *out)
 {
     const uint8_t *msg = seq->msg;
-    const urwire__package_kind *k;
+    const urwire__form *f;
+    urwire__running r;
+    urwire__ver use;
     size_t pos = seq->pos, body, stop;
     int64_t size;
     if (seq->count == 0 || seq->end - pos < URWIRE_PACKAGE_HEADER_SIZE)
@@ -5185,14 +5854,16 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
     body = pos + URWIRE_PACKAGE_HEADER_SIZE;
     stop = pos + (size_t)size;
     out->type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-    out->version = seq->version;
     out->offset = pos;
     out->raw = urwire__view(msg + body, stop - body);
     out->error.status = URWIRE_OK;
-    k = urwire__package_kind_of(out->type);
-    out->known = k != NULL;
-    out->failed = k != NULL && !urwire__decode_package(out->type, msg, &body, stop, seq->version, &out->as,
-                                                        &out->error);
+    urwire__start(&r, seq->version);
+    f = urwire__package_form(out->type, stop - body, &r, &use);
+    out->version = f != NULL ? use.version : seq->version;
+    out->known = f != NULL;
+    out->layout = f != NULL ? (urwire_package_layout)f->layout : URWIRE_LAYOUT_COUNT;
+    out->failed = f != NULL && !urwire__decode_package(out->layout, msg, &body, stop, &use, &out->as, &out->error);
+    seq->version = r.now.version;  /* the version the layout sizes showed, for the packages after it */
     seq->pos = stop;
     seq->count--;
     return true;
@@ -5201,45 +5872,47 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
 bool urwire_decode_robot_state(const urwire_message *m, urwire_robot_state *out)
 {
     const urwire_seq *seq = &m->packages;
-    size_t pos, count;
-    out->present = 0;
-    out->malformed = 0;
-    out->unknown = 0;
-    if (m->kind != URWIRE__PACKAGES_KIND)
+    urwire__running r;
+    urwire_error ignored;
+    size_t count;
+    if (m->kind != URWIRE__PACKAGES_KIND) {
+        out->present = 0;
+        out->malformed = 0;
+        out->layouts = 0;
+        out->unknown = 0;
         return false;
-    /* The frames were checked by urwire_decode_message. */
-    for (pos = seq->pos, count = seq->count; count > 0; count--) {
-        size_t stop = pos + (size_t)URWIRE__PACKAGE_LENGTH(seq->msg + pos);
-        urwire__decode_into_state(seq->msg, pos, stop, seq->version, out);
-        pos = stop;
     }
+    /* The frames were checked by urwire_decode_message. */
+    urwire__start(&r, seq->version);
+    urwire__decode_into_state(seq->msg, seq->pos, seq->end, &r, out, &count, &ignored);
     return !m->failed && out->malformed == 0;
 }
 
 bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
                                        urwire_message *m, urwire_robot_state *out)
 {
-    size_t pos = URWIRE_HEADER_SIZE, size = 0, count = 0;
-    out->present = 0;
-    out->malformed = 0;
-    out->unknown = 0;
+    urwire__running r;
+    size_t end;
     if (len < URWIRE_HEADER_SIZE || bytes[URWIRE__TYPE_AT] != URWIRE__PACKAGES_TYPE) {
+        out->present = 0;
+        out->malformed = 0;
+        out->layouts = 0;
+        out->unknown = 0;
         urwire_decode_message(bytes, len, version, m);
         return false;
     }
     urwire__init_message(m, bytes, len, version);
+    urwire__start(&r, version);
     m->kind = URWIRE__PACKAGES_KIND;
-    m->packages = urwire__seq(bytes, pos, version, -1);
-    /* One pass: framing each sub-package and decoding it overlap in the CPU. */
-    while (pos < len && urwire__frame_package(bytes, pos, len, &size, &m->error)) {
-        urwire__decode_into_state(bytes, pos, pos + size, version, out);
-        pos += size;
-        count++;
+    m->packages = urwire__seq(bytes, URWIRE_HEADER_SIZE, version, -1);
+    end = urwire__decode_into_state(bytes, URWIRE_HEADER_SIZE, len, &r, out, &m->packages.count, &m->error);
+    m->packages.end = end;
+    if (end < len) {
+        urwire__fail_message(m, end);
+    } else {
+        m->implied = r.implied;
+        m->implied_version = r.now.version;
     }
-    m->packages.count = count;
-    m->packages.end = pos;
-    if (pos < len)
-        urwire__fail_message(m, pos);
     return !m->failed && out->malformed == 0;
 }
 
@@ -5258,12 +5931,28 @@ bool urwire_message_has_error(const urwire_message *m)
     return false;
 }
 
+/* The version a robot state's layout sizes show, for a stream whose version is assumed: what
+ * the framer carries on to the next message (false: they show none, or the list cannot be
+ * framed). */
+URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version)
+{
+    urwire__running r;
+    urwire_error ignored;
+    size_t count, stop;
+    urwire__start(&r, *version);
+    if (!urwire__walk_packages(msg, URWIRE_HEADER_SIZE, len, &r, &count, &stop, &ignored) || !r.implied)
+        return false;
+    *version = r.now.version;
+    return true;
+}
+
 /* ---- encoding messages and sub-packages --------------------------------------------------- */
 
 size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err)
 {
-    const urwire__package_kind *k = urwire__package_kind_of(pkg->type);
+    const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->layout) : NULL;
     size_t pos = URWIRE_PACKAGE_HEADER_SIZE;
+    urwire__ver ver = urwire__ver_of(pkg->version);
     bool ok;
     if (cap < pos) {
         urwire__no_space(err, 0, pos, cap);
@@ -5272,7 +5961,7 @@ size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap
     if (!pkg->known || pkg->failed || k == NULL)
         ok = urwire__put_view(out, cap, &pos, pkg->raw, err);
     else
-        ok = k->encode(&pkg->as, pkg->version, out, cap, &pos, err);
+        ok = k->encode(&pkg->as, &ver, out, cap, &pos, err);
     if (!ok)
         return 0;
     URWIRE__PUT_PACKAGE_LENGTH(out, pos);
@@ -5300,6 +5989,7 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
     const urwire__message_kind *k = urwire__message_kind_of(m->kind);
     const urwire__message_type *t = urwire__header_type(m);
     size_t pos = URWIRE_HEADER_SIZE;
+    urwire__ver ver = urwire__ver_of(m->version);
     bool ok = true;
     if (cap < pos) {
         urwire__no_space(err, 0, pos, cap);
@@ -5320,7 +6010,7 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
     else if (m->failed || k->encode == NULL)
         ok = urwire__put_view(out, cap, &pos, m->raw, err);
     else
-        ok = k->encode(&m->as, m->version, out, cap, &pos, err);
+        ok = k->encode(&m->as, &ver, out, cap, &pos, err);
     if (!ok)
         return 0;
     URWIRE__PUT_LENGTH(out, pos);
@@ -5420,7 +6110,8 @@ URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *
 
 static void urwire__visit_package(const urwire_package *pkg, const urwire_visitor *v)
 {
-    const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->type) : NULL;
+    const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->layout) : NULL;
+    urwire__ver ver = urwire__ver_of(pkg->version);
     v->begin_object(v->ctx, NULL);
     if (k == NULL) {
         urwire__name(v, "type", "unknown");
@@ -5431,7 +6122,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
         if (pkg->failed)
             urwire__visit_failed(&pkg->error, pkg->raw, v);
         else
-            k->visit(&pkg->as, pkg->version, v);
+            k->visit(&pkg->as, &ver, v);
     }
     v->end_object(v->ctx);
 }
@@ -5453,6 +6144,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
 {
     const urwire__message_kind *k = urwire__message_kind_of(m->kind);
     const urwire__message_type *t = urwire__header_type(m);
+    urwire__ver ver = urwire__ver_of(m->version);
     v->begin_object(v->ctx, NULL);
     if (m->kind == URWIRE_KIND_UNKNOWN_MESSAGE || m->kind == URWIRE_KIND_UNKNOWN_SUBTYPE) {
         urwire__name(v, "type", "unknown");
@@ -5471,7 +6163,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             if (m->failed)
                 urwire__visit_failed(&m->error, m->raw, v);
             else
-                k->visit(&m->as, m->version, v);
+                k->visit(&m->as, &ver, v);
         }
     }
     v->end_object(v->ctx);
@@ -5546,17 +6238,26 @@ static urwire_frame_kind urwire__fault(urwire_framer *f, urwire_frame *out, urwi
     return URWIRE_FRAME_FAULT;
 }
 
-/* The layout that announces the software version (URWIRE__VERSION_*) sets it for what follows;
- * its type and subtype bytes are looked at before anything is decoded. */
+/* What a message tells of the stream's software version, for the messages after it: the
+ * layout that announces it (URWIRE__VERSION_*) sets it, bugfix included where its form has one
+ * (their type and subtype bytes are looked at before anything is decoded); while the version
+ * is only assumed, the layout sizes of a robot state may show it. */
 static void urwire__learn_version(urwire_framer *f, const uint8_t *bytes, size_t len)
 {
     urwire_message m;
+    if (bytes[URWIRE__TYPE_AT] == URWIRE__PACKAGES_TYPE) {
+        if (f->version.assumed)
+            urwire__implied_version(bytes, len, &f->version);
+        return;
+    }
     if (bytes[URWIRE__TYPE_AT] != URWIRE__VERSION_TYPE || len < URWIRE__VERSION_BODY ||
         bytes[URWIRE__VERSION_SUBTYPE_AT] != URWIRE__VERSION_SUBTYPE)
         return;
     if (urwire_decode_message(bytes, len, f->version, &m) && m.kind == URWIRE__VERSION_KIND) {
         f->version.major = URWIRE__VERSION_MAJOR(&m);
         f->version.minor = URWIRE__VERSION_MINOR(&m);
+        f->version.bugfix = URWIRE__VERSION_BUGFIX(&m);
+        f->version.assumed = false;
         f->version_seen = true;
     }
 }

@@ -54,8 +54,12 @@
  *
  * Repeated parts with no fixed bound (program threads, variable names, global-variable values
  * and their nested LIST/MATRIX items) are urwire_seq views walked with urwire_next_*(): no
- * fixed capacity ever truncates them. Software version: the framer learns it from each
- * Version message; URWIRE_DEFAULT_VERSION (5.9 and later) or your hint applies until then.
+ * fixed capacity ever truncates them. Software version (major.minor.bugfix): the framer
+ * learns it from each Version message; until then your hint applies or, with
+ * URWIRE_DEFAULT_VERSION (5.9 and later, only assumed), what the layout sizes of a robot
+ * state show. Each sub-package and subtype is read in the form of its version when that fits
+ * its length, else in the one form of that exact length; each decoded part keeps the version
+ * it was read in (.version), which its encoding, visiting and versioned names follow.
  *
  * Errors: urwire_error holds a status, the byte offset from the message's first byte (the
  * stream's, for stream faults), the field path and the numbers of the problem;
@@ -81,22 +85,30 @@ extern "C" {
 #define URWIRE_VALUE_ARRAY_MAX 6           /* items of the longest array value */
 
 /* URWIRE_DEFAULT_VERSION: assumed when a stream has shown no Version message and no hint was
- * given: 5.9 and later. Documented versions: 1.6, 1.7, 1.8, 3.0, 3.1, 3.2, 3.3, 3.4, 5.9, 5.10. */
-#define URWIRE_DEFAULT_VERSION_INIT {5, 9}
+ * given: 5.9 and later. Its `assumed` is true, so the layout sizes of a robot state may
+ * overrule it. Documented versions: 1.6, 1.7, 1.8, 3.0, 3.1, 3.2, 3.3, 3.4, 5.9, 5.10. */
+#define URWIRE_DEFAULT_VERSION_INIT {5, 9, 0, true}
 
 /* ---- software versions -------------------------------------------------------------------- */
 
-/* Software version ("major.minor") that chooses the global-variable value-type table. */
+/* A controller software version, major.minor.bugfix: it chooses the layout of each part of a
+ * stream, the meaning of version-dependent codes and the global-variable value-type table.
+ * Versions compare part by part (5.8.2 < 5.9.0 < 5.25.1). {5, 9} means 5.9.0, given by you. */
 typedef struct urwire_sw_version {
     int major;
     int minor;
+    int bugfix;
+    /* Neither announced by the stream nor given by you, but assumed (URWIRE_DEFAULT_VERSION):
+     * the layout sizes of a robot state may then tell the version (CONTRACT §5). */
+    bool assumed;
 } urwire_sw_version;
 
 /* Assumed when a stream has shown no Version message and no hint was given (see
- * URWIRE_DEFAULT_VERSION_INIT). */
+ * URWIRE_DEFAULT_VERSION_INIT); its `assumed` is true. */
 extern const urwire_sw_version URWIRE_DEFAULT_VERSION;
 
-/* "5.9", "5.10.1" -> {5, 9}, {5, 10}; false (and *out untouched) for anything else. */
+/* "5.9" -> {5, 9, 0}, "5.25.1" -> {5, 25, 1}, not assumed; false (and *out untouched) for
+ * anything else. */
 bool urwire_parse_version(const char *text, urwire_sw_version *out);
 
 /* ---- views -------------------------------------------------------------------------------- */
@@ -208,30 +220,31 @@ typedef enum urwire_package_type_up_to_1_7 {
     URWIRE_PACKAGE_TYPE_UP_TO_1_7_PAYLOAD_INFO = 14,
 } urwire_package_type_up_to_1_7;
 /* Codes for software 1.8 and later. */
-typedef enum urwire_package_type_1_8_on {
-    URWIRE_PACKAGE_TYPE_1_8_ON_ROBOT_MODE_DATA = 0,
-    URWIRE_PACKAGE_TYPE_1_8_ON_JOINT_DATA = 1,
-    URWIRE_PACKAGE_TYPE_1_8_ON_TOOL_DATA = 2,
-    URWIRE_PACKAGE_TYPE_1_8_ON_MASTERBOARD_DATA = 3,
-    URWIRE_PACKAGE_TYPE_1_8_ON_CARTESIAN_INFO = 4,
+typedef enum urwire_package_type {
+    URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA = 0,
+    URWIRE_PACKAGE_TYPE_JOINT_DATA = 1,
+    URWIRE_PACKAGE_TYPE_TOOL_DATA = 2,
+    URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA = 3,
+    URWIRE_PACKAGE_TYPE_CARTESIAN_INFO = 4,
     /* From 1.8 (FIRMWARE-LAYOUTS 1b, 2.5). (from 1.8 and later) */
-    URWIRE_PACKAGE_TYPE_1_8_ON_KINEMATICS_INFO = 5,
-    URWIRE_PACKAGE_TYPE_1_8_ON_CONFIGURATION_DATA = 6,
-    URWIRE_PACKAGE_TYPE_1_8_ON_FORCE_MODE_DATA = 7,
-    URWIRE_PACKAGE_TYPE_1_8_ON_ADDITIONAL_INFO = 8,
-    URWIRE_PACKAGE_TYPE_1_8_ON_NEEDED_FOR_CALIB_DATA = 9,
-    URWIRE_PACKAGE_TYPE_1_8_ON_SAFETY_DATA = 10,
-    URWIRE_PACKAGE_TYPE_1_8_ON_TOOL_COMM_INFO = 11,
-    URWIRE_PACKAGE_TYPE_1_8_ON_TOOL_MODE_INFO = 12,
-    URWIRE_PACKAGE_TYPE_1_8_ON_SINGULARITY_INFO = 13,
+    URWIRE_PACKAGE_TYPE_KINEMATICS_INFO = 5,
+    URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA = 6,
+    URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA = 7,
+    URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO = 8,
+    URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA = 9,
+    URWIRE_PACKAGE_TYPE_SAFETY_DATA = 10,
+    URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO = 11,
+    URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO = 12,
+    URWIRE_PACKAGE_TYPE_SINGULARITY_INFO = 13,
     /* Not in any document. 85 bytes on a real 5.11 robot (FIRMWARE-LAYOUTS 2.14: the capture
      * of URCL pull request 137); absent from URSim 5.8 and 5.10 states, so its first version
      * is unknown. Read as ten doubles it looks like payload mass, centre of gravity and
      * inertia, but that layout is only an inference (no source names the package or its
      * fields), so it stays raw. (undocumented) */
-    URWIRE_PACKAGE_TYPE_1_8_ON_PAYLOAD_INFO = 14,
-} urwire_package_type_1_8_on;
-/* The name of a code in the table of the given software version, or NULL. */
+    URWIRE_PACKAGE_TYPE_PAYLOAD_INFO = 14,
+} urwire_package_type;
+/* The name of a code in the table of the given software version (a decoded part's .version),
+ * or NULL. */
 const char *urwire_package_type_name(urwire_sw_version version, int64_t code);
 
 /* Subtype of a robot message (ROBOT_MESSAGE_TYPE_*), the byte after source. */
@@ -260,23 +273,24 @@ typedef enum urwire_robot_message_type_up_to_1_8 {
     URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_HARDWARE_INFO = 18,
 } urwire_robot_message_type_up_to_1_8;
 /* Codes for software 1.9 and later. */
-typedef enum urwire_robot_message_type_1_9_on {
-    URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_TEXT = 0,
-    URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_POPUP = 2,
-    URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_VERSION = 3,
-    URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_SAFETY_MODE = 5,  /* SECURITY_MESSAGE in the CB2 documents. */
-    URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_ERROR_CODE = 6,  /* ROBOT_COMM_MESSAGE in the CB2 documents. */
-    URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_KEY = 7,
-    URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_REQUEST_VALUE = 9,
-    URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_RUNTIME_EXCEPTION = 10,
+typedef enum urwire_robot_message_type {
+    URWIRE_ROBOT_MESSAGE_TYPE_TEXT = 0,
+    URWIRE_ROBOT_MESSAGE_TYPE_POPUP = 2,
+    URWIRE_ROBOT_MESSAGE_TYPE_VERSION = 3,
+    URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE = 5,  /* SECURITY_MESSAGE in the CB2 documents. */
+    URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE = 6,  /* ROBOT_COMM_MESSAGE in the CB2 documents. */
+    URWIRE_ROBOT_MESSAGE_TYPE_KEY = 7,
+    URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE = 9,
+    URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION = 10,
     /* Not in the document; seen 24 bytes long in all. Kept raw. (undocumented) */
-    URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_UNDOCUMENTED_12 = 12,
-    URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_PROGRAM_LABEL_THREADS = 14,
+    URWIRE_ROBOT_MESSAGE_TYPE_UNDOCUMENTED_12 = 12,
+    URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS = 14,
     /* Not in the 5.9 document: sent from PolyScope 5.26 and 10.13 (FIRMWARE-LAYOUTS 1b, 2.16,
      * 3.13; its layout is URCL's). */
-    URWIRE_ROBOT_MESSAGE_TYPE_1_9_ON_HARDWARE_INFO = 18,
-} urwire_robot_message_type_1_9_on;
-/* The name of a code in the table of the given software version, or NULL. */
+    URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO = 18,
+} urwire_robot_message_type;
+/* The name of a code in the table of the given software version (a decoded part's .version),
+ * or NULL. */
 const char *urwire_robot_message_type_name(urwire_sw_version version, int64_t code);
 
 /* Subtype of a program-state message (PROGRAM_STATE_MESSAGE_TYPE_*). */
@@ -320,19 +334,20 @@ typedef enum urwire_robot_mode_up_to_1_8 {
     URWIRE_ROBOT_MODE_UP_TO_1_8_SAFEGUARD_STOP = 10,
 } urwire_robot_mode_up_to_1_8;
 /* Codes for software 3.0 and later. */
-typedef enum urwire_robot_mode_3_0_on {
-    URWIRE_ROBOT_MODE_3_0_ON_NO_CONTROLLER = -1,
-    URWIRE_ROBOT_MODE_3_0_ON_DISCONNECTED = 0,
-    URWIRE_ROBOT_MODE_3_0_ON_CONFIRM_SAFETY = 1,
-    URWIRE_ROBOT_MODE_3_0_ON_BOOTING = 2,
-    URWIRE_ROBOT_MODE_3_0_ON_POWER_OFF = 3,
-    URWIRE_ROBOT_MODE_3_0_ON_POWER_ON = 4,
-    URWIRE_ROBOT_MODE_3_0_ON_IDLE = 5,
-    URWIRE_ROBOT_MODE_3_0_ON_BACKDRIVE = 6,
-    URWIRE_ROBOT_MODE_3_0_ON_RUNNING = 7,
-    URWIRE_ROBOT_MODE_3_0_ON_UPDATING_FIRMWARE = 8,
-} urwire_robot_mode_3_0_on;
-/* The name of a code in the table of the given software version, or NULL. */
+typedef enum urwire_robot_mode {
+    URWIRE_ROBOT_MODE_NO_CONTROLLER = -1,
+    URWIRE_ROBOT_MODE_DISCONNECTED = 0,
+    URWIRE_ROBOT_MODE_CONFIRM_SAFETY = 1,
+    URWIRE_ROBOT_MODE_BOOTING = 2,
+    URWIRE_ROBOT_MODE_POWER_OFF = 3,
+    URWIRE_ROBOT_MODE_POWER_ON = 4,
+    URWIRE_ROBOT_MODE_IDLE = 5,
+    URWIRE_ROBOT_MODE_BACKDRIVE = 6,
+    URWIRE_ROBOT_MODE_RUNNING = 7,
+    URWIRE_ROBOT_MODE_UPDATING_FIRMWARE = 8,
+} urwire_robot_mode;
+/* The name of a code in the table of the given software version (a decoded part's .version),
+ * or NULL. */
 const char *urwire_robot_mode_name(urwire_sw_version version, int64_t code);
 
 /* Joint status, as shown on the initialisation screen (document section "Joint Modes"). The */
@@ -395,21 +410,22 @@ typedef enum urwire_joint_mode_5_0_to_5_0 {
     URWIRE_JOINT_MODE_5_0_TO_5_0_IDLE = 255,
 } urwire_joint_mode_5_0_to_5_0;
 /* Codes for software 5.1 and later. */
-typedef enum urwire_joint_mode_5_1_on {
-    URWIRE_JOINT_MODE_5_1_ON_RESET = 235,
-    URWIRE_JOINT_MODE_5_1_ON_SHUTTING_DOWN = 236,
-    URWIRE_JOINT_MODE_5_1_ON_BACKDRIVE = 238,
-    URWIRE_JOINT_MODE_5_1_ON_POWER_OFF = 239,
-    URWIRE_JOINT_MODE_5_1_ON_READY_FOR_POWER_OFF = 240,
-    URWIRE_JOINT_MODE_5_1_ON_NOT_RESPONDING = 245,
-    URWIRE_JOINT_MODE_5_1_ON_MOTOR_INITIALISATION = 246,
-    URWIRE_JOINT_MODE_5_1_ON_BOOTING = 247,
-    URWIRE_JOINT_MODE_5_1_ON_VIOLATION = 251,
-    URWIRE_JOINT_MODE_5_1_ON_FAULT = 252,
-    URWIRE_JOINT_MODE_5_1_ON_RUNNING = 253,
-    URWIRE_JOINT_MODE_5_1_ON_IDLE = 255,
-} urwire_joint_mode_5_1_on;
-/* The name of a code in the table of the given software version, or NULL. */
+typedef enum urwire_joint_mode {
+    URWIRE_JOINT_MODE_RESET = 235,
+    URWIRE_JOINT_MODE_SHUTTING_DOWN = 236,
+    URWIRE_JOINT_MODE_BACKDRIVE = 238,
+    URWIRE_JOINT_MODE_POWER_OFF = 239,
+    URWIRE_JOINT_MODE_READY_FOR_POWER_OFF = 240,
+    URWIRE_JOINT_MODE_NOT_RESPONDING = 245,
+    URWIRE_JOINT_MODE_MOTOR_INITIALISATION = 246,
+    URWIRE_JOINT_MODE_BOOTING = 247,
+    URWIRE_JOINT_MODE_VIOLATION = 251,
+    URWIRE_JOINT_MODE_FAULT = 252,
+    URWIRE_JOINT_MODE_RUNNING = 253,
+    URWIRE_JOINT_MODE_IDLE = 255,
+} urwire_joint_mode;
+/* The name of a code in the table of the given software version (a decoded part's .version),
+ * or NULL. */
 const char *urwire_joint_mode_name(urwire_sw_version version, int64_t code);
 
 /* Tool status (document section "Tool Modes", whose rows are named JOINT_MODE_*). CB2 sends */
@@ -452,44 +468,45 @@ typedef enum urwire_message_source_up_to_1_8 {
     URWIRE_MESSAGE_SOURCE_UP_TO_1_8_CONTROL_BOX = -6,
 } urwire_message_source_up_to_1_8;
 /* Codes for software 3.0 and later. */
-typedef enum urwire_message_source_3_0_on {
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_0_FPGA = 100,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_0_A = 110,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_0_B = 120,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_1_FPGA = 101,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_1_A = 111,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_1_B = 121,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_2_FPGA = 102,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_2_A = 112,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_2_B = 122,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_3_FPGA = 103,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_3_A = 113,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_3_B = 123,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_4_FPGA = 104,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_4_A = 114,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_4_B = 124,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_5_FPGA = 105,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_5_A = 115,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_JOINT_5_B = 125,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_TOOL_FPGA = 106,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_TOOL_A = 116,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_TOOL_B = 126,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_EUROMAP_FPGA = 107,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_EUROMAP_A = 117,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_EUROMAP_B = 127,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_TEACH_PENDANT_A = 108,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_TEACH_PENDANT_B = 118,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_SCB_FPGA = 40,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_SAFETY_PROCESSOR_UA = 20,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_SAFETY_PROCESSOR_UB = 30,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_ROBOTINTERFACE = -2,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_RTMACHINE = -3,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_SIMULATED_ROBOT = -4,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_GUI = -5,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_CONTROLLER = 7,
-    URWIRE_MESSAGE_SOURCE_3_0_ON_RTDE = 8,
-} urwire_message_source_3_0_on;
-/* The name of a code in the table of the given software version, or NULL. */
+typedef enum urwire_message_source {
+    URWIRE_MESSAGE_SOURCE_JOINT_0_FPGA = 100,
+    URWIRE_MESSAGE_SOURCE_JOINT_0_A = 110,
+    URWIRE_MESSAGE_SOURCE_JOINT_0_B = 120,
+    URWIRE_MESSAGE_SOURCE_JOINT_1_FPGA = 101,
+    URWIRE_MESSAGE_SOURCE_JOINT_1_A = 111,
+    URWIRE_MESSAGE_SOURCE_JOINT_1_B = 121,
+    URWIRE_MESSAGE_SOURCE_JOINT_2_FPGA = 102,
+    URWIRE_MESSAGE_SOURCE_JOINT_2_A = 112,
+    URWIRE_MESSAGE_SOURCE_JOINT_2_B = 122,
+    URWIRE_MESSAGE_SOURCE_JOINT_3_FPGA = 103,
+    URWIRE_MESSAGE_SOURCE_JOINT_3_A = 113,
+    URWIRE_MESSAGE_SOURCE_JOINT_3_B = 123,
+    URWIRE_MESSAGE_SOURCE_JOINT_4_FPGA = 104,
+    URWIRE_MESSAGE_SOURCE_JOINT_4_A = 114,
+    URWIRE_MESSAGE_SOURCE_JOINT_4_B = 124,
+    URWIRE_MESSAGE_SOURCE_JOINT_5_FPGA = 105,
+    URWIRE_MESSAGE_SOURCE_JOINT_5_A = 115,
+    URWIRE_MESSAGE_SOURCE_JOINT_5_B = 125,
+    URWIRE_MESSAGE_SOURCE_TOOL_FPGA = 106,
+    URWIRE_MESSAGE_SOURCE_TOOL_A = 116,
+    URWIRE_MESSAGE_SOURCE_TOOL_B = 126,
+    URWIRE_MESSAGE_SOURCE_EUROMAP_FPGA = 107,
+    URWIRE_MESSAGE_SOURCE_EUROMAP_A = 117,
+    URWIRE_MESSAGE_SOURCE_EUROMAP_B = 127,
+    URWIRE_MESSAGE_SOURCE_TEACH_PENDANT_A = 108,
+    URWIRE_MESSAGE_SOURCE_TEACH_PENDANT_B = 118,
+    URWIRE_MESSAGE_SOURCE_SCB_FPGA = 40,
+    URWIRE_MESSAGE_SOURCE_SAFETY_PROCESSOR_UA = 20,
+    URWIRE_MESSAGE_SOURCE_SAFETY_PROCESSOR_UB = 30,
+    URWIRE_MESSAGE_SOURCE_ROBOTINTERFACE = -2,
+    URWIRE_MESSAGE_SOURCE_RTMACHINE = -3,
+    URWIRE_MESSAGE_SOURCE_SIMULATED_ROBOT = -4,
+    URWIRE_MESSAGE_SOURCE_GUI = -5,
+    URWIRE_MESSAGE_SOURCE_CONTROLLER = 7,
+    URWIRE_MESSAGE_SOURCE_RTDE = 8,
+} urwire_message_source;
+/* The name of a code in the table of the given software version (a decoded part's .version),
+ * or NULL. */
 const char *urwire_message_source_name(urwire_sw_version version, int64_t code);
 
 /* Safety mode (document section "Safety Mode Types"). */
@@ -655,19 +672,20 @@ typedef enum urwire_value_type_3_3_to_5_8 {
     URWIRE_VALUE_TYPE_3_3_TO_5_8_FLOAT = 15,
 } urwire_value_type_3_3_to_5_8;
 /* Codes for software 5.9 and later. */
-typedef enum urwire_value_type_5_9_on {
-    URWIRE_VALUE_TYPE_5_9_ON_NONE = 0,
-    URWIRE_VALUE_TYPE_5_9_ON_CONST_STRING = 3,
-    URWIRE_VALUE_TYPE_5_9_ON_VAR_STRING = 4,
-    URWIRE_VALUE_TYPE_5_9_ON_POSE = 12,
-    URWIRE_VALUE_TYPE_5_9_ON_BOOL = 13,
-    URWIRE_VALUE_TYPE_5_9_ON_NUM = 14,
-    URWIRE_VALUE_TYPE_5_9_ON_INT = 15,
-    URWIRE_VALUE_TYPE_5_9_ON_FLOAT = 16,
-    URWIRE_VALUE_TYPE_5_9_ON_LIST = 17,
-    URWIRE_VALUE_TYPE_5_9_ON_MATRIX = 18,
-} urwire_value_type_5_9_on;
-/* The name of a code in the table of the given software version, or NULL. */
+typedef enum urwire_value_type {
+    URWIRE_VALUE_TYPE_NONE = 0,
+    URWIRE_VALUE_TYPE_CONST_STRING = 3,
+    URWIRE_VALUE_TYPE_VAR_STRING = 4,
+    URWIRE_VALUE_TYPE_POSE = 12,
+    URWIRE_VALUE_TYPE_BOOL = 13,
+    URWIRE_VALUE_TYPE_NUM = 14,
+    URWIRE_VALUE_TYPE_INT = 15,
+    URWIRE_VALUE_TYPE_FLOAT = 16,
+    URWIRE_VALUE_TYPE_LIST = 17,
+    URWIRE_VALUE_TYPE_MATRIX = 18,
+} urwire_value_type;
+/* The name of a code in the table of the given software version (a decoded part's .version),
+ * or NULL. */
 const char *urwire_value_type_name(urwire_sw_version version, int64_t code);
 
 /* Global-variable value types by kind, whatever their code in a version's table. */
@@ -749,6 +767,9 @@ typedef struct urwire_robot_mode_data {
      * uchar was added to RobotMode", python-urx e1f78ce2, ur_modern_driver PR 334 on a real
      * 3.10); high confidence. One byte, not the int a python-urx comment claims. */
     uint8_t reserved;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_robot_mode_data;
 
@@ -772,6 +793,9 @@ typedef struct urwire_joint {
  */
 typedef struct urwire_joint_data {
     urwire_joint joints[6];  /* One entry per joint, base first. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_joint_data;
 
@@ -790,6 +814,9 @@ typedef struct urwire_tool_data {
     float tool_current;
     float tool_temperature;
     uint8_t tool_mode;  /* Tool mode. See enum urwire_tool_mode. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_tool_data;
 
@@ -804,16 +831,14 @@ typedef struct urwire_masterboard_data {
      * NIST table, UR_DRIVER L152-L216, ur_modern_driver parse<uint16_t,10> for 1.x); high
      * confidence. No CB2 source names the bits (ur_modern_driver keeps 10 of the 16); the
      * names are those of 3.0 and later, as far as 16 bits go (the tool bits 16-17 do not fit a
-     * short). Masks: enum urwire_masterboard_data_digital_input_bits_bit. */
-    int16_t digital_input_bits;
-    /* Digital inputs: bits 0-7 standard, 8-15 configurable, 16-17 tool. int32 from 3.0; see
-     * the int16 entry above. Masks: enum urwire_masterboard_data_digital_input_bits_bit. */
+     * short). Digital inputs: bits 0-7 standard, 8-15 configurable, 16-17 tool. int32 from
+     * 3.0; see the int16 entry above. On the wire: int16 up to 1.8; int32 3.0 and later (else
+     * 0). Masks: enum urwire_masterboard_data_digital_input_bits_bit. */
     int32_t digital_input_bits;
     /* Digital outputs (CB2: a short). int16 up to 1.8, int32 from 3.0, like
-     * digital_input_bits. Masks: enum urwire_masterboard_data_digital_output_bits_bit. */
-    int16_t digital_output_bits;
-    /* Digital outputs: bits 0-7 standard, 8-15 configurable, 16-17 tool. int32 from 3.0; see
-     * the int16 entry above. Masks: enum urwire_masterboard_data_digital_output_bits_bit. */
+     * digital_input_bits. Digital outputs: bits 0-7 standard, 8-15 configurable, 16-17 tool.
+     * int32 from 3.0; see the int16 entry above. On the wire: int16 up to 1.8; int32 3.0 and
+     * later (else 0). Masks: enum urwire_masterboard_data_digital_output_bits_bit. */
     int32_t digital_output_bits;
     uint8_t analog_input_range0;
     uint8_t analog_input_range1;
@@ -884,36 +909,18 @@ typedef struct urwire_masterboard_data {
     uint8_t three_position_enabling_device_input;
     /* Used by Universal Robots software only. CB3 from 3.10 (FIRMWARE-LAYOUTS 1b:
      * ur_modern_driver PR 334 c7c2c34f, tested on a real 3.10; issue 316); high confidence.
-     * Absent on 5.0-5.3: see the entry from 5.4. */
+     * Absent on 5.0-5.3: see the entry from 5.4. Used by Universal Robots software only.
+     * e-Series from 5.4 (FIRMWARE-LAYOUTS 1b: ur_modern_driver PR 339, tested on 5.4.2; issue
+     * 350, 5.4.0 fails with 74 bytes); high confidence. That 5.0-5.3 send 74 bytes is an
+     * inference from two strict drivers that worked on early e-Series (FIRMWARE-LAYOUTS 3.5);
+     * medium confidence. Its value is 1 in every e-Series capture. On the wire: uint8 3.10 to
+     * 3.15; uint8 5.4 and later (else 0). */
     uint8_t reserved_1;
-    /* Used by Universal Robots software only. e-Series from 5.4 (FIRMWARE-LAYOUTS 1b:
-     * ur_modern_driver PR 339, tested on 5.4.2; issue 350, 5.4.0 fails with 74 bytes); high
-     * confidence. That 5.0-5.3 send 74 bytes is an inference from two strict drivers that
-     * worked on early e-Series (FIRMWARE-LAYOUTS 3.5); medium confidence. Its value is 1 in
-     * every e-Series capture. */
-    uint8_t reserved_1;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_masterboard_data;
-
-/* Masks of the bits of masterboard_data.digital_input_bits. */
-typedef enum urwire_masterboard_data_digital_input_bits_bit {
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_0 = 1 << 0,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_1 = 1 << 1,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_2 = 1 << 2,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_3 = 1 << 3,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_4 = 1 << 4,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_5 = 1 << 5,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_6 = 1 << 6,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_STANDARD_7 = 1 << 7,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_0 = 1 << 8,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_1 = 1 << 9,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_2 = 1 << 10,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_3 = 1 << 11,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_4 = 1 << 12,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_5 = 1 << 13,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_6 = 1 << 14,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_CONFIGURABLE_7 = 1 << 15,
-} urwire_masterboard_data_digital_input_bits_bit;
 
 /* Masks of the bits of masterboard_data.digital_input_bits. */
 typedef enum urwire_masterboard_data_digital_input_bits_bit {
@@ -936,26 +943,6 @@ typedef enum urwire_masterboard_data_digital_input_bits_bit {
     URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_TOOL_0 = 1 << 16,
     URWIRE_MASTERBOARD_DATA_DIGITAL_INPUT_BITS_TOOL_1 = 1 << 17,
 } urwire_masterboard_data_digital_input_bits_bit;
-
-/* Masks of the bits of masterboard_data.digital_output_bits. */
-typedef enum urwire_masterboard_data_digital_output_bits_bit {
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_0 = 1 << 0,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_1 = 1 << 1,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_2 = 1 << 2,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_3 = 1 << 3,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_4 = 1 << 4,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_5 = 1 << 5,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_6 = 1 << 6,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_STANDARD_7 = 1 << 7,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_0 = 1 << 8,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_1 = 1 << 9,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_2 = 1 << 10,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_3 = 1 << 11,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_4 = 1 << 12,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_5 = 1 << 13,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_6 = 1 << 14,
-    URWIRE_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_CONFIGURABLE_7 = 1 << 15,
-} urwire_masterboard_data_digital_output_bits_bit;
 
 /* Masks of the bits of masterboard_data.digital_output_bits. */
 typedef enum urwire_masterboard_data_digital_output_bits_bit {
@@ -1000,6 +987,9 @@ typedef struct urwire_cartesian_info {
     double tcp_offset_rx;  /* From 3.1, like tcp_offset_x. */
     double tcp_offset_ry;  /* From 3.1, like tcp_offset_x. */
     double tcp_offset_rz;  /* From 3.1, like tcp_offset_x. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_cartesian_info;
 
@@ -1011,12 +1001,15 @@ typedef struct urwire_cartesian_info {
  * on 1.6-1.7 (UR_DRIVER: "KinematicsInfo is not available in 1.6 and 1.7") and is kinematics
  * info from 1.8 (FIRMWARE-LAYOUTS 1a, 2.5); medium confidence, the early capture's version
  * being unknown. The length (29 or 225) decides.
- * Code 5 (URWIRE_PACKAGE_TYPE_LASER_POINTER).
+ * Code 5 (URWIRE_PACKAGE_TYPE_UP_TO_1_7_LASER_POINTER).
  */
 typedef struct urwire_laser_pointer {
     double x;
     double y;
     double z;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_laser_pointer;
 
@@ -1035,6 +1028,9 @@ typedef struct urwire_kinematics_info {
     double dh_d[6];  /* Dhd in the document. */
     double dh_alpha[6];
     uint32_t calibration_status;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_kinematics_info;
 
@@ -1087,6 +1083,9 @@ typedef struct urwire_configuration_data {
      * is unknown; like every from: bound, this one takes in 10.x. */
     int16_t reserved_1;
     int16_t reserved_2;  /* From 5.25.1, like reserved_1. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_configuration_data;
 
@@ -1102,6 +1101,9 @@ typedef struct urwire_force_mode_data {
     double fry;
     double frz;
     double robot_dexterity;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_force_mode_data;
 
@@ -1137,6 +1139,9 @@ typedef struct urwire_additional_info {
     /* e-Series (the 5.9 document; every e-Series capture, 5.8 onward). That 5.0-5.3 send it
      * too is an inference (FIRMWARE-LAYOUTS 1a: "9?"); medium confidence. */
     uint8_t reserved;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_additional_info;
 
@@ -1152,6 +1157,9 @@ typedef struct urwire_calibration_data {
     double frx;
     double fry;
     double frz;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_calibration_data;
 
@@ -1163,6 +1171,9 @@ typedef struct urwire_calibration_data {
  */
 typedef struct urwire_safety_data {
     urwire_bytes raw;  /* The package's bytes after its header. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_safety_data;
 
@@ -1178,6 +1189,9 @@ typedef struct urwire_tool_comm_info {
     int32_t stop_bits;
     float rx_idle_chars;
     float tx_idle_chars;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_tool_comm_info;
 
@@ -1189,6 +1203,9 @@ typedef struct urwire_tool_mode_info {
     uint8_t output_mode;
     uint8_t digital_output_mode_output_0;
     uint8_t digital_output_mode_output_1;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_tool_mode_info;
 
@@ -1199,6 +1216,9 @@ typedef struct urwire_tool_mode_info {
 typedef struct urwire_singularity_info {
     uint8_t singularity_severity;
     uint8_t singularity_type;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_singularity_info;
 
@@ -1221,11 +1241,15 @@ typedef struct urwire_version_message {
      * the exact 3.2/3.3 boundary resting on NIST alone. CB2 sends this form too (the CB2 C
      * header, python-urx 2013). */
     int32_t svn_revision;
-    int32_t bugfix_version;  /* From 3.3, replacing svn_revision (see there); high confidence. */
+    /* From 3.3, replacing svn_revision (see there); high confidence. */
+    int32_t bugfix_version;
     int32_t build_number;  /* From 3.3, like bugfix_version. */
     /* The rest of the message, with no terminator. UTF-8 text as sent, a view into the
      * message. */
     urwire_bytes build_date;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_version_message;
 
@@ -1254,6 +1278,9 @@ typedef struct urwire_safety_mode_message {
      * 1c: python-urx 2013, the CB2 C header SecurityMessage). The CB3 form is not documented:
      * the 1.8/3.0 boundary is an inference. UTF-8 text as sent, a view into the message. */
     urwire_bytes text;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_safety_mode_message;
 
@@ -1278,6 +1305,9 @@ typedef struct urwire_robot_comm_message {
      * found, so the 3.0 boundary is an inference. */
     uint32_t robot_message_data;
     urwire_bytes text;  /* robotCommTextMessage. UTF-8 text as sent, a view into the message. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_robot_comm_message;
 
@@ -1292,6 +1322,9 @@ typedef struct urwire_key_message {
      * message. */
     urwire_bytes title;
     urwire_bytes text;  /* keyTextMessage. UTF-8 text as sent, a view into the message. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_key_message;
 
@@ -1314,6 +1347,9 @@ bool urwire_append_program_thread(const urwire_program_thread *in, uint8_t *out,
  */
 typedef struct urwire_program_threads_message {
     urwire_seq threads;  /* Iterate with urwire_next_program_thread() on a copy. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_program_threads_message;
 
@@ -1341,6 +1377,9 @@ typedef struct urwire_popup_message {
      * message. */
     urwire_bytes title;
     urwire_bytes text;  /* popupTextMessage. UTF-8 text as sent, a view into the message. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_popup_message;
 
@@ -1348,12 +1387,15 @@ typedef struct urwire_popup_message {
  * Label message (CB2 only). CB2, up to 1.8 (FIRMWARE-LAYOUTS 1c: python-urx 2013 labelMessage,
  * the CB2 C header LabelMessage). Later documents drop subtype 1 and no CB3 form is known, so
  * the 1.8 boundary is an inference; later streams keep it raw.
- * Code 1 (URWIRE_ROBOT_MESSAGE_TYPE_LABEL).
+ * Code 1 (URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL).
  */
 typedef struct urwire_label_message {
     int32_t id;  /* id in the CB2 documents. */
     /* The label text, to the end of the message. UTF-8 text as sent, a view into the message. */
     urwire_bytes text;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_label_message;
 
@@ -1361,7 +1403,7 @@ typedef struct urwire_label_message {
  * Var message (CB2 only). CB2, up to 1.8 (FIRMWARE-LAYOUTS 1c: python-urx 2013 varMessage, the
  * CB2 C header VarMessage). Later documents drop subtype 8 and no CB3 form is known, so the
  * 1.8 boundary is an inference; later streams keep it raw.
- * Code 8 (URWIRE_ROBOT_MESSAGE_TYPE_VAR).
+ * Code 8 (URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR).
  */
 typedef struct urwire_var_message {
     /* code in the CB2 documents; the name of the same field in the key message. */
@@ -1373,6 +1415,9 @@ typedef struct urwire_var_message {
     /* The message text, to the end of the message. UTF-8 text as sent, a view into the
      * message. */
     urwire_bytes text;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_var_message;
 
@@ -1393,6 +1438,9 @@ typedef struct urwire_hardware_info_message {
     uint16_t control_box_type;  /* See enum urwire_control_box_type. */
     uint16_t reserved_2;
     uint16_t tool_flange_type;  /* See enum urwire_tool_flange_type. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_hardware_info_message;
 
@@ -1404,6 +1452,9 @@ typedef struct urwire_request_value_message {
     uint32_t request_id;
     uint32_t requested_type;  /* See enum urwire_requested_type. */
     urwire_bytes text;  /* requestTextMessage. UTF-8 text as sent, a view into the message. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_request_value_message;
 
@@ -1413,6 +1464,9 @@ typedef struct urwire_request_value_message {
  */
 typedef struct urwire_text_message {
     urwire_bytes text;  /* textTextMessage. UTF-8 text as sent, a view into the message. */
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_text_message;
 
@@ -1425,6 +1479,9 @@ typedef struct urwire_runtime_exception_message {
     int32_t script_column_number;
     /* runtimeExceptionTextMessage. UTF-8 text as sent, a view into the message. */
     urwire_bytes text;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_runtime_exception_message;
 
@@ -1437,6 +1494,9 @@ typedef struct urwire_global_variables_setup_message {
     /* Names, each ended by a new line character, e.g. var_1\nvar_2\n. Iterate with
      * urwire_next_text() on a copy. */
     urwire_seq variable_names;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_global_variables_setup_message;
 
@@ -1449,8 +1509,33 @@ typedef struct urwire_global_variables_update_message {
     /* Values, each a type byte, its data and a new line character. Iterate with
      * urwire_next_value() on a copy. */
     urwire_seq variables;
+    /* The software version it was read in (its form's, when chosen by length): its encoding
+     * and visiting follow it. */
+    urwire_sw_version version;
     urwire_bytes extra;  /* Bytes after the known layout (flagged; kept for encoding). */
 } urwire_global_variables_update_message;
+
+/* Which struct of urwire_package.as (and of urwire_robot_state) a sub-package was read in: a
+ * type code with several layouts (code 5: laser_pointer up to 1.7, kinematics_info from 1.8)
+ * has one of each. */
+typedef enum urwire_package_layout {
+    URWIRE_LAYOUT_ROBOT_MODE_DATA,  /* code 0: robot_mode_data */
+    URWIRE_LAYOUT_JOINT_DATA,  /* code 1: joint_data */
+    URWIRE_LAYOUT_TOOL_DATA,  /* code 2: tool_data */
+    URWIRE_LAYOUT_MASTERBOARD_DATA,  /* code 3: masterboard_data */
+    URWIRE_LAYOUT_CARTESIAN_INFO,  /* code 4: cartesian_info */
+    URWIRE_LAYOUT_LASER_POINTER,  /* code 5: laser_pointer */
+    URWIRE_LAYOUT_KINEMATICS_INFO,  /* code 5: kinematics_info */
+    URWIRE_LAYOUT_CONFIGURATION_DATA,  /* code 6: configuration_data */
+    URWIRE_LAYOUT_FORCE_MODE_DATA,  /* code 7: force_mode_data */
+    URWIRE_LAYOUT_ADDITIONAL_INFO,  /* code 8: additional_info */
+    URWIRE_LAYOUT_CALIBRATION_DATA,  /* code 9: calibration_data */
+    URWIRE_LAYOUT_SAFETY_DATA,  /* code 10: safety_data */
+    URWIRE_LAYOUT_TOOL_COMM_INFO,  /* code 11: tool_comm_info */
+    URWIRE_LAYOUT_TOOL_MODE_INFO,  /* code 12: tool_mode_info */
+    URWIRE_LAYOUT_SINGULARITY_INFO,  /* code 13: singularity_info */
+    URWIRE_LAYOUT_COUNT             /* none: a sub-package type with no layout */
+} urwire_package_layout;
 
 /* Which struct of urwire_message.as is valid. */
 typedef enum urwire_message_kind {
@@ -1492,7 +1577,11 @@ typedef struct urwire_message {
     size_t length;                  /* its declared length (= bytes given) */
     uint8_t message_type;           /* urwire_message_type */
     urwire_message_kind kind;
-    urwire_sw_version version;      /* decoded under (and encoded for) this software version */
+    urwire_sw_version version;      /* the version its layout was read in (its form's, when chosen
+                                       by length); encoding and visiting follow it. A robot
+                                       state: the version its sub-packages started with */
+    bool implied;                   /* robot state, version assumed: its layout sizes showed */
+    urwire_sw_version implied_version; /* this version (see urwire_sw_version.assumed) */
     bool failed;                    /* error is set: see below */
     urwire_error error;             /* header too short, layout malformed, or a robot state's
                                        sub-package that could not be framed */
@@ -1524,8 +1613,9 @@ typedef struct urwire_message {
 /* One robot-state sub-package. */
 typedef struct urwire_package {
     uint8_t type;                   /* urwire_package_type */
-    urwire_sw_version version;      /* of its message */
+    urwire_sw_version version;      /* the version it was read in (its form's, when chosen by length) */
     bool known;                     /* the spec lays this type out (else raw only) */
+    urwire_package_layout layout;   /* known: the member of as it was read into */
     bool failed;                    /* known but malformed: error and raw are set */
     urwire_error error;
     size_t offset;                  /* of its header, from the message's first byte */
@@ -1553,6 +1643,8 @@ typedef struct urwire_package {
 typedef struct urwire_robot_state {
     uint32_t present;               /* URWIRE_BIT(code) for each decoded sub-package */
     uint32_t malformed;             /* URWIRE_BIT(code) for each sub-package that failed */
+    uint32_t layouts;               /* URWIRE_BIT(urwire_package_layout) for each decoded one: which
+                                       member holds a code with several layouts */
     size_t unknown;                 /* sub-packages with no layout */
     urwire_robot_mode_data robot_mode_data;
     urwire_joint_data joint_data;
@@ -1576,8 +1668,12 @@ typedef struct urwire_robot_state {
 /* The bit of a sub-package type in urwire_robot_state.present and .malformed. */
 #define URWIRE_BIT(code) (1ul << (code))
 
-/* Decode one framed message (len = its declared length). Never fails as a call: a message
- * that cannot be read comes back failed with error and raw. Returns !out->failed. */
+/* Decode one framed message (len = its declared length) of a stream of `version` (a frame's,
+ * a hint, or URWIRE_DEFAULT_VERSION). Each part is read in the form of that version when it
+ * fits its length, else in the one form of that exact length (in that form's version); while
+ * the version is only assumed, such a form sets the version for the rest of a robot state
+ * (out->implied). Never fails as a call: a message that cannot be read comes back failed with
+ * error and raw. Returns !out->failed. */
 bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version version, urwire_message *out);
 /* The next sub-package of a robot state's seq; false at the end. */
 bool urwire_next_package(urwire_seq *seq, urwire_package *out);
@@ -1640,12 +1736,13 @@ typedef struct urwire_frame {
     const uint8_t *bytes;           /* inside the framer's buffer: valid until the next feed */
     size_t length;
     uint64_t offset;                /* of the message or fault, from the stream's first byte */
-    urwire_sw_version version;      /* to decode this message with */
+    urwire_sw_version version;      /* to decode this message with (assumed: see its doc) */
     urwire_error fault;
 } urwire_frame;
 
 /* Frames a byte stream in a caller-provided buffer. Tracks the software version from the
- * stream's Version messages (else the hint). After a bad length or type it scans forward
+ * stream's Version messages (else the hint; with URWIRE_DEFAULT_VERSION as the hint, which is
+ * only assumed, from the layout sizes of robot states where they show it). After a bad length or type it scans forward
  * byte by byte to the next plausible header; the skipped bytes belong to that one fault. */
 typedef struct urwire_framer {
     uint8_t *buf;
@@ -1657,7 +1754,9 @@ typedef struct urwire_framer {
     bool resyncing;
     bool finished;
     bool version_seen;              /* a Version message set the version */
-    urwire_sw_version version;      /* in force: the last Version message's, else the hint */
+    urwire_sw_version version;      /* in force: the last Version message's, else the hint, else
+                                       what a robot state's layout sizes showed (assumed), else
+                                       URWIRE_DEFAULT_VERSION (assumed) */
 } urwire_framer;
 
 void urwire_framer_init(urwire_framer *f, uint8_t *buf, size_t cap, urwire_sw_version hint);

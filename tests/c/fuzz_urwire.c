@@ -101,7 +101,8 @@ static void check_message(const uint8_t *bytes, size_t len, urwire_sw_version ve
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    static const urwire_sw_version versions[4] = {{5, 9}, {3, 2}, {5, 0}, {5, 12}};
+    static const urwire_sw_version versions[4] = {URWIRE_DEFAULT_VERSION_INIT, {3, 2, 0, false}, {5, 0, 0, false},
+                                                  {5, 12, 0, false}};
     urwire_framer fr;
     urwire_frame frame;
     urwire_frame_kind kind = URWIRE_FRAME_NEED_MORE;

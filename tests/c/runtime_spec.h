@@ -4,7 +4,8 @@
  *
  * The made-up protocol: a message is an int32 length and a uint8 type, as in the real one.
  * Type 16 ("state") is a list of sub-packages, each an int32 length and a uint8 type; type 1
- * ("counter") holds one uint32. Global-variable values have two tables: up to 3.2, and 3.3 on.
+ * has two layouts: "tally" (one uint16) up to 3.2, "counter" (one uint32) from 3.3.
+ * Global-variable values have two tables: up to 3.2, and 3.3 on.
  * runtime_support.h gives the private part (the tables of urwire.c). */
 #ifndef URWIRE_RUNTIME_SPEC_H
 #define URWIRE_RUNTIME_SPEC_H
@@ -21,8 +22,11 @@
 #define URWIRE_HEADER_SIZE 5u
 #define URWIRE_PACKAGE_HEADER_SIZE 5u
 #define URWIRE_MAX_VALUE_DEPTH 3
-#define URWIRE_DEFAULT_VERSION_INIT {5, 9}
+#define URWIRE_DEFAULT_VERSION_INIT {5, 9, 0, true}
 #define URWIRE_VALUE_ARRAY_MAX 6
+/* A private number that the generated urwire.c defines before the runtime: the most exact
+ * sizes a form has (private.h sizes urwire__form with it). */
+#define URWIRE__FORM_SIZES 2
 
 typedef enum urwire_value_kind {
     URWIRE_VALUE_NONE,
@@ -42,8 +46,21 @@ typedef enum urwire_message_kind {
     URWIRE_KIND_UNKNOWN_SUBTYPE
 } urwire_message_kind;
 
+typedef enum urwire_package_layout {
+    URWIRE_LAYOUT_TALLY,
+    URWIRE_LAYOUT_COUNTER,
+    URWIRE_LAYOUT_COUNT
+} urwire_package_layout;
+
+typedef struct urwire_tally {
+    uint16_t count;
+    urwire_sw_version version;
+    urwire_bytes extra;
+} urwire_tally;
+
 typedef struct urwire_counter {
     uint32_t count;
+    urwire_sw_version version;
     urwire_bytes extra;
 } urwire_counter;
 
@@ -53,6 +70,8 @@ typedef struct urwire_message {
     uint8_t message_type;
     urwire_message_kind kind;
     urwire_sw_version version;
+    bool implied;
+    urwire_sw_version implied_version;
     bool failed;
     urwire_error error;
     urwire_bytes raw;
@@ -69,11 +88,13 @@ typedef struct urwire_package {
     uint8_t type;
     urwire_sw_version version;
     bool known;
+    urwire_package_layout layout;
     bool failed;
     urwire_error error;
     size_t offset;
     urwire_bytes raw;
     union {
+        urwire_tally tally;
         urwire_counter counter;
     } as;
 } urwire_package;
@@ -81,7 +102,9 @@ typedef struct urwire_package {
 typedef struct urwire_robot_state {
     uint32_t present;
     uint32_t malformed;
+    uint32_t layouts;
     size_t unknown;
+    urwire_tally tally;
     urwire_counter counter;
 } urwire_robot_state;
 

@@ -33,6 +33,8 @@
 #define URWIRE__VERSION_KIND URWIRE_KIND_UNKNOWN_SUBTYPE
 #define URWIRE__VERSION_MAJOR(m) ((m)->version.major)
 #define URWIRE__VERSION_MINOR(m) ((m)->version.minor)
+#define URWIRE__VERSION_BUGFIX(m) 0
+#define URWIRE__VERSION_TAIL 0u
 
 /* ---- the tables ---- */
 
@@ -52,61 +54,119 @@ static const urwire__value_entry urwire__values_new[] = {
     {18, URWIRE_VALUE_MATRIX, "MATRIX", URWIRE__LAYOUT_MATRIX, URWIRE__ITEM_NONE, 1},
 };
 
-static const urwire__value_table urwire__value_tables[] = {
-    {{false, {0, 0}, true, {3, 2}}, urwire__values_old, URWIRE__COUNT(urwire__values_old)},
-    {{true, {3, 3}, false, {0, 0}}, urwire__values_new, URWIRE__COUNT(urwire__values_new)},
+static const urwire__versions urwire__value_ranges[] = {
+    {false, {0, 0, 0, false}, true, {3, 2, 999, false}},
+    {true, {3, 3, 0, false}, false, {0, 0, 0, false}},
 };
 
-static inline bool urwire__decode_counter(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                          void *into, urwire_error *err)
-{
-    urwire_counter *out = (urwire_counter *)into;
-    (void)version;
-    if (end - *at < 4u)
-        return urwire__short(err, "count", *at, 4u, end);
-    out->count = urwire__u32(msg + *at);
-    out->extra = urwire__view(msg + *at + 4, end - *at - 4);
-    *at = end;
-    return true;
-}
+static const urwire__value_table urwire__value_tables[] = {
+    {urwire__values_old, URWIRE__COUNT(urwire__values_old)},
+    {urwire__values_new, URWIRE__COUNT(urwire__values_new)},
+};
 
-static inline bool urwire__encode_counter(const void *from, urwire_sw_version version, uint8_t *out, size_t cap,
-                                          size_t *at, urwire_error *err)
-{
-    const urwire_counter *in = (const urwire_counter *)from;
-    (void)version;
-    if (cap - *at < 4u)
-        return urwire__no_space(err, *at, 4u, cap);
-    urwire__put_u32(out + *at, in->count);
-    *at += 4u;
-    return urwire__put_view(out, cap, at, in->extra, err);
-}
+/* A layout of one scalar, as the generator writes layouts (struct as void *). */
+#define URWIRE__ONE_SCALAR_LAYOUT(name, ctype, size, read, put)                                              \
+    static inline bool urwire__decode_##name(const uint8_t *msg, size_t *at, size_t end,                       \
+                                             const urwire__ver *ver, void *into, urwire_error *err)            \
+    {                                                                                                          \
+        urwire_##name *out = (urwire_##name *)into;                                                            \
+        if (end - *at < size)                                                                                  \
+            return urwire__short(err, "count", *at, size, end);                                                \
+        out->count = read(msg + *at);                                                                          \
+        out->version = ver->version;                                                                           \
+        out->extra = urwire__view(msg + *at + size, end - *at - size);                                         \
+        *at = end;                                                                                             \
+        return true;                                                                                           \
+    }                                                                                                          \
+    static inline bool urwire__encode_##name(const void *from, const urwire__ver *ver, uint8_t *out,           \
+                                             size_t cap, size_t *at, urwire_error *err)                        \
+    {                                                                                                          \
+        const urwire_##name *in = (const urwire_##name *)from;                                                 \
+        (void)ver;                                                                                             \
+        if (cap - *at < size)                                                                                  \
+            return urwire__no_space(err, *at, size, cap);                                                      \
+        put(out + *at, in->count);                                                                             \
+        *at += size;                                                                                           \
+        return urwire__put_view(out, cap, at, in->extra, err);                                                 \
+    }                                                                                                          \
+    static inline void urwire__visit_##name(const void *from, const urwire__ver *ver, const urwire_visitor *v) \
+    {                                                                                                          \
+        const urwire_##name *in = (const urwire_##name *)from;                                                 \
+        (void)ver;                                                                                             \
+        v->on_uint(v->ctx, "count", in->count);                                                                \
+    }
 
-static inline void urwire__visit_counter(const void *from, urwire_sw_version version, const urwire_visitor *v)
-{
-    const urwire_counter *in = (const urwire_counter *)from;
-    (void)version;
-    v->on_uint(v->ctx, "count", in->count);
-}
+URWIRE__ONE_SCALAR_LAYOUT(tally, uint16_t, 2u, urwire__u16, urwire__put_u16)
+URWIRE__ONE_SCALAR_LAYOUT(counter, uint32_t, 4u, urwire__u32, urwire__put_u32)
 
 static const urwire__package_kind urwire__package_kinds[] = {
-    [1] = {"counter", urwire__encode_counter, urwire__visit_counter},
+    [URWIRE_LAYOUT_TALLY] = {"tally", urwire__encode_tally, urwire__visit_tally},
+    [URWIRE_LAYOUT_COUNTER] = {"counter", urwire__encode_counter, urwire__visit_counter},
 };
 
-static inline bool urwire__decode_package(uint8_t type, const uint8_t *msg, size_t *at, size_t end,
-                                          urwire_sw_version version, void *into, urwire_error *err)
+/* Forms: the version axis cut at 0.0.0, 3.2.1000 (after any 3.2.x) and 3.3.0. */
+static const uint64_t urwire__segment_starts[] = {
+    URWIRE__V(0, 0, 0),
+    URWIRE__V(3, 2, 1000),
+    URWIRE__V(3, 3, 0),
+};
+
+/* Type 1: tally up to 3.2 (2 bytes), counter from 3.3 (4 bytes). */
+static const urwire__form urwire__package_form_list[] = {
+    {URWIRE_LAYOUT_TALLY, 1, {2, 0}, 2u, {3, 2, 999, false}},
+    {URWIRE_LAYOUT_COUNTER, 1, {4, 0}, 4u, {5, 9, 0, false}},
+};
+
+static const urwire__forms urwire__package_forms[] = {
+    [1] = {&urwire__package_form_list[0], 2},
+};
+
+static const uint8_t urwire__package_mine[] = {
+    0, 0,  /* below 0.0.0 */
+    0, 1,  /* from 0.0.0 */
+    0, 0,  /* from 3.2.1000 */
+    0, 2,  /* from 3.3.0 */
+};
+
+static const urwire__form_table urwire__package_form_table = {
+    urwire__package_form_list, urwire__package_forms, 2, urwire__package_mine,
+};
+
+static const uint32_t urwire__package_first_sizes[] = {
+    URWIRE__NONE, URWIRE__NONE,  /* below 0.0.0 */
+    URWIRE__NONE, 2u,            /* from 0.0.0 */
+    URWIRE__NONE, URWIRE__NONE,  /* from 3.2.1000 */
+    URWIRE__NONE, 4u,            /* from 3.3.0 */
+};
+
+static inline bool urwire__decode_package(urwire_package_layout layout, const uint8_t *msg, size_t *at, size_t end,
+                                          const urwire__ver *ver, void *into, urwire_error *err)
 {
-    return type == 1 && urwire__decode_counter(msg, at, end, version, into, err);
+    if (layout == URWIRE_LAYOUT_TALLY)
+        return urwire__decode_tally(msg, at, end, ver, into, err);
+    return urwire__decode_counter(msg, at, end, ver, into, err);
 }
 
-static inline bool urwire__decode_member(uint8_t type, const uint8_t *msg, size_t *at, size_t end,
-                                         urwire_sw_version version, urwire_robot_state *out, urwire_error *err)
+/* Type 1 in the form `form` (its number in urwire__package_form_list plus one). */
+static inline bool urwire__decode_member(uint8_t type, uint8_t form, const uint8_t *msg, size_t *at, size_t end,
+                                         const urwire__ver *ver, urwire_robot_state *out, urwire_error *err)
 {
-    return type == 1 && urwire__decode_counter(msg, at, end, version, &out->counter, err);
+    (void)type;
+    if (urwire__package_form_list[form - 1].layout == URWIRE_LAYOUT_TALLY) {
+        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_TALLY);
+        return urwire__decode_tally(msg, at, end, ver, &out->tally, err);
+    }
+    out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_COUNTER);
+    return urwire__decode_counter(msg, at, end, ver, &out->counter, err);
 }
+
+/* No Version message here: one skip of nothing. */
+static const urwire__version_skip urwire__version_skips[] = {
+    {0, 0, false},
+};
 
 static const urwire__message_type urwire__message_types[] = {
-    {URWIRE__PACKAGES_TYPE, true, URWIRE_HEADER_SIZE, NULL, NULL, NULL, NULL},
+    {URWIRE__PACKAGES_TYPE, true, URWIRE_HEADER_SIZE, NULL, NULL, NULL, NULL, NULL},
 };
 
 static const urwire__message_kind urwire__message_kinds[] = {

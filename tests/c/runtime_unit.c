@@ -62,21 +62,85 @@ static void loads_and_stores(void)
 
 static void versions(void)
 {
-    urwire_sw_version v = {0, 0};
-    urwire__versions up_to_3_2 = {false, {0, 0}, true, {3, 2}}, from_3_3 = {true, {3, 3}, false, {0, 0}};
-    CHECK(urwire_parse_version("5.9", &v) && v.major == 5 && v.minor == 9);
-    CHECK(urwire_parse_version(" 5.10.1\n", &v) && v.major == 5 && v.minor == 10);
-    CHECK(urwire_parse_version("3.15", &v) && v.major == 3 && v.minor == 15);
+    urwire_sw_version v = {0, 0, 0, false};
+    urwire__versions up_to_3_2 = {false, {0, 0, 0, false}, true, {3, 2, 999, false}};
+    urwire__versions from_3_3 = {true, {3, 3, 0, false}, false, {0, 0, 0, false}};
+    urwire__versions ranges[2];
+    CHECK(urwire_parse_version("5.9", &v) && v.major == 5 && v.minor == 9 && v.bugfix == 0 && !v.assumed);
+    CHECK(urwire_parse_version(" 5.10.1\n", &v) && v.major == 5 && v.minor == 10 && v.bugfix == 1);
+    CHECK(urwire_parse_version("3.15", &v) && v.major == 3 && v.minor == 15 && v.bugfix == 0);
     v.major = 7;
     CHECK(!urwire_parse_version("5", &v) && !urwire_parse_version("5.", &v) && !urwire_parse_version(".9", &v));
     CHECK(!urwire_parse_version("5..9", &v) && !urwire_parse_version("5.9b", &v) && !urwire_parse_version("", &v));
+    CHECK(!urwire_parse_version("1.2.3.4", &v) && !urwire_parse_version("5.9.", &v));
     CHECK(!urwire_parse_version("1234567.1", &v) && v.major == 7);  /* untouched on failure */
-    v.major = 5, v.minor = 9;
-    CHECK(urwire__version_cmp(v, 5, 9) == 0 && urwire__version_cmp(v, 5, 10) < 0 && urwire__version_cmp(v, 4, 99) > 0);
+    v.major = 5, v.minor = 9, v.bugfix = 0;
+    CHECK(urwire__version_cmp(v, 5, 9, 0) == 0 && urwire__version_cmp(v, 5, 10, 0) < 0);
+    CHECK(urwire__version_cmp(v, 4, 99, 0) > 0 && urwire__version_cmp(v, 5, 8, 999) > 0);
+    CHECK(urwire__version_cmp(v, 5, 9, 1) < 0);
     CHECK(!urwire__in_versions(v, &up_to_3_2) && urwire__in_versions(v, &from_3_3));
-    v.major = 3, v.minor = 2;
+    v.major = 3, v.minor = 2, v.bugfix = 7;  /* "up to 3.2" holds any 3.2.x */
     CHECK(urwire__in_versions(v, &up_to_3_2) && !urwire__in_versions(v, &from_3_3));
-    CHECK(URWIRE_DEFAULT_VERSION.major == 5 && URWIRE_DEFAULT_VERSION.minor == 9);
+    v.bugfix = 1000;  /* but a 3.2.x beyond the bound's 999 is past it, as the spec's tuples compare */
+    CHECK(!urwire__in_versions(v, &up_to_3_2) && !urwire__in_versions(v, &from_3_3));
+    ranges[0] = up_to_3_2, ranges[1] = from_3_3;
+    CHECK(urwire__table_index(v, ranges, 2) == 1);  /* in none: the last */
+    v.bugfix = 0;
+    CHECK(urwire__table_index(v, ranges, 2) == 0);
+    CHECK(URWIRE_DEFAULT_VERSION.major == 5 && URWIRE_DEFAULT_VERSION.minor == 9 && URWIRE_DEFAULT_VERSION.assumed);
+}
+
+static const urwire__form *choose(const urwire__form_table *t, int major, int minor, int bugfix, size_t size,
+                                  urwire_sw_version *use, bool *by_length)
+{
+    use->major = major, use->minor = minor, use->bugfix = bugfix, use->assumed = true;
+    return urwire__choose(t, 1, urwire__segment(urwire__version_key(*use)), size, use, by_length);
+}
+
+static size_t segment(int major, int minor, int bugfix)
+{
+    urwire_sw_version v;
+    v.major = major, v.minor = minor, v.bugfix = bugfix, v.assumed = false;
+    return urwire__segment(urwire__version_key(v));
+}
+
+static void forms(void)
+{
+    /* An open-ended form (at least 2 bytes) up to 3.2, and one of exactly 4 from 3.3. */
+    static const urwire__form open_forms[] = {
+        {URWIRE_LAYOUT_TALLY, 0, {0, 0}, 2u, {3, 2, 999, false}},
+        {URWIRE_LAYOUT_COUNTER, 1, {4, 0}, 4u, {5, 9, 0, false}},
+    };
+    static const urwire__forms open_codes[] = {{NULL, 0}, {open_forms, 2}};
+    urwire__form_table open = {open_forms, open_codes, 2, urwire__package_mine};
+    const urwire__form_table *t = &urwire__package_form_table;
+    urwire_sw_version use;
+    bool by_length;
+    /* The segments: below 0.0.0, up to 3.2.999, 3.2.1000 to 3.3.0, from 3.3.0; the parts of
+     * a version beyond what the spec names compare as its limits. */
+    CHECK(segment(-1, 0, 0) == 0 && segment(0, 0, 0) == 1 && segment(3, 2, 999) == 1);
+    CHECK(segment(3, 2, 1000) == 2 && segment(3, 2, 2147483647) == 2 && segment(3, 3, -5) == 2);
+    CHECK(segment(3, 3, 0) == 3 && segment(10, 0, 0) == 3 && segment(2147483647, -1, 0) == 3);
+    CHECK(urwire__version_key(URWIRE_DEFAULT_VERSION) == URWIRE__V(5, 9, 0));
+    CHECK(urwire__mine(t, 1, 1) == &urwire__package_form_list[0] && urwire__mine(t, 2, 1) == NULL);
+    /* The version's form when it fits: the version stays. */
+    CHECK(choose(t, 3, 2, 0, 2, &use, &by_length)->layout == URWIRE_LAYOUT_TALLY && !by_length);
+    CHECK(use.major == 3 && use.minor == 2 && use.bugfix == 0 && use.assumed);
+    CHECK(choose(t, 5, 9, 0, 4, &use, &by_length)->layout == URWIRE_LAYOUT_COUNTER && !by_length);
+    /* Else the one form of that exact size, in the version it stands for. */
+    CHECK(choose(t, 5, 9, 0, 2, &use, &by_length)->layout == URWIRE_LAYOUT_TALLY && by_length);
+    CHECK(use.major == 3 && use.minor == 2 && use.bugfix == 999 && use.assumed);
+    CHECK(choose(t, 3, 2, 1000, 4, &use, &by_length)->layout == URWIRE_LAYOUT_COUNTER && by_length);
+    /* Else the version's form, short or with extra bytes; with none, the last. */
+    CHECK(choose(t, 5, 9, 0, 3, &use, &by_length)->layout == URWIRE_LAYOUT_COUNTER && !by_length);
+    CHECK(use.major == 5 && use.minor == 9);
+    CHECK(choose(t, 3, 0, 0, 9, &use, &by_length)->layout == URWIRE_LAYOUT_TALLY && !by_length);
+    CHECK(choose(t, 3, 2, 1000, 3, &use, &by_length)->layout == URWIRE_LAYOUT_COUNTER && !by_length);
+    /* An open-ended form fits any length from its least, but is never recognised by length. */
+    CHECK(choose(&open, 3, 0, 0, 40, &use, &by_length)->layout == URWIRE_LAYOUT_TALLY && !by_length);
+    CHECK(choose(&open, 5, 9, 0, 40, &use, &by_length)->layout == URWIRE_LAYOUT_COUNTER && !by_length);
+    CHECK(choose(&open, 3, 0, 0, 4, &use, &by_length)->layout == URWIRE_LAYOUT_TALLY && !by_length);
+    CHECK(choose(&open, 3, 0, 0, 1, &use, &by_length)->layout == URWIRE_LAYOUT_TALLY && !by_length);
 }
 
 static void error_texts(void)
@@ -144,7 +208,7 @@ static void values(void)
     };
     static const uint8_t deep[] = {17, 0, 1, 17, 0, 1, 17, 0, 1, 17, 0, 0, '\n'};
     static const uint8_t old_list[] = {17, '\n'};  /* 17 is not a type up to 3.2 */
-    urwire_sw_version v59 = {5, 9}, v32 = {3, 2};
+    urwire_sw_version v59 = {5, 9, 0, false}, v32 = {3, 2, 0, false};
     urwire_seq seq, items;
     urwire_value val, item;
     urwire_error e;
@@ -185,11 +249,18 @@ static void puts_and_lengths(void)
     CHECK(text_is(&e, " at offset 8: needs 3 bytes, 0 left in the output"));
 }
 
-/* The made-up protocol's state message: a counter (type 1) and a type with no layout (9). */
+/* The made-up protocol's state message: a counter (type 1, 4 bytes) and a type with no
+ * layout (9); and one with a tally (type 1, 2 bytes: the layout up to 3.2). */
 static const uint8_t state[] = {
     0, 0, 0, 24, 16,
     0, 0, 0, 9, 1, 0, 0, 1, 0,
     0, 0, 0, 10, 9, 'r', 'a', 'w', '!', '!',
+};
+
+static const uint8_t old_state[] = {
+    0, 0, 0, 19, 16,
+    0, 0, 0, 7, 1, 0, 3,
+    0, 0, 0, 7, 1, 0, 4,
 };
 
 static void messages(void)
@@ -199,13 +270,15 @@ static void messages(void)
     urwire_package pkg;
     urwire_seq seq;
     urwire_error e;
+    urwire_sw_version v32 = {3, 2, 0, false};
     uint8_t out[64], cut[sizeof state];
     CHECK(urwire_decode_robot_state_message(state, sizeof state, URWIRE_DEFAULT_VERSION, &m, &rs));
-    CHECK(m.kind == URWIRE_KIND_STATE && m.packages.count == 2 && rs.unknown == 1);
-    CHECK(rs.present == URWIRE_BIT(1) && rs.counter.count == 256);
+    CHECK(m.kind == URWIRE_KIND_STATE && m.packages.count == 2 && rs.unknown == 1 && !m.implied);
+    CHECK(rs.present == URWIRE_BIT(1) && rs.layouts == URWIRE_BIT(URWIRE_LAYOUT_COUNTER) && rs.counter.count == 256);
     CHECK(urwire_decode_message(state, sizeof state, URWIRE_DEFAULT_VERSION, &m) && !urwire_message_has_error(&m));
     seq = m.packages;
     CHECK(urwire_next_package(&seq, &pkg) && pkg.known && !pkg.failed && pkg.as.counter.count == 256);
+    CHECK(pkg.layout == URWIRE_LAYOUT_COUNTER && pkg.version.minor == 9);
     CHECK(urwire_next_package(&seq, &pkg) && !pkg.known && pkg.type == 9 && pkg.raw.len == 5);
     CHECK(!urwire_next_package(&seq, &pkg));
     CHECK(urwire_encode_message(&m, out, sizeof out, &e) == sizeof state && memcmp(out, state, sizeof state) == 0);
@@ -218,6 +291,22 @@ static void messages(void)
     CHECK(urwire_encode_message(&m, out, sizeof out, &e) == sizeof cut && memcmp(out, cut, sizeof cut) == 0);
     CHECK(urwire_decode_message(state, 4, URWIRE_DEFAULT_VERSION, &m) == false);
     CHECK(m.kind == URWIRE_KIND_UNKNOWN_MESSAGE && text_is(&m.error, "length at offset 0: needs 5 bytes, 4 left"));
+
+    /* Under an assumed version, a tally's length shows 3.2 for the rest of the message. */
+    CHECK(urwire_decode_robot_state_message(old_state, sizeof old_state, URWIRE_DEFAULT_VERSION, &m, &rs));
+    CHECK(rs.layouts == URWIRE_BIT(URWIRE_LAYOUT_TALLY) && rs.tally.count == 4 && rs.tally.version.minor == 2);
+    CHECK(m.implied && m.implied_version.major == 3 && m.implied_version.minor == 2 && m.implied_version.assumed);
+    CHECK(urwire_decode_message(old_state, sizeof old_state, URWIRE_DEFAULT_VERSION, &m) && m.implied);
+    seq = m.packages;
+    CHECK(urwire_next_package(&seq, &pkg) && pkg.layout == URWIRE_LAYOUT_TALLY && pkg.version.minor == 2);
+    CHECK(seq.version.minor == 2 && seq.version.assumed);  /* the next package starts from it */
+    CHECK(urwire_encode_message(&m, out, sizeof out, &e) == sizeof old_state);
+    CHECK(memcmp(out, old_state, sizeof old_state) == 0);
+    /* A known version is not overruled: the tally is read in its own version all the same. */
+    CHECK(urwire_decode_robot_state_message(old_state, sizeof old_state, v32, &m, &rs) && !m.implied);
+    v32.major = 5;
+    CHECK(urwire_decode_robot_state_message(old_state, sizeof old_state, v32, &m, &rs) && !m.implied);
+    CHECK(rs.tally.version.minor == 2 && rs.tally.version.major == 3);
 }
 
 static void framer(void)
@@ -243,16 +332,43 @@ static void framer(void)
     CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_END);
 }
 
+/* The version a stream's layout sizes show carries on to its next messages, while it is only
+ * assumed; a hint is never overruled. */
+static void implied_version(void)
+{
+    static uint8_t buf[64];
+    urwire_framer f;
+    urwire_frame fr;
+    urwire_sw_version hint = {5, 9, 0, false};
+    urwire_framer_init(&f, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
+    CHECK(urwire_framer_feed(&f, old_state, sizeof old_state) == sizeof old_state);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.version.major == 5 && fr.version.assumed);
+    CHECK(urwire_framer_feed(&f, state, sizeof state) == sizeof state);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    CHECK(fr.version.major == 3 && fr.version.minor == 2 && fr.version.bugfix == 999 && fr.version.assumed);
+    CHECK(!f.version_seen);
+    /* The counter's length shows 3.3 and later again (its form's version: 5.9). */
+    CHECK(urwire_framer_feed(&f, old_state, sizeof old_state) == sizeof old_state);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.version.major == 5 && fr.version.minor == 9);
+    urwire_framer_init(&f, buf, sizeof buf, hint);
+    CHECK(urwire_framer_feed(&f, old_state, sizeof old_state) == sizeof old_state);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.version.major == 5);
+    CHECK(urwire_framer_feed(&f, state, sizeof state) == sizeof state);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.version.major == 5 && !fr.version.assumed);
+}
+
 int main(void)
 {
     loads_and_stores();
     versions();
+    forms();
     error_texts();
     texts();
     values();
     puts_and_lengths();
     messages();
     framer();
+    implied_version();
     if (failures)
         return 1;
     printf("all runtime checks passed\n");

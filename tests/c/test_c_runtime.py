@@ -73,7 +73,34 @@ def test_standalone_blocks_only_include_or_guard():
 def test_an_unknown_step_kind_is_an_error_when_generating(macro):
     steps = environment(FOLDER).get_template("steps.c.j2").module
     known = {"decode": Step("rest", dict(name="x")), "encode": Step("bytes", dict(name="x")),
-             "visit": Step("text", dict(name="x", test=""))}[macro]
+             "visit": Step("text", dict(name="x", when=[]))}[macro]
     assert '"x"' in str(getattr(steps, macro)([known], "    ")) or "->x" in str(getattr(steps, macro)([known], "    "))
     with pytest.raises(jinja2.UndefinedError):
-        getattr(steps, macro)([Step("no_such_kind", dict(name="x", test=""))], "    ")
+        getattr(steps, macro)([Step("no_such_kind", dict(name="x", when=[]))], "    ")
+
+
+def run_step(members: list[dict], terms: list[dict]) -> Step:
+    return Step("cond", dict(test=dict(terms=terms), zero=[], steps=[
+        Step("run", dict(table="t", size=4, loops=False, members=members))]))
+
+
+SCALAR = dict(kind="scalar", name="x", offset=2, reader="urwire__u16", writer="urwire__put_u16", into="", out="")
+FLAG = dict(kind="flag", name="f")
+
+
+def test_members_and_terms_are_data_rendered_by_kind():
+    steps = environment(FOLDER).get_template("steps.c.j2").module
+    text = str(steps.decode([run_step([SCALAR], [FLAG, dict(kind="from", major=5, minor=25, bugfix=1)])], ""))
+    assert "if (out->f != 0 && ver->key >= URWIRE__V(5, 25, 1)) {" in text
+    assert "out->x = urwire__u16(p + 2);" in text
+    wide = dict(SCALAR, into="int32_t", out="uint16_t", offset=0)
+    assert "out->x = (int32_t)urwire__u16(p);" in str(steps.decode([run_step([wide], [FLAG])], ""))
+    assert "urwire__put_u16(p, (uint16_t)in->x);" in str(steps.encode([run_step([wide], [FLAG])], ""))
+
+
+@pytest.mark.parametrize("member, term", [(dict(SCALAR, kind="no_such_member"), FLAG),
+                                          (SCALAR, dict(FLAG, kind="no_such_term"))])
+def test_an_unknown_member_or_term_kind_is_an_error_when_generating(member, term):
+    steps = environment(FOLDER).get_template("steps.c.j2").module
+    with pytest.raises(jinja2.UndefinedError):
+        steps.decode([run_step([member], [term])], "")

@@ -1,6 +1,6 @@
 """A field with a version range, in generated C: read, printed and encoded only for streams of
-those versions. The real spec has none yet, so this renders a variant of it with one gated
-field (as tests/codegen/test_version_gates.py does for Python) and builds the CLI on it."""
+those versions. This renders a variant of the spec with one more gated field (as
+tests/codegen/test_version_gates.py does for Python) and builds the CLI on it."""
 from __future__ import annotations
 
 import json
@@ -32,22 +32,32 @@ def variant_cli(tmp_path):
 
 def test_a_gated_field_is_read_only_from_its_version(tmp_path):
     exe, driver = variant_cli(tmp_path)
-    body = bytes([1, 0, 1, 0]) + struct.pack(">H", 0xBEEF)
-    pkg = struct.pack(">iB", 5 + len(body), 8) + body
-    msg = struct.pack(">iB", 5 + len(pkg), 16) + pkg
 
-    def decode(hint):
+    def message(body: bytes) -> bytes:
+        pkg = struct.pack(">iB", 5 + len(body), 8) + body
+        return struct.pack(">iB", 5 + len(pkg), 16) + pkg
+
+    def decode(msg, hint):
         result = subprocess.run([str(exe), "--version-hint", hint, "-"], input=msg, capture_output=True)
         assert result.returncode == 0, result.stderr
         (record,) = [json.loads(line) for line in result.stdout.decode().splitlines()]
         return record["packages"][0]
 
-    new, old = decode("5.12"), decode("5.9")
-    assert new["gated_flag"] == 0xBEEF and "extra" not in new
-    assert "gated_flag" not in old and old["extra"] == "beef"
-    assert "urwire__version_cmp(version, 5, 12) >= 0" in (tmp_path / "c" / "urwire.c").read_text()
+    # A body of neither form's size (7 bytes: 4 up to 5.11, 6 from 5.12) is read in the
+    # version's form, the rest flagged as extra.
+    msg = message(bytes([1, 0, 1, 0]) + struct.pack(">H", 0xBEEF) + b"\x99")
+    new, old = decode(msg, "5.12"), decode(msg, "5.9")
+    assert new["gated_flag"] == 0xBEEF and new["extra"] == "99"
+    assert "gated_flag" not in old and old["extra"] == "beef99"
+    assert "ver->key >= URWIRE__V(5, 12, 0)" in (tmp_path / "c" / "urwire.c").read_text()
+    # A body of exactly the 5.12 form's size is that form, whatever the version (CONTRACT §5:
+    # the one form whose size equals the length).
+    exact = message(bytes([1, 0, 1, 0]) + struct.pack(">H", 0xBEEF))
+    assert decode(exact, "5.9")["gated_flag"] == 0xBEEF and "extra" not in decode(exact, "5.9")
     # Encoded back exactly under either version: the field, or the same bytes as extra.
-    (tmp_path / "m.bin").write_bytes(msg)
-    for hint in ("5.12", "5.9"):
-        result = subprocess.run([str(driver), "roundtrip", str(tmp_path / "m.bin"), hint], capture_output=True, text=True)
-        assert result.returncode == 0 and result.stdout.startswith("messages 1 packages 1"), result.stdout
+    for data in (msg, exact):
+        (tmp_path / "m.bin").write_bytes(data)
+        for hint in ("5.12", "5.9"):
+            result = subprocess.run([str(driver), "roundtrip", str(tmp_path / "m.bin"), hint], capture_output=True,
+                                    text=True)
+            assert result.returncode == 0 and result.stdout.startswith("messages 1 packages 1"), result.stdout

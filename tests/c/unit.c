@@ -108,24 +108,150 @@ static void program_threads_built_by_hand(void)
 
 static void names_and_versions(void)
 {
-    urwire_sw_version v = {0, 0}, v50 = {5, 0}, v59 = {5, 9}, v32 = {3, 2};
-    CHECK(strcmp(urwire_robot_mode_name(-1), "NO_CONTROLLER") == 0);
-    CHECK(urwire_robot_mode_name(99) == NULL);
+    urwire_sw_version v = {0, 0, 0, false}, v50 = {5, 0, 0, false}, v59 = {5, 9, 0, false}, v32 = {3, 2, 0, false};
+    urwire_sw_version v18 = {1, 8, 0, false}, v5251 = {5, 25, 1, false};
+    CHECK(strcmp(urwire_robot_mode_name(v59, -1), "NO_CONTROLLER") == 0);
+    CHECK(urwire_robot_mode_name(v59, 99) == NULL);
+    /* A versioned enum names a code by the table of the version: robot mode 7 is RUNNING from
+     * 3.0, NO_POWER on CB2, whose RUNNING is 0. The newest table keeps the plain names. */
+    CHECK(strcmp(urwire_robot_mode_name(v59, URWIRE_ROBOT_MODE_RUNNING), "RUNNING") == 0);
+    CHECK(strcmp(urwire_robot_mode_name(v18, 7), "NO_POWER") == 0);
+    CHECK(strcmp(urwire_robot_mode_name(v18, URWIRE_ROBOT_MODE_UP_TO_1_8_RUNNING), "RUNNING") == 0);
+    CHECK(URWIRE_ROBOT_MODE_UP_TO_1_8_RUNNING == 0 && URWIRE_ROBOT_MODE_RUNNING == 7);
+    CHECK(strcmp(urwire_robot_mode_name(URWIRE_DEFAULT_VERSION, 7), "RUNNING") == 0);
+    /* Package type 5 means laser pointer up to 1.7, kinematics info from 1.8. */
+    CHECK(strcmp(urwire_package_type_name(v18, 5), "KINEMATICS_INFO") == 0);
+    v.major = 1, v.minor = 7, v.bugfix = 3;
+    CHECK(strcmp(urwire_package_type_name(v, URWIRE_PACKAGE_TYPE_UP_TO_1_7_LASER_POINTER), "LASER_POINTER") == 0);
     CHECK(strcmp(urwire_report_level_name(133), "DEVL_CRITICAL_FAULT") == 0);
-    CHECK(strcmp(urwire_message_source_name(-5), "GUI") == 0);
+    CHECK(strcmp(urwire_message_source_name(v59, -5), "GUI") == 0);
     CHECK(strcmp(urwire_value_type_name(v50, 12), "BOOL") == 0);
     CHECK(strcmp(urwire_value_type_name(v59, 12), "POSE") == 0);
     CHECK(strcmp(urwire_value_type_name(v32, 3), "STRING") == 0);
     CHECK(urwire_value_type_name(v59, 5) == NULL);
+    /* An upper bound written 5.8 is any 5.8.x: 5.8.3 still reads the 3.3-5.8 value types. */
+    v.major = 5, v.minor = 8, v.bugfix = 3;
+    CHECK(strcmp(urwire_value_type_name(v, 12), "BOOL") == 0);
+    CHECK(strcmp(urwire_value_type_name(v5251, 12), "POSE") == 0);
     CHECK(strcmp(urwire_status_name(URWIRE_E_TOO_DEEP), "URWIRE_E_TOO_DEEP") == 0);
-    CHECK(urwire_parse_version("5.10", &v) && v.major == 5 && v.minor == 10);
-    CHECK(urwire_parse_version(" 3.15.2 ", &v) && v.major == 3 && v.minor == 15);
-    CHECK(!urwire_parse_version("5", &v) && !urwire_parse_version("5.x", &v) && !urwire_parse_version("", &v));
-    CHECK(!urwire_parse_version("5..9", &v) && !urwire_parse_version("-5.9", &v));
-    CHECK(v.major == 3 && v.minor == 15);  /* untouched by the failures */
-    CHECK(URWIRE_DEFAULT_VERSION.major == 5 && URWIRE_DEFAULT_VERSION.minor == 9);
 }
 
+static void version_parsing(void)
+{
+    urwire_sw_version v = {0, 0, 0, true};
+    CHECK(urwire_parse_version("5.10", &v) && v.major == 5 && v.minor == 10 && v.bugfix == 0 && !v.assumed);
+    CHECK(urwire_parse_version(" 3.15.2 ", &v) && v.major == 3 && v.minor == 15 && v.bugfix == 2);
+    CHECK(urwire_parse_version("5.25.1", &v) && v.major == 5 && v.minor == 25 && v.bugfix == 1);
+    CHECK(!urwire_parse_version("5", &v) && !urwire_parse_version("5.x", &v) && !urwire_parse_version("", &v));
+    CHECK(!urwire_parse_version("5..9", &v) && !urwire_parse_version("-5.9", &v));
+    CHECK(!urwire_parse_version("5.25.1.4", &v) && !urwire_parse_version("5.25.", &v));
+    CHECK(v.major == 5 && v.minor == 25 && v.bugfix == 1);  /* untouched by the failures */
+    CHECK(URWIRE_DEFAULT_VERSION.major == 5 && URWIRE_DEFAULT_VERSION.minor == 9);
+    CHECK(URWIRE_DEFAULT_VERSION.bugfix == 0 && URWIRE_DEFAULT_VERSION.assumed);
+}
+
+/* Configuration data: 440 bytes of body up to 5.25.0, 444 from 5.25.1 (two int16 more). */
+static size_t configuration_data_state(uint8_t *out, size_t body)
+{
+    size_t n = 5 + 5 + body;
+    memset(out, 0, n);
+    out[3] = (uint8_t)n;
+    out[2] = (uint8_t)(n >> 8);
+    out[4] = URWIRE_MESSAGE_TYPE_ROBOT_STATE;
+    out[8] = (uint8_t)(5 + body);
+    out[7] = (uint8_t)((5 + body) >> 8);
+    out[9] = URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA;
+    out[5 + 5 + 440] = 0x12;  /* reserved_1, when there */
+    out[5 + 5 + 441] = 0x34;
+    return n;
+}
+
+static void layout_choice_by_version_and_length(void)
+{
+    uint8_t bytes[512];
+    urwire_sw_version v5251 = {5, 25, 1, false}, v511 = {5, 11, 0, false};
+    urwire_message m;
+    urwire_robot_state state;
+    urwire_package pkg;
+    urwire_seq seq;
+    size_t n;
+    /* The version's form fits: read in it, with the version. */
+    n = configuration_data_state(bytes, 444);
+    CHECK(urwire_decode_robot_state_message(bytes, n, v5251, &m, &state));
+    CHECK(state.configuration_data.reserved_1 == 0x1234 && state.configuration_data.extra.len == 0);
+    CHECK(state.configuration_data.version.minor == 25 && state.configuration_data.version.bugfix == 1);
+    CHECK(!m.implied);
+    /* A known version whose form does not fit: the one form of that exact size is read, in
+     * its own version, and the version of the rest of the stream stays as it was. */
+    CHECK(urwire_decode_robot_state_message(bytes, n, v511, &m, &state));
+    CHECK(state.configuration_data.reserved_1 == 0x1234 && state.configuration_data.extra.len == 0);
+    CHECK(state.configuration_data.version.minor == 25 && state.configuration_data.version.bugfix == 1);
+    CHECK(!m.implied && m.version.minor == 11);
+    CHECK(state.layouts == URWIRE_BIT(URWIRE_LAYOUT_CONFIGURATION_DATA));
+    /* An assumed version: the length shows the version, for this message and the stream. */
+    CHECK(urwire_decode_robot_state_message(bytes, n, URWIRE_DEFAULT_VERSION, &m, &state));
+    CHECK(m.implied && m.implied_version.minor == 25 && m.implied_version.bugfix == 1 && m.implied_version.assumed);
+    CHECK(urwire_decode_message(bytes, n, URWIRE_DEFAULT_VERSION, &m) && m.implied);
+    seq = m.packages;
+    CHECK(urwire_next_package(&seq, &pkg) && pkg.known && pkg.layout == URWIRE_LAYOUT_CONFIGURATION_DATA);
+    CHECK(pkg.version.minor == 25 && pkg.version.bugfix == 1 && pkg.as.configuration_data.reserved_1 == 0x1234);
+    /* Neither fits (a size no form has): the version's form, its extra bytes reported. */
+    n = configuration_data_state(bytes, 446);
+    CHECK(urwire_decode_robot_state_message(bytes, n, v511, &m, &state));
+    CHECK(state.configuration_data.version.minor == 11 && state.configuration_data.extra.len == 6);
+    CHECK(state.configuration_data.reserved_1 == 0);  /* not in the 5.11 form */
+}
+
+/* Masterboard data: digital_input_bits is an int16 on CB2 and an int32 from 3.0, one member. */
+static void a_repeated_name_is_one_member(void)
+{
+    uint8_t bytes[128];
+    urwire_sw_version v18 = {1, 8, 0, false}, v32 = {3, 2, 0, false};
+    urwire_message m;
+    urwire_robot_state state;
+    size_t n = 5 + 5 + 59;  /* 1.6-1.8 form, no euromap */
+    memset(bytes, 0, sizeof bytes);
+    bytes[3] = (uint8_t)n;
+    bytes[4] = URWIRE_MESSAGE_TYPE_ROBOT_STATE;
+    bytes[8] = 5 + 59;
+    bytes[9] = URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA;
+    bytes[10] = 0xff, bytes[11] = 0xfe;  /* digital_input_bits -2 */
+    bytes[12] = 0x00, bytes[13] = 0x05;  /* digital_output_bits 5 */
+    CHECK(urwire_decode_robot_state_message(bytes, n, v18, &m, &state));
+    CHECK(state.masterboard_data.digital_input_bits == -2 && state.masterboard_data.digital_output_bits == 5);
+    CHECK(state.masterboard_data.safety_mode == 0 && state.masterboard_data.extra.len == 0);
+    /* Decoded in the 3.2 form: the bytes are an int32 now. */
+    n = 5 + 5 + 69;
+    bytes[3] = (uint8_t)n;
+    bytes[8] = 5 + 69;
+    CHECK(urwire_decode_robot_state_message(bytes, n, v32, &m, &state));
+    CHECK(state.masterboard_data.digital_input_bits == (int32_t)0xfffe0005);
+}
+
+static void a_version_message_sets_the_framer_version(void)
+{
+    /* 3.2: project name, 3, 2, svn revision, build date; then 5.25.1 in the 3.3 form. */
+    static const uint8_t old[] = {0, 0, 0, 30, 20, 0, 0, 0, 0, 0, 0, 0, 0, 0xfe, 3, 1, 'U', 3, 2,
+                                  0, 0, 0x4e, 0xcf, 'd', 'a', 't', 'e', '!', '!', '!'};
+    static const uint8_t now[] = {0, 0, 0, 31, 20, 0, 0, 0, 0, 0, 0, 0, 0, 0xfe, 3, 1, 'U', 5, 25,
+                                  0, 0, 0, 1, 0, 0, 0, 9, 'd', 'a', 't', 'e'};
+    static uint8_t buf[256];
+    urwire_framer fr;
+    urwire_frame frame;
+    urwire_message m;
+    urwire_framer_init(&fr, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
+    CHECK(urwire_framer_feed(&fr, old, sizeof old) == sizeof old);
+    CHECK(urwire_framer_next(&fr, &frame) == URWIRE_FRAME_MESSAGE && frame.version.assumed);
+    CHECK(urwire_decode_message(frame.bytes, frame.length, frame.version, &m) && m.kind == URWIRE_KIND_VERSION);
+    CHECK(m.version.major == 3 && m.version.minor == 2 && m.as.version.svn_revision == 0x4ecf);
+    CHECK(m.as.version.build_date.len == 7 && m.as.version.bugfix_version == 0);
+    CHECK(fr.version.major == 3 && fr.version.minor == 2 && fr.version.bugfix == 0 && !fr.version.assumed);
+    CHECK(urwire_framer_feed(&fr, now, sizeof now) == sizeof now);
+    CHECK(urwire_framer_next(&fr, &frame) == URWIRE_FRAME_MESSAGE);
+    CHECK(urwire_decode_message(frame.bytes, frame.length, frame.version, &m) && m.as.version.bugfix_version == 1);
+    CHECK(m.as.version.build_number == 9 && m.as.version.build_date.len == 4);
+    CHECK(fr.version.major == 5 && fr.version.minor == 25 && fr.version.bugfix == 1 && fr.version_seen);
+}
 static void error_texts_cut_to_fit(void)
 {
     urwire_error e;
@@ -144,6 +270,10 @@ int main(void)
     key_message_built_by_hand();
     program_threads_built_by_hand();
     names_and_versions();
+    version_parsing();
+    layout_choice_by_version_and_length();
+    a_repeated_name_is_one_member();
+    a_version_message_sets_the_framer_version();
     error_texts_cut_to_fit();
     if (failures == 0)
         printf("all unit checks passed\n");

@@ -135,3 +135,16 @@ def test_every_form_of_a_code_with_its_versions_sizes_and_representative(full):
                                                         ("kinematics_info", "1.8 and later")]
     assert [(d, sizes, rep) for _, d, sizes, rep in forms(6)] == [
         ("up to 1.8", [464], (1, 8, 999)), ("3.0 to 5.25.0", [440], (5, 9, 0)), ("5.25.1 and later", [444], (5, 25, 1))]
+
+
+
+def test_a_pinned_version_message_without_a_bugfix_number_plans():
+    """Up to 3.2 the Version message has an svn revision where later ones have the bugfix
+    number: pinned there, the version is announced without a bugfix (0)."""
+    from codegen.pin import pin
+
+    protocol = compile_text(DEFAULT_SPEC.read_text(encoding="utf-8"))
+    for version, bugfix in (((3, 2, 0), None), ((1, 8, 0), None), ((5, 11, 0), "bugfix_version")):
+        planned = plan(pin(protocol, version))
+        assert planned.version.layout.sets_version[2] == bugfix
+        assert (planned.version.bugfix.name if planned.version.bugfix else None) == bugfix

@@ -1,6 +1,6 @@
 /* urwire-decode: a raw primary/secondary stream in, canonical JSON Lines out.
  *
- *     urwire-decode [--version-hint 5.9] FILE|-
+ *     urwire-decode [--version-hint 5.9|5.25.1] FILE|-
  *
  * Exit status: 0 all decoded, 1 the output holds error records, 2 usage or I/O error. */
 #include <errno.h>
@@ -12,11 +12,12 @@
 #include "urwire.h"
 
 static const char usage[] =
-    "usage: urwire-decode [--version-hint MAJOR.MINOR] FILE|-\n"
+    "usage: urwire-decode [--version-hint MAJOR.MINOR[.BUGFIX]] FILE|-\n"
     "Decode a raw Universal Robots primary/secondary stream (FILE, or - for stdin) and print\n"
     "one canonical JSON record per line.\n"
-    "  --version-hint V  software version for global-variable value types when the stream\n"
-    "                    shows no Version message (default: 5.9 and later)\n"
+    "  --version-hint V  the software version (5.9, 5.25.1) until the stream shows a Version\n"
+    "                    message: it chooses each part's layout and the global-variable value\n"
+    "                    types (default: 5.9 and later, or what the layout sizes show)\n"
     "Exit status: 0 all decoded, 1 the output holds error records, 2 usage or I/O error.\n";
 
 static uint8_t framer_buffer[URWIRE_FRAMER_MIN_BUFFER];
@@ -67,7 +68,7 @@ int main(int argc, char **argv)
             return 0;
         } else if (strcmp(argv[i], "--version-hint") == 0) {
             if (++i >= argc)
-                return fail("--version-hint needs a value such as 5.9", NULL);
+                return fail("--version-hint needs a value such as 5.9 or 5.25.1", NULL);
             hint = argv[i];
         } else if (strncmp(argv[i], "--version-hint=", 15) == 0) {
             hint = argv[i] + 15;
@@ -82,7 +83,7 @@ int main(int argc, char **argv)
     if (!path)
         return fail("no input: give a FILE or - for stdin; try --help", NULL);
     if (hint && !urwire_parse_version(hint, &version))
-        return fail("not a software version (expected e.g. 5.9)", hint);
+        return fail("not a software version (expected e.g. 5.9 or 5.25.1)", hint);
     in = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
     if (!in)
         return fail(path, strerror(errno));

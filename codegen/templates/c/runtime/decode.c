@@ -2,19 +2,9 @@
 #include "runtime_support.h"
 /* </standalone> */
 /* ---- decoding messages -------------------------------------------------------------------- */
-/* The one sub-package list is URWIRE__PACKAGES_TYPE, decoded as URWIRE__PACKAGES_KIND; its
- * sub-packages go through the generated switches urwire__decode_package and, on the robot-state
- * fast path, urwire__decode_member. */
-
-/* The kind of a subtype of type t. */
-static urwire_message_kind urwire__subtype_kind(const urwire__message_type *t, int64_t subtype)
-{
-    int k;
-    for (k = 0; k < (int)URWIRE__COUNT(urwire__message_kinds); k++)
-        if (urwire__message_kinds[k].type == t && urwire__message_kinds[k].subtype == subtype)
-            return (urwire_message_kind)k;
-    return URWIRE_KIND_UNKNOWN_SUBTYPE;
-}
+/* The one sub-package list is URWIRE__PACKAGES_TYPE, decoded as URWIRE__PACKAGES_KIND; each
+ * sub-package is read in the form urwire__choose gives (forms.c), through the generated
+ * switches urwire__decode_package and, on the robot-state fast path, urwire__decode_member. */
 
 static void urwire__init_message(urwire_message *out, const uint8_t *bytes, size_t len, urwire_sw_version version)
 {
@@ -27,6 +17,8 @@ static void urwire__init_message(urwire_message *out, const uint8_t *bytes, size
     out->raw = urwire__view(bytes, 0);
     out->packages = urwire__seq(bytes, len, version, -1);
     out->version = version;
+    out->implied = false;
+    out->implied_version = version;
 }
 
 static void urwire__fail_message(urwire_message *out, size_t raw_from)
@@ -52,43 +44,137 @@ static bool urwire__frame_package(const uint8_t *msg, size_t pos, size_t end, si
     return true;
 }
 
+/* The version a sub-package list is read under, as it goes: a form chosen by its length while
+ * the version is only assumed sets the version for the rest of the message, and for the
+ * stream (`implied`). `mine` and `first_sizes` are the rows of the segment's forms. */
+typedef struct urwire__running {
+    urwire__ver now;
+    size_t segment;
+    const uint8_t *mine;
+    const uint32_t *first_sizes;
+    bool implied;
+} urwire__running;
+
+static void urwire__run_at(urwire__running *r, urwire_sw_version version)
+{
+    size_t row;
+    r->now = urwire__ver_of(version);
+    r->segment = urwire__segment(r->now.key);
+    row = r->segment * urwire__package_form_table.ncodes;
+    r->mine = urwire__package_form_table.mine + row;
+    r->first_sizes = urwire__package_first_sizes + row;
+}
+
+static void urwire__start(urwire__running *r, urwire_sw_version version)
+{
+    urwire__run_at(r, version);
+    r->implied = false;
+}
+
+/* The form of a sub-package of type `type` (which has a layout) and body `size` that is not
+ * simply the version's own, and the version to read it with. */
+static const urwire__form *urwire__other_form(uint8_t type, size_t size, urwire__running *r, urwire__ver *use)
+{
+    urwire_sw_version v = r->now.version;
+    bool by_length;
+    const urwire__form *f = urwire__choose(&urwire__package_form_table, type, r->segment, size, &v, &by_length);
+    *use = by_length ? urwire__ver_of(v) : r->now;
+    if (by_length && r->now.version.assumed) {
+        urwire__run_at(r, v);
+        r->implied = true;
+    }
+    return f;
+}
+
+/* The form of the sub-package of type `type` and body `size` (NULL: no layout), and the
+ * version to read it with. */
+static const urwire__form *urwire__package_form(uint8_t type, size_t size, urwire__running *r, urwire__ver *use)
+{
+    if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0)
+        return NULL;
+    if (urwire__fits_brief(r->first_sizes[type], size)) {
+        *use = r->now;
+        return &urwire__package_form_list[r->mine[type] - 1];
+    }
+    return urwire__other_form(type, size, r, use);
+}
+
+/* Frames the sub-packages of a robot state from pos and chooses the form of each, decoding
+ * none: how many framed, where framing stopped (end, or a header that cannot be framed: *err),
+ * and the version the layout sizes showed. */
+static bool urwire__walk_packages(const uint8_t *msg, size_t pos, size_t end, urwire__running *r, size_t *count,
+                                  size_t *stop, urwire_error *err)
+{
+    size_t size = 0;
+    urwire__ver use;
+    uint8_t type;
+    *count = 0;
+    while (pos < end && urwire__frame_package(msg, pos, end, &size, err)) {
+        type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
+        /* Only a body that the version's form does not fit can show another version. */
+        if (type < URWIRE__COUNT(urwire__package_forms) &&
+            !urwire__fits_brief(r->first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE) &&
+            urwire__package_forms[type].count != 0)
+            urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &use);
+        pos += size;
+        ++*count;
+    }
+    *stop = pos;
+    return pos == end;
+}
+
 /* A robot state: frames the sub-packages by their lengths; each is decoded when iterated. */
 static bool urwire__decode_packages(urwire_message *out, urwire_sw_version version)
 {
-    const uint8_t *msg = out->bytes;
-    size_t pos = URWIRE_HEADER_SIZE, end = out->length, size = 0;
+    urwire__running r;
+    size_t end = 0;
+    urwire__start(&r, version);
     out->kind = URWIRE__PACKAGES_KIND;
-    out->packages = urwire__seq(msg, pos, version, -1);
-    while (pos < end && urwire__frame_package(msg, pos, end, &size, &out->error)) {
-        pos += size;
-        out->packages.count++;
+    out->packages = urwire__seq(out->bytes, URWIRE_HEADER_SIZE, version, -1);
+    if (!urwire__walk_packages(out->bytes, URWIRE_HEADER_SIZE, out->length, &r, &out->packages.count, &end,
+                               &out->error)) {
+        out->packages.end = end;
+        urwire__fail_message(out, end);
+        return false;  /* a list that cannot be framed implies no version */
     }
-    out->packages.end = pos;
-    if (pos < end) {
-        urwire__fail_message(out, pos);
-        return false;
-    }
+    out->packages.end = end;
+    out->implied = r.implied;
+    out->implied_version = r.now.version;
     return true;
 }
 
-/* A message with a common header and a subtype: the header, then the subtype's layout. */
+/* A message with a common header and a subtype: the header, then the subtype's layout in the
+ * form its version and length choose. The Version message is read in the form of the version
+ * it carries. */
 static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t, urwire_sw_version version)
 {
     const urwire__message_kind *k;
+    const urwire__form *f;
+    urwire__ver ver;
+    int64_t subtype;
     size_t pos = t->body;
+    bool by_length;
     if (out->length < t->body) {
         out->kind = URWIRE_KIND_UNKNOWN_MESSAGE;
         urwire__short_in_run(&out->error, t->header, 0, out->length);
         urwire__fail_message(out, URWIRE_HEADER_SIZE);
         return false;
     }
-    out->kind = urwire__subtype_kind(t, t->read_header(out));
-    k = &urwire__message_kinds[out->kind];
-    if (k->decode == NULL) {
+    subtype = t->read_header(out);
+    if (subtype < 0 || (uint64_t)subtype >= t->forms->ncodes || t->forms->codes[subtype].count == 0) {
+        out->kind = URWIRE_KIND_UNKNOWN_SUBTYPE;
         out->raw = urwire__view(out->bytes + t->body, out->length - t->body);
         return true;
     }
-    if (!k->decode(out->bytes, &pos, out->length, version, &out->as, &out->error)) {
+    if (t->code == URWIRE__VERSION_TYPE && subtype == URWIRE__VERSION_SUBTYPE)
+        urwire__peek_version(out->bytes, out->length, &version);
+    f = urwire__choose(t->forms, (size_t)subtype, urwire__segment(urwire__version_key(version)),
+                       out->length - t->body, &version, &by_length);
+    out->kind = (urwire_message_kind)f->layout;
+    out->version = version;
+    k = &urwire__message_kinds[out->kind];
+    ver = urwire__ver_of(version);
+    if (!k->decode(out->bytes, &pos, out->length, &ver, &out->as, &out->error)) {
         urwire__fail_message(out, t->body);
         return false;
     }
@@ -117,27 +203,52 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
     return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t, version);
 }
 
-/* One framed sub-package straight into its member of a robot state. */
-static void urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t stop, urwire_sw_version version,
-                                      urwire_robot_state *out)
+/* Frames the sub-packages of a robot state from pos and decodes each straight into its member
+ * of *out, until end or a header that cannot be framed (*err): where it stopped. One loop for
+ * the whole message, so that the work per sub-package is only its own. */
+static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
+                                        urwire_robot_state *out, size_t *count, urwire_error *err)
 {
-    uint8_t type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-    urwire_error err;
-    size_t body = pos + URWIRE_PACKAGE_HEADER_SIZE;
-    /* urwire__package_kind_of(type) == NULL, spelt out: gcc -Os calls it, and the call made
-     * the whole fast path a third slower there. */
-    if (type >= URWIRE__COUNT(urwire__package_kinds) || urwire__package_kinds[type].name == NULL)
-        out->unknown++;
-    else if (urwire__decode_member(type, msg, &body, stop, version, out, &err))
-        out->present |= (uint32_t)URWIRE_BIT(type);
-    else
-        out->malformed |= (uint32_t)URWIRE_BIT(type);
+    urwire_error ignored;
+    urwire__ver other;
+    const urwire__ver *use;
+    size_t size = 0, body;
+    uint8_t type, form;
+    out->present = 0;
+    out->malformed = 0;
+    out->layouts = 0;
+    out->unknown = 0;
+    /* One pass: framing each sub-package and decoding it overlap in the CPU. */
+    for (*count = 0; pos < end && urwire__frame_package(msg, pos, end, &size, err); pos += size, ++*count) {
+        type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
+        body = pos + URWIRE_PACKAGE_HEADER_SIZE;
+        use = &r->now;
+        /* The common case first: the version's form, which fits the body by its brief. */
+        if (type < URWIRE__COUNT(urwire__package_forms) &&
+            urwire__fits_brief(r->first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE)) {
+            form = r->mine[type];
+        } else if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
+            out->unknown++;
+            continue;
+        } else {
+            form = (uint8_t)(urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &other) -
+                             urwire__package_form_list + 1);
+            use = &other;
+        }
+        if (urwire__decode_member(type, form, msg, &body, pos + size, use, out, &ignored))
+            out->present |= (uint32_t)URWIRE_BIT(type);
+        else
+            out->malformed |= (uint32_t)URWIRE_BIT(type);
+    }
+    return pos;
 }
 
 bool urwire_next_package(urwire_seq *seq, urwire_package *out)
 {
     const uint8_t *msg = seq->msg;
-    const urwire__package_kind *k;
+    const urwire__form *f;
+    urwire__running r;
+    urwire__ver use;
     size_t pos = seq->pos, body, stop;
     int64_t size;
     if (seq->count == 0 || seq->end - pos < URWIRE_PACKAGE_HEADER_SIZE)
@@ -148,14 +259,16 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
     body = pos + URWIRE_PACKAGE_HEADER_SIZE;
     stop = pos + (size_t)size;
     out->type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-    out->version = seq->version;
     out->offset = pos;
     out->raw = urwire__view(msg + body, stop - body);
     out->error.status = URWIRE_OK;
-    k = urwire__package_kind_of(out->type);
-    out->known = k != NULL;
-    out->failed = k != NULL && !urwire__decode_package(out->type, msg, &body, stop, seq->version, &out->as,
-                                                        &out->error);
+    urwire__start(&r, seq->version);
+    f = urwire__package_form(out->type, stop - body, &r, &use);
+    out->version = f != NULL ? use.version : seq->version;
+    out->known = f != NULL;
+    out->layout = f != NULL ? (urwire_package_layout)f->layout : URWIRE_LAYOUT_COUNT;
+    out->failed = f != NULL && !urwire__decode_package(out->layout, msg, &body, stop, &use, &out->as, &out->error);
+    seq->version = r.now.version;  /* the version the layout sizes showed, for the packages after it */
     seq->pos = stop;
     seq->count--;
     return true;
@@ -164,45 +277,47 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
 bool urwire_decode_robot_state(const urwire_message *m, urwire_robot_state *out)
 {
     const urwire_seq *seq = &m->packages;
-    size_t pos, count;
-    out->present = 0;
-    out->malformed = 0;
-    out->unknown = 0;
-    if (m->kind != URWIRE__PACKAGES_KIND)
+    urwire__running r;
+    urwire_error ignored;
+    size_t count;
+    if (m->kind != URWIRE__PACKAGES_KIND) {
+        out->present = 0;
+        out->malformed = 0;
+        out->layouts = 0;
+        out->unknown = 0;
         return false;
-    /* The frames were checked by urwire_decode_message. */
-    for (pos = seq->pos, count = seq->count; count > 0; count--) {
-        size_t stop = pos + (size_t)URWIRE__PACKAGE_LENGTH(seq->msg + pos);
-        urwire__decode_into_state(seq->msg, pos, stop, seq->version, out);
-        pos = stop;
     }
+    /* The frames were checked by urwire_decode_message. */
+    urwire__start(&r, seq->version);
+    urwire__decode_into_state(seq->msg, seq->pos, seq->end, &r, out, &count, &ignored);
     return !m->failed && out->malformed == 0;
 }
 
 bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
                                        urwire_message *m, urwire_robot_state *out)
 {
-    size_t pos = URWIRE_HEADER_SIZE, size = 0, count = 0;
-    out->present = 0;
-    out->malformed = 0;
-    out->unknown = 0;
+    urwire__running r;
+    size_t end;
     if (len < URWIRE_HEADER_SIZE || bytes[URWIRE__TYPE_AT] != URWIRE__PACKAGES_TYPE) {
+        out->present = 0;
+        out->malformed = 0;
+        out->layouts = 0;
+        out->unknown = 0;
         urwire_decode_message(bytes, len, version, m);
         return false;
     }
     urwire__init_message(m, bytes, len, version);
+    urwire__start(&r, version);
     m->kind = URWIRE__PACKAGES_KIND;
-    m->packages = urwire__seq(bytes, pos, version, -1);
-    /* One pass: framing each sub-package and decoding it overlap in the CPU. */
-    while (pos < len && urwire__frame_package(bytes, pos, len, &size, &m->error)) {
-        urwire__decode_into_state(bytes, pos, pos + size, version, out);
-        pos += size;
-        count++;
+    m->packages = urwire__seq(bytes, URWIRE_HEADER_SIZE, version, -1);
+    end = urwire__decode_into_state(bytes, URWIRE_HEADER_SIZE, len, &r, out, &m->packages.count, &m->error);
+    m->packages.end = end;
+    if (end < len) {
+        urwire__fail_message(m, end);
+    } else {
+        m->implied = r.implied;
+        m->implied_version = r.now.version;
     }
-    m->packages.count = count;
-    m->packages.end = pos;
-    if (pos < len)
-        urwire__fail_message(m, pos);
     return !m->failed && out->malformed == 0;
 }
 
@@ -219,4 +334,19 @@ bool urwire_message_has_error(const urwire_message *m)
         if (pkg.failed)
             return true;
     return false;
+}
+
+/* The version a robot state's layout sizes show, for a stream whose version is assumed: what
+ * the framer carries on to the next message (false: they show none, or the list cannot be
+ * framed). */
+URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version)
+{
+    urwire__running r;
+    urwire_error ignored;
+    size_t count, stop;
+    urwire__start(&r, *version);
+    if (!urwire__walk_packages(msg, URWIRE_HEADER_SIZE, len, &r, &count, &stop, &ignored) || !r.implied)
+        return false;
+    *version = r.now.version;
+    return true;
 }

@@ -5,8 +5,9 @@
 
 size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err)
 {
-    const urwire__package_kind *k = urwire__package_kind_of(pkg->type);
+    const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->layout) : NULL;
     size_t pos = URWIRE_PACKAGE_HEADER_SIZE;
+    urwire__ver ver = urwire__ver_of(pkg->version);
     bool ok;
     if (cap < pos) {
         urwire__no_space(err, 0, pos, cap);
@@ -15,7 +16,7 @@ size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap
     if (!pkg->known || pkg->failed || k == NULL)
         ok = urwire__put_view(out, cap, &pos, pkg->raw, err);
     else
-        ok = k->encode(&pkg->as, pkg->version, out, cap, &pos, err);
+        ok = k->encode(&pkg->as, &ver, out, cap, &pos, err);
     if (!ok)
         return 0;
     URWIRE__PUT_PACKAGE_LENGTH(out, pos);
@@ -43,6 +44,7 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
     const urwire__message_kind *k = urwire__message_kind_of(m->kind);
     const urwire__message_type *t = urwire__header_type(m);
     size_t pos = URWIRE_HEADER_SIZE;
+    urwire__ver ver = urwire__ver_of(m->version);
     bool ok = true;
     if (cap < pos) {
         urwire__no_space(err, 0, pos, cap);
@@ -63,7 +65,7 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
     else if (m->failed || k->encode == NULL)
         ok = urwire__put_view(out, cap, &pos, m->raw, err);
     else
-        ok = k->encode(&m->as, m->version, out, cap, &pos, err);
+        ok = k->encode(&m->as, &ver, out, cap, &pos, err);
     if (!ok)
         return 0;
     URWIRE__PUT_LENGTH(out, pos);

@@ -61,17 +61,26 @@ static urwire_frame_kind urwire__fault(urwire_framer *f, urwire_frame *out, urwi
     return URWIRE_FRAME_FAULT;
 }
 
-/* The layout that announces the software version (URWIRE__VERSION_*) sets it for what follows;
- * its type and subtype bytes are looked at before anything is decoded. */
+/* What a message tells of the stream's software version, for the messages after it: the
+ * layout that announces it (URWIRE__VERSION_*) sets it, bugfix included where its form has one
+ * (their type and subtype bytes are looked at before anything is decoded); while the version
+ * is only assumed, the layout sizes of a robot state may show it. */
 static void urwire__learn_version(urwire_framer *f, const uint8_t *bytes, size_t len)
 {
     urwire_message m;
+    if (bytes[URWIRE__TYPE_AT] == URWIRE__PACKAGES_TYPE) {
+        if (f->version.assumed)
+            urwire__implied_version(bytes, len, &f->version);
+        return;
+    }
     if (bytes[URWIRE__TYPE_AT] != URWIRE__VERSION_TYPE || len < URWIRE__VERSION_BODY ||
         bytes[URWIRE__VERSION_SUBTYPE_AT] != URWIRE__VERSION_SUBTYPE)
         return;
     if (urwire_decode_message(bytes, len, f->version, &m) && m.kind == URWIRE__VERSION_KIND) {
         f->version.major = URWIRE__VERSION_MAJOR(&m);
         f->version.minor = URWIRE__VERSION_MINOR(&m);
+        f->version.bugfix = URWIRE__VERSION_BUGFIX(&m);
+        f->version.assumed = false;
         f->version_seen = true;
     }
 }

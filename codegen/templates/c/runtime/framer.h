@@ -21,12 +21,13 @@ typedef struct urwire_frame {
     const uint8_t *bytes;           /* inside the framer's buffer: valid until the next feed */
     size_t length;
     uint64_t offset;                /* of the message or fault, from the stream's first byte */
-    urwire_sw_version version;      /* to decode this message with */
+    urwire_sw_version version;      /* to decode this message with (assumed: see its doc) */
     urwire_error fault;
 } urwire_frame;
 
 /* Frames a byte stream in a caller-provided buffer. Tracks the software version from the
- * stream's Version messages (else the hint). After a bad length or type it scans forward
+ * stream's Version messages (else the hint; with URWIRE_DEFAULT_VERSION as the hint, which is
+ * only assumed, from the layout sizes of robot states where they show it). After a bad length or type it scans forward
  * byte by byte to the next plausible header; the skipped bytes belong to that one fault. */
 typedef struct urwire_framer {
     uint8_t *buf;
@@ -38,7 +39,9 @@ typedef struct urwire_framer {
     bool resyncing;
     bool finished;
     bool version_seen;              /* a Version message set the version */
-    urwire_sw_version version;      /* in force: the last Version message's, else the hint */
+    urwire_sw_version version;      /* in force: the last Version message's, else the hint, else
+                                       what a robot state's layout sizes showed (assumed), else
+                                       URWIRE_DEFAULT_VERSION (assumed) */
 } urwire_framer;
 
 void urwire_framer_init(urwire_framer *f, uint8_t *buf, size_t cap, urwire_sw_version hint);

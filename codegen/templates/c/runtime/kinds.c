@@ -3,8 +3,8 @@
 /* </standalone> */
 /* ---- the tables of kinds ------------------------------------------------------------------ */
 /* Lookups in the generated tables: urwire__message_types (top-level types with a layout),
- * urwire__message_kinds (by urwire_message_kind) and urwire__package_kinds (by sub-package
- * type). decode.c, encode.c and visit.c walk them. */
+ * urwire__message_kinds (by urwire_message_kind) and urwire__package_kinds (by
+ * urwire_package_layout). decode.c, encode.c and visit.c walk them. */
 
 /* NULL for a type with no layout. */
 URWIRE__PRIVATE const urwire__message_type *urwire__message_type_of(uint8_t code)
@@ -22,12 +22,10 @@ URWIRE__PRIVATE const urwire__message_kind *urwire__message_kind_of(urwire_messa
     return (size_t)kind < URWIRE__COUNT(urwire__message_kinds) ? &urwire__message_kinds[kind] : NULL;
 }
 
-/* NULL for a sub-package type with no layout. */
-URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(uint8_t type)
+/* NULL for a value outside the enum. */
+URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(urwire_package_layout layout)
 {
-    if (type >= URWIRE__COUNT(urwire__package_kinds) || urwire__package_kinds[type].name == NULL)
-        return NULL;
-    return &urwire__package_kinds[type];
+    return (size_t)layout < URWIRE__COUNT(urwire__package_kinds) ? &urwire__package_kinds[layout] : NULL;
 }
 
 /* The type whose header m carries: its layout's, or for an unknown subtype its message

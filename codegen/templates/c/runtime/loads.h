@@ -3,19 +3,13 @@
 #define URWIRE_RUNTIME_LOADS_H
 #include <stdint.h>
 #include <string.h>
+#include "private.h"
 /* </standalone> */
 /* ---- big-endian loads and stores ---------------------------------------------------------- */
 
 /* Every field is read with memcpy into an integer (one unaligned load) and a byte swap built of
- * shifts, which compilers fold into one instruction. They must be inlined to be fast: gcc does
- * so on its own at -O2 and -O3 but, at -Os, takes the shifts for more code than a call and
- * calls them; always_inline says what `inline` means here. Unused ones never warn (gcc does not
- * warn on an unused static inline function, clang does in a .c file unless told `unused`). */
-#if defined(__GNUC__)
-#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
-#else
-#define URWIRE__INLINE static inline
-#endif
+ * shifts, which compilers fold into one instruction. They must be inlined to be fast (see
+ * URWIRE__INLINE in private.h). */
 
 /* The host's byte order, a constant once optimised: 1 on a big-endian machine. */
 URWIRE__INLINE int urwire__host_is_big_endian(void)

@@ -8,8 +8,12 @@
 /* The bit of a sub-package type in urwire_robot_state.present and .malformed. */
 #define URWIRE_BIT(code) (1ul << (code))
 
-/* Decode one framed message (len = its declared length). Never fails as a call: a message
- * that cannot be read comes back failed with error and raw. Returns !out->failed. */
+/* Decode one framed message (len = its declared length) of a stream of `version` (a frame's,
+ * a hint, or URWIRE_DEFAULT_VERSION). Each part is read in the form of that version when it
+ * fits its length, else in the one form of that exact length (in that form's version); while
+ * the version is only assumed, such a form sets the version for the rest of a robot state
+ * (out->implied). Never fails as a call: a message that cannot be read comes back failed with
+ * error and raw. Returns !out->failed. */
 bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version version, urwire_message *out);
 /* The next sub-package of a robot state's seq; false at the end. */
 bool urwire_next_package(urwire_seq *seq, urwire_package *out);

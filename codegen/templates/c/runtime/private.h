@@ -8,6 +8,14 @@
 /* </standalone> */
 /* ---- what the runtime and the generated layouts share ------------------------------------- */
 
+/* A range of software versions; a missing bound is open. */
+typedef struct urwire__versions {
+    bool has_low;
+    urwire_sw_version low;
+    bool has_high;
+    urwire_sw_version high;
+} urwire__versions;
+
 /* Private functions live in urwire.c alone. */
 #define URWIRE__PRIVATE static
 /* <standalone> */
@@ -17,6 +25,37 @@
 
 #define URWIRE__COUNT(a) (sizeof(a) / sizeof((a)[0]))
 
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+
+/* A software version as one number that orders as the spec's (major, minor, bugfix) tuples do
+ * against every version the spec names: the generated conditions are one comparison with
+ * URWIRE__V(major, minor, bugfix) of a bound. Each part counts from -1 (0 stands for any
+ * negative part) and stops just past the largest the spec could name (a major above 2^21, or a
+ * minor or bugfix above 2^20, compares with every bound as that limit does). */
+#define URWIRE__V(major, minor, bugfix) \
+    (((uint64_t)(major) + 1u) << 42 | ((uint64_t)(minor) + 1u) << 21 | ((uint64_t)(bugfix) + 1u))
+
+URWIRE__INLINE uint64_t urwire__version_part(int part, int most)
+{
+    return part < 0 ? 0u : part > most ? (uint64_t)most + 1u : (uint64_t)part + 1u;
+}
+
+URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
+{
+    if ((unsigned)v.major <= 1u << 21 && (unsigned)v.minor <= 1u << 20 && (unsigned)v.bugfix <= 1u << 20)
+        return URWIRE__V((unsigned)v.major, (unsigned)v.minor, (unsigned)v.bugfix);  /* every real version */
+    return urwire__version_part(v.major, 1 << 21) << 42 | urwire__version_part(v.minor, 1 << 20) << 21 |
+           urwire__version_part(v.bugfix, 1 << 20);
+}
+
 /* One field of a fixed run of fields, read after one bounds check of the whole run. A table
  * of them (ended by a NULL path) names the field that a short run stops in. */
 typedef struct urwire__span {
@@ -25,24 +64,102 @@ typedef struct urwire__span {
     uint32_t size;
 } urwire__span;
 
+/* A software version as the layouts read it: the version, and its key (urwire__version_key),
+ * which their version conditions compare. */
+typedef struct urwire__ver {
+    urwire_sw_version version;
+    uint64_t key;
+} urwire__ver;
+
+URWIRE__INLINE urwire__ver urwire__ver_of(urwire_sw_version version)
+{
+    urwire__ver v;
+    v.version = version;
+    v.key = urwire__version_key(version);
+    return v;
+}
+
 /* ---- the tables the generated part fills ---- */
 
 /* What each layout (a sub-package or a message subtype) has: a decoder into its struct, an
  * encoder from it and a visitor of it, all taking the struct as void *. */
-typedef bool (*urwire__decode_fn)(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                  void *out, urwire_error *err);
-typedef bool (*urwire__encode_fn)(const void *in, urwire_sw_version version, uint8_t *out, size_t cap,
-                                  size_t *at, urwire_error *err);
-typedef void (*urwire__visit_fn)(const void *in, urwire_sw_version version, const urwire_visitor *v);
+typedef bool (*urwire__decode_fn)(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *out,
+                                  urwire_error *err);
+typedef bool (*urwire__encode_fn)(const void *in, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                  urwire_error *err);
+typedef void (*urwire__visit_fn)(const void *in, const urwire__ver *ver, const urwire_visitor *v);
 
-/* A sub-package type, indexed by its code; name is NULL for a code with no layout. Its decoder
- * is reached through the generated urwire__decode_package(type, ...) and, into a robot state,
- * urwire__decode_member(type, ...): switches, for speed (see there). */
+/* A sub-package layout, indexed by its urwire_package_layout; its decoder is reached through
+ * the generated urwire__decode_package(layout, ...) and, into a robot state,
+ * urwire__decode_member(layout, ...): switches, for speed (see there). */
 typedef struct urwire__package_kind {
     const char *name;               /* the record's type: "joint_data" */
     urwire__encode_fn encode;
     urwire__visit_fn visit;
 } urwire__package_kind;
+
+/* One form a type code takes on the wire (the plan's Variant): the layout it is read in, the
+ * exact body sizes it can have (nsizes of them; none: open-ended, at least min_size), and rep,
+ * the version a stream is taken to run when this form is recognised by its length alone. */
+typedef struct urwire__form {
+    uint8_t layout;                 /* a urwire_package_layout, or a urwire_message_kind */
+    uint8_t nsizes;
+    uint32_t sizes[URWIRE__FORM_SIZES];
+    uint32_t min_size;
+    urwire_sw_version rep;
+} urwire__form;
+
+/* Whether a body of `size` bytes fits a form (inlined on the robot-state fast path). */
+URWIRE__INLINE bool urwire__fits(const urwire__form *f, size_t size)
+{
+    uint8_t k;
+    if (f->nsizes == 0)
+        return size >= f->min_size;
+    for (k = 0; k < f->nsizes; k++)
+        if (f->sizes[k] == size)
+            return true;
+    return false;
+}
+
+/* The robot-state fast path's brief of the version's form of each sub-package type
+ * (urwire__package_first_sizes): its first exact size, or URWIRE__OPEN(its least size) when
+ * it is open-ended, or URWIRE__NONE when the version sends no form of that type. */
+#define URWIRE__OPEN(least) (0x80000000u | (least))
+#define URWIRE__NONE URWIRE__OPEN(0x7fffffffu)
+
+/* Whether a body of `size` bytes fits such a brief (URWIRE__NONE never does). */
+URWIRE__INLINE bool urwire__fits_brief(uint32_t brief, size_t size)
+{
+    return brief == size || ((brief & 0x80000000u) && size >= (brief & 0x7fffffffu));
+}
+
+/* The forms of one type code, in a table of all the forms of its type byte (count 0: the code
+ * has no layout). */
+typedef struct urwire__forms {
+    const urwire__form *forms;
+    uint8_t count;
+} urwire__forms;
+
+/* The forms of the codes of one type byte (sub-package types, or the subtypes of a message):
+ * `codes` by code, and which form each segment of the version axis sends, `mine[segment *
+ * ncodes + code]`: its number in `all` plus one, 0 for none. */
+/* In a segment's row: the form is that of the nearest version below (no form is sent there). */
+#define URWIRE__NEAREST 0x80u
+
+typedef struct urwire__form_table {
+    const urwire__form *all;
+    const urwire__forms *codes;
+    size_t ncodes;
+    const uint8_t *mine;
+} urwire__form_table;
+
+/* How to reach the numbers of a Version message before its layout is chosen: fixed bytes,
+ * then a string whose length prefix has `prefix` bytes (signed or not). */
+typedef struct urwire__version_skip {
+    uint8_t fixed;
+    uint8_t prefix;
+    bool is_signed;
+} urwire__version_skip;
 
 /* A top-level message type with a layout: a list of sub-packages, or a common header and a
  * subtype byte that chooses the layout of the rest. */
@@ -50,6 +167,7 @@ typedef struct urwire__message_type {
     uint8_t code;                   /* urwire_message_type */
     bool packages;                  /* a list of sub-packages (no header, no subtype) */
     size_t body;                    /* where the subtype's layout starts: the header's size */
+    const urwire__form_table *forms; /* its subtypes' */
     const urwire__span *header;     /* the header's fields, for a message too short for them */
     /* Reads the header into m->header and returns the subtype code. */
     int64_t (*read_header)(urwire_message *m);
@@ -70,13 +188,6 @@ typedef struct urwire__message_kind {
     urwire__visit_fn visit;
 } urwire__message_kind;
 
-/* A range of software versions; a missing bound is open. */
-typedef struct urwire__versions {
-    bool has_low;
-    urwire_sw_version low;
-    bool has_high;
-    urwire_sw_version high;
-} urwire__versions;
 
 /* How the data of a global-variable value type is laid out, whatever its code. */
 typedef enum urwire__layout {
@@ -105,9 +216,8 @@ typedef struct urwire__value_entry {
     uint8_t count;                  /* array items */
 } urwire__value_entry;
 
-/* The value types of a range of software versions. */
+/* The value types of a range of software versions (urwire__value_ranges, beside them). */
 typedef struct urwire__value_table {
-    urwire__versions versions;
     const urwire__value_entry *entries;
     size_t count;
 } urwire__value_table;
@@ -127,8 +237,9 @@ URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len);
 URWIRE__PRIVATE urwire_seq urwire__seq(const uint8_t *msg, size_t pos, urwire_sw_version version, int terminator);
 URWIRE__PRIVATE urwire_bytes urwire__seq_bytes(const urwire_seq *s);
 /* version.c */
-URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor);
+URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix);
 URWIRE__PRIVATE bool urwire__in_versions(urwire_sw_version v, const urwire__versions *range);
+URWIRE__PRIVATE size_t urwire__table_index(urwire_sw_version v, const urwire__versions *ranges, size_t count);
 /* format.c */
 URWIRE__PRIVATE size_t urwire__digits(char *buf, int64_t v);
 URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s);
@@ -159,8 +270,17 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
 /* kinds.c */
 URWIRE__PRIVATE const urwire__message_type *urwire__message_type_of(uint8_t code);
 URWIRE__PRIVATE const urwire__message_kind *urwire__message_kind_of(urwire_message_kind kind);
-URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(uint8_t type);
+URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(urwire_package_layout layout);
 URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_message *m);
+/* forms.c */
+URWIRE__PRIVATE size_t urwire__segment(uint64_t key);
+URWIRE__PRIVATE const urwire__form *urwire__mine(const urwire__form_table *t, size_t segment, size_t code,
+                                                bool *nearest);
+URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, size_t code, size_t segment, size_t size,
+                                                  urwire_sw_version *version, bool *by_length);
+URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out);
+/* decode.c */
+URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);
 /* visit.c */
 URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);
 URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v);

@@ -2,17 +2,14 @@
 #include "runtime_support.h"
 /* </standalone> */
 /* ---- global-variable values --------------------------------------------------------------- */
-/* The value types of each software version are the generated urwire__value_tables. String
+/* The value types of each software version are the generated urwire__value_tables, each for
+ * the versions of its urwire__value_ranges. String
  * lengths and LIST/MATRIX counts are int16 (the generator refuses any other). */
 
 /* The value types of a software version: the first table whose range holds it, else the newest. */
 URWIRE__PRIVATE const urwire__value_table *urwire__values_of(urwire_sw_version v)
 {
-    size_t k;
-    for (k = 0; k + 1 < URWIRE__COUNT(urwire__value_tables); k++)
-        if (urwire__in_versions(v, &urwire__value_tables[k].versions))
-            return &urwire__value_tables[k];
-    return &urwire__value_tables[URWIRE__COUNT(urwire__value_tables) - 1];
+    return &urwire__value_tables[urwire__table_index(v, urwire__value_ranges, URWIRE__COUNT(urwire__value_ranges))];
 }
 
 URWIRE__PRIVATE const urwire__value_entry *urwire__value_entry_of(const urwire__value_table *t, uint8_t code)

@@ -5,18 +5,33 @@
 
 const urwire_sw_version URWIRE_DEFAULT_VERSION = URWIRE_DEFAULT_VERSION_INIT;
 
-/* Below, equal to or above major.minor: -1, 0 or 1. */
-URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor)
+/* Below, equal to or above major.minor.bugfix: -1, 0 or 1 (part by part, as the spec's
+ * version tuples compare; an upper bound written "5.8" is 5.8.999). */
+URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix)
 {
     if (v.major != major)
         return v.major < major ? -1 : 1;
-    return v.minor < minor ? -1 : v.minor > minor;
+    if (v.minor != minor)
+        return v.minor < minor ? -1 : 1;
+    return v.bugfix < bugfix ? -1 : v.bugfix > bugfix;
 }
 
 URWIRE__PRIVATE bool urwire__in_versions(urwire_sw_version v, const urwire__versions *range)
 {
-    return (!range->has_low || urwire__version_cmp(v, range->low.major, range->low.minor) >= 0) &&
-           (!range->has_high || urwire__version_cmp(v, range->high.major, range->high.minor) <= 0);
+    return (!range->has_low || urwire__version_cmp(v, range->low.major, range->low.minor, range->low.bugfix) >= 0) &&
+           (!range->has_high ||
+            urwire__version_cmp(v, range->high.major, range->high.minor, range->high.bugfix) <= 0);
+}
+
+/* The first of count ranges that holds v, else the last: which table of a versioned enum (or
+ * of value types) a version reads. */
+URWIRE__PRIVATE size_t urwire__table_index(urwire_sw_version v, const urwire__versions *ranges, size_t count)
+{
+    size_t k;
+    for (k = 0; k + 1 < count; k++)
+        if (urwire__in_versions(v, &ranges[k]))
+            return k;
+    return count - 1;
 }
 
 static bool urwire__is_space(char c)
@@ -26,8 +41,9 @@ static bool urwire__is_space(char c)
 
 bool urwire_parse_version(const char *text, urwire_sw_version *out)
 {
-    /* As Python's urwire.parse_version: at least "major.minor", every part digits. */
-    long parts[2] = {0, 0};
+    /* As Python's urwire.parse_version: "major.minor" or "major.minor.bugfix", every part
+     * digits. */
+    long parts[3] = {0, 0, 0};
     size_t len = strlen(text), start = 0, i, nparts = 0, digits = 0;
     while (start < len && urwire__is_space(text[start]))
         start++;
@@ -35,14 +51,14 @@ bool urwire_parse_version(const char *text, urwire_sw_version *out)
         len--;
     for (i = start; i <= len; i++) {
         if (i == len || text[i] == '.') {
-            if (digits == 0)
+            if (digits == 0 || nparts == 3)
                 return false;
             nparts++;
             digits = 0;
         } else if (text[i] >= '0' && text[i] <= '9') {
             if (++digits > 6)
                 return false;  /* no real version has such parts; keeps the ints small */
-            if (nparts < 2)
+            if (nparts < 3)
                 parts[nparts] = parts[nparts] * 10 + (text[i] - '0');
         } else {
             return false;
@@ -52,5 +68,7 @@ bool urwire_parse_version(const char *text, urwire_sw_version *out)
         return false;
     out->major = (int)parts[0];
     out->minor = (int)parts[1];
+    out->bugfix = (int)parts[2];
+    out->assumed = false;
     return true;
 }

@@ -93,7 +93,8 @@ URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *
 
 static void urwire__visit_package(const urwire_package *pkg, const urwire_visitor *v)
 {
-    const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->type) : NULL;
+    const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->layout) : NULL;
+    urwire__ver ver = urwire__ver_of(pkg->version);
     v->begin_object(v->ctx, NULL);
     if (k == NULL) {
         urwire__name(v, "type", "unknown");
@@ -104,7 +105,7 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
         if (pkg->failed)
             urwire__visit_failed(&pkg->error, pkg->raw, v);
         else
-            k->visit(&pkg->as, pkg->version, v);
+            k->visit(&pkg->as, &ver, v);
     }
     v->end_object(v->ctx);
 }
@@ -126,6 +127,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
 {
     const urwire__message_kind *k = urwire__message_kind_of(m->kind);
     const urwire__message_type *t = urwire__header_type(m);
+    urwire__ver ver = urwire__ver_of(m->version);
     v->begin_object(v->ctx, NULL);
     if (m->kind == URWIRE_KIND_UNKNOWN_MESSAGE || m->kind == URWIRE_KIND_UNKNOWN_SUBTYPE) {
         urwire__name(v, "type", "unknown");
@@ -144,7 +146,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
             if (m->failed)
                 urwire__visit_failed(&m->error, m->raw, v);
             else
-                k->visit(&m->as, m->version, v);
+                k->visit(&m->as, &ver, v);
         }
     }
     v->end_object(v->ctx);
