@@ -124,7 +124,7 @@ static const urwire__forms urwire__package_forms[] = {
 static const uint8_t urwire__package_mine[] = {
     0, 0,  /* below 0.0.0 */
     0, 1,  /* from 0.0.0 */
-    0, 0,  /* from 3.2.1000 */
+    0, 1 | URWIRE__NEAREST,  /* from 3.2.1000: no form is sent; the nearest below */
     0, 2,  /* from 3.3.0 */
 };
 

@@ -115,14 +115,16 @@ static void forms(void)
     urwire__form_table open = {open_forms, open_codes, 2, urwire__package_mine};
     const urwire__form_table *t = &urwire__package_form_table;
     urwire_sw_version use;
-    bool by_length;
+    bool by_length, nearest;
     /* The segments: below 0.0.0, up to 3.2.999, 3.2.1000 to 3.3.0, from 3.3.0; the parts of
      * a version beyond what the spec names compare as its limits. */
     CHECK(segment(-1, 0, 0) == 0 && segment(0, 0, 0) == 1 && segment(3, 2, 999) == 1);
     CHECK(segment(3, 2, 1000) == 2 && segment(3, 2, 2147483647) == 2 && segment(3, 3, -5) == 2);
     CHECK(segment(3, 3, 0) == 3 && segment(10, 0, 0) == 3 && segment(2147483647, -1, 0) == 3);
     CHECK(urwire__version_key(URWIRE_DEFAULT_VERSION) == URWIRE__V(5, 9, 0));
-    CHECK(urwire__mine(t, 1, 1) == &urwire__package_form_list[0] && urwire__mine(t, 2, 1) == NULL);
+    CHECK(urwire__mine(t, 1, 1, &nearest) == &urwire__package_form_list[0] && !nearest);
+    CHECK(urwire__mine(t, 2, 1, &nearest) == &urwire__package_form_list[0] && nearest);
+    CHECK(urwire__mine(t, 0, 1, &nearest) == NULL && !nearest);
     /* The version's form when it fits: the version stays. */
     CHECK(choose(t, 3, 2, 0, 2, &use, &by_length)->layout == URWIRE_LAYOUT_TALLY && !by_length);
     CHECK(use.major == 3 && use.minor == 2 && use.bugfix == 0 && use.assumed);
@@ -135,7 +137,9 @@ static void forms(void)
     CHECK(choose(t, 5, 9, 0, 3, &use, &by_length)->layout == URWIRE_LAYOUT_COUNTER && !by_length);
     CHECK(use.major == 5 && use.minor == 9);
     CHECK(choose(t, 3, 0, 0, 9, &use, &by_length)->layout == URWIRE_LAYOUT_TALLY && !by_length);
-    CHECK(choose(t, 3, 2, 1000, 3, &use, &by_length)->layout == URWIRE_LAYOUT_COUNTER && !by_length);
+    /* A version no form is sent in: the nearest form below, read as the version it stands for. */
+    CHECK(choose(t, 3, 2, 1000, 3, &use, &by_length)->layout == URWIRE_LAYOUT_TALLY && !by_length);
+    CHECK(use.major == 3 && use.minor == 2 && use.bugfix == 999);
     /* An open-ended form fits any length from its least, but is never recognised by length. */
     CHECK(choose(&open, 3, 0, 0, 40, &use, &by_length)->layout == URWIRE_LAYOUT_TALLY && !by_length);
     CHECK(choose(&open, 5, 9, 0, 40, &use, &by_length)->layout == URWIRE_LAYOUT_COUNTER && !by_length);
