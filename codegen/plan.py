@@ -293,9 +293,6 @@ class Variant:
         """`ranges` with None for an open end: for targets that test a bound only when there is one."""
         return [(lo or None, hi if hi < _TOP else None) for lo, hi in self.ranges]
 
-    def fits(self, size: int) -> bool:
-        return size in self.sizes if self.sizes is not None else size >= self.min_size
-
 
 
 @dataclass
@@ -319,11 +316,6 @@ class MessagePlan:
         """The forms of one layout (a code with two layouts has forms of each)."""
         return [v for v in self.variants.get(layout.code.value, []) if v.layout is layout]
 
-    def header_field(self, name: str) -> Optional[HeaderSlot]:
-        for slot in self.header:
-            if slot.field.name == name and not slot.is_subtype:
-                return slot
-        return None
 
 
 @dataclass

@@ -293,7 +293,7 @@ class Forms:
     its last byte is that form (the common case, one dict lookup). Anything else goes through
     `part()`, which applies the whole rule. `at(version)` is a table, filled on first use, from
     `size << 8 | code` (the part's whole size, header included) to (decoder, version to decode
-    with, chosen by length?, form): what `choose` says, since codes, sizes and versions repeat. A
+    with, chosen by length?, form): what `_choose` says, since codes, sizes and versions repeat. A
     code the spec does not lay out maps to _UNKNOWN."""
 
     __slots__ = ("by_code", "resolved", "fast_by_version", "header")
@@ -347,13 +347,6 @@ class Forms:
         if used < stop:
             pkg.extra = bytes(buf[used:stop])
         return pkg, (use if by_length and not known else None)
-
-
-def choose(forms: tuple, size: int, version: tuple) -> tuple:
-    """(form, version to decode it with, chosen by length?) for a body of `size` bytes: the
-    version's form when it fits; else the one form whose size is exactly `size`; else the
-    version's form, whose short or extra bytes are then reported."""
-    return _choose(forms, size, version)
 
 
 def _choose(forms: tuple, size: int, version: tuple) -> tuple:
