@@ -26,7 +26,7 @@ OUT = "lua/urwire.lua"
 # The hand-written runtime, in the order it is joined. Each file is a chunk that receives
 # (spec, rt): `spec` is the generated data, `rt` what earlier runtime files export.
 RUNTIME = ("declare.lua", "bytes.lua", "versions.lua", "walk.lua", "values.lua", "info.lua",
-           "messages.lua", "stream.lua", "framing.lua", "register.lua")
+           "messages.lua", "carry.lua", "stream.lua", "framing.lua", "register.lua")
 
 # ProtoField constructor per scalar (integers take base and value strings, floats do not).
 PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16", "uint16": "uint16",

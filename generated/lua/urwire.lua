@@ -2729,6 +2729,50 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- Runtime: carry.lua (codegen/templates/lua/runtime/carry.lua)
+-- =============================================================================================
+do
+(function(...)
+-- Bytes carried over by hand from segment to segment while a stream is out of step with TCP
+-- reassembly (after a bad header). Each call's bytes are kept as one more part, and the parts
+-- are joined once, when the message they hold is whole: carrying n bytes costs time and memory
+-- in n, however small the segments. A carry starts at a message header (or holds less than
+-- one) and is only appended to, so its first k bytes, where a call started, stay the same for
+-- later passes; one carry is shared by every call it spans.
+local spec, rt = ...
+local concat, sub = table.concat, string.sub
+local HEADER = spec.header_size
+
+-- A carry holding the bytes s. head: its first bytes, up to a header's worth.
+local function carry_new(s)
+    return { parts = { s }, size = #s, head = sub(s, 1, HEADER) }
+end
+
+-- Carry c takes the bytes s of one more call.
+local function carry_add(c, s)
+    local parts = c.parts
+    parts[#parts + 1] = s
+    c.size = c.size + #s
+    if #c.head < HEADER then c.head = sub(c.head .. s, 1, HEADER) end
+end
+
+-- The first n bytes of carry c as one string. The parts are joined once and kept joined.
+local function carry_bytes(c, n)
+    local parts = c.parts
+    if #parts > 1 then
+        parts = { concat(parts) }
+        c.parts = parts
+    end
+    local all = parts[1]
+    if n == #all then return all end
+    return sub(all, 1, n)
+end
+
+rt.carry_new, rt.carry_add, rt.carry_bytes = carry_new, carry_add, carry_bytes
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- Runtime: stream.lua (codegen/templates/lua/runtime/stream.lua)
 -- =============================================================================================
 do
@@ -2736,9 +2780,11 @@ do
 -- State of each TCP stream: the software version its Version message announced or its layout
 -- sizes showed (nil: none yet; `implied` names the versions of the form whose size showed it),
 -- whether the dissector is resynchronising after a bad header, and the bytes carried over
--- from earlier segments while it does. First pass: the state moves along, and a snapshot of it
--- is kept for each dissector call (frame number and tvb length). Later passes (tshark -2, clicks
--- in the GUI, in any order) reuse the snapshot, so both agree.
+-- from earlier segments while it does (a carry, runtime/carry.lua). First pass: the state moves
+-- along, and a snapshot of it is kept for each dissector call (frame number and tvb length): a
+-- carry is kept once, and a snapshot holds it with how many of its bytes the call started
+-- with. Later passes (tshark -2, clicks in the GUI, in any order) reuse the snapshot, so both
+-- agree.
 -- Streams are keyed by their two ports (a number: no string is made per packet). Field.new(
 -- "tcp.stream") gives nothing on a first pass without a tree (tshark -2), and Conversation only
 -- exists from Wireshark 4.6. Two robots talking to clients that use the same port number at the
@@ -2749,36 +2795,42 @@ local CALL_SPAN = 1048576   -- a call's key: frame number * CALL_SPAN + tvb leng
 
 local stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
 -- by call (frame, tvb length), and by -frame
-local snap_version, snap_implied, snap_resync, snap_carry = {}, {}, {}, {}
+local snap_version, snap_implied, snap_resync, snap_carry, snap_carried = {}, {}, {}, {}, {}
 
 -- A new capture: forget every stream.
 local function reset()
     stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
-    snap_version, snap_implied, snap_resync, snap_carry = {}, {}, {}, {}
+    snap_version, snap_implied, snap_resync, snap_carry, snap_carried = {}, {}, {}, {}, {}
 end
 
--- The state as a call with n bytes starts: version, implied, resync, carry, and the stream's
--- key for stream_save.
+local function snapshot(at, version, implied, resync, carry, carried)
+    snap_version[at], snap_implied[at], snap_resync[at] = version, implied, resync
+    snap_carry[at], snap_carried[at] = carry, carried
+end
+
+local function snapshot_at(at, stream)
+    return snap_version[at], snap_implied[at], snap_resync[at], snap_carry[at], snap_carried[at], stream
+end
+
+-- The state as a call with n bytes starts: version, implied, resync, carry, how many bytes of
+-- the carry are this call's (nil: no carry), and the stream's key for stream_save.
 local function stream_load(pinfo, n)
     local stream = pinfo.src_port * 65536 + pinfo.dst_port
     local key = pinfo.number * CALL_SPAN + n % CALL_SPAN
     local frame = -pinfo.number
     if pinfo.visited and snap_resync[key] ~= nil then
-        return snap_version[key], snap_implied[key], snap_resync[key], snap_carry[key], stream
+        return snapshot_at(key, stream)
     elseif pinfo.visited and snap_resync[frame] ~= nil then
         -- Later passes may hand over other bytes than the first (TCP reassembly replays
         -- differently): fall back to the state of the frame's first call.
-        return snap_version[frame], snap_implied[frame], snap_resync[frame], snap_carry[frame], stream
+        return snapshot_at(frame, stream)
     end
     local version, implied = stream_version[stream], stream_implied[stream]
     local resync, carry = stream_resync[stream] or false, stream_carry[stream]
-    if snap_resync[key] == nil then
-        snap_version[key], snap_implied[key], snap_resync[key], snap_carry[key] = version, implied, resync, carry
-    end
-    if snap_resync[frame] == nil then
-        snap_version[frame], snap_implied[frame], snap_resync[frame], snap_carry[frame] = version, implied, resync, carry
-    end
-    return version, implied, resync, carry, stream
+    local carried = carry and carry.size
+    if snap_resync[key] == nil then snapshot(key, version, implied, resync, carry, carried) end
+    if snap_resync[frame] == nil then snapshot(frame, version, implied, resync, carry, carried) end
+    return version, implied, resync, carry, carried, stream
 end
 
 -- The state as a call ends; kept on the first pass only.
@@ -2807,6 +2859,7 @@ local fmt, byte = string.format, string.byte
 local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
 local enum_names, rename = rt.enum_names, rt.rename
 local stream_load, stream_save = rt.stream_load, rt.stream_save
+local carry_new, carry_add, carry_bytes = rt.carry_new, rt.carry_add, rt.carry_bytes
 local X, E, handlers = rt.X, rt.E, rt.handlers
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
@@ -2846,6 +2899,13 @@ local function header_fault(raw, o, max_length)
     if size < HEADER then return E.bad_length, fmt("length %d is below %d", size, HEADER) end
     if size > max_length then return E.bad_length, fmt("length %d is above %d", size, max_length) end
     return E.bad_type, fmt("unknown message type %d", byte(raw, o + LENGTH + 1))
+end
+
+-- How many bytes carry c must hold before a call can go on with it: its message's length once
+-- its header is whole (a carry only starts at a plausible header), else a header's.
+local function carry_need(c, max_length)
+    if #c.head == HEADER and plausible(c.head, 0, max_length) then return be_int(c.head, 0, LENGTH) end
+    return HEADER
 end
 
 -- Resynchronising: scan buf (bytes carried from earlier segments, then this tvb's) from p for
@@ -2929,18 +2989,25 @@ local function dissect(tvb, pinfo, tree)
     cur.first = true
 
     -- The stream's state as this call starts.
-    local resync, carry, stream
-    cur.version, cur.implied, resync, carry, stream = stream_load(pinfo, n)
+    local resync, carry, carried, stream
+    cur.version, cur.implied, resync, carry, carried, stream = stream_load(pinfo, n)
 
     pinfo.cols.protocol:set("UR")
     -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
     -- stream state) until it is back in step, instead of by TCP reassembly: asking TCP for more
     -- bytes after a fault makes later passes hand over other bytes, and the fault would not
-    -- show there. Carried bytes come first, in a tvb of their own.
+    -- show there. Carried bytes come first, in a tvb of their own, made once the message they
+    -- start is whole.
     local by_hand = carry ~= nil or resync
     local data, buf = tvb, raw
     if carry then
-        buf = carry .. raw
+        if not resync and carried + n < carry_need(carry, max_length) then
+            -- Still inside the carried message: keep these bytes too, and show nothing yet.
+            if not pinfo.visited then carry_add(carry, raw) end
+            stream_save(pinfo, stream, cur.version, cur.implied, resync, carry)
+            return n
+        end
+        buf = carry_bytes(carry, carried) .. raw
         data = ByteArray.new(buf, true):tvb("UR bytes carried over")
     end
     n = #buf
@@ -2957,7 +3024,7 @@ local function dissect(tvb, pinfo, tree)
             if stop > 0 and cur.detail then data_item(tree, data, 0, stop) end
             set_info(pinfo, true, "Resynchronising: no message header yet")
             cur.first = false
-            o, carry = n, string.sub(buf, stop + 1)
+            o, carry = n, carry_new(string.sub(buf, stop + 1))
         end
     end
     while o < n do
@@ -2980,12 +3047,12 @@ local function dissect(tvb, pinfo, tree)
                 o = p
             else
                 if stop > o + 1 and cur.detail then data_item(tree, data, o + 1, stop - o - 1) end
-                resync, carry = true, string.sub(buf, stop + 1)
+                resync, carry = true, carry_new(string.sub(buf, stop + 1))
                 o = n
             end
         elseif (left < HEADER or size > left) and by_hand then
             -- Carried as it is until the message is whole.
-            carry = string.sub(buf, o + 1)
+            carry = carry_new(string.sub(buf, o + 1))
             o = n
         elseif left < HEADER then
             -- A header split inside its first bytes: ask for one more segment.
