@@ -1788,6 +1788,7 @@ local spec = {
     package_length_size = 4,
     max_message_length = 1048576,
     max_value_depth = 8,
+    max_tree_items = 10000,
     default_ports = "30001,30002,30011,30012",
     default_version = "5.9",
     F = F,
@@ -1830,6 +1831,7 @@ local E = {
     unknown = ProtoExpert.new("ur.unknown", "Type not laid out by the spec, kept raw", expert.group.UNDECODED, expert.severity.NOTE),
     assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)", expert.group.ASSUMPTION, expert.severity.NOTE),
     by_length = ProtoExpert.new("ur.layout_by_length", "Layout chosen by its length, not by the software version", expert.group.ASSUMPTION, expert.severity.NOTE),
+    items_hidden = ProtoExpert.new("ur.items_hidden", "More tree items than a message shows", expert.group.UNDECODED, expert.severity.NOTE),
     internal = ProtoExpert.new("ur.internal_error", "urwire dissector error", expert.group.MALFORMED, expert.severity.ERROR),
 }
 
@@ -1840,7 +1842,7 @@ for _, f in ipairs({ X.raw, X.extra, X.skipped, X.version, X.assumed, X.unknown_
     fields[#fields + 1] = f
 end
 ur.fields = fields
-ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.by_length, E.internal }
+ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.by_length, E.items_hidden, E.internal }
 
 rt.X, rt.E = X, E
 end)(spec, rt)
@@ -2075,6 +2077,80 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- Runtime: items.lua (codegen/templates/lua/runtime/items.lua)
+-- =============================================================================================
+do
+(function(...)
+-- The tree items of one message: at most spec.max_tree_items under the message's item. A
+-- message of a megabyte can hold hundreds of thousands of values; Wireshark slows down long
+-- before it stops at a million items per packet, which would end the dissection with an error.
+-- Past the cap the fields are still walked, so that errors are still found, but they go to
+-- HIDDEN, an item that shows nothing and counts what is added to it; the first expert info it
+-- is given goes to the message's item, so that a malformed message still reads as one.
+local spec, rt = ...
+local MAX_TREE_ITEMS = spec.max_tree_items
+
+local left, hidden, top, expert_moved = MAX_TREE_ITEMS, 0, nil, false
+
+local HIDDEN = {}
+function HIDDEN:add() hidden = hidden + 1; return HIDDEN end
+HIDDEN.add_packet_field = HIDDEN.add
+function HIDDEN:set_text() end
+HIDDEN.append_text, HIDDEN.set_len = HIDDEN.set_text, HIDDEN.set_text
+function HIDDEN:set_generated() return HIDDEN end
+function HIDDEN:referenced(f) return top:referenced(f) end
+function HIDDEN:add_proto_expert_info(e, text)
+    if expert_moved then hidden = hidden + 1; return end
+    expert_moved = true
+    top:add_proto_expert_info(e, text)
+end
+
+-- A message's tree starts under item: the whole cap is left.
+local function items_begin(item)
+    left, hidden, top, expert_moved = MAX_TREE_ITEMS, 0, item, false
+end
+
+-- How many items the message's tree did not show.
+local function items_hidden()
+    return hidden
+end
+
+-- tree:add(f, a), where a is a range, or the value of a generated item; counted.
+local function add(tree, f, a)
+    if left > 0 then
+        left = left - 1
+        return tree:add(f, a)
+    end
+    hidden = hidden + 1
+    return HIDDEN
+end
+
+-- tree:add(f, range, value); counted.
+local function add_value(tree, f, range, value)
+    if left > 0 then
+        left = left - 1
+        return tree:add(f, range, value)
+    end
+    hidden = hidden + 1
+    return HIDDEN
+end
+
+-- tree:add_packet_field(f, range, encoding); counted.
+local function add_field(tree, f, range, encoding)
+    if left > 0 then
+        left = left - 1
+        return tree:add_packet_field(f, range, encoding)
+    end
+    hidden = hidden + 1
+    return HIDDEN
+end
+
+rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS = items_begin, items_hidden, MAX_TREE_ITEMS
+rt.add, rt.add_value, rt.add_field = add, add_value, add_field
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- Runtime: walk.lua (codegen/templates/lua/runtime/walk.lua)
 -- =============================================================================================
 do
@@ -2092,13 +2168,14 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
 local version_in, enum_names = rt.version_in, rt.enum_names
+local add, add_value, add_field = rt.add, rt.add_value, rt.add_field
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
 
 -- A text field; a zero-length one still shows, at its offset.
 local function add_text(tree, f, tvb, o, n)
-    return tree:add_packet_field(f, tvb(o, n), ENC_UTF_8)
+    return add_field(tree, f, tvb(o, n), ENC_UTF_8)
 end
 
 -- The number of a scalar descriptor at o (range is tvb(o, d.n)), in its own wire type.
@@ -2120,10 +2197,10 @@ end
 -- One scalar into the tree: explicitly when its wire type is narrower than its field's, named
 -- by the version when its enum needs it. Its item, and its number when it was read.
 local function add_scalar(tree, range, o, st, d)
-    if not (d.value or d.tables or d.keep) then return tree:add(d.f, range), nil end
+    if not (d.value or d.tables or d.keep) then return add(tree, d.f, range), nil end
     local v = number_at(range, st.raw, o, d)
     local item
-    if d.value then item = tree:add(d.f, range, v) else item = tree:add(d.f, range) end
+    if d.value then item = add_value(tree, d.f, range, v) else item = add(tree, d.f, range) end
     if d.tables then rename(item, d.label, d.tables, st.version, v) end
     return item, v
 end
@@ -2145,7 +2222,7 @@ function KIND.bits(tvb, tree, o, e, st, d, pre)
     -- The bits read the range itself (a narrower range holds the low bits).
     local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
-    for i = 1, #bits do item:add(bits[i], range) end
+    for i = 1, #bits do add(item, bits[i], range) end
     return o + d.n
 end
 
@@ -2180,7 +2257,7 @@ function KIND.group(tvb, tree, o, e, st, d, pre)
     while (count and i < count) or (not count and o < e) do
         local start = o
         local fits = size and o + size <= e
-        local item = tree:add(d.f, tvb(o, fits and size or 0))
+        local item = add(tree, d.f, tvb(o, fits and size or 0))
         local label, prefix = item_names(d, pre, i)
         item:set_text(label)
         local err
@@ -2215,7 +2292,7 @@ end
 
 -- Opaque bytes to the end of the layout.
 function KIND.bytes(tvb, tree, o, e, st, d)
-    tree:add(d.f, tvb(o, e - o))
+    add(tree, d.f, tvb(o, e - o))
     return e
 end
 
@@ -2235,7 +2312,7 @@ end
 function KIND.switch(tvb, tree, o, e, st, d, pre)
     local c = d.cases[kept[d.sel]] or d.default
     if o + c.n > e then return nil, short(st, (pre or "") .. d.path, o, c.n, e) end
-    tree:add(c.f, tvb(o, c.n))
+    add(tree, c.f, tvb(o, c.n))
     return o + c.n
 end
 
@@ -2274,6 +2351,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, short, negative = rt.be_int, rt.short, rt.negative
 local value_table, add_text = rt.value_table, rt.add_text
+local add, add_value = rt.add, rt.add_value
 
 local MAX_VALUE_DEPTH = spec.max_value_depth
 local VALUE_TABLES = spec.value_tables
@@ -2290,24 +2368,24 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
     local kind = kinds[code]
     if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
     local start = o
-    local item = tree:add(vf.item, tvb(o, 1))
+    local item = add(tree, vf.item, tvb(o, 1))
     item:set_text(path .. ": " .. kind.name)
-    item:add(vf.type, tvb(o, 1), kind.name)
-    item:add(vf.code, tvb(o, 1))
+    add_value(item, vf.type, tvb(o, 1), kind.name)
+    add(item, vf.code, tvb(o, 1))
     o = o + 1
     local layout = kind.layout
     if layout == "scalar" or layout == "array" then
         local need = kind.n * kind.count
         if o + need > e then return nil, short(st, path, o, need, e) end
         for _ = 1, kind.count do
-            item:add(vf[kind.item], tvb(o, kind.n))
+            add(item, vf[kind.item], tvb(o, kind.n))
             o = o + kind.n
         end
     elseif layout == "string" then
         if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
         local n = be_int(raw, o, kind.len)
         if n < 0 then return nil, negative(st, path, o, n) end
-        item:add(vf.count, tvb(o, kind.len))
+        add(item, vf.count, tvb(o, kind.len))
         o = o + kind.len
         if o + n > e then return nil, short(st, path, o, n, e) end
         add_text(item, vf.string, tvb, o, n)
@@ -2316,7 +2394,7 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
         if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
         local n = be_int(raw, o, kind.len)
         if n < 0 then return nil, negative(st, path, o, n) end
-        item:add(vf.count, tvb(o, kind.len))
+        add(item, vf.count, tvb(o, kind.len))
         o = o + kind.len
         for i = 0, n - 1 do
             local err
@@ -2328,11 +2406,11 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
         local rows, cols = be_int(raw, o, kind.len), be_int(raw, o + kind.len, kind.len)
         if rows < 0 then return nil, negative(st, path, o, rows) end
         if cols < 0 then return nil, negative(st, path, o + kind.len, cols) end
-        item:add(vf.rows, tvb(o, kind.len))
-        item:add(vf.cols, tvb(o + kind.len, kind.len))
+        add(item, vf.rows, tvb(o, kind.len))
+        add(item, vf.cols, tvb(o + kind.len, kind.len))
         o = o + 2 * kind.len
         for r = 0, rows - 1 do
-            local row = item:add(vf.row, tvb(o, 0))
+            local row = add(item, vf.row, tvb(o, 0))
             row:set_text(fmt("Row %d", r))
             local row_start = o
             for c = 0, cols - 1 do
@@ -2537,6 +2615,7 @@ local be_int, walk, version_text = rt.be_int, rt.walk, rt.version_text
 local choose, pick, enum_names, named_in_any, rename = rt.choose, rt.pick, rt.enum_names, rt.named_in_any, rt.rename
 local layout_summary, package_summary, labelled = rt.layout_summary, rt.package_summary, rt.labelled
 local X, E = rt.X, rt.E
+local add = rt.add
 local HEADER = spec.header_size
 local PACKAGE_HEADER = spec.package_header_size
 local PACKAGE_LENGTH = spec.package_length_size
@@ -2558,10 +2637,10 @@ local function walk_body(tvb, item, body, stop, st, layout, name, v)
     local used, err = walk(tvb, item, body, stop, st, layout, nil)
     st.version = keep
     if not used then
-        item:add(X.raw, tvb(body, stop - body))
+        add(item, X.raw, tvb(body, stop - body))
         item:add_proto_expert_info(E.malformed, name .. ": " .. err)
     elseif used < stop then
-        item:add(X.extra, tvb(used, stop - used))
+        add(item, X.extra, tvb(used, stop - used))
         item:add_proto_expert_info(E.extra, fmt("%s: %d bytes after the layout", name, stop - used))
     end
 end
@@ -2569,7 +2648,7 @@ end
 -- A type or subtype code: its field, and under a version whose table names it otherwise, that
 -- name. tables: the enum's tables by version, nil when its names do not depend on it.
 local function add_code(tree, f, range, label, tables, v, code)
-    local item = tree:add(f, range)
+    local item = add(tree, f, range)
     if tables then rename(item, label, tables, v, code) end
     return item
 end
@@ -2591,12 +2670,12 @@ end })
 local function show_version(item, st)
     local v, implied = st.message_version, st.message_implied
     if implied then
-        item:add(X.version, FROM_SIZES[implied]):set_generated()
+        add(item, X.version, FROM_SIZES[implied]):set_generated()
     else
-        item:add(X.version, version_text(v)):set_generated()
+        add(item, X.version, version_text(v)):set_generated()
     end
     if st.announced then return end
-    item:add(X.assumed, true):set_generated()
+    add(item, X.assumed, true):set_generated()
     if implied then
         item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: software %s, as the layout sizes show", implied))
     elseif st.from_pref then
@@ -2636,7 +2715,7 @@ KINDS.packages = {
                 err = fmt("package at offset %d: length %d exceeds the %d bytes left", p - st.base, size, left)
             end
             if err then
-                tree:add(X.raw, tvb(p, left))
+                add(tree, X.raw, tvb(p, left))
                 tree:add_proto_expert_info(E.malformed, err)
                 return
             end
@@ -2648,10 +2727,10 @@ KINDS.packages = {
                 pk = form.of
             end
             local v = use or st.version
-            local item = tree:add(pk and pk.item or X.unknown_package, tvb(p, size))
+            local item = add(tree, pk and pk.item or X.unknown_package, tvb(p, size))
             local name, named = code_name(m.types, m.type_tables, v, code)
             if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
-            item:add(m.length, tvb(p, PACKAGE_LENGTH))
+            add(item, m.length, tvb(p, PACKAGE_LENGTH))
             add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
             if by_length then note_length(item, form, size) end
             local body, stop = p + PACKAGE_HEADER, p + size
@@ -2660,7 +2739,7 @@ KINDS.packages = {
             elseif pk then
                 walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
             else
-                item:add(X.raw, tvb(body, stop - body))
+                add(item, X.raw, tvb(body, stop - body))
                 -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
                 if not named then
                     item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
@@ -2688,7 +2767,7 @@ KINDS.subtypes = {
         local body = o + m.body_offset
         if e < body then
             local _, err = walk(tvb, tree, o + HEADER, e, st, m.header, nil)
-            if e - o > HEADER then tree:add(X.raw, tvb(o + HEADER, e - o - HEADER)) end
+            if e - o > HEADER then add(tree, X.raw, tvb(o + HEADER, e - o - HEADER)) end
             tree:add_proto_expert_info(E.malformed, err or "too short")
             return
         end
@@ -2696,7 +2775,7 @@ KINDS.subtypes = {
         local forms = m.subtypes[code]
         if not forms then
             walk(tvb, tree, o + HEADER, body, st, m.header, nil)
-            if body < e then tree:add(X.raw, tvb(body, e - body)) end
+            if body < e then add(tree, X.raw, tvb(body, e - body)) end
             local _, named = code_name(m.subtype_names, m.subtype_tables, st.version, code)
             if not named then
                 tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
@@ -2705,7 +2784,7 @@ KINDS.subtypes = {
         end
         local form, use, by_length = choose(forms, e - body, st.version)
         local s = form.of
-        local item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
+        local item = add(tree, s.item, tvb(o + HEADER, e - o - HEADER))
         -- The header again, under the subtype's own names (ur.key.timestamp).
         walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
         add_code(item, m.subtype_field, tvb(body - 1, 1), m.subtype_label, m.subtype_tables, use, code)
@@ -2858,6 +2937,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
 local enum_names, rename = rt.enum_names, rt.rename
+local items_begin, items_hidden, MAX_TREE_ITEMS = rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS
 local stream_load, stream_save = rt.stream_load, rt.stream_save
 local carry_new, carry_add, carry_bytes = rt.carry_new, rt.carry_add, rt.carry_bytes
 local X, E, handlers = rt.X, rt.E, rt.handlers
@@ -2966,7 +3046,12 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     st.visible = tree.visible
     if h then
         item:append_text(h.suffix)
+        items_begin(item)
         h.tree(h.m, tvb, item, o, e, st)
+        local hidden = items_hidden()
+        if hidden > 0 then
+            item:add_proto_expert_info(E.items_hidden, fmt("%d more items not shown (a message shows at most %d)", hidden, MAX_TREE_ITEMS))
+        end
     elseif e - o > HEADER then
         -- A known type without a layout (e.g. 24): kept raw, not an error.
         item:add(X.raw, tvb(o + HEADER, e - o - HEADER))

@@ -5,6 +5,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
 local enum_names, rename = rt.enum_names, rt.rename
+local items_begin, items_hidden, MAX_TREE_ITEMS = rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS
 local stream_load, stream_save = rt.stream_load, rt.stream_save
 local carry_new, carry_add, carry_bytes = rt.carry_new, rt.carry_add, rt.carry_bytes
 local X, E, handlers = rt.X, rt.E, rt.handlers
@@ -113,7 +114,12 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     st.visible = tree.visible
     if h then
         item:append_text(h.suffix)
+        items_begin(item)
         h.tree(h.m, tvb, item, o, e, st)
+        local hidden = items_hidden()
+        if hidden > 0 then
+            item:add_proto_expert_info(E.items_hidden, fmt("%d more items not shown (a message shows at most %d)", hidden, MAX_TREE_ITEMS))
+        end
     elseif e - o > HEADER then
         -- A known type without a layout (e.g. 24): kept raw, not an error.
         item:add(X.raw, tvb(o + HEADER, e - o - HEADER))
