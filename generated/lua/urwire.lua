@@ -2882,11 +2882,13 @@ local function reset()
     snap_version, snap_implied, snap_resync, snap_carry, snap_carried = {}, {}, {}, {}, {}
 end
 
+-- The state a call starts with, kept under a call's key or a frame's.
 local function snapshot(at, version, implied, resync, carry, carried)
     snap_version[at], snap_implied[at], snap_resync[at] = version, implied, resync
     snap_carry[at], snap_carried[at] = carry, carried
 end
 
+-- That state again, as stream_load returns it.
 local function snapshot_at(at, stream)
     return snap_version[at], snap_implied[at], snap_resync[at], snap_carry[at], snap_carried[at], stream
 end
