@@ -25,8 +25,12 @@ OUT = "lua/urwire.lua"
 
 # The hand-written runtime, in the order it is joined. Each file is a chunk that receives
 # (spec, rt): `spec` is the generated data, `rt` what earlier runtime files export.
-RUNTIME = ("declare.lua", "bytes.lua", "versions.lua", "walk.lua", "values.lua", "info.lua",
-           "messages.lua", "stream.lua", "framing.lua", "register.lua")
+RUNTIME = ("declare.lua", "bytes.lua", "versions.lua", "items.lua", "walk.lua", "values.lua", "info.lua",
+           "messages.lua", "carry.lua", "stream.lua", "framing.lua", "register.lua")
+
+# The most tree items one message shows in Wireshark (runtime/items.lua); an expert note says
+# how many more it holds. Wireshark itself stops a packet at a million items.
+MAX_TREE_ITEMS = 10_000
 
 # ProtoField constructor per scalar (integers take base and value strings, floats do not).
 PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16", "uint16": "uint16",
@@ -480,6 +484,7 @@ class _Builder:
         return dict(title=p.title, header_size=p.header_size, length_size=p.message_length.scalar.size,
                     package_header_size=p.package_header_size, package_length_size=p.package_length.scalar.size,
                     max_message_length=p.max_message_length, max_value_depth=p.max_value_depth,
+                    max_tree_items=MAX_TREE_ITEMS,
                     default_ports=",".join(str(x) for x in p.ports),
                     default_version=ir.version_text(p.default_version))
 

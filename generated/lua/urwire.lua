@@ -1788,6 +1788,7 @@ local spec = {
     package_length_size = 4,
     max_message_length = 1048576,
     max_value_depth = 8,
+    max_tree_items = 10000,
     default_ports = "30001,30002,30011,30012",
     default_version = "5.9",
     F = F,
@@ -1830,6 +1831,7 @@ local E = {
     unknown = ProtoExpert.new("ur.unknown", "Type not laid out by the spec, kept raw", expert.group.UNDECODED, expert.severity.NOTE),
     assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)", expert.group.ASSUMPTION, expert.severity.NOTE),
     by_length = ProtoExpert.new("ur.layout_by_length", "Layout chosen by its length, not by the software version", expert.group.ASSUMPTION, expert.severity.NOTE),
+    items_hidden = ProtoExpert.new("ur.items_hidden", "More tree items than a message shows", expert.group.UNDECODED, expert.severity.NOTE),
     internal = ProtoExpert.new("ur.internal_error", "urwire dissector error", expert.group.MALFORMED, expert.severity.ERROR),
 }
 
@@ -1840,7 +1842,7 @@ for _, f in ipairs({ X.raw, X.extra, X.skipped, X.version, X.assumed, X.unknown_
     fields[#fields + 1] = f
 end
 ur.fields = fields
-ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.by_length, E.internal }
+ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.by_length, E.items_hidden, E.internal }
 
 rt.X, rt.E = X, E
 end)(spec, rt)
@@ -2075,6 +2077,80 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- Runtime: items.lua (codegen/templates/lua/runtime/items.lua)
+-- =============================================================================================
+do
+(function(...)
+-- The tree items of one message: at most spec.max_tree_items under the message's item. A
+-- message of a megabyte can hold hundreds of thousands of values; Wireshark slows down long
+-- before it stops at a million items per packet, which would end the dissection with an error.
+-- Past the cap the fields are still walked, so that errors are still found, but they go to
+-- HIDDEN, an item that shows nothing and counts what is added to it; the first expert info it
+-- is given goes to the message's item, so that a malformed message still reads as one.
+local spec, rt = ...
+local MAX_TREE_ITEMS = spec.max_tree_items
+
+local left, hidden, top, expert_moved = MAX_TREE_ITEMS, 0, nil, false
+
+local HIDDEN = {}
+function HIDDEN:add() hidden = hidden + 1; return HIDDEN end
+HIDDEN.add_packet_field = HIDDEN.add
+function HIDDEN:set_text() end
+HIDDEN.append_text, HIDDEN.set_len = HIDDEN.set_text, HIDDEN.set_text
+function HIDDEN:set_generated() return HIDDEN end
+function HIDDEN:referenced(f) return top:referenced(f) end
+function HIDDEN:add_proto_expert_info(e, text)
+    if expert_moved then hidden = hidden + 1; return end
+    expert_moved = true
+    top:add_proto_expert_info(e, text)
+end
+
+-- A message's tree starts under item: the whole cap is left.
+local function items_begin(item)
+    left, hidden, top, expert_moved = MAX_TREE_ITEMS, 0, item, false
+end
+
+-- How many items the message's tree did not show.
+local function items_hidden()
+    return hidden
+end
+
+-- tree:add(f, a), where a is a range, or the value of a generated item; counted.
+local function add(tree, f, a)
+    if left > 0 then
+        left = left - 1
+        return tree:add(f, a)
+    end
+    hidden = hidden + 1
+    return HIDDEN
+end
+
+-- tree:add(f, range, value); counted.
+local function add_value(tree, f, range, value)
+    if left > 0 then
+        left = left - 1
+        return tree:add(f, range, value)
+    end
+    hidden = hidden + 1
+    return HIDDEN
+end
+
+-- tree:add_packet_field(f, range, encoding); counted.
+local function add_field(tree, f, range, encoding)
+    if left > 0 then
+        left = left - 1
+        return tree:add_packet_field(f, range, encoding)
+    end
+    hidden = hidden + 1
+    return HIDDEN
+end
+
+rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS = items_begin, items_hidden, MAX_TREE_ITEMS
+rt.add, rt.add_value, rt.add_field = add, add_value, add_field
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- Runtime: walk.lua (codegen/templates/lua/runtime/walk.lua)
 -- =============================================================================================
 do
@@ -2092,13 +2168,14 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
 local version_in, enum_names = rt.version_in, rt.enum_names
+local add, add_value, add_field = rt.add, rt.add_value, rt.add_field
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
 
 -- A text field; a zero-length one still shows, at its offset.
 local function add_text(tree, f, tvb, o, n)
-    return tree:add_packet_field(f, tvb(o, n), ENC_UTF_8)
+    return add_field(tree, f, tvb(o, n), ENC_UTF_8)
 end
 
 -- The number of a scalar descriptor at o (range is tvb(o, d.n)), in its own wire type.
@@ -2120,10 +2197,10 @@ end
 -- One scalar into the tree: explicitly when its wire type is narrower than its field's, named
 -- by the version when its enum needs it. Its item, and its number when it was read.
 local function add_scalar(tree, range, o, st, d)
-    if not (d.value or d.tables or d.keep) then return tree:add(d.f, range), nil end
+    if not (d.value or d.tables or d.keep) then return add(tree, d.f, range), nil end
     local v = number_at(range, st.raw, o, d)
     local item
-    if d.value then item = tree:add(d.f, range, v) else item = tree:add(d.f, range) end
+    if d.value then item = add_value(tree, d.f, range, v) else item = add(tree, d.f, range) end
     if d.tables then rename(item, d.label, d.tables, st.version, v) end
     return item, v
 end
@@ -2145,7 +2222,7 @@ function KIND.bits(tvb, tree, o, e, st, d, pre)
     -- The bits read the range itself (a narrower range holds the low bits).
     local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
-    for i = 1, #bits do item:add(bits[i], range) end
+    for i = 1, #bits do add(item, bits[i], range) end
     return o + d.n
 end
 
@@ -2180,7 +2257,7 @@ function KIND.group(tvb, tree, o, e, st, d, pre)
     while (count and i < count) or (not count and o < e) do
         local start = o
         local fits = size and o + size <= e
-        local item = tree:add(d.f, tvb(o, fits and size or 0))
+        local item = add(tree, d.f, tvb(o, fits and size or 0))
         local label, prefix = item_names(d, pre, i)
         item:set_text(label)
         local err
@@ -2215,7 +2292,7 @@ end
 
 -- Opaque bytes to the end of the layout.
 function KIND.bytes(tvb, tree, o, e, st, d)
-    tree:add(d.f, tvb(o, e - o))
+    add(tree, d.f, tvb(o, e - o))
     return e
 end
 
@@ -2235,7 +2312,7 @@ end
 function KIND.switch(tvb, tree, o, e, st, d, pre)
     local c = d.cases[kept[d.sel]] or d.default
     if o + c.n > e then return nil, short(st, (pre or "") .. d.path, o, c.n, e) end
-    tree:add(c.f, tvb(o, c.n))
+    add(tree, c.f, tvb(o, c.n))
     return o + c.n
 end
 
@@ -2274,6 +2351,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, short, negative = rt.be_int, rt.short, rt.negative
 local value_table, add_text = rt.value_table, rt.add_text
+local add, add_value = rt.add, rt.add_value
 
 local MAX_VALUE_DEPTH = spec.max_value_depth
 local VALUE_TABLES = spec.value_tables
@@ -2290,24 +2368,24 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
     local kind = kinds[code]
     if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
     local start = o
-    local item = tree:add(vf.item, tvb(o, 1))
+    local item = add(tree, vf.item, tvb(o, 1))
     item:set_text(path .. ": " .. kind.name)
-    item:add(vf.type, tvb(o, 1), kind.name)
-    item:add(vf.code, tvb(o, 1))
+    add_value(item, vf.type, tvb(o, 1), kind.name)
+    add(item, vf.code, tvb(o, 1))
     o = o + 1
     local layout = kind.layout
     if layout == "scalar" or layout == "array" then
         local need = kind.n * kind.count
         if o + need > e then return nil, short(st, path, o, need, e) end
         for _ = 1, kind.count do
-            item:add(vf[kind.item], tvb(o, kind.n))
+            add(item, vf[kind.item], tvb(o, kind.n))
             o = o + kind.n
         end
     elseif layout == "string" then
         if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
         local n = be_int(raw, o, kind.len)
         if n < 0 then return nil, negative(st, path, o, n) end
-        item:add(vf.count, tvb(o, kind.len))
+        add(item, vf.count, tvb(o, kind.len))
         o = o + kind.len
         if o + n > e then return nil, short(st, path, o, n, e) end
         add_text(item, vf.string, tvb, o, n)
@@ -2316,7 +2394,7 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
         if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
         local n = be_int(raw, o, kind.len)
         if n < 0 then return nil, negative(st, path, o, n) end
-        item:add(vf.count, tvb(o, kind.len))
+        add(item, vf.count, tvb(o, kind.len))
         o = o + kind.len
         for i = 0, n - 1 do
             local err
@@ -2328,11 +2406,11 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
         local rows, cols = be_int(raw, o, kind.len), be_int(raw, o + kind.len, kind.len)
         if rows < 0 then return nil, negative(st, path, o, rows) end
         if cols < 0 then return nil, negative(st, path, o + kind.len, cols) end
-        item:add(vf.rows, tvb(o, kind.len))
-        item:add(vf.cols, tvb(o + kind.len, kind.len))
+        add(item, vf.rows, tvb(o, kind.len))
+        add(item, vf.cols, tvb(o + kind.len, kind.len))
         o = o + 2 * kind.len
         for r = 0, rows - 1 do
-            local row = item:add(vf.row, tvb(o, 0))
+            local row = add(item, vf.row, tvb(o, 0))
             row:set_text(fmt("Row %d", r))
             local row_start = o
             for c = 0, cols - 1 do
@@ -2537,6 +2615,7 @@ local be_int, walk, version_text = rt.be_int, rt.walk, rt.version_text
 local choose, pick, enum_names, named_in_any, rename = rt.choose, rt.pick, rt.enum_names, rt.named_in_any, rt.rename
 local layout_summary, package_summary, labelled = rt.layout_summary, rt.package_summary, rt.labelled
 local X, E = rt.X, rt.E
+local add = rt.add
 local HEADER = spec.header_size
 local PACKAGE_HEADER = spec.package_header_size
 local PACKAGE_LENGTH = spec.package_length_size
@@ -2558,10 +2637,10 @@ local function walk_body(tvb, item, body, stop, st, layout, name, v)
     local used, err = walk(tvb, item, body, stop, st, layout, nil)
     st.version = keep
     if not used then
-        item:add(X.raw, tvb(body, stop - body))
+        add(item, X.raw, tvb(body, stop - body))
         item:add_proto_expert_info(E.malformed, name .. ": " .. err)
     elseif used < stop then
-        item:add(X.extra, tvb(used, stop - used))
+        add(item, X.extra, tvb(used, stop - used))
         item:add_proto_expert_info(E.extra, fmt("%s: %d bytes after the layout", name, stop - used))
     end
 end
@@ -2569,7 +2648,7 @@ end
 -- A type or subtype code: its field, and under a version whose table names it otherwise, that
 -- name. tables: the enum's tables by version, nil when its names do not depend on it.
 local function add_code(tree, f, range, label, tables, v, code)
-    local item = tree:add(f, range)
+    local item = add(tree, f, range)
     if tables then rename(item, label, tables, v, code) end
     return item
 end
@@ -2591,12 +2670,12 @@ end })
 local function show_version(item, st)
     local v, implied = st.message_version, st.message_implied
     if implied then
-        item:add(X.version, FROM_SIZES[implied]):set_generated()
+        add(item, X.version, FROM_SIZES[implied]):set_generated()
     else
-        item:add(X.version, version_text(v)):set_generated()
+        add(item, X.version, version_text(v)):set_generated()
     end
     if st.announced then return end
-    item:add(X.assumed, true):set_generated()
+    add(item, X.assumed, true):set_generated()
     if implied then
         item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: software %s, as the layout sizes show", implied))
     elseif st.from_pref then
@@ -2636,7 +2715,7 @@ KINDS.packages = {
                 err = fmt("package at offset %d: length %d exceeds the %d bytes left", p - st.base, size, left)
             end
             if err then
-                tree:add(X.raw, tvb(p, left))
+                add(tree, X.raw, tvb(p, left))
                 tree:add_proto_expert_info(E.malformed, err)
                 return
             end
@@ -2648,10 +2727,10 @@ KINDS.packages = {
                 pk = form.of
             end
             local v = use or st.version
-            local item = tree:add(pk and pk.item or X.unknown_package, tvb(p, size))
+            local item = add(tree, pk and pk.item or X.unknown_package, tvb(p, size))
             local name, named = code_name(m.types, m.type_tables, v, code)
             if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
-            item:add(m.length, tvb(p, PACKAGE_LENGTH))
+            add(item, m.length, tvb(p, PACKAGE_LENGTH))
             add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
             if by_length then note_length(item, form, size) end
             local body, stop = p + PACKAGE_HEADER, p + size
@@ -2660,7 +2739,7 @@ KINDS.packages = {
             elseif pk then
                 walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
             else
-                item:add(X.raw, tvb(body, stop - body))
+                add(item, X.raw, tvb(body, stop - body))
                 -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
                 if not named then
                     item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
@@ -2688,7 +2767,7 @@ KINDS.subtypes = {
         local body = o + m.body_offset
         if e < body then
             local _, err = walk(tvb, tree, o + HEADER, e, st, m.header, nil)
-            if e - o > HEADER then tree:add(X.raw, tvb(o + HEADER, e - o - HEADER)) end
+            if e - o > HEADER then add(tree, X.raw, tvb(o + HEADER, e - o - HEADER)) end
             tree:add_proto_expert_info(E.malformed, err or "too short")
             return
         end
@@ -2696,7 +2775,7 @@ KINDS.subtypes = {
         local forms = m.subtypes[code]
         if not forms then
             walk(tvb, tree, o + HEADER, body, st, m.header, nil)
-            if body < e then tree:add(X.raw, tvb(body, e - body)) end
+            if body < e then add(tree, X.raw, tvb(body, e - body)) end
             local _, named = code_name(m.subtype_names, m.subtype_tables, st.version, code)
             if not named then
                 tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
@@ -2705,7 +2784,7 @@ KINDS.subtypes = {
         end
         local form, use, by_length = choose(forms, e - body, st.version)
         local s = form.of
-        local item = tree:add(s.item, tvb(o + HEADER, e - o - HEADER))
+        local item = add(tree, s.item, tvb(o + HEADER, e - o - HEADER))
         -- The header again, under the subtype's own names (ur.key.timestamp).
         walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
         add_code(item, m.subtype_field, tvb(body - 1, 1), m.subtype_label, m.subtype_tables, use, code)
@@ -2729,6 +2808,50 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- Runtime: carry.lua (codegen/templates/lua/runtime/carry.lua)
+-- =============================================================================================
+do
+(function(...)
+-- Bytes carried over by hand from segment to segment while a stream is out of step with TCP
+-- reassembly (after a bad header). Each call's bytes are kept as one more part, and the parts
+-- are joined once, when the message they hold is whole: carrying n bytes costs time and memory
+-- in n, however small the segments. A carry starts at a message header (or holds less than
+-- one) and is only appended to, so its first k bytes, where a call started, stay the same for
+-- later passes; one carry is shared by every call it spans.
+local spec, rt = ...
+local concat, sub = table.concat, string.sub
+local HEADER = spec.header_size
+
+-- A carry holding the bytes s. head: its first bytes, up to a header's worth.
+local function carry_new(s)
+    return { parts = { s }, size = #s, head = sub(s, 1, HEADER) }
+end
+
+-- Carry c takes the bytes s of one more call.
+local function carry_add(c, s)
+    local parts = c.parts
+    parts[#parts + 1] = s
+    c.size = c.size + #s
+    if #c.head < HEADER then c.head = sub(c.head .. s, 1, HEADER) end
+end
+
+-- The first n bytes of carry c as one string. The parts are joined once and kept joined.
+local function carry_bytes(c, n)
+    local parts = c.parts
+    if #parts > 1 then
+        parts = { concat(parts) }
+        c.parts = parts
+    end
+    local all = parts[1]
+    if n == #all then return all end
+    return sub(all, 1, n)
+end
+
+rt.carry_new, rt.carry_add, rt.carry_bytes = carry_new, carry_add, carry_bytes
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- Runtime: stream.lua (codegen/templates/lua/runtime/stream.lua)
 -- =============================================================================================
 do
@@ -2736,9 +2859,11 @@ do
 -- State of each TCP stream: the software version its Version message announced or its layout
 -- sizes showed (nil: none yet; `implied` names the versions of the form whose size showed it),
 -- whether the dissector is resynchronising after a bad header, and the bytes carried over
--- from earlier segments while it does. First pass: the state moves along, and a snapshot of it
--- is kept for each dissector call (frame number and tvb length). Later passes (tshark -2, clicks
--- in the GUI, in any order) reuse the snapshot, so both agree.
+-- from earlier segments while it does (a carry, runtime/carry.lua). First pass: the state moves
+-- along, and a snapshot of it is kept for each dissector call (frame number and tvb length): a
+-- carry is kept once, and a snapshot holds it with how many of its bytes the call started
+-- with. Later passes (tshark -2, clicks in the GUI, in any order) reuse the snapshot, so both
+-- agree.
 -- Streams are keyed by their two ports (a number: no string is made per packet). Field.new(
 -- "tcp.stream") gives nothing on a first pass without a tree (tshark -2), and Conversation only
 -- exists from Wireshark 4.6. Two robots talking to clients that use the same port number at the
@@ -2749,36 +2874,44 @@ local CALL_SPAN = 1048576   -- a call's key: frame number * CALL_SPAN + tvb leng
 
 local stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
 -- by call (frame, tvb length), and by -frame
-local snap_version, snap_implied, snap_resync, snap_carry = {}, {}, {}, {}
+local snap_version, snap_implied, snap_resync, snap_carry, snap_carried = {}, {}, {}, {}, {}
 
 -- A new capture: forget every stream.
 local function reset()
     stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
-    snap_version, snap_implied, snap_resync, snap_carry = {}, {}, {}, {}
+    snap_version, snap_implied, snap_resync, snap_carry, snap_carried = {}, {}, {}, {}, {}
 end
 
--- The state as a call with n bytes starts: version, implied, resync, carry, and the stream's
--- key for stream_save.
+-- The state a call starts with, kept under a call's key or a frame's.
+local function snapshot(at, version, implied, resync, carry, carried)
+    snap_version[at], snap_implied[at], snap_resync[at] = version, implied, resync
+    snap_carry[at], snap_carried[at] = carry, carried
+end
+
+-- That state again, as stream_load returns it.
+local function snapshot_at(at, stream)
+    return snap_version[at], snap_implied[at], snap_resync[at], snap_carry[at], snap_carried[at], stream
+end
+
+-- The state as a call with n bytes starts: version, implied, resync, carry, how many bytes of
+-- the carry are this call's (nil: no carry), and the stream's key for stream_save.
 local function stream_load(pinfo, n)
     local stream = pinfo.src_port * 65536 + pinfo.dst_port
     local key = pinfo.number * CALL_SPAN + n % CALL_SPAN
     local frame = -pinfo.number
     if pinfo.visited and snap_resync[key] ~= nil then
-        return snap_version[key], snap_implied[key], snap_resync[key], snap_carry[key], stream
+        return snapshot_at(key, stream)
     elseif pinfo.visited and snap_resync[frame] ~= nil then
         -- Later passes may hand over other bytes than the first (TCP reassembly replays
         -- differently): fall back to the state of the frame's first call.
-        return snap_version[frame], snap_implied[frame], snap_resync[frame], snap_carry[frame], stream
+        return snapshot_at(frame, stream)
     end
     local version, implied = stream_version[stream], stream_implied[stream]
     local resync, carry = stream_resync[stream] or false, stream_carry[stream]
-    if snap_resync[key] == nil then
-        snap_version[key], snap_implied[key], snap_resync[key], snap_carry[key] = version, implied, resync, carry
-    end
-    if snap_resync[frame] == nil then
-        snap_version[frame], snap_implied[frame], snap_resync[frame], snap_carry[frame] = version, implied, resync, carry
-    end
-    return version, implied, resync, carry, stream
+    local carried = carry and carry.size
+    if snap_resync[key] == nil then snapshot(key, version, implied, resync, carry, carried) end
+    if snap_resync[frame] == nil then snapshot(frame, version, implied, resync, carry, carried) end
+    return version, implied, resync, carry, carried, stream
 end
 
 -- The state as a call ends; kept on the first pass only.
@@ -2806,7 +2939,9 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
 local enum_names, rename = rt.enum_names, rt.rename
+local items_begin, items_hidden, MAX_TREE_ITEMS = rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS
 local stream_load, stream_save = rt.stream_load, rt.stream_save
+local carry_new, carry_add, carry_bytes = rt.carry_new, rt.carry_add, rt.carry_bytes
 local X, E, handlers = rt.X, rt.E, rt.handlers
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
@@ -2846,6 +2981,13 @@ local function header_fault(raw, o, max_length)
     if size < HEADER then return E.bad_length, fmt("length %d is below %d", size, HEADER) end
     if size > max_length then return E.bad_length, fmt("length %d is above %d", size, max_length) end
     return E.bad_type, fmt("unknown message type %d", byte(raw, o + LENGTH + 1))
+end
+
+-- How many bytes carry c must hold before a call can go on with it: its message's length once
+-- its header is whole (a carry only starts at a plausible header), else a header's.
+local function carry_need(c, max_length)
+    if #c.head == HEADER and plausible(c.head, 0, max_length) then return be_int(c.head, 0, LENGTH) end
+    return HEADER
 end
 
 -- Resynchronising: scan buf (bytes carried from earlier segments, then this tvb's) from p for
@@ -2906,7 +3048,12 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     st.visible = tree.visible
     if h then
         item:append_text(h.suffix)
+        items_begin(item)
         h.tree(h.m, tvb, item, o, e, st)
+        local hidden = items_hidden()
+        if hidden > 0 then
+            item:add_proto_expert_info(E.items_hidden, fmt("%d more items not shown (a message shows at most %d)", hidden, MAX_TREE_ITEMS))
+        end
     elseif e - o > HEADER then
         -- A known type without a layout (e.g. 24): kept raw, not an error.
         item:add(X.raw, tvb(o + HEADER, e - o - HEADER))
@@ -2929,18 +3076,25 @@ local function dissect(tvb, pinfo, tree)
     cur.first = true
 
     -- The stream's state as this call starts.
-    local resync, carry, stream
-    cur.version, cur.implied, resync, carry, stream = stream_load(pinfo, n)
+    local resync, carry, carried, stream
+    cur.version, cur.implied, resync, carry, carried, stream = stream_load(pinfo, n)
 
     pinfo.cols.protocol:set("UR")
     -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
     -- stream state) until it is back in step, instead of by TCP reassembly: asking TCP for more
     -- bytes after a fault makes later passes hand over other bytes, and the fault would not
-    -- show there. Carried bytes come first, in a tvb of their own.
+    -- show there. Carried bytes come first, in a tvb of their own, made once the message they
+    -- start is whole.
     local by_hand = carry ~= nil or resync
     local data, buf = tvb, raw
     if carry then
-        buf = carry .. raw
+        if not resync and carried + n < carry_need(carry, max_length) then
+            -- Still inside the carried message: keep these bytes too, and show nothing yet.
+            if not pinfo.visited then carry_add(carry, raw) end
+            stream_save(pinfo, stream, cur.version, cur.implied, resync, carry)
+            return n
+        end
+        buf = carry_bytes(carry, carried) .. raw
         data = ByteArray.new(buf, true):tvb("UR bytes carried over")
     end
     n = #buf
@@ -2957,7 +3111,7 @@ local function dissect(tvb, pinfo, tree)
             if stop > 0 and cur.detail then data_item(tree, data, 0, stop) end
             set_info(pinfo, true, "Resynchronising: no message header yet")
             cur.first = false
-            o, carry = n, string.sub(buf, stop + 1)
+            o, carry = n, carry_new(string.sub(buf, stop + 1))
         end
     end
     while o < n do
@@ -2980,12 +3134,12 @@ local function dissect(tvb, pinfo, tree)
                 o = p
             else
                 if stop > o + 1 and cur.detail then data_item(tree, data, o + 1, stop - o - 1) end
-                resync, carry = true, string.sub(buf, stop + 1)
+                resync, carry = true, carry_new(string.sub(buf, stop + 1))
                 o = n
             end
         elseif (left < HEADER or size > left) and by_hand then
             -- Carried as it is until the message is whole.
-            carry = string.sub(buf, o + 1)
+            carry = carry_new(string.sub(buf, o + 1))
             o = n
         elseif left < HEADER then
             -- A header split inside its first bytes: ask for one more segment.

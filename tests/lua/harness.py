@@ -19,7 +19,7 @@ sys.path.insert(0, str(ROOT / "generated" / "python"))
 
 from codegen import ir  # noqa: E402
 from codegen.compile import compile_file  # noqa: E402
-from tests.tools import capture  # noqa: E402
+from tests.tools import capture, measure  # noqa: E402
 from tests.tools.capture import Segment  # noqa: E402
 
 PLUGIN = ROOT / "generated" / "lua" / "urwire.lua"
@@ -40,7 +40,18 @@ class TsharkError(AssertionError):
 def run_tshark(pcap: Path, *args: str, check_tree: bool = True, plugin: Path = PLUGIN) -> str:
     """tshark with the dissector (the generated one, or `plugin`); fails on any Lua error."""
     cmd = ["tshark", "-r", str(pcap), "-X", f"lua_script:{plugin}", *args]
-    res = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    return _checked(subprocess.run(cmd, capture_output=True, text=True, timeout=600))
+
+
+def run_tshark_peak_rss(pcap: Path, *args: str, limit: int = 2 << 30) -> tuple[str, int]:
+    """run_tshark, and tshark's peak resident memory in bytes. Its address space is limited to
+    `limit`, so that a dissector gone wrong fails here instead of taking the machine's memory."""
+    res, _, peak = measure.run(["tshark", "-r", str(pcap), "-X", f"lua_script:{PLUGIN}", *args], limit=limit)
+    return _checked(res), peak
+
+
+def _checked(res: subprocess.CompletedProcess) -> str:
+    """tshark's output, after failing on any Lua error or a bad exit."""
     if "Lua: Error" in res.stderr or "Lua: Error" in res.stdout:
         raise TsharkError(f"Lua error: {res.stderr[:2000]}")
     if "_ws.lua.error" in res.stdout:

@@ -17,6 +17,7 @@ local spec = { proto = ur, F = { length = "ur.length", type = "ur.type" }, heade
 local rt = S.base_rt(spec)
 rt.X, rt.E, rt.handlers = S.X, S.E, { [20] = handler }
 S.load("info.lua", spec, rt)
+S.load("carry.lua", spec, rt)
 S.load("stream.lua", spec, rt)
 S.load("framing.lua", spec, rt)
 
@@ -69,15 +70,34 @@ S.eq(pinfo.desegment_len, nil, "after a fault, no reassembly is asked for")
 pinfo, tree = call(5, "wxyz")
 S.eq(tostring(pinfo.cols.info), "Text: wxyz", "the carried header completes the message")
 
+-- A bad header, then a message carried over one-byte calls: the calls inside it keep their
+-- byte and show nothing; the last one shows the message, on the first pass and on later ones.
+local long = msg(string.rep("q", 40))
+pinfo = call(100, header(2, 20) .. long:sub(1, 6))
+S.eq(tostring(pinfo.cols.info), "Bad header: length 2 is below 5", "the fault, and the next header found")
+for i = 7, #long - 1 do
+    pinfo, tree = call(100 + i, long:sub(i, i))
+    S.eq(tostring(pinfo.cols.info) .. S.dump(tree), "", "inside the carried message: nothing shown")
+end
+local last = long:sub(-1) .. msg("z")
+pinfo, tree = call(100 + #long, last)
+S.eq(tostring(pinfo.cols.info), "Text: " .. string.rep("q", 40) .. "; Text: z", "the last byte completes it")
+S.eq(S.dump(tree):match("^ur @0%+45") ~= nil, true, "the message from the first carried byte")
+S.eq(pinfo.desegment_len, nil, "back in step: nothing carried, nothing asked")
+pinfo = call(100 + #long - 1, long:sub(-2, -2), true)
+S.eq(tostring(pinfo.cols.info), "", "a later pass: still nothing inside")
+pinfo, tree = call(100 + #long, last, true)
+S.eq(tostring(pinfo.cols.info), "Text: " .. string.rep("q", 40) .. "; Text: z", "a later pass: the same message")
+
 -- Client to robot: URScript text.
-pinfo = S.pinfo(6)
+pinfo = S.pinfo(60)
 pinfo.src_port, pinfo.dst_port = 50000, 30001
 ur.dissector(S.tvb("def main():\n  popup(1)\nend\n"), pinfo, S.tree())
 S.eq(tostring(pinfo.cols.info), "URScript: def main():", "URScript line")
 
 -- A Lua error inside is shown as an expert, not thrown at Wireshark.
 handler.tree = function() error("boom") end
-pinfo, tree = call(7, msg("x"))
+pinfo, tree = call(61, msg("x"))
 S.eq(S.dump(tree):match("!internal: urwire: .*boom") ~= nil, true, "internal error expert")
 
 -- A robot state whose layout sizes tell the version (as KINDS.packages does, in its Info and

@@ -1,7 +1,8 @@
 -- runtime/stream.lua: per-stream state on the first pass, snapshots on later ones.
 local S = dofile("stubs.lua")
-local spec = { proto = {} }
-local rt = S.load("stream.lua", spec)
+local spec = { proto = {}, header_size = 5 }
+local rt = S.load("carry.lua", spec)
+S.load("stream.lua", spec, rt)
 S.eq(spec.proto.init, rt.stream_reset, "ur.init forgets every stream")
 
 local function call(number, n, visited)
@@ -9,34 +10,44 @@ local function call(number, n, visited)
 end
 
 -- First pass: a new stream starts with nothing; what a call saves the next one loads.
-local v, implied, resync, carry, stream = call(1, 100)
+local v, implied, resync, carry, carried, stream = call(1, 100)
 S.eq(v, nil, "no version yet"); S.eq(implied, nil, "none implied"); S.eq(resync, false, "in step")
-S.eq(carry, nil, "nothing carried")
+S.eq(carry, nil, "nothing carried"); S.eq(carried, nil, "no carried bytes")
 S.eq(stream, 30001 * 65536 + 50000, "keyed by the port pair")
 rt.stream_save(S.pinfo(1), stream, 3004999, "3.2 to 3.4", false, nil)
 v, implied = call(2, 50)
 S.eq(v, 3004999, "a version the layout sizes showed moves along"); S.eq(implied, "3.2 to 3.4", "with its versions")
-rt.stream_save(S.pinfo(2), stream, 5009000, nil, true, "ab")
-v, implied, resync, carry = call(3, 10)
+local ab = rt.carry_new("ab")
+rt.stream_save(S.pinfo(2), stream, 5009000, nil, true, ab)
+v, implied, resync, carry, carried = call(3, 10)
 S.eq(v, 5009000, "an announced version"); S.eq(implied, nil, "replaces the implied one")
-S.eq(resync, true, "resynchronising"); S.eq(carry, "ab", "carried bytes")
-rt.stream_save(S.pinfo(3), stream, 5010000, nil, false, nil)
+S.eq(resync, true, "resynchronising"); S.eq(carry, ab, "the carry"); S.eq(carried, 2, "its bytes so far")
+-- The carry grows over the next calls: one carry, and each call knows where it started.
+rt.carry_add(ab, "cdefghij")
+rt.stream_save(S.pinfo(3), stream, 5009000, nil, false, ab)
+v, implied, resync, carry, carried = call(4, 3)
+S.eq(carry, ab, "the same carry"); S.eq(carried, 10, "ten bytes carried before frame 4")
+rt.carry_add(ab, "klm")
+rt.stream_save(S.pinfo(4), stream, 5010000, nil, false, nil)
 
 -- Later passes, in any order: each call gets the state its first-pass call started with.
 v, implied, resync, carry = call(2, 50, true)
 S.eq(v, 3004999, "frame 2"); S.eq(implied, "3.2 to 3.4", "frame 2 implied")
 S.eq(resync, false, "frame 2 in step"); S.eq(carry, nil, "frame 2 carried nothing")
-v, implied, resync, carry = call(3, 10, true)
-S.eq(resync, true, "frame 3"); S.eq(carry, "ab", "frame 3 carried"); S.eq(implied, nil, "frame 3 announced")
+v, implied, resync, carry, carried = call(3, 10, true)
+S.eq(resync, true, "frame 3"); S.eq(carry, ab, "frame 3 carried"); S.eq(implied, nil, "frame 3 announced")
+S.eq(carried, 2, "frame 3 started with two carried bytes")
+v, implied, resync, carry, carried = call(4, 3, true)
+S.eq(carried, 10, "frame 4 with ten"); S.eq(rt.carry_bytes(carry, carried), "abcdefghij", "which are still there")
 v = call(1, 100, true)
 S.eq(v, nil, "frame 1")
 -- Other bytes for a known frame (reassembly replays differently): the frame's first call.
-v, implied, resync, carry = call(3, 77, true)
-S.eq(carry, "ab", "fallback to the frame's first call")
+v, implied, resync, carry, carried = call(3, 77, true)
+S.eq(carry, ab, "fallback to the frame's first call"); S.eq(carried, 2, "with its carried bytes")
 -- Saving on a later pass changes nothing.
 rt.stream_save(S.pinfo(3, true), stream, 1, "x", true, "zz")
-S.eq((call(4, 1)), 5010000, "the first pass's state")
+S.eq((call(5, 1)), 5010000, "the first pass's state")
 
 rt.stream_reset()
-S.eq((call(4, 1)), nil, "a new capture starts over")
+S.eq((call(5, 1)), nil, "a new capture starts over")
 print("ok")

@@ -5,7 +5,9 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
 local enum_names, rename = rt.enum_names, rt.rename
+local items_begin, items_hidden, MAX_TREE_ITEMS = rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS
 local stream_load, stream_save = rt.stream_load, rt.stream_save
+local carry_new, carry_add, carry_bytes = rt.carry_new, rt.carry_add, rt.carry_bytes
 local X, E, handlers = rt.X, rt.E, rt.handlers
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
@@ -45,6 +47,13 @@ local function header_fault(raw, o, max_length)
     if size < HEADER then return E.bad_length, fmt("length %d is below %d", size, HEADER) end
     if size > max_length then return E.bad_length, fmt("length %d is above %d", size, max_length) end
     return E.bad_type, fmt("unknown message type %d", byte(raw, o + LENGTH + 1))
+end
+
+-- How many bytes carry c must hold before a call can go on with it: its message's length once
+-- its header is whole (a carry only starts at a plausible header), else a header's.
+local function carry_need(c, max_length)
+    if #c.head == HEADER and plausible(c.head, 0, max_length) then return be_int(c.head, 0, LENGTH) end
+    return HEADER
 end
 
 -- Resynchronising: scan buf (bytes carried from earlier segments, then this tvb's) from p for
@@ -105,7 +114,12 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     st.visible = tree.visible
     if h then
         item:append_text(h.suffix)
+        items_begin(item)
         h.tree(h.m, tvb, item, o, e, st)
+        local hidden = items_hidden()
+        if hidden > 0 then
+            item:add_proto_expert_info(E.items_hidden, fmt("%d more items not shown (a message shows at most %d)", hidden, MAX_TREE_ITEMS))
+        end
     elseif e - o > HEADER then
         -- A known type without a layout (e.g. 24): kept raw, not an error.
         item:add(X.raw, tvb(o + HEADER, e - o - HEADER))
@@ -128,18 +142,25 @@ local function dissect(tvb, pinfo, tree)
     cur.first = true
 
     -- The stream's state as this call starts.
-    local resync, carry, stream
-    cur.version, cur.implied, resync, carry, stream = stream_load(pinfo, n)
+    local resync, carry, carried, stream
+    cur.version, cur.implied, resync, carry, carried, stream = stream_load(pinfo, n)
 
     pinfo.cols.protocol:set("UR")
     -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
     -- stream state) until it is back in step, instead of by TCP reassembly: asking TCP for more
     -- bytes after a fault makes later passes hand over other bytes, and the fault would not
-    -- show there. Carried bytes come first, in a tvb of their own.
+    -- show there. Carried bytes come first, in a tvb of their own, made once the message they
+    -- start is whole.
     local by_hand = carry ~= nil or resync
     local data, buf = tvb, raw
     if carry then
-        buf = carry .. raw
+        if not resync and carried + n < carry_need(carry, max_length) then
+            -- Still inside the carried message: keep these bytes too, and show nothing yet.
+            if not pinfo.visited then carry_add(carry, raw) end
+            stream_save(pinfo, stream, cur.version, cur.implied, resync, carry)
+            return n
+        end
+        buf = carry_bytes(carry, carried) .. raw
         data = ByteArray.new(buf, true):tvb("UR bytes carried over")
     end
     n = #buf
@@ -156,7 +177,7 @@ local function dissect(tvb, pinfo, tree)
             if stop > 0 and cur.detail then data_item(tree, data, 0, stop) end
             set_info(pinfo, true, "Resynchronising: no message header yet")
             cur.first = false
-            o, carry = n, string.sub(buf, stop + 1)
+            o, carry = n, carry_new(string.sub(buf, stop + 1))
         end
     end
     while o < n do
@@ -179,12 +200,12 @@ local function dissect(tvb, pinfo, tree)
                 o = p
             else
                 if stop > o + 1 and cur.detail then data_item(tree, data, o + 1, stop - o - 1) end
-                resync, carry = true, string.sub(buf, stop + 1)
+                resync, carry = true, carry_new(string.sub(buf, stop + 1))
                 o = n
             end
         elseif (left < HEADER or size > left) and by_hand then
             -- Carried as it is until the message is whole.
-            carry = string.sub(buf, o + 1)
+            carry = carry_new(string.sub(buf, o + 1))
             o = n
         elseif left < HEADER then
             -- A header split inside its first bytes: ask for one more segment.

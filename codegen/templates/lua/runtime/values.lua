@@ -5,6 +5,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, short, negative = rt.be_int, rt.short, rt.negative
 local value_table, add_text = rt.value_table, rt.add_text
+local add, add_value = rt.add, rt.add_value
 
 local MAX_VALUE_DEPTH = spec.max_value_depth
 local VALUE_TABLES = spec.value_tables
@@ -21,24 +22,24 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
     local kind = kinds[code]
     if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
     local start = o
-    local item = tree:add(vf.item, tvb(o, 1))
+    local item = add(tree, vf.item, tvb(o, 1))
     item:set_text(path .. ": " .. kind.name)
-    item:add(vf.type, tvb(o, 1), kind.name)
-    item:add(vf.code, tvb(o, 1))
+    add_value(item, vf.type, tvb(o, 1), kind.name)
+    add(item, vf.code, tvb(o, 1))
     o = o + 1
     local layout = kind.layout
     if layout == "scalar" or layout == "array" then
         local need = kind.n * kind.count
         if o + need > e then return nil, short(st, path, o, need, e) end
         for _ = 1, kind.count do
-            item:add(vf[kind.item], tvb(o, kind.n))
+            add(item, vf[kind.item], tvb(o, kind.n))
             o = o + kind.n
         end
     elseif layout == "string" then
         if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
         local n = be_int(raw, o, kind.len)
         if n < 0 then return nil, negative(st, path, o, n) end
-        item:add(vf.count, tvb(o, kind.len))
+        add(item, vf.count, tvb(o, kind.len))
         o = o + kind.len
         if o + n > e then return nil, short(st, path, o, n, e) end
         add_text(item, vf.string, tvb, o, n)
@@ -47,7 +48,7 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
         if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
         local n = be_int(raw, o, kind.len)
         if n < 0 then return nil, negative(st, path, o, n) end
-        item:add(vf.count, tvb(o, kind.len))
+        add(item, vf.count, tvb(o, kind.len))
         o = o + kind.len
         for i = 0, n - 1 do
             local err
@@ -59,11 +60,11 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
         local rows, cols = be_int(raw, o, kind.len), be_int(raw, o + kind.len, kind.len)
         if rows < 0 then return nil, negative(st, path, o, rows) end
         if cols < 0 then return nil, negative(st, path, o + kind.len, cols) end
-        item:add(vf.rows, tvb(o, kind.len))
-        item:add(vf.cols, tvb(o + kind.len, kind.len))
+        add(item, vf.rows, tvb(o, kind.len))
+        add(item, vf.cols, tvb(o + kind.len, kind.len))
         o = o + 2 * kind.len
         for r = 0, rows - 1 do
-            local row = item:add(vf.row, tvb(o, 0))
+            local row = add(item, vf.row, tvb(o, 0))
             row:set_text(fmt("Row %d", r))
             local row_start = o
             for c = 0, cols - 1 do

@@ -11,13 +11,14 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
 local version_in, enum_names = rt.version_in, rt.enum_names
+local add, add_value, add_field = rt.add, rt.add_value, rt.add_field
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
 
 -- A text field; a zero-length one still shows, at its offset.
 local function add_text(tree, f, tvb, o, n)
-    return tree:add_packet_field(f, tvb(o, n), ENC_UTF_8)
+    return add_field(tree, f, tvb(o, n), ENC_UTF_8)
 end
 
 -- The number of a scalar descriptor at o (range is tvb(o, d.n)), in its own wire type.
@@ -39,10 +40,10 @@ end
 -- One scalar into the tree: explicitly when its wire type is narrower than its field's, named
 -- by the version when its enum needs it. Its item, and its number when it was read.
 local function add_scalar(tree, range, o, st, d)
-    if not (d.value or d.tables or d.keep) then return tree:add(d.f, range), nil end
+    if not (d.value or d.tables or d.keep) then return add(tree, d.f, range), nil end
     local v = number_at(range, st.raw, o, d)
     local item
-    if d.value then item = tree:add(d.f, range, v) else item = tree:add(d.f, range) end
+    if d.value then item = add_value(tree, d.f, range, v) else item = add(tree, d.f, range) end
     if d.tables then rename(item, d.label, d.tables, st.version, v) end
     return item, v
 end
@@ -64,7 +65,7 @@ function KIND.bits(tvb, tree, o, e, st, d, pre)
     -- The bits read the range itself (a narrower range holds the low bits).
     local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
-    for i = 1, #bits do item:add(bits[i], range) end
+    for i = 1, #bits do add(item, bits[i], range) end
     return o + d.n
 end
 
@@ -99,7 +100,7 @@ function KIND.group(tvb, tree, o, e, st, d, pre)
     while (count and i < count) or (not count and o < e) do
         local start = o
         local fits = size and o + size <= e
-        local item = tree:add(d.f, tvb(o, fits and size or 0))
+        local item = add(tree, d.f, tvb(o, fits and size or 0))
         local label, prefix = item_names(d, pre, i)
         item:set_text(label)
         local err
@@ -134,7 +135,7 @@ end
 
 -- Opaque bytes to the end of the layout.
 function KIND.bytes(tvb, tree, o, e, st, d)
-    tree:add(d.f, tvb(o, e - o))
+    add(tree, d.f, tvb(o, e - o))
     return e
 end
 
@@ -154,7 +155,7 @@ end
 function KIND.switch(tvb, tree, o, e, st, d, pre)
     local c = d.cases[kept[d.sel]] or d.default
     if o + c.n > e then return nil, short(st, (pre or "") .. d.path, o, c.n, e) end
-    tree:add(c.f, tvb(o, c.n))
+    add(tree, c.f, tvb(o, c.n))
     return o + c.n
 end
 

@@ -1,0 +1,36 @@
+-- runtime/items.lua: a message's tree shows at most max_tree_items items; the rest are counted.
+local S = dofile("stubs.lua")
+local rt = S.load("items.lua", { max_tree_items = 3 })
+local range = S.tvb("abcdef")(0, 2)
+
+local top = S.tree()
+top.asked["ur.a.x"] = true
+rt.items_begin(top)
+local a = rt.add(top, "ur.a", range)
+rt.add_value(a, "ur.a.x", range, 7)
+rt.add_field(a, "ur.a.s", range, ENC_UTF_8)
+S.eq(rt.items_hidden(), 0, "three items fit")
+local past = rt.add(a, "ur.a.y", range)
+past:set_text("y"); past:set_len(1); past:append_text("!")
+S.eq(past:set_generated(), past, "an item past the cap takes every call")
+rt.add(past, "ur.a.y.z", range)
+past:add("ur.a.y.w", range)
+rt.add_value(top, "ur.b", range, 1)
+S.eq(rt.items_hidden(), 4, "each item past the cap is counted, nested ones too")
+S.eq(past:referenced("ur.a.x"), true, "what a filter asks for is still known")
+past:add_proto_expert_info("malformed", "a.y at offset 9: needs 4 bytes, 1 left")
+past:add_proto_expert_info("malformed", "another")
+S.eq(S.lines(S.dump(top)), S.lines(
+    "!malformed: a.y at offset 9: needs 4 bytes, 1 left",
+    "ur.a @0+2",
+    "  ur.a.x @0+2 = 7",
+    "  ur.a.s @0+2 = ab"), "the first three items, and the first expert past the cap on the message")
+S.eq(rt.items_hidden(), 5, "a second expert past the cap is counted with the items")
+
+-- The next message starts with the whole cap.
+local next_top = S.tree()
+rt.items_begin(next_top)
+S.eq(rt.items_hidden(), 0, "nothing hidden yet")
+rt.add(next_top, "ur.c", range)
+S.eq(#next_top.children, 1, "shown")
+print("ok")
