@@ -11,6 +11,10 @@ C_CLI := tools/urwire-decode/main.c tools/urwire-decode/json.c tools/urwire-deco
 PREFIX ?= /usr/local
 FUZZ_SECONDS ?= 60
 FUZZ_CI_SECONDS ?= 60
+# Inputs up to two messages at the runtime's length limit, plus its framer's slack and the
+# control byte: lengths at, just above and just below the limit get fuzzed too.
+URWIRE_MAX_MESSAGE := $(shell sed -n 's/^\#define URWIRE_MAX_MESSAGE_LENGTH \([0-9]*\)u.*/\1/p' generated/c/urwire.h)
+FUZZ_MAX_LEN := $(shell echo $$((2 * $(URWIRE_MAX_MESSAGE) + 4096 + 1)))
 BENCH_C_LEVELS ?= -O3 -O2 -Os
 
 ALL_TARGETS += build/urwire-decode
@@ -46,7 +50,8 @@ test-c: build/urwire-decode
 	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(FUZZ_CI_SECONDS)
 	$(PYTEST) -q tests/c
 
-## fuzz: libFuzzer over the framer and every decoder, seeded with the vectors (FUZZ_SECONDS=60)
+## fuzz: libFuzzer over the framer and every decoder, seeded with the vectors and messages at the
+## length limit (FUZZ_SECONDS=60); long inputs are tried less often, as they take longer
 fuzz: fuzz-c
 fuzz-c: $(C_LIB) tests/c/fuzz_urwire.c tools/urwire-decode/json.c
 	@mkdir -p build/fuzz/corpus build/fuzz/crashes
@@ -54,7 +59,8 @@ fuzz-c: $(C_LIB) tests/c/fuzz_urwire.c tools/urwire-decode/json.c
 		-Igenerated/c -Itools/urwire-decode -o build/fuzz/fuzz_urwire tests/c/fuzz_urwire.c \
 		tools/urwire-decode/json.c generated/c/urwire.c -lm
 	$(PYTHON) tests/c/seeds.py build/fuzz/seeds
-	build/fuzz/fuzz_urwire -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+	build/fuzz/fuzz_urwire -max_len=$(FUZZ_MAX_LEN) -entropic_scale_per_exec_time=1 \
+		-max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
 		-artifact_prefix=build/fuzz/crashes/ build/fuzz/corpus build/fuzz/seeds tests/c/regressions
 
 ## bench-c: robot-state decode throughput against memcpy of the same bytes, same run, with the

@@ -7,18 +7,22 @@
                                               of a .pcap/.pcapng (urwire-decode reads raw streams)
 
 A fuzz input is one control byte (software version and chunking, see fuzz_urwire.c), then
-the stream.
+the stream. Besides the vectors, the seeds hold long messages at and around the 1 MiB length
+limit, which mutation alone never grows to.
 """
 from __future__ import annotations
 
 import hashlib
+import struct
 import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(ROOT / "generated" / "python"))
 
 import vectors  # noqa: E402
+from urwire.spec import MAX_MESSAGE_LENGTH  # noqa: E402
 
 
 KNOWN_TYPES = {5, 16, 20, 22, 23, 24, 25, 255}
@@ -29,11 +33,44 @@ def messages(data: bytes) -> list[bytes]:
     out, pos = [], 0
     while pos + 5 <= len(data):
         n = int.from_bytes(data[pos:pos + 4], "big", signed=True)
-        if n < 5 or n > 1048576 or data[pos + 4] not in KNOWN_TYPES or pos + n > len(data):
+        if n < 5 or n > MAX_MESSAGE_LENGTH or data[pos + 4] not in KNOWN_TYPES or pos + n > len(data):
             break
         out.append(data[pos:pos + n])
         pos += n
     return out
+
+
+def message(mtype: int, body: bytes) -> bytes:
+    return struct.pack(">iB", 5 + len(body), mtype) + body
+
+
+def long_messages() -> list[bytes]:
+    """Streams whose messages reach the length limit, pass it, or cross the CLI's 64 KiB reads.
+    Their parts are about 1 KiB each: a run then costs milliseconds, not seconds."""
+    limit = MAX_MESSAGE_LENGTH
+    fill = bytes(range(256)) * (limit // 256 + 1)
+    text = ("wörld € ✓ " * (limit // 8)).encode()
+
+    def packages(count: int) -> bytes:   # unknown sub-packages filling a robot state to the limit
+        size, rest = divmod(limit - 5, count)
+        return b"".join(struct.pack(">iB", size + (rest if i == 0 else 0), 99) + fill[:size - 5 + (rest if i == 0 else 0)]
+                        for i in range(count))
+
+    at_limit = message(16, packages(1))
+    many_packages = message(16, packages(1024))
+    text_message = message(20, struct.pack(">QbB", 1, -2, 0) + text[:limit - 20] + b"\xc3\xff\xe2\x82")
+    names = message(25, struct.pack(">QBH", 1, 0, 0) + (b"var_" + b"x" * 1019 + b"\n") * ((limit - 16) // 1024))
+    strings = message(25, struct.pack(">QBH", 1, 1, 0) + (b"\x03\x7f\xf0" + text[:32752] + b"\n") * 31)
+    short_strings = message(25, struct.pack(">QBH", 1, 1, 0) + (b"\x03\x03\xfb" + text[:1019] + b"\n") * 1000)
+    above = struct.pack(">iB", limit + 1, 16) + fill[:limit - 4]
+    cut = at_limit[:limit - 1000]
+    # Small messages up to just before a 64 KiB boundary, then one that straddles it.
+    short_text = message(20, struct.pack(">QbB", 1, -2, 0) + b"x" * 50)
+    before = short_text * ((65536 - 10) // len(short_text))
+    straddle = before + message(20, struct.pack(">QbB", 1, -2, 0) + text[:70000])
+    return [at_limit, many_packages, text_message, names, strings, short_strings, above, cut, straddle,
+            at_limit + names,                      # two at the limit: the framer buffer slides
+            at_limit[:limit - 100] + at_limit]     # one cut short, then one whole
 
 
 def seeds() -> list[bytes]:
@@ -42,6 +79,7 @@ def seeds() -> list[bytes]:
         control = {None: 0, "3.2": 1, "5.0": 2}.get(case.version, 3)
         found.append(bytes([control]) + case.data)
         found += [bytes([0]) + m for m in messages(case.data)]
+    found += [bytes([0]) + stream for stream in long_messages()]
     return found
 
 
