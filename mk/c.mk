@@ -7,7 +7,7 @@ CLANG ?= clang
 C_STRICT := -std=c99 -Wall -Wextra -Werror -pedantic -Wconversion -Wshadow
 C_OPT ?= -O2
 C_LIB := generated/c/urwire.c generated/c/urwire.h
-C_CLI := tools/urwire-decode/main.c tools/urwire-decode/json.c tools/urwire-decode/json.h
+C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h)
 PREFIX ?= /usr/local
 FUZZ_SECONDS ?= 60
 FUZZ_CI_SECONDS ?= 60
@@ -30,7 +30,7 @@ PINNED_C := build/pinned
 build/urwire-decode: $(C_LIB) $(C_CLI)
 	@mkdir -p build
 	$(CC) $(C_STRICT) $(C_OPT) -Igenerated/c -Itools/urwire-decode -o $@ \
-		tools/urwire-decode/main.c tools/urwire-decode/json.c generated/c/urwire.c -lm
+		$(filter %.c,$(C_CLI)) generated/c/urwire.c -lm
 
 build/liburwire.a: $(C_LIB)
 	@mkdir -p build/obj
