@@ -1,6 +1,6 @@
 # C target: generated/c/urwire.{h,c} (written by `make generate`), the urwire-decode CLI, its
-# tests (gcc, clang, ASan/UBSan, differential against Python), the libFuzzer harness, the
-# benchmark, a demo and installation.
+# tests (gcc, clang, ASan/UBSan, differential against Python), the benchmark, a demo and
+# installation. Its fuzzers are in mk/fuzz.mk.
 
 CC ?= cc
 CLANG ?= clang
@@ -9,12 +9,6 @@ C_OPT ?= -O2
 C_LIB := generated/c/urwire.c generated/c/urwire.h
 C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h)
 PREFIX ?= /usr/local
-FUZZ_SECONDS ?= 60
-FUZZ_CI_SECONDS ?= 60
-# Inputs up to two messages at the runtime's length limit, plus its framer's slack and the
-# control byte: lengths at, just above and just below the limit get fuzzed too.
-URWIRE_MAX_MESSAGE := $(shell sed -n 's/^\#define URWIRE_MAX_MESSAGE_LENGTH \([0-9]*\)u.*/\1/p' generated/c/urwire.h)
-FUZZ_MAX_LEN := $(shell echo $$((2 * $(URWIRE_MAX_MESSAGE) + 4096 + 1)))
 BENCH_C_LEVELS ?= -O3 -O2 -Os
 
 ALL_TARGETS += build/urwire-decode
@@ -25,7 +19,7 @@ DEMO_TARGETS += demo-c
 PIN ?= 5.11
 PINNED_C := build/pinned
 
-.PHONY: test-c fuzz fuzz-c bench-c demo-c install install-c uninstall-c pinned-c
+.PHONY: test-c bench-c demo-c install install-c uninstall-c pinned-c
 
 build/urwire-decode: $(C_LIB) $(C_CLI)
 	@mkdir -p build
@@ -44,24 +38,12 @@ pinned-c:
 	$(CC) $(C_STRICT) -Os -c $(PINNED_C)/c/urwire.c -o $(PINNED_C)/urwire.o
 	@if command -v size >/dev/null; then size $(PINNED_C)/urwire.o; fi
 
-## test-c: fuzz (bounded), then the C library and CLI under gcc, clang and the sanitizers: vectors,
-## differential against Python (the fuzzer's corpus included), round trips, build checks
+## test-c: the C fuzzers (bounded), then the C library and CLI under gcc, clang and the
+## sanitizers: vectors, differential against Python (the fuzzers' corpora included), round trips,
+## build checks
 test-c: build/urwire-decode
-	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(FUZZ_CI_SECONDS)
+	$(MAKE) --no-print-directory fuzz-c fuzz-json FUZZ_SECONDS=$(FUZZ_CI_SECONDS)
 	$(PYTEST) -q tests/c
-
-## fuzz: libFuzzer over the framer and every decoder, seeded with the vectors and messages at the
-## length limit (FUZZ_SECONDS=60); long inputs are tried less often, as they take longer
-fuzz: fuzz-c
-fuzz-c: $(C_LIB) tests/c/fuzz_urwire.c tools/urwire-decode/json.c
-	@mkdir -p build/fuzz/corpus build/fuzz/crashes
-	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-		-Igenerated/c -Itools/urwire-decode -o build/fuzz/fuzz_urwire tests/c/fuzz_urwire.c \
-		tools/urwire-decode/json.c generated/c/urwire.c -lm
-	$(PYTHON) tests/c/seeds.py build/fuzz/seeds
-	build/fuzz/fuzz_urwire -max_len=$(FUZZ_MAX_LEN) -entropic_scale_per_exec_time=1 \
-		-max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
-		-artifact_prefix=build/fuzz/crashes/ build/fuzz/corpus build/fuzz/seeds tests/c/regressions
 
 ## bench-c: robot-state decode throughput against memcpy of the same bytes, same run, with the
 ## library built at each of BENCH_C_LEVELS (ns per state, and each level against -O3)

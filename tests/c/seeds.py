@@ -1,13 +1,14 @@
 """Inputs built from the golden and conformance vectors, for the fuzzer and the demo.
 
-    python3 tests/c/seeds.py DIR              one fuzz seed per vector (and per message) in DIR
+    python3 tests/c/seeds.py [--harness urwire|json|python] DIR
+                                              one fuzz seed per vector (and per message) in DIR
     python3 tests/c/seeds.py --stream FILE    a raw stream: every conformance message, in order
     python3 tests/c/seeds.py --capture PCAP FILE
                                               the robot->client bytes of the first TCP stream
                                               of a .pcap/.pcapng (urwire-decode reads raw streams)
 
-A fuzz input is one control byte (software version and chunking, see fuzz_urwire.c), then
-the stream. Besides the vectors, the seeds hold long messages at and around the 1 MiB length
+A fuzz input is one control byte (software version and chunking, see fuzz_urwire.c and
+tests/tools/fuzz_inputs.py), then the stream. Besides the vectors, the seeds hold long messages at and around the 1 MiB length
 limit, which mutation alone never grows to.
 """
 from __future__ import annotations
@@ -44,9 +45,10 @@ def message(mtype: int, body: bytes) -> bytes:
     return struct.pack(">iB", 5 + len(body), mtype) + body
 
 
-def long_messages() -> list[bytes]:
+def long_messages(resync: bool = True) -> list[bytes]:
     """Streams whose messages reach the length limit, pass it, or cross the CLI's 64 KiB reads.
-    Their parts are about 1 KiB each: a run then costs milliseconds, not seconds."""
+    Their parts are about 1 KiB each: a run then costs milliseconds, not seconds. With resync
+    False, none that resynchronises across a whole MiB (a second of Python's time each)."""
     limit = MAX_MESSAGE_LENGTH
     fill = bytes(range(256)) * (limit // 256 + 1)
     text = ("wörld € ✓ " * (limit // 8)).encode()
@@ -68,18 +70,29 @@ def long_messages() -> list[bytes]:
     short_text = message(20, struct.pack(">QbB", 1, -2, 0) + b"x" * 50)
     before = short_text * ((65536 - 10) // len(short_text))
     straddle = before + message(20, struct.pack(">QbB", 1, -2, 0) + text[:70000])
-    return [at_limit, many_packages, text_message, names, strings, short_strings, above, cut, straddle,
-            at_limit + names,                      # two at the limit: the framer buffer slides
-            at_limit[:limit - 100] + at_limit]     # one cut short, then one whole
+    found = [at_limit, many_packages, text_message, names, strings, short_strings, cut, straddle,
+             at_limit + names]                     # two at the limit: the framer buffer slides
+    if resync:
+        found += [above, at_limit[:limit - 100] + at_limit]   # the second one cut short, then one whole
+    return found
 
 
-def seeds() -> list[bytes]:
+HINT_TEXTS = [b"5.25.1", b" 3.2\n", b"1.8", b"10.7", b"5.09", b"5.9.999999", b"5.x", b"5", b"5..9"]
+
+
+def seeds(harness: str = "urwire") -> list[bytes]:
+    """Seeds of one harness: urwire (tests/c/fuzz_urwire.c), json (tests/c/fuzz_json.c) or python
+    (tests/python/fuzz_decoder.py), whose control bytes read alike but for the hint text the
+    last two take (tests/tools/fuzz_inputs.py)."""
     found = []
     for case in vectors.all_cases():
         control = {None: 0, "3.2": 1, "5.0": 2}.get(case.version, 3)
         found.append(bytes([control]) + case.data)
         found += [bytes([0]) + m for m in messages(case.data)]
-    found += [bytes([0]) + stream for stream in long_messages()]
+    found += [bytes([0]) + stream for stream in long_messages(resync=harness != "python")]
+    if harness != "urwire":
+        cases = vectors.golden_cases()
+        found += [b"\x04" + text + b"\0" + cases[i % len(cases)].data for i, text in enumerate(HINT_TEXTS)]
     return found
 
 
@@ -111,12 +124,15 @@ def main(argv: list[str]) -> int:
         Path(argv[1]).parent.mkdir(parents=True, exist_ok=True)
         Path(argv[1]).write_bytes(stream())
         return 0
-    if len(argv) != 1:
+    harness = "urwire"
+    if len(argv) == 3 and argv[0] == "--harness":
+        harness, argv = argv[1], argv[2:]
+    if len(argv) != 1 or harness not in ("urwire", "json", "python"):
         print(__doc__, file=sys.stderr)
         return 2
     folder = Path(argv[0])
     folder.mkdir(parents=True, exist_ok=True)
-    for seed in seeds():
+    for seed in seeds(harness):
         (folder / hashlib.sha1(seed).hexdigest()).write_bytes(seed)
     return 0
 
