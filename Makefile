@@ -45,6 +45,7 @@ test-codegen:
 	$(PYTEST) -q tests/codegen
 
 test-python:
+	$(MAKE) --no-print-directory fuzz-python FUZZ_SECONDS=$(FUZZ_CI_SECONDS)
 	$(PYTEST) -q tests/python
 
 ## demo: set up, then decode the bundled capture with every target

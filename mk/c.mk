@@ -1,16 +1,14 @@
 # C target: generated/c/urwire.{h,c} (written by `make generate`), the urwire-decode CLI, its
-# tests (gcc, clang, ASan/UBSan, differential against Python), the libFuzzer harness, the
-# benchmark, a demo and installation.
+# tests (gcc, clang, ASan/UBSan, differential against Python), the benchmark, a demo and
+# installation. Its fuzzers are in mk/fuzz.mk.
 
 CC ?= cc
 CLANG ?= clang
 C_STRICT := -std=c99 -Wall -Wextra -Werror -pedantic -Wconversion -Wshadow
 C_OPT ?= -O2
 C_LIB := generated/c/urwire.c generated/c/urwire.h
-C_CLI := tools/urwire-decode/main.c tools/urwire-decode/json.c tools/urwire-decode/json.h
+C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h)
 PREFIX ?= /usr/local
-FUZZ_SECONDS ?= 60
-FUZZ_CI_SECONDS ?= 60
 BENCH_C_LEVELS ?= -O3 -O2 -Os
 
 ALL_TARGETS += build/urwire-decode
@@ -21,12 +19,12 @@ DEMO_TARGETS += demo-c
 PIN ?= 5.11
 PINNED_C := build/pinned
 
-.PHONY: test-c fuzz fuzz-c bench-c demo-c install install-c uninstall-c pinned-c
+.PHONY: test-c bench-c demo-c install install-c uninstall-c pinned-c
 
 build/urwire-decode: $(C_LIB) $(C_CLI)
 	@mkdir -p build
 	$(CC) $(C_STRICT) $(C_OPT) -Igenerated/c -Itools/urwire-decode -o $@ \
-		tools/urwire-decode/main.c tools/urwire-decode/json.c generated/c/urwire.c -lm
+		$(filter %.c,$(C_CLI)) generated/c/urwire.c -lm
 
 build/liburwire.a: $(C_LIB)
 	@mkdir -p build/obj
@@ -40,22 +38,12 @@ pinned-c:
 	$(CC) $(C_STRICT) -Os -c $(PINNED_C)/c/urwire.c -o $(PINNED_C)/urwire.o
 	@if command -v size >/dev/null; then size $(PINNED_C)/urwire.o; fi
 
-## test-c: fuzz (bounded), then the C library and CLI under gcc, clang and the sanitizers: vectors,
-## differential against Python (the fuzzer's corpus included), round trips, build checks
+## test-c: the C fuzzers (bounded), then the C library and CLI under gcc, clang and the
+## sanitizers: vectors, differential against Python (the fuzzers' corpora included), round trips,
+## build checks
 test-c: build/urwire-decode
-	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(FUZZ_CI_SECONDS)
+	$(MAKE) --no-print-directory fuzz-c fuzz-json FUZZ_SECONDS=$(FUZZ_CI_SECONDS)
 	$(PYTEST) -q tests/c
-
-## fuzz: libFuzzer over the framer and every decoder, seeded with the vectors (FUZZ_SECONDS=60)
-fuzz: fuzz-c
-fuzz-c: $(C_LIB) tests/c/fuzz_urwire.c tools/urwire-decode/json.c
-	@mkdir -p build/fuzz/corpus build/fuzz/crashes
-	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-		-Igenerated/c -Itools/urwire-decode -o build/fuzz/fuzz_urwire tests/c/fuzz_urwire.c \
-		tools/urwire-decode/json.c generated/c/urwire.c -lm
-	$(PYTHON) tests/c/seeds.py build/fuzz/seeds
-	build/fuzz/fuzz_urwire -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
-		-artifact_prefix=build/fuzz/crashes/ build/fuzz/corpus build/fuzz/seeds tests/c/regressions
 
 ## bench-c: robot-state decode throughput against memcpy of the same bytes, same run, with the
 ## library built at each of BENCH_C_LEVELS (ns per state, and each level against -O3)

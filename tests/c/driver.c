@@ -8,12 +8,18 @@
  *                            prints "messages N packages P" or the first mismatch (exit 1)
  *   driver text              stdin bytes -> one JSON string (UTF-8 replaced as Python does)
  *   driver f32 | f64         stdin big-endian floats -> their canonical texts, one per line
+ *   driver batch             stdin: inputs, each a big-endian uint32 length and a version hint
+ *                            ("" for none), then a uint32 length and a stream; each answered
+ *                            with the lines urwire-decode prints for it (the command's own
+ *                            records.c) and "=CODE", its exit status (2: the hint is not a
+ *                            version), flushed: one process for many inputs
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "json.h"
+#include "records.h"
 #include "urwire.h"
 
 static uint8_t framer_buffer[URWIRE_FRAMER_MIN_BUFFER];
@@ -153,6 +159,61 @@ static int roundtrip_frame(const urwire_frame *frame, void *ctx)
     return 0;
 }
 
+/* A big-endian uint32 length, then that many bytes (NUL-terminated); NULL at the end of input. */
+static uint8_t *read_part(FILE *in, size_t *len)
+{
+    uint8_t head[4], *buf;
+    if (fread(head, 1, 4, in) != 4)
+        return NULL;
+    *len = (size_t)head[0] << 24 | (size_t)head[1] << 16 | (size_t)head[2] << 8 | head[3];
+    buf = malloc(*len + 1);
+    if (!buf || fread(buf, 1, *len, in) != *len) {
+        fprintf(stderr, "batch: input cut short\n");
+        exit(2);
+    }
+    buf[*len] = 0;
+    return buf;
+}
+
+/* urwire-decode's work on one stream, as its main() does it, minus the reading. */
+static int decode_like_the_command(const char *hint_text, const uint8_t *data, size_t len)
+{
+    urwire_sw_version version = URWIRE_DEFAULT_VERSION;
+    urwire_framer fr;
+    urwire_visitor v;
+    json_writer w;
+    size_t off = 0;
+    bool errors = false;
+    if (hint_text[0] && !urwire_parse_version(hint_text, &version))
+        return 2;
+    memset(&w, 0, sizeof w);
+    w.out = stdout;
+    v = json_visitor(&w);
+    urwire_framer_init(&fr, framer_buffer, sizeof framer_buffer, version);
+    while (off < len) {
+        off += urwire_framer_feed(&fr, data + off, len - off);
+        errors |= print_ready_records(&fr, &v, &w);
+    }
+    urwire_framer_finish(&fr);
+    errors |= print_ready_records(&fr, &v, &w);
+    return errors ? 1 : 0;
+}
+
+static int batch(void)
+{
+    uint8_t *hint_text, *data;
+    size_t hint_len, len;
+    while ((hint_text = read_part(stdin, &hint_len)) != NULL) {
+        if ((data = read_part(stdin, &len)) == NULL)
+            return 2;
+        printf("=%d\n", decode_like_the_command((const char *)hint_text, data, len));
+        fflush(stdout);
+        free(hint_text);
+        free(data);
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     size_t len, i;
@@ -211,6 +272,8 @@ int main(int argc, char **argv)
         free(data);
         return 0;
     }
-    fprintf(stderr, "usage: driver chunks K FILE | roundtrip FILE | text | f32 | f64\n");
+    if (argc == 2 && strcmp(argv[1], "batch") == 0)
+        return batch();
+    fprintf(stderr, "usage: driver chunks K FILE | roundtrip FILE | text | f32 | f64 | batch\n");
     return 2;
 }

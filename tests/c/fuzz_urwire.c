@@ -88,8 +88,8 @@ static void check_message(const uint8_t *bytes, size_t len, urwire_sw_version ve
                 abort();
         }
     }
-    if (len < URWIRE_HEADER_SIZE)
-        return;
+    if (len < URWIRE_HEADER_SIZE || len > URWIRE_MAX_MESSAGE_LENGTH)
+        return;  /* (an unframed input longer than any message only decodes) */
     n = urwire_encode_message(&m, encoded, sizeof encoded, &err);
     if (n != len || memcmp(encoded + 4, bytes + 4, len - 4) != 0)
         abort();  /* lossless: every byte after the length field comes back */
@@ -115,7 +115,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     control = data[0];
     data++;
     size--;
-    chunk = 1 + (size_t)((control >> 2) & 31) * 13;
+    /* Long inputs go in proportionally longer chunks: a byte at a time through 1 MiB only
+     * repeats what a short input shows, a million times over. */
+    chunk = (1 + (size_t)((control >> 2) & 31) * 13) * (1 + size / 16384);
     cap = (control & 0x80) ? 64 + (size_t)(control & 0x7c) : sizeof framer_buffer;
     urwire_framer_init(&fr, framer_buffer, cap, versions[control & 3]);
     while (kind != URWIRE_FRAME_END) {

@@ -17,6 +17,8 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 GEN = ROOT / "generated" / "c"
 CLI = ROOT / "tools" / "urwire-decode"
+CLI_SOURCES = sorted(CLI.glob("*.c"))           # main.c and what it links
+CLI_LIBRARY = [p for p in CLI_SOURCES if p.name != "main.c"]   # the same, for the test driver
 OUT = ROOT / "build" / "c-tests"
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Wconversion", "-Wshadow"]
 SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-omit-frame-pointer"]
@@ -52,9 +54,9 @@ def build_variant(name: str) -> Build:
         pytest.fail(f"{cc} is not installed (scripts/setup.sh installs it)")
     folder = OUT / name
     cli, driver = folder / "urwire-decode", folder / "driver"
-    compile_c(cc, flags, [CLI / "main.c", CLI / "json.c", GEN / "urwire.c"], cli, ["-lm"])
+    compile_c(cc, flags, [*CLI_SOURCES, GEN / "urwire.c"], cli, ["-lm"])
     # The driver is test code: strict too, except that it uses malloc and stdio freely.
-    compile_c(cc, flags, [ROOT / "tests" / "c" / "driver.c", CLI / "json.c", GEN / "urwire.c"], driver, ["-lm"])
+    compile_c(cc, flags, [ROOT / "tests" / "c" / "driver.c", *CLI_LIBRARY, GEN / "urwire.c"], driver, ["-lm"])
     return Build(name, cli, driver)
 
 
@@ -88,3 +90,45 @@ def python_records(data: bytes, version: str | None) -> tuple[list, int]:
     """The same, parsed."""
     lines, code = python_lines(data, version)
     return [json.loads(line) for line in lines], code
+
+
+class CommandPeer:
+    """One test-driver process that answers for urwire-decode input after input (`driver batch`:
+    the command's own record loop), so that many inputs cost one process, not one each."""
+
+    def __init__(self, driver: Path):
+        self.proc = subprocess.Popen([str(driver), "batch"], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+
+    def decode(self, data: bytes, hint: str = "") -> tuple[list[str], int]:
+        """The lines the command prints for a stream and its exit status ("" hint: none given)."""
+        text = hint.encode("utf-8", "surrogateescape")
+        self.proc.stdin.write(len(text).to_bytes(4, "big") + text + len(data).to_bytes(4, "big") + data)
+        self.proc.stdin.flush()
+        lines = []
+        while True:
+            line = self.proc.stdout.readline()
+            assert line, f"the driver stopped (exit {self.proc.wait()})"
+            if line.startswith(b"="):
+                return lines, int(line[1:])
+            lines.append(line.decode("utf-8").rstrip("\n"))
+
+    def close(self) -> None:
+        self.proc.stdin.close()
+        assert self.proc.wait() == 0
+
+    def __enter__(self) -> "CommandPeer":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def python_answer(data: bytes, hint: str = "") -> tuple[list[str], int]:
+    """What the Python command prints for the same stream and hint, and its exit status."""
+    import urwire
+
+    try:
+        version = urwire.parse_version(hint) if hint else None
+    except ValueError:
+        return [], 2
+    return python_lines(data, version)

@@ -56,22 +56,3 @@ def test_chunk_size_never_changes_the_records(asan, chunk, tmp_path):
         assert chunked.stderr == b""
         assert chunked.stdout == whole.stdout
         assert chunked.returncode == whole.returncode
-
-
-def fuzz_inputs() -> list[bytes]:
-    """The fuzzer's corpus when `make fuzz` has run (make test-c runs it first), else its seeds."""
-    from tests.c.harness_c import ROOT
-    from tests.c.seeds import seeds
-
-    corpus = ROOT / "build" / "fuzz" / "corpus"
-    found = [p.read_bytes() for p in sorted(corpus.iterdir())] if corpus.is_dir() else []
-    return [d for d in found if d] or seeds()
-
-
-def test_the_fuzzers_inputs_agree_with_python(fast):
-    """Coverage-guided inputs reach corners random mutation does not; Python must agree on each.
-    The first byte is the fuzzer's control byte: its low bits pick the version hint."""
-    inputs = fuzz_inputs()
-    assert len(inputs) > 100
-    for raw in inputs:
-        compare(fast, raw[1:], (None, "3.2", "5.0", "5.12")[raw[0] & 3])

@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 import pytest
+import urwire as package
 
 from tests.tools import capture
 from tests.vectors import all_cases
@@ -77,6 +78,16 @@ def test_version_hint_takes_a_bugfix_number():
     assert "reserved_1" in records(hinted)[0]["packages"][0]
     bad = urwire("decode", "--version-hint", "5.25.x", "-", stdin=case.data)
     assert bad.returncode == 2 and "5.25.1" in bad.stderr.decode()
+
+
+@pytest.mark.parametrize("hint", ["５.９", "٥.٩", "5.²", "\xa05.9", "5.9\u2028", "5.9\x1c", "1234567.0"])
+def test_version_hint_is_ascii_digits_between_ascii_blanks(hint):
+    """As urwire-decode reads it (C's urwire_parse_version): no Unicode digits or blanks, and
+    at most six digits a part."""
+    with pytest.raises(ValueError, match="not a software version"):
+        package.parse_version(hint)
+    assert package.parse_version(" 5.25.1\t") == (5, 25, 1)
+    assert package.parse_version("999999.0") == (999999, 0, 0)
 
 
 def test_text_view_names_codes_as_the_stream_version_does():

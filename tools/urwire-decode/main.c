@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "json.h"
+#include "records.h"
 #include "urwire.h"
 
 static const char usage[] =
@@ -27,29 +28,6 @@ static int fail(const char *what, const char *detail)
 {
     fprintf(stderr, "urwire-decode: %s%s%s\n", what, detail ? ": " : "", detail ? detail : "");
     return 2;
-}
-
-/* Print every record the framer has ready; returns true when one held an error. */
-static bool drain(urwire_framer *fr, const urwire_visitor *v, json_writer *w)
-{
-    urwire_frame frame;
-    urwire_message m;
-    bool errors = false;
-    for (;;) {
-        urwire_frame_kind kind = urwire_framer_next(fr, &frame);
-        if (kind == URWIRE_FRAME_NEED_MORE || kind == URWIRE_FRAME_END)
-            return errors;
-        w->depth = 0;
-        if (kind == URWIRE_FRAME_FAULT) {
-            urwire_visit_fault(&frame.fault, v);
-            errors = true;
-        } else {
-            urwire_decode_message(frame.bytes, frame.length, frame.version, &m);
-            urwire_visit_message(&m, v);
-            errors |= urwire_message_has_error(&m);
-        }
-        putc('\n', w->out);
-    }
 }
 
 int main(int argc, char **argv)
@@ -96,7 +74,7 @@ int main(int argc, char **argv)
         size_t n = fread(chunk, 1, sizeof chunk, in), off = 0;
         while (off < n) {
             off += urwire_framer_feed(&fr, chunk + off, n - off);
-            errors |= drain(&fr, &v, &w);
+            errors |= print_ready_records(&fr, &v, &w);
         }
         if (n < sizeof chunk) {
             if (ferror(in))
@@ -105,7 +83,7 @@ int main(int argc, char **argv)
         }
     }
     urwire_framer_finish(&fr);
-    errors |= drain(&fr, &v, &w);
+    errors |= print_ready_records(&fr, &v, &w);
     if (in != stdin)
         fclose(in);
     if (fflush(stdout) != 0)

@@ -15,14 +15,24 @@ from .spec import DEFAULT_VERSION, HEADER, HEADER_SIZE, KNOWN_MESSAGE_TYPES, MAX
 
 VersionLike = Union[str, tuple, None]
 
+# A version text is read as the C command reads it: ASCII blanks around it (str.strip() alone
+# would also take Unicode ones), and parts of one to six ASCII digits (str.isdigit() alone would
+# also take "５" and "²").
+_BLANKS = " \t\n\r\v\f"
+_PART_DIGITS = 6
+
+
+def _is_part(text: str) -> bool:
+    return 1 <= len(text) <= _PART_DIGITS and text.isascii() and text.isdigit()
+
 
 def parse_version(version: VersionLike) -> Optional[tuple[int, int, int]]:
     """'5.9', '5.25.1', (5, 9), (5, 25, 1) or None -> (major, minor, bugfix) or None."""
     if version is None:
         return None
     if isinstance(version, str):
-        parts = version.strip().split(".")
-        if not 2 <= len(parts) <= 3 or not all(p.isdigit() for p in parts):
+        parts = version.strip(_BLANKS).split(".")
+        if not 2 <= len(parts) <= 3 or not all(_is_part(p) for p in parts):
             raise ValueError(f"not a software version: {version!r} (expected e.g. 5.9 or 5.25.1)")
         numbers = [int(p) for p in parts]
     else:

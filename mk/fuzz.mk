@@ -1,0 +1,74 @@
+# Fuzzing: three coverage-guided harnesses, each seeded with the vectors, messages at the 1 MiB
+# length limit (tests/c/seeds.py) and its kept corpus (tests/fuzz/corpus/<harness>/):
+#   urwire  tests/c/fuzz_urwire.c          the C framer and every decoder, encoder and visitor
+#   json    tests/c/fuzz_json.c            urwire-decode: version hint, record loop, JSON writer
+#   python  tests/python/fuzz_decoder.py   the Python decoder (atheris), and urwire-decode
+#                                          against it through one driver process
+# The tests replay the kept corpora: tests/c/test_c_fuzz_corpus.py (the harnesses, and C against
+# Python), tests/python/test_fuzz_corpus.py, tests/lua/test_fuzz_corpus.py (tshark).
+
+FUZZ_SECONDS ?= 60
+FUZZ_CI_SECONDS ?= 60
+FUZZ_LONG_SECONDS ?= 3600
+FUZZ_CORPUS := tests/fuzz/corpus
+# Inputs up to two messages at the runtime's length limit, plus its framer's slack and the
+# control byte: lengths at, just above and just below the limit get fuzzed too. Long inputs run
+# less often, as they take longer (-entropic_scale_per_exec_time).
+URWIRE_MAX_MESSAGE := $(shell sed -n 's/^\#define URWIRE_MAX_MESSAGE_LENGTH \([0-9]*\)u.*/\1/p' generated/c/urwire.h)
+FUZZ_MAX_LEN := $(shell echo $$((2 * $(URWIRE_MAX_MESSAGE) + 4096 + 1)))
+FUZZ_FLAGS = -max_len=$(FUZZ_MAX_LEN) -entropic_scale_per_exec_time=1 -max_total_time=$(FUZZ_SECONDS) \
+	-print_final_stats=1
+FUZZ_CC := $(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+	-Igenerated/c -Itools/urwire-decode
+CLI_LIB := $(filter-out %/main.c,$(filter %.c,$(C_CLI)))
+
+.PHONY: fuzz fuzz-c fuzz-json fuzz-python fuzz-long fuzz-corpus
+
+## fuzz: every fuzzer for FUZZ_SECONDS (60) each; crashes land in build/fuzz/crashes/<harness>/
+fuzz: fuzz-c fuzz-json fuzz-python
+
+## fuzz-long: every fuzzer for FUZZ_LONG_SECONDS (an hour) each
+fuzz-long:
+	$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=$(FUZZ_LONG_SECONDS)
+
+build/fuzz/fuzz_urwire: tests/c/fuzz_urwire.c $(C_LIB) $(C_CLI)
+	@mkdir -p build/fuzz
+	$(FUZZ_CC) -o $@ tests/c/fuzz_urwire.c $(CLI_LIB) generated/c/urwire.c -lm
+
+build/fuzz/fuzz_json: tests/c/fuzz_json.c $(C_LIB) $(C_CLI)
+	@mkdir -p build/fuzz
+	$(FUZZ_CC) -o $@ tests/c/fuzz_json.c $(CLI_LIB) generated/c/urwire.c -lm
+
+# The Python fuzzer's peer: the test driver answering for urwire-decode, input after input.
+build/fuzz/driver: tests/c/driver.c $(C_LIB) $(C_CLI)
+	@mkdir -p build/fuzz
+	$(CC) $(C_STRICT) $(C_OPT) -Igenerated/c -Itools/urwire-decode -o $@ tests/c/driver.c $(CLI_LIB) \
+		generated/c/urwire.c -lm
+
+# $(call fuzz_run,HARNESS,COMMAND,MORE SEED FOLDERS)
+define fuzz_run
+	@rm -rf build/fuzz/seeds/$(1) && mkdir -p build/fuzz/corpus/$(1) build/fuzz/crashes/$(1)
+	$(PYTHON) tests/c/seeds.py --harness $(1) build/fuzz/seeds/$(1)
+	$(2) $(FUZZ_FLAGS) -artifact_prefix=build/fuzz/crashes/$(1)/ build/fuzz/corpus/$(1) \
+		build/fuzz/seeds/$(1) $(FUZZ_CORPUS)/$(1) $(3)
+endef
+
+## fuzz-c: the C framer and decoders (tests/c/fuzz_urwire.c)
+fuzz-c: build/fuzz/fuzz_urwire
+	$(call fuzz_run,urwire,build/fuzz/fuzz_urwire -timeout=25,tests/c/regressions)
+
+## fuzz-json: urwire-decode's version hint, record loop and JSON writer (tests/c/fuzz_json.c)
+fuzz-json: build/fuzz/fuzz_json
+	$(call fuzz_run,json,build/fuzz/fuzz_json -timeout=25)
+
+## fuzz-python: the Python decoder, and urwire-decode against it (tests/python/fuzz_decoder.py)
+fuzz-python: build/fuzz/driver
+	$(call fuzz_run,python,$(PYTHON) tests/python/fuzz_decoder.py --peer=build/fuzz/driver -timeout=60)
+
+## fuzz-corpus: merge what the fuzzers found (build/fuzz/corpus/) into the kept corpora, minimized
+## with -merge=1: the inputs that add coverage beyond the seeds, none above 64 KiB
+fuzz-corpus: build/fuzz/fuzz_urwire build/fuzz/fuzz_json build/fuzz/driver
+	$(PYTHON) tests/fuzz/keep.py urwire build/fuzz/fuzz_urwire -max_len=$(FUZZ_MAX_LEN)
+	$(PYTHON) tests/fuzz/keep.py json build/fuzz/fuzz_json -max_len=$(FUZZ_MAX_LEN)
+	$(PYTHON) tests/fuzz/keep.py python $(PYTHON) tests/python/fuzz_decoder.py --peer=build/fuzz/driver \
+		-max_len=$(FUZZ_MAX_LEN)

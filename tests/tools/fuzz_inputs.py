@@ -1,0 +1,43 @@
+"""How the fuzzers' inputs read, for the tests that replay them (tests/fuzz/corpus/<harness>/).
+
+    urwire  (tests/c/fuzz_urwire.c): a control byte (bits 0-1: version hint), then the stream
+    json    (tests/c/fuzz_json.c) and python (tests/python/fuzz_decoder.py): a control byte
+            (bits 0-1: version hint; bit 2: the hint is the text that follows, up to a NUL;
+            bits 3-7: chunk size), then the stream
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+CORPUS = ROOT / "tests" / "fuzz" / "corpus"
+HARNESSES = ("urwire", "json", "python")
+HINTS = ("", "3.2", "5.0", "5.12")   # by the control byte's low bits ("": none)
+HINT_MAX = 32
+
+
+def split(harness: str, raw: bytes) -> tuple[str, bytes]:
+    """(version hint, stream) of one input of a harness."""
+    if not raw:
+        return "", b""
+    control, rest = raw[0], raw[1:]
+    if harness == "urwire" or not control & 4:
+        return HINTS[control & 3], rest
+    text = rest[:HINT_MAX].split(b"\0", 1)[0]
+    rest = rest[len(text) + 1:] if len(text) < len(rest) else b""
+    return text.decode("utf-8", "surrogateescape"), rest
+
+
+def chunk_size(raw: bytes) -> int:
+    """The size of the chunks a json or python input is fed in: 1 byte to 63 KiB, times one
+    more for every 16 KiB of input (a byte at a time through 1 MiB shows nothing new)."""
+    k = raw[0] >> 3 if raw else 0
+    return (1 + k * k * 67) * (1 + len(raw[1:]) // 16384)
+
+
+def kept(harness: str) -> list[bytes]:
+    """The kept corpus of a harness (minimized with libFuzzer's -merge=1), and for the C
+    framer harness the inputs that once crashed it (tests/c/regressions)."""
+    folders = [CORPUS / harness] + ([ROOT / "tests" / "c" / "regressions"] if harness == "urwire" else [])
+    return [p.read_bytes() for folder in folders if folder.is_dir()
+            for p in sorted(folder.iterdir()) if p.is_file() and p.name != "README"]
