@@ -7,7 +7,10 @@ CLANG ?= clang
 C_STRICT := -std=c99 -Wall -Wextra -Werror -pedantic -Wconversion -Wshadow
 C_OPT ?= -O2
 C_LIB := generated/c/urwire.c generated/c/urwire.h
-C_CLI := tools/urwire-decode/main.c tools/urwire-decode/json.c tools/urwire-decode/json.h
+# The canonical JSON writer: json.c and the float digits it prints (shortest.c).
+C_JSON := tools/urwire-decode/json.c tools/urwire-decode/shortest.c
+C_CLI := tools/urwire-decode/main.c $(C_JSON) tools/urwire-decode/json.h tools/urwire-decode/shortest.h \
+	tools/urwire-decode/pow5_table.h
 PREFIX ?= /usr/local
 FUZZ_SECONDS ?= 60
 FUZZ_CI_SECONDS ?= 60
@@ -26,7 +29,7 @@ PINNED_C := build/pinned
 build/urwire-decode: $(C_LIB) $(C_CLI)
 	@mkdir -p build
 	$(CC) $(C_STRICT) $(C_OPT) -Igenerated/c -Itools/urwire-decode -o $@ \
-		tools/urwire-decode/main.c tools/urwire-decode/json.c generated/c/urwire.c -lm
+		tools/urwire-decode/main.c $(C_JSON) generated/c/urwire.c -lm
 
 build/liburwire.a: $(C_LIB)
 	@mkdir -p build/obj
@@ -48,11 +51,11 @@ test-c: build/urwire-decode
 
 ## fuzz: libFuzzer over the framer and every decoder, seeded with the vectors (FUZZ_SECONDS=60)
 fuzz: fuzz-c
-fuzz-c: $(C_LIB) tests/c/fuzz_urwire.c tools/urwire-decode/json.c
+fuzz-c: $(C_LIB) tests/c/fuzz_urwire.c $(C_JSON)
 	@mkdir -p build/fuzz/corpus build/fuzz/crashes
 	$(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
 		-Igenerated/c -Itools/urwire-decode -o build/fuzz/fuzz_urwire tests/c/fuzz_urwire.c \
-		tools/urwire-decode/json.c generated/c/urwire.c -lm
+		$(C_JSON) generated/c/urwire.c -lm
 	$(PYTHON) tests/c/seeds.py build/fuzz/seeds
 	build/fuzz/fuzz_urwire -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
 		-artifact_prefix=build/fuzz/crashes/ build/fuzz/corpus build/fuzz/seeds tests/c/regressions

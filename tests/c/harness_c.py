@@ -17,6 +17,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 GEN = ROOT / "generated" / "c"
 CLI = ROOT / "tools" / "urwire-decode"
+JSON = [CLI / "json.c", CLI / "shortest.c"]  # the JSON writer and the float digits it prints
 OUT = ROOT / "build" / "c-tests"
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Wconversion", "-Wshadow"]
 SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-omit-frame-pointer"]
@@ -52,9 +53,9 @@ def build_variant(name: str) -> Build:
         pytest.fail(f"{cc} is not installed (scripts/setup.sh installs it)")
     folder = OUT / name
     cli, driver = folder / "urwire-decode", folder / "driver"
-    compile_c(cc, flags, [CLI / "main.c", CLI / "json.c", GEN / "urwire.c"], cli, ["-lm"])
+    compile_c(cc, flags, [CLI / "main.c", *JSON, GEN / "urwire.c"], cli, ["-lm"])
     # The driver is test code: strict too, except that it uses malloc and stdio freely.
-    compile_c(cc, flags, [ROOT / "tests" / "c" / "driver.c", CLI / "json.c", GEN / "urwire.c"], driver, ["-lm"])
+    compile_c(cc, flags, [ROOT / "tests" / "c" / "driver.c", *JSON, GEN / "urwire.c"], driver, ["-lm"])
     return Build(name, cli, driver)
 
 

@@ -10,7 +10,7 @@ import sys
 
 import pytest
 
-from tests.c.harness_c import CLI, OUT, ROOT, STRICT, compile_c, parse_lines, python_lines
+from tests.c.harness_c import CLI, JSON, OUT, ROOT, STRICT, compile_c, parse_lines, python_lines
 from tests.vectors import all_cases
 
 # The vectors of each generation; each "~no_version_message" twin runs too where there is one.
@@ -55,7 +55,7 @@ def test_pinned_layouts_have_no_version_branches(pinned):
 def test_pinned_cli_decodes_its_generation_as_the_full_decoder(pinned, cc):
     version, src = pinned
     exe = OUT / "pinned" / f"urwire-decode-{version}-{cc}"
-    compile_c(cc, ["-O2", f"-I{src}"], [CLI / "main.c", CLI / "json.c", src / "urwire.c"], exe, ["-lm"])
+    compile_c(cc, ["-O2", f"-I{src}"], [CLI / "main.c", *JSON, src / "urwire.c"], exe, ["-lm"])
     names = [n for base in PINS[version] for n in (base, base + "~no_version_message") if n in CASES]
     assert len(names) >= len(PINS[version])
     for name in names:

@@ -12,7 +12,7 @@ import yaml
 from codegen.plan import plan
 from codegen.compile import DEFAULT_SPEC, compile_text
 from codegen.targets import c as c_target
-from tests.c.harness_c import CLI, ROOT, compile_c
+from tests.c.harness_c import CLI, JSON, ROOT, compile_c
 
 
 def variant_cli(tmp_path):
@@ -24,8 +24,8 @@ def variant_cli(tmp_path):
         (tmp_path / rel).write_text(text)
     exe, driver = tmp_path / "urwire-decode", tmp_path / "driver"
     flags = ["-O1", "-g", "-fsanitize=address,undefined", "-fno-sanitize-recover=all", f"-I{tmp_path / 'c'}"]
-    compile_c("clang", flags, [CLI / "main.c", CLI / "json.c", tmp_path / "c" / "urwire.c"], exe, ["-lm"])
-    compile_c("clang", flags, [ROOT / "tests" / "c" / "driver.c", CLI / "json.c", tmp_path / "c" / "urwire.c"],
+    compile_c("clang", flags, [CLI / "main.c", *JSON, tmp_path / "c" / "urwire.c"], exe, ["-lm"])
+    compile_c("clang", flags, [ROOT / "tests" / "c" / "driver.c", *JSON, tmp_path / "c" / "urwire.c"],
               driver, ["-lm"])
     return exe, driver
 

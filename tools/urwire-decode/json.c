@@ -1,101 +1,196 @@
 /* Canonical JSON writer for urwire records. See json.h. */
 #include "json.h"
 
-#include <inttypes.h>
 #include <math.h>
-#include <stdlib.h>
+#include <stdbool.h>
 #include <string.h>
+
+#include "shortest.h"
+
+#define TEXT_MAX 32  /* the longest float text, "-2.2250738585072014e-308", fits */
+
+static const char digit_pairs[] =
+    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
+
+/* The decimal digits of n written to end just before end; returns where they start. */
+static char *digits_before(char *end, uint64_t n)
+{
+    while (n >= 100) {
+        end -= 2;
+        memcpy(end, digit_pairs + (n % 100) * 2, 2);
+        n /= 100;
+    }
+    if (n >= 10) {
+        end -= 2;
+        memcpy(end, digit_pairs + n * 2, 2);
+    } else {
+        *--end = (char)('0' + n);
+    }
+    return end;
+}
+
+/* d[.ddd]e+XX, the exponent of at least two digits, as repr() and %g write it. */
+static size_t scientific(char *out, const char *d, size_t n, int exp10)
+{
+    size_t at = 0;
+    unsigned e = (unsigned)(exp10 < 0 ? -exp10 : exp10);
+    out[at++] = d[0];
+    if (n > 1) {
+        out[at++] = '.';
+        memcpy(out + at, d + 1, n - 1);
+        at += n - 1;
+    }
+    out[at++] = 'e';
+    out[at++] = exp10 < 0 ? '-' : '+';
+    if (e >= 100)
+        out[at++] = (char)('0' + e / 100);
+    memcpy(out + at, digit_pairs + (e % 100) * 2, 2);
+    return at + 2;
+}
+
+/* The n digits d with the decimal point after the first `point` of them (point <= 0: "0."
+ * and -point zeros first; point > n: zeros up to it); ".0" after a whole number when
+ * dot_zero. */
+static size_t fixed(char *out, const char *d, size_t n, int point, bool dot_zero)
+{
+    size_t at = 0, k;
+    if (point <= 0) {
+        out[at++] = '0';
+        out[at++] = '.';
+        for (k = 0; k < (size_t)-point; k++)
+            out[at++] = '0';
+        memcpy(out + at, d, n);
+        return at + n;
+    }
+    k = (size_t)point;
+    if (k < n) {
+        memcpy(out, d, k);
+        out[k] = '.';
+        memcpy(out + k + 1, d + k, n - k);
+        return n + 1;
+    }
+    memcpy(out, d, n);
+    for (at = n; at < k; at++)
+        out[at] = '0';
+    if (dot_zero) {
+        out[at++] = '.';
+        out[at++] = '0';
+    }
+    return at;
+}
+
+static size_t nonfinite(double x, char *out)
+{
+    const char *t = isnan(x) ? "NaN" : x > 0 ? "Infinity" : "-Infinity";
+    size_t n = strlen(t);
+    memcpy(out, t, n);
+    return n;
+}
+
+/* x laid out as Python's repr(): fixed from 1e-4 up to 1e16, with at least one decimal. */
+static size_t f64_text(double x, char *out)
+{
+    char digits[24], *d;
+    shortest_decimal dec;
+    size_t n, sign = signbit(x) ? 1 : 0;
+    int point;
+    if (!isfinite(x))
+        return nonfinite(x, out);
+    out[0] = '-';
+    if (x == 0) {
+        memcpy(out + sign, "0.0", 3);
+        return sign + 3;
+    }
+    dec = shortest_f64(x);
+    d = digits_before(digits + sizeof digits, dec.digits);
+    n = (size_t)(digits + sizeof digits - d);
+    point = (int)n + dec.exponent;
+    if (point <= -4 || point > 16)
+        return sign + scientific(out + sign, d, n, point - 1);
+    return sign + fixed(out + sign, d, n, point, true);
+}
+
+/* x laid out as C's and Python's "%.{p}g", p being the number of digits. */
+static size_t f32_text(float x, char *out)
+{
+    char digits[24], *d;
+    shortest_decimal dec;
+    size_t n, sign = signbit(x) ? 1 : 0;
+    int point;
+    if (!isfinite(x))
+        return nonfinite(x, out);
+    out[0] = '-';
+    if (x == 0) {
+        out[sign] = '0';
+        return sign + 1;
+    }
+    dec = shortest_f32(x);
+    d = digits_before(digits + sizeof digits, dec.digits);
+    n = (size_t)(digits + sizeof digits - d);
+    point = (int)n + dec.exponent;
+    if (point - 1 < -4 || point > (int)n)
+        return sign + scientific(out + sign, d, n, point - 1);
+    return sign + fixed(out + sign, d, n, point, false);
+}
+
+static void cut(const char *text, size_t n, char *buf, size_t cap)
+{
+    if (cap == 0)
+        return;
+    if (n >= cap)
+        n = cap - 1;
+    memcpy(buf, text, n);
+    buf[n] = '\0';
+}
 
 void json_f32_text(float x, char *buf, size_t cap)
 {
-    int p;
-    if (isnan(x)) {
-        snprintf(buf, cap, "NaN");
-        return;
-    }
-    if (isinf(x)) {
-        snprintf(buf, cap, x > 0 ? "Infinity" : "-Infinity");
-        return;
-    }
-    for (p = 1; p <= 9; p++) {
-        snprintf(buf, cap, "%.*g", p, (double)x);
-        if (strtof(buf, NULL) == x)
-            return;
-    }
-    snprintf(buf, cap, "%.9g", (double)x);
+    char text[TEXT_MAX];
+    cut(text, f32_text(x, text), buf, cap);
 }
 
-/* Does the decimal 0.digits * 10^(exp10 + 1), with this sign, read back as x? */
-static int f64_reads_back(double x, const char *digits, int exp10)
-{
-    char text[48];
-    snprintf(text, sizeof text, "%s%c.%se%d", x < 0 || (x == 0 && signbit(x)) ? "-" : "", digits[0], digits + 1,
-             exp10);
-    return strtod(text, NULL) == x;
-}
-
-/* The shortest digits that read back as x, laid out as Python's repr() lays them out: fixed
- * notation with at least one decimal when the decimal exponent is from -4 to 15 ("1.0",
- * "0.0001", "1e+16", "1e-05"), so that the CLI's lines are the Python CLI's byte for byte.
- * For each length p = 1..17: the correctly rounded %.{p-1}e, else its neighbour towards x
- * (at a power of two the rounding interval is lopsided, and only the neighbour may fit). */
 void json_f64_text(double x, char *buf, size_t cap)
 {
-    char sci[40], digits[24], near[24];
-    const char *e;
-    int p, exp10 = 0, n = 0, decpt, k, found = 0;
-    size_t at = 0;
-    if (isnan(x) || isinf(x)) {
-        snprintf(buf, cap, isnan(x) ? "NaN" : x > 0 ? "Infinity" : "-Infinity");
-        return;
-    }
-    for (p = 1; p <= 17 && !found; p++) {
-        snprintf(sci, sizeof sci, "%.*e", p - 1, x);
-        for (n = 0, e = sci; *e && *e != 'e'; e++)
-            if (*e >= '0' && *e <= '9')
-                digits[n++] = *e;
-        digits[n] = '\0';
-        exp10 = atoi(e + 1);
-        found = strtod(sci, NULL) == x;
-        if (!found && p > 1) {
-            /* The neighbour on x's side: up when the rounded text lies below |x|. */
-            int up = fabs(strtod(sci, NULL)) < fabs(x);
-            memcpy(near, digits, (size_t)n + 1);
-            if (up ? near[n - 1] < '9' : near[n - 1] > '0') {
-                near[n - 1] = (char)(near[n - 1] + (up ? 1 : -1));
-                if (f64_reads_back(x, near, exp10)) {
-                    memcpy(digits, near, (size_t)n + 1);
-                    found = 1;
-                }
-            }
+    char text[TEXT_MAX];
+    cut(text, f64_text(x, text), buf, cap);
+}
+
+/* The writer's buffer: bytes go to out in one fwrite per record, not one call per token. */
+static void flush(json_writer *w)
+{
+    if (w->len > 0)
+        fwrite(w->buf, 1, w->len, w->out);
+    w->len = 0;
+}
+
+/* Room for n more bytes (n <= JSON_WRITER_BUFFER); the caller adds what it wrote to w->len. */
+static char *reserve(json_writer *w, size_t n)
+{
+    if (sizeof w->buf - w->len < n)
+        flush(w);
+    return w->buf + w->len;
+}
+
+static void put(json_writer *w, const char *p, size_t n)
+{
+    if (sizeof w->buf - w->len < n) {
+        flush(w);
+        if (n > sizeof w->buf) {
+            fwrite(p, 1, n, w->out);
+            return;
         }
     }
-    while (n > 1 && digits[n - 1] == '0')
-        digits[--n] = '\0';
-    decpt = exp10 + 1;  /* x = 0.digits * 10^decpt */
-    if (sci[0] == '-' && at + 1 < cap)
-        buf[at++] = '-';
-    if (decpt > -4 && decpt <= 16) {
-        if (decpt <= 0) {
-            at += (size_t)snprintf(buf + at, cap - at, "0.");
-            for (k = 0; k < -decpt; k++)
-                at += (size_t)snprintf(buf + at, cap - at, "0");
-            snprintf(buf + at, cap - at, "%s", digits);
-        } else {
-            for (k = 0; k < decpt || k < n; k++) {
-                if (k == decpt)
-                    at += (size_t)snprintf(buf + at, cap - at, ".");
-                at += (size_t)snprintf(buf + at, cap - at, "%c", k < n ? digits[k] : '0');
-            }
-            if (decpt >= n)
-                snprintf(buf + at, cap - at, ".0");
-        }
-    } else {
-        at += (size_t)snprintf(buf + at, cap - at, "%c", digits[0]);
-        if (n > 1)
-            at += (size_t)snprintf(buf + at, cap - at, ".%s", digits + 1);
-        snprintf(buf + at, cap - at, "e%c%02d", exp10 < 0 ? '-' : '+', exp10 < 0 ? -exp10 : exp10);
-    }
+    memcpy(w->buf + w->len, p, n);
+    w->len += n;
+}
+
+static void put_char(json_writer *w, char c)
+{
+    if (w->len == sizeof w->buf)
+        flush(w);
+    w->buf[w->len++] = c;
 }
 
 /* Length of the valid UTF-8 sequence at p (1..4), or 0 with *bad set to the length of the
@@ -139,26 +234,34 @@ static size_t utf8_sequence(const unsigned char *p, size_t n, size_t *bad)
     return need + 1;
 }
 
-void json_write_text(FILE *out, const unsigned char *p, size_t n)
+/* Bytes as a JSON string into w's buffer (see json_write_text). */
+static void write_text(json_writer *w, const unsigned char *p, size_t n)
 {
-    size_t i = 0, len, bad;
-    putc('"', out);
+    static const char hex[] = "0123456789abcdef";
+    size_t i = 0, run, len, bad;
+    put_char(w, '"');
     while (i < n) {
         unsigned char c = p[i];
+        for (run = i; run < n && p[run] >= 0x20 && p[run] < 0x80 && p[run] != '"' && p[run] != '\\'; run++)
+            ;
+        if (run > i) {
+            put(w, (const char *)p + i, run - i);
+            i = run;
+            continue;
+        }
         if (c < 0x80) {
             switch (c) {
-            case '"': fputs("\\\"", out); break;
-            case '\\': fputs("\\\\", out); break;
-            case '\n': fputs("\\n", out); break;
-            case '\r': fputs("\\r", out); break;
-            case '\t': fputs("\\t", out); break;
-            case '\b': fputs("\\b", out); break;
-            case '\f': fputs("\\f", out); break;
-            default:
-                if (c < 0x20)
-                    fprintf(out, "\\u%04x", c);
-                else
-                    putc(c, out);
+            case '"': put(w, "\\\"", 2); break;
+            case '\\': put(w, "\\\\", 2); break;
+            case '\n': put(w, "\\n", 2); break;
+            case '\r': put(w, "\\r", 2); break;
+            case '\t': put(w, "\\t", 2); break;
+            case '\b': put(w, "\\b", 2); break;
+            case '\f': put(w, "\\f", 2); break;
+            default: {
+                char u[6] = {'\\', 'u', '0', '0', hex[c >> 4], hex[c & 15]};
+                put(w, u, sizeof u);
+            }
             }
             i++;
             continue;
@@ -166,31 +269,50 @@ void json_write_text(FILE *out, const unsigned char *p, size_t n)
         bad = 0;
         len = utf8_sequence(p + i, n - i, &bad);
         if (len) {
-            fwrite(p + i, 1, len, out);
+            put(w, (const char *)p + i, len);
             i += len;
         } else {
-            fputs("\xEF\xBF\xBD", out);
+            put(w, "\xEF\xBF\xBD", 3);
             i += bad;
         }
     }
-    putc('"', out);
+    put_char(w, '"');
+}
+
+void json_write_text(FILE *out, const unsigned char *p, size_t n)
+{
+    json_writer w;
+    w.out = out;
+    w.len = 0;
+    write_text(&w, p, n);
+    flush(&w);
+}
+
+/* A record is written: hand it to out. */
+static void record_end(json_writer *w)
+{
+    if (w->depth <= 0)
+        flush(w);
 }
 
 static void sep(json_writer *w, const char *key)
 {
     if (w->depth > 0) {
         if (!w->first[w->depth - 1])
-            fputs(", ", w->out);
+            put(w, ", ", 2);
         w->first[w->depth - 1] = 0;
     }
-    if (key)
-        fprintf(w->out, "\"%s\": ", key);
+    if (key) {
+        put_char(w, '"');
+        put(w, key, strlen(key));
+        put(w, "\": ", 3);
+    }
 }
 
 static void open_(json_writer *w, const char *key, char c)
 {
     sep(w, key);
-    putc(c, w->out);
+    put_char(w, c);
     if (w->depth < (int)sizeof w->first)
         w->first[w->depth] = 1;
     w->depth++;
@@ -198,8 +320,9 @@ static void open_(json_writer *w, const char *key, char c)
 
 static void close_(json_writer *w, char c)
 {
-    putc(c, w->out);
+    put_char(w, c);
     w->depth--;
+    record_end(w);
 }
 
 static void begin_object(void *ctx, const char *key) { open_((json_writer *)ctx, key, '{'); }
@@ -207,76 +330,91 @@ static void end_object(void *ctx) { close_((json_writer *)ctx, '}'); }
 static void begin_array(void *ctx, const char *key) { open_((json_writer *)ctx, key, '['); }
 static void end_array(void *ctx) { close_((json_writer *)ctx, ']'); }
 
+static void put_uint(json_writer *w, uint64_t v, bool negative)
+{
+    char digits[24], *d = digits_before(digits + sizeof digits, v);
+    if (negative)
+        *--d = '-';
+    put(w, d, (size_t)(digits + sizeof digits - d));
+}
+
 static void on_int(void *ctx, const char *key, int64_t v)
 {
     json_writer *w = (json_writer *)ctx;
     sep(w, key);
-    fprintf(w->out, "%" PRId64, v);
+    put_uint(w, v < 0 ? 0 - (uint64_t)v : (uint64_t)v, v < 0);
+    record_end(w);
 }
 
 static void on_uint(void *ctx, const char *key, uint64_t v)
 {
     json_writer *w = (json_writer *)ctx;
     sep(w, key);
-    fprintf(w->out, "%" PRIu64, v);
+    put_uint(w, v, false);
+    record_end(w);
 }
 
 static void on_bool(void *ctx, const char *key, bool v)
 {
     json_writer *w = (json_writer *)ctx;
     sep(w, key);
-    fputs(v ? "true" : "false", w->out);
+    put(w, v ? "true" : "false", v ? 4 : 5);
+    record_end(w);
 }
 
 static void on_f32(void *ctx, const char *key, float v)
 {
     json_writer *w = (json_writer *)ctx;
-    char buf[48];
     sep(w, key);
-    json_f32_text(v, buf, sizeof buf);
-    fputs(buf, w->out);
+    w->len += f32_text(v, reserve(w, TEXT_MAX));
+    record_end(w);
 }
 
 static void on_f64(void *ctx, const char *key, double v)
 {
     json_writer *w = (json_writer *)ctx;
-    char buf[48];
     sep(w, key);
-    json_f64_text(v, buf, sizeof buf);
-    fputs(buf, w->out);
+    w->len += f64_text(v, reserve(w, TEXT_MAX));
+    record_end(w);
 }
 
 static void on_text(void *ctx, const char *key, urwire_bytes t)
 {
     json_writer *w = (json_writer *)ctx;
     sep(w, key);
-    json_write_text(w->out, t.ptr, t.len);
+    write_text(w, t.ptr, t.len);
+    record_end(w);
 }
 
 static void on_hex(void *ctx, const char *key, urwire_bytes b)
 {
-    static const char digits[] = "0123456789abcdef";
+    static const char hex[] = "0123456789abcdef";
     json_writer *w = (json_writer *)ctx;
     size_t i;
     sep(w, key);
-    putc('"', w->out);
+    put_char(w, '"');
     for (i = 0; i < b.len; i++) {
-        putc(digits[b.ptr[i] >> 4], w->out);
-        putc(digits[b.ptr[i] & 15], w->out);
+        char *at = reserve(w, 2);
+        at[0] = hex[b.ptr[i] >> 4];
+        at[1] = hex[b.ptr[i] & 15];
+        w->len += 2;
     }
-    putc('"', w->out);
+    put_char(w, '"');
+    record_end(w);
 }
 
 static void on_null(void *ctx, const char *key)
 {
     json_writer *w = (json_writer *)ctx;
     sep(w, key);
-    fputs("null", w->out);
+    put(w, "null", 4);
+    record_end(w);
 }
 
 urwire_visitor json_visitor(json_writer *w)
 {
     urwire_visitor v;
+    w->len = 0;
     v.ctx = w;
     v.begin_object = begin_object;
     v.end_object = end_object;
