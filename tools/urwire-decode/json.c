@@ -7,73 +7,98 @@
 
 #include "shortest.h"
 
-#define TEXT_MAX 32  /* the longest float text, "-2.2250738585072014e-308", fits */
+/* Float texts are at most 25 bytes ("-2.2250738585072014e-308"). The layouts below copy a
+ * fixed DIGIT_COPY bytes of digits, more than any float has, out of a buffer of twice that with
+ * the digits ending in its middle, into a text with TEXT_ROOM bytes of room: fixed-size copies
+ * compile to a few moves, where copies of the exact length would be calls. */
+#define DIGIT_COPY 24
+#define TEXT_ROOM 48
 
 static const char digit_pairs[] =
     "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
     "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
     "8081828384858687888990919293949596979899";
 
+static void four_digits(char *at, uint32_t v)
+{
+    memcpy(at, digit_pairs + v / 100 * 2, 2);
+    memcpy(at + 2, digit_pairs + v % 100 * 2, 2);
+}
+
 /* The decimal digits of n written to end just before end; returns where they start. */
 static char *digits_before(char *end, uint64_t n)
 {
-    while (n >= 100) {
-        end -= 2;
-        memcpy(end, digit_pairs + (n % 100) * 2, 2);
-        n /= 100;
+    uint32_t m;
+    while (n >= 100000000) {  /* eight at a time, in 32-bit arithmetic */
+        uint64_t high = n / 100000000;
+        uint32_t low = (uint32_t)(n - high * 100000000);
+        end -= 8;
+        four_digits(end, low / 10000);
+        four_digits(end + 4, low % 10000);
+        n = high;
     }
-    if (n >= 10) {
+    for (m = (uint32_t)n; m >= 100; m /= 100) {
         end -= 2;
-        memcpy(end, digit_pairs + n * 2, 2);
+        memcpy(end, digit_pairs + m % 100 * 2, 2);
+    }
+    if (m >= 10) {
+        end -= 2;
+        memcpy(end, digit_pairs + m * 2, 2);
     } else {
-        *--end = (char)('0' + n);
+        *--end = (char)('0' + m);
     }
     return end;
 }
 
-/* d[.ddd]e+XX, the exponent of at least two digits, as repr() and %g write it. */
-static size_t scientific(char *out, const char *d, size_t n, int exp10)
+/* A float's digits, ending in the middle of buf (see DIGIT_COPY). */
+typedef struct digits {
+    char buf[2 * DIGIT_COPY];
+    const char *d;
+    size_t n;
+} digits;
+
+static void set_digits(digits *g, uint64_t value)
 {
-    size_t at = 0;
+    g->d = digits_before(g->buf + DIGIT_COPY, value);
+    g->n = (size_t)(g->buf + DIGIT_COPY - g->d);
+}
+
+/* d[.ddd]e+XX, the exponent of at least two digits, as repr() and %g write it. */
+static size_t scientific(char *out, const digits *g, int exp10)
+{
+    size_t at = g->n > 1 ? g->n + 1 : 1;
     unsigned e = (unsigned)(exp10 < 0 ? -exp10 : exp10);
-    out[at++] = d[0];
-    if (n > 1) {
-        out[at++] = '.';
-        memcpy(out + at, d + 1, n - 1);
-        at += n - 1;
-    }
+    out[0] = g->d[0];
+    out[1] = '.';
+    memcpy(out + 2, g->d + 1, DIGIT_COPY);
     out[at++] = 'e';
     out[at++] = exp10 < 0 ? '-' : '+';
     if (e >= 100)
         out[at++] = (char)('0' + e / 100);
-    memcpy(out + at, digit_pairs + (e % 100) * 2, 2);
+    memcpy(out + at, digit_pairs + e % 100 * 2, 2);
     return at + 2;
 }
 
-/* The n digits d with the decimal point after the first `point` of them (point <= 0: "0."
- * and -point zeros first; point > n: zeros up to it); ".0" after a whole number when
- * dot_zero. */
-static size_t fixed(char *out, const char *d, size_t n, int point, bool dot_zero)
+/* The digits with the decimal point after the first `point` of them: point from -3 to 0 puts
+ * "0." and -point zeros first; point > n, zeros up to it (16 at most); ".0" after a whole
+ * number when dot_zero. */
+static size_t fixed(char *out, const digits *g, int point, bool dot_zero)
 {
-    size_t at = 0, k;
+    size_t at, n = g->n;
     if (point <= 0) {
-        out[at++] = '0';
-        out[at++] = '.';
-        for (k = 0; k < (size_t)-point; k++)
-            out[at++] = '0';
-        memcpy(out + at, d, n);
+        at = 2 + (size_t)-point;
+        memcpy(out, "0.000", 5);
+        memcpy(out + at, g->d, DIGIT_COPY);
         return at + n;
     }
-    k = (size_t)point;
-    if (k < n) {
-        memcpy(out, d, k);
-        out[k] = '.';
-        memcpy(out + k + 1, d + k, n - k);
+    at = (size_t)point;
+    memcpy(out, g->d, DIGIT_COPY);
+    if (at < n) {
+        out[at] = '.';
+        memcpy(out + at + 1, g->d + at, DIGIT_COPY);
         return n + 1;
     }
-    memcpy(out, d, n);
-    for (at = n; at < k; at++)
-        out[at] = '0';
+    memcpy(out + n, "0000000000000000", 16);
     if (dot_zero) {
         out[at++] = '.';
         out[at++] = '0';
@@ -89,12 +114,13 @@ static size_t nonfinite(double x, char *out)
     return n;
 }
 
-/* x laid out as Python's repr(): fixed from 1e-4 up to 1e16, with at least one decimal. */
+/* x laid out as Python's repr(): fixed from 1e-4 up to 1e16, with at least one decimal.
+ * out has TEXT_ROOM bytes. */
 static size_t f64_text(double x, char *out)
 {
-    char digits[24], *d;
+    digits g;
     shortest_decimal dec;
-    size_t n, sign = signbit(x) ? 1 : 0;
+    size_t sign = signbit(x) ? 1 : 0;
     int point;
     if (!isfinite(x))
         return nonfinite(x, out);
@@ -104,20 +130,20 @@ static size_t f64_text(double x, char *out)
         return sign + 3;
     }
     dec = shortest_f64(x);
-    d = digits_before(digits + sizeof digits, dec.digits);
-    n = (size_t)(digits + sizeof digits - d);
-    point = (int)n + dec.exponent;
+    set_digits(&g, dec.digits);
+    point = (int)g.n + dec.exponent;
     if (point <= -4 || point > 16)
-        return sign + scientific(out + sign, d, n, point - 1);
-    return sign + fixed(out + sign, d, n, point, true);
+        return sign + scientific(out + sign, &g, point - 1);
+    return sign + fixed(out + sign, &g, point, true);
 }
 
-/* x laid out as C's and Python's "%.{p}g", p being the number of digits. */
+/* x laid out as C's and Python's "%.{p}g", p being the number of digits. out has TEXT_ROOM
+ * bytes. */
 static size_t f32_text(float x, char *out)
 {
-    char digits[24], *d;
+    digits g;
     shortest_decimal dec;
-    size_t n, sign = signbit(x) ? 1 : 0;
+    size_t sign = signbit(x) ? 1 : 0;
     int point;
     if (!isfinite(x))
         return nonfinite(x, out);
@@ -127,12 +153,11 @@ static size_t f32_text(float x, char *out)
         return sign + 1;
     }
     dec = shortest_f32(x);
-    d = digits_before(digits + sizeof digits, dec.digits);
-    n = (size_t)(digits + sizeof digits - d);
-    point = (int)n + dec.exponent;
-    if (point - 1 < -4 || point > (int)n)
-        return sign + scientific(out + sign, d, n, point - 1);
-    return sign + fixed(out + sign, d, n, point, false);
+    set_digits(&g, dec.digits);
+    point = (int)g.n + dec.exponent;
+    if (point - 1 < -4 || point > (int)g.n)
+        return sign + scientific(out + sign, &g, point - 1);
+    return sign + fixed(out + sign, &g, point, false);
 }
 
 static void cut(const char *text, size_t n, char *buf, size_t cap)
@@ -147,13 +172,13 @@ static void cut(const char *text, size_t n, char *buf, size_t cap)
 
 void json_f32_text(float x, char *buf, size_t cap)
 {
-    char text[TEXT_MAX];
+    char text[TEXT_ROOM];
     cut(text, f32_text(x, text), buf, cap);
 }
 
 void json_f64_text(double x, char *buf, size_t cap)
 {
-    char text[TEXT_MAX];
+    char text[TEXT_ROOM];
     cut(text, f64_text(x, text), buf, cap);
 }
 
@@ -295,24 +320,45 @@ static void record_end(json_writer *w)
         flush(w);
 }
 
-static void sep(json_writer *w, const char *key)
+/* Writes the separator and key of the next value and returns where the value goes, with
+ * `room` bytes of room there; the caller sets w->len past what it writes. */
+static char *field(json_writer *w, const char *key, size_t room)
 {
+    size_t n = key ? strlen(key) : 0;
+    bool comma = false;
+    char *at;
     if (w->depth > 0) {
-        if (!w->first[w->depth - 1])
-            put(w, ", ", 2);
+        comma = !w->first[w->depth - 1];
         w->first[w->depth - 1] = 0;
     }
-    if (key) {
+    if (n + room + 5 > sizeof w->buf) {  /* no key is this long; written in pieces if one were */
+        if (comma)
+            put(w, ", ", 2);
         put_char(w, '"');
-        put(w, key, strlen(key));
+        put(w, key, n);
         put(w, "\": ", 3);
+        return reserve(w, room);
     }
+    at = reserve(w, n + room + 5);
+    if (comma) {
+        *at++ = ',';
+        *at++ = ' ';
+    }
+    if (key) {
+        *at++ = '"';
+        memcpy(at, key, n);
+        at += n;
+        memcpy(at, "\": ", 3);
+        at += 3;
+    }
+    return at;
 }
 
 static void open_(json_writer *w, const char *key, char c)
 {
-    sep(w, key);
-    put_char(w, c);
+    char *at = field(w, key, 1);
+    *at++ = c;
+    w->len = (size_t)(at - w->buf);
     if (w->depth < (int)sizeof w->first)
         w->first[w->depth] = 1;
     w->depth++;
@@ -330,58 +376,60 @@ static void end_object(void *ctx) { close_((json_writer *)ctx, '}'); }
 static void begin_array(void *ctx, const char *key) { open_((json_writer *)ctx, key, '['); }
 static void end_array(void *ctx) { close_((json_writer *)ctx, ']'); }
 
-static void put_uint(json_writer *w, uint64_t v, bool negative)
+/* An integer's text at at: v, after a minus sign when negative. */
+static size_t integer_text(char *at, uint64_t v, bool negative)
 {
-    char digits[24], *d = digits_before(digits + sizeof digits, v);
-    if (negative)
-        *--d = '-';
-    put(w, d, (size_t)(digits + sizeof digits - d));
+    char buf[2 * DIGIT_COPY], *d = digits_before(buf + DIGIT_COPY, v);
+    at[0] = '-';
+    memcpy(at + negative, d, DIGIT_COPY);
+    return (size_t)(buf + DIGIT_COPY - d) + negative;
 }
 
 static void on_int(void *ctx, const char *key, int64_t v)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
-    put_uint(w, v < 0 ? 0 - (uint64_t)v : (uint64_t)v, v < 0);
+    char *at = field(w, key, TEXT_ROOM);
+    w->len = (size_t)(at - w->buf) + integer_text(at, v < 0 ? 0 - (uint64_t)v : (uint64_t)v, v < 0);
     record_end(w);
 }
 
 static void on_uint(void *ctx, const char *key, uint64_t v)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
-    put_uint(w, v, false);
+    char *at = field(w, key, TEXT_ROOM);
+    w->len = (size_t)(at - w->buf) + integer_text(at, v, false);
     record_end(w);
 }
 
 static void on_bool(void *ctx, const char *key, bool v)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
-    put(w, v ? "true" : "false", v ? 4 : 5);
+    char *at = field(w, key, 5);
+    memcpy(at, v ? "true" : "false", 5);
+    w->len = (size_t)(at - w->buf) + (v ? 4 : 5);
     record_end(w);
 }
 
 static void on_f32(void *ctx, const char *key, float v)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
-    w->len += f32_text(v, reserve(w, TEXT_MAX));
+    char *at = field(w, key, TEXT_ROOM);
+    w->len = (size_t)(at - w->buf) + f32_text(v, at);
     record_end(w);
 }
 
 static void on_f64(void *ctx, const char *key, double v)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
-    w->len += f64_text(v, reserve(w, TEXT_MAX));
+    char *at = field(w, key, TEXT_ROOM);
+    w->len = (size_t)(at - w->buf) + f64_text(v, at);
     record_end(w);
 }
 
 static void on_text(void *ctx, const char *key, urwire_bytes t)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
+    w->len = (size_t)(field(w, key, 0) - w->buf);
     write_text(w, t.ptr, t.len);
     record_end(w);
 }
@@ -390,14 +438,18 @@ static void on_hex(void *ctx, const char *key, urwire_bytes b)
 {
     static const char hex[] = "0123456789abcdef";
     json_writer *w = (json_writer *)ctx;
-    size_t i;
-    sep(w, key);
-    put_char(w, '"');
-    for (i = 0; i < b.len; i++) {
-        char *at = reserve(w, 2);
-        at[0] = hex[b.ptr[i] >> 4];
-        at[1] = hex[b.ptr[i] & 15];
-        w->len += 2;
+    size_t i = 0, k;
+    char *at = field(w, key, 1);
+    *at = '"';
+    w->len = (size_t)(at - w->buf) + 1;
+    while (i < b.len) {
+        size_t chunk = b.len - i < sizeof w->buf / 2 ? b.len - i : sizeof w->buf / 2;
+        at = reserve(w, 2 * chunk);
+        for (k = 0; k < chunk; k++, i++) {
+            *at++ = hex[b.ptr[i] >> 4];
+            *at++ = hex[b.ptr[i] & 15];
+        }
+        w->len += 2 * chunk;
     }
     put_char(w, '"');
     record_end(w);
@@ -406,8 +458,9 @@ static void on_hex(void *ctx, const char *key, urwire_bytes b)
 static void on_null(void *ctx, const char *key)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
-    put(w, "null", 4);
+    char *at = field(w, key, 4);
+    memcpy(at, "null", 4);
+    w->len = (size_t)(at - w->buf) + 4;
     record_end(w);
 }
 

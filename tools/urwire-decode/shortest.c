@@ -113,16 +113,20 @@ static scaled scale(uint64_t v, uint64_t lo, uint64_t hi, int32_t e2, bool ends_
     return s;
 }
 
-static void drop_digit(scaled *s)
+/* Drop the last k digits at once: p = 10^k, below = 10^(k - 1) (constants, for the compiler). */
+static void drop_digits(scaled *s, uint64_t p, uint64_t below, int32_t k)
 {
-    s->vm_exact = s->vm_exact && s->vm % 10 == 0;
-    s->vr_exact = s->vr_exact && s->last == 0;
-    s->last = (uint8_t)(s->vr % 10);
-    s->vr /= 10;
-    s->vp /= 10;
-    s->vm /= 10;
-    s->e10++;
+    uint64_t rest = s->vr % p;
+    s->vm_exact = s->vm_exact && s->vm % p == 0;
+    s->vr_exact = s->vr_exact && s->last == 0 && rest % below == 0;
+    s->last = (uint8_t)(rest / below);
+    s->vr /= p;
+    s->vp /= p;
+    s->vm /= p;
+    s->e10 += k;
 }
+
+static void drop_digit(scaled *s) { drop_digits(s, 10, 1, 1); }
 
 /* Does v rounded to vr's digits go up? Ties go to the even digit, as printf rounds. */
 static bool rounds_up(const scaled *s)
@@ -139,6 +143,8 @@ static bool inside(const scaled *s, uint64_t d)
  * decimal inside has, and vr or vr + 1 is inside. */
 static void shorten(scaled *s)
 {
+    while (s->vp / 10000 > s->vm / 10000)  /* four at a time first: a float32 drops about nine */
+        drop_digits(s, 10000, 1000, 4);
     while (s->vp / 10 > s->vm / 10)
         drop_digit(s);
     if (s->vm_exact)  /* lo itself is inside: its trailing zeros can go too */

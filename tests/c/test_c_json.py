@@ -1,7 +1,7 @@
-"""The float texts of the C CLI (tools/urwire-decode/shortest.c under json.c) against Python:
-hard cases in C (tests/c/shortest_unit.c) under gcc, clang and the sanitizers, then millions
-of random bit patterns through the test driver in one run each, compared with repr() for
-float64 and canonical.f32_text for float32."""
+"""The C CLI's JSON writer (tools/urwire-decode/json.c, shortest.c): its unit checks in C
+(tests/c/json_unit.c: hard float cases, the record buffer) under gcc, clang and the sanitizers,
+then the float texts against Python: millions of random bit patterns through the test driver
+in one run each, compared with repr() for float64 and canonical.f32_text for float32."""
 from __future__ import annotations
 
 import math
@@ -12,7 +12,7 @@ import sys
 
 import pytest
 
-from tests.c.harness_c import CLI, GEN, OUT, ROOT, SANITIZE, compile_c
+from tests.c.harness_c import CLI, JSON, OUT, ROOT, SANITIZE, compile_c
 
 from urwire.canonical import f32_text
 
@@ -29,14 +29,13 @@ def test_pow5_table_is_what_its_script_writes():
 
 
 @pytest.mark.parametrize("name", list(UNIT_BUILDS))
-def test_hard_cases_and_properties(name):
+def test_json_unit_checks(name):
     cc, flags = UNIT_BUILDS[name]
-    exe = OUT / f"shortest-unit-{name}"
-    compile_c(cc, ["-O1", "-g", *SANITIZE, *flags],
-              [ROOT / "tests" / "c" / "shortest_unit.c", CLI / "json.c", CLI / "shortest.c"], exe, ["-lm"])
+    exe = OUT / f"json-unit-{name}"
+    compile_c(cc, ["-O1", "-g", *SANITIZE, *flags], [ROOT / "tests" / "c" / "json_unit.c", *JSON], exe, ["-lm"])
     result = subprocess.run([str(exe)], capture_output=True, text=True)
     assert result.returncode == 0, result.stdout + result.stderr
-    assert result.stdout.strip() == "all shortest checks passed"
+    assert result.stdout.strip() == "all json checks passed"
 
 
 def test_near_midpoint_finder_builds(tmp_path):
