@@ -106,58 +106,45 @@ static size_t fixed(char *out, const digits *g, int point, bool dot_zero)
     return at;
 }
 
-static size_t nonfinite(double x, char *out)
+/* NaN and the infinities as canonical JSON names them, and a zero as `zero`, signed: the
+ * texts that need no digits. */
+static size_t wordy_text(double x, const char *zero, char *out)
 {
-    const char *t = isnan(x) ? "NaN" : x > 0 ? "Infinity" : "-Infinity";
-    size_t n = strlen(t);
-    memcpy(out, t, n);
-    return n;
+    const char *t = isnan(x) ? "NaN" : isinf(x) ? (x > 0 ? "Infinity" : "-Infinity") : zero;
+    size_t sign = !isnan(x) && !isinf(x) && signbit(x), n = strlen(t);
+    out[0] = '-';
+    memcpy(out + sign, t, n);
+    return sign + n;
 }
 
-/* x laid out as Python's repr(): fixed from 1e-4 up to 1e16, with at least one decimal.
- * out has TEXT_ROOM bytes. */
+/* |x| = dec laid out as Python's repr() (fixed from 1e-4 up to 1e16, with at least one
+ * decimal), or when percent_g as C's and Python's "%.{p}g", p being the number of digits. */
+static size_t decimal_text(double x, shortest_decimal dec, bool percent_g, char *out)
+{
+    digits g;
+    size_t sign = signbit(x) ? 1 : 0;
+    int point;
+    set_digits(&g, dec.digits);
+    point = (int)g.n + dec.exponent;
+    out[0] = '-';
+    if (percent_g ? point - 1 < -4 || point > (int)g.n : point <= -4 || point > 16)
+        return sign + scientific(out + sign, &g, point - 1);
+    return sign + fixed(out + sign, &g, point, !percent_g);
+}
+
+/* The canonical texts; out has TEXT_ROOM bytes. */
 static size_t f64_text(double x, char *out)
 {
-    digits g;
-    shortest_decimal dec;
-    size_t sign = signbit(x) ? 1 : 0;
-    int point;
-    if (!isfinite(x))
-        return nonfinite(x, out);
-    out[0] = '-';
-    if (x == 0) {
-        memcpy(out + sign, "0.0", 3);
-        return sign + 3;
-    }
-    dec = shortest_f64(x);
-    set_digits(&g, dec.digits);
-    point = (int)g.n + dec.exponent;
-    if (point <= -4 || point > 16)
-        return sign + scientific(out + sign, &g, point - 1);
-    return sign + fixed(out + sign, &g, point, true);
+    if (!isfinite(x) || x == 0)
+        return wordy_text(x, "0.0", out);
+    return decimal_text(x, shortest_f64(x), false, out);
 }
 
-/* x laid out as C's and Python's "%.{p}g", p being the number of digits. out has TEXT_ROOM
- * bytes. */
 static size_t f32_text(float x, char *out)
 {
-    digits g;
-    shortest_decimal dec;
-    size_t sign = signbit(x) ? 1 : 0;
-    int point;
-    if (!isfinite(x))
-        return nonfinite(x, out);
-    out[0] = '-';
-    if (x == 0) {
-        out[sign] = '0';
-        return sign + 1;
-    }
-    dec = shortest_f32(x);
-    set_digits(&g, dec.digits);
-    point = (int)g.n + dec.exponent;
-    if (point - 1 < -4 || point > (int)g.n)
-        return sign + scientific(out + sign, &g, point - 1);
-    return sign + fixed(out + sign, &g, point, false);
+    if (!isfinite(x) || x == 0)
+        return wordy_text(x, "0", out);
+    return decimal_text(x, shortest_f32(x), true, out);
 }
 
 static void cut(const char *text, size_t n, char *buf, size_t cap)
