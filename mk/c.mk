@@ -13,13 +13,13 @@ BENCH_C_LEVELS ?= -O3 -O2 -Os
 
 ALL_TARGETS += build/urwire-decode
 TEST_TARGETS += test-c
-BENCH_TARGETS += bench-c
+BENCH_TARGETS += bench-c bench-c-cli
 DEMO_TARGETS += demo-c
 
 PIN ?= 5.11
 PINNED_C := build/pinned
 
-.PHONY: test-c bench-c demo-c install install-c uninstall-c pinned-c
+.PHONY: test-c bench-c bench-c-cli demo-c install install-c uninstall-c pinned-c
 
 build/urwire-decode: $(C_LIB) $(C_CLI)
 	@mkdir -p build
@@ -65,6 +65,13 @@ ifneq ($(BENCH_C_BASE),)
 endif
 	$(PYTHON) tests/bench/bench_c.py $(BENCH_C_LEVELS:%=build/bench_c%) \
 		$(if $(BENCH_C_BASE),$(BENCH_C_LEVELS:%=build/bench_c-base%))
+
+## bench-c-cli: build/urwire-decode against `python3 -m urwire decode` on the same raw stream of
+## real robot states to /dev/null, in one run: MB/s of CPU time each and the ratio
+## (BENCH_CLI_MB: the stream sizes in MB)
+BENCH_CLI_MB ?= 10 100
+bench-c-cli: build/urwire-decode tests/bench/bench_cli.py
+	$(PYTHON) tests/bench/bench_cli.py $(BENCH_CLI_MB)
 
 ## demo-c: the C decoder on the bundled capture's robot->client stream (urwire-decode reads raw streams)
 demo-c: build/urwire-decode

@@ -19,6 +19,7 @@ GEN = ROOT / "generated" / "c"
 CLI = ROOT / "tools" / "urwire-decode"
 CLI_SOURCES = sorted(CLI.glob("*.c"))           # main.c and what it links
 CLI_LIBRARY = [p for p in CLI_SOURCES if p.name != "main.c"]   # the same, for the test driver
+JSON = [CLI / "json.c", CLI / "shortest.c"]  # the JSON writer and the float digits it prints
 OUT = ROOT / "build" / "c-tests"
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Wconversion", "-Wshadow"]
 SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-omit-frame-pointer"]

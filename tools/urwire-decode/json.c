@@ -1,101 +1,208 @@
 /* Canonical JSON writer for urwire records. See json.h. */
 #include "json.h"
 
-#include <inttypes.h>
 #include <math.h>
-#include <stdlib.h>
+#include <stdbool.h>
 #include <string.h>
+
+#include "shortest.h"
+
+/* Float texts are at most 25 bytes ("-2.2250738585072014e-308"). The layouts below copy a
+ * fixed DIGIT_COPY bytes of digits, more than any float has, out of a buffer of twice that with
+ * the digits ending in its middle, into a text with TEXT_ROOM bytes of room: fixed-size copies
+ * compile to a few moves, where copies of the exact length would be calls. */
+#define DIGIT_COPY 24
+#define TEXT_ROOM 48
+
+static const char digit_pairs[] =
+    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
+
+static void four_digits(char *at, uint32_t v)
+{
+    memcpy(at, digit_pairs + v / 100 * 2, 2);
+    memcpy(at + 2, digit_pairs + v % 100 * 2, 2);
+}
+
+/* The decimal digits of n written to end just before end; returns where they start. */
+static char *digits_before(char *end, uint64_t n)
+{
+    uint32_t m;
+    while (n >= 100000000) {  /* eight at a time, in 32-bit arithmetic */
+        uint64_t high = n / 100000000;
+        uint32_t low = (uint32_t)(n - high * 100000000);
+        end -= 8;
+        four_digits(end, low / 10000);
+        four_digits(end + 4, low % 10000);
+        n = high;
+    }
+    for (m = (uint32_t)n; m >= 100; m /= 100) {
+        end -= 2;
+        memcpy(end, digit_pairs + m % 100 * 2, 2);
+    }
+    if (m >= 10) {
+        end -= 2;
+        memcpy(end, digit_pairs + m * 2, 2);
+    } else {
+        *--end = (char)('0' + m);
+    }
+    return end;
+}
+
+/* A float's digits, ending in the middle of buf (see DIGIT_COPY). */
+typedef struct digits {
+    char buf[2 * DIGIT_COPY];
+    const char *d;
+    size_t n;
+} digits;
+
+static void set_digits(digits *g, uint64_t value)
+{
+    g->d = digits_before(g->buf + DIGIT_COPY, value);
+    g->n = (size_t)(g->buf + DIGIT_COPY - g->d);
+}
+
+/* d[.ddd]e+XX, the exponent of at least two digits, as repr() and %g write it. */
+static size_t scientific(char *out, const digits *g, int exp10)
+{
+    size_t at = g->n > 1 ? g->n + 1 : 1;
+    unsigned e = (unsigned)(exp10 < 0 ? -exp10 : exp10);
+    out[0] = g->d[0];
+    out[1] = '.';
+    memcpy(out + 2, g->d + 1, DIGIT_COPY);
+    out[at++] = 'e';
+    out[at++] = exp10 < 0 ? '-' : '+';
+    if (e >= 100)
+        out[at++] = (char)('0' + e / 100);
+    memcpy(out + at, digit_pairs + e % 100 * 2, 2);
+    return at + 2;
+}
+
+/* The digits with the decimal point after the first `point` of them: point from -3 to 0 puts
+ * "0." and -point zeros first; point > n, zeros up to it (16 at most); ".0" after a whole
+ * number when dot_zero. */
+static size_t fixed(char *out, const digits *g, int point, bool dot_zero)
+{
+    size_t at, n = g->n;
+    if (point <= 0) {
+        at = 2 + (size_t)-point;
+        memcpy(out, "0.000", 5);
+        memcpy(out + at, g->d, DIGIT_COPY);
+        return at + n;
+    }
+    at = (size_t)point;
+    memcpy(out, g->d, DIGIT_COPY);
+    if (at < n) {
+        out[at] = '.';
+        memcpy(out + at + 1, g->d + at, DIGIT_COPY);
+        return n + 1;
+    }
+    memcpy(out + n, "0000000000000000", 16);
+    if (dot_zero) {
+        out[at++] = '.';
+        out[at++] = '0';
+    }
+    return at;
+}
+
+/* NaN and the infinities as canonical JSON names them, and a zero as `zero`, signed: the
+ * texts that need no digits. */
+static size_t wordy_text(double x, const char *zero, char *out)
+{
+    const char *t = isnan(x) ? "NaN" : isinf(x) ? (x > 0 ? "Infinity" : "-Infinity") : zero;
+    size_t sign = !isnan(x) && !isinf(x) && signbit(x), n = strlen(t);
+    out[0] = '-';
+    memcpy(out + sign, t, n);
+    return sign + n;
+}
+
+/* |x| = dec laid out as Python's repr() (fixed from 1e-4 up to 1e16, with at least one
+ * decimal), or when percent_g as C's and Python's "%.{p}g", p being the number of digits. */
+static size_t decimal_text(double x, shortest_decimal dec, bool percent_g, char *out)
+{
+    digits g;
+    size_t sign = signbit(x) ? 1 : 0;
+    int point;
+    set_digits(&g, dec.digits);
+    point = (int)g.n + dec.exponent;
+    out[0] = '-';
+    if (percent_g ? point - 1 < -4 || point > (int)g.n : point <= -4 || point > 16)
+        return sign + scientific(out + sign, &g, point - 1);
+    return sign + fixed(out + sign, &g, point, !percent_g);
+}
+
+/* The canonical texts; out has TEXT_ROOM bytes. */
+static size_t f64_text(double x, char *out)
+{
+    if (!isfinite(x) || x == 0)
+        return wordy_text(x, "0.0", out);
+    return decimal_text(x, shortest_f64(x), false, out);
+}
+
+static size_t f32_text(float x, char *out)
+{
+    if (!isfinite(x) || x == 0)
+        return wordy_text(x, "0", out);
+    return decimal_text(x, shortest_f32(x), true, out);
+}
+
+static void cut(const char *text, size_t n, char *buf, size_t cap)
+{
+    if (cap == 0)
+        return;
+    if (n >= cap)
+        n = cap - 1;
+    memcpy(buf, text, n);
+    buf[n] = '\0';
+}
 
 void json_f32_text(float x, char *buf, size_t cap)
 {
-    int p;
-    if (isnan(x)) {
-        snprintf(buf, cap, "NaN");
-        return;
-    }
-    if (isinf(x)) {
-        snprintf(buf, cap, x > 0 ? "Infinity" : "-Infinity");
-        return;
-    }
-    for (p = 1; p <= 9; p++) {
-        snprintf(buf, cap, "%.*g", p, (double)x);
-        if (strtof(buf, NULL) == x)
-            return;
-    }
-    snprintf(buf, cap, "%.9g", (double)x);
+    char text[TEXT_ROOM];
+    cut(text, f32_text(x, text), buf, cap);
 }
 
-/* Does the decimal 0.digits * 10^(exp10 + 1), with this sign, read back as x? */
-static int f64_reads_back(double x, const char *digits, int exp10)
-{
-    char text[48];
-    snprintf(text, sizeof text, "%s%c.%se%d", x < 0 || (x == 0 && signbit(x)) ? "-" : "", digits[0], digits + 1,
-             exp10);
-    return strtod(text, NULL) == x;
-}
-
-/* The shortest digits that read back as x, laid out as Python's repr() lays them out: fixed
- * notation with at least one decimal when the decimal exponent is from -4 to 15 ("1.0",
- * "0.0001", "1e+16", "1e-05"), so that the CLI's lines are the Python CLI's byte for byte.
- * For each length p = 1..17: the correctly rounded %.{p-1}e, else its neighbour towards x
- * (at a power of two the rounding interval is lopsided, and only the neighbour may fit). */
 void json_f64_text(double x, char *buf, size_t cap)
 {
-    char sci[40], digits[24], near[24];
-    const char *e;
-    int p, exp10 = 0, n = 0, decpt, k, found = 0;
-    size_t at = 0;
-    if (isnan(x) || isinf(x)) {
-        snprintf(buf, cap, isnan(x) ? "NaN" : x > 0 ? "Infinity" : "-Infinity");
-        return;
-    }
-    for (p = 1; p <= 17 && !found; p++) {
-        snprintf(sci, sizeof sci, "%.*e", p - 1, x);
-        for (n = 0, e = sci; *e && *e != 'e'; e++)
-            if (*e >= '0' && *e <= '9')
-                digits[n++] = *e;
-        digits[n] = '\0';
-        exp10 = atoi(e + 1);
-        found = strtod(sci, NULL) == x;
-        if (!found && p > 1) {
-            /* The neighbour on x's side: up when the rounded text lies below |x|. */
-            int up = fabs(strtod(sci, NULL)) < fabs(x);
-            memcpy(near, digits, (size_t)n + 1);
-            if (up ? near[n - 1] < '9' : near[n - 1] > '0') {
-                near[n - 1] = (char)(near[n - 1] + (up ? 1 : -1));
-                if (f64_reads_back(x, near, exp10)) {
-                    memcpy(digits, near, (size_t)n + 1);
-                    found = 1;
-                }
-            }
+    char text[TEXT_ROOM];
+    cut(text, f64_text(x, text), buf, cap);
+}
+
+/* The writer's buffer: bytes go to out in one fwrite per record, not one call per token. */
+static void flush(json_writer *w)
+{
+    if (w->len > 0)
+        fwrite(w->buf, 1, w->len, w->out);
+    w->len = 0;
+}
+
+/* Room for n more bytes (n <= JSON_WRITER_BUFFER); the caller adds what it wrote to w->len. */
+static char *reserve(json_writer *w, size_t n)
+{
+    if (sizeof w->buf - w->len < n)
+        flush(w);
+    return w->buf + w->len;
+}
+
+static void put(json_writer *w, const char *p, size_t n)
+{
+    if (sizeof w->buf - w->len < n) {
+        flush(w);
+        if (n > sizeof w->buf) {
+            fwrite(p, 1, n, w->out);
+            return;
         }
     }
-    while (n > 1 && digits[n - 1] == '0')
-        digits[--n] = '\0';
-    decpt = exp10 + 1;  /* x = 0.digits * 10^decpt */
-    if (sci[0] == '-' && at + 1 < cap)
-        buf[at++] = '-';
-    if (decpt > -4 && decpt <= 16) {
-        if (decpt <= 0) {
-            at += (size_t)snprintf(buf + at, cap - at, "0.");
-            for (k = 0; k < -decpt; k++)
-                at += (size_t)snprintf(buf + at, cap - at, "0");
-            snprintf(buf + at, cap - at, "%s", digits);
-        } else {
-            for (k = 0; k < decpt || k < n; k++) {
-                if (k == decpt)
-                    at += (size_t)snprintf(buf + at, cap - at, ".");
-                at += (size_t)snprintf(buf + at, cap - at, "%c", k < n ? digits[k] : '0');
-            }
-            if (decpt >= n)
-                snprintf(buf + at, cap - at, ".0");
-        }
-    } else {
-        at += (size_t)snprintf(buf + at, cap - at, "%c", digits[0]);
-        if (n > 1)
-            at += (size_t)snprintf(buf + at, cap - at, ".%s", digits + 1);
-        snprintf(buf + at, cap - at, "e%c%02d", exp10 < 0 ? '-' : '+', exp10 < 0 ? -exp10 : exp10);
-    }
+    memcpy(w->buf + w->len, p, n);
+    w->len += n;
+}
+
+static void put_char(json_writer *w, char c)
+{
+    if (w->len == sizeof w->buf)
+        flush(w);
+    w->buf[w->len++] = c;
 }
 
 /* Length of the valid UTF-8 sequence at p (1..4), or 0 with *bad set to the length of the
@@ -139,26 +246,34 @@ static size_t utf8_sequence(const unsigned char *p, size_t n, size_t *bad)
     return need + 1;
 }
 
-void json_write_text(FILE *out, const unsigned char *p, size_t n)
+/* Bytes as a JSON string into w's buffer (see json_write_text). */
+static void write_text(json_writer *w, const unsigned char *p, size_t n)
 {
-    size_t i = 0, len, bad;
-    putc('"', out);
+    static const char hex[] = "0123456789abcdef";
+    size_t i = 0, run, len, bad;
+    put_char(w, '"');
     while (i < n) {
         unsigned char c = p[i];
+        for (run = i; run < n && p[run] >= 0x20 && p[run] < 0x80 && p[run] != '"' && p[run] != '\\'; run++)
+            ;
+        if (run > i) {
+            put(w, (const char *)p + i, run - i);
+            i = run;
+            continue;
+        }
         if (c < 0x80) {
             switch (c) {
-            case '"': fputs("\\\"", out); break;
-            case '\\': fputs("\\\\", out); break;
-            case '\n': fputs("\\n", out); break;
-            case '\r': fputs("\\r", out); break;
-            case '\t': fputs("\\t", out); break;
-            case '\b': fputs("\\b", out); break;
-            case '\f': fputs("\\f", out); break;
-            default:
-                if (c < 0x20)
-                    fprintf(out, "\\u%04x", c);
-                else
-                    putc(c, out);
+            case '"': put(w, "\\\"", 2); break;
+            case '\\': put(w, "\\\\", 2); break;
+            case '\n': put(w, "\\n", 2); break;
+            case '\r': put(w, "\\r", 2); break;
+            case '\t': put(w, "\\t", 2); break;
+            case '\b': put(w, "\\b", 2); break;
+            case '\f': put(w, "\\f", 2); break;
+            default: {
+                char u[6] = {'\\', 'u', '0', '0', hex[c >> 4], hex[c & 15]};
+                put(w, u, sizeof u);
+            }
             }
             i++;
             continue;
@@ -166,31 +281,71 @@ void json_write_text(FILE *out, const unsigned char *p, size_t n)
         bad = 0;
         len = utf8_sequence(p + i, n - i, &bad);
         if (len) {
-            fwrite(p + i, 1, len, out);
+            put(w, (const char *)p + i, len);
             i += len;
         } else {
-            fputs("\xEF\xBF\xBD", out);
+            put(w, "\xEF\xBF\xBD", 3);
             i += bad;
         }
     }
-    putc('"', out);
+    put_char(w, '"');
 }
 
-static void sep(json_writer *w, const char *key)
+void json_write_text(FILE *out, const unsigned char *p, size_t n)
 {
+    json_writer w;
+    w.out = out;
+    w.len = 0;
+    write_text(&w, p, n);
+    flush(&w);
+}
+
+/* A record is written: hand it to out. */
+static void record_end(json_writer *w)
+{
+    if (w->depth <= 0)
+        flush(w);
+}
+
+/* Writes the separator and key of the next value and returns where the value goes, with
+ * `room` bytes of room there; the caller sets w->len past what it writes. */
+static char *field(json_writer *w, const char *key, size_t room)
+{
+    size_t n = key ? strlen(key) : 0;
+    bool comma = false;
+    char *at;
     if (w->depth > 0) {
-        if (!w->first[w->depth - 1])
-            fputs(", ", w->out);
+        comma = !w->first[w->depth - 1];
         w->first[w->depth - 1] = 0;
     }
-    if (key)
-        fprintf(w->out, "\"%s\": ", key);
+    if (n + room + 5 > sizeof w->buf) {  /* no key is this long; written in pieces if one were */
+        if (comma)
+            put(w, ", ", 2);
+        put_char(w, '"');
+        put(w, key, n);
+        put(w, "\": ", 3);
+        return reserve(w, room);
+    }
+    at = reserve(w, n + room + 5);
+    if (comma) {
+        *at++ = ',';
+        *at++ = ' ';
+    }
+    if (key) {
+        *at++ = '"';
+        memcpy(at, key, n);
+        at += n;
+        memcpy(at, "\": ", 3);
+        at += 3;
+    }
+    return at;
 }
 
 static void open_(json_writer *w, const char *key, char c)
 {
-    sep(w, key);
-    putc(c, w->out);
+    char *at = field(w, key, 1);
+    *at++ = c;
+    w->len = (size_t)(at - w->buf);
     if (w->depth < (int)sizeof w->first)
         w->first[w->depth] = 1;
     w->depth++;
@@ -198,8 +353,9 @@ static void open_(json_writer *w, const char *key, char c)
 
 static void close_(json_writer *w, char c)
 {
-    putc(c, w->out);
+    put_char(w, c);
     w->depth--;
+    record_end(w);
 }
 
 static void begin_object(void *ctx, const char *key) { open_((json_writer *)ctx, key, '{'); }
@@ -207,76 +363,98 @@ static void end_object(void *ctx) { close_((json_writer *)ctx, '}'); }
 static void begin_array(void *ctx, const char *key) { open_((json_writer *)ctx, key, '['); }
 static void end_array(void *ctx) { close_((json_writer *)ctx, ']'); }
 
+/* An integer's text at at: v, after a minus sign when negative. */
+static size_t integer_text(char *at, uint64_t v, bool negative)
+{
+    char buf[2 * DIGIT_COPY], *d = digits_before(buf + DIGIT_COPY, v);
+    at[0] = '-';
+    memcpy(at + negative, d, DIGIT_COPY);
+    return (size_t)(buf + DIGIT_COPY - d) + negative;
+}
+
 static void on_int(void *ctx, const char *key, int64_t v)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
-    fprintf(w->out, "%" PRId64, v);
+    char *at = field(w, key, TEXT_ROOM);
+    w->len = (size_t)(at - w->buf) + integer_text(at, v < 0 ? 0 - (uint64_t)v : (uint64_t)v, v < 0);
+    record_end(w);
 }
 
 static void on_uint(void *ctx, const char *key, uint64_t v)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
-    fprintf(w->out, "%" PRIu64, v);
+    char *at = field(w, key, TEXT_ROOM);
+    w->len = (size_t)(at - w->buf) + integer_text(at, v, false);
+    record_end(w);
 }
 
 static void on_bool(void *ctx, const char *key, bool v)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
-    fputs(v ? "true" : "false", w->out);
+    char *at = field(w, key, 5);
+    memcpy(at, v ? "true" : "false", 5);
+    w->len = (size_t)(at - w->buf) + (v ? 4 : 5);
+    record_end(w);
 }
 
 static void on_f32(void *ctx, const char *key, float v)
 {
     json_writer *w = (json_writer *)ctx;
-    char buf[48];
-    sep(w, key);
-    json_f32_text(v, buf, sizeof buf);
-    fputs(buf, w->out);
+    char *at = field(w, key, TEXT_ROOM);
+    w->len = (size_t)(at - w->buf) + f32_text(v, at);
+    record_end(w);
 }
 
 static void on_f64(void *ctx, const char *key, double v)
 {
     json_writer *w = (json_writer *)ctx;
-    char buf[48];
-    sep(w, key);
-    json_f64_text(v, buf, sizeof buf);
-    fputs(buf, w->out);
+    char *at = field(w, key, TEXT_ROOM);
+    w->len = (size_t)(at - w->buf) + f64_text(v, at);
+    record_end(w);
 }
 
 static void on_text(void *ctx, const char *key, urwire_bytes t)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
-    json_write_text(w->out, t.ptr, t.len);
+    w->len = (size_t)(field(w, key, 0) - w->buf);
+    write_text(w, t.ptr, t.len);
+    record_end(w);
 }
 
 static void on_hex(void *ctx, const char *key, urwire_bytes b)
 {
-    static const char digits[] = "0123456789abcdef";
+    static const char hex[] = "0123456789abcdef";
     json_writer *w = (json_writer *)ctx;
-    size_t i;
-    sep(w, key);
-    putc('"', w->out);
-    for (i = 0; i < b.len; i++) {
-        putc(digits[b.ptr[i] >> 4], w->out);
-        putc(digits[b.ptr[i] & 15], w->out);
+    size_t i = 0, k;
+    char *at = field(w, key, 1);
+    *at = '"';
+    w->len = (size_t)(at - w->buf) + 1;
+    while (i < b.len) {
+        size_t chunk = b.len - i < sizeof w->buf / 2 ? b.len - i : sizeof w->buf / 2;
+        at = reserve(w, 2 * chunk);
+        for (k = 0; k < chunk; k++, i++) {
+            *at++ = hex[b.ptr[i] >> 4];
+            *at++ = hex[b.ptr[i] & 15];
+        }
+        w->len += 2 * chunk;
     }
-    putc('"', w->out);
+    put_char(w, '"');
+    record_end(w);
 }
 
 static void on_null(void *ctx, const char *key)
 {
     json_writer *w = (json_writer *)ctx;
-    sep(w, key);
-    fputs("null", w->out);
+    char *at = field(w, key, 4);
+    memcpy(at, "null", 4);
+    w->len = (size_t)(at - w->buf) + 4;
+    record_end(w);
 }
 
 urwire_visitor json_visitor(json_writer *w)
 {
     urwire_visitor v;
+    w->len = 0;
     v.ctx = w;
     v.begin_object = begin_object;
     v.end_object = end_object;

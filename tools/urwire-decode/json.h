@@ -7,18 +7,25 @@
 
 #include "urwire.h"
 
+#define JSON_WRITER_BUFFER 8192
+
 /* A visitor that prints one record as one line of canonical JSON on out. */
 typedef struct json_writer {
     FILE *out;
     int depth;
     unsigned char first[128];   /* per open object/array: nothing written in it yet */
+    size_t len;                 /* bytes waiting in buf: handed to out when the record's last */
+    char buf[JSON_WRITER_BUFFER]; /* object or array closes (depth 0 again) or buf fills */
 } json_writer;
 
+/* The visitor over w; it starts w's buffer empty. */
 urwire_visitor json_visitor(json_writer *w);
 
-/* float32: the shortest "%.{p}g" (p = 1..9) that strtof reads back as x (the canonical rule).
- * float64: the shortest digits (p = 1..17) that strtod reads back as x, written as Python's
- * repr() writes them ("1.0", "1e-05"), so that lines equal the Python CLI's byte for byte. */
+/* float32: the shortest "%.{p}g" (p = 1..9) that reads back as x when read as a double and
+ * rounded to float32 (the canonical rule; Python's reading).
+ * float64: the shortest digits that read back as x, written as Python's repr() writes them
+ * ("1.0", "1e-05"), so that lines equal the Python CLI's byte for byte.
+ * Both cut the text to cap - 1 bytes and end it with a NUL, as snprintf does. */
 void json_f32_text(float x, char *buf, size_t cap);
 void json_f64_text(double x, char *buf, size_t cap);
 
