@@ -314,7 +314,9 @@ static char *field(json_writer *w, const char *key, size_t room)
     size_t n = key ? strlen(key) : 0;
     bool comma = false;
     char *at;
-    if (w->depth > 0) {
+    /* The protocol nests values 8 deep at most; past `first` the writer would misplace commas
+     * but never write out of bounds. */
+    if (w->depth > 0 && w->depth <= (int)sizeof w->first) {
         comma = !w->first[w->depth - 1];
         w->first[w->depth - 1] = 0;
     }
