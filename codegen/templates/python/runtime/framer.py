@@ -2,7 +2,7 @@
 
 Frames by the declared lengths, learns the software version from each Version message, and
 reports stream faults (bad length, unknown type, truncated tail) then resynchronises on the
-next plausible header. Hand-written; copied into generated/python/urwire/ by `make generate`.
+next plausible header; after a truncated tail, on the next whole message inside it. Hand-written; copied into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 
@@ -67,6 +67,7 @@ class Framer:
         self._buf = bytearray()
         self._base = 0          # stream offset of _buf[0]
         self._resyncing = False
+        self._ended_inside = False  # the stream ended inside a message: rescans stop at whole ones
 
     def feed(self, data: bytes) -> list:
         self._buf += data
@@ -83,7 +84,7 @@ class Framer:
             if self._resyncing:
                 while n - pos >= HEADER_SIZE:
                     length, mtype = HEADER.unpack_from(buf, pos)
-                    if _fault(length, mtype) is None:
+                    if _fault(length, mtype) is None and not (self._ended_inside and length > n - pos):
                         self._resyncing = False
                         break
                     pos += 1
@@ -105,10 +106,15 @@ class Framer:
                 pos += 1
                 continue
             if length > left:
-                if final:
-                    yield StreamError(self._base + pos, f"truncated message: length {length}, {left} bytes left")
-                    pos = n
-                break
+                if not final:
+                    break
+                # Every byte of the stream is here: the rest of the span is rescanned for the
+                # whole messages it holds; headers whose lengths also run past the end belong to
+                # this fault, so a tail of nested lengths costs one check per byte.
+                yield StreamError(self._base + pos, f"truncated message: length {length}, {left} bytes left")
+                self._ended_inside = self._resyncing = True
+                pos += 1
+                continue
             known = self.version_seen or self.hint is not None
             msg = decode_message(bytes(buf[pos:pos + length]), self.version, known)
             sets = getattr(msg, "SETS_VERSION", None)
