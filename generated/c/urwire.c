@@ -6203,6 +6203,7 @@ void urwire_framer_init(urwire_framer *f, uint8_t *buf, size_t cap, urwire_sw_ve
     f->skip = 0;
     f->resyncing = false;
     f->finished = false;
+    f->ended_inside = false;
     f->version_seen = false;
     f->version = hint;
 }
@@ -6238,6 +6239,15 @@ static urwire_frame_kind urwire__fault(urwire_framer *f, urwire_frame *out, urwi
     out->version = f->version;
     urwire__fail(&out->fault, status, (size_t)out->offset, "", value, left);
     return URWIRE_FRAME_FAULT;
+}
+
+/* Where a rescan stops: a plausible header, and once the stream has ended inside a message,
+ * one whose whole message is in the buffer (the headers passed belong to that fault). */
+static bool urwire__rescan_stops_at(const urwire_framer *f, size_t at)
+{
+    int64_t length = URWIRE__LENGTH(f->buf + at);
+    return urwire__header_fault(length, f->buf[at + URWIRE__TYPE_AT]) == URWIRE_OK &&
+           (!f->ended_inside || (uint64_t)length <= f->len - at);
 }
 
 /* What a message tells of the stream's software version, for the messages after it: the
@@ -6287,9 +6297,7 @@ urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out)
             continue;
         }
         if (f->resyncing) {
-            while (f->len - f->head >= URWIRE_HEADER_SIZE &&
-                   urwire__header_fault(URWIRE__LENGTH(f->buf + f->head), f->buf[f->head + URWIRE__TYPE_AT]) !=
-                       URWIRE_OK)
+            while (f->len - f->head >= URWIRE_HEADER_SIZE && !urwire__rescan_stops_at(f, f->head))
                 f->head++;
             if (f->len - f->head < URWIRE_HEADER_SIZE) {
                 if (f->finished) {
@@ -6328,8 +6336,11 @@ urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out)
         }
         if ((size_t)length > left) {
             if (f->finished) {
+                /* Every byte of the stream is here: the rest of the span is rescanned for the
+                 * whole messages it holds, one check per byte however the lengths nest. */
                 urwire__fault(f, out, URWIRE_E_TRUNCATED_MESSAGE, length, (int64_t)left);
-                f->head = f->len;
+                f->ended_inside = f->resyncing = true;
+                f->head++;
                 return URWIRE_FRAME_FAULT;
             }
             out->kind = URWIRE_FRAME_NEED_MORE;

@@ -316,14 +316,14 @@ static void messages(void)
 static void framer(void)
 {
     static uint8_t buf[64];
-    uint8_t stream[2 + 2 * sizeof state];
+    uint8_t stream[5 + 2 * sizeof state];
     urwire_framer f;
     urwire_frame fr;
     memcpy(stream, "\x01\x02", 2);  /* garbage, then two messages */
     memcpy(stream + 2, state, sizeof state);
     memcpy(stream + 2 + sizeof state, state, sizeof state);
     urwire_framer_init(&f, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
-    CHECK(urwire_framer_feed(&f, stream, sizeof stream) == sizeof stream);
+    CHECK(urwire_framer_feed(&f, stream, 2 + 2 * sizeof state) == 2 + 2 * sizeof state);
     CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_FAULT && fr.offset == 0);
     CHECK(text_is(&fr.fault, "length 16908288 is above 1048576"));
     CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.offset == 2 && fr.length == sizeof state);
@@ -333,6 +333,20 @@ static void framer(void)
     urwire_framer_finish(&f);
     CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_FAULT);
     CHECK(text_is(&fr.fault, "truncated message: length 24, 7 bytes left"));
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_END);
+
+    /* A stream that ends inside a message: the fault, then the whole messages in its span. */
+    memcpy(stream, "\x00\x00\x00\x3c\x10", 5);  /* length 60, 53 bytes in the stream */
+    memcpy(stream + 5, state, sizeof state);
+    memcpy(stream + 5 + sizeof state, state, sizeof state);
+    urwire_framer_init(&f, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
+    CHECK(urwire_framer_feed(&f, stream, 5 + 2 * sizeof state) == 5 + 2 * sizeof state);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_NEED_MORE);
+    urwire_framer_finish(&f);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_FAULT && fr.offset == 0);
+    CHECK(text_is(&fr.fault, "truncated message: length 60, 53 bytes left"));
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.offset == 5 && fr.length == sizeof state);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.offset == 5 + sizeof state);
     CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_END);
 }
 

@@ -6,13 +6,14 @@ the same records, error records and texts included, byte for byte, and exit with
 """
 from __future__ import annotations
 
+import struct
 import subprocess
 
 import pytest
 
 from tests.c.harness_c import parse_lines, python_lines, python_records, run_cli
 from tests.c.seeds import messages
-from tests.tools.streams import streams
+from tests.tools.streams import cut_tails, streams
 from tests.vectors import all_cases
 
 MESSAGES = [m for case in all_cases() for m in messages(case.data)]
@@ -43,6 +44,20 @@ def test_random_streams_fast_build(fast, seed):
 def test_random_streams_under_sanitizers(asan, seed):
     for i, data in enumerate(streams(MESSAGES, 250, seed=seed)):
         compare(asan, data, (None, "5.0")[i % 2])
+
+
+def test_streams_that_end_inside_a_message_rescan_their_tail_alike(asan):
+    for i, data in enumerate(cut_tails(MESSAGES, 150, seed=11)):
+        compare(asan, data, (None, "5.0")[i % 2])
+
+
+def test_a_tail_of_nested_lengths_is_rescanned_alike(fast):
+    """Every 5 bytes a plausible header whose length runs one byte past the end, then a message."""
+    after = MESSAGES[0]
+    headers = 200_000
+    end = 5 * headers + len(after)
+    data = b"".join(struct.pack(">iB", end + 1 - 5 * i, 20) for i in range(headers)) + after
+    compare(fast, data, None)
 
 
 @pytest.mark.parametrize("chunk", [1, 2, 3, 5, 64, 0])

@@ -352,13 +352,13 @@ def _cut_at_nul(v):
 
 def comparable(records: list[dict]) -> list[dict]:
     """Canonical records as tshark can show them: a truncated tail never completes in TCP
-    reassembly, so it gives no record; stream-fault offsets are stream positions tshark lacks;
-    texts end at a NUL byte."""
+    reassembly, so neither it nor the messages the stream decoders find inside it give a record;
+    stream-fault offsets are stream positions tshark lacks; texts end at a NUL byte."""
     out = []
     for r in _cut_at_nul(records):
         if r.get("type") == "error":
             if r["error"].startswith("truncated"):
-                continue
+                break
             r = {"type": "error", "error": r["error"]}
         out.append(r)
     return out

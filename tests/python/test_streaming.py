@@ -1,6 +1,8 @@
 """The framer takes bytes in chunks of any size, split anywhere, and gives the same records."""
 from __future__ import annotations
 
+import struct
+
 import urwire
 from hypothesis import given, settings, strategies as st
 
@@ -72,3 +74,51 @@ def test_resynchronises_without_losing_what_follows():
     assert kinds == ["VersionMessage", "StreamError", "VersionMessage", "StreamError"]
     assert records[1].offset == len(good)
     assert records[3].error == "truncated header: 3 bytes left"
+
+
+def text_message(text: bytes, timestamp: int = 1) -> bytes:
+    body = struct.pack(">QbB", timestamp, -2, 0) + text
+    return struct.pack(">iB", 5 + len(body), 20) + body
+
+
+def test_a_truncated_tail_is_rescanned_for_whole_messages():
+    """A length that runs past the end of the stream is one fault; what it would have swallowed
+    is framed again, in any chunking."""
+    first, second = text_message(b"first"), text_message(b"second", 2)
+    data = struct.pack(">iB", 1000, 16) + first + second
+    expected = [f'{{"type": "error", "offset": 0, "error": "truncated message: length 1000, {len(data)} bytes left"}}',
+                *lines([urwire.decode_message(first), urwire.decode_message(second)])]
+    assert lines(urwire.decode_stream(data)) == expected
+    assert lines(urwire.decode_stream(data[i:i + 1] for i in range(len(data)))) == expected
+
+
+def test_a_message_after_the_recovered_ones_may_be_cut_again():
+    inner = text_message(b"inner")
+    cut = text_message(b"cut short")[:12]
+    data = struct.pack(">iB", 500, 20) + inner + cut
+    records = list(urwire.decode_stream(data))
+    assert lines(records[1:2]) == lines([urwire.decode_message(inner)])
+    assert [(r.offset, r.error) for r in records[::2]] == [
+        (0, f"truncated message: length 500, {len(data)} bytes left"),
+        (5 + len(inner), f"truncated message: length {len(text_message(b'cut short'))}, 12 bytes left")]
+
+
+def nested_tail(headers: int, then: bytes) -> bytes:
+    """Headers one after the other, then `then`; each header declares a length that runs one byte
+    past the end."""
+    end = 5 * headers + len(then)
+    return b"".join(struct.pack(">iB", end + 1 - 5 * i, 20) for i in range(headers)) + then
+
+
+def test_a_tail_of_nested_lengths_is_one_fault_rescanned_in_linear_work(monkeypatch):
+    from urwire import framer
+
+    checks = []
+    real = framer._fault
+    monkeypatch.setattr(framer, "_fault", lambda length, mtype: checks.append(1) or real(length, mtype))
+    data = nested_tail(20_000, text_message(b"after"))
+    records = list(urwire.decode_stream(data))
+    assert lines(records) == [
+        f'{{"type": "error", "offset": 0, "error": "truncated message: length {len(data) + 1}, {len(data)} bytes left"}}',
+        '{"type": "text", "timestamp": 1, "source": -2, "text": "after"}']
+    assert len(checks) <= 2 * len(data)

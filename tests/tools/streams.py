@@ -53,3 +53,21 @@ def streams(messages: Sequence[bytes], count: int, seed: int = 1) -> Iterator[by
         for _ in range(rng.choice((0, 1, 1, 2, 3))):
             data = mutate(data, rng)
         yield data
+
+
+def cut_tails(messages: Sequence[bytes], count: int, seed: int = 1) -> Iterator[bytes]:
+    """`count` streams that end inside a message: real messages around 1-3 headers (with a few
+    body bytes) whose lengths run past the end of the stream, so their spans nest."""
+    rng = random.Random(seed)
+    for _ in range(count):
+        parts: list = [rng.choice(messages) for _ in range(rng.randint(0, 5))]
+        for _ in range(rng.randint(1, 3)):
+            parts.insert(rng.randint(0, len(parts)), None)
+        pieces, after = [], 0
+        for part in reversed(parts):
+            if part is None:
+                body = rng.choice(messages)[5:5 + rng.randrange(12)]
+                part = _header(after + 5 + len(body) + rng.randint(1, 3000), rng.choice(KNOWN_TYPES)) + body
+            pieces.append(part)
+            after += len(part)
+        yield b"".join(reversed(pieces))

@@ -11,9 +11,10 @@ print canonical JSON with `urwire.to_json_line`.
 """
 from ._runtime import (DecodeError, EncodeError, GlobalValue, MalformedPackage, MalformedSubtype,
                        StreamError, UnknownMessage, UnknownPackage, UnknownSubtype)
+from .arguments import parse_version
 from .canonical import to_dict, to_json_line
 from .enums import *  # noqa: F401,F403  (every enum of the document)
-from .framer import Framer, decode_stream, parse_version
+from .framer import Framer, decode_stream
 from .messages import *  # noqa: F401,F403  (every message and sub-package class)
 from .messages import decode_message, encode_message
 from .reading import decode_file

@@ -3,10 +3,12 @@
 
 dpkt reads the capture formats and parses the link, IP and TCP layers; reassembly is ours:
 segments in sequence order, retransmitted and overlapping bytes dropped, out-of-order ones
-held until the gap closes. Hand-written; copied into generated/python/urwire/.
+held (ordered by their place in the stream) until the gap closes. Hand-written; copied into
+generated/python/urwire/.
 """
 from __future__ import annotations
 
+import heapq
 from dataclasses import dataclass, field
 from typing import BinaryIO, Iterator, Optional
 
@@ -22,51 +24,61 @@ def is_capture(head: bytes) -> bool:
 @dataclass
 class _Reassembly:
     next_seq: Optional[int] = None
-    pending: dict = field(default_factory=dict)  # seq -> bytes, ahead of next_seq
-    pending_bytes: int = 0
+    position: int = 0       # where next_seq is in the stream: the bytes delivered so far
+    held: dict = field(default_factory=dict)    # stream position -> bytes, ahead of next_seq
+    order: list = field(default_factory=list)   # the positions in `held`, as a heap
+    held_bytes: int = 0
 
     def add(self, seq: int, data: bytes) -> bytes:
         if self.next_seq is None:
             self.next_seq = seq  # the capture starts mid-stream
         ahead = _delta(seq, self.next_seq)
         if ahead > 0:
-            if seq not in self.pending or len(self.pending[seq]) < len(data):
-                self.pending_bytes += len(data) - len(self.pending.get(seq, b""))
-                self.pending[seq] = data
-            if self.pending_bytes > MAX_PENDING:
-                return self._skip_gap()
-            return b""
-        out = data[-ahead:] if ahead < 0 else data
-        if ahead < 0 and -ahead >= len(data):
+            return self._hold(self.position + ahead, data)
+        if -ahead >= len(data):
             return b""  # a retransmission of bytes already delivered
-        self.next_seq = (self.next_seq + len(out)) & 0xFFFFFFFF
-        return out + self._drain()
+        piece = data[-ahead:] if ahead < 0 else data
+        self._advance(len(piece))
+        if not self.order:
+            return piece
+        pieces = [piece]
+        self._drain(pieces)
+        return b"".join(pieces)
 
-    def _drain(self) -> bytes:
-        out = b""
-        progressed = True
-        while progressed and self.pending:
-            progressed = False
-            for seq in list(self.pending):
-                ahead = _delta(seq, self.next_seq)
-                if ahead <= 0:
-                    data = self.pending.pop(seq)
-                    self.pending_bytes -= len(data)
-                    if -ahead < len(data):
-                        piece = data[-ahead:] if ahead < 0 else data
-                        out += piece
-                        self.next_seq = (self.next_seq + len(piece)) & 0xFFFFFFFF
-                    progressed = True
-        return out
+    def _hold(self, at: int, data: bytes) -> bytes:
+        kept = self.held.get(at)
+        if kept is None:
+            heapq.heappush(self.order, at)
+        elif len(kept) >= len(data):
+            return b""  # a retransmission of bytes already held
+        self.held[at] = data
+        self.held_bytes += len(data) - len(kept or b"")
+        return self._skip_gap() if self.held_bytes > MAX_PENDING else b""
+
+    def _drain(self, pieces: list) -> None:
+        """Append the held bytes the stream has reached, earliest first, each segment once."""
+        while self.order and self.order[0] <= self.position:
+            at = heapq.heappop(self.order)
+            data = self.held.pop(at)
+            self.held_bytes -= len(data)
+            seen = self.position - at
+            if seen < len(data):
+                pieces.append(data[seen:] if seen else data)
+                self._advance(len(data) - seen)
+
+    def _advance(self, n: int) -> None:
+        self.position += n
+        self.next_seq = (self.next_seq + n) & 0xFFFFFFFF
 
     def _skip_gap(self) -> bytes:
         """Give up on missing bytes: go on from the earliest segment held."""
-        first = min(self.pending, key=lambda s: _delta(s, self.next_seq))
-        self.next_seq = first
-        return self._drain()
+        self._advance(self.order[0] - self.position)
+        pieces: list = []
+        self._drain(pieces)
+        return b"".join(pieces)
 
     def flush(self) -> bytes:
-        return self._skip_gap() if self.pending else b""
+        return self._skip_gap() if self.order else b""
 
 
 def _delta(seq: int, ref: int) -> int:

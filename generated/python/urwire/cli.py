@@ -12,8 +12,8 @@ import sys
 from typing import BinaryIO, Callable, Optional
 
 from . import __version__
+from .arguments import parse_version
 from .canonical import has_error, to_json_line
-from .framer import parse_version
 from .human import line as human_line
 from .reading import records_of
 from .spec import DEFAULT_VERSION, PORTS

@@ -15,6 +15,7 @@ from . import _runtime as _rt
 from . import enums as _e
 from ._runtime import (DecodeError, EncodeError, GlobalValue, MalformedPackage, MalformedSubtype,
                        UnknownMessage, UnknownPackage, UnknownSubtype)
+from .arguments import bytes_of, version_of
 from .enums import *  # noqa: F401,F403
 from .spec import DEFAULT_VERSION, HEADER, value_codec
 
@@ -3491,11 +3492,18 @@ for _cls in (GlobalVariablesSetupMessage, GlobalVariablesUpdateMessage, ):
 def decode_message(buf, version: Optional[tuple] = None, known: Optional[bool] = None):
     """Decode one framed message (its declared length is len(buf)); never raises on bad bytes.
 
-    `version` (major, minor, bugfix) is the stream's software version: it chooses the layout of
-    each part and the meaning of version-dependent codes. Without it, DEFAULT_VERSION is
-    assumed and a robot state's layout sizes may overrule it (`implied_version`). `known`
-    says whether `version` is known (announced or hinted) rather than assumed.
+    `buf` is any bytes-like object. `version` ((major, minor, bugfix), or a text such as
+    '5.25.1') is the stream's software version: it chooses the layout of each part and the
+    meaning of version-dependent codes. Without it, DEFAULT_VERSION is assumed and a robot
+    state's layout sizes may overrule it (`implied_version`). `known` says whether `version` is
+    known (announced or hinted) rather than assumed.
     """
+    if type(buf) is not bytes:
+        buf = bytes_of(buf, "decode_message")
+    if len(buf) < 5:
+        return UnknownMessage(0, buf, _rt.short("length", 0, 5, len(buf)).text)
+    if version is not None:
+        version = version_of(version)
     decoder = _DECODERS.get(buf[4])
     if decoder is None:
         return UnknownMessage(buf[4], bytes(buf[5:]))

@@ -28,7 +28,8 @@ typedef struct urwire_frame {
 /* Frames a byte stream in a caller-provided buffer. Tracks the software version from the
  * stream's Version messages (else the hint; with URWIRE_DEFAULT_VERSION as the hint, which is
  * only assumed, from the layout sizes of robot states where they show it). After a bad length or type it scans forward
- * byte by byte to the next plausible header; the skipped bytes belong to that one fault. */
+ * byte by byte to the next plausible header; the skipped bytes belong to that one fault. When
+ * the stream ends inside a message, the rest is scanned the same way for whole messages. */
 typedef struct urwire_framer {
     uint8_t *buf;
     size_t cap;
@@ -38,6 +39,8 @@ typedef struct urwire_framer {
     uint64_t skip;                  /* bytes still to drop of a message bigger than buf */
     bool resyncing;
     bool finished;
+    bool ended_inside;              /* the stream ended inside a message: rescans stop only at
+                                       whole messages */
     bool version_seen;              /* a Version message set the version */
     urwire_sw_version version;      /* in force: the last Version message's, else the hint, else
                                        what a robot state's layout sizes showed (assumed), else
@@ -48,7 +51,8 @@ void urwire_framer_init(urwire_framer *f, uint8_t *buf, size_t cap, urwire_sw_ve
 /* Copies up to n bytes in; returns how many it took (fewer when the buffer is full: call
  * urwire_framer_next until URWIRE_FRAME_NEED_MORE, then feed the rest). */
 size_t urwire_framer_feed(urwire_framer *f, const uint8_t *data, size_t n);
-/* The stream has ended: what is left becomes a truncated-message or truncated-header fault. */
+/* The stream has ended: what is left becomes a truncated-message or truncated-header fault,
+ * and the whole messages inside a truncated message's span are framed after it. */
 void urwire_framer_finish(urwire_framer *f);
 urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out);
 /* <standalone> */

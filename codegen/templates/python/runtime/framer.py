@@ -2,43 +2,17 @@
 
 Frames by the declared lengths, learns the software version from each Version message, and
 reports stream faults (bad length, unknown type, truncated tail) then resynchronises on the
-next plausible header. Hand-written; copied into generated/python/urwire/ by `make generate`.
+next plausible header; after a truncated tail, on the next whole message inside it.
+Hand-written; copied into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 
 from typing import Iterable, Iterator, Optional, Union
 
 from ._runtime import StreamError
+from .arguments import VersionLike, bytes_of, parse_version
 from .messages import decode_message
 from .spec import DEFAULT_VERSION, HEADER, HEADER_SIZE, KNOWN_MESSAGE_TYPES, MAX_MESSAGE_LENGTH
-
-
-VersionLike = Union[str, tuple, None]
-
-# A version text is read as the C command reads it: ASCII blanks around it (str.strip() alone
-# would also take Unicode ones), and parts of one to six ASCII digits (str.isdigit() alone would
-# also take "５" and "²").
-_BLANKS = " \t\n\r\v\f"
-_PART_DIGITS = 6
-
-
-def _is_part(text: str) -> bool:
-    return 1 <= len(text) <= _PART_DIGITS and text.isascii() and text.isdigit()
-
-
-def parse_version(version: VersionLike) -> Optional[tuple[int, int, int]]:
-    """'5.9', '5.25.1', (5, 9), (5, 25, 1) or None -> (major, minor, bugfix) or None."""
-    if version is None:
-        return None
-    if isinstance(version, str):
-        parts = version.strip(_BLANKS).split(".")
-        if not 2 <= len(parts) <= 3 or not all(_is_part(p) for p in parts):
-            raise ValueError(f"not a software version: {version!r} (expected e.g. 5.9 or 5.25.1)")
-        numbers = [int(p) for p in parts]
-    else:
-        numbers = [int(x) for x in version]
-    major, minor, bugfix = (numbers + [0])[:3]
-    return major, minor, bugfix
 
 
 def _fault(length: int, mtype: int) -> Optional[str]:
@@ -67,9 +41,11 @@ class Framer:
         self._buf = bytearray()
         self._base = 0          # stream offset of _buf[0]
         self._resyncing = False
+        self._ended_inside = False  # the stream ended inside a message: rescans stop at whole ones
 
     def feed(self, data: bytes) -> list:
-        self._buf += data
+        """The records that the bytes so far complete; data is any bytes-like object."""
+        self._buf += bytes_of(data, "Framer.feed")
         return list(self._drain(final=False))
 
     def close(self) -> list:
@@ -83,7 +59,7 @@ class Framer:
             if self._resyncing:
                 while n - pos >= HEADER_SIZE:
                     length, mtype = HEADER.unpack_from(buf, pos)
-                    if _fault(length, mtype) is None:
+                    if _fault(length, mtype) is None and not (self._ended_inside and length > n - pos):
                         self._resyncing = False
                         break
                     pos += 1
@@ -105,10 +81,15 @@ class Framer:
                 pos += 1
                 continue
             if length > left:
-                if final:
-                    yield StreamError(self._base + pos, f"truncated message: length {length}, {left} bytes left")
-                    pos = n
-                break
+                if not final:
+                    break
+                # Every byte of the stream is here: the rest of the span is rescanned for the
+                # whole messages it holds; headers whose lengths also run past the end belong to
+                # this fault, so a tail of nested lengths costs one check per byte.
+                yield StreamError(self._base + pos, f"truncated message: length {length}, {left} bytes left")
+                self._ended_inside = self._resyncing = True
+                pos += 1
+                continue
             known = self.version_seen or self.hint is not None
             msg = decode_message(bytes(buf[pos:pos + length]), self.version, known)
             sets = getattr(msg, "SETS_VERSION", None)
@@ -128,9 +109,20 @@ class Framer:
 
 
 def decode_stream(data: Union[bytes, Iterable[bytes]], version_hint: VersionLike = None) -> Iterator:
-    """Every record of a whole stream (bytes, or an iterable of chunks such as a socket reader)."""
-    framer = Framer(version_hint)
-    chunks = [data] if isinstance(data, (bytes, bytearray, memoryview)) else data
+    """Every record of a whole stream: a bytes-like object (any buffer, read as its bytes), or an
+    iterable of them such as a socket reader's chunks."""
+    try:
+        memoryview(data)
+        chunks: Iterable = (data,)
+    except TypeError:
+        if isinstance(data, str) or not hasattr(data, "__iter__"):
+            raise TypeError("decode_stream: expected a bytes-like object or an iterable of them, "
+                            f"got {type(data).__name__}") from None
+        chunks = data
+    return _records(Framer(version_hint), chunks)
+
+
+def _records(framer: Framer, chunks: Iterable) -> Iterator:
     for chunk in chunks:
-        yield from framer.feed(bytes(chunk))
+        yield from framer.feed(bytes_of(chunk, "a chunk of decode_stream"))
     yield from framer.close()

@@ -9,8 +9,9 @@ import os
 from pathlib import Path
 from typing import BinaryIO, Callable, Iterable, Iterator, Optional, Union
 
+from .arguments import VersionLike
 from .capture import is_capture, robot_streams
-from .framer import Framer, VersionLike
+from .framer import Framer
 from .spec import PORTS
 
 CHUNK = 1 << 20

@@ -1,0 +1,66 @@
+"""What the public functions take: bytes-like input and software versions, checked once at the
+door so that a wrong type is a TypeError saying what is wanted, not a failure deep inside.
+
+Hand-written; copied into generated/python/urwire/ by `make generate`.
+"""
+from __future__ import annotations
+
+from typing import Optional, Union
+
+VersionLike = Union[str, tuple, None]
+
+_VERSION_TYPES = "a str such as '5.9' or '5.25.1' or a tuple such as (5, 25, 1)"
+
+# A version text is read as the C command reads it: ASCII blanks around it (str.strip() alone
+# would also take Unicode ones), and parts of one to six ASCII digits (str.isdigit() alone would
+# also take "５" and "²"). A tuple's parts have the same range.
+_BLANKS = " \t\n\r\v\f"
+_PART_DIGITS = 6
+
+
+def _is_part(text: str) -> bool:
+    return 1 <= len(text) <= _PART_DIGITS and text.isascii() and text.isdigit()
+
+
+def _is_number(x) -> bool:
+    return isinstance(x, int) and not isinstance(x, bool) and 0 <= x < 10 ** _PART_DIGITS
+
+
+def bytes_of(data, who: str) -> bytes:
+    """The bytes of any object with the buffer protocol (an array.array of ints gives its memory,
+    as memoryview(data).cast('B') would); anything else is a TypeError naming `who`."""
+    if type(data) is bytes:
+        return data
+    try:
+        view = memoryview(data)
+    except TypeError:
+        raise TypeError(f"{who}: expected a bytes-like object (bytes, bytearray, memoryview or another "
+                        f"buffer), got {type(data).__name__}") from None
+    return view.tobytes()
+
+
+def parse_version(version: VersionLike) -> Optional[tuple[int, int, int]]:
+    """'5.9', '5.25.1', (5, 9), (5, 25, 1) or None -> (major, minor, bugfix) or None."""
+    if version is None:
+        return None
+    if isinstance(version, str):
+        parts = version.strip(_BLANKS).split(".")
+        if not 2 <= len(parts) <= 3 or not all(_is_part(p) for p in parts):
+            raise ValueError(f"not a software version: {version!r} (expected e.g. 5.9 or 5.25.1)")
+        numbers = [int(p) for p in parts]
+    elif isinstance(version, (tuple, list)):
+        if not 2 <= len(version) <= 3 or not all(_is_number(x) for x in version):
+            raise ValueError(f"not a software version: {version!r} (expected e.g. (5, 9) or (5, 25, 1))")
+        numbers = [int(x) for x in version]
+    else:
+        raise TypeError(f"a software version is {_VERSION_TYPES}, not {type(version).__name__}")
+    major, minor, bugfix = (numbers + [0])[:3]
+    return major, minor, bugfix
+
+
+def version_of(version) -> Optional[tuple[int, int, int]]:
+    """A version argument as (major, minor, bugfix): the framer's own tuples pass untouched."""
+    if type(version) is tuple and len(version) == 3 and type(version[0]) is int and type(version[1]) is int \
+            and type(version[2]) is int:
+        return version
+    return parse_version(version)
