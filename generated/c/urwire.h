@@ -36,6 +36,7 @@
  *                 // false when a part failed: the parts in state.present are still good
  *                 urwire_decode_robot_state_message(frame.bytes, frame.length, frame.version,
  *                                                   &m, &state);
+ *                 urwire_framer_learn(&fr, &m);                // optional: spares it a walk
  *                 if (state.present & URWIRE_BIT(URWIRE_PACKAGE_TYPE_JOINT_DATA))
  *                     use(state.joint_data.joints[0].q_actual);
  *                 else if (m.kind == URWIRE_KIND_TEXT && !m.failed)
