@@ -63,6 +63,16 @@ typedef struct urwire__versions {
 #define URWIRE__INLINE static inline
 #endif
 
+/* Tests that the robot-state fast path passes (or fails) almost always: gcc and clang then lay
+ * that path out straight, with no jump taken (a few ns per robot state). */
+#if defined(__GNUC__)
+#define URWIRE__LIKELY(x) __builtin_expect(!!(x), 1)
+#define URWIRE__UNLIKELY(x) __builtin_expect(!!(x), 0)
+#else
+#define URWIRE__LIKELY(x) (x)
+#define URWIRE__UNLIKELY(x) (x)
+#endif
+
 /* A software version as one number that orders as the spec's (major, minor, bugfix) tuples do
  * against every version the spec names: the generated conditions are one comparison with
  * URWIRE__V(major, minor, bugfix) of a bound. Each part counts from -1 (0 stands for any
@@ -117,9 +127,9 @@ typedef bool (*urwire__encode_fn)(const void *in, const urwire__ver *ver, uint8_
                                   urwire_error *err);
 typedef void (*urwire__visit_fn)(const void *in, const urwire__ver *ver, const urwire_visitor *v);
 
-/* A sub-package layout, indexed by its urwire_package_layout; its decoder is reached through
- * the generated urwire__decode_package(layout, ...) and, into a robot state,
- * urwire__decode_member(layout, ...): switches, for speed (see there). */
+/* A sub-package layout, indexed by its urwire_package_layout; its decoders (the layout's, or one
+ * per form) are reached through the generated urwire__decode_package(form, ...) and, into a
+ * robot state, urwire__decode_member(type, form, ...): switches, for speed (see there). */
 typedef struct urwire__package_kind {
     const char *name;               /* the record's type: "joint_data" */
     urwire__encode_fn encode;
@@ -1551,7 +1561,7 @@ static const urwire__value_table urwire__value_tables[] = {
 
 /* ---- layouts: one decoder, encoder and visitor each (the struct as void *: see the tables) - */
 
-static const urwire__span urwire__robot_mode_data_run0[] = {
+static const urwire__span urwire__robot_mode_data_0_run0[] = {
     {"timestamp", 0, 8},
     {"is_real_robot_connected", 8, 1},
     {"is_real_robot_enabled", 9, 1},
@@ -1561,44 +1571,42 @@ static const urwire__span urwire__robot_mode_data_run0[] = {
     {"is_program_running", 13, 1},
     {"is_program_paused", 14, 1},
     {"robot_mode", 15, 1},
+    {"target_speed_fraction", 16, 8},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__robot_mode_data_run1[] = {
-    {"control_mode", 0, 1},
+static const urwire__span urwire__robot_mode_data_1_run0[] = {
+    {"timestamp", 0, 8},
+    {"is_real_robot_connected", 8, 1},
+    {"is_real_robot_enabled", 9, 1},
+    {"is_robot_power_on", 10, 1},
+    {"is_emergency_stopped", 11, 1},
+    {"is_protective_stopped", 12, 1},
+    {"is_program_running", 13, 1},
+    {"is_program_paused", 14, 1},
+    {"robot_mode", 15, 1},
+    {"control_mode", 16, 1},
+    {"target_speed_fraction", 17, 8},
+    {"speed_scaling", 25, 8},
+    {"target_speed_fraction_limit", 33, 8},
+    {"reserved", 41, 1},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__robot_mode_data_run2[] = {
-    {"target_speed_fraction", 0, 8},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__robot_mode_data_run3[] = {
-    {"speed_scaling", 0, 8},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__robot_mode_data_run4[] = {
-    {"target_speed_fraction_limit", 0, 8},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__robot_mode_data_run5[] = {
-    {"reserved", 0, 1},
-    {NULL, 0, 0},
-};
-
-/* Robot mode data: 29 bytes on CB2 (1.x), 38 on 3.0-3.1, 46 on 3.2-3.4, 47 from 3.5 (FIRMWARE- LAYOUTS 1a, 2.0). */
-static inline bool urwire__decode_robot_mode_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                  void *into, urwire_error *err)
+/* robot_mode_data as up to 1.8 sends it (24 bytes). */
+static inline bool urwire__decode_robot_mode_data_0(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                    void *into, urwire_error *err)
 {
     urwire_robot_mode_data *out = into;
     size_t pos = *at;
     const uint8_t *p;
     (void)ver;
-    if (end - pos < 16u)
-        return urwire__short_in_run(err, urwire__robot_mode_data_run0, pos, end);
+    out->control_mode = 0;
+    out->speed_scaling = 0;
+    out->target_speed_fraction_limit = 0;
+    out->reserved = 0;
+    if (end - pos < 24u)
+        return urwire__short_in_run(err, urwire__robot_mode_data_0_run0, pos, end);
     p = msg + pos;
     out->timestamp = urwire__u64(p);
     out->is_real_robot_connected = urwire__u8(p + 8);
@@ -1609,48 +1617,107 @@ static inline bool urwire__decode_robot_mode_data(const uint8_t *msg, size_t *at
     out->is_program_running = urwire__u8(p + 13);
     out->is_program_paused = urwire__u8(p + 14);
     out->robot_mode = urwire__i8(p + 15);
-    pos += 16u;
-    if (ver->key >= URWIRE__V(3, 0, 0)) {
-        if (end - pos < 1u)
-            return urwire__short_in_run(err, urwire__robot_mode_data_run1, pos, end);
-        p = msg + pos;
-        out->control_mode = urwire__u8(p);
-        pos += 1u;
-    } else {
-        out->control_mode = 0;
-    }
-    if (end - pos < 8u)
-        return urwire__short_in_run(err, urwire__robot_mode_data_run2, pos, end);
+    out->target_speed_fraction = urwire__f64(p + 16);
+    pos += 24u;
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* robot_mode_data as 3.0 to 3.1 sends it (33 bytes). */
+static inline bool urwire__decode_robot_mode_data_1(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                    void *into, urwire_error *err)
+{
+    urwire_robot_mode_data *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    (void)ver;
+    out->target_speed_fraction_limit = 0;
+    out->reserved = 0;
+    if (end - pos < 33u)
+        return urwire__short_in_run(err, urwire__robot_mode_data_1_run0, pos, end);
     p = msg + pos;
-    out->target_speed_fraction = urwire__f64(p);
-    pos += 8u;
-    if (ver->key >= URWIRE__V(3, 0, 0)) {
-        if (end - pos < 8u)
-            return urwire__short_in_run(err, urwire__robot_mode_data_run3, pos, end);
-        p = msg + pos;
-        out->speed_scaling = urwire__f64(p);
-        pos += 8u;
-    } else {
-        out->speed_scaling = 0;
-    }
-    if (ver->key >= URWIRE__V(3, 2, 0)) {
-        if (end - pos < 8u)
-            return urwire__short_in_run(err, urwire__robot_mode_data_run4, pos, end);
-        p = msg + pos;
-        out->target_speed_fraction_limit = urwire__f64(p);
-        pos += 8u;
-    } else {
-        out->target_speed_fraction_limit = 0;
-    }
-    if (ver->key >= URWIRE__V(3, 5, 0)) {
-        if (end - pos < 1u)
-            return urwire__short_in_run(err, urwire__robot_mode_data_run5, pos, end);
-        p = msg + pos;
-        out->reserved = urwire__u8(p);
-        pos += 1u;
-    } else {
-        out->reserved = 0;
-    }
+    out->timestamp = urwire__u64(p);
+    out->is_real_robot_connected = urwire__u8(p + 8);
+    out->is_real_robot_enabled = urwire__u8(p + 9);
+    out->is_robot_power_on = urwire__u8(p + 10);
+    out->is_emergency_stopped = urwire__u8(p + 11);
+    out->is_protective_stopped = urwire__u8(p + 12);
+    out->is_program_running = urwire__u8(p + 13);
+    out->is_program_paused = urwire__u8(p + 14);
+    out->robot_mode = urwire__i8(p + 15);
+    out->control_mode = urwire__u8(p + 16);
+    out->target_speed_fraction = urwire__f64(p + 17);
+    out->speed_scaling = urwire__f64(p + 25);
+    pos += 33u;
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* robot_mode_data as 3.2 to 3.4 sends it (41 bytes). */
+static inline bool urwire__decode_robot_mode_data_2(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                    void *into, urwire_error *err)
+{
+    urwire_robot_mode_data *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    (void)ver;
+    out->reserved = 0;
+    if (end - pos < 41u)
+        return urwire__short_in_run(err, urwire__robot_mode_data_1_run0, pos, end);
+    p = msg + pos;
+    out->timestamp = urwire__u64(p);
+    out->is_real_robot_connected = urwire__u8(p + 8);
+    out->is_real_robot_enabled = urwire__u8(p + 9);
+    out->is_robot_power_on = urwire__u8(p + 10);
+    out->is_emergency_stopped = urwire__u8(p + 11);
+    out->is_protective_stopped = urwire__u8(p + 12);
+    out->is_program_running = urwire__u8(p + 13);
+    out->is_program_paused = urwire__u8(p + 14);
+    out->robot_mode = urwire__i8(p + 15);
+    out->control_mode = urwire__u8(p + 16);
+    out->target_speed_fraction = urwire__f64(p + 17);
+    out->speed_scaling = urwire__f64(p + 25);
+    out->target_speed_fraction_limit = urwire__f64(p + 33);
+    pos += 41u;
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* robot_mode_data as 3.5 and later sends it (42 bytes). */
+static inline bool urwire__decode_robot_mode_data_3(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                    void *into, urwire_error *err)
+{
+    urwire_robot_mode_data *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    (void)ver;
+    if (end - pos < 42u)
+        return urwire__short_in_run(err, urwire__robot_mode_data_1_run0, pos, end);
+    p = msg + pos;
+    out->timestamp = urwire__u64(p);
+    out->is_real_robot_connected = urwire__u8(p + 8);
+    out->is_real_robot_enabled = urwire__u8(p + 9);
+    out->is_robot_power_on = urwire__u8(p + 10);
+    out->is_emergency_stopped = urwire__u8(p + 11);
+    out->is_protective_stopped = urwire__u8(p + 12);
+    out->is_program_running = urwire__u8(p + 13);
+    out->is_program_paused = urwire__u8(p + 14);
+    out->robot_mode = urwire__i8(p + 15);
+    out->control_mode = urwire__u8(p + 16);
+    out->target_speed_fraction = urwire__f64(p + 17);
+    out->speed_scaling = urwire__f64(p + 25);
+    out->target_speed_fraction_limit = urwire__f64(p + 33);
+    out->reserved = urwire__u8(p + 41);
+    pos += 42u;
     out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
@@ -1748,8 +1815,9 @@ static void urwire__visit_robot_mode_data(const void *from, const urwire__ver *v
         v->on_hex(v->ctx, "extra", in->extra);
 }
 
-/* One entry per joint, base first. (41 bytes, read inside its parent's checked run) */
-static void urwire__read_joint(const uint8_t *p, urwire_joint *out)
+/* One entry per joint, base first. (41 bytes, read inside its parent's checked run;
+ * inlined, as a field of the run would be) */
+URWIRE__INLINE void urwire__read_joint(const uint8_t *p, urwire_joint *out)
 {
     out->q_actual = urwire__f64(p);
     out->q_target = urwire__f64(p + 8);
@@ -1984,251 +2052,361 @@ static void urwire__visit_tool_data(const void *from, const urwire__ver *ver,
         v->on_hex(v->ctx, "extra", in->extra);
 }
 
-static const urwire__span urwire__masterboard_data_run0[] = {
+static const urwire__span urwire__masterboard_data_0_run0[] = {
     {"digital_input_bits", 0, 2},
+    {"digital_output_bits", 2, 2},
+    {"analog_input_range0", 4, 1},
+    {"analog_input_range1", 5, 1},
+    {"analog_input0", 6, 8},
+    {"analog_input1", 14, 8},
+    {"analog_output_domain0", 22, 1},
+    {"analog_output_domain1", 23, 1},
+    {"analog_output0", 24, 8},
+    {"analog_output1", 32, 8},
+    {"master_board_temperature", 40, 4},
+    {"robot_voltage_48v", 44, 4},
+    {"robot_current", 48, 4},
+    {"master_io_current", 52, 4},
+    {"master_safety_state", 56, 1},
+    {"master_on_off_state", 57, 1},
+    {"euromap67_interface_installed", 58, 1},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__masterboard_data_run1[] = {
-    {"digital_input_bits", 0, 4},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__masterboard_data_run2[] = {
-    {"digital_output_bits", 0, 2},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__masterboard_data_run3[] = {
-    {"digital_output_bits", 0, 4},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__masterboard_data_run4[] = {
-    {"analog_input_range0", 0, 1},
-    {"analog_input_range1", 1, 1},
-    {"analog_input0", 2, 8},
-    {"analog_input1", 10, 8},
-    {"analog_output_domain0", 18, 1},
-    {"analog_output_domain1", 19, 1},
-    {"analog_output0", 20, 8},
-    {"analog_output1", 28, 8},
-    {"master_board_temperature", 36, 4},
-    {"robot_voltage_48v", 40, 4},
-    {"robot_current", 44, 4},
-    {"master_io_current", 48, 4},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__masterboard_data_run5[] = {
-    {"master_safety_state", 0, 1},
-    {"master_on_off_state", 1, 1},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__masterboard_data_run6[] = {
-    {"safety_mode", 0, 1},
-    {"in_reduced_mode", 1, 1},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__masterboard_data_run7[] = {
-    {"euromap67_interface_installed", 0, 1},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__masterboard_data_run8[] = {
+static const urwire__span urwire__masterboard_data_1_run1[] = {
     {"euromap_input_bits", 0, 4},
     {"euromap_output_bits", 4, 4},
+    {"euromap_voltage_cb2", 8, 2},
+    {"euromap_current_cb2", 10, 2},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__masterboard_data_run9[] = {
-    {"euromap_voltage_cb2", 0, 2},
-    {"euromap_current_cb2", 2, 2},
+static const urwire__span urwire__masterboard_data_2_run0[] = {
+    {"digital_input_bits", 0, 4},
+    {"digital_output_bits", 4, 4},
+    {"analog_input_range0", 8, 1},
+    {"analog_input_range1", 9, 1},
+    {"analog_input0", 10, 8},
+    {"analog_input1", 18, 8},
+    {"analog_output_domain0", 26, 1},
+    {"analog_output_domain1", 27, 1},
+    {"analog_output0", 28, 8},
+    {"analog_output1", 36, 8},
+    {"master_board_temperature", 44, 4},
+    {"robot_voltage_48v", 48, 4},
+    {"robot_current", 52, 4},
+    {"master_io_current", 56, 4},
+    {"safety_mode", 60, 1},
+    {"in_reduced_mode", 61, 1},
+    {"euromap67_interface_installed", 62, 1},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__masterboard_data_run10[] = {
-    {"euromap_voltage_24v", 0, 4},
-    {"euromap_current", 4, 4},
+static const urwire__span urwire__masterboard_data_2_run1[] = {
+    {"euromap_input_bits", 0, 4},
+    {"euromap_output_bits", 4, 4},
+    {"euromap_voltage_24v", 8, 4},
+    {"euromap_current", 12, 4},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__masterboard_data_run11[] = {
+static const urwire__span urwire__masterboard_data_2_run2[] = {
     {"reserved_0", 0, 4},
+    {"operational_mode_selector_input", 4, 1},
+    {"three_position_enabling_device_input", 5, 1},
+    {"reserved_1", 6, 1},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__masterboard_data_run12[] = {
-    {"operational_mode_selector_input", 0, 1},
-    {"three_position_enabling_device_input", 1, 1},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__masterboard_data_run13[] = {
-    {"reserved_1", 0, 1},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__masterboard_data_run14[] = {
-    {"reserved_1", 0, 1},
-    {NULL, 0, 0},
-};
-
-/* Masterboard data: 61 bytes on early CB2, 64 on 1.6-1.8 (76 with Euromap67), 72 on 3.0-3.1, 74 on 3.2-3.9 and 5.0-5.3, 75 on 3.10-3.15 and from 5.4; from 3.0, 16 more with Euromap67 (FIRMWARE-LAYOUTS 1a, 2.3). */
-static inline bool urwire__decode_masterboard_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                   void *into, urwire_error *err)
+/* masterboard_data as up to 1.5 sends it (56 bytes). */
+static inline bool urwire__decode_masterboard_data_0(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                     void *into, urwire_error *err)
 {
     urwire_masterboard_data *out = into;
     size_t pos = *at;
     const uint8_t *p;
     (void)ver;
-    out->digital_input_bits = 0;
-    out->digital_output_bits = 0;
+    out->master_safety_state = 0;
+    out->master_on_off_state = 0;
+    out->safety_mode = 0;
+    out->in_reduced_mode = 0;
+    out->euromap67_interface_installed = 0;
+    out->euromap_input_bits = 0;
+    out->euromap_output_bits = 0;
+    out->euromap_voltage_cb2 = 0;
+    out->euromap_current_cb2 = 0;
+    out->euromap_voltage_24v = 0;
+    out->euromap_current = 0;
+    out->reserved_0 = 0;
+    out->operational_mode_selector_input = 0;
+    out->three_position_enabling_device_input = 0;
     out->reserved_1 = 0;
-    if (ver->key <= URWIRE__V(1, 8, 999)) {
-        if (end - pos < 2u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run0, pos, end);
-        p = msg + pos;
-        out->digital_input_bits = (int32_t)urwire__i16(p);
-        pos += 2u;
-    }
-    if (ver->key >= URWIRE__V(3, 0, 0)) {
-        if (end - pos < 4u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run1, pos, end);
-        p = msg + pos;
-        out->digital_input_bits = urwire__i32(p);
-        pos += 4u;
-    }
-    if (ver->key <= URWIRE__V(1, 8, 999)) {
-        if (end - pos < 2u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run2, pos, end);
-        p = msg + pos;
-        out->digital_output_bits = (int32_t)urwire__i16(p);
-        pos += 2u;
-    }
-    if (ver->key >= URWIRE__V(3, 0, 0)) {
-        if (end - pos < 4u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run3, pos, end);
-        p = msg + pos;
-        out->digital_output_bits = urwire__i32(p);
-        pos += 4u;
-    }
-    if (end - pos < 52u)
-        return urwire__short_in_run(err, urwire__masterboard_data_run4, pos, end);
+    if (end - pos < 56u)
+        return urwire__short_in_run(err, urwire__masterboard_data_0_run0, pos, end);
     p = msg + pos;
-    out->analog_input_range0 = urwire__u8(p);
-    out->analog_input_range1 = urwire__u8(p + 1);
-    out->analog_input0 = urwire__f64(p + 2);
-    out->analog_input1 = urwire__f64(p + 10);
-    out->analog_output_domain0 = urwire__i8(p + 18);
-    out->analog_output_domain1 = urwire__i8(p + 19);
-    out->analog_output0 = urwire__f64(p + 20);
-    out->analog_output1 = urwire__f64(p + 28);
-    out->master_board_temperature = urwire__f32(p + 36);
-    out->robot_voltage_48v = urwire__f32(p + 40);
-    out->robot_current = urwire__f32(p + 44);
-    out->master_io_current = urwire__f32(p + 48);
-    pos += 52u;
-    if (ver->key >= URWIRE__V(1, 6, 0) && ver->key <= URWIRE__V(1, 8, 999)) {
-        if (end - pos < 2u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run5, pos, end);
-        p = msg + pos;
-        out->master_safety_state = urwire__u8(p);
-        out->master_on_off_state = urwire__u8(p + 1);
-        pos += 2u;
-    } else {
-        out->master_safety_state = 0;
-        out->master_on_off_state = 0;
-    }
-    if (ver->key >= URWIRE__V(3, 0, 0)) {
-        if (end - pos < 2u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run6, pos, end);
-        p = msg + pos;
-        out->safety_mode = urwire__u8(p);
-        out->in_reduced_mode = urwire__u8(p + 1);
-        pos += 2u;
-    } else {
-        out->safety_mode = 0;
-        out->in_reduced_mode = 0;
-    }
-    if (ver->key >= URWIRE__V(1, 6, 0)) {
-        if (end - pos < 1u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run7, pos, end);
-        p = msg + pos;
-        out->euromap67_interface_installed = urwire__u8(p);
-        pos += 1u;
-    } else {
-        out->euromap67_interface_installed = 0;
-    }
-    if (out->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(1, 6, 0)) {
-        if (end - pos < 8u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run8, pos, end);
+    out->digital_input_bits = (int32_t)urwire__i16(p);
+    out->digital_output_bits = (int32_t)urwire__i16(p + 2);
+    out->analog_input_range0 = urwire__u8(p + 4);
+    out->analog_input_range1 = urwire__u8(p + 5);
+    out->analog_input0 = urwire__f64(p + 6);
+    out->analog_input1 = urwire__f64(p + 14);
+    out->analog_output_domain0 = urwire__i8(p + 22);
+    out->analog_output_domain1 = urwire__i8(p + 23);
+    out->analog_output0 = urwire__f64(p + 24);
+    out->analog_output1 = urwire__f64(p + 32);
+    out->master_board_temperature = urwire__f32(p + 40);
+    out->robot_voltage_48v = urwire__f32(p + 44);
+    out->robot_current = urwire__f32(p + 48);
+    out->master_io_current = urwire__f32(p + 52);
+    pos += 56u;
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* masterboard_data as 1.6 to 1.8 sends it (59 or 71 bytes). */
+static inline bool urwire__decode_masterboard_data_1(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                     void *into, urwire_error *err)
+{
+    urwire_masterboard_data *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    (void)ver;
+    out->safety_mode = 0;
+    out->in_reduced_mode = 0;
+    out->euromap_voltage_24v = 0;
+    out->euromap_current = 0;
+    out->reserved_0 = 0;
+    out->operational_mode_selector_input = 0;
+    out->three_position_enabling_device_input = 0;
+    out->reserved_1 = 0;
+    if (end - pos < 59u)
+        return urwire__short_in_run(err, urwire__masterboard_data_0_run0, pos, end);
+    p = msg + pos;
+    out->digital_input_bits = (int32_t)urwire__i16(p);
+    out->digital_output_bits = (int32_t)urwire__i16(p + 2);
+    out->analog_input_range0 = urwire__u8(p + 4);
+    out->analog_input_range1 = urwire__u8(p + 5);
+    out->analog_input0 = urwire__f64(p + 6);
+    out->analog_input1 = urwire__f64(p + 14);
+    out->analog_output_domain0 = urwire__i8(p + 22);
+    out->analog_output_domain1 = urwire__i8(p + 23);
+    out->analog_output0 = urwire__f64(p + 24);
+    out->analog_output1 = urwire__f64(p + 32);
+    out->master_board_temperature = urwire__f32(p + 40);
+    out->robot_voltage_48v = urwire__f32(p + 44);
+    out->robot_current = urwire__f32(p + 48);
+    out->master_io_current = urwire__f32(p + 52);
+    out->master_safety_state = urwire__u8(p + 56);
+    out->master_on_off_state = urwire__u8(p + 57);
+    out->euromap67_interface_installed = urwire__u8(p + 58);
+    pos += 59u;
+    if (out->euromap67_interface_installed != 0) {
+        if (end - pos < 12u)
+            return urwire__short_in_run(err, urwire__masterboard_data_1_run1, pos, end);
         p = msg + pos;
         out->euromap_input_bits = urwire__u32(p);
         out->euromap_output_bits = urwire__u32(p + 4);
-        pos += 8u;
+        out->euromap_voltage_cb2 = urwire__i16(p + 8);
+        out->euromap_current_cb2 = urwire__i16(p + 10);
+        pos += 12u;
     } else {
         out->euromap_input_bits = 0;
         out->euromap_output_bits = 0;
-    }
-    if (out->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(1, 6, 0) && ver->key <= URWIRE__V(1, 8, 999)) {
-        if (end - pos < 4u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run9, pos, end);
-        p = msg + pos;
-        out->euromap_voltage_cb2 = urwire__i16(p);
-        out->euromap_current_cb2 = urwire__i16(p + 2);
-        pos += 4u;
-    } else {
         out->euromap_voltage_cb2 = 0;
         out->euromap_current_cb2 = 0;
     }
-    if (out->euromap67_interface_installed != 0 && ver->key >= URWIRE__V(3, 0, 0)) {
-        if (end - pos < 8u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run10, pos, end);
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* masterboard_data as 3.0 to 3.1 sends it (67 or 83 bytes). */
+static inline bool urwire__decode_masterboard_data_2(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                     void *into, urwire_error *err)
+{
+    urwire_masterboard_data *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    (void)ver;
+    out->master_safety_state = 0;
+    out->master_on_off_state = 0;
+    out->euromap_voltage_cb2 = 0;
+    out->euromap_current_cb2 = 0;
+    out->operational_mode_selector_input = 0;
+    out->three_position_enabling_device_input = 0;
+    out->reserved_1 = 0;
+    if (end - pos < 63u)
+        return urwire__short_in_run(err, urwire__masterboard_data_2_run0, pos, end);
+    p = msg + pos;
+    out->digital_input_bits = urwire__i32(p);
+    out->digital_output_bits = urwire__i32(p + 4);
+    out->analog_input_range0 = urwire__u8(p + 8);
+    out->analog_input_range1 = urwire__u8(p + 9);
+    out->analog_input0 = urwire__f64(p + 10);
+    out->analog_input1 = urwire__f64(p + 18);
+    out->analog_output_domain0 = urwire__i8(p + 26);
+    out->analog_output_domain1 = urwire__i8(p + 27);
+    out->analog_output0 = urwire__f64(p + 28);
+    out->analog_output1 = urwire__f64(p + 36);
+    out->master_board_temperature = urwire__f32(p + 44);
+    out->robot_voltage_48v = urwire__f32(p + 48);
+    out->robot_current = urwire__f32(p + 52);
+    out->master_io_current = urwire__f32(p + 56);
+    out->safety_mode = urwire__u8(p + 60);
+    out->in_reduced_mode = urwire__u8(p + 61);
+    out->euromap67_interface_installed = urwire__u8(p + 62);
+    pos += 63u;
+    if (out->euromap67_interface_installed != 0) {
+        if (end - pos < 16u)
+            return urwire__short_in_run(err, urwire__masterboard_data_2_run1, pos, end);
         p = msg + pos;
-        out->euromap_voltage_24v = urwire__f32(p);
-        out->euromap_current = urwire__f32(p + 4);
-        pos += 8u;
+        out->euromap_input_bits = urwire__u32(p);
+        out->euromap_output_bits = urwire__u32(p + 4);
+        out->euromap_voltage_24v = urwire__f32(p + 8);
+        out->euromap_current = urwire__f32(p + 12);
+        pos += 16u;
     } else {
+        out->euromap_input_bits = 0;
+        out->euromap_output_bits = 0;
         out->euromap_voltage_24v = 0;
         out->euromap_current = 0;
     }
-    if (ver->key >= URWIRE__V(3, 0, 0)) {
-        if (end - pos < 4u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run11, pos, end);
+    if (end - pos < 4u)
+        return urwire__short_in_run(err, urwire__masterboard_data_2_run2, pos, end);
+    p = msg + pos;
+    out->reserved_0 = urwire__u32(p);
+    pos += 4u;
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* masterboard_data as 3.2 to 3.9 or 5.0 to 5.3 sends it (69 or 85 bytes). */
+static inline bool urwire__decode_masterboard_data_3(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                     void *into, urwire_error *err)
+{
+    urwire_masterboard_data *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    (void)ver;
+    out->master_safety_state = 0;
+    out->master_on_off_state = 0;
+    out->euromap_voltage_cb2 = 0;
+    out->euromap_current_cb2 = 0;
+    out->reserved_1 = 0;
+    if (end - pos < 63u)
+        return urwire__short_in_run(err, urwire__masterboard_data_2_run0, pos, end);
+    p = msg + pos;
+    out->digital_input_bits = urwire__i32(p);
+    out->digital_output_bits = urwire__i32(p + 4);
+    out->analog_input_range0 = urwire__u8(p + 8);
+    out->analog_input_range1 = urwire__u8(p + 9);
+    out->analog_input0 = urwire__f64(p + 10);
+    out->analog_input1 = urwire__f64(p + 18);
+    out->analog_output_domain0 = urwire__i8(p + 26);
+    out->analog_output_domain1 = urwire__i8(p + 27);
+    out->analog_output0 = urwire__f64(p + 28);
+    out->analog_output1 = urwire__f64(p + 36);
+    out->master_board_temperature = urwire__f32(p + 44);
+    out->robot_voltage_48v = urwire__f32(p + 48);
+    out->robot_current = urwire__f32(p + 52);
+    out->master_io_current = urwire__f32(p + 56);
+    out->safety_mode = urwire__u8(p + 60);
+    out->in_reduced_mode = urwire__u8(p + 61);
+    out->euromap67_interface_installed = urwire__u8(p + 62);
+    pos += 63u;
+    if (out->euromap67_interface_installed != 0) {
+        if (end - pos < 16u)
+            return urwire__short_in_run(err, urwire__masterboard_data_2_run1, pos, end);
         p = msg + pos;
-        out->reserved_0 = urwire__u32(p);
-        pos += 4u;
+        out->euromap_input_bits = urwire__u32(p);
+        out->euromap_output_bits = urwire__u32(p + 4);
+        out->euromap_voltage_24v = urwire__f32(p + 8);
+        out->euromap_current = urwire__f32(p + 12);
+        pos += 16u;
     } else {
-        out->reserved_0 = 0;
+        out->euromap_input_bits = 0;
+        out->euromap_output_bits = 0;
+        out->euromap_voltage_24v = 0;
+        out->euromap_current = 0;
     }
-    if (ver->key >= URWIRE__V(3, 2, 0)) {
-        if (end - pos < 2u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run12, pos, end);
+    if (end - pos < 6u)
+        return urwire__short_in_run(err, urwire__masterboard_data_2_run2, pos, end);
+    p = msg + pos;
+    out->reserved_0 = urwire__u32(p);
+    out->operational_mode_selector_input = urwire__u8(p + 4);
+    out->three_position_enabling_device_input = urwire__u8(p + 5);
+    pos += 6u;
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* masterboard_data as 3.10 to 3.15 or 5.4 and later sends it (70 or 86 bytes). */
+static inline bool urwire__decode_masterboard_data_4(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                     void *into, urwire_error *err)
+{
+    urwire_masterboard_data *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    (void)ver;
+    out->master_safety_state = 0;
+    out->master_on_off_state = 0;
+    out->euromap_voltage_cb2 = 0;
+    out->euromap_current_cb2 = 0;
+    if (end - pos < 63u)
+        return urwire__short_in_run(err, urwire__masterboard_data_2_run0, pos, end);
+    p = msg + pos;
+    out->digital_input_bits = urwire__i32(p);
+    out->digital_output_bits = urwire__i32(p + 4);
+    out->analog_input_range0 = urwire__u8(p + 8);
+    out->analog_input_range1 = urwire__u8(p + 9);
+    out->analog_input0 = urwire__f64(p + 10);
+    out->analog_input1 = urwire__f64(p + 18);
+    out->analog_output_domain0 = urwire__i8(p + 26);
+    out->analog_output_domain1 = urwire__i8(p + 27);
+    out->analog_output0 = urwire__f64(p + 28);
+    out->analog_output1 = urwire__f64(p + 36);
+    out->master_board_temperature = urwire__f32(p + 44);
+    out->robot_voltage_48v = urwire__f32(p + 48);
+    out->robot_current = urwire__f32(p + 52);
+    out->master_io_current = urwire__f32(p + 56);
+    out->safety_mode = urwire__u8(p + 60);
+    out->in_reduced_mode = urwire__u8(p + 61);
+    out->euromap67_interface_installed = urwire__u8(p + 62);
+    pos += 63u;
+    if (out->euromap67_interface_installed != 0) {
+        if (end - pos < 16u)
+            return urwire__short_in_run(err, urwire__masterboard_data_2_run1, pos, end);
         p = msg + pos;
-        out->operational_mode_selector_input = urwire__u8(p);
-        out->three_position_enabling_device_input = urwire__u8(p + 1);
-        pos += 2u;
+        out->euromap_input_bits = urwire__u32(p);
+        out->euromap_output_bits = urwire__u32(p + 4);
+        out->euromap_voltage_24v = urwire__f32(p + 8);
+        out->euromap_current = urwire__f32(p + 12);
+        pos += 16u;
     } else {
-        out->operational_mode_selector_input = 0;
-        out->three_position_enabling_device_input = 0;
+        out->euromap_input_bits = 0;
+        out->euromap_output_bits = 0;
+        out->euromap_voltage_24v = 0;
+        out->euromap_current = 0;
     }
-    if (ver->key >= URWIRE__V(3, 10, 0) && ver->key <= URWIRE__V(3, 15, 999)) {
-        if (end - pos < 1u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run13, pos, end);
-        p = msg + pos;
-        out->reserved_1 = urwire__u8(p);
-        pos += 1u;
-    }
-    if (ver->key >= URWIRE__V(5, 4, 0)) {
-        if (end - pos < 1u)
-            return urwire__short_in_run(err, urwire__masterboard_data_run14, pos, end);
-        p = msg + pos;
-        out->reserved_1 = urwire__u8(p);
-        pos += 1u;
-    }
+    if (end - pos < 7u)
+        return urwire__short_in_run(err, urwire__masterboard_data_2_run2, pos, end);
+    p = msg + pos;
+    out->reserved_0 = urwire__u32(p);
+    out->operational_mode_selector_input = urwire__u8(p + 4);
+    out->three_position_enabling_device_input = urwire__u8(p + 5);
+    out->reserved_1 = urwire__u8(p + 6);
+    pos += 7u;
     out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
@@ -2441,36 +2619,38 @@ static void urwire__visit_masterboard_data(const void *from, const urwire__ver *
         v->on_hex(v->ctx, "extra", in->extra);
 }
 
-static const urwire__span urwire__cartesian_info_run0[] = {
+static const urwire__span urwire__cartesian_info_0_run0[] = {
     {"x", 0, 8},
     {"y", 8, 8},
     {"z", 16, 8},
     {"rx", 24, 8},
     {"ry", 32, 8},
     {"rz", 40, 8},
+    {"tcp_offset_x", 48, 8},
+    {"tcp_offset_y", 56, 8},
+    {"tcp_offset_z", 64, 8},
+    {"tcp_offset_rx", 72, 8},
+    {"tcp_offset_ry", 80, 8},
+    {"tcp_offset_rz", 88, 8},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__cartesian_info_run1[] = {
-    {"tcp_offset_x", 0, 8},
-    {"tcp_offset_y", 8, 8},
-    {"tcp_offset_z", 16, 8},
-    {"tcp_offset_rx", 24, 8},
-    {"tcp_offset_ry", 32, 8},
-    {"tcp_offset_rz", 40, 8},
-    {NULL, 0, 0},
-};
-
-/* Cartesian info; 53 bytes up to 3.0, 101 (with the TCP offset) from 3.1 (FIRMWARE-LAYOUTS 2.4). */
-static inline bool urwire__decode_cartesian_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                 void *into, urwire_error *err)
+/* cartesian_info as up to 3.0 sends it (48 bytes). */
+static inline bool urwire__decode_cartesian_info_0(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                   void *into, urwire_error *err)
 {
     urwire_cartesian_info *out = into;
     size_t pos = *at;
     const uint8_t *p;
     (void)ver;
+    out->tcp_offset_x = 0;
+    out->tcp_offset_y = 0;
+    out->tcp_offset_z = 0;
+    out->tcp_offset_rx = 0;
+    out->tcp_offset_ry = 0;
+    out->tcp_offset_rz = 0;
     if (end - pos < 48u)
-        return urwire__short_in_run(err, urwire__cartesian_info_run0, pos, end);
+        return urwire__short_in_run(err, urwire__cartesian_info_0_run0, pos, end);
     p = msg + pos;
     out->x = urwire__f64(p);
     out->y = urwire__f64(p + 8);
@@ -2479,25 +2659,37 @@ static inline bool urwire__decode_cartesian_info(const uint8_t *msg, size_t *at,
     out->ry = urwire__f64(p + 32);
     out->rz = urwire__f64(p + 40);
     pos += 48u;
-    if (ver->key >= URWIRE__V(3, 1, 0)) {
-        if (end - pos < 48u)
-            return urwire__short_in_run(err, urwire__cartesian_info_run1, pos, end);
-        p = msg + pos;
-        out->tcp_offset_x = urwire__f64(p);
-        out->tcp_offset_y = urwire__f64(p + 8);
-        out->tcp_offset_z = urwire__f64(p + 16);
-        out->tcp_offset_rx = urwire__f64(p + 24);
-        out->tcp_offset_ry = urwire__f64(p + 32);
-        out->tcp_offset_rz = urwire__f64(p + 40);
-        pos += 48u;
-    } else {
-        out->tcp_offset_x = 0;
-        out->tcp_offset_y = 0;
-        out->tcp_offset_z = 0;
-        out->tcp_offset_rx = 0;
-        out->tcp_offset_ry = 0;
-        out->tcp_offset_rz = 0;
-    }
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* cartesian_info as 3.1 and later sends it (96 bytes). */
+static inline bool urwire__decode_cartesian_info_1(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                   void *into, urwire_error *err)
+{
+    urwire_cartesian_info *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    (void)ver;
+    if (end - pos < 96u)
+        return urwire__short_in_run(err, urwire__cartesian_info_0_run0, pos, end);
+    p = msg + pos;
+    out->x = urwire__f64(p);
+    out->y = urwire__f64(p + 8);
+    out->z = urwire__f64(p + 16);
+    out->rx = urwire__f64(p + 24);
+    out->ry = urwire__f64(p + 32);
+    out->rz = urwire__f64(p + 40);
+    out->tcp_offset_x = urwire__f64(p + 48);
+    out->tcp_offset_y = urwire__f64(p + 56);
+    out->tcp_offset_z = urwire__f64(p + 64);
+    out->tcp_offset_rx = urwire__f64(p + 72);
+    out->tcp_offset_ry = urwire__f64(p + 80);
+    out->tcp_offset_rz = urwire__f64(p + 88);
+    pos += 96u;
     out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
@@ -2750,8 +2942,9 @@ static void urwire__visit_kinematics_info(const void *from, const urwire__ver *v
         v->on_hex(v->ctx, "extra", in->extra);
 }
 
-/* One entry of joint_position_limits. (16 bytes, read inside its parent's checked run) */
-static void urwire__read_joint_position_limit(const uint8_t *p, urwire_joint_position_limit *out)
+/* One entry of joint_position_limits. (16 bytes, read inside its parent's checked run;
+ * inlined, as a field of the run would be) */
+URWIRE__INLINE void urwire__read_joint_position_limit(const uint8_t *p, urwire_joint_position_limit *out)
 {
     out->joint_min_limit = urwire__f64(p);
     out->joint_max_limit = urwire__f64(p + 8);
@@ -2774,8 +2967,9 @@ static void urwire__visit_joint_position_limit(const void *from, const urwire__v
     v->on_f64(v->ctx, "joint_max_limit", in->joint_max_limit);
 }
 
-/* One entry of joint_motion_limits. (16 bytes, read inside its parent's checked run) */
-static void urwire__read_joint_motion_limit(const uint8_t *p, urwire_joint_motion_limit *out)
+/* One entry of joint_motion_limits. (16 bytes, read inside its parent's checked run;
+ * inlined, as a field of the run would be) */
+URWIRE__INLINE void urwire__read_joint_motion_limit(const uint8_t *p, urwire_joint_motion_limit *out)
 {
     out->joint_max_speed = urwire__f64(p);
     out->joint_max_acceleration = urwire__f64(p + 8);
@@ -2798,7 +2992,7 @@ static void urwire__visit_joint_motion_limit(const void *from, const urwire__ver
     v->on_f64(v->ctx, "joint_max_acceleration", in->joint_max_acceleration);
 }
 
-static const urwire__span urwire__configuration_data_run0[] = {
+static const urwire__span urwire__configuration_data_0_run0[] = {
     {"joint_position_limits[0].joint_min_limit", 0, 8},
     {"joint_position_limits[0].joint_max_limit", 8, 8},
     {"joint_position_limits[1].joint_min_limit", 16, 8},
@@ -2856,36 +3050,130 @@ static const urwire__span urwire__configuration_data_run0[] = {
     {"controller_box_type", 428, 4},
     {"robot_type", 432, 4},
     {"robot_sub_type", 436, 4},
+    {"motor_type[0]", 440, 4},
+    {"motor_type[1]", 444, 4},
+    {"motor_type[2]", 448, 4},
+    {"motor_type[3]", 452, 4},
+    {"motor_type[4]", 456, 4},
+    {"motor_type[5]", 460, 4},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__configuration_data_run1[] = {
-    {"motor_type[0]", 0, 4},
-    {"motor_type[1]", 4, 4},
-    {"motor_type[2]", 8, 4},
-    {"motor_type[3]", 12, 4},
-    {"motor_type[4]", 16, 4},
-    {"motor_type[5]", 20, 4},
+static const urwire__span urwire__configuration_data_2_run0[] = {
+    {"joint_position_limits[0].joint_min_limit", 0, 8},
+    {"joint_position_limits[0].joint_max_limit", 8, 8},
+    {"joint_position_limits[1].joint_min_limit", 16, 8},
+    {"joint_position_limits[1].joint_max_limit", 24, 8},
+    {"joint_position_limits[2].joint_min_limit", 32, 8},
+    {"joint_position_limits[2].joint_max_limit", 40, 8},
+    {"joint_position_limits[3].joint_min_limit", 48, 8},
+    {"joint_position_limits[3].joint_max_limit", 56, 8},
+    {"joint_position_limits[4].joint_min_limit", 64, 8},
+    {"joint_position_limits[4].joint_max_limit", 72, 8},
+    {"joint_position_limits[5].joint_min_limit", 80, 8},
+    {"joint_position_limits[5].joint_max_limit", 88, 8},
+    {"joint_motion_limits[0].joint_max_speed", 96, 8},
+    {"joint_motion_limits[0].joint_max_acceleration", 104, 8},
+    {"joint_motion_limits[1].joint_max_speed", 112, 8},
+    {"joint_motion_limits[1].joint_max_acceleration", 120, 8},
+    {"joint_motion_limits[2].joint_max_speed", 128, 8},
+    {"joint_motion_limits[2].joint_max_acceleration", 136, 8},
+    {"joint_motion_limits[3].joint_max_speed", 144, 8},
+    {"joint_motion_limits[3].joint_max_acceleration", 152, 8},
+    {"joint_motion_limits[4].joint_max_speed", 160, 8},
+    {"joint_motion_limits[4].joint_max_acceleration", 168, 8},
+    {"joint_motion_limits[5].joint_max_speed", 176, 8},
+    {"joint_motion_limits[5].joint_max_acceleration", 184, 8},
+    {"v_joint_default", 192, 8},
+    {"a_joint_default", 200, 8},
+    {"v_tool_default", 208, 8},
+    {"a_tool_default", 216, 8},
+    {"eq_radius", 224, 8},
+    {"dh_a[0]", 232, 8},
+    {"dh_a[1]", 240, 8},
+    {"dh_a[2]", 248, 8},
+    {"dh_a[3]", 256, 8},
+    {"dh_a[4]", 264, 8},
+    {"dh_a[5]", 272, 8},
+    {"dh_d[0]", 280, 8},
+    {"dh_d[1]", 288, 8},
+    {"dh_d[2]", 296, 8},
+    {"dh_d[3]", 304, 8},
+    {"dh_d[4]", 312, 8},
+    {"dh_d[5]", 320, 8},
+    {"dh_alpha[0]", 328, 8},
+    {"dh_alpha[1]", 336, 8},
+    {"dh_alpha[2]", 344, 8},
+    {"dh_alpha[3]", 352, 8},
+    {"dh_alpha[4]", 360, 8},
+    {"dh_alpha[5]", 368, 8},
+    {"dh_theta[0]", 376, 8},
+    {"dh_theta[1]", 384, 8},
+    {"dh_theta[2]", 392, 8},
+    {"dh_theta[3]", 400, 8},
+    {"dh_theta[4]", 408, 8},
+    {"dh_theta[5]", 416, 8},
+    {"masterboard_version", 424, 4},
+    {"controller_box_type", 428, 4},
+    {"robot_type", 432, 4},
+    {"robot_sub_type", 436, 4},
+    {"reserved_1", 440, 2},
+    {"reserved_2", 442, 2},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__configuration_data_run2[] = {
-    {"reserved_1", 0, 2},
-    {"reserved_2", 2, 2},
-    {NULL, 0, 0},
-};
-
-/* Configuration data. Sent when leaving initializing mode and/or if the kinematics configuration is changed. 469 bytes on 1.8, 445 from 3.0, 449 from 5.25.1; not sent before 1.8 (FIRMWARE-LAYOUTS 1a, 2.6). */
-static inline bool urwire__decode_configuration_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                     void *into, urwire_error *err)
+/* configuration_data as up to 1.8 sends it (464 bytes). */
+static inline bool urwire__decode_configuration_data_0(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                       void *into, urwire_error *err)
 {
     urwire_configuration_data *out = into;
     size_t pos = *at;
     const uint8_t *p;
     size_t i;
     (void)ver;
+    out->reserved_1 = 0;
+    out->reserved_2 = 0;
+    if (end - pos < 464u)
+        return urwire__short_in_run(err, urwire__configuration_data_0_run0, pos, end);
+    p = msg + pos;
+    for (i = 0; i < 6; i++) urwire__read_joint_position_limit(p + 16 * i, &out->joint_position_limits[i]);
+    for (i = 0; i < 6; i++) urwire__read_joint_motion_limit(p + 96 + 16 * i, &out->joint_motion_limits[i]);
+    out->v_joint_default = urwire__f64(p + 192);
+    out->a_joint_default = urwire__f64(p + 200);
+    out->v_tool_default = urwire__f64(p + 208);
+    out->a_tool_default = urwire__f64(p + 216);
+    out->eq_radius = urwire__f64(p + 224);
+    for (i = 0; i < 6; i++) out->dh_a[i] = urwire__f64(p + 232 + 8 * i);
+    for (i = 0; i < 6; i++) out->dh_d[i] = urwire__f64(p + 280 + 8 * i);
+    for (i = 0; i < 6; i++) out->dh_alpha[i] = urwire__f64(p + 328 + 8 * i);
+    for (i = 0; i < 6; i++) out->dh_theta[i] = urwire__f64(p + 376 + 8 * i);
+    out->masterboard_version = urwire__i32(p + 424);
+    out->controller_box_type = urwire__i32(p + 428);
+    out->robot_type = urwire__i32(p + 432);
+    out->robot_sub_type = urwire__i32(p + 436);
+    for (i = 0; i < 6; i++) out->motor_type[i] = urwire__i32(p + 440 + 4 * i);
+    pos += 464u;
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* configuration_data as 3.0 to 5.25.0 sends it (440 bytes). */
+static inline bool urwire__decode_configuration_data_1(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                       void *into, urwire_error *err)
+{
+    urwire_configuration_data *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    size_t i;
+    (void)ver;
+    memset(&out->motor_type, 0, sizeof out->motor_type);
+    out->reserved_1 = 0;
+    out->reserved_2 = 0;
     if (end - pos < 440u)
-        return urwire__short_in_run(err, urwire__configuration_data_run0, pos, end);
+        return urwire__short_in_run(err, urwire__configuration_data_0_run0, pos, end);
     p = msg + pos;
     for (i = 0; i < 6; i++) urwire__read_joint_position_limit(p + 16 * i, &out->joint_position_limits[i]);
     for (i = 0; i < 6; i++) urwire__read_joint_motion_limit(p + 96 + 16 * i, &out->joint_motion_limits[i]);
@@ -2903,26 +3191,44 @@ static inline bool urwire__decode_configuration_data(const uint8_t *msg, size_t 
     out->robot_type = urwire__i32(p + 432);
     out->robot_sub_type = urwire__i32(p + 436);
     pos += 440u;
-    if (ver->key <= URWIRE__V(1, 8, 999)) {
-        if (end - pos < 24u)
-            return urwire__short_in_run(err, urwire__configuration_data_run1, pos, end);
-        p = msg + pos;
-        for (i = 0; i < 6; i++) out->motor_type[i] = urwire__i32(p + 4 * i);
-        pos += 24u;
-    } else {
-        memset(&out->motor_type, 0, sizeof out->motor_type);
-    }
-    if (ver->key >= URWIRE__V(5, 25, 1)) {
-        if (end - pos < 4u)
-            return urwire__short_in_run(err, urwire__configuration_data_run2, pos, end);
-        p = msg + pos;
-        out->reserved_1 = urwire__i16(p);
-        out->reserved_2 = urwire__i16(p + 2);
-        pos += 4u;
-    } else {
-        out->reserved_1 = 0;
-        out->reserved_2 = 0;
-    }
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* configuration_data as 5.25.1 and later sends it (444 bytes). */
+static inline bool urwire__decode_configuration_data_2(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                       void *into, urwire_error *err)
+{
+    urwire_configuration_data *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    size_t i;
+    (void)ver;
+    memset(&out->motor_type, 0, sizeof out->motor_type);
+    if (end - pos < 444u)
+        return urwire__short_in_run(err, urwire__configuration_data_2_run0, pos, end);
+    p = msg + pos;
+    for (i = 0; i < 6; i++) urwire__read_joint_position_limit(p + 16 * i, &out->joint_position_limits[i]);
+    for (i = 0; i < 6; i++) urwire__read_joint_motion_limit(p + 96 + 16 * i, &out->joint_motion_limits[i]);
+    out->v_joint_default = urwire__f64(p + 192);
+    out->a_joint_default = urwire__f64(p + 200);
+    out->v_tool_default = urwire__f64(p + 208);
+    out->a_tool_default = urwire__f64(p + 216);
+    out->eq_radius = urwire__f64(p + 224);
+    for (i = 0; i < 6; i++) out->dh_a[i] = urwire__f64(p + 232 + 8 * i);
+    for (i = 0; i < 6; i++) out->dh_d[i] = urwire__f64(p + 280 + 8 * i);
+    for (i = 0; i < 6; i++) out->dh_alpha[i] = urwire__f64(p + 328 + 8 * i);
+    for (i = 0; i < 6; i++) out->dh_theta[i] = urwire__f64(p + 376 + 8 * i);
+    out->masterboard_version = urwire__i32(p + 424);
+    out->controller_box_type = urwire__i32(p + 428);
+    out->robot_type = urwire__i32(p + 432);
+    out->robot_sub_type = urwire__i32(p + 436);
+    out->reserved_1 = urwire__i16(p + 440);
+    out->reserved_2 = urwire__i16(p + 442);
+    pos += 444u;
     out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
@@ -3116,76 +3422,113 @@ static void urwire__visit_force_mode_data(const void *from, const urwire__ver *v
         v->on_hex(v->ctx, "extra", in->extra);
 }
 
-static const urwire__span urwire__additional_info_run0[] = {
+static const urwire__span urwire__additional_info_0_run0[] = {
     {"ctrl_bits", 0, 4},
     {"teach_button", 4, 1},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__additional_info_run1[] = {
+static const urwire__span urwire__additional_info_1_run0[] = {
     {"tp_button_state", 0, 1},
     {"freedrive_button_enabled", 1, 1},
+    {"io_enabled_freedrive", 2, 1},
+    {"reserved", 3, 1},
     {NULL, 0, 0},
 };
 
-static const urwire__span urwire__additional_info_run2[] = {
-    {"io_enabled_freedrive", 0, 1},
-    {NULL, 0, 0},
-};
-
-static const urwire__span urwire__additional_info_run3[] = {
-    {"reserved", 0, 1},
-    {NULL, 0, 0},
-};
-
-/* Additional info: 10 bytes up to early 1.8 builds, 7 from late 1.8 builds to 3.1, 8 on 3.2-3.15, 9 from 5.0 (FIRMWARE-LAYOUTS 1a, 2.8, 3.4). 1.8 sends either 10 or 7 bytes: the 10-byte form is gated to 1.7 and its length selects it on 1.8. */
-static inline bool urwire__decode_additional_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                  void *into, urwire_error *err)
+/* additional_info as up to 1.7 sends it (5 bytes). */
+static inline bool urwire__decode_additional_info_0(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                    void *into, urwire_error *err)
 {
     urwire_additional_info *out = into;
     size_t pos = *at;
     const uint8_t *p;
     (void)ver;
-    if (ver->key <= URWIRE__V(1, 7, 999)) {
-        if (end - pos < 5u)
-            return urwire__short_in_run(err, urwire__additional_info_run0, pos, end);
-        p = msg + pos;
-        out->ctrl_bits = urwire__u32(p);
-        out->teach_button = urwire__u8(p + 4);
-        pos += 5u;
-    } else {
-        out->ctrl_bits = 0;
-        out->teach_button = 0;
-    }
-    if (ver->key >= URWIRE__V(1, 8, 0)) {
-        if (end - pos < 2u)
-            return urwire__short_in_run(err, urwire__additional_info_run1, pos, end);
-        p = msg + pos;
-        out->tp_button_state = urwire__u8(p);
-        out->freedrive_button_enabled = urwire__u8(p + 1);
-        pos += 2u;
-    } else {
-        out->tp_button_state = 0;
-        out->freedrive_button_enabled = 0;
-    }
-    if (ver->key >= URWIRE__V(3, 2, 0)) {
-        if (end - pos < 1u)
-            return urwire__short_in_run(err, urwire__additional_info_run2, pos, end);
-        p = msg + pos;
-        out->io_enabled_freedrive = urwire__u8(p);
-        pos += 1u;
-    } else {
-        out->io_enabled_freedrive = 0;
-    }
-    if (ver->key >= URWIRE__V(5, 0, 0)) {
-        if (end - pos < 1u)
-            return urwire__short_in_run(err, urwire__additional_info_run3, pos, end);
-        p = msg + pos;
-        out->reserved = urwire__u8(p);
-        pos += 1u;
-    } else {
-        out->reserved = 0;
-    }
+    out->tp_button_state = 0;
+    out->freedrive_button_enabled = 0;
+    out->io_enabled_freedrive = 0;
+    out->reserved = 0;
+    if (end - pos < 5u)
+        return urwire__short_in_run(err, urwire__additional_info_0_run0, pos, end);
+    p = msg + pos;
+    out->ctrl_bits = urwire__u32(p);
+    out->teach_button = urwire__u8(p + 4);
+    pos += 5u;
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* additional_info as 1.8 to 3.1 sends it (2 bytes). */
+static inline bool urwire__decode_additional_info_1(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                    void *into, urwire_error *err)
+{
+    urwire_additional_info *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    (void)ver;
+    out->ctrl_bits = 0;
+    out->teach_button = 0;
+    out->io_enabled_freedrive = 0;
+    out->reserved = 0;
+    if (end - pos < 2u)
+        return urwire__short_in_run(err, urwire__additional_info_1_run0, pos, end);
+    p = msg + pos;
+    out->tp_button_state = urwire__u8(p);
+    out->freedrive_button_enabled = urwire__u8(p + 1);
+    pos += 2u;
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* additional_info as 3.2 to 3.15 sends it (3 bytes). */
+static inline bool urwire__decode_additional_info_2(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                    void *into, urwire_error *err)
+{
+    urwire_additional_info *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    (void)ver;
+    out->ctrl_bits = 0;
+    out->teach_button = 0;
+    out->reserved = 0;
+    if (end - pos < 3u)
+        return urwire__short_in_run(err, urwire__additional_info_1_run0, pos, end);
+    p = msg + pos;
+    out->tp_button_state = urwire__u8(p);
+    out->freedrive_button_enabled = urwire__u8(p + 1);
+    out->io_enabled_freedrive = urwire__u8(p + 2);
+    pos += 3u;
+    out->version = ver->version;
+    out->extra = urwire__view(msg + pos, end - pos);
+    pos = end;
+    *at = pos;
+    return true;
+}
+
+/* additional_info as 5.0 and later sends it (4 bytes). */
+static inline bool urwire__decode_additional_info_3(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                                    void *into, urwire_error *err)
+{
+    urwire_additional_info *out = into;
+    size_t pos = *at;
+    const uint8_t *p;
+    (void)ver;
+    out->ctrl_bits = 0;
+    out->teach_button = 0;
+    if (end - pos < 4u)
+        return urwire__short_in_run(err, urwire__additional_info_1_run0, pos, end);
+    p = msg + pos;
+    out->tp_button_state = urwire__u8(p);
+    out->freedrive_button_enabled = urwire__u8(p + 1);
+    out->io_enabled_freedrive = urwire__u8(p + 2);
+    out->reserved = urwire__u8(p + 3);
+    pos += 4u;
     out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
     pos = end;
@@ -5125,18 +5468,30 @@ static const urwire__package_kind urwire__package_kinds[] = {
  * gcc specialises and inlines a decoder whose address is never taken. */
 
 /* A sub-package of type `type`, read in its form `form` (its number in
- * urwire__package_form_list plus one), into its member of *out, whose bit it sets in
- * out->layouts: the robot-state fast path. It switches on the type, which comes straight from
- * the message, rather than on the form's layout, which takes table lookups to find: the jump
- * is known sooner. */
+ * urwire__package_form_list plus one) by that form's decoder, into its member of *out, whose
+ * bit it sets in out->layouts: the robot-state fast path. It switches on the type, which comes
+ * straight from the message, and only then, for a type read by several decoders, on the form:
+ * the first jump is known sooner. */
 static bool urwire__decode_member(uint8_t type, uint8_t form, const uint8_t *msg, size_t *at, size_t end,
                                   const urwire__ver *ver, urwire_robot_state *out, urwire_error *err)
 {
     (void)form;
     switch (type) {
     case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:
-        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ROBOT_MODE_DATA);
-        return urwire__decode_robot_mode_data(msg, at, end, ver, &out->robot_mode_data, err);
+        switch (form) {
+        case 1:  /* up to 1.8 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ROBOT_MODE_DATA);
+            return urwire__decode_robot_mode_data_0(msg, at, end, ver, &out->robot_mode_data, err);
+        case 2:  /* 3.0 to 3.1 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ROBOT_MODE_DATA);
+            return urwire__decode_robot_mode_data_1(msg, at, end, ver, &out->robot_mode_data, err);
+        case 3:  /* 3.2 to 3.4 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ROBOT_MODE_DATA);
+            return urwire__decode_robot_mode_data_2(msg, at, end, ver, &out->robot_mode_data, err);
+        default:  /* 4: 3.5 and later */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ROBOT_MODE_DATA);
+            return urwire__decode_robot_mode_data_3(msg, at, end, ver, &out->robot_mode_data, err);
+        }
     case URWIRE_PACKAGE_TYPE_JOINT_DATA:
         out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_JOINT_DATA);
         return urwire__decode_joint_data(msg, at, end, ver, &out->joint_data, err);
@@ -5144,27 +5499,71 @@ static bool urwire__decode_member(uint8_t type, uint8_t form, const uint8_t *msg
         out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_TOOL_DATA);
         return urwire__decode_tool_data(msg, at, end, ver, &out->tool_data, err);
     case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA:
-        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_MASTERBOARD_DATA);
-        return urwire__decode_masterboard_data(msg, at, end, ver, &out->masterboard_data, err);
+        switch (form) {
+        case 7:  /* up to 1.5 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_MASTERBOARD_DATA);
+            return urwire__decode_masterboard_data_0(msg, at, end, ver, &out->masterboard_data, err);
+        case 8:  /* 1.6 to 1.8 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_MASTERBOARD_DATA);
+            return urwire__decode_masterboard_data_1(msg, at, end, ver, &out->masterboard_data, err);
+        case 9:  /* 3.0 to 3.1 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_MASTERBOARD_DATA);
+            return urwire__decode_masterboard_data_2(msg, at, end, ver, &out->masterboard_data, err);
+        case 10:  /* 3.2 to 3.9 or 5.0 to 5.3 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_MASTERBOARD_DATA);
+            return urwire__decode_masterboard_data_3(msg, at, end, ver, &out->masterboard_data, err);
+        default:  /* 11: 3.10 to 3.15 or 5.4 and later */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_MASTERBOARD_DATA);
+            return urwire__decode_masterboard_data_4(msg, at, end, ver, &out->masterboard_data, err);
+        }
     case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO:
-        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CARTESIAN_INFO);
-        return urwire__decode_cartesian_info(msg, at, end, ver, &out->cartesian_info, err);
+        switch (form) {
+        case 12:  /* up to 3.0 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CARTESIAN_INFO);
+            return urwire__decode_cartesian_info_0(msg, at, end, ver, &out->cartesian_info, err);
+        default:  /* 13: 3.1 and later */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CARTESIAN_INFO);
+            return urwire__decode_cartesian_info_1(msg, at, end, ver, &out->cartesian_info, err);
+        }
     case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO:
-        if (urwire__package_form_list[form - 1].layout == URWIRE_LAYOUT_LASER_POINTER) {
+        switch (form) {
+        case 14:  /* up to 1.7 */
             out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_LASER_POINTER);
             return urwire__decode_laser_pointer(msg, at, end, ver, &out->laser_pointer, err);
+        default:  /* 15: 1.8 and later */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_KINEMATICS_INFO);
+            return urwire__decode_kinematics_info(msg, at, end, ver, &out->kinematics_info, err);
         }
-        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_KINEMATICS_INFO);
-        return urwire__decode_kinematics_info(msg, at, end, ver, &out->kinematics_info, err);
     case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA:
-        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CONFIGURATION_DATA);
-        return urwire__decode_configuration_data(msg, at, end, ver, &out->configuration_data, err);
+        switch (form) {
+        case 16:  /* up to 1.8 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CONFIGURATION_DATA);
+            return urwire__decode_configuration_data_0(msg, at, end, ver, &out->configuration_data, err);
+        case 17:  /* 3.0 to 5.25.0 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CONFIGURATION_DATA);
+            return urwire__decode_configuration_data_1(msg, at, end, ver, &out->configuration_data, err);
+        default:  /* 18: 5.25.1 and later */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CONFIGURATION_DATA);
+            return urwire__decode_configuration_data_2(msg, at, end, ver, &out->configuration_data, err);
+        }
     case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA:
         out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_FORCE_MODE_DATA);
         return urwire__decode_force_mode_data(msg, at, end, ver, &out->force_mode_data, err);
     case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO:
-        out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ADDITIONAL_INFO);
-        return urwire__decode_additional_info(msg, at, end, ver, &out->additional_info, err);
+        switch (form) {
+        case 20:  /* up to 1.7 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ADDITIONAL_INFO);
+            return urwire__decode_additional_info_0(msg, at, end, ver, &out->additional_info, err);
+        case 21:  /* 1.8 to 3.1 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ADDITIONAL_INFO);
+            return urwire__decode_additional_info_1(msg, at, end, ver, &out->additional_info, err);
+        case 22:  /* 3.2 to 3.15 */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ADDITIONAL_INFO);
+            return urwire__decode_additional_info_2(msg, at, end, ver, &out->additional_info, err);
+        default:  /* 23: 5.0 and later */
+            out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ADDITIONAL_INFO);
+            return urwire__decode_additional_info_3(msg, at, end, ver, &out->additional_info, err);
+        }
     case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA:
         out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CALIBRATION_DATA);
         return urwire__decode_calibration_data(msg, at, end, ver, &out->calibration_data, err);
@@ -5185,40 +5584,67 @@ static bool urwire__decode_member(uint8_t type, uint8_t form, const uint8_t *msg
     }
 }
 
-/* A sub-package into *into, the struct of its layout. */
-static bool urwire__decode_package(urwire_package_layout layout, const uint8_t *msg, size_t *at, size_t end,
-                                   const urwire__ver *ver, void *into, urwire_error *err)
+/* A sub-package in its form `form` (its number in urwire__package_form_list plus one) into
+ * *into, the struct of the form's layout. */
+static bool urwire__decode_package(uint8_t form, const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
+                                   void *into, urwire_error *err)
 {
-    switch (layout) {
-    case URWIRE_LAYOUT_ROBOT_MODE_DATA:
-        return urwire__decode_robot_mode_data(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_JOINT_DATA:
+    switch (form) {
+    case 1:  /* robot_mode_data, up to 1.8 */
+        return urwire__decode_robot_mode_data_0(msg, at, end, ver, into, err);
+    case 2:  /* robot_mode_data, 3.0 to 3.1 */
+        return urwire__decode_robot_mode_data_1(msg, at, end, ver, into, err);
+    case 3:  /* robot_mode_data, 3.2 to 3.4 */
+        return urwire__decode_robot_mode_data_2(msg, at, end, ver, into, err);
+    case 4:  /* robot_mode_data, 3.5 and later */
+        return urwire__decode_robot_mode_data_3(msg, at, end, ver, into, err);
+    case 5:  /* joint_data, all versions */
         return urwire__decode_joint_data(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_TOOL_DATA:
+    case 6:  /* tool_data, all versions */
         return urwire__decode_tool_data(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_MASTERBOARD_DATA:
-        return urwire__decode_masterboard_data(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_CARTESIAN_INFO:
-        return urwire__decode_cartesian_info(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_LASER_POINTER:
+    case 7:  /* masterboard_data, up to 1.5 */
+        return urwire__decode_masterboard_data_0(msg, at, end, ver, into, err);
+    case 8:  /* masterboard_data, 1.6 to 1.8 */
+        return urwire__decode_masterboard_data_1(msg, at, end, ver, into, err);
+    case 9:  /* masterboard_data, 3.0 to 3.1 */
+        return urwire__decode_masterboard_data_2(msg, at, end, ver, into, err);
+    case 10:  /* masterboard_data, 3.2 to 3.9 or 5.0 to 5.3 */
+        return urwire__decode_masterboard_data_3(msg, at, end, ver, into, err);
+    case 11:  /* masterboard_data, 3.10 to 3.15 or 5.4 and later */
+        return urwire__decode_masterboard_data_4(msg, at, end, ver, into, err);
+    case 12:  /* cartesian_info, up to 3.0 */
+        return urwire__decode_cartesian_info_0(msg, at, end, ver, into, err);
+    case 13:  /* cartesian_info, 3.1 and later */
+        return urwire__decode_cartesian_info_1(msg, at, end, ver, into, err);
+    case 14:  /* laser_pointer, up to 1.7 */
         return urwire__decode_laser_pointer(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_KINEMATICS_INFO:
+    case 15:  /* kinematics_info, 1.8 and later */
         return urwire__decode_kinematics_info(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_CONFIGURATION_DATA:
-        return urwire__decode_configuration_data(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_FORCE_MODE_DATA:
+    case 16:  /* configuration_data, up to 1.8 */
+        return urwire__decode_configuration_data_0(msg, at, end, ver, into, err);
+    case 17:  /* configuration_data, 3.0 to 5.25.0 */
+        return urwire__decode_configuration_data_1(msg, at, end, ver, into, err);
+    case 18:  /* configuration_data, 5.25.1 and later */
+        return urwire__decode_configuration_data_2(msg, at, end, ver, into, err);
+    case 19:  /* force_mode_data, all versions */
         return urwire__decode_force_mode_data(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_ADDITIONAL_INFO:
-        return urwire__decode_additional_info(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_CALIBRATION_DATA:
+    case 20:  /* additional_info, up to 1.7 */
+        return urwire__decode_additional_info_0(msg, at, end, ver, into, err);
+    case 21:  /* additional_info, 1.8 to 3.1 */
+        return urwire__decode_additional_info_1(msg, at, end, ver, into, err);
+    case 22:  /* additional_info, 3.2 to 3.15 */
+        return urwire__decode_additional_info_2(msg, at, end, ver, into, err);
+    case 23:  /* additional_info, 5.0 and later */
+        return urwire__decode_additional_info_3(msg, at, end, ver, into, err);
+    case 24:  /* calibration_data, all versions */
         return urwire__decode_calibration_data(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_SAFETY_DATA:
+    case 25:  /* safety_data, all versions */
         return urwire__decode_safety_data(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_TOOL_COMM_INFO:
+    case 26:  /* tool_comm_info, all versions */
         return urwire__decode_tool_comm_info(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_TOOL_MODE_INFO:
+    case 27:  /* tool_mode_info, all versions */
         return urwire__decode_tool_mode_info(msg, at, end, ver, into, err);
-    case URWIRE_LAYOUT_SINGULARITY_INFO:
+    case 28:  /* singularity_info, all versions */
         return urwire__decode_singularity_info(msg, at, end, ver, into, err);
     default:
         return false;  /* not reached: the caller skips types with no layout */
@@ -5809,34 +6235,42 @@ static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t e
     urwire_error ignored;
     urwire__ver other;
     const urwire__ver *use;
-    size_t size = 0, body;
+    /* The segment's rows, held here: the stores into *out could alias them in r. */
+    const uint8_t *mine = r->mine;
+    const uint32_t *first_sizes = r->first_sizes;
+    size_t size = 0, body, n = 0;
     uint8_t type, form;
     out->present = 0;
     out->malformed = 0;
     out->layouts = 0;
     out->unknown = 0;
     /* One pass: framing each sub-package and decoding it overlap in the CPU. */
-    for (*count = 0; pos < end && urwire__frame_package(msg, pos, end, &size, err); pos += size, ++*count) {
+    for (; pos < end && urwire__frame_package(msg, pos, end, &size, err); pos += size, n++) {
         type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
         body = pos + URWIRE_PACKAGE_HEADER_SIZE;
         use = &r->now;
-        /* The common case first: the version's form, which fits the body by its brief. */
-        if (type < URWIRE__COUNT(urwire__package_forms) &&
-            urwire__fits_brief(r->first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE)) {
-            form = r->mine[type];
-        } else if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
-            out->unknown++;
-            continue;
-        } else {
+        /* The common case, laid out straight: the version's form, which fits the body by its brief. */
+        form = URWIRE__LIKELY(type < URWIRE__COUNT(urwire__package_forms) &&
+                              urwire__fits_brief(first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE))
+                   ? mine[type]
+                   : 0;
+        if (URWIRE__UNLIKELY(form == 0)) {
+            if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
+                out->unknown++;
+                continue;
+            }
             form = (uint8_t)(urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &other) -
                              urwire__package_form_list + 1);
             use = &other;
+            mine = r->mine;
+            first_sizes = r->first_sizes;
         }
         if (urwire__decode_member(type, form, msg, &body, pos + size, use, out, &ignored))
             out->present |= (uint32_t)URWIRE_BIT(type);
         else
             out->malformed |= (uint32_t)URWIRE_BIT(type);
     }
+    *count = n;
     return pos;
 }
 
@@ -5864,7 +6298,8 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
     out->version = f != NULL ? use.version : seq->version;
     out->known = f != NULL;
     out->layout = f != NULL ? (urwire_package_layout)f->layout : URWIRE_LAYOUT_COUNT;
-    out->failed = f != NULL && !urwire__decode_package(out->layout, msg, &body, stop, &use, &out->as, &out->error);
+    out->failed = f != NULL && !urwire__decode_package((uint8_t)(f - urwire__package_form_list + 1), msg, &body, stop,
+                                                        &use, &out->as, &out->error);
     seq->version = r.now.version;  /* the version the layout sizes showed, for the packages after it */
     seq->pos = stop;
     seq->count--;
@@ -6206,11 +6641,36 @@ void urwire_framer_init(urwire_framer *f, uint8_t *buf, size_t cap, urwire_sw_ve
     f->ended_inside = false;
     f->version_seen = false;
     f->version = hint;
+    f->unlearnt = 0;
+}
+
+/* The robot state handed out last, which ends at head, when the caller did not hand it back
+ * decoded: the version its layout sizes show, from a walk over its sub-package headers. */
+static void urwire__learn_unlearnt(urwire_framer *f)
+{
+    if (f->unlearnt) {
+        urwire__implied_version(f->buf + f->head - f->unlearnt, f->unlearnt, &f->version);
+        f->unlearnt = 0;
+    }
+}
+
+void urwire_framer_learn(urwire_framer *f, const urwire_message *m)
+{
+    const urwire_sw_version *v = &f->version;
+    /* Only that robot state, decoded in the version it was handed out with, tells the same. */
+    if (f->unlearnt == 0 || m->bytes != f->buf + f->head - f->unlearnt || m->length != f->unlearnt ||
+        m->kind != URWIRE__PACKAGES_KIND || m->version.major != v->major || m->version.minor != v->minor ||
+        m->version.bugfix != v->bugfix || m->version.assumed != v->assumed)
+        return;
+    if (m->implied)
+        f->version = m->implied_version;
+    f->unlearnt = 0;
 }
 
 size_t urwire_framer_feed(urwire_framer *f, const uint8_t *data, size_t n)
 {
     size_t take;
+    urwire__learn_unlearnt(f);  /* before its bytes move */
     if (f->head) {
         memmove(f->buf, f->buf + f->head, f->len - f->head);
         f->len -= f->head;
@@ -6253,13 +6713,14 @@ static bool urwire__rescan_stops_at(const urwire_framer *f, size_t at)
 /* What a message tells of the stream's software version, for the messages after it: the
  * layout that announces it (URWIRE__VERSION_*) sets it, bugfix included where its form has one
  * (their type and subtype bytes are looked at before anything is decoded); while the version
- * is only assumed, the layout sizes of a robot state may show it. */
+ * is only assumed, the layout sizes of a robot state may show it, learnt later: from the
+ * caller's decoding (urwire_framer_learn), else by urwire__learn_unlearnt. */
 static void urwire__learn_version(urwire_framer *f, const uint8_t *bytes, size_t len)
 {
     urwire_message m;
     if (bytes[URWIRE__TYPE_AT] == URWIRE__PACKAGES_TYPE) {
         if (f->version.assumed)
-            urwire__implied_version(bytes, len, &f->version);
+            f->unlearnt = len;
         return;
     }
     if (bytes[URWIRE__TYPE_AT] != URWIRE__VERSION_TYPE || len < URWIRE__VERSION_BODY ||
@@ -6279,6 +6740,7 @@ urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out)
     size_t left, drop;
     int64_t length;
     urwire_status status;
+    urwire__learn_unlearnt(f);
     for (;;) {
         left = f->len - f->head;
         if (f->skip) {

@@ -375,6 +375,51 @@ static void implied_version(void)
     CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.version.major == 5 && !fr.version.assumed);
 }
 
+/* Handed the robot state it framed, decoded in its frame's version (urwire_framer_learn), the
+ * framer takes the version its sizes show from that decoding and walks nothing itself; any
+ * other message leaves the walk to the framer. */
+static void learning_from_the_decoded_message(void)
+{
+    static uint8_t buf[64];
+    uint8_t stream[3 * sizeof old_state], copy[sizeof old_state];
+    urwire_framer f;
+    urwire_frame fr;
+    urwire_message m;
+    memcpy(stream, old_state, sizeof old_state);
+    memcpy(stream + sizeof old_state, old_state, sizeof old_state);
+    memcpy(stream + 2 * sizeof old_state, old_state, sizeof old_state);
+    urwire_framer_init(&f, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
+    CHECK(urwire_framer_feed(&f, stream, sizeof stream) == sizeof stream);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    CHECK(urwire_decode_message(fr.bytes, fr.length, fr.version, &m) && m.implied);
+    urwire_framer_learn(&f, &m);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    CHECK(fr.version.major == 3 && fr.version.minor == 2 && fr.version.bugfix == 999 && fr.version.assumed);
+    /* What the framer learns is the decoding's word: told no version, it keeps its own. */
+    urwire_framer_init(&f, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
+    CHECK(urwire_framer_feed(&f, stream, sizeof stream) == sizeof stream);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    CHECK(urwire_decode_message(fr.bytes, fr.length, fr.version, &m) && m.implied);
+    m.implied = false;
+    urwire_framer_learn(&f, &m);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.version.major == 5 && fr.version.minor == 9);
+    /* The frame decoded in another version, or the same bytes elsewhere, are not that frame:
+     * the framer walks it. */
+    CHECK(urwire_decode_message(fr.bytes, fr.length, (urwire_sw_version){5, 9, 0, false}, &m) && !m.implied);
+    urwire_framer_learn(&f, &m);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    CHECK(fr.version.major == 3 && fr.version.minor == 2 && fr.version.bugfix == 999 && fr.version.assumed);
+    urwire_framer_init(&f, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
+    CHECK(urwire_framer_feed(&f, stream, sizeof stream) == sizeof stream);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    memcpy(copy, fr.bytes, fr.length);
+    CHECK(urwire_decode_message(copy, fr.length, fr.version, &m) && m.implied);
+    m.implied = false;
+    urwire_framer_learn(&f, &m);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    CHECK(fr.version.major == 3 && fr.version.minor == 2 && fr.version.bugfix == 999 && fr.version.assumed);
+}
+
 int main(void)
 {
     loads_and_stores();
@@ -387,6 +432,7 @@ int main(void)
     messages();
     framer();
     implied_version();
+    learning_from_the_decoded_message();
     if (failures)
         return 1;
     printf("all runtime checks passed\n");
