@@ -6,9 +6,9 @@ import random
 
 import pytest
 
-from harness import (ROOT, comparable, run_tshark, to_records, tshark_json, ur_items_by_stream,
+from harness import (PLUGIN, ROOT, comparable, run_tshark, to_records, tshark_json, ur_items_by_stream,
                      write_sessions, F32_TOL)
-from tests.tools import capture
+from tests.tools import amplify, capture
 from tests.tools.streams import streams
 from tests.vectors import all_cases, mismatches
 
@@ -70,6 +70,19 @@ def test_hostile_bytes_are_caught(tmp_path):
     assert "nesting deeper than 8" in out
 
 
+def test_counts_past_their_bytes_print_no_more_than_legal_values(tmp_path):
+    """Matrices of 32767 empty rows, five bytes each: experts, not millions of tree items."""
+    hostile = capture.write(tmp_path / "hostile.pcap", capture.robot_session(amplify.hostile_messages()))
+    legal = capture.write(tmp_path / "legal.pcap", capture.robot_session([amplify.legal_stream()]))
+    size = len(amplify.hostile_stream())
+    cap = amplify.OUTPUT_PER_INPUT * size
+    runs = [amplify.run(["tshark", "-r", str(pcap), "-X", f"lua_script:{PLUGIN}", "-2", "-V"], cap=cap)
+            for pcap in (hostile, legal)]
+    assert runs[0].printed <= cap
+    assert runs[0].code == 0 and runs[1].code == 0
+    assert runs[0].peak <= 2 * runs[1].peak
+
+
 def test_samples_decode_without_faults():
     for sample in ("primary_session.pcapng", "secondary_session.pcap"):
         out = run_tshark(ROOT / "dissector" / "samples" / sample, "-q", "-z", "expert,error")
@@ -87,7 +100,7 @@ def test_samples_decode_without_faults():
 def test_a_lua_error_is_caught_and_shown(tmp_path):
     """The pcall guard: make a copy of the plugin whose robot-side path throws; tshark shows an
     expert on the packet and no Lua error reaches the user."""
-    from harness import INTERNAL_TEXT, PLUGIN
+    from harness import INTERNAL_TEXT
     import subprocess
     text = PLUGIN.read_text(encoding="utf-8")
     anchor = "    local raw = tvb:raw()\n"
