@@ -262,6 +262,8 @@ class ValueCodec:
             cols = len(v.value[0]) if v.value else (v.columns or 0)
             if any(len(row) != cols for row in v.value):
                 raise EncodeError("matrix rows differ in length")
+            if v.value and not cols:
+                raise EncodeError("matrix rows of 0 columns would not read back: they take no bytes")
             out += fixed.pack(len(v.value), cols)
             for row in v.value:
                 for item in row:
