@@ -62,12 +62,14 @@ def test_hostile_bytes_are_caught(tmp_path):
     sessions = []
     for _ in range(60):
         body = bytes([rng.choice((16, 20, 25))]) + bytes(rng.randrange(256) for _ in range(rng.randrange(0, 60)))
-        deep = b"\x00" * 8 + b"\x01\x00\x00" + b"\x11\x7f\xff" * 40
-        for payload in (body, b"\x19" + deep):
+        deep = b"\x00" * 8 + b"\x01\x00\x00" + b"\x11\x00\x01" * 40
+        huge = b"\x00" * 8 + b"\x01\x00\x00" + b"\x11\x7f\xff" * 40
+        for payload in (body, b"\x19" + deep, b"\x19" + huge):
             msg = (5 + len(payload) - 1).to_bytes(4, "big") + payload
             sessions.append([msg])
     out = run_tshark(write_sessions(tmp_path / "hostile.pcap", sessions), "-2", "-V")
     assert "nesting deeper than 8" in out
+    assert "variables[0] at offset 17: 32767 items need more than the 117 bytes left" in out
 
 
 def test_counts_past_their_bytes_print_no_more_than_legal_values(tmp_path):
