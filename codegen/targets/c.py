@@ -529,7 +529,7 @@ def value_views(p: ir.Protocol) -> dict:
                                 layout=VALUE_LAYOUTS[lay.layout], item=item,
                                 count=lay.count if lay.layout == "array" else 1))
         tables.append(dict(tag=f"urwire__values_{c_table_suffix(t).lower()}", versions=t.versions.describe(),
-                           entries=entries, range=range_view(t.versions)))
+                           entries=entries, range=range_view(t.versions), min_size=p.value_min_size(t)))
     if problems:
         raise SpecError(p.source, problems)
     arrays = [lay.count for lay in p.value_layouts.values() if lay.layout == "array"]

@@ -471,7 +471,7 @@ class _Builder:
                                   count=lay.count if lay.layout == "array" else 1,
                                   length=lay.length.size if lay.length else 0))
             tables.append(dict(low=version_number(t.versions.low), high=version_number(t.versions.high),
-                               versions=t.versions.describe(), kinds=kinds))
+                               versions=t.versions.describe(), kinds=kinds, min_size=self.p.value_min_size(t)))
         return tables
 
     def constants(self) -> dict:

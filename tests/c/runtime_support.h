@@ -60,8 +60,8 @@ static const urwire__versions urwire__value_ranges[] = {
 };
 
 static const urwire__value_table urwire__value_tables[] = {
-    {urwire__values_old, URWIRE__COUNT(urwire__values_old)},
-    {urwire__values_new, URWIRE__COUNT(urwire__values_new)},
+    {urwire__values_old, URWIRE__COUNT(urwire__values_old), 1},
+    {urwire__values_new, URWIRE__COUNT(urwire__values_new), 1},
 };
 
 /* A layout of one scalar, as the generator writes layouts (struct as void *). */

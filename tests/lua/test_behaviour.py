@@ -14,6 +14,8 @@ from harness import (PLUGIN, ROOT, parse_json, run_tshark, to_records, tshark_js
 from tests.tools import capture
 from tests.tools.capture import Segment
 
+import urwire  # noqa: E402
+
 SAMPLE = ROOT / "dissector" / "samples" / "primary_session.pcapng"
 
 
@@ -70,6 +72,21 @@ def test_version_message_wins_over_the_preference(tmp_path):
     rec = to_records(items[1])[0]
     assert rec["variables"] == [{"type": "BOOL", "value": True}]
     assert "ur.version_assumed" not in items[1]["ur.global_variables_update"]
+
+
+def test_a_robot_state_that_cannot_be_framed_teaches_the_stream_no_version(tmp_path):
+    """Its CB2-sized robot mode data is read as CB2, but a package longer than the message makes
+    the robot state malformed: the next message is read in the version the stream had, as the
+    Python and C decoders read it. A robot state framed whole does teach its version."""
+    cb2_mode = struct.pack(">iB", 29, 0) + bytes(24)      # robot_mode_data: 29 bytes only on CB2
+    too_long = struct.pack(">iB", 1000, 1) + bytes(3)     # joint_data past the end of the message
+    for packages, error in ((cb2_mode + too_long, "needs 24 bytes, 2 left"),   # POSE in 5.9
+                            (cb2_mode, "needs 4 bytes, 2 left")):              # NUM up to 3.2
+        state = struct.pack(">iB", 5 + len(packages), 16) + packages
+        pcap = write_sessions(tmp_path / f"cb2_{len(packages)}.pcap", [[state, update_5_0_bool()]])
+        items = ur_items_by_stream(tshark_json(pcap))[0]
+        python = [urwire.to_dict(r) for r in urwire.decode_stream(state + update_5_0_bool())]
+        assert to_records(items[1])[0]["error"] == python[1]["error"] == "variables[0] at offset 17: " + error
 
 
 def test_one_pass_and_two_passes_give_the_same_records(tmp_path):

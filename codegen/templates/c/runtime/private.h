@@ -230,6 +230,7 @@ typedef struct urwire__value_entry {
 typedef struct urwire__value_table {
     const urwire__value_entry *entries;
     size_t count;
+    size_t min_size;                /* the fewest bytes a value takes: bounds LIST/MATRIX counts */
 } urwire__value_table;
 
 /* Text written into a caller's buffer, cut to fit; n counts what did not fit too. */

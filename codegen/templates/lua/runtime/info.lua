@@ -93,9 +93,11 @@ end
 -- of each package type (see versions.lua), `summary` when one of them has a summary. Each
 -- package's form is chosen as the tree chooses it (pick), so that layout sizes set the
 -- version of a stream that has not told it, tree or not. Stops at the first package whose
--- length does not fit.
+-- length does not fit: such a robot state is malformed, and what its sizes showed is not
+-- taken for the stream (st keeps the version it started with).
 local function package_summary(tvb, raw, p, e, packages, st)
     local n = 0
+    local version, implied = st.version, st.implied
     while e - p >= PACKAGE_HEADER do
         local size, code = be_int(raw, p, PACKAGE_LENGTH), byte(raw, p + PACKAGE_LENGTH + 1)
         if size < PACKAGE_HEADER or size > e - p then break end
@@ -115,6 +117,7 @@ local function package_summary(tvb, raw, p, e, packages, st)
         end
         p = p + size
     end
+    if p < e then st.version, st.implied = version, implied end
     return table.concat(parts, ", ", 1, n)
 end
 

@@ -47,9 +47,9 @@ local function in_force(tables, v)
     return tables[#tables]
 end
 
--- The value-type codes of version v.
+-- The value types of version v: { kinds = { [code] = ... }, min_size = the fewest bytes a value takes }.
 local function value_table(tables, v)
-    return in_force(tables, v).kinds
+    return in_force(tables, v)
 end
 
 -- The names of an enum whose codes depend on the version ({ newest = <value string>,
