@@ -73,7 +73,7 @@ local function tree_of(h, raw, version, how)
     return S.dump(tree)
 end
 local function info_of(h, raw, version, how)
-    return h.info(h.m, S.tvb(raw), raw, 0, #raw, state_of(raw, version, how))
+    return h.info(h.m, S.tvb(raw), raw, 0, #raw, state_of(raw, version, how), true)
 end
 
 -- subtypes
@@ -218,8 +218,8 @@ state.tree(state.m, S.tvb(early), S.tree(), 0, #early, known)
 S.eq(known.version, 5009000, "an announced version stays")
 local unknown_st = state_of(early, 5009000, "default")
 S.eq(info_of(state, early, 5009000, "default"), "Robot state: RUNNING", "Info")
-state.info(state.m, S.tvb(early), early, 0, #early, unknown_st)
-S.eq(unknown_st.version, 1008999, "the Info pass learns the version from the sizes")
+S.eq(state.info(state.m, S.tvb(early), early, 0, #early, unknown_st, false), nil, "no column: no text")
+S.eq(unknown_st.version, 1008999, "the Info pass learns the version from the sizes, column or not")
 S.eq(unknown_st.implied, "up to 1.8", "and which form told it")
 -- Shown on the message as what the layout sizes tell, when framing.lua says so.
 S.eq(tree_of(state, early, 5009000, "up to 1.8"):match(

@@ -3,7 +3,7 @@
 -- dissector does per call starts in dissect(), behind a pcall guard.
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
-local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
+local be_int, info_begin, set_info, announced_version = rt.be_int, rt.info_begin, rt.set_info, rt.announced_version
 local enum_names, rename = rt.enum_names, rt.rename
 local items_begin, items_hidden, MAX_TREE_ITEMS = rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS
 local stream_load, stream_save = rt.stream_load, rt.stream_save
@@ -86,8 +86,8 @@ end
 
 local ur_handle = nil
 -- The call being dissected: the stream's version (nil: none yet) and, when the layout sizes
--- told it, the versions of the form that did.
-local cur = { version = nil, implied = nil, first = true, detail = false }
+-- told it, the versions of the form that did; whether columns are built (else no Info text).
+local cur = { version = nil, implied = nil, first = true, detail = false, columns = true }
 
 -- One whole message from o to e (its declared length): version, Info column, tree.
 local function message(tvb, raw, pinfo, tree, o, e, mtype)
@@ -99,7 +99,8 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     local version, implied = cur.version, cur.implied
     st.raw, st.base = raw, o
     begin(version, implied)
-    set_info(pinfo, cur.first, h and h.info(h.m, tvb, raw, o, e, st) or unlaid_info(mtype, st.version))
+    local text = h and h.info(h.m, tvb, raw, o, e, st, cur.columns)
+    if cur.columns then set_info(pinfo, cur.first, text or unlaid_info(mtype, st.version)) end
     cur.first = false
     -- Layout sizes told the version of a stream that had not: this message and the next ones.
     if st.implied and not st.known then cur.version, cur.implied = st.version, st.implied end
@@ -140,12 +141,13 @@ local function dissect(tvb, pinfo, tree)
     -- Field work only when someone looks: a visible tree, or a filter or column naming ur.
     cur.detail = tree.visible or tree:referenced(ur_handle)
     cur.first = true
+    cur.columns = info_begin(pinfo)
 
     -- The stream's state as this call starts.
     local resync, carry, carried, stream
     cur.version, cur.implied, resync, carry, carried, stream = stream_load(pinfo, n)
 
-    pinfo.cols.protocol:set("UR")
+    if cur.columns then pinfo.cols.protocol:set("UR") end
     -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
     -- stream state) until it is back in step, instead of by TCP reassembly: asking TCP for more
     -- bytes after a fault makes later passes hand over other bytes, and the fault would not

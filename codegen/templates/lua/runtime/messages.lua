@@ -1,6 +1,6 @@
 -- Messages: spec.messages holds one data table per message type, and its kind names the pair
--- of functions that dissect it: info (the Info column text, from the raw bytes) and tree (the
--- fields under the message's item). Two kinds:
+-- of functions that dissect it: info (the Info column text, from the raw bytes; nil when `text`
+-- is false, when no column is built) and tree (the fields under the message's item). Two kinds:
 --   packages  a list of sub-packages, each framed by its own length (robot state);
 --   subtypes  a header, then a subtype byte that chooses the layout of the rest (robot
 --             messages, program-state messages).
@@ -91,8 +91,9 @@ local KINDS = {}
 -- types = value string of package types (type_tables: by version, when they depend on it),
 -- length, type = the fields of a package header, needs_version }.
 KINDS.packages = {
-    info = function(m, tvb, raw, o, e, st)
-        return labelled(m.label, package_summary(tvb, raw, o + HEADER, e, m.packages, st))
+    info = function(m, tvb, raw, o, e, st, text)
+        local summary = package_summary(tvb, raw, o + HEADER, e, m.packages, st, text)
+        return text and labelled(m.label, summary) or nil
     end,
     tree = function(m, tvb, tree, o, e, st)
         if m.needs_version then show_version(tree, st) end
@@ -150,7 +151,8 @@ KINDS.packages = {
 -- (subtype_tables: by version, when they depend on it), subtypes = { [subtype] = its forms,
 -- each of = { name, label, item, header, layout, needs_version } } }.
 KINDS.subtypes = {
-    info = function(m, tvb, raw, o, e, st)
+    info = function(m, tvb, raw, o, e, st, text)
+        if not text then return nil end
         if e - o < m.body_offset then return m.label .. " (too short)" end
         local code = byte(raw, o + m.body_offset)
         local forms = m.subtypes[code]
