@@ -9,7 +9,9 @@
 -- Display filters: ur, ur.type == 16, ur.robot_mode_data.robot_mode == "RUNNING",
 -- ur.joint_data.q_actual > 1.5, ur.key.title contains "PROGRAM", ur.global_variables_update.
 -- Preferences: ur.ports; ur.version, the software version assumed until a Version message is
--- seen (5.9, 5.25.1; empty by default: the layout sizes tell it where they can); ur.max_length.
+-- seen (5.9, 5.25.1; empty by default: the layout sizes tell it where they can);
+-- ur.named_fields_only (tshark -T fields builds only the packages its command line names);
+-- ur.max_length.
 --
 -- The file has two parts. First the tables generated from the spec: value strings, fields,
 -- layouts (one descriptor per field), messages; all handed over in one table, `spec`. Then the
@@ -1960,13 +1962,20 @@ local function value_table(tables, v)
 end
 
 -- The names of an enum whose codes depend on the version ({ newest = <value string>,
--- { low, high, names }, ... }) for version v.
+-- { low, high, names }, ... }) for version v. The last answer per enum is kept: a stream keeps
+-- its version.
+local names_memo = {}
 local function enum_names(tables, v)
+    local m = names_memo[tables]
+    if m and m.v == v then return m.names end
+    local names = tables.newest
     for i = 1, #tables do
         local t = tables[i]
-        if version_in(v, t.low, t.high) then return t.names end
+        if version_in(v, t.low, t.high) then names = t.names; break end
     end
-    return tables.newest
+    if not m then m = {}; names_memo[tables] = m end
+    m.v, m.names = v, names
+    return names
 end
 
 -- True when some version's table names the code.
@@ -2000,8 +2009,7 @@ end
 -- the length chose it: the version's form when it fits; else the one form whose exact size it
 -- is (an open-ended form fits too much to be recognised by length); else the version's form (or
 -- the nearest below), whose short or extra bytes are then reported.
-local function choose(forms, size, v)
-    if forms.single then return forms[1], v, false end
+local function choose_form(forms, size, v)
     local mine
     for i = 1, #forms do
         if sent_by(forms[i], v) then mine = forms[i]; break end
@@ -2027,6 +2035,19 @@ local function choose(forms, size, v)
     end
     if count == 1 then return found, found.rep, true end
     return mine, v, false
+end
+
+-- choose_form(), with the last answer per package type or subtype kept: a stream keeps its
+-- version and a type its size.
+local choice_memo = {}
+local function choose(forms, size, v)
+    if forms.single then return forms[1], v, false end
+    local m = choice_memo[forms]
+    if m and m.size == size and m.v == v then return m.form, m.use, m.by_length end
+    local form, use, by_length = choose_form(forms, size, v)
+    if not m then m = {}; choice_memo[forms] = m end
+    m.size, m.v, m.form, m.use, m.by_length = size, v, form, use, by_length
+    return form, use, by_length
 end
 
 -- choose() for the message being dissected (st): when the stream's version is not known (no
@@ -2145,8 +2166,18 @@ local function add_field(tree, f, range, encoding)
     return HIDDEN
 end
 
+-- Whether k more items fit under the cap: then they are counted, and added with tree:add
+-- directly (a run of fields in one loop).
+local function room(k)
+    if left >= k then
+        left = left - k
+        return true
+    end
+    return false
+end
+
 rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS = items_begin, items_hidden, MAX_TREE_ITEMS
-rt.add, rt.add_value, rt.add_field = add, add_value, add_field
+rt.add, rt.add_value, rt.add_field, rt.room = add, add_value, add_field, room
 end)(spec, rt)
 end
 
@@ -2168,7 +2199,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
 local version_in, enum_names = rt.version_in, rt.enum_names
-local add, add_value, add_field = rt.add, rt.add_value, rt.add_field
+local add, add_value, add_field, room = rt.add, rt.add_value, rt.add_field, rt.room
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
@@ -2228,7 +2259,16 @@ end
 
 -- count scalars in a row.
 function KIND.array(tvb, tree, o, e, st, d, pre)
-    for i = 0, d.count - 1 do
+    local n, count = d.n, d.count
+    if not (d.value or d.tables) and o + n * count <= e and room(count) then
+        local f = d.f
+        for _ = 1, count do
+            tree:add(f, tvb(o, n))
+            o = o + n
+        end
+        return o
+    end
+    for i = 0, count - 1 do
         if o + d.n > e then return nil, short(st, fmt("%s%s[%d]", pre or "", d.path, i), o, d.n, e) end
         add_scalar(tree, tvb(o, d.n), o, st, d)
         o = o + d.n
@@ -2323,9 +2363,55 @@ function KIND.cond(tvb, tree, o, e, st, d, pre)
     return walk(tvb, tree, o, e, st, d.fields, pre)
 end
 
+-- Scalars added as they are (no explicit value, no names by version, not kept) that follow
+-- one another: one step, a run, with one bounds check and one count of tree items.
+function KIND.run(tvb, tree, o, e, st, d, pre)
+    local fields, sizes, count = d.fields, d.sizes, d.count
+    if o + d.size <= e and room(count) then
+        for j = 1, count do
+            local n = sizes[j]
+            tree:add(fields[j], tvb(o, n))
+            o = o + n
+        end
+        return o
+    end
+    -- One by one: the first that does not fit is named; past the item cap they are counted.
+    local scalars = d.scalars
+    for j = 1, count do
+        local err
+        o, err = KIND.scalar(tvb, tree, o, e, st, scalars[j], pre)
+        if not o then return nil, err end
+    end
+    return o
+end
+
+-- A layout's steps: its descriptors, with runs of plain scalars joined. Made once per layout.
+local steps_of = {}
+local function steps(layout)
+    local out, run = {}, nil
+    for i = 1, #layout do
+        local d = layout[i]
+        if d.k == "scalar" and not (d.value or d.tables or d.keep) then
+            if not run then
+                run = { k = "run", fields = {}, sizes = {}, scalars = {}, size = 0, count = 0 }
+                out[#out + 1] = run
+            end
+            local j = run.count + 1
+            run.count, run.fields[j], run.sizes[j], run.scalars[j] = j, d.f, d.n, d
+            run.size = run.size + d.n
+        else
+            run = nil
+            out[#out + 1] = d
+        end
+    end
+    steps_of[layout] = out
+    return out
+end
+
 -- Walk a layout from o to at most e: the offset after it, or nil and the canonical error text.
 -- pre is the error path of the enclosing group item ("joints[2]."), nil at the top.
 walk = function(tvb, tree, o, e, st, layout, pre)
+    layout = steps_of[layout] or steps(layout)
     for i = 1, #layout do
         local d = layout[i]
         local err
@@ -2634,12 +2720,19 @@ local HEADER = spec.header_size
 local PACKAGE_HEADER = spec.package_header_size
 local PACKAGE_LENGTH = spec.package_length_size
 
--- True when a filter, column or tap asks for one of these fields.
-local function referenced(tree, fields)
-    for _, f in ipairs(fields) do
-        if tree:referenced(f) then return true end
+-- True when a filter, column or tap asks for a field of package pk (its data table). Asked once
+-- per package kind per dissector call (st.call), not per field of every package.
+local asked = {}
+local function referenced(tree, pk, call)
+    local a = asked[pk]
+    if a and a.call == call then return a.yes end
+    local yes, fields = false, pk.refs
+    for i = 1, #fields do
+        if tree:referenced(fields[i]) then yes = true; break end
     end
-    return false
+    if not a then a = {}; asked[pk] = a end
+    a.call, a.yes = call, yes
+    return yes
 end
 
 -- The body of a package or message from body to stop, walked with its layout for version v;
@@ -2706,6 +2799,31 @@ end
 
 local KINDS = {}
 
+-- One package of a robot state at p, of size bytes, its form chosen: its item, header and
+-- fields. Without a tree shown, its fields are walked only when some are asked for.
+local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
+    local pk = form and form.of
+    local v = use or st.version
+    local item = add(tree, pk and pk.item or X.unknown_package, tvb(p, size))
+    local name, named = code_name(m.types, m.type_tables, v, code)
+    if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
+    add(item, m.length, tvb(p, PACKAGE_LENGTH))
+    add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+    if by_length then note_length(item, form, size) end
+    local body, stop = p + PACKAGE_HEADER, p + size
+    if pk and not st.visible and not referenced(item, pk, st.call) then
+        -- No tree shown and no field of this package asked for: skip its fields.
+    elseif pk then
+        walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
+    else
+        add(item, X.raw, tvb(body, stop - body))
+        -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
+        if not named then
+            item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
+        end
+    end
+end
+
 -- m: { packages = { [type] = its forms, each of = { name, label, item, layout, summary, refs } },
 -- types = value string of package types (type_tables: by version, when they depend on it),
 -- length, type = the fields of a package header, needs_version }.
@@ -2741,26 +2859,12 @@ KINDS.packages = {
                 form, use, by_length = pick(forms, size - PACKAGE_HEADER, st)
                 pk = form.of
             end
-            local v = use or st.version
-            local item = add(tree, pk and pk.item or X.unknown_package, tvb(p, size))
-            local name, named = code_name(m.types, m.type_tables, v, code)
-            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
-            add(item, m.length, tvb(p, PACKAGE_LENGTH))
-            add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
-            if by_length then note_length(item, form, size) end
-            local body, stop = p + PACKAGE_HEADER, p + size
-            if pk and not st.visible and not referenced(item, pk.refs) then
-                -- No tree shown and no field of this package asked for: skip its fields.
-            elseif pk then
-                walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
-            else
-                add(item, X.raw, tvb(body, stop - body))
-                -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
-                if not named then
-                    item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
-                end
+            -- A tshark -T fields run that names no field of this package: not built at all
+            -- (runtime/wanted.lua).
+            if not (pk and st.only and not st.only[pk]) then
+                package(m, tvb, tree, p, size, st, code, form, use, by_length)
             end
-            p = stop
+            p = p + size
         end
     end,
 }
@@ -2820,6 +2924,115 @@ for code, m in pairs(spec.messages) do
 end
 
 rt.KINDS, rt.handlers, rt.walk_body = KINDS, handlers, walk_body
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- Runtime: wanted.lua (codegen/templates/lua/runtime/wanted.lua)
+-- =============================================================================================
+do
+(function(...)
+-- Which robot-state packages a `tshark -T fields` run needs. tshark builds the tree visible
+-- for -T fields, and TreeItem:referenced() then answers true for every field (Wireshark 4.0
+-- gives a Lua dissector no other way to ask), so without this every package would be built to
+-- print one field. The fields are named on tshark's command line (-e, -Y, -R, -z, -o): where
+-- the system shows it (/proc/self/cmdline), a package is built when a field of it is named
+-- ("ur.joint_data.q_actual" names joint_data), or its item ("ur.joint_data"). Every package is
+-- built when the command line may need any: not tshark, or not -T fields; a display filter
+-- macro or field reference ("$"), expert infos ("expert"); a ur name that is not a field of
+-- the spec (ur.raw, ur.extra, ur.malformed, ... show inside any package); package headers
+-- (ur.package.*); or when the ur.named_fields_only preference is off.
+local spec, rt = ...
+local find, sub, match, gmatch = string.find, string.sub, string.match, string.gmatch
+
+local PREFIX = "ur."
+
+-- The arguments of this process, or nil where the system does not show them.
+local function command_line()
+    local file = io and io.open and io.open("/proc/self/cmdline", "rb")
+    if not file then return nil end
+    local text = file:read("*a")
+    file:close()
+    if not text or text == "" then return nil end
+    local args, p = {}, 1
+    while p <= #text do
+        local z = find(text, "\0", p, true) or #text + 1
+        args[#args + 1] = sub(text, p, z - 1)
+        p = z + 1
+    end
+    return args
+end
+
+-- The ur names in a tshark -T fields command line, as a set; nil when it may need any field.
+local function named_fields(args)
+    if not args or not args[1] then return nil end
+    local program = match(args[1], "([^/\\]*)$")
+    if not find(program, "^tshark") then return nil end
+    local format
+    for i = 2, #args do
+        local a = args[i]
+        if a == "-T" then format = args[i + 1]
+        elseif sub(a, 1, 2) == "-T" then format = sub(a, 3) end
+    end
+    if format ~= "fields" then return nil end
+    local names = {}
+    for i = 2, #args do
+        local a = args[i]
+        if find(a, "$", 1, true) or find(a, "expert", 1, true) then return nil end
+        for name in gmatch(a, "ur%.[%w_%.]*[%w_]") do names[name] = true end
+    end
+    return names
+end
+
+-- Every package data table of the robot-state messages, and the spec's field names.
+local function packages_and_fields()
+    local parts, fields = {}, {}
+    for _, m in pairs(spec.messages) do
+        if m.kind == "packages" then
+            for _, forms in pairs(m.packages) do
+                for i = 1, #forms do parts[forms[i].of] = true end
+            end
+        end
+    end
+    for key in pairs(spec.F) do fields[PREFIX .. key] = true end
+    return parts, fields
+end
+
+-- The packages the names need, as a set of package data tables; nil when they need every one.
+local function packages_named(names)
+    if not names then return nil end
+    local parts, fields = packages_and_fields()
+    local chosen = {}
+    for name in pairs(names) do
+        local found = false
+        for pk in pairs(parts) do
+            local own = PREFIX .. pk.name
+            if name == own or sub(name, 1, #own + 1) == own .. "." then
+                chosen[pk], found = true, true
+            end
+        end
+        if not found and (not fields[name] or find(name, "^ur%.package%.")) then return nil end
+    end
+    return chosen
+end
+
+-- The packages a visible tree needs (a set), or nil for every one. Found once per run.
+local found, chosen = false, nil
+local function wanted_packages()
+    if not found then
+        found = true
+        chosen = packages_named(named_fields(command_line()))
+    end
+    return chosen
+end
+
+-- The preference ur.named_fields_only: false builds every package whatever the command line.
+local function named_only(on)
+    found, chosen = not on, nil
+end
+
+rt.wanted_packages, rt.named_only = wanted_packages, named_only
+rt.named_fields, rt.packages_named = named_fields, packages_named
 end)(spec, rt)
 end
 
@@ -3024,6 +3237,7 @@ local items_begin, items_hidden, MAX_TREE_ITEMS = rt.items_begin, rt.items_hidde
 local stream_load, stream_save = rt.stream_load, rt.stream_save
 local carry_new, carry_add, carry_bytes = rt.carry_new, rt.carry_add, rt.carry_bytes
 local X, E, handlers = rt.X, rt.E, rt.handlers
+local wanted_packages = rt.wanted_packages
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
 local KNOWN_TYPE, VERSION = spec.known_types, spec.version_reader
@@ -3040,7 +3254,10 @@ local function assume_version(v) pref_version = v end
 -- sizes tell it), and how that version is known: announced (a Version message), from_pref, or
 -- neither (known is false: then implied, when set, names the versions the layout sizes showed);
 -- message_version and message_implied: the version shown on the message.
-local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false }
+-- call: counts dissector calls (what is asked of a tree is asked once per call); only: the
+-- packages a tshark -T fields run needs (runtime/wanted.lua), nil for all.
+local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false,
+             call = 0, only = nil }
 
 -- st as a message starts, from the stream's version (nil: none yet) and how it was found.
 local function begin(version, implied)
@@ -3128,6 +3345,7 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     st.message_version, st.message_implied = st.version, st.implied
     begin(version, implied)
     st.visible = tree.visible
+    st.only = st.visible and wanted_packages() or nil
     if h then
         item:append_text(h.suffix)
         items_begin(item)
@@ -3157,6 +3375,7 @@ local function dissect(tvb, pinfo, tree)
     cur.detail = tree.visible or tree:referenced(ur_handle)
     cur.first = true
     cur.columns = info_begin(pinfo)
+    st.call = st.call + 1
 
     -- The stream's state as this call starts.
     local resync, carry, carried, stream
@@ -3269,13 +3488,15 @@ do
 (function(...)
 -- Preferences and registration: the robot-side ports (taken over from MRCPv2, which claims
 -- TCP 30000-30200 in Wireshark 4.0; "Decode As" works on others), the software version assumed
--- until a Version message is seen (empty: none), and the longest plausible message.
+-- until a Version message is seen (empty: none), whether tshark -T fields builds only the
+-- packages its command line names (runtime/wanted.lua), and the longest plausible message.
 local spec, rt = ...
 local ur = spec.proto
-local parse_version, assume_version = rt.parse_version, rt.assume_version
+local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only
 
 ur.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of the primary/secondary interfaces", 65535)
 ur.prefs.version = Pref.string("Software version", "", "Controller software version (major.minor or major.minor.bugfix, as 5.25.1) assumed until a Version message is seen on a stream: it chooses the layouts, the enum names and the global-variable value types. Empty: the layout sizes tell it where they can, else " .. spec.default_version .. ".")
+ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names", true, "With tshark -T fields, build only the robot-state packages whose fields the command line names (-e, -Y, -R, -z, -o); off: build every field, as for another Lua script reading ur fields with Field.new")
 ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length, "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
 local tcp_port = DissectorTable.get("tcp.port")
@@ -3289,6 +3510,7 @@ end
 
 function ur.prefs_changed()
     assume_version(parse_version(ur.prefs.version))
+    named_only(ur.prefs.named_fields_only)
     register_ports()
 end
 

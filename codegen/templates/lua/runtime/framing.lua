@@ -9,6 +9,7 @@ local items_begin, items_hidden, MAX_TREE_ITEMS = rt.items_begin, rt.items_hidde
 local stream_load, stream_save = rt.stream_load, rt.stream_save
 local carry_new, carry_add, carry_bytes = rt.carry_new, rt.carry_add, rt.carry_bytes
 local X, E, handlers = rt.X, rt.E, rt.handlers
+local wanted_packages = rt.wanted_packages
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
 local KNOWN_TYPE, VERSION = spec.known_types, spec.version_reader
@@ -25,7 +26,10 @@ local function assume_version(v) pref_version = v end
 -- sizes tell it), and how that version is known: announced (a Version message), from_pref, or
 -- neither (known is false: then implied, when set, names the versions the layout sizes showed);
 -- message_version and message_implied: the version shown on the message.
-local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false }
+-- call: counts dissector calls (what is asked of a tree is asked once per call); only: the
+-- packages a tshark -T fields run needs (runtime/wanted.lua), nil for all.
+local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false,
+             call = 0, only = nil }
 
 -- st as a message starts, from the stream's version (nil: none yet) and how it was found.
 local function begin(version, implied)
@@ -113,6 +117,7 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     st.message_version, st.message_implied = st.version, st.implied
     begin(version, implied)
     st.visible = tree.visible
+    st.only = st.visible and wanted_packages() or nil
     if h then
         item:append_text(h.suffix)
         items_begin(item)
@@ -142,6 +147,7 @@ local function dissect(tvb, pinfo, tree)
     cur.detail = tree.visible or tree:referenced(ur_handle)
     cur.first = true
     cur.columns = info_begin(pinfo)
+    st.call = st.call + 1
 
     -- The stream's state as this call starts.
     local resync, carry, carried, stream
