@@ -2253,7 +2253,11 @@ function KIND.bits(tvb, tree, o, e, st, d, pre)
     -- The bits read the range itself (a narrower range holds the low bits).
     local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
-    for i = 1, #bits do add(item, bits[i], range) end
+    if room(#bits) then
+        for i = 1, #bits do item:add(bits[i], range) end
+    else
+        for i = 1, #bits do add(item, bits[i], range) end
+    end
     return o + d.n
 end
 
