@@ -17,16 +17,19 @@ def run(cmd: list[str], limit: Optional[int] = None) -> tuple[subprocess.Complet
     return res, elapsed, peak
 
 
-def run_cpu(cmd: list[str], limit: Optional[int] = None) -> tuple[subprocess.CompletedProcess, float, float, int]:
+def run_cpu(cmd: list[str], limit: Optional[int] = None,
+            output: bool = True) -> tuple[subprocess.CompletedProcess, float, float, int]:
     """run(), with the child's CPU seconds (user + system) too: on a shared machine its wall
-    time also counts the other jobs."""
+    time also counts the other jobs. With `output` false, its standard output is dropped: read
+    into this process, a large one would count in the peak RSS of every later child (a child
+    starts as a copy of its parent)."""
 
     def limit_memory():
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
 
     with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
         start = time.perf_counter()
-        proc = subprocess.Popen(cmd, stdout=out, stderr=err, text=True,
+        proc = subprocess.Popen(cmd, stdout=out if output else subprocess.DEVNULL, stderr=err, text=True,
                                 preexec_fn=limit_memory if limit else None)
         _, status, usage = os.wait4(proc.pid, 0)
         elapsed = time.perf_counter() - start
