@@ -9,7 +9,9 @@
 -- Display filters: ur, ur.type == 16, ur.robot_mode_data.robot_mode == "RUNNING",
 -- ur.joint_data.q_actual > 1.5, ur.key.title contains "PROGRAM", ur.global_variables_update.
 -- Preferences: ur.ports; ur.version, the software version assumed until a Version message is
--- seen (5.9, 5.25.1; empty by default: the layout sizes tell it where they can); ur.max_length.
+-- seen (5.9, 5.25.1; empty by default: the layout sizes tell it where they can);
+-- ur.named_fields_only (tshark -T fields builds only the packages its command line names);
+-- ur.max_length.
 --
 -- The file has two parts. First the tables generated from the spec: value strings, fields,
 -- layouts (one descriptor per field), messages; all handed over in one table, `spec`. Then the
@@ -1960,13 +1962,20 @@ local function value_table(tables, v)
 end
 
 -- The names of an enum whose codes depend on the version ({ newest = <value string>,
--- { low, high, names }, ... }) for version v.
+-- { low, high, names }, ... }) for version v. The last answer per enum is kept: a stream keeps
+-- its version.
+local names_memo = {}
 local function enum_names(tables, v)
+    local m = names_memo[tables]
+    if m and m.v == v then return m.names end
+    local names = tables.newest
     for i = 1, #tables do
         local t = tables[i]
-        if version_in(v, t.low, t.high) then return t.names end
+        if version_in(v, t.low, t.high) then names = t.names; break end
     end
-    return tables.newest
+    if not m then m = {}; names_memo[tables] = m end
+    m.v, m.names = v, names
+    return names
 end
 
 -- True when some version's table names the code.
@@ -2000,8 +2009,7 @@ end
 -- the length chose it: the version's form when it fits; else the one form whose exact size it
 -- is (an open-ended form fits too much to be recognised by length); else the version's form (or
 -- the nearest below), whose short or extra bytes are then reported.
-local function choose(forms, size, v)
-    if forms.single then return forms[1], v, false end
+local function choose_form(forms, size, v)
     local mine
     for i = 1, #forms do
         if sent_by(forms[i], v) then mine = forms[i]; break end
@@ -2027,6 +2035,19 @@ local function choose(forms, size, v)
     end
     if count == 1 then return found, found.rep, true end
     return mine, v, false
+end
+
+-- choose_form(), with the last answer per package type or subtype kept: a stream keeps its
+-- version and a type its size.
+local choice_memo = {}
+local function choose(forms, size, v)
+    if forms.single then return forms[1], v, false end
+    local m = choice_memo[forms]
+    if m and m.size == size and m.v == v then return m.form, m.use, m.by_length end
+    local form, use, by_length = choose_form(forms, size, v)
+    if not m then m = {}; choice_memo[forms] = m end
+    m.size, m.v, m.form, m.use, m.by_length = size, v, form, use, by_length
+    return form, use, by_length
 end
 
 -- choose() for the message being dissected (st): when the stream's version is not known (no
@@ -2145,8 +2166,18 @@ local function add_field(tree, f, range, encoding)
     return HIDDEN
 end
 
+-- Whether k more items fit under the cap: then they are counted, and added with tree:add
+-- directly (a run of fields in one loop).
+local function room(k)
+    if left >= k then
+        left = left - k
+        return true
+    end
+    return false
+end
+
 rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS = items_begin, items_hidden, MAX_TREE_ITEMS
-rt.add, rt.add_value, rt.add_field = add, add_value, add_field
+rt.add, rt.add_value, rt.add_field, rt.room = add, add_value, add_field, room
 end)(spec, rt)
 end
 
@@ -2168,7 +2199,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
 local version_in, enum_names = rt.version_in, rt.enum_names
-local add, add_value, add_field = rt.add, rt.add_value, rt.add_field
+local add, add_value, add_field, room = rt.add, rt.add_value, rt.add_field, rt.room
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
@@ -2222,13 +2253,26 @@ function KIND.bits(tvb, tree, o, e, st, d, pre)
     -- The bits read the range itself (a narrower range holds the low bits).
     local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
-    for i = 1, #bits do add(item, bits[i], range) end
+    if room(#bits) then
+        for i = 1, #bits do item:add(bits[i], range) end
+    else
+        for i = 1, #bits do add(item, bits[i], range) end
+    end
     return o + d.n
 end
 
 -- count scalars in a row.
 function KIND.array(tvb, tree, o, e, st, d, pre)
-    for i = 0, d.count - 1 do
+    local n, count = d.n, d.count
+    if not (d.value or d.tables) and o + n * count <= e and room(count) then
+        local f = d.f
+        for _ = 1, count do
+            tree:add(f, tvb(o, n))
+            o = o + n
+        end
+        return o
+    end
+    for i = 0, count - 1 do
         if o + d.n > e then return nil, short(st, fmt("%s%s[%d]", pre or "", d.path, i), o, d.n, e) end
         add_scalar(tree, tvb(o, d.n), o, st, d)
         o = o + d.n
@@ -2323,9 +2367,55 @@ function KIND.cond(tvb, tree, o, e, st, d, pre)
     return walk(tvb, tree, o, e, st, d.fields, pre)
 end
 
+-- Scalars added as they are (no explicit value, no names by version, not kept) that follow
+-- one another: one step, a run, with one bounds check and one count of tree items.
+function KIND.run(tvb, tree, o, e, st, d, pre)
+    local fields, sizes, count = d.fields, d.sizes, d.count
+    if o + d.size <= e and room(count) then
+        for j = 1, count do
+            local n = sizes[j]
+            tree:add(fields[j], tvb(o, n))
+            o = o + n
+        end
+        return o
+    end
+    -- One by one: the first that does not fit is named; past the item cap they are counted.
+    local scalars = d.scalars
+    for j = 1, count do
+        local err
+        o, err = KIND.scalar(tvb, tree, o, e, st, scalars[j], pre)
+        if not o then return nil, err end
+    end
+    return o
+end
+
+-- A layout's steps: its descriptors, with runs of plain scalars joined. Made once per layout.
+local steps_of = {}
+local function steps(layout)
+    local out, run = {}, nil
+    for i = 1, #layout do
+        local d = layout[i]
+        if d.k == "scalar" and not (d.value or d.tables or d.keep) then
+            if not run then
+                run = { k = "run", fields = {}, sizes = {}, scalars = {}, size = 0, count = 0 }
+                out[#out + 1] = run
+            end
+            local j = run.count + 1
+            run.count, run.fields[j], run.sizes[j], run.scalars[j] = j, d.f, d.n, d
+            run.size = run.size + d.n
+        else
+            run = nil
+            out[#out + 1] = d
+        end
+    end
+    steps_of[layout] = out
+    return out
+end
+
 -- Walk a layout from o to at most e: the offset after it, or nil and the canonical error text.
 -- pre is the error path of the enclosing group item ("joints[2]."), nil at the top.
 walk = function(tvb, tree, o, e, st, layout, pre)
+    layout = steps_of[layout] or steps(layout)
     for i = 1, #layout do
         local d = layout[i]
         local err
@@ -2562,20 +2652,22 @@ end
 -- The summaries of the robot-state packages from p to e, joined by ", ". packages: the forms
 -- of each package type (see versions.lua), `summary` when one of them has a summary. Each
 -- package's form is chosen as the tree chooses it (pick), so that layout sizes set the
--- version of a stream that has not told it, tree or not. Stops at the first package whose
--- length does not fit: such a robot state is malformed, and what its sizes showed is not
--- taken for the stream (st keeps the version it started with).
-local function package_summary(tvb, raw, p, e, packages, st)
+-- version of a stream that has not told it, tree or not; with `text` false, only that is done
+-- (no column to write). Stops at the first package whose length does not fit: such a robot
+-- state is malformed, and what its sizes showed is not taken for the stream (st keeps the
+-- version it started with).
+local function package_summary(tvb, raw, p, e, packages, st, text)
+    if not (text or not st.known) then return nil end
     local n = 0
     local version, implied = st.version, st.implied
     while e - p >= PACKAGE_HEADER do
         local size, code = be_int(raw, p, PACKAGE_LENGTH), byte(raw, p + PACKAGE_LENGTH + 1)
         if size < PACKAGE_HEADER or size > e - p then break end
         local forms = packages[code]
-        if forms and (forms.summary or not st.known) then
+        if forms and ((text and forms.summary) or not st.known) then
             local form, use = pick(forms, size - PACKAGE_HEADER, st)
             local part = form.of
-            if part.summary then
+            if text and part.summary then
                 local first = n + 1
                 local _
                 _, n = summarise(tvb, raw, p + PACKAGE_HEADER, p + size, part.layout, reach_of(part.layout), use, n)
@@ -2588,6 +2680,7 @@ local function package_summary(tvb, raw, p, e, packages, st)
         p = p + size
     end
     if p < e then st.version, st.implied = version, implied end
+    if not text then return nil end
     return table.concat(parts, ", ", 1, n)
 end
 
@@ -2597,21 +2690,33 @@ local function labelled(label, text)
     return label .. ": " .. text
 end
 
+-- The Info column of the call being dissected, and whether Wireshark builds columns at all: a
+-- Column without them prints as "(info)" (tshark -V, -T fields, taps that read no column).
+-- Without columns, no Info text is made.
+local info_col, columns = nil, true
+local function info_begin(pinfo)
+    info_col = pinfo.cols.info
+    columns = tostring(info_col) ~= "(info)"
+    return columns
+end
+
 -- TCP may call the dissector twice for one frame (a reassembled message, then the rest of the
 -- segment): the first message of the later call appends to what the earlier one wrote.
 local info_frame, info_text = -1, ""
 local function set_info(pinfo, first, text)
-    if first and not (info_frame == pinfo.number and tostring(pinfo.cols.info) == info_text) then
+    if not columns then return end
+    if first and not (info_frame == pinfo.number and tostring(info_col) == info_text) then
         info_text = text
-        pinfo.cols.info:set(text)
+        info_col:set(text)
     else
         info_text = info_text .. "; " .. text
-        pinfo.cols.info:append("; " .. text)
+        info_col:append("; " .. text)
     end
     info_frame = pinfo.number
 end
 
-rt.layout_summary, rt.package_summary, rt.labelled, rt.set_info = layout_summary, package_summary, labelled, set_info
+rt.layout_summary, rt.package_summary, rt.labelled = layout_summary, package_summary, labelled
+rt.info_begin, rt.set_info = info_begin, set_info
 end)(spec, rt)
 end
 
@@ -2621,8 +2726,8 @@ end
 do
 (function(...)
 -- Messages: spec.messages holds one data table per message type, and its kind names the pair
--- of functions that dissect it: info (the Info column text, from the raw bytes) and tree (the
--- fields under the message's item). Two kinds:
+-- of functions that dissect it: info (the Info column text, from the raw bytes; nil when `text`
+-- is false, when no column is built) and tree (the fields under the message's item). Two kinds:
 --   packages  a list of sub-packages, each framed by its own length (robot state);
 --   subtypes  a header, then a subtype byte that chooses the layout of the rest (robot
 --             messages, program-state messages).
@@ -2637,12 +2742,19 @@ local HEADER = spec.header_size
 local PACKAGE_HEADER = spec.package_header_size
 local PACKAGE_LENGTH = spec.package_length_size
 
--- True when a filter, column or tap asks for one of these fields.
-local function referenced(tree, fields)
-    for _, f in ipairs(fields) do
-        if tree:referenced(f) then return true end
+-- True when a filter, column or tap asks for a field of package pk (its data table). Asked once
+-- per package kind per dissector call (st.call), not per field of every package.
+local asked = {}
+local function referenced(tree, pk, call)
+    local a = asked[pk]
+    if a and a.call == call then return a.yes end
+    local yes, fields = false, pk.refs
+    for i = 1, #fields do
+        if tree:referenced(fields[i]) then yes = true; break end
     end
-    return false
+    if not a then a = {}; asked[pk] = a end
+    a.call, a.yes = call, yes
+    return yes
 end
 
 -- The body of a package or message from body to stop, walked with its layout for version v;
@@ -2709,12 +2821,38 @@ end
 
 local KINDS = {}
 
+-- One package of a robot state at p, of size bytes, its form chosen: its item, header and
+-- fields. Without a tree shown, its fields are walked only when some are asked for.
+local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
+    local pk = form and form.of
+    local v = use or st.version
+    local item = add(tree, pk and pk.item or X.unknown_package, tvb(p, size))
+    local name, named = code_name(m.types, m.type_tables, v, code)
+    if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
+    add(item, m.length, tvb(p, PACKAGE_LENGTH))
+    add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+    if by_length then note_length(item, form, size) end
+    local body, stop = p + PACKAGE_HEADER, p + size
+    if pk and not st.visible and not referenced(item, pk, st.call) then
+        -- No tree shown and no field of this package asked for: skip its fields.
+    elseif pk then
+        walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
+    else
+        add(item, X.raw, tvb(body, stop - body))
+        -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
+        if not named then
+            item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
+        end
+    end
+end
+
 -- m: { packages = { [type] = its forms, each of = { name, label, item, layout, summary, refs } },
 -- types = value string of package types (type_tables: by version, when they depend on it),
 -- length, type = the fields of a package header, needs_version }.
 KINDS.packages = {
-    info = function(m, tvb, raw, o, e, st)
-        return labelled(m.label, package_summary(tvb, raw, o + HEADER, e, m.packages, st))
+    info = function(m, tvb, raw, o, e, st, text)
+        local summary = package_summary(tvb, raw, o + HEADER, e, m.packages, st, text)
+        return text and labelled(m.label, summary) or nil
     end,
     tree = function(m, tvb, tree, o, e, st)
         if m.needs_version then show_version(tree, st) end
@@ -2743,26 +2881,12 @@ KINDS.packages = {
                 form, use, by_length = pick(forms, size - PACKAGE_HEADER, st)
                 pk = form.of
             end
-            local v = use or st.version
-            local item = add(tree, pk and pk.item or X.unknown_package, tvb(p, size))
-            local name, named = code_name(m.types, m.type_tables, v, code)
-            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
-            add(item, m.length, tvb(p, PACKAGE_LENGTH))
-            add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
-            if by_length then note_length(item, form, size) end
-            local body, stop = p + PACKAGE_HEADER, p + size
-            if pk and not st.visible and not referenced(item, pk.refs) then
-                -- No tree shown and no field of this package asked for: skip its fields.
-            elseif pk then
-                walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
-            else
-                add(item, X.raw, tvb(body, stop - body))
-                -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
-                if not named then
-                    item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
-                end
+            -- A tshark -T fields run that names no field of this package: not built at all
+            -- (runtime/wanted.lua).
+            if not (pk and st.only and not st.only[pk]) then
+                package(m, tvb, tree, p, size, st, code, form, use, by_length)
             end
-            p = stop
+            p = p + size
         end
     end,
 }
@@ -2772,7 +2896,8 @@ KINDS.packages = {
 -- (subtype_tables: by version, when they depend on it), subtypes = { [subtype] = its forms,
 -- each of = { name, label, item, header, layout, needs_version } } }.
 KINDS.subtypes = {
-    info = function(m, tvb, raw, o, e, st)
+    info = function(m, tvb, raw, o, e, st, text)
+        if not text then return nil end
         if e - o < m.body_offset then return m.label .. " (too short)" end
         local code = byte(raw, o + m.body_offset)
         local forms = m.subtypes[code]
@@ -2821,6 +2946,115 @@ for code, m in pairs(spec.messages) do
 end
 
 rt.KINDS, rt.handlers, rt.walk_body = KINDS, handlers, walk_body
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- Runtime: wanted.lua (codegen/templates/lua/runtime/wanted.lua)
+-- =============================================================================================
+do
+(function(...)
+-- Which robot-state packages a `tshark -T fields` run needs. tshark builds the tree visible
+-- for -T fields, and TreeItem:referenced() then answers true for every field (Wireshark 4.0
+-- gives a Lua dissector no other way to ask), so without this every package would be built to
+-- print one field. The fields are named on tshark's command line (-e, -Y, -R, -z, -o): where
+-- the system shows it (/proc/self/cmdline), a package is built when a field of it is named
+-- ("ur.joint_data.q_actual" names joint_data), or its item ("ur.joint_data"). Every package is
+-- built when the command line may need any: not tshark, or not -T fields; a display filter
+-- macro or field reference ("$"), expert infos ("expert"); a ur name that is not a field of
+-- the spec (ur.raw, ur.extra, ur.malformed, ... show inside any package); package headers
+-- (ur.package.*); or when the ur.named_fields_only preference is off.
+local spec, rt = ...
+local find, sub, match, gmatch = string.find, string.sub, string.match, string.gmatch
+
+local PREFIX = "ur."
+
+-- The arguments of this process, or nil where the system does not show them.
+local function command_line()
+    local file = io and io.open and io.open("/proc/self/cmdline", "rb")
+    if not file then return nil end
+    local text = file:read("*a")
+    file:close()
+    if not text or text == "" then return nil end
+    local args, p = {}, 1
+    while p <= #text do
+        local z = find(text, "\0", p, true) or #text + 1
+        args[#args + 1] = sub(text, p, z - 1)
+        p = z + 1
+    end
+    return args
+end
+
+-- The ur names in a tshark -T fields command line, as a set; nil when it may need any field.
+local function named_fields(args)
+    if not args or not args[1] then return nil end
+    local program = match(args[1], "([^/\\]*)$")
+    if not find(program, "^tshark") then return nil end
+    local format
+    for i = 2, #args do
+        local a = args[i]
+        if a == "-T" then format = args[i + 1]
+        elseif sub(a, 1, 2) == "-T" then format = sub(a, 3) end
+    end
+    if format ~= "fields" then return nil end
+    local names = {}
+    for i = 2, #args do
+        local a = args[i]
+        if find(a, "$", 1, true) or find(a, "expert", 1, true) then return nil end
+        for name in gmatch(a, "ur%.[%w_%.]*[%w_]") do names[name] = true end
+    end
+    return names
+end
+
+-- Every package data table of the robot-state messages, and the spec's field names.
+local function packages_and_fields()
+    local parts, fields = {}, {}
+    for _, m in pairs(spec.messages) do
+        if m.kind == "packages" then
+            for _, forms in pairs(m.packages) do
+                for i = 1, #forms do parts[forms[i].of] = true end
+            end
+        end
+    end
+    for key in pairs(spec.F) do fields[PREFIX .. key] = true end
+    return parts, fields
+end
+
+-- The packages the names need, as a set of package data tables; nil when they need every one.
+local function packages_named(names)
+    if not names then return nil end
+    local parts, fields = packages_and_fields()
+    local chosen = {}
+    for name in pairs(names) do
+        local found = false
+        for pk in pairs(parts) do
+            local own = PREFIX .. pk.name
+            if name == own or sub(name, 1, #own + 1) == own .. "." then
+                chosen[pk], found = true, true
+            end
+        end
+        if not found and (not fields[name] or find(name, "^ur%.package%.")) then return nil end
+    end
+    return chosen
+end
+
+-- The packages a visible tree needs (a set), or nil for every one. Found once per run.
+local found, chosen = false, nil
+local function wanted_packages()
+    if not found then
+        found = true
+        chosen = packages_named(named_fields(command_line()))
+    end
+    return chosen
+end
+
+-- The preference ur.named_fields_only: false builds every package whatever the command line.
+local function named_only(on)
+    found, chosen = not on, nil
+end
+
+rt.wanted_packages, rt.named_only = wanted_packages, named_only
+rt.named_fields, rt.packages_named = named_fields, packages_named
 end)(spec, rt)
 end
 
@@ -2877,70 +3111,135 @@ do
 -- sizes showed (nil: none yet; `implied` names the versions of the form whose size showed it),
 -- whether the dissector is resynchronising after a bad header, and the bytes carried over
 -- from earlier segments while it does (a carry, runtime/carry.lua). First pass: the state moves
--- along, and a snapshot of it is kept for each dissector call (frame number and tvb length): a
--- carry is kept once, and a snapshot holds it with how many of its bytes the call started
--- with. Later passes (tshark -2, clicks in the GUI, in any order) reuse the snapshot, so both
--- agree.
+-- along. Later passes (tshark -2, clicks in the GUI, in any order) must start each dissector
+-- call (frame number and tvb length) with the state its first-pass call started with.
+-- That state changes rarely (a Version message, a bad header, the calls that carry bytes), so
+-- it is kept only where it changes: a frame in which some call starts with another state than
+-- the call before it is kept, with a snapshot per call and the snapshot its last call started
+-- with; a frame that keeps nothing starts with that of the last frame kept before it (found by
+-- bisection). A capture in step costs memory per stream, not per frame.
 -- Streams are keyed by their two ports (a number: no string is made per packet). Field.new(
 -- "tcp.stream") gives nothing on a first pass without a tree (tshark -2), and Conversation only
 -- exists from Wireshark 4.6. Two robots talking to clients that use the same port number at the
 -- same time would share a state; a reused port pair starts over with its Version message.
 local spec, rt = ...
+local floor = math.floor
 
 local CALL_SPAN = 1048576   -- a call's key: frame number * CALL_SPAN + tvb length mod CALL_SPAN
 
-local stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
--- by call (frame, tvb length), and by -frame
-local snap_version, snap_implied, snap_resync, snap_carry, snap_carried = {}, {}, {}, {}, {}
+-- A snapshot: { version, implied, resync, carry, carried = how many bytes the carry held }.
+-- NONE: a stream that nothing has happened on yet.
+local NONE = { resync = false }
+
+local streams    -- by port pair: its state now, and what later passes need (see stream_of)
+local at_call    -- snapshots of the calls of kept frames, by call key
+local at_frame   -- the snapshot of the first call of each kept frame, by frame number
 
 -- A new capture: forget every stream.
 local function reset()
-    stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
-    snap_version, snap_implied, snap_resync, snap_carry, snap_carried = {}, {}, {}, {}, {}
+    streams, at_call, at_frame = {}, {}, {}
+end
+reset()
+
+-- s: the state now (version, implied, resync, carry); last: the snapshot the latest call
+-- started with; frame: that call's frame, keeping: whether that frame is kept, and while it is
+-- not, its calls so far (keys[1..n], snaps[1..n]); kept: the kept frames in order, after: the
+-- snapshot the last call of each started with.
+local function stream_of(key)
+    local s = streams[key]
+    if not s then
+        s = { resync = false, last = NONE, frame = -1, keeping = false, keys = {}, snaps = {}, n = 0,
+              kept = {}, after = {} }
+        streams[key] = s
+    end
+    return s
 end
 
--- The state a call starts with, kept under a call's key or a frame's.
-local function snapshot(at, version, implied, resync, carry, carried)
-    snap_version[at], snap_implied[at], snap_resync[at] = version, implied, resync
-    snap_carry[at], snap_carried[at] = carry, carried
+local function same(snap, version, implied, resync, carry, carried)
+    return snap.version == version and snap.implied == implied and snap.resync == resync
+        and snap.carry == carry and snap.carried == carried
 end
 
--- That state again, as stream_load returns it.
-local function snapshot_at(at, stream)
-    return snap_version[at], snap_implied[at], snap_resync[at], snap_carry[at], snap_carried[at], stream
+-- The snapshot a frame that kept nothing started with.
+local function before(s, frame)
+    local kept = s.kept
+    local lo, hi, found = 1, #kept, nil
+    while lo <= hi do
+        local mid = floor((lo + hi) / 2)
+        if kept[mid] < frame then found, lo = kept[mid], mid + 1 else hi = mid - 1 end
+    end
+    return found and s.after[found] or NONE
+end
+
+-- A later pass: the snapshot of the call, else of its frame's first call (TCP reassembly may
+-- hand over other bytes than on the first pass), else of the frames before it.
+local function recall(stream, key, frame)
+    local snap = at_call[key] or at_frame[frame]
+    if snap then return snap end
+    local s = streams[stream]
+    return s and before(s, frame) or NONE
+end
+
+-- The first pass: the call starts with the stream's state now; kept when it differs from the
+-- state the call before it started with, and so is every call of its frame.
+local function note(s, key, frame)
+    local version, implied, resync, carry = s.version, s.implied, s.resync, s.carry
+    local carried = carry and carry.size
+    local snap, changed = s.last, false
+    if not same(snap, version, implied, resync, carry, carried) then
+        snap = { version = version, implied = implied, resync = resync, carry = carry, carried = carried }
+        changed = true
+    end
+    s.last = snap
+    if frame ~= s.frame then s.frame, s.keeping, s.n = frame, false, 0 end
+    if changed and not s.keeping then
+        s.keeping = true
+        s.kept[#s.kept + 1] = frame
+        local keys, snaps = s.keys, s.snaps
+        for i = 1, s.n do
+            if at_call[keys[i]] == nil then at_call[keys[i]] = snaps[i] end
+        end
+        if s.n > 0 then at_frame[frame] = snaps[1] end
+    end
+    if s.keeping then
+        if at_call[key] == nil then at_call[key] = snap end
+        if at_frame[frame] == nil then at_frame[frame] = snap end
+        s.after[frame] = snap
+    else
+        local n = s.n + 1
+        s.n, s.keys[n], s.snaps[n] = n, key, snap
+    end
+    return snap
 end
 
 -- The state as a call with n bytes starts: version, implied, resync, carry, how many bytes of
 -- the carry are this call's (nil: no carry), and the stream's key for stream_save.
 local function stream_load(pinfo, n)
     local stream = pinfo.src_port * 65536 + pinfo.dst_port
-    local key = pinfo.number * CALL_SPAN + n % CALL_SPAN
-    local frame = -pinfo.number
-    if pinfo.visited and snap_resync[key] ~= nil then
-        return snapshot_at(key, stream)
-    elseif pinfo.visited and snap_resync[frame] ~= nil then
-        -- Later passes may hand over other bytes than the first (TCP reassembly replays
-        -- differently): fall back to the state of the frame's first call.
-        return snapshot_at(frame, stream)
-    end
-    local version, implied = stream_version[stream], stream_implied[stream]
-    local resync, carry = stream_resync[stream] or false, stream_carry[stream]
-    local carried = carry and carry.size
-    if snap_resync[key] == nil then snapshot(key, version, implied, resync, carry, carried) end
-    if snap_resync[frame] == nil then snapshot(frame, version, implied, resync, carry, carried) end
-    return version, implied, resync, carry, carried, stream
+    local frame = pinfo.number
+    local key = frame * CALL_SPAN + n % CALL_SPAN
+    local snap
+    if pinfo.visited then snap = recall(stream, key, frame) else snap = note(stream_of(stream), key, frame) end
+    return snap.version, snap.implied, snap.resync, snap.carry, snap.carried, stream
 end
 
 -- The state as a call ends; kept on the first pass only.
 local function stream_save(pinfo, stream, version, implied, resync, carry)
     if not pinfo.visited then
-        stream_version[stream], stream_implied[stream] = version, implied
-        stream_resync[stream], stream_carry[stream] = resync, carry
+        local s = stream_of(stream)
+        s.version, s.implied, s.resync, s.carry = version, implied, resync, carry
     end
 end
 
+-- How many snapshots later passes keep (for tests: it grows with changes, not frames).
+local function stream_kept()
+    local n = 0
+    for _ in pairs(at_call) do n = n + 1 end
+    return n
+end
+
 spec.proto.init = reset
-rt.stream_load, rt.stream_save, rt.stream_reset = stream_load, stream_save, reset
+rt.stream_load, rt.stream_save, rt.stream_reset, rt.stream_kept = stream_load, stream_save, reset, stream_kept
 end)(spec, rt)
 end
 
@@ -2954,12 +3253,13 @@ do
 -- dissector does per call starts in dissect(), behind a pcall guard.
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
-local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
+local be_int, info_begin, set_info, announced_version = rt.be_int, rt.info_begin, rt.set_info, rt.announced_version
 local enum_names, rename = rt.enum_names, rt.rename
 local items_begin, items_hidden, MAX_TREE_ITEMS = rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS
 local stream_load, stream_save = rt.stream_load, rt.stream_save
 local carry_new, carry_add, carry_bytes = rt.carry_new, rt.carry_add, rt.carry_bytes
 local X, E, handlers = rt.X, rt.E, rt.handlers
+local wanted_packages = rt.wanted_packages
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
 local KNOWN_TYPE, VERSION = spec.known_types, spec.version_reader
@@ -2976,7 +3276,10 @@ local function assume_version(v) pref_version = v end
 -- sizes tell it), and how that version is known: announced (a Version message), from_pref, or
 -- neither (known is false: then implied, when set, names the versions the layout sizes showed);
 -- message_version and message_implied: the version shown on the message.
-local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false }
+-- call: counts dissector calls (what is asked of a tree is asked once per call); only: the
+-- packages a tshark -T fields run needs (runtime/wanted.lua), nil for all.
+local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false,
+             call = 0, only = nil }
 
 -- st as a message starts, from the stream's version (nil: none yet) and how it was found.
 local function begin(version, implied)
@@ -3037,8 +3340,8 @@ end
 
 local ur_handle = nil
 -- The call being dissected: the stream's version (nil: none yet) and, when the layout sizes
--- told it, the versions of the form that did.
-local cur = { version = nil, implied = nil, first = true, detail = false }
+-- told it, the versions of the form that did; whether columns are built (else no Info text).
+local cur = { version = nil, implied = nil, first = true, detail = false, columns = true }
 
 -- One whole message from o to e (its declared length): version, Info column, tree.
 local function message(tvb, raw, pinfo, tree, o, e, mtype)
@@ -3050,7 +3353,8 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     local version, implied = cur.version, cur.implied
     st.raw, st.base = raw, o
     begin(version, implied)
-    set_info(pinfo, cur.first, h and h.info(h.m, tvb, raw, o, e, st) or unlaid_info(mtype, st.version))
+    local text = h and h.info(h.m, tvb, raw, o, e, st, cur.columns)
+    if cur.columns then set_info(pinfo, cur.first, text or unlaid_info(mtype, st.version)) end
     cur.first = false
     -- Layout sizes told the version of a stream that had not: this message and the next ones.
     if st.implied and not st.known then cur.version, cur.implied = st.version, st.implied end
@@ -3063,6 +3367,7 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     st.message_version, st.message_implied = st.version, st.implied
     begin(version, implied)
     st.visible = tree.visible
+    st.only = st.visible and wanted_packages() or nil
     if h then
         item:append_text(h.suffix)
         items_begin(item)
@@ -3091,12 +3396,14 @@ local function dissect(tvb, pinfo, tree)
     -- Field work only when someone looks: a visible tree, or a filter or column naming ur.
     cur.detail = tree.visible or tree:referenced(ur_handle)
     cur.first = true
+    cur.columns = info_begin(pinfo)
+    st.call = st.call + 1
 
     -- The stream's state as this call starts.
     local resync, carry, carried, stream
     cur.version, cur.implied, resync, carry, carried, stream = stream_load(pinfo, n)
 
-    pinfo.cols.protocol:set("UR")
+    if cur.columns then pinfo.cols.protocol:set("UR") end
     -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
     -- stream state) until it is back in step, instead of by TCP reassembly: asking TCP for more
     -- bytes after a fault makes later passes hand over other bytes, and the fault would not
@@ -3203,13 +3510,15 @@ do
 (function(...)
 -- Preferences and registration: the robot-side ports (taken over from MRCPv2, which claims
 -- TCP 30000-30200 in Wireshark 4.0; "Decode As" works on others), the software version assumed
--- until a Version message is seen (empty: none), and the longest plausible message.
+-- until a Version message is seen (empty: none), whether tshark -T fields builds only the
+-- packages its command line names (runtime/wanted.lua), and the longest plausible message.
 local spec, rt = ...
 local ur = spec.proto
-local parse_version, assume_version = rt.parse_version, rt.assume_version
+local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only
 
 ur.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of the primary/secondary interfaces", 65535)
 ur.prefs.version = Pref.string("Software version", "", "Controller software version (major.minor or major.minor.bugfix, as 5.25.1) assumed until a Version message is seen on a stream: it chooses the layouts, the enum names and the global-variable value types. Empty: the layout sizes tell it where they can, else " .. spec.default_version .. ".")
+ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names", true, "With tshark -T fields, build only the robot-state packages whose fields the command line names (-e, -Y, -R, -z, -o); off: build every field, as for another Lua script reading ur fields with Field.new")
 ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length, "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
 local tcp_port = DissectorTable.get("tcp.port")
@@ -3223,6 +3532,7 @@ end
 
 function ur.prefs_changed()
     assume_version(parse_version(ur.prefs.version))
+    named_only(ur.prefs.named_fields_only)
     register_ports()
 end
 

@@ -145,3 +145,16 @@ def test_info_of_a_frame_called_twice_joins_both_calls(tmp_path):
     for opts in ((), ("-2",)):
         lines = run_tshark(pcap, *opts, "-Y", "ur", "-T", "fields", "-e", "_ws.col.Info").splitlines()
         assert lines == ["Text: first; Text: second", "Text: third"]
+
+
+def test_tshark_fields_builds_the_named_packages_as_the_full_tree_does():
+    """tshark -T fields builds only the robot-state packages its command line names
+    (runtime/wanted.lua): their values are those of the whole tree (ur.named_fields_only off),
+    and a filter on another package selects the same frames."""
+    full = ("-o", "ur.named_fields_only:FALSE")
+    for args in (("-e", "ur.joint_data.q_actual", "-e", "ur.masterboard_data.robot_voltage_48v"),
+                 ("-Y", 'ur.robot_mode_data.robot_mode == "RUNNING"', "-e", "frame.number", "-e", "ur.tool_data.tool_mode"),
+                 ("-e", "ur.type", "-e", "ur.key.title")):
+        named = run_tshark(SAMPLE, "-T", "fields", *args)
+        assert named.strip() and named == run_tshark(SAMPLE, *full, "-T", "fields", *args), args
+    assert any(v.strip(",") for v in run_tshark(SAMPLE, "-T", "fields", "-e", "ur.joint_data.q_actual").split())

@@ -155,6 +155,7 @@ function S.wireshark_globals()
         range = function(label, default) return { default = default } end,
         string = function(label, default) return { default = default } end,
         uint = function(label, default) return { default = default } end,
+        bool = function(label, default) return { default = default } end,
     }
     S.ports = {}
     DissectorTable = { get = function(name)
