@@ -170,14 +170,14 @@ class _Builder:
         if known is None:
             self.by_key[pf.key] = pf
             self.fields.append(pf)
-        elif pf.desc:
-            known.desc = pf.desc   # a name's later entry is its newer form: its doc describes it
         elif known.shape != pf.shape and not {known.shape, pf.shape} <= SCALAR_SHAPES:
             self.problems.append(where.problem(
                 f"lua target: {pf.abbr} would be both a {known.shape} and a {pf.shape} field: "
                 "a Wireshark filter name has one type, give one of them a name of its own"))
         elif known.shape == "flag" and known.mask != pf.mask:
             self.problems.append(where.problem(f"lua target: the bit {pf.abbr} stands at two places"))
+        elif pf.desc:
+            known.desc = pf.desc   # a name's later entry is its newer form: its doc describes it
         return pf.key
 
     def owned_field(self, owner: str, name: str, shape: str, ctor: str, label: str, desc: str,

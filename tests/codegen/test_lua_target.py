@@ -167,3 +167,23 @@ def test_a_summary_the_info_column_cannot_read_is_a_problem():
             "lua target: the summary's field 'after' comes after a field the Info column cannot step over") in found
     assert ("messages.robot_state.packages.robot_mode_data",
             "lua target: the summary cannot show 'speed_scaling', a float field") in found
+
+
+def test_a_filter_name_with_two_types_is_a_problem():
+    """A field named like a role of the typed values beside it (`type`, a text of the values)
+    would give one filter name two types."""
+    def edit(data):
+        update = data["messages"]["program_state"]["subtypes"]["global_variables_update"]
+        update["fields"].insert(1, {"name": "type", "label": "Type", "type": "uint8"})
+
+    with pytest.raises(SpecError) as caught:
+        render_text(variant(edit))
+    assert any("ur.global_variables_update.type would be both" in p.message for p in caught.value.problems)
+
+
+def test_labels_units_and_descriptions_reach_the_protofields(protocol):
+    text = render_text(plan(protocol))
+    assert ('ProtoField.double("ur.joint_data.q_actual", "Actual joint position", '
+            '"Actual joint position (rad). In rad.")') in text   # the fixture's doc, then the unit
+    assert 'ProtoField.uint8("ur.tool_data.tool_output_voltage", "Tool output voltage", base.UNIT_STRING, { " V" },' in text
+    assert 'f = F["joint_data.q_actual"], n = 8, path = "q_actual", signed = false, unit = " rad" }' in text
