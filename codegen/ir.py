@@ -194,6 +194,8 @@ class Enum:
 @dataclass
 class Field:
     name: str
+    label: str = ""                         # what a person reads: "Actual joint position"
+    unit: Optional[str] = None              # of a physical value: "rad", "°C" (the schema's list)
     doc: str = ""
     field_note: str = ""
     present_if: Optional[str] = None        # name of an earlier field: present when it is nonzero
@@ -203,6 +205,11 @@ class Field:
     @property
     def conditional(self) -> bool:
         return self.present_if is not None or not self.versions.unbounded
+
+    @property
+    def titled(self) -> str:
+        """The label with its unit, as a heading reads it: "Actual joint position (rad)"."""
+        return f"{self.label} ({self.unit})" if self.unit else self.label
 
     @property
     def fixed_size(self) -> Optional[int]:
@@ -219,6 +226,7 @@ class ScalarField(Field):
     scalar: Scalar = SCALARS["uint8"]
     enum: Optional[Enum] = None
     bits: list[str] = dc_field(default_factory=list)
+    bit_labels: list[str] = dc_field(default_factory=list)   # one per bit: "Standard 0"
 
     @property
     def fixed_size(self) -> Optional[int]:
@@ -244,7 +252,7 @@ class GroupField(Field):
 
     item: "Struct" = None  # type: ignore[assignment]
     count: Optional[int] = None
-    item_label: str = "Item"
+    item_label: str = "Item"              # one entry: "Joint" (shown as "Joint 0")
 
     @property
     def to_end(self) -> bool:
@@ -281,6 +289,7 @@ class StringListField(Field):
     """Strings each ended by `terminator`, until the end of the layout."""
 
     terminator: int = 0x0A
+    item_label: str = ""                  # one string: "Variable name"
 
 
 @dataclass
@@ -312,6 +321,7 @@ class ValueListField(Field):
 
     value_type: Enum = None  # type: ignore[assignment]
     terminator: int = 0x0A
+    item_label: str = ""                  # one value: "Variable" (shown as "Variable 0")
 
 
 AnyField = Union[ScalarField, ArrayField, GroupField, StringField, StringListField, BytesField,
@@ -435,6 +445,7 @@ class HeaderField:
     enum: Optional[Enum]
     doc: str
     where: Where = NOWHERE
+    label: str = ""
 
 
 @dataclass

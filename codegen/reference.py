@@ -136,6 +136,10 @@ def protocol_markdown(p: plan.ProtocolPlan, spec_path: str) -> str:
                 fields = ", ".join(f"`{f.name}` {_field_type(f)}" for f in v.layout.struct.fields if _present(f, v))
                 out.append(f"| {v.describe()} | {sizes_text(v, header)} | {fields} |")
             out.append("")
+            out += ["| field | label | unit | description |", "|---|---|---|---|"]
+            for lay in {id(v.layout): v.layout for v in variants}.values():
+                out += _field_rows(lay.struct, "")
+            out.append("")
     out += ["## Enums", ""]
     for e in proto.enums.values():
         out += [f"### {e.name} ({e.scalar.name})", "", _one_line(e.doc, e.field_note), ""]
@@ -146,6 +150,17 @@ def protocol_markdown(p: plan.ProtocolPlan, spec_path: str) -> str:
             out += [f"| {v.value} | {v.name} | {_one_line(v.doc)} |" for v in t.values]
             out.append("")
     return "\n".join(out).rstrip() + "\n"
+
+
+def _field_rows(struct: ir.Struct, prefix: str) -> list[str]:
+    """One row per field name (in any version), with what people read: its label, unit and doc;
+    a group's fields follow it as `group[].field`."""
+    rows = []
+    for f in struct.public_fields:
+        rows.append(f"| `{prefix}{f.name}` | {f.label} | {f.unit or ''} | {_one_line(f.doc)} |")
+        if isinstance(f, ir.GroupField):
+            rows += _field_rows(f.item, f"{prefix}{f.name}[].")
+    return rows
 
 
 def _one_line(*texts: Optional[str]) -> str:

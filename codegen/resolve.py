@@ -10,6 +10,7 @@ from typing import Optional
 from . import ir
 from .errors import Problem, SpecError
 from .load import LoadedSpec
+from .naming import words
 
 
 class _Resolver:
@@ -118,16 +119,22 @@ class _Resolver:
                 and _prefix(f.bits, earlier.bits) and f.present_if == earlier.present_if):
             self.fail(where + ["name"], f"'{f.name}' stands twice with another kind of value: give the older "
                                         f"form a name of its own")
+        # One name is one field to its readers: one label, one unit.
+        if (f.label, f.unit) != (earlier.label, earlier.unit):
+            self.fail(where + ["label"], f"'{f.name}' stands twice with another label or unit "
+                                         f"('{earlier.titled}' and '{f.titled}')")
 
     def field(self, raw: dict, parts, earlier: list[ir.AnyField]) -> ir.AnyField:
-        common = dict(name=raw["name"], doc=raw.get("doc", ""), field_note=raw.get("field_note", ""),
-                      present_if=raw.get("present_if"),
+        common = dict(name=raw["name"], label=raw["label"], unit=raw.get("unit"), doc=raw.get("doc", ""),
+                      field_note=raw.get("field_note", ""), present_if=raw.get("present_if"),
                       versions=self.versions(raw.get("versions"), parts + ["versions"]), where=self.where(parts))
         if common["present_if"] is not None:
             cond = _find(earlier, common["present_if"])
             if not isinstance(cond, ir.ScalarField) or cond.scalar.is_float:
                 self.fail(parts + ["present_if"], f"'{common['present_if']}' must name an earlier bool or integer field")
         enum = self.enum_ref(raw["enum"], parts + ["enum"]) if "enum" in raw else None
+        if "unit" in raw and not _measured(raw):
+            self.fail(parts + ["unit"], "a unit needs a number: an integer or float field with no enum and no bits")
 
         if "switch" in raw:
             selector = _find(earlier, raw["switch"])
@@ -144,7 +151,7 @@ class _Resolver:
             if "count" not in raw and item.min_size == 0:
                 self.fail(parts, "a group repeated to the end must read at least one byte per item")
             return ir.GroupField(**common, item=item, count=raw.get("count"),
-                                 item_label=raw.get("item_label", raw["item"].replace("_", " ").capitalize()))
+                                 item_label=raw.get("item_label", words(raw["item"])))
 
         kind = raw["type"]
         repeat = raw.get("repeat")
@@ -155,12 +162,14 @@ class _Resolver:
                 self.value_enums.add(enum.name)
             if repeat != "to_end" or "terminator" not in raw:
                 self.fail(parts, "a value field needs 'repeat: to_end' and a 'terminator'")
-            return ir.ValueListField(**common, value_type=enum, terminator=raw.get("terminator", 0x0A))
+            return ir.ValueListField(**common, value_type=enum, terminator=raw.get("terminator", 0x0A),
+                                     item_label=raw.get("item_label", raw["label"]))
         if kind == "string":
             if repeat == "to_end":
                 if "terminator" not in raw:
                     self.fail(parts, "a repeated string needs a 'terminator'")
-                return ir.StringListField(**common, terminator=raw.get("terminator", 0x0A))
+                return ir.StringListField(**common, terminator=raw.get("terminator", 0x0A),
+                                          item_label=raw.get("item_label", raw["label"]))
             length = ir.SCALARS[raw["length"]] if "length" in raw else None
             return ir.StringField(**common, length=length)
         if kind == "bytes":
@@ -177,7 +186,8 @@ class _Resolver:
             self.fail(parts + ["bits"], f"{len(raw['bits'])} bit names do not fit in {scalar.name}")
         if "count" in raw:
             return ir.ArrayField(**common, scalar=scalar, count=raw["count"], enum=enum)
-        return ir.ScalarField(**common, scalar=scalar, enum=enum, bits=list(raw.get("bits", [])))
+        bits = list(raw.get("bits", []))
+        return ir.ScalarField(**common, scalar=scalar, enum=enum, bits=bits, bit_labels=[words(b) for b in bits])
 
     # ---- layouts and messages ----
 
@@ -217,7 +227,7 @@ class _Resolver:
 
     def header_field(self, raw: dict, parts) -> ir.HeaderField:
         enum = self.enum_ref(raw["enum"], parts + ["enum"]) if "enum" in raw else None
-        return ir.HeaderField(ir.SCALARS[raw["type"]], enum, raw.get("doc", ""), self.where(parts))
+        return ir.HeaderField(ir.SCALARS[raw["type"]], enum, raw.get("doc", ""), self.where(parts), raw["label"])
 
     def unique_codes(self, layouts: list[ir.Layout], parts) -> None:
         """Two layouts may share a code only for software versions that do not overlap."""
@@ -262,7 +272,8 @@ class _Resolver:
                     self.fail(parts + ["header"], "a message header must have a fixed size")
                 st = raw["subtype"]
                 sub_enum = self.enum_ref(st["enum"], parts + ["subtype", "enum"])
-                subtype = ir.ScalarField(name=st["name"], doc=st.get("doc", ""), scalar=ir.SCALARS[st["type"]], enum=sub_enum,
+                subtype = ir.ScalarField(name=st["name"], label=st["label"], doc=st.get("doc", ""),
+                                         scalar=ir.SCALARS[st["type"]], enum=sub_enum,
                                          where=self.where(parts + ["subtype"]))
                 subtypes = [self.layout(n, r, sub_enum, parts + ["subtypes", n]) for n, r in raw["subtypes"].items()]
                 self.unique_codes(subtypes, parts + ["subtypes"])
@@ -343,6 +354,14 @@ def _previous_version(v: ir.Version) -> ir.Version:
 def _prefix(a: list, b: list) -> bool:
     """Bit names of two entries of one name: a narrower one names the first bits alike."""
     return a[:len(b)] == b[:len(a)]
+
+
+def _measured(raw: dict) -> bool:
+    """True for a field whose value is a number a unit can follow: an integer or float (or a
+    switch among them) that no enum names and no bits split."""
+    kinds = [raw["type"]] if "type" in raw else list(raw.get("cases", {}).values()) + [raw.get("default")]
+    return (all(k in ir.SCALARS and k != "bool" for k in kinds)
+            and "enum" not in raw and "bits" not in raw)
 
 
 def _kind(s: ir.Scalar) -> str:

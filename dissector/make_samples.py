@@ -1,10 +1,11 @@
 """Write the sample captures in dissector/samples/ from the conformance bytes and a few hand-made
 messages: `make samples` (python3 dissector/make_samples.py).
 
-primary_session.pcapng   port 30001: Version, robot states (a program starts, runs, stops on a
-                         protective stop), key/text/popup/runtime-exception/safety-mode/robot-comm
-                         messages, program threads, global variables setup and updates, and the
-                         client's URScript; some robot states cut across segments, some packed.
+primary_session.pcapng   port 30001: Version, robot states at 10 Hz (a program starts, moves the
+                         six joints for 20 s, stops on a protective stop), key/text/popup/
+                         runtime-exception/safety-mode/robot-comm messages, program threads, global
+                         variables setup and updates, and the client's URScript; some robot states
+                         cut across segments, some packed.
 secondary_session.pcap   port 30002: Version, then robot states at 10 Hz as the secondary
                          interface sends them (fewer sub-packages).
 
@@ -17,6 +18,7 @@ import math
 import struct
 import sys
 from pathlib import Path
+from typing import Optional
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
@@ -30,6 +32,8 @@ from tests.vectors import parse_hex  # noqa: E402
 CONF = ROOT / "tests" / "conformance"
 OUT = Path(__file__).resolve().parent / "samples"
 V59 = (5, 9)
+RUN_STEPS = 200          # robot states while the program runs: 20 s at 10 Hz
+STEP_SECONDS = 0.1       # the robot-state period
 
 
 def conformance(name: str) -> bytes:
@@ -113,7 +117,11 @@ class StateMaker:
         (self.base,) = list(urwire.decode_stream(raw))
         self.secondary = secondary
 
-    def make(self, step: int, robot_mode: int, safety: int, running: bool, with_kinematics: bool) -> bytes:
+    def make(self, step: int, robot_mode: int, safety: int, running: bool, with_kinematics: bool,
+             pose: Optional[int] = None) -> bytes:
+        """Robot state `step`; its joints stand where the motion has them at step `pose` (the
+        step itself by default), and move while `running`."""
+        pose = step if pose is None else pose
         msg = copy.deepcopy(self.base)
         keep = []
         for pkg in msg.packages:
@@ -130,10 +138,12 @@ class StateMaker:
                 pkg.is_protective_stopped = safety == 3
             elif name == "joint_data":
                 for j, joint in enumerate(pkg.joints):
-                    q = 0.4 * j - 1.0 + 0.9 * math.sin(step / 10 + j) if running else joint.q_actual
-                    joint.q_actual = q
-                    joint.q_target = q + 0.001
-                    joint.qd_actual = 0.09 * math.cos(step / 10 + j) if running else 0.0
+                    # Each joint swings about its own centre with its own period (5 to 10 s).
+                    w, t = 2 * math.pi / (5 + j), pose * STEP_SECONDS
+                    joint.q_actual = 0.4 * j - 1.0 + 0.9 * math.sin(w * t + j)
+                    joint.q_target = joint.q_actual + 0.001
+                    joint.qd_actual = 0.9 * w * math.cos(w * t + j) if running else 0.0
+                    joint.t_motor += 0.01 * pose   # warmer after moving
                     joint.joint_mode = 253 if robot_mode == 7 else 255
             elif name == "masterboard_data":
                 pkg.safety_mode = safety
@@ -151,65 +161,102 @@ URSCRIPT = [
 ]
 
 
-def primary_segments() -> list[Segment]:
+class Timeline:
+    """The segments of one session and when each is sent: robot state `step` at (step + 1) x
+    100 ms, every other segment a few milliseconds after the one before it."""
+
+    GAP = 0.005
+
+    def __init__(self) -> None:
+        self.segments: list[Segment] = []
+        self.times: list[float] = []
+        self.clock = 0.05
+
+    def state(self, step: int, *payloads: bytes) -> None:
+        """A robot state (with what shares its segment), at its slot."""
+        self.clock = (step + 1) * STEP_SECONDS
+        self.robot(*payloads)
+
+    def robot(self, *payloads: bytes) -> None:
+        self.send(True, b"".join(payloads))
+
+    def client(self, payload: bytes) -> None:
+        self.send(False, payload)
+
+    def send(self, from_robot: bool, payload: bytes) -> None:
+        self.segments.append(Segment(from_robot, payload))
+        self.times.append(self.clock)
+        self.clock += self.GAP
+
+    def frame_times(self) -> list[float]:
+        """One time per frame of capture.session_frames: the handshake, each segment and its
+        acknowledgement, then the closing exchange."""
+        out = [0.0, 0.0005, 0.001]
+        for t in self.times:
+            out += [t, t + 0.0005]
+        end = self.clock + STEP_SECONDS
+        return out + [end, end + 0.0005, end + 0.001]
+
+
+def primary_session() -> Timeline:
     states = StateMaker(conformance("Universal_Robots_Client_Library/robot_state_real_robot_5.11_pr137.hex"))
-    segs: list[Segment] = []
-    robot = lambda *msgs: segs.append(Segment(True, b"".join(msgs)))  # noqa: E731
-
-    def cut(msg: bytes, at: int) -> None:
-        robot(msg[:at])
-        robot(msg[at:])
-
+    s = Timeline()
     t = 1_000_000
-    robot(version_message())
-    robot(states.make(0, 5, 1, False, True))       # first state carries kinematics and configuration
+    s.robot(version_message())
+    run_end = 4 + RUN_STEPS
+    s.state(0, states.make(0, 5, 1, False, True, pose=4))  # the first state carries kinematics and configuration
     for step in range(1, 4):
-        robot(states.make(step, 5, 1, False, False))
-    segs.append(Segment(False, text(URSCRIPT[0])))
-    robot(globals_setup(t, ["counter", "speed", "target_pose", "gripper_closed", "home_name", "history"]))
-    robot(key_message(t + 1, 0, "PROGRAM_XXX_STARTED", "urwire_demo"),
-          program_threads(t + 2, [(3, "MoveJ", "urwire_demo")]))
-    for step in range(4, 20):
+        s.state(step, states.make(step, 5, 1, False, False, pose=4))
+    s.client(text(URSCRIPT[0]))
+    s.robot(globals_setup(t, ["counter", "speed", "target_pose", "gripper_closed", "home_name", "history"]))
+    s.robot(key_message(t + 1, 0, "PROGRAM_XXX_STARTED", "urwire_demo"),
+            program_threads(t + 2, [(3, "MoveJ", "urwire_demo")]))
+    for step in range(4, run_end):
         msg = states.make(step, 7, 1, True, False)
         if step % 4 == 1:
-            cut(msg, 3)                              # a header split inside its first 5 bytes
+            s.state(step, msg[:3])                       # a header split inside its first 5 bytes
+            s.robot(msg[3:])
         elif step % 4 == 2:
-            cut(msg, 700)                            # a message across two segments
+            s.state(step, msg[:700])                     # a message across two segments
+            s.robot(msg[700:])
         elif step % 4 == 3:
-            robot(msg, globals_update(t + step, step, 0.25 + step / 100, [0.1 * step, -0.3, 0.4, 0, 3.14, 0]))
+            s.state(step, msg, globals_update(t + step, step, 0.25 + step / 100, [0.1 * step, -0.3, 0.4, 0, 3.14, 0]))
         else:
-            robot(msg)
+            s.state(step, msg)
         if step == 8:
-            robot(text_message(t + 8, "cycle done"))
-    segs.append(Segment(False, text(URSCRIPT[1])))
-    robot(popup(t + 20, "Operator", "Check the gripper"))
-    robot(states.make(20, 7, 1, True, False))
-    robot(robot_comm(t + 21, 209, 3, 3, "C209A3: Protective stop: Position close to joint limits"))
-    robot(safety_mode(t + 22, 3, 209, 3))
-    robot(states.make(21, 7, 3, False, False))
-    robot(conformance("Universal_Robots_Client_Library/runtime_exception_message.hex")[:57])  # its own length
-    robot(key_message(t + 23, 0, "PROGRAM_XXX_STOPPED", "urwire_demo"))
-    segs.append(Segment(False, text(URSCRIPT[2])))
-    for step in range(22, 26):
-        robot(states.make(step, 5, 1, False, False))
-    return segs
+            s.robot(text_message(t + 8, "cycle done"))
+    s.client(text(URSCRIPT[1]))
+    s.robot(popup(t + run_end, "Operator", "Check the gripper"))
+    s.state(run_end, states.make(run_end, 7, 1, True, False))
+    s.robot(robot_comm(t + run_end + 1, 209, 3, 3, "C209A3: Protective stop: Position close to joint limits"))
+    s.robot(safety_mode(t + run_end + 2, 3, 209, 3))
+    s.state(run_end + 1, states.make(run_end + 1, 7, 3, False, False, pose=run_end))
+    s.robot(conformance("Universal_Robots_Client_Library/runtime_exception_message.hex")[:57])  # its own length
+    s.robot(key_message(t + run_end + 3, 0, "PROGRAM_XXX_STOPPED", "urwire_demo"))
+    s.client(text(URSCRIPT[2]))
+    for step in range(run_end + 2, run_end + 6):
+        s.state(step, states.make(step, 5, 1, False, False, pose=run_end))
+    return s
 
 
-def secondary_segments() -> list[Segment]:
+def secondary_session() -> Timeline:
     states = StateMaker(conformance("Universal_Robots_Client_Library/robot_state_real_robot_5.11_pr137.hex"),
                         secondary=True)
-    segs = [Segment(True, version_message())]
+    s = Timeline()
+    s.robot(version_message())
     for step in range(30):
-        segs.append(Segment(True, states.make(step, 7 if step >= 5 else 5, 1, step >= 5, step == 0)))
-    return segs
+        s.state(step, states.make(step, 7 if step >= 5 else 5, 1, step >= 5, step == 0))
+    return s
 
 
 def main() -> int:
     OUT.mkdir(parents=True, exist_ok=True)
-    capture.write(OUT / "primary_session.pcapng", capture.session_frames(primary_segments(), port=30001),
-                  pcapng=True)
+    primary, secondary = primary_session(), secondary_session()
+    capture.write(OUT / "primary_session.pcapng", capture.session_frames(primary.segments, port=30001),
+                  pcapng=True, times=primary.frame_times())
     capture.write(OUT / "secondary_session.pcap",
-                  capture.session_frames(secondary_segments(), port=30002, client_port=50124))
+                  capture.session_frames(secondary.segments, port=30002, client_port=50124),
+                  times=secondary.frame_times())
     print(f"wrote {OUT / 'primary_session.pcapng'} and {OUT / 'secondary_session.pcap'}")
     return 0
 

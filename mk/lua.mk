@@ -8,7 +8,7 @@ TEST_TARGETS += test-lua
 BENCH_TARGETS += bench-lua
 DEMO_TARGETS += demo-lua
 
-.PHONY: test-lua bench-lua demo-lua samples install-dissector uninstall-dissector
+.PHONY: test-lua bench-lua demo-lua samples screenshots install-dissector uninstall-dissector
 
 # The personal Lua plugins folder, as tshark reports it ("Personal Lua Plugins:" in 4.0+).
 LUA_PLUGIN_DIR = $(shell $(TSHARK) -G folders 2>/dev/null | awk -F'\t' '/^Personal Lua Plugins:/ {print $$2; exit}')
@@ -33,6 +33,11 @@ demo-lua:
 	@echo "== filter: ur.robot_mode_data.robot_mode == \"RUNNING\" && ur.joint_data.q_actual > 1.5"
 	@$(TSHARK) -r dissector/samples/primary_session.pcapng -X lua_script:$(LUA_PLUGIN) \
 		-Y 'ur.robot_mode_data.robot_mode == "RUNNING" && ur.joint_data.q_actual > 1.5' 2>/dev/null | head -n 5
+
+## screenshots: the pictures of dissector/README.md, taken from the real Wireshark GUI on the bundled
+## capture under Xvfb (dissector/images/*.png; needs wireshark-qt, xvfb, xdotool, imagemagick)
+screenshots:
+	xvfb-run -a -s "-screen 0 1600x1000x24" $(PYTHON) scripts/screenshots.py
 
 ## samples: rewrite dissector/samples/ from the conformance bytes (deterministic)
 samples:

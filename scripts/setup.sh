@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# Installs what urwire's tests and demo need on a Debian machine: system packages (tshark,
-# compilers, Lua), then the Python packages. Safe to run again: it skips what is there.
+# Installs what urwire's tests and demo need on a Debian machine: system packages (tshark, the
+# Wireshark GUI, compilers, Lua), then the Python packages. Safe to run again: it skips what is there.
 set -euo pipefail
 # Debian marks its Python as externally managed; this project installs into it on purpose.
 export PIP_BREAK_SYSTEM_PACKAGES=1
 cd "$(dirname "$0")/.."
 
-APT_PACKAGES=(tshark clang lua5.2 lua5.3 lua5.4 libclang-rt-14-dev llvm make gcc)
+# wireshark-qt, xvfb, xdotool and imagemagick: the GUI smoke test and `make screenshots` run the
+# real Wireshark GUI on a virtual X server.
+APT_PACKAGES=(tshark clang lua5.2 lua5.3 lua5.4 libclang-rt-14-dev llvm make gcc
+              wireshark-qt xvfb xdotool imagemagick)
 
 missing=()
 for pkg in "${APT_PACKAGES[@]}"; do

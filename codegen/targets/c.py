@@ -298,7 +298,7 @@ class _Builder:
         if name in RESERVED_MEMBERS:
             self.problems.append(f.where.problem(f"c target: field name '{name}' is a member every layout has"))
         entries = struct.named(name)
-        doc = inline(*[t for e in entries for t in (e.doc, e.field_note)])
+        doc = inline(f"{f.titled}.", *[t for e in entries for t in (e.doc, e.field_note)])
         if f.present_if:
             doc = inline(doc, f"Present only when {f.present_if} is nonzero (else 0).")
         if len(entries) > 1:
@@ -651,7 +651,7 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
         header = [dict(name=slot.field.name, ctype=C_TYPES[slot.field.scalar.name],
                        reader=READERS[slot.field.scalar.name], writer=WRITERS[slot.field.scalar.name],
                        offset=slot.offset, cb=VISIT[slot.field.scalar.name],
-                       doc=inline(slot.field.doc, slot.field.field_note), subtype=slot.is_subtype)
+                       doc=inline(f"{slot.field.titled}.", slot.field.doc, slot.field.field_note), subtype=slot.is_subtype)
                   for slot in mp.header]
         subtypes = []
         for c in mp.layouts:

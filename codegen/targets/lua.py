@@ -72,6 +72,30 @@ def one_line(*texts: str) -> str:
     return " ".join(t.strip() for t in texts if t and t.strip())
 
 
+def describe(f: ir.Field, sent: str = "") -> str:
+    """A field's description (its blurb: `tshark -G fields`, the display-filter dialog): the
+    spec's doc, else its label; its unit; the versions that send it (`sent`, see sent_by)."""
+    return one_line(f.doc or f.label + ".", f"In {f.unit}." if f.unit else "",
+                    f"Sent by software {sent}." if sent else "")
+
+
+def sent_by(struct: ir.Struct, owner: str, out: dict) -> None:
+    """Which versions send each field of a layout, by its key: "3.0 and later", or "" for every
+    version. The plan's forms hold fields with their version ranges already applied."""
+    for name in dict.fromkeys(f.name for f in struct.fields):
+        entries = struct.named(name)
+        ranges = [] if any(e.versions.unbounded for e in entries) else [e.versions.describe() for e in entries]
+        out[f"{owner}.{name}"] = ", ".join(ranges)
+        for e in entries:
+            if isinstance(e, ir.GroupField):
+                sent_by(e.item, owner, out)
+
+
+def unit_text(unit: Optional[str]) -> Optional[str]:
+    """What follows a value in the tree: " rad"."""
+    return f" {unit}" if unit else None
+
+
 def version_number(v: Optional[ir.Version]) -> Optional[int]:
     """A version as the runtime compares it: ir.version_number (5.25.1 is 5025001); None stays nil."""
     return None if v is None else ir.version_number(v)
@@ -135,6 +159,7 @@ class _Builder:
         self.entries: dict[str, list[tuple[ir.Scalar, ir.Where, Optional[ir.Enum]]]] = {}
         self.reads: list[tuple[dict, str, ir.Scalar]] = []
         self.wide: dict[str, ir.Scalar] = {}
+        self.sent: dict[str, str] = {}        # field key -> the versions that send it (sent_by)
 
     # ---- fields ----
 
@@ -151,6 +176,8 @@ class _Builder:
                 "a Wireshark filter name has one type, give one of them a name of its own"))
         elif known.shape == "flag" and known.mask != pf.mask:
             self.problems.append(where.problem(f"lua target: the bit {pf.abbr} stands at two places"))
+        elif pf.desc:
+            known.desc = pf.desc   # a name's later entry is its newer form: its doc describes it
         return pf.key
 
     def owned_field(self, owner: str, name: str, shape: str, ctor: str, label: str, desc: str,
@@ -158,14 +185,19 @@ class _Builder:
         return self.add_field(PField(f"{owner}.{name}", shape, ctor, wireshark_field(owner, name), label, desc,
                                      **more), where)
 
-    def scalar_field(self, owner: str, name: str, s: ir.Scalar, enum: Optional[ir.Enum], doc: str,
-                     where: ir.Where = ir.NOWHERE, label: Optional[str] = None, hex_base: bool = False) -> str:
-        label = label or name
+    def scalar_field(self, owner: str, name: str, s: ir.Scalar, enum: Optional[ir.Enum], label: str, doc: str,
+                     where: ir.Where = ir.NOWHERE, unit: Optional[str] = None, hex_base: bool = False) -> str:
+        """An integer's unit is its ProtoField's unit string (base.UNIT_STRING), which every
+        Wireshark shows; a float's is appended by the runtime (d.unit), as Wireshark 4.0 shows no
+        unit string of a float field."""
         self.entries.setdefault(f"{owner}.{name}", []).append((s, where, enum))
         if s.is_float:
             return self.owned_field(owner, name, "float", PROTOFIELD[s.name], label, doc, where)
         if s.is_bool:
             return self.owned_field(owner, name, "bool", "bool", label, doc, where)
+        if unit:
+            return self.owned_field(owner, name, "integer", PROTOFIELD[s.name], label, doc, where,
+                                    base="UNIT_STRING", vs="{ " + lua_str(unit_text(unit)) + " }")
         return self.owned_field(owner, name, "integer", PROTOFIELD[s.name], label, doc, where,
                                 base="HEX" if hex_base else "DEC",
                                 vs=self.enum_var[enum.name] if enum is not None else None)
@@ -202,9 +234,9 @@ class _Builder:
             wide = self.wide.get(key, s)
             data["value"] = s.name != wide.name
 
-    def header_field(self, key: str, label: str, h: ir.HeaderField) -> str:
+    def header_field(self, key: str, h: ir.HeaderField) -> str:
         """ur.length, ur.type, ur.package.*: outside the owner.field scheme."""
-        return self.add_field(PField(key, "integer", PROTOFIELD[h.scalar.name], f"ur.{key}", label, h.doc,
+        return self.add_field(PField(key, "integer", PROTOFIELD[h.scalar.name], f"ur.{key}", h.label, h.doc,
                                      base="DEC", vs=self.enum_var[h.enum.name] if h.enum is not None else None),
                               h.where)
 
@@ -242,32 +274,35 @@ class _Builder:
                                              fields=self.descriptors(owner, step.steps, keep, show))))
                 continue
             for f in step.fields if isinstance(step, plan.FixedRun) else [step.field]:
-                out.append(self.descriptor(owner, f, one_line(f.doc, f.field_note), f.name, keep, show.get(f.name)))
+                out.append(self.descriptor(owner, f, describe(f, self.sent.get(f"{owner}.{f.name}", "")), f.name,
+                                           keep, show.get(f.name)))
         return out
 
     def descriptor(self, owner: str, f: ir.AnyField, doc: str, path: str, keep: set[str],
                    show: Optional[str]) -> Step:
         """One field's descriptor; `show` is the text the Info column puts before its value."""
         common = dict(path=path, show=show)
+        # A float's unit follows its value in the tree (see scalar_field).
+        unit = unit_text(f.unit) if isinstance(f, (ir.ScalarField, ir.ArrayField)) and f.scalar.is_float else None
         if isinstance(f, ir.ScalarField):
-            key = self.scalar_field(owner, f.name, f.scalar, f.enum, doc, f.where,
+            key = self.scalar_field(owner, f.name, f.scalar, f.enum, f.label, doc, f.where, unit=f.unit,
                                     hex_base=bool(f.bits) and not f.scalar.signed)
             data = self.read(dict(common, field=key, size=f.scalar.size, signed=f.scalar.signed and not f.scalar.is_float,
-                                  vs=self.enum_var[f.enum.name] if f.enum is not None else None,
-                                  keep=f.name if f.name in keep else None, **self.names_of(f.enum, f.name)),
+                                  vs=self.enum_var[f.enum.name] if f.enum is not None else None, unit=unit,
+                                  keep=f.name if f.name in keep else None, **self.names_of(f.enum, f.label)),
                              key, f.scalar)
             if not f.bits:
                 return Step("scalar", data)
-            bits = [self.owned_field(owner, f"{f.name}.{b}", "flag", "bool", b, f"Bit {i} of {f.name}.", f.where,
-                                     bits=f.scalar.bits, mask=1 << i, parent=key)
-                    for i, b in enumerate(f.bits)]
+            bits = [self.owned_field(owner, f"{f.name}.{b}", "flag", "bool", label, f"Bit {i} of {f.label}: {label}.",
+                                     f.where, bits=f.scalar.bits, mask=1 << i, parent=key)
+                    for i, (b, label) in enumerate(zip(f.bits, f.bit_labels))]
             data["bits"] = bits
             return Step("bits", data)
         if isinstance(f, ir.ArrayField):
-            key = self.scalar_field(owner, f.name, f.scalar, f.enum, doc, f.where)
+            key = self.scalar_field(owner, f.name, f.scalar, f.enum, f.label, doc, f.where, unit=f.unit)
             return Step("array", self.read(dict(common, field=key, size=f.scalar.size, count=f.count,
-                                                signed=f.scalar.signed and not f.scalar.is_float,
-                                                **self.names_of(f.enum, f.name)), key, f.scalar))
+                                                signed=f.scalar.signed and not f.scalar.is_float, unit=unit,
+                                                **self.names_of(f.enum, f.label)), key, f.scalar))
         if isinstance(f, ir.GroupField):
             key = self.owned_field(owner, f.name, "none", "none", f.item_label, doc, f.where)
             item = self.plan.item_of(f)
@@ -277,24 +312,25 @@ class _Builder:
             return Step("group", dict(common, field=key, label=f.item_label, count=f.count,
                                       size=item.layout.fixed_size if item.fixed else None, item=item_var))
         if isinstance(f, ir.StringField):
-            key = self.owned_field(owner, f.name, "text", "string", f.name, doc, f.where, base="UNICODE")
+            key = self.owned_field(owner, f.name, "text", "string", f.label, doc, f.where, base="UNICODE")
             if f.length is None:
                 return Step("string", dict(common, field=key))
             return Step("pstring", dict(common, field=key, size=f.length.size, signed=f.length.signed))
         if isinstance(f, ir.StringListField):
-            key = self.owned_field(owner, f.name, "text", "string", f.name, doc, f.where, base="UNICODE")
+            key = self.owned_field(owner, f.name, "text", "string", f.item_label, doc, f.where, base="UNICODE")
             return Step("strings", dict(common, field=key, term=f.terminator))
         if isinstance(f, ir.BytesField):
-            key = self.owned_field(owner, f.name, "bytes", "bytes", f.name, doc, f.where)
+            key = self.owned_field(owner, f.name, "bytes", "bytes", f.label, doc, f.where)
             return Step("bytes", dict(common, field=key))
         if isinstance(f, ir.SwitchField):
-            default = dict(field=self.scalar_field(owner, f.name, f.default, None, doc, f.where), size=f.default.size)
+            default = dict(field=self.scalar_field(owner, f.name, f.default, None, f.label, doc, f.where, unit=f.unit),
+                           size=f.default.size, unit=unit_text(f.unit) if f.default.is_float else None)
             cases = []
             for code, s in sorted(f.cases.items()):
-                key = self.scalar_field(owner, f"{f.name}_{s.name}", s, None,
+                key = self.scalar_field(owner, f"{f.name}_{s.name}", s, None, f.label,
                                         one_line(doc, f"(as {s.name}: {f.selector.name} is {code})"), f.where,
-                                        label=f.name)
-                cases.append(dict(code=code, field=key, size=s.size))
+                                        unit=f.unit)
+                cases.append(dict(code=code, field=key, size=s.size, unit=unit_text(f.unit) if s.is_float else None))
             return Step("switch", dict(common, sel=f.selector.name, default=default, cases=cases))
         if isinstance(f, ir.ValueListField):
             return Step("values", dict(common, term=f.terminator, **self.value_fields(owner, f)))
@@ -307,7 +343,7 @@ class _Builder:
             return self.owned_field(owner, name, shape, ctor, label, desc, f.where, **more)
 
         roles = [
-            ("item", add(f.name, "none", "none", f.name, one_line(f.doc))),
+            ("item", add(f.name, "none", "none", f.item_label, describe(f))),
             ("type", add("type", "text", "string", "Type",
                          "Value type name, from the table of the stream's software version.", base="ASCII")),
             ("code", add("type_code", "integer", "uint8", "Type code", "Value type byte.", base="DEC")),
@@ -319,10 +355,10 @@ class _Builder:
         ]
         kinds = []
         for kind in sorted({lay.item.name for lay in self.p.value_layouts.values() if lay.item is not None}):
-            kinds.append((kind, self.scalar_field(owner, f"value_{kind}", ir.SCALARS[kind], None,
-                                                  f"A value of type {kind}.", f.where, label="value")))
-        string = add("value_string", "text", "string", "value", "A string value.", base="UNICODE")
-        return dict(roles=roles, kinds=kinds, string=string)
+            kinds.append((kind, self.scalar_field(owner, f"value_{kind}", ir.SCALARS[kind], None, "Value",
+                                                  f"A value of type {kind}.", f.where)))
+        string = add("value_string", "text", "string", "Value", "A string value.", base="UNICODE")
+        return dict(roles=roles, kinds=kinds, string=string, label=f.item_label)
 
     # ---- layouts and messages ----
 
@@ -344,7 +380,7 @@ class _Builder:
     def header_layout(self, name: str, owner: str, slots: list[plan.HeaderSlot], doc: str) -> str:
         """A message header (a fixed run of scalars), its fields named under `owner`."""
         var = self.unique("L", name)
-        self.layouts.append(LayoutView(var, doc, [self.descriptor(owner, s.field, one_line(s.field.doc, s.field.field_note),
+        self.layouts.append(LayoutView(var, doc, [self.descriptor(owner, s.field, describe(s.field),
                                                                   s.field.name, set(), None) for s in slots]))
         return var
 
@@ -382,6 +418,7 @@ class _Builder:
         """The descriptor list of a package or subtype, its summary fields marked `show` with the
         text put before each; and whether it has a summary."""
         show = {name: before for before, name in lay.summary}
+        sent_by(lay.struct, lay.name, self.sent)
         view = self.layout(lay.name, choice_plan, one_line(lay.doc, lay.field_note), show)
         if show:
             self.check_summary(lay, view.descriptors, show)
@@ -433,7 +470,7 @@ class _Builder:
 
     def dispatch_message(self, mp: plan.MessagePlan) -> Step:
         m = mp.message
-        sub_field = self.scalar_field(m.name, m.subtype.name, m.subtype.scalar, m.subtype.enum,
+        sub_field = self.scalar_field(m.name, m.subtype.name, m.subtype.scalar, m.subtype.enum, m.subtype.label,
                                       one_line(m.subtype.doc, "Subtype of the message."), m.subtype.where)
         # The header then the subtype: shown as such when the subtype is unknown.
         header = self.header_layout(m.name, m.name, mp.header, f"Header and subtype of every {words(m.name).lower()}.")
@@ -452,7 +489,7 @@ class _Builder:
                               item=self.add_item(st.name, words(st.name), one_line(st.doc), st.where)))
         return Step("subtypes", dict(code=m.code.value, label=words(m.name), doc=one_line(m.doc, m.field_note),
                                      var=f"{m.name.upper()}_SUBTYPES", body_offset=mp.body_offset,
-                                     header=header, subtype_field=sub_field, subtype_label=m.subtype.name,
+                                     header=header, subtype_field=sub_field, subtype_label=m.subtype.label,
                                      subtype_names=self.enum_var[m.subtype_enum.name],
                                      subtype_tables=self.code_names(m.subtype_enum),
                                      parts=parts, codes=self.forms(mp, parts_of)))
@@ -513,10 +550,10 @@ class _Builder:
     def build(self) -> dict:
         p = self.p
         enums = self.enums()
-        self.header_field("length", "Length", p.message_length)
-        self.header_field("type", "Type", p.message_type)
-        self.header_field("package.length", "Length", p.package_length)
-        self.header_field("package.type", "Type", p.package_type)
+        self.header_field("length", p.message_length)
+        self.header_field("type", p.message_type)
+        self.header_field("package.length", p.package_length)
+        self.header_field("package.type", p.package_type)
         messages = [self.dispatch_message(mp) if mp.is_dispatch else self.package_message(mp)
                     for mp in self.plan.messages]
         self.settle()

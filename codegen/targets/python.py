@@ -5,6 +5,7 @@ only lay the strings out. Fixed runs of fields become one precompiled struct.Str
 """
 from __future__ import annotations
 
+import json
 from dataclasses import dataclass, field
 from typing import Optional
 
@@ -13,7 +14,7 @@ from ..emit import environment, runtime_files
 from ..errors import Problem, SpecError
 from ..view import Step, one_line
 from ..naming import (camel, py_enum_class, py_item_class, py_layout_class, py_lookup,
-                      py_message_class, py_table_class)
+                      py_message_class, py_table_class, words)
 
 PACKAGE = "python/urwire"
 STRUCT_CODES = {"bool": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H", "int32": "i",
@@ -28,6 +29,15 @@ class Attr:
     doc: str
     json_kind: str
     optional: bool = False
+    metadata: str = "{}"        # dataclasses.field(metadata=...): its label and unit, as Python text
+
+
+def attr(f: ir.AnyField, annotation: str, optional: bool = False) -> Attr:
+    """An attribute: its docstring starts with the field's label and unit, and its metadata
+    holds them for code that shows records to people (human.py, a GUI)."""
+    unit = json.dumps(f.unit, ensure_ascii=False) if f.unit else "None"
+    metadata = f'{{"label": {json.dumps(f.label, ensure_ascii=False)}, "unit": {unit}}}'
+    return Attr(f.name, annotation, one_line(f"{f.titled}.", f.doc, f.field_note), json_kind(f), optional, metadata)
 
 
 @dataclass
@@ -71,6 +81,7 @@ class PyClass:
     name: str
     doc: str
     role: str                      # package | subtype | item
+    label: str                     # what people call it: "Robot mode data", "Joint"
     json_type: str
     code: Optional[int]
     attrs: list[Attr]
@@ -296,7 +307,7 @@ class _Target:
                     doc: str, header: Optional[list[plan.HeaderSlot]] = None,
                     sets_version: Optional[tuple[str, str]] = None,
                     summary: Optional[list[tuple[str, str]]] = None,
-                    forms: Optional[list[plan.Variant]] = None) -> PyClass:
+                    forms: Optional[list[plan.Variant]] = None, label: Optional[str] = None) -> PyClass:
         struct = layout.struct
         self.check_names(struct)
         # Group items first, so the parent can refer to them.
@@ -305,7 +316,7 @@ class _Target:
                 item = self.plan.item_of(f)
                 self.item_classes[f.item.name] = self.build_class(
                     item.layout, py_item_class(f), "item", f.item.name, None,
-                    one_line(f.doc) or f"One entry of {f.name}.")
+                    one_line(f.doc) or f"One entry of {f.name}.", label=f.item_label)
         builder = _ClassBuilder(self, json_type, struct)
         structs: list[StructConst] = []
         if len(forms or []) > 1:
@@ -328,11 +339,10 @@ class _Target:
             structs = builder.structs
         items = {f.name: self.item_classes[f.item.name].name for f in struct.fields if isinstance(f, ir.GroupField)}
         header_fields = [slot.field for slot in header or [] if not slot.is_subtype]
-        attrs = [Attr(f.name, annotation(f, {}), one_line(f.doc, f.field_note), json_kind(f)) for f in header_fields]
-        attrs += [Attr(f.name, annotation(f, items), one_line(f.doc, f.field_note), json_kind(f), f.conditional)
-                  for f in struct.public_fields]
-        cls = PyClass(name, doc, role, json_type, code, attrs, [f.name for f in header_fields], codecs,
-                      structs, sets_version=sets_version)
+        attrs = [attr(f, annotation(f, {})) for f in header_fields]
+        attrs += [attr(f, annotation(f, items), f.conditional) for f in struct.public_fields]
+        cls = PyClass(name, doc, role, label or words(json_type), json_type, code, attrs,
+                      [f.name for f in header_fields], codecs, structs, sets_version=sets_version)
         if role == "item" and self.is_fixed_item(layout):
             # A fixed item is read inside its parent's run: from the parent's values and offset.
             cls.fixed = True
@@ -374,7 +384,7 @@ class _Target:
                                                           summary=c.layout.summary, forms=mp.forms_of(c.layout))
                            for c in mp.layouts}
                 messages.append(dict(kind="packages", name=m.name, cls=py_message_class(m), code=m.code.value,
-                                     code_name=m.code.name, doc=one_line(m.doc, m.field_note),
+                                     code_name=m.code.name, doc=one_line(m.doc, m.field_note), label=words(m.name),
                                      layouts=list(classes.values()), forms=self.forms(mp, classes),
                                      body_offset=mp.body_offset))
                 continue

@@ -94,7 +94,7 @@ def test_versions_reach_the_runtime_as_numbers():
     """(major * 1000 + minor) * 1000 + bugfix: a bound written 5.8 takes in every 5.8.x."""
     def edit(data):
         data["messages"]["robot_state"]["packages"]["additional_info"]["fields"].append(
-            {"name": "gated", "type": "uint8", "versions": {"from": "5.25.1", "until": "6.2"}})
+            {"name": "gated", "label": "Gated", "type": "uint8", "versions": {"from": "5.25.1", "until": "6.2"}})
 
     text = render_text(variant(edit))
     assert '{ k = "cond", present_if = nil, low = 5025001, high = 6002999, fields = {' in text
@@ -134,8 +134,8 @@ def test_a_versioned_enum_has_its_names_by_version():
     text = render_text(plan(compile_text(BASE_SPEC.read_text(encoding="utf-8"))))
     assert "NAMES.JOINT_MODE = { newest = VS.JOINT_MODE," in text
     assert "{ low = nil, high = 5000999, names = VS.JOINT_MODE_UpTo5_0 },   -- up to 5.0" in text
-    assert 'tables = NAMES.JOINT_MODE, label = "joint_mode"' in text
-    assert 'ProtoField.uint8("ur.joint_data.joint_mode", "joint_mode", base.DEC, VS.JOINT_MODE,' in text
+    assert 'tables = NAMES.JOINT_MODE, label = "Joint mode"' in text
+    assert 'ProtoField.uint8("ur.joint_data.joint_mode", "Joint mode", base.DEC, VS.JOINT_MODE,' in text
 
 
 def test_the_version_reader_reads_the_bugfix_in_its_versions():
@@ -144,7 +144,7 @@ def test_the_version_reader_reads_the_bugfix_in_its_versions():
         version["sets_version"]["bugfix"] = "bugfix_version"
         fields = version["fields"]
         fields[3] = dict(fields[3], versions={"from": "3.3"})
-        fields.insert(3, {"name": "svn_revision", "type": "int32", "versions": {"until": "3.2"}})
+        fields.insert(3, {"name": "svn_revision", "label": "Svn revision", "type": "int32", "versions": {"until": "3.2"}})
 
     text = render_text(variant(edit))
     assert "bugfix = { n = 4, signed = true, low = 3003000, high = nil }," in text
@@ -156,7 +156,7 @@ def test_a_summary_the_info_column_cannot_read_is_a_problem():
     version-gated parts, not over a switch; and it shows integers and texts."""
     def edit(data):
         safety = data["messages"]["robot_message"]["subtypes"]["safety_mode"]
-        safety["fields"].append({"name": "after", "type": "uint8"})
+        safety["fields"].append({"name": "after", "label": "After", "type": "uint8"})
         safety["summary"] = "{safety_mode_type} {after}"
         data["messages"]["robot_state"]["packages"]["robot_mode_data"]["summary"] = "{robot_mode} {speed_scaling}"
 
@@ -167,3 +167,23 @@ def test_a_summary_the_info_column_cannot_read_is_a_problem():
             "lua target: the summary's field 'after' comes after a field the Info column cannot step over") in found
     assert ("messages.robot_state.packages.robot_mode_data",
             "lua target: the summary cannot show 'speed_scaling', a float field") in found
+
+
+def test_a_filter_name_with_two_types_is_a_problem():
+    """A field named like a role of the typed values beside it (`type`, a text of the values)
+    would give one filter name two types."""
+    def edit(data):
+        update = data["messages"]["program_state"]["subtypes"]["global_variables_update"]
+        update["fields"].insert(1, {"name": "type", "label": "Type", "type": "uint8"})
+
+    with pytest.raises(SpecError) as caught:
+        render_text(variant(edit))
+    assert any("ur.global_variables_update.type would be both" in p.message for p in caught.value.problems)
+
+
+def test_labels_units_and_descriptions_reach_the_protofields(protocol):
+    text = render_text(plan(protocol))
+    assert ('ProtoField.double("ur.joint_data.q_actual", "Actual joint position", '
+            '"Actual joint position (rad). In rad.")') in text   # the fixture's doc, then the unit
+    assert 'ProtoField.uint8("ur.tool_data.tool_output_voltage", "Tool output voltage", base.UNIT_STRING, { " V" },' in text
+    assert 'f = F["joint_data.q_actual"], n = 8, path = "q_actual", signed = false, unit = " rad" }' in text

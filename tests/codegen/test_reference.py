@@ -22,8 +22,8 @@ def planned_with(edit):
 
 def gate_two_fields(data):
     fields = data["messages"]["robot_state"]["packages"]["tool_mode_info"]["fields"]
-    fields.append({"name": "gated_flag", "type": "uint16", "versions": {"from": "5.12"}})
-    fields.append({"name": "old_flag", "type": "uint8", "versions": {"until": "5.11"}})
+    fields.append({"name": "gated_flag", "label": "Gated flag", "type": "uint16", "versions": {"from": "5.12"}})
+    fields.append({"name": "old_flag", "label": "Old flag", "type": "uint8", "versions": {"until": "5.11"}})
 
 
 def test_diff_names_fields_sizes_and_enum_members():

@@ -45,6 +45,14 @@ def test_yaml_syntax_error_names_the_line():
     (lambda d: d["protocol"].update(documented_versions=["5"]), "protocol.documented_versions[0]", "does not match"),
     (lambda d: robot_mode_fields(d)[0].update(colour="red"),
      "messages.robot_state.packages.robot_mode_data.fields[0]", "Additional properties"),
+    (lambda d: robot_mode_fields(d)[1].pop("label"),
+     "messages.robot_state.packages.robot_mode_data.fields[1]", "'label' is a required property"),
+    (lambda d: robot_mode_fields(d)[1].update(label="is_real_robot_connected"),
+     "messages.robot_state.packages.robot_mode_data.fields[1].label", "does not match"),
+    (lambda d: robot_mode_fields(d)[10].update(unit="furlong"),
+     "messages.robot_state.packages.robot_mode_data.fields[10].unit", "is not one of"),
+    (lambda d: d["framing"]["message_header"]["length"].pop("label"),
+     "framing.message_header.length", "'label' is a required property"),
 ])
 def test_schema_errors_name_the_yaml_path(edit, path, words):
     problems = problems_of(spec_with(edit))
@@ -66,7 +74,7 @@ def test_schema_errors_name_the_yaml_path(edit, path, words):
      "enums.value_type.tables[1].versions", "overlaps"),
     (lambda d: d["enums"]["control_mode"]["values"][0].update(versions={"from": "5.1", "until": "4.0"}),
      "enums.control_mode.values[0].versions", "starts after it ends"),
-    (lambda d: d["messages"]["robot_message"]["subtypes"]["text"]["fields"].append({"name": "more", "type": "int32"}),
+    (lambda d: d["messages"]["robot_message"]["subtypes"]["text"]["fields"].append({"name": "more", "label": "More", "type": "int32"}),
      "messages.robot_message.subtypes.text.fields[1]", "runs to the end"),
     (lambda d: d["messages"]["robot_state"]["packages"]["masterboard_data"]["fields"][17].update(present_if="nothing"),
      "messages.robot_state.packages.masterboard_data.fields[17].present_if", "must name an earlier"),
@@ -79,6 +87,12 @@ def test_schema_errors_name_the_yaml_path(edit, path, words):
      "messages.robot_message.subtypes.key.summary", "end with a field"),
     (lambda d: robot_mode_fields(d)[8].update(enum="joint_mode"),
      "messages.robot_state.packages.robot_mode_data.fields[8].enum", "do not fit the field's int8"),
+    (lambda d: robot_mode_fields(d)[1].update(unit="V"),
+     "messages.robot_state.packages.robot_mode_data.fields[1].unit", "a unit needs a number"),
+    (lambda d: robot_mode_fields(d)[8].update(unit="rad"),
+     "messages.robot_state.packages.robot_mode_data.fields[8].unit", "a unit needs a number"),
+    (lambda d: d["messages"]["robot_state"]["packages"]["masterboard_data"]["fields"][1].update(label="Inputs"),
+     "messages.robot_state.packages.masterboard_data.fields[1].label", "another label or unit"),
 ])
 def test_semantic_errors_name_the_yaml_path(edit, path, words):
     problems = problems_of(spec_with(edit))

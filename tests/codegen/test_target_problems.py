@@ -50,7 +50,7 @@ def test_two_layouts_that_set_the_version_are_a_planning_problem():
     def edit(data):
         data["messages"]["robot_message"]["subtypes"]["text"]["sets_version"] = {"major": "a", "minor": "b"}
         data["messages"]["robot_message"]["subtypes"]["text"]["fields"] = [
-            {"name": "a", "type": "uint8"}, {"name": "b", "type": "uint8"}]
+            {"name": "a", "label": "A", "type": "uint8"}, {"name": "b", "label": "B", "type": "uint8"}]
         data["messages"]["robot_message"]["subtypes"]["text"]["summary"] = "{a}"
 
     with pytest.raises(SpecError) as caught:

@@ -44,14 +44,14 @@ def edit(data: dict) -> None:
             v["versions"] = {"from": "5.1"}
     enums["joint_mode"]["values"].append({"name": "EMERGENCY_STOPPED", "value": 240, "versions": {"until": "5.0"}})
 
-    state["additional_info"]["fields"].append({"name": "gated_flag", "type": "uint16", "versions": {"from": "5.12"}})
-    state["singularity_info"]["fields"].append({"name": "late_flag", "type": "uint8", "versions": {"from": "5.25.1"}})
+    state["additional_info"]["fields"].append({"name": "gated_flag", "label": "Gated flag", "type": "uint16", "versions": {"from": "5.12"}})
+    state["singularity_info"]["fields"].append({"name": "late_flag", "label": "Late flag", "type": "uint8", "versions": {"from": "5.25.1"}})
     state["kinematics_info"]["versions"] = {"from": "3.0"}
     state["early_info"] = {
         "code": "EARLY_INFO", "doc": "A package type 5 of early controllers (a test layout).",
         "versions": {"until": "1.8"},
-        "fields": [{"name": "a", "type": "float64"}, {"name": "b", "type": "float64"}, {"name": "c", "type": "float64"},
-                   {"name": "d", "type": "uint32"}, {"name": "e", "type": "uint8"}],
+        "fields": [{"name": "a", "label": "A", "type": "float64"}, {"name": "b", "label": "B", "type": "float64"}, {"name": "c", "label": "C", "type": "float64"},
+                   {"name": "d", "label": "D", "type": "uint32"}, {"name": "e", "label": "E", "type": "uint8"}],
     }
     mb = state["masterboard_data"]["fields"]
     bits = mb[0]
@@ -65,7 +65,7 @@ def edit(data: dict) -> None:
     fields = version["fields"]
     at = next(i for i, f in enumerate(fields) if f["name"] == "bugfix_version")
     fields[at] = dict(fields[at], versions={"from": "3.3"})
-    fields.insert(at, {"name": "svn_revision", "type": "int32", "versions": {"until": "3.2"}})
+    fields.insert(at, {"name": "svn_revision", "label": "Svn revision", "type": "int32", "versions": {"until": "3.2"}})
 
 
 @pytest.fixture(scope="module")
@@ -211,7 +211,7 @@ def test_layout_sizes_tell_the_version_of_a_stream_that_did_not(variant, tmp_pat
     info = run_tshark(pcap, "-2", "-Y", "ur", "-T", "fields", "-e", "_ws.col.Info", plugin=plugin).split("\n")
     assert info[:2] == ["Robot state: NORMAL", "Robot state"], "the summary of the masterboard's 1.8 form"
     texts = shown(plugin, pcap)
-    assert "joint_mode: EMERGENCY_STOPPED (240)" in texts
+    assert "Joint mode: EMERGENCY_STOPPED (240)" in texts
     assert "Software version: up to 1.8 (from layout sizes)" in texts   # generated: [..] in the text view
     assert "Type: EARLY_INFO (5)" in texts
 
@@ -274,8 +274,8 @@ def test_enum_names_follow_the_version(variant, tmp_path):
         [version_message(5, 9, 0), robot_state(joint_data(240))],
     ])
     texts = shown(plugin, pcap)
-    assert texts.count("joint_mode: EMERGENCY_STOPPED (240)") == 6
-    assert texts.count("joint_mode: READY_FOR_POWER_OFF (240)") == 6
+    assert texts.count("Joint mode: EMERGENCY_STOPPED (240)") == 6
+    assert texts.count("Joint mode: READY_FOR_POWER_OFF (240)") == 6
     hits = run_tshark(pcap, "-Y", 'ur.joint_data.joint_mode == "READY_FOR_POWER_OFF"', "-T", "fields",
                       "-e", "tcp.stream", plugin=plugin).split()
     assert hits == ["0", "1"], "the filter matches the code, whatever a version calls it"

@@ -134,7 +134,25 @@ def test_a_capture_starting_mid_stream_resynchronises(tmp_path):
 def test_text_format_names_enums():
     (case,) = [c for c in all_cases() if c.name.endswith("robot_state_real_robot_5.11_pr137")]
     text = urwire("decode", "--format", "text", "-", stdin=case.data).stdout.decode()
-    assert "robot_mode=RUNNING" in text and "safety_mode=NORMAL" in text and len(text.splitlines()) == 1
+    assert "Robot mode data (Robot mode: RUNNING)" in text and "Masterboard data (Safety mode: NORMAL)" in text
+    assert len(text.splitlines()) == 1
+
+
+def test_text_views_read_as_labels_with_units():
+    """The text and tree views use the spec's labels and units, never its snake_case names."""
+    (case,) = [c for c in all_cases() if c.name.endswith("robot_state_real_robot_5.11_pr137")]
+    tree = urwire("decode", "--format", "tree", "-", stdin=case.data).stdout.decode()
+    lines = tree.splitlines()
+    assert lines[0] == "Robot state [14 packages]"
+    joint = lines.index("    Joint 0")
+    assert lines[joint + 1].startswith("      Actual joint position: ") and lines[joint + 1].endswith(" rad")
+    assert "      Motor temperature: 29.625 °C" in lines
+    assert "    Tool output voltage: 24 V" in lines
+    labels = [ln.split(":")[0].strip() for ln in lines if ":" in ln]
+    assert labels and not [label for label in labels if "_" in label]
+    version = [c for c in all_cases() if c.name == "version_message"][0]
+    text = urwire("decode", "--format", "text", "-", stdin=version.data).stdout.decode()
+    assert text.startswith("Version ") and "Project name: " in text and "project_name" not in text
 
 
 def test_output_to_a_closed_pipe_is_quiet(tmp_path):

@@ -32,3 +32,28 @@ def test_pip_install_gives_the_package_its_types_and_command(tmp_path):
     out = subprocess.run([sys.executable, str(target / "bin" / "urwire"), "--version"], env=env,
                          capture_output=True, text=True, check=True)
     assert out.stdout.startswith("urwire ")
+
+
+def test_every_attribute_carries_its_label_and_unit():
+    """dataclasses.field(metadata=...) holds the spec's label and unit, for code that shows
+    records to people; the canonical JSON keys stay the spec's names."""
+    import dataclasses
+
+    import urwire
+    from urwire import messages
+
+    meta = {f.name: f.metadata for f in dataclasses.fields(messages.Joint)}
+    assert meta["q_actual"] == {"label": "Actual joint position", "unit": "rad"}
+    assert meta["t_motor"] == {"label": "Motor temperature", "unit": "°C"}
+    assert meta["joint_mode"] == {"label": "Joint mode", "unit": None}
+    assert messages.Joint.LABEL == "Joint" and messages.RobotModeData.LABEL == "Robot mode data"
+    classes = [c for c in vars(messages).values() if isinstance(c, type) and dataclasses.is_dataclass(c)
+               and hasattr(c, "JSON")]
+    assert len(classes) > 20
+    for cls in classes:
+        for f in dataclasses.fields(cls):
+            if f.name in {n for n, _, _ in cls.JSON}:
+                assert f.metadata["label"] and "_" not in f.metadata["label"], (cls.__name__, f.name)
+    data = bytes.fromhex("0000001c140000000000000000fe030255520518000000000000002a")
+    (record,) = urwire.decode_stream(data)
+    assert "project_name" in urwire.to_dict(record) and "Project name" not in urwire.to_json_line(record)

@@ -9,7 +9,7 @@ import random
 import socket
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable, Sequence
+from typing import Iterable, Optional, Sequence
 
 import dpkt
 
@@ -73,13 +73,17 @@ def session_frames(segments: Iterable[Segment], port: int = 30001, client_port: 
 
 
 def write(path: Path, frames: Iterable[bytes], pcapng: bool = False, start: float = 1_700_000_000.0,
-          step: float = 0.1) -> Path:
-    """Write frames, 100 ms apart (the robot-state rate), as .pcap or .pcapng."""
+          step: float = 0.1, times: Optional[Sequence[float]] = None) -> Path:
+    """Write frames, 100 ms apart (the robot-state rate), or at `times` (seconds after `start`,
+    one per frame), as .pcap or .pcapng."""
     path = Path(path)
+    frames = list(frames)
+    if times is not None and len(times) != len(frames):
+        raise ValueError(f"{len(times)} times for {len(frames)} frames")
     with path.open("wb") as fh:
         writer = dpkt.pcapng.Writer(fh) if pcapng else dpkt.pcap.Writer(fh)
         for i, frame in enumerate(frames):
-            writer.writepkt(frame, ts=start + i * step)
+            writer.writepkt(frame, ts=start + (times[i] if times is not None else i * step))
     return path
 
 

@@ -18,7 +18,7 @@ local rt = S.walker_rt({ max_value_depth = 2, value_tables = { { high = 5008999,
 local vf = { item = "ur.v.item", type = "ur.v.type", code = "ur.v.code", count = "ur.v.length", rows = "ur.v.rows",
              cols = "ur.v.cols", row = "ur.v.row", int32 = "ur.v.int32", float32 = "ur.v.float32", bool = "ur.v.bool",
              string = "ur.v.string" }
-local L = { { k = "values", term = 10, path = "variables", vf = vf } }
+local L = { { k = "values", term = 10, path = "variables", label = "Variable", vf = vf } }
 
 local function run(raw, version)
     local tree = S.tree()
@@ -34,36 +34,36 @@ local tree, o, err = run(raw, 5009000)
 S.eq(err, nil, "no error")
 S.eq(o, #raw, "to the end")
 S.eq(S.dump(tree), S.lines(
-    "ur.v.item @0+5 (variables[0]: INT)",
+    "ur.v.item @0+5 (Variable 0: INT)",
     "  ur.v.type @0+1 = INT",
     "  ur.v.code @0+1",
     "  ur.v.int32 @1+4",
-    "ur.v.item @6+5 (variables[1]: STRING)",
+    "ur.v.item @6+5 (Variable 1: STRING)",
     "  ur.v.type @6+1 = STRING",
     "  ur.v.code @6+1",
     "  ur.v.length @7+2",
     "  ur.v.string @9+2 = hi",
-    "ur.v.item @12+9 (variables[2]: LIST)",
+    "ur.v.item @12+9 (Variable 2: LIST)",
     "  ur.v.type @12+1 = LIST",
     "  ur.v.code @12+1",
     "  ur.v.length @13+2",
-    "  ur.v.item @15+5 (variables[2][0]: INT)",
+    "  ur.v.item @15+5 (Item 0: INT)",
     "    ur.v.type @15+1 = INT",
     "    ur.v.code @15+1",
     "    ur.v.int32 @16+4",
-    "  ur.v.item @20+1 (variables[2][1]: NONE)",
+    "  ur.v.item @20+1 (Item 1: NONE)",
     "    ur.v.type @20+1 = NONE",
     "    ur.v.code @20+1",
-    "ur.v.item @22+7 (variables[3]: MATRIX)",
+    "ur.v.item @22+7 (Variable 3: MATRIX)",
     "  ur.v.type @22+1 = MATRIX",
     "  ur.v.code @22+1",
     "  ur.v.rows @23+2",
     "  ur.v.cols @25+2",
     "  ur.v.row @27+2 (Row 0)",
-    "    ur.v.item @27+1 (variables[3][0][0]: NONE)",
+    "    ur.v.item @27+1 (Column 0: NONE)",
     "      ur.v.type @27+1 = NONE",
     "      ur.v.code @27+1",
-    "    ur.v.item @28+1 (variables[3][0][1]: NONE)",
+    "    ur.v.item @28+1 (Column 1: NONE)",
     "      ur.v.type @28+1 = NONE",
     "      ur.v.code @28+1"), "tree")
 

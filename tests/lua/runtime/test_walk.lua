@@ -152,4 +152,24 @@ capped.items_begin(tree)
 S.eq(capped.walk(S.tvb(raw), tree, 0, #raw, S.st(raw), L_run, nil), 10, "past the item cap the fields are still walked")
 S.eq(S.dump(tree), S.lines("ur.r.a @0+2", "ur.r.b @2+1", "ur.r.c @3+4", "ur.r.d @7+1"), "four shown")
 S.eq(capped.items_hidden(), 2, "two counted")
+
+-- A float's unit follows its value ("Actual joint position: -0.42 rad"): Wireshark 4.0 shows no
+-- unit string of a float field, so the walker appends it; plain, narrow, array and switch reads.
+local L_units = {
+    { k = "scalar", f = "ur.p.q", n = 4, path = "q", signed = false, unit = " rad" },
+    { k = "scalar", f = "ur.p.t", n = 4, path = "t", signed = false, value = true, float = true, unit = " °C" },
+    { k = "array", f = "ur.p.d", n = 1, count = 2, path = "d", signed = false, unit = " m" },
+    { k = "scalar", f = "ur.p.sel", n = 1, path = "sel", signed = false, keep = "sel" },
+    { k = "switch", sel = "sel", path = "sw", default = { f = "ur.p.sw", n = 1 }, cases = { [3] = { f = "ur.p.sw_f", n = 4, unit = " V" } } },
+}
+raw = S.bytes(0x3f, 0xc0, 0, 0, 0x3f, 0xc0, 0, 0, 1, 2, 3, 0x3f, 0xc0, 0, 0)
+tree = S.tree()
+S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw), L_units, nil), #raw, "units")
+S.eq(S.dump(tree), S.lines(
+    "ur.p.q @0+4 ( rad)",
+    "ur.p.t @4+4 = 1.5 ( °C)",
+    "ur.p.d @8+1 ( m)",
+    "ur.p.d @9+1 ( m)",
+    "ur.p.sel @10+1",
+    "ur.p.sw_f @11+4 ( V)"), "each value followed by its unit")
 print("ok")

@@ -19,8 +19,9 @@ local function too_many(st, vt, path, at, items, o, e)
 end
 
 -- One typed value at o, under tree; vf holds the fields values are shown with, vt the
--- version's value types. Returns the offset after it, or nil and the canonical error text.
-local function walk_value(tvb, tree, o, e, st, vf, vt, path, depth)
+-- version's value types; label is what its item reads ("Variable 2", "Item 0"), path names it in
+-- errors ("variables[2][0]"). Returns the offset after it, or nil and the canonical error text.
+local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
     local raw = st.raw
     if o >= e then return nil, short(st, path .. ".type", o, 1, e) end
     local code = byte(raw, o + 1)
@@ -31,7 +32,7 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, path, depth)
     if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
     local start = o
     local item = add(tree, vf.item, tvb(o, 1))
-    item:set_text(path .. ": " .. kind.name)
+    item:set_text(label .. ": " .. kind.name)
     add_value(item, vf.type, tvb(o, 1), kind.name)
     add(item, vf.code, tvb(o, 1))
     o = o + 1
@@ -61,7 +62,7 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, path, depth)
         add(item, vf.count, tvb(o, kind.len))
         o = o + kind.len
         for i = 0, n - 1 do
-            o, err = walk_value(tvb, item, o, e, st, vf, vt, path .. "[" .. i .. "]", depth + 1)
+            o, err = walk_value(tvb, item, o, e, st, vf, vt, "Item " .. i, path .. "[" .. i .. "]", depth + 1)
             if not o then return nil, err end
         end
     elseif layout == "matrix" then
@@ -83,7 +84,8 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, path, depth)
             row:set_text(fmt("Row %d", r))
             local row_start = o
             for c = 0, cols - 1 do
-                o, err = walk_value(tvb, row, o, e, st, vf, vt, path .. "[" .. r .. "][" .. c .. "]", depth + 1)
+                o, err = walk_value(tvb, row, o, e, st, vf, vt, "Column " .. c, path .. "[" .. r .. "][" .. c .. "]",
+                                    depth + 1)
                 if not o then return nil, err end
             end
             row:set_len(o - row_start)
@@ -100,7 +102,7 @@ function rt.KIND.values(tvb, tree, o, e, st, d, pre)
     while o < e do
         local path = fmt("%s%s[%d]", pre or "", d.path, i)
         local err
-        o, err = walk_value(tvb, tree, o, e, st, d.vf, vt, path, 1)
+        o, err = walk_value(tvb, tree, o, e, st, d.vf, vt, fmt("%s %d", d.label, i), path, 1)
         if not o then return nil, err end
         if o >= e then return nil, short(st, path, o, 1, e) end
         local b = byte(st.raw, o + 1)

@@ -6,7 +6,8 @@
 -- and the canonical error text. values.lua adds KIND.values.
 -- A scalar descriptor may carry: `value` (its wire type is narrower than its field's, which
 -- another version's entry of the same name gives: the number is added explicitly; `float` when
--- it is a float), `tables` and `label` (its enum's names depend on the version).
+-- it is a float), `tables` and `label` (its enum's names depend on the version), `unit` (the
+-- text after a float's value, " rad": Wireshark 4.0 shows no unit string of a float field).
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
@@ -38,13 +39,19 @@ local function rename(item, label, tables, v, value)
 end
 
 -- One scalar into the tree: explicitly when its wire type is narrower than its field's, named
--- by the version when its enum needs it. Its item, and its number when it was read.
+-- by the version when its enum needs it, its unit after it. Its item, and its number when it
+-- was read.
 local function add_scalar(tree, range, o, st, d)
-    if not (d.value or d.tables or d.keep) then return add(tree, d.f, range), nil end
+    if not (d.value or d.tables or d.keep) then
+        local item = add(tree, d.f, range)
+        if d.unit then item:append_text(d.unit) end
+        return item, nil
+    end
     local v = number_at(range, st.raw, o, d)
     local item
     if d.value then item = add_value(tree, d.f, range, v) else item = add(tree, d.f, range) end
     if d.tables then rename(item, d.label, d.tables, st.version, v) end
+    if d.unit then item:append_text(d.unit) end
     return item, v
 end
 
@@ -77,9 +84,10 @@ end
 function KIND.array(tvb, tree, o, e, st, d, pre)
     local n, count = d.n, d.count
     if not (d.value or d.tables) and o + n * count <= e and room(count) then
-        local f = d.f
+        local f, unit = d.f, d.unit
         for _ = 1, count do
-            tree:add(f, tvb(o, n))
+            local item = tree:add(f, tvb(o, n))
+            if unit then item:append_text(unit) end
             o = o + n
         end
         return o
@@ -168,7 +176,8 @@ end
 function KIND.switch(tvb, tree, o, e, st, d, pre)
     local c = d.cases[kept[d.sel]] or d.default
     if o + c.n > e then return nil, short(st, (pre or "") .. d.path, o, c.n, e) end
-    add(tree, c.f, tvb(o, c.n))
+    local item = add(tree, c.f, tvb(o, c.n))
+    if c.unit then item:append_text(c.unit) end
     return o + c.n
 end
 
@@ -182,11 +191,12 @@ end
 -- Scalars added as they are (no explicit value, no names by version, not kept) that follow
 -- one another: one step, a run, with one bounds check and one count of tree items.
 function KIND.run(tvb, tree, o, e, st, d, pre)
-    local fields, sizes, count = d.fields, d.sizes, d.count
+    local fields, sizes, units, count = d.fields, d.sizes, d.units, d.count
     if o + d.size <= e and room(count) then
         for j = 1, count do
             local n = sizes[j]
-            tree:add(fields[j], tvb(o, n))
+            local item = tree:add(fields[j], tvb(o, n))
+            if units[j] then item:append_text(units[j]) end
             o = o + n
         end
         return o
@@ -209,11 +219,12 @@ local function steps(layout)
         local d = layout[i]
         if d.k == "scalar" and not (d.value or d.tables or d.keep) then
             if not run then
-                run = { k = "run", fields = {}, sizes = {}, scalars = {}, size = 0, count = 0 }
+                run = { k = "run", fields = {}, sizes = {}, units = {}, scalars = {}, size = 0, count = 0 }
                 out[#out + 1] = run
             end
             local j = run.count + 1
             run.count, run.fields[j], run.sizes[j], run.scalars[j] = j, d.f, d.n, d
+            run.units[j] = d.unit or false
             run.size = run.size + d.n
         else
             run = nil

@@ -14,6 +14,7 @@ from . import __version__, export, listen, plot, serve
 from .arguments import parse_version
 from .canonical import has_error, to_json_line
 from .human import line as human_line
+from .human import tree as human_tree
 from .reading import records_of
 from .spec import DEFAULT_VERSION, PORTS
 
@@ -46,8 +47,9 @@ def build_parser() -> argparse.ArgumentParser:
                           f"chooses each part's layout and the meaning of version-dependent codes, such as the "
                           f"value types of global variables (default: {default}, i.e. {default} and later, "
                           f"unless the layout sizes of a robot state tell the version)")
-    dec.add_argument("--format", choices=("json", "text"), default="json",
-                     help="json: canonical JSON Lines (default); text: one readable line per message")
+    dec.add_argument("--format", choices=("json", "text", "tree"), default="json",
+                     help="json: canonical JSON Lines (default); text: one readable line per message; "
+                          "tree: every field of every message on a line of its own, with its label and unit")
     dec.add_argument("--port", type=int, action="append", metavar="PORT",
                      help=f"robot-side TCP port(s) to decode in captures (default: {' '.join(map(str, PORTS))})")
     dec.add_argument("--no-progress", action="store_true", help="never show a progress bar")
@@ -81,7 +83,7 @@ def decode_command(args: argparse.Namespace) -> int:
         print(f"urwire: cannot read {args.file}: {exc.strerror or exc}", file=sys.stderr)
         return 2
     advance = _progress(size, args.no_progress)
-    render = to_json_line if args.format == "json" else human_line
+    render = {"json": to_json_line, "text": human_line, "tree": human_tree}[args.format]
     records = records_of(fh, args.version_hint, args.port or PORTS, advance)
     failed = False
     out = sys.stdout
