@@ -162,7 +162,7 @@ def test_capture_on_loopback_dissects_cleanly(tmp_path):
 
 
 def test_export_row_counts(tmp_path):
-    pytest.importorskip("pyarrow")
+    import pyarrow  # noqa: F401  (the parquet extra; requirements-dev.txt installs it)
     import pyarrow.parquet as pq
     from urwire.simulated import Controller
 
@@ -203,7 +203,7 @@ def test_export_csv_needs_nothing(tmp_path):
 
 
 def test_plot_writes_an_image(tmp_path):
-    pytest.importorskip("matplotlib")
+    import matplotlib  # noqa: F401  (the plot extra; requirements-dev.txt installs it)
     from urwire.simulated import Controller
 
     sim = Controller((5, 11, 0), 10)
@@ -215,3 +215,10 @@ def test_plot_writes_an_image(tmp_path):
     assert res.returncode == 0, res.stderr
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert "50 points, 6 lines" in res.stderr
+
+
+def test_plot_axis_names_the_field_as_the_spec_labels_it():
+    from urwire import messages, plot
+
+    assert plot.axis_title(messages.Joint, "q_actual") == "Actual joint position (rad)"
+    assert plot.axis_title(messages.Joint, "no_such_field") == "no_such_field"

@@ -3,7 +3,7 @@
 
 The x axis is the robot state's own clock (robot_mode_data's timestamp) when the message has
 one, else the message's position; the y axis shows the field's label and unit from the
-spec's metadata when the classes carry them, else the field's name. matplotlib is an optional
+spec (the generated classes keep them in their fields' metadata). matplotlib is an optional
 extra (`pip install urwire[plot]`). Hand-written; copied into generated/python/urwire/.
 """
 from __future__ import annotations
@@ -36,17 +36,11 @@ def kind_class(kind: str):
 
 
 def field_metadata(cls, name: str) -> dict:
-    """{'label', 'unit'} of a field, from the class's metadata when it has some; the label
-    falls back to the field's name and the unit to None."""
-    meta = {}
-    for source in ("FIELD_INFO", "FIELDS_INFO", "METADATA"):
-        table = getattr(cls, source, None)
-        if isinstance(table, dict) and isinstance(table.get(name), dict):
-            meta = table[name]
-            break
-    label = meta.get("label") or getattr(cls, "LABELS", {}).get(name) or name
-    unit = meta.get("unit") or getattr(cls, "UNITS", {}).get(name)
-    return {"label": label, "unit": unit}
+    """{'label', 'unit'} of a field: the spec's label and unit, which every generated class
+    keeps in its fields' metadata; the field's name when the class has no such field."""
+    field = getattr(cls, "__dataclass_fields__", {}).get(name)
+    meta = field.metadata if field is not None else {}
+    return {"label": meta.get("label") or name, "unit": meta.get("unit")}
 
 
 def axis_title(cls, name: str) -> str:
