@@ -28,32 +28,31 @@ _F32_TEXTS: dict = {}
 _F64_TEXTS: dict = {}
 
 
-def _remember(texts: dict, x: float, text: str) -> None:
-    if len(texts) >= _TEXTS_KEPT:
-        texts.clear()
-    texts[x] = text
-
-
 def f32_text(x: float) -> str:
     """Shortest %.{p}g (p = 1..9) that reads back as the same float32 (read as a double, then
     rounded to float32)."""
-    text = _F32_TEXTS.get(x) if type(x) is float else None
-    if text is None:
-        text = _f32_shortest(x)
-        if type(x) is float and x - x == 0.0 and x != 0.0:
-            _remember(_F32_TEXTS, x, text)
-    return text
+    if type(x) is float:
+        text = _F32_TEXTS.get(x)
+        if text is None:
+            text = _f32_shortest(x)
+            if x - x == 0.0 and x != 0.0:
+                if len(_F32_TEXTS) >= _TEXTS_KEPT:
+                    _F32_TEXTS.clear()
+                _F32_TEXTS[x] = text
+        return text
+    if isinstance(x, int):
+        return str(int(x))  # a switch field that decoded an integer case
+    return _f32_shortest(x)  # a float subclass: a NaN that keeps its bits
 
 
 def _f32_shortest(x: float) -> str:
     """f32_text, worked out.
 
     Apart from zero and powers of two, the decimals that read back as x lie symmetrically around
-    it, and %.{p-1}g is never nearer to x than %.{p}g: once p digits fail, fewer fail too. So
-    the search goes down from 8 digits, or from the digits %.8g shows when it ends in zeros
-    (a value typed in as a short decimal), and stops at the first length that fails."""
-    if type(x) is not float and isinstance(x, int):
-        return str(int(x))  # a switch field that decoded an integer case
+    it, and %.{p-1}g is never nearer to x than %.{p}g: once p digits fail, fewer fail too. Most
+    float32 values need 7 to 9 digits, so 7 is tried first: if it fails, 8 then 9; if it reads
+    back, shorter ones down to the first that fails, starting from the digits %.7g shows when it
+    ends in zeros (a value typed in as a short decimal)."""
     if x - x != 0.0:
         return _nonfinite(x)
     if x == 0.0:
@@ -61,11 +60,12 @@ def _f32_shortest(x: float) -> str:
     if abs(_frexp(x)[0]) == 0.5:
         return _f32_upwards(x)
     try:
-        text = "%.8g" % x
+        text = "%.7g" % x
         if _f32_unpack(_f32_pack(float(text)))[0] != x:
-            return "%.9g" % x
-        p = 8 if len(text) > 8 else _significant_digits(text)
-        if p < 8:
+            text = "%.8g" % x
+            return text if _f32_unpack(_f32_pack(float(text)))[0] == x else "%.9g" % x
+        p = 7 if len(text) > 7 else _significant_digits(text)
+        if p < 7:
             text = "%.*g" % (p, x)  # the same number, laid out for p digits
         while p > 1:
             shorter = "%.*g" % (p - 1, x)
@@ -102,16 +102,20 @@ def _significant_digits(text: str) -> int:
 
 def f64_text(x: float) -> str:
     """Shortest text that reads back as the same double, laid out as repr()."""
-    text = _F64_TEXTS.get(x) if type(x) is float else None
-    if text is None:
-        if isinstance(x, int):
-            return str(int(x))  # a switch field that decoded an integer case
-        if x - x != 0.0:
-            return _nonfinite(x)
-        text = repr(float(x))
-        if type(x) is float and x != 0.0:
-            _remember(_F64_TEXTS, x, text)
-    return text
+    if type(x) is float:
+        text = _F64_TEXTS.get(x)
+        if text is None:
+            if x - x != 0.0:
+                return _nonfinite(x)
+            text = repr(x)
+            if x != 0.0:
+                if len(_F64_TEXTS) >= _TEXTS_KEPT:
+                    _F64_TEXTS.clear()
+                _F64_TEXTS[x] = text
+        return text
+    if isinstance(x, int):
+        return str(int(x))  # a switch field that decoded an integer case
+    return f64_text(float(x))
 
 
 def _nonfinite(x: float) -> str:
