@@ -397,6 +397,20 @@ class ValueLayout:
     doc: str
     where: Where = NOWHERE
 
+    @property
+    def min_size(self) -> int:
+        """The fewest data bytes after the type byte: a string or LIST may be empty, a MATRIX
+        of no items is its two counts."""
+        if self.layout == "scalar":
+            return self.item.size
+        if self.layout == "array":
+            return self.item.size * self.count
+        if self.layout in ("string", "list"):
+            return self.length.size
+        if self.layout == "matrix":
+            return 2 * self.length.size
+        return 0
+
 
 # ---- messages -----------------------------------------------------------------------------
 
@@ -520,6 +534,12 @@ class Protocol:
     @property
     def value_type(self) -> Enum:
         return self.enums["value_type"]
+
+    def value_min_size(self, table: EnumTable) -> int:
+        """The fewest bytes one value of a value-type table takes: its type byte and the
+        smallest data. Every LIST or MATRIX item takes at least this much, so a count whose
+        items cannot fit in the bytes left is an error before any item is read."""
+        return self.value_type.scalar.size + min(self.value_layouts[v.name].min_size for v in table.values)
 
     def all_layouts(self) -> list[Layout]:
         out: list[Layout] = []

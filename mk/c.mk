@@ -58,8 +58,10 @@ ifneq ($(BENCH_C_BASE),)
 	@mkdir -p build/bench-base
 	git show $(BENCH_C_BASE):generated/c/urwire.h > build/bench-base/urwire.h
 	git show $(BENCH_C_BASE):generated/c/urwire.c > build/bench-base/urwire.c
+	# a library older than urwire_framer_learn is benchmarked without it
+	learn=$$(grep -q urwire_framer_learn build/bench-base/urwire.h || echo -DBENCH_C_WITHOUT_LEARN); \
 	for opt in $(BENCH_C_LEVELS); do \
-		$(CC) -std=c99 $$opt -Ibuild/bench-base -o build/bench_c-base$$opt tests/bench/bench_c.c \
+		$(CC) -std=c99 $$opt $$learn -Ibuild/bench-base -o build/bench_c-base$$opt tests/bench/bench_c.c \
 			build/bench-base/urwire.c || exit 1; \
 	done
 endif

@@ -18,6 +18,7 @@ test-lua:
 	$(PYTEST) -q tests/lua
 
 ## bench-lua: tshark with the dissector against tshark with `--disable-protocol ur`, same file
+## (BENCH_LUA_PLUGIN=path measures another build of the dissector the same way)
 bench-lua:
 	$(PYTHON) tests/bench/bench_lua.py
 

@@ -130,9 +130,25 @@ class Span:
 
 @dataclass
 class Run:
+    """The span table of fixed runs (urwire__short_in_run names the field a short run stops in)."""
+
     table: str
-    size: int
     spans: list[Span]
+
+
+@dataclass
+class Decoder:
+    """One decoder of a struct: the layout's, which tests its version conditions, or that of one
+    form of a layout with several (urwire__decode_<name>_<k>), its version conditions resolved
+    when generating (flag conditions stay; the fields the form lacks are zeroed)."""
+
+    name: str             # urwire__decode_masterboard_data_2
+    indent: str           # aligns a wrapped parameter list under the name
+    doc: str
+    steps: list[Step]
+    needs_p: bool
+    index: bool
+    can_fail: bool
 
 
 @dataclass
@@ -144,17 +160,16 @@ class CStruct:
     role: str             # package | subtype | item
     runs: list[Run] = field(default_factory=list)
     decode: list[Step] = field(default_factory=list)
+    decoders: list[Decoder] = field(default_factory=list)   # the layout's, or one per form
     encode: list[Step] = field(default_factory=list)
     visit: list[Step] = field(default_factory=list)
     fixed_item: bool = False        # laid out in its parent's fixed run: read/write/visit helpers
     item_members: list[dict] = field(default_factory=list)
     item_size: int = 0
     needs_p: bool = False
-    decode_index: bool = False
     encode_index: bool = False
     visit_index: bool = False
     item_index: bool = False
-    can_fail: bool = True
     bitsets: list = field(default_factory=list)
     to_end_item: bool = False       # items of a to_end group: public iteration function
     code: Optional[int] = None
@@ -165,9 +180,16 @@ class CStruct:
         """Spaces that align a wrapped parameter list under `static <ret> urwire__<verb>_<name>(`."""
         return " " * len(f"static {ret} urwire__{verb}_{self.name}(")
 
-    @property
-    def decode_indent(self) -> str:
-        return self.indent("decode", "inline bool")
+    def decoder(self, suffix: str, doc: str, steps: list[Step]) -> Decoder:
+        name = f"urwire__decode_{self.name}{suffix}"
+        return Decoder(name, " " * len(f"static inline bool {name}("), doc, steps, needs_p(steps),
+                       uses_index(steps), can_fail(steps))
+
+    def decoder_of(self, forms: list[plan.Variant], v: plan.Variant) -> str:
+        """The decoder that reads the form v of this struct's layout (whose forms are `forms`)."""
+        if len(self.decoders) == 1:
+            return self.decoders[0].name
+        return self.decoders[next(k for k, f in enumerate(forms) if f is v)].name
 
     @property
     def encode_indent(self) -> str:
@@ -192,7 +214,8 @@ class _Builder:
 
     # ---- one struct ----
 
-    def build(self, layout: plan.LayoutPlan, name: str, ctype: str, role: str, doc: list[str]) -> CStruct:
+    def build(self, layout: plan.LayoutPlan, name: str, ctype: str, role: str, doc: list[str],
+              forms: Optional[list[plan.Variant]] = None) -> CStruct:
         struct = layout.struct
         for f in struct.fields:
             if isinstance(f, ir.GroupField) and id(f) not in self.items:
@@ -221,6 +244,12 @@ class _Builder:
         if self.repeated:
             cs.decode.insert(0, Step("absent", dict(zero=[self.zero(self.public[n]) for n in self.repeated])))
         cs.visit = self.visit_steps(struct)
+        if len(forms or []) > 1:
+            # One decoder per form: the form is chosen first, so no version is tested on the way.
+            cs.runs = []
+            cs.decoders = [self.form_decoder(cs, struct, v, k) for k, v in enumerate(forms)]
+        else:
+            cs.decoders = [cs.decoder("", inline(*doc), cs.decode)]
         fixed = role == "item" and any(it.layout is layout and it.fixed for it in self.plan.items)
         if fixed:
             # Read and written inside its parent's checked run.
@@ -230,13 +259,27 @@ class _Builder:
             cs.item_index = any(m["kind"] != "scalar" for m in cs.item_members)
         elif role == "item":
             cs.to_end_item = True
-        cs.decode_index = uses_index(cs.decode)
         cs.encode_index = uses_index(cs.encode)
         cs.visit_index = uses_index(cs.visit)
         cs.needs_p = needs_p(cs.decode)
-        cs.can_fail = can_fail(cs.decode)
         self.structs.append(cs)
         return cs
+
+    def form_decoder(self, cs: CStruct, struct: ir.Struct, v: plan.Variant, k: int) -> Decoder:
+        """The decoder of the form v of a layout (its k-th): v.plan, which has no version
+        conditions; the members of the layout's other forms are zeroed first."""
+        layout_repeated, self.repeated = self.repeated, []   # a form has one entry per name
+        steps, _ = self.steps(cs, v.plan.steps, f"_{k}")
+        self.repeated = layout_repeated
+        absent = [self.zero(f) for f in struct.public_fields if not v.plan.struct.named(f.name)]
+        if absent:
+            steps.insert(0, Step("absent", dict(zero=absent)))
+        sizes = " or ".join(map(str, sorted(v.sizes))) if v.sizes is not None else f"at least {v.min_size}"
+        return cs.decoder(f"_{k}", f"{cs.name} as {v.describe()} sends it ({sizes} bytes).", steps)
+
+    def item_of(self, f: ir.GroupField) -> CStruct:
+        """The struct of a group's items (a form's copy of a group has the same items)."""
+        return self.items.get(id(f)) or next(c for c in self.items.values() if c.name == f.item.name)
 
     def check_repeated(self, struct: ir.Struct) -> None:
         for name in self.repeated:
@@ -311,9 +354,22 @@ class _Builder:
         return dict(kind="items", name=f.name, offset=m.offset, count=f.count, stride=m.item.layout.fixed_size,
                     item=f.item.name)
 
-    def run_steps(self, cs: CStruct, run: plan.FixedRun) -> tuple[Step, Step]:
-        table = f"urwire__{cs.name}_run{run.index}"
-        cs.runs.append(Run(table, run.size, [Span(leaf.path, leaf.offset, leaf.scalar.size) for leaf in run.leaves]))
+    def run_table(self, cs: CStruct, spans: list[Span], name: str) -> str:
+        """The span table of a run. A table whose first spans are the run's serves it too (the
+        forms of a layout often only add fields at the end): the first field that does not fit
+        always lies within the run."""
+        for r in cs.runs:
+            if r.spans[:len(spans)] == spans:
+                return r.table
+            if spans[:len(r.spans)] == r.spans:
+                r.spans = spans
+                return r.table
+        cs.runs.append(Run(name, spans))
+        return name
+
+    def run_steps(self, cs: CStruct, run: plan.FixedRun, suffix: str) -> tuple[Step, Step]:
+        table = self.run_table(cs, [Span(leaf.path, leaf.offset, leaf.scalar.size) for leaf in run.leaves],
+                               f"urwire__{cs.name}{suffix}_run{run.index}")
         members = [self.run_member(m) for m in run.members]
         loops = any(m["kind"] != "scalar" for m in members)
         return (Step("run", dict(table=table, size=run.size, loops=loops, members=members)),
@@ -325,14 +381,15 @@ class _Builder:
 
     # ---- decode and encode steps ----
 
-    def steps(self, cs: CStruct, steps: list[plan.Step]) -> tuple[list[Step], list[Step]]:
+    def steps(self, cs: CStruct, steps: list[plan.Step], suffix: str = "") -> tuple[list[Step], list[Step]]:
+        """The decode and encode steps of a plan; `suffix` names the run tables of a form's decoder."""
         dec: list[Step] = []
         enc: list[Step] = []
         for step in steps:
             if isinstance(step, plan.FixedRun):
-                d, e = self.run_steps(cs, step)
+                d, e = self.run_steps(cs, step, suffix)
             elif isinstance(step, plan.CondGroup):
-                inner_d, inner_e = self.steps(cs, step.steps)
+                inner_d, inner_e = self.steps(cs, step.steps, suffix)
                 # A name with entries under other conditions is cleared up front instead, so
                 # that this branch never clears what another entry of the name read.
                 zero = [self.zero(g) for g in step.fields if g.name not in self.repeated]
@@ -366,7 +423,7 @@ class _Builder:
                         default=dict(size=d.size, reader=READERS[d.name], writer=WRITERS[d.name], member=d.name))
             return Step("switch", data), Step("switch", data)
         assert isinstance(f, ir.GroupField)
-        item = self.items[id(f)]
+        item = self.item_of(f)
         return (Step("group_to_end", dict(name=f.name, item=item.name, ctype=item.ctype)),
                 Step("seq", dict(name=f.name)))
 
@@ -472,7 +529,7 @@ def value_views(p: ir.Protocol) -> dict:
                                 layout=VALUE_LAYOUTS[lay.layout], item=item,
                                 count=lay.count if lay.layout == "array" else 1))
         tables.append(dict(tag=f"urwire__values_{c_table_suffix(t).lower()}", versions=t.versions.describe(),
-                           entries=entries, range=range_view(t.versions)))
+                           entries=entries, range=range_view(t.versions), min_size=p.value_min_size(t)))
     if problems:
         raise SpecError(p.source, problems)
     arrays = [lay.count for lay in p.value_layouts.values() if lay.layout == "array"]
@@ -563,6 +620,7 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     kinds = []
     packages: list[CStruct] = []
     package_forms: dict = {}
+    package_decoders: list[dict] = []
     layout_structs: dict[int, CStruct] = {}
     for mp in protocol_plan.messages:
         m = mp.message
@@ -571,7 +629,8 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
                 pk = c.layout
                 if pk.code.value >= MASK_BITS:
                     b.problems.append(pk.where.problem("c target: package codes above 31 do not fit the present bit mask"))
-                cs = b.build(c.plan, pk.name, f"urwire_{pk.name}", "package", comment(pk.doc, pk.field_note))
+                cs = b.build(c.plan, pk.name, f"urwire_{pk.name}", "package", comment(pk.doc, pk.field_note),
+                             mp.forms_of(pk))
                 cs.code = pk.code.value
                 cs.code_const = c_member_const(m.package_type, pk.code)
                 cs.kind_const = f"URWIRE_LAYOUT_{pk.name.upper()}"
@@ -583,6 +642,7 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
             package_forms = axis.table("urwire__package", "sub-package type", mp, m.package_type,
                                        {id(c.layout): layout_structs[id(c.layout)].kind_const for c in mp.layouts},
                                        first_sizes=True)
+            package_decoders = decoder_views(mp, package_forms, layout_structs)
             kinds.append(dict(const=f"URWIRE_KIND_{m.name.upper()}", doc=inline(m.doc)))
             messages.append(dict(kind="packages", name=m.name, code=m.code.value, type_index=len(messages),
                                  code_const=c_member_const(p.message_type_enum, m.code),
@@ -622,8 +682,25 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     vst = layout_structs[id(vs.layout)]
     vmsg = next(m for m in messages if m["code"] == vs.message_code)
     return dict(structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
+                package_decoders=package_decoders,
                 segment_starts=[version_view(v) for v in axis.starts], form_sizes=axis.size_slots,
                 framing=framing(p, lists[0], vst, vmsg, vs), known_types=known_types(p))
+
+
+def decoder_views(mp: plan.MessagePlan, table: dict, structs: dict[int, CStruct]) -> list[dict]:
+    """Per sub-package code, the decoder of each of its forms, by the form's number in the form
+    list plus one: what urwire__decode_member and urwire__decode_package switch on. A code whose
+    forms all read through one decoder needs no switch on the form."""
+    codes = []
+    for c, variants in zip(table["codes"], mp.variants.values()):
+        forms = []
+        for n, v in enumerate(variants):
+            cs = structs[id(v.layout)]
+            forms.append(dict(number=c["first"] + n + 1, versions=v.describe(), layout=cs.kind_const, member=cs.name,
+                              decoder=cs.decoder_of(mp.forms_of(v.layout), v)))
+        one = len({f["decoder"] for f in forms}) == 1
+        codes.append(dict(index=c["index"], kind="one" if one else "forms", forms=forms))
+    return codes
 
 
 def framing(p: ir.Protocol, packages: dict, vst: CStruct, vmsg: dict, vs: plan.VersionSource) -> dict:

@@ -26,7 +26,7 @@ OUT = "lua/urwire.lua"
 # The hand-written runtime, in the order it is joined. Each file is a chunk that receives
 # (spec, rt): `spec` is the generated data, `rt` what earlier runtime files export.
 RUNTIME = ("declare.lua", "bytes.lua", "versions.lua", "items.lua", "walk.lua", "values.lua", "info.lua",
-           "messages.lua", "carry.lua", "stream.lua", "framing.lua", "register.lua")
+           "messages.lua", "wanted.lua", "carry.lua", "stream.lua", "framing.lua", "register.lua")
 
 # The most tree items one message shows in Wireshark (runtime/items.lua); an expert note says
 # how many more it holds. Wireshark itself stops a packet at a million items.
@@ -471,7 +471,7 @@ class _Builder:
                                   count=lay.count if lay.layout == "array" else 1,
                                   length=lay.length.size if lay.length else 0))
             tables.append(dict(low=version_number(t.versions.low), high=version_number(t.versions.high),
-                               versions=t.versions.describe(), kinds=kinds))
+                               versions=t.versions.describe(), kinds=kinds, min_size=self.p.value_min_size(t)))
         return tables
 
     def constants(self) -> dict:

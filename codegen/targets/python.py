@@ -428,7 +428,7 @@ def enum_views(p: ir.Protocol) -> list[dict]:
 
 
 def value_kind_views(p: ir.Protocol) -> list[dict]:
-    """Per value-type table: code -> (name, layout, struct format, is bool)."""
+    """Per value-type table: code -> (name, layout, struct format, is bool), and the fewest bytes a value takes."""
     out = []
     for t in p.value_type.tables:
         kinds = []
@@ -445,7 +445,7 @@ def value_kind_views(p: ir.Protocol) -> list[dict]:
             kinds.append(dict(code=v.value, name=v.name, layout=lay.layout, fmt=fmt,
                               is_bool=bool(lay.item and lay.item.is_bool and lay.layout == "scalar")))
         out.append(dict(low=t.versions.low, high=t.versions.high, versions=t.versions.describe(), kinds=kinds,
-                        cls=py_table_class(p.value_type, t)))
+                        min_size=p.value_min_size(t), cls=py_table_class(p.value_type, t)))
     return out
 
 

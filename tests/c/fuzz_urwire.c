@@ -3,7 +3,8 @@
  * Input: one control byte, then a stream. The control byte picks the software version
  * (value-type table), the chunk size fed to the framer, and now and then a small framer
  * buffer (so that the too-big-for-buffer path runs). Every framed message must re-encode to
- * its exact bytes; every view handed out must lie inside the input (ASan checks each byte
+ * its exact bytes; a twin framer, handed back every message it frames decoded
+ * (urwire_framer_learn), must frame the same messages in the same versions; every view handed out must lie inside the input (ASan checks each byte
  * we touch); the JSON text writer of the CLI runs on every string.
  *
  *     make fuzz FUZZ_SECONDS=600          # longer runs; crashes land in build/fuzz/crashes/
@@ -16,6 +17,7 @@
 #include "urwire.h"
 
 static uint8_t framer_buffer[URWIRE_FRAMER_MIN_BUFFER];
+static uint8_t twin_buffer[URWIRE_FRAMER_MIN_BUFFER];
 static uint8_t encoded[URWIRE_MAX_MESSAGE_LENGTH + 64];
 static FILE *sink;
 static volatile unsigned touched;
@@ -57,6 +59,23 @@ static void check_error_text(const urwire_error *e)
         abort();
 }
 
+static bool same_version(urwire_sw_version a, urwire_sw_version b)
+{
+    return a.major == b.major && a.minor == b.minor && a.bugfix == b.bugfix && a.assumed == b.assumed;
+}
+
+/* The twin framer takes each message it frames, decoded one way or the other, back. */
+static void hand_back(urwire_framer *twin, const urwire_frame *frame, size_t nth)
+{
+    urwire_message m;
+    urwire_robot_state state;
+    if (nth % 2)
+        urwire_decode_robot_state_message(frame->bytes, frame->length, frame->version, &m, &state);
+    else
+        urwire_decode_message(frame->bytes, frame->length, frame->version, &m);
+    urwire_framer_learn(twin, &m);
+}
+
 /* Decode, visit, re-encode; `framed` when the length field is the true length. */
 static void check_message(const uint8_t *bytes, size_t len, urwire_sw_version version, bool framed)
 {
@@ -79,6 +98,8 @@ static void check_message(const uint8_t *bytes, size_t len, urwire_sw_version ve
         if (ok2 != !urwire_message_has_error(&m) || state2.present != state.present ||
             state2.malformed != state.malformed || m2.failed != m.failed || m2.packages.count != m.packages.count)
             abort();
+        if (m2.implied != m.implied || !same_version(m2.implied_version, m.implied_version))
+            abort();  /* either decoding tells the framer the same (urwire_framer_learn) */
         seq = m.packages;
         while (urwire_next_package(&seq, &pkg)) {
             if (pkg.failed)
@@ -103,11 +124,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static const urwire_sw_version versions[4] = {URWIRE_DEFAULT_VERSION_INIT, {3, 2, 0, false}, {5, 0, 0, false},
                                                   {5, 12, 0, false}};
-    urwire_framer fr;
-    urwire_frame frame;
+    urwire_framer fr, twin;
+    urwire_frame frame, twin_frame;
     urwire_frame_kind kind = URWIRE_FRAME_NEED_MORE;
     uint8_t control;
-    size_t chunk, off = 0, cap;
+    size_t chunk, off = 0, cap, took, nth = 0;
     if (!sink)
         sink = fopen("/dev/null", "w");
     if (size == 0)
@@ -120,12 +141,27 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     chunk = (1 + (size_t)((control >> 2) & 31) * 13) * (1 + size / 16384);
     cap = (control & 0x80) ? 64 + (size_t)(control & 0x7c) : sizeof framer_buffer;
     urwire_framer_init(&fr, framer_buffer, cap, versions[control & 3]);
+    urwire_framer_init(&twin, twin_buffer, cap, versions[control & 3]);
     while (kind != URWIRE_FRAME_END) {
-        if (off < size)
-            off += urwire_framer_feed(&fr, data + off, chunk < size - off ? chunk : size - off);
-        else
+        if (off < size) {
+            took = urwire_framer_feed(&fr, data + off, chunk < size - off ? chunk : size - off);
+            if (urwire_framer_feed(&twin, data + off, chunk < size - off ? chunk : size - off) != took)
+                abort();
+            off += took;
+        } else {
             urwire_framer_finish(&fr);
-        while ((kind = urwire_framer_next(&fr, &frame)) == URWIRE_FRAME_MESSAGE || kind == URWIRE_FRAME_FAULT) {
+            urwire_framer_finish(&twin);
+        }
+        for (;;) {
+            kind = urwire_framer_next(&fr, &frame);
+            if (urwire_framer_next(&twin, &twin_frame) != kind)
+                abort();
+            if (kind != URWIRE_FRAME_MESSAGE && kind != URWIRE_FRAME_FAULT)
+                break;
+            if (twin_frame.offset != frame.offset || !same_version(twin_frame.version, frame.version))
+                abort();
+            if (kind == URWIRE_FRAME_MESSAGE)
+                hand_back(&twin, &twin_frame, nth++);
             if (kind == URWIRE_FRAME_FAULT) {
                 check_error_text(&frame.fault);
                 urwire_visit_fault(&frame.fault, &visitor);

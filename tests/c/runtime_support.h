@@ -60,8 +60,8 @@ static const urwire__versions urwire__value_ranges[] = {
 };
 
 static const urwire__value_table urwire__value_tables[] = {
-    {urwire__values_old, URWIRE__COUNT(urwire__values_old)},
-    {urwire__values_new, URWIRE__COUNT(urwire__values_new)},
+    {urwire__values_old, URWIRE__COUNT(urwire__values_old), 1},
+    {urwire__values_new, URWIRE__COUNT(urwire__values_new), 1},
 };
 
 /* A layout of one scalar, as the generator writes layouts (struct as void *). */
@@ -139,10 +139,11 @@ static const uint32_t urwire__package_first_sizes[] = {
     URWIRE__NONE, 4u,            /* from 3.3.0 */
 };
 
-static inline bool urwire__decode_package(urwire_package_layout layout, const uint8_t *msg, size_t *at, size_t end,
+/* Type 1 in the form `form` (its number in urwire__package_form_list plus one). */
+static inline bool urwire__decode_package(uint8_t form, const uint8_t *msg, size_t *at, size_t end,
                                           const urwire__ver *ver, void *into, urwire_error *err)
 {
-    if (layout == URWIRE_LAYOUT_TALLY)
+    if (urwire__package_form_list[form - 1].layout == URWIRE_LAYOUT_TALLY)
         return urwire__decode_tally(msg, at, end, ver, into, err);
     return urwire__decode_counter(msg, at, end, ver, into, err);
 }

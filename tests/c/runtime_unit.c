@@ -162,6 +162,10 @@ static void error_texts(void)
     CHECK(text_is(&e, "package at offset 5: length 4 is below 5"));
     urwire__fail(&e, URWIRE_E_LENGTH_HIGH, 0, "", 1048577, 0);
     CHECK(text_is(&e, "length 1048577 is above 1048576"));
+    urwire__fail(&e, URWIRE_E_TOO_MANY_ITEMS, 17, "variables[0]", 32767, 5);
+    CHECK(text_is(&e, "variables[0] at offset 17: 32767 items need more than the 5 bytes left"));
+    urwire__fail(&e, URWIRE_E_EMPTY_ROWS, 17, "variables[0]", 32767, 0);
+    CHECK(text_is(&e, "variables[0] at offset 17: 32767 rows of 0 columns"));
     urwire__fail(&e, URWIRE_E_TOO_LONG, 0, "title", 300, 255);
     CHECK(text_is(&e, "title: 300 bytes do not fit the length prefix (max 255)"));
     CHECK(strcmp(urwire_status_name(URWIRE_E_TOO_DEEP), "URWIRE_E_TOO_DEEP") == 0);
@@ -212,6 +216,11 @@ static void values(void)
     };
     static const uint8_t deep[] = {17, 0, 1, 17, 0, 1, 17, 0, 1, 17, 0, 0, '\n'};
     static const uint8_t old_list[] = {17, '\n'};  /* 17 is not a type up to 3.2 */
+    static const uint8_t long_list[] = {17, 0, 4, 0, 0, '\n'};            /* 4 items, 3 bytes left */
+    static const uint8_t empty_rows[] = {18, 0x7f, 0xff, 0, 0, '\n'};     /* 32767 rows of no columns */
+    static const uint8_t no_rows[] = {18, 0, 0, 0x7f, 0xff, '\n'};        /* columns but no rows: legal */
+    static const uint8_t big_matrix[] = {18, 0, 2, 0, 3, 0, 0, 0, '\n'};  /* 6 items, 4 bytes left */
+    static const uint8_t fitting[] = {17, 0, 3, 0, 0, '\n', '\n'};         /* 3 NONE, terminator, '\n' */
     urwire_sw_version v59 = {5, 9, 0, false}, v32 = {3, 2, 0, false};
     urwire_seq seq, items;
     urwire_value val, item;
@@ -236,6 +245,24 @@ static void values(void)
     at = 0;
     CHECK(!urwire__read_values(good, &at, 4, v59, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0] at offset 1: needs 4 bytes, 3 left"));
+    /* Counts are weighed against the bytes left, one byte a value at the least (NONE). */
+    at = 0;
+    CHECK(!urwire__read_values(long_list, &at, sizeof long_list, v59, '\n', "values", &seq, &e));
+    CHECK(e.status == URWIRE_E_TOO_MANY_ITEMS);
+    CHECK(text_is(&e, "values[0] at offset 1: 4 items need more than the 3 bytes left"));
+    at = 0;
+    CHECK(!urwire__read_values(empty_rows, &at, sizeof empty_rows, v59, '\n', "values", &seq, &e));
+    CHECK(text_is(&e, "values[0] at offset 1: 32767 rows of 0 columns"));
+    at = 0;
+    CHECK(urwire__read_values(no_rows, &at, sizeof no_rows, v59, '\n', "values", &seq, &e));
+    CHECK(urwire_next_value(&seq, &val) && val.rows == 0 && val.cols == 32767 && val.items.count == 0);
+    at = 0;
+    CHECK(!urwire__read_values(big_matrix, &at, sizeof big_matrix, v59, '\n', "values", &seq, &e));
+    CHECK(text_is(&e, "values[0] at offset 1: 6 items need more than the 4 bytes left"));
+    /* Exactly as many bytes as items is not refused by the count: the items then decide. */
+    at = 0;
+    CHECK(!urwire__read_values(fitting, &at, sizeof fitting, v59, '\n', "values", &seq, &e));
+    CHECK(text_is(&e, "values[0][2].type at offset 5: unknown value type 10"));
 }
 
 static void puts_and_lengths(void)
@@ -375,6 +402,51 @@ static void implied_version(void)
     CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.version.major == 5 && !fr.version.assumed);
 }
 
+/* Handed the robot state it framed, decoded in its frame's version (urwire_framer_learn), the
+ * framer takes the version its sizes show from that decoding and walks nothing itself; any
+ * other message leaves the walk to the framer. */
+static void learning_from_the_decoded_message(void)
+{
+    static uint8_t buf[64];
+    uint8_t stream[3 * sizeof old_state], copy[sizeof old_state];
+    urwire_framer f;
+    urwire_frame fr;
+    urwire_message m;
+    memcpy(stream, old_state, sizeof old_state);
+    memcpy(stream + sizeof old_state, old_state, sizeof old_state);
+    memcpy(stream + 2 * sizeof old_state, old_state, sizeof old_state);
+    urwire_framer_init(&f, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
+    CHECK(urwire_framer_feed(&f, stream, sizeof stream) == sizeof stream);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    CHECK(urwire_decode_message(fr.bytes, fr.length, fr.version, &m) && m.implied);
+    urwire_framer_learn(&f, &m);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    CHECK(fr.version.major == 3 && fr.version.minor == 2 && fr.version.bugfix == 999 && fr.version.assumed);
+    /* What the framer learns is the decoding's word: told no version, it keeps its own. */
+    urwire_framer_init(&f, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
+    CHECK(urwire_framer_feed(&f, stream, sizeof stream) == sizeof stream);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    CHECK(urwire_decode_message(fr.bytes, fr.length, fr.version, &m) && m.implied);
+    m.implied = false;
+    urwire_framer_learn(&f, &m);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.version.major == 5 && fr.version.minor == 9);
+    /* The frame decoded in another version, or the same bytes elsewhere, are not that frame:
+     * the framer walks it. */
+    CHECK(urwire_decode_message(fr.bytes, fr.length, (urwire_sw_version){5, 9, 0, false}, &m) && !m.implied);
+    urwire_framer_learn(&f, &m);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    CHECK(fr.version.major == 3 && fr.version.minor == 2 && fr.version.bugfix == 999 && fr.version.assumed);
+    urwire_framer_init(&f, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
+    CHECK(urwire_framer_feed(&f, stream, sizeof stream) == sizeof stream);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    memcpy(copy, fr.bytes, fr.length);
+    CHECK(urwire_decode_message(copy, fr.length, fr.version, &m) && m.implied);
+    m.implied = false;
+    urwire_framer_learn(&f, &m);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE);
+    CHECK(fr.version.major == 3 && fr.version.minor == 2 && fr.version.bugfix == 999 && fr.version.assumed);
+}
+
 int main(void)
 {
     loads_and_stores();
@@ -387,6 +459,7 @@ int main(void)
     messages();
     framer();
     implied_version();
+    learning_from_the_decoded_message();
     if (failures)
         return 1;
     printf("all runtime checks passed\n");

@@ -1,6 +1,7 @@
 """Hostile global-variable values, C against Python: nesting at and past the bound
 (protocol.max_value_depth), counts far beyond the bytes, negative counts, and a matrix with
-zero columns but many rows. Both must agree, and the C build runs under the sanitizers."""
+zero columns but many rows. Both must agree, and the C build runs under the sanitizers; what
+they print stays in proportion to the bytes."""
 from __future__ import annotations
 
 import struct
@@ -8,6 +9,7 @@ import struct
 import pytest
 
 from tests.c.harness_c import parse_lines, python_records, run_cli
+from tests.tools import amplify
 
 LIST, MATRIX, INT, NONE = 17, 18, 15, 0  # the 5.9 codes
 
@@ -57,3 +59,12 @@ def test_the_depth_bound_is_the_specs():
     ok, _ = python_records(update(nested(bound - 1)), None)
     deep, _ = python_records(update(nested(bound)), None)
     assert "error" not in ok[0] and f"nesting deeper than {bound}" in deep[0]["error"]
+
+
+def test_counts_past_their_bytes_print_in_proportion_to_them(fast):
+    """Matrices of 32767 empty rows, five bytes each: errors, not millions of rows."""
+    data = amplify.hostile_stream()
+    cap = amplify.OUTPUT_PER_INPUT * len(data)
+    hostile = amplify.run([str(fast.cli), "-"], data, cap=cap)
+    assert hostile.printed <= cap
+    assert hostile.code == 1

@@ -61,3 +61,20 @@ def test_a_gated_field_is_read_only_from_its_version(tmp_path):
             result = subprocess.run([str(driver), "roundtrip", str(tmp_path / "m.bin"), hint], capture_output=True,
                                     text=True)
             assert result.returncode == 0 and result.stdout.startswith("messages 1 packages 1"), result.stdout
+
+
+def test_a_layout_of_several_forms_has_a_decoder_per_form_that_tests_no_version():
+    """The form is chosen first (runtime/forms.c), so the decoder of each form reads its fields
+    straight: every sub-package layout with several forms (masterboard data's five...) has one
+    decoder per form, none of which compares the version, and no decoder of the whole layout."""
+    source = (ROOT / "generated" / "c" / "urwire.c").read_text()
+    robot_state = plan(compile_text(DEFAULT_SPEC.read_text(encoding="utf-8"))).message("robot_state")
+    several = [c.layout for c in robot_state.layouts if len(robot_state.forms_of(c.layout)) > 1]
+    assert "masterboard_data" in [lay.name for lay in several]
+    for lay in several:
+        assert f"bool urwire__decode_{lay.name}(" not in source
+        for k in range(len(robot_state.forms_of(lay))):
+            start = source.index(f"static inline bool urwire__decode_{lay.name}_{k}(")
+            body = source[start:source.index("\n}\n", start)]
+            assert "ver->key" not in body, f"urwire__decode_{lay.name}_{k}"
+            assert f"urwire__decode_{lay.name}_{k}(msg, at, end, ver, &out->{lay.name}, err)" in source

@@ -148,3 +148,22 @@ def test_a_pinned_version_message_without_a_bugfix_number_plans():
         planned = plan(pin(protocol, version))
         assert planned.version.layout.sets_version[2] == bugfix
         assert (planned.version.bugfix.name if planned.version.bugfix else None) == bugfix
+
+
+def test_the_fewest_bytes_of_a_value_is_worked_out_once_and_rendered_by_every_target():
+    """What bounds LIST and MATRIX counts: the type byte alone while a table has NONE, else the
+    type byte and the smallest data (BOOL's one byte)."""
+    from codegen.targets import c as c_target, lua as lua_target, python as python_target
+
+    data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
+    newest = data["enums"]["value_type"]["tables"][-1]["values"]
+    newest[:] = [v for v in newest if v["name"] != "NONE"]
+    protocol = compile_text(yaml.safe_dump(data, sort_keys=False))
+    assert [protocol.value_min_size(t) for t in protocol.value_type.tables] == [1, 1, 2]
+    planned = plan(protocol)
+    python = python_target.render(planned, ["test"])["python/urwire/spec.py"]
+    c = c_target.render(planned, ["test"])["c/urwire.c"]
+    lua = lua_target.render(planned, ["test"])["lua/urwire.lua"]
+    assert python.count("}, MAX_VALUE_DEPTH, 1)),") == 2 and python.count("}, MAX_VALUE_DEPTH, 2)),") == 1
+    assert c.count("(urwire__values_5_9_on), 2},") == 1 and c.count("), 1},") == 2
+    assert lua.count("min_size = 1,") == 2 and lua.count("min_size = 2,") == 1

@@ -14,6 +14,8 @@ from harness import (PLUGIN, ROOT, parse_json, run_tshark, to_records, tshark_js
 from tests.tools import capture
 from tests.tools.capture import Segment
 
+import urwire  # noqa: E402
+
 SAMPLE = ROOT / "dissector" / "samples" / "primary_session.pcapng"
 
 
@@ -72,6 +74,21 @@ def test_version_message_wins_over_the_preference(tmp_path):
     assert "ur.version_assumed" not in items[1]["ur.global_variables_update"]
 
 
+def test_a_robot_state_that_cannot_be_framed_teaches_the_stream_no_version(tmp_path):
+    """Its CB2-sized robot mode data is read as CB2, but a package longer than the message makes
+    the robot state malformed: the next message is read in the version the stream had, as the
+    Python and C decoders read it. A robot state framed whole does teach its version."""
+    cb2_mode = struct.pack(">iB", 29, 0) + bytes(24)      # robot_mode_data: 29 bytes only on CB2
+    too_long = struct.pack(">iB", 1000, 1) + bytes(3)     # joint_data past the end of the message
+    for packages, error in ((cb2_mode + too_long, "needs 24 bytes, 2 left"),   # POSE in 5.9
+                            (cb2_mode, "needs 4 bytes, 2 left")):              # NUM up to 3.2
+        state = struct.pack(">iB", 5 + len(packages), 16) + packages
+        pcap = write_sessions(tmp_path / f"cb2_{len(packages)}.pcap", [[state, update_5_0_bool()]])
+        items = ur_items_by_stream(tshark_json(pcap))[0]
+        python = [urwire.to_dict(r) for r in urwire.decode_stream(state + update_5_0_bool())]
+        assert to_records(items[1])[0]["error"] == python[1]["error"] == "variables[0] at offset 17: " + error
+
+
 def test_one_pass_and_two_passes_give_the_same_records(tmp_path):
     junk = bytes(range(1, 40))
     msgs = [junk, text_message(b"a" * 50), b"\x00\x00\x00\x03\x10", text_message(b"b"), update_5_0_bool()]
@@ -128,3 +145,16 @@ def test_info_of_a_frame_called_twice_joins_both_calls(tmp_path):
     for opts in ((), ("-2",)):
         lines = run_tshark(pcap, *opts, "-Y", "ur", "-T", "fields", "-e", "_ws.col.Info").splitlines()
         assert lines == ["Text: first; Text: second", "Text: third"]
+
+
+def test_tshark_fields_builds_the_named_packages_as_the_full_tree_does():
+    """tshark -T fields builds only the robot-state packages its command line names
+    (runtime/wanted.lua): their values are those of the whole tree (ur.named_fields_only off),
+    and a filter on another package selects the same frames."""
+    full = ("-o", "ur.named_fields_only:FALSE")
+    for args in (("-e", "ur.joint_data.q_actual", "-e", "ur.masterboard_data.robot_voltage_48v"),
+                 ("-Y", 'ur.robot_mode_data.robot_mode == "RUNNING"', "-e", "frame.number", "-e", "ur.tool_data.tool_mode"),
+                 ("-e", "ur.type", "-e", "ur.key.title")):
+        named = run_tshark(SAMPLE, "-T", "fields", *args)
+        assert named.strip() and named == run_tshark(SAMPLE, *full, "-T", "fields", *args), args
+    assert any(v.strip(",") for v in run_tshark(SAMPLE, "-T", "fields", "-e", "ur.joint_data.q_actual").split())

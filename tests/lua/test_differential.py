@@ -6,9 +6,9 @@ import random
 
 import pytest
 
-from harness import (ROOT, comparable, run_tshark, to_records, tshark_json, ur_items_by_stream,
+from harness import (PLUGIN, ROOT, comparable, run_tshark, to_records, tshark_json, ur_items_by_stream,
                      write_sessions, F32_TOL)
-from tests.tools import capture
+from tests.tools import amplify, capture
 from tests.tools.streams import streams
 from tests.vectors import all_cases, mismatches
 
@@ -62,12 +62,27 @@ def test_hostile_bytes_are_caught(tmp_path):
     sessions = []
     for _ in range(60):
         body = bytes([rng.choice((16, 20, 25))]) + bytes(rng.randrange(256) for _ in range(rng.randrange(0, 60)))
-        deep = b"\x00" * 8 + b"\x01\x00\x00" + b"\x11\x7f\xff" * 40
-        for payload in (body, b"\x19" + deep):
+        deep = b"\x00" * 8 + b"\x01\x00\x00" + b"\x11\x00\x01" * 40
+        huge = b"\x00" * 8 + b"\x01\x00\x00" + b"\x11\x7f\xff" * 40
+        for payload in (body, b"\x19" + deep, b"\x19" + huge):
             msg = (5 + len(payload) - 1).to_bytes(4, "big") + payload
             sessions.append([msg])
     out = run_tshark(write_sessions(tmp_path / "hostile.pcap", sessions), "-2", "-V")
     assert "nesting deeper than 8" in out
+    assert "variables[0] at offset 17: 32767 items need more than the 117 bytes left" in out
+
+
+def test_counts_past_their_bytes_print_no_more_than_legal_values(tmp_path):
+    """Matrices of 32767 empty rows, five bytes each: experts, not millions of tree items."""
+    hostile = capture.write(tmp_path / "hostile.pcap", capture.robot_session(amplify.hostile_messages()))
+    legal = capture.write(tmp_path / "legal.pcap", capture.robot_session([amplify.legal_stream()]))
+    size = len(amplify.hostile_stream())
+    cap = amplify.OUTPUT_PER_INPUT * size
+    runs = [amplify.run(["tshark", "-r", str(pcap), "-X", f"lua_script:{PLUGIN}", "-2", "-V"], cap=cap)
+            for pcap in (hostile, legal)]
+    assert runs[0].printed <= cap
+    assert runs[0].code == 0 and runs[1].code == 0
+    assert runs[0].peak <= 2 * runs[1].peak
 
 
 def test_samples_decode_without_faults():
@@ -87,7 +102,7 @@ def test_samples_decode_without_faults():
 def test_a_lua_error_is_caught_and_shown(tmp_path):
     """The pcall guard: make a copy of the plugin whose robot-side path throws; tshark shows an
     expert on the packet and no Lua error reaches the user."""
-    from harness import INTERNAL_TEXT, PLUGIN
+    from harness import INTERNAL_TEXT
     import subprocess
     text = PLUGIN.read_text(encoding="utf-8")
     anchor = "    local raw = tvb:raw()\n"

@@ -1,13 +1,20 @@
 """Random and mutated bytes never raise anything, never hang, never allocate without bound."""
 from __future__ import annotations
 
+import os
 import struct
+import sys
+from pathlib import Path
 
+import pytest
 import urwire
 from hypothesis import given, settings, strategies as st
 
+from tests.tools import amplify
 from tests.tools.streams import mutate
 from tests.vectors import all_cases
+
+CLI_ENV = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[2] / "generated" / "python"))
 
 MESSAGES = [c.data for c in all_cases()]
 KNOWN = (urwire.StreamError, urwire.UnknownMessage, urwire.UnknownSubtype, urwire.MalformedSubtype)
@@ -54,10 +61,23 @@ def test_nesting_is_bounded():
 def test_huge_counts_fail_fast_instead_of_allocating():
     huge_list = b"\x11\x7f\xff"              # LIST of 32767 items, none present
     huge_matrix = b"\x12\x7f\xff\x7f\xff"    # MATRIX 32767 x 32767, none present
-    for values in (huge_list, huge_matrix):
+    for values, items in ((huge_list, 32767), (huge_matrix, 32767 * 32767)):
         (msg,) = decode_all(update_message(values + b"\x0a"))
         assert isinstance(msg, urwire.MalformedSubtype)
-        assert "needs 1 bytes" in msg.error or "unknown value type" in msg.error
+        assert msg.error == f"variables[0] at offset 17: {items} items need more than the 1 bytes left"
+
+
+@pytest.mark.parametrize("fmt", ["json", "text"])
+def test_counts_past_their_bytes_print_and_cost_no_more_than_legal_values(fmt):
+    """Matrices of 32767 empty rows, five bytes each: errors, not millions of rows."""
+    command = [sys.executable, "-m", "urwire", "decode", "--format", fmt, "-"]
+    data = amplify.hostile_stream()
+    cap = amplify.OUTPUT_PER_INPUT * len(data)
+    hostile = amplify.run(command, data, cap=cap, env=CLI_ENV)
+    legal = amplify.run(command, amplify.legal_stream(), env=CLI_ENV)
+    assert hostile.printed <= cap
+    assert hostile.code == 1 and legal.code == 0
+    assert hostile.peak <= 2 * legal.peak
 
 
 def test_errors_name_the_field_and_offset():

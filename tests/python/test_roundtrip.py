@@ -82,3 +82,12 @@ def test_the_largest_float32_prints_and_reencodes():
     line = urwire.to_json_line(state)
     assert '"rx_idle_chars": 3.4028235e+38' in line and '"tx_idle_chars": -3.4028235e+38' in line
     assert state.encode() == data
+
+
+def test_a_matrix_only_encodes_as_it_reads_back():
+    codec = urwire.spec.value_codec((5, 9))
+    out = bytearray()
+    codec.encode(out, codec.make("MATRIX", []))
+    assert bytes(out) == b"\x12\x00\x00\x00\x00"
+    with pytest.raises(urwire.EncodeError, match="0 columns"):
+        codec.encode(bytearray(), codec.make("MATRIX", [[], []]))

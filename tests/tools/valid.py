@@ -110,6 +110,8 @@ class _Gen:
             n = rng.randint(0, 3)
             return out + struct.pack(">h", n) + b"".join(self.value(table, depth + 1) for _ in range(n))
         rows, cols = rng.randint(0, 3), rng.randint(0, 3)
+        if cols == 0:
+            rows = 0   # rows of 0 columns are an error: they would take no bytes
         return out + struct.pack(">hh", rows, cols) + b"".join(
             self.value(table, depth + 1) for _ in range(rows * cols))
 

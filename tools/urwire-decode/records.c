@@ -16,6 +16,7 @@ bool print_ready_records(urwire_framer *fr, const urwire_visitor *v, json_writer
             errors = true;
         } else {
             urwire_decode_message(frame.bytes, frame.length, frame.version, &m);
+            urwire_framer_learn(fr, &m);
             urwire_visit_message(&m, v);
             errors |= urwire_message_has_error(&m);
         }

@@ -11,7 +11,7 @@ import os
 import sys
 from typing import BinaryIO, Callable, Optional
 
-from . import __version__
+from . import __version__, export, listen, plot, serve
 from .arguments import parse_version
 from .canonical import has_error, to_json_line
 from .human import line as human_line
@@ -52,6 +52,9 @@ def build_parser() -> argparse.ArgumentParser:
     dec.add_argument("--port", type=int, action="append", metavar="PORT",
                      help=f"robot-side TCP port(s) to decode in captures (default: {' '.join(map(str, PORTS))})")
     dec.add_argument("--no-progress", action="store_true", help="never show a progress bar")
+    dec.set_defaults(run=decode_command)
+    for tool in (serve, listen, export, plot):
+        tool.add_parser(sub, _version_arg)
     return parser
 
 
@@ -104,7 +107,7 @@ def decode_command(args: argparse.Namespace) -> int:
 
 def main(argv: Optional[list[str]] = None) -> int:
     args = build_parser().parse_args(argv)
-    return decode_command(args)
+    return args.run(args)
 
 
 if __name__ == "__main__":

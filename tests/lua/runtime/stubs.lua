@@ -126,7 +126,7 @@ function S.walker_rt(spec)
     local rt
     rt, spec = S.base_rt(spec)
     spec.max_value_depth = spec.max_value_depth or 8
-    spec.value_tables = spec.value_tables or { { kinds = {} } }
+    spec.value_tables = spec.value_tables or { { kinds = {}, min_size = 1 } }
     S.load("walk.lua", spec, rt)
     S.load("values.lua", spec, rt)
     return rt, spec
@@ -155,6 +155,7 @@ function S.wireshark_globals()
         range = function(label, default) return { default = default } end,
         string = function(label, default) return { default = default } end,
         uint = function(label, default) return { default = default } end,
+        bool = function(label, default) return { default = default } end,
     }
     S.ports = {}
     DissectorTable = { get = function(name)

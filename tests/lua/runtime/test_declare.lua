@@ -15,9 +15,11 @@ S.eq(rt.E.by_length, "ur.layout_by_length", "a form chosen by its length")
 S.eq(rt.X.raw, "ur.raw", "extra fields exported")
 S.eq(rt.E.assumed, "ur.assumed_version", "experts exported")
 
-local assumed
+local assumed, named_only
 rt.assume_version = function(v) assumed = v end
+rt.named_only = function(on) named_only = on end
 S.load("register.lua", spec, rt)
+S.eq(ur.prefs.named_fields_only, true, "tshark -T fields builds the packages it names, by default")
 S.eq(ur.prefs.ports, "30001,30002", "ports preference from the spec")
 S.eq(ur.prefs.version, "", "no version preference: the layout sizes, else the spec's default")
 S.eq(ur.prefs.max_length, 4096, "maximum length from the spec")
@@ -28,6 +30,7 @@ rawset(getmetatable(ur.prefs).__index, "version", "5.12")
 rawset(getmetatable(ur.prefs).__index, "ports", "40000")
 ur.prefs_changed()
 S.eq(assumed, 5012000, "a new version preference")
+S.eq(named_only, true, "the named-fields preference is passed on")
 S.eq(S.ports["tcp.port"], "40000", "ports registered again")
 rawset(getmetatable(ur.prefs).__index, "version", "5.25.1")
 ur.prefs_changed()

@@ -19,6 +19,7 @@ rt.X, rt.E, rt.handlers = S.X, S.E, { [20] = handler }
 S.load("info.lua", spec, rt)
 S.load("carry.lua", spec, rt)
 S.load("stream.lua", spec, rt)
+S.load("wanted.lua", spec, rt)
 S.load("framing.lua", spec, rt)
 
 local function header(len, mtype) return S.bytes(0, 0, 0, len, mtype) end

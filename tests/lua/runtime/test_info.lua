@@ -49,7 +49,9 @@ local PACKAGES = {
     [1] = { single = true, summary = false, { of = part({}, false), ranges = { {} }, min = 0, rep = V, versions = "all versions" } },
 }
 local function package(code, body) return S.bytes(0, 0, 0, 5 + #body, code) .. body end
-local function packages(raw, st) return rt.package_summary(S.tvb(raw), raw, 0, #raw, PACKAGES, st or S.st(raw)) end
+local function packages(raw, st, text)
+    return rt.package_summary(S.tvb(raw), raw, 0, #raw, PACKAGES, st or S.st(raw), text ~= false)
+end
 raw = package(1, "abc") .. package(0, S.bytes(9, 7)) .. package(3, S.bytes(5)) .. package(0, S.bytes(1))
 S.eq(packages(raw), "RUNNING, NORMAL", "summaries in package order; one too short is skipped")
 raw = package(0, S.bytes(9, 0xff)) .. S.bytes(0, 0, 0, 99, 3, 5)
@@ -78,21 +80,36 @@ S.eq(st.version, 1008999, "the version they show"); S.eq(st.implied, "up to 1.8"
 st = S.st(raw)
 S.eq(packages(raw, st), "2, OLD_RUNNING, 2", "a known version: only the form chosen by length reads with its version")
 S.eq(st.implied, nil, "a known version is not overruled")
+-- Without a column to write, the layout sizes still tell the version.
+st = S.st(raw)
+st.known = false
+S.eq(packages(raw, st, false), nil, "no text")
+S.eq(st.version, 1008999, "the version the sizes show, without text"); S.eq(st.implied, "up to 1.8", "and its form")
 S.eq(rt.labelled("Robot state", ""), "Robot state", "label alone")
 S.eq(rt.labelled("Key", "PROGRAM_STARTED"), "Key: PROGRAM_STARTED", "label and text")
 
 -- Two calls for one frame join; a new frame starts over; a reassembled frame called again
 -- after its column was reset starts over too.
 local pinfo = S.pinfo(7)
+S.eq(rt.info_begin(pinfo), true, "columns are built")
 rt.set_info(pinfo, true, "Text: first")
 rt.set_info(pinfo, false, "Text: second")
 S.eq(tostring(pinfo.cols.info), "Text: first; Text: second", "one call, two messages")
 rt.set_info(pinfo, true, "Text: third")
 S.eq(tostring(pinfo.cols.info), "Text: first; Text: second; Text: third", "second call of the frame appends")
 local other = S.pinfo(8)
+rt.info_begin(other)
 rt.set_info(other, true, "Robot state")
 S.eq(tostring(other.cols.info), "Robot state", "next frame")
 local again = S.pinfo(8)
+rt.info_begin(again)
 rt.set_info(again, true, "Robot state")
 S.eq(tostring(again.cols.info), "Robot state", "the frame dissected again with a fresh column")
+
+-- Without columns (a Column then prints as "(info)"), nothing is written.
+local bare = S.pinfo(9)
+bare.cols.info.text = "(info)"
+S.eq(rt.info_begin(bare), false, "no columns")
+rt.set_info(bare, true, "Robot state")
+S.eq(tostring(bare.cols.info), "(info)", "no text written")
 print("ok")

@@ -33,4 +33,12 @@ rt.items_begin(next_top)
 S.eq(rt.items_hidden(), 0, "nothing hidden yet")
 rt.add(next_top, "ur.c", range)
 S.eq(#next_top.children, 1, "shown")
+
+-- room(k): k items counted at once when they all fit, none when they do not.
+rt.items_begin(S.tree())
+S.eq(rt.room(2), true, "two of three fit")
+S.eq(rt.room(2), false, "two more do not")
+S.eq(rt.items_hidden(), 0, "and are not counted as hidden: they go one by one")
+S.eq(rt.add(S.tree(), "ur.d", range) ~= nil, true, "the last one still fits")
+S.eq(rt.room(1), false, "then none")
 print("ok")

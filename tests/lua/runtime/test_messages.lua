@@ -73,7 +73,7 @@ local function tree_of(h, raw, version, how)
     return S.dump(tree)
 end
 local function info_of(h, raw, version, how)
-    return h.info(h.m, S.tvb(raw), raw, 0, #raw, state_of(raw, version, how))
+    return h.info(h.m, S.tvb(raw), raw, 0, #raw, state_of(raw, version, how), true)
 end
 
 -- subtypes
@@ -180,15 +180,38 @@ bad = msg(16, package(0, S.bytes(7)) .. S.bytes(0, 0))
 S.eq(tree_of(state, bad):match("!malformed: package at offset 11: needs 5 bytes, 2 left") ~= nil, true, "a cut header")
 
 -- No tree and no field of the package asked for: the package's fields are skipped.
+-- Asked once per package kind per dissector call (st.call).
 local tree = S.tree(false)
 local st = state_of(robot_state)
-st.visible = false
-state.tree(state.m, S.tvb(robot_state), tree, 0, #robot_state, st)
+st.visible, st.call = false, 1
+local asked = 0
+local function counting(t)   -- counts what is asked of the tree (its items share `asked`)
+    t.asked = setmetatable({}, { __index = function() asked = asked + 1 end })
+    return t
+end
+local twice = msg(16, package(0, S.bytes(7)) .. package(0, S.bytes(7)))
+state.tree(state.m, S.tvb(twice), counting(tree), 0, #twice, st)
 S.eq(S.dump(tree):match("ur.mode.mode") == nil, true, "skipped without a tree")
+S.eq(asked, 1, "two packages of one kind: asked once")
 tree = S.tree(false)
 tree.asked["ur.mode.mode"] = true
+st.call = 2
 state.tree(state.m, S.tvb(robot_state), tree, 0, #robot_state, st)
 S.eq(S.dump(tree):match("ur.mode.mode @10%+1") ~= nil, true, "walked when a filter asks for its field")
+
+-- A tshark -T fields run that names no field of a package (st.only, runtime/wanted.lua): the
+-- package is not built; the packages it names are, whole.
+tree = S.tree()
+st = state_of(robot_state)
+st.only = {}
+state.tree(state.m, S.tvb(robot_state), tree, 0, #robot_state, st)
+S.eq(S.dump(tree):match("ur.mode") == nil, true, "a package no field of is named: not built")
+S.eq(S.dump(tree):match("Unknown package 99") ~= nil, true, "one the spec does not lay out still shows")
+tree = S.tree()
+st.only = { [MODE_PART] = true }
+state.tree(state.m, S.tvb(robot_state), tree, 0, #robot_state, st)
+S.eq(S.dump(tree):match("ur.mode @5%+6\n  ur.package.length @5%+4\n  ur.package.type @9%+1\n  ur.mode.mode @10%+1") ~= nil,
+     true, "a named package: whole")
 
 -- A package type with two layouts (up to 1.8: 1 byte; from 3.0: 2 bytes), in a message whose
 -- reading depends on the version: the version's layout, else the one its length fits.
@@ -218,8 +241,8 @@ state.tree(state.m, S.tvb(early), S.tree(), 0, #early, known)
 S.eq(known.version, 5009000, "an announced version stays")
 local unknown_st = state_of(early, 5009000, "default")
 S.eq(info_of(state, early, 5009000, "default"), "Robot state: RUNNING", "Info")
-state.info(state.m, S.tvb(early), early, 0, #early, unknown_st)
-S.eq(unknown_st.version, 1008999, "the Info pass learns the version from the sizes")
+S.eq(state.info(state.m, S.tvb(early), early, 0, #early, unknown_st, false), nil, "no column: no text")
+S.eq(unknown_st.version, 1008999, "the Info pass learns the version from the sizes, column or not")
 S.eq(unknown_st.implied, "up to 1.8", "and which form told it")
 -- Shown on the message as what the layout sizes tell, when framing.lua says so.
 S.eq(tree_of(state, early, 5009000, "up to 1.8"):match(

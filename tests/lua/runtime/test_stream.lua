@@ -50,4 +50,31 @@ S.eq((call(5, 1)), 5010000, "the first pass's state")
 
 rt.stream_reset()
 S.eq((call(5, 1)), nil, "a new capture starts over")
+
+-- A stream in step keeps snapshots where its state changes, not per frame: 10,000 frames after
+-- a Version message keep the frame that first started with it, whatever the frames before.
+rt.stream_reset()
+local key
+for f = 1, 10000 do
+    local _
+    _, _, _, _, _, key = call(f, 1000)
+    if f == 3 then rt.stream_save(S.pinfo(f), key, 5009000, nil, false, nil) end
+end
+S.eq(rt.stream_kept(), 1, "one snapshot for 10,000 frames")
+S.eq((call(2, 1000, true)), nil, "before the Version message")
+S.eq((call(3, 1000, true)), nil, "the frame of the Version message")
+S.eq((call(4, 1000, true)), 5009000, "the next frame")
+S.eq((call(9999, 7, true)), 5009000, "any later frame, any bytes")
+
+-- Two calls in one frame, the state changing between them: each gets its own on later passes.
+rt.stream_reset()
+call(1, 10)
+call(2, 300)
+rt.stream_save(S.pinfo(2), key, 5010000, nil, false, nil)
+call(2, 20)
+call(3, 5)
+S.eq((call(2, 300, true)), nil, "the frame's first call, before the change")
+S.eq((call(2, 20, true)), 5010000, "its second call, after it")
+S.eq((call(3, 5, true)), 5010000, "and the frames after")
+S.eq((call(1, 10, true)), nil, "and before")
 print("ok")

@@ -10,8 +10,10 @@ local NEW = {   -- as from 5.9 (shape only: codes and names are the test's own)
     [4] = { name = "MATRIX", layout = "matrix", item = nil, n = 0, count = 1, len = 2 },
     [5] = { name = "POSE", layout = "array", item = "float32", n = 4, count = 2, len = 0 },
 }
-local OLD = { [5] = { name = "BOOL", layout = "scalar", item = "bool", n = 1, count = 1, len = 0 } }
-local rt = S.walker_rt({ max_value_depth = 2, value_tables = { { high = 5008999, kinds = OLD }, { low = 5009000, kinds = NEW } } })
+local OLD = { [3] = { name = "LIST", layout = "list", item = nil, n = 0, count = 1, len = 2 },
+              [5] = { name = "BOOL", layout = "scalar", item = "bool", n = 1, count = 1, len = 0 } }
+local rt = S.walker_rt({ max_value_depth = 2, value_tables = { { high = 5008999, kinds = OLD, min_size = 2 },
+                                                               { low = 5009000, kinds = NEW, min_size = 1 } } })
 
 local vf = { item = "ur.v.item", type = "ur.v.type", code = "ur.v.code", count = "ur.v.length", rows = "ur.v.rows",
              cols = "ur.v.cols", row = "ur.v.row", int32 = "ur.v.int32", float32 = "ur.v.float32", bool = "ur.v.bool",
@@ -85,4 +87,21 @@ _, o, err = run(S.bytes(2, 0xff, 0xff, 10), 5009000)
 S.eq(err, "variables[0] at offset 1: negative length -1", "negative string length")
 _, o, err = run(S.bytes(4, 0, 1, 0xff, 0xff, 10), 5009000)
 S.eq(err, "variables[0] at offset 3: negative length -1", "negative column count, at its own offset")
+
+-- Counts are weighed against the bytes left, at the table's fewest bytes per value.
+_, o, err = run(S.bytes(3, 0, 4, 0, 0, 10), 5009000)
+S.eq(err, "variables[0] at offset 1: 4 items need more than the 3 bytes left", "LIST: 4 items, 3 bytes left")
+_, o, err = run(S.bytes(3, 0, 2, 0, 0, 10), 5009000)
+S.eq(err, nil, "LIST: 2 items in the 3 bytes left")
+_, o, err = run(S.bytes(4, 0x7f, 0xff, 0, 0, 10), 5009000)
+S.eq(err, "variables[0] at offset 1: 32767 rows of 0 columns", "MATRIX: rows that take no bytes")
+tree, o, err = run(S.bytes(4, 0, 0, 0x7f, 0xff, 10), 5009000)
+S.eq(err, nil, "MATRIX: columns of no rows take no bytes either, and claim nothing")
+_, o, err = run(S.bytes(4, 0, 2, 0, 3, 0, 0, 0, 10), 5009000)
+S.eq(err, "variables[0] at offset 1: 6 items need more than the 4 bytes left", "MATRIX: rows times columns")
+-- Before 5.9 the test's table takes 2 bytes a value at the least (it has no NONE).
+_, o, err = run(S.bytes(3, 0, 3, 5, 1, 5, 0, 10), 5000000)
+S.eq(err, "variables[0] at offset 1: 3 items need more than the 5 bytes left", "the table's own fewest bytes")
+_, o, err = run(S.bytes(3, 0, 2, 5, 1, 5, 0, 10), 5000000)
+S.eq(err, nil, "two BOOLs in the 5 bytes left")
 print("ok")

@@ -31,11 +31,12 @@ S.eq(rt.version_in(5009000, 3003000, 5008999), false, "above high")
 
 local old, mid, new = { name = "old" }, { name = "mid" }, { name = "new" }
 local tables = { { high = 3002999, kinds = old }, { low = 3003000, high = 5008999, kinds = mid }, { low = 5009000, kinds = new } }
-S.eq(rt.value_table(tables, 3002000), old, "3.2")
-S.eq(rt.value_table(tables, 5000000), mid, "5.0")
-S.eq(rt.value_table(tables, 5008007), mid, "5.8.7")
-S.eq(rt.value_table(tables, 5012000), new, "5.12")
-S.eq(rt.value_table({ { low = 5009000, kinds = new }, { low = 6000000, kinds = old } }, 1000000), old, "no range: the last table")
+S.eq(rt.value_table(tables, 3002000).kinds, old, "3.2")
+S.eq(rt.value_table(tables, 5000000).kinds, mid, "5.0")
+S.eq(rt.value_table(tables, 5008007).kinds, mid, "5.8.7")
+S.eq(rt.value_table(tables, 5012000).kinds, new, "5.12")
+S.eq(rt.value_table({ { low = 5009000, kinds = new }, { low = 6000000, kinds = old } }, 1000000).kinds, old,
+     "no range: the last table")
 
 -- Enum names by version: the table in force, else the newest.
 local NEWEST, EARLY = { [240] = "READY_FOR_POWER_OFF" }, { [240] = "EMERGENCY_STOPPED" }

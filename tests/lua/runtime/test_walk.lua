@@ -125,4 +125,31 @@ walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5001000), L_mode, nil)
 S.eq(S.dump(tree), S.lines(
     "ur.p.joint_mode @0+1",
     "ur.p.modes @1+1"), "the newest names: the field's own")
+
+-- Plain scalars in a row are one run: added in one loop when they fit, else one by one, so
+-- that the first that does not fit is named and those past the item cap are counted.
+local L_run = {
+    { k = "scalar", f = "ur.r.a", n = 2, path = "a", signed = false },
+    { k = "scalar", f = "ur.r.b", n = 1, path = "b", signed = false },
+    { k = "scalar", f = "ur.r.c", n = 4, path = "c", signed = false },
+    { k = "array", f = "ur.r.d", n = 1, count = 3, path = "d", signed = false },
+}
+raw = S.bytes(0, 1, 2, 0, 0, 0, 3, 4, 5, 6)
+tree = S.tree()
+S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw), L_run, nil), 10, "a run and an array that fit")
+S.eq(S.dump(tree), S.lines("ur.r.a @0+2", "ur.r.b @2+1", "ur.r.c @3+4", "ur.r.d @7+1", "ur.r.d @8+1", "ur.r.d @9+1"),
+     "each at its offset")
+tree = S.tree()
+local o, err = walk(S.tvb(raw), tree, 0, 5, S.st(raw), L_run, "joints[1].")
+S.eq(o, nil, "a run cut short")
+S.eq(err, "joints[1].c at offset 3: needs 4 bytes, 2 left", "names its first field that does not fit")
+S.eq(S.dump(tree), S.lines("ur.r.a @0+2", "ur.r.b @2+1"), "after the ones that fit")
+o, err = walk(S.tvb(raw), S.tree(), 0, 8, S.st(raw), L_run, nil)
+S.eq(err, "d[1] at offset 8: needs 1 bytes, 0 left", "an array cut short names its element")
+local capped = S.walker_rt({ max_tree_items = 4 })
+tree = S.tree()
+capped.items_begin(tree)
+S.eq(capped.walk(S.tvb(raw), tree, 0, #raw, S.st(raw), L_run, nil), 10, "past the item cap the fields are still walked")
+S.eq(S.dump(tree), S.lines("ur.r.a @0+2", "ur.r.b @2+1", "ur.r.c @3+4", "ur.r.d @7+1"), "four shown")
+S.eq(capped.items_hidden(), 2, "two counted")
 print("ok")

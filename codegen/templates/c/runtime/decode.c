@@ -214,34 +214,42 @@ static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t e
     urwire_error ignored;
     urwire__ver other;
     const urwire__ver *use;
-    size_t size = 0, body;
+    /* The segment's rows, held here: the stores into *out could alias them in r. */
+    const uint8_t *mine = r->mine;
+    const uint32_t *first_sizes = r->first_sizes;
+    size_t size = 0, body, n = 0;
     uint8_t type, form;
     out->present = 0;
     out->malformed = 0;
     out->layouts = 0;
     out->unknown = 0;
     /* One pass: framing each sub-package and decoding it overlap in the CPU. */
-    for (*count = 0; pos < end && urwire__frame_package(msg, pos, end, &size, err); pos += size, ++*count) {
+    for (; pos < end && urwire__frame_package(msg, pos, end, &size, err); pos += size, n++) {
         type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
         body = pos + URWIRE_PACKAGE_HEADER_SIZE;
         use = &r->now;
-        /* The common case first: the version's form, which fits the body by its brief. */
-        if (type < URWIRE__COUNT(urwire__package_forms) &&
-            urwire__fits_brief(r->first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE)) {
-            form = r->mine[type];
-        } else if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
-            out->unknown++;
-            continue;
-        } else {
+        /* The common case, laid out straight: the version's form, which fits the body by its brief. */
+        form = URWIRE__LIKELY(type < URWIRE__COUNT(urwire__package_forms) &&
+                              urwire__fits_brief(first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE))
+                   ? mine[type]
+                   : 0;
+        if (URWIRE__UNLIKELY(form == 0)) {
+            if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
+                out->unknown++;
+                continue;
+            }
             form = (uint8_t)(urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &other) -
                              urwire__package_form_list + 1);
             use = &other;
+            mine = r->mine;
+            first_sizes = r->first_sizes;
         }
         if (urwire__decode_member(type, form, msg, &body, pos + size, use, out, &ignored))
             out->present |= (uint32_t)URWIRE_BIT(type);
         else
             out->malformed |= (uint32_t)URWIRE_BIT(type);
     }
+    *count = n;
     return pos;
 }
 
@@ -269,7 +277,8 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
     out->version = f != NULL ? use.version : seq->version;
     out->known = f != NULL;
     out->layout = f != NULL ? (urwire_package_layout)f->layout : URWIRE_LAYOUT_COUNT;
-    out->failed = f != NULL && !urwire__decode_package(out->layout, msg, &body, stop, &use, &out->as, &out->error);
+    out->failed = f != NULL && !urwire__decode_package((uint8_t)(f - urwire__package_form_list + 1), msg, &body, stop,
+                                                        &use, &out->as, &out->error);
     seq->version = r.now.version;  /* the version the layout sizes showed, for the packages after it */
     seq->pos = stop;
     seq->count--;

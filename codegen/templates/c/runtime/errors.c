@@ -85,6 +85,8 @@ const char *urwire_status_name(urwire_status status)
     case URWIRE_E_VALUE_TYPE: return "URWIRE_E_VALUE_TYPE";
     case URWIRE_E_TERMINATOR: return "URWIRE_E_TERMINATOR";
     case URWIRE_E_TOO_DEEP: return "URWIRE_E_TOO_DEEP";
+    case URWIRE_E_TOO_MANY_ITEMS: return "URWIRE_E_TOO_MANY_ITEMS";
+    case URWIRE_E_EMPTY_ROWS: return "URWIRE_E_EMPTY_ROWS";
     case URWIRE_E_PACKAGE_HEADER_CUT: return "URWIRE_E_PACKAGE_HEADER_CUT";
     case URWIRE_E_PACKAGE_LENGTH_LOW: return "URWIRE_E_PACKAGE_LENGTH_LOW";
     case URWIRE_E_PACKAGE_LENGTH_HIGH: return "URWIRE_E_PACKAGE_LENGTH_HIGH";
@@ -149,6 +151,18 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         urwire__at(&t, e, e->path);
         urwire__str(&t, "nesting deeper than ");
         urwire__num(&t, e->value);
+        break;
+    case URWIRE_E_TOO_MANY_ITEMS:
+        urwire__at(&t, e, e->path);
+        urwire__num(&t, e->value);
+        urwire__str(&t, " items need more than the ");
+        urwire__num(&t, e->left);
+        urwire__str(&t, " bytes left");
+        break;
+    case URWIRE_E_EMPTY_ROWS:
+        urwire__at(&t, e, e->path);
+        urwire__num(&t, e->value);
+        urwire__str(&t, " rows of 0 columns");
         break;
     case URWIRE_E_PACKAGE_LENGTH_LOW:
         urwire__at(&t, e, "package");

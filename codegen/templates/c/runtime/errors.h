@@ -16,6 +16,8 @@ typedef enum urwire_status {
     URWIRE_E_VALUE_TYPE,          /* <path> at offset <o>: unknown value type <value> */
     URWIRE_E_TERMINATOR,          /* <path> at offset <o>: expected terminator 0x<left>, found 0x<value> */
     URWIRE_E_TOO_DEEP,            /* <path> at offset <o>: nesting deeper than <value> */
+    URWIRE_E_TOO_MANY_ITEMS,      /* <path> at offset <o>: <value> items need more than the <left> bytes left */
+    URWIRE_E_EMPTY_ROWS,          /* <path> at offset <o>: <value> rows of 0 columns */
     URWIRE_E_PACKAGE_HEADER_CUT,  /* package at offset <o>: needs <value> bytes, <left> left */
     URWIRE_E_PACKAGE_LENGTH_LOW,  /* package at offset <o>: length <value> is below URWIRE_PACKAGE_HEADER_SIZE */
     URWIRE_E_PACKAGE_LENGTH_HIGH, /* package at offset <o>: length <value> exceeds the <left> bytes left */

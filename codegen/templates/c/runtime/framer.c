@@ -27,11 +27,36 @@ void urwire_framer_init(urwire_framer *f, uint8_t *buf, size_t cap, urwire_sw_ve
     f->ended_inside = false;
     f->version_seen = false;
     f->version = hint;
+    f->unlearnt = 0;
+}
+
+/* The robot state handed out last, which ends at head, when the caller did not hand it back
+ * decoded: the version its layout sizes show, from a walk over its sub-package headers. */
+static void urwire__learn_unlearnt(urwire_framer *f)
+{
+    if (f->unlearnt) {
+        urwire__implied_version(f->buf + f->head - f->unlearnt, f->unlearnt, &f->version);
+        f->unlearnt = 0;
+    }
+}
+
+void urwire_framer_learn(urwire_framer *f, const urwire_message *m)
+{
+    const urwire_sw_version *v = &f->version;
+    /* Only that robot state, decoded in the version it was handed out with, tells the same. */
+    if (f->unlearnt == 0 || m->bytes != f->buf + f->head - f->unlearnt || m->length != f->unlearnt ||
+        m->kind != URWIRE__PACKAGES_KIND || m->version.major != v->major || m->version.minor != v->minor ||
+        m->version.bugfix != v->bugfix || m->version.assumed != v->assumed)
+        return;
+    if (m->implied)
+        f->version = m->implied_version;
+    f->unlearnt = 0;
 }
 
 size_t urwire_framer_feed(urwire_framer *f, const uint8_t *data, size_t n)
 {
     size_t take;
+    urwire__learn_unlearnt(f);  /* before its bytes move */
     if (f->head) {
         memmove(f->buf, f->buf + f->head, f->len - f->head);
         f->len -= f->head;
@@ -74,13 +99,14 @@ static bool urwire__rescan_stops_at(const urwire_framer *f, size_t at)
 /* What a message tells of the stream's software version, for the messages after it: the
  * layout that announces it (URWIRE__VERSION_*) sets it, bugfix included where its form has one
  * (their type and subtype bytes are looked at before anything is decoded); while the version
- * is only assumed, the layout sizes of a robot state may show it. */
+ * is only assumed, the layout sizes of a robot state may show it, learnt later: from the
+ * caller's decoding (urwire_framer_learn), else by urwire__learn_unlearnt. */
 static void urwire__learn_version(urwire_framer *f, const uint8_t *bytes, size_t len)
 {
     urwire_message m;
     if (bytes[URWIRE__TYPE_AT] == URWIRE__PACKAGES_TYPE) {
         if (f->version.assumed)
-            urwire__implied_version(bytes, len, &f->version);
+            f->unlearnt = len;
         return;
     }
     if (bytes[URWIRE__TYPE_AT] != URWIRE__VERSION_TYPE || len < URWIRE__VERSION_BODY ||
@@ -100,6 +126,7 @@ urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out)
     size_t left, drop;
     int64_t length;
     urwire_status status;
+    urwire__learn_unlearnt(f);
     for (;;) {
         left = f->len - f->head;
         if (f->skip) {

@@ -1,8 +1,7 @@
 /* <standalone> */
 #ifndef URWIRE_RUNTIME_FRAMER_H
 #define URWIRE_RUNTIME_FRAMER_H
-#include "version.h"
-#include "errors.h"
+#include "runtime_spec.h"
 /* </standalone> */
 /* ---- framing a stream --------------------------------------------------------------------- */
 
@@ -27,9 +26,12 @@ typedef struct urwire_frame {
 
 /* Frames a byte stream in a caller-provided buffer. Tracks the software version from the
  * stream's Version messages (else the hint; with URWIRE_DEFAULT_VERSION as the hint, which is
- * only assumed, from the layout sizes of robot states where they show it). After a bad length or type it scans forward
- * byte by byte to the next plausible header; the skipped bytes belong to that one fault. When
- * the stream ends inside a message, the rest is scanned the same way for whole messages. */
+ * only assumed, from the layout sizes of robot states where they show it: learnt from the
+ * robot state you decoded when you hand it back with urwire_framer_learn, else by a walk over
+ * its sub-package headers when the framer next moves on). After a bad length or type it scans
+ * forward byte by byte to the next plausible header; the skipped bytes belong to that one
+ * fault. When the stream ends inside a message, the rest is scanned the same way for whole
+ * messages. */
 typedef struct urwire_framer {
     uint8_t *buf;
     size_t cap;
@@ -45,6 +47,8 @@ typedef struct urwire_framer {
     urwire_sw_version version;      /* in force: the last Version message's, else the hint, else
                                        what a robot state's layout sizes showed (assumed), else
                                        URWIRE_DEFAULT_VERSION (assumed) */
+    size_t unlearnt;                /* the length of the robot state just handed out whose layout
+                                       sizes may still show the version (0: none) */
 } urwire_framer;
 
 void urwire_framer_init(urwire_framer *f, uint8_t *buf, size_t cap, urwire_sw_version hint);
@@ -55,6 +59,11 @@ size_t urwire_framer_feed(urwire_framer *f, const uint8_t *data, size_t n);
  * and the whole messages inside a truncated message's span are framed after it. */
 void urwire_framer_finish(urwire_framer *f);
 urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out);
+/* Optional, after decoding the message of the last frame with its frame.version: takes the
+ * version its layout sizes show from your decoding (m->implied, m->implied_version), so that
+ * the framer does not walk a robot state's sub-packages a second time. The versions it tracks
+ * are the same either way; any other message is ignored. */
+void urwire_framer_learn(urwire_framer *f, const urwire_message *m);
 /* <standalone> */
 #endif
 /* </standalone> */

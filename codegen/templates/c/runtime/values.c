@@ -21,6 +21,16 @@ URWIRE__PRIVATE const urwire__value_entry *urwire__value_entry_of(const urwire__
     return NULL;
 }
 
+/* Items that cannot fit in the bytes from pos (each takes at least t->min_size) are refused
+ * before any is read; at is the offset of their count. */
+static bool urwire__count_fits(const urwire__value_table *t, uint64_t items, size_t at, size_t pos, size_t end,
+                               urwire_error *err)
+{
+    if (items * t->min_size > end - pos)
+        return urwire__fail(err, URWIRE_E_TOO_MANY_ITEMS, at, "", (int64_t)items, (int64_t)(end - pos));
+    return true;
+}
+
 /* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
  * skipped) here, so that iterating them later cannot fail; depth bounds the recursion.
  * Error paths are relative ("", ".type", "[2][0]") and prefixed by the callers. */
@@ -74,6 +84,8 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
         out->rows = urwire__i16(msg + pos);
         if (out->rows < 0)
             return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", out->rows, 0);
+        if (!urwire__count_fits(t, (uint64_t)out->rows, pos, pos + 2, end, err))
+            return false;
         pos += 2;
         out->items.pos = pos;
         for (k = 0; k < (size_t)out->rows; k++)
@@ -91,6 +103,11 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
             return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", out->rows, 0);
         if (out->cols < 0)
             return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos + 2, "", out->cols, 0);
+        /* Rows of no items would take no bytes at all: any number of them fits in none. */
+        if (out->rows > 0 && out->cols == 0)
+            return urwire__fail(err, URWIRE_E_EMPTY_ROWS, pos, "", out->rows, 0);
+        if (!urwire__count_fits(t, (uint64_t)out->rows * (uint64_t)out->cols, pos, pos + 4, end, err))
+            return false;
         pos += 4;
         out->items.pos = pos;
         for (r = 0; r < (size_t)out->rows; r++)

@@ -3,12 +3,13 @@
 -- dissector does per call starts in dissect(), behind a pcall guard.
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
-local be_int, set_info, announced_version = rt.be_int, rt.set_info, rt.announced_version
+local be_int, info_begin, set_info, announced_version = rt.be_int, rt.info_begin, rt.set_info, rt.announced_version
 local enum_names, rename = rt.enum_names, rt.rename
 local items_begin, items_hidden, MAX_TREE_ITEMS = rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS
 local stream_load, stream_save = rt.stream_load, rt.stream_save
 local carry_new, carry_add, carry_bytes = rt.carry_new, rt.carry_add, rt.carry_bytes
 local X, E, handlers = rt.X, rt.E, rt.handlers
+local wanted_packages = rt.wanted_packages
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
 local KNOWN_TYPE, VERSION = spec.known_types, spec.version_reader
@@ -25,7 +26,10 @@ local function assume_version(v) pref_version = v end
 -- sizes tell it), and how that version is known: announced (a Version message), from_pref, or
 -- neither (known is false: then implied, when set, names the versions the layout sizes showed);
 -- message_version and message_implied: the version shown on the message.
-local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false }
+-- call: counts dissector calls (what is asked of a tree is asked once per call); only: the
+-- packages a tshark -T fields run needs (runtime/wanted.lua), nil for all.
+local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false,
+             call = 0, only = nil }
 
 -- st as a message starts, from the stream's version (nil: none yet) and how it was found.
 local function begin(version, implied)
@@ -86,8 +90,8 @@ end
 
 local ur_handle = nil
 -- The call being dissected: the stream's version (nil: none yet) and, when the layout sizes
--- told it, the versions of the form that did.
-local cur = { version = nil, implied = nil, first = true, detail = false }
+-- told it, the versions of the form that did; whether columns are built (else no Info text).
+local cur = { version = nil, implied = nil, first = true, detail = false, columns = true }
 
 -- One whole message from o to e (its declared length): version, Info column, tree.
 local function message(tvb, raw, pinfo, tree, o, e, mtype)
@@ -99,7 +103,8 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     local version, implied = cur.version, cur.implied
     st.raw, st.base = raw, o
     begin(version, implied)
-    set_info(pinfo, cur.first, h and h.info(h.m, tvb, raw, o, e, st) or unlaid_info(mtype, st.version))
+    local text = h and h.info(h.m, tvb, raw, o, e, st, cur.columns)
+    if cur.columns then set_info(pinfo, cur.first, text or unlaid_info(mtype, st.version)) end
     cur.first = false
     -- Layout sizes told the version of a stream that had not: this message and the next ones.
     if st.implied and not st.known then cur.version, cur.implied = st.version, st.implied end
@@ -112,6 +117,7 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     st.message_version, st.message_implied = st.version, st.implied
     begin(version, implied)
     st.visible = tree.visible
+    st.only = st.visible and wanted_packages() or nil
     if h then
         item:append_text(h.suffix)
         items_begin(item)
@@ -140,12 +146,14 @@ local function dissect(tvb, pinfo, tree)
     -- Field work only when someone looks: a visible tree, or a filter or column naming ur.
     cur.detail = tree.visible or tree:referenced(ur_handle)
     cur.first = true
+    cur.columns = info_begin(pinfo)
+    st.call = st.call + 1
 
     -- The stream's state as this call starts.
     local resync, carry, carried, stream
     cur.version, cur.implied, resync, carry, carried, stream = stream_load(pinfo, n)
 
-    pinfo.cols.protocol:set("UR")
+    if cur.columns then pinfo.cols.protocol:set("UR") end
     -- Once this call has met a fault, the rest of the stream is carried over by hand (in the
     -- stream state) until it is back in step, instead of by TCP reassembly: asking TCP for more
     -- bytes after a fault makes later passes hand over other bytes, and the fault would not

@@ -92,18 +92,22 @@ end
 -- The summaries of the robot-state packages from p to e, joined by ", ". packages: the forms
 -- of each package type (see versions.lua), `summary` when one of them has a summary. Each
 -- package's form is chosen as the tree chooses it (pick), so that layout sizes set the
--- version of a stream that has not told it, tree or not. Stops at the first package whose
--- length does not fit.
-local function package_summary(tvb, raw, p, e, packages, st)
+-- version of a stream that has not told it, tree or not; with `text` false, only that is done
+-- (no column to write). Stops at the first package whose length does not fit: such a robot
+-- state is malformed, and what its sizes showed is not taken for the stream (st keeps the
+-- version it started with).
+local function package_summary(tvb, raw, p, e, packages, st, text)
+    if not (text or not st.known) then return nil end
     local n = 0
+    local version, implied = st.version, st.implied
     while e - p >= PACKAGE_HEADER do
         local size, code = be_int(raw, p, PACKAGE_LENGTH), byte(raw, p + PACKAGE_LENGTH + 1)
         if size < PACKAGE_HEADER or size > e - p then break end
         local forms = packages[code]
-        if forms and (forms.summary or not st.known) then
+        if forms and ((text and forms.summary) or not st.known) then
             local form, use = pick(forms, size - PACKAGE_HEADER, st)
             local part = form.of
-            if part.summary then
+            if text and part.summary then
                 local first = n + 1
                 local _
                 _, n = summarise(tvb, raw, p + PACKAGE_HEADER, p + size, part.layout, reach_of(part.layout), use, n)
@@ -115,6 +119,8 @@ local function package_summary(tvb, raw, p, e, packages, st)
         end
         p = p + size
     end
+    if p < e then st.version, st.implied = version, implied end
+    if not text then return nil end
     return table.concat(parts, ", ", 1, n)
 end
 
@@ -124,18 +130,30 @@ local function labelled(label, text)
     return label .. ": " .. text
 end
 
+-- The Info column of the call being dissected, and whether Wireshark builds columns at all: a
+-- Column without them prints as "(info)" (tshark -V, -T fields, taps that read no column).
+-- Without columns, no Info text is made.
+local info_col, columns = nil, true
+local function info_begin(pinfo)
+    info_col = pinfo.cols.info
+    columns = tostring(info_col) ~= "(info)"
+    return columns
+end
+
 -- TCP may call the dissector twice for one frame (a reassembled message, then the rest of the
 -- segment): the first message of the later call appends to what the earlier one wrote.
 local info_frame, info_text = -1, ""
 local function set_info(pinfo, first, text)
-    if first and not (info_frame == pinfo.number and tostring(pinfo.cols.info) == info_text) then
+    if not columns then return end
+    if first and not (info_frame == pinfo.number and tostring(info_col) == info_text) then
         info_text = text
-        pinfo.cols.info:set(text)
+        info_col:set(text)
     else
         info_text = info_text .. "; " .. text
-        pinfo.cols.info:append("; " .. text)
+        info_col:append("; " .. text)
     end
     info_frame = pinfo.number
 end
 
-rt.layout_summary, rt.package_summary, rt.labelled, rt.set_info = layout_summary, package_summary, labelled, set_info
+rt.layout_summary, rt.package_summary, rt.labelled = layout_summary, package_summary, labelled
+rt.info_begin, rt.set_info = info_begin, set_info

@@ -62,5 +62,15 @@ local function add_field(tree, f, range, encoding)
     return HIDDEN
 end
 
+-- Whether k more items fit under the cap: then they are counted, and added with tree:add
+-- directly (a run of fields in one loop).
+local function room(k)
+    if left >= k then
+        left = left - k
+        return true
+    end
+    return false
+end
+
 rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS = items_begin, items_hidden, MAX_TREE_ITEMS
-rt.add, rt.add_value, rt.add_field = add, add_value, add_field
+rt.add, rt.add_value, rt.add_field, rt.room = add, add_value, add_field, room

@@ -1,6 +1,6 @@
 -- Messages: spec.messages holds one data table per message type, and its kind names the pair
--- of functions that dissect it: info (the Info column text, from the raw bytes) and tree (the
--- fields under the message's item). Two kinds:
+-- of functions that dissect it: info (the Info column text, from the raw bytes; nil when `text`
+-- is false, when no column is built) and tree (the fields under the message's item). Two kinds:
 --   packages  a list of sub-packages, each framed by its own length (robot state);
 --   subtypes  a header, then a subtype byte that chooses the layout of the rest (robot
 --             messages, program-state messages).
@@ -15,12 +15,19 @@ local HEADER = spec.header_size
 local PACKAGE_HEADER = spec.package_header_size
 local PACKAGE_LENGTH = spec.package_length_size
 
--- True when a filter, column or tap asks for one of these fields.
-local function referenced(tree, fields)
-    for _, f in ipairs(fields) do
-        if tree:referenced(f) then return true end
+-- True when a filter, column or tap asks for a field of package pk (its data table). Asked once
+-- per package kind per dissector call (st.call), not per field of every package.
+local asked = {}
+local function referenced(tree, pk, call)
+    local a = asked[pk]
+    if a and a.call == call then return a.yes end
+    local yes, fields = false, pk.refs
+    for i = 1, #fields do
+        if tree:referenced(fields[i]) then yes = true; break end
     end
-    return false
+    if not a then a = {}; asked[pk] = a end
+    a.call, a.yes = call, yes
+    return yes
 end
 
 -- The body of a package or message from body to stop, walked with its layout for version v;
@@ -87,12 +94,38 @@ end
 
 local KINDS = {}
 
+-- One package of a robot state at p, of size bytes, its form chosen: its item, header and
+-- fields. Without a tree shown, its fields are walked only when some are asked for.
+local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
+    local pk = form and form.of
+    local v = use or st.version
+    local item = add(tree, pk and pk.item or X.unknown_package, tvb(p, size))
+    local name, named = code_name(m.types, m.type_tables, v, code)
+    if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
+    add(item, m.length, tvb(p, PACKAGE_LENGTH))
+    add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+    if by_length then note_length(item, form, size) end
+    local body, stop = p + PACKAGE_HEADER, p + size
+    if pk and not st.visible and not referenced(item, pk, st.call) then
+        -- No tree shown and no field of this package asked for: skip its fields.
+    elseif pk then
+        walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
+    else
+        add(item, X.raw, tvb(body, stop - body))
+        -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
+        if not named then
+            item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
+        end
+    end
+end
+
 -- m: { packages = { [type] = its forms, each of = { name, label, item, layout, summary, refs } },
 -- types = value string of package types (type_tables: by version, when they depend on it),
 -- length, type = the fields of a package header, needs_version }.
 KINDS.packages = {
-    info = function(m, tvb, raw, o, e, st)
-        return labelled(m.label, package_summary(tvb, raw, o + HEADER, e, m.packages, st))
+    info = function(m, tvb, raw, o, e, st, text)
+        local summary = package_summary(tvb, raw, o + HEADER, e, m.packages, st, text)
+        return text and labelled(m.label, summary) or nil
     end,
     tree = function(m, tvb, tree, o, e, st)
         if m.needs_version then show_version(tree, st) end
@@ -121,26 +154,12 @@ KINDS.packages = {
                 form, use, by_length = pick(forms, size - PACKAGE_HEADER, st)
                 pk = form.of
             end
-            local v = use or st.version
-            local item = add(tree, pk and pk.item or X.unknown_package, tvb(p, size))
-            local name, named = code_name(m.types, m.type_tables, v, code)
-            if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
-            add(item, m.length, tvb(p, PACKAGE_LENGTH))
-            add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
-            if by_length then note_length(item, form, size) end
-            local body, stop = p + PACKAGE_HEADER, p + size
-            if pk and not st.visible and not referenced(item, pk.refs) then
-                -- No tree shown and no field of this package asked for: skip its fields.
-            elseif pk then
-                walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
-            else
-                add(item, X.raw, tvb(body, stop - body))
-                -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
-                if not named then
-                    item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
-                end
+            -- A tshark -T fields run that names no field of this package: not built at all
+            -- (runtime/wanted.lua).
+            if not (pk and st.only and not st.only[pk]) then
+                package(m, tvb, tree, p, size, st, code, form, use, by_length)
             end
-            p = stop
+            p = p + size
         end
     end,
 }
@@ -150,7 +169,8 @@ KINDS.packages = {
 -- (subtype_tables: by version, when they depend on it), subtypes = { [subtype] = its forms,
 -- each of = { name, label, item, header, layout, needs_version } } }.
 KINDS.subtypes = {
-    info = function(m, tvb, raw, o, e, st)
+    info = function(m, tvb, raw, o, e, st, text)
+        if not text then return nil end
         if e - o < m.body_offset then return m.label .. " (too short)" end
         local code = byte(raw, o + m.body_offset)
         local forms = m.subtypes[code]

@@ -1,12 +1,14 @@
 -- Preferences and registration: the robot-side ports (taken over from MRCPv2, which claims
 -- TCP 30000-30200 in Wireshark 4.0; "Decode As" works on others), the software version assumed
--- until a Version message is seen (empty: none), and the longest plausible message.
+-- until a Version message is seen (empty: none), whether tshark -T fields builds only the
+-- packages its command line names (runtime/wanted.lua), and the longest plausible message.
 local spec, rt = ...
 local ur = spec.proto
-local parse_version, assume_version = rt.parse_version, rt.assume_version
+local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only
 
 ur.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of the primary/secondary interfaces", 65535)
 ur.prefs.version = Pref.string("Software version", "", "Controller software version (major.minor or major.minor.bugfix, as 5.25.1) assumed until a Version message is seen on a stream: it chooses the layouts, the enum names and the global-variable value types. Empty: the layout sizes tell it where they can, else " .. spec.default_version .. ".")
+ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names", true, "With tshark -T fields, build only the robot-state packages whose fields the command line names (-e, -Y, -R, -z, -o); off: build every field, as for another Lua script reading ur fields with Field.new")
 ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length, "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
 local tcp_port = DissectorTable.get("tcp.port")
@@ -20,6 +22,7 @@ end
 
 function ur.prefs_changed()
     assume_version(parse_version(ur.prefs.version))
+    named_only(ur.prefs.named_fields_only)
     register_ports()
 end
 

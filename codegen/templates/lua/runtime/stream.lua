@@ -2,67 +2,132 @@
 -- sizes showed (nil: none yet; `implied` names the versions of the form whose size showed it),
 -- whether the dissector is resynchronising after a bad header, and the bytes carried over
 -- from earlier segments while it does (a carry, runtime/carry.lua). First pass: the state moves
--- along, and a snapshot of it is kept for each dissector call (frame number and tvb length): a
--- carry is kept once, and a snapshot holds it with how many of its bytes the call started
--- with. Later passes (tshark -2, clicks in the GUI, in any order) reuse the snapshot, so both
--- agree.
+-- along. Later passes (tshark -2, clicks in the GUI, in any order) must start each dissector
+-- call (frame number and tvb length) with the state its first-pass call started with.
+-- That state changes rarely (a Version message, a bad header, the calls that carry bytes), so
+-- it is kept only where it changes: a frame in which some call starts with another state than
+-- the call before it is kept, with a snapshot per call and the snapshot its last call started
+-- with; a frame that keeps nothing starts with that of the last frame kept before it (found by
+-- bisection). A capture in step costs memory per stream, not per frame.
 -- Streams are keyed by their two ports (a number: no string is made per packet). Field.new(
 -- "tcp.stream") gives nothing on a first pass without a tree (tshark -2), and Conversation only
 -- exists from Wireshark 4.6. Two robots talking to clients that use the same port number at the
 -- same time would share a state; a reused port pair starts over with its Version message.
 local spec, rt = ...
+local floor = math.floor
 
 local CALL_SPAN = 1048576   -- a call's key: frame number * CALL_SPAN + tvb length mod CALL_SPAN
 
-local stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
--- by call (frame, tvb length), and by -frame
-local snap_version, snap_implied, snap_resync, snap_carry, snap_carried = {}, {}, {}, {}, {}
+-- A snapshot: { version, implied, resync, carry, carried = how many bytes the carry held }.
+-- NONE: a stream that nothing has happened on yet.
+local NONE = { resync = false }
+
+local streams    -- by port pair: its state now, and what later passes need (see stream_of)
+local at_call    -- snapshots of the calls of kept frames, by call key
+local at_frame   -- the snapshot of the first call of each kept frame, by frame number
 
 -- A new capture: forget every stream.
 local function reset()
-    stream_version, stream_implied, stream_resync, stream_carry = {}, {}, {}, {}
-    snap_version, snap_implied, snap_resync, snap_carry, snap_carried = {}, {}, {}, {}, {}
+    streams, at_call, at_frame = {}, {}, {}
+end
+reset()
+
+-- s: the state now (version, implied, resync, carry); last: the snapshot the latest call
+-- started with; frame: that call's frame, keeping: whether that frame is kept, and while it is
+-- not, its calls so far (keys[1..n], snaps[1..n]); kept: the kept frames in order, after: the
+-- snapshot the last call of each started with.
+local function stream_of(key)
+    local s = streams[key]
+    if not s then
+        s = { resync = false, last = NONE, frame = -1, keeping = false, keys = {}, snaps = {}, n = 0,
+              kept = {}, after = {} }
+        streams[key] = s
+    end
+    return s
 end
 
--- The state a call starts with, kept under a call's key or a frame's.
-local function snapshot(at, version, implied, resync, carry, carried)
-    snap_version[at], snap_implied[at], snap_resync[at] = version, implied, resync
-    snap_carry[at], snap_carried[at] = carry, carried
+local function same(snap, version, implied, resync, carry, carried)
+    return snap.version == version and snap.implied == implied and snap.resync == resync
+        and snap.carry == carry and snap.carried == carried
 end
 
--- That state again, as stream_load returns it.
-local function snapshot_at(at, stream)
-    return snap_version[at], snap_implied[at], snap_resync[at], snap_carry[at], snap_carried[at], stream
+-- The snapshot a frame that kept nothing started with.
+local function before(s, frame)
+    local kept = s.kept
+    local lo, hi, found = 1, #kept, nil
+    while lo <= hi do
+        local mid = floor((lo + hi) / 2)
+        if kept[mid] < frame then found, lo = kept[mid], mid + 1 else hi = mid - 1 end
+    end
+    return found and s.after[found] or NONE
+end
+
+-- A later pass: the snapshot of the call, else of its frame's first call (TCP reassembly may
+-- hand over other bytes than on the first pass), else of the frames before it.
+local function recall(stream, key, frame)
+    local snap = at_call[key] or at_frame[frame]
+    if snap then return snap end
+    local s = streams[stream]
+    return s and before(s, frame) or NONE
+end
+
+-- The first pass: the call starts with the stream's state now; kept when it differs from the
+-- state the call before it started with, and so is every call of its frame.
+local function note(s, key, frame)
+    local version, implied, resync, carry = s.version, s.implied, s.resync, s.carry
+    local carried = carry and carry.size
+    local snap, changed = s.last, false
+    if not same(snap, version, implied, resync, carry, carried) then
+        snap = { version = version, implied = implied, resync = resync, carry = carry, carried = carried }
+        changed = true
+    end
+    s.last = snap
+    if frame ~= s.frame then s.frame, s.keeping, s.n = frame, false, 0 end
+    if changed and not s.keeping then
+        s.keeping = true
+        s.kept[#s.kept + 1] = frame
+        local keys, snaps = s.keys, s.snaps
+        for i = 1, s.n do
+            if at_call[keys[i]] == nil then at_call[keys[i]] = snaps[i] end
+        end
+        if s.n > 0 then at_frame[frame] = snaps[1] end
+    end
+    if s.keeping then
+        if at_call[key] == nil then at_call[key] = snap end
+        if at_frame[frame] == nil then at_frame[frame] = snap end
+        s.after[frame] = snap
+    else
+        local n = s.n + 1
+        s.n, s.keys[n], s.snaps[n] = n, key, snap
+    end
+    return snap
 end
 
 -- The state as a call with n bytes starts: version, implied, resync, carry, how many bytes of
 -- the carry are this call's (nil: no carry), and the stream's key for stream_save.
 local function stream_load(pinfo, n)
     local stream = pinfo.src_port * 65536 + pinfo.dst_port
-    local key = pinfo.number * CALL_SPAN + n % CALL_SPAN
-    local frame = -pinfo.number
-    if pinfo.visited and snap_resync[key] ~= nil then
-        return snapshot_at(key, stream)
-    elseif pinfo.visited and snap_resync[frame] ~= nil then
-        -- Later passes may hand over other bytes than the first (TCP reassembly replays
-        -- differently): fall back to the state of the frame's first call.
-        return snapshot_at(frame, stream)
-    end
-    local version, implied = stream_version[stream], stream_implied[stream]
-    local resync, carry = stream_resync[stream] or false, stream_carry[stream]
-    local carried = carry and carry.size
-    if snap_resync[key] == nil then snapshot(key, version, implied, resync, carry, carried) end
-    if snap_resync[frame] == nil then snapshot(frame, version, implied, resync, carry, carried) end
-    return version, implied, resync, carry, carried, stream
+    local frame = pinfo.number
+    local key = frame * CALL_SPAN + n % CALL_SPAN
+    local snap
+    if pinfo.visited then snap = recall(stream, key, frame) else snap = note(stream_of(stream), key, frame) end
+    return snap.version, snap.implied, snap.resync, snap.carry, snap.carried, stream
 end
 
 -- The state as a call ends; kept on the first pass only.
 local function stream_save(pinfo, stream, version, implied, resync, carry)
     if not pinfo.visited then
-        stream_version[stream], stream_implied[stream] = version, implied
-        stream_resync[stream], stream_carry[stream] = resync, carry
+        local s = stream_of(stream)
+        s.version, s.implied, s.resync, s.carry = version, implied, resync, carry
     end
 end
 
+-- How many snapshots later passes keep (for tests: it grows with changes, not frames).
+local function stream_kept()
+    local n = 0
+    for _ in pairs(at_call) do n = n + 1 end
+    return n
+end
+
 spec.proto.init = reset
-rt.stream_load, rt.stream_save, rt.stream_reset = stream_load, stream_save, reset
+rt.stream_load, rt.stream_save, rt.stream_reset, rt.stream_kept = stream_load, stream_save, reset, stream_kept

@@ -10,16 +10,24 @@ local add, add_value = rt.add, rt.add_value
 local MAX_VALUE_DEPTH = spec.max_value_depth
 local VALUE_TABLES = spec.value_tables
 
--- One typed value at o, under tree; vf holds the fields values are shown with, kinds the
+-- Items that cannot fit in the bytes from o to e (each takes at least vt.min_size) are refused
+-- before any is read; at is the offset of their count. Returns the error text, or nil.
+local function too_many(st, vt, path, at, items, o, e)
+    if items * vt.min_size > e - o then
+        return fmt("%s at offset %d: %d items need more than the %d bytes left", path, at - st.base, items, e - o)
+    end
+end
+
+-- One typed value at o, under tree; vf holds the fields values are shown with, vt the
 -- version's value types. Returns the offset after it, or nil and the canonical error text.
-local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
+local function walk_value(tvb, tree, o, e, st, vf, vt, path, depth)
     local raw = st.raw
     if o >= e then return nil, short(st, path .. ".type", o, 1, e) end
     local code = byte(raw, o + 1)
     if depth > MAX_VALUE_DEPTH then
         return nil, fmt("%s at offset %d: nesting deeper than %d", path, o - st.base, MAX_VALUE_DEPTH)
     end
-    local kind = kinds[code]
+    local kind = vt.kinds[code]
     if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
     local start = o
     local item = add(tree, vf.item, tvb(o, 1))
@@ -48,11 +56,12 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
         if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
         local n = be_int(raw, o, kind.len)
         if n < 0 then return nil, negative(st, path, o, n) end
+        local err = too_many(st, vt, path, o, n, o + kind.len, e)
+        if err then return nil, err end
         add(item, vf.count, tvb(o, kind.len))
         o = o + kind.len
         for i = 0, n - 1 do
-            local err
-            o, err = walk_value(tvb, item, o, e, st, vf, kinds, path .. "[" .. i .. "]", depth + 1)
+            o, err = walk_value(tvb, item, o, e, st, vf, vt, path .. "[" .. i .. "]", depth + 1)
             if not o then return nil, err end
         end
     elseif layout == "matrix" then
@@ -60,6 +69,12 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
         local rows, cols = be_int(raw, o, kind.len), be_int(raw, o + kind.len, kind.len)
         if rows < 0 then return nil, negative(st, path, o, rows) end
         if cols < 0 then return nil, negative(st, path, o + kind.len, cols) end
+        -- Rows of no items would take no bytes at all: any number of them fits in none.
+        if rows > 0 and cols == 0 then
+            return nil, fmt("%s at offset %d: %d rows of 0 columns", path, o - st.base, rows)
+        end
+        local err = too_many(st, vt, path, o, rows * cols, o + 2 * kind.len, e)
+        if err then return nil, err end
         add(item, vf.rows, tvb(o, kind.len))
         add(item, vf.cols, tvb(o + kind.len, kind.len))
         o = o + 2 * kind.len
@@ -68,8 +83,7 @@ local function walk_value(tvb, tree, o, e, st, vf, kinds, path, depth)
             row:set_text(fmt("Row %d", r))
             local row_start = o
             for c = 0, cols - 1 do
-                local err
-                o, err = walk_value(tvb, row, o, e, st, vf, kinds, path .. "[" .. r .. "][" .. c .. "]", depth + 1)
+                o, err = walk_value(tvb, row, o, e, st, vf, vt, path .. "[" .. r .. "][" .. c .. "]", depth + 1)
                 if not o then return nil, err end
             end
             row:set_len(o - row_start)
@@ -81,12 +95,12 @@ end
 
 -- Typed values, each followed by a terminator, to the end of the layout.
 function rt.KIND.values(tvb, tree, o, e, st, d, pre)
-    local kinds = value_table(VALUE_TABLES, st.version)
+    local vt = value_table(VALUE_TABLES, st.version)
     local i = 0
     while o < e do
         local path = fmt("%s%s[%d]", pre or "", d.path, i)
         local err
-        o, err = walk_value(tvb, tree, o, e, st, d.vf, kinds, path, 1)
+        o, err = walk_value(tvb, tree, o, e, st, d.vf, vt, path, 1)
         if not o then return nil, err end
         if o >= e then return nil, short(st, path, o, 1, e) end
         local b = byte(st.raw, o + 1)

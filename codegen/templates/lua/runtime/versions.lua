@@ -47,19 +47,26 @@ local function in_force(tables, v)
     return tables[#tables]
 end
 
--- The value-type codes of version v.
+-- The value types of version v: { kinds = { [code] = ... }, min_size = the fewest bytes a value takes }.
 local function value_table(tables, v)
-    return in_force(tables, v).kinds
+    return in_force(tables, v)
 end
 
 -- The names of an enum whose codes depend on the version ({ newest = <value string>,
--- { low, high, names }, ... }) for version v.
+-- { low, high, names }, ... }) for version v. The last answer per enum is kept: a stream keeps
+-- its version.
+local names_memo = {}
 local function enum_names(tables, v)
+    local m = names_memo[tables]
+    if m and m.v == v then return m.names end
+    local names = tables.newest
     for i = 1, #tables do
         local t = tables[i]
-        if version_in(v, t.low, t.high) then return t.names end
+        if version_in(v, t.low, t.high) then names = t.names; break end
     end
-    return tables.newest
+    if not m then m = {}; names_memo[tables] = m end
+    m.v, m.names = v, names
+    return names
 end
 
 -- True when some version's table names the code.
@@ -93,8 +100,7 @@ end
 -- the length chose it: the version's form when it fits; else the one form whose exact size it
 -- is (an open-ended form fits too much to be recognised by length); else the version's form (or
 -- the nearest below), whose short or extra bytes are then reported.
-local function choose(forms, size, v)
-    if forms.single then return forms[1], v, false end
+local function choose_form(forms, size, v)
     local mine
     for i = 1, #forms do
         if sent_by(forms[i], v) then mine = forms[i]; break end
@@ -120,6 +126,19 @@ local function choose(forms, size, v)
     end
     if count == 1 then return found, found.rep, true end
     return mine, v, false
+end
+
+-- choose_form(), with the last answer per package type or subtype kept: a stream keeps its
+-- version and a type its size.
+local choice_memo = {}
+local function choose(forms, size, v)
+    if forms.single then return forms[1], v, false end
+    local m = choice_memo[forms]
+    if m and m.size == size and m.v == v then return m.form, m.use, m.by_length end
+    local form, use, by_length = choose_form(forms, size, v)
+    if not m then m = {}; choice_memo[forms] = m end
+    m.size, m.v, m.form, m.use, m.by_length = size, v, form, use, by_length
+    return form, use, by_length
 end
 
 -- choose() for the message being dissected (st): when the stream's version is not known (no

@@ -11,7 +11,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
 local version_in, enum_names = rt.version_in, rt.enum_names
-local add, add_value, add_field = rt.add, rt.add_value, rt.add_field
+local add, add_value, add_field, room = rt.add, rt.add_value, rt.add_field, rt.room
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
@@ -65,13 +65,26 @@ function KIND.bits(tvb, tree, o, e, st, d, pre)
     -- The bits read the range itself (a narrower range holds the low bits).
     local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
-    for i = 1, #bits do add(item, bits[i], range) end
+    if room(#bits) then
+        for i = 1, #bits do item:add(bits[i], range) end
+    else
+        for i = 1, #bits do add(item, bits[i], range) end
+    end
     return o + d.n
 end
 
 -- count scalars in a row.
 function KIND.array(tvb, tree, o, e, st, d, pre)
-    for i = 0, d.count - 1 do
+    local n, count = d.n, d.count
+    if not (d.value or d.tables) and o + n * count <= e and room(count) then
+        local f = d.f
+        for _ = 1, count do
+            tree:add(f, tvb(o, n))
+            o = o + n
+        end
+        return o
+    end
+    for i = 0, count - 1 do
         if o + d.n > e then return nil, short(st, fmt("%s%s[%d]", pre or "", d.path, i), o, d.n, e) end
         add_scalar(tree, tvb(o, d.n), o, st, d)
         o = o + d.n
@@ -166,9 +179,55 @@ function KIND.cond(tvb, tree, o, e, st, d, pre)
     return walk(tvb, tree, o, e, st, d.fields, pre)
 end
 
+-- Scalars added as they are (no explicit value, no names by version, not kept) that follow
+-- one another: one step, a run, with one bounds check and one count of tree items.
+function KIND.run(tvb, tree, o, e, st, d, pre)
+    local fields, sizes, count = d.fields, d.sizes, d.count
+    if o + d.size <= e and room(count) then
+        for j = 1, count do
+            local n = sizes[j]
+            tree:add(fields[j], tvb(o, n))
+            o = o + n
+        end
+        return o
+    end
+    -- One by one: the first that does not fit is named; past the item cap they are counted.
+    local scalars = d.scalars
+    for j = 1, count do
+        local err
+        o, err = KIND.scalar(tvb, tree, o, e, st, scalars[j], pre)
+        if not o then return nil, err end
+    end
+    return o
+end
+
+-- A layout's steps: its descriptors, with runs of plain scalars joined. Made once per layout.
+local steps_of = {}
+local function steps(layout)
+    local out, run = {}, nil
+    for i = 1, #layout do
+        local d = layout[i]
+        if d.k == "scalar" and not (d.value or d.tables or d.keep) then
+            if not run then
+                run = { k = "run", fields = {}, sizes = {}, scalars = {}, size = 0, count = 0 }
+                out[#out + 1] = run
+            end
+            local j = run.count + 1
+            run.count, run.fields[j], run.sizes[j], run.scalars[j] = j, d.f, d.n, d
+            run.size = run.size + d.n
+        else
+            run = nil
+            out[#out + 1] = d
+        end
+    end
+    steps_of[layout] = out
+    return out
+end
+
 -- Walk a layout from o to at most e: the offset after it, or nil and the canonical error text.
 -- pre is the error path of the enclosing group item ("joints[2]."), nil at the top.
 walk = function(tvb, tree, o, e, st, layout, pre)
+    layout = steps_of[layout] or steps(layout)
     for i = 1, #layout do
         local d = layout[i]
         local err

@@ -143,12 +143,19 @@ _I16x2 = struct.Struct(">hh")
 
 
 class ValueCodec:
-    """Reads and writes the typed values of one value-type table."""
+    """Reads and writes the typed values of one value-type table; `min_size` is the fewest
+    bytes any of its values takes, which bounds the items a LIST or MATRIX can hold."""
 
-    def __init__(self, kinds: dict[int, ValueKind], names: dict[str, int], max_depth: int):
+    def __init__(self, kinds: dict[int, ValueKind], names: dict[str, int], max_depth: int, min_size: int):
         self.kinds = kinds
         self.codes = names
         self.max_depth = max_depth
+        self.min_size = min_size
+
+    def check_count(self, items: int, path: str, at: int, pos: int, end: int) -> None:
+        """Items that cannot fit in the bytes from pos are refused before any is read."""
+        if items * self.min_size > end - pos:
+            raise DecodeError(path, at, f"{items} items need more than the {end - pos} bytes left")
 
     def decode_list(self, buf, pos: int, end: int, terminator: int, path: str) -> tuple[list, int]:
         values = []
@@ -197,6 +204,7 @@ class ValueCodec:
             (count,) = fixed.unpack_from(buf, pos)
             if count < 0:
                 raise DecodeError(path, pos, f"negative length {count}")
+            self.check_count(count, path, pos, pos + fixed.size, end)
             pos += fixed.size
             items = []
             for i in range(count):
@@ -211,6 +219,10 @@ class ValueCodec:
             raise DecodeError(path, pos, f"negative length {rows}")
         if cols < 0:
             raise DecodeError(path, pos + fixed.size // 2, f"negative length {cols}")
+        if rows and not cols:
+            # Rows of no items would take no bytes at all: any number of them fits in none.
+            raise DecodeError(path, pos, f"{rows} rows of 0 columns")
+        self.check_count(rows * cols, path, pos, pos + fixed.size, end)
         pos += fixed.size
         matrix = []
         for r in range(rows):
@@ -250,6 +262,8 @@ class ValueCodec:
             cols = len(v.value[0]) if v.value else (v.columns or 0)
             if any(len(row) != cols for row in v.value):
                 raise EncodeError("matrix rows differ in length")
+            if v.value and not cols:
+                raise EncodeError("matrix rows of 0 columns would not read back: they take no bytes")
             out += fixed.pack(len(v.value), cols)
             for row in v.value:
                 for item in row:
