@@ -215,11 +215,28 @@ def _writer_source(cls: type) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _names() -> dict:
+    """What the writers' code calls."""
+    return dict(f32=f32_text, f64=f64_text, text=_text, value=_value, int_text="%d".__mod__,
+                bool_text=_bool_text, write=_write)
+
+
 def _compile(cls: type) -> Callable[[Any], str]:
-    names = dict(f32=f32_text, f64=f64_text, text=_text, value=_value, int_text="%d".__mod__,
-                 bool_text=_bool_text, write=_write)
+    names = _names()
     exec(_writer_source(cls), names)
     return names[f"write_{cls.__name__}"]
+
+
+def member_text(kind: str, value: Any) -> str:
+    """The canonical JSON of one member's value, given its kind in a class's JSON table."""
+    write = _MEMBER_WRITERS.get(kind)
+    if write is None:
+        fmt, expr = _KINDS[kind]
+        write = _MEMBER_WRITERS[kind] = eval(f"lambda v: {fmt!r} % ({expr.format(v='v')},)", _names())
+    return write(value)
+
+
+_MEMBER_WRITERS: dict = {}
 
 
 # ---- records that the runtime makes: stream faults, unknown and malformed parts -------------
