@@ -58,5 +58,12 @@ demo-python:
 ## bench: speed figures, each a ratio against a baseline measured in the same run
 bench: bench-python $(BENCH_TARGETS)
 
+## bench-python: decode per message (against python-urx and the package of BENCH_PY_GENERATIONS),
+## a JSON line (against the package of BENCH_PY_BASE), and BENCH_PY_MB megabytes of raw and .pcap
+## input read in their own processes: MB/s and peak memory
+BENCH_PY_BASE ?= 56d4759
+BENCH_PY_GENERATIONS ?= 27a9d98
+BENCH_PY_MB ?= 10 100
 bench-python:
-	PYTHONPATH=generated/python $(PYTHON) tests/bench/bench_python.py
+	PYTHONPATH=generated/python $(PYTHON) tests/bench/bench_python.py --base $(BENCH_PY_BASE) \
+		--generations-base $(BENCH_PY_GENERATIONS) $(BENCH_PY_MB)

@@ -6,8 +6,9 @@ shared machine weighs less) and their ratio.
     python3 tests/bench/bench_cli.py [MB ...]      (default: 10 100)
 
 The stream repeats the robot states of the bundled capture (a 5.11 robot) and of the
-conformance captures that decode cleanly, built now under build/ (not committed). Before the
-timed runs, both commands' output for the smallest stream is checked to be the same bytes.
+conformance captures that decode cleanly, built under build/ (tests/tools/robot_inputs.py).
+Before the timed runs, both commands' output for the smallest stream is checked to be the same
+bytes.
 """
 from __future__ import annotations
 
@@ -18,37 +19,15 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT / "generated" / "python"), str(ROOT / "tests"), str(ROOT / "tests" / "c"),
-                str(ROOT / "tests" / "bench")]
+sys.path[:0] = [str(ROOT / "generated" / "python"), str(ROOT)]
 
-import urwire  # noqa: E402
-from urwire.canonical import has_error  # noqa: E402
-from bench_c import robot_states  # noqa: E402
-from seeds import capture_stream, messages  # noqa: E402
+from tests.tools import robot_inputs  # noqa: E402
 
 C_CLI = ROOT / "build" / "urwire-decode"
 PYTHON_CLI = [sys.executable, "-m", "urwire", "decode"]
 ENV = dict(os.environ, PYTHONPATH=str(ROOT / "generated" / "python"))
-CAPTURE = ROOT / "dissector" / "samples" / "primary_session.pcapng"
 C_ROUNDS = 5  # the C command runs in well under a second: the best of several
 GOAL = 10  # the C command at least this many times the Python command's MB/s
-
-
-def states() -> list[bytes]:
-    """Robot-state messages of the capture and the conformance captures, each decoding cleanly."""
-    found = [m for m in messages(capture_stream(CAPTURE)) if m[4] == 16]
-    found = [m for m in found if not any(has_error(r) for r in urwire.decode_stream(m))]
-    return found + robot_states()
-
-
-def stream(megabytes: int, parts: list[bytes]) -> Path:
-    path = ROOT / "build" / f"bench-cli-{megabytes}MB.bin"
-    one = b"".join(parts)
-    data = one * (megabytes * 1_000_000 // len(one) + 1)
-    if not path.is_file() or path.stat().st_size != len(data):
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_bytes(data)
-    return path
 
 
 def cpu_seconds(cmd: list[str], path: Path) -> float:
@@ -71,8 +50,8 @@ def main(argv: list[str]) -> int:
     if not C_CLI.is_file():
         print(f"{C_CLI} is missing: make build/urwire-decode", file=sys.stderr)
         return 2
-    parts = states()
-    paths = {mb: stream(mb, parts) for mb in sorted(sizes)}
+    parts = robot_inputs.real_states()
+    paths = {mb: robot_inputs.raw_stream(mb, parts) for mb in sorted(sizes)}
     print(f"== C command vs Python command: {len(parts)} real robot states "
           f"({sum(map(len, parts))} bytes) repeated, canonical JSON Lines to /dev/null")
     smallest = paths[min(paths)]

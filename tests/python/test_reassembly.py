@@ -78,13 +78,67 @@ def test_reversed_segments_cost_what_in_order_ones_do(monkeypatch):
         assert len(comparisons) <= 3 * len(segs)
 
 
-def test_too_many_held_bytes_give_up_the_gap(monkeypatch):
-    from urwire import capture
-
-    monkeypatch.setattr(capture, "MAX_PENDING", 50)
+def test_a_gap_given_up_goes_on_from_the_earliest_segment_held():
     stream = _Reassembly(1000)
     assert stream.add(1000, DATA[:10]) == DATA[:10]
     assert stream.add(1140, DATA[140:180]) == b""
-    assert stream.add(1100, DATA[100:140]) == DATA[100:180]   # 80 bytes held: the gap is given up
+    assert stream.add(1100, DATA[100:140]) == b""
+    assert stream.skip_gap() == DATA[100:180]
+    assert stream.held_bytes == 0
     assert stream.add(1180, DATA[180:]) == DATA[180:]
     assert stream.add(1050, DATA[50:100]) == b""               # too late: already given up
+
+
+def test_each_held_segment_counts_what_holding_it_costs():
+    """One-byte segments weigh their objects, not their one byte: a capture of tiny segments
+    behind a gap cannot hold a hundred times MAX_PENDING."""
+    from urwire.capture import SEGMENT_COST
+
+    stream = _Reassembly(1000)
+    for i in range(100, 150):
+        stream.add(1000 + i, DATA[i:i + 1])
+    stream.add(1120, DATA[120:125])   # a longer retransmission: its extra bytes only
+    assert stream.held_bytes == 50 * (1 + SEGMENT_COST) + 4
+    assert stream.add(1000, DATA[:100]) == DATA[:150]
+    assert stream.held_bytes == 0
+
+
+def test_the_streams_together_hold_at_most_max_pending(monkeypatch, tmp_path):
+    """Two sessions, each missing its second segment: the one holding the most gives up its gap
+    whenever all of them hold more than MAX_PENDING, long before the capture ends."""
+    from tests.tools import capture as pcap
+    from urwire import capture
+
+    monkeypatch.setattr(capture, "MAX_PENDING", 2000)
+    streams = []
+
+    class Watched(_Reassembly):
+        def __init__(self, *args):
+            super().__init__(*args)
+            streams.append(self)
+
+        def add(self, seq, data):
+            out = super().add(seq, data)
+            held.append(sum(s.held_bytes for s in streams))
+            return out
+
+    held: list = []
+    monkeypatch.setattr(capture, "_Reassembly", Watched)
+    payloads = {port: [bytes([port % 256, i]) * 50 for i in range(40)] for port in (50001, 50002)}
+    sessions = [pcap.session_frames([pcap.Segment(True, p) for p in payloads[port]], client_port=port)
+                for port in payloads]
+    for frames in sessions:
+        del frames[3 + 2 * 1]          # the robot's second segment was not captured
+    frames = [f for pair in zip(*sessions) for f in pair]
+    path = pcap.write(tmp_path / "gaps.pcap", frames)
+    got: dict = {}
+    before_the_end: dict = {}
+    with path.open("rb") as fh:
+        for (_, _, _, port), data, ended in capture.robot_streams(fh, {30001}):
+            got[port] = got.get(port, b"") + data
+            if not ended:
+                before_the_end[port] = got[port]
+    for port, sent in payloads.items():
+        assert got[port] == sent[0] + b"".join(sent[2:])
+        assert before_the_end[port].startswith(sent[0] + sent[2])
+    assert max(held) <= 2000 + 100 + capture.SEGMENT_COST

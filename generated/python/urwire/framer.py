@@ -110,8 +110,9 @@ class Framer:
 
 
 def decode_stream(data: Union[bytes, Iterable[bytes]], version_hint: VersionLike = None) -> Iterator:
-    """Every record of a whole stream: a bytes-like object (any buffer, read as its bytes), or an
-    iterable of them such as a socket reader's chunks."""
+    """Every record of a whole stream, made as it is iterated: a bytes-like object (any buffer,
+    read as its bytes), or an iterable of them such as a socket reader's chunks. A large buffer
+    is framed FEED bytes at a time, so that its records are never all held at once."""
     try:
         memoryview(data)
         chunks: Iterable = (data,)
@@ -123,7 +124,12 @@ def decode_stream(data: Union[bytes, Iterable[bytes]], version_hint: VersionLike
     return _records(Framer(version_hint), chunks)
 
 
+FEED = 1 << 20
+
+
 def _records(framer: Framer, chunks: Iterable) -> Iterator:
     for chunk in chunks:
-        yield from framer.feed(bytes_of(chunk, "a chunk of decode_stream"))
+        data = memoryview(bytes_of(chunk, "a chunk of decode_stream"))
+        for at in range(0, len(data), FEED):
+            yield from framer.feed(data[at:at + FEED])
     yield from framer.close()

@@ -2,8 +2,9 @@
 
 dpkt reads the capture formats and parses the link, IP and TCP layers; reassembly is ours:
 segments in sequence order, retransmitted and overlapping bytes dropped, out-of-order ones
-held (ordered by their place in the stream) until the gap closes. Hand-written; copied into
-generated/python/urwire/.
+held (ordered by their place in the stream) until the gap closes, or until the streams together
+hold MAX_PENDING bytes: then the stream holding the most gives up its gap. The capture is read
+a record at a time. Hand-written; copied into generated/python/urwire/.
 """
 from __future__ import annotations
 
@@ -13,7 +14,8 @@ from typing import BinaryIO, Iterator, Optional
 
 PCAP_MAGICS = {b"\xa1\xb2\xc3\xd4", b"\xd4\xc3\xb2\xa1", b"\xa1\xb2\x3c\x4d", b"\x4d\x3c\xb2\xa1"}
 PCAPNG_MAGIC = b"\x0a\x0d\x0d\x0a"
-MAX_PENDING = 16 << 20   # out-of-order bytes held per stream before the gap is given up
+MAX_PENDING = 16 << 20   # memory held for out-of-order segments, all streams together
+SEGMENT_COST = 200       # what holding a segment costs beyond its bytes: its object and entries
 
 
 def is_capture(head: bytes) -> bool:
@@ -26,7 +28,7 @@ class _Reassembly:
     position: int = 0       # where next_seq is in the stream: the bytes delivered so far
     held: dict = field(default_factory=dict)    # stream position -> bytes, ahead of next_seq
     order: list = field(default_factory=list)   # the positions in `held`, as a heap
-    held_bytes: int = 0
+    held_bytes: int = 0     # the memory they take: their bytes and SEGMENT_COST each
 
     def add(self, seq: int, data: bytes) -> bytes:
         if self.next_seq is None:
@@ -51,15 +53,15 @@ class _Reassembly:
         elif len(kept) >= len(data):
             return b""  # a retransmission of bytes already held
         self.held[at] = data
-        self.held_bytes += len(data) - len(kept or b"")
-        return self._skip_gap() if self.held_bytes > MAX_PENDING else b""
+        self.held_bytes += len(data) - (len(kept) if kept is not None else -SEGMENT_COST)
+        return b""
 
     def _drain(self, pieces: list) -> None:
         """Append the held bytes the stream has reached, earliest first, each segment once."""
         while self.order and self.order[0] <= self.position:
             at = heapq.heappop(self.order)
             data = self.held.pop(at)
-            self.held_bytes -= len(data)
+            self.held_bytes -= len(data) + SEGMENT_COST
             seen = self.position - at
             if seen < len(data):
                 pieces.append(data[seen:] if seen else data)
@@ -69,7 +71,7 @@ class _Reassembly:
         self.position += n
         self.next_seq = (self.next_seq + n) & 0xFFFFFFFF
 
-    def _skip_gap(self) -> bytes:
+    def skip_gap(self) -> bytes:
         """Give up on missing bytes: go on from the earliest segment held."""
         self._advance(self.order[0] - self.position)
         pieces: list = []
@@ -77,7 +79,7 @@ class _Reassembly:
         return b"".join(pieces)
 
     def flush(self) -> bytes:
-        return self._skip_gap() if self.order else b""
+        return self.skip_gap() if self.order else b""
 
 
 def _delta(seq: int, ref: int) -> int:
@@ -116,6 +118,7 @@ def robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[tuple[StreamKey, by
     reader = dpkt.pcapng.Reader(fh) if head == PCAPNG_MAGIC else dpkt.pcap.Reader(fh)
     linktype = reader.datalink()
     streams: dict[StreamKey, _Reassembly] = {}
+    held = 0  # bytes held out of order by all the streams, as held_bytes counts them
     for _, frame in reader:
         try:
             ip = _ip_layer(linktype, frame)
@@ -127,6 +130,8 @@ def robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[tuple[StreamKey, by
         family = socket.AF_INET if isinstance(ip, dpkt.ip.IP) else socket.AF_INET6
         key = (socket.inet_ntop(family, ip.src), tcp.sport, socket.inet_ntop(family, ip.dst), tcp.dport)
         stream = streams.get(key)
+        if stream is not None:
+            held -= stream.held_bytes  # added back below, as the segment leaves it
         if tcp.flags & dpkt.tcp.TH_SYN:
             stream = streams[key] = _Reassembly((tcp.seq + 1) & 0xFFFFFFFF)
             continue
@@ -137,7 +142,14 @@ def robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[tuple[StreamKey, by
         if ended:
             data += stream.flush()
             del streams[key]
+        else:
+            held += stream.held_bytes
         if data or ended:
             yield key, data, ended
+        while held > MAX_PENDING:  # the stream holding the most gives up its gap
+            largest = max(streams, key=lambda k: streams[k].held_bytes)
+            held -= streams[largest].held_bytes
+            yield largest, streams[largest].skip_gap(), False
+            held += streams[largest].held_bytes
     for key, stream in streams.items():
         yield key, stream.flush(), True

@@ -58,8 +58,8 @@ def _columns(obj) -> list[tuple[str, str, object]]:
 
 
 def _json_of(kind: str, value) -> str:
-    from .canonical import _field
-    return _field(kind, value)
+    from .canonical import member_text
+    return member_text(kind, value)
 
 
 class Tables:

@@ -1,0 +1,69 @@
+"""Reading in flat memory: decode_file, the command and decode_stream hold a bounded part of
+their input, whatever its size. Each runs in its own process on 20 and 60 MB of real robot
+states (raw, .pcap, .pcapng, built once in build/); its peak resident memory (wait4, through the
+watcher of tests/tools/measure.py) must stay under PEAK_LIMIT and grow by less than GROWTH_LIMIT
+from the small input to the large one. Every state is decoded: each run says how many records
+it made."""
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.tools import measure, robot_inputs
+
+ROOT = Path(__file__).resolve().parents[2]
+ENV = dict(os.environ, PYTHONPATH=str(ROOT / "generated" / "python"))
+SIZES = (20, 60)
+MIB = 1 << 20
+PEAK_LIMIT = 120 * MIB
+GROWTH_LIMIT = 12 * MIB
+
+COUNT_FILE = "import sys, urwire; print(sum(1 for _ in urwire.decode_file(sys.argv[1])))"
+COUNT_STREAM = ("import sys, urwire; data = open(sys.argv[1], 'rb').read(); "
+                "print(sum(1 for _ in urwire.decode_stream(data)))")
+COMMAND = ["-m", "urwire", "decode", "--no-progress"]
+
+
+def run(args: list[str]) -> measure.Usage:
+    usage = measure.watch([sys.executable, *args], ENV)
+    assert usage.returncode == 0, args
+    return usage
+
+
+@pytest.fixture(scope="module")
+def states() -> list[bytes]:
+    return robot_inputs.real_states()
+
+
+@pytest.mark.parametrize("how, form", [("decode_file", "bin"), ("decode_file", "pcap"), ("command", "pcapng")])
+def test_reading_a_file_takes_flat_memory(states, how, form):
+    peaks = []
+    for megabytes in SIZES:
+        if form == "bin":
+            path = robot_inputs.raw_stream(megabytes, states)
+        else:
+            path = robot_inputs.capture(megabytes, pcapng=form == "pcapng", states=states)
+        if how == "decode_file":
+            usage = run(["-c", COUNT_FILE, str(path)])
+            records = int(usage.last)
+        else:
+            usage = run([*COMMAND, str(path)])
+            records = usage.lines
+        assert records == robot_inputs.message_count(megabytes, states)
+        peaks.append(usage.peak)
+    assert peaks[-1] < PEAK_LIMIT, f"{peaks[-1] / MIB:.0f} MiB"
+    assert peaks[-1] - peaks[0] < GROWTH_LIMIT, f"{peaks[0] / MIB:.0f} -> {peaks[-1] / MIB:.0f} MiB"
+
+
+def test_decode_stream_holds_its_buffer_and_a_bounded_part_of_its_records(states):
+    """The buffer is the caller's; beyond it, the same memory for three times the records."""
+    beyond = []
+    for megabytes in SIZES:
+        path = robot_inputs.raw_stream(megabytes, states)
+        usage = run(["-c", COUNT_STREAM, str(path)])
+        assert int(usage.last) == robot_inputs.message_count(megabytes, states)
+        beyond.append(usage.peak - path.stat().st_size)
+    assert beyond[-1] - beyond[0] < GROWTH_LIMIT, f"{beyond[0] / MIB:.0f} -> {beyond[-1] / MIB:.0f} MiB"
