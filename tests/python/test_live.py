@@ -181,12 +181,28 @@ def test_export_row_counts(tmp_path):
     assert found == expected
     joints = pq.read_table(tmp_path / "t" / "joint_data.parquet")
     assert joints.schema.field("q_actual_5").type == "double" and joints.schema.field("t_motor_0").type == "float"
-    try:
-        import duckdb
-    except ImportError:
-        return
+    import duckdb  # a dev dependency (requirements-dev.txt): the query the docs show
+
     n = duckdb.sql(f"select count(*) from '{tmp_path}/t/joint_data.parquet'").fetchall()[0][0]
     assert n == expected["joint_data"]
+
+
+def test_export_dates_capture_rows_by_the_frame_that_completed_them(tmp_path):
+    import pyarrow.parquet as pq
+
+    capture = ROOT / "dissector" / "samples" / "primary_session.pcapng"
+    res = subprocess.run([sys.executable, "-m", "urwire", "export", str(capture), "--out", str(tmp_path / "t")],
+                         capture_output=True, text=True, env=ENV, timeout=120)
+    assert res.returncode == 0, res.stderr
+    times = pq.read_table(tmp_path / "t" / "robot_state.parquet").column("capture_time").to_pylist()
+    # tshark's own times of the robot's frames that carry bytes: every message ends in one of them
+    frames = subprocess.run(["tshark", "-r", str(capture), "-Y", "tcp.srcport == 30001 && tcp.len > 0",
+                             "-T", "fields", "-e", "frame.time_epoch"], capture_output=True, text=True,
+                            timeout=120, check=True).stdout.split()
+    frame_times = {round(float(t), 6) for t in frames}
+    assert len(times) == sum(r.TYPE == "robot_state" for r in urwire.decode_file(capture))
+    assert all(round(t, 6) in frame_times for t in times)
+    assert times == sorted(times) and times[-1] - times[0] > 15  # the capture's 20 s of motion
 
 
 def test_export_csv_needs_nothing(tmp_path):

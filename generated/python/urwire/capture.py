@@ -112,6 +112,13 @@ StreamKey = tuple  # (robot address, robot port, client address, client port)
 
 def robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[tuple[StreamKey, bytes, bool]]:
     """(stream, bytes in order, stream ended) for each robot->client TCP stream on `ports`."""
+    for key, data, ended, _ in timed_robot_streams(fh, ports):
+        yield key, data, ended
+
+
+def timed_robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[tuple[StreamKey, bytes, bool, float]]:
+    """The same, each with the capture time (seconds since the epoch) of the frame that brought
+    its bytes: what completes a message dates it."""
     import dpkt
     import socket
 
@@ -120,7 +127,8 @@ def robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[tuple[StreamKey, by
     linktype = reader.datalink()
     streams: dict[StreamKey, _Reassembly] = {}
     held = 0  # bytes held out of order by all the streams, as held_bytes counts them
-    for _, frame in reader:
+    ts = 0.0
+    for ts, frame in reader:
         try:
             ip = _ip_layer(linktype, frame)
         except (dpkt.UnpackError, ValueError, IndexError):
@@ -146,11 +154,11 @@ def robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[tuple[StreamKey, by
         else:
             held += stream.held_bytes
         if data or ended:
-            yield key, data, ended
+            yield key, data, ended, float(ts)
         while held > MAX_PENDING:  # the stream holding the most gives up its gap
             largest = max(streams, key=lambda k: streams[k].held_bytes)
             held -= streams[largest].held_bytes
-            yield largest, streams[largest].skip_gap(), False
+            yield largest, streams[largest].skip_gap(), False, float(ts)
             held += streams[largest].held_bytes
     for key, stream in streams.items():
-        yield key, stream.flush(), True
+        yield key, stream.flush(), True, float(ts)

@@ -2,11 +2,13 @@
 """`urwire export`: a capture as tables, one per message kind and per sub-package kind.
 
 Each table has one row per occurrence: `position` (the message's place in the input, from 0),
-then the fields as typed columns. Per-joint values take one column per joint, numbered from the
+`capture_time` (for a .pcap or .pcapng: the time of the frame that completed the message, in
+seconds since the epoch), then the fields as typed columns. Per-joint values take one column per joint, numbered from the
 base: `q_actual_0` ... `q_actual_5` (a group's fields, prefixed with the group's name when a
 kind has two groups; a list's items as `dh_a_0` ...). Global-variable values and text lists are
-kept as their canonical JSON text. Records that are errors or of unknown kinds go to `errors`,
-with their JSON. Parquet needs pyarrow (`pip install urwire[parquet]`); CSV needs nothing.
+kept as their canonical JSON text. Records and sub-packages with an error go to `errors`, and
+those of kinds the spec does not lay out (kept raw, as sub-package 14) to `unknown`, each with
+its JSON; only errors make the exit status 1, as for `decode`. Parquet needs pyarrow (`pip install urwire[parquet]`); CSV needs nothing.
 Hand-written; copied into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
@@ -18,7 +20,7 @@ import sys
 from pathlib import Path
 
 from .canonical import has_error, to_json_line
-from .reading import decode_file
+from .reading import timed_records
 
 _ARROW_TYPES = {"int": "int64", "bool": "bool_", "f32": "float32", "f64": "float64", "text": "string",
                 "hex": "binary", "texts": "string", "values": "string", "list:int": "int64", "list:f64": "float64",
@@ -63,6 +65,11 @@ def _json_of(kind: str, value) -> str:
     return member_text(kind, value)
 
 
+def _apart(part) -> str:
+    """The table of a record or sub-package that has no columns of its own."""
+    return "errors" if has_error(part) else "unknown"
+
+
 class Tables:
     """Rows gathered per kind; each kind's columns in first-seen order."""
 
@@ -70,33 +77,36 @@ class Tables:
         self.rows: dict[str, list[dict]] = {}
         self.kinds: dict[str, dict[str, str]] = {}
 
-    def add(self, table: str, position: int, columns: list) -> None:
+    def add(self, table: str, position: int, columns: list, time=None) -> None:
         kinds = self.kinds.setdefault(table, {"position": "int"})
         row = {"position": position}
+        if time is not None:
+            kinds.setdefault("capture_time", "f64")
+            row["capture_time"] = time
         for name, kind, value in columns:
             kinds.setdefault(name, kind)
             row[name] = value
         self.rows.setdefault(table, []).append(row)
 
-    def add_record(self, position: int, record) -> None:
-        if has_error(record) or not hasattr(record, "TYPE"):
-            self.add("errors", position, [("record", "text", to_json_line(record))])
+    def add_record(self, position: int, record, time=None) -> None:
+        if has_error(record) or getattr(record, "TYPE", "unknown") == "unknown":
+            self.add(_apart(record), position, [("record", "text", to_json_line(record))], time)
             return
         if hasattr(record, "packages"):
-            self.add(record.TYPE, position, [("packages", "int", len(record.packages))])
+            self.add(record.TYPE, position, [("packages", "int", len(record.packages))], time)
             for pkg in record.packages:
-                if hasattr(pkg, "JSON") and hasattr(pkg, "TYPE"):
-                    self.add(pkg.TYPE, position, _columns(pkg))
+                if hasattr(pkg, "JSON") and not has_error(pkg):
+                    self.add(pkg.TYPE, position, _columns(pkg), time)
                 else:
-                    self.add("errors", position, [("record", "text", to_json_line(pkg))])
+                    self.add(_apart(pkg), position, [("record", "text", to_json_line(pkg))], time)
             return
-        self.add(record.TYPE, position, _columns(record))
+        self.add(record.TYPE, position, _columns(record), time)
 
 
 def gather(path: str, hint=None) -> Tables:
     tables = Tables()
-    for position, record in enumerate(decode_file(path, hint)):
-        tables.add_record(position, record)
+    for position, (time, record) in enumerate(timed_records(path, hint)):
+        tables.add_record(position, record, time)
     return tables
 
 

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import BinaryIO, Callable, Iterable, Iterator, Optional, Union
 
 from .arguments import VersionLike
-from .capture import is_capture, robot_streams
+from .capture import is_capture, timed_robot_streams
 from .framer import Framer
 from .spec import PORTS
 
@@ -30,15 +30,24 @@ def records_of_raw(fh: BinaryIO, hint: VersionLike, advance: Callable[[int], Non
 
 def records_of_capture(fh: BinaryIO, hint: VersionLike, ports: Iterable[int],
                        advance: Callable[[int], None]) -> Iterator:
-    """Each robot->client TCP stream gets its own framer, so each learns its own version."""
+    for _, record in timed_records_of_capture(fh, hint, ports, advance):
+        yield record
+
+
+def timed_records_of_capture(fh: BinaryIO, hint: VersionLike, ports: Iterable[int],
+                             advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
+    """(capture time, record): each robot->client TCP stream gets its own framer, so each learns
+    its own version; a record's time is that of the frame that completed it."""
     framers: dict = {}
     last = 0
-    for key, data, ended in robot_streams(fh, set(ports)):
+    for key, data, ended, time in timed_robot_streams(fh, set(ports)):
         framer = framers.get(key) or framers.setdefault(key, Framer(hint))
         if data:
-            yield from framer.feed(data)
+            for record in framer.feed(data):
+                yield time, record
         if ended:
-            yield from framer.close()
+            for record in framer.close():
+                yield time, record
             del framers[key]
         if fh.seekable():
             pos = fh.tell()
@@ -60,3 +69,16 @@ def decode_file(path: Union[str, os.PathLike], version_hint: VersionLike = None,
     """Every record of a raw stream, .pcap or .pcapng file, in order."""
     with open(Path(path), "rb") as fh:
         yield from records_of(fh, version_hint, ports or PORTS)
+
+
+def timed_records(path: Union[str, os.PathLike], version_hint: VersionLike = None,
+                  ports: Optional[Iterable[int]] = None) -> Iterator[tuple]:
+    """(capture time in seconds since the epoch, record) of a .pcap or .pcapng file; a raw
+    stream has no times (None)."""
+    with open(Path(path), "rb") as fh:
+        head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+        if is_capture(head):
+            yield from timed_records_of_capture(fh, version_hint, ports or PORTS)
+        else:
+            for record in records_of_raw(fh, version_hint, lambda n: None):
+                yield None, record
