@@ -49,33 +49,80 @@ def f32_text(x: float) -> str:
 def _f32_shortest(x: float) -> str:
     """f32_text, worked out.
 
-    Apart from zero and powers of two, the decimals that read back as x lie symmetrically around
-    it, and %.{p-1}g is never nearer to x than %.{p}g: once p digits fail, fewer fail too. Most
-    float32 values need 7 to 9 digits, so 7 is tried first: if it fails, 8 then 9; if it reads
-    back, shorter ones down to the first that fails, starting from the digits %.7g shows when it
-    ends in zeros (a value typed in as a short decimal)."""
+    %.{p}g reads back as x when the p-digit decimal nearest x lies within half a float32 ulp of
+    it. Scaled by 10**(p - 1 - E) (E: x's decimal exponent), that is: the distance from x to the
+    nearest integer is below the scaled half-ulp. Double arithmetic gives both to within 1e-7
+    for p <= 9, so a margin of _CLOSE decides every case but the near-ties, which take the exact
+    test. Apart from powers of two the decimals that read back lie symmetrically around x, so
+    once p digits fail, fewer fail too: 7 digits are tried first, then fewer while they read
+    back, or 8. Only the chosen p is formatted."""
     if x - x != 0.0:
         return _nonfinite(x)
     if x == 0.0:
         return "-0" if math.copysign(1.0, x) < 0 else "0"
-    if abs(_frexp(x)[0]) == 0.5:
+    m, e = _frexp(x)
+    row = _DECADES.get(e)
+    if row is None or m == 0.5 or m == -0.5:
         return _f32_upwards(x)
-    try:
-        text = "%.7g" % x
-        if _f32_unpack(_f32_pack(float(text)))[0] != x:
-            text = "%.8g" % x
-            return text if _f32_unpack(_f32_pack(float(text)))[0] == x else "%.9g" % x
-        p = 7 if len(text) > 7 else _significant_digits(text)
-        if p < 7:
-            text = "%.*g" % (p, x)  # the same number, laid out for p digits
-        while p > 1:
-            shorter = "%.*g" % (p - 1, x)
-            if _f32_unpack(_f32_pack(float(shorter)))[0] != x:
-                break
-            text, p = shorter, p - 1
-        return text
-    except OverflowError:  # a text past FLT_MAX, which struct refuses (x is near it)
-        return _f32_upwards(x)
+    boundary, scale, half_ulp, scale_above, half_ulp_above = row
+    if -boundary < x < boundary:
+        v, w = x * scale, half_ulp
+    else:
+        v, w = x * scale_above, half_ulp_above
+    d = v - ((v + _TO_INTEGER) - _TO_INTEGER)  # _fits(v, w) written out: most values end here
+    if not -w + _CLOSE < d < w - _CLOSE:
+        if -w - _CLOSE <= d <= w + _CLOSE:
+            return _f32_upwards(x)
+        v, w = v * 10.0, w * 10.0
+        d = v - ((v + _TO_INTEGER) - _TO_INTEGER)
+        if -w + _CLOSE < d < w - _CLOSE:
+            return "%.8g" % x
+        return "%.9g" % x if d < -w - _CLOSE or d > w + _CLOSE else _f32_upwards(x)
+    p = 7
+    while p > 1:
+        v, w = v / 10.0, w / 10.0
+        fits = _fits(v, w)
+        if fits is None:
+            return _f32_upwards(x)
+        if not fits:
+            break
+        p -= 1
+    return "%.*g" % (p, x)
+
+
+_TO_INTEGER = 6755399441055744.0  # 1.5 * 2**52: (v + it) - it rounds v to an integer
+_CLOSE = 1e-6
+
+
+def _fits(v: float, w: float) -> Optional[bool]:
+    """Whether the integer nearest v lies within w of it; None when too close to call."""
+    d = v - ((v + _TO_INTEGER) - _TO_INTEGER)
+    if -w + _CLOSE < d < w - _CLOSE:
+        return True
+    if d < -w - _CLOSE or d > w + _CLOSE:
+        return False
+    return None
+
+
+def _decades() -> dict:
+    """For each binary exponent e (math.frexp) of a normal float32 below the top binade: the power
+    of ten inside its binade, and below and above that boundary the scale that leaves 7 digits
+    before the point, with the float32 half-ulp 2**(e - 25) so scaled. No float32 lies between
+    a power of ten and the double nearest it, so comparing with the double is exact."""
+    rows = {}
+    for e in range(-125, 128):
+        decade = math.floor(math.log10(2.0 ** (e - 1)))
+        while float(f"1e{decade}") > 2.0 ** (e - 1):
+            decade -= 1
+        while float(f"1e{decade + 1}") <= 2.0 ** (e - 1):
+            decade += 1
+        scale, scale_above = float(f"1e{6 - decade}"), float(f"1e{5 - decade}")
+        half_ulp = 2.0 ** (e - 25)
+        rows[e] = (float(f"1e{decade + 1}"), scale, half_ulp * scale, scale_above, half_ulp * scale_above)
+    return rows
+
+
+_DECADES = _decades()
 
 
 def _f32_upwards(x: float) -> str:
@@ -94,11 +141,6 @@ def _as_f32(x: float) -> float:
         return _f32_unpack(_f32_pack(x))[0]
     except OverflowError:
         return ctypes.c_float(x).value
-
-
-def _significant_digits(text: str) -> int:
-    """How many significant digits a %g text shows ("100" and "1e+02" show one)."""
-    return len(text.partition("e")[0].replace(".", "").strip("-0"))
 
 
 def f64_text(x: float) -> str:
@@ -156,35 +198,47 @@ def _value(v: GlobalValue) -> str:
 # made once, on first use, as straight-line code (the way dataclasses makes __init__): a record
 # then costs a call per object, not a dispatch per member.
 
-# How a value {v} of each kind is written: a %-format and the expression it takes.
+# How a value @ of each kind is written: a piece of an f-string. An f-string joins its parts
+# without the tuple and the format parsing that a %-format takes.
 _KINDS = {
-    "int": ("%d", "{v}"),
-    "bool": ("%s", '("true" if {v} else "false")'),
-    "f32": ("%s", "f32({v})"),
-    "f64": ("%s", "f64({v})"),
-    "text": ("%s", "text({v})"),
-    "hex": ('"%s"', "{v}.hex()"),
-    "texts": ("[%s]", '", ".join(map(text, {v}))'),
-    "values": ("[%s]", '", ".join(map(value, {v}))'),
-    "items": ("[%s]", '", ".join(map(write, {v}))'),
-    "list:int": ("[%s]", '", ".join(map(int_text, {v}))'),
-    "list:bool": ("[%s]", '", ".join(map(bool_text, {v}))'),
-    "list:f32": ("[%s]", '", ".join(map(f32, {v}))'),
-    "list:f64": ("[%s]", '", ".join(map(f64, {v}))'),
+    "int": "{@:d}",
+    "bool": '{"true" if @ else "false"}',
+    "f32": "{f32(@)}",
+    "f64": "{f64(@)}",
+    "text": "{text(@)}",
+    "hex": '"{@.hex()}"',
+    "texts": '[{", ".join(map(text, @))}]',
+    "values": '[{", ".join(map(value, @))}]',
+    "items": '[{", ".join(map(write, @))}]',
+    "list:int": '[{", ".join(map(int_text, @))}]',
+    "list:bool": '[{", ".join(map(bool_text, @))}]',
+    "list:f32": '[{", ".join(map(f32, @))}]',
+    "list:f64": '[{", ".join(map(f64, @))}]',
 }
-_EXTRA = """(', "extra": "%s"' % o.extra.hex() if o.extra else "")"""
+_EXTRA = '{o.extra and extra_text(o.extra) or ""}'
+_QUOTES = "'" * 3
 
 
 def _bool_text(v: Any) -> str:
     return "true" if v else "false"
 
 
-def _format(members: list, before: str = "", after: str = "", tail: str = "") -> str:
-    """Source of one %-format of (name, kind, value source) members, between `before` and
-    `after`, with `tail` (a %s expression) last."""
-    text = before + ", ".join(f'"{name}": '.replace("%", "%%") + _KINDS[kind][0] for name, kind, _ in members)
-    values = [_KINDS[kind][1].format(v=value) for _, kind, value in members] + ([tail] if tail else [])
-    return f"{text + ('%s' if tail else '') + after!r} % ({''.join(v + ', ' for v in values)})"
+def _extra_text(extra: bytes) -> str:
+    return ', "extra": "%s"' % extra.hex()
+
+
+def _literal(text: str) -> str:
+    """Text as the literal part of an f-string."""
+    return text.replace("{", "{{").replace("}", "}}")
+
+
+def _fstring(members: list, before: str = "", after: str = "", tail: str = "") -> str:
+    """Source of one f-string of (name, kind, value source) members, between the texts `before`
+    and `after`, with the f-string piece `tail` last."""
+    pieces = ", ".join(_literal(f'"{name}": ') + _KINDS[kind].replace("@", value) for name, kind, value in members)
+    source = _literal(before) + pieces + tail + _literal(after)
+    assert "'" not in source and "\\" not in source, source  # member and type names are identifiers
+    return "f" + _QUOTES + source + _QUOTES
 
 
 def _writer_source(cls: type) -> str:
@@ -196,8 +250,8 @@ def _writer_source(cls: type) -> str:
     lines = [f"def write_{cls.__name__}(o):"]
     if not any(optional for _, _, optional in cls.JSON):
         members = [(name, kind, f"o.{name}") for name, kind, _ in cls.JSON]
-        opening = "{" + head.replace("%", "%%") + (", " if head and members else "")
-        lines.append(f"    return {_format(members, opening, '}', _EXTRA if typed else '')}")
+        opening = "{" + head + (", " if head and members else "")
+        lines.append(f"    return {_fstring(members, opening, '}', _EXTRA if typed else '')}")
         return "\n".join(lines) + "\n"
     lines.append(f"    parts = [{head!r}]" if typed else "    parts = []")
     run: list = []
@@ -206,12 +260,12 @@ def _writer_source(cls: type) -> str:
             run.append((name, kind, f"o.{name}"))
             continue
         if run:
-            lines.append(f"    parts.append({_format(run)})")
+            lines.append(f"    parts.append({_fstring(run)})")
             run = []
         if name:
-            lines += [f"    v = o.{name}", "    if v is not None:", f"        parts.append({_format([(name, kind, 'v')])})"]
+            lines += [f"    v = o.{name}", "    if v is not None:", f"        parts.append({_fstring([(name, kind, 'v')])})"]
     if typed:
-        lines += ["    if o.extra:", """        parts.append('"extra": "%s"' % o.extra.hex())"""]
+        lines += ["    if o.extra:", "        parts.append(extra_text(o.extra)[2:])"]
     lines.append('    return "{" + ", ".join(parts) + "}"')
     return "\n".join(lines) + "\n"
 
@@ -219,7 +273,7 @@ def _writer_source(cls: type) -> str:
 def _names() -> dict:
     """What the writers' code calls."""
     return dict(f32=f32_text, f64=f64_text, text=_text, value=_value, int_text="%d".__mod__,
-                bool_text=_bool_text, write=_write)
+                bool_text=_bool_text, extra_text=_extra_text, write=_write)
 
 
 def _compile(cls: type) -> Callable[[Any], str]:
@@ -232,8 +286,8 @@ def member_text(kind: str, value: Any) -> str:
     """The canonical JSON of one member's value, given its kind in a class's JSON table."""
     write = _MEMBER_WRITERS.get(kind)
     if write is None:
-        fmt, expr = _KINDS[kind]
-        write = _MEMBER_WRITERS[kind] = eval(f"lambda v: {fmt!r} % ({expr.format(v='v')},)", _names())
+        source = "f" + _QUOTES + _KINDS[kind].replace("@", "v") + _QUOTES
+        write = _MEMBER_WRITERS[kind] = eval("lambda v: " + source, _names())
     return write(value)
 
 

@@ -1,0 +1,90 @@
+"""The float32 texts of canonical JSON: the fast digit count against the search by definition.
+
+f32_text counts the digits a float32 needs with double arithmetic and a margin
+(canonical._f32_shortest); canonical._f32_upwards tries %.1g, %.2g, ... and reads each back,
+which is the definition itself. The C command's texts are checked against f32_text over millions
+of values in tests/c/test_c_json.py.
+"""
+from __future__ import annotations
+
+import math
+import random
+import struct
+
+import pytest
+from urwire import canonical
+
+F32 = struct.Struct(">f")
+BITS = struct.Struct(">I")
+
+
+def from_bits(bits: int) -> float:
+    return F32.unpack(BITS.pack(bits & 0xFFFFFFFF))[0]
+
+
+def bits_of(x: float) -> int:
+    return BITS.unpack(F32.pack(x))[0]
+
+
+def neighbours(x: float, reach: int) -> list[float]:
+    b = bits_of(x)
+    return [from_bits(b + k) for k in range(-reach, reach + 1)]
+
+
+def finite_nonzero(values) -> list[float]:
+    return [x for x in values if x - x == 0.0 and x != 0.0]
+
+
+def assert_definition(values) -> None:
+    wrong = [(x.hex(), canonical._f32_shortest(x), canonical._f32_upwards(x))
+             for x in finite_nonzero(values) if canonical._f32_shortest(x) != canonical._f32_upwards(x)]
+    assert not wrong, wrong[:10]
+
+
+def test_no_float32_lies_between_a_power_of_ten_and_its_double():
+    """The digit count compares x with the double nearest each power of ten; that is exact only if
+    such a double is never itself a float32 unless the power is (10**0 to 10**10)."""
+    for decade in range(-45, 39):
+        nearest = float(f"1e{decade}")
+        try:
+            as_f32 = F32.unpack(F32.pack(nearest))[0]
+        except OverflowError:
+            continue
+        assert (as_f32 == nearest) == (0 <= decade <= 10), decade
+
+
+@pytest.mark.parametrize("decade", range(-38, 39))
+def test_values_around_every_power_of_ten(decade):
+    try:
+        assert_definition(neighbours(F32.unpack(F32.pack(float(f"1e{decade}")))[0], 4))
+    except OverflowError:
+        pytest.skip("past FLT_MAX")
+
+
+def test_values_around_every_power_of_two():
+    """Powers of two have a narrower interval below them than above."""
+    assert_definition(v for e in range(-149, 128) for v in neighbours(math.ldexp(1.0, e), 3))
+
+
+def test_subnormals_and_the_largest_values():
+    assert_definition([from_bits(b) for b in range(1, 2000)] + neighbours(from_bits(0x7F7FFFFF), 2)[:3])
+
+
+def test_integers_and_short_decimals():
+    """Values typed in as short decimals need few digits: the count goes down from 7."""
+    values = [float(i) for i in range(1, 20001)] + [i / 1000 for i in range(1, 20001)]
+    assert_definition(F32.unpack(F32.pack(v))[0] for v in values)
+
+
+def test_random_float32_bit_patterns():
+    rng = random.Random(20261123)
+    assert_definition(from_bits(rng.getrandbits(32)) for _ in range(200_000))
+
+
+def test_the_ranges_a_robot_sends():
+    """Currents, voltages, temperatures and positions: 7, 8 and 9 digits all occur here."""
+    rng = random.Random(5)
+    values = [F32.unpack(F32.pack(rng.uniform(lo, hi)))[0]
+              for lo, hi in ((-5, 5), (0, 60), (20, 80), (-6.3, 6.3), (-1e-3, 1e-3)) for _ in range(20_000)]
+    assert_definition(values)
+    assert {len(canonical._f32_shortest(x).lstrip("-0.").replace(".", "")) for x in values[:20_000]} >= {7, 8, 9}
