@@ -34,11 +34,12 @@ def f32_text(x: float) -> str:
     if type(x) is float:
         text = _F32_TEXTS.get(x)
         if text is None:
-            text = _f32_shortest(x)
-            if x - x == 0.0 and x != 0.0:
-                if len(_F32_TEXTS) >= _TEXTS_KEPT:
-                    _F32_TEXTS.clear()
-                _F32_TEXTS[x] = text
+            if x - x != 0.0 or x == 0.0:
+                return _f32_shortest(x)  # NaN, the infinities and the zeros: not kept
+            text = _f32_digits(x)
+            if len(_F32_TEXTS) >= _TEXTS_KEPT:
+                _F32_TEXTS.clear()
+            _F32_TEXTS[x] = text
         return text
     if isinstance(x, int):
         return str(int(x))  # a switch field that decoded an integer case
@@ -59,6 +60,11 @@ def _f32_shortest(x: float) -> str:
         return _nonfinite(x)
     if x == 0.0:
         return "-0" if math.copysign(1.0, x) < 0 else "0"
+    return _f32_digits(x)
+
+
+def _f32_digits(x: float) -> str:
+    """_f32_shortest of a finite x other than zero."""
     m, e = _frexp(x)
     row = _DECADES.get(e)
     if row is None or m == 0.5 or m == -0.5:
