@@ -20,6 +20,7 @@ SIZES = (20, 60)
 MIB = 1 << 20
 PEAK_LIMIT = 120 * MIB
 GROWTH_LIMIT = 12 * MIB
+PYARROW = 70 * MIB  # what importing pyarrow.parquet takes on its own
 
 COUNT_FILE = "import sys, urwire; print(sum(1 for _ in urwire.decode_file(sys.argv[1])))"
 COUNT_STREAM = ("import sys, urwire; data = open(sys.argv[1], 'rb').read(); "
@@ -67,3 +68,30 @@ def test_decode_stream_holds_its_buffer_and_a_bounded_part_of_its_records(states
         assert int(usage.last) == robot_inputs.message_count(megabytes, states)
         beyond.append(usage.peak - path.stat().st_size)
     assert beyond[-1] - beyond[0] < GROWTH_LIMIT, f"{beyond[0] / MIB:.0f} -> {beyond[-1] / MIB:.0f} MiB"
+
+
+@pytest.mark.parametrize("form", ["parquet", "csv"])
+def test_export_takes_flat_memory(states, tmp_path, form):
+    """`urwire export` keeps its rows on disk until the tables are written, a batch at a time:
+    three times the capture, the same memory, and every state a row."""
+    if form == "parquet":
+        pytest.importorskip("pyarrow")
+    peaks = []
+    for megabytes in SIZES:
+        out = tmp_path / f"{megabytes}-{form}"
+        usage = run(["-m", "urwire", "export", str(robot_inputs.capture(megabytes, states=states)),
+                     "--format", form, "--out", str(out)])
+        assert rows(out / f"robot_state.{form}") == robot_inputs.message_count(megabytes, states)
+        assert not [p for p in out.iterdir() if p.name.startswith(".")]  # the spilled rows are gone
+        peaks.append(usage.peak)
+    limit = PEAK_LIMIT + (PYARROW if form == "parquet" else 0)
+    assert peaks[-1] < limit, f"{peaks[-1] / MIB:.0f} MiB"
+    assert peaks[-1] - peaks[0] < GROWTH_LIMIT, f"{peaks[0] / MIB:.0f} -> {peaks[-1] / MIB:.0f} MiB"
+
+
+def rows(table: Path) -> int:
+    if table.suffix == ".csv":
+        with open(table, "rb") as fh:
+            return sum(1 for _ in fh) - 1  # the header
+    import pyarrow.parquet as pq
+    return pq.read_metadata(table).num_rows

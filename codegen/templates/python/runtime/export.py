@@ -8,15 +8,21 @@ kind has two groups; a list's items as `dh_a_0` ...). Global-variable values and
 kept as their canonical JSON text. Records and sub-packages with an error go to `errors`, and
 those of kinds the spec does not lay out (kept raw, as sub-package 14) to `unknown`, each with
 its JSON; only errors make the exit status 1, as for `decode`. Parquet needs pyarrow (`pip install urwire[parquet]`); CSV needs nothing.
+Rows are kept in a temporary file per table until the capture ends (a table's columns are
+known only then), and written BATCH_ROWS rows at a time, so memory stays flat however long the
+capture.
 Hand-written; copied into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 
 import argparse
 import csv
+import marshal
 import os
 import sys
+import tempfile
 from pathlib import Path
+from typing import BinaryIO, Iterator
 
 from .canonical import has_error, to_json_line
 from .reading import timed_records
@@ -69,23 +75,47 @@ def _apart(part) -> str:
     return "errors" if has_error(part) else "unknown"
 
 
-class Tables:
-    """Rows gathered per kind; each kind's columns in first-seen order."""
+BATCH_ROWS = 1 << 13    # rows read back and written at a time (a Parquet row group)
+SPILL_ROWS = 1 << 10    # rows a table holds in memory before they go to its file
 
-    def __init__(self) -> None:
-        self.rows: dict[str, list[dict]] = {}
+
+class Tables:
+    """Rows per kind, each kind's columns in first-seen order. They are held by column, a
+    chunk of SPILL_ROWS rows at a time, and each full chunk goes to a temporary file per kind
+    (marshal: its lists hold only numbers, text, bytes and None)."""
+
+    def __init__(self, spill: Path) -> None:
         self.kinds: dict[str, dict[str, str]] = {}
+        self.counts: dict[str, int] = {}
+        self._spill = spill
+        self._files: dict[str, BinaryIO] = {}
+        self._chunks: dict[str, dict[str, list]] = {}
 
     def add(self, table: str, position: int, columns: list, time=None) -> None:
         kinds = self.kinds.setdefault(table, {"position": "int"})
-        row = {"position": position}
-        if time is not None:
-            kinds.setdefault("capture_time", "f64")
-            row["capture_time"] = time
+        chunk = self._chunks.setdefault(table, {})
+        held = self.counts.get(table, 0) % SPILL_ROWS  # rows already in the chunk
+        columns = [("position", "int", position), *([("capture_time", "f64", time)] if time is not None else []),
+                   *columns]
         for name, kind, value in columns:
-            kinds.setdefault(name, kind)
-            row[name] = value
-        self.rows.setdefault(table, []).append(row)
+            values = chunk.get(name)
+            if values is None:
+                kinds.setdefault(name, kind)
+                values = chunk[name] = [None] * held
+            values.append(value)
+        if len(columns) < len(chunk):  # columns that this row lacks stay empty
+            for values in chunk.values():
+                if len(values) == held:
+                    values.append(None)
+        self.counts[table] = self.counts.get(table, 0) + 1
+        if held + 1 == SPILL_ROWS:
+            self._spill_chunk(table)
+
+    def _spill_chunk(self, table: str) -> None:
+        fh = self._files.get(table)
+        if fh is None:
+            fh = self._files[table] = open(self._spill / f"{table}.rows", "w+b")
+        marshal.dump(self._chunks.pop(table), fh)
 
     def add_record(self, position: int, record, time=None) -> None:
         if has_error(record) or getattr(record, "TYPE", "unknown") == "unknown":
@@ -101,33 +131,56 @@ class Tables:
             return
         self.add(record.TYPE, position, _columns(record), time)
 
+    def batches(self, table: str) -> Iterator[tuple[int, list[list]]]:
+        """The rows of a table in order, BATCH_ROWS at a time: (rows, one list per column)."""
+        if self._chunks.get(table):
+            self._spill_chunk(table)
+        fh = self._files[table]
+        fh.flush()
+        fh.seek(0)
+        names, left = list(self.kinds[table]), self.counts[table]
+        while left:
+            count, columns = 0, [[] for _ in names]
+            while left and count < BATCH_ROWS:
+                chunk = marshal.load(fh)
+                rows = len(chunk["position"])
+                for values, name in zip(columns, names):
+                    values += chunk.get(name) or [None] * rows
+                count, left = count + rows, left - rows
+            yield count, columns
 
-def gather(path: str, hint=None) -> Tables:
-    tables = Tables()
+    def close(self) -> None:
+        for fh in self._files.values():
+            fh.close()
+
+
+def gather(path: str, tables: Tables, hint=None) -> None:
     for position, (time, record) in enumerate(timed_records(path, hint)):
         tables.add_record(position, record, time)
-    return tables
 
 
 def write_csv(tables: Tables, out: Path) -> None:
-    for name, rows in tables.rows.items():
-        columns = list(tables.kinds[name])
+    for name, kinds in tables.kinds.items():
+        hex_columns = [i for i, kind in enumerate(kinds.values()) if kind == "hex"]
         with open(out / f"{name}.csv", "w", newline="", encoding="utf-8") as fh:
-            writer = csv.DictWriter(fh, columns)
-            writer.writeheader()
-            for row in rows:
-                writer.writerow({k: (v.hex() if isinstance(v, bytes) else v) for k, v in row.items()})
+            writer = csv.writer(fh)
+            writer.writerow(kinds)
+            for _, columns in tables.batches(name):
+                for i in hex_columns:
+                    columns[i] = [None if v is None else v.hex() for v in columns[i]]
+                writer.writerows(zip(*columns))
 
 
 def write_parquet(tables: Tables, out: Path) -> None:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    for name, rows in tables.rows.items():
-        kinds = tables.kinds[name]
-        arrays = [pa.array([row.get(col) for row in rows], type=getattr(pa, _ARROW_TYPES.get(kind, "string"))())
-                  for col, kind in kinds.items()]
-        pq.write_table(pa.Table.from_arrays(arrays, names=list(kinds)), out / f"{name}.parquet")
+    for name, kinds in tables.kinds.items():
+        schema = pa.schema([(col, getattr(pa, _ARROW_TYPES.get(kind, "string"))()) for col, kind in kinds.items()])
+        with pq.ParquetWriter(out / f"{name}.parquet", schema) as writer:
+            for _, columns in tables.batches(name):
+                arrays = [pa.array(values, type=field.type) for values, field in zip(columns, schema)]
+                writer.write_table(pa.Table.from_arrays(arrays, schema=schema))
 
 
 def export_command(args: argparse.Namespace) -> int:
@@ -139,16 +192,23 @@ def export_command(args: argparse.Namespace) -> int:
                   file=sys.stderr)
             return 2
     try:
-        tables = gather(args.file, args.version_hint)
         out = Path(args.out)
         os.makedirs(out, exist_ok=True)
-        (write_parquet if args.format == "parquet" else write_csv)(tables, out)
+        # The rows wait beside the tables, on the disk they go to (a temporary folder may be
+        # in memory), and go when the tables are written.
+        with tempfile.TemporaryDirectory(prefix=".urwire-rows-", dir=out) as spill:
+            tables = Tables(Path(spill))
+            try:
+                gather(args.file, tables, args.version_hint)
+                (write_parquet if args.format == "parquet" else write_csv)(tables, out)
+            finally:
+                tables.close()
     except OSError as exc:
         print(f"urwire export: {exc.filename or args.file}: {exc.strerror or exc}", file=sys.stderr)
         return 2
     except ValueError as exc:  # dpkt: a damaged capture file
         print(f"urwire export: cannot read capture {args.file}: {exc}", file=sys.stderr)
         return 2
-    for name in sorted(tables.rows):
-        print(f"{name}: {len(tables.rows[name])} rows", file=sys.stderr)
-    return 1 if "errors" in tables.rows else 0
+    for name in sorted(tables.counts):
+        print(f"{name}: {tables.counts[name]} rows", file=sys.stderr)
+    return 1 if "errors" in tables.counts else 0
