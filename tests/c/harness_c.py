@@ -26,7 +26,7 @@ SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-o
 VARIANTS = {
     "gcc": ("gcc", ["-O2"]),
     "clang": ("clang", ["-O2"]),
-    "asan-gcc": ("gcc", ["-O1", "-g"] + SANITIZE),
+    "asan-gcc": ("gcc", ["-Os", "-g"] + SANITIZE),   # -Os: the paths written out for size (__OPTIMIZE_SIZE__)
     "asan-clang": ("clang", ["-O1", "-g"] + SANITIZE),
 }
 
