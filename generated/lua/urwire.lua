@@ -2111,6 +2111,18 @@ do
 local spec, rt = ...
 local MAX_TREE_ITEMS = spec.max_tree_items
 
+-- The TreeItem and Tvb methods called for every field, taken once from their class tables: a
+-- method call on a Wireshark object (tree:add(f, tvb(o, n))) first asks the object's __index, a
+-- C function, for the method, which cost about a tenth of each field's time under tshark -V.
+-- Where a Wireshark has no class table, the method is called by name.
+local function method(class, name)
+    local f = class and class[name]
+    if f then return f end
+    return function(object, ...) return object[name](object, ...) end
+end
+local tree_add, append_text, set_text = method(TreeItem, "add"), method(TreeItem, "append_text"), method(TreeItem, "set_text")
+local range_of = method(Tvb, "range")   -- range_of(tvb, o, n) is tvb(o, n)
+
 local left, hidden, top, expert_moved = MAX_TREE_ITEMS, 0, nil, false
 
 local HIDDEN = {}
@@ -2140,7 +2152,7 @@ end
 local function add(tree, f, a)
     if left > 0 then
         left = left - 1
-        return tree:add(f, a)
+        return tree_add(tree, f, a)
     end
     hidden = hidden + 1
     return HIDDEN
@@ -2150,7 +2162,7 @@ end
 local function add_value(tree, f, range, value)
     if left > 0 then
         left = left - 1
-        return tree:add(f, range, value)
+        return tree_add(tree, f, range, value)
     end
     hidden = hidden + 1
     return HIDDEN
@@ -2166,7 +2178,7 @@ local function add_field(tree, f, range, encoding)
     return HIDDEN
 end
 
--- Whether k more items fit under the cap: then they are counted, and added with tree:add
+-- Whether k more items fit under the cap: then they are counted, and added with tree_add
 -- directly (a run of fields in one loop).
 local function room(k)
     if left >= k then
@@ -2178,6 +2190,7 @@ end
 
 rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS = items_begin, items_hidden, MAX_TREE_ITEMS
 rt.add, rt.add_value, rt.add_field, rt.room = add, add_value, add_field, room
+rt.tree_add, rt.append_text, rt.set_text, rt.range_of, rt.HIDDEN = tree_add, append_text, set_text, range_of, HIDDEN
 end)(spec, rt)
 end
 
@@ -2201,13 +2214,14 @@ local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
 local version_in, enum_names = rt.version_in, rt.enum_names
 local add, add_value, add_field, room = rt.add, rt.add_value, rt.add_field, rt.room
+local tree_add, append_text, range_of = rt.tree_add, rt.append_text, rt.range_of
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
 
 -- A text field; a zero-length one still shows, at its offset.
 local function add_text(tree, f, tvb, o, n)
-    return add_field(tree, f, tvb(o, n), ENC_UTF_8)
+    return add_field(tree, f, range_of(tvb, o, n), ENC_UTF_8)
 end
 
 -- The number of a scalar descriptor at o (range is tvb(o, d.n)), in its own wire type.
@@ -2248,7 +2262,7 @@ local KIND = {}
 -- A scalar (integer, float or bool); kept when a later field depends on it.
 function KIND.scalar(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
-    local _, v = add_scalar(tree, tvb(o, d.n), o, st, d)
+    local _, v = add_scalar(tree, range_of(tvb, o, d.n), o, st, d)
     if d.keep then kept[d.keep] = v end
     return o + d.n
 end
@@ -2256,12 +2270,12 @@ end
 -- An integer whose bits are shown one by one.
 function KIND.bits(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
-    local range = tvb(o, d.n)
+    local range = range_of(tvb, o, d.n)
     -- The bits read the range itself (a narrower range holds the low bits).
     local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
     if room(#bits) then
-        for i = 1, #bits do item:add(bits[i], range) end
+        for i = 1, #bits do tree_add(item, bits[i], range) end
     else
         for i = 1, #bits do add(item, bits[i], range) end
     end
@@ -2274,15 +2288,15 @@ function KIND.array(tvb, tree, o, e, st, d, pre)
     if not (d.value or d.tables) and o + n * count <= e and room(count) then
         local f, unit = d.f, d.unit
         for _ = 1, count do
-            local item = tree:add(f, tvb(o, n))
-            if unit then item:append_text(unit) end
+            local item = tree_add(tree, f, range_of(tvb, o, n))
+            if unit then append_text(item, unit) end
             o = o + n
         end
         return o
     end
     for i = 0, count - 1 do
         if o + d.n > e then return nil, short(st, fmt("%s%s[%d]", pre or "", d.path, i), o, d.n, e) end
-        add_scalar(tree, tvb(o, d.n), o, st, d)
+        add_scalar(tree, range_of(tvb, o, d.n), o, st, d)
         o = o + d.n
     end
     return o
@@ -2309,7 +2323,7 @@ function KIND.group(tvb, tree, o, e, st, d, pre)
     while (count and i < count) or (not count and o < e) do
         local start = o
         local fits = size and o + size <= e
-        local item = add(tree, d.f, tvb(o, fits and size or 0))
+        local item = add(tree, d.f, range_of(tvb, o, fits and size or 0))
         local label, prefix = item_names(d, pre, i)
         item:set_text(label)
         local err
@@ -2344,7 +2358,7 @@ end
 
 -- Opaque bytes to the end of the layout.
 function KIND.bytes(tvb, tree, o, e, st, d)
-    add(tree, d.f, tvb(o, e - o))
+    add(tree, d.f, range_of(tvb, o, e - o))
     return e
 end
 
@@ -2364,7 +2378,7 @@ end
 function KIND.switch(tvb, tree, o, e, st, d, pre)
     local c = d.cases[kept[d.sel]] or d.default
     if o + c.n > e then return nil, short(st, (pre or "") .. d.path, o, c.n, e) end
-    local item = add(tree, c.f, tvb(o, c.n))
+    local item = add(tree, c.f, range_of(tvb, o, c.n))
     if c.unit then item:append_text(c.unit) end
     return o + c.n
 end
@@ -2383,8 +2397,8 @@ function KIND.run(tvb, tree, o, e, st, d, pre)
     if o + d.size <= e and room(count) then
         for j = 1, count do
             local n = sizes[j]
-            local item = tree:add(fields[j], tvb(o, n))
-            if units[j] then item:append_text(units[j]) end
+            local item = tree_add(tree, fields[j], range_of(tvb, o, n))
+            if units[j] then append_text(item, units[j]) end
             o = o + n
         end
         return o
@@ -2452,7 +2466,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, short, negative = rt.be_int, rt.short, rt.negative
 local value_table, add_text = rt.value_table, rt.add_text
-local add, add_value = rt.add, rt.add_value
+local add, add_value, range_of = rt.add, rt.add_value, rt.range_of
 
 local MAX_VALUE_DEPTH = spec.max_value_depth
 local VALUE_TABLES = spec.value_tables
@@ -2478,24 +2492,24 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
     local kind = vt.kinds[code]
     if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
     local start = o
-    local item = add(tree, vf.item, tvb(o, 1))
+    local item = add(tree, vf.item, range_of(tvb, o, 1))
     item:set_text(label .. ": " .. kind.name)
-    add_value(item, vf.type, tvb(o, 1), kind.name)
-    add(item, vf.code, tvb(o, 1))
+    add_value(item, vf.type, range_of(tvb, o, 1), kind.name)
+    add(item, vf.code, range_of(tvb, o, 1))
     o = o + 1
     local layout = kind.layout
     if layout == "scalar" or layout == "array" then
         local need = kind.n * kind.count
         if o + need > e then return nil, short(st, path, o, need, e) end
         for _ = 1, kind.count do
-            add(item, vf[kind.item], tvb(o, kind.n))
+            add(item, vf[kind.item], range_of(tvb, o, kind.n))
             o = o + kind.n
         end
     elseif layout == "string" then
         if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
         local n = be_int(raw, o, kind.len)
         if n < 0 then return nil, negative(st, path, o, n) end
-        add(item, vf.count, tvb(o, kind.len))
+        add(item, vf.count, range_of(tvb, o, kind.len))
         o = o + kind.len
         if o + n > e then return nil, short(st, path, o, n, e) end
         add_text(item, vf.string, tvb, o, n)
@@ -2506,7 +2520,7 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
         if n < 0 then return nil, negative(st, path, o, n) end
         local err = too_many(st, vt, path, o, n, o + kind.len, e)
         if err then return nil, err end
-        add(item, vf.count, tvb(o, kind.len))
+        add(item, vf.count, range_of(tvb, o, kind.len))
         o = o + kind.len
         for i = 0, n - 1 do
             o, err = walk_value(tvb, item, o, e, st, vf, vt, "Item " .. i, path .. "[" .. i .. "]", depth + 1)
@@ -2523,11 +2537,11 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
         end
         local err = too_many(st, vt, path, o, rows * cols, o + 2 * kind.len, e)
         if err then return nil, err end
-        add(item, vf.rows, tvb(o, kind.len))
-        add(item, vf.cols, tvb(o + kind.len, kind.len))
+        add(item, vf.rows, range_of(tvb, o, kind.len))
+        add(item, vf.cols, range_of(tvb, o + kind.len, kind.len))
         o = o + 2 * kind.len
         for r = 0, rows - 1 do
-            local row = add(item, vf.row, tvb(o, 0))
+            local row = add(item, vf.row, range_of(tvb, o, 0))
             row:set_text(fmt("Row %d", r))
             local row_start = o
             for c = 0, cols - 1 do
@@ -2750,7 +2764,7 @@ local be_int, walk, version_text = rt.be_int, rt.walk, rt.version_text
 local choose, pick, enum_names, named_in_any, rename = rt.choose, rt.pick, rt.enum_names, rt.named_in_any, rt.rename
 local layout_summary, package_summary, labelled = rt.layout_summary, rt.package_summary, rt.labelled
 local X, E = rt.X, rt.E
-local add = rt.add
+local add, range_of = rt.add, rt.range_of
 local HEADER = spec.header_size
 local PACKAGE_HEADER = spec.package_header_size
 local PACKAGE_LENGTH = spec.package_length_size
@@ -2779,10 +2793,10 @@ local function walk_body(tvb, item, body, stop, st, layout, name, v)
     local used, err = walk(tvb, item, body, stop, st, layout, nil)
     st.version = keep
     if not used then
-        add(item, X.raw, tvb(body, stop - body))
+        add(item, X.raw, range_of(tvb, body, stop - body))
         item:add_proto_expert_info(E.malformed, name .. ": " .. err)
     elseif used < stop then
-        add(item, X.extra, tvb(used, stop - used))
+        add(item, X.extra, range_of(tvb, used, stop - used))
         item:add_proto_expert_info(E.extra, fmt("%s: %d bytes after the layout", name, stop - used))
     end
 end
@@ -2839,11 +2853,11 @@ local KINDS = {}
 local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
     local pk = form and form.of
     local v = use or st.version
-    local item = add(tree, pk and pk.item or X.unknown_package, tvb(p, size))
+    local item = add(tree, pk and pk.item or X.unknown_package, range_of(tvb, p, size))
     local name, named = code_name(m.types, m.type_tables, v, code)
     if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
-    add(item, m.length, tvb(p, PACKAGE_LENGTH))
-    add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+    add(item, m.length, range_of(tvb, p, PACKAGE_LENGTH))
+    add_code(item, m.type, range_of(tvb, p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
     if by_length then note_length(item, form, size) end
     local body, stop = p + PACKAGE_HEADER, p + size
     if pk and not st.visible and not referenced(item, pk, st.call) then
@@ -2851,7 +2865,7 @@ local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
     elseif pk then
         walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
     else
-        add(item, X.raw, tvb(body, stop - body))
+        add(item, X.raw, range_of(tvb, body, stop - body))
         -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
         if not named then
             item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
@@ -2883,7 +2897,7 @@ KINDS.packages = {
                 err = fmt("package at offset %d: length %d exceeds the %d bytes left", p - st.base, size, left)
             end
             if err then
-                add(tree, X.raw, tvb(p, left))
+                add(tree, X.raw, range_of(tvb, p, left))
                 tree:add_proto_expert_info(E.malformed, err)
                 return
             end
@@ -2922,7 +2936,7 @@ KINDS.subtypes = {
         local body = o + m.body_offset
         if e < body then
             local _, err = walk(tvb, tree, o + HEADER, e, st, m.header, nil)
-            if e - o > HEADER then add(tree, X.raw, tvb(o + HEADER, e - o - HEADER)) end
+            if e - o > HEADER then add(tree, X.raw, range_of(tvb, o + HEADER, e - o - HEADER)) end
             tree:add_proto_expert_info(E.malformed, err or "too short")
             return
         end
@@ -2930,7 +2944,7 @@ KINDS.subtypes = {
         local forms = m.subtypes[code]
         if not forms then
             walk(tvb, tree, o + HEADER, body, st, m.header, nil)
-            if body < e then add(tree, X.raw, tvb(body, e - body)) end
+            if body < e then add(tree, X.raw, range_of(tvb, body, e - body)) end
             local _, named = code_name(m.subtype_names, m.subtype_tables, st.version, code)
             if not named then
                 tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
@@ -2939,10 +2953,10 @@ KINDS.subtypes = {
         end
         local form, use, by_length = choose(forms, e - body, st.version)
         local s = form.of
-        local item = add(tree, s.item, tvb(o + HEADER, e - o - HEADER))
+        local item = add(tree, s.item, range_of(tvb, o + HEADER, e - o - HEADER))
         -- The header again, under the subtype's own names (ur.key.timestamp).
         walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
-        add_code(item, m.subtype_field, tvb(body - 1, 1), m.subtype_label, m.subtype_tables, use, code)
+        add_code(item, m.subtype_field, range_of(tvb, body - 1, 1), m.subtype_label, m.subtype_tables, use, code)
         if by_length then note_length(item, form, e - o) end
         if s.needs_version then show_version(item, st) end
         walk_body(tvb, item, body, e, st, s.layout, s.name, use)

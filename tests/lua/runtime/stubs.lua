@@ -73,6 +73,10 @@ function Node:set_generated() self.generated = true; return self end
 function Node:add_proto_expert_info(e, text) self.experts[#self.experts + 1] = { e = e, text = text } end
 function Node:referenced(f) return self.asked[f] == true end
 
+-- Wireshark's class tables, from which the runtime takes the methods it calls for every field.
+TreeItem = { add = Node.add, append_text = Node.append_text, set_text = Node.set_text }
+Tvb = { range = function(tvb, o, n) return tvb(o, n) end }
+
 -- The tree as lines "<indent><field> @<offset>+<len>[ = value][ (text)][ !expert: text]".
 function S.dump(t)
     local out = {}

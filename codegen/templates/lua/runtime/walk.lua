@@ -13,13 +13,14 @@ local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
 local version_in, enum_names = rt.version_in, rt.enum_names
 local add, add_value, add_field, room = rt.add, rt.add_value, rt.add_field, rt.room
+local tree_add, append_text, range_of = rt.tree_add, rt.append_text, rt.range_of
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
 
 -- A text field; a zero-length one still shows, at its offset.
 local function add_text(tree, f, tvb, o, n)
-    return add_field(tree, f, tvb(o, n), ENC_UTF_8)
+    return add_field(tree, f, range_of(tvb, o, n), ENC_UTF_8)
 end
 
 -- The number of a scalar descriptor at o (range is tvb(o, d.n)), in its own wire type.
@@ -60,7 +61,7 @@ local KIND = {}
 -- A scalar (integer, float or bool); kept when a later field depends on it.
 function KIND.scalar(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
-    local _, v = add_scalar(tree, tvb(o, d.n), o, st, d)
+    local _, v = add_scalar(tree, range_of(tvb, o, d.n), o, st, d)
     if d.keep then kept[d.keep] = v end
     return o + d.n
 end
@@ -68,12 +69,12 @@ end
 -- An integer whose bits are shown one by one.
 function KIND.bits(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
-    local range = tvb(o, d.n)
+    local range = range_of(tvb, o, d.n)
     -- The bits read the range itself (a narrower range holds the low bits).
     local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
     if room(#bits) then
-        for i = 1, #bits do item:add(bits[i], range) end
+        for i = 1, #bits do tree_add(item, bits[i], range) end
     else
         for i = 1, #bits do add(item, bits[i], range) end
     end
@@ -86,15 +87,15 @@ function KIND.array(tvb, tree, o, e, st, d, pre)
     if not (d.value or d.tables) and o + n * count <= e and room(count) then
         local f, unit = d.f, d.unit
         for _ = 1, count do
-            local item = tree:add(f, tvb(o, n))
-            if unit then item:append_text(unit) end
+            local item = tree_add(tree, f, range_of(tvb, o, n))
+            if unit then append_text(item, unit) end
             o = o + n
         end
         return o
     end
     for i = 0, count - 1 do
         if o + d.n > e then return nil, short(st, fmt("%s%s[%d]", pre or "", d.path, i), o, d.n, e) end
-        add_scalar(tree, tvb(o, d.n), o, st, d)
+        add_scalar(tree, range_of(tvb, o, d.n), o, st, d)
         o = o + d.n
     end
     return o
@@ -121,7 +122,7 @@ function KIND.group(tvb, tree, o, e, st, d, pre)
     while (count and i < count) or (not count and o < e) do
         local start = o
         local fits = size and o + size <= e
-        local item = add(tree, d.f, tvb(o, fits and size or 0))
+        local item = add(tree, d.f, range_of(tvb, o, fits and size or 0))
         local label, prefix = item_names(d, pre, i)
         item:set_text(label)
         local err
@@ -156,7 +157,7 @@ end
 
 -- Opaque bytes to the end of the layout.
 function KIND.bytes(tvb, tree, o, e, st, d)
-    add(tree, d.f, tvb(o, e - o))
+    add(tree, d.f, range_of(tvb, o, e - o))
     return e
 end
 
@@ -176,7 +177,7 @@ end
 function KIND.switch(tvb, tree, o, e, st, d, pre)
     local c = d.cases[kept[d.sel]] or d.default
     if o + c.n > e then return nil, short(st, (pre or "") .. d.path, o, c.n, e) end
-    local item = add(tree, c.f, tvb(o, c.n))
+    local item = add(tree, c.f, range_of(tvb, o, c.n))
     if c.unit then item:append_text(c.unit) end
     return o + c.n
 end
@@ -195,8 +196,8 @@ function KIND.run(tvb, tree, o, e, st, d, pre)
     if o + d.size <= e and room(count) then
         for j = 1, count do
             local n = sizes[j]
-            local item = tree:add(fields[j], tvb(o, n))
-            if units[j] then item:append_text(units[j]) end
+            local item = tree_add(tree, fields[j], range_of(tvb, o, n))
+            if units[j] then append_text(item, units[j]) end
             o = o + n
         end
         return o
