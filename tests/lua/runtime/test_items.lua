@@ -34,6 +34,15 @@ S.eq(rt.items_hidden(), 0, "nothing hidden yet")
 rt.add(next_top, "ur.c", range)
 S.eq(#next_top.children, 1, "shown")
 
+-- add_labelled: an item with its text, counted like the others.
+rt.items_begin(S.tree())
+local labelled = rt.add_labelled(S.tree(), "ur.g", range, "Joint 0")
+S.eq(labelled.text, "Joint 0", "the text set")
+rt.add(S.tree(), "ur.h", range); rt.add(S.tree(), "ur.i", range)
+local over = rt.add_labelled(S.tree(), "ur.g", range, "Joint 1")
+S.eq(over.text, nil, "past the cap: nothing to label")
+S.eq(rt.items_hidden(), 1, "and counted")
+
 -- room(k): k items counted at once when they all fit, none when they do not.
 rt.items_begin(S.tree())
 S.eq(rt.room(2), true, "two of three fit")

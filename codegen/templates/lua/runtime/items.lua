@@ -74,6 +74,18 @@ local function add_field(tree, f, range, encoding)
     return HIDDEN
 end
 
+-- tree:add(f, range) with its text set (a group's "Joint 0"); counted.
+local function add_labelled(tree, f, range, label)
+    if left > 0 then
+        left = left - 1
+        local item = tree_add(tree, f, range)
+        set_text(item, label)
+        return item
+    end
+    hidden = hidden + 1
+    return HIDDEN
+end
+
 -- Whether k more items fit under the cap: then they are counted, and added with tree_add
 -- directly (a run of fields in one loop).
 local function room(k)
@@ -85,5 +97,5 @@ local function room(k)
 end
 
 rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS = items_begin, items_hidden, MAX_TREE_ITEMS
-rt.add, rt.add_value, rt.add_field, rt.room = add, add_value, add_field, room
-rt.tree_add, rt.append_text, rt.set_text, rt.range_of, rt.HIDDEN = tree_add, append_text, set_text, range_of, HIDDEN
+rt.add, rt.add_value, rt.add_field, rt.add_labelled, rt.room = add, add_value, add_field, add_labelled, room
+rt.tree_add, rt.append_text, rt.range_of = tree_add, append_text, range_of

@@ -5,7 +5,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, short, negative = rt.be_int, rt.short, rt.negative
 local value_table, add_text = rt.value_table, rt.add_text
-local add, add_value, range_of = rt.add, rt.add_value, rt.range_of
+local add, add_value, add_labelled, range_of = rt.add, rt.add_value, rt.add_labelled, rt.range_of
 
 local MAX_VALUE_DEPTH = spec.max_value_depth
 local VALUE_TABLES = spec.value_tables
@@ -31,8 +31,7 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
     local kind = vt.kinds[code]
     if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
     local start = o
-    local item = add(tree, vf.item, range_of(tvb, o, 1))
-    item:set_text(label .. ": " .. kind.name)
+    local item = add_labelled(tree, vf.item, range_of(tvb, o, 1), label .. ": " .. kind.name)
     add_value(item, vf.type, range_of(tvb, o, 1), kind.name)
     add(item, vf.code, range_of(tvb, o, 1))
     o = o + 1
@@ -80,8 +79,7 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
         add(item, vf.cols, range_of(tvb, o + kind.len, kind.len))
         o = o + 2 * kind.len
         for r = 0, rows - 1 do
-            local row = add(item, vf.row, range_of(tvb, o, 0))
-            row:set_text(fmt("Row %d", r))
+            local row = add_labelled(item, vf.row, range_of(tvb, o, 0), fmt("Row %d", r))
             local row_start = o
             for c = 0, cols - 1 do
                 o, err = walk_value(tvb, row, o, e, st, vf, vt, "Column " .. c, path .. "[" .. r .. "][" .. c .. "]",

@@ -13,7 +13,7 @@ local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
 local version_in, enum_names = rt.version_in, rt.enum_names
 local add, add_value, add_field, room = rt.add, rt.add_value, rt.add_field, rt.room
-local tree_add, append_text, range_of = rt.tree_add, rt.append_text, rt.range_of
+local tree_add, append_text, range_of, add_labelled = rt.tree_add, rt.append_text, rt.range_of, rt.add_labelled
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
@@ -122,9 +122,8 @@ function KIND.group(tvb, tree, o, e, st, d, pre)
     while (count and i < count) or (not count and o < e) do
         local start = o
         local fits = size and o + size <= e
-        local item = add(tree, d.f, range_of(tvb, o, fits and size or 0))
         local label, prefix = item_names(d, pre, i)
-        item:set_text(label)
+        local item = add_labelled(tree, d.f, range_of(tvb, o, fits and size or 0), label)
         local err
         o, err = walk(tvb, item, o, e, st, d.item, prefix)
         if not o then
@@ -212,34 +211,64 @@ function KIND.run(tvb, tree, o, e, st, d, pre)
     return o
 end
 
--- A layout's steps: its descriptors, with runs of plain scalars joined. Made once per layout.
+-- One element of a plain array as a scalar of its own (its path "name[i]"), to join a run.
+local elements_of = {}
+local function element(d, i)
+    local list = elements_of[d]
+    if not list then list = {}; elements_of[d] = list end
+    local x = list[i]
+    if not x then
+        x = { k = "scalar", f = d.f, n = d.n, path = fmt("%s[%d]", d.path, i), signed = d.signed, unit = d.unit }
+        list[i] = x
+    end
+    return x
+end
+
+-- A layout's steps for software version v: its descriptors with the fields of the conditions
+-- on the version alone put in place (or left out), and runs of plain scalars and plain arrays'
+-- elements joined, across those conditions too. Made once per layout and version: a robot state
+-- walks some 40 runs of 4 fields, 25 conditions and 9 arrays in 45 calls of walk without it.
 local steps_of = {}
-local function steps(layout)
+local function steps(layout, v)
     local out, run = {}, nil
-    for i = 1, #layout do
-        local d = layout[i]
-        if d.k == "scalar" and not (d.value or d.tables or d.keep) then
-            if not run then
-                run = { k = "run", fields = {}, sizes = {}, units = {}, scalars = {}, size = 0, count = 0 }
-                out[#out + 1] = run
+    local function join(d)
+        if not run then
+            run = { k = "run", fields = {}, sizes = {}, units = {}, scalars = {}, size = 0, count = 0 }
+            out[#out + 1] = run
+        end
+        local j = run.count + 1
+        run.count, run.fields[j], run.sizes[j], run.scalars[j] = j, d.f, d.n, d
+        run.units[j] = d.unit or false
+        run.size = run.size + d.n
+    end
+    local function put(list)
+        for i = 1, #list do
+            local d = list[i]
+            if d.k == "scalar" and not (d.value or d.tables or d.keep) then
+                join(d)
+            elseif d.k == "array" and not (d.value or d.tables) then
+                for j = 0, d.count - 1 do join(element(d, j)) end
+            elseif d.k == "cond" and not d.present_if then
+                if version_in(v, d.low, d.high) then put(d.fields) end
+            else
+                run = nil
+                out[#out + 1] = d
             end
-            local j = run.count + 1
-            run.count, run.fields[j], run.sizes[j], run.scalars[j] = j, d.f, d.n, d
-            run.units[j] = d.unit or false
-            run.size = run.size + d.n
-        else
-            run = nil
-            out[#out + 1] = d
         end
     end
-    steps_of[layout] = out
+    put(layout)
+    local by_version = steps_of[layout]
+    if not by_version then by_version = {}; steps_of[layout] = by_version end
+    by_version[v] = out
     return out
 end
 
 -- Walk a layout from o to at most e: the offset after it, or nil and the canonical error text.
 -- pre is the error path of the enclosing group item ("joints[2]."), nil at the top.
 walk = function(tvb, tree, o, e, st, layout, pre)
-    layout = steps_of[layout] or steps(layout)
+    local v = st.version
+    local by_version = steps_of[layout]
+    layout = by_version and by_version[v] or steps(layout, v)
     for i = 1, #layout do
         local d = layout[i]
         local err
