@@ -38,6 +38,7 @@ function S.tvb(raw)
         }
     end
     function tvb:len() return #raw end
+    function tvb:range(o, n) return range(o, n) end
     function tvb:raw() return raw end
     return setmetatable(tvb, { __call = function(_, o, n) return range(o, n) end })
 end

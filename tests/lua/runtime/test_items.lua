@@ -50,4 +50,14 @@ S.eq(rt.room(2), false, "two more do not")
 S.eq(rt.items_hidden(), 0, "and are not counted as hidden: they go one by one")
 S.eq(rt.add(S.tree(), "ur.d", range) ~= nil, true, "the last one still fits")
 S.eq(rt.room(1), false, "then none")
+-- A Wireshark without the class tables: the methods are called by name.
+local classes = { TreeItem, Tvb }
+TreeItem, Tvb = nil, nil
+local by_name = S.load("items.lua", { max_tree_items = 3 })
+TreeItem, Tvb = classes[1], classes[2]
+local root = S.tree()
+by_name.items_begin(root)
+local item = by_name.add(root, "ur.n", by_name.range_of(S.tvb("abcdef"), 1, 2))
+by_name.append_text(item, " rad")
+S.eq(S.dump(root), "ur.n @1+2 ( rad)", "added, ranged and appended by name")
 print("ok")
