@@ -2468,9 +2468,8 @@ end
 
 -- A layout's steps for software version v: its descriptors with the fields of the conditions
 -- on the version alone put in place (or left out), and runs of plain scalars and plain arrays'
--- elements joined, across those conditions too. Made once per layout and version: a robot state
--- walks some 40 runs of 4 fields, 25 conditions and 9 arrays in 45 calls of walk without it.
-local steps_of = {}
+-- elements joined, across those conditions too (a robot state walked some 40 runs of 4 fields,
+-- 25 conditions and 9 arrays in 45 calls of walk without it).
 local function steps(layout, v)
     local out, run = {}, nil
     local function join(d)
@@ -2499,18 +2498,55 @@ local function steps(layout, v)
         end
     end
     put(layout)
-    local by_version = steps_of[layout]
-    if not by_version then by_version = {}; steps_of[layout] = by_version end
-    by_version[v] = out
     return out
+end
+
+-- Where a layout's steps change with the version: the bounds of its conditions on the version
+-- alone (a low bound, and the version after a high one), sorted.
+local function bounds_of(layout)
+    local set, list = {}, {}
+    local function collect(descriptors)
+        for i = 1, #descriptors do
+            local d = descriptors[i]
+            if d.k == "cond" and not d.present_if then
+                if d.low then set[d.low] = true end
+                if d.high then set[d.high + 1] = true end
+                collect(d.fields)
+            end
+        end
+    end
+    collect(layout)
+    for b in pairs(set) do list[#list + 1] = b end
+    table.sort(list)
+    return list
+end
+
+-- The steps of each layout, made once per span of versions between its bounds (a stream's
+-- Version message may announce any number: the spans are the spec's), and the last version
+-- asked for with its steps.
+local plans = {}
+local function steps_for(layout, v)
+    local plan = plans[layout]
+    if not plan then
+        plan = { bounds = bounds_of(layout), by_span = {} }
+        plans[layout] = plan
+    end
+    if plan.v == v then return plan.last end
+    local bounds, span = plan.bounds, 1
+    while bounds[span] and bounds[span] <= v do span = span + 1 end
+    local found = plan.by_span[span]
+    if not found then
+        found = steps(layout, v)
+        plan.by_span[span] = found
+    end
+    plan.v, plan.last = v, found
+    return found
 end
 
 -- Walk a layout from o to at most e: the offset after it, or nil and the canonical error text.
 -- pre is the error path of the enclosing group item ("joints[2]."), nil at the top.
 walk = function(tvb, tree, o, e, st, layout, pre)
-    local v = st.version
-    local by_version = steps_of[layout]
-    layout = by_version and by_version[v] or steps(layout, v)
+    layout = steps_for(layout, st.version)
     for i = 1, #layout do
         local d = layout[i]
         local err
@@ -2520,7 +2556,14 @@ walk = function(tvb, tree, o, e, st, layout, pre)
     return o
 end
 
-rt.KIND, rt.walk, rt.add_text, rt.rename = KIND, walk, add_text, rename
+-- How many step lists a layout keeps (for tests: one per span of versions, not per version).
+local function step_lists(layout)
+    local n = 0
+    for _ in pairs(plans[layout] and plans[layout].by_span or {}) do n = n + 1 end
+    return n
+end
+
+rt.KIND, rt.walk, rt.add_text, rt.rename, rt.step_lists = KIND, walk, add_text, rename, step_lists
 end)(spec, rt)
 end
 

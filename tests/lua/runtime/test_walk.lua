@@ -174,6 +174,8 @@ o, err = walk(S.tvb(raw), S.tree(), 0, 4, S.st(raw, 5010000), L_gated, "x.")
 S.eq(err, "x.pair[1] at offset 4: needs 1 bytes, 0 left", "a gated array's element cut short")
 o, err = walk(S.tvb(raw), S.tree(), 0, 1, S.st(raw, 5009000), L_gated, nil)
 S.eq(err, "b at offset 1: needs 1 bytes, 0 left", "5.9 after the first field")
+for v = 4000000, 6000000, 997 do walk(S.tvb(raw), S.tree(), 0, #raw, S.st(raw, v), L_gated, nil) end
+S.eq(rt.step_lists(L_gated), 2, "steps made per span of versions (before 5.10, from it), not per version")
 
 -- A float's unit follows its value ("Actual joint position: -0.42 rad"): Wireshark 4.0 shows no
 -- unit string of a float field, so the walker appends it; plain, narrow, array and switch reads.
