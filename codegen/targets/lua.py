@@ -25,8 +25,8 @@ OUT = "lua/urwire.lua"
 
 # The hand-written runtime, in the order it is joined. Each file is a chunk that receives
 # (spec, rt): `spec` is the generated data, `rt` what earlier runtime files export.
-RUNTIME = ("declare.lua", "bytes.lua", "versions.lua", "items.lua", "walk.lua", "values.lua", "info.lua",
-           "messages.lua", "wanted.lua", "carry.lua", "stream.lua", "framing.lua", "register.lua")
+RUNTIME = ("declare.lua", "bytes.lua", "versions.lua", "items.lua", "collector.lua", "walk.lua", "values.lua",
+           "info.lua", "messages.lua", "wanted.lua", "carry.lua", "stream.lua", "framing.lua", "register.lua")
 
 # The most tree items one message shows in Wireshark (runtime/items.lua); an expert note says
 # how many more it holds. Wireshark itself stops a packet at a million items.

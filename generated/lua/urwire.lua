@@ -2111,6 +2111,18 @@ do
 local spec, rt = ...
 local MAX_TREE_ITEMS = spec.max_tree_items
 
+-- The TreeItem and Tvb methods called for every field, taken once from their class tables: a
+-- method call on a Wireshark object (tree:add(f, tvb(o, n))) first asks the object's __index, a
+-- C function, for the method: up to a tenth of a field's time under tshark -V (one with a unit).
+-- Where a Wireshark has no class table, the method is called by name.
+local function method(class, name)
+    local f = class and class[name]
+    if f then return f end
+    return function(object, ...) return object[name](object, ...) end
+end
+local tree_add, append_text, set_text = method(TreeItem, "add"), method(TreeItem, "append_text"), method(TreeItem, "set_text")
+local range_of = method(Tvb, "range")   -- range_of(tvb, o, n) is tvb(o, n)
+
 local left, hidden, top, expert_moved = MAX_TREE_ITEMS, 0, nil, false
 
 local HIDDEN = {}
@@ -2140,7 +2152,7 @@ end
 local function add(tree, f, a)
     if left > 0 then
         left = left - 1
-        return tree:add(f, a)
+        return tree_add(tree, f, a)
     end
     hidden = hidden + 1
     return HIDDEN
@@ -2150,7 +2162,7 @@ end
 local function add_value(tree, f, range, value)
     if left > 0 then
         left = left - 1
-        return tree:add(f, range, value)
+        return tree_add(tree, f, range, value)
     end
     hidden = hidden + 1
     return HIDDEN
@@ -2166,7 +2178,19 @@ local function add_field(tree, f, range, encoding)
     return HIDDEN
 end
 
--- Whether k more items fit under the cap: then they are counted, and added with tree:add
+-- tree:add(f, range) with its text set (a group's "Joint 0"); counted.
+local function add_labelled(tree, f, range, label)
+    if left > 0 then
+        left = left - 1
+        local item = tree_add(tree, f, range)
+        set_text(item, label)
+        return item
+    end
+    hidden = hidden + 1
+    return HIDDEN
+end
+
+-- Whether k more items fit under the cap: then they are counted, and added with tree_add
 -- directly (a run of fields in one loop).
 local function room(k)
     if left >= k then
@@ -2177,7 +2201,37 @@ local function room(k)
 end
 
 rt.items_begin, rt.items_hidden, rt.MAX_TREE_ITEMS = items_begin, items_hidden, MAX_TREE_ITEMS
-rt.add, rt.add_value, rt.add_field, rt.room = add, add_value, add_field, room
+rt.add, rt.add_value, rt.add_field, rt.add_labelled, rt.room = add, add_value, add_field, add_labelled, room
+rt.tree_add, rt.append_text, rt.range_of = tree_add, append_text, range_of
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- Runtime: collector.lua (codegen/templates/lua/runtime/collector.lua)
+-- =============================================================================================
+do
+(function(...)
+-- The pace of Lua's garbage collector, set once at load (Wireshark runs every Lua plugin in one
+-- state, so it is theirs too). Every field the tree shows leaves two Wireshark objects with a
+-- finalizer, its TvbRange and its TreeItem, and five blocks of C memory: some 600 objects per
+-- robot state under tshark -V, dead as the call returns. At Lua's default pace (a cycle once the
+-- heap has doubled, stepmul 200) they wait many messages for their cycle, while glibc hands their
+-- memory out again from all over a heap that grows with the capture (TCP reassembly keeps what
+-- it reassembled): the collector's passes over them and malloc's over their chunks miss the cache
+-- more and more, and each message cost more the further into the capture it was. Under -V, the
+-- last 24k frames of the half of 100k messages cut at random took 1.48 times the first 24k of that
+-- half at the default pace, 1.02 at this one (the Lua heap stays flat at either: nothing is kept
+-- per frame). A cycle started sooner and run in larger steps frees them while they are few and
+-- close: -V takes a tenth less time, -T fields a sixth, and no tree the same (make bench-lua).
+local spec, rt = ...
+
+local PAUSE = 150     -- a new cycle once the heap is 1.5 times what the last one kept
+local STEPMUL = 1000  -- each step collects five times as much as Lua's default step
+
+collectgarbage("setpause", PAUSE)
+collectgarbage("setstepmul", STEPMUL)
+
+rt.collector_pace = { pause = PAUSE, stepmul = STEPMUL }
 end)(spec, rt)
 end
 
@@ -2201,13 +2255,14 @@ local fmt, byte = string.format, string.byte
 local be_uint, be_int, short, negative = rt.be_uint, rt.be_int, rt.short, rt.negative
 local version_in, enum_names = rt.version_in, rt.enum_names
 local add, add_value, add_field, room = rt.add, rt.add_value, rt.add_field, rt.room
+local tree_add, append_text, range_of, add_labelled = rt.tree_add, rt.append_text, rt.range_of, rt.add_labelled
 
 local kept = {}   -- values of earlier fields that later ones depend on (present_if, switch)
 local walk
 
 -- A text field; a zero-length one still shows, at its offset.
 local function add_text(tree, f, tvb, o, n)
-    return add_field(tree, f, tvb(o, n), ENC_UTF_8)
+    return add_field(tree, f, range_of(tvb, o, n), ENC_UTF_8)
 end
 
 -- The number of a scalar descriptor at o (range is tvb(o, d.n)), in its own wire type.
@@ -2248,7 +2303,7 @@ local KIND = {}
 -- A scalar (integer, float or bool); kept when a later field depends on it.
 function KIND.scalar(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
-    local _, v = add_scalar(tree, tvb(o, d.n), o, st, d)
+    local _, v = add_scalar(tree, range_of(tvb, o, d.n), o, st, d)
     if d.keep then kept[d.keep] = v end
     return o + d.n
 end
@@ -2256,12 +2311,12 @@ end
 -- An integer whose bits are shown one by one.
 function KIND.bits(tvb, tree, o, e, st, d, pre)
     if o + d.n > e then return nil, short(st, (pre or "") .. d.path, o, d.n, e) end
-    local range = tvb(o, d.n)
+    local range = range_of(tvb, o, d.n)
     -- The bits read the range itself (a narrower range holds the low bits).
     local item = add_scalar(tree, range, o, st, d)
     local bits = d.bits
     if room(#bits) then
-        for i = 1, #bits do item:add(bits[i], range) end
+        for i = 1, #bits do tree_add(item, bits[i], range) end
     else
         for i = 1, #bits do add(item, bits[i], range) end
     end
@@ -2274,15 +2329,15 @@ function KIND.array(tvb, tree, o, e, st, d, pre)
     if not (d.value or d.tables) and o + n * count <= e and room(count) then
         local f, unit = d.f, d.unit
         for _ = 1, count do
-            local item = tree:add(f, tvb(o, n))
-            if unit then item:append_text(unit) end
+            local item = tree_add(tree, f, range_of(tvb, o, n))
+            if unit then append_text(item, unit) end
             o = o + n
         end
         return o
     end
     for i = 0, count - 1 do
         if o + d.n > e then return nil, short(st, fmt("%s%s[%d]", pre or "", d.path, i), o, d.n, e) end
-        add_scalar(tree, tvb(o, d.n), o, st, d)
+        add_scalar(tree, range_of(tvb, o, d.n), o, st, d)
         o = o + d.n
     end
     return o
@@ -2309,9 +2364,8 @@ function KIND.group(tvb, tree, o, e, st, d, pre)
     while (count and i < count) or (not count and o < e) do
         local start = o
         local fits = size and o + size <= e
-        local item = add(tree, d.f, tvb(o, fits and size or 0))
         local label, prefix = item_names(d, pre, i)
-        item:set_text(label)
+        local item = add_labelled(tree, d.f, range_of(tvb, o, fits and size or 0), label)
         local err
         o, err = walk(tvb, item, o, e, st, d.item, prefix)
         if not o then
@@ -2344,7 +2398,7 @@ end
 
 -- Opaque bytes to the end of the layout.
 function KIND.bytes(tvb, tree, o, e, st, d)
-    add(tree, d.f, tvb(o, e - o))
+    add(tree, d.f, range_of(tvb, o, e - o))
     return e
 end
 
@@ -2364,7 +2418,7 @@ end
 function KIND.switch(tvb, tree, o, e, st, d, pre)
     local c = d.cases[kept[d.sel]] or d.default
     if o + c.n > e then return nil, short(st, (pre or "") .. d.path, o, c.n, e) end
-    local item = add(tree, c.f, tvb(o, c.n))
+    local item = add(tree, c.f, range_of(tvb, o, c.n))
     if c.unit then item:append_text(c.unit) end
     return o + c.n
 end
@@ -2383,8 +2437,8 @@ function KIND.run(tvb, tree, o, e, st, d, pre)
     if o + d.size <= e and room(count) then
         for j = 1, count do
             local n = sizes[j]
-            local item = tree:add(fields[j], tvb(o, n))
-            if units[j] then item:append_text(units[j]) end
+            local item = tree_add(tree, fields[j], range_of(tvb, o, n))
+            if units[j] then append_text(item, units[j]) end
             o = o + n
         end
         return o
@@ -2399,34 +2453,100 @@ function KIND.run(tvb, tree, o, e, st, d, pre)
     return o
 end
 
--- A layout's steps: its descriptors, with runs of plain scalars joined. Made once per layout.
-local steps_of = {}
-local function steps(layout)
+-- One element of a plain array as a scalar of its own (its path "name[i]"), to join a run.
+local elements_of = {}
+local function element(d, i)
+    local list = elements_of[d]
+    if not list then list = {}; elements_of[d] = list end
+    local x = list[i]
+    if not x then
+        x = { k = "scalar", f = d.f, n = d.n, path = fmt("%s[%d]", d.path, i), signed = d.signed, unit = d.unit }
+        list[i] = x
+    end
+    return x
+end
+
+-- A layout's steps for software version v: its descriptors with the fields of the conditions
+-- on the version alone put in place (or left out), and runs of plain scalars and plain arrays'
+-- elements joined, across those conditions too (a robot state walked some 40 runs of 4 fields,
+-- 25 conditions and 9 arrays in 45 calls of walk without it).
+local function steps(layout, v)
     local out, run = {}, nil
-    for i = 1, #layout do
-        local d = layout[i]
-        if d.k == "scalar" and not (d.value or d.tables or d.keep) then
-            if not run then
-                run = { k = "run", fields = {}, sizes = {}, units = {}, scalars = {}, size = 0, count = 0 }
-                out[#out + 1] = run
+    local function join(d)
+        if not run then
+            run = { k = "run", fields = {}, sizes = {}, units = {}, scalars = {}, size = 0, count = 0 }
+            out[#out + 1] = run
+        end
+        local j = run.count + 1
+        run.count, run.fields[j], run.sizes[j], run.scalars[j] = j, d.f, d.n, d
+        run.units[j] = d.unit or false
+        run.size = run.size + d.n
+    end
+    local function put(list)
+        for i = 1, #list do
+            local d = list[i]
+            if d.k == "scalar" and not (d.value or d.tables or d.keep) then
+                join(d)
+            elseif d.k == "array" and not (d.value or d.tables) then
+                for j = 0, d.count - 1 do join(element(d, j)) end
+            elseif d.k == "cond" and not d.present_if then
+                if version_in(v, d.low, d.high) then put(d.fields) end
+            else
+                run = nil
+                out[#out + 1] = d
             end
-            local j = run.count + 1
-            run.count, run.fields[j], run.sizes[j], run.scalars[j] = j, d.f, d.n, d
-            run.units[j] = d.unit or false
-            run.size = run.size + d.n
-        else
-            run = nil
-            out[#out + 1] = d
         end
     end
-    steps_of[layout] = out
+    put(layout)
     return out
+end
+
+-- Where a layout's steps change with the version: the bounds of its conditions on the version
+-- alone (a low bound, and the version after a high one), sorted.
+local function bounds_of(layout)
+    local set, list = {}, {}
+    local function collect(descriptors)
+        for i = 1, #descriptors do
+            local d = descriptors[i]
+            if d.k == "cond" and not d.present_if then
+                if d.low then set[d.low] = true end
+                if d.high then set[d.high + 1] = true end
+                collect(d.fields)
+            end
+        end
+    end
+    collect(layout)
+    for b in pairs(set) do list[#list + 1] = b end
+    table.sort(list)
+    return list
+end
+
+-- The steps of each layout, made once per span of versions between its bounds (a stream's
+-- Version message may announce any number: the spans are the spec's), and the last version
+-- asked for with its steps.
+local plans = {}
+local function steps_for(layout, v)
+    local plan = plans[layout]
+    if not plan then
+        plan = { bounds = bounds_of(layout), by_span = {} }
+        plans[layout] = plan
+    end
+    if plan.v == v then return plan.last end
+    local bounds, span = plan.bounds, 1
+    while bounds[span] and bounds[span] <= v do span = span + 1 end
+    local found = plan.by_span[span]
+    if not found then
+        found = steps(layout, v)
+        plan.by_span[span] = found
+    end
+    plan.v, plan.last = v, found
+    return found
 end
 
 -- Walk a layout from o to at most e: the offset after it, or nil and the canonical error text.
 -- pre is the error path of the enclosing group item ("joints[2]."), nil at the top.
 walk = function(tvb, tree, o, e, st, layout, pre)
-    layout = steps_of[layout] or steps(layout)
+    layout = steps_for(layout, st.version)
     for i = 1, #layout do
         local d = layout[i]
         local err
@@ -2436,7 +2556,14 @@ walk = function(tvb, tree, o, e, st, layout, pre)
     return o
 end
 
-rt.KIND, rt.walk, rt.add_text, rt.rename = KIND, walk, add_text, rename
+-- How many step lists a layout keeps (for tests: one per span of versions, not per version).
+local function step_lists(layout)
+    local n = 0
+    for _ in pairs(plans[layout] and plans[layout].by_span or {}) do n = n + 1 end
+    return n
+end
+
+rt.KIND, rt.walk, rt.add_text, rt.rename, rt.step_lists = KIND, walk, add_text, rename, step_lists
 end)(spec, rt)
 end
 
@@ -2452,7 +2579,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, short, negative = rt.be_int, rt.short, rt.negative
 local value_table, add_text = rt.value_table, rt.add_text
-local add, add_value = rt.add, rt.add_value
+local add, add_value, add_labelled, range_of = rt.add, rt.add_value, rt.add_labelled, rt.range_of
 
 local MAX_VALUE_DEPTH = spec.max_value_depth
 local VALUE_TABLES = spec.value_tables
@@ -2478,24 +2605,23 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
     local kind = vt.kinds[code]
     if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
     local start = o
-    local item = add(tree, vf.item, tvb(o, 1))
-    item:set_text(label .. ": " .. kind.name)
-    add_value(item, vf.type, tvb(o, 1), kind.name)
-    add(item, vf.code, tvb(o, 1))
+    local item = add_labelled(tree, vf.item, range_of(tvb, o, 1), label .. ": " .. kind.name)
+    add_value(item, vf.type, range_of(tvb, o, 1), kind.name)
+    add(item, vf.code, range_of(tvb, o, 1))
     o = o + 1
     local layout = kind.layout
     if layout == "scalar" or layout == "array" then
         local need = kind.n * kind.count
         if o + need > e then return nil, short(st, path, o, need, e) end
         for _ = 1, kind.count do
-            add(item, vf[kind.item], tvb(o, kind.n))
+            add(item, vf[kind.item], range_of(tvb, o, kind.n))
             o = o + kind.n
         end
     elseif layout == "string" then
         if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
         local n = be_int(raw, o, kind.len)
         if n < 0 then return nil, negative(st, path, o, n) end
-        add(item, vf.count, tvb(o, kind.len))
+        add(item, vf.count, range_of(tvb, o, kind.len))
         o = o + kind.len
         if o + n > e then return nil, short(st, path, o, n, e) end
         add_text(item, vf.string, tvb, o, n)
@@ -2506,7 +2632,7 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
         if n < 0 then return nil, negative(st, path, o, n) end
         local err = too_many(st, vt, path, o, n, o + kind.len, e)
         if err then return nil, err end
-        add(item, vf.count, tvb(o, kind.len))
+        add(item, vf.count, range_of(tvb, o, kind.len))
         o = o + kind.len
         for i = 0, n - 1 do
             o, err = walk_value(tvb, item, o, e, st, vf, vt, "Item " .. i, path .. "[" .. i .. "]", depth + 1)
@@ -2523,12 +2649,11 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
         end
         local err = too_many(st, vt, path, o, rows * cols, o + 2 * kind.len, e)
         if err then return nil, err end
-        add(item, vf.rows, tvb(o, kind.len))
-        add(item, vf.cols, tvb(o + kind.len, kind.len))
+        add(item, vf.rows, range_of(tvb, o, kind.len))
+        add(item, vf.cols, range_of(tvb, o + kind.len, kind.len))
         o = o + 2 * kind.len
         for r = 0, rows - 1 do
-            local row = add(item, vf.row, tvb(o, 0))
-            row:set_text(fmt("Row %d", r))
+            local row = add_labelled(item, vf.row, range_of(tvb, o, 0), fmt("Row %d", r))
             local row_start = o
             for c = 0, cols - 1 do
                 o, err = walk_value(tvb, row, o, e, st, vf, vt, "Column " .. c, path .. "[" .. r .. "][" .. c .. "]",
@@ -2750,7 +2875,7 @@ local be_int, walk, version_text = rt.be_int, rt.walk, rt.version_text
 local choose, pick, enum_names, named_in_any, rename = rt.choose, rt.pick, rt.enum_names, rt.named_in_any, rt.rename
 local layout_summary, package_summary, labelled = rt.layout_summary, rt.package_summary, rt.labelled
 local X, E = rt.X, rt.E
-local add = rt.add
+local add, range_of = rt.add, rt.range_of
 local HEADER = spec.header_size
 local PACKAGE_HEADER = spec.package_header_size
 local PACKAGE_LENGTH = spec.package_length_size
@@ -2779,10 +2904,10 @@ local function walk_body(tvb, item, body, stop, st, layout, name, v)
     local used, err = walk(tvb, item, body, stop, st, layout, nil)
     st.version = keep
     if not used then
-        add(item, X.raw, tvb(body, stop - body))
+        add(item, X.raw, range_of(tvb, body, stop - body))
         item:add_proto_expert_info(E.malformed, name .. ": " .. err)
     elseif used < stop then
-        add(item, X.extra, tvb(used, stop - used))
+        add(item, X.extra, range_of(tvb, used, stop - used))
         item:add_proto_expert_info(E.extra, fmt("%s: %d bytes after the layout", name, stop - used))
     end
 end
@@ -2839,11 +2964,11 @@ local KINDS = {}
 local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
     local pk = form and form.of
     local v = use or st.version
-    local item = add(tree, pk and pk.item or X.unknown_package, tvb(p, size))
+    local item = add(tree, pk and pk.item or X.unknown_package, range_of(tvb, p, size))
     local name, named = code_name(m.types, m.type_tables, v, code)
     if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
-    add(item, m.length, tvb(p, PACKAGE_LENGTH))
-    add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+    add(item, m.length, range_of(tvb, p, PACKAGE_LENGTH))
+    add_code(item, m.type, range_of(tvb, p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
     if by_length then note_length(item, form, size) end
     local body, stop = p + PACKAGE_HEADER, p + size
     if pk and not st.visible and not referenced(item, pk, st.call) then
@@ -2851,7 +2976,7 @@ local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
     elseif pk then
         walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
     else
-        add(item, X.raw, tvb(body, stop - body))
+        add(item, X.raw, range_of(tvb, body, stop - body))
         -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
         if not named then
             item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
@@ -2883,7 +3008,7 @@ KINDS.packages = {
                 err = fmt("package at offset %d: length %d exceeds the %d bytes left", p - st.base, size, left)
             end
             if err then
-                add(tree, X.raw, tvb(p, left))
+                add(tree, X.raw, range_of(tvb, p, left))
                 tree:add_proto_expert_info(E.malformed, err)
                 return
             end
@@ -2922,7 +3047,7 @@ KINDS.subtypes = {
         local body = o + m.body_offset
         if e < body then
             local _, err = walk(tvb, tree, o + HEADER, e, st, m.header, nil)
-            if e - o > HEADER then add(tree, X.raw, tvb(o + HEADER, e - o - HEADER)) end
+            if e - o > HEADER then add(tree, X.raw, range_of(tvb, o + HEADER, e - o - HEADER)) end
             tree:add_proto_expert_info(E.malformed, err or "too short")
             return
         end
@@ -2930,7 +3055,7 @@ KINDS.subtypes = {
         local forms = m.subtypes[code]
         if not forms then
             walk(tvb, tree, o + HEADER, body, st, m.header, nil)
-            if body < e then add(tree, X.raw, tvb(body, e - body)) end
+            if body < e then add(tree, X.raw, range_of(tvb, body, e - body)) end
             local _, named = code_name(m.subtype_names, m.subtype_tables, st.version, code)
             if not named then
                 tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
@@ -2939,10 +3064,10 @@ KINDS.subtypes = {
         end
         local form, use, by_length = choose(forms, e - body, st.version)
         local s = form.of
-        local item = add(tree, s.item, tvb(o + HEADER, e - o - HEADER))
+        local item = add(tree, s.item, range_of(tvb, o + HEADER, e - o - HEADER))
         -- The header again, under the subtype's own names (ur.key.timestamp).
         walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
-        add_code(item, m.subtype_field, tvb(body - 1, 1), m.subtype_label, m.subtype_tables, use, code)
+        add_code(item, m.subtype_field, range_of(tvb, body - 1, 1), m.subtype_label, m.subtype_tables, use, code)
         if by_length then note_length(item, form, e - o) end
         if s.needs_version then show_version(item, st) end
         walk_body(tvb, item, body, e, st, s.layout, s.name, use)
@@ -3272,6 +3397,7 @@ local items_begin, items_hidden, MAX_TREE_ITEMS = rt.items_begin, rt.items_hidde
 local stream_load, stream_save = rt.stream_load, rt.stream_save
 local carry_new, carry_add, carry_bytes = rt.carry_new, rt.carry_add, rt.carry_bytes
 local X, E, handlers = rt.X, rt.E, rt.handlers
+local tree_add, append_text, range_of = rt.tree_add, rt.append_text, rt.range_of
 local wanted_packages = rt.wanted_packages
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
@@ -3372,9 +3498,9 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     -- Layout sizes told the version of a stream that had not: this message and the next ones.
     if st.implied and not st.known then cur.version, cur.implied = st.version, st.implied end
     if not cur.detail then return end
-    local item = tree:add(ur, tvb(o, e - o))
-    item:add(F.length, tvb(o, LENGTH))
-    local type_item = item:add(F.type, tvb(o + LENGTH, HEADER - LENGTH))
+    local item = tree_add(tree, ur, range_of(tvb, o, e - o))
+    tree_add(item, F.length, range_of(tvb, o, LENGTH))
+    local type_item = tree_add(item, F.type, range_of(tvb, o + LENGTH, HEADER - LENGTH))
     if MESSAGE_TYPE_TABLES then rename(type_item, "Type", MESSAGE_TYPE_TABLES, st.version, mtype) end
     -- The tree walks the message again from the version it started with.
     st.message_version, st.message_implied = st.version, st.implied
@@ -3382,7 +3508,7 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     st.visible = tree.visible
     st.only = st.visible and wanted_packages() or nil
     if h then
-        item:append_text(h.suffix)
+        append_text(item, h.suffix)
         items_begin(item)
         h.tree(h.m, tvb, item, o, e, st)
         local hidden = items_hidden()

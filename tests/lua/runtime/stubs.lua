@@ -38,6 +38,7 @@ function S.tvb(raw)
         }
     end
     function tvb:len() return #raw end
+    function tvb:range(o, n) return range(o, n) end
     function tvb:raw() return raw end
     return setmetatable(tvb, { __call = function(_, o, n) return range(o, n) end })
 end
@@ -72,6 +73,10 @@ function Node:set_len(n) self.len = n end
 function Node:set_generated() self.generated = true; return self end
 function Node:add_proto_expert_info(e, text) self.experts[#self.experts + 1] = { e = e, text = text } end
 function Node:referenced(f) return self.asked[f] == true end
+
+-- Wireshark's class tables, from which the runtime takes the methods it calls for every field.
+TreeItem = { add = Node.add, append_text = Node.append_text, set_text = Node.set_text }
+Tvb = { range = function(tvb, o, n) return tvb(o, n) end }
 
 -- The tree as lines "<indent><field> @<offset>+<len>[ = value][ (text)][ !expert: text]".
 function S.dump(t)

@@ -34,6 +34,15 @@ S.eq(rt.items_hidden(), 0, "nothing hidden yet")
 rt.add(next_top, "ur.c", range)
 S.eq(#next_top.children, 1, "shown")
 
+-- add_labelled: an item with its text, counted like the others.
+rt.items_begin(S.tree())
+local labelled = rt.add_labelled(S.tree(), "ur.g", range, "Joint 0")
+S.eq(labelled.text, "Joint 0", "the text set")
+rt.add(S.tree(), "ur.h", range); rt.add(S.tree(), "ur.i", range)
+local over = rt.add_labelled(S.tree(), "ur.g", range, "Joint 1")
+S.eq(over.text, nil, "past the cap: nothing to label")
+S.eq(rt.items_hidden(), 1, "and counted")
+
 -- room(k): k items counted at once when they all fit, none when they do not.
 rt.items_begin(S.tree())
 S.eq(rt.room(2), true, "two of three fit")
@@ -41,4 +50,14 @@ S.eq(rt.room(2), false, "two more do not")
 S.eq(rt.items_hidden(), 0, "and are not counted as hidden: they go one by one")
 S.eq(rt.add(S.tree(), "ur.d", range) ~= nil, true, "the last one still fits")
 S.eq(rt.room(1), false, "then none")
+-- A Wireshark without the class tables: the methods are called by name.
+local classes = { TreeItem, Tvb }
+TreeItem, Tvb = nil, nil
+local by_name = S.load("items.lua", { max_tree_items = 3 })
+TreeItem, Tvb = classes[1], classes[2]
+local root = S.tree()
+by_name.items_begin(root)
+local item = by_name.add(root, "ur.n", by_name.range_of(S.tvb("abcdef"), 1, 2))
+by_name.append_text(item, " rad")
+S.eq(S.dump(root), "ur.n @1+2 ( rad)", "added, ranged and appended by name")
 print("ok")

@@ -153,6 +153,30 @@ S.eq(capped.walk(S.tvb(raw), tree, 0, #raw, S.st(raw), L_run, nil), 10, "past th
 S.eq(S.dump(tree), S.lines("ur.r.a @0+2", "ur.r.b @2+1", "ur.r.c @3+4", "ur.r.d @7+1"), "four shown")
 S.eq(capped.items_hidden(), 2, "two counted")
 
+-- Fields of a condition on the version alone join the run around them, for each version its
+-- own steps; what is cut short is still named by its own path.
+local L_gated = {
+    { k = "scalar", f = "ur.g.a", n = 1, path = "a", signed = false },
+    { k = "cond", low = 5010000, fields = {
+        { k = "scalar", f = "ur.g.new", n = 2, path = "new", signed = false },
+        { k = "array", f = "ur.g.pair", n = 1, count = 2, path = "pair", signed = false },
+    } },
+    { k = "scalar", f = "ur.g.b", n = 1, path = "b", signed = false },
+}
+raw = S.bytes(1, 0, 2, 3, 4, 5)
+tree = S.tree()
+S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5010000), L_gated, nil), 6, "5.10: the gated fields in place")
+S.eq(S.dump(tree), S.lines("ur.g.a @0+1", "ur.g.new @1+2", "ur.g.pair @3+1", "ur.g.pair @4+1", "ur.g.b @5+1"), "in wire order")
+tree = S.tree()
+S.eq(walk(S.tvb(raw), tree, 0, #raw, S.st(raw, 5009000), L_gated, nil), 2, "5.9: without them")
+S.eq(S.dump(tree), S.lines("ur.g.a @0+1", "ur.g.b @1+1"), "the field after the condition follows the one before")
+o, err = walk(S.tvb(raw), S.tree(), 0, 4, S.st(raw, 5010000), L_gated, "x.")
+S.eq(err, "x.pair[1] at offset 4: needs 1 bytes, 0 left", "a gated array's element cut short")
+o, err = walk(S.tvb(raw), S.tree(), 0, 1, S.st(raw, 5009000), L_gated, nil)
+S.eq(err, "b at offset 1: needs 1 bytes, 0 left", "5.9 after the first field")
+for v = 4000000, 6000000, 997 do walk(S.tvb(raw), S.tree(), 0, #raw, S.st(raw, v), L_gated, nil) end
+S.eq(rt.step_lists(L_gated), 2, "steps made per span of versions (before 5.10, from it), not per version")
+
 -- A float's unit follows its value ("Actual joint position: -0.42 rad"): Wireshark 4.0 shows no
 -- unit string of a float field, so the walker appends it; plain, narrow, array and switch reads.
 local L_units = {

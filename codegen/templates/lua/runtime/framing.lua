@@ -9,6 +9,7 @@ local items_begin, items_hidden, MAX_TREE_ITEMS = rt.items_begin, rt.items_hidde
 local stream_load, stream_save = rt.stream_load, rt.stream_save
 local carry_new, carry_add, carry_bytes = rt.carry_new, rt.carry_add, rt.carry_bytes
 local X, E, handlers = rt.X, rt.E, rt.handlers
+local tree_add, append_text, range_of = rt.tree_add, rt.append_text, rt.range_of
 local wanted_packages = rt.wanted_packages
 local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
@@ -109,9 +110,9 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     -- Layout sizes told the version of a stream that had not: this message and the next ones.
     if st.implied and not st.known then cur.version, cur.implied = st.version, st.implied end
     if not cur.detail then return end
-    local item = tree:add(ur, tvb(o, e - o))
-    item:add(F.length, tvb(o, LENGTH))
-    local type_item = item:add(F.type, tvb(o + LENGTH, HEADER - LENGTH))
+    local item = tree_add(tree, ur, range_of(tvb, o, e - o))
+    tree_add(item, F.length, range_of(tvb, o, LENGTH))
+    local type_item = tree_add(item, F.type, range_of(tvb, o + LENGTH, HEADER - LENGTH))
     if MESSAGE_TYPE_TABLES then rename(type_item, "Type", MESSAGE_TYPE_TABLES, st.version, mtype) end
     -- The tree walks the message again from the version it started with.
     st.message_version, st.message_implied = st.version, st.implied
@@ -119,7 +120,7 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     st.visible = tree.visible
     st.only = st.visible and wanted_packages() or nil
     if h then
-        item:append_text(h.suffix)
+        append_text(item, h.suffix)
         items_begin(item)
         h.tree(h.m, tvb, item, o, e, st)
         local hidden = items_hidden()

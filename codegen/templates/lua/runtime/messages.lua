@@ -10,7 +10,7 @@ local be_int, walk, version_text = rt.be_int, rt.walk, rt.version_text
 local choose, pick, enum_names, named_in_any, rename = rt.choose, rt.pick, rt.enum_names, rt.named_in_any, rt.rename
 local layout_summary, package_summary, labelled = rt.layout_summary, rt.package_summary, rt.labelled
 local X, E = rt.X, rt.E
-local add = rt.add
+local add, range_of = rt.add, rt.range_of
 local HEADER = spec.header_size
 local PACKAGE_HEADER = spec.package_header_size
 local PACKAGE_LENGTH = spec.package_length_size
@@ -39,10 +39,10 @@ local function walk_body(tvb, item, body, stop, st, layout, name, v)
     local used, err = walk(tvb, item, body, stop, st, layout, nil)
     st.version = keep
     if not used then
-        add(item, X.raw, tvb(body, stop - body))
+        add(item, X.raw, range_of(tvb, body, stop - body))
         item:add_proto_expert_info(E.malformed, name .. ": " .. err)
     elseif used < stop then
-        add(item, X.extra, tvb(used, stop - used))
+        add(item, X.extra, range_of(tvb, used, stop - used))
         item:add_proto_expert_info(E.extra, fmt("%s: %d bytes after the layout", name, stop - used))
     end
 end
@@ -99,11 +99,11 @@ local KINDS = {}
 local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
     local pk = form and form.of
     local v = use or st.version
-    local item = add(tree, pk and pk.item or X.unknown_package, tvb(p, size))
+    local item = add(tree, pk and pk.item or X.unknown_package, range_of(tvb, p, size))
     local name, named = code_name(m.types, m.type_tables, v, code)
     if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
-    add(item, m.length, tvb(p, PACKAGE_LENGTH))
-    add_code(item, m.type, tvb(p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+    add(item, m.length, range_of(tvb, p, PACKAGE_LENGTH))
+    add_code(item, m.type, range_of(tvb, p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
     if by_length then note_length(item, form, size) end
     local body, stop = p + PACKAGE_HEADER, p + size
     if pk and not st.visible and not referenced(item, pk, st.call) then
@@ -111,7 +111,7 @@ local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
     elseif pk then
         walk_body(tvb, item, body, stop, st, pk.layout, pk.name, use)
     else
-        add(item, X.raw, tvb(body, stop - body))
+        add(item, X.raw, range_of(tvb, body, stop - body))
         -- Types the spec names but does not lay out (e.g. 14) are normal: no expert.
         if not named then
             item:add_proto_expert_info(E.unknown, fmt("package type %d is not in the spec, kept raw", code))
@@ -143,7 +143,7 @@ KINDS.packages = {
                 err = fmt("package at offset %d: length %d exceeds the %d bytes left", p - st.base, size, left)
             end
             if err then
-                add(tree, X.raw, tvb(p, left))
+                add(tree, X.raw, range_of(tvb, p, left))
                 tree:add_proto_expert_info(E.malformed, err)
                 return
             end
@@ -182,7 +182,7 @@ KINDS.subtypes = {
         local body = o + m.body_offset
         if e < body then
             local _, err = walk(tvb, tree, o + HEADER, e, st, m.header, nil)
-            if e - o > HEADER then add(tree, X.raw, tvb(o + HEADER, e - o - HEADER)) end
+            if e - o > HEADER then add(tree, X.raw, range_of(tvb, o + HEADER, e - o - HEADER)) end
             tree:add_proto_expert_info(E.malformed, err or "too short")
             return
         end
@@ -190,7 +190,7 @@ KINDS.subtypes = {
         local forms = m.subtypes[code]
         if not forms then
             walk(tvb, tree, o + HEADER, body, st, m.header, nil)
-            if body < e then add(tree, X.raw, tvb(body, e - body)) end
+            if body < e then add(tree, X.raw, range_of(tvb, body, e - body)) end
             local _, named = code_name(m.subtype_names, m.subtype_tables, st.version, code)
             if not named then
                 tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
@@ -199,10 +199,10 @@ KINDS.subtypes = {
         end
         local form, use, by_length = choose(forms, e - body, st.version)
         local s = form.of
-        local item = add(tree, s.item, tvb(o + HEADER, e - o - HEADER))
+        local item = add(tree, s.item, range_of(tvb, o + HEADER, e - o - HEADER))
         -- The header again, under the subtype's own names (ur.key.timestamp).
         walk(tvb, item, o + HEADER, body - 1, st, s.header, nil)
-        add_code(item, m.subtype_field, tvb(body - 1, 1), m.subtype_label, m.subtype_tables, use, code)
+        add_code(item, m.subtype_field, range_of(tvb, body - 1, 1), m.subtype_label, m.subtype_tables, use, code)
         if by_length then note_length(item, form, e - o) end
         if s.needs_version then show_version(item, st) end
         walk_body(tvb, item, body, e, st, s.layout, s.name, use)

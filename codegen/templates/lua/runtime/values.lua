@@ -5,7 +5,7 @@ local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, short, negative = rt.be_int, rt.short, rt.negative
 local value_table, add_text = rt.value_table, rt.add_text
-local add, add_value = rt.add, rt.add_value
+local add, add_value, add_labelled, range_of = rt.add, rt.add_value, rt.add_labelled, rt.range_of
 
 local MAX_VALUE_DEPTH = spec.max_value_depth
 local VALUE_TABLES = spec.value_tables
@@ -31,24 +31,23 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
     local kind = vt.kinds[code]
     if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
     local start = o
-    local item = add(tree, vf.item, tvb(o, 1))
-    item:set_text(label .. ": " .. kind.name)
-    add_value(item, vf.type, tvb(o, 1), kind.name)
-    add(item, vf.code, tvb(o, 1))
+    local item = add_labelled(tree, vf.item, range_of(tvb, o, 1), label .. ": " .. kind.name)
+    add_value(item, vf.type, range_of(tvb, o, 1), kind.name)
+    add(item, vf.code, range_of(tvb, o, 1))
     o = o + 1
     local layout = kind.layout
     if layout == "scalar" or layout == "array" then
         local need = kind.n * kind.count
         if o + need > e then return nil, short(st, path, o, need, e) end
         for _ = 1, kind.count do
-            add(item, vf[kind.item], tvb(o, kind.n))
+            add(item, vf[kind.item], range_of(tvb, o, kind.n))
             o = o + kind.n
         end
     elseif layout == "string" then
         if o + kind.len > e then return nil, short(st, path, o, kind.len, e) end
         local n = be_int(raw, o, kind.len)
         if n < 0 then return nil, negative(st, path, o, n) end
-        add(item, vf.count, tvb(o, kind.len))
+        add(item, vf.count, range_of(tvb, o, kind.len))
         o = o + kind.len
         if o + n > e then return nil, short(st, path, o, n, e) end
         add_text(item, vf.string, tvb, o, n)
@@ -59,7 +58,7 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
         if n < 0 then return nil, negative(st, path, o, n) end
         local err = too_many(st, vt, path, o, n, o + kind.len, e)
         if err then return nil, err end
-        add(item, vf.count, tvb(o, kind.len))
+        add(item, vf.count, range_of(tvb, o, kind.len))
         o = o + kind.len
         for i = 0, n - 1 do
             o, err = walk_value(tvb, item, o, e, st, vf, vt, "Item " .. i, path .. "[" .. i .. "]", depth + 1)
@@ -76,12 +75,11 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
         end
         local err = too_many(st, vt, path, o, rows * cols, o + 2 * kind.len, e)
         if err then return nil, err end
-        add(item, vf.rows, tvb(o, kind.len))
-        add(item, vf.cols, tvb(o + kind.len, kind.len))
+        add(item, vf.rows, range_of(tvb, o, kind.len))
+        add(item, vf.cols, range_of(tvb, o + kind.len, kind.len))
         o = o + 2 * kind.len
         for r = 0, rows - 1 do
-            local row = add(item, vf.row, tvb(o, 0))
-            row:set_text(fmt("Row %d", r))
+            local row = add_labelled(item, vf.row, range_of(tvb, o, 0), fmt("Row %d", r))
             local row_start = o
             for c = 0, cols - 1 do
                 o, err = walk_value(tvb, row, o, e, st, vf, vt, "Column " .. c, path .. "[" .. r .. "][" .. c .. "]",
