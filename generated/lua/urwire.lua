@@ -2605,9 +2605,10 @@ local function walk_value(tvb, tree, o, e, st, vf, vt, label, path, depth)
     local kind = vt.kinds[code]
     if not kind then return nil, fmt("%s.type at offset %d: unknown value type %d", path, o - st.base, code) end
     local start = o
-    local item = add_labelled(tree, vf.item, range_of(tvb, o, 1), label .. ": " .. kind.name)
-    add_value(item, vf.type, range_of(tvb, o, 1), kind.name)
-    add(item, vf.code, range_of(tvb, o, 1))
+    local code_range = range_of(tvb, o, 1)
+    local item = add_labelled(tree, vf.item, code_range, label .. ": " .. kind.name)
+    add_value(item, vf.type, code_range, kind.name)
+    add(item, vf.code, code_range)
     o = o + 1
     local layout = kind.layout
     if layout == "scalar" or layout == "array" then

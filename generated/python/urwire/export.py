@@ -95,7 +95,8 @@ class Tables:
     def add(self, table: str, position: int, columns: list, time=None) -> None:
         kinds = self.kinds.setdefault(table, {"position": "int"})
         chunk = self._chunks.setdefault(table, {})
-        held = self.counts.get(table, 0) % SPILL_ROWS  # rows already in the chunk
+        count = self.counts.get(table, 0)
+        held = count % SPILL_ROWS  # rows already in the chunk
         columns = [("position", "int", position), *([("capture_time", "f64", time)] if time is not None else []),
                    *columns]
         for name, kind, value in columns:
@@ -108,7 +109,7 @@ class Tables:
             for values in chunk.values():
                 if len(values) == held:
                     values.append(None)
-        self.counts[table] = self.counts.get(table, 0) + 1
+        self.counts[table] = count + 1
         if held + 1 == SPILL_ROWS:
             self._spill_chunk(table)
 
