@@ -92,6 +92,7 @@ class PyClass:
     members: list[MemberView] = field(default_factory=list)  # fixed items: read from the parent's run
     sets_version: Optional[tuple[str, str]] = None
     summary: list[str] = field(default_factory=list)
+    items: dict[str, str] = field(default_factory=dict)   # group member -> its item class
 
     @property
     def base(self) -> str:
@@ -133,7 +134,7 @@ def json_kind(f: ir.AnyField) -> str:
         return "bool" if s.is_bool else ("f32" if s.size == 4 else "f64") if s.is_float else "int"
 
     if isinstance(f, ir.ScalarField):
-        return scalar_kind(f.scalar)
+        return "enum" if f.enum is not None and not f.scalar.is_bool else scalar_kind(f.scalar)
     if isinstance(f, ir.ArrayField):
         return "list:" + scalar_kind(f.scalar)
     if isinstance(f, ir.GroupField):
@@ -146,7 +147,7 @@ def json_kind(f: ir.AnyField) -> str:
         return "hex"
     if isinstance(f, ir.SwitchField):
         floats = [s for s in list(f.cases.values()) + [f.default] if s.is_float]
-        return scalar_kind(floats[0]) if floats else "int"
+        return "int|" + scalar_kind(floats[0]) if floats else "int"
     return "values"
 
 
@@ -348,6 +349,7 @@ class _Target:
             cls.fixed = True
             cls.members = [builder.member(m, "i", "at") for m in layout.runs[0].members]
         cls.summary = [field_name for _, field_name in summary or []]
+        cls.items = items
         self.classes.append(cls)
         return cls
 

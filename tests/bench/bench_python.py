@@ -7,8 +7,9 @@
    every controller generation entered the spec). python-urx decodes less than urwire: it stops
    at the sub-packages it knows, types no enums and keeps no bytes for re-encoding.
 2. A canonical JSON line per robot state, against the package of --base (before the per-class
-   writers): with the float texts seen before (a robot repeats most values from one state to the
-   next), and with every float text worked out anew (the kept texts emptied before each line).
+   writers): the same state again (at rest: a robot repeats most values from one state to the
+   next), states whose moving packages change (in motion), and with nothing kept (every float
+   text and every sub-package text worked out anew before each line).
 3. Files of MB megabytes of real robot states, raw and .pcap (tests/tools/robot_inputs.py), each
    read in its own process: decode_file, and `python -m urwire decode` writing JSON Lines to a
    pipe; MB per second of CPU time and peak resident memory. The command of --base runs on the
@@ -148,7 +149,7 @@ def moved(obj, rng: random.Random):
         value = getattr(obj, name)
         if kind == "items":
             changes[name] = [moved(item, rng) for item in value]
-        elif kind in ("f32", "f64", "list:f32", "list:f64") and value is not None:
+        elif kind in ("f32", "f64", "list:f32", "list:f64") and value is not None:  # int|f32: left as is
             nudge = (lambda x: F32.unpack(F32.pack(x))[0]) if "f32" in kind else float
             new = [nudge(x + (abs(x) + 1) * rng.uniform(-1e-3, 1e-3)) if type(x) is float and x - x == 0 else x
                    for x in (value if kind.startswith("list") else [value])]
@@ -168,15 +169,12 @@ def in_motion(data: bytes) -> list[bytes]:
 
 
 def json_per_message(base: Path | None) -> None:
-    """A robot at rest (the same state again), in motion, and every float text worked out anew."""
+    """A robot at rest (the same state again), in motion, and with no text kept."""
     if base is None:
         return
     old = load(base, "urwire_base")
-    kept = (urwire.canonical._F32_TEXTS, urwire.canonical._F64_TEXTS)
-
     def anew(record):
-        for texts in kept:
-            texts.clear()
+        urwire.canonical.forget_texts()
         return urwire.to_json_line(record)
 
     print(f"== A JSON line per robot state against {BASE}, the same text: us and ratios as above")
@@ -191,9 +189,9 @@ def json_per_message(base: Path | None) -> None:
         t = rounds({"then at rest": lambda: old.to_json_line(first), "at rest": lambda: urwire.to_json_line(record),
                     "then in motion": lambda: old.to_json_line(then_next()),
                     "in motion": lambda: urwire.to_json_line(now_next()),
-                    "every float new": lambda: anew(record), "decode": lambda: urwire.decode_message(data)})
+                    "nothing kept": lambda: anew(record), "decode": lambda: urwire.decode_message(data)})
         for case, before in (("at rest", "then at rest"), ("in motion", "then in motion"),
-                             ("every float new", "then at rest")):
+                             ("nothing kept", "then at rest")):
             print(f"   {name if case == 'at rest' else '':<36}{case:<16}{us(t[before]):>9}{us(t[case]):>7}"
                   f"{spread([o / n for o, n in zip(t[before], t[case])]):>13}"
                   f"{us(t['decode']) if case == 'at rest' else '':>8}")

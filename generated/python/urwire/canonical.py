@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import ctypes
 import json
+import marshal
 import math
 import struct
 from typing import Any, Callable, Optional
@@ -202,15 +203,26 @@ def _value(v: GlobalValue) -> str:
 # ---- one writer per class ----------------------------------------------------------------
 # A generated class lists its members as JSON = ((name, kind, optional), ...). Its writer is
 # made once, on first use, as straight-line code (the way dataclasses makes __init__): a record
-# then costs a call per object, not a dispatch per member.
+# then costs a call per object, not a dispatch per member. The items of a group (the joints)
+# are written inside their parent's writer, without a call per item.
+#
+# A robot sends its configuration, kinematics, calibration and tool settings unchanged in every
+# state. So the writer of a message or sub-package keeps its last text with the exact values it
+# was made from, and gives that text again while they recur. The values are compared as marshal
+# writes them: a float by its bits (0.0 and -0.0 differ), a number with its type (1 and 1.0
+# differ), an enum as its code. Format 2 has no references between objects, so equal values
+# always give equal bytes. Building that key costs about a fifth of writing the text.
 
 # How a value @ of each kind is written: a piece of an f-string. An f-string joins its parts
 # without the tuple and the format parsing that a %-format takes.
 _KINDS = {
     "int": "{@:d}",
+    "enum": "{@:d}",
     "bool": '{"true" if @ else "false"}',
     "f32": "{f32(@)}",
     "f64": "{f64(@)}",
+    "int|f32": "{f32(@)}",
+    "int|f64": "{f64(@)}",
     "text": "{text(@)}",
     "hex": '"{@.hex()}"',
     "texts": '[{", ".join(map(text, @))}]',
@@ -220,6 +232,7 @@ _KINDS = {
     "list:bool": '[{", ".join(map(bool_text, @))}]',
     "list:f32": '[{", ".join(map(f32, @))}]',
     "list:f64": '[{", ".join(map(f64, @))}]',
+    "joined": "[{@}]",  # a group's items, already written and joined into the local @
 }
 _EXTRA = '{o.extra and extra_text(o.extra) or ""}'
 _QUOTES = "'" * 3
@@ -247,15 +260,33 @@ def _fstring(members: list, before: str = "", after: str = "", tail: str = "") -
     return "f" + _QUOTES + source + _QUOTES
 
 
-def _writer_source(cls: type) -> str:
-    """`def write_<class>(o)`: the members in order, an optional one only when it is set; a
-    message or sub-package (a class with a TYPE) starts with its type and ends with its extra
-    bytes, an item of a group has neither."""
+def _inline_items(cls: type) -> dict:
+    """The group members whose items are written inside cls's writer -> their item class: items
+    with no optional member and no records of their own."""
+    return {name: item for name, item in getattr(cls, "ITEMS", {}).items()
+            if all(not optional and kind not in ("items", "values") for _, kind, optional in item.JSON)}
+
+
+def _text_source(cls: type, function: str) -> str:
+    """`def <function>(o)`, the text of one record: the members in order, an optional one only
+    when it is set; a message or sub-package (a class with a TYPE) starts with its type and
+    ends with its extra bytes, an item of a group has neither."""
     typed = getattr(cls, "TYPE", None)
     head = f'"type": "{typed}"' if typed else ""
-    lines = [f"def write_{cls.__name__}(o):"]
+    inline = _inline_items(cls)
+    lines = [f"def {function}(o):"]
+
+    def member(name: str, kind: str, value: str, indent: str) -> tuple:
+        """(name, kind, value source) of a member; a group's items are joined into a local first."""
+        item = inline.get(name) if kind == "items" else None
+        if item is None:
+            return name, kind, value
+        each = _fstring([(n, k, f"i.{n}") for n, k, _ in item.JSON], "{", "}")
+        lines.append(f'{indent}joined_{name} = ", ".join([{each} for i in {value}])')
+        return name, "joined", f"joined_{name}"
+
     if not any(optional for _, _, optional in cls.JSON):
-        members = [(name, kind, f"o.{name}") for name, kind, _ in cls.JSON]
+        members = [member(name, kind, f"o.{name}", "    ") for name, kind, _ in cls.JSON]
         opening = "{" + head + (", " if head and members else "")
         lines.append(f"    return {_fstring(members, opening, '}', _EXTRA if typed else '')}")
         return "\n".join(lines) + "\n"
@@ -263,29 +294,90 @@ def _writer_source(cls: type) -> str:
     run: list = []
     for name, kind, optional in [*cls.JSON, ("", "", True)]:
         if not optional:
-            run.append((name, kind, f"o.{name}"))
+            run.append(member(name, kind, f"o.{name}", "    "))
             continue
         if run:
             lines.append(f"    parts.append({_fstring(run)})")
             run = []
         if name:
-            lines += [f"    v = o.{name}", "    if v is not None:", f"        parts.append({_fstring([(name, kind, 'v')])})"]
+            lines += [f"    v = o.{name}", "    if v is not None:"]
+            lines.append(f"        parts.append({_fstring([member(name, kind, 'v', '        ')])})")
     if typed:
         lines += ["    if o.extra:", "        parts.append(extra_text(o.extra)[2:])"]
     lines.append('    return "{" + ", ".join(parts) + "}"')
     return "\n".join(lines) + "\n"
 
 
+def _key_source(cls: type) -> Optional[str]:
+    """Source of a tuple of every value that cls's text depends on, as marshal can write it;
+    None when a member holds records that marshal cannot (global variable values)."""
+    inline = _inline_items(cls)
+
+    def value(kind: str, source: str, optional: bool, item: Optional[type] = None) -> Optional[str]:
+        if kind == "enum":
+            code = f"int({source})"
+        elif kind == "items":
+            if item is None:
+                return None
+            code = "[(" + "".join(value(k, f"i.{n}", False) + ", " for n, k, _ in item.JSON) + f") for i in {source}]"
+        elif kind == "values":
+            return None
+        else:
+            return source
+        return f"(None if {source} is None else {code})" if optional else code
+
+    values = [value(kind, f"o.{name}", optional, inline.get(name)) for name, kind, optional in cls.JSON]
+    if None in values:
+        return None
+    return "(" + "".join(v + ", " for v in values) + "o.extra)"
+
+
+def _writer_source(cls: type) -> str:
+    """`def write_<class>(o)`: its text, kept with its key for a message or sub-package."""
+    name = cls.__name__
+    key = _key_source(cls) if getattr(cls, "TYPE", None) else None
+    if key is None:
+        return _text_source(cls, f"write_{name}")
+    return _text_source(cls, f"text_{name}") + f"""
+def write_{name}(o):
+    global last
+    try:
+        key = dumps({key}, 2)
+    except ValueError:  # a float32 NaN that keeps its bits: marshal writes exact floats only
+        return text_{name}(o)
+    kept = last
+    if key == kept[0]:
+        return kept[1]
+    text = text_{name}(o)
+    last = (key, text)
+    return text
+"""
+
+
 def _names() -> dict:
     """What the writers' code calls."""
     return dict(f32=f32_text, f64=f64_text, text=_text, value=_value, int_text="%d".__mod__,
-                bool_text=_bool_text, extra_text=_extra_text, write=_write)
+                bool_text=_bool_text, extra_text=_extra_text, write=_write, dumps=marshal.dumps,
+                last=(None, None))
 
 
 def _compile(cls: type) -> Callable[[Any], str]:
     names = _names()
     exec(_writer_source(cls), names)
+    _WRITER_SPACES.append(names)
     return names[f"write_{cls.__name__}"]
+
+
+_WRITER_SPACES: list = []  # the globals of each writer made: where a writer keeps its last text
+
+
+def forget_texts() -> None:
+    """Drop every text kept so far, of floats and of records: the next lines are worked out
+    anew. The texts never depend on it; benchmarks and tests use it."""
+    _F32_TEXTS.clear()
+    _F64_TEXTS.clear()
+    for names in _WRITER_SPACES:
+        names["last"] = (None, None)
 
 
 def member_text(kind: str, value: Any) -> str:

@@ -28,9 +28,10 @@ from typing import BinaryIO, Iterator
 from .canonical import has_error, to_json_line
 from .reading import timed_records
 
-_ARROW_TYPES = {"int": "int64", "bool": "bool_", "f32": "float32", "f64": "float64", "text": "string",
+# A switch member that holds an int32 or a float32 (int|f32) fits a float64 column exactly.
+_ARROW_TYPES = {"int": "int64", "enum": "int64", "bool": "bool_", "f32": "float32", "f64": "float64", "text": "string",
                 "hex": "binary", "texts": "string", "values": "string", "list:int": "int64", "list:f64": "float64",
-                "list:f32": "float32", "list:bool": "bool_"}
+                "list:f32": "float32", "list:bool": "bool_", "int|f32": "float64", "int|f64": "float64"}
 
 
 def add_parser(sub, version_arg) -> None:
@@ -62,7 +63,7 @@ def _columns(obj) -> list[tuple[str, str, object]]:
         elif kind in ("texts", "values"):
             out.append((name, kind, None if value is None else _json_of(kind, value)))
         else:
-            out.append((name, kind, None if value is None else (int(value) if kind == "int" else value)))
+            out.append((name, kind, None if value is None else (int(value) if kind in ("int", "enum") else value)))
     return out
 
 

@@ -152,8 +152,8 @@ class RobotModeData(_Package):
         ("is_protective_stopped", "bool", False),
         ("is_program_running", "bool", False),
         ("is_program_paused", "bool", False),
-        ("robot_mode", "int", False),
-        ("control_mode", "int", True),
+        ("robot_mode", "enum", False),
+        ("control_mode", "enum", True),
         ("target_speed_fraction", "f64", False),
         ("speed_scaling", "f64", True),
         ("target_speed_fraction_limit", "f64", True),
@@ -334,7 +334,7 @@ class Joint(_Item):
         ("v_actual", "f32", False),
         ("t_motor", "f32", False),
         ("t_micro", "f32", False),
-        ("joint_mode", "int", False),
+        ("joint_mode", "enum", False),
     )
     SUMMARY: ClassVar[tuple] = ()
 
@@ -447,6 +447,8 @@ class JointData(_Package):
         ("joints", "items", False),
     )
     SUMMARY: ClassVar[tuple] = ()
+    ITEMS: ClassVar[dict] = {"joints": Joint}
+    """The class of each group member's items."""
 
     joints: list[Joint] = field(metadata={"label": "Joints", "unit": None})
     """Joints. One entry per joint, base first."""
@@ -502,7 +504,7 @@ class ToolData(_Package):
         ("tool_output_voltage", "int", False),
         ("tool_current", "f32", False),
         ("tool_temperature", "f32", False),
-        ("tool_mode", "int", False),
+        ("tool_mode", "enum", False),
     )
     SUMMARY: ClassVar[tuple] = ()
 
@@ -748,9 +750,9 @@ class MasterboardData(_Package):
         ("robot_voltage_48v", "f32", False),
         ("robot_current", "f32", False),
         ("master_io_current", "f32", False),
-        ("master_safety_state", "int", True),
-        ("master_on_off_state", "int", True),
-        ("safety_mode", "int", True),
+        ("master_safety_state", "enum", True),
+        ("master_on_off_state", "enum", True),
+        ("safety_mode", "enum", True),
         ("in_reduced_mode", "int", True),
         ("euromap67_interface_installed", "bool", True),
         ("euromap_input_bits", "int", True),
@@ -1636,6 +1638,8 @@ class ConfigurationData(_Package):
         ("reserved_2", "int", True),
     )
     SUMMARY: ClassVar[tuple] = ()
+    ITEMS: ClassVar[dict] = {"joint_position_limits": JointPositionLimit, "joint_motion_limits": JointMotionLimit}
+    """The class of each group member's items."""
 
     joint_position_limits: list[JointPositionLimit] = field(metadata={"label": "Joint position limits", "unit": None})
     """Joint position limits."""
@@ -2279,7 +2283,7 @@ class VersionMessage(_Subtype):
     """The fields that announce the stream's software version: major, minor and bugfix."""
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("project_name", "text", False),
         ("major_version", "int", False),
         ("minor_version", "int", False),
@@ -2392,12 +2396,12 @@ class SafetyModeMessage(_Subtype):
     LABEL: ClassVar[str] = "Safety mode"
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("robot_message_code", "int", False),
         ("robot_message_argument", "int", False),
-        ("safety_mode_type", "int", True),
+        ("safety_mode_type", "enum", True),
         ("report_data_type", "int", True),
-        ("report_data", "f32", True),
+        ("report_data", "int|f32", True),
         ("text", "text", True),
     )
     SUMMARY: ClassVar[tuple] = ("safety_mode_type", )
@@ -2504,10 +2508,10 @@ class RobotCommMessage(_Subtype):
     LABEL: ClassVar[str] = "Robot comm"
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("robot_message_code", "int", False),
         ("robot_message_argument", "int", False),
-        ("robot_message_report_level", "int", True),
+        ("robot_message_report_level", "enum", True),
         ("robot_message_data_type", "int", True),
         ("robot_message_data", "int", True),
         ("text", "text", False),
@@ -2600,7 +2604,7 @@ class KeyMessage(_Subtype):
     LABEL: ClassVar[str] = "Key"
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("robot_message_code", "int", False),
         ("robot_message_argument", "int", False),
         ("title", "text", False),
@@ -2698,10 +2702,12 @@ class ProgramThreadsMessage(_Subtype):
     LABEL: ClassVar[str] = "Program threads"
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("threads", "items", False),
     )
     SUMMARY: ClassVar[tuple] = ()
+    ITEMS: ClassVar[dict] = {"threads": ProgramThread}
+    """The class of each group member's items."""
 
     timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
     """Timestamp."""
@@ -2758,9 +2764,9 @@ class PopupMessage(_Subtype):
     LABEL: ClassVar[str] = "Popup"
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("request_id", "int", True),
-        ("requested_type", "int", True),
+        ("requested_type", "enum", True),
         ("warning", "bool", False),
         ("error", "bool", False),
         ("blocking", "bool", True),
@@ -2860,7 +2866,7 @@ class LabelMessage(_Subtype):
     LABEL: ClassVar[str] = "Label"
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("id", "int", False),
         ("text", "text", False),
     )
@@ -2912,7 +2918,7 @@ class VarMessage(_Subtype):
     LABEL: ClassVar[str] = "Var"
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("robot_message_code", "int", False),
         ("robot_message_argument", "int", False),
         ("title", "text", False),
@@ -2977,12 +2983,12 @@ class HardwareInfoMessage(_Subtype):
     LABEL: ClassVar[str] = "Hardware info"
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("robot_type", "int", False),
         ("reserved_1", "int", False),
-        ("control_box_type", "int", False),
+        ("control_box_type", "enum", False),
         ("reserved_2", "int", False),
-        ("tool_flange_type", "int", False),
+        ("tool_flange_type", "enum", False),
     )
     SUMMARY: ClassVar[tuple] = ("robot_type", "control_box_type", "tool_flange_type", )
 
@@ -3040,9 +3046,9 @@ class RequestValueMessage(_Subtype):
     LABEL: ClassVar[str] = "Request value"
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("request_id", "int", False),
-        ("requested_type", "int", False),
+        ("requested_type", "enum", False),
         ("text", "text", False),
     )
     SUMMARY: ClassVar[tuple] = ("requested_type", "text", )
@@ -3090,7 +3096,7 @@ class TextMessage(_Subtype):
     LABEL: ClassVar[str] = "Text"
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("text", "text", False),
     )
     SUMMARY: ClassVar[tuple] = ("text", )
@@ -3134,7 +3140,7 @@ class RuntimeExceptionMessage(_Subtype):
     LABEL: ClassVar[str] = "Runtime exception"
     JSON: ClassVar[tuple] = (
         ("timestamp", "int", False),
-        ("source", "int", False),
+        ("source", "enum", False),
         ("script_line_number", "int", False),
         ("script_column_number", "int", False),
         ("text", "text", False),

@@ -29,7 +29,8 @@ FIRST_ONLY = (_m.KinematicsInfo, _m.ConfigurationData)
 INTERNAL = (_m.CalibrationData, _m.SafetyData, _m.SingularityInfo)
 E_SERIES_ONLY = (_m.ToolCommInfo, _m.ToolModeInfo)
 
-_ZERO = {"int": 0, "bool": False, "f32": 0.0, "f64": 0.0, "text": "", "hex": b"", "texts": [], "values": []}
+_ZERO = {"int": 0, "enum": 0, "bool": False, "f32": 0.0, "f64": 0.0, "int|f32": 0, "int|f64": 0, "text": "", "hex": b"",
+         "texts": [], "values": []}
 _LIST_OF = re.compile(r"list\[(\w+)\]")
 
 
