@@ -313,11 +313,12 @@ static void on_bool(void *ctx, const char *key, bool v) { checked *k = ctx; k->j
 static void on_text(void *ctx, const char *key, urwire_bytes t) { checked *k = ctx; k->json.on_text(k->json.ctx, key, t); }
 static void on_hex(void *ctx, const char *key, urwire_bytes b) { checked *k = ctx; k->json.on_hex(k->json.ctx, key, b); }
 static void on_null(void *ctx, const char *key) { checked *k = ctx; k->json.on_null(k->json.ctx, key); }
+static bool on_package(void *ctx, const urwire_package *pkg) { checked *k = ctx; return k->json.package(k->json.ctx, pkg); }
 
 static urwire_visitor checked_visitor(checked *k)
 {
     urwire_visitor v = {NULL, begin_object, end_object, begin_array, end_array, on_int, on_uint, on_bool,
-                        f32_checked, f64_checked, on_text, on_hex, on_null};
+                        f32_checked, f64_checked, on_text, on_hex, on_null, on_package};
     v.ctx = k;
     return v;
 }

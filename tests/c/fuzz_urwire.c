@@ -47,7 +47,7 @@ static void v_text(void *ctx, const char *key, urwire_bytes t)
 static void v_hex(void *ctx, const char *key, urwire_bytes b) { (void)ctx; (void)key; touch(b); }
 
 static const urwire_visitor visitor = {NULL, v_begin, v_end, v_begin, v_end, v_int, v_uint, v_bool,
-                                       v_f32, v_f64, v_text, v_hex, v_null};
+                                       v_f32, v_f64, v_text, v_hex, v_null, NULL};
 
 static void check_error_text(const urwire_error *e)
 {

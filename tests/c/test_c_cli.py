@@ -72,3 +72,34 @@ def test_the_bundled_capture_decodes_as_in_python(fast, tmp_path):
     expected = [urwire.to_dict(r) for r in urwire.decode_file(pcap)]
     assert len(expected) > 10
     assert parse_lines(result.stdout) == expected
+
+
+def test_recurring_packages_are_written_as_python_writes_them(fast):
+    """The command keeps the text of each sub-package type and writes it again while the type,
+    version and body recur. Every generation's robot states come twice, then the same bytes
+    under every other version's Version message; a malformed package, whose error names its
+    offset in the message, comes at two offsets. Each line must be Python's."""
+    import random
+    import struct
+
+    import urwire
+    from tests.tools import valid
+
+    def state(*packages: bytes) -> bytes:
+        body = b"".join(packages)
+        return struct.pack(">iB", 5 + len(body), 16) + body
+
+    rng = random.Random(11)
+    states = []
+    for version in valid.versions():
+        made = [m for m in (valid.message(rng, version) for _ in range(60)) if m[4] == 16]
+        states += made[:3]
+    short_cartesian = struct.pack(">iB", 15, 4) + bytes(range(10))
+    data = state(short_cartesian) + state(struct.pack(">iB", 7, 20) + b"\x01\x02", short_cartesian)
+    for version in valid.versions():
+        data += valid.version_message(rng, version) + b"".join(m + m for m in states)
+    result = run_cli(fast, data)
+    expected = [urwire.to_json_line(r) for r in urwire.decode_stream(data)]
+    assert len(expected) > 1000
+    assert result.stdout.decode().splitlines() == expected
+    assert expected[0] != expected[1].replace('{"type": "unknown", "package_type": 20, "raw": "0102"}, ', "")

@@ -175,6 +175,7 @@ static void flush(json_writer *w)
     if (w->len > 0)
         fwrite(w->buf, 1, w->len, w->out);
     w->len = 0;
+    w->flushes++;
 }
 
 /* Room for n more bytes (n <= JSON_WRITER_BUFFER); the caller adds what it wrote to w->len. */
@@ -353,10 +354,32 @@ static void open_(json_writer *w, const char *key, char c)
     w->depth++;
 }
 
+/* The package being kept has ended: its text goes to its slot, without the separator before
+ * it, when it is all still in buf and fits. */
+static void keep(json_writer *w)
+{
+    json_kept_package *k = w->keeping;
+    const char *text = w->buf + w->keeping_from;
+    size_t n = w->len - w->keeping_from;
+    w->keeping = NULL;
+    if (w->flushes != w->keeping_flushes)
+        return;
+    if (n >= 2 && text[0] == ',') {
+        text += 2;
+        n -= 2;
+    }
+    if (n <= sizeof k->text) {
+        memcpy(k->text, text, n);
+        k->text_length = n;
+    }
+}
+
 static void close_(json_writer *w, char c)
 {
     put_char(w, c);
     w->depth--;
+    if (w->keeping != NULL && w->depth < w->keeping_depth)
+        keep(w);
     record_end(w);
 }
 
@@ -453,10 +476,50 @@ static void on_null(void *ctx, const char *key)
     record_end(w);
 }
 
+static bool same_version(urwire_sw_version a, urwire_sw_version b)
+{
+    return a.major == b.major && a.minor == b.minor && a.bugfix == b.bugfix && a.assumed == b.assumed;
+}
+
+/* Before a sub-package: its kept text, when its type, version and body are those it was made
+ * from; otherwise the walk writes it, and its text is kept when it ends. A malformed package
+ * is never kept: its error names offsets in the message. */
+static bool on_package(void *ctx, const urwire_package *pkg)
+{
+    json_writer *w = (json_writer *)ctx;
+    json_kept_package *k;
+    char *at;
+    if (pkg->type >= JSON_KEPT_TYPES || pkg->raw.len > JSON_KEPT_BODY || pkg->failed)
+        return false;
+    k = &w->kept[pkg->type];
+    if (k->text_length > 0 && k->body_length == pkg->raw.len && same_version(k->version, pkg->version) &&
+        memcmp(k->body, pkg->raw.ptr, pkg->raw.len) == 0) {
+        at = field(w, NULL, k->text_length);
+        memcpy(at, k->text, k->text_length);
+        w->len = (size_t)(at - w->buf) + k->text_length;
+        return true;
+    }
+    k->text_length = 0;
+    k->version = pkg->version;
+    k->body_length = pkg->raw.len;
+    if (pkg->raw.len > 0)
+        memcpy(k->body, pkg->raw.ptr, pkg->raw.len);
+    w->keeping = k;
+    w->keeping_depth = w->depth + 1;  /* the package's object, opened next */
+    w->keeping_from = w->len;
+    w->keeping_flushes = w->flushes;
+    return false;
+}
+
 urwire_visitor json_visitor(json_writer *w)
 {
     urwire_visitor v;
+    size_t i;
     w->len = 0;
+    w->flushes = 0;
+    w->keeping = NULL;
+    for (i = 0; i < JSON_KEPT_TYPES; i++)
+        w->kept[i].text_length = 0;
     v.ctx = w;
     v.begin_object = begin_object;
     v.end_object = end_object;
@@ -470,5 +533,6 @@ urwire_visitor json_visitor(json_writer *w)
     v.on_text = on_text;
     v.on_hex = on_hex;
     v.on_null = on_null;
+    v.package = on_package;
     return v;
 }

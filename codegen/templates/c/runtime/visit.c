@@ -95,6 +95,8 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
 {
     const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->layout) : NULL;
     urwire__ver ver = urwire__ver_of(pkg->version);
+    if (v->package != NULL && v->package(v->ctx, pkg))
+        return;
     v->begin_object(v->ctx, NULL);
     if (k == NULL) {
         urwire__name(v, "type", "unknown");

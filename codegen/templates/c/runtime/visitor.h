@@ -20,6 +20,12 @@ typedef struct urwire_visitor {
     void (*on_text)(void *ctx, const char *key, urwire_bytes utf8);  /* may hold invalid UTF-8 */
     void (*on_hex)(void *ctx, const char *key, urwire_bytes bytes);
     void (*on_null)(void *ctx, const char *key);
+    /* Optional (NULL: not called). Before each sub-package of a robot state, the package as
+     * urwire_next_package gives it: true when the visitor has written it itself, and it is not
+     * walked; false to have it walked as usual. A package's record depends only on its type,
+     * version and bytes: the CLI's JSON writer keeps the text of each type and writes it again
+     * while they recur, as a robot's configuration and kinematics do from state to state. */
+    bool (*package)(void *ctx, const urwire_package *pkg);
 } urwire_visitor;
 
 /* One message as its canonical record. */
