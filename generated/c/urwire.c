@@ -88,8 +88,9 @@ URWIRE__INLINE uint64_t urwire__version_part(int part, int most)
 
 URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
 {
-    if ((unsigned)v.major <= 1u << 21 && (unsigned)v.minor <= 1u << 20 && (unsigned)v.bugfix <= 1u << 20)
-        return URWIRE__V((unsigned)v.major, (unsigned)v.minor, (unsigned)v.bugfix);  /* every real version */
+    /* Every real version in one test: no part negative or above 2^20. */
+    if (URWIRE__LIKELY(((unsigned)v.major | (unsigned)v.minor | (unsigned)v.bugfix) <= 1u << 20))
+        return URWIRE__V((unsigned)v.major, (unsigned)v.minor, (unsigned)v.bugfix);
     return urwire__version_part(v.major, 1 << 21) << 42 | urwire__version_part(v.minor, 1 << 20) << 21 |
            urwire__version_part(v.bugfix, 1 << 20);
 }
@@ -5163,9 +5164,10 @@ static void urwire__put_program_state_header(const urwire_message *m, uint8_t *o
 /* ---- forms: which layout a type code is read in, by software version and by length ------- */
 
 /* Where the segments of the version axis start (as urwire__version_key orders versions):
- * segment k >= 1 from urwire__segment_starts[k - 1] up to the next start, segment 0 below the
- * first. Within a segment every type code sends one form. */
-static const uint64_t urwire__segment_starts[] = {
+ * segment k from urwire__segment_bounds[k] up to the next bound; segment 0 from key 0, below
+ * every version the spec names. Within a segment every type code sends one form. */
+static const uint64_t urwire__segment_bounds[] = {
+    0u,
     URWIRE__V(0, 0, 0),
     URWIRE__V(1, 5, 1000),
     URWIRE__V(1, 6, 0),
@@ -5952,18 +5954,18 @@ URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_mes
 
 /* ---- forms: the layout a type code is read in, by software version and by length ---------- */
 /* The generated part cuts the version axis where any form of any type code starts or ends
- * (urwire__segment_starts) and gives, for each type byte (the sub-package types, the subtypes
+ * (urwire__segment_bounds) and gives, for each type byte (the sub-package types, the subtypes
  * of each message), an urwire__form_table: the forms of each code and the form each segment
  * sends. The rule (CONTRACT §5), for every sub-package and subtype: the version's form when it
  * fits the body; else the one form whose exact size the body has, read in that form's version;
  * else the version's form, whose short or extra bytes are then reported. */
 
-/* The segment of the version axis that holds a version (its urwire__version_key): how many
- * segment starts lie at or below it. Searched from the newest, which streams run most. */
+/* The segment of the version axis that holds a version (its urwire__version_key): the last
+ * bound at or below it. Searched from the newest, which streams run most; bound 0 stops it. */
 URWIRE__PRIVATE size_t urwire__segment(uint64_t key)
 {
-    size_t k = URWIRE__COUNT(urwire__segment_starts);
-    while (k > 0 && key < urwire__segment_starts[k - 1])
+    size_t k = URWIRE__COUNT(urwire__segment_bounds) - 1;
+    while (key < urwire__segment_bounds[k])
         k--;
     return k;
 }

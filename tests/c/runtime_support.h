@@ -105,7 +105,8 @@ static const urwire__package_kind urwire__package_kinds[] = {
 };
 
 /* Forms: the version axis cut at 0.0.0, 3.2.1000 (after any 3.2.x) and 3.3.0. */
-static const uint64_t urwire__segment_starts[] = {
+static const uint64_t urwire__segment_bounds[] = {
+    0u,
     URWIRE__V(0, 0, 0),
     URWIRE__V(3, 2, 1000),
     URWIRE__V(3, 3, 0),

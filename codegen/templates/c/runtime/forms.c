@@ -3,18 +3,18 @@
 /* </standalone> */
 /* ---- forms: the layout a type code is read in, by software version and by length ---------- */
 /* The generated part cuts the version axis where any form of any type code starts or ends
- * (urwire__segment_starts) and gives, for each type byte (the sub-package types, the subtypes
+ * (urwire__segment_bounds) and gives, for each type byte (the sub-package types, the subtypes
  * of each message), an urwire__form_table: the forms of each code and the form each segment
  * sends. The rule (CONTRACT §5), for every sub-package and subtype: the version's form when it
  * fits the body; else the one form whose exact size the body has, read in that form's version;
  * else the version's form, whose short or extra bytes are then reported. */
 
-/* The segment of the version axis that holds a version (its urwire__version_key): how many
- * segment starts lie at or below it. Searched from the newest, which streams run most. */
+/* The segment of the version axis that holds a version (its urwire__version_key): the last
+ * bound at or below it. Searched from the newest, which streams run most; bound 0 stops it. */
 URWIRE__PRIVATE size_t urwire__segment(uint64_t key)
 {
-    size_t k = URWIRE__COUNT(urwire__segment_starts);
-    while (k > 0 && key < urwire__segment_starts[k - 1])
+    size_t k = URWIRE__COUNT(urwire__segment_bounds) - 1;
+    while (key < urwire__segment_bounds[k])
         k--;
     return k;
 }

@@ -60,8 +60,9 @@ URWIRE__INLINE uint64_t urwire__version_part(int part, int most)
 
 URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
 {
-    if ((unsigned)v.major <= 1u << 21 && (unsigned)v.minor <= 1u << 20 && (unsigned)v.bugfix <= 1u << 20)
-        return URWIRE__V((unsigned)v.major, (unsigned)v.minor, (unsigned)v.bugfix);  /* every real version */
+    /* Every real version in one test: no part negative or above 2^20. */
+    if (URWIRE__LIKELY(((unsigned)v.major | (unsigned)v.minor | (unsigned)v.bugfix) <= 1u << 20))
+        return URWIRE__V((unsigned)v.major, (unsigned)v.minor, (unsigned)v.bugfix);
     return urwire__version_part(v.major, 1 << 21) << 42 | urwire__version_part(v.minor, 1 << 20) << 21 |
            urwire__version_part(v.bugfix, 1 << 20);
 }
