@@ -16,7 +16,7 @@ from .canonical import to_dict, to_json_line
 from .enums import *  # noqa: F401,F403  (every enum of the document)
 from .framer import Framer, decode_stream
 from .messages import *  # noqa: F401,F403  (every message and sub-package class)
-from .messages import decode_message, encode_message
+from .messages import decode_message, encode_message, package_classes
 from .reading import decode_file
 from .spec import DEFAULT_VERSION, DOCUMENTED_VERSIONS, PORTS
 
@@ -25,6 +25,6 @@ __version__ = "0.1.0"
 __all__ = [
     "DecodeError", "EncodeError", "GlobalValue", "MalformedPackage", "MalformedSubtype", "StreamError",
     "UnknownMessage", "UnknownPackage", "UnknownSubtype", "Framer", "decode_stream", "parse_version",
-    "decode_file", "decode_message", "encode_message", "to_dict", "to_json_line", "DEFAULT_VERSION",
+    "decode_file", "decode_message", "encode_message", "package_classes", "to_dict", "to_json_line", "DEFAULT_VERSION",
     "DOCUMENTED_VERSIONS", "PORTS",
 ]

@@ -3413,6 +3413,15 @@ def encode_package(pkg, version: Optional[tuple] = None) -> bytes:
     return pkg.encode(version)
 
 
+def package_classes(version) -> dict:
+    """The class each sub-package type code is read into in a stream of `version` ((major,
+    minor, bugfix) or a text such as '3.2'), in code order: the layout of that version's form
+    (a part of another length may still be read in another form, CONTRACT §5)."""
+    version = version_of(version)
+    return {code: form.cls for code in sorted(_ROBOT_STATE_FORMS.by_code)
+            for form in _ROBOT_STATE_FORMS.by_code[code] if form.sent_by(version)}
+
+
 def _decode_robot_state(buf, version: tuple, known: bool) -> RobotStateMessage:
     end = len(buf)
     implied = None

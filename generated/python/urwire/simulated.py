@@ -63,14 +63,8 @@ def _enum_value(table: str, version: tuple, name: str, default: int) -> int:
 
 def state_classes(version: tuple) -> list:
     """The sub-package classes a controller of `version` sends, in type-code order."""
-    out = []
-    for code in sorted(_m._ROBOT_STATE_FORMS.by_code):
-        for form in _m._ROBOT_STATE_FORMS.by_code[code]:
-            if form.sent_by(version) and form.cls not in INTERNAL \
-                    and (version[0] >= 5 or form.cls not in E_SERIES_ONLY):
-                out.append(form.cls)
-                break
-    return out
+    return [cls for cls in _m.package_classes(version).values()
+            if cls not in INTERNAL and (version[0] >= 5 or cls not in E_SERIES_ONLY)]
 
 
 class Controller:
