@@ -25,6 +25,6 @@ __version__ = "0.1.0"
 __all__ = [
     "DecodeError", "EncodeError", "GlobalValue", "MalformedPackage", "MalformedSubtype", "StreamError",
     "UnknownMessage", "UnknownPackage", "UnknownSubtype", "Framer", "decode_stream", "parse_version",
-    "decode_file", "decode_message", "encode_message", "package_classes", "to_dict", "to_json_line", "DEFAULT_VERSION",
-    "DOCUMENTED_VERSIONS", "PORTS",
+    "decode_file", "decode_message", "encode_message", "package_classes", "to_dict", "to_json_line",
+    "DEFAULT_VERSION", "DOCUMENTED_VERSIONS", "PORTS",
 ]
