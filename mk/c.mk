@@ -10,6 +10,7 @@ C_LIB := generated/c/urwire.c generated/c/urwire.h
 C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h)
 PREFIX ?= /usr/local
 BENCH_C_LEVELS ?= -O3 -O2 -Os
+BENCH_C_BASE ?= b8aabfa
 
 ALL_TARGETS += build/urwire-decode
 TEST_TARGETS += test-c
@@ -47,8 +48,9 @@ test-c: build/urwire-decode
 
 ## bench-c: robot-state decode throughput against memcpy of the same bytes, same run, with the
 ## library built at each of BENCH_C_LEVELS (ns per state, and each level against -O3)
-## (BENCH_C_BASE=<git revision>: also the library that revision generated, level by level, in the
-## same run, e.g. make bench-c BENCH_C_BASE=b8aabfa)
+## and the library that BENCH_C_BASE generated, level by level, in the same run: by default b8aabfa,
+## the last before the spec held every controller generation, so that `make bench` shows what they
+## cost the e-Series (BENCH_C_BASE= leaves it out)
 bench-c: $(C_LIB) tests/bench/bench_c.c tests/bench/bench_c.py
 	@mkdir -p build
 	for opt in $(BENCH_C_LEVELS); do \

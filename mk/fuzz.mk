@@ -40,9 +40,10 @@ build/fuzz/fuzz_json: tests/c/fuzz_json.c $(C_LIB) $(C_CLI)
 	$(FUZZ_CC) -o $@ tests/c/fuzz_json.c $(CLI_LIB) generated/c/urwire.c -lm
 
 # The Python fuzzer's peer: the test driver answering for urwire-decode, input after input.
-build/fuzz/driver: tests/c/driver.c $(C_LIB) $(C_CLI)
+build/fuzz/driver: tests/c/driver.c tests/c/state_members.py $(C_LIB) $(C_CLI)
 	@mkdir -p build/fuzz
-	$(CC) $(C_STRICT) $(C_OPT) -Igenerated/c -Itools/urwire-decode -o $@ tests/c/driver.c $(CLI_LIB) \
+	$(PYTHON) tests/c/state_members.py generated/c/urwire.h build/fuzz
+	$(CC) $(C_STRICT) $(C_OPT) -Igenerated/c -Itools/urwire-decode -Ibuild/fuzz -o $@ tests/c/driver.c $(CLI_LIB) \
 		generated/c/urwire.c -lm
 
 # $(call fuzz_run,HARNESS,COMMAND,MORE SEED FOLDERS)

@@ -621,6 +621,7 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     packages: list[CStruct] = []
     package_forms: dict = {}
     package_decoders: list[dict] = []
+    package_fast: dict = dict(paths=[], of_segment=[], default_segment=0)
     layout_structs: dict[int, CStruct] = {}
     for mp in protocol_plan.messages:
         m = mp.message
@@ -643,6 +644,7 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
                                        {id(c.layout): layout_structs[id(c.layout)].kind_const for c in mp.layouts},
                                        first_sizes=True)
             package_decoders = decoder_views(mp, package_forms, layout_structs)
+            package_fast = fast_paths(axis, package_forms, package_decoders, p.default_version)
             kinds.append(dict(const=f"URWIRE_KIND_{m.name.upper()}", doc=inline(m.doc)))
             messages.append(dict(kind="packages", name=m.name, code=m.code.value, type_index=len(messages),
                                  code_const=c_member_const(p.message_type_enum, m.code),
@@ -682,9 +684,48 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     vst = layout_structs[id(vs.layout)]
     vmsg = next(m for m in messages if m["code"] == vs.message_code)
     return dict(structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
-                package_decoders=package_decoders,
+                package_decoders=package_decoders, package_fast=package_fast,
                 segment_starts=[version_view(v) for v in axis.starts], form_sizes=axis.size_slots,
                 framing=framing(p, lists[0], vst, vmsg, vs), known_types=known_types(p))
+
+
+def fast_paths(axis: _Forms, table: dict, decoders: list[dict], default: ir.Version) -> dict:
+    """The robot-state loops written out for one row of forms each: the row of the version a
+    stream is assumed to be (every e-Series from 5.4 to 5.25.0 sends it too) and the newest row
+    (5.25.1 and later, PolyScope X). In such a loop each sub-package type is a case that checks
+    the body against one constant size and calls one decoder; any other body leaves it for the
+    general rule (urwire__decode_one). Every segment that sends one of these rows takes its loop."""
+    rows = table["rows"]
+
+    def segment_of(v: ir.Version) -> int:
+        return max(k for k, start in enumerate(axis.samples) if start <= v)
+
+    def usable(row: dict) -> bool:
+        return any(n["kind"] != "none" for n in row["first"])
+
+    picks = [segment_of(default)] + [k for k in range(len(rows) - 1, -1, -1) if usable(rows[k])][:1]
+    if picks[0] == len(rows) - 1:
+        # urwire__segment tries the default's segment first, up to the bound after it.
+        raise SpecError(axis.source, [ir.NOWHERE.problem("c target: the default version lies past every form's "
+                                                         "versions")])
+    paths: list[dict] = []
+    by_number = {x["number"]: (c, x) for c in decoders for x in c["forms"]}
+    for k in picks:
+        row = rows[k]
+        if not usable(row) or any(p["forms"] == row["forms"] for p in paths):
+            continue
+        cases = []
+        for form, first in zip(row["forms"], row["first"]):
+            if form == 0 or form & 0x80 or first["kind"] == "none":
+                continue  # no form of its own there: the general rule finds the nearest
+            c, x = by_number[form]
+            cases.append(dict(type=c["index"], layout=x["layout"], decoder=x["decoder"], member=x["member"],
+                              check="any" if first["kind"] == "open" and first["size"] == 0 else first["kind"],
+                              size=first["size"], versions=x["versions"]))
+        paths.append(dict(number=len(paths) + 1, forms=row["forms"], cases=cases,
+                          segments=", ".join(r["start"] for r in rows if r["forms"] == row["forms"])))
+    of_segment = [next((p["number"] for p in paths if p["forms"] == r["forms"]), 0) for r in rows]
+    return dict(paths=paths, of_segment=of_segment, default_segment=picks[0])
 
 
 def decoder_views(mp: plan.MessagePlan, table: dict, structs: dict[int, CStruct]) -> list[dict]:

@@ -192,6 +192,14 @@ typedef struct urwire__form_table {
     const uint8_t *mine;
 } urwire__form_table;
 
+/* The bits a robot state's fast path gathers, in registers, before they go to its
+ * urwire_robot_state (urwire__fast_member). */
+typedef struct urwire__fast_bits {
+    uint32_t present;
+    uint32_t malformed;
+    uint32_t layouts;
+} urwire__fast_bits;
+
 /* How to reach the numbers of a Version message before its layout is chosen: fixed bytes,
  * then a string whose length prefix has `prefix` bytes (signed or not). */
 typedef struct urwire__version_skip {
@@ -5166,6 +5174,8 @@ static void urwire__put_program_state_header(const urwire_message *m, uint8_t *o
 /* Where the segments of the version axis start (as urwire__version_key orders versions):
  * segment k from urwire__segment_bounds[k] up to the next bound; segment 0 from key 0, below
  * every version the spec names. Within a segment every type code sends one form. */
+/* The segment of the default version: every stream whose version is only assumed reads in it. */
+#define URWIRE__DEFAULT_SEGMENT 21u
 static const uint64_t urwire__segment_bounds[] = {
     0u,
     URWIRE__V(0, 0, 0),
@@ -5601,6 +5611,286 @@ static bool urwire__decode_member(uint8_t type, uint8_t form, const uint8_t *msg
     }
 }
 
+/* ---- the robot state's fast paths (see urwire__decode_fast) ------------------------------- */
+
+/* Each fast path by its number: URWIRE__FAST_PATHS(X) is X(1) X(2) ... */
+#define URWIRE__FAST_PATHS(X) X(1) X(2)
+/* The fast path of each segment of the version axis (0: none). */
+static const uint8_t urwire__package_fast_paths[] = {
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 0, 2, 0,  /* from segment 0 */
+};
+
+/* A sub-package of type `type` and body_size bytes in fast path `path`: false when its type has
+ * no case there or its body not the case's size; else decoded into its member of *out, with
+ * the bits of its type and layout set in *bits. `path` is a constant wherever this is inlined. */
+URWIRE__INLINE bool urwire__fast_member(int path, uint8_t type, size_t body_size, const uint8_t *msg, size_t *at,
+                                        size_t end, const urwire__ver *ver, urwire_robot_state *out,
+                                        urwire__fast_bits *bits, urwire_error *err)
+{
+    switch (path) {
+    case 1:  /* from 5.4.0 */
+        switch (type) {
+        case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:  /* 3.5 and later */
+            if (body_size != 42u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ROBOT_MODE_DATA);
+            if (urwire__decode_robot_mode_data_3(msg, at, end, ver, &out->robot_mode_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_JOINT_DATA:  /* all versions */
+            if (body_size != 246u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_JOINT_DATA);
+            if (urwire__decode_joint_data(msg, at, end, ver, &out->joint_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_JOINT_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_JOINT_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_TOOL_DATA:  /* all versions */
+            if (body_size != 32u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_TOOL_DATA);
+            if (urwire__decode_tool_data(msg, at, end, ver, &out->tool_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA:  /* 3.10 to 3.15 or 5.4 and later */
+            if (body_size != 70u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_MASTERBOARD_DATA);
+            if (urwire__decode_masterboard_data_4(msg, at, end, ver, &out->masterboard_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO:  /* 3.1 and later */
+            if (body_size != 96u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CARTESIAN_INFO);
+            if (urwire__decode_cartesian_info_1(msg, at, end, ver, &out->cartesian_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_CARTESIAN_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_CARTESIAN_INFO);
+            return true;
+        case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO:  /* 1.8 and later */
+            if (body_size != 220u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_KINEMATICS_INFO);
+            if (urwire__decode_kinematics_info(msg, at, end, ver, &out->kinematics_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_KINEMATICS_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_KINEMATICS_INFO);
+            return true;
+        case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA:  /* 3.0 to 5.25.0 */
+            if (body_size != 440u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CONFIGURATION_DATA);
+            if (urwire__decode_configuration_data_1(msg, at, end, ver, &out->configuration_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA:  /* all versions */
+            if (body_size != 56u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_FORCE_MODE_DATA);
+            if (urwire__decode_force_mode_data(msg, at, end, ver, &out->force_mode_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO:  /* 5.0 and later */
+            if (body_size != 4u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ADDITIONAL_INFO);
+            if (urwire__decode_additional_info_3(msg, at, end, ver, &out->additional_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO);
+            return true;
+        case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA:  /* all versions */
+            if (body_size != 48u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CALIBRATION_DATA);
+            if (urwire__decode_calibration_data(msg, at, end, ver, &out->calibration_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_SAFETY_DATA:  /* all versions */
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_SAFETY_DATA);
+            if (urwire__decode_safety_data(msg, at, end, ver, &out->safety_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_SAFETY_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_SAFETY_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO:  /* all versions */
+            if (body_size != 21u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_TOOL_COMM_INFO);
+            if (urwire__decode_tool_comm_info(msg, at, end, ver, &out->tool_comm_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO);
+            return true;
+        case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO:  /* all versions */
+            if (body_size != 3u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_TOOL_MODE_INFO);
+            if (urwire__decode_tool_mode_info(msg, at, end, ver, &out->tool_mode_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO);
+            return true;
+        case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO:  /* all versions */
+            if (body_size != 2u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_SINGULARITY_INFO);
+            if (urwire__decode_singularity_info(msg, at, end, ver, &out->singularity_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_SINGULARITY_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_SINGULARITY_INFO);
+            return true;
+        default:
+            return false;
+        }
+    case 2:  /* from 5.25.1, from 10.0.0 */
+        switch (type) {
+        case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:  /* 3.5 and later */
+            if (body_size != 42u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ROBOT_MODE_DATA);
+            if (urwire__decode_robot_mode_data_3(msg, at, end, ver, &out->robot_mode_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_JOINT_DATA:  /* all versions */
+            if (body_size != 246u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_JOINT_DATA);
+            if (urwire__decode_joint_data(msg, at, end, ver, &out->joint_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_JOINT_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_JOINT_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_TOOL_DATA:  /* all versions */
+            if (body_size != 32u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_TOOL_DATA);
+            if (urwire__decode_tool_data(msg, at, end, ver, &out->tool_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA:  /* 3.10 to 3.15 or 5.4 and later */
+            if (body_size != 70u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_MASTERBOARD_DATA);
+            if (urwire__decode_masterboard_data_4(msg, at, end, ver, &out->masterboard_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO:  /* 3.1 and later */
+            if (body_size != 96u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CARTESIAN_INFO);
+            if (urwire__decode_cartesian_info_1(msg, at, end, ver, &out->cartesian_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_CARTESIAN_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_CARTESIAN_INFO);
+            return true;
+        case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO:  /* 1.8 and later */
+            if (body_size != 220u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_KINEMATICS_INFO);
+            if (urwire__decode_kinematics_info(msg, at, end, ver, &out->kinematics_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_KINEMATICS_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_KINEMATICS_INFO);
+            return true;
+        case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA:  /* 5.25.1 and later */
+            if (body_size != 444u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CONFIGURATION_DATA);
+            if (urwire__decode_configuration_data_2(msg, at, end, ver, &out->configuration_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA:  /* all versions */
+            if (body_size != 56u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_FORCE_MODE_DATA);
+            if (urwire__decode_force_mode_data(msg, at, end, ver, &out->force_mode_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO:  /* 5.0 and later */
+            if (body_size != 4u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_ADDITIONAL_INFO);
+            if (urwire__decode_additional_info_3(msg, at, end, ver, &out->additional_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO);
+            return true;
+        case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA:  /* all versions */
+            if (body_size != 48u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_CALIBRATION_DATA);
+            if (urwire__decode_calibration_data(msg, at, end, ver, &out->calibration_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_SAFETY_DATA:  /* all versions */
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_SAFETY_DATA);
+            if (urwire__decode_safety_data(msg, at, end, ver, &out->safety_data, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_SAFETY_DATA);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_SAFETY_DATA);
+            return true;
+        case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO:  /* all versions */
+            if (body_size != 21u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_TOOL_COMM_INFO);
+            if (urwire__decode_tool_comm_info(msg, at, end, ver, &out->tool_comm_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO);
+            return true;
+        case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO:  /* all versions */
+            if (body_size != 3u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_TOOL_MODE_INFO);
+            if (urwire__decode_tool_mode_info(msg, at, end, ver, &out->tool_mode_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO);
+            return true;
+        case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO:  /* all versions */
+            if (body_size != 2u)
+                return false;
+            bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_SINGULARITY_INFO);
+            if (urwire__decode_singularity_info(msg, at, end, ver, &out->singularity_info, err))
+                bits->present |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_SINGULARITY_INFO);
+            else
+                bits->malformed |= (uint32_t)URWIRE_BIT(URWIRE_PACKAGE_TYPE_SINGULARITY_INFO);
+            return true;
+        default:
+            return false;
+        }
+    default:
+        return false;
+    }
+}
+
 /* A sub-package in its form `form` (its number in urwire__package_form_list plus one) into
  * *into, the struct of the form's layout. */
 static bool urwire__decode_package(uint8_t form, const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
@@ -5961,10 +6251,16 @@ URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_mes
  * else the version's form, whose short or extra bytes are then reported. */
 
 /* The segment of the version axis that holds a version (its urwire__version_key): the last
- * bound at or below it. Searched from the newest, which streams run most; bound 0 stops it. */
+ * bound at or below it. The default version's segment is tried first (a stream read before its
+ * Version message, and most e-Series; the last bound lies past every version, so a bound
+ * follows it), then the bounds from the newest, which streams run most; bound 0 stops the
+ * search. */
 URWIRE__PRIVATE size_t urwire__segment(uint64_t key)
 {
     size_t k = URWIRE__COUNT(urwire__segment_bounds) - 1;
+    if (key >= urwire__segment_bounds[URWIRE__DEFAULT_SEGMENT] &&
+        key < urwire__segment_bounds[URWIRE__DEFAULT_SEGMENT + 1])
+        return URWIRE__DEFAULT_SEGMENT;
     while (key < urwire__segment_bounds[k])
         k--;
     return k;
@@ -6276,52 +6572,96 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
     return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t, version);
 }
 
+/* One framed sub-package of a robot state, read by the general rule (the version's form when
+ * it fits, else the one form of its exact size, else the nearest), into its member of *out. */
+static void urwire__decode_one(const uint8_t *msg, size_t pos, size_t size, urwire__running *r,
+                               urwire_robot_state *out)
+{
+    urwire_error ignored;
+    urwire__ver use;
+    size_t body = pos + URWIRE_PACKAGE_HEADER_SIZE;
+    uint8_t type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
+    const urwire__form *f = urwire__package_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &use);
+    if (f == NULL)
+        out->unknown++;
+    else if (urwire__decode_member(type, (uint8_t)(f - urwire__package_form_list + 1), msg, &body, pos + size, &use,
+                                   out, &ignored))
+        out->present |= (uint32_t)URWIRE_BIT(type);
+    else
+        out->malformed |= (uint32_t)URWIRE_BIT(type);
+}
+
+/* The sub-packages of a robot state from pos by the general rule, until end or a header that
+ * cannot be framed (*err): where it stopped. */
+static size_t urwire__decode_general(const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
+                                     urwire_robot_state *out, size_t *count, urwire_error *err)
+{
+    size_t size = 0;
+    for (; pos < end && urwire__frame_next_package(msg, pos, end, &size, err); pos += size, ++*count)
+        urwire__decode_one(msg, pos, size, r, out);
+    return pos;
+}
+
+/* The sub-packages of a robot state from pos in fast path `path` (a constant: the loop is
+ * written out for each path, with its cases inlined): a type with a case there and a body of
+ * its size costs one switch and one compare. Any other sub-package is read by the general rule,
+ * and the loop goes on while the stream's version still takes this path (a form chosen by its
+ * length may imply another). It stops before a header that cannot be framed, for
+ * urwire__decode_general to report. The bits it gathers are kept in registers and or-ed into
+ * *out at the end: a store less per sub-package. */
+URWIRE__INLINE size_t urwire__decode_fast(int path, const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
+                                          urwire_robot_state *out, size_t *count)
+{
+    urwire_error ignored;
+    urwire__fast_bits bits = {0, 0, 0};
+    size_t size = 0, at, n = 0;
+    for (; end - pos >= URWIRE_PACKAGE_HEADER_SIZE; pos += size, n++) {
+        /* A length below the header's size wraps around and fails the one test as well. */
+        size = (size_t)URWIRE__PACKAGE_LENGTH(msg + pos);
+        if (URWIRE__UNLIKELY(size - URWIRE_PACKAGE_HEADER_SIZE > end - pos - URWIRE_PACKAGE_HEADER_SIZE))
+            break;
+        at = pos + URWIRE_PACKAGE_HEADER_SIZE;
+        if (URWIRE__LIKELY(urwire__fast_member(path, msg[pos + URWIRE__PACKAGE_TYPE_AT],
+                                               size - URWIRE_PACKAGE_HEADER_SIZE, msg, &at, pos + size, &r->now,
+                                               out, &bits, &ignored)))
+            continue;
+        urwire__decode_one(msg, pos, size, r, out);
+        if (urwire__package_fast_paths[r->segment] != path) {
+            pos += size;
+            n++;
+            break;
+        }
+    }
+    out->present |= bits.present;
+    out->malformed |= bits.malformed;
+    out->layouts |= bits.layouts;
+    *count += n;
+    return pos;
+}
+
 /* Frames the sub-packages of a robot state from pos and decodes each straight into its member
- * of *out, until end or a header that cannot be framed (*err): where it stopped. One loop for
- * the whole message, so that the work per sub-package is only its own. */
+ * of *out, until end or a header that cannot be framed (*err): where it stopped. The fast path
+ * of the version's segment, if it has one, goes as far as it can; the general rule does the
+ * rest. */
 static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
                                         urwire_robot_state *out, size_t *count, urwire_error *err)
 {
-    urwire_error ignored;
-    urwire__ver other;
-    const urwire__ver *use;
-    /* The segment's rows, held here: the stores into *out could alias them in r. */
-    const uint8_t *mine = r->mine;
-    const uint32_t *first_sizes = r->first_sizes;
-    size_t size = 0, body, n = 0;
-    uint8_t type, form;
     out->present = 0;
     out->malformed = 0;
     out->layouts = 0;
     out->unknown = 0;
-    /* One pass: framing each sub-package and decoding it overlap in the CPU. */
-    for (; pos < end && urwire__frame_next_package(msg, pos, end, &size, err); pos += size, n++) {
-        type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-        body = pos + URWIRE_PACKAGE_HEADER_SIZE;
-        use = &r->now;
-        /* The common case, laid out straight: the version's form, which fits the body by its brief. */
-        form = URWIRE__LIKELY(type < URWIRE__COUNT(urwire__package_forms) &&
-                              urwire__fits_brief(first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE))
-                   ? mine[type]
-                   : 0;
-        if (URWIRE__UNLIKELY(form == 0)) {
-            if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
-                out->unknown++;
-                continue;
-            }
-            form = (uint8_t)(urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &other) -
-                             urwire__package_form_list + 1);
-            use = &other;
-            mine = r->mine;
-            first_sizes = r->first_sizes;
-        }
-        if (urwire__decode_member(type, form, msg, &body, pos + size, use, out, &ignored))
-            out->present |= (uint32_t)URWIRE_BIT(type);
-        else
-            out->malformed |= (uint32_t)URWIRE_BIT(type);
+    *count = 0;
+#define URWIRE__FAST_CASE(k)                                         \
+    case k:                                                          \
+        pos = urwire__decode_fast(k, msg, pos, end, r, out, count); \
+        break;
+    switch (urwire__package_fast_paths[r->segment]) {
+        URWIRE__FAST_PATHS(URWIRE__FAST_CASE)
+    default:
+        break;
     }
-    *count = n;
-    return pos;
+#undef URWIRE__FAST_CASE
+    return urwire__decode_general(msg, pos, end, r, out, count, err);
 }
 
 bool urwire_next_package(urwire_seq *seq, urwire_package *out)
@@ -6766,15 +7106,23 @@ static bool urwire__rescan_stops_at(const urwire_framer *f, size_t at)
  * layout that announces it (URWIRE__VERSION_*) sets it, bugfix included where its form has one
  * (their type and subtype bytes are looked at before anything is decoded); while the version
  * is only assumed, the layout sizes of a robot state may show it, learnt later: from the
- * caller's decoding (urwire_framer_learn), else by urwire__learn_unlearnt. */
-static void urwire__learn_version(urwire_framer *f, const uint8_t *bytes, size_t len)
+ * caller's decoding (urwire_framer_learn), else by urwire__learn_unlearnt. The robot state,
+ * nine messages in ten, is told apart inline; any other message costs a call. */
+static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size_t len);
+
+URWIRE__INLINE void urwire__learn_version(urwire_framer *f, const uint8_t *bytes, size_t len)
 {
-    urwire_message m;
-    if (bytes[URWIRE__TYPE_AT] == URWIRE__PACKAGES_TYPE) {
+    if (URWIRE__LIKELY(bytes[URWIRE__TYPE_AT] == URWIRE__PACKAGES_TYPE)) {
         if (f->version.assumed)
             f->unlearnt = len;
         return;
     }
+    urwire__learn_announced(f, bytes, len);
+}
+
+static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size_t len)
+{
+    urwire_message m;
     if (bytes[URWIRE__TYPE_AT] != URWIRE__VERSION_TYPE || len < URWIRE__VERSION_BODY ||
         bytes[URWIRE__VERSION_SUBTYPE_AT] != URWIRE__VERSION_SUBTYPE)
         return;

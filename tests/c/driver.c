@@ -14,12 +14,14 @@
  *                            records.c) and "=CODE", its exit status (2: the hint is not a
  *                            version), flushed: one process for many inputs
  */
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "json.h"
 #include "records.h"
+#include "state_members.h"
 #include "urwire.h"
 
 static uint8_t framer_buffer[URWIRE_FRAMER_MIN_BUFFER];
@@ -114,6 +116,71 @@ static int mismatch(const char *what, const urwire_frame *frame, size_t n)
     return 1;
 }
 
+/* Where each layout's member lies in a urwire_robot_state, and its size (state_members.h). */
+#define MEMBER_AT(layout, member) [layout] = offsetof(urwire_robot_state, member),
+#define MEMBER_SIZE(layout, member) [layout] = sizeof(((urwire_robot_state *)0)->member),
+#define MEMBER_VERSION(layout, member) [layout] = offsetof(urwire_robot_state, member.version),
+#define MEMBER_EXTRA(layout, member) [layout] = offsetof(urwire_robot_state, member.extra),
+static const size_t member_at[URWIRE_LAYOUT_COUNT] = {STATE_MEMBERS(MEMBER_AT)};
+static const size_t member_size[URWIRE_LAYOUT_COUNT] = {STATE_MEMBERS(MEMBER_SIZE)};
+static const size_t member_version[URWIRE_LAYOUT_COUNT] = {STATE_MEMBERS(MEMBER_VERSION)};
+static const size_t member_extra[URWIRE_LAYOUT_COUNT] = {STATE_MEMBERS(MEMBER_EXTRA)};
+
+/* The same software version, part by part (a struct's padding may differ). */
+static int same_version(const urwire_sw_version *a, const urwire_sw_version *b)
+{
+    return a->major == b->major && a->minor == b->minor && a->bugfix == b->bugfix && a->assumed == b->assumed;
+}
+
+/* The robot state that the one-pass decoder filled (its fast paths included) against the
+ * iterator, which reads each sub-package by the general rule alone: the same bits and unknown
+ * count; and the last sub-package of each type was read in the same form (the same version,
+ * the same count of extra bytes) to the same values (encoded from its member of the state, it
+ * gives the bytes it encodes to from the iterator's struct). */
+static int state_matches_iterator(const urwire_message *m, const urwire_robot_state *state)
+{
+    static uint8_t mine[URWIRE_MAX_MESSAGE_LENGTH + 64];
+    urwire_package pkg, last[32], from_state;
+    uint32_t present = 0, malformed = 0, layouts = 0, seen = 0;
+    size_t unknown = 0, n, t;
+    urwire_error err;
+    urwire_seq seq = m->packages;
+    while (urwire_next_package(&seq, &pkg)) {
+        if (!pkg.known) {
+            unknown++;
+            continue;
+        }
+        layouts |= (uint32_t)URWIRE_BIT(pkg.layout);
+        if (pkg.failed)
+            malformed |= (uint32_t)URWIRE_BIT(pkg.type);
+        else
+            present |= (uint32_t)URWIRE_BIT(pkg.type);
+        last[pkg.type] = pkg;
+        seen |= (uint32_t)URWIRE_BIT(pkg.type);
+    }
+    if (present != state->present || malformed != state->malformed || layouts != state->layouts ||
+        unknown != state->unknown)
+        return 0;
+    for (t = 0; t < 32; t++) {
+        size_t at, extra;
+        if (!(seen & URWIRE_BIT(t)) || last[t].failed)
+            continue;
+        at = member_at[last[t].layout];
+        extra = member_extra[last[t].layout] - at;  /* where extra lies within the member */
+        if (!same_version((const urwire_sw_version *)((const char *)state + member_version[last[t].layout]),
+                          &last[t].version) ||
+            ((const urwire_bytes *)((const char *)state + at + extra))->len !=
+                ((const urwire_bytes *)((const char *)&last[t].as + extra))->len)
+            return 0;
+        from_state = last[t];
+        memcpy(&from_state.as, (const char *)state + at, member_size[last[t].layout]);
+        n = urwire_encode_package(&last[t], encoded, sizeof encoded, &err);
+        if (urwire_encode_package(&from_state, mine, sizeof mine, &err) != n || memcmp(mine, encoded, n) != 0)
+            return 0;
+    }
+    return 1;
+}
+
 static int roundtrip_frame(const urwire_frame *frame, void *ctx)
 {
     counts *c = (counts *)ctx;
@@ -155,6 +222,8 @@ static int roundtrip_frame(const urwire_frame *frame, void *ctx)
              (memcmp(&state2.joint_data.joints[5].q_actual, &state.joint_data.joints[5].q_actual, sizeof(double)) ||
               state2.joint_data.joints[5].joint_mode != state.joint_data.joints[5].joint_mode)))
             return mismatch("urwire_decode_robot_state_message disagrees with the two calls", frame, 0);
+        if (!state_matches_iterator(&m2, &state2))
+            return mismatch("the robot state disagrees with the iterator", frame, 0);
     }
     return 0;
 }

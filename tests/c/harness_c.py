@@ -33,6 +33,8 @@ VARIANTS = {
 sys.path.insert(0, str(ROOT / "generated" / "python"))
 sys.path.insert(0, str(ROOT / "tests"))
 
+from tests.c import state_members  # noqa: E402
+
 
 @dataclass(frozen=True)
 class Build:
@@ -57,7 +59,8 @@ def build_variant(name: str) -> Build:
     cli, driver = folder / "urwire-decode", folder / "driver"
     compile_c(cc, flags, [*CLI_SOURCES, GEN / "urwire.c"], cli, ["-lm"])
     # The driver is test code: strict too, except that it uses malloc and stdio freely.
-    compile_c(cc, flags, [ROOT / "tests" / "c" / "driver.c", *CLI_LIBRARY, GEN / "urwire.c"], driver, ["-lm"])
+    compile_c(cc, flags + [f"-I{state_members.write(GEN / 'urwire.h', folder)}"],
+              [ROOT / "tests" / "c" / "driver.c", *CLI_LIBRARY, GEN / "urwire.c"], driver, ["-lm"])
     return Build(name, cli, driver)
 
 

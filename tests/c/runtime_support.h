@@ -104,12 +104,14 @@ static const urwire__package_kind urwire__package_kinds[] = {
     [URWIRE_LAYOUT_COUNTER] = {"counter", urwire__encode_counter, urwire__visit_counter},
 };
 
-/* Forms: the version axis cut at 0.0.0, 3.2.1000 (after any 3.2.x) and 3.3.0. */
+/* Forms: the version axis cut at 0.0.0, 3.2.1000 (after any 3.2.x) and 3.3.0, and past every
+ * version, as the generator cuts it. */
 static const uint64_t urwire__segment_bounds[] = {
     0u,
     URWIRE__V(0, 0, 0),
     URWIRE__V(3, 2, 1000),
     URWIRE__V(3, 3, 0),
+    URWIRE__V(1048576, 0, 1),
 };
 
 /* Type 1: tally up to 3.2 (2 bytes), counter from 3.3 (4 bytes). */
@@ -127,6 +129,7 @@ static const uint8_t urwire__package_mine[] = {
     0, 1,  /* from 0.0.0 */
     0, 1 | URWIRE__NEAREST,  /* from 3.2.1000: no form is sent; the nearest below */
     0, 2,  /* from 3.3.0 */
+    0, 2 | URWIRE__NEAREST,  /* past every version */
 };
 
 static const urwire__form_table urwire__package_form_table = {
@@ -138,6 +141,7 @@ static const uint32_t urwire__package_first_sizes[] = {
     URWIRE__NONE, 2u,            /* from 0.0.0 */
     URWIRE__NONE, URWIRE__NONE,  /* from 3.2.1000 */
     URWIRE__NONE, 4u,            /* from 3.3.0 */
+    URWIRE__NONE, URWIRE__NONE,  /* past every version */
 };
 
 /* Type 1 in the form `form` (its number in urwire__package_form_list plus one). */
@@ -160,6 +164,26 @@ static inline bool urwire__decode_member(uint8_t type, uint8_t form, const uint8
     }
     out->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_COUNTER);
     return urwire__decode_counter(msg, at, end, ver, &out->counter, err);
+}
+
+/* One fast path: the row from 3.3.0, where type 1 is a counter of 4 bytes; 5.9, the default
+ * version, is in that segment. */
+#define URWIRE__DEFAULT_SEGMENT 3u
+#define URWIRE__FAST_PATHS(X) X(1)
+static const uint8_t urwire__package_fast_paths[] = {0, 0, 0, 1, 0};
+
+static inline bool urwire__fast_member(int path, uint8_t type, size_t body_size, const uint8_t *msg, size_t *at,
+                                       size_t end, const urwire__ver *ver, urwire_robot_state *out,
+                                       urwire__fast_bits *bits, urwire_error *err)
+{
+    if (path != 1 || type != 1 || body_size != 4u)
+        return false;
+    bits->layouts |= (uint32_t)URWIRE_BIT(URWIRE_LAYOUT_COUNTER);
+    if (urwire__decode_counter(msg, at, end, ver, &out->counter, err))
+        bits->present |= (uint32_t)URWIRE_BIT(1);
+    else
+        bits->malformed |= (uint32_t)URWIRE_BIT(1);
+    return true;
 }
 
 /* No Version message here: one skip of nothing. */

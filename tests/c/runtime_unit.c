@@ -116,11 +116,12 @@ static void forms(void)
     const urwire__form_table *t = &urwire__package_form_table;
     urwire_sw_version use;
     bool by_length, nearest;
-    /* The segments: below 0.0.0, up to 3.2.999, 3.2.1000 to 3.3.0, from 3.3.0; the parts of
-     * a version beyond what the spec names compare as its limits. */
+    /* The segments: below 0.0.0, up to 3.2.999, 3.2.1000 to 3.3.0, from 3.3.0, past every
+     * version; the parts of a version beyond what the spec names compare as its limits. */
     CHECK(segment(-1, 0, 0) == 0 && segment(0, 0, 0) == 1 && segment(3, 2, 999) == 1);
     CHECK(segment(3, 2, 1000) == 2 && segment(3, 2, 2147483647) == 2 && segment(3, 3, -5) == 2);
-    CHECK(segment(3, 3, 0) == 3 && segment(10, 0, 0) == 3 && segment(2147483647, -1, 0) == 3);
+    CHECK(segment(3, 3, 0) == 3 && segment(10, 0, 0) == 3 && segment(1048576, 0, 0) == 3);
+    CHECK(segment(1048576, 0, 1) == 4 && segment(2147483647, -1, 0) == 4);
     CHECK(urwire__version_key(URWIRE_DEFAULT_VERSION) == URWIRE__V(5, 9, 0));
     CHECK(urwire__mine(t, 1, 1, &nearest) == &urwire__package_form_list[0] && !nearest);
     CHECK(urwire__mine(t, 2, 1, &nearest) == &urwire__package_form_list[0] && nearest);
@@ -294,6 +295,37 @@ static const uint8_t old_state[] = {
     0, 0, 0, 7, 1, 0, 4,
 };
 
+/* A counter (on the fast path of 5.9), a tally (by its length: 3.2, which has no fast path),
+ * then a counter again. */
+static const uint8_t mixed_state[] = {
+    0, 0, 0, 30, 16,
+    0, 0, 0, 9, 1, 0, 0, 1, 0,
+    0, 0, 0, 7, 1, 0, 3,
+    0, 0, 0, 9, 1, 0, 0, 0, 5,
+};
+
+static void fast_path(void)
+{
+    urwire_message m;
+    urwire_robot_state rs;
+    urwire_sw_version v59 = {5, 9, 0, false};
+    /* Known 5.9: the tally is read by the general rule in its own version (a known version is
+     * not overruled), and the loop goes back to the fast path for the second counter. */
+    CHECK(urwire_decode_robot_state_message(mixed_state, sizeof mixed_state, v59, &m, &rs));
+    CHECK(m.packages.count == 3 && !m.implied && rs.unknown == 0 && rs.present == URWIRE_BIT(1));
+    CHECK(rs.layouts == (URWIRE_BIT(URWIRE_LAYOUT_COUNTER) | URWIRE_BIT(URWIRE_LAYOUT_TALLY)));
+    CHECK(rs.counter.count == 5 && rs.counter.version.minor == 9 && rs.tally.count == 3);
+    CHECK(rs.tally.version.major == 3 && rs.tally.version.minor == 2);
+    /* Assumed: the tally implies 3.2, which leaves the fast path; the general rule reads the
+     * second counter by its length, which implies 5.9 again. */
+    CHECK(urwire_decode_robot_state_message(mixed_state, sizeof mixed_state, URWIRE_DEFAULT_VERSION, &m, &rs));
+    CHECK(m.packages.count == 3 && m.implied && m.implied_version.minor == 9 && m.implied_version.assumed);
+    CHECK(rs.counter.count == 5 && rs.tally.count == 3 && rs.tally.version.minor == 2);
+    /* A body of the fast case's size that is cut short is framed out: the rest is raw. */
+    CHECK(!urwire_decode_robot_state_message(mixed_state, sizeof mixed_state - 1, v59, &m, &rs));
+    CHECK(m.failed && m.packages.count == 2 && m.packages.end == 21 && rs.counter.count == 256);
+}
+
 static void messages(void)
 {
     urwire_message m;
@@ -459,6 +491,7 @@ int main(void)
     messages();
     framer();
     implied_version();
+    fast_path();
     learning_from_the_decoded_message();
     if (failures)
         return 1;

@@ -12,6 +12,7 @@ import yaml
 from codegen.plan import plan
 from codegen.compile import DEFAULT_SPEC, compile_text
 from codegen.targets import c as c_target
+from tests.c import state_members
 from tests.c.harness_c import CLI_LIBRARY, CLI_SOURCES, ROOT, compile_c
 
 
@@ -25,8 +26,8 @@ def variant_cli(tmp_path):
     exe, driver = tmp_path / "urwire-decode", tmp_path / "driver"
     flags = ["-O1", "-g", "-fsanitize=address,undefined", "-fno-sanitize-recover=all", f"-I{tmp_path / 'c'}"]
     compile_c("clang", flags, [*CLI_SOURCES, tmp_path / "c" / "urwire.c"], exe, ["-lm"])
-    compile_c("clang", flags, [ROOT / "tests" / "c" / "driver.c", *CLI_LIBRARY, tmp_path / "c" / "urwire.c"],
-              driver, ["-lm"])
+    compile_c("clang", flags + [f"-I{state_members.write(tmp_path / 'c' / 'urwire.h', tmp_path / 'c')}"],
+              [ROOT / "tests" / "c" / "driver.c", *CLI_LIBRARY, tmp_path / "c" / "urwire.c"], driver, ["-lm"])
     return exe, driver
 
 

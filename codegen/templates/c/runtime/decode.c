@@ -221,52 +221,96 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
     return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t, version);
 }
 
+/* One framed sub-package of a robot state, read by the general rule (the version's form when
+ * it fits, else the one form of its exact size, else the nearest), into its member of *out. */
+static void urwire__decode_one(const uint8_t *msg, size_t pos, size_t size, urwire__running *r,
+                               urwire_robot_state *out)
+{
+    urwire_error ignored;
+    urwire__ver use;
+    size_t body = pos + URWIRE_PACKAGE_HEADER_SIZE;
+    uint8_t type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
+    const urwire__form *f = urwire__package_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &use);
+    if (f == NULL)
+        out->unknown++;
+    else if (urwire__decode_member(type, (uint8_t)(f - urwire__package_form_list + 1), msg, &body, pos + size, &use,
+                                   out, &ignored))
+        out->present |= (uint32_t)URWIRE_BIT(type);
+    else
+        out->malformed |= (uint32_t)URWIRE_BIT(type);
+}
+
+/* The sub-packages of a robot state from pos by the general rule, until end or a header that
+ * cannot be framed (*err): where it stopped. */
+static size_t urwire__decode_general(const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
+                                     urwire_robot_state *out, size_t *count, urwire_error *err)
+{
+    size_t size = 0;
+    for (; pos < end && urwire__frame_next_package(msg, pos, end, &size, err); pos += size, ++*count)
+        urwire__decode_one(msg, pos, size, r, out);
+    return pos;
+}
+
+/* The sub-packages of a robot state from pos in fast path `path` (a constant: the loop is
+ * written out for each path, with its cases inlined): a type with a case there and a body of
+ * its size costs one switch and one compare. Any other sub-package is read by the general rule,
+ * and the loop goes on while the stream's version still takes this path (a form chosen by its
+ * length may imply another). It stops before a header that cannot be framed, for
+ * urwire__decode_general to report. The bits it gathers are kept in registers and or-ed into
+ * *out at the end: a store less per sub-package. */
+URWIRE__INLINE size_t urwire__decode_fast(int path, const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
+                                          urwire_robot_state *out, size_t *count)
+{
+    urwire_error ignored;
+    urwire__fast_bits bits = {0, 0, 0};
+    size_t size = 0, at, n = 0;
+    for (; end - pos >= URWIRE_PACKAGE_HEADER_SIZE; pos += size, n++) {
+        /* A length below the header's size wraps around and fails the one test as well. */
+        size = (size_t)URWIRE__PACKAGE_LENGTH(msg + pos);
+        if (URWIRE__UNLIKELY(size - URWIRE_PACKAGE_HEADER_SIZE > end - pos - URWIRE_PACKAGE_HEADER_SIZE))
+            break;
+        at = pos + URWIRE_PACKAGE_HEADER_SIZE;
+        if (URWIRE__LIKELY(urwire__fast_member(path, msg[pos + URWIRE__PACKAGE_TYPE_AT],
+                                               size - URWIRE_PACKAGE_HEADER_SIZE, msg, &at, pos + size, &r->now,
+                                               out, &bits, &ignored)))
+            continue;
+        urwire__decode_one(msg, pos, size, r, out);
+        if (urwire__package_fast_paths[r->segment] != path) {
+            pos += size;
+            n++;
+            break;
+        }
+    }
+    out->present |= bits.present;
+    out->malformed |= bits.malformed;
+    out->layouts |= bits.layouts;
+    *count += n;
+    return pos;
+}
+
 /* Frames the sub-packages of a robot state from pos and decodes each straight into its member
- * of *out, until end or a header that cannot be framed (*err): where it stopped. One loop for
- * the whole message, so that the work per sub-package is only its own. */
+ * of *out, until end or a header that cannot be framed (*err): where it stopped. The fast path
+ * of the version's segment, if it has one, goes as far as it can; the general rule does the
+ * rest. */
 static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
                                         urwire_robot_state *out, size_t *count, urwire_error *err)
 {
-    urwire_error ignored;
-    urwire__ver other;
-    const urwire__ver *use;
-    /* The segment's rows, held here: the stores into *out could alias them in r. */
-    const uint8_t *mine = r->mine;
-    const uint32_t *first_sizes = r->first_sizes;
-    size_t size = 0, body, n = 0;
-    uint8_t type, form;
     out->present = 0;
     out->malformed = 0;
     out->layouts = 0;
     out->unknown = 0;
-    /* One pass: framing each sub-package and decoding it overlap in the CPU. */
-    for (; pos < end && urwire__frame_next_package(msg, pos, end, &size, err); pos += size, n++) {
-        type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-        body = pos + URWIRE_PACKAGE_HEADER_SIZE;
-        use = &r->now;
-        /* The common case, laid out straight: the version's form, which fits the body by its brief. */
-        form = URWIRE__LIKELY(type < URWIRE__COUNT(urwire__package_forms) &&
-                              urwire__fits_brief(first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE))
-                   ? mine[type]
-                   : 0;
-        if (URWIRE__UNLIKELY(form == 0)) {
-            if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
-                out->unknown++;
-                continue;
-            }
-            form = (uint8_t)(urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &other) -
-                             urwire__package_form_list + 1);
-            use = &other;
-            mine = r->mine;
-            first_sizes = r->first_sizes;
-        }
-        if (urwire__decode_member(type, form, msg, &body, pos + size, use, out, &ignored))
-            out->present |= (uint32_t)URWIRE_BIT(type);
-        else
-            out->malformed |= (uint32_t)URWIRE_BIT(type);
+    *count = 0;
+#define URWIRE__FAST_CASE(k)                                         \
+    case k:                                                          \
+        pos = urwire__decode_fast(k, msg, pos, end, r, out, count); \
+        break;
+    switch (urwire__package_fast_paths[r->segment]) {
+        URWIRE__FAST_PATHS(URWIRE__FAST_CASE)
+    default:
+        break;
     }
-    *count = n;
-    return pos;
+#undef URWIRE__FAST_CASE
+    return urwire__decode_general(msg, pos, end, r, out, count, err);
 }
 
 bool urwire_next_package(urwire_seq *seq, urwire_package *out)

@@ -164,6 +164,14 @@ typedef struct urwire__form_table {
     const uint8_t *mine;
 } urwire__form_table;
 
+/* The bits a robot state's fast path gathers, in registers, before they go to its
+ * urwire_robot_state (urwire__fast_member). */
+typedef struct urwire__fast_bits {
+    uint32_t present;
+    uint32_t malformed;
+    uint32_t layouts;
+} urwire__fast_bits;
+
 /* How to reach the numbers of a Version message before its layout is chosen: fixed bytes,
  * then a string whose length prefix has `prefix` bytes (signed or not). */
 typedef struct urwire__version_skip {
