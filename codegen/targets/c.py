@@ -694,7 +694,7 @@ def fast_paths(axis: _Forms, table: dict, decoders: list[dict], default: ir.Vers
     stream is assumed to be (every e-Series from 5.4 to 5.25.0 sends it too) and the newest row
     (5.25.1 and later, PolyScope X). In such a loop each sub-package type is a case that checks
     the body against one constant size and calls one decoder; any other body leaves it for the
-    general rule (urwire__decode_one). Every segment that sends one of these rows takes its loop."""
+    general rule (urwire__decode_general). Every segment that sends one of these rows takes its loop."""
     rows = table["rows"]
 
     def segment_of(v: ir.Version) -> int:

@@ -6572,33 +6572,50 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
     return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t, version);
 }
 
-/* One framed sub-package of a robot state, read by the general rule (the version's form when
- * it fits, else the one form of its exact size, else the nearest), into its member of *out. */
-static void urwire__decode_one(const uint8_t *msg, size_t pos, size_t size, urwire__running *r,
-                               urwire_robot_state *out)
-{
-    urwire_error ignored;
-    urwire__ver use;
-    size_t body = pos + URWIRE_PACKAGE_HEADER_SIZE;
-    uint8_t type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-    const urwire__form *f = urwire__package_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &use);
-    if (f == NULL)
-        out->unknown++;
-    else if (urwire__decode_member(type, (uint8_t)(f - urwire__package_form_list + 1), msg, &body, pos + size, &use,
-                                   out, &ignored))
-        out->present |= (uint32_t)URWIRE_BIT(type);
-    else
-        out->malformed |= (uint32_t)URWIRE_BIT(type);
-}
-
-/* The sub-packages of a robot state from pos by the general rule, until end or a header that
- * cannot be framed (*err): where it stopped. */
+/* The sub-packages of a robot state from pos by the general rule (the version's form when its
+ * brief fits the body, else the one form of its exact size, else the nearest), each decoded
+ * straight into its member of *out, until end or a header that cannot be framed (*err): where
+ * it stopped. One loop for the whole message, so that the work per sub-package is only its
+ * own; a fast path calls it for one sub-package it has no case for (urwire__decode_member is
+ * inlined here, and only here). */
 static size_t urwire__decode_general(const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
                                      urwire_robot_state *out, size_t *count, urwire_error *err)
 {
-    size_t size = 0;
-    for (; pos < end && urwire__frame_next_package(msg, pos, end, &size, err); pos += size, ++*count)
-        urwire__decode_one(msg, pos, size, r, out);
+    urwire_error ignored;
+    urwire__ver other;
+    const urwire__ver *use;
+    /* The segment's rows, held here: the stores into *out could alias them in r. */
+    const uint8_t *mine = r->mine;
+    const uint32_t *first_sizes = r->first_sizes;
+    size_t size = 0, body, n = 0;
+    uint8_t type, form;
+    /* One pass: framing each sub-package and decoding it overlap in the CPU. */
+    for (; pos < end && urwire__frame_next_package(msg, pos, end, &size, err); pos += size, n++) {
+        type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
+        body = pos + URWIRE_PACKAGE_HEADER_SIZE;
+        use = &r->now;
+        /* The common case, laid out straight: the version's form, which fits the body by its brief. */
+        form = URWIRE__LIKELY(type < URWIRE__COUNT(urwire__package_forms) &&
+                              urwire__fits_brief(first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE))
+                   ? mine[type]
+                   : 0;
+        if (URWIRE__UNLIKELY(form == 0)) {
+            if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
+                out->unknown++;
+                continue;
+            }
+            form = (uint8_t)(urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &other) -
+                             urwire__package_form_list + 1);
+            use = &other;
+            mine = r->mine;
+            first_sizes = r->first_sizes;
+        }
+        if (urwire__decode_member(type, form, msg, &body, pos + size, use, out, &ignored))
+            out->present |= (uint32_t)URWIRE_BIT(type);
+        else
+            out->malformed |= (uint32_t)URWIRE_BIT(type);
+    }
+    *count += n;
     return pos;
 }
 
@@ -6614,18 +6631,23 @@ URWIRE__INLINE size_t urwire__decode_fast(int path, const uint8_t *msg, size_t p
 {
     urwire_error ignored;
     urwire__fast_bits bits = {0, 0, 0};
-    size_t size = 0, at, n = 0;
+    size_t size = 0, at, n = 0, one = 0;
+    uint8_t type;
     for (; end - pos >= URWIRE_PACKAGE_HEADER_SIZE; pos += size, n++) {
         /* A length below the header's size wraps around and fails the one test as well. */
         size = (size_t)URWIRE__PACKAGE_LENGTH(msg + pos);
         if (URWIRE__UNLIKELY(size - URWIRE_PACKAGE_HEADER_SIZE > end - pos - URWIRE_PACKAGE_HEADER_SIZE))
             break;
         at = pos + URWIRE_PACKAGE_HEADER_SIZE;
-        if (URWIRE__LIKELY(urwire__fast_member(path, msg[pos + URWIRE__PACKAGE_TYPE_AT],
-                                               size - URWIRE_PACKAGE_HEADER_SIZE, msg, &at, pos + size, &r->now,
-                                               out, &bits, &ignored)))
+        type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
+        if (URWIRE__LIKELY(urwire__fast_member(path, type, size - URWIRE_PACKAGE_HEADER_SIZE, msg, &at, pos + size,
+                                               &r->now, out, &bits, &ignored)))
             continue;
-        urwire__decode_one(msg, pos, size, r, out);
+        if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
+            out->unknown++;  /* no layout in any version */
+            continue;
+        }
+        urwire__decode_general(msg, pos, pos + size, r, out, &one, &ignored);
         if (urwire__package_fast_paths[r->segment] != path) {
             pos += size;
             n++;
@@ -6661,7 +6683,7 @@ static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t e
         break;
     }
 #undef URWIRE__FAST_CASE
-    return urwire__decode_general(msg, pos, end, r, out, count, err);
+    return pos < end ? urwire__decode_general(msg, pos, end, r, out, count, err) : pos;
 }
 
 bool urwire_next_package(urwire_seq *seq, urwire_package *out)
