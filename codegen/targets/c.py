@@ -690,11 +690,12 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
 
 
 def fast_paths(axis: _Forms, table: dict, decoders: list[dict], default: ir.Version) -> dict:
-    """The robot-state loops written out for one row of forms each: the row of the version a
-    stream is assumed to be (every e-Series from 5.4 to 5.25.0 sends it too) and the newest row
-    (5.25.1 and later, PolyScope X). In such a loop each sub-package type is a case that checks
-    the body against one constant size and calls one decoder; any other body leaves it for the
-    general rule (urwire__decode_general). Every segment that sends one of these rows takes its loop."""
+    """The robot-state loops written out for one row of forms each: the row of the default
+    version (every stream read before its Version message; in this spec also e-Series 5.4 to
+    5.25.0) and the newest row (here 5.25.1 and later, and PolyScope X). In such a loop each
+    sub-package type is a case that checks the body against one constant size and calls one
+    decoder; any other body is left to the general rule (urwire__decode_general). Every segment
+    that sends one of these rows takes its loop."""
     rows = table["rows"]
 
     def segment_of(v: ir.Version) -> int:

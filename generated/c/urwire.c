@@ -5171,11 +5171,12 @@ static void urwire__put_program_state_header(const urwire_message *m, uint8_t *o
 
 /* ---- forms: which layout a type code is read in, by software version and by length ------- */
 
+/* The segment of the default version: every stream whose version is only assumed reads in it. */
+#define URWIRE__DEFAULT_SEGMENT 21u
+
 /* Where the segments of the version axis start (as urwire__version_key orders versions):
  * segment k from urwire__segment_bounds[k] up to the next bound; segment 0 from key 0, below
  * every version the spec names. Within a segment every type code sends one form. */
-/* The segment of the default version: every stream whose version is only assumed reads in it. */
-#define URWIRE__DEFAULT_SEGMENT 21u
 static const uint64_t urwire__segment_bounds[] = {
     0u,
     URWIRE__V(0, 0, 0),
@@ -7124,24 +7125,7 @@ static bool urwire__rescan_stops_at(const urwire_framer *f, size_t at)
            (!f->ended_inside || (uint64_t)length <= f->len - at);
 }
 
-/* What a message tells of the stream's software version, for the messages after it: the
- * layout that announces it (URWIRE__VERSION_*) sets it, bugfix included where its form has one
- * (their type and subtype bytes are looked at before anything is decoded); while the version
- * is only assumed, the layout sizes of a robot state may show it, learnt later: from the
- * caller's decoding (urwire_framer_learn), else by urwire__learn_unlearnt. The robot state,
- * nine messages in ten, is told apart inline; any other message costs a call. */
-static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size_t len);
-
-URWIRE__INLINE void urwire__learn_version(urwire_framer *f, const uint8_t *bytes, size_t len)
-{
-    if (URWIRE__LIKELY(bytes[URWIRE__TYPE_AT] == URWIRE__PACKAGES_TYPE)) {
-        if (f->version.assumed)
-            f->unlearnt = len;
-        return;
-    }
-    urwire__learn_announced(f, bytes, len);
-}
-
+/* What a Version message announces (see urwire__learn_version). */
 static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size_t len)
 {
     urwire_message m;
@@ -7155,6 +7139,22 @@ static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size
         f->version.assumed = false;
         f->version_seen = true;
     }
+}
+
+/* What a message tells of the stream's software version, for the messages after it: the
+ * layout that announces it (URWIRE__VERSION_*) sets it, bugfix included where its form has one
+ * (their type and subtype bytes are looked at before anything is decoded); while the version
+ * is only assumed, the layout sizes of a robot state may show it, learnt later: from the
+ * caller's decoding (urwire_framer_learn), else by urwire__learn_unlearnt. The robot state,
+ * nine messages in ten, is told apart inline; any other message costs a call. */
+URWIRE__INLINE void urwire__learn_version(urwire_framer *f, const uint8_t *bytes, size_t len)
+{
+    if (URWIRE__LIKELY(bytes[URWIRE__TYPE_AT] == URWIRE__PACKAGES_TYPE)) {
+        if (f->version.assumed)
+            f->unlearnt = len;
+        return;
+    }
+    urwire__learn_announced(f, bytes, len);
 }
 
 urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out)

@@ -5,7 +5,8 @@ bytes, measured in the same run), and compare the levels.
     python3 tests/bench/bench_c.py build/bench_c-O3 build/bench_c-O2 build/bench_c-Os [BYTES]
 
 Each binary is named after its level (bench_c-O3: -O3) and runs ROUNDS times, the levels taking
-turns so that a busy moment of a shared machine falls on all of them; the best run counts.
+turns so that a busy moment of a shared machine falls on all of them; each figure is the best
+of its own column over those runs.
 A binary named bench_c-base-O3 (make bench-c BENCH_C_BASE=<git revision>: the library that
 revision generated) is compared with the current one at the same level, in the same run.
 """

@@ -96,24 +96,7 @@ static bool urwire__rescan_stops_at(const urwire_framer *f, size_t at)
            (!f->ended_inside || (uint64_t)length <= f->len - at);
 }
 
-/* What a message tells of the stream's software version, for the messages after it: the
- * layout that announces it (URWIRE__VERSION_*) sets it, bugfix included where its form has one
- * (their type and subtype bytes are looked at before anything is decoded); while the version
- * is only assumed, the layout sizes of a robot state may show it, learnt later: from the
- * caller's decoding (urwire_framer_learn), else by urwire__learn_unlearnt. The robot state,
- * nine messages in ten, is told apart inline; any other message costs a call. */
-static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size_t len);
-
-URWIRE__INLINE void urwire__learn_version(urwire_framer *f, const uint8_t *bytes, size_t len)
-{
-    if (URWIRE__LIKELY(bytes[URWIRE__TYPE_AT] == URWIRE__PACKAGES_TYPE)) {
-        if (f->version.assumed)
-            f->unlearnt = len;
-        return;
-    }
-    urwire__learn_announced(f, bytes, len);
-}
-
+/* What a Version message announces (see urwire__learn_version). */
 static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size_t len)
 {
     urwire_message m;
@@ -127,6 +110,22 @@ static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size
         f->version.assumed = false;
         f->version_seen = true;
     }
+}
+
+/* What a message tells of the stream's software version, for the messages after it: the
+ * layout that announces it (URWIRE__VERSION_*) sets it, bugfix included where its form has one
+ * (their type and subtype bytes are looked at before anything is decoded); while the version
+ * is only assumed, the layout sizes of a robot state may show it, learnt later: from the
+ * caller's decoding (urwire_framer_learn), else by urwire__learn_unlearnt. The robot state,
+ * nine messages in ten, is told apart inline; any other message costs a call. */
+URWIRE__INLINE void urwire__learn_version(urwire_framer *f, const uint8_t *bytes, size_t len)
+{
+    if (URWIRE__LIKELY(bytes[URWIRE__TYPE_AT] == URWIRE__PACKAGES_TYPE)) {
+        if (f->version.assumed)
+            f->unlearnt = len;
+        return;
+    }
+    urwire__learn_announced(f, bytes, len);
 }
 
 urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out)
