@@ -7,6 +7,8 @@ from pathlib import Path
 
 import jinja2
 
+from . import wrap
+
 TEMPLATES = Path(__file__).parent / "templates"
 REGENERATE = "make generate"
 
@@ -20,6 +22,7 @@ def environment(target: str) -> jinja2.Environment:
         keep_trailing_newline=True,
         autoescape=False,
     )
+    env.filters.update(wrap.FILTERS)   # line width: prose and long lists wrapped alike in every target
     return env
 
 

@@ -422,11 +422,8 @@ def _from_number(n: int) -> ir.Version:
 
 
 def _range_text(lo: int, hi: int, first: int = 0) -> str:
-    """A range as a reader says it; one that starts with the first release is "up to"."""
-    if lo == hi - hi % 1000 and hi % 1000 == ir.BUGFIX_ANY:
-        return ir.version_text(_from_number(lo))              # one minor release: "1.8"
-    low = _from_number(lo) if lo > first else None
-    return ir.VersionRange(low, _from_number(hi) if hi < _TOP else None).describe()
+    """A range of version numbers as a reader says it (ir.VersionRange.describe)."""
+    return ir.VersionRange(_from_number(lo), _from_number(hi) if hi < _TOP else None).describe(_from_number(first))
 
 
 def _fields_by_version(struct: ir.Struct) -> list[ir.AnyField]:

@@ -74,6 +74,7 @@ class Codec:
     decode: list[Step]
     encode: list[Step]
     ranges: list = field(default_factory=list)   # (low, high) version tuples of the form
+    versions: str = ""                           # the same, as a reader says them
 
 
 @dataclass
@@ -330,7 +331,7 @@ class _Target:
                 if absent:
                     decode.insert(0, Step("absent", dict(names=absent)))
                 codecs.append(Codec(f"_{k}", decode, encode,
-                                    [(version_tuple(lo), version_tuple(hi)) for lo, hi in v.ranges]))
+                                    [(version_tuple(lo), version_tuple(hi)) for lo, hi in v.ranges], v.describe()))
                 structs += form_builder.structs
         else:
             decode, encode = builder.steps(layout.steps)

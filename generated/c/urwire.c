@@ -486,7 +486,7 @@ URWIRE__PRIVATE urwire_bytes urwire__seq_bytes(const urwire_seq *s)
 const urwire_sw_version URWIRE_DEFAULT_VERSION = URWIRE_DEFAULT_VERSION_INIT;
 
 /* Below, equal to or above major.minor.bugfix: -1, 0 or 1 (part by part, as the spec's
- * version tuples compare; an upper bound written "5.8" is 5.8.999). */
+ * version tuples compare; an upper bound written "5.8" takes in every 5.8 bugfix release). */
 URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix)
 {
     if (v.major != major)
@@ -1182,7 +1182,7 @@ static const char *urwire__joint_mode_3_0_to_3_15_name(int64_t code)
     }
 }
 
-/* joint_mode, software 5.0 to 5.0 */
+/* joint_mode, software 5.0 */
 static const char *urwire__joint_mode_5_0_to_5_0_name(int64_t code)
 {
     switch (code) {

@@ -398,7 +398,7 @@ typedef enum urwire_joint_mode_3_0_to_3_15 {
     URWIRE_JOINT_MODE_3_0_TO_3_15_RUNNING = 253,
     URWIRE_JOINT_MODE_3_0_TO_3_15_IDLE = 255,
 } urwire_joint_mode_3_0_to_3_15;
-/* Codes for software 5.0 to 5.0. */
+/* Codes for software 5.0. */
 typedef enum urwire_joint_mode_5_0_to_5_0 {
     URWIRE_JOINT_MODE_5_0_TO_5_0_RESET = 235,
     URWIRE_JOINT_MODE_5_0_TO_5_0_SHUTTING_DOWN = 236,

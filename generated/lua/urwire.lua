@@ -211,7 +211,7 @@ VS.JOINT_MODE_3_0To3_15 = {
     [255] = "IDLE",
 }
 
--- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.1: UR_DRIVER L29-L48, the CB2 C header); CB3 table for 3.x (FIRMWARE-LAYOUTS 2.1: NIST UrEnums.h 3afb367a); from 5.0 the 5.9 document's table, with 240 READY_FOR_POWER_OFF only from 5.1 (the document: "FROM VERSION 5.1"). Whether 5.0 already used the 5.9 document's codes rather than the CB3 ones is not stated by any source. (5.0 to 5.0)
+-- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.1: UR_DRIVER L29-L48, the CB2 C header); CB3 table for 3.x (FIRMWARE-LAYOUTS 2.1: NIST UrEnums.h 3afb367a); from 5.0 the 5.9 document's table, with 240 READY_FOR_POWER_OFF only from 5.1 (the document: "FROM VERSION 5.1"). Whether 5.0 already used the 5.9 document's codes rather than the CB3 ones is not stated by any source. (5.0)
 VS.JOINT_MODE_5_0To5_0 = {
     [235] = "RESET",
     [236] = "SHUTTING_DOWN",
@@ -246,7 +246,7 @@ VS.JOINT_MODE = {
 NAMES.JOINT_MODE = { newest = VS.JOINT_MODE,
     { low = nil, high = 1008999, names = VS.JOINT_MODE_UpTo1_8 },   -- up to 1.8
     { low = 3000000, high = 3015999, names = VS.JOINT_MODE_3_0To3_15 },   -- 3.0 to 3.15
-    { low = 5000000, high = 5000999, names = VS.JOINT_MODE_5_0To5_0 },   -- 5.0 to 5.0
+    { low = 5000000, high = 5000999, names = VS.JOINT_MODE_5_0To5_0 },   -- 5.0
     { low = 5001000, high = nil, names = VS.JOINT_MODE },   -- 5.1 and later
 }
 

@@ -252,7 +252,7 @@ class JointMode3_0To3_15(IntEnum):
 
 
 class JointMode5_0To5_0(IntEnum):
-    """Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.1: UR_DRIVER L29-L48, the CB2 C header); CB3 table for 3.x (FIRMWARE-LAYOUTS 2.1: NIST UrEnums.h 3afb367a); from 5.0 the 5.9 document's table, with 240 READY_FOR_POWER_OFF only from 5.1 (the document: "FROM VERSION 5.1"). Whether 5.0 already used the 5.9 document's codes rather than the CB3 ones is not stated by any source. Codes for software 5.0 to 5.0."""
+    """Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. CB2 table up to 1.8 (FIRMWARE-LAYOUTS 2.1: UR_DRIVER L29-L48, the CB2 C header); CB3 table for 3.x (FIRMWARE-LAYOUTS 2.1: NIST UrEnums.h 3afb367a); from 5.0 the 5.9 document's table, with 240 READY_FOR_POWER_OFF only from 5.1 (the document: "FROM VERSION 5.1"). Whether 5.0 already used the 5.9 document's codes rather than the CB3 ones is not stated by any source. Codes for software 5.0."""
 
     RESET = 235
     SHUTTING_DOWN = 236
@@ -288,7 +288,7 @@ class JointMode(IntEnum):
 JOINT_MODE_BY_VALUE = _ByVersion((
     (None, (1, 8, 999), {m.value: m for m in JointModeUpTo1_8}),  # up to 1.8
     ((3, 0, 0), (3, 15, 999), {m.value: m for m in JointMode3_0To3_15}),  # 3.0 to 3.15
-    ((5, 0, 0), (5, 0, 999), {m.value: m for m in JointMode5_0To5_0}),  # 5.0 to 5.0
+    ((5, 0, 0), (5, 0, 999), {m.value: m for m in JointMode5_0To5_0}),  # 5.0
     ((5, 1, 0), None, {m.value: m for m in JointMode}),  # 5.1 and later
 ))
 

@@ -196,7 +196,7 @@ class RobotModeData(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
+        """Read the form of software up to 1.8."""
         control_mode = speed_scaling = target_speed_fraction_limit = reserved = None
         if pos + 24 > end:
             raise _rt.short_in_run(_ROBOT_MODE_DATA_0_0_RUN, pos, end)
@@ -220,7 +220,7 @@ class RobotModeData(_Package):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
-        """Read the form of software (3, 0, 0) to (3, 1, 999)."""
+        """Read the form of software 3.0 to 3.1."""
         target_speed_fraction_limit = reserved = None
         if pos + 33 > end:
             raise _rt.short_in_run(_ROBOT_MODE_DATA_1_0_RUN, pos, end)
@@ -246,7 +246,7 @@ class RobotModeData(_Package):
 
     @classmethod
     def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
-        """Read the form of software (3, 2, 0) to (3, 4, 999)."""
+        """Read the form of software 3.2 to 3.4."""
         reserved = None
         if pos + 41 > end:
             raise _rt.short_in_run(_ROBOT_MODE_DATA_2_0_RUN, pos, end)
@@ -273,7 +273,7 @@ class RobotModeData(_Package):
 
     @classmethod
     def _decode_3(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
-        """Read the form of software (3, 5, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.5 and later."""
         if pos + 42 > end:
             raise _rt.short_in_run(_ROBOT_MODE_DATA_3_0_RUN, pos, end)
         v = _ROBOT_MODE_DATA_3_0.unpack_from(buf, pos)
@@ -833,7 +833,7 @@ class MasterboardData(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
-        """Read the form of software (0, 0, 0) to (1, 5, 999)."""
+        """Read the form of software up to 1.5."""
         master_safety_state = master_on_off_state = safety_mode = in_reduced_mode = euromap67_interface_installed = euromap_input_bits = euromap_output_bits = euromap_voltage_cb2 = euromap_current_cb2 = euromap_voltage_24v = euromap_current = reserved_0 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
         if pos + 56 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_0_0_RUN, pos, end)
@@ -861,7 +861,7 @@ class MasterboardData(_Package):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
-        """Read the form of software (1, 6, 0) to (1, 8, 999)."""
+        """Read the form of software 1.6 to 1.8."""
         safety_mode = in_reduced_mode = euromap_voltage_24v = euromap_current = reserved_0 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
         if pos + 59 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_1_0_RUN, pos, end)
@@ -905,7 +905,7 @@ class MasterboardData(_Package):
 
     @classmethod
     def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
-        """Read the form of software (3, 0, 0) to (3, 1, 999)."""
+        """Read the form of software 3.0 to 3.1."""
         master_safety_state = master_on_off_state = euromap_voltage_cb2 = euromap_current_cb2 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
         if pos + 63 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_2_0_RUN, pos, end)
@@ -954,7 +954,7 @@ class MasterboardData(_Package):
 
     @classmethod
     def _decode_3(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
-        """Read the form of software (3, 2, 0) to (3, 9, 999), (5, 0, 0) to (5, 3, 999)."""
+        """Read the form of software 3.2 to 3.9 or 5.0 to 5.3."""
         master_safety_state = master_on_off_state = euromap_voltage_cb2 = euromap_current_cb2 = reserved_1 = None
         if pos + 63 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_3_0_RUN, pos, end)
@@ -1006,7 +1006,7 @@ class MasterboardData(_Package):
 
     @classmethod
     def _decode_4(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
-        """Read the form of software (3, 10, 0) to (3, 15, 999), (5, 4, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.10 to 3.15 or 5.4 and later."""
         master_safety_state = master_on_off_state = euromap_voltage_cb2 = euromap_current_cb2 = None
         if pos + 63 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_4_0_RUN, pos, end)
@@ -1148,7 +1148,7 @@ class CartesianInfo(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["CartesianInfo", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999), (3, 0, 0) to (3, 0, 999)."""
+        """Read the form of software up to 3.0."""
         tcp_offset_x = tcp_offset_y = tcp_offset_z = tcp_offset_rx = tcp_offset_ry = tcp_offset_rz = None
         if pos + 48 > end:
             raise _rt.short_in_run(_CARTESIAN_INFO_0_0_RUN, pos, end)
@@ -1168,7 +1168,7 @@ class CartesianInfo(_Package):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["CartesianInfo", int]:
-        """Read the form of software (3, 1, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.1 and later."""
         if pos + 96 > end:
             raise _rt.short_in_run(_CARTESIAN_INFO_1_0_RUN, pos, end)
         v = _CARTESIAN_INFO_1_0.unpack_from(buf, pos)
@@ -1684,7 +1684,7 @@ class ConfigurationData(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["ConfigurationData", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
+        """Read the form of software up to 1.8."""
         reserved_1 = reserved_2 = None
         if pos + 464 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_0_0_RUN, pos, end)
@@ -1716,7 +1716,7 @@ class ConfigurationData(_Package):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["ConfigurationData", int]:
-        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 25, 0)."""
+        """Read the form of software 3.0 to 5.25.0."""
         motor_type = reserved_1 = reserved_2 = None
         if pos + 440 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_1_0_RUN, pos, end)
@@ -1747,7 +1747,7 @@ class ConfigurationData(_Package):
 
     @classmethod
     def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["ConfigurationData", int]:
-        """Read the form of software (5, 25, 1) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 5.25.1 and later."""
         motor_type = None
         if pos + 444 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_2_0_RUN, pos, end)
@@ -1924,7 +1924,7 @@ class AdditionalInfo(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
-        """Read the form of software (0, 0, 0) to (1, 7, 999)."""
+        """Read the form of software up to 1.7."""
         tp_button_state = freedrive_button_enabled = io_enabled_freedrive = reserved = None
         if pos + 5 > end:
             raise _rt.short_in_run(_ADDITIONAL_INFO_0_0_RUN, pos, end)
@@ -1940,7 +1940,7 @@ class AdditionalInfo(_Package):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
-        """Read the form of software (1, 8, 0) to (1, 8, 999), (3, 0, 0) to (3, 1, 999)."""
+        """Read the form of software 1.8 to 3.1."""
         ctrl_bits = teach_button = io_enabled_freedrive = reserved = None
         if pos + 2 > end:
             raise _rt.short_in_run(_ADDITIONAL_INFO_1_0_RUN, pos, end)
@@ -1956,7 +1956,7 @@ class AdditionalInfo(_Package):
 
     @classmethod
     def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
-        """Read the form of software (3, 2, 0) to (3, 15, 999)."""
+        """Read the form of software 3.2 to 3.15."""
         ctrl_bits = teach_button = reserved = None
         if pos + 3 > end:
             raise _rt.short_in_run(_ADDITIONAL_INFO_2_0_RUN, pos, end)
@@ -1973,7 +1973,7 @@ class AdditionalInfo(_Package):
 
     @classmethod
     def _decode_3(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
-        """Read the form of software (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 5.0 and later."""
         ctrl_bits = teach_button = None
         if pos + 4 > end:
             raise _rt.short_in_run(_ADDITIONAL_INFO_3_0_RUN, pos, end)
@@ -2319,7 +2319,7 @@ class VersionMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["VersionMessage", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999), (3, 0, 0) to (3, 2, 999)."""
+        """Read the form of software up to 3.2."""
         bugfix_version = build_number = None
         project_name, pos = _rt.read_prefixed_text(buf, pos, end, _INT8, "project_name")
         if pos + 6 > end:
@@ -2341,7 +2341,7 @@ class VersionMessage(_Subtype):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["VersionMessage", int]:
-        """Read the form of software (3, 3, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.3 and later."""
         svn_revision = None
         project_name, pos = _rt.read_prefixed_text(buf, pos, end, _INT8, "project_name")
         if pos + 10 > end:
@@ -2429,7 +2429,7 @@ class SafetyModeMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["SafetyModeMessage", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
+        """Read the form of software up to 1.8."""
         safety_mode_type = report_data_type = report_data = None
         if pos + 8 > end:
             raise _rt.short_in_run(_SAFETY_MODE_0_0_RUN, pos, end)
@@ -2448,7 +2448,7 @@ class SafetyModeMessage(_Subtype):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["SafetyModeMessage", int]:
-        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.0 and later."""
         text = None
         if pos + 13 > end:
             raise _rt.short_in_run(_SAFETY_MODE_1_0_RUN, pos, end)
@@ -2541,7 +2541,7 @@ class RobotCommMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["RobotCommMessage", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
+        """Read the form of software up to 1.8."""
         robot_message_report_level = robot_message_data_type = robot_message_data = None
         if pos + 8 > end:
             raise _rt.short_in_run(_ROBOT_COMM_0_0_RUN, pos, end)
@@ -2560,7 +2560,7 @@ class RobotCommMessage(_Subtype):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["RobotCommMessage", int]:
-        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.0 and later."""
         if pos + 20 > end:
             raise _rt.short_in_run(_ROBOT_COMM_1_0_RUN, pos, end)
         v = _ROBOT_COMM_1_0.unpack_from(buf, pos)
@@ -2800,7 +2800,7 @@ class PopupMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["PopupMessage", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
+        """Read the form of software up to 1.8."""
         request_id = requested_type = blocking = None
         if pos + 2 > end:
             raise _rt.short_in_run(_POPUP_0_0_RUN, pos, end)
@@ -2821,7 +2821,7 @@ class PopupMessage(_Subtype):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["PopupMessage", int]:
-        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.0 and later."""
         if pos + 11 > end:
             raise _rt.short_in_run(_POPUP_1_0_RUN, pos, end)
         v = _POPUP_1_0.unpack_from(buf, pos)

@@ -1,0 +1,74 @@
+"""Line width of generated files: prose wrapped at word boundaries and long lists of code
+spread over aligned lines, the same way in every target (the templates use these as filters).
+
+No generated line is longer than LIMIT columns; prose is wrapped at PROSE, as hand-written
+comments are.
+"""
+from __future__ import annotations
+
+import textwrap
+
+LIMIT = 120
+PROSE = 100
+
+
+def lines(text: str, first: str, rest: str, width: int = PROSE) -> list[str]:
+    """`text` wrapped at word boundaries: the first line starts with `first`, the others with
+    `rest`. A word longer than a line (a URL) stays whole."""
+    return textwrap.wrap(" ".join(text.split()), width=width, initial_indent=first, subsequent_indent=rest,
+                         break_long_words=False, break_on_hyphens=False) or [first.rstrip()]
+
+
+def c_comment(text: str, indent: str = "") -> str:
+    """A C block comment, "/* ... */", its continuation lines starting with " * "."""
+    out = lines(text, indent + "/* ", indent + " * ")
+    out[-1] += " */"
+    return "\n".join(out)
+
+
+def line_comment(text: str, indent: str = "", mark: str = "--") -> str:
+    """Comment lines that each start with `mark` ("--" in Lua, "#" in Python)."""
+    return "\n".join(lines(text, f"{indent}{mark} ", f"{indent}{mark} "))
+
+
+def docstring(text: str, indent: str = "") -> str:
+    """A Python docstring: on one line when it fits, else wrapped with its closing quotes on a
+    line of their own."""
+    one = f'{indent}"""{text}"""'
+    if len(one) <= PROSE:
+        return one
+    return "\n".join(lines(text, f'{indent}"""', indent) + [f'{indent}"""'])
+
+
+def trailing(code: str, comment: str, indent: str = "", syntax: str = "c") -> str:
+    """`code` with its comment after it on the same line when both fit in LIMIT, else the
+    comment wrapped on the lines above it."""
+    marks = {"c": ("/* ", " */"), "lua": ("-- ", ""), "python": ("# ", "")}
+    opening, closing = marks[syntax]
+    one = f"{indent}{code}  {opening}{comment}{closing}"
+    if len(one) <= LIMIT:
+        return one
+    above = c_comment(comment, indent) if syntax == "c" else line_comment(comment, indent, opening.strip())
+    return f"{above}\n{indent}{code}"
+
+
+def spread(items: list[str], open_: str, close: str = "", indent: str = "", width: int = LIMIT) -> str:
+    """`open_` followed by `items` joined with ", " and then `close`: on one line when it fits,
+    else as many items per line as fit, continuation lines aligned under the first item."""
+    one = f"{indent}{open_}{', '.join(items)}{close}"
+    if len(one) <= width or not items:
+        return one
+    hang = " " * (len(indent) + len(open_))
+    out, line = [], indent + open_
+    for n, item in enumerate(items):
+        piece = item + (close if n == len(items) - 1 else ",")
+        if line.strip() and line not in (indent + open_,) and len(line) + 1 + len(piece) > width:
+            out.append(line.rstrip())
+            line = hang
+        line += piece if line in (indent + open_, hang) else " " + piece
+    out.append(line)
+    return "\n".join(out)
+
+
+FILTERS = dict(c_comment=c_comment, line_comment=line_comment, docstring=docstring, trailing=trailing,
+               spread=spread)
