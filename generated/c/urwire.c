@@ -324,8 +324,8 @@ URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_mes
 URWIRE__PRIVATE size_t urwire__segment(uint64_t key);
 URWIRE__PRIVATE const urwire__form *urwire__mine(const urwire__form_table *t, size_t segment, size_t code,
                                                 bool *nearest);
-URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, size_t code, size_t segment, size_t size,
-                                                  urwire_sw_version *version, bool *by_length);
+URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, size_t code, size_t segment,
+                                                  size_t size, urwire_sw_version *version, bool *by_length);
 URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out);
 /* decode.c */
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);
@@ -1839,8 +1839,8 @@ static void urwire__visit_robot_mode_data(const void *from, const urwire__ver *v
         v->on_hex(v->ctx, "extra", in->extra);
 }
 
-/* One entry per joint, base first. (41 bytes, read inside its parent's checked run;
- * inlined, as a field of the run would be) */
+/* One entry per joint, base first. (41 bytes, read inside its parent's checked run; inlined, as a
+ * field of the run would be) */
 URWIRE__INLINE void urwire__read_joint(const uint8_t *p, urwire_joint *out)
 {
     out->q_actual = urwire__f64(p);
@@ -1934,7 +1934,13 @@ static const urwire__span urwire__joint_data_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Joint data, one group per joint; 251 bytes in every version (FIRMWARE-LAYOUTS 2.1). Units: angles in rad and angular velocities in rad/s, as the script manual's get_actual_joint_positions and get_actual_joint_speeds return them; temperatures in °C, as its get_joint_temp returns them (the RealTime 5.9 document: "Temperature of each joint in degrees celsius"). Currents in A and voltages in V: the RTDE guide and the RealTime document name the same values (actual_current, actual_joint_voltage) without a unit, and their size shows it (about 48 V; well under 2 A for an arm at rest). */
+/* Joint data, one group per joint; 251 bytes in every version (FIRMWARE-LAYOUTS 2.1). Units: angles
+ * in rad and angular velocities in rad/s, as the script manual's get_actual_joint_positions and
+ * get_actual_joint_speeds return them; temperatures in °C, as its get_joint_temp returns them (the
+ * RealTime 5.9 document: "Temperature of each joint in degrees celsius"). Currents in A and
+ * voltages in V: the RTDE guide and the RealTime document name the same values (actual_current,
+ * actual_joint_voltage) without a unit, and their size shows it (about 48 V; well under 2 A for an
+ * arm at rest). */
 static inline bool urwire__decode_joint_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                              void *into, urwire_error *err)
 {
@@ -2004,7 +2010,13 @@ static const urwire__span urwire__tool_data_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes (FIRMWARE-LAYOUTS 2.2). Units: the tool current in A (the script manual's get_tool_current returns it in amperes); the tool temperature in °C and the tool output voltage (0, 12 or 24) in V (the RTDE guide's tool_temperature and tool_output_voltage); the tool voltage in V, as its name (toolVoltage48V) says. The analog inputs have no unit here: each is a current or a voltage, as its range field says. */
+/* Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and
+ * inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes (FIRMWARE-LAYOUTS 2.2).
+ * Units: the tool current in A (the script manual's get_tool_current returns it in amperes); the
+ * tool temperature in °C and the tool output voltage (0, 12 or 24) in V (the RTDE guide's
+ * tool_temperature and tool_output_voltage); the tool voltage in V, as its name (toolVoltage48V)
+ * says. The analog inputs have no unit here: each is a current or a voltage, as its range field
+ * says. */
 static inline bool urwire__decode_tool_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                             void *into, urwire_error *err)
 {
@@ -2796,7 +2808,13 @@ static const urwire__span urwire__laser_pointer_run0[] = {
     {NULL, 0, 0},
 };
 
-/* The early CB2 package of type 5: three doubles, 29 bytes. python-urx (2013) calls it "LaserPointer(OBSOLETE)" and reads it as 'iBddd' without naming the values; a real early CB2 capture holds 1000.0 three times (FIRMWARE-LAYOUTS 2.5). The field names x, y, z are an inference (a laser pointer's position): no source names them. Up to 1.7: type 5 is not sent on 1.6-1.7 (UR_DRIVER: "KinematicsInfo is not available in 1.6 and 1.7") and is kinematics info from 1.8 (FIRMWARE-LAYOUTS 1a, 2.5); medium confidence, the early capture's version being unknown. The length (29 or 225) decides. */
+/* The early CB2 package of type 5: three doubles, 29 bytes. python-urx (2013) calls it
+ * "LaserPointer(OBSOLETE)" and reads it as 'iBddd' without naming the values; a real early CB2
+ * capture holds 1000.0 three times (FIRMWARE-LAYOUTS 2.5). The field names x, y, z are an inference
+ * (a laser pointer's position): no source names them. Up to 1.7: type 5 is not sent on 1.6-1.7
+ * (UR_DRIVER: "KinematicsInfo is not available in 1.6 and 1.7") and is kinematics info from 1.8
+ * (FIRMWARE-LAYOUTS 1a, 2.5); medium confidence, the early capture's version being unknown. The
+ * length (29 or 225) decides. */
 static inline bool urwire__decode_laser_pointer(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                 void *into, urwire_error *err)
 {
@@ -2885,7 +2903,12 @@ static const urwire__span urwire__kinematics_info_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is changed. From 1.8 (FIRMWARE-LAYOUTS 1b, 2.5: NIST table, 1.8 column; UR_DRIVER comments; a real 1.8 capture decodes cleanly); high confidence. 225 bytes in every version since; calibration_status is 4 bytes although an older UR document said uint8 (FIRMWARE-LAYOUTS 3.10). Units: the Denavit-Hartenberg parameters a and d in m, alpha and theta in rad, as UR's article "DH parameters for calculations of kinematics and dynamics" gives them. */
+/* Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is
+ * changed. From 1.8 (FIRMWARE-LAYOUTS 1b, 2.5: NIST table, 1.8 column; UR_DRIVER comments; a real
+ * 1.8 capture decodes cleanly); high confidence. 225 bytes in every version since;
+ * calibration_status is 4 bytes although an older UR document said uint8 (FIRMWARE-LAYOUTS 3.10).
+ * Units: the Denavit-Hartenberg parameters a and d in m, alpha and theta in rad, as UR's article
+ * "DH parameters for calculations of kinematics and dynamics" gives them. */
 static inline bool urwire__decode_kinematics_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                   void *into, urwire_error *err)
 {
@@ -2966,8 +2989,8 @@ static void urwire__visit_kinematics_info(const void *from, const urwire__ver *v
         v->on_hex(v->ctx, "extra", in->extra);
 }
 
-/* One entry of joint_position_limits. (16 bytes, read inside its parent's checked run;
- * inlined, as a field of the run would be) */
+/* One entry of joint_position_limits. (16 bytes, read inside its parent's checked run; inlined, as
+ * a field of the run would be) */
 URWIRE__INLINE void urwire__read_joint_position_limit(const uint8_t *p, urwire_joint_position_limit *out)
 {
     out->joint_min_limit = urwire__f64(p);
@@ -2991,8 +3014,8 @@ static void urwire__visit_joint_position_limit(const void *from, const urwire__v
     v->on_f64(v->ctx, "joint_max_limit", in->joint_max_limit);
 }
 
-/* One entry of joint_motion_limits. (16 bytes, read inside its parent's checked run;
- * inlined, as a field of the run would be) */
+/* One entry of joint_motion_limits. (16 bytes, read inside its parent's checked run; inlined, as a
+ * field of the run would be) */
 URWIRE__INLINE void urwire__read_joint_motion_limit(const uint8_t *p, urwire_joint_motion_limit *out)
 {
     out->joint_max_speed = urwire__f64(p);
@@ -3147,8 +3170,8 @@ static const urwire__span urwire__configuration_data_2_run0[] = {
 };
 
 /* configuration_data as up to 1.8 sends it (464 bytes). */
-static inline bool urwire__decode_configuration_data_0(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                       void *into, urwire_error *err)
+static inline bool urwire__decode_configuration_data_0(const uint8_t *msg, size_t *at, size_t end,
+                                                       const urwire__ver *ver, void *into, urwire_error *err)
 {
     urwire_configuration_data *out = into;
     size_t pos = *at;
@@ -3185,8 +3208,8 @@ static inline bool urwire__decode_configuration_data_0(const uint8_t *msg, size_
 }
 
 /* configuration_data as 3.0 to 5.25.0 sends it (440 bytes). */
-static inline bool urwire__decode_configuration_data_1(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                       void *into, urwire_error *err)
+static inline bool urwire__decode_configuration_data_1(const uint8_t *msg, size_t *at, size_t end,
+                                                       const urwire__ver *ver, void *into, urwire_error *err)
 {
     urwire_configuration_data *out = into;
     size_t pos = *at;
@@ -3223,8 +3246,8 @@ static inline bool urwire__decode_configuration_data_1(const uint8_t *msg, size_
 }
 
 /* configuration_data as 5.25.1 and later sends it (444 bytes). */
-static inline bool urwire__decode_configuration_data_2(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                       void *into, urwire_error *err)
+static inline bool urwire__decode_configuration_data_2(const uint8_t *msg, size_t *at, size_t end,
+                                                       const urwire__ver *ver, void *into, urwire_error *err)
 {
     urwire_configuration_data *out = into;
     size_t pos = *at;
@@ -3380,7 +3403,8 @@ static const urwire__span urwire__force_mode_data_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Force mode data; 61 bytes in every version that sends it (FIRMWARE-LAYOUTS 2.7). Units: a wrench as the script manual's get_tcp_force returns one, forces in N and torques in Nm. */
+/* Force mode data; 61 bytes in every version that sends it (FIRMWARE-LAYOUTS 2.7). Units: a wrench
+ * as the script manual's get_tcp_force returns one, forces in N and torques in Nm. */
 static inline bool urwire__decode_force_mode_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                   void *into, urwire_error *err)
 {
@@ -3640,7 +3664,8 @@ static const urwire__span urwire__calibration_data_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8 builds on (FIRMWARE-LAYOUTS 2.9). */
+/* Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8
+ * builds on (FIRMWARE-LAYOUTS 2.9). */
 static inline bool urwire__decode_calibration_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                    void *into, urwire_error *err)
 {
@@ -3703,7 +3728,8 @@ static void urwire__visit_calibration_data(const void *from, const urwire__ver *
         v->on_hex(v->ctx, "extra", in->extra);
 }
 
-/* Safety data. Used internally by Universal Robots software only; its layout is not documented. 43 bytes in every e-Series capture; no CB2 or CB3 source has it (FIRMWARE- LAYOUTS 2.10). */
+/* Safety data. Used internally by Universal Robots software only; its layout is not documented. 43
+ * bytes in every e-Series capture; no CB2 or CB3 source has it (FIRMWARE- LAYOUTS 2.10). */
 static inline bool urwire__decode_safety_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                               void *into, urwire_error *err)
 {
@@ -3952,7 +3978,10 @@ static const urwire__span urwire__version_run2[] = {
     {NULL, 0, 0},
 };
 
-/* Version message, the first message on both the primary and secondary interfaces. It is read in the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from 3.3 the bugfix version and the build number (FIRMWARE-LAYOUTS 2.15). PolyScope X sends major version 10. */
+/* Version message, the first message on both the primary and secondary interfaces. It is read in
+ * the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from
+ * 3.3 the bugfix version and the build number (FIRMWARE-LAYOUTS 2.15). PolyScope X sends major
+ * version 10. */
 static inline bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                           void *into, urwire_error *err)
 {
@@ -4069,7 +4098,8 @@ static const urwire__span urwire__safety_mode_run1[] = {
     {NULL, 0, 0},
 };
 
-/* Safety mode message; the security message of CB2, which carries a text instead of the safety mode and its report data (FIRMWARE-LAYOUTS 1c). */
+/* Safety mode message; the security message of CB2, which carries a text instead of the safety mode
+ * and its report data (FIRMWARE-LAYOUTS 1c). */
 static inline bool urwire__decode_safety_mode(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                               void *into, urwire_error *err)
 {
@@ -4225,7 +4255,8 @@ static const urwire__span urwire__robot_comm_run1[] = {
     {NULL, 0, 0},
 };
 
-/* Robot comm message (an error code report). On CB2 the code and argument are followed by the text alone (FIRMWARE-LAYOUTS 1c). */
+/* Robot comm message (an error code report). On CB2 the code and argument are followed by the text
+ * alone (FIRMWARE-LAYOUTS 1c). */
 static inline bool urwire__decode_robot_comm(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                              void *into, urwire_error *err)
 {
@@ -4319,8 +4350,8 @@ static const urwire__span urwire__key_run0[] = {
 };
 
 /* Key message. */
-static inline bool urwire__decode_key(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                      void *into, urwire_error *err)
+static inline bool urwire__decode_key(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *into,
+                                      urwire_error *err)
 {
     urwire_key_message *out = into;
     size_t pos = *at;
@@ -4435,7 +4466,8 @@ bool urwire_next_program_thread(urwire_seq *seq, urwire_program_thread *out)
     return true;
 }
 
-bool urwire_append_program_thread(const urwire_program_thread *in, uint8_t *out, size_t cap, size_t *pos, urwire_error *err)
+bool urwire_append_program_thread(const urwire_program_thread *in, uint8_t *out, size_t cap, size_t *pos,
+                                  urwire_error *err)
 {
     urwire__ver ver = urwire__ver_of(URWIRE_DEFAULT_VERSION);
     return urwire__encode_program_thread(in, &ver, out, cap, pos, err);
@@ -4524,9 +4556,10 @@ static const urwire__span urwire__popup_run2[] = {
     {NULL, 0, 0},
 };
 
-/* Popup message. On CB2 it has no request id, requested type or blocking flag (FIRMWARE- LAYOUTS 1c). */
-static inline bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                        void *into, urwire_error *err)
+/* Popup message. On CB2 it has no request id, requested type or blocking flag (FIRMWARE- LAYOUTS
+ * 1c). */
+static inline bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *into,
+                                        urwire_error *err)
 {
     urwire_popup_message *out = into;
     size_t pos = *at;
@@ -4634,9 +4667,11 @@ static const urwire__span urwire__label_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Label message (CB2 only). CB2, up to 1.8 (FIRMWARE-LAYOUTS 1c: python-urx 2013 labelMessage, the CB2 C header LabelMessage). Later documents drop subtype 1 and no CB3 form is known, so the 1.8 boundary is an inference; later streams keep it raw. */
-static inline bool urwire__decode_label(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                        void *into, urwire_error *err)
+/* Label message (CB2 only). CB2, up to 1.8 (FIRMWARE-LAYOUTS 1c: python-urx 2013 labelMessage, the
+ * CB2 C header LabelMessage). Later documents drop subtype 1 and no CB3 form is known, so the 1.8
+ * boundary is an inference; later streams keep it raw. */
+static inline bool urwire__decode_label(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *into,
+                                        urwire_error *err)
 {
     urwire_label_message *out = into;
     size_t pos = *at;
@@ -4693,9 +4728,11 @@ static const urwire__span urwire__var_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Var message (CB2 only). CB2, up to 1.8 (FIRMWARE-LAYOUTS 1c: python-urx 2013 varMessage, the CB2 C header VarMessage). Later documents drop subtype 8 and no CB3 form is known, so the 1.8 boundary is an inference; later streams keep it raw. */
-static inline bool urwire__decode_var(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                      void *into, urwire_error *err)
+/* Var message (CB2 only). CB2, up to 1.8 (FIRMWARE-LAYOUTS 1c: python-urx 2013 varMessage, the CB2
+ * C header VarMessage). Later documents drop subtype 8 and no CB3 form is known, so the 1.8
+ * boundary is an inference; later streams keep it raw. */
+static inline bool urwire__decode_var(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *into,
+                                      urwire_error *err)
 {
     urwire_var_message *out = into;
     size_t pos = *at;
@@ -4763,7 +4800,12 @@ static const urwire__span urwire__hardware_info_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13 (FIRMWARE-LAYOUTS 1b, 2.16: URCL hardware_info_message.h "introduced in PolyScope 5.26 / 10.14"; URCL datatypes.h on early 5.26 and 10.13 patch releases). 27 bytes in all. Not gated by version: one range cannot say "5.26 and later, and 10.13 and later", and subtype 18 never meant anything else, so it is read in every version (FIRMWARE-LAYOUTS 3.13: keep it tolerant). The layout is URCL's parse order; high confidence. */
+/* Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13
+ * (FIRMWARE-LAYOUTS 1b, 2.16: URCL hardware_info_message.h "introduced in PolyScope 5.26 / 10.14";
+ * URCL datatypes.h on early 5.26 and 10.13 patch releases). 27 bytes in all. Not gated by version:
+ * one range cannot say "5.26 and later, and 10.13 and later", and subtype 18 never meant anything
+ * else, so it is read in every version (FIRMWARE-LAYOUTS 3.13: keep it tolerant). The layout is
+ * URCL's parse order; high confidence. */
 static inline bool urwire__decode_hardware_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                 void *into, urwire_error *err)
 {
@@ -4886,8 +4928,8 @@ static void urwire__visit_request_value(const void *from, const urwire__ver *ver
 }
 
 /* Text message. */
-static inline bool urwire__decode_text(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                       void *into, urwire_error *err)
+static inline bool urwire__decode_text(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *into,
+                                       urwire_error *err)
 {
     urwire_text_message *out = into;
     size_t pos = *at;
@@ -4994,8 +5036,8 @@ static const urwire__span urwire__global_variables_setup_run0[] = {
 };
 
 /* Global variables setup message. */
-static inline bool urwire__decode_global_variables_setup(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                         void *into, urwire_error *err)
+static inline bool urwire__decode_global_variables_setup(const uint8_t *msg, size_t *at, size_t end,
+                                                         const urwire__ver *ver, void *into, urwire_error *err)
 {
     urwire_global_variables_setup_message *out = into;
     size_t pos = *at;
@@ -5051,8 +5093,8 @@ static const urwire__span urwire__global_variables_update_run0[] = {
 };
 
 /* Global variables update message. */
-static inline bool urwire__decode_global_variables_update(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                          void *into, urwire_error *err)
+static inline bool urwire__decode_global_variables_update(const uint8_t *msg, size_t *at, size_t end,
+                                                          const urwire__ver *ver, void *into, urwire_error *err)
 {
     urwire_global_variables_update_message *out = into;
     size_t pos = *at;
@@ -5475,21 +5517,29 @@ static const urwire__form_table urwire__program_state_form_table = {
 
 /* Sub-package layouts, by urwire_package_layout. */
 static const urwire__package_kind urwire__package_kinds[] = {
-    [URWIRE_LAYOUT_ROBOT_MODE_DATA] = {"robot_mode_data", urwire__encode_robot_mode_data, urwire__visit_robot_mode_data},
+    [URWIRE_LAYOUT_ROBOT_MODE_DATA] = {"robot_mode_data", urwire__encode_robot_mode_data,
+                                       urwire__visit_robot_mode_data},
     [URWIRE_LAYOUT_JOINT_DATA] = {"joint_data", urwire__encode_joint_data, urwire__visit_joint_data},
     [URWIRE_LAYOUT_TOOL_DATA] = {"tool_data", urwire__encode_tool_data, urwire__visit_tool_data},
-    [URWIRE_LAYOUT_MASTERBOARD_DATA] = {"masterboard_data", urwire__encode_masterboard_data, urwire__visit_masterboard_data},
+    [URWIRE_LAYOUT_MASTERBOARD_DATA] = {"masterboard_data", urwire__encode_masterboard_data,
+                                        urwire__visit_masterboard_data},
     [URWIRE_LAYOUT_CARTESIAN_INFO] = {"cartesian_info", urwire__encode_cartesian_info, urwire__visit_cartesian_info},
     [URWIRE_LAYOUT_LASER_POINTER] = {"laser_pointer", urwire__encode_laser_pointer, urwire__visit_laser_pointer},
-    [URWIRE_LAYOUT_KINEMATICS_INFO] = {"kinematics_info", urwire__encode_kinematics_info, urwire__visit_kinematics_info},
-    [URWIRE_LAYOUT_CONFIGURATION_DATA] = {"configuration_data", urwire__encode_configuration_data, urwire__visit_configuration_data},
-    [URWIRE_LAYOUT_FORCE_MODE_DATA] = {"force_mode_data", urwire__encode_force_mode_data, urwire__visit_force_mode_data},
-    [URWIRE_LAYOUT_ADDITIONAL_INFO] = {"additional_info", urwire__encode_additional_info, urwire__visit_additional_info},
-    [URWIRE_LAYOUT_CALIBRATION_DATA] = {"calibration_data", urwire__encode_calibration_data, urwire__visit_calibration_data},
+    [URWIRE_LAYOUT_KINEMATICS_INFO] = {"kinematics_info", urwire__encode_kinematics_info,
+                                       urwire__visit_kinematics_info},
+    [URWIRE_LAYOUT_CONFIGURATION_DATA] = {"configuration_data", urwire__encode_configuration_data,
+                                          urwire__visit_configuration_data},
+    [URWIRE_LAYOUT_FORCE_MODE_DATA] = {"force_mode_data", urwire__encode_force_mode_data,
+                                       urwire__visit_force_mode_data},
+    [URWIRE_LAYOUT_ADDITIONAL_INFO] = {"additional_info", urwire__encode_additional_info,
+                                       urwire__visit_additional_info},
+    [URWIRE_LAYOUT_CALIBRATION_DATA] = {"calibration_data", urwire__encode_calibration_data,
+                                        urwire__visit_calibration_data},
     [URWIRE_LAYOUT_SAFETY_DATA] = {"safety_data", urwire__encode_safety_data, urwire__visit_safety_data},
     [URWIRE_LAYOUT_TOOL_COMM_INFO] = {"tool_comm_info", urwire__encode_tool_comm_info, urwire__visit_tool_comm_info},
     [URWIRE_LAYOUT_TOOL_MODE_INFO] = {"tool_mode_info", urwire__encode_tool_mode_info, urwire__visit_tool_mode_info},
-    [URWIRE_LAYOUT_SINGULARITY_INFO] = {"singularity_info", urwire__encode_singularity_info, urwire__visit_singularity_info},
+    [URWIRE_LAYOUT_SINGULARITY_INFO] = {"singularity_info", urwire__encode_singularity_info,
+                                        urwire__visit_singularity_info},
 };
 
 /* Decoding a sub-package is a switch of direct calls, not a decoder in urwire__package_kinds:
@@ -5992,33 +6042,43 @@ static const urwire__message_kind urwire__message_kinds[] = {
     [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, 0, NULL, NULL, NULL},
     [URWIRE_KIND_ROBOT_STATE] = {"robot_state", &urwire__message_types[0], 0, NULL, NULL, NULL},
     [URWIRE_KIND_VERSION] = {"version", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_VERSION,
-        urwire__decode_version, urwire__encode_version, urwire__visit_version},
+                             urwire__decode_version, urwire__encode_version, urwire__visit_version},
     [URWIRE_KIND_SAFETY_MODE] = {"safety_mode", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE,
-        urwire__decode_safety_mode, urwire__encode_safety_mode, urwire__visit_safety_mode},
+                                 urwire__decode_safety_mode, urwire__encode_safety_mode, urwire__visit_safety_mode},
     [URWIRE_KIND_ROBOT_COMM] = {"robot_comm", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE,
-        urwire__decode_robot_comm, urwire__encode_robot_comm, urwire__visit_robot_comm},
-    [URWIRE_KIND_KEY] = {"key", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_KEY,
-        urwire__decode_key, urwire__encode_key, urwire__visit_key},
-    [URWIRE_KIND_PROGRAM_THREADS] = {"program_threads", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS,
-        urwire__decode_program_threads, urwire__encode_program_threads, urwire__visit_program_threads},
-    [URWIRE_KIND_POPUP] = {"popup", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_POPUP,
-        urwire__decode_popup, urwire__encode_popup, urwire__visit_popup},
+                                urwire__decode_robot_comm, urwire__encode_robot_comm, urwire__visit_robot_comm},
+    [URWIRE_KIND_KEY] = {"key", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_KEY, urwire__decode_key,
+                         urwire__encode_key, urwire__visit_key},
+    [URWIRE_KIND_PROGRAM_THREADS] = {"program_threads", &urwire__message_types[1],
+                                     URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS, urwire__decode_program_threads,
+                                     urwire__encode_program_threads, urwire__visit_program_threads},
+    [URWIRE_KIND_POPUP] = {"popup", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_POPUP, urwire__decode_popup,
+                           urwire__encode_popup, urwire__visit_popup},
     [URWIRE_KIND_LABEL] = {"label", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL,
-        urwire__decode_label, urwire__encode_label, urwire__visit_label},
-    [URWIRE_KIND_VAR] = {"var", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR,
-        urwire__decode_var, urwire__encode_var, urwire__visit_var},
+                           urwire__decode_label, urwire__encode_label, urwire__visit_label},
+    [URWIRE_KIND_VAR] = {"var", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR, urwire__decode_var,
+                         urwire__encode_var, urwire__visit_var},
     [URWIRE_KIND_HARDWARE_INFO] = {"hardware_info", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO,
-        urwire__decode_hardware_info, urwire__encode_hardware_info, urwire__visit_hardware_info},
+                                   urwire__decode_hardware_info, urwire__encode_hardware_info,
+                                   urwire__visit_hardware_info},
     [URWIRE_KIND_REQUEST_VALUE] = {"request_value", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE,
-        urwire__decode_request_value, urwire__encode_request_value, urwire__visit_request_value},
-    [URWIRE_KIND_TEXT] = {"text", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_TEXT,
-        urwire__decode_text, urwire__encode_text, urwire__visit_text},
-    [URWIRE_KIND_RUNTIME_EXCEPTION] = {"runtime_exception", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION,
-        urwire__decode_runtime_exception, urwire__encode_runtime_exception, urwire__visit_runtime_exception},
-    [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {"global_variables_setup", &urwire__message_types[2], URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP,
-        urwire__decode_global_variables_setup, urwire__encode_global_variables_setup, urwire__visit_global_variables_setup},
-    [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {"global_variables_update", &urwire__message_types[2], URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE,
-        urwire__decode_global_variables_update, urwire__encode_global_variables_update, urwire__visit_global_variables_update},
+                                   urwire__decode_request_value, urwire__encode_request_value,
+                                   urwire__visit_request_value},
+    [URWIRE_KIND_TEXT] = {"text", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_TEXT, urwire__decode_text,
+                          urwire__encode_text, urwire__visit_text},
+    [URWIRE_KIND_RUNTIME_EXCEPTION] = {"runtime_exception", &urwire__message_types[1],
+                                       URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION, urwire__decode_runtime_exception,
+                                       urwire__encode_runtime_exception, urwire__visit_runtime_exception},
+    [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {"global_variables_setup", &urwire__message_types[2],
+                                            URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP,
+                                            urwire__decode_global_variables_setup,
+                                            urwire__encode_global_variables_setup,
+                                            urwire__visit_global_variables_setup},
+    [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {"global_variables_update", &urwire__message_types[2],
+                                             URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE,
+                                             urwire__decode_global_variables_update,
+                                             urwire__encode_global_variables_update,
+                                             urwire__visit_global_variables_update},
     [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, 0, NULL, NULL, NULL},
 };
 
