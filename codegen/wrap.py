@@ -54,21 +54,62 @@ def trailing(code: str, comment: str, indent: str = "", syntax: str = "c") -> st
 
 def spread(items: list[str], open_: str, close: str = "", indent: str = "", width: int = LIMIT) -> str:
     """`open_` followed by `items` joined with ", " and then `close`: on one line when it fits,
-    else as many items per line as fit, continuation lines aligned under the first item."""
+    else as many items per line as fit, continuation lines aligned under the first item (or,
+    when not even the first item fits after `open_`, indented by four under the line)."""
     one = f"{indent}{open_}{', '.join(items)}{close}"
     if len(one) <= width or not items:
         return one
-    hang = " " * (len(indent) + len(open_))
-    out, line = [], indent + open_
+    first = indent + open_
+    if len(first) + len(items[0]) + 1 > width:
+        out, hang = [first.rstrip()], indent + "    "
+        line = hang
+    else:
+        out, hang = [], " " * len(first)
+        line = first
     for n, item in enumerate(items):
         piece = item + (close if n == len(items) - 1 else ",")
-        if line.strip() and line not in (indent + open_,) and len(line) + 1 + len(piece) > width:
-            out.append(line.rstrip())
+        if line != hang and line != first and len(line) + 1 + len(piece) > width:
+            out.append(line)
             line = hang
-        line += piece if line in (indent + open_, hang) else " " + piece
+        line += piece if line in (first, hang) else " " + piece
     out.append(line)
     return "\n".join(out)
 
 
+def chain(names: list[str], value: str, indent: str = "", width: int = LIMIT) -> str:
+    """One chained assignment, `a = b = ... = value`: continued after a backslash under the
+    first name when it is long."""
+    out, line = [], indent
+    for name in names:
+        piece = f"{name} = "
+        if line.strip() and len(line) + len(piece) + len(value) + 2 > width:
+            out.append(line + "\\")
+            line = indent + "    "
+        line += piece
+    return "\n".join(out + [line + value])
+
+
+def pack(entries: str, column: int = 0, hang: int = 2, width: int = LIMIT) -> str:
+    """Entries that a template laid out one per line (the pieces of a table constructor), packed
+    into as few lines as fit from `column` on: one line when the whole fits, else continuation
+    lines indented `hang` more than the first (relative: the caller indents the block). One column
+    is left for the separator that follows the block."""
+    width -= 1
+    items = [e.strip() for e in entries.strip().splitlines() if e.strip()]
+    one = " ".join(items)
+    if column + len(one) <= width:
+        return one
+    out, line = [], ""
+    for item in items:
+        limit = width - column - (hang if out else 0)
+        if line and len(line) + 1 + len(item) > limit:
+            out.append(line)
+            line = item
+        else:
+            line = f"{line} {item}" if line else item
+    out.append(line)
+    return ("\n" + " " * hang).join(out)
+
+
 FILTERS = dict(c_comment=c_comment, line_comment=line_comment, docstring=docstring, trailing=trailing,
-               spread=spread)
+               spread=spread, chain=chain, pack=pack)
