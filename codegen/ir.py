@@ -55,6 +55,18 @@ def version_number(version: Version) -> int:
     return (major * 1000 + minor) * 1000 + min(bugfix, BUGFIX_ANY)
 
 
+def describe_start(version: Version) -> str:
+    """Where a span of versions starts, as a reader says it: "from 1.6", "from 5.25.1"; a start
+    past every bugfix release of a minor (bugfix above BUGFIX_ANY) is "after 1.5", and one past
+    every major the spec can name is "after every version"."""
+    major, minor, bugfix = version
+    if major >= 1 << 20:
+        return "after every version"
+    if bugfix > BUGFIX_ANY:
+        return f"after {major}.{minor}"
+    return f"from {version_text(version)}"
+
+
 @dataclass(frozen=True)
 class VersionRange:
     """Inclusive range of software versions; None means unbounded."""

@@ -1,9 +1,9 @@
 """Check that generated/ differs from an earlier revision in comments and layout only.
 
-    python3 scripts/layout_only.py [REV]      # REV defaults to main
+    python3 scripts/layout_only.py [REV]      # REV defaults to where this branch left main
 
-C: both revisions' urwire.c are compiled with -O2 and their object code (`objdump -d`) must be
-equal. Lua: `luac -l -l` listings of both urwire.lua, with line numbers and source names taken
+C: both revisions' urwire.c are compiled with -O2 and their object files (`objdump -d -s -r`:
+code, data and relocations) must be equal. Lua: `luac -l -l` listings of both urwire.lua, with line numbers and source names taken
 out, must be equal. Python: each generated module's syntax tree, docstrings left out, must be
 equal. It prints one line per file and exits 1 when any file behaves differently.
 """
@@ -29,7 +29,9 @@ def old_text(rev: str, path: str) -> str:
 def c_object_code(source_dir: Path) -> str:
     obj = source_dir / "urwire.o"
     subprocess.run(["gcc", "-std=c99", "-O2", "-c", str(source_dir / "urwire.c"), "-o", str(obj)], check=True)
-    listing = subprocess.run(["objdump", "-d", "--no-show-raw-insn", str(obj)], check=True,
+    # Code (-d), every section's bytes (-s: the tables are data) and the relocations (-r: what
+    # the tables' pointers point at).
+    listing = subprocess.run(["objdump", "-d", "-s", "-r", "--no-show-raw-insn", str(obj)], check=True,
                              capture_output=True, text=True).stdout
     return listing.split("\n", 2)[2]   # past the line that names the object file
 
@@ -63,7 +65,8 @@ def python_tree(text: str) -> str:
 
 
 def main(argv: list[str]) -> int:
-    rev = argv[1] if len(argv) > 1 else "main"
+    rev = argv[1] if len(argv) > 1 else subprocess.run(["git", "merge-base", "main", "HEAD"], cwd=ROOT, check=True,
+                                                       capture_output=True, text=True).stdout.strip()
     same = True
     with tempfile.TemporaryDirectory() as tmp:
         old, new = Path(tmp, "old"), Path(tmp, "new")
@@ -73,7 +76,7 @@ def main(argv: list[str]) -> int:
             (old / name).write_text(old_text(rev, f"generated/c/{name}"))
             shutil.copy(ROOT / "generated/c" / name, new / name)
         ok = c_object_code(old) == c_object_code(new)
-        print(f"generated/c/urwire.c: object code (gcc -O2) {'same' if ok else 'DIFFERS'}")
+        print(f"generated/c/urwire.c: object file (gcc -O2) {'same' if ok else 'DIFFERS'}")
         same &= ok
 
         (old / "urwire.lua").write_text(old_text(rev, "generated/lua/urwire.lua"))

@@ -605,8 +605,9 @@ class _Forms:
                     f = c["forms"][sent[0]]
                     first[c["code"]] = dict(kind="exact", size=f["sizes"][0]) if f["nsizes"] else \
                         dict(kind="open", size=f["min_size"])
-            start = "below %d.%d.%d" % self.starts[0] if k == 0 else "from %d.%d.%d" % sample
-            rows.append(dict(forms=row, first=first, start=start))
+            start = "below every version" if k == 0 else ir.describe_start(sample)
+            cells = [f"URWIRE__NEAREST | {n & 0x7f}" if n & 0x80 else str(n) for n in row]
+            rows.append(dict(forms=row, cells=cells, first=first, start=start))
         return dict(tag=tag, what=what, codes=codes, ncodes=ncodes, rows=rows, first_sizes=first_sizes)
 
 

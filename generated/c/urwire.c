@@ -5313,66 +5313,134 @@ static const urwire__forms urwire__package_forms[] = {
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
- * number in urwire__package_form_list plus one; 0 for none. */
+ * number in urwire__package_form_list plus one; 0 for none; URWIRE__NEAREST | n where the code sends
+ * no form there and form n, the nearest version's below, stands in. */
 static const uint8_t urwire__package_mine[] = {
-    129, 133, 134, 135, 140, 142, 144, 147, 148, 152, 153, 154, 155, 156,  /* below 0.0.0 */
-    1, 5, 6, 7, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,  /* from 0.0.0 */
-    1, 5, 6, 135, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,  /* from 1.5.1000 */
-    1, 5, 6, 8, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,  /* from 1.6.0 */
-    1, 5, 6, 8, 12, 142, 16, 19, 148, 24, 25, 26, 27, 28,  /* from 1.7.1000 */
-    1, 5, 6, 8, 12, 15, 16, 19, 21, 24, 25, 26, 27, 28,  /* from 1.8.0 */
-    129, 133, 134, 136, 140, 143, 144, 147, 149, 152, 153, 154, 155, 156,  /* from 1.8.1000 */
-    2, 5, 6, 9, 12, 15, 17, 19, 21, 24, 25, 26, 27, 28,  /* from 3.0.0 */
-    2, 5, 6, 9, 140, 15, 17, 19, 21, 24, 25, 26, 27, 28,  /* from 3.0.1000 */
-    2, 5, 6, 9, 13, 15, 17, 19, 21, 24, 25, 26, 27, 28,  /* from 3.1.0 */
-    130, 5, 6, 137, 13, 15, 17, 19, 149, 24, 25, 26, 27, 28,  /* from 3.1.1000 */
-    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.2.0 */
-    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.2.1000 */
-    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.3.0 */
-    131, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.4.1000 */
-    4, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.5.0 */
-    4, 5, 6, 138, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.9.1000 */
-    4, 5, 6, 11, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.10.0 */
-    132, 133, 134, 139, 141, 143, 145, 147, 150, 152, 153, 154, 155, 156,  /* from 3.15.1000 */
-    4, 5, 6, 10, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,  /* from 5.0.0 */
-    4, 5, 6, 138, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,  /* from 5.3.1000 */
-    4, 5, 6, 11, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,  /* from 5.4.0 */
-    4, 5, 6, 11, 13, 15, 18, 19, 23, 24, 25, 26, 27, 28,  /* from 5.25.1 */
-    132, 133, 134, 139, 141, 143, 146, 147, 151, 152, 153, 154, 155, 156,  /* from 5.99.1000 */
-    4, 5, 6, 11, 13, 15, 18, 19, 23, 24, 25, 26, 27, 28,  /* from 10.0.0 */
-    132, 133, 134, 139, 141, 143, 146, 147, 151, 152, 153, 154, 155, 156,  /* from 1048576.0.1 */
+    /* below every version */
+    URWIRE__NEAREST | 1, URWIRE__NEAREST | 5, URWIRE__NEAREST | 6, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12,
+    URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, URWIRE__NEAREST | 19, URWIRE__NEAREST | 20, URWIRE__NEAREST | 24,
+    URWIRE__NEAREST | 25, URWIRE__NEAREST | 26, URWIRE__NEAREST | 27, URWIRE__NEAREST | 28,
+    /* from 0.0 */
+    1, 5, 6, 7, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,
+    /* after 1.5 */
+    1, 5, 6, URWIRE__NEAREST | 7, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,
+    /* from 1.6 */
+    1, 5, 6, 8, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,
+    /* after 1.7 */
+    1, 5, 6, 8, 12, URWIRE__NEAREST | 14, 16, 19, URWIRE__NEAREST | 20, 24, 25, 26, 27, 28,
+    /* from 1.8 */
+    1, 5, 6, 8, 12, 15, 16, 19, 21, 24, 25, 26, 27, 28,
+    /* after 1.8 */
+    URWIRE__NEAREST | 1, URWIRE__NEAREST | 5, URWIRE__NEAREST | 6, URWIRE__NEAREST | 8, URWIRE__NEAREST | 12,
+    URWIRE__NEAREST | 15, URWIRE__NEAREST | 16, URWIRE__NEAREST | 19, URWIRE__NEAREST | 21, URWIRE__NEAREST | 24,
+    URWIRE__NEAREST | 25, URWIRE__NEAREST | 26, URWIRE__NEAREST | 27, URWIRE__NEAREST | 28,
+    /* from 3.0 */
+    2, 5, 6, 9, 12, 15, 17, 19, 21, 24, 25, 26, 27, 28,
+    /* after 3.0 */
+    2, 5, 6, 9, URWIRE__NEAREST | 12, 15, 17, 19, 21, 24, 25, 26, 27, 28,
+    /* from 3.1 */
+    2, 5, 6, 9, 13, 15, 17, 19, 21, 24, 25, 26, 27, 28,
+    /* after 3.1 */
+    URWIRE__NEAREST | 2, 5, 6, URWIRE__NEAREST | 9, 13, 15, 17, 19, URWIRE__NEAREST | 21, 24, 25, 26, 27, 28,
+    /* from 3.2 */
+    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
+    /* after 3.2 */
+    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
+    /* from 3.3 */
+    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
+    /* after 3.4 */
+    URWIRE__NEAREST | 3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
+    /* from 3.5 */
+    4, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
+    /* after 3.9 */
+    4, 5, 6, URWIRE__NEAREST | 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
+    /* from 3.10 */
+    4, 5, 6, 11, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
+    /* after 3.15 */
+    URWIRE__NEAREST | 4, URWIRE__NEAREST | 5, URWIRE__NEAREST | 6, URWIRE__NEAREST | 11, URWIRE__NEAREST | 13,
+    URWIRE__NEAREST | 15, URWIRE__NEAREST | 17, URWIRE__NEAREST | 19, URWIRE__NEAREST | 22, URWIRE__NEAREST | 24,
+    URWIRE__NEAREST | 25, URWIRE__NEAREST | 26, URWIRE__NEAREST | 27, URWIRE__NEAREST | 28,
+    /* from 5.0 */
+    4, 5, 6, 10, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,
+    /* after 5.3 */
+    4, 5, 6, URWIRE__NEAREST | 10, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,
+    /* from 5.4 */
+    4, 5, 6, 11, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,
+    /* from 5.25.1 */
+    4, 5, 6, 11, 13, 15, 18, 19, 23, 24, 25, 26, 27, 28,
+    /* after 5.99 */
+    URWIRE__NEAREST | 4, URWIRE__NEAREST | 5, URWIRE__NEAREST | 6, URWIRE__NEAREST | 11, URWIRE__NEAREST | 13,
+    URWIRE__NEAREST | 15, URWIRE__NEAREST | 18, URWIRE__NEAREST | 19, URWIRE__NEAREST | 23, URWIRE__NEAREST | 24,
+    URWIRE__NEAREST | 25, URWIRE__NEAREST | 26, URWIRE__NEAREST | 27, URWIRE__NEAREST | 28,
+    /* from 10.0 */
+    4, 5, 6, 11, 13, 15, 18, 19, 23, 24, 25, 26, 27, 28,
+    /* after every version */
+    URWIRE__NEAREST | 4, URWIRE__NEAREST | 5, URWIRE__NEAREST | 6, URWIRE__NEAREST | 11, URWIRE__NEAREST | 13,
+    URWIRE__NEAREST | 15, URWIRE__NEAREST | 18, URWIRE__NEAREST | 19, URWIRE__NEAREST | 23, URWIRE__NEAREST | 24,
+    URWIRE__NEAREST | 25, URWIRE__NEAREST | 26, URWIRE__NEAREST | 27, URWIRE__NEAREST | 28,
 };
 
 
 /* The same rows in brief, for the robot-state fast path: the first exact size of the form the
  * segment sends, URWIRE__OPEN(least) for an open-ended one, URWIRE__NONE for none. */
 static const uint32_t urwire__package_first_sizes[] = {
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* below 0.0.0 */
-    24u, 246u, 32u, 56u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 0.0.0 */
-    24u, 246u, 32u, URWIRE__NONE, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.5.1000 */
-    24u, 246u, 32u, 59u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.6.0 */
-    24u, 246u, 32u, 59u, 48u, URWIRE__NONE, 464u, 56u, URWIRE__NONE, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.7.1000 */
-    24u, 246u, 32u, 59u, 48u, 220u, 464u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.8.0 */
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 1.8.1000 */
-    33u, 246u, 32u, 67u, 48u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.0.0 */
-    33u, 246u, 32u, 67u, URWIRE__NONE, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.0.1000 */
-    33u, 246u, 32u, 67u, 96u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.1.0 */
-    URWIRE__NONE, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, URWIRE__NONE, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.1.1000 */
-    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.2.0 */
-    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.2.1000 */
-    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.3.0 */
-    URWIRE__NONE, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.4.1000 */
-    42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.5.0 */
-    42u, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.9.1000 */
-    42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.10.0 */
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 3.15.1000 */
-    42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.0.0 */
-    42u, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.3.1000 */
-    42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.4.0 */
-    42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.25.1 */
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 5.99.1000 */
-    42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 10.0.0 */
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 1048576.0.1 */
+    /* below every version */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    /* from 0.0 */
+    24u, 246u, 32u, 56u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after 1.5 */
+    24u, 246u, 32u, URWIRE__NONE, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* from 1.6 */
+    24u, 246u, 32u, 59u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after 1.7 */
+    24u, 246u, 32u, 59u, 48u, URWIRE__NONE, 464u, 56u, URWIRE__NONE, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* from 1.8 */
+    24u, 246u, 32u, 59u, 48u, 220u, 464u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after 1.8 */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    /* from 3.0 */
+    33u, 246u, 32u, 67u, 48u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after 3.0 */
+    33u, 246u, 32u, 67u, URWIRE__NONE, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* from 3.1 */
+    33u, 246u, 32u, 67u, 96u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after 3.1 */
+    URWIRE__NONE, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, URWIRE__NONE, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* from 3.2 */
+    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after 3.2 */
+    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* from 3.3 */
+    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after 3.4 */
+    URWIRE__NONE, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* from 3.5 */
+    42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after 3.9 */
+    42u, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* from 3.10 */
+    42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after 3.15 */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    /* from 5.0 */
+    42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after 5.3 */
+    42u, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* from 5.4 */
+    42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* from 5.25.1 */
+    42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after 5.99 */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    /* from 10.0 */
+    42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* after every version */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
 };
 
 static const urwire__form_table urwire__package_form_table = {
@@ -5428,34 +5496,72 @@ static const urwire__forms urwire__robot_message_forms[] = {
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
- * number in urwire__robot_message_form_list plus one; 0 for none. */
+ * number in urwire__robot_message_form_list plus one; 0 for none; URWIRE__NEAREST | n where the code sends
+ * no form there and form n, the nearest version's below, stands in. */
 static const uint8_t urwire__robot_message_mine[] = {
-    143, 139, 137, 129, 0, 131, 133, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* below 0.0.0 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 0.0.0 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.5.1000 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.6.0 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.7.1000 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.8.0 */
-    143, 139, 137, 129, 0, 131, 133, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 1.8.1000 */
-    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.0.0 */
-    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.0.1000 */
-    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.1.0 */
-    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.1.1000 */
-    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.2.0 */
-    15, 139, 10, 129, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.2.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.3.0 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.4.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.5.0 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.9.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.10.0 */
-    143, 139, 138, 130, 0, 132, 134, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 3.15.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.0.0 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.3.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.4.0 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.25.1 */
-    143, 139, 138, 130, 0, 132, 134, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 5.99.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 10.0.0 */
-    143, 139, 138, 130, 0, 132, 134, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 1048576.0.1 */
+    /* below every version */
+    URWIRE__NEAREST | 15, URWIRE__NEAREST | 11, URWIRE__NEAREST | 9, URWIRE__NEAREST | 1, 0, URWIRE__NEAREST | 3,
+    URWIRE__NEAREST | 5, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12, URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, 0, 0, 0,
+    URWIRE__NEAREST | 8, 0, 0, 0, URWIRE__NEAREST | 13,
+    /* from 0.0 */
+    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after 1.5 */
+    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* from 1.6 */
+    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after 1.7 */
+    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* from 1.8 */
+    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after 1.8 */
+    URWIRE__NEAREST | 15, URWIRE__NEAREST | 11, URWIRE__NEAREST | 9, URWIRE__NEAREST | 1, 0, URWIRE__NEAREST | 3,
+    URWIRE__NEAREST | 5, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12, URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, 0, 0, 0,
+    URWIRE__NEAREST | 8, 0, 0, 0, URWIRE__NEAREST | 13,
+    /* from 3.0 */
+    15, URWIRE__NEAREST | 11, 10, 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after 3.0 */
+    15, URWIRE__NEAREST | 11, 10, 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* from 3.1 */
+    15, URWIRE__NEAREST | 11, 10, 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after 3.1 */
+    15, URWIRE__NEAREST | 11, 10, 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* from 3.2 */
+    15, URWIRE__NEAREST | 11, 10, 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after 3.2 */
+    15, URWIRE__NEAREST | 11, 10, URWIRE__NEAREST | 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0,
+    13,
+    /* from 3.3 */
+    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after 3.4 */
+    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* from 3.5 */
+    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after 3.9 */
+    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* from 3.10 */
+    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after 3.15 */
+    URWIRE__NEAREST | 15, URWIRE__NEAREST | 11, URWIRE__NEAREST | 10, URWIRE__NEAREST | 2, 0, URWIRE__NEAREST | 4,
+    URWIRE__NEAREST | 6, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12, URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, 0, 0, 0,
+    URWIRE__NEAREST | 8, 0, 0, 0, URWIRE__NEAREST | 13,
+    /* from 5.0 */
+    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after 5.3 */
+    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* from 5.4 */
+    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* from 5.25.1 */
+    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after 5.99 */
+    URWIRE__NEAREST | 15, URWIRE__NEAREST | 11, URWIRE__NEAREST | 10, URWIRE__NEAREST | 2, 0, URWIRE__NEAREST | 4,
+    URWIRE__NEAREST | 6, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12, URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, 0, 0, 0,
+    URWIRE__NEAREST | 8, 0, 0, 0, URWIRE__NEAREST | 13,
+    /* from 10.0 */
+    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
+    /* after every version */
+    URWIRE__NEAREST | 15, URWIRE__NEAREST | 11, URWIRE__NEAREST | 10, URWIRE__NEAREST | 2, 0, URWIRE__NEAREST | 4,
+    URWIRE__NEAREST | 6, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12, URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, 0, 0, 0,
+    URWIRE__NEAREST | 8, 0, 0, 0, URWIRE__NEAREST | 13,
 };
 
 
@@ -5478,34 +5584,61 @@ static const urwire__forms urwire__program_state_forms[] = {
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
- * number in urwire__program_state_form_list plus one; 0 for none. */
+ * number in urwire__program_state_form_list plus one; 0 for none; URWIRE__NEAREST | n where the code sends
+ * no form there and form n, the nearest version's below, stands in. */
 static const uint8_t urwire__program_state_mine[] = {
-    129, 130,  /* below 0.0.0 */
-    1, 2,  /* from 0.0.0 */
-    1, 2,  /* from 1.5.1000 */
-    1, 2,  /* from 1.6.0 */
-    1, 2,  /* from 1.7.1000 */
-    1, 2,  /* from 1.8.0 */
-    129, 130,  /* from 1.8.1000 */
-    1, 2,  /* from 3.0.0 */
-    1, 2,  /* from 3.0.1000 */
-    1, 2,  /* from 3.1.0 */
-    1, 2,  /* from 3.1.1000 */
-    1, 2,  /* from 3.2.0 */
-    1, 2,  /* from 3.2.1000 */
-    1, 2,  /* from 3.3.0 */
-    1, 2,  /* from 3.4.1000 */
-    1, 2,  /* from 3.5.0 */
-    1, 2,  /* from 3.9.1000 */
-    1, 2,  /* from 3.10.0 */
-    129, 130,  /* from 3.15.1000 */
-    1, 2,  /* from 5.0.0 */
-    1, 2,  /* from 5.3.1000 */
-    1, 2,  /* from 5.4.0 */
-    1, 2,  /* from 5.25.1 */
-    129, 130,  /* from 5.99.1000 */
-    1, 2,  /* from 10.0.0 */
-    129, 130,  /* from 1048576.0.1 */
+    /* below every version */
+    URWIRE__NEAREST | 1, URWIRE__NEAREST | 2,
+    /* from 0.0 */
+    1, 2,
+    /* after 1.5 */
+    1, 2,
+    /* from 1.6 */
+    1, 2,
+    /* after 1.7 */
+    1, 2,
+    /* from 1.8 */
+    1, 2,
+    /* after 1.8 */
+    URWIRE__NEAREST | 1, URWIRE__NEAREST | 2,
+    /* from 3.0 */
+    1, 2,
+    /* after 3.0 */
+    1, 2,
+    /* from 3.1 */
+    1, 2,
+    /* after 3.1 */
+    1, 2,
+    /* from 3.2 */
+    1, 2,
+    /* after 3.2 */
+    1, 2,
+    /* from 3.3 */
+    1, 2,
+    /* after 3.4 */
+    1, 2,
+    /* from 3.5 */
+    1, 2,
+    /* after 3.9 */
+    1, 2,
+    /* from 3.10 */
+    1, 2,
+    /* after 3.15 */
+    URWIRE__NEAREST | 1, URWIRE__NEAREST | 2,
+    /* from 5.0 */
+    1, 2,
+    /* after 5.3 */
+    1, 2,
+    /* from 5.4 */
+    1, 2,
+    /* from 5.25.1 */
+    1, 2,
+    /* after 5.99 */
+    URWIRE__NEAREST | 1, URWIRE__NEAREST | 2,
+    /* from 10.0 */
+    1, 2,
+    /* after every version */
+    URWIRE__NEAREST | 1, URWIRE__NEAREST | 2,
 };
 
 
@@ -5679,7 +5812,7 @@ URWIRE__INLINE bool urwire__fast_member(int path, uint8_t type, size_t body_size
                                         urwire__fast_bits *bits, urwire_error *err)
 {
     switch (path) {
-    case 1:  /* from 5.4.0 */
+    case 1:  /* from 5.4 */
         switch (type) {
         case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:  /* 3.5 and later */
             if (body_size != 42u)
@@ -5808,7 +5941,7 @@ URWIRE__INLINE bool urwire__fast_member(int path, uint8_t type, size_t body_size
         default:
             return false;
         }
-    case 2:  /* from 5.25.1, from 10.0.0 */
+    case 2:  /* from 5.25.1, from 10.0 */
         switch (type) {
         case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:  /* 3.5 and later */
             if (body_size != 42u)

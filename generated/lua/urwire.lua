@@ -2403,60 +2403,100 @@ PART.singularity_info = { name = "singularity_info", label = "Singularity info",
 -- the body size (runtime/versions.lua); `single` when one form serves every version.
 local ROBOT_STATE_PACKAGES = {
     [0] = { single = false, summary = true,
-        { of = PART.robot_mode_data, ranges = { { low = nil, high = 1008999 } }, sizes = { [24] = true }, min = 24, rep = 1008999, versions = "up to 1.8" },
-        { of = PART.robot_mode_data, ranges = { { low = 3000000, high = 3001999 } }, sizes = { [33] = true }, min = 33, rep = 3001999, versions = "3.0 to 3.1" },
-        { of = PART.robot_mode_data, ranges = { { low = 3002000, high = 3004999 } }, sizes = { [41] = true }, min = 41, rep = 3004999, versions = "3.2 to 3.4" },
-        { of = PART.robot_mode_data, ranges = { { low = 3005000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [42] = true }, min = 42, rep = 5009000, versions = "3.5 and later" },
+        { of = PART.robot_mode_data, ranges = { { low = nil, high = 1008999 } }, sizes = { [24] = true }, min = 24,
+          rep = 1008999, versions = "up to 1.8" },
+        { of = PART.robot_mode_data, ranges = { { low = 3000000, high = 3001999 } }, sizes = { [33] = true }, min = 33,
+          rep = 3001999, versions = "3.0 to 3.1" },
+        { of = PART.robot_mode_data, ranges = { { low = 3002000, high = 3004999 } }, sizes = { [41] = true }, min = 41,
+          rep = 3004999, versions = "3.2 to 3.4" },
+        { of = PART.robot_mode_data, ranges = { { low = 3005000, high = 3015999 }, { low = 5000000, high = 5099999 },
+          { low = 10000000, high = nil } }, sizes = { [42] = true }, min = 42, rep = 5009000,
+          versions = "3.5 and later" },
     },
     [1] = { single = false, summary = false,
-        { of = PART.joint_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [246] = true }, min = 246, rep = 5009000, versions = "all versions" },
+        { of = PART.joint_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [246] = true }, min = 246,
+          rep = 5009000, versions = "all versions" },
     },
     [2] = { single = false, summary = false,
-        { of = PART.tool_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [32] = true }, min = 32, rep = 5009000, versions = "all versions" },
+        { of = PART.tool_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [32] = true }, min = 32,
+          rep = 5009000, versions = "all versions" },
     },
     [3] = { single = false, summary = true,
-        { of = PART.masterboard_data, ranges = { { low = nil, high = 1005999 } }, sizes = { [56] = true }, min = 56, rep = 1005999, versions = "up to 1.5" },
-        { of = PART.masterboard_data, ranges = { { low = 1006000, high = 1008999 } }, sizes = { [59] = true, [71] = true }, min = 59, rep = 1008999, versions = "1.6 to 1.8" },
-        { of = PART.masterboard_data, ranges = { { low = 3000000, high = 3001999 } }, sizes = { [67] = true, [83] = true }, min = 67, rep = 3001999, versions = "3.0 to 3.1" },
-        { of = PART.masterboard_data, ranges = { { low = 3002000, high = 3009999 }, { low = 5000000, high = 5003999 } }, sizes = { [69] = true, [85] = true }, min = 69, rep = 5003999, versions = "3.2 to 3.9 or 5.0 to 5.3" },
-        { of = PART.masterboard_data, ranges = { { low = 3010000, high = 3015999 }, { low = 5004000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [70] = true, [86] = true }, min = 70, rep = 5009000, versions = "3.10 to 3.15 or 5.4 and later" },
+        { of = PART.masterboard_data, ranges = { { low = nil, high = 1005999 } }, sizes = { [56] = true }, min = 56,
+          rep = 1005999, versions = "up to 1.5" },
+        { of = PART.masterboard_data, ranges = { { low = 1006000, high = 1008999 } },
+          sizes = { [59] = true, [71] = true }, min = 59, rep = 1008999, versions = "1.6 to 1.8" },
+        { of = PART.masterboard_data, ranges = { { low = 3000000, high = 3001999 } },
+          sizes = { [67] = true, [83] = true }, min = 67, rep = 3001999, versions = "3.0 to 3.1" },
+        { of = PART.masterboard_data, ranges = { { low = 3002000, high = 3009999 }, { low = 5000000, high = 5003999 }
+          }, sizes = { [69] = true, [85] = true }, min = 69, rep = 5003999, versions = "3.2 to 3.9 or 5.0 to 5.3" },
+        { of = PART.masterboard_data, ranges = { { low = 3010000, high = 3015999 }, { low = 5004000, high = 5099999 },
+          { low = 10000000, high = nil } }, sizes = { [70] = true, [86] = true }, min = 70, rep = 5009000,
+          versions = "3.10 to 3.15 or 5.4 and later" },
     },
     [4] = { single = false, summary = false,
-        { of = PART.cartesian_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3000999 } }, sizes = { [48] = true }, min = 48, rep = 3000999, versions = "up to 3.0" },
-        { of = PART.cartesian_info, ranges = { { low = 3001000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [96] = true }, min = 96, rep = 5009000, versions = "3.1 and later" },
+        { of = PART.cartesian_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3000999 } },
+          sizes = { [48] = true }, min = 48, rep = 3000999, versions = "up to 3.0" },
+        { of = PART.cartesian_info, ranges = { { low = 3001000, high = 3015999 }, { low = 5000000, high = 5099999 },
+          { low = 10000000, high = nil } }, sizes = { [96] = true }, min = 96, rep = 5009000,
+          versions = "3.1 and later" },
     },
     [5] = { single = false, summary = false,
-        { of = PART.laser_pointer, ranges = { { low = nil, high = 1007999 } }, sizes = { [24] = true }, min = 24, rep = 1007999, versions = "up to 1.7" },
-        { of = PART.kinematics_info, ranges = { { low = 1008000, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [220] = true }, min = 220, rep = 5009000, versions = "1.8 and later" },
+        { of = PART.laser_pointer, ranges = { { low = nil, high = 1007999 } }, sizes = { [24] = true }, min = 24,
+          rep = 1007999, versions = "up to 1.7" },
+        { of = PART.kinematics_info, ranges = { { low = 1008000, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [220] = true }, min = 220,
+          rep = 5009000, versions = "1.8 and later" },
     },
     [6] = { single = false, summary = false,
-        { of = PART.configuration_data, ranges = { { low = nil, high = 1008999 } }, sizes = { [464] = true }, min = 464, rep = 1008999, versions = "up to 1.8" },
-        { of = PART.configuration_data, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5025000 } }, sizes = { [440] = true }, min = 440, rep = 5009000, versions = "3.0 to 5.25.0" },
-        { of = PART.configuration_data, ranges = { { low = 5025001, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [444] = true }, min = 444, rep = 5025001, versions = "5.25.1 and later" },
+        { of = PART.configuration_data, ranges = { { low = nil, high = 1008999 } }, sizes = { [464] = true },
+          min = 464, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.configuration_data, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5025000 }
+          }, sizes = { [440] = true }, min = 440, rep = 5009000, versions = "3.0 to 5.25.0" },
+        { of = PART.configuration_data, ranges = { { low = 5025001, high = 5099999 }, { low = 10000000, high = nil } },
+          sizes = { [444] = true }, min = 444, rep = 5025001, versions = "5.25.1 and later" },
     },
     [7] = { single = false, summary = false,
-        { of = PART.force_mode_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [56] = true }, min = 56, rep = 5009000, versions = "all versions" },
+        { of = PART.force_mode_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [56] = true }, min = 56,
+          rep = 5009000, versions = "all versions" },
     },
     [8] = { single = false, summary = false,
-        { of = PART.additional_info, ranges = { { low = nil, high = 1007999 } }, sizes = { [5] = true }, min = 5, rep = 1007999, versions = "up to 1.7" },
-        { of = PART.additional_info, ranges = { { low = 1008000, high = 1008999 }, { low = 3000000, high = 3001999 } }, sizes = { [2] = true }, min = 2, rep = 3001999, versions = "1.8 to 3.1" },
-        { of = PART.additional_info, ranges = { { low = 3002000, high = 3015999 } }, sizes = { [3] = true }, min = 3, rep = 3015999, versions = "3.2 to 3.15" },
-        { of = PART.additional_info, ranges = { { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [4] = true }, min = 4, rep = 5009000, versions = "5.0 and later" },
+        { of = PART.additional_info, ranges = { { low = nil, high = 1007999 } }, sizes = { [5] = true }, min = 5,
+          rep = 1007999, versions = "up to 1.7" },
+        { of = PART.additional_info, ranges = { { low = 1008000, high = 1008999 }, { low = 3000000, high = 3001999 } },
+          sizes = { [2] = true }, min = 2, rep = 3001999, versions = "1.8 to 3.1" },
+        { of = PART.additional_info, ranges = { { low = 3002000, high = 3015999 } }, sizes = { [3] = true }, min = 3,
+          rep = 3015999, versions = "3.2 to 3.15" },
+        { of = PART.additional_info, ranges = { { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } },
+          sizes = { [4] = true }, min = 4, rep = 5009000, versions = "5.0 and later" },
     },
     [9] = { single = false, summary = false,
-        { of = PART.calibration_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [48] = true }, min = 48, rep = 5009000, versions = "all versions" },
+        { of = PART.calibration_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [48] = true }, min = 48,
+          rep = 5009000, versions = "all versions" },
     },
     [10] = { single = false, summary = false,
-        { of = PART.safety_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+        { of = PART.safety_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000,
+          versions = "all versions" },
     },
     [11] = { single = false, summary = false,
-        { of = PART.tool_comm_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [21] = true }, min = 21, rep = 5009000, versions = "all versions" },
+        { of = PART.tool_comm_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [21] = true }, min = 21,
+          rep = 5009000, versions = "all versions" },
     },
     [12] = { single = false, summary = false,
-        { of = PART.tool_mode_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [3] = true }, min = 3, rep = 5009000, versions = "all versions" },
+        { of = PART.tool_mode_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [3] = true }, min = 3,
+          rep = 5009000, versions = "all versions" },
     },
     [13] = { single = false, summary = false,
-        { of = PART.singularity_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [2] = true }, min = 2, rep = 5009000, versions = "all versions" },
+        { of = PART.singularity_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [2] = true }, min = 2,
+          rep = 5009000, versions = "all versions" },
     },
 }
 
@@ -2498,44 +2538,67 @@ PART.runtime_exception = { name = "runtime_exception", label = "Runtime exceptio
 -- the body size (runtime/versions.lua); `single` when one form serves every version.
 local ROBOT_MESSAGE_SUBTYPES = {
     [0] = { single = false,
-        { of = PART.text, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+        { of = PART.text, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000,
+          versions = "all versions" },
     },
     [1] = { single = false,
-        { of = PART.label, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 4, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.label, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 4, rep = 1008999,
+          versions = "up to 1.8" },
     },
     [2] = { single = false,
-        { of = PART.popup, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 3, rep = 1008999, versions = "up to 1.8" },
-        { of = PART.popup, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 12, rep = 5009000, versions = "3.0 and later" },
+        { of = PART.popup, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 3, rep = 1008999,
+          versions = "up to 1.8" },
+        { of = PART.popup, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 },
+          { low = 10000000, high = nil } }, sizes = nil, min = 12, rep = 5009000, versions = "3.0 and later" },
     },
     [3] = { single = false,
-        { of = PART.version, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3002999 } }, sizes = nil, min = 7, rep = 3002999, versions = "up to 3.2" },
-        { of = PART.version, ranges = { { low = 3003000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 11, rep = 5009000, versions = "3.3 and later" },
+        { of = PART.version, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3002999 } },
+          sizes = nil, min = 7, rep = 3002999, versions = "up to 3.2" },
+        { of = PART.version, ranges = { { low = 3003000, high = 3015999 }, { low = 5000000, high = 5099999 },
+          { low = 10000000, high = nil } }, sizes = nil, min = 11, rep = 5009000, versions = "3.3 and later" },
     },
     [5] = { single = false,
-        { of = PART.safety_mode, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999, versions = "up to 1.8" },
-        { of = PART.safety_mode, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [17] = true }, min = 17, rep = 5009000, versions = "3.0 and later" },
+        { of = PART.safety_mode, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999,
+          versions = "up to 1.8" },
+        { of = PART.safety_mode, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 },
+          { low = 10000000, high = nil } }, sizes = { [17] = true }, min = 17, rep = 5009000,
+          versions = "3.0 and later" },
     },
     [6] = { single = false,
-        { of = PART.robot_comm, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999, versions = "up to 1.8" },
-        { of = PART.robot_comm, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 20, rep = 5009000, versions = "3.0 and later" },
+        { of = PART.robot_comm, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999,
+          versions = "up to 1.8" },
+        { of = PART.robot_comm, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 },
+          { low = 10000000, high = nil } }, sizes = nil, min = 20, rep = 5009000, versions = "3.0 and later" },
     },
     [7] = { single = false,
-        { of = PART.key, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 9, rep = 5009000, versions = "all versions" },
+        { of = PART.key, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 9, rep = 5009000,
+          versions = "all versions" },
     },
     [8] = { single = false,
-        { of = PART.var, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 9, rep = 1008999, versions = "up to 1.8" },
+        { of = PART.var, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 9, rep = 1008999,
+          versions = "up to 1.8" },
     },
     [9] = { single = false,
-        { of = PART.request_value, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000, versions = "all versions" },
+        { of = PART.request_value, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000,
+          versions = "all versions" },
     },
     [10] = { single = false,
-        { of = PART.runtime_exception, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000, versions = "all versions" },
+        { of = PART.runtime_exception, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000,
+          versions = "all versions" },
     },
     [14] = { single = false,
-        { of = PART.program_threads, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000, versions = "all versions" },
+        { of = PART.program_threads, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000,
+          versions = "all versions" },
     },
     [18] = { single = false,
-        { of = PART.hardware_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [12] = true }, min = 12, rep = 5009000, versions = "all versions" },
+        { of = PART.hardware_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
+          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [12] = true }, min = 12,
+          rep = 5009000, versions = "all versions" },
     },
 }
 
@@ -2560,10 +2623,14 @@ PART.global_variables_update = { name = "global_variables_update", label = "Glob
 -- the body size (runtime/versions.lua); `single` when one form serves every version.
 local PROGRAM_STATE_SUBTYPES = {
     [0] = { single = false,
-        { of = PART.global_variables_setup, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
+        { of = PART.global_variables_setup, ranges = { { low = nil, high = 1008999 },
+          { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } },
+          sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
     },
     [1] = { single = false,
-        { of = PART.global_variables_update, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
+        { of = PART.global_variables_update, ranges = { { low = nil, high = 1008999 },
+          { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } },
+          sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
     },
 }
 
@@ -2626,25 +2693,44 @@ local spec, rt = ...
 local ur = spec.proto
 
 local X = {
-    raw = ProtoField.bytes("ur.raw", "Raw", base.NONE, "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),
-    extra = ProtoField.bytes("ur.extra", "Extra bytes", base.NONE, "Bytes after the known layout of a package or message."),
-    skipped = ProtoField.bytes("ur.skipped", "Skipped bytes", base.NONE, "Bytes skipped while looking for the next plausible message header."),
-    version = ProtoField.string("ur.software_version", "Software version", base.ASCII, "The software version this message is read with (its layouts, enum names and value types): the stream's Version message, else the ur.version preference, else what the layout sizes show (\"3.2 to 3.4 (from layout sizes)\"), else the default."),
-    assumed = ProtoField.bool("ur.version_assumed", "Version assumed", base.NONE, nil, nil, "True when no Version message was seen on this stream: the version comes from the ur.version preference, the layout sizes or the default."),
-    unknown_package = ProtoField.none("ur.unknown_package", "Unknown package", "A sub-package type the spec does not lay out, kept raw."),
-    urscript = ProtoField.string("ur.urscript", "URScript", base.UNICODE, "Bytes from the client to the robot: URScript program text."),
+    raw = ProtoField.bytes("ur.raw", "Raw", base.NONE,
+        "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),
+    extra = ProtoField.bytes("ur.extra", "Extra bytes", base.NONE,
+        "Bytes after the known layout of a package or message."),
+    skipped = ProtoField.bytes("ur.skipped", "Skipped bytes", base.NONE,
+        "Bytes skipped while looking for the next plausible message header."),
+    version = ProtoField.string("ur.software_version", "Software version", base.ASCII,
+        "The software version this message is read with (its layouts, enum names and value types): \z
+        the stream's Version message, else the ur.version preference, else what the layout sizes \z
+        show (\"3.2 to 3.4 (from layout sizes)\"), else the default."),
+    assumed = ProtoField.bool("ur.version_assumed", "Version assumed", base.NONE, nil, nil,
+        "True when no Version message was seen on this stream: the version comes from the \z
+        ur.version preference, the layout sizes or the default."),
+    unknown_package = ProtoField.none("ur.unknown_package", "Unknown package",
+        "A sub-package type the spec does not lay out, kept raw."),
+    urscript = ProtoField.string("ur.urscript", "URScript", base.UNICODE,
+        "Bytes from the client to the robot: URScript program text."),
 }
 
 local E = {
-    bad_length = ProtoExpert.new("ur.bad_length", "Message length out of range (resynchronising)", expert.group.MALFORMED, expert.severity.ERROR),
-    bad_type = ProtoExpert.new("ur.bad_type", "Unknown message type (resynchronising)", expert.group.MALFORMED, expert.severity.ERROR),
-    malformed = ProtoExpert.new("ur.malformed", "Package or message too short or malformed", expert.group.MALFORMED, expert.severity.ERROR),
-    extra = ProtoExpert.new("ur.extra_bytes", "Bytes after the known layout", expert.group.PROTOCOL, expert.severity.WARN),
-    unknown = ProtoExpert.new("ur.unknown", "Type not laid out by the spec, kept raw", expert.group.UNDECODED, expert.severity.NOTE),
-    assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)", expert.group.ASSUMPTION, expert.severity.NOTE),
-    by_length = ProtoExpert.new("ur.layout_by_length", "Layout chosen by its length, not by the software version", expert.group.ASSUMPTION, expert.severity.NOTE),
-    items_hidden = ProtoExpert.new("ur.items_hidden", "More tree items than a message shows", expert.group.UNDECODED, expert.severity.NOTE),
-    internal = ProtoExpert.new("ur.internal_error", "urwire dissector error", expert.group.MALFORMED, expert.severity.ERROR),
+    bad_length = ProtoExpert.new("ur.bad_length", "Message length out of range (resynchronising)",
+        expert.group.MALFORMED, expert.severity.ERROR),
+    bad_type = ProtoExpert.new("ur.bad_type", "Unknown message type (resynchronising)",
+        expert.group.MALFORMED, expert.severity.ERROR),
+    malformed = ProtoExpert.new("ur.malformed", "Package or message too short or malformed",
+        expert.group.MALFORMED, expert.severity.ERROR),
+    extra = ProtoExpert.new("ur.extra_bytes", "Bytes after the known layout",
+        expert.group.PROTOCOL, expert.severity.WARN),
+    unknown = ProtoExpert.new("ur.unknown", "Type not laid out by the spec, kept raw",
+        expert.group.UNDECODED, expert.severity.NOTE),
+    assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)",
+        expert.group.ASSUMPTION, expert.severity.NOTE),
+    by_length = ProtoExpert.new("ur.layout_by_length", "Layout chosen by its length, not by the software version",
+        expert.group.ASSUMPTION, expert.severity.NOTE),
+    items_hidden = ProtoExpert.new("ur.items_hidden", "More tree items than a message shows",
+        expert.group.UNDECODED, expert.severity.NOTE),
+    internal = ProtoExpert.new("ur.internal_error", "urwire dissector error",
+        expert.group.MALFORMED, expert.severity.ERROR),
 }
 
 -- The spec's fields in the order they are declared, then the dissector's own.
@@ -2654,7 +2740,8 @@ for _, f in ipairs({ X.raw, X.extra, X.skipped, X.version, X.assumed, X.unknown_
     fields[#fields + 1] = f
 end
 ur.fields = fields
-ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.by_length, E.items_hidden, E.internal }
+ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.by_length, E.items_hidden,
+               E.internal }
 
 rt.X, rt.E = X, E
 end)(spec, rt)
@@ -2899,7 +2986,8 @@ local function announced_version(raw, o, e, r)
     return v
 end
 
-rt.version_number, rt.parse_version, rt.version_text, rt.version_in = version_number, parse_version, version_text, version_in
+rt.version_number, rt.parse_version, rt.version_text, rt.version_in =
+    version_number, parse_version, version_text, version_in
 rt.value_table, rt.enum_names, rt.named_in_any = value_table, enum_names, named_in_any
 rt.choose, rt.pick, rt.announced_version = choose, pick, announced_version
 -- The version assumed when neither a Version message, the preference nor the layout sizes give one.
@@ -2930,7 +3018,8 @@ local function method(class, name)
     if f then return f end
     return function(object, ...) return object[name](object, ...) end
 end
-local tree_add, append_text, set_text = method(TreeItem, "add"), method(TreeItem, "append_text"), method(TreeItem, "set_text")
+local tree_add, append_text, set_text =
+    method(TreeItem, "add"), method(TreeItem, "append_text"), method(TreeItem, "set_text")
 local range_of = method(Tvb, "range")   -- range_of(tvb, o, n) is tvb(o, n)
 
 local left, hidden, top, expert_moved = MAX_TREE_ITEMS, 0, nil, false
@@ -3755,11 +3844,14 @@ local function show_version(item, st)
     if st.announced then return end
     add(item, X.assumed, true):set_generated()
     if implied then
-        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: software %s, as the layout sizes show", implied))
+        item:add_proto_expert_info(E.assumed,
+            fmt("no Version message seen on this stream: software %s, as the layout sizes show", implied))
     elseif st.from_pref then
-        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(v)))
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s \z
+            (preference ur.version)", version_text(v)))
     else
-        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (the default; preference ur.version)", version_text(v)))
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s \z
+            (the default; preference ur.version)", version_text(v)))
     end
 end
 
@@ -3779,7 +3871,8 @@ local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
     local name, named = code_name(m.types, m.type_tables, v, code)
     if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
     add(item, m.length, range_of(tvb, p, PACKAGE_LENGTH))
-    add_code(item, m.type, range_of(tvb, p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+    add_code(item, m.type, range_of(tvb, p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables,
+             v, code)
     if by_length then note_length(item, form, size) end
     local body, stop = p + PACKAGE_HEADER, p + size
     if pk and not st.visible and not referenced(item, pk, st.call) then
@@ -3869,7 +3962,8 @@ KINDS.subtypes = {
             if body < e then add(tree, X.raw, range_of(tvb, body, e - body)) end
             local _, named = code_name(m.subtype_names, m.subtype_tables, st.version, code)
             if not named then
-                tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
+                tree:add_proto_expert_info(E.unknown,
+                    fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
             end
             return
         end
@@ -4324,7 +4418,8 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
         h.tree(h.m, tvb, item, o, e, st)
         local hidden = items_hidden()
         if hidden > 0 then
-            item:add_proto_expert_info(E.items_hidden, fmt("%d more items not shown (a message shows at most %d)", hidden, MAX_TREE_ITEMS))
+            item:add_proto_expert_info(E.items_hidden,
+                fmt("%d more items not shown (a message shows at most %d)", hidden, MAX_TREE_ITEMS))
         end
     elseif e - o > HEADER then
         -- A known type without a layout (e.g. 24): kept raw, not an error.
@@ -4466,10 +4561,17 @@ local spec, rt = ...
 local ur = spec.proto
 local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only
 
-ur.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of the primary/secondary interfaces", 65535)
-ur.prefs.version = Pref.string("Software version", "", "Controller software version (major.minor or major.minor.bugfix, as 5.25.1) assumed until a Version message is seen on a stream: it chooses the layouts, the enum names and the global-variable value types. Empty: the layout sizes tell it where they can, else " .. spec.default_version .. ".")
-ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names", true, "With tshark -T fields, build only the robot-state packages whose fields the command line names (-e, -Y, -R, -z, -o); off: build every field, as for another Lua script reading ur fields with Field.new")
-ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length, "Longer declared lengths are treated as malformed, and the dissector resynchronises")
+ur.prefs.ports = Pref.range("TCP ports", spec.default_ports,
+    "Robot-side TCP ports of the primary/secondary interfaces", 65535)
+ur.prefs.version = Pref.string("Software version", "",
+    "Controller software version (major.minor or major.minor.bugfix, as 5.25.1) assumed until a \z
+    Version message is seen on a stream: it chooses the layouts, the enum names and the \z
+    global-variable value types. Empty: the layout sizes tell it where they can, else " .. spec.default_version .. ".")
+ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names", true,
+    "With tshark -T fields, build only the robot-state packages whose fields the command line names \z
+    (-e, -Y, -R, -z, -o); off: build every field, as for another Lua script reading ur fields with Field.new")
+ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length,
+    "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
 local tcp_port = DissectorTable.get("tcp.port")
 local registered = nil

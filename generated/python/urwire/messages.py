@@ -3638,15 +3638,53 @@ class GlobalVariablesUpdateMessage(_Subtype):
         value_codec(version).encode_list(out, self.variables, 0x0a)
         out += self.extra
 
-RobotModeData._FORMS = (((((0, 0, 0), (1, 8, 999)), ), RobotModeData._encode_0), ((((3, 0, 0), (3, 1, 999)), ), RobotModeData._encode_1), ((((3, 2, 0), (3, 4, 999)), ), RobotModeData._encode_2), ((((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), RobotModeData._encode_3), )
-MasterboardData._FORMS = (((((0, 0, 0), (1, 5, 999)), ), MasterboardData._encode_0), ((((1, 6, 0), (1, 8, 999)), ), MasterboardData._encode_1), ((((3, 0, 0), (3, 1, 999)), ), MasterboardData._encode_2), ((((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)), ), MasterboardData._encode_3), ((((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), MasterboardData._encode_4), )
-CartesianInfo._FORMS = (((((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)), ), CartesianInfo._encode_0), ((((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), CartesianInfo._encode_1), )
-ConfigurationData._FORMS = (((((0, 0, 0), (1, 8, 999)), ), ConfigurationData._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)), ), ConfigurationData._encode_1), ((((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), ConfigurationData._encode_2), )
-AdditionalInfo._FORMS = (((((0, 0, 0), (1, 7, 999)), ), AdditionalInfo._encode_0), ((((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)), ), AdditionalInfo._encode_1), ((((3, 2, 0), (3, 15, 999)), ), AdditionalInfo._encode_2), ((((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), AdditionalInfo._encode_3), )
-VersionMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)), ), VersionMessage._encode_0), ((((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), VersionMessage._encode_1), )
-SafetyModeMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ), SafetyModeMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), SafetyModeMessage._encode_1), )
-RobotCommMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ), RobotCommMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), RobotCommMessage._encode_1), )
-PopupMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ), PopupMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), PopupMessage._encode_1), )
+RobotModeData._FORMS = (
+    ((((0, 0, 0), (1, 8, 999)),), RobotModeData._encode_0),
+    ((((3, 0, 0), (3, 1, 999)),), RobotModeData._encode_1),
+    ((((3, 2, 0), (3, 4, 999)),), RobotModeData._encode_2),
+    ((((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), RobotModeData._encode_3),
+)
+MasterboardData._FORMS = (
+    ((((0, 0, 0), (1, 5, 999)),), MasterboardData._encode_0),
+    ((((1, 6, 0), (1, 8, 999)),), MasterboardData._encode_1),
+    ((((3, 0, 0), (3, 1, 999)),), MasterboardData._encode_2),
+    ((((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)),), MasterboardData._encode_3),
+    ((((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)),
+      ((10, 0, 0), (1048576, 0, 0)),), MasterboardData._encode_4),
+)
+CartesianInfo._FORMS = (
+    ((((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)),), CartesianInfo._encode_0),
+    ((((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), CartesianInfo._encode_1),
+)
+ConfigurationData._FORMS = (
+    ((((0, 0, 0), (1, 8, 999)),), ConfigurationData._encode_0),
+    ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)),), ConfigurationData._encode_1),
+    ((((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), ConfigurationData._encode_2),
+)
+AdditionalInfo._FORMS = (
+    ((((0, 0, 0), (1, 7, 999)),), AdditionalInfo._encode_0),
+    ((((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)),), AdditionalInfo._encode_1),
+    ((((3, 2, 0), (3, 15, 999)),), AdditionalInfo._encode_2),
+    ((((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), AdditionalInfo._encode_3),
+)
+VersionMessage._FORMS = (
+    ((((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)),), VersionMessage._encode_0),
+    ((((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), VersionMessage._encode_1),
+)
+SafetyModeMessage._FORMS = (
+    ((((0, 0, 0), (1, 8, 999)),), SafetyModeMessage._encode_0),
+    ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+      ((10, 0, 0), (1048576, 0, 0)),), SafetyModeMessage._encode_1),
+)
+RobotCommMessage._FORMS = (
+    ((((0, 0, 0), (1, 8, 999)),), RobotCommMessage._encode_0),
+    ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+      ((10, 0, 0), (1048576, 0, 0)),), RobotCommMessage._encode_1),
+)
+PopupMessage._FORMS = (
+    ((((0, 0, 0), (1, 8, 999)),), PopupMessage._encode_0),
+    ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), PopupMessage._encode_1),
+)
 
 
 @dataclass(slots=True)
@@ -3687,88 +3725,125 @@ class RobotStateMessage:
 
 _ROBOT_STATE_FORMS = _rt.Forms({
     0: (
-        _rt.Form(RobotModeData, RobotModeData._decode_0, (((0, 0, 0), (1, 8, 999)), ), frozenset({24}), 24,
-                 (1, 8, 999), "up to 1.8"),
-        _rt.Form(RobotModeData, RobotModeData._decode_1, (((3, 0, 0), (3, 1, 999)), ), frozenset({33}), 33,
-                 (3, 1, 999), "3.0 to 3.1"),
-        _rt.Form(RobotModeData, RobotModeData._decode_2, (((3, 2, 0), (3, 4, 999)), ), frozenset({41}), 41,
-                 (3, 4, 999), "3.2 to 3.4"),
-        _rt.Form(RobotModeData, RobotModeData._decode_3, (((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({42}), 42,
-                 (5, 9, 0), "3.5 and later"),
+        _rt.Form(RobotModeData, RobotModeData._decode_0,
+                 (((0, 0, 0), (1, 8, 999)),),
+                 frozenset({24}), 24, (1, 8, 999), "up to 1.8"),
+        _rt.Form(RobotModeData, RobotModeData._decode_1,
+                 (((3, 0, 0), (3, 1, 999)),),
+                 frozenset({33}), 33, (3, 1, 999), "3.0 to 3.1"),
+        _rt.Form(RobotModeData, RobotModeData._decode_2,
+                 (((3, 2, 0), (3, 4, 999)),),
+                 frozenset({41}), 41, (3, 4, 999), "3.2 to 3.4"),
+        _rt.Form(RobotModeData, RobotModeData._decode_3,
+                 (((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({42}), 42, (5, 9, 0), "3.5 and later"),
     ),
     1: (
-        _rt.Form(JointData, JointData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({246}), 246,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(JointData, JointData._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({246}), 246, (5, 9, 0), "all versions"),
     ),
     2: (
-        _rt.Form(ToolData, ToolData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({32}), 32,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(ToolData, ToolData._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({32}), 32, (5, 9, 0), "all versions"),
     ),
     3: (
-        _rt.Form(MasterboardData, MasterboardData._decode_0, (((0, 0, 0), (1, 5, 999)), ), frozenset({56}), 56,
-                 (1, 5, 999), "up to 1.5"),
-        _rt.Form(MasterboardData, MasterboardData._decode_1, (((1, 6, 0), (1, 8, 999)), ), frozenset({59, 71}), 59,
-                 (1, 8, 999), "1.6 to 1.8"),
-        _rt.Form(MasterboardData, MasterboardData._decode_2, (((3, 0, 0), (3, 1, 999)), ), frozenset({67, 83}), 67,
-                 (3, 1, 999), "3.0 to 3.1"),
-        _rt.Form(MasterboardData, MasterboardData._decode_3, (((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)), ), frozenset({69, 85}), 69,
-                 (5, 3, 999), "3.2 to 3.9 or 5.0 to 5.3"),
-        _rt.Form(MasterboardData, MasterboardData._decode_4, (((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({70, 86}), 70,
-                 (5, 9, 0), "3.10 to 3.15 or 5.4 and later"),
+        _rt.Form(MasterboardData, MasterboardData._decode_0,
+                 (((0, 0, 0), (1, 5, 999)),),
+                 frozenset({56}), 56, (1, 5, 999), "up to 1.5"),
+        _rt.Form(MasterboardData, MasterboardData._decode_1,
+                 (((1, 6, 0), (1, 8, 999)),),
+                 frozenset({59, 71}), 59, (1, 8, 999), "1.6 to 1.8"),
+        _rt.Form(MasterboardData, MasterboardData._decode_2,
+                 (((3, 0, 0), (3, 1, 999)),),
+                 frozenset({67, 83}), 67, (3, 1, 999), "3.0 to 3.1"),
+        _rt.Form(MasterboardData, MasterboardData._decode_3,
+                 (((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)),),
+                 frozenset({69, 85}), 69, (5, 3, 999), "3.2 to 3.9 or 5.0 to 5.3"),
+        _rt.Form(MasterboardData, MasterboardData._decode_4,
+                 (((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({70, 86}), 70, (5, 9, 0), "3.10 to 3.15 or 5.4 and later"),
     ),
     4: (
-        _rt.Form(CartesianInfo, CartesianInfo._decode_0, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)), ), frozenset({48}), 48,
-                 (3, 0, 999), "up to 3.0"),
-        _rt.Form(CartesianInfo, CartesianInfo._decode_1, (((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({96}), 96,
-                 (5, 9, 0), "3.1 and later"),
+        _rt.Form(CartesianInfo, CartesianInfo._decode_0,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)),),
+                 frozenset({48}), 48, (3, 0, 999), "up to 3.0"),
+        _rt.Form(CartesianInfo, CartesianInfo._decode_1,
+                 (((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({96}), 96, (5, 9, 0), "3.1 and later"),
     ),
     5: (
-        _rt.Form(LaserPointer, LaserPointer._decode, (((0, 0, 0), (1, 7, 999)), ), frozenset({24}), 24,
-                 (1, 7, 999), "up to 1.7"),
-        _rt.Form(KinematicsInfo, KinematicsInfo._decode, (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({220}), 220,
-                 (5, 9, 0), "1.8 and later"),
+        _rt.Form(LaserPointer, LaserPointer._decode,
+                 (((0, 0, 0), (1, 7, 999)),),
+                 frozenset({24}), 24, (1, 7, 999), "up to 1.7"),
+        _rt.Form(KinematicsInfo, KinematicsInfo._decode,
+                 (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({220}), 220, (5, 9, 0), "1.8 and later"),
     ),
     6: (
-        _rt.Form(ConfigurationData, ConfigurationData._decode_0, (((0, 0, 0), (1, 8, 999)), ), frozenset({464}), 464,
-                 (1, 8, 999), "up to 1.8"),
-        _rt.Form(ConfigurationData, ConfigurationData._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)), ), frozenset({440}), 440,
-                 (5, 9, 0), "3.0 to 5.25.0"),
-        _rt.Form(ConfigurationData, ConfigurationData._decode_2, (((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({444}), 444,
-                 (5, 25, 1), "5.25.1 and later"),
+        _rt.Form(ConfigurationData, ConfigurationData._decode_0,
+                 (((0, 0, 0), (1, 8, 999)),),
+                 frozenset({464}), 464, (1, 8, 999), "up to 1.8"),
+        _rt.Form(ConfigurationData, ConfigurationData._decode_1,
+                 (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)),),
+                 frozenset({440}), 440, (5, 9, 0), "3.0 to 5.25.0"),
+        _rt.Form(ConfigurationData, ConfigurationData._decode_2,
+                 (((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({444}), 444, (5, 25, 1), "5.25.1 and later"),
     ),
     7: (
-        _rt.Form(ForceModeData, ForceModeData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({56}), 56,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(ForceModeData, ForceModeData._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({56}), 56, (5, 9, 0), "all versions"),
     ),
     8: (
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_0, (((0, 0, 0), (1, 7, 999)), ), frozenset({5}), 5,
-                 (1, 7, 999), "up to 1.7"),
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_1, (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)), ), frozenset({2}), 2,
-                 (3, 1, 999), "1.8 to 3.1"),
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_2, (((3, 2, 0), (3, 15, 999)), ), frozenset({3}), 3,
-                 (3, 15, 999), "3.2 to 3.15"),
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_3, (((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({4}), 4,
-                 (5, 9, 0), "5.0 and later"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_0,
+                 (((0, 0, 0), (1, 7, 999)),),
+                 frozenset({5}), 5, (1, 7, 999), "up to 1.7"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_1,
+                 (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)),),
+                 frozenset({2}), 2, (3, 1, 999), "1.8 to 3.1"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_2,
+                 (((3, 2, 0), (3, 15, 999)),),
+                 frozenset({3}), 3, (3, 15, 999), "3.2 to 3.15"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_3,
+                 (((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({4}), 4, (5, 9, 0), "5.0 and later"),
     ),
     9: (
-        _rt.Form(CalibrationData, CalibrationData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({48}), 48,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(CalibrationData, CalibrationData._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({48}), 48, (5, 9, 0), "all versions"),
     ),
     10: (
-        _rt.Form(SafetyData, SafetyData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(SafetyData, SafetyData._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 None, 0, (5, 9, 0), "all versions"),
     ),
     11: (
-        _rt.Form(ToolCommInfo, ToolCommInfo._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({21}), 21,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(ToolCommInfo, ToolCommInfo._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({21}), 21, (5, 9, 0), "all versions"),
     ),
     12: (
-        _rt.Form(ToolModeInfo, ToolModeInfo._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({3}), 3,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(ToolModeInfo, ToolModeInfo._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({3}), 3, (5, 9, 0), "all versions"),
     ),
     13: (
-        _rt.Form(SingularityInfo, SingularityInfo._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({2}), 2,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(SingularityInfo, SingularityInfo._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({2}), 2, (5, 9, 0), "all versions"),
     ),
 }, header=5)
 
@@ -3841,60 +3916,82 @@ _ROBOT_MESSAGE_HEADER_RUN = (
 )
 _ROBOT_MESSAGE_FORMS = _rt.Forms({
     3: (
-        _rt.Form(VersionMessage, VersionMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)), ), None, 7,
-                 (3, 2, 999), "up to 3.2"),
-        _rt.Form(VersionMessage, VersionMessage._decode_1, (((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 11,
-                 (5, 9, 0), "3.3 and later"),
+        _rt.Form(VersionMessage, VersionMessage._decode_0,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)),),
+                 None, 7, (3, 2, 999), "up to 3.2"),
+        _rt.Form(VersionMessage, VersionMessage._decode_1,
+                 (((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
+                 None, 11, (5, 9, 0), "3.3 and later"),
     ),
     5: (
-        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ), None, 8,
-                 (1, 8, 999), "up to 1.8"),
-        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({17}), 17,
-                 (5, 9, 0), "3.0 and later"),
+        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_0,
+                 (((0, 0, 0), (1, 8, 999)),),
+                 None, 8, (1, 8, 999), "up to 1.8"),
+        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_1,
+                 (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({17}), 17, (5, 9, 0), "3.0 and later"),
     ),
     6: (
-        _rt.Form(RobotCommMessage, RobotCommMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ), None, 8,
-                 (1, 8, 999), "up to 1.8"),
-        _rt.Form(RobotCommMessage, RobotCommMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 20,
-                 (5, 9, 0), "3.0 and later"),
+        _rt.Form(RobotCommMessage, RobotCommMessage._decode_0,
+                 (((0, 0, 0), (1, 8, 999)),),
+                 None, 8, (1, 8, 999), "up to 1.8"),
+        _rt.Form(RobotCommMessage, RobotCommMessage._decode_1,
+                 (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
+                 None, 20, (5, 9, 0), "3.0 and later"),
     ),
     7: (
-        _rt.Form(KeyMessage, KeyMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 9,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(KeyMessage, KeyMessage._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 None, 9, (5, 9, 0), "all versions"),
     ),
     14: (
-        _rt.Form(ProgramThreadsMessage, ProgramThreadsMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(ProgramThreadsMessage, ProgramThreadsMessage._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 None, 0, (5, 9, 0), "all versions"),
     ),
     2: (
-        _rt.Form(PopupMessage, PopupMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ), None, 3,
-                 (1, 8, 999), "up to 1.8"),
-        _rt.Form(PopupMessage, PopupMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 12,
-                 (5, 9, 0), "3.0 and later"),
+        _rt.Form(PopupMessage, PopupMessage._decode_0,
+                 (((0, 0, 0), (1, 8, 999)),),
+                 None, 3, (1, 8, 999), "up to 1.8"),
+        _rt.Form(PopupMessage, PopupMessage._decode_1,
+                 (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
+                 None, 12, (5, 9, 0), "3.0 and later"),
     ),
     1: (
-        _rt.Form(LabelMessage, LabelMessage._decode, (((0, 0, 0), (1, 8, 999)), ), None, 4,
-                 (1, 8, 999), "up to 1.8"),
+        _rt.Form(LabelMessage, LabelMessage._decode,
+                 (((0, 0, 0), (1, 8, 999)),),
+                 None, 4, (1, 8, 999), "up to 1.8"),
     ),
     8: (
-        _rt.Form(VarMessage, VarMessage._decode, (((0, 0, 0), (1, 8, 999)), ), None, 9,
-                 (1, 8, 999), "up to 1.8"),
+        _rt.Form(VarMessage, VarMessage._decode,
+                 (((0, 0, 0), (1, 8, 999)),),
+                 None, 9, (1, 8, 999), "up to 1.8"),
     ),
     18: (
-        _rt.Form(HardwareInfoMessage, HardwareInfoMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({12}), 12,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(HardwareInfoMessage, HardwareInfoMessage._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 frozenset({12}), 12, (5, 9, 0), "all versions"),
     ),
     9: (
-        _rt.Form(RequestValueMessage, RequestValueMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(RequestValueMessage, RequestValueMessage._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 None, 8, (5, 9, 0), "all versions"),
     ),
     0: (
-        _rt.Form(TextMessage, TextMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(TextMessage, TextMessage._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 None, 0, (5, 9, 0), "all versions"),
     ),
     10: (
-        _rt.Form(RuntimeExceptionMessage, RuntimeExceptionMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(RuntimeExceptionMessage, RuntimeExceptionMessage._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 None, 8, (5, 9, 0), "all versions"),
     ),
 })
 
@@ -3950,12 +4047,16 @@ _PROGRAM_STATE_HEADER_RUN = (
 )
 _PROGRAM_STATE_FORMS = _rt.Forms({
     0: (
-        _rt.Form(GlobalVariablesSetupMessage, GlobalVariablesSetupMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(GlobalVariablesSetupMessage, GlobalVariablesSetupMessage._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 None, 2, (5, 9, 0), "all versions"),
     ),
     1: (
-        _rt.Form(GlobalVariablesUpdateMessage, GlobalVariablesUpdateMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(GlobalVariablesUpdateMessage, GlobalVariablesUpdateMessage._decode,
+                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
+                  ((10, 0, 0), (1048576, 0, 0)),),
+                 None, 2, (5, 9, 0), "all versions"),
     ),
 })
 
