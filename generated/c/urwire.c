@@ -1749,8 +1749,8 @@ static inline bool urwire__decode_robot_mode_data_3(const uint8_t *msg, size_t *
     return true;
 }
 
-static bool urwire__encode_robot_mode_data(const void *from, const urwire__ver *ver,
-                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_robot_mode_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                           size_t *at, urwire_error *err)
 {
     const urwire_robot_mode_data *in = from;
     size_t pos = *at;
@@ -1808,8 +1808,7 @@ static bool urwire__encode_robot_mode_data(const void *from, const urwire__ver *
     return true;
 }
 
-static void urwire__visit_robot_mode_data(const void *from, const urwire__ver *ver,
-                                          const urwire_visitor *v)
+static void urwire__visit_robot_mode_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_robot_mode_data *in = from;
     (void)ver;
@@ -1867,8 +1866,7 @@ static void urwire__write_joint(uint8_t *p, const urwire_joint *in)
 
 }
 
-static void urwire__visit_joint(const void *from, const urwire__ver *ver,
-                                const urwire_visitor *v)
+static void urwire__visit_joint(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_joint *in = from;
     (void)ver;
@@ -1961,8 +1959,8 @@ static inline bool urwire__decode_joint_data(const uint8_t *msg, size_t *at, siz
     return true;
 }
 
-static bool urwire__encode_joint_data(const void *from, const urwire__ver *ver,
-                                      uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_joint_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                      urwire_error *err)
 {
     const urwire_joint_data *in = from;
     size_t pos = *at;
@@ -1980,8 +1978,7 @@ static bool urwire__encode_joint_data(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_joint_data(const void *from, const urwire__ver *ver,
-                                     const urwire_visitor *v)
+static void urwire__visit_joint_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_joint_data *in = from;
     size_t i;
@@ -2044,8 +2041,8 @@ static inline bool urwire__decode_tool_data(const uint8_t *msg, size_t *at, size
     return true;
 }
 
-static bool urwire__encode_tool_data(const void *from, const urwire__ver *ver,
-                                     uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_tool_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                     urwire_error *err)
 {
     const urwire_tool_data *in = from;
     size_t pos = *at;
@@ -2070,8 +2067,7 @@ static bool urwire__encode_tool_data(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_tool_data(const void *from, const urwire__ver *ver,
-                                    const urwire_visitor *v)
+static void urwire__visit_tool_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_tool_data *in = from;
     (void)ver;
@@ -2450,8 +2446,8 @@ static inline bool urwire__decode_masterboard_data_4(const uint8_t *msg, size_t 
     return true;
 }
 
-static bool urwire__encode_masterboard_data(const void *from, const urwire__ver *ver,
-                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_masterboard_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                            size_t *at, urwire_error *err)
 {
     const urwire_masterboard_data *in = from;
     size_t pos = *at;
@@ -2583,8 +2579,7 @@ static bool urwire__encode_masterboard_data(const void *from, const urwire__ver 
     return true;
 }
 
-static void urwire__visit_masterboard_data(const void *from, const urwire__ver *ver,
-                                           const urwire_visitor *v)
+static void urwire__visit_masterboard_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_masterboard_data *in = from;
     (void)ver;
@@ -2733,8 +2728,8 @@ static inline bool urwire__decode_cartesian_info_1(const uint8_t *msg, size_t *a
     return true;
 }
 
-static bool urwire__encode_cartesian_info(const void *from, const urwire__ver *ver,
-                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_cartesian_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                          size_t *at, urwire_error *err)
 {
     const urwire_cartesian_info *in = from;
     size_t pos = *at;
@@ -2768,8 +2763,7 @@ static bool urwire__encode_cartesian_info(const void *from, const urwire__ver *v
     return true;
 }
 
-static void urwire__visit_cartesian_info(const void *from, const urwire__ver *ver,
-                                         const urwire_visitor *v)
+static void urwire__visit_cartesian_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_cartesian_info *in = from;
     (void)ver;
@@ -2836,8 +2830,8 @@ static inline bool urwire__decode_laser_pointer(const uint8_t *msg, size_t *at, 
     return true;
 }
 
-static bool urwire__encode_laser_pointer(const void *from, const urwire__ver *ver,
-                                         uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_laser_pointer(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                         urwire_error *err)
 {
     const urwire_laser_pointer *in = from;
     size_t pos = *at;
@@ -2856,8 +2850,7 @@ static bool urwire__encode_laser_pointer(const void *from, const urwire__ver *ve
     return true;
 }
 
-static void urwire__visit_laser_pointer(const void *from, const urwire__ver *ver,
-                                        const urwire_visitor *v)
+static void urwire__visit_laser_pointer(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_laser_pointer *in = from;
     (void)ver;
@@ -2934,8 +2927,8 @@ static inline bool urwire__decode_kinematics_info(const uint8_t *msg, size_t *at
     return true;
 }
 
-static bool urwire__encode_kinematics_info(const void *from, const urwire__ver *ver,
-                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_kinematics_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                           size_t *at, urwire_error *err)
 {
     const urwire_kinematics_info *in = from;
     size_t pos = *at;
@@ -2958,8 +2951,7 @@ static bool urwire__encode_kinematics_info(const void *from, const urwire__ver *
     return true;
 }
 
-static void urwire__visit_kinematics_info(const void *from, const urwire__ver *ver,
-                                          const urwire_visitor *v)
+static void urwire__visit_kinematics_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_kinematics_info *in = from;
     size_t i;
@@ -3005,8 +2997,7 @@ static void urwire__write_joint_position_limit(uint8_t *p, const urwire_joint_po
 
 }
 
-static void urwire__visit_joint_position_limit(const void *from, const urwire__ver *ver,
-                                               const urwire_visitor *v)
+static void urwire__visit_joint_position_limit(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_joint_position_limit *in = from;
     (void)ver;
@@ -3030,8 +3021,7 @@ static void urwire__write_joint_motion_limit(uint8_t *p, const urwire_joint_moti
 
 }
 
-static void urwire__visit_joint_motion_limit(const void *from, const urwire__ver *ver,
-                                             const urwire_visitor *v)
+static void urwire__visit_joint_motion_limit(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_joint_motion_limit *in = from;
     (void)ver;
@@ -3283,8 +3273,8 @@ static inline bool urwire__decode_configuration_data_2(const uint8_t *msg, size_
     return true;
 }
 
-static bool urwire__encode_configuration_data(const void *from, const urwire__ver *ver,
-                                              uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_configuration_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                              size_t *at, urwire_error *err)
 {
     const urwire_configuration_data *in = from;
     size_t pos = *at;
@@ -3331,8 +3321,7 @@ static bool urwire__encode_configuration_data(const void *from, const urwire__ve
     return true;
 }
 
-static void urwire__visit_configuration_data(const void *from, const urwire__ver *ver,
-                                             const urwire_visitor *v)
+static void urwire__visit_configuration_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_configuration_data *in = from;
     size_t i;
@@ -3430,8 +3419,8 @@ static inline bool urwire__decode_force_mode_data(const uint8_t *msg, size_t *at
     return true;
 }
 
-static bool urwire__encode_force_mode_data(const void *from, const urwire__ver *ver,
-                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_force_mode_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                           size_t *at, urwire_error *err)
 {
     const urwire_force_mode_data *in = from;
     size_t pos = *at;
@@ -3454,8 +3443,7 @@ static bool urwire__encode_force_mode_data(const void *from, const urwire__ver *
     return true;
 }
 
-static void urwire__visit_force_mode_data(const void *from, const urwire__ver *ver,
-                                          const urwire_visitor *v)
+static void urwire__visit_force_mode_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_force_mode_data *in = from;
     (void)ver;
@@ -3584,8 +3572,8 @@ static inline bool urwire__decode_additional_info_3(const uint8_t *msg, size_t *
     return true;
 }
 
-static bool urwire__encode_additional_info(const void *from, const urwire__ver *ver,
-                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_additional_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                           size_t *at, urwire_error *err)
 {
     const urwire_additional_info *in = from;
     size_t pos = *at;
@@ -3627,8 +3615,7 @@ static bool urwire__encode_additional_info(const void *from, const urwire__ver *
     return true;
 }
 
-static void urwire__visit_additional_info(const void *from, const urwire__ver *ver,
-                                          const urwire_visitor *v)
+static void urwire__visit_additional_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_additional_info *in = from;
     (void)ver;
@@ -3690,8 +3677,8 @@ static inline bool urwire__decode_calibration_data(const uint8_t *msg, size_t *a
     return true;
 }
 
-static bool urwire__encode_calibration_data(const void *from, const urwire__ver *ver,
-                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_calibration_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                            size_t *at, urwire_error *err)
 {
     const urwire_calibration_data *in = from;
     size_t pos = *at;
@@ -3713,8 +3700,7 @@ static bool urwire__encode_calibration_data(const void *from, const urwire__ver 
     return true;
 }
 
-static void urwire__visit_calibration_data(const void *from, const urwire__ver *ver,
-                                           const urwire_visitor *v)
+static void urwire__visit_calibration_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_calibration_data *in = from;
     (void)ver;
@@ -3746,8 +3732,8 @@ static inline bool urwire__decode_safety_data(const uint8_t *msg, size_t *at, si
     return true;
 }
 
-static bool urwire__encode_safety_data(const void *from, const urwire__ver *ver,
-                                       uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_safety_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                       urwire_error *err)
 {
     const urwire_safety_data *in = from;
     size_t pos = *at;
@@ -3760,8 +3746,7 @@ static bool urwire__encode_safety_data(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_safety_data(const void *from, const urwire__ver *ver,
-                                      const urwire_visitor *v)
+static void urwire__visit_safety_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_safety_data *in = from;
     (void)ver;
@@ -3805,8 +3790,8 @@ static inline bool urwire__decode_tool_comm_info(const uint8_t *msg, size_t *at,
     return true;
 }
 
-static bool urwire__encode_tool_comm_info(const void *from, const urwire__ver *ver,
-                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_tool_comm_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                          size_t *at, urwire_error *err)
 {
     const urwire_tool_comm_info *in = from;
     size_t pos = *at;
@@ -3828,8 +3813,7 @@ static bool urwire__encode_tool_comm_info(const void *from, const urwire__ver *v
     return true;
 }
 
-static void urwire__visit_tool_comm_info(const void *from, const urwire__ver *ver,
-                                         const urwire_visitor *v)
+static void urwire__visit_tool_comm_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_tool_comm_info *in = from;
     (void)ver;
@@ -3872,8 +3856,8 @@ static inline bool urwire__decode_tool_mode_info(const uint8_t *msg, size_t *at,
     return true;
 }
 
-static bool urwire__encode_tool_mode_info(const void *from, const urwire__ver *ver,
-                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_tool_mode_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                          size_t *at, urwire_error *err)
 {
     const urwire_tool_mode_info *in = from;
     size_t pos = *at;
@@ -3892,8 +3876,7 @@ static bool urwire__encode_tool_mode_info(const void *from, const urwire__ver *v
     return true;
 }
 
-static void urwire__visit_tool_mode_info(const void *from, const urwire__ver *ver,
-                                         const urwire_visitor *v)
+static void urwire__visit_tool_mode_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_tool_mode_info *in = from;
     (void)ver;
@@ -3931,8 +3914,8 @@ static inline bool urwire__decode_singularity_info(const uint8_t *msg, size_t *a
     return true;
 }
 
-static bool urwire__encode_singularity_info(const void *from, const urwire__ver *ver,
-                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_singularity_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                            size_t *at, urwire_error *err)
 {
     const urwire_singularity_info *in = from;
     size_t pos = *at;
@@ -3950,8 +3933,7 @@ static bool urwire__encode_singularity_info(const void *from, const urwire__ver 
     return true;
 }
 
-static void urwire__visit_singularity_info(const void *from, const urwire__ver *ver,
-                                           const urwire_visitor *v)
+static void urwire__visit_singularity_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_singularity_info *in = from;
     (void)ver;
@@ -4026,8 +4008,8 @@ static inline bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t
     return true;
 }
 
-static bool urwire__encode_version(const void *from, const urwire__ver *ver,
-                                   uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_version(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                   urwire_error *err)
 {
     const urwire_version_message *in = from;
     size_t pos = *at;
@@ -4064,8 +4046,7 @@ static bool urwire__encode_version(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_version(const void *from, const urwire__ver *ver,
-                                  const urwire_visitor *v)
+static void urwire__visit_version(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_version_message *in = from;
     (void)ver;
@@ -4158,8 +4139,8 @@ static inline bool urwire__decode_safety_mode(const uint8_t *msg, size_t *at, si
     return true;
 }
 
-static bool urwire__encode_safety_mode(const void *from, const urwire__ver *ver,
-                                       uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_safety_mode(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                       urwire_error *err)
 {
     const urwire_safety_mode_message *in = from;
     size_t pos = *at;
@@ -4209,8 +4190,7 @@ static bool urwire__encode_safety_mode(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_safety_mode(const void *from, const urwire__ver *ver,
-                                      const urwire_visitor *v)
+static void urwire__visit_safety_mode(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_safety_mode_message *in = from;
     (void)ver;
@@ -4292,8 +4272,8 @@ static inline bool urwire__decode_robot_comm(const uint8_t *msg, size_t *at, siz
     return true;
 }
 
-static bool urwire__encode_robot_comm(const void *from, const urwire__ver *ver,
-                                      uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_robot_comm(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                      urwire_error *err)
 {
     const urwire_robot_comm_message *in = from;
     size_t pos = *at;
@@ -4322,8 +4302,7 @@ static bool urwire__encode_robot_comm(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_robot_comm(const void *from, const urwire__ver *ver,
-                                     const urwire_visitor *v)
+static void urwire__visit_robot_comm(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_robot_comm_message *in = from;
     (void)ver;
@@ -4374,8 +4353,8 @@ static inline bool urwire__decode_key(const uint8_t *msg, size_t *at, size_t end
     return true;
 }
 
-static bool urwire__encode_key(const void *from, const urwire__ver *ver,
-                               uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_key(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                               urwire_error *err)
 {
     const urwire_key_message *in = from;
     size_t pos = *at;
@@ -4397,8 +4376,7 @@ static bool urwire__encode_key(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_key(const void *from, const urwire__ver *ver,
-                              const urwire_visitor *v)
+static void urwire__visit_key(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_key_message *in = from;
     (void)ver;
@@ -4436,8 +4414,8 @@ static inline bool urwire__decode_program_thread(const uint8_t *msg, size_t *at,
     return true;
 }
 
-static bool urwire__encode_program_thread(const void *from, const urwire__ver *ver,
-                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_program_thread(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                          size_t *at, urwire_error *err)
 {
     const urwire_program_thread *in = from;
     size_t pos = *at;
@@ -4473,8 +4451,7 @@ bool urwire_append_program_thread(const urwire_program_thread *in, uint8_t *out,
     return urwire__encode_program_thread(in, &ver, out, cap, pos, err);
 }
 
-static void urwire__visit_program_thread(const void *from, const urwire__ver *ver,
-                                         const urwire_visitor *v)
+static void urwire__visit_program_thread(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_program_thread *in = from;
     (void)ver;
@@ -4505,8 +4482,8 @@ static inline bool urwire__decode_program_threads(const uint8_t *msg, size_t *at
     return true;
 }
 
-static bool urwire__encode_program_threads(const void *from, const urwire__ver *ver,
-                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_program_threads(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                           size_t *at, urwire_error *err)
 {
     const urwire_program_threads_message *in = from;
     size_t pos = *at;
@@ -4519,8 +4496,7 @@ static bool urwire__encode_program_threads(const void *from, const urwire__ver *
     return true;
 }
 
-static void urwire__visit_program_threads(const void *from, const urwire__ver *ver,
-                                          const urwire_visitor *v)
+static void urwire__visit_program_threads(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_program_threads_message *in = from;
     (void)ver;
@@ -4602,8 +4578,8 @@ static inline bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t e
     return true;
 }
 
-static bool urwire__encode_popup(const void *from, const urwire__ver *ver,
-                                 uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_popup(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                 urwire_error *err)
 {
     const urwire_popup_message *in = from;
     size_t pos = *at;
@@ -4640,8 +4616,7 @@ static bool urwire__encode_popup(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_popup(const void *from, const urwire__ver *ver,
-                                const urwire_visitor *v)
+static void urwire__visit_popup(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_popup_message *in = from;
     (void)ver;
@@ -4691,8 +4666,8 @@ static inline bool urwire__decode_label(const uint8_t *msg, size_t *at, size_t e
     return true;
 }
 
-static bool urwire__encode_label(const void *from, const urwire__ver *ver,
-                                 uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_label(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                 urwire_error *err)
 {
     const urwire_label_message *in = from;
     size_t pos = *at;
@@ -4711,8 +4686,7 @@ static bool urwire__encode_label(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_label(const void *from, const urwire__ver *ver,
-                                const urwire_visitor *v)
+static void urwire__visit_label(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_label_message *in = from;
     (void)ver;
@@ -4755,8 +4729,8 @@ static inline bool urwire__decode_var(const uint8_t *msg, size_t *at, size_t end
     return true;
 }
 
-static bool urwire__encode_var(const void *from, const urwire__ver *ver,
-                               uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_var(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                               urwire_error *err)
 {
     const urwire_var_message *in = from;
     size_t pos = *at;
@@ -4778,8 +4752,7 @@ static bool urwire__encode_var(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_var(const void *from, const urwire__ver *ver,
-                              const urwire_visitor *v)
+static void urwire__visit_var(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_var_message *in = from;
     (void)ver;
@@ -4829,8 +4802,8 @@ static inline bool urwire__decode_hardware_info(const uint8_t *msg, size_t *at, 
     return true;
 }
 
-static bool urwire__encode_hardware_info(const void *from, const urwire__ver *ver,
-                                         uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_hardware_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                         urwire_error *err)
 {
     const urwire_hardware_info_message *in = from;
     size_t pos = *at;
@@ -4851,8 +4824,7 @@ static bool urwire__encode_hardware_info(const void *from, const urwire__ver *ve
     return true;
 }
 
-static void urwire__visit_hardware_info(const void *from, const urwire__ver *ver,
-                                        const urwire_visitor *v)
+static void urwire__visit_hardware_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_hardware_info_message *in = from;
     (void)ver;
@@ -4894,8 +4866,8 @@ static inline bool urwire__decode_request_value(const uint8_t *msg, size_t *at, 
     return true;
 }
 
-static bool urwire__encode_request_value(const void *from, const urwire__ver *ver,
-                                         uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_request_value(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                         urwire_error *err)
 {
     const urwire_request_value_message *in = from;
     size_t pos = *at;
@@ -4915,8 +4887,7 @@ static bool urwire__encode_request_value(const void *from, const urwire__ver *ve
     return true;
 }
 
-static void urwire__visit_request_value(const void *from, const urwire__ver *ver,
-                                        const urwire_visitor *v)
+static void urwire__visit_request_value(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_request_value_message *in = from;
     (void)ver;
@@ -4944,8 +4915,8 @@ static inline bool urwire__decode_text(const uint8_t *msg, size_t *at, size_t en
     return true;
 }
 
-static bool urwire__encode_text(const void *from, const urwire__ver *ver,
-                                uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_text(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                urwire_error *err)
 {
     const urwire_text_message *in = from;
     size_t pos = *at;
@@ -4958,8 +4929,7 @@ static bool urwire__encode_text(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_text(const void *from, const urwire__ver *ver,
-                               const urwire_visitor *v)
+static void urwire__visit_text(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_text_message *in = from;
     (void)ver;
@@ -4997,8 +4967,8 @@ static inline bool urwire__decode_runtime_exception(const uint8_t *msg, size_t *
     return true;
 }
 
-static bool urwire__encode_runtime_exception(const void *from, const urwire__ver *ver,
-                                             uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_runtime_exception(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                             size_t *at, urwire_error *err)
 {
     const urwire_runtime_exception_message *in = from;
     size_t pos = *at;
@@ -5018,8 +4988,7 @@ static bool urwire__encode_runtime_exception(const void *from, const urwire__ver
     return true;
 }
 
-static void urwire__visit_runtime_exception(const void *from, const urwire__ver *ver,
-                                            const urwire_visitor *v)
+static void urwire__visit_runtime_exception(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_runtime_exception_message *in = from;
     (void)ver;
@@ -5056,8 +5025,8 @@ static inline bool urwire__decode_global_variables_setup(const uint8_t *msg, siz
     return true;
 }
 
-static bool urwire__encode_global_variables_setup(const void *from, const urwire__ver *ver,
-                                                  uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_global_variables_setup(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                                  size_t *at, urwire_error *err)
 {
     const urwire_global_variables_setup_message *in = from;
     size_t pos = *at;
@@ -5076,8 +5045,7 @@ static bool urwire__encode_global_variables_setup(const void *from, const urwire
     return true;
 }
 
-static void urwire__visit_global_variables_setup(const void *from, const urwire__ver *ver,
-                                                 const urwire_visitor *v)
+static void urwire__visit_global_variables_setup(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_global_variables_setup_message *in = from;
     (void)ver;
@@ -5114,8 +5082,8 @@ static inline bool urwire__decode_global_variables_update(const uint8_t *msg, si
     return true;
 }
 
-static bool urwire__encode_global_variables_update(const void *from, const urwire__ver *ver,
-                                                   uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_global_variables_update(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                                   size_t *at, urwire_error *err)
 {
     const urwire_global_variables_update_message *in = from;
     size_t pos = *at;
@@ -5134,8 +5102,7 @@ static bool urwire__encode_global_variables_update(const void *from, const urwir
     return true;
 }
 
-static void urwire__visit_global_variables_update(const void *from, const urwire__ver *ver,
-                                                  const urwire_visitor *v)
+static void urwire__visit_global_variables_update(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_global_variables_update_message *in = from;
     (void)ver;
