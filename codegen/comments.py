@@ -36,8 +36,16 @@ def field_text(entries: Sequence[ir.Field], versions: bool = True) -> str:
         if doc and not repeats(first.label, doc):
             parts.append(doc if doc.endswith((".", "!", "?", '"', ")")) else doc + ".")
     if versions and not any(e.versions.unbounded for e in entries):
-        parts.append(f"Sent by software {' and '.join(e.versions.describe() for e in entries)}.")
+        parts.append(f"Sent by software {_ranges(entries)}.")
     return " ".join(parts)
+
+
+def _ranges(entries: Sequence[ir.Field]) -> str:
+    """"3.0 and later"; for entries of several wire types, each range with its type:
+    "up to 1.8 (int16), and 3.0 and later (int32)"."""
+    types = {getattr(e, "scalar", None) for e in entries}
+    texts = [e.versions.describe() + (f" ({e.scalar.name})" if len(types) > 1 else "") for e in entries]
+    return texts[0] if len(texts) == 1 else ", ".join(texts[:-1]) + ", and " + texts[-1]
 
 
 def value_text(v: ir.EnumValue) -> str:

@@ -769,9 +769,9 @@ class MasterboardData(_Package):
     SUMMARY: ClassVar[tuple] = ("safety_mode", )
 
     digital_input_bits: Optional[int] = field(metadata={"label": "Digital inputs", "unit": None})
-    """Digital inputs. 16 bits on CB2. Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by software up to 1.8 and 3.0 and later."""
+    """Digital inputs. 16 bits on CB2. Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by software up to 1.8 (int16), and 3.0 and later (int32)."""
     digital_output_bits: Optional[int] = field(metadata={"label": "Digital outputs", "unit": None})
-    """Digital outputs. 16 bits on CB2. Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by software up to 1.8 and 3.0 and later."""
+    """Digital outputs. 16 bits on CB2. Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by software up to 1.8 (int16), and 3.0 and later (int32)."""
     analog_input_range0: int = field(metadata={"label": "Analog input 0 range", "unit": None})
     """Analog input 0 range."""
     analog_input_range1: int = field(metadata={"label": "Analog input 1 range", "unit": None})
@@ -825,7 +825,7 @@ class MasterboardData(_Package):
     three_position_enabling_device_input: Optional[int] = field(metadata={"label": "Three-position enabling device input", "unit": None})
     """Three-position enabling device input. Sent by software 3.2 and later."""
     reserved_1: Optional[int] = field(metadata={"label": "Reserved 1", "unit": None})
-    """Reserved 1. Used by Universal Robots software only. Sent by software 3.10 to 3.15 and 5.4 and later."""
+    """Reserved 1. Used by Universal Robots software only. Sent by software 3.10 to 3.15, and 5.4 and later."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
     decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
