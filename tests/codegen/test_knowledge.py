@@ -10,7 +10,7 @@ from codegen import ir
 from codegen.comments import field_text, repeats
 from codegen.compile import DEFAULT_SPEC, compile_text
 from codegen.plan import plan
-from codegen.reference import protocol_markdown
+from codegen.reference import forms_at, protocol_markdown
 from codegen.targets import c, lua, python
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -110,3 +110,33 @@ def test_the_reference_links_each_form_to_its_history_and_sources():
             "[robot-mode-data](firmware-history.md#robot-mode-data), "
             "[when-the-robot-mode-grew](firmware-history.md#when-the-robot-mode-grew) |" in text)
     assert "- `reserved_1` (5.25.1 and later): From 5.25.1" in text and "URCL 15882dca" in text
+
+
+# The columns of docs/firmware-history.md#sizes-by-version, each as a version it stands for.
+SIZE_COLUMNS = [(1, 5, 0), (1, 6, 0), (1, 8, 0), (3, 0, 0), (3, 1, 0), (3, 2, 0), (3, 5, 0), (3, 10, 0),
+                (5, 0, 0), (5, 4, 0), (5, 25, 1)]
+
+
+def test_the_history_size_table_is_what_the_spec_decodes():
+    """Each number of the sizes table is the size of the spec's form for that code at that
+    column's version (with Euromap67 where the cell says +N E); a cell may name several sizes
+    ("10 or 7") when a release sends both. Dashes and question marks say nothing to check."""
+    lines = (ROOT / "docs" / "firmware-history.md").read_text(encoding="utf-8").split("## Sizes by version")[1]
+    rows = [line.split("|")[1:-1] for line in lines.split("\n## ")[0].splitlines() if re.match(r"\| \d+ \|", line)]
+    assert len(rows) == 15
+    checked = 0
+    for version, column in zip(SIZE_COLUMNS, range(2, 13)):
+        forms = forms_at(PLAN, version)
+        for row in rows:
+            form = forms.get(("robot_state", int(row[0])))
+            cell = row[column]
+            if form is None or not re.match(r"\s*\d", cell) or form.sizes.startswith("at least"):
+                continue
+            spec = [int(n) for n in re.findall(r"\d+", form.sizes)]
+            sizes = [int(n) for n in re.findall(r"(?<![+.\d])(\d+)(?! E)(?!\.\d)", cell)]
+            extra = re.search(r"\+(\d+) E", cell)
+            assert spec[0] in sizes, (version, row[1], cell, form.sizes)
+            if extra:
+                assert spec[1] == spec[0] + int(extra.group(1)), (version, row[1], cell, form.sizes)
+            checked += 1
+    assert checked >= 100
