@@ -70,6 +70,17 @@ def test_every_citation_of_the_docs_names_a_heading_there():
     assert "masterboard-data" in targets["firmware-history.md"]
 
 
+def test_every_link_between_the_docs_names_a_heading():
+    """Links inside docs/ ([..](contract.md#names), [..](#masterboard-data)) land on a heading."""
+    broken = []
+    for page in sorted((ROOT / "docs").glob("*.md")):
+        for doc, anchor in re.findall(r"\]\(([a-z-]+\.md)?#([A-Za-z0-9_-]+)\)", page.read_text(encoding="utf-8")):
+            target = ROOT / "docs" / (doc or page.name)
+            if not target.exists() or anchor not in anchors(target):
+                broken.append(f"{page.name}: {doc}#{anchor}")
+    assert broken == []
+
+
 def test_a_doc_that_repeats_the_label_is_left_out():
     f = ir.ScalarField("safety_mode", label="Safety mode", doc="Safety mode.", scalar=ir.SCALARS["uint8"])
     assert repeats("Safety mode", "Safety mode.") and not repeats("Safety mode", "Safety mode of the robot.")
