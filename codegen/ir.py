@@ -157,6 +157,7 @@ class EnumValue:
     doc: str = ""
     undocumented: bool = False
     versions: VersionRange = ALL_VERSIONS
+    field_note: str = ""     # sources, for docs only
 
 
 @dataclass

@@ -4,6 +4,7 @@ protocol reference (docs/protocol.md). Both read the plan's variants (plan.Varia
 show exactly what the decoders do."""
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from typing import Optional
 
@@ -113,41 +114,85 @@ def diff(p: plan.ProtocolPlan, a: ir.Version, b: ir.Version) -> list[str]:
     return lines
 
 
+# A citation of the project's own docs in a spec text: docs/firmware-history.md#masterboard-data.
+_DOC_CITATION = re.compile(r"docs/((?:firmware-history|contract|canonical-json)\.md#[a-z0-9-]+)")
+
+
+def _linked(text: str) -> str:
+    """A spec text with its citations of docs/ as links relative to docs/protocol.md."""
+    return _DOC_CITATION.sub(lambda m: f"[{m.group(1)}]({m.group(1)})", text)
+
+
+def _citations(*texts: str) -> list[str]:
+    """The docs/ entries the texts cite, each once, in order."""
+    return list(dict.fromkeys(c for t in texts if t for c in _DOC_CITATION.findall(t)))
+
+
+def _gated(v: plan.Variant) -> list[ir.AnyField]:
+    """The fields of a form that not every version sends: what tells it from the others."""
+    return [f for f in v.layout.struct.fields if _present(f, v) and not f.versions.unbounded]
+
+
+def _form_sources(v: plan.Variant) -> str:
+    """Where a form comes from: the docs/ entries its layout and its gated fields cite."""
+    cited = _citations(v.layout.field_note, *(f.field_note for f in _gated(v)))
+    return ", ".join(f"[{c.split('#')[1]}]({c})" for c in cited) or "the 5.9 document"
+
+
+def _notes(lay: ir.Layout) -> list[str]:
+    """The layout's and its fields' field_note texts (sources and confidence), as a list."""
+    rows = [f"- {_one_line(_linked(lay.field_note))}"] if lay.field_note else []
+    for f in lay.struct.fields:
+        if f.field_note:
+            when = "" if f.versions.unbounded else f" ({f.versions.describe()})"
+            rows.append(f"- `{f.name}`{when}: {_one_line(_linked(f.field_note))}")
+    return rows
+
+
 def protocol_markdown(p: plan.ProtocolPlan, spec_path: str) -> str:
     """The protocol reference: every message and sub-package, its forms by software version with
-    their sizes and fields, and every enum table."""
+    their sizes, fields and sources, and every enum table. What the spec's field_note texts say
+    (sources, confidence) is shown here and in no generated code."""
     proto = p.protocol
     out = [f"# {proto.title}: protocol reference", "",
            f"Written by `make generate` from `{spec_path}`; do not edit. Sizes count the whole package "
            "or message, header included. Each type code lists the forms it takes by software version: "
            "the decoders use the stream's version's form when it fits the declared length, else the one "
-           "form whose size matches it (see docs/adding-a-firmware.md).", ""]
+           "form whose size matches it ([contract.md#choosing-a-layout](contract.md#choosing-a-layout)). "
+           "Each form links to its entries in the firmware history ([firmware-history.md](firmware-history.md)), "
+           "which give the public sources it rests on and how sure they are.", ""]
     for mp in p.messages:
         m = mp.message
-        out += [f"## {words(m.name)} (message type {m.code.value})", "", _one_line(m.doc, m.field_note), ""]
+        out += [f"## {words(m.name)} (message type {m.code.value})", "", _one_line(m.doc, _linked(m.field_note)), ""]
         header = _header_size(p, mp)
         for code, variants in mp.variants.items():
             names = sorted({v.layout.name for v in variants}, key=[v.layout.name for v in variants].index)
             out += [f"### {code}: {' / '.join(names)}", ""]
-            for lay in {id(v.layout): v.layout for v in variants}.values():
-                out += [_one_line(lay.doc, lay.field_note), ""]
-            out += ["| software | size | fields |", "|---|---|---|"]
+            layouts = list({id(v.layout): v.layout for v in variants}.values())
+            for lay in layouts:
+                out += [_one_line(lay.doc), ""]
+            out += ["| software | size | fields | history |", "|---|---|---|---|"]
             for v in variants:
                 fields = ", ".join(f"`{f.name}` {_field_type(f)}" for f in v.layout.struct.fields if _present(f, v))
-                out.append(f"| {v.describe()} | {sizes_text(v, header)} | {fields} |")
+                out.append(f"| {v.describe()} | {sizes_text(v, header)} | {fields} | {_form_sources(v)} |")
             out.append("")
+            notes = [row for lay in layouts for row in _notes(lay)]
+            if notes:
+                out += ["Sources:", ""] + notes + [""]
             out += ["| field | label | unit | description |", "|---|---|---|---|"]
             for lay in {id(v.layout): v.layout for v in variants}.values():
                 out += _field_rows(lay.struct, "")
             out.append("")
     out += ["## Enums", ""]
     for e in proto.enums.values():
-        out += [f"### {e.name} ({e.scalar.name})", "", _one_line(e.doc, e.field_note), ""]
+        out += [f"### {e.name} ({e.scalar.name})", "", _one_line(e.doc), ""]
+        if e.field_note:
+            out += [f"Sources: {_one_line(_linked(e.field_note))}", ""]
         for t in e.tables:
             if e.versioned:
                 out += [f"Software {t.versions.describe()}:", ""]
             out += ["| code | name | note |", "|---|---|---|"]
-            out += [f"| {v.value} | {v.name} | {_one_line(v.doc)} |" for v in t.values]
+            out += [f"| {v.value} | {v.name} | {_one_line(v.doc, _linked(v.field_note))} |" for v in t.values]
             out.append("")
     return "\n".join(out).rstrip() + "\n"
 

@@ -44,7 +44,7 @@ class _Resolver:
         for i, v in enumerate(raw_values):
             where = parts + [i]
             member = ir.EnumValue(v["name"], v["value"], v.get("doc", ""), v.get("undocumented", False),
-                                  self.versions(v.get("versions"), where + ["versions"]))
+                                  self.versions(v.get("versions"), where + ["versions"]), v.get("field_note", ""))
             # A name or a value may repeat only for versions that do not overlap.
             for earlier in out:
                 if earlier.versions.overlaps(member.versions):

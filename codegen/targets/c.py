@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from typing import Optional
 
 from .. import ir, plan
+from ..comments import field_text, node_text, value_text
 from ..emit import environment, runtime_source
 from ..errors import Problem, SpecError
 from ..naming import c_enum_const, c_enum_prefix, c_enum_tag, c_member_const, c_table_suffix
@@ -284,7 +285,7 @@ class _Builder:
         if name in RESERVED_MEMBERS:
             self.problems.append(f.where.problem(f"c target: field name '{name}' is a member every layout has"))
         entries = struct.named(name)
-        doc = inline(f"{f.titled}.", *[t for e in entries for t in (e.doc, e.field_note)])
+        doc = inline(field_text(entries, versions=len(entries) == 1))
         if f.present_if:
             doc = inline(doc, f"Present only when {f.present_if} is nonzero (else 0).")
         if len(entries) > 1:
@@ -482,8 +483,7 @@ def enum_views(p: ir.Protocol) -> list[dict]:
             members = []
             for v in t.values:
                 m = Member("scalar", prefix, v.name,
-                           doc=inline(v.doc, "(undocumented)" if v.undocumented else "",
-                                      f"(from {v.versions.describe()})" if not v.versions.unbounded else "")).place()
+                           doc=inline(value_text(v))).place()
                 members.append(dict(const=f"{prefix}_{v.name}", value=v.value, name=v.name, doc=m.doc, above=m.above))
             # Name lookup: one case per distinct value (the first name wins, as in Python).
             seen, cases = set(), []
@@ -494,7 +494,7 @@ def enum_views(p: ir.Protocol) -> list[dict]:
             tables.append(dict(versions=t.versions.describe(), members=members, cases=cases, range=range_view(t.versions),
                                tag=c_enum_tag(e, t),
                                names=f"urwire__{e.name}_{c_table_suffix(t).lower()}_name" if e.versioned else ""))
-        views.append(dict(name=e.name, doc=comment(e.doc, e.field_note), wire=C_TYPES[e.scalar.name],
+        views.append(dict(name=e.name, doc=comment(node_text(e)), wire=C_TYPES[e.scalar.name],
                           versioned=e.versioned, tables=tables, first=tables[-1]["members"][0]["name"]))
     return views
 
@@ -617,7 +617,7 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
                 pk = c.layout
                 if pk.code.value >= MASK_BITS:
                     b.problems.append(pk.where.problem("c target: package codes above 31 do not fit the present bit mask"))
-                cs = b.build(c.plan, pk.name, f"urwire_{pk.name}", "package", comment(pk.doc, pk.field_note),
+                cs = b.build(c.plan, pk.name, f"urwire_{pk.name}", "package", comment(node_text(pk)),
                              mp.forms_of(pk))
                 cs.code = pk.code.value
                 cs.code_const = c_member_const(m.package_type, pk.code)
@@ -635,17 +635,17 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
             kinds.append(dict(const=f"URWIRE_KIND_{m.name.upper()}", doc=inline(m.doc)))
             messages.append(dict(kind="packages", name=m.name, code=m.code.value, type_index=len(messages),
                                  code_const=c_member_const(p.message_type_enum, m.code),
-                                 kind_const=f"URWIRE_KIND_{m.name.upper()}", doc=comment(m.doc, m.field_note)))
+                                 kind_const=f"URWIRE_KIND_{m.name.upper()}", doc=comment(node_text(m))))
             continue
         header = [dict(name=slot.field.name, ctype=C_TYPES[slot.field.scalar.name],
                        reader=READERS[slot.field.scalar.name], writer=WRITERS[slot.field.scalar.name],
                        offset=slot.offset, cb=VISIT[slot.field.scalar.name],
-                       doc=inline(f"{slot.field.titled}.", slot.field.doc, slot.field.field_note), subtype=slot.is_subtype)
+                       doc=inline(field_text([slot.field])), subtype=slot.is_subtype)
                   for slot in mp.header]
         subtypes = []
         for c in mp.layouts:
             st = c.layout
-            cs = b.build(c.plan, st.name, f"urwire_{st.name}_message", "subtype", comment(st.doc, st.field_note))
+            cs = b.build(c.plan, st.name, f"urwire_{st.name}_message", "subtype", comment(node_text(st)))
             cs.code = st.code.value
             cs.code_const = c_member_const(m.subtype_enum, st.code)
             cs.kind_const = f"URWIRE_KIND_{st.name.upper()}"
@@ -656,7 +656,7 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
                            {id(c.layout): layout_structs[id(c.layout)].kind_const for c in mp.layouts})
         messages.append(dict(kind="dispatch", name=m.name, code=m.code.value, type_index=len(messages),
                              code_const=c_member_const(p.message_type_enum, m.code),
-                             doc=comment(m.doc, m.field_note), header=header, header_table=f"urwire__{m.name}_header",
+                             doc=comment(node_text(m)), header=header, header_table=f"urwire__{m.name}_header",
                              header_spans=[Span(slot.field.name, slot.offset, slot.field.scalar.size)
                                            for slot in mp.header],
                              body_offset=mp.body_offset, subtypes=subtypes, subtype_name=m.subtype.name,

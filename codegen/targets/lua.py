@@ -3,8 +3,8 @@ dissector in one self-contained file.
 
 Every decision is made here: which ProtoField each field becomes (one per name, of the widest
 type among the name's entries in every version), its abbreviation
-(`ur.<message_or_package>.<field>`, CONTRACT §4), value strings (one per version table of an
-enum), the field descriptors each layout is walked with, the forms each type code takes across
+(`ur.<message_or_package>.<field>`, docs/contract.md#what-every-target-keeps), value strings
+(one per version table of an enum), the field descriptors each layout is walked with, the forms each type code takes across
 software versions (plan.Variant), where the Version message keeps its numbers, and which fields
 the Info column shows. Versions reach the runtime as ir.version_number integers. The builder hands the template data only (dicts and `Step`s); the template writes
 each descriptor kind and each ProtoField shape with a macro of its own. The code that walks the
@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 from .. import ir, plan, wrap
+from ..comments import node_text
 from ..emit import TEMPLATES, environment, runtime_source
 from ..errors import Problem, SpecError
 from ..naming import table_suffix, wireshark_field, words
@@ -248,8 +249,8 @@ class _Builder:
         return data
 
     def settle(self) -> None:
-        """One ProtoField per key, of the widest type among its entries (CONTRACT §5: a filter
-        name has one type); narrower reads then add their value explicitly."""
+        """One ProtoField per key, of the widest type among its entries (a filter name has one
+        type: docs/contract.md#names-across-versions); narrower reads then add their value explicitly."""
         for key, entries in self.entries.items():
             scalars = list({s.name: s for s, _, _ in entries}.values())
             enums = {e.name for _, _, e in entries if e is not None}
@@ -457,7 +458,7 @@ class _Builder:
         text put before each; and whether it has a summary."""
         show = {name: before for before, name in lay.summary}
         sent_by(lay.struct, lay.name, self.sent)
-        view = self.layout(lay.name, choice_plan, one_line(lay.doc, lay.field_note), show)
+        view = self.layout(lay.name, choice_plan, node_text(lay), show)
         if show:
             self.check_summary(lay, view.descriptors, show)
         return view.var, bool(show)
@@ -499,7 +500,7 @@ class _Builder:
         codes = self.forms(mp, parts_of)
         for code in codes:
             code["summary"] = any(summaries[f["part"]] for f in code["forms"])
-        return Step("packages", dict(code=m.code.value, label=words(m.name), doc=one_line(m.doc, m.field_note),
+        return Step("packages", dict(code=m.code.value, label=words(m.name), doc=node_text(m),
                                      var=f"{m.name.upper()}_PACKAGES", parts=parts, codes=codes,
                                      types=self.enum_var[m.package_type.name],
                                      type_tables=self.code_names(m.package_type),
@@ -525,7 +526,7 @@ class _Builder:
             parts.append(dict(var=var, name=st.name, label=words(st.name), header=sub_header, layout=body,
                               needs_version=self.version_dependent(mp, st),
                               item=self.add_item(st.name, words(st.name), one_line(st.doc), st.where)))
-        return Step("subtypes", dict(code=m.code.value, label=words(m.name), doc=one_line(m.doc, m.field_note),
+        return Step("subtypes", dict(code=m.code.value, label=words(m.name), doc=node_text(m),
                                      var=f"{m.name.upper()}_SUBTYPES", body_offset=mp.body_offset,
                                      header=header, subtype_field=sub_field, subtype_label=m.subtype.label,
                                      subtype_names=self.enum_var[m.subtype_enum.name],
@@ -581,7 +582,7 @@ class _Builder:
                                    entries=[(v.value, v.name) for v in t.values]))
             if e.versioned:
                 self.enum_tables[e.name] = f"NAMES.{upper}"
-            out.append(dict(name=e.name, upper=upper, doc=one_line(e.doc, e.field_note), tables=tables,
+            out.append(dict(name=e.name, upper=upper, doc=node_text(e), tables=tables,
                             versioned=e.versioned, newest=f"VS.{upper}"))
         return out
 

@@ -12,6 +12,7 @@ from typing import Optional
 from .. import ir, plan
 from ..emit import environment, runtime_files
 from ..errors import Problem, SpecError
+from ..comments import field_text, node_text, value_text
 from ..view import Step, one_line
 from ..naming import (camel, py_enum_class, py_item_class, py_layout_class, py_lookup,
                       py_message_class, py_table_class, words)
@@ -32,12 +33,12 @@ class Attr:
     metadata: str = "{}"        # dataclasses.field(metadata=...): its label and unit, as Python text
 
 
-def attr(f: ir.AnyField, annotation: str, optional: bool = False) -> Attr:
+def attr(f: ir.AnyField, annotation: str, optional: bool = False, entries: tuple = ()) -> Attr:
     """An attribute: its docstring starts with the field's label and unit, and its metadata
     holds them for code that shows records to people (human.py, a GUI)."""
     unit = json.dumps(f.unit, ensure_ascii=False) if f.unit else "None"
     metadata = f'{{"label": {json.dumps(f.label, ensure_ascii=False)}, "unit": {unit}}}'
-    return Attr(f.name, annotation, one_line(f"{f.titled}.", f.doc, f.field_note), json_kind(f), optional, metadata)
+    return Attr(f.name, annotation, one_line(field_text(entries or [f])), json_kind(f), optional, metadata)
 
 
 @dataclass
@@ -342,7 +343,7 @@ class _Target:
         items = {f.name: self.item_classes[f.item.name].name for f in struct.fields if isinstance(f, ir.GroupField)}
         header_fields = [slot.field for slot in header or [] if not slot.is_subtype]
         attrs = [attr(f, annotation(f, {})) for f in header_fields]
-        attrs += [attr(f, annotation(f, items), f.conditional) for f in struct.public_fields]
+        attrs += [attr(f, annotation(f, items), f.conditional, struct.named(f.name)) for f in struct.public_fields]
         cls = PyClass(name, doc, role, label or words(json_type), json_type, code, attrs,
                       [f.name for f in header_fields], codecs, structs, sets_version=sets_version)
         if role == "item" and self.is_fixed_item(layout):
@@ -383,11 +384,11 @@ class _Target:
             if not mp.is_dispatch:
                 classes = {id(c.layout): self.build_class(c.plan, py_layout_class(c.layout, False), "package",
                                                           c.layout.name, c.layout.code.value,
-                                                          one_line(c.layout.doc, c.layout.field_note),
+                                                          one_line(node_text(c.layout)),
                                                           summary=c.layout.summary, forms=mp.forms_of(c.layout))
                            for c in mp.layouts}
                 messages.append(dict(kind="packages", name=m.name, cls=py_message_class(m), code=m.code.value,
-                                     code_name=m.code.name, doc=one_line(m.doc, m.field_note), label=words(m.name),
+                                     code_name=m.code.name, doc=one_line(node_text(m)), label=words(m.name),
                                      layouts=list(classes.values()), forms=self.forms(mp, classes),
                                      body_offset=mp.body_offset))
                 continue
@@ -397,14 +398,14 @@ class _Target:
             converts = [MemberView(f.name, "scalar", *conversion(f.scalar, f.enum)) for f in fields]
             classes = {id(c.layout): self.build_class(c.plan, py_layout_class(c.layout, True), "subtype",
                                                       c.layout.name, c.layout.code.value,
-                                                      one_line(c.layout.doc, c.layout.field_note), mp.header,
+                                                      one_line(node_text(c.layout)), mp.header,
                                                       c.layout.sets_version, c.layout.summary,
                                                       forms=mp.forms_of(c.layout)) for c in mp.layouts}
             layouts = list(classes.values())
             announces = self.plan.version.subtype_code if self.plan.version.message_code == m.code.value else None
             messages.append(dict(
                 kind="dispatch", name=m.name, code=m.code.value, code_name=m.code.name,
-                doc=one_line(m.doc, m.field_note), layouts=layouts,
+                doc=one_line(node_text(m)), layouts=layouts,
                 header_fmt=">" + "".join(STRUCT_CODES[slot.field.scalar.name] for slot in mp.header),
                 header_run=[(slot.field.name, slot.offset, slot.field.scalar.size) for slot in mp.header],
                 header_offset=mp.header[0].offset, header_names=[f.name for f in fields],
@@ -432,10 +433,9 @@ def enum_views(p: ir.Protocol) -> list[dict]:
             tables.append(dict(cls=py_table_class(e, t), versions=t.versions.describe(), low=t.versions.low,
                                high=t.versions.high,
                                members=[dict(name=v.name, value=v.value,
-                                            doc=one_line(v.doc, "(undocumented)" if v.undocumented else "",
-                                                         f"(from {v.versions.describe()})" if not v.versions.unbounded else ""))
+                                            doc=one_line(value_text(v)))
                                        for v in t.values]))
-        views.append(dict(name=e.name, cls=py_enum_class(e), lookup=py_lookup(e), doc=one_line(e.doc, e.field_note),
+        views.append(dict(name=e.name, cls=py_enum_class(e), lookup=py_lookup(e), doc=one_line(node_text(e)),
                           wire=e.scalar.name, versioned=e.versioned, tables=tables))
     return views
 

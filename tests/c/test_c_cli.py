@@ -1,5 +1,5 @@
-"""build/urwire-decode as CONTRACT.md §3 says: FILE or -, --version-hint, exit codes 0/1/2 with
-a one-line stderr message for usage and I/O errors."""
+"""build/urwire-decode as docs/contract.md#what-every-target-keeps says: FILE or -,
+--version-hint, exit codes 0/1/2 with a one-line stderr message for usage and I/O errors."""
 from __future__ import annotations
 
 import subprocess

@@ -51,8 +51,8 @@ def test_a_gated_field_is_read_only_from_its_version(tmp_path):
     assert new["gated_flag"] == 0xBEEF and new["extra"] == "99"
     assert "gated_flag" not in old and old["extra"] == "beef99"
     assert "ver->key >= URWIRE__V(5, 12, 0)" in (tmp_path / "c" / "urwire.c").read_text()
-    # A body of exactly the 5.12 form's size is that form, whatever the version (CONTRACT §5:
-    # the one form whose size equals the length).
+    # A body of exactly the 5.12 form's size is that form, whatever the version
+    # (docs/contract.md#choosing-a-layout: the one form whose size equals the length).
     exact = message(bytes([1, 0, 1, 0]) + struct.pack(">H", 0xBEEF))
     assert decode(exact, "5.9")["gated_flag"] == 0xBEEF and "extra" not in decode(exact, "5.9")
     # Encoded back exactly under either version: the field, or the same bytes as extra.

@@ -38,7 +38,7 @@ def robot_state(body: bytes) -> bytes:
 
 
 def test_a_gated_field_follows_the_version_and_else_the_length(tmp_path):
-    """CONTRACT §5: the version's layout when it fits the declared length; else the one layout
+    """docs/contract.md#choosing-a-layout: the version's layout when it fits the declared length; else the one layout
     whose size equals it; else the version's layout with its short or extra bytes."""
     root = render_variant(tmp_path, add_gated_field)
     saved = {k: v for k, v in sys.modules.items() if k == "urwire" or k.startswith("urwire.")}

@@ -1,5 +1,5 @@
 """The dissector across controller generations, in real tshark, on a variant of the spec that
-uses what older generations need (CONTRACT §5):
+uses what older generations need (docs/contract.md#choosing-a-layout):
 
 - a field gated by version (additional_info.gated_flag from 5.12; singularity_info.late_flag
   from 5.25.1, a bugfix release);

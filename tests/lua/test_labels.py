@@ -63,6 +63,6 @@ def test_descriptions_come_from_the_spec():
     q = rows["ur.joint_data.q_actual"]
     assert q[1] == "Actual joint position" and q[7] == "Measured angle of the joint. In rad."
     assert rows["ur.robot_mode_data.speed_scaling"][7] == "Speed scaling. Sent by software 3.0 and later."
-    assert rows["ur.masterboard_data.digital_input_bits"][7].startswith("Digital inputs: bits 0-7 standard")
+    assert rows["ur.masterboard_data.digital_input_bits"][7].startswith("Bits 0-7 standard")
     assert rows["ur.masterboard_data.digital_input_bits.tool_1"][1] == "Tool 1"
     assert not [name for name, cols in rows.items() if SNAKE.search(cols[1])]

@@ -1,4 +1,5 @@
-"""The urwire command, as CONTRACT.md §3 says: inputs, JSON Lines, --version-hint, exit codes."""
+"""The urwire command, as docs/contract.md#what-every-target-keeps says: inputs, JSON Lines,
+--version-hint, exit codes."""
 from __future__ import annotations
 
 import json

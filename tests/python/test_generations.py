@@ -26,7 +26,7 @@ def test_a_session_of_each_generation_decodes_cleanly_and_reencodes(version):
 
 def test_package_classes_follow_the_version():
     """Type 5 is the laser pointer up to 1.7 and kinematics info from 1.8
-    (FIRMWARE-LAYOUTS); codes come in order; a text version is accepted."""
+    (docs/firmware-history.md#laser-pointer); codes come in order; a text version is accepted."""
     early, late = urwire.package_classes("1.7"), urwire.package_classes((1, 8, 0))
     assert early[5] is urwire.LaserPointer and late[5] is urwire.KinematicsInfo
     assert list(late) == sorted(late) and late[1] is urwire.JointData

@@ -36,7 +36,7 @@ def urwire_layouts():
 
 def test_the_cb2_packet_decodes_in_the_cb2_layouts():
     """The real CB2 capture has no Version message: the lengths choose the CB2 layouts, which
-    read every package exactly (FIRMWARE-LAYOUTS 1a)."""
+    read every package exactly (docs/firmware-history.md#sizes-by-version)."""
     (case,) = [c for c in CASES if c.name.endswith("packet")]
     (state,) = decode(case)
     flagged = {p["type"] for p in state["packages"] if "error" in p or "extra" in p}

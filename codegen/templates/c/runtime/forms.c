@@ -5,9 +5,10 @@
 /* The generated part cuts the version axis where any form of any type code starts or ends
  * (urwire__segment_bounds) and gives, for each type byte (the sub-package types, the subtypes
  * of each message), an urwire__form_table: the forms of each code and the form each segment
- * sends. The rule (CONTRACT §5), for every sub-package and subtype: the version's form when it
- * fits the body; else the one form whose exact size the body has, read in that form's version;
- * else the version's form, whose short or extra bytes are then reported. */
+ * sends. The rule (docs/contract.md#choosing-a-layout), for every sub-package and subtype:
+ * the version's form when it fits the body; else the one form whose exact size the body has,
+ * read in that form's version; else the version's form, whose short or extra bytes are then
+ * reported. */
 
 /* The segment of the version axis that holds a version (its urwire__version_key): the last
  * bound at or below it. The default version's segment is tried first (a stream read before its

@@ -13,7 +13,8 @@ typedef struct urwire_sw_version {
     int minor;
     int bugfix;
     /* Neither announced by the stream nor given by you, but assumed (URWIRE_DEFAULT_VERSION):
-     * the layout sizes of a robot state may then tell the version (CONTRACT §5). */
+     * the layout sizes of a robot state may then tell the version
+     * (docs/contract.md#where-the-version-comes-from). */
     bool assumed;
 } urwire_sw_version;
 
