@@ -61,19 +61,18 @@ def spread(items: list[str], open_: str, close: str = "", indent: str = "", widt
         return one
     first = indent + open_
     if len(first) + len(items[0]) + 1 > width:
-        out, hang = [first.rstrip()], indent + "    "
-        line = hang
+        out, hang, line = [first.rstrip()], indent + "    ", indent + "    "
     else:
-        out, hang = [], " " * len(first)
-        line = first
+        out, hang, line = [], " " * len(first), first
+    empty = True                                   # nothing on `line` yet but its indentation
     for n, item in enumerate(items):
         piece = item + (close if n == len(items) - 1 else ",")
-        if line != hang and line != first and len(line) + 1 + len(piece) > width:
+        if not empty and len(line) + 1 + len(piece) > width:
             out.append(line)
-            line = hang
-        line += piece if line in (first, hang) else " " + piece
-    out.append(line)
-    return "\n".join(out)
+            line, empty = hang, True
+        line += piece if empty else " " + piece
+        empty = False
+    return "\n".join(out + [line])
 
 
 def chain(names: list[str], value: str, indent: str = "", width: int = LIMIT) -> str:
