@@ -73,7 +73,6 @@ class FixedRun:
     size: int
     members: list[Member]
     leaves: list[Leaf]
-    offset: Optional[int]           # from the layout's start, when nothing variable precedes it
     kind: str = "run"
 
     @property
@@ -109,10 +108,6 @@ class LayoutPlan:
     runs: list[FixedRun]             # every run, nested ones included, in order
     fixed_size: Optional[int]
     min_size: int
-    offsets: dict[str, int]          # fields at a fixed offset from the start: name -> offset
-
-    def field_offset(self, name: str) -> Optional[int]:
-        return self.offsets.get(name)
 
 
 @dataclass
@@ -148,27 +143,18 @@ class _Planner:
 
     def layout(self, struct: ir.Struct) -> LayoutPlan:
         runs: list[FixedRun] = []
-        steps = self.steps(struct.fields, runs, 0)
-        offsets, at = {}, 0
-        for f in struct.fields:
-            if at is None or f.conditional:
-                break
-            offsets[f.name] = at
-            at = at + f.fixed_size if f.fixed_size is not None else None
-        return LayoutPlan(struct, steps, runs, struct.fixed_size, struct.min_size, offsets)
+        steps = self.steps(struct.fields, runs)
+        return LayoutPlan(struct, steps, runs, struct.fixed_size, struct.min_size)
 
-    def steps(self, fields: list[ir.AnyField], runs: list[FixedRun], start: Optional[int]) -> list[Step]:
+    def steps(self, fields: list[ir.AnyField], runs: list[FixedRun]) -> list[Step]:
         out: list[Step] = []
         pending: list[ir.AnyField] = []
-        at = start
 
         def flush() -> None:
-            nonlocal at
             if pending:
-                run = self.run(list(pending), len(runs), at)
+                run = self.run(list(pending), len(runs))
                 runs.append(run)
                 out.append(run)
-                at = None if at is None else at + run.size
                 pending.clear()
 
         i = 0
@@ -180,21 +166,19 @@ class _Planner:
                 while i + 1 < len(fields) and condition_of(fields[i + 1]) == condition_of(f):
                     i += 1
                     group.append(fields[i])
-                inner = self.steps([_unconditional(g) for g in group], runs, None)
+                inner = self.steps([_unconditional(g) for g in group], runs)
                 out.append(CondGroup(condition_of(f), group, inner))
-                at = None
             elif _in_run(f):
                 pending.append(f)
             else:
                 flush()
                 item = self.item(f) if isinstance(f, ir.GroupField) else None
                 out.append(VarField(f, f.name, item))
-                at = None
             i += 1
         flush()
         return out
 
-    def run(self, fields: list[ir.AnyField], index: int, offset: Optional[int]) -> FixedRun:
+    def run(self, fields: list[ir.AnyField], index: int) -> FixedRun:
         members, leaves, at = [], [], 0
         for f in fields:
             item = self.item(f) if isinstance(f, ir.GroupField) else None
@@ -202,7 +186,7 @@ class _Planner:
             members.append(Member(f, at, len(leaves), len(mine), item))
             leaves += mine
             at += f.fixed_size
-        return FixedRun(index, at, members, leaves, offset)
+        return FixedRun(index, at, members, leaves)
 
     def leaves(self, f: ir.AnyField, path: str, at: int) -> list[Leaf]:
         if isinstance(f, ir.ScalarField):
@@ -360,13 +344,6 @@ class ProtocolPlan:
             if m.message.name == name:
                 return m
         raise KeyError(name)
-
-    def plan_of(self, layout: ir.Layout) -> LayoutPlan:
-        for m in self.messages:
-            for c in m.layouts:
-                if c.layout is layout:
-                    return c.plan
-        raise KeyError(layout.name)
 
     def item_of(self, group: ir.GroupField) -> ItemPlan:
         for it in self.items:

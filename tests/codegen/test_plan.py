@@ -45,10 +45,9 @@ def test_message_headers_and_body_offsets(planned):
 def test_a_fixed_package_is_one_run_with_member_and_leaf_offsets(planned):
     mode = layout(planned, "robot_state", "robot_mode_data")
     (run,) = mode.steps
-    assert isinstance(run, FixedRun) and run.offset == 0 and run.size == mode.fixed_size == 42
+    assert isinstance(run, FixedRun) and run.size == mode.fixed_size == 42
     first = {m.field.name: (m.offset, m.first_leaf) for m in run.members}
     assert first["timestamp"] == (0, 0) and first["robot_mode"] == (15, 8) and first["reserved"] == (41, 13)
-    assert mode.field_offset("robot_mode") == 15
 
 
 def test_fixed_count_groups_are_read_inside_the_run(planned):
@@ -69,7 +68,7 @@ def test_a_flag_makes_one_condition_group_between_runs(planned):
                                              "euromap_current"]
     (inner,) = cond.steps
     assert isinstance(inner, FixedRun) and inner.size == 16 and inner.index == 1
-    assert head.offset == 0 and tail.offset is None and tail.index == 2
+    assert head.index == 0 and tail.index == 2
 
 
 def test_variable_fields_and_groups_repeated_to_the_end(planned):
