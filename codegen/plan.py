@@ -279,6 +279,42 @@ class Variant:
 
 
 
+@dataclass(frozen=True)
+class Segment:
+    """A piece of the version axis within which every type code of every message sends one
+    form: the versions from `first` (None: every version below `upto`) up to, not including,
+    `upto` (None: no end)."""
+
+    first: Optional[ir.Version]
+    upto: Optional[ir.Version]
+
+    def describe(self) -> str:
+        """"up to 1.5", "1.8", "1.6 to 1.7", "5.4 to 5.25.0", "3.16 to before 5.0", "10.0 and later"."""
+        if self.upto is None:
+            return f"{ir.version_text(self.first)} and later" if self.first else "all versions"
+        major, minor, bugfix = self.upto
+        if bugfix:
+            last = "%d.%d.%d" % (major, minor, bugfix - 1)
+        elif minor:
+            last = ir.version_text((major, minor - 1, ir.BUGFIX_ANY))
+        else:
+            last = f"before {ir.version_text(self.upto)}"
+        if self.first is None:
+            return last if last.startswith("before") else f"up to {last}"
+        first = ir.version_text(self.first)
+        return first if first == last else f"{first} to {last}"
+
+
+@dataclass(frozen=True)
+class SegmentForm:
+    """The form a type code takes in one segment: its index among the code's variants. When no
+    form is sent there (between two series, or newer than the spec knows) it is the form of the
+    nearest version below, else the first, and `nearest` says so: it is read as its `rep`."""
+
+    form: int
+    nearest: bool = False
+
+
 @dataclass
 class MessagePlan:
     message: ir.Message
@@ -287,6 +323,11 @@ class MessagePlan:
     subtype_offset: Optional[int]
     choices: dict[int, list[LayoutChoice]]   # type code -> the layouts it can have
     variants: dict[int, list[Variant]] = field(default_factory=dict)   # type code -> its forms
+    # type code -> its form in each segment of ProtocolPlan.segments
+    by_segment: dict[int, list[SegmentForm]] = field(default_factory=dict)
+    # type code -> {body size: the index of the one fixed-size form of that size}: the forms a
+    # part's length alone recognises (an open-ended form fits too much to be recognised)
+    by_length: dict[int, dict[int, int]] = field(default_factory=dict)
 
     @property
     def is_dispatch(self) -> bool:
@@ -338,6 +379,11 @@ class ProtocolPlan:
     messages: list[MessagePlan]
     version: VersionSource
     items: list[ItemPlan]
+    segments: list[Segment]          # the version axis, cut wherever a form starts or ends
+
+    def segment_of(self, version: ir.Version) -> int:
+        """The index of the segment that holds `version`."""
+        return max(k for k, s in enumerate(self.segments) if s.first is None or s.first <= version)
 
     def message(self, name: str) -> MessagePlan:
         for m in self.messages:
@@ -493,8 +539,61 @@ def _representative(ranges: list[tuple[int, int]], default: ir.Version) -> ir.Ve
     """The version a variant stands for: the default where it covers it, else its newest
     version below the default, else its oldest."""
     d = ir.version_number(default)
-    below = [min(hi, d) for lo, hi in ranges if lo <= d]
-    return _from_number(max(below)) if below else _from_number(ranges[0][0])
+    below = [(lo, min(hi, d)) for lo, hi in ranges if lo <= d]
+    lo, hi = max(below, key=lambda r: r[1]) if below else (ranges[0][0], ranges[0][0])
+    # A bound of any bugfix release ("up to 1.8") stands for its first one: a real version.
+    major, minor, bugfix = _from_number(hi)
+    return max(_from_number(lo), (major, minor, 0)) if bugfix == ir.BUGFIX_ANY else (major, minor, bugfix)
+
+
+# ---- segments: one lookup gives every type code's form at a version -------------------------
+
+def _after(number: int) -> Optional[ir.Version]:
+    """The first version above an inclusive upper bound (a number of the plan): after "up to
+    5.8" (any 5.8.x) comes 5.9, after 5.25.0 comes 5.25.1; None after the open end."""
+    if number >= _TOP:
+        return None
+    major, minor, bugfix = _from_number(number)
+    return (major, minor + 1, 0) if bugfix == ir.BUGFIX_ANY else (major, minor, bugfix + 1)
+
+
+def _segments(messages: list[MessagePlan]) -> list[Segment]:
+    """The version axis cut wherever any form of any type code starts or ends."""
+    cuts: set[ir.Version] = set()
+    for mp in messages:
+        for variants in mp.variants.values():
+            for v in variants:
+                for lo, hi in v.ranges:
+                    if lo:
+                        cuts.add(_from_number(lo))
+                    if _after(hi) is not None:
+                        cuts.add(_after(hi))
+    starts: list[Optional[ir.Version]] = [None] + sorted(cuts)
+    return [Segment(first, upto) for first, upto in zip(starts, starts[1:] + [None])]
+
+
+def _by_segment(variants: list[Variant], segments: list[Segment]) -> list[SegmentForm]:
+    """The form of one type code in each segment: the one its versions send, else the nearest
+    below's (else the first)."""
+    out = []
+    for s in segments:
+        at = ir.version_number(s.first) if s.first else 0
+        sent = [k for k, v in enumerate(variants) if any(lo <= at <= hi for lo, hi in v.ranges)]
+        if sent:
+            out.append(SegmentForm(sent[0]))
+        else:
+            below = [(lo, k) for k, v in enumerate(variants) for lo, _ in v.ranges if lo <= at]
+            out.append(SegmentForm(max(below)[1] if below else 0, nearest=True))
+    return out
+
+
+def _by_length(variants: list[Variant]) -> dict[int, int]:
+    """Body sizes that exactly one fixed-size form of a type code has, with that form's index."""
+    holders: dict[int, list[int]] = {}
+    for k, v in enumerate(variants):
+        for size in sorted(v.sizes or ()):
+            holders.setdefault(size, []).append(k)
+    return {size: ks[0] for size, ks in sorted(holders.items()) if len(ks) == 1}
 
 
 def plan(p: ir.Protocol) -> ProtocolPlan:
@@ -523,8 +622,12 @@ def plan(p: ir.Protocol) -> ProtocolPlan:
             for v in forms:
                 v.plan = planner.layout(v.layout.struct.at(v.rep))
         messages.append(MessagePlan(m, header, body, subtype_offset, choices, variants))
+    segments = _segments(messages)
+    for mp in messages:
+        mp.by_segment = {code: _by_segment(forms, segments) for code, forms in mp.variants.items()}
+        mp.by_length = {code: _by_length(forms) for code, forms in mp.variants.items()}
     version = _version_source(p, messages, problems)
     if problems:
         raise SpecError(p.source, problems)
     return ProtocolPlan(p, p.header_size, p.package_header_size, messages, version,
-                        list(planner.items.values()))
+                        list(planner.items.values()), segments)

@@ -539,43 +539,46 @@ def value_views(p: ir.Protocol) -> dict:
 
 # ---- forms: which layout a type code is read in ---------------------------------------------
 
-def _tuple(number: int) -> ir.Version:
-    """A version number of the plan (ir.version_number) as the (major, minor, bugfix) it counts."""
-    return number // 1_000_000, number // 1000 % 1000, number % 1000
+# A segment's row marks a form that is the nearest below's (none is sent there) with this bit.
+NEAREST_BIT = 0x80
+# A form in brief (urwire__package_first_sizes): its first exact size, its least size when it is
+# open-ended, or none.
+BRIEF = {"exact": "{size}u", "open": "URWIRE__OPEN({size}u)", "none": "URWIRE__NONE"}
+
+
+def cell_lines(cells: list[str], width: int = 112) -> list[str]:
+    """The cells of one row of a C table, ", "-joined and wrapped into lines of at most `width`."""
+    lines, line = [], ""
+    for text in (c + "," for c in cells):
+        if line and len(line) + 1 + len(text) > width:
+            lines.append(line)
+            line = ""
+        line = f"{line} {text}" if line else text
+    return lines + [line] if line else lines
 
 
 class _Forms:
-    """The version axis cut wherever any form of any type code starts or ends: within one
-    segment every type code sends the same form, so a version's form is one table lookup
-    (urwire__segment, then the segment's row). Bounds compare as the spec's version tuples do,
-    so a bound "up to 5.8" (5.8.999) ends just before 5.8.1000, as in Python."""
+    """The plan's segments of the version axis (within one, every type code sends one form) as C
+    tables: a version's form is one lookup (urwire__segment, then the segment's row)."""
 
     def __init__(self, protocol_plan: plan.ProtocolPlan):
+        self.plan = protocol_plan
         self.source = protocol_plan.protocol.source
-        ranges = [(_tuple(lo), _tuple(hi)) for mp in protocol_plan.messages for variants in mp.variants.values()
-                  for v in variants for lo, hi in v.ranges]
-        cuts = {(0, 0, 0)}
-        for lo, hi in ranges:
-            cuts |= {lo, (hi[0], hi[1], hi[2] + 1)}
-        self.starts = sorted(cuts)
-        # A version in each segment: segment 0 is everything below the first start.
-        self.samples = [(-1, 0, 0)] + self.starts
+        self.segments = protocol_plan.segments
         self.size_slots = max([len(v.sizes or ()) for mp in protocol_plan.messages for vs in mp.variants.values()
                                for v in vs] + [1])
 
-    @staticmethod
-    def nearest_below(code: dict, sample: ir.Version) -> int:
-        """A segment no form of the code is sent in: the form of the nearest version below (else
-        the first), marked URWIRE__NEAREST (the runtime reads it as the version it stands for)."""
-        below = [(_tuple(lo), n) for n, f in enumerate(code["forms"]) for lo, _ in f["ranges"] if _tuple(lo) <= sample]
-        n = max(below)[1] if below else 0
-        return (code["first"] + n + 1) | 0x80
+    def bounds(self) -> list[dict]:
+        """Where each segment starts, with the versions it holds: the first from key 0."""
+        return [dict(kind="version", first=version_view(s.first), versions=s.describe()) if s.first else
+                dict(kind="lowest", versions=s.describe()) for s in self.segments]
 
     def table(self, tag: str, what: str, mp: plan.MessagePlan, enum: ir.Enum, layouts: dict[int, str],
               first_sizes: bool = False) -> dict:
         """The forms of every code of one type byte (the sub-package types, or a message's
         subtypes), in one list; the forms of each code; and, segment by segment, the form each
-        code's versions send (its number in the list plus one, 0 for none)."""
+        code takes there (its number in the list plus one, 0 for none, NEAREST_BIT when it is the
+        nearest below's)."""
         codes, count = [], 0
         for code, variants in mp.variants.items():
             forms = []
@@ -583,30 +586,30 @@ class _Forms:
                 sizes = sorted(v.sizes) if v.sizes is not None else []
                 forms.append(dict(layout=layouts[id(v.layout)], nsizes=len(sizes),
                                   sizes=sizes + [0] * (self.size_slots - len(sizes)), min_size=v.min_size,
-                                  rep=version_view(v.rep), versions=v.describe(), ranges=v.ranges))
+                                  rep=version_view(v.rep), versions=v.describe()))
             codes.append(dict(code=code, index=c_enum_const(enum, code), first=count, count=len(forms), forms=forms,
                               names=", ".join(c.layout.name for c in mp.choices[code]),
                               layouts=[dict(name=c.layout.name, const=layouts[id(c.layout)])
                                        for c in mp.choices[code]]))
             count += len(forms)
-        if count >= 128:
+        if count >= NEAREST_BIT:
             raise SpecError(self.source, [mp.message.where.problem(
                 "c target: more than 127 forms of one type byte do not fit the form tables")])
         ncodes = max(mp.variants) + 1
         rows = []
-        for k, sample in enumerate(self.samples):
+        for k, segment in enumerate(self.segments):
             row = [0] * ncodes
             first = [dict(kind="none")] * ncodes
             for c in codes:
-                sent = [n for n, f in enumerate(c["forms"])
-                        if any(_tuple(lo) <= sample <= _tuple(hi) for lo, hi in f["ranges"])]
-                row[c["code"]] = c["first"] + sent[0] + 1 if sent else self.nearest_below(c, sample)
-                if sent:
-                    f = c["forms"][sent[0]]
+                sf = mp.by_segment[c["code"]][k]
+                row[c["code"]] = (c["first"] + sf.form + 1) | (NEAREST_BIT if sf.nearest else 0)
+                if not sf.nearest:
+                    f = c["forms"][sf.form]
                     first[c["code"]] = dict(kind="exact", size=f["sizes"][0]) if f["nsizes"] else \
                         dict(kind="open", size=f["min_size"])
-            start = "below %d.%d.%d" % self.starts[0] if k == 0 else "from %d.%d.%d" % sample
-            rows.append(dict(forms=row, first=first, start=start))
+            rows.append(dict(forms=row, first=first, versions=segment.describe(),
+                             cells=cell_lines(["0x%02x" % n for n in row]),
+                             first_cells=cell_lines([BRIEF[n["kind"]].format(size=n.get("size")) for n in first])))
         return dict(tag=tag, what=what, codes=codes, ncodes=ncodes, rows=rows, first_sizes=first_sizes)
 
 
@@ -685,7 +688,7 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     vmsg = next(m for m in messages if m["code"] == vs.message_code)
     return dict(structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
                 package_decoders=package_decoders, package_fast=package_fast,
-                segment_starts=[version_view(v) for v in axis.starts], form_sizes=axis.size_slots,
+                segment_bounds=axis.bounds(), form_sizes=axis.size_slots,
                 framing=framing(p, lists[0], vst, vmsg, vs), known_types=known_types(p))
 
 
@@ -698,13 +701,10 @@ def fast_paths(axis: _Forms, table: dict, decoders: list[dict], default: ir.Vers
     that sends one of these rows takes its loop."""
     rows = table["rows"]
 
-    def segment_of(v: ir.Version) -> int:
-        return max(k for k, start in enumerate(axis.samples) if start <= v)
-
     def usable(row: dict) -> bool:
         return any(n["kind"] != "none" for n in row["first"])
 
-    picks = [segment_of(default)] + [k for k in range(len(rows) - 1, -1, -1) if usable(rows[k])][:1]
+    picks = [axis.plan.segment_of(default)] + [k for k in range(len(rows) - 1, -1, -1) if usable(rows[k])][:1]
     if picks[0] == len(rows) - 1:
         # urwire__segment tries the default's segment first, up to the bound after it.
         raise SpecError(axis.source, [ir.NOWHERE.problem("c target: the default version lies past every form's "
@@ -717,14 +717,14 @@ def fast_paths(axis: _Forms, table: dict, decoders: list[dict], default: ir.Vers
             continue
         cases = []
         for form, first in zip(row["forms"], row["first"]):
-            if form == 0 or form & 0x80 or first["kind"] == "none":
+            if form == 0 or form & NEAREST_BIT or first["kind"] == "none":
                 continue  # no form of its own there: the general rule finds the nearest
             c, x = by_number[form]
             cases.append(dict(type=c["index"], layout=x["layout"], decoder=x["decoder"], member=x["member"],
                               check="any" if first["kind"] == "open" and first["size"] == 0 else first["kind"],
                               size=first["size"], versions=x["versions"]))
         paths.append(dict(number=len(paths) + 1, forms=row["forms"], cases=cases,
-                          segments=", ".join(r["start"] for r in rows if r["forms"] == row["forms"])))
+                          segments=", ".join(r["versions"] for r in rows if r["forms"] == row["forms"])))
     of_segment = [next((p["number"] for p in paths if p["forms"] == r["forms"]), 0) for r in rows]
     return dict(paths=paths, of_segment=of_segment, default_segment=picks[0])
 

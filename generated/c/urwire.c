@@ -5172,73 +5172,63 @@ static void urwire__put_program_state_header(const urwire_message *m, uint8_t *o
 /* ---- forms: which layout a type code is read in, by software version and by length ------- */
 
 /* The segment of the default version: every stream whose version is only assumed reads in it. */
-#define URWIRE__DEFAULT_SEGMENT 21u
+#define URWIRE__DEFAULT_SEGMENT 12u
 
 /* Where the segments of the version axis start (as urwire__version_key orders versions):
- * segment k from urwire__segment_bounds[k] up to the next bound; segment 0 from key 0, below
- * every version the spec names. Within a segment every type code sends one form. */
+ * segment k from urwire__segment_bounds[k] up to the next bound; segment 0 from key 0. Within a
+ * segment every type code sends one form. */
 static const uint64_t urwire__segment_bounds[] = {
-    0u,
-    URWIRE__V(0, 0, 0),
-    URWIRE__V(1, 5, 1000),
-    URWIRE__V(1, 6, 0),
-    URWIRE__V(1, 7, 1000),
-    URWIRE__V(1, 8, 0),
-    URWIRE__V(1, 8, 1000),
-    URWIRE__V(3, 0, 0),
-    URWIRE__V(3, 0, 1000),
-    URWIRE__V(3, 1, 0),
-    URWIRE__V(3, 1, 1000),
-    URWIRE__V(3, 2, 0),
-    URWIRE__V(3, 2, 1000),
-    URWIRE__V(3, 3, 0),
-    URWIRE__V(3, 4, 1000),
-    URWIRE__V(3, 5, 0),
-    URWIRE__V(3, 9, 1000),
-    URWIRE__V(3, 10, 0),
-    URWIRE__V(3, 15, 1000),
-    URWIRE__V(5, 0, 0),
-    URWIRE__V(5, 3, 1000),
-    URWIRE__V(5, 4, 0),
-    URWIRE__V(5, 25, 1),
-    URWIRE__V(5, 99, 1000),
-    URWIRE__V(10, 0, 0),
-    URWIRE__V(1048576, 0, 1),
+    0u,  /* up to 1.5 */
+    URWIRE__V(1, 6, 0),  /* 1.6 to 1.7 */
+    URWIRE__V(1, 8, 0),  /* 1.8 */
+    URWIRE__V(1, 9, 0),  /* 1.9 to before 3.0 */
+    URWIRE__V(3, 0, 0),  /* 3.0 */
+    URWIRE__V(3, 1, 0),  /* 3.1 */
+    URWIRE__V(3, 2, 0),  /* 3.2 */
+    URWIRE__V(3, 3, 0),  /* 3.3 to 3.4 */
+    URWIRE__V(3, 5, 0),  /* 3.5 to 3.9 */
+    URWIRE__V(3, 10, 0),  /* 3.10 to 3.15 */
+    URWIRE__V(3, 16, 0),  /* 3.16 to before 5.0 */
+    URWIRE__V(5, 0, 0),  /* 5.0 to 5.3 */
+    URWIRE__V(5, 4, 0),  /* 5.4 to 5.25.0 */
+    URWIRE__V(5, 25, 1),  /* 5.25.1 to 5.99 */
+    URWIRE__V(5, 100, 0),  /* 5.100 to before 10.0 */
+    URWIRE__V(10, 0, 0),  /* 10.0 and later */
 };
 
 /* The forms of every sub-package type, code by code. */
 static const urwire__form urwire__package_form_list[] = {
     /* 0: robot_mode_data */
-    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {24, 0}, 24u, {1, 8, 999, false}},  /* up to 1.8 */
-    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {33, 0}, 33u, {3, 1, 999, false}},  /* 3.0 to 3.1 */
-    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {41, 0}, 41u, {3, 4, 999, false}},  /* 3.2 to 3.4 */
+    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {24, 0}, 24u, {1, 8, 0, false}},  /* up to 1.8 */
+    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {33, 0}, 33u, {3, 1, 0, false}},  /* 3.0 to 3.1 */
+    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {41, 0}, 41u, {3, 4, 0, false}},  /* 3.2 to 3.4 */
     {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {42, 0}, 42u, {5, 9, 0, false}},  /* 3.5 and later */
     /* 1: joint_data */
     {URWIRE_LAYOUT_JOINT_DATA, 1, {246, 0}, 246u, {5, 9, 0, false}},  /* all versions */
     /* 2: tool_data */
     {URWIRE_LAYOUT_TOOL_DATA, 1, {32, 0}, 32u, {5, 9, 0, false}},  /* all versions */
     /* 3: masterboard_data */
-    {URWIRE_LAYOUT_MASTERBOARD_DATA, 1, {56, 0}, 56u, {1, 5, 999, false}},  /* up to 1.5 */
-    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {59, 71}, 59u, {1, 8, 999, false}},  /* 1.6 to 1.8 */
-    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {67, 83}, 67u, {3, 1, 999, false}},  /* 3.0 to 3.1 */
-    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {69, 85}, 69u, {5, 3, 999, false}},  /* 3.2 to 3.9 or 5.0 to 5.3 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 1, {56, 0}, 56u, {1, 5, 0, false}},  /* up to 1.5 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {59, 71}, 59u, {1, 8, 0, false}},  /* 1.6 to 1.8 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {67, 83}, 67u, {3, 1, 0, false}},  /* 3.0 to 3.1 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {69, 85}, 69u, {5, 3, 0, false}},  /* 3.2 to 3.9 or 5.0 to 5.3 */
     {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {70, 86}, 70u, {5, 9, 0, false}},  /* 3.10 to 3.15 or 5.4 and later */
     /* 4: cartesian_info */
-    {URWIRE_LAYOUT_CARTESIAN_INFO, 1, {48, 0}, 48u, {3, 0, 999, false}},  /* up to 3.0 */
+    {URWIRE_LAYOUT_CARTESIAN_INFO, 1, {48, 0}, 48u, {3, 0, 0, false}},  /* up to 3.0 */
     {URWIRE_LAYOUT_CARTESIAN_INFO, 1, {96, 0}, 96u, {5, 9, 0, false}},  /* 3.1 and later */
     /* 5: laser_pointer, kinematics_info */
-    {URWIRE_LAYOUT_LASER_POINTER, 1, {24, 0}, 24u, {1, 7, 999, false}},  /* up to 1.7 */
+    {URWIRE_LAYOUT_LASER_POINTER, 1, {24, 0}, 24u, {1, 7, 0, false}},  /* up to 1.7 */
     {URWIRE_LAYOUT_KINEMATICS_INFO, 1, {220, 0}, 220u, {5, 9, 0, false}},  /* 1.8 and later */
     /* 6: configuration_data */
-    {URWIRE_LAYOUT_CONFIGURATION_DATA, 1, {464, 0}, 464u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_LAYOUT_CONFIGURATION_DATA, 1, {464, 0}, 464u, {1, 8, 0, false}},  /* up to 1.8 */
     {URWIRE_LAYOUT_CONFIGURATION_DATA, 1, {440, 0}, 440u, {5, 9, 0, false}},  /* 3.0 to 5.25.0 */
     {URWIRE_LAYOUT_CONFIGURATION_DATA, 1, {444, 0}, 444u, {5, 25, 1, false}},  /* 5.25.1 and later */
     /* 7: force_mode_data */
     {URWIRE_LAYOUT_FORCE_MODE_DATA, 1, {56, 0}, 56u, {5, 9, 0, false}},  /* all versions */
     /* 8: additional_info */
-    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {5, 0}, 5u, {1, 7, 999, false}},  /* up to 1.7 */
-    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {2, 0}, 2u, {3, 1, 999, false}},  /* 1.8 to 3.1 */
-    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {3, 0}, 3u, {3, 15, 999, false}},  /* 3.2 to 3.15 */
+    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {5, 0}, 5u, {1, 7, 0, false}},  /* up to 1.7 */
+    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {2, 0}, 2u, {3, 1, 0, false}},  /* 1.8 to 3.1 */
+    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {3, 0}, 3u, {3, 15, 0, false}},  /* 3.2 to 3.15 */
     {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {4, 0}, 4u, {5, 9, 0, false}},  /* 5.0 and later */
     /* 9: calibration_data */
     {URWIRE_LAYOUT_CALIBRATION_DATA, 1, {48, 0}, 48u, {5, 9, 0, false}},  /* all versions */
@@ -5271,66 +5261,82 @@ static const urwire__forms urwire__package_forms[] = {
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
- * number in urwire__package_form_list plus one; 0 for none. */
+ * number in urwire__package_form_list plus one; 0 for none. With URWIRE__NEAREST (0x80) set, none
+ * is sent there: the form is the nearest version's below. */
 static const uint8_t urwire__package_mine[] = {
-    129, 133, 134, 135, 140, 142, 144, 147, 148, 152, 153, 154, 155, 156,  /* below 0.0.0 */
-    1, 5, 6, 7, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,  /* from 0.0.0 */
-    1, 5, 6, 135, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,  /* from 1.5.1000 */
-    1, 5, 6, 8, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,  /* from 1.6.0 */
-    1, 5, 6, 8, 12, 142, 16, 19, 148, 24, 25, 26, 27, 28,  /* from 1.7.1000 */
-    1, 5, 6, 8, 12, 15, 16, 19, 21, 24, 25, 26, 27, 28,  /* from 1.8.0 */
-    129, 133, 134, 136, 140, 143, 144, 147, 149, 152, 153, 154, 155, 156,  /* from 1.8.1000 */
-    2, 5, 6, 9, 12, 15, 17, 19, 21, 24, 25, 26, 27, 28,  /* from 3.0.0 */
-    2, 5, 6, 9, 140, 15, 17, 19, 21, 24, 25, 26, 27, 28,  /* from 3.0.1000 */
-    2, 5, 6, 9, 13, 15, 17, 19, 21, 24, 25, 26, 27, 28,  /* from 3.1.0 */
-    130, 5, 6, 137, 13, 15, 17, 19, 149, 24, 25, 26, 27, 28,  /* from 3.1.1000 */
-    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.2.0 */
-    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.2.1000 */
-    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.3.0 */
-    131, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.4.1000 */
-    4, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.5.0 */
-    4, 5, 6, 138, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.9.1000 */
-    4, 5, 6, 11, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,  /* from 3.10.0 */
-    132, 133, 134, 139, 141, 143, 145, 147, 150, 152, 153, 154, 155, 156,  /* from 3.15.1000 */
-    4, 5, 6, 10, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,  /* from 5.0.0 */
-    4, 5, 6, 138, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,  /* from 5.3.1000 */
-    4, 5, 6, 11, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,  /* from 5.4.0 */
-    4, 5, 6, 11, 13, 15, 18, 19, 23, 24, 25, 26, 27, 28,  /* from 5.25.1 */
-    132, 133, 134, 139, 141, 143, 146, 147, 151, 152, 153, 154, 155, 156,  /* from 5.99.1000 */
-    4, 5, 6, 11, 13, 15, 18, 19, 23, 24, 25, 26, 27, 28,  /* from 10.0.0 */
-    132, 133, 134, 139, 141, 143, 146, 147, 151, 152, 153, 154, 155, 156,  /* from 1048576.0.1 */
+    /* up to 1.5 */
+    0x01, 0x05, 0x06, 0x07, 0x0c, 0x0e, 0x10, 0x13, 0x14, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 1.6 to 1.7 */
+    0x01, 0x05, 0x06, 0x08, 0x0c, 0x0e, 0x10, 0x13, 0x14, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 1.8 */
+    0x01, 0x05, 0x06, 0x08, 0x0c, 0x0f, 0x10, 0x13, 0x15, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 1.9 to before 3.0 */
+    0x81, 0x85, 0x86, 0x88, 0x8c, 0x8f, 0x90, 0x93, 0x95, 0x98, 0x99, 0x9a, 0x9b, 0x9c,
+    /* 3.0 */
+    0x02, 0x05, 0x06, 0x09, 0x0c, 0x0f, 0x11, 0x13, 0x15, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.1 */
+    0x02, 0x05, 0x06, 0x09, 0x0d, 0x0f, 0x11, 0x13, 0x15, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.2 */
+    0x03, 0x05, 0x06, 0x0a, 0x0d, 0x0f, 0x11, 0x13, 0x16, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.3 to 3.4 */
+    0x03, 0x05, 0x06, 0x0a, 0x0d, 0x0f, 0x11, 0x13, 0x16, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.5 to 3.9 */
+    0x04, 0x05, 0x06, 0x0a, 0x0d, 0x0f, 0x11, 0x13, 0x16, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.10 to 3.15 */
+    0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x11, 0x13, 0x16, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.16 to before 5.0 */
+    0x84, 0x85, 0x86, 0x8b, 0x8d, 0x8f, 0x91, 0x93, 0x96, 0x98, 0x99, 0x9a, 0x9b, 0x9c,
+    /* 5.0 to 5.3 */
+    0x04, 0x05, 0x06, 0x0a, 0x0d, 0x0f, 0x11, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 5.4 to 5.25.0 */
+    0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x11, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 5.25.1 to 5.99 */
+    0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x12, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 5.100 to before 10.0 */
+    0x84, 0x85, 0x86, 0x8b, 0x8d, 0x8f, 0x92, 0x93, 0x97, 0x98, 0x99, 0x9a, 0x9b, 0x9c,
+    /* 10.0 and later */
+    0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x12, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
 };
 
 
 /* The same rows in brief, for the robot-state fast path: the first exact size of the form the
  * segment sends, URWIRE__OPEN(least) for an open-ended one, URWIRE__NONE for none. */
 static const uint32_t urwire__package_first_sizes[] = {
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* below 0.0.0 */
-    24u, 246u, 32u, 56u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 0.0.0 */
-    24u, 246u, 32u, URWIRE__NONE, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.5.1000 */
-    24u, 246u, 32u, 59u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.6.0 */
-    24u, 246u, 32u, 59u, 48u, URWIRE__NONE, 464u, 56u, URWIRE__NONE, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.7.1000 */
-    24u, 246u, 32u, 59u, 48u, 220u, 464u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 1.8.0 */
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 1.8.1000 */
-    33u, 246u, 32u, 67u, 48u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.0.0 */
-    33u, 246u, 32u, 67u, URWIRE__NONE, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.0.1000 */
-    33u, 246u, 32u, 67u, 96u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.1.0 */
-    URWIRE__NONE, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, URWIRE__NONE, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.1.1000 */
-    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.2.0 */
-    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.2.1000 */
-    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.3.0 */
-    URWIRE__NONE, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.4.1000 */
-    42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.5.0 */
-    42u, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.9.1000 */
-    42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 3.10.0 */
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 3.15.1000 */
-    42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.0.0 */
-    42u, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.3.1000 */
-    42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.4.0 */
-    42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 5.25.1 */
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 5.99.1000 */
-    42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,  /* from 10.0.0 */
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,  /* from 1048576.0.1 */
+    /* up to 1.5 */
+    24u, 246u, 32u, 56u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 1.6 to 1.7 */
+    24u, 246u, 32u, 59u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 1.8 */
+    24u, 246u, 32u, 59u, 48u, 220u, 464u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 1.9 to before 3.0 */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    /* 3.0 */
+    33u, 246u, 32u, 67u, 48u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 3.1 */
+    33u, 246u, 32u, 67u, 96u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 3.2 */
+    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 3.3 to 3.4 */
+    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 3.5 to 3.9 */
+    42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 3.10 to 3.15 */
+    42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 3.16 to before 5.0 */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    /* 5.0 to 5.3 */
+    42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 5.4 to 5.25.0 */
+    42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 5.25.1 to 5.99 */
+    42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
+    /* 5.100 to before 10.0 */
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
+    /* 10.0 and later */
+    42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
 };
 
 static const urwire__form_table urwire__package_form_table = {
@@ -5340,25 +5346,25 @@ static const urwire__form_table urwire__package_form_table = {
 /* The forms of every robot_message subtype, code by code. */
 static const urwire__form urwire__robot_message_form_list[] = {
     /* 3: version */
-    {URWIRE_KIND_VERSION, 0, {0, 0}, 7u, {3, 2, 999, false}},  /* up to 3.2 */
+    {URWIRE_KIND_VERSION, 0, {0, 0}, 7u, {3, 2, 0, false}},  /* up to 3.2 */
     {URWIRE_KIND_VERSION, 0, {0, 0}, 11u, {5, 9, 0, false}},  /* 3.3 and later */
     /* 5: safety_mode */
-    {URWIRE_KIND_SAFETY_MODE, 0, {0, 0}, 8u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_SAFETY_MODE, 0, {0, 0}, 8u, {1, 8, 0, false}},  /* up to 1.8 */
     {URWIRE_KIND_SAFETY_MODE, 1, {17, 0}, 17u, {5, 9, 0, false}},  /* 3.0 and later */
     /* 6: robot_comm */
-    {URWIRE_KIND_ROBOT_COMM, 0, {0, 0}, 8u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_ROBOT_COMM, 0, {0, 0}, 8u, {1, 8, 0, false}},  /* up to 1.8 */
     {URWIRE_KIND_ROBOT_COMM, 0, {0, 0}, 20u, {5, 9, 0, false}},  /* 3.0 and later */
     /* 7: key */
     {URWIRE_KIND_KEY, 0, {0, 0}, 9u, {5, 9, 0, false}},  /* all versions */
     /* 14: program_threads */
     {URWIRE_KIND_PROGRAM_THREADS, 0, {0, 0}, 0u, {5, 9, 0, false}},  /* all versions */
     /* 2: popup */
-    {URWIRE_KIND_POPUP, 0, {0, 0}, 3u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_POPUP, 0, {0, 0}, 3u, {1, 8, 0, false}},  /* up to 1.8 */
     {URWIRE_KIND_POPUP, 0, {0, 0}, 12u, {5, 9, 0, false}},  /* 3.0 and later */
     /* 1: label */
-    {URWIRE_KIND_LABEL, 0, {0, 0}, 4u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_LABEL, 0, {0, 0}, 4u, {1, 8, 0, false}},  /* up to 1.8 */
     /* 8: var */
-    {URWIRE_KIND_VAR, 0, {0, 0}, 9u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_VAR, 0, {0, 0}, 9u, {1, 8, 0, false}},  /* up to 1.8 */
     /* 18: hardware_info */
     {URWIRE_KIND_HARDWARE_INFO, 1, {12, 0}, 12u, {5, 9, 0, false}},  /* all versions */
     /* 9: request_value */
@@ -5386,34 +5392,57 @@ static const urwire__forms urwire__robot_message_forms[] = {
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
- * number in urwire__robot_message_form_list plus one; 0 for none. */
+ * number in urwire__robot_message_form_list plus one; 0 for none. With URWIRE__NEAREST (0x80) set, none
+ * is sent there: the form is the nearest version's below. */
 static const uint8_t urwire__robot_message_mine[] = {
-    143, 139, 137, 129, 0, 131, 133, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* below 0.0.0 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 0.0.0 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.5.1000 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.6.0 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.7.1000 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 1.8.0 */
-    143, 139, 137, 129, 0, 131, 133, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 1.8.1000 */
-    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.0.0 */
-    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.0.1000 */
-    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.1.0 */
-    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.1.1000 */
-    15, 139, 10, 1, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.2.0 */
-    15, 139, 10, 129, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.2.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.3.0 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.4.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.5.0 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.9.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 3.10.0 */
-    143, 139, 138, 130, 0, 132, 134, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 3.15.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.0.0 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.3.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.4.0 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 5.25.1 */
-    143, 139, 138, 130, 0, 132, 134, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 5.99.1000 */
-    15, 139, 10, 2, 0, 4, 6, 7, 140, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,  /* from 10.0.0 */
-    143, 139, 138, 130, 0, 132, 134, 135, 140, 142, 144, 0, 0, 0, 136, 0, 0, 0, 141,  /* from 1048576.0.1 */
+    /* up to 1.5 */
+    0x0f, 0x0b, 0x09, 0x01, 0x00, 0x03, 0x05, 0x07, 0x0c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 1.6 to 1.7 */
+    0x0f, 0x0b, 0x09, 0x01, 0x00, 0x03, 0x05, 0x07, 0x0c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 1.8 */
+    0x0f, 0x0b, 0x09, 0x01, 0x00, 0x03, 0x05, 0x07, 0x0c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 1.9 to before 3.0 */
+    0x8f, 0x8b, 0x89, 0x81, 0x00, 0x83, 0x85, 0x87, 0x8c, 0x8e, 0x90, 0x00, 0x00, 0x00, 0x88, 0x00, 0x00, 0x00,
+    0x8d,
+    /* 3.0 */
+    0x0f, 0x8b, 0x0a, 0x01, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.1 */
+    0x0f, 0x8b, 0x0a, 0x01, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.2 */
+    0x0f, 0x8b, 0x0a, 0x01, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.3 to 3.4 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.5 to 3.9 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.10 to 3.15 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.16 to before 5.0 */
+    0x8f, 0x8b, 0x8a, 0x82, 0x00, 0x84, 0x86, 0x87, 0x8c, 0x8e, 0x90, 0x00, 0x00, 0x00, 0x88, 0x00, 0x00, 0x00,
+    0x8d,
+    /* 5.0 to 5.3 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 5.4 to 5.25.0 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 5.25.1 to 5.99 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 5.100 to before 10.0 */
+    0x8f, 0x8b, 0x8a, 0x82, 0x00, 0x84, 0x86, 0x87, 0x8c, 0x8e, 0x90, 0x00, 0x00, 0x00, 0x88, 0x00, 0x00, 0x00,
+    0x8d,
+    /* 10.0 and later */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
 };
 
 
@@ -5436,34 +5465,41 @@ static const urwire__forms urwire__program_state_forms[] = {
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
- * number in urwire__program_state_form_list plus one; 0 for none. */
+ * number in urwire__program_state_form_list plus one; 0 for none. With URWIRE__NEAREST (0x80) set, none
+ * is sent there: the form is the nearest version's below. */
 static const uint8_t urwire__program_state_mine[] = {
-    129, 130,  /* below 0.0.0 */
-    1, 2,  /* from 0.0.0 */
-    1, 2,  /* from 1.5.1000 */
-    1, 2,  /* from 1.6.0 */
-    1, 2,  /* from 1.7.1000 */
-    1, 2,  /* from 1.8.0 */
-    129, 130,  /* from 1.8.1000 */
-    1, 2,  /* from 3.0.0 */
-    1, 2,  /* from 3.0.1000 */
-    1, 2,  /* from 3.1.0 */
-    1, 2,  /* from 3.1.1000 */
-    1, 2,  /* from 3.2.0 */
-    1, 2,  /* from 3.2.1000 */
-    1, 2,  /* from 3.3.0 */
-    1, 2,  /* from 3.4.1000 */
-    1, 2,  /* from 3.5.0 */
-    1, 2,  /* from 3.9.1000 */
-    1, 2,  /* from 3.10.0 */
-    129, 130,  /* from 3.15.1000 */
-    1, 2,  /* from 5.0.0 */
-    1, 2,  /* from 5.3.1000 */
-    1, 2,  /* from 5.4.0 */
-    1, 2,  /* from 5.25.1 */
-    129, 130,  /* from 5.99.1000 */
-    1, 2,  /* from 10.0.0 */
-    129, 130,  /* from 1048576.0.1 */
+    /* up to 1.5 */
+    0x01, 0x02,
+    /* 1.6 to 1.7 */
+    0x01, 0x02,
+    /* 1.8 */
+    0x01, 0x02,
+    /* 1.9 to before 3.0 */
+    0x81, 0x82,
+    /* 3.0 */
+    0x01, 0x02,
+    /* 3.1 */
+    0x01, 0x02,
+    /* 3.2 */
+    0x01, 0x02,
+    /* 3.3 to 3.4 */
+    0x01, 0x02,
+    /* 3.5 to 3.9 */
+    0x01, 0x02,
+    /* 3.10 to 3.15 */
+    0x01, 0x02,
+    /* 3.16 to before 5.0 */
+    0x81, 0x82,
+    /* 5.0 to 5.3 */
+    0x01, 0x02,
+    /* 5.4 to 5.25.0 */
+    0x01, 0x02,
+    /* 5.25.1 to 5.99 */
+    0x01, 0x02,
+    /* 5.100 to before 10.0 */
+    0x81, 0x82,
+    /* 10.0 and later */
+    0x01, 0x02,
 };
 
 
@@ -5618,7 +5654,7 @@ static bool urwire__decode_member(uint8_t type, uint8_t form, const uint8_t *msg
 #define URWIRE__FAST_PATHS(X) X(1) X(2)
 /* The fast path of each segment of the version axis (0: none). */
 static const uint8_t urwire__package_fast_paths[] = {
-    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 0, 2, 0,  /* from segment 0 */
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 0, 2,  /* from segment 0 */
 };
 
 /* A sub-package of type `type` and body_size bytes in fast path `path`: false when its type has
@@ -5629,7 +5665,7 @@ URWIRE__INLINE bool urwire__fast_member(int path, uint8_t type, size_t body_size
                                         urwire__fast_bits *bits, urwire_error *err)
 {
     switch (path) {
-    case 1:  /* from 5.4.0 */
+    case 1:  /* 5.4 to 5.25.0 */
         switch (type) {
         case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:  /* 3.5 and later */
             if (body_size != 42u)
@@ -5758,7 +5794,7 @@ URWIRE__INLINE bool urwire__fast_member(int path, uint8_t type, size_t body_size
         default:
             return false;
         }
-    case 2:  /* from 5.25.1, from 10.0.0 */
+    case 2:  /* 5.25.1 to 5.99, 10.0 and later */
         switch (type) {
         case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:  /* 3.5 and later */
             if (body_size != 42u)
