@@ -272,11 +272,6 @@ class Variant:
         first = self.releases[0][0] if self.releases else 0
         return " or ".join(_range_text(lo, hi, first) for lo, hi in shown)
 
-    @property
-    def bounds(self) -> list[tuple[Optional[int], Optional[int]]]:
-        """`ranges` with None for an open end: for targets that test a bound only when there is one."""
-        return [(lo or None, hi if hi < _TOP else None) for lo, hi in self.ranges]
-
 
 
 @dataclass(frozen=True)

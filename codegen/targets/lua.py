@@ -12,6 +12,8 @@ descriptors is hand-written Lua in templates/lua/runtime/, joined after the gene
 """
 from __future__ import annotations
 
+import textwrap
+
 from dataclasses import dataclass
 from typing import Optional
 
@@ -425,17 +427,20 @@ class _Builder:
         return view.var, bool(show)
 
     def forms(self, mp: plan.MessagePlan, parts: dict[int, str]) -> list[dict]:
-        """Per type code, the forms it takes (plan.Variant): its layout's data, the versions that
-        send it, its body sizes, the version it stands for when its length alone chose it."""
+        """Per type code, the forms it takes (plan.Variant): its layout's data, its body sizes,
+        the version it stands for when its length alone chose it, the versions that send it; and
+        the plan's tables: the form of each segment (MessagePlan.by_segment: 1-based, negative
+        for the nearest below's) and the sizes that recognise one form (by_length)."""
         out = []
         for code, variants in sorted(mp.variants.items()):
-            forms = [dict(part=parts[id(v.layout)],
-                          ranges=[dict(low=lo, high=hi) for lo, hi in v.bounds],
-                          sizes=sorted(v.sizes) if v.sizes is not None else None,
-                          min=v.min_size, rep=version_number(v.rep), versions=v.describe())
+            forms = [dict(part=parts[id(v.layout)], sizes=sorted(v.sizes) if v.sizes is not None else None,
+                          min=v.min_size, rep=ir.version_text(v.rep), versions=v.describe())
                      for v in variants]
-            single = len(variants) == 1 and variants[0].bounds == [(None, None)]
-            out.append(dict(code=code, single=single, forms=forms))
+            rows = mp.by_segment[code]
+            single = len(variants) == 1 and not any(sf.nearest for sf in rows)
+            segments = [-(sf.form + 1) if sf.nearest else sf.form + 1 for sf in rows]
+            by_length = [dict(size=size, form=k + 1) for size, k in mp.by_length[code].items()]
+            out.append(dict(code=code, single=single, forms=forms, segments=segments, by_length=by_length))
         return out
 
     @staticmethod
@@ -568,7 +573,9 @@ class _Builder:
         return dict(enums=enums, fields=self.fields, layouts=self.layouts, messages=messages,
                     version=version, value_tables=self.value_tables(),
                     known_codes=p.known_message_codes, message_type_names=self.enum_var[p.message_type_enum.name],
-                    message_type_tables=self.code_names(p.message_type_enum), constants=constants)
+                    message_type_tables=self.code_names(p.message_type_enum), constants=constants,
+                    segment_lines=textwrap.wrap(", ".join(f'"{ir.version_text(s.first)}"' for s in self.plan.segments
+                                                          if s.first), 100))
 
     def version_reader(self) -> dict:
         """Where the Version message keeps its numbers: fixed bytes and length-prefixed strings,
