@@ -385,7 +385,8 @@ class Struct:
     @property
     def public_fields(self) -> list[AnyField]:
         """One field per name, in first-seen order: what a record holds (its attributes,
-        members, filter fields). A name with several entries takes the widest scalar."""
+        members, filter fields). A name with several entries takes the widest scalar: resolve
+        lets them differ in size only (resolve.same_name), so it holds every entry's values."""
         out: dict[str, AnyField] = {}
         for f in self.fields:
             if f.name not in out:

@@ -224,10 +224,10 @@ class _Builder:
                                                comment(f.doc) or [f"One entry of {f.name}."])
         cs = CStruct(name, ctype, doc, [], role)
         # One member per name: a name with entries in disjoint version ranges is one member of
-        # the widest type, each entry read, written and visited under its own condition.
+        # the widest type (resolve.same_name: they differ in size only), each entry read, written
+        # and visited under its own condition.
         self.public = {f.name: f for f in struct.public_fields}
         self.repeated = [n for n in self.public if len(struct.named(n)) > 1]
-        self.check_repeated(struct)
         for f in struct.public_fields:
             cs.members.append(self.member(f, name, struct).place())
             if isinstance(f, ir.ScalarField) and f.bits:
@@ -280,16 +280,6 @@ class _Builder:
     def item_of(self, f: ir.GroupField) -> CStruct:
         """The struct of a group's items (a form's copy of a group has the same items)."""
         return self.items.get(id(f)) or next(c for c in self.items.values() if c.name == f.item.name)
-
-    def check_repeated(self, struct: ir.Struct) -> None:
-        for name in self.repeated:
-            entries = struct.named(name)
-            if not all(isinstance(f, ir.ScalarField) for f in entries):
-                self.problems.append(entries[1].where.problem(
-                    f"c target: '{name}' repeats as a field that is not a scalar; only scalars share a member"))
-            elif len({(f.scalar.signed, f.scalar.is_float, f.scalar.is_bool) for f in entries}) > 1:
-                self.problems.append(entries[1].where.problem(
-                    f"c target: the entries of '{name}' differ in signedness or kind; they cannot share a member"))
 
     def member(self, f: ir.AnyField, owner: str, struct: ir.Struct) -> Member:
         name = f.name

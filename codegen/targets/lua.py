@@ -103,15 +103,6 @@ def version_number(v: Optional[ir.Version]) -> Optional[int]:
     return None if v is None else ir.version_number(v)
 
 
-def holds(wide: ir.Scalar, narrow: ir.Scalar) -> bool:
-    """True when a field of type `wide` can show every value of type `narrow`."""
-    if wide.is_float or narrow.is_float:
-        return wide.is_float and narrow.is_float and narrow.size <= wide.size
-    if wide.is_bool or narrow.is_bool:
-        return wide.is_bool and narrow.is_bool
-    return wide.min <= narrow.min and narrow.max <= wide.max
-
-
 # Descriptor kinds the Info column can step over on its way to a summary field, and the kinds it
 # can show (runtime/info.lua).
 STEPS_OVER = {"scalar", "bits", "array", "pstring", "string"}
@@ -213,19 +204,13 @@ class _Builder:
 
     def settle(self) -> None:
         """One ProtoField per key, of the widest type among its entries (CONTRACT §5: a filter
-        name has one type); narrower reads then add their value explicitly."""
+        name has one type; resolve.same_name lets the entries of a name differ in size only);
+        narrower reads then add their value explicitly."""
         for key, entries in self.entries.items():
             scalars = list({s.name: s for s, _, _ in entries}.values())
-            enums = {e.name for _, _, e in entries if e is not None}
-            if len(scalars) == 1 and len(enums) <= 1:
+            if len(scalars) == 1:
                 continue
             wide = max(scalars, key=lambda s: s.size)
-            if not all(holds(wide, s) for s in scalars) or len(enums) > 1:
-                types = ", ".join(s.name for s in scalars) + (f" (enums {', '.join(sorted(enums))})" if len(enums) > 1 else "")
-                self.problems.append(entries[-1][1].problem(
-                    f"lua target: the entries of {wireshark_field(*key.split('.', 1))} ({types}) cannot share one "
-                    "Wireshark field: give the older one a name of its own"))
-                continue
             self.wide[key] = wide
             pf = self.by_key[key]
             pf.ctor = PROTOFIELD[wide.name]
