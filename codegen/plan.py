@@ -129,7 +129,7 @@ class _Planner:
     def item(self, group: ir.GroupField) -> ItemPlan:
         if id(group) not in self.items:
             layout = self.layout(group.item)
-            fixed = _all_in_run(group.item)
+            fixed = group.item.fixed_item
             leaves = len(layout.runs[0].leaves) if fixed else 0
             if not fixed and group.count is not None:
                 self.problems.append(group.where.problem(
@@ -168,7 +168,7 @@ class _Planner:
                     group.append(fields[i])
                 inner = self.steps([_unconditional(g) for g in group], runs)
                 out.append(CondGroup(condition_of(f), group, inner))
-            elif _in_run(f):
+            elif ir.in_fixed_run(f):
                 pending.append(f)
             else:
                 flush()
@@ -200,17 +200,6 @@ class _Planner:
                 out += self.leaves(g, f"{path}[{k}].{g.name}", at)
                 at += g.fixed_size
         return out
-
-
-def _in_run(f: ir.AnyField) -> bool:
-    """Fields a fixed run can hold: known size, and no choice made while reading."""
-    if isinstance(f, ir.GroupField):
-        return f.count is not None and _all_in_run(f.item)
-    return f.fixed_size is not None and not isinstance(f, ir.SwitchField)
-
-
-def _all_in_run(struct: ir.Struct) -> bool:
-    return all(_in_run(g) and not g.conditional for g in struct.fields)
 
 
 def _unconditional(f: ir.AnyField) -> ir.AnyField:
@@ -435,16 +424,12 @@ def _bounds(r: ir.VersionRange) -> tuple[int, int]:
     return (ir.version_number(r.low) if r.low else 0, ir.version_number(r.high) if r.high else _TOP)
 
 
-def _from_number(n: int) -> ir.Version:
-    return n // 1_000_000, n // 1000 % 1000, n % 1000
-
-
 def _range_text(lo: int, hi: int, first: int = 0) -> str:
     """A range as a reader says it; one that starts with the first release is "up to"."""
     if lo == hi - hi % 1000 and hi % 1000 == ir.BUGFIX_ANY:
-        return ir.version_text(_from_number(lo))              # one minor release: "1.8"
-    low = _from_number(lo) if lo > first else None
-    return ir.VersionRange(low, _from_number(hi) if hi < _TOP else None).describe()
+        return ir.version_text(ir.version_of_number(lo))              # one minor release: "1.8"
+    low = ir.version_of_number(lo) if lo > first else None
+    return ir.VersionRange(low, ir.version_of_number(hi) if hi < _TOP else None).describe()
 
 
 def _fields_by_version(struct: ir.Struct) -> list[ir.AnyField]:
@@ -464,7 +449,7 @@ def _variants(options: list[LayoutChoice], default: ir.Version,
     points = sorted(cuts)
     found: dict[tuple, Variant] = {}
     for lo, nxt in zip(points, points[1:]):
-        sample = _from_number(lo)
+        sample = ir.version_of_number(lo)
         for c in options:
             if not c.layout.versions.contains(sample):
                 continue
@@ -537,8 +522,8 @@ def _representative(ranges: list[tuple[int, int]], default: ir.Version) -> ir.Ve
     below = [(lo, min(hi, d)) for lo, hi in ranges if lo <= d]
     lo, hi = max(below, key=lambda r: r[1]) if below else (ranges[0][0], ranges[0][0])
     # A bound of any bugfix release ("up to 1.8") stands for its first one: a real version.
-    major, minor, bugfix = _from_number(hi)
-    return max(_from_number(lo), (major, minor, 0)) if bugfix == ir.BUGFIX_ANY else (major, minor, bugfix)
+    major, minor, bugfix = ir.version_of_number(hi)
+    return max(ir.version_of_number(lo), (major, minor, 0)) if bugfix == ir.BUGFIX_ANY else (major, minor, bugfix)
 
 
 # ---- segments: one lookup gives every type code's form at a version -------------------------
@@ -548,7 +533,7 @@ def _after(number: int) -> Optional[ir.Version]:
     5.8" (any 5.8.x) comes 5.9, after 5.25.0 comes 5.25.1; None after the open end."""
     if number >= _TOP:
         return None
-    major, minor, bugfix = _from_number(number)
+    major, minor, bugfix = ir.version_of_number(number)
     return (major, minor + 1, 0) if bugfix == ir.BUGFIX_ANY else (major, minor, bugfix + 1)
 
 
@@ -560,7 +545,7 @@ def _segments(messages: list[MessagePlan]) -> list[Segment]:
             for v in variants:
                 for lo, hi in v.ranges:
                     if lo:
-                        cuts.add(_from_number(lo))
+                        cuts.add(ir.version_of_number(lo))
                     if _after(hi) is not None:
                         cuts.add(_after(hi))
     starts: list[Optional[ir.Version]] = [None] + sorted(cuts)

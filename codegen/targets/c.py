@@ -30,10 +30,19 @@ WRITERS = {"bool": "urwire__put_u8", "int8": "urwire__put_i8", "uint8": "urwire_
            "uint16": "urwire__put_u16", "int32": "urwire__put_i32", "uint32": "urwire__put_u32",
            "int64": "urwire__put_i64", "uint64": "urwire__put_u64", "float32": "urwire__put_f32",
            "float64": "urwire__put_f64"}
-# Visitor callback for each scalar: signed integers as int64, unsigned as uint64.
-VISIT = {"bool": "on_bool", "int8": "on_int", "int16": "on_int", "int32": "on_int", "int64": "on_int",
-         "uint8": "on_uint", "uint16": "on_uint", "uint32": "on_uint", "uint64": "on_uint",
-         "float32": "on_f32", "float64": "on_f64"}
+
+
+def visitor_of(s: ir.Scalar) -> str:
+    """The visitor callback of a scalar, after its canonical JSON kind (ir.scalar_json_kind):
+    on_bool, on_f32, on_f64, and integers signed as int64 (on_int), unsigned as uint64 (on_uint)."""
+    kind = ir.scalar_json_kind(s)
+    if kind == "int":
+        return "on_int" if s.signed else "on_uint"
+    return f"on_{kind}"
+
+
+# Visitor callback for each scalar type.
+VISIT = {name: visitor_of(s) for name, s in ir.SCALARS.items()}
 C_KEYWORDS = {"auto", "break", "case", "char", "const", "continue", "default", "do", "double", "else", "enum",
               "extern", "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return",
               "short", "signed", "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void",
@@ -250,7 +259,7 @@ class _Builder:
             cs.decoders = [self.form_decoder(cs, struct, v, k) for k, v in enumerate(forms)]
         else:
             cs.decoders = [cs.decoder("", inline(*doc), cs.decode)]
-        fixed = role == "item" and any(it.layout is layout and it.fixed for it in self.plan.items)
+        fixed = role == "item" and struct.fixed_item
         if fixed:
             # Read and written inside its parent's checked run.
             cs.fixed_item = True

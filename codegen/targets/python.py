@@ -37,7 +37,7 @@ def attr(f: ir.AnyField, annotation: str, optional: bool = False) -> Attr:
     holds them for code that shows records to people (human.py, a GUI)."""
     unit = json.dumps(f.unit, ensure_ascii=False) if f.unit else "None"
     metadata = f'{{"label": {json.dumps(f.label, ensure_ascii=False)}, "unit": {unit}}}'
-    return Attr(f.name, annotation, one_line(f"{f.titled}.", f.doc, f.field_note), json_kind(f), optional, metadata)
+    return Attr(f.name, annotation, one_line(f"{f.titled}.", f.doc, f.field_note), ir.json_kind(f), optional, metadata)
 
 
 @dataclass
@@ -128,28 +128,6 @@ def scalar_annotation(s: ir.Scalar, enum: Optional[ir.Enum]) -> str:
     if enum is not None:
         return f"Union[{', '.join(py_table_class(enum, t) for t in reversed(enum.tables))}, int]"
     return "bool" if s.is_bool else "float" if s.is_float else "int"
-
-
-def json_kind(f: ir.AnyField) -> str:
-    def scalar_kind(s: ir.Scalar) -> str:
-        return "bool" if s.is_bool else ("f32" if s.size == 4 else "f64") if s.is_float else "int"
-
-    if isinstance(f, ir.ScalarField):
-        return "enum" if f.enum is not None and not f.scalar.is_bool else scalar_kind(f.scalar)
-    if isinstance(f, ir.ArrayField):
-        return "list:" + scalar_kind(f.scalar)
-    if isinstance(f, ir.GroupField):
-        return "items"
-    if isinstance(f, ir.StringField):
-        return "text"
-    if isinstance(f, ir.StringListField):
-        return "texts"
-    if isinstance(f, ir.BytesField):
-        return "hex"
-    if isinstance(f, ir.SwitchField):
-        floats = [s for s in list(f.cases.values()) + [f.default] if s.is_float]
-        return "int|" + scalar_kind(floats[0]) if floats else "int"
-    return "values"
 
 
 def conversion(s: ir.Scalar, enum: Optional[ir.Enum]) -> tuple[str, str]:
@@ -274,11 +252,6 @@ def item_enums(item: ir.Struct) -> list[str]:
             if isinstance(f, (ir.ScalarField, ir.ArrayField)) and f.enum is not None and f.enum.versioned]
 
 
-def version_tuple(number: int) -> tuple[int, int, int]:
-    """A version number of the plan (ir.version_number) as the tuple the bindings compare."""
-    return number // 1_000_000, number // 1000 % 1000, number % 1000
-
-
 def _is_f32(s: ir.Scalar) -> bool:
     return s.is_float and s.size == 4
 
@@ -344,7 +317,7 @@ class _Target:
         attrs += [attr(f, annotation(f, items), f.conditional) for f in struct.public_fields]
         cls = PyClass(name, doc, role, label or words(json_type), json_type, code, attrs,
                       [f.name for f in header_fields], codecs, structs, sets_version=sets_version)
-        if role == "item" and self.is_fixed_item(layout):
+        if role == "item" and struct.fixed_item:
             # A fixed item is read inside its parent's run: from the parent's values and offset.
             cls.fixed = True
             cls.members = [builder.member(m, "i", "at") for m in layout.runs[0].members]
@@ -392,9 +365,6 @@ class _Target:
         forms = mp.forms_of(v.layout)
         suffix = f"_{forms.index(v)}" if len(forms) > 1 else ""
         return f"{cls.name}._decode{suffix}"
-
-    def is_fixed_item(self, layout: plan.LayoutPlan) -> bool:
-        return any(it.layout is layout and it.fixed for it in self.plan.items)
 
     def build(self) -> dict:
         messages = []
