@@ -11,9 +11,9 @@
 
 /* The segment of the version axis that holds a version (its urwire__version_key): the last
  * bound at or below it. The default version's segment is tried first (a stream read before its
- * Version message, and most e-Series; the last bound lies past every version, so a bound
- * follows it), then the bounds from the newest, which streams run most; bound 0 stops the
- * search. */
+ * Version message, and most e-Series; the generator never makes it the last segment, so a
+ * bound follows it), then the bounds from the newest, which streams run most; bound 0 stops
+ * the search. */
 URWIRE__PRIVATE size_t urwire__segment(uint64_t key)
 {
     size_t k = URWIRE__COUNT(urwire__segment_bounds) - 1;
