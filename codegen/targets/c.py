@@ -578,7 +578,7 @@ class _Forms:
         subtypes), in one list; the forms of each code; and, segment by segment, the form each
         code takes there (its number in the list plus one, 0 for none, NEAREST_BIT when it is the
         nearest below's)."""
-        codes, count = [], 0
+        codes, count, recognised = [], 0, 0
         for code, variants in mp.variants.items():
             forms = []
             for v in variants:
@@ -589,8 +589,11 @@ class _Forms:
             codes.append(dict(code=code, index=c_enum_const(enum, code), first=count, count=len(forms), forms=forms,
                               names=", ".join(c.layout.name for c in mp.choices[code]),
                               layouts=[dict(name=c.layout.name, const=layouts[id(c.layout)])
-                                       for c in mp.choices[code]]))
+                                       for c in mp.choices[code]],
+                              by_length_cells=cell_lines([f"{{{size}u, {k}}}" for size, k in mp.by_length[code].items()]),
+                              by_length_first=recognised, by_length_count=len(mp.by_length[code])))
             count += len(forms)
+            recognised += len(mp.by_length[code])
         if count >= NEAREST_BIT:
             raise SpecError(self.source, [mp.message.where.problem(
                 "c target: more than 127 forms of one type byte do not fit the form tables")])

@@ -172,11 +172,20 @@ URWIRE__INLINE bool urwire__fits_brief(uint32_t brief, size_t size)
     return brief == size || ((brief & 0x80000000u) && size >= (brief & 0x7fffffffu));
 }
 
+/* A body size that exactly one fixed-size form of a type code has, and that form's index among
+ * the code's forms: a body of that size alone says which form it is. */
+typedef struct urwire__recognised {
+    uint32_t size;
+    uint8_t form;
+} urwire__recognised;
+
 /* The forms of one type code, in a table of all the forms of its type byte (count 0: the code
- * has no layout). */
+ * has no layout), and the sizes that recognise one of them. */
 typedef struct urwire__forms {
     const urwire__form *forms;
     uint8_t count;
+    const urwire__recognised *by_length;
+    uint8_t nby_length;
 } urwire__forms;
 
 /* The forms of the codes of one type byte (sub-package types, or the subtypes of a message):
@@ -5242,22 +5251,69 @@ static const urwire__form urwire__package_form_list[] = {
     {URWIRE_LAYOUT_SINGULARITY_INFO, 1, {2, 0}, 2u, {5, 9, 0, false}},  /* all versions */
 };
 
+/* The body sizes that recognise one form of a sub-package type, code by code: {size, its index among
+ * the code's forms}. */
+static const urwire__recognised urwire__package_by_length[] = {
+    /* 0: robot_mode_data */
+    {24u, 0}, {33u, 1}, {41u, 2}, {42u, 3},
+    /* 1: joint_data */
+    {246u, 0},
+    /* 2: tool_data */
+    {32u, 0},
+    /* 3: masterboard_data */
+    {56u, 0}, {59u, 1}, {67u, 2}, {69u, 3}, {70u, 4}, {71u, 1}, {83u, 2}, {85u, 3}, {86u, 4},
+    /* 4: cartesian_info */
+    {48u, 0}, {96u, 1},
+    /* 5: laser_pointer, kinematics_info */
+    {24u, 0}, {220u, 1},
+    /* 6: configuration_data */
+    {440u, 1}, {444u, 2}, {464u, 0},
+    /* 7: force_mode_data */
+    {56u, 0},
+    /* 8: additional_info */
+    {2u, 1}, {3u, 2}, {4u, 3}, {5u, 0},
+    /* 9: calibration_data */
+    {48u, 0},
+    /* 10: safety_data */
+    /* 11: tool_comm_info */
+    {21u, 0},
+    /* 12: tool_mode_info */
+    {3u, 0},
+    /* 13: singularity_info */
+    {2u, 0},
+    {0u, 0},  /* none: every table above may be empty */
+};
+
 /* The forms of each sub-package type with a layout, by code. */
 static const urwire__forms urwire__package_forms[] = {
-    [URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA] = {&urwire__package_form_list[0], 4},
-    [URWIRE_PACKAGE_TYPE_JOINT_DATA] = {&urwire__package_form_list[4], 1},
-    [URWIRE_PACKAGE_TYPE_TOOL_DATA] = {&urwire__package_form_list[5], 1},
-    [URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA] = {&urwire__package_form_list[6], 5},
-    [URWIRE_PACKAGE_TYPE_CARTESIAN_INFO] = {&urwire__package_form_list[11], 2},
-    [URWIRE_PACKAGE_TYPE_KINEMATICS_INFO] = {&urwire__package_form_list[13], 2},
-    [URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA] = {&urwire__package_form_list[15], 3},
-    [URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA] = {&urwire__package_form_list[18], 1},
-    [URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO] = {&urwire__package_form_list[19], 4},
-    [URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA] = {&urwire__package_form_list[23], 1},
-    [URWIRE_PACKAGE_TYPE_SAFETY_DATA] = {&urwire__package_form_list[24], 1},
-    [URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO] = {&urwire__package_form_list[25], 1},
-    [URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO] = {&urwire__package_form_list[26], 1},
-    [URWIRE_PACKAGE_TYPE_SINGULARITY_INFO] = {&urwire__package_form_list[27], 1},
+    [URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA] =
+        {&urwire__package_form_list[0], 4, &urwire__package_by_length[0], 4},
+    [URWIRE_PACKAGE_TYPE_JOINT_DATA] =
+        {&urwire__package_form_list[4], 1, &urwire__package_by_length[4], 1},
+    [URWIRE_PACKAGE_TYPE_TOOL_DATA] =
+        {&urwire__package_form_list[5], 1, &urwire__package_by_length[5], 1},
+    [URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA] =
+        {&urwire__package_form_list[6], 5, &urwire__package_by_length[6], 9},
+    [URWIRE_PACKAGE_TYPE_CARTESIAN_INFO] =
+        {&urwire__package_form_list[11], 2, &urwire__package_by_length[15], 2},
+    [URWIRE_PACKAGE_TYPE_KINEMATICS_INFO] =
+        {&urwire__package_form_list[13], 2, &urwire__package_by_length[17], 2},
+    [URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA] =
+        {&urwire__package_form_list[15], 3, &urwire__package_by_length[19], 3},
+    [URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA] =
+        {&urwire__package_form_list[18], 1, &urwire__package_by_length[22], 1},
+    [URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO] =
+        {&urwire__package_form_list[19], 4, &urwire__package_by_length[23], 4},
+    [URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA] =
+        {&urwire__package_form_list[23], 1, &urwire__package_by_length[27], 1},
+    [URWIRE_PACKAGE_TYPE_SAFETY_DATA] =
+        {&urwire__package_form_list[24], 1, &urwire__package_by_length[28], 0},
+    [URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO] =
+        {&urwire__package_form_list[25], 1, &urwire__package_by_length[28], 1},
+    [URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO] =
+        {&urwire__package_form_list[26], 1, &urwire__package_by_length[29], 1},
+    [URWIRE_PACKAGE_TYPE_SINGULARITY_INFO] =
+        {&urwire__package_form_list[27], 1, &urwire__package_by_length[30], 1},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -5375,20 +5431,52 @@ static const urwire__form urwire__robot_message_form_list[] = {
     {URWIRE_KIND_RUNTIME_EXCEPTION, 0, {0, 0}, 8u, {5, 9, 0, false}},  /* all versions */
 };
 
+/* The body sizes that recognise one form of a robot_message subtype, code by code: {size, its index among
+ * the code's forms}. */
+static const urwire__recognised urwire__robot_message_by_length[] = {
+    /* 3: version */
+    /* 5: safety_mode */
+    {17u, 1},
+    /* 6: robot_comm */
+    /* 7: key */
+    /* 14: program_threads */
+    /* 2: popup */
+    /* 1: label */
+    /* 8: var */
+    /* 18: hardware_info */
+    {12u, 0},
+    /* 9: request_value */
+    /* 0: text */
+    /* 10: runtime_exception */
+    {0u, 0},  /* none: every table above may be empty */
+};
+
 /* The forms of each robot_message subtype with a layout, by code. */
 static const urwire__forms urwire__robot_message_forms[] = {
-    [URWIRE_ROBOT_MESSAGE_TYPE_VERSION] = {&urwire__robot_message_form_list[0], 2},
-    [URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE] = {&urwire__robot_message_form_list[2], 2},
-    [URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE] = {&urwire__robot_message_form_list[4], 2},
-    [URWIRE_ROBOT_MESSAGE_TYPE_KEY] = {&urwire__robot_message_form_list[6], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS] = {&urwire__robot_message_form_list[7], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_POPUP] = {&urwire__robot_message_form_list[8], 2},
-    [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL] = {&urwire__robot_message_form_list[10], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR] = {&urwire__robot_message_form_list[11], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO] = {&urwire__robot_message_form_list[12], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE] = {&urwire__robot_message_form_list[13], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_TEXT] = {&urwire__robot_message_form_list[14], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION] = {&urwire__robot_message_form_list[15], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_VERSION] =
+        {&urwire__robot_message_form_list[0], 2, &urwire__robot_message_by_length[0], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE] =
+        {&urwire__robot_message_form_list[2], 2, &urwire__robot_message_by_length[0], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE] =
+        {&urwire__robot_message_form_list[4], 2, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_KEY] =
+        {&urwire__robot_message_form_list[6], 1, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS] =
+        {&urwire__robot_message_form_list[7], 1, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_POPUP] =
+        {&urwire__robot_message_form_list[8], 2, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL] =
+        {&urwire__robot_message_form_list[10], 1, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR] =
+        {&urwire__robot_message_form_list[11], 1, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO] =
+        {&urwire__robot_message_form_list[12], 1, &urwire__robot_message_by_length[1], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE] =
+        {&urwire__robot_message_form_list[13], 1, &urwire__robot_message_by_length[2], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_TEXT] =
+        {&urwire__robot_message_form_list[14], 1, &urwire__robot_message_by_length[2], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION] =
+        {&urwire__robot_message_form_list[15], 1, &urwire__robot_message_by_length[2], 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -5458,10 +5546,20 @@ static const urwire__form urwire__program_state_form_list[] = {
     {URWIRE_KIND_GLOBAL_VARIABLES_UPDATE, 0, {0, 0}, 2u, {5, 9, 0, false}},  /* all versions */
 };
 
+/* The body sizes that recognise one form of a program_state subtype, code by code: {size, its index among
+ * the code's forms}. */
+static const urwire__recognised urwire__program_state_by_length[] = {
+    /* 0: global_variables_setup */
+    /* 1: global_variables_update */
+    {0u, 0},  /* none: every table above may be empty */
+};
+
 /* The forms of each program_state subtype with a layout, by code. */
 static const urwire__forms urwire__program_state_forms[] = {
-    [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP] = {&urwire__program_state_form_list[0], 1},
-    [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE] = {&urwire__program_state_form_list[1], 1},
+    [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP] =
+        {&urwire__program_state_form_list[0], 1, &urwire__program_state_by_length[0], 0},
+    [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE] =
+        {&urwire__program_state_form_list[1], 1, &urwire__program_state_by_length[0], 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6316,11 +6414,6 @@ URWIRE__PRIVATE const urwire__form *urwire__mine(const urwire__form_table *t, si
     return k ? &t->all[k - 1] : NULL;
 }
 
-static bool urwire__has_size(const urwire__form *f, size_t size)
-{
-    return f->nsizes && urwire__fits(f, size);
-}
-
 /* The form of a body of `size` bytes, for a code of t (which has a layout) in a stream of
  * *version (in `segment`). A form chosen by its length alone sets *version to the version it
  * stands for and *by_length. */
@@ -6329,22 +6422,21 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
 {
     const urwire__forms *fs = &t->codes[code];
     bool nearest;
-    const urwire__form *mine = urwire__mine(t, segment, code, &nearest), *fit = NULL;
+    const urwire__form *mine = urwire__mine(t, segment, code, &nearest), *fit;
     uint8_t k;
     *by_length = false;
     if (nearest)
         *version = mine->rep;
     if (mine != NULL && urwire__fits(mine, size))
         return mine;
-    /* Only a form of exact sizes is recognised by its length: an open-ended one fits too much. */
-    for (k = 0; k < fs->count; k++)
-        if (urwire__has_size(&fs->forms[k], size)) {
-            if (fit != NULL)
-                return mine != NULL ? mine : &fs->forms[fs->count - 1];
-            fit = &fs->forms[k];
-        }
-    if (fit == NULL)
+    /* The sizes the generator found in exactly one fixed-size form (an open-ended one fits too
+     * much to be recognised by its length). */
+    for (k = 0; k < fs->nby_length; k++)
+        if (fs->by_length[k].size == size)
+            break;
+    if (k == fs->nby_length)
         return mine != NULL ? mine : &fs->forms[fs->count - 1];
+    fit = &fs->forms[fs->by_length[k].form];
     version->major = fit->rep.major;
     version->minor = fit->rep.minor;
     version->bugfix = fit->rep.bugfix;  /* whether it was assumed stays as it was */
