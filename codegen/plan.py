@@ -7,8 +7,10 @@ A plan says how the bytes of a layout are walked, in the order they come:
   range), with the plan of its inside;
 - a `VarField` is one field whose size is known only by reading it.
 
-Messages get their header slots with absolute offsets, the offset where their body starts and
-the layouts each type code can have; the protocol gets where the software version is read.
+Messages get their header slots with absolute offsets, the offset where their body starts, the
+layouts each type code can have and its forms across software versions: the form of each
+segment of the version axis (the nearest below's where none is sent) and the sizes that
+recognise one. The protocol gets those segments and where the software version is read.
 Targets render these plans and decide nothing about layout themselves: no target splits a
 struct, computes an offset or builds a condition from the IR on its own.
 """
@@ -262,7 +264,6 @@ class Variant:
         return " or ".join(_range_text(lo, hi, first) for lo, hi in shown)
 
 
-
 @dataclass(frozen=True)
 class Segment:
     """A piece of the version axis within which every type code of every message sends one
@@ -324,7 +325,6 @@ class MessagePlan:
     def forms_of(self, layout: ir.Layout) -> list["Variant"]:
         """The forms of one layout (a code with two layouts has forms of each)."""
         return [v for v in self.variants.get(layout.code.value, []) if v.layout is layout]
-
 
 
 @dataclass
