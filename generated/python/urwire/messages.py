@@ -30,6 +30,25 @@ _FLOAT32 = struct.Struct(">f")
 _UINT32 = struct.Struct(">I")
 _UINT8 = struct.Struct(">B")
 _SAFETY_MODE_1_REPORT_DATA_BY_REPORT_DATA_TYPE = {2: _INT32, 3: _FLOAT32}
+# Where each segment of the version axis starts, but the first (every version below the second):
+# within a segment, every type code sends one form.
+_SEGMENT_STARTS = (
+    (1, 6, 0),  # 1.6 to 1.7
+    (1, 8, 0),  # 1.8
+    (1, 9, 0),  # 1.9 to before 3.0
+    (3, 0, 0),  # 3.0
+    (3, 1, 0),  # 3.1
+    (3, 2, 0),  # 3.2
+    (3, 3, 0),  # 3.3 to 3.4
+    (3, 5, 0),  # 3.5 to 3.9
+    (3, 10, 0),  # 3.10 to 3.15
+    (3, 16, 0),  # 3.16 to before 5.0
+    (5, 0, 0),  # 5.0 to 5.3
+    (5, 4, 0),  # 5.4 to 5.25.0
+    (5, 25, 1),  # 5.25.1 to 5.99
+    (5, 100, 0),  # 5.100 to before 10.0
+    (10, 0, 0),  # 10.0 and later
+)
 # Where a Version message keeps its numbers: (fixed bytes, length prefix) on the way there.
 _VERSION_SKIPS = ((0, _INT8), )
 
@@ -196,7 +215,7 @@ class RobotModeData(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
+        """Read the form of software up to 1.8."""
         control_mode = speed_scaling = target_speed_fraction_limit = reserved = None
         if pos + 24 > end:
             raise _rt.short_in_run(_ROBOT_MODE_DATA_0_0_RUN, pos, end)
@@ -220,7 +239,7 @@ class RobotModeData(_Package):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
-        """Read the form of software (3, 0, 0) to (3, 1, 999)."""
+        """Read the form of software 3.0 to 3.1."""
         target_speed_fraction_limit = reserved = None
         if pos + 33 > end:
             raise _rt.short_in_run(_ROBOT_MODE_DATA_1_0_RUN, pos, end)
@@ -246,7 +265,7 @@ class RobotModeData(_Package):
 
     @classmethod
     def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
-        """Read the form of software (3, 2, 0) to (3, 4, 999)."""
+        """Read the form of software 3.2 to 3.4."""
         reserved = None
         if pos + 41 > end:
             raise _rt.short_in_run(_ROBOT_MODE_DATA_2_0_RUN, pos, end)
@@ -273,7 +292,7 @@ class RobotModeData(_Package):
 
     @classmethod
     def _decode_3(cls, buf, pos: int, end: int, version: tuple) -> tuple["RobotModeData", int]:
-        """Read the form of software (3, 5, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.5 and later."""
         if pos + 42 > end:
             raise _rt.short_in_run(_ROBOT_MODE_DATA_3_0_RUN, pos, end)
         v = _ROBOT_MODE_DATA_3_0.unpack_from(buf, pos)
@@ -300,10 +319,7 @@ class RobotModeData(_Package):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -833,7 +849,7 @@ class MasterboardData(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
-        """Read the form of software (0, 0, 0) to (1, 5, 999)."""
+        """Read the form of software up to 1.5."""
         master_safety_state = master_on_off_state = safety_mode = in_reduced_mode = euromap67_interface_installed = euromap_input_bits = euromap_output_bits = euromap_voltage_cb2 = euromap_current_cb2 = euromap_voltage_24v = euromap_current = reserved_0 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
         if pos + 56 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_0_0_RUN, pos, end)
@@ -861,7 +877,7 @@ class MasterboardData(_Package):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
-        """Read the form of software (1, 6, 0) to (1, 8, 999)."""
+        """Read the form of software 1.6 to 1.8."""
         safety_mode = in_reduced_mode = euromap_voltage_24v = euromap_current = reserved_0 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
         if pos + 59 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_1_0_RUN, pos, end)
@@ -905,7 +921,7 @@ class MasterboardData(_Package):
 
     @classmethod
     def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
-        """Read the form of software (3, 0, 0) to (3, 1, 999)."""
+        """Read the form of software 3.0 to 3.1."""
         master_safety_state = master_on_off_state = euromap_voltage_cb2 = euromap_current_cb2 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
         if pos + 63 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_2_0_RUN, pos, end)
@@ -954,7 +970,7 @@ class MasterboardData(_Package):
 
     @classmethod
     def _decode_3(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
-        """Read the form of software (3, 2, 0) to (3, 9, 999), (5, 0, 0) to (5, 3, 999)."""
+        """Read the form of software 3.2 to 3.9 or 5.0 to 5.3."""
         master_safety_state = master_on_off_state = euromap_voltage_cb2 = euromap_current_cb2 = reserved_1 = None
         if pos + 63 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_3_0_RUN, pos, end)
@@ -1006,7 +1022,7 @@ class MasterboardData(_Package):
 
     @classmethod
     def _decode_4(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
-        """Read the form of software (3, 10, 0) to (3, 15, 999), (5, 4, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.10 to 3.15 or 5.4 and later."""
         master_safety_state = master_on_off_state = euromap_voltage_cb2 = euromap_current_cb2 = None
         if pos + 63 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_4_0_RUN, pos, end)
@@ -1059,10 +1075,7 @@ class MasterboardData(_Package):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -1148,7 +1161,7 @@ class CartesianInfo(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["CartesianInfo", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999), (3, 0, 0) to (3, 0, 999)."""
+        """Read the form of software up to 3.0."""
         tcp_offset_x = tcp_offset_y = tcp_offset_z = tcp_offset_rx = tcp_offset_ry = tcp_offset_rz = None
         if pos + 48 > end:
             raise _rt.short_in_run(_CARTESIAN_INFO_0_0_RUN, pos, end)
@@ -1168,7 +1181,7 @@ class CartesianInfo(_Package):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["CartesianInfo", int]:
-        """Read the form of software (3, 1, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.1 and later."""
         if pos + 96 > end:
             raise _rt.short_in_run(_CARTESIAN_INFO_1_0_RUN, pos, end)
         v = _CARTESIAN_INFO_1_0.unpack_from(buf, pos)
@@ -1193,10 +1206,7 @@ class CartesianInfo(_Package):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -1684,7 +1694,7 @@ class ConfigurationData(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["ConfigurationData", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
+        """Read the form of software up to 1.8."""
         reserved_1 = reserved_2 = None
         if pos + 464 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_0_0_RUN, pos, end)
@@ -1716,7 +1726,7 @@ class ConfigurationData(_Package):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["ConfigurationData", int]:
-        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 25, 0)."""
+        """Read the form of software 3.0 to 5.25.0."""
         motor_type = reserved_1 = reserved_2 = None
         if pos + 440 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_1_0_RUN, pos, end)
@@ -1747,7 +1757,7 @@ class ConfigurationData(_Package):
 
     @classmethod
     def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["ConfigurationData", int]:
-        """Read the form of software (5, 25, 1) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 5.25.1 and later."""
         motor_type = None
         if pos + 444 > end:
             raise _rt.short_in_run(_CONFIGURATION_DATA_2_0_RUN, pos, end)
@@ -1780,10 +1790,7 @@ class ConfigurationData(_Package):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -1924,7 +1931,7 @@ class AdditionalInfo(_Package):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
-        """Read the form of software (0, 0, 0) to (1, 7, 999)."""
+        """Read the form of software up to 1.7."""
         tp_button_state = freedrive_button_enabled = io_enabled_freedrive = reserved = None
         if pos + 5 > end:
             raise _rt.short_in_run(_ADDITIONAL_INFO_0_0_RUN, pos, end)
@@ -1940,7 +1947,7 @@ class AdditionalInfo(_Package):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
-        """Read the form of software (1, 8, 0) to (1, 8, 999), (3, 0, 0) to (3, 1, 999)."""
+        """Read the form of software 1.8 to 3.1."""
         ctrl_bits = teach_button = io_enabled_freedrive = reserved = None
         if pos + 2 > end:
             raise _rt.short_in_run(_ADDITIONAL_INFO_1_0_RUN, pos, end)
@@ -1956,7 +1963,7 @@ class AdditionalInfo(_Package):
 
     @classmethod
     def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
-        """Read the form of software (3, 2, 0) to (3, 15, 999)."""
+        """Read the form of software 3.2 to 3.15."""
         ctrl_bits = teach_button = reserved = None
         if pos + 3 > end:
             raise _rt.short_in_run(_ADDITIONAL_INFO_2_0_RUN, pos, end)
@@ -1973,7 +1980,7 @@ class AdditionalInfo(_Package):
 
     @classmethod
     def _decode_3(cls, buf, pos: int, end: int, version: tuple) -> tuple["AdditionalInfo", int]:
-        """Read the form of software (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 5.0 and later."""
         ctrl_bits = teach_button = None
         if pos + 4 > end:
             raise _rt.short_in_run(_ADDITIONAL_INFO_3_0_RUN, pos, end)
@@ -1991,10 +1998,7 @@ class AdditionalInfo(_Package):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -2319,7 +2323,7 @@ class VersionMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["VersionMessage", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999), (3, 0, 0) to (3, 2, 999)."""
+        """Read the form of software up to 3.2."""
         bugfix_version = build_number = None
         project_name, pos = _rt.read_prefixed_text(buf, pos, end, _INT8, "project_name")
         if pos + 6 > end:
@@ -2341,7 +2345,7 @@ class VersionMessage(_Subtype):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["VersionMessage", int]:
-        """Read the form of software (3, 3, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.3 and later."""
         svn_revision = None
         project_name, pos = _rt.read_prefixed_text(buf, pos, end, _INT8, "project_name")
         if pos + 10 > end:
@@ -2364,10 +2368,7 @@ class VersionMessage(_Subtype):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -2429,7 +2430,7 @@ class SafetyModeMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["SafetyModeMessage", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
+        """Read the form of software up to 1.8."""
         safety_mode_type = report_data_type = report_data = None
         if pos + 8 > end:
             raise _rt.short_in_run(_SAFETY_MODE_0_0_RUN, pos, end)
@@ -2448,7 +2449,7 @@ class SafetyModeMessage(_Subtype):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["SafetyModeMessage", int]:
-        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.0 and later."""
         text = None
         if pos + 13 > end:
             raise _rt.short_in_run(_SAFETY_MODE_1_0_RUN, pos, end)
@@ -2475,10 +2476,7 @@ class SafetyModeMessage(_Subtype):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -2541,7 +2539,7 @@ class RobotCommMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["RobotCommMessage", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
+        """Read the form of software up to 1.8."""
         robot_message_report_level = robot_message_data_type = robot_message_data = None
         if pos + 8 > end:
             raise _rt.short_in_run(_ROBOT_COMM_0_0_RUN, pos, end)
@@ -2560,7 +2558,7 @@ class RobotCommMessage(_Subtype):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["RobotCommMessage", int]:
-        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.0 and later."""
         if pos + 20 > end:
             raise _rt.short_in_run(_ROBOT_COMM_1_0_RUN, pos, end)
         v = _ROBOT_COMM_1_0.unpack_from(buf, pos)
@@ -2581,10 +2579,7 @@ class RobotCommMessage(_Subtype):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -2800,7 +2795,7 @@ class PopupMessage(_Subtype):
 
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["PopupMessage", int]:
-        """Read the form of software (0, 0, 0) to (1, 8, 999)."""
+        """Read the form of software up to 1.8."""
         request_id = requested_type = blocking = None
         if pos + 2 > end:
             raise _rt.short_in_run(_POPUP_0_0_RUN, pos, end)
@@ -2821,7 +2816,7 @@ class PopupMessage(_Subtype):
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["PopupMessage", int]:
-        """Read the form of software (3, 0, 0) to (3, 15, 999), (5, 0, 0) to (5, 99, 999), (10, 0, 0) to (1048576, 0, 0)."""
+        """Read the form of software 3.0 and later."""
         if pos + 11 > end:
             raise _rt.short_in_run(_POPUP_1_0_RUN, pos, end)
         v = _POPUP_1_0.unpack_from(buf, pos)
@@ -2844,10 +2839,7 @@ class PopupMessage(_Subtype):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -3273,15 +3265,68 @@ class GlobalVariablesUpdateMessage(_Subtype):
         value_codec(version).encode_list(out, self.variables, 0x0a)
         out += self.extra
 
-RobotModeData._FORMS = (((((0, 0, 0), (1, 8, 999)), ), RobotModeData._encode_0), ((((3, 0, 0), (3, 1, 999)), ), RobotModeData._encode_1), ((((3, 2, 0), (3, 4, 999)), ), RobotModeData._encode_2), ((((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), RobotModeData._encode_3), )
-MasterboardData._FORMS = (((((0, 0, 0), (1, 5, 999)), ), MasterboardData._encode_0), ((((1, 6, 0), (1, 8, 999)), ), MasterboardData._encode_1), ((((3, 0, 0), (3, 1, 999)), ), MasterboardData._encode_2), ((((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)), ), MasterboardData._encode_3), ((((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), MasterboardData._encode_4), )
-CartesianInfo._FORMS = (((((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)), ), CartesianInfo._encode_0), ((((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), CartesianInfo._encode_1), )
-ConfigurationData._FORMS = (((((0, 0, 0), (1, 8, 999)), ), ConfigurationData._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)), ), ConfigurationData._encode_1), ((((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), ConfigurationData._encode_2), )
-AdditionalInfo._FORMS = (((((0, 0, 0), (1, 7, 999)), ), AdditionalInfo._encode_0), ((((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)), ), AdditionalInfo._encode_1), ((((3, 2, 0), (3, 15, 999)), ), AdditionalInfo._encode_2), ((((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), AdditionalInfo._encode_3), )
-VersionMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)), ), VersionMessage._encode_0), ((((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), VersionMessage._encode_1), )
-SafetyModeMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ), SafetyModeMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), SafetyModeMessage._encode_1), )
-RobotCommMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ), RobotCommMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), RobotCommMessage._encode_1), )
-PopupMessage._FORMS = (((((0, 0, 0), (1, 8, 999)), ), PopupMessage._encode_0), ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), PopupMessage._encode_1), )
+RobotModeData._ENCODERS = (
+    RobotModeData._encode_0,
+    RobotModeData._encode_1,
+    RobotModeData._encode_2,
+    RobotModeData._encode_3,
+)
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+RobotModeData._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3,)
+MasterboardData._ENCODERS = (
+    MasterboardData._encode_0,
+    MasterboardData._encode_1,
+    MasterboardData._encode_2,
+    MasterboardData._encode_3,
+    MasterboardData._encode_4,
+)
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+MasterboardData._ENCODER_BY_SEGMENT = (0, 1, 1, 1, 2, 2, 3, 3, 3, 4, 4, 3, 4, 4, 4, 4,)
+CartesianInfo._ENCODERS = (
+    CartesianInfo._encode_0,
+    CartesianInfo._encode_1,
+)
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+CartesianInfo._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,)
+ConfigurationData._ENCODERS = (
+    ConfigurationData._encode_0,
+    ConfigurationData._encode_1,
+    ConfigurationData._encode_2,
+)
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+ConfigurationData._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2,)
+AdditionalInfo._ENCODERS = (
+    AdditionalInfo._encode_0,
+    AdditionalInfo._encode_1,
+    AdditionalInfo._encode_2,
+    AdditionalInfo._encode_3,
+)
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+AdditionalInfo._ENCODER_BY_SEGMENT = (0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3,)
+VersionMessage._ENCODERS = (
+    VersionMessage._encode_0,
+    VersionMessage._encode_1,
+)
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+VersionMessage._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1,)
+SafetyModeMessage._ENCODERS = (
+    SafetyModeMessage._encode_0,
+    SafetyModeMessage._encode_1,
+)
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+SafetyModeMessage._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,)
+RobotCommMessage._ENCODERS = (
+    RobotCommMessage._encode_0,
+    RobotCommMessage._encode_1,
+)
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+RobotCommMessage._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,)
+PopupMessage._ENCODERS = (
+    PopupMessage._encode_0,
+    PopupMessage._encode_1,
+)
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+PopupMessage._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,)
 
 
 @dataclass(slots=True)
@@ -3320,89 +3365,125 @@ class RobotStateMessage:
 
 _ROBOT_STATE_FORMS = _rt.Forms({
     0: (
-        _rt.Form(RobotModeData, RobotModeData._decode_0, (((0, 0, 0), (1, 8, 999)), ), frozenset({24}), 24,
-                 (1, 8, 999), "up to 1.8"),
-        _rt.Form(RobotModeData, RobotModeData._decode_1, (((3, 0, 0), (3, 1, 999)), ), frozenset({33}), 33,
-                 (3, 1, 999), "3.0 to 3.1"),
-        _rt.Form(RobotModeData, RobotModeData._decode_2, (((3, 2, 0), (3, 4, 999)), ), frozenset({41}), 41,
-                 (3, 4, 999), "3.2 to 3.4"),
-        _rt.Form(RobotModeData, RobotModeData._decode_3, (((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({42}), 42,
-                 (5, 9, 0), "3.5 and later"),
+        _rt.Form(RobotModeData, RobotModeData._decode_0, frozenset({24}), 24, (1, 8, 0),
+                 "up to 1.8"),
+        _rt.Form(RobotModeData, RobotModeData._decode_1, frozenset({33}), 33, (3, 1, 0),
+                 "3.0 to 3.1"),
+        _rt.Form(RobotModeData, RobotModeData._decode_2, frozenset({41}), 41, (3, 4, 0),
+                 "3.2 to 3.4"),
+        _rt.Form(RobotModeData, RobotModeData._decode_3, frozenset({42}), 42, (5, 9, 0),
+                 "3.5 and later"),
     ),
     1: (
-        _rt.Form(JointData, JointData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({246}), 246,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(JointData, JointData._decode, frozenset({246}), 246, (5, 9, 0),
+                 "all versions"),
     ),
     2: (
-        _rt.Form(ToolData, ToolData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({32}), 32,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(ToolData, ToolData._decode, frozenset({32}), 32, (5, 9, 0),
+                 "all versions"),
     ),
     3: (
-        _rt.Form(MasterboardData, MasterboardData._decode_0, (((0, 0, 0), (1, 5, 999)), ), frozenset({56}), 56,
-                 (1, 5, 999), "up to 1.5"),
-        _rt.Form(MasterboardData, MasterboardData._decode_1, (((1, 6, 0), (1, 8, 999)), ), frozenset({59, 71}), 59,
-                 (1, 8, 999), "1.6 to 1.8"),
-        _rt.Form(MasterboardData, MasterboardData._decode_2, (((3, 0, 0), (3, 1, 999)), ), frozenset({67, 83}), 67,
-                 (3, 1, 999), "3.0 to 3.1"),
-        _rt.Form(MasterboardData, MasterboardData._decode_3, (((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)), ), frozenset({69, 85}), 69,
-                 (5, 3, 999), "3.2 to 3.9 or 5.0 to 5.3"),
-        _rt.Form(MasterboardData, MasterboardData._decode_4, (((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({70, 86}), 70,
-                 (5, 9, 0), "3.10 to 3.15 or 5.4 and later"),
+        _rt.Form(MasterboardData, MasterboardData._decode_0, frozenset({56}), 56, (1, 5, 0),
+                 "up to 1.5"),
+        _rt.Form(MasterboardData, MasterboardData._decode_1, frozenset({59, 71}), 59, (1, 8, 0),
+                 "1.6 to 1.8"),
+        _rt.Form(MasterboardData, MasterboardData._decode_2, frozenset({67, 83}), 67, (3, 1, 0),
+                 "3.0 to 3.1"),
+        _rt.Form(MasterboardData, MasterboardData._decode_3, frozenset({69, 85}), 69, (5, 3, 0),
+                 "3.2 to 3.9 or 5.0 to 5.3"),
+        _rt.Form(MasterboardData, MasterboardData._decode_4, frozenset({70, 86}), 70, (5, 9, 0),
+                 "3.10 to 3.15 or 5.4 and later"),
     ),
     4: (
-        _rt.Form(CartesianInfo, CartesianInfo._decode_0, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)), ), frozenset({48}), 48,
-                 (3, 0, 999), "up to 3.0"),
-        _rt.Form(CartesianInfo, CartesianInfo._decode_1, (((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({96}), 96,
-                 (5, 9, 0), "3.1 and later"),
+        _rt.Form(CartesianInfo, CartesianInfo._decode_0, frozenset({48}), 48, (3, 0, 0),
+                 "up to 3.0"),
+        _rt.Form(CartesianInfo, CartesianInfo._decode_1, frozenset({96}), 96, (5, 9, 0),
+                 "3.1 and later"),
     ),
     5: (
-        _rt.Form(LaserPointer, LaserPointer._decode, (((0, 0, 0), (1, 7, 999)), ), frozenset({24}), 24,
-                 (1, 7, 999), "up to 1.7"),
-        _rt.Form(KinematicsInfo, KinematicsInfo._decode, (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({220}), 220,
-                 (5, 9, 0), "1.8 and later"),
+        _rt.Form(LaserPointer, LaserPointer._decode, frozenset({24}), 24, (1, 7, 0),
+                 "up to 1.7"),
+        _rt.Form(KinematicsInfo, KinematicsInfo._decode, frozenset({220}), 220, (5, 9, 0),
+                 "1.8 and later"),
     ),
     6: (
-        _rt.Form(ConfigurationData, ConfigurationData._decode_0, (((0, 0, 0), (1, 8, 999)), ), frozenset({464}), 464,
-                 (1, 8, 999), "up to 1.8"),
-        _rt.Form(ConfigurationData, ConfigurationData._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)), ), frozenset({440}), 440,
-                 (5, 9, 0), "3.0 to 5.25.0"),
-        _rt.Form(ConfigurationData, ConfigurationData._decode_2, (((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({444}), 444,
-                 (5, 25, 1), "5.25.1 and later"),
+        _rt.Form(ConfigurationData, ConfigurationData._decode_0, frozenset({464}), 464, (1, 8, 0),
+                 "up to 1.8"),
+        _rt.Form(ConfigurationData, ConfigurationData._decode_1, frozenset({440}), 440, (5, 9, 0),
+                 "3.0 to 5.25.0"),
+        _rt.Form(ConfigurationData, ConfigurationData._decode_2, frozenset({444}), 444, (5, 25, 1),
+                 "5.25.1 and later"),
     ),
     7: (
-        _rt.Form(ForceModeData, ForceModeData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({56}), 56,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(ForceModeData, ForceModeData._decode, frozenset({56}), 56, (5, 9, 0),
+                 "all versions"),
     ),
     8: (
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_0, (((0, 0, 0), (1, 7, 999)), ), frozenset({5}), 5,
-                 (1, 7, 999), "up to 1.7"),
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_1, (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)), ), frozenset({2}), 2,
-                 (3, 1, 999), "1.8 to 3.1"),
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_2, (((3, 2, 0), (3, 15, 999)), ), frozenset({3}), 3,
-                 (3, 15, 999), "3.2 to 3.15"),
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_3, (((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({4}), 4,
-                 (5, 9, 0), "5.0 and later"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_0, frozenset({5}), 5, (1, 7, 0),
+                 "up to 1.7"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_1, frozenset({2}), 2, (3, 1, 0),
+                 "1.8 to 3.1"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_2, frozenset({3}), 3, (3, 15, 0),
+                 "3.2 to 3.15"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_3, frozenset({4}), 4, (5, 9, 0),
+                 "5.0 and later"),
     ),
     9: (
-        _rt.Form(CalibrationData, CalibrationData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({48}), 48,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(CalibrationData, CalibrationData._decode, frozenset({48}), 48, (5, 9, 0),
+                 "all versions"),
     ),
     10: (
-        _rt.Form(SafetyData, SafetyData._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(SafetyData, SafetyData._decode, None, 0, (5, 9, 0),
+                 "all versions"),
     ),
     11: (
-        _rt.Form(ToolCommInfo, ToolCommInfo._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({21}), 21,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(ToolCommInfo, ToolCommInfo._decode, frozenset({21}), 21, (5, 9, 0),
+                 "all versions"),
     ),
     12: (
-        _rt.Form(ToolModeInfo, ToolModeInfo._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({3}), 3,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(ToolModeInfo, ToolModeInfo._decode, frozenset({3}), 3, (5, 9, 0),
+                 "all versions"),
     ),
     13: (
-        _rt.Form(SingularityInfo, SingularityInfo._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({2}), 2,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(SingularityInfo, SingularityInfo._decode, frozenset({2}), 2, (5, 9, 0),
+                 "all versions"),
     ),
+}, _SEGMENT_STARTS, (
+    # A row per segment, an entry per code: the index of the form its versions send; ~index
+    # when none is sent there and the form is the nearest version's below. Codes:
+    # (0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13)
+    (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),  # up to 1.5
+    (0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),  # 1.6 to 1.7
+    (0, 0, 0, 1, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0),  # 1.8
+    (~0, ~0, ~0, ~1, ~0, ~1, ~0, ~0, ~1, ~0, ~0, ~0, ~0, ~0),  # 1.9 to before 3.0
+    (1, 0, 0, 2, 0, 1, 1, 0, 1, 0, 0, 0, 0, 0),  # 3.0
+    (1, 0, 0, 2, 1, 1, 1, 0, 1, 0, 0, 0, 0, 0),  # 3.1
+    (2, 0, 0, 3, 1, 1, 1, 0, 2, 0, 0, 0, 0, 0),  # 3.2
+    (2, 0, 0, 3, 1, 1, 1, 0, 2, 0, 0, 0, 0, 0),  # 3.3 to 3.4
+    (3, 0, 0, 3, 1, 1, 1, 0, 2, 0, 0, 0, 0, 0),  # 3.5 to 3.9
+    (3, 0, 0, 4, 1, 1, 1, 0, 2, 0, 0, 0, 0, 0),  # 3.10 to 3.15
+    (~3, ~0, ~0, ~4, ~1, ~1, ~1, ~0, ~2, ~0, ~0, ~0, ~0, ~0),  # 3.16 to before 5.0
+    (3, 0, 0, 3, 1, 1, 1, 0, 3, 0, 0, 0, 0, 0),  # 5.0 to 5.3
+    (3, 0, 0, 4, 1, 1, 1, 0, 3, 0, 0, 0, 0, 0),  # 5.4 to 5.25.0
+    (3, 0, 0, 4, 1, 1, 2, 0, 3, 0, 0, 0, 0, 0),  # 5.25.1 to 5.99
+    (~3, ~0, ~0, ~4, ~1, ~1, ~2, ~0, ~3, ~0, ~0, ~0, ~0, ~0),  # 5.100 to before 10.0
+    (3, 0, 0, 4, 1, 1, 2, 0, 3, 0, 0, 0, 0, 0),  # 10.0 and later
+), {
+    # Code by code: the body sizes that recognise one form, and its index.
+    0: {24: 0, 33: 1, 41: 2, 42: 3},
+    1: {246: 0},
+    2: {32: 0},
+    3: {56: 0, 59: 1, 67: 2, 69: 3, 70: 4, 71: 1, 83: 2, 85: 3, 86: 4},
+    4: {48: 0, 96: 1},
+    5: {24: 0, 220: 1},
+    6: {440: 1, 444: 2, 464: 0},
+    7: {56: 0},
+    8: {2: 1, 3: 2, 4: 3, 5: 0},
+    9: {48: 0},
+    10: {},
+    11: {21: 0},
+    12: {3: 0},
+    13: {2: 0},
 }, header=5)
 
 
@@ -3419,8 +3500,7 @@ def package_classes(version) -> dict:
     (a part of another length may still be read in another form:
     docs/contract.md#choosing-a-layout)."""
     version = version_of(version)
-    return {code: form.cls for code in sorted(_ROBOT_STATE_FORMS.by_code)
-            for form in _ROBOT_STATE_FORMS.by_code[code] if form.sent_by(version)}
+    return {code: form.cls for code, form in sorted(_ROBOT_STATE_FORMS.sent(version).items())}
 
 
 def _decode_robot_state(buf, version: tuple, known: bool) -> RobotStateMessage:
@@ -3475,61 +3555,95 @@ _ROBOT_MESSAGE_HEADER_RUN = (
 )
 _ROBOT_MESSAGE_FORMS = _rt.Forms({
     3: (
-        _rt.Form(VersionMessage, VersionMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)), ), None, 7,
-                 (3, 2, 999), "up to 3.2"),
-        _rt.Form(VersionMessage, VersionMessage._decode_1, (((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 11,
-                 (5, 9, 0), "3.3 and later"),
+        _rt.Form(VersionMessage, VersionMessage._decode_0, None, 7, (3, 2, 0),
+                 "up to 3.2"),
+        _rt.Form(VersionMessage, VersionMessage._decode_1, None, 11, (5, 9, 0),
+                 "3.3 and later"),
     ),
     5: (
-        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ), None, 8,
-                 (1, 8, 999), "up to 1.8"),
-        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({17}), 17,
-                 (5, 9, 0), "3.0 and later"),
+        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_0, None, 8, (1, 8, 0),
+                 "up to 1.8"),
+        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_1, frozenset({17}), 17, (5, 9, 0),
+                 "3.0 and later"),
     ),
     6: (
-        _rt.Form(RobotCommMessage, RobotCommMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ), None, 8,
-                 (1, 8, 999), "up to 1.8"),
-        _rt.Form(RobotCommMessage, RobotCommMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 20,
-                 (5, 9, 0), "3.0 and later"),
+        _rt.Form(RobotCommMessage, RobotCommMessage._decode_0, None, 8, (1, 8, 0),
+                 "up to 1.8"),
+        _rt.Form(RobotCommMessage, RobotCommMessage._decode_1, None, 20, (5, 9, 0),
+                 "3.0 and later"),
     ),
     7: (
-        _rt.Form(KeyMessage, KeyMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 9,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(KeyMessage, KeyMessage._decode, None, 9, (5, 9, 0),
+                 "all versions"),
     ),
     14: (
-        _rt.Form(ProgramThreadsMessage, ProgramThreadsMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(ProgramThreadsMessage, ProgramThreadsMessage._decode, None, 0, (5, 9, 0),
+                 "all versions"),
     ),
     2: (
-        _rt.Form(PopupMessage, PopupMessage._decode_0, (((0, 0, 0), (1, 8, 999)), ), None, 3,
-                 (1, 8, 999), "up to 1.8"),
-        _rt.Form(PopupMessage, PopupMessage._decode_1, (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 12,
-                 (5, 9, 0), "3.0 and later"),
+        _rt.Form(PopupMessage, PopupMessage._decode_0, None, 3, (1, 8, 0),
+                 "up to 1.8"),
+        _rt.Form(PopupMessage, PopupMessage._decode_1, None, 12, (5, 9, 0),
+                 "3.0 and later"),
     ),
     1: (
-        _rt.Form(LabelMessage, LabelMessage._decode, (((0, 0, 0), (1, 8, 999)), ), None, 4,
-                 (1, 8, 999), "up to 1.8"),
+        _rt.Form(LabelMessage, LabelMessage._decode, None, 4, (1, 8, 0),
+                 "up to 1.8"),
     ),
     8: (
-        _rt.Form(VarMessage, VarMessage._decode, (((0, 0, 0), (1, 8, 999)), ), None, 9,
-                 (1, 8, 999), "up to 1.8"),
+        _rt.Form(VarMessage, VarMessage._decode, None, 9, (1, 8, 0),
+                 "up to 1.8"),
     ),
     18: (
-        _rt.Form(HardwareInfoMessage, HardwareInfoMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), frozenset({12}), 12,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(HardwareInfoMessage, HardwareInfoMessage._decode, frozenset({12}), 12, (5, 9, 0),
+                 "all versions"),
     ),
     9: (
-        _rt.Form(RequestValueMessage, RequestValueMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(RequestValueMessage, RequestValueMessage._decode, None, 8, (5, 9, 0),
+                 "all versions"),
     ),
     0: (
-        _rt.Form(TextMessage, TextMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 0,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(TextMessage, TextMessage._decode, None, 0, (5, 9, 0),
+                 "all versions"),
     ),
     10: (
-        _rt.Form(RuntimeExceptionMessage, RuntimeExceptionMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 8,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(RuntimeExceptionMessage, RuntimeExceptionMessage._decode, None, 8, (5, 9, 0),
+                 "all versions"),
     ),
+}, _SEGMENT_STARTS, (
+    # A row per segment, an entry per code: the index of the form its versions send; ~index
+    # when none is sent there and the form is the nearest version's below. Codes:
+    # (3, 5, 6, 7, 14, 2, 1, 8, 18, 9, 0, 10)
+    (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),  # up to 1.5
+    (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),  # 1.6 to 1.7
+    (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),  # 1.8
+    (~0, ~0, ~0, ~0, ~0, ~0, ~0, ~0, ~0, ~0, ~0, ~0),  # 1.9 to before 3.0
+    (0, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.0
+    (0, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.1
+    (0, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.2
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.3 to 3.4
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.5 to 3.9
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.10 to 3.15
+    (~1, ~1, ~1, ~0, ~0, ~1, ~0, ~0, ~0, ~0, ~0, ~0),  # 3.16 to before 5.0
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 5.0 to 5.3
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 5.4 to 5.25.0
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 5.25.1 to 5.99
+    (~1, ~1, ~1, ~0, ~0, ~1, ~0, ~0, ~0, ~0, ~0, ~0),  # 5.100 to before 10.0
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 10.0 and later
+), {
+    # Code by code: the body sizes that recognise one form, and its index.
+    3: {},
+    5: {17: 1},
+    6: {},
+    7: {},
+    14: {},
+    2: {},
+    1: {},
+    8: {},
+    18: {12: 0},
+    9: {},
+    0: {},
+    10: {},
 })
 
 
@@ -3584,13 +3698,37 @@ _PROGRAM_STATE_HEADER_RUN = (
 )
 _PROGRAM_STATE_FORMS = _rt.Forms({
     0: (
-        _rt.Form(GlobalVariablesSetupMessage, GlobalVariablesSetupMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(GlobalVariablesSetupMessage, GlobalVariablesSetupMessage._decode, None, 2, (5, 9, 0),
+                 "all versions"),
     ),
     1: (
-        _rt.Form(GlobalVariablesUpdateMessage, GlobalVariablesUpdateMessage._decode, (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)), ), None, 2,
-                 (5, 9, 0), "all versions"),
+        _rt.Form(GlobalVariablesUpdateMessage, GlobalVariablesUpdateMessage._decode, None, 2, (5, 9, 0),
+                 "all versions"),
     ),
+}, _SEGMENT_STARTS, (
+    # A row per segment, an entry per code: the index of the form its versions send; ~index
+    # when none is sent there and the form is the nearest version's below. Codes:
+    # (0, 1)
+    (0, 0),  # up to 1.5
+    (0, 0),  # 1.6 to 1.7
+    (0, 0),  # 1.8
+    (~0, ~0),  # 1.9 to before 3.0
+    (0, 0),  # 3.0
+    (0, 0),  # 3.1
+    (0, 0),  # 3.2
+    (0, 0),  # 3.3 to 3.4
+    (0, 0),  # 3.5 to 3.9
+    (0, 0),  # 3.10 to 3.15
+    (~0, ~0),  # 3.16 to before 5.0
+    (0, 0),  # 5.0 to 5.3
+    (0, 0),  # 5.4 to 5.25.0
+    (0, 0),  # 5.25.1 to 5.99
+    (~0, ~0),  # 5.100 to before 10.0
+    (0, 0),  # 10.0 and later
+), {
+    # Code by code: the body sizes that recognise one form, and its index.
+    0: {},
+    1: {},
 })
 
 
