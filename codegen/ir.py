@@ -55,16 +55,9 @@ def version_number(version: Version) -> int:
     return (major * 1000 + minor) * 1000 + min(bugfix, BUGFIX_ANY)
 
 
-def describe_start(version: Version) -> str:
-    """Where a span of versions starts, as a reader says it: "from 1.6", "from 5.25.1"; a start
-    past every bugfix release of a minor (bugfix above BUGFIX_ANY) is "after 1.5", and one past
-    every major the spec can name is "after every version"."""
-    major, minor, bugfix = version
-    if major >= 1 << 20:
-        return "after every version"
-    if bugfix > BUGFIX_ANY:
-        return f"after {major}.{minor}"
-    return f"from {version_text(version)}"
+def version_of_number(number: int) -> Version:
+    """The version a version_number counts: 5025001 -> (5, 25, 1)."""
+    return number // 1_000_000, number // 1000 % 1000, number % 1000
 
 
 @dataclass(frozen=True)
@@ -402,9 +395,16 @@ class Struct:
         return [f for f in self.fields if f.name == name]
 
     @property
+    def fixed_item(self) -> bool:
+        """True when an item of this struct is read inside its parent's fixed run: every field's
+        size is known without reading and no condition or choice is made on the way."""
+        return all(in_fixed_run(g) and not g.conditional for g in self.fields)
+
+    @property
     def public_fields(self) -> list[AnyField]:
         """One field per name, in first-seen order: what a record holds (its attributes,
-        members, filter fields). A name with several entries takes the widest scalar."""
+        members, filter fields). A name with several entries takes the widest scalar: resolve
+        lets them differ in size only (resolve.same_name), so it holds every entry's values."""
         out: dict[str, AnyField] = {}
         for f in self.fields:
             if f.name not in out:
@@ -412,6 +412,41 @@ class Struct:
             elif isinstance(f, ScalarField) and f.scalar.size > out[f.name].scalar.size:
                 out[f.name] = f
         return list(out.values())
+
+
+def in_fixed_run(f: AnyField) -> bool:
+    """Fields a fixed run can hold: known size, and no choice made while reading."""
+    if isinstance(f, GroupField):
+        return f.count is not None and f.item.fixed_item
+    return f.fixed_size is not None and not isinstance(f, SwitchField)
+
+
+# ---- canonical JSON kinds (docs/canonical-json.md): how every target writes a value ----------
+
+def scalar_json_kind(s: Scalar) -> str:
+    """bool, int, f32 (shortest text that reads back as the float32) or f64."""
+    return "bool" if s.is_bool else ("f32" if s.size == 4 else "f64") if s.is_float else "int"
+
+
+def json_kind(f: AnyField) -> str:
+    """How the canonical JSON writes a field: a scalar's kind, enum (by name), list:<kind>,
+    items, text, texts, hex, int|<float kind> (a switch), values."""
+    if isinstance(f, ScalarField):
+        return "enum" if f.enum is not None and not f.scalar.is_bool else scalar_json_kind(f.scalar)
+    if isinstance(f, ArrayField):
+        return "list:" + scalar_json_kind(f.scalar)
+    if isinstance(f, GroupField):
+        return "items"
+    if isinstance(f, StringField):
+        return "text"
+    if isinstance(f, StringListField):
+        return "texts"
+    if isinstance(f, BytesField):
+        return "hex"
+    if isinstance(f, SwitchField):
+        floats = [s for s in list(f.cases.values()) + [f.default] if s.is_float]
+        return "int|" + scalar_json_kind(floats[0]) if floats else "int"
+    return "values"
 
 
 # ---- values of global variables -----------------------------------------------------------

@@ -7,8 +7,10 @@ A plan says how the bytes of a layout are walked, in the order they come:
   range), with the plan of its inside;
 - a `VarField` is one field whose size is known only by reading it.
 
-Messages get their header slots with absolute offsets, the offset where their body starts and
-the layouts each type code can have; the protocol gets where the software version is read.
+Messages get their header slots with absolute offsets, the offset where their body starts, the
+layouts each type code can have and its forms across software versions: the form of each
+segment of the version axis (the nearest below's where none is sent) and the sizes that
+recognise one. The protocol gets those segments and where the software version is read.
 Targets render these plans and decide nothing about layout themselves: no target splits a
 struct, computes an offset or builds a condition from the IR on its own.
 """
@@ -73,7 +75,6 @@ class FixedRun:
     size: int
     members: list[Member]
     leaves: list[Leaf]
-    offset: Optional[int]           # from the layout's start, when nothing variable precedes it
     kind: str = "run"
 
     @property
@@ -109,10 +110,6 @@ class LayoutPlan:
     runs: list[FixedRun]             # every run, nested ones included, in order
     fixed_size: Optional[int]
     min_size: int
-    offsets: dict[str, int]          # fields at a fixed offset from the start: name -> offset
-
-    def field_offset(self, name: str) -> Optional[int]:
-        return self.offsets.get(name)
 
 
 @dataclass
@@ -134,7 +131,7 @@ class _Planner:
     def item(self, group: ir.GroupField) -> ItemPlan:
         if id(group) not in self.items:
             layout = self.layout(group.item)
-            fixed = _all_in_run(group.item)
+            fixed = group.item.fixed_item
             leaves = len(layout.runs[0].leaves) if fixed else 0
             if not fixed and group.count is not None:
                 self.problems.append(group.where.problem(
@@ -148,27 +145,18 @@ class _Planner:
 
     def layout(self, struct: ir.Struct) -> LayoutPlan:
         runs: list[FixedRun] = []
-        steps = self.steps(struct.fields, runs, 0)
-        offsets, at = {}, 0
-        for f in struct.fields:
-            if at is None or f.conditional:
-                break
-            offsets[f.name] = at
-            at = at + f.fixed_size if f.fixed_size is not None else None
-        return LayoutPlan(struct, steps, runs, struct.fixed_size, struct.min_size, offsets)
+        steps = self.steps(struct.fields, runs)
+        return LayoutPlan(struct, steps, runs, struct.fixed_size, struct.min_size)
 
-    def steps(self, fields: list[ir.AnyField], runs: list[FixedRun], start: Optional[int]) -> list[Step]:
+    def steps(self, fields: list[ir.AnyField], runs: list[FixedRun]) -> list[Step]:
         out: list[Step] = []
         pending: list[ir.AnyField] = []
-        at = start
 
         def flush() -> None:
-            nonlocal at
             if pending:
-                run = self.run(list(pending), len(runs), at)
+                run = self.run(list(pending), len(runs))
                 runs.append(run)
                 out.append(run)
-                at = None if at is None else at + run.size
                 pending.clear()
 
         i = 0
@@ -180,21 +168,19 @@ class _Planner:
                 while i + 1 < len(fields) and condition_of(fields[i + 1]) == condition_of(f):
                     i += 1
                     group.append(fields[i])
-                inner = self.steps([_unconditional(g) for g in group], runs, None)
+                inner = self.steps([_unconditional(g) for g in group], runs)
                 out.append(CondGroup(condition_of(f), group, inner))
-                at = None
-            elif _in_run(f):
+            elif ir.in_fixed_run(f):
                 pending.append(f)
             else:
                 flush()
                 item = self.item(f) if isinstance(f, ir.GroupField) else None
                 out.append(VarField(f, f.name, item))
-                at = None
             i += 1
         flush()
         return out
 
-    def run(self, fields: list[ir.AnyField], index: int, offset: Optional[int]) -> FixedRun:
+    def run(self, fields: list[ir.AnyField], index: int) -> FixedRun:
         members, leaves, at = [], [], 0
         for f in fields:
             item = self.item(f) if isinstance(f, ir.GroupField) else None
@@ -202,7 +188,7 @@ class _Planner:
             members.append(Member(f, at, len(leaves), len(mine), item))
             leaves += mine
             at += f.fixed_size
-        return FixedRun(index, at, members, leaves, offset)
+        return FixedRun(index, at, members, leaves)
 
     def leaves(self, f: ir.AnyField, path: str, at: int) -> list[Leaf]:
         if isinstance(f, ir.ScalarField):
@@ -216,17 +202,6 @@ class _Planner:
                 out += self.leaves(g, f"{path}[{k}].{g.name}", at)
                 at += g.fixed_size
         return out
-
-
-def _in_run(f: ir.AnyField) -> bool:
-    """Fields a fixed run can hold: known size, and no choice made while reading."""
-    if isinstance(f, ir.GroupField):
-        return f.count is not None and _all_in_run(f.item)
-    return f.fixed_size is not None and not isinstance(f, ir.SwitchField)
-
-
-def _all_in_run(struct: ir.Struct) -> bool:
-    return all(_in_run(g) and not g.conditional for g in struct.fields)
 
 
 def _unconditional(f: ir.AnyField) -> ir.AnyField:
@@ -288,11 +263,41 @@ class Variant:
         first = self.releases[0][0] if self.releases else 0
         return " or ".join(_range_text(lo, hi, first) for lo, hi in shown)
 
-    @property
-    def bounds(self) -> list[tuple[Optional[int], Optional[int]]]:
-        """`ranges` with None for an open end: for targets that test a bound only when there is one."""
-        return [(lo or None, hi if hi < _TOP else None) for lo, hi in self.ranges]
 
+@dataclass(frozen=True)
+class Segment:
+    """A piece of the version axis within which every type code of every message sends one
+    form: the versions from `first` (None: every version below `upto`) up to, not including,
+    `upto` (None: no end)."""
+
+    first: Optional[ir.Version]
+    upto: Optional[ir.Version]
+
+    def describe(self) -> str:
+        """"up to 1.5", "1.8", "1.6 to 1.7", "5.4 to 5.25.0", "3.16 to before 5.0", "10.0 and later"."""
+        if self.upto is None:
+            return f"{ir.version_text(self.first)} and later" if self.first else "all versions"
+        major, minor, bugfix = self.upto
+        if bugfix:
+            last = "%d.%d.%d" % (major, minor, bugfix - 1)
+        elif minor:
+            last = ir.version_text((major, minor - 1, ir.BUGFIX_ANY))
+        else:
+            last = f"before {ir.version_text(self.upto)}"
+        if self.first is None:
+            return last if last.startswith("before") else f"up to {last}"
+        first = ir.version_text(self.first)
+        return first if first == last else f"{first} to {last}"
+
+
+@dataclass(frozen=True)
+class SegmentForm:
+    """The form a type code takes in one segment: its index among the code's variants. When no
+    form is sent there (between two series, or newer than the spec knows) it is the form of the
+    nearest version below, else the first, and `nearest` says so: it is read as its `rep`."""
+
+    form: int
+    nearest: bool = False
 
 
 @dataclass
@@ -303,6 +308,11 @@ class MessagePlan:
     subtype_offset: Optional[int]
     choices: dict[int, list[LayoutChoice]]   # type code -> the layouts it can have
     variants: dict[int, list[Variant]] = field(default_factory=dict)   # type code -> its forms
+    # type code -> its form in each segment of ProtocolPlan.segments
+    by_segment: dict[int, list[SegmentForm]] = field(default_factory=dict)
+    # type code -> {body size: the index of the one fixed-size form of that size}: the forms a
+    # part's length alone recognises (an open-ended form fits too much to be recognised)
+    by_length: dict[int, dict[int, int]] = field(default_factory=dict)
 
     @property
     def is_dispatch(self) -> bool:
@@ -315,7 +325,6 @@ class MessagePlan:
     def forms_of(self, layout: ir.Layout) -> list["Variant"]:
         """The forms of one layout (a code with two layouts has forms of each)."""
         return [v for v in self.variants.get(layout.code.value, []) if v.layout is layout]
-
 
 
 @dataclass
@@ -354,19 +363,17 @@ class ProtocolPlan:
     messages: list[MessagePlan]
     version: VersionSource
     items: list[ItemPlan]
+    segments: list[Segment]          # the version axis, cut wherever a form starts or ends
+
+    def segment_of(self, version: ir.Version) -> int:
+        """The index of the segment that holds `version`."""
+        return max(k for k, s in enumerate(self.segments) if s.first is None or s.first <= version)
 
     def message(self, name: str) -> MessagePlan:
         for m in self.messages:
             if m.message.name == name:
                 return m
         raise KeyError(name)
-
-    def plan_of(self, layout: ir.Layout) -> LayoutPlan:
-        for m in self.messages:
-            for c in m.layouts:
-                if c.layout is layout:
-                    return c.plan
-        raise KeyError(layout.name)
 
     def item_of(self, group: ir.GroupField) -> ItemPlan:
         for it in self.items:
@@ -417,13 +424,10 @@ def _bounds(r: ir.VersionRange) -> tuple[int, int]:
     return (ir.version_number(r.low) if r.low else 0, ir.version_number(r.high) if r.high else _TOP)
 
 
-def _from_number(n: int) -> ir.Version:
-    return n // 1_000_000, n // 1000 % 1000, n % 1000
-
-
 def _range_text(lo: int, hi: int, first: int = 0) -> str:
     """A range of version numbers as a reader says it (ir.VersionRange.describe)."""
-    return ir.VersionRange(_from_number(lo), _from_number(hi) if hi < _TOP else None).describe(_from_number(first))
+    return ir.VersionRange(ir.version_of_number(lo), ir.version_of_number(hi) if hi < _TOP else None).describe(
+        ir.version_of_number(first))
 
 
 def _fields_by_version(struct: ir.Struct) -> list[ir.AnyField]:
@@ -443,7 +447,7 @@ def _variants(options: list[LayoutChoice], default: ir.Version,
     points = sorted(cuts)
     found: dict[tuple, Variant] = {}
     for lo, nxt in zip(points, points[1:]):
-        sample = _from_number(lo)
+        sample = ir.version_of_number(lo)
         for c in options:
             if not c.layout.versions.contains(sample):
                 continue
@@ -513,8 +517,61 @@ def _representative(ranges: list[tuple[int, int]], default: ir.Version) -> ir.Ve
     """The version a variant stands for: the default where it covers it, else its newest
     version below the default, else its oldest."""
     d = ir.version_number(default)
-    below = [min(hi, d) for lo, hi in ranges if lo <= d]
-    return _from_number(max(below)) if below else _from_number(ranges[0][0])
+    below = [(lo, min(hi, d)) for lo, hi in ranges if lo <= d]
+    lo, hi = max(below, key=lambda r: r[1]) if below else (ranges[0][0], ranges[0][0])
+    # A bound of any bugfix release ("up to 1.8") stands for its first one: a real version.
+    major, minor, bugfix = ir.version_of_number(hi)
+    return max(ir.version_of_number(lo), (major, minor, 0)) if bugfix == ir.BUGFIX_ANY else (major, minor, bugfix)
+
+
+# ---- segments: one lookup gives every type code's form at a version -------------------------
+
+def _after(number: int) -> Optional[ir.Version]:
+    """The first version above an inclusive upper bound (a number of the plan): after "up to
+    5.8" (any 5.8.x) comes 5.9, after 5.25.0 comes 5.25.1; None after the open end."""
+    if number >= _TOP:
+        return None
+    major, minor, bugfix = ir.version_of_number(number)
+    return (major, minor + 1, 0) if bugfix == ir.BUGFIX_ANY else (major, minor, bugfix + 1)
+
+
+def _segments(messages: list[MessagePlan]) -> list[Segment]:
+    """The version axis cut wherever any form of any type code starts or ends."""
+    cuts: set[ir.Version] = set()
+    for mp in messages:
+        for variants in mp.variants.values():
+            for v in variants:
+                for lo, hi in v.ranges:
+                    if lo:
+                        cuts.add(ir.version_of_number(lo))
+                    if _after(hi) is not None:
+                        cuts.add(_after(hi))
+    starts: list[Optional[ir.Version]] = [None] + sorted(cuts)
+    return [Segment(first, upto) for first, upto in zip(starts, starts[1:] + [None])]
+
+
+def _by_segment(variants: list[Variant], segments: list[Segment]) -> list[SegmentForm]:
+    """The form of one type code in each segment: the one its versions send, else the nearest
+    below's (else the first)."""
+    out = []
+    for s in segments:
+        at = ir.version_number(s.first) if s.first else 0
+        sent = [k for k, v in enumerate(variants) if any(lo <= at <= hi for lo, hi in v.ranges)]
+        if sent:
+            out.append(SegmentForm(sent[0]))
+        else:
+            below = [(lo, k) for k, v in enumerate(variants) for lo, _ in v.ranges if lo <= at]
+            out.append(SegmentForm(max(below)[1] if below else 0, nearest=True))
+    return out
+
+
+def _by_length(variants: list[Variant]) -> dict[int, int]:
+    """Body sizes that exactly one fixed-size form of a type code has, with that form's index."""
+    holders: dict[int, list[int]] = {}
+    for k, v in enumerate(variants):
+        for size in sorted(v.sizes or ()):
+            holders.setdefault(size, []).append(k)
+    return {size: ks[0] for size, ks in sorted(holders.items()) if len(ks) == 1}
 
 
 def plan(p: ir.Protocol) -> ProtocolPlan:
@@ -543,8 +600,12 @@ def plan(p: ir.Protocol) -> ProtocolPlan:
             for v in forms:
                 v.plan = planner.layout(v.layout.struct.at(v.rep))
         messages.append(MessagePlan(m, header, body, subtype_offset, choices, variants))
+    segments = _segments(messages)
+    for mp in messages:
+        mp.by_segment = {code: _by_segment(forms, segments) for code, forms in mp.variants.items()}
+        mp.by_length = {code: _by_length(forms) for code, forms in mp.variants.items()}
     version = _version_source(p, messages, problems)
     if problems:
         raise SpecError(p.source, problems)
     return ProtocolPlan(p, p.header_size, p.package_header_size, messages, version,
-                        list(planner.items.values()))
+                        list(planner.items.values()), segments)

@@ -52,7 +52,7 @@ def sizes_text(v: plan.Variant, header: int) -> str:
 
 def _present(f: ir.AnyField, v: plan.Variant) -> bool:
     lo = v.ranges[0][0]
-    return f.versions.contains(plan._from_number(lo))
+    return f.versions.contains(ir.version_of_number(lo))
 
 
 def _header_size(p: plan.ProtocolPlan, mp: plan.MessagePlan) -> int:

@@ -108,8 +108,13 @@ class _Resolver:
         return out
 
     def same_name(self, earlier: ir.AnyField, f: ir.AnyField, where) -> None:
-        """A name may stand twice in a layout only for versions that do not overlap, as one value
-        of one kind: the entries differ in their wire type at most (int16 before int32)."""
+        """The one rule for a name that stands more than once in a layout (every target relies on
+        it): its entries are sent by versions that do not overlap, and they are one value of one
+        kind, so that one record attribute, C member or Wireshark field holds them all. Each entry
+        is a scalar of the same kind (integer, float, bool) and the same signedness, under the
+        same flag, with the same enum, its bit names alike as far as both go; only its size may
+        differ (int16 before int32, float32 before float64): the widest entry then holds every
+        value of the others (ir.Struct.public_fields)."""
         if earlier.versions.overlaps(f.versions):
             self.fail(where + ["name"], f"duplicate field name '{f.name}' (give the entries version ranges "
                                         f"that do not overlap)")
@@ -119,6 +124,10 @@ class _Resolver:
                 and _prefix(f.bits, earlier.bits) and f.present_if == earlier.present_if):
             self.fail(where + ["name"], f"'{f.name}' stands twice with another kind of value: give the older "
                                         f"form a name of its own")
+        elif f.scalar.signed != earlier.scalar.signed:
+            self.fail(where + ["type"], f"'{f.name}' stands twice as {earlier.scalar.name} and {f.scalar.name}: "
+                                        f"entries of one name may differ in size only, not in signedness (give "
+                                        f"the older form a name of its own)")
         # One name is one field to its readers: one label, one unit.
         if (f.label, f.unit) != (earlier.label, earlier.unit):
             self.fail(where + ["label"], f"'{f.name}' stands twice with another label or unit "

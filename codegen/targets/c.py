@@ -31,10 +31,19 @@ WRITERS = {"bool": "urwire__put_u8", "int8": "urwire__put_i8", "uint8": "urwire_
            "uint16": "urwire__put_u16", "int32": "urwire__put_i32", "uint32": "urwire__put_u32",
            "int64": "urwire__put_i64", "uint64": "urwire__put_u64", "float32": "urwire__put_f32",
            "float64": "urwire__put_f64"}
-# Visitor callback for each scalar: signed integers as int64, unsigned as uint64.
-VISIT = {"bool": "on_bool", "int8": "on_int", "int16": "on_int", "int32": "on_int", "int64": "on_int",
-         "uint8": "on_uint", "uint16": "on_uint", "uint32": "on_uint", "uint64": "on_uint",
-         "float32": "on_f32", "float64": "on_f64"}
+
+
+def visitor_of(s: ir.Scalar) -> str:
+    """The visitor callback of a scalar, after its canonical JSON kind (ir.scalar_json_kind):
+    on_bool, on_f32, on_f64, and integers signed as int64 (on_int), unsigned as uint64 (on_uint)."""
+    kind = ir.scalar_json_kind(s)
+    if kind == "int":
+        return "on_int" if s.signed else "on_uint"
+    return f"on_{kind}"
+
+
+# Visitor callback for each scalar type.
+VISIT = {name: visitor_of(s) for name, s in ir.SCALARS.items()}
 C_KEYWORDS = {"auto", "break", "case", "char", "const", "continue", "default", "do", "double", "else", "enum",
               "extern", "float", "for", "goto", "if", "inline", "int", "long", "register", "restrict", "return",
               "short", "signed", "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned", "void",
@@ -211,10 +220,10 @@ class _Builder:
                                                comment(f.doc) or [f"One entry of {f.name}."])
         cs = CStruct(name, ctype, doc, [], role)
         # One member per name: a name with entries in disjoint version ranges is one member of
-        # the widest type, each entry read, written and visited under its own condition.
+        # the widest type (resolve.same_name: they differ in size only), each entry read, written
+        # and visited under its own condition.
         self.public = {f.name: f for f in struct.public_fields}
         self.repeated = [n for n in self.public if len(struct.named(n)) > 1]
-        self.check_repeated(struct)
         for f in struct.public_fields:
             cs.members.append(self.member(f, name, struct).place())
             if isinstance(f, ir.ScalarField) and f.bits:
@@ -237,7 +246,7 @@ class _Builder:
             cs.decoders = [self.form_decoder(cs, struct, v, k) for k, v in enumerate(forms)]
         else:
             cs.decoders = [cs.decoder("", inline(*doc), cs.decode)]
-        fixed = role == "item" and any(it.layout is layout and it.fixed for it in self.plan.items)
+        fixed = role == "item" and struct.fixed_item
         if fixed:
             # Read and written inside its parent's checked run.
             cs.fixed_item = True
@@ -267,16 +276,6 @@ class _Builder:
     def item_of(self, f: ir.GroupField) -> CStruct:
         """The struct of a group's items (a form's copy of a group has the same items)."""
         return self.items.get(id(f)) or next(c for c in self.items.values() if c.name == f.item.name)
-
-    def check_repeated(self, struct: ir.Struct) -> None:
-        for name in self.repeated:
-            entries = struct.named(name)
-            if not all(isinstance(f, ir.ScalarField) for f in entries):
-                self.problems.append(entries[1].where.problem(
-                    f"c target: '{name}' repeats as a field that is not a scalar; only scalars share a member"))
-            elif len({(f.scalar.signed, f.scalar.is_float, f.scalar.is_bool) for f in entries}) > 1:
-                self.problems.append(entries[1].where.problem(
-                    f"c target: the entries of '{name}' differ in signedness or kind; they cannot share a member"))
 
     def member(self, f: ir.AnyField, owner: str, struct: ir.Struct) -> Member:
         name = f.name
@@ -525,75 +524,80 @@ def value_views(p: ir.Protocol) -> dict:
 
 # ---- forms: which layout a type code is read in ---------------------------------------------
 
-def _tuple(number: int) -> ir.Version:
-    """A version number of the plan (ir.version_number) as the (major, minor, bugfix) it counts."""
-    return number // 1_000_000, number // 1000 % 1000, number % 1000
+# A segment's row marks a form that is the nearest below's (none is sent there) with this bit.
+NEAREST_BIT = 0x80
+# A form in brief (urwire__package_first_sizes): its first exact size, its least size when it is
+# open-ended, or none.
+BRIEF = {"exact": "{size}u", "open": "URWIRE__OPEN({size}u)", "none": "URWIRE__NONE"}
+
+
+def cell_lines(cells: list[str], width: int = 112) -> list[str]:
+    """The cells of one row of a C table, ", "-joined and wrapped into lines of at most `width`."""
+    lines, line = [], ""
+    for text in (c + "," for c in cells):
+        if line and len(line) + 1 + len(text) > width:
+            lines.append(line)
+            line = ""
+        line = f"{line} {text}" if line else text
+    return lines + [line] if line else lines
 
 
 class _Forms:
-    """The version axis cut wherever any form of any type code starts or ends: within one
-    segment every type code sends the same form, so a version's form is one table lookup
-    (urwire__segment, then the segment's row). Bounds compare as the spec's version tuples do,
-    so a bound "up to 5.8" (5.8.999) ends just before 5.8.1000, as in Python."""
+    """The plan's segments of the version axis (within one, every type code sends one form) as C
+    tables: a version's form is one lookup (urwire__segment, then the segment's row)."""
 
     def __init__(self, protocol_plan: plan.ProtocolPlan):
+        self.plan = protocol_plan
         self.source = protocol_plan.protocol.source
-        ranges = [(_tuple(lo), _tuple(hi)) for mp in protocol_plan.messages for variants in mp.variants.values()
-                  for v in variants for lo, hi in v.ranges]
-        cuts = {(0, 0, 0)}
-        for lo, hi in ranges:
-            cuts |= {lo, (hi[0], hi[1], hi[2] + 1)}
-        self.starts = sorted(cuts)
-        # A version in each segment: segment 0 is everything below the first start.
-        self.samples = [(-1, 0, 0)] + self.starts
+        self.segments = protocol_plan.segments
         self.size_slots = max([len(v.sizes or ()) for mp in protocol_plan.messages for vs in mp.variants.values()
                                for v in vs] + [1])
 
-    @staticmethod
-    def nearest_below(code: dict, sample: ir.Version) -> int:
-        """A segment no form of the code is sent in: the form of the nearest version below (else
-        the first), marked URWIRE__NEAREST (the runtime reads it as the version it stands for)."""
-        below = [(_tuple(lo), n) for n, f in enumerate(code["forms"]) for lo, _ in f["ranges"] if _tuple(lo) <= sample]
-        n = max(below)[1] if below else 0
-        return (code["first"] + n + 1) | 0x80
+    def bounds(self) -> list[dict]:
+        """Where each segment starts, with the versions it holds: the first from key 0."""
+        return [dict(kind="version", first=version_view(s.first), versions=s.describe()) if s.first else
+                dict(kind="lowest", versions=s.describe()) for s in self.segments]
 
     def table(self, tag: str, what: str, mp: plan.MessagePlan, enum: ir.Enum, layouts: dict[int, str],
               first_sizes: bool = False) -> dict:
         """The forms of every code of one type byte (the sub-package types, or a message's
         subtypes), in one list; the forms of each code; and, segment by segment, the form each
-        code's versions send (its number in the list plus one, 0 for none)."""
-        codes, count = [], 0
+        code takes there (its number in the list plus one, 0 for none, NEAREST_BIT when it is the
+        nearest below's)."""
+        codes, count, recognised = [], 0, 0
         for code, variants in mp.variants.items():
             forms = []
             for v in variants:
                 sizes = sorted(v.sizes) if v.sizes is not None else []
                 forms.append(dict(layout=layouts[id(v.layout)], nsizes=len(sizes),
                                   sizes=sizes + [0] * (self.size_slots - len(sizes)), min_size=v.min_size,
-                                  rep=version_view(v.rep), versions=v.describe(), ranges=v.ranges))
+                                  rep=version_view(v.rep), versions=v.describe()))
             codes.append(dict(code=code, index=c_enum_const(enum, code), first=count, count=len(forms), forms=forms,
                               names=", ".join(c.layout.name for c in mp.choices[code]),
                               layouts=[dict(name=c.layout.name, const=layouts[id(c.layout)])
-                                       for c in mp.choices[code]]))
+                                       for c in mp.choices[code]],
+                              by_length_cells=cell_lines([f"{{{size}u, {k}}}" for size, k in mp.by_length[code].items()]),
+                              by_length_first=recognised, by_length_count=len(mp.by_length[code])))
             count += len(forms)
-        if count >= 128:
+            recognised += len(mp.by_length[code])
+        if count >= NEAREST_BIT:
             raise SpecError(self.source, [mp.message.where.problem(
                 "c target: more than 127 forms of one type byte do not fit the form tables")])
         ncodes = max(mp.variants) + 1
         rows = []
-        for k, sample in enumerate(self.samples):
+        for k, segment in enumerate(self.segments):
             row = [0] * ncodes
             first = [dict(kind="none")] * ncodes
             for c in codes:
-                sent = [n for n, f in enumerate(c["forms"])
-                        if any(_tuple(lo) <= sample <= _tuple(hi) for lo, hi in f["ranges"])]
-                row[c["code"]] = c["first"] + sent[0] + 1 if sent else self.nearest_below(c, sample)
-                if sent:
-                    f = c["forms"][sent[0]]
+                sf = mp.by_segment[c["code"]][k]
+                row[c["code"]] = (c["first"] + sf.form + 1) | (NEAREST_BIT if sf.nearest else 0)
+                if not sf.nearest:
+                    f = c["forms"][sf.form]
                     first[c["code"]] = dict(kind="exact", size=f["sizes"][0]) if f["nsizes"] else \
                         dict(kind="open", size=f["min_size"])
-            start = "below every version" if k == 0 else ir.describe_start(sample)
-            cells = [f"URWIRE__NEAREST | {n & 0x7f}" if n & 0x80 else str(n) for n in row]
-            rows.append(dict(forms=row, cells=cells, first=first, start=start))
+            rows.append(dict(forms=row, first=first, versions=segment.describe(),
+                             cells=cell_lines(["0x%02x" % n for n in row]),
+                             first_cells=cell_lines([BRIEF[n["kind"]].format(size=n.get("size")) for n in first])))
         return dict(tag=tag, what=what, codes=codes, ncodes=ncodes, rows=rows, first_sizes=first_sizes)
 
 
@@ -672,7 +676,7 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     vmsg = next(m for m in messages if m["code"] == vs.message_code)
     return dict(structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
                 package_decoders=package_decoders, package_fast=package_fast,
-                segment_starts=[version_view(v) for v in axis.starts], form_sizes=axis.size_slots,
+                segment_bounds=axis.bounds(), form_sizes=axis.size_slots,
                 framing=framing(p, lists[0], vst, vmsg, vs), known_types=known_types(p))
 
 
@@ -685,13 +689,10 @@ def fast_paths(axis: _Forms, table: dict, decoders: list[dict], default: ir.Vers
     that sends one of these rows takes its loop."""
     rows = table["rows"]
 
-    def segment_of(v: ir.Version) -> int:
-        return max(k for k, start in enumerate(axis.samples) if start <= v)
-
     def usable(row: dict) -> bool:
         return any(n["kind"] != "none" for n in row["first"])
 
-    picks = [segment_of(default)] + [k for k in range(len(rows) - 1, -1, -1) if usable(rows[k])][:1]
+    picks = [axis.plan.segment_of(default)] + [k for k in range(len(rows) - 1, -1, -1) if usable(rows[k])][:1]
     if picks[0] == len(rows) - 1:
         # urwire__segment tries the default's segment first, up to the bound after it.
         raise SpecError(axis.source, [ir.NOWHERE.problem("c target: the default version lies past every form's "
@@ -704,14 +705,14 @@ def fast_paths(axis: _Forms, table: dict, decoders: list[dict], default: ir.Vers
             continue
         cases = []
         for form, first in zip(row["forms"], row["first"]):
-            if form == 0 or form & 0x80 or first["kind"] == "none":
+            if form == 0 or form & NEAREST_BIT or first["kind"] == "none":
                 continue  # no form of its own there: the general rule finds the nearest
             c, x = by_number[form]
             cases.append(dict(type=c["index"], layout=x["layout"], decoder=x["decoder"], member=x["member"],
                               check="any" if first["kind"] == "open" and first["size"] == 0 else first["kind"],
                               size=first["size"], versions=x["versions"]))
         paths.append(dict(number=len(paths) + 1, forms=row["forms"], cases=cases,
-                          segments=", ".join(r["start"] for r in rows if r["forms"] == row["forms"])))
+                          segments=", ".join(r["versions"] for r in rows if r["forms"] == row["forms"])))
     of_segment = [next((p["number"] for p in paths if p["forms"] == r["forms"]), 0) for r in rows]
     return dict(paths=paths, of_segment=of_segment, default_segment=picks[0])
 

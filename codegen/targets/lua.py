@@ -12,6 +12,8 @@ descriptors is hand-written Lua in templates/lua/runtime/, joined after the gene
 """
 from __future__ import annotations
 
+import textwrap
+
 from dataclasses import dataclass
 from typing import Optional
 
@@ -140,15 +142,6 @@ def version_number(v: Optional[ir.Version]) -> Optional[int]:
     return None if v is None else ir.version_number(v)
 
 
-def holds(wide: ir.Scalar, narrow: ir.Scalar) -> bool:
-    """True when a field of type `wide` can show every value of type `narrow`."""
-    if wide.is_float or narrow.is_float:
-        return wide.is_float and narrow.is_float and narrow.size <= wide.size
-    if wide.is_bool or narrow.is_bool:
-        return wide.is_bool and narrow.is_bool
-    return wide.min <= narrow.min and narrow.max <= wide.max
-
-
 # Descriptor kinds the Info column can step over on its way to a summary field, and the kinds it
 # can show (runtime/info.lua).
 STEPS_OVER = {"scalar", "bits", "array", "pstring", "string"}
@@ -250,19 +243,13 @@ class _Builder:
 
     def settle(self) -> None:
         """One ProtoField per key, of the widest type among its entries (a filter name has one
-        type: docs/contract.md#names-across-versions); narrower reads then add their value explicitly."""
+        type: docs/contract.md#names-across-versions; resolve.same_name lets the entries of a name
+        differ in size only); narrower reads then add their value explicitly."""
         for key, entries in self.entries.items():
             scalars = list({s.name: s for s, _, _ in entries}.values())
-            enums = {e.name for _, _, e in entries if e is not None}
-            if len(scalars) == 1 and len(enums) <= 1:
+            if len(scalars) == 1:
                 continue
             wide = max(scalars, key=lambda s: s.size)
-            if not all(holds(wide, s) for s in scalars) or len(enums) > 1:
-                types = ", ".join(s.name for s in scalars) + (f" (enums {', '.join(sorted(enums))})" if len(enums) > 1 else "")
-                self.problems.append(entries[-1][1].problem(
-                    f"lua target: the entries of {wireshark_field(*key.split('.', 1))} ({types}) cannot share one "
-                    "Wireshark field: give the older one a name of its own"))
-                continue
             self.wide[key] = wide
             pf = self.by_key[key]
             pf.ctor = PROTOFIELD[wide.name]
@@ -464,17 +451,20 @@ class _Builder:
         return view.var, bool(show)
 
     def forms(self, mp: plan.MessagePlan, parts: dict[int, str]) -> list[dict]:
-        """Per type code, the forms it takes (plan.Variant): its layout's data, the versions that
-        send it, its body sizes, the version it stands for when its length alone chose it."""
+        """Per type code, the forms it takes (plan.Variant): its layout's data, its body sizes,
+        the version it stands for when its length alone chose it, the versions that send it; and
+        the plan's tables: the form of each segment (MessagePlan.by_segment: 1-based, negative
+        for the nearest below's) and the sizes that recognise one form (by_length)."""
         out = []
         for code, variants in sorted(mp.variants.items()):
-            forms = [dict(part=parts[id(v.layout)],
-                          ranges=[dict(low=lo, high=hi) for lo, hi in v.bounds],
-                          sizes=sorted(v.sizes) if v.sizes is not None else None,
-                          min=v.min_size, rep=version_number(v.rep), versions=v.describe())
+            forms = [dict(part=parts[id(v.layout)], sizes=sorted(v.sizes) if v.sizes is not None else None,
+                          min=v.min_size, rep=ir.version_text(v.rep), versions=v.describe())
                      for v in variants]
-            single = len(variants) == 1 and variants[0].bounds == [(None, None)]
-            out.append(dict(code=code, single=single, forms=forms))
+            rows = mp.by_segment[code]
+            single = len(variants) == 1 and not any(sf.nearest for sf in rows)
+            segments = [-(sf.form + 1) if sf.nearest else sf.form + 1 for sf in rows]
+            by_length = [dict(size=size, form=k + 1) for size, k in mp.by_length[code].items()]
+            out.append(dict(code=code, single=single, forms=forms, segments=segments, by_length=by_length))
         return out
 
     @staticmethod
@@ -607,7 +597,9 @@ class _Builder:
         return dict(enums=enums, fields=self.fields, layouts=self.layouts, messages=messages,
                     version=version, value_tables=self.value_tables(),
                     known_codes=p.known_message_codes, message_type_names=self.enum_var[p.message_type_enum.name],
-                    message_type_tables=self.code_names(p.message_type_enum), constants=constants)
+                    message_type_tables=self.code_names(p.message_type_enum), constants=constants,
+                    segment_lines=textwrap.wrap(", ".join(f'"{ir.version_text(s.first)}"' for s in self.plan.segments
+                                                          if s.first), 100))
 
     def version_reader(self) -> dict:
         """Where the Version message keeps its numbers: fixed bytes and length-prefixed strings,

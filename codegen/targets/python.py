@@ -38,7 +38,7 @@ def attr(f: ir.AnyField, annotation: str, optional: bool = False, entries: tuple
     holds them for code that shows records to people (human.py, a GUI)."""
     unit = json.dumps(f.unit, ensure_ascii=False) if f.unit else "None"
     metadata = f'{{"label": {json.dumps(f.label, ensure_ascii=False)}, "unit": {unit}}}'
-    return Attr(f.name, annotation, one_line(field_text(entries or [f])), json_kind(f), optional, metadata)
+    return Attr(f.name, annotation, one_line(field_text(entries or [f])), ir.json_kind(f), optional, metadata)
 
 
 @dataclass
@@ -74,8 +74,7 @@ class Codec:
     suffix: str
     decode: list[Step]
     encode: list[Step]
-    ranges: list = field(default_factory=list)   # (low, high) version tuples of the form
-    versions: str = ""                           # the same, as a reader says them
+    versions: str = ""            # the versions that send the form, when a layout has several
 
 
 @dataclass
@@ -95,6 +94,7 @@ class PyClass:
     sets_version: Optional[tuple[str, str]] = None
     summary: list[str] = field(default_factory=list)
     items: dict[str, str] = field(default_factory=dict)   # group member -> its item class
+    encoder_by_segment: str = ""   # several forms: the index of the encoder of each segment
 
     @property
     def base(self) -> str:
@@ -129,28 +129,6 @@ def scalar_annotation(s: ir.Scalar, enum: Optional[ir.Enum]) -> str:
     if enum is not None:
         return f"Union[{', '.join(py_table_class(enum, t) for t in reversed(enum.tables))}, int]"
     return "bool" if s.is_bool else "float" if s.is_float else "int"
-
-
-def json_kind(f: ir.AnyField) -> str:
-    def scalar_kind(s: ir.Scalar) -> str:
-        return "bool" if s.is_bool else ("f32" if s.size == 4 else "f64") if s.is_float else "int"
-
-    if isinstance(f, ir.ScalarField):
-        return "enum" if f.enum is not None and not f.scalar.is_bool else scalar_kind(f.scalar)
-    if isinstance(f, ir.ArrayField):
-        return "list:" + scalar_kind(f.scalar)
-    if isinstance(f, ir.GroupField):
-        return "items"
-    if isinstance(f, ir.StringField):
-        return "text"
-    if isinstance(f, ir.StringListField):
-        return "texts"
-    if isinstance(f, ir.BytesField):
-        return "hex"
-    if isinstance(f, ir.SwitchField):
-        floats = [s for s in list(f.cases.values()) + [f.default] if s.is_float]
-        return "int|" + scalar_kind(floats[0]) if floats else "int"
-    return "values"
 
 
 def conversion(s: ir.Scalar, enum: Optional[ir.Enum]) -> tuple[str, str]:
@@ -275,11 +253,6 @@ def item_enums(item: ir.Struct) -> list[str]:
             if isinstance(f, (ir.ScalarField, ir.ArrayField)) and f.enum is not None and f.enum.versioned]
 
 
-def version_tuple(number: int) -> tuple[int, int, int]:
-    """A version number of the plan (ir.version_number) as the tuple the bindings compare."""
-    return number // 1_000_000, number // 1000 % 1000, number % 1000
-
-
 def _is_f32(s: ir.Scalar) -> bool:
     return s.is_float and s.size == 4
 
@@ -331,8 +304,7 @@ class _Target:
                 absent = [f.name for f in struct.public_fields if not v.plan.struct.named(f.name)]
                 if absent:
                     decode.insert(0, Step("absent", dict(names=absent)))
-                codecs.append(Codec(f"_{k}", decode, encode,
-                                    [(version_tuple(lo), version_tuple(hi)) for lo, hi in v.ranges], v.describe()))
+                codecs.append(Codec(f"_{k}", decode, encode, v.describe()))
                 structs += form_builder.structs
         else:
             decode, encode = builder.steps(layout.steps)
@@ -346,7 +318,7 @@ class _Target:
         attrs += [attr(f, annotation(f, items), f.conditional, struct.named(f.name)) for f in struct.public_fields]
         cls = PyClass(name, doc, role, label or words(json_type), json_type, code, attrs,
                       [f.name for f in header_fields], codecs, structs, sets_version=sets_version)
-        if role == "item" and self.is_fixed_item(layout):
+        if role == "item" and struct.fixed_item:
             # A fixed item is read inside its parent's run: from the parent's values and offset.
             cls.fixed = True
             cls.members = [builder.member(m, "i", "at") for m in layout.runs[0].members]
@@ -355,27 +327,45 @@ class _Target:
         self.classes.append(cls)
         return cls
 
-    def forms(self, mp: plan.MessagePlan, classes: dict[int, PyClass]) -> list:
-        """Per type code, the forms it takes: the class, version ranges, sizes and the version
-        it stands for (see plan.Variant)."""
-        out = []
+    def forms(self, mp: plan.MessagePlan, classes: dict[int, PyClass]) -> dict:
+        """The tables of the forms of a message's type codes (see plan.Variant and
+        plan.MessagePlan.by_segment): per code, its forms (class, decoder, sizes, the version
+        it stands for); per segment, each code's form; per code, the sizes that recognise one."""
+        forms = []
         for code, variants in mp.variants.items():
-            out.append((code, [dict(cls=classes[id(v.layout)].name, decode=self.decoder_of(classes[id(v.layout)], mp, v),
-                                    ranges=[(version_tuple(lo), version_tuple(hi)) for lo, hi in v.ranges],
-                                    sizes=f"frozenset({{{', '.join(map(str, sorted(v.sizes)))}}})"
-                                    if v.sizes is not None else "None",
-                                    min_size=v.min_size, rep=v.rep, versions=v.describe())
-                               for v in variants]))
-        return out
+            forms.append((code, [dict(cls=classes[id(v.layout)].name, decode=self.decoder_of(classes[id(v.layout)], mp, v),
+                                      sizes=f"frozenset({{{', '.join(map(str, sorted(v.sizes)))}}})"
+                                      if v.sizes is not None else "None",
+                                      min_size=v.min_size, rep=v.rep, versions=v.describe())
+                                 for v in variants]))
+        rows = [dict(versions=s.describe(),
+                     cells=", ".join(f"~{c[k].form}" if c[k].nearest else str(c[k].form) for c in mp.by_segment.values()))
+                for k, s in enumerate(self.plan.segments)]
+        by_length = [(code, ", ".join(f"{size}: {k}" for size, k in sizes.items())) for code, sizes in mp.by_length.items()]
+        return dict(forms=forms, rows=rows, by_length=by_length, codes=", ".join(map(str, mp.by_segment)))
+
+    def set_encoders(self, mp: plan.MessagePlan, classes: dict[int, PyClass]) -> None:
+        for c in mp.layouts:
+            if len(mp.forms_of(c.layout)) > 1:
+                classes[id(c.layout)].encoder_by_segment = self.encoder_by_segment(mp, c.layout)
+
+    @staticmethod
+    def encoder_by_segment(mp: plan.MessagePlan, layout: ir.Layout) -> str:
+        """For a layout of several forms: the index of its encoder in each segment (that of the
+        form its code takes there; where that is another layout's form, its last)."""
+        forms = mp.forms_of(layout)
+        variants = mp.variants[layout.code.value]
+        out = []
+        for sf in mp.by_segment[layout.code.value]:
+            v = variants[sf.form]
+            out.append(next((k for k, f in enumerate(forms) if f is v), len(forms) - 1))
+        return ", ".join(map(str, out)) + ","
 
     @staticmethod
     def decoder_of(cls: PyClass, mp: plan.MessagePlan, v: plan.Variant) -> str:
         forms = mp.forms_of(v.layout)
         suffix = f"_{forms.index(v)}" if len(forms) > 1 else ""
         return f"{cls.name}._decode{suffix}"
-
-    def is_fixed_item(self, layout: plan.LayoutPlan) -> bool:
-        return any(it.layout is layout and it.fixed for it in self.plan.items)
 
     def build(self) -> dict:
         messages = []
@@ -387,10 +377,11 @@ class _Target:
                                                           one_line(node_text(c.layout)),
                                                           summary=c.layout.summary, forms=mp.forms_of(c.layout))
                            for c in mp.layouts}
+                self.set_encoders(mp, classes)
                 messages.append(dict(kind="packages", name=m.name, cls=py_message_class(m), code=m.code.value,
                                      code_name=m.code.name, doc=one_line(node_text(m)), label=words(m.name),
-                                     layouts=list(classes.values()), forms=self.forms(mp, classes),
-                                     body_offset=mp.body_offset))
+                                     layouts=list(classes.values()), body_offset=mp.body_offset,
+                                     **self.forms(mp, classes)))
                 continue
             fields = [slot.field for slot in mp.header if not slot.is_subtype]
             subtype = mp.header[-1].field
@@ -401,6 +392,7 @@ class _Target:
                                                       one_line(node_text(c.layout)), mp.header,
                                                       c.layout.sets_version, c.layout.summary,
                                                       forms=mp.forms_of(c.layout)) for c in mp.layouts}
+            self.set_encoders(mp, classes)
             layouts = list(classes.values())
             announces = self.plan.version.subtype_code if self.plan.version.message_code == m.code.value else None
             messages.append(dict(
@@ -410,7 +402,7 @@ class _Target:
                 header_run=[(slot.field.name, slot.offset, slot.field.scalar.size) for slot in mp.header],
                 header_offset=mp.header[0].offset, header_names=[f.name for f in fields],
                 header_converts=[c for c in converts if c.conv != "plain"], subtype=subtype.name,
-                body_offset=mp.body_offset, forms=self.forms(mp, classes), announces=announces))
+                body_offset=mp.body_offset, announces=announces, **self.forms(mp, classes)))
         if self.problems:
             raise SpecError(self.p.source, self.problems)
         p = self.p
@@ -418,7 +410,8 @@ class _Target:
         skips = [dict(fixed=k.fixed, prefix=self.prefix_const(ir.SCALARS[("int" if k.signed else "uint") + str(8 * k.prefix)]))
                  for k in v.skips]
         return dict(messages=messages, classes=self.classes, prefixes=self.prefixes, switches=self.switches,
-                    version=dict(skips=skips, tail=v.tail), header_size=self.plan.header_size, package_header_size=self.plan.package_header_size,
+                    version=dict(skips=skips, tail=v.tail),
+                    segments=[dict(first=s.first, versions=s.describe()) for s in self.plan.segments if s.first], header_size=self.plan.header_size, package_header_size=self.plan.package_header_size,
                     type_offset=p.message_length.scalar.size,
                     header_fmt=">" + STRUCT_CODES[p.message_length.scalar.name] + STRUCT_CODES[p.message_type.scalar.name],
                     package_header_fmt=">" + STRUCT_CODES[p.package_length.scalar.name]

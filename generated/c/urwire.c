@@ -172,11 +172,20 @@ URWIRE__INLINE bool urwire__fits_brief(uint32_t brief, size_t size)
     return brief == size || ((brief & 0x80000000u) && size >= (brief & 0x7fffffffu));
 }
 
+/* A body size that exactly one fixed-size form of a type code has, and that form's index among
+ * the code's forms: a body of that size alone says which form it is. */
+typedef struct urwire__recognised {
+    uint32_t size;
+    uint8_t form;
+} urwire__recognised;
+
 /* The forms of one type code, in a table of all the forms of its type byte (count 0: the code
- * has no layout). */
+ * has no layout), and the sizes that recognise one of them. */
 typedef struct urwire__forms {
     const urwire__form *forms;
     uint8_t count;
+    const urwire__recognised *by_length;
+    uint8_t nby_length;
 } urwire__forms;
 
 /* The forms of the codes of one type byte (sub-package types, or the subtypes of a message):
@@ -5150,73 +5159,63 @@ static void urwire__put_program_state_header(const urwire_message *m, uint8_t *o
 /* ---- forms: which layout a type code is read in, by software version and by length ------- */
 
 /* The segment of the default version: every stream whose version is only assumed reads in it. */
-#define URWIRE__DEFAULT_SEGMENT 21u
+#define URWIRE__DEFAULT_SEGMENT 12u
 
 /* Where the segments of the version axis start (as urwire__version_key orders versions):
- * segment k from urwire__segment_bounds[k] up to the next bound; segment 0 from key 0, below
- * every version the spec names. Within a segment every type code sends one form. */
+ * segment k from urwire__segment_bounds[k] up to the next bound; segment 0 from key 0. Within a
+ * segment every type code sends one form. */
 static const uint64_t urwire__segment_bounds[] = {
-    0u,
-    URWIRE__V(0, 0, 0),
-    URWIRE__V(1, 5, 1000),
-    URWIRE__V(1, 6, 0),
-    URWIRE__V(1, 7, 1000),
-    URWIRE__V(1, 8, 0),
-    URWIRE__V(1, 8, 1000),
-    URWIRE__V(3, 0, 0),
-    URWIRE__V(3, 0, 1000),
-    URWIRE__V(3, 1, 0),
-    URWIRE__V(3, 1, 1000),
-    URWIRE__V(3, 2, 0),
-    URWIRE__V(3, 2, 1000),
-    URWIRE__V(3, 3, 0),
-    URWIRE__V(3, 4, 1000),
-    URWIRE__V(3, 5, 0),
-    URWIRE__V(3, 9, 1000),
-    URWIRE__V(3, 10, 0),
-    URWIRE__V(3, 15, 1000),
-    URWIRE__V(5, 0, 0),
-    URWIRE__V(5, 3, 1000),
-    URWIRE__V(5, 4, 0),
-    URWIRE__V(5, 25, 1),
-    URWIRE__V(5, 99, 1000),
-    URWIRE__V(10, 0, 0),
-    URWIRE__V(1048576, 0, 1),
+    0u,  /* up to 1.5 */
+    URWIRE__V(1, 6, 0),  /* 1.6 to 1.7 */
+    URWIRE__V(1, 8, 0),  /* 1.8 */
+    URWIRE__V(1, 9, 0),  /* 1.9 to before 3.0 */
+    URWIRE__V(3, 0, 0),  /* 3.0 */
+    URWIRE__V(3, 1, 0),  /* 3.1 */
+    URWIRE__V(3, 2, 0),  /* 3.2 */
+    URWIRE__V(3, 3, 0),  /* 3.3 to 3.4 */
+    URWIRE__V(3, 5, 0),  /* 3.5 to 3.9 */
+    URWIRE__V(3, 10, 0),  /* 3.10 to 3.15 */
+    URWIRE__V(3, 16, 0),  /* 3.16 to before 5.0 */
+    URWIRE__V(5, 0, 0),  /* 5.0 to 5.3 */
+    URWIRE__V(5, 4, 0),  /* 5.4 to 5.25.0 */
+    URWIRE__V(5, 25, 1),  /* 5.25.1 to 5.99 */
+    URWIRE__V(5, 100, 0),  /* 5.100 to before 10.0 */
+    URWIRE__V(10, 0, 0),  /* 10.0 and later */
 };
 
 /* The forms of every sub-package type, code by code. */
 static const urwire__form urwire__package_form_list[] = {
     /* 0: robot_mode_data */
-    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {24, 0}, 24u, {1, 8, 999, false}},  /* up to 1.8 */
-    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {33, 0}, 33u, {3, 1, 999, false}},  /* 3.0 to 3.1 */
-    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {41, 0}, 41u, {3, 4, 999, false}},  /* 3.2 to 3.4 */
+    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {24, 0}, 24u, {1, 8, 0, false}},  /* up to 1.8 */
+    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {33, 0}, 33u, {3, 1, 0, false}},  /* 3.0 to 3.1 */
+    {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {41, 0}, 41u, {3, 4, 0, false}},  /* 3.2 to 3.4 */
     {URWIRE_LAYOUT_ROBOT_MODE_DATA, 1, {42, 0}, 42u, {5, 9, 0, false}},  /* 3.5 and later */
     /* 1: joint_data */
     {URWIRE_LAYOUT_JOINT_DATA, 1, {246, 0}, 246u, {5, 9, 0, false}},  /* all versions */
     /* 2: tool_data */
     {URWIRE_LAYOUT_TOOL_DATA, 1, {32, 0}, 32u, {5, 9, 0, false}},  /* all versions */
     /* 3: masterboard_data */
-    {URWIRE_LAYOUT_MASTERBOARD_DATA, 1, {56, 0}, 56u, {1, 5, 999, false}},  /* up to 1.5 */
-    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {59, 71}, 59u, {1, 8, 999, false}},  /* 1.6 to 1.8 */
-    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {67, 83}, 67u, {3, 1, 999, false}},  /* 3.0 to 3.1 */
-    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {69, 85}, 69u, {5, 3, 999, false}},  /* 3.2 to 3.9 or 5.0 to 5.3 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 1, {56, 0}, 56u, {1, 5, 0, false}},  /* up to 1.5 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {59, 71}, 59u, {1, 8, 0, false}},  /* 1.6 to 1.8 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {67, 83}, 67u, {3, 1, 0, false}},  /* 3.0 to 3.1 */
+    {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {69, 85}, 69u, {5, 3, 0, false}},  /* 3.2 to 3.9 or 5.0 to 5.3 */
     {URWIRE_LAYOUT_MASTERBOARD_DATA, 2, {70, 86}, 70u, {5, 9, 0, false}},  /* 3.10 to 3.15 or 5.4 and later */
     /* 4: cartesian_info */
-    {URWIRE_LAYOUT_CARTESIAN_INFO, 1, {48, 0}, 48u, {3, 0, 999, false}},  /* up to 3.0 */
+    {URWIRE_LAYOUT_CARTESIAN_INFO, 1, {48, 0}, 48u, {3, 0, 0, false}},  /* up to 3.0 */
     {URWIRE_LAYOUT_CARTESIAN_INFO, 1, {96, 0}, 96u, {5, 9, 0, false}},  /* 3.1 and later */
     /* 5: laser_pointer, kinematics_info */
-    {URWIRE_LAYOUT_LASER_POINTER, 1, {24, 0}, 24u, {1, 7, 999, false}},  /* up to 1.7 */
+    {URWIRE_LAYOUT_LASER_POINTER, 1, {24, 0}, 24u, {1, 7, 0, false}},  /* up to 1.7 */
     {URWIRE_LAYOUT_KINEMATICS_INFO, 1, {220, 0}, 220u, {5, 9, 0, false}},  /* 1.8 and later */
     /* 6: configuration_data */
-    {URWIRE_LAYOUT_CONFIGURATION_DATA, 1, {464, 0}, 464u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_LAYOUT_CONFIGURATION_DATA, 1, {464, 0}, 464u, {1, 8, 0, false}},  /* up to 1.8 */
     {URWIRE_LAYOUT_CONFIGURATION_DATA, 1, {440, 0}, 440u, {5, 9, 0, false}},  /* 3.0 to 5.25.0 */
     {URWIRE_LAYOUT_CONFIGURATION_DATA, 1, {444, 0}, 444u, {5, 25, 1, false}},  /* 5.25.1 and later */
     /* 7: force_mode_data */
     {URWIRE_LAYOUT_FORCE_MODE_DATA, 1, {56, 0}, 56u, {5, 9, 0, false}},  /* all versions */
     /* 8: additional_info */
-    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {5, 0}, 5u, {1, 7, 999, false}},  /* up to 1.7 */
-    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {2, 0}, 2u, {3, 1, 999, false}},  /* 1.8 to 3.1 */
-    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {3, 0}, 3u, {3, 15, 999, false}},  /* 3.2 to 3.15 */
+    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {5, 0}, 5u, {1, 7, 0, false}},  /* up to 1.7 */
+    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {2, 0}, 2u, {3, 1, 0, false}},  /* 1.8 to 3.1 */
+    {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {3, 0}, 3u, {3, 15, 0, false}},  /* 3.2 to 3.15 */
     {URWIRE_LAYOUT_ADDITIONAL_INFO, 1, {4, 0}, 4u, {5, 9, 0, false}},  /* 5.0 and later */
     /* 9: calibration_data */
     {URWIRE_LAYOUT_CALIBRATION_DATA, 1, {48, 0}, 48u, {5, 9, 0, false}},  /* all versions */
@@ -5230,153 +5229,148 @@ static const urwire__form urwire__package_form_list[] = {
     {URWIRE_LAYOUT_SINGULARITY_INFO, 1, {2, 0}, 2u, {5, 9, 0, false}},  /* all versions */
 };
 
+/* The body sizes that recognise one form of a sub-package type, code by code: {size, its index among
+ * the code's forms}. */
+static const urwire__recognised urwire__package_by_length[] = {
+    /* 0: robot_mode_data */
+    {24u, 0}, {33u, 1}, {41u, 2}, {42u, 3},
+    /* 1: joint_data */
+    {246u, 0},
+    /* 2: tool_data */
+    {32u, 0},
+    /* 3: masterboard_data */
+    {56u, 0}, {59u, 1}, {67u, 2}, {69u, 3}, {70u, 4}, {71u, 1}, {83u, 2}, {85u, 3}, {86u, 4},
+    /* 4: cartesian_info */
+    {48u, 0}, {96u, 1},
+    /* 5: laser_pointer, kinematics_info */
+    {24u, 0}, {220u, 1},
+    /* 6: configuration_data */
+    {440u, 1}, {444u, 2}, {464u, 0},
+    /* 7: force_mode_data */
+    {56u, 0},
+    /* 8: additional_info */
+    {2u, 1}, {3u, 2}, {4u, 3}, {5u, 0},
+    /* 9: calibration_data */
+    {48u, 0},
+    /* 10: safety_data */
+    /* 11: tool_comm_info */
+    {21u, 0},
+    /* 12: tool_mode_info */
+    {3u, 0},
+    /* 13: singularity_info */
+    {2u, 0},
+    {0u, 0},  /* none: every table above may be empty */
+};
+
 /* The forms of each sub-package type with a layout, by code. */
 static const urwire__forms urwire__package_forms[] = {
-    [URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA] = {&urwire__package_form_list[0], 4},
-    [URWIRE_PACKAGE_TYPE_JOINT_DATA] = {&urwire__package_form_list[4], 1},
-    [URWIRE_PACKAGE_TYPE_TOOL_DATA] = {&urwire__package_form_list[5], 1},
-    [URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA] = {&urwire__package_form_list[6], 5},
-    [URWIRE_PACKAGE_TYPE_CARTESIAN_INFO] = {&urwire__package_form_list[11], 2},
-    [URWIRE_PACKAGE_TYPE_KINEMATICS_INFO] = {&urwire__package_form_list[13], 2},
-    [URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA] = {&urwire__package_form_list[15], 3},
-    [URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA] = {&urwire__package_form_list[18], 1},
-    [URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO] = {&urwire__package_form_list[19], 4},
-    [URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA] = {&urwire__package_form_list[23], 1},
-    [URWIRE_PACKAGE_TYPE_SAFETY_DATA] = {&urwire__package_form_list[24], 1},
-    [URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO] = {&urwire__package_form_list[25], 1},
-    [URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO] = {&urwire__package_form_list[26], 1},
-    [URWIRE_PACKAGE_TYPE_SINGULARITY_INFO] = {&urwire__package_form_list[27], 1},
+    [URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA] =
+        {&urwire__package_form_list[0], 4, &urwire__package_by_length[0], 4},
+    [URWIRE_PACKAGE_TYPE_JOINT_DATA] =
+        {&urwire__package_form_list[4], 1, &urwire__package_by_length[4], 1},
+    [URWIRE_PACKAGE_TYPE_TOOL_DATA] =
+        {&urwire__package_form_list[5], 1, &urwire__package_by_length[5], 1},
+    [URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA] =
+        {&urwire__package_form_list[6], 5, &urwire__package_by_length[6], 9},
+    [URWIRE_PACKAGE_TYPE_CARTESIAN_INFO] =
+        {&urwire__package_form_list[11], 2, &urwire__package_by_length[15], 2},
+    [URWIRE_PACKAGE_TYPE_KINEMATICS_INFO] =
+        {&urwire__package_form_list[13], 2, &urwire__package_by_length[17], 2},
+    [URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA] =
+        {&urwire__package_form_list[15], 3, &urwire__package_by_length[19], 3},
+    [URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA] =
+        {&urwire__package_form_list[18], 1, &urwire__package_by_length[22], 1},
+    [URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO] =
+        {&urwire__package_form_list[19], 4, &urwire__package_by_length[23], 4},
+    [URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA] =
+        {&urwire__package_form_list[23], 1, &urwire__package_by_length[27], 1},
+    [URWIRE_PACKAGE_TYPE_SAFETY_DATA] =
+        {&urwire__package_form_list[24], 1, &urwire__package_by_length[28], 0},
+    [URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO] =
+        {&urwire__package_form_list[25], 1, &urwire__package_by_length[28], 1},
+    [URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO] =
+        {&urwire__package_form_list[26], 1, &urwire__package_by_length[29], 1},
+    [URWIRE_PACKAGE_TYPE_SINGULARITY_INFO] =
+        {&urwire__package_form_list[27], 1, &urwire__package_by_length[30], 1},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
- * number in urwire__package_form_list plus one; 0 for none; URWIRE__NEAREST | n where the code sends
- * no form there and form n, the nearest version's below, stands in. */
+ * number in urwire__package_form_list plus one; 0 for none. With URWIRE__NEAREST (0x80) set, none
+ * is sent there: the form is the nearest version's below. */
 static const uint8_t urwire__package_mine[] = {
-    /* below every version */
-    URWIRE__NEAREST | 1, URWIRE__NEAREST | 5, URWIRE__NEAREST | 6, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12,
-    URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, URWIRE__NEAREST | 19, URWIRE__NEAREST | 20, URWIRE__NEAREST | 24,
-    URWIRE__NEAREST | 25, URWIRE__NEAREST | 26, URWIRE__NEAREST | 27, URWIRE__NEAREST | 28,
-    /* from 0.0 */
-    1, 5, 6, 7, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,
-    /* after 1.5 */
-    1, 5, 6, URWIRE__NEAREST | 7, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,
-    /* from 1.6 */
-    1, 5, 6, 8, 12, 14, 16, 19, 20, 24, 25, 26, 27, 28,
-    /* after 1.7 */
-    1, 5, 6, 8, 12, URWIRE__NEAREST | 14, 16, 19, URWIRE__NEAREST | 20, 24, 25, 26, 27, 28,
-    /* from 1.8 */
-    1, 5, 6, 8, 12, 15, 16, 19, 21, 24, 25, 26, 27, 28,
-    /* after 1.8 */
-    URWIRE__NEAREST | 1, URWIRE__NEAREST | 5, URWIRE__NEAREST | 6, URWIRE__NEAREST | 8, URWIRE__NEAREST | 12,
-    URWIRE__NEAREST | 15, URWIRE__NEAREST | 16, URWIRE__NEAREST | 19, URWIRE__NEAREST | 21, URWIRE__NEAREST | 24,
-    URWIRE__NEAREST | 25, URWIRE__NEAREST | 26, URWIRE__NEAREST | 27, URWIRE__NEAREST | 28,
-    /* from 3.0 */
-    2, 5, 6, 9, 12, 15, 17, 19, 21, 24, 25, 26, 27, 28,
-    /* after 3.0 */
-    2, 5, 6, 9, URWIRE__NEAREST | 12, 15, 17, 19, 21, 24, 25, 26, 27, 28,
-    /* from 3.1 */
-    2, 5, 6, 9, 13, 15, 17, 19, 21, 24, 25, 26, 27, 28,
-    /* after 3.1 */
-    URWIRE__NEAREST | 2, 5, 6, URWIRE__NEAREST | 9, 13, 15, 17, 19, URWIRE__NEAREST | 21, 24, 25, 26, 27, 28,
-    /* from 3.2 */
-    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
-    /* after 3.2 */
-    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
-    /* from 3.3 */
-    3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
-    /* after 3.4 */
-    URWIRE__NEAREST | 3, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
-    /* from 3.5 */
-    4, 5, 6, 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
-    /* after 3.9 */
-    4, 5, 6, URWIRE__NEAREST | 10, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
-    /* from 3.10 */
-    4, 5, 6, 11, 13, 15, 17, 19, 22, 24, 25, 26, 27, 28,
-    /* after 3.15 */
-    URWIRE__NEAREST | 4, URWIRE__NEAREST | 5, URWIRE__NEAREST | 6, URWIRE__NEAREST | 11, URWIRE__NEAREST | 13,
-    URWIRE__NEAREST | 15, URWIRE__NEAREST | 17, URWIRE__NEAREST | 19, URWIRE__NEAREST | 22, URWIRE__NEAREST | 24,
-    URWIRE__NEAREST | 25, URWIRE__NEAREST | 26, URWIRE__NEAREST | 27, URWIRE__NEAREST | 28,
-    /* from 5.0 */
-    4, 5, 6, 10, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,
-    /* after 5.3 */
-    4, 5, 6, URWIRE__NEAREST | 10, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,
-    /* from 5.4 */
-    4, 5, 6, 11, 13, 15, 17, 19, 23, 24, 25, 26, 27, 28,
-    /* from 5.25.1 */
-    4, 5, 6, 11, 13, 15, 18, 19, 23, 24, 25, 26, 27, 28,
-    /* after 5.99 */
-    URWIRE__NEAREST | 4, URWIRE__NEAREST | 5, URWIRE__NEAREST | 6, URWIRE__NEAREST | 11, URWIRE__NEAREST | 13,
-    URWIRE__NEAREST | 15, URWIRE__NEAREST | 18, URWIRE__NEAREST | 19, URWIRE__NEAREST | 23, URWIRE__NEAREST | 24,
-    URWIRE__NEAREST | 25, URWIRE__NEAREST | 26, URWIRE__NEAREST | 27, URWIRE__NEAREST | 28,
-    /* from 10.0 */
-    4, 5, 6, 11, 13, 15, 18, 19, 23, 24, 25, 26, 27, 28,
-    /* after every version */
-    URWIRE__NEAREST | 4, URWIRE__NEAREST | 5, URWIRE__NEAREST | 6, URWIRE__NEAREST | 11, URWIRE__NEAREST | 13,
-    URWIRE__NEAREST | 15, URWIRE__NEAREST | 18, URWIRE__NEAREST | 19, URWIRE__NEAREST | 23, URWIRE__NEAREST | 24,
-    URWIRE__NEAREST | 25, URWIRE__NEAREST | 26, URWIRE__NEAREST | 27, URWIRE__NEAREST | 28,
+    /* up to 1.5 */
+    0x01, 0x05, 0x06, 0x07, 0x0c, 0x0e, 0x10, 0x13, 0x14, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 1.6 to 1.7 */
+    0x01, 0x05, 0x06, 0x08, 0x0c, 0x0e, 0x10, 0x13, 0x14, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 1.8 */
+    0x01, 0x05, 0x06, 0x08, 0x0c, 0x0f, 0x10, 0x13, 0x15, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 1.9 to before 3.0 */
+    0x81, 0x85, 0x86, 0x88, 0x8c, 0x8f, 0x90, 0x93, 0x95, 0x98, 0x99, 0x9a, 0x9b, 0x9c,
+    /* 3.0 */
+    0x02, 0x05, 0x06, 0x09, 0x0c, 0x0f, 0x11, 0x13, 0x15, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.1 */
+    0x02, 0x05, 0x06, 0x09, 0x0d, 0x0f, 0x11, 0x13, 0x15, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.2 */
+    0x03, 0x05, 0x06, 0x0a, 0x0d, 0x0f, 0x11, 0x13, 0x16, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.3 to 3.4 */
+    0x03, 0x05, 0x06, 0x0a, 0x0d, 0x0f, 0x11, 0x13, 0x16, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.5 to 3.9 */
+    0x04, 0x05, 0x06, 0x0a, 0x0d, 0x0f, 0x11, 0x13, 0x16, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.10 to 3.15 */
+    0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x11, 0x13, 0x16, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 3.16 to before 5.0 */
+    0x84, 0x85, 0x86, 0x8b, 0x8d, 0x8f, 0x91, 0x93, 0x96, 0x98, 0x99, 0x9a, 0x9b, 0x9c,
+    /* 5.0 to 5.3 */
+    0x04, 0x05, 0x06, 0x0a, 0x0d, 0x0f, 0x11, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 5.4 to 5.25.0 */
+    0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x11, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 5.25.1 to 5.99 */
+    0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x12, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
+    /* 5.100 to before 10.0 */
+    0x84, 0x85, 0x86, 0x8b, 0x8d, 0x8f, 0x92, 0x93, 0x97, 0x98, 0x99, 0x9a, 0x9b, 0x9c,
+    /* 10.0 and later */
+    0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x12, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
 };
 
 
 /* The same rows in brief, for the robot-state fast path: the first exact size of the form the
  * segment sends, URWIRE__OPEN(least) for an open-ended one, URWIRE__NONE for none. */
 static const uint32_t urwire__package_first_sizes[] = {
-    /* below every version */
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
-    /* from 0.0 */
+    /* up to 1.5 */
     24u, 246u, 32u, 56u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after 1.5 */
-    24u, 246u, 32u, URWIRE__NONE, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* from 1.6 */
+    /* 1.6 to 1.7 */
     24u, 246u, 32u, 59u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after 1.7 */
-    24u, 246u, 32u, 59u, 48u, URWIRE__NONE, 464u, 56u, URWIRE__NONE, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* from 1.8 */
+    /* 1.8 */
     24u, 246u, 32u, 59u, 48u, 220u, 464u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after 1.8 */
+    /* 1.9 to before 3.0 */
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
-    /* from 3.0 */
+    /* 3.0 */
     33u, 246u, 32u, 67u, 48u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after 3.0 */
-    33u, 246u, 32u, 67u, URWIRE__NONE, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* from 3.1 */
+    /* 3.1 */
     33u, 246u, 32u, 67u, 96u, 220u, 440u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after 3.1 */
-    URWIRE__NONE, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, URWIRE__NONE, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* from 3.2 */
+    /* 3.2 */
     41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after 3.2 */
+    /* 3.3 to 3.4 */
     41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* from 3.3 */
-    41u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after 3.4 */
-    URWIRE__NONE, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* from 3.5 */
+    /* 3.5 to 3.9 */
     42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after 3.9 */
-    42u, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* from 3.10 */
+    /* 3.10 to 3.15 */
     42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after 3.15 */
+    /* 3.16 to before 5.0 */
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
-    /* from 5.0 */
+    /* 5.0 to 5.3 */
     42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after 5.3 */
-    42u, 246u, 32u, URWIRE__NONE, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* from 5.4 */
+    /* 5.4 to 5.25.0 */
     42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* from 5.25.1 */
+    /* 5.25.1 to 5.99 */
     42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after 5.99 */
+    /* 5.100 to before 10.0 */
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
-    /* from 10.0 */
+    /* 10.0 and later */
     42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* after every version */
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
-    URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
 };
 
 static const urwire__form_table urwire__package_form_table = {
@@ -5386,25 +5380,25 @@ static const urwire__form_table urwire__package_form_table = {
 /* The forms of every robot_message subtype, code by code. */
 static const urwire__form urwire__robot_message_form_list[] = {
     /* 3: version */
-    {URWIRE_KIND_VERSION, 0, {0, 0}, 7u, {3, 2, 999, false}},  /* up to 3.2 */
+    {URWIRE_KIND_VERSION, 0, {0, 0}, 7u, {3, 2, 0, false}},  /* up to 3.2 */
     {URWIRE_KIND_VERSION, 0, {0, 0}, 11u, {5, 9, 0, false}},  /* 3.3 and later */
     /* 5: safety_mode */
-    {URWIRE_KIND_SAFETY_MODE, 0, {0, 0}, 8u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_SAFETY_MODE, 0, {0, 0}, 8u, {1, 8, 0, false}},  /* up to 1.8 */
     {URWIRE_KIND_SAFETY_MODE, 1, {17, 0}, 17u, {5, 9, 0, false}},  /* 3.0 and later */
     /* 6: robot_comm */
-    {URWIRE_KIND_ROBOT_COMM, 0, {0, 0}, 8u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_ROBOT_COMM, 0, {0, 0}, 8u, {1, 8, 0, false}},  /* up to 1.8 */
     {URWIRE_KIND_ROBOT_COMM, 0, {0, 0}, 20u, {5, 9, 0, false}},  /* 3.0 and later */
     /* 7: key */
     {URWIRE_KIND_KEY, 0, {0, 0}, 9u, {5, 9, 0, false}},  /* all versions */
     /* 14: program_threads */
     {URWIRE_KIND_PROGRAM_THREADS, 0, {0, 0}, 0u, {5, 9, 0, false}},  /* all versions */
     /* 2: popup */
-    {URWIRE_KIND_POPUP, 0, {0, 0}, 3u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_POPUP, 0, {0, 0}, 3u, {1, 8, 0, false}},  /* up to 1.8 */
     {URWIRE_KIND_POPUP, 0, {0, 0}, 12u, {5, 9, 0, false}},  /* 3.0 and later */
     /* 1: label */
-    {URWIRE_KIND_LABEL, 0, {0, 0}, 4u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_LABEL, 0, {0, 0}, 4u, {1, 8, 0, false}},  /* up to 1.8 */
     /* 8: var */
-    {URWIRE_KIND_VAR, 0, {0, 0}, 9u, {1, 8, 999, false}},  /* up to 1.8 */
+    {URWIRE_KIND_VAR, 0, {0, 0}, 9u, {1, 8, 0, false}},  /* up to 1.8 */
     /* 18: hardware_info */
     {URWIRE_KIND_HARDWARE_INFO, 1, {12, 0}, 12u, {5, 9, 0, false}},  /* all versions */
     /* 9: request_value */
@@ -5415,89 +5409,106 @@ static const urwire__form urwire__robot_message_form_list[] = {
     {URWIRE_KIND_RUNTIME_EXCEPTION, 0, {0, 0}, 8u, {5, 9, 0, false}},  /* all versions */
 };
 
+/* The body sizes that recognise one form of a robot_message subtype, code by code: {size, its index among
+ * the code's forms}. */
+static const urwire__recognised urwire__robot_message_by_length[] = {
+    /* 3: version */
+    /* 5: safety_mode */
+    {17u, 1},
+    /* 6: robot_comm */
+    /* 7: key */
+    /* 14: program_threads */
+    /* 2: popup */
+    /* 1: label */
+    /* 8: var */
+    /* 18: hardware_info */
+    {12u, 0},
+    /* 9: request_value */
+    /* 0: text */
+    /* 10: runtime_exception */
+    {0u, 0},  /* none: every table above may be empty */
+};
+
 /* The forms of each robot_message subtype with a layout, by code. */
 static const urwire__forms urwire__robot_message_forms[] = {
-    [URWIRE_ROBOT_MESSAGE_TYPE_VERSION] = {&urwire__robot_message_form_list[0], 2},
-    [URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE] = {&urwire__robot_message_form_list[2], 2},
-    [URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE] = {&urwire__robot_message_form_list[4], 2},
-    [URWIRE_ROBOT_MESSAGE_TYPE_KEY] = {&urwire__robot_message_form_list[6], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS] = {&urwire__robot_message_form_list[7], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_POPUP] = {&urwire__robot_message_form_list[8], 2},
-    [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL] = {&urwire__robot_message_form_list[10], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR] = {&urwire__robot_message_form_list[11], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO] = {&urwire__robot_message_form_list[12], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE] = {&urwire__robot_message_form_list[13], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_TEXT] = {&urwire__robot_message_form_list[14], 1},
-    [URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION] = {&urwire__robot_message_form_list[15], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_VERSION] =
+        {&urwire__robot_message_form_list[0], 2, &urwire__robot_message_by_length[0], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE] =
+        {&urwire__robot_message_form_list[2], 2, &urwire__robot_message_by_length[0], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE] =
+        {&urwire__robot_message_form_list[4], 2, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_KEY] =
+        {&urwire__robot_message_form_list[6], 1, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS] =
+        {&urwire__robot_message_form_list[7], 1, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_POPUP] =
+        {&urwire__robot_message_form_list[8], 2, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL] =
+        {&urwire__robot_message_form_list[10], 1, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR] =
+        {&urwire__robot_message_form_list[11], 1, &urwire__robot_message_by_length[1], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO] =
+        {&urwire__robot_message_form_list[12], 1, &urwire__robot_message_by_length[1], 1},
+    [URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE] =
+        {&urwire__robot_message_form_list[13], 1, &urwire__robot_message_by_length[2], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_TEXT] =
+        {&urwire__robot_message_form_list[14], 1, &urwire__robot_message_by_length[2], 0},
+    [URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION] =
+        {&urwire__robot_message_form_list[15], 1, &urwire__robot_message_by_length[2], 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
- * number in urwire__robot_message_form_list plus one; 0 for none; URWIRE__NEAREST | n where the code sends
- * no form there and form n, the nearest version's below, stands in. */
+ * number in urwire__robot_message_form_list plus one; 0 for none. With URWIRE__NEAREST (0x80) set, none
+ * is sent there: the form is the nearest version's below. */
 static const uint8_t urwire__robot_message_mine[] = {
-    /* below every version */
-    URWIRE__NEAREST | 15, URWIRE__NEAREST | 11, URWIRE__NEAREST | 9, URWIRE__NEAREST | 1, 0, URWIRE__NEAREST | 3,
-    URWIRE__NEAREST | 5, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12, URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, 0, 0, 0,
-    URWIRE__NEAREST | 8, 0, 0, 0, URWIRE__NEAREST | 13,
-    /* from 0.0 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after 1.5 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* from 1.6 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after 1.7 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* from 1.8 */
-    15, 11, 9, 1, 0, 3, 5, 7, 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after 1.8 */
-    URWIRE__NEAREST | 15, URWIRE__NEAREST | 11, URWIRE__NEAREST | 9, URWIRE__NEAREST | 1, 0, URWIRE__NEAREST | 3,
-    URWIRE__NEAREST | 5, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12, URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, 0, 0, 0,
-    URWIRE__NEAREST | 8, 0, 0, 0, URWIRE__NEAREST | 13,
-    /* from 3.0 */
-    15, URWIRE__NEAREST | 11, 10, 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after 3.0 */
-    15, URWIRE__NEAREST | 11, 10, 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* from 3.1 */
-    15, URWIRE__NEAREST | 11, 10, 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after 3.1 */
-    15, URWIRE__NEAREST | 11, 10, 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* from 3.2 */
-    15, URWIRE__NEAREST | 11, 10, 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after 3.2 */
-    15, URWIRE__NEAREST | 11, 10, URWIRE__NEAREST | 1, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0,
-    13,
-    /* from 3.3 */
-    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after 3.4 */
-    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* from 3.5 */
-    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after 3.9 */
-    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* from 3.10 */
-    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after 3.15 */
-    URWIRE__NEAREST | 15, URWIRE__NEAREST | 11, URWIRE__NEAREST | 10, URWIRE__NEAREST | 2, 0, URWIRE__NEAREST | 4,
-    URWIRE__NEAREST | 6, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12, URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, 0, 0, 0,
-    URWIRE__NEAREST | 8, 0, 0, 0, URWIRE__NEAREST | 13,
-    /* from 5.0 */
-    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after 5.3 */
-    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* from 5.4 */
-    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* from 5.25.1 */
-    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after 5.99 */
-    URWIRE__NEAREST | 15, URWIRE__NEAREST | 11, URWIRE__NEAREST | 10, URWIRE__NEAREST | 2, 0, URWIRE__NEAREST | 4,
-    URWIRE__NEAREST | 6, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12, URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, 0, 0, 0,
-    URWIRE__NEAREST | 8, 0, 0, 0, URWIRE__NEAREST | 13,
-    /* from 10.0 */
-    15, URWIRE__NEAREST | 11, 10, 2, 0, 4, 6, 7, URWIRE__NEAREST | 12, 14, 16, 0, 0, 0, 8, 0, 0, 0, 13,
-    /* after every version */
-    URWIRE__NEAREST | 15, URWIRE__NEAREST | 11, URWIRE__NEAREST | 10, URWIRE__NEAREST | 2, 0, URWIRE__NEAREST | 4,
-    URWIRE__NEAREST | 6, URWIRE__NEAREST | 7, URWIRE__NEAREST | 12, URWIRE__NEAREST | 14, URWIRE__NEAREST | 16, 0, 0, 0,
-    URWIRE__NEAREST | 8, 0, 0, 0, URWIRE__NEAREST | 13,
+    /* up to 1.5 */
+    0x0f, 0x0b, 0x09, 0x01, 0x00, 0x03, 0x05, 0x07, 0x0c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 1.6 to 1.7 */
+    0x0f, 0x0b, 0x09, 0x01, 0x00, 0x03, 0x05, 0x07, 0x0c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 1.8 */
+    0x0f, 0x0b, 0x09, 0x01, 0x00, 0x03, 0x05, 0x07, 0x0c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 1.9 to before 3.0 */
+    0x8f, 0x8b, 0x89, 0x81, 0x00, 0x83, 0x85, 0x87, 0x8c, 0x8e, 0x90, 0x00, 0x00, 0x00, 0x88, 0x00, 0x00, 0x00,
+    0x8d,
+    /* 3.0 */
+    0x0f, 0x8b, 0x0a, 0x01, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.1 */
+    0x0f, 0x8b, 0x0a, 0x01, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.2 */
+    0x0f, 0x8b, 0x0a, 0x01, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.3 to 3.4 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.5 to 3.9 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.10 to 3.15 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 3.16 to before 5.0 */
+    0x8f, 0x8b, 0x8a, 0x82, 0x00, 0x84, 0x86, 0x87, 0x8c, 0x8e, 0x90, 0x00, 0x00, 0x00, 0x88, 0x00, 0x00, 0x00,
+    0x8d,
+    /* 5.0 to 5.3 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 5.4 to 5.25.0 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 5.25.1 to 5.99 */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
+    /* 5.100 to before 10.0 */
+    0x8f, 0x8b, 0x8a, 0x82, 0x00, 0x84, 0x86, 0x87, 0x8c, 0x8e, 0x90, 0x00, 0x00, 0x00, 0x88, 0x00, 0x00, 0x00,
+    0x8d,
+    /* 10.0 and later */
+    0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
+    0x0d,
 };
 
 
@@ -5513,68 +5524,58 @@ static const urwire__form urwire__program_state_form_list[] = {
     {URWIRE_KIND_GLOBAL_VARIABLES_UPDATE, 0, {0, 0}, 2u, {5, 9, 0, false}},  /* all versions */
 };
 
+/* The body sizes that recognise one form of a program_state subtype, code by code: {size, its index among
+ * the code's forms}. */
+static const urwire__recognised urwire__program_state_by_length[] = {
+    /* 0: global_variables_setup */
+    /* 1: global_variables_update */
+    {0u, 0},  /* none: every table above may be empty */
+};
+
 /* The forms of each program_state subtype with a layout, by code. */
 static const urwire__forms urwire__program_state_forms[] = {
-    [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP] = {&urwire__program_state_form_list[0], 1},
-    [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE] = {&urwire__program_state_form_list[1], 1},
+    [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP] =
+        {&urwire__program_state_form_list[0], 1, &urwire__program_state_by_length[0], 0},
+    [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE] =
+        {&urwire__program_state_form_list[1], 1, &urwire__program_state_by_length[0], 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
- * number in urwire__program_state_form_list plus one; 0 for none; URWIRE__NEAREST | n where the code sends
- * no form there and form n, the nearest version's below, stands in. */
+ * number in urwire__program_state_form_list plus one; 0 for none. With URWIRE__NEAREST (0x80) set, none
+ * is sent there: the form is the nearest version's below. */
 static const uint8_t urwire__program_state_mine[] = {
-    /* below every version */
-    URWIRE__NEAREST | 1, URWIRE__NEAREST | 2,
-    /* from 0.0 */
-    1, 2,
-    /* after 1.5 */
-    1, 2,
-    /* from 1.6 */
-    1, 2,
-    /* after 1.7 */
-    1, 2,
-    /* from 1.8 */
-    1, 2,
-    /* after 1.8 */
-    URWIRE__NEAREST | 1, URWIRE__NEAREST | 2,
-    /* from 3.0 */
-    1, 2,
-    /* after 3.0 */
-    1, 2,
-    /* from 3.1 */
-    1, 2,
-    /* after 3.1 */
-    1, 2,
-    /* from 3.2 */
-    1, 2,
-    /* after 3.2 */
-    1, 2,
-    /* from 3.3 */
-    1, 2,
-    /* after 3.4 */
-    1, 2,
-    /* from 3.5 */
-    1, 2,
-    /* after 3.9 */
-    1, 2,
-    /* from 3.10 */
-    1, 2,
-    /* after 3.15 */
-    URWIRE__NEAREST | 1, URWIRE__NEAREST | 2,
-    /* from 5.0 */
-    1, 2,
-    /* after 5.3 */
-    1, 2,
-    /* from 5.4 */
-    1, 2,
-    /* from 5.25.1 */
-    1, 2,
-    /* after 5.99 */
-    URWIRE__NEAREST | 1, URWIRE__NEAREST | 2,
-    /* from 10.0 */
-    1, 2,
-    /* after every version */
-    URWIRE__NEAREST | 1, URWIRE__NEAREST | 2,
+    /* up to 1.5 */
+    0x01, 0x02,
+    /* 1.6 to 1.7 */
+    0x01, 0x02,
+    /* 1.8 */
+    0x01, 0x02,
+    /* 1.9 to before 3.0 */
+    0x81, 0x82,
+    /* 3.0 */
+    0x01, 0x02,
+    /* 3.1 */
+    0x01, 0x02,
+    /* 3.2 */
+    0x01, 0x02,
+    /* 3.3 to 3.4 */
+    0x01, 0x02,
+    /* 3.5 to 3.9 */
+    0x01, 0x02,
+    /* 3.10 to 3.15 */
+    0x01, 0x02,
+    /* 3.16 to before 5.0 */
+    0x81, 0x82,
+    /* 5.0 to 5.3 */
+    0x01, 0x02,
+    /* 5.4 to 5.25.0 */
+    0x01, 0x02,
+    /* 5.25.1 to 5.99 */
+    0x01, 0x02,
+    /* 5.100 to before 10.0 */
+    0x81, 0x82,
+    /* 10.0 and later */
+    0x01, 0x02,
 };
 
 
@@ -5737,7 +5738,7 @@ static bool urwire__decode_member(uint8_t type, uint8_t form, const uint8_t *msg
 #define URWIRE__FAST_PATHS(X) X(1) X(2)
 /* The fast path of each segment of the version axis (0: none). */
 static const uint8_t urwire__package_fast_paths[] = {
-    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 0, 2, 0,  /* from segment 0 */
+    0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 0, 2,  /* from segment 0 */
 };
 
 /* A sub-package of type `type` and body_size bytes in fast path `path`: false when its type has
@@ -5748,7 +5749,7 @@ URWIRE__INLINE bool urwire__fast_member(int path, uint8_t type, size_t body_size
                                         urwire__fast_bits *bits, urwire_error *err)
 {
     switch (path) {
-    case 1:  /* from 5.4 */
+    case 1:  /* 5.4 to 5.25.0 */
         switch (type) {
         case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:  /* 3.5 and later */
             if (body_size != 42u)
@@ -5877,7 +5878,7 @@ URWIRE__INLINE bool urwire__fast_member(int path, uint8_t type, size_t body_size
         default:
             return false;
         }
-    case 2:  /* from 5.25.1, from 10.0 */
+    case 2:  /* 5.25.1 to 5.99, 10.0 and later */
         switch (type) {
         case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA:  /* 3.5 and later */
             if (body_size != 42u)
@@ -6383,9 +6384,9 @@ URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_mes
 
 /* The segment of the version axis that holds a version (its urwire__version_key): the last
  * bound at or below it. The default version's segment is tried first (a stream read before its
- * Version message, and most e-Series; the last bound lies past every version, so a bound
- * follows it), then the bounds from the newest, which streams run most; bound 0 stops the
- * search. */
+ * Version message, and most e-Series; the generator never makes it the last segment, so a
+ * bound follows it), then the bounds from the newest, which streams run most; bound 0 stops
+ * the search. */
 URWIRE__PRIVATE size_t urwire__segment(uint64_t key)
 {
     size_t k = URWIRE__COUNT(urwire__segment_bounds) - 1;
@@ -6410,11 +6411,6 @@ URWIRE__PRIVATE const urwire__form *urwire__mine(const urwire__form_table *t, si
     return k ? &t->all[k - 1] : NULL;
 }
 
-static bool urwire__has_size(const urwire__form *f, size_t size)
-{
-    return f->nsizes && urwire__fits(f, size);
-}
-
 /* The form of a body of `size` bytes, for a code of t (which has a layout) in a stream of
  * *version (in `segment`). A form chosen by its length alone sets *version to the version it
  * stands for and *by_length. */
@@ -6423,22 +6419,21 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
 {
     const urwire__forms *fs = &t->codes[code];
     bool nearest;
-    const urwire__form *mine = urwire__mine(t, segment, code, &nearest), *fit = NULL;
+    const urwire__form *mine = urwire__mine(t, segment, code, &nearest), *fit;
     uint8_t k;
     *by_length = false;
     if (nearest)
         *version = mine->rep;
     if (mine != NULL && urwire__fits(mine, size))
         return mine;
-    /* Only a form of exact sizes is recognised by its length: an open-ended one fits too much. */
-    for (k = 0; k < fs->count; k++)
-        if (urwire__has_size(&fs->forms[k], size)) {
-            if (fit != NULL)
-                return mine != NULL ? mine : &fs->forms[fs->count - 1];
-            fit = &fs->forms[k];
-        }
-    if (fit == NULL)
+    /* The sizes the generator found in exactly one fixed-size form (an open-ended one fits too
+     * much to be recognised by its length). */
+    for (k = 0; k < fs->nby_length; k++)
+        if (fs->by_length[k].size == size)
+            break;
+    if (k == fs->nby_length)
         return mine != NULL ? mine : &fs->forms[fs->count - 1];
+    fit = &fs->forms[fs->by_length[k].form];
     version->major = fit->rep.major;
     version->minor = fit->rep.minor;
     version->bugfix = fit->rep.bugfix;  /* whether it was assumed stays as it was */

@@ -2310,103 +2310,121 @@ PART.singularity_info = { name = "singularity_info", label = "Singularity info",
     F["singularity_info.singularity_type"] } }
 
 -- The forms each type code of the robot state takes: chosen by the software version, else by
--- the body size (runtime/versions.lua); `single` when one form serves every version.
+-- the body size (runtime/versions.lua); `single` when one form serves every version. `segments`:
+-- the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is the
+-- nearest version's below); `by_length`: the body sizes that recognise one form.
 local ROBOT_STATE_PACKAGES = {
     [0] = { single = false, summary = true,
-        { of = PART.robot_mode_data, ranges = { { low = nil, high = 1008999 } }, sizes = { [24] = true }, min = 24,
-          rep = 1008999, versions = "up to 1.8" },
-        { of = PART.robot_mode_data, ranges = { { low = 3000000, high = 3001999 } }, sizes = { [33] = true }, min = 33,
-          rep = 3001999, versions = "3.0 to 3.1" },
-        { of = PART.robot_mode_data, ranges = { { low = 3002000, high = 3004999 } }, sizes = { [41] = true }, min = 41,
-          rep = 3004999, versions = "3.2 to 3.4" },
-        { of = PART.robot_mode_data, ranges = { { low = 3005000, high = 3015999 }, { low = 5000000, high = 5099999 },
-          { low = 10000000, high = nil } }, sizes = { [42] = true }, min = 42, rep = 5009000,
+        segments = { 1, 1, 1, -1, 2, 2, 3, 3, 4, 4, -4, 4, 4, 4, -4, 4 },
+        by_length = { [24] = 1, [33] = 2, [41] = 3, [42] = 4 },
+        { of = PART.robot_mode_data, sizes = { [24] = true }, min = 24, rep = "1.8",
+          versions = "up to 1.8" },
+        { of = PART.robot_mode_data, sizes = { [33] = true }, min = 33, rep = "3.1",
+          versions = "3.0 to 3.1" },
+        { of = PART.robot_mode_data, sizes = { [41] = true }, min = 41, rep = "3.4",
+          versions = "3.2 to 3.4" },
+        { of = PART.robot_mode_data, sizes = { [42] = true }, min = 42, rep = "5.9",
           versions = "3.5 and later" },
     },
     [1] = { single = false, summary = false,
-        { of = PART.joint_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [246] = true }, min = 246,
-          rep = 5009000, versions = "all versions" },
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = { [246] = 1 },
+        { of = PART.joint_data, sizes = { [246] = true }, min = 246, rep = "5.9",
+          versions = "all versions" },
     },
     [2] = { single = false, summary = false,
-        { of = PART.tool_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [32] = true }, min = 32,
-          rep = 5009000, versions = "all versions" },
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = { [32] = 1 },
+        { of = PART.tool_data, sizes = { [32] = true }, min = 32, rep = "5.9",
+          versions = "all versions" },
     },
     [3] = { single = false, summary = true,
-        { of = PART.masterboard_data, ranges = { { low = nil, high = 1005999 } }, sizes = { [56] = true }, min = 56,
-          rep = 1005999, versions = "up to 1.5" },
-        { of = PART.masterboard_data, ranges = { { low = 1006000, high = 1008999 } },
-          sizes = { [59] = true, [71] = true }, min = 59, rep = 1008999, versions = "1.6 to 1.8" },
-        { of = PART.masterboard_data, ranges = { { low = 3000000, high = 3001999 } },
-          sizes = { [67] = true, [83] = true }, min = 67, rep = 3001999, versions = "3.0 to 3.1" },
-        { of = PART.masterboard_data, ranges = { { low = 3002000, high = 3009999 }, { low = 5000000, high = 5003999 }
-          }, sizes = { [69] = true, [85] = true }, min = 69, rep = 5003999, versions = "3.2 to 3.9 or 5.0 to 5.3" },
-        { of = PART.masterboard_data, ranges = { { low = 3010000, high = 3015999 }, { low = 5004000, high = 5099999 },
-          { low = 10000000, high = nil } }, sizes = { [70] = true, [86] = true }, min = 70, rep = 5009000,
+        segments = { 1, 2, 2, -2, 3, 3, 4, 4, 4, 5, -5, 4, 5, 5, -5, 5 },
+        by_length = { [56] = 1, [59] = 2, [67] = 3, [69] = 4, [70] = 5, [71] = 2, [83] = 3, [85] = 4, [86] = 5 },
+        { of = PART.masterboard_data, sizes = { [56] = true }, min = 56, rep = "1.5",
+          versions = "up to 1.5" },
+        { of = PART.masterboard_data, sizes = { [59] = true, [71] = true }, min = 59, rep = "1.8",
+          versions = "1.6 to 1.8" },
+        { of = PART.masterboard_data, sizes = { [67] = true, [83] = true }, min = 67, rep = "3.1",
+          versions = "3.0 to 3.1" },
+        { of = PART.masterboard_data, sizes = { [69] = true, [85] = true }, min = 69, rep = "5.3",
+          versions = "3.2 to 3.9 or 5.0 to 5.3" },
+        { of = PART.masterboard_data, sizes = { [70] = true, [86] = true }, min = 70, rep = "5.9",
           versions = "3.10 to 3.15 or 5.4 and later" },
     },
     [4] = { single = false, summary = false,
-        { of = PART.cartesian_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3000999 } },
-          sizes = { [48] = true }, min = 48, rep = 3000999, versions = "up to 3.0" },
-        { of = PART.cartesian_info, ranges = { { low = 3001000, high = 3015999 }, { low = 5000000, high = 5099999 },
-          { low = 10000000, high = nil } }, sizes = { [96] = true }, min = 96, rep = 5009000,
+        segments = { 1, 1, 1, -1, 1, 2, 2, 2, 2, 2, -2, 2, 2, 2, -2, 2 },
+        by_length = { [48] = 1, [96] = 2 },
+        { of = PART.cartesian_info, sizes = { [48] = true }, min = 48, rep = "3.0",
+          versions = "up to 3.0" },
+        { of = PART.cartesian_info, sizes = { [96] = true }, min = 96, rep = "5.9",
           versions = "3.1 and later" },
     },
     [5] = { single = false, summary = false,
-        { of = PART.laser_pointer, ranges = { { low = nil, high = 1007999 } }, sizes = { [24] = true }, min = 24,
-          rep = 1007999, versions = "up to 1.7" },
-        { of = PART.kinematics_info, ranges = { { low = 1008000, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [220] = true }, min = 220,
-          rep = 5009000, versions = "1.8 and later" },
+        segments = { 1, 1, 2, -2, 2, 2, 2, 2, 2, 2, -2, 2, 2, 2, -2, 2 },
+        by_length = { [24] = 1, [220] = 2 },
+        { of = PART.laser_pointer, sizes = { [24] = true }, min = 24, rep = "1.7",
+          versions = "up to 1.7" },
+        { of = PART.kinematics_info, sizes = { [220] = true }, min = 220, rep = "5.9",
+          versions = "1.8 and later" },
     },
     [6] = { single = false, summary = false,
-        { of = PART.configuration_data, ranges = { { low = nil, high = 1008999 } }, sizes = { [464] = true },
-          min = 464, rep = 1008999, versions = "up to 1.8" },
-        { of = PART.configuration_data, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5025000 }
-          }, sizes = { [440] = true }, min = 440, rep = 5009000, versions = "3.0 to 5.25.0" },
-        { of = PART.configuration_data, ranges = { { low = 5025001, high = 5099999 }, { low = 10000000, high = nil } },
-          sizes = { [444] = true }, min = 444, rep = 5025001, versions = "5.25.1 and later" },
+        segments = { 1, 1, 1, -1, 2, 2, 2, 2, 2, 2, -2, 2, 2, 3, -3, 3 },
+        by_length = { [440] = 2, [444] = 3, [464] = 1 },
+        { of = PART.configuration_data, sizes = { [464] = true }, min = 464, rep = "1.8",
+          versions = "up to 1.8" },
+        { of = PART.configuration_data, sizes = { [440] = true }, min = 440, rep = "5.9",
+          versions = "3.0 to 5.25.0" },
+        { of = PART.configuration_data, sizes = { [444] = true }, min = 444, rep = "5.25.1",
+          versions = "5.25.1 and later" },
     },
     [7] = { single = false, summary = false,
-        { of = PART.force_mode_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [56] = true }, min = 56,
-          rep = 5009000, versions = "all versions" },
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = { [56] = 1 },
+        { of = PART.force_mode_data, sizes = { [56] = true }, min = 56, rep = "5.9",
+          versions = "all versions" },
     },
     [8] = { single = false, summary = false,
-        { of = PART.additional_info, ranges = { { low = nil, high = 1007999 } }, sizes = { [5] = true }, min = 5,
-          rep = 1007999, versions = "up to 1.7" },
-        { of = PART.additional_info, ranges = { { low = 1008000, high = 1008999 }, { low = 3000000, high = 3001999 } },
-          sizes = { [2] = true }, min = 2, rep = 3001999, versions = "1.8 to 3.1" },
-        { of = PART.additional_info, ranges = { { low = 3002000, high = 3015999 } }, sizes = { [3] = true }, min = 3,
-          rep = 3015999, versions = "3.2 to 3.15" },
-        { of = PART.additional_info, ranges = { { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } },
-          sizes = { [4] = true }, min = 4, rep = 5009000, versions = "5.0 and later" },
+        segments = { 1, 1, 2, -2, 2, 2, 3, 3, 3, 3, -3, 4, 4, 4, -4, 4 },
+        by_length = { [2] = 2, [3] = 3, [4] = 4, [5] = 1 },
+        { of = PART.additional_info, sizes = { [5] = true }, min = 5, rep = "1.7",
+          versions = "up to 1.7" },
+        { of = PART.additional_info, sizes = { [2] = true }, min = 2, rep = "3.1",
+          versions = "1.8 to 3.1" },
+        { of = PART.additional_info, sizes = { [3] = true }, min = 3, rep = "3.15",
+          versions = "3.2 to 3.15" },
+        { of = PART.additional_info, sizes = { [4] = true }, min = 4, rep = "5.9",
+          versions = "5.0 and later" },
     },
     [9] = { single = false, summary = false,
-        { of = PART.calibration_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [48] = true }, min = 48,
-          rep = 5009000, versions = "all versions" },
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = { [48] = 1 },
+        { of = PART.calibration_data, sizes = { [48] = true }, min = 48, rep = "5.9",
+          versions = "all versions" },
     },
     [10] = { single = false, summary = false,
-        { of = PART.safety_data, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000,
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = {  },
+        { of = PART.safety_data, sizes = nil, min = 0, rep = "5.9",
           versions = "all versions" },
     },
     [11] = { single = false, summary = false,
-        { of = PART.tool_comm_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [21] = true }, min = 21,
-          rep = 5009000, versions = "all versions" },
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = { [21] = 1 },
+        { of = PART.tool_comm_info, sizes = { [21] = true }, min = 21, rep = "5.9",
+          versions = "all versions" },
     },
     [12] = { single = false, summary = false,
-        { of = PART.tool_mode_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [3] = true }, min = 3,
-          rep = 5009000, versions = "all versions" },
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = { [3] = 1 },
+        { of = PART.tool_mode_info, sizes = { [3] = true }, min = 3, rep = "5.9",
+          versions = "all versions" },
     },
     [13] = { single = false, summary = false,
-        { of = PART.singularity_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [2] = true }, min = 2,
-          rep = 5009000, versions = "all versions" },
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = { [2] = 1 },
+        { of = PART.singularity_info, sizes = { [2] = true }, min = 2, rep = "5.9",
+          versions = "all versions" },
     },
 }
 
@@ -2445,70 +2463,89 @@ PART.runtime_exception = { name = "runtime_exception", label = "Runtime exceptio
     header = L.runtime_exception_header, layout = L.runtime_exception, needs_version = false }
 
 -- The forms each type code of the robot message takes: chosen by the software version, else by
--- the body size (runtime/versions.lua); `single` when one form serves every version.
+-- the body size (runtime/versions.lua); `single` when one form serves every version. `segments`:
+-- the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is the
+-- nearest version's below); `by_length`: the body sizes that recognise one form.
 local ROBOT_MESSAGE_SUBTYPES = {
     [0] = { single = false,
-        { of = PART.text, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000,
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = {  },
+        { of = PART.text, sizes = nil, min = 0, rep = "5.9",
           versions = "all versions" },
     },
     [1] = { single = false,
-        { of = PART.label, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 4, rep = 1008999,
+        segments = { 1, 1, 1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1 },
+        by_length = {  },
+        { of = PART.label, sizes = nil, min = 4, rep = "1.8",
           versions = "up to 1.8" },
     },
     [2] = { single = false,
-        { of = PART.popup, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 3, rep = 1008999,
+        segments = { 1, 1, 1, -1, 2, 2, 2, 2, 2, 2, -2, 2, 2, 2, -2, 2 },
+        by_length = {  },
+        { of = PART.popup, sizes = nil, min = 3, rep = "1.8",
           versions = "up to 1.8" },
-        { of = PART.popup, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 },
-          { low = 10000000, high = nil } }, sizes = nil, min = 12, rep = 5009000, versions = "3.0 and later" },
+        { of = PART.popup, sizes = nil, min = 12, rep = "5.9",
+          versions = "3.0 and later" },
     },
     [3] = { single = false,
-        { of = PART.version, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3002999 } },
-          sizes = nil, min = 7, rep = 3002999, versions = "up to 3.2" },
-        { of = PART.version, ranges = { { low = 3003000, high = 3015999 }, { low = 5000000, high = 5099999 },
-          { low = 10000000, high = nil } }, sizes = nil, min = 11, rep = 5009000, versions = "3.3 and later" },
+        segments = { 1, 1, 1, -1, 1, 1, 1, 2, 2, 2, -2, 2, 2, 2, -2, 2 },
+        by_length = {  },
+        { of = PART.version, sizes = nil, min = 7, rep = "3.2",
+          versions = "up to 3.2" },
+        { of = PART.version, sizes = nil, min = 11, rep = "5.9",
+          versions = "3.3 and later" },
     },
     [5] = { single = false,
-        { of = PART.safety_mode, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999,
+        segments = { 1, 1, 1, -1, 2, 2, 2, 2, 2, 2, -2, 2, 2, 2, -2, 2 },
+        by_length = { [17] = 2 },
+        { of = PART.safety_mode, sizes = nil, min = 8, rep = "1.8",
           versions = "up to 1.8" },
-        { of = PART.safety_mode, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 },
-          { low = 10000000, high = nil } }, sizes = { [17] = true }, min = 17, rep = 5009000,
+        { of = PART.safety_mode, sizes = { [17] = true }, min = 17, rep = "5.9",
           versions = "3.0 and later" },
     },
     [6] = { single = false,
-        { of = PART.robot_comm, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 8, rep = 1008999,
+        segments = { 1, 1, 1, -1, 2, 2, 2, 2, 2, 2, -2, 2, 2, 2, -2, 2 },
+        by_length = {  },
+        { of = PART.robot_comm, sizes = nil, min = 8, rep = "1.8",
           versions = "up to 1.8" },
-        { of = PART.robot_comm, ranges = { { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 },
-          { low = 10000000, high = nil } }, sizes = nil, min = 20, rep = 5009000, versions = "3.0 and later" },
+        { of = PART.robot_comm, sizes = nil, min = 20, rep = "5.9",
+          versions = "3.0 and later" },
     },
     [7] = { single = false,
-        { of = PART.key, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 9, rep = 5009000,
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = {  },
+        { of = PART.key, sizes = nil, min = 9, rep = "5.9",
           versions = "all versions" },
     },
     [8] = { single = false,
-        { of = PART.var, ranges = { { low = nil, high = 1008999 } }, sizes = nil, min = 9, rep = 1008999,
+        segments = { 1, 1, 1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1 },
+        by_length = {  },
+        { of = PART.var, sizes = nil, min = 9, rep = "1.8",
           versions = "up to 1.8" },
     },
     [9] = { single = false,
-        { of = PART.request_value, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000,
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = {  },
+        { of = PART.request_value, sizes = nil, min = 8, rep = "5.9",
           versions = "all versions" },
     },
     [10] = { single = false,
-        { of = PART.runtime_exception, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 8, rep = 5009000,
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = {  },
+        { of = PART.runtime_exception, sizes = nil, min = 8, rep = "5.9",
           versions = "all versions" },
     },
     [14] = { single = false,
-        { of = PART.program_threads, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = nil, min = 0, rep = 5009000,
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = {  },
+        { of = PART.program_threads, sizes = nil, min = 0, rep = "5.9",
           versions = "all versions" },
     },
     [18] = { single = false,
-        { of = PART.hardware_info, ranges = { { low = nil, high = 1008999 }, { low = 3000000, high = 3015999 },
-          { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } }, sizes = { [12] = true }, min = 12,
-          rep = 5009000, versions = "all versions" },
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = { [12] = 1 },
+        { of = PART.hardware_info, sizes = { [12] = true }, min = 12, rep = "5.9",
+          versions = "all versions" },
     },
 }
 
@@ -2530,17 +2567,21 @@ PART.global_variables_update = { name = "global_variables_update", label = "Glob
     needs_version = true }
 
 -- The forms each type code of the program state takes: chosen by the software version, else by
--- the body size (runtime/versions.lua); `single` when one form serves every version.
+-- the body size (runtime/versions.lua); `single` when one form serves every version. `segments`:
+-- the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is the
+-- nearest version's below); `by_length`: the body sizes that recognise one form.
 local PROGRAM_STATE_SUBTYPES = {
     [0] = { single = false,
-        { of = PART.global_variables_setup, ranges = { { low = nil, high = 1008999 },
-          { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } },
-          sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = {  },
+        { of = PART.global_variables_setup, sizes = nil, min = 2, rep = "5.9",
+          versions = "all versions" },
     },
     [1] = { single = false,
-        { of = PART.global_variables_update, ranges = { { low = nil, high = 1008999 },
-          { low = 3000000, high = 3015999 }, { low = 5000000, high = 5099999 }, { low = 10000000, high = nil } },
-          sizes = nil, min = 2, rep = 5009000, versions = "all versions" },
+        segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
+        by_length = {  },
+        { of = PART.global_variables_update, sizes = nil, min = 2, rep = "5.9",
+          versions = "all versions" },
     },
 }
 
@@ -2587,6 +2628,12 @@ local spec = {
     value_tables = VALUE_TABLES,
     messages = MESSAGE,
     version_reader = VERSION_READER,
+    -- Where every segment of the version axis but the first starts (the first holds every
+    -- version below the second): within a segment, every type code sends one form.
+    segment_starts = {
+        "1.6", "1.8", "1.9", "3.0", "3.1", "3.2", "3.3", "3.5", "3.10", "3.16", "5.0", "5.4", "5.25.1",
+        "5.100", "10.0",
+    },
 }
 local rt = {}
 
@@ -2792,20 +2839,31 @@ local function named_in_any(tables, code)
     return false
 end
 
--- The forms of a package type or subtype: a list of { of = <its layout's data>, ranges = { {
--- low, high }, ... } (the versions that send it), sizes = { [body size] = true } or nil when
--- open-ended (then at least min), rep = the version a stream is taken to run when this form is
--- recognised by its length alone, versions = those versions as text }; `single` when one form
--- serves every version.
-local function sent_by(form, v)
-    local ranges = form.ranges
-    for i = 1, #ranges do
-        local r = ranges[i]
-        if version_in(v, r.low, r.high) then return true end
+-- Where every segment of the version axis but the first starts (spec.segment_starts, as text):
+-- within a segment every type code sends one form, so a version's form is a lookup.
+local segment_starts = {}
+for i, text in ipairs(spec.segment_starts or {}) do segment_starts[i] = parse_version(text) end
+
+-- The segment that holds version v: 1 below the first start, else 1 + the starts at or below v.
+-- The last answer is kept: a stream keeps its version.
+local last_v, last_segment
+local function segment_of(v)
+    if v == last_v then return last_segment end
+    local lo, hi = 1, #segment_starts + 1
+    while lo < hi do
+        local mid = floor((lo + hi) / 2)
+        if segment_starts[mid] <= v then lo = mid + 1 else hi = mid end
     end
-    return false
+    last_v, last_segment = v, lo
+    return lo
 end
 
+-- The forms of a package type or subtype: a list of { of = <its layout's data>, sizes = {
+-- [body size] = true } or nil when open-ended (then at least min), rep = the version a stream
+-- is taken to run when this form is recognised by its length alone (text), versions = the
+-- versions that send it }; `single` when one form serves every version; `segments`, the form of
+-- each segment (negative: none is sent there, the form is the nearest version's below);
+-- `by_length`, the body sizes that recognise one form.
 local function fits(form, size)
     if form.sizes then return form.sizes[size] == true end
     return size >= form.min
@@ -2813,33 +2871,14 @@ end
 
 -- The form of a body of `size` bytes for version v, the version to read it with, and whether
 -- the length chose it: the version's form when it fits; else the one form whose exact size it
--- is (an open-ended form fits too much to be recognised by length); else the version's form (or
--- the nearest below), whose short or extra bytes are then reported.
+-- is; else the version's form, whose short or extra bytes are then reported.
 local function choose_form(forms, size, v)
-    local mine
-    for i = 1, #forms do
-        if sent_by(forms[i], v) then mine = forms[i]; break end
-    end
-    if not mine then
-        -- A version no form is sent by (between series, or newer than the spec knows): the
-        -- form of the nearest version below it, else the first.
-        local best = nil
-        for i = 1, #forms do
-            local ranges = forms[i].ranges
-            for j = 1, #ranges do
-                local low = ranges[j].low or 0
-                if low <= v and (not best or low > best) then best, mine = low, forms[i] end
-            end
-        end
-        mine = mine or forms[1]
-        v = mine.rep   -- read as the version it stands for
-    end
+    local k = forms.segments[segment_of(v)]
+    local mine = forms[k < 0 and -k or k]
+    if k < 0 then v = parse_version(mine.rep) end   -- read as the version it stands for
     if fits(mine, size) then return mine, v, false end
-    local found, count = nil, 0
-    for i = 1, #forms do
-        if forms[i].sizes and forms[i].sizes[size] then found, count = forms[i], count + 1 end
-    end
-    if count == 1 then return found, found.rep, true end
+    local n = forms.by_length[size]
+    if n then return forms[n], parse_version(forms[n].rep), true end
     return mine, v, false
 end
 
@@ -2898,7 +2937,7 @@ end
 rt.version_number, rt.parse_version, rt.version_text, rt.version_in =
     version_number, parse_version, version_text, version_in
 rt.value_table, rt.enum_names, rt.named_in_any = value_table, enum_names, named_in_any
-rt.choose, rt.pick, rt.announced_version = choose, pick, announced_version
+rt.choose, rt.pick, rt.announced_version, rt.segment_of = choose, pick, announced_version, segment_of
 -- The version assumed when neither a Version message, the preference nor the layout sizes give one.
 rt.default_version = parse_version(spec.default_version)
 end)(spec, rt)

@@ -120,8 +120,13 @@ static const urwire__form urwire__package_form_list[] = {
     {URWIRE_LAYOUT_COUNTER, 1, {4, 0}, 4u, {5, 9, 0, false}},
 };
 
+/* Each size recognises one form. */
+static const urwire__recognised urwire__package_by_length[] = {
+    {2u, 0}, {4u, 1},
+};
+
 static const urwire__forms urwire__package_forms[] = {
-    [1] = {&urwire__package_form_list[0], 2},
+    [1] = {&urwire__package_form_list[0], 2, urwire__package_by_length, 2},
 };
 
 static const uint8_t urwire__package_mine[] = {

@@ -17,7 +17,8 @@ def built():
 
 
 def segment_of(built, version: ir.Version) -> int:
-    starts = [(-1, 0, 0)] + [(v["major"], v["minor"], v["bugfix"]) for v in built["segment_starts"]]
+    starts = [(-1, 0, 0) if b["kind"] == "lowest" else (b["first"]["major"], b["first"]["minor"], b["first"]["bugfix"])
+              for b in built["segment_bounds"]]
     return max(k for k, start in enumerate(starts) if start <= version)
 
 

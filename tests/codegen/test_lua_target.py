@@ -106,25 +106,31 @@ def test_versions_reach_the_runtime_as_numbers():
     text = entries(render_text(variant(edit)))
     assert '{ k = "cond", present_if = nil, low = 5025001, high = 6002999, fields = {' in text
     assert "{ low = 3003000, high = 5008999, min_size = 1, kinds = {" in text   # value types of 3.3 to 5.8
-    assert ('{ of = PART.additional_info, ranges = { { low = 5025001, high = 6002999 } }, sizes = { [5] = true }, '
-            'min = 5, rep = 5025001, versions = "5.25.1 to 6.2" }') in text
+    # The forms tables print versions as versions: the runtime parses them once, at load.
+    assert ('{ of = PART.additional_info, sizes = { [5] = true }, min = 5, rep = "5.25.1",\n'
+            '          versions = "5.25.1 to 6.2" }') in text
+    starts = text[text.index("segment_starts = {"):]
+    starts = starts[:starts.index("}")]
+    assert '"5.25.1"' in starts and '"6.3"' in starts     # a form from 5.25.1, the next from 6.3 on
 
 
 def test_a_repeated_name_is_one_protofield_of_its_widest_type():
     def edit(data):
         fields = data["messages"]["robot_state"]["packages"]["tool_data"]["fields"]
         fields[0] = dict(fields[0], versions={"from": "3.0"}, type="int32")
-        fields.insert(0, dict(fields[0], type="uint8", versions={"until": "1.8"}))
+        fields.insert(0, dict(fields[0], type="int8", versions={"until": "1.8"}))
 
     text = entries(render_text(variant(edit)))
     assert text.count('ProtoField.int32("ur.tool_data.analog_input_range0"') == 1
-    assert 'ProtoField.uint8("ur.tool_data.analog_input_range0"' not in text
-    narrow = '{ k = "scalar", f = F["tool_data.analog_input_range0"], n = 1, path = "analog_input_range0", signed = false, value = true }'
+    assert 'ProtoField.int8("ur.tool_data.analog_input_range0"' not in text
+    narrow = '{ k = "scalar", f = F["tool_data.analog_input_range0"], n = 1, path = "analog_input_range0", signed = true, value = true }'
     wide = '{ k = "scalar", f = F["tool_data.analog_input_range0"], n = 4, path = "analog_input_range0", signed = true }'
     assert narrow in text and wide in text
 
 
 def test_entries_no_one_field_holds_are_a_problem():
+    """int32 then uint32: no one Wireshark field holds both; the spec is refused before any
+    target renders it (resolve.same_name)."""
     def edit(data):
         fields = data["messages"]["robot_state"]["packages"]["tool_data"]["fields"]
         fields[0] = dict(fields[0], versions={"from": "3.0"}, type="uint32")
@@ -133,8 +139,8 @@ def test_entries_no_one_field_holds_are_a_problem():
     with pytest.raises(SpecError) as caught:
         render_text(variant(edit))
     (problem,) = caught.value.problems
-    assert problem.path.startswith("messages.robot_state.packages.tool_data.fields[")
-    assert "ur.tool_data.analog_input_range0" in problem.message and "int32, uint32" in problem.message
+    assert problem.path == "messages.robot_state.packages.tool_data.fields[1].type"
+    assert "analog_input_range0" in problem.message and "int32 and uint32" in problem.message
 
 
 def test_a_versioned_enum_has_its_names_by_version():

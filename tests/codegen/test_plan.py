@@ -45,10 +45,9 @@ def test_message_headers_and_body_offsets(planned):
 def test_a_fixed_package_is_one_run_with_member_and_leaf_offsets(planned):
     mode = layout(planned, "robot_state", "robot_mode_data")
     (run,) = mode.steps
-    assert isinstance(run, FixedRun) and run.offset == 0 and run.size == mode.fixed_size == 42
+    assert isinstance(run, FixedRun) and run.size == mode.fixed_size == 42
     first = {m.field.name: (m.offset, m.first_leaf) for m in run.members}
     assert first["timestamp"] == (0, 0) and first["robot_mode"] == (15, 8) and first["reserved"] == (41, 13)
-    assert mode.field_offset("robot_mode") == 15
 
 
 def test_fixed_count_groups_are_read_inside_the_run(planned):
@@ -69,7 +68,7 @@ def test_a_flag_makes_one_condition_group_between_runs(planned):
                                              "euromap_current"]
     (inner,) = cond.steps
     assert isinstance(inner, FixedRun) and inner.size == 16 and inner.index == 1
-    assert head.offset == 0 and tail.offset is None and tail.index == 2
+    assert head.index == 0 and tail.index == 2
 
 
 def test_variable_fields_and_groups_repeated_to_the_end(planned):
@@ -127,14 +126,14 @@ def test_every_form_of_a_code_with_its_versions_sizes_and_representative(full):
 
     assert [(d, sizes) for _, d, sizes, _ in forms(0)] == [
         ("up to 1.8", [24]), ("3.0 to 3.1", [33]), ("3.2 to 3.4", [41]), ("3.5 and later", [42])]
-    assert forms(0)[0][3] == (1, 8, 999) and forms(0)[3][3] == (5, 9, 0)
+    assert forms(0)[0][3] == (1, 8, 0) and forms(0)[3][3] == (5, 9, 0)
     masterboard = {d: sizes for _, d, sizes, _ in forms(3)}
     assert masterboard["3.0 to 3.1"] == [67, 83] and masterboard["3.10 to 3.15 or 5.4 and later"] == [70, 86]
     assert masterboard["up to 1.5"] == [56] and masterboard["3.2 to 3.9 or 5.0 to 5.3"] == [69, 85]
     assert [(name, d) for name, d, _, _ in forms(5)] == [("laser_pointer", "up to 1.7"),
                                                         ("kinematics_info", "1.8 and later")]
     assert [(d, sizes, rep) for _, d, sizes, rep in forms(6)] == [
-        ("up to 1.8", [464], (1, 8, 999)), ("3.0 to 5.25.0", [440], (5, 9, 0)), ("5.25.1 and later", [444], (5, 25, 1))]
+        ("up to 1.8", [464], (1, 8, 0)), ("3.0 to 5.25.0", [440], (5, 9, 0)), ("5.25.1 and later", [444], (5, 25, 1))]
 
 
 

@@ -99,6 +99,40 @@ def test_semantic_errors_name_the_yaml_path(edit, path, words):
     assert any(p.startswith(path) and words in p for p in problems), problems
 
 
+def repeated_probe(older: str, newer: str):
+    """An edit: robot mode data gains a field `probe`, of type `older` up to 3.4 and `newer` after."""
+    def edit(d):
+        robot_mode_fields(d).extend([
+            {"name": "probe", "label": "Probe", "type": older, "versions": {"until": "3.4"}},
+            {"name": "probe", "label": "Probe", "type": newer, "versions": {"from": "3.5"}},
+        ])
+    return edit
+
+
+def test_a_repeated_name_may_not_change_its_signedness():
+    """uint16 then int32: int32 holds every uint16, but one C member cannot be both; the one rule
+    (resolve.same_name) rejects it before any target sees it, at the newer entry's type."""
+    problems = problems_of(spec_with(repeated_probe("uint16", "int32")))
+    assert any(p.startswith("messages.robot_state.packages.robot_mode_data.fields[15].type")
+               and "uint16 and int32" in p for p in problems), problems
+
+
+def test_a_repeated_name_may_widen_and_every_target_renders_it():
+    from codegen.targets import render_all
+
+    protocol = compile_text(spec_with(repeated_probe("uint16", "uint32")))
+    outputs = render_all(protocol, "probe.yaml", "")
+    # One C member of the widest type, the narrower entry read into it.
+    assert "    uint32_t probe;" in outputs["c/urwire.h"]
+    assert "out->probe = (uint32_t)urwire__u16(p + 41);" in outputs["c/urwire.c"]
+    # One Wireshark field of the widest type; the narrower read adds its value explicitly.
+    lua = outputs["lua/urwire.lua"]
+    assert '["robot_mode_data.probe"] = ProtoField.uint32("ur.robot_mode_data.probe"' in lua
+    assert '{ k = "scalar", f = F["robot_mode_data.probe"], n = 2, path = "probe", signed = false, value = true }' in lua
+    # One record attribute.
+    assert outputs["python/urwire/messages.py"].count("    probe: Optional[int] = field(") == 1
+
+
 def test_every_problem_is_reported_at_once():
     def two_mistakes(d):
         robot_mode_fields(d)[8].update(enum="robot_moods")

@@ -6,6 +6,7 @@ Hand-written; copied verbatim into generated/python/urwire/ by `make generate`.
 from __future__ import annotations
 
 import struct
+from bisect import bisect_right
 from dataclasses import dataclass
 from typing import Any, Optional, Union
 
@@ -278,20 +279,16 @@ class ValueCodec:
 # ---- choosing a layout by software version and by length ------------------------------------
 
 class Form:
-    """One form a type code takes on the wire: its class and the decoder of this form, the software versions
-    that send it (inclusive (low, high) pairs), the body sizes it can have (None: open-ended,
-    at least `min_size`), and `rep`, the version a stream is taken to run when this form is
-    recognised by its length alone."""
+    """One form a type code takes on the wire: its class and the decoder of this form, the body
+    sizes it can have (None: open-ended, at least `min_size`), `rep`, the version a stream is
+    taken to run when this form is recognised by its length alone, and the versions that send
+    it, as text."""
 
-    __slots__ = ("cls", "decode", "ranges", "sizes", "min_size", "rep", "versions")
+    __slots__ = ("cls", "decode", "sizes", "min_size", "rep", "versions")
 
-    def __init__(self, cls: type, decode, ranges: tuple, sizes: Optional[frozenset], min_size: int, rep: tuple,
-                 versions: str):
-        self.cls, self.decode, self.ranges, self.sizes, self.min_size = cls, decode, ranges, sizes, min_size
+    def __init__(self, cls: type, decode, sizes: Optional[frozenset], min_size: int, rep: tuple, versions: str):
+        self.cls, self.decode, self.sizes, self.min_size = cls, decode, sizes, min_size
         self.rep, self.versions = rep, versions
-
-    def sent_by(self, version: tuple) -> bool:
-        return any(low <= version <= high for low, high in self.ranges)
 
     def fits(self, size: int) -> bool:
         return size in self.sizes if self.sizes is not None else size >= self.min_size
@@ -300,29 +297,48 @@ class Form:
 _UNKNOWN = (None, None, False, None)
 
 
+def segment(starts: tuple, version: tuple) -> int:
+    """The segment of the version axis that holds `version`, given where every segment but the
+    first starts (the first holds every version below the second)."""
+    return bisect_right(starts, version)
+
+
 class Forms:
-    """The forms of every type code of one message.
+    """The forms of every type code of one message, as the generator's tables give them.
+
+    `by_code` maps each code to its forms. `rows` has a row per segment of the version axis
+    (`starts`), with an entry per code in `by_code`'s order: the index of the form the
+    segment's versions send, or ~index when none is sent there and the form is the nearest
+    version's below (read as its `rep`). `by_length` maps each code to the body sizes that
+    exactly one fixed-size form has, and that form's index.
 
     `fast(version)` maps each code to the decoder of the version's form: a part that it reads to
     its last byte is that form (the common case, one dict lookup). Anything else goes through
     `part()`, which applies the whole rule. `at(version)` is a table, filled on first use, from
     `size << 8 | code` (the part's whole size, header included) to (decoder, version to decode
-    with, chosen by length?, form): what `_choose` says, since codes, sizes and versions repeat. A
+    with, chosen by length?, form): what `choose` says, since codes, sizes and versions repeat. A
     code the spec does not lay out maps to _UNKNOWN."""
 
-    __slots__ = ("by_code", "resolved", "fast_by_version", "header")
+    __slots__ = ("by_code", "starts", "rows", "by_length", "resolved", "fast_by_version", "header")
 
-    def __init__(self, by_code: dict, header: int = 0):
+    def __init__(self, by_code: dict, starts: tuple, rows: tuple, by_length: dict, header: int = 0):
         self.by_code = by_code
+        self.starts = starts
+        self.rows = tuple(dict(zip(by_code, row)) for row in rows)
+        self.by_length = by_length
         self.header = header
         self.resolved: dict = {}          # version -> its table of choices
         self.fast_by_version: dict = {}   # version -> {code: decoder of the version's form}
 
+    def sent(self, version: tuple) -> dict:
+        """{code: the form the version sends} for the codes that have one at this version."""
+        row = self.rows[segment(self.starts, version)]
+        return {code: self.by_code[code][k] for code, k in row.items() if k >= 0}
+
     def fast(self, version: tuple) -> dict:
         table = self.fast_by_version.get(version)
         if table is None:
-            table = self.fast_by_version[version] = {
-                code: form.decode for code, forms in self.by_code.items() for form in forms if form.sent_by(version)}
+            table = self.fast_by_version[version] = {code: form.decode for code, form in self.sent(version).items()}
         return table
 
     def at(self, version: tuple) -> dict:
@@ -331,16 +347,31 @@ class Forms:
             table = self.resolved[version] = {}
         return table
 
+    def choose(self, code: int, size: int, version: tuple) -> tuple:
+        """(form, version to read it with, chosen by length?) for a body of `size` bytes: the
+        version's form when it fits; else the one fixed-size form of that size, read as its
+        `rep`; else the version's form, whose short or extra bytes are then reported."""
+        forms = self.by_code[code]
+        k = self.rows[segment(self.starts, version)][code]
+        mine = forms[k] if k >= 0 else forms[~k]
+        if k < 0:
+            version = mine.rep
+        if mine.fits(size):
+            return mine, version, False
+        k = self.by_length[code].get(size)
+        if k is not None:
+            return forms[k], forms[k].rep, True
+        return mine, version, False
+
     def pick(self, version: tuple, code: int, size: int, header: int) -> tuple:
         """The entry for a part of `size` bytes, its header of `header` bytes included."""
         table = self.at(version)
         if len(table) > 4096:        # open-ended forms come in any size: keep the table small
             table.clear()
-        forms = self.by_code.get(code)
-        if forms is None:
+        if code not in self.by_code:
             found = _UNKNOWN
         else:
-            form, use, by_length = _choose(forms, size - header, version)
+            form, use, by_length = self.choose(code, size - header, version)
             found = (form.decode, use, by_length, form)
         table[size << 8 | code] = found
         return found
@@ -361,29 +392,6 @@ class Forms:
         if used < stop:
             pkg.extra = bytes(buf[used:stop])
         return pkg, (use if by_length and not known else None)
-
-
-def _choose(forms: tuple, size: int, version: tuple) -> tuple:
-    mine = next((f for f in forms if f.sent_by(version)), None)
-    if mine is None:
-        # No form of this version (between series, or newer than the spec knows): the form of
-        # the nearest version below, read as the version it stands for.
-        mine = _nearest_below(forms, version)
-        version = mine.rep
-    if mine is not None and mine.fits(size):
-        return mine, version, False
-    # Only a form of fixed sizes can be recognised by its length: an open-ended one fits too much.
-    fitting = [f for f in forms if f.sizes is not None and size in f.sizes]
-    if len(fitting) == 1:
-        return fitting[0], fitting[0].rep, True
-    return mine, version, False
-
-
-def _nearest_below(forms: tuple, version: tuple):
-    """For a version no form is sent by (one between series, or not yet known): the form of the
-    nearest version below it, else the first."""
-    below = [(low, f) for f in forms for low, _ in f.ranges if low <= version]
-    return max(below, key=lambda pair: pair[0])[1] if below else forms[0]
 
 
 def peek_version(buf, pos: int, skips: tuple, tail: int) -> Optional[tuple]:

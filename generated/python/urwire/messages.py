@@ -31,6 +31,25 @@ _FLOAT32 = struct.Struct(">f")
 _UINT32 = struct.Struct(">I")
 _UINT8 = struct.Struct(">B")
 _SAFETY_MODE_1_REPORT_DATA_BY_REPORT_DATA_TYPE = {2: _INT32, 3: _FLOAT32}
+# Where each segment of the version axis starts, but the first (every version below the second):
+# within a segment, every type code sends one form.
+_SEGMENT_STARTS = (
+    (1, 6, 0),  # 1.6 to 1.7
+    (1, 8, 0),  # 1.8
+    (1, 9, 0),  # 1.9 to before 3.0
+    (3, 0, 0),  # 3.0
+    (3, 1, 0),  # 3.1
+    (3, 2, 0),  # 3.2
+    (3, 3, 0),  # 3.3 to 3.4
+    (3, 5, 0),  # 3.5 to 3.9
+    (3, 10, 0),  # 3.10 to 3.15
+    (3, 16, 0),  # 3.16 to before 5.0
+    (5, 0, 0),  # 5.0 to 5.3
+    (5, 4, 0),  # 5.4 to 5.25.0
+    (5, 25, 1),  # 5.25.1 to 5.99
+    (5, 100, 0),  # 5.100 to before 10.0
+    (10, 0, 0),  # 10.0 and later
+)
 # Where a Version message keeps its numbers: (fixed bytes, length prefix) on the way there.
 _VERSION_SKIPS = ((0, _INT8), )
 
@@ -324,10 +343,7 @@ class RobotModeData(_Package):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -1193,10 +1209,7 @@ class MasterboardData(_Package):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -1331,10 +1344,7 @@ class CartesianInfo(_Package):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -1954,10 +1964,7 @@ class ConfigurationData(_Package):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -2178,10 +2185,7 @@ class AdditionalInfo(_Package):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -2566,10 +2570,7 @@ class VersionMessage(_Subtype):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -2684,10 +2685,7 @@ class SafetyModeMessage(_Subtype):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -2797,10 +2795,7 @@ class RobotCommMessage(_Subtype):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -3060,10 +3055,7 @@ class PopupMessage(_Subtype):
 
     def _encode(self, out: bytearray, version: tuple) -> None:
         """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
+        return self._ENCODERS[self._ENCODER_BY_SEGMENT[_rt.segment(_SEGMENT_STARTS, version)]](self, out, version)
 
 
 
@@ -3497,53 +3489,68 @@ class GlobalVariablesUpdateMessage(_Subtype):
         value_codec(version).encode_list(out, self.variables, 0x0a)
         out += self.extra
 
-RobotModeData._FORMS = (
-    ((((0, 0, 0), (1, 8, 999)),), RobotModeData._encode_0),
-    ((((3, 0, 0), (3, 1, 999)),), RobotModeData._encode_1),
-    ((((3, 2, 0), (3, 4, 999)),), RobotModeData._encode_2),
-    ((((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), RobotModeData._encode_3),
+RobotModeData._ENCODERS = (
+    RobotModeData._encode_0,
+    RobotModeData._encode_1,
+    RobotModeData._encode_2,
+    RobotModeData._encode_3,
 )
-MasterboardData._FORMS = (
-    ((((0, 0, 0), (1, 5, 999)),), MasterboardData._encode_0),
-    ((((1, 6, 0), (1, 8, 999)),), MasterboardData._encode_1),
-    ((((3, 0, 0), (3, 1, 999)),), MasterboardData._encode_2),
-    ((((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)),), MasterboardData._encode_3),
-    ((((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)),
-      ((10, 0, 0), (1048576, 0, 0)),), MasterboardData._encode_4),
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+RobotModeData._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 3, 3, 3, 3, 3, 3,)
+MasterboardData._ENCODERS = (
+    MasterboardData._encode_0,
+    MasterboardData._encode_1,
+    MasterboardData._encode_2,
+    MasterboardData._encode_3,
+    MasterboardData._encode_4,
 )
-CartesianInfo._FORMS = (
-    ((((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)),), CartesianInfo._encode_0),
-    ((((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), CartesianInfo._encode_1),
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+MasterboardData._ENCODER_BY_SEGMENT = (0, 1, 1, 1, 2, 2, 3, 3, 3, 4, 4, 3, 4, 4, 4, 4,)
+CartesianInfo._ENCODERS = (
+    CartesianInfo._encode_0,
+    CartesianInfo._encode_1,
 )
-ConfigurationData._FORMS = (
-    ((((0, 0, 0), (1, 8, 999)),), ConfigurationData._encode_0),
-    ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)),), ConfigurationData._encode_1),
-    ((((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), ConfigurationData._encode_2),
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+CartesianInfo._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,)
+ConfigurationData._ENCODERS = (
+    ConfigurationData._encode_0,
+    ConfigurationData._encode_1,
+    ConfigurationData._encode_2,
 )
-AdditionalInfo._FORMS = (
-    ((((0, 0, 0), (1, 7, 999)),), AdditionalInfo._encode_0),
-    ((((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)),), AdditionalInfo._encode_1),
-    ((((3, 2, 0), (3, 15, 999)),), AdditionalInfo._encode_2),
-    ((((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), AdditionalInfo._encode_3),
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+ConfigurationData._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2,)
+AdditionalInfo._ENCODERS = (
+    AdditionalInfo._encode_0,
+    AdditionalInfo._encode_1,
+    AdditionalInfo._encode_2,
+    AdditionalInfo._encode_3,
 )
-VersionMessage._FORMS = (
-    ((((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)),), VersionMessage._encode_0),
-    ((((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), VersionMessage._encode_1),
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+AdditionalInfo._ENCODER_BY_SEGMENT = (0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2, 3, 3, 3, 3, 3,)
+VersionMessage._ENCODERS = (
+    VersionMessage._encode_0,
+    VersionMessage._encode_1,
 )
-SafetyModeMessage._FORMS = (
-    ((((0, 0, 0), (1, 8, 999)),), SafetyModeMessage._encode_0),
-    ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-      ((10, 0, 0), (1048576, 0, 0)),), SafetyModeMessage._encode_1),
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+VersionMessage._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1,)
+SafetyModeMessage._ENCODERS = (
+    SafetyModeMessage._encode_0,
+    SafetyModeMessage._encode_1,
 )
-RobotCommMessage._FORMS = (
-    ((((0, 0, 0), (1, 8, 999)),), RobotCommMessage._encode_0),
-    ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-      ((10, 0, 0), (1048576, 0, 0)),), RobotCommMessage._encode_1),
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+SafetyModeMessage._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,)
+RobotCommMessage._ENCODERS = (
+    RobotCommMessage._encode_0,
+    RobotCommMessage._encode_1,
 )
-PopupMessage._FORMS = (
-    ((((0, 0, 0), (1, 8, 999)),), PopupMessage._encode_0),
-    ((((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),), PopupMessage._encode_1),
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+RobotCommMessage._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,)
+PopupMessage._ENCODERS = (
+    PopupMessage._encode_0,
+    PopupMessage._encode_1,
 )
+# The index of its encoder in each segment of _SEGMENT_STARTS.
+PopupMessage._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,)
 
 
 @dataclass(slots=True)
@@ -3584,126 +3591,125 @@ class RobotStateMessage:
 
 _ROBOT_STATE_FORMS = _rt.Forms({
     0: (
-        _rt.Form(RobotModeData, RobotModeData._decode_0,
-                 (((0, 0, 0), (1, 8, 999)),),
-                 frozenset({24}), 24, (1, 8, 999), "up to 1.8"),
-        _rt.Form(RobotModeData, RobotModeData._decode_1,
-                 (((3, 0, 0), (3, 1, 999)),),
-                 frozenset({33}), 33, (3, 1, 999), "3.0 to 3.1"),
-        _rt.Form(RobotModeData, RobotModeData._decode_2,
-                 (((3, 2, 0), (3, 4, 999)),),
-                 frozenset({41}), 41, (3, 4, 999), "3.2 to 3.4"),
-        _rt.Form(RobotModeData, RobotModeData._decode_3,
-                 (((3, 5, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({42}), 42, (5, 9, 0), "3.5 and later"),
+        _rt.Form(RobotModeData, RobotModeData._decode_0, frozenset({24}), 24, (1, 8, 0),
+                 "up to 1.8"),
+        _rt.Form(RobotModeData, RobotModeData._decode_1, frozenset({33}), 33, (3, 1, 0),
+                 "3.0 to 3.1"),
+        _rt.Form(RobotModeData, RobotModeData._decode_2, frozenset({41}), 41, (3, 4, 0),
+                 "3.2 to 3.4"),
+        _rt.Form(RobotModeData, RobotModeData._decode_3, frozenset({42}), 42, (5, 9, 0),
+                 "3.5 and later"),
     ),
     1: (
-        _rt.Form(JointData, JointData._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({246}), 246, (5, 9, 0), "all versions"),
+        _rt.Form(JointData, JointData._decode, frozenset({246}), 246, (5, 9, 0),
+                 "all versions"),
     ),
     2: (
-        _rt.Form(ToolData, ToolData._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({32}), 32, (5, 9, 0), "all versions"),
+        _rt.Form(ToolData, ToolData._decode, frozenset({32}), 32, (5, 9, 0),
+                 "all versions"),
     ),
     3: (
-        _rt.Form(MasterboardData, MasterboardData._decode_0,
-                 (((0, 0, 0), (1, 5, 999)),),
-                 frozenset({56}), 56, (1, 5, 999), "up to 1.5"),
-        _rt.Form(MasterboardData, MasterboardData._decode_1,
-                 (((1, 6, 0), (1, 8, 999)),),
-                 frozenset({59, 71}), 59, (1, 8, 999), "1.6 to 1.8"),
-        _rt.Form(MasterboardData, MasterboardData._decode_2,
-                 (((3, 0, 0), (3, 1, 999)),),
-                 frozenset({67, 83}), 67, (3, 1, 999), "3.0 to 3.1"),
-        _rt.Form(MasterboardData, MasterboardData._decode_3,
-                 (((3, 2, 0), (3, 9, 999)), ((5, 0, 0), (5, 3, 999)),),
-                 frozenset({69, 85}), 69, (5, 3, 999), "3.2 to 3.9 or 5.0 to 5.3"),
-        _rt.Form(MasterboardData, MasterboardData._decode_4,
-                 (((3, 10, 0), (3, 15, 999)), ((5, 4, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({70, 86}), 70, (5, 9, 0), "3.10 to 3.15 or 5.4 and later"),
+        _rt.Form(MasterboardData, MasterboardData._decode_0, frozenset({56}), 56, (1, 5, 0),
+                 "up to 1.5"),
+        _rt.Form(MasterboardData, MasterboardData._decode_1, frozenset({59, 71}), 59, (1, 8, 0),
+                 "1.6 to 1.8"),
+        _rt.Form(MasterboardData, MasterboardData._decode_2, frozenset({67, 83}), 67, (3, 1, 0),
+                 "3.0 to 3.1"),
+        _rt.Form(MasterboardData, MasterboardData._decode_3, frozenset({69, 85}), 69, (5, 3, 0),
+                 "3.2 to 3.9 or 5.0 to 5.3"),
+        _rt.Form(MasterboardData, MasterboardData._decode_4, frozenset({70, 86}), 70, (5, 9, 0),
+                 "3.10 to 3.15 or 5.4 and later"),
     ),
     4: (
-        _rt.Form(CartesianInfo, CartesianInfo._decode_0,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 0, 999)),),
-                 frozenset({48}), 48, (3, 0, 999), "up to 3.0"),
-        _rt.Form(CartesianInfo, CartesianInfo._decode_1,
-                 (((3, 1, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({96}), 96, (5, 9, 0), "3.1 and later"),
+        _rt.Form(CartesianInfo, CartesianInfo._decode_0, frozenset({48}), 48, (3, 0, 0),
+                 "up to 3.0"),
+        _rt.Form(CartesianInfo, CartesianInfo._decode_1, frozenset({96}), 96, (5, 9, 0),
+                 "3.1 and later"),
     ),
     5: (
-        _rt.Form(LaserPointer, LaserPointer._decode,
-                 (((0, 0, 0), (1, 7, 999)),),
-                 frozenset({24}), 24, (1, 7, 999), "up to 1.7"),
-        _rt.Form(KinematicsInfo, KinematicsInfo._decode,
-                 (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({220}), 220, (5, 9, 0), "1.8 and later"),
+        _rt.Form(LaserPointer, LaserPointer._decode, frozenset({24}), 24, (1, 7, 0),
+                 "up to 1.7"),
+        _rt.Form(KinematicsInfo, KinematicsInfo._decode, frozenset({220}), 220, (5, 9, 0),
+                 "1.8 and later"),
     ),
     6: (
-        _rt.Form(ConfigurationData, ConfigurationData._decode_0,
-                 (((0, 0, 0), (1, 8, 999)),),
-                 frozenset({464}), 464, (1, 8, 999), "up to 1.8"),
-        _rt.Form(ConfigurationData, ConfigurationData._decode_1,
-                 (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 25, 0)),),
-                 frozenset({440}), 440, (5, 9, 0), "3.0 to 5.25.0"),
-        _rt.Form(ConfigurationData, ConfigurationData._decode_2,
-                 (((5, 25, 1), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({444}), 444, (5, 25, 1), "5.25.1 and later"),
+        _rt.Form(ConfigurationData, ConfigurationData._decode_0, frozenset({464}), 464, (1, 8, 0),
+                 "up to 1.8"),
+        _rt.Form(ConfigurationData, ConfigurationData._decode_1, frozenset({440}), 440, (5, 9, 0),
+                 "3.0 to 5.25.0"),
+        _rt.Form(ConfigurationData, ConfigurationData._decode_2, frozenset({444}), 444, (5, 25, 1),
+                 "5.25.1 and later"),
     ),
     7: (
-        _rt.Form(ForceModeData, ForceModeData._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({56}), 56, (5, 9, 0), "all versions"),
+        _rt.Form(ForceModeData, ForceModeData._decode, frozenset({56}), 56, (5, 9, 0),
+                 "all versions"),
     ),
     8: (
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_0,
-                 (((0, 0, 0), (1, 7, 999)),),
-                 frozenset({5}), 5, (1, 7, 999), "up to 1.7"),
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_1,
-                 (((1, 8, 0), (1, 8, 999)), ((3, 0, 0), (3, 1, 999)),),
-                 frozenset({2}), 2, (3, 1, 999), "1.8 to 3.1"),
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_2,
-                 (((3, 2, 0), (3, 15, 999)),),
-                 frozenset({3}), 3, (3, 15, 999), "3.2 to 3.15"),
-        _rt.Form(AdditionalInfo, AdditionalInfo._decode_3,
-                 (((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({4}), 4, (5, 9, 0), "5.0 and later"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_0, frozenset({5}), 5, (1, 7, 0),
+                 "up to 1.7"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_1, frozenset({2}), 2, (3, 1, 0),
+                 "1.8 to 3.1"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_2, frozenset({3}), 3, (3, 15, 0),
+                 "3.2 to 3.15"),
+        _rt.Form(AdditionalInfo, AdditionalInfo._decode_3, frozenset({4}), 4, (5, 9, 0),
+                 "5.0 and later"),
     ),
     9: (
-        _rt.Form(CalibrationData, CalibrationData._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({48}), 48, (5, 9, 0), "all versions"),
+        _rt.Form(CalibrationData, CalibrationData._decode, frozenset({48}), 48, (5, 9, 0),
+                 "all versions"),
     ),
     10: (
-        _rt.Form(SafetyData, SafetyData._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 None, 0, (5, 9, 0), "all versions"),
+        _rt.Form(SafetyData, SafetyData._decode, None, 0, (5, 9, 0),
+                 "all versions"),
     ),
     11: (
-        _rt.Form(ToolCommInfo, ToolCommInfo._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({21}), 21, (5, 9, 0), "all versions"),
+        _rt.Form(ToolCommInfo, ToolCommInfo._decode, frozenset({21}), 21, (5, 9, 0),
+                 "all versions"),
     ),
     12: (
-        _rt.Form(ToolModeInfo, ToolModeInfo._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({3}), 3, (5, 9, 0), "all versions"),
+        _rt.Form(ToolModeInfo, ToolModeInfo._decode, frozenset({3}), 3, (5, 9, 0),
+                 "all versions"),
     ),
     13: (
-        _rt.Form(SingularityInfo, SingularityInfo._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({2}), 2, (5, 9, 0), "all versions"),
+        _rt.Form(SingularityInfo, SingularityInfo._decode, frozenset({2}), 2, (5, 9, 0),
+                 "all versions"),
     ),
+}, _SEGMENT_STARTS, (
+    # A row per segment, an entry per code: the index of the form its versions send; ~index
+    # when none is sent there and the form is the nearest version's below. Codes:
+    # (0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13)
+    (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),  # up to 1.5
+    (0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),  # 1.6 to 1.7
+    (0, 0, 0, 1, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0),  # 1.8
+    (~0, ~0, ~0, ~1, ~0, ~1, ~0, ~0, ~1, ~0, ~0, ~0, ~0, ~0),  # 1.9 to before 3.0
+    (1, 0, 0, 2, 0, 1, 1, 0, 1, 0, 0, 0, 0, 0),  # 3.0
+    (1, 0, 0, 2, 1, 1, 1, 0, 1, 0, 0, 0, 0, 0),  # 3.1
+    (2, 0, 0, 3, 1, 1, 1, 0, 2, 0, 0, 0, 0, 0),  # 3.2
+    (2, 0, 0, 3, 1, 1, 1, 0, 2, 0, 0, 0, 0, 0),  # 3.3 to 3.4
+    (3, 0, 0, 3, 1, 1, 1, 0, 2, 0, 0, 0, 0, 0),  # 3.5 to 3.9
+    (3, 0, 0, 4, 1, 1, 1, 0, 2, 0, 0, 0, 0, 0),  # 3.10 to 3.15
+    (~3, ~0, ~0, ~4, ~1, ~1, ~1, ~0, ~2, ~0, ~0, ~0, ~0, ~0),  # 3.16 to before 5.0
+    (3, 0, 0, 3, 1, 1, 1, 0, 3, 0, 0, 0, 0, 0),  # 5.0 to 5.3
+    (3, 0, 0, 4, 1, 1, 1, 0, 3, 0, 0, 0, 0, 0),  # 5.4 to 5.25.0
+    (3, 0, 0, 4, 1, 1, 2, 0, 3, 0, 0, 0, 0, 0),  # 5.25.1 to 5.99
+    (~3, ~0, ~0, ~4, ~1, ~1, ~2, ~0, ~3, ~0, ~0, ~0, ~0, ~0),  # 5.100 to before 10.0
+    (3, 0, 0, 4, 1, 1, 2, 0, 3, 0, 0, 0, 0, 0),  # 10.0 and later
+), {
+    # Code by code: the body sizes that recognise one form, and its index.
+    0: {24: 0, 33: 1, 41: 2, 42: 3},
+    1: {246: 0},
+    2: {32: 0},
+    3: {56: 0, 59: 1, 67: 2, 69: 3, 70: 4, 71: 1, 83: 2, 85: 3, 86: 4},
+    4: {48: 0, 96: 1},
+    5: {24: 0, 220: 1},
+    6: {440: 1, 444: 2, 464: 0},
+    7: {56: 0},
+    8: {2: 1, 3: 2, 4: 3, 5: 0},
+    9: {48: 0},
+    10: {},
+    11: {21: 0},
+    12: {3: 0},
+    13: {2: 0},
 }, header=5)
 
 
@@ -3720,8 +3726,7 @@ def package_classes(version) -> dict:
     (a part of another length may still be read in another form:
     docs/contract.md#choosing-a-layout)."""
     version = version_of(version)
-    return {code: form.cls for code in sorted(_ROBOT_STATE_FORMS.by_code)
-            for form in _ROBOT_STATE_FORMS.by_code[code] if form.sent_by(version)}
+    return {code: form.cls for code, form in sorted(_ROBOT_STATE_FORMS.sent(version).items())}
 
 
 def _decode_robot_state(buf, version: tuple, known: bool) -> RobotStateMessage:
@@ -3776,83 +3781,95 @@ _ROBOT_MESSAGE_HEADER_RUN = (
 )
 _ROBOT_MESSAGE_FORMS = _rt.Forms({
     3: (
-        _rt.Form(VersionMessage, VersionMessage._decode_0,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 2, 999)),),
-                 None, 7, (3, 2, 999), "up to 3.2"),
-        _rt.Form(VersionMessage, VersionMessage._decode_1,
-                 (((3, 3, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
-                 None, 11, (5, 9, 0), "3.3 and later"),
+        _rt.Form(VersionMessage, VersionMessage._decode_0, None, 7, (3, 2, 0),
+                 "up to 3.2"),
+        _rt.Form(VersionMessage, VersionMessage._decode_1, None, 11, (5, 9, 0),
+                 "3.3 and later"),
     ),
     5: (
-        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_0,
-                 (((0, 0, 0), (1, 8, 999)),),
-                 None, 8, (1, 8, 999), "up to 1.8"),
-        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_1,
-                 (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({17}), 17, (5, 9, 0), "3.0 and later"),
+        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_0, None, 8, (1, 8, 0),
+                 "up to 1.8"),
+        _rt.Form(SafetyModeMessage, SafetyModeMessage._decode_1, frozenset({17}), 17, (5, 9, 0),
+                 "3.0 and later"),
     ),
     6: (
-        _rt.Form(RobotCommMessage, RobotCommMessage._decode_0,
-                 (((0, 0, 0), (1, 8, 999)),),
-                 None, 8, (1, 8, 999), "up to 1.8"),
-        _rt.Form(RobotCommMessage, RobotCommMessage._decode_1,
-                 (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
-                 None, 20, (5, 9, 0), "3.0 and later"),
+        _rt.Form(RobotCommMessage, RobotCommMessage._decode_0, None, 8, (1, 8, 0),
+                 "up to 1.8"),
+        _rt.Form(RobotCommMessage, RobotCommMessage._decode_1, None, 20, (5, 9, 0),
+                 "3.0 and later"),
     ),
     7: (
-        _rt.Form(KeyMessage, KeyMessage._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 None, 9, (5, 9, 0), "all versions"),
+        _rt.Form(KeyMessage, KeyMessage._decode, None, 9, (5, 9, 0),
+                 "all versions"),
     ),
     14: (
-        _rt.Form(ProgramThreadsMessage, ProgramThreadsMessage._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 None, 0, (5, 9, 0), "all versions"),
+        _rt.Form(ProgramThreadsMessage, ProgramThreadsMessage._decode, None, 0, (5, 9, 0),
+                 "all versions"),
     ),
     2: (
-        _rt.Form(PopupMessage, PopupMessage._decode_0,
-                 (((0, 0, 0), (1, 8, 999)),),
-                 None, 3, (1, 8, 999), "up to 1.8"),
-        _rt.Form(PopupMessage, PopupMessage._decode_1,
-                 (((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)), ((10, 0, 0), (1048576, 0, 0)),),
-                 None, 12, (5, 9, 0), "3.0 and later"),
+        _rt.Form(PopupMessage, PopupMessage._decode_0, None, 3, (1, 8, 0),
+                 "up to 1.8"),
+        _rt.Form(PopupMessage, PopupMessage._decode_1, None, 12, (5, 9, 0),
+                 "3.0 and later"),
     ),
     1: (
-        _rt.Form(LabelMessage, LabelMessage._decode,
-                 (((0, 0, 0), (1, 8, 999)),),
-                 None, 4, (1, 8, 999), "up to 1.8"),
+        _rt.Form(LabelMessage, LabelMessage._decode, None, 4, (1, 8, 0),
+                 "up to 1.8"),
     ),
     8: (
-        _rt.Form(VarMessage, VarMessage._decode,
-                 (((0, 0, 0), (1, 8, 999)),),
-                 None, 9, (1, 8, 999), "up to 1.8"),
+        _rt.Form(VarMessage, VarMessage._decode, None, 9, (1, 8, 0),
+                 "up to 1.8"),
     ),
     18: (
-        _rt.Form(HardwareInfoMessage, HardwareInfoMessage._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 frozenset({12}), 12, (5, 9, 0), "all versions"),
+        _rt.Form(HardwareInfoMessage, HardwareInfoMessage._decode, frozenset({12}), 12, (5, 9, 0),
+                 "all versions"),
     ),
     9: (
-        _rt.Form(RequestValueMessage, RequestValueMessage._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 None, 8, (5, 9, 0), "all versions"),
+        _rt.Form(RequestValueMessage, RequestValueMessage._decode, None, 8, (5, 9, 0),
+                 "all versions"),
     ),
     0: (
-        _rt.Form(TextMessage, TextMessage._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 None, 0, (5, 9, 0), "all versions"),
+        _rt.Form(TextMessage, TextMessage._decode, None, 0, (5, 9, 0),
+                 "all versions"),
     ),
     10: (
-        _rt.Form(RuntimeExceptionMessage, RuntimeExceptionMessage._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 None, 8, (5, 9, 0), "all versions"),
+        _rt.Form(RuntimeExceptionMessage, RuntimeExceptionMessage._decode, None, 8, (5, 9, 0),
+                 "all versions"),
     ),
+}, _SEGMENT_STARTS, (
+    # A row per segment, an entry per code: the index of the form its versions send; ~index
+    # when none is sent there and the form is the nearest version's below. Codes:
+    # (3, 5, 6, 7, 14, 2, 1, 8, 18, 9, 0, 10)
+    (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),  # up to 1.5
+    (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),  # 1.6 to 1.7
+    (0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0),  # 1.8
+    (~0, ~0, ~0, ~0, ~0, ~0, ~0, ~0, ~0, ~0, ~0, ~0),  # 1.9 to before 3.0
+    (0, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.0
+    (0, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.1
+    (0, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.2
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.3 to 3.4
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.5 to 3.9
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 3.10 to 3.15
+    (~1, ~1, ~1, ~0, ~0, ~1, ~0, ~0, ~0, ~0, ~0, ~0),  # 3.16 to before 5.0
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 5.0 to 5.3
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 5.4 to 5.25.0
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 5.25.1 to 5.99
+    (~1, ~1, ~1, ~0, ~0, ~1, ~0, ~0, ~0, ~0, ~0, ~0),  # 5.100 to before 10.0
+    (1, 1, 1, 0, 0, 1, ~0, ~0, 0, 0, 0, 0),  # 10.0 and later
+), {
+    # Code by code: the body sizes that recognise one form, and its index.
+    3: {},
+    5: {17: 1},
+    6: {},
+    7: {},
+    14: {},
+    2: {},
+    1: {},
+    8: {},
+    18: {12: 0},
+    9: {},
+    0: {},
+    10: {},
 })
 
 
@@ -3907,17 +3924,37 @@ _PROGRAM_STATE_HEADER_RUN = (
 )
 _PROGRAM_STATE_FORMS = _rt.Forms({
     0: (
-        _rt.Form(GlobalVariablesSetupMessage, GlobalVariablesSetupMessage._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 None, 2, (5, 9, 0), "all versions"),
+        _rt.Form(GlobalVariablesSetupMessage, GlobalVariablesSetupMessage._decode, None, 2, (5, 9, 0),
+                 "all versions"),
     ),
     1: (
-        _rt.Form(GlobalVariablesUpdateMessage, GlobalVariablesUpdateMessage._decode,
-                 (((0, 0, 0), (1, 8, 999)), ((3, 0, 0), (3, 15, 999)), ((5, 0, 0), (5, 99, 999)),
-                  ((10, 0, 0), (1048576, 0, 0)),),
-                 None, 2, (5, 9, 0), "all versions"),
+        _rt.Form(GlobalVariablesUpdateMessage, GlobalVariablesUpdateMessage._decode, None, 2, (5, 9, 0),
+                 "all versions"),
     ),
+}, _SEGMENT_STARTS, (
+    # A row per segment, an entry per code: the index of the form its versions send; ~index
+    # when none is sent there and the form is the nearest version's below. Codes:
+    # (0, 1)
+    (0, 0),  # up to 1.5
+    (0, 0),  # 1.6 to 1.7
+    (0, 0),  # 1.8
+    (~0, ~0),  # 1.9 to before 3.0
+    (0, 0),  # 3.0
+    (0, 0),  # 3.1
+    (0, 0),  # 3.2
+    (0, 0),  # 3.3 to 3.4
+    (0, 0),  # 3.5 to 3.9
+    (0, 0),  # 3.10 to 3.15
+    (~0, ~0),  # 3.16 to before 5.0
+    (0, 0),  # 5.0 to 5.3
+    (0, 0),  # 5.4 to 5.25.0
+    (0, 0),  # 5.25.1 to 5.99
+    (~0, ~0),  # 5.100 to before 10.0
+    (0, 0),  # 10.0 and later
+), {
+    # Code by code: the body sizes that recognise one form, and its index.
+    0: {},
+    1: {},
 })
 
 

@@ -1,6 +1,7 @@
 -- runtime/info.lua: the Info column from raw bytes, and its text across two calls for a frame.
 local S = dofile("stubs.lua")
-local rt = S.base_rt({ package_header_size = 5, package_length_size = 4 })
+-- Two series of forms: up to 1.8, and from 3.0 (1.9 to 3.0 is no one's).
+local rt = S.base_rt({ package_header_size = 5, package_length_size = 4, segment_starts = { "1.9", "3.0" } })
 S.load("info.lua", { package_header_size = 5, package_length_size = 4 }, rt)
 
 local MODE = { [-1] = "NO_CONTROLLER", [7] = "RUNNING" }
@@ -41,12 +42,12 @@ S.eq(summary(raw, 0, #raw, { { k = "cond", present_if = "flag", fields = {} }, L
 
 -- Robot-state packages: each package's summary, by its form.
 local function part(layout, summary_) return { layout = layout, summary = summary_ } end
-local function forms(...) return { single = true, summary = true, { of = part(...), ranges = { {} }, min = 0, rep = V, versions = "all versions" } } end
+local function forms(...) return { single = true, summary = true, { of = part(...), min = 0, rep = V, versions = "all versions" } } end
 local PACKAGES = {
     [0] = forms({ { k = "scalar", f = "ur.m.pad", n = 1, path = "pad", signed = false },
                   { k = "scalar", f = "ur.m.mode", n = 1, path = "mode", signed = true, vs = MODE, show = "" } }, true),
     [3] = forms({ { k = "scalar", f = "ur.s.safety", n = 1, path = "safety", signed = false, vs = { [5] = "NORMAL" }, show = "" } }, true),
-    [1] = { single = true, summary = false, { of = part({}, false), ranges = { {} }, min = 0, rep = V, versions = "all versions" } },
+    [1] = { single = true, summary = false, { of = part({}, false), min = 0, rep = V, versions = "all versions" } },
 }
 local function package(code, body) return S.bytes(0, 0, 0, 5 + #body, code) .. body end
 local function packages(raw, st, text)
@@ -65,10 +66,11 @@ local OLD_MODE = { [2] = "OLD_RUNNING" }
 local EARLY_STATE = { of = part({ { k = "scalar", f = "ur.e.mode", n = 1, path = "mode", signed = true, vs = MODE, show = "",
                                     tables = { newest = MODE, { high = 1008999, names = OLD_MODE }, { low = 3000000, names = MODE } },
                                     label = "mode" } }, true),
-                      ranges = { { high = 1008999 } }, sizes = { [1] = true }, min = 1, rep = 1008999, versions = "up to 1.8" }
+                      sizes = { [1] = true }, min = 1, rep = "1.8", versions = "up to 1.8" }
 local NEW_STATE = { of = part({ { k = "scalar", f = "ur.n.pad", n = 1, path = "pad", signed = false } }, false),
-                    ranges = { { low = 3000000 } }, sizes = { [2] = true }, min = 2, rep = 5009000, versions = "3.0 and later" }
-PACKAGES[5] = { single = false, summary = true, EARLY_STATE, NEW_STATE }
+                    sizes = { [2] = true }, min = 2, rep = "5.9", versions = "3.0 and later" }
+PACKAGES[5] = { single = false, summary = true, segments = { 1, -1, 2 }, by_length = { [1] = 1, [2] = 2 }, EARLY_STATE,
+                NEW_STATE }
 PACKAGES[6] = forms({ { k = "scalar", f = "ur.x.mode", n = 1, path = "mode", signed = true, vs = MODE, show = "",
                         tables = { newest = MODE, { high = 1008999, names = OLD_MODE }, { low = 3000000, names = MODE } },
                         label = "mode" } }, true)
@@ -76,7 +78,7 @@ raw = package(6, S.bytes(2)) .. package(5, S.bytes(2)) .. package(6, S.bytes(2))
 local st = S.st(raw)
 st.known = false
 S.eq(packages(raw, st), "2, OLD_RUNNING, OLD_RUNNING", "names follow the version the layout sizes show, from there on")
-S.eq(st.version, 1008999, "the version they show"); S.eq(st.implied, "up to 1.8", "and which form showed it")
+S.eq(st.version, 1008000, "the version they show"); S.eq(st.implied, "up to 1.8", "and which form showed it")
 st = S.st(raw)
 S.eq(packages(raw, st), "2, OLD_RUNNING, 2", "a known version: only the form chosen by length reads with its version")
 S.eq(st.implied, nil, "a known version is not overruled")
@@ -84,7 +86,7 @@ S.eq(st.implied, nil, "a known version is not overruled")
 st = S.st(raw)
 st.known = false
 S.eq(packages(raw, st, false), nil, "no text")
-S.eq(st.version, 1008999, "the version the sizes show, without text"); S.eq(st.implied, "up to 1.8", "and its form")
+S.eq(st.version, 1008000, "the version the sizes show, without text"); S.eq(st.implied, "up to 1.8", "and its form")
 S.eq(rt.labelled("Robot state", ""), "Robot state", "label alone")
 S.eq(rt.labelled("Key", "PROGRAM_STARTED"), "Key: PROGRAM_STARTED", "label and text")
 

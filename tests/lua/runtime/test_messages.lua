@@ -2,7 +2,9 @@
 local S = dofile("stubs.lua")
 
 local function message_rt(messages)
-    local spec = { header_size = 5, package_header_size = 5, package_length_size = 4, messages = messages }
+    -- Two series of forms: up to 1.8, and from 3.0 (1.9 to 3.0 is no one's).
+    local spec = { header_size = 5, package_header_size = 5, package_length_size = 4, messages = messages,
+                   segment_starts = { "1.9", "3.0" } }
     local rt = S.walker_rt(spec)
     rt.X, rt.E = S.X, S.E
     S.load("info.lua", spec, rt)
@@ -12,7 +14,7 @@ end
 
 -- Forms of a type code: one for every version, or several (see versions.lua).
 local function single(part)
-    return { single = true, summary = part.summary, { of = part, ranges = { {} }, min = 0, rep = 5009000, versions = "all versions" } }
+    return { single = true, summary = part.summary, { of = part, min = 0, rep = "5.9", versions = "all versions" } }
 end
 
 -- A message with a header (a one-byte source), then a subtype byte.
@@ -39,8 +41,9 @@ local ROBOT = {
     subtypes = {
         [7] = single({ name = "key", label = "Key", item = "ur.key", layout = KEY, needs_version = false,
                        header = { { k = "scalar", f = "ur.key.source", n = 1, path = "source", signed = true } } }),
-        [8] = { { of = OLD_UPDATE_PART, ranges = { { high = 1008999 } }, sizes = { [2] = true }, min = 2, rep = 1008999, versions = "up to 1.8" },
-                { of = UPDATE_PART, ranges = { { low = 3000000 } }, sizes = { [1] = true }, min = 1, rep = 5009000, versions = "3.0 and later" } },
+        [8] = { segments = { 1, -1, 2 }, by_length = { [2] = 1, [1] = 2 },
+                { of = OLD_UPDATE_PART, sizes = { [2] = true }, min = 2, rep = "1.8", versions = "up to 1.8" },
+                { of = UPDATE_PART, sizes = { [1] = true }, min = 1, rep = "5.9", versions = "3.0 and later" } },
     },
 }
 local MODE_PART = { name = "mode", label = "Mode", item = "ur.mode", refs = { "ur.mode.mode" }, summary = true,
@@ -219,8 +222,9 @@ local EARLY_PART = { name = "early", label = "Early", item = "ur.early", refs = 
                      layout = { { k = "scalar", f = "ur.early.x", n = 1, path = "x", signed = false } } }
 local LATE_PART = { name = "late", label = "Late", item = "ur.late", refs = {}, summary = false,
                     layout = { { k = "scalar", f = "ur.late.x", n = 2, path = "x", signed = false } } }
-STATE.packages[5] = { { of = EARLY_PART, ranges = { { high = 1008999 } }, sizes = { [1] = true }, min = 1, rep = 1008999, versions = "up to 1.8" },
-                      { of = LATE_PART, ranges = { { low = 3000000 } }, sizes = { [2] = true }, min = 2, rep = 5009000, versions = "3.0 and later" } }
+STATE.packages[5] = { segments = { 1, -1, 2 }, by_length = { [1] = 1, [2] = 2 },
+                      { of = EARLY_PART, sizes = { [1] = true }, min = 1, rep = "1.8", versions = "up to 1.8" },
+                      { of = LATE_PART, sizes = { [2] = true }, min = 2, rep = "5.9", versions = "3.0 and later" } }
 STATE.needs_version = true
 local early = msg(16, package(5, S.bytes(1)) .. package(0, S.bytes(7)))
 S.eq(tree_of(state, early, 5009000, "default"), S.lines(
@@ -242,7 +246,7 @@ S.eq(known.version, 5009000, "an announced version stays")
 local unknown_st = state_of(early, 5009000, "default")
 S.eq(info_of(state, early, 5009000, "default"), "Robot state: RUNNING", "Info")
 S.eq(state.info(state.m, S.tvb(early), early, 0, #early, unknown_st, false), nil, "no column: no text")
-S.eq(unknown_st.version, 1008999, "the Info pass learns the version from the sizes, column or not")
+S.eq(unknown_st.version, 1008000, "the Info pass learns the version from the sizes, column or not")
 S.eq(unknown_st.implied, "up to 1.8", "and which form told it")
 -- Shown on the message as what the layout sizes tell, when framing.lua says so.
 S.eq(tree_of(state, early, 5009000, "up to 1.8"):match(
@@ -254,7 +258,7 @@ tree = S.tree(false)
 st = state_of(early, 5009000, "default")
 st.visible = false
 state.tree(state.m, S.tvb(early), tree, 0, #early, st)
-S.eq(st.version, 1008999, "learnt without a tree")
+S.eq(st.version, 1008000, "learnt without a tree")
 S.eq(S.dump(tree):match("ur.early.x") == nil, true, "fields skipped")
 
 -- A message of a kind the runtime does not know stops the load.

@@ -48,44 +48,52 @@ S.eq(rt.named_in_any(NAMES, 240), true, "named in some version")
 S.eq(rt.named_in_any(NAMES, 7), false, "named in none")
 
 -- Forms: one up to 3.1 (29 bytes), one from 3.2 (46 or 52 bytes, a flag's part in or out), one
--- open-ended from 5.0 (at least 60 bytes).
-local A = { ranges = { { high = 3001999 } }, sizes = { [29] = true }, min = 29, rep = 3001999, versions = "up to 3.1" }
-local B = { ranges = { { low = 3002000, high = 5000999 } }, sizes = { [46] = true, [52] = true }, min = 46, rep = 5000999, versions = "3.2 to 5.0" }
-local C = { ranges = { { low = 5001000 } }, min = 60, rep = 5009000, versions = "5.1 and later" }
-local FORMS = { A, B, C }
+-- open-ended from 5.1 (at least 60 bytes). The segments of the version axis start at 1.9, 3.0,
+-- 3.2 and 5.1 (as the generator cuts them for every type code of the spec).
+local frt = S.base_rt({ default_version = "5.9", segment_starts = { "1.9", "3.0", "3.2", "5.1" } })
+S.eq(frt.segment_of(1008000), 1, "below the first start: segment 1")
+S.eq(frt.segment_of(3000000), 3, "a start is its segment's first version")
+S.eq(frt.segment_of(3001999), 3, "any 3.1.x")
+S.eq(frt.segment_of(5001000), 5, "the last segment has no end")
+S.eq(frt.segment_of(99000000), 5, "nor an end far above")
+local A = { sizes = { [29] = true }, min = 29, rep = "3.1", versions = "up to 3.1" }
+local B = { sizes = { [46] = true, [52] = true }, min = 46, rep = "5.0", versions = "3.2 to 5.0" }
+local C = { min = 60, rep = "5.9", versions = "5.1 and later" }
+local FORMS = { segments = { 1, 1, 1, 2, 3 }, by_length = { [29] = 1, [46] = 2, [52] = 2 }, A, B, C }
 local function chose(size, v, form, use, by_length)
-    local f, u, b = rt.choose(FORMS, size, v)
-    S.eq(f, form, string.format("form for %d bytes at %s", size, rt.version_text(v)))
-    S.eq(u, use, string.format("version for %d bytes at %s", size, rt.version_text(v)))
-    S.eq(b, by_length, string.format("by length for %d bytes at %s", size, rt.version_text(v)))
+    local f, u, b = frt.choose(FORMS, size, v)
+    S.eq(f, form, string.format("form for %d bytes at %s", size, frt.version_text(v)))
+    S.eq(u, use, string.format("version for %d bytes at %s", size, frt.version_text(v)))
+    S.eq(b, by_length, string.format("by length for %d bytes at %s", size, frt.version_text(v)))
 end
 chose(46, 3004000, B, 3004000, false)     -- the version's form fits
 chose(52, 3004000, B, 3004000, false)     -- with its flagged part
-chose(29, 3004000, A, 3001999, true)      -- only A fits: its version
-chose(29, 5009000, A, 3001999, true)
+chose(29, 3004000, A, 3001000, true)      -- only A fits: its version
+chose(29, 5009000, A, 3001000, true)
 chose(70, 3004000, B, 3004000, false)     -- open-ended C fits too much to be recognised by length
 chose(30, 3004000, B, 3004000, false)     -- none fits: the version's form, flagged later
 chose(30, 1008000, A, 1008000, false)
 chose(61, 5009000, C, 5009000, false)
-local gap = { { ranges = { { high = 1008999 } }, sizes = { [10] = true }, min = 10, rep = 1008999, versions = "up to 1.8" },
-              { ranges = { { low = 3000000 } }, sizes = { [10] = true }, min = 10, rep = 5009000, versions = "3.0 and later" } }
-local f, u, b = rt.choose(gap, 10, 2000000)
-S.eq(f, gap[1], "no form for the version: the nearest below"); S.eq(u, 1008999, "read as its version")
+local gap = { segments = { 1, -1, 2, 2, 2 }, by_length = {},
+              { sizes = { [10] = true }, min = 10, rep = "1.8", versions = "up to 1.8" },
+              { sizes = { [10] = true }, min = 10, rep = "5.9", versions = "3.0 and later" } }
+local f, u, b = frt.choose(gap, 10, 2000000)
+S.eq(f, gap[1], "no form for the version: the nearest below"); S.eq(u, 1008000, "read as its version")
 S.eq(b, false, "not by length")
-local single = { single = true, { ranges = { {} }, sizes = { [4] = true }, min = 4, rep = 5009000, versions = "all versions" } }
-f, u, b = rt.choose(single, 9, 3002000)
+local single = { single = true, { sizes = { [4] = true }, min = 4, rep = "5.9", versions = "all versions" } }
+f, u, b = frt.choose(single, 9, 3002000)
 S.eq(f, single[1], "one form for every version"); S.eq(u, 3002000, "read with the stream's version"); S.eq(b, false, "never by length")
 
 -- pick: a stream whose version is not known takes the version of a form chosen by length.
 local st = { version = 5009000, known = false }
-f, u, b = rt.pick(FORMS, 29, st)
-S.eq(st.version, 3001999, "unknown: the form's version for the rest of the message")
+f, u, b = frt.pick(FORMS, 29, st)
+S.eq(st.version, 3001000, "unknown: the form's version for the rest of the message")
 S.eq(st.implied, "up to 3.1", "and where it came from")
-f, u, b = rt.pick(FORMS, 46, st)
-S.eq(f, B, "the next package by its length"); S.eq(st.version, 5000999, "moves on again"); S.eq(st.implied, "3.2 to 5.0", "")
+f, u, b = frt.pick(FORMS, 46, st)
+S.eq(f, B, "the next package by its length"); S.eq(st.version, 5000000, "moves on again"); S.eq(st.implied, "3.2 to 5.0", "")
 st = { version = 5009000, known = true }
-f, u, b = rt.pick(FORMS, 29, st)
-S.eq(f, A, "known: the form by length"); S.eq(u, 3001999, "read with its version"); S.eq(b, true, "by length")
+f, u, b = frt.pick(FORMS, 29, st)
+S.eq(f, A, "known: the form by length"); S.eq(u, 3001000, "read with its version"); S.eq(b, true, "by length")
 S.eq(st.version, 5009000, "a known version stays"); S.eq(st.implied, nil, "nothing implied")
 
 -- A Version message: header (5), timestamp (8), source (1), subtype 3, name (length 9), major 5,

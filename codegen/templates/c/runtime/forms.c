@@ -12,9 +12,9 @@
 
 /* The segment of the version axis that holds a version (its urwire__version_key): the last
  * bound at or below it. The default version's segment is tried first (a stream read before its
- * Version message, and most e-Series; the last bound lies past every version, so a bound
- * follows it), then the bounds from the newest, which streams run most; bound 0 stops the
- * search. */
+ * Version message, and most e-Series; the generator never makes it the last segment, so a
+ * bound follows it), then the bounds from the newest, which streams run most; bound 0 stops
+ * the search. */
 URWIRE__PRIVATE size_t urwire__segment(uint64_t key)
 {
     size_t k = URWIRE__COUNT(urwire__segment_bounds) - 1;
@@ -39,11 +39,6 @@ URWIRE__PRIVATE const urwire__form *urwire__mine(const urwire__form_table *t, si
     return k ? &t->all[k - 1] : NULL;
 }
 
-static bool urwire__has_size(const urwire__form *f, size_t size)
-{
-    return f->nsizes && urwire__fits(f, size);
-}
-
 /* The form of a body of `size` bytes, for a code of t (which has a layout) in a stream of
  * *version (in `segment`). A form chosen by its length alone sets *version to the version it
  * stands for and *by_length. */
@@ -52,22 +47,21 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
 {
     const urwire__forms *fs = &t->codes[code];
     bool nearest;
-    const urwire__form *mine = urwire__mine(t, segment, code, &nearest), *fit = NULL;
+    const urwire__form *mine = urwire__mine(t, segment, code, &nearest), *fit;
     uint8_t k;
     *by_length = false;
     if (nearest)
         *version = mine->rep;
     if (mine != NULL && urwire__fits(mine, size))
         return mine;
-    /* Only a form of exact sizes is recognised by its length: an open-ended one fits too much. */
-    for (k = 0; k < fs->count; k++)
-        if (urwire__has_size(&fs->forms[k], size)) {
-            if (fit != NULL)
-                return mine != NULL ? mine : &fs->forms[fs->count - 1];
-            fit = &fs->forms[k];
-        }
-    if (fit == NULL)
+    /* The sizes the generator found in exactly one fixed-size form (an open-ended one fits too
+     * much to be recognised by its length). */
+    for (k = 0; k < fs->nby_length; k++)
+        if (fs->by_length[k].size == size)
+            break;
+    if (k == fs->nby_length)
         return mine != NULL ? mine : &fs->forms[fs->count - 1];
+    fit = &fs->forms[fs->by_length[k].form];
     version->major = fit->rep.major;
     version->minor = fit->rep.minor;
     version->bugfix = fit->rep.bugfix;  /* whether it was assumed stays as it was */

@@ -144,11 +144,20 @@ URWIRE__INLINE bool urwire__fits_brief(uint32_t brief, size_t size)
     return brief == size || ((brief & 0x80000000u) && size >= (brief & 0x7fffffffu));
 }
 
+/* A body size that exactly one fixed-size form of a type code has, and that form's index among
+ * the code's forms: a body of that size alone says which form it is. */
+typedef struct urwire__recognised {
+    uint32_t size;
+    uint8_t form;
+} urwire__recognised;
+
 /* The forms of one type code, in a table of all the forms of its type byte (count 0: the code
- * has no layout). */
+ * has no layout), and the sizes that recognise one of them. */
 typedef struct urwire__forms {
     const urwire__form *forms;
     uint8_t count;
+    const urwire__recognised *by_length;
+    uint8_t nby_length;
 } urwire__forms;
 
 /* The forms of the codes of one type byte (sub-package types, or the subtypes of a message):

@@ -77,20 +77,31 @@ local function named_in_any(tables, code)
     return false
 end
 
--- The forms of a package type or subtype: a list of { of = <its layout's data>, ranges = { {
--- low, high }, ... } (the versions that send it), sizes = { [body size] = true } or nil when
--- open-ended (then at least min), rep = the version a stream is taken to run when this form is
--- recognised by its length alone, versions = those versions as text }; `single` when one form
--- serves every version.
-local function sent_by(form, v)
-    local ranges = form.ranges
-    for i = 1, #ranges do
-        local r = ranges[i]
-        if version_in(v, r.low, r.high) then return true end
+-- Where every segment of the version axis but the first starts (spec.segment_starts, as text):
+-- within a segment every type code sends one form, so a version's form is a lookup.
+local segment_starts = {}
+for i, text in ipairs(spec.segment_starts or {}) do segment_starts[i] = parse_version(text) end
+
+-- The segment that holds version v: 1 below the first start, else 1 + the starts at or below v.
+-- The last answer is kept: a stream keeps its version.
+local last_v, last_segment
+local function segment_of(v)
+    if v == last_v then return last_segment end
+    local lo, hi = 1, #segment_starts + 1
+    while lo < hi do
+        local mid = floor((lo + hi) / 2)
+        if segment_starts[mid] <= v then lo = mid + 1 else hi = mid end
     end
-    return false
+    last_v, last_segment = v, lo
+    return lo
 end
 
+-- The forms of a package type or subtype: a list of { of = <its layout's data>, sizes = {
+-- [body size] = true } or nil when open-ended (then at least min), rep = the version a stream
+-- is taken to run when this form is recognised by its length alone (text), versions = the
+-- versions that send it }; `single` when one form serves every version; `segments`, the form of
+-- each segment (negative: none is sent there, the form is the nearest version's below);
+-- `by_length`, the body sizes that recognise one form.
 local function fits(form, size)
     if form.sizes then return form.sizes[size] == true end
     return size >= form.min
@@ -98,33 +109,14 @@ end
 
 -- The form of a body of `size` bytes for version v, the version to read it with, and whether
 -- the length chose it: the version's form when it fits; else the one form whose exact size it
--- is (an open-ended form fits too much to be recognised by length); else the version's form (or
--- the nearest below), whose short or extra bytes are then reported.
+-- is; else the version's form, whose short or extra bytes are then reported.
 local function choose_form(forms, size, v)
-    local mine
-    for i = 1, #forms do
-        if sent_by(forms[i], v) then mine = forms[i]; break end
-    end
-    if not mine then
-        -- A version no form is sent by (between series, or newer than the spec knows): the
-        -- form of the nearest version below it, else the first.
-        local best = nil
-        for i = 1, #forms do
-            local ranges = forms[i].ranges
-            for j = 1, #ranges do
-                local low = ranges[j].low or 0
-                if low <= v and (not best or low > best) then best, mine = low, forms[i] end
-            end
-        end
-        mine = mine or forms[1]
-        v = mine.rep   -- read as the version it stands for
-    end
+    local k = forms.segments[segment_of(v)]
+    local mine = forms[k < 0 and -k or k]
+    if k < 0 then v = parse_version(mine.rep) end   -- read as the version it stands for
     if fits(mine, size) then return mine, v, false end
-    local found, count = nil, 0
-    for i = 1, #forms do
-        if forms[i].sizes and forms[i].sizes[size] then found, count = forms[i], count + 1 end
-    end
-    if count == 1 then return found, found.rep, true end
+    local n = forms.by_length[size]
+    if n then return forms[n], parse_version(forms[n].rep), true end
     return mine, v, false
 end
 
@@ -183,6 +175,6 @@ end
 rt.version_number, rt.parse_version, rt.version_text, rt.version_in =
     version_number, parse_version, version_text, version_in
 rt.value_table, rt.enum_names, rt.named_in_any = value_table, enum_names, named_in_any
-rt.choose, rt.pick, rt.announced_version = choose, pick, announced_version
+rt.choose, rt.pick, rt.announced_version, rt.segment_of = choose, pick, announced_version, segment_of
 -- The version assumed when neither a Version message, the preference nor the layout sizes give one.
 rt.default_version = parse_version(spec.default_version)
