@@ -107,8 +107,8 @@ def test_versions_reach_the_runtime_as_numbers():
     assert '{ k = "cond", present_if = nil, low = 5025001, high = 6002999, fields = {' in text
     assert "{ low = 3003000, high = 5008999, min_size = 1, kinds = {" in text   # value types of 3.3 to 5.8
     # The forms tables print versions as versions: the runtime parses them once, at load.
-    assert ('{ of = PART.additional_info, sizes = { [5] = true }, min = 5, rep = "5.25.1",\n'
-            '          versions = "5.25.1 to 6.2" }') in text
+    assert ('{ of = PART.additional_info, sizes = { [5] = true }, min = 5, rep = "5.25.1", '
+            'versions = "5.25.1 to 6.2" }') in text
     starts = text[text.index("segment_starts = {"):]
     starts = starts[:starts.index("}")]
     assert '"5.25.1"' in starts and '"6.3"' in starts     # a form from 5.25.1, the next from 6.3 on
