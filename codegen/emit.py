@@ -8,6 +8,9 @@ from pathlib import Path
 import jinja2
 
 TEMPLATES = Path(__file__).parent / "templates"
+# Hand-written code in each target's language, one folder per language (runtime/c, runtime/lua),
+# beside the generator as Emboss keeps runtime/cpp: edited, compiled and tested where it is.
+RUNTIME = Path(__file__).resolve().parent.parent / "runtime"
 REGENERATE = "make generate"
 
 
@@ -52,8 +55,13 @@ def runtime_files(target: str, comment: str = "#") -> dict[str, str]:
 _STANDALONE = re.compile(r"^[^\n]*<standalone>[^\n]*\n.*?^[^\n]*</standalone>[^\n]*\n", re.M | re.S)
 
 
-def runtime_source(target: str, name: str) -> str:
-    """One hand-written runtime file of a target (codegen/templates/<target>/runtime/<name>), as
-    it is joined into a generated file: its standalone-only lines removed."""
-    text = (TEMPLATES / target / "runtime" / name).read_text(encoding="utf-8")
+def runtime_path(language: str, name: str) -> str:
+    """Where a runtime file lives, as a joined section names it (runtime/c/framer.c)."""
+    return f"{RUNTIME.name}/{language}/{name}"
+
+
+def runtime_source(language: str, name: str) -> str:
+    """One hand-written runtime file (runtime/<language>/<name>), as it is joined into a generated
+    file: its standalone-only lines removed."""
+    text = (RUNTIME / language / name).read_text(encoding="utf-8")
     return _STANDALONE.sub("", text)

@@ -15,7 +15,7 @@
 --
 -- The file has two parts. First the tables generated from the spec: value strings, fields,
 -- layouts (one descriptor per field), messages; all handed over in one table, `spec`. Then the
--- hand-written runtime that walks them (codegen/templates/lua/runtime/*.lua), one chunk per
+-- hand-written runtime that walks them (runtime/lua/*.lua), one chunk per
 -- file, each called with (spec, rt); `rt` holds what earlier chunks export.
 
 local ur = Proto("ur", "Universal Robots primary/secondary client interface")
@@ -1805,7 +1805,7 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
--- Runtime: declare.lua (codegen/templates/lua/runtime/declare.lua)
+-- ---- runtime/lua/declare.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -1851,7 +1851,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: bytes.lua (codegen/templates/lua/runtime/bytes.lua)
+-- ---- runtime/lua/bytes.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -1903,7 +1903,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: versions.lua (codegen/templates/lua/runtime/versions.lua)
+-- ---- runtime/lua/versions.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2098,7 +2098,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: items.lua (codegen/templates/lua/runtime/items.lua)
+-- ---- runtime/lua/items.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2207,7 +2207,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: collector.lua (codegen/templates/lua/runtime/collector.lua)
+-- ---- runtime/lua/collector.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2236,7 +2236,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: walk.lua (codegen/templates/lua/runtime/walk.lua)
+-- ---- runtime/lua/walk.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2568,7 +2568,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: values.lua (codegen/templates/lua/runtime/values.lua)
+-- ---- runtime/lua/values.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2693,7 +2693,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: info.lua (codegen/templates/lua/runtime/info.lua)
+-- ---- runtime/lua/info.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2860,7 +2860,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: messages.lua (codegen/templates/lua/runtime/messages.lua)
+-- ---- runtime/lua/messages.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3089,7 +3089,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: wanted.lua (codegen/templates/lua/runtime/wanted.lua)
+-- ---- runtime/lua/wanted.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3198,7 +3198,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: carry.lua (codegen/templates/lua/runtime/carry.lua)
+-- ---- runtime/lua/carry.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3242,7 +3242,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: stream.lua (codegen/templates/lua/runtime/stream.lua)
+-- ---- runtime/lua/stream.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3383,7 +3383,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: framing.lua (codegen/templates/lua/runtime/framing.lua)
+-- ---- runtime/lua/framing.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3644,7 +3644,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: register.lua (codegen/templates/lua/runtime/register.lua)
+-- ---- runtime/lua/register.lua ----
 -- =============================================================================================
 do
 (function(...)
