@@ -35,21 +35,6 @@ def banner_lines(spec_path: str, spec_text: str) -> list[str]:
     ]
 
 
-def runtime_files(target: str, comment: str = "#") -> dict[str, str]:
-    """Hand-written runtime sources kept beside a target's templates, copied with a first line
-    that says where they come from (so nobody edits the copy)."""
-    folder = TEMPLATES / target / "runtime"
-    if not folder.is_dir():
-        return {}
-    out = {}
-    for p in sorted(folder.iterdir()):
-        if p.is_file():
-            origin = (f"{comment} Copied from codegen/templates/{target}/runtime/{p.name}: edit it there "
-                      f"and run `{REGENERATE}`.\n")
-            out[p.name] = origin + p.read_text(encoding="utf-8")
-    return out
-
-
 # A runtime file compiles (or runs) on its own; lines it needs only then, such as an #include of
 # a test header or a stub, sit between these markers and are dropped when the file is joined.
 _STANDALONE = re.compile(r"^[^\n]*<standalone>[^\n]*\n.*?^[^\n]*</standalone>[^\n]*\n", re.M | re.S)

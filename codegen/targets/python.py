@@ -10,13 +10,14 @@ from dataclasses import dataclass, field
 from typing import Optional
 
 from .. import ir, plan
-from ..emit import environment, runtime_files
+from ..emit import environment
 from ..errors import Problem, SpecError
 from ..view import Step, one_line
 from ..naming import (camel, py_enum_class, py_item_class, py_layout_class, py_lookup,
                       py_message_class, py_table_class, words)
 
-PACKAGE = "python/urwire"
+# The generated subpackage urwire.generated; the hand-written package is python/urwire/.
+PACKAGE = "python/urwire/generated"
 STRUCT_CODES = {"bool": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H", "int32": "i",
                 "uint32": "I", "int64": "q", "uint64": "Q", "float32": "f", "float64": "d"}
 RESERVED_LOCALS = {"buf", "pos", "end", "version", "v", "cls", "self", "out", "item", "fmt", "exc", "header"}
@@ -467,9 +468,5 @@ def render(protocol_plan: plan.ProtocolPlan, banner: list[str]) -> dict[str, str
     model = _Target(protocol_plan).build()
     ctx = dict(banner=banner, p=p, enums=enum_views(p), value_tables=value_kind_views(p),
                version_text=ir.version_text, **model)
-    out = {f"{PACKAGE}/{name[:-3]}": env.get_template(name).render(**ctx)
-           for name in ("enums.py.j2", "messages.py.j2", "spec.py.j2", "__init__.py.j2")}
-    for name, text in runtime_files("python").items():
-        out[f"{PACKAGE}/{name}"] = text
-    out[f"{PACKAGE}/py.typed"] = ""
-    return out
+    return {f"{PACKAGE}/{name[:-3]}": env.get_template(name).render(**ctx)
+            for name in ("enums.py.j2", "messages.py.j2", "spec.py.j2", "__init__.py.j2")}

@@ -17,7 +17,7 @@ def test_bindings_import_nothing_from_outside_the_standard_library():
         "third = {m.split('.')[0] for m in sys.modules} & {'dpkt', 'tqdm', 'yaml', 'jinja2', 'numpy'}\n"
         "assert not third, third\n"
     )
-    env = dict(os.environ, PYTHONPATH=str(ROOT / "generated" / "python"))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")]))
     subprocess.run([sys.executable, "-c", code], check=True, env=env)
 
 
@@ -26,7 +26,7 @@ def test_pip_install_gives_the_package_its_types_and_command(tmp_path):
     subprocess.run([sys.executable, "-m", "pip", "install", "-q", "--no-deps",
                     "--target", str(target), str(ROOT)], check=True, capture_output=True)
     assert (target / "urwire" / "py.typed").exists()
-    assert (target / "urwire" / "messages.py").exists()
+    assert (target / "urwire" / "generated" / "messages.py").exists()
     assert (target / "bin" / "urwire").exists()
     env = dict(os.environ, PYTHONPATH=str(target))
     out = subprocess.run([sys.executable, str(target / "bin" / "urwire"), "--version"], env=env,
@@ -40,7 +40,7 @@ def test_every_attribute_carries_its_label_and_unit():
     import dataclasses
 
     import urwire
-    from urwire import messages
+    from urwire.generated import messages
 
     meta = {f.name: f.metadata for f in dataclasses.fields(messages.Joint)}
     assert meta["q_actual"] == {"label": "Actual joint position", "unit": "rad"}

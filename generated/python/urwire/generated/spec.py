@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import struct
 
-from ._runtime import ValueCodec
+from .._runtime import ValueCodec
 
 PROTOCOL = "ur"
 PORTS = [30001, 30002, 30011, 30012]

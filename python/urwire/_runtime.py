@@ -1,8 +1,4 @@
-# Copied from codegen/templates/python/runtime/_runtime.py: edit it there and run `make generate`.
-"""Decoding helpers shared by the generated layouts: errors, text, bounds checks, values.
-
-Hand-written; copied verbatim into generated/python/urwire/ by `make generate`.
-"""
+"""Decoding helpers shared by the generated layouts: errors, text, bounds checks, values."""
 from __future__ import annotations
 
 import struct

@@ -1,11 +1,10 @@
-# Copied from codegen/templates/python/runtime/simulated.py: edit it there and run `make generate`.
 """A simulated controller: the messages a robot of one software version sends a client, built
 with the generated message classes and encoders, so every layout is that version's own.
 
 A client gets the Version message, then a robot state per tick (kinematics and configuration
 only in the first), while a program runs in a loop: key messages when it starts and stops, text
 messages, global variables (set up once, then updated) and now and then a protective stop with
-its safety mode message. Hand-written; copied into generated/python/urwire/ by `make generate`.
+its safety mode message.
 """
 from __future__ import annotations
 
@@ -14,10 +13,10 @@ import math
 import re
 from typing import Iterator
 
-from . import enums as _e
-from . import messages as _m
+from .generated import enums as _e
+from .generated import messages as _m
 from ._runtime import GlobalValue
-from .spec import value_codec
+from .generated.spec import value_codec
 
 JOINTS = 6
 CYCLE_TICKS = 100          # one program run, start to start

@@ -11,11 +11,11 @@ import struct
 from dataclasses import dataclass, field
 from typing import ClassVar, Optional, TypeVar, Union
 
-from . import _runtime as _rt
+from .. import _runtime as _rt
 from . import enums as _e
-from ._runtime import (DecodeError, EncodeError, GlobalValue, MalformedPackage, MalformedSubtype,
+from .._runtime import (DecodeError, EncodeError, GlobalValue, MalformedPackage, MalformedSubtype,
                        UnknownMessage, UnknownPackage, UnknownSubtype)
-from .arguments import bytes_of, version_of
+from ..arguments import bytes_of, version_of
 from .enums import *  # noqa: F401,F403
 from .spec import DEFAULT_VERSION, HEADER, value_codec
 
