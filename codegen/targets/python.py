@@ -97,7 +97,7 @@ class PyClass:
 
     @property
     def base(self) -> str:
-        return {"package": "_Package", "subtype": "_Subtype", "item": "_Item"}[self.role]
+        return {"package": "_kinds.Package", "subtype": "_kinds.Subtype", "item": "_kinds.Item"}[self.role]
 
     @property
     def field_names(self) -> list[str]:
@@ -393,8 +393,15 @@ class _Target:
                 continue
             fields = [slot.field for slot in mp.header if not slot.is_subtype]
             subtype = mp.header[-1].field
-            # Header values that need converting after the unpack (enums).
-            converts = [MemberView(f.name, "scalar", *conversion(f.scalar, f.enum)) for f in fields]
+            # Header values that need converting after the unpack: enums, looked up by the runtime.
+            converts = []
+            for i, f in enumerate(fields):
+                conv, lookup = conversion(f.scalar, f.enum)
+                if conv in ("enum", "venum"):
+                    converts.append(dict(index=i, lookup=lookup, by_version=conv == "venum"))
+                elif conv != "plain":
+                    self.problems.append(f.where.problem(
+                        f"python target: header field '{f.name}' must be an integer or an enum"))
             classes = {id(c.layout): self.build_class(c.plan, py_layout_class(c.layout, True), "subtype",
                                                       c.layout.name, c.layout.code.value,
                                                       one_line(c.layout.doc, c.layout.field_note), mp.header,
@@ -408,7 +415,7 @@ class _Target:
                 header_fmt=">" + "".join(STRUCT_CODES[slot.field.scalar.name] for slot in mp.header),
                 header_run=[(slot.field.name, slot.offset, slot.field.scalar.size) for slot in mp.header],
                 header_offset=mp.header[0].offset, header_names=[f.name for f in fields],
-                header_converts=[c for c in converts if c.conv != "plain"], subtype=subtype.name,
+                header_converts=converts, subtype=subtype.name,
                 body_offset=mp.body_offset, forms=self.forms(mp, classes), announces=announces))
         if self.problems:
             raise SpecError(self.p.source, self.problems)

@@ -22,7 +22,8 @@ from .canonical import to_dict, to_json_line  # noqa: E402
 from .generated.enums import *  # noqa: F401,F403,E402  (every enum of the document)
 from .framer import Framer, decode_stream  # noqa: E402
 from .generated.messages import *  # noqa: F401,F403,E402  (every message and sub-package class)
-from .generated.messages import decode_message, encode_message, package_classes  # noqa: E402
+from .decoding import decode_message, encode_message, package_classes  # noqa: E402
+from .message_kinds import encode_package  # noqa: E402
 from .reading import decode_file  # noqa: E402
 from .generated.spec import DEFAULT_VERSION, DOCUMENTED_VERSIONS, PORTS  # noqa: E402
 

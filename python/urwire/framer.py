@@ -11,7 +11,7 @@ from typing import Iterable, Iterator, Optional, Union
 
 from ._runtime import StreamError
 from .arguments import VersionLike, bytes_of, parse_version
-from .generated.messages import decode_message
+from .decoding import decode_message
 from .generated.spec import DEFAULT_VERSION, HEADER, HEADER_SIZE, KNOWN_MESSAGE_TYPES, MAX_MESSAGE_LENGTH
 
 

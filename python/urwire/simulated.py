@@ -16,6 +16,7 @@ from typing import Iterator
 from .generated import enums as _e
 from .generated import messages as _m
 from ._runtime import GlobalValue
+from .decoding import encode_message, package_classes
 from .generated.spec import value_codec
 
 JOINTS = 6
@@ -62,7 +63,7 @@ def _enum_value(table: str, version: tuple, name: str, default: int) -> int:
 
 def state_classes(version: tuple) -> list:
     """The sub-package classes a controller of `version` sends, in type-code order."""
-    return [cls for cls in _m.package_classes(version).values()
+    return [cls for cls in package_classes(version).values()
             if cls not in INTERNAL and (version[0] >= 5 or cls not in E_SERIES_ONLY)]
 
 
@@ -90,7 +91,7 @@ class Controller:
 
     # --- messages ---------------------------------------------------------------------------
     def encode(self, msg) -> bytes:
-        return _m.encode_message(msg, self.version)
+        return encode_message(msg, self.version)
 
     def version_message(self) -> bytes:
         major, minor, bugfix = self.version
