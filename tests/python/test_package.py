@@ -1,12 +1,19 @@
-"""`pip install .` gives the urwire package and command; the bindings need no third-party module."""
+"""`pip install .` and `pip install -e .` give the urwire package and command, from python/urwire
+and its generated subpackage; the bindings need no third-party module."""
 from __future__ import annotations
 
+import json
 import os
+import shutil
 import subprocess
 import sys
+import sysconfig
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[2]
+SAMPLE = ROOT / "dissector" / "samples" / "primary_session.pcapng"
 
 
 def test_bindings_import_nothing_from_outside_the_standard_library():
@@ -57,3 +64,55 @@ def test_every_attribute_carries_its_label_and_unit():
     data = bytes.fromhex("0000001c140000000000000000fe030255520518000000000000002a")
     (record,) = urwire.decode_stream(data)
     assert "project_name" in urwire.to_dict(record) and "Project name" not in urwire.to_json_line(record)
+
+
+def source_copy(dest: Path) -> Path:
+    """What packaging reads, copied out of the tree: pyproject.toml, README.md, the hand-written
+    package and the generated subpackage (nothing else may be needed to install)."""
+    dest.mkdir()
+    for name in ("pyproject.toml", "README.md"):
+        shutil.copy2(ROOT / name, dest / name)
+    shutil.copytree(ROOT / "python", dest / "python", ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copytree(ROOT / "generated" / "python", dest / "generated" / "python",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    return dest
+
+
+def fresh_venv(path: Path) -> Path:
+    """A venv that sees the system's packages (dpkt, setuptools) and, when the tests run in a
+    venv themselves, that venv's too; its python."""
+    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", "--without-pip", str(path)], check=True)
+    python = path / "bin" / "python"
+    if sys.prefix != sys.base_prefix:
+        purelib = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                                 capture_output=True, text=True, check=True).stdout.strip()
+        Path(purelib, "outer-venv.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
+    return python
+
+
+# The editable install is strict (a tree of links in the copy's build/): setuptools' default one
+# imports through a finder it appends after the path finder, so a urwire installed as a plain
+# package in the system's site-packages (scripts/setup.sh runs `pip install .`) would win.
+@pytest.mark.parametrize("how", [[], ["--config-settings", "editable_mode=strict", "-e"]],
+                         ids=["pip install .", "pip install -e ."])
+def test_installed_package_decodes_a_sample_from_outside_the_tree(tmp_path, how):
+    source = source_copy(tmp_path / "src")
+    python = fresh_venv(tmp_path / "venv")
+    # No build isolation: the build uses the setuptools and wheel of requirements-dev.txt.
+    pip = subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-deps", "--no-build-isolation", *how,
+                          str(source)], capture_output=True, text=True, cwd=tmp_path)
+    assert pip.returncode == 0, pip.stdout[-2000:] + pip.stderr[-2000:]
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    where = subprocess.run([str(python), "-c", "import urwire, urwire.generated.messages as m, urwire.cli as c; "
+                            "print(urwire.__file__); print(m.__file__); print(c.__file__)"],
+                           cwd=elsewhere, env=env, capture_output=True, text=True, check=True).stdout.split()
+    installed = (tmp_path / "venv") if not how else source
+    for path in where:
+        assert Path(path).resolve().is_relative_to(installed.resolve()), (how, where)
+    out = subprocess.run([str(tmp_path / "venv" / "bin" / "urwire"), "decode", str(SAMPLE)], cwd=elsewhere,
+                         env=env, capture_output=True, text=True, check=True).stdout.splitlines()
+    records = [json.loads(line) for line in out]
+    assert records[0]["type"] == "version" and records[0]["major_version"] == 5
+    assert sum(r["type"] == "robot_state" for r in records) > 10
