@@ -11,9 +11,15 @@ The modules here are hand-written; `urwire.generated` (messages, enums, spec) is
 the spec by `make generate`. In the source tree it lives under generated/python/urwire/, which
 extend_path adds to this package's path when both python/ and generated/python/ are on sys.path.
 """
+import os
 from pkgutil import extend_path
 
-__path__ = extend_path(__path__, __name__)
+# Other folders named urwire on sys.path join this package: in the tree, generated/python/urwire,
+# which holds the subpackage `generated` and no __init__.py. A folder with an __init__.py of its
+# own is another install of urwire and stays out, so that none of its modules is imported here.
+_OWN = list(__path__)
+__path__ = [p for p in extend_path(__path__, __name__)
+            if p in _OWN or not os.path.isfile(os.path.join(p, "__init__.py"))]
 
 from ._runtime import (DecodeError, EncodeError, GlobalValue, MalformedPackage, MalformedSubtype,  # noqa: E402
                        StreamError, UnknownMessage, UnknownPackage, UnknownSubtype)

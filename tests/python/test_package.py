@@ -7,7 +7,6 @@ import os
 import shutil
 import subprocess
 import sys
-import sysconfig
 from pathlib import Path
 
 import pytest
@@ -78,15 +77,21 @@ def source_copy(dest: Path) -> Path:
     return dest
 
 
+# What `pip install --no-build-isolation` builds with: setuptools from 70.1 on, or from 68 with wheel.
+CAN_BUILD = ("import sys, setuptools; from importlib.util import find_spec; "
+             "v = tuple(int(x) for x in setuptools.__version__.split('.')[:2]); "
+             "sys.exit(0 if v >= (70, 1) or (v >= (68, 0) and find_spec('wheel')) else 1)")
+
+
 def fresh_venv(path: Path) -> Path:
-    """A venv that sees the system's packages (dpkt, setuptools) and, when the tests run in a
-    venv themselves, that venv's too; its python."""
+    """A venv that sees the system's packages (dpkt, tqdm, pip), with the build requirements of
+    pyproject.toml (requirements-dev.txt installs them; else they are installed into the venv);
+    its python."""
     subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", "--without-pip", str(path)], check=True)
     python = path / "bin" / "python"
-    if sys.prefix != sys.base_prefix:
-        purelib = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
-                                 capture_output=True, text=True, check=True).stdout.strip()
-        Path(purelib, "outer-venv.pth").write_text(sysconfig.get_paths()["purelib"] + "\n")
+    if subprocess.run([str(python), "-c", CAN_BUILD]).returncode != 0:
+        subprocess.run([str(python), "-m", "pip", "install", "-q", "setuptools>=68", "wheel"], check=True,
+                       capture_output=True)
     return python
 
 
@@ -98,7 +103,6 @@ def fresh_venv(path: Path) -> Path:
 def test_installed_package_decodes_a_sample_from_outside_the_tree(tmp_path, how):
     source = source_copy(tmp_path / "src")
     python = fresh_venv(tmp_path / "venv")
-    # No build isolation: the build uses the setuptools and wheel of requirements-dev.txt.
     pip = subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-deps", "--no-build-isolation", *how,
                           str(source)], capture_output=True, text=True, cwd=tmp_path)
     assert pip.returncode == 0, pip.stdout[-2000:] + pip.stderr[-2000:]
@@ -116,3 +120,20 @@ def test_installed_package_decodes_a_sample_from_outside_the_tree(tmp_path, how)
     records = [json.loads(line) for line in out]
     assert records[0]["type"] == "version" and records[0]["major_version"] == 5
     assert sum(r["type"] == "robot_state" for r in records) > 10
+
+
+def test_in_the_tree_the_package_joins_the_generated_folder_and_no_other_install(tmp_path):
+    """With python/ and generated/python/ on sys.path, urwire's path is exactly their two urwire
+    folders: a urwire installed elsewhere on the path (a folder with its own __init__.py) adds
+    no module to it."""
+    other = tmp_path / "other" / "urwire"
+    other.mkdir(parents=True)
+    (other / "__init__.py").write_text("")
+    (other / "stale.py").write_text("")
+    path = [ROOT / "python", ROOT / "generated" / "python", tmp_path / "other"]
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(map(str, path)))
+    out = subprocess.run([sys.executable, "-c", "import importlib.util, urwire, urwire.generated; "
+                          "print(urwire.__path__); print(importlib.util.find_spec('urwire.stale'))"],
+                         cwd=tmp_path, env=env, capture_output=True, text=True, check=True).stdout.splitlines()
+    assert out[0] == str([str(ROOT / "python" / "urwire"), str(ROOT / "generated" / "python" / "urwire")])
+    assert out[1] == "None"
