@@ -1,4 +1,6 @@
-"""Python target: the IR -> a view model of decode/encode steps -> templates/python/*.py.j2.
+"""Python target: the IR -> a view model of decode/encode steps -> templates/python/*.py.j2 ->
+the subpackage urwire.generated (generated/python/urwire/generated/): classes, forms and tables
+that the hand-written package python/urwire/ imports and walks.
 
 Every decision (struct formats, offsets, expressions, paths) is made here; the templates
 only lay the strings out. Fixed runs of fields become one precompiled struct.Struct.
@@ -424,7 +426,7 @@ class _Target:
         skips = [dict(fixed=k.fixed, prefix=self.prefix_const(ir.SCALARS[("int" if k.signed else "uint") + str(8 * k.prefix)]))
                  for k in v.skips]
         return dict(messages=messages, classes=self.classes, prefixes=self.prefixes, switches=self.switches,
-                    version=dict(skips=skips, tail=v.tail), header_size=self.plan.header_size, package_header_size=self.plan.package_header_size,
+                    version=dict(skips=skips, tail=v.tail), package_header_size=self.plan.package_header_size,
                     type_offset=p.message_length.scalar.size,
                     header_fmt=">" + STRUCT_CODES[p.message_length.scalar.name] + STRUCT_CODES[p.message_type.scalar.name],
                     package_header_fmt=">" + STRUCT_CODES[p.package_length.scalar.name]

@@ -23,7 +23,22 @@ from .generated.spec import DEFAULT_VERSION, HEADER, PACKAGE_HEADER
 _P = TypeVar("_P")
 
 
-class Package:
+class Layout:
+    """What every generated class shares: a class of one form defines `_encode`; a class of
+    several defines `_encode_0`, `_encode_1`... and `_FORMS`, each form's version ranges and
+    encoder, and is encoded here."""
+
+    __slots__ = ()
+
+    def _encode(self, out: bytearray, version: tuple) -> None:
+        """Write the form of `version` (the one it was read in, for a decoded package)."""
+        for ranges, encode in self._FORMS:
+            if any(low <= version <= high for low, high in ranges):
+                return encode(self, out, version)
+        return self._FORMS[-1][1](self, out, version)
+
+
+class Package(Layout):
     """What every sub-package class shares."""
 
     __slots__ = ()
@@ -40,7 +55,7 @@ class Package:
         return bytes(out)
 
 
-class Subtype:
+class Subtype(Layout):
     """What every robot-message and program-state class shares. Its SubtypeMessage sets
     `MESSAGE` (itself) and `MESSAGE_TYPE` (its code) on the class."""
 
@@ -51,7 +66,7 @@ class Subtype:
         return self.MESSAGE.encode(self, version or DEFAULT_VERSION)
 
 
-class Item:
+class Item(Layout):
     """One entry of a repeated group."""
 
     __slots__ = ()

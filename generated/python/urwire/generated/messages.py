@@ -264,13 +264,6 @@ class RobotModeData(_kinds.Package):
         out += _ROBOT_MODE_DATA_3_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled, self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped, self.is_program_running, self.is_program_paused, self.robot_mode, self.control_mode, self.target_speed_fraction, self.speed_scaling, self.target_speed_fraction_limit, self.reserved)
         out += self.extra
 
-    def _encode(self, out: bytearray, version: tuple) -> None:
-        """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
-
 
 
 _JOINT_0 = struct.Struct(">dddffffB")
@@ -1023,13 +1016,6 @@ class MasterboardData(_kinds.Package):
         out += _MASTERBOARD_DATA_4_2.pack(self.reserved_0, self.operational_mode_selector_input, self.three_position_enabling_device_input, self.reserved_1)
         out += self.extra
 
-    def _encode(self, out: bytearray, version: tuple) -> None:
-        """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
-
 
 
 _CARTESIAN_INFO_0_0 = struct.Struct(">dddddd")
@@ -1156,13 +1142,6 @@ class CartesianInfo(_kinds.Package):
     def _encode_1(self, out: bytearray, version: tuple) -> None:
         out += _CARTESIAN_INFO_1_0.pack(self.x, self.y, self.z, self.rx, self.ry, self.rz, self.tcp_offset_x, self.tcp_offset_y, self.tcp_offset_z, self.tcp_offset_rx, self.tcp_offset_ry, self.tcp_offset_rz)
         out += self.extra
-
-    def _encode(self, out: bytearray, version: tuple) -> None:
-        """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
 
 
 
@@ -1744,13 +1723,6 @@ class ConfigurationData(_kinds.Package):
         out += _CONFIGURATION_DATA_2_0.pack(*[x for item in self.joint_position_limits for x in item._values()], *[x for item in self.joint_motion_limits for x in item._values()], self.v_joint_default, self.a_joint_default, self.v_tool_default, self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha, *self.dh_theta, self.masterboard_version, self.controller_box_type, self.robot_type, self.robot_sub_type, self.reserved_1, self.reserved_2)
         out += self.extra
 
-    def _encode(self, out: bytearray, version: tuple) -> None:
-        """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
-
 
 
 _FORCE_MODE_DATA_0 = struct.Struct(">ddddddd")
@@ -1954,13 +1926,6 @@ class AdditionalInfo(_kinds.Package):
     def _encode_3(self, out: bytearray, version: tuple) -> None:
         out += _ADDITIONAL_INFO_3_0.pack(self.tp_button_state, self.freedrive_button_enabled, self.io_enabled_freedrive, self.reserved)
         out += self.extra
-
-    def _encode(self, out: bytearray, version: tuple) -> None:
-        """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
 
 
 
@@ -2328,13 +2293,6 @@ class VersionMessage(_kinds.Subtype):
         out += _rt.text_bytes(self.build_date)
         out += self.extra
 
-    def _encode(self, out: bytearray, version: tuple) -> None:
-        """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
-
 
 
 _SAFETY_MODE_0_0 = struct.Struct(">ii")
@@ -2439,13 +2397,6 @@ class SafetyModeMessage(_kinds.Subtype):
         out += _UINT32.pack(_rt.f32_bits(self.report_data)) if fmt is _FLOAT32 else fmt.pack(self.report_data)
         out += self.extra
 
-    def _encode(self, out: bytearray, version: tuple) -> None:
-        """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
-
 
 
 _ROBOT_COMM_0_0 = struct.Struct(">ii")
@@ -2544,13 +2495,6 @@ class RobotCommMessage(_kinds.Subtype):
         out += _ROBOT_COMM_1_0.pack(self.robot_message_code, self.robot_message_argument, self.robot_message_report_level, self.robot_message_data_type, self.robot_message_data)
         out += _rt.text_bytes(self.text)
         out += self.extra
-
-    def _encode(self, out: bytearray, version: tuple) -> None:
-        """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
 
 
 
@@ -2807,13 +2751,6 @@ class PopupMessage(_kinds.Subtype):
         _rt.write_prefixed_text(out, self.title, _UINT8)
         out += _rt.text_bytes(self.text)
         out += self.extra
-
-    def _encode(self, out: bytearray, version: tuple) -> None:
-        """Write the form of `version` (the one it was read in, for a decoded package)."""
-        for ranges, encode in self._FORMS:
-            if any(low <= version <= high for low, high in ranges):
-                return encode(self, out, version)
-        return self._FORMS[-1][1](self, out, version)
 
 
 
