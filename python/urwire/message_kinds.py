@@ -16,8 +16,8 @@ from dataclasses import dataclass, field
 from typing import Optional, TypeVar
 
 from . import _runtime as _rt
-from ._runtime import DecodeError, EncodeError, MalformedPackage, MalformedSubtype, UnknownMessage, UnknownPackage, \
-    UnknownSubtype
+from ._runtime import (DecodeError, EncodeError, MalformedPackage, MalformedSubtype, UnknownMessage, UnknownPackage,
+                       UnknownSubtype)
 from .generated.spec import DEFAULT_VERSION, HEADER, PACKAGE_HEADER
 
 _P = TypeVar("_P")
@@ -181,8 +181,9 @@ class SubtypeMessage:
                  body_offset: int, subtype: str, converts: tuple, forms: _rt.Forms, layouts: tuple,
                  announces: Optional[int] = None, version_skips: tuple = (), version_tail: int = 0):
         self.code, self.header, self.names, self.run = code, header, names, run
-        self.header_offset, self.body_offset, self.subtype, self.converts = header_offset, body_offset, subtype, converts
-        self.forms, self.announces, self.version_skips, self.version_tail = forms, announces, version_skips, version_tail
+        self.header_offset, self.body_offset = header_offset, body_offset
+        self.subtype, self.converts, self.forms = subtype, converts, forms
+        self.announces, self.version_skips, self.version_tail = announces, version_skips, version_tail
         for cls in layouts:
             cls.MESSAGE, cls.MESSAGE_TYPE = self, code
 
