@@ -15,7 +15,7 @@
 --
 -- The file has two parts. First the tables generated from the spec: value strings, fields,
 -- layouts (one descriptor per field), messages; all handed over in one table, `spec`. Then the
--- hand-written runtime that walks them (codegen/templates/lua/runtime/*.lua), one chunk per
+-- hand-written runtime that walks them (runtime/lua/*.lua), one chunk per
 -- file, each called with (spec, rt); `rt` holds what earlier chunks export.
 
 local ur = Proto("ur", "Universal Robots primary/secondary client interface")
@@ -1919,7 +1919,7 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
--- Runtime: declare.lua (codegen/templates/lua/runtime/declare.lua)
+-- ---- runtime/lua/declare.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -1965,7 +1965,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: bytes.lua (codegen/templates/lua/runtime/bytes.lua)
+-- ---- runtime/lua/bytes.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2017,7 +2017,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: versions.lua (codegen/templates/lua/runtime/versions.lua)
+-- ---- runtime/lua/versions.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2204,7 +2204,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: items.lua (codegen/templates/lua/runtime/items.lua)
+-- ---- runtime/lua/items.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2313,7 +2313,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: collector.lua (codegen/templates/lua/runtime/collector.lua)
+-- ---- runtime/lua/collector.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2342,7 +2342,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: walk.lua (codegen/templates/lua/runtime/walk.lua)
+-- ---- runtime/lua/walk.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2674,7 +2674,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: values.lua (codegen/templates/lua/runtime/values.lua)
+-- ---- runtime/lua/values.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2799,7 +2799,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: info.lua (codegen/templates/lua/runtime/info.lua)
+-- ---- runtime/lua/info.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2966,7 +2966,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: messages.lua (codegen/templates/lua/runtime/messages.lua)
+-- ---- runtime/lua/messages.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3195,7 +3195,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: wanted.lua (codegen/templates/lua/runtime/wanted.lua)
+-- ---- runtime/lua/wanted.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3304,7 +3304,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: carry.lua (codegen/templates/lua/runtime/carry.lua)
+-- ---- runtime/lua/carry.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3348,7 +3348,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: stream.lua (codegen/templates/lua/runtime/stream.lua)
+-- ---- runtime/lua/stream.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3489,7 +3489,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: framing.lua (codegen/templates/lua/runtime/framing.lua)
+-- ---- runtime/lua/framing.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3750,7 +3750,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: register.lua (codegen/templates/lua/runtime/register.lua)
+-- ---- runtime/lua/register.lua ----
 -- =============================================================================================
 do
 (function(...)

@@ -11,7 +11,6 @@ its JSON; only errors make the exit status 1, as for `decode`. Parquet needs pya
 Rows are kept in a temporary file per table until the capture ends (a table's columns are
 known only then), and written BATCH_ROWS rows at a time, so memory stays flat however long the
 capture.
-Hand-written; copied into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 
