@@ -53,7 +53,7 @@ demo: setup demo-python $(DEMO_TARGETS)
 
 demo-python:
 	@echo "== Python: urwire decode --format text dissector/samples/primary_session.pcapng"
-	@PYTHONPATH=generated/python $(PYTHON) -m urwire decode --format text dissector/samples/primary_session.pcapng | head -n 12
+	@PYTHONPATH=python:generated/python $(PYTHON) -m urwire decode --format text dissector/samples/primary_session.pcapng | head -n 12
 
 ## bench: speed figures, each a ratio against a baseline measured in the same run
 bench: bench-python $(BENCH_TARGETS)
@@ -65,5 +65,5 @@ BENCH_PY_BASE ?= 56d4759
 BENCH_PY_GENERATIONS ?= 27a9d98
 BENCH_PY_MB ?= 10 100
 bench-python:
-	PYTHONPATH=generated/python $(PYTHON) tests/bench/bench_python.py --base $(BENCH_PY_BASE) \
+	PYTHONPATH=python:generated/python $(PYTHON) tests/bench/bench_python.py --base $(BENCH_PY_BASE) \
 		--generations-base $(BENCH_PY_GENERATIONS) $(BENCH_PY_MB)

@@ -10,6 +10,9 @@ import jinja2
 from . import wrap
 
 TEMPLATES = Path(__file__).parent / "templates"
+# Hand-written code in each target's language, one folder per language (runtime/c, runtime/lua),
+# beside the generator as Emboss keeps runtime/cpp: edited, compiled and tested where it is.
+RUNTIME = Path(__file__).resolve().parent.parent / "runtime"
 REGENERATE = "make generate"
 
 
@@ -35,28 +38,18 @@ def banner_lines(spec_path: str, spec_text: str) -> list[str]:
     ]
 
 
-def runtime_files(target: str, comment: str = "#") -> dict[str, str]:
-    """Hand-written runtime sources kept beside a target's templates, copied with a first line
-    that says where they come from (so nobody edits the copy)."""
-    folder = TEMPLATES / target / "runtime"
-    if not folder.is_dir():
-        return {}
-    out = {}
-    for p in sorted(folder.iterdir()):
-        if p.is_file():
-            origin = (f"{comment} Copied from codegen/templates/{target}/runtime/{p.name}: edit it there "
-                      f"and run `{REGENERATE}`.\n")
-            out[p.name] = origin + p.read_text(encoding="utf-8")
-    return out
-
-
 # A runtime file compiles (or runs) on its own; lines it needs only then, such as an #include of
 # a test header or a stub, sit between these markers and are dropped when the file is joined.
 _STANDALONE = re.compile(r"^[^\n]*<standalone>[^\n]*\n.*?^[^\n]*</standalone>[^\n]*\n", re.M | re.S)
 
 
-def runtime_source(target: str, name: str) -> str:
-    """One hand-written runtime file of a target (codegen/templates/<target>/runtime/<name>), as
-    it is joined into a generated file: its standalone-only lines removed."""
-    text = (TEMPLATES / target / "runtime" / name).read_text(encoding="utf-8")
+def runtime_path(language: str, name: str) -> str:
+    """Where a runtime file lives, as a joined section names it (runtime/c/framer.c)."""
+    return f"{RUNTIME.name}/{language}/{name}"
+
+
+def runtime_source(language: str, name: str) -> str:
+    """One hand-written runtime file (runtime/<language>/<name>), as it is joined into a generated
+    file: its standalone-only lines removed."""
+    text = (RUNTIME / language / name).read_text(encoding="utf-8")
     return _STANDALONE.sub("", text)

@@ -22,7 +22,7 @@ from typing import Optional
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / "generated" / "python"))
+sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python")]
 
 import urwire  # noqa: E402
 from tests.tools import capture  # noqa: E402

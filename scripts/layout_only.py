@@ -18,12 +18,19 @@ import tempfile
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-PYTHON_MODULES = ["messages.py", "enums.py", "spec.py", "__init__.py"]
 
 
 def old_text(rev: str, path: str) -> str:
     return subprocess.run(["git", "show", f"{rev}:{path}"], cwd=ROOT, check=True,
                           capture_output=True, text=True).stdout
+
+
+def python_modules(rev: str) -> list[str]:
+    """The generated Python modules that both this work tree and `rev` have."""
+    def listed(*args: str) -> set[str]:
+        out = subprocess.run(["git", *args], cwd=ROOT, check=True, capture_output=True, text=True).stdout
+        return {p for p in out.split() if p.endswith(".py")}
+    return sorted(listed("ls-files", "generated/python") & listed("ls-tree", "-r", "--name-only", rev, "generated/python"))
 
 
 def c_object_code(source_dir: Path) -> str:
@@ -85,8 +92,7 @@ def main(argv: list[str]) -> int:
         print(f"generated/lua/urwire.lua: luac listing {'same' if ok else 'DIFFERS'}")
         same &= ok
 
-    for name in PYTHON_MODULES:
-        path = f"generated/python/urwire/{name}"
+    for path in python_modules(rev):
         ok = python_tree(old_text(rev, path)) == python_tree((ROOT / path).read_text())
         print(f"{path}: syntax tree without docstrings {'same' if ok else 'DIFFERS'}")
         same &= ok

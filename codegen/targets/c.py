@@ -15,7 +15,7 @@ from typing import Optional
 
 from .. import ir, plan
 from ..comments import field_text, node_text, value_text
-from ..emit import environment, runtime_source
+from ..emit import environment, runtime_path, runtime_source
 from ..errors import Problem, SpecError
 from ..naming import c_enum_const, c_enum_prefix, c_enum_tag, c_member_const, c_table_suffix
 from ..view import Step
@@ -51,7 +51,7 @@ C_KEYWORDS = {"auto", "break", "case", "char", "const", "continue", "default", "
 # Names the generated decoders, encoders and visitors use for themselves: no member may be
 # called so (the struct's own `version` and `extra` are added by the generator).
 RESERVED_MEMBERS = {"version", "extra"}
-# Value layouts the hand-written value decoder (templates/c/runtime/values.c) knows.
+# Value layouts the hand-written value decoder (runtime/c/values.c) knows.
 VALUE_ITEMS = {"bool": "URWIRE__ITEM_BOOL", "int32": "URWIRE__ITEM_I32", "float32": "URWIRE__ITEM_F32"}
 VALUE_LAYOUTS = {"empty": "URWIRE__LAYOUT_EMPTY", "string": "URWIRE__LAYOUT_STRING", "array": "URWIRE__LAYOUT_ARRAY",
                  "scalar": "URWIRE__LAYOUT_SCALAR", "list": "URWIRE__LAYOUT_LIST", "matrix": "URWIRE__LAYOUT_MATRIX"}
@@ -765,7 +765,7 @@ def known_types(p: ir.Protocol) -> list[str]:
     return [c_enum_const(p.message_type_enum, code) for code in sorted({v.value for v in p.message_type_enum.values})]
 
 
-# The hand-written runtime (templates/c/runtime/), in the order each part is joined to the
+# The hand-written runtime (runtime/c/), in the order each part is joined to the
 # generated ones: public headers around the spec's types, then private code before the layouts
 # and, after them, the code that walks their tables.
 RUNTIME = {
@@ -777,10 +777,15 @@ RUNTIME = {
 }
 
 
+def joined_section(name: str) -> str:
+    """A runtime file as urwire.h or urwire.c joins it: a first line names the file it came from."""
+    return f"/* ---- {runtime_path(FOLDER, name)} ---- */\n" + runtime_source(FOLDER, name)
+
+
 def render(protocol_plan, banner: list[str]) -> dict[str, str]:
     p = protocol_plan.protocol
     env = environment(FOLDER)
-    runtime = {part: "\n".join(runtime_source(FOLDER, name) for name in names) for part, names in RUNTIME.items()}
+    runtime = {part: "\n".join(joined_section(name) for name in names) for part, names in RUNTIME.items()}
     ctx = dict(banner=banner, p=p, enums=enum_views(p), values=value_views(p), runtime=runtime,
                default_version=version_view(p.default_version), default_text=ir.version_text(p.default_version),
                documented=", ".join(ir.version_text(v) for v in p.documented_versions),

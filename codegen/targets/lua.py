@@ -8,7 +8,7 @@ type among the name's entries in every version), its abbreviation
 software versions (plan.Variant), where the Version message keeps its numbers, and which fields
 the Info column shows. Versions reach the runtime as ir.version_number integers. The builder hands the template data only (dicts and `Step`s); the template writes
 each descriptor kind and each ProtoField shape with a macro of its own. The code that walks the
-descriptors is hand-written Lua in templates/lua/runtime/, joined after the generated tables.
+descriptors is hand-written Lua in runtime/lua/, joined after the generated tables.
 """
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ from typing import Optional
 
 from .. import ir, plan, wrap
 from ..comments import node_text
-from ..emit import TEMPLATES, environment, runtime_source
+from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ..errors import Problem, SpecError
 from ..naming import table_suffix, wireshark_field, words
 from ..view import Step
@@ -623,11 +623,11 @@ class _Builder:
 
 def runtime() -> list[dict]:
     """The runtime files in joining order, as joined (standalone-only lines removed)."""
-    folder = TEMPLATES / "lua" / "runtime"
+    folder = RUNTIME_FOLDER / "lua"
     found = sorted(p.name for p in folder.glob("*.lua"))
     if sorted(RUNTIME) != found:
         raise ValueError(f"lua target: runtime files {found} differ from the joining order {list(RUNTIME)}")
-    return [dict(name=name, source=runtime_source("lua", name)) for name in RUNTIME]
+    return [dict(name=name, path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in RUNTIME]
 
 
 def render(protocol_plan, banner: list[str]) -> dict[str, str]:

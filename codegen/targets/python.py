@@ -1,4 +1,6 @@
-"""Python target: the IR -> a view model of decode/encode steps -> templates/python/*.py.j2.
+"""Python target: the IR -> a view model of decode/encode steps -> templates/python/*.py.j2 ->
+the subpackage urwire.generated (generated/python/urwire/generated/): classes, forms and tables
+that the hand-written package python/urwire/ imports and walks.
 
 Every decision (struct formats, offsets, expressions, paths) is made here; the templates
 only lay the strings out. Fixed runs of fields become one precompiled struct.Struct.
@@ -10,14 +12,15 @@ from dataclasses import dataclass, field
 from typing import Optional
 
 from .. import ir, plan
-from ..emit import environment, runtime_files
+from ..emit import environment
 from ..errors import Problem, SpecError
 from ..comments import field_text, node_text, value_text
 from ..view import Step, one_line
 from ..naming import (camel, py_enum_class, py_item_class, py_layout_class, py_lookup,
                       py_message_class, py_table_class, words)
 
-PACKAGE = "python/urwire"
+# The generated subpackage urwire.generated; the hand-written package is python/urwire/.
+PACKAGE = "python/urwire/generated"
 STRUCT_CODES = {"bool": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H", "int32": "i",
                 "uint32": "I", "int64": "q", "uint64": "Q", "float32": "f", "float64": "d"}
 RESERVED_LOCALS = {"buf", "pos", "end", "version", "v", "cls", "self", "out", "item", "fmt", "exc", "header"}
@@ -98,7 +101,7 @@ class PyClass:
 
     @property
     def base(self) -> str:
-        return {"package": "_Package", "subtype": "_Subtype", "item": "_Item"}[self.role]
+        return {"package": "_kinds.Package", "subtype": "_kinds.Subtype", "item": "_kinds.Item"}[self.role]
 
     @property
     def field_names(self) -> list[str]:
@@ -385,8 +388,15 @@ class _Target:
                 continue
             fields = [slot.field for slot in mp.header if not slot.is_subtype]
             subtype = mp.header[-1].field
-            # Header values that need converting after the unpack (enums).
-            converts = [MemberView(f.name, "scalar", *conversion(f.scalar, f.enum)) for f in fields]
+            # Header values that need converting after the unpack: enums, looked up by the runtime.
+            converts = []
+            for i, f in enumerate(fields):
+                conv, lookup = conversion(f.scalar, f.enum)
+                if conv in ("enum", "venum"):
+                    converts.append(dict(index=i, lookup=lookup, by_version=conv == "venum"))
+                elif conv != "plain":
+                    self.problems.append(f.where.problem(
+                        f"python target: header field '{f.name}' must be an integer or an enum"))
             classes = {id(c.layout): self.build_class(c.plan, py_layout_class(c.layout, True), "subtype",
                                                       c.layout.name, c.layout.code.value,
                                                       one_line(node_text(c.layout)), mp.header,
@@ -401,7 +411,7 @@ class _Target:
                 header_fmt=">" + "".join(STRUCT_CODES[slot.field.scalar.name] for slot in mp.header),
                 header_run=[(slot.field.name, slot.offset, slot.field.scalar.size) for slot in mp.header],
                 header_offset=mp.header[0].offset, header_names=[f.name for f in fields],
-                header_converts=[c for c in converts if c.conv != "plain"], subtype=subtype.name,
+                header_converts=converts, subtype=subtype.name,
                 body_offset=mp.body_offset, announces=announces, **self.forms(mp, classes)))
         if self.problems:
             raise SpecError(self.p.source, self.problems)
@@ -410,8 +420,8 @@ class _Target:
         skips = [dict(fixed=k.fixed, prefix=self.prefix_const(ir.SCALARS[("int" if k.signed else "uint") + str(8 * k.prefix)]))
                  for k in v.skips]
         return dict(messages=messages, classes=self.classes, prefixes=self.prefixes, switches=self.switches,
-                    version=dict(skips=skips, tail=v.tail),
-                    segments=[dict(first=s.first, versions=s.describe()) for s in self.plan.segments if s.first], header_size=self.plan.header_size, package_header_size=self.plan.package_header_size,
+                    version=dict(skips=skips, tail=v.tail), package_header_size=self.plan.package_header_size,
+                    segments=[dict(first=s.first, versions=s.describe()) for s in self.plan.segments if s.first],
                     type_offset=p.message_length.scalar.size,
                     header_fmt=">" + STRUCT_CODES[p.message_length.scalar.name] + STRUCT_CODES[p.message_type.scalar.name],
                     package_header_fmt=">" + STRUCT_CODES[p.package_length.scalar.name]
@@ -461,9 +471,5 @@ def render(protocol_plan: plan.ProtocolPlan, banner: list[str]) -> dict[str, str
     model = _Target(protocol_plan).build()
     ctx = dict(banner=banner, p=p, enums=enum_views(p), value_tables=value_kind_views(p),
                version_text=ir.version_text, **model)
-    out = {f"{PACKAGE}/{name[:-3]}": env.get_template(name).render(**ctx)
-           for name in ("enums.py.j2", "messages.py.j2", "spec.py.j2", "__init__.py.j2")}
-    for name, text in runtime_files("python").items():
-        out[f"{PACKAGE}/{name}"] = text
-    out[f"{PACKAGE}/py.typed"] = ""
-    return out
+    return {f"{PACKAGE}/{name[:-3]}": env.get_template(name).render(**ctx)
+            for name in ("enums.py.j2", "messages.py.j2", "spec.py.j2", "__init__.py.j2")}

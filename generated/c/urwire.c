@@ -3,7 +3,7 @@
  * Do not edit: change the spec or the generator and run `make generate`.
  *
  * The decoders, encoders, visitors and framer declared in urwire.h: the hand-written runtime
- * (codegen/templates/c/runtime/) joined around the spec's layouts and the tables it walks.
+ * (runtime/c/) joined around the spec's layouts and the tables it walks.
  * Only <string.h> is used beyond the integer headers: no malloc, no stdio. Offsets count from
  * a message's first byte.
  */
@@ -38,6 +38,7 @@
 /* exact body sizes a form of a type code can have, at most (its flag-conditioned parts in or out) */
 #define URWIRE__FORM_SIZES 2
 
+/* ---- runtime/c/private.h ---- */
 /* ---- what the runtime and the generated layouts share ------------------------------------- */
 
 /* A range of software versions; a missing bound is open. */
@@ -342,6 +343,7 @@ URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urw
 URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);
 URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v);
 
+/* ---- runtime/c/loads.h ---- */
 /* ---- big-endian loads and stores ---------------------------------------------------------- */
 
 /* Every field is read with memcpy into an integer (one unaligned load) and a byte swap built of
@@ -461,6 +463,7 @@ URWIRE__INLINE void urwire__put_f64(uint8_t *p, double v)
     urwire__put_u64(p, bits);
 }
 
+/* ---- runtime/c/views.c ---- */
 /* ---- views -------------------------------------------------------------------------------- */
 
 URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len)
@@ -490,6 +493,7 @@ URWIRE__PRIVATE urwire_bytes urwire__seq_bytes(const urwire_seq *s)
     return urwire__view(s->msg + s->pos, s->end - s->pos);
 }
 
+/* ---- runtime/c/version.c ---- */
 /* ---- versions ----------------------------------------------------------------------------- */
 
 const urwire_sw_version URWIRE_DEFAULT_VERSION = URWIRE_DEFAULT_VERSION_INIT;
@@ -562,6 +566,7 @@ bool urwire_parse_version(const char *text, urwire_sw_version *out)
     return true;
 }
 
+/* ---- runtime/c/format.c ---- */
 /* ---- number formatting -------------------------------------------------------------------- */
 
 /* Digits of v into buf (at least 24 bytes, not NUL-terminated); returns their count. */
@@ -608,6 +613,7 @@ URWIRE__PRIVATE void urwire__hex2(urwire__text *t, int64_t v)
     urwire__str(t, buf);
 }
 
+/* ---- runtime/c/errors.c ---- */
 /* ---- errors ------------------------------------------------------------------------------- */
 
 static void urwire__set_path(urwire_error *e, const char *path)
@@ -843,6 +849,7 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
     return t.n;
 }
 
+/* ---- runtime/c/text.c ---- */
 /* ---- text: length-prefixed strings and terminated names ----------------------------------- */
 
 /* A length prefix of size bytes (big-endian, signed or not), then that many bytes. */
@@ -903,6 +910,7 @@ bool urwire_next_text(urwire_seq *seq, urwire_bytes *out)
     return true;
 }
 
+/* ---- runtime/c/put.c ---- */
 /* ---- encoding helpers: bytes and length-prefixed text ------------------------------------- */
 
 /* Bytes as they are, at *pos. */
@@ -6169,6 +6177,7 @@ static const bool urwire__known_message_types[256] = {
     [URWIRE_MESSAGE_TYPE_DISCONNECT] = true,
 };
 
+/* ---- runtime/c/values.c ---- */
 /* ---- global-variable values --------------------------------------------------------------- */
 /* The value types of each software version are the generated urwire__value_tables, each for
  * the versions of its urwire__value_ranges. String
@@ -6333,6 +6342,7 @@ bool urwire_next_value(urwire_seq *seq, urwire_value *out)
     return true;
 }
 
+/* ---- runtime/c/kinds.c ---- */
 /* ---- the tables of kinds ------------------------------------------------------------------ */
 /* Lookups in the generated tables: urwire__message_types (top-level types with a layout),
  * urwire__message_kinds (by urwire_message_kind) and urwire__package_kinds (by
@@ -6373,6 +6383,7 @@ URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_mes
     return k != NULL && k->type != NULL && !k->type->packages ? k->type : NULL;
 }
 
+/* ---- runtime/c/forms.c ---- */
 /* ---- forms: the layout a type code is read in, by software version and by length ---------- */
 /* The generated part cuts the version axis where any form of any type code starts or ends
  * (urwire__segment_bounds) and gives, for each type byte (the sub-package types, the subtypes
@@ -6478,6 +6489,7 @@ URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire
     return true;
 }
 
+/* ---- runtime/c/decode.c ---- */
 /* ---- decoding messages -------------------------------------------------------------------- */
 /* The one sub-package list is URWIRE__PACKAGES_TYPE, decoded as URWIRE__PACKAGES_KIND; each
  * sub-package is read in the form urwire__choose gives (forms.c), through the generated
@@ -6921,6 +6933,7 @@ URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urw
     return true;
 }
 
+/* ---- runtime/c/encode.c ---- */
 /* ---- encoding messages and sub-packages --------------------------------------------------- */
 
 size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err)
@@ -6993,6 +7006,7 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
     return pos;
 }
 
+/* ---- runtime/c/visit.c ---- */
 /* ---- visiting ----------------------------------------------------------------------------- */
 
 static void urwire__name(const urwire_visitor *v, const char *key, const char *name)
@@ -7155,6 +7169,7 @@ void urwire_visit_fault(const urwire_error *fault, const urwire_visitor *v)
     v->end_object(v->ctx);
 }
 
+/* ---- runtime/c/framer.c ---- */
 /* ---- the framer --------------------------------------------------------------------------- */
 
 /* A header the spec could have sent: a length from the header's size to the maximum, and a

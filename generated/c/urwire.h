@@ -90,6 +90,7 @@ extern "C" {
  * overrule it. Documented versions: 1.6, 1.7, 1.8, 3.0, 3.1, 3.2, 3.3, 3.4, 5.9, 5.10. */
 #define URWIRE_DEFAULT_VERSION_INIT {5, 9, 0, true}
 
+/* ---- runtime/c/version.h ---- */
 /* ---- software versions -------------------------------------------------------------------- */
 
 /* A controller software version, major.minor.bugfix: it chooses the layout of each part of a
@@ -113,6 +114,7 @@ extern const urwire_sw_version URWIRE_DEFAULT_VERSION;
  * anything else. */
 bool urwire_parse_version(const char *text, urwire_sw_version *out);
 
+/* ---- runtime/c/views.h ---- */
 /* ---- views -------------------------------------------------------------------------------- */
 
 /* Bytes inside the caller's buffer: never copied, never owned. */
@@ -133,6 +135,7 @@ typedef struct urwire_seq {
     int terminator;          /* value lists and names: byte after each top-level item, else -1 */
 } urwire_seq;
 
+/* ---- runtime/c/errors.h ---- */
 /* ---- errors ------------------------------------------------------------------------------- */
 
 #define URWIRE_PATH_MAX 192                /* room for the longest field path of an error */
@@ -678,6 +681,7 @@ typedef enum urwire_value_kind {
     URWIRE_VALUE_KIND_COUNT
 } urwire_value_kind;
 
+/* ---- runtime/c/value.h ---- */
 /* ---- global-variable values --------------------------------------------------------------- */
 
 /* One value: a type byte and its data. LIST and MATRIX hold their items as a seq to walk with
@@ -1562,6 +1566,7 @@ typedef struct urwire_robot_state {
     urwire_singularity_info singularity_info;
 } urwire_robot_state;
 
+/* ---- runtime/c/messages.h ---- */
 /* ---- decoding messages -------------------------------------------------------------------- */
 
 /* The bit of a sub-package type in urwire_robot_state.present and .malformed. */
@@ -1594,6 +1599,7 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
 /* One sub-package, its header included. */
 size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err);
 
+/* ---- runtime/c/visitor.h ---- */
 /* ---- visiting: the canonical record shape, for JSON writers and the like ------------------ */
 
 /* Called in canonical JSON order; key is NULL inside arrays. */
@@ -1624,6 +1630,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v);
 /* A stream fault as its canonical record {"type": "error", "offset": N, "error": TEXT}. */
 void urwire_visit_fault(const urwire_error *fault, const urwire_visitor *v);
 
+/* ---- runtime/c/framer.h ---- */
 /* ---- framing a stream --------------------------------------------------------------------- */
 
 /* A framer buffer this large frames every legal message; smaller ones skip bigger messages. */

@@ -18,7 +18,7 @@
 --
 -- The file has two parts. First the tables generated from the spec: value strings, fields,
 -- layouts (one descriptor per field), messages; all handed over in one table, `spec`. Then the
--- hand-written runtime that walks them (codegen/templates/lua/runtime/*.lua), one chunk per
+-- hand-written runtime that walks them (runtime/lua/*.lua), one chunk per
 -- file, each called with (spec, rt); `rt` holds what earlier chunks export.
 
 local ur = Proto("ur", "Universal Robots primary/secondary client interface")
@@ -2638,7 +2638,7 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
--- Runtime: declare.lua (codegen/templates/lua/runtime/declare.lua)
+-- ---- runtime/lua/declare.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2704,7 +2704,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: bytes.lua (codegen/templates/lua/runtime/bytes.lua)
+-- ---- runtime/lua/bytes.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2756,7 +2756,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: versions.lua (codegen/templates/lua/runtime/versions.lua)
+-- ---- runtime/lua/versions.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2944,7 +2944,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: items.lua (codegen/templates/lua/runtime/items.lua)
+-- ---- runtime/lua/items.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3054,7 +3054,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: collector.lua (codegen/templates/lua/runtime/collector.lua)
+-- ---- runtime/lua/collector.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3083,7 +3083,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: walk.lua (codegen/templates/lua/runtime/walk.lua)
+-- ---- runtime/lua/walk.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3415,7 +3415,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: values.lua (codegen/templates/lua/runtime/values.lua)
+-- ---- runtime/lua/values.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3540,7 +3540,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: info.lua (codegen/templates/lua/runtime/info.lua)
+-- ---- runtime/lua/info.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3707,7 +3707,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: messages.lua (codegen/templates/lua/runtime/messages.lua)
+-- ---- runtime/lua/messages.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3941,7 +3941,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: wanted.lua (codegen/templates/lua/runtime/wanted.lua)
+-- ---- runtime/lua/wanted.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4050,7 +4050,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: carry.lua (codegen/templates/lua/runtime/carry.lua)
+-- ---- runtime/lua/carry.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4094,7 +4094,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: stream.lua (codegen/templates/lua/runtime/stream.lua)
+-- ---- runtime/lua/stream.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4235,7 +4235,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: framing.lua (codegen/templates/lua/runtime/framing.lua)
+-- ---- runtime/lua/framing.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4497,7 +4497,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- Runtime: register.lua (codegen/templates/lua/runtime/register.lua)
+-- ---- runtime/lua/register.lua ----
 -- =============================================================================================
 do
 (function(...)

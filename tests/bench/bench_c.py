@@ -18,7 +18,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT / "generated" / "python"), str(ROOT / "tests")]
+sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python"), str(ROOT / "tests")]
 
 import urwire  # noqa: E402
 from urwire.canonical import has_error  # noqa: E402

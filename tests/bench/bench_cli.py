@@ -19,13 +19,13 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT / "generated" / "python"), str(ROOT)]
+sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python"), str(ROOT)]
 
 from tests.tools import robot_inputs  # noqa: E402
 
 C_CLI = ROOT / "build" / "urwire-decode"
 PYTHON_CLI = [sys.executable, "-m", "urwire", "decode"]
-ENV = dict(os.environ, PYTHONPATH=str(ROOT / "generated" / "python"))
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")]))
 C_ROUNDS = 5  # the C command runs in well under a second: the best of several
 GOAL = 10  # the C command at least this many times the Python command's MB/s
 

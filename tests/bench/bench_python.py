@@ -39,7 +39,7 @@ import timeit
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT / "generated" / "python"), str(ROOT)]
+sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python"), str(ROOT)]
 
 import urwire  # noqa: E402
 from tests.tools import measure, robot_inputs  # noqa: E402
@@ -197,7 +197,7 @@ def json_per_message(base: Path | None) -> None:
                   f"{us(t['decode']) if case == 'at rest' else '':>8}")
 
 
-def run(package: Path, args: list[str], expected: int, count_lines: bool) -> measure.Usage:
+def run(package: Path | str, args: list[str], expected: int, count_lines: bool) -> measure.Usage:
     env = dict(os.environ, PYTHONPATH=str(package))
     usage = measure.watch([sys.executable, *args], env)
     records = usage.lines if count_lines else int(usage.last or 0)
@@ -207,7 +207,7 @@ def run(package: Path, args: list[str], expected: int, count_lines: bool) -> mea
 
 def files(sizes: list[int], base: Path | None) -> None:
     states = robot_inputs.real_states()
-    now = ROOT / "generated" / "python"
+    now = os.pathsep.join(str(ROOT / part) for part in ("python", "generated/python"))
     print(f"== Files of real robot states ({len(states)} states repeated), each read in its own process:"
           " MB/s of CPU time, peak memory")
     print(f"   {'input':<16}{'decode_file':>22}{'command, JSON Lines':>26}"

@@ -30,7 +30,7 @@ VARIANTS = {
     "asan-clang": ("clang", ["-O1", "-g"] + SANITIZE),
 }
 
-sys.path.insert(0, str(ROOT / "generated" / "python"))
+sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python")]
 sys.path.insert(0, str(ROOT / "tests"))
 
 from tests.c import state_members  # noqa: E402

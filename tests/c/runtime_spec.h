@@ -1,5 +1,5 @@
 /* The generated part of urwire.h in miniature: what the hand-written runtime headers and files
- * (codegen/templates/c/runtime/) take from it, for a made-up protocol, so that each runtime
+ * (runtime/c/) take from it, for a made-up protocol, so that each runtime
  * file compiles, and is unit-tested, on its own (tests/c/test_c_runtime.py).
  *
  * The made-up protocol: a message is an int32 length and a uint8 type, as in the real one.

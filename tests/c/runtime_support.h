@@ -1,4 +1,4 @@
-/* Everything a runtime .c file of codegen/templates/c/runtime/ sees when it is joined into
+/* Everything a runtime .c file of runtime/c/ sees when it is joined into
  * urwire.c, for the made-up protocol of runtime_spec.h: the runtime's headers, and in miniature
  * the private numbers and tables that the generated part of urwire.c defines. Included only
  * between a runtime file's <standalone> markers. */

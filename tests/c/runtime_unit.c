@@ -1,4 +1,4 @@
-/* Unit checks of the hand-written C runtime (codegen/templates/c/runtime/) on its own: every
+/* Unit checks of the hand-written C runtime (runtime/c/) on its own: every
  * runtime .c file compiled standalone (its private functions external, see private.h) and
  * linked with this file, over the made-up protocol of runtime_spec.h and runtime_support.h.
  * Prints one line per failed check; exit 1 if any failed. */

@@ -20,10 +20,10 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests"))
-sys.path.insert(0, str(ROOT / "generated" / "python"))
+sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python")]
 
 import vectors  # noqa: E402
-from urwire.spec import MAX_MESSAGE_LENGTH  # noqa: E402
+from urwire.generated.spec import MAX_MESSAGE_LENGTH  # noqa: E402
 
 
 KNOWN_TYPES = {5, 16, 20, 22, 23, 24, 25, 255}
@@ -102,9 +102,9 @@ def stream() -> bytes:
 
 def capture_stream(pcap: Path) -> bytes:
     """The first robot->client stream of a capture, reassembled by the Python bindings."""
-    sys.path.insert(0, str(ROOT / "generated" / "python"))
+    sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python")]
     from urwire.capture import robot_streams
-    from urwire.spec import PORTS
+    from urwire.generated.spec import PORTS
 
     first, out = None, bytearray()
     with pcap.open("rb") as fh:

@@ -1,4 +1,4 @@
-"""The hand-written C runtime (codegen/templates/c/runtime/) on its own: each file compiles
+"""The hand-written C runtime (runtime/c/) on its own: each file compiles
 alone under the strict flags with gcc and clang (tests/c/runtime_spec.h and runtime_support.h
 stand in for the generated part), tests/c/runtime_unit.c checks it over a made-up protocol, and
 the generator joins the files into generated/c/urwire.{h,c} minus their standalone-only lines.
@@ -10,12 +10,12 @@ import subprocess
 import jinja2
 import pytest
 
-from codegen.emit import TEMPLATES, environment, runtime_source
+from codegen.emit import RUNTIME as RUNTIME_ROOT, environment, runtime_source
 from codegen.targets.c import FOLDER, RUNTIME
 from codegen.view import Step
 from tests.c.harness_c import GEN, OUT, ROOT, SANITIZE, STRICT
 
-RUNTIME_DIR = TEMPLATES / "c" / "runtime"
+RUNTIME_DIR = RUNTIME_ROOT / "c"
 FILES = sorted(p.name for p in RUNTIME_DIR.iterdir())
 STANDALONE = [f"-I{RUNTIME_DIR}", f"-I{ROOT / 'tests' / 'c'}"]
 

@@ -18,7 +18,7 @@ from codegen.plan import plan
 from tests.c.harness_c import GEN, OUT, ROOT
 
 LUA_PLUGIN = ROOT / "generated" / "lua" / "urwire.lua"
-LUA_RUNTIME = ROOT / "codegen" / "templates" / "lua" / "runtime"
+LUA_RUNTIME = ROOT / "runtime" / "lua"
 LUA_TESTS = ROOT / "tests" / "lua" / "runtime"
 
 
@@ -51,7 +51,7 @@ def oracle(planned, versions) -> dict:
 
 
 def python_choices(planned, versions) -> dict:
-    messages = importlib.import_module("urwire.messages")
+    messages = importlib.import_module("urwire.generated.messages")
     rt = importlib.import_module("urwire._runtime")
     out = {}
     for mp in planned.messages:

@@ -160,7 +160,7 @@ def test_the_fewest_bytes_of_a_value_is_worked_out_once_and_rendered_by_every_ta
     protocol = compile_text(yaml.safe_dump(data, sort_keys=False))
     assert [protocol.value_min_size(t) for t in protocol.value_type.tables] == [1, 1, 2]
     planned = plan(protocol)
-    python = python_target.render(planned, ["test"])["python/urwire/spec.py"]
+    python = python_target.render(planned, ["test"])["python/urwire/generated/spec.py"]
     c = c_target.render(planned, ["test"])["c/urwire.c"]
     lua = lua_target.render(planned, ["test"])["lua/urwire.lua"]
     assert python.count("}, MAX_VALUE_DEPTH, 1)),") == 2 and python.count("}, MAX_VALUE_DEPTH, 2)),") == 1

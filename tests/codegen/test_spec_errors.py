@@ -130,7 +130,7 @@ def test_a_repeated_name_may_widen_and_every_target_renders_it():
     assert '["robot_mode_data.probe"] = ProtoField.uint32("ur.robot_mode_data.probe"' in lua
     assert '{ k = "scalar", f = F["robot_mode_data.probe"], n = 2, path = "probe", signed = false, value = true }' in lua
     # One record attribute.
-    assert outputs["python/urwire/messages.py"].count("    probe: Optional[int] = field(") == 1
+    assert outputs["python/urwire/generated/messages.py"].count("    probe: Optional[int] = field(") == 1
 
 
 def test_every_problem_is_reported_at_once():

@@ -15,7 +15,7 @@ from typing import Optional
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / "generated" / "python"))
+sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python")]
 
 from codegen import ir  # noqa: E402
 from codegen.compile import compile_file  # noqa: E402

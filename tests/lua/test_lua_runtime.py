@@ -1,4 +1,4 @@
-"""The dissector's hand-written runtime (codegen/templates/lua/runtime/*.lua), file by file:
+"""The dissector's hand-written runtime (runtime/lua/*.lua), file by file:
 each parses with every Lua that Wireshark embeds, assigns no global, and passes its own small
 tests (tests/lua/runtime/test_*.lua) under plain lua5.2, lua5.3 and lua5.4, with stub
 Wireshark objects (tests/lua/runtime/stubs.lua). No tshark here: these run in seconds."""
@@ -14,7 +14,7 @@ import pytest
 
 from harness import PLUGIN, ROOT
 
-RUNTIME = ROOT / "codegen" / "templates" / "lua" / "runtime"
+RUNTIME = ROOT / "runtime" / "lua"
 TESTS = Path(__file__).resolve().parent / "runtime"
 LUAS = ["5.2", "5.3", "5.4"]
 FILES = sorted(p.name for p in RUNTIME.glob("*.lua"))

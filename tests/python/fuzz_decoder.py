@@ -23,7 +23,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path[:0] = [str(ROOT), str(ROOT / "generated" / "python")]
+sys.path[:0] = [str(ROOT), str(ROOT / "python"), str(ROOT / "generated" / "python")]
 
 from tests.c.harness_c import CommandPeer  # noqa: E402
 from tests.tools.fuzz_inputs import chunk_size, split  # noqa: E402
@@ -55,7 +55,7 @@ def messages_reencode(data: bytes, version) -> None:
 def whole_reencodes(data: bytes, version) -> None:
     """The stream as one message, whatever its type byte and however its parts fail."""
     import urwire
-    from urwire.spec import MAX_MESSAGE_LENGTH
+    from urwire.generated.spec import MAX_MESSAGE_LENGTH
 
     if not 5 <= len(data) <= MAX_MESSAGE_LENGTH:
         return

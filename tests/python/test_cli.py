@@ -16,7 +16,7 @@ from tests.tools import capture
 from tests.vectors import all_cases
 
 ROOT = Path(__file__).resolve().parents[2]
-ENV = dict(os.environ, PYTHONPATH=str(ROOT / "generated" / "python"))
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")]))
 GOOD = [c for c in all_cases() if c.name.startswith("Universal_Robots_Client_Library/")
         and "template" not in c.name and "runtime_exception" not in c.name]
 

@@ -14,7 +14,7 @@ from tests.tools import amplify
 from tests.tools.streams import mutate
 from tests.vectors import all_cases
 
-CLI_ENV = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[2] / "generated" / "python"))
+CLI_ENV = dict(os.environ, PYTHONPATH=os.pathsep.join(str(Path(__file__).resolve().parents[2] / part) for part in ("python", "generated/python")))
 
 MESSAGES = [c.data for c in all_cases()]
 KNOWN = (urwire.StreamError, urwire.UnknownMessage, urwire.UnknownSubtype, urwire.MalformedSubtype)

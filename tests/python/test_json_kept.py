@@ -9,7 +9,8 @@ import random
 
 import pytest
 import urwire
-from urwire import canonical, messages
+from urwire import canonical
+from urwire.generated import messages
 
 from tests.tools import valid
 from tests.vectors import all_cases

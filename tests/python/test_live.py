@@ -18,7 +18,7 @@ import pytest
 import urwire
 
 ROOT = Path(__file__).resolve().parents[2]
-ENV = dict(os.environ, PYTHONPATH=str(ROOT / "generated" / "python"))
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")]))
 PLUGIN = ROOT / "generated" / "lua" / "urwire.lua"
 GENERATIONS = {"1.8": (1, 8, 0), "3.15": (3, 15, 0), "5.11": (5, 11, 0)}
 STATES = 25
@@ -234,7 +234,8 @@ def test_plot_writes_an_image(tmp_path):
 
 
 def test_plot_axis_names_the_field_as_the_spec_labels_it():
-    from urwire import messages, plot
+    from urwire import plot
+    from urwire.generated import messages
 
     assert plot.axis_title(messages.Joint, "q_actual") == "Actual joint position (rad)"
     assert plot.axis_title(messages.Joint, "no_such_field") == "no_such_field"

@@ -15,7 +15,7 @@ import pytest
 from tests.tools import measure, robot_inputs
 
 ROOT = Path(__file__).resolve().parents[2]
-ENV = dict(os.environ, PYTHONPATH=str(ROOT / "generated" / "python"))
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")]))
 SIZES = (20, 60)
 MIB = 1 << 20
 PEAK_LIMIT = 120 * MIB

@@ -85,7 +85,7 @@ def test_the_largest_float32_prints_and_reencodes():
 
 
 def test_a_matrix_only_encodes_as_it_reads_back():
-    codec = urwire.spec.value_codec((5, 9))
+    codec = urwire.generated.spec.value_codec((5, 9))
     out = bytearray()
     codec.encode(out, codec.make("MATRIX", []))
     assert bytes(out) == b"\x12\x00\x00\x00\x00"

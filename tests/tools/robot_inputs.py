@@ -14,7 +14,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 BUILD = ROOT / "build"
 CAPTURE = ROOT / "dissector" / "samples" / "primary_session.pcapng"
-for path in (ROOT, ROOT / "tests", ROOT / "tests" / "c", ROOT / "generated" / "python"):
+for path in (ROOT, ROOT / "tests", ROOT / "tests" / "c", ROOT / "generated" / "python", ROOT / "python"):
     if str(path) not in sys.path:
         sys.path.append(str(path))
 

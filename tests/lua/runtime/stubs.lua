@@ -3,7 +3,7 @@
 -- so a tree dumps to readable lines.
 local S = {}
 
-S.RUNTIME = assert(os.getenv("URWIRE_RUNTIME"), "set URWIRE_RUNTIME to codegen/templates/lua/runtime")
+S.RUNTIME = assert(os.getenv("URWIRE_RUNTIME"), "set URWIRE_RUNTIME to runtime/lua")
 
 -- Run one runtime file as the generated dissector does: a chunk called with (spec, rt).
 function S.load(name, spec, rt)

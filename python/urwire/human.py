@@ -1,8 +1,6 @@
 """Readable views of a record, with the spec's labels and units, enum names and text in quotes:
 one line per record (line), or every field on a line of its own, indented as Wireshark shows
 the tree (tree). Fields a record's software version does not send are left out.
-
-Hand-written; copied into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 

@@ -4,7 +4,7 @@ dpkt reads the capture formats and parses the link, IP and TCP layers; reassembl
 segments in sequence order, retransmitted and overlapping bytes dropped, out-of-order ones
 held (ordered by their place in the stream) until the gap closes, or until the streams together
 hold MAX_PENDING bytes: then the stream holding the most gives up its gap. The capture is read
-a record at a time. Hand-written; copied into generated/python/urwire/.
+a record at a time.
 """
 from __future__ import annotations
 

@@ -3,7 +3,6 @@
 Frames by the declared lengths, learns the software version from each Version message, and
 reports stream faults (bad length, unknown type, truncated tail) then resynchronises on the
 next plausible header; after a truncated tail, on the next whole message inside it.
-Hand-written; copied into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 
@@ -12,8 +11,8 @@ from typing import Iterable, Iterator, Optional, Union
 
 from ._runtime import StreamError
 from .arguments import VersionLike, bytes_of, parse_version
-from .messages import decode_message
-from .spec import DEFAULT_VERSION, HEADER, HEADER_SIZE, KNOWN_MESSAGE_TYPES, MAX_MESSAGE_LENGTH
+from .decoding import decode_message
+from .generated.spec import DEFAULT_VERSION, HEADER, HEADER_SIZE, KNOWN_MESSAGE_TYPES, MAX_MESSAGE_LENGTH
 
 
 def _fault(length: int, mtype: int) -> Optional[str]:

@@ -3,14 +3,14 @@
 The x axis is the robot state's own clock (robot_mode_data's timestamp) when the message has
 one, else the message's position; the y axis shows the field's label and unit from the
 spec (the generated classes keep them in their fields' metadata). matplotlib is an optional
-extra (`pip install urwire[plot]`). Hand-written; copied into generated/python/urwire/.
+extra (`pip install urwire[plot]`).
 """
 from __future__ import annotations
 
 import argparse
 import sys
 
-from . import messages as _m
+from .generated import messages as _m
 from .reading import decode_file
 
 

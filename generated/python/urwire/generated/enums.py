@@ -7,23 +7,7 @@ from __future__ import annotations
 
 from enum import IntEnum
 
-
-class _ByVersion(dict):
-    """Software version -> the {code: member} table of a versioned enum in force then (the
-    newest when none is), looked up once per version."""
-
-    def __init__(self, tables: tuple):
-        super().__init__()
-        self.tables = tables
-
-    def __missing__(self, version: tuple) -> dict:
-        for low, high, table in self.tables:
-            if (low is None or version >= low) and (high is None or version <= high):
-                break
-        else:
-            table = self.tables[-1][2]
-        self[version] = table
-        return table
+from .._runtime import ByVersion
 
 
 class MessageType(IntEnum):
@@ -101,7 +85,7 @@ class PackageType(IntEnum):
 
 
 # {code: member} of the package_type table in force, by software version.
-PACKAGE_TYPE_BY_VALUE = _ByVersion((
+PACKAGE_TYPE_BY_VALUE = ByVersion((
     (None, (1, 7, 999), {m.value: m for m in PackageTypeUpTo1_7}),  # up to 1.7
     ((1, 8, 0), None, {m.value: m for m in PackageType}),  # 1.8 and later
 ))
@@ -156,7 +140,7 @@ class RobotMessageType(IntEnum):
 
 
 # {code: member} of the robot_message_type table in force, by software version.
-ROBOT_MESSAGE_TYPE_BY_VALUE = _ByVersion((
+ROBOT_MESSAGE_TYPE_BY_VALUE = ByVersion((
     (None, (1, 8, 999), {m.value: m for m in RobotMessageTypeUpTo1_8}),  # up to 1.8
     ((1, 9, 0), None, {m.value: m for m in RobotMessageType}),  # 1.9 and later
 ))
@@ -224,7 +208,7 @@ class RobotMode(IntEnum):
 
 
 # {code: member} of the robot_mode table in force, by software version.
-ROBOT_MODE_BY_VALUE = _ByVersion((
+ROBOT_MODE_BY_VALUE = ByVersion((
     (None, (1, 8, 999), {m.value: m for m in RobotModeUpTo1_8}),  # up to 1.8
     ((3, 0, 0), None, {m.value: m for m in RobotMode}),  # 3.0 and later
 ))
@@ -322,7 +306,7 @@ class JointMode(IntEnum):
 
 
 # {code: member} of the joint_mode table in force, by software version.
-JOINT_MODE_BY_VALUE = _ByVersion((
+JOINT_MODE_BY_VALUE = ByVersion((
     (None, (1, 8, 999), {m.value: m for m in JointModeUpTo1_8}),  # up to 1.8
     ((3, 0, 0), (3, 15, 999), {m.value: m for m in JointMode3_0To3_15}),  # 3.0 to 3.15
     ((5, 0, 0), (5, 0, 999), {m.value: m for m in JointMode5_0To5_0}),  # 5.0
@@ -414,7 +398,7 @@ class MessageSource(IntEnum):
 
 
 # {code: member} of the message_source table in force, by software version.
-MESSAGE_SOURCE_BY_VALUE = _ByVersion((
+MESSAGE_SOURCE_BY_VALUE = ByVersion((
     (None, (1, 8, 999), {m.value: m for m in MessageSourceUpTo1_8}),  # up to 1.8
     ((3, 0, 0), None, {m.value: m for m in MessageSource}),  # 3.0 and later
 ))
@@ -629,7 +613,7 @@ class ValueType(IntEnum):
 
 
 # {code: member} of the value_type table in force, by software version.
-VALUE_TYPE_BY_VALUE = _ByVersion((
+VALUE_TYPE_BY_VALUE = ByVersion((
     (None, (3, 2, 999), {m.value: m for m in ValueTypeUpTo3_2}),  # up to 3.2
     ((3, 3, 0), (5, 8, 999), {m.value: m for m in ValueType3_3To5_8}),  # 3.3 to 5.8
     ((5, 9, 0), None, {m.value: m for m in ValueType}),  # 5.9 and later
@@ -645,10 +629,5 @@ VALUE_TYPE_TABLES = (
     ((5, 9, 0), None, ValueType),  # 5.9 and later
 )
 
-
-def value_type_table(version: tuple[int, int, int]) -> type[IntEnum]:
-    """The value-type codes of the given software version (major, minor, bugfix)."""
-    for low, high, table in VALUE_TYPE_TABLES:
-        if (low is None or version >= low) and (high is None or version <= high):
-            return table
-    return VALUE_TYPE_TABLES[-1][2]
+value_type_table = ByVersion(VALUE_TYPE_TABLES)
+"""The value-type codes of a software version (major, minor, bugfix): value_type_table(version)."""

@@ -1,8 +1,6 @@
-# Copied from codegen/templates/python/runtime/cli.py: edit it there and run `make generate`.
 """The `urwire` command: decode raw streams and .pcap/.pcapng captures to canonical JSON Lines.
 
 Exit codes: 0 everything decoded, 1 the output holds error records, 2 usage or I/O error.
-Hand-written; copied into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 
@@ -17,7 +15,7 @@ from .canonical import has_error, to_json_line
 from .human import line as human_line
 from .human import tree as human_tree
 from .reading import records_of
-from .spec import DEFAULT_VERSION, PORTS
+from .generated.spec import DEFAULT_VERSION, PORTS
 
 PROGRESS_MIN_BYTES = 8 << 20
 

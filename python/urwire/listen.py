@@ -5,7 +5,7 @@ so `tail -f` follows it; `--raw` also keeps the exact bytes, which `urwire decod
 A dropped or refused connection is retried with a growing pause, said on stderr; each new
 connection gets a new framer, since the controller starts it with a Version message.
 Exit codes as for decode: 0 everything decoded, 1 some records hold errors, 2 usage or I/O error
-(or nothing was ever received). Hand-written; copied into generated/python/urwire/.
+(or nothing was ever received).
 """
 from __future__ import annotations
 

@@ -12,7 +12,6 @@ for `decode`. Parquet needs pyarrow (`pip install urwire[parquet]`); CSV needs n
 Rows are kept in a temporary file per table until the capture ends (a table's columns are
 known only then), and written BATCH_ROWS rows at a time, so memory stays flat however long the
 capture.
-Hand-written; copied into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 

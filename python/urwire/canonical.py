@@ -1,9 +1,7 @@
-# Copied from codegen/templates/python/runtime/canonical.py: edit it there and run `make generate`.
 """Canonical JSON of decoded records (docs/canonical-json.md): the form every target prints.
 
 Most of a line's cost is its floats: each text is worked out once and then looked up while the
 value recurs. Each class is written by a function made for it on first use.
-Hand-written; copied verbatim into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 

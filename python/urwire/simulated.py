@@ -1,11 +1,10 @@
-# Copied from codegen/templates/python/runtime/simulated.py: edit it there and run `make generate`.
 """A simulated controller: the messages a robot of one software version sends a client, built
 with the generated message classes and encoders, so every layout is that version's own.
 
 A client gets the Version message, then a robot state per tick (kinematics and configuration
 only in the first), while a program runs in a loop: key messages when it starts and stops, text
 messages, global variables (set up once, then updated) and now and then a protective stop with
-its safety mode message. Hand-written; copied into generated/python/urwire/ by `make generate`.
+its safety mode message.
 """
 from __future__ import annotations
 
@@ -14,10 +13,11 @@ import math
 import re
 from typing import Iterator
 
-from . import enums as _e
-from . import messages as _m
+from .generated import enums as _e
+from .generated import messages as _m
 from ._runtime import GlobalValue
-from .spec import value_codec
+from .decoding import encode_message, package_classes
+from .generated.spec import value_codec
 
 JOINTS = 6
 CYCLE_TICKS = 100          # one program run, start to start
@@ -63,7 +63,7 @@ def _enum_value(table: str, version: tuple, name: str, default: int) -> int:
 
 def state_classes(version: tuple) -> list:
     """The sub-package classes a controller of `version` sends, in type-code order."""
-    return [cls for cls in _m.package_classes(version).values()
+    return [cls for cls in package_classes(version).values()
             if cls not in INTERNAL and (version[0] >= 5 or cls not in E_SERIES_ONLY)]
 
 
@@ -91,7 +91,7 @@ class Controller:
 
     # --- messages ---------------------------------------------------------------------------
     def encode(self, msg) -> bytes:
-        return _m.encode_message(msg, self.version)
+        return encode_message(msg, self.version)
 
     def version_message(self) -> bytes:
         major, minor, bugfix = self.version

@@ -1,7 +1,5 @@
 """What the public functions take: bytes-like input and software versions, checked once at the
 door so that a wrong type is a TypeError saying what is wanted, not a failure deep inside.
-
-Hand-written; copied into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 

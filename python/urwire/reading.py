@@ -1,7 +1,6 @@
 """Records out of files: raw streams read in chunks, captures split into robot->client streams.
 
-Hand-written; copied into generated/python/urwire/ by `make generate`. Captures need dpkt,
-which is imported only when a capture is read.
+Captures need dpkt, which is imported only when a capture is read.
 """
 from __future__ import annotations
 
@@ -12,7 +11,7 @@ from typing import BinaryIO, Callable, Iterable, Iterator, Optional, Union
 from .arguments import VersionLike
 from .capture import is_capture, timed_robot_streams
 from .framer import Framer
-from .spec import PORTS
+from .generated.spec import PORTS
 
 CHUNK = 1 << 20
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import struct
 
-from ._runtime import ValueCodec
+from .._runtime import ByVersion, ValueCodec
 
 PROTOCOL = "ur"
 PORTS = [30001, 30002, 30011, 30012]
@@ -16,6 +16,10 @@ MAX_VALUE_DEPTH = 8
 HEADER_SIZE = 5
 HEADER = struct.Struct(">iB")
 """A message's length and type, the first HEADER_SIZE bytes of every message."""
+MESSAGE_TYPE_OFFSET = 4
+"""Where a message's type byte is."""
+PACKAGE_HEADER = struct.Struct(">iB")
+"""A sub-package's length and type."""
 DOCUMENTED_VERSIONS = [(1, 6, 0), (1, 7, 0), (1, 8, 0), (3, 0, 0), (3, 1, 0), (3, 2, 0), (3, 3, 0), (3, 4, 0),
                        (5, 9, 0), (5, 10, 0)]
 DEFAULT_VERSION = (5, 9, 0)
@@ -91,10 +95,5 @@ _VALUE_CODECS = (
     }, MAX_VALUE_DEPTH, 1)),
 )
 
-
-def value_codec(version: tuple[int, int]) -> ValueCodec:
-    """The codec for global-variable values under the given software version."""
-    for low, high, codec in _VALUE_CODECS:
-        if (low is None or version >= low) and (high is None or version <= high):
-            return codec
-    return _VALUE_CODECS[-1][2]
+value_codec = ByVersion(_VALUE_CODECS)
+"""The codec for global-variable values under a software version: value_codec(version)."""

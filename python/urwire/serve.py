@@ -1,9 +1,7 @@
-# Copied from codegen/templates/python/runtime/serve.py: edit it there and run `make generate`.
 """`urwire serve`: a simulated controller on a TCP port, one session per client.
 
 Every client gets its own simulated.Controller: the Version message first, then robot states at
 the given rate. Loopback by default; SIGINT and SIGTERM close every connection and stop.
-Hand-written; copied into generated/python/urwire/ by `make generate`.
 """
 from __future__ import annotations
 

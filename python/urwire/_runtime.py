@@ -1,7 +1,4 @@
-"""Decoding helpers shared by the generated layouts: errors, text, bounds checks, values.
-
-Hand-written; copied verbatim into generated/python/urwire/ by `make generate`.
-"""
+"""Decoding helpers shared by the generated layouts: errors, text, bounds checks, values."""
 from __future__ import annotations
 
 import struct
@@ -120,6 +117,30 @@ def write_terminated_texts(out: bytearray, values: list[str], terminator: int) -
     for v in values:
         out += text_bytes(v)
         out.append(terminator)
+
+
+# ---- tables by software version --------------------------------------------------------------
+
+class ByVersion(dict):
+    """Software version -> the table in force then, from (low, high, table) triples with
+    inclusive bounds (None: open); the newest when none is. Looked up once per version:
+    `tables[version]`, or `tables(version)`."""
+
+    def __init__(self, tables: tuple):
+        super().__init__()
+        self.tables = tables
+
+    def __missing__(self, version: tuple):
+        for low, high, table in self.tables:
+            if (low is None or version >= low) and (high is None or version <= high):
+                break
+        else:
+            table = self.tables[-1][2]
+        self[version] = table
+        return table
+
+    def __call__(self, version: tuple):
+        return self[version]
 
 
 # ---- global variable values ---------------------------------------------------------------

@@ -1,0 +1,54 @@
+"""One framed message to a record and back: decode_message, encode_message, and package_classes,
+over the table of message types that urwire.generated.messages makes (MESSAGES)."""
+from __future__ import annotations
+
+from typing import Optional
+
+from . import _runtime as _rt
+from ._runtime import MalformedSubtype, UnknownMessage, UnknownSubtype
+from .arguments import bytes_of, version_of
+from .generated.messages import MESSAGES
+from .generated.spec import DEFAULT_VERSION, HEADER, MESSAGE_TYPE_OFFSET
+from .message_kinds import PackageList
+
+# The message of sub-packages (the robot state): the one whose sub-package classes are asked for.
+(_PACKAGE_LIST,) = (kind for kind in MESSAGES.values() if isinstance(kind, PackageList))
+
+
+def package_classes(version) -> dict:
+    """The class each sub-package type code is read into in a stream of `version` ((major,
+    minor, bugfix) or a text such as '3.2'), in code order: the layout of that version's form
+    (a part of another length may still be read in another form)."""
+    return _PACKAGE_LIST.package_classes(version_of(version))
+
+
+def decode_message(buf, version: Optional[tuple] = None, known: Optional[bool] = None):
+    """Decode one framed message (its declared length is len(buf)); never raises on bad bytes.
+
+    `buf` is any bytes-like object. `version` ((major, minor, bugfix), or a text such as
+    '5.25.1') is the stream's software version: it chooses the layout of each part and the
+    meaning of version-dependent codes. Without it, DEFAULT_VERSION is assumed and a robot
+    state's layout sizes may overrule it (`implied_version`). `known` says whether `version` is
+    known (announced or hinted) rather than assumed.
+    """
+    if type(buf) is not bytes:
+        buf = bytes_of(buf, "decode_message")
+    if len(buf) < HEADER.size:
+        return UnknownMessage(0, buf, _rt.short("length", 0, HEADER.size, len(buf)).text)
+    if version is not None:
+        version = version_of(version)
+    kind = MESSAGES.get(buf[MESSAGE_TYPE_OFFSET])
+    if kind is None:
+        return UnknownMessage(buf[MESSAGE_TYPE_OFFSET], bytes(buf[HEADER.size:]))
+    if version is None:
+        return kind.decode(buf, DEFAULT_VERSION, bool(known))
+    return kind.decode(buf, version, known is not False)
+
+
+def encode_message(msg, version: Optional[tuple] = None) -> bytes:
+    """The bytes of a decoded or hand-built message; lengths are computed, never taken."""
+    if isinstance(msg, UnknownMessage):
+        return HEADER.pack(HEADER.size + len(msg.raw), msg.message_type) + msg.raw
+    if isinstance(msg, (UnknownSubtype, MalformedSubtype)):
+        return MESSAGES[msg.message_type].encode(msg, version or DEFAULT_VERSION)
+    return msg.encode(version)
