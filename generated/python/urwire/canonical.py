@@ -38,7 +38,9 @@ def f32_text(x: float) -> str:
         if text is None:
             if x - x != 0.0 or x == 0.0:
                 return _f32_shortest(x)  # NaN, the infinities and the zeros: not kept
-            text = _as_repr(_f32_digits(x))
+            text = _f32_digits(x)
+            if "e" in text or "." not in text:  # most texts are laid out as repr() already
+                text = _as_repr(text)
             if len(_F32_TEXTS) >= _TEXTS_KEPT:
                 _F32_TEXTS.clear()
             _F32_TEXTS[x] = text
