@@ -3522,7 +3522,7 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
         local fields = h.tree(h.m, tvb, item, o, e, st) or item
         if bad_bugfix then
             fields:add_tvb_expert_info(E.version_range, range_of(tvb, bugfix_at, VERSION.bugfix.n),
-                fmt("bugfix version %d is out of range (0 to %d): the stream is read as %s", bad_bugfix, BUGFIX_ANY,
+                fmt("bugfix version %d is out of range (0 to %d); the stream is read as %s", bad_bugfix, BUGFIX_ANY,
                     version_text(cur.version)))
         end
         local hidden = items_hidden()

@@ -80,7 +80,7 @@ def test_a_version_bugfix_out_of_range_is_flagged_and_the_stream_read_as_major_m
                             "30312d30312d32303138")
     pcap = write_sessions(tmp_path / "v.pcap", [[version, update_5_0_bool()]])
     items = ur_items_by_stream(tshark_json(pcap))[0]
-    text = "bugfix version -1 is out of range (0 to 999): the stream is read as 5.0"
+    text = "bugfix version -1 is out of range (0 to 999); the stream is read as 5.0"
     (warning,) = _experts(items[0]["ur.version"][text])   # an item of its own, on the bugfix bytes
     assert warning["_ws.expert.message"] == text and "ur.version_out_of_range" in warning
     assert warning["_ws.expert.severity"] == str(0x00600000)   # PI_WARN
