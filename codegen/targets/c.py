@@ -788,6 +788,7 @@ def render(protocol_plan, banner: list[str]) -> dict[str, str]:
     runtime = {part: "\n".join(joined_section(name) for name in names) for part, names in RUNTIME.items()}
     ctx = dict(banner=banner, p=p, enums=enum_views(p), values=value_views(p), runtime=runtime,
                default_version=version_view(p.default_version), default_text=ir.version_text(p.default_version),
+               bugfix_any=ir.BUGFIX_ANY,
                documented=", ".join(ir.version_text(v) for v in p.documented_versions),
                title=p.title, doc=comment(p.doc), **build(protocol_plan))
     return {f"{FOLDER}/urwire.h": env.get_template("urwire.h.j2").render(**ctx),

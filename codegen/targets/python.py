@@ -470,6 +470,6 @@ def render(protocol_plan: plan.ProtocolPlan, banner: list[str]) -> dict[str, str
     env = environment("python")
     model = _Target(protocol_plan).build()
     ctx = dict(banner=banner, p=p, enums=enum_views(p), value_tables=value_kind_views(p),
-               version_text=ir.version_text, **model)
+               version_text=ir.version_text, bugfix_any=ir.BUGFIX_ANY, **model)
     return {f"{PACKAGE}/{name[:-3]}": env.get_template(name).render(**ctx)
             for name in ("enums.py.j2", "messages.py.j2", "spec.py.j2", "__init__.py.j2")}

@@ -89,6 +89,9 @@ extern "C" {
  * given: 5.9 and later. Its `assumed` is true, so the layout sizes of a robot state may
  * overrule it. Documented versions: 1.6, 1.7, 1.8, 3.0, 3.1, 3.2, 3.3, 3.4, 5.9, 5.10. */
 #define URWIRE_DEFAULT_VERSION_INIT {5, 9, 0, true}
+/* The bugfix of an upper bound written major.minor ("up to 5.8" ends at bugfix 999 of 5.8): the largest
+ * bugfix a version can hold and still compare rightly with every bound. */
+#define URWIRE_BUGFIX_ANY 999
 
 /* ---- runtime/c/version.h ---- */
 /* ---- software versions -------------------------------------------------------------------- */
@@ -1672,6 +1675,10 @@ typedef struct urwire_framer {
     bool ended_inside;              /* the stream ended inside a message: rescans stop only at
                                        whole messages */
     bool version_seen;              /* a Version message set the version */
+    bool version_out_of_range;      /* the last Version message's bugfix was below 0 or above
+                                       URWIRE_BUGFIX_ANY, where it cannot compare with the spec's
+                                       bounds: version is its major.minor.0 (the message itself
+                                       keeps the number) */
     urwire_sw_version version;      /* in force: the last Version message's, else the hint, else
                                        what a robot state's layout sizes showed (assumed), else
                                        URWIRE_DEFAULT_VERSION (assumed) */

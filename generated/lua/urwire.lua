@@ -2681,6 +2681,9 @@ local E = {
         expert.group.UNDECODED, expert.severity.NOTE),
     assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)",
         expert.group.ASSUMPTION, expert.severity.NOTE),
+    version_range = ProtoExpert.new("ur.version_out_of_range",
+        "Version message number out of range: set aside, the stream is read as major.minor",
+        expert.group.PROTOCOL, expert.severity.WARN),
     by_length = ProtoExpert.new("ur.layout_by_length", "Layout chosen by its length, not by the software version",
         expert.group.ASSUMPTION, expert.severity.NOTE),
     items_hidden = ProtoExpert.new("ur.items_hidden", "More tree items than a message shows",
@@ -2696,8 +2699,8 @@ for _, f in ipairs({ X.raw, X.extra, X.skipped, X.version, X.assumed, X.unknown_
     fields[#fields + 1] = f
 end
 ur.fields = fields
-ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.by_length, E.items_hidden,
-               E.internal }
+ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.version_range, E.by_length,
+               E.items_hidden, E.internal }
 
 rt.X, rt.E = X, E
 end)(spec, rt)
@@ -2907,7 +2910,9 @@ end
 -- The version a Version message from o to e announces, or nil when it is not one or is
 -- malformed. r (spec.version_reader) says where its numbers are: the subtype byte, then steps
 -- over fixed bytes and length-prefixed texts, then the major and minor bytes, then (in the
--- versions r.bugfix names) the bugfix number.
+-- versions r.bugfix names) the bugfix number. A bugfix below 0 or above BUGFIX_ANY cannot
+-- compare with the spec's bounds: the version is then major.minor.0, and the bugfix number and
+-- its offset come after it, for the message to flag.
 local function announced_version(raw, o, e, r)
     if e - o <= r.subtype_offset or byte(raw, o + r.subtype_offset + 1) ~= r.subtype then return nil end
     local p = o
@@ -2929,6 +2934,7 @@ local function announced_version(raw, o, e, r)
     if b and version_in(v, b.low, b.high) and p + 2 + b.n <= e then
         local bugfix
         if b.signed then bugfix = be_int(raw, p + 2, b.n) else bugfix = be_uint(raw, p + 2, b.n) end
+        if bugfix < 0 or bugfix > BUGFIX_ANY then return v, bugfix, p + 2 end
         v = version_number(major, minor, bugfix)
     end
     return v
@@ -2938,6 +2944,7 @@ rt.version_number, rt.parse_version, rt.version_text, rt.version_in =
     version_number, parse_version, version_text, version_in
 rt.value_table, rt.enum_names, rt.named_in_any = value_table, enum_names, named_in_any
 rt.choose, rt.pick, rt.announced_version, rt.segment_of = choose, pick, announced_version, segment_of
+rt.BUGFIX_ANY = BUGFIX_ANY
 -- The version assumed when neither a Version message, the preference nor the layout sizes give one.
 rt.default_version = parse_version(spec.default_version)
 end)(spec, rt)
@@ -3924,6 +3931,7 @@ KINDS.subtypes = {
         if by_length then note_length(item, form, e - o) end
         if s.needs_version then show_version(item, st) end
         walk_body(tvb, item, body, e, st, s.layout, s.name, use)
+        return item   -- where the subtype's fields are
     end,
 }
 
@@ -4256,7 +4264,7 @@ local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
 local KNOWN_TYPE, VERSION = spec.known_types, spec.version_reader
 local MESSAGE_TYPES, MESSAGE_TYPE_TABLES = spec.message_types, spec.message_type_tables
-local DEFAULT_VERSION = rt.default_version
+local DEFAULT_VERSION, BUGFIX_ANY, version_text = rt.default_version, rt.BUGFIX_ANY, rt.version_text
 
 -- The version the ur.version preference gives until a Version message is seen; nil when the
 -- preference is empty: then the layout sizes tell the version where they can, else the default.
@@ -4338,8 +4346,10 @@ local cur = { version = nil, implied = nil, first = true, detail = false, column
 -- One whole message from o to e (its declared length): version, Info column, tree.
 local function message(tvb, raw, pinfo, tree, o, e, mtype)
     local h = handlers[mtype]
+    local bad_bugfix, bugfix_at   -- a Version message's bugfix out of range, set aside
     if mtype == VERSION.message then
-        local v = announced_version(raw, o, e, VERSION)
+        local v
+        v, bad_bugfix, bugfix_at = announced_version(raw, o, e, VERSION)
         if v then cur.version, cur.implied = v, nil end
     end
     local version, implied = cur.version, cur.implied
@@ -4363,7 +4373,12 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     if h then
         append_text(item, h.suffix)
         items_begin(item)
-        h.tree(h.m, tvb, item, o, e, st)
+        local fields = h.tree(h.m, tvb, item, o, e, st) or item
+        if bad_bugfix then
+            fields:add_tvb_expert_info(E.version_range, range_of(tvb, bugfix_at, VERSION.bugfix.n),
+                fmt("bugfix version %d is out of range (0 to %d); the stream is read as %s", bad_bugfix, BUGFIX_ANY,
+                    version_text(cur.version)))
+        end
         local hidden = items_hidden()
         if hidden > 0 then
             item:add_proto_expert_info(E.items_hidden,

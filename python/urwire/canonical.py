@@ -29,14 +29,16 @@ _F64_TEXTS: dict = {}
 
 
 def f32_text(x: float) -> str:
-    """Shortest %.{p}g (p = 1..9) that reads back as the same float32 (read as a double, then
-    rounded to float32)."""
+    """The digits of the shortest %.{p}g (p = 1..9) that reads back as the same float32 (read as
+    a double, then rounded to float32), laid out as repr() lays out a double."""
     if type(x) is float:
         text = _F32_TEXTS.get(x)
         if text is None:
             if x - x != 0.0 or x == 0.0:
                 return _f32_shortest(x)  # NaN, the infinities and the zeros: not kept
             text = _f32_digits(x)
+            if "e" in text or "." not in text:  # most texts are laid out as repr() already
+                text = _as_repr(text)
             if len(_F32_TEXTS) >= _TEXTS_KEPT:
                 _F32_TEXTS.clear()
             _F32_TEXTS[x] = text
@@ -59,12 +61,29 @@ def _f32_shortest(x: float) -> str:
     if x - x != 0.0:
         return _nonfinite(x)
     if x == 0.0:
-        return "-0" if math.copysign(1.0, x) < 0 else "0"
-    return _f32_digits(x)
+        return "-0.0" if math.copysign(1.0, x) < 0 else "0.0"
+    return _as_repr(_f32_digits(x))
+
+
+def _as_repr(text: str) -> str:
+    """A %g text laid out as repr() lays out a double: fixed notation, with at least one decimal,
+    from 1e-4 up to 1e16, where %g also goes to an exponent at as many places as it has digits
+    ("3e+01" is "30.0", "31" is "31.0"). Both write the exponent alike below 1e-4 and from 1e16."""
+    if "e" not in text:
+        return text if "." in text else text + ".0"
+    mantissa, _, exponent = text.partition("e")
+    places = int(exponent)
+    if places < -4 or places >= 16:
+        return text
+    # %g goes to an exponent below 1e-4, as repr() does, or at 10**p and above for p digits:
+    # here, then, the digits are followed by zeros up to the point.
+    sign = "-" if mantissa[0] == "-" else ""
+    digits = mantissa.lstrip("-").replace(".", "")
+    return sign + digits + "0" * (places + 1 - len(digits)) + ".0"
 
 
 def _f32_digits(x: float) -> str:
-    """_f32_shortest of a finite x other than zero."""
+    """The shortest %.{p}g of a finite x other than zero (f32_text before _as_repr)."""
     m, e = _frexp(x)
     row = _DECADES.get(e)
     if row is None or m == 0.5 or m == -0.5:

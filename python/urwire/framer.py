@@ -1,8 +1,9 @@
 """Streaming framer: bytes in chunks of any size in, decoded records out, in stream order.
 
-Frames by the declared lengths, learns the software version from each Version message, and
-reports stream faults (bad length, unknown type, truncated tail) then resynchronises on the
-next plausible header; after a truncated tail, on the next whole message inside it.
+Frames by the declared lengths, learns the software version from each Version message (a bugfix
+out of range is set aside and flagged in `Framer.version_note`), and reports stream faults (bad
+length, unknown type, truncated tail) then resynchronises on the next plausible header; after a
+truncated tail, on the next whole message inside it.
 """
 from __future__ import annotations
 
@@ -12,7 +13,8 @@ from typing import Iterable, Iterator, Optional, Union
 from ._runtime import StreamError
 from .arguments import VersionLike, bytes_of, parse_version
 from .decoding import decode_message
-from .generated.spec import DEFAULT_VERSION, HEADER, HEADER_SIZE, KNOWN_MESSAGE_TYPES, MAX_MESSAGE_LENGTH
+from .generated.spec import (BUGFIX_ANY, DEFAULT_VERSION, HEADER, HEADER_SIZE, KNOWN_MESSAGE_TYPES,
+                             MAX_MESSAGE_LENGTH)
 
 
 def _fault(length: int, mtype: int) -> Optional[str]:
@@ -42,19 +44,37 @@ def _candidates() -> "re.Pattern[bytes]":
 _CANDIDATE = _candidates()
 
 
+def _announced_version(msg, sets: tuple, offset: int) -> tuple[tuple[int, int, int], Optional[str]]:
+    """The version a Version message sets, and a note when a part of it is out of range.
+
+    Major and minor are single bytes, always in range. A bugfix below 0 or above BUGFIX_ANY
+    cannot be compared with the spec's bounds, so it is set aside: the stream goes on as
+    major.minor.0, the note says so, and the record itself keeps the number as it came."""
+    major, minor, bugfix = sets
+    major, minor = getattr(msg, major), getattr(msg, minor)
+    bugfix = (getattr(msg, bugfix) or 0) if bugfix else 0
+    if 0 <= bugfix <= BUGFIX_ANY:
+        return (major, minor, bugfix), None
+    return (major, minor, 0), (f"Version message at offset {offset}: bugfix version {bugfix} is out of range "
+                               f"(0 to {BUGFIX_ANY}); the stream is read as {major}.{minor}")
+
+
 class Framer:
     """Feed bytes with feed(); call close() at the end of the stream for a truncated tail."""
 
     def __init__(self, version_hint: VersionLike = None):
         self.hint = parse_version(version_hint)
         self.announced: Optional[tuple[int, int, int]] = None
-        """The version of the stream's last Version message."""
+        """The version the stream's last Version message set (see version_note)."""
         self.implied: Optional[tuple[int, int, int]] = None
         """The version the layout sizes of a robot state showed, when none was known."""
         self.version: tuple[int, int, int] = self.hint or DEFAULT_VERSION
         """Software version in force: the stream's last Version message, else the hint, else
         what the layout sizes show, else DEFAULT_VERSION."""
         self.version_seen = False
+        self.version_note: Optional[str] = None
+        """Why `version` differs from what the last Version message says (a part out of range
+        was set aside), else None."""
         self._buf = bytearray()
         self._base = 0          # stream offset of _buf[0]
         self._resyncing = False
@@ -116,9 +136,7 @@ class Framer:
             msg = decode_message(bytes(buf[pos:pos + length]), self.version, known)
             sets = getattr(msg, "SETS_VERSION", None)
             if sets is not None:
-                major, minor, bugfix = sets
-                self.announced = (getattr(msg, major), getattr(msg, minor),
-                                  (getattr(msg, bugfix) or 0) if bugfix else 0)
+                self.announced, self.version_note = _announced_version(msg, sets, self._base + pos)
                 self.version = self.announced
                 self.version_seen = True
             elif not known and getattr(msg, "implied_version", None) is not None:

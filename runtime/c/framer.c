@@ -26,6 +26,7 @@ void urwire_framer_init(urwire_framer *f, uint8_t *buf, size_t cap, urwire_sw_ve
     f->finished = false;
     f->ended_inside = false;
     f->version_seen = false;
+    f->version_out_of_range = false;
     f->version = hint;
     f->unlearnt = 0;
 }
@@ -104,9 +105,13 @@ static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size
         bytes[URWIRE__VERSION_SUBTYPE_AT] != URWIRE__VERSION_SUBTYPE)
         return;
     if (urwire_decode_message(bytes, len, f->version, &m) && m.kind == URWIRE__VERSION_KIND) {
+        int bugfix = URWIRE__VERSION_BUGFIX(&m);
+        /* A bugfix out of range is set aside, as in every target: the stream goes on as
+         * major.minor.0, flagged. */
+        f->version_out_of_range = bugfix < 0 || bugfix > URWIRE_BUGFIX_ANY;
         f->version.major = URWIRE__VERSION_MAJOR(&m);
         f->version.minor = URWIRE__VERSION_MINOR(&m);
-        f->version.bugfix = URWIRE__VERSION_BUGFIX(&m);
+        f->version.bugfix = f->version_out_of_range ? 0 : bugfix;
         f->version.assumed = false;
         f->version_seen = true;
     }

@@ -44,6 +44,10 @@ typedef struct urwire_framer {
     bool ended_inside;              /* the stream ended inside a message: rescans stop only at
                                        whole messages */
     bool version_seen;              /* a Version message set the version */
+    bool version_out_of_range;      /* the last Version message's bugfix was below 0 or above
+                                       URWIRE_BUGFIX_ANY, where it cannot compare with the spec's
+                                       bounds: version is its major.minor.0 (the message itself
+                                       keeps the number) */
     urwire_sw_version version;      /* in force: the last Version message's, else the hint, else
                                        what a robot state's layout sizes showed (assumed), else
                                        URWIRE_DEFAULT_VERSION (assumed) */

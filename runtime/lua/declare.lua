@@ -37,6 +37,9 @@ local E = {
         expert.group.UNDECODED, expert.severity.NOTE),
     assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)",
         expert.group.ASSUMPTION, expert.severity.NOTE),
+    version_range = ProtoExpert.new("ur.version_out_of_range",
+        "Version message number out of range: set aside, the stream is read as major.minor",
+        expert.group.PROTOCOL, expert.severity.WARN),
     by_length = ProtoExpert.new("ur.layout_by_length", "Layout chosen by its length, not by the software version",
         expert.group.ASSUMPTION, expert.severity.NOTE),
     items_hidden = ProtoExpert.new("ur.items_hidden", "More tree items than a message shows",
@@ -52,7 +55,7 @@ for _, f in ipairs({ X.raw, X.extra, X.skipped, X.version, X.assumed, X.unknown_
     fields[#fields + 1] = f
 end
 ur.fields = fields
-ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.by_length, E.items_hidden,
-               E.internal }
+ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.version_range, E.by_length,
+               E.items_hidden, E.internal }
 
 rt.X, rt.E = X, E

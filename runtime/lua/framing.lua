@@ -15,7 +15,7 @@ local ur, F = spec.proto, spec.F
 local HEADER, LENGTH = spec.header_size, spec.length_size
 local KNOWN_TYPE, VERSION = spec.known_types, spec.version_reader
 local MESSAGE_TYPES, MESSAGE_TYPE_TABLES = spec.message_types, spec.message_type_tables
-local DEFAULT_VERSION = rt.default_version
+local DEFAULT_VERSION, BUGFIX_ANY, version_text = rt.default_version, rt.BUGFIX_ANY, rt.version_text
 
 -- The version the ur.version preference gives until a Version message is seen; nil when the
 -- preference is empty: then the layout sizes tell the version where they can, else the default.
@@ -97,8 +97,10 @@ local cur = { version = nil, implied = nil, first = true, detail = false, column
 -- One whole message from o to e (its declared length): version, Info column, tree.
 local function message(tvb, raw, pinfo, tree, o, e, mtype)
     local h = handlers[mtype]
+    local bad_bugfix, bugfix_at   -- a Version message's bugfix out of range, set aside
     if mtype == VERSION.message then
-        local v = announced_version(raw, o, e, VERSION)
+        local v
+        v, bad_bugfix, bugfix_at = announced_version(raw, o, e, VERSION)
         if v then cur.version, cur.implied = v, nil end
     end
     local version, implied = cur.version, cur.implied
@@ -122,7 +124,12 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
     if h then
         append_text(item, h.suffix)
         items_begin(item)
-        h.tree(h.m, tvb, item, o, e, st)
+        local fields = h.tree(h.m, tvb, item, o, e, st) or item
+        if bad_bugfix then
+            fields:add_tvb_expert_info(E.version_range, range_of(tvb, bugfix_at, VERSION.bugfix.n),
+                fmt("bugfix version %d is out of range (0 to %d); the stream is read as %s", bad_bugfix, BUGFIX_ANY,
+                    version_text(cur.version)))
+        end
         local hidden = items_hidden()
         if hidden > 0 then
             item:add_proto_expert_info(E.items_hidden,

@@ -211,6 +211,7 @@ KINDS.subtypes = {
         if by_length then note_length(item, form, e - o) end
         if s.needs_version then show_version(item, st) end
         walk_body(tvb, item, body, e, st, s.layout, s.name, use)
+        return item   -- where the subtype's fields are
     end,
 }
 

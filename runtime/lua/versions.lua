@@ -145,7 +145,9 @@ end
 -- The version a Version message from o to e announces, or nil when it is not one or is
 -- malformed. r (spec.version_reader) says where its numbers are: the subtype byte, then steps
 -- over fixed bytes and length-prefixed texts, then the major and minor bytes, then (in the
--- versions r.bugfix names) the bugfix number.
+-- versions r.bugfix names) the bugfix number. A bugfix below 0 or above BUGFIX_ANY cannot
+-- compare with the spec's bounds: the version is then major.minor.0, and the bugfix number and
+-- its offset come after it, for the message to flag.
 local function announced_version(raw, o, e, r)
     if e - o <= r.subtype_offset or byte(raw, o + r.subtype_offset + 1) ~= r.subtype then return nil end
     local p = o
@@ -167,6 +169,7 @@ local function announced_version(raw, o, e, r)
     if b and version_in(v, b.low, b.high) and p + 2 + b.n <= e then
         local bugfix
         if b.signed then bugfix = be_int(raw, p + 2, b.n) else bugfix = be_uint(raw, p + 2, b.n) end
+        if bugfix < 0 or bugfix > BUGFIX_ANY then return v, bugfix, p + 2 end
         v = version_number(major, minor, bugfix)
     end
     return v
@@ -176,5 +179,6 @@ rt.version_number, rt.parse_version, rt.version_text, rt.version_in =
     version_number, parse_version, version_text, version_in
 rt.value_table, rt.enum_names, rt.named_in_any = value_table, enum_names, named_in_any
 rt.choose, rt.pick, rt.announced_version, rt.segment_of = choose, pick, announced_version, segment_of
+rt.BUGFIX_ANY = BUGFIX_ANY
 -- The version assumed when neither a Version message, the preference nor the layout sizes give one.
 rt.default_version = parse_version(spec.default_version)

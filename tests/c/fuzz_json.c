@@ -287,6 +287,8 @@ static void f32_checked(void *ctx, const char *key, float v)
     check_number_text(text, sizeof text);
     if (!isnan(v) && (strtof(text, NULL) != v || signbit(strtof(text, NULL)) != signbit(v)))
         abort();
+    if (!isnan(v) && !isinf(v) && !strpbrk(text, ".e"))
+        abort();  /* laid out as float64: always a decimal point or an exponent */
     k->json.on_f32(k->json.ctx, key, v);
 }
 

@@ -123,8 +123,8 @@ static void float64_cases(void)
 
 static void float32_cases(void)
 {
-    expect_f32(f32_of(0), "0");
-    expect_f32(f32_of(0x80000000u), "-0");
+    expect_f32(f32_of(0), "0.0");
+    expect_f32(f32_of(0x80000000u), "-0.0");
     expect_f32(f32_of(0x7f800000u), "Infinity");
     expect_f32(f32_of(0xff800000u), "-Infinity");
     expect_f32(f32_of(0x7fc00000u), "NaN");
@@ -138,22 +138,31 @@ static void float32_cases(void)
     expect_f32(f32_of(0x7f7fffffu), "3.4028235e+38");
     expect_f32(f32_of(0xff7fffffu), "-3.4028235e+38");
     expect_f32(f32_of(0x7f7ffffeu), "3.4028233e+38");
-    /* "%g" switches to scientific at exponent -5 and at the number of digits. */
+    /* Laid out as float64 is: a decimal point from 1e-4 up to 1e16, an exponent outside (not
+     * "%g"'s, which goes to an exponent at as many places as it has digits: 3e+01). */
     expect_f32(0.1f, "0.1");
-    expect_f32(1.0f, "1");
+    expect_f32(1.0f, "1.0");
     expect_f32(1.5f, "1.5");
-    expect_f32(100.0f, "1e+02");
-    expect_f32(123.0f, "123");
+    expect_f32(30.0f, "30.0");
+    expect_f32(31.0f, "31.0");
+    expect_f32(-30.0f, "-30.0");
+    expect_f32(100.0f, "100.0");
+    expect_f32(123.0f, "123.0");
     expect_f32(1e-4f, "0.0001");
     expect_f32(1e-5f, "1e-05");
+    expect_f32(1.5e-5f, "1.5e-05");
     expect_f32(1e-7f, "1e-07");
-    expect_f32(1e10f, "1e+10");
+    expect_f32(1e10f, "10000000000.0");
+    expect_f32(1e15f, "1000000000000000.0");
+    expect_f32(9.999999e15f, "9999999000000000.0");
+    expect_f32(1e16f, "1e+16");
+    expect_f32(1.5e20f, "1.5e+20");
     expect_f32(47.9f, "47.9");
     expect_f32(-0.333f, "-0.333");
     /* Powers of two, and ones where the lopsided interval needs a longer text than the
      * shortest decimal inside it (the correctly rounded 8 digits fall outside). */
-    expect_f32(f32_of(0x4b800000u), "16777216");     /* 2^24 */
-    expect_f32(f32_of(0x4c000000u), "33554432");     /* 2^25 */
+    expect_f32(f32_of(0x4b800000u), "16777216.0");   /* 2^24 */
+    expect_f32(f32_of(0x4c000000u), "33554432.0");   /* 2^25 */
     expect_f32(f32_of(0x7f000000u), "1.7014118e+38"); /* 2^127 */
     expect_f32(f32_of(0x0f800000u), "1.26217745e-29"); /* 2^-96 */
     expect_f32(f32_of(0x6b000000u), "1.54742505e+26"); /* 2^87 */
@@ -163,8 +172,8 @@ static void float32_cases(void)
     expect_f32(f32_of(0x3eaaaaabu), "0.33333334");
     /* Ties on an end of the interval: 134219000 lies midway between 134218992 (odd mantissa:
      * out) and 134219008 (even: in). */
-    expect_f32(134218992.0f, "1.3421899e+08");
-    expect_f32(134219008.0f, "1.34219e+08");
+    expect_f32(134218992.0f, "134218990.0");
+    expect_f32(134219008.0f, "134219000.0");
     /* 7.038531e-26 lies within half a double ulp of the midpoint between these two: read as a
      * double it is the midpoint, which rounds to the even one (0x15ae43fe), as Python reads it. */
     expect_f32(f32_of(0x15ae43fdu), "7.0385307e-26");
@@ -208,11 +217,13 @@ static int digit_count(uint64_t n)
 }
 
 /* Every text reads back as its float; its digits are the correctly rounded ones of their
- * length (printf's %.*e gives them) and end in no zero. */
+ * length (printf's %.*g gives them) and end in no zero. A float32 text is laid out as the
+ * float64 text of the double its %.*g reads as: that double has no shorter text (it would read
+ * back as the same float32), so its text has the same digits. */
 static void properties(long count)
 {
     long i;
-    char text[64], rounded[64];
+    char text[64], rounded[64], as_double[64];
     for (i = 0; i < count && failures < 20; i++) {
         uint64_t bits = next_random();
         double d = f64_of(bits);
@@ -230,7 +241,8 @@ static void properties(long count)
             int p = digit_count(dec.digits);
             json_f32_text(f, text, sizeof text);
             snprintf(rounded, sizeof rounded, "%.*g", p, (double)f);
-            if ((float)strtod(text, NULL) != f || strcmp(text, rounded) != 0 || dec.digits % 10 == 0) {
+            json_f64_text(strtod(rounded, NULL), as_double, sizeof as_double);
+            if ((float)strtod(text, NULL) != f || strcmp(text, as_double) != 0 || dec.digits % 10 == 0) {
                 printf("float32 %08lx: %s (%%.%dg: %s)\n", (unsigned long)(bits >> 32), text, p, rounded);
                 failures++;
             }

@@ -23,6 +23,7 @@
 #define URWIRE_PACKAGE_HEADER_SIZE 5u
 #define URWIRE_MAX_VALUE_DEPTH 3
 #define URWIRE_DEFAULT_VERSION_INIT {5, 9, 0, true}
+#define URWIRE_BUGFIX_ANY 999
 #define URWIRE_VALUE_ARRAY_MAX 6
 /* A private number that the generated urwire.c defines before the runtime: the most exact
  * sizes a form has (private.h sizes urwire__form with it). */

@@ -50,7 +50,8 @@ def test_random_bytes_decode_like_python(asan):
 def float_bits(rng: random.Random, size: int, count: int) -> list[bytes]:
     special = [0.0, -0.0, 1.0, -1.0, 0.1, 1e-45, 3.4028234663852886e38, 1e-38, 16777217.0, math.inf, -math.inf,
                math.nan, 123456.789, 2.5e-8, 1e-4, 1e-5, 1e15, 1e16, 123456789012345678.0, 5e-324,
-               1.7976931348623157e308, 0.30000000000000004, 100.0, 1.5e-7,
+               1.7976931348623157e308, 0.30000000000000004, 100.0, 1.5e-7, 30.0, 31.0, -30.0, 1.5e20,
+               9.999999e15, 1e-4 * 0.999, 1e16 * 1.001,
                -6.243497100631985e+144, 7.291122019556398e-304]  # the last two: lopsided intervals
     fmt = ">f" if size == 4 else ">d"
     out = [struct.pack(fmt, x) for x in special if size == 8 or not abs(x) < math.inf or abs(x) < 3.4e38]

@@ -252,6 +252,38 @@ static void a_version_message_sets_the_framer_version(void)
     CHECK(m.as.version.build_number == 9 && m.as.version.build_date.len == 4);
     CHECK(fr.version.major == 5 && fr.version.minor == 25 && fr.version.bugfix == 1 && fr.version_seen);
 }
+/* A bugfix below 0 or above URWIRE_BUGFIX_ANY cannot compare with the spec's bounds: the framer
+ * goes on with major.minor.0 and flags it; the message keeps the number; a later Version
+ * message in range clears the flag. */
+static void a_version_bugfix_out_of_range_is_set_aside(void)
+{
+    static const int32_t bugfixes[] = {-1, INT32_MIN, URWIRE_BUGFIX_ANY + 1, INT32_MAX, URWIRE_BUGFIX_ANY};
+    static uint8_t buf[256];
+    uint8_t bytes[] = {0, 0, 0, 31, 20, 0, 0, 0, 0, 0, 0, 0, 0, 0xfe, 3, 1, 'U', 5, 0,
+                       0, 0, 0, 0, 0, 0, 0, 9, 'd', 'a', 't', 'e'};
+    urwire_framer fr;
+    urwire_frame frame;
+    urwire_message m;
+    size_t k;
+    urwire_framer_init(&fr, buf, sizeof buf, URWIRE_DEFAULT_VERSION);
+    CHECK(!fr.version_out_of_range);
+    for (k = 0; k < sizeof bugfixes / sizeof bugfixes[0]; k++) {
+        uint32_t u = (uint32_t)bugfixes[k];
+        bool in_range = bugfixes[k] == URWIRE_BUGFIX_ANY;
+        bytes[19] = (uint8_t)(u >> 24);
+        bytes[20] = (uint8_t)(u >> 16);
+        bytes[21] = (uint8_t)(u >> 8);
+        bytes[22] = (uint8_t)u;
+        CHECK(urwire_framer_feed(&fr, bytes, sizeof bytes) == sizeof bytes);
+        CHECK(urwire_framer_next(&fr, &frame) == URWIRE_FRAME_MESSAGE);
+        CHECK(urwire_decode_message(frame.bytes, frame.length, frame.version, &m));
+        CHECK(m.kind == URWIRE_KIND_VERSION && m.as.version.bugfix_version == bugfixes[k]);
+        CHECK(fr.version.major == 5 && fr.version.minor == 0 && !fr.version.assumed && fr.version_seen);
+        CHECK(fr.version.bugfix == (in_range ? URWIRE_BUGFIX_ANY : 0));
+        CHECK(fr.version_out_of_range == !in_range);
+    }
+}
+
 static void error_texts_cut_to_fit(void)
 {
     urwire_error e;
@@ -274,6 +306,7 @@ int main(void)
     layout_choice_by_version_and_length();
     a_repeated_name_is_one_member();
     a_version_message_sets_the_framer_version();
+    a_version_bugfix_out_of_range_is_set_aside();
     error_texts_cut_to_fit();
     if (failures == 0)
         printf("all unit checks passed\n");

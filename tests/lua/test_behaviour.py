@@ -9,8 +9,8 @@ import shutil
 import struct
 import subprocess
 
-from harness import (PLUGIN, ROOT, parse_json, run_tshark, to_records, tshark_json, ur_items_by_stream,
-                     write_sessions)
+from harness import (PLUGIN, ROOT, _experts, parse_json, run_tshark, to_records, tshark_json,
+                     ur_items_by_stream, write_sessions)
 from tests.tools import capture
 from tests.tools.capture import Segment
 
@@ -72,6 +72,24 @@ def test_version_message_wins_over_the_preference(tmp_path):
     rec = to_records(items[1])[0]
     assert rec["variables"] == [{"type": "BOOL", "value": True}]
     assert "ur.version_assumed" not in items[1]["ur.global_variables_update"]
+
+
+def test_a_version_bugfix_out_of_range_is_flagged_and_the_stream_read_as_major_minor(tmp_path):
+    """bugfix -1: a warning on its bytes, and 5.0 for the messages after it, as in Python and C."""
+    version = bytes.fromhex("0000002d140000000000000000fe0309555243" "6f6e74726f6c0500ffffffff00000064"
+                            "30312d30312d32303138")
+    pcap = write_sessions(tmp_path / "v.pcap", [[version, update_5_0_bool()]])
+    items = ur_items_by_stream(tshark_json(pcap))[0]
+    text = "bugfix version -1 is out of range (0 to 999); the stream is read as 5.0"
+    (warning,) = _experts(items[0]["ur.version"][text])   # an item of its own, on the bugfix bytes
+    assert warning["_ws.expert.message"] == text and "ur.version_out_of_range" in warning
+    assert warning["_ws.expert.severity"] == str(0x00600000)   # PI_WARN
+    assert to_records(items[0])[0]["bugfix_version"] == -1
+    update = items[1]["ur.global_variables_update"]
+    assert update["ur.software_version"] == "5.0" and "ur.version_assumed" not in update
+    assert to_records(items[1])[0]["variables"] == [{"type": "BOOL", "value": True}]
+    fields = run_tshark(pcap, "-Y", "ur.version_out_of_range", "-T", "fields", "-e", "ur.version.bugfix_version")
+    assert fields.split() == ["-1"]
 
 
 def test_a_robot_state_that_cannot_be_framed_teaches_the_stream_no_version(tmp_path):

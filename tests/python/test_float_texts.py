@@ -1,9 +1,12 @@
-"""The float32 texts of canonical JSON: the fast digit count against the search by definition.
+"""The float32 texts of canonical JSON: the fast digit count against the search by definition,
+and their layout against repr().
 
 f32_text counts the digits a float32 needs with double arithmetic and a margin
-(canonical._f32_shortest); canonical._f32_upwards tries %.1g, %.2g, ... and reads each back,
-which is the definition itself. The C command's texts are checked against f32_text over millions
-of values in tests/c/test_c_json.py.
+(canonical._f32_digits); canonical._f32_upwards tries %.1g, %.2g, ... and reads each back,
+which is the definition itself. The text lays those digits out as repr() lays out a double, and
+repr() of the double the %g text reads as is that layout: the double has no shorter text (that
+text would read back as the same float32 too), so repr() prints the same digits. The C command's
+texts are checked against f32_text over millions of values in tests/c/test_c_json.py.
 """
 from __future__ import annotations
 
@@ -36,9 +39,28 @@ def finite_nonzero(values) -> list[float]:
 
 
 def assert_definition(values) -> None:
-    wrong = [(x.hex(), canonical._f32_shortest(x), canonical._f32_upwards(x))
-             for x in finite_nonzero(values) if canonical._f32_shortest(x) != canonical._f32_upwards(x)]
+    values = finite_nonzero(values)
+    wrong = [(x.hex(), canonical._f32_digits(x), canonical._f32_upwards(x))
+             for x in values if canonical._f32_digits(x) != canonical._f32_upwards(x)]
     assert not wrong, wrong[:10]
+    laid_out = [(x.hex(), canonical._f32_shortest(x)) for x in values
+                if canonical._f32_shortest(x) != repr(float(canonical._f32_upwards(x)))]
+    assert not laid_out, laid_out[:10]
+
+
+@pytest.mark.parametrize("value, text", [
+    (30.0, "30.0"), (31.0, "31.0"), (-30.0, "-30.0"), (100.0, "100.0"), (2.5, "2.5"), (0.1, "0.1"),
+    (1e-4, "0.0001"), (1e-5, "1e-05"), (1.5e-5, "1.5e-05"), (1.5e20, "1.5e+20"), (1e15, "1000000000000000.0"),
+    (9.999999e15, "9999999000000000.0"), (1e16, "1e+16"), (123456789.0, "123456790.0"), (0.0, "0.0"),
+    (-0.0, "-0.0"), (1e-45, "1e-45"), (-1e-45, "-1e-45"), (5.877472e-39, "5.877472e-39"),
+    (1.1754942e-38, "1.1754942e-38"), (3.4028233e38, "3.4028233e+38"),
+    (math.inf, "Infinity"), (-math.inf, "-Infinity"), (math.nan, "NaN")])
+def test_the_notation_is_that_of_float64(value, text):
+    """The digits are float32's own, the notation repr()'s: a decimal point from 1e-4 up to 1e16,
+    an exponent outside (where %g would have written 3e+01 for 30)."""
+    x = F32.unpack(F32.pack(value))[0]
+    assert canonical.f32_text(x) == canonical._f32_shortest(x) == text
+    assert canonical.f32_text(x) == text  # from the kept texts too
 
 
 def test_no_float32_lies_between_a_power_of_ten_and_its_double():
@@ -87,4 +109,4 @@ def test_the_ranges_a_robot_sends():
     values = [F32.unpack(F32.pack(rng.uniform(lo, hi)))[0]
               for lo, hi in ((-5, 5), (0, 60), (20, 80), (-6.3, 6.3), (-1e-3, 1e-3)) for _ in range(20_000)]
     assert_definition(values)
-    assert {len(canonical._f32_shortest(x).lstrip("-0.").replace(".", "")) for x in values[:20_000]} >= {7, 8, 9}
+    assert {len(canonical._f32_digits(x).lstrip("-0.").replace(".", "")) for x in values[:20_000]} >= {7, 8, 9}

@@ -113,11 +113,11 @@ def test_signed_zeros_have_their_own_texts():
 
 
 def test_an_integer_and_the_float_of_its_value_have_their_own_texts():
-    """report_data holds an int32 or a float32, by report_data_type: 1e6 prints as 1e+06 as a
+    """report_data holds an int32 or a float32, by report_data_type: 1e6 prints as 1000000.0 as a
     float32 and as 1000000 as an integer, though 1000000 == 1e6."""
     msg = next(r for r in RECORDS if hasattr(r, "report_data") and r.report_data is not None)
     msg = _copy(msg)
     msg.report_data = 1e6
-    assert '"report_data": 1e+06' in urwire.to_json_line(msg)
+    assert '"report_data": 1000000.0' in urwire.to_json_line(msg)
     msg.report_data = 1000000
     assert '"report_data": 1000000' in urwire.to_json_line(msg)

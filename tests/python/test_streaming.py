@@ -58,6 +58,30 @@ def test_version_is_learned_from_the_version_message():
     assert [(v.type, v.value) for v in msg.variables] == [("BOOL", True), ("CONST_STRING", "aaaa")]
 
 
+def version_with_bugfix(bugfix: int) -> bytes:
+    """MINIMAL_VERSION as 5.0 with the given bugfix number (an int32 from 3.3)."""
+    return MINIMAL_VERSION[:19] + b"\x00" + struct.pack(">i", bugfix) + MINIMAL_VERSION[24:]
+
+
+def test_a_bugfix_out_of_range_keeps_major_minor_and_is_flagged():
+    for bugfix in (-1, -(1 << 31), 1000, (1 << 31) - 1):
+        framer = urwire.Framer()
+        (msg,) = framer.feed(version_with_bugfix(bugfix))
+        assert msg.bugfix_version == bugfix  # the record keeps what came
+        assert framer.version == framer.announced == (5, 0, 0) and framer.version_seen
+        assert framer.version_note == (f"Version message at offset 0: bugfix version {bugfix} is out of range "
+                                       "(0 to 999); the stream is read as 5.0")
+        # A later Version message in range sets its version and clears the note.
+        framer.feed(version_with_bugfix(999))
+        assert framer.version == (5, 0, 999) and framer.version_note is None
+
+
+def test_a_bugfix_in_range_is_no_note():
+    framer = urwire.Framer()
+    framer.feed(MINIMAL_VERSION)
+    assert framer.version == (5, 24, 0) and framer.version_note is None
+
+
 def test_hint_applies_until_a_version_message():
     body = bytes(8) + b"\x01" + b"\x00\x00" + bytes.fromhex("0c010a030004616161610a")
     update = (len(body) + 5).to_bytes(4, "big") + b"\x19" + body

@@ -80,9 +80,8 @@ static size_t scientific(char *out, const digits *g, int exp10)
 }
 
 /* The digits with the decimal point after the first `point` of them: point from -3 to 0 puts
- * "0." and -point zeros first; point > n, zeros up to it (16 at most); ".0" after a whole
- * number when dot_zero. */
-static size_t fixed(char *out, const digits *g, int point, bool dot_zero)
+ * "0." and -point zeros first; point > n, zeros up to it (16 at most), then ".0". */
+static size_t fixed(char *out, const digits *g, int point)
 {
     size_t at, n = g->n;
     if (point <= 0) {
@@ -99,10 +98,8 @@ static size_t fixed(char *out, const digits *g, int point, bool dot_zero)
         return n + 1;
     }
     memcpy(out + n, "0000000000000000", 16);
-    if (dot_zero) {
-        out[at++] = '.';
-        out[at++] = '0';
-    }
+    out[at++] = '.';
+    out[at++] = '0';
     return at;
 }
 
@@ -117,9 +114,9 @@ static size_t wordy_text(double x, const char *zero, char *out)
     return sign + n;
 }
 
-/* |x| = dec laid out as Python's repr() (fixed from 1e-4 up to 1e16, with at least one
- * decimal), or when percent_g as C's and Python's "%.{p}g", p being the number of digits. */
-static size_t decimal_text(double x, shortest_decimal dec, bool percent_g, char *out)
+/* |x| = dec laid out as Python's repr() lays out a double: fixed from 1e-4 up to 1e16, with at
+ * least one decimal, else scientific. Float32 texts too: only their digits are their own. */
+static size_t decimal_text(double x, shortest_decimal dec, char *out)
 {
     digits g;
     size_t sign = signbit(x) ? 1 : 0;
@@ -127,9 +124,9 @@ static size_t decimal_text(double x, shortest_decimal dec, bool percent_g, char 
     set_digits(&g, dec.digits);
     point = (int)g.n + dec.exponent;
     out[0] = '-';
-    if (percent_g ? point - 1 < -4 || point > (int)g.n : point <= -4 || point > 16)
+    if (point <= -4 || point > 16)
         return sign + scientific(out + sign, &g, point - 1);
-    return sign + fixed(out + sign, &g, point, !percent_g);
+    return sign + fixed(out + sign, &g, point);
 }
 
 /* The canonical texts; out has TEXT_ROOM bytes. */
@@ -137,14 +134,14 @@ static size_t f64_text(double x, char *out)
 {
     if (!isfinite(x) || x == 0)
         return wordy_text(x, "0.0", out);
-    return decimal_text(x, shortest_f64(x), false, out);
+    return decimal_text(x, shortest_f64(x), out);
 }
 
 static size_t f32_text(float x, char *out)
 {
     if (!isfinite(x) || x == 0)
-        return wordy_text(x, "0", out);
-    return decimal_text(x, shortest_f32(x), true, out);
+        return wordy_text(x, "0.0", out);
+    return decimal_text(x, shortest_f32(x), out);
 }
 
 static void cut(const char *text, size_t n, char *buf, size_t cap)

@@ -72,6 +72,11 @@ function Node:append_text(text) self.text = (self.text or "") .. text end
 function Node:set_len(n) self.len = n end
 function Node:set_generated() self.generated = true; return self end
 function Node:add_proto_expert_info(e, text) self.experts[#self.experts + 1] = { e = e, text = text } end
+function Node:add_tvb_expert_info(e, range, text)
+    local child = self:add(e, range)
+    child:add_proto_expert_info(e, text)
+    return child
+end
 function Node:referenced(f) return self.asked[f] == true end
 
 -- Wireshark's class tables, from which the runtime takes the methods it calls for every field.

@@ -9,7 +9,7 @@ local rt = S.base_rt(spec)
 S.load("declare.lua", spec, rt)
 S.eq(table.concat(ur.fields, " "), "ur.length ur.type ur.key.text ur.raw ur.extra ur.skipped ur.software_version " ..
      "ur.version_assumed ur.unknown_package ur.urscript", "the spec's fields, then the dissector's own")
-S.eq(#ur.experts, 9, "experts")
+S.eq(#ur.experts, 10, "experts")
 S.eq(rt.E.items_hidden, "ur.items_hidden", "more items than a message shows")
 S.eq(rt.E.by_length, "ur.layout_by_length", "a form chosen by its length")
 S.eq(rt.X.raw, "ur.raw", "extra fields exported")

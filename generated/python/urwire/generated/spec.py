@@ -24,6 +24,9 @@ DOCUMENTED_VERSIONS = [(1, 6, 0), (1, 7, 0), (1, 8, 0), (3, 0, 0), (3, 1, 0), (3
                        (5, 9, 0), (5, 10, 0)]
 DEFAULT_VERSION = (5, 9, 0)
 """Software version assumed when a stream has shown no Version message and no hint was given."""
+BUGFIX_ANY = 999
+"""The bugfix number of an upper bound written major.minor ("up to 5.8" ends at bugfix 999 of 5.8): the largest
+bugfix a version can hold and still compare rightly with every bound."""
 
 KNOWN_MESSAGE_TYPES = frozenset([5, 16, 20, 22, 23, 24, 25, 255])
 """Every message type the spec names: a plausible header carries one of these."""
