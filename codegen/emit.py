@@ -7,6 +7,8 @@ from pathlib import Path
 
 import jinja2
 
+from . import wrap
+
 TEMPLATES = Path(__file__).parent / "templates"
 # Hand-written code in each target's language, one folder per language (runtime/c, runtime/lua),
 # beside the generator as Emboss keeps runtime/cpp: edited, compiled and tested where it is.
@@ -23,6 +25,7 @@ def environment(target: str) -> jinja2.Environment:
         keep_trailing_newline=True,
         autoescape=False,
     )
+    env.filters.update(wrap.FILTERS)   # line width: prose and long lists wrapped alike in every target
     return env
 
 

@@ -79,13 +79,19 @@ class VersionRange:
     def unbounded(self) -> bool:
         return self.low is None and self.high is None
 
-    def describe(self) -> str:
-        # An upper bound keeps its bugfix 0 ("up to 5.25.0", before 5.25.1); "up to 5.8" is any 5.8.x.
+    def describe(self, first: Optional[Version] = None) -> str:
+        """The range as a reader says it: "1.5 to 1.8", "5.25.1 and later", "up to 3.1", "5.0"
+        (every 5.0.x). An upper bound keeps an explicit bugfix ("up to 5.25.0": before 5.25.1);
+        a range that starts at `first` (the first release) reads "up to". Every target's comments,
+        docstrings and run-time texts use this: no bound prints as a tuple or a number."""
+        if self.low and self.high and self.low[:2] == self.high[:2] and (self.low[2], self.high[2]) == (0, BUGFIX_ANY):
+            return version_text(self.low)                            # one minor release: "1.8"
+        low = None if self.low is None or (first is not None and self.low <= first) else self.low
         high = self.high and (version_text(self.high) if self.high[2] else "%d.%d.0" % self.high[:2])
-        if self.low and self.high:
-            return f"{version_text(self.low)} to {high}"
-        if self.low:
-            return f"{version_text(self.low)} and later"
+        if low and self.high:
+            return f"{version_text(low)} to {high}"
+        if low:
+            return f"{version_text(low)} and later"
         if self.high:
             return f"up to {high}"
         return "all versions"

@@ -425,11 +425,9 @@ def _bounds(r: ir.VersionRange) -> tuple[int, int]:
 
 
 def _range_text(lo: int, hi: int, first: int = 0) -> str:
-    """A range as a reader says it; one that starts with the first release is "up to"."""
-    if lo == hi - hi % 1000 and hi % 1000 == ir.BUGFIX_ANY:
-        return ir.version_text(ir.version_of_number(lo))              # one minor release: "1.8"
-    low = ir.version_of_number(lo) if lo > first else None
-    return ir.VersionRange(low, ir.version_of_number(hi) if hi < _TOP else None).describe()
+    """A range of version numbers as a reader says it (ir.VersionRange.describe)."""
+    return ir.VersionRange(ir.version_of_number(lo), ir.version_of_number(hi) if hi < _TOP else None).describe(
+        ir.version_of_number(first))
 
 
 def _fields_by_version(struct: ir.Struct) -> list[ir.AnyField]:

@@ -153,7 +153,6 @@ class Decoder:
     when generating (flag conditions stay; the fields the form lacks are zeroed)."""
 
     name: str             # urwire__decode_masterboard_data_2
-    indent: str           # aligns a wrapped parameter list under the name
     doc: str
     steps: list[Step]
     needs_p: bool
@@ -186,28 +185,15 @@ class CStruct:
     code_const: str = ""
     kind_const: str = ""            # subtypes: URWIRE_KIND_<NAME>; packages: URWIRE_LAYOUT_<NAME>
 
-    def indent(self, verb: str, ret: str) -> str:
-        """Spaces that align a wrapped parameter list under `static <ret> urwire__<verb>_<name>(`."""
-        return " " * len(f"static {ret} urwire__{verb}_{self.name}(")
-
     def decoder(self, suffix: str, doc: str, steps: list[Step]) -> Decoder:
         name = f"urwire__decode_{self.name}{suffix}"
-        return Decoder(name, " " * len(f"static inline bool {name}("), doc, steps, needs_p(steps),
-                       uses_index(steps), can_fail(steps))
+        return Decoder(name, doc, steps, needs_p(steps), uses_index(steps), can_fail(steps))
 
     def decoder_of(self, forms: list[plan.Variant], v: plan.Variant) -> str:
         """The decoder that reads the form v of this struct's layout (whose forms are `forms`)."""
         if len(self.decoders) == 1:
             return self.decoders[0].name
         return self.decoders[next(k for k, f in enumerate(forms) if f is v)].name
-
-    @property
-    def encode_indent(self) -> str:
-        return self.indent("encode", "bool")
-
-    @property
-    def visit_indent(self) -> str:
-        return self.indent("visit", "void")
 
 
 class _Builder:

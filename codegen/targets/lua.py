@@ -17,7 +17,7 @@ import textwrap
 from dataclasses import dataclass
 from typing import Optional
 
-from .. import ir, plan
+from .. import ir, plan, wrap
 from ..comments import node_text
 from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ..errors import Problem, SpecError
@@ -56,6 +56,44 @@ def lua_str(text: str) -> str:
         else:
             out.append(ch)
     return '"' + "".join(out) + '"'
+
+
+def lua_text(text: str, indent: str = "", column: int = 0) -> str:
+    """A long Lua string literal over several lines: each line but the last ends in a space and
+    `\\z`, which makes Lua skip the line break and the next line's indentation, so the value is
+    the text exactly. It breaks only before a word (never before a space the text keeps)."""
+    words = text.split(" ")
+    lines, line = [], []
+    for word in words:
+        width = (wrap.PROSE - column if not lines else wrap.PROSE - len(indent)) - 4
+        if line and word and len(lua_str(" ".join(line + [word]))) > width:
+            lines.append(" ".join(line))
+            line = [word]
+        else:
+            line.append(word)
+    lines.append(" ".join(line))
+    literals = [lua_str(piece)[1:-1] for piece in lines]
+    return '"' + (" \\z\n" + indent).join(literals) + '"'
+
+
+def lua_field(call: str, key: str, text: str, indent: str = "    ") -> str:
+    """One entry of the field table, `[key] = ProtoField.x(..., text),` where `call` is the
+    constructor up to its last argument, the description `text`, one argument a line: on one
+    line when it fits, else the description (wrapped by lua_text) on the lines under it, and the
+    constructor under the key when even that is long."""
+    args = "\n".join(a.strip() for a in call.splitlines() if a.strip())
+    flat = args.replace("\n", " ")
+    one = f"{indent}[{key}] = {flat}, {lua_str(text)}),"
+    if len(one) <= wrap.LIMIT:
+        return one
+    inner = indent + "    "
+    head = f"{indent}[{key}] = {flat},"
+    if len(head) <= wrap.LIMIT:
+        lines = [head]
+    else:
+        lines = [f"{indent}[{key}] ="] + [inner + line for line in wrap.pack(args, len(inner), 4).split("\n")]
+        lines[-1] += ","
+    return "\n".join(lines + [inner + lua_text(text, inner, len(inner)) + "),"])
 
 
 def lua_literal(value) -> str:
@@ -596,6 +634,8 @@ def render(protocol_plan, banner: list[str]) -> dict[str, str]:
     p = protocol_plan.protocol
     env = environment("lua")
     env.filters["lua"] = lua_literal
+    env.filters["lua_text"] = lua_text
+    env.filters["lua_field"] = lua_field
     model = _Builder(protocol_plan).build()
     ctx = dict(banner=banner, p=p, doc=one_line(p.doc), runtime=runtime(), **model)
     return {OUT: env.get_template("urwire.lua.j2").render(**ctx)}

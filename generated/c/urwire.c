@@ -334,8 +334,8 @@ URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_mes
 URWIRE__PRIVATE size_t urwire__segment(uint64_t key);
 URWIRE__PRIVATE const urwire__form *urwire__mine(const urwire__form_table *t, size_t segment, size_t code,
                                                 bool *nearest);
-URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, size_t code, size_t segment, size_t size,
-                                                  urwire_sw_version *version, bool *by_length);
+URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, size_t code, size_t segment,
+                                                  size_t size, urwire_sw_version *version, bool *by_length);
 URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out);
 /* decode.c */
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);
@@ -499,7 +499,7 @@ URWIRE__PRIVATE urwire_bytes urwire__seq_bytes(const urwire_seq *s)
 const urwire_sw_version URWIRE_DEFAULT_VERSION = URWIRE_DEFAULT_VERSION_INIT;
 
 /* Below, equal to or above major.minor.bugfix: -1, 0 or 1 (part by part, as the spec's
- * version tuples compare; an upper bound written "5.8" is 5.8.999). */
+ * version tuples compare; an upper bound written "5.8" takes in every 5.8 bugfix release). */
 URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix)
 {
     if (v.major != major)
@@ -1199,7 +1199,7 @@ static const char *urwire__joint_mode_3_0_to_3_15_name(int64_t code)
     }
 }
 
-/* joint_mode, software 5.0 to 5.0 */
+/* joint_mode, software 5.0 */
 static const char *urwire__joint_mode_5_0_to_5_0_name(int64_t code)
 {
     switch (code) {
@@ -1766,8 +1766,8 @@ static inline bool urwire__decode_robot_mode_data_3(const uint8_t *msg, size_t *
     return true;
 }
 
-static bool urwire__encode_robot_mode_data(const void *from, const urwire__ver *ver,
-                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_robot_mode_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                           size_t *at, urwire_error *err)
 {
     const urwire_robot_mode_data *in = from;
     size_t pos = *at;
@@ -1825,8 +1825,7 @@ static bool urwire__encode_robot_mode_data(const void *from, const urwire__ver *
     return true;
 }
 
-static void urwire__visit_robot_mode_data(const void *from, const urwire__ver *ver,
-                                          const urwire_visitor *v)
+static void urwire__visit_robot_mode_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_robot_mode_data *in = from;
     (void)ver;
@@ -1856,8 +1855,8 @@ static void urwire__visit_robot_mode_data(const void *from, const urwire__ver *v
         v->on_hex(v->ctx, "extra", in->extra);
 }
 
-/* One entry per joint, base first. (41 bytes, read inside its parent's checked run;
- * inlined, as a field of the run would be) */
+/* One entry per joint, base first. (41 bytes, read inside its parent's checked run; inlined, as a
+ * field of the run would be) */
 URWIRE__INLINE void urwire__read_joint(const uint8_t *p, urwire_joint *out)
 {
     out->q_actual = urwire__f64(p);
@@ -1884,8 +1883,7 @@ static void urwire__write_joint(uint8_t *p, const urwire_joint *in)
 
 }
 
-static void urwire__visit_joint(const void *from, const urwire__ver *ver,
-                                const urwire_visitor *v)
+static void urwire__visit_joint(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_joint *in = from;
     (void)ver;
@@ -1972,8 +1970,8 @@ static inline bool urwire__decode_joint_data(const uint8_t *msg, size_t *at, siz
     return true;
 }
 
-static bool urwire__encode_joint_data(const void *from, const urwire__ver *ver,
-                                      uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_joint_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                      urwire_error *err)
 {
     const urwire_joint_data *in = from;
     size_t pos = *at;
@@ -1991,8 +1989,7 @@ static bool urwire__encode_joint_data(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_joint_data(const void *from, const urwire__ver *ver,
-                                     const urwire_visitor *v)
+static void urwire__visit_joint_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_joint_data *in = from;
     size_t i;
@@ -2021,7 +2018,8 @@ static const urwire__span urwire__tool_data_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes. */
+/* Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and
+ * inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes. */
 static inline bool urwire__decode_tool_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                             void *into, urwire_error *err)
 {
@@ -2049,8 +2047,8 @@ static inline bool urwire__decode_tool_data(const uint8_t *msg, size_t *at, size
     return true;
 }
 
-static bool urwire__encode_tool_data(const void *from, const urwire__ver *ver,
-                                     uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_tool_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                     urwire_error *err)
 {
     const urwire_tool_data *in = from;
     size_t pos = *at;
@@ -2075,8 +2073,7 @@ static bool urwire__encode_tool_data(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_tool_data(const void *from, const urwire__ver *ver,
-                                    const urwire_visitor *v)
+static void urwire__visit_tool_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_tool_data *in = from;
     (void)ver;
@@ -2455,8 +2452,8 @@ static inline bool urwire__decode_masterboard_data_4(const uint8_t *msg, size_t 
     return true;
 }
 
-static bool urwire__encode_masterboard_data(const void *from, const urwire__ver *ver,
-                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_masterboard_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                            size_t *at, urwire_error *err)
 {
     const urwire_masterboard_data *in = from;
     size_t pos = *at;
@@ -2588,8 +2585,7 @@ static bool urwire__encode_masterboard_data(const void *from, const urwire__ver 
     return true;
 }
 
-static void urwire__visit_masterboard_data(const void *from, const urwire__ver *ver,
-                                           const urwire_visitor *v)
+static void urwire__visit_masterboard_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_masterboard_data *in = from;
     (void)ver;
@@ -2738,8 +2734,8 @@ static inline bool urwire__decode_cartesian_info_1(const uint8_t *msg, size_t *a
     return true;
 }
 
-static bool urwire__encode_cartesian_info(const void *from, const urwire__ver *ver,
-                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_cartesian_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                          size_t *at, urwire_error *err)
 {
     const urwire_cartesian_info *in = from;
     size_t pos = *at;
@@ -2773,8 +2769,7 @@ static bool urwire__encode_cartesian_info(const void *from, const urwire__ver *v
     return true;
 }
 
-static void urwire__visit_cartesian_info(const void *from, const urwire__ver *ver,
-                                         const urwire_visitor *v)
+static void urwire__visit_cartesian_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_cartesian_info *in = from;
     (void)ver;
@@ -2813,7 +2808,8 @@ static const urwire__span urwire__laser_pointer_run0[] = {
     {NULL, 0, 0},
 };
 
-/* The early CB2 package of type 5: three doubles, 29 bytes; kinematics info takes the code from 1.8. What the values mean is not documented (a laser pointer's position, perhaps). */
+/* The early CB2 package of type 5: three doubles, 29 bytes; kinematics info takes the code from
+ * 1.8. What the values mean is not documented (a laser pointer's position, perhaps). */
 static inline bool urwire__decode_laser_pointer(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                 void *into, urwire_error *err)
 {
@@ -2835,8 +2831,8 @@ static inline bool urwire__decode_laser_pointer(const uint8_t *msg, size_t *at, 
     return true;
 }
 
-static bool urwire__encode_laser_pointer(const void *from, const urwire__ver *ver,
-                                         uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_laser_pointer(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                         urwire_error *err)
 {
     const urwire_laser_pointer *in = from;
     size_t pos = *at;
@@ -2855,8 +2851,7 @@ static bool urwire__encode_laser_pointer(const void *from, const urwire__ver *ve
     return true;
 }
 
-static void urwire__visit_laser_pointer(const void *from, const urwire__ver *ver,
-                                        const urwire_visitor *v)
+static void urwire__visit_laser_pointer(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_laser_pointer *in = from;
     (void)ver;
@@ -2902,7 +2897,8 @@ static const urwire__span urwire__kinematics_info_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is changed. */
+/* Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is
+ * changed. */
 static inline bool urwire__decode_kinematics_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                   void *into, urwire_error *err)
 {
@@ -2928,8 +2924,8 @@ static inline bool urwire__decode_kinematics_info(const uint8_t *msg, size_t *at
     return true;
 }
 
-static bool urwire__encode_kinematics_info(const void *from, const urwire__ver *ver,
-                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_kinematics_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                           size_t *at, urwire_error *err)
 {
     const urwire_kinematics_info *in = from;
     size_t pos = *at;
@@ -2952,8 +2948,7 @@ static bool urwire__encode_kinematics_info(const void *from, const urwire__ver *
     return true;
 }
 
-static void urwire__visit_kinematics_info(const void *from, const urwire__ver *ver,
-                                          const urwire_visitor *v)
+static void urwire__visit_kinematics_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_kinematics_info *in = from;
     size_t i;
@@ -2983,8 +2978,8 @@ static void urwire__visit_kinematics_info(const void *from, const urwire__ver *v
         v->on_hex(v->ctx, "extra", in->extra);
 }
 
-/* One entry of joint_position_limits. (16 bytes, read inside its parent's checked run;
- * inlined, as a field of the run would be) */
+/* One entry of joint_position_limits. (16 bytes, read inside its parent's checked run; inlined, as
+ * a field of the run would be) */
 URWIRE__INLINE void urwire__read_joint_position_limit(const uint8_t *p, urwire_joint_position_limit *out)
 {
     out->joint_min_limit = urwire__f64(p);
@@ -2999,8 +2994,7 @@ static void urwire__write_joint_position_limit(uint8_t *p, const urwire_joint_po
 
 }
 
-static void urwire__visit_joint_position_limit(const void *from, const urwire__ver *ver,
-                                               const urwire_visitor *v)
+static void urwire__visit_joint_position_limit(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_joint_position_limit *in = from;
     (void)ver;
@@ -3008,8 +3002,8 @@ static void urwire__visit_joint_position_limit(const void *from, const urwire__v
     v->on_f64(v->ctx, "joint_max_limit", in->joint_max_limit);
 }
 
-/* One entry of joint_motion_limits. (16 bytes, read inside its parent's checked run;
- * inlined, as a field of the run would be) */
+/* One entry of joint_motion_limits. (16 bytes, read inside its parent's checked run; inlined, as a
+ * field of the run would be) */
 URWIRE__INLINE void urwire__read_joint_motion_limit(const uint8_t *p, urwire_joint_motion_limit *out)
 {
     out->joint_max_speed = urwire__f64(p);
@@ -3024,8 +3018,7 @@ static void urwire__write_joint_motion_limit(uint8_t *p, const urwire_joint_moti
 
 }
 
-static void urwire__visit_joint_motion_limit(const void *from, const urwire__ver *ver,
-                                             const urwire_visitor *v)
+static void urwire__visit_joint_motion_limit(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_joint_motion_limit *in = from;
     (void)ver;
@@ -3164,8 +3157,8 @@ static const urwire__span urwire__configuration_data_2_run0[] = {
 };
 
 /* configuration_data as up to 1.8 sends it (464 bytes). */
-static inline bool urwire__decode_configuration_data_0(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                       void *into, urwire_error *err)
+static inline bool urwire__decode_configuration_data_0(const uint8_t *msg, size_t *at, size_t end,
+                                                       const urwire__ver *ver, void *into, urwire_error *err)
 {
     urwire_configuration_data *out = into;
     size_t pos = *at;
@@ -3202,8 +3195,8 @@ static inline bool urwire__decode_configuration_data_0(const uint8_t *msg, size_
 }
 
 /* configuration_data as 3.0 to 5.25.0 sends it (440 bytes). */
-static inline bool urwire__decode_configuration_data_1(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                       void *into, urwire_error *err)
+static inline bool urwire__decode_configuration_data_1(const uint8_t *msg, size_t *at, size_t end,
+                                                       const urwire__ver *ver, void *into, urwire_error *err)
 {
     urwire_configuration_data *out = into;
     size_t pos = *at;
@@ -3240,8 +3233,8 @@ static inline bool urwire__decode_configuration_data_1(const uint8_t *msg, size_
 }
 
 /* configuration_data as 5.25.1 and later sends it (444 bytes). */
-static inline bool urwire__decode_configuration_data_2(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                       void *into, urwire_error *err)
+static inline bool urwire__decode_configuration_data_2(const uint8_t *msg, size_t *at, size_t end,
+                                                       const urwire__ver *ver, void *into, urwire_error *err)
 {
     urwire_configuration_data *out = into;
     size_t pos = *at;
@@ -3277,8 +3270,8 @@ static inline bool urwire__decode_configuration_data_2(const uint8_t *msg, size_
     return true;
 }
 
-static bool urwire__encode_configuration_data(const void *from, const urwire__ver *ver,
-                                              uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_configuration_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                              size_t *at, urwire_error *err)
 {
     const urwire_configuration_data *in = from;
     size_t pos = *at;
@@ -3325,8 +3318,7 @@ static bool urwire__encode_configuration_data(const void *from, const urwire__ve
     return true;
 }
 
-static void urwire__visit_configuration_data(const void *from, const urwire__ver *ver,
-                                             const urwire_visitor *v)
+static void urwire__visit_configuration_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_configuration_data *in = from;
     size_t i;
@@ -3423,8 +3415,8 @@ static inline bool urwire__decode_force_mode_data(const uint8_t *msg, size_t *at
     return true;
 }
 
-static bool urwire__encode_force_mode_data(const void *from, const urwire__ver *ver,
-                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_force_mode_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                           size_t *at, urwire_error *err)
 {
     const urwire_force_mode_data *in = from;
     size_t pos = *at;
@@ -3447,8 +3439,7 @@ static bool urwire__encode_force_mode_data(const void *from, const urwire__ver *
     return true;
 }
 
-static void urwire__visit_force_mode_data(const void *from, const urwire__ver *ver,
-                                          const urwire_visitor *v)
+static void urwire__visit_force_mode_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_force_mode_data *in = from;
     (void)ver;
@@ -3577,8 +3568,8 @@ static inline bool urwire__decode_additional_info_3(const uint8_t *msg, size_t *
     return true;
 }
 
-static bool urwire__encode_additional_info(const void *from, const urwire__ver *ver,
-                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_additional_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                           size_t *at, urwire_error *err)
 {
     const urwire_additional_info *in = from;
     size_t pos = *at;
@@ -3620,8 +3611,7 @@ static bool urwire__encode_additional_info(const void *from, const urwire__ver *
     return true;
 }
 
-static void urwire__visit_additional_info(const void *from, const urwire__ver *ver,
-                                          const urwire_visitor *v)
+static void urwire__visit_additional_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_additional_info *in = from;
     (void)ver;
@@ -3657,7 +3647,8 @@ static const urwire__span urwire__calibration_data_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8 builds on. */
+/* Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8
+ * builds on. */
 static inline bool urwire__decode_calibration_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                    void *into, urwire_error *err)
 {
@@ -3682,8 +3673,8 @@ static inline bool urwire__decode_calibration_data(const uint8_t *msg, size_t *a
     return true;
 }
 
-static bool urwire__encode_calibration_data(const void *from, const urwire__ver *ver,
-                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_calibration_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                            size_t *at, urwire_error *err)
 {
     const urwire_calibration_data *in = from;
     size_t pos = *at;
@@ -3705,8 +3696,7 @@ static bool urwire__encode_calibration_data(const void *from, const urwire__ver 
     return true;
 }
 
-static void urwire__visit_calibration_data(const void *from, const urwire__ver *ver,
-                                           const urwire_visitor *v)
+static void urwire__visit_calibration_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_calibration_data *in = from;
     (void)ver;
@@ -3720,7 +3710,8 @@ static void urwire__visit_calibration_data(const void *from, const urwire__ver *
         v->on_hex(v->ctx, "extra", in->extra);
 }
 
-/* Safety data. Used internally by Universal Robots software only; its layout is not documented. 43 bytes on e-Series. */
+/* Safety data. Used internally by Universal Robots software only; its layout is not documented. 43
+ * bytes on e-Series. */
 static inline bool urwire__decode_safety_data(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                               void *into, urwire_error *err)
 {
@@ -3737,8 +3728,8 @@ static inline bool urwire__decode_safety_data(const uint8_t *msg, size_t *at, si
     return true;
 }
 
-static bool urwire__encode_safety_data(const void *from, const urwire__ver *ver,
-                                       uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_safety_data(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                       urwire_error *err)
 {
     const urwire_safety_data *in = from;
     size_t pos = *at;
@@ -3751,8 +3742,7 @@ static bool urwire__encode_safety_data(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_safety_data(const void *from, const urwire__ver *ver,
-                                      const urwire_visitor *v)
+static void urwire__visit_safety_data(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_safety_data *in = from;
     (void)ver;
@@ -3796,8 +3786,8 @@ static inline bool urwire__decode_tool_comm_info(const uint8_t *msg, size_t *at,
     return true;
 }
 
-static bool urwire__encode_tool_comm_info(const void *from, const urwire__ver *ver,
-                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_tool_comm_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                          size_t *at, urwire_error *err)
 {
     const urwire_tool_comm_info *in = from;
     size_t pos = *at;
@@ -3819,8 +3809,7 @@ static bool urwire__encode_tool_comm_info(const void *from, const urwire__ver *v
     return true;
 }
 
-static void urwire__visit_tool_comm_info(const void *from, const urwire__ver *ver,
-                                         const urwire_visitor *v)
+static void urwire__visit_tool_comm_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_tool_comm_info *in = from;
     (void)ver;
@@ -3863,8 +3852,8 @@ static inline bool urwire__decode_tool_mode_info(const uint8_t *msg, size_t *at,
     return true;
 }
 
-static bool urwire__encode_tool_mode_info(const void *from, const urwire__ver *ver,
-                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_tool_mode_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                          size_t *at, urwire_error *err)
 {
     const urwire_tool_mode_info *in = from;
     size_t pos = *at;
@@ -3883,8 +3872,7 @@ static bool urwire__encode_tool_mode_info(const void *from, const urwire__ver *v
     return true;
 }
 
-static void urwire__visit_tool_mode_info(const void *from, const urwire__ver *ver,
-                                         const urwire_visitor *v)
+static void urwire__visit_tool_mode_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_tool_mode_info *in = from;
     (void)ver;
@@ -3922,8 +3910,8 @@ static inline bool urwire__decode_singularity_info(const uint8_t *msg, size_t *a
     return true;
 }
 
-static bool urwire__encode_singularity_info(const void *from, const urwire__ver *ver,
-                                            uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_singularity_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                            size_t *at, urwire_error *err)
 {
     const urwire_singularity_info *in = from;
     size_t pos = *at;
@@ -3941,8 +3929,7 @@ static bool urwire__encode_singularity_info(const void *from, const urwire__ver 
     return true;
 }
 
-static void urwire__visit_singularity_info(const void *from, const urwire__ver *ver,
-                                           const urwire_visitor *v)
+static void urwire__visit_singularity_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_singularity_info *in = from;
     (void)ver;
@@ -3969,7 +3956,9 @@ static const urwire__span urwire__version_run2[] = {
     {NULL, 0, 0},
 };
 
-/* Version message, the first message on both the primary and secondary interfaces. It is read in the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from 3.3 the bugfix version and the build number. PolyScope X sends major version 10. */
+/* Version message, the first message on both the primary and secondary interfaces. It is read in
+ * the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from
+ * 3.3 the bugfix version and the build number. PolyScope X sends major version 10. */
 static inline bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                           void *into, urwire_error *err)
 {
@@ -4014,8 +4003,8 @@ static inline bool urwire__decode_version(const uint8_t *msg, size_t *at, size_t
     return true;
 }
 
-static bool urwire__encode_version(const void *from, const urwire__ver *ver,
-                                   uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_version(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                   urwire_error *err)
 {
     const urwire_version_message *in = from;
     size_t pos = *at;
@@ -4052,8 +4041,7 @@ static bool urwire__encode_version(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_version(const void *from, const urwire__ver *ver,
-                                  const urwire_visitor *v)
+static void urwire__visit_version(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_version_message *in = from;
     (void)ver;
@@ -4086,7 +4074,8 @@ static const urwire__span urwire__safety_mode_run1[] = {
     {NULL, 0, 0},
 };
 
-/* Safety mode message; the security message of CB2, which carries a text instead of the safety mode and its report data. */
+/* Safety mode message; the security message of CB2, which carries a text instead of the safety mode
+ * and its report data. */
 static inline bool urwire__decode_safety_mode(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                               void *into, urwire_error *err)
 {
@@ -4145,8 +4134,8 @@ static inline bool urwire__decode_safety_mode(const uint8_t *msg, size_t *at, si
     return true;
 }
 
-static bool urwire__encode_safety_mode(const void *from, const urwire__ver *ver,
-                                       uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_safety_mode(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                       urwire_error *err)
 {
     const urwire_safety_mode_message *in = from;
     size_t pos = *at;
@@ -4196,8 +4185,7 @@ static bool urwire__encode_safety_mode(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_safety_mode(const void *from, const urwire__ver *ver,
-                                      const urwire_visitor *v)
+static void urwire__visit_safety_mode(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_safety_mode_message *in = from;
     (void)ver;
@@ -4242,7 +4230,8 @@ static const urwire__span urwire__robot_comm_run1[] = {
     {NULL, 0, 0},
 };
 
-/* Robot comm message (an error code report). On CB2 the code and argument are followed by the text alone. */
+/* Robot comm message (an error code report). On CB2 the code and argument are followed by the text
+ * alone. */
 static inline bool urwire__decode_robot_comm(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                              void *into, urwire_error *err)
 {
@@ -4278,8 +4267,8 @@ static inline bool urwire__decode_robot_comm(const uint8_t *msg, size_t *at, siz
     return true;
 }
 
-static bool urwire__encode_robot_comm(const void *from, const urwire__ver *ver,
-                                      uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_robot_comm(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                      urwire_error *err)
 {
     const urwire_robot_comm_message *in = from;
     size_t pos = *at;
@@ -4308,8 +4297,7 @@ static bool urwire__encode_robot_comm(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_robot_comm(const void *from, const urwire__ver *ver,
-                                     const urwire_visitor *v)
+static void urwire__visit_robot_comm(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_robot_comm_message *in = from;
     (void)ver;
@@ -4336,8 +4324,8 @@ static const urwire__span urwire__key_run0[] = {
 };
 
 /* Key message. */
-static inline bool urwire__decode_key(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                      void *into, urwire_error *err)
+static inline bool urwire__decode_key(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *into,
+                                      urwire_error *err)
 {
     urwire_key_message *out = into;
     size_t pos = *at;
@@ -4360,8 +4348,8 @@ static inline bool urwire__decode_key(const uint8_t *msg, size_t *at, size_t end
     return true;
 }
 
-static bool urwire__encode_key(const void *from, const urwire__ver *ver,
-                               uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_key(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                               urwire_error *err)
 {
     const urwire_key_message *in = from;
     size_t pos = *at;
@@ -4383,8 +4371,7 @@ static bool urwire__encode_key(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_key(const void *from, const urwire__ver *ver,
-                              const urwire_visitor *v)
+static void urwire__visit_key(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_key_message *in = from;
     (void)ver;
@@ -4422,8 +4409,8 @@ static inline bool urwire__decode_program_thread(const uint8_t *msg, size_t *at,
     return true;
 }
 
-static bool urwire__encode_program_thread(const void *from, const urwire__ver *ver,
-                                          uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_program_thread(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                          size_t *at, urwire_error *err)
 {
     const urwire_program_thread *in = from;
     size_t pos = *at;
@@ -4452,14 +4439,14 @@ bool urwire_next_program_thread(urwire_seq *seq, urwire_program_thread *out)
     return true;
 }
 
-bool urwire_append_program_thread(const urwire_program_thread *in, uint8_t *out, size_t cap, size_t *pos, urwire_error *err)
+bool urwire_append_program_thread(const urwire_program_thread *in, uint8_t *out, size_t cap, size_t *pos,
+                                  urwire_error *err)
 {
     urwire__ver ver = urwire__ver_of(URWIRE_DEFAULT_VERSION);
     return urwire__encode_program_thread(in, &ver, out, cap, pos, err);
 }
 
-static void urwire__visit_program_thread(const void *from, const urwire__ver *ver,
-                                         const urwire_visitor *v)
+static void urwire__visit_program_thread(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_program_thread *in = from;
     (void)ver;
@@ -4490,8 +4477,8 @@ static inline bool urwire__decode_program_threads(const uint8_t *msg, size_t *at
     return true;
 }
 
-static bool urwire__encode_program_threads(const void *from, const urwire__ver *ver,
-                                           uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_program_threads(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                           size_t *at, urwire_error *err)
 {
     const urwire_program_threads_message *in = from;
     size_t pos = *at;
@@ -4504,8 +4491,7 @@ static bool urwire__encode_program_threads(const void *from, const urwire__ver *
     return true;
 }
 
-static void urwire__visit_program_threads(const void *from, const urwire__ver *ver,
-                                          const urwire_visitor *v)
+static void urwire__visit_program_threads(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_program_threads_message *in = from;
     (void)ver;
@@ -4542,8 +4528,8 @@ static const urwire__span urwire__popup_run2[] = {
 };
 
 /* Popup message. On CB2 it has no request id, requested type or blocking flag. */
-static inline bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                        void *into, urwire_error *err)
+static inline bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *into,
+                                        urwire_error *err)
 {
     urwire_popup_message *out = into;
     size_t pos = *at;
@@ -4586,8 +4572,8 @@ static inline bool urwire__decode_popup(const uint8_t *msg, size_t *at, size_t e
     return true;
 }
 
-static bool urwire__encode_popup(const void *from, const urwire__ver *ver,
-                                 uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_popup(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                 urwire_error *err)
 {
     const urwire_popup_message *in = from;
     size_t pos = *at;
@@ -4624,8 +4610,7 @@ static bool urwire__encode_popup(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_popup(const void *from, const urwire__ver *ver,
-                                const urwire_visitor *v)
+static void urwire__visit_popup(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_popup_message *in = from;
     (void)ver;
@@ -4652,8 +4637,8 @@ static const urwire__span urwire__label_run0[] = {
 };
 
 /* Label message (CB2 only). */
-static inline bool urwire__decode_label(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                        void *into, urwire_error *err)
+static inline bool urwire__decode_label(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *into,
+                                        urwire_error *err)
 {
     urwire_label_message *out = into;
     size_t pos = *at;
@@ -4673,8 +4658,8 @@ static inline bool urwire__decode_label(const uint8_t *msg, size_t *at, size_t e
     return true;
 }
 
-static bool urwire__encode_label(const void *from, const urwire__ver *ver,
-                                 uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_label(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                 urwire_error *err)
 {
     const urwire_label_message *in = from;
     size_t pos = *at;
@@ -4693,8 +4678,7 @@ static bool urwire__encode_label(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_label(const void *from, const urwire__ver *ver,
-                                const urwire_visitor *v)
+static void urwire__visit_label(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_label_message *in = from;
     (void)ver;
@@ -4711,8 +4695,8 @@ static const urwire__span urwire__var_run0[] = {
 };
 
 /* Var message (CB2 only). */
-static inline bool urwire__decode_var(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                      void *into, urwire_error *err)
+static inline bool urwire__decode_var(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *into,
+                                      urwire_error *err)
 {
     urwire_var_message *out = into;
     size_t pos = *at;
@@ -4735,8 +4719,8 @@ static inline bool urwire__decode_var(const uint8_t *msg, size_t *at, size_t end
     return true;
 }
 
-static bool urwire__encode_var(const void *from, const urwire__ver *ver,
-                               uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_var(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                               urwire_error *err)
 {
     const urwire_var_message *in = from;
     size_t pos = *at;
@@ -4758,8 +4742,7 @@ static bool urwire__encode_var(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_var(const void *from, const urwire__ver *ver,
-                              const urwire_visitor *v)
+static void urwire__visit_var(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_var_message *in = from;
     (void)ver;
@@ -4780,7 +4763,8 @@ static const urwire__span urwire__hardware_info_run0[] = {
     {NULL, 0, 0},
 };
 
-/* Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 bytes in all. */
+/* Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 bytes in
+ * all. */
 static inline bool urwire__decode_hardware_info(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
                                                 void *into, urwire_error *err)
 {
@@ -4804,8 +4788,8 @@ static inline bool urwire__decode_hardware_info(const uint8_t *msg, size_t *at, 
     return true;
 }
 
-static bool urwire__encode_hardware_info(const void *from, const urwire__ver *ver,
-                                         uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_hardware_info(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                         urwire_error *err)
 {
     const urwire_hardware_info_message *in = from;
     size_t pos = *at;
@@ -4826,8 +4810,7 @@ static bool urwire__encode_hardware_info(const void *from, const urwire__ver *ve
     return true;
 }
 
-static void urwire__visit_hardware_info(const void *from, const urwire__ver *ver,
-                                        const urwire_visitor *v)
+static void urwire__visit_hardware_info(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_hardware_info_message *in = from;
     (void)ver;
@@ -4869,8 +4852,8 @@ static inline bool urwire__decode_request_value(const uint8_t *msg, size_t *at, 
     return true;
 }
 
-static bool urwire__encode_request_value(const void *from, const urwire__ver *ver,
-                                         uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_request_value(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                         urwire_error *err)
 {
     const urwire_request_value_message *in = from;
     size_t pos = *at;
@@ -4890,8 +4873,7 @@ static bool urwire__encode_request_value(const void *from, const urwire__ver *ve
     return true;
 }
 
-static void urwire__visit_request_value(const void *from, const urwire__ver *ver,
-                                        const urwire_visitor *v)
+static void urwire__visit_request_value(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_request_value_message *in = from;
     (void)ver;
@@ -4903,8 +4885,8 @@ static void urwire__visit_request_value(const void *from, const urwire__ver *ver
 }
 
 /* Text message. */
-static inline bool urwire__decode_text(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                       void *into, urwire_error *err)
+static inline bool urwire__decode_text(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver, void *into,
+                                       urwire_error *err)
 {
     urwire_text_message *out = into;
     size_t pos = *at;
@@ -4919,8 +4901,8 @@ static inline bool urwire__decode_text(const uint8_t *msg, size_t *at, size_t en
     return true;
 }
 
-static bool urwire__encode_text(const void *from, const urwire__ver *ver,
-                                uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_text(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap, size_t *at,
+                                urwire_error *err)
 {
     const urwire_text_message *in = from;
     size_t pos = *at;
@@ -4933,8 +4915,7 @@ static bool urwire__encode_text(const void *from, const urwire__ver *ver,
     return true;
 }
 
-static void urwire__visit_text(const void *from, const urwire__ver *ver,
-                               const urwire_visitor *v)
+static void urwire__visit_text(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_text_message *in = from;
     (void)ver;
@@ -4972,8 +4953,8 @@ static inline bool urwire__decode_runtime_exception(const uint8_t *msg, size_t *
     return true;
 }
 
-static bool urwire__encode_runtime_exception(const void *from, const urwire__ver *ver,
-                                             uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_runtime_exception(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                             size_t *at, urwire_error *err)
 {
     const urwire_runtime_exception_message *in = from;
     size_t pos = *at;
@@ -4993,8 +4974,7 @@ static bool urwire__encode_runtime_exception(const void *from, const urwire__ver
     return true;
 }
 
-static void urwire__visit_runtime_exception(const void *from, const urwire__ver *ver,
-                                            const urwire_visitor *v)
+static void urwire__visit_runtime_exception(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_runtime_exception_message *in = from;
     (void)ver;
@@ -5011,8 +4991,8 @@ static const urwire__span urwire__global_variables_setup_run0[] = {
 };
 
 /* Global variables setup message. */
-static inline bool urwire__decode_global_variables_setup(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                         void *into, urwire_error *err)
+static inline bool urwire__decode_global_variables_setup(const uint8_t *msg, size_t *at, size_t end,
+                                                         const urwire__ver *ver, void *into, urwire_error *err)
 {
     urwire_global_variables_setup_message *out = into;
     size_t pos = *at;
@@ -5031,8 +5011,8 @@ static inline bool urwire__decode_global_variables_setup(const uint8_t *msg, siz
     return true;
 }
 
-static bool urwire__encode_global_variables_setup(const void *from, const urwire__ver *ver,
-                                                  uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_global_variables_setup(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                                  size_t *at, urwire_error *err)
 {
     const urwire_global_variables_setup_message *in = from;
     size_t pos = *at;
@@ -5051,8 +5031,7 @@ static bool urwire__encode_global_variables_setup(const void *from, const urwire
     return true;
 }
 
-static void urwire__visit_global_variables_setup(const void *from, const urwire__ver *ver,
-                                                 const urwire_visitor *v)
+static void urwire__visit_global_variables_setup(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_global_variables_setup_message *in = from;
     (void)ver;
@@ -5068,8 +5047,8 @@ static const urwire__span urwire__global_variables_update_run0[] = {
 };
 
 /* Global variables update message. */
-static inline bool urwire__decode_global_variables_update(const uint8_t *msg, size_t *at, size_t end, const urwire__ver *ver,
-                                                          void *into, urwire_error *err)
+static inline bool urwire__decode_global_variables_update(const uint8_t *msg, size_t *at, size_t end,
+                                                          const urwire__ver *ver, void *into, urwire_error *err)
 {
     urwire_global_variables_update_message *out = into;
     size_t pos = *at;
@@ -5089,8 +5068,8 @@ static inline bool urwire__decode_global_variables_update(const uint8_t *msg, si
     return true;
 }
 
-static bool urwire__encode_global_variables_update(const void *from, const urwire__ver *ver,
-                                                   uint8_t *out, size_t cap, size_t *at, urwire_error *err)
+static bool urwire__encode_global_variables_update(const void *from, const urwire__ver *ver, uint8_t *out, size_t cap,
+                                                   size_t *at, urwire_error *err)
 {
     const urwire_global_variables_update_message *in = from;
     size_t pos = *at;
@@ -5109,8 +5088,7 @@ static bool urwire__encode_global_variables_update(const void *from, const urwir
     return true;
 }
 
-static void urwire__visit_global_variables_update(const void *from, const urwire__ver *ver,
-                                                  const urwire_visitor *v)
+static void urwire__visit_global_variables_update(const void *from, const urwire__ver *ver, const urwire_visitor *v)
 {
     const urwire_global_variables_update_message *in = from;
     (void)ver;
@@ -5617,21 +5595,29 @@ static const urwire__form_table urwire__program_state_form_table = {
 
 /* Sub-package layouts, by urwire_package_layout. */
 static const urwire__package_kind urwire__package_kinds[] = {
-    [URWIRE_LAYOUT_ROBOT_MODE_DATA] = {"robot_mode_data", urwire__encode_robot_mode_data, urwire__visit_robot_mode_data},
+    [URWIRE_LAYOUT_ROBOT_MODE_DATA] = {"robot_mode_data", urwire__encode_robot_mode_data,
+                                       urwire__visit_robot_mode_data},
     [URWIRE_LAYOUT_JOINT_DATA] = {"joint_data", urwire__encode_joint_data, urwire__visit_joint_data},
     [URWIRE_LAYOUT_TOOL_DATA] = {"tool_data", urwire__encode_tool_data, urwire__visit_tool_data},
-    [URWIRE_LAYOUT_MASTERBOARD_DATA] = {"masterboard_data", urwire__encode_masterboard_data, urwire__visit_masterboard_data},
+    [URWIRE_LAYOUT_MASTERBOARD_DATA] = {"masterboard_data", urwire__encode_masterboard_data,
+                                        urwire__visit_masterboard_data},
     [URWIRE_LAYOUT_CARTESIAN_INFO] = {"cartesian_info", urwire__encode_cartesian_info, urwire__visit_cartesian_info},
     [URWIRE_LAYOUT_LASER_POINTER] = {"laser_pointer", urwire__encode_laser_pointer, urwire__visit_laser_pointer},
-    [URWIRE_LAYOUT_KINEMATICS_INFO] = {"kinematics_info", urwire__encode_kinematics_info, urwire__visit_kinematics_info},
-    [URWIRE_LAYOUT_CONFIGURATION_DATA] = {"configuration_data", urwire__encode_configuration_data, urwire__visit_configuration_data},
-    [URWIRE_LAYOUT_FORCE_MODE_DATA] = {"force_mode_data", urwire__encode_force_mode_data, urwire__visit_force_mode_data},
-    [URWIRE_LAYOUT_ADDITIONAL_INFO] = {"additional_info", urwire__encode_additional_info, urwire__visit_additional_info},
-    [URWIRE_LAYOUT_CALIBRATION_DATA] = {"calibration_data", urwire__encode_calibration_data, urwire__visit_calibration_data},
+    [URWIRE_LAYOUT_KINEMATICS_INFO] = {"kinematics_info", urwire__encode_kinematics_info,
+                                       urwire__visit_kinematics_info},
+    [URWIRE_LAYOUT_CONFIGURATION_DATA] = {"configuration_data", urwire__encode_configuration_data,
+                                          urwire__visit_configuration_data},
+    [URWIRE_LAYOUT_FORCE_MODE_DATA] = {"force_mode_data", urwire__encode_force_mode_data,
+                                       urwire__visit_force_mode_data},
+    [URWIRE_LAYOUT_ADDITIONAL_INFO] = {"additional_info", urwire__encode_additional_info,
+                                       urwire__visit_additional_info},
+    [URWIRE_LAYOUT_CALIBRATION_DATA] = {"calibration_data", urwire__encode_calibration_data,
+                                        urwire__visit_calibration_data},
     [URWIRE_LAYOUT_SAFETY_DATA] = {"safety_data", urwire__encode_safety_data, urwire__visit_safety_data},
     [URWIRE_LAYOUT_TOOL_COMM_INFO] = {"tool_comm_info", urwire__encode_tool_comm_info, urwire__visit_tool_comm_info},
     [URWIRE_LAYOUT_TOOL_MODE_INFO] = {"tool_mode_info", urwire__encode_tool_mode_info, urwire__visit_tool_mode_info},
-    [URWIRE_LAYOUT_SINGULARITY_INFO] = {"singularity_info", urwire__encode_singularity_info, urwire__visit_singularity_info},
+    [URWIRE_LAYOUT_SINGULARITY_INFO] = {"singularity_info", urwire__encode_singularity_info,
+                                        urwire__visit_singularity_info},
 };
 
 /* Decoding a sub-package is a switch of direct calls, not a decoder in urwire__package_kinds:
@@ -6134,33 +6120,43 @@ static const urwire__message_kind urwire__message_kinds[] = {
     [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, 0, NULL, NULL, NULL},
     [URWIRE_KIND_ROBOT_STATE] = {"robot_state", &urwire__message_types[0], 0, NULL, NULL, NULL},
     [URWIRE_KIND_VERSION] = {"version", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_VERSION,
-        urwire__decode_version, urwire__encode_version, urwire__visit_version},
+                             urwire__decode_version, urwire__encode_version, urwire__visit_version},
     [URWIRE_KIND_SAFETY_MODE] = {"safety_mode", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE,
-        urwire__decode_safety_mode, urwire__encode_safety_mode, urwire__visit_safety_mode},
+                                 urwire__decode_safety_mode, urwire__encode_safety_mode, urwire__visit_safety_mode},
     [URWIRE_KIND_ROBOT_COMM] = {"robot_comm", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE,
-        urwire__decode_robot_comm, urwire__encode_robot_comm, urwire__visit_robot_comm},
-    [URWIRE_KIND_KEY] = {"key", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_KEY,
-        urwire__decode_key, urwire__encode_key, urwire__visit_key},
-    [URWIRE_KIND_PROGRAM_THREADS] = {"program_threads", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS,
-        urwire__decode_program_threads, urwire__encode_program_threads, urwire__visit_program_threads},
-    [URWIRE_KIND_POPUP] = {"popup", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_POPUP,
-        urwire__decode_popup, urwire__encode_popup, urwire__visit_popup},
+                                urwire__decode_robot_comm, urwire__encode_robot_comm, urwire__visit_robot_comm},
+    [URWIRE_KIND_KEY] = {"key", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_KEY, urwire__decode_key,
+                         urwire__encode_key, urwire__visit_key},
+    [URWIRE_KIND_PROGRAM_THREADS] = {"program_threads", &urwire__message_types[1],
+                                     URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS, urwire__decode_program_threads,
+                                     urwire__encode_program_threads, urwire__visit_program_threads},
+    [URWIRE_KIND_POPUP] = {"popup", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_POPUP, urwire__decode_popup,
+                           urwire__encode_popup, urwire__visit_popup},
     [URWIRE_KIND_LABEL] = {"label", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL,
-        urwire__decode_label, urwire__encode_label, urwire__visit_label},
-    [URWIRE_KIND_VAR] = {"var", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR,
-        urwire__decode_var, urwire__encode_var, urwire__visit_var},
+                           urwire__decode_label, urwire__encode_label, urwire__visit_label},
+    [URWIRE_KIND_VAR] = {"var", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR, urwire__decode_var,
+                         urwire__encode_var, urwire__visit_var},
     [URWIRE_KIND_HARDWARE_INFO] = {"hardware_info", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO,
-        urwire__decode_hardware_info, urwire__encode_hardware_info, urwire__visit_hardware_info},
+                                   urwire__decode_hardware_info, urwire__encode_hardware_info,
+                                   urwire__visit_hardware_info},
     [URWIRE_KIND_REQUEST_VALUE] = {"request_value", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE,
-        urwire__decode_request_value, urwire__encode_request_value, urwire__visit_request_value},
-    [URWIRE_KIND_TEXT] = {"text", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_TEXT,
-        urwire__decode_text, urwire__encode_text, urwire__visit_text},
-    [URWIRE_KIND_RUNTIME_EXCEPTION] = {"runtime_exception", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION,
-        urwire__decode_runtime_exception, urwire__encode_runtime_exception, urwire__visit_runtime_exception},
-    [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {"global_variables_setup", &urwire__message_types[2], URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP,
-        urwire__decode_global_variables_setup, urwire__encode_global_variables_setup, urwire__visit_global_variables_setup},
-    [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {"global_variables_update", &urwire__message_types[2], URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE,
-        urwire__decode_global_variables_update, urwire__encode_global_variables_update, urwire__visit_global_variables_update},
+                                   urwire__decode_request_value, urwire__encode_request_value,
+                                   urwire__visit_request_value},
+    [URWIRE_KIND_TEXT] = {"text", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_TEXT, urwire__decode_text,
+                          urwire__encode_text, urwire__visit_text},
+    [URWIRE_KIND_RUNTIME_EXCEPTION] = {"runtime_exception", &urwire__message_types[1],
+                                       URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION, urwire__decode_runtime_exception,
+                                       urwire__encode_runtime_exception, urwire__visit_runtime_exception},
+    [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {"global_variables_setup", &urwire__message_types[2],
+                                            URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP,
+                                            urwire__decode_global_variables_setup,
+                                            urwire__encode_global_variables_setup,
+                                            urwire__visit_global_variables_setup},
+    [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {"global_variables_update", &urwire__message_types[2],
+                                             URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE,
+                                             urwire__decode_global_variables_update,
+                                             urwire__encode_global_variables_update,
+                                             urwire__visit_global_variables_update},
     [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, 0, NULL, NULL, NULL},
 };
 

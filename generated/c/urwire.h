@@ -89,7 +89,7 @@ extern "C" {
  * given: 5.9 and later. Its `assumed` is true, so the layout sizes of a robot state may
  * overrule it. Documented versions: 1.6, 1.7, 1.8, 3.0, 3.1, 3.2, 3.3, 3.4, 5.9, 5.10. */
 #define URWIRE_DEFAULT_VERSION_INIT {5, 9, 0, true}
-/* The bugfix of an upper bound written major.minor ("up to 5.8" is 5.8.999): the largest
+/* The bugfix of an upper bound written major.minor ("up to 5.8" ends at bugfix 999 of 5.8): the largest
  * bugfix a version can hold and still compare rightly with every bound. */
 #define URWIRE_BUGFIX_ANY 999
 
@@ -388,7 +388,7 @@ typedef enum urwire_joint_mode_3_0_to_3_15 {
     URWIRE_JOINT_MODE_3_0_TO_3_15_RUNNING = 253,
     URWIRE_JOINT_MODE_3_0_TO_3_15_IDLE = 255,
 } urwire_joint_mode_3_0_to_3_15;
-/* Codes for software 5.0 to 5.0. */
+/* Codes for software 5.0. */
 typedef enum urwire_joint_mode_5_0_to_5_0 {
     URWIRE_JOINT_MODE_5_0_TO_5_0_RESET = 235,
     URWIRE_JOINT_MODE_5_0_TO_5_0_SHUTTING_DOWN = 236,
@@ -1244,7 +1244,8 @@ typedef struct urwire_program_thread {
 /* The next program_thread of a seq; false at the end. */
 bool urwire_next_program_thread(urwire_seq *seq, urwire_program_thread *out);
 /* Append one program_thread at out[*pos], advancing *pos: builds the bytes of such a seq. */
-bool urwire_append_program_thread(const urwire_program_thread *in, uint8_t *out, size_t cap, size_t *pos, urwire_error *err);
+bool urwire_append_program_thread(const urwire_program_thread *in, uint8_t *out, size_t cap, size_t *pos,
+                                  urwire_error *err);
 
 /*
  * Program threads message, one entry per running program thread.
@@ -1434,16 +1435,27 @@ typedef enum urwire_package_layout {
 /* Which struct of urwire_message.as is valid. */
 typedef enum urwire_message_kind {
     URWIRE_KIND_UNKNOWN_MESSAGE,    /* a type with no layout, or too short for its header: raw */
-    URWIRE_KIND_ROBOT_STATE,  /* Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in any order, each framed by its own length. */
-    URWIRE_KIND_VERSION,  /* Version message, the first message on both the primary and secondary interfaces. It is read in the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from 3.3 the bugfix version and the build number. PolyScope X sends major version 10. */
-    URWIRE_KIND_SAFETY_MODE,  /* Safety mode message; the security message of CB2, which carries a text instead of the safety mode and its report data. */
-    URWIRE_KIND_ROBOT_COMM,  /* Robot comm message (an error code report). On CB2 the code and argument are followed by the text alone. */
+    /* Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages,
+     * in any order, each framed by its own length. */
+    URWIRE_KIND_ROBOT_STATE,
+    /* Version message, the first message on both the primary and secondary interfaces. It is read
+     * in the layout of the version it carries: up to 3.2 an svn revision follows the minor version,
+     * from 3.3 the bugfix version and the build number. PolyScope X sends major version 10. */
+    URWIRE_KIND_VERSION,
+    /* Safety mode message; the security message of CB2, which carries a text instead of the safety
+     * mode and its report data. */
+    URWIRE_KIND_SAFETY_MODE,
+    /* Robot comm message (an error code report). On CB2 the code and argument are followed by the
+     * text alone. */
+    URWIRE_KIND_ROBOT_COMM,
     URWIRE_KIND_KEY,  /* Key message. */
     URWIRE_KIND_PROGRAM_THREADS,  /* Program threads message, one entry per running program thread. */
     URWIRE_KIND_POPUP,  /* Popup message. On CB2 it has no request id, requested type or blocking flag. */
     URWIRE_KIND_LABEL,  /* Label message (CB2 only). */
     URWIRE_KIND_VAR,  /* Var message (CB2 only). */
-    URWIRE_KIND_HARDWARE_INFO,  /* Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 bytes in all. */
+    /* Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 bytes
+     * in all. */
+    URWIRE_KIND_HARDWARE_INFO,
     URWIRE_KIND_REQUEST_VALUE,  /* Request value message. */
     URWIRE_KIND_TEXT,  /* Text message. */
     URWIRE_KIND_RUNTIME_EXCEPTION,  /* Runtime exception message. */

@@ -2,7 +2,10 @@
 -- Do not edit: change the spec or the generator and run `make generate`.
 --
 -- Wireshark dissector for the Universal Robots primary/secondary client interface.
--- Binary stream sent by a Universal Robots controller to clients of the primary (30001) and secondary (30002) interfaces and their read-only twins (30011, 30012): robot state at 10 Hz, the version message, robot messages and program-state messages. Covers CB2 (1.x), CB3 (3.x), e-Series (5.x) and PolyScope X (10.x).
+-- Binary stream sent by a Universal Robots controller to clients of the primary (30001) and
+-- secondary (30002) interfaces and their read-only twins (30011, 30012): robot state at 10 Hz, the
+-- version message, robot messages and program-state messages. Covers CB2 (1.x), CB3 (3.x), e-Series
+-- (5.x) and PolyScope X (10.x).
 --
 -- Install: copy this one file into the personal Lua plugins folder shown by `tshark -G folders`
 -- (or run `make install-dissector`). Wireshark 4.0 and later; Lua 5.2 to 5.4.
@@ -28,6 +31,7 @@ local ur = Proto("ur", "Universal Robots primary/secondary client interface")
 local VS, NAMES = {}, {}
 
 -- Type of a top-level message, the byte after messageSize.
+
 VS.MESSAGE_TYPE = {
     [255] = "DISCONNECT",
     [5] = "MODBUS_INFO_MESSAGE",
@@ -40,6 +44,7 @@ VS.MESSAGE_TYPE = {
 }
 
 -- Type of a robot-state sub-package (ROBOT_STATE_PACKAGE_TYPE_*). (up to 1.7)
+
 VS.PACKAGE_TYPE_UpTo1_7 = {
     [0] = "ROBOT_MODE_DATA",
     [1] = "JOINT_DATA",
@@ -59,6 +64,7 @@ VS.PACKAGE_TYPE_UpTo1_7 = {
 }
 
 -- Type of a robot-state sub-package (ROBOT_STATE_PACKAGE_TYPE_*). (1.8 and later)
+
 VS.PACKAGE_TYPE = {
     [0] = "ROBOT_MODE_DATA",
     [1] = "JOINT_DATA",
@@ -84,6 +90,7 @@ NAMES.PACKAGE_TYPE = { newest = VS.PACKAGE_TYPE,
 }
 
 -- Subtype of a robot message (ROBOT_MESSAGE_TYPE_*), the byte after source. (up to 1.8)
+
 VS.ROBOT_MESSAGE_TYPE_UpTo1_8 = {
     [0] = "TEXT",
     [1] = "LABEL",
@@ -101,6 +108,7 @@ VS.ROBOT_MESSAGE_TYPE_UpTo1_8 = {
 }
 
 -- Subtype of a robot message (ROBOT_MESSAGE_TYPE_*), the byte after source. (1.9 and later)
+
 VS.ROBOT_MESSAGE_TYPE = {
     [0] = "TEXT",
     [2] = "POPUP",
@@ -122,6 +130,7 @@ NAMES.ROBOT_MESSAGE_TYPE = { newest = VS.ROBOT_MESSAGE_TYPE,
 }
 
 -- Subtype of a program-state message (PROGRAM_STATE_MESSAGE_TYPE_*).
+
 VS.PROGRAM_STATE_MESSAGE_TYPE = {
     [0] = "GLOBAL_VARIABLES_SETUP",
     [1] = "GLOBAL_VARIABLES_UPDATE",
@@ -129,6 +138,7 @@ VS.PROGRAM_STATE_MESSAGE_TYPE = {
 }
 
 -- Control mode of the robot (document section "Control Modes").
+
 VS.CONTROL_MODE = {
     [0] = "POSITION",
     [1] = "TEACH",
@@ -136,7 +146,10 @@ VS.CONTROL_MODE = {
     [3] = "TORQUE",
 }
 
--- Robot mode (document section "Robot Modes"), a signed byte (NO_CONTROLLER is -1). The codes changed meaning at 3.0: on CB2, 0 is RUNNING; from 3.0, 0 is DISCONNECTED and 7 is RUNNING. (up to 1.8)
+-- Robot mode (document section "Robot Modes"), a signed byte (NO_CONTROLLER is -1). The codes
+-- changed meaning at 3.0: on CB2, 0 is RUNNING; from 3.0, 0 is DISCONNECTED and 7 is RUNNING. (up
+-- to 1.8)
+
 VS.ROBOT_MODE_UpTo1_8 = {
     [0] = "RUNNING",
     [1] = "FREEDRIVE",
@@ -151,7 +164,10 @@ VS.ROBOT_MODE_UpTo1_8 = {
     [10] = "SAFEGUARD_STOP",
 }
 
--- Robot mode (document section "Robot Modes"), a signed byte (NO_CONTROLLER is -1). The codes changed meaning at 3.0: on CB2, 0 is RUNNING; from 3.0, 0 is DISCONNECTED and 7 is RUNNING. (3.0 and later)
+-- Robot mode (document section "Robot Modes"), a signed byte (NO_CONTROLLER is -1). The codes
+-- changed meaning at 3.0: on CB2, 0 is RUNNING; from 3.0, 0 is DISCONNECTED and 7 is RUNNING. (3.0
+-- and later)
+
 VS.ROBOT_MODE = {
     [-1] = "NO_CONTROLLER",
     [0] = "DISCONNECTED",
@@ -171,7 +187,10 @@ NAMES.ROBOT_MODE = { newest = VS.ROBOT_MODE,
     { low = 3000000, high = nil, names = VS.ROBOT_MODE },   -- 3.0 and later
 }
 
--- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. (up to 1.8)
+-- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes
+-- changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from
+-- 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. (up to 1.8)
+
 VS.JOINT_MODE_UpTo1_8 = {
     [237] = "PART_D_CALIBRATION",
     [238] = "BACKDRIVE",
@@ -194,7 +213,10 @@ VS.JOINT_MODE_UpTo1_8 = {
     [255] = "IDLE",
 }
 
--- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. (3.0 to 3.15)
+-- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes
+-- changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from
+-- 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. (3.0 to 3.15)
+
 VS.JOINT_MODE_3_0To3_15 = {
     [236] = "SHUTTING_DOWN",
     [237] = "PART_D_CALIBRATION",
@@ -211,7 +233,10 @@ VS.JOINT_MODE_3_0To3_15 = {
     [255] = "IDLE",
 }
 
--- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. (5.0 to 5.0)
+-- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes
+-- changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from
+-- 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. (5.0)
+
 VS.JOINT_MODE_5_0To5_0 = {
     [235] = "RESET",
     [236] = "SHUTTING_DOWN",
@@ -226,7 +251,10 @@ VS.JOINT_MODE_5_0To5_0 = {
     [255] = "IDLE",
 }
 
--- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. (5.1 and later)
+-- Joint status, as shown on the initialisation screen (document section "Joint Modes"). The codes
+-- changed meaning between generations: 240 is EMERGENCY_STOPPED on CB2 and READY_FOR_POWER_OFF from
+-- 5.1; 251 is STOPPED on CB2 and VIOLATION in the 5.9 document. (5.1 and later)
+
 VS.JOINT_MODE = {
     [235] = "RESET",
     [236] = "SHUTTING_DOWN",
@@ -246,11 +274,13 @@ VS.JOINT_MODE = {
 NAMES.JOINT_MODE = { newest = VS.JOINT_MODE,
     { low = nil, high = 1008999, names = VS.JOINT_MODE_UpTo1_8 },   -- up to 1.8
     { low = 3000000, high = 3015999, names = VS.JOINT_MODE_3_0To3_15 },   -- 3.0 to 3.15
-    { low = 5000000, high = 5000999, names = VS.JOINT_MODE_5_0To5_0 },   -- 5.0 to 5.0
+    { low = 5000000, high = 5000999, names = VS.JOINT_MODE_5_0To5_0 },   -- 5.0
     { low = 5001000, high = nil, names = VS.JOINT_MODE },   -- 5.1 and later
 }
 
--- Tool status (document section "Tool Modes", whose rows are named JOINT_MODE_*); the same codes in every version.
+-- Tool status (document section "Tool Modes", whose rows are named JOINT_MODE_*); the same codes in
+-- every version.
+
 VS.TOOL_MODE = {
     [235] = "RESET",
     [236] = "SHUTTING_DOWN",
@@ -263,7 +293,9 @@ VS.TOOL_MODE = {
     [255] = "IDLE",
 }
 
--- Sender of a robot message (document section "Message Sources"), a signed byte. CB2 numbered the senders differently: -2 is CONTROLLER on CB2 and ROBOTINTERFACE from 3.0. (up to 1.8)
+-- Sender of a robot message (document section "Message Sources"), a signed byte. CB2 numbered the
+-- senders differently: -2 is CONTROLLER on CB2 and ROBOTINTERFACE from 3.0. (up to 1.8)
+
 VS.MESSAGE_SOURCE_UpTo1_8 = {
     [0] = "BASE",
     [1] = "SHOULDER",
@@ -280,7 +312,9 @@ VS.MESSAGE_SOURCE_UpTo1_8 = {
     [-6] = "CONTROL_BOX",
 }
 
--- Sender of a robot message (document section "Message Sources"), a signed byte. CB2 numbered the senders differently: -2 is CONTROLLER on CB2 and ROBOTINTERFACE from 3.0. (3.0 and later)
+-- Sender of a robot message (document section "Message Sources"), a signed byte. CB2 numbered the
+-- senders differently: -2 is CONTROLLER on CB2 and ROBOTINTERFACE from 3.0. (3.0 and later)
+
 VS.MESSAGE_SOURCE = {
     [100] = "JOINT_0_FPGA",
     [110] = "JOINT_0_A",
@@ -326,6 +360,7 @@ NAMES.MESSAGE_SOURCE = { newest = VS.MESSAGE_SOURCE,
 }
 
 -- Safety mode (document section "Safety Mode Types").
+
 VS.SAFETY_MODE = {
     [1] = "NORMAL",
     [2] = "REDUCED",
@@ -340,7 +375,9 @@ VS.SAFETY_MODE = {
     [11] = "UNDEFINED_SAFETY_MODE",
 }
 
--- Safety state of the masterboard on CB2 (masterSafetyState, table "Master Safety State" of the CB2 documents). CB3 and later send safety_mode and in_reduced_mode instead.
+-- Safety state of the masterboard on CB2 (masterSafetyState, table "Master Safety State" of the CB2
+-- documents). CB3 and later send safety_mode and in_reduced_mode instead.
+
 VS.MASTER_SAFETY_STATE = {
     [0] = "UNDEFINED",
     [1] = "BOOTLOADER",
@@ -354,6 +391,7 @@ VS.MASTER_SAFETY_STATE = {
 }
 
 -- State of the robot's 48 V supply on CB2 (masterOnOffState, table "Robot On Off State").
+
 VS.MASTER_ON_OFF_STATE = {
     [0] = "OFF",
     [1] = "TURNING_ON",
@@ -362,6 +400,7 @@ VS.MASTER_ON_OFF_STATE = {
 }
 
 -- Safety status (document section "Safety Status Types").
+
 VS.SAFETY_STATUS = {
     [1] = "NORMAL",
     [2] = "REDUCED",
@@ -379,6 +418,7 @@ VS.SAFETY_STATUS = {
 }
 
 -- Report level of a robot comm message (document section "Report Levels").
+
 VS.REPORT_LEVEL = {
     [0] = "DEBUG",
     [1] = "INFO",
@@ -395,6 +435,7 @@ VS.REPORT_LEVEL = {
 }
 
 -- Type of value a popup or request asks for (document section "Requested Types").
+
 VS.REQUESTED_TYPE = {
     [0] = "BOOLEAN",
     [1] = "INTEGER",
@@ -407,7 +448,9 @@ VS.REQUESTED_TYPE = {
     [8] = "NONE",
 }
 
--- Control box of a hardware info message. Two numberings have been used: early patch releases of 5.26 and 10.13 sent 1 and 2, later ones 5 and 7 (the numbering of the RTDE properties).
+-- Control box of a hardware info message. Two numberings have been used: early patch releases of
+-- 5.26 and 10.13 sent 1 and 2, later ones 5 and 7 (the numbering of the RTDE properties).
+
 VS.CONTROL_BOX_TYPE = {
     [1] = "CB5_EARLY_NUMBERING",
     [2] = "CB7_EARLY_NUMBERING",
@@ -416,13 +459,15 @@ VS.CONTROL_BOX_TYPE = {
 }
 
 -- Tool flange of a hardware info message.
+
 VS.TOOL_FLANGE_TYPE = {
     [1] = "V1",
     [2] = "V2",
 }
 
 -- Message types a plausible header may carry (documented or known undocumented ones).
-local KNOWN_TYPE = { [5] = true, [16] = true, [20] = true, [22] = true, [23] = true, [24] = true, [25] = true, [255] = true, }
+local KNOWN_TYPE = { [5] = true, [16] = true, [20] = true, [22] = true, [23] = true, [24] = true, [25] = true,
+    [255] = true, }
 
 -- Global variable value types. The codes depend on the software version
 -- ((major * 1000 + minor) * 1000 + bugfix);
@@ -470,309 +515,737 @@ local VALUE_TABLES = {
 -- Fields: ur.<message_or_package>.<field>, named by the spec's labels, described by its docs
 -- ---------------------------------------------------------------------------------------------
 local F = {
-    ["length"] = ProtoField.int32("ur.length", "Length", base.DEC, nil, nil, "Length of the whole message, this field included."),
+    ["length"] = ProtoField.int32("ur.length", "Length", base.DEC, nil, nil,
+        "Length of the whole message, this field included."),
     ["type"] = ProtoField.uint8("ur.type", "Type", base.DEC, VS.MESSAGE_TYPE, nil, "Message type."),
-    ["package.length"] = ProtoField.int32("ur.package.length", "Length", base.DEC, nil, nil, "Length of the sub-package, this field included."),
+    ["package.length"] = ProtoField.int32("ur.package.length", "Length", base.DEC, nil, nil,
+        "Length of the sub-package, this field included."),
     ["package.type"] = ProtoField.uint8("ur.package.type", "Type", base.DEC, VS.PACKAGE_TYPE, nil, "Sub-package type."),
-    ["robot_mode_data.timestamp"] = ProtoField.uint64("ur.robot_mode_data.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["robot_mode_data.is_real_robot_connected"] = ProtoField.bool("ur.robot_mode_data.is_real_robot_connected", "Real robot connected", base.NONE, nil, nil, "isRobotConnected in the CB2 documents."),
-    ["robot_mode_data.is_real_robot_enabled"] = ProtoField.bool("ur.robot_mode_data.is_real_robot_enabled", "Real robot enabled", base.NONE, nil, nil, "Real robot enabled."),
-    ["robot_mode_data.is_robot_power_on"] = ProtoField.bool("ur.robot_mode_data.is_robot_power_on", "Robot power on", base.NONE, nil, nil, "isPowerOnRobot in the CB2 documents."),
-    ["robot_mode_data.is_emergency_stopped"] = ProtoField.bool("ur.robot_mode_data.is_emergency_stopped", "Emergency stopped", base.NONE, nil, nil, "Emergency stopped."),
-    ["robot_mode_data.is_protective_stopped"] = ProtoField.bool("ur.robot_mode_data.is_protective_stopped", "Protective stopped", base.NONE, nil, nil, "isSecurityStopped in the CB2 documents."),
-    ["robot_mode_data.is_program_running"] = ProtoField.bool("ur.robot_mode_data.is_program_running", "Program running", base.NONE, nil, nil, "Program running."),
-    ["robot_mode_data.is_program_paused"] = ProtoField.bool("ur.robot_mode_data.is_program_paused", "Program paused", base.NONE, nil, nil, "Program paused."),
-    ["robot_mode_data.robot_mode"] = ProtoField.int8("ur.robot_mode_data.robot_mode", "Robot mode", base.DEC, VS.ROBOT_MODE, nil, "CB2 numbers the modes differently (see the enum's tables)."),
-    ["robot_mode_data.control_mode"] = ProtoField.uint8("ur.robot_mode_data.control_mode", "Control mode", base.DEC, VS.CONTROL_MODE, nil, "Control mode. Sent by software 3.0 and later."),
-    ["robot_mode_data.target_speed_fraction"] = ProtoField.double("ur.robot_mode_data.target_speed_fraction", "Target speed fraction", "speedFraction in the CB2 documents, where it follows robot_mode."),
-    ["robot_mode_data.speed_scaling"] = ProtoField.double("ur.robot_mode_data.speed_scaling", "Speed scaling", "Speed scaling. Sent by software 3.0 and later."),
-    ["robot_mode_data.target_speed_fraction_limit"] = ProtoField.double("ur.robot_mode_data.target_speed_fraction_limit", "Target speed fraction limit", "Target speed fraction limit. Sent by software 3.2 and later."),
-    ["robot_mode_data.reserved"] = ProtoField.uint8("ur.robot_mode_data.reserved", "Reserved", base.DEC, nil, nil, "Reserved. Sent by software 3.5 and later."),
-    ["robot_mode_data"] = ProtoField.none("ur.robot_mode_data", "Robot mode data", "Robot mode data; 29 bytes on CB2 (1.x), 38 on 3.0-3.1, 46 on 3.2-3.4, 47 from 3.5."),
+    ["robot_mode_data.timestamp"] = ProtoField.uint64("ur.robot_mode_data.timestamp", "Timestamp", base.DEC, nil, nil,
+        "Timestamp."),
+    ["robot_mode_data.is_real_robot_connected"] =
+        ProtoField.bool("ur.robot_mode_data.is_real_robot_connected", "Real robot connected", base.NONE, nil, nil,
+        "isRobotConnected in the CB2 documents."),
+    ["robot_mode_data.is_real_robot_enabled"] =
+        ProtoField.bool("ur.robot_mode_data.is_real_robot_enabled", "Real robot enabled", base.NONE, nil, nil,
+        "Real robot enabled."),
+    ["robot_mode_data.is_robot_power_on"] =
+        ProtoField.bool("ur.robot_mode_data.is_robot_power_on", "Robot power on", base.NONE, nil, nil,
+        "isPowerOnRobot in the CB2 documents."),
+    ["robot_mode_data.is_emergency_stopped"] =
+        ProtoField.bool("ur.robot_mode_data.is_emergency_stopped", "Emergency stopped", base.NONE, nil, nil,
+        "Emergency stopped."),
+    ["robot_mode_data.is_protective_stopped"] =
+        ProtoField.bool("ur.robot_mode_data.is_protective_stopped", "Protective stopped", base.NONE, nil, nil,
+        "isSecurityStopped in the CB2 documents."),
+    ["robot_mode_data.is_program_running"] =
+        ProtoField.bool("ur.robot_mode_data.is_program_running", "Program running", base.NONE, nil, nil,
+        "Program running."),
+    ["robot_mode_data.is_program_paused"] =
+        ProtoField.bool("ur.robot_mode_data.is_program_paused", "Program paused", base.NONE, nil, nil,
+        "Program paused."),
+    ["robot_mode_data.robot_mode"] =
+        ProtoField.int8("ur.robot_mode_data.robot_mode", "Robot mode", base.DEC, VS.ROBOT_MODE, nil,
+        "CB2 numbers the modes differently (see the enum's tables)."),
+    ["robot_mode_data.control_mode"] =
+        ProtoField.uint8("ur.robot_mode_data.control_mode", "Control mode", base.DEC, VS.CONTROL_MODE, nil,
+        "Control mode. Sent by software 3.0 and later."),
+    ["robot_mode_data.target_speed_fraction"] =
+        ProtoField.double("ur.robot_mode_data.target_speed_fraction", "Target speed fraction",
+        "speedFraction in the CB2 documents, where it follows robot_mode."),
+    ["robot_mode_data.speed_scaling"] = ProtoField.double("ur.robot_mode_data.speed_scaling", "Speed scaling",
+        "Speed scaling. Sent by software 3.0 and later."),
+    ["robot_mode_data.target_speed_fraction_limit"] =
+        ProtoField.double("ur.robot_mode_data.target_speed_fraction_limit", "Target speed fraction limit",
+        "Target speed fraction limit. Sent by software 3.2 and later."),
+    ["robot_mode_data.reserved"] = ProtoField.uint8("ur.robot_mode_data.reserved", "Reserved", base.DEC, nil, nil,
+        "Reserved. Sent by software 3.5 and later."),
+    ["robot_mode_data"] = ProtoField.none("ur.robot_mode_data", "Robot mode data",
+        "Robot mode data; 29 bytes on CB2 (1.x), 38 on 3.0-3.1, 46 on 3.2-3.4, 47 from 3.5."),
     ["joint_data.joints"] = ProtoField.none("ur.joint_data.joints", "Joint", "One entry per joint, base first."),
-    ["joint_data.q_actual"] = ProtoField.double("ur.joint_data.q_actual", "Actual joint position", "Measured angle of the joint. In rad."),
-    ["joint_data.q_target"] = ProtoField.double("ur.joint_data.q_target", "Target joint position", "Angle the controller commands. In rad."),
-    ["joint_data.qd_actual"] = ProtoField.double("ur.joint_data.qd_actual", "Actual joint velocity", "Measured angular velocity of the joint. In rad/s."),
-    ["joint_data.i_actual"] = ProtoField.float("ur.joint_data.i_actual", "Actual joint current", "Measured motor current; l_actual in the document. In A."),
-    ["joint_data.v_actual"] = ProtoField.float("ur.joint_data.v_actual", "Actual joint voltage", "Measured joint voltage. In V."),
-    ["joint_data.t_motor"] = ProtoField.float("ur.joint_data.t_motor", "Motor temperature", "Temperature of the joint. In °C."),
-    ["joint_data.t_micro"] = ProtoField.float("ur.joint_data.t_micro", "Microcontroller temperature", "Deprecated - ignore."),
-    ["joint_data.joint_mode"] = ProtoField.uint8("ur.joint_data.joint_mode", "Joint mode", base.DEC, VS.JOINT_MODE, nil, "Joint mode."),
-    ["joint_data"] = ProtoField.none("ur.joint_data", "Joint data", "Joint data, one group per joint; 251 bytes in every version."),
-    ["tool_data.analog_input_range0"] = ProtoField.uint8("ur.tool_data.analog_input_range0", "Analog input 0 range", base.DEC, nil, nil, "Analog input 0 range."),
-    ["tool_data.analog_input_range1"] = ProtoField.uint8("ur.tool_data.analog_input_range1", "Analog input 1 range", base.DEC, nil, nil, "Analog input 1 range."),
+    ["joint_data.q_actual"] = ProtoField.double("ur.joint_data.q_actual", "Actual joint position",
+        "Measured angle of the joint. In rad."),
+    ["joint_data.q_target"] = ProtoField.double("ur.joint_data.q_target", "Target joint position",
+        "Angle the controller commands. In rad."),
+    ["joint_data.qd_actual"] = ProtoField.double("ur.joint_data.qd_actual", "Actual joint velocity",
+        "Measured angular velocity of the joint. In rad/s."),
+    ["joint_data.i_actual"] = ProtoField.float("ur.joint_data.i_actual", "Actual joint current",
+        "Measured motor current; l_actual in the document. In A."),
+    ["joint_data.v_actual"] = ProtoField.float("ur.joint_data.v_actual", "Actual joint voltage",
+        "Measured joint voltage. In V."),
+    ["joint_data.t_motor"] = ProtoField.float("ur.joint_data.t_motor", "Motor temperature",
+        "Temperature of the joint. In °C."),
+    ["joint_data.t_micro"] = ProtoField.float("ur.joint_data.t_micro", "Microcontroller temperature",
+        "Deprecated - ignore."),
+    ["joint_data.joint_mode"] = ProtoField.uint8("ur.joint_data.joint_mode", "Joint mode", base.DEC, VS.JOINT_MODE, nil,
+        "Joint mode."),
+    ["joint_data"] = ProtoField.none("ur.joint_data", "Joint data",
+        "Joint data, one group per joint; 251 bytes in every version."),
+    ["tool_data.analog_input_range0"] =
+        ProtoField.uint8("ur.tool_data.analog_input_range0", "Analog input 0 range", base.DEC, nil, nil,
+        "Analog input 0 range."),
+    ["tool_data.analog_input_range1"] =
+        ProtoField.uint8("ur.tool_data.analog_input_range1", "Analog input 1 range", base.DEC, nil, nil,
+        "Analog input 1 range."),
     ["tool_data.analog_input0"] = ProtoField.double("ur.tool_data.analog_input0", "Analog input 0", "Analog input 0."),
     ["tool_data.analog_input1"] = ProtoField.double("ur.tool_data.analog_input1", "Analog input 1", "Analog input 1."),
-    ["tool_data.tool_voltage_48v"] = ProtoField.float("ur.tool_data.tool_voltage_48v", "Tool voltage", "Tool voltage. In V."),
-    ["tool_data.tool_output_voltage"] = ProtoField.uint8("ur.tool_data.tool_output_voltage", "Tool output voltage", base.UNIT_STRING, { " V" }, nil, "Tool output voltage. In V."),
+    ["tool_data.tool_voltage_48v"] = ProtoField.float("ur.tool_data.tool_voltage_48v", "Tool voltage",
+        "Tool voltage. In V."),
+    ["tool_data.tool_output_voltage"] =
+        ProtoField.uint8("ur.tool_data.tool_output_voltage", "Tool output voltage", base.UNIT_STRING, { " V" }, nil,
+        "Tool output voltage. In V."),
     ["tool_data.tool_current"] = ProtoField.float("ur.tool_data.tool_current", "Tool current", "Tool current. In A."),
-    ["tool_data.tool_temperature"] = ProtoField.float("ur.tool_data.tool_temperature", "Tool temperature", "Tool temperature. In °C."),
-    ["tool_data.tool_mode"] = ProtoField.uint8("ur.tool_data.tool_mode", "Tool mode", base.DEC, VS.TOOL_MODE, nil, "Tool mode."),
-    ["tool_data"] = ProtoField.none("ur.tool_data", "Tool data", "Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes."),
-    ["masterboard_data.digital_input_bits"] = ProtoField.int32("ur.masterboard_data.digital_input_bits", "Digital inputs", base.DEC, nil, nil, "Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by software up to 1.8, 3.0 and later."),
-    ["masterboard_data.digital_input_bits.standard_0"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_0", "Standard 0", 32, nil, 0x1, "Bit 0 of Digital inputs: Standard 0."),
-    ["masterboard_data.digital_input_bits.standard_1"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_1", "Standard 1", 32, nil, 0x2, "Bit 1 of Digital inputs: Standard 1."),
-    ["masterboard_data.digital_input_bits.standard_2"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_2", "Standard 2", 32, nil, 0x4, "Bit 2 of Digital inputs: Standard 2."),
-    ["masterboard_data.digital_input_bits.standard_3"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_3", "Standard 3", 32, nil, 0x8, "Bit 3 of Digital inputs: Standard 3."),
-    ["masterboard_data.digital_input_bits.standard_4"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_4", "Standard 4", 32, nil, 0x10, "Bit 4 of Digital inputs: Standard 4."),
-    ["masterboard_data.digital_input_bits.standard_5"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_5", "Standard 5", 32, nil, 0x20, "Bit 5 of Digital inputs: Standard 5."),
-    ["masterboard_data.digital_input_bits.standard_6"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_6", "Standard 6", 32, nil, 0x40, "Bit 6 of Digital inputs: Standard 6."),
-    ["masterboard_data.digital_input_bits.standard_7"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_7", "Standard 7", 32, nil, 0x80, "Bit 7 of Digital inputs: Standard 7."),
-    ["masterboard_data.digital_input_bits.configurable_0"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_0", "Configurable 0", 32, nil, 0x100, "Bit 8 of Digital inputs: Configurable 0."),
-    ["masterboard_data.digital_input_bits.configurable_1"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_1", "Configurable 1", 32, nil, 0x200, "Bit 9 of Digital inputs: Configurable 1."),
-    ["masterboard_data.digital_input_bits.configurable_2"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_2", "Configurable 2", 32, nil, 0x400, "Bit 10 of Digital inputs: Configurable 2."),
-    ["masterboard_data.digital_input_bits.configurable_3"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_3", "Configurable 3", 32, nil, 0x800, "Bit 11 of Digital inputs: Configurable 3."),
-    ["masterboard_data.digital_input_bits.configurable_4"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_4", "Configurable 4", 32, nil, 0x1000, "Bit 12 of Digital inputs: Configurable 4."),
-    ["masterboard_data.digital_input_bits.configurable_5"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_5", "Configurable 5", 32, nil, 0x2000, "Bit 13 of Digital inputs: Configurable 5."),
-    ["masterboard_data.digital_input_bits.configurable_6"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_6", "Configurable 6", 32, nil, 0x4000, "Bit 14 of Digital inputs: Configurable 6."),
-    ["masterboard_data.digital_input_bits.configurable_7"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_7", "Configurable 7", 32, nil, 0x8000, "Bit 15 of Digital inputs: Configurable 7."),
-    ["masterboard_data.digital_input_bits.tool_0"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.tool_0", "Tool 0", 32, nil, 0x10000, "Bit 16 of Digital inputs: Tool 0."),
-    ["masterboard_data.digital_input_bits.tool_1"] = ProtoField.bool("ur.masterboard_data.digital_input_bits.tool_1", "Tool 1", 32, nil, 0x20000, "Bit 17 of Digital inputs: Tool 1."),
-    ["masterboard_data.digital_output_bits"] = ProtoField.int32("ur.masterboard_data.digital_output_bits", "Digital outputs", base.DEC, nil, nil, "Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by software up to 1.8, 3.0 and later."),
-    ["masterboard_data.digital_output_bits.standard_0"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_0", "Standard 0", 32, nil, 0x1, "Bit 0 of Digital outputs: Standard 0."),
-    ["masterboard_data.digital_output_bits.standard_1"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_1", "Standard 1", 32, nil, 0x2, "Bit 1 of Digital outputs: Standard 1."),
-    ["masterboard_data.digital_output_bits.standard_2"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_2", "Standard 2", 32, nil, 0x4, "Bit 2 of Digital outputs: Standard 2."),
-    ["masterboard_data.digital_output_bits.standard_3"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_3", "Standard 3", 32, nil, 0x8, "Bit 3 of Digital outputs: Standard 3."),
-    ["masterboard_data.digital_output_bits.standard_4"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_4", "Standard 4", 32, nil, 0x10, "Bit 4 of Digital outputs: Standard 4."),
-    ["masterboard_data.digital_output_bits.standard_5"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_5", "Standard 5", 32, nil, 0x20, "Bit 5 of Digital outputs: Standard 5."),
-    ["masterboard_data.digital_output_bits.standard_6"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_6", "Standard 6", 32, nil, 0x40, "Bit 6 of Digital outputs: Standard 6."),
-    ["masterboard_data.digital_output_bits.standard_7"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_7", "Standard 7", 32, nil, 0x80, "Bit 7 of Digital outputs: Standard 7."),
-    ["masterboard_data.digital_output_bits.configurable_0"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_0", "Configurable 0", 32, nil, 0x100, "Bit 8 of Digital outputs: Configurable 0."),
-    ["masterboard_data.digital_output_bits.configurable_1"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_1", "Configurable 1", 32, nil, 0x200, "Bit 9 of Digital outputs: Configurable 1."),
-    ["masterboard_data.digital_output_bits.configurable_2"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_2", "Configurable 2", 32, nil, 0x400, "Bit 10 of Digital outputs: Configurable 2."),
-    ["masterboard_data.digital_output_bits.configurable_3"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_3", "Configurable 3", 32, nil, 0x800, "Bit 11 of Digital outputs: Configurable 3."),
-    ["masterboard_data.digital_output_bits.configurable_4"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_4", "Configurable 4", 32, nil, 0x1000, "Bit 12 of Digital outputs: Configurable 4."),
-    ["masterboard_data.digital_output_bits.configurable_5"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_5", "Configurable 5", 32, nil, 0x2000, "Bit 13 of Digital outputs: Configurable 5."),
-    ["masterboard_data.digital_output_bits.configurable_6"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_6", "Configurable 6", 32, nil, 0x4000, "Bit 14 of Digital outputs: Configurable 6."),
-    ["masterboard_data.digital_output_bits.configurable_7"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_7", "Configurable 7", 32, nil, 0x8000, "Bit 15 of Digital outputs: Configurable 7."),
-    ["masterboard_data.digital_output_bits.tool_0"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.tool_0", "Tool 0", 32, nil, 0x10000, "Bit 16 of Digital outputs: Tool 0."),
-    ["masterboard_data.digital_output_bits.tool_1"] = ProtoField.bool("ur.masterboard_data.digital_output_bits.tool_1", "Tool 1", 32, nil, 0x20000, "Bit 17 of Digital outputs: Tool 1."),
-    ["masterboard_data.analog_input_range0"] = ProtoField.uint8("ur.masterboard_data.analog_input_range0", "Analog input 0 range", base.DEC, nil, nil, "Analog input 0 range."),
-    ["masterboard_data.analog_input_range1"] = ProtoField.uint8("ur.masterboard_data.analog_input_range1", "Analog input 1 range", base.DEC, nil, nil, "Analog input 1 range."),
-    ["masterboard_data.analog_input0"] = ProtoField.double("ur.masterboard_data.analog_input0", "Analog input 0", "Analog input 0."),
-    ["masterboard_data.analog_input1"] = ProtoField.double("ur.masterboard_data.analog_input1", "Analog input 1", "Analog input 1."),
-    ["masterboard_data.analog_output_domain0"] = ProtoField.int8("ur.masterboard_data.analog_output_domain0", "Analog output 0 domain", base.DEC, nil, nil, "Analog output 0 domain."),
-    ["masterboard_data.analog_output_domain1"] = ProtoField.int8("ur.masterboard_data.analog_output_domain1", "Analog output 1 domain", base.DEC, nil, nil, "Analog output 1 domain."),
-    ["masterboard_data.analog_output0"] = ProtoField.double("ur.masterboard_data.analog_output0", "Analog output 0", "Analog output 0."),
-    ["masterboard_data.analog_output1"] = ProtoField.double("ur.masterboard_data.analog_output1", "Analog output 1", "Analog output 1."),
-    ["masterboard_data.master_board_temperature"] = ProtoField.float("ur.masterboard_data.master_board_temperature", "Masterboard temperature", "Masterboard temperature. In °C."),
-    ["masterboard_data.robot_voltage_48v"] = ProtoField.float("ur.masterboard_data.robot_voltage_48v", "Robot voltage", "Robot voltage. In V."),
-    ["masterboard_data.robot_current"] = ProtoField.float("ur.masterboard_data.robot_current", "Robot current", "Robot current. In A."),
-    ["masterboard_data.master_io_current"] = ProtoField.float("ur.masterboard_data.master_io_current", "I/O current", "I/O current."),
-    ["masterboard_data.master_safety_state"] = ProtoField.uint8("ur.masterboard_data.master_safety_state", "Masterboard safety state", base.DEC, VS.MASTER_SAFETY_STATE, nil, "masterSafetyState in the CB2 documents. Sent by software 1.6 to 1.8."),
-    ["masterboard_data.master_on_off_state"] = ProtoField.uint8("ur.masterboard_data.master_on_off_state", "Robot power state", base.DEC, VS.MASTER_ON_OFF_STATE, nil, "State of the robot's 48 V supply; masterOnOffState in the CB2 documents. Sent by software 1.6 to 1.8."),
-    ["masterboard_data.safety_mode"] = ProtoField.uint8("ur.masterboard_data.safety_mode", "Safety mode", base.DEC, VS.SAFETY_MODE, nil, "Safety mode. Sent by software 3.0 and later."),
-    ["masterboard_data.in_reduced_mode"] = ProtoField.uint8("ur.masterboard_data.in_reduced_mode", "In reduced mode", base.DEC, nil, nil, "In reduced mode. Sent by software 3.0 and later."),
-    ["masterboard_data.euromap67_interface_installed"] = ProtoField.bool("ur.masterboard_data.euromap67_interface_installed", "Euromap67 interface installed", base.NONE, nil, nil, "Nonzero when a Euromap67 interface is installed; euomap67InterfaceInstalled in the document. Sent by software 1.6 and later."),
-    ["masterboard_data.euromap_input_bits"] = ProtoField.uint32("ur.masterboard_data.euromap_input_bits", "Euromap67 inputs", base.DEC, nil, nil, "Euromap67 inputs. Sent by software 1.6 and later."),
-    ["masterboard_data.euromap_output_bits"] = ProtoField.uint32("ur.masterboard_data.euromap_output_bits", "Euromap67 outputs", base.DEC, nil, nil, "Euromap67 outputs. Sent by software 1.6 and later."),
-    ["masterboard_data.euromap_voltage_cb2"] = ProtoField.int16("ur.masterboard_data.euromap_voltage_cb2", "Euromap67 voltage (CB2)", base.DEC, nil, nil, "Euromap67 voltage as CB2 sends it (euromapVoltage, a short, unit not documented). Named apart from euromap_voltage_24v, a float32 in volts from 3.0, because a Wireshark filter name has one type. Sent by software 1.6 to 1.8."),
-    ["masterboard_data.euromap_current_cb2"] = ProtoField.int16("ur.masterboard_data.euromap_current_cb2", "Euromap67 current (CB2)", base.DEC, nil, nil, "Euromap67 current as CB2 sends it (euromapCurrent, a short, unit not documented). Named apart from euromap_current, a float32 from 3.0, because a Wireshark filter name has one type. Sent by software 1.6 to 1.8."),
-    ["masterboard_data.euromap_voltage_24v"] = ProtoField.float("ur.masterboard_data.euromap_voltage_24v", "Euromap67 24 V voltage", "Euromap67 24 V voltage. In V. Sent by software 3.0 and later."),
-    ["masterboard_data.euromap_current"] = ProtoField.float("ur.masterboard_data.euromap_current", "Euromap67 24 V current", "Euromap67 24 V current. Sent by software 3.0 and later."),
-    ["masterboard_data.reserved_0"] = ProtoField.uint32("ur.masterboard_data.reserved_0", "Reserved 0", base.DEC, nil, nil, "Used by Universal Robots software only. Sent by software 3.0 and later."),
-    ["masterboard_data.operational_mode_selector_input"] = ProtoField.uint8("ur.masterboard_data.operational_mode_selector_input", "Operational mode selector input", base.DEC, nil, nil, "Operational mode selector input. Sent by software 3.2 and later."),
-    ["masterboard_data.three_position_enabling_device_input"] = ProtoField.uint8("ur.masterboard_data.three_position_enabling_device_input", "Three-position enabling device input", base.DEC, nil, nil, "Three-position enabling device input. Sent by software 3.2 and later."),
-    ["masterboard_data.reserved_1"] = ProtoField.uint8("ur.masterboard_data.reserved_1", "Reserved 1", base.DEC, nil, nil, "Used by Universal Robots software only. Sent by software 3.10 to 3.15, 5.4 and later."),
-    ["masterboard_data"] = ProtoField.none("ur.masterboard_data", "Masterboard data", "Masterboard data; 61 bytes on early CB2, 64 on 1.6-1.8 (76 with Euromap67), 72 on 3.0-3.1, 74 on 3.2-3.9 and 5.0-5.3, 75 on 3.10-3.15 and from 5.4; from 3.0, 16 more with Euromap67."),
-    ["cartesian_info.x"] = ProtoField.double("ur.cartesian_info.x", "TCP position X", "Position of the tool centre point in base coordinates, X. In m."),
-    ["cartesian_info.y"] = ProtoField.double("ur.cartesian_info.y", "TCP position Y", "Position of the tool centre point in base coordinates, Y. In m."),
-    ["cartesian_info.z"] = ProtoField.double("ur.cartesian_info.z", "TCP position Z", "Position of the tool centre point in base coordinates, Z. In m."),
-    ["cartesian_info.rx"] = ProtoField.double("ur.cartesian_info.rx", "TCP rotation Rx", "Orientation of the tool as a rotation vector, Rx. In rad."),
-    ["cartesian_info.ry"] = ProtoField.double("ur.cartesian_info.ry", "TCP rotation Ry", "Orientation of the tool as a rotation vector, Ry. In rad."),
-    ["cartesian_info.rz"] = ProtoField.double("ur.cartesian_info.rz", "TCP rotation Rz", "Orientation of the tool as a rotation vector, Rz. In rad."),
-    ["cartesian_info.tcp_offset_x"] = ProtoField.double("ur.cartesian_info.tcp_offset_x", "TCP offset X", "TCP offset X. In m. Sent by software 3.1 and later."),
-    ["cartesian_info.tcp_offset_y"] = ProtoField.double("ur.cartesian_info.tcp_offset_y", "TCP offset Y", "TCP offset Y. In m. Sent by software 3.1 and later."),
-    ["cartesian_info.tcp_offset_z"] = ProtoField.double("ur.cartesian_info.tcp_offset_z", "TCP offset Z", "TCP offset Z. In m. Sent by software 3.1 and later."),
-    ["cartesian_info.tcp_offset_rx"] = ProtoField.double("ur.cartesian_info.tcp_offset_rx", "TCP offset Rx", "TCP offset Rx. In rad. Sent by software 3.1 and later."),
-    ["cartesian_info.tcp_offset_ry"] = ProtoField.double("ur.cartesian_info.tcp_offset_ry", "TCP offset Ry", "TCP offset Ry. In rad. Sent by software 3.1 and later."),
-    ["cartesian_info.tcp_offset_rz"] = ProtoField.double("ur.cartesian_info.tcp_offset_rz", "TCP offset Rz", "TCP offset Rz. In rad. Sent by software 3.1 and later."),
-    ["cartesian_info"] = ProtoField.none("ur.cartesian_info", "Cartesian info", "Cartesian info; 53 bytes up to 3.0, 101 (with the TCP offset) from 3.1."),
+    ["tool_data.tool_temperature"] = ProtoField.float("ur.tool_data.tool_temperature", "Tool temperature",
+        "Tool temperature. In °C."),
+    ["tool_data.tool_mode"] = ProtoField.uint8("ur.tool_data.tool_mode", "Tool mode", base.DEC, VS.TOOL_MODE, nil,
+        "Tool mode."),
+    ["tool_data"] = ProtoField.none("ur.tool_data", "Tool data",
+        "Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog \z
+        ranges and inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes."),
+    ["masterboard_data.digital_input_bits"] =
+        ProtoField.int32("ur.masterboard_data.digital_input_bits", "Digital inputs", base.DEC, nil, nil,
+        "Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by software up to 1.8, 3.0 and \z
+        later."),
+    ["masterboard_data.digital_input_bits.standard_0"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_0", "Standard 0", 32, nil, 0x1,
+        "Bit 0 of Digital inputs: Standard 0."),
+    ["masterboard_data.digital_input_bits.standard_1"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_1", "Standard 1", 32, nil, 0x2,
+        "Bit 1 of Digital inputs: Standard 1."),
+    ["masterboard_data.digital_input_bits.standard_2"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_2", "Standard 2", 32, nil, 0x4,
+        "Bit 2 of Digital inputs: Standard 2."),
+    ["masterboard_data.digital_input_bits.standard_3"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_3", "Standard 3", 32, nil, 0x8,
+        "Bit 3 of Digital inputs: Standard 3."),
+    ["masterboard_data.digital_input_bits.standard_4"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_4", "Standard 4", 32, nil, 0x10,
+        "Bit 4 of Digital inputs: Standard 4."),
+    ["masterboard_data.digital_input_bits.standard_5"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_5", "Standard 5", 32, nil, 0x20,
+        "Bit 5 of Digital inputs: Standard 5."),
+    ["masterboard_data.digital_input_bits.standard_6"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_6", "Standard 6", 32, nil, 0x40,
+        "Bit 6 of Digital inputs: Standard 6."),
+    ["masterboard_data.digital_input_bits.standard_7"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.standard_7", "Standard 7", 32, nil, 0x80,
+        "Bit 7 of Digital inputs: Standard 7."),
+    ["masterboard_data.digital_input_bits.configurable_0"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_0", "Configurable 0", 32, nil, 0x100,
+        "Bit 8 of Digital inputs: Configurable 0."),
+    ["masterboard_data.digital_input_bits.configurable_1"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_1", "Configurable 1", 32, nil, 0x200,
+        "Bit 9 of Digital inputs: Configurable 1."),
+    ["masterboard_data.digital_input_bits.configurable_2"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_2", "Configurable 2", 32, nil, 0x400,
+        "Bit 10 of Digital inputs: Configurable 2."),
+    ["masterboard_data.digital_input_bits.configurable_3"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_3", "Configurable 3", 32, nil, 0x800,
+        "Bit 11 of Digital inputs: Configurable 3."),
+    ["masterboard_data.digital_input_bits.configurable_4"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_4", "Configurable 4", 32, nil, 0x1000,
+        "Bit 12 of Digital inputs: Configurable 4."),
+    ["masterboard_data.digital_input_bits.configurable_5"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_5", "Configurable 5", 32, nil, 0x2000,
+        "Bit 13 of Digital inputs: Configurable 5."),
+    ["masterboard_data.digital_input_bits.configurable_6"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_6", "Configurable 6", 32, nil, 0x4000,
+        "Bit 14 of Digital inputs: Configurable 6."),
+    ["masterboard_data.digital_input_bits.configurable_7"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.configurable_7", "Configurable 7", 32, nil, 0x8000,
+        "Bit 15 of Digital inputs: Configurable 7."),
+    ["masterboard_data.digital_input_bits.tool_0"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.tool_0", "Tool 0", 32, nil, 0x10000,
+        "Bit 16 of Digital inputs: Tool 0."),
+    ["masterboard_data.digital_input_bits.tool_1"] =
+        ProtoField.bool("ur.masterboard_data.digital_input_bits.tool_1", "Tool 1", 32, nil, 0x20000,
+        "Bit 17 of Digital inputs: Tool 1."),
+    ["masterboard_data.digital_output_bits"] =
+        ProtoField.int32("ur.masterboard_data.digital_output_bits", "Digital outputs", base.DEC, nil, nil,
+        "Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by software up to 1.8, 3.0 and \z
+        later."),
+    ["masterboard_data.digital_output_bits.standard_0"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_0", "Standard 0", 32, nil, 0x1,
+        "Bit 0 of Digital outputs: Standard 0."),
+    ["masterboard_data.digital_output_bits.standard_1"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_1", "Standard 1", 32, nil, 0x2,
+        "Bit 1 of Digital outputs: Standard 1."),
+    ["masterboard_data.digital_output_bits.standard_2"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_2", "Standard 2", 32, nil, 0x4,
+        "Bit 2 of Digital outputs: Standard 2."),
+    ["masterboard_data.digital_output_bits.standard_3"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_3", "Standard 3", 32, nil, 0x8,
+        "Bit 3 of Digital outputs: Standard 3."),
+    ["masterboard_data.digital_output_bits.standard_4"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_4", "Standard 4", 32, nil, 0x10,
+        "Bit 4 of Digital outputs: Standard 4."),
+    ["masterboard_data.digital_output_bits.standard_5"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_5", "Standard 5", 32, nil, 0x20,
+        "Bit 5 of Digital outputs: Standard 5."),
+    ["masterboard_data.digital_output_bits.standard_6"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_6", "Standard 6", 32, nil, 0x40,
+        "Bit 6 of Digital outputs: Standard 6."),
+    ["masterboard_data.digital_output_bits.standard_7"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.standard_7", "Standard 7", 32, nil, 0x80,
+        "Bit 7 of Digital outputs: Standard 7."),
+    ["masterboard_data.digital_output_bits.configurable_0"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_0", "Configurable 0", 32, nil, 0x100,
+        "Bit 8 of Digital outputs: Configurable 0."),
+    ["masterboard_data.digital_output_bits.configurable_1"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_1", "Configurable 1", 32, nil, 0x200,
+        "Bit 9 of Digital outputs: Configurable 1."),
+    ["masterboard_data.digital_output_bits.configurable_2"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_2", "Configurable 2", 32, nil, 0x400,
+        "Bit 10 of Digital outputs: Configurable 2."),
+    ["masterboard_data.digital_output_bits.configurable_3"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_3", "Configurable 3", 32, nil, 0x800,
+        "Bit 11 of Digital outputs: Configurable 3."),
+    ["masterboard_data.digital_output_bits.configurable_4"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_4", "Configurable 4", 32, nil, 0x1000,
+        "Bit 12 of Digital outputs: Configurable 4."),
+    ["masterboard_data.digital_output_bits.configurable_5"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_5", "Configurable 5", 32, nil, 0x2000,
+        "Bit 13 of Digital outputs: Configurable 5."),
+    ["masterboard_data.digital_output_bits.configurable_6"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_6", "Configurable 6", 32, nil, 0x4000,
+        "Bit 14 of Digital outputs: Configurable 6."),
+    ["masterboard_data.digital_output_bits.configurable_7"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.configurable_7", "Configurable 7", 32, nil, 0x8000,
+        "Bit 15 of Digital outputs: Configurable 7."),
+    ["masterboard_data.digital_output_bits.tool_0"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.tool_0", "Tool 0", 32, nil, 0x10000,
+        "Bit 16 of Digital outputs: Tool 0."),
+    ["masterboard_data.digital_output_bits.tool_1"] =
+        ProtoField.bool("ur.masterboard_data.digital_output_bits.tool_1", "Tool 1", 32, nil, 0x20000,
+        "Bit 17 of Digital outputs: Tool 1."),
+    ["masterboard_data.analog_input_range0"] =
+        ProtoField.uint8("ur.masterboard_data.analog_input_range0", "Analog input 0 range", base.DEC, nil, nil,
+        "Analog input 0 range."),
+    ["masterboard_data.analog_input_range1"] =
+        ProtoField.uint8("ur.masterboard_data.analog_input_range1", "Analog input 1 range", base.DEC, nil, nil,
+        "Analog input 1 range."),
+    ["masterboard_data.analog_input0"] = ProtoField.double("ur.masterboard_data.analog_input0", "Analog input 0",
+        "Analog input 0."),
+    ["masterboard_data.analog_input1"] = ProtoField.double("ur.masterboard_data.analog_input1", "Analog input 1",
+        "Analog input 1."),
+    ["masterboard_data.analog_output_domain0"] =
+        ProtoField.int8("ur.masterboard_data.analog_output_domain0", "Analog output 0 domain", base.DEC, nil, nil,
+        "Analog output 0 domain."),
+    ["masterboard_data.analog_output_domain1"] =
+        ProtoField.int8("ur.masterboard_data.analog_output_domain1", "Analog output 1 domain", base.DEC, nil, nil,
+        "Analog output 1 domain."),
+    ["masterboard_data.analog_output0"] = ProtoField.double("ur.masterboard_data.analog_output0", "Analog output 0",
+        "Analog output 0."),
+    ["masterboard_data.analog_output1"] = ProtoField.double("ur.masterboard_data.analog_output1", "Analog output 1",
+        "Analog output 1."),
+    ["masterboard_data.master_board_temperature"] =
+        ProtoField.float("ur.masterboard_data.master_board_temperature", "Masterboard temperature",
+        "Masterboard temperature. In °C."),
+    ["masterboard_data.robot_voltage_48v"] = ProtoField.float("ur.masterboard_data.robot_voltage_48v", "Robot voltage",
+        "Robot voltage. In V."),
+    ["masterboard_data.robot_current"] = ProtoField.float("ur.masterboard_data.robot_current", "Robot current",
+        "Robot current. In A."),
+    ["masterboard_data.master_io_current"] = ProtoField.float("ur.masterboard_data.master_io_current", "I/O current",
+        "I/O current."),
+    ["masterboard_data.master_safety_state"] =
+        ProtoField.uint8("ur.masterboard_data.master_safety_state", "Masterboard safety state", base.DEC,
+            VS.MASTER_SAFETY_STATE, nil,
+        "masterSafetyState in the CB2 documents. Sent by software 1.6 to 1.8."),
+    ["masterboard_data.master_on_off_state"] =
+        ProtoField.uint8("ur.masterboard_data.master_on_off_state", "Robot power state", base.DEC,
+            VS.MASTER_ON_OFF_STATE, nil,
+        "State of the robot's 48 V supply; masterOnOffState in the CB2 documents. Sent by \z
+        software 1.6 to 1.8."),
+    ["masterboard_data.safety_mode"] =
+        ProtoField.uint8("ur.masterboard_data.safety_mode", "Safety mode", base.DEC, VS.SAFETY_MODE, nil,
+        "Safety mode. Sent by software 3.0 and later."),
+    ["masterboard_data.in_reduced_mode"] =
+        ProtoField.uint8("ur.masterboard_data.in_reduced_mode", "In reduced mode", base.DEC, nil, nil,
+        "In reduced mode. Sent by software 3.0 and later."),
+    ["masterboard_data.euromap67_interface_installed"] =
+        ProtoField.bool("ur.masterboard_data.euromap67_interface_installed", "Euromap67 interface installed",
+            base.NONE, nil, nil,
+        "Nonzero when a Euromap67 interface is installed; euomap67InterfaceInstalled in the \z
+        document. Sent by software 1.6 and later."),
+    ["masterboard_data.euromap_input_bits"] =
+        ProtoField.uint32("ur.masterboard_data.euromap_input_bits", "Euromap67 inputs", base.DEC, nil, nil,
+        "Euromap67 inputs. Sent by software 1.6 and later."),
+    ["masterboard_data.euromap_output_bits"] =
+        ProtoField.uint32("ur.masterboard_data.euromap_output_bits", "Euromap67 outputs", base.DEC, nil, nil,
+        "Euromap67 outputs. Sent by software 1.6 and later."),
+    ["masterboard_data.euromap_voltage_cb2"] =
+        ProtoField.int16("ur.masterboard_data.euromap_voltage_cb2", "Euromap67 voltage (CB2)", base.DEC, nil, nil,
+        "Euromap67 voltage as CB2 sends it (euromapVoltage, a short, unit not documented). \z
+        Named apart from euromap_voltage_24v, a float32 in volts from 3.0, because a Wireshark \z
+        filter name has one type. Sent by software 1.6 to 1.8."),
+    ["masterboard_data.euromap_current_cb2"] =
+        ProtoField.int16("ur.masterboard_data.euromap_current_cb2", "Euromap67 current (CB2)", base.DEC, nil, nil,
+        "Euromap67 current as CB2 sends it (euromapCurrent, a short, unit not documented). \z
+        Named apart from euromap_current, a float32 from 3.0, because a Wireshark filter name \z
+        has one type. Sent by software 1.6 to 1.8."),
+    ["masterboard_data.euromap_voltage_24v"] =
+        ProtoField.float("ur.masterboard_data.euromap_voltage_24v", "Euromap67 24 V voltage",
+        "Euromap67 24 V voltage. In V. Sent by software 3.0 and later."),
+    ["masterboard_data.euromap_current"] =
+        ProtoField.float("ur.masterboard_data.euromap_current", "Euromap67 24 V current",
+        "Euromap67 24 V current. Sent by software 3.0 and later."),
+    ["masterboard_data.reserved_0"] =
+        ProtoField.uint32("ur.masterboard_data.reserved_0", "Reserved 0", base.DEC, nil, nil,
+        "Used by Universal Robots software only. Sent by software 3.0 and later."),
+    ["masterboard_data.operational_mode_selector_input"] =
+        ProtoField.uint8("ur.masterboard_data.operational_mode_selector_input", "Operational mode selector input",
+            base.DEC, nil, nil,
+        "Operational mode selector input. Sent by software 3.2 and later."),
+    ["masterboard_data.three_position_enabling_device_input"] =
+        ProtoField.uint8("ur.masterboard_data.three_position_enabling_device_input",
+            "Three-position enabling device input", base.DEC, nil, nil,
+        "Three-position enabling device input. Sent by software 3.2 and later."),
+    ["masterboard_data.reserved_1"] =
+        ProtoField.uint8("ur.masterboard_data.reserved_1", "Reserved 1", base.DEC, nil, nil,
+        "Used by Universal Robots software only. Sent by software 3.10 to 3.15, 5.4 and later."),
+    ["masterboard_data"] = ProtoField.none("ur.masterboard_data", "Masterboard data",
+        "Masterboard data; 61 bytes on early CB2, 64 on 1.6-1.8 (76 with Euromap67), 72 on \z
+        3.0-3.1, 74 on 3.2-3.9 and 5.0-5.3, 75 on 3.10-3.15 and from 5.4; from 3.0, 16 more \z
+        with Euromap67."),
+    ["cartesian_info.x"] = ProtoField.double("ur.cartesian_info.x", "TCP position X",
+        "Position of the tool centre point in base coordinates, X. In m."),
+    ["cartesian_info.y"] = ProtoField.double("ur.cartesian_info.y", "TCP position Y",
+        "Position of the tool centre point in base coordinates, Y. In m."),
+    ["cartesian_info.z"] = ProtoField.double("ur.cartesian_info.z", "TCP position Z",
+        "Position of the tool centre point in base coordinates, Z. In m."),
+    ["cartesian_info.rx"] = ProtoField.double("ur.cartesian_info.rx", "TCP rotation Rx",
+        "Orientation of the tool as a rotation vector, Rx. In rad."),
+    ["cartesian_info.ry"] = ProtoField.double("ur.cartesian_info.ry", "TCP rotation Ry",
+        "Orientation of the tool as a rotation vector, Ry. In rad."),
+    ["cartesian_info.rz"] = ProtoField.double("ur.cartesian_info.rz", "TCP rotation Rz",
+        "Orientation of the tool as a rotation vector, Rz. In rad."),
+    ["cartesian_info.tcp_offset_x"] = ProtoField.double("ur.cartesian_info.tcp_offset_x", "TCP offset X",
+        "TCP offset X. In m. Sent by software 3.1 and later."),
+    ["cartesian_info.tcp_offset_y"] = ProtoField.double("ur.cartesian_info.tcp_offset_y", "TCP offset Y",
+        "TCP offset Y. In m. Sent by software 3.1 and later."),
+    ["cartesian_info.tcp_offset_z"] = ProtoField.double("ur.cartesian_info.tcp_offset_z", "TCP offset Z",
+        "TCP offset Z. In m. Sent by software 3.1 and later."),
+    ["cartesian_info.tcp_offset_rx"] = ProtoField.double("ur.cartesian_info.tcp_offset_rx", "TCP offset Rx",
+        "TCP offset Rx. In rad. Sent by software 3.1 and later."),
+    ["cartesian_info.tcp_offset_ry"] = ProtoField.double("ur.cartesian_info.tcp_offset_ry", "TCP offset Ry",
+        "TCP offset Ry. In rad. Sent by software 3.1 and later."),
+    ["cartesian_info.tcp_offset_rz"] = ProtoField.double("ur.cartesian_info.tcp_offset_rz", "TCP offset Rz",
+        "TCP offset Rz. In rad. Sent by software 3.1 and later."),
+    ["cartesian_info"] = ProtoField.none("ur.cartesian_info", "Cartesian info",
+        "Cartesian info; 53 bytes up to 3.0, 101 (with the TCP offset) from 3.1."),
     ["laser_pointer.x"] = ProtoField.double("ur.laser_pointer.x", "X", "X."),
     ["laser_pointer.y"] = ProtoField.double("ur.laser_pointer.y", "Y", "Y."),
     ["laser_pointer.z"] = ProtoField.double("ur.laser_pointer.z", "Z", "Z."),
-    ["laser_pointer"] = ProtoField.none("ur.laser_pointer", "Laser pointer", "The early CB2 package of type 5: three doubles, 29 bytes; kinematics info takes the code from 1.8. What the values mean is not documented (a laser pointer's position, perhaps)."),
-    ["kinematics_info.checksum"] = ProtoField.uint32("ur.kinematics_info.checksum", "Joint checksum", base.DEC, nil, nil, "One per joint; cheksum in the document."),
+    ["laser_pointer"] = ProtoField.none("ur.laser_pointer", "Laser pointer",
+        "The early CB2 package of type 5: three doubles, 29 bytes; kinematics info takes the \z
+        code from 1.8. What the values mean is not documented (a laser pointer's position, \z
+        perhaps)."),
+    ["kinematics_info.checksum"] =
+        ProtoField.uint32("ur.kinematics_info.checksum", "Joint checksum", base.DEC, nil, nil,
+        "One per joint; cheksum in the document."),
     ["kinematics_info.dh_theta"] = ProtoField.double("ur.kinematics_info.dh_theta", "DH theta", "DH theta. In rad."),
     ["kinematics_info.dh_a"] = ProtoField.double("ur.kinematics_info.dh_a", "DH a", "DH a. In m."),
     ["kinematics_info.dh_d"] = ProtoField.double("ur.kinematics_info.dh_d", "DH d", "Dhd in the document. In m."),
     ["kinematics_info.dh_alpha"] = ProtoField.double("ur.kinematics_info.dh_alpha", "DH alpha", "DH alpha. In rad."),
-    ["kinematics_info.calibration_status"] = ProtoField.uint32("ur.kinematics_info.calibration_status", "Calibration status", base.DEC, nil, nil, "Calibration status."),
-    ["kinematics_info"] = ProtoField.none("ur.kinematics_info", "Kinematics info", "Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is changed."),
-    ["configuration_data.joint_position_limits"] = ProtoField.none("ur.configuration_data.joint_position_limits", "Joint", "Joint position limits."),
-    ["configuration_data.joint_min_limit"] = ProtoField.double("ur.configuration_data.joint_min_limit", "Minimum joint position", "Minimum joint position. In rad."),
-    ["configuration_data.joint_max_limit"] = ProtoField.double("ur.configuration_data.joint_max_limit", "Maximum joint position", "jointMaxLimitt in the document. In rad."),
-    ["configuration_data.joint_motion_limits"] = ProtoField.none("ur.configuration_data.joint_motion_limits", "Joint", "Joint motion limits."),
-    ["configuration_data.joint_max_speed"] = ProtoField.double("ur.configuration_data.joint_max_speed", "Maximum joint speed", "Maximum joint speed. In rad/s."),
-    ["configuration_data.joint_max_acceleration"] = ProtoField.double("ur.configuration_data.joint_max_acceleration", "Maximum joint acceleration", "Maximum joint acceleration. In rad/s²."),
-    ["configuration_data.v_joint_default"] = ProtoField.double("ur.configuration_data.v_joint_default", "Default joint speed", "Default joint speed. In rad/s."),
-    ["configuration_data.a_joint_default"] = ProtoField.double("ur.configuration_data.a_joint_default", "Default joint acceleration", "Default joint acceleration. In rad/s²."),
-    ["configuration_data.v_tool_default"] = ProtoField.double("ur.configuration_data.v_tool_default", "Default tool speed", "Default tool speed. In m/s."),
-    ["configuration_data.a_tool_default"] = ProtoField.double("ur.configuration_data.a_tool_default", "Default tool acceleration", "Default tool acceleration. In m/s²."),
-    ["configuration_data.eq_radius"] = ProtoField.double("ur.configuration_data.eq_radius", "Equivalent radius", "Equivalent radius."),
+    ["kinematics_info.calibration_status"] =
+        ProtoField.uint32("ur.kinematics_info.calibration_status", "Calibration status", base.DEC, nil, nil,
+        "Calibration status."),
+    ["kinematics_info"] = ProtoField.none("ur.kinematics_info", "Kinematics info",
+        "Kinematics info. Sent when leaving initializing mode and/or if the kinematics \z
+        configuration is changed."),
+    ["configuration_data.joint_position_limits"] =
+        ProtoField.none("ur.configuration_data.joint_position_limits", "Joint",
+        "Joint position limits."),
+    ["configuration_data.joint_min_limit"] =
+        ProtoField.double("ur.configuration_data.joint_min_limit", "Minimum joint position",
+        "Minimum joint position. In rad."),
+    ["configuration_data.joint_max_limit"] =
+        ProtoField.double("ur.configuration_data.joint_max_limit", "Maximum joint position",
+        "jointMaxLimitt in the document. In rad."),
+    ["configuration_data.joint_motion_limits"] = ProtoField.none("ur.configuration_data.joint_motion_limits", "Joint",
+        "Joint motion limits."),
+    ["configuration_data.joint_max_speed"] =
+        ProtoField.double("ur.configuration_data.joint_max_speed", "Maximum joint speed",
+        "Maximum joint speed. In rad/s."),
+    ["configuration_data.joint_max_acceleration"] =
+        ProtoField.double("ur.configuration_data.joint_max_acceleration", "Maximum joint acceleration",
+        "Maximum joint acceleration. In rad/s²."),
+    ["configuration_data.v_joint_default"] =
+        ProtoField.double("ur.configuration_data.v_joint_default", "Default joint speed",
+        "Default joint speed. In rad/s."),
+    ["configuration_data.a_joint_default"] =
+        ProtoField.double("ur.configuration_data.a_joint_default", "Default joint acceleration",
+        "Default joint acceleration. In rad/s²."),
+    ["configuration_data.v_tool_default"] =
+        ProtoField.double("ur.configuration_data.v_tool_default", "Default tool speed",
+        "Default tool speed. In m/s."),
+    ["configuration_data.a_tool_default"] =
+        ProtoField.double("ur.configuration_data.a_tool_default", "Default tool acceleration",
+        "Default tool acceleration. In m/s²."),
+    ["configuration_data.eq_radius"] = ProtoField.double("ur.configuration_data.eq_radius", "Equivalent radius",
+        "Equivalent radius."),
     ["configuration_data.dh_a"] = ProtoField.double("ur.configuration_data.dh_a", "DH a", "DH a. In m."),
     ["configuration_data.dh_d"] = ProtoField.double("ur.configuration_data.dh_d", "DH d", "DH d. In m."),
-    ["configuration_data.dh_alpha"] = ProtoField.double("ur.configuration_data.dh_alpha", "DH alpha", "DH alpha. In rad."),
-    ["configuration_data.dh_theta"] = ProtoField.double("ur.configuration_data.dh_theta", "DH theta", "DH theta. In rad."),
-    ["configuration_data.masterboard_version"] = ProtoField.int32("ur.configuration_data.masterboard_version", "Masterboard version", base.DEC, nil, nil, "Masterboard version."),
-    ["configuration_data.controller_box_type"] = ProtoField.int32("ur.configuration_data.controller_box_type", "Control box type", base.DEC, nil, nil, "Control box type."),
-    ["configuration_data.robot_type"] = ProtoField.int32("ur.configuration_data.robot_type", "Robot type", base.DEC, nil, nil, "Robot type."),
-    ["configuration_data.robot_sub_type"] = ProtoField.int32("ur.configuration_data.robot_sub_type", "Robot subtype", base.DEC, nil, nil, "Robot subtype."),
-    ["configuration_data.motor_type"] = ProtoField.int32("ur.configuration_data.motor_type", "Motor type", base.DEC, nil, nil, "One per joint; motorType in the CB2 documents (\"Have values 1 or 2\"). Sent by software up to 1.8."),
-    ["configuration_data.reserved_1"] = ProtoField.int16("ur.configuration_data.reserved_1", "Reserved 1", base.DEC, nil, nil, "Reserved 1. Sent by software 5.25.1 and later."),
-    ["configuration_data.reserved_2"] = ProtoField.int16("ur.configuration_data.reserved_2", "Reserved 2", base.DEC, nil, nil, "Reserved 2. Sent by software 5.25.1 and later."),
-    ["configuration_data"] = ProtoField.none("ur.configuration_data", "Configuration data", "Configuration data. Sent when leaving initializing mode and/or if the kinematics configuration is changed. 469 bytes on 1.8, 445 from 3.0, 449 from 5.25.1; not sent before 1.8."),
+    ["configuration_data.dh_alpha"] = ProtoField.double("ur.configuration_data.dh_alpha", "DH alpha",
+        "DH alpha. In rad."),
+    ["configuration_data.dh_theta"] = ProtoField.double("ur.configuration_data.dh_theta", "DH theta",
+        "DH theta. In rad."),
+    ["configuration_data.masterboard_version"] =
+        ProtoField.int32("ur.configuration_data.masterboard_version", "Masterboard version", base.DEC, nil, nil,
+        "Masterboard version."),
+    ["configuration_data.controller_box_type"] =
+        ProtoField.int32("ur.configuration_data.controller_box_type", "Control box type", base.DEC, nil, nil,
+        "Control box type."),
+    ["configuration_data.robot_type"] =
+        ProtoField.int32("ur.configuration_data.robot_type", "Robot type", base.DEC, nil, nil,
+        "Robot type."),
+    ["configuration_data.robot_sub_type"] =
+        ProtoField.int32("ur.configuration_data.robot_sub_type", "Robot subtype", base.DEC, nil, nil,
+        "Robot subtype."),
+    ["configuration_data.motor_type"] =
+        ProtoField.int32("ur.configuration_data.motor_type", "Motor type", base.DEC, nil, nil,
+        "One per joint; motorType in the CB2 documents (\"Have values 1 or 2\"). Sent by \z
+        software up to 1.8."),
+    ["configuration_data.reserved_1"] =
+        ProtoField.int16("ur.configuration_data.reserved_1", "Reserved 1", base.DEC, nil, nil,
+        "Reserved 1. Sent by software 5.25.1 and later."),
+    ["configuration_data.reserved_2"] =
+        ProtoField.int16("ur.configuration_data.reserved_2", "Reserved 2", base.DEC, nil, nil,
+        "Reserved 2. Sent by software 5.25.1 and later."),
+    ["configuration_data"] = ProtoField.none("ur.configuration_data", "Configuration data",
+        "Configuration data. Sent when leaving initializing mode and/or if the kinematics \z
+        configuration is changed. 469 bytes on 1.8, 445 from 3.0, 449 from 5.25.1; not sent \z
+        before 1.8."),
     ["force_mode_data.fx"] = ProtoField.double("ur.force_mode_data.fx", "Force X", "Force X. In N."),
     ["force_mode_data.fy"] = ProtoField.double("ur.force_mode_data.fy", "Force Y", "Force Y. In N."),
     ["force_mode_data.fz"] = ProtoField.double("ur.force_mode_data.fz", "Force Z", "Force Z. In N."),
     ["force_mode_data.frx"] = ProtoField.double("ur.force_mode_data.frx", "Torque X", "Torque X. In Nm."),
     ["force_mode_data.fry"] = ProtoField.double("ur.force_mode_data.fry", "Torque Y", "Torque Y. In Nm."),
     ["force_mode_data.frz"] = ProtoField.double("ur.force_mode_data.frz", "Torque Z", "Torque Z. In Nm."),
-    ["force_mode_data.robot_dexterity"] = ProtoField.double("ur.force_mode_data.robot_dexterity", "Robot dexterity", "Robot dexterity."),
-    ["force_mode_data"] = ProtoField.none("ur.force_mode_data", "Force mode data", "Force mode data; 61 bytes in every version that sends it."),
-    ["additional_info.ctrl_bits"] = ProtoField.uint32("ur.additional_info.ctrl_bits", "Control bits", base.DEC, nil, nil, "Meaning not documented. Sent by software up to 1.7."),
-    ["additional_info.teach_button"] = ProtoField.uint8("ur.additional_info.teach_button", "Teach button", base.DEC, nil, nil, "Meaning not documented. Sent by software up to 1.7."),
-    ["additional_info.tp_button_state"] = ProtoField.uint8("ur.additional_info.tp_button_state", "Freedrive button state", base.DEC, nil, nil, "State of the teach pendant's freedrive button. teachButtonPressed (a bool) on CB2, freedriveButtonPressed on CB3, tpButtonState (an unsigned char) from 5.0: the same byte. Sent by software 1.8 and later."),
-    ["additional_info.freedrive_button_enabled"] = ProtoField.bool("ur.additional_info.freedrive_button_enabled", "Freedrive button enabled", base.NONE, nil, nil, "teachButtonEnabled on CB2, freedriveButtonEnabled later. Sent by software 1.8 and later."),
-    ["additional_info.io_enabled_freedrive"] = ProtoField.bool("ur.additional_info.io_enabled_freedrive", "Freedrive by I/O enabled", base.NONE, nil, nil, "Freedrive by I/O enabled. Sent by software 3.2 and later."),
-    ["additional_info.reserved"] = ProtoField.uint8("ur.additional_info.reserved", "Reserved", base.DEC, nil, nil, "Reserved. Sent by software 5.0 and later."),
-    ["additional_info"] = ProtoField.none("ur.additional_info", "Additional info", "Additional info; 10 bytes up to early 1.8 builds, 7 from late 1.8 builds to 3.1, 8 on 3.2-3.15, 9 from 5.0. 1.8 sends either 10 or 7 bytes: the 10-byte form is gated to 1.7 and its length selects it on 1.8."),
+    ["force_mode_data.robot_dexterity"] = ProtoField.double("ur.force_mode_data.robot_dexterity", "Robot dexterity",
+        "Robot dexterity."),
+    ["force_mode_data"] = ProtoField.none("ur.force_mode_data", "Force mode data",
+        "Force mode data; 61 bytes in every version that sends it."),
+    ["additional_info.ctrl_bits"] =
+        ProtoField.uint32("ur.additional_info.ctrl_bits", "Control bits", base.DEC, nil, nil,
+        "Meaning not documented. Sent by software up to 1.7."),
+    ["additional_info.teach_button"] =
+        ProtoField.uint8("ur.additional_info.teach_button", "Teach button", base.DEC, nil, nil,
+        "Meaning not documented. Sent by software up to 1.7."),
+    ["additional_info.tp_button_state"] =
+        ProtoField.uint8("ur.additional_info.tp_button_state", "Freedrive button state", base.DEC, nil, nil,
+        "State of the teach pendant's freedrive button. teachButtonPressed (a bool) on CB2, \z
+        freedriveButtonPressed on CB3, tpButtonState (an unsigned char) from 5.0: the same \z
+        byte. Sent by software 1.8 and later."),
+    ["additional_info.freedrive_button_enabled"] =
+        ProtoField.bool("ur.additional_info.freedrive_button_enabled", "Freedrive button enabled", base.NONE, nil, nil,
+        "teachButtonEnabled on CB2, freedriveButtonEnabled later. Sent by software 1.8 and \z
+        later."),
+    ["additional_info.io_enabled_freedrive"] =
+        ProtoField.bool("ur.additional_info.io_enabled_freedrive", "Freedrive by I/O enabled", base.NONE, nil, nil,
+        "Freedrive by I/O enabled. Sent by software 3.2 and later."),
+    ["additional_info.reserved"] = ProtoField.uint8("ur.additional_info.reserved", "Reserved", base.DEC, nil, nil,
+        "Reserved. Sent by software 5.0 and later."),
+    ["additional_info"] = ProtoField.none("ur.additional_info", "Additional info",
+        "Additional info; 10 bytes up to early 1.8 builds, 7 from late 1.8 builds to 3.1, 8 on \z
+        3.2-3.15, 9 from 5.0. 1.8 sends either 10 or 7 bytes: the 10-byte form is gated to 1.7 \z
+        and its length selects it on 1.8."),
     ["calibration_data.fx"] = ProtoField.double("ur.calibration_data.fx", "Fx", "Fx."),
     ["calibration_data.fy"] = ProtoField.double("ur.calibration_data.fy", "Fy", "Fy."),
     ["calibration_data.fz"] = ProtoField.double("ur.calibration_data.fz", "Fz", "Fz."),
     ["calibration_data.frx"] = ProtoField.double("ur.calibration_data.frx", "Frx", "Frx."),
     ["calibration_data.fry"] = ProtoField.double("ur.calibration_data.fry", "Fry", "Fry."),
     ["calibration_data.frz"] = ProtoField.double("ur.calibration_data.frz", "Frz", "Frz."),
-    ["calibration_data"] = ProtoField.none("ur.calibration_data", "Calibration data", "Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8 builds on."),
-    ["safety_data.raw"] = ProtoField.bytes("ur.safety_data.raw", "Safety data", base.NONE, "The package's bytes after its header."),
-    ["safety_data"] = ProtoField.none("ur.safety_data", "Safety data", "Safety data. Used internally by Universal Robots software only; its layout is not documented. 43 bytes on e-Series."),
-    ["tool_comm_info.tool_communication_is_enabled"] = ProtoField.bool("ur.tool_comm_info.tool_communication_is_enabled", "Tool communication enabled", base.NONE, nil, nil, "Tool communication enabled."),
-    ["tool_comm_info.baud_rate"] = ProtoField.int32("ur.tool_comm_info.baud_rate", "Baud rate", base.DEC, nil, nil, "Baud rate."),
+    ["calibration_data"] = ProtoField.none("ur.calibration_data", "Calibration data",
+        "Calibration data. Used internally by Universal Robots software only. 53 bytes from \z
+        late 1.8 builds on."),
+    ["safety_data.raw"] = ProtoField.bytes("ur.safety_data.raw", "Safety data", base.NONE,
+        "The package's bytes after its header."),
+    ["safety_data"] = ProtoField.none("ur.safety_data", "Safety data",
+        "Safety data. Used internally by Universal Robots software only; its layout is not \z
+        documented. 43 bytes on e-Series."),
+    ["tool_comm_info.tool_communication_is_enabled"] =
+        ProtoField.bool("ur.tool_comm_info.tool_communication_is_enabled", "Tool communication enabled", base.NONE,
+            nil, nil,
+        "Tool communication enabled."),
+    ["tool_comm_info.baud_rate"] = ProtoField.int32("ur.tool_comm_info.baud_rate", "Baud rate", base.DEC, nil, nil,
+        "Baud rate."),
     ["tool_comm_info.parity"] = ProtoField.int32("ur.tool_comm_info.parity", "Parity", base.DEC, nil, nil, "Parity."),
-    ["tool_comm_info.stop_bits"] = ProtoField.int32("ur.tool_comm_info.stop_bits", "Stop bits", base.DEC, nil, nil, "Stop bits."),
-    ["tool_comm_info.rx_idle_chars"] = ProtoField.float("ur.tool_comm_info.rx_idle_chars", "RX idle characters", "RX idle characters."),
-    ["tool_comm_info.tx_idle_chars"] = ProtoField.float("ur.tool_comm_info.tx_idle_chars", "TX idle characters", "TX idle characters."),
-    ["tool_comm_info"] = ProtoField.none("ur.tool_comm_info", "Tool comm info", "Tool communication info. e-Series only; its first version is unknown."),
-    ["tool_mode_info.output_mode"] = ProtoField.uint8("ur.tool_mode_info.output_mode", "Tool output mode", base.DEC, nil, nil, "Tool output mode."),
-    ["tool_mode_info.digital_output_mode_output_0"] = ProtoField.uint8("ur.tool_mode_info.digital_output_mode_output_0", "Tool digital output 0 mode", base.DEC, nil, nil, "Tool digital output 0 mode."),
-    ["tool_mode_info.digital_output_mode_output_1"] = ProtoField.uint8("ur.tool_mode_info.digital_output_mode_output_1", "Tool digital output 1 mode", base.DEC, nil, nil, "Tool digital output 1 mode."),
-    ["tool_mode_info"] = ProtoField.none("ur.tool_mode_info", "Tool mode info", "Tool mode info. e-Series only; its first version is unknown."),
-    ["singularity_info.singularity_severity"] = ProtoField.uint8("ur.singularity_info.singularity_severity", "Singularity severity", base.DEC, nil, nil, "Singularity severity."),
-    ["singularity_info.singularity_type"] = ProtoField.uint8("ur.singularity_info.singularity_type", "Singularity type", base.DEC, nil, nil, "Singularity type."),
-    ["singularity_info"] = ProtoField.none("ur.singularity_info", "Singularity info", "Singularity info. Used internally by Universal Robots software only."),
-    ["robot_message.robot_message_type"] = ProtoField.uint8("ur.robot_message.robot_message_type", "Robot message type", base.DEC, VS.ROBOT_MESSAGE_TYPE, nil, "Robot message type."),
-    ["robot_message.timestamp"] = ProtoField.uint64("ur.robot_message.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["robot_message.source"] = ProtoField.int8("ur.robot_message.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
+    ["tool_comm_info.stop_bits"] = ProtoField.int32("ur.tool_comm_info.stop_bits", "Stop bits", base.DEC, nil, nil,
+        "Stop bits."),
+    ["tool_comm_info.rx_idle_chars"] = ProtoField.float("ur.tool_comm_info.rx_idle_chars", "RX idle characters",
+        "RX idle characters."),
+    ["tool_comm_info.tx_idle_chars"] = ProtoField.float("ur.tool_comm_info.tx_idle_chars", "TX idle characters",
+        "TX idle characters."),
+    ["tool_comm_info"] = ProtoField.none("ur.tool_comm_info", "Tool comm info",
+        "Tool communication info. e-Series only; its first version is unknown."),
+    ["tool_mode_info.output_mode"] =
+        ProtoField.uint8("ur.tool_mode_info.output_mode", "Tool output mode", base.DEC, nil, nil,
+        "Tool output mode."),
+    ["tool_mode_info.digital_output_mode_output_0"] =
+        ProtoField.uint8("ur.tool_mode_info.digital_output_mode_output_0", "Tool digital output 0 mode", base.DEC, nil,
+            nil,
+        "Tool digital output 0 mode."),
+    ["tool_mode_info.digital_output_mode_output_1"] =
+        ProtoField.uint8("ur.tool_mode_info.digital_output_mode_output_1", "Tool digital output 1 mode", base.DEC, nil,
+            nil,
+        "Tool digital output 1 mode."),
+    ["tool_mode_info"] = ProtoField.none("ur.tool_mode_info", "Tool mode info",
+        "Tool mode info. e-Series only; its first version is unknown."),
+    ["singularity_info.singularity_severity"] =
+        ProtoField.uint8("ur.singularity_info.singularity_severity", "Singularity severity", base.DEC, nil, nil,
+        "Singularity severity."),
+    ["singularity_info.singularity_type"] =
+        ProtoField.uint8("ur.singularity_info.singularity_type", "Singularity type", base.DEC, nil, nil,
+        "Singularity type."),
+    ["singularity_info"] = ProtoField.none("ur.singularity_info", "Singularity info",
+        "Singularity info. Used internally by Universal Robots software only."),
+    ["robot_message.robot_message_type"] =
+        ProtoField.uint8("ur.robot_message.robot_message_type", "Robot message type", base.DEC, VS.ROBOT_MESSAGE_TYPE,
+            nil,
+        "Robot message type."),
+    ["robot_message.timestamp"] = ProtoField.uint64("ur.robot_message.timestamp", "Timestamp", base.DEC, nil, nil,
+        "Timestamp."),
+    ["robot_message.source"] = ProtoField.int8("ur.robot_message.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
     ["version.timestamp"] = ProtoField.uint64("ur.version.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["version.source"] = ProtoField.int8("ur.version.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
-    ["version.project_name"] = ProtoField.string("ur.version.project_name", "Project name", base.UNICODE, "projectNameSize, then projectName."),
-    ["version.major_version"] = ProtoField.uint8("ur.version.major_version", "Major version", base.DEC, nil, nil, "Major version."),
-    ["version.minor_version"] = ProtoField.uint8("ur.version.minor_version", "Minor version", base.DEC, nil, nil, "Minor version."),
-    ["version.svn_revision"] = ProtoField.int32("ur.version.svn_revision", "SVN revision", base.DEC, nil, nil, "svnRevision, the controller software's revision (e.g. 20175 for 3.2.20175). Sent by software up to 3.2."),
-    ["version.bugfix_version"] = ProtoField.int32("ur.version.bugfix_version", "Bugfix version", base.DEC, nil, nil, "Bugfix version. Sent by software 3.3 and later."),
-    ["version.build_number"] = ProtoField.int32("ur.version.build_number", "Build number", base.DEC, nil, nil, "Build number. Sent by software 3.3 and later."),
-    ["version.build_date"] = ProtoField.string("ur.version.build_date", "Build date", base.UNICODE, "The rest of the message, with no terminator."),
-    ["version"] = ProtoField.none("ur.version", "Version", "Version message, the first message on both the primary and secondary interfaces. It is read in the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from 3.3 the bugfix version and the build number. PolyScope X sends major version 10."),
-    ["safety_mode.timestamp"] = ProtoField.uint64("ur.safety_mode.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["safety_mode.source"] = ProtoField.int8("ur.safety_mode.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
-    ["safety_mode.robot_message_code"] = ProtoField.int32("ur.safety_mode.robot_message_code", "Code", base.DEC, nil, nil, "Code."),
-    ["safety_mode.robot_message_argument"] = ProtoField.int32("ur.safety_mode.robot_message_argument", "Argument", base.DEC, nil, nil, "Argument."),
-    ["safety_mode.safety_mode_type"] = ProtoField.uint8("ur.safety_mode.safety_mode_type", "Safety mode", base.DEC, VS.SAFETY_MODE, nil, "Safety mode. Sent by software 3.0 and later."),
-    ["safety_mode.report_data_type"] = ProtoField.uint32("ur.safety_mode.report_data_type", "Report data type", base.DEC, nil, nil, "Report data type. Sent by software 3.0 and later."),
-    ["safety_mode.report_data"] = ProtoField.uint32("ur.safety_mode.report_data", "Report data", base.DEC, nil, nil, "Its type follows report_data_type: int32 when it is 2, float32 when it is 3, uint32 otherwise. Sent by software 3.0 and later."),
-    ["safety_mode.report_data_int32"] = ProtoField.int32("ur.safety_mode.report_data_int32", "Report data", base.DEC, nil, nil, "Its type follows report_data_type: int32 when it is 2, float32 when it is 3, uint32 otherwise. Sent by software 3.0 and later. (as int32: report_data_type is 2)"),
-    ["safety_mode.report_data_float32"] = ProtoField.float("ur.safety_mode.report_data_float32", "Report data", "Its type follows report_data_type: int32 when it is 2, float32 when it is 3, uint32 otherwise. Sent by software 3.0 and later. (as float32: report_data_type is 3)"),
-    ["safety_mode.text"] = ProtoField.string("ur.safety_mode.text", "Text", base.UNICODE, "The message text (CB2 only), to the end of the message. Sent by software up to 1.8."),
-    ["safety_mode"] = ProtoField.none("ur.safety_mode", "Safety mode", "Safety mode message; the security message of CB2, which carries a text instead of the safety mode and its report data."),
-    ["robot_comm.timestamp"] = ProtoField.uint64("ur.robot_comm.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["robot_comm.source"] = ProtoField.int8("ur.robot_comm.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
-    ["robot_comm.robot_message_code"] = ProtoField.int32("ur.robot_comm.robot_message_code", "Code", base.DEC, nil, nil, "Code."),
-    ["robot_comm.robot_message_argument"] = ProtoField.int32("ur.robot_comm.robot_message_argument", "Argument", base.DEC, nil, nil, "Argument."),
-    ["robot_comm.robot_message_report_level"] = ProtoField.int32("ur.robot_comm.robot_message_report_level", "Report level", base.DEC, VS.REPORT_LEVEL, nil, "Report level. Sent by software 3.0 and later."),
-    ["robot_comm.robot_message_data_type"] = ProtoField.uint32("ur.robot_comm.robot_message_data_type", "Data type", base.DEC, nil, nil, "Data type. Sent by software 3.0 and later."),
-    ["robot_comm.robot_message_data"] = ProtoField.uint32("ur.robot_comm.robot_message_data", "Data", base.DEC, nil, nil, "Data. Sent by software 3.0 and later."),
+    ["version.source"] = ProtoField.int8("ur.version.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
+    ["version.project_name"] = ProtoField.string("ur.version.project_name", "Project name", base.UNICODE,
+        "projectNameSize, then projectName."),
+    ["version.major_version"] = ProtoField.uint8("ur.version.major_version", "Major version", base.DEC, nil, nil,
+        "Major version."),
+    ["version.minor_version"] = ProtoField.uint8("ur.version.minor_version", "Minor version", base.DEC, nil, nil,
+        "Minor version."),
+    ["version.svn_revision"] = ProtoField.int32("ur.version.svn_revision", "SVN revision", base.DEC, nil, nil,
+        "svnRevision, the controller software's revision (e.g. 20175 for 3.2.20175). Sent by \z
+        software up to 3.2."),
+    ["version.bugfix_version"] = ProtoField.int32("ur.version.bugfix_version", "Bugfix version", base.DEC, nil, nil,
+        "Bugfix version. Sent by software 3.3 and later."),
+    ["version.build_number"] = ProtoField.int32("ur.version.build_number", "Build number", base.DEC, nil, nil,
+        "Build number. Sent by software 3.3 and later."),
+    ["version.build_date"] = ProtoField.string("ur.version.build_date", "Build date", base.UNICODE,
+        "The rest of the message, with no terminator."),
+    ["version"] = ProtoField.none("ur.version", "Version",
+        "Version message, the first message on both the primary and secondary interfaces. It is \z
+        read in the layout of the version it carries: up to 3.2 an svn revision follows the \z
+        minor version, from 3.3 the bugfix version and the build number. PolyScope X sends \z
+        major version 10."),
+    ["safety_mode.timestamp"] = ProtoField.uint64("ur.safety_mode.timestamp", "Timestamp", base.DEC, nil, nil,
+        "Timestamp."),
+    ["safety_mode.source"] = ProtoField.int8("ur.safety_mode.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
+    ["safety_mode.robot_message_code"] =
+        ProtoField.int32("ur.safety_mode.robot_message_code", "Code", base.DEC, nil, nil,
+        "Code."),
+    ["safety_mode.robot_message_argument"] =
+        ProtoField.int32("ur.safety_mode.robot_message_argument", "Argument", base.DEC, nil, nil,
+        "Argument."),
+    ["safety_mode.safety_mode_type"] =
+        ProtoField.uint8("ur.safety_mode.safety_mode_type", "Safety mode", base.DEC, VS.SAFETY_MODE, nil,
+        "Safety mode. Sent by software 3.0 and later."),
+    ["safety_mode.report_data_type"] =
+        ProtoField.uint32("ur.safety_mode.report_data_type", "Report data type", base.DEC, nil, nil,
+        "Report data type. Sent by software 3.0 and later."),
+    ["safety_mode.report_data"] = ProtoField.uint32("ur.safety_mode.report_data", "Report data", base.DEC, nil, nil,
+        "Its type follows report_data_type: int32 when it is 2, float32 when it is 3, uint32 \z
+        otherwise. Sent by software 3.0 and later."),
+    ["safety_mode.report_data_int32"] =
+        ProtoField.int32("ur.safety_mode.report_data_int32", "Report data", base.DEC, nil, nil,
+        "Its type follows report_data_type: int32 when it is 2, float32 when it is 3, uint32 \z
+        otherwise. Sent by software 3.0 and later. (as int32: report_data_type is 2)"),
+    ["safety_mode.report_data_float32"] = ProtoField.float("ur.safety_mode.report_data_float32", "Report data",
+        "Its type follows report_data_type: int32 when it is 2, float32 when it is 3, uint32 \z
+        otherwise. Sent by software 3.0 and later. (as float32: report_data_type is 3)"),
+    ["safety_mode.text"] = ProtoField.string("ur.safety_mode.text", "Text", base.UNICODE,
+        "The message text (CB2 only), to the end of the message. Sent by software up to 1.8."),
+    ["safety_mode"] = ProtoField.none("ur.safety_mode", "Safety mode",
+        "Safety mode message; the security message of CB2, which carries a text instead of the \z
+        safety mode and its report data."),
+    ["robot_comm.timestamp"] = ProtoField.uint64("ur.robot_comm.timestamp", "Timestamp", base.DEC, nil, nil,
+        "Timestamp."),
+    ["robot_comm.source"] = ProtoField.int8("ur.robot_comm.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
+    ["robot_comm.robot_message_code"] = ProtoField.int32("ur.robot_comm.robot_message_code", "Code", base.DEC, nil, nil,
+        "Code."),
+    ["robot_comm.robot_message_argument"] =
+        ProtoField.int32("ur.robot_comm.robot_message_argument", "Argument", base.DEC, nil, nil,
+        "Argument."),
+    ["robot_comm.robot_message_report_level"] =
+        ProtoField.int32("ur.robot_comm.robot_message_report_level", "Report level", base.DEC, VS.REPORT_LEVEL, nil,
+        "Report level. Sent by software 3.0 and later."),
+    ["robot_comm.robot_message_data_type"] =
+        ProtoField.uint32("ur.robot_comm.robot_message_data_type", "Data type", base.DEC, nil, nil,
+        "Data type. Sent by software 3.0 and later."),
+    ["robot_comm.robot_message_data"] =
+        ProtoField.uint32("ur.robot_comm.robot_message_data", "Data", base.DEC, nil, nil,
+        "Data. Sent by software 3.0 and later."),
     ["robot_comm.text"] = ProtoField.string("ur.robot_comm.text", "Text", base.UNICODE, "robotCommTextMessage."),
-    ["robot_comm"] = ProtoField.none("ur.robot_comm", "Robot comm", "Robot comm message (an error code report). On CB2 the code and argument are followed by the text alone."),
+    ["robot_comm"] = ProtoField.none("ur.robot_comm", "Robot comm",
+        "Robot comm message (an error code report). On CB2 the code and argument are followed \z
+        by the text alone."),
     ["key.timestamp"] = ProtoField.uint64("ur.key.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["key.source"] = ProtoField.int8("ur.key.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
+    ["key.source"] = ProtoField.int8("ur.key.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
     ["key.robot_message_code"] = ProtoField.int32("ur.key.robot_message_code", "Code", base.DEC, nil, nil, "Code."),
-    ["key.robot_message_argument"] = ProtoField.int32("ur.key.robot_message_argument", "Argument", base.DEC, nil, nil, "Argument."),
-    ["key.title"] = ProtoField.string("ur.key.title", "Title", base.UNICODE, "robotMessageTitleSize, then robotMessageTitle."),
+    ["key.robot_message_argument"] = ProtoField.int32("ur.key.robot_message_argument", "Argument", base.DEC, nil, nil,
+        "Argument."),
+    ["key.title"] = ProtoField.string("ur.key.title", "Title", base.UNICODE,
+        "robotMessageTitleSize, then robotMessageTitle."),
     ["key.text"] = ProtoField.string("ur.key.text", "Text", base.UNICODE, "keyTextMessage."),
     ["key"] = ProtoField.none("ur.key", "Key", "Key message."),
-    ["program_threads.timestamp"] = ProtoField.uint64("ur.program_threads.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["program_threads.source"] = ProtoField.int8("ur.program_threads.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
+    ["program_threads.timestamp"] = ProtoField.uint64("ur.program_threads.timestamp", "Timestamp", base.DEC, nil, nil,
+        "Timestamp."),
+    ["program_threads.source"] =
+        ProtoField.int8("ur.program_threads.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
     ["program_threads.threads"] = ProtoField.none("ur.program_threads.threads", "Thread", "Threads."),
-    ["program_threads.label_id"] = ProtoField.int32("ur.program_threads.label_id", "Line number", base.DEC, nil, nil, "Line number."),
-    ["program_threads.label_name"] = ProtoField.string("ur.program_threads.label_name", "Label name", base.UNICODE, "Label name."),
-    ["program_threads.thread_name"] = ProtoField.string("ur.program_threads.thread_name", "Thread name", base.UNICODE, "Thread name."),
-    ["program_threads"] = ProtoField.none("ur.program_threads", "Program threads", "Program threads message, one entry per running program thread."),
+    ["program_threads.label_id"] = ProtoField.int32("ur.program_threads.label_id", "Line number", base.DEC, nil, nil,
+        "Line number."),
+    ["program_threads.label_name"] = ProtoField.string("ur.program_threads.label_name", "Label name", base.UNICODE,
+        "Label name."),
+    ["program_threads.thread_name"] = ProtoField.string("ur.program_threads.thread_name", "Thread name", base.UNICODE,
+        "Thread name."),
+    ["program_threads"] = ProtoField.none("ur.program_threads", "Program threads",
+        "Program threads message, one entry per running program thread."),
     ["popup.timestamp"] = ProtoField.uint64("ur.popup.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["popup.source"] = ProtoField.int8("ur.popup.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
-    ["popup.request_id"] = ProtoField.uint32("ur.popup.request_id", "Request ID", base.DEC, nil, nil, "Request ID. Sent by software 3.0 and later."),
-    ["popup.requested_type"] = ProtoField.uint32("ur.popup.requested_type", "Requested type", base.DEC, VS.REQUESTED_TYPE, nil, "Requested type. Sent by software 3.0 and later."),
+    ["popup.source"] = ProtoField.int8("ur.popup.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
+    ["popup.request_id"] = ProtoField.uint32("ur.popup.request_id", "Request ID", base.DEC, nil, nil,
+        "Request ID. Sent by software 3.0 and later."),
+    ["popup.requested_type"] =
+        ProtoField.uint32("ur.popup.requested_type", "Requested type", base.DEC, VS.REQUESTED_TYPE, nil,
+        "Requested type. Sent by software 3.0 and later."),
     ["popup.warning"] = ProtoField.bool("ur.popup.warning", "Warning", base.NONE, nil, nil, "Warning."),
     ["popup.error"] = ProtoField.bool("ur.popup.error", "Error", base.NONE, nil, nil, "Error."),
-    ["popup.blocking"] = ProtoField.bool("ur.popup.blocking", "Blocking", base.NONE, nil, nil, "Blocking. Sent by software 3.0 and later."),
-    ["popup.title"] = ProtoField.string("ur.popup.title", "Title", base.UNICODE, "popupMessageTitleSize, then popupMessageTitle."),
+    ["popup.blocking"] = ProtoField.bool("ur.popup.blocking", "Blocking", base.NONE, nil, nil,
+        "Blocking. Sent by software 3.0 and later."),
+    ["popup.title"] = ProtoField.string("ur.popup.title", "Title", base.UNICODE,
+        "popupMessageTitleSize, then popupMessageTitle."),
     ["popup.text"] = ProtoField.string("ur.popup.text", "Text", base.UNICODE, "popupTextMessage."),
-    ["popup"] = ProtoField.none("ur.popup", "Popup", "Popup message. On CB2 it has no request id, requested type or blocking flag."),
+    ["popup"] = ProtoField.none("ur.popup", "Popup",
+        "Popup message. On CB2 it has no request id, requested type or blocking flag."),
     ["label.timestamp"] = ProtoField.uint64("ur.label.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["label.source"] = ProtoField.int8("ur.label.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
+    ["label.source"] = ProtoField.int8("ur.label.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
     ["label.id"] = ProtoField.int32("ur.label.id", "Label ID", base.DEC, nil, nil, "id in the CB2 documents."),
-    ["label.text"] = ProtoField.string("ur.label.text", "Text", base.UNICODE, "The label text, to the end of the message."),
+    ["label.text"] = ProtoField.string("ur.label.text", "Text", base.UNICODE,
+        "The label text, to the end of the message."),
     ["label"] = ProtoField.none("ur.label", "Label", "Label message (CB2 only)."),
     ["var.timestamp"] = ProtoField.uint64("ur.var.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["var.source"] = ProtoField.int8("ur.var.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
-    ["var.robot_message_code"] = ProtoField.int32("ur.var.robot_message_code", "Code", base.DEC, nil, nil, "The CB2 documents call it code; the key message's field of that meaning has this name."),
-    ["var.robot_message_argument"] = ProtoField.int32("ur.var.robot_message_argument", "Argument", base.DEC, nil, nil, "The CB2 documents call it argument; the key message's field of that meaning has this name."),
+    ["var.source"] = ProtoField.int8("ur.var.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
+    ["var.robot_message_code"] = ProtoField.int32("ur.var.robot_message_code", "Code", base.DEC, nil, nil,
+        "The CB2 documents call it code; the key message's field of that meaning has this name."),
+    ["var.robot_message_argument"] = ProtoField.int32("ur.var.robot_message_argument", "Argument", base.DEC, nil, nil,
+        "The CB2 documents call it argument; the key message's field of that meaning has this \z
+        name."),
     ["var.title"] = ProtoField.string("ur.var.title", "Title", base.UNICODE, "titleSize, then messageTitle."),
-    ["var.text"] = ProtoField.string("ur.var.text", "Text", base.UNICODE, "The message text, to the end of the message."),
+    ["var.text"] = ProtoField.string("ur.var.text", "Text", base.UNICODE,
+        "The message text, to the end of the message."),
     ["var"] = ProtoField.none("ur.var", "Var", "Var message (CB2 only)."),
-    ["hardware_info.timestamp"] = ProtoField.uint64("ur.hardware_info.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["hardware_info.source"] = ProtoField.int8("ur.hardware_info.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
-    ["hardware_info.robot_type"] = ProtoField.int32("ur.hardware_info.robot_type", "Robot type", base.DEC, nil, nil, "1 UR5 ... 9 UR15, 12 UR10g-1750, 13 UR17g-1300, 14 UR18g-950."),
-    ["hardware_info.reserved_1"] = ProtoField.uint16("ur.hardware_info.reserved_1", "Reserved 1", base.DEC, nil, nil, "Reserved 1."),
-    ["hardware_info.control_box_type"] = ProtoField.uint16("ur.hardware_info.control_box_type", "Control box type", base.DEC, VS.CONTROL_BOX_TYPE, nil, "Control box type."),
-    ["hardware_info.reserved_2"] = ProtoField.uint16("ur.hardware_info.reserved_2", "Reserved 2", base.DEC, nil, nil, "Reserved 2."),
-    ["hardware_info.tool_flange_type"] = ProtoField.uint16("ur.hardware_info.tool_flange_type", "Tool flange type", base.DEC, VS.TOOL_FLANGE_TYPE, nil, "Tool flange type."),
-    ["hardware_info"] = ProtoField.none("ur.hardware_info", "Hardware info", "Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 bytes in all."),
-    ["request_value.timestamp"] = ProtoField.uint64("ur.request_value.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["request_value.source"] = ProtoField.int8("ur.request_value.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
-    ["request_value.request_id"] = ProtoField.uint32("ur.request_value.request_id", "Request ID", base.DEC, nil, nil, "Request ID."),
-    ["request_value.requested_type"] = ProtoField.uint32("ur.request_value.requested_type", "Requested type", base.DEC, VS.REQUESTED_TYPE, nil, "Requested type."),
+    ["hardware_info.timestamp"] = ProtoField.uint64("ur.hardware_info.timestamp", "Timestamp", base.DEC, nil, nil,
+        "Timestamp."),
+    ["hardware_info.source"] = ProtoField.int8("ur.hardware_info.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
+    ["hardware_info.robot_type"] = ProtoField.int32("ur.hardware_info.robot_type", "Robot type", base.DEC, nil, nil,
+        "1 UR5 ... 9 UR15, 12 UR10g-1750, 13 UR17g-1300, 14 UR18g-950."),
+    ["hardware_info.reserved_1"] = ProtoField.uint16("ur.hardware_info.reserved_1", "Reserved 1", base.DEC, nil, nil,
+        "Reserved 1."),
+    ["hardware_info.control_box_type"] =
+        ProtoField.uint16("ur.hardware_info.control_box_type", "Control box type", base.DEC, VS.CONTROL_BOX_TYPE, nil,
+        "Control box type."),
+    ["hardware_info.reserved_2"] = ProtoField.uint16("ur.hardware_info.reserved_2", "Reserved 2", base.DEC, nil, nil,
+        "Reserved 2."),
+    ["hardware_info.tool_flange_type"] =
+        ProtoField.uint16("ur.hardware_info.tool_flange_type", "Tool flange type", base.DEC, VS.TOOL_FLANGE_TYPE, nil,
+        "Tool flange type."),
+    ["hardware_info"] = ProtoField.none("ur.hardware_info", "Hardware info",
+        "Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 \z
+        bytes in all."),
+    ["request_value.timestamp"] = ProtoField.uint64("ur.request_value.timestamp", "Timestamp", base.DEC, nil, nil,
+        "Timestamp."),
+    ["request_value.source"] = ProtoField.int8("ur.request_value.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
+    ["request_value.request_id"] = ProtoField.uint32("ur.request_value.request_id", "Request ID", base.DEC, nil, nil,
+        "Request ID."),
+    ["request_value.requested_type"] =
+        ProtoField.uint32("ur.request_value.requested_type", "Requested type", base.DEC, VS.REQUESTED_TYPE, nil,
+        "Requested type."),
     ["request_value.text"] = ProtoField.string("ur.request_value.text", "Text", base.UNICODE, "requestTextMessage."),
     ["request_value"] = ProtoField.none("ur.request_value", "Request value", "Request value message."),
     ["text.timestamp"] = ProtoField.uint64("ur.text.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["text.source"] = ProtoField.int8("ur.text.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
+    ["text.source"] = ProtoField.int8("ur.text.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
     ["text.text"] = ProtoField.string("ur.text.text", "Text", base.UNICODE, "textTextMessage."),
     ["text"] = ProtoField.none("ur.text", "Text", "Text message."),
-    ["runtime_exception.timestamp"] = ProtoField.uint64("ur.runtime_exception.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["runtime_exception.source"] = ProtoField.int8("ur.runtime_exception.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil, "Sender of the message; a signed byte."),
-    ["runtime_exception.script_line_number"] = ProtoField.int32("ur.runtime_exception.script_line_number", "Script line", base.DEC, nil, nil, "Script line."),
-    ["runtime_exception.script_column_number"] = ProtoField.int32("ur.runtime_exception.script_column_number", "Script column", base.DEC, nil, nil, "Script column."),
-    ["runtime_exception.text"] = ProtoField.string("ur.runtime_exception.text", "Text", base.UNICODE, "runtimeExceptionTextMessage."),
+    ["runtime_exception.timestamp"] =
+        ProtoField.uint64("ur.runtime_exception.timestamp", "Timestamp", base.DEC, nil, nil,
+        "Timestamp."),
+    ["runtime_exception.source"] =
+        ProtoField.int8("ur.runtime_exception.source", "Source", base.DEC, VS.MESSAGE_SOURCE, nil,
+        "Sender of the message; a signed byte."),
+    ["runtime_exception.script_line_number"] =
+        ProtoField.int32("ur.runtime_exception.script_line_number", "Script line", base.DEC, nil, nil,
+        "Script line."),
+    ["runtime_exception.script_column_number"] =
+        ProtoField.int32("ur.runtime_exception.script_column_number", "Script column", base.DEC, nil, nil,
+        "Script column."),
+    ["runtime_exception.text"] = ProtoField.string("ur.runtime_exception.text", "Text", base.UNICODE,
+        "runtimeExceptionTextMessage."),
     ["runtime_exception"] = ProtoField.none("ur.runtime_exception", "Runtime exception", "Runtime exception message."),
-    ["program_state.robot_message_type"] = ProtoField.uint8("ur.program_state.robot_message_type", "Program-state message type", base.DEC, VS.PROGRAM_STATE_MESSAGE_TYPE, nil, "robotMessageType in the document."),
-    ["program_state.timestamp"] = ProtoField.uint64("ur.program_state.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["global_variables_setup.timestamp"] = ProtoField.uint64("ur.global_variables_setup.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["global_variables_setup.start_index"] = ProtoField.uint16("ur.global_variables_setup.start_index", "Start index", base.DEC, nil, nil, "Start index."),
-    ["global_variables_setup.variable_names"] = ProtoField.string("ur.global_variables_setup.variable_names", "Variable name", base.UNICODE, "Names, each ended by a new line character, e.g. var_1\\nvar_2\\n."),
-    ["global_variables_setup"] = ProtoField.none("ur.global_variables_setup", "Global variables setup", "Global variables setup message."),
-    ["global_variables_update.timestamp"] = ProtoField.uint64("ur.global_variables_update.timestamp", "Timestamp", base.DEC, nil, nil, "Timestamp."),
-    ["global_variables_update.start_index"] = ProtoField.uint16("ur.global_variables_update.start_index", "Start index", base.DEC, nil, nil, "Start index."),
-    ["global_variables_update.variables"] = ProtoField.none("ur.global_variables_update.variables", "Variable", "Values, each a type byte, its data and a new line character."),
-    ["global_variables_update.type"] = ProtoField.string("ur.global_variables_update.type", "Type", base.ASCII, "Value type name, from the table of the stream's software version."),
-    ["global_variables_update.type_code"] = ProtoField.uint8("ur.global_variables_update.type_code", "Type code", base.DEC, nil, nil, "Value type byte."),
-    ["global_variables_update.length"] = ProtoField.int16("ur.global_variables_update.length", "Length", base.DEC, nil, nil, "Items of a LIST, or bytes of a string."),
-    ["global_variables_update.rows"] = ProtoField.int16("ur.global_variables_update.rows", "Rows", base.DEC, nil, nil, "Rows of a MATRIX."),
-    ["global_variables_update.columns"] = ProtoField.int16("ur.global_variables_update.columns", "Columns", base.DEC, nil, nil, "Columns of a MATRIX."),
+    ["program_state.robot_message_type"] =
+        ProtoField.uint8("ur.program_state.robot_message_type", "Program-state message type", base.DEC,
+            VS.PROGRAM_STATE_MESSAGE_TYPE, nil,
+        "robotMessageType in the document."),
+    ["program_state.timestamp"] = ProtoField.uint64("ur.program_state.timestamp", "Timestamp", base.DEC, nil, nil,
+        "Timestamp."),
+    ["global_variables_setup.timestamp"] =
+        ProtoField.uint64("ur.global_variables_setup.timestamp", "Timestamp", base.DEC, nil, nil,
+        "Timestamp."),
+    ["global_variables_setup.start_index"] =
+        ProtoField.uint16("ur.global_variables_setup.start_index", "Start index", base.DEC, nil, nil,
+        "Start index."),
+    ["global_variables_setup.variable_names"] =
+        ProtoField.string("ur.global_variables_setup.variable_names", "Variable name", base.UNICODE,
+        "Names, each ended by a new line character, e.g. var_1\\nvar_2\\n."),
+    ["global_variables_setup"] = ProtoField.none("ur.global_variables_setup", "Global variables setup",
+        "Global variables setup message."),
+    ["global_variables_update.timestamp"] =
+        ProtoField.uint64("ur.global_variables_update.timestamp", "Timestamp", base.DEC, nil, nil,
+        "Timestamp."),
+    ["global_variables_update.start_index"] =
+        ProtoField.uint16("ur.global_variables_update.start_index", "Start index", base.DEC, nil, nil,
+        "Start index."),
+    ["global_variables_update.variables"] = ProtoField.none("ur.global_variables_update.variables", "Variable",
+        "Values, each a type byte, its data and a new line character."),
+    ["global_variables_update.type"] = ProtoField.string("ur.global_variables_update.type", "Type", base.ASCII,
+        "Value type name, from the table of the stream's software version."),
+    ["global_variables_update.type_code"] =
+        ProtoField.uint8("ur.global_variables_update.type_code", "Type code", base.DEC, nil, nil,
+        "Value type byte."),
+    ["global_variables_update.length"] =
+        ProtoField.int16("ur.global_variables_update.length", "Length", base.DEC, nil, nil,
+        "Items of a LIST, or bytes of a string."),
+    ["global_variables_update.rows"] = ProtoField.int16("ur.global_variables_update.rows", "Rows", base.DEC, nil, nil,
+        "Rows of a MATRIX."),
+    ["global_variables_update.columns"] =
+        ProtoField.int16("ur.global_variables_update.columns", "Columns", base.DEC, nil, nil,
+        "Columns of a MATRIX."),
     ["global_variables_update.row"] = ProtoField.none("ur.global_variables_update.row", "Row", "One row of a MATRIX."),
-    ["global_variables_update.value_bool"] = ProtoField.bool("ur.global_variables_update.value_bool", "Value", base.NONE, nil, nil, "A value of type bool."),
-    ["global_variables_update.value_float32"] = ProtoField.float("ur.global_variables_update.value_float32", "Value", "A value of type float32."),
-    ["global_variables_update.value_int32"] = ProtoField.int32("ur.global_variables_update.value_int32", "Value", base.DEC, nil, nil, "A value of type int32."),
-    ["global_variables_update.value_string"] = ProtoField.string("ur.global_variables_update.value_string", "Value", base.UNICODE, "A string value."),
-    ["global_variables_update"] = ProtoField.none("ur.global_variables_update", "Global variables update", "Global variables update message."),
+    ["global_variables_update.value_bool"] =
+        ProtoField.bool("ur.global_variables_update.value_bool", "Value", base.NONE, nil, nil,
+        "A value of type bool."),
+    ["global_variables_update.value_float32"] = ProtoField.float("ur.global_variables_update.value_float32", "Value",
+        "A value of type float32."),
+    ["global_variables_update.value_int32"] =
+        ProtoField.int32("ur.global_variables_update.value_int32", "Value", base.DEC, nil, nil,
+        "A value of type int32."),
+    ["global_variables_update.value_string"] =
+        ProtoField.string("ur.global_variables_update.value_string", "Value", base.UNICODE,
+        "A string value."),
+    ["global_variables_update"] = ProtoField.none("ur.global_variables_update", "Global variables update",
+        "Global variables update message."),
 }
 -- In the order they are registered (runtime/declare.lua adds the dissector's own).
 local FIELDS = {
@@ -1089,23 +1562,31 @@ local L = {}
 -- Robot mode data; 29 bytes on CB2 (1.x), 38 on 3.0-3.1, 46 on 3.2-3.4, 47 from 3.5.
 L.robot_mode_data = {
     { k = "scalar", f = F["robot_mode_data.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["robot_mode_data.is_real_robot_connected"], n = 1, path = "is_real_robot_connected", signed = false },
-    { k = "scalar", f = F["robot_mode_data.is_real_robot_enabled"], n = 1, path = "is_real_robot_enabled", signed = false },
+    { k = "scalar", f = F["robot_mode_data.is_real_robot_connected"], n = 1, path = "is_real_robot_connected",
+      signed = false },
+    { k = "scalar", f = F["robot_mode_data.is_real_robot_enabled"], n = 1, path = "is_real_robot_enabled",
+      signed = false },
     { k = "scalar", f = F["robot_mode_data.is_robot_power_on"], n = 1, path = "is_robot_power_on", signed = false },
-    { k = "scalar", f = F["robot_mode_data.is_emergency_stopped"], n = 1, path = "is_emergency_stopped", signed = false },
-    { k = "scalar", f = F["robot_mode_data.is_protective_stopped"], n = 1, path = "is_protective_stopped", signed = false },
+    { k = "scalar", f = F["robot_mode_data.is_emergency_stopped"], n = 1, path = "is_emergency_stopped",
+      signed = false },
+    { k = "scalar", f = F["robot_mode_data.is_protective_stopped"], n = 1, path = "is_protective_stopped",
+      signed = false },
     { k = "scalar", f = F["robot_mode_data.is_program_running"], n = 1, path = "is_program_running", signed = false },
     { k = "scalar", f = F["robot_mode_data.is_program_paused"], n = 1, path = "is_program_paused", signed = false },
-    { k = "scalar", f = F["robot_mode_data.robot_mode"], n = 1, path = "robot_mode", signed = true, tables = NAMES.ROBOT_MODE, label = "Robot mode", vs = VS.ROBOT_MODE, show = "" },
+    { k = "scalar", f = F["robot_mode_data.robot_mode"], n = 1, path = "robot_mode", signed = true,
+      tables = NAMES.ROBOT_MODE, label = "Robot mode", vs = VS.ROBOT_MODE, show = "" },
     { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
-        { k = "scalar", f = F["robot_mode_data.control_mode"], n = 1, path = "control_mode", signed = false, vs = VS.CONTROL_MODE },
+        { k = "scalar", f = F["robot_mode_data.control_mode"], n = 1, path = "control_mode", signed = false,
+          vs = VS.CONTROL_MODE },
     } },
-    { k = "scalar", f = F["robot_mode_data.target_speed_fraction"], n = 8, path = "target_speed_fraction", signed = false },
+    { k = "scalar", f = F["robot_mode_data.target_speed_fraction"], n = 8, path = "target_speed_fraction",
+      signed = false },
     { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
         { k = "scalar", f = F["robot_mode_data.speed_scaling"], n = 8, path = "speed_scaling", signed = false },
     } },
     { k = "cond", present_if = nil, low = 3002000, high = nil, fields = {
-        { k = "scalar", f = F["robot_mode_data.target_speed_fraction_limit"], n = 8, path = "target_speed_fraction_limit", signed = false },
+        { k = "scalar", f = F["robot_mode_data.target_speed_fraction_limit"], n = 8,
+          path = "target_speed_fraction_limit", signed = false },
     } },
     { k = "cond", present_if = nil, low = 3005000, high = nil, fields = {
         { k = "scalar", f = F["robot_mode_data.reserved"], n = 1, path = "reserved", signed = false },
@@ -1121,82 +1602,158 @@ L.joint_data_joint = {
     { k = "scalar", f = F["joint_data.v_actual"], n = 4, path = "v_actual", signed = false, unit = " V" },
     { k = "scalar", f = F["joint_data.t_motor"], n = 4, path = "t_motor", signed = false, unit = " °C" },
     { k = "scalar", f = F["joint_data.t_micro"], n = 4, path = "t_micro", signed = false },
-    { k = "scalar", f = F["joint_data.joint_mode"], n = 1, path = "joint_mode", signed = false, tables = NAMES.JOINT_MODE, label = "Joint mode", vs = VS.JOINT_MODE },
+    { k = "scalar", f = F["joint_data.joint_mode"], n = 1, path = "joint_mode", signed = false,
+      tables = NAMES.JOINT_MODE, label = "Joint mode", vs = VS.JOINT_MODE },
 }
 
 -- Joint data, one group per joint; 251 bytes in every version.
 L.joint_data = {
-    { k = "group", f = F["joint_data.joints"], label = "Joint", count = 6, size = 41, item = L.joint_data_joint, path = "joints" },
+    { k = "group", f = F["joint_data.joints"], label = "Joint", count = 6, size = 41, item = L.joint_data_joint,
+      path = "joints" },
 }
 
--- Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes.
+-- Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and
+-- inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes.
 L.tool_data = {
     { k = "scalar", f = F["tool_data.analog_input_range0"], n = 1, path = "analog_input_range0", signed = false },
     { k = "scalar", f = F["tool_data.analog_input_range1"], n = 1, path = "analog_input_range1", signed = false },
     { k = "scalar", f = F["tool_data.analog_input0"], n = 8, path = "analog_input0", signed = false },
     { k = "scalar", f = F["tool_data.analog_input1"], n = 8, path = "analog_input1", signed = false },
-    { k = "scalar", f = F["tool_data.tool_voltage_48v"], n = 4, path = "tool_voltage_48v", signed = false, unit = " V" },
+    { k = "scalar", f = F["tool_data.tool_voltage_48v"], n = 4, path = "tool_voltage_48v", signed = false,
+      unit = " V" },
     { k = "scalar", f = F["tool_data.tool_output_voltage"], n = 1, path = "tool_output_voltage", signed = false },
     { k = "scalar", f = F["tool_data.tool_current"], n = 4, path = "tool_current", signed = false, unit = " A" },
-    { k = "scalar", f = F["tool_data.tool_temperature"], n = 4, path = "tool_temperature", signed = false, unit = " °C" },
+    { k = "scalar", f = F["tool_data.tool_temperature"], n = 4, path = "tool_temperature", signed = false,
+      unit = " °C" },
     { k = "scalar", f = F["tool_data.tool_mode"], n = 1, path = "tool_mode", signed = false, vs = VS.TOOL_MODE },
 }
 
--- Masterboard data; 61 bytes on early CB2, 64 on 1.6-1.8 (76 with Euromap67), 72 on 3.0-3.1, 74 on 3.2-3.9 and 5.0-5.3, 75 on 3.10-3.15 and from 5.4; from 3.0, 16 more with Euromap67.
+-- Masterboard data; 61 bytes on early CB2, 64 on 1.6-1.8 (76 with Euromap67), 72 on 3.0-3.1, 74 on
+-- 3.2-3.9 and 5.0-5.3, 75 on 3.10-3.15 and from 5.4; from 3.0, 16 more with Euromap67.
 L.masterboard_data = {
     { k = "cond", present_if = nil, low = nil, high = 1008999, fields = {
-        { k = "bits", f = F["masterboard_data.digital_input_bits"], n = 2, path = "digital_input_bits", signed = true, value = true, bits = { F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"] } },
+        { k = "bits", f = F["masterboard_data.digital_input_bits"], n = 2, path = "digital_input_bits", signed = true,
+          value = true, bits = { F["masterboard_data.digital_input_bits.standard_0"],
+          F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"],
+          F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"],
+          F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"],
+          F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.configurable_0"],
+          F["masterboard_data.digital_input_bits.configurable_1"],
+          F["masterboard_data.digital_input_bits.configurable_2"],
+          F["masterboard_data.digital_input_bits.configurable_3"],
+          F["masterboard_data.digital_input_bits.configurable_4"],
+          F["masterboard_data.digital_input_bits.configurable_5"],
+          F["masterboard_data.digital_input_bits.configurable_6"],
+          F["masterboard_data.digital_input_bits.configurable_7"] } },
     } },
     { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
-        { k = "bits", f = F["masterboard_data.digital_input_bits"], n = 4, path = "digital_input_bits", signed = true, bits = { F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"] } },
+        { k = "bits", f = F["masterboard_data.digital_input_bits"], n = 4, path = "digital_input_bits", signed = true,
+          bits = { F["masterboard_data.digital_input_bits.standard_0"],
+          F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"],
+          F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"],
+          F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"],
+          F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.configurable_0"],
+          F["masterboard_data.digital_input_bits.configurable_1"],
+          F["masterboard_data.digital_input_bits.configurable_2"],
+          F["masterboard_data.digital_input_bits.configurable_3"],
+          F["masterboard_data.digital_input_bits.configurable_4"],
+          F["masterboard_data.digital_input_bits.configurable_5"],
+          F["masterboard_data.digital_input_bits.configurable_6"],
+          F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.tool_0"],
+          F["masterboard_data.digital_input_bits.tool_1"] } },
     } },
     { k = "cond", present_if = nil, low = nil, high = 1008999, fields = {
-        { k = "bits", f = F["masterboard_data.digital_output_bits"], n = 2, path = "digital_output_bits", signed = true, value = true, bits = { F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"] } },
+        { k = "bits", f = F["masterboard_data.digital_output_bits"], n = 2, path = "digital_output_bits",
+          signed = true, value = true, bits = { F["masterboard_data.digital_output_bits.standard_0"],
+          F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"],
+          F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"],
+          F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"],
+          F["masterboard_data.digital_output_bits.standard_7"],
+          F["masterboard_data.digital_output_bits.configurable_0"],
+          F["masterboard_data.digital_output_bits.configurable_1"],
+          F["masterboard_data.digital_output_bits.configurable_2"],
+          F["masterboard_data.digital_output_bits.configurable_3"],
+          F["masterboard_data.digital_output_bits.configurable_4"],
+          F["masterboard_data.digital_output_bits.configurable_5"],
+          F["masterboard_data.digital_output_bits.configurable_6"],
+          F["masterboard_data.digital_output_bits.configurable_7"] } },
     } },
     { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
-        { k = "bits", f = F["masterboard_data.digital_output_bits"], n = 4, path = "digital_output_bits", signed = true, bits = { F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.tool_0"], F["masterboard_data.digital_output_bits.tool_1"] } },
+        { k = "bits", f = F["masterboard_data.digital_output_bits"], n = 4, path = "digital_output_bits",
+          signed = true, bits = { F["masterboard_data.digital_output_bits.standard_0"],
+          F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"],
+          F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"],
+          F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"],
+          F["masterboard_data.digital_output_bits.standard_7"],
+          F["masterboard_data.digital_output_bits.configurable_0"],
+          F["masterboard_data.digital_output_bits.configurable_1"],
+          F["masterboard_data.digital_output_bits.configurable_2"],
+          F["masterboard_data.digital_output_bits.configurable_3"],
+          F["masterboard_data.digital_output_bits.configurable_4"],
+          F["masterboard_data.digital_output_bits.configurable_5"],
+          F["masterboard_data.digital_output_bits.configurable_6"],
+          F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.tool_0"],
+          F["masterboard_data.digital_output_bits.tool_1"] } },
     } },
-    { k = "scalar", f = F["masterboard_data.analog_input_range0"], n = 1, path = "analog_input_range0", signed = false },
-    { k = "scalar", f = F["masterboard_data.analog_input_range1"], n = 1, path = "analog_input_range1", signed = false },
+    { k = "scalar", f = F["masterboard_data.analog_input_range0"], n = 1, path = "analog_input_range0",
+      signed = false },
+    { k = "scalar", f = F["masterboard_data.analog_input_range1"], n = 1, path = "analog_input_range1",
+      signed = false },
     { k = "scalar", f = F["masterboard_data.analog_input0"], n = 8, path = "analog_input0", signed = false },
     { k = "scalar", f = F["masterboard_data.analog_input1"], n = 8, path = "analog_input1", signed = false },
-    { k = "scalar", f = F["masterboard_data.analog_output_domain0"], n = 1, path = "analog_output_domain0", signed = true },
-    { k = "scalar", f = F["masterboard_data.analog_output_domain1"], n = 1, path = "analog_output_domain1", signed = true },
+    { k = "scalar", f = F["masterboard_data.analog_output_domain0"], n = 1, path = "analog_output_domain0",
+      signed = true },
+    { k = "scalar", f = F["masterboard_data.analog_output_domain1"], n = 1, path = "analog_output_domain1",
+      signed = true },
     { k = "scalar", f = F["masterboard_data.analog_output0"], n = 8, path = "analog_output0", signed = false },
     { k = "scalar", f = F["masterboard_data.analog_output1"], n = 8, path = "analog_output1", signed = false },
-    { k = "scalar", f = F["masterboard_data.master_board_temperature"], n = 4, path = "master_board_temperature", signed = false, unit = " °C" },
-    { k = "scalar", f = F["masterboard_data.robot_voltage_48v"], n = 4, path = "robot_voltage_48v", signed = false, unit = " V" },
-    { k = "scalar", f = F["masterboard_data.robot_current"], n = 4, path = "robot_current", signed = false, unit = " A" },
+    { k = "scalar", f = F["masterboard_data.master_board_temperature"], n = 4, path = "master_board_temperature",
+      signed = false, unit = " °C" },
+    { k = "scalar", f = F["masterboard_data.robot_voltage_48v"], n = 4, path = "robot_voltage_48v", signed = false,
+      unit = " V" },
+    { k = "scalar", f = F["masterboard_data.robot_current"], n = 4, path = "robot_current", signed = false,
+      unit = " A" },
     { k = "scalar", f = F["masterboard_data.master_io_current"], n = 4, path = "master_io_current", signed = false },
     { k = "cond", present_if = nil, low = 1006000, high = 1008999, fields = {
-        { k = "scalar", f = F["masterboard_data.master_safety_state"], n = 1, path = "master_safety_state", signed = false, vs = VS.MASTER_SAFETY_STATE },
-        { k = "scalar", f = F["masterboard_data.master_on_off_state"], n = 1, path = "master_on_off_state", signed = false, vs = VS.MASTER_ON_OFF_STATE },
+        { k = "scalar", f = F["masterboard_data.master_safety_state"], n = 1, path = "master_safety_state",
+          signed = false, vs = VS.MASTER_SAFETY_STATE },
+        { k = "scalar", f = F["masterboard_data.master_on_off_state"], n = 1, path = "master_on_off_state",
+          signed = false, vs = VS.MASTER_ON_OFF_STATE },
     } },
     { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
-        { k = "scalar", f = F["masterboard_data.safety_mode"], n = 1, path = "safety_mode", signed = false, vs = VS.SAFETY_MODE, show = "" },
+        { k = "scalar", f = F["masterboard_data.safety_mode"], n = 1, path = "safety_mode", signed = false,
+          vs = VS.SAFETY_MODE, show = "" },
         { k = "scalar", f = F["masterboard_data.in_reduced_mode"], n = 1, path = "in_reduced_mode", signed = false },
     } },
     { k = "cond", present_if = nil, low = 1006000, high = nil, fields = {
-        { k = "scalar", f = F["masterboard_data.euromap67_interface_installed"], n = 1, path = "euromap67_interface_installed", signed = false, keep = "euromap67_interface_installed" },
+        { k = "scalar", f = F["masterboard_data.euromap67_interface_installed"], n = 1,
+          path = "euromap67_interface_installed", signed = false, keep = "euromap67_interface_installed" },
     } },
     { k = "cond", present_if = "euromap67_interface_installed", low = 1006000, high = nil, fields = {
-        { k = "scalar", f = F["masterboard_data.euromap_input_bits"], n = 4, path = "euromap_input_bits", signed = false },
-        { k = "scalar", f = F["masterboard_data.euromap_output_bits"], n = 4, path = "euromap_output_bits", signed = false },
+        { k = "scalar", f = F["masterboard_data.euromap_input_bits"], n = 4, path = "euromap_input_bits",
+          signed = false },
+        { k = "scalar", f = F["masterboard_data.euromap_output_bits"], n = 4, path = "euromap_output_bits",
+          signed = false },
     } },
     { k = "cond", present_if = "euromap67_interface_installed", low = 1006000, high = 1008999, fields = {
-        { k = "scalar", f = F["masterboard_data.euromap_voltage_cb2"], n = 2, path = "euromap_voltage_cb2", signed = true },
-        { k = "scalar", f = F["masterboard_data.euromap_current_cb2"], n = 2, path = "euromap_current_cb2", signed = true },
+        { k = "scalar", f = F["masterboard_data.euromap_voltage_cb2"], n = 2, path = "euromap_voltage_cb2",
+          signed = true },
+        { k = "scalar", f = F["masterboard_data.euromap_current_cb2"], n = 2, path = "euromap_current_cb2",
+          signed = true },
     } },
     { k = "cond", present_if = "euromap67_interface_installed", low = 3000000, high = nil, fields = {
-        { k = "scalar", f = F["masterboard_data.euromap_voltage_24v"], n = 4, path = "euromap_voltage_24v", signed = false, unit = " V" },
+        { k = "scalar", f = F["masterboard_data.euromap_voltage_24v"], n = 4, path = "euromap_voltage_24v",
+          signed = false, unit = " V" },
         { k = "scalar", f = F["masterboard_data.euromap_current"], n = 4, path = "euromap_current", signed = false },
     } },
     { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
         { k = "scalar", f = F["masterboard_data.reserved_0"], n = 4, path = "reserved_0", signed = false },
     } },
     { k = "cond", present_if = nil, low = 3002000, high = nil, fields = {
-        { k = "scalar", f = F["masterboard_data.operational_mode_selector_input"], n = 1, path = "operational_mode_selector_input", signed = false },
-        { k = "scalar", f = F["masterboard_data.three_position_enabling_device_input"], n = 1, path = "three_position_enabling_device_input", signed = false },
+        { k = "scalar", f = F["masterboard_data.operational_mode_selector_input"], n = 1,
+          path = "operational_mode_selector_input", signed = false },
+        { k = "scalar", f = F["masterboard_data.three_position_enabling_device_input"], n = 1,
+          path = "three_position_enabling_device_input", signed = false },
     } },
     { k = "cond", present_if = nil, low = 3010000, high = 3015999, fields = {
         { k = "scalar", f = F["masterboard_data.reserved_1"], n = 1, path = "reserved_1", signed = false },
@@ -1215,59 +1772,84 @@ L.cartesian_info = {
     { k = "scalar", f = F["cartesian_info.ry"], n = 8, path = "ry", signed = false, unit = " rad" },
     { k = "scalar", f = F["cartesian_info.rz"], n = 8, path = "rz", signed = false, unit = " rad" },
     { k = "cond", present_if = nil, low = 3001000, high = nil, fields = {
-        { k = "scalar", f = F["cartesian_info.tcp_offset_x"], n = 8, path = "tcp_offset_x", signed = false, unit = " m" },
-        { k = "scalar", f = F["cartesian_info.tcp_offset_y"], n = 8, path = "tcp_offset_y", signed = false, unit = " m" },
-        { k = "scalar", f = F["cartesian_info.tcp_offset_z"], n = 8, path = "tcp_offset_z", signed = false, unit = " m" },
-        { k = "scalar", f = F["cartesian_info.tcp_offset_rx"], n = 8, path = "tcp_offset_rx", signed = false, unit = " rad" },
-        { k = "scalar", f = F["cartesian_info.tcp_offset_ry"], n = 8, path = "tcp_offset_ry", signed = false, unit = " rad" },
-        { k = "scalar", f = F["cartesian_info.tcp_offset_rz"], n = 8, path = "tcp_offset_rz", signed = false, unit = " rad" },
+        { k = "scalar", f = F["cartesian_info.tcp_offset_x"], n = 8, path = "tcp_offset_x", signed = false,
+          unit = " m" },
+        { k = "scalar", f = F["cartesian_info.tcp_offset_y"], n = 8, path = "tcp_offset_y", signed = false,
+          unit = " m" },
+        { k = "scalar", f = F["cartesian_info.tcp_offset_z"], n = 8, path = "tcp_offset_z", signed = false,
+          unit = " m" },
+        { k = "scalar", f = F["cartesian_info.tcp_offset_rx"], n = 8, path = "tcp_offset_rx", signed = false,
+          unit = " rad" },
+        { k = "scalar", f = F["cartesian_info.tcp_offset_ry"], n = 8, path = "tcp_offset_ry", signed = false,
+          unit = " rad" },
+        { k = "scalar", f = F["cartesian_info.tcp_offset_rz"], n = 8, path = "tcp_offset_rz", signed = false,
+          unit = " rad" },
     } },
 }
 
--- The early CB2 package of type 5: three doubles, 29 bytes; kinematics info takes the code from 1.8. What the values mean is not documented (a laser pointer's position, perhaps).
+-- The early CB2 package of type 5: three doubles, 29 bytes; kinematics info takes the code from
+-- 1.8. What the values mean is not documented (a laser pointer's position, perhaps).
 L.laser_pointer = {
     { k = "scalar", f = F["laser_pointer.x"], n = 8, path = "x", signed = false },
     { k = "scalar", f = F["laser_pointer.y"], n = 8, path = "y", signed = false },
     { k = "scalar", f = F["laser_pointer.z"], n = 8, path = "z", signed = false },
 }
 
--- Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is changed.
+-- Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is
+-- changed.
 L.kinematics_info = {
     { k = "array", f = F["kinematics_info.checksum"], n = 4, count = 6, path = "checksum", signed = false },
-    { k = "array", f = F["kinematics_info.dh_theta"], n = 8, count = 6, path = "dh_theta", signed = false, unit = " rad" },
+    { k = "array", f = F["kinematics_info.dh_theta"], n = 8, count = 6, path = "dh_theta", signed = false,
+      unit = " rad" },
     { k = "array", f = F["kinematics_info.dh_a"], n = 8, count = 6, path = "dh_a", signed = false, unit = " m" },
     { k = "array", f = F["kinematics_info.dh_d"], n = 8, count = 6, path = "dh_d", signed = false, unit = " m" },
-    { k = "array", f = F["kinematics_info.dh_alpha"], n = 8, count = 6, path = "dh_alpha", signed = false, unit = " rad" },
+    { k = "array", f = F["kinematics_info.dh_alpha"], n = 8, count = 6, path = "dh_alpha", signed = false,
+      unit = " rad" },
     { k = "scalar", f = F["kinematics_info.calibration_status"], n = 4, path = "calibration_status", signed = false },
 }
 
 -- One entry of joint_position_limits.
 L.configuration_data_joint_position_limit = {
-    { k = "scalar", f = F["configuration_data.joint_min_limit"], n = 8, path = "joint_min_limit", signed = false, unit = " rad" },
-    { k = "scalar", f = F["configuration_data.joint_max_limit"], n = 8, path = "joint_max_limit", signed = false, unit = " rad" },
+    { k = "scalar", f = F["configuration_data.joint_min_limit"], n = 8, path = "joint_min_limit", signed = false,
+      unit = " rad" },
+    { k = "scalar", f = F["configuration_data.joint_max_limit"], n = 8, path = "joint_max_limit", signed = false,
+      unit = " rad" },
 }
 
 -- One entry of joint_motion_limits.
 L.configuration_data_joint_motion_limit = {
-    { k = "scalar", f = F["configuration_data.joint_max_speed"], n = 8, path = "joint_max_speed", signed = false, unit = " rad/s" },
-    { k = "scalar", f = F["configuration_data.joint_max_acceleration"], n = 8, path = "joint_max_acceleration", signed = false, unit = " rad/s²" },
+    { k = "scalar", f = F["configuration_data.joint_max_speed"], n = 8, path = "joint_max_speed", signed = false,
+      unit = " rad/s" },
+    { k = "scalar", f = F["configuration_data.joint_max_acceleration"], n = 8, path = "joint_max_acceleration",
+      signed = false, unit = " rad/s²" },
 }
 
--- Configuration data. Sent when leaving initializing mode and/or if the kinematics configuration is changed. 469 bytes on 1.8, 445 from 3.0, 449 from 5.25.1; not sent before 1.8.
+-- Configuration data. Sent when leaving initializing mode and/or if the kinematics configuration is
+-- changed. 469 bytes on 1.8, 445 from 3.0, 449 from 5.25.1; not sent before 1.8.
 L.configuration_data = {
-    { k = "group", f = F["configuration_data.joint_position_limits"], label = "Joint", count = 6, size = 16, item = L.configuration_data_joint_position_limit, path = "joint_position_limits" },
-    { k = "group", f = F["configuration_data.joint_motion_limits"], label = "Joint", count = 6, size = 16, item = L.configuration_data_joint_motion_limit, path = "joint_motion_limits" },
-    { k = "scalar", f = F["configuration_data.v_joint_default"], n = 8, path = "v_joint_default", signed = false, unit = " rad/s" },
-    { k = "scalar", f = F["configuration_data.a_joint_default"], n = 8, path = "a_joint_default", signed = false, unit = " rad/s²" },
-    { k = "scalar", f = F["configuration_data.v_tool_default"], n = 8, path = "v_tool_default", signed = false, unit = " m/s" },
-    { k = "scalar", f = F["configuration_data.a_tool_default"], n = 8, path = "a_tool_default", signed = false, unit = " m/s²" },
+    { k = "group", f = F["configuration_data.joint_position_limits"], label = "Joint", count = 6, size = 16,
+      item = L.configuration_data_joint_position_limit, path = "joint_position_limits" },
+    { k = "group", f = F["configuration_data.joint_motion_limits"], label = "Joint", count = 6, size = 16,
+      item = L.configuration_data_joint_motion_limit, path = "joint_motion_limits" },
+    { k = "scalar", f = F["configuration_data.v_joint_default"], n = 8, path = "v_joint_default", signed = false,
+      unit = " rad/s" },
+    { k = "scalar", f = F["configuration_data.a_joint_default"], n = 8, path = "a_joint_default", signed = false,
+      unit = " rad/s²" },
+    { k = "scalar", f = F["configuration_data.v_tool_default"], n = 8, path = "v_tool_default", signed = false,
+      unit = " m/s" },
+    { k = "scalar", f = F["configuration_data.a_tool_default"], n = 8, path = "a_tool_default", signed = false,
+      unit = " m/s²" },
     { k = "scalar", f = F["configuration_data.eq_radius"], n = 8, path = "eq_radius", signed = false },
     { k = "array", f = F["configuration_data.dh_a"], n = 8, count = 6, path = "dh_a", signed = false, unit = " m" },
     { k = "array", f = F["configuration_data.dh_d"], n = 8, count = 6, path = "dh_d", signed = false, unit = " m" },
-    { k = "array", f = F["configuration_data.dh_alpha"], n = 8, count = 6, path = "dh_alpha", signed = false, unit = " rad" },
-    { k = "array", f = F["configuration_data.dh_theta"], n = 8, count = 6, path = "dh_theta", signed = false, unit = " rad" },
-    { k = "scalar", f = F["configuration_data.masterboard_version"], n = 4, path = "masterboard_version", signed = true },
-    { k = "scalar", f = F["configuration_data.controller_box_type"], n = 4, path = "controller_box_type", signed = true },
+    { k = "array", f = F["configuration_data.dh_alpha"], n = 8, count = 6, path = "dh_alpha", signed = false,
+      unit = " rad" },
+    { k = "array", f = F["configuration_data.dh_theta"], n = 8, count = 6, path = "dh_theta", signed = false,
+      unit = " rad" },
+    { k = "scalar", f = F["configuration_data.masterboard_version"], n = 4, path = "masterboard_version",
+      signed = true },
+    { k = "scalar", f = F["configuration_data.controller_box_type"], n = 4, path = "controller_box_type",
+      signed = true },
     { k = "scalar", f = F["configuration_data.robot_type"], n = 4, path = "robot_type", signed = true },
     { k = "scalar", f = F["configuration_data.robot_sub_type"], n = 4, path = "robot_sub_type", signed = true },
     { k = "cond", present_if = nil, low = nil, high = 1008999, fields = {
@@ -1290,7 +1872,9 @@ L.force_mode_data = {
     { k = "scalar", f = F["force_mode_data.robot_dexterity"], n = 8, path = "robot_dexterity", signed = false },
 }
 
--- Additional info; 10 bytes up to early 1.8 builds, 7 from late 1.8 builds to 3.1, 8 on 3.2-3.15, 9 from 5.0. 1.8 sends either 10 or 7 bytes: the 10-byte form is gated to 1.7 and its length selects it on 1.8.
+-- Additional info; 10 bytes up to early 1.8 builds, 7 from late 1.8 builds to 3.1, 8 on 3.2-3.15, 9
+-- from 5.0. 1.8 sends either 10 or 7 bytes: the 10-byte form is gated to 1.7 and its length selects
+-- it on 1.8.
 L.additional_info = {
     { k = "cond", present_if = nil, low = nil, high = 1007999, fields = {
         { k = "scalar", f = F["additional_info.ctrl_bits"], n = 4, path = "ctrl_bits", signed = false },
@@ -1298,17 +1882,20 @@ L.additional_info = {
     } },
     { k = "cond", present_if = nil, low = 1008000, high = nil, fields = {
         { k = "scalar", f = F["additional_info.tp_button_state"], n = 1, path = "tp_button_state", signed = false },
-        { k = "scalar", f = F["additional_info.freedrive_button_enabled"], n = 1, path = "freedrive_button_enabled", signed = false },
+        { k = "scalar", f = F["additional_info.freedrive_button_enabled"], n = 1, path = "freedrive_button_enabled",
+          signed = false },
     } },
     { k = "cond", present_if = nil, low = 3002000, high = nil, fields = {
-        { k = "scalar", f = F["additional_info.io_enabled_freedrive"], n = 1, path = "io_enabled_freedrive", signed = false },
+        { k = "scalar", f = F["additional_info.io_enabled_freedrive"], n = 1, path = "io_enabled_freedrive",
+          signed = false },
     } },
     { k = "cond", present_if = nil, low = 5000000, high = nil, fields = {
         { k = "scalar", f = F["additional_info.reserved"], n = 1, path = "reserved", signed = false },
     } },
 }
 
--- Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8 builds on.
+-- Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8
+-- builds on.
 L.calibration_data = {
     { k = "scalar", f = F["calibration_data.fx"], n = 8, path = "fx", signed = false },
     { k = "scalar", f = F["calibration_data.fy"], n = 8, path = "fy", signed = false },
@@ -1318,14 +1905,16 @@ L.calibration_data = {
     { k = "scalar", f = F["calibration_data.frz"], n = 8, path = "frz", signed = false },
 }
 
--- Safety data. Used internally by Universal Robots software only; its layout is not documented. 43 bytes on e-Series.
+-- Safety data. Used internally by Universal Robots software only; its layout is not documented. 43
+-- bytes on e-Series.
 L.safety_data = {
     { k = "bytes", f = F["safety_data.raw"], path = "raw" },
 }
 
 -- Tool communication info. e-Series only; its first version is unknown.
 L.tool_comm_info = {
-    { k = "scalar", f = F["tool_comm_info.tool_communication_is_enabled"], n = 1, path = "tool_communication_is_enabled", signed = false },
+    { k = "scalar", f = F["tool_comm_info.tool_communication_is_enabled"], n = 1,
+      path = "tool_communication_is_enabled", signed = false },
     { k = "scalar", f = F["tool_comm_info.baud_rate"], n = 4, path = "baud_rate", signed = true },
     { k = "scalar", f = F["tool_comm_info.parity"], n = 4, path = "parity", signed = true },
     { k = "scalar", f = F["tool_comm_info.stop_bits"], n = 4, path = "stop_bits", signed = true },
@@ -1336,30 +1925,38 @@ L.tool_comm_info = {
 -- Tool mode info. e-Series only; its first version is unknown.
 L.tool_mode_info = {
     { k = "scalar", f = F["tool_mode_info.output_mode"], n = 1, path = "output_mode", signed = false },
-    { k = "scalar", f = F["tool_mode_info.digital_output_mode_output_0"], n = 1, path = "digital_output_mode_output_0", signed = false },
-    { k = "scalar", f = F["tool_mode_info.digital_output_mode_output_1"], n = 1, path = "digital_output_mode_output_1", signed = false },
+    { k = "scalar", f = F["tool_mode_info.digital_output_mode_output_0"], n = 1, path = "digital_output_mode_output_0",
+      signed = false },
+    { k = "scalar", f = F["tool_mode_info.digital_output_mode_output_1"], n = 1, path = "digital_output_mode_output_1",
+      signed = false },
 }
 
 -- Singularity info. Used internally by Universal Robots software only.
 L.singularity_info = {
-    { k = "scalar", f = F["singularity_info.singularity_severity"], n = 1, path = "singularity_severity", signed = false },
+    { k = "scalar", f = F["singularity_info.singularity_severity"], n = 1, path = "singularity_severity",
+      signed = false },
     { k = "scalar", f = F["singularity_info.singularity_type"], n = 1, path = "singularity_type", signed = false },
 }
 
 -- Header and subtype of every robot message.
 L.robot_message = {
     { k = "scalar", f = F["robot_message.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["robot_message.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
-    { k = "scalar", f = F["robot_message.robot_message_type"], n = 1, path = "robot_message_type", signed = false, tables = NAMES.ROBOT_MESSAGE_TYPE, label = "Robot message type", vs = VS.ROBOT_MESSAGE_TYPE },
+    { k = "scalar", f = F["robot_message.source"], n = 1, path = "source", signed = true,
+      tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["robot_message.robot_message_type"], n = 1, path = "robot_message_type", signed = false,
+      tables = NAMES.ROBOT_MESSAGE_TYPE, label = "Robot message type", vs = VS.ROBOT_MESSAGE_TYPE },
 }
 
 -- Header of the version message.
 L.version_header = {
     { k = "scalar", f = F["version.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["version.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["version.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE,
+      label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
--- Version message, the first message on both the primary and secondary interfaces. It is read in the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from 3.3 the bugfix version and the build number. PolyScope X sends major version 10.
+-- Version message, the first message on both the primary and secondary interfaces. It is read in
+-- the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from
+-- 3.3 the bugfix version and the build number. PolyScope X sends major version 10.
 L.version = {
     { k = "pstring", f = F["version.project_name"], n = 1, signed = true, path = "project_name", show = "" },
     { k = "scalar", f = F["version.major_version"], n = 1, path = "major_version", signed = false, show = " " },
@@ -1377,17 +1974,25 @@ L.version = {
 -- Header of the safety_mode message.
 L.safety_mode_header = {
     { k = "scalar", f = F["safety_mode.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["safety_mode.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["safety_mode.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE,
+      label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
--- Safety mode message; the security message of CB2, which carries a text instead of the safety mode and its report data.
+-- Safety mode message; the security message of CB2, which carries a text instead of the safety mode
+-- and its report data.
 L.safety_mode = {
     { k = "scalar", f = F["safety_mode.robot_message_code"], n = 4, path = "robot_message_code", signed = true },
-    { k = "scalar", f = F["safety_mode.robot_message_argument"], n = 4, path = "robot_message_argument", signed = true },
+    { k = "scalar", f = F["safety_mode.robot_message_argument"], n = 4, path = "robot_message_argument",
+      signed = true },
     { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
-        { k = "scalar", f = F["safety_mode.safety_mode_type"], n = 1, path = "safety_mode_type", signed = false, vs = VS.SAFETY_MODE, show = "" },
-        { k = "scalar", f = F["safety_mode.report_data_type"], n = 4, path = "report_data_type", signed = false, keep = "report_data_type" },
-        { k = "switch", sel = "report_data_type", path = "report_data", default = { f = F["safety_mode.report_data"], n = 4 }, cases = { [2] = { f = F["safety_mode.report_data_int32"], n = 4 }, [3] = { f = F["safety_mode.report_data_float32"], n = 4 } } },
+        { k = "scalar", f = F["safety_mode.safety_mode_type"], n = 1, path = "safety_mode_type", signed = false,
+          vs = VS.SAFETY_MODE, show = "" },
+        { k = "scalar", f = F["safety_mode.report_data_type"], n = 4, path = "report_data_type", signed = false,
+          keep = "report_data_type" },
+        { k = "switch", sel = "report_data_type", path = "report_data",
+          default = { f = F["safety_mode.report_data"], n = 4 }, cases = {
+          [2] = { f = F["safety_mode.report_data_int32"], n = 4 },
+          [3] = { f = F["safety_mode.report_data_float32"], n = 4 } } },
     } },
     { k = "cond", present_if = nil, low = nil, high = 1008999, fields = {
         { k = "string", f = F["safety_mode.text"], path = "text" },
@@ -1397,16 +2002,20 @@ L.safety_mode = {
 -- Header of the robot_comm message.
 L.robot_comm_header = {
     { k = "scalar", f = F["robot_comm.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["robot_comm.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["robot_comm.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE,
+      label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
--- Robot comm message (an error code report). On CB2 the code and argument are followed by the text alone.
+-- Robot comm message (an error code report). On CB2 the code and argument are followed by the text
+-- alone.
 L.robot_comm = {
     { k = "scalar", f = F["robot_comm.robot_message_code"], n = 4, path = "robot_message_code", signed = true },
     { k = "scalar", f = F["robot_comm.robot_message_argument"], n = 4, path = "robot_message_argument", signed = true },
     { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
-        { k = "scalar", f = F["robot_comm.robot_message_report_level"], n = 4, path = "robot_message_report_level", signed = true, vs = VS.REPORT_LEVEL, show = "" },
-        { k = "scalar", f = F["robot_comm.robot_message_data_type"], n = 4, path = "robot_message_data_type", signed = false },
+        { k = "scalar", f = F["robot_comm.robot_message_report_level"], n = 4, path = "robot_message_report_level",
+          signed = true, vs = VS.REPORT_LEVEL, show = "" },
+        { k = "scalar", f = F["robot_comm.robot_message_data_type"], n = 4, path = "robot_message_data_type",
+          signed = false },
         { k = "scalar", f = F["robot_comm.robot_message_data"], n = 4, path = "robot_message_data", signed = false },
     } },
     { k = "string", f = F["robot_comm.text"], path = "text", show = ": " },
@@ -1415,7 +2024,8 @@ L.robot_comm = {
 -- Header of the key message.
 L.key_header = {
     { k = "scalar", f = F["key.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["key.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["key.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE,
+      label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Key message.
@@ -1429,7 +2039,8 @@ L.key = {
 -- Header of the program_threads message.
 L.program_threads_header = {
     { k = "scalar", f = F["program_threads.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["program_threads.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["program_threads.source"], n = 1, path = "source", signed = true,
+      tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- One entry of threads.
@@ -1441,20 +2052,23 @@ L.program_threads_program_thread = {
 
 -- Program threads message, one entry per running program thread.
 L.program_threads = {
-    { k = "group", f = F["program_threads.threads"], label = "Thread", count = nil, size = nil, item = L.program_threads_program_thread, path = "threads" },
+    { k = "group", f = F["program_threads.threads"], label = "Thread", count = nil, size = nil,
+      item = L.program_threads_program_thread, path = "threads" },
 }
 
 -- Header of the popup message.
 L.popup_header = {
     { k = "scalar", f = F["popup.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["popup.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["popup.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE,
+      label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Popup message. On CB2 it has no request id, requested type or blocking flag.
 L.popup = {
     { k = "cond", present_if = nil, low = 3000000, high = nil, fields = {
         { k = "scalar", f = F["popup.request_id"], n = 4, path = "request_id", signed = false },
-        { k = "scalar", f = F["popup.requested_type"], n = 4, path = "requested_type", signed = false, vs = VS.REQUESTED_TYPE },
+        { k = "scalar", f = F["popup.requested_type"], n = 4, path = "requested_type", signed = false,
+          vs = VS.REQUESTED_TYPE },
     } },
     { k = "scalar", f = F["popup.warning"], n = 1, path = "warning", signed = false },
     { k = "scalar", f = F["popup.error"], n = 1, path = "error", signed = false },
@@ -1468,7 +2082,8 @@ L.popup = {
 -- Header of the label message.
 L.label_header = {
     { k = "scalar", f = F["label.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["label.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["label.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE,
+      label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Label message (CB2 only).
@@ -1480,7 +2095,8 @@ L.label = {
 -- Header of the var message.
 L.var_header = {
     { k = "scalar", f = F["var.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["var.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["var.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE,
+      label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Var message (CB2 only).
@@ -1494,35 +2110,43 @@ L.var = {
 -- Header of the hardware_info message.
 L.hardware_info_header = {
     { k = "scalar", f = F["hardware_info.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["hardware_info.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["hardware_info.source"], n = 1, path = "source", signed = true,
+      tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
--- Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 bytes in all.
+-- Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 bytes in
+-- all.
 L.hardware_info = {
-    { k = "scalar", f = F["hardware_info.robot_type"], n = 4, path = "robot_type", signed = true, show = "robot type " },
+    { k = "scalar", f = F["hardware_info.robot_type"], n = 4, path = "robot_type", signed = true,
+      show = "robot type " },
     { k = "scalar", f = F["hardware_info.reserved_1"], n = 2, path = "reserved_1", signed = false },
-    { k = "scalar", f = F["hardware_info.control_box_type"], n = 2, path = "control_box_type", signed = false, vs = VS.CONTROL_BOX_TYPE, show = ", control box " },
+    { k = "scalar", f = F["hardware_info.control_box_type"], n = 2, path = "control_box_type", signed = false,
+      vs = VS.CONTROL_BOX_TYPE, show = ", control box " },
     { k = "scalar", f = F["hardware_info.reserved_2"], n = 2, path = "reserved_2", signed = false },
-    { k = "scalar", f = F["hardware_info.tool_flange_type"], n = 2, path = "tool_flange_type", signed = false, vs = VS.TOOL_FLANGE_TYPE, show = ", tool flange " },
+    { k = "scalar", f = F["hardware_info.tool_flange_type"], n = 2, path = "tool_flange_type", signed = false,
+      vs = VS.TOOL_FLANGE_TYPE, show = ", tool flange " },
 }
 
 -- Header of the request_value message.
 L.request_value_header = {
     { k = "scalar", f = F["request_value.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["request_value.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["request_value.source"], n = 1, path = "source", signed = true,
+      tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Request value message.
 L.request_value = {
     { k = "scalar", f = F["request_value.request_id"], n = 4, path = "request_id", signed = false },
-    { k = "scalar", f = F["request_value.requested_type"], n = 4, path = "requested_type", signed = false, vs = VS.REQUESTED_TYPE, show = "" },
+    { k = "scalar", f = F["request_value.requested_type"], n = 4, path = "requested_type", signed = false,
+      vs = VS.REQUESTED_TYPE, show = "" },
     { k = "string", f = F["request_value.text"], path = "text", show = ": " },
 }
 
 -- Header of the text message.
 L.text_header = {
     { k = "scalar", f = F["text.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["text.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["text.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE,
+      label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Text message.
@@ -1533,20 +2157,24 @@ L.text = {
 -- Header of the runtime_exception message.
 L.runtime_exception_header = {
     { k = "scalar", f = F["runtime_exception.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["runtime_exception.source"], n = 1, path = "source", signed = true, tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
+    { k = "scalar", f = F["runtime_exception.source"], n = 1, path = "source", signed = true,
+      tables = NAMES.MESSAGE_SOURCE, label = "Source", vs = VS.MESSAGE_SOURCE },
 }
 
 -- Runtime exception message.
 L.runtime_exception = {
-    { k = "scalar", f = F["runtime_exception.script_line_number"], n = 4, path = "script_line_number", signed = true, show = "line " },
-    { k = "scalar", f = F["runtime_exception.script_column_number"], n = 4, path = "script_column_number", signed = true, show = ":" },
+    { k = "scalar", f = F["runtime_exception.script_line_number"], n = 4, path = "script_line_number", signed = true,
+      show = "line " },
+    { k = "scalar", f = F["runtime_exception.script_column_number"], n = 4, path = "script_column_number",
+      signed = true, show = ":" },
     { k = "string", f = F["runtime_exception.text"], path = "text", show = ": " },
 }
 
 -- Header and subtype of every program state.
 L.program_state = {
     { k = "scalar", f = F["program_state.timestamp"], n = 8, path = "timestamp", signed = false },
-    { k = "scalar", f = F["program_state.robot_message_type"], n = 1, path = "robot_message_type", signed = false, vs = VS.PROGRAM_STATE_MESSAGE_TYPE },
+    { k = "scalar", f = F["program_state.robot_message_type"], n = 1, path = "robot_message_type", signed = false,
+      vs = VS.PROGRAM_STATE_MESSAGE_TYPE },
 }
 
 -- Header of the global_variables_setup message.
@@ -1568,7 +2196,13 @@ L.global_variables_update_header = {
 -- Global variables update message.
 L.global_variables_update = {
     { k = "scalar", f = F["global_variables_update.start_index"], n = 2, path = "start_index", signed = false },
-    { k = "values", term = 10, path = "variables", label = "Variable", vf = { item = F["global_variables_update.variables"], type = F["global_variables_update.type"], code = F["global_variables_update.type_code"], count = F["global_variables_update.length"], rows = F["global_variables_update.rows"], cols = F["global_variables_update.columns"], row = F["global_variables_update.row"], ["bool"] = F["global_variables_update.value_bool"], ["float32"] = F["global_variables_update.value_float32"], ["int32"] = F["global_variables_update.value_int32"], string = F["global_variables_update.value_string"] } },
+    { k = "values", term = 10, path = "variables", label = "Variable", vf = {
+      item = F["global_variables_update.variables"], type = F["global_variables_update.type"],
+      code = F["global_variables_update.type_code"], count = F["global_variables_update.length"],
+      rows = F["global_variables_update.rows"], cols = F["global_variables_update.columns"],
+      row = F["global_variables_update.row"], ["bool"] = F["global_variables_update.value_bool"],
+      ["float32"] = F["global_variables_update.value_float32"], ["int32"] = F["global_variables_update.value_int32"],
+      string = F["global_variables_update.value_string"] } },
 }
 
 -- ---------------------------------------------------------------------------------------------
@@ -1577,36 +2211,103 @@ L.global_variables_update = {
 local MESSAGE, PART = {}, {}
 
 -- Sub-packages of the robot state, one entry per layout.
-PART.robot_mode_data = { name = "robot_mode_data", label = "Robot mode data", item = F["robot_mode_data"], layout = L.robot_mode_data, summary = true,
-    refs = { F["robot_mode_data.control_mode"], F["robot_mode_data.is_emergency_stopped"], F["robot_mode_data.is_program_paused"], F["robot_mode_data.is_program_running"], F["robot_mode_data.is_protective_stopped"], F["robot_mode_data.is_real_robot_connected"], F["robot_mode_data.is_real_robot_enabled"], F["robot_mode_data.is_robot_power_on"], F["robot_mode_data.reserved"], F["robot_mode_data.robot_mode"], F["robot_mode_data.speed_scaling"], F["robot_mode_data.target_speed_fraction"], F["robot_mode_data.target_speed_fraction_limit"], F["robot_mode_data.timestamp"] } }
-PART.joint_data = { name = "joint_data", label = "Joint data", item = F["joint_data"], layout = L.joint_data, summary = false,
-    refs = { F["joint_data.i_actual"], F["joint_data.joint_mode"], F["joint_data.joints"], F["joint_data.q_actual"], F["joint_data.q_target"], F["joint_data.qd_actual"], F["joint_data.t_micro"], F["joint_data.t_motor"], F["joint_data.v_actual"] } }
-PART.tool_data = { name = "tool_data", label = "Tool data", item = F["tool_data"], layout = L.tool_data, summary = false,
-    refs = { F["tool_data.analog_input0"], F["tool_data.analog_input1"], F["tool_data.analog_input_range0"], F["tool_data.analog_input_range1"], F["tool_data.tool_current"], F["tool_data.tool_mode"], F["tool_data.tool_output_voltage"], F["tool_data.tool_temperature"], F["tool_data.tool_voltage_48v"] } }
-PART.masterboard_data = { name = "masterboard_data", label = "Masterboard data", item = F["masterboard_data"], layout = L.masterboard_data, summary = true,
-    refs = { F["masterboard_data.analog_input0"], F["masterboard_data.analog_input1"], F["masterboard_data.analog_input_range0"], F["masterboard_data.analog_input_range1"], F["masterboard_data.analog_output0"], F["masterboard_data.analog_output1"], F["masterboard_data.analog_output_domain0"], F["masterboard_data.analog_output_domain1"], F["masterboard_data.digital_input_bits"], F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"], F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"], F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"], F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"], F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"], F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"], F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"], F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"], F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"], F["masterboard_data.digital_output_bits"], F["masterboard_data.digital_output_bits.configurable_0"], F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"], F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"], F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"], F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.standard_0"], F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"], F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"], F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"], F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.tool_0"], F["masterboard_data.digital_output_bits.tool_1"], F["masterboard_data.euromap67_interface_installed"], F["masterboard_data.euromap_current"], F["masterboard_data.euromap_current_cb2"], F["masterboard_data.euromap_input_bits"], F["masterboard_data.euromap_output_bits"], F["masterboard_data.euromap_voltage_24v"], F["masterboard_data.euromap_voltage_cb2"], F["masterboard_data.in_reduced_mode"], F["masterboard_data.master_board_temperature"], F["masterboard_data.master_io_current"], F["masterboard_data.master_on_off_state"], F["masterboard_data.master_safety_state"], F["masterboard_data.operational_mode_selector_input"], F["masterboard_data.reserved_0"], F["masterboard_data.reserved_1"], F["masterboard_data.robot_current"], F["masterboard_data.robot_voltage_48v"], F["masterboard_data.safety_mode"], F["masterboard_data.three_position_enabling_device_input"] } }
-PART.cartesian_info = { name = "cartesian_info", label = "Cartesian info", item = F["cartesian_info"], layout = L.cartesian_info, summary = false,
-    refs = { F["cartesian_info.rx"], F["cartesian_info.ry"], F["cartesian_info.rz"], F["cartesian_info.tcp_offset_rx"], F["cartesian_info.tcp_offset_ry"], F["cartesian_info.tcp_offset_rz"], F["cartesian_info.tcp_offset_x"], F["cartesian_info.tcp_offset_y"], F["cartesian_info.tcp_offset_z"], F["cartesian_info.x"], F["cartesian_info.y"], F["cartesian_info.z"] } }
-PART.laser_pointer = { name = "laser_pointer", label = "Laser pointer", item = F["laser_pointer"], layout = L.laser_pointer, summary = false,
-    refs = { F["laser_pointer.x"], F["laser_pointer.y"], F["laser_pointer.z"] } }
-PART.kinematics_info = { name = "kinematics_info", label = "Kinematics info", item = F["kinematics_info"], layout = L.kinematics_info, summary = false,
-    refs = { F["kinematics_info.calibration_status"], F["kinematics_info.checksum"], F["kinematics_info.dh_a"], F["kinematics_info.dh_alpha"], F["kinematics_info.dh_d"], F["kinematics_info.dh_theta"] } }
-PART.configuration_data = { name = "configuration_data", label = "Configuration data", item = F["configuration_data"], layout = L.configuration_data, summary = false,
-    refs = { F["configuration_data.a_joint_default"], F["configuration_data.a_tool_default"], F["configuration_data.controller_box_type"], F["configuration_data.dh_a"], F["configuration_data.dh_alpha"], F["configuration_data.dh_d"], F["configuration_data.dh_theta"], F["configuration_data.eq_radius"], F["configuration_data.joint_max_acceleration"], F["configuration_data.joint_max_limit"], F["configuration_data.joint_max_speed"], F["configuration_data.joint_min_limit"], F["configuration_data.joint_motion_limits"], F["configuration_data.joint_position_limits"], F["configuration_data.masterboard_version"], F["configuration_data.motor_type"], F["configuration_data.reserved_1"], F["configuration_data.reserved_2"], F["configuration_data.robot_sub_type"], F["configuration_data.robot_type"], F["configuration_data.v_joint_default"], F["configuration_data.v_tool_default"] } }
-PART.force_mode_data = { name = "force_mode_data", label = "Force mode data", item = F["force_mode_data"], layout = L.force_mode_data, summary = false,
-    refs = { F["force_mode_data.frx"], F["force_mode_data.fry"], F["force_mode_data.frz"], F["force_mode_data.fx"], F["force_mode_data.fy"], F["force_mode_data.fz"], F["force_mode_data.robot_dexterity"] } }
-PART.additional_info = { name = "additional_info", label = "Additional info", item = F["additional_info"], layout = L.additional_info, summary = false,
-    refs = { F["additional_info.ctrl_bits"], F["additional_info.freedrive_button_enabled"], F["additional_info.io_enabled_freedrive"], F["additional_info.reserved"], F["additional_info.teach_button"], F["additional_info.tp_button_state"] } }
-PART.calibration_data = { name = "calibration_data", label = "Calibration data", item = F["calibration_data"], layout = L.calibration_data, summary = false,
-    refs = { F["calibration_data.frx"], F["calibration_data.fry"], F["calibration_data.frz"], F["calibration_data.fx"], F["calibration_data.fy"], F["calibration_data.fz"] } }
-PART.safety_data = { name = "safety_data", label = "Safety data", item = F["safety_data"], layout = L.safety_data, summary = false,
-    refs = { F["safety_data.raw"] } }
-PART.tool_comm_info = { name = "tool_comm_info", label = "Tool comm info", item = F["tool_comm_info"], layout = L.tool_comm_info, summary = false,
-    refs = { F["tool_comm_info.baud_rate"], F["tool_comm_info.parity"], F["tool_comm_info.rx_idle_chars"], F["tool_comm_info.stop_bits"], F["tool_comm_info.tool_communication_is_enabled"], F["tool_comm_info.tx_idle_chars"] } }
-PART.tool_mode_info = { name = "tool_mode_info", label = "Tool mode info", item = F["tool_mode_info"], layout = L.tool_mode_info, summary = false,
-    refs = { F["tool_mode_info.digital_output_mode_output_0"], F["tool_mode_info.digital_output_mode_output_1"], F["tool_mode_info.output_mode"] } }
-PART.singularity_info = { name = "singularity_info", label = "Singularity info", item = F["singularity_info"], layout = L.singularity_info, summary = false,
-    refs = { F["singularity_info.singularity_severity"], F["singularity_info.singularity_type"] } }
+PART.robot_mode_data = { name = "robot_mode_data", label = "Robot mode data", item = F["robot_mode_data"],
+    layout = L.robot_mode_data, summary = true, refs = { F["robot_mode_data.control_mode"],
+    F["robot_mode_data.is_emergency_stopped"], F["robot_mode_data.is_program_paused"],
+    F["robot_mode_data.is_program_running"], F["robot_mode_data.is_protective_stopped"],
+    F["robot_mode_data.is_real_robot_connected"], F["robot_mode_data.is_real_robot_enabled"],
+    F["robot_mode_data.is_robot_power_on"], F["robot_mode_data.reserved"], F["robot_mode_data.robot_mode"],
+    F["robot_mode_data.speed_scaling"], F["robot_mode_data.target_speed_fraction"],
+    F["robot_mode_data.target_speed_fraction_limit"], F["robot_mode_data.timestamp"] } }
+PART.joint_data = { name = "joint_data", label = "Joint data", item = F["joint_data"], layout = L.joint_data,
+    summary = false, refs = { F["joint_data.i_actual"], F["joint_data.joint_mode"], F["joint_data.joints"],
+    F["joint_data.q_actual"], F["joint_data.q_target"], F["joint_data.qd_actual"], F["joint_data.t_micro"],
+    F["joint_data.t_motor"], F["joint_data.v_actual"] } }
+PART.tool_data = { name = "tool_data", label = "Tool data", item = F["tool_data"], layout = L.tool_data,
+    summary = false, refs = { F["tool_data.analog_input0"], F["tool_data.analog_input1"],
+    F["tool_data.analog_input_range0"], F["tool_data.analog_input_range1"], F["tool_data.tool_current"],
+    F["tool_data.tool_mode"], F["tool_data.tool_output_voltage"], F["tool_data.tool_temperature"],
+    F["tool_data.tool_voltage_48v"] } }
+PART.masterboard_data = { name = "masterboard_data", label = "Masterboard data", item = F["masterboard_data"],
+    layout = L.masterboard_data, summary = true, refs = { F["masterboard_data.analog_input0"],
+    F["masterboard_data.analog_input1"], F["masterboard_data.analog_input_range0"],
+    F["masterboard_data.analog_input_range1"], F["masterboard_data.analog_output0"],
+    F["masterboard_data.analog_output1"], F["masterboard_data.analog_output_domain0"],
+    F["masterboard_data.analog_output_domain1"], F["masterboard_data.digital_input_bits"],
+    F["masterboard_data.digital_input_bits.configurable_0"], F["masterboard_data.digital_input_bits.configurable_1"],
+    F["masterboard_data.digital_input_bits.configurable_2"], F["masterboard_data.digital_input_bits.configurable_3"],
+    F["masterboard_data.digital_input_bits.configurable_4"], F["masterboard_data.digital_input_bits.configurable_5"],
+    F["masterboard_data.digital_input_bits.configurable_6"], F["masterboard_data.digital_input_bits.configurable_7"],
+    F["masterboard_data.digital_input_bits.standard_0"], F["masterboard_data.digital_input_bits.standard_1"],
+    F["masterboard_data.digital_input_bits.standard_2"], F["masterboard_data.digital_input_bits.standard_3"],
+    F["masterboard_data.digital_input_bits.standard_4"], F["masterboard_data.digital_input_bits.standard_5"],
+    F["masterboard_data.digital_input_bits.standard_6"], F["masterboard_data.digital_input_bits.standard_7"],
+    F["masterboard_data.digital_input_bits.tool_0"], F["masterboard_data.digital_input_bits.tool_1"],
+    F["masterboard_data.digital_output_bits"], F["masterboard_data.digital_output_bits.configurable_0"],
+    F["masterboard_data.digital_output_bits.configurable_1"], F["masterboard_data.digital_output_bits.configurable_2"],
+    F["masterboard_data.digital_output_bits.configurable_3"], F["masterboard_data.digital_output_bits.configurable_4"],
+    F["masterboard_data.digital_output_bits.configurable_5"], F["masterboard_data.digital_output_bits.configurable_6"],
+    F["masterboard_data.digital_output_bits.configurable_7"], F["masterboard_data.digital_output_bits.standard_0"],
+    F["masterboard_data.digital_output_bits.standard_1"], F["masterboard_data.digital_output_bits.standard_2"],
+    F["masterboard_data.digital_output_bits.standard_3"], F["masterboard_data.digital_output_bits.standard_4"],
+    F["masterboard_data.digital_output_bits.standard_5"], F["masterboard_data.digital_output_bits.standard_6"],
+    F["masterboard_data.digital_output_bits.standard_7"], F["masterboard_data.digital_output_bits.tool_0"],
+    F["masterboard_data.digital_output_bits.tool_1"], F["masterboard_data.euromap67_interface_installed"],
+    F["masterboard_data.euromap_current"], F["masterboard_data.euromap_current_cb2"],
+    F["masterboard_data.euromap_input_bits"], F["masterboard_data.euromap_output_bits"],
+    F["masterboard_data.euromap_voltage_24v"], F["masterboard_data.euromap_voltage_cb2"],
+    F["masterboard_data.in_reduced_mode"], F["masterboard_data.master_board_temperature"],
+    F["masterboard_data.master_io_current"], F["masterboard_data.master_on_off_state"],
+    F["masterboard_data.master_safety_state"], F["masterboard_data.operational_mode_selector_input"],
+    F["masterboard_data.reserved_0"], F["masterboard_data.reserved_1"], F["masterboard_data.robot_current"],
+    F["masterboard_data.robot_voltage_48v"], F["masterboard_data.safety_mode"],
+    F["masterboard_data.three_position_enabling_device_input"] } }
+PART.cartesian_info = { name = "cartesian_info", label = "Cartesian info", item = F["cartesian_info"],
+    layout = L.cartesian_info, summary = false, refs = { F["cartesian_info.rx"], F["cartesian_info.ry"],
+    F["cartesian_info.rz"], F["cartesian_info.tcp_offset_rx"], F["cartesian_info.tcp_offset_ry"],
+    F["cartesian_info.tcp_offset_rz"], F["cartesian_info.tcp_offset_x"], F["cartesian_info.tcp_offset_y"],
+    F["cartesian_info.tcp_offset_z"], F["cartesian_info.x"], F["cartesian_info.y"], F["cartesian_info.z"] } }
+PART.laser_pointer = { name = "laser_pointer", label = "Laser pointer", item = F["laser_pointer"],
+    layout = L.laser_pointer, summary = false, refs = { F["laser_pointer.x"], F["laser_pointer.y"],
+    F["laser_pointer.z"] } }
+PART.kinematics_info = { name = "kinematics_info", label = "Kinematics info", item = F["kinematics_info"],
+    layout = L.kinematics_info, summary = false, refs = { F["kinematics_info.calibration_status"],
+    F["kinematics_info.checksum"], F["kinematics_info.dh_a"], F["kinematics_info.dh_alpha"], F["kinematics_info.dh_d"],
+    F["kinematics_info.dh_theta"] } }
+PART.configuration_data = { name = "configuration_data", label = "Configuration data", item = F["configuration_data"],
+    layout = L.configuration_data, summary = false, refs = { F["configuration_data.a_joint_default"],
+    F["configuration_data.a_tool_default"], F["configuration_data.controller_box_type"], F["configuration_data.dh_a"],
+    F["configuration_data.dh_alpha"], F["configuration_data.dh_d"], F["configuration_data.dh_theta"],
+    F["configuration_data.eq_radius"], F["configuration_data.joint_max_acceleration"],
+    F["configuration_data.joint_max_limit"], F["configuration_data.joint_max_speed"],
+    F["configuration_data.joint_min_limit"], F["configuration_data.joint_motion_limits"],
+    F["configuration_data.joint_position_limits"], F["configuration_data.masterboard_version"],
+    F["configuration_data.motor_type"], F["configuration_data.reserved_1"], F["configuration_data.reserved_2"],
+    F["configuration_data.robot_sub_type"], F["configuration_data.robot_type"],
+    F["configuration_data.v_joint_default"], F["configuration_data.v_tool_default"] } }
+PART.force_mode_data = { name = "force_mode_data", label = "Force mode data", item = F["force_mode_data"],
+    layout = L.force_mode_data, summary = false, refs = { F["force_mode_data.frx"], F["force_mode_data.fry"],
+    F["force_mode_data.frz"], F["force_mode_data.fx"], F["force_mode_data.fy"], F["force_mode_data.fz"],
+    F["force_mode_data.robot_dexterity"] } }
+PART.additional_info = { name = "additional_info", label = "Additional info", item = F["additional_info"],
+    layout = L.additional_info, summary = false, refs = { F["additional_info.ctrl_bits"],
+    F["additional_info.freedrive_button_enabled"], F["additional_info.io_enabled_freedrive"],
+    F["additional_info.reserved"], F["additional_info.teach_button"], F["additional_info.tp_button_state"] } }
+PART.calibration_data = { name = "calibration_data", label = "Calibration data", item = F["calibration_data"],
+    layout = L.calibration_data, summary = false, refs = { F["calibration_data.frx"], F["calibration_data.fry"],
+    F["calibration_data.frz"], F["calibration_data.fx"], F["calibration_data.fy"], F["calibration_data.fz"] } }
+PART.safety_data = { name = "safety_data", label = "Safety data", item = F["safety_data"], layout = L.safety_data,
+    summary = false, refs = { F["safety_data.raw"] } }
+PART.tool_comm_info = { name = "tool_comm_info", label = "Tool comm info", item = F["tool_comm_info"],
+    layout = L.tool_comm_info, summary = false, refs = { F["tool_comm_info.baud_rate"], F["tool_comm_info.parity"],
+    F["tool_comm_info.rx_idle_chars"], F["tool_comm_info.stop_bits"],
+    F["tool_comm_info.tool_communication_is_enabled"], F["tool_comm_info.tx_idle_chars"] } }
+PART.tool_mode_info = { name = "tool_mode_info", label = "Tool mode info", item = F["tool_mode_info"],
+    layout = L.tool_mode_info, summary = false, refs = { F["tool_mode_info.digital_output_mode_output_0"],
+    F["tool_mode_info.digital_output_mode_output_1"], F["tool_mode_info.output_mode"] } }
+PART.singularity_info = { name = "singularity_info", label = "Singularity info", item = F["singularity_info"],
+    layout = L.singularity_info, summary = false, refs = { F["singularity_info.singularity_severity"],
+    F["singularity_info.singularity_type"] } }
 
 -- The forms each type code of the robot state takes: chosen by the software version, else by
 -- the body size (runtime/versions.lua); `single` when one form serves every version. `segments`:
@@ -1728,25 +2429,38 @@ local ROBOT_STATE_PACKAGES = {
 }
 
 
--- Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in any order, each framed by its own length.
+-- Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in
+-- any order, each framed by its own length.
 MESSAGE[16] = {
-    kind = "packages", label = "Robot state", packages = ROBOT_STATE_PACKAGES, types = VS.PACKAGE_TYPE, type_tables = NAMES.PACKAGE_TYPE,
-    length = F["package.length"], type = F["package.type"], needs_version = true,
+    kind = "packages", label = "Robot state", packages = ROBOT_STATE_PACKAGES, types = VS.PACKAGE_TYPE,
+    type_tables = NAMES.PACKAGE_TYPE, length = F["package.length"], type = F["package.type"], needs_version = true,
 }
 
 -- Subtypes of the robot message, one entry per layout.
-PART.version = { name = "version", label = "Version", item = F["version"], header = L.version_header, layout = L.version, needs_version = true }
-PART.safety_mode = { name = "safety_mode", label = "Safety mode", item = F["safety_mode"], header = L.safety_mode_header, layout = L.safety_mode, needs_version = true }
-PART.robot_comm = { name = "robot_comm", label = "Robot comm", item = F["robot_comm"], header = L.robot_comm_header, layout = L.robot_comm, needs_version = true }
-PART.key = { name = "key", label = "Key", item = F["key"], header = L.key_header, layout = L.key, needs_version = false }
-PART.program_threads = { name = "program_threads", label = "Program threads", item = F["program_threads"], header = L.program_threads_header, layout = L.program_threads, needs_version = false }
-PART.popup = { name = "popup", label = "Popup", item = F["popup"], header = L.popup_header, layout = L.popup, needs_version = true }
-PART.label = { name = "label", label = "Label", item = F["label"], header = L.label_header, layout = L.label, needs_version = true }
-PART.var = { name = "var", label = "Var", item = F["var"], header = L.var_header, layout = L.var, needs_version = true }
-PART.hardware_info = { name = "hardware_info", label = "Hardware info", item = F["hardware_info"], header = L.hardware_info_header, layout = L.hardware_info, needs_version = false }
-PART.request_value = { name = "request_value", label = "Request value", item = F["request_value"], header = L.request_value_header, layout = L.request_value, needs_version = false }
-PART.text = { name = "text", label = "Text", item = F["text"], header = L.text_header, layout = L.text, needs_version = false }
-PART.runtime_exception = { name = "runtime_exception", label = "Runtime exception", item = F["runtime_exception"], header = L.runtime_exception_header, layout = L.runtime_exception, needs_version = false }
+PART.version = { name = "version", label = "Version", item = F["version"], header = L.version_header,
+    layout = L.version, needs_version = true }
+PART.safety_mode = { name = "safety_mode", label = "Safety mode", item = F["safety_mode"],
+    header = L.safety_mode_header, layout = L.safety_mode, needs_version = true }
+PART.robot_comm = { name = "robot_comm", label = "Robot comm", item = F["robot_comm"], header = L.robot_comm_header,
+    layout = L.robot_comm, needs_version = true }
+PART.key = { name = "key", label = "Key", item = F["key"], header = L.key_header, layout = L.key,
+    needs_version = false }
+PART.program_threads = { name = "program_threads", label = "Program threads", item = F["program_threads"],
+    header = L.program_threads_header, layout = L.program_threads, needs_version = false }
+PART.popup = { name = "popup", label = "Popup", item = F["popup"], header = L.popup_header, layout = L.popup,
+    needs_version = true }
+PART.label = { name = "label", label = "Label", item = F["label"], header = L.label_header, layout = L.label,
+    needs_version = true }
+PART.var = { name = "var", label = "Var", item = F["var"], header = L.var_header, layout = L.var,
+    needs_version = true }
+PART.hardware_info = { name = "hardware_info", label = "Hardware info", item = F["hardware_info"],
+    header = L.hardware_info_header, layout = L.hardware_info, needs_version = false }
+PART.request_value = { name = "request_value", label = "Request value", item = F["request_value"],
+    header = L.request_value_header, layout = L.request_value, needs_version = false }
+PART.text = { name = "text", label = "Text", item = F["text"], header = L.text_header, layout = L.text,
+    needs_version = false }
+PART.runtime_exception = { name = "runtime_exception", label = "Runtime exception", item = F["runtime_exception"],
+    header = L.runtime_exception_header, layout = L.runtime_exception, needs_version = false }
 
 -- The forms each type code of the robot message takes: chosen by the software version, else by
 -- the body size (runtime/versions.lua); `single` when one form serves every version. `segments`:
@@ -1839,13 +2553,18 @@ local ROBOT_MESSAGE_SUBTYPES = {
 -- Robot message. The version message goes to every client, the others to primary clients only.
 MESSAGE[20] = {
     kind = "subtypes", label = "Robot message", body_offset = 15, header = L.robot_message,
-    subtype_field = F["robot_message.robot_message_type"], subtype_label = "Robot message type", subtype_names = VS.ROBOT_MESSAGE_TYPE, subtype_tables = NAMES.ROBOT_MESSAGE_TYPE,
+    subtype_field = F["robot_message.robot_message_type"], subtype_label = "Robot message type",
+    subtype_names = VS.ROBOT_MESSAGE_TYPE, subtype_tables = NAMES.ROBOT_MESSAGE_TYPE,
     subtypes = ROBOT_MESSAGE_SUBTYPES,
 }
 
 -- Subtypes of the program state, one entry per layout.
-PART.global_variables_setup = { name = "global_variables_setup", label = "Global variables setup", item = F["global_variables_setup"], header = L.global_variables_setup_header, layout = L.global_variables_setup, needs_version = false }
-PART.global_variables_update = { name = "global_variables_update", label = "Global variables update", item = F["global_variables_update"], header = L.global_variables_update_header, layout = L.global_variables_update, needs_version = true }
+PART.global_variables_setup = { name = "global_variables_setup", label = "Global variables setup",
+    item = F["global_variables_setup"], header = L.global_variables_setup_header, layout = L.global_variables_setup,
+    needs_version = false }
+PART.global_variables_update = { name = "global_variables_update", label = "Global variables update",
+    item = F["global_variables_update"], header = L.global_variables_update_header, layout = L.global_variables_update,
+    needs_version = true }
 
 -- The forms each type code of the program state takes: chosen by the software version, else by
 -- the body size (runtime/versions.lua); `single` when one form serves every version. `segments`:
@@ -1870,8 +2589,8 @@ local PROGRAM_STATE_SUBTYPES = {
 -- Program-state message, sent to primary clients only.
 MESSAGE[25] = {
     kind = "subtypes", label = "Program state", body_offset = 14, header = L.program_state,
-    subtype_field = F["program_state.robot_message_type"], subtype_label = "Program-state message type", subtype_names = VS.PROGRAM_STATE_MESSAGE_TYPE, subtype_tables = nil,
-    subtypes = PROGRAM_STATE_SUBTYPES,
+    subtype_field = F["program_state.robot_message_type"], subtype_label = "Program-state message type",
+    subtype_names = VS.PROGRAM_STATE_MESSAGE_TYPE, subtype_tables = nil, subtypes = PROGRAM_STATE_SUBTYPES,
 }
 
 -- Where the Version message keeps its numbers: the subtype byte, then steps over fixed bytes
@@ -1930,26 +2649,47 @@ local spec, rt = ...
 local ur = spec.proto
 
 local X = {
-    raw = ProtoField.bytes("ur.raw", "Raw", base.NONE, "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),
-    extra = ProtoField.bytes("ur.extra", "Extra bytes", base.NONE, "Bytes after the known layout of a package or message."),
-    skipped = ProtoField.bytes("ur.skipped", "Skipped bytes", base.NONE, "Bytes skipped while looking for the next plausible message header."),
-    version = ProtoField.string("ur.software_version", "Software version", base.ASCII, "The software version this message is read with (its layouts, enum names and value types): the stream's Version message, else the ur.version preference, else what the layout sizes show (\"3.2 to 3.4 (from layout sizes)\"), else the default."),
-    assumed = ProtoField.bool("ur.version_assumed", "Version assumed", base.NONE, nil, nil, "True when no Version message was seen on this stream: the version comes from the ur.version preference, the layout sizes or the default."),
-    unknown_package = ProtoField.none("ur.unknown_package", "Unknown package", "A sub-package type the spec does not lay out, kept raw."),
-    urscript = ProtoField.string("ur.urscript", "URScript", base.UNICODE, "Bytes from the client to the robot: URScript program text."),
+    raw = ProtoField.bytes("ur.raw", "Raw", base.NONE,
+        "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),
+    extra = ProtoField.bytes("ur.extra", "Extra bytes", base.NONE,
+        "Bytes after the known layout of a package or message."),
+    skipped = ProtoField.bytes("ur.skipped", "Skipped bytes", base.NONE,
+        "Bytes skipped while looking for the next plausible message header."),
+    version = ProtoField.string("ur.software_version", "Software version", base.ASCII,
+        "The software version this message is read with (its layouts, enum names and value types): \z
+        the stream's Version message, else the ur.version preference, else what the layout sizes \z
+        show (\"3.2 to 3.4 (from layout sizes)\"), else the default."),
+    assumed = ProtoField.bool("ur.version_assumed", "Version assumed", base.NONE, nil, nil,
+        "True when no Version message was seen on this stream: the version comes from the \z
+        ur.version preference, the layout sizes or the default."),
+    unknown_package = ProtoField.none("ur.unknown_package", "Unknown package",
+        "A sub-package type the spec does not lay out, kept raw."),
+    urscript = ProtoField.string("ur.urscript", "URScript", base.UNICODE,
+        "Bytes from the client to the robot: URScript program text."),
 }
 
 local E = {
-    bad_length = ProtoExpert.new("ur.bad_length", "Message length out of range (resynchronising)", expert.group.MALFORMED, expert.severity.ERROR),
-    bad_type = ProtoExpert.new("ur.bad_type", "Unknown message type (resynchronising)", expert.group.MALFORMED, expert.severity.ERROR),
-    malformed = ProtoExpert.new("ur.malformed", "Package or message too short or malformed", expert.group.MALFORMED, expert.severity.ERROR),
-    extra = ProtoExpert.new("ur.extra_bytes", "Bytes after the known layout", expert.group.PROTOCOL, expert.severity.WARN),
-    unknown = ProtoExpert.new("ur.unknown", "Type not laid out by the spec, kept raw", expert.group.UNDECODED, expert.severity.NOTE),
-    assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)", expert.group.ASSUMPTION, expert.severity.NOTE),
-    version_range = ProtoExpert.new("ur.version_out_of_range", "Version message number out of range: set aside, the stream is read as major.minor", expert.group.PROTOCOL, expert.severity.WARN),
-    by_length = ProtoExpert.new("ur.layout_by_length", "Layout chosen by its length, not by the software version", expert.group.ASSUMPTION, expert.severity.NOTE),
-    items_hidden = ProtoExpert.new("ur.items_hidden", "More tree items than a message shows", expert.group.UNDECODED, expert.severity.NOTE),
-    internal = ProtoExpert.new("ur.internal_error", "urwire dissector error", expert.group.MALFORMED, expert.severity.ERROR),
+    bad_length = ProtoExpert.new("ur.bad_length", "Message length out of range (resynchronising)",
+        expert.group.MALFORMED, expert.severity.ERROR),
+    bad_type = ProtoExpert.new("ur.bad_type", "Unknown message type (resynchronising)",
+        expert.group.MALFORMED, expert.severity.ERROR),
+    malformed = ProtoExpert.new("ur.malformed", "Package or message too short or malformed",
+        expert.group.MALFORMED, expert.severity.ERROR),
+    extra = ProtoExpert.new("ur.extra_bytes", "Bytes after the known layout",
+        expert.group.PROTOCOL, expert.severity.WARN),
+    unknown = ProtoExpert.new("ur.unknown", "Type not laid out by the spec, kept raw",
+        expert.group.UNDECODED, expert.severity.NOTE),
+    assumed = ProtoExpert.new("ur.assumed_version", "Software version assumed (no Version message seen)",
+        expert.group.ASSUMPTION, expert.severity.NOTE),
+    version_range = ProtoExpert.new("ur.version_out_of_range",
+        "Version message number out of range: set aside, the stream is read as major.minor",
+        expert.group.PROTOCOL, expert.severity.WARN),
+    by_length = ProtoExpert.new("ur.layout_by_length", "Layout chosen by its length, not by the software version",
+        expert.group.ASSUMPTION, expert.severity.NOTE),
+    items_hidden = ProtoExpert.new("ur.items_hidden", "More tree items than a message shows",
+        expert.group.UNDECODED, expert.severity.NOTE),
+    internal = ProtoExpert.new("ur.internal_error", "urwire dissector error",
+        expert.group.MALFORMED, expert.severity.ERROR),
 }
 
 -- The spec's fields in the order they are declared, then the dissector's own.
@@ -1959,7 +2699,8 @@ for _, f in ipairs({ X.raw, X.extra, X.skipped, X.version, X.assumed, X.unknown_
     fields[#fields + 1] = f
 end
 ur.fields = fields
-ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.version_range, E.by_length, E.items_hidden, E.internal }
+ur.experts = { E.bad_length, E.bad_type, E.malformed, E.extra, E.unknown, E.assumed, E.version_range, E.by_length,
+               E.items_hidden, E.internal }
 
 rt.X, rt.E = X, E
 end)(spec, rt)
@@ -2199,7 +2940,8 @@ local function announced_version(raw, o, e, r)
     return v
 end
 
-rt.version_number, rt.parse_version, rt.version_text, rt.version_in = version_number, parse_version, version_text, version_in
+rt.version_number, rt.parse_version, rt.version_text, rt.version_in =
+    version_number, parse_version, version_text, version_in
 rt.value_table, rt.enum_names, rt.named_in_any = value_table, enum_names, named_in_any
 rt.choose, rt.pick, rt.announced_version, rt.segment_of = choose, pick, announced_version, segment_of
 rt.BUGFIX_ANY = BUGFIX_ANY
@@ -2231,7 +2973,8 @@ local function method(class, name)
     if f then return f end
     return function(object, ...) return object[name](object, ...) end
 end
-local tree_add, append_text, set_text = method(TreeItem, "add"), method(TreeItem, "append_text"), method(TreeItem, "set_text")
+local tree_add, append_text, set_text =
+    method(TreeItem, "add"), method(TreeItem, "append_text"), method(TreeItem, "set_text")
 local range_of = method(Tvb, "range")   -- range_of(tvb, o, n) is tvb(o, n)
 
 local left, hidden, top, expert_moved = MAX_TREE_ITEMS, 0, nil, false
@@ -3056,11 +3799,14 @@ local function show_version(item, st)
     if st.announced then return end
     add(item, X.assumed, true):set_generated()
     if implied then
-        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: software %s, as the layout sizes show", implied))
+        item:add_proto_expert_info(E.assumed,
+            fmt("no Version message seen on this stream: software %s, as the layout sizes show", implied))
     elseif st.from_pref then
-        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(v)))
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s \z
+            (preference ur.version)", version_text(v)))
     else
-        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (the default; preference ur.version)", version_text(v)))
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s \z
+            (the default; preference ur.version)", version_text(v)))
     end
 end
 
@@ -3080,7 +3826,8 @@ local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
     local name, named = code_name(m.types, m.type_tables, v, code)
     if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
     add(item, m.length, range_of(tvb, p, PACKAGE_LENGTH))
-    add_code(item, m.type, range_of(tvb, p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+    add_code(item, m.type, range_of(tvb, p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables,
+             v, code)
     if by_length then note_length(item, form, size) end
     local body, stop = p + PACKAGE_HEADER, p + size
     if pk and not st.visible and not referenced(item, pk, st.call) then
@@ -3170,7 +3917,8 @@ KINDS.subtypes = {
             if body < e then add(tree, X.raw, range_of(tvb, body, e - body)) end
             local _, named = code_name(m.subtype_names, m.subtype_tables, st.version, code)
             if not named then
-                tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
+                tree:add_proto_expert_info(E.unknown,
+                    fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
             end
             return
         end
@@ -3633,7 +4381,8 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
         end
         local hidden = items_hidden()
         if hidden > 0 then
-            item:add_proto_expert_info(E.items_hidden, fmt("%d more items not shown (a message shows at most %d)", hidden, MAX_TREE_ITEMS))
+            item:add_proto_expert_info(E.items_hidden,
+                fmt("%d more items not shown (a message shows at most %d)", hidden, MAX_TREE_ITEMS))
         end
     elseif e - o > HEADER then
         -- A known type without a layout (e.g. 24): kept raw, not an error.
@@ -3775,10 +4524,17 @@ local spec, rt = ...
 local ur = spec.proto
 local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only
 
-ur.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of the primary/secondary interfaces", 65535)
-ur.prefs.version = Pref.string("Software version", "", "Controller software version (major.minor or major.minor.bugfix, as 5.25.1) assumed until a Version message is seen on a stream: it chooses the layouts, the enum names and the global-variable value types. Empty: the layout sizes tell it where they can, else " .. spec.default_version .. ".")
-ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names", true, "With tshark -T fields, build only the robot-state packages whose fields the command line names (-e, -Y, -R, -z, -o); off: build every field, as for another Lua script reading ur fields with Field.new")
-ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length, "Longer declared lengths are treated as malformed, and the dissector resynchronises")
+ur.prefs.ports = Pref.range("TCP ports", spec.default_ports,
+    "Robot-side TCP ports of the primary/secondary interfaces", 65535)
+ur.prefs.version = Pref.string("Software version", "",
+    "Controller software version (major.minor or major.minor.bugfix, as 5.25.1) assumed until a \z
+    Version message is seen on a stream: it chooses the layouts, the enum names and the \z
+    global-variable value types. Empty: the layout sizes tell it where they can, else " .. spec.default_version .. ".")
+ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names", true,
+    "With tshark -T fields, build only the robot-state packages whose fields the command line names \z
+    (-e, -Y, -R, -z, -o); off: build every field, as for another Lua script reading ur fields with Field.new")
+ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length,
+    "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
 local tcp_port = DissectorTable.get("tcp.port")
 local registered = nil

@@ -18,7 +18,8 @@ def add_parser(sub, version_arg) -> None:
     p = sub.add_parser("plot", help="plot one field of a capture over time",
                        description="Plot a field such as joint_data.q_actual: a line per joint or per value.")
     p.add_argument("file", help="a raw stream, a .pcap or a .pcapng file")
-    p.add_argument("--field", required=True, metavar="KIND.FIELD", help="e.g. joint_data.q_actual or tool_data.tool_current")
+    p.add_argument("--field", required=True, metavar="KIND.FIELD",
+                   help="e.g. joint_data.q_actual or tool_data.tool_current")
     p.add_argument("--out", default="plot.png", metavar="FILE", help="image to write (default: plot.png)")
     p.add_argument("--version-hint", type=version_arg, metavar="X.Y[.Z]",
                    help="software version to assume until a Version message is seen")

@@ -141,10 +141,13 @@ class Controller:
         return _m.JointData(joints)
 
     def configuration(self, running: bool, protective: bool):
-        limits = [filled(_m.JointPositionLimit, joint_min_limit=-2 * math.pi, joint_max_limit=2 * math.pi) for _ in range(JOINTS)]
-        motion = [filled(_m.JointMotionLimit, joint_max_speed=math.pi, joint_max_acceleration=40.0) for _ in range(JOINTS)]
-        return filled(_m.ConfigurationData, joint_position_limits=limits, joint_motion_limits=motion, v_joint_default=1.05,
-                      a_joint_default=1.4, v_tool_default=0.25, a_tool_default=1.2, eq_radius=0.02)
+        limits = [filled(_m.JointPositionLimit, joint_min_limit=-2 * math.pi, joint_max_limit=2 * math.pi)
+                  for _ in range(JOINTS)]
+        motion = [filled(_m.JointMotionLimit, joint_max_speed=math.pi, joint_max_acceleration=40.0)
+                  for _ in range(JOINTS)]
+        return filled(_m.ConfigurationData, joint_position_limits=limits, joint_motion_limits=motion,
+                      v_joint_default=1.05, a_joint_default=1.4, v_tool_default=0.25, a_tool_default=1.2,
+                      eq_radius=0.02)
 
     def program(self, phase: int, run: int, stops: bool) -> Iterator[bytes]:
         ts = self.millis()

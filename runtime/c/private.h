@@ -305,8 +305,8 @@ URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_mes
 URWIRE__PRIVATE size_t urwire__segment(uint64_t key);
 URWIRE__PRIVATE const urwire__form *urwire__mine(const urwire__form_table *t, size_t segment, size_t code,
                                                 bool *nearest);
-URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, size_t code, size_t segment, size_t size,
-                                                  urwire_sw_version *version, bool *by_length);
+URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, size_t code, size_t segment,
+                                                  size_t size, urwire_sw_version *version, bool *by_length);
 URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out);
 /* decode.c */
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);

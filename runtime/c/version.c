@@ -6,7 +6,7 @@
 const urwire_sw_version URWIRE_DEFAULT_VERSION = URWIRE_DEFAULT_VERSION_INIT;
 
 /* Below, equal to or above major.minor.bugfix: -1, 0 or 1 (part by part, as the spec's
- * version tuples compare; an upper bound written "5.8" is 5.8.999). */
+ * version tuples compare; an upper bound written "5.8" takes in every 5.8 bugfix release). */
 URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix)
 {
     if (v.major != major)

@@ -132,7 +132,8 @@ local function message(tvb, raw, pinfo, tree, o, e, mtype)
         end
         local hidden = items_hidden()
         if hidden > 0 then
-            item:add_proto_expert_info(E.items_hidden, fmt("%d more items not shown (a message shows at most %d)", hidden, MAX_TREE_ITEMS))
+            item:add_proto_expert_info(E.items_hidden,
+                fmt("%d more items not shown (a message shows at most %d)", hidden, MAX_TREE_ITEMS))
         end
     elseif e - o > HEADER then
         -- A known type without a layout (e.g. 24): kept raw, not an error.

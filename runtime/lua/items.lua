@@ -16,7 +16,8 @@ local function method(class, name)
     if f then return f end
     return function(object, ...) return object[name](object, ...) end
 end
-local tree_add, append_text, set_text = method(TreeItem, "add"), method(TreeItem, "append_text"), method(TreeItem, "set_text")
+local tree_add, append_text, set_text =
+    method(TreeItem, "add"), method(TreeItem, "append_text"), method(TreeItem, "set_text")
 local range_of = method(Tvb, "range")   -- range_of(tvb, o, n) is tvb(o, n)
 
 local left, hidden, top, expert_moved = MAX_TREE_ITEMS, 0, nil, false

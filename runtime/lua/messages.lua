@@ -79,11 +79,14 @@ local function show_version(item, st)
     if st.announced then return end
     add(item, X.assumed, true):set_generated()
     if implied then
-        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: software %s, as the layout sizes show", implied))
+        item:add_proto_expert_info(E.assumed,
+            fmt("no Version message seen on this stream: software %s, as the layout sizes show", implied))
     elseif st.from_pref then
-        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (preference ur.version)", version_text(v)))
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s \z
+            (preference ur.version)", version_text(v)))
     else
-        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s (the default; preference ur.version)", version_text(v)))
+        item:add_proto_expert_info(E.assumed, fmt("no Version message seen on this stream: assuming software %s \z
+            (the default; preference ur.version)", version_text(v)))
     end
 end
 
@@ -103,7 +106,8 @@ local function package(m, tvb, tree, p, size, st, code, form, use, by_length)
     local name, named = code_name(m.types, m.type_tables, v, code)
     if not pk then item:set_text(fmt("Unknown package %d (%s)", code, name or "not in the spec")) end
     add(item, m.length, range_of(tvb, p, PACKAGE_LENGTH))
-    add_code(item, m.type, range_of(tvb, p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables, v, code)
+    add_code(item, m.type, range_of(tvb, p + PACKAGE_LENGTH, PACKAGE_HEADER - PACKAGE_LENGTH), "Type", m.type_tables,
+             v, code)
     if by_length then note_length(item, form, size) end
     local body, stop = p + PACKAGE_HEADER, p + size
     if pk and not st.visible and not referenced(item, pk, st.call) then
@@ -193,7 +197,8 @@ KINDS.subtypes = {
             if body < e then add(tree, X.raw, range_of(tvb, body, e - body)) end
             local _, named = code_name(m.subtype_names, m.subtype_tables, st.version, code)
             if not named then
-                tree:add_proto_expert_info(E.unknown, fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
+                tree:add_proto_expert_info(E.unknown,
+                    fmt("%s subtype %d is not in the spec, kept raw", string.lower(m.label), code))
             end
             return
         end

@@ -6,10 +6,17 @@ local spec, rt = ...
 local ur = spec.proto
 local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only
 
-ur.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of the primary/secondary interfaces", 65535)
-ur.prefs.version = Pref.string("Software version", "", "Controller software version (major.minor or major.minor.bugfix, as 5.25.1) assumed until a Version message is seen on a stream: it chooses the layouts, the enum names and the global-variable value types. Empty: the layout sizes tell it where they can, else " .. spec.default_version .. ".")
-ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names", true, "With tshark -T fields, build only the robot-state packages whose fields the command line names (-e, -Y, -R, -z, -o); off: build every field, as for another Lua script reading ur fields with Field.new")
-ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length, "Longer declared lengths are treated as malformed, and the dissector resynchronises")
+ur.prefs.ports = Pref.range("TCP ports", spec.default_ports,
+    "Robot-side TCP ports of the primary/secondary interfaces", 65535)
+ur.prefs.version = Pref.string("Software version", "",
+    "Controller software version (major.minor or major.minor.bugfix, as 5.25.1) assumed until a \z
+    Version message is seen on a stream: it chooses the layouts, the enum names and the \z
+    global-variable value types. Empty: the layout sizes tell it where they can, else " .. spec.default_version .. ".")
+ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names", true,
+    "With tshark -T fields, build only the robot-state packages whose fields the command line names \z
+    (-e, -Y, -R, -z, -o); off: build every field, as for another Lua script reading ur fields with Field.new")
+ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length,
+    "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
 local tcp_port = DissectorTable.get("tcp.port")
 local registered = nil

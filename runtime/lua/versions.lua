@@ -175,7 +175,8 @@ local function announced_version(raw, o, e, r)
     return v
 end
 
-rt.version_number, rt.parse_version, rt.version_text, rt.version_in = version_number, parse_version, version_text, version_in
+rt.version_number, rt.parse_version, rt.version_text, rt.version_in =
+    version_number, parse_version, version_text, version_in
 rt.value_table, rt.enum_names, rt.named_in_any = value_table, enum_names, named_in_any
 rt.choose, rt.pick, rt.announced_version, rt.segment_of = choose, pick, announced_version, segment_of
 rt.BUGFIX_ANY = BUGFIX_ANY

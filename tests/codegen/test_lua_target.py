@@ -7,6 +7,7 @@ from pathlib import Path
 
 import copy
 import dataclasses
+import re
 
 import jinja2
 import pytest
@@ -91,18 +92,24 @@ def render_text(protocol_plan) -> str:
     return lua.render(protocol_plan, ["test"])[lua.OUT]
 
 
+def entries(text: str) -> str:
+    """The rendered Lua with its layout folded away: a long string's \\z continuations joined and
+    every run of line breaks and indentation one space, so a check reads entries, not lines."""
+    return re.sub(r"\s+", " ", re.sub(r"\\z\s*", "", text))
+
+
 def test_versions_reach_the_runtime_as_numbers():
     """(major * 1000 + minor) * 1000 + bugfix: a bound written 5.8 takes in every 5.8.x."""
     def edit(data):
         data["messages"]["robot_state"]["packages"]["additional_info"]["fields"].append(
             {"name": "gated", "label": "Gated", "type": "uint8", "versions": {"from": "5.25.1", "until": "6.2"}})
 
-    text = render_text(variant(edit))
+    text = entries(render_text(variant(edit)))
     assert '{ k = "cond", present_if = nil, low = 5025001, high = 6002999, fields = {' in text
     assert "{ low = 3003000, high = 5008999, min_size = 1, kinds = {" in text   # value types of 3.3 to 5.8
     # The forms tables print versions as versions: the runtime parses them once, at load.
-    assert ('{ of = PART.additional_info, sizes = { [5] = true }, min = 5, rep = "5.25.1",\n'
-            '          versions = "5.25.1 to 6.2" }') in text
+    assert ('{ of = PART.additional_info, sizes = { [5] = true }, min = 5, rep = "5.25.1", '
+            'versions = "5.25.1 to 6.2" }') in text
     starts = text[text.index("segment_starts = {"):]
     starts = starts[:starts.index("}")]
     assert '"5.25.1"' in starts and '"6.3"' in starts     # a form from 5.25.1, the next from 6.3 on
@@ -114,7 +121,7 @@ def test_a_repeated_name_is_one_protofield_of_its_widest_type():
         fields[0] = dict(fields[0], versions={"from": "3.0"}, type="int32")
         fields.insert(0, dict(fields[0], type="int8", versions={"until": "1.8"}))
 
-    text = render_text(variant(edit))
+    text = entries(render_text(variant(edit)))
     assert text.count('ProtoField.int32("ur.tool_data.analog_input_range0"') == 1
     assert 'ProtoField.int8("ur.tool_data.analog_input_range0"' not in text
     narrow = '{ k = "scalar", f = F["tool_data.analog_input_range0"], n = 1, path = "analog_input_range0", signed = true, value = true }'
@@ -189,7 +196,7 @@ def test_a_filter_name_with_two_types_is_a_problem():
 
 
 def test_labels_units_and_descriptions_reach_the_protofields(protocol):
-    text = render_text(plan(protocol))
+    text = entries(render_text(plan(protocol)))
     assert ('ProtoField.double("ur.joint_data.q_actual", "Actual joint position", '
             '"Actual joint position (rad). In rad.")') in text   # the fixture's doc, then the unit
     assert 'ProtoField.uint8("ur.tool_data.tool_output_voltage", "Tool output voltage", base.UNIT_STRING, { " V" },' in text

@@ -170,7 +170,8 @@ class RobotModeData(_kinds.Package):
     """Target speed fraction. speedFraction in the CB2 documents, where it follows robot_mode."""
     speed_scaling: Optional[float] = field(metadata={"label": "Speed scaling", "unit": None})
     """Speed scaling. Sent by software 3.0 and later."""
-    target_speed_fraction_limit: Optional[float] = field(metadata={"label": "Target speed fraction limit", "unit": None})
+    target_speed_fraction_limit: Optional[float] = field(
+        metadata={"label": "Target speed fraction limit", "unit": None})
     """Target speed fraction limit. Sent by software 3.2 and later."""
     reserved: Optional[int] = field(metadata={"label": "Reserved", "unit": None})
     """Reserved. Sent by software 3.5 and later."""
@@ -197,10 +198,15 @@ class RobotModeData(_kinds.Package):
         robot_mode = _e.ROBOT_MODE_BY_VALUE[version].get(v[8], v[8])
         target_speed_fraction = v[9]
         pos += 24
-        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped, is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode, target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
+        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped,
+                   is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode,
+                   target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
 
     def _encode_0(self, out: bytearray, version: tuple) -> None:
-        out += _ROBOT_MODE_DATA_0_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled, self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped, self.is_program_running, self.is_program_paused, self.robot_mode, self.target_speed_fraction)
+        out += _ROBOT_MODE_DATA_0_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled,
+                                         self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped,
+                                         self.is_program_running, self.is_program_paused, self.robot_mode,
+                                         self.target_speed_fraction)
         out += self.extra
 
     @classmethod
@@ -223,10 +229,15 @@ class RobotModeData(_kinds.Package):
         target_speed_fraction = v[10]
         speed_scaling = v[11]
         pos += 33
-        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped, is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode, target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
+        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped,
+                   is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode,
+                   target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
 
     def _encode_1(self, out: bytearray, version: tuple) -> None:
-        out += _ROBOT_MODE_DATA_1_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled, self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped, self.is_program_running, self.is_program_paused, self.robot_mode, self.control_mode, self.target_speed_fraction, self.speed_scaling)
+        out += _ROBOT_MODE_DATA_1_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled,
+                                         self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped,
+                                         self.is_program_running, self.is_program_paused, self.robot_mode,
+                                         self.control_mode, self.target_speed_fraction, self.speed_scaling)
         out += self.extra
 
     @classmethod
@@ -250,10 +261,16 @@ class RobotModeData(_kinds.Package):
         speed_scaling = v[11]
         target_speed_fraction_limit = v[12]
         pos += 41
-        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped, is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode, target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
+        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped,
+                   is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode,
+                   target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
 
     def _encode_2(self, out: bytearray, version: tuple) -> None:
-        out += _ROBOT_MODE_DATA_2_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled, self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped, self.is_program_running, self.is_program_paused, self.robot_mode, self.control_mode, self.target_speed_fraction, self.speed_scaling, self.target_speed_fraction_limit)
+        out += _ROBOT_MODE_DATA_2_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled,
+                                         self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped,
+                                         self.is_program_running, self.is_program_paused, self.robot_mode,
+                                         self.control_mode, self.target_speed_fraction, self.speed_scaling,
+                                         self.target_speed_fraction_limit)
         out += self.extra
 
     @classmethod
@@ -277,10 +294,16 @@ class RobotModeData(_kinds.Package):
         target_speed_fraction_limit = v[12]
         reserved = v[13]
         pos += 42
-        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped, is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode, target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
+        return cls(timestamp, is_real_robot_connected, is_real_robot_enabled, is_robot_power_on, is_emergency_stopped,
+                   is_protective_stopped, is_program_running, is_program_paused, robot_mode, control_mode,
+                   target_speed_fraction, speed_scaling, target_speed_fraction_limit, reserved, b"", version), pos
 
     def _encode_3(self, out: bytearray, version: tuple) -> None:
-        out += _ROBOT_MODE_DATA_3_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled, self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped, self.is_program_running, self.is_program_paused, self.robot_mode, self.control_mode, self.target_speed_fraction, self.speed_scaling, self.target_speed_fraction_limit, self.reserved)
+        out += _ROBOT_MODE_DATA_3_0.pack(self.timestamp, self.is_real_robot_connected, self.is_real_robot_enabled,
+                                         self.is_robot_power_on, self.is_emergency_stopped, self.is_protective_stopped,
+                                         self.is_program_running, self.is_program_paused, self.robot_mode,
+                                         self.control_mode, self.target_speed_fraction, self.speed_scaling,
+                                         self.target_speed_fraction_limit, self.reserved)
         out += self.extra
 
 
@@ -330,7 +353,8 @@ class Joint(_kinds.Item):
     """Motor temperature (°C). Temperature of the joint."""
     t_micro: float = field(metadata={"label": "Microcontroller temperature", "unit": None})
     """Microcontroller temperature. Deprecated - ignore."""
-    joint_mode: Union[JointMode, JointMode5_0To5_0, JointMode3_0To3_15, JointModeUpTo1_8, int] = field(metadata={"label": "Joint mode", "unit": None})
+    joint_mode: Union[JointMode, JointMode5_0To5_0, JointMode3_0To3_15, JointModeUpTo1_8, int] = field(
+        metadata={"label": "Joint mode", "unit": None})
     """Joint mode."""
 
     @classmethod
@@ -468,7 +492,9 @@ _TOOL_DATA_0_RUN = (
 
 @dataclass(slots=True)
 class ToolData(_kinds.Package):
-    """Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes."""
+    """Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and
+    inputs 2 and 3 (tool-side), the 5.9 document 0 and 1: the same bytes.
+    """
 
     TYPE: ClassVar[str] = "tool_data"
     CODE: ClassVar[int] = 2
@@ -524,10 +550,14 @@ class ToolData(_kinds.Package):
         tool_temperature = (v[7] if v[7] == v[7] else _rt.f32_nan(buf, pos + 27))
         tool_mode = _e.TOOL_MODE_BY_VALUE.get(v[8], v[8])
         pos += 32
-        return cls(analog_input_range0, analog_input_range1, analog_input0, analog_input1, tool_voltage_48v, tool_output_voltage, tool_current, tool_temperature, tool_mode, b"", version), pos
+        return cls(analog_input_range0, analog_input_range1, analog_input0, analog_input1, tool_voltage_48v,
+                   tool_output_voltage, tool_current, tool_temperature, tool_mode, b"", version), pos
 
     def _encode(self, out: bytearray, version: tuple) -> None:
-        out += _TOOL_DATA_0_OUT.pack(self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, _rt.f32_bits(self.tool_voltage_48v), self.tool_output_voltage, _rt.f32_bits(self.tool_current), _rt.f32_bits(self.tool_temperature), self.tool_mode)
+        out += _TOOL_DATA_0_OUT.pack(self.analog_input_range0, self.analog_input_range1, self.analog_input0,
+                                     self.analog_input1, _rt.f32_bits(self.tool_voltage_48v), self.tool_output_voltage,
+                                     _rt.f32_bits(self.tool_current), _rt.f32_bits(self.tool_temperature),
+                                     self.tool_mode)
         out += self.extra
 
 
@@ -708,7 +738,9 @@ _MASTERBOARD_DATA_4_2_RUN = (
 
 @dataclass(slots=True)
 class MasterboardData(_kinds.Package):
-    """Masterboard data; 61 bytes on early CB2, 64 on 1.6-1.8 (76 with Euromap67), 72 on 3.0-3.1, 74 on 3.2-3.9 and 5.0-5.3, 75 on 3.10-3.15 and from 5.4; from 3.0, 16 more with Euromap67."""
+    """Masterboard data; 61 bytes on early CB2, 64 on 1.6-1.8 (76 with Euromap67), 72 on 3.0-3.1, 74
+    on 3.2-3.9 and 5.0-5.3, 75 on 3.10-3.15 and from 5.4; from 3.0, 16 more with Euromap67.
+    """
 
     TYPE: ClassVar[str] = "masterboard_data"
     CODE: ClassVar[int] = 3
@@ -747,9 +779,13 @@ class MasterboardData(_kinds.Package):
     SUMMARY: ClassVar[tuple] = ("safety_mode", )
 
     digital_input_bits: Optional[int] = field(metadata={"label": "Digital inputs", "unit": None})
-    """Digital inputs. 16 bits on CB2. Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by software up to 1.8 (int16), and 3.0 and later (int32)."""
+    """Digital inputs. 16 bits on CB2. Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by
+    software up to 1.8 (int16), and 3.0 and later (int32).
+    """
     digital_output_bits: Optional[int] = field(metadata={"label": "Digital outputs", "unit": None})
-    """Digital outputs. 16 bits on CB2. Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by software up to 1.8 (int16), and 3.0 and later (int32)."""
+    """Digital outputs. 16 bits on CB2. Bits 0-7 standard, 8-15 configurable, 16-17 tool. Sent by
+    software up to 1.8 (int16), and 3.0 and later (int32).
+    """
     analog_input_range0: int = field(metadata={"label": "Analog input 0 range", "unit": None})
     """Analog input 0 range."""
     analog_input_range1: int = field(metadata={"label": "Analog input 1 range", "unit": None})
@@ -774,36 +810,55 @@ class MasterboardData(_kinds.Package):
     """Robot current (A)."""
     master_io_current: float = field(metadata={"label": "I/O current", "unit": None})
     """I/O current."""
-    master_safety_state: Optional[Union[MasterSafetyState, int]] = field(metadata={"label": "Masterboard safety state", "unit": None})
-    """Masterboard safety state. masterSafetyState in the CB2 documents. Sent by software 1.6 to 1.8."""
-    master_on_off_state: Optional[Union[MasterOnOffState, int]] = field(metadata={"label": "Robot power state", "unit": None})
-    """Robot power state. State of the robot's 48 V supply; masterOnOffState in the CB2 documents. Sent by software 1.6 to 1.8."""
+    master_safety_state: Optional[Union[MasterSafetyState, int]] = field(
+        metadata={"label": "Masterboard safety state", "unit": None})
+    """Masterboard safety state. masterSafetyState in the CB2 documents. Sent by software 1.6 to
+    1.8.
+    """
+    master_on_off_state: Optional[Union[MasterOnOffState, int]] = field(
+        metadata={"label": "Robot power state", "unit": None})
+    """Robot power state. State of the robot's 48 V supply; masterOnOffState in the CB2 documents.
+    Sent by software 1.6 to 1.8.
+    """
     safety_mode: Optional[Union[SafetyMode, int]] = field(metadata={"label": "Safety mode", "unit": None})
     """Safety mode. Sent by software 3.0 and later."""
     in_reduced_mode: Optional[int] = field(metadata={"label": "In reduced mode", "unit": None})
     """In reduced mode. Sent by software 3.0 and later."""
-    euromap67_interface_installed: Optional[bool] = field(metadata={"label": "Euromap67 interface installed", "unit": None})
-    """Euromap67 interface installed. Nonzero when a Euromap67 interface is installed; euomap67InterfaceInstalled in the document. Sent by software 1.6 and later."""
+    euromap67_interface_installed: Optional[bool] = field(
+        metadata={"label": "Euromap67 interface installed", "unit": None})
+    """Euromap67 interface installed. Nonzero when a Euromap67 interface is installed;
+    euomap67InterfaceInstalled in the document. Sent by software 1.6 and later.
+    """
     euromap_input_bits: Optional[int] = field(metadata={"label": "Euromap67 inputs", "unit": None})
     """Euromap67 inputs. Sent by software 1.6 and later."""
     euromap_output_bits: Optional[int] = field(metadata={"label": "Euromap67 outputs", "unit": None})
     """Euromap67 outputs. Sent by software 1.6 and later."""
     euromap_voltage_cb2: Optional[int] = field(metadata={"label": "Euromap67 voltage (CB2)", "unit": None})
-    """Euromap67 voltage (CB2). Euromap67 voltage as CB2 sends it (euromapVoltage, a short, unit not documented). Named apart from euromap_voltage_24v, a float32 in volts from 3.0, because a Wireshark filter name has one type. Sent by software 1.6 to 1.8."""
+    """Euromap67 voltage (CB2). Euromap67 voltage as CB2 sends it (euromapVoltage, a short, unit not
+    documented). Named apart from euromap_voltage_24v, a float32 in volts from 3.0, because a
+    Wireshark filter name has one type. Sent by software 1.6 to 1.8.
+    """
     euromap_current_cb2: Optional[int] = field(metadata={"label": "Euromap67 current (CB2)", "unit": None})
-    """Euromap67 current (CB2). Euromap67 current as CB2 sends it (euromapCurrent, a short, unit not documented). Named apart from euromap_current, a float32 from 3.0, because a Wireshark filter name has one type. Sent by software 1.6 to 1.8."""
+    """Euromap67 current (CB2). Euromap67 current as CB2 sends it (euromapCurrent, a short, unit not
+    documented). Named apart from euromap_current, a float32 from 3.0, because a Wireshark filter
+    name has one type. Sent by software 1.6 to 1.8.
+    """
     euromap_voltage_24v: Optional[float] = field(metadata={"label": "Euromap67 24 V voltage", "unit": "V"})
     """Euromap67 24 V voltage (V). Sent by software 3.0 and later."""
     euromap_current: Optional[float] = field(metadata={"label": "Euromap67 24 V current", "unit": None})
     """Euromap67 24 V current. Sent by software 3.0 and later."""
     reserved_0: Optional[int] = field(metadata={"label": "Reserved 0", "unit": None})
     """Reserved 0. Used by Universal Robots software only. Sent by software 3.0 and later."""
-    operational_mode_selector_input: Optional[int] = field(metadata={"label": "Operational mode selector input", "unit": None})
+    operational_mode_selector_input: Optional[int] = field(
+        metadata={"label": "Operational mode selector input", "unit": None})
     """Operational mode selector input. Sent by software 3.2 and later."""
-    three_position_enabling_device_input: Optional[int] = field(metadata={"label": "Three-position enabling device input", "unit": None})
+    three_position_enabling_device_input: Optional[int] = field(
+        metadata={"label": "Three-position enabling device input", "unit": None})
     """Three-position enabling device input. Sent by software 3.2 and later."""
     reserved_1: Optional[int] = field(metadata={"label": "Reserved 1", "unit": None})
-    """Reserved 1. Used by Universal Robots software only. Sent by software 3.10 to 3.15, and 5.4 and later."""
+    """Reserved 1. Used by Universal Robots software only. Sent by software 3.10 to 3.15, and 5.4
+    and later.
+    """
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
     decoded_version: Optional[tuple] = field(default=None, compare=False, repr=False)
@@ -812,7 +867,10 @@ class MasterboardData(_kinds.Package):
     @classmethod
     def _decode_0(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
         """Read the form of software up to 1.5."""
-        master_safety_state = master_on_off_state = safety_mode = in_reduced_mode = euromap67_interface_installed = euromap_input_bits = euromap_output_bits = euromap_voltage_cb2 = euromap_current_cb2 = euromap_voltage_24v = euromap_current = reserved_0 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
+        master_safety_state = master_on_off_state = safety_mode = in_reduced_mode = \
+            euromap67_interface_installed = euromap_input_bits = euromap_output_bits = euromap_voltage_cb2 = \
+            euromap_current_cb2 = euromap_voltage_24v = euromap_current = reserved_0 = \
+            operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
         if pos + 56 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_0_0_RUN, pos, end)
         v = _MASTERBOARD_DATA_0_0.unpack_from(buf, pos)
@@ -831,16 +889,29 @@ class MasterboardData(_kinds.Package):
         robot_current = (v[12] if v[12] == v[12] else _rt.f32_nan(buf, pos + 48))
         master_io_current = (v[13] if v[13] == v[13] else _rt.f32_nan(buf, pos + 52))
         pos += 56
-        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state, master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"", version), pos
+        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0,
+                   analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1,
+                   master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state,
+                   master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits,
+                   euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current,
+                   reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"",
+                   version), pos
 
     def _encode_0(self, out: bytearray, version: tuple) -> None:
-        out += _MASTERBOARD_DATA_0_0_OUT.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current))
+        out += _MASTERBOARD_DATA_0_0_OUT.pack(self.digital_input_bits, self.digital_output_bits,
+                                              self.analog_input_range0, self.analog_input_range1, self.analog_input0,
+                                              self.analog_input1, self.analog_output_domain0,
+                                              self.analog_output_domain1, self.analog_output0, self.analog_output1,
+                                              _rt.f32_bits(self.master_board_temperature),
+                                              _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current),
+                                              _rt.f32_bits(self.master_io_current))
         out += self.extra
 
     @classmethod
     def _decode_1(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
         """Read the form of software 1.6 to 1.8."""
-        safety_mode = in_reduced_mode = euromap_voltage_24v = euromap_current = reserved_0 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
+        safety_mode = in_reduced_mode = euromap_voltage_24v = euromap_current = reserved_0 = \
+            operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
         if pos + 59 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_1_0_RUN, pos, end)
         v = _MASTERBOARD_DATA_1_0.unpack_from(buf, pos)
@@ -873,18 +944,33 @@ class MasterboardData(_kinds.Package):
             pos += 12
         else:
             euromap_input_bits = euromap_output_bits = euromap_voltage_cb2 = euromap_current_cb2 = None
-        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state, master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"", version), pos
+        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0,
+                   analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1,
+                   master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state,
+                   master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits,
+                   euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current,
+                   reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"",
+                   version), pos
 
     def _encode_1(self, out: bytearray, version: tuple) -> None:
-        out += _MASTERBOARD_DATA_1_0_OUT.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current), self.master_safety_state, self.master_on_off_state, self.euromap67_interface_installed)
+        out += _MASTERBOARD_DATA_1_0_OUT.pack(self.digital_input_bits, self.digital_output_bits,
+                                              self.analog_input_range0, self.analog_input_range1, self.analog_input0,
+                                              self.analog_input1, self.analog_output_domain0,
+                                              self.analog_output_domain1, self.analog_output0, self.analog_output1,
+                                              _rt.f32_bits(self.master_board_temperature),
+                                              _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current),
+                                              _rt.f32_bits(self.master_io_current), self.master_safety_state,
+                                              self.master_on_off_state, self.euromap67_interface_installed)
         if self.euromap67_interface_installed:
-            out += _MASTERBOARD_DATA_1_1.pack(self.euromap_input_bits, self.euromap_output_bits, self.euromap_voltage_cb2, self.euromap_current_cb2)
+            out += _MASTERBOARD_DATA_1_1.pack(self.euromap_input_bits, self.euromap_output_bits,
+                                              self.euromap_voltage_cb2, self.euromap_current_cb2)
         out += self.extra
 
     @classmethod
     def _decode_2(cls, buf, pos: int, end: int, version: tuple) -> tuple["MasterboardData", int]:
         """Read the form of software 3.0 to 3.1."""
-        master_safety_state = master_on_off_state = euromap_voltage_cb2 = euromap_current_cb2 = operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
+        master_safety_state = master_on_off_state = euromap_voltage_cb2 = euromap_current_cb2 = \
+            operational_mode_selector_input = three_position_enabling_device_input = reserved_1 = None
         if pos + 63 > end:
             raise _rt.short_in_run(_MASTERBOARD_DATA_2_0_RUN, pos, end)
         v = _MASTERBOARD_DATA_2_0.unpack_from(buf, pos)
@@ -921,12 +1007,27 @@ class MasterboardData(_kinds.Package):
             raise _rt.short_in_run(_MASTERBOARD_DATA_2_2_RUN, pos, end)
         (reserved_0,) = _MASTERBOARD_DATA_2_2.unpack_from(buf, pos)
         pos += 4
-        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state, master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"", version), pos
+        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0,
+                   analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1,
+                   master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state,
+                   master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits,
+                   euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current,
+                   reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"",
+                   version), pos
 
     def _encode_2(self, out: bytearray, version: tuple) -> None:
-        out += _MASTERBOARD_DATA_2_0_OUT.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current), self.safety_mode, self.in_reduced_mode, self.euromap67_interface_installed)
+        out += _MASTERBOARD_DATA_2_0_OUT.pack(self.digital_input_bits, self.digital_output_bits,
+                                              self.analog_input_range0, self.analog_input_range1, self.analog_input0,
+                                              self.analog_input1, self.analog_output_domain0,
+                                              self.analog_output_domain1, self.analog_output0, self.analog_output1,
+                                              _rt.f32_bits(self.master_board_temperature),
+                                              _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current),
+                                              _rt.f32_bits(self.master_io_current), self.safety_mode,
+                                              self.in_reduced_mode, self.euromap67_interface_installed)
         if self.euromap67_interface_installed:
-            out += _MASTERBOARD_DATA_2_1_OUT.pack(self.euromap_input_bits, self.euromap_output_bits, _rt.f32_bits(self.euromap_voltage_24v), _rt.f32_bits(self.euromap_current))
+            out += _MASTERBOARD_DATA_2_1_OUT.pack(self.euromap_input_bits, self.euromap_output_bits,
+                                                  _rt.f32_bits(self.euromap_voltage_24v),
+                                                  _rt.f32_bits(self.euromap_current))
         out += _MASTERBOARD_DATA_2_2.pack(self.reserved_0)
         out += self.extra
 
@@ -973,13 +1074,29 @@ class MasterboardData(_kinds.Package):
         operational_mode_selector_input = v[1]
         three_position_enabling_device_input = v[2]
         pos += 6
-        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state, master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"", version), pos
+        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0,
+                   analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1,
+                   master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state,
+                   master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits,
+                   euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current,
+                   reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"",
+                   version), pos
 
     def _encode_3(self, out: bytearray, version: tuple) -> None:
-        out += _MASTERBOARD_DATA_3_0_OUT.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current), self.safety_mode, self.in_reduced_mode, self.euromap67_interface_installed)
+        out += _MASTERBOARD_DATA_3_0_OUT.pack(self.digital_input_bits, self.digital_output_bits,
+                                              self.analog_input_range0, self.analog_input_range1, self.analog_input0,
+                                              self.analog_input1, self.analog_output_domain0,
+                                              self.analog_output_domain1, self.analog_output0, self.analog_output1,
+                                              _rt.f32_bits(self.master_board_temperature),
+                                              _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current),
+                                              _rt.f32_bits(self.master_io_current), self.safety_mode,
+                                              self.in_reduced_mode, self.euromap67_interface_installed)
         if self.euromap67_interface_installed:
-            out += _MASTERBOARD_DATA_3_1_OUT.pack(self.euromap_input_bits, self.euromap_output_bits, _rt.f32_bits(self.euromap_voltage_24v), _rt.f32_bits(self.euromap_current))
-        out += _MASTERBOARD_DATA_3_2.pack(self.reserved_0, self.operational_mode_selector_input, self.three_position_enabling_device_input)
+            out += _MASTERBOARD_DATA_3_1_OUT.pack(self.euromap_input_bits, self.euromap_output_bits,
+                                                  _rt.f32_bits(self.euromap_voltage_24v),
+                                                  _rt.f32_bits(self.euromap_current))
+        out += _MASTERBOARD_DATA_3_2.pack(self.reserved_0, self.operational_mode_selector_input,
+                                          self.three_position_enabling_device_input)
         out += self.extra
 
     @classmethod
@@ -1026,13 +1143,29 @@ class MasterboardData(_kinds.Package):
         three_position_enabling_device_input = v[2]
         reserved_1 = v[3]
         pos += 7
-        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0, analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1, master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state, master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits, euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current, reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"", version), pos
+        return cls(digital_input_bits, digital_output_bits, analog_input_range0, analog_input_range1, analog_input0,
+                   analog_input1, analog_output_domain0, analog_output_domain1, analog_output0, analog_output1,
+                   master_board_temperature, robot_voltage_48v, robot_current, master_io_current, master_safety_state,
+                   master_on_off_state, safety_mode, in_reduced_mode, euromap67_interface_installed, euromap_input_bits,
+                   euromap_output_bits, euromap_voltage_cb2, euromap_current_cb2, euromap_voltage_24v, euromap_current,
+                   reserved_0, operational_mode_selector_input, three_position_enabling_device_input, reserved_1, b"",
+                   version), pos
 
     def _encode_4(self, out: bytearray, version: tuple) -> None:
-        out += _MASTERBOARD_DATA_4_0_OUT.pack(self.digital_input_bits, self.digital_output_bits, self.analog_input_range0, self.analog_input_range1, self.analog_input0, self.analog_input1, self.analog_output_domain0, self.analog_output_domain1, self.analog_output0, self.analog_output1, _rt.f32_bits(self.master_board_temperature), _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current), _rt.f32_bits(self.master_io_current), self.safety_mode, self.in_reduced_mode, self.euromap67_interface_installed)
+        out += _MASTERBOARD_DATA_4_0_OUT.pack(self.digital_input_bits, self.digital_output_bits,
+                                              self.analog_input_range0, self.analog_input_range1, self.analog_input0,
+                                              self.analog_input1, self.analog_output_domain0,
+                                              self.analog_output_domain1, self.analog_output0, self.analog_output1,
+                                              _rt.f32_bits(self.master_board_temperature),
+                                              _rt.f32_bits(self.robot_voltage_48v), _rt.f32_bits(self.robot_current),
+                                              _rt.f32_bits(self.master_io_current), self.safety_mode,
+                                              self.in_reduced_mode, self.euromap67_interface_installed)
         if self.euromap67_interface_installed:
-            out += _MASTERBOARD_DATA_4_1_OUT.pack(self.euromap_input_bits, self.euromap_output_bits, _rt.f32_bits(self.euromap_voltage_24v), _rt.f32_bits(self.euromap_current))
-        out += _MASTERBOARD_DATA_4_2.pack(self.reserved_0, self.operational_mode_selector_input, self.three_position_enabling_device_input, self.reserved_1)
+            out += _MASTERBOARD_DATA_4_1_OUT.pack(self.euromap_input_bits, self.euromap_output_bits,
+                                                  _rt.f32_bits(self.euromap_voltage_24v),
+                                                  _rt.f32_bits(self.euromap_current))
+        out += _MASTERBOARD_DATA_4_2.pack(self.reserved_0, self.operational_mode_selector_input,
+                                          self.three_position_enabling_device_input, self.reserved_1)
         out += self.extra
 
 
@@ -1131,7 +1264,8 @@ class CartesianInfo(_kinds.Package):
         ry = v[4]
         rz = v[5]
         pos += 48
-        return cls(x, y, z, rx, ry, rz, tcp_offset_x, tcp_offset_y, tcp_offset_z, tcp_offset_rx, tcp_offset_ry, tcp_offset_rz, b"", version), pos
+        return cls(x, y, z, rx, ry, rz, tcp_offset_x, tcp_offset_y, tcp_offset_z, tcp_offset_rx, tcp_offset_ry,
+                   tcp_offset_rz, b"", version), pos
 
     def _encode_0(self, out: bytearray, version: tuple) -> None:
         out += _CARTESIAN_INFO_0_0.pack(self.x, self.y, self.z, self.rx, self.ry, self.rz)
@@ -1156,10 +1290,13 @@ class CartesianInfo(_kinds.Package):
         tcp_offset_ry = v[10]
         tcp_offset_rz = v[11]
         pos += 96
-        return cls(x, y, z, rx, ry, rz, tcp_offset_x, tcp_offset_y, tcp_offset_z, tcp_offset_rx, tcp_offset_ry, tcp_offset_rz, b"", version), pos
+        return cls(x, y, z, rx, ry, rz, tcp_offset_x, tcp_offset_y, tcp_offset_z, tcp_offset_rx, tcp_offset_ry,
+                   tcp_offset_rz, b"", version), pos
 
     def _encode_1(self, out: bytearray, version: tuple) -> None:
-        out += _CARTESIAN_INFO_1_0.pack(self.x, self.y, self.z, self.rx, self.ry, self.rz, self.tcp_offset_x, self.tcp_offset_y, self.tcp_offset_z, self.tcp_offset_rx, self.tcp_offset_ry, self.tcp_offset_rz)
+        out += _CARTESIAN_INFO_1_0.pack(self.x, self.y, self.z, self.rx, self.ry, self.rz, self.tcp_offset_x,
+                                        self.tcp_offset_y, self.tcp_offset_z, self.tcp_offset_rx, self.tcp_offset_ry,
+                                        self.tcp_offset_rz)
         out += self.extra
 
 
@@ -1174,7 +1311,9 @@ _LASER_POINTER_0_RUN = (
 
 @dataclass(slots=True)
 class LaserPointer(_kinds.Package):
-    """The early CB2 package of type 5: three doubles, 29 bytes; kinematics info takes the code from 1.8. What the values mean is not documented (a laser pointer's position, perhaps)."""
+    """The early CB2 package of type 5: three doubles, 29 bytes; kinematics info takes the code from
+    1.8. What the values mean is not documented (a laser pointer's position, perhaps).
+    """
 
     TYPE: ClassVar[str] = "laser_pointer"
     CODE: ClassVar[int] = 5
@@ -1252,7 +1391,9 @@ _KINEMATICS_INFO_0_RUN = (
 
 @dataclass(slots=True)
 class KinematicsInfo(_kinds.Package):
-    """Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is changed."""
+    """Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration
+    is changed.
+    """
 
     TYPE: ClassVar[str] = "kinematics_info"
     CODE: ClassVar[int] = 5
@@ -1299,7 +1440,8 @@ class KinematicsInfo(_kinds.Package):
         return cls(checksum, dh_theta, dh_a, dh_d, dh_alpha, calibration_status, b"", version), pos
 
     def _encode(self, out: bytearray, version: tuple) -> None:
-        out += _KINEMATICS_INFO_0.pack(*self.checksum, *self.dh_theta, *self.dh_a, *self.dh_d, *self.dh_alpha, self.calibration_status)
+        out += _KINEMATICS_INFO_0.pack(*self.checksum, *self.dh_theta, *self.dh_a, *self.dh_d, *self.dh_alpha,
+                                       self.calibration_status)
         out += self.extra
 
 
@@ -1576,7 +1718,9 @@ _CONFIGURATION_DATA_2_0_RUN = (
 
 @dataclass(slots=True)
 class ConfigurationData(_kinds.Package):
-    """Configuration data. Sent when leaving initializing mode and/or if the kinematics configuration is changed. 469 bytes on 1.8, 445 from 3.0, 449 from 5.25.1; not sent before 1.8."""
+    """Configuration data. Sent when leaving initializing mode and/or if the kinematics
+    configuration is changed. 469 bytes on 1.8, 445 from 3.0, 449 from 5.25.1; not sent before 1.8.
+    """
 
     TYPE: ClassVar[str] = "configuration_data"
     CODE: ClassVar[int] = 6
@@ -1636,7 +1780,9 @@ class ConfigurationData(_kinds.Package):
     robot_sub_type: int = field(metadata={"label": "Robot subtype", "unit": None})
     """Robot subtype."""
     motor_type: Optional[list[int]] = field(metadata={"label": "Motor type", "unit": None})
-    """Motor type. One per joint; motorType in the CB2 documents ("Have values 1 or 2"). Sent by software up to 1.8."""
+    """Motor type. One per joint; motorType in the CB2 documents ("Have values 1 or 2"). Sent by
+    software up to 1.8.
+    """
     reserved_1: Optional[int] = field(metadata={"label": "Reserved 1", "unit": None})
     """Reserved 1. Sent by software 5.25.1 and later."""
     reserved_2: Optional[int] = field(metadata={"label": "Reserved 2", "unit": None})
@@ -1655,8 +1801,10 @@ class ConfigurationData(_kinds.Package):
         v = _CONFIGURATION_DATA_0_0.unpack_from(buf, pos)
         joint_position_limits_enums = ()  # the items' versioned enum tables
         joint_motion_limits_enums = ()  # the items' versioned enum tables
-        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, joint_position_limits_enums) for j in range(6)]
-        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, joint_motion_limits_enums) for j in range(6)]
+        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16,
+                                                          joint_position_limits_enums) for j in range(6)]
+        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16,
+                                                      joint_motion_limits_enums) for j in range(6)]
         v_joint_default = v[24]
         a_joint_default = v[25]
         v_tool_default = v[26]
@@ -1672,10 +1820,17 @@ class ConfigurationData(_kinds.Package):
         robot_sub_type = v[56]
         motor_type = list(v[57:63])
         pos += 464
-        return cls(joint_position_limits, joint_motion_limits, v_joint_default, a_joint_default, v_tool_default, a_tool_default, eq_radius, dh_a, dh_d, dh_alpha, dh_theta, masterboard_version, controller_box_type, robot_type, robot_sub_type, motor_type, reserved_1, reserved_2, b"", version), pos
+        return cls(joint_position_limits, joint_motion_limits, v_joint_default, a_joint_default, v_tool_default,
+                   a_tool_default, eq_radius, dh_a, dh_d, dh_alpha, dh_theta, masterboard_version, controller_box_type,
+                   robot_type, robot_sub_type, motor_type, reserved_1, reserved_2, b"", version), pos
 
     def _encode_0(self, out: bytearray, version: tuple) -> None:
-        out += _CONFIGURATION_DATA_0_0.pack(*[x for item in self.joint_position_limits for x in item._values()], *[x for item in self.joint_motion_limits for x in item._values()], self.v_joint_default, self.a_joint_default, self.v_tool_default, self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha, *self.dh_theta, self.masterboard_version, self.controller_box_type, self.robot_type, self.robot_sub_type, *self.motor_type)
+        out += _CONFIGURATION_DATA_0_0.pack(*[x for item in self.joint_position_limits for x in item._values()],
+                                            *[x for item in self.joint_motion_limits for x in item._values()],
+                                            self.v_joint_default, self.a_joint_default, self.v_tool_default,
+                                            self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha,
+                                            *self.dh_theta, self.masterboard_version, self.controller_box_type,
+                                            self.robot_type, self.robot_sub_type, *self.motor_type)
         out += self.extra
 
     @classmethod
@@ -1687,8 +1842,10 @@ class ConfigurationData(_kinds.Package):
         v = _CONFIGURATION_DATA_1_0.unpack_from(buf, pos)
         joint_position_limits_enums = ()  # the items' versioned enum tables
         joint_motion_limits_enums = ()  # the items' versioned enum tables
-        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, joint_position_limits_enums) for j in range(6)]
-        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, joint_motion_limits_enums) for j in range(6)]
+        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16,
+                                                          joint_position_limits_enums) for j in range(6)]
+        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16,
+                                                      joint_motion_limits_enums) for j in range(6)]
         v_joint_default = v[24]
         a_joint_default = v[25]
         v_tool_default = v[26]
@@ -1703,10 +1860,17 @@ class ConfigurationData(_kinds.Package):
         robot_type = v[55]
         robot_sub_type = v[56]
         pos += 440
-        return cls(joint_position_limits, joint_motion_limits, v_joint_default, a_joint_default, v_tool_default, a_tool_default, eq_radius, dh_a, dh_d, dh_alpha, dh_theta, masterboard_version, controller_box_type, robot_type, robot_sub_type, motor_type, reserved_1, reserved_2, b"", version), pos
+        return cls(joint_position_limits, joint_motion_limits, v_joint_default, a_joint_default, v_tool_default,
+                   a_tool_default, eq_radius, dh_a, dh_d, dh_alpha, dh_theta, masterboard_version, controller_box_type,
+                   robot_type, robot_sub_type, motor_type, reserved_1, reserved_2, b"", version), pos
 
     def _encode_1(self, out: bytearray, version: tuple) -> None:
-        out += _CONFIGURATION_DATA_1_0.pack(*[x for item in self.joint_position_limits for x in item._values()], *[x for item in self.joint_motion_limits for x in item._values()], self.v_joint_default, self.a_joint_default, self.v_tool_default, self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha, *self.dh_theta, self.masterboard_version, self.controller_box_type, self.robot_type, self.robot_sub_type)
+        out += _CONFIGURATION_DATA_1_0.pack(*[x for item in self.joint_position_limits for x in item._values()],
+                                            *[x for item in self.joint_motion_limits for x in item._values()],
+                                            self.v_joint_default, self.a_joint_default, self.v_tool_default,
+                                            self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha,
+                                            *self.dh_theta, self.masterboard_version, self.controller_box_type,
+                                            self.robot_type, self.robot_sub_type)
         out += self.extra
 
     @classmethod
@@ -1718,8 +1882,10 @@ class ConfigurationData(_kinds.Package):
         v = _CONFIGURATION_DATA_2_0.unpack_from(buf, pos)
         joint_position_limits_enums = ()  # the items' versioned enum tables
         joint_motion_limits_enums = ()  # the items' versioned enum tables
-        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16, joint_position_limits_enums) for j in range(6)]
-        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16, joint_motion_limits_enums) for j in range(6)]
+        joint_position_limits = [JointPositionLimit._from(v, j * 2, buf, pos + j * 16,
+                                                          joint_position_limits_enums) for j in range(6)]
+        joint_motion_limits = [JointMotionLimit._from(v, 12 + j * 2, buf, pos + 96 + j * 16,
+                                                      joint_motion_limits_enums) for j in range(6)]
         v_joint_default = v[24]
         a_joint_default = v[25]
         v_tool_default = v[26]
@@ -1736,10 +1902,17 @@ class ConfigurationData(_kinds.Package):
         reserved_1 = v[57]
         reserved_2 = v[58]
         pos += 444
-        return cls(joint_position_limits, joint_motion_limits, v_joint_default, a_joint_default, v_tool_default, a_tool_default, eq_radius, dh_a, dh_d, dh_alpha, dh_theta, masterboard_version, controller_box_type, robot_type, robot_sub_type, motor_type, reserved_1, reserved_2, b"", version), pos
+        return cls(joint_position_limits, joint_motion_limits, v_joint_default, a_joint_default, v_tool_default,
+                   a_tool_default, eq_radius, dh_a, dh_d, dh_alpha, dh_theta, masterboard_version, controller_box_type,
+                   robot_type, robot_sub_type, motor_type, reserved_1, reserved_2, b"", version), pos
 
     def _encode_2(self, out: bytearray, version: tuple) -> None:
-        out += _CONFIGURATION_DATA_2_0.pack(*[x for item in self.joint_position_limits for x in item._values()], *[x for item in self.joint_motion_limits for x in item._values()], self.v_joint_default, self.a_joint_default, self.v_tool_default, self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha, *self.dh_theta, self.masterboard_version, self.controller_box_type, self.robot_type, self.robot_sub_type, self.reserved_1, self.reserved_2)
+        out += _CONFIGURATION_DATA_2_0.pack(*[x for item in self.joint_position_limits for x in item._values()],
+                                            *[x for item in self.joint_motion_limits for x in item._values()],
+                                            self.v_joint_default, self.a_joint_default, self.v_tool_default,
+                                            self.a_tool_default, self.eq_radius, *self.dh_a, *self.dh_d, *self.dh_alpha,
+                                            *self.dh_theta, self.masterboard_version, self.controller_box_type,
+                                            self.robot_type, self.robot_sub_type, self.reserved_1, self.reserved_2)
         out += self.extra
 
 
@@ -1847,7 +2020,10 @@ _ADDITIONAL_INFO_3_0_RUN = (
 
 @dataclass(slots=True)
 class AdditionalInfo(_kinds.Package):
-    """Additional info; 10 bytes up to early 1.8 builds, 7 from late 1.8 builds to 3.1, 8 on 3.2-3.15, 9 from 5.0. 1.8 sends either 10 or 7 bytes: the 10-byte form is gated to 1.7 and its length selects it on 1.8."""
+    """Additional info; 10 bytes up to early 1.8 builds, 7 from late 1.8 builds to 3.1, 8 on
+    3.2-3.15, 9 from 5.0. 1.8 sends either 10 or 7 bytes: the 10-byte form is gated to 1.7 and its
+    length selects it on 1.8.
+    """
 
     TYPE: ClassVar[str] = "additional_info"
     CODE: ClassVar[int] = 8
@@ -1867,9 +2043,14 @@ class AdditionalInfo(_kinds.Package):
     teach_button: Optional[int] = field(metadata={"label": "Teach button", "unit": None})
     """Teach button. Meaning not documented. Sent by software up to 1.7."""
     tp_button_state: Optional[int] = field(metadata={"label": "Freedrive button state", "unit": None})
-    """Freedrive button state. State of the teach pendant's freedrive button. teachButtonPressed (a bool) on CB2, freedriveButtonPressed on CB3, tpButtonState (an unsigned char) from 5.0: the same byte. Sent by software 1.8 and later."""
+    """Freedrive button state. State of the teach pendant's freedrive button. teachButtonPressed (a
+    bool) on CB2, freedriveButtonPressed on CB3, tpButtonState (an unsigned char) from 5.0: the same
+    byte. Sent by software 1.8 and later.
+    """
     freedrive_button_enabled: Optional[bool] = field(metadata={"label": "Freedrive button enabled", "unit": None})
-    """Freedrive button enabled. teachButtonEnabled on CB2, freedriveButtonEnabled later. Sent by software 1.8 and later."""
+    """Freedrive button enabled. teachButtonEnabled on CB2, freedriveButtonEnabled later. Sent by
+    software 1.8 and later.
+    """
     io_enabled_freedrive: Optional[bool] = field(metadata={"label": "Freedrive by I/O enabled", "unit": None})
     """Freedrive by I/O enabled. Sent by software 3.2 and later."""
     reserved: Optional[int] = field(metadata={"label": "Reserved", "unit": None})
@@ -1889,7 +2070,8 @@ class AdditionalInfo(_kinds.Package):
         ctrl_bits = v[0]
         teach_button = v[1]
         pos += 5
-        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved, b"", version), pos
+        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved,
+                   b"", version), pos
 
     def _encode_0(self, out: bytearray, version: tuple) -> None:
         out += _ADDITIONAL_INFO_0_0.pack(self.ctrl_bits, self.teach_button)
@@ -1905,7 +2087,8 @@ class AdditionalInfo(_kinds.Package):
         tp_button_state = v[0]
         freedrive_button_enabled = _BOOL[v[1]]
         pos += 2
-        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved, b"", version), pos
+        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved,
+                   b"", version), pos
 
     def _encode_1(self, out: bytearray, version: tuple) -> None:
         out += _ADDITIONAL_INFO_1_0.pack(self.tp_button_state, self.freedrive_button_enabled)
@@ -1922,7 +2105,8 @@ class AdditionalInfo(_kinds.Package):
         freedrive_button_enabled = _BOOL[v[1]]
         io_enabled_freedrive = _BOOL[v[2]]
         pos += 3
-        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved, b"", version), pos
+        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved,
+                   b"", version), pos
 
     def _encode_2(self, out: bytearray, version: tuple) -> None:
         out += _ADDITIONAL_INFO_2_0.pack(self.tp_button_state, self.freedrive_button_enabled, self.io_enabled_freedrive)
@@ -1940,10 +2124,12 @@ class AdditionalInfo(_kinds.Package):
         io_enabled_freedrive = _BOOL[v[2]]
         reserved = v[3]
         pos += 4
-        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved, b"", version), pos
+        return cls(ctrl_bits, teach_button, tp_button_state, freedrive_button_enabled, io_enabled_freedrive, reserved,
+                   b"", version), pos
 
     def _encode_3(self, out: bytearray, version: tuple) -> None:
-        out += _ADDITIONAL_INFO_3_0.pack(self.tp_button_state, self.freedrive_button_enabled, self.io_enabled_freedrive, self.reserved)
+        out += _ADDITIONAL_INFO_3_0.pack(self.tp_button_state, self.freedrive_button_enabled, self.io_enabled_freedrive,
+                                         self.reserved)
         out += self.extra
 
 
@@ -1961,7 +2147,9 @@ _CALIBRATION_DATA_0_RUN = (
 
 @dataclass(slots=True)
 class CalibrationData(_kinds.Package):
-    """Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8 builds on."""
+    """Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8
+    builds on.
+    """
 
     TYPE: ClassVar[str] = "calibration_data"
     CODE: ClassVar[int] = 9
@@ -2015,7 +2203,9 @@ class CalibrationData(_kinds.Package):
 
 @dataclass(slots=True)
 class SafetyData(_kinds.Package):
-    """Safety data. Used internally by Universal Robots software only; its layout is not documented. 43 bytes on e-Series."""
+    """Safety data. Used internally by Universal Robots software only; its layout is not documented.
+    43 bytes on e-Series.
+    """
 
     TYPE: ClassVar[str] = "safety_data"
     CODE: ClassVar[int] = 10
@@ -2102,10 +2292,13 @@ class ToolCommInfo(_kinds.Package):
         rx_idle_chars = (v[4] if v[4] == v[4] else _rt.f32_nan(buf, pos + 13))
         tx_idle_chars = (v[5] if v[5] == v[5] else _rt.f32_nan(buf, pos + 17))
         pos += 21
-        return cls(tool_communication_is_enabled, baud_rate, parity, stop_bits, rx_idle_chars, tx_idle_chars, b"", version), pos
+        return cls(tool_communication_is_enabled, baud_rate, parity, stop_bits, rx_idle_chars, tx_idle_chars, b"",
+                   version), pos
 
     def _encode(self, out: bytearray, version: tuple) -> None:
-        out += _TOOL_COMM_INFO_0_OUT.pack(self.tool_communication_is_enabled, self.baud_rate, self.parity, self.stop_bits, _rt.f32_bits(self.rx_idle_chars), _rt.f32_bits(self.tx_idle_chars))
+        out += _TOOL_COMM_INFO_0_OUT.pack(self.tool_communication_is_enabled, self.baud_rate, self.parity,
+                                          self.stop_bits, _rt.f32_bits(self.rx_idle_chars),
+                                          _rt.f32_bits(self.tx_idle_chars))
         out += self.extra
 
 
@@ -2155,7 +2348,8 @@ class ToolModeInfo(_kinds.Package):
         return cls(output_mode, digital_output_mode_output_0, digital_output_mode_output_1, b"", version), pos
 
     def _encode(self, out: bytearray, version: tuple) -> None:
-        out += _TOOL_MODE_INFO_0.pack(self.output_mode, self.digital_output_mode_output_0, self.digital_output_mode_output_1)
+        out += _TOOL_MODE_INFO_0.pack(self.output_mode, self.digital_output_mode_output_0,
+                                      self.digital_output_mode_output_1)
         out += self.extra
 
 
@@ -2224,7 +2418,10 @@ _VERSION_1_0_RUN = (
 
 @dataclass(slots=True)
 class VersionMessage(_kinds.Subtype):
-    """Version message, the first message on both the primary and secondary interfaces. It is read in the layout of the version it carries: up to 3.2 an svn revision follows the minor version, from 3.3 the bugfix version and the build number. PolyScope X sends major version 10."""
+    """Version message, the first message on both the primary and secondary interfaces. It is read
+    in the layout of the version it carries: up to 3.2 an svn revision follows the minor version,
+    from 3.3 the bugfix version and the build number. PolyScope X sends major version 10.
+    """
 
     TYPE: ClassVar[str] = "version"
     CODE: ClassVar[int] = 3
@@ -2255,7 +2452,9 @@ class VersionMessage(_kinds.Subtype):
     minor_version: int = field(metadata={"label": "Minor version", "unit": None})
     """Minor version."""
     svn_revision: Optional[int] = field(metadata={"label": "SVN revision", "unit": None})
-    """SVN revision. svnRevision, the controller software's revision (e.g. 20175 for 3.2.20175). Sent by software up to 3.2."""
+    """SVN revision. svnRevision, the controller software's revision (e.g. 20175 for 3.2.20175).
+    Sent by software up to 3.2.
+    """
     bugfix_version: Optional[int] = field(metadata={"label": "Bugfix version", "unit": None})
     """Bugfix version. Sent by software 3.3 and later."""
     build_number: Optional[int] = field(metadata={"label": "Build number", "unit": None})
@@ -2281,7 +2480,8 @@ class VersionMessage(_kinds.Subtype):
         pos += 6
         build_date = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, project_name, major_version, minor_version, svn_revision, bugfix_version, build_number, build_date, b"", version), pos
+        return cls(*header, project_name, major_version, minor_version, svn_revision, bugfix_version, build_number,
+                   build_date, b"", version), pos
 
     def _encode_0(self, out: bytearray, version: tuple) -> None:
         _rt.write_prefixed_text(out, self.project_name, _INT8)
@@ -2304,7 +2504,8 @@ class VersionMessage(_kinds.Subtype):
         pos += 10
         build_date = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, project_name, major_version, minor_version, svn_revision, bugfix_version, build_number, build_date, b"", version), pos
+        return cls(*header, project_name, major_version, minor_version, svn_revision, bugfix_version, build_number,
+                   build_date, b"", version), pos
 
     def _encode_1(self, out: bytearray, version: tuple) -> None:
         _rt.write_prefixed_text(out, self.project_name, _INT8)
@@ -2332,7 +2533,9 @@ _SAFETY_MODE_1_0_RUN = (
 
 @dataclass(slots=True)
 class SafetyModeMessage(_kinds.Subtype):
-    """Safety mode message; the security message of CB2, which carries a text instead of the safety mode and its report data."""
+    """Safety mode message; the security message of CB2, which carries a text instead of the safety
+    mode and its report data.
+    """
 
     TYPE: ClassVar[str] = "safety_mode"
     CODE: ClassVar[int] = 5
@@ -2362,7 +2565,9 @@ class SafetyModeMessage(_kinds.Subtype):
     report_data_type: Optional[int] = field(metadata={"label": "Report data type", "unit": None})
     """Report data type. Sent by software 3.0 and later."""
     report_data: Optional[Union[int, float]] = field(metadata={"label": "Report data", "unit": None})
-    """Report data. Its type follows report_data_type: int32 when it is 2, float32 when it is 3, uint32 otherwise. Sent by software 3.0 and later."""
+    """Report data. Its type follows report_data_type: int32 when it is 2, float32 when it is 3,
+    uint32 otherwise. Sent by software 3.0 and later.
+    """
     text: Optional[str] = field(metadata={"label": "Text", "unit": None})
     """Text. The message text (CB2 only), to the end of the message. Sent by software up to 1.8."""
     extra: bytes = b""
@@ -2382,7 +2587,8 @@ class SafetyModeMessage(_kinds.Subtype):
         pos += 8
         text = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, robot_message_code, robot_message_argument, safety_mode_type, report_data_type, report_data, text, b"", version), pos
+        return cls(*header, robot_message_code, robot_message_argument, safety_mode_type, report_data_type, report_data,
+                   text, b"", version), pos
 
     def _encode_0(self, out: bytearray, version: tuple) -> None:
         out += _SAFETY_MODE_0_0.pack(self.robot_message_code, self.robot_message_argument)
@@ -2408,10 +2614,12 @@ class SafetyModeMessage(_kinds.Subtype):
         if report_data != report_data:
             report_data = _rt.f32_nan(buf, pos) if fmt.size == 4 else report_data
         pos += fmt.size
-        return cls(*header, robot_message_code, robot_message_argument, safety_mode_type, report_data_type, report_data, text, b"", version), pos
+        return cls(*header, robot_message_code, robot_message_argument, safety_mode_type, report_data_type, report_data,
+                   text, b"", version), pos
 
     def _encode_1(self, out: bytearray, version: tuple) -> None:
-        out += _SAFETY_MODE_1_0.pack(self.robot_message_code, self.robot_message_argument, self.safety_mode_type, self.report_data_type)
+        out += _SAFETY_MODE_1_0.pack(self.robot_message_code, self.robot_message_argument, self.safety_mode_type,
+                                     self.report_data_type)
         fmt = _SAFETY_MODE_1_REPORT_DATA_BY_REPORT_DATA_TYPE.get(self.report_data_type, _UINT32)
         out += _UINT32.pack(_rt.f32_bits(self.report_data)) if fmt is _FLOAT32 else fmt.pack(self.report_data)
         out += self.extra
@@ -2437,7 +2645,9 @@ _ROBOT_COMM_1_0_RUN = (
 
 @dataclass(slots=True)
 class RobotCommMessage(_kinds.Subtype):
-    """Robot comm message (an error code report). On CB2 the code and argument are followed by the text alone."""
+    """Robot comm message (an error code report). On CB2 the code and argument are followed by the
+    text alone.
+    """
 
     TYPE: ClassVar[str] = "robot_comm"
     CODE: ClassVar[int] = 6
@@ -2462,7 +2672,8 @@ class RobotCommMessage(_kinds.Subtype):
     """Code."""
     robot_message_argument: int = field(metadata={"label": "Argument", "unit": None})
     """Argument."""
-    robot_message_report_level: Optional[Union[ReportLevel, int]] = field(metadata={"label": "Report level", "unit": None})
+    robot_message_report_level: Optional[Union[ReportLevel, int]] = field(
+        metadata={"label": "Report level", "unit": None})
     """Report level. Sent by software 3.0 and later."""
     robot_message_data_type: Optional[int] = field(metadata={"label": "Data type", "unit": None})
     """Data type. Sent by software 3.0 and later."""
@@ -2487,7 +2698,8 @@ class RobotCommMessage(_kinds.Subtype):
         pos += 8
         text = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, robot_message_code, robot_message_argument, robot_message_report_level, robot_message_data_type, robot_message_data, text, b"", version), pos
+        return cls(*header, robot_message_code, robot_message_argument, robot_message_report_level,
+                   robot_message_data_type, robot_message_data, text, b"", version), pos
 
     def _encode_0(self, out: bytearray, version: tuple) -> None:
         out += _ROBOT_COMM_0_0.pack(self.robot_message_code, self.robot_message_argument)
@@ -2508,10 +2720,13 @@ class RobotCommMessage(_kinds.Subtype):
         pos += 20
         text = _rt.text(buf[pos:end])
         pos = end
-        return cls(*header, robot_message_code, robot_message_argument, robot_message_report_level, robot_message_data_type, robot_message_data, text, b"", version), pos
+        return cls(*header, robot_message_code, robot_message_argument, robot_message_report_level,
+                   robot_message_data_type, robot_message_data, text, b"", version), pos
 
     def _encode_1(self, out: bytearray, version: tuple) -> None:
-        out += _ROBOT_COMM_1_0.pack(self.robot_message_code, self.robot_message_argument, self.robot_message_report_level, self.robot_message_data_type, self.robot_message_data)
+        out += _ROBOT_COMM_1_0.pack(self.robot_message_code, self.robot_message_argument,
+                                    self.robot_message_report_level, self.robot_message_data_type,
+                                    self.robot_message_data)
         out += _rt.text_bytes(self.text)
         out += self.extra
 
@@ -2853,9 +3068,12 @@ class VarMessage(_kinds.Subtype):
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
     robot_message_code: int = field(metadata={"label": "Code", "unit": None})
-    """Code. The CB2 documents call it code; the key message's field of that meaning has this name."""
+    """Code. The CB2 documents call it code; the key message's field of that meaning has this name.
+    """
     robot_message_argument: int = field(metadata={"label": "Argument", "unit": None})
-    """Argument. The CB2 documents call it argument; the key message's field of that meaning has this name."""
+    """Argument. The CB2 documents call it argument; the key message's field of that meaning has
+    this name.
+    """
     title: str = field(metadata={"label": "Title", "unit": None})
     """Title. titleSize, then messageTitle."""
     text: str = field(metadata={"label": "Text", "unit": None})
@@ -2898,7 +3116,9 @@ _HARDWARE_INFO_0_RUN = (
 
 @dataclass(slots=True)
 class HardwareInfoMessage(_kinds.Subtype):
-    """Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 bytes in all."""
+    """Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 bytes
+    in all.
+    """
 
     TYPE: ClassVar[str] = "hardware_info"
     CODE: ClassVar[int] = 18
@@ -2947,7 +3167,8 @@ class HardwareInfoMessage(_kinds.Subtype):
         return cls(*header, robot_type, reserved_1, control_box_type, reserved_2, tool_flange_type, b"", version), pos
 
     def _encode(self, out: bytearray, version: tuple) -> None:
-        out += _HARDWARE_INFO_0.pack(self.robot_type, self.reserved_1, self.control_box_type, self.reserved_2, self.tool_flange_type)
+        out += _HARDWARE_INFO_0.pack(self.robot_type, self.reserved_1, self.control_box_type, self.reserved_2,
+                                     self.tool_flange_type)
         out += self.extra
 
 
@@ -3135,7 +3356,8 @@ class GlobalVariablesSetupMessage(_kinds.Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["GlobalVariablesSetupMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple,
+                header: tuple) -> tuple["GlobalVariablesSetupMessage", int]:
         if pos + 2 > end:
             raise _rt.short_in_run(_GLOBAL_VARIABLES_SETUP_0_RUN, pos, end)
         (start_index,) = _GLOBAL_VARIABLES_SETUP_0.unpack_from(buf, pos)
@@ -3182,7 +3404,8 @@ class GlobalVariablesUpdateMessage(_kinds.Subtype):
     """The software version whose layout it was read in (encoding writes it back in it)."""
 
     @classmethod
-    def _decode(cls, buf, pos: int, end: int, version: tuple, header: tuple) -> tuple["GlobalVariablesUpdateMessage", int]:
+    def _decode(cls, buf, pos: int, end: int, version: tuple,
+                header: tuple) -> tuple["GlobalVariablesUpdateMessage", int]:
         if pos + 2 > end:
             raise _rt.short_in_run(_GLOBAL_VARIABLES_UPDATE_0_RUN, pos, end)
         (start_index,) = _GLOBAL_VARIABLES_UPDATE_0.unpack_from(buf, pos)
@@ -3270,7 +3493,9 @@ PopupMessage._ENCODER_BY_SEGMENT = (0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1,
 
 @dataclass(slots=True)
 class RobotStateMessage(_kinds.PackageListMessage):
-    """Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in any order, each framed by its own length."""
+    """Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages,
+    in any order, each framed by its own length.
+    """
 
     TYPE: ClassVar[str] = "robot_state"
     CODE: ClassVar[int] = 16
