@@ -6,8 +6,8 @@ import random
 
 import pytest
 
-from harness import (PLUGIN, ROOT, comparable, run_tshark, to_records, tshark_json, ur_items_by_stream,
-                     write_sessions, F32_TOL)
+from tests.lua.harness import (PLUGIN, ROOT, comparable, run_tshark, to_records, tshark_json, ur_items_by_stream,
+                               write_sessions, F32_TOL)
 from tests.tools import amplify, capture
 from tests.tools.streams import streams
 from tests.vectors import all_cases, mismatches
@@ -102,7 +102,7 @@ def test_samples_decode_without_faults():
 def test_a_lua_error_is_caught_and_shown(tmp_path):
     """The pcall guard: make a copy of the plugin whose robot-side path throws; tshark shows an
     expert on the packet and no Lua error reaches the user."""
-    from harness import INTERNAL_TEXT
+    from tests.lua.harness import INTERNAL_TEXT
     import subprocess
     text = PLUGIN.read_text(encoding="utf-8")
     anchor = "    local raw = tvb:raw()\n"

@@ -7,7 +7,7 @@ import random
 
 import pytest
 
-from harness import F32_TOL, comparable, to_records, tshark_json, ur_items_by_stream, write_sessions
+from tests.lua.harness import F32_TOL, comparable, to_records, tshark_json, ur_items_by_stream, write_sessions
 from tests.tools import capture, valid
 from tests.vectors import mismatches
 

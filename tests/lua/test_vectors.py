@@ -6,18 +6,13 @@ segmentation costs one tshark run.
 """
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from harness import (F32_TOL, comparable, to_records, tshark_json, ur_items_by_stream,  # noqa: E402
-                     write_sessions)
-from tests.tools import capture  # noqa: E402
-from tests.vectors import all_cases, mismatches  # noqa: E402
+from tests.lua.harness import F32_TOL, comparable, to_records, tshark_json, ur_items_by_stream, write_sessions
+from tests.tools import capture
+from tests.vectors import all_cases, mismatches
 
-import urwire  # noqa: E402
+import urwire
 
 CASES = all_cases()
 HINTS = sorted({c.version for c in CASES}, key=lambda v: v or "")
