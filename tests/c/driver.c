@@ -18,6 +18,7 @@
  *                            "=CODE" (1: error records, 2: the hint is not a version)
  *   driver batch roundtrip   the same inputs, each answered as `roundtrip` prints it, then
  *                            "=CODE" (0: every part encodes back, 1: a mismatch)
+ *   driver batch text        the same inputs, each stream answered as `text` prints it, "=0"
  */
 #include <stddef.h>
 #include <stdio.h>
@@ -310,6 +311,15 @@ static int roundtrip_answer(const char *hint_text, const uint8_t *data, size_t l
     return rc;
 }
 
+/* `text` on one batch input (its hint unused). */
+static int text_answer(const char *hint_text, const uint8_t *data, size_t len)
+{
+    (void)hint_text;
+    json_write_text(stdout, data, len);
+    putchar('\n');
+    return 0;
+}
+
 typedef int (*answer_fn)(const char *hint_text, const uint8_t *data, size_t len);
 
 static int batch(answer_fn answer)
@@ -395,7 +405,9 @@ int main(int argc, char **argv)
     }
     if (argc == 3 && strcmp(argv[1], "batch") == 0 && strcmp(argv[2], "roundtrip") == 0)
         return batch(roundtrip_answer);
+    if (argc == 3 && strcmp(argv[1], "batch") == 0 && strcmp(argv[2], "text") == 0)
+        return batch(text_answer);
     fprintf(stderr, "usage: driver chunks K FILE [CAP] | roundtrip FILE [V] | text | f32 | f64 | batch"
-                    " [chunks K [CAP] | roundtrip]\n");
+                    " [chunks K [CAP] | roundtrip | text]\n");
     return 2;
 }
