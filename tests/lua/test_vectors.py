@@ -62,7 +62,8 @@ def decoded(request, tmp_path_factory):
         pcap = write_sessions(tmp_path_factory.mktemp(seg) / f"{seg}_{hint}.pcap", streams,
                               handshake=seg != "mid_stream", retransmit_every=3 if seg == "retransmitted" else 0)
         opts = ("-o", f"ur.version:{hint}") if hint else ()
-        by_stream = ur_items_by_stream(tshark_json(pcap, *opts))
+        # -Y ur: only the frames that complete a message are printed (the others show nothing of it)
+        by_stream = ur_items_by_stream(tshark_json(pcap, *opts, "-Y", "ur"))
         for i, c in enumerate(cases):
             out[c.name] = [r for u in by_stream.get(i, []) for r in to_records(u)]
     return seg, out
