@@ -8,13 +8,12 @@ long seeds, and what the last `make fuzz` found (build/fuzz/corpus/, when there)
 from __future__ import annotations
 
 import shutil
-import subprocess
 
 import pytest
 
 from tests.c.harness_c import CLI_LIBRARY, GEN, OUT, ROOT, CommandPeer, compile_c, python_answer
 from tests.c.seeds import long_messages, seeds
-from tests.tools.fuzz_inputs import CORPUS, HARNESSES, fuzz_max_len, kept, libfuzzer_runs, split, write_seeds
+from tests.tools.fuzz_inputs import CORPUS, HARNESSES, kept, libfuzzer_runs, run_once, split, write_seeds
 
 FOUND = ROOT / "build" / "fuzz" / "corpus"
 FUZZER_FLAGS = ["-g", "-O1", "-fsanitize=fuzzer,address,undefined", "-fno-sanitize-recover=all"]
@@ -37,8 +36,7 @@ def test_the_kept_corpus_and_seeds_pass_their_harness(harness, tmp_path):
     folders = [CORPUS / harness] + ([ROOT / "tests" / "c" / "regressions"] if harness == "urwire" else [])
     count = sum(1 for f in folders for p in f.iterdir() if p.is_file())
     folders.append(write_seeds(harness, tmp_path / "seeds"))
-    result = subprocess.run([str(fuzzer), "-runs=0", f"-max_len={fuzz_max_len()}", *map(str, folders)],
-                            capture_output=True, text=True)
+    result = run_once([str(fuzzer)], folders, tmp_path / "crashes")
     assert result.returncode == 0, result.stderr[-3000:]
     assert count > 20 and libfuzzer_runs(result.stderr) >= count + len(set(seeds(harness)))
 

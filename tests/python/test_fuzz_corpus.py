@@ -4,7 +4,6 @@ and the atheris harness itself, run once over its corpus and seeds so that it ca
 The C command's agreement on the same inputs is tests/c/test_c_fuzz_corpus.py's."""
 from __future__ import annotations
 
-import subprocess
 import sys
 
 import pytest
@@ -12,7 +11,7 @@ import pytest
 from tests.c.harness_c import ROOT, get_build
 from tests.c.seeds import seeds
 from tests.python.fuzz_decoder import check
-from tests.tools.fuzz_inputs import CORPUS, HARNESSES, fuzz_max_len, kept, libfuzzer_runs, write_seeds
+from tests.tools.fuzz_inputs import CORPUS, HARNESSES, kept, libfuzzer_runs, run_once, write_seeds
 
 
 def as_python_input(harness: str, raw: bytes) -> bytes:
@@ -38,8 +37,7 @@ def test_the_atheris_harness_runs_over_its_corpus_and_seeds(tmp_path):
     driver = get_build("gcc").driver
     folders = [CORPUS / "python", write_seeds("python", tmp_path / "seeds")]
     count = len(kept("python")) + len(set(seeds("python")))
-    result = subprocess.run([sys.executable, str(ROOT / "tests" / "python" / "fuzz_decoder.py"), f"--peer={driver}",
-                             "-runs=0", f"-max_len={fuzz_max_len()}", *map(str, folders)],
-                            capture_output=True, text=True)
+    result = run_once([sys.executable, str(ROOT / "tests" / "python" / "fuzz_decoder.py"), f"--peer={driver}"],
+                      folders, tmp_path / "crashes")
     assert result.returncode == 0, result.stderr[-3000:]
     assert libfuzzer_runs(result.stderr) >= count

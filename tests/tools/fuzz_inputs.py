@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import hashlib
 import re
+import subprocess
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -65,3 +66,14 @@ def write_seeds(harness: str, folder: Path) -> Path:
 def libfuzzer_runs(stderr: str) -> int:
     """How many inputs a libFuzzer (or atheris) run executed, from its final line."""
     return int(re.search(r"Done (\d+) runs", stderr).group(1))
+
+
+def run_once(harness: list[str], folders: list[Path], artifacts: Path) -> subprocess.CompletedProcess:
+    """A fuzz harness run once over every input of the folders (-runs=0: no fuzzing), with
+    `make fuzz`'s -max_len and its default memory limit; what fails lands in `artifacts`.
+    It is started from a shell in the background: Linux counts into a child's peak memory the
+    peak of the process it was started from, and a long test run's pytest would pass
+    libFuzzer's limit (tests/tools/measure.py)."""
+    artifacts.mkdir(parents=True, exist_ok=True)
+    cmd = [*harness, "-runs=0", f"-max_len={fuzz_max_len()}", f"-artifact_prefix={artifacts}/", *map(str, folders)]
+    return subprocess.run(["sh", "-c", '"$@" & wait $!', "sh", *cmd], capture_output=True, text=True)
