@@ -1,12 +1,12 @@
 # urwire: one spec (spec/) -> generator (codegen/) -> Python, C and Lua targets (generated/).
-# Target-specific rules live in mk/*.mk; each adds itself to ALL_TARGETS, TEST_TARGETS,
-# DEMO_TARGETS and BENCH_TARGETS.
+# Target-specific rules live in mk/*.mk; each adds itself to ALL_TARGETS, TEST_BUILDS (what
+# `make test` builds before its tests), DEMO_TARGETS and BENCH_TARGETS.
 
 PYTHON ?= python3
 PYTEST ?= $(PYTHON) -m pytest
 
 ALL_TARGETS :=
-TEST_TARGETS :=
+TEST_BUILDS :=
 DEMO_TARGETS :=
 BENCH_TARGETS :=
 
@@ -38,14 +38,16 @@ spec-diff:
 setup:
 	bash scripts/setup.sh
 
-## test: every test of every target (the README's test command, and CI's)
-test: check-generated test-codegen test-python $(TEST_TARGETS)
+## test: every test of every target in one pytest run (the README's test command, and CI's);
+## the fuzzers' kept corpora are replayed there, and `make fuzz` fuzzes for longer
+test: check-generated $(TEST_BUILDS)
+	$(PYTEST) -q tests
 
+## test-codegen, test-python (and test-c, test-lua): the tests of one folder
 test-codegen:
 	$(PYTEST) -q tests/codegen
 
 test-python:
-	$(MAKE) --no-print-directory fuzz-python FUZZ_SECONDS=$(FUZZ_CI_SECONDS)
 	$(PYTEST) -q tests/python
 
 ## demo: set up, then decode the bundled capture with every target

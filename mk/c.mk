@@ -13,7 +13,7 @@ BENCH_C_LEVELS ?= -O3 -O2 -Os
 BENCH_C_BASE ?= b8aabfa
 
 ALL_TARGETS += build/urwire-decode
-TEST_TARGETS += test-c
+TEST_BUILDS += build/urwire-decode
 BENCH_TARGETS += bench-c bench-c-cli
 DEMO_TARGETS += demo-c
 
@@ -39,11 +39,9 @@ pinned-c:
 	$(CC) $(C_STRICT) -Os -c $(PINNED_C)/c/urwire.c -o $(PINNED_C)/urwire.o
 	@if command -v size >/dev/null; then size $(PINNED_C)/urwire.o; fi
 
-## test-c: the C fuzzers (bounded), then the C library and CLI under gcc, clang and the
-## sanitizers: vectors, differential against Python (the fuzzers' corpora included), round trips,
-## build checks
+## test-c: the C library and CLI under gcc, clang and the sanitizers: vectors, differential
+## against Python, the fuzzers' kept corpora through their harnesses, round trips, build checks
 test-c: build/urwire-decode
-	$(MAKE) --no-print-directory fuzz-c fuzz-json FUZZ_SECONDS=$(FUZZ_CI_SECONDS)
 	$(PYTEST) -q tests/c
 
 ## bench-c: robot-state decode throughput against memcpy of the same bytes, same run, with the

@@ -4,11 +4,11 @@
 #   json    tests/c/fuzz_json.c            urwire-decode: version hint, record loop, JSON writer
 #   python  tests/python/fuzz_decoder.py   the Python decoder (atheris), and urwire-decode
 #                                          against it through one driver process
-# The tests replay the kept corpora: tests/c/test_c_fuzz_corpus.py (the harnesses, and C against
-# Python), tests/python/test_fuzz_corpus.py, tests/lua/test_fuzz_corpus.py (tshark).
+# `make test` does not fuzz: it builds each harness and runs it once over its kept corpus and
+# seeds (tests/c/test_c_fuzz_corpus.py, tests/python/test_fuzz_corpus.py), and replays the kept
+# corpora through C against Python and through tshark (tests/lua/test_fuzz_corpus.py).
 
 FUZZ_SECONDS ?= 60
-FUZZ_CI_SECONDS ?= 60
 FUZZ_LONG_SECONDS ?= 3600
 FUZZ_CORPUS := tests/fuzz/corpus
 # Inputs up to two messages at the runtime's length limit, plus its framer's slack and the

@@ -4,7 +4,6 @@
 TSHARK ?= tshark
 LUA_PLUGIN := generated/lua/urwire.lua
 
-TEST_TARGETS += test-lua
 BENCH_TARGETS += bench-lua
 DEMO_TARGETS += demo-lua
 

@@ -11,8 +11,14 @@
  *   driver batch             stdin: inputs, each a big-endian uint32 length and a version hint
  *                            ("" for none), then a uint32 length and a stream; each answered
  *                            with the lines urwire-decode prints for it (the command's own
- *                            records.c) and "=CODE", its exit status (2: the hint is not a
- *                            version), flushed: one process for many inputs
+ *                            records.c, fed 64 KiB at a time as it reads) and "=CODE", its exit
+ *                            status (2: the hint is not a version), flushed: one process for
+ *                            many inputs
+ *   driver batch chunks K [CAP]  the same inputs, each answered as `chunks K` prints it, then
+ *                            "=CODE" (1: error records, 2: the hint is not a version)
+ *   driver batch roundtrip   the same inputs, each answered as `roundtrip` prints it, then
+ *                            "=CODE" (0: every part encodes back, 1: a mismatch)
+ *   driver batch text        the same inputs, each stream answered as `text` prints it, "=0"
  */
 #include <stddef.h>
 #include <stdio.h>
@@ -244,14 +250,16 @@ static uint8_t *read_part(FILE *in, size_t *len)
     return buf;
 }
 
-/* urwire-decode's work on one stream, as its main() does it, minus the reading. */
+/* urwire-decode's work on one stream, as its main() does it, minus the reading: the stream is
+ * fed in the command's reads of 64 KiB. */
+#define COMMAND_READ ((size_t)1 << 16)
 static int decode_like_the_command(const char *hint_text, const uint8_t *data, size_t len)
 {
     urwire_sw_version version = URWIRE_DEFAULT_VERSION;
     urwire_framer fr;
     urwire_visitor v;
     json_writer w;
-    size_t off = 0;
+    size_t taken = 0;
     bool errors = false;
     if (hint_text[0] && !urwire_parse_version(hint_text, &version))
         return 2;
@@ -259,23 +267,69 @@ static int decode_like_the_command(const char *hint_text, const uint8_t *data, s
     w.out = stdout;
     v = json_visitor(&w);
     urwire_framer_init(&fr, framer_buffer, sizeof framer_buffer, version);
-    while (off < len) {
-        off += urwire_framer_feed(&fr, data + off, len - off);
-        errors |= print_ready_records(&fr, &v, &w);
+    while (taken < len) {
+        size_t n = len - taken < COMMAND_READ ? len - taken : COMMAND_READ, off = 0;
+        while (off < n) {
+            off += urwire_framer_feed(&fr, data + taken + off, n - off);
+            errors |= print_ready_records(&fr, &v, &w);
+        }
+        taken += n;
     }
     urwire_framer_finish(&fr);
     errors |= print_ready_records(&fr, &v, &w);
     return errors ? 1 : 0;
 }
 
-static int batch(void)
+/* The version hint of one batch input for frame_all ("": the default); false if no version. */
+static bool set_hint(const char *hint_text)
+{
+    hint = URWIRE_DEFAULT_VERSION;
+    return !hint_text[0] || urwire_parse_version(hint_text, &hint);
+}
+
+/* `chunks K` on one batch input, K and CAP from the command line. */
+static size_t batch_chunk;
+static int chunks_answer(const char *hint_text, const uint8_t *data, size_t len)
+{
+    json_writer w;
+    if (!set_hint(hint_text))
+        return 2;
+    memset(&w, 0, sizeof w);
+    w.out = stdout;
+    return frame_all(data, len, batch_chunk, print_frame, &w) ? 1 : 0;
+}
+
+/* `roundtrip` on one batch input. */
+static int roundtrip_answer(const char *hint_text, const uint8_t *data, size_t len)
+{
+    counts c = {0, 0};
+    int rc;
+    if (!set_hint(hint_text))
+        return 2;
+    rc = frame_all(data, len, 0, roundtrip_frame, &c);
+    printf("messages %lu packages %lu\n", (unsigned long)c.messages, (unsigned long)c.packages);
+    return rc;
+}
+
+/* `text` on one batch input (its hint unused). */
+static int text_answer(const char *hint_text, const uint8_t *data, size_t len)
+{
+    (void)hint_text;
+    json_write_text(stdout, data, len);
+    putchar('\n');
+    return 0;
+}
+
+typedef int (*answer_fn)(const char *hint_text, const uint8_t *data, size_t len);
+
+static int batch(answer_fn answer)
 {
     uint8_t *hint_text, *data;
     size_t hint_len, len;
     while ((hint_text = read_part(stdin, &hint_len)) != NULL) {
         if ((data = read_part(stdin, &len)) == NULL)
             return 2;
-        printf("=%d\n", decode_like_the_command((const char *)hint_text, data, len));
+        printf("=%d\n", answer((const char *)hint_text, data, len));
         fflush(stdout);
         free(hint_text);
         free(data);
@@ -342,7 +396,18 @@ int main(int argc, char **argv)
         return 0;
     }
     if (argc == 2 && strcmp(argv[1], "batch") == 0)
-        return batch();
-    fprintf(stderr, "usage: driver chunks K FILE | roundtrip FILE | text | f32 | f64 | batch\n");
+        return batch(decode_like_the_command);
+    if ((argc == 4 || argc == 5) && strcmp(argv[1], "batch") == 0 && strcmp(argv[2], "chunks") == 0) {
+        batch_chunk = (size_t)atol(argv[3]);
+        if (argc == 5 && (size_t)atol(argv[4]) < framer_cap)
+            framer_cap = (size_t)atol(argv[4]);
+        return batch(chunks_answer);
+    }
+    if (argc == 3 && strcmp(argv[1], "batch") == 0 && strcmp(argv[2], "roundtrip") == 0)
+        return batch(roundtrip_answer);
+    if (argc == 3 && strcmp(argv[1], "batch") == 0 && strcmp(argv[2], "text") == 0)
+        return batch(text_answer);
+    fprintf(stderr, "usage: driver chunks K FILE [CAP] | roundtrip FILE [V] | text | f32 | f64 | batch"
+                    " [chunks K [CAP] | roundtrip | text]\n");
     return 2;
 }

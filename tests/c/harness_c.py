@@ -9,6 +9,7 @@ import json
 import shutil
 import subprocess
 import sys
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -97,34 +98,49 @@ def python_records(data: bytes, version: str | None) -> tuple[list, int]:
 
 
 class CommandPeer:
-    """One test-driver process that answers for urwire-decode input after input (`driver batch`:
-    the command's own record loop), so that many inputs cost one process, not one each."""
+    """One test-driver process that answers input after input (`driver batch`), so that many
+    streams cost one process, not one each. By default it answers for urwire-decode (the
+    command's own record loop); `mode` picks another answer: ("chunks", "K") prints the records
+    fed K bytes at a time, ("roundtrip",) checks that every part encodes back (tests/c/driver.c).
+    Whatever the driver writes to stderr (a sanitizer's report) fails `close`."""
 
-    def __init__(self, driver: Path):
-        self.proc = subprocess.Popen([str(driver), "batch"], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+    def __init__(self, driver: Path, *mode: str):
+        self.stderr = tempfile.TemporaryFile()
+        self.proc = subprocess.Popen([str(driver), "batch", *mode], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                     stderr=self.stderr)
 
     def decode(self, data: bytes, hint: str = "") -> tuple[list[str], int]:
-        """The lines the command prints for a stream and its exit status ("" hint: none given)."""
+        """The lines the driver prints for a stream and its exit status ("" hint: none given)."""
         text = hint.encode("utf-8", "surrogateescape")
         self.proc.stdin.write(len(text).to_bytes(4, "big") + text + len(data).to_bytes(4, "big") + data)
         self.proc.stdin.flush()
         lines = []
         while True:
             line = self.proc.stdout.readline()
-            assert line, f"the driver stopped (exit {self.proc.wait()})"
+            assert line, f"the driver stopped (exit {self.proc.wait()}): {self.errors()}"
             if line.startswith(b"="):
                 return lines, int(line[1:])
-            lines.append(line.decode("utf-8").rstrip("\n"))
+            lines.append(line.decode("utf-8")[:-1])   # "\n" only: a text may hold U+2028
+
+    def errors(self) -> str:
+        self.stderr.seek(0)
+        return self.stderr.read().decode("utf-8", "replace")[-3000:]
 
     def close(self) -> None:
         self.proc.stdin.close()
-        assert self.proc.wait() == 0
+        code = self.proc.wait()
+        assert code == 0 and self.errors() == "", f"the driver exited {code}: {self.errors()}"
+        self.stderr.close()
 
     def __enter__(self) -> "CommandPeer":
         return self
 
     def __exit__(self, *exc) -> None:
-        self.close()
+        if exc[0] is None:
+            self.close()
+        else:
+            self.proc.kill()
+            self.proc.wait()
 
 
 def python_answer(data: bytes, hint: str = "") -> tuple[list[str], int]:

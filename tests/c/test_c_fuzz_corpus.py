@@ -2,20 +2,18 @@
 long seeds, and what the last `make fuzz` found (build/fuzz/corpus/, when there).
 
 - through both C harnesses again, built as `make fuzz` builds them (ASan, UBSan), each with its
-  own checks: the strict flags, and every input run once;
+  own checks: the strict flags, and every input and seed run once;
 - through urwire-decode's record loop and the Python decoder: the same lines, byte for byte,
   and the same exit status, for the same hint text (one driver process for all inputs)."""
 from __future__ import annotations
 
-import re
 import shutil
-import subprocess
 
 import pytest
 
 from tests.c.harness_c import CLI_LIBRARY, GEN, OUT, ROOT, CommandPeer, compile_c, python_answer
-from tests.c.seeds import long_messages
-from tests.tools.fuzz_inputs import CORPUS, HARNESSES, kept, split
+from tests.c.seeds import long_messages, seeds
+from tests.tools.fuzz_inputs import CORPUS, HARNESSES, kept, libfuzzer_runs, run_once, split, write_seeds
 
 FOUND = ROOT / "build" / "fuzz" / "corpus"
 FUZZER_FLAGS = ["-g", "-O1", "-fsanitize=fuzzer,address,undefined", "-fno-sanitize-recover=all"]
@@ -27,7 +25,9 @@ def found(harness: str) -> list[bytes]:
 
 
 @pytest.mark.parametrize("harness", ["urwire", "json"])
-def test_the_kept_corpus_passes_its_harness(harness):
+def test_the_kept_corpus_and_seeds_pass_their_harness(harness, tmp_path):
+    """The harness builds as `make fuzz` builds it, and runs once over every kept input and seed
+    (-runs=0: no fuzzing), with the checks it makes on every input."""
     if shutil.which("clang") is None:
         pytest.fail("clang is not installed (scripts/setup.sh installs it)")
     fuzzer = OUT / "fuzz" / f"fuzz_{harness}"
@@ -35,10 +35,10 @@ def test_the_kept_corpus_passes_its_harness(harness):
               fuzzer, ["-lm"])
     folders = [CORPUS / harness] + ([ROOT / "tests" / "c" / "regressions"] if harness == "urwire" else [])
     count = sum(1 for f in folders for p in f.iterdir() if p.is_file())
-    result = subprocess.run([str(fuzzer), "-runs=0", *map(str, folders)], capture_output=True, text=True)
+    folders.append(write_seeds(harness, tmp_path / "seeds"))
+    result = run_once([str(fuzzer)], folders, tmp_path / "crashes")
     assert result.returncode == 0, result.stderr[-3000:]
-    runs = int(re.search(r"Done (\d+) runs", result.stderr).group(1))
-    assert count > 20 and runs >= count
+    assert count > 20 and libfuzzer_runs(result.stderr) >= count + len(set(seeds(harness)))
 
 
 def test_the_fuzzers_inputs_agree_with_python(fast):

@@ -10,6 +10,7 @@ import subprocess
 
 import pytest
 
+from tests.c.harness_c import CommandPeer
 from urwire.canonical import f32_text
 
 
@@ -19,6 +20,12 @@ def c_text(build, data: bytes) -> str:
     line = result.stdout.decode("utf-8")  # the output itself is always valid UTF-8
     assert line.endswith("\n")
     return line[:-1]
+
+
+def c_texts(build, inputs: list[bytes]) -> list[str]:
+    """c_text of each input, from one driver process (`driver batch text`)."""
+    with CommandPeer(build.driver, "text") as peer:
+        return [peer.decode(data)[0][0] for data in inputs]
 
 
 EDGES = [b"", b"plain", b"\x00\x01\x1f\x7f\"\\/\n\r\t\b\f", "héllo wörld ✓ 𝄞".encode(),
@@ -39,12 +46,15 @@ def test_edge_cases_decode_like_python(asan, data):
 def test_random_bytes_decode_like_python(asan):
     rng = random.Random(5)
     alphabet = [bytes([b]) for b in range(256)] + ["é", "€", "𝄞", "\u2028"]
+    inputs = []
     for _ in range(300):
         parts = [rng.choice(alphabet) for _ in range(rng.randint(0, 40))]
         data = b"".join(p if isinstance(p, bytes) else p.encode() for p in parts)
         if rng.random() < 0.3:  # cut inside a sequence now and then
             data = data[:rng.randint(0, len(data))]
-        assert c_text(asan, data) == json.dumps(data.decode("utf-8", "replace"), ensure_ascii=False), data.hex()
+        inputs.append(data)
+    for data, text in zip(inputs, c_texts(asan, inputs), strict=True):
+        assert text == json.dumps(data.decode("utf-8", "replace"), ensure_ascii=False), data.hex()
 
 
 def float_bits(rng: random.Random, size: int, count: int) -> list[bytes]:

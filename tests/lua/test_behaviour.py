@@ -9,8 +9,8 @@ import shutil
 import struct
 import subprocess
 
-from harness import (PLUGIN, ROOT, _experts, parse_json, run_tshark, to_records, tshark_json,
-                     ur_items_by_stream, write_sessions)
+from tests.lua.harness import (PLUGIN, ROOT, _experts, parse_json, run_tshark, to_records, tshark_json,
+                               ur_items_by_stream, write_sessions)
 from tests.tools import capture
 from tests.tools.capture import Segment
 

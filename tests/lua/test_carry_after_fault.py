@@ -3,7 +3,7 @@ large message sent in tiny segments right after one must cost tshark memory line
 bytes carried: about what TCP reassembly of the same message costs without the fault."""
 from __future__ import annotations
 
-from harness import run_tshark_peak_rss
+from tests.lua.harness import run_tshark_peak_rss
 from tests.tools import after_fault
 
 MIB = 1 << 20

@@ -8,7 +8,7 @@ import random
 
 import pytest
 
-from harness import run_tshark, write_sessions
+from tests.lua.harness import run_tshark, write_sessions
 from tests.c.seeds import long_messages
 from tests.tools.fuzz_inputs import HARNESSES, kept, split
 

@@ -30,7 +30,7 @@ from codegen.compile import compile_text
 BASE_SPEC = Path(__file__).resolve().parents[1] / "fixtures" / "ur_primary_5_9_only.yaml"
 from codegen.plan import plan
 from codegen.targets import lua as lua_target
-from harness import parse_json, run_tshark, ur_items_by_stream, write_sessions
+from tests.lua.harness import parse_json, run_tshark, ur_items_by_stream, write_sessions
 
 
 def edit(data: dict) -> None:

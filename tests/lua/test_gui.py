@@ -10,7 +10,7 @@ import sys
 
 import pytest
 
-from harness import PLUGIN, ROOT, run_tshark
+from tests.lua.harness import PLUGIN, ROOT, run_tshark
 from tests.tools.gui import SCREEN
 
 SAMPLE = ROOT / "dissector" / "samples" / "primary_session.pcapng"

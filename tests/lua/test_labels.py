@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 import subprocess
 
-from harness import PLUGIN, ROOT, run_tshark
+from tests.lua.harness import PLUGIN, ROOT, run_tshark
 
 SAMPLES = [ROOT / "dissector" / "samples" / name for name in ("primary_session.pcapng", "secondary_session.pcap")]
 SNAKE = re.compile(r"\b[a-z][a-z0-9]*_[a-z0-9_]+\b")

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from harness import PLUGIN, ROOT
+from tests.lua.harness import PLUGIN, ROOT
 
 RUNTIME = ROOT / "runtime" / "lua"
 TESTS = Path(__file__).resolve().parent / "runtime"

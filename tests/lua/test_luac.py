@@ -4,7 +4,7 @@ import subprocess
 
 import pytest
 
-from harness import PLUGIN
+from tests.lua.harness import PLUGIN
 
 
 @pytest.mark.parametrize("luac", ["luac5.2", "luac5.3", "luac5.4"])

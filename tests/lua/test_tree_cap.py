@@ -6,7 +6,7 @@ import re
 import struct
 import xml.etree.ElementTree as ET
 
-from harness import run_tshark
+from tests.lua.harness import run_tshark
 from tests.tools import capture
 
 from codegen.targets.lua import MAX_TREE_ITEMS

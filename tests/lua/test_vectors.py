@@ -6,18 +6,13 @@ segmentation costs one tshark run.
 """
 from __future__ import annotations
 
-import sys
-from pathlib import Path
-
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from harness import (F32_TOL, comparable, to_records, tshark_json, ur_items_by_stream,  # noqa: E402
-                     write_sessions)
-from tests.tools import capture  # noqa: E402
-from tests.vectors import all_cases, mismatches  # noqa: E402
+from tests.lua.harness import F32_TOL, comparable, to_records, tshark_json, ur_items_by_stream, write_sessions
+from tests.tools import capture
+from tests.vectors import all_cases, mismatches
 
-import urwire  # noqa: E402
+import urwire
 
 CASES = all_cases()
 HINTS = sorted({c.version for c in CASES}, key=lambda v: v or "")
@@ -67,7 +62,8 @@ def decoded(request, tmp_path_factory):
         pcap = write_sessions(tmp_path_factory.mktemp(seg) / f"{seg}_{hint}.pcap", streams,
                               handshake=seg != "mid_stream", retransmit_every=3 if seg == "retransmitted" else 0)
         opts = ("-o", f"ur.version:{hint}") if hint else ()
-        by_stream = ur_items_by_stream(tshark_json(pcap, *opts))
+        # -Y ur: only the frames that complete a message are printed (the others show nothing of it)
+        by_stream = ur_items_by_stream(tshark_json(pcap, *opts, "-Y", "ur"))
         for i, c in enumerate(cases):
             out[c.name] = [r for u in by_stream.get(i, []) for r in to_records(u)]
     return seg, out

@@ -7,6 +7,9 @@
 """
 from __future__ import annotations
 
+import hashlib
+import re
+import subprocess
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -41,3 +44,36 @@ def kept(harness: str) -> list[bytes]:
     folders = [CORPUS / harness] + ([ROOT / "tests" / "c" / "regressions"] if harness == "urwire" else [])
     return [p.read_bytes() for folder in folders if folder.is_dir()
             for p in sorted(folder.iterdir()) if p.is_file() and p.name != "README"]
+
+
+def fuzz_max_len() -> int:
+    """mk/fuzz.mk's -max_len: two messages at the length limit, the framer's slack, the control byte."""
+    from urwire.spec import MAX_MESSAGE_LENGTH
+
+    return 2 * MAX_MESSAGE_LENGTH + 4096 + 1
+
+
+def write_seeds(harness: str, folder: Path) -> Path:
+    """The seeds `make fuzz` gives a harness (tests/c/seeds.py), one file each, in folder."""
+    from tests.c.seeds import seeds
+
+    folder.mkdir(parents=True, exist_ok=True)
+    for seed in seeds(harness):
+        (folder / hashlib.sha1(seed).hexdigest()).write_bytes(seed)
+    return folder
+
+
+def libfuzzer_runs(stderr: str) -> int:
+    """How many inputs a libFuzzer (or atheris) run executed, from its final line."""
+    return int(re.search(r"Done (\d+) runs", stderr).group(1))
+
+
+def run_once(harness: list[str], folders: list[Path], artifacts: Path) -> subprocess.CompletedProcess:
+    """A fuzz harness run once over every input of the folders (-runs=0: no fuzzing), with
+    `make fuzz`'s -max_len and its default memory limit; what fails lands in `artifacts`.
+    It is started from a shell in the background: Linux counts into a child's peak memory the
+    peak of the process it was started from, and a long test run's pytest would pass
+    libFuzzer's limit (tests/tools/measure.py)."""
+    artifacts.mkdir(parents=True, exist_ok=True)
+    cmd = [*harness, "-runs=0", f"-max_len={fuzz_max_len()}", f"-artifact_prefix={artifacts}/", *map(str, folders)]
+    return subprocess.run(["sh", "-c", '"$@" & wait $!', "sh", *cmd], capture_output=True, text=True)
