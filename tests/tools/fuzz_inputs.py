@@ -48,7 +48,7 @@ def kept(harness: str) -> list[bytes]:
 
 def fuzz_max_len() -> int:
     """mk/fuzz.mk's -max_len: two messages at the length limit, the framer's slack, the control byte."""
-    from urwire.spec import MAX_MESSAGE_LENGTH
+    from urwire.generated.spec import MAX_MESSAGE_LENGTH
 
     return 2 * MAX_MESSAGE_LENGTH + 4096 + 1
 
