@@ -272,9 +272,16 @@ class Segment:
 
     first: Optional[ir.Version]
     upto: Optional[ir.Version]
+    after: Optional[ir.Version] = None
+    """The last version of a range that ends just before `first`, when no range starts at `first`
+    (the segment between two series): it is said as "after 5.99", not as a version of its own."""
 
     def describe(self) -> str:
-        """"up to 1.5", "1.8", "1.6 to 1.7", "5.4 to 5.25.0", "3.16 to before 5.0", "10.0 and later"."""
+        """"up to 1.5", "1.8", "1.6 to 1.7", "5.4 to 5.25.0", "3.16 to before 5.0",
+        "after 5.99, before 10.0", "10.0 and later"."""
+        if self.after is not None:
+            since = f"after {ir.version_text(self.after)}"
+            return f"{since}, before {ir.version_text(self.upto)}" if self.upto else f"{since}"
         if self.upto is None:
             return f"{ir.version_text(self.first)} and later" if self.first else "all versions"
         major, minor, bugfix = self.upto
@@ -535,19 +542,26 @@ def _after(number: int) -> Optional[ir.Version]:
     return (major, minor + 1, 0) if bugfix == ir.BUGFIX_ANY else (major, minor, bugfix + 1)
 
 
-def _segments(messages: list[MessagePlan]) -> list[Segment]:
-    """The version axis cut wherever any form of any type code starts or ends."""
-    cuts: set[ir.Version] = set()
+def _segments(messages: list[MessagePlan], series: list[ir.VersionRange]) -> list[Segment]:
+    """The version axis cut wherever any form of any type code starts or ends. A segment that
+    starts outside every released series (between two of them) is said from the end before it."""
+    starts_of_ranges: set[ir.Version] = set()
+    ends: dict[ir.Version, ir.Version] = {}   # the version after a range's end -> that end
     for mp in messages:
         for variants in mp.variants.values():
             for v in variants:
                 for lo, hi in v.ranges:
                     if lo:
-                        cuts.add(ir.version_of_number(lo))
+                        starts_of_ranges.add(ir.version_of_number(lo))
                     if _after(hi) is not None:
-                        cuts.add(_after(hi))
-    starts: list[Optional[ir.Version]] = [None] + sorted(cuts)
-    return [Segment(first, upto) for first, upto in zip(starts, starts[1:] + [None])]
+                        ends[_after(hi)] = ir.version_of_number(hi)
+    starts: list[Optional[ir.Version]] = [None] + sorted(starts_of_ranges | set(ends))
+
+    def between_series(first: Optional[ir.Version]) -> bool:
+        return first is not None and bool(series) and not any(r.contains(first) for r in series)
+
+    return [Segment(first, upto, ends.get(first) if between_series(first) else None)
+            for first, upto in zip(starts, starts[1:] + [None])]
 
 
 def _by_segment(variants: list[Variant], segments: list[Segment]) -> list[SegmentForm]:
@@ -600,7 +614,7 @@ def plan(p: ir.Protocol) -> ProtocolPlan:
             for v in forms:
                 v.plan = planner.layout(v.layout.struct.at(v.rep))
         messages.append(MessagePlan(m, header, body, subtype_offset, choices, variants))
-    segments = _segments(messages)
+    segments = _segments(messages, [r for _, r in p.generations])
     for mp in messages:
         mp.by_segment = {code: _by_segment(forms, segments) for code, forms in mp.variants.items()}
         mp.by_length = {code: _by_length(forms) for code, forms in mp.variants.items()}

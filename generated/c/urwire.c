@@ -5176,18 +5176,18 @@ static const uint64_t urwire__segment_bounds[] = {
     0u,  /* up to 1.5 */
     URWIRE__V(1, 6, 0),  /* 1.6 to 1.7 */
     URWIRE__V(1, 8, 0),  /* 1.8 */
-    URWIRE__V(1, 9, 0),  /* 1.9 to before 3.0 */
+    URWIRE__V(1, 9, 0),  /* after 1.8, before 3.0 */
     URWIRE__V(3, 0, 0),  /* 3.0 */
     URWIRE__V(3, 1, 0),  /* 3.1 */
     URWIRE__V(3, 2, 0),  /* 3.2 */
     URWIRE__V(3, 3, 0),  /* 3.3 to 3.4 */
     URWIRE__V(3, 5, 0),  /* 3.5 to 3.9 */
     URWIRE__V(3, 10, 0),  /* 3.10 to 3.15 */
-    URWIRE__V(3, 16, 0),  /* 3.16 to before 5.0 */
+    URWIRE__V(3, 16, 0),  /* after 3.15, before 5.0 */
     URWIRE__V(5, 0, 0),  /* 5.0 to 5.3 */
     URWIRE__V(5, 4, 0),  /* 5.4 to 5.25.0 */
     URWIRE__V(5, 25, 1),  /* 5.25.1 to 5.99 */
-    URWIRE__V(5, 100, 0),  /* 5.100 to before 10.0 */
+    URWIRE__V(5, 100, 0),  /* after 5.99, before 10.0 */
     URWIRE__V(10, 0, 0),  /* 10.0 and later */
 };
 
@@ -5312,7 +5312,7 @@ static const uint8_t urwire__package_mine[] = {
     0x01, 0x05, 0x06, 0x08, 0x0c, 0x0e, 0x10, 0x13, 0x14, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
     /* 1.8 */
     0x01, 0x05, 0x06, 0x08, 0x0c, 0x0f, 0x10, 0x13, 0x15, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
-    /* 1.9 to before 3.0 */
+    /* after 1.8, before 3.0 */
     0x81, 0x85, 0x86, 0x88, 0x8c, 0x8f, 0x90, 0x93, 0x95, 0x98, 0x99, 0x9a, 0x9b, 0x9c,
     /* 3.0 */
     0x02, 0x05, 0x06, 0x09, 0x0c, 0x0f, 0x11, 0x13, 0x15, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
@@ -5326,7 +5326,7 @@ static const uint8_t urwire__package_mine[] = {
     0x04, 0x05, 0x06, 0x0a, 0x0d, 0x0f, 0x11, 0x13, 0x16, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
     /* 3.10 to 3.15 */
     0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x11, 0x13, 0x16, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
-    /* 3.16 to before 5.0 */
+    /* after 3.15, before 5.0 */
     0x84, 0x85, 0x86, 0x8b, 0x8d, 0x8f, 0x91, 0x93, 0x96, 0x98, 0x99, 0x9a, 0x9b, 0x9c,
     /* 5.0 to 5.3 */
     0x04, 0x05, 0x06, 0x0a, 0x0d, 0x0f, 0x11, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
@@ -5334,7 +5334,7 @@ static const uint8_t urwire__package_mine[] = {
     0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x11, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
     /* 5.25.1 to 5.99 */
     0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x12, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
-    /* 5.100 to before 10.0 */
+    /* after 5.99, before 10.0 */
     0x84, 0x85, 0x86, 0x8b, 0x8d, 0x8f, 0x92, 0x93, 0x97, 0x98, 0x99, 0x9a, 0x9b, 0x9c,
     /* 10.0 and later */
     0x04, 0x05, 0x06, 0x0b, 0x0d, 0x0f, 0x12, 0x13, 0x17, 0x18, 0x19, 0x1a, 0x1b, 0x1c,
@@ -5350,7 +5350,7 @@ static const uint32_t urwire__package_first_sizes[] = {
     24u, 246u, 32u, 59u, 48u, 24u, 464u, 56u, 5u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
     /* 1.8 */
     24u, 246u, 32u, 59u, 48u, 220u, 464u, 56u, 2u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* 1.9 to before 3.0 */
+    /* after 1.8, before 3.0 */
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
     /* 3.0 */
@@ -5365,7 +5365,7 @@ static const uint32_t urwire__package_first_sizes[] = {
     42u, 246u, 32u, 69u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
     /* 3.10 to 3.15 */
     42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 3u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* 3.16 to before 5.0 */
+    /* after 3.15, before 5.0 */
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
     /* 5.0 to 5.3 */
@@ -5374,7 +5374,7 @@ static const uint32_t urwire__package_first_sizes[] = {
     42u, 246u, 32u, 70u, 96u, 220u, 440u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
     /* 5.25.1 to 5.99 */
     42u, 246u, 32u, 70u, 96u, 220u, 444u, 56u, 4u, 48u, URWIRE__OPEN(0u), 21u, 3u, 2u,
-    /* 5.100 to before 10.0 */
+    /* after 5.99, before 10.0 */
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
     URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE, URWIRE__NONE,
     /* 10.0 and later */
@@ -5478,7 +5478,7 @@ static const uint8_t urwire__robot_message_mine[] = {
     /* 1.8 */
     0x0f, 0x0b, 0x09, 0x01, 0x00, 0x03, 0x05, 0x07, 0x0c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
     0x0d,
-    /* 1.9 to before 3.0 */
+    /* after 1.8, before 3.0 */
     0x8f, 0x8b, 0x89, 0x81, 0x00, 0x83, 0x85, 0x87, 0x8c, 0x8e, 0x90, 0x00, 0x00, 0x00, 0x88, 0x00, 0x00, 0x00,
     0x8d,
     /* 3.0 */
@@ -5499,7 +5499,7 @@ static const uint8_t urwire__robot_message_mine[] = {
     /* 3.10 to 3.15 */
     0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
     0x0d,
-    /* 3.16 to before 5.0 */
+    /* after 3.15, before 5.0 */
     0x8f, 0x8b, 0x8a, 0x82, 0x00, 0x84, 0x86, 0x87, 0x8c, 0x8e, 0x90, 0x00, 0x00, 0x00, 0x88, 0x00, 0x00, 0x00,
     0x8d,
     /* 5.0 to 5.3 */
@@ -5511,7 +5511,7 @@ static const uint8_t urwire__robot_message_mine[] = {
     /* 5.25.1 to 5.99 */
     0x0f, 0x8b, 0x0a, 0x02, 0x00, 0x04, 0x06, 0x07, 0x8c, 0x0e, 0x10, 0x00, 0x00, 0x00, 0x08, 0x00, 0x00, 0x00,
     0x0d,
-    /* 5.100 to before 10.0 */
+    /* after 5.99, before 10.0 */
     0x8f, 0x8b, 0x8a, 0x82, 0x00, 0x84, 0x86, 0x87, 0x8c, 0x8e, 0x90, 0x00, 0x00, 0x00, 0x88, 0x00, 0x00, 0x00,
     0x8d,
     /* 10.0 and later */
@@ -5558,7 +5558,7 @@ static const uint8_t urwire__program_state_mine[] = {
     0x01, 0x02,
     /* 1.8 */
     0x01, 0x02,
-    /* 1.9 to before 3.0 */
+    /* after 1.8, before 3.0 */
     0x81, 0x82,
     /* 3.0 */
     0x01, 0x02,
@@ -5572,7 +5572,7 @@ static const uint8_t urwire__program_state_mine[] = {
     0x01, 0x02,
     /* 3.10 to 3.15 */
     0x01, 0x02,
-    /* 3.16 to before 5.0 */
+    /* after 3.15, before 5.0 */
     0x81, 0x82,
     /* 5.0 to 5.3 */
     0x01, 0x02,
@@ -5580,7 +5580,7 @@ static const uint8_t urwire__program_state_mine[] = {
     0x01, 0x02,
     /* 5.25.1 to 5.99 */
     0x01, 0x02,
-    /* 5.100 to before 10.0 */
+    /* after 5.99, before 10.0 */
     0x81, 0x82,
     /* 10.0 and later */
     0x01, 0x02,

@@ -166,3 +166,13 @@ def test_the_fewest_bytes_of_a_value_is_worked_out_once_and_rendered_by_every_ta
     assert python.count("}, MAX_VALUE_DEPTH, 1)),") == 2 and python.count("}, MAX_VALUE_DEPTH, 2)),") == 1
     assert c.count("(urwire__values_5_9_on), 2},") == 1 and c.count("), 1},") == 2
     assert lua.count("min_size = 1,") == 2 and lua.count("min_size = 2,") == 1
+
+
+def test_segments_between_series_are_said_from_the_series_before():
+    """A segment that no released series holds reads "after 3.15, before 5.0", never as a version
+    no controller has (3.16, 5.100); segments inside a series read from their first version."""
+    texts = [s.describe() for s in plan(compile_file(DEFAULT_SPEC)).segments]
+    assert "after 1.8, before 3.0" in texts and "after 3.15, before 5.0" in texts
+    assert "after 5.99, before 10.0" in texts
+    assert not any("5.100" in t or "3.16" in t for t in texts), texts
+    assert texts[-1] == "10.0 and later" and "5.25.1 to 5.99" in texts
