@@ -8,8 +8,9 @@ import socket
 import subprocess
 import sys
 import threading
+import time
 from pathlib import Path
-from typing import Callable, Iterable
+from typing import Callable, Iterable, Optional
 
 from urwire.simulated import Controller
 
@@ -32,17 +33,31 @@ class Peer:
 
     def __init__(self, scripts: Iterable[Callable[[socket.socket], None]], accept_timeout: float = 10.0):
         self.scripts = list(scripts)
+        self.accept_timeout = accept_timeout
         self.server = socket.create_server(("127.0.0.1", 0))
-        self.server.settimeout(accept_timeout)
+        self.server.settimeout(0.1)     # short waits, so that the test's end stops the thread at once
         self.port = self.server.getsockname()[1]
         self.served = 0
+        self.done = threading.Event()
         self.thread = threading.Thread(target=self._serve, daemon=True)
+
+    def _accept(self) -> Optional[socket.socket]:
+        give_up = time.monotonic() + self.accept_timeout
+        while not self.done.is_set() and time.monotonic() < give_up:
+            try:
+                conn, _ = self.server.accept()
+            except socket.timeout:
+                continue
+            except OSError:
+                return None
+            conn.settimeout(None)
+            return conn
+        return None
 
     def _serve(self) -> None:
         for script in self.scripts:
-            try:
-                conn, _ = self.server.accept()
-            except OSError:
+            conn = self._accept()
+            if conn is None:
                 return
             with conn:
                 try:
@@ -57,8 +72,9 @@ class Peer:
         return self
 
     def __exit__(self, *exc) -> None:
-        self.server.close()
+        self.done.set()
         self.thread.join(timeout=5)
+        self.server.close()
 
 
 def listen(port: int, *options: str, timeout: float = 20) -> subprocess.CompletedProcess:

@@ -60,7 +60,7 @@ def test_raw_across_reconnects_decodes_to_the_records(tmp_path):
     scripts = [cut_session(3 + n, keep=0.3 + 0.15 * n) for n in range(CONNECTIONS)]
     out, raw = tmp_path / "session.jsonl", tmp_path / "session.raw"
     with Peer(scripts) as peer:
-        res = listen(peer.port, "--out", str(out), "--raw", str(raw), "--duration", "6")
+        res = listen(peer.port, "--out", str(out), "--raw", str(raw), "--duration", "4")
     recorded = out.read_text().splitlines()
     files = raw_files(tmp_path)
     assert len(files) == CONNECTIONS, res.stderr
@@ -123,7 +123,7 @@ def test_socket_has_keepalive():
 def test_reconnects_are_said_on_stderr(tmp_path):
     out = tmp_path / "session.jsonl"
     with Peer([cut_session(3), silent(3), whole_session(2)]) as peer:
-        res = listen(peer.port, "--out", str(out), "--idle-timeout", "1", "--duration", "6")
+        res = listen(peer.port, "--out", str(out), "--idle-timeout", "1", "--duration", "4.5")
     lines = res.stderr.splitlines()
     records = len(out.read_text().splitlines())
     lost = [line for line in lines if "lost" in line]
