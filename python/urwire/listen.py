@@ -21,8 +21,9 @@ import signal
 import socket
 import sys
 import time
+from contextlib import contextmanager
 from pathlib import Path
-from typing import Callable, Optional
+from typing import Callable, Iterator, Optional
 
 from .canonical import has_error, to_json_line
 from .framer import Framer
@@ -116,8 +117,11 @@ class Outputs:
 
     def __init__(self, args: argparse.Namespace):
         self.out_name = args.out or "standard output"
-        self.out = open(args.out, "w", encoding="utf-8") if args.out else sys.stdout
+        self.out = sys.stdout
         self.owns_out = bool(args.out)
+        if args.out:
+            with self.writing(args.out):
+                self.out = open(args.out, "w", encoding="utf-8")
         self.raw_first: Optional[str] = args.raw
         self.raw = None
         self.raw_name = ""
@@ -126,56 +130,66 @@ class Outputs:
         self.failed = False
         if args.format == "csv":
             self.render = _csv_renderer()
-            self._guard(self.out_name, lambda: self.out.write("position,time,type,record\n"))
+            with self.writing(self.out_name):
+                self.out.write("position,time,type,record\n")
         else:
             self.render = to_json_line if args.format == "jsonl" else human_line
 
-    def _guard(self, name: str, action: Callable) -> None:
+    @contextmanager
+    def writing(self, name: str) -> Iterator[None]:
+        """An OSError inside is the file's fault: raised again as OutputError, naming the file."""
         try:
-            action()
+            yield
         except OSError as exc:
             raise OutputError(name, exc) from None
 
     def new_connection(self, number: int) -> None:
+        """Closes the last connection's raw file and opens this one's (number counts from 0)."""
         self.close_raw()
         if self.raw_first:
             self.raw_name = raw_path(self.raw_first, number)
-            self._guard(self.raw_name, lambda: setattr(self, "raw", open(self.raw_name, "wb")))
+            with self.writing(self.raw_name):
+                self.raw = open(self.raw_name, "wb")
 
     def keep_raw(self, chunk: bytes) -> None:
         if self.raw:
-            self._guard(self.raw_name, lambda: (self.raw.write(chunk), self.raw.flush()))
+            with self.writing(self.raw_name):
+                self.raw.write(chunk)
+                self.raw.flush()
 
     def write(self, records: list) -> None:
-        self._guard(self.out_name, lambda: self._write(records))
-
-    def _write(self, records: list) -> None:
-        for record in records:
-            self.failed = self.failed or has_error(record)
-            self.out.write(self.render(record))
-            self.out.write("\n")
-            self.records += 1
-            if self.count is not None and self.records >= self.count:
-                self.out.flush()
-                raise _Stopped()
-        self.out.flush()
+        with self.writing(self.out_name):
+            for record in records:
+                self.failed = self.failed or has_error(record)
+                self.out.write(self.render(record))
+                self.out.write("\n")
+                self.records += 1
+                if self.count is not None and self.records >= self.count:
+                    self.out.flush()
+                    raise _Stopped()
+            self.out.flush()
 
     def close_raw(self) -> None:
         raw, self.raw = self.raw, None
         if raw:
-            self._guard(self.raw_name, raw.close)
+            with self.writing(self.raw_name):
+                raw.close()
 
     def close(self) -> None:
         """Closes every file, each in turn; the first error is raised once all are closed."""
         errors = []
-        for name, action in ((self.raw_name, self.close_raw),
-                             (self.out_name, self.out.close if self.owns_out else self.out.flush)):
-            try:
-                action()
-            except OutputError as exc:
-                errors.append(exc)
-            except OSError as exc:
-                errors.append(OutputError(name, exc))
+        try:
+            self.close_raw()
+        except OutputError as exc:
+            errors.append(exc)
+        try:
+            with self.writing(self.out_name):
+                if self.owns_out:
+                    self.out.close()
+                else:
+                    self.out.flush()
+        except OutputError as exc:
+            errors.append(exc)
         if errors:
             raise errors[0]
 
@@ -193,9 +207,6 @@ def listen_command(args: argparse.Namespace) -> int:
         outputs = Outputs(args)
     except OutputError as exc:
         print(f"urwire listen: {exc}", file=sys.stderr)
-        return 2
-    except OSError as exc:
-        print(f"urwire listen: cannot write {exc.filename}: {exc.strerror}", file=sys.stderr)
         return 2
     deadline = time.monotonic() + args.duration if args.duration is not None else None
     signal.signal(signal.SIGTERM, _stop)

@@ -87,6 +87,23 @@ def test_full_disk_is_an_io_error_not_a_lost_connection(which, tmp_path):
     assert peer.served == 1
 
 
+def test_full_standard_output_is_an_io_error(tmp_path):
+    with Peer([whole_session(5)] * 3) as peer, open("/dev/full", "w") as full:
+        res = subprocess.run([sys.executable, "-m", "urwire", "listen", f"127.0.0.1:{peer.port}", "--duration", "5"],
+                             stdout=full, stderr=subprocess.PIPE, text=True, env=ENV, timeout=20)
+    assert res.returncode == 2, res.stderr
+    assert "standard output" in res.stderr and "No space left on device" in res.stderr
+    assert "Traceback" not in res.stderr and "reconnect" not in res.stderr
+
+
+def test_unwritable_output_is_said_before_connecting(tmp_path):
+    missing = tmp_path / "no such folder" / "session.jsonl"
+    res = listen(9, "--out", str(missing), "--duration", "2")     # port 9: nothing is contacted
+    assert res.returncode == 2
+    assert f"cannot write {missing}: No such file or directory" in res.stderr
+    assert "connect" not in res.stderr
+
+
 def test_silent_peer_is_dropped_after_the_idle_timeout(tmp_path):
     out = tmp_path / "session.jsonl"
     with Peer([silent(8), whole_session(3)]) as peer:
