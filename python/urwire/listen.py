@@ -16,7 +16,9 @@ from __future__ import annotations
 
 import argparse
 import csv
+import glob
 import io
+import re
 import signal
 import socket
 import sys
@@ -72,6 +74,15 @@ def raw_path(first: str, connection: int) -> str:
     return str(path.with_name(f"{path.stem}.{connection}{path.suffix}"))
 
 
+def earlier_raw_files(first: str) -> list[Path]:
+    """The numbered raw files a longer earlier run left next to `first`, which this run replaces
+    as it replaces `first`: left in place, they would read as connections of this run."""
+    path = Path(first)
+    pattern = re.compile(re.escape(path.stem) + r"\.[1-9][0-9]*" + re.escape(path.suffix))
+    return [p for p in path.parent.glob(f"{glob.escape(path.stem)}.*{glob.escape(path.suffix)}")
+            if pattern.fullmatch(p.name)]
+
+
 def connect(host: str, port: int, timeout: float) -> socket.socket:
     """A connection with TCP keepalive on, so that a pulled cable ends in an error."""
     sock = socket.create_connection((host, port), timeout=timeout)
@@ -123,6 +134,9 @@ class Outputs:
             with self.writing(args.out):
                 self.out = open(args.out, "w", encoding="utf-8")
         self.raw_first: Optional[str] = args.raw
+        for earlier in earlier_raw_files(args.raw) if args.raw else ():
+            with self.writing(str(earlier)):
+                earlier.unlink()
         self.raw = None
         self.raw_name = ""
         self.count = args.count

@@ -74,6 +74,28 @@ def test_raw_across_reconnects_decodes_to_the_records(tmp_path):
         assert f.read_bytes() == data[:last_start + int((len(data) - last_start) * (0.3 + 0.15 * n))]
 
 
+def test_raw_file_names(tmp_path):
+    from urwire.listen import earlier_raw_files, raw_path
+    assert [raw_path("logs/session.raw", n) for n in range(3)] == \
+        ["logs/session.raw", "logs/session.1.raw", "logs/session.2.raw"]
+    assert raw_path("session", 4) == "session.4"
+    for name in ("s.raw", "s.1.raw", "s.12.raw", "s.x.raw", "s.01.raw", "s.1.bin", "t.1.raw"):
+        (tmp_path / name).write_bytes(b"")
+    found = sorted(p.name for p in earlier_raw_files(str(tmp_path / "s.raw")))
+    assert found == ["s.1.raw", "s.12.raw"]
+
+
+def test_a_new_run_replaces_the_numbered_raw_files_of_a_longer_one(tmp_path):
+    raw = tmp_path / "session.raw"
+    for n in (1, 2, 3):
+        (tmp_path / f"session.{n}.raw").write_bytes(b"from an earlier run")
+    with Peer([whole_session(2), whole_session(2)]) as peer:
+        listen(peer.port, "--out", str(tmp_path / "out.jsonl"), "--raw", str(raw),
+               "--duration", "3")
+    assert [f.name for f in raw_files(tmp_path)] == ["session.raw", "session.1.raw"]
+    assert (tmp_path / "session.1.raw").read_bytes() == session_bytes(2)
+
+
 @pytest.mark.parametrize("which", ["--out", "--raw"])
 def test_full_disk_is_an_io_error_not_a_lost_connection(which, tmp_path):
     other = {"--out": str(tmp_path / "session.raw"), "--raw": str(tmp_path / "session.jsonl")}
