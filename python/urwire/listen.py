@@ -178,10 +178,13 @@ class Outputs:
                 self.out.write(self.render(record))
                 self.out.write("\n")
                 self.records += 1
-                if self.count is not None and self.records >= self.count:
+                if self.count_reached():
                     self.out.flush()
                     raise _Stopped()
             self.out.flush()
+
+    def count_reached(self) -> bool:
+        return self.count is not None and self.records >= self.count
 
     def close_raw(self) -> None:
         raw, self.raw = self.raw, None
@@ -291,7 +294,12 @@ class Link:
             self.outputs.new_connection(self.connections - 1)
             framer = Framer()
             with sock:
-                why = self.session(sock, framer)
+                try:
+                    why = self.session(sock, framer)
+                except (_Stopped, KeyboardInterrupt):
+                    if not self.outputs.count_reached():
+                        self.outputs.write(framer.close())   # the cut tail, as decode reads the raw file
+                    raise
             self.outputs.write(framer.close())
             self.wait(why)
 
