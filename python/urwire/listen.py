@@ -86,10 +86,14 @@ def earlier_raw_files(first: str) -> list[Path]:
 def connect(host: str, port: int, timeout: float) -> socket.socket:
     """A connection with TCP keepalive on, so that a pulled cable ends in an error."""
     sock = socket.create_connection((host, port), timeout=timeout)
-    sock.setsockopt(socket.SOL_SOCKET, socket.SO_KEEPALIVE, 1)
-    for name, value in KEEPALIVE.items():
-        if hasattr(socket, name):       # Linux names; other platforms keep their defaults
-            sock.setsockopt(socket.IPPROTO_TCP, getattr(socket, name), value)
+    try:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_KEEPALIVE, 1)
+        for name, value in KEEPALIVE.items():
+            if hasattr(socket, name):       # Linux names; other platforms keep their defaults
+                sock.setsockopt(socket.IPPROTO_TCP, getattr(socket, name), value)
+    except OSError:
+        sock.close()
+        raise
     return sock
 
 
@@ -243,6 +247,7 @@ def listen_command(args: argparse.Namespace) -> int:
         print(f"urwire listen: {error}", file=sys.stderr)
         return 2
     if not link.received:
+        print(f"urwire listen: nothing was received from {host}:{port}", file=sys.stderr)
         return 2
     return 1 if outputs.failed else 0
 

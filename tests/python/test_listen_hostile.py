@@ -103,7 +103,8 @@ def test_silence_after_half_a_message(tmp_path):
 def test_storm_of_connections_closed_at_once(tmp_path):
     with Peer([sends(b"", linger=0)] * 20) as peer:
         res = listen(peer.port, "--duration", "4")
-    assert res.returncode == 2          # nothing was ever received
+    assert res.returncode == 2
+    assert res.stderr.splitlines()[-1] == f"urwire listen: nothing was received from 127.0.0.1:{peer.port}"
     assert "Traceback" not in res.stderr
     waits = [float(w) for w in re.findall(r"reconnecting in (\d+\.\d) s", res.stderr)]
     assert 2 <= len(waits) <= 5
