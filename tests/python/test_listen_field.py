@@ -150,17 +150,17 @@ def test_silent_peer_is_dropped_after_the_idle_timeout(tmp_path):
         took = time.monotonic() - started
     assert res.returncode == 0, res.stderr
     assert len(out.read_text().splitlines()) == 4
-    assert took < 6
+    assert took < 7
     assert re.search(r"no data .* for 1\.0 s", res.stderr)
 
 
 def test_idle_timeout_defaults_to_two_seconds(tmp_path):
     with Peer([silent(6), whole_session(2)]) as peer:
         started = time.monotonic()
-        res = listen(peer.port, "--count", "1", "--duration", "6")
+        res = listen(peer.port, "--count", "1", "--duration", "8")
         took = time.monotonic() - started
     assert res.returncode == 0, res.stderr
-    assert 1.9 < took < 5
+    assert 1.9 < took < 7
     assert "for 2.0 s" in res.stderr
 
 
