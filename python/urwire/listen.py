@@ -1,22 +1,31 @@
 """`urwire listen`: record a live controller (or `urwire serve`) as it talks.
 
 Connects, frames and decodes the bytes as they arrive and writes each record at once, flushed,
-so `tail -f` follows it; `--raw` also keeps the exact bytes, which `urwire decode` reads back.
-A dropped or refused connection is retried with a growing pause, said on stderr; each new
-connection gets a new framer, since the controller starts it with a Version message.
+so `tail -f` follows it. `--raw FILE` also keeps the exact bytes, one file per connection
+(`FILE`, then `session.1.raw`, `session.2.raw`, ... for `session.raw`), so that each file is one
+controller session that `urwire decode` reads back into exactly the records listen wrote.
+A dropped, refused or silent connection is retried with a growing pause, said on stderr; each
+new connection gets a new framer, since the controller starts it with a Version message.
+A peer that sends nothing for the idle timeout (10 Hz robots send ten states a second) is
+dropped; TCP keepalive also finds a dead link where the platform supports it.
 Exit codes as for decode: 0 everything decoded, 1 some records hold errors, 2 usage or I/O error
-(or nothing was ever received).
+(a file that cannot be written, or nothing was ever received). A write error on an output is
+never taken for a lost connection.
 """
 from __future__ import annotations
 
 import argparse
 import csv
+import glob
 import io
+import re
 import signal
 import socket
 import sys
 import time
-from typing import Callable, Optional
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Callable, Iterator, Optional
 
 from .canonical import has_error, to_json_line
 from .framer import Framer
@@ -25,6 +34,9 @@ from .human import line as human_line
 BACKOFF_FIRST = 0.5
 BACKOFF_MAX = 10.0
 CHUNK = 1 << 16
+IDLE_TIMEOUT = 2.0          # 20 periods of the controller's 10 Hz state
+CONNECT_TIMEOUT = 5.0
+KEEPALIVE = {"TCP_KEEPIDLE": 5, "TCP_KEEPINTVL": 2, "TCP_KEEPCNT": 3}   # seconds, seconds, probes
 
 
 def add_parser(sub, version_arg) -> None:
@@ -36,9 +48,14 @@ def add_parser(sub, version_arg) -> None:
     p.add_argument("--format", choices=("jsonl", "csv", "text"), default="jsonl",
                    help="jsonl: canonical JSON Lines (default); csv: position, time, type, JSON; "
                         "text: one readable line per message")
-    p.add_argument("--raw", metavar="FILE", help="also keep the exact bytes received (readable by decode)")
+    p.add_argument("--raw", metavar="FILE",
+                   help="also keep the exact bytes received, one file per connection: FILE, then FILE with "
+                        ".1, .2, ... before its extension (each readable by decode)")
     p.add_argument("--count", type=int, metavar="N", help="stop after N records")
     p.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
+    p.add_argument("--idle-timeout", type=float, default=IDLE_TIMEOUT, metavar="S",
+                   help=f"drop and reconnect a connection that sends nothing for S seconds "
+                        f"(default: {IDLE_TIMEOUT})")
     p.set_defaults(run=listen_command)
 
 
@@ -47,6 +64,37 @@ def split_address(text: str) -> tuple[str, int]:
     if not sep or "]" in port:          # no port, or a bare IPv6 address
         return text.strip("[]"), 30001
     return host.strip("[]"), int(port)
+
+
+def raw_path(first: str, connection: int) -> str:
+    """The raw file of the connection numbered from 0: `session.raw`, `session.1.raw`, ..."""
+    if connection == 0:
+        return first
+    path = Path(first)
+    return str(path.with_name(f"{path.stem}.{connection}{path.suffix}"))
+
+
+def earlier_raw_files(first: str) -> list[Path]:
+    """The numbered raw files a longer earlier run left next to `first`, which this run replaces
+    as it replaces `first`: left in place, they would read as connections of this run."""
+    path = Path(first)
+    pattern = re.compile(re.escape(path.stem) + r"\.[1-9][0-9]*" + re.escape(path.suffix))
+    return [p for p in path.parent.glob(f"{glob.escape(path.stem)}.*{glob.escape(path.suffix)}")
+            if pattern.fullmatch(p.name)]
+
+
+def connect(host: str, port: int, timeout: float) -> socket.socket:
+    """A connection with TCP keepalive on, so that a pulled cable ends in an error."""
+    sock = socket.create_connection((host, port), timeout=timeout)
+    try:
+        sock.setsockopt(socket.SOL_SOCKET, socket.SO_KEEPALIVE, 1)
+        for name, value in KEEPALIVE.items():
+            if hasattr(socket, name):       # Linux names; other platforms keep their defaults
+                sock.setsockopt(socket.IPPROTO_TCP, getattr(socket, name), value)
+    except OSError:
+        sock.close()
+        raise
+    return sock
 
 
 def _csv_renderer() -> Callable:
@@ -68,8 +116,103 @@ class _Stopped(Exception):
     """The count or the duration is reached, or SIGTERM came."""
 
 
+class OutputError(Exception):
+    """An output file could not be written: the run ends with exit 2, the connection is not at fault."""
+
+    def __init__(self, path: str, error: OSError):
+        super().__init__(f"cannot write {path}: {error.strerror or error}")
+
+
 def _stop(signum, frame) -> None:
     raise _Stopped()
+
+
+class Outputs:
+    """The records file (or standard output) and the raw files, each write error an OutputError."""
+
+    def __init__(self, args: argparse.Namespace):
+        self.out_name = args.out or "standard output"
+        self.out = sys.stdout
+        self.owns_out = bool(args.out)
+        if args.out:
+            with self.writing(args.out):
+                self.out = open(args.out, "w", encoding="utf-8")
+        self.raw_first: Optional[str] = args.raw
+        for earlier in earlier_raw_files(args.raw) if args.raw else ():
+            with self.writing(str(earlier)):
+                earlier.unlink()
+        self.raw = None
+        self.raw_name = ""
+        self.count = args.count
+        self.records = 0
+        self.failed = False
+        if args.format == "csv":
+            self.render = _csv_renderer()
+            with self.writing(self.out_name):
+                self.out.write("position,time,type,record\n")
+        else:
+            self.render = to_json_line if args.format == "jsonl" else human_line
+
+    @contextmanager
+    def writing(self, name: str) -> Iterator[None]:
+        """An OSError inside is the file's fault: raised again as OutputError, naming the file."""
+        try:
+            yield
+        except OSError as exc:
+            raise OutputError(name, exc) from None
+
+    def new_connection(self, number: int) -> None:
+        """Closes the last connection's raw file and opens this one's (number counts from 0)."""
+        self.close_raw()
+        if self.raw_first:
+            self.raw_name = raw_path(self.raw_first, number)
+            with self.writing(self.raw_name):
+                self.raw = open(self.raw_name, "wb")
+
+    def keep_raw(self, chunk: bytes) -> None:
+        if self.raw:
+            with self.writing(self.raw_name):
+                self.raw.write(chunk)
+                self.raw.flush()
+
+    def write(self, records: list) -> None:
+        with self.writing(self.out_name):
+            for record in records:
+                self.failed = self.failed or has_error(record)
+                self.out.write(self.render(record))
+                self.out.write("\n")
+                self.records += 1
+                if self.count_reached():
+                    self.out.flush()
+                    raise _Stopped()
+            self.out.flush()
+
+    def count_reached(self) -> bool:
+        return self.count is not None and self.records >= self.count
+
+    def close_raw(self) -> None:
+        raw, self.raw = self.raw, None
+        if raw:
+            with self.writing(self.raw_name):
+                raw.close()
+
+    def close(self) -> None:
+        """Closes every file, each in turn; the first error is raised once all are closed."""
+        errors = []
+        try:
+            self.close_raw()
+        except OutputError as exc:
+            errors.append(exc)
+        try:
+            with self.writing(self.out_name):
+                if self.owns_out:
+                    self.out.close()
+                else:
+                    self.out.flush()
+        except OutputError as exc:
+            errors.append(exc)
+        if errors:
+            raise errors[0]
 
 
 def listen_command(args: argparse.Namespace) -> int:
@@ -78,47 +221,35 @@ def listen_command(args: argparse.Namespace) -> int:
     except ValueError:
         print(f"urwire listen: not an address: {args.address}", file=sys.stderr)
         return 2
-    try:
-        out = open(args.out, "w", encoding="utf-8") if args.out else sys.stdout
-        raw = open(args.raw, "wb") if args.raw else None
-    except OSError as exc:
-        print(f"urwire listen: cannot write {exc.filename}: {exc.strerror}", file=sys.stderr)
+    if args.idle_timeout <= 0:
+        print("urwire listen: --idle-timeout must be more than 0", file=sys.stderr)
         return 2
-    if args.format == "csv":
-        render = _csv_renderer()
-        out.write("position,time,type,record\n")
-    else:
-        render = to_json_line if args.format == "jsonl" else human_line
+    try:
+        outputs = Outputs(args)
+    except OutputError as exc:
+        print(f"urwire listen: {exc}", file=sys.stderr)
+        return 2
     deadline = time.monotonic() + args.duration if args.duration is not None else None
     signal.signal(signal.SIGTERM, _stop)
-    state = {"records": 0, "failed": False, "received": 0}
-
-    def write(records: list) -> None:
-        for record in records:
-            state["failed"] = state["failed"] or has_error(record)
-            out.write(render(record))
-            out.write("\n")
-            state["records"] += 1
-            if args.count is not None and state["records"] >= args.count:
-                out.flush()
-                raise _Stopped()
-        out.flush()
-
+    link = Link(host, port, args.idle_timeout, deadline, outputs)
+    error: Optional[OutputError] = None
     try:
-        _run(host, port, deadline, write, raw, state)
+        link.run()
     except (_Stopped, KeyboardInterrupt):
         pass
-    except OSError as exc:
-        print(f"urwire listen: cannot write: {exc.strerror or exc}", file=sys.stderr)
+    except OutputError as exc:
+        error = exc
+    try:
+        outputs.close()
+    except OutputError as exc:
+        error = error or exc
+    if error:
+        print(f"urwire listen: {error}", file=sys.stderr)
         return 2
-    finally:
-        if raw:
-            raw.close()
-        if args.out:
-            out.close()
-    if not state["received"]:
+    if not link.received:
+        print(f"urwire listen: nothing was received from {host}:{port}", file=sys.stderr)
         return 2
-    return 1 if state["failed"] else 0
+    return 1 if outputs.failed else 0
 
 
 def _left(deadline: Optional[float]) -> Optional[float]:
@@ -130,40 +261,71 @@ def _left(deadline: Optional[float]) -> Optional[float]:
     return left
 
 
-def _run(host: str, port: int, deadline: Optional[float], write: Callable, raw, state: dict) -> None:
-    pause = BACKOFF_FIRST
-    while True:
-        try:
-            sock = socket.create_connection((host, port), timeout=min(_left(deadline) or 5.0, 5.0))
-        except OSError as exc:
-            wait = min(pause, _left(deadline) or pause)
-            print(f"urwire listen: cannot connect to {host}:{port}: {exc.strerror or exc}; "
-                  f"retrying in {wait:.1f} s", file=sys.stderr, flush=True)
-            time.sleep(wait)
-            pause = min(pause * 2, BACKOFF_MAX)
-            continue
-        print(f"urwire listen: connected to {host}:{port}", file=sys.stderr, flush=True)
-        framer = Framer()
-        try:
-            with sock:
-                while True:
-                    sock.settimeout(min(_left(deadline) or 1.0, 1.0))
-                    try:
-                        chunk = sock.recv(CHUNK)
-                    except socket.timeout:
-                        continue
-                    if not chunk:
-                        break
-                    pause = BACKOFF_FIRST     # the connection worked: start the backoff again
-                    state["received"] += len(chunk)
-                    if raw:
-                        raw.write(chunk)
-                        raw.flush()
-                    write(framer.feed(chunk))
-        except OSError as exc:
-            print(f"urwire listen: connection to {host}:{port} lost: {exc}", file=sys.stderr, flush=True)
-        write(framer.close())
-        wait = min(pause, _left(deadline) or pause)
-        print(f"urwire listen: connection closed; reconnecting in {wait:.1f} s", file=sys.stderr, flush=True)
+class Link:
+    """The connection to the controller, made again with a growing pause whenever it ends."""
+
+    def __init__(self, host: str, port: int, idle_timeout: float, deadline: Optional[float], outputs: Outputs):
+        self.host, self.port = host, port
+        self.idle_timeout = idle_timeout
+        self.deadline = deadline
+        self.outputs = outputs
+        self.pause = BACKOFF_FIRST
+        self.connections = 0
+        self.received = 0
+
+    def say(self, text: str) -> None:
+        print(f"urwire listen: {text}", file=sys.stderr, flush=True)
+
+    def wait(self, why: str, then: str = "reconnecting") -> None:
+        wait = min(self.pause, _left(self.deadline) or self.pause)
+        self.say(f"{why}; {self.outputs.records} records so far; {then} in {wait:.1f} s")
         time.sleep(wait)
-        pause = min(pause * 2, BACKOFF_MAX)
+        self.pause = min(self.pause * 2, BACKOFF_MAX)
+
+    def run(self) -> None:
+        where = f"{self.host}:{self.port}"
+        while True:
+            try:
+                sock = connect(self.host, self.port, min(_left(self.deadline) or CONNECT_TIMEOUT, CONNECT_TIMEOUT))
+            except OSError as exc:
+                self.wait(f"cannot connect to {where}: {exc.strerror or exc}", then="retrying")
+                continue
+            self.connections += 1
+            if self.connections == 1:
+                self.say(f"connected to {where}")
+            else:
+                self.say(f"reconnected to {where} (connection {self.connections}); "
+                         f"{self.outputs.records} records so far")
+            self.outputs.new_connection(self.connections - 1)
+            framer = Framer()
+            with sock:
+                try:
+                    why = self.session(sock, framer)
+                except (_Stopped, KeyboardInterrupt):
+                    if not self.outputs.count_reached():
+                        self.outputs.write(framer.close())   # the cut tail, as decode reads the raw file
+                    raise
+            self.outputs.write(framer.close())
+            self.wait(why)
+
+    def session(self, sock: socket.socket, framer: Framer) -> str:
+        """Records one connection until it ends; returns why it ended."""
+        where = f"{self.host}:{self.port}"
+        quiet_since = time.monotonic()
+        while True:
+            sock.settimeout(min(_left(self.deadline) or self.idle_timeout, self.idle_timeout))
+            try:
+                chunk = sock.recv(CHUNK)
+            except socket.timeout:
+                if time.monotonic() - quiet_since >= self.idle_timeout:
+                    return f"no data from {where} for {self.idle_timeout:.1f} s: connection dropped"
+                continue
+            except OSError as exc:
+                return f"connection to {where} lost: {exc.strerror or exc}"
+            if not chunk:
+                return f"connection to {where} lost: closed by the peer"
+            quiet_since = time.monotonic()
+            self.pause = BACKOFF_FIRST     # the connection worked: start the backoff again
+            self.received += len(chunk)
+            self.outputs.keep_raw(chunk)
+            self.outputs.write(framer.feed(chunk))
