@@ -10,6 +10,9 @@ from __future__ import annotations
 import argparse
 import sys
 
+from typing import Callable
+
+from .canonical import has_error, to_json_line
 from .generated import messages as _m
 from .reading import decode_file
 
@@ -48,13 +51,17 @@ def axis_title(cls, name: str) -> str:
     return f"{meta['label']} ({meta['unit']})" if meta["unit"] else meta["label"]
 
 
-def series(path: str, kind: str, name: str, hint=None) -> tuple[list, list[list], str, object]:
-    """(x values, one list of y values per line, x axis title, the class that holds the field)."""
+def series(path: str, kind: str, name: str, hint=None,
+           on_error: Callable[[object], None] = lambda record: None) -> tuple[list, list[list], str, object]:
+    """(x values, one list of y values per line, x axis title, the class that holds the field);
+    each record with an error goes to `on_error`."""
     xs: list = []
     lines: list[list] = []
     holder = None
     clock = "message position"
     for position, record in enumerate(decode_file(path, hint)):
+        if has_error(record):
+            on_error(record)
         parts = getattr(record, "packages", None)
         parts = parts if parts is not None else [record]
         x = position
@@ -110,8 +117,9 @@ def plot_command(args: argparse.Namespace) -> int:
     except ImportError:
         print("urwire plot: plotting needs matplotlib: pip install urwire[plot]", file=sys.stderr)
         return 2
+    errors: list = []
     try:
-        xs, lines, clock, holder = series(args.file, kind, name, args.version_hint)
+        xs, lines, clock, holder = series(args.file, kind, name, args.version_hint, errors.append)
     except OSError as exc:
         print(f"urwire plot: cannot read {args.file}: {exc.strerror or exc}", file=sys.stderr)
         return 2
@@ -132,4 +140,8 @@ def plot_command(args: argparse.Namespace) -> int:
         print(f"urwire plot: cannot write {args.out}: {exc.strerror or exc}", file=sys.stderr)
         return 2
     print(f"urwire plot: {len(xs)} points, {len(lines)} lines -> {args.out}", file=sys.stderr)
+    if errors:  # as for decode: the plot shows what was read, the status says not all was
+        print(f"urwire plot: {len(errors)} error record(s) in {args.file}, the first: {to_json_line(errors[0])}",
+              file=sys.stderr)
+        return 1
     return 0
