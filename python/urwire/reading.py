@@ -88,3 +88,12 @@ def timed_records(path: Union[str, os.PathLike], version_hint: VersionLike = Non
         else:
             for record in records_of_raw(fh, version_hint, lambda n: None):
                 yield None, record
+
+
+def input_kind(path: Union[str, os.PathLike]) -> str:
+    """"capture" or "stream": what a file is read as, for messages that name it."""
+    try:
+        with open(Path(path), "rb") as fh:
+            return "capture" if is_capture(fh.read(4)) else "stream"
+    except OSError:
+        return "file"
