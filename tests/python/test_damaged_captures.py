@@ -167,3 +167,53 @@ def test_plot_draws_what_was_read_before_the_cut_and_exits_1(tmp_path):
     assert result.returncode == 1, result.stderr
     assert out.stat().st_size > 0
     assert b"99332" in result.stderr or b"offset" in result.stderr
+
+
+def _mutations(count: int = 120) -> list[tuple[str, bytes]]:
+    """A fixed table of cut and corrupted copies of the sample: cuts anywhere, and 4 bytes
+    overwritten at a block's length, its captured length or anywhere."""
+    import random
+
+    rng = random.Random(20261126)
+    heads = [at for at, _, _ in blocks(SAMPLE)]
+    out = []
+    for i in range(count):
+        how = i % 4
+        if how == 0:
+            cut = rng.randrange(1, len(SAMPLE))
+            out.append((f"cut at {cut}", SAMPLE[:cut]))
+            continue
+        at = {1: lambda: rng.choice(heads) + 4, 2: lambda: rng.choice(PACKETS)[0] + 20,
+              3: lambda: rng.randrange(0, len(SAMPLE) - 4)}[how]()
+        word = rng.choice([0, 1, 13, 0xFFFFFFFF, rng.getrandbits(32)])
+        out.append((f"{word:#x} at {at}", SAMPLE[:at] + struct.pack("<I", word) + SAMPLE[at + 4:]))
+    return out
+
+
+def test_no_mutated_capture_makes_reading_raise():
+    """Every cut or corrupted copy reads to its end in records, without an exception; a cut
+    one ends in an error record."""
+    for name, data in _mutations():
+        recs = list(_records_of_bytes(data))
+        assert all(hasattr(r, "TYPE") for r in recs), name
+        if name.startswith("cut"):
+            assert recs and recs[-1].TYPE == "error", name
+
+
+def _records_of_bytes(data: bytes):
+    from urwire.reading import records_of
+
+    return records_of(io.BufferedReader(io.BytesIO(data)))
+
+
+EXPORTED = _mutations(12)[::3] + _mutations(12)[1::3]
+
+
+@pytest.mark.parametrize("name, data", EXPORTED, ids=[name for name, _ in EXPORTED])
+def test_export_of_a_mutated_capture_exits_as_decode_does(tmp_path, name, data):
+    path = tmp_path / "mutated.pcapng"
+    path.write_bytes(data)
+    code, _ = decoded(path)
+    result = urwire("export", str(path), "--format", "csv", "--out", str(tmp_path / "t"))
+    assert b"Traceback" not in result.stderr
+    assert result.returncode == code in (0, 1), result.stderr
