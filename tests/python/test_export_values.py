@@ -54,34 +54,80 @@ def table(out: Path, name: str, fmt: str) -> list[dict]:
     return pq.read_table(out / f"{name}.parquet").to_pylist()
 
 
-@pytest.mark.parametrize("form", ["stream", "capture"])
-@pytest.mark.parametrize("fmt", ["csv", "parquet"])
-def test_export_writes_the_values_decode_reads(tmp_path, form, fmt):
+def odd_stream_with(case: str) -> bytes:
+    """One odd value at a time, so that each is shown to pass on its own."""
+    recs = list(urwire.decode_file(SAMPLE))
+    version = next(r for r in recs if r.TYPE == "version")
+    state = next(r for r in recs if getattr(r, "packages", None)
+                 and {p.TYPE for p in r.packages} >= {"robot_mode_data", "joint_data"})
+    if case == "text":
+        version.project_name = "URControl\udcff\udcfe"
+    if case == "uint64":
+        state.package(urwire.RobotModeData).timestamp = UINT64_MAX
+    if case == "nan":
+        state.package(urwire.JointData).joints[0].v_actual = float("nan")
+    data = bytearray(state.encode())
+    if case == "bool":
+        data[BOOL_BYTE] = 2
+    return version.encode() + bytes(data)
+
+
+def export_case(tmp_path: Path, case: str, form: str, fmt: str) -> tuple[dict, Path]:
     if fmt == "parquet":
         pytest.importorskip("pyarrow")
-    path = inputs(tmp_path, form)
-    decoded = records(run("decode", str(path)))
-    shown = {r["type"]: r for r in decoded}
-    mode = next(p for p in shown["robot_state"]["packages"] if p["type"] == "robot_mode_data")
-    assert mode["timestamp"] == UINT64_MAX and mode["is_real_robot_connected"] is True
+    data = odd_stream_with(case) if case != "all" else odd_stream()
+    if form == "stream":
+        path = tmp_path / "odd.bin"
+        path.write_bytes(data)
+    else:
+        path = capture.write(tmp_path / "odd.pcap", capture.robot_session([data]))
+    shown = {r["type"]: r for r in records(run("decode", str(path)))}
     out = tmp_path / "tables"
     result = run("export", str(path), "--format", fmt, "--out", str(out))
     assert result.returncode == 0, result.stderr
+    return shown, out
+
+
+FORMS = [("stream", "csv"), ("stream", "parquet"), ("capture", "csv"), ("capture", "parquet")]
+
+
+@pytest.mark.parametrize("form, fmt", FORMS)
+def test_a_float32_nan_is_nan(tmp_path, form, fmt):
+    _, out = export_case(tmp_path, "nan", form, fmt)
+    (joints,) = table(out, "joint_data", fmt)
+    assert math.isnan(float(joints["v_actual_0"]))
+
+
+@pytest.mark.parametrize("form, fmt", FORMS)
+def test_an_unsigned_64_bit_value_keeps_its_range(tmp_path, form, fmt):
+    shown, out = export_case(tmp_path, "uint64", form, fmt)
+    (mode,) = table(out, "robot_mode_data", fmt)
+    assert int(mode["timestamp"]) == UINT64_MAX
+    if fmt == "parquet":
+        import pyarrow.parquet as pq
+        assert str(pq.read_schema(out / "robot_mode_data.parquet").field("timestamp").type) == "uint64"
+
+
+@pytest.mark.parametrize("form, fmt", FORMS)
+def test_any_nonzero_bool_byte_is_true(tmp_path, form, fmt):
+    shown, out = export_case(tmp_path, "bool", form, fmt)
+    state = shown["robot_state"]["packages"][0]
+    assert state["is_real_robot_connected"] is True
+    (mode,) = table(out, "robot_mode_data", fmt)
+    assert mode["is_real_robot_connected"] in (True, "True")
+
+
+@pytest.mark.parametrize("form, fmt", FORMS)
+def test_text_that_is_not_utf8_is_shown_as_decode_shows_it(tmp_path, form, fmt):
+    shown, out = export_case(tmp_path, "text", form, fmt)
     (version,) = table(out, "version", fmt)
     assert version["project_name"] == shown["version"]["project_name"] == "URControl\ufffd\ufffd"
-    (mode_row,) = table(out, "robot_mode_data", fmt)
-    (joints,) = table(out, "joint_data", fmt)
-    if fmt == "csv":
-        assert int(mode_row["timestamp"]) == UINT64_MAX
-        assert mode_row["is_real_robot_connected"] == "True"
-        assert math.isnan(float(joints["v_actual_0"]))
-    else:
-        import pyarrow.parquet as pq
-        schema = pq.read_schema(out / "robot_mode_data.parquet")
-        assert str(schema.field("timestamp").type) == "uint64"
-        assert mode_row["timestamp"] == UINT64_MAX
-        assert mode_row["is_real_robot_connected"] is True
-        assert math.isnan(joints["v_actual_0"])
+
+
+@pytest.mark.parametrize("form, fmt", FORMS)
+def test_all_odd_values_at_once(tmp_path, form, fmt):
+    shown, out = export_case(tmp_path, "all", form, fmt)
+    assert {"version", "robot_mode_data", "joint_data"} <= {p.stem for p in out.iterdir()}
 
 
 def test_every_unsigned_64_bit_field_is_marked_for_typed_columns():
