@@ -24,10 +24,10 @@ class _Bucket:
     def merge(self, later: "_Bucket") -> None:
         self.count += later.count
         for line, (low, low_x, high, high_x) in later.extremes.items():
-            self._take(line, low, low_x)
-            self._take(line, high, high_x)
+            self.take(line, low, low_x)
+            self.take(line, high, high_x)
 
-    def _take(self, line: int, y: float, x) -> None:
+    def take(self, line: int, y: float, x) -> None:
         kept = self.extremes.get(line)
         if kept is None:
             self.extremes[line] = [y, x, y, x]
@@ -63,7 +63,7 @@ class MinMaxLines:
         self.lines = max(self.lines, len(values))
         for line, y in enumerate(values):
             if y is not None and not math.isnan(y):
-                bucket._take(line, y, x)
+                bucket.take(line, y, x)
 
     def _halve(self) -> None:
         merged = []
