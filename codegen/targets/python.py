@@ -38,10 +38,17 @@ class Attr:
 
 def attr(f: ir.AnyField, annotation: str, optional: bool = False, entries: tuple = ()) -> Attr:
     """An attribute: its docstring starts with the field's label and unit, and its metadata
-    holds them for code that shows records to people (human.py, a GUI)."""
+    holds them for code that shows records to people (human.py, a GUI), and tables (export.py)."""
     unit = json.dumps(f.unit, ensure_ascii=False) if f.unit else "None"
-    metadata = f'{{"label": {json.dumps(f.label, ensure_ascii=False)}, "unit": {unit}}}'
+    metadata = f'{{"label": {json.dumps(f.label, ensure_ascii=False)}, "unit": {unit}{_wide_wire(f)}}}'
     return Attr(f.name, annotation, one_line(field_text(entries or [f])), ir.json_kind(f), optional, metadata)
+
+
+def _wide_wire(f: ir.AnyField) -> str:
+    """`"wire": "uint64"` for unsigned 64-bit values: the one integer type whose values pass
+    int64's range, so that a typed column (a Parquet table) can be chosen before any value is seen."""
+    scalar = getattr(f, "scalar", None)
+    return ', "wire": "uint64"' if scalar is not None and scalar.name == "uint64" else ""
 
 
 @dataclass

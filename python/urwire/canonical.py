@@ -189,11 +189,16 @@ def _nonfinite(x: float) -> str:
     return "NaN" if x != x else ("Infinity" if x > 0 else "-Infinity")
 
 
+def shown_text(s: str) -> str:
+    """Text as it is shown: invalid UTF-8 bytes, kept as surrogates for lossless encoding, are
+    each printed as U+FFFD."""
+    if s.isascii():
+        return s
+    return s.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
+
+
 def _text(s: str) -> str:
-    if not s.isascii():
-        # Invalid bytes were kept as surrogates for lossless encoding; print them as U+FFFD.
-        s = s.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
-    return _encode_text(s)
+    return _encode_text(shown_text(s))
 
 
 def _value(v: GlobalValue) -> str:

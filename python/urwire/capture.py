@@ -1,6 +1,6 @@
 """Robot->client byte streams out of .pcap/.pcapng captures, reassembled from TCP segments.
 
-dpkt reads the capture formats and parses the link, IP and TCP layers; reassembly is ours:
+dpkt reads the capture formats (a record at a time, see capture_records) and parses the link, IP and TCP layers; reassembly is ours:
 segments in sequence order, retransmitted and overlapping bytes dropped, out-of-order ones
 held (ordered by their place in the stream) until the gap closes, or until the streams together
 hold MAX_PENDING bytes: then the stream holding the most gives up its gap. The capture is read
@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import heapq
 from dataclasses import dataclass, field
-from typing import BinaryIO, Iterator, Optional
+from typing import BinaryIO, Iterator, Optional, Union
+
+from .capture_records import CaptureFault, CaptureFrames
 
 PCAP_MAGICS = {b"\xa1\xb2\xc3\xd4", b"\xd4\xc3\xb2\xa1", b"\xa1\xb2\x3c\x4d", b"\x4d\x3c\xb2\xa1"}
 PCAPNG_MAGIC = b"\x0a\x0d\x0d\x0a"
@@ -111,23 +113,31 @@ StreamKey = tuple  # (robot address, robot port, client address, client port)
 
 def robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[tuple[StreamKey, bytes, bool]]:
     """(stream, bytes in order, stream ended) for each robot->client TCP stream on `ports`."""
-    for key, data, ended, _ in timed_robot_streams(fh, ports):
-        yield key, data, ended
+    for item in timed_robot_streams(fh, ports):
+        if not isinstance(item, CaptureFault):
+            key, data, ended, _ = item
+            yield key, data, ended
 
 
-def timed_robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[tuple[StreamKey, bytes, bool, float]]:
+def timed_robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[Union[tuple[StreamKey, bytes, bool, float],
+                                                                        CaptureFault]]:
     """The same, each with the capture time (seconds since the epoch) of the frame that brought
-    its bytes: what completes a message dates it."""
+    its bytes: what completes a message dates it. A record of the file that cannot be read comes
+    out as a CaptureFault where it was met; the streams then end as at the end of the file."""
     import dpkt
     import socket
 
     head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
-    reader = dpkt.pcapng.Reader(fh) if head == PCAPNG_MAGIC else dpkt.pcap.Reader(fh)
-    linktype = reader.datalink()
+    reader = CaptureFrames(fh, pcapng=head == PCAPNG_MAGIC)
     streams: dict[StreamKey, _Reassembly] = {}
     held = 0  # bytes held out of order by all the streams, as held_bytes counts them
     ts = 0.0
-    for ts, frame in reader:
+    for item in reader:
+        if isinstance(item, CaptureFault):
+            yield item
+            continue
+        ts, frame = item
+        linktype = reader.linktype
         try:
             ip = _ip_layer(linktype, frame)
         except (dpkt.UnpackError, ValueError, IndexError):

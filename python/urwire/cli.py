@@ -14,7 +14,7 @@ from .arguments import parse_version
 from .canonical import has_error, to_json_line
 from .human import line as human_line
 from .human import tree as human_tree
-from .reading import records_of
+from .reading import input_kind, records_of
 from .generated.spec import DEFAULT_VERSION, PORTS
 
 PROGRESS_MIN_BYTES = 8 << 20
@@ -99,8 +99,9 @@ def decode_command(args: argparse.Namespace) -> int:
     except OSError as exc:
         print(f"urwire: cannot decode {args.file}: {exc.strerror or exc}", file=sys.stderr)
         return 2
-    except ValueError as exc:  # dpkt: a damaged capture file
-        print(f"urwire: cannot read capture {args.file}: {exc}", file=sys.stderr)
+    except ValueError as exc:
+        print(f"urwire: cannot read {input_kind(args.file) if fh is not sys.stdin.buffer else 'input'} "
+              f"{args.file}: {exc}", file=sys.stderr)
         return 2
     return 1 if failed else 0
 

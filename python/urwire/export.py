@@ -24,11 +24,11 @@ import tempfile
 from pathlib import Path
 from typing import BinaryIO, Iterator
 
-from .canonical import has_error, to_json_line
-from .reading import timed_records
+from .canonical import has_error, shown_text, to_json_line
+from .reading import input_kind, timed_records
 
 # A switch member that holds an int32 or a float32 (int|f32) fits a float64 column exactly.
-_ARROW_TYPES = {"int": "int64", "enum": "int64", "bool": "bool_", "f32": "float32", "f64": "float64", "text": "string",
+_ARROW_TYPES = {"int": "int64", "uint64": "uint64", "list:uint64": "uint64", "enum": "int64", "bool": "bool_", "f32": "float32", "f64": "float64", "text": "string",
                 "hex": "binary", "texts": "string", "values": "string", "list:int": "int64", "list:f64": "float64",
                 "list:f32": "float32", "list:bool": "bool_", "int|f32": "float64", "int|f64": "float64"}
 
@@ -46,11 +46,15 @@ def add_parser(sub, version_arg) -> None:
 
 
 def _columns(obj) -> list[tuple[str, str, object]]:
-    """(column, kind, value) of one message or sub-package, flattened as the module says."""
+    """(column, kind, value) of one message or sub-package, flattened as the module says, each
+    value as `decode` shows it (see _cell)."""
     groups = [name for name, kind, _ in obj.JSON if kind == "items"]
+    fields = type(obj).__dataclass_fields__
     out = []
     for name, kind, _ in obj.JSON:
         value = getattr(obj, name)
+        if fields[name].metadata.get("wire") == "uint64":
+            kind = "list:uint64" if kind.startswith("list:") else "uint64"
         if value is None and (kind == "items" or kind.startswith("list:")):
             continue  # not in this version's layout: its columns stay empty
         if kind == "items":
@@ -58,12 +62,28 @@ def _columns(obj) -> list[tuple[str, str, object]]:
             for j, item in enumerate(value):
                 out += [(f"{prefix}{col}_{j}", k, v) for col, k, v in _columns(item)]
         elif kind.startswith("list:"):
-            out += [(f"{name}_{j}", kind, v) for j, v in enumerate(value)]
+            item_kind = kind[len("list:"):]
+            out += [(f"{name}_{j}", kind, _cell(item_kind, v)) for j, v in enumerate(value)]
         elif kind in ("texts", "values"):
             out.append((name, kind, None if value is None else _json_of(kind, value)))
         else:
-            out.append((name, kind, None if value is None else (int(value) if kind in ("int", "enum") else value)))
+            out.append((name, kind, None if value is None else _cell(kind, value)))
     return out
+
+
+def _cell(kind: str, value):
+    """A value as `decode` shows it, in a plain type a table takes: enums as their numbers, any
+    nonzero bool byte as true, float32 NaNs (kept with their bits) as plain NaN, text with each
+    invalid UTF-8 byte as U+FFFD."""
+    if kind == "bool":
+        return bool(value)
+    if kind == "text":
+        return shown_text(value)
+    if isinstance(value, float):
+        return float(value)
+    if isinstance(value, int):
+        return int(value)
+    return value
 
 
 def _json_of(kind: str, value) -> str:
@@ -208,8 +228,8 @@ def export_command(args: argparse.Namespace) -> int:
     except OSError as exc:
         print(f"urwire export: {exc.filename or args.file}: {exc.strerror or exc}", file=sys.stderr)
         return 2
-    except ValueError as exc:  # dpkt: a damaged capture file
-        print(f"urwire export: cannot read capture {args.file}: {exc}", file=sys.stderr)
+    except ValueError as exc:
+        print(f"urwire export: cannot read {input_kind(args.file)} {args.file}: {exc}", file=sys.stderr)
         return 2
     for name in sorted(tables.counts):
         print(f"{name}: {tables.counts[name]} rows", file=sys.stderr)

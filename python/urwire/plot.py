@@ -4,35 +4,37 @@ The x axis is the robot state's own clock (robot_mode_data's timestamp) when the
 one, else the message's position; the y axis shows the field's label and unit from the
 spec (the generated classes keep them in their fields' metadata). matplotlib is an optional
 extra (`pip install urwire[plot]`).
+
+Memory stays flat however long the input: the points go through min/max decimation (decimate.py),
+which keeps each line's lowest and highest point in each of at most MAX_BUCKETS runs of
+consecutive points; an image a thousand pixels wide looks as the full line would.
 """
 from __future__ import annotations
 
 import argparse
 import sys
 
+from typing import Callable
+
+from .canonical import has_error, to_json_line
+from .decimate import MAX_BUCKETS, MinMaxLines
 from .generated import messages as _m
 from .reading import decode_file
 
 
 def add_parser(sub, version_arg) -> None:
     p = sub.add_parser("plot", help="plot one field of a capture over time",
-                       description="Plot a field such as joint_data.q_actual: a line per joint or per value.")
+                       description="Plot a numeric field such as joint_data.q_actual: a line per joint or per "
+                                   "value. Long inputs are decimated in flat memory: each line keeps its "
+                                   f"lowest and highest point in each of at most {MAX_BUCKETS} runs of "
+                                   "consecutive points, so every peak and dip is drawn.")
     p.add_argument("file", help="a raw stream, a .pcap or a .pcapng file")
     p.add_argument("--field", required=True, metavar="KIND.FIELD",
-                   help="e.g. joint_data.q_actual or tool_data.tool_current")
+                   help="a numeric field, e.g. joint_data.q_actual or tool_data.tool_current")
     p.add_argument("--out", default="plot.png", metavar="FILE", help="image to write (default: plot.png)")
     p.add_argument("--version-hint", type=version_arg, metavar="X.Y[.Z]",
                    help="software version to assume until a Version message is seen")
     p.set_defaults(run=plot_command)
-
-
-def kind_class(kind: str):
-    """The generated class whose TYPE is `kind`, or None."""
-    for name in _m.__all__ if hasattr(_m, "__all__") else dir(_m):
-        cls = getattr(_m, name, None)
-        if isinstance(cls, type) and getattr(cls, "TYPE", None) == kind:
-            return cls
-    return None
 
 
 def field_metadata(cls, name: str) -> dict:
@@ -48,13 +50,41 @@ def axis_title(cls, name: str) -> str:
     return f"{meta['label']} ({meta['unit']})" if meta["unit"] else meta["label"]
 
 
-def series(path: str, kind: str, name: str, hint=None) -> tuple[list, list[list], str, object]:
-    """(x values, one list of y values per line, x axis title, the class that holds the field)."""
-    xs: list = []
-    lines: list[list] = []
+AGG_CHUNK_POINTS = 1000
+NUMERIC_KINDS = {"int", "enum", "bool", "f32", "f64", "int|f32", "int|f64", "list:int", "list:f32", "list:f64",
+                 "list:bool"}
+
+
+def _numeric(cls) -> list[str]:
+    return [name for name, kind, _ in cls.JSON if kind in NUMERIC_KINDS]
+
+
+def plottable_fields(kind: str = "") -> list[str]:
+    """KIND.FIELD of every numeric field of the spec (of one kind when `kind` is given): the
+    fields of the generated classes whose canonical JSON kind is a number or a list of numbers;
+    a group's item fields (a joint's q_actual) under the kind that holds the group."""
+    out = []
+    for name in sorted(dir(_m)):
+        cls = getattr(_m, name)
+        if not isinstance(cls, type) or not getattr(cls, "TYPE", None) or not hasattr(cls, "JSON"):
+            continue
+        if kind and cls.TYPE != kind:
+            continue
+        fields = _numeric(cls) + [f for item in getattr(cls, "ITEMS", {}).values() for f in _numeric(item)]
+        out += [f"{cls.TYPE}.{f}" for f in fields]
+    return sorted(set(out))
+
+
+def series(path: str, kind: str, name: str, hint=None,
+           on_error: Callable[[object], None] = lambda record: None) -> tuple[MinMaxLines, str, object]:
+    """(the field's lines, decimated, x axis title, the class that holds the field); each record
+    with an error goes to `on_error`."""
+    lines = MinMaxLines()
     holder = None
     clock = "message position"
     for position, record in enumerate(decode_file(path, hint)):
+        if has_error(record):
+            on_error(record)
         parts = getattr(record, "packages", None)
         parts = parts if parts is not None else [record]
         x = position
@@ -68,12 +98,8 @@ def series(path: str, kind: str, name: str, hint=None) -> tuple[list, list[list]
             if values is None:
                 continue
             holder = holder or _holder(part, name)
-            while len(lines) < len(values):
-                lines.append([None] * len(xs))
-            xs.append(x)
-            for i, line in enumerate(lines):
-                line.append(values[i] if i < len(values) else None)
-    return xs, lines, clock, holder
+            lines.add(x, values)
+    return lines, clock, holder
 
 
 def _values(part, name: str):
@@ -99,37 +125,48 @@ def _holder(part, name: str):
 
 def plot_command(args: argparse.Namespace) -> int:
     kind, _, name = args.field.partition(".")
-    if not name or kind_class(kind) is None:
-        print(f"urwire plot: --field is KIND.FIELD with a known kind, e.g. joint_data.q_actual; got {args.field}",
-              file=sys.stderr)
+    if args.field not in plottable_fields():
+        known = plottable_fields(kind) or plottable_fields()
+        print(f"urwire plot: {args.field} is not a numeric field of the spec; fields it can plot: "
+              f"{', '.join(known)}", file=sys.stderr)
         return 2
     try:
         import matplotlib
         matplotlib.use("Agg")
+        # Agg rasterises a line at once, and one that doubles back (several sessions in a
+        # capture: their clocks restart) covers the image again each time; in chunks of
+        # points its memory stays bounded as well.
+        matplotlib.rcParams["agg.path.chunksize"] = AGG_CHUNK_POINTS
         import matplotlib.pyplot as plt
     except ImportError:
         print("urwire plot: plotting needs matplotlib: pip install urwire[plot]", file=sys.stderr)
         return 2
+    errors: list = []
     try:
-        xs, lines, clock, holder = series(args.file, kind, name, args.version_hint)
+        lines, clock, holder = series(args.file, kind, name, args.version_hint, errors.append)
     except OSError as exc:
         print(f"urwire plot: cannot read {args.file}: {exc.strerror or exc}", file=sys.stderr)
         return 2
-    if not xs:
+    if not lines.points:
         print(f"urwire plot: no {args.field} in {args.file}", file=sys.stderr)
         return 1
     fig, ax = plt.subplots(figsize=(10, 5))
-    for i, line in enumerate(lines):
-        ax.plot(xs, line, label=f"joint {i}" if len(lines) == 6 else f"{name}[{i}]" if len(lines) > 1 else name)
+    count = lines.lines
+    for i in range(count):
+        ax.plot(*lines.line(i), label=f"joint {i}" if count == 6 else f"{name}[{i}]" if count > 1 else name)
     ax.set_xlabel(clock)
     ax.set_ylabel(axis_title(holder, name))
     ax.set_title(args.field)
-    if len(lines) > 1:
+    if count > 1:
         ax.legend(loc="upper right", fontsize="small")
     try:
         fig.savefig(args.out, dpi=100)
     except OSError as exc:
         print(f"urwire plot: cannot write {args.out}: {exc.strerror or exc}", file=sys.stderr)
         return 2
-    print(f"urwire plot: {len(xs)} points, {len(lines)} lines -> {args.out}", file=sys.stderr)
+    print(f"urwire plot: {lines.points} points, {count} lines -> {args.out}", file=sys.stderr)
+    if errors:  # as for decode: the plot shows what was read, the status says not all was
+        print(f"urwire plot: {len(errors)} error record(s) in {args.file}, the first: {to_json_line(errors[0])}",
+              file=sys.stderr)
+        return 1
     return 0

@@ -10,6 +10,8 @@ from typing import BinaryIO, Callable, Iterable, Iterator, Optional, Union
 
 from .arguments import VersionLike
 from .capture import is_capture, timed_robot_streams
+from .capture_records import CaptureFault
+from ._runtime import StreamError
 from .framer import Framer
 from .generated.spec import PORTS
 
@@ -36,10 +38,15 @@ def records_of_capture(fh: BinaryIO, hint: VersionLike, ports: Iterable[int],
 def timed_records_of_capture(fh: BinaryIO, hint: VersionLike, ports: Iterable[int],
                              advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
     """(capture time, record): each robot->client TCP stream gets its own framer, so each learns
-    its own version; a record's time is that of the frame that completed it."""
+    its own version; a record's time is that of the frame that completed it. A capture record
+    that cannot be read gives an error record (no time) naming its offset in the capture file."""
     framers: dict = {}
     last = 0
-    for key, data, ended, time in timed_robot_streams(fh, set(ports)):
+    for item in timed_robot_streams(fh, set(ports)):
+        if isinstance(item, CaptureFault):  # its offset is the capture file's, not a stream's
+            yield None, StreamError(item.offset, item.error)
+            continue
+        key, data, ended, time = item
         framer = framers.get(key) or framers.setdefault(key, Framer(hint))
         if data:
             for record in framer.feed(data):
@@ -81,3 +88,12 @@ def timed_records(path: Union[str, os.PathLike], version_hint: VersionLike = Non
         else:
             for record in records_of_raw(fh, version_hint, lambda n: None):
                 yield None, record
+
+
+def input_kind(path: Union[str, os.PathLike]) -> str:
+    """"capture" or "stream": what a file is read as, for messages that name it."""
+    try:
+        with open(Path(path), "rb") as fh:
+            return "capture" if is_capture(fh.read(4)) else "stream"
+    except OSError:
+        return "file"

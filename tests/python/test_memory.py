@@ -105,3 +105,17 @@ def rows(table: Path) -> int:
             return sum(1 for _ in fh) - 1  # the header
     import pyarrow.parquet as pq
     return pq.read_metadata(table).num_rows
+
+
+def test_plot_takes_flat_memory(states, tmp_path):
+    """`urwire plot` decimates as it reads (min/max per run of points): three times the capture,
+    the same memory, and every state a point."""
+    pytest.importorskip("matplotlib")
+    peaks = []
+    for megabytes in SIZES:
+        path = robot_inputs.capture(megabytes, states=states)
+        usage = measure.watch([sys.executable, "-m", "urwire", "plot", str(path), "--field", "joint_data.q_actual",
+                               "--out", str(tmp_path / f"{megabytes}.png")], ENV)
+        assert usage.returncode == 0
+        peaks.append(usage.peak)
+    assert peaks[-1] - peaks[0] < GROWTH_LIMIT, f"{peaks[0] / MIB:.0f} -> {peaks[-1] / MIB:.0f} MiB"

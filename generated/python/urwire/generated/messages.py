@@ -146,7 +146,7 @@ class RobotModeData(_kinds.Package):
     )
     SUMMARY: ClassVar[tuple] = ("robot_mode", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     is_real_robot_connected: bool = field(metadata={"label": "Real robot connected", "unit": None})
     """Real robot connected. isRobotConnected in the CB2 documents."""
@@ -2441,7 +2441,7 @@ class VersionMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ("project_name", "major_version", "minor_version", "bugfix_version", "build_number", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -2552,7 +2552,7 @@ class SafetyModeMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ("safety_mode_type", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -2664,7 +2664,7 @@ class RobotCommMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ("robot_message_report_level", "text", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -2756,7 +2756,7 @@ class KeyMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ("title", "text", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -2853,7 +2853,7 @@ class ProgramThreadsMessage(_kinds.Subtype):
     ITEMS: ClassVar[dict] = {"threads": ProgramThread}
     """The class of each group member's items."""
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -2919,7 +2919,7 @@ class PopupMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ("title", "text", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -3009,7 +3009,7 @@ class LabelMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ("id", "text", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -3063,7 +3063,7 @@ class VarMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ("title", "text", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -3134,7 +3134,7 @@ class HardwareInfoMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ("robot_type", "control_box_type", "tool_flange_type", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -3196,7 +3196,7 @@ class RequestValueMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ("requested_type", "text", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -3244,7 +3244,7 @@ class TextMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ("text", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -3290,7 +3290,7 @@ class RuntimeExceptionMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ("script_line_number", "script_column_number", "text", )
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     source: Union[MessageSource, MessageSourceUpTo1_8, int] = field(metadata={"label": "Source", "unit": None})
     """Source. Sender of the message; a signed byte."""
@@ -3344,7 +3344,7 @@ class GlobalVariablesSetupMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ()
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     start_index: int = field(metadata={"label": "Start index", "unit": None})
     """Start index."""
@@ -3392,7 +3392,7 @@ class GlobalVariablesUpdateMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ()
 
-    timestamp: int = field(metadata={"label": "Timestamp", "unit": None})
+    timestamp: int = field(metadata={"label": "Timestamp", "unit": None, "wire": "uint64"})
     """Timestamp."""
     start_index: int = field(metadata={"label": "Start index", "unit": None})
     """Start index."""
