@@ -57,6 +57,13 @@ PYTHON_RANGE ?= 3.10 3.13
 test-python-range:
 	bash scripts/test-python-range.sh $(PYTHON_RANGE)
 
+## soak: serve with SOAK_CLIENTS clients and listen through a proxy that cuts it off every few
+## seconds, for SOAK_SECONDS; prints each process's memory over time and the rates (not in `make test`)
+SOAK_SECONDS ?= 300
+SOAK_CLIENTS ?= 500
+soak:
+	PYTHONPATH=python:generated/python $(PYTHON) tests/tools/soak.py --seconds $(SOAK_SECONDS) --clients $(SOAK_CLIENTS)
+
 ## demo: set up, then decode the bundled capture with every target
 demo: setup demo-python $(DEMO_TARGETS)
 
