@@ -10,7 +10,8 @@ TEST_BUILDS :=
 DEMO_TARGETS :=
 BENCH_TARGETS :=
 
-.PHONY: all generate check-generated spec-diff setup test test-codegen test-python demo demo-python bench bench-python
+.PHONY: all generate check-generated spec-diff setup test test-codegen test-python test-python-range soak demo demo-python \
+	bench bench-python
 
 all: build-all
 
@@ -49,6 +50,19 @@ test-codegen:
 
 test-python:
 	$(PYTEST) -q tests/python
+
+## test-python-range: tests/python and tests/codegen on the lowest and the highest Python the
+## package claims (3.10 and 3.13 from pyenv or the system), each in a venv under build/python-range
+PYTHON_RANGE ?= 3.10 3.13
+test-python-range:
+	bash scripts/test-python-range.sh $(PYTHON_RANGE)
+
+## soak: serve with SOAK_CLIENTS clients and listen through a proxy that cuts it off every few
+## seconds, for SOAK_SECONDS; prints each process's memory over time and the rates (not in `make test`)
+SOAK_SECONDS ?= 300
+SOAK_CLIENTS ?= 500
+soak:
+	PYTHONPATH=python:generated/python $(PYTHON) tests/tools/soak.py --seconds $(SOAK_SECONDS) --clients $(SOAK_CLIENTS)
 
 ## demo: set up, then decode the bundled capture with every target
 demo: setup demo-python $(DEMO_TARGETS)

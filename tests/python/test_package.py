@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import site
 import shutil
 import subprocess
 import sys
@@ -89,6 +90,12 @@ def fresh_venv(path: Path) -> Path:
     its python."""
     subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", "--without-pip", str(path)], check=True)
     python = path / "bin" / "python"
+    if sys.prefix != sys.base_prefix:
+        # Run from a venv (make test-python-range), the packages are in that venv's site-packages,
+        # which --system-site-packages does not reach: list them after the new venv's own.
+        own = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_path('purelib'))"],
+                             capture_output=True, text=True, check=True).stdout.strip()
+        Path(own, "outer-venv.pth").write_text("\n".join(site.getsitepackages()) + "\n")
     if subprocess.run([str(python), "-c", CAN_BUILD]).returncode != 0:
         subprocess.run([str(python), "-m", "pip", "install", "-q", "setuptools>=68", "wheel"], check=True,
                        capture_output=True)
