@@ -25,7 +25,7 @@ from tests.tools import measure, robot_inputs
 ROOT = Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")]))
 SIZES = (6, 18)
-EXPORT_SIZES = (12, 36)
+EXPORT_SIZES = (12, 24)
 MIB = 1 << 20
 PEAK_LIMIT = 120 * MIB
 GROWTH_LIMIT = 6 * MIB         # half of what keeping the larger input would add
@@ -83,7 +83,7 @@ def test_decode_stream_holds_its_buffer_and_a_bounded_part_of_its_records(states
 @pytest.mark.parametrize("form", ["parquet", "csv"])
 def test_export_takes_flat_memory(states, tmp_path, form):
     """`urwire export` keeps its rows on disk until the tables are written, a batch at a time:
-    three times the capture, the same memory, and every state a row."""
+    twice the capture, the same memory, and every state a row."""
     if form == "parquet":
         pytest.importorskip("pyarrow")
     peaks = []
