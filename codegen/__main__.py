@@ -1,4 +1,5 @@
-"""python -m codegen [--check]: write generated/ from the spec, or check that it is current.
+"""python -m codegen [--check]: write generated/ from the specs (spec/*.yaml, one per interface), or
+check that it is current.
 
 Also: `python -m codegen diff 3.15 5.11` prints what changed between two software versions, and
 `python -m codegen reference [--check]` writes docs/protocol.md, the protocol reference.
@@ -10,12 +11,14 @@ import sys
 from pathlib import Path
 
 from . import ir
-from .compile import DEFAULT_SPEC, compile_file
+from .compile import DEFAULT_SPEC, compile_file, compile_loaded, kind_of, spec_files
+from .emit import banner_lines
 from .errors import SpecError
 from .pin import pin
 from .plan import plan
 from .reference import diff, protocol_markdown
-from .targets import TARGETS, render_all
+from .load import load_text
+from .targets import TARGETS
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -28,7 +31,8 @@ def main(argv: list[str] | None = None) -> int:
         return _reference(argv[1:])
     parser = argparse.ArgumentParser(prog="python -m codegen", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--spec", type=Path, default=DEFAULT_SPEC)
+    parser.add_argument("--spec", type=Path, action="append",
+                        help="only this spec (default: every spec/*.yaml, one per interface)")
     parser.add_argument("--out", type=Path, default=ROOT / "generated")
     parser.add_argument("--target", action="append", choices=sorted(TARGETS),
                         help="only these targets (default: all)")
@@ -36,21 +40,39 @@ def main(argv: list[str] | None = None) -> int:
                         help="write nothing; exit 1 if generated/ differs from what would be written")
     parser.add_argument("--pin", metavar="VERSION",
                         help="only what this software version sends, with no version branches (needs --out "
-                             "outside generated/), e.g. --pin 5.11 --target c --out build/pinned")
+                             "outside generated/ and the primary spec), e.g. --pin 5.11 --target c --out build/pinned")
     args = parser.parse_args(argv)
     if args.pin and args.out.resolve() == (ROOT / "generated").resolve():
         parser.error("--pin writes a build for one version: give --out a folder outside generated/")
-    spec_rel = args.spec.resolve().relative_to(ROOT) if args.spec.resolve().is_relative_to(ROOT) else args.spec
+    specs = args.spec or ([DEFAULT_SPEC] if args.pin else spec_files())
+    outputs: dict[str, str] = {}
     try:
-        protocol = compile_file(args.spec)
-        if args.pin:
-            protocol = pin(protocol, ir.parse_version(args.pin))
-        outputs = render_all(protocol, str(spec_rel), args.spec.read_text(encoding="utf-8"), args.target)
+        for spec in specs:
+            for rel, text in _render_spec(spec, args).items():
+                if rel in outputs:
+                    print(f"{spec}: writes {rel}, which another spec writes too", file=sys.stderr)
+                    return 2
+                outputs[rel] = text
     except SpecError as exc:
         # A target that cannot render a node reports it like a spec error: path, line, what.
         print(exc, file=sys.stderr)
         return 2
-    return _check(args.out, outputs) if args.check else _write(args.out, outputs)
+    # Files of the target folders that no spec wrote are stale only when every spec was rendered.
+    every_spec = args.spec is None and not args.pin
+    return _check(args.out, outputs, every_spec) if args.check else _write(args.out, outputs, every_spec)
+
+
+def _render_spec(spec: Path, args) -> dict[str, str]:
+    spec_rel = spec.resolve().relative_to(ROOT) if spec.resolve().is_relative_to(ROOT) else spec
+    text = spec.read_text(encoding="utf-8")
+    loaded = load_text(text, str(spec))
+    kind = kind_of(loaded)
+    model = compile_loaded(loaded)
+    if args.pin:
+        if not isinstance(model, ir.Protocol):
+            raise SpecError(str(spec), [loaded.problem("framing", "--pin applies to the primary interface's spec")])
+        model = pin(model, ir.parse_version(args.pin))
+    return kind.render(model, banner_lines(str(spec_rel), text), args.target)
 
 
 def _planned(spec: Path):
@@ -118,8 +140,8 @@ def _owned(out: Path, outputs: dict[str, str]) -> set[Path]:
             if p.is_file() and not _is_build_artifact(p.relative_to(out))}
 
 
-def _write(out: Path, outputs: dict[str, str]) -> int:
-    stale = _owned(out, outputs) - {out / rel for rel in outputs}
+def _write(out: Path, outputs: dict[str, str], remove_stale: bool = True) -> int:
+    stale = _owned(out, outputs) - {out / rel for rel in outputs} if remove_stale else set()
     for path in stale:
         path.unlink()
     for rel, text in outputs.items():
@@ -130,10 +152,11 @@ def _write(out: Path, outputs: dict[str, str]) -> int:
     return 0
 
 
-def _check(out: Path, outputs: dict[str, str]) -> int:
+def _check(out: Path, outputs: dict[str, str], report_stale: bool = True) -> int:
     differ = [rel for rel, text in outputs.items()
               if not (out / rel).exists() or (out / rel).read_text(encoding="utf-8") != text]
-    stale = sorted(str(p.relative_to(out)) for p in _owned(out, outputs) - {out / rel for rel in outputs})
+    stale = sorted(str(p.relative_to(out)) for p in _owned(out, outputs) - {out / rel for rel in outputs}) \
+        if report_stale else []
     for rel in differ:
         print(f"out of date: generated/{rel}", file=sys.stderr)
     for rel in stale:

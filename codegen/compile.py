@@ -1,27 +1,42 @@
-"""The front end in one call: load -> validate -> resolve."""
+"""The front end in one call: load -> validate -> resolve, by the spec's interface kind."""
 from __future__ import annotations
 
 from pathlib import Path
 
-from . import ir
-from .errors import SpecError
+from .errors import Problem, SpecError
+from .kinds import KINDS, Kind, kind_name
 from .load import LoadedSpec, load_file, load_text
-from .resolve import resolve
 from .validate import schema_problems
 
-DEFAULT_SPEC = Path(__file__).resolve().parent.parent / "spec" / "ur_primary.yaml"
+SPEC_DIR = Path(__file__).resolve().parent.parent / "spec"
+DEFAULT_SPEC = SPEC_DIR / "ur_primary.yaml"
 
 
-def compile_loaded(spec: LoadedSpec) -> ir.Protocol:
-    problems = schema_problems(spec)
+def spec_files() -> list[Path]:
+    """Every spec of the project, one per interface."""
+    return sorted(SPEC_DIR.glob("*.yaml"))
+
+
+def kind_of(spec: LoadedSpec) -> Kind:
+    name = kind_name(spec.data)
+    if name not in KINDS:
+        raise SpecError(spec.source, [spec.problem("framing.kind", f"unknown interface kind {name!r}; "
+                                                   f"known: {', '.join(sorted(KINDS))}")])
+    return KINDS[name]
+
+
+def compile_loaded(spec: LoadedSpec):
+    """The spec's IR: an ir.Protocol for the primary interface, its kind's model for the others."""
+    kind = kind_of(spec)
+    problems: list[Problem] = schema_problems(spec, kind.schema)
     if problems:
         raise SpecError(spec.source, problems)
-    return resolve(spec)
+    return kind.resolve(spec)
 
 
-def compile_text(text: str, source: str = "<spec>") -> ir.Protocol:
+def compile_text(text: str, source: str = "<spec>"):
     return compile_loaded(load_text(text, source))
 
 
-def compile_file(path: Path = DEFAULT_SPEC) -> ir.Protocol:
+def compile_file(path: Path = DEFAULT_SPEC):
     return compile_loaded(load_file(path))

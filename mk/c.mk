@@ -1,4 +1,5 @@
-# C target: generated/c/urwire.{h,c} (written by `make generate`), the urwire-decode CLI, its
+# C target: generated/c/*.{h,c} (written by `make generate`: urwire.{h,c} for the primary interface,
+# one <interface>.{h,c} pair for each other interface of the cell), the urwire-decode CLI, its
 # tests (gcc, clang, ASan/UBSan, differential against Python), the benchmark, a demo and
 # installation. Its fuzzers are in mk/fuzz.mk.
 
@@ -6,7 +7,8 @@ CC ?= cc
 CLANG ?= clang
 C_STRICT := -std=c99 -Wall -Wextra -Werror -pedantic -Wconversion -Wshadow
 C_OPT ?= -O2
-C_LIB := generated/c/urwire.c generated/c/urwire.h
+C_SOURCES := $(wildcard generated/c/*.c)
+C_LIB := $(C_SOURCES) $(wildcard generated/c/*.h)
 C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h)
 PREFIX ?= /usr/local
 BENCH_C_LEVELS ?= -O3 -O2 -Os
@@ -25,12 +27,14 @@ PINNED_C := build/pinned
 build/urwire-decode: $(C_LIB) $(C_CLI)
 	@mkdir -p build
 	$(CC) $(C_STRICT) $(C_OPT) -Igenerated/c -Itools/urwire-decode -o $@ \
-		$(filter %.c,$(C_CLI)) generated/c/urwire.c -lm
+		$(filter %.c,$(C_CLI)) $(C_SOURCES) -lm
 
 build/liburwire.a: $(C_LIB)
 	@mkdir -p build/obj
-	$(CC) $(C_STRICT) $(C_OPT) -c generated/c/urwire.c -o build/obj/urwire.o
-	ar rcs $@ build/obj/urwire.o
+	rm -f $@
+	for src in $(C_SOURCES); do \
+		$(CC) $(C_STRICT) $(C_OPT) -c $$src -o build/obj/$$(basename $$src .c).o || exit 1; done
+	ar rcs $@ $(patsubst generated/c/%.c,build/obj/%.o,$(C_SOURCES))
 
 ## pinned-c: the C parser of one software version only, with no version branches (PIN=5.11):
 ## build/pinned/c/urwire.{h,c}, and build/pinned/urwire.o at -Os with its size
@@ -81,14 +85,15 @@ demo-c: build/urwire-decode
 	@echo "== C: build/urwire-decode build/primary_session.bin (the TCP payload of dissector/samples/primary_session.pcapng; first records, cut at 160 characters)"
 	@build/urwire-decode build/primary_session.bin | cut -c1-160 | head -n 12; true
 
-## install: copy urwire.h, liburwire.a and urwire-decode under PREFIX (DESTDIR honoured)
+## install: copy the headers, liburwire.a and urwire-decode under PREFIX (DESTDIR honoured)
 install: install-c
 install-c: build/liburwire.a build/urwire-decode
 	install -d $(DESTDIR)$(PREFIX)/include $(DESTDIR)$(PREFIX)/lib $(DESTDIR)$(PREFIX)/bin
-	install -m 644 generated/c/urwire.h $(DESTDIR)$(PREFIX)/include/urwire.h
+	install -m 644 $(wildcard generated/c/*.h) $(DESTDIR)$(PREFIX)/include/
 	install -m 644 build/liburwire.a $(DESTDIR)$(PREFIX)/lib/liburwire.a
 	install -m 755 build/urwire-decode $(DESTDIR)$(PREFIX)/bin/urwire-decode
 
 uninstall-c:
-	rm -f $(DESTDIR)$(PREFIX)/include/urwire.h $(DESTDIR)$(PREFIX)/lib/liburwire.a \
+	rm -f $(patsubst generated/c/%,$(DESTDIR)$(PREFIX)/include/%,$(wildcard generated/c/*.h)) \
+		$(DESTDIR)$(PREFIX)/lib/liburwire.a \
 		$(DESTDIR)$(PREFIX)/bin/urwire-decode

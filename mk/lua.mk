@@ -1,8 +1,10 @@
-# Lua Wireshark dissector: generated/lua/urwire.lua (written by `make generate`), its tests,
+# Lua Wireshark dissectors: generated/lua/*.lua (written by `make generate`: urwire.lua for the
+# primary interface, one file per other interface of the cell, each loading on its own), their tests,
 # benchmark, sample captures and installation into the user's personal plugins folder.
 
 TSHARK ?= tshark
 LUA_PLUGIN := generated/lua/urwire.lua
+LUA_PLUGINS := $(wildcard generated/lua/*.lua)
 
 BENCH_TARGETS += bench-lua
 DEMO_TARGETS += demo-lua
@@ -42,11 +44,14 @@ screenshots:
 samples:
 	$(PYTHON) dissector/make_samples.py
 
-## install-dissector: copy the plugin into the personal Lua plugins folder of tshark/Wireshark
-install-dissector: $(LUA_PLUGIN)
+## install-dissector: copy the plugins (one file per interface) into the personal Lua plugins
+## folder of tshark/Wireshark
+install-dissector: $(LUA_PLUGINS)
 	@dir="$(LUA_PLUGIN_DIR)"; if [ -z "$$dir" ]; then echo "install-dissector: cannot find the personal Lua plugins folder with '$(TSHARK) -G folders'" >&2; exit 2; fi; \
-	mkdir -p "$$dir" && cp $(LUA_PLUGIN) "$$dir/urwire.lua" && echo "installed $$dir/urwire.lua"
+	mkdir -p "$$dir" && for f in $(LUA_PLUGINS); do cp $$f "$$dir/" && echo "installed $$dir/$$(basename $$f)"; done
 
-## uninstall-dissector: remove it again
+## uninstall-dissector: remove them again
 uninstall-dissector:
-	@dir="$(LUA_PLUGIN_DIR)"; if [ -n "$$dir" ] && [ -f "$$dir/urwire.lua" ]; then rm -f "$$dir/urwire.lua" && echo "removed $$dir/urwire.lua"; else echo "urwire.lua is not installed"; fi
+	@dir="$(LUA_PLUGIN_DIR)"; for f in $(LUA_PLUGINS); do name=$$(basename $$f); \
+	if [ -n "$$dir" ] && [ -f "$$dir/$$name" ]; then rm -f "$$dir/$$name" && echo "removed $$dir/$$name"; \
+	else echo "$$name is not installed"; fi; done

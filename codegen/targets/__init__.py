@@ -29,7 +29,11 @@ def render_all(protocol: ir.Protocol, spec_path: str, spec_text: str,
                only: Optional[list[str]] = None) -> dict[str, str]:
     from ..emit import banner_lines
 
-    banner = banner_lines(spec_path, spec_text)
+    return render_protocol(protocol, banner_lines(spec_path, spec_text), only)
+
+
+def render_protocol(protocol: ir.Protocol, banner: list[str], only: Optional[list[str]] = None) -> dict[str, str]:
+    """Every target's files for a primary-interface protocol."""
     planned = plan(protocol)
     outputs: dict[str, str] = {}
     for name, render in TARGETS.items():

@@ -1,0 +1,46 @@
+"""Interface kinds: what `framing.kind` a spec declares decides which part of the spec language it
+uses. Each kind brings its schema (a file under codegen/schema that may $ref the shared
+definitions of spec.schema.json), its resolver (LoadedSpec -> its IR) and its renderers (IR ->
+{path under generated/: text}). The primary interface is the kind `packages`: length-framed
+messages holding sub-packages, and a spec that names no kind is one of those.
+
+Adding a kind is adding a module here that defines `KIND`."""
+from __future__ import annotations
+
+import importlib
+import pkgutil
+from dataclasses import dataclass
+from typing import Callable, Optional
+
+from ..load import LoadedSpec
+
+DEFAULT_KIND = "packages"
+
+
+@dataclass(frozen=True)
+class Kind:
+    name: str
+    schema: str                                          # a file name under codegen/schema
+    resolve: Callable[[LoadedSpec], object]              # raises SpecError with every problem
+    # (model, banner lines, only these targets or None for all) -> {path under generated/: text}
+    render: Callable[[object, list[str], Optional[list[str]]], dict[str, str]]
+
+
+def kind_name(data: object) -> str:
+    """The kind a loaded spec declares (framing.kind), or the primary interface's."""
+    framing = data.get("framing") if isinstance(data, dict) else None
+    kind = framing.get("kind") if isinstance(framing, dict) else None
+    return kind if isinstance(kind, str) else DEFAULT_KIND
+
+
+def _discover() -> dict[str, Kind]:
+    found = {}
+    for info in sorted(pkgutil.iter_modules(__path__), key=lambda i: i.name):
+        module = importlib.import_module(f"{__name__}.{info.name}")
+        kind = getattr(module, "KIND", None)
+        if isinstance(kind, Kind):
+            found[kind.name] = kind
+    return found
+
+
+KINDS: dict[str, Kind] = _discover()

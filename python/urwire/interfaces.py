@@ -1,0 +1,59 @@
+"""The interfaces of a UR cell that urwire reads, and the ports they listen on.
+
+Each interface decodes one TCP conversation at a time through a `Conversation`: bytes go in per
+direction as they arrive, records come out in order. The capture reader and `urwire decode
+--protocol NAME` pick the interface of a conversation from this table, so adding an interface is
+adding its entry here.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Optional, Protocol
+
+from .framer import Framer
+from .generated.spec import PORTS
+
+
+class Conversation(Protocol):
+    """One TCP connection of one interface; its state (software version, recipes) is its own."""
+
+    def feed(self, data: bytes, from_robot: bool) -> list:
+        """The records the bytes so far complete, in order."""
+
+    def close(self) -> list:
+        """What the ends of the two streams leave: a truncated tail becomes an error record."""
+
+
+@dataclass(frozen=True)
+class Interface:
+    name: str                      # the Wireshark protocol, and a record's "interface"
+    title: str
+    ports: tuple[int, ...]         # the controller's default ports
+    conversation: Callable[..., Conversation]   # (version_hint=None) -> a fresh Conversation
+
+
+class PrimaryConversation:
+    """The primary/secondary interface: the robot's stream framed and decoded; what a client sends
+    there is URScript, which is not decoded."""
+
+    def __init__(self, version_hint=None):
+        self.framer = Framer(version_hint)
+
+    def feed(self, data: bytes, from_robot: bool) -> list:
+        return self.framer.feed(data) if from_robot else []
+
+    def close(self) -> list:
+        return self.framer.close()
+
+
+INTERFACES: dict[str, Interface] = {i.name: i for i in (
+    Interface("ur", "Universal Robots primary/secondary client interface", tuple(PORTS), PrimaryConversation),
+)}
+
+
+def interface_of_port(port: int) -> Optional[Interface]:
+    """The interface whose default ports include this one, if any."""
+    for interface in INTERFACES.values():
+        if port in interface.ports:
+            return interface
+    return None
