@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import Callable, Optional, Protocol
 
 from .framer import Framer
+from .generated import ur_dashboard
 from .generated.spec import PORTS
 
 
@@ -48,6 +49,7 @@ class PrimaryConversation:
 
 INTERFACES: dict[str, Interface] = {i.name: i for i in (
     Interface("ur", "Universal Robots primary/secondary client interface", tuple(PORTS), PrimaryConversation),
+    Interface(ur_dashboard.NAME, ur_dashboard.TITLE, ur_dashboard.PORTS, ur_dashboard.conversation),
 )}
 
 
