@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from typing import Callable, Optional, Protocol
 
 from .framer import Framer
-from .generated import ur_dashboard
+from .generated import ur_dashboard, ur_reverse, ur_script_command, ur_trajectory
 from .generated.spec import PORTS
 
 
@@ -31,6 +31,9 @@ class Interface:
     title: str
     ports: tuple[int, ...]         # the controller's default ports
     conversation: Callable[..., Conversation]   # (version_hint=None) -> a fresh Conversation
+    # The robot is the TCP client (the ROS driver's sockets, where the control PC listens): bytes
+    # sent to the port come from the robot. Else the robot listens and sends from the port.
+    robot_is_client: bool = False
 
 
 class PrimaryConversation:
@@ -50,6 +53,8 @@ class PrimaryConversation:
 INTERFACES: dict[str, Interface] = {i.name: i for i in (
     Interface("ur", "Universal Robots primary/secondary client interface", tuple(PORTS), PrimaryConversation),
     Interface(ur_dashboard.NAME, ur_dashboard.TITLE, ur_dashboard.PORTS, ur_dashboard.conversation),
+    *(Interface(m.NAME, m.TITLE, m.PORTS, m.conversation, robot_is_client=True)
+      for m in (ur_reverse, ur_trajectory, ur_script_command)),
 )}
 
 
