@@ -1,7 +1,8 @@
 """Loader for the golden vectors of the interfaces other than the primary one:
 ``golden/<interface>/*.yaml``, one case per file, hand-made from the documents.
 
-A case is a conversation: ``segments``, each ``{from: robot|client, hex: ...}`` (hex annotated
+A case is a conversation: ``segments``, each ``{from: robot|client|pc, hex: ...}`` (``pc``: the
+control PC of the ROS driver's sockets, where the robot is the client) (hex annotated
 line by line, ``#`` comments dropped), fed in order; an optional quoted ``version`` (the
 software version known at the start); and ``expect``, the canonical JSON records in the order
 the segments give them (a full match). Every target (Python, C, Lua) runs every case.
@@ -32,8 +33,8 @@ class ConversationCase:
 
 
 def _segment(raw: object, path: Path) -> Segment:
-    if not isinstance(raw, dict) or raw.get("from") not in ("robot", "client") or "hex" not in raw:
-        raise VectorError(f"{path}: a segment is {{from: robot|client, hex: ...}}, not {raw!r}")
+    if not isinstance(raw, dict) or raw.get("from") not in ("robot", "client", "pc") or "hex" not in raw:
+        raise VectorError(f"{path}: a segment is {{from: robot|client|pc, hex: ...}}, not {raw!r}")
     return Segment(raw["from"] == "robot", parse_hex(raw["hex"], path))
 
 
