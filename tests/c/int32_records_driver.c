@@ -24,6 +24,8 @@ static char line[1 << 16];
 
 static void append(held *h, const unsigned char *p, size_t n)
 {
+    if (n == 0)
+        return;
     if (h->len + n > h->cap) {
         h->cap = (h->len + n) * 2;
         h->bytes = realloc(h->bytes, h->cap);
@@ -59,7 +61,8 @@ int main(int argc, char **argv)
             puts(line);
             at += size;
         }
-        memmove(h->bytes, h->bytes + at, h->len - at);
+        if (at > 0)
+            memmove(h->bytes, h->bytes + at, h->len - at);
         h->len -= at;
         h->offset += at;
     }
