@@ -1,6 +1,6 @@
-# The C fuzz harnesses of the cell's other interfaces. The dashboard server's (tests/c/fuzz_ur_dashboard.c: line splitting, command
-# lookup, reply classification, JSON writer), part of `make fuzz`; its kept corpus is
-# tests/fuzz/corpus/ur_dashboard, replayed by tests/c/test_c_dashboard.py on every `make test`.
+# The C fuzz harnesses of the cell's other interfaces, part of `make fuzz`. The dashboard server's
+# (tests/c/fuzz_ur_dashboard.c: line splitting, command lookup, reply classification, JSON writer);
+# its kept corpus is tests/fuzz/corpus/ur_dashboard, replayed by tests/c/test_c_dashboard.py.
 
 .PHONY: fuzz-ur-dashboard
 
