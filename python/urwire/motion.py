@@ -82,16 +82,18 @@ class Motion:
 def forward_kinematics(model: RobotModel, q) -> tuple:
     """The flange's rotation matrix (rows) and position in the base frame: the product of each
     joint's standard DH transform Rot_z(theta + q) Trans_z(d) Trans_x(a) Rot_x(alpha)."""
-    rotation = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
-    position = [0.0, 0.0, 0.0]
+    rotation = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    x = y = z = 0.0
     for qj, theta, a, d, alpha in zip(q, model.dh_theta, model.dh_a, model.dh_d, model.dh_alpha):
         ct, st = math.cos(theta + qj), math.sin(theta + qj)
         ca, sa = math.cos(alpha), math.sin(alpha)
-        link = [[ct, -st * ca, st * sa], [st, ct * ca, -ct * sa], [0.0, sa, ca]]
-        offset = (a * ct, a * st, d)
-        position = [position[i] + sum(rotation[i][k] * offset[k] for k in range(3)) for i in range(3)]
-        rotation = _multiply(rotation, link)
-    return rotation, position
+        (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = rotation
+        # The link's origin, (a cos, a sin, d) in the frame so far.
+        ox, oy = a * ct, a * st
+        x, y, z = (x + r00 * ox + r01 * oy + r02 * d, y + r10 * ox + r11 * oy + r12 * d,
+                   z + r20 * ox + r21 * oy + r22 * d)
+        rotation = _multiply(rotation, ((ct, -st * ca, st * sa), (st, ct * ca, -ct * sa), (0.0, sa, ca)))
+    return rotation, (x, y, z)
 
 
 def rotation_vector(r) -> tuple:
@@ -114,9 +116,13 @@ def rotation_vector(r) -> tuple:
     return tuple(angle * x for x in axis)
 
 
-def _multiply(a, b):
-    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+def _multiply(a, b) -> tuple:
+    (a00, a01, a02), (a10, a11, a12), (a20, a21, a22) = a
+    (b00, b01, b02), (b10, b11, b12), (b20, b21, b22) = b
+    return ((a00 * b00 + a01 * b10 + a02 * b20, a00 * b01 + a01 * b11 + a02 * b21, a00 * b02 + a01 * b12 + a02 * b22),
+            (a10 * b00 + a11 * b10 + a12 * b20, a10 * b01 + a11 * b11 + a12 * b21, a10 * b02 + a11 * b12 + a12 * b22),
+            (a20 * b00 + a21 * b10 + a22 * b20, a20 * b01 + a21 * b11 + a22 * b21, a20 * b02 + a21 * b12 + a22 * b22))
 
 
-def _transpose(a):
-    return [list(row) for row in zip(*a)]
+def _transpose(a) -> tuple:
+    return tuple(zip(*a))

@@ -6,7 +6,8 @@ of kinematics and dynamics",
 https://www.universal-robots.com/articles/ur/application-installation/dh-parameters-for-calculations-of-kinematics-and-dynamics/
 (CB3 UR3, UR5 and UR10, e-Series UR3e to UR16e, UR20 and UR30); the same values are in
 UniversalRobots/Universal_Robots_ROS2_Description@2221ec0f:config/<model>/default_kinematics.yaml.
-CB2 arms had the kinematics of their CB3 successors.
+A CB2 controller is given its arm's CB3 values: UR's older manuals list earlier series of the UR5
+and UR10 whose lengths differ by millimetres.
 
 Robot type codes (configuration data's robot_type): UniversalRobots/Universal_Robots_Client_Library
 @c5d1e26c:include/ur_client_library/ur/datatypes.h, enum RobotType (UR5 1, UR10 2, UR3 3, UR16 4,

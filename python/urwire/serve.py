@@ -2,10 +2,11 @@
 
 Every client gets its own simulated.Controller: the Version message first, then robot states at
 the given rate. The arm is --model's (default: the generation's usual one), and every client
-sees the same motion at the same time: the motion's clock starts with the server. Loopback by default. SIGINT and SIGTERM abort every connection and stop within a
-second or two, whatever the clients do (exit status 0). A client that stops reading is dropped
-once its unsent data passes --max-unsent, so it costs bounded memory and never holds the others
-back. Whatever a client sends is read and thrown away.
+sees the same motion at the same time: the motion's clock starts with the server. Loopback by
+default. SIGINT and SIGTERM abort every connection and stop within a second or two, whatever the
+clients do (exit status 0). A client that stops reading is dropped once its unsent data passes
+--max-unsent, so it costs bounded memory and never holds the others back. Whatever a client
+sends is read and thrown away.
 """
 from __future__ import annotations
 

@@ -85,6 +85,7 @@ class Controller:
         self.start = start
         self.model = model or model_for(version)
         self.motion = Motion(self.model)
+        self._sample, self._sampled_tick = None, -1
         self.board = BOARDS[generation(version)]
         self.classes = state_classes(version)
         self.running_mode = mode_code("ROBOT_MODE_BY_VALUE", version, "RUNNING")
@@ -103,6 +104,12 @@ class Controller:
 
     def motion_time(self) -> float:
         return self.start + self.seconds()
+
+    def sample(self):
+        """The joints of this tick, worked out once for the packages that report them."""
+        if self._sampled_tick != self.tick:
+            self._sample, self._sampled_tick = self.motion.joints(self.motion_time()), self.tick
+        return self._sample
 
     # --- messages ---------------------------------------------------------------------------
     def encode(self, msg) -> bytes:
@@ -143,7 +150,7 @@ class Controller:
 
     def joints(self, running: bool, protective: bool):
         t = self.seconds()
-        sample = self.motion.joints(self.motion_time())
+        sample = self.sample()
         joints = []
         for j in range(JOINTS):
             q, qd = sample.q[j], sample.qd[j]
@@ -153,7 +160,7 @@ class Controller:
         return _m.JointData(joints)
 
     def cartesian(self, running: bool, protective: bool):
-        x, y, z, rx, ry, rz = self.motion.tcp_pose(self.motion.joints(self.motion_time()).q)
+        x, y, z, rx, ry, rz = self.motion.tcp_pose(self.sample().q)
         return filled(_m.CartesianInfo, x=x, y=y, z=z, rx=rx, ry=ry, rz=rz)
 
     def kinematics(self, running: bool, protective: bool):
