@@ -1,12 +1,12 @@
 """`urwire serve`: a simulated controller on a TCP port, one session per client.
 
-Every client gets its own simulated.Controller: the Version message first, then robot states at
-the given rate. The arm is --model's (default: the generation's usual one), and every client
-sees the same motion at the same time: the motion's clock starts with the server. Loopback by
-default. SIGINT and SIGTERM abort every connection and stop within a second or two, whatever the
-clients do (exit status 0). A client that stops reading is dropped once its unsent data passes
---max-unsent, so it costs bounded memory and never holds the others back. Whatever a client
-sends is read and thrown away.
+Every client gets its own simulated.Controller: the Version message first (and the hardware info
+message, from 5.26 and 10.13), then robot states at the given rate. The arm is --model's
+(default: the generation's usual one), and every client sees the same motion at the same time:
+the motion's clock starts with the server. Loopback by default. SIGINT and SIGTERM abort every
+connection and stop within a second or two, whatever the clients do (exit status 0). A client
+that stops reading is dropped once its unsent data passes --max-unsent, so it costs bounded
+memory and never holds the others back. Whatever a client sends is read and thrown away.
 """
 from __future__ import annotations
 
@@ -105,7 +105,7 @@ class Session(asyncio.Protocol):
     async def run(self) -> None:
         loop = asyncio.get_running_loop()
         start = loop.time()
-        if not self.send(self.controller.version_message()):
+        if not self.send(self.controller.opening()):
             return
         while not self.transport.is_closing():
             if not self.send(b"".join(self.controller.step())):

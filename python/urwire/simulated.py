@@ -122,6 +122,18 @@ class Controller:
                      bugfix_version=bugfix, build_number=1, build_date="23-11-2026, 00:00:00")
         return self.encode(msg)
 
+    def opening(self) -> bytes:
+        """What a client gets on connecting: the Version message, then, from 5.26 and 10.13, the
+        hardware info message (the spec's hardware_info: sent from those releases)."""
+        out = self.version_message()
+        if (5, 26, 0) <= self.version < (10, 0, 0) or self.version >= (10, 13, 0):
+            # Control box CB5 and tool flange V1 (numbered as later patch releases do): an e-Series
+            # box and the flange of the arms UR sold with it.
+            out += self.encode(filled(_m.HardwareInfoMessage, timestamp=0, source=SOURCE,
+                                      robot_type=self.model.robot_type, control_box_type=_e.ControlBoxType.CB5,
+                                      tool_flange_type=_e.ToolFlangeType.V1))
+        return out
+
     def step(self) -> Iterator[bytes]:
         """The messages of the next tick: the robot state first, then what the program says."""
         phase = self.tick % CYCLE_TICKS

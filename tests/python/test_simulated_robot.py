@@ -38,7 +38,7 @@ CASES = [((1, 8, 0), "ur5"), ((1, 8, 0), "ur10"), ((3, 15, 0), "ur3"), ((3, 15, 
 
 def session(version, model=None, ticks=120, start=0.0):
     sim = Controller(version, 10, model and MODELS[model], start=start)
-    data = sim.version_message() + b"".join(b for _ in range(ticks) for b in sim.step())
+    data = sim.opening() + b"".join(b for _ in range(ticks) for b in sim.step())
     records = list(urwire.decode_stream(data))
     assert not any(urwire.canonical.has_error(r) for r in records)
     return [r for r in records if isinstance(r, urwire.RobotStateMessage)]
@@ -121,3 +121,17 @@ def test_serve_refuses_an_arm_of_another_generation():
                           "--model", "ur5e"], capture_output=True, text=True, env=ENV, timeout=60)
     assert res.returncode == 2
     assert "ur5e is not a CB3 arm" in res.stderr and "ur3, ur5, ur10" in res.stderr
+
+
+@pytest.mark.parametrize("version,sent", [((3, 15, 0), False), ((5, 25, 1), False), ((5, 26, 0), True),
+                                          ((10, 12, 0), False), ((10, 13, 0), True), ((10, 14, 0), True)])
+def test_hardware_info_follows_the_version_message_from_5_26_and_10_13(version, sent):
+    sim = Controller(version, 10, MODELS["ur16e"] if version[0] >= 5 else None)
+    records = list(urwire.decode_stream(sim.opening()))
+    assert records[0].TYPE == "version"
+    if not sent:
+        assert len(records) == 1
+        return
+    (info,) = records[1:]
+    assert info.TYPE == "hardware_info" and info.robot_type == 4  # UR16
+    assert info.control_box_type == e.ControlBoxType.CB5 and info.tool_flange_type == e.ToolFlangeType.V1

@@ -48,7 +48,7 @@ def version_of(text: str) -> tuple:
 def urwire_view(version: tuple, model: str | None) -> list:
     """What URCL prints, read by urwire from the same simulated session."""
     sim = Controller(version, RATE, model and MODELS[model])
-    data = sim.version_message() + b"".join(b for _ in range(COUNT) for b in sim.step())
+    data = sim.opening() + b"".join(b for _ in range(COUNT) for b in sim.step())
     lines = []
     for record in list(urwire.decode_stream(data))[:COUNT]:
         if isinstance(record, urwire.RobotStateMessage):
