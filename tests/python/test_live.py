@@ -137,8 +137,9 @@ def test_listen_reconnects(tmp_path):
 
 @pytest.mark.skipif(shutil.which("dumpcap") is None or shutil.which("tshark") is None,
                     reason="needs dumpcap and tshark (scripts/setup.sh installs them)")
-def test_capture_on_loopback_dissects_cleanly(tmp_path):
-    server, port = start_server("5.11")
+@pytest.mark.parametrize("software", ["5.11", "10.14"])  # 10.14: the hardware info message too
+def test_capture_on_loopback_dissects_cleanly(software, tmp_path):
+    server, port = start_server(software)
     pcap = tmp_path / "live.pcapng"
     cap = subprocess.Popen(["dumpcap", "-q", "-i", "lo", "-f", f"tcp port {port}", "-w", str(pcap)],
                            stderr=subprocess.PIPE, text=True)
