@@ -34,7 +34,7 @@ def add_parser(sub, version_arg) -> None:
     p.add_argument("--port", type=int, default=30001, help="TCP port; 0 picks a free one (default: 30001)")
     p.add_argument("--software", type=version_arg, default=(5, 11, 0), metavar="X.Y[.Z]",
                    help="software version to simulate, e.g. 1.8, 3.15 or 5.11 (default: 5.11)")
-    p.add_argument("--model", choices=list(MODELS), metavar="MODEL",
+    p.add_argument("--model", type=str.lower, choices=list(MODELS), metavar="MODEL",
                    help="the arm: ur3 (CB3), ur5, ur10 (CB2, CB3), ur3e, ur5e, ur10e, ur16e, ur20, ur30 (e-Series, "
                         "PolyScope X) (default: ur5 on CB2 and CB3, ur5e on e-Series and PolyScope X)")
     p.add_argument("--rate", type=float, default=10.0, help="robot states per second (default: 10)")

@@ -135,3 +135,11 @@ def test_hardware_info_follows_the_version_message_from_5_26_and_10_13(version, 
     (info,) = records[1:]
     assert info.TYPE == "hardware_info" and info.robot_type == 4  # UR16
     assert info.control_box_type == e.ControlBoxType.CB5 and info.tool_flange_type == e.ToolFlangeType.V1
+
+
+def test_serial_numbers_are_eleven_digits_of_the_generation():
+    from urwire.robot_models import serial_number
+
+    ur5e, ur10 = serial_number(MODELS["ur5e"], (5, 11, 0)), serial_number(MODELS["ur10"], (3, 15, 0))
+    assert ur5e.isdigit() and len(ur5e) == 11 and ur5e.startswith("2021")
+    assert ur10.isdigit() and len(ur10) == 11 and ur10.startswith("2018") and ur5e != ur10
