@@ -38,7 +38,7 @@ class RobotModel:
     d1: float                # DH d of the base joint (m)
     a2: float                # DH a of the upper arm (m)
     a3: float                # DH a of the forearm (m)
-    d4: float                # DH d of wrists 1, 2 and 3 (m)
+    d4: float                # DH d of wrist 1, 2 and 3 (m)
     d5: float
     d6: float
 
