@@ -66,3 +66,12 @@ def test_descriptions_come_from_the_spec():
     assert rows["ur.masterboard_data.digital_input_bits"][7].startswith("Bits 0-7 standard")
     assert rows["ur.masterboard_data.digital_input_bits.tool_1"][1] == "Tool 1"
     assert not [name for name, cols in rows.items() if SNAKE.search(cols[1])]
+
+
+def test_undocumented_parts_are_named_and_marked():
+    # Sub-package 14 of the bundled 5.11 capture: named, marked, its fields filterable with units.
+    text = run_tshark(SAMPLES[0], "-O", "ur", "-Y", "ur.payload_info.mass == 1", "-c", "8")
+    assert re.search(r"^\s+Payload info \(undocumented, inferred\)$", text, re.M)
+    assert re.search(r"^\s+Payload mass: 1 kg$", text, re.M)
+    assert re.search(r"^\s+Payload inertia: 0\.001539 kg·m²$", text, re.M)
+    assert "Unknown package" not in text
