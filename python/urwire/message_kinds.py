@@ -174,7 +174,7 @@ class SubtypeMessage:
     in the form of the version it carries, found through `version_skips` and `version_tail`."""
 
     __slots__ = ("code", "header", "names", "run", "header_offset", "body_offset", "subtype", "converts", "forms",
-                 "announces", "version_skips", "version_tail", "implied")
+                 "announces", "version_skips", "version_tail", "implied_subtype")
 
     def __init__(self, code: int, header: struct.Struct, names: tuple, run: tuple, header_offset: int,
                  body_offset: int, subtype: Optional[str], converts: tuple, forms: _rt.Forms, layouts: tuple,
@@ -184,7 +184,7 @@ class SubtypeMessage:
         self.subtype, self.converts, self.forms = subtype, converts, forms
         self.announces, self.version_skips, self.version_tail = announces, version_skips, version_tail
         # The subtype code when no byte carries it: the message type's own.
-        self.implied = () if subtype else (code,)
+        self.implied_subtype = () if subtype else (code,)
         for cls in layouts:
             cls.MESSAGE, cls.MESSAGE_TYPE = self, code
 
@@ -193,7 +193,7 @@ class SubtypeMessage:
         body = self.body_offset
         if end < body:
             return UnknownMessage(self.code, bytes(buf[HEADER.size:]), _rt.short_in_run(self.run, 0, end).text)
-        *header, subtype = self.header.unpack_from(buf, self.header_offset) + self.implied
+        *header, subtype = self.header.unpack_from(buf, self.header_offset) + self.implied_subtype
         for i, lookup, by_version in self.converts:
             header[i] = (lookup[version] if by_version else lookup).get(header[i], header[i])
         header = tuple(header)
@@ -219,7 +219,7 @@ class SubtypeMessage:
         kept_raw = isinstance(msg, (UnknownSubtype, MalformedSubtype))
         subtype = msg.subtype if kept_raw else msg.CODE
         values = [getattr(msg, name) for name in self.names]
-        if not self.implied:
+        if not self.implied_subtype:
             values.append(subtype)
         out += self.header.pack(*values)
         if kept_raw:
