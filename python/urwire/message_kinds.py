@@ -4,7 +4,8 @@ the protocol has, as algorithms over the generated tables:
 - a list of sub-packages (the robot state): each framed by its own length, read in the form
   that the stream's version or the part's length chooses (PackageList);
 - a common header, then a subtype byte that chooses the layout (robot messages, program state
-  messages: SubtypeMessage).
+  messages: SubtypeMessage); with no header and no subtype byte, one layout right after the
+  message header (a body message: a SubtypeMessage whose subtype is its message type).
 
 urwire.generated.messages holds the classes and the tables (forms, header formats) and makes one
 PackageList or SubtypeMessage per message type; nothing here names a message of the spec.
