@@ -123,3 +123,17 @@ def test_no_global_is_assigned(name):
     plugin = ROOT / "generated" / "lua" / f"{name}.lua"
     listing = subprocess.run(["luac5.2", "-l", "-p", str(plugin)], capture_output=True, text=True, check=True).stdout
     assert [line for line in listing.splitlines() if "SETTABUP" in line and "_ENV" in line] == []
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_random_bytes_in_both_directions_never_raise_a_lua_error(tmp_path, name):
+    import random
+
+    from tests.interface_vectors import Segment
+
+    rng = random.Random(name)
+    segments = [Segment(rng.random() < 0.5, bytes(rng.randrange(256) for _ in range(rng.randint(1, 300))))
+                for _ in range(30)]
+    for release in ("", "1.0.0", "not a release"):
+        frames = tshark_json(name, write_capture(tmp_path, name, segments), "-o", f"{name}.release:{release}")
+        assert any(name in f["_source"]["layers"] for f in frames)
