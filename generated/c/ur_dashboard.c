@@ -8,7 +8,8 @@
 
 static const char *const ur_dashboard_banner_pieces[1] = {"Connected: Universal Robots Dashboard Server"};
 
-const ur_dashboard_reply_spec ur_dashboard_banner = {"connected", ur_dashboard_banner_pieces, 1, false};
+static const ur_dashboard_reply_spec ur_dashboard__banner = {"connected", ur_dashboard_banner_pieces, 1, false};
+const ur_dashboard_reply_spec *const ur_dashboard_banner = &ur_dashboard__banner;
 
 /* could not understand: '<command>' */
 static const char *const ur_dashboard__common_0_pieces[2] = {"could not understand: '", "'"};
@@ -382,7 +383,7 @@ const int ur_dashboard_lookup[UR_DASHBOARD_COMMAND_COUNT] = {
     UR_DASHBOARD_QUIT,
 };
 
-/* ---- runtime/c/ur_dashboard_lines.c ---- */
+/* ---- runtime/c/lines.c ---- */
 /* ---- lines: splitting, commands, replies, versions ----------------------------------------- */
 
 #define UR_DASHBOARD_E_SERIES_MAJOR 5u
@@ -531,15 +532,17 @@ static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
     rec->command_name = UR_DASHBOARD_NONE;
     if (!c->greeted) {
         c->greeted = true;
-        if (ur_dashboard_matches(&ur_dashboard_banner, rec->text)) {
-            rec->reply_name = &ur_dashboard_banner;
+        if (ur_dashboard_banner != NULL && ur_dashboard_matches(ur_dashboard_banner, rec->text)) {
+            rec->reply_name = ur_dashboard_banner;
             return;
         }
     }
-    if (c->count > 0) {
+    if (c->count > 0 && UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {
         command = c->pending[c->head];
         c->head = (c->head + 1) % UR_DASHBOARD_PENDING;
         c->count--;
+    } else if (c->count > 0) {    /* every answering line belongs to the latest request */
+        command = c->pending[(c->head + c->count - 1) % UR_DASHBOARD_PENDING];
     }
     rec->command_name = command;
     rec->reply_name = ur_dashboard_classify(command, rec->text);
@@ -554,7 +557,7 @@ static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
 size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const uint8_t *buf, size_t n,
                            ur_dashboard_record *rec, bool *got)
 {
-    ur_dashboard_direction *d = from_robot ? &c->replies : &c->commands;
+    ur_dashboard_direction *d = from_robot == (bool)UR_DASHBOARD_REQUESTS_FROM_ROBOT ? &c->commands : &c->replies;
     size_t window = n < UR_DASHBOARD_MAX_LINE + 2 ? n : UR_DASHBOARD_MAX_LINE + 2;
     const uint8_t *newline;
     size_t used, len;
@@ -591,16 +594,16 @@ size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const 
     }
     rec->text.ptr = buf;
     rec->text.len = len;
-    if (from_robot)
-        read_reply(c, rec);
-    else
+    if (from_robot == (bool)UR_DASHBOARD_REQUESTS_FROM_ROBOT)
         read_command(c, rec);
+    else
+        read_reply(c, rec);
     return used;
 }
 
 bool ur_dashboard_finish(ur_dashboard_conversation *c, bool from_robot, size_t n, ur_dashboard_record *rec)
 {
-    ur_dashboard_direction *d = from_robot ? &c->replies : &c->commands;
+    ur_dashboard_direction *d = from_robot == (bool)UR_DASHBOARD_REQUESTS_FROM_ROBOT ? &c->commands : &c->replies;
     if (n == 0 || d->skipping)
         return false;
     memset(rec, 0, sizeof *rec);
@@ -613,7 +616,7 @@ bool ur_dashboard_finish(ur_dashboard_conversation *c, bool from_robot, size_t n
     return true;
 }
 
-/* ---- runtime/c/ur_dashboard_json.c ---- */
+/* ---- runtime/c/lines_json.c ---- */
 /* ---- canonical JSON of a record (docs/canonical-json.md) ---------------------------------- */
 
 typedef struct ur_dashboard_out {

@@ -113,7 +113,7 @@ typedef enum ur_dashboard_command_id {
     UR_DASHBOARD_COMMAND_COUNT
 } ur_dashboard_command_id;
 
-/* ---- runtime/c/ur_dashboard_lines.h ---- */
+/* ---- runtime/c/lines.h ---- */
 /* ---- lines, commands and replies ----------------------------------------------------------- */
 
 #define UR_DASHBOARD_PENDING 256     /* commands awaiting a reply that a conversation keeps */
@@ -209,7 +209,12 @@ size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap);
 extern const ur_dashboard_command_spec ur_dashboard_commands[UR_DASHBOARD_COMMAND_COUNT];
 /* The order a line is tried in: the longest text first ("power on" before "power"). */
 extern const int ur_dashboard_lookup[UR_DASHBOARD_COMMAND_COUNT];
-extern const ur_dashboard_reply_spec ur_dashboard_banner;
+/* The line the server greets a client with; NULL when it sends none. */
+extern const ur_dashboard_reply_spec *const ur_dashboard_banner;
+/* Whether the robot asks and the other side answers, and whether each request gets one line
+ * back (else every answering line belongs to the latest request). */
+#define UR_DASHBOARD_REQUESTS_FROM_ROBOT 0
+#define UR_DASHBOARD_ONE_REPLY_PER_REQUEST 1
 /* Replies any command may get, read before the command's own. */
 extern const ur_dashboard_reply_spec ur_dashboard_common_replies[];
 extern const size_t ur_dashboard_common_reply_count;

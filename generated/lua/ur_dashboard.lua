@@ -16,7 +16,11 @@ local spec = {
     max_line = 4096,  -- longer lines are flagged and skipped up to their newline
     pending_kept = 256,  -- commands awaiting a reply that a conversation keeps
     e_series_from = 5000000,  -- versions are (major * 1000 + minor) * 1000 + bugfix
-    banner = {name = "connected", pieces = {"Connected: Universal Robots Dashboard Server"}, error = false},
+    banner = {name = "connected", pieces = {"Connected: Universal Robots Dashboard Server"}, error = false},  -- the line the server greets a client with, if any
+    robot_is_client = false,  -- the robot connects to the port (the driver's sockets)
+    requests_from_robot = false,  -- the robot asks and the other side answers
+    -- Whether each request gets one line back; else every answering line belongs to the latest one.
+    one_reply_per_request = true,
     -- Replies any command may get, read before the command's own.
     common = {
         {name = "not_understood", pieces = {"could not understand: '", "'"}, error = true},
@@ -296,7 +300,7 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
--- ---- runtime/lua/ur_dashboard_match.lua ----
+-- ---- runtime/lua/lines_match.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -398,11 +402,11 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/ur_dashboard_dissect.lua ----
+-- ---- runtime/lua/lines_dissect.lua ----
 -- =============================================================================================
 do
 (function(...)
--- The dashboard dissector: lines reassembled across TCP segments, each shown as a command or a
+-- A dissector of text lines (the dashboard server, the driver's script sender): lines reassembled across TCP segments, each shown as a command or a
 -- reply, replies paired with their commands and the software version learnt per conversation
 -- (both addresses and both ports: two robots or two clients never share it), expert infos for
 -- a reply that says an error, an unknown command, a command the version lacks, a line too long.
@@ -443,12 +447,12 @@ proto.prefs.version = Pref.string("Software version", "",
 
 local conversations, decided = {}, {}
 
-local function conversation_key(pinfo, from_robot)
-    local robot = tostring(from_robot and pinfo.src or pinfo.dst) .. ":" ..
-        (from_robot and pinfo.src_port or pinfo.dst_port)
-    local client = tostring(from_robot and pinfo.dst or pinfo.src) .. ":" ..
-        (from_robot and pinfo.dst_port or pinfo.src_port)
-    return robot .. "<>" .. client
+local function conversation_key(pinfo, from_server)
+    local server = tostring(from_server and pinfo.src or pinfo.dst) .. ":" ..
+        (from_server and pinfo.src_port or pinfo.dst_port)
+    local client = tostring(from_server and pinfo.dst or pinfo.src) .. ":" ..
+        (from_server and pinfo.dst_port or pinfo.src_port)
+    return server .. "<>" .. client
 end
 
 local function conversation(key)
@@ -477,13 +481,15 @@ end
 local function decide_reply(c, text)
     if not c.greeted then
         c.greeted = true
-        if matches(spec.banner.pieces, text) then return {reply = spec.banner} end
+        if spec.banner and matches(spec.banner.pieces, text) then return {reply = spec.banner} end
     end
     local command = nil
-    if c.first <= c.last then
+    if c.first <= c.last and spec.one_reply_per_request then
         command = c.pending[c.first] or nil
         c.pending[c.first] = nil
         c.first = c.first + 1
+    elseif c.first <= c.last then
+        command = c.pending[c.last] or nil   -- every answering line belongs to the latest request
     end
     if command and command == spec.version_command then
         c.version = version_in(text) or c.version
@@ -526,8 +532,11 @@ end
 
 local function dissect(tvb, pinfo, tree)
     local n = tvb:len()
-    local from_robot = pinfo.src_port == pinfo.match_uint
-    local key = conversation_key(pinfo, from_robot)
+    -- The server sends from its port; the robot is the server but for the driver's sockets.
+    local from_server = pinfo.src_port == pinfo.match_uint
+    local from_robot = from_server ~= spec.robot_is_client
+    local requests = from_robot == spec.requests_from_robot
+    local key = conversation_key(pinfo, from_server)
     local c = conversation(key)
     pinfo.cols.protocol = "UR Dashboard"
     local infos = {}
@@ -567,10 +576,10 @@ local function dissect(tvb, pinfo, tree)
                 local slot = here .. at
                 local d = decided[slot]
                 if first_pass or not d then
-                    d = from_robot and decide_reply(c, text) or decide_command(c, text)
+                    d = requests and decide_command(c, text) or decide_reply(c, text)
                     decided[slot] = d
                 end
-                infos[#infos + 1] = (from_robot and show_reply or show_command)(tree, range, text, d)
+                infos[#infos + 1] = (requests and show_command or show_reply)(tree, range, text, d)
                 at = nl
             end
         end

@@ -147,12 +147,15 @@ class LinesConversation:
         self.greeted = False
 
     def feed(self, data: bytes, from_robot: bool) -> list:
-        lines = (self.replies if from_robot else self.commands).feed(data)
-        read = self._reply if from_robot else self._command
+        requests = from_robot == self.tables.REQUESTS_FROM_ROBOT
+        lines = (self.commands if requests else self.replies).feed(data)
+        read = self._command if requests else self._reply
         return [line if isinstance(line, StreamError) else read(line[1]) for line in lines]
 
     def close(self) -> list:
-        return self.commands.close() + self.replies.close()
+        # The client's direction first, as the C and Lua decoders report them.
+        tails = (self.commands.close(), self.replies.close())
+        return tails[1] + tails[0] if self.tables.REQUESTS_FROM_ROBOT else tails[0] + tails[1]
 
     def _command(self, raw: bytes):
         t = self.tables
@@ -169,9 +172,12 @@ class LinesConversation:
         text = raw.decode("utf-8", "surrogateescape")
         if not self.greeted:
             self.greeted = True
-            if matches(t.BANNER.pieces, text):
+            if t.BANNER is not None and matches(t.BANNER.pieces, text):
                 return t.Reply(text, None, t.BANNER.name, False)
-        command = self.pending.popleft() if self.pending else None
+        if t.ONE_REPLY_PER_REQUEST:
+            command = self.pending.popleft() if self.pending else None
+        else:
+            command = self.pending[-1] if self.pending else None
         reply = classify(t.COMMON_REPLIES, command, text)
         if command is not None and command.name == t.VERSION_COMMAND:
             self.version = version_in(text, t.VERSION_PREFIX) or self.version

@@ -3,6 +3,7 @@ runtime of runtime/c/<name>_*.{h,c} joined in, from the plan."""
 from __future__ import annotations
 
 import json
+import re
 
 from ...emit import environment, runtime_path, runtime_source
 from ...wrap import LIMIT
@@ -17,8 +18,14 @@ def _string(text: str) -> str:
     return json.dumps(text)
 
 
-def _joined(name: str) -> str:
-    return f"/* ---- {runtime_path(FOLDER, name)} ---- */\n" + runtime_source(FOLDER, name)
+def _joined(name: str, prefix: str) -> str:
+    """A runtime file of the kind as joined into one interface's files: its names, written with
+    the kind's prefix (lines_, LINES_) so that the file builds alone, take the interface's, so
+    that two interfaces of the kind link into one library."""
+    text = runtime_source(FOLDER, name)
+    text = re.sub(r"\blines_", f"{prefix}_", text)
+    text = re.sub(r"\bLINES_", f"{prefix.upper()}_", text)
+    return f"/* ---- {runtime_path(FOLDER, name)} ---- */\n" + text
 
 
 def _reply(symbol: str, reply: Reply) -> dict:
@@ -44,13 +51,14 @@ def view(p: LinesPlan) -> dict:
     return dict(
         prefix=prefix, upper=prefix.upper(), title=m.title, doc=m.doc, ports=m.ports, max_line=m.max_line,
         commands=commands, lookup=[f"{prefix.upper()}_{c.command.name.upper()}" for c in p.lookup],
-        banner_reply=_reply(f"{prefix}_banner", m.banner),
+        banner_reply=_reply(f"{prefix}_banner", m.banner) if m.banner else None,
+        requests_from_robot=int(m.requests_from_robot), one_reply_per_request=int(m.one_reply_per_request),
         common=[_reply(f"{prefix}__common_{i}", r) for i, r in enumerate(m.common_replies)],
         version_command=f"{prefix.upper()}_{p.version_command.command.name.upper()}" if p.version_command
         else f"{prefix.upper()}_NONE",
         version_prefix=_string(m.version_prefix),
-        runtime_header=_joined(f"{prefix}_lines.h"),
-        runtime_sources=[_joined(f"{prefix}_lines.c"), _joined(f"{prefix}_json.c")],
+        runtime_header=_joined("lines.h", prefix),
+        runtime_sources=[_joined("lines.c", prefix), _joined("lines_json.c", prefix)],
         limit=LIMIT,
     )
 

@@ -31,7 +31,10 @@ def view(p: LinesPlan) -> dict:
         name=_string(m.name), title=_string(m.title), doc=f"{m.title}: {m.doc}", max_line=m.max_line,
         ports=", ".join(str(port) for port in m.ports), filters=f"{m.name}.command_name == \"load\", "
         f"{m.name}.reply, {m.name}.error == 1",
-        banner_reply=_reply(m.banner), common=[_reply(r) for r in m.common_replies],
+        banner_reply=_reply(m.banner) if m.banner else "nil",
+        requests_from_robot="true" if m.requests_from_robot else "false",
+        one_reply_per_request="true" if m.one_reply_per_request else "false",
+        robot_is_client="true" if m.robot_is_client else "false", common=[_reply(r) for r in m.common_replies],
         commands=[dict(comment=f"{c.command.text}: {c.command.doc} ({c.command.since_text()})",
                        entries=[f"name = {_string(c.command.name)}", f"text = {_string(c.command.text)}",
                              f"argument = {'true' if c.command.argument else 'false'}",
@@ -42,7 +45,7 @@ def view(p: LinesPlan) -> dict:
         version_command=_number(p.version_command.index + 1 if p.version_command else None),
         version_prefix=_string(m.version_prefix), e_series_from=p.e_series_from,
         labels=[dict(name=name, label=_string(f.label)) for name, f in m.fields.items()],
-        runtime=[dict(path=runtime_path("lua", f"{m.name}_{name}"), source=runtime_source("lua", f"{m.name}_{name}"))
+        runtime=[dict(path=runtime_path("lua", f"lines_{name}"), source=runtime_source("lua", f"lines_{name}"))
                  for name in RUNTIME],
     )
 

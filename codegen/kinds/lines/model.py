@@ -25,12 +25,15 @@ class Command:
     argument: Optional[str]      # what the text after the words is, when the command takes one
     since_cb: Optional[ir.Version]        # first CB2/CB3 version with the command; None: none has it
     since_e_series: Optional[ir.Version]  # first e-Series (5.x and later) version; None: none has it
+    every_version: bool                   # no `since:`: every version has it
     doc: str
     replies: tuple[Reply, ...]
     where: ir.Where
 
     def since_text(self) -> str:
         """"CB 1.4, e-Series 5.0": where and from when the command exists, for comments."""
+        if self.every_version:
+            return "every version"
         parts = [f"CB {ir.version_text(self.since_cb)}"] if self.since_cb else []
         parts += [f"e-Series {ir.version_text(self.since_e_series)}"] if self.since_e_series else []
         return ", ".join(parts)
@@ -50,7 +53,10 @@ class LinesProtocol:
     doc: str
     ports: tuple[int, ...]
     max_line: int
-    banner: Reply
+    banner: Optional[Reply]              # the line the server greets a client with, if any
+    robot_is_client: bool                # the robot connects to the port (the driver's sockets)
+    requests_from_robot: bool            # the robot asks and the other side answers (script sender)
+    one_reply_per_request: bool          # else every answering line belongs to the latest request
     version_command: Optional[str]       # the command whose reply tells the software version
     version_prefix: str                  # the reply's text before the version
     fields: dict[str, RecordField]

@@ -22,7 +22,8 @@ def view(p: LinesPlan) -> dict:
     m = p.model
     return dict(
         name=m.name, title=m.title, doc=m.doc, ports=repr(m.ports), max_line=m.max_line,
-        banner_reply=_reply(m.banner), common_replies=[_reply(r) for r in m.common_replies],
+        banner_reply=_reply(m.banner) if m.banner else "None", requests_from_robot=repr(m.requests_from_robot),
+        one_reply_per_request=repr(m.one_reply_per_request), common_replies=[_reply(r) for r in m.common_replies],
         commands=[dict(constant=c.command.name.upper(), doc=f"{c.command.doc} ({c.command.since_text()})",
                        arguments=[repr(c.command.name), repr(c.command.text), repr(c.command.argument is not None),
                                   _version(c.command.since_cb), _version(c.command.since_e_series)],

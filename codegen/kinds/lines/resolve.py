@@ -36,14 +36,14 @@ class _LinesResolver(_Resolver):
         return tuple(out)
 
     def command(self, raw: dict, parts) -> Command:
-        since = raw["since"]
+        since = raw.get("since", {"cb": "1.0", "e_series": "5.0"})   # no since: from the first software
         cb = ir.parse_version(since["cb"]) if "cb" in since else None
         e_series = ir.parse_version(since["e_series"]) if "e_series" in since else None
         if cb and cb[0] >= LinesProtocol.E_SERIES_MAJOR:
             self.fail(parts + ["since", "cb"], f"{since['cb']} is not a CB-series version (below 5.0)")
         if e_series and e_series[0] < LinesProtocol.E_SERIES_MAJOR:
             self.fail(parts + ["since", "e_series"], f"{since['e_series']} is not an e-Series version (5.0 or later)")
-        return Command(raw["name"], raw["text"], raw.get("argument"), cb, e_series, raw["doc"],
+        return Command(raw["name"], raw["text"], raw.get("argument"), cb, e_series, "since" not in raw, raw["doc"],
                        self.replies(raw["replies"], parts + ["replies"]), self.where(parts))
 
     def protocol(self) -> LinesProtocol:
@@ -65,7 +65,11 @@ class _LinesResolver(_Resolver):
         proto = data["protocol"]
         return LinesProtocol(
             name=proto["name"], title=proto["title"], doc=proto["doc"], ports=tuple(proto["ports"]),
-            max_line=framing["max_line"], banner=self.reply(framing["banner"], ["framing", "banner"]),
+            max_line=framing["max_line"],
+            banner=self.reply(framing["banner"], ["framing", "banner"]) if "banner" in framing else None,
+            robot_is_client=framing.get("robot_is_client", False),
+            requests_from_robot=framing.get("requests_from", "client") == "robot",
+            one_reply_per_request=framing.get("replies", "one_per_request") == "one_per_request",
             version_command=version_reply["command"] if version_reply else None,
             version_prefix=version_reply["prefix"] if version_reply else "",
             fields=fields, common_replies=self.replies(data["common_replies"], ["common_replies"]),

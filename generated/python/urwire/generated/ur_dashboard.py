@@ -16,7 +16,10 @@ NAME = "ur_dashboard"
 TITLE = "Universal Robots dashboard server"
 PORTS = (29999,)
 MAX_LINE = 4096  # longer lines are error records, skipped up to their newline
-BANNER = _rt.ReplySpec('connected', ('Connected: Universal Robots Dashboard Server',), False)
+BANNER = _rt.ReplySpec('connected', ('Connected: Universal Robots Dashboard Server',), False)  # the line the server greets a client with, if any
+REQUESTS_FROM_ROBOT = False  # whether the robot asks and the other side answers
+# Whether each request gets one line back; else every answering line belongs to the latest request.
+ONE_REPLY_PER_REQUEST = True
 # Replies any command may get; a reply is read against these before its command's own.
 COMMON_REPLIES = (
     _rt.ReplySpec('not_understood', ("could not understand: '", "'"), True),

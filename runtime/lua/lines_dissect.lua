@@ -1,4 +1,4 @@
--- The dashboard dissector: lines reassembled across TCP segments, each shown as a command or a
+-- A dissector of text lines (the dashboard server, the driver's script sender): lines reassembled across TCP segments, each shown as a command or a
 -- reply, replies paired with their commands and the software version learnt per conversation
 -- (both addresses and both ports: two robots or two clients never share it), expert infos for
 -- a reply that says an error, an unknown command, a command the version lacks, a line too long.
@@ -39,12 +39,12 @@ proto.prefs.version = Pref.string("Software version", "",
 
 local conversations, decided = {}, {}
 
-local function conversation_key(pinfo, from_robot)
-    local robot = tostring(from_robot and pinfo.src or pinfo.dst) .. ":" ..
-        (from_robot and pinfo.src_port or pinfo.dst_port)
-    local client = tostring(from_robot and pinfo.dst or pinfo.src) .. ":" ..
-        (from_robot and pinfo.dst_port or pinfo.src_port)
-    return robot .. "<>" .. client
+local function conversation_key(pinfo, from_server)
+    local server = tostring(from_server and pinfo.src or pinfo.dst) .. ":" ..
+        (from_server and pinfo.src_port or pinfo.dst_port)
+    local client = tostring(from_server and pinfo.dst or pinfo.src) .. ":" ..
+        (from_server and pinfo.dst_port or pinfo.src_port)
+    return server .. "<>" .. client
 end
 
 local function conversation(key)
@@ -73,13 +73,15 @@ end
 local function decide_reply(c, text)
     if not c.greeted then
         c.greeted = true
-        if matches(spec.banner.pieces, text) then return {reply = spec.banner} end
+        if spec.banner and matches(spec.banner.pieces, text) then return {reply = spec.banner} end
     end
     local command = nil
-    if c.first <= c.last then
+    if c.first <= c.last and spec.one_reply_per_request then
         command = c.pending[c.first] or nil
         c.pending[c.first] = nil
         c.first = c.first + 1
+    elseif c.first <= c.last then
+        command = c.pending[c.last] or nil   -- every answering line belongs to the latest request
     end
     if command and command == spec.version_command then
         c.version = version_in(text) or c.version
@@ -122,8 +124,11 @@ end
 
 local function dissect(tvb, pinfo, tree)
     local n = tvb:len()
-    local from_robot = pinfo.src_port == pinfo.match_uint
-    local key = conversation_key(pinfo, from_robot)
+    -- The server sends from its port; the robot is the server but for the driver's sockets.
+    local from_server = pinfo.src_port == pinfo.match_uint
+    local from_robot = from_server ~= spec.robot_is_client
+    local requests = from_robot == spec.requests_from_robot
+    local key = conversation_key(pinfo, from_server)
     local c = conversation(key)
     pinfo.cols.protocol = "UR Dashboard"
     local infos = {}
@@ -163,10 +168,10 @@ local function dissect(tvb, pinfo, tree)
                 local slot = here .. at
                 local d = decided[slot]
                 if first_pass or not d then
-                    d = from_robot and decide_reply(c, text) or decide_command(c, text)
+                    d = requests and decide_command(c, text) or decide_reply(c, text)
                     decided[slot] = d
                 end
-                infos[#infos + 1] = (from_robot and show_reply or show_command)(tree, range, text, d)
+                infos[#infos + 1] = (requests and show_command or show_reply)(tree, range, text, d)
                 at = nl
             end
         end

@@ -1,20 +1,22 @@
 /* <standalone> */
 #include <string.h>
-#include "ur_dashboard_lines.h"
-#define UR_DASHBOARD_COMMAND_COUNT 1
-#define UR_DASHBOARD_VERSION_COMMAND UR_DASHBOARD_NONE
-extern const ur_dashboard_command_spec ur_dashboard_commands[UR_DASHBOARD_COMMAND_COUNT];
-extern const int ur_dashboard_lookup[UR_DASHBOARD_COMMAND_COUNT];
-extern const ur_dashboard_reply_spec ur_dashboard_banner;
-extern const ur_dashboard_reply_spec ur_dashboard_common_replies[];
-extern const size_t ur_dashboard_common_reply_count;
-extern const char ur_dashboard_version_prefix[];
+#include "lines_lines.h"
+#define LINES_COMMAND_COUNT 1
+#define LINES_VERSION_COMMAND LINES_NONE
+extern const lines_command_spec lines_commands[LINES_COMMAND_COUNT];
+extern const int lines_lookup[LINES_COMMAND_COUNT];
+extern const lines_reply_spec *const lines_banner;
+#define LINES_REQUESTS_FROM_ROBOT 0
+#define LINES_ONE_REPLY_PER_REQUEST 1
+extern const lines_reply_spec lines_common_replies[];
+extern const size_t lines_common_reply_count;
+extern const char lines_version_prefix[];
 /* </standalone> */
 /* ---- lines: splitting, commands, replies, versions ----------------------------------------- */
 
-#define UR_DASHBOARD_E_SERIES_MAJOR 5u
+#define LINES_E_SERIES_MAJOR 5u
 
-uint32_t ur_dashboard_version(uint32_t major, uint32_t minor, uint32_t bugfix)
+uint32_t lines_version(uint32_t major, uint32_t minor, uint32_t bugfix)
 {
     if (minor > 999u)
         minor = 999u;
@@ -23,18 +25,18 @@ uint32_t ur_dashboard_version(uint32_t major, uint32_t minor, uint32_t bugfix)
     return (major * 1000u + minor) * 1000u + bugfix;
 }
 
-void ur_dashboard_init(ur_dashboard_conversation *c, uint32_t version)
+void lines_init(lines_conversation *c, uint32_t version)
 {
     memset(c, 0, sizeof *c);
     c->version = version;
 }
 
-static bool starts_with(ur_dashboard_view v, const char *text, size_t n)
+static bool starts_with(lines_view v, const char *text, size_t n)
 {
     return v.len >= n && memcmp(v.ptr, text, n) == 0;
 }
 
-bool ur_dashboard_matches(const ur_dashboard_reply_spec *reply, ur_dashboard_view line)
+bool lines_matches(const lines_reply_spec *reply, lines_view line)
 {
     const char *first = reply->pieces[0];
     const char *last = reply->pieces[reply->piece_count - 1];
@@ -58,15 +60,15 @@ bool ur_dashboard_matches(const ur_dashboard_reply_spec *reply, ur_dashboard_vie
     return true;
 }
 
-int ur_dashboard_find_command(ur_dashboard_view line, ur_dashboard_view *argument, bool *has_argument)
+int lines_find_command(lines_view line, lines_view *argument, bool *has_argument)
 {
     size_t i;
     *has_argument = false;
     argument->ptr = line.ptr;
     argument->len = 0;
-    for (i = 0; i < UR_DASHBOARD_COMMAND_COUNT; i++) {
-        int index = ur_dashboard_lookup[i];
-        const ur_dashboard_command_spec *command = &ur_dashboard_commands[index];
+    for (i = 0; i < LINES_COMMAND_COUNT; i++) {
+        int index = lines_lookup[i];
+        const lines_command_spec *command = &lines_commands[index];
         size_t len = strlen(command->text);
         if (!starts_with(line, command->text, len))
             continue;
@@ -79,39 +81,39 @@ int ur_dashboard_find_command(ur_dashboard_view line, ur_dashboard_view *argumen
             return index;
         }
     }
-    return UR_DASHBOARD_NONE;
+    return LINES_NONE;
 }
 
-const ur_dashboard_reply_spec *ur_dashboard_classify(int command, ur_dashboard_view line)
+const lines_reply_spec *lines_classify(int command, lines_view line)
 {
     size_t i;
-    for (i = 0; i < ur_dashboard_common_reply_count; i++)
-        if (ur_dashboard_matches(&ur_dashboard_common_replies[i], line))
-            return &ur_dashboard_common_replies[i];
-    if (command == UR_DASHBOARD_NONE)
+    for (i = 0; i < lines_common_reply_count; i++)
+        if (lines_matches(&lines_common_replies[i], line))
+            return &lines_common_replies[i];
+    if (command == LINES_NONE)
         return NULL;
-    for (i = 0; i < ur_dashboard_commands[command].reply_count; i++)
-        if (ur_dashboard_matches(&ur_dashboard_commands[command].replies[i], line))
-            return &ur_dashboard_commands[command].replies[i];
+    for (i = 0; i < lines_commands[command].reply_count; i++)
+        if (lines_matches(&lines_commands[command].replies[i], line))
+            return &lines_commands[command].replies[i];
     return NULL;
 }
 
-bool ur_dashboard_available(int command, uint32_t version)
+bool lines_available(int command, uint32_t version)
 {
-    const ur_dashboard_command_spec *spec = &ur_dashboard_commands[command];
-    uint32_t since = version >= ur_dashboard_version(UR_DASHBOARD_E_SERIES_MAJOR, 0, 0) ? spec->since_e_series
+    const lines_command_spec *spec = &lines_commands[command];
+    uint32_t since = version >= lines_version(LINES_E_SERIES_MAJOR, 0, 0) ? spec->since_e_series
                                                                                        : spec->since_cb;
     return since != 0 && version >= since;
 }
 
 /* "URSoftware 5.11.1.108318 (...)" -> 5.11.1, or 0: the word after the prefix, split at its
  * dots, whose first two or three parts are 1 to 3 digits. */
-static uint32_t version_in(ur_dashboard_view line)
+static uint32_t version_in(lines_view line)
 {
-    size_t prefix = strlen(ur_dashboard_version_prefix), i;
+    size_t prefix = strlen(lines_version_prefix), i;
     uint32_t parts[3] = {0, 0, 0};
     size_t count = 0, digits = 0;
-    if (!starts_with(line, ur_dashboard_version_prefix, prefix))
+    if (!starts_with(line, lines_version_prefix, prefix))
         return 0;
     for (i = prefix; i < line.len && line.ptr[i] != ' '; i++) {
         uint8_t ch = line.ptr[i];
@@ -133,61 +135,63 @@ static uint32_t version_in(ur_dashboard_view line)
             return 0;
         count++;
     }
-    return count >= 2 ? ur_dashboard_version(parts[0], parts[1], parts[2]) : 0;
+    return count >= 2 ? lines_version(parts[0], parts[1], parts[2]) : 0;
 }
 
-static void read_command(ur_dashboard_conversation *c, ur_dashboard_record *rec)
+static void read_command(lines_conversation *c, lines_record *rec)
 {
-    int command = ur_dashboard_find_command(rec->text, &rec->argument, &rec->has_argument);
-    rec->type = UR_DASHBOARD_COMMAND;
+    int command = lines_find_command(rec->text, &rec->argument, &rec->has_argument);
+    rec->type = LINES_COMMAND;
     rec->command_name = command;
-    rec->available = command == UR_DASHBOARD_NONE || c->version == 0 ? -1
-                                                                      : ur_dashboard_available(command, c->version);
-    if (c->count == UR_DASHBOARD_PENDING) {   /* the oldest is forgotten, as a bounded queue does */
-        c->head = (c->head + 1) % UR_DASHBOARD_PENDING;
+    rec->available = command == LINES_NONE || c->version == 0 ? -1
+                                                                      : lines_available(command, c->version);
+    if (c->count == LINES_PENDING) {   /* the oldest is forgotten, as a bounded queue does */
+        c->head = (c->head + 1) % LINES_PENDING;
         c->count--;
     }
-    c->pending[(c->head + c->count) % UR_DASHBOARD_PENDING] = (int16_t)command;
+    c->pending[(c->head + c->count) % LINES_PENDING] = (int16_t)command;
     c->count++;
 }
 
-static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
+static void read_reply(lines_conversation *c, lines_record *rec)
 {
-    int command = UR_DASHBOARD_NONE;
-    rec->type = UR_DASHBOARD_REPLY;
-    rec->command_name = UR_DASHBOARD_NONE;
+    int command = LINES_NONE;
+    rec->type = LINES_REPLY;
+    rec->command_name = LINES_NONE;
     if (!c->greeted) {
         c->greeted = true;
-        if (ur_dashboard_matches(&ur_dashboard_banner, rec->text)) {
-            rec->reply_name = &ur_dashboard_banner;
+        if (lines_banner != NULL && lines_matches(lines_banner, rec->text)) {
+            rec->reply_name = lines_banner;
             return;
         }
     }
-    if (c->count > 0) {
+    if (c->count > 0 && LINES_ONE_REPLY_PER_REQUEST) {
         command = c->pending[c->head];
-        c->head = (c->head + 1) % UR_DASHBOARD_PENDING;
+        c->head = (c->head + 1) % LINES_PENDING;
         c->count--;
+    } else if (c->count > 0) {    /* every answering line belongs to the latest request */
+        command = c->pending[(c->head + c->count - 1) % LINES_PENDING];
     }
     rec->command_name = command;
-    rec->reply_name = ur_dashboard_classify(command, rec->text);
+    rec->reply_name = lines_classify(command, rec->text);
     rec->error = rec->reply_name != NULL && rec->reply_name->error;
-    if (command != UR_DASHBOARD_NONE && command == UR_DASHBOARD_VERSION_COMMAND) {
+    if (command != LINES_NONE && command == LINES_VERSION_COMMAND) {
         uint32_t version = version_in(rec->text);
         if (version != 0)
             c->version = version;
     }
 }
 
-size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const uint8_t *buf, size_t n,
-                           ur_dashboard_record *rec, bool *got)
+size_t lines_decode(lines_conversation *c, bool from_robot, const uint8_t *buf, size_t n,
+                           lines_record *rec, bool *got)
 {
-    ur_dashboard_direction *d = from_robot ? &c->replies : &c->commands;
-    size_t window = n < UR_DASHBOARD_MAX_LINE + 2 ? n : UR_DASHBOARD_MAX_LINE + 2;
+    lines_direction *d = from_robot == (bool)LINES_REQUESTS_FROM_ROBOT ? &c->commands : &c->replies;
+    size_t window = n < LINES_MAX_LINE + 2 ? n : LINES_MAX_LINE + 2;
     const uint8_t *newline;
     size_t used, len;
     *got = false;
     memset(rec, 0, sizeof *rec);
-    rec->command_name = UR_DASHBOARD_NONE;
+    rec->command_name = LINES_NONE;
     rec->available = -1;
     rec->offset = d->offset;
     if (d->skipping) {
@@ -199,7 +203,7 @@ size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const 
     }
     newline = window ? memchr(buf, '\n', window) : NULL;
     if (newline == NULL) {
-        if (n <= UR_DASHBOARD_MAX_LINE + 1)
+        if (n <= LINES_MAX_LINE + 1)
             return 0;                         /* not whole yet */
         d->skipping = true;
         used = window;
@@ -211,29 +215,29 @@ size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const 
         len--;
     *got = true;
     d->offset += used;
-    if (newline == NULL || len > UR_DASHBOARD_MAX_LINE) {
-        rec->type = UR_DASHBOARD_FAULT;
-        rec->fault = UR_DASHBOARD_LINE_TOO_LONG;
+    if (newline == NULL || len > LINES_MAX_LINE) {
+        rec->type = LINES_FAULT;
+        rec->fault = LINES_LINE_TOO_LONG;
         return used;
     }
     rec->text.ptr = buf;
     rec->text.len = len;
-    if (from_robot)
-        read_reply(c, rec);
-    else
+    if (from_robot == (bool)LINES_REQUESTS_FROM_ROBOT)
         read_command(c, rec);
+    else
+        read_reply(c, rec);
     return used;
 }
 
-bool ur_dashboard_finish(ur_dashboard_conversation *c, bool from_robot, size_t n, ur_dashboard_record *rec)
+bool lines_finish(lines_conversation *c, bool from_robot, size_t n, lines_record *rec)
 {
-    ur_dashboard_direction *d = from_robot ? &c->replies : &c->commands;
+    lines_direction *d = from_robot == (bool)LINES_REQUESTS_FROM_ROBOT ? &c->commands : &c->replies;
     if (n == 0 || d->skipping)
         return false;
     memset(rec, 0, sizeof *rec);
-    rec->type = UR_DASHBOARD_FAULT;
-    rec->fault = UR_DASHBOARD_NO_NEWLINE_AT_END;
-    rec->command_name = UR_DASHBOARD_NONE;
+    rec->type = LINES_FAULT;
+    rec->fault = LINES_NO_NEWLINE_AT_END;
+    rec->command_name = LINES_NONE;
     rec->available = -1;
     rec->offset = d->offset;
     rec->bytes = n;

@@ -1,16 +1,16 @@
 /* <standalone> */
 #include <string.h>
-#include "ur_dashboard_lines.h"
-extern const ur_dashboard_command_spec ur_dashboard_commands[];
+#include "lines_lines.h"
+extern const lines_command_spec lines_commands[];
 /* </standalone> */
 /* ---- canonical JSON of a record (docs/canonical-json.md) ---------------------------------- */
 
-typedef struct ur_dashboard_out {
+typedef struct lines_out {
     char *buf;
     size_t cap, len;          /* len counts what did not fit too */
-} ur_dashboard_out;
+} lines_out;
 
-static void out_bytes(ur_dashboard_out *o, const char *p, size_t n)
+static void out_bytes(lines_out *o, const char *p, size_t n)
 {
     size_t room = o->cap > o->len + 1 ? o->cap - o->len - 1 : 0;
     if (room > 0)
@@ -18,7 +18,7 @@ static void out_bytes(ur_dashboard_out *o, const char *p, size_t n)
     o->len += n;
 }
 
-static void out_text(ur_dashboard_out *o, const char *p)
+static void out_text(lines_out *o, const char *p)
 {
     out_bytes(o, p, strlen(p));
 }
@@ -55,7 +55,7 @@ static size_t utf8_sequence(const uint8_t *p, size_t n, size_t *bad)
 }
 
 /* Bytes as a JSON string, escaped as Python's json module does with ensure_ascii=False. */
-static void out_string(ur_dashboard_out *o, ur_dashboard_view v)
+static void out_string(lines_out *o, lines_view v)
 {
     static const char hex[] = "0123456789abcdef";
     size_t i = 0, len, bad;
@@ -95,16 +95,16 @@ static void out_string(ur_dashboard_out *o, ur_dashboard_view v)
     out_bytes(o, "\"", 1);
 }
 
-static void out_name(ur_dashboard_out *o, const char *key, const char *name)
+static void out_name(lines_out *o, const char *key, const char *name)
 {
-    ur_dashboard_view v;
+    lines_view v;
     v.ptr = (const uint8_t *)name;
     v.len = strlen(name);
     out_text(o, key);
     out_string(o, v);
 }
 
-static void out_number(ur_dashboard_out *o, uint64_t n)
+static void out_number(lines_out *o, uint64_t n)
 {
     char digits[21];
     size_t at = sizeof digits;
@@ -115,29 +115,29 @@ static void out_number(ur_dashboard_out *o, uint64_t n)
     out_bytes(o, digits + at, sizeof digits - at);
 }
 
-size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap)
+size_t lines_json(const lines_record *rec, char *out, size_t cap)
 {
-    ur_dashboard_out o;
+    lines_out o;
     o.buf = out;
     o.cap = cap;
     o.len = 0;
-    if (rec->type == UR_DASHBOARD_FAULT) {
+    if (rec->type == LINES_FAULT) {
         out_text(&o, "{\"type\": \"error\", \"offset\": ");
         out_number(&o, rec->offset);
-        if (rec->fault == UR_DASHBOARD_LINE_TOO_LONG) {
+        if (rec->fault == LINES_LINE_TOO_LONG) {
             out_text(&o, ", \"error\": \"line longer than ");
-            out_number(&o, UR_DASHBOARD_MAX_LINE);
+            out_number(&o, LINES_MAX_LINE);
             out_text(&o, " bytes\"}");
         } else {
             out_text(&o, ", \"error\": \"");
             out_number(&o, rec->bytes);
             out_text(&o, " bytes without a newline at the end of the stream\"}");
         }
-    } else if (rec->type == UR_DASHBOARD_COMMAND) {
+    } else if (rec->type == LINES_COMMAND) {
         out_text(&o, "{\"type\": \"command\", \"command\": ");
         out_string(&o, rec->text);
-        if (rec->command_name != UR_DASHBOARD_NONE)
-            out_name(&o, ", \"command_name\": ", ur_dashboard_commands[rec->command_name].name);
+        if (rec->command_name != LINES_NONE)
+            out_name(&o, ", \"command_name\": ", lines_commands[rec->command_name].name);
         if (rec->has_argument) {
             out_text(&o, ", \"argument\": ");
             out_string(&o, rec->argument);
@@ -149,8 +149,8 @@ size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap)
     } else {
         out_text(&o, "{\"type\": \"reply\", \"reply\": ");
         out_string(&o, rec->text);
-        if (rec->command_name != UR_DASHBOARD_NONE)
-            out_name(&o, ", \"command_name\": ", ur_dashboard_commands[rec->command_name].name);
+        if (rec->command_name != LINES_NONE)
+            out_name(&o, ", \"command_name\": ", lines_commands[rec->command_name].name);
         if (rec->reply_name != NULL)
             out_name(&o, ", \"reply_name\": ", rec->reply_name->name);
         out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
