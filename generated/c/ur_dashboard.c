@@ -14,11 +14,12 @@ const ur_dashboard_reply_spec *const ur_dashboard_banner = &ur_dashboard__banner
 /* could not understand: '<command>' */
 static const char *const ur_dashboard__common_0_pieces[2] = {"could not understand: '", "'"};
 
-const ur_dashboard_reply_spec ur_dashboard_common_replies[] = {
+static const ur_dashboard_reply_spec ur_dashboard__common_replies[] = {
     {"not_understood", ur_dashboard__common_0_pieces, 2, true},
 };
+const ur_dashboard_reply_spec *const ur_dashboard_common_replies = ur_dashboard__common_replies;
 const size_t ur_dashboard_common_reply_count =
-    sizeof ur_dashboard_common_replies / sizeof ur_dashboard_common_replies[0];
+    sizeof ur_dashboard__common_replies / sizeof ur_dashboard__common_replies[0];
 const char ur_dashboard_version_prefix[] = "URSoftware ";
 
 static const char *const ur_dashboard__load_0_pieces[2] = {"Loading program: ", ""};
@@ -557,7 +558,8 @@ static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
 size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const uint8_t *buf, size_t n,
                            ur_dashboard_record *rec, bool *got)
 {
-    ur_dashboard_direction *d = from_robot == (bool)UR_DASHBOARD_REQUESTS_FROM_ROBOT ? &c->commands : &c->replies;
+    bool requests = from_robot == (bool)UR_DASHBOARD_REQUESTS_FROM_ROBOT;
+    ur_dashboard_direction *d = requests ? &c->commands : &c->replies;
     size_t window = n < UR_DASHBOARD_MAX_LINE + 2 ? n : UR_DASHBOARD_MAX_LINE + 2;
     const uint8_t *newline;
     size_t used, len;
@@ -594,7 +596,7 @@ size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const 
     }
     rec->text.ptr = buf;
     rec->text.len = len;
-    if (from_robot == (bool)UR_DASHBOARD_REQUESTS_FROM_ROBOT)
+    if (requests)
         read_command(c, rec);
     else
         read_reply(c, rec);
@@ -603,7 +605,8 @@ size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const 
 
 bool ur_dashboard_finish(ur_dashboard_conversation *c, bool from_robot, size_t n, ur_dashboard_record *rec)
 {
-    ur_dashboard_direction *d = from_robot == (bool)UR_DASHBOARD_REQUESTS_FROM_ROBOT ? &c->commands : &c->replies;
+    bool requests = from_robot == (bool)UR_DASHBOARD_REQUESTS_FROM_ROBOT;
+    ur_dashboard_direction *d = requests ? &c->commands : &c->replies;
     if (n == 0 || d->skipping)
         return false;
     memset(rec, 0, sizeof *rec);

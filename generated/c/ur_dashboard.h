@@ -216,7 +216,7 @@ extern const ur_dashboard_reply_spec *const ur_dashboard_banner;
 #define UR_DASHBOARD_REQUESTS_FROM_ROBOT 0
 #define UR_DASHBOARD_ONE_REPLY_PER_REQUEST 1
 /* Replies any command may get, read before the command's own. */
-extern const ur_dashboard_reply_spec ur_dashboard_common_replies[];
+extern const ur_dashboard_reply_spec *const ur_dashboard_common_replies;
 extern const size_t ur_dashboard_common_reply_count;
 /* The command whose reply tells the software version, and the text before the version there. */
 #define UR_DASHBOARD_VERSION_COMMAND UR_DASHBOARD_POLYSCOPE_VERSION

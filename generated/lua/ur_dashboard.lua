@@ -16,7 +16,8 @@ local spec = {
     max_line = 4096,  -- longer lines are flagged and skipped up to their newline
     pending_kept = 256,  -- commands awaiting a reply that a conversation keeps
     e_series_from = 5000000,  -- versions are (major * 1000 + minor) * 1000 + bugfix
-    banner = {name = "connected", pieces = {"Connected: Universal Robots Dashboard Server"}, error = false},  -- the line the server greets a client with, if any
+    -- the line the server greets a client with, if any
+    banner = {name = "connected", pieces = {"Connected: Universal Robots Dashboard Server"}, error = false},
     robot_is_client = false,  -- the robot connects to the port (the driver's sockets)
     requests_from_robot = false,  -- the robot asks and the other side answers
     -- Whether each request gets one line back; else every answering line belongs to the latest one.
@@ -406,10 +407,11 @@ end
 -- =============================================================================================
 do
 (function(...)
--- A dissector of text lines (the dashboard server, the driver's script sender): lines reassembled across TCP segments, each shown as a command or a
--- reply, replies paired with their commands and the software version learnt per conversation
--- (both addresses and both ports: two robots or two clients never share it), expert infos for
--- a reply that says an error, an unknown command, a command the version lacks, a line too long.
+-- A dissector of text lines (the dashboard server, the driver's script sender): lines
+-- reassembled across TCP segments, each shown as a request (command) or a reply, replies paired
+-- with their requests and the software version learnt per conversation (both addresses and both
+-- ports: two robots or two clients never share it), expert infos for a reply that says an error,
+-- an unknown command, a command the version lacks, a line too long.
 local spec, rt = ...
 local matches, find_command, classify = rt.matches, rt.find_command, rt.classify
 local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version

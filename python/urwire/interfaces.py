@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from typing import Callable, Optional, Protocol
 
 from .framer import Framer
-from .generated import ur_dashboard, ur_reverse, ur_script_command, ur_trajectory
+from .generated import ur_dashboard, ur_reverse, ur_script_command, ur_script_sender, ur_trajectory
 from .generated.spec import PORTS
 
 
@@ -54,7 +54,7 @@ INTERFACES: dict[str, Interface] = {i.name: i for i in (
     Interface("ur", "Universal Robots primary/secondary client interface", tuple(PORTS), PrimaryConversation),
     Interface(ur_dashboard.NAME, ur_dashboard.TITLE, ur_dashboard.PORTS, ur_dashboard.conversation),
     *(Interface(m.NAME, m.TITLE, m.PORTS, m.conversation, robot_is_client=True)
-      for m in (ur_reverse, ur_trajectory, ur_script_command)),
+      for m in (ur_reverse, ur_script_sender, ur_trajectory, ur_script_command)),
 )}
 
 

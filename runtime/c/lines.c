@@ -8,7 +8,7 @@ extern const int lines_lookup[LINES_COMMAND_COUNT];
 extern const lines_reply_spec *const lines_banner;
 #define LINES_REQUESTS_FROM_ROBOT 0
 #define LINES_ONE_REPLY_PER_REQUEST 1
-extern const lines_reply_spec lines_common_replies[];
+extern const lines_reply_spec *const lines_common_replies;
 extern const size_t lines_common_reply_count;
 extern const char lines_version_prefix[];
 /* </standalone> */
@@ -185,7 +185,8 @@ static void read_reply(lines_conversation *c, lines_record *rec)
 size_t lines_decode(lines_conversation *c, bool from_robot, const uint8_t *buf, size_t n,
                            lines_record *rec, bool *got)
 {
-    lines_direction *d = from_robot == (bool)LINES_REQUESTS_FROM_ROBOT ? &c->commands : &c->replies;
+    bool requests = from_robot == (bool)LINES_REQUESTS_FROM_ROBOT;
+    lines_direction *d = requests ? &c->commands : &c->replies;
     size_t window = n < LINES_MAX_LINE + 2 ? n : LINES_MAX_LINE + 2;
     const uint8_t *newline;
     size_t used, len;
@@ -222,7 +223,7 @@ size_t lines_decode(lines_conversation *c, bool from_robot, const uint8_t *buf, 
     }
     rec->text.ptr = buf;
     rec->text.len = len;
-    if (from_robot == (bool)LINES_REQUESTS_FROM_ROBOT)
+    if (requests)
         read_command(c, rec);
     else
         read_reply(c, rec);
@@ -231,7 +232,8 @@ size_t lines_decode(lines_conversation *c, bool from_robot, const uint8_t *buf, 
 
 bool lines_finish(lines_conversation *c, bool from_robot, size_t n, lines_record *rec)
 {
-    lines_direction *d = from_robot == (bool)LINES_REQUESTS_FROM_ROBOT ? &c->commands : &c->replies;
+    bool requests = from_robot == (bool)LINES_REQUESTS_FROM_ROBOT;
+    lines_direction *d = requests ? &c->commands : &c->replies;
     if (n == 0 || d->skipping)
         return false;
     memset(rec, 0, sizeof *rec);

@@ -1,7 +1,8 @@
--- A dissector of text lines (the dashboard server, the driver's script sender): lines reassembled across TCP segments, each shown as a command or a
--- reply, replies paired with their commands and the software version learnt per conversation
--- (both addresses and both ports: two robots or two clients never share it), expert infos for
--- a reply that says an error, an unknown command, a command the version lacks, a line too long.
+-- A dissector of text lines (the dashboard server, the driver's script sender): lines
+-- reassembled across TCP segments, each shown as a request (command) or a reply, replies paired
+-- with their requests and the software version learnt per conversation (both addresses and both
+-- ports: two robots or two clients never share it), expert infos for a reply that says an error,
+-- an unknown command, a command the version lacks, a line too long.
 local spec, rt = ...
 local matches, find_command, classify = rt.matches, rt.find_command, rt.classify
 local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version

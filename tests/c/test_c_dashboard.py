@@ -1,6 +1,6 @@
-"""The dashboard server (29999) in C (generated/c/ur_dashboard.{h,c}) under gcc, clang and
-ASan/UBSan: the golden vectors whole and byte by byte, the same records as Python on random and
-hostile conversations, and its fuzz harness over its kept corpus."""
+"""The text-line interfaces in C (generated/c/ur_dashboard.{h,c}, ur_script_sender.{h,c}) under
+gcc, clang and ASan/UBSan: the golden vectors whole and byte by byte, the same records as Python
+on random and hostile conversations, and the dashboard's fuzz harness over its kept corpus."""
 from __future__ import annotations
 
 import json
@@ -15,55 +15,58 @@ import pytest
 from tests.c.harness_c import GEN, OUT, ROOT, SANITIZE, VARIANTS, compile_c
 from tests.interface_vectors import Segment, bytewise, conversation_cases
 from urwire import to_json_line
-from urwire.generated import ur_dashboard
+from urwire.generated import ur_dashboard, ur_script_sender
 
-CASES = conversation_cases("ur_dashboard")
-DRIVER = ROOT / "tests" / "c" / "ur_dashboard_driver.c"
+MODULES = {m.NAME: m for m in (ur_dashboard, ur_script_sender)}
+CASES = [(name, case) for name in MODULES for case in conversation_cases(name)]
+DRIVER = ROOT / "tests" / "c" / "lines_driver.c"
 HARNESS = ROOT / "tests" / "c" / "fuzz_ur_dashboard.c"
 CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "ur_dashboard"
 HARNESS_VERSIONS = (None, "3.15", "5.4", "5.11")   # byte 0 of a harness input, as fuzz_ur_dashboard.c reads it
-_BUILT: dict[str, Path] = {}
+_BUILT: dict[tuple, Path] = {}
 
 
-def driver(variant: str) -> Path:
-    if variant not in _BUILT:
+def driver(variant: str, name: str = "ur_dashboard") -> Path:
+    if (variant, name) not in _BUILT:
         cc, flags = VARIANTS[variant]
         if shutil.which(cc) is None:
             pytest.fail(f"{cc} is not installed (scripts/setup.sh installs it)")
-        out = OUT / variant / "ur_dashboard_driver"
-        compile_c(cc, flags, [DRIVER, GEN / "ur_dashboard.c"], out)
-        _BUILT[variant] = out
-    return _BUILT[variant]
+        out = OUT / variant / f"{name}_driver"
+        macros = [f"-DPREFIX={name}_", f"-DUPPER={name.upper()}_", f'-DHEADER="{name}.h"']
+        compile_c(cc, flags + macros, [DRIVER, GEN / f"{name}.c"], out)
+        _BUILT[(variant, name)] = out
+    return _BUILT[(variant, name)]
 
 
 def driver_input(segments) -> bytes:
     return b"".join(bytes([1 if s.from_robot else 0]) + struct.pack(">I", len(s.data)) + s.data for s in segments)
 
 
-def c_lines(variant: str, segments, version=None) -> list[str]:
-    args = [str(driver(variant))] + ([version] if version else [])
+def c_lines(variant: str, segments, version=None, name: str = "ur_dashboard") -> list[str]:
+    args = [str(driver(variant, name))] + ([version] if version else [])
     result = subprocess.run(args, input=driver_input(segments), capture_output=True, timeout=60)
     assert result.returncode == 0 and result.stderr == b"", result.stderr.decode(errors="replace")
     return result.stdout.decode("utf-8").splitlines()
 
 
-def python_lines(segments, version=None) -> list[str]:
-    conversation = ur_dashboard.conversation(version)
+def python_lines(segments, version=None, name: str = "ur_dashboard") -> list[str]:
+    conversation = MODULES[name].conversation(version)
     records = [r for s in segments for r in conversation.feed(s.data, s.from_robot)] + conversation.close()
     return [to_json_line(r) for r in records]
 
 
 @pytest.mark.parametrize("variant", sorted(VARIANTS))
-@pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
-def test_golden_vectors(variant, case):
-    assert [json.loads(line) for line in c_lines(variant, case.segments, case.version)] == case.expect
-    assert [json.loads(line) for line in c_lines(variant, bytewise(case.segments), case.version)] == case.expect
+@pytest.mark.parametrize("name,case", CASES, ids=[f"{n}/{c.name}" for n, c in CASES])
+def test_golden_vectors(variant, name, case):
+    assert [json.loads(line) for line in c_lines(variant, case.segments, case.version, name)] == case.expect
+    assert [json.loads(line) for line in c_lines(variant, bytewise(case.segments), case.version, name)] \
+        == case.expect
 
 
 def random_conversation(rng: random.Random) -> list[Segment]:
     """Lines a client and a server might send, and bytes neither would: long lines, no newline,
     binary junk, CR without LF, commands of every version."""
-    words = [c.text for c in ur_dashboard.COMMANDS] + ["URSoftware 5.6.0.1 (x)", "URSoftware 3.15.7", "could not "
+    words = [c.text for c in ur_dashboard.COMMANDS] + ["request_program", "URSoftware 5.6.0.1 (x)", "URSoftware 3.15.7", "could not "
              "understand: 'x'", "Connected: Universal Robots Dashboard Server", "File not found: a", "true", "\xff"]
     segments = []
     for _ in range(rng.randint(1, 12)):
@@ -79,13 +82,14 @@ def random_conversation(rng: random.Random) -> list[Segment]:
     return segments
 
 
+@pytest.mark.parametrize("name", sorted(MODULES))
 @pytest.mark.parametrize("variant", ["gcc", "asan-clang"])
-def test_the_same_lines_as_python_on_random_and_hostile_conversations(variant):
+def test_the_same_lines_as_python_on_random_and_hostile_conversations(variant, name):
     rng = random.Random(29999)
     for _ in range(60):
         segments = random_conversation(rng)
         version = rng.choice([None, "3.15", "5.11"])
-        assert c_lines(variant, segments, version) == python_lines(segments, version)
+        assert c_lines(variant, segments, version, name) == python_lines(segments, version, name)
 
 
 def harness_segments(data: bytes) -> tuple[str | None, list[Segment]]:

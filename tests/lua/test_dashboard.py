@@ -40,10 +40,10 @@ def tcp_segments(segments) -> list[capture.Segment]:
     return [capture.Segment(s.from_robot, s.data) for s in segments]
 
 
-def tshark_text(pcap: Path, *args: str) -> str:
+def tshark_text(pcap: Path, *args: str, plugin: Path = PLUGIN) -> str:
     """tshark's output with the dissector, its bytes read as UTF-8 with U+FFFD for the invalid
     ones (a line's text is shown as it came); fails on any Lua error."""
-    result = subprocess.run(["tshark", "-r", str(pcap), "-X", f"lua_script:{PLUGIN}", *args],
+    result = subprocess.run(["tshark", "-r", str(pcap), "-X", f"lua_script:{plugin}", *args],
                             capture_output=True, timeout=600)
     out, err = result.stdout.decode("utf-8", "replace"), result.stderr.decode("utf-8", "replace")
     if result.returncode != 0 or "Lua: Error" in err + out or "_ws.lua.error" in out or "internal_error" in out:
@@ -51,7 +51,7 @@ def tshark_text(pcap: Path, *args: str) -> str:
     return out
 
 
-def to_record(item: dict) -> dict:
+def to_record(item: dict, P: str = P) -> dict:
     """A tree item of one line -> its canonical record (errors: their type only)."""
     if P + "command" in item:
         rec = {"type": "command", "command": item[P + "command"]}
@@ -200,3 +200,21 @@ def test_the_match_runtime_alone(tmp_path, lua):
     result = subprocess.run([lua, str(script), str(ROOT / "runtime" / "lua" / "lines_match.lua")],
                             capture_output=True, text=True)
     assert result.stdout == "ok\n", result.stderr
+
+
+SENDER = ROOT / "generated" / "lua" / "ur_script_sender.lua"
+
+
+@pytest.mark.parametrize("case", conversation_cases("ur_script_sender"), ids=lambda c: c.name)
+def test_the_script_sender_golden_vectors_whole_and_in_one_byte_segments(tmp_path, case):
+    for segments in (case.segments, bytewise(case.segments)):
+        # The control PC listens on 50002 and the robot connects: in the capture writer's terms
+        # (the side on the port sends "from_robot") the directions are swapped.
+        frames = capture.session_frames([capture.Segment(not s.from_robot, s.data) for s in segments], port=50002)
+        pcap = capture.write(tmp_path / "sender.pcap", frames)
+        shown = []
+        for frame in json.loads(tshark_text(pcap, "-2", "-T", "json", plugin=SENDER) or "[]", object_pairs_hook=_lists):
+            layer = frame["_source"]["layers"].get("ur_script_sender")
+            if layer is not None:
+                shown += [to_record(item, "ur_script_sender.") for item in _items(layer)]
+        assert shown == lua_expectation(case.expect)

@@ -13,6 +13,7 @@ from urwire.interfaces import INTERFACES, interface_of_port
 from urwire.text_lines import PENDING_KEPT, matches
 
 CASES = conversation_cases("ur_dashboard")
+SENDER_CASES = conversation_cases("ur_script_sender")
 
 
 def decode(segments, version=None) -> list[dict]:
@@ -105,3 +106,18 @@ def test_records_carry_labels_as_metadata():
 
     labels = {f.name: f.metadata["label"] for f in dataclasses.fields(ur_dashboard.Reply)}
     assert labels["error"] == "Says an error" and labels["reply"] == "Reply"
+
+
+@pytest.mark.parametrize("case", SENDER_CASES, ids=lambda c: c.name)
+def test_the_script_sender_golden_vectors_whole_and_one_byte_at_a_time(case):
+    from urwire.generated import ur_script_sender
+
+    for segments in (case.segments, bytewise(case.segments)):
+        conversation = ur_script_sender.conversation(case.version)
+        records = [r for s in segments for r in conversation.feed(s.data, s.from_robot)] + conversation.close()
+        assert [to_dict(r) for r in records] == case.expect
+
+
+def test_the_script_sender_is_the_robot_asking_a_client_of_port_50002():
+    interface = interface_of_port(50002)
+    assert interface is INTERFACES["ur_script_sender"] and interface.robot_is_client

@@ -16,7 +16,8 @@ NAME = "ur_dashboard"
 TITLE = "Universal Robots dashboard server"
 PORTS = (29999,)
 MAX_LINE = 4096  # longer lines are error records, skipped up to their newline
-BANNER = _rt.ReplySpec('connected', ('Connected: Universal Robots Dashboard Server',), False)  # the line the server greets a client with, if any
+# the line the server greets a client with, if any
+BANNER = _rt.ReplySpec('connected', ('Connected: Universal Robots Dashboard Server',), False)
 REQUESTS_FROM_ROBOT = False  # whether the robot asks and the other side answers
 # Whether each request gets one line back; else every answering line belongs to the latest request.
 ONE_REPLY_PER_REQUEST = True
@@ -231,13 +232,13 @@ COMMANDS = (LOAD, PLAY, STOP, PAUSE, QUIT, SHUTDOWN, RUNNING, ROBOTMODE, GET_LOA
             SET_OPERATIONAL_MODE, GET_OPERATIONAL_MODE, CLEAR_OPERATIONAL_MODE, POWER_ON, POWER_OFF, BRAKE_RELEASE,
             SAFETYMODE, SAFETYSTATUS, UNLOCK_PROTECTIVE_STOP, CLOSE_SAFETY_POPUP, LOAD_INSTALLATION, RESTART_SAFETY,
             IS_IN_REMOTE_CONTROL, GET_SERIAL_NUMBER, GET_ROBOT_MODEL, GENERATE_FLIGHT_REPORT, GENERATE_SUPPORT_FILE,
-            SAVE_LOG)
+            SAVE_LOG,)
 # The order a line is tried in: the longest text first, so that "power on" is not read as "power".
 LOOKUP = (CLEAR_OPERATIONAL_MODE, UNLOCK_PROTECTIVE_STOP, GENERATE_FLIGHT_REPORT, GENERATE_SUPPORT_FILE,
           SET_OPERATIONAL_MODE, GET_OPERATIONAL_MODE, IS_IN_REMOTE_CONTROL, GET_LOADED_PROGRAM, CLOSE_SAFETY_POPUP,
           LOAD_INSTALLATION, GET_SERIAL_NUMBER, POLYSCOPE_VERSION, GET_ROBOT_MODEL, IS_PROGRAM_SAVED, RESTART_SAFETY,
           BRAKE_RELEASE, PROGRAM_STATE, SAFETYSTATUS, CLOSE_POPUP, SET_USER_ROLE, GET_USER_ROLE, SAFETYMODE, ROBOTMODE,
-          POWER_OFF, SHUTDOWN, ADD_TO_LOG, POWER_ON, RUNNING, VERSION, SAVE_LOG, PAUSE, POPUP, LOAD, PLAY, STOP, QUIT)
+          POWER_OFF, SHUTDOWN, ADD_TO_LOG, POWER_ON, RUNNING, VERSION, SAVE_LOG, PAUSE, POPUP, LOAD, PLAY, STOP, QUIT,)
 # The command whose reply tells the software version, and the text before the version there.
 VERSION_COMMAND = 'polyscope_version'
 VERSION_PREFIX = 'URSoftware '
