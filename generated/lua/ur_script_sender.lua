@@ -259,10 +259,10 @@ local function show_command(tree, range, text, d)
         if d.argument then item:add(F.argument, range, d.argument) end
         if d.available ~= nil then
             local it = item:add(F.available, range, d.available):set_generated()
-            if not d.available then it:add_proto_expert_info(E.unavailable) end
+            if not d.available then it:add_proto_expert_info(E.unavailable, "The software version lacks this command") end
         end
     else
-        item:add_proto_expert_info(E.unknown_command)
+        item:add_proto_expert_info(E.unknown_command, "Unknown command")
     end
     item:append_text(": " .. text)
     return "Command: " .. text
@@ -275,7 +275,7 @@ local function show_reply(tree, range, text, d)
     if d.reply then item:add(F.reply_name, range, d.reply.name):set_generated() end
     local says_error = d.reply ~= nil and d.reply.error
     local it = item:add(F.error, range, says_error):set_generated()
-    if says_error then it:add_proto_expert_info(E.error_reply) end
+    if says_error then it:add_proto_expert_info(E.error_reply, "The reply says an error") end
     item:append_text(": " .. text)
     return "Reply: " .. text
 end
@@ -318,7 +318,7 @@ local function dissect(tvb, pinfo, tree)
             if nl and len > 0 and string.byte(buf, stop) == 13 then len = len - 1 end
             if not nl or len > spec.max_line then
                 local item = tree:add(proto, tvb(at, stop - at))
-                item:add_proto_expert_info(E.too_long)
+                item:add_proto_expert_info(E.too_long, "Line longer than " .. spec.max_line .. " bytes")
                 infos[#infos + 1] = "Line too long"
                 if not nl then skipping = true end
                 at = nl or n

@@ -1,0 +1,79 @@
+-- runtime/lines_match.lua and runtime/lines_dissect.lua: commands and replies looked up, a
+-- conversation's replies paired with its commands, the version learnt, lines reassembled.
+local S = dofile("stubs.lua")
+S.wireshark_globals()
+
+local spec = {
+    name = "ur_dashboard", title = "Dashboard", ports = {29999}, max_line = 32, pending_kept = 4,
+    e_series_from = 5000000, version_command = 2, version_prefix = "URSoftware ",
+    banner = {name = "connected", pieces = {"Connected"}, error = false},
+    robot_is_client = false, requests_from_robot = false, one_reply_per_request = true,
+    common = {{name = "not_understood", pieces = {"could not understand: '", "'"}, error = true}},
+    commands = {
+        {name = "load", text = "load", argument = true, since_cb = 1004000, since_e_series = 5000000,
+         replies = {{name = "loading", pieces = {"Loading: ", ""}, error = false},
+                    {name = "not_found", pieces = {"File not found: ", ""}, error = true}}},
+        {name = "polyscope_version", text = "PolyscopeVersion", argument = false, since_cb = 1008000,
+         since_e_series = 5000000, replies = {{name = "version", pieces = {"URSoftware ", ""}, error = false}}},
+        {name = "safetystatus", text = "safetystatus", argument = false, since_e_series = 5004000,
+         replies = {{name = "status", pieces = {"Safetystatus: ", ""}, error = false}}},
+    },
+    lookup = {2, 3, 1},
+    labels = {command = "Command", command_name = "Command name", argument = "Argument", available = "Available",
+              reply = "Reply", reply_name = "Reply meaning", error = "Says an error"},
+}
+local rt = S.load("lines_match.lua", spec)
+S.eq(rt.find_command("load /a.urp"), 1, "a command with its argument")
+S.eq(select(2, rt.find_command("load /a.urp")), "/a.urp", "the argument")
+S.eq(rt.find_command("loadx"), nil, "a text that only opens like a command")
+S.eq(rt.classify(1, "File not found: x").name, "not_found", "a command's reply")
+S.eq(rt.classify(nil, "could not understand: 'x'").error, true, "a common reply, with no command")
+S.eq(rt.version_in("URSoftware 3.15.7.1 (x)"), 3015007, "the version a reply tells")
+S.eq(rt.available(3, 3015007), false, "an e-Series command on a CB3")
+S.eq(rt.available(3, 5004000), true, "from its first version")
+
+local made
+local make_proto = Proto
+Proto = function(...) made = make_proto(...); return made end
+S.load("lines_dissect.lua", spec, rt)
+S.eq(S.ports["tcp.port"], 29999, "the port registered")
+
+-- A conversation: the client's lines go to port 29999, the replies come from it.
+local function pinfo(number, from_robot)
+    return {number = number, visited = false, src_port = from_robot and 29999 or 50123,
+            dst_port = from_robot and 50123 or 29999, match_uint = 29999, can_desegment = 2,
+            src = from_robot and "robot" or "pc", dst = from_robot and "pc" or "robot",
+            cols = {info = S.column(), protocol = S.column()}}
+end
+local function dissect(number, from_robot, raw)
+    local tree, p = S.tree(), pinfo(number, from_robot)
+    made.dissector(S.tvb(raw), p, tree)
+    local dump = S.dump(tree)
+    assert(not dump:find("internal_error", 1, true), dump)
+    return dump, p
+end
+
+local out = dissect(1, true, "Connected\n")
+assert(out:find("ur_dashboard.reply_name @0+9 = connected", 1, true), out)
+out = dissect(2, false, "PolyscopeVersion\nsafetystatus\nload a\nfoo\n")
+assert(out:find("ur_dashboard.command_name @30+6 = load", 1, true), out)
+assert(out:find("ur_dashboard.argument @30+6 = a", 1, true), out)
+assert(out:find("!ur_dashboard.unknown_command", 1, true), out)
+out = dissect(3, true, "URSoftware 3.15.7.1 (x)\nSafetystatus: NORMAL\nFile not found: a\ncould not understand: 'foo'\n")
+assert(out:find("ur_dashboard.command_name @0+23 = polyscope_version", 1, true), out)
+assert(out:find("ur_dashboard.reply_name @45+17 = not_found", 1, true), out)
+assert(out:find("!ur_dashboard.error_reply", 1, true), out)
+out = dissect(4, false, "safetystatus\n")
+assert(out:find("ur_dashboard.available @0+12 = false", 1, true), out)
+assert(out:find("!ur_dashboard.unavailable", 1, true), out)
+
+-- A line cut by the segment asks for one more; one too long is flagged and skipped.
+local _, p = dissect(5, false, "lo")
+S.eq(p.desegment_offset, 0, "a line not whole yet waits")
+S.eq(p.desegment_len, DESEGMENT_ONE_MORE_SEGMENT, "for one more segment")
+out = dissect(6, false, string.rep("x", 40))
+assert(out:find("!ur_dashboard.too_long", 1, true), out)
+out = dissect(7, false, "xx\nload b\n")
+assert(out:find("Rest of a line too long", 1, true), out)
+assert(out:find("ur_dashboard.command_name @3+6 = load", 1, true), out)
+print("ok")
