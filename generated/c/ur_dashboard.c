@@ -384,7 +384,7 @@ const int ur_dashboard_lookup[UR_DASHBOARD_COMMAND_COUNT] = {
     UR_DASHBOARD_QUIT,
 };
 
-/* ---- runtime/c/lines.c ---- */
+/* ---- runtime/c/lines/lines.c ---- */
 /* ---- lines: splitting, commands, replies, versions ----------------------------------------- */
 
 #define UR_DASHBOARD_E_SERIES_MAJOR 5u
@@ -619,7 +619,7 @@ bool ur_dashboard_finish(ur_dashboard_conversation *c, bool from_robot, size_t n
     return true;
 }
 
-/* ---- runtime/c/lines_json.c ---- */
+/* ---- runtime/c/lines/json.c ---- */
 /* ---- canonical JSON of a record (docs/canonical-json.md) ---------------------------------- */
 
 typedef struct ur_dashboard_out {

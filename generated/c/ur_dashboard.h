@@ -113,7 +113,7 @@ typedef enum ur_dashboard_command_id {
     UR_DASHBOARD_COMMAND_COUNT
 } ur_dashboard_command_id;
 
-/* ---- runtime/c/lines.h ---- */
+/* ---- runtime/c/lines/lines.h ---- */
 /* ---- lines, commands and replies ----------------------------------------------------------- */
 
 #define UR_DASHBOARD_PENDING 256     /* commands awaiting a reply that a conversation keeps */

@@ -4,11 +4,14 @@
 
 #include "ur_script_command.h"
 
-/* ---- runtime/c/int32_records.c ---- */
+/* ---- runtime/c/int32_records/records.c ---- */
 /* ---- int32 records: loads, the JSON writer, scaled numbers as Python's repr writes them ------ */
-/* Every function is static: each interface of this kind joins its own copy. */
+/* Every function is private: each interface of this kind joins its own copy. */
+#ifndef I32R_PRIVATE
+#define I32R_PRIVATE static
+#endif
 
-static int32_t i32r_load(const uint8_t *p)
+I32R_PRIVATE int32_t i32r_load(const uint8_t *p)
 {
     uint32_t u = (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | (uint32_t)p[3];
     /* two's complement, without an implementation-defined cast */
@@ -21,7 +24,7 @@ typedef struct i32r_out {
     size_t cap, len;
 } i32r_out;
 
-static void i32r_bytes(i32r_out *o, const char *p, size_t n)
+I32R_PRIVATE void i32r_bytes(i32r_out *o, const char *p, size_t n)
 {
     size_t room = o->cap > o->len + 1 ? o->cap - o->len - 1 : 0;
     if (room > 0)
@@ -29,12 +32,12 @@ static void i32r_bytes(i32r_out *o, const char *p, size_t n)
     o->len += n;
 }
 
-static void i32r_text(i32r_out *o, const char *p)
+I32R_PRIVATE void i32r_text(i32r_out *o, const char *p)
 {
     i32r_bytes(o, p, strlen(p));
 }
 
-static size_t i32r_end(i32r_out *o)
+I32R_PRIVATE size_t i32r_end(i32r_out *o)
 {
     if (o->cap > 0)
         o->buf[o->len < o->cap ? o->len : o->cap - 1] = '\0';
@@ -42,7 +45,7 @@ static size_t i32r_end(i32r_out *o)
 }
 
 /* The decimal digits of u, most significant first, in digits[]; returns their count. */
-static size_t i32r_digits(uint64_t u, char digits[21])
+I32R_PRIVATE size_t i32r_digits(uint64_t u, char digits[21])
 {
     char rev[21];
     size_t n = 0, i;
@@ -55,7 +58,7 @@ static size_t i32r_digits(uint64_t u, char digits[21])
     return n;
 }
 
-static void i32r_int(i32r_out *o, int64_t v)
+I32R_PRIVATE void i32r_int(i32r_out *o, int64_t v)
 {
     char digits[21];
     uint64_t u = v < 0 ? (uint64_t)(-(v + 1)) + 1u : (uint64_t)v;
@@ -67,7 +70,7 @@ static void i32r_int(i32r_out *o, int64_t v)
 /* raw / 10^decimals as Python's repr() writes the double nearest it: the exact decimal is the
  * shortest text that reads back (values of 10 digits at most are 1e-6 apart, far more than an
  * ulp), in fixed notation with at least one decimal, or as 1.5e-05 below 1e-4. */
-static void i32r_scaled(i32r_out *o, int32_t raw, unsigned decimals)
+I32R_PRIVATE void i32r_scaled(i32r_out *o, int32_t raw, unsigned decimals)
 {
     char digits[21], text[48];
     uint64_t u = raw < 0 ? (uint64_t)(-(int64_t)raw) : (uint64_t)raw;
@@ -110,7 +113,8 @@ static void i32r_scaled(i32r_out *o, int32_t raw, unsigned decimals)
     i32r_bytes(o, text, at);
 }
 
-static size_t i32r_fault(uint64_t offset, size_t left, size_t size, bool from_robot, char *out, size_t cap)
+I32R_PRIVATE size_t i32r_fault(uint64_t offset, size_t left, size_t size, bool from_robot, char *out,
+                                size_t cap)
 {
     i32r_out o;
     o.buf = out;

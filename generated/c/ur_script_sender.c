@@ -26,7 +26,7 @@ const int ur_script_sender_lookup[UR_SCRIPT_SENDER_COMMAND_COUNT] = {
     UR_SCRIPT_SENDER_REQUEST_PROGRAM,
 };
 
-/* ---- runtime/c/lines.c ---- */
+/* ---- runtime/c/lines/lines.c ---- */
 /* ---- lines: splitting, commands, replies, versions ----------------------------------------- */
 
 #define UR_SCRIPT_SENDER_E_SERIES_MAJOR 5u
@@ -261,7 +261,7 @@ bool ur_script_sender_finish(ur_script_sender_conversation *c, bool from_robot, 
     return true;
 }
 
-/* ---- runtime/c/lines_json.c ---- */
+/* ---- runtime/c/lines/json.c ---- */
 /* ---- canonical JSON of a record (docs/canonical-json.md) ---------------------------------- */
 
 typedef struct ur_script_sender_out {

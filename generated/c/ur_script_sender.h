@@ -39,7 +39,7 @@ typedef enum ur_script_sender_command_id {
     UR_SCRIPT_SENDER_COMMAND_COUNT
 } ur_script_sender_command_id;
 
-/* ---- runtime/c/lines.h ---- */
+/* ---- runtime/c/lines/lines.h ---- */
 /* ---- lines, commands and replies ----------------------------------------------------------- */
 
 #define UR_SCRIPT_SENDER_PENDING 256     /* commands awaiting a reply that a conversation keeps */

@@ -57,8 +57,8 @@ def view(p: LinesPlan) -> dict:
         version_command=f"{prefix.upper()}_{p.version_command.command.name.upper()}" if p.version_command
         else f"{prefix.upper()}_NONE",
         version_prefix=_string(m.version_prefix),
-        runtime_header=_joined("lines.h", prefix),
-        runtime_sources=[_joined("lines.c", prefix), _joined("lines_json.c", prefix)],
+        runtime_header=_joined("lines/lines.h", prefix),
+        runtime_sources=[_joined("lines/lines.c", prefix), _joined("lines/json.c", prefix)],
         limit=LIMIT,
     )
 

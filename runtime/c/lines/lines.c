@@ -1,6 +1,6 @@
 /* <standalone> */
 #include <string.h>
-#include "lines_lines.h"
+#include "lines.h"
 #define LINES_COMMAND_COUNT 1
 #define LINES_VERSION_COMMAND LINES_NONE
 extern const lines_command_spec lines_commands[LINES_COMMAND_COUNT];

@@ -1,6 +1,6 @@
 /* <standalone> */
 #include <string.h>
-#include "lines_lines.h"
+#include "lines.h"
 extern const lines_command_spec lines_commands[];
 /* </standalone> */
 /* ---- canonical JSON of a record (docs/canonical-json.md) ---------------------------------- */
