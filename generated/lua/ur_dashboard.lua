@@ -509,7 +509,9 @@ local function show_command(tree, range, text, d)
         if d.argument then item:add(F.argument, range, d.argument) end
         if d.available ~= nil then
             local it = item:add(F.available, range, d.available):set_generated()
-            if not d.available then it:add_proto_expert_info(E.unavailable, "The software version lacks this command") end
+            if not d.available then
+                it:add_proto_expert_info(E.unavailable, "The software version lacks this command")
+            end
         end
     else
         item:add_proto_expert_info(E.unknown_command, "Unknown command")
