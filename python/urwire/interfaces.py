@@ -11,7 +11,9 @@ from dataclasses import dataclass
 from typing import Callable, Optional, Protocol
 
 from .framer import Framer
+from .generated import ur_realtime
 from .generated.spec import PORTS
+from .realtime import RealtimeConversation
 
 
 class Conversation(Protocol):
@@ -48,6 +50,7 @@ class PrimaryConversation:
 
 INTERFACES: dict[str, Interface] = {i.name: i for i in (
     Interface("ur", "Universal Robots primary/secondary client interface", tuple(PORTS), PrimaryConversation),
+    Interface(ur_realtime.PROTOCOL, ur_realtime.TITLE, ur_realtime.PORTS, RealtimeConversation),
 )}
 
 
