@@ -33,18 +33,18 @@ fuzz-long:
 
 build/fuzz/fuzz_urwire: tests/c/fuzz_urwire.c $(C_LIB) $(C_CLI)
 	@mkdir -p build/fuzz
-	$(FUZZ_CC) -o $@ tests/c/fuzz_urwire.c $(CLI_LIB) generated/c/urwire.c -lm
+	$(FUZZ_CC) -o $@ tests/c/fuzz_urwire.c $(CLI_LIB) $(C_SOURCES) -lm
 
 build/fuzz/fuzz_json: tests/c/fuzz_json.c $(C_LIB) $(C_CLI)
 	@mkdir -p build/fuzz
-	$(FUZZ_CC) -o $@ tests/c/fuzz_json.c $(CLI_LIB) generated/c/urwire.c -lm
+	$(FUZZ_CC) -o $@ tests/c/fuzz_json.c $(CLI_LIB) $(C_SOURCES) -lm
 
 # The Python fuzzer's peer: the test driver answering for urwire-decode, input after input.
 build/fuzz/driver: tests/c/driver.c tests/c/state_members.py $(C_LIB) $(C_CLI)
 	@mkdir -p build/fuzz
 	$(PYTHON) tests/c/state_members.py generated/c/urwire.h build/fuzz
 	$(CC) $(C_STRICT) $(C_OPT) -Igenerated/c -Itools/urwire-decode -Ibuild/fuzz -o $@ tests/c/driver.c $(CLI_LIB) \
-		generated/c/urwire.c -lm
+		$(C_SOURCES) -lm
 
 # $(call fuzz_run,HARNESS,COMMAND,MORE SEED FOLDERS)
 define fuzz_run

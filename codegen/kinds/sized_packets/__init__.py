@@ -10,11 +10,11 @@ from __future__ import annotations
 from typing import Optional
 
 from .. import Kind
-from . import python
+from . import c, lua, python
 from .plan import plan
 from .resolve import resolve
 
-_TARGETS = {"python": python.render}
+_TARGETS = {"c": c.render, "lua": lua.render, "python": python.render}
 
 
 def render(model, banner: list[str], only_targets: Optional[list[str]] = None) -> dict[str, str]:

@@ -37,6 +37,7 @@ class SizedProtocol:
     size_field: ir.ScalarField       # the int32 that opens every packet
     same_size: str                   # the spec's words for how layouts of one size are told apart
     enums: dict[str, ir.Enum]
+    catalogue: list[ir.AnyField]     # every field any layout sends, once, in the spec's order
     layouts: list[SizedLayout]
 
     @property

@@ -29,7 +29,7 @@ def resolve(spec: LoadedSpec) -> SizedProtocol:
                    for i, g in enumerate(proto["generations"])]
     return SizedProtocol(proto["name"], proto["title"], proto["doc"], list(proto["ports"]),
                          proto["max_message_size"], generations, size_field, data["framing"]["same_size"],
-                         r.enums, list(layouts.values()))
+                         r.enums, list(catalogue.values()), list(layouts.values()))
 
 
 def _catalogue(r: _Resolver, raw_fields: list) -> dict[str, ir.AnyField]:
