@@ -18,8 +18,9 @@ local X = {
     raw = ProtoField.bytes(spec.name .. ".raw", "Bytes of a packet of unknown size"),
 }
 local E = {
+    -- Framed, and kept: a layout the spec does not know yet, not a broken stream.
     unknown_size = ProtoExpert.new(spec.name .. ".unknown_size", "Packet size matches no layout",
-        expert.group.MALFORMED, expert.severity.WARN),
+        expert.group.PROTOCOL, expert.severity.WARN),
     bad_size = ProtoExpert.new(spec.name .. ".bad_size", "Packet size cannot frame a packet",
         expert.group.MALFORMED, expert.severity.ERROR),
 }

@@ -1,13 +1,17 @@
 """The real-time interface in Python: a packet's size chooses its class, decode/encode give back
 the same bytes, sizes no layout has are kept and framing goes on, and no bytes make it raise."""
+import json
 import struct
 
+import pytest
 from hypothesis import given, settings, strategies as st
 
 import urwire
 from urwire._runtime import StreamError
 from urwire.generated import ur_realtime as rt
 from urwire.realtime import RealtimeFramer, UnknownPacket, decode_packet, decode_stream, form_of, names_of
+
+from tests.vectors import interface_cases, mismatches
 
 
 def packet(size: int, first: float = 0.0) -> bytes:
@@ -94,3 +98,24 @@ def test_no_bytes_make_it_raise_and_known_packets_round_trip(data, step):
     assert data.startswith(rebuilt)
     for r in records:
         urwire.to_json_line(r)
+
+
+# ---- the golden vectors (tests/golden/ur_realtime/), which every target runs ----
+
+CASES = interface_cases("ur_realtime")
+
+
+def test_the_vectors_cover_cb2_cb3_and_eseries():
+    types = {r["type"] for case in CASES for r in case.expect}
+    assert {"rt_1_8", "rt_3_2", "rt_5_10", "unknown", "error"} <= types
+
+
+@pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
+def test_vector(case):
+    records = decode_stream(case.data, case.version)
+    got = [json.loads(urwire.to_json_line(r)) for r in records]
+    assert mismatches(case.expect, got, partial=False, tolerance=0.0) == []
+    # Lossless: every record but a stream fault gives back its bytes.
+    rebuilt = b"".join(r.encode() for r in records if not isinstance(r, StreamError))
+    assert case.data.startswith(rebuilt) and len(rebuilt) == sum(
+        r["message_size"] for r in case.expect if r["type"] != "error")
