@@ -32,6 +32,7 @@ class Interface:
     title: str
     ports: tuple[int, ...]         # the controller's default ports
     conversation: Callable[..., Conversation]   # (version_hint=None) -> a fresh Conversation
+    both_directions: bool = False  # a capture reader feeds it what clients send, too (RTDE)
 
 
 class PrimaryConversation:

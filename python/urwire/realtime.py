@@ -26,6 +26,8 @@ class UnknownPacket:
     """A packet whose size matches no layout: its bytes after the size field, kept."""
 
     TYPE: ClassVar[str] = "unknown"
+    LABEL: ClassVar[str] = "Real-time packet of unknown size"
+    IS_ERROR: ClassVar[bool] = True      # the command exits 1 for it, as urwire-decode does
     JSON: ClassVar[tuple] = (("message_size", "int", False), ("error", "text", False), ("raw", "hex", False))
 
     message_size: int
