@@ -36,8 +36,11 @@ def _conversation_name(key: tuple) -> str:
 def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
                        advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
     """(capture time, record) of every conversation of the capture on the ports of `by_port`.
-    A conversation closes when its robot side ends (or the capture does)."""
+    A conversation closes when its robot side ends (or the capture does). The software version a
+    robot's primary stream announces is passed on to its other conversations (the real-time one
+    chooses among layouts of one size with it)."""
     conversations: dict = {}
+    versions: dict = {}      # robot address -> the software version one of its conversations learnt
     both_ways = {port for port, i in by_port.items() if i.both_directions}
     last = 0
     for item in timed_streams(fh, set(by_port), both_ways):
@@ -48,8 +51,16 @@ def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inter
         interface = by_port[key[1]]
         conv = conversations.get(key)
         if conv is None:
+            if not data:                        # the end of a conversation already closed
+                continue
             conv = conversations[key] = interface.conversation(hint)
+        learn = getattr(conv, "learn_version", None)
+        if learn is not None and key[0] in versions:
+            learn(versions[key[0]])
         records = conv.feed(data, from_robot) if data else []
+        learnt = getattr(conv, "software_version", None)
+        if learnt is not None:
+            versions[key[0]] = learnt
         if ended and from_robot:
             records = records + conv.close()
             del conversations[key]

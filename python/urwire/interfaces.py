@@ -25,6 +25,9 @@ class Conversation(Protocol):
     def close(self) -> list:
         """What the ends of the two streams leave: a truncated tail becomes an error record."""
 
+    # Optional: `software_version` (the version the conversation learnt, else None) and
+    # `learn_version(version)` (the version another conversation of the same robot learnt).
+
 
 @dataclass(frozen=True)
 class Interface:
@@ -47,6 +50,12 @@ class PrimaryConversation:
 
     def close(self) -> list:
         return self.framer.close()
+
+    @property
+    def software_version(self):
+        """The version the robot's Version message announced, else None: what the capture reader
+        passes on to the robot's other conversations (Conversation.learn_version)."""
+        return self.framer.announced
 
 
 INTERFACES: dict[str, Interface] = {i.name: i for i in (

@@ -153,9 +153,16 @@ class RealtimeConversation:
 
     def __init__(self, version_hint: VersionLike = None):
         self.framer = RealtimeFramer(version_hint)
+        self.hinted = version_hint is not None
 
     def feed(self, data: bytes, from_robot: bool) -> list:
         return self.framer.feed(data) if from_robot else []
+
+    def learn_version(self, version: tuple[int, int, int]) -> None:
+        """The version the primary stream of the same robot announced: it chooses among layouts of
+        one size, unless the caller gave a version (spec framing.same_size)."""
+        if not self.hinted:
+            self.framer.version = version
 
     def close(self) -> list:
         return self.framer.close()

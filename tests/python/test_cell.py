@@ -128,3 +128,36 @@ def test_the_library_reads_captures_of_the_primary_by_default(tmp_path):
     with open(pcap, "rb") as fh:
         assert list(records_of(fh)) == []                       # 30003 is not a primary port
     assert "ur_realtime" in INTERFACES and 30003 in INTERFACES["ur_realtime"].ports
+
+
+def test_the_primary_streams_version_reaches_the_robots_real_time_conversation(tmp_path):
+    """A 1108-byte packet is CB3 3.5-3.9 or e-Series 5.0-5.3: the robot's Version message says
+    which (spec framing.same_size); a robot whose primary stream the capture lacks is read as the
+    newest, and a version the caller gives is kept."""
+    from dataclasses import replace
+
+    from urwire.realtime import RealtimeConversation
+
+    cb3 = next(c for c in golden_cases() if c.name == "generation_cb3_3_5_robot_state")
+    primary = capture.session_frames([Segment(True, cb3.data)], port=30002, client_port=40010)
+    realtime = capture.session_frames([Segment(True, packet(1108, 0.0))] * 2, port=30003, client_port=40011)
+    other = capture.session_frames([Segment(True, packet(1108, 0.0))], port=30003, client_port=40012,
+                                   robot="192.168.56.200")
+    pcap = capture.write(tmp_path / "versions.pcap", primary + realtime + other)
+    made = []
+
+    def conversation(hint=None):
+        made.append(RealtimeConversation(hint))
+        return made[-1]
+
+    realtime_interface = replace(INTERFACES["ur_realtime"], conversation=conversation)
+    by_port = {p: i for i in INTERFACES.values() for p in i.ports}
+    by_port.update({p: realtime_interface for p in realtime_interface.ports})
+    with open(pcap, "rb") as fh:
+        records = [r for _, r in timed_cell_records(fh, None, by_port) if hasattr(r, "interface")]
+    assert len(records) == 3 and len(made) == 2
+    assert made[0].framer.version == (3, 5, 1) and made[1].framer.version is None   # the vector announces 3.5.1
+    made.clear()
+    with open(pcap, "rb") as fh:
+        list(timed_cell_records(fh, "5.2", by_port))
+    assert made[0].framer.version == (5, 2, 0)
