@@ -127,3 +127,26 @@ def test_hostile_bytes_raise_no_lua_error(tmp_path):
     for i, data in enumerate(streams):
         frames += capture.robot_session(capture.random_cuts([data], seed=i), port=PORT, client_port=40000 + i)
     run_tshark(capture.write(tmp_path / "hostile.pcap", frames), "-2", "-V", plugin=PLUGIN)
+
+
+def test_installed_beside_the_primary_dissector_each_loads_on_its_own(tmp_path):
+    """make install-dissector copies every generated dissector; in the plugins folder each loads
+    beside the other, the real-time one taking 30003 and the primary one 30001."""
+    import os
+    import shutil
+    import subprocess
+
+    env = dict(os.environ, HOME=str(tmp_path))
+    make = shutil.which("make")
+    subprocess.run([make, "-C", str(ROOT), "install-dissector"], env=env, check=True, capture_output=True)
+    folder = tmp_path / ".local" / "lib" / "wireshark" / "plugins"
+    assert (folder / "ur_realtime.lua").read_text() == PLUGIN.read_text() and (folder / "urwire.lua").exists()
+    plugins = subprocess.run(["tshark", "-G", "plugins"], env=env, capture_output=True, text=True).stdout
+    assert "ur_realtime.lua" in plugins and "urwire.lua" in plugins
+    case = next(c for c in CASES if c.name.endswith("cb2_1_8"))
+    pcap = pcap_of(tmp_path, case.data, "whole")
+    res = subprocess.run(["tshark", "-r", str(pcap), "-2", "-T", "fields", "-e", "ur_realtime.layout"], env=env,
+                         capture_output=True, text=True)
+    assert "Lua: Error" not in res.stderr and res.stdout.split() == ["rt_1_8"]
+    subprocess.run([make, "-C", str(ROOT), "uninstall-dissector"], env=env, check=True, capture_output=True)
+    assert not (folder / "ur_realtime.lua").exists()
