@@ -68,11 +68,31 @@ local function add_value(tree, name, range, names)
     return v
 end
 
--- One whole packet at offset o: its subtree; returns the Info column's words for it.
-local function dissect_packet(tvb, tree, o, size)
+-- Where each layout sends the robot mode (nil: it does not): the Info column reads it even when
+-- no tree is built.
+local ROBOT_MODE_AT = {}
+for i, layout in ipairs(LAYOUTS) do
+    for _, slot in ipairs(layout.slots) do
+        if slot[1] == "robot_mode" then ROBOT_MODE_AT[i] = slot[2] end
+    end
+end
+
+-- The Info column's words for a packet of a known layout, without a tree.
+local function info_of(tvb, o, form)
+    local layout, at = LAYOUTS[form[3]], ROBOT_MODE_AT[form[3]]
+    local names = at and form[4][ENUM_OF.robot_mode]
+    if not names then return layout.name end
+    local mode = names[tvb(o + at, 8):float()]
+    return mode and (layout.name .. ", " .. mode) or layout.name
+end
+
+-- One whole packet at offset o: its subtree when someone looks (`detail`), else only what the
+-- Info column and the experts need; returns the Info column's words for it.
+local function dissect_packet(tvb, tree, o, size, detail)
+    local form = form_of(size)
+    if form and not detail then return info_of(tvb, o, form) end
     local sub = tree:add(proto, tvb(o, size))
     sub:add(F[spec.size_field], tvb(o, SIZE_BYTES))
-    local form = form_of(size)
     if not form then
         sub:append_text(fmt(", unknown size %d", size))
         sub:add(X.raw, tvb(o + SIZE_BYTES, size - SIZE_BYTES))
@@ -82,37 +102,44 @@ local function dissect_packet(tvb, tree, o, size)
     local layout, names = LAYOUTS[form[3]], form[4]
     sub:append_text(", " .. layout.name)
     sub:add(X.layout, layout.name):set_generated()
-    local info = layout.name
     for _, slot in ipairs(layout.slots) do
         local name, at, count = slot[1], o + slot[2], slot[3]
         local enum = ENUM_OF[name] and names[ENUM_OF[name]]
         if count == 1 then
-            local v = add_value(sub, name, tvb(at, 8), enum)
-            if name == "robot_mode" and enum and enum[v] then info = info .. ", " .. enum[v] end
+            add_value(sub, name, tvb(at, 8), enum)
         else
             local unit = UNITS[name] and (" (" .. UNITS[name] .. ")") or ""
             local group = sub:add(tvb(at, 8 * count), LABELS[name] .. unit)
             for i = 0, count - 1 do add_value(group, name, tvb(at + 8 * i, 8), enum) end
         end
     end
-    return info
+    return info_of(tvb, o, form)
 end
 
--- The frame whose Info column holds this dissector's words: TCP calls the dissector once per
--- reassembled packet and again for the rest of a segment, and each call's words join the others.
-local info_frame = nil
+-- TCP calls the dissector once per reassembled packet and again for the rest of a segment: a
+-- later call of the same frame adds its words to the earlier one's, when the column still holds
+-- them (a later pass, or the GUI dissecting the frame again, starts from a fresh column).
+local info_frame, info_text = -1, ""
 
 local function show_info(pinfo, words)
-    if info_frame == pinfo.number then
-        pinfo.cols.info:append(", " .. words)
+    local col = pinfo.cols.info
+    if info_frame == pinfo.number and tostring(col) == info_text then
+        info_text = info_text .. ", " .. words
+        col:append(", " .. words)
     else
-        pinfo.cols.info = words
-        info_frame = pinfo.number
+        info_text = words
+        col:set(words)
     end
+    info_frame = pinfo.number
 end
+
+local handle = nil
 
 function proto.dissector(tvb, pinfo, tree)
     local len = tvb:len()
+    -- Field work only when someone looks: a visible tree, or a filter or column naming the protocol.
+    handle = handle or Dissector.get(spec.name)
+    local detail = tree.visible or tree:referenced(handle)
     pinfo.cols.protocol = "UR real-time"
     if pinfo.src_port ~= pinfo.match_uint then
         -- Client to robot: URScript text, not decoded.
@@ -139,7 +166,7 @@ function proto.dissector(tvb, pinfo, tree)
             pinfo.desegment_offset, pinfo.desegment_len = o, size - left
             break
         end
-        infos[#infos + 1] = dissect_packet(tvb, tree, o, size)
+        infos[#infos + 1] = dissect_packet(tvb, tree, o, size, detail)
         o = o + size
     end
     if #infos > 0 then

@@ -12,6 +12,7 @@ import pytest
 
 from tests.lua.harness import F64_TOL, ROOT, run_tshark
 from tests.tools import capture
+from tests.tools.capture import Segment
 from tests.vectors import interface_cases, mismatches
 
 PLUGIN = ROOT / "generated" / "lua" / "ur_realtime.lua"
@@ -106,8 +107,8 @@ def test_the_tree_reads_in_words_with_units_and_names(tmp_path):
 
 def test_the_client_sends_urscript_not_packets(tmp_path):
     case = CASES[0]
-    frames = capture.session_frames([capture.Segment(False, b"movej([0,0,0,0,0,0])\n"),
-                                     capture.Segment(True, case.data)], port=PORT)
+    frames = capture.session_frames([Segment(False, b"movej([0,0,0,0,0,0])\n"),
+                                     Segment(True, case.data)], port=PORT)
     pcap = capture.write(tmp_path / "both.pcap", frames)
     assert len(dissect(pcap)) == len(expected(case))
     assert "movej" in run_tshark(pcap, "-2", "-T", "fields", "-e", "ur_realtime.urscript", plugin=PLUGIN)
@@ -150,3 +151,15 @@ def test_installed_beside_the_primary_dissector_each_loads_on_its_own(tmp_path):
     assert "Lua: Error" not in res.stderr and res.stdout.split() == ["rt_1_8"]
     subprocess.run([make, "-C", str(ROOT), "uninstall-dissector"], env=env, check=True, capture_output=True)
     assert not (folder / "ur_realtime.lua").exists()
+
+
+def test_without_a_tree_the_info_column_still_reads_the_layout_and_robot_mode(tmp_path):
+    case = next(c for c in CASES if c.name.endswith("unknown_size_and_cut_tail"))
+    whole = run_tshark(pcap_of(tmp_path, case.data, "whole"), "-2", plugin=PLUGIN)
+    assert "rt_1_8, RUNNING (+2)" in whole                   # three packets in one segment
+    one_by_one = capture.session_frames([Segment(True, p) for p in (case.data[:812], case.data[812:1928],
+                                                                      case.data[1928:1956])], port=PORT)
+    summary = run_tshark(capture.write(tmp_path / "each.pcap", one_by_one), "-2", plugin=PLUGIN)
+    assert "rt_1_8, RUNNING" in summary and "rt_3_10, RUNNING" in summary and "Unknown size 28" in summary
+    stats = run_tshark(pcap_of(tmp_path, case.data, "random"), "-q", "-z", "io,stat,0", plugin=PLUGIN)
+    assert "Frames" in stats
