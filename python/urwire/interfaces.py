@@ -11,7 +11,9 @@ from dataclasses import dataclass
 from typing import Callable, Optional, Protocol
 
 from .framer import Framer
+from .generated import ur_realtime
 from .generated.spec import PORTS
+from .realtime import RealtimeConversation
 
 
 class Conversation(Protocol):
@@ -23,6 +25,9 @@ class Conversation(Protocol):
     def close(self) -> list:
         """What the ends of the two streams leave: a truncated tail becomes an error record."""
 
+    # Optional: `software_version` (the version the conversation learnt, else None) and
+    # `learn_version(version)` (the version another conversation of the same robot learnt).
+
 
 @dataclass(frozen=True)
 class Interface:
@@ -30,6 +35,7 @@ class Interface:
     title: str
     ports: tuple[int, ...]         # the controller's default ports
     conversation: Callable[..., Conversation]   # (version_hint=None) -> a fresh Conversation
+    both_directions: bool = False  # a capture reader feeds it what clients send, too (RTDE)
 
 
 class PrimaryConversation:
@@ -45,9 +51,16 @@ class PrimaryConversation:
     def close(self) -> list:
         return self.framer.close()
 
+    @property
+    def software_version(self):
+        """The version the robot's Version message announced, else None: what the capture reader
+        passes on to the robot's other conversations (Conversation.learn_version)."""
+        return self.framer.announced
+
 
 INTERFACES: dict[str, Interface] = {i.name: i for i in (
     Interface("ur", "Universal Robots primary/secondary client interface", tuple(PORTS), PrimaryConversation),
+    Interface(ur_realtime.PROTOCOL, ur_realtime.TITLE, ur_realtime.PORTS, RealtimeConversation),
 )}
 
 
