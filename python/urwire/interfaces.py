@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Optional, Protocol
 
+from . import rtde
 from .framer import Framer
 from .generated.spec import PORTS
 
@@ -48,6 +49,7 @@ class PrimaryConversation:
 
 INTERFACES: dict[str, Interface] = {i.name: i for i in (
     Interface("ur", "Universal Robots primary/secondary client interface", tuple(PORTS), PrimaryConversation),
+    Interface(rtde.NAME, rtde.TITLE, rtde.PORTS, rtde.Conversation),
 )}
 
 
