@@ -82,7 +82,7 @@ class Conversation:
         try:
             record = cls.decode_body(raw, _g.HEADER.size, len(raw), recipe)
         except DecodeError as exc:
-            return RawMessage(cls.NAME, code, raw, exc.text())
+            return RawMessage(cls.NAME, code, raw, exc.text)
         if recipe is not None:
             record.note("recipe", recipe)
         self._follow(record)
