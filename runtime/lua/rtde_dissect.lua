@@ -208,6 +208,9 @@ function proto.dissector(tvb, pinfo, tree)
         if size < HEADER or size > spec.max_message_length or not spec.type_names[code] then
             local at = offset + 1
             while len - at >= HEADER and not plausible(raw, at) do at = at + 1 end
+            -- Fewer bytes than a header left: the scan ends with this segment (it is not carried over,
+            -- or its next part would show the same fault again).
+            if len - at < HEADER then at = len end
             local item = tree:add(proto, tvb(offset, at - offset))
             item:add_proto_expert_info(E.bad_header, "size " .. size .. ", type " .. code)
             labels[#labels + 1] = "Bad header"
