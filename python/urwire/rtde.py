@@ -45,7 +45,8 @@ class Conversation:
         self.protocol: Optional[int] = protocol        # None until given or negotiated
         self._framers = {True: Framer(_KNOWN_CODES), False: Framer(_KNOWN_CODES)}
         self._asked_version: deque = deque()
-        self._pending: dict[str, deque] = {kind.name: deque() for kind in _g.RECIPE_KINDS}
+        self._pending: dict[str, deque] = {kind.name: deque(maxlen=_g.MAX_PENDING_SETUPS)
+                                           for kind in _g.RECIPE_KINDS}
         self.recipes: dict[str, dict[Optional[int], Recipe]] = {kind.name: {} for kind in _g.RECIPE_KINDS}
         self.count = 0                                 # records given out so far, both directions
 
@@ -120,7 +121,7 @@ class Conversation:
             reply.note("warning", "a setup reply without a request seen: its recipe's names are unknown")
             return
         if len(names) != len(reply.types):
-            reply.note("warning", f"{len(names)} names asked, {len(reply.types)} types answered")
+            reply.note("warning", "names asked and types answered differ in number")
             return
         refused = [(n, t) for n, t in zip(names, reply.types) if t in _g.REFUSALS or t not in _g.VALUE_TYPES]
         if refused:

@@ -142,7 +142,7 @@ def write_values(out: bytearray, values: dict, recipe: Optional[Recipe]) -> None
 
 def check_end(pos: int, end: int) -> None:
     if pos < end:
-        raise DecodeError("", pos, f"{end - pos} bytes after the layout")
+        raise DecodeError("extra", pos, f"{end - pos} bytes after the layout")
 
 
 # ---- messages ----------------------------------------------------------------------------------
@@ -217,6 +217,7 @@ class Framer:
         self.header = header
         self.buf = bytearray()
         self.offset = 0             # of buf[0] in the direction's stream
+        self.scanning = False       # looking for the next plausible header after a fault
 
     def feed(self, data) -> Iterator:
         self.buf += bytes(data)
@@ -225,10 +226,16 @@ class Framer:
         while len(buf) - pos >= head:
             size, code = self.header.unpack_from(buf, pos)
             if size < head or code not in self.known:
-                fault = StreamError(self.offset + pos, f"bad message header: size {size}, type {code}")
+                # One fault per scan, however the bytes were cut: a scan that ran out of bytes
+                # goes on silently when more come.
+                fault = None if self.scanning else \
+                    StreamError(self.offset + pos, f"bad message header: size {size}, type {code}")
+                self.scanning = True
                 pos = self._resync(pos + 1)
-                yield fault
+                if fault is not None:
+                    yield fault
                 continue
+            self.scanning = False
             if len(buf) - pos < size:
                 break
             yield self.offset + pos, code, bytes(buf[pos:pos + size])

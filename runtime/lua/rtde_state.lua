@@ -73,7 +73,9 @@ function rt.follow(state, name, values, frame)
             state.protocol = 1   -- the robot keeps protocol 1 until a request is accepted
         end
     elseif KIND_OF_REQUEST[name] then
-        push(state.pending[KIND_OF_REQUEST[name]], { names = rt.split(values.variables, ","), frame = frame })
+        local pending = state.pending[KIND_OF_REQUEST[name]]
+        if pending.last - pending.first + 1 >= spec.max_pending_setups then pop(pending) end   -- the oldest
+        push(pending, { names = rt.split(values.variables, ","), frame = frame })
     elseif KIND_OF_REPLY[name] then
         return rt.make_recipe(state, KIND_OF_REPLY[name], values, frame)
     elseif name == "start_reply" and values.accepted == 0 then
@@ -89,7 +91,7 @@ function rt.make_recipe(state, kind, values, frame)
     end
     local types = rt.split(values.types, ",")
     if #types ~= #request.names then
-        return { warning = #request.names .. " names asked, " .. #types .. " types answered" }
+        return { warning = "names asked and types answered differ in number" }
     end
     local refused = {}
     for i, t in ipairs(types) do

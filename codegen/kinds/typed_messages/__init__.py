@@ -7,13 +7,13 @@ from __future__ import annotations
 from typing import Optional
 
 from .. import Kind
-from . import lua_target, python_target
+from . import c_target, lua_target, python_target
 from .model import Interface
 from .resolve import resolve
 
 
 def render(interface: Interface, banner: list[str], only_targets: Optional[list[str]]) -> dict[str, str]:
-    targets = {"lua": lua_target.render, "python": python_target.render}
+    targets = {"c": c_target.render, "lua": lua_target.render, "python": python_target.render}
     return {path: text for name, render_target in targets.items()
             if only_targets is None or name in only_targets
             for path, text in render_target(interface, banner).items()}

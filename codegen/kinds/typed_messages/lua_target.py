@@ -135,6 +135,7 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
         "fields": list(fields.by_name.values()),
         "messages": messages, "value_types": value_types, "variables": variables, "kinds": kinds,
         "refusals": [r.word for r in interface.refusals],
+        "max_pending": interface.max_pending_setups,
         "codes": codes,
         "undocumented": [{"code": u.code, "name": u.name, "label": u.label} for u in interface.undocumented],
         "runtime": [{"path": runtime_path("lua", n), "source": runtime_source("lua", n)} for n in runtime_files(prefix)],

@@ -143,6 +143,7 @@ class Interface:
     recipe_kinds: list[RecipeKind]
     refusals: list[Refusal]
     generations: list[Generation]
+    max_pending_setups: int = 1         # setup requests of one kind a connection keeps awaiting replies
     variables: list[Variable] = field(default_factory=list)
 
     @property

@@ -170,6 +170,7 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
         "p": interface,
         "ports": tuple_text([str(p) for p in interface.ports]),
         "protocol_versions": tuple_text([str(p) for p in interface.protocol_versions]),
+        "max_pending": interface.max_pending_setups,
         "refusals": tuple_text([f'"{r.word}"' for r in interface.refusals]),
         "recipe_kinds": tuple_text([k.name.upper() for k in interface.recipe_kinds]),
         "header_format": ">" + STRUCT_CODES[interface.length.name] + STRUCT_CODES[interface.type.name],

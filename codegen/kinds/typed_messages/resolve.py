@@ -48,7 +48,8 @@ class _TypedResolver(_Resolver):
             length=ir.SCALARS[framing["length"]], type=ir.SCALARS[framing["type"]],
             length_counts_header=framing["length_counts_header"], enums=list(self.enums.values()),
             value_types=value_types, messages=messages, undocumented=undocumented, recipe_kinds=kinds,
-            refusals=refusals, generations=generations, variables=variables)
+            refusals=refusals, generations=generations, max_pending_setups=data["recipes"]["max_pending_setups"],
+            variables=variables)
 
     def value_types(self, raws) -> list[model.ValueType]:
         out = []

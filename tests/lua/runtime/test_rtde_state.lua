@@ -3,6 +3,7 @@
 local S = dofile("stubs.lua")
 local spec = {
     default_protocol = 2,
+    max_pending_setups = 4,
     recipe_kinds = {
         { name = "outputs", from_robot = true, requests = { "setup_outputs", "setup_outputs_v1" },
           replies = { "setup_outputs_reply", "setup_outputs_reply_v1" } },
