@@ -42,13 +42,15 @@ setup:
 ## test: every test of every target (the README's test command, and CI's); the fuzzers' kept
 ## corpora are replayed there, and `make fuzz` fuzzes for longer. The live tools' tests wait on
 ## sockets and timers far more than they compute, so they run in a pytest of their own beside the
-## rest (their output follows); `pytest tests` runs everything in one.
+## rest (their output follows), and the rest spread over TEST_JOBS processes (pytest-xdist, a test
+## file per process at a time); `pytest tests` runs everything in one.
 LIVE_TESTS := tests/python/test_live.py tests/python/test_listen_field.py tests/python/test_listen_hostile.py \
 	tests/python/test_serve_hostile.py
+TEST_JOBS ?= auto
 test: check-generated $(TEST_BUILDS)
 	@mkdir -p build
 	@$(PYTEST) -q $(LIVE_TESTS) > build/live-tests.log 2>&1 & live=$$!; \
-	$(PYTEST) -q tests $(LIVE_TESTS:%=--ignore=%); rest=$$?; \
+	$(PYTEST) -q -n $(TEST_JOBS) --dist loadfile tests $(LIVE_TESTS:%=--ignore=%); rest=$$?; \
 	wait $$live; live=$$?; echo "== the live tools' tests"; cat build/live-tests.log; \
 	[ $$rest -eq 0 ] && [ $$live -eq 0 ]
 

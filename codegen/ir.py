@@ -491,6 +491,14 @@ class Layout:
     summary: list[tuple[str, str]] = dc_field(default_factory=list)  # (text before, field name)
     where: Where = NOWHERE
     versions: VersionRange = ALL_VERSIONS     # the software versions that send this layout
+    inferred: bool = False    # its fields are read from real bytes, not from a document
+    label: str = ""           # what people call it, where its name in words would not do ("HMC")
+
+    @property
+    def marks(self) -> list[str]:
+        """What every target shows after the layout's name: "undocumented" for a code no document
+        lays out, "inferred" when its fields are a reading of real bytes."""
+        return [mark for mark, on in (("undocumented", self.code.undocumented), ("inferred", self.inferred)) if on]
 
 
 @dataclass
@@ -523,31 +531,44 @@ class PackageListMessage:
 
 @dataclass
 class DispatchMessage:
-    """A message with a common header and then a subtype byte choosing the layout."""
+    """A message with a common header and then a subtype byte choosing the layout; or, with no
+    subtype (a body message), one layout right after the message header, its code the message
+    type's own."""
 
     name: str
     code: EnumValue
     doc: str
     field_note: str
     header: Struct
-    subtype: ScalarField
+    subtype: Optional[ScalarField]
     subtypes: list[Layout]
     where: Where = NOWHERE
+    message_types: Optional[Enum] = None   # a body message: the enum its one code is of
+
+    @property
+    def has_subtype(self) -> bool:
+        return self.subtype is not None
 
     @property
     def subtype_enum(self) -> Enum:
+        """The enum the layouts' codes come from: the subtype's, or the message type's."""
+        if self.subtype is None:
+            assert self.message_types is not None
+            return self.message_types
         assert self.subtype.enum is not None
         return self.subtype.enum
 
     @property
     def unlaid_codes(self) -> list[EnumValue]:
+        if self.subtype is None:
+            return []
         laid = {s.code.value for s in self.subtypes}
         return [v for v in self.subtype_enum.values if v.value not in laid]
 
     @property
     def header_size(self) -> int:
         assert self.header.fixed_size is not None
-        return self.header.fixed_size + self.subtype.scalar.size
+        return self.header.fixed_size + (self.subtype.scalar.size if self.subtype else 0)
 
 
 Message = Union[PackageListMessage, DispatchMessage]

@@ -15,6 +15,13 @@ def words(name: str) -> str:
     return text[:1].upper() + text[1:]
 
 
+def layout_label(layout: ir.Layout) -> str:
+    """What people read for a layout in every output: its label, else its name in words, then its
+    marks ("Payload info (undocumented, inferred)")."""
+    text = layout.label or words(layout.name)
+    return f"{text} ({', '.join(layout.marks)})" if layout.marks else text
+
+
 def py_enum_class(enum: ir.Enum) -> str:
     return camel(enum.name)
 

@@ -311,8 +311,8 @@ class SegmentForm:
 class MessagePlan:
     message: ir.Message
     header: list[HeaderSlot]         # dispatch messages: the common header, then the subtype
-    body_offset: int                 # the first sub-package, or the subtype's first field
-    subtype_offset: Optional[int]
+    body_offset: int                 # the first sub-package, or the subtype's (body's) first field
+    subtype_offset: Optional[int]    # None for a robot state or a body message
     choices: dict[int, list[LayoutChoice]]   # type code -> the layouts it can have
     variants: dict[int, list[Variant]] = field(default_factory=dict)   # type code -> its forms
     # type code -> its form in each segment of ProtocolPlan.segments
@@ -604,8 +604,10 @@ def plan(p: ir.Protocol) -> ProtocolPlan:
             for f in m.header.fields:
                 header.append(HeaderSlot(f, at))
                 at += f.scalar.size
-            header.append(HeaderSlot(m.subtype, at, is_subtype=True))
-            subtype_offset, body = at, at + m.subtype.scalar.size
+            subtype_offset, body = None, at
+            if m.subtype is not None:
+                header.append(HeaderSlot(m.subtype, at, is_subtype=True))
+                subtype_offset, body = at, at + m.subtype.scalar.size
             layouts = m.subtypes
         for lay in layouts:
             choices.setdefault(lay.code.value, []).append(LayoutChoice(lay, planner.layout(lay.struct)))

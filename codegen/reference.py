@@ -163,10 +163,13 @@ def protocol_markdown(p: plan.ProtocolPlan, spec_path: str) -> str:
            "which give the public sources it rests on and how sure they are.", ""]
     for mp in p.messages:
         m = mp.message
-        out += [f"## {words(m.name)} (message type {m.code.value})", "", _one_line(m.doc, _linked(m.field_note)), ""]
+        out += [f"## {words(m.name)} (message type {m.code.value})", ""]
+        if not mp.is_dispatch or m.has_subtype:
+            # A body message is its one layout: its text follows under the layout.
+            out += [_one_line(m.doc, _linked(m.field_note)), ""]
         header = _header_size(p, mp)
         for code, variants in mp.variants.items():
-            names = sorted({v.layout.name for v in variants}, key=[v.layout.name for v in variants].index)
+            names = sorted({_marked(v.layout) for v in variants}, key=[_marked(v.layout) for v in variants].index)
             out += [f"### {code}: {' / '.join(names)}", ""]
             layouts = list({id(v.layout): v.layout for v in variants}.values())
             for lay in layouts:
@@ -195,6 +198,11 @@ def protocol_markdown(p: plan.ProtocolPlan, spec_path: str) -> str:
             out += [f"| {v.value} | {v.name} | {_one_line(v.doc, _linked(v.field_note))} |" for v in t.values]
             out.append("")
     return "\n".join(out).rstrip() + "\n"
+
+
+def _marked(layout: ir.Layout) -> str:
+    """A layout's name and its marks: "payload_info (undocumented, inferred)"."""
+    return f"{layout.name} ({', '.join(layout.marks)})" if layout.marks else layout.name
 
 
 def _field_rows(struct: ir.Struct, prefix: str) -> list[str]:

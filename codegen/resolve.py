@@ -217,7 +217,8 @@ class _Resolver:
         summary = self.summary(raw.get("summary"), struct, parts + ["summary"])
         versions = self.versions(raw.get("versions"), parts + ["versions"])
         return ir.Layout(name, self.member(code_enum, raw["code"], parts + ["code"], versions), raw["doc"],
-                         raw.get("field_note", ""), struct, sets_version, summary, self.where(parts), versions)
+                         raw.get("field_note", ""), struct, sets_version, summary, self.where(parts), versions,
+                         raw.get("inferred", False), raw.get("label", ""))
 
     def summary(self, text: Optional[str], struct: ir.Struct, parts) -> list[tuple[str, str]]:
         """'{title}: {text}' -> [('', 'title'), (': ', 'text')]; only scalar and string fields."""
@@ -275,6 +276,13 @@ class _Resolver:
                 messages.append(ir.PackageListMessage(name, code, raw["doc"], raw.get("field_note", ""), packages,
                                                       ph["type"].enum, self.where(parts)))
                 layouts = packages
+            elif "fields" in raw:
+                # A body message: one layout after the message header, named as the message.
+                body = self.layout(name, raw, mh["type"].enum, parts)
+                messages.append(ir.DispatchMessage(name, code, raw["doc"], raw.get("field_note", ""),
+                                                   ir.Struct(name + "_header", raw["doc"], []), None, [body],
+                                                   self.where(parts), mh["type"].enum))
+                continue
             else:
                 header = ir.Struct(name + "_header", raw["doc"], self.fields(raw["header"], parts + ["header"]))
                 if header.fixed_size is None:

@@ -656,14 +656,17 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
             layout_structs[id(st)] = cs
             subtypes.append(cs)
             kinds.append(dict(const=cs.kind_const, doc=inline(st.doc)))
-        forms = axis.table(f"urwire__{m.name}", f"{m.name} subtype", mp, m.subtype_enum,
+        forms = axis.table(f"urwire__{m.name}", f"{m.name} subtype" if m.has_subtype else f"{m.name} message",
+                           mp, m.subtype_enum,
                            {id(c.layout): layout_structs[id(c.layout)].kind_const for c in mp.layouts})
-        messages.append(dict(kind="dispatch", name=m.name, code=m.code.value, type_index=len(messages),
+        messages.append(dict(kind="dispatch" if m.has_subtype else "body", name=m.name, code=m.code.value,
+                             type_index=len(messages),
                              code_const=c_member_const(p.message_type_enum, m.code),
                              doc=comment(node_text(m)), header=header, header_table=f"urwire__{m.name}_header",
                              header_spans=[Span(slot.field.name, slot.offset, slot.field.scalar.size)
                                            for slot in mp.header],
-                             body_offset=mp.body_offset, subtypes=subtypes, subtype_name=m.subtype.name,
+                             body_offset=mp.body_offset, subtypes=subtypes,
+                             subtype_name=m.subtype.name if m.has_subtype else None,
                              forms=forms))
     lists = [m for m in messages if m["kind"] == "packages"]
     if len(lists) != 1:

@@ -21,7 +21,7 @@ from .. import ir, plan, wrap
 from ..comments import node_text
 from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ..errors import Problem, SpecError
-from ..naming import table_suffix, wireshark_field, words
+from ..naming import layout_label, table_suffix, wireshark_field, words
 from ..view import Step
 
 OUT = "lua/urwire.lua"
@@ -480,7 +480,7 @@ class _Builder:
         parts, summaries, parts_of = [], {}, {}
         for c in mp.layouts:
             pk = c.layout
-            label = words(pk.name)
+            label = layout_label(pk)
             layout, summary = self.shown_layout(pk, c.plan)
             var = self.unique("PART", pk.name)
             parts_of[id(pk)] = var
@@ -513,15 +513,28 @@ class _Builder:
             body, _ = self.shown_layout(st, c.plan)
             var = self.unique("PART", st.name)
             parts_of[id(st)] = var
-            parts.append(dict(var=var, name=st.name, label=words(st.name), header=sub_header, layout=body,
+            label = layout_label(st)
+            parts.append(dict(var=var, name=st.name, label=label, header=sub_header, layout=body,
                               needs_version=self.version_dependent(mp, st),
-                              item=self.add_item(st.name, words(st.name), one_line(st.doc), st.where)))
+                              item=self.add_item(st.name, label, one_line(st.doc), st.where)))
         return Step("subtypes", dict(code=m.code.value, label=words(m.name), doc=node_text(m),
                                      var=f"{m.name.upper()}_SUBTYPES", body_offset=mp.body_offset,
                                      header=header, subtype_field=sub_field, subtype_label=m.subtype.label,
                                      subtype_names=self.enum_var[m.subtype_enum.name],
                                      subtype_tables=self.code_names(m.subtype_enum),
                                      parts=parts, codes=self.forms(mp, parts_of)))
+
+    def body_message(self, mp: plan.MessagePlan) -> Step:
+        """A message that is one layout right after the message header (no subtype byte)."""
+        m = mp.message
+        (lay,) = {id(c.layout): c.layout for c in mp.layouts}.values()
+        body, _ = self.shown_layout(lay, mp.layouts[0].plan)
+        var = self.unique("PART", lay.name)
+        label = layout_label(lay)
+        part = dict(var=var, name=lay.name, label=label, layout=body, needs_version=self.version_dependent(mp, lay),
+                    item=self.add_item(lay.name, label, one_line(lay.doc), lay.where))
+        return Step("body", dict(code=m.code.value, label=label, doc=node_text(m), var=f"{m.name.upper()}_FORMS",
+                                 body_offset=mp.body_offset, parts=[part], codes=self.forms(mp, {id(lay): var})))
 
     def value_tables(self) -> list[dict]:
         """The value-type codes of each software-version range, with how each type is laid out."""
@@ -583,8 +596,8 @@ class _Builder:
         self.header_field("type", p.message_type)
         self.header_field("package.length", p.package_length)
         self.header_field("package.type", p.package_type)
-        messages = [self.dispatch_message(mp) if mp.is_dispatch else self.package_message(mp)
-                    for mp in self.plan.messages]
+        messages = [(self.dispatch_message(mp) if mp.message.has_subtype else self.body_message(mp))
+                    if mp.is_dispatch else self.package_message(mp) for mp in self.plan.messages]
         self.settle()
         # Which fields of a package a filter or column may ask for (TreeItem:referenced).
         for m in messages:

@@ -16,7 +16,7 @@ from ..emit import environment
 from ..errors import Problem, SpecError
 from ..comments import field_text, node_text, value_text
 from ..view import Step, one_line
-from ..naming import (camel, py_enum_class, py_item_class, py_layout_class, py_lookup,
+from ..naming import (camel, layout_label, py_enum_class, py_item_class, py_layout_class, py_lookup,
                       py_message_class, py_table_class, words)
 
 # The generated subpackage urwire.generated; the hand-written package is python/urwire/.
@@ -349,7 +349,8 @@ class _Target:
                                       min_size=v.min_size, rep=v.rep, versions=v.describe())
                                  for v in variants]))
         rows = [dict(versions=s.describe(),
-                     cells=", ".join(f"~{c[k].form}" if c[k].nearest else str(c[k].form) for c in mp.by_segment.values()))
+                     cells=", ".join(f"~{c[k].form}" if c[k].nearest else str(c[k].form) for c in mp.by_segment.values())
+                     + ("," if len(mp.by_segment) == 1 else ""))   # a tuple of one
                 for k, s in enumerate(self.plan.segments)]
         by_length = [(code, ", ".join(f"{size}: {k}" for size, k in sizes.items())) for code, sizes in mp.by_length.items()]
         return dict(forms=forms, rows=rows, by_length=by_length, codes=", ".join(map(str, mp.by_segment)))
@@ -385,7 +386,8 @@ class _Target:
                 classes = {id(c.layout): self.build_class(c.plan, py_layout_class(c.layout, False), "package",
                                                           c.layout.name, c.layout.code.value,
                                                           one_line(node_text(c.layout)),
-                                                          summary=c.layout.summary, forms=mp.forms_of(c.layout))
+                                                          summary=c.layout.summary, forms=mp.forms_of(c.layout),
+                                                          label=layout_label(c.layout))
                            for c in mp.layouts}
                 self.set_encoders(mp, classes)
                 messages.append(dict(kind="packages", name=m.name, cls=py_message_class(m), code=m.code.value,
@@ -394,7 +396,8 @@ class _Target:
                                      **self.forms(mp, classes)))
                 continue
             fields = [slot.field for slot in mp.header if not slot.is_subtype]
-            subtype = mp.header[-1].field
+            # A body message has no subtype byte: its one layout's code is the message type.
+            subtype = m.subtype.name if m.has_subtype else None
             # Header values that need converting after the unpack: enums, looked up by the runtime.
             converts = []
             for i, f in enumerate(fields):
@@ -408,7 +411,8 @@ class _Target:
                                                       c.layout.name, c.layout.code.value,
                                                       one_line(node_text(c.layout)), mp.header,
                                                       c.layout.sets_version, c.layout.summary,
-                                                      forms=mp.forms_of(c.layout)) for c in mp.layouts}
+                                                      forms=mp.forms_of(c.layout),
+                                                      label=layout_label(c.layout)) for c in mp.layouts}
             self.set_encoders(mp, classes)
             layouts = list(classes.values())
             announces = self.plan.version.subtype_code if self.plan.version.message_code == m.code.value else None
@@ -417,8 +421,9 @@ class _Target:
                 doc=one_line(node_text(m)), layouts=layouts,
                 header_fmt=">" + "".join(STRUCT_CODES[slot.field.scalar.name] for slot in mp.header),
                 header_run=[(slot.field.name, slot.offset, slot.field.scalar.size) for slot in mp.header],
-                header_offset=mp.header[0].offset, header_names=[f.name for f in fields],
-                header_converts=converts, subtype=subtype.name,
+                header_offset=mp.header[0].offset if mp.header else mp.body_offset,
+                header_names=[f.name for f in fields], header_converts=converts,
+                subtype=json.dumps(subtype) if subtype else "None",
                 body_offset=mp.body_offset, announces=announces, **self.forms(mp, classes)))
         if self.problems:
             raise SpecError(self.p.source, self.problems)

@@ -4,7 +4,8 @@ the protocol has, as algorithms over the generated tables:
 - a list of sub-packages (the robot state): each framed by its own length, read in the form
   that the stream's version or the part's length chooses (PackageList);
 - a common header, then a subtype byte that chooses the layout (robot messages, program state
-  messages: SubtypeMessage).
+  messages: SubtypeMessage); with no header and no subtype byte, one layout right after the
+  message header (a body message: a SubtypeMessage whose subtype is its message type).
 
 urwire.generated.messages holds the classes and the tables (forms, header formats) and makes one
 PackageList or SubtypeMessage per message type; nothing here names a message of the spec.
@@ -166,22 +167,25 @@ class PackageList:
 
 class SubtypeMessage:
     """A message with a common header (`header`: its fields, then the subtype byte; unpacked
-    from `header_offset`, `run` names each for errors) and a layout per subtype code.
+    from `header_offset`, `run` names each for errors) and a layout per subtype code. With no
+    `subtype` (a body message) there is no subtype byte: one layout, whose code is `code`.
 
     `converts` are (index in the header, enum lookup, by version?) of header fields that are
     enums. When `announces` is a subtype code, that subtype is the Version message: it is read
     in the form of the version it carries, found through `version_skips` and `version_tail`."""
 
     __slots__ = ("code", "header", "names", "run", "header_offset", "body_offset", "subtype", "converts", "forms",
-                 "announces", "version_skips", "version_tail")
+                 "announces", "version_skips", "version_tail", "implied_subtype")
 
     def __init__(self, code: int, header: struct.Struct, names: tuple, run: tuple, header_offset: int,
-                 body_offset: int, subtype: str, converts: tuple, forms: _rt.Forms, layouts: tuple,
+                 body_offset: int, subtype: Optional[str], converts: tuple, forms: _rt.Forms, layouts: tuple,
                  announces: Optional[int] = None, version_skips: tuple = (), version_tail: int = 0):
         self.code, self.header, self.names, self.run = code, header, names, run
         self.header_offset, self.body_offset = header_offset, body_offset
         self.subtype, self.converts, self.forms = subtype, converts, forms
         self.announces, self.version_skips, self.version_tail = announces, version_skips, version_tail
+        # The subtype code when no byte carries it: the message type's own.
+        self.implied_subtype = () if subtype else (code,)
         for cls in layouts:
             cls.MESSAGE, cls.MESSAGE_TYPE = self, code
 
@@ -190,7 +194,7 @@ class SubtypeMessage:
         body = self.body_offset
         if end < body:
             return UnknownMessage(self.code, bytes(buf[HEADER.size:]), _rt.short_in_run(self.run, 0, end).text)
-        *header, subtype = self.header.unpack_from(buf, self.header_offset)
+        *header, subtype = self.header.unpack_from(buf, self.header_offset) + self.implied_subtype
         for i, lookup, by_version in self.converts:
             header[i] = (lookup[version] if by_version else lookup).get(header[i], header[i])
         header = tuple(header)
@@ -215,7 +219,10 @@ class SubtypeMessage:
         out = bytearray(HEADER.size)
         kept_raw = isinstance(msg, (UnknownSubtype, MalformedSubtype))
         subtype = msg.subtype if kept_raw else msg.CODE
-        out += self.header.pack(*(getattr(msg, name) for name in self.names), subtype)
+        values = [getattr(msg, name) for name in self.names]
+        if not self.implied_subtype:
+            values.append(subtype)
+        out += self.header.pack(*values)
         if kept_raw:
             out += msg.raw
         else:

@@ -1,10 +1,12 @@
 """`urwire serve`: a simulated controller on a TCP port, one session per client.
 
-Every client gets its own simulated.Controller: the Version message first, then robot states at
-the given rate. Loopback by default. SIGINT and SIGTERM abort every connection and stop within a
-second or two, whatever the clients do (exit status 0). A client that stops reading is dropped
-once its unsent data passes --max-unsent, so it costs bounded memory and never holds the others
-back. Whatever a client sends is read and thrown away.
+Every client gets its own simulated.Controller: the Version message first (and the hardware info
+message, from 5.26 and 10.13), then robot states at the given rate. The arm is --model's
+(default: the generation's usual one), and every client sees the same motion at the same time:
+the motion's clock starts with the server. Loopback by default. SIGINT and SIGTERM abort every
+connection and stop within a second or two, whatever the clients do (exit status 0). A client
+that stops reading is dropped once its unsent data passes --max-unsent, so it costs bounded
+memory and never holds the others back. Whatever a client sends is read and thrown away.
 """
 from __future__ import annotations
 
@@ -14,6 +16,7 @@ import signal
 import sys
 from typing import Optional
 
+from .robot_models import MODELS, RobotModel, model_for
 from .simulated import Controller
 
 # Connections the kernel queues before `accept`: asyncio's default of 100 turns away a crowd.
@@ -31,6 +34,9 @@ def add_parser(sub, version_arg) -> None:
     p.add_argument("--port", type=int, default=30001, help="TCP port; 0 picks a free one (default: 30001)")
     p.add_argument("--software", type=version_arg, default=(5, 11, 0), metavar="X.Y[.Z]",
                    help="software version to simulate, e.g. 1.8, 3.15 or 5.11 (default: 5.11)")
+    p.add_argument("--model", type=str.lower, choices=list(MODELS), metavar="MODEL",
+                   help="the arm: ur3 (CB3), ur5, ur10 (CB2, CB3), ur3e, ur5e, ur10e, ur16e, ur20, ur30 (e-Series, "
+                        "PolyScope X) (default: ur5 on CB2 and CB3, ur5e on e-Series and PolyScope X)")
     p.add_argument("--rate", type=float, default=10.0, help="robot states per second (default: 10)")
     p.add_argument("--duration", type=float, metavar="S", help="stop after S seconds (default: run until stopped)")
     p.add_argument("--max-unsent", type=int, default=DEFAULT_MAX_UNSENT_KB, metavar="KB",
@@ -60,8 +66,9 @@ def log(text: str) -> None:
 class Session(asyncio.Protocol):
     """One client: writes without ever waiting on the client, so no session can block a stop."""
 
-    def __init__(self, version: tuple, rate: float, max_unsent: int, sessions: set):
-        self.controller = Controller(version, rate)
+    def __init__(self, version: tuple, rate: float, max_unsent: int, sessions: set, model: RobotModel,
+                 clock_start: float):
+        self.controller = Controller(version, rate, model, start=asyncio.get_running_loop().time() - clock_start)
         self.rate = rate
         self.max_unsent = max_unsent
         self.sessions = sessions
@@ -98,7 +105,7 @@ class Session(asyncio.Protocol):
     async def run(self) -> None:
         loop = asyncio.get_running_loop()
         start = loop.time()
-        if not self.send(self.controller.version_message()):
+        if not self.send(self.controller.opening()):
             return
         while not self.transport.is_closing():
             if not self.send(b"".join(self.controller.step())):
@@ -111,16 +118,18 @@ class Session(asyncio.Protocol):
 
 
 async def serve(host: str, port: int, version: tuple, rate: float, duration: Optional[float],
-                max_unsent_kb: int = DEFAULT_MAX_UNSENT_KB) -> None:
+                max_unsent_kb: int = DEFAULT_MAX_UNSENT_KB, model: Optional[RobotModel] = None) -> None:
     stop = asyncio.Event()
     sessions: set = set()
     loop = asyncio.get_running_loop()
+    model = model or model_for(version)
+    clock_start = loop.time()
     for signum in (signal.SIGINT, signal.SIGTERM):
         loop.add_signal_handler(signum, stop.set)
-    server = await loop.create_server(lambda: Session(version, rate, max_unsent_kb * 1024, sessions),
-                                      host, port, backlog=BACKLOG)
+    server = await loop.create_server(
+        lambda: Session(version, rate, max_unsent_kb * 1024, sessions, model, clock_start), host, port, backlog=BACKLOG)
     bound = server.sockets[0].getsockname()
-    log(f"software {'.'.join(map(str, version))} on {bound[0]}:{bound[1]}")
+    log(f"{model.name}, software {'.'.join(map(str, version))} on {bound[0]}:{bound[1]}")
     try:
         await asyncio.wait_for(stop.wait(), duration)
     except asyncio.TimeoutError:
@@ -146,9 +155,14 @@ def serve_command(args: argparse.Namespace) -> int:
     if args.max_unsent <= 0:
         print("urwire serve: --max-unsent must be above 0", file=sys.stderr)
         return 2
+    try:
+        model = model_for(args.software, args.model)
+    except ValueError as exc:
+        print(f"urwire serve: --model: {exc}", file=sys.stderr)
+        return 2
     raise_open_file_limit()
     try:
-        asyncio.run(serve(args.host, args.port, args.software, args.rate, args.duration, args.max_unsent))
+        asyncio.run(serve(args.host, args.port, args.software, args.rate, args.duration, args.max_unsent, model))
     except OSError as exc:
         print(f"urwire serve: cannot listen on {args.host}:{args.port}: {exc.strerror or exc}", file=sys.stderr)
         return 2

@@ -5,6 +5,11 @@ A client gets the Version message, then a robot state per tick (kinematics and c
 only in the first), while a program runs in a loop: key messages when it starts and stops, text
 messages, global variables (set up once, then updated) and now and then a protective stop with
 its safety mode message.
+
+The robot is a believable one: a chosen arm (robot_models) with its nominal DH parameters, robot
+type and controller board, every mode a valid one of the version's tables (robot and joints
+RUNNING, safety NORMAL but in a protective stop), and joints that follow the arm's Motion, with
+the tool pose their forward kinematics.
 """
 from __future__ import annotations
 
@@ -18,6 +23,8 @@ from .generated import messages as _m
 from ._runtime import GlobalValue
 from .decoding import encode_message, package_classes
 from .generated.spec import value_codec
+from .motion import Motion
+from .robot_models import BOARDS, RobotModel, generation, kinematics_checksums, model_for
 
 JOINTS = 6
 CYCLE_TICKS = 100          # one program run, start to start
@@ -53,12 +60,10 @@ def filled(cls, **given):
     return cls(**values, **given)
 
 
-def _enum_value(table: str, version: tuple, name: str, default: int) -> int:
-    try:
-        members = getattr(_e, table)[version].values()
-    except (KeyError, AttributeError):
-        return default
-    return next((int(m) for m in members if m.name == name), default)
+def mode_code(table: str, version: tuple, name: str) -> int:
+    """The code of `name` in a table whose codes changed between versions (ROBOT_MODE_BY_VALUE,
+    JOINT_MODE_BY_VALUE): RUNNING is 0 on CB2 and 7 from 3.0."""
+    return next(int(m) for m in getattr(_e, table)[version].values() if m.name == name)
 
 
 def state_classes(version: tuple) -> list:
@@ -70,13 +75,21 @@ def state_classes(version: tuple) -> list:
 class Controller:
     """The messages of one client's session, tick by tick."""
 
-    def __init__(self, version: tuple, rate: float):
+    def __init__(self, version: tuple, rate: float, model: RobotModel | None = None, start: float = 0.0):
+        """`model`: the arm (default: the generation's usual one); `start`: the time on the
+        motion's clock of the first state, so that sessions started at different times, and the
+        other interfaces, report the same motion at the same time."""
         self.version = version
         self.rate = rate
         self.tick = 0
+        self.start = start
+        self.model = model or model_for(version)
+        self.motion = Motion(self.model)
+        self._sample, self._sampled_tick = None, -1
+        self.board = BOARDS[generation(version)]
         self.classes = state_classes(version)
-        self.running_mode = _enum_value("ROBOT_MODE_BY_VALUE", version, "RUNNING", 7)
-        self.joint_running = _enum_value("JOINT_MODE_BY_VALUE", version, "RUNNING", 253)
+        self.running_mode = mode_code("ROBOT_MODE_BY_VALUE", version, "RUNNING")
+        self.joint_running = mode_code("JOINT_MODE_BY_VALUE", version, "RUNNING")
         codes = value_codec(version).codes
         self.value_codes = {"INT": codes["INT"], "NUM": codes["NUM"], "BOOL": codes["BOOL"], "POSE": codes["POSE"],
                             "STRING": codes.get("VAR_STRING", codes.get("STRING"))}
@@ -89,6 +102,15 @@ class Controller:
     def millis(self) -> int:
         return int(self.seconds() * 1000)
 
+    def motion_time(self) -> float:
+        return self.start + self.seconds()
+
+    def sample(self):
+        """The joints of this tick, worked out once for the packages that report them."""
+        if self._sampled_tick != self.tick:
+            self._sample, self._sampled_tick = self.motion.joints(self.motion_time()), self.tick
+        return self._sample
+
     # --- messages ---------------------------------------------------------------------------
     def encode(self, msg) -> bytes:
         return encode_message(msg, self.version)
@@ -99,6 +121,18 @@ class Controller:
                      major_version=major, minor_version=minor, svn_revision=20000 + minor,
                      bugfix_version=bugfix, build_number=1, build_date="23-11-2026, 00:00:00")
         return self.encode(msg)
+
+    def opening(self) -> bytes:
+        """What a client gets on connecting: the Version message, then, from 5.26 and 10.13, the
+        hardware info message (the spec's hardware_info: sent from those releases)."""
+        out = self.version_message()
+        if (5, 26, 0) <= self.version < (10, 0, 0) or self.version >= (10, 13, 0):
+            # Control box CB5 and tool flange V1 (numbered as later patch releases do): an e-Series
+            # box and the flange of the arms UR sold with it.
+            out += self.encode(filled(_m.HardwareInfoMessage, timestamp=0, source=SOURCE,
+                                      robot_type=self.model.robot_type, control_box_type=_e.ControlBoxType.CB5,
+                                      tool_flange_type=_e.ToolFlangeType.V1))
+        return out
 
     def step(self) -> Iterator[bytes]:
         """The messages of the next tick: the robot state first, then what the program says."""
@@ -128,26 +162,61 @@ class Controller:
 
     def joints(self, running: bool, protective: bool):
         t = self.seconds()
+        sample = self.sample()
         joints = []
         for j in range(JOINTS):
-            # Each joint swings about its own centre, well inside the +-2 pi limits.
-            w = 2 * math.pi / (8 + 2 * j)
-            q = 0.3 * j - 0.6 + 0.8 * math.sin(w * t + j)
-            qd = 0.8 * w * math.cos(w * t + j)
-            joints.append(_m.Joint(q_actual=q, q_target=q + 0.001 * qd, qd_actual=qd,
-                                   i_actual=0.4 + 0.3 * abs(qd) + 0.05 * math.sin(3 * t + j),
+            q, qd = sample.q[j], sample.qd[j]
+            joints.append(_m.Joint(q_actual=q, q_target=q + 0.001 * qd, qd_actual=qd, i_actual=sample.current[j],
                                    v_actual=48.0 - 0.1 * abs(qd), t_motor=30.0 + 8.0 * (1 - math.exp(-t / 600)) + j,
                                    t_micro=35.0 + j, joint_mode=self.joint_running))
         return _m.JointData(joints)
+
+    def cartesian(self, running: bool, protective: bool):
+        x, y, z, rx, ry, rz = self.motion.tcp_pose(self.sample().q)
+        return filled(_m.CartesianInfo, x=x, y=y, z=z, rx=rx, ry=ry, rz=rz)
+
+    def kinematics(self, running: bool, protective: bool):
+        m = self.model
+        # calibration_status 2, as a real 5.11 robot sends (tests/conformance, URCL PR 137).
+        return filled(_m.KinematicsInfo, checksum=kinematics_checksums(m), dh_theta=list(m.dh_theta),
+                      dh_a=list(m.dh_a), dh_d=list(m.dh_d), dh_alpha=list(m.dh_alpha), calibration_status=2)
+
+    def masterboard(self, running: bool, protective: bool):
+        # CB2 says its safety in master_safety_state and master_on_off_state, later versions in
+        # safety_mode: each version's encoder writes the fields of its own layout.
+        safety = _e.SafetyMode.PROTECTIVE_STOP if protective else _e.SafetyMode.NORMAL
+        return filled(_m.MasterboardData, master_board_temperature=38.5, robot_voltage_48v=48.1,
+                      robot_current=0.9, master_io_current=0.05, master_safety_state=_e.MasterSafetyState.OK,
+                      master_on_off_state=_e.MasterOnOffState.ON, safety_mode=safety,
+                      euromap_voltage_24v=0.0, operational_mode_selector_input=1,
+                      three_position_enabling_device_input=1)
+
+    def tool(self, running: bool, protective: bool):
+        return filled(_m.ToolData, tool_voltage_48v=24.1, tool_output_voltage=24, tool_current=0.06,
+                      tool_temperature=33.0, tool_mode=_e.ToolMode.RUNNING)
+
+    def tool_comm(self, running: bool, protective: bool):
+        # The settings URSim 5.8 sends (tests/conformance, URCL's first UR5e state).
+        return filled(_m.ToolCommInfo, baud_rate=115200, parity=0, stop_bits=1, rx_idle_chars=1.5,
+                      tx_idle_chars=3.5)
+
+    def tool_mode(self, running: bool, protective: bool):
+        return filled(_m.ToolModeInfo, output_mode=0, digital_output_mode_output_0=1,
+                      digital_output_mode_output_1=1)
 
     def configuration(self, running: bool, protective: bool):
         limits = [filled(_m.JointPositionLimit, joint_min_limit=-2 * math.pi, joint_max_limit=2 * math.pi)
                   for _ in range(JOINTS)]
         motion = [filled(_m.JointMotionLimit, joint_max_speed=math.pi, joint_max_acceleration=40.0)
                   for _ in range(JOINTS)]
+        m, board = self.model, self.board
         return filled(_m.ConfigurationData, joint_position_limits=limits, joint_motion_limits=motion,
                       v_joint_default=1.05, a_joint_default=1.4, v_tool_default=0.25, a_tool_default=1.2,
-                      eq_radius=0.02)
+                      eq_radius=0.02, dh_a=list(m.dh_a), dh_d=list(m.dh_d), dh_alpha=list(m.dh_alpha),
+                      dh_theta=list(m.dh_theta), masterboard_version=board.masterboard_version,
+                      controller_box_type=board.controller_box_type, robot_type=m.robot_type,
+                      robot_sub_type=board.robot_sub_type,
+                      motor_type=[2] * JOINTS)  # CB2 1.8 only: 2 for each joint, as the CustusX capture
 
     def program(self, phase: int, run: int, stops: bool) -> Iterator[bytes]:
         ts = self.millis()
@@ -164,20 +233,19 @@ class Controller:
             yield self.encode(filled(_m.GlobalVariablesUpdateMessage, timestamp=ts, start_index=0,
                                      variables=self.variables(run, phase)))
         if stops and phase == 50:
-            yield self.safety_mode(ts, "PROTECTIVE_STOP", 3)
+            yield self.safety_mode(ts, _e.SafetyMode.PROTECTIVE_STOP)
             yield self.encode(filled(_m.KeyMessage, timestamp=ts, source=SOURCE, title="PROGRAM_XXX_STOPPED",
                                      text="demo"))
         elif stops and phase == 60:
-            yield self.safety_mode(ts, "NORMAL", 1)
+            yield self.safety_mode(ts, _e.SafetyMode.NORMAL)
         elif not stops and phase == 80:
             yield self.encode(filled(_m.KeyMessage, timestamp=ts, source=SOURCE, title="PROGRAM_XXX_STOPPED",
                                      text="demo"))
 
-    def safety_mode(self, ts: int, mode: str, default: int) -> bytes:
-        code = _enum_value("SAFETY_MODE_BY_VALUE", self.version, mode, default)
+    def safety_mode(self, ts: int, mode: _e.SafetyMode) -> bytes:
         return self.encode(filled(_m.SafetyModeMessage, timestamp=ts, source=SOURCE, robot_message_code=209,
-                                  robot_message_argument=0, safety_mode_type=code, report_data_type=0,
-                                  report_data=0, text=mode.replace("_", " ").lower()))
+                                  robot_message_argument=0, safety_mode_type=mode, report_data_type=0,
+                                  report_data=0, text=mode.name.replace("_", " ").lower()))
 
     def variables(self, run: int, phase: int) -> list:
         c = self.value_codes
@@ -193,5 +261,11 @@ class Controller:
 _BUILDERS = {
     _m.RobotModeData: Controller.robot_mode,
     _m.JointData: Controller.joints,
+    _m.CartesianInfo: Controller.cartesian,
+    _m.KinematicsInfo: Controller.kinematics,
+    _m.MasterboardData: Controller.masterboard,
+    _m.ToolData: Controller.tool,
+    _m.ToolCommInfo: Controller.tool_comm,
+    _m.ToolModeInfo: Controller.tool_mode,
     _m.ConfigurationData: Controller.configuration,
 }

@@ -197,6 +197,8 @@ typedef struct urwire__message_type {
     size_t body;                    /* where the subtype's layout starts: the header's size */
     const urwire__form_table *forms; /* its subtypes' */
     const urwire__span *header;     /* the header's fields, for a message too short for them */
+    /* The three header functions are NULL for a body message: one layout right after the
+     * message header, with no header fields and no subtype byte, its subtype code `code`. */
     /* Reads the header into m->header and returns the subtype code. */
     int64_t (*read_header)(urwire_message *m);
     /* The header's fields, the subtype first when it is not named by a layout. */

@@ -1,9 +1,10 @@
 -- Messages: spec.messages holds one data table per message type, and its kind names the pair
 -- of functions that dissect it: info (the Info column text, from the raw bytes; nil when `text`
--- is false, when no column is built) and tree (the fields under the message's item). Two kinds:
+-- is false, when no column is built) and tree (the fields under the message's item). Three kinds:
 --   packages  a list of sub-packages, each framed by its own length (robot state);
 --   subtypes  a header, then a subtype byte that chooses the layout of the rest (robot
---             messages, program-state messages).
+--             messages, program-state messages);
+--   body      one layout right after the message header (message types 5, 22, 23, 24).
 local spec, rt = ...
 local fmt, byte = string.format, string.byte
 local be_int, walk, version_text = rt.be_int, rt.walk, rt.version_text
@@ -212,6 +213,26 @@ KINDS.subtypes = {
         if s.needs_version then show_version(item, st) end
         walk_body(tvb, item, body, e, st, s.layout, s.name, use)
         return item   -- where the subtype's fields are
+    end,
+}
+
+-- m: { code = the message type, also the one code of forms; body_offset = where the layout
+-- starts; forms = { [code] = its forms, each of = { name, label, item, layout, needs_version } } }.
+KINDS.body = {
+    info = function(m, tvb, raw, o, e, st, text)
+        if not text then return nil end
+        local form, use = choose(m.forms[m.code], e - o - m.body_offset, st.version)
+        return labelled(form.of.label, layout_summary(tvb, raw, o + m.body_offset, e, form.of.layout, use))
+    end,
+    tree = function(m, tvb, tree, o, e, st)
+        local body = o + m.body_offset
+        local form, use, by_length = choose(m.forms[m.code], e - body, st.version)
+        local s = form.of
+        local item = add(tree, s.item, range_of(tvb, body, e - body))
+        if by_length then note_length(item, form, e - o) end
+        if s.needs_version then show_version(item, st) end
+        walk_body(tvb, item, body, e, st, s.layout, s.name, use)
+        return item   -- where the layout's fields are
     end,
 }
 

@@ -6,6 +6,7 @@ Every build uses the strict flags the library promises to pass (C99, -Wall -Wext
 from __future__ import annotations
 
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -21,7 +22,8 @@ CLI = ROOT / "tools" / "urwire-decode"
 CLI_SOURCES = sorted(CLI.glob("*.c"))           # main.c and what it links
 CLI_LIBRARY = [p for p in CLI_SOURCES if p.name != "main.c"]   # the same, for the test driver
 JSON = [CLI / "json.c", CLI / "shortest.c"]  # the JSON writer and the float digits it prints
-OUT = ROOT / "build" / "c-tests"
+# One folder per test process (pytest-xdist names its workers), so parallel runs never build over each other.
+OUT = ROOT / "build" / "c-tests" / os.environ.get("PYTEST_XDIST_WORKER", "main")
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Wconversion", "-Wshadow"]
 SANITIZE = ["-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-fno-omit-frame-pointer"]
 VARIANTS = {

@@ -52,7 +52,7 @@ def test_each_case_checks_the_size_of_the_form_its_row_sends(built):
     safety = next(c for c in one["cases"] if c["member"] == "safety_data")
     assert safety["check"] == "any"
     # One case per sub-package type that the row sends, each with one decoder.
-    assert len({c["type"] for c in one["cases"]}) == len(one["cases"]) == 14
+    assert len({c["type"] for c in one["cases"]}) == len(one["cases"]) == 15
 
 
 def test_a_pinned_build_has_the_one_row_of_its_version():

@@ -150,7 +150,7 @@ def _kinds() -> dict[str, tuple]:
             for pk in m.packages:
                 walk(pk.name, pk.struct.fields)
         else:
-            walk(m.name, list(m.header.fields) + [m.subtype])
+            walk(m.name, list(m.header.fields) + ([m.subtype] if m.has_subtype else []))
             for st in m.subtypes:
                 walk(st.name, list(m.header.fields) + list(st.struct.fields))
     return out
@@ -326,7 +326,8 @@ def to_records(u: dict) -> list[dict]:
                 rec = {k: v for k, v in rec.items() if k in hdr or k == "type"}
                 rec["error"] = errs[0].split(": ", 1)[1]
                 rec["raw"] = _hex(obj.get("ur.raw", ""))
-            rec.pop(m.subtype.name, None)
+            if m.has_subtype:
+                rec.pop(m.subtype.name, None)
             return [rec]
     if errors:   # too short for its own header
         return [{"type": "unknown", "message_type": mtype, "error": errors[0], "raw": _hex(u.get("ur.raw", ""))}]

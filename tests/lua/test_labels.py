@@ -5,7 +5,8 @@ from __future__ import annotations
 import re
 import subprocess
 
-from tests.lua.harness import PLUGIN, ROOT, run_tshark
+from tests.lua.harness import PLUGIN, ROOT, run_tshark, write_sessions
+from tests.vectors import golden_cases
 
 SAMPLES = [ROOT / "dissector" / "samples" / name for name in ("primary_session.pcapng", "secondary_session.pcap")]
 SNAKE = re.compile(r"\b[a-z][a-z0-9]*_[a-z0-9_]+\b")
@@ -66,3 +67,29 @@ def test_descriptions_come_from_the_spec():
     assert rows["ur.masterboard_data.digital_input_bits"][7].startswith("Bits 0-7 standard")
     assert rows["ur.masterboard_data.digital_input_bits.tool_1"][1] == "Tool 1"
     assert not [name for name, cols in rows.items() if SNAKE.search(cols[1])]
+
+
+def test_undocumented_parts_are_named_and_marked():
+    # Sub-package 14 of the bundled 5.11 capture: named, marked, its fields filterable with units.
+    text = run_tshark(SAMPLES[0], "-O", "ur", "-Y", "ur.payload_info.mass == 1", "-c", "8")
+    assert re.search(r"^\s+Payload info \(undocumented, inferred\)$", text, re.M)
+    assert re.search(r"^\s+Payload mass: 1 kg$", text, re.M)
+    assert re.search(r"^\s+Payload inertia: 0\.001539 kg·m²$", text, re.M)
+    assert "Unknown package" not in text
+
+
+def test_undocumented_messages_are_named_in_the_info_column(tmp_path):
+    # The stream a real CB3 3.10 opens with: Version, robot message 12, message type 24; then
+    # types 5, 22 and 23 (the golden vectors' bytes, each whole message in a segment of its own).
+    cases = {c.name: c for c in golden_cases()}
+    data = cases["safety_compliance_tolerances_cb3_3_10"].data + cases["undocumented_message_types"].data
+    pcap = write_sessions(tmp_path / "undocumented.pcap", [[data]])
+    info = run_tshark(pcap, "-Y", "ur", "-T", "fields", "-e", "_ws.col.Info").strip()
+    assert info == ("Version: URControl 3.10.0.0; Robot message 12 (undocumented); "
+                    "Safety compliance tolerances (undocumented, inferred); Modbus info (undocumented); "
+                    "HMC (undocumented); Safety setup broadcast (undocumented); Type 255 (DISCONNECT); Text: still in sync")
+    fields = run_tshark(pcap, "-Y", "ur", "-T", "fields", "-E", "aggregator=;",
+                        "-e", "ur.safety_compliance_tolerances.tolerances", "-e", "ur.modbus_info.raw").strip()
+    tolerances, modbus = fields.split("\t")
+    assert [float(v) for v in tolerances.split(";")][:4] == [0.15, 25.0, 0.0, 3.0]
+    assert modbus.replace(":", "") == "00000000"

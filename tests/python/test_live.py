@@ -72,6 +72,10 @@ def test_serve_listen(software, tmp_path):
     # Kinematics and configuration come once, in the first state.
     assert states[0].package(urwire.KinematicsInfo) and states[0].package(urwire.ConfigurationData)
     assert not any(s.package(urwire.ConfigurationData) for s in states[1:])
+    # A real arm's kinematics and identity arrived (ur5 on 1.8 and 3.15, ur5e on 5.11).
+    kinematics, configuration = states[0].package(urwire.KinematicsInfo), states[0].package(urwire.ConfigurationData)
+    assert kinematics.dh_a[1] == -0.425 and all(kinematics.checksum) and configuration.robot_type == 1
+    assert configuration.dh_d == kinematics.dh_d and configuration.masterboard_version > 0
     # The joints move, within their limits.
     q = [[j.q_actual for j in s.package(urwire.JointData).joints] for s in states]
     assert all(q[0][j] != q[-1][j] for j in range(6))
@@ -133,8 +137,9 @@ def test_listen_reconnects(tmp_path):
 
 @pytest.mark.skipif(shutil.which("dumpcap") is None or shutil.which("tshark") is None,
                     reason="needs dumpcap and tshark (scripts/setup.sh installs them)")
-def test_capture_on_loopback_dissects_cleanly(tmp_path):
-    server, port = start_server("5.11")
+@pytest.mark.parametrize("software", ["5.11", "10.14"])  # 10.14: the hardware info message too
+def test_capture_on_loopback_dissects_cleanly(software, tmp_path):
+    server, port = start_server(software)
     pcap = tmp_path / "live.pcapng"
     cap = subprocess.Popen(["dumpcap", "-q", "-i", "lo", "-f", f"tcp port {port}", "-w", str(pcap)],
                            stderr=subprocess.PIPE, text=True)

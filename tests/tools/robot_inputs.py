@@ -8,6 +8,7 @@ states give other files; `megabytes` counts the stream, so a capture is somewhat
 from __future__ import annotations
 
 import hashlib
+import os
 import sys
 from pathlib import Path
 
@@ -56,7 +57,9 @@ def raw_stream(megabytes: int, states: list[bytes] | None = None) -> Path:
     path = _name(states, megabytes, "bin")
     if not path.is_file():
         BUILD.mkdir(exist_ok=True)
-        path.write_bytes(b"".join(_repeated(states, megabytes)))
+        partial = path.with_suffix(f".{os.getpid()}.partial")   # another test process may build it too
+        partial.write_bytes(b"".join(_repeated(states, megabytes)))
+        partial.replace(path)
     return path
 
 
@@ -67,7 +70,7 @@ def capture(megabytes: int, pcapng: bool = False, states: list[bytes] | None = N
     path = _name(states, megabytes, "pcapng" if pcapng else "pcap")
     if not path.is_file():
         BUILD.mkdir(exist_ok=True)
-        partial = path.with_suffix(".partial")
+        partial = path.with_suffix(f".{os.getpid()}.partial")
         pcap.write(partial, pcap.robot_session(_repeated(states, megabytes)), pcapng=pcapng)
-        partial.rename(path)
+        partial.replace(path)
     return path

@@ -129,7 +129,8 @@ def message(rng: random.Random, version: tuple[int, int, int] = PROTOCOL.default
     else:
         sub = rng.choice([s for s in m.subtypes if s.versions.contains(version)])
         header = b"".join(gen.field(f, {}) for f in m.header.fields)
-        body = header + struct.pack(">B", sub.code.value) + gen.struct(sub.struct, sub.sets_version or ())
+        subtype = struct.pack(">B", sub.code.value) if m.has_subtype else b""   # none in a body message
+        body = header + subtype + gen.struct(sub.struct, sub.sets_version or ())
     return struct.pack(">iB", len(body) + 5, m.code.value) + body
 
 

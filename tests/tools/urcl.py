@@ -1,0 +1,54 @@
+"""UR's own client library (URCL, github.com/UniversalRobots/Universal_Robots_Client_Library) as
+a test client: `primary_client(source, out)` builds tests/urcl/primary_client.cpp against the
+primary-interface part of a URCL checkout, once per checkout and program change.
+
+No package registry ships URCL, so the tests that use it take a checkout from URCL_SOURCE.
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import subprocess
+from pathlib import Path
+from typing import Optional
+
+ROOT = Path(__file__).resolve().parents[2]
+PROGRAM = ROOT / "tests" / "urcl" / "primary_client.cpp"
+# What the primary parser and its stream need: the packages, the socket, the log.
+SOURCES = ["src/comm/tcp_socket.cpp", "src/log.cpp", "src/default_log_handler.cpp", "src/helpers.cpp",
+           "src/types.cpp", "src/ur/version_information.cpp", "src/primary/primary_package.cpp",
+           "src/primary/robot_message.cpp", "src/primary/robot_state.cpp"]
+SOURCE_DIRS = ["src/primary/robot_message", "src/primary/robot_state"]
+# URCL's CMake writes this header; the primary parser reads one flag of it (off: URCL's default).
+COMPILE_OPTIONS = """#pragma once
+#define PRIMARY_CLIENT_STRICT_PARSING_ 0
+namespace urcl
+{
+struct CompileOptions
+{
+  constexpr static bool PRIMARY_CLIENT_STRICT_PARSING = static_cast<bool>(PRIMARY_CLIENT_STRICT_PARSING_);
+};
+inline constexpr CompileOptions COMPILE_OPTIONS;
+}  // namespace urcl
+"""
+
+
+def source_dir() -> Optional[Path]:
+    """The URCL checkout named by URCL_SOURCE, or None."""
+    path = os.environ.get("URCL_SOURCE")
+    return Path(path) if path and (Path(path) / "include" / "ur_client_library").is_dir() else None
+
+
+def primary_client(source: Path, out: Path) -> Path:
+    files = [source / s for s in SOURCES] + sorted(p for d in SOURCE_DIRS for p in (source / d).glob("*.cpp"))
+    stamp = hashlib.sha256(b"".join(f.read_bytes() for f in [PROGRAM, *files])).hexdigest()[:16]
+    binary = out / f"primary_client-{stamp}"
+    if binary.exists():
+        return binary
+    generated = out / "include" / "ur_client_library"
+    generated.mkdir(parents=True, exist_ok=True)
+    (generated / "compile_options.h").write_text(COMPILE_OPTIONS)
+    subprocess.run(["g++", "-std=c++17", "-O1", "-pthread", f"-I{source / 'include'}", f"-I{out / 'include'}",
+                    f"-I{source / '3rdparty'}", "-o", str(binary), str(PROGRAM), *map(str, files)],
+                   check=True, capture_output=True, text=True)
+    return binary
