@@ -21,15 +21,18 @@ def test_registered_on_its_port():
     assert INTERFACES["rtde"].conversation is rtde.Conversation
 
 
-def test_chunks_of_any_size_give_the_same_records():
-    """Every message fed in pieces of 1, 2 and 7 bytes: the same records as whole messages."""
-    whole = [urwire.to_json_line(r) for r in python_records(SESSION)]
+@pytest.mark.parametrize("case", rtde_cases(), ids=lambda c: c.name)
+def test_chunks_of_any_size_give_the_same_records(case):
+    """Every message fed in pieces of 1, 2 and 7 bytes: the same records as whole messages, stream
+    faults included (one fault per scan, however the bytes were cut)."""
+    whole = [urwire.to_json_line(r) for r in python_records(case)]
     for size in (1, 2, 7):
-        conversation = rtde.Conversation()
+        conversation = rtde.Conversation(protocol=case.protocol)
         got = []
-        for from_robot, data in SESSION.messages:
+        for from_robot, data in case.messages:
             for at in range(0, len(data), size):
                 got += conversation.feed(data[at:at + size], from_robot)
+        got += conversation.close()
         assert [urwire.to_json_line(r) for r in got] == whole, size
 
 
