@@ -116,7 +116,7 @@ class Conversation:
 
     def _make_recipe(self, kind, reply: Message) -> None:
         pending = self._pending[kind.name]
-        names = pending.popleft() if pending else None
+        names = [n for n in pending.popleft() if n] if pending else None   # an empty name names nothing
         if names is None:
             reply.note("warning", "a setup reply without a request seen: its recipe's names are unknown")
             return

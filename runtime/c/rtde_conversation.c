@@ -141,8 +141,11 @@ static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text ty
     memcpy(recipe.names, c->refused.names, c->refused.length);
     for (;;) {
         bool more_names = rtde__next_name((const uint8_t *)c->refused.names, c->refused.length, &at_names, &s1, &n1);
-        bool more_types = rtde__next_name(types.data, types.length, &at_types, &s2, &n2);
+        bool more_types;
         int t;
+        while (more_names && n1 == 0)           /* an empty name names no variable */
+            more_names = rtde__next_name((const uint8_t *)c->refused.names, c->refused.length, &at_names, &s1, &n1);
+        more_types = rtde__next_name(types.data, types.length, &at_types, &s2, &n2);
         if (!more_names || !more_types) {
             if (more_names != more_types) {
                 m->warning = "names asked and types answered differ in number";

@@ -75,7 +75,11 @@ function rt.follow(state, name, values, frame)
     elseif KIND_OF_REQUEST[name] then
         local pending = state.pending[KIND_OF_REQUEST[name]]
         if pending.last - pending.first + 1 >= spec.max_pending_setups then pop(pending) end   -- the oldest
-        push(pending, { names = rt.split(values.variables, ","), frame = frame })
+        local names = {}
+        for _, name in ipairs(rt.split(values.variables, ",")) do
+            if name ~= "" then names[#names + 1] = name end   -- an empty name names no variable
+        end
+        push(pending, { names = names, frame = frame })
     elseif KIND_OF_REPLY[name] then
         return rt.make_recipe(state, KIND_OF_REPLY[name], values, frame)
     elseif name == "start_reply" and values.accepted == 0 then

@@ -147,27 +147,40 @@ static void put_member(FILE *out, const rtde_member *mb, const uint8_t *base, bo
     }
 }
 
-/* A refused setup: {"name": "WORD", ...} for each name whose answer is no value type. */
+/* The next comma-separated item of t from *at; false at the end. */
+static bool next_item(rtde_text t, size_t *at, size_t *start, size_t *n)
+{
+    size_t i;
+    if (*at > t.length || t.length == 0)
+        return false;
+    for (i = *at; i < t.length && t.data[i] != ','; i++)
+        ;
+    *start = *at;
+    *n = i - *at;
+    *at = i + 1;
+    return true;
+}
+
+/* A refused setup: {"name": "WORD", ...} for each name whose answer is no value type (empty
+ * names name no variable and have no answer). */
 static void put_refused(FILE *out, rtde_text names, rtde_text types)
 {
-    size_t an = 0, at = 0;
+    size_t an = 0, at = 0, s1, n1, s2, n2;
     bool first = true;
     fputs(", \"refused\": {", out);
-    while (names.length && an <= names.length && at <= types.length) {
-        size_t en = an, et = at;
-        while (en < names.length && names.data[en] != ',')
-            en++;
-        while (et < types.length && types.data[et] != ',')
-            et++;
-        if (rtde_value_type_of(types.data + at, et - at) < 0) {
+    for (;;) {
+        bool more = next_item(names, &an, &s1, &n1);
+        while (more && n1 == 0)
+            more = next_item(names, &an, &s1, &n1);
+        if (!more || !next_item(types, &at, &s2, &n2))
+            break;
+        if (rtde_value_type_of(types.data + s2, n2) < 0) {
             fputs(first ? "" : ", ", out);
             first = false;
-            put_text(out, names.data + an, en - an);
+            put_text(out, names.data + s1, n1);
             fputs(": ", out);
-            put_text(out, types.data + at, et - at);
+            put_text(out, types.data + s2, n2);
         }
-        an = en + 1;
-        at = et + 1;
     }
     fputc('}', out);
 }
