@@ -2,8 +2,8 @@
 encoder (tests/tools/rtde_server.py, in a process of its own), on real loopback TCP: the client
 reads what the server sent, and urwire's Conversation decodes the whole exchange with no error.
 
-The client comes from the package `ur-rtde`, installed in a venv by hand (`pip install ur-rtde`);
-the test is skipped, with that reason, where it is missing."""
+The client comes from the package `ur-rtde` (PyPI);
+requirements-dev.txt installs it; the test is skipped, with that reason, where it is missing."""
 from __future__ import annotations
 
 import json
