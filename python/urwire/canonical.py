@@ -473,6 +473,8 @@ class _Writers(dict):
 
     def __missing__(self, cls: type) -> Callable[[Any], str]:
         writer = next((w for base, w in _RUNTIME_WRITERS if issubclass(cls, base)), None)
+        if writer is None and hasattr(cls, "canonical_json"):   # records of the other interfaces
+            writer = cls.canonical_json
         if writer is None:
             writer = _packages if hasattr(cls, "packages") else _compile(cls)
         self[cls] = writer

@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable, Optional, Protocol
 
+from . import rtde
 from .framer import Framer
 from .generated import ur_realtime
 from .generated.spec import PORTS
@@ -61,6 +62,7 @@ class PrimaryConversation:
 INTERFACES: dict[str, Interface] = {i.name: i for i in (
     Interface("ur", "Universal Robots primary/secondary client interface", tuple(PORTS), PrimaryConversation),
     Interface(ur_realtime.PROTOCOL, ur_realtime.TITLE, ur_realtime.PORTS, RealtimeConversation),
+    Interface(rtde.NAME, rtde.TITLE, rtde.PORTS, rtde.Conversation),
 )}
 
 
