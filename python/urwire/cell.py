@@ -36,7 +36,7 @@ def _conversation_name(key: tuple) -> str:
 def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
                        advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
     """(capture time, record) of every conversation of the capture on the ports of `by_port`.
-    A conversation closes when its robot side ends (or the capture does). The software version a
+    A conversation closes when its listening side ends (or the capture does). The software version a
     robot's primary stream announces is passed on to its other conversations (the real-time one
     chooses among layouts of one size with it)."""
     conversations: dict = {}
@@ -47,8 +47,11 @@ def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inter
         if isinstance(item, CaptureFault):  # its offset is the capture file's, not a stream's
             yield None, StreamError(item.offset, item.error)
             continue
-        key, from_robot, data, ended, time = item
+        key, from_port, data, ended, time = item
         interface = by_port[key[1]]
+        # The side that listens on the port is the robot, except on the ROS driver's sockets,
+        # where the robot connects to the control PC.
+        from_robot = from_port != interface.robot_is_client
         conv = conversations.get(key)
         if conv is None:
             if not data:                        # the end of a conversation already closed
@@ -61,7 +64,7 @@ def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inter
         learnt = getattr(conv, "software_version", None)
         if learnt is not None:
             versions[key[0]] = learnt
-        if ended and from_robot:
+        if ended and from_port:
             records = records + conv.close()
             del conversations[key]
         if interface.name == PRIMARY:

@@ -12,7 +12,7 @@ from typing import Callable, Optional, Protocol
 
 from . import rtde
 from .framer import Framer
-from .generated import ur_realtime
+from .generated import ur_dashboard, ur_realtime, ur_reverse, ur_script_command, ur_script_sender, ur_trajectory
 from .generated.spec import PORTS
 from .realtime import RealtimeConversation
 
@@ -37,6 +37,9 @@ class Interface:
     ports: tuple[int, ...]         # the controller's default ports
     conversation: Callable[..., Conversation]   # (version_hint=None) -> a fresh Conversation
     both_directions: bool = False  # a capture reader feeds it what clients send, too (RTDE)
+    # The robot is the TCP client (the ROS driver's sockets, where the control PC listens): bytes
+    # sent to the port come from the robot. Else the robot listens and sends from the port.
+    robot_is_client: bool = False
 
 
 class PrimaryConversation:
@@ -62,7 +65,10 @@ class PrimaryConversation:
 INTERFACES: dict[str, Interface] = {i.name: i for i in (
     Interface("ur", "Universal Robots primary/secondary client interface", tuple(PORTS), PrimaryConversation),
     Interface(ur_realtime.PROTOCOL, ur_realtime.TITLE, ur_realtime.PORTS, RealtimeConversation),
-    Interface(rtde.NAME, rtde.TITLE, rtde.PORTS, rtde.Conversation),
+    Interface(rtde.NAME, rtde.TITLE, rtde.PORTS, rtde.Conversation, both_directions=True),
+    Interface(ur_dashboard.NAME, ur_dashboard.TITLE, ur_dashboard.PORTS, ur_dashboard.conversation, both_directions=True),
+    *(Interface(m.NAME, m.TITLE, m.PORTS, m.conversation, both_directions=True, robot_is_client=True)
+      for m in (ur_reverse, ur_script_sender, ur_trajectory, ur_script_command)),
 )}
 
 
