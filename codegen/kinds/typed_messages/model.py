@@ -1,0 +1,158 @@
+"""The IR of a typed-messages interface (RTDE): messages per direction and protocol version, the
+value types a recipe names, how setup exchanges make recipes, and the variable table.
+
+Fields of a message body are the primary interface's `ir` fields (scalars, strings) plus the two
+this kind adds: a separated list of names, and the values of a recipe."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Optional, Union
+
+from ... import ir
+
+
+@dataclass(frozen=True)
+class ValueType:
+    """An RTDE type name (VECTOR6D) and how one value of it is laid out: count scalars."""
+    name: str
+    scalar: ir.Scalar
+    count: int
+    doc: str = ""
+
+    @property
+    def size(self) -> int:
+        return self.scalar.size * self.count
+
+
+@dataclass
+class NamesField:
+    """Names or type names joined by a separator, running to the end of the message."""
+    name: str
+    label: str
+    separator: str
+    role: Optional[str] = None          # "variables" (a setup request) or "types" (its reply)
+    doc: str = ""
+    where: ir.Where = ir.NOWHERE
+    unit: Optional[str] = None
+
+
+@dataclass
+class RecipeValuesField:
+    """The values of a data package, laid out by the package's recipe; runs to the end."""
+    name: str
+    label: str
+    doc: str = ""
+    where: ir.Where = ir.NOWHERE
+    unit: Optional[str] = None
+
+
+BodyField = Union[ir.ScalarField, ir.StringField, NamesField, RecipeValuesField]
+
+
+@dataclass
+class Message:
+    name: str
+    code: int                           # the header's type byte: an ASCII letter
+    from_robot: bool
+    protocols: tuple[int, ...]          # the negotiated protocol versions that send this layout
+    label: str
+    doc: str
+    field_note: str
+    fields: list[BodyField]
+    where: ir.Where = ir.NOWHERE
+
+    @property
+    def letter(self) -> str:
+        return chr(self.code)
+
+    @property
+    def recipe_values(self) -> Optional[RecipeValuesField]:
+        return next((f for f in self.fields if isinstance(f, RecipeValuesField)), None)
+
+    def field_named(self, name: str) -> Optional[BodyField]:
+        return next((f for f in self.fields if f.name == name), None)
+
+
+@dataclass
+class RawMessage:
+    """A type code the spec names but no public document lays out: kept whole."""
+    name: str
+    code: int
+    label: str
+    doc: str
+
+
+@dataclass
+class RecipeKind:
+    name: str                           # "outputs" or "inputs"
+    data_from_robot: bool               # which direction's data packages follow these recipes
+    requests: list[Message]
+    replies: list[Message]
+    doc: str
+
+
+@dataclass
+class Refusal:
+    word: str                           # what a setup reply says in place of a type: NOT_FOUND
+    doc: str
+
+
+UNKNOWN = "unknown"                     # a first version the sources do not give
+NONE = "none"                           # not in that generation at all
+
+
+@dataclass
+class Variable:
+    name: str
+    value_type: ValueType
+    direction: str                      # "input" (the client writes it) or "output"
+    label: str
+    unit: Optional[str]
+    doc: str
+    since: dict[str, Union[ir.Version, str]]   # generation -> first version, UNKNOWN or NONE
+    where: ir.Where = ir.NOWHERE
+
+    def since_text(self, generation: str) -> str:
+        first = self.since[generation]
+        return first if isinstance(first, str) else ir.version_text(first)
+
+
+@dataclass
+class Generation:
+    name: str
+    label: str
+    first: ir.Version                   # the first version RTDE has in this generation
+
+
+@dataclass
+class Interface:
+    """Everything a target needs about one typed-messages interface."""
+    name: str
+    title: str
+    doc: str
+    ports: tuple[int, ...]
+    protocol_versions: tuple[int, ...]
+    default_protocol_version: int
+    length: ir.Scalar
+    type: ir.Scalar
+    length_counts_header: bool
+    enums: list[ir.Enum]
+    value_types: list[ValueType]
+    messages: list[Message]
+    undocumented: list[RawMessage]
+    recipe_kinds: list[RecipeKind]
+    refusals: list[Refusal]
+    generations: list[Generation]
+    max_pending_setups: int = 1         # setup requests of one kind a connection keeps awaiting replies
+    variables: list[Variable] = field(default_factory=list)
+
+    @property
+    def header_size(self) -> int:
+        return self.length.size + self.type.size
+
+    @property
+    def max_message_length(self) -> int:
+        return self.length.max
+
+    def recipe_kind_of_data(self, from_robot: bool) -> RecipeKind:
+        return next(k for k in self.recipe_kinds if k.data_from_robot == from_robot)

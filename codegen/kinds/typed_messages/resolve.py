@@ -1,0 +1,155 @@
+"""LoadedSpec -> the typed-messages IR (model.Interface), checking what the schema cannot.
+
+Enums and scalar/string fields go through the primary resolver (codegen.resolve._Resolver), so
+they become the same ir.Enum and ir.Field objects; every problem names its YAML path and line."""
+from __future__ import annotations
+
+from ... import ir
+from ...errors import SpecError
+from ...load import LoadedSpec
+from ...resolve import _Resolver
+from . import model
+
+# Where RTDE begins in each generation: a variable without `since` is there from these on.
+_FIRST = {"cb3": ir.parse_version("3.3"), "eseries": ir.parse_version("5.0")}
+
+
+class _TypedResolver(_Resolver):
+
+    def resolve_interface(self) -> model.Interface:
+        data = self.spec.data
+        proto, framing = data["protocol"], data["framing"]
+        for name, raw in (data.get("enums") or {}).items():
+            self.enums[name] = self.enum(name, raw)
+        if proto["default_protocol_version"] not in proto["protocol_versions"]:
+            self.fail(["protocol", "default_protocol_version"], "is not one of protocol_versions")
+        value_types = self.value_types(data["value_types"])
+        messages = [self.message(raw, ["messages", i], proto["protocol_versions"])
+                    for i, raw in enumerate(data["messages"])]
+        self.check_dispatch(messages)
+        by_name = {m.name: m for m in messages}
+        undocumented = [model.RawMessage(r["name"], ord(r["code"]), r["label"], r["doc"])
+                        for r in data.get("undocumented", [])]
+        for i, raw in enumerate(undocumented):
+            if any(m.code == raw.code for m in messages):
+                self.fail(["undocumented", i, "code"], f"code {chr(raw.code)!r} has a layout in messages")
+        kinds = [self.recipe_kind(raw, ["recipes", "kinds", i], by_name)
+                 for i, raw in enumerate(data["recipes"]["kinds"])]
+        if sorted(k.data_from_robot for k in kinds) != [False, True]:
+            self.fail(["recipes", "kinds"], "needs one recipe kind for each direction's data packages")
+        refusals = [model.Refusal(r["word"], r["doc"]) for r in data["recipes"]["refusals"]]
+        generations = [model.Generation(g["name"], g["label"], _FIRST.get(g["name"], (0, 0, 0)))
+                       for g in data.get("generations", [])]
+        variables = self.variables(data["variables"], {t.name: t for t in value_types}, generations)
+        return model.Interface(
+            name=proto["name"], title=proto["title"], doc=proto["doc"], ports=tuple(proto["ports"]),
+            protocol_versions=tuple(proto["protocol_versions"]),
+            default_protocol_version=proto["default_protocol_version"],
+            length=ir.SCALARS[framing["length"]], type=ir.SCALARS[framing["type"]],
+            length_counts_header=framing["length_counts_header"], enums=list(self.enums.values()),
+            value_types=value_types, messages=messages, undocumented=undocumented, recipe_kinds=kinds,
+            refusals=refusals, generations=generations, max_pending_setups=data["recipes"]["max_pending_setups"],
+            variables=variables)
+
+    def value_types(self, raws) -> list[model.ValueType]:
+        out = []
+        for i, raw in enumerate(raws):
+            if any(t.name == raw["name"] for t in out):
+                self.fail(["value_types", i, "name"], f"duplicate value type {raw['name']}")
+            out.append(model.ValueType(raw["name"], ir.SCALARS[raw["scalar"]], raw["count"], raw["doc"]))
+        return out
+
+    def message(self, raw: dict, parts, all_protocols) -> model.Message:
+        protocols = tuple(raw.get("protocols", all_protocols))
+        for p in protocols:
+            if p not in all_protocols:
+                self.fail(parts + ["protocols"], f"protocol {p} is not one of protocol_versions")
+        fields = []
+        for i, f in enumerate(raw.get("fields", [])):
+            where = parts + ["fields", i]
+            if f["type"] == "names":
+                fields.append(model.NamesField(f["name"], f["label"], f.get("separator", ","), f.get("role"),
+                                               f.get("doc", ""), self.where(where)))
+            elif f["type"] == "recipe_values":
+                fields.append(model.RecipeValuesField(f["name"], f["label"], f.get("doc", ""), self.where(where)))
+            else:
+                resolved = self.field(f, where, [x for x in fields if isinstance(x, ir.Field)])
+                if not isinstance(resolved, (ir.ScalarField, ir.StringField)) or resolved.conditional:
+                    self.fail(where, "a message field here is a scalar or a string, present in every version")
+                fields.append(resolved)
+            if len(fields) > 1 and _runs_to_end(fields[-2]):
+                self.fail(where, f"field '{f['name']}' follows '{fields[-2].name}', which runs to the end")
+        return model.Message(raw["name"], ord(raw["code"]), raw["from_robot"], protocols, raw["label"],
+                             raw.get("doc", ""), raw.get("field_note", ""), fields, self.where(parts))
+
+    def check_dispatch(self, messages: list[model.Message]) -> None:
+        """A type code, direction and protocol version choose exactly one layout."""
+        seen: dict[tuple, str] = {}
+        for i, m in enumerate(messages):
+            if any(o.name == m.name for o in messages[:i]):
+                self.fail(["messages", i, "name"], f"duplicate message name {m.name}")
+            for p in m.protocols:
+                key = (m.code, m.from_robot, p)
+                if key in seen:
+                    self.fail(["messages", i], f"'{m.letter}' {'from' if m.from_robot else 'to'} the robot in "
+                                               f"protocol {p} is already '{seen[key]}'")
+                seen[key] = m.name
+
+    def recipe_kind(self, raw: dict, parts, by_name: dict) -> model.RecipeKind:
+        def named(names, key, want_role, from_robot):
+            out = []
+            for j, name in enumerate(names):
+                m = by_name.get(name)
+                if m is None:
+                    self.fail(parts + [key, j], f"unknown message '{name}'")
+                    continue
+                roles = [f.role for f in m.fields if isinstance(f, model.NamesField)]
+                if want_role not in roles or m.from_robot != from_robot:
+                    self.fail(parts + [key, j], f"'{name}' must be a message {'from' if from_robot else 'to'} "
+                                                f"the robot with a names field of role '{want_role}'")
+                out.append(m)
+            return out
+        return model.RecipeKind(raw["name"], raw["data_from_robot"],
+                                named(raw["requests"], "requests", "variables", False),
+                                named(raw["replies"], "replies", "types", True), raw["doc"])
+
+    def variables(self, raws, types: dict, generations) -> list[model.Variable]:
+        out: list[model.Variable] = []
+        seen: set[tuple[str, str]] = set()
+        for i, raw in enumerate(raws):
+            parts = ["variables", i]
+            vt = types.get(raw["type"])
+            if vt is None:
+                self.fail(parts + ["type"], f"unknown value type {raw['type']}")
+                continue
+            since = {}
+            for g in generations:
+                given = (raw.get("since") or {}).get(g.name)
+                since[g.name] = given if given in (model.UNKNOWN, model.NONE) else \
+                    (ir.parse_version(given) if given else g.first)
+            pattern, indices = raw["name"], raw.get("indices")
+            if ("{n}" in pattern) != (indices is not None):
+                self.fail(parts, "a name with {n} needs 'indices: [first, last]', and only such a name")
+                continue
+            names = [(pattern.replace("{n}", str(n)), f"{raw['label']} {n}")
+                     for n in range(indices[0], indices[1] + 1)] if indices else [(pattern, raw["label"])]
+            for name, label in names:
+                if (name, raw["direction"]) in seen:
+                    self.fail(parts + ["name"], f"variable {name} ({raw['direction']}) is listed twice")
+                seen.add((name, raw["direction"]))
+                out.append(model.Variable(name, vt, raw["direction"], label, raw.get("unit"), raw.get("doc", ""),
+                                          since, self.where(parts)))
+        return out
+
+
+def _runs_to_end(f) -> bool:
+    return isinstance(f, (model.NamesField, model.RecipeValuesField)) or \
+        (isinstance(f, ir.StringField) and f.length is None)
+
+
+def resolve(spec: LoadedSpec) -> model.Interface:
+    r = _TypedResolver(spec)
+    interface = r.resolve_interface()
+    if r.problems:
+        raise SpecError(spec.source, r.problems)
+    return interface

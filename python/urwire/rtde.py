@@ -1,0 +1,170 @@
+"""RTDE (port 30004): one connection's state and the client's side of it.
+
+`Conversation` decodes both directions of one connection, fed per direction as bytes arrive. It
+keeps what RTDE's messages depend on: the negotiated protocol version (1 or 2) and the recipes,
+each made from a setup request's variable names and its reply's types (urwire.generated.rtde's
+RECIPE_KINDS say which messages those are). Data packages come out with their values by variable
+name; one of a recipe the connection never set up is kept raw with an error; a setup reply that
+refuses names (NOT_FOUND, IN_USE) is noted and makes no recipe. Data packages may arrive between
+a request and its reply: replies are matched to requests of their own kind, in order.
+
+The functions at the end build what a client sends: `setup_outputs(["actual_q"], 125.0)`.
+"""
+from __future__ import annotations
+
+from collections import deque
+from typing import Optional
+
+from .generated import rtde as _g
+from .typed_records import DecodeError, Framer, Message, RawMessage, Recipe
+
+__all__ = ["Conversation", "Recipe", "VARIABLES", "variable", "request_protocol_version", "setup_outputs",
+           "setup_inputs", "start", "pause", "input_data", "send_text_message"]
+
+NAME, TITLE, PORTS = _g.NAME, _g.TITLE, _g.PORTS
+VARIABLES = _g.VARIABLES
+_KNOWN_CODES = frozenset({code for code, _, _ in _g.MESSAGES} | set(_g.UNDOCUMENTED))
+_KIND_OF_REQUEST = {cls: kind for kind in _g.RECIPE_KINDS for cls in kind.requests}
+_KIND_OF_REPLY = {cls: kind for kind in _g.RECIPE_KINDS for cls in kind.replies}
+_DATA = 85  # 'U'
+
+
+def variable(name: str, direction: str = "output") -> Optional[_g._r.Variable]:
+    """The row of the variable table with this name and direction, if any."""
+    return _VARIABLE_INDEX.get((name, direction))
+
+
+_VARIABLE_INDEX = {(v.name, v.direction): v for v in VARIABLES}
+
+
+class Conversation:
+    """One RTDE connection. `protocol` is the version in force: given, or negotiated, or until then
+    DEFAULT_PROTOCOL_VERSION for a capture that starts after the version exchange."""
+
+    def __init__(self, version_hint=None, protocol: Optional[int] = None):
+        self.protocol: Optional[int] = protocol        # None until given or negotiated
+        self._framers = {True: Framer(_KNOWN_CODES), False: Framer(_KNOWN_CODES)}
+        self._asked_version: deque = deque()
+        self._pending: dict[str, deque] = {kind.name: deque(maxlen=_g.MAX_PENDING_SETUPS)
+                                           for kind in _g.RECIPE_KINDS}
+        self.recipes: dict[str, dict[Optional[int], Recipe]] = {kind.name: {} for kind in _g.RECIPE_KINDS}
+        self.count = 0                                 # records given out so far, both directions
+
+    @property
+    def protocol_in_force(self) -> int:
+        return self.protocol if self.protocol is not None else _g.DEFAULT_PROTOCOL_VERSION
+
+    def feed(self, data, from_robot: bool) -> list:
+        out = []
+        for item in self._framers[bool(from_robot)].feed(data):
+            record = item if not isinstance(item, tuple) else self._message(item[1], item[2], bool(from_robot))
+            out.append(record)
+            self.count += 1
+        return out
+
+    def close(self) -> list:
+        out = self._framers[True].close() + self._framers[False].close()
+        self.count += len(out)
+        return out
+
+    # ---- one message ----
+
+    def _message(self, code: int, raw: bytes, from_robot: bool):
+        protocol = self.protocol_in_force
+        cls = _g.MESSAGES.get((code, from_robot, protocol))
+        if cls is None:
+            name = _g.UNDOCUMENTED.get(code, ("unknown",))[0]
+            return RawMessage(name, code, raw)
+        recipe = self._recipe_of(cls, raw) if code == _DATA else None
+        if code == _DATA and recipe is None:
+            recipe_id = raw[3] if cls.JSON[0][0] == "recipe_id" and len(raw) > 3 else None
+            return RawMessage(cls.NAME, code, raw, "data package of a recipe this connection did not set up",
+                              recipe_id)
+        try:
+            record = cls.decode_body(raw, _g.HEADER.size, len(raw), recipe)
+        except DecodeError as exc:
+            return RawMessage(cls.NAME, code, raw, exc.text)
+        if recipe is not None:
+            record.note("recipe", recipe)
+        self._follow(record)
+        return record
+
+    def _recipe_of(self, cls: type, raw: bytes) -> Optional[Recipe]:
+        kind = _g.OUTPUTS if cls.FROM_ROBOT else _g.INPUTS
+        recipes = self.recipes[kind.name]
+        if cls.JSON[0][0] != "recipe_id":
+            return recipes.get(None)
+        return recipes.get(raw[3]) if len(raw) > 3 else None
+
+    def _follow(self, record: Message) -> None:
+        """What a message changes in the connection's state."""
+        cls = type(record)
+        if cls is _g.RequestProtocolVersion:
+            self._asked_version.append(record.protocol_version)
+        elif cls is _g.RequestProtocolVersionReply:
+            asked = self._asked_version.popleft() if self._asked_version else None
+            if record.accepted and asked is not None:
+                self.protocol = asked
+            elif not record.accepted and self.protocol is None:
+                self.protocol = 1                       # the robot keeps protocol 1 until one is accepted
+        elif cls in _KIND_OF_REQUEST:
+            self._pending[_KIND_OF_REQUEST[cls].name].append(record.variables)
+        elif cls in _KIND_OF_REPLY:
+            self._make_recipe(_KIND_OF_REPLY[cls], record)
+        elif cls is _g.StartReply and not record.accepted:
+            record.note("warning", "the robot refused to start")
+
+    def _make_recipe(self, kind, reply: Message) -> None:
+        pending = self._pending[kind.name]
+        names = [n for n in pending.popleft() if n] if pending else None   # an empty name names nothing
+        if names is None:
+            reply.note("warning", "a setup reply without a request seen: its recipe's names are unknown")
+            return
+        if len(names) != len(reply.types):
+            reply.note("warning", "names asked and types answered differ in number")
+            return
+        refused = [(n, t) for n, t in zip(names, reply.types) if t in _g.REFUSALS or t not in _g.VALUE_TYPES]
+        if refused:
+            reply.note("refused", refused)
+            return
+        recipe_id = getattr(reply, "recipe_id", None)
+        self.recipes[kind.name][recipe_id] = Recipe(recipe_id, kind.name, names, reply.types, _g.VALUE_TYPES,
+                                                    self.count)
+
+
+# ---- what a client sends -----------------------------------------------------------------------
+
+def request_protocol_version(version: int = 2) -> bytes:
+    return _g.RequestProtocolVersion(version).encode()
+
+
+def get_controller_version() -> bytes:
+    return _g.GetUrcontrolVersion().encode()
+
+
+def setup_outputs(names: list[str], frequency: Optional[float] = 125.0, protocol: int = 2) -> bytes:
+    """Ask for output variables (protocol 2: at `frequency` Hz; protocol 1 has no frequency)."""
+    if protocol == 1:
+        return _g.SetupOutputsV1(list(names)).encode()
+    return _g.SetupOutputs(float(frequency), list(names)).encode()
+
+
+def setup_inputs(names: list[str]) -> bytes:
+    return _g.SetupInputs(list(names)).encode()
+
+
+def start() -> bytes:
+    return _g.Start().encode()
+
+
+def pause() -> bytes:
+    return _g.Pause().encode()
+
+
+def send_text_message(message: str, source: str = "urwire", level: int = 3) -> bytes:
+    return _g.SendTextMessage(message, source, level).encode()
+
+
+def input_data(recipe: Recipe, values: dict) -> bytes:
+    """An input data package for an input recipe the robot accepted; `values` by variable name."""
+    return _g.InputDataPackage(recipe.id, dict(values)).encode(recipe)

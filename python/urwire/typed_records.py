@@ -1,0 +1,261 @@
+"""The runtime of the typed-messages interfaces (RTDE): what every generated message class needs.
+
+A generated module (urwire.generated.rtde) holds one class per layout; this module gives them
+their base class, the readers and writers of their fields, recipes (the values of a data package
+laid out by a setup exchange), a framer per direction, and the records that decoding makes of
+what no layout fits. Connection state lives in the interface's own module (urwire.rtde).
+"""
+from __future__ import annotations
+
+import struct
+from dataclasses import dataclass
+from typing import Any, Iterator, Optional
+
+from . import _runtime as _rt
+from ._runtime import DecodeError, StreamError
+from .typed_json import message_json, raw_json
+
+short = _rt.short
+read_prefixed_text = _rt.read_prefixed_text
+write_prefixed_text = _rt.write_prefixed_text
+
+
+# ---- the tables a generated module fills --------------------------------------------------------
+
+@dataclass(frozen=True)
+class ValueType:
+    """An RTDE type name and its layout: `count` values of the struct code `code`."""
+    name: str
+    code: str
+    count: int
+    kind: str                      # int | float | bool: how JSON writes one item
+
+    @property
+    def size(self) -> int:
+        return struct.calcsize(">" + self.code) * self.count
+
+
+@dataclass(frozen=True)
+class Variable:
+    """One row of the variable table."""
+    name: str
+    type: str
+    direction: str                 # "input": the client writes it; "output": the robot sends it
+    label: str
+    unit: Optional[str]
+    since: dict                    # generation -> first version, "none" or "unknown"
+
+
+@dataclass(frozen=True)
+class RecipeKind:
+    """Outputs or inputs: which setup messages make these recipes, and whose data follow them."""
+    name: str
+    data_from_robot: bool
+    requests: tuple
+    replies: tuple
+
+
+class Recipe:
+    """A recipe of one connection: its id (None for protocol 1's one output recipe), the variable
+    names and their types in order, and where it was set up (the setup reply's index among the
+    connection's records)."""
+
+    __slots__ = ("id", "kind", "names", "types", "defined_at", "_struct", "_shapes")
+
+    def __init__(self, recipe_id: Optional[int], kind: str, names: list, types: list,
+                 value_types: dict, defined_at: int = -1):
+        self.id, self.kind, self.names, self.types = recipe_id, kind, tuple(names), tuple(types)
+        self.defined_at = defined_at
+        shapes = [value_types[t] for t in types]
+        self._shapes = tuple(shapes)
+        self._struct = struct.Struct(">" + "".join(s.code * s.count for s in shapes))
+
+    @property
+    def size(self) -> int:
+        return self._struct.size
+
+    def decode(self, buf, pos: int, end: int) -> tuple[dict, int]:
+        if pos + self._struct.size > end:
+            raise short("values", pos, self._struct.size, end)
+        flat = self._struct.unpack_from(buf, pos)
+        values, at = {}, 0
+        for name, shape in zip(self.names, self._shapes):
+            if shape.count == 1:
+                values[name] = _rt.BOOL[flat[at]] if shape.kind == "bool" else flat[at]
+            else:
+                values[name] = list(flat[at:at + shape.count])
+            at += shape.count
+        return values, pos + self._struct.size
+
+    def encode(self, out: bytearray, values: dict) -> None:
+        flat: list = []
+        for name, shape in zip(self.names, self._shapes):
+            value = values[name]
+            if shape.count == 1:
+                flat.append(int(value) if shape.kind == "bool" else value)
+            else:
+                flat.extend(value)
+        out += self._struct.pack(*flat)
+
+    def json_kinds(self) -> list[tuple[str, ValueType]]:
+        return list(zip(self.names, self._shapes))
+
+
+# ---- field readers and writers -----------------------------------------------------------------
+
+def member(enum_or_bool, value: int):
+    """An enum member where the code has one, else the number; a bool byte as bool (0, 1) or its number."""
+    if isinstance(enum_or_bool, tuple):
+        return enum_or_bool[value]
+    return enum_or_bool._value2member_map_.get(value, value)
+
+
+def read_rest_text(buf, pos: int, end: int) -> tuple[str, int]:
+    return _rt.text(buf[pos:end]), end
+
+
+def write_rest_text(out: bytearray, value: str) -> None:
+    out += _rt.text_bytes(value)
+
+
+def read_names(buf, pos: int, end: int, separator: str) -> tuple[list[str], int]:
+    """Names joined by a separator up to the end; no bytes are no names."""
+    text = _rt.text(buf[pos:end])
+    return (text.split(separator) if text else []), end
+
+
+def write_names(out: bytearray, names: list, separator: str) -> None:
+    out += _rt.text_bytes(separator.join(names))
+
+
+def read_values(buf, pos: int, end: int, recipe: Optional[Recipe]) -> tuple[dict, int]:
+    if recipe is None:
+        raise DecodeError("values", pos, "no recipe to read them by")
+    return recipe.decode(buf, pos, end)
+
+
+def write_values(out: bytearray, values: dict, recipe: Optional[Recipe]) -> None:
+    if recipe is None:
+        raise _rt.EncodeError("a data package is written by its recipe: pass recipe=")
+    recipe.encode(out, values)
+
+
+def check_end(pos: int, end: int) -> None:
+    if pos < end:
+        raise DecodeError("extra", pos, f"{end - pos} bytes after the layout")
+
+
+# ---- messages ----------------------------------------------------------------------------------
+
+class Message:
+    """The base of every generated message class: a header (size, type code) and a body."""
+
+    __slots__ = ("_notes",)
+    NAME = ""
+    CODE = 0
+    JSON: tuple = ()
+    HEADER = struct.Struct(">HB")
+
+    @property
+    def notes(self) -> dict:
+        """What decoding in a connection found out about this message: a setup reply's refused
+        names, the recipe a data package was read by."""
+        return getattr(self, "_notes", None) or {}
+
+    def note(self, key: str, value: Any) -> None:
+        notes = dict(self.notes)
+        notes[key] = value
+        self._notes = notes
+
+    def encode(self, recipe: Optional[Recipe] = None) -> bytes:
+        """The whole message, header included; a data package is written by the recipe it was
+        read by, or the one given."""
+        body = bytearray()
+        self.encode_body(body, recipe if recipe is not None else self.notes.get("recipe"))
+        return frame(self.CODE, bytes(body))
+
+    def encode_body(self, out: bytearray, recipe=None) -> None:  # pragma: no cover - generated
+        raise NotImplementedError
+
+    def canonical_json(self) -> str:
+        return message_json(self)
+
+
+def frame(code: int, body: bytes) -> bytes:
+    size = Message.HEADER.size + len(body)
+    if size > 0xFFFF:
+        raise _rt.EncodeError(f"a message of {size} bytes does not fit the uint16 size")
+    return Message.HEADER.pack(size, code) + body
+
+
+@dataclass(slots=True)
+class RawMessage:
+    """A message kept whole: a type code with no layout (named or not), one whose bytes do not fit
+    its layout, or a data package of a recipe the connection never set up (`error` says which)."""
+    type: str                       # the layout's name, "unknown", or the undocumented code's name
+    code: int
+    raw: bytes                      # the whole message, header included
+    error: Optional[str] = None
+    recipe_id: Optional[int] = None
+
+    def encode(self, recipe: Optional[Recipe] = None) -> bytes:
+        return self.raw
+
+    def canonical_json(self) -> str:
+        return raw_json(self)
+
+
+# ---- framing -----------------------------------------------------------------------------------
+
+class Framer:
+    """One direction of a connection: bytes in, whole messages out as (offset, code, bytes), in order.
+    A size below the header's or a type code no layout knows is a stream fault: a StreamError, then
+    the framer looks byte by byte for a plausible header."""
+
+    def __init__(self, known_codes: frozenset, header: struct.Struct = Message.HEADER):
+        self.known = known_codes
+        self.header = header
+        self.buf = bytearray()
+        self.offset = 0             # of buf[0] in the direction's stream
+        self.scanning = False       # looking for the next plausible header after a fault
+
+    def feed(self, data) -> Iterator:
+        self.buf += bytes(data)
+        pos, head = 0, self.header.size
+        buf = self.buf
+        while len(buf) - pos >= head:
+            size, code = self.header.unpack_from(buf, pos)
+            if size < head or code not in self.known:
+                # One fault per scan, however the bytes were cut: a scan that ran out of bytes
+                # goes on silently when more come.
+                fault = None if self.scanning else \
+                    StreamError(self.offset + pos, f"bad message header: size {size}, type {code}")
+                self.scanning = True
+                pos = self._resync(pos + 1)
+                if fault is not None:
+                    yield fault
+                continue
+            self.scanning = False
+            if len(buf) - pos < size:
+                break
+            yield self.offset + pos, code, bytes(buf[pos:pos + size])
+            pos += size
+        del buf[:pos]
+        self.offset += pos
+
+    def _resync(self, pos: int) -> int:
+        head = self.header.size
+        while len(self.buf) - pos >= head:
+            size, code = self.header.unpack_from(self.buf, pos)
+            if size >= head and code in self.known:
+                return pos
+            pos += 1
+        return pos
+
+    def close(self) -> list:
+        if not self.buf:
+            return []
+        fault = StreamError(self.offset, f"truncated message: {len(self.buf)} bytes at the end of the stream")
+        self.offset += len(self.buf)
+        self.buf.clear()
+        return [fault]

@@ -1,0 +1,69 @@
+/* ---- the RTDE connection: state, decoding, the client's messages -------------------------- */
+
+/* A recipe of one connection: its variables' names (a copy) and types, in order. */
+typedef struct rtde_recipe {
+    bool used;
+    bool from_robot;                        /* outputs (the robot's data) or inputs (the client's) */
+    int16_t id;                             /* -1: protocol 1's one output recipe, which has no id */
+    uint16_t count;
+    uint16_t size;                          /* bytes of one data package's values */
+    uint8_t types[RTDE_MAX_VARIABLES];      /* rtde_value_type */
+    uint16_t name_at[RTDE_MAX_VARIABLES];
+    uint16_t name_length[RTDE_MAX_VARIABLES];
+    char names[RTDE_MAX_NAMES];
+} rtde_recipe;
+
+typedef struct rtde_pending {
+    uint16_t length;
+    char names[RTDE_MAX_NAMES];
+} rtde_pending;
+
+/* Everything RTDE's messages depend on, for one TCP connection: owned by the caller, zeroed by
+ * rtde_conversation_init, never allocated. */
+typedef struct rtde_conversation {
+    uint8_t protocol;                       /* 0 until negotiated: RTDE_DEFAULT_PROTOCOL applies */
+    uint16_t asked[4];                      /* protocol versions asked for, awaiting replies */
+    uint8_t asked_count;
+    rtde_pending pending[2][RTDE_MAX_PENDING];  /* [0] outputs, [1] inputs: setups awaiting replies */
+    uint8_t pending_count[2];
+    rtde_recipe recipes[RTDE_MAX_RECIPES];
+    rtde_pending refused;                   /* the names of the last reply's refusals (a view's home) */
+} rtde_conversation;
+
+void rtde_conversation_init(rtde_conversation *c);
+uint8_t rtde_protocol_in_force(const rtde_conversation *c);
+
+/* The size of the message that starts buf (header included), once its header is there:
+ * RTDE_NEED_MORE with fewer than 3 bytes, RTDE_BAD_HEADER for a size below 3 or a type code
+ * no layout has. */
+rtde_error rtde_message_size(const uint8_t *buf, size_t length, size_t *size);
+
+/* Decode one whole message (`length` is its size) sent in the given direction, and follow it:
+ * a protocol version accepted, a setup request kept, a reply made into a recipe. On an error,
+ * *offset is where in the message it was found; out->layout is RTDE_LAYOUT_NONE for a type with
+ * no layout, and out->u.data_package.recipe_id holds an unknown recipe's id. */
+rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, bool from_robot,
+                       rtde_message *out, size_t *offset);
+
+/* A data package's values, by index in its recipe or by variable name. */
+size_t rtde_data_count(const rtde_data *d);
+rtde_text rtde_data_name(const rtde_data *d, size_t index);
+bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out);
+bool rtde_data_find(const rtde_data *d, const char *name, rtde_value *out);
+
+/* The recipe of a data package of this direction and id (-1: protocol 1 outputs), if any. */
+const rtde_recipe *rtde_recipe_of(const rtde_conversation *c, bool from_robot, int id);
+
+/* What a client sends: each writes one message into out (cap bytes) and returns its size, or 0
+ * when it does not fit (or a name list is longer than RTDE_MAX_NAMES). */
+size_t rtde_build_request_protocol_version(uint8_t *out, size_t cap, uint16_t version);
+size_t rtde_build_get_controller_version(uint8_t *out, size_t cap);
+size_t rtde_build_setup_outputs(uint8_t *out, size_t cap, uint8_t protocol, double frequency,
+                                const char *const *names, size_t count);
+size_t rtde_build_setup_inputs(uint8_t *out, size_t cap, const char *const *names, size_t count);
+size_t rtde_build_start(uint8_t *out, size_t cap);
+size_t rtde_build_pause(uint8_t *out, size_t cap);
+/* An input data package: one value per variable of the input recipe, in its order. */
+size_t rtde_build_input_data(uint8_t *out, size_t cap, const rtde_recipe *recipe, const rtde_value *values);
+
+const char *rtde_error_text(rtde_error e);

@@ -1,0 +1,476 @@
+/* ---- a connection: framing, following the setup exchanges, values, the client's messages ---- */
+
+#define RTDE__NO_ID (-1)
+
+static size_t rtde__recipe_size(const rtde_recipe *recipe)
+{
+    return recipe->size;
+}
+
+static bool rtde__values(rtde__reader *r, rtde_data *out)
+{
+    size_t n = rtde__recipe_size(out->recipe);
+    if (!rtde__need(r, n, "values"))
+        return false;
+    out->bytes = r->buf + r->pos;
+    r->pos += n;
+    return true;
+}
+
+void rtde_conversation_init(rtde_conversation *c)
+{
+    memset(c, 0, sizeof *c);
+}
+
+uint8_t rtde_protocol_in_force(const rtde_conversation *c)
+{
+    return c->protocol ? c->protocol : RTDE_DEFAULT_PROTOCOL;
+}
+
+static bool rtde__known_code(uint8_t code)
+{
+    size_t i;
+    for (i = 0; i < sizeof rtde__codes; i++)
+        if (rtde__codes[i] == code)
+            return true;
+    return false;
+}
+
+rtde_error rtde_message_size(const uint8_t *buf, size_t length, size_t *size)
+{
+    if (length < RTDE_HEADER_SIZE)
+        return RTDE_NEED_MORE;
+    *size = (size_t)rtde__load(buf, 2);
+    if (*size < RTDE_HEADER_SIZE || !rtde__known_code(buf[2]))
+        return RTDE_BAD_HEADER;
+    return *size > length ? RTDE_NEED_MORE : RTDE_OK;
+}
+
+const rtde_layout_info *rtde_layout_of(uint8_t layout)
+{
+    return layout < RTDE_LAYOUT_COUNT ? &rtde__layouts[layout] : &rtde__layouts[0];
+}
+
+const char *rtde_unlaid_name(uint8_t code)
+{
+    size_t i;
+    for (i = 0; i < sizeof rtde__undocumented / sizeof rtde__undocumented[0]; i++)
+        if (rtde__undocumented[i].code == code)
+            return rtde__undocumented[i].name;
+    return "unknown";
+}
+
+int rtde_value_type_of(const uint8_t *name, size_t length)
+{
+    int t;
+    for (t = 0; t < RTDE_VT_COUNT; t++)
+        if (strlen(rtde__value_types[t].name) == length && memcmp(rtde__value_types[t].name, name, length) == 0)
+            return t;
+    return -1;
+}
+
+const char *rtde_value_type_name(uint8_t type)
+{
+    return type < RTDE_VT_COUNT ? rtde__value_types[type].name : "";
+}
+
+static uint8_t rtde__layout_for(uint8_t code, bool from_robot, uint8_t protocol)
+{
+    size_t i;
+    for (i = 0; i < sizeof rtde__dispatch / sizeof rtde__dispatch[0]; i++)
+        if (rtde__dispatch[i].code == code && rtde__dispatch[i].from_robot == from_robot
+            && rtde__dispatch[i].protocol == protocol)
+            return rtde__dispatch[i].layout;
+    return RTDE_LAYOUT_NONE;
+}
+
+const rtde_recipe *rtde_recipe_of(const rtde_conversation *c, bool from_robot, int id)
+{
+    size_t i;
+    for (i = 0; i < RTDE_MAX_RECIPES; i++)
+        if (c->recipes[i].used && c->recipes[i].from_robot == from_robot && c->recipes[i].id == id)
+            return &c->recipes[i];
+    return NULL;
+}
+
+/* The next name of a comma-separated list at *at (advanced past it and its comma). */
+static bool rtde__next_name(const uint8_t *list, size_t length, size_t *at, size_t *start, size_t *n)
+{
+    size_t i;
+    if (*at > length || length == 0)
+        return false;
+    *start = *at;
+    for (i = *at; i < length && list[i] != ','; i++)
+        ;
+    *n = i - *at;
+    *at = i + 1;
+    return true;
+}
+
+static bool rtde__is_refusal(const uint8_t *word, size_t n)
+{
+    size_t i;
+    for (i = 0; i < sizeof rtde__refusals / sizeof rtde__refusals[0]; i++)
+        if (strlen(rtde__refusals[i]) == n && memcmp(rtde__refusals[i], word, n) == 0)
+            return true;
+    return rtde_value_type_of(word, n) < 0;
+}
+
+/* A reply's types against its request's names: a recipe, or the refusal noted on the message. */
+static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text types, int id, rtde_message *m)
+{
+    rtde_pending *request;
+    rtde_recipe recipe;
+    size_t at_names = 0, at_types = 0, s1, n1, s2, n2, i, size = 0;
+    bool refused = false;
+    if (c->pending_count[kind] == 0) {
+        m->warning = "a setup reply without a request seen: its recipe's names are unknown";
+        return RTDE_OK;
+    }
+    request = &c->pending[kind][0];
+    c->refused = *request;                  /* kept for the message's view of its names */
+    for (i = 1; i < c->pending_count[kind]; i++)
+        c->pending[kind][i - 1] = c->pending[kind][i];
+    c->pending_count[kind]--;
+    m->request_names.data = (const uint8_t *)c->refused.names;
+    m->request_names.length = c->refused.length;
+    memset(&recipe, 0, sizeof recipe);
+    recipe.used = true;
+    recipe.from_robot = kind == 0;
+    recipe.id = (int16_t)id;
+    memcpy(recipe.names, c->refused.names, c->refused.length);
+    for (;;) {
+        bool more_names = rtde__next_name((const uint8_t *)c->refused.names, c->refused.length, &at_names, &s1, &n1);
+        bool more_types;
+        int t;
+        while (more_names && n1 == 0)           /* an empty name names no variable */
+            more_names = rtde__next_name((const uint8_t *)c->refused.names, c->refused.length, &at_names, &s1, &n1);
+        more_types = rtde__next_name(types.data, types.length, &at_types, &s2, &n2);
+        if (!more_names || !more_types) {
+            if (more_names != more_types) {
+                m->warning = "names asked and types answered differ in number";
+                m->refused = false;
+                return RTDE_OK;
+            }
+            break;
+        }
+        if (rtde__is_refusal(types.data + s2, n2)) {
+            refused = true;
+            continue;
+        }
+        if (recipe.count == RTDE_MAX_VARIABLES)
+            return RTDE_TOO_MANY;
+        t = rtde_value_type_of(types.data + s2, n2);
+        recipe.types[recipe.count] = (uint8_t)t;
+        recipe.name_at[recipe.count] = (uint16_t)s1;
+        recipe.name_length[recipe.count] = (uint16_t)n1;
+        recipe.count++;
+        size += (size_t)rtde__value_types[t].size * rtde__value_types[t].count;
+    }
+    if (refused) {
+        m->refused = true;
+        return RTDE_OK;
+    }
+    recipe.size = (uint16_t)size;
+    for (i = 0; i < RTDE_MAX_RECIPES; i++) {    /* a recipe of the same direction and id is replaced */
+        rtde_recipe *slot = &c->recipes[i];
+        if (slot->used && slot->from_robot == recipe.from_robot && slot->id == recipe.id) {
+            *slot = recipe;
+            return RTDE_OK;
+        }
+    }
+    for (i = 0; i < RTDE_MAX_RECIPES; i++)
+        if (!c->recipes[i].used) {
+            c->recipes[i] = recipe;
+            return RTDE_OK;
+        }
+    return RTDE_TOO_MANY;
+}
+
+/* What a message changes in the connection. */
+static rtde_error rtde__follow(rtde_conversation *c, rtde_message *m)
+{
+    uint8_t layout = m->layout;
+    if (layout == RTDE_LAYOUT_REQUEST_PROTOCOL_VERSION) {
+        if (c->asked_count == sizeof c->asked / sizeof c->asked[0])
+            return RTDE_TOO_MANY;
+        c->asked[c->asked_count++] = m->u.request_protocol_version.protocol_version;
+    } else if (layout == RTDE_LAYOUT_REQUEST_PROTOCOL_VERSION_REPLY) {
+        uint16_t asked = c->asked[0];
+        bool any = c->asked_count > 0;
+        if (any) {
+            memmove(c->asked, c->asked + 1, sizeof c->asked - sizeof c->asked[0]);
+            c->asked_count--;
+        }
+        if (m->u.request_protocol_version_reply.accepted && any && asked <= 255)
+            c->protocol = (uint8_t)asked;
+        else if (!m->u.request_protocol_version_reply.accepted && c->protocol == 0)
+            c->protocol = 1;                /* the robot keeps protocol 1 until one is accepted */
+    } else if (rtde__roles[layout].request_kind >= 0) {
+        int kind = rtde__roles[layout].request_kind;
+        const rtde_text *names = layout == RTDE_LAYOUT_SETUP_OUTPUTS ? &m->u.setup_outputs.variables
+                               : layout == RTDE_LAYOUT_SETUP_OUTPUTS_V1 ? &m->u.setup_outputs_v1.variables
+                               : &m->u.setup_inputs.variables;
+        rtde_pending *slot;
+        size_t i;
+        if (names->length > RTDE_MAX_NAMES)
+            return RTDE_TOO_MANY;
+        if (c->pending_count[kind] == RTDE_MAX_PENDING) {   /* the oldest is forgotten */
+            for (i = 1; i < RTDE_MAX_PENDING; i++)
+                c->pending[kind][i - 1] = c->pending[kind][i];
+            c->pending_count[kind]--;
+        }
+        slot = &c->pending[kind][c->pending_count[kind]++];
+        slot->length = (uint16_t)names->length;
+        memcpy(slot->names, names->data, names->length);
+    } else if (layout == RTDE_LAYOUT_SETUP_OUTPUTS_REPLY) {
+        return rtde__make_recipe(c, 0, m->u.setup_outputs_reply.types, m->u.setup_outputs_reply.recipe_id, m);
+    } else if (layout == RTDE_LAYOUT_SETUP_OUTPUTS_REPLY_V1) {
+        return rtde__make_recipe(c, 0, m->u.setup_outputs_reply_v1.types, RTDE__NO_ID, m);
+    } else if (layout == RTDE_LAYOUT_SETUP_INPUTS_REPLY) {
+        return rtde__make_recipe(c, 1, m->u.setup_inputs_reply.types, m->u.setup_inputs_reply.recipe_id, m);
+    } else if (layout == RTDE_LAYOUT_START_REPLY && !m->u.start_reply.accepted) {
+        m->warning = "the robot refused to start";
+    }
+    return RTDE_OK;
+}
+
+rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, bool from_robot,
+                       rtde_message *out, size_t *offset)
+{
+    rtde__reader r;
+    rtde_error e;
+    size_t size;
+    uint8_t layout;
+    memset(out, 0, sizeof *out);
+    *offset = 0;
+    e = rtde_message_size(msg, length, &size);
+    if (e != RTDE_OK)
+        return e;
+    out->code = msg[2];
+    out->from_robot = from_robot;
+    layout = rtde__layout_for(msg[2], from_robot, rtde_protocol_in_force(c));
+    out->layout = layout;
+    if (layout == RTDE_LAYOUT_NONE)
+        return RTDE_UNKNOWN_TYPE;
+    r.buf = msg;
+    r.pos = RTDE_HEADER_SIZE;
+    r.end = size;
+    r.field = "";
+    r.need = 0;
+    if (rtde__roles[layout].is_data) {
+        /* The data member is the last of its layout, after an optional recipe id. */
+        int id = RTDE__NO_ID;
+        const rtde_recipe *recipe;
+        rtde_data *data = layout == RTDE_LAYOUT_DATA_PACKAGE ? &out->u.data_package.values
+                        : layout == RTDE_LAYOUT_DATA_PACKAGE_V1 ? &out->u.data_package_v1.values
+                        : &out->u.input_data_package.values;
+        if (rtde__roles[layout].has_recipe_id) {
+            if (size <= RTDE_HEADER_SIZE) {     /* no id to look up: no recipe */
+                *offset = RTDE_HEADER_SIZE;
+                return RTDE_UNKNOWN_RECIPE;
+            }
+            id = msg[RTDE_HEADER_SIZE];
+        }
+        recipe = rtde_recipe_of(c, from_robot, id);
+        if (recipe == NULL) {
+            if (layout == RTDE_LAYOUT_DATA_PACKAGE)
+                out->u.data_package.recipe_id = (uint8_t)id;
+            else if (layout == RTDE_LAYOUT_INPUT_DATA_PACKAGE)
+                out->u.input_data_package.recipe_id = (uint8_t)id;
+            *offset = RTDE_HEADER_SIZE;
+            return RTDE_UNKNOWN_RECIPE;
+        }
+        data->recipe = recipe;
+    }
+    e = rtde__decode_layout(layout, &r, out);
+    if (e != RTDE_OK) {
+        *offset = r.pos;
+        out->error_field = r.field;
+        out->error_need = r.need;
+        return e;
+    }
+    return rtde__follow(c, out);
+}
+
+size_t rtde_data_count(const rtde_data *d)
+{
+    return d->recipe ? d->recipe->count : 0;
+}
+
+rtde_text rtde_data_name(const rtde_data *d, size_t index)
+{
+    rtde_text t = {NULL, 0};
+    if (d->recipe && index < d->recipe->count) {
+        t.data = (const uint8_t *)d->recipe->names + d->recipe->name_at[index];
+        t.length = d->recipe->name_length[index];
+    }
+    return t;
+}
+
+bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
+{
+    const uint8_t *p;
+    size_t i, k;
+    if (!d->recipe || !d->bytes || index >= d->recipe->count)
+        return false;
+    p = d->bytes;
+    for (i = 0; i < index; i++) {
+        uint8_t t = d->recipe->types[i];
+        p += (size_t)rtde__value_types[t].size * rtde__value_types[t].count;
+    }
+    out->type = d->recipe->types[index];
+    out->count = rtde__value_types[out->type].count;
+    for (k = 0; k < out->count; k++) {
+        size_t n = rtde__value_types[out->type].size;
+        uint64_t bits = rtde__load(p + k * n, n);
+        switch (rtde__value_types[out->type].kind) {
+        case 'f':
+            out->item[k].f64 = rtde__as_f64(bits);
+            break;
+        case 'i':
+            out->item[k].i64 = rtde__as_i32(bits);
+            break;
+        default:
+            out->item[k].u64 = bits;
+        }
+    }
+    return true;
+}
+
+bool rtde_data_find(const rtde_data *d, const char *name, rtde_value *out)
+{
+    size_t i, n = strlen(name);
+    for (i = 0; i < rtde_data_count(d); i++) {
+        rtde_text t = rtde_data_name(d, i);
+        if (t.length == n && memcmp(t.data, name, n) == 0)
+            return rtde_data_value(d, i, out);
+    }
+    return false;
+}
+
+/* ---- what a client sends ---- */
+
+static size_t rtde__header(uint8_t *out, size_t cap, size_t size, uint8_t code)
+{
+    if (size > cap || size > 0xffffu)
+        return 0;
+    out[0] = (uint8_t)(size >> 8);
+    out[1] = (uint8_t)(size & 0xffu);
+    out[2] = code;
+    return size;
+}
+
+static void rtde__store(uint8_t *p, uint64_t v, size_t n)
+{
+    size_t i;
+    for (i = 0; i < n; i++)
+        p[i] = (uint8_t)((v >> (8 * (n - 1 - i))) & 0xffu);
+}
+
+static uint64_t rtde__f64_bits(double d)
+{
+    uint64_t bits;
+    memcpy(&bits, &d, sizeof bits);
+    return bits;
+}
+
+static size_t rtde__names_length(const char *const *names, size_t count)
+{
+    size_t i, n = 0;
+    for (i = 0; i < count; i++)
+        n += strlen(names[i]) + (i ? 1u : 0u);
+    return n;
+}
+
+static void rtde__put_names(uint8_t *p, const char *const *names, size_t count)
+{
+    size_t i;
+    for (i = 0; i < count; i++) {
+        size_t n = strlen(names[i]);
+        if (i)
+            *p++ = ',';
+        memcpy(p, names[i], n);
+        p += n;
+    }
+}
+
+size_t rtde_build_request_protocol_version(uint8_t *out, size_t cap, uint16_t version)
+{
+    if (!rtde__header(out, cap, 5, 'V'))
+        return 0;
+    rtde__store(out + 3, version, 2);
+    return 5;
+}
+
+size_t rtde_build_get_controller_version(uint8_t *out, size_t cap)
+{
+    return rtde__header(out, cap, 3, 'v');
+}
+
+size_t rtde_build_setup_outputs(uint8_t *out, size_t cap, uint8_t protocol, double frequency,
+                                const char *const *names, size_t count)
+{
+    size_t n = rtde__names_length(names, count), head = protocol == 1 ? 3u : 11u;
+    if (n > RTDE_MAX_NAMES || !rtde__header(out, cap, head + n, 'O'))
+        return 0;
+    if (protocol != 1)
+        rtde__store(out + 3, rtde__f64_bits(frequency), 8);
+    rtde__put_names(out + head, names, count);
+    return head + n;
+}
+
+size_t rtde_build_setup_inputs(uint8_t *out, size_t cap, const char *const *names, size_t count)
+{
+    size_t n = rtde__names_length(names, count);
+    if (n > RTDE_MAX_NAMES || !rtde__header(out, cap, 3 + n, 'I'))
+        return 0;
+    rtde__put_names(out + 3, names, count);
+    return 3 + n;
+}
+
+size_t rtde_build_start(uint8_t *out, size_t cap)
+{
+    return rtde__header(out, cap, 3, 'S');
+}
+
+size_t rtde_build_pause(uint8_t *out, size_t cap)
+{
+    return rtde__header(out, cap, 3, 'P');
+}
+
+size_t rtde_build_input_data(uint8_t *out, size_t cap, const rtde_recipe *recipe, const rtde_value *values)
+{
+    size_t size = 4u + recipe->size, i, k, at = 4;
+    if (recipe->id < 0 || !rtde__header(out, cap, size, 'U'))
+        return 0;
+    out[3] = (uint8_t)recipe->id;
+    for (i = 0; i < recipe->count; i++) {
+        uint8_t t = recipe->types[i];
+        size_t n = rtde__value_types[t].size;
+        for (k = 0; k < rtde__value_types[t].count; k++) {
+            uint64_t v = rtde__value_types[t].kind == 'f' ? rtde__f64_bits(values[i].item[k].f64)
+                       : rtde__value_types[t].kind == 'i' ? (uint64_t)values[i].item[k].i64
+                       : values[i].item[k].u64;
+            rtde__store(out + at, v, n);
+            at += n;
+        }
+    }
+    return size;
+}
+
+const char *rtde_error_text(rtde_error e)
+{
+    switch (e) {
+    case RTDE_OK: return "ok";
+    case RTDE_NEED_MORE: return "needs more bytes";
+    case RTDE_BAD_HEADER: return "bad message header";
+    case RTDE_SHORT: return "message shorter than its layout";
+    case RTDE_EXTRA: return "bytes after the layout";
+    case RTDE_UNKNOWN_TYPE: return "no layout for this type";
+    case RTDE_UNKNOWN_RECIPE: return "data package of a recipe this connection did not set up";
+    case RTDE_TOO_MANY: return "more than the RTDE_MAX_* limits hold";
+    case RTDE_NO_ROOM: return "output buffer too small";
+    }
+    return "unknown error";
+}

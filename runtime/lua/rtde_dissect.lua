@@ -1,0 +1,246 @@
+-- The RTDE dissector: frames the messages of a TCP stream, shows each by its layout (the spec's
+-- MESSAGES, chosen by type code, direction and the protocol version in force), a data package's
+-- values by the names of its recipe with a link to the frame that set the recipe up, and expert
+-- infos for refused setups, unknown recipes, a refused start and bad framing. State is kept per
+-- conversation (both addresses and both ports) on the first pass, and each message's view of it
+-- is kept for later passes and the GUI (runtime/lua/rtde_state.lua holds the state itself).
+local spec, rt = ...
+local proto, F = spec.proto, spec.F
+local HEADER = spec.header_size
+
+local E = {
+    bad_header = ProtoExpert.new(proto.name .. ".bad_header", "Bad message header",
+        expert.group.MALFORMED, expert.severity.ERROR),
+    short = ProtoExpert.new(proto.name .. ".short", "Message shorter than its layout",
+        expert.group.MALFORMED, expert.severity.ERROR),
+    extra = ProtoExpert.new(proto.name .. ".extra", "Bytes after the layout",
+        expert.group.PROTOCOL, expert.severity.WARN),
+    refused = ProtoExpert.new(proto.name .. ".refused", "Setup refused a variable (NOT_FOUND or IN_USE)",
+        expert.group.RESPONSE_CODE, expert.severity.WARN),
+    unknown_recipe = ProtoExpert.new(proto.name .. ".unknown_recipe",
+        "Data package of a recipe this conversation did not set up", expert.group.SEQUENCE, expert.severity.WARN),
+    start_refused = ProtoExpert.new(proto.name .. ".start_refused", "The robot refused to start",
+        expert.group.RESPONSE_CODE, expert.severity.WARN),
+    warning = ProtoExpert.new(proto.name .. ".setup_warning", "Setup exchange out of order",
+        expert.group.SEQUENCE, expert.severity.WARN),
+    undocumented = ProtoExpert.new(proto.name .. ".undocumented", "Message type with no public layout",
+        expert.group.UNDECODED, expert.severity.NOTE),
+    unknown_type = ProtoExpert.new(proto.name .. ".unknown_type", "Message type with no layout in this direction",
+        expert.group.UNDECODED, expert.severity.WARN),
+}
+proto.experts = { E.bad_header, E.short, E.extra, E.refused, E.unknown_recipe, E.start_refused, E.warning,
+                  E.undocumented, E.unknown_type }
+
+do
+    local list = {}
+    for _, f in pairs(F) do list[#list + 1] = f end
+    proto.fields = list
+end
+
+local states, views = {}, {}
+
+function proto.init()
+    states, views = {}, {}
+end
+
+local function conversation_key(pinfo)
+    local a = tostring(pinfo.src) .. ":" .. tostring(pinfo.src_port)
+    local b = tostring(pinfo.dst) .. ":" .. tostring(pinfo.dst_port)
+    if a < b then return a .. "|" .. b end
+    return b .. "|" .. a
+end
+
+local function plausible(raw, at)
+    local size = string.byte(raw, at + 1) * 256 + string.byte(raw, at + 2)
+    local code = string.byte(raw, at + 3)
+    return size >= HEADER and spec.type_names[code] ~= nil
+end
+
+-- Reads of one scalar from a TvbRange, by the spec's reader names.
+local READ = {
+    uint = function(r) return r:uint() end,
+    int = function(r) return r:int() end,
+    uint64 = function(r) return r:uint64() end,
+    int64 = function(r) return r:int64() end,
+    float = function(r) return r:float() end,
+}
+
+-- One value of a recipe: an item per scalar (a vector's items in order, each filterable by the
+-- variable's name, with its index).
+local function add_value(tree, tvb, pos, name, vt)
+    local f, unit = F[name], spec.variable_units[name]
+    for i = 0, vt.count - 1 do
+        local item = tree:add(f, tvb(pos + i * vt.size, vt.size))
+        if unit then item:append_text(unit) end
+        if vt.count > 1 then item:append_text(" [" .. i .. "]") end
+    end
+end
+
+-- Each step of a layout: adds its items and returns the next position, or nil when it does not fit.
+local STEP = {}
+
+function STEP.scalar(s, tree, tvb, pos, stop, values)
+    if pos + s.size > stop then return nil end
+    local range = tvb(pos, s.size)
+    local item = tree:add(F[s.name], range)
+    if s.unit then item:append_text(s.unit) end
+    if s.read == "uint" or s.read == "int" then values[s.name] = READ[s.read](range) end
+    return pos + s.size
+end
+
+function STEP.prefixed_text(s, tree, tvb, pos, stop, values)
+    if pos + s.prefix > stop then return nil end
+    local n = tvb(pos, s.prefix):uint()
+    if pos + s.prefix + n > stop then return nil end
+    tree:add(F[s.name], tvb(pos, s.prefix + n), tvb(pos + s.prefix, n):string())
+    return pos + s.prefix + n
+end
+
+local function rest(s, tree, tvb, pos, stop, values)
+    local text = stop > pos and tvb(pos, stop - pos):string() or ""
+    values[s.name] = text
+    if stop > pos then tree:add(F[s.name], tvb(pos, stop - pos)) else tree:add(F[s.name], tvb(pos, 0), "") end
+    return stop
+end
+STEP.rest_text = rest
+STEP.names = rest
+
+function STEP.values(s, tree, tvb, pos, stop, values, view)
+    local recipe = view.recipe
+    local need = 0
+    for _, t in ipairs(recipe.types) do need = need + spec.value_types[t].size * spec.value_types[t].count end
+    if pos + need > stop then return nil end
+    tree:add(F.recipe_frame, tvb(pos, 0), recipe.frame):set_generated()
+    for i, name in ipairs(recipe.names) do
+        local vt = spec.value_types[recipe.types[i]]
+        add_value(tree, tvb, pos, name, vt)
+        pos = pos + vt.size * vt.count
+    end
+    return pos
+end
+
+-- What the state says about one message, worked out on the first pass and kept for the others.
+local function view_of(pinfo, index, state, from_robot, raw, offset, layout)
+    local key = pinfo.number .. ":" .. index
+    local view = views[key]
+    if view and pinfo.visited then return view, false end
+    view = { protocol = rt.protocol_of(state) }
+    views[key] = view
+    return view, true
+end
+
+local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state, from_robot, index)
+    local stop = offset + size
+    local item = tree:add(proto, tvb(offset, size))
+    item:add(F.length, tvb(offset, 2))
+    item:add(F.type, tvb(offset + 2, 1))
+    item:add(F.direction, tvb(offset + 2, 1), from_robot and "robot to client" or "client to robot"):set_generated()
+    local view, first = view_of(pinfo, index, state, from_robot, raw, offset)
+    local layout = spec.messages[code .. ":" .. (from_robot and 1 or 0) .. ":" .. view.protocol]
+    if not layout then
+        local named = spec.undocumented[code]
+        item:add(F.kind, tvb(offset + 2, 1), named and named.name or "unknown"):set_generated()
+        item:add_proto_expert_info(named and E.undocumented or E.unknown_type)
+        return named and named.label or ("Unknown type " .. code)
+    end
+    item:add(F.kind, tvb(offset + 2, 1), layout.name):set_generated()
+    item:append_text(": " .. layout.label)
+    local first_step = layout.steps[1]
+    local is_data = false
+    for _, s in ipairs(layout.steps) do
+        if s.kind == "values" then is_data = true end
+    end
+    if is_data and first then
+        local id = nil
+        if first_step.name == "recipe_id" and size > HEADER then
+            id = string.byte(raw, offset + HEADER + 1)
+        end
+        view.recipe = rt.recipe_for(state, from_robot, id)
+    end
+    if is_data and not view.recipe then
+        if first_step.name == "recipe_id" and size > HEADER then item:add(F.recipe_id, tvb(offset + HEADER, 1)) end
+        item:add_proto_expert_info(E.unknown_recipe)
+        return layout.label
+    end
+    local values, pos = {}, offset + HEADER
+    for _, s in ipairs(layout.steps) do
+        local next_pos = STEP[s.kind](s, item, tvb, pos, stop, values, view)
+        if not next_pos then
+            item:add_proto_expert_info(E.short, s.name .. " at offset " .. (pos - offset) .. ": does not fit")
+            return layout.label
+        end
+        pos = next_pos
+    end
+    if pos < stop then item:add_proto_expert_info(E.extra, (stop - pos) .. " bytes after the layout") end
+    if first then view.notes = rt.follow(state, layout.name, values, pinfo.number) end
+    local notes = view.notes
+    if notes and notes.refused then
+        for _, pair in ipairs(notes.refused) do
+            item:add_proto_expert_info(E.refused, pair[1] .. ": " .. pair[2])
+        end
+    end
+    if notes and notes.warning then
+        item:add_proto_expert_info(layout.name == "start_reply" and E.start_refused or E.warning, notes.warning)
+    end
+    return layout.label
+end
+
+function proto.dissector(tvb, pinfo, tree)
+    local len = tvb:len()
+    local raw = tvb:raw()
+    local from_robot = pinfo.src_port == pinfo.match_uint
+    local key = conversation_key(pinfo)
+    local state = states[key]
+    if not state then
+        state = rt.new_state()
+        states[key] = state
+    end
+    pinfo.cols.protocol = "RTDE"
+    local labels, offset, index = {}, 0, 0
+    while offset < len do
+        if len - offset < HEADER then
+            pinfo.desegment_offset = offset
+            pinfo.desegment_len = DESEGMENT_ONE_MORE_SEGMENT
+            break
+        end
+        local size = string.byte(raw, offset + 1) * 256 + string.byte(raw, offset + 2)
+        local code = string.byte(raw, offset + 3)
+        if size < HEADER or size > spec.max_message_length or not spec.type_names[code] then
+            local at = offset + 1
+            while len - at >= HEADER and not plausible(raw, at) do at = at + 1 end
+            -- Fewer bytes than a header left: the scan ends with this segment (it is not carried over,
+            -- or its next part would show the same fault again).
+            if len - at < HEADER then at = len end
+            local item = tree:add(proto, tvb(offset, at - offset))
+            item:add_proto_expert_info(E.bad_header, "size " .. size .. ", type " .. code)
+            labels[#labels + 1] = "Bad header"
+            offset = at
+        elseif len - offset < size then
+            pinfo.desegment_offset = offset
+            pinfo.desegment_len = size - (len - offset)
+            break
+        else
+            index = index + 1
+            labels[#labels + 1] = dissect_message(tvb, raw, offset, size, code, pinfo, tree, state, from_robot, index)
+            offset = offset + size
+        end
+    end
+    if #labels > 0 then pinfo.cols.info = table.concat(labels, ", ") end
+    return len
+end
+
+proto.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of " .. spec.title, 65535)
+local tcp_port = DissectorTable.get("tcp.port")
+local registered = nil
+
+local function register_ports()
+    if registered then tcp_port:remove(registered, proto) end
+    registered = proto.prefs.ports
+    tcp_port:add(registered, proto)
+end
+
+function proto.prefs_changed()
+    register_ports()
+end
+
+register_ports()

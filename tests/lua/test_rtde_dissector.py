@@ -1,0 +1,168 @@
+"""The RTDE dissector (generated/lua/rtde.lua) in real tshark: every golden exchange, against the
+vectors' records and the Python Conversation's, in whole and byte-by-byte segments; recipes kept
+per conversation; experts; filters by variable name."""
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from tests.lua.harness import ROOT, _checked
+from tests.rtde_vectors import python_records, rtde_cases
+from tests.tools import capture
+from tests.tools.capture import Segment
+
+import urwire
+
+PLUGIN = ROOT / "generated" / "lua" / "rtde.lua"
+CASES = rtde_cases()
+PORT = 30004
+
+
+def tshark(pcap: Path, *args: str) -> str:
+    cmd = ["tshark", "-r", str(pcap), "-X", f"lua_script:{PLUGIN}", *args]
+    return _checked(subprocess.run(cmd, capture_output=True, text=True, timeout=300))
+
+
+def frames_of(case, client_port: int, bytewise: bool = False) -> list[bytes]:
+    segments = []
+    for from_robot, data in case.messages:
+        pieces = [data[i:i + 1] for i in range(len(data))] if bytewise else [data]
+        segments += [Segment(from_robot, p) for p in pieces]
+    return capture.session_frames(segments, port=PORT, client_port=client_port)
+
+
+def messages_by_stream(pcap: Path) -> dict[int, list[dict]]:
+    """Each TCP stream's rtde items in order: {field: text or [texts]}, experts under "experts"."""
+    out: dict[int, list[dict]] = {}
+    for frame in json.loads(tshark(pcap, "-Y", "rtde", "-T", "json", "--no-duplicate-keys")):
+        layers = frame["_source"]["layers"]
+        items = layers["rtde"] if isinstance(layers["rtde"], list) else [layers["rtde"]]
+        stream = int(layers["tcp"]["tcp.stream"])
+        for item in items:
+            flat = {k: v for k, v in item.items() if k.startswith("rtde.")}
+            flat["experts"] = _experts(item)
+            out.setdefault(stream, []).append(flat)
+    return out
+
+
+def _experts(obj) -> list[str]:
+    found = []
+    if isinstance(obj, dict):
+        for k, v in obj.items():
+            if k == "_ws.expert.message":
+                found += v if isinstance(v, list) else [v]
+            else:
+                found += _experts(v)
+    elif isinstance(obj, list):
+        for v in obj:
+            found += _experts(v)
+    return found
+
+
+def same(expected, shown) -> bool:
+    """A canonical JSON value against tshark's text of it."""
+    if isinstance(expected, list):
+        shown = shown if isinstance(shown, list) else [shown]
+        if all(isinstance(x, str) for x in expected):   # a list of names: one comma-joined string
+            return ",".join(expected) == (shown[0] if len(shown) == 1 else ",".join(shown))
+        return len(expected) == len(shown) and all(same(e, s) for e, s in zip(expected, shown))
+    if isinstance(expected, bool):
+        return shown in (("1", "True", "true") if expected else ("0", "False", "false"))
+    if isinstance(expected, float):
+        return math.isclose(expected, float(shown), rel_tol=1e-13, abs_tol=1e-300)
+    if isinstance(expected, int):
+        return int(shown) == expected
+    return expected == shown
+
+
+def compare(record: dict, item: dict) -> list[str]:
+    """Where the dissector's item disagrees with a record of the canonical JSON."""
+    if record["type"] == "error":
+        return [] if any("Bad message header" in e or "size" in e for e in item["experts"]) or not item.get(
+            "rtde.kind") else [f"no fault shown for {record}"]
+    problems = []
+    if item.get("rtde.kind") != record["type"]:
+        return [f"kind {item.get('rtde.kind')} for {record['type']}"]
+    for key, value in record.items():
+        if key in ("type", "message_type", "raw"):
+            continue
+        if key == "error":
+            if not item["experts"]:
+                problems.append(f"{record['type']}: no expert for {value!r}")
+            continue
+        if key == "refused":
+            for name, word in value.items():
+                if f"{name}: {word}" not in item["experts"]:
+                    problems.append(f"no expert '{name}: {word}' in {item['experts']}")
+            continue
+        if key == "warning":
+            if value not in item["experts"]:
+                problems.append(f"no expert {value!r} in {item['experts']}")
+            continue
+        if f"rtde.{key}" not in item or not same(value, item[f"rtde.{key}"]):
+            problems.append(f"{record['type']}.{key}: {value!r} against {item.get('rtde.' + key)!r}")
+    return problems
+
+
+@pytest.fixture(scope="module")
+def dissected(tmp_path_factory):
+    """Every case as one TCP session of its own port, whole then byte by byte (two pcaps)."""
+    folder = tmp_path_factory.mktemp("rtde")
+    out = {}
+    for bytewise in (False, True):
+        frames = []
+        for i, case in enumerate(CASES):
+            frames += frames_of(case, 50000 + i, bytewise)
+        pcap = folder / f"cases_{int(bytewise)}.pcap"
+        capture.write(pcap, frames)
+        out[bytewise] = messages_by_stream(pcap)
+    return out
+
+
+@pytest.mark.parametrize("bytewise", [False, True], ids=["whole", "bytewise"])
+@pytest.mark.parametrize("index", range(len(CASES)), ids=[c.name for c in CASES])
+def test_dissector_shows_every_vector(dissected, index, bytewise):
+    """Each record of the vector, and of the Python decoder (the same here), is one rtde item with
+    the same values: the golden expectations and the differential check in one."""
+    case = CASES[index]
+    items = dissected[bytewise].get(index, [])
+    python = [urwire.to_dict(r) for r in python_records(case)]
+    # A stream fault reports as an item where the scan started; a truncated tail is not an item.
+    expected = [r for r in case.expect if not (r["type"] == "error" and r["error"].startswith("truncated"))]
+    assert [r for r in python if not (r["type"] == "error" and r["error"].startswith("truncated"))] == expected
+    assert len(items) == len(expected), [i.get("rtde.kind") for i in items]
+    problems = [p for record, item in zip(expected, items) for p in compare(record, item)]
+    assert not problems, "\n".join(problems)
+
+
+def test_two_clients_never_share_a_recipe(tmp_path):
+    """Two clients of one robot in one capture, their frames interleaved, each with its own recipe 1."""
+    first, second = [c for c in CASES if c.name == "data_during_setup"][0], None
+    one = frames_of(first, 50001)
+    # The second client sets up recipe 1 as a DOUBLE only, then gets a data package of it.
+    names = b"timestamp"
+    other = [Segment(False, bytes([0, 3 + 8 + len(names), 0x4F]) + bytes.fromhex("405f400000000000") + names),
+             Segment(True, bytes([0, 3 + 1 + 6, 0x4F, 1]) + b"DOUBLE"),
+             Segment(True, bytes([0, 12, 0x55, 1]) + bytes.fromhex("4000000000000000"))]
+    two = capture.session_frames(other, port=PORT, client_port=50002)
+    frames = [f for pair in zip(one, two) for f in pair] + one[len(two):] + two[len(one):]
+    pcap = tmp_path / "two.pcap"
+    capture.write(pcap, frames)
+    streams = messages_by_stream(pcap)
+    data = {s: [i for i in items if i.get("rtde.kind") == "data_package"] for s, items in streams.items()}
+    firsts, seconds = data[0], data[1]
+    assert firsts[0]["rtde.actual_q"] == ["1", "2", "3", "0.5", "0.25", "0"]
+    assert "rtde.actual_q" not in seconds[0] and seconds[0]["rtde.timestamp"] == "2"
+
+
+def test_filters_and_experts(dissected, tmp_path):
+    pcap = tmp_path / "p2.pcap"
+    capture.write(pcap, frames_of([c for c in CASES if c.name == "protocol2_session"][0], 50000))
+    out = tshark(pcap, "-Y", "rtde.actual_q > 2.5 && rtde.recipe_id == 2", "-T", "fields", "-e", "rtde.recipe_frame")
+    assert out.split() == ["18"]                 # the data package, linked to the setup reply's frame
+    experts = tshark(pcap, "-q", "-z", "expert")
+    assert "not_a_variable: NOT_FOUND" in experts and "input_int_register_24: IN_USE" in experts

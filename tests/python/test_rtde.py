@@ -1,0 +1,125 @@
+"""urwire.rtde: a connection's state (protocol version, recipes) kept per Conversation, bytes in any
+chunks, hostile bytes never raise, the client's messages, the variable table."""
+from __future__ import annotations
+
+import random
+import struct
+
+import pytest
+
+import urwire
+from tests.rtde_vectors import python_records, rtde_cases
+from urwire import rtde
+from urwire.generated import rtde as generated
+from urwire.interfaces import INTERFACES, interface_of_port
+
+SESSION = {c.name: c for c in rtde_cases()}["protocol2_session"]
+
+
+def test_registered_on_its_port():
+    assert interface_of_port(30004) is INTERFACES["rtde"]
+    assert INTERFACES["rtde"].conversation is rtde.Conversation
+
+
+@pytest.mark.parametrize("case", rtde_cases(), ids=lambda c: c.name)
+def test_chunks_of_any_size_give_the_same_records(case):
+    """Every message fed in pieces of 1, 2 and 7 bytes: the same records as whole messages, stream
+    faults included (one fault per scan, however the bytes were cut)."""
+    whole = [urwire.to_json_line(r) for r in python_records(case)]
+    for size in (1, 2, 7):
+        conversation = rtde.Conversation(protocol=case.protocol)
+        got = []
+        for from_robot, data in case.messages:
+            for at in range(0, len(data), size):
+                got += conversation.feed(data[at:at + size], from_robot)
+        got += conversation.close()
+        assert [urwire.to_json_line(r) for r in got] == whole, size
+
+
+def test_a_direction_fed_whole_gives_the_same_records():
+    """The robot's whole stream in one piece after the client's: the same records from the robot
+    (replies find the requests already seen)."""
+    whole = [urwire.to_json_line(r) for r in python_records(SESSION)]
+    conversation = rtde.Conversation()
+    conversation.feed(SESSION.client_bytes, False)
+    robot = [urwire.to_json_line(r) for r in conversation.feed(SESSION.robot_bytes, True)]
+    from_robot = [line for line, (fr, _) in zip(whole, SESSION.messages) if fr]
+    assert robot == from_robot
+
+
+def test_two_connections_never_share_recipes():
+    first, second = rtde.Conversation(), rtde.Conversation()
+    for from_robot, data in SESSION.messages:
+        first.feed(data, from_robot)
+    data_package = [d for fr, d in SESSION.messages if fr and d[2] == ord("U")][0]
+    (alone,) = second.feed(data_package, True)
+    assert urwire.to_dict(alone)["error"].startswith("data package of a recipe")
+    assert first.recipes["outputs"][2].names == ("timestamp", "actual_q", "robot_mode")
+    assert second.recipes == {"outputs": {}, "inputs": {}}
+
+
+def test_a_recipe_remembers_where_it_was_set_up():
+    conversation = rtde.Conversation()
+    records = []
+    for from_robot, data in SESSION.messages:
+        records += conversation.feed(data, from_robot)
+    recipe = conversation.recipes["outputs"][2]
+    assert records[recipe.defined_at].NAME == "setup_outputs_reply" and records[recipe.defined_at].recipe_id == 2
+
+
+def test_the_client_side_builds_what_the_vectors_hold():
+    sent = [d for from_robot, d in SESSION.messages if not from_robot]
+    assert rtde.request_protocol_version(2) == sent[0]
+    assert rtde.get_controller_version() == sent[1]
+    assert rtde.setup_outputs(["timestamp", "actual_q", "not_a_variable"], 125.0) == sent[2]
+    assert rtde.setup_inputs(["input_int_register_24"]) == sent[4]
+    assert rtde.start() == sent[6] and rtde.pause() == sent[8]
+    recipe = rtde.Recipe(1, "inputs", ["input_double_register_0"], ["DOUBLE"], generated.VALUE_TYPES)
+    assert rtde.input_data(recipe, {"input_double_register_0": 0.5}) == sent[7]
+    assert rtde.setup_outputs(["timestamp"], protocol=1) == bytes.fromhex("000c4f") + b"timestamp"
+
+
+def test_every_value_type_reads_and_writes_back():
+    names = list(generated.VALUE_TYPES)
+    recipe = rtde.Recipe(3, "outputs", [n.lower() for n in names], names, generated.VALUE_TYPES)
+    body = bytes([3]) + bytes(range(1, recipe.size + 1))
+    message = struct.pack(">HB", 3 + len(body), ord("U")) + body
+    conversation = rtde.Conversation()
+    conversation.recipes["outputs"][3] = recipe
+    (record,) = conversation.feed(message, True)
+    assert record.encode() == message
+    assert record.values["vector6int32"] == list(struct.unpack_from(">6i", body, 1 + recipe.size - 48))
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_hostile_bytes_never_raise(seed):
+    rng = random.Random(seed)
+    conversation = rtde.Conversation()
+    for from_robot, data in SESSION.messages:
+        conversation.feed(data, from_robot)
+    for _ in range(200):
+        size = rng.choice([0, 1, 3, 5, 40, 300])
+        noise = bytes(rng.getrandbits(8) for _ in range(size))
+        if rng.random() < 0.5:   # a plausible header with a random size and a real code
+            noise = struct.pack(">HB", rng.choice([0, 2, 3, 4, 65535]), rng.choice(b"VvMOISPUR")) + noise
+        for record in conversation.feed(noise, rng.random() < 0.5):
+            urwire.to_json_line(record)
+    for record in conversation.close():
+        urwire.to_json_line(record)
+
+
+def test_a_huge_size_waits_for_its_bytes_then_is_a_truncated_tail():
+    conversation = rtde.Conversation()
+    assert conversation.feed(struct.pack(">HB", 65535, ord("U")) + b"\0" * 100, True) == []
+    (tail,) = conversation.close()
+    assert urwire.to_dict(tail) == {"type": "error", "offset": 0,
+                                    "error": "truncated message: 103 bytes at the end of the stream"}
+
+
+def test_the_variable_table_has_labels_units_and_versions():
+    q = rtde.variable("actual_q")
+    assert (q.type, q.unit, q.label, q.since) == ("VECTOR6D", "rad", "Actual joint positions",
+                                                  {"cb3": "3.3", "eseries": "5.0"})
+    assert rtde.variable("speed_slider_fraction", "input").type == "DOUBLE"
+    assert all(v.type in generated.VALUE_TYPES for v in rtde.VARIABLES)
+    assert rtde.variable("no_such_thing") is None

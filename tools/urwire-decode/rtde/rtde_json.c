@@ -1,0 +1,318 @@
+/* RTDE records as canonical JSON lines. See rtde_json.h. */
+#include "rtde_json.h"
+
+#include <string.h>
+
+#include "json.h"
+
+static void put_f64(FILE *out, double x)
+{
+    char text[40];
+    json_f64_text(x, text, sizeof text);
+    fputs(text, out);
+}
+
+static void put_text(FILE *out, const uint8_t *p, size_t n)
+{
+    json_write_text(out, p, n);
+}
+
+static void put_hex(FILE *out, const uint8_t *p, size_t n)
+{
+    static const char digits[] = "0123456789abcdef";
+    size_t i;
+    fputc('"', out);
+    for (i = 0; i < n; i++) {
+        fputc(digits[p[i] >> 4], out);
+        fputc(digits[p[i] & 15], out);
+    }
+    fputc('"', out);
+}
+
+/* Names joined by commas as a JSON list; no bytes are no names. */
+static void put_names(FILE *out, rtde_text t)
+{
+    size_t at = 0, i;
+    fputc('[', out);
+    if (t.length) {
+        for (i = 0; i <= t.length; i++) {
+            if (i == t.length || t.data[i] == ',') {
+                if (at)
+                    fputs(", ", out);
+                put_text(out, t.data + at, i - at);
+                at = i + 1;
+            }
+        }
+    }
+    fputc(']', out);
+}
+
+static void put_item(FILE *out, const rtde_value *v, size_t k)
+{
+    const char *type = rtde_value_type_name(v->type);
+    if (strcmp(type, "BOOL") == 0)
+        fputs(v->item[k].u64 ? "true" : "false", out);
+    else if (strcmp(type, "DOUBLE") == 0 || strcmp(type, "VECTOR3D") == 0 || strcmp(type, "VECTOR6D") == 0)
+        put_f64(out, v->item[k].f64);
+    else if (strcmp(type, "INT32") == 0 || strcmp(type, "VECTOR6INT32") == 0)
+        fprintf(out, "%lld", (long long)v->item[k].i64);
+    else
+        fprintf(out, "%llu", (unsigned long long)v->item[k].u64);
+}
+
+static void put_values(FILE *out, const rtde_data *d, bool *first)
+{
+    size_t i, k;
+    for (i = 0; i < rtde_data_count(d); i++) {
+        rtde_text name = rtde_data_name(d, i);
+        rtde_value v;
+        rtde_data_value(d, i, &v);
+        fputs(*first ? "" : ", ", out);
+        *first = false;
+        put_text(out, name.data, name.length);
+        fputs(": ", out);
+        if (v.count > 1)
+            fputc('[', out);
+        for (k = 0; k < v.count; k++) {
+            if (k)
+                fputs(", ", out);
+            put_item(out, &v, k);
+        }
+        if (v.count > 1)
+            fputc(']', out);
+    }
+}
+
+static uint64_t load(const uint8_t *p, size_t n)
+{
+    uint64_t v = 0;
+    size_t i;
+    for (i = 0; i < n; i++)
+        v = (v << 8) | p[i];
+    return v;
+}
+
+static void put_member(FILE *out, const rtde_member *mb, const uint8_t *base, bool *first)
+{
+    const uint8_t *p = base + mb->offset;
+    if (mb->kind == RTDE_MEMBER_VALUES) {
+        rtde_data d;
+        memcpy(&d, p, sizeof d);
+        put_values(out, &d, first);
+        return;
+    }
+    fputs(*first ? "\"" : ", \"", out);
+    *first = false;
+    fputs(mb->name, out);
+    fputs("\": ", out);
+    if (mb->kind == RTDE_MEMBER_TEXT || mb->kind == RTDE_MEMBER_NAMES) {
+        rtde_text t;
+        memcpy(&t, p, sizeof t);
+        if (mb->kind == RTDE_MEMBER_TEXT)
+            put_text(out, t.data, t.length);
+        else
+            put_names(out, t);
+    } else if (mb->kind == RTDE_MEMBER_F64) {
+        double d;
+        memcpy(&d, p, sizeof d);
+        put_f64(out, d);
+    } else {
+        /* Integers of their own width in the struct (uint8_t to uint64_t, int32_t). */
+        uint64_t u = 0;
+        uint8_t u8;
+        uint16_t u16;
+        uint32_t u32;
+        int32_t i32;
+        if (mb->kind == RTDE_MEMBER_INT) {
+            memcpy(&i32, p, sizeof i32);
+            fprintf(out, "%ld", (long)i32);
+            return;
+        }
+        if (mb->size == 1) {
+            memcpy(&u8, p, 1);
+            u = u8;
+        } else if (mb->size == 2) {
+            memcpy(&u16, p, 2);
+            u = u16;
+        } else if (mb->size == 4) {
+            memcpy(&u32, p, 4);
+            u = u32;
+        } else {
+            memcpy(&u, p, 8);
+        }
+        if (mb->kind == RTDE_MEMBER_BOOL)
+            fputs(u ? "true" : "false", out);
+        else
+            fprintf(out, "%llu", (unsigned long long)u);
+    }
+}
+
+/* The next comma-separated item of t from *at; false at the end. */
+static bool next_item(rtde_text t, size_t *at, size_t *start, size_t *n)
+{
+    size_t i;
+    if (*at > t.length || t.length == 0)
+        return false;
+    for (i = *at; i < t.length && t.data[i] != ','; i++)
+        ;
+    *start = *at;
+    *n = i - *at;
+    *at = i + 1;
+    return true;
+}
+
+/* A refused setup: {"name": "WORD", ...} for each name whose answer is no value type (empty
+ * names name no variable and have no answer). */
+static void put_refused(FILE *out, rtde_text names, rtde_text types)
+{
+    size_t an = 0, at = 0, s1, n1, s2, n2;
+    bool first = true;
+    fputs(", \"refused\": {", out);
+    for (;;) {
+        bool more = next_item(names, &an, &s1, &n1);
+        while (more && n1 == 0)
+            more = next_item(names, &an, &s1, &n1);
+        if (!more || !next_item(types, &at, &s2, &n2))
+            break;
+        if (rtde_value_type_of(types.data + s2, n2) < 0) {
+            fputs(first ? "" : ", ", out);
+            first = false;
+            put_text(out, names.data + s1, n1);
+            fputs(": ", out);
+            put_text(out, types.data + s2, n2);
+        }
+    }
+    fputc('}', out);
+}
+
+static rtde_text reply_types(const rtde_message *m)
+{
+    rtde_text none = {NULL, 0};
+    if (m->layout == RTDE_LAYOUT_SETUP_OUTPUTS_REPLY) return m->u.setup_outputs_reply.types;
+    if (m->layout == RTDE_LAYOUT_SETUP_OUTPUTS_REPLY_V1) return m->u.setup_outputs_reply_v1.types;
+    if (m->layout == RTDE_LAYOUT_SETUP_INPUTS_REPLY) return m->u.setup_inputs_reply.types;
+    return none;
+}
+
+int rtde_json_record(FILE *out, const rtde_message *m, rtde_error e, size_t at, const uint8_t *msg, size_t size)
+{
+    const rtde_layout_info *info = rtde_layout_of(m->layout);
+    bool first = false;
+    size_t i;
+    if (e != RTDE_OK) {
+        fputs("{\"type\": \"", out);
+        fputs(m->layout == RTDE_LAYOUT_NONE ? rtde_unlaid_name(m->code) : info->name, out);
+        fprintf(out, "\", \"message_type\": %u", (unsigned)m->code);
+        if (e == RTDE_UNKNOWN_RECIPE) {
+            if (info->count > 1 && strcmp(info->members[0].name, "recipe_id") == 0 && size > RTDE_HEADER_SIZE)
+                fprintf(out, ", \"recipe_id\": %u", (unsigned)msg[RTDE_HEADER_SIZE]);
+            fputs(", \"error\": \"data package of a recipe this connection did not set up\"", out);
+        } else if (e == RTDE_SHORT) {
+            fprintf(out, ", \"error\": \"%s at offset %lu: needs %lu bytes, %lu left\"", m->error_field,
+                    (unsigned long)at, (unsigned long)m->error_need, (unsigned long)(size - at));
+        } else if (e == RTDE_EXTRA) {
+            fprintf(out, ", \"error\": \"extra at offset %lu: %lu bytes after the layout\"", (unsigned long)at,
+                    (unsigned long)m->error_need);
+        } else if (e != RTDE_UNKNOWN_TYPE) {
+            fprintf(out, ", \"error\": \"%s\"", rtde_error_text(e));
+        }
+        fputs(", \"raw\": ", out);
+        put_hex(out, msg, size);
+        fputs("}\n", out);
+        return e == RTDE_UNKNOWN_TYPE ? 0 : 1;
+    }
+    fprintf(out, "{\"type\": \"%s\"", info->name);
+    for (i = 0; i < info->count; i++)
+        put_member(out, &info->members[i], (const uint8_t *)&m->u, &first);
+    if (m->refused)
+        put_refused(out, m->request_names, reply_types(m));
+    if (m->warning) {
+        fputs(", \"warning\": ", out);
+        put_text(out, (const uint8_t *)m->warning, strlen(m->warning));
+    }
+    fputs("}\n", out);
+    return 0;
+}
+
+void rtde_json_stream_init(rtde_json_stream *s)
+{
+    rtde_conversation_init(&s->conversation);
+    s->direction[0].length = s->direction[1].length = 0;
+    s->direction[0].offset = s->direction[1].offset = 0;
+    s->direction[0].scanning = s->direction[1].scanning = false;
+}
+
+static bool plausible(const uint8_t *p)
+{
+    size_t size;
+    return rtde_message_size(p, RTDE_HEADER_SIZE, &size) != RTDE_BAD_HEADER;
+}
+
+static int frame(rtde_json_stream *s, rtde_json_direction *d, bool from_robot, FILE *out)
+{
+    size_t pos = 0, size;
+    int errors = 0;
+    while (d->length - pos >= RTDE_HEADER_SIZE) {
+        rtde_error e = rtde_message_size(d->buf + pos, d->length - pos, &size);
+        if (e == RTDE_BAD_HEADER) {
+            /* One fault per scan, however the bytes were cut: a scan that ran out of bytes goes on
+             * silently when more come. */
+            if (!d->scanning) {
+                fprintf(out, "{\"type\": \"error\", \"offset\": %llu, \"error\": \"bad message header: size %u, "
+                        "type %u\"}\n", (unsigned long long)(d->offset + pos), (unsigned)load(d->buf + pos, 2),
+                        (unsigned)d->buf[pos + 2]);
+                errors++;
+            }
+            d->scanning = true;
+            pos++;
+            while (d->length - pos >= RTDE_HEADER_SIZE && !plausible(d->buf + pos))
+                pos++;
+            continue;
+        }
+        d->scanning = false;
+        if (e == RTDE_NEED_MORE)
+            break;
+        {
+            rtde_message m;
+            size_t at;
+            rtde_error de = rtde_decode(&s->conversation, d->buf + pos, size, from_robot, &m, &at);
+            errors += rtde_json_record(out, &m, de, at, d->buf + pos, size);
+        }
+        pos += size;
+    }
+    memmove(d->buf, d->buf + pos, d->length - pos);
+    d->length -= pos;
+    d->offset += pos;
+    return errors;
+}
+
+int rtde_json_feed(rtde_json_stream *s, const uint8_t *data, size_t length, bool from_robot, FILE *out)
+{
+    rtde_json_direction *d = &s->direction[from_robot ? 1 : 0];
+    int errors = 0;
+    while (length) {
+        size_t room = RTDE_JSON_BUFFER - d->length, n = length < room ? length : room;
+        memcpy(d->buf + d->length, data, n);
+        d->length += n;
+        data += n;
+        length -= n;
+        errors += frame(s, d, from_robot, out);
+    }
+    return errors;
+}
+
+int rtde_json_close(rtde_json_stream *s, FILE *out)
+{
+    int errors = 0, k;
+    for (k = 1; k >= 0; k--) {
+        rtde_json_direction *d = &s->direction[k];
+        if (d->length) {
+            fprintf(out, "{\"type\": \"error\", \"offset\": %llu, \"error\": \"truncated message: %lu bytes at the end "
+                    "of the stream\"}\n", (unsigned long long)d->offset, (unsigned long)d->length);
+            d->offset += d->length;
+            d->length = 0;
+            errors++;
+        }
+    }
+    return errors;
+}

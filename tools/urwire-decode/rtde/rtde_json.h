@@ -1,0 +1,41 @@
+/* RTDE records as canonical JSON lines (docs/canonical-json.md), the same bytes as the Python
+ * `urwire.rtde.Conversation` and `urwire.to_json_line` give: for `urwire-decode --protocol rtde`.
+ * Hand-written; part of the command, not of the library (generated/c/rtde.{h,c}). */
+#ifndef RTDE_JSON_H
+#define RTDE_JSON_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "rtde.h"
+
+#define RTDE_JSON_BUFFER 65536          /* the largest message a uint16 size allows */
+
+/* One direction of a connection: the bytes of a message still arriving. */
+typedef struct rtde_json_direction {
+    uint8_t buf[RTDE_JSON_BUFFER];
+    size_t length;
+    uint64_t offset;                    /* of buf[0] in the direction's stream */
+    bool scanning;                      /* looking for the next plausible header after a fault */
+} rtde_json_direction;
+
+/* One connection: its RTDE state and both directions' framing. */
+typedef struct rtde_json_stream {
+    rtde_conversation conversation;
+    rtde_json_direction direction[2];   /* [1]: from the robot */
+} rtde_json_stream;
+
+void rtde_json_stream_init(rtde_json_stream *s);
+
+/* Bytes of one direction, as they arrive: each record they complete, one line each, on out.
+ * Returns the number of error records written (stream faults, undecodable messages). */
+int rtde_json_feed(rtde_json_stream *s, const uint8_t *data, size_t length, bool from_robot, FILE *out);
+
+/* The ends of both streams (the robot's first): a truncated tail becomes an error record. */
+int rtde_json_close(rtde_json_stream *s, FILE *out);
+
+/* One decoded message (or what rtde_decode said of it) as one line. Returns 1 for an error record. */
+int rtde_json_record(FILE *out, const rtde_message *m, rtde_error e, size_t at, const uint8_t *msg, size_t size);
+
+#endif
