@@ -124,3 +124,15 @@ def test_the_fuzz_harness_runs_over_its_kept_corpus(tmp_path):
     long_line.write_bytes(b"\x01" + (b"\xfe" + b"z" * 127) * 80 + b"\x03\n")   # a 10 KB line from the robot
     result = subprocess.run([str(harness), "-runs=0", str(CORPUS), str(long_line.parent)], capture_output=True, timeout=120)
     assert result.returncode == 0, result.stderr.decode(errors="replace")[-2000:]
+
+
+@pytest.mark.parametrize("name,case", CASES, ids=[f"{n}/{c.name}" for n, c in CASES])
+def test_urwire_decode_protocol_prints_what_python_prints_of_the_robots_stream(name, case):
+    from tests.c.harness_c import get_build
+
+    robot = [s for s in case.segments if s.from_robot]
+    args = [str(get_build("asan-gcc").cli), "--protocol", name] + (["--version-hint", case.version] if case.version else [])
+    result = subprocess.run(args + ["-"], input=b"".join(s.data for s in robot), capture_output=True, timeout=60)
+    lines = python_lines(robot, case.version, name)
+    assert result.stdout.decode("utf-8").splitlines() == lines, result.stderr
+    assert result.returncode == (1 if any('"type": "error"' in line for line in lines) else 0)

@@ -1,6 +1,6 @@
 /* urwire-decode: a raw stream of one UR interface in, canonical JSON Lines out.
  *
- *     urwire-decode [--protocol ur|ur_realtime] [--version-hint 5.9|5.25.1] FILE|-
+ *     urwire-decode [--protocol ur|ur_realtime|ur_dashboard|...] [--version-hint 5.9|5.25.1] FILE|-
  *
  * Exit status: 0 all decoded, 1 the output holds error records, 2 usage or I/O error. */
 #include <errno.h>
@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "json.h"
+#include "cell_streams.h"
 #include "records.h"
 #include "ur_realtime_json.h"
 #include "urwire.h"
@@ -18,7 +19,9 @@ static const char usage[] =
     "Decode a raw stream of a Universal Robots interface (FILE, or - for stdin) and print\n"
     "one canonical JSON record per line.\n"
     "  --protocol NAME   the interface the stream is from: ur (primary/secondary, 30001/30002,\n"
-    "                    the default) or ur_realtime (real-time, 30003)\n"
+    "                    the default), ur_realtime (real-time, 30003), ur_dashboard (29999), or\n"
+    "                    the driver's ur_reverse, ur_script_sender, ur_trajectory, ur_script_command\n"
+    "                    (50001-50004, whose hint is the driver release)\n"
     "  --version-hint V  the software version (5.9, 5.25.1) until the stream shows a Version\n"
     "                    message: it chooses each part's layout and the global-variable value\n"
     "                    types (default: 5.9 and later, or what the layout sizes show)\n"
@@ -73,12 +76,31 @@ static int run_primary_row(FILE *in, urwire_sw_version version, bool hinted)
     return run_primary(in, version);
 }
 
+/* The dashboard server and the driver's sockets: the stream from the robot; the hint is the
+ * software version of the dashboard and the driver release of the sockets. */
+#define CELL_ROW(P)                                                                               \
+    static int run_##P(FILE *in, urwire_sw_version version, bool hinted)                         \
+    {                                                                                              \
+        return P##_print_stream(in, stdout, (unsigned)version.major, (unsigned)version.minor,      \
+                                (unsigned)version.bugfix, hinted);                                 \
+    }
+CELL_ROW(ur_dashboard)
+CELL_ROW(ur_script_sender)
+CELL_ROW(ur_reverse)
+CELL_ROW(ur_trajectory)
+CELL_ROW(ur_script_command)
+
 static const struct {
     const char *name;
     protocol_runner run;
 } protocols[] = {
     {"ur", run_primary_row},
     {"ur_realtime", run_realtime},
+    {"ur_dashboard", run_ur_dashboard},
+    {"ur_script_sender", run_ur_script_sender},
+    {"ur_reverse", run_ur_reverse},
+    {"ur_trajectory", run_ur_trajectory},
+    {"ur_script_command", run_ur_script_command},
 };
 
 static int fail(const char *what, const char *detail)
@@ -123,7 +145,8 @@ int main(int argc, char **argv)
         if (strcmp(protocols[p].name, protocol) == 0)
             run = protocols[p].run;
     if (!run)
-        return fail("unknown protocol (known: ur, ur_realtime)", protocol);
+        return fail("unknown protocol (known: ur, ur_realtime, ur_dashboard, ur_reverse, ur_script_sender, "
+                    "ur_trajectory, ur_script_command)", protocol);
     if (!path)
         return fail("no input: give a FILE or - for stdin; try --help", NULL);
     if (hint && !urwire_parse_version(hint, &version))
