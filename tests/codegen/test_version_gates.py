@@ -8,6 +8,7 @@ from __future__ import annotations
 import importlib
 import struct
 import sys
+from pathlib import Path
 
 import yaml
 
@@ -20,10 +21,17 @@ def render_variant(tmp_path, edit):
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
     edit(data)
     protocol = compile_text(yaml.safe_dump(data, sort_keys=False))
-    for rel, text in python_target.render(plan(protocol), ["test build"]).items():
+    written = python_target.render(plan(protocol), ["test build"])
+    for rel, text in written.items():
         path = tmp_path / rel
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)
+    # The other interfaces' modules, as generated: the package imports them (urwire.interfaces).
+    generated = Path(__file__).resolve().parents[2] / "generated"
+    for path in (generated / "python" / "urwire" / "generated").glob("*.py"):
+        rel = str(path.relative_to(generated))
+        if rel not in written:
+            (tmp_path / rel).write_text(path.read_text(encoding="utf-8"))
     return tmp_path / "python"
 
 
