@@ -166,3 +166,31 @@ def test_filters_and_experts(dissected, tmp_path):
     assert out.split() == ["18"]                 # the data package, linked to the setup reply's frame
     experts = tshark(pcap, "-q", "-z", "expert")
     assert "not_a_variable: NOT_FOUND" in experts and "input_int_register_24: IN_USE" in experts
+
+
+def test_hostile_bytes_raise_no_lua_error(tmp_path):
+    """Flipped, cut and random bytes and huge sizes in both directions, whole and in small
+    segments: tshark finishes with no Lua error (run_tshark's checks) and shows rtde items."""
+    import random
+    import struct as st
+    rng = random.Random(5)
+    session = [c for c in CASES if c.name == "protocol2_session"][0].messages
+    segments = []
+    for _ in range(400):
+        from_robot, data = rng.choice(session)
+        data = bytearray(data)
+        roll = rng.random()
+        if roll < 0.3 and data:
+            data[rng.randrange(len(data))] ^= 1 << rng.randrange(8)
+        elif roll < 0.5:
+            data = data[:rng.randrange(len(data) + 1)]
+        elif roll < 0.6:
+            data = bytearray(st.pack(">HB", rng.choice([0xFFFF, 2, 3, 4]), rng.choice(b"UOIVMR")))
+        elif roll < 0.7:
+            data = bytearray(rng.getrandbits(8) for _ in range(rng.randrange(1, 80)))
+        cut = rng.choice([len(data) or 1, 1, 3])
+        segments += [Segment(from_robot, bytes(data[i:i + cut])) for i in range(0, len(data), cut)]
+    pcap = tmp_path / "hostile.pcap"
+    capture.write(pcap, capture.session_frames(segments, port=PORT, client_port=50009))
+    out = tshark(pcap, "-Y", "rtde", "-T", "fields", "-e", "rtde.kind")
+    assert len(out.splitlines()) > 50 and "setup_outputs" in out
