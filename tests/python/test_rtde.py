@@ -123,3 +123,15 @@ def test_the_variable_table_has_labels_units_and_versions():
     assert rtde.variable("speed_slider_fraction", "input").type == "DOUBLE"
     assert all(v.type in generated.VALUE_TYPES for v in rtde.VARIABLES)
     assert rtde.variable("no_such_thing") is None
+
+
+def test_which_controllers_have_a_variable():
+    """The first CB3 and e-Series versions decide; a variable whose first version no source gives
+    is neither there nor missing."""
+    upper = rtde.variable("output_int_register_24")
+    assert (upper.available_in((3, 8)), upper.available_in((3, 9, 0)), upper.available_in((5, 2)),
+            upper.available_in((5, 3))) == (False, True, False, True)
+    assert rtde.variable("tool_output_mode").available_in((3, 15)) is False
+    assert rtde.variable("tool_output_mode").available_in((5, 2)) is True
+    assert rtde.variable("actual_q").available_in((3, 3)) is True
+    assert rtde.variable("ft_raw_wrench").available_in((5, 11)) is None
