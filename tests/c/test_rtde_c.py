@@ -151,3 +151,12 @@ def test_the_fuzz_harness_replays_its_corpus(tmp_path):
     res = subprocess.run([str(fuzzer), "-runs=0", str(CORPUS), str(seeds)], capture_output=True, text=True,
                          timeout=120)
     assert res.returncode == 0, res.stderr[-3000:]
+
+
+def test_the_header_compiles_as_cpp(tmp_path):
+    source = tmp_path / "use.cpp"
+    source.write_text('#include "rtde.h"\nint main() { static rtde_conversation c; rtde_conversation_init(&c); '
+                      'return rtde_protocol_in_force(&c) == RTDE_DEFAULT_PROTOCOL ? 0 : 1; }\n')
+    res = subprocess.run(["g++", "-std=c++11", "-Wall", "-Wextra", "-Werror", "-pedantic", f"-I{GEN}", "-c",
+                          str(source), "-o", str(tmp_path / "use.o")], capture_output=True, text=True)
+    assert res.returncode == 0 and res.stderr == "", res.stderr
