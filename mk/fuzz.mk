@@ -1,9 +1,11 @@
-# Fuzzing: three coverage-guided harnesses, each seeded with the vectors, messages at the 1 MiB
+# Fuzzing: four coverage-guided harnesses, each seeded with the vectors, messages at the 1 MiB
 # length limit (tests/c/seeds.py) and its kept corpus (tests/fuzz/corpus/<harness>/):
 #   urwire  tests/c/fuzz_urwire.c          the C framer and every decoder, encoder and visitor
 #   json    tests/c/fuzz_json.c            urwire-decode: version hint, record loop, JSON writer
 #   python  tests/python/fuzz_decoder.py   the Python decoder (atheris), and urwire-decode
 #                                          against it through one driver process
+#   ur_realtime  tests/c/fuzz_ur_realtime.c  the real-time decoder and its JSON writer (its kept
+#                                          corpus only)
 # `make test` does not fuzz: it builds each harness and runs it once over its kept corpus and
 # seeds (tests/c/test_c_fuzz_corpus.py, tests/python/test_fuzz_corpus.py), and replays the kept
 # corpora through C against Python and through tshark (tests/lua/test_fuzz_corpus.py).
@@ -22,10 +24,10 @@ FUZZ_CC := $(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-san
 	-Igenerated/c -Itools/urwire-decode
 CLI_LIB := $(filter-out %/main.c,$(filter %.c,$(C_CLI)))
 
-.PHONY: fuzz fuzz-c fuzz-json fuzz-python fuzz-long fuzz-corpus
+.PHONY: fuzz fuzz-c fuzz-json fuzz-python fuzz-ur-realtime fuzz-long fuzz-corpus
 
 ## fuzz: every fuzzer for FUZZ_SECONDS (60) each; crashes land in build/fuzz/crashes/<harness>/
-fuzz: fuzz-c fuzz-json fuzz-python
+fuzz: fuzz-c fuzz-json fuzz-python fuzz-ur-realtime
 
 ## fuzz-long: every fuzzer for FUZZ_LONG_SECONDS (an hour) each
 fuzz-long:
@@ -33,18 +35,18 @@ fuzz-long:
 
 build/fuzz/fuzz_urwire: tests/c/fuzz_urwire.c $(C_LIB) $(C_CLI)
 	@mkdir -p build/fuzz
-	$(FUZZ_CC) -o $@ tests/c/fuzz_urwire.c $(CLI_LIB) generated/c/urwire.c -lm
+	$(FUZZ_CC) -o $@ tests/c/fuzz_urwire.c $(CLI_LIB) $(C_SOURCES) -lm
 
 build/fuzz/fuzz_json: tests/c/fuzz_json.c $(C_LIB) $(C_CLI)
 	@mkdir -p build/fuzz
-	$(FUZZ_CC) -o $@ tests/c/fuzz_json.c $(CLI_LIB) generated/c/urwire.c -lm
+	$(FUZZ_CC) -o $@ tests/c/fuzz_json.c $(CLI_LIB) $(C_SOURCES) -lm
 
 # The Python fuzzer's peer: the test driver answering for urwire-decode, input after input.
 build/fuzz/driver: tests/c/driver.c tests/c/state_members.py $(C_LIB) $(C_CLI)
 	@mkdir -p build/fuzz
 	$(PYTHON) tests/c/state_members.py generated/c/urwire.h build/fuzz
 	$(CC) $(C_STRICT) $(C_OPT) -Igenerated/c -Itools/urwire-decode -Ibuild/fuzz -o $@ tests/c/driver.c $(CLI_LIB) \
-		generated/c/urwire.c -lm
+		$(C_SOURCES) -lm
 
 # $(call fuzz_run,HARNESS,COMMAND,MORE SEED FOLDERS)
 define fuzz_run
@@ -61,6 +63,17 @@ fuzz-c: build/fuzz/fuzz_urwire
 ## fuzz-json: urwire-decode's version hint, record loop and JSON writer (tests/c/fuzz_json.c)
 fuzz-json: build/fuzz/fuzz_json
 	$(call fuzz_run,json,build/fuzz/fuzz_json -timeout=25)
+
+## fuzz-ur-realtime: the real-time decoder and its JSON writer (tests/c/fuzz_ur_realtime.c); seeded
+## with its kept corpus only (tests/fuzz/corpus/ur_realtime/, the golden vectors with a control byte)
+build/fuzz/fuzz_ur_realtime: tests/c/fuzz_ur_realtime.c $(C_LIB) $(C_CLI)
+	@mkdir -p build/fuzz
+	$(FUZZ_CC) -o $@ tests/c/fuzz_ur_realtime.c $(CLI_LIB) $(C_SOURCES) -lm
+
+fuzz-ur-realtime: build/fuzz/fuzz_ur_realtime
+	@mkdir -p build/fuzz/corpus/ur_realtime build/fuzz/crashes/ur_realtime
+	build/fuzz/fuzz_ur_realtime -max_len=30000 -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+		-artifact_prefix=build/fuzz/crashes/ur_realtime/ build/fuzz/corpus/ur_realtime $(FUZZ_CORPUS)/ur_realtime
 
 ## fuzz-python: the Python decoder, and urwire-decode against it (tests/python/fuzz_decoder.py)
 fuzz-python: build/fuzz/driver

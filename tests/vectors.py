@@ -90,6 +90,19 @@ def golden_cases() -> list[Case]:
     return cases
 
 
+def interface_cases(interface: str) -> list[Case]:
+    """The golden cases of another interface of the cell: golden/<interface>/*.yaml, in the same
+    form (hex, expect, an optional version)."""
+    cases = []
+    for path in sorted((GOLDEN_DIR / interface).glob("*.yaml")):
+        doc = _load_yaml(path)
+        if "hex" not in doc:
+            raise VectorError(f"{path}: no 'hex'")
+        cases.append(Case(name=f"{interface}/{path.stem}", path=path, data=parse_hex(doc["hex"], path),
+                          version=_version(doc, path), expect=_expect(doc, path), partial=False, tolerance=0.0))
+    return cases
+
+
 def _without_version_message(case: Case) -> Case:
     """The same stream with its first message, a Version message, cut off: what a capture that
     starts mid-stream holds. The layout sizes must then tell the version, and the canonical JSON

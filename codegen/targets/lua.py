@@ -637,8 +637,8 @@ class _Builder:
 def runtime() -> list[dict]:
     """The runtime files in joining order, as joined (standalone-only lines removed)."""
     folder = RUNTIME_FOLDER / "lua"
-    # runtime/lua/<interface>_*.lua belong to the other interfaces' dissectors (codegen/kinds/).
-    found = sorted(p.name for p in folder.glob("*.lua") if "_" not in p.name)
+    # runtime/lua/<interface>_<part>.lua belongs to another interface's dissector, not to this one.
+    found = sorted(p.name for p in folder.glob("*.lua") if "_" not in p.stem)
     if sorted(RUNTIME) != found:
         raise ValueError(f"lua target: runtime files {found} differ from the joining order {list(RUNTIME)}")
     return [dict(name=name, path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in RUNTIME]

@@ -4361,10 +4361,11 @@ do
 -- the call before it is kept, with a snapshot per call and the snapshot its last call started
 -- with; a frame that keeps nothing starts with that of the last frame kept before it (found by
 -- bisection). A capture in step costs memory per stream, not per frame.
--- Streams are keyed by their two ports (a number: no string is made per packet). Field.new(
--- "tcp.stream") gives nothing on a first pass without a tree (tshark -2), and Conversation only
--- exists from Wireshark 4.6. Two robots talking to clients that use the same port number at the
--- same time would share a state; a reused port pair starts over with its Version message.
+-- Streams are keyed by both addresses and both ports ("192.168.56.101 192.168.56.1 30001 50000"),
+-- so that two robots, or two clients of one robot, never share a state, even on the same port
+-- numbers. Field.new("tcp.stream") gives nothing on a first pass without a tree (tshark -2), and
+-- Conversation only exists from Wireshark 4.6. A reused address and port pair starts over with
+-- its Version message.
 local spec, rt = ...
 local floor = math.floor
 
@@ -4458,7 +4459,7 @@ end
 -- The state as a call with n bytes starts: version, implied, resync, carry, how many bytes of
 -- the carry are this call's (nil: no carry), and the stream's key for stream_save.
 local function stream_load(pinfo, n)
-    local stream = pinfo.src_port * 65536 + pinfo.dst_port
+    local stream = tostring(pinfo.src) .. " " .. tostring(pinfo.dst) .. " " .. (pinfo.src_port * 65536 + pinfo.dst_port)
     local frame = pinfo.number
     local key = frame * CALL_SPAN + n % CALL_SPAN
     local snap

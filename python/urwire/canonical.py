@@ -12,6 +12,7 @@ import math
 import struct
 from typing import Any, Callable, Optional
 
+from .envelope import Enveloped
 from ._runtime import (GlobalValue, MalformedPackage, MalformedSubtype, StreamError, UnknownMessage,
                        UnknownPackage, UnknownSubtype)
 
@@ -455,7 +456,14 @@ def _packages(obj: Any) -> str:
     return "{" + ", ".join(parts) + "}"
 
 
-_RUNTIME_WRITERS = ((StreamError, _stream_error), (UnknownMessage, _unknown_message),
+def _enveloped(obj: Enveloped) -> str:
+    """The envelope's keys first, then the record's own."""
+    inner = _write(obj.record)
+    return '{"interface": %s, "direction": %s, "conversation": %s, %s' % (
+        _text(obj.interface), _text(obj.direction), _text(obj.conversation), inner[1:])
+
+
+_RUNTIME_WRITERS = ((Enveloped, _enveloped), (StreamError, _stream_error), (UnknownMessage, _unknown_message),
                     (UnknownPackage, _unknown_package), (MalformedPackage, _malformed_package),
                     (UnknownSubtype, _subtype), (MalformedSubtype, _subtype))
 
@@ -492,6 +500,10 @@ def to_dict(record: Any) -> dict:
 
 def has_error(record: Any) -> bool:
     """True when the record is a stream fault or holds a part that could not be decoded."""
+    if isinstance(record, Enveloped):
+        return has_error(record.record)
+    if getattr(record, "IS_ERROR", False):     # a record that is an error of its interface
+        return True
     if isinstance(record, (StreamError, MalformedSubtype)):
         return True
     if isinstance(record, UnknownMessage):

@@ -1,4 +1,5 @@
-"""Robot->client byte streams out of .pcap/.pcapng captures, reassembled from TCP segments.
+"""Robot->client (and, where asked, client->robot) byte streams out of .pcap/.pcapng captures,
+reassembled from TCP segments.
 
 dpkt reads the capture formats (a record at a time, see capture_records) and parses the link, IP and TCP layers; reassembly is ours:
 segments in sequence order, retransmitted and overlapping bytes dropped, out-of-order ones
@@ -124,12 +125,27 @@ def timed_robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[Union[tuple[S
     """The same, each with the capture time (seconds since the epoch) of the frame that brought
     its bytes: what completes a message dates it. A record of the file that cannot be read comes
     out as a CaptureFault where it was met; the streams then end as at the end of the file."""
+    for item in timed_streams(fh, ports):
+        if isinstance(item, CaptureFault):
+            yield item
+        else:
+            key, _, data, ended, ts = item
+            yield key, data, ended, ts
+
+
+def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozenset()) -> Iterator[
+        Union[tuple[StreamKey, bool, bytes, bool, float], CaptureFault]]:
+    """(conversation, from robot, bytes in order, stream ended, capture time) for the TCP streams
+    whose robot side is on `ports`: robot->client always, client->robot too for the ports in
+    `both_ways` (the interfaces that read what clients send). The conversation is (robot address,
+    robot port, client address, client port) in both directions; each direction is reassembled on
+    its own. CaptureFaults as timed_robot_streams says."""
     import dpkt
     import socket
 
     head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
     reader = CaptureFrames(fh, pcapng=head == PCAPNG_MAGIC)
-    streams: dict[StreamKey, _Reassembly] = {}
+    streams: dict[tuple, _Reassembly] = {}   # by (conversation, from robot)
     held = 0  # bytes held out of order by all the streams, as held_bytes counts them
     ts = 0.0
     for item in reader:
@@ -143,31 +159,39 @@ def timed_robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[Union[tuple[S
         except (dpkt.UnpackError, ValueError, IndexError):
             continue
         tcp = getattr(ip, "data", None)
-        if not isinstance(tcp, dpkt.tcp.TCP) or tcp.sport not in ports:
+        if not isinstance(tcp, dpkt.tcp.TCP):
+            continue
+        if tcp.sport in ports:
+            from_robot = True
+        elif tcp.dport in both_ways:
+            from_robot = False
+        else:
             continue
         family = socket.AF_INET if isinstance(ip, dpkt.ip.IP) else socket.AF_INET6
-        key = (socket.inet_ntop(family, ip.src), tcp.sport, socket.inet_ntop(family, ip.dst), tcp.dport)
-        stream = streams.get(key)
+        src, dst = socket.inet_ntop(family, ip.src), socket.inet_ntop(family, ip.dst)
+        key = (src, tcp.sport, dst, tcp.dport) if from_robot else (dst, tcp.dport, src, tcp.sport)
+        way = (key, from_robot)
+        stream = streams.get(way)
         if stream is not None:
             held -= stream.held_bytes  # added back below, as the segment leaves it
         if tcp.flags & dpkt.tcp.TH_SYN:
-            stream = streams[key] = _Reassembly((tcp.seq + 1) & 0xFFFFFFFF)
+            stream = streams[way] = _Reassembly((tcp.seq + 1) & 0xFFFFFFFF)
             continue
         if stream is None:
-            stream = streams[key] = _Reassembly()
+            stream = streams[way] = _Reassembly()
         data = stream.add(tcp.seq, bytes(tcp.data)) if tcp.data else b""
         ended = bool(tcp.flags & (dpkt.tcp.TH_FIN | dpkt.tcp.TH_RST))
         if ended:
             data += stream.flush()
-            del streams[key]
+            del streams[way]
         else:
             held += stream.held_bytes
         if data or ended:
-            yield key, data, ended, float(ts)
+            yield key, from_robot, data, ended, float(ts)
         while held > MAX_PENDING:  # the stream holding the most gives up its gap
             largest = max(streams, key=lambda k: streams[k].held_bytes)
             held -= streams[largest].held_bytes
-            yield largest, streams[largest].skip_gap(), False, float(ts)
+            yield largest[0], largest[1], streams[largest].skip_gap(), False, float(ts)
             held += streams[largest].held_bytes
-    for key, stream in streams.items():
-        yield key, stream.flush(), True, float(ts)
+    for (key, from_robot), stream in streams.items():
+        yield key, from_robot, stream.flush(), True, float(ts)

@@ -11,10 +11,13 @@ from typing import BinaryIO, Callable, Optional
 
 from . import __version__, export, listen, plot, serve
 from .arguments import parse_version
+from .capture import is_capture
 from .canonical import has_error, to_json_line
 from .human import line as human_line
 from .human import tree as human_tree
-from .reading import input_kind, records_of
+from .cell import interface_named, ports_of, records_of_raw_protocol
+from .interfaces import INTERFACES
+from .reading import CHUNK, input_kind, records_of
 from .generated.spec import DEFAULT_VERSION, PORTS
 
 PROGRESS_MIN_BYTES = 8 << 20
@@ -41,6 +44,13 @@ def build_parser() -> argparse.ArgumentParser:
                          description="Decode a raw robot->client stream, or every robot->client TCP stream "
                                      "of a .pcap/.pcapng capture, and print one JSON object per message.")
     dec.add_argument("file", help="a raw stream, a .pcap or a .pcapng file; - for standard input")
+    dec.add_argument("--protocol", choices=sorted(INTERFACES), default=None,
+                     help="the interface a raw stream is from (default: ur, the primary/secondary interface); "
+                          "for a capture, decode only this interface's conversations (default: every interface "
+                          "of the cell, each by its ports)")
+    dec.add_argument("--to-robot", metavar="FILE2",
+                     help="with a raw stream: the client->robot stream of the same connection, read first; "
+                          "each record then names its interface, direction and file")
     dec.add_argument("--version-hint", type=_version_arg, metavar="X.Y[.Z]",
                      help=f"software version to assume until a Version message is seen (e.g. 3.2 or 5.25.1): it "
                           f"chooses each part's layout and the meaning of version-dependent codes, such as the "
@@ -50,7 +60,8 @@ def build_parser() -> argparse.ArgumentParser:
                      help="json: canonical JSON Lines (default); text: one readable line per message; "
                           "tree: every field of every message on a line of its own, with its label and unit")
     dec.add_argument("--port", type=int, action="append", metavar="PORT",
-                     help=f"robot-side TCP port(s) to decode in captures (default: {' '.join(map(str, PORTS))})")
+                     help=f"robot-side TCP port(s) to decode in captures, as the --protocol interface (default: "
+                          f"each interface's own ports, the primary's {' '.join(map(str, PORTS))} among them)")
     dec.add_argument("--no-progress", action="store_true", help="never show a progress bar")
     dec.set_defaults(run=decode_command)
     for tool in (serve, listen, export, plot):
@@ -75,6 +86,21 @@ def _progress(size: Optional[int], disabled: bool) -> Callable[[int], None]:
     return bar.update
 
 
+def _records(fh: BinaryIO, args: argparse.Namespace, advance: Callable[[int], None]):
+    """The records of the input: a capture's conversations by port, or a raw stream of one interface."""
+    interface = interface_named(args.protocol or "ur")
+    head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+    if args.to_robot is None and (interface.name == "ur" or is_capture(head)):
+        if args.port:
+            by_port = {port: interface for port in args.port}
+        else:
+            by_port = ports_of([interface] if args.protocol else INTERFACES.values())
+        return records_of(fh, args.version_hint, list(by_port), advance, by_port)
+    to_robot = open(args.to_robot, "rb") if args.to_robot else None
+    return records_of_raw_protocol(fh, interface, args.version_hint, CHUNK, advance, to_robot,
+                                   (args.file, args.to_robot or ""))
+
+
 def decode_command(args: argparse.Namespace) -> int:
     try:
         fh, size = _open(args.file)
@@ -83,7 +109,11 @@ def decode_command(args: argparse.Namespace) -> int:
         return 2
     advance = _progress(size, args.no_progress)
     render = {"json": to_json_line, "text": human_line, "tree": human_tree}[args.format]
-    records = records_of(fh, args.version_hint, args.port or PORTS, advance)
+    try:
+        records = _records(fh, args, advance)
+    except OSError as exc:
+        print(f"urwire: cannot read {args.to_robot}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
     failed = False
     out = sys.stdout
     try:

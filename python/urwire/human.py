@@ -9,6 +9,7 @@ from enum import IntEnum
 from functools import lru_cache
 from typing import Any, Optional
 
+from .envelope import Enveloped
 from ._runtime import (GlobalValue, MalformedPackage, MalformedSubtype, StreamError, UnknownMessage,
                        UnknownPackage, UnknownSubtype)
 
@@ -38,7 +39,7 @@ def _show(v: Any) -> str:
         return f"<{len(v)} bytes>"
     if isinstance(v, GlobalValue):
         return f"{v.type}:{_show(v.value)}"
-    if isinstance(v, list):
+    if isinstance(v, (list, tuple)):
         if len(v) > 6 and not isinstance(v[0], (int, float, str)):
             return f"[{len(v)} items]"
         return "[" + ", ".join(_show(x) for x in v) + "]"
@@ -70,7 +71,13 @@ def _package(p: Any) -> str:
     return p.LABEL + (f" ({shown})" if shown else "") + extra
 
 
+def _where(record: Enveloped) -> str:
+    return f"[{record.interface} {record.direction} {record.conversation}] "
+
+
 def line(record: Any) -> str:
+    if isinstance(record, Enveloped):
+        return _where(record) + line(record.record)
     if isinstance(record, StreamError):
         return f"{'! Stream fault':<{WIDTH}} at offset {record.offset}: {record.error}"
     if isinstance(record, UnknownMessage):
@@ -112,6 +119,8 @@ def _tree_lines(obj: Any, depth: int, out: list[str]) -> None:
 
 def tree(record: Any) -> str:
     """The record's heading, then each part and field on a line of its own."""
+    if isinstance(record, Enveloped):
+        return _where(record) + tree(record.record)
     if not hasattr(record, "JSON") and not hasattr(record, "packages"):
         return line(record)
     if not hasattr(record, "packages"):

@@ -1,4 +1,5 @@
-"""Records out of files: raw streams read in chunks, captures split into robot->client streams.
+"""Records out of files: raw streams read in chunks, captures split into the TCP conversations of
+the interfaces asked for (by default the primary one), each decoded by its interface (cell.py).
 
 Captures need dpkt, which is imported only when a capture is read.
 """
@@ -9,11 +10,11 @@ from pathlib import Path
 from typing import BinaryIO, Callable, Iterable, Iterator, Optional, Union
 
 from .arguments import VersionLike
-from .capture import is_capture, timed_robot_streams
-from .capture_records import CaptureFault
-from ._runtime import StreamError
+from .capture import is_capture
+from .cell import timed_cell_records
 from .framer import Framer
 from .generated.spec import PORTS
+from .interfaces import INTERFACES, Interface
 
 CHUNK = 1 << 20
 
@@ -30,43 +31,31 @@ def records_of_raw(fh: BinaryIO, hint: VersionLike, advance: Callable[[int], Non
 
 
 def records_of_capture(fh: BinaryIO, hint: VersionLike, ports: Iterable[int],
-                       advance: Callable[[int], None]) -> Iterator:
-    for _, record in timed_records_of_capture(fh, hint, ports, advance):
+                       advance: Callable[[int], None], by_port: Optional[dict[int, Interface]] = None) -> Iterator:
+    for _, record in timed_records_of_capture(fh, hint, ports, advance, by_port):
         yield record
 
 
 def timed_records_of_capture(fh: BinaryIO, hint: VersionLike, ports: Iterable[int],
-                             advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
-    """(capture time, record): each robot->client TCP stream gets its own framer, so each learns
-    its own version; a record's time is that of the frame that completed it. A capture record
-    that cannot be read gives an error record (no time) naming its offset in the capture file."""
-    framers: dict = {}
-    last = 0
-    for item in timed_robot_streams(fh, set(ports)):
-        if isinstance(item, CaptureFault):  # its offset is the capture file's, not a stream's
-            yield None, StreamError(item.offset, item.error)
-            continue
-        key, data, ended, time = item
-        framer = framers.get(key) or framers.setdefault(key, Framer(hint))
-        if data:
-            for record in framer.feed(data):
-                yield time, record
-        if ended:
-            for record in framer.close():
-                yield time, record
-            del framers[key]
-        if fh.seekable():
-            pos = fh.tell()
-            advance(pos - last)
-            last = pos
+                             advance: Callable[[int], None] = lambda n: None,
+                             by_port: Optional[dict[int, Interface]] = None) -> Iterator[tuple]:
+    """(capture time, record): each TCP conversation gets its own decoder, so each learns its own
+    version; a record's time is that of the frame that completed it. `ports` are read as the
+    primary interface, unless `by_port` says which interface each port is. A capture record that
+    cannot be read gives an error record (no time) naming its offset in the capture file."""
+    if by_port is None:
+        by_port = {port: INTERFACES["ur"] for port in ports}
+    yield from timed_cell_records(fh, hint, by_port, advance)
 
 
 def records_of(fh: BinaryIO, hint: VersionLike = None, ports: Iterable[int] = PORTS,
-               advance: Callable[[int], None] = lambda n: None) -> Iterator:
-    """Records of an open binary file: a raw stream, a .pcap or a .pcapng (told by its magic)."""
+               advance: Callable[[int], None] = lambda n: None,
+               by_port: Optional[dict[int, Interface]] = None) -> Iterator:
+    """Records of an open binary file: a raw stream of the primary interface, a .pcap or a .pcapng
+    (told by its magic; `ports` and `by_port` as timed_records_of_capture takes them)."""
     head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
     if is_capture(head):
-        return records_of_capture(fh, hint, ports, advance)
+        return records_of_capture(fh, hint, ports, advance, by_port)
     return records_of_raw(fh, hint, advance)
 
 

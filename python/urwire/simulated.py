@@ -66,10 +66,17 @@ def mode_code(table: str, version: tuple, name: str) -> int:
     return next(int(m) for m in getattr(_e, table)[version].values() if m.name == name)
 
 
+# Real robots are seen sending payload info from 5.11 (URCL pull request 137) and not on URSim 5.8
+# or 5.10; robot message 12 right after the Version message from 3.3 to 5.13 (docs/firmware-history.md).
+PAYLOAD_INFO_FROM = (5, 11, 0)
+MESSAGE_12_VERSIONS = ((3, 3, 0), (5, 13, 99))
+
+
 def state_classes(version: tuple) -> list:
     """The sub-package classes a controller of `version` sends, in type-code order."""
     return [cls for cls in package_classes(version).values()
-            if cls not in INTERNAL and (version[0] >= 5 or cls not in E_SERIES_ONLY)]
+            if cls not in INTERNAL and (version[0] >= 5 or cls not in E_SERIES_ONLY)
+            and (cls is not _m.PayloadInfo or version >= PAYLOAD_INFO_FROM)]
 
 
 class Controller:
@@ -123,9 +130,14 @@ class Controller:
         return self.encode(msg)
 
     def opening(self) -> bytes:
-        """What a client gets on connecting: the Version message, then, from 5.26 and 10.13, the
-        hardware info message (the spec's hardware_info: sent from those releases)."""
+        """What a client gets on connecting: the Version message, then robot message 12 where real
+        controllers send it, and from 5.26 and 10.13 the hardware info message (the spec's
+        hardware_info: sent from those releases)."""
         out = self.version_message()
+        low, high = MESSAGE_12_VERSIONS
+        if low <= self.version <= high:
+            # The payload a URSim 5.4 sends (docs/firmware-history.md#robot-message-subtype-12).
+            out += self.encode(_m.RobotMessage12Message(timestamp=0, source=SOURCE, raw=bytes.fromhex("000000000000000001")))
         if (5, 26, 0) <= self.version < (10, 0, 0) or self.version >= (10, 13, 0):
             # Control box CB5 and tool flange V1 (numbered as later patch releases do): an e-Series
             # box and the flange of the arms UR sold with it.
@@ -190,6 +202,11 @@ class Controller:
                       master_on_off_state=_e.MasterOnOffState.ON, safety_mode=safety,
                       euromap_voltage_24v=0.0, operational_mode_selector_input=1,
                       three_position_enabling_device_input=1)
+
+    def payload(self, running: bool, protective: bool):
+        # What a real 5.11 robot sends: 1 kg at the flange, the inertia of a sphere of water.
+        return _m.PayloadInfo(mass=1.0, center_of_gravity=[0.0, 0.0, 0.0],
+                              inertia=[0.001539, 0.001539, 0.001539, 0.0, 0.0, 0.0])
 
     def tool(self, running: bool, protective: bool):
         return filled(_m.ToolData, tool_voltage_48v=24.1, tool_output_voltage=24, tool_current=0.06,
@@ -268,4 +285,5 @@ _BUILDERS = {
     _m.ToolCommInfo: Controller.tool_comm,
     _m.ToolModeInfo: Controller.tool_mode,
     _m.ConfigurationData: Controller.configuration,
+    _m.PayloadInfo: Controller.payload,
 }

@@ -19,7 +19,10 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 GEN = ROOT / "generated" / "c"
 CLI = ROOT / "tools" / "urwire-decode"
-CLI_SOURCES = sorted(CLI.glob("*.c"))           # main.c and what it links
+# The other interfaces' parsers (generated/c/<interface>.c), which the CLI links beside urwire.c,
+# whichever urwire.c (full or pinned) a test builds.
+INTERFACES_C = [p for p in sorted(GEN.glob("*.c")) if p.name != "urwire.c"]
+CLI_SOURCES = sorted(CLI.glob("*.c")) + INTERFACES_C   # main.c and what it links
 CLI_LIBRARY = [p for p in CLI_SOURCES if p.name != "main.c"]   # the same, for the test driver
 JSON = [CLI / "json.c", CLI / "shortest.c"]  # the JSON writer and the float digits it prints
 # One folder per test process (pytest-xdist names its workers), so parallel runs never build over each other.

@@ -142,7 +142,8 @@ def lua_choices(planned, versions) -> dict:
     segments = [int(n) for n in result.stdout.split()]
     out = {}
     for mp in planned.messages:
-        var = f"{mp.message.name.upper()}_{'SUBTYPES' if mp.is_dispatch else 'PACKAGES'}"
+        kind = ("SUBTYPES" if mp.message.has_subtype else "FORMS") if mp.is_dispatch else "PACKAGES"
+        var = f"{mp.message.name.upper()}_{kind}"
         table = text[text.index(f"local {var} = {{"):]
         for code in mp.variants:
             row = re.search(r"\[%d\] = \{ single = \w+.*?segments = \{ ([-\d, ]+) \}" % code, table, re.S).group(1)

@@ -127,7 +127,7 @@ def test_serve_refuses_an_arm_of_another_generation():
                                           ((10, 12, 0), False), ((10, 13, 0), True), ((10, 14, 0), True)])
 def test_hardware_info_follows_the_version_message_from_5_26_and_10_13(version, sent):
     sim = Controller(version, 10, MODELS["ur16e"] if version[0] >= 5 else None)
-    records = list(urwire.decode_stream(sim.opening()))
+    records = [r for r in urwire.decode_stream(sim.opening()) if r.TYPE != "robot_message_12"]
     assert records[0].TYPE == "version"
     if not sent:
         assert len(records) == 1
@@ -135,6 +135,24 @@ def test_hardware_info_follows_the_version_message_from_5_26_and_10_13(version, 
     (info,) = records[1:]
     assert info.TYPE == "hardware_info" and info.robot_type == 4  # UR16
     assert info.control_box_type == e.ControlBoxType.CB5 and info.tool_flange_type == e.ToolFlangeType.V1
+
+
+@pytest.mark.parametrize("version,sent", [((1, 8, 0), False), ((3, 2, 0), False), ((3, 3, 0), True),
+                                          ((5, 13, 0), True), ((5, 14, 0), False), ((10, 14, 0), False)])
+def test_robot_message_12_follows_the_version_message_from_3_3_to_5_13(version, sent):
+    records = list(urwire.decode_stream(Controller(version, 10).opening()))
+    assert records[0].TYPE == "version"
+    assert (len(records) > 1 and records[1].TYPE == "robot_message_12") == sent
+
+
+@pytest.mark.parametrize("version,sent", [((5, 10, 0), False), ((5, 11, 0), True), ((10, 14, 0), True)])
+def test_payload_info_is_sent_from_5_11_with_a_real_robots_values(version, sent):
+    sim = Controller(version, 10)
+    (state,) = [r for r in urwire.decode_stream(b"".join(sim.step())) if r.TYPE == "robot_state"]
+    payload = state.package(urwire.PayloadInfo)
+    assert (payload is not None) == sent
+    if sent:
+        assert payload.mass == 1.0 and payload.inertia[:3] == [0.001539] * 3
 
 
 def test_serial_numbers_are_eleven_digits_of_the_generation():

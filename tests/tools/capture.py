@@ -36,8 +36,10 @@ def _frame(src, dst, sport, dport, seq, ack, flags, payload, src_mac, dst_mac) -
 
 def session_frames(segments: Iterable[Segment], port: int = 30001, client_port: int = 50123,
                    handshake: bool = True, robot_isn: int = 1000, client_isn: int = 5000,
-                   retransmit: Sequence[int] = ()) -> list[bytes]:
-    """Ethernet frames of one TCP session; indices in `retransmit` are sent twice."""
+                   retransmit: Sequence[int] = (), robot: str = ROBOT, client: str = CLIENT) -> list[bytes]:
+    """Ethernet frames of one TCP session between `robot` and `client` (IPv4 addresses);
+    indices in `retransmit` are sent twice."""
+    ROBOT, CLIENT = robot, client  # noqa: N806 (the module's defaults, or the addresses given)
     A, PA, S, SA, F = (dpkt.tcp.TH_ACK, dpkt.tcp.TH_PUSH | dpkt.tcp.TH_ACK, dpkt.tcp.TH_SYN,
                        dpkt.tcp.TH_SYN | dpkt.tcp.TH_ACK, dpkt.tcp.TH_FIN | dpkt.tcp.TH_ACK)
     r_seq, c_seq = robot_isn, client_isn

@@ -1,6 +1,6 @@
-/* urwire-decode: a raw primary/secondary stream in, canonical JSON Lines out.
+/* urwire-decode: a raw stream of one UR interface in, canonical JSON Lines out.
  *
- *     urwire-decode [--version-hint 5.9|5.25.1] FILE|-
+ *     urwire-decode [--protocol ur|ur_realtime] [--version-hint 5.9|5.25.1] FILE|-
  *
  * Exit status: 0 all decoded, 1 the output holds error records, 2 usage or I/O error. */
 #include <errno.h>
@@ -10,12 +10,15 @@
 
 #include "json.h"
 #include "records.h"
+#include "ur_realtime_json.h"
 #include "urwire.h"
 
 static const char usage[] =
-    "usage: urwire-decode [--version-hint MAJOR.MINOR[.BUGFIX]] FILE|-\n"
-    "Decode a raw Universal Robots primary/secondary stream (FILE, or - for stdin) and print\n"
+    "usage: urwire-decode [--protocol NAME] [--version-hint MAJOR.MINOR[.BUGFIX]] FILE|-\n"
+    "Decode a raw stream of a Universal Robots interface (FILE, or - for stdin) and print\n"
     "one canonical JSON record per line.\n"
+    "  --protocol NAME   the interface the stream is from: ur (primary/secondary, 30001/30002,\n"
+    "                    the default) or ur_realtime (real-time, 30003)\n"
     "  --version-hint V  the software version (5.9, 5.25.1) until the stream shows a Version\n"
     "                    message: it chooses each part's layout and the global-variable value\n"
     "                    types (default: 5.9 and later, or what the layout sizes show)\n"
@@ -24,48 +27,14 @@ static const char usage[] =
 static uint8_t framer_buffer[URWIRE_FRAMER_MIN_BUFFER];
 static uint8_t chunk[1 << 16];
 
-static int fail(const char *what, const char *detail)
+/* The primary/secondary stream: framed and printed record by record. 0, 1 (error records) or 2
+ * (read error). */
+static int run_primary(FILE *in, urwire_sw_version version)
 {
-    fprintf(stderr, "urwire-decode: %s%s%s\n", what, detail ? ": " : "", detail ? detail : "");
-    return 2;
-}
-
-int main(int argc, char **argv)
-{
-    const char *path = NULL, *hint = NULL;
-    urwire_sw_version version = URWIRE_DEFAULT_VERSION;
     urwire_framer fr;
     urwire_visitor v;
     json_writer w;
-    FILE *in;
     bool errors = false;
-    int i;
-    for (i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
-            fputs(usage, stdout);
-            return 0;
-        } else if (strcmp(argv[i], "--version-hint") == 0) {
-            if (++i >= argc)
-                return fail("--version-hint needs a value such as 5.9 or 5.25.1", NULL);
-            hint = argv[i];
-        } else if (strncmp(argv[i], "--version-hint=", 15) == 0) {
-            hint = argv[i] + 15;
-        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
-            return fail("unknown option", argv[i]);
-        } else if (path) {
-            return fail("one input only; try --help", NULL);
-        } else {
-            path = argv[i];
-        }
-    }
-    if (!path)
-        return fail("no input: give a FILE or - for stdin; try --help", NULL);
-    if (hint && !urwire_parse_version(hint, &version))
-        return fail("not a software version (expected e.g. 5.9 or 5.25.1)", hint);
-    in = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
-    if (!in)
-        return fail(path, strerror(errno));
-
     memset(&w, 0, sizeof w);
     w.out = stdout;
     v = json_visitor(&w);
@@ -78,15 +47,96 @@ int main(int argc, char **argv)
         }
         if (n < sizeof chunk) {
             if (ferror(in))
-                return fail(path, "read error");
+                return 2;
             break;
         }
     }
     urwire_framer_finish(&fr);
     errors |= print_ready_records(&fr, &v, &w);
+    return errors ? 1 : 0;
+}
+
+static int run_realtime(FILE *in, urwire_sw_version version, bool hinted)
+{
+    uint32_t number = hinted ? ur_realtime_version((unsigned)version.major, (unsigned)version.minor,
+                                                   (unsigned)version.bugfix) : 0u;
+    return ur_realtime_print_stream(in, stdout, number);
+}
+
+/* The interfaces this command reads, by the name --protocol takes (the Wireshark protocol's). An
+ * interface adds its row: its runner gets the open input, the version and whether it was given. */
+typedef int (*protocol_runner)(FILE *in, urwire_sw_version version, bool hinted);
+
+static int run_primary_row(FILE *in, urwire_sw_version version, bool hinted)
+{
+    (void)hinted;
+    return run_primary(in, version);
+}
+
+static const struct {
+    const char *name;
+    protocol_runner run;
+} protocols[] = {
+    {"ur", run_primary_row},
+    {"ur_realtime", run_realtime},
+};
+
+static int fail(const char *what, const char *detail)
+{
+    fprintf(stderr, "urwire-decode: %s%s%s\n", what, detail ? ": " : "", detail ? detail : "");
+    return 2;
+}
+
+int main(int argc, char **argv)
+{
+    const char *path = NULL, *hint = NULL, *protocol = "ur";
+    urwire_sw_version version = URWIRE_DEFAULT_VERSION;
+    protocol_runner run = NULL;
+    FILE *in;
+    size_t p;
+    int i, status;
+    for (i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
+            fputs(usage, stdout);
+            return 0;
+        } else if (strcmp(argv[i], "--version-hint") == 0) {
+            if (++i >= argc)
+                return fail("--version-hint needs a value such as 5.9 or 5.25.1", NULL);
+            hint = argv[i];
+        } else if (strncmp(argv[i], "--version-hint=", 15) == 0) {
+            hint = argv[i] + 15;
+        } else if (strcmp(argv[i], "--protocol") == 0) {
+            if (++i >= argc)
+                return fail("--protocol needs a name such as ur or ur_realtime", NULL);
+            protocol = argv[i];
+        } else if (strncmp(argv[i], "--protocol=", 11) == 0) {
+            protocol = argv[i] + 11;
+        } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
+            return fail("unknown option", argv[i]);
+        } else if (path) {
+            return fail("one input only; try --help", NULL);
+        } else {
+            path = argv[i];
+        }
+    }
+    for (p = 0; p < sizeof protocols / sizeof protocols[0]; p++)
+        if (strcmp(protocols[p].name, protocol) == 0)
+            run = protocols[p].run;
+    if (!run)
+        return fail("unknown protocol (known: ur, ur_realtime)", protocol);
+    if (!path)
+        return fail("no input: give a FILE or - for stdin; try --help", NULL);
+    if (hint && !urwire_parse_version(hint, &version))
+        return fail("not a software version (expected e.g. 5.9 or 5.25.1)", hint);
+    in = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
+    if (!in)
+        return fail(path, strerror(errno));
+    status = run(in, version, hint != NULL);
     if (in != stdin)
         fclose(in);
+    if (status == 2)
+        return fail(path, "read error");
     if (fflush(stdout) != 0)
         return fail("write error", strerror(errno));
-    return errors ? 1 : 0;
+    return status;
 }

@@ -183,9 +183,11 @@ function S.wireshark_globals()
     DESEGMENT_ONE_MORE_SEGMENT = 0x0fffffff
 end
 
--- A pinfo for a call from the robot (port 30001) to a client.
-function S.pinfo(number, visited)
+-- A pinfo for a call from the robot (port 30001) to a client; `robot` its address (a string
+-- stands in for Wireshark's Address, which tostring() turns into the same text).
+function S.pinfo(number, visited, robot)
     return { number = number, visited = visited or false, src_port = 30001, dst_port = 50000,
+             src = robot or "192.168.56.101", dst = "192.168.56.1",
              match_uint = 30001, can_desegment = 2,
              cols = { info = S.column(), protocol = S.column() } }
 end

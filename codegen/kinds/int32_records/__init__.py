@@ -1,0 +1,26 @@
+"""The kind `int32_records`: interfaces whose records are fixed runs of big-endian int32 with no
+length header, values scaled by powers of ten, layouts gated by driver release (the ROS driver's
+reverse, trajectory and script command sockets: spec/ur_reverse.yaml and its siblings)."""
+from __future__ import annotations
+
+from typing import Optional
+
+from .. import Kind
+from . import c, lua, python
+from .model import RecordsProtocol
+from .plan import plan
+from .resolve import resolve
+
+_TARGETS = {"c": c.render, "lua": lua.render, "python": python.render}
+
+
+def render(model: RecordsProtocol, banner: list[str], only: Optional[list[str]]) -> dict[str, str]:
+    planned = plan(model)
+    outputs: dict[str, str] = {}
+    for name, render_target in _TARGETS.items():
+        if only is None or name in only:
+            outputs.update(render_target(planned, banner))
+    return outputs
+
+
+KIND = Kind(name="int32_records", schema="int32_records.schema.json", resolve=resolve, render=render)

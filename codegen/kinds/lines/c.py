@@ -1,0 +1,71 @@
+"""The C target of a text-line interface: generated/c/<name>.{h,c}, the tables as C data and the
+runtime of runtime/c/<name>_*.{h,c} joined in, from the plan."""
+from __future__ import annotations
+
+import json
+import re
+
+from ...emit import environment, runtime_path, runtime_source
+from ...wrap import LIMIT
+from .model import Reply
+from .plan import LinesPlan
+
+FOLDER = "c"
+
+
+def _string(text: str) -> str:
+    """A C string literal of the text (ASCII from the schema, escaped like JSON)."""
+    return json.dumps(text)
+
+
+def _joined(name: str, prefix: str) -> str:
+    """A runtime file of the kind as joined into one interface's files: its names, written with
+    the kind's prefix (lines_, LINES_) so that the file builds alone, take the interface's, so
+    that two interfaces of the kind link into one library."""
+    text = runtime_source(FOLDER, name)
+    text = re.sub(r"\blines_", f"{prefix}_", text)
+    text = re.sub(r"\bLINES_", f"{prefix.upper()}_", text)
+    return f"/* ---- {runtime_path(FOLDER, name)} ---- */\n" + text
+
+
+def _reply(symbol: str, reply: Reply) -> dict:
+    return dict(symbol=symbol, name=_string(reply.name), pieces=[_string(p) for p in reply.pieces],
+                count=len(reply.pieces), error="true" if reply.error else "false", pattern=reply.pattern)
+
+
+def view(p: LinesPlan) -> dict:
+    m = p.model
+    prefix = m.name
+    commands = []
+    for c in p.commands:
+        cmd = c.command
+        replies = [_reply(f"{prefix}__{cmd.name}_{i}", r) for i, r in enumerate(cmd.replies)]
+        commands.append(dict(
+            constant=f"{prefix.upper()}_{cmd.name.upper()}", name=_string(cmd.name), text=_string(cmd.text),
+            doc=f"{cmd.text}{' <' + cmd.argument + '>' if cmd.argument else ''}: {cmd.doc} ({cmd.since_text()})",
+            takes_argument="true" if cmd.argument else "false",
+            since_cb=c.since_cb or 0, since_e_series=c.since_e_series or 0,
+            replies=replies, replies_symbol=f"{prefix}__{cmd.name}_replies",
+            row=[_string(cmd.name), _string(cmd.text), "true" if cmd.argument else "false", f"{c.since_cb or 0}u",
+                 f"{c.since_e_series or 0}u", f"{prefix}__{cmd.name}_replies", str(len(replies))]))
+    return dict(
+        prefix=prefix, upper=prefix.upper(), title=m.title, doc=m.doc, ports=m.ports, max_line=m.max_line,
+        commands=commands, lookup=[f"{prefix.upper()}_{c.command.name.upper()}" for c in p.lookup],
+        banner_reply=_reply(f"{prefix}_banner", m.banner) if m.banner else None,
+        requests_from_robot=int(m.requests_from_robot), one_reply_per_request=int(m.one_reply_per_request),
+        common=[_reply(f"{prefix}__common_{i}", r) for i, r in enumerate(m.common_replies)],
+        version_command=f"{prefix.upper()}_{p.version_command.command.name.upper()}" if p.version_command
+        else f"{prefix.upper()}_NONE",
+        version_prefix=_string(m.version_prefix),
+        runtime_header=_joined("lines.h", prefix),
+        runtime_sources=[_joined("lines.c", prefix), _joined("lines_json.c", prefix)],
+        limit=LIMIT,
+    )
+
+
+def render(p: LinesPlan, banner: list[str]) -> dict[str, str]:
+    env = environment("c")
+    ctx = dict(banner=banner, **view(p))
+    name = p.model.name
+    return {f"c/{name}.h": env.get_template("lines/lines.h.j2").render(**ctx),
+            f"c/{name}.c": env.get_template("lines/lines.c.j2").render(**ctx)}

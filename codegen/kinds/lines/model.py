@@ -1,0 +1,66 @@
+"""The IR of a text-line interface (the dashboard server): its commands, their replies and the
+versions that have them, as plain objects every target renders."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+from ... import ir
+
+
+@dataclass(frozen=True)
+class Reply:
+    name: str
+    pattern: str                 # literal text, each <name> standing for any text
+    pieces: tuple[str, ...]      # the literal text between the placeholders (one piece: no placeholder)
+    error: bool
+    doc: str
+    where: ir.Where
+
+
+@dataclass(frozen=True)
+class Command:
+    name: str
+    text: str                    # the words that open the line
+    argument: Optional[str]      # what the text after the words is, when the command takes one
+    since_cb: Optional[ir.Version]        # first CB2/CB3 version with the command; None: none has it
+    since_e_series: Optional[ir.Version]  # first e-Series (5.x and later) version; None: none has it
+    every_version: bool                   # no `since:`: every version has it
+    doc: str
+    replies: tuple[Reply, ...]
+    where: ir.Where
+
+    def since_text(self) -> str:
+        """"CB 1.4, e-Series 5.0": where and from when the command exists, for comments."""
+        if self.every_version:
+            return "every version"
+        parts = [f"CB {ir.version_text(self.since_cb)}"] if self.since_cb else []
+        parts += [f"e-Series {ir.version_text(self.since_e_series)}"] if self.since_e_series else []
+        return ", ".join(parts)
+
+
+@dataclass(frozen=True)
+class RecordField:
+    name: str
+    label: str
+    doc: str
+
+
+@dataclass(frozen=True)
+class LinesProtocol:
+    name: str
+    title: str
+    doc: str
+    ports: tuple[int, ...]
+    max_line: int
+    banner: Optional[Reply]              # the line the server greets a client with, if any
+    robot_is_client: bool                # the robot connects to the port (the driver's sockets)
+    requests_from_robot: bool            # the robot asks and the other side answers (script sender)
+    one_reply_per_request: bool          # else every answering line belongs to the latest request
+    version_command: Optional[str]       # the command whose reply tells the software version
+    version_prefix: str                  # the reply's text before the version
+    fields: dict[str, RecordField]
+    common_replies: tuple[Reply, ...]
+    commands: tuple[Command, ...]
+
+    E_SERIES_MAJOR = 5                   # software 5.x and later is the e-Series' line of versions

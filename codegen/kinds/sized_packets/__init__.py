@@ -1,0 +1,29 @@
+"""The kind `sized_packets`: an interface of fixed packets, each opened by an int32 size that
+chooses its layout (the real-time interface, 30003). Its layouts are gated by software version
+like the primary interface's, and layouts that share a size are told apart by the rule the spec
+states (framing.same_size), rendered from the plan in every target.
+
+model.py holds its IR, resolve.py makes it, plan.py lays out offsets and the forms by size, and
+one module per target renders them."""
+from __future__ import annotations
+
+from typing import Optional
+
+from .. import Kind
+from . import c, lua, python
+from .plan import plan
+from .resolve import resolve
+
+_TARGETS = {"c": c.render, "lua": lua.render, "python": python.render}
+
+
+def render(model, banner: list[str], only_targets: Optional[list[str]] = None) -> dict[str, str]:
+    planned = plan(model)
+    out: dict[str, str] = {}
+    for name, target in _TARGETS.items():
+        if only_targets is None or name in only_targets:
+            out.update(target(planned, banner))
+    return out
+
+
+KIND = Kind(name="sized_packets", schema="sized_packets.schema.json", resolve=resolve, render=render)

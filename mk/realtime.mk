@@ -1,0 +1,13 @@
+# The real-time interface (30003): its benchmark. Its tests run with each target's (tests/python,
+# tests/c, tests/lua); its fuzzer is in mk/fuzz.mk.
+
+BENCH_TARGETS += bench-realtime
+BENCH_REALTIME_PACKETS ?= 30000
+
+.PHONY: bench-realtime
+
+## bench-realtime: real-time packets per second in Python and C (urwire-decode, against the Python
+## command), and tshark with ur_realtime.lua against --disable-protocol ur_realtime, on
+## BENCH_REALTIME_PACKETS packets (30,000)
+bench-realtime: build/urwire-decode
+	$(PYTHON) tests/bench/bench_realtime.py --packets $(BENCH_REALTIME_PACKETS)

@@ -1,0 +1,185 @@
+"""The runtime of a text-line interface (the dashboard server, generated/.../ur_dashboard.py):
+lines split per direction, commands looked up, replies paired with their commands and read
+against their patterns, the software version learnt from its reply.
+
+The generated module gives the tables (COMMANDS, LOOKUP, COMMON_REPLIES, BANNER, MAX_LINE, the
+version reply) and the record classes; this module is the same for any such interface.
+"""
+from __future__ import annotations
+
+from collections import deque
+from dataclasses import dataclass
+from types import ModuleType
+from typing import Optional
+
+from ._runtime import StreamError
+from .arguments import parse_version
+
+Version = tuple[int, int, int]
+E_SERIES_MAJOR = 5
+PENDING_KEPT = 256   # commands awaiting a reply; a client that never reads cannot grow it further
+
+
+@dataclass(frozen=True)
+class ReplySpec:
+    name: str
+    pieces: tuple[str, ...]   # literal text around each placeholder of the pattern
+    error: bool
+
+
+@dataclass(frozen=True)
+class CommandSpec:
+    name: str
+    text: str
+    takes_argument: bool
+    since_cb: Optional[Version]
+    since_e_series: Optional[Version]
+    replies: tuple[ReplySpec, ...]
+
+    def available(self, version: Version) -> bool:
+        since = self.since_e_series if version[0] >= E_SERIES_MAJOR else self.since_cb
+        return since is not None and version >= since
+
+
+def matches(pieces: tuple[str, ...], text: str) -> bool:
+    """Whether the whole text is the pattern: its first piece opens it, its last ends it, the
+    others follow in order between them, and each placeholder takes any text."""
+    if len(pieces) == 1:
+        return text == pieces[0]
+    first, last = pieces[0], pieces[-1]
+    if len(text) < len(first) + len(last) or not text.startswith(first) or not text.endswith(last):
+        return False
+    at, end = len(first), len(text) - len(last)
+    for piece in pieces[1:-1]:
+        found = text.find(piece, at, end)
+        if found < 0:
+            return False
+        at = found + len(piece)
+    return True
+
+
+def find_command(lookup: tuple[CommandSpec, ...], text: str) -> tuple[Optional[CommandSpec], Optional[str]]:
+    """The command a line is and its argument (None when it has none), or (None, None)."""
+    for command in lookup:
+        if text == command.text:
+            return command, None
+        if command.takes_argument and text.startswith(command.text + " "):
+            return command, text[len(command.text) + 1:]
+    return None, None
+
+
+def classify(common: tuple[ReplySpec, ...], command: Optional[CommandSpec], text: str) -> Optional[ReplySpec]:
+    """The reply a line is: a common reply first, then one of the command's own."""
+    for reply in common + (command.replies if command else ()):
+        if matches(reply.pieces, text):
+            return reply
+    return None
+
+
+def version_in(text: str, prefix: str) -> Optional[Version]:
+    """The software version a version reply tells: "URSoftware 5.11.1.108318 (...)" -> (5, 11, 1);
+    the word after the prefix, split at its dots, whose first two or three parts are 1 to 3 digits."""
+    if not text.startswith(prefix):
+        return None
+    parts = text[len(prefix):].split(" ", 1)[0].split(".")[:3]
+    if len(parts) < 2 or not all(_is_number(p) for p in parts):
+        return None
+    numbers = [int(p) for p in parts] + [0]
+    return numbers[0], numbers[1], numbers[2]
+
+
+def _is_number(part: str) -> bool:
+    return 1 <= len(part) <= 3 and part.isascii() and part.isdigit()
+
+
+class _Lines:
+    """One direction's bytes -> (offset, text) lines; a line over max_line bytes is an error."""
+
+    def __init__(self, max_line: int):
+        self.max_line = max_line
+        self.buffer = bytearray()
+        self.offset = 0            # stream offset of buffer[0]
+        self.skipping = False      # inside a line too long, dropped up to its newline
+
+    def feed(self, data: bytes) -> list:
+        self.buffer += data
+        out: list = []
+        start = 0
+        while True:
+            end = self.buffer.find(b"\n", start)
+            if end < 0:
+                break
+            if self.skipping:
+                self.skipping = False
+            elif end - start > self.max_line + (1 if self.buffer[end - 1:end] == b"\r" else 0):
+                out.append(self._too_long(self.offset + start))
+            else:
+                line = bytes(self.buffer[start:end])
+                out.append((self.offset + start, line[:-1] if line.endswith(b"\r") else line))
+            start = end + 1
+        if not self.skipping and len(self.buffer) - start > self.max_line + 1:
+            out.append(self._too_long(self.offset + start))
+            self.skipping = True
+        if self.skipping:
+            start = len(self.buffer)
+        del self.buffer[:start]
+        self.offset += start
+        return out
+
+    def _too_long(self, offset: int) -> StreamError:
+        return StreamError(offset, f"line longer than {self.max_line} bytes")
+
+    def close(self) -> list:
+        if self.buffer and not self.skipping:
+            return [StreamError(self.offset, f"{len(self.buffer)} bytes without a newline at the end of the stream")]
+        return []
+
+
+class LinesConversation:
+    """One TCP connection of a text-line interface: `feed(data, from_robot)` -> records in order."""
+
+    def __init__(self, tables: ModuleType, version_hint=None):
+        self.tables = tables
+        self.version: Optional[Version] = parse_version(version_hint) if version_hint is not None else None
+        self.commands = _Lines(tables.MAX_LINE)
+        self.replies = _Lines(tables.MAX_LINE)
+        self.pending: deque = deque(maxlen=PENDING_KEPT)
+        self.greeted = False
+
+    def feed(self, data: bytes, from_robot: bool) -> list:
+        requests = from_robot == self.tables.REQUESTS_FROM_ROBOT
+        lines = (self.commands if requests else self.replies).feed(data)
+        read = self._command if requests else self._reply
+        return [line if isinstance(line, StreamError) else read(line[1]) for line in lines]
+
+    def close(self) -> list:
+        # The client's direction first, as the C and Lua decoders report them.
+        tails = (self.commands.close(), self.replies.close())
+        return tails[1] + tails[0] if self.tables.REQUESTS_FROM_ROBOT else tails[0] + tails[1]
+
+    def _command(self, raw: bytes):
+        t = self.tables
+        text = raw.decode("utf-8", "surrogateescape")
+        command, argument = find_command(t.LOOKUP, text)
+        self.pending.append(command)
+        if command is None:
+            return t.Command(text)
+        available = None if self.version is None else command.available(self.version)
+        return t.Command(text, command.name, argument, available)
+
+    def _reply(self, raw: bytes):
+        t = self.tables
+        text = raw.decode("utf-8", "surrogateescape")
+        if not self.greeted:
+            self.greeted = True
+            if t.BANNER is not None and matches(t.BANNER.pieces, text):
+                return t.Reply(text, None, t.BANNER.name, False)
+        if t.ONE_REPLY_PER_REQUEST:
+            command = self.pending.popleft() if self.pending else None
+        else:
+            command = self.pending[-1] if self.pending else None
+        reply = classify(t.COMMON_REPLIES, command, text)
+        if command is not None and command.name == t.VERSION_COMMAND:
+            self.version = version_in(text, t.VERSION_PREFIX) or self.version
+        return t.Reply(text, command.name if command else None, reply.name if reply else None,
+                       reply.error if reply else False)

@@ -1,0 +1,197 @@
+-- A dissector of text lines (the dashboard server, the driver's script sender): lines
+-- reassembled across TCP segments, each shown as a request (command) or a reply, replies paired
+-- with their requests and the software version learnt per conversation (both addresses and both
+-- ports: two robots or two clients never share it), expert infos for a reply that says an error,
+-- an unknown command, a command the version lacks, a line too long.
+local spec, rt = ...
+local matches, find_command, classify = rt.matches, rt.find_command, rt.classify
+local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version
+
+local proto = Proto(spec.name, spec.title)
+local L = spec.labels
+local F = {
+    command = ProtoField.string(spec.name .. ".command", L.command),
+    command_name = ProtoField.string(spec.name .. ".command_name", L.command_name),
+    argument = ProtoField.string(spec.name .. ".argument", L.argument),
+    available = ProtoField.bool(spec.name .. ".available", L.available),
+    reply = ProtoField.string(spec.name .. ".reply", L.reply),
+    reply_name = ProtoField.string(spec.name .. ".reply_name", L.reply_name),
+    error = ProtoField.bool(spec.name .. ".error", L.error),
+}
+local E = {
+    error_reply = ProtoExpert.new(spec.name .. ".error_reply", "The reply says an error",
+        expert.group.RESPONSE_CODE, expert.severity.WARN),
+    unknown_command = ProtoExpert.new(spec.name .. ".unknown_command", "Unknown command",
+        expert.group.MALFORMED, expert.severity.WARN),
+    unavailable = ProtoExpert.new(spec.name .. ".unavailable", "The software version lacks this command",
+        expert.group.PROTOCOL, expert.severity.WARN),
+    too_long = ProtoExpert.new(spec.name .. ".too_long", "Line longer than " .. spec.max_line .. " bytes",
+        expert.group.MALFORMED, expert.severity.ERROR),
+    internal = ProtoExpert.new(spec.name .. ".internal_error", "Dissector error",
+        expert.group.MALFORMED, expert.severity.ERROR),
+}
+proto.fields = {F.command, F.command_name, F.argument, F.available, F.reply, F.reply_name, F.error}
+proto.experts = {E.error_reply, E.unknown_command, E.unavailable, E.too_long, E.internal}
+proto.prefs.version = Pref.string("Software version", "",
+    "Controller software version (as 5.11 or 3.15.7) assumed until a PolyscopeVersion reply tells it: \z
+    commands it lacks are flagged. Empty: none assumed.")
+
+-- ---- state per conversation, and what the first pass decided per line ----
+
+local conversations, decided = {}, {}
+
+local function conversation_key(pinfo, from_server)
+    local server = tostring(from_server and pinfo.src or pinfo.dst) .. ":" ..
+        (from_server and pinfo.src_port or pinfo.dst_port)
+    local client = tostring(from_server and pinfo.dst or pinfo.src) .. ":" ..
+        (from_server and pinfo.dst_port or pinfo.src_port)
+    return server .. "<>" .. client
+end
+
+local function conversation(key)
+    local c = conversations[key]
+    if not c then
+        c = {pending = {}, first = 1, last = 0, greeted = false, version = parse_version(proto.prefs.version),
+             skipping = {[true] = false, [false] = false}}
+        conversations[key] = c
+    end
+    return c
+end
+
+-- A command's line: its name, argument, and whether the version has it (nil: version unknown).
+local function decide_command(c, text)
+    local index, argument = find_command(text)
+    if c.last - c.first + 1 >= spec.pending_kept then c.first = c.first + 1 end
+    c.last = c.last + 1
+    c.pending[c.last] = index or false
+    c.pending[c.first - 1] = nil
+    local has = nil
+    if index and c.version then has = available(index, c.version) end
+    return {command = index, argument = argument, available = has}
+end
+
+-- A reply's line: the banner, or the command it answers and what it says.
+local function decide_reply(c, text)
+    if not c.greeted then
+        c.greeted = true
+        if spec.banner and matches(spec.banner.pieces, text) then return {reply = spec.banner} end
+    end
+    local command = nil
+    if c.first <= c.last and spec.one_reply_per_request then
+        command = c.pending[c.first] or nil
+        c.pending[c.first] = nil
+        c.first = c.first + 1
+    elseif c.first <= c.last then
+        command = c.pending[c.last] or nil   -- every answering line belongs to the latest request
+    end
+    if command and command == spec.version_command then
+        c.version = version_in(text) or c.version
+    end
+    return {command = command, reply = classify(command, text)}
+end
+
+-- ---- the tree ----
+
+local function show_command(tree, range, text, d)
+    local item = tree:add(proto, range)
+    item:add(F.command, range, text)
+    if d.command then
+        item:add(F.command_name, range, spec.commands[d.command].name):set_generated()
+        if d.argument then item:add(F.argument, range, d.argument) end
+        if d.available ~= nil then
+            local it = item:add(F.available, range, d.available):set_generated()
+            if not d.available then it:add_proto_expert_info(E.unavailable) end
+        end
+    else
+        item:add_proto_expert_info(E.unknown_command)
+    end
+    item:append_text(": " .. text)
+    return "Command: " .. text
+end
+
+local function show_reply(tree, range, text, d)
+    local item = tree:add(proto, range)
+    item:add(F.reply, range, text)
+    if d.command then item:add(F.command_name, range, spec.commands[d.command].name):set_generated() end
+    if d.reply then item:add(F.reply_name, range, d.reply.name):set_generated() end
+    local says_error = d.reply ~= nil and d.reply.error
+    local it = item:add(F.error, range, says_error):set_generated()
+    if says_error then it:add_proto_expert_info(E.error_reply) end
+    item:append_text(": " .. text)
+    return "Reply: " .. text
+end
+
+-- ---- lines ----
+
+local function dissect(tvb, pinfo, tree)
+    local n = tvb:len()
+    -- The server sends from its port; the robot is the server but for the driver's sockets.
+    local from_server = pinfo.src_port == pinfo.match_uint
+    local from_robot = from_server ~= spec.robot_is_client
+    local requests = from_robot == spec.requests_from_robot
+    local key = conversation_key(pinfo, from_server)
+    local c = conversation(key)
+    pinfo.cols.protocol = "UR Dashboard"
+    local infos = {}
+    local at = 0
+    local here = tostring(pinfo.number) .. ":" .. tostring(from_robot) .. ":"
+    local first_pass = not pinfo.visited
+    local buf = tvb:raw(0, n)
+    local skipping = c.skipping[from_robot]
+    if first_pass then decided[here .. "skip"] = skipping else skipping = decided[here .. "skip"] end
+    while at < n do
+        local nl = string.find(buf, "\n", at + 1, true)
+        if skipping then
+            if not nl then at = n break end
+            tree:add(proto, tvb(at, nl - at)):set_text("Rest of a line too long")
+            skipping, at = false, nl
+        elseif not nl and n - at <= spec.max_line + 1 then
+            if pinfo.can_desegment > 0 then
+                pinfo.desegment_offset = at
+                pinfo.desegment_len = DESEGMENT_ONE_MORE_SEGMENT
+                break
+            end
+            tree:add(proto, tvb(at, n - at)):set_text("Part of a line (reassembly is off)")
+            at = n
+        else
+            local stop = nl and nl - 1 or n
+            local len = stop - at
+            if nl and len > 0 and string.byte(buf, stop) == 13 then len = len - 1 end
+            if not nl or len > spec.max_line then
+                local item = tree:add(proto, tvb(at, stop - at))
+                item:add_proto_expert_info(E.too_long)
+                infos[#infos + 1] = "Line too long"
+                if not nl then skipping = true end
+                at = nl or n
+            else
+                local text = string.sub(buf, at + 1, at + len)
+                local range = len > 0 and tvb(at, len) or tvb(at, 1)
+                local slot = here .. at
+                local d = decided[slot]
+                if first_pass or not d then
+                    d = requests and decide_command(c, text) or decide_reply(c, text)
+                    decided[slot] = d
+                end
+                infos[#infos + 1] = (requests and show_command or show_reply)(tree, range, text, d)
+                at = nl
+            end
+        end
+    end
+    if first_pass then c.skipping[from_robot] = skipping end
+    if #infos > 0 then pinfo.cols.info = table.concat(infos, "; ") end
+    return n
+end
+
+function proto.dissector(tvb, pinfo, tree)
+    local ok, result = pcall(dissect, tvb, pinfo, tree)
+    if ok then return result end
+    tree:add(proto, tvb()):add_proto_expert_info(E.internal, spec.name .. ": " .. tostring(result))
+    return tvb:len()
+end
+
+function proto.init()
+    conversations, decided = {}, {}
+end
+
+local tcp_port = DissectorTable.get("tcp.port")
+for _, port in ipairs(spec.ports) do tcp_port:add(port, proto) end

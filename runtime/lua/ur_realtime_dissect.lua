@@ -1,0 +1,193 @@
+-- The real-time dissector's runtime: frames the robot's TCP stream by each packet's int32 size
+-- (reassembling a packet split over segments), chooses the packet's layout by the spec's
+-- same_size rule over spec.forms_by_size, and walks the layout's slots into the tree. What a
+-- client sends to the port is URScript text. The interface has no version message, so the only
+-- state is the software-version preference: nothing is kept per conversation, and two robots or
+-- two clients in one capture cannot share anything.
+local spec, rt = ...
+local proto = spec.proto
+local F, LABELS, UNITS, ENUM_OF = spec.fields, spec.labels, spec.units, spec.enum_of
+local LAYOUTS, FORMS = spec.layouts, spec.forms_by_size
+local fmt, floor = string.format, math.floor
+local SIZE_BYTES, MIN_SIZE, MAX_SIZE = spec.size_field_bytes, spec.min_message_size, spec.max_message_size
+
+-- The dissector's own fields and experts, beside the spec's.
+local X = {
+    layout = ProtoField.string(spec.name .. ".layout", "Layout"),
+    urscript = ProtoField.string(spec.name .. ".urscript", "URScript"),
+    raw = ProtoField.bytes(spec.name .. ".raw", "Bytes of a packet of unknown size"),
+}
+local E = {
+    -- Framed, and kept: a layout the spec does not know yet, not a broken stream.
+    unknown_size = ProtoExpert.new(spec.name .. ".unknown_size", "Packet size matches no layout",
+        expert.group.PROTOCOL, expert.severity.WARN),
+    bad_size = ProtoExpert.new(spec.name .. ".bad_size", "Packet size cannot frame a packet",
+        expert.group.MALFORMED, expert.severity.ERROR),
+}
+
+local registered_fields = {}
+for _, f in pairs(F) do registered_fields[#registered_fields + 1] = f end
+for _, f in pairs(X) do registered_fields[#registered_fields + 1] = f end
+proto.fields = registered_fields
+proto.experts = { E.unknown_size, E.bad_size }
+
+proto.prefs.ports = Pref.range("Ports", spec.ports, "TCP ports of the real-time interface", 65535)
+proto.prefs.version = Pref.string("Software version", "",
+    "The controller's software version (5.9, 3.15.2): chooses among layouts that share a size; " ..
+    "empty: the newest of them")
+
+-- "5.9" or "3.15.2" -> the version number the forms are written in; nil for anything else.
+local function version_number(text)
+    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    if not major then return nil end
+    bugfix = tonumber(bugfix) or 0
+    if bugfix > 999 then bugfix = 999 end
+    return (tonumber(major) * 1000 + tonumber(minor)) * 1000 + bugfix
+end
+
+local version = nil
+
+-- The same_size rule: the first form of the size whose versions hold the version, else the last.
+local function form_of(size)
+    local forms = FORMS[size]
+    if not forms then return nil end
+    if version then
+        for _, form in ipairs(forms) do
+            if form[1] <= version and version <= form[2] then return form end
+        end
+    end
+    return forms[#forms]
+end
+
+-- One double: its value with its unit, and an enum code's name where the form has one.
+local function add_value(tree, name, range, names)
+    local v = range:float()
+    local item = tree:add(F[name], range, v)
+    if UNITS[name] then item:append_text(" " .. UNITS[name]) end
+    if names and v == floor(v) and names[v] then item:append_text(" (" .. names[v] .. ")") end
+    return v
+end
+
+-- Where each layout sends the robot mode (nil: it does not): the Info column reads it even when
+-- no tree is built.
+local ROBOT_MODE_AT = {}
+for i, layout in ipairs(LAYOUTS) do
+    for _, slot in ipairs(layout.slots) do
+        if slot[1] == "robot_mode" then ROBOT_MODE_AT[i] = slot[2] end
+    end
+end
+
+-- The Info column's words for a packet of a known layout, without a tree.
+local function info_of(tvb, o, form)
+    local layout, at = LAYOUTS[form[3]], ROBOT_MODE_AT[form[3]]
+    local names = at and form[4][ENUM_OF.robot_mode]
+    if not names then return layout.name end
+    local mode = names[tvb(o + at, 8):float()]
+    return mode and (layout.name .. ", " .. mode) or layout.name
+end
+
+-- One whole packet at offset o: its subtree when someone looks (`detail`), else only what the
+-- Info column and the experts need; returns the Info column's words for it.
+local function dissect_packet(tvb, tree, o, size, detail)
+    local form = form_of(size)
+    if form and not detail then return info_of(tvb, o, form) end
+    local sub = tree:add(proto, tvb(o, size))
+    sub:add(F[spec.size_field], tvb(o, SIZE_BYTES))
+    if not form then
+        sub:append_text(fmt(", unknown size %d", size))
+        sub:add(X.raw, tvb(o + SIZE_BYTES, size - SIZE_BYTES))
+        sub:add_proto_expert_info(E.unknown_size, fmt("Packet size %d matches no layout", size))
+        return fmt("Unknown size %d", size)
+    end
+    local layout, names = LAYOUTS[form[3]], form[4]
+    sub:append_text(", " .. layout.name)
+    sub:add(X.layout, layout.name):set_generated()
+    for _, slot in ipairs(layout.slots) do
+        local name, at, count = slot[1], o + slot[2], slot[3]
+        local enum = ENUM_OF[name] and names[ENUM_OF[name]]
+        if count == 1 then
+            add_value(sub, name, tvb(at, 8), enum)
+        else
+            local unit = UNITS[name] and (" (" .. UNITS[name] .. ")") or ""
+            local group = sub:add(tvb(at, 8 * count), LABELS[name] .. unit)
+            for i = 0, count - 1 do add_value(group, name, tvb(at + 8 * i, 8), enum) end
+        end
+    end
+    return info_of(tvb, o, form)
+end
+
+-- TCP calls the dissector once per reassembled packet and again for the rest of a segment: a
+-- later call of the same frame adds its words to the earlier one's, when the column still holds
+-- them (a later pass, or the GUI dissecting the frame again, starts from a fresh column).
+local info_frame, info_text = -1, ""
+
+local function show_info(pinfo, words)
+    local col = pinfo.cols.info
+    if info_frame == pinfo.number and tostring(col) == info_text then
+        info_text = info_text .. ", " .. words
+        col:append(", " .. words)
+    else
+        info_text = words
+        col:set(words)
+    end
+    info_frame = pinfo.number
+end
+
+local handle = nil
+
+function proto.dissector(tvb, pinfo, tree)
+    local len = tvb:len()
+    -- Field work only when someone looks: a visible tree, or a filter or column naming the protocol.
+    handle = handle or Dissector.get(spec.name)
+    local detail = tree.visible or tree:referenced(handle)
+    pinfo.cols.protocol = "UR real-time"
+    if pinfo.src_port ~= pinfo.match_uint then
+        -- Client to robot: URScript text, not decoded.
+        tree:add(proto, tvb()):add(X.urscript, tvb())
+        show_info(pinfo, "URScript")
+        return len
+    end
+    local o, infos = 0, {}
+    while o < len do
+        local left = len - o
+        if left < SIZE_BYTES then
+            pinfo.desegment_offset, pinfo.desegment_len = o, DESEGMENT_ONE_MORE_SEGMENT
+            break
+        end
+        local size = tvb(o, SIZE_BYTES):int()
+        if size < MIN_SIZE or size > MAX_SIZE then
+            local item = tree:add(proto, tvb(o, left))
+            item:add_proto_expert_info(E.bad_size, fmt("Packet size %d cannot frame a packet (%d to %d)",
+                size, MIN_SIZE, MAX_SIZE))
+            infos[#infos + 1] = fmt("Bad size %d", size)
+            break
+        end
+        if left < size then
+            pinfo.desegment_offset, pinfo.desegment_len = o, size - left
+            break
+        end
+        infos[#infos + 1] = dissect_packet(tvb, tree, o, size, detail)
+        o = o + size
+    end
+    if #infos > 0 then
+        show_info(pinfo, #infos == 1 and infos[1] or fmt("%s (+%d)", infos[1], #infos - 1))
+    end
+    return len
+end
+
+local tcp_port = DissectorTable.get("tcp.port")
+local registered = nil
+
+local function register_ports()
+    if registered then tcp_port:remove(registered, proto) end
+    registered = proto.prefs.ports
+    tcp_port:add(registered, proto)
+end
+
+function proto.prefs_changed()
+    version = version_number(proto.prefs.version)
+    register_ports()
+end
+
+register_ports()
+rt.version_number, rt.form_of = version_number, form_of
