@@ -165,7 +165,8 @@ class Message:
     __slots__ = ("_notes",)
     NAME = ""
     CODE = 0
-    JSON: tuple = ()
+    JSON: tuple = ()                # (attribute, JSON kind, optional): as the primary's records list theirs
+    extra = b""                     # a message has no bytes after its layout: such a one is a RawMessage
     HEADER = struct.Struct(">HB")
 
     @property
@@ -209,6 +210,12 @@ class RawMessage:
     raw: bytes                      # the whole message, header included
     error: Optional[str] = None
     recipe_id: Optional[int] = None
+    JSON = (("code", "int", False), ("recipe_id", "int", True), ("error", "text", True))   # for the text views
+    extra = b""
+
+    @property
+    def LABEL(self) -> str:
+        return f"{self.type.replace('_', ' ').capitalize()} ({len(self.raw)} bytes, kept whole)"
 
     def encode(self, recipe: Optional[Recipe] = None) -> bytes:
         return self.raw

@@ -70,7 +70,7 @@ class MessageView:
 
     @property
     def json(self) -> str:
-        return tuple_text([f'("{a.name}", "{a.json_kind}")' for a in self.attrs]) if self.attrs else "()"
+        return tuple_text([f'("{a.name}", "{a.json_kind}", False)' for a in self.attrs]) if self.attrs else "()"
 
 
 def tuple_text(items: list[str]) -> str:
