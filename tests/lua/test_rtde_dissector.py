@@ -116,7 +116,7 @@ def dissected(tmp_path_factory):
     for bytewise in (False, True):
         frames = []
         for i, case in enumerate(CASES):
-            frames += frames_of(case, 50000 + i, bytewise)
+            frames += frames_of(case, 51000 + i, bytewise)
         pcap = folder / f"cases_{int(bytewise)}.pcap"
         capture.write(pcap, frames)
         out[bytewise] = messages_by_stream(pcap)
@@ -142,13 +142,13 @@ def test_dissector_shows_every_vector(dissected, index, bytewise):
 def test_two_clients_never_share_a_recipe(tmp_path):
     """Two clients of one robot in one capture, their frames interleaved, each with its own recipe 1."""
     first, second = [c for c in CASES if c.name == "data_during_setup"][0], None
-    one = frames_of(first, 50001)
+    one = frames_of(first, 51001)
     # The second client sets up recipe 1 as a DOUBLE only, then gets a data package of it.
     names = b"timestamp"
     other = [Segment(False, bytes([0, 3 + 8 + len(names), 0x4F]) + bytes.fromhex("405f400000000000") + names),
              Segment(True, bytes([0, 3 + 1 + 6, 0x4F, 1]) + b"DOUBLE"),
              Segment(True, bytes([0, 12, 0x55, 1]) + bytes.fromhex("4000000000000000"))]
-    two = capture.session_frames(other, port=PORT, client_port=50002)
+    two = capture.session_frames(other, port=PORT, client_port=51002)
     frames = [f for pair in zip(one, two) for f in pair] + one[len(two):] + two[len(one):]
     pcap = tmp_path / "two.pcap"
     capture.write(pcap, frames)
@@ -161,7 +161,7 @@ def test_two_clients_never_share_a_recipe(tmp_path):
 
 def test_filters_and_experts(dissected, tmp_path):
     pcap = tmp_path / "p2.pcap"
-    capture.write(pcap, frames_of([c for c in CASES if c.name == "protocol2_session"][0], 50000))
+    capture.write(pcap, frames_of([c for c in CASES if c.name == "protocol2_session"][0], 51000))
     out = tshark(pcap, "-Y", "rtde.actual_q > 2.5 && rtde.recipe_id == 2", "-T", "fields", "-e", "rtde.recipe_frame")
     assert out.split() == ["18"]                 # the data package, linked to the setup reply's frame
     experts = tshark(pcap, "-q", "-z", "expert")
@@ -191,6 +191,6 @@ def test_hostile_bytes_raise_no_lua_error(tmp_path):
         cut = rng.choice([len(data) or 1, 1, 3])
         segments += [Segment(from_robot, bytes(data[i:i + cut])) for i in range(0, len(data), cut)]
     pcap = tmp_path / "hostile.pcap"
-    capture.write(pcap, capture.session_frames(segments, port=PORT, client_port=50009))
+    capture.write(pcap, capture.session_frames(segments, port=PORT, client_port=51009))
     out = tshark(pcap, "-Y", "rtde", "-T", "fields", "-e", "rtde.kind")
     assert len(out.splitlines()) > 50 and "setup_outputs" in out

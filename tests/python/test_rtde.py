@@ -135,3 +135,36 @@ def test_which_controllers_have_a_variable():
     assert rtde.variable("tool_output_mode").available_in((5, 2)) is True
     assert rtde.variable("actual_q").available_in((3, 3)) is True
     assert rtde.variable("ft_raw_wrench").available_in((5, 11)) is None
+
+
+def test_a_capture_decodes_every_rtde_conversation_in_time_order(tmp_path):
+    """`urwire decode CAPTURE`: each RTDE conversation of a capture (two clients here) is read in
+    the order its segments crossed the wire, and gives the records of its vector, enveloped."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from tests.tools import capture
+    from tests.tools.capture import Segment
+
+    cases = {c.name: c for c in rtde_cases()}
+    first, second = cases["protocol2_session"], cases["data_during_setup"]
+    one = capture.session_frames([Segment(fr, d) for fr, d in first.messages], port=30004, client_port=51001)
+    two = capture.session_frames([Segment(fr, d) for fr, d in second.messages], port=30004, client_port=51002)
+    pcap = tmp_path / "two.pcap"
+    capture.write(pcap, one + two)
+    root = Path(__file__).resolve().parents[2]
+    res = subprocess.run([sys.executable, "-m", "urwire", "decode", str(pcap)], capture_output=True, text=True,
+                         env={"PYTHONPATH": f"{root / 'python'}:{root / 'generated' / 'python'}"}, timeout=60)
+    assert res.returncode == 0, res.stderr
+    by_conversation: dict = {}
+    for line in res.stdout.splitlines():
+        record = json.loads(line)
+        assert record.pop("interface") == "rtde"
+        direction = record.pop("direction")
+        by_conversation.setdefault(record.pop("conversation"), []).append((direction, record))
+    streams = list(by_conversation.values())
+    assert [r for _, r in streams[0]] == first.expect
+    assert [r for _, r in streams[1]] == second.expect
+    assert [d for d, _ in streams[0]] == ["from_robot" if fr else "to_robot" for fr, _ in first.messages]
