@@ -194,3 +194,15 @@ def test_hostile_bytes_raise_no_lua_error(tmp_path):
     capture.write(pcap, capture.session_frames(segments, port=PORT, client_port=51009))
     out = tshark(pcap, "-Y", "rtde", "-T", "fields", "-e", "rtde.kind")
     assert len(out.splitlines()) > 50 and "setup_outputs" in out
+
+
+def test_decode_as_on_another_port(tmp_path):
+    """A robot behind a port forward: `-d tcp.port==40004,rtde` (Decode As) reads it the same."""
+    case = [c for c in CASES if c.name == "protocol2_session"][0]
+    pcap = tmp_path / "moved.pcap"
+    segments = [Segment(fr, d) for fr, d in case.messages]
+    capture.write(pcap, capture.session_frames(segments, port=40004, client_port=51000))
+    assert tshark(pcap, "-Y", "rtde").strip() == ""
+    out = tshark(pcap, "-d", "tcp.port==40004,rtde", "-Y", "rtde.kind == \"data_package\"", "-T", "fields",
+                 "-e", "rtde.actual_q")
+    assert out.split() == ["0,-1.5,1.5,-0.5,0.25,3"]
