@@ -206,3 +206,15 @@ def test_decode_as_on_another_port(tmp_path):
     out = tshark(pcap, "-d", "tcp.port==40004,rtde", "-Y", "rtde.kind == \"data_package\"", "-T", "fields",
                  "-e", "rtde.actual_q")
     assert out.split() == ["0,-1.5,1.5,-0.5,0.25,3"]
+
+
+def test_two_passes_show_what_one_shows(tmp_path):
+    """tshark -2 dissects every frame again after the first pass, as the GUI does: each message keeps
+    the recipe, protocol and refusals the first pass saw (the state is not re-run)."""
+    pcap = tmp_path / "p2.pcap"
+    capture.write(pcap, frames_of([c for c in CASES if c.name == "protocol2_session"][0], 51000))
+    fields = ["-Y", "rtde", "-T", "fields", "-e", "rtde.kind", "-e", "rtde.actual_q", "-e", "rtde.recipe_frame",
+              "-e", "rtde.protocol", "-e", "_ws.expert.message"]
+    one = tshark(pcap, *fields)
+    assert "not_a_variable: NOT_FOUND" in one
+    assert tshark(pcap, "-2", *fields) == one
