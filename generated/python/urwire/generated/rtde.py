@@ -149,7 +149,8 @@ class GetUrcontrolVersionReply(_r.Message):
     FROM_ROBOT: ClassVar[bool] = True
     PROTOCOLS: ClassVar[tuple] = (1, 2)
     LABEL: ClassVar[str] = "Controller version"
-    JSON: ClassVar[tuple] = (("major", "int", False), ("minor", "int", False), ("bugfix", "int", False), ("build", "int", False))
+    JSON: ClassVar[tuple] = (("major", "int", False), ("minor", "int", False), ("bugfix", "int", False),
+                             ("build", "int", False))
 
     major: int = field(metadata={"label": "Major version", "unit": None})
     """Major version."""
