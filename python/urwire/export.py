@@ -1,4 +1,5 @@
-"""`urwire export`: a capture as tables, one per message kind and per sub-package kind.
+"""`urwire export`: a capture as tables, one per message kind and per sub-package kind of the
+primary interface, and per interface for the cell's other interfaces (export_cell.py).
 
 Each table has one row per occurrence: `position` (the message's place in the input, from 0),
 `capture_time` (for a .pcap or .pcapng: the time of the frame that completed the message, in
@@ -25,6 +26,10 @@ from pathlib import Path
 from typing import BinaryIO, Iterator
 
 from .canonical import has_error, shown_text, to_json_line
+from .cell import ports_of
+from .envelope import Enveloped
+from .export_cell import CellRows
+from .interfaces import INTERFACES
 from .reading import input_kind, timed_records
 
 # A switch member that holds an int32 or a float32 (int|f32) fits a float64 column exactly.
@@ -111,6 +116,7 @@ class Tables:
         self._spill = spill
         self._files: dict[str, BinaryIO] = {}
         self._chunks: dict[str, dict[str, list]] = {}
+        self.cell = CellRows(self.add)
 
     def add(self, table: str, position: int, columns: list, time=None) -> None:
         kinds = self.kinds.setdefault(table, {"position": "int"})
@@ -140,6 +146,9 @@ class Tables:
         marshal.dump(self._chunks.pop(table), fh)
 
     def add_record(self, position: int, record, time=None) -> None:
+        if isinstance(record, Enveloped):      # another interface of the cell (export_cell.py)
+            self.cell.add(position, record, time)
+            return
         if has_error(record) or getattr(record, "TYPE", "unknown") == "unknown":
             self.add(_apart(record), position, [("record", "text", to_json_line(record))], time)
             return
@@ -177,8 +186,11 @@ class Tables:
 
 
 def gather(path: str, tables: Tables, hint=None) -> None:
-    for position, (time, record) in enumerate(timed_records(path, hint)):
+    """Every record of the file: a raw stream of the primary interface, or every conversation of
+    a capture that an interface of the cell reads, each by its port."""
+    for position, (time, record) in enumerate(timed_records(path, hint, by_port=ports_of(INTERFACES.values()))):
         tables.add_record(position, record, time)
+    tables.cell.finish()
 
 
 def write_csv(tables: Tables, out: Path) -> None:
