@@ -1,5 +1,5 @@
 # The whole cell: the demo of the bundled capture of every interface (dissector/samples/cell_session.pcapng),
-# shown after the primary interface's demo.
+# shown after the primary interface's demo, and RTDE's benchmark (the real-time interface's is in realtime.mk).
 
 DEMO_CELL_TARGETS += demo-cell
 CELL_SAMPLE := dissector/samples/cell_session.pcapng
@@ -24,3 +24,21 @@ demo-cell: build/urwire-decode
 		| sed -n '/^Universal Robots Real-Time/,$$p'
 	@echo "== the RTDE setup's expert warnings"
 	@$(TSHARK) -r $(CELL_SAMPLE) $(LUA_PLUGINS:%=-X lua_script:%) -q -z expert,warn 2>/dev/null | sed '/^$$/d'
+
+BENCH_TARGETS += bench-rtde
+BENCH_RTDE_PACKAGES ?= 30000
+BENCH_RTDE_LARGE ?= 1000000
+
+.PHONY: bench-rtde
+
+build/bench_rtde: tests/bench/bench_rtde.c generated/c/rtde.c generated/c/rtde.h
+	@mkdir -p build
+	$(CC) -std=c99 -O2 -Wall -Wextra -Werror -pedantic -Wconversion -Igenerated/c -o $@ tests/bench/bench_rtde.c \
+		generated/c/rtde.c
+
+## bench-rtde: RTDE data packages per second by recipe (a driver's 9-variable recipe at 500 Hz) in
+## Python (against struct alone) and C (against memcpy, and Python), at BENCH_RTDE_PACKAGES and
+## BENCH_RTDE_LARGE packages (the cost per package, large against small), and tshark with rtde.lua
+## against --disable-protocol rtde on BENCH_RTDE_PACKAGES packages
+bench-rtde: build/bench_rtde
+	$(PYTHON) tests/bench/bench_rtde.py --packages $(BENCH_RTDE_PACKAGES) --large $(BENCH_RTDE_LARGE)
