@@ -1,8 +1,9 @@
 """make bench-rtde: RTDE (30004) data packages per second, by recipe.
 
-One RTDE protocol 2 connection at 500 Hz with the recipe a driver asks for (RECIPE: timestamp,
-actual_q, actual_qd, actual_current, actual_TCP_pose, actual_TCP_speed, robot_mode, safety_mode,
-runtime_state; 264-byte packages), its values moving as a robot's do. Each figure is CPU time,
+One RTDE protocol 2 connection at 500 Hz with the recipe a driver asks for
+(tests/tools/rtde_inputs.py: timestamp, actual_q, actual_qd, actual_current, actual_TCP_pose,
+actual_TCP_speed, robot_mode, safety_mode, runtime_state; 264-byte packages), its values moving
+as a robot's do. Each figure is CPU time,
 the best of a few rounds, and a ratio against a baseline measured in the same run:
 
 - Python: `urwire.rtde.Conversation` fed the robot's stream a megabyte at a time, every package
@@ -24,8 +25,6 @@ sizes; small ones give a quick look (the machine may be shared: run the full siz
 from __future__ import annotations
 
 import argparse
-import math
-import os
 import resource
 import struct
 import subprocess
@@ -36,52 +35,16 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path[:0] = [str(ROOT), str(ROOT / "python"), str(ROOT / "generated" / "python")]
 from tests.tools import capture, measure  # noqa: E402
+from tests.tools.rtde_inputs import (HZ, PACKAGE_SIZE, RECIPE, client_bytes, packages, robot_head,  # noqa: E402
+                                     values_struct)
 from urwire import rtde  # noqa: E402
 from urwire.generated import rtde as spec  # noqa: E402
 
 OUT = ROOT / "build" / "bench-rtde"
 PLUGIN = ROOT / "generated" / "lua" / "rtde.lua"
 C_BENCH = ROOT / "build" / "bench_rtde"
-RECIPE = ["timestamp", "actual_q", "actual_qd", "actual_current", "actual_TCP_pose", "actual_TCP_speed",
-          "robot_mode", "safety_mode", "runtime_state"]
-RECIPE_ID = 1
-HZ = 500.0
 CHUNK = 1 << 20
 ROUNDS = 3
-
-
-def recipe_types() -> list[str]:
-    return [rtde.variable(name).type for name in RECIPE]
-
-
-def values_struct() -> struct.Struct:
-    codes = {t: spec.VALUE_TYPES[t] for t in recipe_types()}
-    return struct.Struct(">" + "".join(codes[t].code * codes[t].count for t in recipe_types()))
-
-
-def client_bytes() -> bytes:
-    return rtde.request_protocol_version(2) + rtde.setup_outputs(RECIPE, HZ) + rtde.start()
-
-
-def robot_head() -> bytes:
-    """The replies: protocol 2 accepted, the recipe's types, the start accepted."""
-    return (spec.RequestProtocolVersionReply(True).encode() + spec.SetupOutputsReply(RECIPE_ID, recipe_types()).encode()
-            + spec.StartReply(True).encode())
-
-
-def packages(count: int):
-    """Data packages, 2 ms apart: the joints swing, currents follow, modes stay RUNNING/NORMAL."""
-    body = values_struct()
-    head = struct.Struct(">HBB")
-    header = head.pack(head.size + body.size, ord("U"), RECIPE_ID)
-    for i in range(count):
-        t = i / HZ
-        q = [0.4 * j - 1.0 + 0.9 * math.sin(t / (5 + j) + j) for j in range(6)]
-        qd = [0.9 / (5 + j) * math.cos(t / (5 + j) + j) for j in range(6)]
-        current = [0.5 * v for v in qd]
-        pose = [0.3 + 0.1 * q[0], -0.4 + 0.1 * q[1], 0.5, 3.1, 0.0, 0.1 * q[5]]
-        speed = [0.1 * v for v in qd]
-        yield header + body.pack(t, *q, *qd, *current, *pose, *speed, 7, 1, 1)
 
 
 def write_robot(path: Path, count: int) -> Path:
@@ -216,8 +179,7 @@ def main() -> int:
     parser.add_argument("--large", type=int, default=1_000_000, help="the large size (default 1,000,000)")
     args = parser.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
-    size = struct.calcsize(">HBB") + values_struct().size
-    print(f"RTDE: {len(RECIPE)}-variable recipe at {HZ:.0f} Hz ({size}-byte packages), best of {ROUNDS}, CPU time "
+    print(f"RTDE: {len(RECIPE)}-variable recipe at {HZ:.0f} Hz ({PACKAGE_SIZE}-byte packages), best of {ROUNDS}, CPU time "
           f"({time.strftime('%Y-%m-%d')})")
     per_package = {}
     for count in (args.packages, args.large):

@@ -196,3 +196,23 @@ def test_the_primary_tables_are_as_before(tables, cell, tmp_path):
         drop = {"position", "capture_time"}
         assert [{k: v for k, v in r.items() if k not in drop} for r in rows(tables, table)] == \
             [{k: v for k, v in r.items() if k not in drop} for r in rows(out, table)], table
+
+
+def test_export_of_a_long_rtde_connection_takes_flat_memory(tmp_path):
+    """RTDE's tables keep to the export's memory bound (test_memory.py): twice the data packages,
+    the same memory, and every package a row of its recipe's table. CSV only: the rows wait on
+    disk the same way for either format, and test_memory.py measures Parquet's writer."""
+    from tests.python.test_memory import EXPORT_GROWTH_LIMIT, PEAK_LIMIT, rows, run
+    from tests.tools import rtde_inputs
+
+    form = "csv"
+    peaks = []
+    for megabytes in (12, 24):
+        out = tmp_path / f"{megabytes}-{form}"
+        usage = run(["-m", "urwire", "export", str(rtde_inputs.capture(megabytes)), "--format", form,
+                     "--out", str(out)])
+        (table,) = out.glob(f"rtde_outputs_*.{form}")
+        assert rows(table) == rtde_inputs.package_count(megabytes)
+        peaks.append(usage.peak)
+    assert peaks[-1] < PEAK_LIMIT, f"{peaks[-1] / (1 << 20):.0f} MiB"
+    assert peaks[-1] - peaks[0] < EXPORT_GROWTH_LIMIT, f"{peaks[0] / (1 << 20):.0f} -> {peaks[-1] / (1 << 20):.0f} MiB"
