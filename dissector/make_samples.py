@@ -133,8 +133,10 @@ class StateMaker:
             name = getattr(pkg, "TYPE", "")
             if name in ("kinematics_info", "configuration_data") and not with_kinematics:
                 continue
+            # Sub-package 14 is read as payload_info now that the spec lays it out; the secondary
+            # sample never held it.
             if self.secondary and name in ("calibration_data", "safety_data", "tool_comm_info",
-                                           "tool_mode_info", "unknown"):
+                                           "tool_mode_info", "payload_info", "unknown"):
                 continue
             if name == "robot_mode_data":
                 pkg.timestamp = 19_805_995_000 + step * 100_000_000
