@@ -41,7 +41,9 @@ _ARROW_TYPES = {"int": "int64", "uint64": "uint64", "list:uint64": "uint64", "en
 def add_parser(sub, version_arg) -> None:
     p = sub.add_parser("export", help="write a capture as Parquet or CSV tables, one per message kind",
                        description="Write one table per message kind and per sub-package kind "
-                                   "(robot_mode_data, joint_data, ...), one row per occurrence.")
+                                   "(robot_mode_data, joint_data, ...), one row per occurrence; a capture's "
+                                   "other interfaces get tables named by interface (rtde_outputs_<hash> per "
+                                   "RTDE recipe, ur_realtime, ur_dashboard, ...: docs/tables.md).")
     p.add_argument("file", help="a raw stream, a .pcap or a .pcapng file")
     p.add_argument("--format", choices=("parquet", "csv"), default="parquet", help="table format (default: parquet)")
     p.add_argument("--out", required=True, metavar="DIR", help="folder for the tables (made if missing)")
