@@ -1,8 +1,9 @@
 """`urwire export` of a capture of every interface of the cell: each record `urwire decode` prints
 is found, value by value, in the row of its interface's table (docs/tables.md), and no table holds
 a row that decode did not print. The capture is the golden vectors' conversations
-(tests/tools/cell_session.py), with a second RTDE connection (the same recipe under other ids, in
-the same table) and a second dashboard connection (replies that say an error, a tail)."""
+(tests/tools/cell_session.py), with a second RTDE connection (the same recipe, in the same table),
+a protocol 1 connection (no recipe ids), one that starts after its setup (a data package of a
+recipe never seen, kept raw) and a second dashboard connection (replies that say an error)."""
 from __future__ import annotations
 
 import json
@@ -30,6 +31,13 @@ def urwire(*args: str) -> subprocess.CompletedProcess:
                           timeout=120)
 
 
+def _rtde_cases(*names: str) -> list:
+    from tests.rtde_vectors import rtde_cases
+
+    cases = {c.name: c for c in rtde_cases()}
+    return [cases[n] for n in names]
+
+
 @pytest.fixture(scope="module")
 def cell(tmp_path_factory) -> Path:
     conversations = cell_session.conversations()
@@ -38,7 +46,10 @@ def cell(tmp_path_factory) -> Path:
     dash = next(c for c in conversation_cases("ur_dashboard") if c.name == "error_replies")
     errors = Conversation("ur_dashboard/error_replies", 29999, 50202,
                           tuple(capture.Segment(s.from_robot, s.data) for s in dash.segments))
-    frames = cell_session.interleave([c.frames() for c in [*conversations, again, errors]])
+    more_rtde = [Conversation(f"rtde/{c.name}", 30004, port, tuple(capture.Segment(f, d) for f, d in c.messages))
+                 for c, port in zip(_rtde_cases("protocol1_session", "unknown_recipe_and_refused_start"),
+                                    (50203, 50204))]
+    frames = cell_session.interleave([c.frames() for c in [*conversations, again, errors, *more_rtde]])
     return capture.write(tmp_path_factory.mktemp("cell") / "cell.pcapng", frames, pcapng=True)
 
 
@@ -108,7 +119,9 @@ def check_row(row: dict, expected: dict, where: str) -> None:
 
 def test_every_record_is_its_tables_row(tables, decoded):
     recipes = rows(tables, "rtde_recipes")
-    table_of = {(r["conversation"], r["kind"], str(r["recipe_id"])): r["table"] for r in recipes}
+    # CSV reads an empty recipe id (protocol 1's outputs) as text, Parquet as None.
+    table_of = {(r["conversation"], r["kind"], str(r["recipe_id"] if r["recipe_id"] != "" else None)): r["table"]
+                for r in recipes}
     by_table: dict[tuple, dict[int, dict]] = {}
 
     def row_at(table: str, position: int, column: str = "position") -> dict:
@@ -129,9 +142,13 @@ def test_every_record_is_its_tables_row(tables, decoded):
             continue      # the primary interface's tables are tested by test_live.py and test_export_values.py
         where = f"line {position} ({interface} {record['type']})"
         assert_values = {k: v for k, v in flat(record).items() if k != "type"}
-        if interface == "rtde" and record["type"] in ("data_package", "input_data_package"):
-            kind = "outputs" if record["type"] == "data_package" else "inputs"
-            table = table_of[(record["conversation"], kind, str(record["recipe_id"]))]
+        if isinstance(record.get("error"), str):      # kept raw with its reason
+            row = row_at("unknown", position)
+            assert json.loads(row["record"]) == record, where
+            expected_counts["unknown"] = expected_counts.get("unknown", 0) + 1
+        elif interface == "rtde" and record["type"] in ("data_package", "data_package_v1", "input_data_package"):
+            kind = "inputs" if record["type"] == "input_data_package" else "outputs"
+            table = table_of[(record["conversation"], kind, str(record.get("recipe_id")))]
             assert table.startswith(f"rtde_{kind}_")
             row = row_at(table, position)
             check_row(row, {"conversation": record["conversation"], **assert_values}, where)
@@ -162,7 +179,7 @@ def test_every_record_is_its_tables_row(tables, decoded):
 
 def test_a_recipe_is_one_table_across_connections(tables, decoded):
     recipes = rows(tables, "rtde_recipes")
-    outputs = [r for r in recipes if r["kind"] == "outputs"]
+    outputs = [r for r in recipes if r["kind"] == "outputs" and r["variables"].startswith("timestamp,actual_q")]
     assert len(outputs) == 2 and len({r["conversation"] for r in outputs}) == 2
     assert len({r["table"] for r in outputs}) == 1
     assert outputs[0]["variables"] == "timestamp,actual_q,robot_mode"
@@ -171,6 +188,14 @@ def test_a_recipe_is_one_table_across_connections(tables, decoded):
     assert [str(r["recipe_id"]) for r in data] == ["2", "2"]
     assert [c for c in data[0] if c != "capture_time"] == [
         "position", "conversation", "recipe_id", "timestamp", *(f"actual_q_{j}" for j in range(6)), "robot_mode"]
+
+
+def test_a_protocol_1_recipe_has_no_id(tables):
+    recipes = [r for r in rows(tables, "rtde_recipes") if r["conversation"].endswith(":50203")]
+    assert [(r["kind"], r["recipe_id"] in (None, ""), r["variables"]) for r in recipes] == [
+        ("outputs", True, "timestamp,safety_mode")]
+    (row,) = rows(tables, recipes[0]["table"])
+    assert row["recipe_id"] in (None, "") and same(row["timestamp"], 1.0) and same(row["safety_mode"], 1)
 
 
 def test_dashboard_rows_pair_each_command_with_its_reply(tables):
