@@ -32,7 +32,7 @@ def _values(values: dict, recipe) -> list[str]:
 def message_json(obj) -> str:
     parts = [f'"type": "{obj.NAME}"']
     notes = obj.notes
-    for name, kind in obj.JSON:
+    for name, kind, _ in obj.JSON:
         value = getattr(obj, name)
         if kind == "values":
             parts += _values(value, notes.get("recipe"))

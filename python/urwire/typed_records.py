@@ -45,6 +45,18 @@ class Variable:
     unit: Optional[str]
     since: dict                    # generation -> first version, "none" or "unknown"
 
+    def available_in(self, version: tuple) -> Optional[bool]:
+        """Whether a controller of this software version (major, minor[, bugfix]) has the variable:
+        None when the sources do not say (its first version is "unknown")."""
+        generation = "cb3" if version[0] < 5 else "eseries"
+        first = self.since.get(generation, "none")
+        if first == "none":
+            return False
+        if first == "unknown":
+            return None
+        wanted = tuple(int(x) for x in first.split("."))
+        return tuple(version) + (0,) * (3 - len(version)) >= wanted + (0,) * (3 - len(wanted))
+
 
 @dataclass(frozen=True)
 class RecipeKind:
@@ -153,7 +165,8 @@ class Message:
     __slots__ = ("_notes",)
     NAME = ""
     CODE = 0
-    JSON: tuple = ()
+    JSON: tuple = ()                # (attribute, JSON kind, optional): as the primary's records list theirs
+    extra = b""                     # a message has no bytes after its layout: such a one is a RawMessage
     HEADER = struct.Struct(">HB")
 
     @property
@@ -197,6 +210,12 @@ class RawMessage:
     raw: bytes                      # the whole message, header included
     error: Optional[str] = None
     recipe_id: Optional[int] = None
+    JSON = (("code", "int", False), ("recipe_id", "int", True), ("error", "text", True))   # for the text views
+    extra = b""
+
+    @property
+    def LABEL(self) -> str:
+        return f"{self.type.replace('_', ' ').capitalize()} ({len(self.raw)} bytes, kept whole)"
 
     def encode(self, recipe: Optional[Recipe] = None) -> bytes:
         return self.raw

@@ -124,7 +124,7 @@ local function view_of(pinfo, index, state, from_robot, raw, offset, layout)
     local key = pinfo.number .. ":" .. index
     local view = views[key]
     if view and pinfo.visited then return view, false end
-    view = { protocol = rt.protocol_of(state) }
+    view = { protocol = rt.protocol_of(state), assumed = state.protocol == nil }
     views[key] = view
     return view, true
 end
@@ -137,6 +137,9 @@ local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state,
     item:add(F.direction, tvb(offset + 2, 1), from_robot and "robot to client" or "client to robot"):set_generated()
     local view, first = view_of(pinfo, index, state, from_robot, raw, offset)
     local layout = spec.messages[code .. ":" .. (from_robot and 1 or 0) .. ":" .. view.protocol]
+    local shown = item:add(F.protocol, tvb(offset + 2, 1), view.protocol)
+    shown:set_generated()
+    if view.assumed then shown:append_text(" (assumed: no version exchange seen)") end
     if not layout then
         local named = spec.undocumented[code]
         item:add(F.kind, tvb(offset + 2, 1), named and named.name or "unknown"):set_generated()

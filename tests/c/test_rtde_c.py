@@ -1,5 +1,5 @@
 """The RTDE C library (generated/c/rtde.{h,c}) and its JSON writer
-(tools/urwire-decode/rtde/rtde_json.c): strict builds with gcc and clang, the same JSON lines as the
+(tools/urwire-decode/rtde_json.c): strict builds with gcc and clang, the same JSON lines as the
 Python Conversation on every golden exchange (whole and byte by byte) and on hostile bytes, under
 ASan and UBSan; the client API; the fuzz harness replayed over its kept corpus."""
 from __future__ import annotations
@@ -18,8 +18,8 @@ from tests.rtde_vectors import python_records, rtde_cases
 from urwire.rtde import Conversation
 
 CASES = rtde_cases()
-JSON_SOURCES = [CLI / "rtde" / "rtde_json.c", CLI / "json.c", CLI / "shortest.c", GEN / "urwire.c", GEN / "rtde.c"]
-INCLUDES = [f"-I{GEN}", f"-I{CLI}", f"-I{CLI / 'rtde'}"]
+JSON_SOURCES = [CLI / "rtde_json.c", CLI / "json.c", CLI / "shortest.c", GEN / "urwire.c", GEN / "rtde.c"]
+INCLUDES = [f"-I{GEN}", f"-I{CLI}"]
 CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "rtde"
 
 
@@ -30,6 +30,12 @@ def build(cc: str, flags: list[str], sources: list, name: str) -> str:
     res = subprocess.run(cmd, capture_output=True, text=True)
     assert res.returncode == 0 and res.stderr == "", " ".join(cmd) + "\n" + res.stderr
     return str(exe)
+
+
+@pytest.fixture(scope="module")
+def fast_cli():
+    from tests.c.harness_c import get_build
+    return str(get_build("asan-gcc").cli)
 
 
 @pytest.fixture(scope="module", params=["gcc", "clang"])
@@ -151,3 +157,25 @@ def test_the_fuzz_harness_replays_its_corpus(tmp_path):
     res = subprocess.run([str(fuzzer), "-runs=0", str(CORPUS), str(seeds)], capture_output=True, text=True,
                          timeout=120)
     assert res.returncode == 0, res.stderr[-3000:]
+
+
+def test_the_header_compiles_as_cpp(tmp_path):
+    source = tmp_path / "use.cpp"
+    source.write_text('#include "rtde.h"\nint main() { static rtde_conversation c; rtde_conversation_init(&c); '
+                      'return rtde_protocol_in_force(&c) == RTDE_DEFAULT_PROTOCOL ? 0 : 1; }\n')
+    res = subprocess.run(["g++", "-std=c++11", "-Wall", "-Wextra", "-Werror", "-pedantic", f"-I{GEN}", "-c",
+                          str(source), "-o", str(tmp_path / "use.o")], capture_output=True, text=True)
+    assert res.returncode == 0 and res.stderr == "", res.stderr
+
+
+def test_urwire_decode_protocol_rtde_prints_what_python_prints(fast_cli):
+    """`urwire-decode --protocol rtde` on each exchange's robot stream: the lines and the exit
+    status of `urwire decode --protocol rtde` on the same file."""
+    import sys
+    for case in CASES:
+        data = case.robot_bytes
+        c = subprocess.run([fast_cli, "--protocol", "rtde", "-"], input=data, capture_output=True, timeout=60)
+        py = subprocess.run([sys.executable, "-m", "urwire", "decode", "--protocol", "rtde", "-"], input=data,
+                            capture_output=True, timeout=60,
+                            env={**__import__("os").environ, "PYTHONPATH": f"{ROOT / 'python'}:{ROOT / 'generated' / 'python'}"})
+        assert (c.returncode, c.stdout) == (py.returncode, py.stdout), case.name

@@ -116,7 +116,7 @@ def dissected(tmp_path_factory):
     for bytewise in (False, True):
         frames = []
         for i, case in enumerate(CASES):
-            frames += frames_of(case, 50000 + i, bytewise)
+            frames += frames_of(case, 51000 + i, bytewise)
         pcap = folder / f"cases_{int(bytewise)}.pcap"
         capture.write(pcap, frames)
         out[bytewise] = messages_by_stream(pcap)
@@ -142,13 +142,13 @@ def test_dissector_shows_every_vector(dissected, index, bytewise):
 def test_two_clients_never_share_a_recipe(tmp_path):
     """Two clients of one robot in one capture, their frames interleaved, each with its own recipe 1."""
     first, second = [c for c in CASES if c.name == "data_during_setup"][0], None
-    one = frames_of(first, 50001)
+    one = frames_of(first, 51001)
     # The second client sets up recipe 1 as a DOUBLE only, then gets a data package of it.
     names = b"timestamp"
     other = [Segment(False, bytes([0, 3 + 8 + len(names), 0x4F]) + bytes.fromhex("405f400000000000") + names),
              Segment(True, bytes([0, 3 + 1 + 6, 0x4F, 1]) + b"DOUBLE"),
              Segment(True, bytes([0, 12, 0x55, 1]) + bytes.fromhex("4000000000000000"))]
-    two = capture.session_frames(other, port=PORT, client_port=50002)
+    two = capture.session_frames(other, port=PORT, client_port=51002)
     frames = [f for pair in zip(one, two) for f in pair] + one[len(two):] + two[len(one):]
     pcap = tmp_path / "two.pcap"
     capture.write(pcap, frames)
@@ -161,8 +161,60 @@ def test_two_clients_never_share_a_recipe(tmp_path):
 
 def test_filters_and_experts(dissected, tmp_path):
     pcap = tmp_path / "p2.pcap"
-    capture.write(pcap, frames_of([c for c in CASES if c.name == "protocol2_session"][0], 50000))
+    capture.write(pcap, frames_of([c for c in CASES if c.name == "protocol2_session"][0], 51000))
     out = tshark(pcap, "-Y", "rtde.actual_q > 2.5 && rtde.recipe_id == 2", "-T", "fields", "-e", "rtde.recipe_frame")
     assert out.split() == ["18"]                 # the data package, linked to the setup reply's frame
     experts = tshark(pcap, "-q", "-z", "expert")
     assert "not_a_variable: NOT_FOUND" in experts and "input_int_register_24: IN_USE" in experts
+
+
+def test_hostile_bytes_raise_no_lua_error(tmp_path):
+    """Flipped, cut and random bytes and huge sizes in both directions, whole and in small
+    segments: tshark finishes with no Lua error (run_tshark's checks) and shows rtde items."""
+    import random
+    import struct as st
+    rng = random.Random(5)
+    session = [c for c in CASES if c.name == "protocol2_session"][0].messages
+    segments = []
+    for _ in range(400):
+        from_robot, data = rng.choice(session)
+        data = bytearray(data)
+        roll = rng.random()
+        if roll < 0.3 and data:
+            data[rng.randrange(len(data))] ^= 1 << rng.randrange(8)
+        elif roll < 0.5:
+            data = data[:rng.randrange(len(data) + 1)]
+        elif roll < 0.6:
+            data = bytearray(st.pack(">HB", rng.choice([0xFFFF, 2, 3, 4]), rng.choice(b"UOIVMR")))
+        elif roll < 0.7:
+            data = bytearray(rng.getrandbits(8) for _ in range(rng.randrange(1, 80)))
+        cut = rng.choice([len(data) or 1, 1, 3])
+        segments += [Segment(from_robot, bytes(data[i:i + cut])) for i in range(0, len(data), cut)]
+    pcap = tmp_path / "hostile.pcap"
+    capture.write(pcap, capture.session_frames(segments, port=PORT, client_port=51009))
+    out = tshark(pcap, "-Y", "rtde", "-T", "fields", "-e", "rtde.kind")
+    assert len(out.splitlines()) > 50 and "setup_outputs" in out
+
+
+def test_decode_as_on_another_port(tmp_path):
+    """A robot behind a port forward: `-d tcp.port==40004,rtde` (Decode As) reads it the same."""
+    case = [c for c in CASES if c.name == "protocol2_session"][0]
+    pcap = tmp_path / "moved.pcap"
+    segments = [Segment(fr, d) for fr, d in case.messages]
+    capture.write(pcap, capture.session_frames(segments, port=40004, client_port=51000))
+    assert tshark(pcap, "-Y", "rtde").strip() == ""
+    out = tshark(pcap, "-d", "tcp.port==40004,rtde", "-Y", "rtde.kind == \"data_package\"", "-T", "fields",
+                 "-e", "rtde.actual_q")
+    assert out.split() == ["0,-1.5,1.5,-0.5,0.25,3"]
+
+
+def test_two_passes_show_what_one_shows(tmp_path):
+    """tshark -2 dissects every frame again after the first pass, as the GUI does: each message keeps
+    the recipe, protocol and refusals the first pass saw (the state is not re-run)."""
+    pcap = tmp_path / "p2.pcap"
+    capture.write(pcap, frames_of([c for c in CASES if c.name == "protocol2_session"][0], 51000))
+    fields = ["-Y", "rtde", "-T", "fields", "-e", "rtde.kind", "-e", "rtde.actual_q", "-e", "rtde.recipe_frame",
+              "-e", "rtde.protocol", "-e", "_ws.expert.message"]
+    one = tshark(pcap, *fields)
+    assert "not_a_variable: NOT_FOUND" in one
+    assert tshark(pcap, "-2", *fields) == one

@@ -1,6 +1,6 @@
 /* urwire-decode: a raw stream of one UR interface in, canonical JSON Lines out.
  *
- *     urwire-decode [--protocol ur|ur_realtime] [--version-hint 5.9|5.25.1] FILE|-
+ *     urwire-decode [--protocol ur|ur_realtime|rtde] [--version-hint 5.9|5.25.1] FILE|-
  *
  * Exit status: 0 all decoded, 1 the output holds error records, 2 usage or I/O error. */
 #include <errno.h>
@@ -10,6 +10,7 @@
 
 #include "json.h"
 #include "records.h"
+#include "rtde_json.h"
 #include "ur_realtime_json.h"
 #include "urwire.h"
 
@@ -18,7 +19,8 @@ static const char usage[] =
     "Decode a raw stream of a Universal Robots interface (FILE, or - for stdin) and print\n"
     "one canonical JSON record per line.\n"
     "  --protocol NAME   the interface the stream is from: ur (primary/secondary, 30001/30002,\n"
-    "                    the default) or ur_realtime (real-time, 30003)\n"
+    "                    the default), ur_realtime (real-time, 30003) or rtde (RTDE, 30004:\n"
+    "                    the robot's stream; its recipes come from the client's, not read here)\n"
     "  --version-hint V  the software version (5.9, 5.25.1) until the stream shows a Version\n"
     "                    message: it chooses each part's layout and the global-variable value\n"
     "                    types (default: 5.9 and later, or what the layout sizes show)\n"
@@ -63,6 +65,29 @@ static int run_realtime(FILE *in, urwire_sw_version version, bool hinted)
     return ur_realtime_print_stream(in, stdout, number);
 }
 
+/* RTDE: the robot's stream. Recipes are set up in the client's stream, which one file does not
+ * hold: data packages then come out whole, with an error, as in `urwire decode --protocol rtde`. */
+static rtde_json_stream rtde_stream;
+
+static int run_rtde(FILE *in, urwire_sw_version version, bool hinted)
+{
+    int faults = 0;
+    (void)version;
+    (void)hinted;
+    rtde_json_stream_init(&rtde_stream);
+    for (;;) {
+        size_t n = fread(chunk, 1, sizeof chunk, in);
+        faults += rtde_json_feed(&rtde_stream, chunk, n, true, stdout);
+        if (n < sizeof chunk) {
+            if (ferror(in))
+                return 2;
+            break;
+        }
+    }
+    faults += rtde_json_close(&rtde_stream, stdout);
+    return faults ? 1 : 0;
+}
+
 /* The interfaces this command reads, by the name --protocol takes (the Wireshark protocol's). An
  * interface adds its row: its runner gets the open input, the version and whether it was given. */
 typedef int (*protocol_runner)(FILE *in, urwire_sw_version version, bool hinted);
@@ -79,6 +104,7 @@ static const struct {
 } protocols[] = {
     {"ur", run_primary_row},
     {"ur_realtime", run_realtime},
+    {"rtde", run_rtde},
 };
 
 static int fail(const char *what, const char *detail)
@@ -123,7 +149,7 @@ int main(int argc, char **argv)
         if (strcmp(protocols[p].name, protocol) == 0)
             run = protocols[p].run;
     if (!run)
-        return fail("unknown protocol (known: ur, ur_realtime)", protocol);
+        return fail("unknown protocol (known: ur, ur_realtime, rtde)", protocol);
     if (!path)
         return fail("no input: give a FILE or - for stdin; try --help", NULL);
     if (hint && !urwire_parse_version(hint, &version))

@@ -65,6 +65,11 @@ class StepView:
     members: list[MemberView]
     size: int = 0
 
+    @property
+    def reads(self) -> list[str]:
+        """A run's assignments, one statement per member."""
+        return [f"out->{m.name} = ({m.ctype}){m.reader};" for m in self.members]
+
 
 def _steps(members: list[MemberView]) -> list[StepView]:
     steps: list[StepView] = []

@@ -14,6 +14,7 @@ from ...comments import field_text, value_text
 from ...emit import environment
 from ...naming import camel
 from ...view import one_line
+from ...wrap import spread
 from . import model
 
 PACKAGE = "python/urwire/generated"
@@ -70,7 +71,11 @@ class MessageView:
 
     @property
     def json(self) -> str:
-        return tuple_text([f'("{a.name}", "{a.json_kind}")' for a in self.attrs]) if self.attrs else "()"
+        """The class's JSON table, `    JSON: ClassVar[tuple] = (...)`, wrapped under its first entry."""
+        entries = [f'("{a.name}", "{a.json_kind}", False)' for a in self.attrs]
+        if len(entries) == 1:
+            entries[0] += ","
+        return spread(entries, "JSON: ClassVar[tuple] = (", ")", "    ")
 
 
 def tuple_text(items: list[str]) -> str:

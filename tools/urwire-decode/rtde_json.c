@@ -219,7 +219,7 @@ int rtde_json_record(FILE *out, const rtde_message *m, rtde_error e, size_t at, 
         fputs(", \"raw\": ", out);
         put_hex(out, msg, size);
         fputs("}\n", out);
-        return e == RTDE_UNKNOWN_TYPE ? 0 : 1;
+        return 0;       /* a message kept whole is a record, not a stream fault */
     }
     fprintf(out, "{\"type\": \"%s\"", info->name);
     for (i = 0; i < info->count; i++)
@@ -276,7 +276,7 @@ static int frame(rtde_json_stream *s, rtde_json_direction *d, bool from_robot, F
             rtde_message m;
             size_t at;
             rtde_error de = rtde_decode(&s->conversation, d->buf + pos, size, from_robot, &m, &at);
-            errors += rtde_json_record(out, &m, de, at, d->buf + pos, size);
+            rtde_json_record(out, &m, de, at, d->buf + pos, size);
         }
         pos += size;
     }

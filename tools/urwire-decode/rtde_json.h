@@ -29,13 +29,14 @@ typedef struct rtde_json_stream {
 void rtde_json_stream_init(rtde_json_stream *s);
 
 /* Bytes of one direction, as they arrive: each record they complete, one line each, on out.
- * Returns the number of error records written (stream faults, undecodable messages). */
+ * Returns the number of stream faults written (bad headers); a message kept whole with an
+ * "error" (short, long, of an unknown recipe) is a record, as in the Python command. */
 int rtde_json_feed(rtde_json_stream *s, const uint8_t *data, size_t length, bool from_robot, FILE *out);
 
 /* The ends of both streams (the robot's first): a truncated tail becomes an error record. */
 int rtde_json_close(rtde_json_stream *s, FILE *out);
 
-/* One decoded message (or what rtde_decode said of it) as one line. Returns 1 for an error record. */
+/* One decoded message (or what rtde_decode said of it) as one line. Returns 0. */
 int rtde_json_record(FILE *out, const rtde_message *m, rtde_error e, size_t at, const uint8_t *msg, size_t size);
 
 #endif
