@@ -43,16 +43,9 @@ def _show(v: Any) -> str:
         if len(v) > 6 and not isinstance(v[0], (int, float, str)):
             return f"[{len(v)} items]"
         return "[" + ", ".join(_show(x) for x in v) + "]"
-    if isinstance(v, dict):     # an RTDE package's values, by variable name
-        return "{" + ", ".join(f"{k}: {_show(x)}" for k, x in v.items()) + "}"
     if hasattr(v, "JSON"):
-        return "{" + _fields(v, _names(v)) + "}"
+        return "{" + _fields(v, [n for n, _, _ in v.JSON]) + "}"
     return str(v)
-
-
-def _names(obj: Any) -> list[str]:
-    """The members of a record in order (a JSON entry's first item is its name)."""
-    return [entry[0] for entry in obj.JSON]
 
 
 def _fields(obj: Any, names) -> str:
@@ -100,19 +93,16 @@ def line(record: Any) -> str:
                  or isinstance(p, (UnknownPackage, MalformedPackage)) or p.extra]
         tail = f" ! {record.error}" if record.error else ""
         return f"{record.LABEL:<{WIDTH}} [{len(record.packages)} packages] " + " | ".join(parts) + tail
-    if not hasattr(record, "JSON"):      # kept whole, as an RTDE message no layout fits
-        why = f" ! {record.error}" if getattr(record, "error", None) else ""
-        return f"{_words(record.type):<{WIDTH}} ({len(record.raw)} bytes){why}"
-    fields = _fields(record, _names(record))
-    extra = getattr(record, "extra", b"")
-    return (f"{record.LABEL:<{WIDTH}} {fields}" + (f" +{len(extra)} extra bytes" if extra else "")).rstrip()
+    fields = _fields(record, [n for n, _, _ in record.JSON])
+    extra = f" +{len(record.extra)} extra bytes" if record.extra else ""
+    return f"{record.LABEL:<{WIDTH}} {fields}{extra}"
 
 
 def _tree_lines(obj: Any, depth: int, out: list[str]) -> None:
     """Every field of a record, package or item, one per line; items and values nest."""
     pad = "  " * depth
     labels = _labels(type(obj))
-    for name in _names(obj):
+    for name, _, _ in obj.JSON:
         value = getattr(obj, name)
         if value is None:
             continue
