@@ -11,7 +11,8 @@ secondary_session.pcap   port 30002: Version, then robot states at 10 Hz as the 
 cell_session.pcapng      a whole cell, every conversation from the golden vectors
                          (tests/tools/cell_session.py): primary (30001), real-time (30003), RTDE
                          protocol 2 (30004: a setup with a NOT_FOUND, inputs IN_USE, start, data
-                         both ways), the dashboard server (29999) and the ROS driver's four sockets
+                         both ways; a second client whose data arrive between a setup and its
+                         reply), the dashboard server (29999) and the ROS driver's four sockets
                          (50001-50004, the robot connecting to the control PC).
 
 The output is deterministic (fixed seeds and timestamps), so a re-run leaves git clean.

@@ -19,9 +19,9 @@ demo-cell: build/urwire-decode
 	@echo "== Wireshark (tshark + every generated/lua/*.lua): $(CELL_SAMPLE), protocol and Info columns"
 	@$(TSHARK) -r $(CELL_SAMPLE) $(LUA_PLUGINS:%=-X lua_script:%) -Y '$(CELL_PROTOCOLS)' \
 		-T fields -e frame.number -e _ws.col.Protocol -e _ws.col.Info 2>/dev/null
-	@echo "== filter: rtde.actual_q (tree excerpt: the recipe's variables by name, and the frame that set it up)"
-	@$(TSHARK) -r $(CELL_SAMPLE) $(LUA_PLUGINS:%=-X lua_script:%) -O rtde -Y 'rtde.actual_q' 2>/dev/null \
-		| sed -n '/^Universal Robots Real-Time/,$$p'
+	@echo "== filter: rtde.actual_q && rtde.robot_mode (tree excerpt: the recipe's variables by name, and the frame that set it up)"
+	@$(TSHARK) -r $(CELL_SAMPLE) $(LUA_PLUGINS:%=-X lua_script:%) -O rtde -Y 'rtde.actual_q && rtde.robot_mode' \
+		2>/dev/null | sed -n '/^Universal Robots Real-Time/,$$p'
 	@echo "== the RTDE setup's expert warnings"
 	@$(TSHARK) -r $(CELL_SAMPLE) $(LUA_PLUGINS:%=-X lua_script:%) -q -z expert,warn 2>/dev/null | sed '/^$$/d'
 

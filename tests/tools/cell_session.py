@@ -1,5 +1,6 @@
 """A capture of a whole UR cell from the hand-made golden vectors: the primary interface, the
-real-time interface, RTDE, the dashboard server and the ROS driver's four sockets, each a TCP
+real-time interface, RTDE (a protocol 2 session, and a second client whose data packages arrive
+in the middle of its setups), the dashboard server and the ROS driver's four sockets, each a TCP
 conversation of its own, overlapping in time as a cell's do.
 
 `dissector/make_samples.py` writes it as dissector/samples/cell_session.pcapng; the export and
@@ -60,12 +61,15 @@ def conversations() -> list[Conversation]:
     primary = _one(golden_cases(), "generation_eseries_5_11_robot_state")
     realtime = _one(interface_cases("ur_realtime"), "eseries_5_10")
     rtde = _one(rtde_cases(), "protocol2_session")
+    rtde_busy = _one(rtde_cases(), "data_during_setup")
     dashboard = _one(conversation_cases("ur_dashboard"), "session_load_play")
     return [
         Conversation(primary.name, 30001, 50101, (Segment(True, primary.data),)),
         Conversation(realtime.name, 30003, 50102, (Segment(True, realtime.data),)),
         Conversation(f"rtde/{rtde.name}", 30004, 50103,
                      tuple(Segment(from_robot, data) for from_robot, data in rtde.messages)),
+        Conversation(f"rtde/{rtde_busy.name}", 30004, 50105,
+                     tuple(Segment(from_robot, data) for from_robot, data in rtde_busy.messages)),
         Conversation(f"ur_dashboard/{dashboard.name}", 29999, 50104,
                      tuple(Segment(s.from_robot, s.data) for s in dashboard.segments)),
         _driver("ur_reverse", "servoj_and_idle", 50001, 40001, pc_bytes=2 * 32),   # its two whole commands
