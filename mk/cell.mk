@@ -14,12 +14,12 @@ demo-cell: build/urwire-decode
 	@echo "== Python: urwire decode --format text $(CELL_SAMPLE) (every interface of a cell; cut at 160 characters)"
 	@PYTHONPATH=python:generated/python $(PYTHON) -m urwire decode --format text $(CELL_SAMPLE) | cut -c1-160
 	@$(PYTHON) tests/tools/port_stream.py $(CELL_SAMPLE) 30003 build/cell_realtime.bin
-	@echo "== C: build/urwire-decode --protocol ur_realtime build/cell_realtime.bin (the capture's 30003 stream; cut at 160 characters)"
+	@echo "== C: build/urwire-decode --protocol ur_realtime build/cell_realtime.bin (the capture's 30003 stream, lines cut)"
 	@build/urwire-decode --protocol ur_realtime build/cell_realtime.bin | cut -c1-160
 	@echo "== Wireshark (tshark + every generated/lua/*.lua): $(CELL_SAMPLE), protocol and Info columns"
 	@$(TSHARK) -r $(CELL_SAMPLE) $(LUA_PLUGINS:%=-X lua_script:%) -Y '$(CELL_PROTOCOLS)' \
 		-T fields -e frame.number -e _ws.col.Protocol -e _ws.col.Info 2>/dev/null
-	@echo "== filter: rtde.actual_q && rtde.robot_mode (tree excerpt: the recipe's variables by name, and the frame that set it up)"
+	@echo "== filter: rtde.actual_q && rtde.robot_mode (tree: the recipe's variables by name, the frame that set it up)"
 	@$(TSHARK) -r $(CELL_SAMPLE) $(LUA_PLUGINS:%=-X lua_script:%) -O rtde -Y 'rtde.actual_q && rtde.robot_mode' \
 		2>/dev/null | sed -n '/^Universal Robots Real-Time/,$$p'
 	@echo "== the RTDE setup's expert warnings"

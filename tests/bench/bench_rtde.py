@@ -179,7 +179,8 @@ def main() -> int:
     parser.add_argument("--large", type=int, default=1_000_000, help="the large size (default 1,000,000)")
     args = parser.parse_args()
     OUT.mkdir(parents=True, exist_ok=True)
-    print(f"RTDE: {len(RECIPE)}-variable recipe at {HZ:.0f} Hz ({PACKAGE_SIZE}-byte packages), best of {ROUNDS}, CPU time "
+    print(f"RTDE: {len(RECIPE)}-variable recipe at {HZ:.0f} Hz ({PACKAGE_SIZE}-byte packages), best of {ROUNDS}, "
+          "CPU time "
           f"({time.strftime('%Y-%m-%d')})")
     per_package = {}
     for count in (args.packages, args.large):
