@@ -14,7 +14,7 @@ demo-cell: build/urwire-decode
 	@echo "== Python: urwire decode --format text $(CELL_SAMPLE) (every interface of a cell; cut at 160 characters)"
 	@PYTHONPATH=python:generated/python $(PYTHON) -m urwire decode --format text $(CELL_SAMPLE) | cut -c1-160
 	@$(PYTHON) tests/tools/port_stream.py $(CELL_SAMPLE) 30003 build/cell_realtime.bin
-	@echo "== C: build/urwire-decode --protocol ur_realtime build/cell_realtime.bin (the capture's 30003 stream, lines cut)"
+	@echo "== C: build/urwire-decode --protocol ur_realtime build/cell_realtime.bin (30003's stream, lines cut)"
 	@build/urwire-decode --protocol ur_realtime build/cell_realtime.bin | cut -c1-160
 	@echo "== Wireshark (tshark + every generated/lua/*.lua): $(CELL_SAMPLE), protocol and Info columns"
 	@$(TSHARK) -r $(CELL_SAMPLE) $(LUA_PLUGINS:%=-X lua_script:%) -Y '$(CELL_PROTOCOLS)' \
