@@ -8,6 +8,7 @@ PYTEST ?= $(PYTHON) -m pytest
 ALL_TARGETS :=
 TEST_BUILDS :=
 DEMO_TARGETS :=
+DEMO_CELL_TARGETS :=
 BENCH_TARGETS :=
 
 .PHONY: all generate check-generated spec-diff setup test test-codegen test-python test-python-range soak demo demo-python \
@@ -74,8 +75,8 @@ SOAK_CLIENTS ?= 500
 soak:
 	PYTHONPATH=python:generated/python $(PYTHON) tests/tools/soak.py --seconds $(SOAK_SECONDS) --clients $(SOAK_CLIENTS)
 
-## demo: set up, then decode the bundled capture with every target
-demo: setup demo-python $(DEMO_TARGETS)
+## demo: set up, then decode the bundled captures with every target: the primary interface, then the whole cell
+demo: setup demo-python $(DEMO_TARGETS) $(DEMO_CELL_TARGETS)
 
 demo-python:
 	@echo "== Python: urwire decode --format text dissector/samples/primary_session.pcapng"

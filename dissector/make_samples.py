@@ -8,6 +8,12 @@ primary_session.pcapng   port 30001: Version, robot states at 10 Hz (a program s
                          cut across segments, some packed.
 secondary_session.pcap   port 30002: Version, then robot states at 10 Hz as the secondary
                          interface sends them (fewer sub-packages).
+cell_session.pcapng      a whole cell, every conversation from the golden vectors
+                         (tests/tools/cell_session.py): primary (30001), real-time (30003), RTDE
+                         protocol 2 (30004: a setup with a NOT_FOUND, inputs IN_USE, start, data
+                         both ways; a second client whose data arrive between a setup and its
+                         reply), the dashboard server (29999) and the ROS driver's four sockets
+                         (50001-50004, the robot connecting to the control PC).
 
 The output is deterministic (fixed seeds and timestamps), so a re-run leaves git clean.
 """
@@ -25,7 +31,7 @@ sys.path.insert(0, str(ROOT))
 sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python")]
 
 import urwire  # noqa: E402
-from tests.tools import capture  # noqa: E402
+from tests.tools import capture, cell_session  # noqa: E402
 from tests.tools.capture import Segment  # noqa: E402
 from tests.vectors import parse_hex  # noqa: E402
 
@@ -128,8 +134,10 @@ class StateMaker:
             name = getattr(pkg, "TYPE", "")
             if name in ("kinematics_info", "configuration_data") and not with_kinematics:
                 continue
+            # Sub-package 14 is read as payload_info now that the spec lays it out; the secondary
+            # sample never held it.
             if self.secondary and name in ("calibration_data", "safety_data", "tool_comm_info",
-                                           "tool_mode_info", "unknown"):
+                                           "tool_mode_info", "payload_info", "unknown"):
                 continue
             if name == "robot_mode_data":
                 pkg.timestamp = 19_805_995_000 + step * 100_000_000
@@ -257,7 +265,8 @@ def main() -> int:
     capture.write(OUT / "secondary_session.pcap",
                   capture.session_frames(secondary.segments, port=30002, client_port=50124),
                   times=secondary.frame_times())
-    print(f"wrote {OUT / 'primary_session.pcapng'} and {OUT / 'secondary_session.pcap'}")
+    cell_session.write(OUT / "cell_session.pcapng")
+    print(f"wrote {OUT / 'primary_session.pcapng'}, {OUT / 'secondary_session.pcap'} and {OUT / 'cell_session.pcapng'}")
     return 0
 
 

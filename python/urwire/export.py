@@ -1,4 +1,5 @@
-"""`urwire export`: a capture as tables, one per message kind and per sub-package kind.
+"""`urwire export`: a capture as tables, one per message kind and per sub-package kind of the
+primary interface, and per interface for the cell's other interfaces (export_cell.py).
 
 Each table has one row per occurrence: `position` (the message's place in the input, from 0),
 `capture_time` (for a .pcap or .pcapng: the time of the frame that completed the message, in
@@ -25,6 +26,10 @@ from pathlib import Path
 from typing import BinaryIO, Iterator
 
 from .canonical import has_error, shown_text, to_json_line
+from .cell import ports_of
+from .envelope import Enveloped
+from .export_cell import CellRows
+from .interfaces import INTERFACES
 from .reading import input_kind, timed_records
 
 # A switch member that holds an int32 or a float32 (int|f32) fits a float64 column exactly.
@@ -36,7 +41,9 @@ _ARROW_TYPES = {"int": "int64", "uint64": "uint64", "list:uint64": "uint64", "en
 def add_parser(sub, version_arg) -> None:
     p = sub.add_parser("export", help="write a capture as Parquet or CSV tables, one per message kind",
                        description="Write one table per message kind and per sub-package kind "
-                                   "(robot_mode_data, joint_data, ...), one row per occurrence.")
+                                   "(robot_mode_data, joint_data, ...), one row per occurrence; a capture's "
+                                   "other interfaces get tables named by interface (rtde_outputs_<hash> per "
+                                   "RTDE recipe, ur_realtime, ur_dashboard, ...: docs/tables.md).")
     p.add_argument("file", help="a raw stream, a .pcap or a .pcapng file")
     p.add_argument("--format", choices=("parquet", "csv"), default="parquet", help="table format (default: parquet)")
     p.add_argument("--out", required=True, metavar="DIR", help="folder for the tables (made if missing)")
@@ -111,6 +118,7 @@ class Tables:
         self._spill = spill
         self._files: dict[str, BinaryIO] = {}
         self._chunks: dict[str, dict[str, list]] = {}
+        self.cell = CellRows(self.add)
 
     def add(self, table: str, position: int, columns: list, time=None) -> None:
         kinds = self.kinds.setdefault(table, {"position": "int"})
@@ -140,6 +148,9 @@ class Tables:
         marshal.dump(self._chunks.pop(table), fh)
 
     def add_record(self, position: int, record, time=None) -> None:
+        if isinstance(record, Enveloped):      # another interface of the cell (export_cell.py)
+            self.cell.add(position, record, time)
+            return
         if has_error(record) or getattr(record, "TYPE", "unknown") == "unknown":
             self.add(_apart(record), position, [("record", "text", to_json_line(record))], time)
             return
@@ -177,8 +188,11 @@ class Tables:
 
 
 def gather(path: str, tables: Tables, hint=None) -> None:
-    for position, (time, record) in enumerate(timed_records(path, hint)):
+    """Every record of the file: a raw stream of the primary interface, or every conversation of
+    a capture that an interface of the cell reads, each by its port."""
+    for position, (time, record) in enumerate(timed_records(path, hint, by_port=ports_of(INTERFACES.values()))):
         tables.add_record(position, record, time)
+    tables.cell.finish()
 
 
 def write_csv(tables: Tables, out: Path) -> None:

@@ -67,13 +67,14 @@ def decode_file(path: Union[str, os.PathLike], version_hint: VersionLike = None,
 
 
 def timed_records(path: Union[str, os.PathLike], version_hint: VersionLike = None,
-                  ports: Optional[Iterable[int]] = None) -> Iterator[tuple]:
-    """(capture time in seconds since the epoch, record) of a .pcap or .pcapng file; a raw
-    stream has no times (None)."""
+                  ports: Optional[Iterable[int]] = None,
+                  by_port: Optional[dict[int, Interface]] = None) -> Iterator[tuple]:
+    """(capture time in seconds since the epoch, record) of a .pcap or .pcapng file (`ports` and
+    `by_port` as timed_records_of_capture takes them); a raw stream has no times (None)."""
     with open(Path(path), "rb") as fh:
         head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
         if is_capture(head):
-            yield from timed_records_of_capture(fh, version_hint, ports or PORTS)
+            yield from timed_records_of_capture(fh, version_hint, ports or by_port or PORTS, by_port=by_port)
         else:
             for record in records_of_raw(fh, version_hint, lambda n: None):
                 yield None, record

@@ -10,6 +10,13 @@
   the same tshark with `--disable-protocol ur_realtime`: no tree (`-q -z io,stat,0`), one field
   (`-T fields -e ur_realtime.q_actual`), the full tree (`-V`).
 
+- Per packet at the sizes users have: Python (a `RealtimeConversation` fed a megabyte at a time,
+  decode only) and C (`urwire-decode --protocol ur_realtime -`, JSON Lines to /dev/null, reading
+  a pipe) at `--large` packets (default 1,000,000: half an hour at 500 Hz) against `--packets`,
+  the same way in the same run: whether the cost per packet stays flat. The stream is a block
+  of BLOCK distinct packets sent again and again, made in this process as it is read, so that
+  no file of a gigabyte is written.
+
 The inputs are built now, under build/bench-realtime (not committed). `--packets N` (default
 30,000) sets the size; a smaller N gives a quick look.
 """
@@ -20,6 +27,7 @@ import os
 import random
 import resource
 import struct
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -32,6 +40,7 @@ OUT = ROOT / "build" / "bench-realtime"
 PLUGIN = ROOT / "generated" / "lua" / "ur_realtime.lua"
 CLI = ROOT / "build" / "urwire-decode"
 REPEAT = 3
+BLOCK = 1000     # distinct packets in the block a long stream repeats (about 1.2 MB)
 
 
 def stream(count: int) -> bytes:
@@ -104,9 +113,54 @@ def tshark_rates(pcap: Path, count: int) -> None:
         print(f"  {name:32s} {on:10.2f} s {off:7.2f} s {on / off:6.2f}")
 
 
+def blocks(count: int, block: bytes):
+    """The block, as many times as `count` packets take (a multiple of BLOCK)."""
+    for _ in range(max(1, count // BLOCK)):
+        yield block
+
+
+def python_per_packet(count: int, block: bytes) -> float:
+    from urwire.realtime import RealtimeConversation
+
+    start, got = cpu(), 0
+    conv = RealtimeConversation()
+    for data in blocks(count, block):
+        for at in range(0, len(data), 1 << 20):
+            got += len(conv.feed(data[at:at + (1 << 20)], True))
+    seconds = cpu() - start
+    assert got == max(1, count // BLOCK) * BLOCK, got
+    return seconds / got
+
+
+def c_per_packet(count: int, block: bytes) -> float:
+    """The command's CPU seconds per packet, fed through a pipe (its own process's time only)."""
+    proc = subprocess.Popen([str(CLI), "--protocol", "ur_realtime", "-"], stdin=subprocess.PIPE,
+                            stdout=subprocess.DEVNULL)
+    for data in blocks(count, block):
+        proc.stdin.write(data)
+    proc.stdin.close()
+    _, status, usage = os.wait4(proc.pid, 0)
+    if os.waitstatus_to_exitcode(status) not in (0, 1):
+        sys.exit("urwire-decode failed on the long stream")
+    return (usage.ru_utime + usage.ru_stime) / (max(1, count // BLOCK) * BLOCK)
+
+
+def flatness(small: int, large: int) -> None:
+    block = stream(BLOCK)
+    py = [python_per_packet(n, block) for n in (small, large)]
+    line = (f"  per packet at {large:,} against {small:,} packets: Python {py[1] / py[0]:.2f}x "
+            f"({1 / py[1]:,.0f} packets/s decoded)")
+    if CLI.exists():
+        c = [c_per_packet(n, block) for n in (small, large)]
+        line += f", C {c[1] / c[0]:.2f}x ({1 / c[1]:,.0f} packets/s with JSON)"
+    print(line)
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--packets", type=int, default=30_000)
+    parser.add_argument("--large", type=int, default=1_000_000, help="the size the cost per packet is "
+                        "compared at, against --packets (default 1,000,000)")
     args = parser.parse_args()
     # The Python command of this tree, not an installed one.
     os.environ["PYTHONPATH"] = os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")])
@@ -123,6 +177,7 @@ def main() -> int:
         command_rates(raw, args.packets)
     else:
         print("  (build/urwire-decode missing: `make` builds it)")
+    flatness(args.packets, args.large)
     tshark_rates(pcap, args.packets)
     return 0
 

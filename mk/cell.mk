@@ -1,0 +1,44 @@
+# The whole cell: the demo of the bundled capture of every interface (dissector/samples/cell_session.pcapng),
+# shown after the primary interface's demo, and RTDE's benchmark (the real-time interface's is in realtime.mk).
+
+DEMO_CELL_TARGETS += demo-cell
+CELL_SAMPLE := dissector/samples/cell_session.pcapng
+CELL_PROTOCOLS := ur || ur_realtime || rtde || ur_dashboard || ur_reverse || ur_script_sender || ur_trajectory \
+	|| ur_script_command
+
+.PHONY: demo-cell
+
+## demo-cell: the cell capture decoded by Python (every conversation), C (the real-time stream; the
+## C command reads raw streams) and tshark with every dissector of generated/lua/ loaded
+demo-cell: build/urwire-decode
+	@echo "== Python: urwire decode --format text $(CELL_SAMPLE) (every interface of a cell; cut at 160 characters)"
+	@PYTHONPATH=python:generated/python $(PYTHON) -m urwire decode --format text $(CELL_SAMPLE) | cut -c1-160
+	@$(PYTHON) tests/tools/port_stream.py $(CELL_SAMPLE) 30003 build/cell_realtime.bin
+	@echo "== C: build/urwire-decode --protocol ur_realtime build/cell_realtime.bin (30003's stream, lines cut)"
+	@build/urwire-decode --protocol ur_realtime build/cell_realtime.bin | cut -c1-160
+	@echo "== Wireshark (tshark + every generated/lua/*.lua): $(CELL_SAMPLE), protocol and Info columns"
+	@$(TSHARK) -r $(CELL_SAMPLE) $(LUA_PLUGINS:%=-X lua_script:%) -Y '$(CELL_PROTOCOLS)' \
+		-T fields -e frame.number -e _ws.col.Protocol -e _ws.col.Info 2>/dev/null
+	@echo "== filter: rtde.actual_q && rtde.robot_mode (tree: the recipe's variables by name, the frame that set it up)"
+	@$(TSHARK) -r $(CELL_SAMPLE) $(LUA_PLUGINS:%=-X lua_script:%) -O rtde -Y 'rtde.actual_q && rtde.robot_mode' \
+		2>/dev/null | sed -n '/^Universal Robots Real-Time/,$$p'
+	@echo "== the RTDE setup's expert warnings"
+	@$(TSHARK) -r $(CELL_SAMPLE) $(LUA_PLUGINS:%=-X lua_script:%) -q -z expert,warn 2>/dev/null | sed '/^$$/d'
+
+BENCH_TARGETS += bench-rtde
+BENCH_RTDE_PACKAGES ?= 30000
+BENCH_RTDE_LARGE ?= 1000000
+
+.PHONY: bench-rtde
+
+build/bench_rtde: tests/bench/bench_rtde.c generated/c/rtde.c generated/c/rtde.h
+	@mkdir -p build
+	$(CC) -std=c99 -O2 -Wall -Wextra -Werror -pedantic -Wconversion -Igenerated/c -o $@ tests/bench/bench_rtde.c \
+		generated/c/rtde.c
+
+## bench-rtde: RTDE data packages per second by recipe (a driver's 9-variable recipe at 500 Hz) in
+## Python (against struct alone) and C (against memcpy, and Python), at BENCH_RTDE_PACKAGES and
+## BENCH_RTDE_LARGE packages (the cost per package, large against small), and tshark with rtde.lua
+## against --disable-protocol rtde on BENCH_RTDE_PACKAGES packages
+bench-rtde: build/bench_rtde
+	$(PYTHON) tests/bench/bench_rtde.py --packages $(BENCH_RTDE_PACKAGES) --large $(BENCH_RTDE_LARGE)

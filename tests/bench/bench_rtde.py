@@ -1,0 +1,200 @@
+"""make bench-rtde: RTDE (30004) data packages per second, by recipe.
+
+One RTDE protocol 2 connection at 500 Hz with the recipe a driver asks for
+(tests/tools/rtde_inputs.py: timestamp, actual_q, actual_qd, actual_current, actual_TCP_pose,
+actual_TCP_speed, robot_mode, safety_mode, runtime_state; 264-byte packages), its values moving
+as a robot's do. Each figure is CPU time,
+the best of a few rounds, and a ratio against a baseline measured in the same run:
+
+- Python: `urwire.rtde.Conversation` fed the robot's stream a megabyte at a time, every package
+  decoded into its values by name, against the least any Python reader does (each package's
+  header and values read with the recipe's precompiled `struct`, nothing else); then with a
+  canonical JSON line per package.
+- C: `rtde_decode` with a caller-owned conversation, every value of every package read
+  (tests/bench/bench_rtde.c), against memcpy of the same bytes read the same way; and against
+  Python's rate.
+- Both at PACKAGES and at LARGE packages (a robot-day at 500 Hz is 43 million): the cost per
+  package at LARGE against PACKAGES shows whether it stays flat.
+- Wireshark: tshark with generated/lua/rtde.lua on a capture of PACKAGES packages (one per TCP
+  segment, as a robot sends them), against the same tshark with `--disable-protocol rtde`: no
+  tree (`-q -z io,stat,0`), one field (`-T fields -e rtde.actual_q`), the full tree (`-V`).
+
+The inputs are built under build/bench-rtde (not committed). `--packages N --large M` set the
+sizes; small ones give a quick look (the machine may be shared: run the full sizes alone).
+"""
+from __future__ import annotations
+
+import argparse
+import resource
+import struct
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path[:0] = [str(ROOT), str(ROOT / "python"), str(ROOT / "generated" / "python")]
+from tests.tools import capture, measure  # noqa: E402
+from tests.tools.rtde_inputs import (HZ, PACKAGE_SIZE, RECIPE, client_bytes, packages, robot_head,  # noqa: E402
+                                     values_struct)
+from urwire import rtde  # noqa: E402
+from urwire.generated import rtde as spec  # noqa: E402
+
+OUT = ROOT / "build" / "bench-rtde"
+PLUGIN = ROOT / "generated" / "lua" / "rtde.lua"
+C_BENCH = ROOT / "build" / "bench_rtde"
+CHUNK = 1 << 20
+ROUNDS = 3
+
+
+def write_robot(path: Path, count: int) -> Path:
+    if not path.exists():
+        with open(path.with_suffix(".tmp"), "wb") as fh:
+            fh.write(robot_head())
+            batch = []
+            for pkg in packages(count):
+                batch.append(pkg)
+                if len(batch) == 4096:
+                    fh.write(b"".join(batch))
+                    batch.clear()
+            fh.write(b"".join(batch))
+        path.with_suffix(".tmp").rename(path)
+    return path
+
+
+def cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def best(work, rounds: int = ROUNDS) -> tuple[float, int]:
+    """(least CPU seconds, what the work counted) over the rounds."""
+    times, counted = [], 0
+    for _ in range(rounds):
+        start = cpu()
+        counted = work()
+        times.append(cpu() - start)
+    return min(times), counted
+
+
+def chunks(path: Path):
+    with open(path, "rb") as fh:
+        while data := fh.read(CHUNK):
+            yield data
+
+
+def urwire_decode(path: Path, json_lines: bool = False) -> int:
+    """Every message of the robot's stream through a Conversation; the data packages counted."""
+    import urwire
+
+    conv = rtde.Conversation()
+    conv.feed(client_bytes(), False)
+    count = 0
+    for data in chunks(path):
+        for record in conv.feed(data, True):
+            if type(record) is spec.DataPackage:
+                count += 1
+                if json_lines:
+                    urwire.to_json_line(record)
+    if count == 0:
+        sys.exit("bench_rtde: no data package decoded")
+    return count
+
+
+def struct_floor(path: Path) -> int:
+    """The baseline: each message's header, and a data package's values with the recipe's struct."""
+    head, body = struct.Struct(">HB"), values_struct()
+    count, held = 0, b""
+    for data in chunks(path):
+        buf, pos = held + data, 0
+        while len(buf) - pos >= 3:
+            size, code = head.unpack_from(buf, pos)
+            if len(buf) - pos < size:
+                break
+            if code == 85:
+                body.unpack_from(buf, pos + 4)
+                count += 1
+            pos += size
+        held = buf[pos:]
+    return count
+
+
+def python_figures(path: Path, count: int, with_json: bool) -> float:
+    """Prints Python's rates; returns its seconds per package."""
+    ours, n = best(lambda: urwire_decode(path))
+    floor, m = best(lambda: struct_floor(path))
+    assert n == m == count, (n, m, count)
+    print(f"  Python Conversation             {count / ours:12,.0f} packages/s  {ours / floor:5.2f}x the time of "
+          f"struct alone ({count / floor:,.0f}/s)")
+    if with_json:
+        lines, _ = best(lambda: urwire_decode(path, json_lines=True))
+        print(f"  Python decode + JSON line       {count / lines:12,.0f} packages/s  {lines / ours:5.2f}x the time "
+              "of decoding")
+    return ours / count
+
+
+def c_figures(path: Path, count: int, python_per_package: float) -> float:
+    """Prints C's rates; returns its seconds per package."""
+    client = OUT / "client.bin"
+    client.write_bytes(client_bytes())
+    res = subprocess.run([str(C_BENCH), str(client), str(path), str(ROUNDS)], capture_output=True, text=True)
+    if res.returncode != 0:
+        sys.exit(f"bench_rtde failed: {res.stderr[:500]}")
+    n, decode, copy = res.stdout.split()
+    assert int(n) == count, (n, count)
+    decode, copy = float(decode), float(copy)
+    print(f"  C rtde_decode                   {count / decode:12,.0f} packages/s  {decode / copy:5.2f}x the time of "
+          f"memcpy, {python_per_package * count / decode:5.1f}x Python's rate")
+    return decode / count
+
+
+def tshark_figures(count: int) -> None:
+    pieces = [client_bytes(), robot_head(), *packages(count)]
+    segments = [capture.Segment(False, pieces[0]), capture.Segment(True, pieces[1]),
+                *(capture.Segment(True, p) for p in pieces[2:])]
+    pcap = capture.write(OUT / f"rtde_{count}.pcap", capture.session_frames(segments, port=30004), step=0.001)
+
+    def run(args) -> float:
+        times = []
+        for _ in range(ROUNDS):
+            res, _, seconds, _ = measure.run_cpu(["tshark", "-r", str(pcap), "-X", f"lua_script:{PLUGIN}", *args],
+                                                 output=False)
+            if res.returncode != 0 or "Lua: Error" in res.stderr:
+                sys.exit(f"tshark failed: {res.stderr[:500]}")
+            times.append(seconds)
+        return min(times)
+
+    print(f"  tshark, {count:,} packages         {'rtde':>12s} {'disabled':>9s} {'ratio':>6s}")
+    for name, args in (("no tree (-q -z io,stat,0)", ["-q", "-z", "io,stat,0"]),
+                       ("one field (-T fields)", ["-T", "fields", "-e", "rtde.actual_q"]),
+                       ("full tree (-V)", ["-V"])):
+        on = run(args)
+        off = run(["--disable-protocol", "rtde", *args])
+        print(f"  {name:32s} {on:10.2f} s {off:7.2f} s {on / off:6.2f}")
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--packages", type=int, default=30_000, help="the small size, and tshark's (default 30,000)")
+    parser.add_argument("--large", type=int, default=1_000_000, help="the large size (default 1,000,000)")
+    args = parser.parse_args()
+    OUT.mkdir(parents=True, exist_ok=True)
+    print(f"RTDE: {len(RECIPE)}-variable recipe at {HZ:.0f} Hz ({PACKAGE_SIZE}-byte packages), best of {ROUNDS}, "
+          "CPU time "
+          f"({time.strftime('%Y-%m-%d')})")
+    per_package = {}
+    for count in (args.packages, args.large):
+        path = write_robot(OUT / f"robot_{count}.bin", count)
+        print(f" {count:,} packages ({path.stat().st_size / 1e6:,.0f} MB)")
+        py = python_figures(path, count, with_json=count == args.packages)
+        c = c_figures(path, count, py) if C_BENCH.exists() else None
+        per_package[count] = (py, c)
+    (py_small, c_small), (py_large, c_large) = per_package[args.packages], per_package[args.large]
+    print(f" per package at {args.large:,} against {args.packages:,}: Python {py_large / py_small:.2f}x"
+          + (f", C {c_large / c_small:.2f}x" if c_small else " (build/bench_rtde missing: make bench-rtde builds it)"))
+    tshark_figures(args.packages)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
