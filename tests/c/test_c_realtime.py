@@ -162,3 +162,12 @@ def test_the_command_dispatches_by_protocol(tmp_path):
     assert primary[0] == primary[1] == primary[2] != ""
     realtime = subprocess.run([str(cli), "--protocol=ur_realtime", str(path)], capture_output=True, text=True)
     assert realtime.returncode == 1 and json.loads(realtime.stdout)["raw"] == REALTIME_PACKET[4:].hex()
+
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+def test_unit_checks_of_the_api(cc):
+    exe = OUT / "ur_realtime" / f"unit-{cc}"
+    compile_c(cc, ["-O1", "-g", "-fsanitize=address,undefined", "-fno-sanitize-recover=all"],
+              [ROOT / "tests" / "c" / "ur_realtime_unit.c", GEN / "ur_realtime.c"], exe)
+    res = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
+    assert res.returncode == 0 and res.stdout.strip() == "all real-time checks passed", res.stdout + res.stderr
