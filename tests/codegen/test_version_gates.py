@@ -12,7 +12,8 @@ import sys
 import yaml
 
 from codegen.plan import plan
-from codegen.compile import DEFAULT_SPEC, compile_text
+from codegen.compile import DEFAULT_SPEC, compile_file, compile_text, kind_of, spec_files
+from codegen.load import load_file
 from codegen.targets import python as python_target
 
 
@@ -20,7 +21,12 @@ def render_variant(tmp_path, edit):
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
     edit(data)
     protocol = compile_text(yaml.safe_dump(data, sort_keys=False))
-    for rel, text in python_target.render(plan(protocol), ["test build"]).items():
+    outputs = python_target.render(plan(protocol), ["test build"])
+    # The other interfaces' modules as the specs make them: the package imports them (interfaces.py).
+    for spec in spec_files():
+        if spec != DEFAULT_SPEC:
+            outputs.update(kind_of(load_file(spec)).render(compile_file(spec), ["test build"], ["python"]))
+    for rel, text in outputs.items():
         path = tmp_path / rel
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)
