@@ -28,8 +28,11 @@ local at_call    -- snapshots of the calls of kept frames, by call key
 local at_frame   -- the snapshot of the first call of each kept frame, by frame number
 
 -- A new capture: forget every stream.
+local last_frame   -- the frame of the last stream key made (stream_key, below)
+
 local function reset()
     streams, at_call, at_frame = {}, {}, {}
+    last_frame = nil
 end
 reset()
 
@@ -104,10 +107,26 @@ local function note(s, key, frame)
     return snap
 end
 
+-- The stream's key: its addresses as text and its ports. Making the text costs more than the rest
+-- of a call's bookkeeping, so the last key is kept with the frame, addresses and ports it was made
+-- from (Address objects compare in C) and given again while they recur, as they do call after
+-- call: the calls of one frame are one TCP segment's, and the frames of a stream follow each other.
+local last_src, last_dst, last_ports, last_key = nil, nil, nil, nil
+local function stream_key(pinfo)
+    if pinfo.number == last_frame then return last_key end
+    last_frame = pinfo.number
+    local src, dst, ports = pinfo.src, pinfo.dst, pinfo.src_port * 65536 + pinfo.dst_port
+    if ports ~= last_ports or src ~= last_src or dst ~= last_dst then
+        last_src, last_dst, last_ports = src, dst, ports
+        last_key = tostring(src) .. " " .. tostring(dst) .. " " .. ports
+    end
+    return last_key
+end
+
 -- The state as a call with n bytes starts: version, implied, resync, carry, how many bytes of
 -- the carry are this call's (nil: no carry), and the stream's key for stream_save.
 local function stream_load(pinfo, n)
-    local stream = tostring(pinfo.src) .. " " .. tostring(pinfo.dst) .. " " .. (pinfo.src_port * 65536 + pinfo.dst_port)
+    local stream = stream_key(pinfo)
     local frame = pinfo.number
     local key = frame * CALL_SPAN + n % CALL_SPAN
     local snap

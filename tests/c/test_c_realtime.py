@@ -149,3 +149,25 @@ def test_the_kept_corpus_gives_the_same_json_as_python(tmp_path):
         data = path.read_bytes()
         hint = hints[data[0] & 3] if data else ""
         assert c_lines(cli, data[1:], tmp_path, hint) == python_lines(data[1:], hint), path.name
+
+
+def test_the_command_dispatches_by_protocol(tmp_path):
+    cli = get_build("gcc").cli
+    path = tmp_path / "x.bin"
+    path.write_bytes(REALTIME_PACKET := struct.pack(">i3d", 28, 1.0, 2.0, 3.0))
+    res = subprocess.run([str(cli), "--protocol", "nope", str(path)], capture_output=True, text=True)
+    assert res.returncode == 2 and "unknown protocol: nope (known: ur ur_realtime)" in res.stderr
+    primary = [subprocess.run([str(cli), *args, str(path)], capture_output=True, text=True).stdout
+               for args in ([], ["--protocol", "ur"], ["--protocol=ur"])]
+    assert primary[0] == primary[1] == primary[2] != ""
+    realtime = subprocess.run([str(cli), "--protocol=ur_realtime", str(path)], capture_output=True, text=True)
+    assert realtime.returncode == 1 and json.loads(realtime.stdout)["raw"] == REALTIME_PACKET[4:].hex()
+
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+def test_unit_checks_of_the_api(cc):
+    exe = OUT / "ur_realtime" / f"unit-{cc}"
+    compile_c(cc, ["-O1", "-g", "-fsanitize=address,undefined", "-fno-sanitize-recover=all"],
+              [ROOT / "tests" / "c" / "ur_realtime_unit.c", GEN / "ur_realtime.c"], exe)
+    res = subprocess.run([str(exe)], capture_output=True, text=True, timeout=60)
+    assert res.returncode == 0 and res.stdout.strip() == "all real-time checks passed", res.stdout + res.stderr

@@ -13,7 +13,8 @@ from pathlib import Path
 import yaml
 
 from codegen.plan import plan
-from codegen.compile import DEFAULT_SPEC, compile_text
+from codegen.compile import DEFAULT_SPEC, compile_file, compile_text, kind_of, spec_files
+from codegen.load import load_file
 from codegen.targets import python as python_target
 
 
@@ -21,17 +22,15 @@ def render_variant(tmp_path, edit):
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
     edit(data)
     protocol = compile_text(yaml.safe_dump(data, sort_keys=False))
-    written = python_target.render(plan(protocol), ["test build"])
-    for rel, text in written.items():
+    outputs = python_target.render(plan(protocol), ["test build"])
+    # The other interfaces' modules as the specs make them: the package imports them (interfaces.py).
+    for spec in spec_files():
+        if spec != DEFAULT_SPEC:
+            outputs.update(kind_of(load_file(spec)).render(compile_file(spec), ["test build"], ["python"]))
+    for rel, text in outputs.items():
         path = tmp_path / rel
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text)
-    # The other interfaces' modules, as generated: the package imports them (urwire.interfaces).
-    generated = Path(__file__).resolve().parents[2] / "generated"
-    for path in (generated / "python" / "urwire" / "generated").glob("*.py"):
-        rel = str(path.relative_to(generated))
-        if rel not in written:
-            (tmp_path / rel).write_text(path.read_text(encoding="utf-8"))
     return tmp_path / "python"
 
 

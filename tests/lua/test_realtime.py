@@ -163,3 +163,16 @@ def test_without_a_tree_the_info_column_still_reads_the_layout_and_robot_mode(tm
     assert "rt_1_8, RUNNING" in summary and "rt_3_10, RUNNING" in summary and "Unknown size 28" in summary
     stats = run_tshark(pcap_of(tmp_path, case.data, "random"), "-q", "-z", "io,stat,0", plugin=PLUGIN)
     assert "Frames" in stats
+
+
+def test_the_version_preference_chooses_among_forms_of_one_size(tmp_path):
+    """A 1108-byte packet is CB3 3.5-3.9 or e-Series 5.0-5.3 (spec framing.same_size): joint mode
+    248 is PART_D_CALIBRATION_ERROR in CB3's table only; without a version the newest is taken."""
+    n = (1108 - 4) // 8
+    doubles = [0.0] * n
+    doubles[95:101] = [248.0] * 6           # joint_modes, after 95 doubles (RealTime 5.9 columns 96-101)
+    pcap = pcap_of(tmp_path, struct.pack(f">i{n}d", 1108, *doubles), "whole")
+    cb3 = run_tshark(pcap, "-2", "-V", "-o", "ur_realtime.version:3.6", plugin=PLUGIN)
+    newest = run_tshark(pcap, "-2", "-V", plugin=PLUGIN)
+    assert "Joint mode: 248 (PART_D_CALIBRATION_ERROR)" in cb3
+    assert "Joint mode: 248\n" in newest and "PART_D_CALIBRATION_ERROR" not in newest

@@ -171,9 +171,13 @@ int main(int argc, char **argv)
     for (p = 0; p < sizeof protocols / sizeof protocols[0]; p++)
         if (strcmp(protocols[p].name, protocol) == 0)
             run = protocols[p].run;
-    if (!run)
-        return fail("unknown protocol (known: ur, ur_realtime, rtde, ur_dashboard, ur_reverse, "
-                    "ur_script_sender, ur_trajectory, ur_script_command)", protocol);
+    if (!run) {
+        fprintf(stderr, "urwire-decode: unknown protocol: %s (known:", protocol);
+        for (p = 0; p < sizeof protocols / sizeof protocols[0]; p++)
+            fprintf(stderr, " %s", protocols[p].name);
+        fputs(")\n", stderr);
+        return 2;
+    }
     if (!path)
         return fail("no input: give a FILE or - for stdin; try --help", NULL);
     if (hint && !urwire_parse_version(hint, &version))
