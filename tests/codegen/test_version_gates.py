@@ -8,7 +8,6 @@ from __future__ import annotations
 import importlib
 import struct
 import sys
-from pathlib import Path
 
 import yaml
 
