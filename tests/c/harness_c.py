@@ -5,6 +5,8 @@ Every build uses the strict flags the library promises to pass (C99, -Wall -Wext
 """
 from __future__ import annotations
 
+import fcntl
+import hashlib
 import json
 import os
 import shutil
@@ -57,16 +59,42 @@ def compile_c(cc: str, flags: list[str], sources: list[Path], output: Path, extr
     assert result.stderr == "", result.stderr  # not even a note
 
 
+# The builds of VARIANTS, shared by every test process: the first to want one builds it under a
+# lock, the others wait and take it; a stamp of the sources and flags tells whether a build is
+# current.
+SHARED = ROOT / "build" / "c-tests" / "variants"
+
+
+def _sources_stamp(name: str) -> str:
+    digest = hashlib.sha256(repr(VARIANTS[name]).encode())
+    inputs = [*GEN.iterdir(), *CLI.iterdir(), ROOT / "tests" / "c" / "driver.c", Path(state_members.__file__)]
+    for path in sorted(p for p in inputs if p.is_file()):
+        digest.update(path.name.encode() + b"\0" + path.read_bytes())
+    return digest.hexdigest()
+
+
 def build_variant(name: str) -> Build:
     cc, flags = VARIANTS[name]
     if shutil.which(cc) is None:
         pytest.fail(f"{cc} is not installed (scripts/setup.sh installs it)")
-    folder = OUT / name
+    folder = SHARED / name
     cli, driver = folder / "urwire-decode", folder / "driver"
-    compile_c(cc, flags, [*CLI_SOURCES, GEN / "urwire.c"], cli, ["-lm"])
-    # The driver is test code: strict too, except that it uses malloc and stdio freely.
-    compile_c(cc, flags + [f"-I{state_members.write(GEN / 'urwire.h', folder)}"],
-              [ROOT / "tests" / "c" / "driver.c", *CLI_LIBRARY, GEN / "urwire.c"], driver, ["-lm"])
+    folder.mkdir(parents=True, exist_ok=True)
+    with open(SHARED / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        stamp, want = folder / "stamp", _sources_stamp(name)
+        if not (stamp.is_file() and stamp.read_text() == want and cli.is_file() and driver.is_file()):
+            stamp.unlink(missing_ok=True)
+            # The library once as objects, linked into the CLI and into the test driver.
+            objects = []
+            for source in [*CLI_LIBRARY, GEN / "urwire.c"]:
+                objects.append(folder / f"{source.stem}.o")
+                compile_c(cc, flags + ["-c"], [source], objects[-1])
+            compile_c(cc, flags, [CLI / "main.c", *objects], cli, ["-lm"])
+            # The driver is test code: strict too, except that it uses malloc and stdio freely.
+            compile_c(cc, flags + [f"-I{state_members.write(GEN / 'urwire.h', folder)}"],
+                      [ROOT / "tests" / "c" / "driver.c", *objects], driver, ["-lm"])
+            stamp.write_text(want)
     return Build(name, cli, driver)
 
 
