@@ -116,15 +116,26 @@ class RtdeSession:
         self.inputs: dict[int, rtde.Recipe] = {}
         self.streams: list[Stream] = []
         self.wake = asyncio.Event()
+        self.buffer = bytearray()
 
     # ---- the client's messages ---------------------------------------------------------------
     def received(self, data: bytes) -> None:
-        for message in self.conversation.feed(data, False):
-            reply = self.answer(message)
-            if reply is not None:
-                self.conversation.feed(reply, True)           # the connection's state follows its replies
-                if not self.send(reply):
-                    return
+        """Answers each whole message. Messages are fed to the connection's state one at a time, each
+        after the reply to the one before, so that a client that sends its setup right behind its
+        protocol request (without waiting) has it read in the protocol just agreed."""
+        self.buffer += data
+        while len(self.buffer) >= _g.HEADER.size:
+            size = _g.HEADER.unpack_from(self.buffer)[0]
+            take = size if size >= _g.HEADER.size else len(self.buffer)   # a bad size: the framer reports it
+            if len(self.buffer) < take:
+                return
+            message, self.buffer = bytes(self.buffer[:take]), self.buffer[take:]
+            for record in self.conversation.feed(message, False):
+                reply = self.answer(record)
+                if reply is not None:
+                    self.conversation.feed(reply, True)       # the connection's state follows its replies
+                    if not self.send(reply):
+                        return
 
     def answer(self, message) -> Optional[bytes]:
         """The reply to one client message (None: the message gets none)."""
