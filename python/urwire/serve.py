@@ -171,7 +171,7 @@ class RealtimeClient(Session):
 class RtdeClient(Session):
     def __init__(self, robot: Robot):
         super().__init__(robot)
-        self.rtde = RtdeSession(robot.cell, robot.clock, self.send, log)
+        self.rtde = RtdeSession(robot.cell, robot.clock, self.send)
 
     def data_received(self, data: bytes) -> None:
         self.rtde.received(data)

@@ -103,14 +103,11 @@ class RtdeSession:
     """One client's RTDE connection. `send(bytes) -> bool` writes (False: the client was dropped);
     `clock()` is the server time in seconds."""
 
-    def __init__(self, cell: RobotCell, clock: Callable[[], float], send: Callable[[bytes], bool],
-                 log: Callable[[str], None]):
+    def __init__(self, cell: RobotCell, clock: Callable[[], float], send: Callable[[bytes], bool]):
         self.cell = cell
         self.clock = clock
         self.send = send
-        self.log = log
         self.conversation = rtde.Conversation(protocol=1)     # a controller starts in protocol 1
-        self.protocol = 1
         self.next_id = 1
         self.outputs: dict[Optional[int], tuple] = {}         # recipe id -> (recipe, frequency)
         self.inputs: dict[int, rtde.Recipe] = {}
@@ -140,10 +137,7 @@ class RtdeSession:
     def answer(self, message) -> Optional[bytes]:
         """The reply to one client message (None: the message gets none)."""
         if isinstance(message, _g.RequestProtocolVersion):
-            accepted = message.protocol_version in _g.PROTOCOL_VERSIONS
-            if accepted:
-                self.protocol = message.protocol_version
-            return _g.RequestProtocolVersionReply(accepted).encode()
+            return _g.RequestProtocolVersionReply(message.protocol_version in _g.PROTOCOL_VERSIONS).encode()
         if isinstance(message, _g.GetUrcontrolVersion):
             major, minor, bugfix = self.cell.version
             return _g.GetUrcontrolVersionReply(major, minor, bugfix, BUILD).encode()
