@@ -27,6 +27,9 @@ ROBOT_MODE_CODES = {POWER_OFF: 3, IDLE: 5, RUNNING: 7}
 # RTDE runtime_state and the real-time program_state share these codes.
 PROGRAM_STATE_CODES = {STOPPED: 1, PLAYING: 2, PAUSED: 4}
 DEMO_PROGRAM = "/programs/demo.urp"
+# The build of the served software, as RTDE's controller version and the dashboard's version
+# replies give it (a 5.11.1 release's: "URSoftware 5.11.1.108318 (Nov 26 2021)").
+BUILD_NUMBER, BUILD_DATE = 108318, "Nov 26 2021"
 SAFETY_NORMAL = 1
 # Joint modes (3.0 and later): RUNNING 253, IDLE 255.
 JOINT_RUNNING, JOINT_IDLE = 253, 255

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import os
 import signal
 import sys
 from dataclasses import dataclass
@@ -219,7 +220,9 @@ class ListenError(OSError):
     """An interface's port cannot be listened on."""
 
     def __init__(self, name: str, port: int, error: OSError):
-        super().__init__(f"{TITLES[name] or 'primary'} port {port}: {error.strerror or error}")
+        # asyncio words its bind errors itself: the errno's own text is the short one.
+        why = os.strerror(error.errno) if error.errno else str(error)
+        super().__init__(f"{TITLES[name] or 'primary'} port {port}: {why}")
 
 
 async def serve(host: str, port: int, version: tuple, rate: float, duration: Optional[float],

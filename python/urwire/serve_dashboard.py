@@ -9,11 +9,8 @@ from __future__ import annotations
 from typing import Callable
 
 from .generated import ur_dashboard as _g
-from .robot_cell import IDLE, PAUSED, PLAYING, POWER_OFF, RUNNING, RobotCell
-from .serve_rtde import BUILD
+from .robot_cell import BUILD_DATE, BUILD_NUMBER, IDLE, PAUSED, PLAYING, POWER_OFF, RUNNING, RobotCell
 from .text_lines import ReplySpec, find_command
-
-BUILD_DATE = "Nov 26 2021"
 
 
 def say(reply: ReplySpec, value: str = "") -> str:
@@ -99,7 +96,7 @@ class DashboardSession:
         return "version", self.version_text()
 
     def version_text(self) -> str:
-        return ".".join(map(str, self.cell.version)) + f".{BUILD}"
+        return ".".join(map(str, self.cell.version)) + f".{BUILD_NUMBER}"
 
     def power(self, mode: str) -> Callable:
         def handler(_):

@@ -15,15 +15,13 @@ from typing import Callable, Optional
 
 from . import rtde
 from .generated import rtde as _g
-from .robot_cell import RobotCell, Snapshot
+from .robot_cell import BUILD_NUMBER, RobotCell, Snapshot
 from .robot_models import CB3, E_SERIES, POLYSCOPE_X, generation
 
 # The highest output frequency of each generation (RTDE guide: "125 Hz on CB3, 500 Hz on e-Series").
 MAX_FREQUENCY = {CB3: 125.0, E_SERIES: 500.0, POLYSCOPE_X: 500.0}
 # Generations' names in the variable table's `since` columns.
 TABLE_COLUMN = {CB3: "cb3", E_SERIES: "eseries", POLYSCOPE_X: "eseries"}
-# The build number the controller version reply carries (a 5.11.1 release's: "5.11.1.108318").
-BUILD = 108318
 
 
 def has_rtde(version: tuple) -> bool:
@@ -140,7 +138,7 @@ class RtdeSession:
             return _g.RequestProtocolVersionReply(message.protocol_version in _g.PROTOCOL_VERSIONS).encode()
         if isinstance(message, _g.GetUrcontrolVersion):
             major, minor, bugfix = self.cell.version
-            return _g.GetUrcontrolVersionReply(major, minor, bugfix, BUILD).encode()
+            return _g.GetUrcontrolVersionReply(major, minor, bugfix, BUILD_NUMBER).encode()
         if isinstance(message, (_g.SetupOutputs, _g.SetupOutputsV1)):
             return self.setup_outputs(message)
         if isinstance(message, _g.SetupInputs):

@@ -9,11 +9,14 @@ Each client here is urwire's own decoder for the interface; the values are check
 urwire.motion.Motion, the one motion every interface samples, worked out apart from the server."""
 from __future__ import annotations
 
+import socket
+import subprocess
+import sys
 import time
 
 import pytest
 
-from tests.python.cell_server import CellServer, read_until
+from tests.python.cell_server import ENV, CellServer, read_until
 from urwire import rtde
 from urwire.generated import rtde as g
 from urwire.generated import ur_dashboard
@@ -73,15 +76,42 @@ def server(tmp_path, request):
 
 
 def test_every_interface_listens_on_its_offset_from_the_primary_port(tmp_path):
-    # A free port for the primary; the others at their standard offsets from it.
-    with CellServer(tmp_path, "--software", "5.11", port=0) as first:
-        base = first.ports["primary"] + 10
-        first.stop()
-    if base + 3 > 65535:
-        pytest.skip("the free port found is too high for the offsets")
-    with CellServer(tmp_path, "--software", "5.11", port=base) as second:
-        assert second.ports == {"primary": base, "rtde": base + 3, "realtime": base + 2, "dashboard": base - 2}
-        assert second.stop() == 0
+    # A base whose offsets are free now (another process may take one before serve does: try again).
+    for _ in range(3):
+        base = free_port_with_offsets()
+        try:
+            server = CellServer(tmp_path, "--software", "5.11", port=base)
+        except AssertionError:
+            continue
+        with server:
+            assert server.ports == {"primary": base, "rtde": base + 3, "realtime": base + 2, "dashboard": base - 2}
+            assert server.stop() == 0
+        return
+    pytest.fail("no base port whose offsets serve could take")
+
+
+def free_port_with_offsets() -> int:
+    while True:
+        with socket.create_server(("127.0.0.1", 0)) as probe:
+            base = probe.getsockname()[1]
+        if base < 1024 or base > 65532:
+            continue
+        try:
+            for port in (base - 2, base + 2, base + 3):
+                with socket.create_server(("127.0.0.1", port)):
+                    pass
+        except OSError:
+            continue
+        return base
+
+
+def test_a_port_taken_is_said_and_serve_exits_2(tmp_path):
+    with socket.create_server(("127.0.0.1", 0)) as taken:
+        port = taken.getsockname()[1]
+        res = subprocess.run([sys.executable, "-m", "urwire", "serve", "--port", "0", "--rtde-port", str(port),
+                              "--duration", "5"], capture_output=True, text=True, env=ENV, timeout=30)
+    assert res.returncode == 2
+    assert f"cannot listen on 127.0.0.1: RTDE port {port}: Address already in use" in res.stderr
 
 
 def test_rtde_protocol_2_setup_start_stream_pause(server):
