@@ -92,6 +92,7 @@ class Controller:
         (its joints hold still while the program is stopped or paused); without one the demo
         program plays on."""
         self.cell = cell
+        self._was_playing = True       # the demo program plays when a session starts
         self.version = version
         self.rate = rate
         self.tick = 0
@@ -165,9 +166,20 @@ class Controller:
         run = self.tick // CYCLE_TICKS
         stops = run % STOP_EVERY == STOP_EVERY - 1
         yield _m.RobotStateMessage(self.packages(phase, stops)).encode(self.version)
-        if self.playing():
+        playing = self.playing()
+        if playing != self._was_playing:
+            yield self.program_key(playing)
+            self._was_playing = playing
+        if playing:
             yield from self.program(phase, run, stops)
         self.tick += 1
+
+    def program_key(self, started: bool) -> bytes:
+        """The key message of a program the shared robot started or stopped (a dashboard `play`,
+        `stop` or `pause`, a power change), named as the demo program's are: by the file's stem."""
+        title = "PROGRAM_XXX_STARTED" if started else "PROGRAM_XXX_STOPPED"
+        name = self.cell.program_name.rsplit(".", 1)[0] if self.cell else "demo"
+        return self.encode(filled(_m.KeyMessage, timestamp=self.millis(), source=SOURCE, title=title, text=name))
 
     def packages(self, phase: int, stops: bool) -> list:
         protective = stops and 50 <= phase < 60

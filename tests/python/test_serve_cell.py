@@ -282,6 +282,27 @@ def test_dashboard_replies_and_the_program_state_every_interface_reports(server)
     client.close()
 
 
+def test_the_primary_stream_says_when_the_dashboard_stops_and_plays_the_program(server):
+    primary = Framer()
+    keys = lambda records: [r.title for r in records if isinstance(r, urwire.KeyMessage)]   # noqa: E731
+    with server.connect("primary") as sock:
+        read_until(sock, primary.feed, lambda r: any(isinstance(x, urwire.RobotStateMessage) for x in r))
+        replies = dashboard_exchange(server, ["stop"])
+        assert replies[1].reply == "Stopped"
+        stopped = read_until(sock, primary.feed, lambda r: "PROGRAM_XXX_STOPPED" in keys(r))
+        assert "PROGRAM_XXX_STOPPED" in keys(stopped)
+        key = [r for r in stopped if isinstance(r, urwire.KeyMessage)][-1]
+        assert key.text == "demo"
+        states = read_until(sock, primary.feed,
+                            lambda r: sum(isinstance(x, urwire.RobotStateMessage) for x in r) >= 2)
+        state = [r for r in states if isinstance(r, urwire.RobotStateMessage)][-1]
+        assert state.package(urwire.RobotModeData).is_program_running is False
+        assert not keys(states)              # a stopped program says nothing more
+        dashboard_exchange(server, ["play"])
+        started = read_until(sock, primary.feed, lambda r: "PROGRAM_XXX_STARTED" in keys(r))
+        assert "PROGRAM_XXX_STARTED" in keys(started)
+
+
 @pytest.mark.parametrize("server", ["3.15"], indirect=True)
 def test_dashboard_commands_of_the_version_only(server):
     # safetystatus is e-Series only (5.4); get serial number came with 3.12 on CB3.
