@@ -14,6 +14,7 @@ clients change is kept here, so every interface reports it:
 from __future__ import annotations
 
 import bisect
+import math
 from dataclasses import dataclass, replace
 from typing import Optional
 
@@ -31,6 +32,7 @@ DEMO_PROGRAM = "/programs/demo.urp"
 # replies give it (a 5.11.1 release's: "URSoftware 5.11.1.108318 (Nov 26 2021)").
 BUILD_NUMBER, BUILD_DATE = 108318, "Nov 26 2021"
 SAFETY_NORMAL = 1
+KEPT_CHANGES = 64
 # Joint modes (3.0 and later): RUNNING 253, IDLE 255.
 JOINT_RUNNING, JOINT_IDLE = 253, 255
 
@@ -77,22 +79,25 @@ class RobotCell:
         self.loaded_program: Optional[str] = DEMO_PROGRAM
         self.robot_mode = RUNNING
         self.inputs = RtdeInputs({"speed_slider_fraction": 1.0, "standard_digital_output": 0}, {})
-        # Times (server seconds) at which the arm started or stopped moving, in order; it moves at 0.
-        self._changes: list[float] = []
+        # Each time (server seconds) the arm started or stopped moving, with the seconds it had
+        # moved by then and whether it moves after: the latest few, since interfaces sample times
+        # at most a period or two before now, and a client toggling the program costs no more.
+        self._changes: list[tuple[float, float, bool]] = [(0.0, 0.0, True)]
 
     # ---- the motion --------------------------------------------------------------------------
     @property
     def moving(self) -> bool:
         return self.program_state == PLAYING and self.robot_mode == RUNNING
 
+    def _change_at(self, t: float) -> tuple[float, float, bool]:
+        """The latest change at or before t (the earliest kept, for a t before it)."""
+        index = bisect.bisect_right(self._changes, (t, math.inf, True)) - 1
+        return self._changes[max(index, 0)]
+
     def motion_time(self, t: float) -> float:
         """The motion's time at server time t: the seconds the arm has moved until t."""
-        moving, since, elapsed = True, 0.0, 0.0
-        for change in self._changes[:bisect.bisect_right(self._changes, t)]:
-            if moving:
-                elapsed += change - since
-            moving, since = not moving, change
-        return elapsed + (t - since if moving else 0.0)
+        since, moved, moving = self._change_at(t)
+        return moved + (max(t - since, 0.0) if moving else 0.0)
 
     def joints(self, t: float) -> JointSample:
         """The joints at server time t: held still, speeds and accelerations zero, when not moving."""
@@ -103,14 +108,15 @@ class RobotCell:
         return replace(sample, qd=still, qdd=still, current=self.motion.currents(sample.q, still))
 
     def _moving_at(self, t: float) -> bool:
-        return bisect.bisect_right(self._changes, t) % 2 == 0
+        return self._change_at(t)[2]
 
     def _set(self, now: float, program_state: Optional[str] = None, robot_mode: Optional[str] = None) -> None:
         was = self.moving
         self.program_state = program_state or self.program_state
         self.robot_mode = robot_mode or self.robot_mode
         if was != self.moving:
-            self._changes.append(max(now, self._changes[-1] if self._changes else 0.0))
+            at = max(now, self._changes[-1][0])
+            self._changes = self._changes[-KEPT_CHANGES + 1:] + [(at, self.motion_time(at), self.moving)]
 
     def state_at(self, t: float) -> "Snapshot":
         """What every interface reports at server time t."""
@@ -177,12 +183,12 @@ class RobotCell:
         for name, value in values.items():
             if name.endswith("_mask"):
                 continue
-            mask = values.get(f"{name}_mask")
-            if name == "speed_slider_fraction" and mask is not None and not mask & 1:
+            if name == "speed_slider_fraction":
+                if values.get("speed_slider_mask", 1) & 1:      # bit 0: use the fraction
+                    kept[name] = value
                 continue
-            if mask is not None and name != "speed_slider_fraction":
-                value = (kept.get(name, 0) & ~mask) | (value & mask)
-            kept[name] = value
+            mask = values.get(f"{name}_mask")
+            kept[name] = value if mask is None else (kept.get(name, 0) & ~mask) | (value & mask)
 
     @property
     def speed_fraction(self) -> float:
