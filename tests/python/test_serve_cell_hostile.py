@@ -1,9 +1,11 @@
 """`urwire serve`'s promises on the cell's other ports, over real TCP on loopback: a real-time or
 RTDE client that stops reading is dropped and the others keep their rate; garbage on RTDE and the
 dashboard leaves the server answering the next client; a signal stops the server within 2 s with
-clients on every port, whatever they do. Every process and socket is bounded in count and time."""
+clients on every port, whatever they do; a thousand dashboard and RTDE clients at once each get
+their answers. Every process and socket is bounded in count and time."""
 from __future__ import annotations
 
+import asyncio
 import os
 import re
 import signal
@@ -109,3 +111,50 @@ def test_stops_within_2s_with_clients_on_every_port(tmp_path):
                 sock.close()
     assert status == 0
     assert seconds < 2
+
+
+CROWD = 1000
+
+
+async def dashboard_reply(host: str, port: int) -> str:
+    reader, writer = await asyncio.open_connection(host, port)
+    try:
+        writer.write(b"robotmode\n")
+        await reader.readline()                                  # the banner
+        return (await reader.readline()).decode().strip()
+    finally:
+        writer.close()
+
+
+async def rtde_version(host: str, port: int) -> tuple:
+    reader, writer = await asyncio.open_connection(host, port)
+    try:
+        writer.write(rtde.request_protocol_version(2) + rtde.get_controller_version())
+        conversation = rtde.Conversation(protocol=1)
+        records: list = []
+        while len(records) < 2:
+            chunk = await reader.read(65536)
+            assert chunk, "serve closed the connection before its replies"
+            records += conversation.feed(chunk, True)
+        return records[0].accepted, (records[1].major, records[1].minor)
+    finally:
+        writer.close()
+
+
+async def crowd(make, count: int) -> list:
+    return await asyncio.wait_for(asyncio.gather(*(make() for _ in range(count))), 30)
+
+
+def test_a_thousand_dashboard_and_rtde_clients_at_once_each_get_their_answers(tmp_path):
+    import resource
+    soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    if soft < CROWD + 100:
+        resource.setrlimit(resource.RLIMIT_NOFILE, (min(hard, CROWD + 100), hard))
+    with CellServer(tmp_path, "--software", "5.11") as server:
+        start = time.monotonic()
+        replies = asyncio.run(crowd(lambda: dashboard_reply(server.host, server.ports["dashboard"]), CROWD))
+        assert replies == ["Robotmode: RUNNING"] * CROWD
+        versions = asyncio.run(crowd(lambda: rtde_version(server.host, server.ports["rtde"]), CROWD))
+        assert versions == [(True, (5, 11))] * CROWD
+        assert time.monotonic() - start < 20
+        assert server.stop() == 0
