@@ -55,7 +55,8 @@ int main(int argc, char** argv)
   setLogLevel(LogLevel::WARN);
 
   comm::INotifier notifier;
-  const std::vector<std::string> outputs = { "timestamp", "actual_q", "actual_TCP_pose", "robot_mode", "runtime_state" };
+  const std::vector<std::string> outputs = { "timestamp", "actual_q", "actual_TCP_pose", "robot_mode",
+                                             "runtime_state" };
   const std::vector<std::string> inputs = { "speed_slider_mask", "speed_slider_fraction" };
   rtde_interface::RTDEClient client(host, notifier, outputs, inputs, frequency, false, rtde_port);
   if (!client.init(3, std::chrono::milliseconds(500)))
@@ -99,7 +100,8 @@ int main(int argc, char** argv)
     printVector6("actual_TCP_pose", pose);
     std::printf(", \"robot_mode\": %d, \"runtime_state\": %u}\n", robot_mode, runtime_state);
   }
-  std::printf("{\"type\": \"speed_slider\", \"sent\": %s}\n", client.getWriter().sendSpeedSlider(0.5) ? "true" : "false");
+  const bool sent = client.getWriter().sendSpeedSlider(0.5);
+  std::printf("{\"type\": \"speed_slider\", \"sent\": %s}\n", sent ? "true" : "false");
   client.pause();
 
   DashboardClient dashboard(host);
