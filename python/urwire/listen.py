@@ -1,4 +1,5 @@
-"""`urwire listen`: record a live controller (or `urwire serve`) as it talks.
+"""`urwire listen`: record a live controller (or `urwire serve`) as it talks: its primary interface,
+or with `--rtde NAMES` an RTDE output recipe (listen_rtde sets it up on each connection).
 
 Connects, frames and decodes the bytes as they arrive and writes each record at once, flushed,
 so `tail -f` follows it. `--raw FILE` also keeps the exact bytes, one file per connection
@@ -30,6 +31,8 @@ from typing import Callable, Iterator, Optional
 from .canonical import has_error, to_json_line
 from .framer import Framer
 from .human import line as human_line
+from .listen_rtde import PORT as RTDE_PORT
+from .listen_rtde import RtdeRecorder
 
 BACKOFF_FIRST = 0.5
 BACKOFF_MAX = 10.0
@@ -43,26 +46,33 @@ def add_parser(sub, version_arg) -> None:
     p = sub.add_parser("listen", help="connect to a controller and record what it sends",
                        description="Connect to a controller's primary/secondary port and write one record "
                                    "per message as it arrives.")
-    p.add_argument("address", metavar="HOST[:PORT]", help="controller address (default port 30001)")
+    p.add_argument("address", metavar="HOST[:PORT]",
+                   help="controller address (default port 30001, or 30004 with --rtde)")
     p.add_argument("--out", metavar="FILE", help="write records here (default: standard output)")
     p.add_argument("--format", choices=("jsonl", "csv", "text"), default="jsonl",
                    help="jsonl: canonical JSON Lines (default); csv: position, time, type, JSON; "
                         "text: one readable line per message")
     p.add_argument("--raw", metavar="FILE",
                    help="also keep the exact bytes received, one file per connection: FILE, then FILE with "
-                        ".1, .2, ... before its extension (each readable by decode)")
+                        ".1, .2, ... before its extension (each readable by decode); with --rtde, what listen "
+                        "sent too, in FILE with .to_robot before its extension (decode's --to-robot)")
     p.add_argument("--count", type=int, metavar="N", help="stop after N records")
     p.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
     p.add_argument("--idle-timeout", type=float, default=IDLE_TIMEOUT, metavar="S",
                    help=f"drop and reconnect a connection that sends nothing for S seconds "
                         f"(default: {IDLE_TIMEOUT})")
+    p.add_argument("--rtde", metavar="NAMES",
+                   help="record RTDE instead: set up an output recipe of these variables (comma-separated, e.g. "
+                        "actual_q,actual_TCP_pose), start it and write each message the robot sends")
+    p.add_argument("--frequency", type=float, default=125.0, metavar="HZ",
+                   help="with --rtde: data packages per second under protocol 2 (default: 125)")
     p.set_defaults(run=listen_command)
 
 
-def split_address(text: str) -> tuple[str, int]:
+def split_address(text: str, default_port: int = 30001) -> tuple[str, int]:
     host, sep, port = text.rpartition(":")
     if not sep or "]" in port:          # no port, or a bare IPv6 address
-        return text.strip("[]"), 30001
+        return text.strip("[]"), default_port
     return host.strip("[]"), int(port)
 
 
@@ -74,11 +84,17 @@ def raw_path(first: str, connection: int) -> str:
     return str(path.with_name(f"{path.stem}.{connection}{path.suffix}"))
 
 
+def to_robot_path(raw: str) -> str:
+    """The file of what listen sent on the connection whose received bytes are in `raw`."""
+    path = Path(raw)
+    return str(path.with_name(f"{path.stem}.to_robot{path.suffix}"))
+
+
 def earlier_raw_files(first: str) -> list[Path]:
     """The numbered raw files a longer earlier run left next to `first`, which this run replaces
     as it replaces `first`: left in place, they would read as connections of this run."""
     path = Path(first)
-    pattern = re.compile(re.escape(path.stem) + r"\.[1-9][0-9]*" + re.escape(path.suffix))
+    pattern = re.compile(re.escape(path.stem) + r"\.[1-9][0-9]*(\.to_robot)?" + re.escape(path.suffix))
     return [p for p in path.parent.glob(f"{glob.escape(path.stem)}.*{glob.escape(path.suffix)}")
             if pattern.fullmatch(p.name)]
 
@@ -143,6 +159,9 @@ class Outputs:
                 earlier.unlink()
         self.raw = None
         self.raw_name = ""
+        self.keeps_sent = args.rtde is not None
+        self.sent = None
+        self.sent_name = ""
         self.count = args.count
         self.records = 0
         self.failed = False
@@ -168,6 +187,16 @@ class Outputs:
             self.raw_name = raw_path(self.raw_first, number)
             with self.writing(self.raw_name):
                 self.raw = open(self.raw_name, "wb")
+            if self.keeps_sent:
+                self.sent_name = to_robot_path(self.raw_name)
+                with self.writing(self.sent_name):
+                    self.sent = open(self.sent_name, "wb")
+
+    def keep_sent(self, data: bytes) -> None:
+        if self.sent:
+            with self.writing(self.sent_name):
+                self.sent.write(data)
+                self.sent.flush()
 
     def keep_raw(self, chunk: bytes) -> None:
         if self.raw:
@@ -191,6 +220,10 @@ class Outputs:
         return self.count is not None and self.records >= self.count
 
     def close_raw(self) -> None:
+        sent, self.sent = self.sent, None
+        if sent:
+            with self.writing(self.sent_name):
+                sent.close()
         raw, self.raw = self.raw, None
         if raw:
             with self.writing(self.raw_name):
@@ -215,14 +248,48 @@ class Outputs:
             raise errors[0]
 
 
+class PrimaryReader:
+    """The primary interface: nothing to ask, every byte framed (a new framer per connection,
+    since the controller starts each with a Version message)."""
+
+    refused: Optional[str] = None
+
+    def __init__(self, send: Callable[[bytes], None]):
+        self.framer = Framer()
+
+    def opening(self) -> None:
+        pass
+
+    def feed(self, chunk: bytes) -> list:
+        return self.framer.feed(chunk)
+
+    def close(self) -> list:
+        return self.framer.close()
+
+
+class _Refused(Exception):
+    """The robot refused what this listen asks (an RTDE recipe): reconnecting would not help."""
+
+
+def reader_factory(args: argparse.Namespace) -> Callable:
+    """What reads each connection: the primary interface's framer, or an RTDE recorder."""
+    if args.rtde is None:
+        return PrimaryReader
+    names = [name.strip() for name in args.rtde.split(",") if name.strip()]
+    return lambda send: RtdeRecorder(names, args.frequency, send)
+
+
 def listen_command(args: argparse.Namespace) -> int:
     try:
-        host, port = split_address(args.address)
+        host, port = split_address(args.address, RTDE_PORT if args.rtde is not None else 30001)
     except ValueError:
         print(f"urwire listen: not an address: {args.address}", file=sys.stderr)
         return 2
     if args.idle_timeout <= 0:
         print("urwire listen: --idle-timeout must be more than 0", file=sys.stderr)
+        return 2
+    if args.rtde is not None and (not args.rtde.strip(", ") or args.frequency <= 0):
+        print("urwire listen: --rtde needs variable names and --frequency a rate above 0", file=sys.stderr)
         return 2
     try:
         outputs = Outputs(args)
@@ -231,13 +298,13 @@ def listen_command(args: argparse.Namespace) -> int:
         return 2
     deadline = time.monotonic() + args.duration if args.duration is not None else None
     signal.signal(signal.SIGTERM, _stop)
-    link = Link(host, port, args.idle_timeout, deadline, outputs)
-    error: Optional[OutputError] = None
+    link = Link(host, port, args.idle_timeout, deadline, outputs, reader_factory(args))
+    error: Optional[Exception] = None
     try:
         link.run()
     except (_Stopped, KeyboardInterrupt):
         pass
-    except OutputError as exc:
+    except (OutputError, _Refused) as exc:
         error = exc
     try:
         outputs.close()
@@ -264,7 +331,9 @@ def _left(deadline: Optional[float]) -> Optional[float]:
 class Link:
     """The connection to the controller, made again with a growing pause whenever it ends."""
 
-    def __init__(self, host: str, port: int, idle_timeout: float, deadline: Optional[float], outputs: Outputs):
+    def __init__(self, host: str, port: int, idle_timeout: float, deadline: Optional[float], outputs: Outputs,
+                 new_reader: Callable = PrimaryReader):
+        self.new_reader = new_reader
         self.host, self.port = host, port
         self.idle_timeout = idle_timeout
         self.deadline = deadline
@@ -297,20 +366,28 @@ class Link:
                 self.say(f"reconnected to {where} (connection {self.connections}); "
                          f"{self.outputs.records} records so far")
             self.outputs.new_connection(self.connections - 1)
-            framer = Framer()
+            reader = self.new_reader(lambda data, sock=sock: self.send(sock, data))
             with sock:
                 try:
-                    why = self.session(sock, framer)
+                    why = self.session(sock, reader)
                 except (_Stopped, KeyboardInterrupt):
                     if not self.outputs.count_reached():
-                        self.outputs.write(framer.close())   # the cut tail, as decode reads the raw file
+                        self.outputs.write(reader.close())   # the cut tail, as decode reads the raw file
                     raise
-            self.outputs.write(framer.close())
+            self.outputs.write(reader.close())
             self.wait(why)
 
-    def session(self, sock: socket.socket, framer: Framer) -> str:
+    def send(self, sock: socket.socket, data: bytes) -> None:
+        sock.sendall(data)
+        self.outputs.keep_sent(data)
+
+    def session(self, sock: socket.socket, reader) -> str:
         """Records one connection until it ends; returns why it ended."""
         where = f"{self.host}:{self.port}"
+        try:
+            reader.opening()
+        except OSError as exc:
+            return f"connection to {where} lost: {exc.strerror or exc}"
         quiet_since = time.monotonic()
         while True:
             sock.settimeout(min(_left(self.deadline) or self.idle_timeout, self.idle_timeout))
@@ -328,4 +405,10 @@ class Link:
             self.pause = BACKOFF_FIRST     # the connection worked: start the backoff again
             self.received += len(chunk)
             self.outputs.keep_raw(chunk)
-            self.outputs.write(framer.feed(chunk))
+            try:
+                records = reader.feed(chunk)
+            except OSError as exc:                # a request the reader sends back fails
+                return f"connection to {where} lost: {exc.strerror or exc}"
+            self.outputs.write(records)
+            if reader.refused:
+                raise _Refused(reader.refused)

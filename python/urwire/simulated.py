@@ -24,6 +24,7 @@ from ._runtime import GlobalValue
 from .decoding import encode_message, package_classes
 from .generated.spec import value_codec
 from .motion import Motion
+from .robot_cell import PAUSED, POWER_OFF, RobotCell
 from .robot_models import BOARDS, RobotModel, generation, kinematics_checksums, model_for
 
 JOINTS = 6
@@ -82,10 +83,16 @@ def state_classes(version: tuple) -> list:
 class Controller:
     """The messages of one client's session, tick by tick."""
 
-    def __init__(self, version: tuple, rate: float, model: RobotModel | None = None, start: float = 0.0):
+    def __init__(self, version: tuple, rate: float, model: RobotModel | None = None, start: float = 0.0,
+                 cell: RobotCell | None = None):
         """`model`: the arm (default: the generation's usual one); `start`: the time on the
         motion's clock of the first state, so that sessions started at different times, and the
-        other interfaces, report the same motion at the same time."""
+        other interfaces, report the same motion at the same time. `cell`: the robot `urwire serve`
+        shares between its interfaces, whose program and power state this stream then reports
+        (its joints hold still while the program is stopped or paused); without one the demo
+        program plays on."""
+        self.cell = cell
+        self._was_playing = True       # the demo program plays when a session starts
         self.version = version
         self.rate = rate
         self.tick = 0
@@ -115,7 +122,9 @@ class Controller:
     def sample(self):
         """The joints of this tick, worked out once for the packages that report them."""
         if self._sampled_tick != self.tick:
-            self._sample, self._sampled_tick = self.motion.joints(self.motion_time()), self.tick
+            t = self.motion_time()
+            self._sample = self.cell.joints(t) if self.cell else self.motion.joints(t)
+            self._sampled_tick = self.tick
         return self._sample
 
     # --- messages ---------------------------------------------------------------------------
@@ -146,14 +155,31 @@ class Controller:
                                       tool_flange_type=_e.ToolFlangeType.V1))
         return out
 
+    def playing(self) -> bool:
+        """Whether the demo program plays: always, unless the shared robot's program is stopped or
+        paused (a dashboard `stop` or `pause`) or its arm is not running (powered off)."""
+        return self.cell is None or self.cell.moving
+
     def step(self) -> Iterator[bytes]:
         """The messages of the next tick: the robot state first, then what the program says."""
         phase = self.tick % CYCLE_TICKS
         run = self.tick // CYCLE_TICKS
         stops = run % STOP_EVERY == STOP_EVERY - 1
         yield _m.RobotStateMessage(self.packages(phase, stops)).encode(self.version)
-        yield from self.program(phase, run, stops)
+        playing = self.playing()
+        if playing != self._was_playing:
+            yield self.program_key(playing)
+            self._was_playing = playing
+        if playing:
+            yield from self.program(phase, run, stops)
         self.tick += 1
+
+    def program_key(self, started: bool) -> bytes:
+        """The key message of a program the shared robot started or stopped (a dashboard `play`,
+        `stop` or `pause`, a power change), named as the demo program's are: by the file's stem."""
+        title = "PROGRAM_XXX_STARTED" if started else "PROGRAM_XXX_STOPPED"
+        name = self.cell.program_name.rsplit(".", 1)[0] if self.cell else "demo"
+        return self.encode(filled(_m.KeyMessage, timestamp=self.millis(), source=SOURCE, title=title, text=name))
 
     def packages(self, phase: int, stops: bool) -> list:
         protective = stops and 50 <= phase < 60
@@ -167,10 +193,18 @@ class Controller:
         return out
 
     def robot_mode(self, running: bool, protective: bool):
+        mode, powered, paused, speed = self.running_mode, True, False, 1.0
+        if self.cell is not None:
+            running = running and self.playing()
+            paused = self.cell.program_state == PAUSED
+            powered = self.cell.robot_mode != POWER_OFF
+            mode = mode_code("ROBOT_MODE_BY_VALUE", self.version, self.cell.robot_mode)
+            speed = self.cell.speed_fraction
         return filled(_m.RobotModeData, timestamp=self.millis(), is_real_robot_connected=True,
-                      is_real_robot_enabled=True, is_robot_power_on=True, is_protective_stopped=protective,
-                      is_program_running=running, robot_mode=self.running_mode, target_speed_fraction=1.0,
-                      speed_scaling=1.0, target_speed_fraction_limit=1.0)
+                      is_real_robot_enabled=True, is_robot_power_on=powered, is_protective_stopped=protective,
+                      is_program_running=running, is_program_paused=paused, robot_mode=mode,
+                      target_speed_fraction=speed, speed_scaling=speed if self.playing() else 0.0,
+                      target_speed_fraction_limit=1.0)
 
     def joints(self, running: bool, protective: bool):
         t = self.seconds()

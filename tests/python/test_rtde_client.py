@@ -1,58 +1,60 @@
-"""The real `ur-rtde` client (SDU Robotics, PyPI) against a small RTDE server built from urwire's
-encoder (tests/tools/rtde_server.py, in a process of its own), on real loopback TCP: the client
-reads what the server sent, and urwire's Conversation decodes the whole exchange with no error.
+"""The real `ur-rtde` client (SDU Robotics, PyPI) against `urwire serve`, on real loopback TCP:
+RTDEReceiveInterface reads the served robot's motion (its joints and tool pose equal
+urwire.motion.Motion's at the package's timestamp), and RTDEIOInterface's inputs (the speed
+slider, a standard digital output) change what the robot reports.
 
-The client comes from the package `ur-rtde` (PyPI);
-requirements-dev.txt installs it; the test is skipped, with that reason, where it is missing."""
+ur-rtde connects to the standard ports only, so `serve` listens on an address of 127/8 of its own.
+The client comes from the package `ur-rtde` (PyPI); requirements-dev.txt installs it; the test is
+skipped, with that reason, where it is missing."""
 from __future__ import annotations
 
-import json
-import os
-import random
-import subprocess
-import sys
 import time
-from pathlib import Path
 
 import pytest
 
-import urwire
-from urwire import rtde
-from urwire._runtime import StreamError
-from urwire.typed_records import RawMessage
+from tests.python.cell_server import CellServer, loopback_address
+from urwire.motion import Motion
+from urwire.robot_models import model_for
 
 rtde_receive = pytest.importorskip("rtde_receive", reason="the ur-rtde client (pip install ur-rtde) is not installed")
-ROOT = Path(__file__).resolve().parents[2]
+rtde_io = pytest.importorskip("rtde_io", reason="the ur-rtde client (pip install ur-rtde) is not installed")
 
 
-def test_ur_rtde_receives_from_the_urwire_server(tmp_path):
-    host = f"127.{random.randrange(1, 255)}.{random.randrange(1, 255)}.{random.randrange(2, 255)}"
-    out = str(tmp_path / "wire")
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), str(ROOT / "python"),
-                                                        str(ROOT / "generated" / "python")]))
-    server = subprocess.Popen([sys.executable, str(ROOT / "tests" / "tools" / "rtde_server.py"), host, "20", out],
-                              stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=env)
-    try:
-        assert server.stdout.readline().strip() == "listening"
-        client = rtde_receive.RTDEReceiveInterface(host, 125.0, ["timestamp", "actual_q", "robot_mode"])
-        time.sleep(0.6)                  # about 75 packages at 125 Hz
-        q, stamp = client.getActualQ(), client.getTimestamp()
+@pytest.mark.parametrize("software", ["3.15", "5.11"])
+def test_ur_rtde_receives_the_motion_from_urwire_serve(tmp_path, software):
+    with CellServer(tmp_path, "--software", software, host=loopback_address(), port=30001) as server:
+        client = rtde_receive.RTDEReceiveInterface(server.host, -1.0, ["timestamp", "actual_q", "actual_TCP_pose",
+                                                                       "robot_mode", "safety_mode", "runtime_state"])
+        time.sleep(0.5)
+        readings = []
+        for _ in range(5):
+            readings.append((client.getTimestamp(), client.getActualQ(), client.getActualTCPPose()))
+            time.sleep(0.05)
+        modes = client.getRobotMode(), client.getSafetyMode(), client.getRuntimeState()
         client.disconnect()
-    finally:
-        server.communicate("done\n", timeout=30)
-    report = json.loads(Path(out + ".json").read_text())
-    sent = report["sent"]
-    assert not report["errors"], report["errors"]
-    assert len(sent) >= 20
-    assert any(s["actual_q"] == q and s["timestamp"] == stamp for s in sent), (q, stamp)
+        assert server.stop() == 0
+    motion = Motion(model_for(tuple(int(p) for p in software.split(".")) + (0,)))
+    for stamp, q, pose in readings:
+        assert stamp > 0
+        assert q == list(motion.joints(stamp).q)
+        assert pose == pytest.approx(list(motion.tcp_pose(q)), abs=1e-12)
+    assert len({r[0] for r in readings}) > 1, "the timestamp did not move"
+    assert modes == (7, 1, 2)                    # RUNNING, NORMAL, playing
 
-    conversation = rtde.Conversation()
-    records = conversation.feed(Path(out + ".client").read_bytes(), False)
-    records += conversation.feed(Path(out + ".robot").read_bytes(), True) + conversation.close()
-    bad = [urwire.to_json_line(r) for r in records if isinstance(r, (RawMessage, StreamError))]
-    assert not bad, bad[:3]
-    data = [r for r in records if type(r).__name__ == "DataPackage"]
-    assert [d.values["actual_q"] for d in data] == [s["actual_q"] for s in sent]
-    setup = [urwire.to_dict(r) for r in records if type(r).__name__ == "SetupOutputs"]
-    assert setup and setup[0]["variables"] == ["timestamp", "actual_q", "robot_mode", ""]   # its trailing comma
-    assert setup[0]["output_frequency"] == 125.0
+
+def test_ur_rtde_io_inputs_change_what_the_robot_reports(tmp_path):
+    with CellServer(tmp_path, "--software", "5.11", host=loopback_address(), port=30001) as server:
+        receive = rtde_receive.RTDEReceiveInterface(server.host)
+        io = rtde_io.RTDEIOInterface(server.host)
+        assert receive.getTargetSpeedFraction() == 1.0 and not receive.getDigitalOutState(2)
+        assert io.setSpeedSlider(0.3)
+        assert io.setStandardDigitalOut(2, True)
+        deadline = time.monotonic() + 5
+        while time.monotonic() < deadline and not receive.getDigitalOutState(2):
+            time.sleep(0.05)
+        fraction, bits, scaling = (receive.getTargetSpeedFraction(), receive.getActualDigitalOutputBits(),
+                                   receive.getSpeedScaling())
+        io.disconnect()
+        receive.disconnect()
+        assert server.stop() == 0
+    assert (fraction, bits, scaling) == (0.3, 0b100, 0.3)

@@ -1,6 +1,8 @@
 """UR's own client library (URCL, github.com/UniversalRobots/Universal_Robots_Client_Library) as
 a test client: `primary_client(source, out)` builds tests/urcl/primary_client.cpp against the
-primary-interface part of a URCL checkout, once per checkout and program change.
+primary-interface part of a URCL checkout, `rtde_dashboard_client(source, out)` builds
+tests/urcl/rtde_dashboard_client.cpp against its RTDE and dashboard parts, each once per checkout
+and program change.
 
 No package registry ships URCL, so the tests that use it take a checkout from URCL_SOURCE.
 """
@@ -41,14 +43,32 @@ def source_dir() -> Optional[Path]:
 
 def primary_client(source: Path, out: Path) -> Path:
     files = [source / s for s in SOURCES] + sorted(p for d in SOURCE_DIRS for p in (source / d).glob("*.cpp"))
-    stamp = hashlib.sha256(b"".join(f.read_bytes() for f in [PROGRAM, *files])).hexdigest()[:16]
-    binary = out / f"primary_client-{stamp}"
+    return build(PROGRAM, files, source, out)
+
+
+RTDE_DASHBOARD_PROGRAM = ROOT / "tests" / "urcl" / "rtde_dashboard_client.cpp"
+# What RTDEClient and DashboardClient need: the socket, the log, every RTDE package, both dashboard
+# implementations (the client chooses one at run time).
+RTDE_DASHBOARD_SOURCES = ["src/comm/tcp_socket.cpp", "src/log.cpp", "src/default_log_handler.cpp", "src/helpers.cpp",
+                          "src/types.cpp", "src/ur/version_information.cpp", "src/ur/dashboard_client.cpp",
+                          "src/ur/dashboard_client_implementation_g5.cpp",
+                          "src/ur/dashboard_client_implementation_x.cpp"]
+
+
+def rtde_dashboard_client(source: Path, out: Path) -> Path:
+    files = [source / s for s in RTDE_DASHBOARD_SOURCES] + sorted((source / "src" / "rtde").glob("*.cpp"))
+    return build(RTDE_DASHBOARD_PROGRAM, files, source, out)
+
+
+def build(program: Path, files: list, source: Path, out: Path) -> Path:
+    stamp = hashlib.sha256(b"".join(f.read_bytes() for f in [program, *files])).hexdigest()[:16]
+    binary = out / f"{program.stem}-{stamp}"
     if binary.exists():
         return binary
     generated = out / "include" / "ur_client_library"
     generated.mkdir(parents=True, exist_ok=True)
     (generated / "compile_options.h").write_text(COMPILE_OPTIONS)
     subprocess.run(["g++", "-std=c++17", "-O1", "-pthread", f"-I{source / 'include'}", f"-I{out / 'include'}",
-                    f"-I{source / '3rdparty'}", "-o", str(binary), str(PROGRAM), *map(str, files)],
+                    f"-I{source / '3rdparty'}", "-o", str(binary), str(program), *map(str, files)],
                    check=True, capture_output=True, text=True)
     return binary

@@ -1,0 +1,81 @@
+"""`urwire serve` in a subprocess for the live tests: every interface on a free port (or the
+standard ports on an address of its own), the port of each read from its log line, and small
+blocking clients that read one interface's records off a socket."""
+from __future__ import annotations
+
+import os
+import random
+import re
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")]))
+# The words each interface's log line opens with.
+LOG_NAMES = {"rtde": "RTDE", "realtime": "real-time", "dashboard": "dashboard"}
+
+
+def loopback_address() -> str:
+    """An address of 127/8 of its own, so that a test can take the standard ports (30004, ...),
+    which clients such as ur-rtde cannot be told to leave, beside other tests."""
+    return f"127.{random.randrange(1, 255)}.{random.randrange(1, 255)}.{random.randrange(2, 255)}"
+
+
+class CellServer:
+    """`urwire serve` with its stderr in a file; `ports` maps primary, rtde, realtime and dashboard
+    to where each listens."""
+
+    def __init__(self, tmp: Path, *args: str, host: str = "127.0.0.1", port: int = 0, duration: float = 60):
+        self.host = host
+        self.log = tmp / f"serve-{random.randrange(1 << 30)}.log"
+        with open(self.log, "w") as log:
+            self.proc = subprocess.Popen([sys.executable, "-m", "urwire", "serve", "--host", host, "--port", str(port),
+                                          "--duration", str(duration), *args], stderr=log, env=ENV)
+        self.ports = self.wait_for_ports()
+
+    def wait_for_ports(self, timeout: float = 15) -> dict:
+        deadline = time.monotonic() + timeout
+        pattern = re.compile(r"urwire serve: (.*) on [\d.]+:(\d+)$")
+        while time.monotonic() < deadline:
+            lines = [pattern.search(line) for line in self.log.read_text().splitlines()]
+            found = {}
+            for match in filter(None, lines):
+                name = next((k for k, v in LOG_NAMES.items() if match.group(1) == v), "primary")
+                found[name] = int(match.group(2))
+            if "primary" in found and "dashboard" in found:      # the dashboard's line comes last
+                return found
+            if self.proc.poll() is not None:
+                break
+            time.sleep(0.05)
+        raise AssertionError(f"serve did not start: {self.log.read_text()}")
+
+    def connect(self, interface: str, timeout: float = 5.0) -> socket.socket:
+        return socket.create_connection((self.host, self.ports[interface]), timeout=timeout)
+
+    def stop(self) -> int:
+        self.proc.send_signal(signal.SIGTERM)
+        return self.proc.wait(timeout=10)
+
+    def __enter__(self) -> "CellServer":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait(timeout=10)
+
+
+def read_until(sock: socket.socket, feed, done, timeout: float = 5.0) -> list:
+    """Records fed from the socket until done(records) or the timeout."""
+    records: list = []
+    deadline = time.monotonic() + timeout
+    while not done(records) and time.monotonic() < deadline:
+        chunk = sock.recv(65536)
+        if not chunk:
+            break
+        records += feed(chunk)
+    return records
