@@ -24,10 +24,10 @@ FUZZ_CC := $(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-san
 	-Igenerated/c -Itools/urwire-decode
 CLI_LIB := $(filter-out %/main.c,$(filter %.c,$(C_CLI)))
 
-.PHONY: fuzz fuzz-c fuzz-json fuzz-python fuzz-ur-realtime fuzz-long fuzz-corpus
+.PHONY: fuzz fuzz-c fuzz-json fuzz-python fuzz-ur-realtime fuzz-rtde fuzz-long fuzz-corpus
 
 ## fuzz: every fuzzer for FUZZ_SECONDS (60) each; crashes land in build/fuzz/crashes/<harness>/
-fuzz: fuzz-c fuzz-json fuzz-python fuzz-ur-realtime
+fuzz: fuzz-c fuzz-json fuzz-python fuzz-ur-realtime fuzz-rtde
 
 ## fuzz-long: every fuzzer for FUZZ_LONG_SECONDS (an hour) each
 fuzz-long:
@@ -74,6 +74,17 @@ fuzz-ur-realtime: build/fuzz/fuzz_ur_realtime
 	@mkdir -p build/fuzz/corpus/ur_realtime build/fuzz/crashes/ur_realtime
 	build/fuzz/fuzz_ur_realtime -max_len=30000 -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
 		-artifact_prefix=build/fuzz/crashes/ur_realtime/ build/fuzz/corpus/ur_realtime $(FUZZ_CORPUS)/ur_realtime
+
+## fuzz-rtde: RTDE conversations, both directions with their recipes, and the JSON writer
+## (tests/c/fuzz_rtde.c); seeded with its kept corpus (tests/fuzz/corpus/rtde/)
+build/fuzz/fuzz_rtde: tests/c/fuzz_rtde.c $(C_LIB) $(C_CLI)
+	@mkdir -p build/fuzz
+	$(FUZZ_CC) -o $@ tests/c/fuzz_rtde.c $(CLI_LIB) $(C_SOURCES) -lm
+
+fuzz-rtde: build/fuzz/fuzz_rtde
+	@mkdir -p build/fuzz/corpus/rtde build/fuzz/crashes/rtde
+	build/fuzz/fuzz_rtde -max_len=30000 -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+		-artifact_prefix=build/fuzz/crashes/rtde/ build/fuzz/corpus/rtde $(FUZZ_CORPUS)/rtde
 
 ## fuzz-python: the Python decoder, and urwire-decode against it (tests/python/fuzz_decoder.py)
 fuzz-python: build/fuzz/driver
