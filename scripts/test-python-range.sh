@@ -42,5 +42,6 @@ for version in "${VERSIONS[@]}"; do
     cp "$requirements" "$stamp"
   fi
   echo "== python$version: pytest tests/python tests/codegen"
-  "$venv"/bin/python -m pytest -q -p no:cacheprovider tests/python tests/codegen
+  # A test file per process at a time over every core (pytest-xdist), as `make test` runs them.
+  "$venv"/bin/python -m pytest -q -p no:cacheprovider -n auto --dist loadfile tests/python tests/codegen
 done
