@@ -103,3 +103,23 @@ def test_fields_are_the_primary_irs_own():
     model = compile_file(SPEC)
     q = next(f for f in model.layouts[-1].fields if f.name == "q_actual")
     assert isinstance(q, ir.ArrayField) and (q.label, q.unit, q.count) == ("Actual joint position", "rad", 6)
+
+
+def _range_words(r: dict) -> str:
+    low, high = r.get("from"), r.get("until")
+    if low and high:
+        return low if low == high else f"{low} to {high}"
+    return f"up to {high}" if high else f"from {low}"
+
+
+def test_the_real_time_page_lists_every_layout_as_the_spec_has_it():
+    """docs/realtime.md's table of sizes and versions is the spec's, row for row."""
+    import re
+
+    spec = yaml.safe_load((SPEC_DIR / "ur_realtime.yaml").read_text(encoding="utf-8"))
+    want = [(str(lay["size"]), f"`{name}`", ", ".join(_range_words(r) for r in lay["versions"]))
+            for name, lay in spec["layouts"].items()]
+    page = (SPEC_DIR.parent / "docs" / "realtime.md").read_text(encoding="utf-8")
+    rows = [tuple(cell.strip() for cell in line.strip("|").split("|"))
+            for line in page.splitlines() if re.match(r"\| \d+ \|", line)]
+    assert rows == want
