@@ -26,6 +26,16 @@ class Kind:
     render: Callable[[object, list[str], Optional[list[str]]], dict[str, str]]
 
 
+def render_targets(targets: dict[str, Callable[[object, list[str]], dict[str, str]]], model: object,
+                   banner: list[str], only: Optional[list[str]]) -> dict[str, str]:
+    """The files of every chosen target ({"c": render, ...}; `only` None for all) for one model."""
+    outputs: dict[str, str] = {}
+    for name, render in targets.items():
+        if only is None or name in only:
+            outputs.update(render(model, banner))
+    return outputs
+
+
 def kind_name(data: object) -> str:
     """The kind a loaded spec declares (framing.kind), or the primary interface's."""
     framing = data.get("framing") if isinstance(data, dict) else None

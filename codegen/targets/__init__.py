@@ -34,9 +34,6 @@ def render_all(protocol: ir.Protocol, spec_path: str, spec_text: str,
 
 def render_protocol(protocol: ir.Protocol, banner: list[str], only: Optional[list[str]] = None) -> dict[str, str]:
     """Every target's files for a primary-interface protocol."""
-    planned = plan(protocol)
-    outputs: dict[str, str] = {}
-    for name, render in TARGETS.items():
-        if only is None or name in only:
-            outputs.update(render(planned, banner))
-    return outputs
+    from ..kinds import render_targets
+
+    return render_targets(TARGETS, plan(protocol), banner, only)

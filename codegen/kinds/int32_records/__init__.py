@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Optional
 
-from .. import Kind
+from .. import Kind, render_targets
 from . import c, lua, python
 from .model import RecordsProtocol
 from .plan import plan
@@ -14,13 +14,8 @@ from .resolve import resolve
 _TARGETS = {"c": c.render, "lua": lua.render, "python": python.render}
 
 
-def render(model: RecordsProtocol, banner: list[str], only: Optional[list[str]]) -> dict[str, str]:
-    planned = plan(model)
-    outputs: dict[str, str] = {}
-    for name, render_target in _TARGETS.items():
-        if only is None or name in only:
-            outputs.update(render_target(planned, banner))
-    return outputs
+def render(model: RecordsProtocol, banner: list[str], only: Optional[list[str]] = None) -> dict[str, str]:
+    return render_targets(_TARGETS, plan(model), banner, only)
 
 
 KIND = Kind(name="int32_records", schema="int32_records.schema.json", resolve=resolve, render=render)

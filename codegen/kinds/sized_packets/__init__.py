@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Optional
 
-from .. import Kind
+from .. import Kind, render_targets
 from . import c, lua, python
 from .plan import plan
 from .resolve import resolve
@@ -18,12 +18,7 @@ _TARGETS = {"c": c.render, "lua": lua.render, "python": python.render}
 
 
 def render(model, banner: list[str], only_targets: Optional[list[str]] = None) -> dict[str, str]:
-    planned = plan(model)
-    out: dict[str, str] = {}
-    for name, target in _TARGETS.items():
-        if only_targets is None or name in only_targets:
-            out.update(target(planned, banner))
-    return out
+    return render_targets(_TARGETS, plan(model), banner, only_targets)
 
 
 KIND = Kind(name="sized_packets", schema="sized_packets.schema.json", resolve=resolve, render=render)

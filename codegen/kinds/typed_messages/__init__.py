@@ -6,17 +6,17 @@ from __future__ import annotations
 
 from typing import Optional
 
-from .. import Kind
+from .. import Kind, render_targets
 from . import c_target, lua_target, python_target
 from .model import Interface
 from .resolve import resolve
 
 
+_TARGETS = {"c": c_target.render, "lua": lua_target.render, "python": python_target.render}
+
+
 def render(interface: Interface, banner: list[str], only_targets: Optional[list[str]]) -> dict[str, str]:
-    targets = {"c": c_target.render, "lua": lua_target.render, "python": python_target.render}
-    return {path: text for name, render_target in targets.items()
-            if only_targets is None or name in only_targets
-            for path, text in render_target(interface, banner).items()}
+    return render_targets(_TARGETS, interface, banner, only_targets)
 
 
 KIND = Kind(name="typed_messages", schema="typed_messages.schema.json", resolve=resolve, render=render)
