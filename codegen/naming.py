@@ -15,6 +15,12 @@ def words(name: str) -> str:
     return text[:1].upper() + text[1:]
 
 
+def column_name(protocol: str) -> str:
+    """What Wireshark's Protocol column shows for an interface: its name in words, with UR and
+    RTDE in capitals (ur_script_command -> "UR script command")."""
+    return " ".join(w.upper() if w in ("ur", "rtde") else w for w in protocol.split("_"))
+
+
 def layout_label(layout: ir.Layout) -> str:
     """What people read for a layout in every output: its label, else its name in words, then its
     marks ("Payload info (undocumented, inferred)")."""

@@ -12,6 +12,7 @@
 local spec = {
     name = "ur_dashboard",
     title = "Universal Robots dashboard server",
+    short = "UR dashboard",  -- the Protocol column
     ports = {29999},
     max_line = 4096,  -- longer lines are flagged and skipped up to their newline
     pending_kept = 256,  -- commands awaiting a reply that a conversation keeps
@@ -542,7 +543,7 @@ local function dissect(tvb, pinfo, tree)
     local requests = from_robot == spec.requests_from_robot
     local key = conversation_key(pinfo, from_server)
     local c = conversation(key)
-    pinfo.cols.protocol = "UR Dashboard"
+    pinfo.cols.protocol = spec.short
     local infos = {}
     local at = 0
     local here = tostring(pinfo.number) .. ":" .. tostring(from_robot) .. ":"

@@ -13,7 +13,7 @@
 local spec = {
     name = "ur_reverse",
     title = "Universal Robots driver reverse interface",
-    short = "UR_REVERSE",
+    short = "UR reverse",
     ports = {50001},
     default_release = 2014000,  -- releases are (major * 1000 + minor) * 1000 + patch
     default_text = "2.14",

@@ -14,7 +14,7 @@
 local spec = {
     name = "ur_script_command",
     title = "Universal Robots driver script command interface",
-    short = "UR_SCRIPT_COMMAND",
+    short = "UR script command",
     ports = {50004},
     default_release = 2014000,  -- releases are (major * 1000 + minor) * 1000 + patch
     default_text = "2.14",

@@ -11,6 +11,7 @@
 local spec = {
     name = "ur_script_sender",
     title = "Universal Robots driver script sender",
+    short = "UR script sender",  -- the Protocol column
     ports = {50002},
     max_line = 4096,  -- longer lines are flagged and skipped up to their newline
     pending_kept = 256,  -- commands awaiting a reply that a conversation keeps
@@ -292,7 +293,7 @@ local function dissect(tvb, pinfo, tree)
     local requests = from_robot == spec.requests_from_robot
     local key = conversation_key(pinfo, from_server)
     local c = conversation(key)
-    pinfo.cols.protocol = "UR Dashboard"
+    pinfo.cols.protocol = spec.short
     local infos = {}
     local at = 0
     local here = tostring(pinfo.number) .. ":" .. tostring(from_robot) .. ":"

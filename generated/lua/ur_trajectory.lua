@@ -13,7 +13,7 @@
 local spec = {
     name = "ur_trajectory",
     title = "Universal Robots driver trajectory point interface",
-    short = "UR_TRAJECTORY",
+    short = "UR trajectory",
     ports = {50003},
     default_release = 2014000,  -- releases are (major * 1000 + minor) * 1000 + patch
     default_text = "2.14",

@@ -133,7 +133,7 @@ local function dissect(tvb, pinfo, tree)
     local requests = from_robot == spec.requests_from_robot
     local key = conversation_key(pinfo, from_server)
     local c = conversation(key)
-    pinfo.cols.protocol = "UR Dashboard"
+    pinfo.cols.protocol = spec.short
     local infos = {}
     local at = 0
     local here = tostring(pinfo.number) .. ":" .. tostring(from_robot) .. ":"

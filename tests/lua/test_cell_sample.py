@@ -43,3 +43,23 @@ def test_every_interface_is_dissected_with_no_expert_error():
     assert not errors
     warnings = {m for _, s, ms in seen for m, x in zip(ms, s) if x == PI_WARN}
     assert {"not_a_variable: NOT_FOUND", "input_int_register_24: IN_USE"} <= warnings
+
+
+def test_each_interface_names_itself_in_the_protocol_column():
+    """A frame of each interface's port says which interface it is, in words (the frames that
+    carry only a TCP acknowledgement say TCP)."""
+    args = ["tshark", "-r", str(SAMPLE)]
+    for plugin in PLUGINS:
+        args += ["-X", f"lua_script:{plugin}"]
+    args += ["-Y", "tcp.len > 0", "-T", "fields", "-e", "tcp.srcport", "-e", "tcp.dstport", "-e", "_ws.col.Protocol"]
+    res = subprocess.run(args, capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr
+    want = {30001: "UR", 30002: "UR", 30003: "UR real-time", 30004: "RTDE", 29999: "UR dashboard",
+            50001: "UR reverse", 50002: "UR script sender", 50003: "UR trajectory", 50004: "UR script command"}
+    columns: dict[int, set] = {}
+    for line in res.stdout.splitlines():
+        source, destination, column = line.split("\t")
+        port = int(source) if int(source) in want else int(destination)
+        columns.setdefault(port, set()).add(column)
+    assert {port: columns[port] for port in columns} == {port: {want[port]} for port in columns}
+    assert len(columns) >= 8

@@ -6,6 +6,7 @@ import json
 
 from ... import ir
 from ...emit import environment, runtime_path, runtime_source
+from ...naming import column_name
 from .model import FROM_ROBOT
 from .plan import RecordsPlan
 
@@ -40,7 +41,7 @@ def view(p: RecordsPlan) -> dict:
         records["from_robot" if r.record.direction == FROM_ROBOT else "to_robot"] = dict(
             label=_lua(r.record.label), starts=", ".join(str(ir.version_number(s)) for s in r.starts), layouts=layouts)
     enums = [dict(name=e.name, members=[f"[{v.value}] = {_lua(v.name)}" for v in e.values]) for e in m.enums.values()]
-    return dict(name=_lua(m.name), title=_lua(m.title), doc=f"{m.title}: {m.doc}", short=_lua(m.name.upper()),
+    return dict(name=_lua(m.name), title=_lua(m.title), doc=f"{m.title}: {m.doc}", short=_lua(column_name(m.name)),
                 ports=", ".join(map(str, m.ports)), default_release=ir.version_number(m.default_release),
                 default_text=_lua(ir.version_text(m.default_release)), fields=fields, records=records, enums=enums,
                 filter_example=f"{m.name}.{p.records[0].fields[-1].name}",

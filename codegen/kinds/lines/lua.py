@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 
 from ...emit import environment, runtime_path, runtime_source
+from ...naming import column_name
 from .model import Reply
 from .plan import LinesPlan
 
@@ -28,7 +29,7 @@ def _number(n) -> str:
 def view(p: LinesPlan) -> dict:
     m = p.model
     return dict(
-        name=_string(m.name), title=_string(m.title), doc=f"{m.title}: {m.doc}", max_line=m.max_line,
+        name=_string(m.name), title=_string(m.title), short=_string(column_name(m.name)), doc=f"{m.title}: {m.doc}", max_line=m.max_line,
         ports=", ".join(str(port) for port in m.ports), filters=f"{m.name}.command_name == \"load\", "
         f"{m.name}.reply, {m.name}.error == 1",
         banner_reply=_reply(m.banner) if m.banner else "nil",
