@@ -13,7 +13,7 @@ import subprocess
 
 import pytest
 
-from tests.c.harness_c import get_build
+from tests.c.harness_c import CLI, GEN, OUT, STRICT, get_build
 from tests.interface_vectors import conversation_cases
 from tests.rtde_vectors import rtde_cases
 from urwire.cli import main as python_main
@@ -112,7 +112,7 @@ def hostile(rng: random.Random, golden: bytes) -> bytes:
 def test_hostile_bytes_in_either_file_print_what_python_prints(tmp_path, name):
     rng = random.Random(f"to-robot {name}")
     goldens = [(robot, client, hint) for n, _, robot, client, hint in CASES if n == name]
-    for trial in range(12):
+    for trial in range(30):
         robot, client, hint = rng.choice(goldens)
         if trial % 3 != 1:
             client = hostile(rng, client)
@@ -141,3 +141,27 @@ def test_an_unreadable_client_file_is_an_io_error(tmp_path):
     assert (res.returncode, res.stdout) == (2, "")
     assert missing in res.stderr and "No such file" in res.stderr
     assert python_output(["--protocol", "rtde", robot_file, "--to-robot", missing])[0] == 2
+
+
+def test_file_names_are_json_texts_as_python_writes_them(tmp_path):
+    """The envelope's conversation is the file's name as given, quoted and non-ASCII included."""
+    case = next(c for c in rtde_cases() if c.name == "protocol1_session")
+    folder = tmp_path / 'a "quoted" dir \\ é'
+    folder.mkdir()
+    robot_file, client_file = both_files(folder, case.robot_bytes, case.client_bytes)
+    args = ["--protocol", "rtde", robot_file, "--to-robot", client_file]
+    python = python_output(args)
+    assert '\\"quoted\\"' in python[1] and "é" in python[1]
+    assert c_output("asan-gcc", args) == python
+
+
+def test_the_commands_decoding_references_no_malloc(tmp_path):
+    """What the command links beside main.c (the streams, the envelopes, the JSON writers) reads
+    both files through static state: no malloc, calloc, realloc or free in its objects."""
+    folder = OUT / "to_robot_nm"
+    folder.mkdir(parents=True, exist_ok=True)
+    for source in sorted(CLI.glob("*.c")):
+        obj = folder / f"{source.stem}.o"
+        subprocess.run(["gcc", *STRICT, "-O2", f"-I{GEN}", f"-I{CLI}", "-c", str(source), "-o", str(obj)], check=True)
+        undefined = subprocess.run(["nm", "-u", str(obj)], capture_output=True, text=True, check=True).stdout.split()
+        assert not {"malloc", "calloc", "realloc", "free", "strdup"} & set(undefined), source.name
