@@ -18,7 +18,7 @@ from tests.rtde_vectors import python_records, rtde_cases
 from urwire.rtde import Conversation
 
 CASES = rtde_cases()
-JSON_SOURCES = [CLI / "rtde_json.c", CLI / "json.c", CLI / "shortest.c", GEN / "urwire.c", GEN / "rtde.c"]
+JSON_SOURCES = [CLI / "rtde_json.c", CLI / "envelope.c", CLI / "json.c", CLI / "shortest.c", GEN / "urwire.c", GEN / "rtde.c"]
 INCLUDES = [f"-I{GEN}", f"-I{CLI}"]
 CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "rtde"
 

@@ -1,6 +1,7 @@
 /* urwire-decode: a raw stream of one UR interface in, canonical JSON Lines out.
  *
  *     urwire-decode [--protocol ur|ur_realtime|rtde|ur_dashboard|...] [--version-hint 5.9|5.25.1] FILE|-
+ *                   [--to-robot FILE2]
  *
  * Exit status: 0 all decoded, 1 the output holds error records, 2 usage or I/O error. */
 #include <errno.h>
@@ -10,24 +11,28 @@
 
 #include "json.h"
 #include "cell_streams.h"
+#include "envelope.h"
 #include "records.h"
 #include "rtde_json.h"
 #include "ur_realtime_json.h"
 #include "urwire.h"
 
 static const char usage[] =
-    "usage: urwire-decode [--protocol NAME] [--version-hint MAJOR.MINOR[.BUGFIX]] FILE|-\n"
+    "usage: urwire-decode [--protocol NAME] [--version-hint MAJOR.MINOR[.BUGFIX]] FILE|- [--to-robot FILE2]\n"
     "Decode a raw stream of a Universal Robots interface (FILE, or - for stdin) and print\n"
     "one canonical JSON record per line.\n"
     "  --protocol NAME   the interface the stream is from: ur (primary/secondary, 30001/30002,\n"
     "                    the default), ur_realtime (real-time, 30003), rtde (RTDE, 30004:\n"
-    "                    the robot's stream; its recipes come from the client's, not read here),\n"
+    "                    the robot's stream; its recipes come from the client's: --to-robot),\n"
     "                    ur_dashboard (29999), or the driver's ur_reverse, ur_script_sender,\n"
     "                    ur_trajectory, ur_script_command (50001-50004, whose hint is the driver\n"
     "                    release)\n"
     "  --version-hint V  the software version (5.9, 5.25.1) until the stream shows a Version\n"
     "                    message: it chooses each part's layout and the global-variable value\n"
     "                    types (default: 5.9 and later, or what the layout sizes show)\n"
+    "  --to-robot FILE2  the client's stream of the same connection (rtde, ur_dashboard and the\n"
+    "                    driver's sockets), read first; each record then names its interface,\n"
+    "                    direction and file\n"
     "Exit status: 0 all decoded, 1 the output holds error records, 2 usage or I/O error.\n";
 
 static uint8_t framer_buffer[URWIRE_FRAMER_MIN_BUFFER];
@@ -69,46 +74,60 @@ static int run_realtime(FILE *in, urwire_sw_version version, bool hinted)
     return ur_realtime_print_stream(in, stdout, number);
 }
 
-/* RTDE: the robot's stream. Recipes are set up in the client's stream, which one file does not
- * hold: data packages then come out whole, with an error, as in `urwire decode --protocol rtde`. */
+/* RTDE: the client's stream (when given) and then the robot's, through one connection's state, so
+ * that a data package is read with the recipe the client set up. With the robot's stream alone,
+ * data packages come out whole, with an error, as in `urwire decode --protocol rtde`. */
 static rtde_json_stream rtde_stream;
 
-static int run_rtde(FILE *in, urwire_sw_version version, bool hinted)
+static int feed_rtde(FILE *in, bool from_robot, int *faults)
+{
+    for (;;) {
+        size_t n = fread(chunk, 1, sizeof chunk, in);
+        *faults += rtde_json_feed(&rtde_stream, chunk, n, from_robot, stdout);
+        if (n < sizeof chunk)
+            return ferror(in) ? 2 : 0;
+    }
+}
+
+static int run_rtde(const cell_inputs *in, urwire_sw_version version, bool hinted)
 {
     int faults = 0;
     (void)version;
     (void)hinted;
     rtde_json_stream_init(&rtde_stream);
-    for (;;) {
-        size_t n = fread(chunk, 1, sizeof chunk, in);
-        faults += rtde_json_feed(&rtde_stream, chunk, n, true, stdout);
-        if (n < sizeof chunk) {
-            if (ferror(in))
-                return 2;
-            break;
-        }
-    }
+    rtde_stream.envelope[0] = in->to_robot;
+    rtde_stream.envelope[1] = in->from_robot;
+    if (in->client && feed_rtde(in->client, false, &faults) == 2)
+        return 2;
+    if (feed_rtde(in->robot, true, &faults) == 2)
+        return 2;
     faults += rtde_json_close(&rtde_stream, stdout);
     return faults ? 1 : 0;
 }
 
 /* The interfaces this command reads, by the name --protocol takes (the Wireshark protocol's). An
- * interface adds its row: its runner gets the open input, the version and whether it was given. */
-typedef int (*protocol_runner)(FILE *in, urwire_sw_version version, bool hinted);
+ * interface adds its row: its runner gets the open inputs, the version and whether it was given. */
+typedef int (*protocol_runner)(const cell_inputs *in, urwire_sw_version version, bool hinted);
 
-static int run_primary_row(FILE *in, urwire_sw_version version, bool hinted)
+static int run_primary_row(const cell_inputs *in, urwire_sw_version version, bool hinted)
 {
     (void)hinted;
-    return run_primary(in, version);
+    return run_primary(in->robot, version);
 }
 
-/* The dashboard server and the driver's sockets: the stream from the robot; the hint is the
- * software version of the dashboard and the driver release of the sockets. */
+static int run_realtime_row(const cell_inputs *in, urwire_sw_version version, bool hinted)
+{
+    return run_realtime(in->robot, version, hinted);
+}
+
+/* The dashboard server and the driver's sockets: the client's stream, when given, and the
+ * robot's; the hint is the software version of the dashboard and the driver release of the
+ * sockets. */
 #define CELL_ROW(P)                                                                               \
-    static int run_##P(FILE *in, urwire_sw_version version, bool hinted)                         \
+    static int run_##P(const cell_inputs *in, urwire_sw_version version, bool hinted)            \
     {                                                                                              \
-        return P##_print_stream(in, stdout, (unsigned)version.major, (unsigned)version.minor,      \
-                                (unsigned)version.bugfix, hinted);                                 \
+        return P##_print_streams(in, stdout, (unsigned)version.major, (unsigned)version.minor,    \
+                                 (unsigned)version.bugfix, hinted);                                \
     }
 CELL_ROW(ur_dashboard)
 CELL_ROW(ur_script_sender)
@@ -116,18 +135,21 @@ CELL_ROW(ur_reverse)
 CELL_ROW(ur_trajectory)
 CELL_ROW(ur_script_command)
 
+/* both_directions: the interface decodes what the client sends too (--to-robot), as in the
+ * Python `Interface.both_directions` (python/urwire/interfaces.py). */
 static const struct {
     const char *name;
     protocol_runner run;
+    bool both_directions;
 } protocols[] = {
-    {"ur", run_primary_row},
-    {"ur_realtime", run_realtime},
-    {"rtde", run_rtde},
-    {"ur_dashboard", run_ur_dashboard},
-    {"ur_script_sender", run_ur_script_sender},
-    {"ur_reverse", run_ur_reverse},
-    {"ur_trajectory", run_ur_trajectory},
-    {"ur_script_command", run_ur_script_command},
+    {"ur", run_primary_row, false},
+    {"ur_realtime", run_realtime_row, false},
+    {"rtde", run_rtde, true},
+    {"ur_dashboard", run_ur_dashboard, true},
+    {"ur_script_sender", run_ur_script_sender, true},
+    {"ur_reverse", run_ur_reverse, true},
+    {"ur_trajectory", run_ur_trajectory, true},
+    {"ur_script_command", run_ur_script_command, true},
 };
 
 static int fail(const char *what, const char *detail)
@@ -138,10 +160,12 @@ static int fail(const char *what, const char *detail)
 
 int main(int argc, char **argv)
 {
-    const char *path = NULL, *hint = NULL, *protocol = "ur";
+    const char *path = NULL, *to_robot = NULL, *hint = NULL, *protocol = "ur";
     urwire_sw_version version = URWIRE_DEFAULT_VERSION;
     protocol_runner run = NULL;
-    FILE *in;
+    bool both_directions = false;
+    envelope from_robot_envelope, to_robot_envelope;
+    cell_inputs in = {NULL, NULL, NULL, NULL};
     size_t p;
     int i, status;
     for (i = 1; i < argc; i++) {
@@ -160,6 +184,12 @@ int main(int argc, char **argv)
             protocol = argv[i];
         } else if (strncmp(argv[i], "--protocol=", 11) == 0) {
             protocol = argv[i] + 11;
+        } else if (strcmp(argv[i], "--to-robot") == 0) {
+            if (++i >= argc)
+                return fail("--to-robot needs the file of the client's stream", NULL);
+            to_robot = argv[i];
+        } else if (strncmp(argv[i], "--to-robot=", 11) == 0) {
+            to_robot = argv[i] + 11;
         } else if (argv[i][0] == '-' && argv[i][1] != '\0') {
             return fail("unknown option", argv[i]);
         } else if (path) {
@@ -169,8 +199,10 @@ int main(int argc, char **argv)
         }
     }
     for (p = 0; p < sizeof protocols / sizeof protocols[0]; p++)
-        if (strcmp(protocols[p].name, protocol) == 0)
+        if (strcmp(protocols[p].name, protocol) == 0) {
             run = protocols[p].run;
+            both_directions = protocols[p].both_directions;
+        }
     if (!run) {
         fprintf(stderr, "urwire-decode: unknown protocol: %s (known:", protocol);
         for (p = 0; p < sizeof protocols / sizeof protocols[0]; p++)
@@ -182,12 +214,40 @@ int main(int argc, char **argv)
         return fail("no input: give a FILE or - for stdin; try --help", NULL);
     if (hint && !urwire_parse_version(hint, &version))
         return fail("not a software version (expected e.g. 5.9 or 5.25.1)", hint);
-    in = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
-    if (!in)
+    if (to_robot && !both_directions) {
+        fprintf(stderr, "urwire-decode: --to-robot: %s reads the robot's stream only; the protocols that read "
+                "both directions:", protocol);
+        for (p = 0; p < sizeof protocols / sizeof protocols[0]; p++)
+            if (protocols[p].both_directions)
+                fprintf(stderr, " %s", protocols[p].name);
+        fputs("\n", stderr);
+        return 2;
+    }
+    in.robot = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
+    if (!in.robot)
         return fail(path, strerror(errno));
-    status = run(in, version, hint != NULL);
-    if (in != stdin)
-        fclose(in);
+    if (to_robot) {
+        /* As `urwire decode` names them: the interface, the direction, the file as given. */
+        in.client = fopen(to_robot, "rb");
+        if (!in.client) {
+            int opening = errno;
+            if (in.robot != stdin)
+                fclose(in.robot);
+            return fail(to_robot, strerror(opening));
+        }
+        from_robot_envelope.interface = to_robot_envelope.interface = protocol;
+        from_robot_envelope.direction = "from_robot";
+        to_robot_envelope.direction = "to_robot";
+        from_robot_envelope.conversation = path;
+        to_robot_envelope.conversation = to_robot;
+        in.from_robot = &from_robot_envelope;
+        in.to_robot = &to_robot_envelope;
+    }
+    status = run(&in, version, hint != NULL);
+    if (in.robot != stdin)
+        fclose(in.robot);
+    if (in.client)
+        fclose(in.client);
     if (status == 2)
         return fail(path, "read error");
     if (fflush(stdout) != 0)

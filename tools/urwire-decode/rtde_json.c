@@ -194,13 +194,15 @@ static rtde_text reply_types(const rtde_message *m)
     return none;
 }
 
-int rtde_json_record(FILE *out, const rtde_message *m, rtde_error e, size_t at, const uint8_t *msg, size_t size)
+int rtde_json_record(FILE *out, const envelope *env, const rtde_message *m, rtde_error e, size_t at,
+                     const uint8_t *msg, size_t size)
 {
     const rtde_layout_info *info = rtde_layout_of(m->layout);
     bool first = false;
     size_t i;
     if (e != RTDE_OK) {
-        fputs("{\"type\": \"", out);
+        envelope_open(out, env);
+        fputs("\"type\": \"", out);
         fputs(m->layout == RTDE_LAYOUT_NONE ? rtde_unlaid_name(m->code) : info->name, out);
         fprintf(out, "\", \"message_type\": %u", (unsigned)m->code);
         if (e == RTDE_UNKNOWN_RECIPE) {
@@ -221,7 +223,8 @@ int rtde_json_record(FILE *out, const rtde_message *m, rtde_error e, size_t at, 
         fputs("}\n", out);
         return 0;       /* a message kept whole is a record, not a stream fault */
     }
-    fprintf(out, "{\"type\": \"%s\"", info->name);
+    envelope_open(out, env);
+    fprintf(out, "\"type\": \"%s\"", info->name);
     for (i = 0; i < info->count; i++)
         put_member(out, &info->members[i], (const uint8_t *)&m->u, &first);
     if (m->refused)
@@ -240,6 +243,7 @@ void rtde_json_stream_init(rtde_json_stream *s)
     s->direction[0].length = s->direction[1].length = 0;
     s->direction[0].offset = s->direction[1].offset = 0;
     s->direction[0].scanning = s->direction[1].scanning = false;
+    s->envelope[0] = s->envelope[1] = NULL;
 }
 
 static bool plausible(const uint8_t *p)
@@ -258,7 +262,8 @@ static int frame(rtde_json_stream *s, rtde_json_direction *d, bool from_robot, F
             /* One fault per scan, however the bytes were cut: a scan that ran out of bytes goes on
              * silently when more come. */
             if (!d->scanning) {
-                fprintf(out, "{\"type\": \"error\", \"offset\": %llu, \"error\": \"bad message header: size %u, "
+                envelope_open(out, s->envelope[from_robot ? 1 : 0]);
+                fprintf(out, "\"type\": \"error\", \"offset\": %llu, \"error\": \"bad message header: size %u, "
                         "type %u\"}\n", (unsigned long long)(d->offset + pos), (unsigned)load(d->buf + pos, 2),
                         (unsigned)d->buf[pos + 2]);
                 errors++;
@@ -276,7 +281,7 @@ static int frame(rtde_json_stream *s, rtde_json_direction *d, bool from_robot, F
             rtde_message m;
             size_t at;
             rtde_error de = rtde_decode(&s->conversation, d->buf + pos, size, from_robot, &m, &at);
-            rtde_json_record(out, &m, de, at, d->buf + pos, size);
+            rtde_json_record(out, s->envelope[from_robot ? 1 : 0], &m, de, at, d->buf + pos, size);
         }
         pos += size;
     }
@@ -307,7 +312,8 @@ int rtde_json_close(rtde_json_stream *s, FILE *out)
     for (k = 1; k >= 0; k--) {
         rtde_json_direction *d = &s->direction[k];
         if (d->length) {
-            fprintf(out, "{\"type\": \"error\", \"offset\": %llu, \"error\": \"truncated message: %lu bytes at the end "
+            envelope_open(out, s->envelope[1]);
+            fprintf(out, "\"type\": \"error\", \"offset\": %llu, \"error\": \"truncated message: %lu bytes at the end "
                     "of the stream\"}\n", (unsigned long long)d->offset, (unsigned long)d->length);
             d->offset += d->length;
             d->length = 0;

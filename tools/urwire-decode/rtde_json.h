@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "envelope.h"
 #include "rtde.h"
 
 #define RTDE_JSON_BUFFER 65536          /* the largest message a uint16 size allows */
@@ -24,8 +25,12 @@ typedef struct rtde_json_direction {
 typedef struct rtde_json_stream {
     rtde_conversation conversation;
     rtde_json_direction direction[2];   /* [1]: from the robot */
+    /* Each direction's records' envelope ([1]: from the robot; NULL: records as they are). The
+     * ends of the streams are the robot's file's, as `urwire decode --to-robot` reports them. */
+    const envelope *envelope[2];
 } rtde_json_stream;
 
+/* A connection with no envelopes; set s->envelope after this to have them. */
 void rtde_json_stream_init(rtde_json_stream *s);
 
 /* Bytes of one direction, as they arrive: each record they complete, one line each, on out.
@@ -36,7 +41,9 @@ int rtde_json_feed(rtde_json_stream *s, const uint8_t *data, size_t length, bool
 /* The ends of both streams (the robot's first): a truncated tail becomes an error record. */
 int rtde_json_close(rtde_json_stream *s, FILE *out);
 
-/* One decoded message (or what rtde_decode said of it) as one line. Returns 0. */
-int rtde_json_record(FILE *out, const rtde_message *m, rtde_error e, size_t at, const uint8_t *msg, size_t size);
+/* One decoded message (or what rtde_decode said of it) as one line, in envelope e if not NULL.
+ * Returns 0. */
+int rtde_json_record(FILE *out, const envelope *e, const rtde_message *m, rtde_error de, size_t at,
+                     const uint8_t *msg, size_t size);
 
 #endif
