@@ -95,6 +95,7 @@ SOURCED_FIRST_VERSIONS = {
     "payload": ("3.11", "5.5.1"),
     "payload_cog": ("3.11", "5.5.1"),
     "payload_inertia": ("3.15", "5.11"),
+    "tcp_offset": ("3.12", "5.5.1"),
     "ft_raw_wrench": ("none", "5.9"),
     "collision_detection_ratio": ("none", "5.15"),
     "time_scale_source": ("none", "5.17"),
@@ -111,7 +112,7 @@ SOURCED_FIRST_VERSIONS = {
     "output_bit_register_64": ("3.9", "5.3"),
 }
 # Rows no source read settles: they stay "unknown" rather than a guess.
-STILL_UNKNOWN = ["tool_digital_output_mask", "tool_digital_output", "actual_current_window", "tcp_offset",
+STILL_UNKNOWN = ["tool_digital_output_mask", "tool_digital_output", "actual_current_window",
                  "actual_TCP_acceleration", "target_TCP_acceleration", "actual_configurable_digital_input_bits",
                  "actual_configurable_digital_output_bits", "target_execution_time", "joint_position_deviation_ratio",
                  "wrench_calc_from_currents", "script_control_line", "actual_robot_braking_energy_dissipated",
