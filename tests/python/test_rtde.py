@@ -134,7 +134,9 @@ def test_which_controllers_have_a_variable():
     assert rtde.variable("tool_output_mode").available_in((3, 15)) is False
     assert rtde.variable("tool_output_mode").available_in((5, 2)) is True
     assert rtde.variable("actual_q").available_in((3, 3)) is True
-    assert rtde.variable("ft_raw_wrench").available_in((5, 11)) is None
+    assert rtde.variable("ft_raw_wrench").available_in((3, 15)) is False
+    assert rtde.variable("ft_raw_wrench").available_in((5, 9)) is True
+    assert rtde.variable("actual_current_window").available_in((5, 11)) is None
 
 
 def test_a_capture_decodes_every_rtde_conversation_in_time_order(tmp_path):
