@@ -102,6 +102,12 @@ def _records(fh: BinaryIO, args: argparse.Namespace, advance: Callable[[int], No
 
 
 def decode_command(args: argparse.Namespace) -> int:
+    if args.to_robot is not None and not interface_named(args.protocol or "ur").both_directions:
+        # As the C command: an interface that reads the robot's side only has no client stream to take.
+        both = sorted(name for name, i in INTERFACES.items() if i.both_directions)
+        print(f"urwire: --to-robot reads a client's stream, which only {', '.join(both)} decode; "
+              f"{args.protocol or 'ur'} reads the robot's side only", file=sys.stderr)
+        return 2
     try:
         fh, size = _open(args.file)
     except OSError as exc:

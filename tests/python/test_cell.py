@@ -88,12 +88,24 @@ def test_a_raw_stream_of_an_interface_gives_its_records_as_they_are(tmp_path):
 
 def test_to_robot_names_each_records_direction_and_file(tmp_path):
     robot, client = tmp_path / "robot.bin", tmp_path / "client.bin"
+    robot.write_bytes(b"Connected: Universal Robots Dashboard Server\nStarting program\n")
+    client.write_bytes(b"play\n")
+    res = urwire_decode("--protocol", "ur_dashboard", "--to-robot", str(client), str(robot))
+    lines = [json.loads(x) for x in res.stdout.splitlines()]
+    assert [(x["interface"], x["direction"], x["conversation"]) for x in lines] == [
+        ("ur_dashboard", "to_robot", str(client)), ("ur_dashboard", "from_robot", str(robot)),
+        ("ur_dashboard", "from_robot", str(robot))]
+    assert res.returncode == 0
+
+
+def test_to_robot_is_refused_for_an_interface_that_reads_the_robots_side_only(tmp_path):
+    robot, client = tmp_path / "robot.bin", tmp_path / "client.bin"
     robot.write_bytes(packet(1060, 0.0))
     client.write_bytes(b"textmsg(1)\n")
-    res = urwire_decode("--protocol", "ur_realtime", "--to-robot", str(client), str(robot))
-    (line,) = [json.loads(x) for x in res.stdout.splitlines()]
-    assert (line["interface"], line["direction"], line["conversation"], line["type"]) == \
-        ("ur_realtime", "from_robot", str(robot), "rt_3_2")
+    for protocol in ("ur_realtime", "ur"):
+        res = urwire_decode("--protocol", protocol, "--to-robot", str(client), str(robot))
+        assert res.returncode == 2 and res.stdout == ""
+        assert "--to-robot" in res.stderr and "rtde" in res.stderr
 
 
 class _Echo:
