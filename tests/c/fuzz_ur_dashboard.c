@@ -39,8 +39,9 @@ static void drain(ur_dashboard_conversation *c, bool from_robot, held *h)
             check_view(rec.text, h->bytes + at, used);
             check_view(rec.argument, h->bytes + at, used);
             len = ur_dashboard_json(&rec, json, sizeof json);
-            /* 3 bytes of JSON per byte of text at most (U+FFFD), twice for an argument, and names */
-            if (len >= sizeof json || len > 9 * rec.text.len + 256 || strlen(json) != len)
+            /* 6 bytes of JSON per byte of text at most (a control byte is \u001e), twice for an
+             * argument, and names */
+            if (len >= sizeof json || len > 12 * rec.text.len + 256 || strlen(json) != len)
                 abort();
         }
         at += used;
