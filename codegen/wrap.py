@@ -12,6 +12,12 @@ LIMIT = 120
 PROSE = 100
 
 
+def columns(text: str) -> int:
+    """How wide a line is: its UTF-8 bytes, as tools that read a file without a locale count its
+    columns (a unit such as "m/s²" is one byte wider than it looks)."""
+    return len(text.encode("utf-8"))
+
+
 def lines(text: str, first: str, rest: str, width: int = PROSE) -> list[str]:
     """`text` wrapped at word boundaries: the first line starts with `first`, the others with
     `rest`. A word longer than a line (a URL) stays whole."""
@@ -35,7 +41,7 @@ def docstring(text: str, indent: str = "") -> str:
     """A Python docstring: on one line when it fits, else wrapped with its closing quotes on a
     line of their own."""
     one = f'{indent}"""{text}"""'
-    if len(one) <= PROSE:
+    if columns(one) <= PROSE:
         return one
     return "\n".join(lines(text, f'{indent}"""', indent) + [f'{indent}"""'])
 
@@ -46,7 +52,7 @@ def trailing(code: str, comment: str, indent: str = "", syntax: str = "c") -> st
     marks = {"c": ("/* ", " */"), "lua": ("-- ", ""), "python": ("# ", "")}
     opening, closing = marks[syntax]
     one = f"{indent}{code}  {opening}{comment}{closing}"
-    if len(one) <= LIMIT:
+    if columns(one) <= LIMIT:
         return one
     above = c_comment(comment, indent) if syntax == "c" else line_comment(comment, indent, opening.strip())
     return f"{above}\n{indent}{code}"
@@ -57,17 +63,17 @@ def spread(items: list[str], open_: str, close: str = "", indent: str = "", widt
     else as many items per line as fit, continuation lines aligned under the first item (or,
     when not even the first item fits after `open_`, indented by four under the line)."""
     one = f"{indent}{open_}{', '.join(items)}{close}"
-    if len(one) <= width or not items:
+    if columns(one) <= width or not items:
         return one
     first = indent + open_
-    if len(first) + len(items[0]) + 1 > width:
+    if columns(first) + columns(items[0]) + 1 > width:
         out, hang, line = [first.rstrip()], indent + "    ", indent + "    "
     else:
         out, hang, line = [], " " * len(first), first
     empty = True                                   # nothing on `line` yet but its indentation
     for n, item in enumerate(items):
         piece = item + (close if n == len(items) - 1 else ",")
-        if not empty and len(line) + 1 + len(piece) > width:
+        if not empty and columns(line) + 1 + columns(piece) > width:
             out.append(line)
             line, empty = hang, True
         line += piece if empty else " " + piece
@@ -81,7 +87,7 @@ def chain(names: list[str], value: str, indent: str = "", width: int = LIMIT) ->
     out, line = [], indent
     for name in names:
         piece = f"{name} = "
-        if line.strip() and len(line) + len(piece) + len(value) + 2 > width:
+        if line.strip() and columns(line) + columns(piece) + columns(value) + 2 > width:
             out.append(line + "\\")
             line = indent + "    "
         line += piece
@@ -96,12 +102,12 @@ def pack(entries: str, column: int = 0, hang: int = 2, width: int = LIMIT) -> st
     width -= 1
     items = [e.strip() for e in entries.strip().splitlines() if e.strip()]
     one = " ".join(items)
-    if column + len(one) <= width:
+    if column + columns(one) <= width:
         return one
     out, line = [], ""
     for item in items:
         limit = width - column - (hang if out else 0)
-        if line and len(line) + 1 + len(item) > limit:
+        if line and columns(line) + 1 + columns(item) > limit:
             out.append(line)
             line = item
         else:

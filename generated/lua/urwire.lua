@@ -2004,7 +2004,8 @@ L.payload_info = {
     { k = "scalar", f = F["payload_info.mass"], n = 8, path = "mass", signed = false, unit = " kg" },
     { k = "array", f = F["payload_info.center_of_gravity"], n = 8, count = 3, path = "center_of_gravity",
       signed = false, unit = " m" },
-    { k = "array", f = F["payload_info.inertia"], n = 8, count = 6, path = "inertia", signed = false, unit = " kg·m²" },
+    { k = "array", f = F["payload_info.inertia"], n = 8, count = 6, path = "inertia", signed = false,
+      unit = " kg·m²" },
 }
 
 -- Header and subtype of every robot message.

@@ -22,8 +22,8 @@ def test_no_generated_line_is_over_the_limit():
     for path in generated_files():
         if path.is_file():
             for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
-                if len(line) > wrap.LIMIT:
-                    long.append(f"{path.relative_to(ROOT)}:{n}: {len(line)} columns")
+                if wrap.columns(line) > wrap.LIMIT:
+                    long.append(f"{path.relative_to(ROOT)}:{n}: {wrap.columns(line)} columns")
     assert not long, f"{len(long)} lines over {wrap.LIMIT} columns:\n" + "\n".join(long[:20])
 
 
