@@ -313,10 +313,9 @@ class _Builder:
             if key in ("path", "show", "label"):
                 if value is not None:
                     out.append(f".{key} = {c_str(value)}")
-            elif key == "low" and value != ANY_LOW or key == "high" and value != ANY_HIGH:
-                out.append(f".{key} = {value}u")
             elif key in ("low", "high"):
-                continue
+                if row["kind"] == "UR_D_COND":
+                    out.append(f".{key} = {value}u")
             elif value not in (0, "0", "NULL"):
                 out.append(f".{key} = {value}")
         return out

@@ -1145,12 +1145,16 @@ static const ur_desc ur_desc_robot_mode_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_ROBOT_MODE, .n = 1, .count = 1, .flags = UR_SIGNED,
         .path = "robot_mode", .show = "", .label = "Robot mode", .vs = ur_vs_robot_mode,
         .names = &ur_names_robot_mode },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .inner = &ur_layout_robot_mode_data_cond1 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
+        .inner = &ur_layout_robot_mode_data_cond1 },
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TARGET_SPEED_FRACTION, .n = 8, .count = 1, .flags = UR_FLOAT,
         .path = "target_speed_fraction" },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .inner = &ur_layout_robot_mode_data_cond2 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3002000u, .inner = &ur_layout_robot_mode_data_cond3 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3005000u, .inner = &ur_layout_robot_mode_data_cond4 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
+        .inner = &ur_layout_robot_mode_data_cond2 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3002000u, .high = 4294967295u,
+        .inner = &ur_layout_robot_mode_data_cond3 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3005000u, .high = 4294967295u,
+        .inner = &ur_layout_robot_mode_data_cond4 },
 };
 static const ur_layout ur_layout_robot_mode_data = { ur_desc_robot_mode_data, 14 };
 
@@ -1294,10 +1298,14 @@ static const ur_desc ur_desc_masterboard_data_cond18[] = {
 static const ur_layout ur_layout_masterboard_data_cond18 = { ur_desc_masterboard_data_cond18, 1 };
 
 static const ur_desc ur_desc_masterboard_data[] = {
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .high = 1008999u, .inner = &ur_layout_masterboard_data_cond5 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .inner = &ur_layout_masterboard_data_cond6 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .high = 1008999u, .inner = &ur_layout_masterboard_data_cond7 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .inner = &ur_layout_masterboard_data_cond8 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 1008999u,
+        .inner = &ur_layout_masterboard_data_cond5 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
+        .inner = &ur_layout_masterboard_data_cond6 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 1008999u,
+        .inner = &ur_layout_masterboard_data_cond7 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
+        .inner = &ur_layout_masterboard_data_cond8 },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT_RANGE0, .n = 1, .count = 1,
         .path = "analog_input_range0" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT_RANGE1, .n = 1, .count = 1,
@@ -1324,19 +1332,24 @@ static const ur_desc ur_desc_masterboard_data[] = {
         .path = "master_io_current" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 1006000u, .high = 1008999u,
         .inner = &ur_layout_masterboard_data_cond9 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3000000u, .inner = &ur_layout_masterboard_data_cond10 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 1006000u, .inner = &ur_layout_masterboard_data_cond11 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .keep = 1, .low = 1006000u,
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3000000u, .high = 4294967295u,
+        .inner = &ur_layout_masterboard_data_cond10 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 1006000u, .high = 4294967295u,
+        .inner = &ur_layout_masterboard_data_cond11 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .keep = 1, .low = 1006000u, .high = 4294967295u,
         .inner = &ur_layout_masterboard_data_cond12 },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .keep = 1, .low = 1006000u, .high = 1008999u,
         .inner = &ur_layout_masterboard_data_cond13 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .keep = 1, .low = 3000000u,
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .keep = 1, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_masterboard_data_cond14 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .inner = &ur_layout_masterboard_data_cond15 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3002000u, .inner = &ur_layout_masterboard_data_cond16 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
+        .inner = &ur_layout_masterboard_data_cond15 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3002000u, .high = 4294967295u,
+        .inner = &ur_layout_masterboard_data_cond16 },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3010000u, .high = 3015999u,
         .inner = &ur_layout_masterboard_data_cond17 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 5004000u, .inner = &ur_layout_masterboard_data_cond18 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 5004000u, .high = 4294967295u,
+        .inner = &ur_layout_masterboard_data_cond18 },
 };
 static const ur_layout ur_layout_masterboard_data = { ur_desc_masterboard_data, 26 };
 
@@ -1363,7 +1376,8 @@ static const ur_desc ur_desc_cartesian_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "rx" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "ry" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "rz" },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 6, .low = 3001000u, .inner = &ur_layout_cartesian_info_cond19 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 6, .low = 3001000u, .high = 4294967295u,
+        .inner = &ur_layout_cartesian_info_cond19 },
 };
 static const ur_layout ur_layout_cartesian_info = { ur_desc_cartesian_info, 7 };
 
@@ -1447,9 +1461,9 @@ static const ur_desc ur_desc_configuration_data[] = {
         .path = "robot_type" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_ROBOT_SUB_TYPE, .n = 4, .count = 1, .flags = UR_SIGNED,
         .path = "robot_sub_type" },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .high = 1008999u,
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 1008999u,
         .inner = &ur_layout_configuration_data_cond20 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 5025001u,
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 5025001u, .high = 4294967295u,
         .inner = &ur_layout_configuration_data_cond21 },
 };
 static const ur_layout ur_layout_configuration_data = { ur_desc_configuration_data, 17 };
@@ -1492,10 +1506,14 @@ static const ur_desc ur_desc_additional_info_cond25[] = {
 static const ur_layout ur_layout_additional_info_cond25 = { ur_desc_additional_info_cond25, 1 };
 
 static const ur_desc ur_desc_additional_info[] = {
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .high = 1007999u, .inner = &ur_layout_additional_info_cond22 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 1008000u, .inner = &ur_layout_additional_info_cond23 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3002000u, .inner = &ur_layout_additional_info_cond24 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 5000000u, .inner = &ur_layout_additional_info_cond25 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 0u, .high = 1007999u,
+        .inner = &ur_layout_additional_info_cond22 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 1008000u, .high = 4294967295u,
+        .inner = &ur_layout_additional_info_cond23 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3002000u, .high = 4294967295u,
+        .inner = &ur_layout_additional_info_cond24 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 5000000u, .high = 4294967295u,
+        .inner = &ur_layout_additional_info_cond25 },
 };
 static const ur_layout ur_layout_additional_info = { ur_desc_additional_info, 4 };
 
@@ -1593,8 +1611,10 @@ static const ur_desc ur_desc_version[] = {
         .show = " " },
     { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_MINOR_VERSION, .n = 1, .count = 1, .path = "minor_version",
         .show = "." },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .high = 3002999u, .inner = &ur_layout_version_cond26 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3003000u, .inner = &ur_layout_version_cond27 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 3002999u,
+        .inner = &ur_layout_version_cond26 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3003000u, .high = 4294967295u,
+        .inner = &ur_layout_version_cond27 },
     { .kind = UR_D_STRING, .hf = UR_HF_VERSION_BUILD_DATE, .path = "build_date" },
 };
 static const ur_layout ur_layout_version = { ur_desc_version, 6 };
@@ -1626,8 +1646,10 @@ static const ur_desc ur_desc_safety_mode[] = {
         .path = "robot_message_code" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_ROBOT_MESSAGE_ARGUMENT, .n = 4, .count = 1, .flags = UR_SIGNED,
         .path = "robot_message_argument" },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 3, .low = 3000000u, .inner = &ur_layout_safety_mode_cond28 },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .high = 1008999u, .inner = &ur_layout_safety_mode_cond29 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 3, .low = 3000000u, .high = 4294967295u,
+        .inner = &ur_layout_safety_mode_cond28 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 1008999u,
+        .inner = &ur_layout_safety_mode_cond29 },
 };
 static const ur_layout ur_layout_safety_mode = { ur_desc_safety_mode, 4 };
 
@@ -1653,7 +1675,8 @@ static const ur_desc ur_desc_robot_comm[] = {
         .path = "robot_message_code" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_ARGUMENT, .n = 4, .count = 1, .flags = UR_SIGNED,
         .path = "robot_message_argument" },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 3, .low = 3000000u, .inner = &ur_layout_robot_comm_cond30 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 3, .low = 3000000u, .high = 4294967295u,
+        .inner = &ur_layout_robot_comm_cond30 },
     { .kind = UR_D_STRING, .hf = UR_HF_ROBOT_COMM_TEXT, .path = "text", .show = ": " },
 };
 static const ur_layout ur_layout_robot_comm = { ur_desc_robot_comm, 4 };
@@ -1717,10 +1740,12 @@ static const ur_desc ur_desc_popup_cond32[] = {
 static const ur_layout ur_layout_popup_cond32 = { ur_desc_popup_cond32, 1 };
 
 static const ur_desc ur_desc_popup[] = {
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3000000u, .inner = &ur_layout_popup_cond31 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3000000u, .high = 4294967295u,
+        .inner = &ur_layout_popup_cond31 },
     { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_WARNING, .n = 1, .count = 1, .path = "warning" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_ERROR, .n = 1, .count = 1, .path = "error" },
-    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .inner = &ur_layout_popup_cond32 },
+    { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
+        .inner = &ur_layout_popup_cond32 },
     { .kind = UR_D_PSTRING, .hf = UR_HF_POPUP_TITLE, .n = 1, .path = "title", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_POPUP_TEXT, .path = "text", .show = ": " },
 };
@@ -3395,6 +3420,18 @@ ur_walk_values(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
 /* The Info column. It is written on every pass, tree or not, so it reads the bytes and builds no
  * tree: the descriptors marked `show` of a layout (a message's, or a robot-state package's whose
  * layout has a summary). As runtime/lua/info.lua. */
+/* A text field's bytes as the Info column shows them: UTF-8, invalid bytes replaced, cut at as
+ * many bytes as the field has, as the Lua twin shows them (Wireshark's TvbRange:string keeps that
+ * many bytes of the converted text). */
+static const char *
+ur_info_text(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int len)
+{
+    char *text = (char *)tvb_get_string_enc(pool, tvb, o, len, ENC_UTF_8);
+    if (strlen(text) > (size_t)len)
+        text[len] = '\0';
+    return text;
+}
+
 static gboolean
 ur_shown_in(const ur_layout *layout)
 {
@@ -3457,15 +3494,14 @@ ur_summarise(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int e, const ur_layou
                 return -1;
             if (d->show != NULL) {
                 wmem_strbuf_append(out, d->show);
-                wmem_strbuf_append(out, (const char *)tvb_get_string_enc(pool, tvb, o + (int)d->n, (int)len,
-                                                                         ENC_UTF_8));
+                wmem_strbuf_append(out, ur_info_text(tvb, pool, o + (int)d->n, (int)len));
             }
             o += (int)d->n + (int)len;
         } else if (d->kind == UR_D_STRING) {
             if (d->show != NULL && e > o) {
                 int len = e - o > 120 ? 120 : e - o;
                 wmem_strbuf_append(out, d->show);
-                wmem_strbuf_append(out, (const char *)tvb_get_string_enc(pool, tvb, o, len, ENC_UTF_8));
+                wmem_strbuf_append(out, ur_info_text(tvb, pool, o, len));
             }
             o = e;
         } else if (d->kind == UR_D_COND && d->keep == 0) {
@@ -4119,8 +4155,11 @@ ur_dissect_client(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree)
     proto_item *item = proto_tree_add_item(tree, proto_ur, tvb, 0, -1, ENC_NA);
     proto_tree_add_item(proto_item_add_subtree(item, ett_ur), hf_ur[UR_HF_URSCRIPT], tvb, 0, -1, ENC_UTF_8);
     if (pinfo->cinfo != NULL) {
-        char *line = (char *)tvb_get_string_enc(pinfo->pool, tvb, 0, n > 60 ? 60 : n, ENC_UTF_8);
+        int len = n > 60 ? 60 : n;
+        char *line = (char *)tvb_get_string_enc(pinfo->pool, tvb, 0, len, ENC_UTF_8);
         char *nl = strchr(line, '\n');
+        if (strlen(line) > (size_t)len)
+            line[len] = '\0';   /* as many bytes as were read, as the Lua twin shows them */
         if (nl != NULL)
             *nl = '\0';
         col_add_fstr(pinfo->cinfo, COL_INFO, "URScript: %s", line);

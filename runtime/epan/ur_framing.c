@@ -97,8 +97,11 @@ ur_dissect_client(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree)
     proto_item *item = proto_tree_add_item(tree, proto_ur, tvb, 0, -1, ENC_NA);
     proto_tree_add_item(proto_item_add_subtree(item, ett_ur), hf_ur[UR_HF_URSCRIPT], tvb, 0, -1, ENC_UTF_8);
     if (pinfo->cinfo != NULL) {
-        char *line = (char *)tvb_get_string_enc(pinfo->pool, tvb, 0, n > 60 ? 60 : n, ENC_UTF_8);
+        int len = n > 60 ? 60 : n;
+        char *line = (char *)tvb_get_string_enc(pinfo->pool, tvb, 0, len, ENC_UTF_8);
         char *nl = strchr(line, '\n');
+        if (strlen(line) > (size_t)len)
+            line[len] = '\0';   /* as many bytes as were read, as the Lua twin shows them */
         if (nl != NULL)
             *nl = '\0';
         col_add_fstr(pinfo->cinfo, COL_INFO, "URScript: %s", line);

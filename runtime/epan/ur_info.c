@@ -1,6 +1,18 @@
 /* The Info column. It is written on every pass, tree or not, so it reads the bytes and builds no
  * tree: the descriptors marked `show` of a layout (a message's, or a robot-state package's whose
  * layout has a summary). As runtime/lua/info.lua. */
+/* A text field's bytes as the Info column shows them: UTF-8, invalid bytes replaced, cut at as
+ * many bytes as the field has, as the Lua twin shows them (Wireshark's TvbRange:string keeps that
+ * many bytes of the converted text). */
+static const char *
+ur_info_text(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int len)
+{
+    char *text = (char *)tvb_get_string_enc(pool, tvb, o, len, ENC_UTF_8);
+    if (strlen(text) > (size_t)len)
+        text[len] = '\0';
+    return text;
+}
+
 static gboolean
 ur_shown_in(const ur_layout *layout)
 {
@@ -63,15 +75,14 @@ ur_summarise(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int e, const ur_layou
                 return -1;
             if (d->show != NULL) {
                 wmem_strbuf_append(out, d->show);
-                wmem_strbuf_append(out, (const char *)tvb_get_string_enc(pool, tvb, o + (int)d->n, (int)len,
-                                                                         ENC_UTF_8));
+                wmem_strbuf_append(out, ur_info_text(tvb, pool, o + (int)d->n, (int)len));
             }
             o += (int)d->n + (int)len;
         } else if (d->kind == UR_D_STRING) {
             if (d->show != NULL && e > o) {
                 int len = e - o > 120 ? 120 : e - o;
                 wmem_strbuf_append(out, d->show);
-                wmem_strbuf_append(out, (const char *)tvb_get_string_enc(pool, tvb, o, len, ENC_UTF_8));
+                wmem_strbuf_append(out, ur_info_text(tvb, pool, o, len));
             }
             o = e;
         } else if (d->kind == UR_D_COND && d->keep == 0) {
