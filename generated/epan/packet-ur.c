@@ -3420,16 +3420,39 @@ ur_walk_values(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
 /* The Info column. It is written on every pass, tree or not, so it reads the bytes and builds no
  * tree: the descriptors marked `show` of a layout (a message's, or a robot-state package's whose
  * layout has a summary). As runtime/lua/info.lua. */
-/* A text field's bytes as the Info column shows them: UTF-8, invalid bytes replaced, cut at as
- * many bytes as the field has, as the Lua twin shows them (Wireshark's TvbRange:string keeps that
- * many bytes of the converted text). */
-static const char *
-ur_info_text(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int len)
+/* A text field's bytes into the Info text as the Lua twin puts them there: UTF-8 with invalid
+ * bytes replaced, cut at as many bytes as the field has (Wireshark's TvbRange:string keeps that
+ * many bytes of the converted text), NUL bytes kept (the column then ends at the first). */
+static void
+ur_info_text(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int len, wmem_strbuf_t *out)
 {
-    char *text = (char *)tvb_get_string_enc(pool, tvb, o, len, ENC_UTF_8);
-    if (strlen(text) > (size_t)len)
-        text[len] = '\0';
-    return text;
+    wmem_strbuf_t *text = wmem_strbuf_new(pool, "");
+    int end = o + len;
+    while (o < end) {
+        int nul = tvb_find_guint8(tvb, o, end - o, 0);
+        int stop = nul < 0 ? end : nul;
+        wmem_strbuf_append(text, (const char *)tvb_get_string_enc(pool, tvb, o, stop - o, ENC_UTF_8));
+        if (nul >= 0)
+            wmem_strbuf_append_len(text, "", 1);
+        o = stop + (nul >= 0 ? 1 : 0);
+    }
+    size_t n = wmem_strbuf_get_len(text);
+    wmem_strbuf_append_len(out, wmem_strbuf_get_str(text), n > (size_t)len ? (size_t)len : n);
+}
+
+/* A new byte string in pool, formatted. */
+static wmem_strbuf_t *
+ur_strbuf_printf(wmem_allocator_t *pool, const char *format, ...) G_GNUC_PRINTF(2, 3);
+
+static wmem_strbuf_t *
+ur_strbuf_printf(wmem_allocator_t *pool, const char *format, ...)
+{
+    va_list ap;
+    wmem_strbuf_t *out = wmem_strbuf_new(pool, "");
+    va_start(ap, format);
+    wmem_strbuf_append_vprintf(out, format, ap);
+    va_end(ap);
+    return out;
 }
 
 static gboolean
@@ -3494,14 +3517,14 @@ ur_summarise(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int e, const ur_layou
                 return -1;
             if (d->show != NULL) {
                 wmem_strbuf_append(out, d->show);
-                wmem_strbuf_append(out, ur_info_text(tvb, pool, o + (int)d->n, (int)len));
+                ur_info_text(tvb, pool, o + (int)d->n, (int)len, out);
             }
             o += (int)d->n + (int)len;
         } else if (d->kind == UR_D_STRING) {
             if (d->show != NULL && e > o) {
                 int len = e - o > 120 ? 120 : e - o;
                 wmem_strbuf_append(out, d->show);
-                wmem_strbuf_append(out, ur_info_text(tvb, pool, o, len));
+                ur_info_text(tvb, pool, o, len, out);
             }
             o = e;
         } else if (d->kind == UR_D_COND && d->keep == 0) {
@@ -3517,13 +3540,14 @@ ur_summarise(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int e, const ur_layou
     return o;
 }
 
-/* The summary of a layout from o to e for version v. */
-static const char *
+/* The summary of a layout from o to e for version v. Info texts are byte strings (a text field
+ * may hold NUL bytes: the column ends at the first, as the Lua twin's does). */
+static wmem_strbuf_t *
 ur_layout_summary(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int e, const ur_layout *layout, guint32 v)
 {
     wmem_strbuf_t *out = wmem_strbuf_new(pool, "");
     ur_summarise(tvb, pool, o, e, layout, ur_reach(layout), v, out);
-    return wmem_strbuf_get_str(out);
+    return out;
 }
 
 /* A form chosen for the message being dissected: when the stream's version is not known (no
@@ -3545,7 +3569,7 @@ ur_pick(const ur_forms *forms, unsigned size, ur_msg *st, guint32 *use, gboolean
  * has not told it, tree or not; with `text` FALSE, only that is done. Stops at the first package
  * whose length does not fit: such a robot state is malformed, and what its sizes showed is not
  * taken for the stream. */
-static const char *
+static wmem_strbuf_t *
 ur_package_summary(ur_msg *st, int p, int e, const ur_message *m, gboolean text)
 {
     if (!(text || !st->known))
@@ -3573,7 +3597,7 @@ ur_package_summary(ur_msg *st, int p, int e, const ur_message *m, gboolean text)
                 if (wmem_strbuf_get_len(part) > 0) {
                     if (any)
                         wmem_strbuf_append(out, ", ");
-                    wmem_strbuf_append(out, wmem_strbuf_get_str(part));
+                    wmem_strbuf_append_len(out, wmem_strbuf_get_str(part), wmem_strbuf_get_len(part));
                     any = TRUE;
                 }
             }
@@ -3584,16 +3608,19 @@ ur_package_summary(ur_msg *st, int p, int e, const ur_message *m, gboolean text)
         st->version = version;
         st->implied = implied;
     }
-    return text ? wmem_strbuf_get_str(out) : NULL;
+    return out;
 }
 
 /* "Label" alone, or "Label: text". */
-static const char *
-ur_labelled(wmem_allocator_t *pool, const char *label, const char *text)
+static wmem_strbuf_t *
+ur_labelled(wmem_allocator_t *pool, const char *label, const wmem_strbuf_t *text)
 {
-    if (text == NULL || text[0] == '\0')
-        return label;
-    return wmem_strdup_printf(pool, "%s: %s", label, text);
+    wmem_strbuf_t *out = wmem_strbuf_new(pool, label);
+    if (text != NULL && wmem_strbuf_get_len(text) > 0) {
+        wmem_strbuf_append(out, ": ");
+        wmem_strbuf_append_len(out, wmem_strbuf_get_str(text), wmem_strbuf_get_len(text));
+    }
+    return out;
 }
 
 
@@ -3712,10 +3739,10 @@ ur_package(ur_msg *st, const ur_message *m, proto_tree *tree, int p, int size, g
     }
 }
 
-static const char *
+static wmem_strbuf_t *
 ur_packages_info(ur_msg *st, const ur_message *m, int o, int e, gboolean text)
 {
-    const char *summary = ur_package_summary(st, o + UR_HEADER_SIZE, e, m, text);
+    wmem_strbuf_t *summary = ur_package_summary(st, o + UR_HEADER_SIZE, e, m, text);
     return text ? ur_labelled(st->pinfo->pool, m->label, summary) : NULL;
 }
 
@@ -3758,18 +3785,18 @@ ur_packages_tree(ur_msg *st, const ur_message *m, proto_item *item, int o, int e
     return NULL;
 }
 
-static const char *
+static wmem_strbuf_t *
 ur_subtypes_info(ur_msg *st, const ur_message *m, int o, int e, gboolean text)
 {
     if (!text)
         return NULL;
     wmem_allocator_t *pool = st->pinfo->pool;
     if (e - o < (int)m->body_offset)
-        return wmem_strdup_printf(pool, "%s (too short)", m->label);
+        return ur_strbuf_printf(pool, "%s (too short)", m->label);
     guint8 code = tvb_get_guint8(st->tvb, o + (int)m->body_offset - 1);
     const ur_forms *forms = m->forms[code];
     if (forms == NULL)
-        return wmem_strdup_printf(pool, "%s subtype %u", m->label, code);
+        return ur_strbuf_printf(pool, "%s subtype %u", m->label, code);
     guint32 use;
     gboolean by_length;
     const ur_form *form = ur_choose(forms, (unsigned)(e - o - (int)m->body_offset), st->version, &use, &by_length);
@@ -3822,7 +3849,7 @@ ur_subtypes_tree(ur_msg *st, const ur_message *m, proto_item *item, int o, int e
     return sub_item;   /* where the subtype's fields are */
 }
 
-static const char *
+static wmem_strbuf_t *
 ur_body_info(ur_msg *st, const ur_message *m, int o, int e, gboolean text)
 {
     if (!text)
@@ -3853,7 +3880,7 @@ ur_body_tree(ur_msg *st, const ur_message *m, proto_item *item, int o, int e)
     return sub_item;
 }
 
-static const char *
+static wmem_strbuf_t *
 ur_message_info(ur_msg *st, const ur_message *m, int o, int e, gboolean text)
 {
     switch (m->kind) {
@@ -4077,22 +4104,37 @@ typedef struct {
 #define UR_INFO_KEY 1u
 
 /* TCP may call the dissector twice for one frame (a reassembled message, then the rest of the
- * segment): the first message of the later call appends to what the earlier one wrote. */
+ * segment): the first message of the later call appends to what the earlier one wrote, when the
+ * column still holds just that. */
 static void
-ur_set_info(packet_info *pinfo, gboolean first, const char *text)
+ur_set_info(packet_info *pinfo, gboolean first, const wmem_strbuf_t *text)
 {
-    const char *written = (const char *)p_get_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY);
+    wmem_strbuf_t *written = (wmem_strbuf_t *)p_get_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY);
     const char *now = col_get_text(pinfo->cinfo, COL_INFO);
-    if (first && !(written != NULL && now != NULL && strcmp(now, written) == 0)) {
-        written = wmem_strdup(pinfo->pool, text);
-        col_add_str(pinfo->cinfo, COL_INFO, text);
+    gboolean same = written != NULL && now != NULL && strlen(now) == wmem_strbuf_get_len(written)
+                    && memcmp(now, wmem_strbuf_get_str(written), strlen(now)) == 0;
+    if (first && !same) {
+        written = wmem_strbuf_new(pinfo->pool, "");
+        wmem_strbuf_append_len(written, wmem_strbuf_get_str(text), wmem_strbuf_get_len(text));
+        col_add_str(pinfo->cinfo, COL_INFO, wmem_strbuf_get_str(text));
+        p_remove_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY);
+        p_add_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY, written);
     } else {
-        written = wmem_strdup_printf(pinfo->pool, "%s; %s", written ? written : "", text);
+        if (written == NULL) {
+            written = wmem_strbuf_new(pinfo->pool, "");
+            p_add_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY, written);
+        }
+        wmem_strbuf_append(written, "; ");
+        wmem_strbuf_append_len(written, wmem_strbuf_get_str(text), wmem_strbuf_get_len(text));
         col_append_str(pinfo->cinfo, COL_INFO, "; ");
-        col_append_str(pinfo->cinfo, COL_INFO, text);
+        col_append_str(pinfo->cinfo, COL_INFO, wmem_strbuf_get_str(text));
     }
-    p_remove_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY);
-    p_add_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY, (void *)written);
+}
+
+static void
+ur_set_info_text(packet_info *pinfo, gboolean first, const char *text)
+{
+    ur_set_info(pinfo, first, wmem_strbuf_new(pinfo->pool, text));
 }
 
 static gboolean
@@ -4168,13 +4210,13 @@ ur_dissect_client(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree)
 }
 
 /* The Info column of a message type the spec names but does not lay out. */
-static const char *
+static wmem_strbuf_t *
 ur_unlaid_info(packet_info *pinfo, guint8 type, guint32 v)
 {
     const value_string *names = ur_message_type_tables ? ur_enum_names(ur_message_type_tables, v)
                                                        : ur_message_type_names;
     const char *name = try_val_to_str(type, names);
-    return wmem_strdup_printf(pinfo->pool, "Type %u (%s)", type, name ? name : "named in another version");
+    return ur_strbuf_printf(pinfo->pool, "Type %u (%s)", type, name ? name : "named in another version");
 }
 
 /* The message state as a message starts, from the stream's version and how it was found. */
@@ -4248,7 +4290,7 @@ ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call 
     st.tvb = tvb;
     st.base = o;
     ur_begin(&st, version, implied);
-    const char *text = m ? ur_message_info(&st, m, o, e, cur->columns) : NULL;
+    wmem_strbuf_t *text = m ? ur_message_info(&st, m, o, e, cur->columns) : NULL;
     if (cur->columns)
         ur_set_info(pinfo, cur->first, text ? text : ur_unlaid_info(pinfo, type, st.version));
     cur->first = FALSE;
@@ -4356,7 +4398,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
             if (stop > 0 && cur.detail)
                 ur_data_item(tree, buf, 0, stop);
             if (cur.columns)
-                ur_set_info(pinfo, TRUE, "Resynchronising: no message header yet");
+                ur_set_info_text(pinfo, TRUE, "Resynchronising: no message header yet");
             cur.first = FALSE;
             carry = ur_carry_new(tvb_get_ptr(buf, stop, len - stop), len - stop);
             o = len;
@@ -4380,7 +4422,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
                                 ENC_BIG_ENDIAN);
             expert_add_info_format(pinfo, item, ei, "%s", text);
             if (cur.columns)
-                ur_set_info(pinfo, cur.first, wmem_strdup_printf(pinfo->pool, "Bad header: %s", text));
+                ur_set_info(pinfo, cur.first, ur_strbuf_printf(pinfo->pool, "Bad header: %s", text));
             cur.first = FALSE;
             by_hand = TRUE;
             /* Scan forward from the next byte; the skipped bytes belong to this fault. */
@@ -4417,7 +4459,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
             proto_item *item = proto_tree_add_item(tree, proto_ur, buf, o, left, ENC_NA);
             proto_tree_add_item(proto_item_add_subtree(item, ett_ur), hf_ur[UR_HF_RAW], buf, o, left, ENC_NA);
             if (cur.columns)
-                ur_set_info(pinfo, cur.first, "Continuation");
+                ur_set_info_text(pinfo, cur.first, "Continuation");
             break;
         } else {
             ur_dissect_message(buf, pinfo, tree, &cur, o, o + (int)size, type);

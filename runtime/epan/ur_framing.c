@@ -19,22 +19,37 @@ typedef struct {
 #define UR_INFO_KEY 1u
 
 /* TCP may call the dissector twice for one frame (a reassembled message, then the rest of the
- * segment): the first message of the later call appends to what the earlier one wrote. */
+ * segment): the first message of the later call appends to what the earlier one wrote, when the
+ * column still holds just that. */
 static void
-ur_set_info(packet_info *pinfo, gboolean first, const char *text)
+ur_set_info(packet_info *pinfo, gboolean first, const wmem_strbuf_t *text)
 {
-    const char *written = (const char *)p_get_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY);
+    wmem_strbuf_t *written = (wmem_strbuf_t *)p_get_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY);
     const char *now = col_get_text(pinfo->cinfo, COL_INFO);
-    if (first && !(written != NULL && now != NULL && strcmp(now, written) == 0)) {
-        written = wmem_strdup(pinfo->pool, text);
-        col_add_str(pinfo->cinfo, COL_INFO, text);
+    gboolean same = written != NULL && now != NULL && strlen(now) == wmem_strbuf_get_len(written)
+                    && memcmp(now, wmem_strbuf_get_str(written), strlen(now)) == 0;
+    if (first && !same) {
+        written = wmem_strbuf_new(pinfo->pool, "");
+        wmem_strbuf_append_len(written, wmem_strbuf_get_str(text), wmem_strbuf_get_len(text));
+        col_add_str(pinfo->cinfo, COL_INFO, wmem_strbuf_get_str(text));
+        p_remove_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY);
+        p_add_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY, written);
     } else {
-        written = wmem_strdup_printf(pinfo->pool, "%s; %s", written ? written : "", text);
+        if (written == NULL) {
+            written = wmem_strbuf_new(pinfo->pool, "");
+            p_add_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY, written);
+        }
+        wmem_strbuf_append(written, "; ");
+        wmem_strbuf_append_len(written, wmem_strbuf_get_str(text), wmem_strbuf_get_len(text));
         col_append_str(pinfo->cinfo, COL_INFO, "; ");
-        col_append_str(pinfo->cinfo, COL_INFO, text);
+        col_append_str(pinfo->cinfo, COL_INFO, wmem_strbuf_get_str(text));
     }
-    p_remove_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY);
-    p_add_proto_data(pinfo->pool, pinfo, proto_ur, UR_INFO_KEY, (void *)written);
+}
+
+static void
+ur_set_info_text(packet_info *pinfo, gboolean first, const char *text)
+{
+    ur_set_info(pinfo, first, wmem_strbuf_new(pinfo->pool, text));
 }
 
 static gboolean
@@ -110,13 +125,13 @@ ur_dissect_client(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree)
 }
 
 /* The Info column of a message type the spec names but does not lay out. */
-static const char *
+static wmem_strbuf_t *
 ur_unlaid_info(packet_info *pinfo, guint8 type, guint32 v)
 {
     const value_string *names = ur_message_type_tables ? ur_enum_names(ur_message_type_tables, v)
                                                        : ur_message_type_names;
     const char *name = try_val_to_str(type, names);
-    return wmem_strdup_printf(pinfo->pool, "Type %u (%s)", type, name ? name : "named in another version");
+    return ur_strbuf_printf(pinfo->pool, "Type %u (%s)", type, name ? name : "named in another version");
 }
 
 /* The message state as a message starts, from the stream's version and how it was found. */
@@ -190,7 +205,7 @@ ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call 
     st.tvb = tvb;
     st.base = o;
     ur_begin(&st, version, implied);
-    const char *text = m ? ur_message_info(&st, m, o, e, cur->columns) : NULL;
+    wmem_strbuf_t *text = m ? ur_message_info(&st, m, o, e, cur->columns) : NULL;
     if (cur->columns)
         ur_set_info(pinfo, cur->first, text ? text : ur_unlaid_info(pinfo, type, st.version));
     cur->first = FALSE;
@@ -298,7 +313,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
             if (stop > 0 && cur.detail)
                 ur_data_item(tree, buf, 0, stop);
             if (cur.columns)
-                ur_set_info(pinfo, TRUE, "Resynchronising: no message header yet");
+                ur_set_info_text(pinfo, TRUE, "Resynchronising: no message header yet");
             cur.first = FALSE;
             carry = ur_carry_new(tvb_get_ptr(buf, stop, len - stop), len - stop);
             o = len;
@@ -322,7 +337,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
                                 ENC_BIG_ENDIAN);
             expert_add_info_format(pinfo, item, ei, "%s", text);
             if (cur.columns)
-                ur_set_info(pinfo, cur.first, wmem_strdup_printf(pinfo->pool, "Bad header: %s", text));
+                ur_set_info(pinfo, cur.first, ur_strbuf_printf(pinfo->pool, "Bad header: %s", text));
             cur.first = FALSE;
             by_hand = TRUE;
             /* Scan forward from the next byte; the skipped bytes belong to this fault. */
@@ -359,7 +374,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
             proto_item *item = proto_tree_add_item(tree, proto_ur, buf, o, left, ENC_NA);
             proto_tree_add_item(proto_item_add_subtree(item, ett_ur), hf_ur[UR_HF_RAW], buf, o, left, ENC_NA);
             if (cur.columns)
-                ur_set_info(pinfo, cur.first, "Continuation");
+                ur_set_info_text(pinfo, cur.first, "Continuation");
             break;
         } else {
             ur_dissect_message(buf, pinfo, tree, &cur, o, o + (int)size, type);

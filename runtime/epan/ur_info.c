@@ -1,16 +1,39 @@
 /* The Info column. It is written on every pass, tree or not, so it reads the bytes and builds no
  * tree: the descriptors marked `show` of a layout (a message's, or a robot-state package's whose
  * layout has a summary). As runtime/lua/info.lua. */
-/* A text field's bytes as the Info column shows them: UTF-8, invalid bytes replaced, cut at as
- * many bytes as the field has, as the Lua twin shows them (Wireshark's TvbRange:string keeps that
- * many bytes of the converted text). */
-static const char *
-ur_info_text(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int len)
+/* A text field's bytes into the Info text as the Lua twin puts them there: UTF-8 with invalid
+ * bytes replaced, cut at as many bytes as the field has (Wireshark's TvbRange:string keeps that
+ * many bytes of the converted text), NUL bytes kept (the column then ends at the first). */
+static void
+ur_info_text(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int len, wmem_strbuf_t *out)
 {
-    char *text = (char *)tvb_get_string_enc(pool, tvb, o, len, ENC_UTF_8);
-    if (strlen(text) > (size_t)len)
-        text[len] = '\0';
-    return text;
+    wmem_strbuf_t *text = wmem_strbuf_new(pool, "");
+    int end = o + len;
+    while (o < end) {
+        int nul = tvb_find_guint8(tvb, o, end - o, 0);
+        int stop = nul < 0 ? end : nul;
+        wmem_strbuf_append(text, (const char *)tvb_get_string_enc(pool, tvb, o, stop - o, ENC_UTF_8));
+        if (nul >= 0)
+            wmem_strbuf_append_len(text, "", 1);
+        o = stop + (nul >= 0 ? 1 : 0);
+    }
+    size_t n = wmem_strbuf_get_len(text);
+    wmem_strbuf_append_len(out, wmem_strbuf_get_str(text), n > (size_t)len ? (size_t)len : n);
+}
+
+/* A new byte string in pool, formatted. */
+static wmem_strbuf_t *
+ur_strbuf_printf(wmem_allocator_t *pool, const char *format, ...) G_GNUC_PRINTF(2, 3);
+
+static wmem_strbuf_t *
+ur_strbuf_printf(wmem_allocator_t *pool, const char *format, ...)
+{
+    va_list ap;
+    wmem_strbuf_t *out = wmem_strbuf_new(pool, "");
+    va_start(ap, format);
+    wmem_strbuf_append_vprintf(out, format, ap);
+    va_end(ap);
+    return out;
 }
 
 static gboolean
@@ -75,14 +98,14 @@ ur_summarise(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int e, const ur_layou
                 return -1;
             if (d->show != NULL) {
                 wmem_strbuf_append(out, d->show);
-                wmem_strbuf_append(out, ur_info_text(tvb, pool, o + (int)d->n, (int)len));
+                ur_info_text(tvb, pool, o + (int)d->n, (int)len, out);
             }
             o += (int)d->n + (int)len;
         } else if (d->kind == UR_D_STRING) {
             if (d->show != NULL && e > o) {
                 int len = e - o > 120 ? 120 : e - o;
                 wmem_strbuf_append(out, d->show);
-                wmem_strbuf_append(out, ur_info_text(tvb, pool, o, len));
+                ur_info_text(tvb, pool, o, len, out);
             }
             o = e;
         } else if (d->kind == UR_D_COND && d->keep == 0) {
@@ -98,13 +121,14 @@ ur_summarise(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int e, const ur_layou
     return o;
 }
 
-/* The summary of a layout from o to e for version v. */
-static const char *
+/* The summary of a layout from o to e for version v. Info texts are byte strings (a text field
+ * may hold NUL bytes: the column ends at the first, as the Lua twin's does). */
+static wmem_strbuf_t *
 ur_layout_summary(tvbuff_t *tvb, wmem_allocator_t *pool, int o, int e, const ur_layout *layout, guint32 v)
 {
     wmem_strbuf_t *out = wmem_strbuf_new(pool, "");
     ur_summarise(tvb, pool, o, e, layout, ur_reach(layout), v, out);
-    return wmem_strbuf_get_str(out);
+    return out;
 }
 
 /* A form chosen for the message being dissected: when the stream's version is not known (no
@@ -126,7 +150,7 @@ ur_pick(const ur_forms *forms, unsigned size, ur_msg *st, guint32 *use, gboolean
  * has not told it, tree or not; with `text` FALSE, only that is done. Stops at the first package
  * whose length does not fit: such a robot state is malformed, and what its sizes showed is not
  * taken for the stream. */
-static const char *
+static wmem_strbuf_t *
 ur_package_summary(ur_msg *st, int p, int e, const ur_message *m, gboolean text)
 {
     if (!(text || !st->known))
@@ -154,7 +178,7 @@ ur_package_summary(ur_msg *st, int p, int e, const ur_message *m, gboolean text)
                 if (wmem_strbuf_get_len(part) > 0) {
                     if (any)
                         wmem_strbuf_append(out, ", ");
-                    wmem_strbuf_append(out, wmem_strbuf_get_str(part));
+                    wmem_strbuf_append_len(out, wmem_strbuf_get_str(part), wmem_strbuf_get_len(part));
                     any = TRUE;
                 }
             }
@@ -165,14 +189,17 @@ ur_package_summary(ur_msg *st, int p, int e, const ur_message *m, gboolean text)
         st->version = version;
         st->implied = implied;
     }
-    return text ? wmem_strbuf_get_str(out) : NULL;
+    return out;
 }
 
 /* "Label" alone, or "Label: text". */
-static const char *
-ur_labelled(wmem_allocator_t *pool, const char *label, const char *text)
+static wmem_strbuf_t *
+ur_labelled(wmem_allocator_t *pool, const char *label, const wmem_strbuf_t *text)
 {
-    if (text == NULL || text[0] == '\0')
-        return label;
-    return wmem_strdup_printf(pool, "%s: %s", label, text);
+    wmem_strbuf_t *out = wmem_strbuf_new(pool, label);
+    if (text != NULL && wmem_strbuf_get_len(text) > 0) {
+        wmem_strbuf_append(out, ": ");
+        wmem_strbuf_append_len(out, wmem_strbuf_get_str(text), wmem_strbuf_get_len(text));
+    }
+    return out;
 }

@@ -112,10 +112,10 @@ ur_package(ur_msg *st, const ur_message *m, proto_tree *tree, int p, int size, g
     }
 }
 
-static const char *
+static wmem_strbuf_t *
 ur_packages_info(ur_msg *st, const ur_message *m, int o, int e, gboolean text)
 {
-    const char *summary = ur_package_summary(st, o + UR_HEADER_SIZE, e, m, text);
+    wmem_strbuf_t *summary = ur_package_summary(st, o + UR_HEADER_SIZE, e, m, text);
     return text ? ur_labelled(st->pinfo->pool, m->label, summary) : NULL;
 }
 
@@ -158,18 +158,18 @@ ur_packages_tree(ur_msg *st, const ur_message *m, proto_item *item, int o, int e
     return NULL;
 }
 
-static const char *
+static wmem_strbuf_t *
 ur_subtypes_info(ur_msg *st, const ur_message *m, int o, int e, gboolean text)
 {
     if (!text)
         return NULL;
     wmem_allocator_t *pool = st->pinfo->pool;
     if (e - o < (int)m->body_offset)
-        return wmem_strdup_printf(pool, "%s (too short)", m->label);
+        return ur_strbuf_printf(pool, "%s (too short)", m->label);
     guint8 code = tvb_get_guint8(st->tvb, o + (int)m->body_offset - 1);
     const ur_forms *forms = m->forms[code];
     if (forms == NULL)
-        return wmem_strdup_printf(pool, "%s subtype %u", m->label, code);
+        return ur_strbuf_printf(pool, "%s subtype %u", m->label, code);
     guint32 use;
     gboolean by_length;
     const ur_form *form = ur_choose(forms, (unsigned)(e - o - (int)m->body_offset), st->version, &use, &by_length);
@@ -222,7 +222,7 @@ ur_subtypes_tree(ur_msg *st, const ur_message *m, proto_item *item, int o, int e
     return sub_item;   /* where the subtype's fields are */
 }
 
-static const char *
+static wmem_strbuf_t *
 ur_body_info(ur_msg *st, const ur_message *m, int o, int e, gboolean text)
 {
     if (!text)
@@ -253,7 +253,7 @@ ur_body_tree(ur_msg *st, const ur_message *m, proto_item *item, int o, int e)
     return sub_item;
 }
 
-static const char *
+static wmem_strbuf_t *
 ur_message_info(ur_msg *st, const ur_message *m, int o, int e, gboolean text)
 {
     switch (m->kind) {

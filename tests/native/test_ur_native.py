@@ -8,16 +8,19 @@ from __future__ import annotations
 import functools
 import json
 import os
+import random
 import subprocess
 import tempfile
 from pathlib import Path
+from typing import Optional
 
 import pytest
 
 from tests.native import harness
-from tests.tools import capture
+from tests.tools import capture, valid
 from tests.vectors import golden_cases
 
+SAMPLES = harness.ROOT / "dissector" / "samples"
 LUA = functools.partial(harness.run_lua, lua=[harness.lua_plugin("ur")])
 
 
@@ -50,16 +53,19 @@ def _lua_fields() -> subprocess.CompletedProcess:
 
 # ---- captures: many sessions each, fed to both dissectors ----
 
-def _sessions(streams: list[list[bytes]], pcapng: bool = False, handshake: bool = True,
-              retransmit_every: int = 0) -> bytes:
-    """One TCP session per stream (a list of robot segment payloads), as tests/lua writes them."""
+def _sessions(streams: list[list[bytes]], handshakes: Optional[list[bool]] = None,
+              retransmit: Optional[list[int]] = None) -> bytes:
+    """One TCP session per stream (a list of robot segment payloads), as tests/lua writes them;
+    per stream, whether it opens with a handshake and every how many segments one is sent twice."""
     frames = []
     for i, segments in enumerate(streams):
-        again = range(0, len(segments), retransmit_every) if retransmit_every else ()
+        every = retransmit[i] if retransmit else 0
+        again = range(0, len(segments), every) if every else ()
         frames += capture.session_frames([capture.Segment(True, s) for s in segments], port=30001,
-                                         client_port=20000 + i % 40000, handshake=handshake, retransmit=again)
+                                         client_port=20000 + i % 40000,
+                                         handshake=handshakes[i] if handshakes else True, retransmit=again)
     with tempfile.TemporaryDirectory() as folder:
-        return capture.write(Path(folder) / "sessions.pcap", frames, pcapng=pcapng).read_bytes()
+        return capture.write(Path(folder) / "sessions.pcap", frames).read_bytes()
 
 
 def _first_difference(a, b, path="") -> str:
@@ -82,9 +88,11 @@ def _first_difference(a, b, path="") -> str:
 
 
 def assert_same(capture_bytes: bytes, *args: str) -> harness.Shown:
-    """Both dissectors show the same layers, Info column and expert infos of the capture."""
-    native = harness.shown(harness.run_native, capture_bytes, ["ur"], *args)
-    lua = harness.shown(LUA, capture_bytes, ["ur"], *args)
+    """Both dissectors show the same layers, Info column and expert infos of the capture's frames
+    that show `ur` (-Y ur: the frames that carry only part of a message show nothing of it, and
+    a frame one of them shows and the other does not makes the counts differ)."""
+    native = harness.shown(harness.run_native, capture_bytes, ["ur"], "-Y", "ur", *args)
+    lua = harness.shown(LUA, capture_bytes, ["ur"], "-Y", "ur", *args)
     assert len(native.layers) == len(lua.layers)
     for frame, (n, l) in enumerate(zip(native.layers, lua.layers), start=1):
         assert n == l, f"frame {frame}: native {_first_difference(n, l)}"
@@ -113,8 +121,42 @@ GOLDEN = golden_cases()
 HINTS = sorted({c.version or "" for c in GOLDEN})
 
 
-def _golden_capture(hint: str, cut) -> bytes:
-    return _sessions([cut(_split(c.data)) for c in GOLDEN if (c.version or "") == hint])
+# The tail of a real message: a capture that starts in the middle of the stream.
+MID_STREAM = bytes.fromhex("3ff000000000000000000001")
+
+
+def tiny(messages: list[bytes], seed: int = 0) -> list[bytes]:
+    """The stream in segments of 1 to 7 bytes."""
+    data, rng, out = b"".join(messages), random.Random(seed), []
+    while data:
+        n = rng.randint(1, 7)
+        out.append(data[:n])
+        data = data[n:]
+    return out
+
+
+# As tests/lua/test_vectors.py cuts them (segments, handshake, retransmit every k), and 1-7 bytes.
+SEGMENTATIONS = {
+    "whole": (capture.whole, True, 0),
+    "bytewise": (capture.bytewise, True, 0),
+    "1-7 bytes": (tiny, True, 0),
+    "random_cuts": (lambda msgs: capture.random_cuts(msgs, seed=7, max_len=40), True, 0),
+    "packed": (lambda msgs: capture.packed(msgs, per_segment=3), True, 0),
+    "mid_stream": (lambda msgs: capture.random_cuts([MID_STREAM] + list(msgs), seed=3, max_len=300), False, 0),
+    "retransmitted": (lambda msgs: capture.random_cuts(msgs, seed=5, max_len=200), True, 3),
+}
+
+
+def _golden_capture(hint: str) -> bytes:
+    """Every golden vector of this version hint, in every segmentation, one session each."""
+    streams, handshakes, retransmit = [], [], []
+    for cut, handshake, every in SEGMENTATIONS.values():
+        for case in GOLDEN:
+            if (case.version or "") == hint:
+                streams.append(cut(_split(case.data)))
+                handshakes.append(handshake)
+                retransmit.append(every)
+    return _sessions(streams, handshakes, retransmit)
 
 
 def _prefs(hint: str) -> tuple[str, ...]:
@@ -122,6 +164,26 @@ def _prefs(hint: str) -> tuple[str, ...]:
 
 
 @pytest.mark.parametrize("hint", HINTS, ids=lambda h: h or "no hint")
-def test_golden_vectors_whole(hint):
-    shown = assert_same(_golden_capture(hint, capture.whole), *_prefs(hint))
-    assert any(layer for layer in shown.layers)
+def test_golden_vectors_in_every_segmentation(hint):
+    shown = assert_same(_golden_capture(hint), *_prefs(hint))
+    assert sum(1 for layer in shown.layers if layer) > len(SEGMENTATIONS)
+
+
+def test_generation_sessions():
+    """Sessions of random valid messages of every controller generation (tests/tools/valid.py),
+    with and without their Version message, in 7- and 400-byte segments."""
+    streams = []
+    for max_len in (7, 400):
+        rng = random.Random(max_len)
+        for version in valid.versions():
+            for _ in range(3):
+                session = valid.session(rng, version, 10)
+                for data in (session, session[int.from_bytes(session[:4], "big"):]):
+                    streams.append(capture.random_cuts([data], seed=len(streams), max_len=max_len))
+    assert_same(_sessions(streams))
+
+
+@pytest.mark.parametrize("sample", ["primary_session.pcapng", "secondary_session.pcap"])
+def test_bundled_samples(sample):
+    shown = assert_same(SAMPLES / sample)
+    assert any(shown.layers)
