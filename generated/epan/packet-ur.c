@@ -2721,7 +2721,7 @@ static const ur_version_step ur_version_steps[] = {
  * package or subtype, chosen by the version or else by the length
  * (docs/contract.md#choosing-a-layout). As runtime/lua/versions.lua. */
 #define UR_BUGFIX_ANY 999   /* a bugfix number that stands for every bugfix release of its minor */
-#define UR_VERSION_NONE 0u  /* no version known (no real version is 0.0.0) */
+#define UR_VERSION_NONE G_MAXUINT32  /* no version known (a Version message may announce 0.0) */
 
 static guint32
 ur_version_number(guint32 major, guint32 minor, gint64 bugfix)
@@ -3975,6 +3975,7 @@ ur_stream_of(packet_info *pinfo)
     ur_stream *s = (ur_stream *)conversation_get_proto_data(conv, proto_ur);
     if (s == NULL) {
         s = wmem_new0(wmem_file_scope(), ur_stream);
+        s->version = UR_VERSION_NONE;
         s->last = &ur_none;
         s->frame = G_MAXUINT32;
         s->after = wmem_tree_new(wmem_file_scope());

@@ -64,6 +64,7 @@ ur_stream_of(packet_info *pinfo)
     ur_stream *s = (ur_stream *)conversation_get_proto_data(conv, proto_ur);
     if (s == NULL) {
         s = wmem_new0(wmem_file_scope(), ur_stream);
+        s->version = UR_VERSION_NONE;
         s->last = &ur_none;
         s->frame = G_MAXUINT32;
         s->after = wmem_tree_new(wmem_file_scope());

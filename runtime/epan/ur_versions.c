@@ -5,7 +5,7 @@
  * package or subtype, chosen by the version or else by the length
  * (docs/contract.md#choosing-a-layout). As runtime/lua/versions.lua. */
 #define UR_BUGFIX_ANY 999   /* a bugfix number that stands for every bugfix release of its minor */
-#define UR_VERSION_NONE 0u  /* no version known (no real version is 0.0.0) */
+#define UR_VERSION_NONE G_MAXUINT32  /* no version known (a Version message may announce 0.0) */
 
 static guint32
 ur_version_number(guint32 major, guint32 minor, gint64 bugfix)

@@ -18,6 +18,7 @@ import pytest
 
 from tests.native import harness
 from tests.tools import capture, valid
+from tests.lua import test_fuzz_corpus as fuzz_corpus
 from tests.vectors import golden_cases
 
 SAMPLES = harness.ROOT / "dissector" / "samples"
@@ -187,3 +188,23 @@ def test_generation_sessions():
 def test_bundled_samples(sample):
     shown = assert_same(SAMPLES / sample)
     assert any(shown.layers)
+
+
+# ---- the fuzzers' kept corpora, as tests/lua/test_fuzz_corpus.py feeds them ----
+
+def _corpus_capture(version: str) -> bytes:
+    """Every kept input of this version hint, cut the three ways tests/lua cuts them."""
+    streams = []
+    for cut in fuzz_corpus.CUTS:
+        rng = random.Random(f"{version} {cut}")
+        for data in fuzz_corpus.GROUPS[version]:
+            if cut != "1-7 bytes" or len(data) <= fuzz_corpus.SMALL_INPUT:
+                streams.append(fuzz_corpus.CUTS[cut](data, rng))
+    return _sessions(streams)
+
+
+@pytest.mark.parametrize("version", sorted(fuzz_corpus.GROUPS), ids=lambda v: v or "no hint")
+def test_fuzz_corpus(version):
+    """Faults, resynchronisation and their experts included."""
+    shown = assert_same(_corpus_capture(version), *_prefs(version))
+    assert shown.experts
