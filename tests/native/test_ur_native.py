@@ -170,7 +170,7 @@ def test_golden_vectors_in_every_segmentation(hint):
     assert sum(1 for layer in shown.layers if layer) > len(SEGMENTATIONS)
 
 
-def test_generation_sessions():
+def _generation_capture() -> bytes:
     """Sessions of random valid messages of every controller generation (tests/tools/valid.py),
     with and without their Version message, in 7- and 400-byte segments."""
     streams = []
@@ -181,7 +181,11 @@ def test_generation_sessions():
                 session = valid.session(rng, version, 10)
                 for data in (session, session[int.from_bytes(session[:4], "big"):]):
                     streams.append(capture.random_cuts([data], seed=len(streams), max_len=max_len))
-    assert_same(_sessions(streams))
+    return _sessions(streams)
+
+
+def test_generation_sessions():
+    assert_same(_generation_capture())
 
 
 @pytest.mark.parametrize("sample", ["primary_session.pcapng", "secondary_session.pcap"])
@@ -208,3 +212,38 @@ def test_fuzz_corpus(version):
     """Faults, resynchronisation and their experts included."""
     shown = assert_same(_corpus_capture(version), *_prefs(version))
     assert shown.experts
+
+
+# ---- the same captures through the plugin built with ASan and UBSan ----
+
+def _sanitizer_env() -> dict:
+    """tshark is not built with ASan: its runtime is preloaded (leaks are Wireshark's to keep)."""
+    runtime = subprocess.run(["gcc", "-print-file-name=libasan.so"], capture_output=True, text=True).stdout.strip()
+    assert os.path.isabs(runtime), f"no libasan.so: {runtime}"
+    return {"LD_PRELOAD": runtime, "ASAN_OPTIONS": "detect_leaks=0:abort_on_error=0",
+            "UBSAN_OPTIONS": "print_stacktrace=1:halt_on_error=1"}
+
+
+def _captures(name: str) -> dict[str, tuple[bytes, tuple[str, ...]]]:
+    """The captures the differential tests read, by group: each with its preferences."""
+    if name == "golden":
+        return {f"golden {h or 'no hint'}": (_golden_capture(h), _prefs(h)) for h in HINTS}
+    if name == "corpus":
+        return {f"corpus {v or 'no hint'}": (_corpus_capture(v), _prefs(v)) for v in sorted(fuzz_corpus.GROUPS)}
+    if name == "generations":
+        return {"generation sessions": (_generation_capture(), ())}
+    return {s: ((SAMPLES / s).read_bytes(), ()) for s in ("primary_session.pcapng", "secondary_session.pcap")}
+
+
+@pytest.mark.parametrize("name", ["golden", "generations", "corpus", "samples"])
+def test_no_sanitizer_report(name):
+    """With a tree (-V, both passes) and without one (the Info column only)."""
+    env = _sanitizer_env()
+    for label, (data, prefs) in _captures(name).items():
+        for args in (("-2", "-V"), ("-T", "fields", "-e", "_ws.col.Info")):
+            result = harness.run_native(data, *args, *prefs, variant="asan", env=env)
+            err = result.stderr.decode(errors="replace")
+            assert "Sanitizer" not in err and "runtime error" not in err, f"{label} {args}:\n{err[:4000]}"
+            assert result.returncode == 0, f"{label} {args}: exit {result.returncode}\n{err[:2000]}"
+            if "-V" in args:
+                assert b"Universal Robots primary/secondary" in result.stdout, f"{label}: the plugin did not load"
