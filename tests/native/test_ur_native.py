@@ -9,6 +9,7 @@ import functools
 import json
 import os
 import random
+import struct
 import subprocess
 import tempfile
 from pathlib import Path
@@ -247,3 +248,45 @@ def test_no_sanitizer_report(name):
             assert result.returncode == 0, f"{label} {args}: exit {result.returncode}\n{err[:2000]}"
             if "-V" in args:
                 assert b"Universal Robots primary/secondary" in result.stdout, f"{label}: the plugin did not load"
+
+
+# ---- the tree cap, the client's direction, two robots on the same ports ----
+
+def _update(values: bytes) -> bytes:
+    """A global variables update (timestamp, subtype 1, start index 0), then the values."""
+    body = struct.pack(">QBH", 7, 1, 0) + values
+    return struct.pack(">iB", 5 + len(body), 25) + body
+
+
+def _int_list(n: int) -> bytes:
+    """One value: a LIST (17 from 5.9) of n INTs (15), then the terminator."""
+    return struct.pack(">Bh", 17, n) + b"".join(struct.pack(">Bi", 15, i) for i in range(n)) + b"\x0a"
+
+
+def test_tree_cap_client_direction_and_two_robots():
+    """As tests/lua/test_tree_cap.py, test_two_robots.py and the URScript a client sends."""
+    cases = {c.name: c for c in GOLDEN}
+    frames = capture.session_frames([capture.Segment(True, _update(_int_list(3000))),
+                                     capture.Segment(True, _update(_int_list(3000) + bytes([99])))],
+                                    client_port=50001)
+    script = [b"def prog():\n  movej([0, -1.57, 0, -1.57, 0, 0])\nend\n", "textmsg(\"\u00e9t\u00e9\")\n".encode()]
+    robot = _split(cases["key_message"].data)
+    frames += capture.session_frames([capture.Segment(False, script[0]), capture.Segment(True, robot[0]),
+                                      capture.Segment(False, script[1])], client_port=50002)
+    sessions = [capture.session_frames([capture.Segment(True, m) for m in _split(cases[name].data)], port=30001,
+                                       client_port=50123, robot=address)
+                for address, name in (("192.168.56.101", "global_variables_update_3_2_version_message"),
+                                      ("192.168.56.102", "global_variables_update_5_0_version_message"))]
+    frames += [f for pair in zip(*sessions) for f in pair] + max(sessions, key=len)[min(map(len, sessions)):]
+    with tempfile.TemporaryDirectory() as folder:
+        data = capture.write(Path(folder) / "cap.pcap", frames).read_bytes()
+    shown = assert_same(data)
+    texts = [e.get("_ws.expert.message", "") for e in shown.experts]
+    assert any(t.endswith("more items not shown (a message shows at most 10000)") for t in texts), texts[:5]
+    assert any("unknown value type 99" in t for t in texts)
+    assert any(i.startswith("URScript: def prog():") for i in shown.info)
+
+
+def test_builds_with_clang_too():
+    """-Wall -Wextra -Werror under clang as under gcc (the gcc build is every other test's)."""
+    assert harness.plugin("clang").library.is_file()
