@@ -400,6 +400,7 @@ static expert_field ei_ur_internal = EI_INIT;
 static range_t *ur_ports;
 static const char *ur_version_pref = "";
 static guint ur_max_length = UR_MAX_MESSAGE_LENGTH;
+static gboolean ur_named_fields_only = TRUE;   /* the Lua twin's; see proto_register_ur */
 
 /* ---- Sizes and limits the spec gives ---- */
 #define UR_HEADER_SIZE 5
@@ -6251,12 +6252,14 @@ proto_register_ur(void)
         "Version message is seen on a stream: it chooses the layouts, the enum names and the "
         "global-variable value types. Empty: the layout sizes tell it where they can, else "
         "5.9" ".", &ur_version_pref);
+    /* The Lua twin's way to build only the packages tshark -T fields names; Wireshark fakes the
+     * items no one asked for of a native dissector by itself. Kept so that the same command lines
+     * and preference files work with either. */
+    prefs_register_bool_preference(ur_module, "named_fields_only", "Only the fields tshark -T fields names",
+        "Read by the Lua dissector only: a native dissector's fields cost nothing when no one asks for them",
+        &ur_named_fields_only);
     prefs_register_uint_preference(ur_module, "max_length", "Maximum message length",
         "Longer declared lengths are treated as malformed, and the dissector resynchronises", 10, &ur_max_length);
-
-    /* tshark -T fields needs no help to build only what it prints: Wireshark fakes the items no
-     * one asked for. Kept so that the Lua dissector's command lines work unchanged. */
-    prefs_register_obsolete_preference(ur_module, "named_fields_only");
 
     ur_handle = register_dissector("ur", dissect_ur, proto_ur);
 }

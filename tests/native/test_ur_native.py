@@ -290,3 +290,17 @@ def test_tree_cap_client_direction_and_two_robots():
 def test_builds_with_clang_too():
     """-Wall -Wextra -Werror under clang as under gcc (the gcc build is every other test's)."""
     assert harness.plugin("clang").library.is_file()
+
+
+@pytest.mark.parametrize("how", [("-d", "tcp.port==40000,ur"), ("-o", "ur.ports:40000")],
+                         ids=["decode as", "ports preference"])
+def test_decode_as_and_the_ports_preference(how):
+    """A robot on another port: Decode As, or the ports preference, makes both read it."""
+    frames = []
+    for i, case in enumerate(c for c in GOLDEN if not c.version):
+        frames += capture.session_frames([capture.Segment(True, m) for m in _split(case.data)], port=40000,
+                                         client_port=21000 + i)
+    with tempfile.TemporaryDirectory() as folder:
+        data = capture.write(Path(folder) / "port.pcap", frames).read_bytes()
+    shown = assert_same(data, *how)
+    assert sum(1 for layer in shown.layers if layer) > 50
