@@ -1091,7 +1091,9 @@ static const ur_case ur_switch_safety_mode_cond28_switch0_cases[] = {
     { 2, UR_HF_SAFETY_MODE_REPORT_DATA_INT32, 4 },
     { 3, UR_HF_SAFETY_MODE_REPORT_DATA_FLOAT32, 4 },
 };
-static const ur_switch ur_switch_safety_mode_cond28_switch0 = { UR_HF_SAFETY_MODE_REPORT_DATA, 4, ur_switch_safety_mode_cond28_switch0_cases, 2 };
+static const ur_switch ur_switch_safety_mode_cond28_switch0 = {
+    UR_HF_SAFETY_MODE_REPORT_DATA, 4, ur_switch_safety_mode_cond28_switch0_cases, 2
+};
 static const ur_value_fields ur_values_global_variables_update_values0 = {
     .item = UR_HF_GLOBAL_VARIABLES_UPDATE_VARIABLES, .type = UR_HF_GLOBAL_VARIABLES_UPDATE_TYPE,
     .code = UR_HF_GLOBAL_VARIABLES_UPDATE_TYPE_CODE, .count = UR_HF_GLOBAL_VARIABLES_UPDATE_LENGTH,
@@ -1108,24 +1110,32 @@ static const ur_desc ur_desc_robot_mode_data_cond1[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_CONTROL_MODE, .n = 1, .count = 1, .path = "control_mode",
         .vs = ur_vs_control_mode },
 };
-static const ur_layout ur_layout_robot_mode_data_cond1 = { ur_desc_robot_mode_data_cond1, 1 };
+static const ur_layout ur_layout_robot_mode_data_cond1 = {
+    ur_desc_robot_mode_data_cond1, 1
+};
 
 static const ur_desc ur_desc_robot_mode_data_cond2[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_SPEED_SCALING, .n = 8, .count = 1, .flags = UR_FLOAT,
         .path = "speed_scaling" },
 };
-static const ur_layout ur_layout_robot_mode_data_cond2 = { ur_desc_robot_mode_data_cond2, 1 };
+static const ur_layout ur_layout_robot_mode_data_cond2 = {
+    ur_desc_robot_mode_data_cond2, 1
+};
 
 static const ur_desc ur_desc_robot_mode_data_cond3[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TARGET_SPEED_FRACTION_LIMIT, .n = 8, .count = 1,
         .flags = UR_FLOAT, .path = "target_speed_fraction_limit" },
 };
-static const ur_layout ur_layout_robot_mode_data_cond3 = { ur_desc_robot_mode_data_cond3, 1 };
+static const ur_layout ur_layout_robot_mode_data_cond3 = {
+    ur_desc_robot_mode_data_cond3, 1
+};
 
 static const ur_desc ur_desc_robot_mode_data_cond4[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_RESERVED, .n = 1, .count = 1, .path = "reserved" },
 };
-static const ur_layout ur_layout_robot_mode_data_cond4 = { ur_desc_robot_mode_data_cond4, 1 };
+static const ur_layout ur_layout_robot_mode_data_cond4 = {
+    ur_desc_robot_mode_data_cond4, 1
+};
 
 static const ur_desc ur_desc_robot_mode_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
@@ -1157,7 +1167,9 @@ static const ur_desc ur_desc_robot_mode_data[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3005000u, .high = 4294967295u,
         .inner = &ur_layout_robot_mode_data_cond4 },
 };
-static const ur_layout ur_layout_robot_mode_data = { ur_desc_robot_mode_data, 14 };
+static const ur_layout ur_layout_robot_mode_data = {
+    ur_desc_robot_mode_data, 14
+};
 
 static const ur_desc ur_desc_joint_data_joint[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_ACTUAL, .n = 8, .count = 1, .flags = UR_FLOAT,
@@ -1175,13 +1187,17 @@ static const ur_desc ur_desc_joint_data_joint[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_JOINT_MODE, .n = 1, .count = 1, .path = "joint_mode",
         .label = "Joint mode", .vs = ur_vs_joint_mode, .names = &ur_names_joint_mode },
 };
-static const ur_layout ur_layout_joint_data_joint = { ur_desc_joint_data_joint, 8 };
+static const ur_layout ur_layout_joint_data_joint = {
+    ur_desc_joint_data_joint, 8
+};
 
 static const ur_desc ur_desc_joint_data[] = {
     { .kind = UR_D_GROUP, .hf = UR_HF_JOINT_DATA_JOINTS, .count = 6, .size = 41, .path = "joints", .label = "Joint",
         .inner = &ur_layout_joint_data_joint },
 };
-static const ur_layout ur_layout_joint_data = { ur_desc_joint_data, 1 };
+static const ur_layout ur_layout_joint_data = {
+    ur_desc_joint_data, 1
+};
 
 static const ur_desc ur_desc_tool_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT_RANGE0, .n = 1, .count = 1,
@@ -1203,31 +1219,41 @@ static const ur_desc ur_desc_tool_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_MODE, .n = 1, .count = 1, .path = "tool_mode",
         .vs = ur_vs_tool_mode },
 };
-static const ur_layout ur_layout_tool_data = { ur_desc_tool_data, 9 };
+static const ur_layout ur_layout_tool_data = {
+    ur_desc_tool_data, 9
+};
 
 static const ur_desc ur_desc_masterboard_data_cond5[] = {
     { .kind = UR_D_BITS, .hf = UR_HF_MASTERBOARD_DATA_DIGITAL_INPUT_BITS, .n = 2, .count = 16,
         .flags = UR_SIGNED|UR_VALUE, .path = "digital_input_bits", .bits = ur_bits_masterboard_data_cond5_bits0 },
 };
-static const ur_layout ur_layout_masterboard_data_cond5 = { ur_desc_masterboard_data_cond5, 1 };
+static const ur_layout ur_layout_masterboard_data_cond5 = {
+    ur_desc_masterboard_data_cond5, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond6[] = {
     { .kind = UR_D_BITS, .hf = UR_HF_MASTERBOARD_DATA_DIGITAL_INPUT_BITS, .n = 4, .count = 18, .flags = UR_SIGNED,
         .path = "digital_input_bits", .bits = ur_bits_masterboard_data_cond6_bits1 },
 };
-static const ur_layout ur_layout_masterboard_data_cond6 = { ur_desc_masterboard_data_cond6, 1 };
+static const ur_layout ur_layout_masterboard_data_cond6 = {
+    ur_desc_masterboard_data_cond6, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond7[] = {
     { .kind = UR_D_BITS, .hf = UR_HF_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS, .n = 2, .count = 16,
         .flags = UR_SIGNED|UR_VALUE, .path = "digital_output_bits", .bits = ur_bits_masterboard_data_cond7_bits2 },
 };
-static const ur_layout ur_layout_masterboard_data_cond7 = { ur_desc_masterboard_data_cond7, 1 };
+static const ur_layout ur_layout_masterboard_data_cond7 = {
+    ur_desc_masterboard_data_cond7, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond8[] = {
     { .kind = UR_D_BITS, .hf = UR_HF_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS, .n = 4, .count = 18, .flags = UR_SIGNED,
         .path = "digital_output_bits", .bits = ur_bits_masterboard_data_cond8_bits3 },
 };
-static const ur_layout ur_layout_masterboard_data_cond8 = { ur_desc_masterboard_data_cond8, 1 };
+static const ur_layout ur_layout_masterboard_data_cond8 = {
+    ur_desc_masterboard_data_cond8, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond9[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_SAFETY_STATE, .n = 1, .count = 1,
@@ -1235,7 +1261,9 @@ static const ur_desc ur_desc_masterboard_data_cond9[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_ON_OFF_STATE, .n = 1, .count = 1,
         .path = "master_on_off_state", .vs = ur_vs_master_on_off_state },
 };
-static const ur_layout ur_layout_masterboard_data_cond9 = { ur_desc_masterboard_data_cond9, 2 };
+static const ur_layout ur_layout_masterboard_data_cond9 = {
+    ur_desc_masterboard_data_cond9, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond10[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_SAFETY_MODE, .n = 1, .count = 1, .path = "safety_mode",
@@ -1243,13 +1271,17 @@ static const ur_desc ur_desc_masterboard_data_cond10[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_IN_REDUCED_MODE, .n = 1, .count = 1,
         .path = "in_reduced_mode" },
 };
-static const ur_layout ur_layout_masterboard_data_cond10 = { ur_desc_masterboard_data_cond10, 2 };
+static const ur_layout ur_layout_masterboard_data_cond10 = {
+    ur_desc_masterboard_data_cond10, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond11[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP67_INTERFACE_INSTALLED, .n = 1, .count = 1, .keep = 1,
         .path = "euromap67_interface_installed" },
 };
-static const ur_layout ur_layout_masterboard_data_cond11 = { ur_desc_masterboard_data_cond11, 1 };
+static const ur_layout ur_layout_masterboard_data_cond11 = {
+    ur_desc_masterboard_data_cond11, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond12[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_INPUT_BITS, .n = 4, .count = 1,
@@ -1257,7 +1289,9 @@ static const ur_desc ur_desc_masterboard_data_cond12[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_OUTPUT_BITS, .n = 4, .count = 1,
         .path = "euromap_output_bits" },
 };
-static const ur_layout ur_layout_masterboard_data_cond12 = { ur_desc_masterboard_data_cond12, 2 };
+static const ur_layout ur_layout_masterboard_data_cond12 = {
+    ur_desc_masterboard_data_cond12, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond13[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_CB2, .n = 2, .count = 1, .flags = UR_SIGNED,
@@ -1265,7 +1299,9 @@ static const ur_desc ur_desc_masterboard_data_cond13[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT_CB2, .n = 2, .count = 1, .flags = UR_SIGNED,
         .path = "euromap_current_cb2" },
 };
-static const ur_layout ur_layout_masterboard_data_cond13 = { ur_desc_masterboard_data_cond13, 2 };
+static const ur_layout ur_layout_masterboard_data_cond13 = {
+    ur_desc_masterboard_data_cond13, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond14[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_24V, .n = 4, .count = 1, .flags = UR_FLOAT,
@@ -1273,12 +1309,16 @@ static const ur_desc ur_desc_masterboard_data_cond14[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
         .path = "euromap_current" },
 };
-static const ur_layout ur_layout_masterboard_data_cond14 = { ur_desc_masterboard_data_cond14, 2 };
+static const ur_layout ur_layout_masterboard_data_cond14 = {
+    ur_desc_masterboard_data_cond14, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond15[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_0, .n = 4, .count = 1, .path = "reserved_0" },
 };
-static const ur_layout ur_layout_masterboard_data_cond15 = { ur_desc_masterboard_data_cond15, 1 };
+static const ur_layout ur_layout_masterboard_data_cond15 = {
+    ur_desc_masterboard_data_cond15, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond16[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_OPERATIONAL_MODE_SELECTOR_INPUT, .n = 1, .count = 1,
@@ -1286,17 +1326,23 @@ static const ur_desc ur_desc_masterboard_data_cond16[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_THREE_POSITION_ENABLING_DEVICE_INPUT, .n = 1, .count = 1,
         .path = "three_position_enabling_device_input" },
 };
-static const ur_layout ur_layout_masterboard_data_cond16 = { ur_desc_masterboard_data_cond16, 2 };
+static const ur_layout ur_layout_masterboard_data_cond16 = {
+    ur_desc_masterboard_data_cond16, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond17[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_1, .n = 1, .count = 1, .path = "reserved_1" },
 };
-static const ur_layout ur_layout_masterboard_data_cond17 = { ur_desc_masterboard_data_cond17, 1 };
+static const ur_layout ur_layout_masterboard_data_cond17 = {
+    ur_desc_masterboard_data_cond17, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond18[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_1, .n = 1, .count = 1, .path = "reserved_1" },
 };
-static const ur_layout ur_layout_masterboard_data_cond18 = { ur_desc_masterboard_data_cond18, 1 };
+static const ur_layout ur_layout_masterboard_data_cond18 = {
+    ur_desc_masterboard_data_cond18, 1
+};
 
 static const ur_desc ur_desc_masterboard_data[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 1008999u,
@@ -1352,7 +1398,9 @@ static const ur_desc ur_desc_masterboard_data[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 5004000u, .high = 4294967295u,
         .inner = &ur_layout_masterboard_data_cond18 },
 };
-static const ur_layout ur_layout_masterboard_data = { ur_desc_masterboard_data, 26 };
+static const ur_layout ur_layout_masterboard_data = {
+    ur_desc_masterboard_data, 26
+};
 
 static const ur_desc ur_desc_cartesian_info_cond19[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_X, .n = 8, .count = 1, .flags = UR_FLOAT,
@@ -1368,7 +1416,9 @@ static const ur_desc ur_desc_cartesian_info_cond19[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RZ, .n = 8, .count = 1, .flags = UR_FLOAT,
         .path = "tcp_offset_rz" },
 };
-static const ur_layout ur_layout_cartesian_info_cond19 = { ur_desc_cartesian_info_cond19, 6 };
+static const ur_layout ur_layout_cartesian_info_cond19 = {
+    ur_desc_cartesian_info_cond19, 6
+};
 
 static const ur_desc ur_desc_cartesian_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_X, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "x" },
@@ -1380,14 +1430,18 @@ static const ur_desc ur_desc_cartesian_info[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 6, .low = 3001000u, .high = 4294967295u,
         .inner = &ur_layout_cartesian_info_cond19 },
 };
-static const ur_layout ur_layout_cartesian_info = { ur_desc_cartesian_info, 7 };
+static const ur_layout ur_layout_cartesian_info = {
+    ur_desc_cartesian_info, 7
+};
 
 static const ur_desc ur_desc_laser_pointer[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_X, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "x" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_Y, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "y" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_Z, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "z" },
 };
-static const ur_layout ur_layout_laser_pointer = { ur_desc_laser_pointer, 3 };
+static const ur_layout ur_layout_laser_pointer = {
+    ur_desc_laser_pointer, 3
+};
 
 static const ur_desc ur_desc_kinematics_info[] = {
     { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_CHECKSUM, .n = 4, .count = 6, .path = "checksum" },
@@ -1400,7 +1454,9 @@ static const ur_desc ur_desc_kinematics_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_KINEMATICS_INFO_CALIBRATION_STATUS, .n = 4, .count = 1,
         .path = "calibration_status" },
 };
-static const ur_layout ur_layout_kinematics_info = { ur_desc_kinematics_info, 6 };
+static const ur_layout ur_layout_kinematics_info = {
+    ur_desc_kinematics_info, 6
+};
 
 static const ur_desc ur_desc_configuration_data_joint_position_limit[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MIN_LIMIT, .n = 8, .count = 1, .flags = UR_FLOAT,
@@ -1408,7 +1464,9 @@ static const ur_desc ur_desc_configuration_data_joint_position_limit[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_LIMIT, .n = 8, .count = 1, .flags = UR_FLOAT,
         .path = "joint_max_limit" },
 };
-static const ur_layout ur_layout_configuration_data_joint_position_limit = { ur_desc_configuration_data_joint_position_limit, 2 };
+static const ur_layout ur_layout_configuration_data_joint_position_limit = {
+    ur_desc_configuration_data_joint_position_limit, 2
+};
 
 static const ur_desc ur_desc_configuration_data_joint_motion_limit[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_SPEED, .n = 8, .count = 1, .flags = UR_FLOAT,
@@ -1416,13 +1474,17 @@ static const ur_desc ur_desc_configuration_data_joint_motion_limit[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_ACCELERATION, .n = 8, .count = 1,
         .flags = UR_FLOAT, .path = "joint_max_acceleration" },
 };
-static const ur_layout ur_layout_configuration_data_joint_motion_limit = { ur_desc_configuration_data_joint_motion_limit, 2 };
+static const ur_layout ur_layout_configuration_data_joint_motion_limit = {
+    ur_desc_configuration_data_joint_motion_limit, 2
+};
 
 static const ur_desc ur_desc_configuration_data_cond20[] = {
     { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_MOTOR_TYPE, .n = 4, .count = 6, .flags = UR_SIGNED,
         .path = "motor_type" },
 };
-static const ur_layout ur_layout_configuration_data_cond20 = { ur_desc_configuration_data_cond20, 1 };
+static const ur_layout ur_layout_configuration_data_cond20 = {
+    ur_desc_configuration_data_cond20, 1
+};
 
 static const ur_desc ur_desc_configuration_data_cond21[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_RESERVED_1, .n = 2, .count = 1, .flags = UR_SIGNED,
@@ -1430,7 +1492,9 @@ static const ur_desc ur_desc_configuration_data_cond21[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_RESERVED_2, .n = 2, .count = 1, .flags = UR_SIGNED,
         .path = "reserved_2" },
 };
-static const ur_layout ur_layout_configuration_data_cond21 = { ur_desc_configuration_data_cond21, 2 };
+static const ur_layout ur_layout_configuration_data_cond21 = {
+    ur_desc_configuration_data_cond21, 2
+};
 
 static const ur_desc ur_desc_configuration_data[] = {
     { .kind = UR_D_GROUP, .hf = UR_HF_CONFIGURATION_DATA_JOINT_POSITION_LIMITS, .count = 6, .size = 16,
@@ -1467,7 +1531,9 @@ static const ur_desc ur_desc_configuration_data[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 5025001u, .high = 4294967295u,
         .inner = &ur_layout_configuration_data_cond21 },
 };
-static const ur_layout ur_layout_configuration_data = { ur_desc_configuration_data, 17 };
+static const ur_layout ur_layout_configuration_data = {
+    ur_desc_configuration_data, 17
+};
 
 static const ur_desc ur_desc_force_mode_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fx" },
@@ -1479,13 +1545,17 @@ static const ur_desc ur_desc_force_mode_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_ROBOT_DEXTERITY, .n = 8, .count = 1, .flags = UR_FLOAT,
         .path = "robot_dexterity" },
 };
-static const ur_layout ur_layout_force_mode_data = { ur_desc_force_mode_data, 7 };
+static const ur_layout ur_layout_force_mode_data = {
+    ur_desc_force_mode_data, 7
+};
 
 static const ur_desc ur_desc_additional_info_cond22[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_CTRL_BITS, .n = 4, .count = 1, .path = "ctrl_bits" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_TEACH_BUTTON, .n = 1, .count = 1, .path = "teach_button" },
 };
-static const ur_layout ur_layout_additional_info_cond22 = { ur_desc_additional_info_cond22, 2 };
+static const ur_layout ur_layout_additional_info_cond22 = {
+    ur_desc_additional_info_cond22, 2
+};
 
 static const ur_desc ur_desc_additional_info_cond23[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_TP_BUTTON_STATE, .n = 1, .count = 1,
@@ -1493,18 +1563,24 @@ static const ur_desc ur_desc_additional_info_cond23[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_FREEDRIVE_BUTTON_ENABLED, .n = 1, .count = 1,
         .path = "freedrive_button_enabled" },
 };
-static const ur_layout ur_layout_additional_info_cond23 = { ur_desc_additional_info_cond23, 2 };
+static const ur_layout ur_layout_additional_info_cond23 = {
+    ur_desc_additional_info_cond23, 2
+};
 
 static const ur_desc ur_desc_additional_info_cond24[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_IO_ENABLED_FREEDRIVE, .n = 1, .count = 1,
         .path = "io_enabled_freedrive" },
 };
-static const ur_layout ur_layout_additional_info_cond24 = { ur_desc_additional_info_cond24, 1 };
+static const ur_layout ur_layout_additional_info_cond24 = {
+    ur_desc_additional_info_cond24, 1
+};
 
 static const ur_desc ur_desc_additional_info_cond25[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_RESERVED, .n = 1, .count = 1, .path = "reserved" },
 };
-static const ur_layout ur_layout_additional_info_cond25 = { ur_desc_additional_info_cond25, 1 };
+static const ur_layout ur_layout_additional_info_cond25 = {
+    ur_desc_additional_info_cond25, 1
+};
 
 static const ur_desc ur_desc_additional_info[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 0u, .high = 1007999u,
@@ -1516,7 +1592,9 @@ static const ur_desc ur_desc_additional_info[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 5000000u, .high = 4294967295u,
         .inner = &ur_layout_additional_info_cond25 },
 };
-static const ur_layout ur_layout_additional_info = { ur_desc_additional_info, 4 };
+static const ur_layout ur_layout_additional_info = {
+    ur_desc_additional_info, 4
+};
 
 static const ur_desc ur_desc_calibration_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fx" },
@@ -1526,12 +1604,16 @@ static const ur_desc ur_desc_calibration_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fry" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frz" },
 };
-static const ur_layout ur_layout_calibration_data = { ur_desc_calibration_data, 6 };
+static const ur_layout ur_layout_calibration_data = {
+    ur_desc_calibration_data, 6
+};
 
 static const ur_desc ur_desc_safety_data[] = {
     { .kind = UR_D_BYTES, .hf = UR_HF_SAFETY_DATA_RAW, .path = "raw" },
 };
-static const ur_layout ur_layout_safety_data = { ur_desc_safety_data, 1 };
+static const ur_layout ur_layout_safety_data = {
+    ur_desc_safety_data, 1
+};
 
 static const ur_desc ur_desc_tool_comm_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_TOOL_COMMUNICATION_IS_ENABLED, .n = 1, .count = 1,
@@ -1547,7 +1629,9 @@ static const ur_desc ur_desc_tool_comm_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_TX_IDLE_CHARS, .n = 4, .count = 1, .flags = UR_FLOAT,
         .path = "tx_idle_chars" },
 };
-static const ur_layout ur_layout_tool_comm_info = { ur_desc_tool_comm_info, 6 };
+static const ur_layout ur_layout_tool_comm_info = {
+    ur_desc_tool_comm_info, 6
+};
 
 static const ur_desc ur_desc_tool_mode_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_OUTPUT_MODE, .n = 1, .count = 1, .path = "output_mode" },
@@ -1556,7 +1640,9 @@ static const ur_desc ur_desc_tool_mode_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_DIGITAL_OUTPUT_MODE_OUTPUT_1, .n = 1, .count = 1,
         .path = "digital_output_mode_output_1" },
 };
-static const ur_layout ur_layout_tool_mode_info = { ur_desc_tool_mode_info, 3 };
+static const ur_layout ur_layout_tool_mode_info = {
+    ur_desc_tool_mode_info, 3
+};
 
 static const ur_desc ur_desc_singularity_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_SINGULARITY_INFO_SINGULARITY_SEVERITY, .n = 1, .count = 1,
@@ -1564,7 +1650,9 @@ static const ur_desc ur_desc_singularity_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_SINGULARITY_INFO_SINGULARITY_TYPE, .n = 1, .count = 1,
         .path = "singularity_type" },
 };
-static const ur_layout ur_layout_singularity_info = { ur_desc_singularity_info, 2 };
+static const ur_layout ur_layout_singularity_info = {
+    ur_desc_singularity_info, 2
+};
 
 static const ur_desc ur_desc_payload_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_PAYLOAD_INFO_MASS, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "mass" },
@@ -1572,7 +1660,9 @@ static const ur_desc ur_desc_payload_info[] = {
         .path = "center_of_gravity" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_INERTIA, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "inertia" },
 };
-static const ur_layout ur_layout_payload_info = { ur_desc_payload_info, 3 };
+static const ur_layout ur_layout_payload_info = {
+    ur_desc_payload_info, 3
+};
 
 static const ur_desc ur_desc_robot_message[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
@@ -1582,20 +1672,26 @@ static const ur_desc ur_desc_robot_message[] = {
         .path = "robot_message_type", .label = "Robot message type", .vs = ur_vs_robot_message_type,
         .names = &ur_names_robot_message_type },
 };
-static const ur_layout ur_layout_robot_message = { ur_desc_robot_message, 3 };
+static const ur_layout ur_layout_robot_message = {
+    ur_desc_robot_message, 3
+};
 
 static const ur_desc ur_desc_version_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_version_header = { ur_desc_version_header, 2 };
+static const ur_layout ur_layout_version_header = {
+    ur_desc_version_header, 2
+};
 
 static const ur_desc ur_desc_version_cond26[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_SVN_REVISION, .n = 4, .count = 1, .flags = UR_SIGNED,
         .path = "svn_revision" },
 };
-static const ur_layout ur_layout_version_cond26 = { ur_desc_version_cond26, 1 };
+static const ur_layout ur_layout_version_cond26 = {
+    ur_desc_version_cond26, 1
+};
 
 static const ur_desc ur_desc_version_cond27[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_BUGFIX_VERSION, .n = 4, .count = 1, .flags = UR_SIGNED,
@@ -1603,7 +1699,9 @@ static const ur_desc ur_desc_version_cond27[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_BUILD_NUMBER, .n = 4, .count = 1, .flags = UR_SIGNED,
         .path = "build_number", .show = "." },
 };
-static const ur_layout ur_layout_version_cond27 = { ur_desc_version_cond27, 2 };
+static const ur_layout ur_layout_version_cond27 = {
+    ur_desc_version_cond27, 2
+};
 
 static const ur_desc ur_desc_version[] = {
     { .kind = UR_D_PSTRING, .hf = UR_HF_VERSION_PROJECT_NAME, .n = 1, .flags = UR_SIGNED, .path = "project_name",
@@ -1618,14 +1716,18 @@ static const ur_desc ur_desc_version[] = {
         .inner = &ur_layout_version_cond27 },
     { .kind = UR_D_STRING, .hf = UR_HF_VERSION_BUILD_DATE, .path = "build_date" },
 };
-static const ur_layout ur_layout_version = { ur_desc_version, 6 };
+static const ur_layout ur_layout_version = {
+    ur_desc_version, 6
+};
 
 static const ur_desc ur_desc_safety_mode_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_safety_mode_header = { ur_desc_safety_mode_header, 2 };
+static const ur_layout ur_layout_safety_mode_header = {
+    ur_desc_safety_mode_header, 2
+};
 
 static const ur_desc ur_desc_safety_mode_cond28[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_SAFETY_MODE_TYPE, .n = 1, .count = 1, .path = "safety_mode_type",
@@ -1635,12 +1737,16 @@ static const ur_desc ur_desc_safety_mode_cond28[] = {
     { .kind = UR_D_SWITCH, .hf = UR_HF_NONE, .keep = 2, .path = "report_data",
         .sw = &ur_switch_safety_mode_cond28_switch0 },
 };
-static const ur_layout ur_layout_safety_mode_cond28 = { ur_desc_safety_mode_cond28, 3 };
+static const ur_layout ur_layout_safety_mode_cond28 = {
+    ur_desc_safety_mode_cond28, 3
+};
 
 static const ur_desc ur_desc_safety_mode_cond29[] = {
     { .kind = UR_D_STRING, .hf = UR_HF_SAFETY_MODE_TEXT, .path = "text" },
 };
-static const ur_layout ur_layout_safety_mode_cond29 = { ur_desc_safety_mode_cond29, 1 };
+static const ur_layout ur_layout_safety_mode_cond29 = {
+    ur_desc_safety_mode_cond29, 1
+};
 
 static const ur_desc ur_desc_safety_mode[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
@@ -1652,14 +1758,18 @@ static const ur_desc ur_desc_safety_mode[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 1008999u,
         .inner = &ur_layout_safety_mode_cond29 },
 };
-static const ur_layout ur_layout_safety_mode = { ur_desc_safety_mode, 4 };
+static const ur_layout ur_layout_safety_mode = {
+    ur_desc_safety_mode, 4
+};
 
 static const ur_desc ur_desc_robot_comm_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_robot_comm_header = { ur_desc_robot_comm_header, 2 };
+static const ur_layout ur_layout_robot_comm_header = {
+    ur_desc_robot_comm_header, 2
+};
 
 static const ur_desc ur_desc_robot_comm_cond30[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_REPORT_LEVEL, .n = 4, .count = 1, .flags = UR_SIGNED,
@@ -1669,7 +1779,9 @@ static const ur_desc ur_desc_robot_comm_cond30[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_DATA, .n = 4, .count = 1,
         .path = "robot_message_data" },
 };
-static const ur_layout ur_layout_robot_comm_cond30 = { ur_desc_robot_comm_cond30, 3 };
+static const ur_layout ur_layout_robot_comm_cond30 = {
+    ur_desc_robot_comm_cond30, 3
+};
 
 static const ur_desc ur_desc_robot_comm[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
@@ -1680,14 +1792,18 @@ static const ur_desc ur_desc_robot_comm[] = {
         .inner = &ur_layout_robot_comm_cond30 },
     { .kind = UR_D_STRING, .hf = UR_HF_ROBOT_COMM_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_robot_comm = { ur_desc_robot_comm, 4 };
+static const ur_layout ur_layout_robot_comm = {
+    ur_desc_robot_comm, 4
+};
 
 static const ur_desc ur_desc_key_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_key_header = { ur_desc_key_header, 2 };
+static const ur_layout ur_layout_key_header = {
+    ur_desc_key_header, 2
+};
 
 static const ur_desc ur_desc_key[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
@@ -1697,14 +1813,18 @@ static const ur_desc ur_desc_key[] = {
     { .kind = UR_D_PSTRING, .hf = UR_HF_KEY_TITLE, .n = 1, .path = "title", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_KEY_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_key = { ur_desc_key, 4 };
+static const ur_layout ur_layout_key = {
+    ur_desc_key, 4
+};
 
 static const ur_desc ur_desc_program_threads_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED,
         .path = "source", .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_program_threads_header = { ur_desc_program_threads_header, 2 };
+static const ur_layout ur_layout_program_threads_header = {
+    ur_desc_program_threads_header, 2
+};
 
 static const ur_desc ur_desc_program_threads_program_thread[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_LABEL_ID, .n = 4, .count = 1, .flags = UR_SIGNED,
@@ -1713,32 +1833,42 @@ static const ur_desc ur_desc_program_threads_program_thread[] = {
     { .kind = UR_D_PSTRING, .hf = UR_HF_PROGRAM_THREADS_THREAD_NAME, .n = 4, .flags = UR_SIGNED,
         .path = "thread_name" },
 };
-static const ur_layout ur_layout_program_threads_program_thread = { ur_desc_program_threads_program_thread, 3 };
+static const ur_layout ur_layout_program_threads_program_thread = {
+    ur_desc_program_threads_program_thread, 3
+};
 
 static const ur_desc ur_desc_program_threads[] = {
     { .kind = UR_D_GROUP, .hf = UR_HF_PROGRAM_THREADS_THREADS, .path = "threads", .label = "Thread",
         .inner = &ur_layout_program_threads_program_thread },
 };
-static const ur_layout ur_layout_program_threads = { ur_desc_program_threads, 1 };
+static const ur_layout ur_layout_program_threads = {
+    ur_desc_program_threads, 1
+};
 
 static const ur_desc ur_desc_popup_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_popup_header = { ur_desc_popup_header, 2 };
+static const ur_layout ur_layout_popup_header = {
+    ur_desc_popup_header, 2
+};
 
 static const ur_desc ur_desc_popup_cond31[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_REQUEST_ID, .n = 4, .count = 1, .path = "request_id" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_REQUESTED_TYPE, .n = 4, .count = 1, .path = "requested_type",
         .vs = ur_vs_requested_type },
 };
-static const ur_layout ur_layout_popup_cond31 = { ur_desc_popup_cond31, 2 };
+static const ur_layout ur_layout_popup_cond31 = {
+    ur_desc_popup_cond31, 2
+};
 
 static const ur_desc ur_desc_popup_cond32[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_BLOCKING, .n = 1, .count = 1, .path = "blocking" },
 };
-static const ur_layout ur_layout_popup_cond32 = { ur_desc_popup_cond32, 1 };
+static const ur_layout ur_layout_popup_cond32 = {
+    ur_desc_popup_cond32, 1
+};
 
 static const ur_desc ur_desc_popup[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3000000u, .high = 4294967295u,
@@ -1750,27 +1880,35 @@ static const ur_desc ur_desc_popup[] = {
     { .kind = UR_D_PSTRING, .hf = UR_HF_POPUP_TITLE, .n = 1, .path = "title", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_POPUP_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_popup = { ur_desc_popup, 6 };
+static const ur_layout ur_layout_popup = {
+    ur_desc_popup, 6
+};
 
 static const ur_desc ur_desc_label_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_label_header = { ur_desc_label_header, 2 };
+static const ur_layout ur_layout_label_header = {
+    ur_desc_label_header, 2
+};
 
 static const ur_desc ur_desc_label[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_ID, .n = 4, .count = 1, .flags = UR_SIGNED, .path = "id", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_LABEL_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_label = { ur_desc_label, 2 };
+static const ur_layout ur_layout_label = {
+    ur_desc_label, 2
+};
 
 static const ur_desc ur_desc_var_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_var_header = { ur_desc_var_header, 2 };
+static const ur_layout ur_layout_var_header = {
+    ur_desc_var_header, 2
+};
 
 static const ur_desc ur_desc_var[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
@@ -1780,14 +1918,18 @@ static const ur_desc ur_desc_var[] = {
     { .kind = UR_D_PSTRING, .hf = UR_HF_VAR_TITLE, .n = 1, .path = "title", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_VAR_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_var = { ur_desc_var, 4 };
+static const ur_layout ur_layout_var = {
+    ur_desc_var, 4
+};
 
 static const ur_desc ur_desc_hardware_info_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_hardware_info_header = { ur_desc_hardware_info_header, 2 };
+static const ur_layout ur_layout_hardware_info_header = {
+    ur_desc_hardware_info_header, 2
+};
 
 static const ur_desc ur_desc_hardware_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_ROBOT_TYPE, .n = 4, .count = 1, .flags = UR_SIGNED,
@@ -1799,26 +1941,34 @@ static const ur_desc ur_desc_hardware_info[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_TOOL_FLANGE_TYPE, .n = 2, .count = 1, .path = "tool_flange_type",
         .show = ", tool flange ", .vs = ur_vs_tool_flange_type },
 };
-static const ur_layout ur_layout_hardware_info = { ur_desc_hardware_info, 5 };
+static const ur_layout ur_layout_hardware_info = {
+    ur_desc_hardware_info, 5
+};
 
 static const ur_desc ur_desc_robot_message_12_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_12_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_12_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED,
         .path = "source", .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_robot_message_12_header = { ur_desc_robot_message_12_header, 2 };
+static const ur_layout ur_layout_robot_message_12_header = {
+    ur_desc_robot_message_12_header, 2
+};
 
 static const ur_desc ur_desc_robot_message_12[] = {
     { .kind = UR_D_BYTES, .hf = UR_HF_ROBOT_MESSAGE_12_RAW, .path = "raw" },
 };
-static const ur_layout ur_layout_robot_message_12 = { ur_desc_robot_message_12, 1 };
+static const ur_layout ur_layout_robot_message_12 = {
+    ur_desc_robot_message_12, 1
+};
 
 static const ur_desc ur_desc_request_value_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_request_value_header = { ur_desc_request_value_header, 2 };
+static const ur_layout ur_layout_request_value_header = {
+    ur_desc_request_value_header, 2
+};
 
 static const ur_desc ur_desc_request_value[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_REQUEST_ID, .n = 4, .count = 1, .path = "request_id" },
@@ -1826,26 +1976,34 @@ static const ur_desc ur_desc_request_value[] = {
         .show = "", .vs = ur_vs_requested_type },
     { .kind = UR_D_STRING, .hf = UR_HF_REQUEST_VALUE_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_request_value = { ur_desc_request_value, 3 };
+static const ur_layout ur_layout_request_value = {
+    ur_desc_request_value, 3
+};
 
 static const ur_desc ur_desc_text_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_TEXT_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_TEXT_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_text_header = { ur_desc_text_header, 2 };
+static const ur_layout ur_layout_text_header = {
+    ur_desc_text_header, 2
+};
 
 static const ur_desc ur_desc_text[] = {
     { .kind = UR_D_STRING, .hf = UR_HF_TEXT_TEXT, .path = "text", .show = "" },
 };
-static const ur_layout ur_layout_text = { ur_desc_text, 1 };
+static const ur_layout ur_layout_text = {
+    ur_desc_text, 1
+};
 
 static const ur_desc ur_desc_runtime_exception_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED,
         .path = "source", .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_runtime_exception_header = { ur_desc_runtime_exception_header, 2 };
+static const ur_layout ur_layout_runtime_exception_header = {
+    ur_desc_runtime_exception_header, 2
+};
 
 static const ur_desc ur_desc_runtime_exception[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SCRIPT_LINE_NUMBER, .n = 4, .count = 1, .flags = UR_SIGNED,
@@ -1854,30 +2012,40 @@ static const ur_desc ur_desc_runtime_exception[] = {
         .path = "script_column_number", .show = ":" },
     { .kind = UR_D_STRING, .hf = UR_HF_RUNTIME_EXCEPTION_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_runtime_exception = { ur_desc_runtime_exception, 3 };
+static const ur_layout ur_layout_runtime_exception = {
+    ur_desc_runtime_exception, 3
+};
 
 static const ur_desc ur_desc_program_state[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_STATE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_STATE_ROBOT_MESSAGE_TYPE, .n = 1, .count = 1,
         .path = "robot_message_type", .vs = ur_vs_program_state_message_type },
 };
-static const ur_layout ur_layout_program_state = { ur_desc_program_state, 2 };
+static const ur_layout ur_layout_program_state = {
+    ur_desc_program_state, 2
+};
 
 static const ur_desc ur_desc_global_variables_setup_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
 };
-static const ur_layout ur_layout_global_variables_setup_header = { ur_desc_global_variables_setup_header, 1 };
+static const ur_layout ur_layout_global_variables_setup_header = {
+    ur_desc_global_variables_setup_header, 1
+};
 
 static const ur_desc ur_desc_global_variables_setup[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_START_INDEX, .n = 2, .count = 1, .path = "start_index" },
     { .kind = UR_D_STRINGS, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_VARIABLE_NAMES, .n = 10, .path = "variable_names" },
 };
-static const ur_layout ur_layout_global_variables_setup = { ur_desc_global_variables_setup, 2 };
+static const ur_layout ur_layout_global_variables_setup = {
+    ur_desc_global_variables_setup, 2
+};
 
 static const ur_desc ur_desc_global_variables_update_header[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_UPDATE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
 };
-static const ur_layout ur_layout_global_variables_update_header = { ur_desc_global_variables_update_header, 1 };
+static const ur_layout ur_layout_global_variables_update_header = {
+    ur_desc_global_variables_update_header, 1
+};
 
 static const ur_desc ur_desc_global_variables_update[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_UPDATE_START_INDEX, .n = 2, .count = 1,
@@ -1885,95 +2053,169 @@ static const ur_desc ur_desc_global_variables_update[] = {
     { .kind = UR_D_VALUES, .hf = UR_HF_NONE, .n = 10, .path = "variables", .label = "Variable",
         .values = &ur_values_global_variables_update_values0 },
 };
-static const ur_layout ur_layout_global_variables_update = { ur_desc_global_variables_update, 2 };
+static const ur_layout ur_layout_global_variables_update = {
+    ur_desc_global_variables_update, 2
+};
 
 static const ur_desc ur_desc_modbus_info[] = {
     { .kind = UR_D_BYTES, .hf = UR_HF_MODBUS_INFO_RAW, .path = "raw" },
 };
-static const ur_layout ur_layout_modbus_info = { ur_desc_modbus_info, 1 };
+static const ur_layout ur_layout_modbus_info = {
+    ur_desc_modbus_info, 1
+};
 
 static const ur_desc ur_desc_hmc[] = {
     { .kind = UR_D_BYTES, .hf = UR_HF_HMC_RAW, .path = "raw" },
 };
-static const ur_layout ur_layout_hmc = { ur_desc_hmc, 1 };
+static const ur_layout ur_layout_hmc = {
+    ur_desc_hmc, 1
+};
 
 static const ur_desc ur_desc_safety_setup_broadcast[] = {
     { .kind = UR_D_BYTES, .hf = UR_HF_SAFETY_SETUP_BROADCAST_RAW, .path = "raw" },
 };
-static const ur_layout ur_layout_safety_setup_broadcast = { ur_desc_safety_setup_broadcast, 1 };
+static const ur_layout ur_layout_safety_setup_broadcast = {
+    ur_desc_safety_setup_broadcast, 1
+};
 
 static const ur_desc ur_desc_safety_compliance_tolerances[] = {
     { .kind = UR_D_ARRAY, .hf = UR_HF_SAFETY_COMPLIANCE_TOLERANCES_TOLERANCES, .n = 8, .count = 22, .flags = UR_FLOAT,
         .path = "tolerances" },
 };
-static const ur_layout ur_layout_safety_compliance_tolerances = { ur_desc_safety_compliance_tolerances, 1 };
+static const ur_layout ur_layout_safety_compliance_tolerances = {
+    ur_desc_safety_compliance_tolerances, 1
+};
 
 /* ---- Messages by type ---- */
 
 /* Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in
  * any order, each framed by its own length. */
 static const ur_part ur_part_robot_mode_data = {
-    "robot_mode_data", "Robot mode data", UR_HF_ROBOT_MODE_DATA, &ur_layout_robot_mode_data, NULL,
+    "robot_mode_data",
+    "Robot mode data",
+    UR_HF_ROBOT_MODE_DATA,
+    &ur_layout_robot_mode_data,
+    NULL,
     TRUE, FALSE
 };
 static const ur_part ur_part_joint_data = {
-    "joint_data", "Joint data", UR_HF_JOINT_DATA, &ur_layout_joint_data, NULL,
+    "joint_data",
+    "Joint data",
+    UR_HF_JOINT_DATA,
+    &ur_layout_joint_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_tool_data = {
-    "tool_data", "Tool data", UR_HF_TOOL_DATA, &ur_layout_tool_data, NULL,
+    "tool_data",
+    "Tool data",
+    UR_HF_TOOL_DATA,
+    &ur_layout_tool_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_masterboard_data = {
-    "masterboard_data", "Masterboard data", UR_HF_MASTERBOARD_DATA, &ur_layout_masterboard_data, NULL,
+    "masterboard_data",
+    "Masterboard data",
+    UR_HF_MASTERBOARD_DATA,
+    &ur_layout_masterboard_data,
+    NULL,
     TRUE, FALSE
 };
 static const ur_part ur_part_cartesian_info = {
-    "cartesian_info", "Cartesian info", UR_HF_CARTESIAN_INFO, &ur_layout_cartesian_info, NULL,
+    "cartesian_info",
+    "Cartesian info",
+    UR_HF_CARTESIAN_INFO,
+    &ur_layout_cartesian_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_laser_pointer = {
-    "laser_pointer", "Laser pointer", UR_HF_LASER_POINTER, &ur_layout_laser_pointer, NULL,
+    "laser_pointer",
+    "Laser pointer",
+    UR_HF_LASER_POINTER,
+    &ur_layout_laser_pointer,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_kinematics_info = {
-    "kinematics_info", "Kinematics info", UR_HF_KINEMATICS_INFO, &ur_layout_kinematics_info, NULL,
+    "kinematics_info",
+    "Kinematics info",
+    UR_HF_KINEMATICS_INFO,
+    &ur_layout_kinematics_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_configuration_data = {
-    "configuration_data", "Configuration data", UR_HF_CONFIGURATION_DATA, &ur_layout_configuration_data, NULL,
+    "configuration_data",
+    "Configuration data",
+    UR_HF_CONFIGURATION_DATA,
+    &ur_layout_configuration_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_force_mode_data = {
-    "force_mode_data", "Force mode data", UR_HF_FORCE_MODE_DATA, &ur_layout_force_mode_data, NULL,
+    "force_mode_data",
+    "Force mode data",
+    UR_HF_FORCE_MODE_DATA,
+    &ur_layout_force_mode_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_additional_info = {
-    "additional_info", "Additional info", UR_HF_ADDITIONAL_INFO, &ur_layout_additional_info, NULL,
+    "additional_info",
+    "Additional info",
+    UR_HF_ADDITIONAL_INFO,
+    &ur_layout_additional_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_calibration_data = {
-    "calibration_data", "Calibration data", UR_HF_CALIBRATION_DATA, &ur_layout_calibration_data, NULL,
+    "calibration_data",
+    "Calibration data",
+    UR_HF_CALIBRATION_DATA,
+    &ur_layout_calibration_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_safety_data = {
-    "safety_data", "Safety data", UR_HF_SAFETY_DATA, &ur_layout_safety_data, NULL,
+    "safety_data",
+    "Safety data",
+    UR_HF_SAFETY_DATA,
+    &ur_layout_safety_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_tool_comm_info = {
-    "tool_comm_info", "Tool comm info", UR_HF_TOOL_COMM_INFO, &ur_layout_tool_comm_info, NULL,
+    "tool_comm_info",
+    "Tool comm info",
+    UR_HF_TOOL_COMM_INFO,
+    &ur_layout_tool_comm_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_tool_mode_info = {
-    "tool_mode_info", "Tool mode info", UR_HF_TOOL_MODE_INFO, &ur_layout_tool_mode_info, NULL,
+    "tool_mode_info",
+    "Tool mode info",
+    UR_HF_TOOL_MODE_INFO,
+    &ur_layout_tool_mode_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_singularity_info = {
-    "singularity_info", "Singularity info", UR_HF_SINGULARITY_INFO, &ur_layout_singularity_info, NULL,
+    "singularity_info",
+    "Singularity info",
+    UR_HF_SINGULARITY_INFO,
+    &ur_layout_singularity_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_payload_info = {
-    "payload_info", "Payload info (undocumented, inferred)", UR_HF_PAYLOAD_INFO, &ur_layout_payload_info, NULL,
+    "payload_info",
+    "Payload info (undocumented, inferred)",
+    UR_HF_PAYLOAD_INFO,
+    &ur_layout_payload_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_by_length ur_forms_robot_state_packages_0_by_length[] = {
@@ -1987,18 +2229,23 @@ static const unsigned ur_forms_robot_state_packages_0_sizes_2[] = { 33 };
 static const unsigned ur_forms_robot_state_packages_0_sizes_3[] = { 41 };
 static const unsigned ur_forms_robot_state_packages_0_sizes_4[] = { 42 };
 static const ur_form ur_forms_robot_state_packages_0_forms[] = {
-    { &ur_part_robot_mode_data, ur_forms_robot_state_packages_0_sizes_1, 1, 24, 1008000u,
-      "up to 1.8" },
-    { &ur_part_robot_mode_data, ur_forms_robot_state_packages_0_sizes_2, 1, 33, 3001000u,
-      "3.0 to 3.1" },
-    { &ur_part_robot_mode_data, ur_forms_robot_state_packages_0_sizes_3, 1, 41, 3004000u,
-      "3.2 to 3.4" },
-    { &ur_part_robot_mode_data, ur_forms_robot_state_packages_0_sizes_4, 1, 42, 5009000u,
-      "3.5 and later" },
+    { &ur_part_robot_mode_data,
+      ur_forms_robot_state_packages_0_sizes_1,
+      1, 24, 1008000u, "up to 1.8" },
+    { &ur_part_robot_mode_data,
+      ur_forms_robot_state_packages_0_sizes_2,
+      1, 33, 3001000u, "3.0 to 3.1" },
+    { &ur_part_robot_mode_data,
+      ur_forms_robot_state_packages_0_sizes_3,
+      1, 41, 3004000u, "3.2 to 3.4" },
+    { &ur_part_robot_mode_data,
+      ur_forms_robot_state_packages_0_sizes_4,
+      1, 42, 5009000u, "3.5 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_0 = {
     FALSE, TRUE, ur_forms_robot_state_packages_0_segments,
-    ur_forms_robot_state_packages_0_by_length, 4, ur_forms_robot_state_packages_0_forms
+    ur_forms_robot_state_packages_0_by_length, 4,
+    ur_forms_robot_state_packages_0_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_1_by_length[] = {
@@ -2009,12 +2256,14 @@ static const int ur_forms_robot_state_packages_1_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_1_sizes_1[] = { 246 };
 static const ur_form ur_forms_robot_state_packages_1_forms[] = {
-    { &ur_part_joint_data, ur_forms_robot_state_packages_1_sizes_1, 1, 246, 5009000u,
-      "all versions" },
+    { &ur_part_joint_data,
+      ur_forms_robot_state_packages_1_sizes_1,
+      1, 246, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_1 = {
     FALSE, FALSE, ur_forms_robot_state_packages_1_segments,
-    ur_forms_robot_state_packages_1_by_length, 1, ur_forms_robot_state_packages_1_forms
+    ur_forms_robot_state_packages_1_by_length, 1,
+    ur_forms_robot_state_packages_1_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_2_by_length[] = {
@@ -2025,12 +2274,14 @@ static const int ur_forms_robot_state_packages_2_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_2_sizes_1[] = { 32 };
 static const ur_form ur_forms_robot_state_packages_2_forms[] = {
-    { &ur_part_tool_data, ur_forms_robot_state_packages_2_sizes_1, 1, 32, 5009000u,
-      "all versions" },
+    { &ur_part_tool_data,
+      ur_forms_robot_state_packages_2_sizes_1,
+      1, 32, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_2 = {
     FALSE, FALSE, ur_forms_robot_state_packages_2_segments,
-    ur_forms_robot_state_packages_2_by_length, 1, ur_forms_robot_state_packages_2_forms
+    ur_forms_robot_state_packages_2_by_length, 1,
+    ur_forms_robot_state_packages_2_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_3_by_length[] = {
@@ -2045,20 +2296,26 @@ static const unsigned ur_forms_robot_state_packages_3_sizes_3[] = { 67, 83 };
 static const unsigned ur_forms_robot_state_packages_3_sizes_4[] = { 69, 85 };
 static const unsigned ur_forms_robot_state_packages_3_sizes_5[] = { 70, 86 };
 static const ur_form ur_forms_robot_state_packages_3_forms[] = {
-    { &ur_part_masterboard_data, ur_forms_robot_state_packages_3_sizes_1, 1, 56, 1005000u,
-      "up to 1.5" },
-    { &ur_part_masterboard_data, ur_forms_robot_state_packages_3_sizes_2, 2, 59, 1008000u,
-      "1.6 to 1.8" },
-    { &ur_part_masterboard_data, ur_forms_robot_state_packages_3_sizes_3, 2, 67, 3001000u,
-      "3.0 to 3.1" },
-    { &ur_part_masterboard_data, ur_forms_robot_state_packages_3_sizes_4, 2, 69, 5003000u,
-      "3.2 to 3.9 or 5.0 to 5.3" },
-    { &ur_part_masterboard_data, ur_forms_robot_state_packages_3_sizes_5, 2, 70, 5009000u,
-      "3.10 to 3.15 or 5.4 and later" },
+    { &ur_part_masterboard_data,
+      ur_forms_robot_state_packages_3_sizes_1,
+      1, 56, 1005000u, "up to 1.5" },
+    { &ur_part_masterboard_data,
+      ur_forms_robot_state_packages_3_sizes_2,
+      2, 59, 1008000u, "1.6 to 1.8" },
+    { &ur_part_masterboard_data,
+      ur_forms_robot_state_packages_3_sizes_3,
+      2, 67, 3001000u, "3.0 to 3.1" },
+    { &ur_part_masterboard_data,
+      ur_forms_robot_state_packages_3_sizes_4,
+      2, 69, 5003000u, "3.2 to 3.9 or 5.0 to 5.3" },
+    { &ur_part_masterboard_data,
+      ur_forms_robot_state_packages_3_sizes_5,
+      2, 70, 5009000u, "3.10 to 3.15 or 5.4 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_3 = {
     FALSE, TRUE, ur_forms_robot_state_packages_3_segments,
-    ur_forms_robot_state_packages_3_by_length, 9, ur_forms_robot_state_packages_3_forms
+    ur_forms_robot_state_packages_3_by_length, 9,
+    ur_forms_robot_state_packages_3_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_4_by_length[] = {
@@ -2070,14 +2327,17 @@ static const int ur_forms_robot_state_packages_4_segments[] = {
 static const unsigned ur_forms_robot_state_packages_4_sizes_1[] = { 48 };
 static const unsigned ur_forms_robot_state_packages_4_sizes_2[] = { 96 };
 static const ur_form ur_forms_robot_state_packages_4_forms[] = {
-    { &ur_part_cartesian_info, ur_forms_robot_state_packages_4_sizes_1, 1, 48, 3000000u,
-      "up to 3.0" },
-    { &ur_part_cartesian_info, ur_forms_robot_state_packages_4_sizes_2, 1, 96, 5009000u,
-      "3.1 and later" },
+    { &ur_part_cartesian_info,
+      ur_forms_robot_state_packages_4_sizes_1,
+      1, 48, 3000000u, "up to 3.0" },
+    { &ur_part_cartesian_info,
+      ur_forms_robot_state_packages_4_sizes_2,
+      1, 96, 5009000u, "3.1 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_4 = {
     FALSE, FALSE, ur_forms_robot_state_packages_4_segments,
-    ur_forms_robot_state_packages_4_by_length, 2, ur_forms_robot_state_packages_4_forms
+    ur_forms_robot_state_packages_4_by_length, 2,
+    ur_forms_robot_state_packages_4_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_5_by_length[] = {
@@ -2089,14 +2349,17 @@ static const int ur_forms_robot_state_packages_5_segments[] = {
 static const unsigned ur_forms_robot_state_packages_5_sizes_1[] = { 24 };
 static const unsigned ur_forms_robot_state_packages_5_sizes_2[] = { 220 };
 static const ur_form ur_forms_robot_state_packages_5_forms[] = {
-    { &ur_part_laser_pointer, ur_forms_robot_state_packages_5_sizes_1, 1, 24, 1007000u,
-      "up to 1.7" },
-    { &ur_part_kinematics_info, ur_forms_robot_state_packages_5_sizes_2, 1, 220, 5009000u,
-      "1.8 and later" },
+    { &ur_part_laser_pointer,
+      ur_forms_robot_state_packages_5_sizes_1,
+      1, 24, 1007000u, "up to 1.7" },
+    { &ur_part_kinematics_info,
+      ur_forms_robot_state_packages_5_sizes_2,
+      1, 220, 5009000u, "1.8 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_5 = {
     FALSE, FALSE, ur_forms_robot_state_packages_5_segments,
-    ur_forms_robot_state_packages_5_by_length, 2, ur_forms_robot_state_packages_5_forms
+    ur_forms_robot_state_packages_5_by_length, 2,
+    ur_forms_robot_state_packages_5_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_6_by_length[] = {
@@ -2109,16 +2372,20 @@ static const unsigned ur_forms_robot_state_packages_6_sizes_1[] = { 464 };
 static const unsigned ur_forms_robot_state_packages_6_sizes_2[] = { 440 };
 static const unsigned ur_forms_robot_state_packages_6_sizes_3[] = { 444 };
 static const ur_form ur_forms_robot_state_packages_6_forms[] = {
-    { &ur_part_configuration_data, ur_forms_robot_state_packages_6_sizes_1, 1, 464, 1008000u,
-      "up to 1.8" },
-    { &ur_part_configuration_data, ur_forms_robot_state_packages_6_sizes_2, 1, 440, 5009000u,
-      "3.0 to 5.25.0" },
-    { &ur_part_configuration_data, ur_forms_robot_state_packages_6_sizes_3, 1, 444, 5025001u,
-      "5.25.1 and later" },
+    { &ur_part_configuration_data,
+      ur_forms_robot_state_packages_6_sizes_1,
+      1, 464, 1008000u, "up to 1.8" },
+    { &ur_part_configuration_data,
+      ur_forms_robot_state_packages_6_sizes_2,
+      1, 440, 5009000u, "3.0 to 5.25.0" },
+    { &ur_part_configuration_data,
+      ur_forms_robot_state_packages_6_sizes_3,
+      1, 444, 5025001u, "5.25.1 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_6 = {
     FALSE, FALSE, ur_forms_robot_state_packages_6_segments,
-    ur_forms_robot_state_packages_6_by_length, 3, ur_forms_robot_state_packages_6_forms
+    ur_forms_robot_state_packages_6_by_length, 3,
+    ur_forms_robot_state_packages_6_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_7_by_length[] = {
@@ -2129,12 +2396,14 @@ static const int ur_forms_robot_state_packages_7_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_7_sizes_1[] = { 56 };
 static const ur_form ur_forms_robot_state_packages_7_forms[] = {
-    { &ur_part_force_mode_data, ur_forms_robot_state_packages_7_sizes_1, 1, 56, 5009000u,
-      "all versions" },
+    { &ur_part_force_mode_data,
+      ur_forms_robot_state_packages_7_sizes_1,
+      1, 56, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_7 = {
     FALSE, FALSE, ur_forms_robot_state_packages_7_segments,
-    ur_forms_robot_state_packages_7_by_length, 1, ur_forms_robot_state_packages_7_forms
+    ur_forms_robot_state_packages_7_by_length, 1,
+    ur_forms_robot_state_packages_7_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_8_by_length[] = {
@@ -2148,18 +2417,23 @@ static const unsigned ur_forms_robot_state_packages_8_sizes_2[] = { 2 };
 static const unsigned ur_forms_robot_state_packages_8_sizes_3[] = { 3 };
 static const unsigned ur_forms_robot_state_packages_8_sizes_4[] = { 4 };
 static const ur_form ur_forms_robot_state_packages_8_forms[] = {
-    { &ur_part_additional_info, ur_forms_robot_state_packages_8_sizes_1, 1, 5, 1007000u,
-      "up to 1.7" },
-    { &ur_part_additional_info, ur_forms_robot_state_packages_8_sizes_2, 1, 2, 3001000u,
-      "1.8 to 3.1" },
-    { &ur_part_additional_info, ur_forms_robot_state_packages_8_sizes_3, 1, 3, 3015000u,
-      "3.2 to 3.15" },
-    { &ur_part_additional_info, ur_forms_robot_state_packages_8_sizes_4, 1, 4, 5009000u,
-      "5.0 and later" },
+    { &ur_part_additional_info,
+      ur_forms_robot_state_packages_8_sizes_1,
+      1, 5, 1007000u, "up to 1.7" },
+    { &ur_part_additional_info,
+      ur_forms_robot_state_packages_8_sizes_2,
+      1, 2, 3001000u, "1.8 to 3.1" },
+    { &ur_part_additional_info,
+      ur_forms_robot_state_packages_8_sizes_3,
+      1, 3, 3015000u, "3.2 to 3.15" },
+    { &ur_part_additional_info,
+      ur_forms_robot_state_packages_8_sizes_4,
+      1, 4, 5009000u, "5.0 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_8 = {
     FALSE, FALSE, ur_forms_robot_state_packages_8_segments,
-    ur_forms_robot_state_packages_8_by_length, 4, ur_forms_robot_state_packages_8_forms
+    ur_forms_robot_state_packages_8_by_length, 4,
+    ur_forms_robot_state_packages_8_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_9_by_length[] = {
@@ -2170,24 +2444,28 @@ static const int ur_forms_robot_state_packages_9_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_9_sizes_1[] = { 48 };
 static const ur_form ur_forms_robot_state_packages_9_forms[] = {
-    { &ur_part_calibration_data, ur_forms_robot_state_packages_9_sizes_1, 1, 48, 5009000u,
-      "all versions" },
+    { &ur_part_calibration_data,
+      ur_forms_robot_state_packages_9_sizes_1,
+      1, 48, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_9 = {
     FALSE, FALSE, ur_forms_robot_state_packages_9_segments,
-    ur_forms_robot_state_packages_9_by_length, 1, ur_forms_robot_state_packages_9_forms
+    ur_forms_robot_state_packages_9_by_length, 1,
+    ur_forms_robot_state_packages_9_forms
 };
 
 static const int ur_forms_robot_state_packages_10_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_state_packages_10_forms[] = {
-    { &ur_part_safety_data, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_safety_data,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_10 = {
     FALSE, FALSE, ur_forms_robot_state_packages_10_segments,
-    NULL, 0, ur_forms_robot_state_packages_10_forms
+    NULL, 0,
+    ur_forms_robot_state_packages_10_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_11_by_length[] = {
@@ -2198,12 +2476,14 @@ static const int ur_forms_robot_state_packages_11_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_11_sizes_1[] = { 21 };
 static const ur_form ur_forms_robot_state_packages_11_forms[] = {
-    { &ur_part_tool_comm_info, ur_forms_robot_state_packages_11_sizes_1, 1, 21, 5009000u,
-      "all versions" },
+    { &ur_part_tool_comm_info,
+      ur_forms_robot_state_packages_11_sizes_1,
+      1, 21, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_11 = {
     FALSE, FALSE, ur_forms_robot_state_packages_11_segments,
-    ur_forms_robot_state_packages_11_by_length, 1, ur_forms_robot_state_packages_11_forms
+    ur_forms_robot_state_packages_11_by_length, 1,
+    ur_forms_robot_state_packages_11_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_12_by_length[] = {
@@ -2214,12 +2494,14 @@ static const int ur_forms_robot_state_packages_12_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_12_sizes_1[] = { 3 };
 static const ur_form ur_forms_robot_state_packages_12_forms[] = {
-    { &ur_part_tool_mode_info, ur_forms_robot_state_packages_12_sizes_1, 1, 3, 5009000u,
-      "all versions" },
+    { &ur_part_tool_mode_info,
+      ur_forms_robot_state_packages_12_sizes_1,
+      1, 3, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_12 = {
     FALSE, FALSE, ur_forms_robot_state_packages_12_segments,
-    ur_forms_robot_state_packages_12_by_length, 1, ur_forms_robot_state_packages_12_forms
+    ur_forms_robot_state_packages_12_by_length, 1,
+    ur_forms_robot_state_packages_12_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_13_by_length[] = {
@@ -2230,12 +2512,14 @@ static const int ur_forms_robot_state_packages_13_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_13_sizes_1[] = { 2 };
 static const ur_form ur_forms_robot_state_packages_13_forms[] = {
-    { &ur_part_singularity_info, ur_forms_robot_state_packages_13_sizes_1, 1, 2, 5009000u,
-      "all versions" },
+    { &ur_part_singularity_info,
+      ur_forms_robot_state_packages_13_sizes_1,
+      1, 2, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_13 = {
     FALSE, FALSE, ur_forms_robot_state_packages_13_segments,
-    ur_forms_robot_state_packages_13_by_length, 1, ur_forms_robot_state_packages_13_forms
+    ur_forms_robot_state_packages_13_by_length, 1,
+    ur_forms_robot_state_packages_13_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_14_by_length[] = {
@@ -2246,12 +2530,14 @@ static const int ur_forms_robot_state_packages_14_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_14_sizes_1[] = { 80 };
 static const ur_form ur_forms_robot_state_packages_14_forms[] = {
-    { &ur_part_payload_info, ur_forms_robot_state_packages_14_sizes_1, 1, 80, 5009000u,
-      "all versions" },
+    { &ur_part_payload_info,
+      ur_forms_robot_state_packages_14_sizes_1,
+      1, 80, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_14 = {
     FALSE, FALSE, ur_forms_robot_state_packages_14_segments,
-    ur_forms_robot_state_packages_14_by_length, 1, ur_forms_robot_state_packages_14_forms
+    ur_forms_robot_state_packages_14_by_length, 1,
+    ur_forms_robot_state_packages_14_forms
 };
 
 static const ur_forms *const ur_forms_robot_state_packages[256] = {
@@ -2265,7 +2551,9 @@ static const ur_forms *const ur_forms_robot_state_packages[256] = {
     [14] = &ur_forms_robot_state_packages_14,
 };
 static const ur_message ur_message_16 = {
-    .kind = UR_M_PACKAGES, .code = 16, .label = "Robot state", .suffix = ", Robot state",
+    .kind = UR_M_PACKAGES, .code = 16,
+    .label = "Robot state",
+    .suffix = ", Robot state",
     .forms = ur_forms_robot_state_packages, .names = ur_vs_package_type, .tables = &ur_names_package_type,
     .length_hf = UR_HF_PACKAGE_LENGTH, .type_hf = UR_HF_PACKAGE_TYPE, .needs_version = TRUE,
     .body_offset = 0, .header = NULL, .subtype_hf = UR_HF_NONE,
@@ -2274,107 +2562,169 @@ static const ur_message ur_message_16 = {
 
 /* Robot message. The version message goes to every client, the others to primary clients only. */
 static const ur_part ur_part_version = {
-    "version", "Version", UR_HF_VERSION, &ur_layout_version, &ur_layout_version_header,
+    "version",
+    "Version",
+    UR_HF_VERSION,
+    &ur_layout_version,
+    &ur_layout_version_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_safety_mode = {
-    "safety_mode", "Safety mode", UR_HF_SAFETY_MODE, &ur_layout_safety_mode, &ur_layout_safety_mode_header,
+    "safety_mode",
+    "Safety mode",
+    UR_HF_SAFETY_MODE,
+    &ur_layout_safety_mode,
+    &ur_layout_safety_mode_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_robot_comm = {
-    "robot_comm", "Robot comm", UR_HF_ROBOT_COMM, &ur_layout_robot_comm, &ur_layout_robot_comm_header,
+    "robot_comm",
+    "Robot comm",
+    UR_HF_ROBOT_COMM,
+    &ur_layout_robot_comm,
+    &ur_layout_robot_comm_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_key = {
-    "key", "Key", UR_HF_KEY, &ur_layout_key, &ur_layout_key_header,
+    "key",
+    "Key",
+    UR_HF_KEY,
+    &ur_layout_key,
+    &ur_layout_key_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_program_threads = {
-    "program_threads", "Program threads", UR_HF_PROGRAM_THREADS, &ur_layout_program_threads, &ur_layout_program_threads_header,
+    "program_threads",
+    "Program threads",
+    UR_HF_PROGRAM_THREADS,
+    &ur_layout_program_threads,
+    &ur_layout_program_threads_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_popup = {
-    "popup", "Popup", UR_HF_POPUP, &ur_layout_popup, &ur_layout_popup_header,
+    "popup",
+    "Popup",
+    UR_HF_POPUP,
+    &ur_layout_popup,
+    &ur_layout_popup_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_label = {
-    "label", "Label", UR_HF_LABEL, &ur_layout_label, &ur_layout_label_header,
+    "label",
+    "Label",
+    UR_HF_LABEL,
+    &ur_layout_label,
+    &ur_layout_label_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_var = {
-    "var", "Var", UR_HF_VAR, &ur_layout_var, &ur_layout_var_header,
+    "var",
+    "Var",
+    UR_HF_VAR,
+    &ur_layout_var,
+    &ur_layout_var_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_hardware_info = {
-    "hardware_info", "Hardware info", UR_HF_HARDWARE_INFO, &ur_layout_hardware_info, &ur_layout_hardware_info_header,
+    "hardware_info",
+    "Hardware info",
+    UR_HF_HARDWARE_INFO,
+    &ur_layout_hardware_info,
+    &ur_layout_hardware_info_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_robot_message_12 = {
-    "robot_message_12", "Robot message 12 (undocumented)", UR_HF_ROBOT_MESSAGE_12, &ur_layout_robot_message_12, &ur_layout_robot_message_12_header,
+    "robot_message_12",
+    "Robot message 12 (undocumented)",
+    UR_HF_ROBOT_MESSAGE_12,
+    &ur_layout_robot_message_12,
+    &ur_layout_robot_message_12_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_request_value = {
-    "request_value", "Request value", UR_HF_REQUEST_VALUE, &ur_layout_request_value, &ur_layout_request_value_header,
+    "request_value",
+    "Request value",
+    UR_HF_REQUEST_VALUE,
+    &ur_layout_request_value,
+    &ur_layout_request_value_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_text = {
-    "text", "Text", UR_HF_TEXT, &ur_layout_text, &ur_layout_text_header,
+    "text",
+    "Text",
+    UR_HF_TEXT,
+    &ur_layout_text,
+    &ur_layout_text_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_runtime_exception = {
-    "runtime_exception", "Runtime exception", UR_HF_RUNTIME_EXCEPTION, &ur_layout_runtime_exception, &ur_layout_runtime_exception_header,
+    "runtime_exception",
+    "Runtime exception",
+    UR_HF_RUNTIME_EXCEPTION,
+    &ur_layout_runtime_exception,
+    &ur_layout_runtime_exception_header,
     FALSE, FALSE
 };
 static const int ur_forms_robot_message_subtypes_0_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_0_forms[] = {
-    { &ur_part_text, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_text,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_0 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_0_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_0_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_0_forms
 };
 
 static const int ur_forms_robot_message_subtypes_1_segments[] = {
     1, 1, 1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
 };
 static const ur_form ur_forms_robot_message_subtypes_1_forms[] = {
-    { &ur_part_label, NULL, 0, 4, 1008000u,
-      "up to 1.8" },
+    { &ur_part_label,
+      NULL,
+      0, 4, 1008000u, "up to 1.8" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_1 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_1_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_1_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_1_forms
 };
 
 static const int ur_forms_robot_message_subtypes_2_segments[] = {
     1, 1, 1, -1, 2, 2, 2, 2, 2, 2, -2, 2, 2, 2, -2, 2,
 };
 static const ur_form ur_forms_robot_message_subtypes_2_forms[] = {
-    { &ur_part_popup, NULL, 0, 3, 1008000u,
-      "up to 1.8" },
-    { &ur_part_popup, NULL, 0, 12, 5009000u,
-      "3.0 and later" },
+    { &ur_part_popup,
+      NULL,
+      0, 3, 1008000u, "up to 1.8" },
+    { &ur_part_popup,
+      NULL,
+      0, 12, 5009000u, "3.0 and later" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_2 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_2_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_2_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_2_forms
 };
 
 static const int ur_forms_robot_message_subtypes_3_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 2, 2, 2, -2, 2, 2, 2, -2, 2,
 };
 static const ur_form ur_forms_robot_message_subtypes_3_forms[] = {
-    { &ur_part_version, NULL, 0, 7, 3002000u,
-      "up to 3.2" },
-    { &ur_part_version, NULL, 0, 11, 5009000u,
-      "3.3 and later" },
+    { &ur_part_version,
+      NULL,
+      0, 7, 3002000u, "up to 3.2" },
+    { &ur_part_version,
+      NULL,
+      0, 11, 5009000u, "3.3 and later" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_3 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_3_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_3_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_3_forms
 };
 
 static const ur_by_length ur_forms_robot_message_subtypes_5_by_length[] = {
@@ -2385,100 +2735,118 @@ static const int ur_forms_robot_message_subtypes_5_segments[] = {
 };
 static const unsigned ur_forms_robot_message_subtypes_5_sizes_2[] = { 17 };
 static const ur_form ur_forms_robot_message_subtypes_5_forms[] = {
-    { &ur_part_safety_mode, NULL, 0, 8, 1008000u,
-      "up to 1.8" },
-    { &ur_part_safety_mode, ur_forms_robot_message_subtypes_5_sizes_2, 1, 17, 5009000u,
-      "3.0 and later" },
+    { &ur_part_safety_mode,
+      NULL,
+      0, 8, 1008000u, "up to 1.8" },
+    { &ur_part_safety_mode,
+      ur_forms_robot_message_subtypes_5_sizes_2,
+      1, 17, 5009000u, "3.0 and later" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_5 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_5_segments,
-    ur_forms_robot_message_subtypes_5_by_length, 1, ur_forms_robot_message_subtypes_5_forms
+    ur_forms_robot_message_subtypes_5_by_length, 1,
+    ur_forms_robot_message_subtypes_5_forms
 };
 
 static const int ur_forms_robot_message_subtypes_6_segments[] = {
     1, 1, 1, -1, 2, 2, 2, 2, 2, 2, -2, 2, 2, 2, -2, 2,
 };
 static const ur_form ur_forms_robot_message_subtypes_6_forms[] = {
-    { &ur_part_robot_comm, NULL, 0, 8, 1008000u,
-      "up to 1.8" },
-    { &ur_part_robot_comm, NULL, 0, 20, 5009000u,
-      "3.0 and later" },
+    { &ur_part_robot_comm,
+      NULL,
+      0, 8, 1008000u, "up to 1.8" },
+    { &ur_part_robot_comm,
+      NULL,
+      0, 20, 5009000u, "3.0 and later" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_6 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_6_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_6_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_6_forms
 };
 
 static const int ur_forms_robot_message_subtypes_7_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_7_forms[] = {
-    { &ur_part_key, NULL, 0, 9, 5009000u,
-      "all versions" },
+    { &ur_part_key,
+      NULL,
+      0, 9, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_7 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_7_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_7_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_7_forms
 };
 
 static const int ur_forms_robot_message_subtypes_8_segments[] = {
     1, 1, 1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
 };
 static const ur_form ur_forms_robot_message_subtypes_8_forms[] = {
-    { &ur_part_var, NULL, 0, 9, 1008000u,
-      "up to 1.8" },
+    { &ur_part_var,
+      NULL,
+      0, 9, 1008000u, "up to 1.8" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_8 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_8_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_8_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_8_forms
 };
 
 static const int ur_forms_robot_message_subtypes_9_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_9_forms[] = {
-    { &ur_part_request_value, NULL, 0, 8, 5009000u,
-      "all versions" },
+    { &ur_part_request_value,
+      NULL,
+      0, 8, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_9 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_9_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_9_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_9_forms
 };
 
 static const int ur_forms_robot_message_subtypes_10_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_10_forms[] = {
-    { &ur_part_runtime_exception, NULL, 0, 8, 5009000u,
-      "all versions" },
+    { &ur_part_runtime_exception,
+      NULL,
+      0, 8, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_10 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_10_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_10_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_10_forms
 };
 
 static const int ur_forms_robot_message_subtypes_12_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_12_forms[] = {
-    { &ur_part_robot_message_12, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_robot_message_12,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_12 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_12_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_12_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_12_forms
 };
 
 static const int ur_forms_robot_message_subtypes_14_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_14_forms[] = {
-    { &ur_part_program_threads, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_program_threads,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_14 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_14_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_14_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_14_forms
 };
 
 static const ur_by_length ur_forms_robot_message_subtypes_18_by_length[] = {
@@ -2489,12 +2857,14 @@ static const int ur_forms_robot_message_subtypes_18_segments[] = {
 };
 static const unsigned ur_forms_robot_message_subtypes_18_sizes_1[] = { 12 };
 static const ur_form ur_forms_robot_message_subtypes_18_forms[] = {
-    { &ur_part_hardware_info, ur_forms_robot_message_subtypes_18_sizes_1, 1, 12, 5009000u,
-      "all versions" },
+    { &ur_part_hardware_info,
+      ur_forms_robot_message_subtypes_18_sizes_1,
+      1, 12, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_18 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_18_segments,
-    ur_forms_robot_message_subtypes_18_by_length, 1, ur_forms_robot_message_subtypes_18_forms
+    ur_forms_robot_message_subtypes_18_by_length, 1,
+    ur_forms_robot_message_subtypes_18_forms
 };
 
 static const ur_forms *const ur_forms_robot_message_subtypes[256] = {
@@ -2507,7 +2877,9 @@ static const ur_forms *const ur_forms_robot_message_subtypes[256] = {
     [18] = &ur_forms_robot_message_subtypes_18,
 };
 static const ur_message ur_message_20 = {
-    .kind = UR_M_SUBTYPES, .code = 20, .label = "Robot message", .suffix = ", Robot message",
+    .kind = UR_M_SUBTYPES, .code = 20,
+    .label = "Robot message",
+    .suffix = ", Robot message",
     .forms = ur_forms_robot_message_subtypes, .names = ur_vs_robot_message_type, .tables = &ur_names_robot_message_type,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 15, .header = &ur_layout_robot_message, .subtype_hf = UR_HF_ROBOT_MESSAGE_ROBOT_MESSAGE_TYPE,
@@ -2516,42 +2888,56 @@ static const ur_message ur_message_20 = {
 
 /* Program-state message, sent to primary clients only. */
 static const ur_part ur_part_global_variables_setup = {
-    "global_variables_setup", "Global variables setup", UR_HF_GLOBAL_VARIABLES_SETUP, &ur_layout_global_variables_setup, &ur_layout_global_variables_setup_header,
+    "global_variables_setup",
+    "Global variables setup",
+    UR_HF_GLOBAL_VARIABLES_SETUP,
+    &ur_layout_global_variables_setup,
+    &ur_layout_global_variables_setup_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_global_variables_update = {
-    "global_variables_update", "Global variables update", UR_HF_GLOBAL_VARIABLES_UPDATE, &ur_layout_global_variables_update, &ur_layout_global_variables_update_header,
+    "global_variables_update",
+    "Global variables update",
+    UR_HF_GLOBAL_VARIABLES_UPDATE,
+    &ur_layout_global_variables_update,
+    &ur_layout_global_variables_update_header,
     FALSE, TRUE
 };
 static const int ur_forms_program_state_subtypes_0_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_program_state_subtypes_0_forms[] = {
-    { &ur_part_global_variables_setup, NULL, 0, 2, 5009000u,
-      "all versions" },
+    { &ur_part_global_variables_setup,
+      NULL,
+      0, 2, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_program_state_subtypes_0 = {
     FALSE, FALSE, ur_forms_program_state_subtypes_0_segments,
-    NULL, 0, ur_forms_program_state_subtypes_0_forms
+    NULL, 0,
+    ur_forms_program_state_subtypes_0_forms
 };
 
 static const int ur_forms_program_state_subtypes_1_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_program_state_subtypes_1_forms[] = {
-    { &ur_part_global_variables_update, NULL, 0, 2, 5009000u,
-      "all versions" },
+    { &ur_part_global_variables_update,
+      NULL,
+      0, 2, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_program_state_subtypes_1 = {
     FALSE, FALSE, ur_forms_program_state_subtypes_1_segments,
-    NULL, 0, ur_forms_program_state_subtypes_1_forms
+    NULL, 0,
+    ur_forms_program_state_subtypes_1_forms
 };
 
 static const ur_forms *const ur_forms_program_state_subtypes[256] = {
     [0] = &ur_forms_program_state_subtypes_0, [1] = &ur_forms_program_state_subtypes_1,
 };
 static const ur_message ur_message_25 = {
-    .kind = UR_M_SUBTYPES, .code = 25, .label = "Program state", .suffix = ", Program state",
+    .kind = UR_M_SUBTYPES, .code = 25,
+    .label = "Program state",
+    .suffix = ", Program state",
     .forms = ur_forms_program_state_subtypes, .names = ur_vs_program_state_message_type, .tables = NULL,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 14, .header = &ur_layout_program_state, .subtype_hf = UR_HF_PROGRAM_STATE_ROBOT_MESSAGE_TYPE,
@@ -2561,26 +2947,34 @@ static const ur_message ur_message_25 = {
 /* Modbus info message (type 5), named by the document without a layout: 9 bytes on e-Series URSim
  * 5.4, its 4-byte payload zero. Kept as bytes. */
 static const ur_part ur_part_modbus_info = {
-    "modbus_info", "Modbus info (undocumented)", UR_HF_MODBUS_INFO, &ur_layout_modbus_info, NULL,
+    "modbus_info",
+    "Modbus info (undocumented)",
+    UR_HF_MODBUS_INFO,
+    &ur_layout_modbus_info,
+    NULL,
     FALSE, FALSE
 };
 static const int ur_forms_modbus_info_forms_5_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_modbus_info_forms_5_forms[] = {
-    { &ur_part_modbus_info, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_modbus_info,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_modbus_info_forms_5 = {
     FALSE, FALSE, ur_forms_modbus_info_forms_5_segments,
-    NULL, 0, ur_forms_modbus_info_forms_5_forms
+    NULL, 0,
+    ur_forms_modbus_info_forms_5_forms
 };
 
 static const ur_forms *const ur_forms_modbus_info_forms[256] = {
     [5] = &ur_forms_modbus_info_forms_5,
 };
 static const ur_message ur_message_5 = {
-    .kind = UR_M_BODY, .code = 5, .label = "Modbus info (undocumented)", .suffix = ", Modbus info (undocumented)",
+    .kind = UR_M_BODY, .code = 5,
+    .label = "Modbus info (undocumented)",
+    .suffix = ", Modbus info (undocumented)",
     .forms = ur_forms_modbus_info_forms, .names = NULL, .tables = NULL,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 5, .header = NULL, .subtype_hf = UR_HF_NONE,
@@ -2589,26 +2983,34 @@ static const ur_message ur_message_5 = {
 
 /* HMC message (type 22), named by the document without a layout. Kept as bytes. */
 static const ur_part ur_part_hmc = {
-    "hmc", "HMC (undocumented)", UR_HF_HMC, &ur_layout_hmc, NULL,
+    "hmc",
+    "HMC (undocumented)",
+    UR_HF_HMC,
+    &ur_layout_hmc,
+    NULL,
     FALSE, FALSE
 };
 static const int ur_forms_hmc_forms_22_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_hmc_forms_22_forms[] = {
-    { &ur_part_hmc, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_hmc,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_hmc_forms_22 = {
     FALSE, FALSE, ur_forms_hmc_forms_22_segments,
-    NULL, 0, ur_forms_hmc_forms_22_forms
+    NULL, 0,
+    ur_forms_hmc_forms_22_forms
 };
 
 static const ur_forms *const ur_forms_hmc_forms[256] = {
     [22] = &ur_forms_hmc_forms_22,
 };
 static const ur_message ur_message_22 = {
-    .kind = UR_M_BODY, .code = 22, .label = "HMC (undocumented)", .suffix = ", HMC (undocumented)",
+    .kind = UR_M_BODY, .code = 22,
+    .label = "HMC (undocumented)",
+    .suffix = ", HMC (undocumented)",
     .forms = ur_forms_hmc_forms, .names = NULL, .tables = NULL,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 5, .header = NULL, .subtype_hf = UR_HF_NONE,
@@ -2617,26 +3019,34 @@ static const ur_message ur_message_22 = {
 
 /* Safety setup broadcast message (type 23), named by the document without a layout. Kept as bytes. */
 static const ur_part ur_part_safety_setup_broadcast = {
-    "safety_setup_broadcast", "Safety setup broadcast (undocumented)", UR_HF_SAFETY_SETUP_BROADCAST, &ur_layout_safety_setup_broadcast, NULL,
+    "safety_setup_broadcast",
+    "Safety setup broadcast (undocumented)",
+    UR_HF_SAFETY_SETUP_BROADCAST,
+    &ur_layout_safety_setup_broadcast,
+    NULL,
     FALSE, FALSE
 };
 static const int ur_forms_safety_setup_broadcast_forms_23_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_safety_setup_broadcast_forms_23_forms[] = {
-    { &ur_part_safety_setup_broadcast, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_safety_setup_broadcast,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_safety_setup_broadcast_forms_23 = {
     FALSE, FALSE, ur_forms_safety_setup_broadcast_forms_23_segments,
-    NULL, 0, ur_forms_safety_setup_broadcast_forms_23_forms
+    NULL, 0,
+    ur_forms_safety_setup_broadcast_forms_23_forms
 };
 
 static const ur_forms *const ur_forms_safety_setup_broadcast_forms[256] = {
     [23] = &ur_forms_safety_setup_broadcast_forms_23,
 };
 static const ur_message ur_message_23 = {
-    .kind = UR_M_BODY, .code = 23, .label = "Safety setup broadcast (undocumented)", .suffix = ", Safety setup broadcast (undocumented)",
+    .kind = UR_M_BODY, .code = 23,
+    .label = "Safety setup broadcast (undocumented)",
+    .suffix = ", Safety setup broadcast (undocumented)",
     .forms = ur_forms_safety_setup_broadcast_forms, .names = NULL, .tables = NULL,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 5, .header = NULL, .subtype_hf = UR_HF_NONE,
@@ -2647,7 +3057,11 @@ static const ur_message ur_message_23 = {
  * bytes, sent right after robot message 12 when a client connects. 22 float64 with no timestamp;
  * what each one means is not known. */
 static const ur_part ur_part_safety_compliance_tolerances = {
-    "safety_compliance_tolerances", "Safety compliance tolerances (undocumented, inferred)", UR_HF_SAFETY_COMPLIANCE_TOLERANCES, &ur_layout_safety_compliance_tolerances, NULL,
+    "safety_compliance_tolerances",
+    "Safety compliance tolerances (undocumented, inferred)",
+    UR_HF_SAFETY_COMPLIANCE_TOLERANCES,
+    &ur_layout_safety_compliance_tolerances,
+    NULL,
     FALSE, FALSE
 };
 static const ur_by_length ur_forms_safety_compliance_tolerances_forms_24_by_length[] = {
@@ -2658,19 +3072,23 @@ static const int ur_forms_safety_compliance_tolerances_forms_24_segments[] = {
 };
 static const unsigned ur_forms_safety_compliance_tolerances_forms_24_sizes_1[] = { 176 };
 static const ur_form ur_forms_safety_compliance_tolerances_forms_24_forms[] = {
-    { &ur_part_safety_compliance_tolerances, ur_forms_safety_compliance_tolerances_forms_24_sizes_1, 1, 176, 5009000u,
-      "all versions" },
+    { &ur_part_safety_compliance_tolerances,
+      ur_forms_safety_compliance_tolerances_forms_24_sizes_1,
+      1, 176, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_safety_compliance_tolerances_forms_24 = {
     FALSE, FALSE, ur_forms_safety_compliance_tolerances_forms_24_segments,
-    ur_forms_safety_compliance_tolerances_forms_24_by_length, 1, ur_forms_safety_compliance_tolerances_forms_24_forms
+    ur_forms_safety_compliance_tolerances_forms_24_by_length, 1,
+    ur_forms_safety_compliance_tolerances_forms_24_forms
 };
 
 static const ur_forms *const ur_forms_safety_compliance_tolerances_forms[256] = {
     [24] = &ur_forms_safety_compliance_tolerances_forms_24,
 };
 static const ur_message ur_message_24 = {
-    .kind = UR_M_BODY, .code = 24, .label = "Safety compliance tolerances (undocumented, inferred)", .suffix = ", Safety compliance tolerances (undocumented, inferred)",
+    .kind = UR_M_BODY, .code = 24,
+    .label = "Safety compliance tolerances (undocumented, inferred)",
+    .suffix = ", Safety compliance tolerances (undocumented, inferred)",
     .forms = ur_forms_safety_compliance_tolerances_forms, .names = NULL, .tables = NULL,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 5, .header = NULL, .subtype_hf = UR_HF_NONE,
@@ -6222,16 +6640,46 @@ proto_register_ur(void)
     };
 
     static ei_register_info ei[] = {
-        { &ei_ur_bad_length, { "ur.bad_length", PI_MALFORMED, PI_ERROR, "Message length out of range (resynchronising)", EXPFILL } },
-        { &ei_ur_bad_type, { "ur.bad_type", PI_MALFORMED, PI_ERROR, "Unknown message type (resynchronising)", EXPFILL } },
-        { &ei_ur_malformed, { "ur.malformed", PI_MALFORMED, PI_ERROR, "Package or message too short or malformed", EXPFILL } },
-        { &ei_ur_extra, { "ur.extra_bytes", PI_PROTOCOL, PI_WARN, "Bytes after the known layout", EXPFILL } },
-        { &ei_ur_unknown, { "ur.unknown", PI_UNDECODED, PI_NOTE, "Type not laid out by the spec, kept raw", EXPFILL } },
-        { &ei_ur_assumed, { "ur.assumed_version", PI_ASSUMPTION, PI_NOTE, "Software version assumed (no Version message seen)", EXPFILL } },
-        { &ei_ur_version_range, { "ur.version_out_of_range", PI_PROTOCOL, PI_WARN, "Version message number out of range: set aside, the stream is read as major.minor", EXPFILL } },
-        { &ei_ur_by_length, { "ur.layout_by_length", PI_ASSUMPTION, PI_NOTE, "Layout chosen by its length, not by the software version", EXPFILL } },
-        { &ei_ur_items_hidden, { "ur.items_hidden", PI_UNDECODED, PI_NOTE, "More tree items than a message shows", EXPFILL } },
-        { &ei_ur_internal, { "ur.internal_error", PI_MALFORMED, PI_ERROR, "urwire dissector error", EXPFILL } },
+        { &ei_ur_bad_length,
+          { "ur.bad_length", PI_MALFORMED, PI_ERROR,
+            "Message length out of range (resynchronising)", EXPFILL }
+        },
+        { &ei_ur_bad_type,
+          { "ur.bad_type", PI_MALFORMED, PI_ERROR,
+            "Unknown message type (resynchronising)", EXPFILL }
+        },
+        { &ei_ur_malformed,
+          { "ur.malformed", PI_MALFORMED, PI_ERROR,
+            "Package or message too short or malformed", EXPFILL }
+        },
+        { &ei_ur_extra,
+          { "ur.extra_bytes", PI_PROTOCOL, PI_WARN,
+            "Bytes after the known layout", EXPFILL }
+        },
+        { &ei_ur_unknown,
+          { "ur.unknown", PI_UNDECODED, PI_NOTE,
+            "Type not laid out by the spec, kept raw", EXPFILL }
+        },
+        { &ei_ur_assumed,
+          { "ur.assumed_version", PI_ASSUMPTION, PI_NOTE,
+            "Software version assumed (no Version message seen)", EXPFILL }
+        },
+        { &ei_ur_version_range,
+          { "ur.version_out_of_range", PI_PROTOCOL, PI_WARN,
+            "Version message number out of range: set aside, the stream is read as major.minor", EXPFILL }
+        },
+        { &ei_ur_by_length,
+          { "ur.layout_by_length", PI_ASSUMPTION, PI_NOTE,
+            "Layout chosen by its length, not by the software version", EXPFILL }
+        },
+        { &ei_ur_items_hidden,
+          { "ur.items_hidden", PI_UNDECODED, PI_NOTE,
+            "More tree items than a message shows", EXPFILL }
+        },
+        { &ei_ur_internal,
+          { "ur.internal_error", PI_MALFORMED, PI_ERROR,
+            "urwire dissector error", EXPFILL }
+        },
     };
 
     module_t *ur_module;
