@@ -1,0 +1,209 @@
+"""The native dissectors of the text-line interfaces (generated/epan/packet-ur-dashboard.c and
+packet-ur-script-sender.c) against their Lua twins (generated/lua/ur_dashboard.lua,
+ur_script_sender.lua), each loaded alone in real tshark: the same fields registered, and on the
+same captures the same `-T json` layers, Info column and expert infos.
+
+The captures: every golden vector of the interface as a TCP session, whole and again cut into 1-7
+byte segments, in one capture per software-version preference; the dashboard fuzzer's kept
+corpus (tests/fuzz/corpus/ur_dashboard), each input a session of its segments; the dashboard and
+script-sender conversations of the cell sample; a session on another port under Decode As. The
+same captures go through the plugin built with ASan and UBSan, where any report fails the run.
+The runtime's pure functions (runtime/epan/lines_match.c) are compiled and tested alone."""
+from __future__ import annotations
+
+import functools
+import random
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from tests.interface_vectors import Segment, conversation_cases
+from tests.native import harness
+from tests.tools import capture
+
+ROOT = Path(__file__).resolve().parents[2]
+CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "ur_dashboard"
+CELL = ROOT / "dissector" / "samples" / "cell_session.pcapng"
+RUNTIME = ROOT / "runtime" / "epan"
+INTERFACES = ("ur_dashboard",)
+PORTS = {"ur_dashboard": 29999, "ur_script_sender": 50002}
+# The script sender's port is the control PC's, and the robot connects to it: in the capture
+# writer's terms (the side on the port sends "from_robot") its vectors' directions are swapped.
+PC_LISTENS = {"ur_dashboard": False, "ur_script_sender": True}
+CLIENT_PORTS = 41000           # the client side of the n-th session: 41000 + n, no interface's port
+# The versions the dashboard fuzzer starts a conversation with, by its first byte's two low bits
+# (tests/c/fuzz_ur_dashboard.c).
+FUZZ_VERSIONS = (None, "3.15", "5.4", "5.11")
+
+
+def one_to_seven(segments: tuple[Segment, ...], rng: random.Random) -> tuple[Segment, ...]:
+    """The same conversation cut into segments of 1 to 7 bytes."""
+    out = []
+    for s in segments:
+        at = 0
+        while at < len(s.data):
+            n = rng.randint(1, 7)
+            out.append(Segment(s.from_robot, s.data[at:at + n]))
+            at += n
+    return tuple(out)
+
+
+def sessions(tmp_path: Path, interface: str, conversations: list[tuple[Segment, ...]], port: int = 0) -> Path:
+    """One capture holding each conversation as a TCP session of its own."""
+    frames = []
+    for i, segments in enumerate(conversations):
+        tcp = [capture.Segment(s.from_robot != PC_LISTENS[interface], s.data) for s in segments]
+        frames += capture.session_frames(tcp, port=port or PORTS[interface], client_port=CLIENT_PORTS + i)
+    return capture.write(tmp_path / f"{interface}.pcap", frames)
+
+
+def preference(interface: str, version) -> tuple[str, ...]:
+    return ("-o", f"{interface}.version:{version}") if version else ()
+
+
+def lua_run(interfaces):
+    return functools.partial(harness.run_lua, lua=[harness.lua_plugin(name) for name in interfaces])
+
+
+def native_run(variant: str):
+    if variant == "asan":
+        return functools.partial(harness.run_native, variant="asan", env=asan_environment())
+    return functools.partial(harness.run_native, variant=variant)
+
+
+def asan_environment() -> dict:
+    """tshark under the sanitizers the asan plugin is built with: libasan preloaded (tshark itself
+    is not instrumented), leaks not counted (Wireshark keeps its tables to the end)."""
+    libasan = subprocess.run(["gcc", "-print-file-name=libasan.so"], capture_output=True, text=True,
+                             check=True).stdout.strip()
+    return {"LD_PRELOAD": libasan, "ASAN_OPTIONS": "detect_leaks=0:abort_on_error=1",
+            "UBSAN_OPTIONS": "print_stacktrace=1:halt_on_error=1"}
+
+
+def assert_same(pcap: Path, interfaces, *args: str, variant: str = "gcc") -> harness.Shown:
+    """Native and Lua show the capture alike: layers, Info column, expert infos."""
+    native = harness.shown(native_run(variant), pcap, interfaces, *args)
+    lua = harness.shown(lua_run(interfaces), pcap, interfaces, *args)
+    assert len(native.layers) == len(lua.layers)
+    for number, (mine, theirs) in enumerate(zip(native.layers, lua.layers), start=1):
+        assert mine == theirs, f"frame {number}"
+    assert native.info == lua.info
+    assert native.experts == lua.experts
+    return native
+
+
+def vector_captures(tmp_path: Path, interface: str) -> list[tuple[Path, tuple[str, ...]]]:
+    """Per version preference, one capture of its vectors, each whole and in 1-7 byte segments."""
+    groups: dict = {}
+    for case in conversation_cases(interface):
+        groups.setdefault(case.version, []).append(case)
+    out = []
+    for version, cases in sorted(groups.items(), key=lambda g: g[0] or ""):
+        rng = random.Random(f"{interface} {version}")
+        conversations = [c.segments for c in cases] + [one_to_seven(c.segments, rng) for c in cases]
+        folder = tmp_path / (version or "none")
+        folder.mkdir()
+        out.append((sessions(folder, interface, conversations), preference(interface, version)))
+    return out
+
+
+def corpus_conversation(raw: bytes) -> tuple[Segment, ...]:
+    """A dashboard fuzz input as the harness reads it: after the version byte, segments, each a
+    control byte (bit 0: from the robot; bits 1-7: its length) and up to that many bytes."""
+    out, at = [], 1
+    while at < len(raw):
+        from_robot, n = bool(raw[at] & 1), raw[at] >> 1
+        data = raw[at + 1:at + 1 + n]
+        at += 1 + n
+        if data:
+            out.append(Segment(from_robot, data))
+    return tuple(out)
+
+
+def corpus_captures(tmp_path: Path) -> list[tuple[Path, tuple[str, ...]]]:
+    groups: dict = {}
+    for path in sorted(CORPUS.iterdir()):
+        raw = path.read_bytes()
+        if raw and corpus_conversation(raw):
+            groups.setdefault(FUZZ_VERSIONS[raw[0] & 3], []).append(corpus_conversation(raw))
+    out = []
+    for version, conversations in sorted(groups.items(), key=lambda g: g[0] or ""):
+        folder = tmp_path / f"corpus-{version or 'none'}"
+        folder.mkdir()
+        out.append((sessions(folder, "ur_dashboard", conversations), preference("ur_dashboard", version)))
+    return out
+
+
+# ---- 1 and 2: the dashboard server and the script sender, native against Lua ----
+
+def test_the_plugin_builds_with_gcc_and_clang():
+    for variant in ("gcc", "clang"):
+        assert harness.plugin(variant).library.is_file()
+
+
+@pytest.mark.parametrize("interface", INTERFACES)
+def test_the_same_fields_experts_and_ports_are_registered(interface):
+    lua = harness.lua_plugin(interface)
+    empty = {"HOME": str(harness._empty_home()), "PATH": "/usr/bin:/bin"}
+    for report in ("fields", "protocols", "decodes"):
+        native = harness.native_tshark(["-G", report])
+        assert native.returncode == 0, native.stderr
+        mine = sorted(line for line in native.stdout.decode().splitlines() if f"\t{interface}" in line)
+        theirs = subprocess.run(["tshark", "-G", report, "-X", f"lua_script:{lua}"], capture_output=True,
+                                env=empty, timeout=120).stdout.decode().splitlines()
+        theirs = sorted(line for line in theirs if f"\t{interface}" in line
+                        # a Lua error caught while dissecting: the native dissector has none to report
+                        and f"\t{interface}.internal_error\t" not in line)
+        assert mine and mine == theirs, report
+
+
+@pytest.mark.parametrize("interface", INTERFACES)
+def test_every_golden_vector_whole_and_in_1_to_7_byte_segments(tmp_path, interface):
+    for pcap, prefs in vector_captures(tmp_path, interface):
+        shown = assert_same(pcap, [interface], *prefs)
+        assert any(shown.layers), "the dissector showed nothing"
+
+
+def test_the_dashboard_fuzz_corpus(tmp_path):
+    captures = corpus_captures(tmp_path)
+    assert len(captures) == len(FUZZ_VERSIONS)
+    for pcap, prefs in captures:
+        assert_same(pcap, ["ur_dashboard"], *prefs)
+
+
+def test_the_cell_sample():
+    # Only the frames of these interfaces: the other interfaces' frames show what other dissectors,
+    # native or not, make of them.
+    ports = " || ".join(f"tcp.port == {PORTS[name]}" for name in INTERFACES)
+    shown = assert_same(CELL, list(INTERFACES), "-Y", ports)
+    assert {name for layer in shown.layers for name in layer} == set(INTERFACES)
+
+
+def test_decode_as_on_another_port(tmp_path):
+    conversation = (Segment(False, b"play\n"), Segment(True, b"Starting program\n"))
+    pcap = sessions(tmp_path, "ur_dashboard", [conversation], port=40000)
+    shown = assert_same(pcap, ["ur_dashboard"], "-d", "tcp.port==40000,ur_dashboard")
+    assert any(shown.layers)
+
+
+# ---- the runtime alone ----
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+def test_the_match_runtime_alone(tmp_path, cc):
+    binary = tmp_path / "lines_match_unit"
+    source = ROOT / "tests" / "native" / "lines_match_unit.c"
+    build = subprocess.run([cc, "-std=c11", "-Wall", "-Wextra", "-Werror", "-fsanitize=address,undefined",
+                            "-fno-sanitize-recover=all", f"-I{RUNTIME}", str(source), "-o", str(binary)],
+                           capture_output=True, text=True)
+    assert build.returncode == 0, build.stderr
+    run = subprocess.run([str(binary)], capture_output=True, text=True, env={"ASAN_OPTIONS": "detect_leaks=0"})
+    assert run.stdout == "ok\n" and run.returncode == 0, run.stdout + run.stderr
+
+
+def test_the_dissector_runtime_compiles_alone():
+    flags = subprocess.run(["pkg-config", "--cflags", "wireshark"], capture_output=True, text=True, check=True)
+    result = subprocess.run(["gcc", "-std=c11", "-Wall", "-Wextra", "-Werror", "-Wno-unused-function", "-fsyntax-only",
+                             *flags.stdout.split(), f"-I{RUNTIME}", str(RUNTIME / "lines_dissect.c")],
+                            capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
