@@ -26,7 +26,7 @@ ROOT = Path(__file__).resolve().parents[2]
 CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "ur_dashboard"
 CELL = ROOT / "dissector" / "samples" / "cell_session.pcapng"
 RUNTIME = ROOT / "runtime" / "epan"
-INTERFACES = ("ur_dashboard",)
+INTERFACES = ("ur_dashboard", "ur_script_sender")
 PORTS = {"ur_dashboard": 29999, "ur_script_sender": 50002}
 # The script sender's port is the control PC's, and the robot connects to it: in the capture
 # writer's terms (the side on the port sends "from_robot") its vectors' directions are swapped.
