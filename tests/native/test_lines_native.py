@@ -12,6 +12,7 @@ The runtime's pure functions (runtime/epan/lines_match.c) are compiled and teste
 from __future__ import annotations
 
 import functools
+import hashlib
 import random
 import subprocess
 from pathlib import Path
@@ -81,10 +82,22 @@ def asan_environment() -> dict:
             "UBSAN_OPTIONS": "print_stacktrace=1:halt_on_error=1"}
 
 
+@functools.lru_cache(maxsize=None)
+def _lua_shown(digest: str, pcap: Path, interfaces: tuple[str, ...], args: tuple[str, ...]) -> harness.Shown:
+    return harness.shown(lua_run(interfaces), pcap, interfaces, *args)
+
+
+def lua_shown(pcap: Path, interfaces, *args: str) -> harness.Shown:
+    """What the Lua dissectors show, once per capture's content (each build is compared with it)."""
+    digest = hashlib.sha256(Path(pcap).read_bytes()).hexdigest()
+    return _lua_shown(digest, Path(pcap), tuple(interfaces), args)
+
+
 def assert_same(pcap: Path, interfaces, *args: str, variant: str = "gcc") -> harness.Shown:
-    """Native and Lua show the capture alike: layers, Info column, expert infos."""
+    """Native and Lua show the capture alike: layers, Info column, expert infos. Under the asan
+    build, any sanitizer report on stderr fails the run (harness.checked)."""
     native = harness.shown(native_run(variant), pcap, interfaces, *args)
-    lua = harness.shown(lua_run(interfaces), pcap, interfaces, *args)
+    lua = lua_shown(pcap, interfaces, *args)
     assert len(native.layers) == len(lua.layers)
     for number, (mine, theirs) in enumerate(zip(native.layers, lua.layers), start=1):
         assert mine == theirs, f"frame {number}"
@@ -158,33 +171,48 @@ def test_the_same_fields_experts_and_ports_are_registered(interface):
         assert mine and mine == theirs, report
 
 
+# Each capture through the plain build and the one built with ASan and UBSan (3).
+VARIANTS = ("gcc", "asan")
+
+
+@pytest.mark.parametrize("variant", VARIANTS)
 @pytest.mark.parametrize("interface", INTERFACES)
-def test_every_golden_vector_whole_and_in_1_to_7_byte_segments(tmp_path, interface):
+def test_every_golden_vector_whole_and_in_1_to_7_byte_segments(tmp_path, interface, variant):
     for pcap, prefs in vector_captures(tmp_path, interface):
-        shown = assert_same(pcap, [interface], *prefs)
+        shown = assert_same(pcap, [interface], *prefs, variant=variant)
         assert any(shown.layers), "the dissector showed nothing"
 
 
-def test_the_dashboard_fuzz_corpus(tmp_path):
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_the_dashboard_fuzz_corpus(tmp_path, variant):
     captures = corpus_captures(tmp_path)
     assert len(captures) == len(FUZZ_VERSIONS)
     for pcap, prefs in captures:
-        assert_same(pcap, ["ur_dashboard"], *prefs)
+        assert_same(pcap, ["ur_dashboard"], *prefs, variant=variant)
 
 
-def test_the_cell_sample():
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_the_cell_sample(variant):
     # Only the frames of these interfaces: the other interfaces' frames show what other dissectors,
     # native or not, make of them.
     ports = " || ".join(f"tcp.port == {PORTS[name]}" for name in INTERFACES)
-    shown = assert_same(CELL, list(INTERFACES), "-Y", ports)
+    shown = assert_same(CELL, list(INTERFACES), "-Y", ports, variant=variant)
     assert {name for layer in shown.layers for name in layer} == set(INTERFACES)
 
 
-def test_decode_as_on_another_port(tmp_path):
-    conversation = (Segment(False, b"play\n"), Segment(True, b"Starting program\n"))
-    pcap = sessions(tmp_path, "ur_dashboard", [conversation], port=40000)
-    shown = assert_same(pcap, ["ur_dashboard"], "-d", "tcp.port==40000,ur_dashboard")
+@pytest.mark.parametrize("interface", INTERFACES)
+def test_decode_as_on_another_port(tmp_path, interface):
+    case = conversation_cases(interface)[0]
+    pcap = sessions(tmp_path, interface, [case.segments], port=40000)
+    shown = assert_same(pcap, [interface], "-d", f"tcp.port==40000,{interface}")
     assert any(shown.layers)
+
+
+def test_the_asan_build_is_instrumented():
+    """The sanitizers are in the plugin the asan runs load (else those runs would prove nothing)."""
+    symbols = subprocess.run(["nm", "-D", str(harness.plugin("asan").library)], capture_output=True, text=True,
+                             check=True).stdout
+    assert "__asan_report" in symbols and "__ubsan_handle" in symbols
 
 
 # ---- the runtime alone ----
