@@ -626,20 +626,29 @@ static lines_decision_t *lines_decide_reply(lines_conversation_t *c, const uint8
 
 /* ---- the tree ---- */
 
+/* Text as the tree and the Info column show it: UTF-8, each byte that is not replaced by U+FFFD
+ * (Wireshark's ENC_UTF_8), so that every output of tshark is valid UTF-8. */
+static const char *lines_text(packet_info *pinfo, tvbuff_t *tvb, int at, int len)
+{
+    return len > 0 ? (const char *)tvb_get_string_enc(pinfo->pool, tvb, at, len, ENC_UTF_8) : "";
+}
+
 static void lines_show_command(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb, int at, int len,
                                const char *text, const lines_decision_t *d)
 {
-    proto_item *item = proto_tree_add_item(tree, proto_ur_dashboard, tvb, at, len, ENC_NA);
+    const int span = len > 0 ? len : 1;        /* an empty line: its newline */
+    proto_item *item = proto_tree_add_item(tree, proto_ur_dashboard, tvb, at, span, ENC_NA);
     proto_tree *line = proto_item_add_subtree(item, ett_ur_dashboard);
-    proto_tree_add_string(line, hf_ur_dashboard_command, tvb, at, len, text);
+    proto_tree_add_string(line, hf_ur_dashboard_command, tvb, at, span, text);
     if (d->command != LINES_NONE) {
-        proto_item_set_generated(proto_tree_add_string(line, hf_ur_dashboard_command_name, tvb, at, len,
+        proto_item_set_generated(proto_tree_add_string(line, hf_ur_dashboard_command_name, tvb, at, span,
                                                        ur_dashboard_spec.commands[d->command].name));
         if (d->argument >= 0)
-            proto_tree_add_string(line, hf_ur_dashboard_argument, tvb, at, len, text + d->argument);
+            proto_tree_add_string(line, hf_ur_dashboard_argument, tvb, at, span,
+                                  lines_text(pinfo, tvb, at + (int)d->argument, len - (int)d->argument));
         if (d->available >= 0) {
             proto_item *available;
-            available = proto_tree_add_boolean(line, hf_ur_dashboard_available, tvb, at, len, d->available);
+            available = proto_tree_add_boolean(line, hf_ur_dashboard_available, tvb, at, span, d->available);
             proto_item_set_generated(available);
             if (!d->available)
                 expert_add_info(pinfo, available, &ei_ur_dashboard_unavailable);
@@ -653,18 +662,19 @@ static void lines_show_command(proto_tree *tree, packet_info *pinfo, tvbuff_t *t
 static void lines_show_reply(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb, int at, int len,
                              const char *text, const lines_decision_t *d)
 {
-    proto_item *item = proto_tree_add_item(tree, proto_ur_dashboard, tvb, at, len, ENC_NA);
+    const int span = len > 0 ? len : 1;        /* an empty line: its newline */
+    proto_item *item = proto_tree_add_item(tree, proto_ur_dashboard, tvb, at, span, ENC_NA);
     proto_tree *line = proto_item_add_subtree(item, ett_ur_dashboard);
     proto_item *error;
     bool says_error = d->reply != NULL && d->reply->error;
-    proto_tree_add_string(line, hf_ur_dashboard_reply, tvb, at, len, text);
+    proto_tree_add_string(line, hf_ur_dashboard_reply, tvb, at, span, text);
     if (d->command != LINES_NONE)
-        proto_item_set_generated(proto_tree_add_string(line, hf_ur_dashboard_command_name, tvb, at, len,
+        proto_item_set_generated(proto_tree_add_string(line, hf_ur_dashboard_command_name, tvb, at, span,
                                                        ur_dashboard_spec.commands[d->command].name));
     if (d->reply != NULL)
-        proto_item_set_generated(proto_tree_add_string(line, hf_ur_dashboard_reply_name, tvb, at, len,
+        proto_item_set_generated(proto_tree_add_string(line, hf_ur_dashboard_reply_name, tvb, at, span,
                                                        d->reply->name));
-    error = proto_tree_add_boolean(line, hf_ur_dashboard_error, tvb, at, len, says_error);
+    error = proto_tree_add_boolean(line, hf_ur_dashboard_error, tvb, at, span, says_error);
     proto_item_set_generated(error);
     if (says_error)
         expert_add_info(pinfo, error, &ei_ur_dashboard_error_reply);
@@ -687,27 +697,16 @@ static lines_frame_t *lines_frame(packet_info *pinfo, lines_conversation_t *c, b
     return frame;
 }
 
-/* A line's text as the tree shows it: its bytes as they came, up to a NUL if it holds one. */
-static const char *lines_text(packet_info *pinfo, const uint8_t *line, size_t len)
-{
-    char *text = (char *)wmem_alloc(pinfo->pool, len + 1);
-    memcpy(text, line, len);
-    text[len] = '\0';
-    return text;
-}
-
 /* The Info column: each line's "Command: <text>" or "Reply: <text>", joined by "; ", no longer
  * than the column shows. */
-static void lines_info(wmem_strbuf_t *info, const char *what, const uint8_t *text, size_t len)
+static void lines_info(wmem_strbuf_t *info, const char *what, const char *text)
 {
-    size_t room;
     if (wmem_strbuf_get_len(info) >= COL_MAX_INFO_LEN)
         return;
     if (wmem_strbuf_get_len(info) > 0)
         wmem_strbuf_append(info, "; ");
     wmem_strbuf_append(info, what);
-    room = COL_MAX_INFO_LEN - MIN(wmem_strbuf_get_len(info), COL_MAX_INFO_LEN);
-    wmem_strbuf_append_len(info, (const char *)text, MIN(len, room));
+    wmem_strbuf_append(info, text);
 }
 
 static int dissect_ur_dashboard(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
@@ -753,10 +752,11 @@ static int dissect_ur_dashboard(tvbuff_t *tvb, packet_info *pinfo, proto_tree *t
             if (nl < 0 || (size_t)len > ur_dashboard_spec.max_line) {
                 expert_add_info(pinfo, proto_tree_add_item(tree, proto_ur_dashboard, tvb, at, stop - at, ENC_NA),
                                 &ei_ur_dashboard_too_long);
-                lines_info(info, "Line too long", (const uint8_t *)"", 0);
+                lines_info(info, "Line too long", "");
                 skipping = nl < 0;
                 at = nl >= 0 ? nl + 1 : n;
             } else {
+                const char *text;
                 lines_decision_t *d = first_pass ? NULL
                     : (lines_decision_t *)wmem_tree_lookup32(frame->lines, (guint32)at);
                 if (d == NULL) {
@@ -764,12 +764,10 @@ static int dissect_ur_dashboard(tvbuff_t *tvb, packet_info *pinfo, proto_tree *t
                                  : lines_decide_reply(c, buf + at, (size_t)len);
                     wmem_tree_insert32(frame->lines, (guint32)at, d);
                 }
-                lines_info(info, requests ? "Command: " : "Reply: ", buf + at, (size_t)len);
-                if (tree != NULL) {
-                    const char *text = lines_text(pinfo, buf + at, (size_t)len);
-                    (requests ? lines_show_command : lines_show_reply)(tree, pinfo, tvb, at, len > 0 ? len : 1,
-                                                                       text, d);
-                }
+                text = lines_text(pinfo, tvb, at, len);
+                lines_info(info, requests ? "Command: " : "Reply: ", text);
+                if (tree != NULL)
+                    (requests ? lines_show_command : lines_show_reply)(tree, pinfo, tvb, at, len, text, d);
                 at = nl + 1;
             }
         }

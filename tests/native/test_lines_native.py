@@ -235,3 +235,17 @@ def test_the_dissector_runtime_compiles_alone():
                              *flags.stdout.split(), f"-I{RUNTIME}", str(RUNTIME / "lines_dissect.c")],
                             capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
+
+
+def test_text_that_is_not_utf8_shows_as_replacement_characters(tmp_path):
+    """A line's bytes are shown as UTF-8 with U+FFFD for each ill-formed part, in the tree and the
+    Info column, so that tshark's output is valid UTF-8 (Lua's is compared above)."""
+    case = next(c for c in conversation_cases("ur_dashboard") if c.name == "text_not_utf8")
+    pcap = sessions(tmp_path, "ur_dashboard", [case.segments + (Segment(False, b"popup a\0b\nplay\n"),)])
+    out = harness.checked(harness.run_native(pcap, "-2", "-T", "fields", "-e", "ur_dashboard.command",
+                                             "-e", "ur_dashboard.argument", "-e", "_ws.col.Info"))
+    raw = harness.run_native(pcap, "-2", "-T", "json").stdout
+    raw.decode("utf-8")            # strict: raises on any ill-formed byte
+    assert "popup caf\ufffd \ufffd\tcaf\ufffd \ufffd\tCommand: popup caf\ufffd \ufffd" in out
+    # A NUL ends a line's text, as C strings end, and the lines after it are shown all the same.
+    assert "popup a,play\ta\tCommand: popup a; Command: play" in out
