@@ -249,3 +249,14 @@ def test_text_that_is_not_utf8_shows_as_replacement_characters(tmp_path):
     assert "popup caf\ufffd \ufffd\tcaf\ufffd \ufffd\tCommand: popup caf\ufffd \ufffd" in out
     # A NUL ends a line's text, as C strings end, and the lines after it are shown all the same.
     assert "popup a,play\ta\tCommand: popup a; Command: play" in out
+
+
+@pytest.mark.parametrize("interface", INTERFACES)
+def test_without_a_tree_the_same_packet_list(tmp_path, interface):
+    """One pass and no detail asked (tshark's packet list): the dissector runs with no tree, doing
+    only the framing, the pairing and the Info column, and shows what Lua shows."""
+    for pcap, prefs in vector_captures(tmp_path, interface):
+        native = harness.checked(harness.run_native(pcap, *prefs)).splitlines()
+        lua = harness.checked(lua_run([interface])(pcap, *prefs)).splitlines()
+        assert native == lua
+        assert any(("Command: " in line or "Reply: " in line) for line in native)
