@@ -182,10 +182,10 @@ static lines_frame_t *lines_frame(packet_info *pinfo, lines_conversation_t *c, b
 }
 
 /* The Info column: each line's "Command: <text>" or "Reply: <text>", joined by "; ", no longer
- * than the column shows. */
+ * than the column shows; nothing without columns (info NULL). */
 static void lines_info(wmem_strbuf_t *info, const char *what, const char *text)
 {
-    if (wmem_strbuf_get_len(info) >= COL_MAX_INFO_LEN)
+    if (info == NULL || wmem_strbuf_get_len(info) >= COL_MAX_INFO_LEN)
         return;
     if (wmem_strbuf_get_len(info) > 0)
         wmem_strbuf_append(info, "; ");
@@ -205,7 +205,8 @@ static int dissect_lines(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, vo
     lines_conversation_t *c = lines_conversation(pinfo);
     lines_frame_t *frame = lines_frame(pinfo, c, from_robot);
     bool skipping = frame->skipping;
-    wmem_strbuf_t *info = wmem_strbuf_new(pinfo->pool, "");
+    /* No columns (tshark's first pass): no Info text to build. */
+    wmem_strbuf_t *info = pinfo->cinfo != NULL ? wmem_strbuf_new(pinfo->pool, "") : NULL;
     int at = 0;
 
     col_set_str(pinfo->cinfo, COL_PROTOCOL, lines_spec.column);
@@ -240,7 +241,6 @@ static int dissect_lines(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, vo
                 skipping = nl < 0;
                 at = nl >= 0 ? nl + 1 : n;
             } else {
-                const char *text;
                 lines_decision_t *d = first_pass ? NULL
                     : (lines_decision_t *)wmem_tree_lookup32(frame->lines, (guint32)at);
                 if (d == NULL) {
@@ -248,17 +248,19 @@ static int dissect_lines(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, vo
                                  : lines_decide_reply(c, buf + at, (size_t)len);
                     wmem_tree_insert32(frame->lines, (guint32)at, d);
                 }
-                text = lines_text(pinfo, tvb, at, len);
-                lines_info(info, requests ? "Command: " : "Reply: ", text);
-                if (tree != NULL)
-                    (requests ? lines_show_command : lines_show_reply)(tree, pinfo, tvb, at, len, text, d);
+                if (info != NULL || tree != NULL) {    /* the text, only where it is shown */
+                    const char *text = lines_text(pinfo, tvb, at, len);
+                    lines_info(info, requests ? "Command: " : "Reply: ", text);
+                    if (tree != NULL)
+                        (requests ? lines_show_command : lines_show_reply)(tree, pinfo, tvb, at, len, text, d);
+                }
                 at = nl + 1;
             }
         }
     }
     if (first_pass)
         c->skipping[from_robot] = skipping;
-    if (wmem_strbuf_get_len(info) > 0)
+    if (info != NULL && wmem_strbuf_get_len(info) > 0)
         col_add_str(pinfo->cinfo, COL_INFO, wmem_strbuf_get_str(info));
     return n;
 }
