@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import functools
 import hashlib
+import json
 import random
 import subprocess
 from pathlib import Path
@@ -38,13 +39,13 @@ CLIENT_PORTS = 41000           # the client side of the n-th session: 41000 + n,
 FUZZ_VERSIONS = (None, "3.15", "5.4", "5.11")
 
 
-def one_to_seven(segments: tuple[Segment, ...], rng: random.Random) -> tuple[Segment, ...]:
-    """The same conversation cut into segments of 1 to 7 bytes."""
+def in_pieces(segments: tuple[Segment, ...], rng: random.Random, most: int) -> tuple[Segment, ...]:
+    """The same conversation cut into segments of 1 to `most` bytes."""
     out = []
     for s in segments:
         at = 0
         while at < len(s.data):
-            n = rng.randint(1, 7)
+            n = rng.randint(1, most)
             out.append(Segment(s.from_robot, s.data[at:at + n]))
             at += n
     return tuple(out)
@@ -114,7 +115,7 @@ def vector_captures(tmp_path: Path, interface: str) -> list[tuple[Path, tuple[st
     out = []
     for version, cases in sorted(groups.items(), key=lambda g: g[0] or ""):
         rng = random.Random(f"{interface} {version}")
-        conversations = [c.segments for c in cases] + [one_to_seven(c.segments, rng) for c in cases]
+        conversations = [c.segments for c in cases] + [in_pieces(c.segments, rng, 7) for c in cases]
         folder = tmp_path / (version or "none")
         folder.mkdir()
         out.append((sessions(folder, interface, conversations), preference(interface, version)))
@@ -260,3 +261,39 @@ def test_without_a_tree_the_same_packet_list(tmp_path, interface):
         lua = harness.checked(lua_run([interface])(pcap, *prefs)).splitlines()
         assert native == lua
         assert any(("Command: " in line or "Reply: " in line) for line in native)
+
+
+def hostile_conversations() -> list[tuple[Segment, ...]]:
+    """What the vectors do not reach: binary junk, lines longer than the limit, empty lines and
+    bare carriage returns, replies before any command, more commands in flight than a
+    conversation keeps, version replies that tell no version, and a version learnt
+    mid-conversation that makes later commands unavailable. The short ones are cut into 1-7
+    byte segments too; the long lines cross segments of up to 700 bytes (reassembling a 9000-byte
+    line a few bytes at a time is slow in Lua, and the short ones cross every state)."""
+    junk = bytes(range(256)) * 2
+    many = b"".join(b"play\n" for _ in range(300))
+    short = [
+        (Segment(True, junk), Segment(False, junk), Segment(True, b"\n" * 3), Segment(False, b"\r\n\r\r\nplay\r")),
+        (Segment(False, b"PolyscopeVersion\nPolyscopeVersion\nPolyscopeVersion\n"),
+         Segment(True, b"URSoftware 5.\nURSoftware 1234.5.6 (x)\nURSoftware 3.15.7.1 (Nov 2021)\n"),
+         Segment(False, b"safetystatus\nget serial number\nload \n"),
+         Segment(True, b"could not understand: 'safetystatus'\n20165500123\nFile not found: \n")),
+    ]
+    long = [
+        (Segment(False, b"x" * 5000 + b"\nstop\n"), Segment(True, b"y" * 4097 + b"\r\nStopped\r\n"),
+         Segment(False, b"\r\n" + b"p" * 9000), Segment(False, b"\nplay\n")),
+        (Segment(True, b"Starting program\n"), Segment(False, many), Segment(True, b"Starting program\n" * 301)),
+    ]
+    rng = random.Random("hostile")
+    return (short + long + [in_pieces(c, rng, 7) for c in short] + [in_pieces(c, rng, 700) for c in long])
+
+
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_hostile_conversations(tmp_path, variant):
+    pcap = sessions(tmp_path, "ur_dashboard", hostile_conversations())
+    shown = assert_same(pcap, ["ur_dashboard"], variant=variant)
+    messages = {e["_ws.expert.message"] for e in shown.experts}
+    assert {"Line longer than 4096 bytes", "Unknown command", "The software version lacks this command"} <= messages
+    # The same with TCP reassembly off: a line cut by a segment shows as a part of a line.
+    shown = assert_same(pcap, ["ur_dashboard"], "-o", "tcp.desegment_tcp_streams:FALSE", variant=variant)
+    assert "Part of a line (reassembly is off)" in json.dumps(shown.layers)
