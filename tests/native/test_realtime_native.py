@@ -53,6 +53,14 @@ def test_the_client_side_is_urscript():
     compare(sessions([[CASES[0].data]], PORT, "rt-client", client_says=b"movej([0,0,0,0,0,0])\n"), PROTOCOL)
 
 
+@pytest.mark.parametrize("port, args", [(30013, []), (40123, ["-d", "tcp.port==40123,ur_realtime"]),
+                                         (40124, ["-o", "ur_realtime.ports:40124"])],
+                         ids=["read-only-port", "decode-as", "ports-preference"])
+def test_other_ports(port, args):
+    shown = compare(sessions([[c.data] for c in CASES], port, f"rt-port-{port}"), PROTOCOL, *args)
+    assert any(shown.layers), f"nothing dissected on {port}"
+
+
 def test_the_fuzz_corpus():
     streams = [[p.read_bytes()] for p in CORPUS] + [cuts(p.read_bytes(), seed=i) for i, p in enumerate(CORPUS)]
     shown = compare(sessions(streams, PORT, "rt-corpus"), PROTOCOL)
