@@ -13,7 +13,7 @@ import shutil
 import subprocess
 from functools import partial
 from pathlib import Path
-from typing import Iterable, Sequence
+from typing import Iterable, Sequence, Union
 
 from tests.native import harness
 from tests.tools import capture
@@ -31,16 +31,18 @@ def cuts(data: bytes, seed: int, smallest: int = 1, largest: int = 7) -> list[by
     return out
 
 
-def sessions(streams: Iterable[Sequence[bytes]], port: int, name: str, first_client_port: int = 41000,
+def sessions(streams: Iterable[Sequence[Union[bytes, Segment]]], port: int, name: str, first_client_port: int = 41000,
              client_says: bytes = b"") -> Path:
-    """A pcap of one TCP session per stream (each a list of the robot's segment payloads), the
-    robot on `port`; `client_says` is sent by each client first when given. It is written where
+    """A pcap of one TCP session per stream (each a list of segment payloads the side on `port`
+    sends, or of capture.Segment in either direction); `client_says` is sent by each client first
+    when given. It is written where
     tshark, run as nobody, can read it by name: tshark reads a pipe in one pass only, and the
     comparison runs two (-2)."""
     frames: list[bytes] = []
     for i, segments in enumerate(streams):
         said = [Segment(False, client_says)] if client_says else []
-        frames += capture.session_frames(said + [Segment(True, s) for s in segments if s], port=port,
+        ours = [s if isinstance(s, Segment) else Segment(True, s) for s in segments]
+        frames += capture.session_frames(said + [s for s in ours if s.payload], port=port,
                                          client_port=first_client_port + i)
     return readable(capture.write(_captures() / f"{name}-{os.getpid()}.pcap", frames))
 
@@ -61,8 +63,23 @@ def readable(path: Path) -> Path:
     return path
 
 
-def run_native(path: Path, *args: str, variant: str = "gcc") -> subprocess.CompletedProcess:
-    return harness.native_tshark(["-r", str(path), *args], variant=variant)
+def run_native(path: Path, *args: str, variant: str = "gcc", alone: str = "") -> subprocess.CompletedProcess:
+    """tshark with the native plugin; `alone`: with every other protocol of the plugin disabled,
+    as the Lua dissector it is compared with is loaded alone."""
+    others = [a for name in _plugin_protocols(variant) if name != alone for a in ("--disable-protocol", name)]
+    return harness.native_tshark(["-r", str(path), *(others if alone else []), *args], variant=variant)
+
+
+_PROTOCOLS: dict[str, list[str]] = {}
+
+
+def _plugin_protocols(variant: str) -> list[str]:
+    """The protocols the plugin registers: those of tshark -G protocols that have a Lua twin."""
+    if variant not in _PROTOCOLS:
+        out = harness.native_tshark(["-G", "protocols"], variant=variant).stdout.decode().splitlines()
+        known = {"ur" if path.stem == "urwire" else path.stem for path in harness.LUA.glob("*.lua")}
+        _PROTOCOLS[variant] = sorted({line.split("\t")[2] for line in out if line.count("\t") == 2} & known)
+    return _PROTOCOLS[variant]
 
 
 def run_lua(path: Path, *args: str, protocol: str) -> subprocess.CompletedProcess:
@@ -77,10 +94,12 @@ def run_lua(path: Path, *args: str, protocol: str) -> subprocess.CompletedProces
 def compare(path: Path, protocol: str, *args: str, variant: str = "gcc") -> harness.Shown:
     """The native dissector and the Lua one, each alone, on one capture: the same -T json layers
     of the protocol, Info column and expert infos. Returns what they showed."""
-    native = harness.shown(partial(run_native, variant=variant), path, [protocol], *args)
+    native = harness.shown(partial(run_native, variant=variant, alone=protocol), path, [protocol], *args)
     twin = harness.shown(partial(run_lua, protocol=protocol), path, [protocol], *args)
     native.layers = [as_lua_writes(layer) for layer in native.layers]
-    assert native.info == twin.info
+    assert len(native.info) == len(twin.info)
+    for frame, (mine, theirs) in enumerate(zip(native.info, twin.info)):
+        assert mine == theirs, f"Info of frame {frame + 1}"
     assert native.experts == twin.experts
     for frame, (mine, theirs) in enumerate(zip(native.layers, twin.layers)):
         assert mine == theirs, f"frame {frame + 1}"

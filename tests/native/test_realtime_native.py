@@ -85,7 +85,7 @@ def test_without_a_tree_the_summary_is_the_same():
     words the Info column, and its lines must still be Lua's."""
     streams = [[c.data] for c in CASES] + [cuts(c.data, seed=i) for i, c in enumerate(CASES)]
     path = sessions(streams, PORT, "rt-summary")
-    native = harness.checked(run_native(path))
+    native = harness.checked(run_native(path, alone=PROTOCOL))
     assert "UR real-time" in native and "rt_1_8, RUNNING (+2)" in native
     assert native == harness.checked(run_lua(path, protocol=PROTOCOL))
 
