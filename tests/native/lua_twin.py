@@ -66,8 +66,20 @@ def readable(path: Path) -> Path:
 def run_native(path: Path, *args: str, variant: str = "gcc", alone: str = "") -> subprocess.CompletedProcess:
     """tshark with the native plugin; `alone`: with every other protocol of the plugin disabled,
     as the Lua dissector it is compared with is loaded alone."""
-    others = [a for name in _plugin_protocols(variant) if name != alone for a in ("--disable-protocol", name)]
-    return harness.native_tshark(["-r", str(path), *(others if alone else []), *args], variant=variant)
+    others = [a for name in _plugin_protocols(variant) if name != alone for a in ("--disable-protocol", name)] \
+        if alone else []
+    return harness.native_tshark(["-r", str(path), *others, *args], variant=variant)
+
+
+def run_sanitized(path: Path, *args: str) -> subprocess.CompletedProcess:
+    """tshark with the plugin built under ASan and UBSan (harness variant "asan"): the ASan runtime
+    preloaded into tshark, which is not built with it; leaks are Wireshark's own at exit, so not
+    reported. A report goes to stderr (and UBSan aborts), which harness.checked refuses."""
+    libasan = subprocess.run(["gcc", "-print-file-name=libasan.so"], capture_output=True, text=True,
+                             check=True).stdout.strip()
+    env = {"LD_PRELOAD": libasan, "ASAN_OPTIONS": "detect_leaks=0:abort_on_error=1",
+           "UBSAN_OPTIONS": "print_stacktrace=1:halt_on_error=1"}
+    return harness.native_tshark(["-r", str(path), *args], variant="asan", env=env)
 
 
 _PROTOCOLS: dict[str, list[str]] = {}

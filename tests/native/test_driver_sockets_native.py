@@ -13,7 +13,7 @@ import pytest
 
 from tests.interface_vectors import conversation_cases
 from tests.native import harness
-from tests.native.lua_twin import compare, cuts, readable, registered, run_lua, run_native, sessions
+from tests.native.lua_twin import compare, cuts, readable, registered, run_lua, run_native, run_sanitized, sessions
 from tests.tools.capture import Segment
 
 PORTS = {"ur_reverse": 50001, "ur_trajectory": 50003, "ur_script_command": 50004}
@@ -56,6 +56,18 @@ def _corpus_streams(name: str) -> list[list[Segment]]:
     return streams
 
 
+def _vectors(name: str) -> list:
+    """(capture, tshark arguments) for each release the vectors name: its vectors, each whole and
+    in 1-7-byte segments, one session each."""
+    cases, out = conversation_cases(name), []
+    for release in sorted({c.version for c in cases}, key=str):
+        chosen = [c for c in cases if c.version == release]
+        streams = [_on_the_wire(c.segments) for c in chosen]
+        streams += [_small(_on_the_wire(c.segments), seed=i) for i, c in enumerate(chosen)]
+        out.append((sessions(streams, PORTS[name], f"{name}-{release}"), _release(name, release)))
+    return out
+
+
 def test_the_same_fields_are_registered():
     for name in NAMES:
         native = registered(name, lua=False)
@@ -66,13 +78,9 @@ def test_the_same_fields_are_registered():
 @pytest.mark.parametrize("name", NAMES)
 def test_every_vector_whole_and_in_small_segments(name):
     """Each vector in a capture of the vectors of its release (whole, and in 1-7-byte segments)."""
-    cases = conversation_cases(name)
-    for release in sorted({c.version for c in cases}, key=str):
-        chosen = [c for c in cases if c.version == release]
-        streams = [_on_the_wire(c.segments) for c in chosen]
-        streams += [_small(_on_the_wire(c.segments), seed=i) for i, c in enumerate(chosen)]
-        shown = compare(sessions(streams, PORTS[name], f"{name}-{release}"), name, *_release(name, release))
-        assert any(shown.layers), (name, release)
+    for path, args in _vectors(name):
+        shown = compare(path, name, *args)
+        assert any(shown.layers), (name, args)
 
 
 @pytest.mark.parametrize("release", [None, "1.0.0"], ids=["default-release", "release-1.0.0"])
@@ -123,3 +131,16 @@ def test_each_runtime_file_compiles_alone(name):
                              *shlex.split(flags.stdout), f"-I{folder}", str(folder / name)],
                             capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_under_asan_and_ubsan_no_report(name):
+    """The plugin built with -fsanitize=address,undefined over the captures above, with and without
+    a tree: tshark ends well, with nothing on stderr."""
+    captures = _vectors(name) + [(readable(CELL), [])]
+    captures += [(sessions(_corpus_streams(name), PORTS[name], f"{name}-corpus-{r}"), _release(name, r))
+                 for r in (None, "1.0.0")]
+    for path, args in captures:
+        for view in (["-V"], []):
+            out = harness.checked(run_sanitized(path, "-2", *view, *args))
+            assert name in out or "UR " in out, (path, view)

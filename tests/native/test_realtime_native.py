@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from tests.native import harness
-from tests.native.lua_twin import compare, cuts, readable, registered, run_lua, run_native, sessions
+from tests.native.lua_twin import compare, cuts, readable, registered, run_lua, run_native, run_sanitized, sessions
 from tests.vectors import interface_cases
 
 PROTOCOL = "ur_realtime"
@@ -30,6 +30,19 @@ def _preference(version) -> list[str]:
     return ["-o", f"{PROTOCOL}.version:{version}"] if version else []
 
 
+def _vectors(version):
+    """Every vector that names this version, or every vector when None: each whole and cut in
+    1-7-byte segments, one session each."""
+    chosen = [c for c in CASES if c.version == version or version is None]
+    streams = [[c.data] for c in chosen] + [cuts(c.data, seed=i) for i, c in enumerate(chosen)]
+    return sessions(streams, PORT, f"rt-vectors-{version}")
+
+
+def _corpus():
+    streams = [[p.read_bytes()] for p in CORPUS] + [cuts(p.read_bytes(), seed=i) for i, p in enumerate(CORPUS)]
+    return sessions(streams, PORT, "rt-corpus")
+
+
 def test_the_same_fields_are_registered():
     native = registered(PROTOCOL, lua=False)
     assert any("\tur_realtime.q_actual\tFT_DOUBLE" in line for line in native)
@@ -41,8 +54,7 @@ def test_every_vector_whole_and_in_small_segments(version):
     """Every vector under the version preference, and the vectors that name no version under none:
     one session whole and one cut in 1-7-byte segments each."""
     chosen = [c for c in CASES if c.version == version or version is None]
-    streams = [[c.data] for c in chosen] + [cuts(c.data, seed=i) for i, c in enumerate(chosen)]
-    shown = compare(sessions(streams, PORT, f"rt-vectors-{version}"), PROTOCOL, *_preference(version))
+    shown = compare(_vectors(version), PROTOCOL, *_preference(version))
     layouts = [v for layer in shown.layers for v in _all(layer, "ur_realtime.layout")]
     assert len(layouts) >= 2 * len(chosen)
     if version is None:
@@ -62,8 +74,7 @@ def test_other_ports(port, args):
 
 
 def test_the_fuzz_corpus():
-    streams = [[p.read_bytes()] for p in CORPUS] + [cuts(p.read_bytes(), seed=i) for i, p in enumerate(CORPUS)]
-    shown = compare(sessions(streams, PORT, "rt-corpus"), PROTOCOL)
+    shown = compare(_corpus(), PROTOCOL)
     assert shown.experts, "the corpus holds packets of sizes no layout has"
 
 
@@ -111,3 +122,14 @@ def test_each_runtime_file_compiles_alone(name):
                              *shlex.split(flags.stdout), f"-I{folder}", str(folder / name)],
                             capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
+
+
+def test_under_asan_and_ubsan_no_report():
+    """The plugin built with -fsanitize=address,undefined over every capture above, with and
+    without a tree: tshark ends well, with nothing on stderr."""
+    captures = [(_vectors(v), _preference(v)) for v in VERSIONS] + [(_corpus(), []), (readable(CELL), [])]
+    captures.append((sessions([[CASES[0].data]], PORT, "rt-client", client_says=b"movej([0,0,0,0,0,0])\n"), []))
+    for path, args in captures:
+        for view in (["-V"], []):
+            out = harness.checked(run_sanitized(path, "-2", *view, *args))
+            assert "UR real-time" in out or "ur_realtime" in out, (path, view)
