@@ -722,6 +722,7 @@ local UNDOCUMENTED = {
 
 local spec = {
     proto = proto,
+    name = "rtde",
     title = "Universal Robots Real-Time Data Exchange (RTDE)",
     default_ports = "30004",
     header_size = 3,
@@ -879,24 +880,25 @@ local spec, rt = ...
 local proto, F = spec.proto, spec.F
 local HEADER = spec.header_size
 
+-- Expert names are the protocol's filter name and the expert's (rtde.refused), as the fields' are.
 local E = {
-    bad_header = ProtoExpert.new(proto.name .. ".bad_header", "Bad message header",
+    bad_header = ProtoExpert.new(spec.name .. ".bad_header", "Bad message header",
         expert.group.MALFORMED, expert.severity.ERROR),
-    short = ProtoExpert.new(proto.name .. ".short", "Message shorter than its layout",
+    short = ProtoExpert.new(spec.name .. ".short", "Message shorter than its layout",
         expert.group.MALFORMED, expert.severity.ERROR),
-    extra = ProtoExpert.new(proto.name .. ".extra", "Bytes after the layout",
+    extra = ProtoExpert.new(spec.name .. ".extra", "Bytes after the layout",
         expert.group.PROTOCOL, expert.severity.WARN),
-    refused = ProtoExpert.new(proto.name .. ".refused", "Setup refused a variable (NOT_FOUND or IN_USE)",
+    refused = ProtoExpert.new(spec.name .. ".refused", "Setup refused a variable (NOT_FOUND or IN_USE)",
         expert.group.RESPONSE_CODE, expert.severity.WARN),
-    unknown_recipe = ProtoExpert.new(proto.name .. ".unknown_recipe",
+    unknown_recipe = ProtoExpert.new(spec.name .. ".unknown_recipe",
         "Data package of a recipe this conversation did not set up", expert.group.SEQUENCE, expert.severity.WARN),
-    start_refused = ProtoExpert.new(proto.name .. ".start_refused", "The robot refused to start",
+    start_refused = ProtoExpert.new(spec.name .. ".start_refused", "The robot refused to start",
         expert.group.RESPONSE_CODE, expert.severity.WARN),
-    warning = ProtoExpert.new(proto.name .. ".setup_warning", "Setup exchange out of order",
+    warning = ProtoExpert.new(spec.name .. ".setup_warning", "Setup exchange out of order",
         expert.group.SEQUENCE, expert.severity.WARN),
-    undocumented = ProtoExpert.new(proto.name .. ".undocumented", "Message type with no public layout",
+    undocumented = ProtoExpert.new(spec.name .. ".undocumented", "Message type with no public layout",
         expert.group.UNDECODED, expert.severity.NOTE),
-    unknown_type = ProtoExpert.new(proto.name .. ".unknown_type", "Message type with no layout in this direction",
+    unknown_type = ProtoExpert.new(spec.name .. ".unknown_type", "Message type with no layout in this direction",
         expert.group.UNDECODED, expert.severity.WARN),
 }
 proto.experts = { E.bad_header, E.short, E.extra, E.refused, E.unknown_recipe, E.start_refused, E.warning,
