@@ -16,7 +16,6 @@
 #include <string.h>
 
 #include <epan/packet.h>
-#include <epan/charsets.h>
 #include <epan/conversation.h>
 #include <epan/expert.h>
 #include <epan/prefs.h>
@@ -1241,7 +1240,8 @@ typedef struct {
     rtde_recipe *recipes[RTDE_N_KINDS][RTDE_NO_ID + 1];
 } rtde_state;
 
-/* The fields of one message that the state reads, as its steps found them. */
+/* The fields of one message that the state reads, as its steps found them; texts as the Lua
+ * dissector reads them (rtde_text_of). */
 typedef struct {
     guint32 protocol_version;
     guint32 accepted;
@@ -1383,16 +1383,17 @@ rtde_take_request(rtde_state *state, int kind)
     return request;
 }
 
-/* "name: WORD", as the ASCII text of those bytes (a NUL ends it, as it ends any C text). */
+/* "name: WORD" (a NUL in either ends it, as it ends any C text). */
 static char *
 rtde_refusal_text(const rtde_request *request, guint i, const guint8 *word, guint word_length)
 {
     guint name_length = request->length[i];
-    guint8 *bytes = (guint8 *)wmem_alloc(wmem_file_scope(), name_length + 2 + word_length);
-    memcpy(bytes, request->text + request->start[i], name_length);
-    memcpy(bytes + name_length, ": ", 2);
-    memcpy(bytes + name_length + 2, word, word_length);
-    return (char *)get_ascii_string(wmem_file_scope(), bytes, (gint)(name_length + 2 + word_length));
+    char *text = (char *)wmem_alloc(wmem_file_scope(), name_length + 2 + word_length + 1);
+    memcpy(text, request->text + request->start[i], name_length);
+    memcpy(text + name_length, ": ", 2);
+    memcpy(text + name_length + 2, word, word_length);
+    text[name_length + 2 + word_length] = '\0';
+    return text;
 }
 
 static void
@@ -1578,6 +1579,29 @@ rtde_view_of(packet_info *pinfo, guint index, const rtde_state *state, gboolean 
     return view;
 }
 
+/* The text of n bytes as the Lua dissector reads it (TvbRange:string() in 4.0): their ASCII decoding,
+ * a byte above 127 as U+FFFD, cut to n bytes, NULs kept; NUL-terminated for the C calls that show it. */
+static const guint8 *
+rtde_text_of(tvbuff_t *tvb, int pos, guint n)
+{
+    static const guint8 replacement[3] = { 0xEF, 0xBF, 0xBD };
+    const guint8 *bytes = n ? tvb_get_ptr(tvb, pos, n) : NULL;
+    guint8 *text = (guint8 *)wmem_alloc(wmem_packet_scope(), n + 1);
+    guint in = 0, out = 0;
+    while (out < n) {
+        if (bytes[in] < 0x80) {
+            text[out++] = bytes[in];
+        } else {
+            guint k;
+            for (k = 0; k < 3 && out < n; k++)
+                text[out++] = replacement[k];
+        }
+        in++;
+    }
+    text[n] = '\0';
+    return text;
+}
+
 /* A recipe's values, an item per scalar (a vector's items in order, each by the variable's field,
  * with its index). A name the variable table lacks has no field and shows nothing. */
 static void
@@ -1636,23 +1660,18 @@ rtde_step_at(const rtde_step *s, proto_tree *tree, tvbuff_t *tvb, int pos, int s
             return -1;
         if (tree)
             proto_tree_add_string(tree, hf_rtde[s->field], tvb, pos, s->size + n,
-                                  (const char *)tvb_get_string_enc(wmem_packet_scope(), tvb, pos + s->size, n,
-                                                                   ENC_ASCII));
+                                  (const char *)rtde_text_of(tvb, pos + s->size, n));
         return pos + s->size + (int)n;
     }
     case RTDE_STEP_REST_TEXT:
     case RTDE_STEP_NAMES: {
         guint n = (guint)(stop > pos ? stop - pos : 0);
-        const guint8 *bytes = n ? tvb_get_ptr(tvb, pos, n) : (const guint8 *)"";
-        /* The state reads the text up to a NUL, as the Lua dissector's text of it ends there. */
-        const guint8 *nul = (const guint8 *)memchr(bytes, 0, n);
-        guint text_length = nul ? (guint)(nul - bytes) : n;
         if (s->slot == RTDE_SLOT_VARIABLES) {
-            values->variables = bytes;
-            values->variables_length = text_length;
+            values->variables = rtde_text_of(tvb, pos, n);
+            values->variables_length = n;
         } else if (s->slot == RTDE_SLOT_TYPES) {
-            values->types = bytes;
-            values->types_length = text_length;
+            values->types = rtde_text_of(tvb, pos, n);
+            values->types_length = n;
         }
         if (n)
             proto_tree_add_item(tree, hf_rtde[s->field], tvb, pos, n, ENC_ASCII);

@@ -36,7 +36,8 @@ typedef struct {
     rtde_recipe *recipes[RTDE_N_KINDS][RTDE_NO_ID + 1];
 } rtde_state;
 
-/* The fields of one message that the state reads, as its steps found them. */
+/* The fields of one message that the state reads, as its steps found them; texts as the Lua
+ * dissector reads them (rtde_text_of). */
 typedef struct {
     guint32 protocol_version;
     guint32 accepted;
@@ -178,16 +179,17 @@ rtde_take_request(rtde_state *state, int kind)
     return request;
 }
 
-/* "name: WORD", as the ASCII text of those bytes (a NUL ends it, as it ends any C text). */
+/* "name: WORD" (a NUL in either ends it, as it ends any C text). */
 static char *
 rtde_refusal_text(const rtde_request *request, guint i, const guint8 *word, guint word_length)
 {
     guint name_length = request->length[i];
-    guint8 *bytes = (guint8 *)wmem_alloc(wmem_file_scope(), name_length + 2 + word_length);
-    memcpy(bytes, request->text + request->start[i], name_length);
-    memcpy(bytes + name_length, ": ", 2);
-    memcpy(bytes + name_length + 2, word, word_length);
-    return (char *)get_ascii_string(wmem_file_scope(), bytes, (gint)(name_length + 2 + word_length));
+    char *text = (char *)wmem_alloc(wmem_file_scope(), name_length + 2 + word_length + 1);
+    memcpy(text, request->text + request->start[i], name_length);
+    memcpy(text + name_length, ": ", 2);
+    memcpy(text + name_length + 2, word, word_length);
+    text[name_length + 2 + word_length] = '\0';
+    return text;
 }
 
 static void

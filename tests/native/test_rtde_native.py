@@ -168,3 +168,13 @@ def test_golden_exchanges_in_small_segments_show_as_in_lua():
 def test_cell_sample_rtde_conversations_show_as_in_lua():
     shown = assert_same(CELL_SAMPLE, "-Y", f"tcp.port == {PORT}")
     assert any("rtde.actual_q" in str(layer) for layer in shown.layers)
+
+
+# ---- 3: the fuzz corpus ----
+
+def test_fuzz_corpus_as_streams_shows_as_in_lua():
+    """Each kept input of the RTDE fuzzer as a TCP session of its own: bad headers, resynchronising,
+    cut messages, refused and unknown recipes, in either direction."""
+    shown = assert_same(corpus_capture())
+    assert len(corpus_sessions()) >= 100
+    assert any("Bad message header" in str(e) or "size " in str(e) for e in shown.experts)
