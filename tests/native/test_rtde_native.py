@@ -178,3 +178,25 @@ def test_fuzz_corpus_as_streams_shows_as_in_lua():
     shown = assert_same(corpus_capture())
     assert len(corpus_sessions()) >= 100
     assert any("Bad message header" in str(e) or "size " in str(e) for e in shown.experts)
+
+
+# ---- 4: the same captures under ASan and UBSan ----
+
+@pytest.mark.parametrize("name", ["golden", "golden_segmented", "corpus", "cell_sample"])
+def test_sanitized_build_reports_nothing(name):
+    """The plugin built with -fsanitize=address,undefined reads every capture above, with and
+    without a tree, on one pass and on two: exit 0, nothing on stderr, and the same Info column as
+    the plain build."""
+    symbols = subprocess.run(["nm", "-D", str(harness.plugin("asan").library)], capture_output=True, text=True).stdout
+    assert "__asan_" in symbols and "__ubsan_" in symbols      # the build under test is instrumented
+    captured = {"golden": lambda: golden_capture(False), "golden_segmented": lambda: golden_capture(True),
+                "corpus": corpus_capture, "cell_sample": lambda: CELL_SAMPLE.read_bytes()}[name]()
+    for args in (["-2", "-V"], ["-T", "fields", "-e", "_ws.col.Info"]):
+        result = native_asan(captured, *args)
+        err = result.stderr.decode(errors="replace")
+        assert "Sanitizer" not in err and "runtime error" not in err, err[:4000]
+        out = harness.checked(result)
+        if args[0] == "-T":
+            assert out == harness.checked(native(captured, *args))
+        else:
+            assert "Real-Time Data Exchange (RTDE)" in out
