@@ -1206,7 +1206,25 @@ static const guint8 rtde_layout_of[256][2][RTDE_MAX_PROTOCOL + 1] = {
  * for their replies, and the recipes the replies make, per recipe kind (one kind per direction of
  * data packages). runtime/epan/rtde_dissect.c keeps one per conversation in wmem_file_scope() and
  * calls rtde_follow on each whole message, in capture order, on the first pass: the rules of
- * runtime/lua/rtde_state.lua, so that both dissectors show the same. */
+ * runtime/lua/rtde_state.lua, so that both dissectors show the same.
+ *
+ * Each protocol version and recipe keeps the message that set it and the one it replaced, so that
+ * a later pass (tshark -2, the GUI) finds what was in force at any message without the first pass
+ * keeping anything per message: a conversation of data packages costs no memory per package. */
+
+/* Where a message sits in the capture: its frame, then its place among the frame's bytes (the raw
+ * offset of its first byte: a message reassembled from earlier segments has place 0, the messages
+ * after it in the frame's own bytes come later), which is the order of the first pass. */
+typedef struct {
+    guint32 frame;
+    guint32 place;
+} rtde_when;
+
+static gboolean
+rtde_before(rtde_when a, rtde_when b)
+{
+    return a.frame < b.frame || (a.frame == b.frame && a.place < b.place);
+}
 
 /* Protocol 1's one output recipe has no id: it is kept after the 256 ids. */
 #define RTDE_NO_ID 256
@@ -1221,7 +1239,9 @@ typedef struct {
 } rtde_request;
 
 /* A recipe: for each value, its variable's field (-1: a name the table does not have), unit and type. */
-typedef struct {
+typedef struct rtde_recipe {
+    rtde_when when;             /* the setup reply that made it */
+    const struct rtde_recipe *previous;     /* the recipe of the same id before it */
     guint n;
     int *field;
     const char **unit;
@@ -1230,9 +1250,15 @@ typedef struct {
     guint32 frame;              /* the frame of the setup reply that made it */
 } rtde_recipe;
 
-typedef struct {
-    gboolean negotiated;        /* whether a version exchange set the protocol */
+/* A protocol version a version exchange set. */
+typedef struct rtde_protocol_change {
+    rtde_when when;
     guint protocol;
+    const struct rtde_protocol_change *previous;
+} rtde_protocol_change;
+
+typedef struct {
+    const rtde_protocol_change *protocol;   /* the newest, NULL before any exchange */
     wmem_queue_t *asked;        /* protocol versions requested, awaiting their replies */
     rtde_request *pending[RTDE_N_KINDS][RTDE_MAX_PENDING_SETUPS];
     guint pending_first[RTDE_N_KINDS];
@@ -1268,11 +1294,26 @@ rtde_state_new(void)
     return state;
 }
 
-/* The protocol version in force: negotiated, or the spec's default for a capture that starts later. */
+/* The protocol version in force before a message: negotiated, or (assumed) the spec's default for
+ * a capture that starts later. */
 static guint
-rtde_protocol_of(const rtde_state *state)
+rtde_protocol_at(const rtde_state *state, rtde_when when, gboolean *assumed)
 {
-    return state->negotiated ? state->protocol : RTDE_DEFAULT_PROTOCOL;
+    const rtde_protocol_change *change = state->protocol;
+    while (change && !rtde_before(change->when, when))
+        change = change->previous;
+    *assumed = change == NULL;
+    return change ? change->protocol : RTDE_DEFAULT_PROTOCOL;
+}
+
+static void
+rtde_set_protocol(rtde_state *state, rtde_when when, guint protocol)
+{
+    rtde_protocol_change *change = wmem_new(wmem_file_scope(), rtde_protocol_change);
+    change->when = when;
+    change->protocol = protocol;
+    change->previous = state->protocol;
+    state->protocol = change;
 }
 
 /* The pieces of "a,b,c" between commas ("" has none): how many, and (when start is given) where. */
@@ -1337,10 +1378,15 @@ rtde_variable_named(const guint8 *bytes, guint length)
     return NULL;
 }
 
+/* The recipe in force before a data package, by its direction and id (-1: protocol 1's, which has none). */
 static const rtde_recipe *
-rtde_recipe_for(const rtde_state *state, gboolean from_robot, int recipe_id)
+rtde_recipe_at(const rtde_state *state, gboolean from_robot, int recipe_id, rtde_when when)
 {
-    return state->recipes[rtde_data_kind[from_robot ? 1 : 0]][recipe_id < 0 ? RTDE_NO_ID : recipe_id];
+    const rtde_recipe *recipe = state->recipes[rtde_data_kind[from_robot ? 1 : 0]][recipe_id < 0 ? RTDE_NO_ID
+                                                                                                  : recipe_id];
+    while (recipe && !rtde_before(recipe->when, when))
+        recipe = recipe->previous;
+    return recipe;
 }
 
 static void
@@ -1397,7 +1443,7 @@ rtde_refusal_text(const rtde_request *request, guint i, const guint8 *word, guin
 }
 
 static void
-rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, guint32 frame, rtde_notes *notes)
+rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_when when, rtde_notes *notes)
 {
     rtde_request *request = rtde_take_request(state, kind);
     rtde_recipe *recipe;
@@ -1434,7 +1480,8 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, guint32
     recipe->field = wmem_alloc_array(wmem_file_scope(), int, n + 1);
     recipe->unit = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->type = wmem_alloc_array(wmem_file_scope(), guint8, n + 1);
-    recipe->frame = frame;
+    recipe->frame = when.frame;
+    recipe->when = when;
     for (i = 0; i < n; i++) {
         const rtde_value_type *vt = &rtde_value_types[type[i]];
         const rtde_variable *variable = rtde_variable_named(request->text + request->start[i], request->length[i]);
@@ -1443,12 +1490,13 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, guint32
         recipe->type[i] = (guint8)type[i];
         recipe->size += (guint)vt->size * vt->count;
     }
+    recipe->previous = state->recipes[kind][values->recipe_id < 0 ? RTDE_NO_ID : values->recipe_id];
     state->recipes[kind][values->recipe_id < 0 ? RTDE_NO_ID : values->recipe_id] = recipe;
 }
 
 /* What a whole message changes, and what the dissector should show of it. */
 static void
-rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *values, guint32 frame,
+rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *values, rtde_when when,
             rtde_notes *notes)
 {
     switch (layout->role) {
@@ -1458,20 +1506,17 @@ rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *val
     case RTDE_ROLE_VERSION_REPLY: {
         gboolean asked = wmem_queue_count(state->asked) > 0;
         guint version = asked ? GPOINTER_TO_UINT(wmem_queue_pop(state->asked)) : 0;
-        if (values->accepted != 0 && asked) {
-            state->protocol = version;
-            state->negotiated = TRUE;
-        } else if (values->accepted == 0 && !state->negotiated) {
-            state->protocol = 1;        /* the robot keeps protocol 1 until a request is accepted */
-            state->negotiated = TRUE;
-        }
+        if (values->accepted != 0 && asked)
+            rtde_set_protocol(state, when, version);
+        else if (values->accepted == 0 && !state->protocol)
+            rtde_set_protocol(state, when, 1);      /* the robot keeps protocol 1 until a request is accepted */
         break;
     }
     case RTDE_ROLE_SETUP_REQUEST:
-        rtde_remember_request(state, layout->kind, values, frame);
+        rtde_remember_request(state, layout->kind, values, when.frame);
         break;
     case RTDE_ROLE_SETUP_REPLY:
-        rtde_make_recipe(state, layout->kind, values, frame, notes);
+        rtde_make_recipe(state, layout->kind, values, when, notes);
         break;
     case RTDE_ROLE_START_REPLY:
         if (values->accepted == 0)
@@ -1529,13 +1574,17 @@ rtde_register_experts(int proto)
     expert_register_field_array(expert_register_protocol(proto), ei, array_length(ei));
 }
 
-/* What the state says about one message, worked out on the first pass and kept for the others. */
+/* What the state says about one message: the protocol in force and a data package's recipe, found
+ * in the state's history on any pass; what the message changed (its notes), kept from the first
+ * pass for the others when there is something to show. */
 typedef struct {
     guint protocol;
     gboolean assumed;           /* no version exchange seen: the spec's default */
     const rtde_recipe *recipe;  /* a data package's */
-    rtde_notes notes;
+    const rtde_notes *notes;
 } rtde_view;
+
+static const rtde_notes rtde_no_notes = { NULL, 0, NULL };
 
 static const rtde_layout *
 rtde_layout_for(guint8 code, gboolean from_robot, guint protocol)
@@ -1563,20 +1612,20 @@ rtde_plausible(tvbuff_t *tvb, int at)
     return tvb_get_ntohs(tvb, at) >= RTDE_HEADER_SIZE && rtde_type_known[tvb_get_guint8(tvb, at + 2)];
 }
 
-/* The message's view: kept by its place among the messages of this call, as the Lua one keys it. */
-static rtde_view *
-rtde_view_of(packet_info *pinfo, guint index, const rtde_state *state, gboolean *first)
+/* The notes a message left on the first pass (rtde_follow), kept under its place in the frame. */
+static const rtde_notes *
+rtde_kept_notes(packet_info *pinfo, rtde_when when)
 {
-    rtde_view *view = pinfo->fd->visited ? (rtde_view *)p_get_proto_data(wmem_file_scope(), pinfo, proto_rtde, index)
-                                         : NULL;
-    *first = view == NULL;
-    if (view)
-        return view;
-    view = wmem_new0(wmem_file_scope(), rtde_view);
-    view->protocol = rtde_protocol_of(state);
-    view->assumed = !state->negotiated;
-    p_set_proto_data(wmem_file_scope(), pinfo, proto_rtde, index, view);
-    return view;
+    const rtde_notes *notes = (const rtde_notes *)p_get_proto_data(wmem_file_scope(), pinfo, proto_rtde, when.place);
+    return notes ? notes : &rtde_no_notes;
+}
+
+static void
+rtde_keep_notes(packet_info *pinfo, rtde_when when, const rtde_notes *notes)
+{
+    if (notes->warning || notes->n_refused)
+        p_add_proto_data(wmem_file_scope(), pinfo, proto_rtde, when.place,
+                         wmem_memdup(wmem_file_scope(), notes, sizeof *notes));
 }
 
 /* The text of n bytes as the Lua dissector reads it (TvbRange:string() in 4.0): their ASCII decoding,
@@ -1697,15 +1746,17 @@ rtde_step_at(const rtde_step *s, proto_tree *tree, tvbuff_t *tvb, int pos, int s
 /* One message: its items, what it changes in the state, and its label for the Info column. */
 static const char *
 rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int offset, int size, guint8 code,
-                     rtde_state *state, gboolean from_robot, guint index)
+                     rtde_state *state, gboolean from_robot)
 {
     int stop = offset + size, pos = offset + RTDE_HEADER_SIZE;
     proto_item *item = proto_tree_add_item(tree, proto_rtde, tvb, offset, size, ENC_NA);
     proto_tree *msg_tree = proto_item_add_subtree(item, ett_rtde);
     const rtde_layout *layout;
     rtde_values values = { 0, 0, -1, NULL, 0, NULL, 0 };
-    gboolean first;
-    rtde_view *view;
+    rtde_when when = { pinfo->num, (guint32)(tvb_raw_offset(tvb) + offset) };
+    gboolean first = !pinfo->fd->visited;
+    rtde_view view = { 0, FALSE, NULL, &rtde_no_notes };
+    rtde_notes notes = { NULL, 0, NULL };
     guint i;
 
     proto_tree_add_item(msg_tree, hf_rtde[RTDE_HF_LENGTH], tvb, offset, 2, ENC_BIG_ENDIAN);
@@ -1713,13 +1764,13 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     if (msg_tree)
         proto_item_set_generated(proto_tree_add_string(msg_tree, hf_rtde[RTDE_HF_DIRECTION], tvb, offset + 2, 1,
                                                        from_robot ? "robot to client" : "client to robot"));
-    view = rtde_view_of(pinfo, index, state, &first);
-    layout = rtde_layout_for(code, from_robot, view->protocol);
+    view.protocol = rtde_protocol_at(state, when, &view.assumed);
+    layout = rtde_layout_for(code, from_robot, view.protocol);
     if (msg_tree) {
         proto_item *shown = proto_tree_add_uint(msg_tree, hf_rtde[RTDE_HF_PROTOCOL], tvb, offset + 2, 1,
-                                                view->protocol);
+                                                view.protocol);
         proto_item_set_generated(shown);
-        if (view->assumed)
+        if (view.assumed)
             proto_item_append_text(shown, " (assumed: no version exchange seen)");
     }
     if (!layout) {
@@ -1737,9 +1788,8 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     }
     if (layout->role == RTDE_ROLE_DATA) {
         gboolean has_id = layout->recipe_id_first && size > RTDE_HEADER_SIZE;
-        if (first)
-            view->recipe = rtde_recipe_for(state, from_robot, has_id ? tvb_get_guint8(tvb, pos) : -1);
-        if (!view->recipe) {
+        view.recipe = rtde_recipe_at(state, from_robot, has_id ? tvb_get_guint8(tvb, pos) : -1, when);
+        if (!view.recipe) {
             if (has_id)
                 proto_tree_add_item(msg_tree, hf_rtde[RTDE_HF_RECIPE_ID], tvb, pos, 1, ENC_BIG_ENDIAN);
             expert_add_info(pinfo, item, &ei_rtde_unknown_recipe);
@@ -1748,7 +1798,7 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     }
     for (i = 0; i < layout->n_steps; i++) {
         const rtde_step *s = &layout->steps[i];
-        int next = rtde_step_at(s, msg_tree, tvb, pos, stop, &values, view);
+        int next = rtde_step_at(s, msg_tree, tvb, pos, stop, &values, &view);
         if (next < 0) {
             expert_add_info_format(pinfo, item, &ei_rtde_short, "%s at offset %d: does not fit", s->name,
                                    pos - offset);
@@ -1758,14 +1808,19 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     }
     if (pos < stop)
         expert_add_info_format(pinfo, item, &ei_rtde_extra, "%d bytes after the layout", stop - pos);
-    if (first)
-        rtde_follow(state, layout, &values, pinfo->num, &view->notes);
-    for (i = 0; i < view->notes.n_refused; i++)
-        expert_add_info_format(pinfo, item, &ei_rtde_refused, "%s", view->notes.refused[i]);
-    if (view->notes.warning)
+    if (first) {
+        rtde_follow(state, layout, &values, when, &notes);
+        rtde_keep_notes(pinfo, when, &notes);
+        view.notes = &notes;
+    } else {
+        view.notes = rtde_kept_notes(pinfo, when);
+    }
+    for (i = 0; i < view.notes->n_refused; i++)
+        expert_add_info_format(pinfo, item, &ei_rtde_refused, "%s", view.notes->refused[i]);
+    if (view.notes->warning)
         expert_add_info_format(pinfo, item, layout->role == RTDE_ROLE_START_REPLY ? &ei_rtde_start_refused
                                                                                   : &ei_rtde_setup_warning,
-                               "%s", view->notes.warning);
+                               "%s", view.notes->warning);
     return layout->label;
 }
 
@@ -1788,7 +1843,6 @@ dissect_rtde(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_
     gboolean from_robot = pinfo->srcport == pinfo->match_uint;
     rtde_state *state = rtde_conversation_state(pinfo);
     wmem_strbuf_t *info = NULL;
-    guint index = 0;
 
     col_set_str(pinfo->cinfo, COL_PROTOCOL, "RTDE");
     while (offset < len) {
@@ -1820,8 +1874,7 @@ dissect_rtde(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_
             pinfo->desegment_len = size - (guint)(len - offset);
             break;
         } else {
-            index++;
-            label = rtde_dissect_message(tvb, pinfo, tree, offset, (int)size, code, state, from_robot, index);
+            label = rtde_dissect_message(tvb, pinfo, tree, offset, (int)size, code, state, from_robot);
             offset += (int)size;
         }
         if (!info)
@@ -2716,7 +2769,8 @@ proto_register_rtde(void)
     range_convert_str(wmem_epan_scope(), &rtde_ports, "30004", 65535);
     module = prefs_register_protocol(proto_rtde, proto_reg_handoff_rtde);
     prefs_register_range_preference(module, "ports", "TCP ports",
-                                    "Robot-side TCP ports of Universal Robots Real-Time Data Exchange (RTDE)", &rtde_ports, 65535);
+                                    "Robot-side TCP ports of Universal Robots Real-Time Data Exchange (RTDE)",
+                                    &rtde_ports, 65535);
 }
 
 void

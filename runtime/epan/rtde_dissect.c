@@ -42,13 +42,17 @@ rtde_register_experts(int proto)
     expert_register_field_array(expert_register_protocol(proto), ei, array_length(ei));
 }
 
-/* What the state says about one message, worked out on the first pass and kept for the others. */
+/* What the state says about one message: the protocol in force and a data package's recipe, found
+ * in the state's history on any pass; what the message changed (its notes), kept from the first
+ * pass for the others when there is something to show. */
 typedef struct {
     guint protocol;
     gboolean assumed;           /* no version exchange seen: the spec's default */
     const rtde_recipe *recipe;  /* a data package's */
-    rtde_notes notes;
+    const rtde_notes *notes;
 } rtde_view;
+
+static const rtde_notes rtde_no_notes = { NULL, 0, NULL };
 
 static const rtde_layout *
 rtde_layout_for(guint8 code, gboolean from_robot, guint protocol)
@@ -76,20 +80,20 @@ rtde_plausible(tvbuff_t *tvb, int at)
     return tvb_get_ntohs(tvb, at) >= RTDE_HEADER_SIZE && rtde_type_known[tvb_get_guint8(tvb, at + 2)];
 }
 
-/* The message's view: kept by its place among the messages of this call, as the Lua one keys it. */
-static rtde_view *
-rtde_view_of(packet_info *pinfo, guint index, const rtde_state *state, gboolean *first)
+/* The notes a message left on the first pass (rtde_follow), kept under its place in the frame. */
+static const rtde_notes *
+rtde_kept_notes(packet_info *pinfo, rtde_when when)
 {
-    rtde_view *view = pinfo->fd->visited ? (rtde_view *)p_get_proto_data(wmem_file_scope(), pinfo, proto_rtde, index)
-                                         : NULL;
-    *first = view == NULL;
-    if (view)
-        return view;
-    view = wmem_new0(wmem_file_scope(), rtde_view);
-    view->protocol = rtde_protocol_of(state);
-    view->assumed = !state->negotiated;
-    p_set_proto_data(wmem_file_scope(), pinfo, proto_rtde, index, view);
-    return view;
+    const rtde_notes *notes = (const rtde_notes *)p_get_proto_data(wmem_file_scope(), pinfo, proto_rtde, when.place);
+    return notes ? notes : &rtde_no_notes;
+}
+
+static void
+rtde_keep_notes(packet_info *pinfo, rtde_when when, const rtde_notes *notes)
+{
+    if (notes->warning || notes->n_refused)
+        p_add_proto_data(wmem_file_scope(), pinfo, proto_rtde, when.place,
+                         wmem_memdup(wmem_file_scope(), notes, sizeof *notes));
 }
 
 /* The text of n bytes as the Lua dissector reads it (TvbRange:string() in 4.0): their ASCII decoding,
@@ -210,15 +214,17 @@ rtde_step_at(const rtde_step *s, proto_tree *tree, tvbuff_t *tvb, int pos, int s
 /* One message: its items, what it changes in the state, and its label for the Info column. */
 static const char *
 rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int offset, int size, guint8 code,
-                     rtde_state *state, gboolean from_robot, guint index)
+                     rtde_state *state, gboolean from_robot)
 {
     int stop = offset + size, pos = offset + RTDE_HEADER_SIZE;
     proto_item *item = proto_tree_add_item(tree, proto_rtde, tvb, offset, size, ENC_NA);
     proto_tree *msg_tree = proto_item_add_subtree(item, ett_rtde);
     const rtde_layout *layout;
     rtde_values values = { 0, 0, -1, NULL, 0, NULL, 0 };
-    gboolean first;
-    rtde_view *view;
+    rtde_when when = { pinfo->num, (guint32)(tvb_raw_offset(tvb) + offset) };
+    gboolean first = !pinfo->fd->visited;
+    rtde_view view = { 0, FALSE, NULL, &rtde_no_notes };
+    rtde_notes notes = { NULL, 0, NULL };
     guint i;
 
     proto_tree_add_item(msg_tree, hf_rtde[RTDE_HF_LENGTH], tvb, offset, 2, ENC_BIG_ENDIAN);
@@ -226,13 +232,13 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     if (msg_tree)
         proto_item_set_generated(proto_tree_add_string(msg_tree, hf_rtde[RTDE_HF_DIRECTION], tvb, offset + 2, 1,
                                                        from_robot ? "robot to client" : "client to robot"));
-    view = rtde_view_of(pinfo, index, state, &first);
-    layout = rtde_layout_for(code, from_robot, view->protocol);
+    view.protocol = rtde_protocol_at(state, when, &view.assumed);
+    layout = rtde_layout_for(code, from_robot, view.protocol);
     if (msg_tree) {
         proto_item *shown = proto_tree_add_uint(msg_tree, hf_rtde[RTDE_HF_PROTOCOL], tvb, offset + 2, 1,
-                                                view->protocol);
+                                                view.protocol);
         proto_item_set_generated(shown);
-        if (view->assumed)
+        if (view.assumed)
             proto_item_append_text(shown, " (assumed: no version exchange seen)");
     }
     if (!layout) {
@@ -250,9 +256,8 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     }
     if (layout->role == RTDE_ROLE_DATA) {
         gboolean has_id = layout->recipe_id_first && size > RTDE_HEADER_SIZE;
-        if (first)
-            view->recipe = rtde_recipe_for(state, from_robot, has_id ? tvb_get_guint8(tvb, pos) : -1);
-        if (!view->recipe) {
+        view.recipe = rtde_recipe_at(state, from_robot, has_id ? tvb_get_guint8(tvb, pos) : -1, when);
+        if (!view.recipe) {
             if (has_id)
                 proto_tree_add_item(msg_tree, hf_rtde[RTDE_HF_RECIPE_ID], tvb, pos, 1, ENC_BIG_ENDIAN);
             expert_add_info(pinfo, item, &ei_rtde_unknown_recipe);
@@ -261,7 +266,7 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     }
     for (i = 0; i < layout->n_steps; i++) {
         const rtde_step *s = &layout->steps[i];
-        int next = rtde_step_at(s, msg_tree, tvb, pos, stop, &values, view);
+        int next = rtde_step_at(s, msg_tree, tvb, pos, stop, &values, &view);
         if (next < 0) {
             expert_add_info_format(pinfo, item, &ei_rtde_short, "%s at offset %d: does not fit", s->name,
                                    pos - offset);
@@ -271,14 +276,19 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     }
     if (pos < stop)
         expert_add_info_format(pinfo, item, &ei_rtde_extra, "%d bytes after the layout", stop - pos);
-    if (first)
-        rtde_follow(state, layout, &values, pinfo->num, &view->notes);
-    for (i = 0; i < view->notes.n_refused; i++)
-        expert_add_info_format(pinfo, item, &ei_rtde_refused, "%s", view->notes.refused[i]);
-    if (view->notes.warning)
+    if (first) {
+        rtde_follow(state, layout, &values, when, &notes);
+        rtde_keep_notes(pinfo, when, &notes);
+        view.notes = &notes;
+    } else {
+        view.notes = rtde_kept_notes(pinfo, when);
+    }
+    for (i = 0; i < view.notes->n_refused; i++)
+        expert_add_info_format(pinfo, item, &ei_rtde_refused, "%s", view.notes->refused[i]);
+    if (view.notes->warning)
         expert_add_info_format(pinfo, item, layout->role == RTDE_ROLE_START_REPLY ? &ei_rtde_start_refused
                                                                                   : &ei_rtde_setup_warning,
-                               "%s", view->notes.warning);
+                               "%s", view.notes->warning);
     return layout->label;
 }
 
@@ -301,7 +311,6 @@ dissect_rtde(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_
     gboolean from_robot = pinfo->srcport == pinfo->match_uint;
     rtde_state *state = rtde_conversation_state(pinfo);
     wmem_strbuf_t *info = NULL;
-    guint index = 0;
 
     col_set_str(pinfo->cinfo, COL_PROTOCOL, "RTDE");
     while (offset < len) {
@@ -333,8 +342,7 @@ dissect_rtde(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_
             pinfo->desegment_len = size - (guint)(len - offset);
             break;
         } else {
-            index++;
-            label = rtde_dissect_message(tvb, pinfo, tree, offset, (int)size, code, state, from_robot, index);
+            label = rtde_dissect_message(tvb, pinfo, tree, offset, (int)size, code, state, from_robot);
             offset += (int)size;
         }
         if (!info)

@@ -2,7 +2,25 @@
  * for their replies, and the recipes the replies make, per recipe kind (one kind per direction of
  * data packages). runtime/epan/rtde_dissect.c keeps one per conversation in wmem_file_scope() and
  * calls rtde_follow on each whole message, in capture order, on the first pass: the rules of
- * runtime/lua/rtde_state.lua, so that both dissectors show the same. */
+ * runtime/lua/rtde_state.lua, so that both dissectors show the same.
+ *
+ * Each protocol version and recipe keeps the message that set it and the one it replaced, so that
+ * a later pass (tshark -2, the GUI) finds what was in force at any message without the first pass
+ * keeping anything per message: a conversation of data packages costs no memory per package. */
+
+/* Where a message sits in the capture: its frame, then its place among the frame's bytes (the raw
+ * offset of its first byte: a message reassembled from earlier segments has place 0, the messages
+ * after it in the frame's own bytes come later), which is the order of the first pass. */
+typedef struct {
+    guint32 frame;
+    guint32 place;
+} rtde_when;
+
+static gboolean
+rtde_before(rtde_when a, rtde_when b)
+{
+    return a.frame < b.frame || (a.frame == b.frame && a.place < b.place);
+}
 
 /* Protocol 1's one output recipe has no id: it is kept after the 256 ids. */
 #define RTDE_NO_ID 256
@@ -17,7 +35,9 @@ typedef struct {
 } rtde_request;
 
 /* A recipe: for each value, its variable's field (-1: a name the table does not have), unit and type. */
-typedef struct {
+typedef struct rtde_recipe {
+    rtde_when when;             /* the setup reply that made it */
+    const struct rtde_recipe *previous;     /* the recipe of the same id before it */
     guint n;
     int *field;
     const char **unit;
@@ -26,9 +46,15 @@ typedef struct {
     guint32 frame;              /* the frame of the setup reply that made it */
 } rtde_recipe;
 
-typedef struct {
-    gboolean negotiated;        /* whether a version exchange set the protocol */
+/* A protocol version a version exchange set. */
+typedef struct rtde_protocol_change {
+    rtde_when when;
     guint protocol;
+    const struct rtde_protocol_change *previous;
+} rtde_protocol_change;
+
+typedef struct {
+    const rtde_protocol_change *protocol;   /* the newest, NULL before any exchange */
     wmem_queue_t *asked;        /* protocol versions requested, awaiting their replies */
     rtde_request *pending[RTDE_N_KINDS][RTDE_MAX_PENDING_SETUPS];
     guint pending_first[RTDE_N_KINDS];
@@ -64,11 +90,26 @@ rtde_state_new(void)
     return state;
 }
 
-/* The protocol version in force: negotiated, or the spec's default for a capture that starts later. */
+/* The protocol version in force before a message: negotiated, or (assumed) the spec's default for
+ * a capture that starts later. */
 static guint
-rtde_protocol_of(const rtde_state *state)
+rtde_protocol_at(const rtde_state *state, rtde_when when, gboolean *assumed)
 {
-    return state->negotiated ? state->protocol : RTDE_DEFAULT_PROTOCOL;
+    const rtde_protocol_change *change = state->protocol;
+    while (change && !rtde_before(change->when, when))
+        change = change->previous;
+    *assumed = change == NULL;
+    return change ? change->protocol : RTDE_DEFAULT_PROTOCOL;
+}
+
+static void
+rtde_set_protocol(rtde_state *state, rtde_when when, guint protocol)
+{
+    rtde_protocol_change *change = wmem_new(wmem_file_scope(), rtde_protocol_change);
+    change->when = when;
+    change->protocol = protocol;
+    change->previous = state->protocol;
+    state->protocol = change;
 }
 
 /* The pieces of "a,b,c" between commas ("" has none): how many, and (when start is given) where. */
@@ -133,10 +174,15 @@ rtde_variable_named(const guint8 *bytes, guint length)
     return NULL;
 }
 
+/* The recipe in force before a data package, by its direction and id (-1: protocol 1's, which has none). */
 static const rtde_recipe *
-rtde_recipe_for(const rtde_state *state, gboolean from_robot, int recipe_id)
+rtde_recipe_at(const rtde_state *state, gboolean from_robot, int recipe_id, rtde_when when)
 {
-    return state->recipes[rtde_data_kind[from_robot ? 1 : 0]][recipe_id < 0 ? RTDE_NO_ID : recipe_id];
+    const rtde_recipe *recipe = state->recipes[rtde_data_kind[from_robot ? 1 : 0]][recipe_id < 0 ? RTDE_NO_ID
+                                                                                                  : recipe_id];
+    while (recipe && !rtde_before(recipe->when, when))
+        recipe = recipe->previous;
+    return recipe;
 }
 
 static void
@@ -193,7 +239,7 @@ rtde_refusal_text(const rtde_request *request, guint i, const guint8 *word, guin
 }
 
 static void
-rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, guint32 frame, rtde_notes *notes)
+rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_when when, rtde_notes *notes)
 {
     rtde_request *request = rtde_take_request(state, kind);
     rtde_recipe *recipe;
@@ -230,7 +276,8 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, guint32
     recipe->field = wmem_alloc_array(wmem_file_scope(), int, n + 1);
     recipe->unit = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->type = wmem_alloc_array(wmem_file_scope(), guint8, n + 1);
-    recipe->frame = frame;
+    recipe->frame = when.frame;
+    recipe->when = when;
     for (i = 0; i < n; i++) {
         const rtde_value_type *vt = &rtde_value_types[type[i]];
         const rtde_variable *variable = rtde_variable_named(request->text + request->start[i], request->length[i]);
@@ -239,12 +286,13 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, guint32
         recipe->type[i] = (guint8)type[i];
         recipe->size += (guint)vt->size * vt->count;
     }
+    recipe->previous = state->recipes[kind][values->recipe_id < 0 ? RTDE_NO_ID : values->recipe_id];
     state->recipes[kind][values->recipe_id < 0 ? RTDE_NO_ID : values->recipe_id] = recipe;
 }
 
 /* What a whole message changes, and what the dissector should show of it. */
 static void
-rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *values, guint32 frame,
+rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *values, rtde_when when,
             rtde_notes *notes)
 {
     switch (layout->role) {
@@ -254,20 +302,17 @@ rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *val
     case RTDE_ROLE_VERSION_REPLY: {
         gboolean asked = wmem_queue_count(state->asked) > 0;
         guint version = asked ? GPOINTER_TO_UINT(wmem_queue_pop(state->asked)) : 0;
-        if (values->accepted != 0 && asked) {
-            state->protocol = version;
-            state->negotiated = TRUE;
-        } else if (values->accepted == 0 && !state->negotiated) {
-            state->protocol = 1;        /* the robot keeps protocol 1 until a request is accepted */
-            state->negotiated = TRUE;
-        }
+        if (values->accepted != 0 && asked)
+            rtde_set_protocol(state, when, version);
+        else if (values->accepted == 0 && !state->protocol)
+            rtde_set_protocol(state, when, 1);      /* the robot keeps protocol 1 until a request is accepted */
         break;
     }
     case RTDE_ROLE_SETUP_REQUEST:
-        rtde_remember_request(state, layout->kind, values, frame);
+        rtde_remember_request(state, layout->kind, values, when.frame);
         break;
     case RTDE_ROLE_SETUP_REPLY:
-        rtde_make_recipe(state, layout->kind, values, frame, notes);
+        rtde_make_recipe(state, layout->kind, values, when, notes);
         break;
     case RTDE_ROLE_START_REPLY:
         if (values->accepted == 0)

@@ -120,9 +120,12 @@ function STEP.values(s, tree, tvb, pos, stop, values, view)
     return pos
 end
 
--- What the state says about one message, worked out on the first pass and kept for the others.
-local function view_of(pinfo, index, state, from_robot, raw, offset, layout)
-    local key = pinfo.number .. ":" .. index
+-- What the state says about one message, worked out on the first pass and kept for the others,
+-- under the message's place among the frame's bytes: a message reassembled from earlier segments
+-- starts at 0 in its own data, the messages after it in the frame's own bytes later, so that two
+-- calls for one frame (the reassembled message, then the rest of the segment) keep two views.
+local function view_of(pinfo, tvb, state, offset)
+    local key = pinfo.number .. ":" .. (tvb:offset() + offset)
     local view = views[key]
     if view and pinfo.visited then return view, false end
     view = { protocol = rt.protocol_of(state), assumed = state.protocol == nil }
@@ -130,13 +133,13 @@ local function view_of(pinfo, index, state, from_robot, raw, offset, layout)
     return view, true
 end
 
-local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state, from_robot, index)
+local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state, from_robot)
     local stop = offset + size
     local item = tree:add(proto, tvb(offset, size))
     item:add(F.length, tvb(offset, 2))
     item:add(F.type, tvb(offset + 2, 1))
     item:add(F.direction, tvb(offset + 2, 1), from_robot and "robot to client" or "client to robot"):set_generated()
-    local view, first = view_of(pinfo, index, state, from_robot, raw, offset)
+    local view, first = view_of(pinfo, tvb, state, offset)
     local layout = spec.messages[code .. ":" .. (from_robot and 1 or 0) .. ":" .. view.protocol]
     local shown = item:add(F.protocol, tvb(offset + 2, 1), view.protocol)
     shown:set_generated()
@@ -200,7 +203,7 @@ function proto.dissector(tvb, pinfo, tree)
         states[key] = state
     end
     pinfo.cols.protocol = "RTDE"
-    local labels, offset, index = {}, 0, 0
+    local labels, offset = {}, 0
     while offset < len do
         if len - offset < HEADER then
             pinfo.desegment_offset = offset
@@ -224,8 +227,7 @@ function proto.dissector(tvb, pinfo, tree)
             pinfo.desegment_len = size - (len - offset)
             break
         else
-            index = index + 1
-            labels[#labels + 1] = dissect_message(tvb, raw, offset, size, code, pinfo, tree, state, from_robot, index)
+            labels[#labels + 1] = dissect_message(tvb, raw, offset, size, code, pinfo, tree, state, from_robot)
             offset = offset + size
         end
     end

@@ -200,3 +200,20 @@ def test_sanitized_build_reports_nothing(name):
             assert out == harness.checked(native(captured, *args))
         else:
             assert "Real-Time Data Exchange (RTDE)" in out
+
+
+def test_a_message_reassembled_and_one_after_it_in_a_frame_keep_their_own_views():
+    """A data package completed by a segment that also holds a whole start reply: the frame is
+    dissected in two calls (the reassembled package, then the rest), and on the second pass each
+    message still finds its own recipe and notes (both dissectors key them by the message's place
+    in the frame's bytes, not by its rank within a call)."""
+    names = b"timestamp"
+    data = bytes([0, 12, 0x55, 1]) + bytes.fromhex("4000000000000000")
+    pieces = [Segment(False, bytes([0, 3 + 8 + len(names), 0x4F]) + bytes(8) + names),
+              Segment(True, bytes([0, 3 + 1 + 6, 0x4F, 1]) + b"DOUBLE"),
+              Segment(True, data[:5]), Segment(True, data[5:] + bytes([0, 4, 0x53, 0]))]
+    captured = _pcap(capture.session_frames(pieces, port=PORT, client_port=50000))
+    shown = assert_same(captured)
+    last = shown.layers[9]["rtde"]            # frame 10: the last segment
+    assert last[0]["rtde.timestamp"] == "2" and "_ws.expert" not in last[0]
+    assert last[1]["_ws.expert"]["_ws.expert.message"] == "the robot refused to start"
