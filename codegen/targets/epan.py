@@ -397,8 +397,12 @@ class _Builder:
                     default_version=ir.version_number(self.p.default_version))
 
 
-# The scalar kinds a typed value can hold, as the runtime names them.
-KIND_CONST = {name: f"UR_VK_{name.upper()}" for name in sorted(ir.SCALARS)}
+# The scalar kinds a typed value can hold, in the order of the runtime's UR_VK_* (ur_types.c).
+VALUE_KINDS = ("bool", "float32", "float64", "int16", "int32", "int64", "int8", "uint16", "uint32", "uint64",
+               "uint8")
+if set(VALUE_KINDS) != set(ir.SCALARS):
+    raise ValueError(f"epan target: the runtime's value kinds {VALUE_KINDS} differ from the spec's scalars")
+KIND_CONST = {name: f"UR_VK_{name.upper()}" for name in VALUE_KINDS}
 
 
 def runtime(names: tuple[str, ...]) -> list[dict]:
