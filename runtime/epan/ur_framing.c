@@ -107,7 +107,7 @@ ur_scan(tvbuff_t *tvb, int p, int n, int *stop)
 static int
 ur_dissect_client(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree)
 {
-    int n = tvb_reported_length(tvb);
+    int n = tvb_captured_length(tvb);
     col_set_str(pinfo->cinfo, COL_PROTOCOL, "UR");
     proto_item *item = proto_tree_add_item(tree, proto_ur, tvb, 0, -1, ENC_NA);
     proto_tree_add_item(proto_item_add_subtree(item, ett_ur), hf_ur[UR_HF_URSCRIPT], tvb, 0, -1, ENC_UTF_8);
@@ -262,7 +262,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
 {
     if (pinfo->srcport != pinfo->match_uint)
         return ur_dissect_client(tvb, pinfo, tree);
-    int n = tvb_reported_length(tvb);
+    int n = tvb_captured_length(tvb);
     ur_call cur;
     /* Field work only when someone looks: a tree, or a filter or column naming ur. */
     cur.detail = tree != NULL && proto_field_is_referenced(tree, proto_ur);
@@ -297,7 +297,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
         buf = tvb_new_child_real_data(tvb, joined, snap->carried + n, snap->carried + n);
         add_new_data_source(pinfo, buf, "UR bytes carried over");
     }
-    int len = tvb_reported_length(buf);
+    int len = tvb_captured_length(buf);
     carry = NULL;
     int o = 0, stop = 0;
     if (resync) {

@@ -58,7 +58,24 @@ ur_negative(ur_msg *st, const ur_path *pre, const char *path, int o, gint64 n)
 static gint64
 ur_int_at(tvbuff_t *tvb, int o, unsigned n, gboolean is_signed)
 {
-    guint64 v = tvb_get_bits64(tvb, (guint)o * 8, (gint)n * 8, ENC_BIG_ENDIAN);
+    guint64 v;
+    switch (n) {
+    case 1:
+        v = tvb_get_guint8(tvb, o);
+        break;
+    case 2:
+        v = tvb_get_ntohs(tvb, o);
+        break;
+    case 4:
+        v = tvb_get_ntohl(tvb, o);
+        break;
+    case 8:
+        v = tvb_get_ntoh64(tvb, o);
+        break;
+    default:
+        v = tvb_get_bits64(tvb, (guint)o * 8, (gint)n * 8, ENC_BIG_ENDIAN);
+        break;
+    }
     if (is_signed && n < 8 && (v >> (n * 8 - 1)) & 1)
         return (gint64)(v | ~((G_GUINT64_CONSTANT(1) << (n * 8)) - 1));
     return (gint64)v;

@@ -304,3 +304,17 @@ def test_decode_as_and_the_ports_preference(how):
         data = capture.write(Path(folder) / "port.pcap", frames).read_bytes()
     shown = assert_same(data, *how)
     assert sum(1 for layer in shown.layers if layer) > 50
+
+
+@pytest.mark.parametrize("args", [
+    ("-T", "fields", "-e", "ur.joint_data.q_actual", "-e", "ur.robot_mode_data.robot_mode", "-e", "_ws.col.Info"),
+    ("-Y", 'ur.robot_mode_data.robot_mode == "RUNNING" && ur.joint_data.q_actual > 0', "-T", "fields",
+     "-e", "frame.number"),
+    ("-2", "-Y", "ur.key.title contains \"PROGRAM\" || ur.version", "-T", "fields", "-e", "frame.number"),
+], ids=["fields", "filter", "filter two passes"])
+def test_fields_and_filters_on_the_sample(args):
+    """tshark -T fields and display filters, where only some fields are asked for."""
+    sample = SAMPLES / "primary_session.pcapng"
+    native, lua = harness.checked(harness.run_native(sample, *args)), harness.checked(LUA(sample, *args))
+    assert native == lua
+    assert native.strip()
