@@ -34,10 +34,10 @@ FT = {"int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16", "uint16": "FT
       "uint32": "FT_UINT32", "int64": "FT_INT64", "uint64": "FT_UINT64", "float": "FT_FLOAT",
       "double": "FT_DOUBLE", "bool": "FT_BOOLEAN", "none": "FT_NONE", "string": "FT_STRING", "bytes": "FT_BYTES"}
 
-# Units Wireshark names (epan/unit_strings.h); the others are the dissector's own.
-WIRESHARK_UNITS = {"m": "units_meters", "m/s": "units_meter_sec", "m/s²": "units_meter_sec_squared",
-                   "V": "units_volt", "A": "units_amp", "°C": "units_degree_celsius", "Nm": "units_newton_metre",
-                   "s": "units_seconds", "ms": "units_milliseconds", "Hz": "units_hz"}
+# Units of integer fields Wireshark names (epan/unit_strings.h) as the Lua twin shows them (" <unit>"
+# after the value); the others are the dissector's own. Wireshark's volt reads "24V", without the
+# space: the dissector's own " V" keeps the tree the Lua one's.
+WIRESHARK_UNITS = {"s": "units_seconds", "ms": "units_milliseconds"}
 
 # A value string this long is looked up by bisection (value_string_ext), as upstream does.
 EXT_STRINGS = 32
@@ -190,9 +190,8 @@ class _Builder:
                     strings = self.value_strings_ref(pf.vs)
                     if strings.startswith("VALS_EXT_PTR"):
                         display += "|BASE_EXT_STRING"
-            elif pf.shape == "float" and pf.unit:
-                display = "BASE_UNIT_STRING"
-                strings = f"&{self.unit_of(pf.unit)}"
+            # A float's unit follows its value as text, as in the Lua twin: Wireshark 4.0 shows no
+            # unit string of a float field (BASE_UNIT_STRING shows on integers only).
             elif pf.shape == "flag":
                 display = str(pf.bits)
             elif pf.shape == "text":
@@ -253,7 +252,7 @@ class _Builder:
 
     def descriptor(self, owner: str, d: Step) -> dict:
         row = dict(kind="UR_D_" + d.kind.upper(), hf="UR_HF_NONE", n=0, count=0, size=0, flags=[], keep=0,
-                   low=ANY_LOW, high=ANY_HIGH, path=None, show=None, label=None, vs="NULL", names="NULL",
+                   low=ANY_LOW, high=ANY_HIGH, path=None, show=None, label=None, unit=None, vs="NULL", names="NULL",
                    inner="NULL", bits="NULL", sw="NULL", values="NULL")
         data = d.data
         if d.kind == "cond":
@@ -273,7 +272,7 @@ class _Builder:
                 flags.append("UR_FLOAT")
             if data.get("value"):
                 flags.append("UR_VALUE")
-            row.update(n=data["size"], flags=flags, vs=self.table(data.get("vs")),
+            row.update(n=data["size"], flags=flags, unit=data.get("unit"), vs=self.table(data.get("vs")),
                        names=self.table(data.get("tables")), label=data.get("label"),
                        keep=self.keep_slot(data.get("keep")), count=data.get("count", 1))
             if d.kind == "bits":
@@ -289,9 +288,11 @@ class _Builder:
             row.update(n=data["term"])
         elif d.kind == "switch":
             name = f"{owner}_switch{len(self.switches)}"
-            cases = [dict(code=c["code"], hf=self.hf(c["field"]), n=c["size"]) for c in data["cases"]]
-            self.switches.append(dict(name=name, default=dict(hf=self.hf(data["default"]["field"]),
-                                                             n=data["default"]["size"]), cases=cases))
+            cases = [dict(code=c["code"], hf=self.hf(c["field"]), n=c["size"], unit=c_literal(c.get("unit")))
+                     for c in data["cases"]]
+            default = data["default"]
+            self.switches.append(dict(name=name, default=dict(hf=self.hf(default["field"]), n=default["size"],
+                                                              unit=c_literal(default.get("unit"))), cases=cases))
             row.update(keep=self.keep_slot(data["sel"]), sw=f"&ur_switch_{name}")
         elif d.kind == "values":
             name = f"{owner}_values{len(self.value_lists)}"
@@ -310,7 +311,7 @@ class _Builder:
         for key, value in row.items():
             if key == "flags":
                 value = "|".join(value) or "0"
-            if key in ("path", "show", "label"):
+            if key in ("path", "show", "label", "unit"):
                 if value is not None:
                     out.append(f".{key} = {c_str(value)}")
             elif key in ("low", "high"):

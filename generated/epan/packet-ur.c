@@ -452,11 +452,13 @@ typedef struct {
     int code;
     int hf;
     unsigned n;
+    const char *unit;               /* a float's unit, shown after its value (" rad") */
 } ur_case;
 
 typedef struct {
     int default_hf;
     unsigned default_n;
+    const char *default_unit;
     const ur_case *cases;
     unsigned n_cases;
 } ur_switch;
@@ -498,6 +500,8 @@ struct ur_desc {
     const char *path;               /* in error texts */
     const char *show;               /* Info column: the text before its value; NULL: not shown */
     const char *label;              /* group item label; the name of an enum named by version */
+    const char *unit;               /* a float's unit, shown after its value: Wireshark 4.0 shows no unit
+                                     * string of a float field */
     const value_string *vs;         /* enum names, for the Info column */
     const ur_names *names;          /* enum names by version, NULL when they do not depend on it */
     const ur_layout *inner;         /* group item, cond fields */
@@ -560,12 +564,7 @@ typedef struct {
 
 
 /* ---- Units Wireshark has no name for ---- */
-static const unit_name_string ur_units_0_rad = { " rad", NULL };
-static const unit_name_string ur_units_1_rad_s = { " rad/s", NULL };
-static const unit_name_string ur_units_2_rad_s = { " rad/s\302\262", NULL };
-static const unit_name_string ur_units_3_n = { " N", NULL };
-static const unit_name_string ur_units_4_kg = { " kg", NULL };
-static const unit_name_string ur_units_5_kg_m = { " kg\302\267m\302\262", NULL };
+static const unit_name_string ur_units_0_v = { " V", NULL };
 
 /* ---- Value strings: every enum of the spec, by wire value; one per version range where the
  * names depend on it (the field's is the newest, so that filters by name follow today's firmware) */
@@ -1088,11 +1087,11 @@ static const int ur_bits_masterboard_data_cond8_bits3[] = {
     UR_HF_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_TOOL_1,
 };
 static const ur_case ur_switch_safety_mode_cond28_switch0_cases[] = {
-    { 2, UR_HF_SAFETY_MODE_REPORT_DATA_INT32, 4 },
-    { 3, UR_HF_SAFETY_MODE_REPORT_DATA_FLOAT32, 4 },
+    { 2, UR_HF_SAFETY_MODE_REPORT_DATA_INT32, 4, NULL },
+    { 3, UR_HF_SAFETY_MODE_REPORT_DATA_FLOAT32, 4, NULL },
 };
 static const ur_switch ur_switch_safety_mode_cond28_switch0 = {
-    UR_HF_SAFETY_MODE_REPORT_DATA, 4, ur_switch_safety_mode_cond28_switch0_cases, 2
+    UR_HF_SAFETY_MODE_REPORT_DATA, 4, NULL, ur_switch_safety_mode_cond28_switch0_cases, 2
 };
 static const ur_value_fields ur_values_global_variables_update_values0 = {
     .item = UR_HF_GLOBAL_VARIABLES_UPDATE_VARIABLES, .type = UR_HF_GLOBAL_VARIABLES_UPDATE_TYPE,
@@ -1172,17 +1171,18 @@ static const ur_layout ur_layout_robot_mode_data = {
 };
 
 static const ur_desc ur_desc_joint_data_joint[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_ACTUAL, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "q_actual" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_TARGET, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "q_target" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_ACTUAL, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "q_actual",
+        .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_TARGET, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "q_target",
+        .unit = " rad" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_QD_ACTUAL, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "qd_actual" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_I_ACTUAL, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "i_actual" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_V_ACTUAL, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "v_actual" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MOTOR, .n = 4, .count = 1, .flags = UR_FLOAT, .path = "t_motor" },
+        .path = "qd_actual", .unit = " rad/s" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_I_ACTUAL, .n = 4, .count = 1, .flags = UR_FLOAT, .path = "i_actual",
+        .unit = " A" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_V_ACTUAL, .n = 4, .count = 1, .flags = UR_FLOAT, .path = "v_actual",
+        .unit = " V" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MOTOR, .n = 4, .count = 1, .flags = UR_FLOAT, .path = "t_motor",
+        .unit = " \302\260C" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MICRO, .n = 4, .count = 1, .flags = UR_FLOAT, .path = "t_micro" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_JOINT_MODE, .n = 1, .count = 1, .path = "joint_mode",
         .label = "Joint mode", .vs = ur_vs_joint_mode, .names = &ur_names_joint_mode },
@@ -1209,13 +1209,13 @@ static const ur_desc ur_desc_tool_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT1, .n = 8, .count = 1, .flags = UR_FLOAT,
         .path = "analog_input1" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_VOLTAGE_48V, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "tool_voltage_48v" },
+        .path = "tool_voltage_48v", .unit = " V" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_OUTPUT_VOLTAGE, .n = 1, .count = 1,
         .path = "tool_output_voltage" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "tool_current" },
+        .path = "tool_current", .unit = " A" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_TEMPERATURE, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "tool_temperature" },
+        .path = "tool_temperature", .unit = " \302\260C" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_MODE, .n = 1, .count = 1, .path = "tool_mode",
         .vs = ur_vs_tool_mode },
 };
@@ -1305,7 +1305,7 @@ static const ur_layout ur_layout_masterboard_data_cond13 = {
 
 static const ur_desc ur_desc_masterboard_data_cond14[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_24V, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "euromap_voltage_24v" },
+        .path = "euromap_voltage_24v", .unit = " V" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
         .path = "euromap_current" },
 };
@@ -1370,11 +1370,11 @@ static const ur_desc ur_desc_masterboard_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT1, .n = 8, .count = 1, .flags = UR_FLOAT,
         .path = "analog_output1" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_BOARD_TEMPERATURE, .n = 4, .count = 1,
-        .flags = UR_FLOAT, .path = "master_board_temperature" },
+        .flags = UR_FLOAT, .path = "master_board_temperature", .unit = " \302\260C" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_VOLTAGE_48V, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "robot_voltage_48v" },
+        .path = "robot_voltage_48v", .unit = " V" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "robot_current" },
+        .path = "robot_current", .unit = " A" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_IO_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
         .path = "master_io_current" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 1006000u, .high = 1008999u,
@@ -1404,29 +1404,35 @@ static const ur_layout ur_layout_masterboard_data = {
 
 static const ur_desc ur_desc_cartesian_info_cond19[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_X, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_x" },
+        .path = "tcp_offset_x", .unit = " m" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Y, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_y" },
+        .path = "tcp_offset_y", .unit = " m" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Z, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_z" },
+        .path = "tcp_offset_z", .unit = " m" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RX, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_rx" },
+        .path = "tcp_offset_rx", .unit = " rad" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RY, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_ry" },
+        .path = "tcp_offset_ry", .unit = " rad" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RZ, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_rz" },
+        .path = "tcp_offset_rz", .unit = " rad" },
 };
 static const ur_layout ur_layout_cartesian_info_cond19 = {
     ur_desc_cartesian_info_cond19, 6
 };
 
 static const ur_desc ur_desc_cartesian_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_X, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "x" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Y, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "y" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Z, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "z" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "rx" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "ry" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "rz" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_X, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "x",
+        .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Y, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "y",
+        .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Z, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "z",
+        .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "rx",
+        .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "ry",
+        .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "rz",
+        .unit = " rad" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 6, .low = 3001000u, .high = 4294967295u,
         .inner = &ur_layout_cartesian_info_cond19 },
 };
@@ -1446,11 +1452,13 @@ static const ur_layout ur_layout_laser_pointer = {
 static const ur_desc ur_desc_kinematics_info[] = {
     { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_CHECKSUM, .n = 4, .count = 6, .path = "checksum" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_THETA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_theta" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d" },
+        .path = "dh_theta", .unit = " rad" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a",
+        .unit = " m" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d",
+        .unit = " m" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_ALPHA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_alpha" },
+        .path = "dh_alpha", .unit = " rad" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_KINEMATICS_INFO_CALIBRATION_STATUS, .n = 4, .count = 1,
         .path = "calibration_status" },
 };
@@ -1460,9 +1468,9 @@ static const ur_layout ur_layout_kinematics_info = {
 
 static const ur_desc ur_desc_configuration_data_joint_position_limit[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MIN_LIMIT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "joint_min_limit" },
+        .path = "joint_min_limit", .unit = " rad" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_LIMIT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "joint_max_limit" },
+        .path = "joint_max_limit", .unit = " rad" },
 };
 static const ur_layout ur_layout_configuration_data_joint_position_limit = {
     ur_desc_configuration_data_joint_position_limit, 2
@@ -1470,9 +1478,9 @@ static const ur_layout ur_layout_configuration_data_joint_position_limit = {
 
 static const ur_desc ur_desc_configuration_data_joint_motion_limit[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_SPEED, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "joint_max_speed" },
+        .path = "joint_max_speed", .unit = " rad/s" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_ACCELERATION, .n = 8, .count = 1,
-        .flags = UR_FLOAT, .path = "joint_max_acceleration" },
+        .flags = UR_FLOAT, .path = "joint_max_acceleration", .unit = " rad/s\302\262" },
 };
 static const ur_layout ur_layout_configuration_data_joint_motion_limit = {
     ur_desc_configuration_data_joint_motion_limit, 2
@@ -1503,21 +1511,23 @@ static const ur_desc ur_desc_configuration_data[] = {
     { .kind = UR_D_GROUP, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MOTION_LIMITS, .count = 6, .size = 16,
         .path = "joint_motion_limits", .label = "Joint", .inner = &ur_layout_configuration_data_joint_motion_limit },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_JOINT_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "v_joint_default" },
+        .path = "v_joint_default", .unit = " rad/s" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_JOINT_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "a_joint_default" },
+        .path = "a_joint_default", .unit = " rad/s\302\262" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_TOOL_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "v_tool_default" },
+        .path = "v_tool_default", .unit = " m/s" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_TOOL_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "a_tool_default" },
+        .path = "a_tool_default", .unit = " m/s\302\262" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_EQ_RADIUS, .n = 8, .count = 1, .flags = UR_FLOAT,
         .path = "eq_radius" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a",
+        .unit = " m" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d",
+        .unit = " m" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_ALPHA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_alpha" },
+        .path = "dh_alpha", .unit = " rad" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_THETA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_theta" },
+        .path = "dh_theta", .unit = " rad" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_MASTERBOARD_VERSION, .n = 4, .count = 1, .flags = UR_SIGNED,
         .path = "masterboard_version" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_CONTROLLER_BOX_TYPE, .n = 4, .count = 1, .flags = UR_SIGNED,
@@ -1536,12 +1546,18 @@ static const ur_layout ur_layout_configuration_data = {
 };
 
 static const ur_desc ur_desc_force_mode_data[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fx" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fy" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fz" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frx" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fry" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frz" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fx",
+        .unit = " N" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fy",
+        .unit = " N" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fz",
+        .unit = " N" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frx",
+        .unit = " Nm" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fry",
+        .unit = " Nm" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frz",
+        .unit = " Nm" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_ROBOT_DEXTERITY, .n = 8, .count = 1, .flags = UR_FLOAT,
         .path = "robot_dexterity" },
 };
@@ -1655,10 +1671,12 @@ static const ur_layout ur_layout_singularity_info = {
 };
 
 static const ur_desc ur_desc_payload_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PAYLOAD_INFO_MASS, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "mass" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PAYLOAD_INFO_MASS, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "mass",
+        .unit = " kg" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_CENTER_OF_GRAVITY, .n = 8, .count = 3, .flags = UR_FLOAT,
-        .path = "center_of_gravity" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_INERTIA, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "inertia" },
+        .path = "center_of_gravity", .unit = " m" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_INERTIA, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "inertia",
+        .unit = " kg\302\267m\302\262" },
 };
 static const ur_layout ur_layout_payload_info = {
     ur_desc_payload_info, 3
@@ -3302,7 +3320,8 @@ ur_choose(const ur_forms *forms, unsigned size, guint32 v, guint32 *use, gboolea
  * so that a malformed message still reads as one. As runtime/lua/items.lua. */
 typedef struct {
     packet_info *pinfo;
-    tvbuff_t *tvb;
+    tvbuff_t *tvb;              /* the message's bytes (carried-over bytes first, when there are) */
+    tvbuff_t *call_tvb;         /* the bytes the call was handed: generated items stand at its start */
     int base;                   /* the message's first byte: error offsets count from it */
     guint32 version;            /* the version it is read with (moves on when layout sizes tell it) */
     gboolean known;             /* announced or from the preference */
@@ -3311,6 +3330,7 @@ typedef struct {
     const char *implied;        /* the versions of the form whose size told the version, or NULL */
     guint32 message_version;    /* what the message's tree shows */
     const char *message_implied;
+    gboolean visible;           /* the tree is shown: item texts are worth writing */
     gint64 kept[UR_KEEP_SLOTS]; /* values later fields depend on (present_if, switch) */
     gboolean kept_set[UR_KEEP_SLOTS];
     /* the tree cap */
@@ -3362,14 +3382,23 @@ ur_add(ur_msg *st, proto_tree *tree, int field, int o, int n, guint encoding)
     return proto_tree_add_item(tree, ur_hf(field), st->tvb, o, n, encoding);
 }
 
-/* A subtree item with its own text (a group's "Joint 0"); counted. */
+/* A subtree item with its own text (a group's "Joint 0"); counted. Item texts are written only
+ * where the tree is shown: a field no one asked for is the parent's item, faked by Wireshark. */
 static proto_item *
 ur_add_labelled(ur_msg *st, proto_tree *tree, int field, int o, int n, const char *label)
 {
     proto_item *item = ur_add(st, tree, field, o, n, ENC_NA);
-    if (item)
+    if (item && st->visible)
         proto_item_set_text(item, "%s", label);
     return item;
+}
+
+/* A float's unit after its value. */
+static inline void
+ur_unit(ur_msg *st, proto_item *item, const char *unit)
+{
+    if (unit != NULL && item != NULL && st->visible)
+        proto_item_append_text(item, "%s", unit);
 }
 
 /* An expert info on item; past the cap, the first goes to the message's item. */
@@ -3520,8 +3549,11 @@ ur_add_value(ur_msg *st, proto_tree *tree, int field, int o, int n, gint64 value
 static proto_item *
 ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
 {
-    if (!(d->flags & UR_VALUE) && d->names == NULL && d->keep == 0)
-        return ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
+    if (!(d->flags & UR_VALUE) && d->names == NULL && d->keep == 0) {
+        proto_item *item = ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
+        ur_unit(st, item, d->unit);
+        return item;
+    }
     gint64 v = 0;
     double real = 0;
     if (d->flags & UR_FLOAT)
@@ -3530,8 +3562,9 @@ ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
         v = ur_int_at(st->tvb, o, d->n, (d->flags & UR_SIGNED) != 0);
     proto_item *item = (d->flags & UR_VALUE) ? ur_add_value(st, tree, d->hf, o, (int)d->n, v, real)
                                             : ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
-    if (d->names != NULL)
+    if (d->names != NULL && st->visible)
         ur_rename(item, d->label, d->names, st->version, v);
+    ur_unit(st, item, d->unit);
     if (d->keep != 0) {
         st->kept[d->keep] = v;
         st->kept_set[d->keep] = TRUE;
@@ -3644,11 +3677,13 @@ ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
 {
     int hf = d->sw->default_hf;
     unsigned n = d->sw->default_n;
+    const char *unit = d->sw->default_unit;
     if (st->kept_set[d->keep]) {
         for (unsigned i = 0; i < d->sw->n_cases; i++) {
             if (d->sw->cases[i].code == st->kept[d->keep]) {
                 hf = d->sw->cases[i].hf;
                 n = d->sw->cases[i].n;
+                unit = d->sw->cases[i].unit;
             }
         }
     }
@@ -3656,7 +3691,7 @@ ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
         *err = ur_short(st, pre, d->path, o, n, e);
         return -1;
     }
-    ur_add(st, tree, hf, o, (int)n, ENC_BIG_ENDIAN);
+    ur_unit(st, ur_add(st, tree, hf, o, (int)n, ENC_BIG_ENDIAN), unit);
     return o + (int)n;
 }
 
@@ -4134,7 +4169,7 @@ ur_add_code(ur_msg *st, proto_tree *tree, int field, int o, int n, const char *l
             guint32 v, guint32 code)
 {
     proto_item *item = ur_add(st, tree, field, o, n, ENC_BIG_ENDIAN);
-    if (tables != NULL)
+    if (tables != NULL && st->visible)
         ur_rename(item, label, tables, v, code);
     return item;
 }
@@ -4160,11 +4195,11 @@ ur_show_version(ur_msg *st, proto_item *item)
         ? wmem_strdup_printf(pool, "%s (from layout sizes)", st->message_implied)
         : ur_version_text(st->message_version, buf);
     if (ur_room(st, tree))
-        proto_item_set_generated(proto_tree_add_string(tree, ur_hf(UR_HF_SOFTWARE_VERSION), st->tvb, 0, 0, text));
+        proto_item_set_generated(proto_tree_add_string(tree, ur_hf(UR_HF_SOFTWARE_VERSION), st->call_tvb, 0, 0, text));
     if (st->announced)
         return;
     if (ur_room(st, tree))
-        proto_item_set_generated(proto_tree_add_boolean(tree, ur_hf(UR_HF_VERSION_ASSUMED), st->tvb, 0, 0, TRUE));
+        proto_item_set_generated(proto_tree_add_boolean(tree, ur_hf(UR_HF_VERSION_ASSUMED), st->call_tvb, 0, 0, TRUE));
     if (st->message_implied)
         text = wmem_strdup_printf(pool, "no Version message seen on this stream: software %s, as the layout sizes "
                                   "show", st->message_implied);
@@ -4196,7 +4231,7 @@ ur_package(ur_msg *st, const ur_message *m, proto_tree *tree, int p, int size, g
     proto_item *item = ur_add(st, tree, pk ? pk->item : UR_HF_UNKNOWN_PACKAGE, p, size, ENC_NA);
     gboolean named;
     const char *name = ur_code_name(m->names, m->tables, v, code, &named);
-    if (pk == NULL && item != NULL)
+    if (pk == NULL && item != NULL && st->visible)
         proto_item_set_text(item, "Unknown package %u (%s)", code, name ? name : "not in the spec");
     proto_tree *sub = ur_sub(item);
     ur_add(st, sub, m->length_hf, p, UR_PACKAGE_LENGTH_SIZE, ENC_BIG_ENDIAN);
@@ -4748,7 +4783,8 @@ ur_announced_version(tvbuff_t *tvb, int o, int e, gint64 *bad_bugfix, int *bugfi
 
 /* One whole message from o to e (its declared length): version, Info column, tree. */
 static void
-ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call *cur, int o, int e, guint8 type)
+ur_dissect_message(tvbuff_t *tvb, tvbuff_t *call_tvb, packet_info *pinfo, proto_tree *tree, ur_call *cur, int o,
+                   int e, guint8 type)
 {
     const ur_message *m = ur_messages[type];
     gint64 bad_bugfix = 0;
@@ -4766,6 +4802,7 @@ ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call 
     memset(&st, 0, sizeof st);
     st.pinfo = pinfo;
     st.tvb = tvb;
+    st.call_tvb = call_tvb;
     st.base = o;
     ur_begin(&st, version, implied);
     wmem_strbuf_t *text = m ? ur_message_info(&st, m, o, e, cur->columns) : NULL;
@@ -4781,6 +4818,7 @@ ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call 
         return;
     proto_item *item = proto_tree_add_item(tree, proto_ur, tvb, o, e - o, ENC_NA);
     proto_tree *sub = proto_item_add_subtree(item, ett_ur);
+    st.visible = PTREE_DATA(tree)->visible;
     proto_tree_add_item(sub, hf_ur[UR_HF_LENGTH], tvb, o, UR_LENGTH_SIZE, ENC_BIG_ENDIAN);
     proto_item *type_item = proto_tree_add_item(sub, hf_ur[UR_HF_TYPE], tvb, o + UR_LENGTH_SIZE,
                                                 UR_HEADER_SIZE - UR_LENGTH_SIZE, ENC_BIG_ENDIAN);
@@ -4940,7 +4978,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
                 ur_set_info_text(pinfo, cur.first, "Continuation");
             break;
         } else {
-            ur_dissect_message(buf, pinfo, tree, &cur, o, o + (int)size, type);
+            ur_dissect_message(buf, tvb, pinfo, tree, &cur, o, o + (int)size, type);
             o += (int)size;
         }
     }
@@ -5072,32 +5110,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_JOINT_DATA_Q_ACTUAL],
           { "Actual joint position", "ur.joint_data.q_actual",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Measured angle of the joint. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_Q_TARGET],
           { "Target joint position", "ur.joint_data.q_target",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Angle the controller commands. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_QD_ACTUAL],
           { "Actual joint velocity", "ur.joint_data.qd_actual",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_1_rad_s, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Measured angular velocity of the joint. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_I_ACTUAL],
           { "Actual joint current", "ur.joint_data.i_actual",
-            FT_FLOAT, BASE_UNIT_STRING, &units_amp, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Measured motor current; l_actual in the document. In A.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_V_ACTUAL],
           { "Actual joint voltage", "ur.joint_data.v_actual",
-            FT_FLOAT, BASE_UNIT_STRING, &units_volt, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Measured joint voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_T_MOTOR],
           { "Motor temperature", "ur.joint_data.t_motor",
-            FT_FLOAT, BASE_UNIT_STRING, &units_degree_celsius, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Temperature of the joint. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_T_MICRO],
@@ -5137,22 +5175,22 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_VOLTAGE_48V],
           { "Tool voltage", "ur.tool_data.tool_voltage_48v",
-            FT_FLOAT, BASE_UNIT_STRING, &units_volt, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Tool voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_OUTPUT_VOLTAGE],
           { "Tool output voltage", "ur.tool_data.tool_output_voltage",
-            FT_UINT8, BASE_DEC|BASE_UNIT_STRING, &units_volt, 0x0,
+            FT_UINT8, BASE_DEC|BASE_UNIT_STRING, &ur_units_0_v, 0x0,
             "Tool output voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_CURRENT],
           { "Tool current", "ur.tool_data.tool_current",
-            FT_FLOAT, BASE_UNIT_STRING, &units_amp, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Tool current. In A.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_TEMPERATURE],
           { "Tool temperature", "ur.tool_data.tool_temperature",
-            FT_FLOAT, BASE_UNIT_STRING, &units_degree_celsius, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Tool temperature. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_MODE],
@@ -5400,17 +5438,17 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_MASTER_BOARD_TEMPERATURE],
           { "Masterboard temperature", "ur.masterboard_data.master_board_temperature",
-            FT_FLOAT, BASE_UNIT_STRING, &units_degree_celsius, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Masterboard temperature. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_ROBOT_VOLTAGE_48V],
           { "Robot voltage", "ur.masterboard_data.robot_voltage_48v",
-            FT_FLOAT, BASE_UNIT_STRING, &units_volt, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Robot voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_ROBOT_CURRENT],
           { "Robot current", "ur.masterboard_data.robot_current",
-            FT_FLOAT, BASE_UNIT_STRING, &units_amp, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Robot current. In A.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_MASTER_IO_CURRENT],
@@ -5471,7 +5509,7 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_24V],
           { "Euromap67 24 V voltage", "ur.masterboard_data.euromap_voltage_24v",
-            FT_FLOAT, BASE_UNIT_STRING, &units_volt, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Euromap67 24 V voltage. In V. Sent by software 3.0 and later.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT],
@@ -5509,62 +5547,62 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_X],
           { "TCP position X", "ur.cartesian_info.x",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Position of the tool centre point in base coordinates, X. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_Y],
           { "TCP position Y", "ur.cartesian_info.y",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Position of the tool centre point in base coordinates, Y. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_Z],
           { "TCP position Z", "ur.cartesian_info.z",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Position of the tool centre point in base coordinates, Z. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RX],
           { "TCP rotation Rx", "ur.cartesian_info.rx",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Orientation of the tool as a rotation vector, Rx. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RY],
           { "TCP rotation Ry", "ur.cartesian_info.ry",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Orientation of the tool as a rotation vector, Ry. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RZ],
           { "TCP rotation Rz", "ur.cartesian_info.rz",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Orientation of the tool as a rotation vector, Rz. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_X],
           { "TCP offset X", "ur.cartesian_info.tcp_offset_x",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset X. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_Y],
           { "TCP offset Y", "ur.cartesian_info.tcp_offset_y",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset Y. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_Z],
           { "TCP offset Z", "ur.cartesian_info.tcp_offset_z",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset Z. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RX],
           { "TCP offset Rx", "ur.cartesian_info.tcp_offset_rx",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset Rx. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RY],
           { "TCP offset Ry", "ur.cartesian_info.tcp_offset_ry",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset Ry. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RZ],
           { "TCP offset Rz", "ur.cartesian_info.tcp_offset_rz",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset Rz. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO],
@@ -5601,22 +5639,22 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_THETA],
           { "DH theta", "ur.kinematics_info.dh_theta",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH theta. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_A],
           { "DH a", "ur.kinematics_info.dh_a",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH a. In m.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_D],
           { "DH d", "ur.kinematics_info.dh_d",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Dhd in the document. In m.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_ALPHA],
           { "DH alpha", "ur.kinematics_info.dh_alpha",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH alpha. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_CALIBRATION_STATUS],
@@ -5637,12 +5675,12 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MIN_LIMIT],
           { "Minimum joint position", "ur.configuration_data.joint_min_limit",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Minimum joint position. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_LIMIT],
           { "Maximum joint position", "ur.configuration_data.joint_max_limit",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "jointMaxLimitt in the document. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MOTION_LIMITS],
@@ -5652,32 +5690,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_SPEED],
           { "Maximum joint speed", "ur.configuration_data.joint_max_speed",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_1_rad_s, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Maximum joint speed. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_ACCELERATION],
           { "Maximum joint acceleration", "ur.configuration_data.joint_max_acceleration",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_2_rad_s, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Maximum joint acceleration. In rad/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_V_JOINT_DEFAULT],
           { "Default joint speed", "ur.configuration_data.v_joint_default",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_1_rad_s, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Default joint speed. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_A_JOINT_DEFAULT],
           { "Default joint acceleration", "ur.configuration_data.a_joint_default",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_2_rad_s, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Default joint acceleration. In rad/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_V_TOOL_DEFAULT],
           { "Default tool speed", "ur.configuration_data.v_tool_default",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meter_sec, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Default tool speed. In m/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_A_TOOL_DEFAULT],
           { "Default tool acceleration", "ur.configuration_data.a_tool_default",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meter_sec_squared, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Default tool acceleration. In m/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_EQ_RADIUS],
@@ -5687,22 +5725,22 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_A],
           { "DH a", "ur.configuration_data.dh_a",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH a. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_D],
           { "DH d", "ur.configuration_data.dh_d",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH d. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_ALPHA],
           { "DH alpha", "ur.configuration_data.dh_alpha",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH alpha. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_THETA],
           { "DH theta", "ur.configuration_data.dh_theta",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH theta. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_MASTERBOARD_VERSION],
@@ -5750,32 +5788,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FX],
           { "Force X", "ur.force_mode_data.fx",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_3_n, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Force X. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FY],
           { "Force Y", "ur.force_mode_data.fy",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_3_n, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Force Y. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FZ],
           { "Force Z", "ur.force_mode_data.fz",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_3_n, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Force Z. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRX],
           { "Torque X", "ur.force_mode_data.frx",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_newton_metre, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Torque X. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRY],
           { "Torque Y", "ur.force_mode_data.fry",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_newton_metre, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Torque Y. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRZ],
           { "Torque Z", "ur.force_mode_data.frz",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_newton_metre, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Torque Z. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_ROBOT_DEXTERITY],
@@ -5947,17 +5985,17 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_MASS],
           { "Payload mass", "ur.payload_info.mass",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_4_kg, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Payload mass. In kg.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_CENTER_OF_GRAVITY],
           { "Payload centre of gravity", "ur.payload_info.center_of_gravity",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "CoGx, CoGy, CoGz from the tool flange. In m.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_INERTIA],
           { "Payload inertia", "ur.payload_info.inertia",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_5_kg_m, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Ixx, Iyy, Izz, Ixy, Ixz, Iyz. In kg\302\267m\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO],

@@ -185,7 +185,8 @@ ur_announced_version(tvbuff_t *tvb, int o, int e, gint64 *bad_bugfix, int *bugfi
 
 /* One whole message from o to e (its declared length): version, Info column, tree. */
 static void
-ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call *cur, int o, int e, guint8 type)
+ur_dissect_message(tvbuff_t *tvb, tvbuff_t *call_tvb, packet_info *pinfo, proto_tree *tree, ur_call *cur, int o,
+                   int e, guint8 type)
 {
     const ur_message *m = ur_messages[type];
     gint64 bad_bugfix = 0;
@@ -203,6 +204,7 @@ ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call 
     memset(&st, 0, sizeof st);
     st.pinfo = pinfo;
     st.tvb = tvb;
+    st.call_tvb = call_tvb;
     st.base = o;
     ur_begin(&st, version, implied);
     wmem_strbuf_t *text = m ? ur_message_info(&st, m, o, e, cur->columns) : NULL;
@@ -218,6 +220,7 @@ ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call 
         return;
     proto_item *item = proto_tree_add_item(tree, proto_ur, tvb, o, e - o, ENC_NA);
     proto_tree *sub = proto_item_add_subtree(item, ett_ur);
+    st.visible = PTREE_DATA(tree)->visible;
     proto_tree_add_item(sub, hf_ur[UR_HF_LENGTH], tvb, o, UR_LENGTH_SIZE, ENC_BIG_ENDIAN);
     proto_item *type_item = proto_tree_add_item(sub, hf_ur[UR_HF_TYPE], tvb, o + UR_LENGTH_SIZE,
                                                 UR_HEADER_SIZE - UR_LENGTH_SIZE, ENC_BIG_ENDIAN);
@@ -377,7 +380,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
                 ur_set_info_text(pinfo, cur.first, "Continuation");
             break;
         } else {
-            ur_dissect_message(buf, pinfo, tree, &cur, o, o + (int)size, type);
+            ur_dissect_message(buf, tvb, pinfo, tree, &cur, o, o + (int)size, type);
             o += (int)size;
         }
     }

@@ -5,10 +5,12 @@ on every capture the Lua dissector is tested with. The captures are batched: man
 per capture, so that a few tshark runs cover every vector."""
 from __future__ import annotations
 
+import difflib
 import functools
 import json
 import os
 import random
+import re
 import struct
 import subprocess
 import tempfile
@@ -105,6 +107,22 @@ def assert_same(capture_bytes: bytes, *args: str) -> harness.Shown:
     return native
 
 
+def _ur_pdml(result) -> list[str]:
+    """The `ur` protocol elements of tshark -T pdml: every item's label (showname), offset and size."""
+    return re.findall(r'<proto name="ur".*?</proto>', harness.checked(result), re.S)
+
+
+def assert_same_tree(capture_bytes: bytes, *args: str) -> None:
+    """Both dissectors build the same tree, item texts, offsets and sizes included (-T pdml)."""
+    native = _ur_pdml(harness.run_native(capture_bytes, "-2", "-T", "pdml", "-Y", "ur", *args))
+    lua = _ur_pdml(LUA(capture_bytes, "-2", "-T", "pdml", "-Y", "ur", *args))
+    assert len(native) == len(lua) and native
+    for i, (n, l) in enumerate(zip(native, lua)):
+        if n != l:
+            diff = difflib.unified_diff(l.splitlines(), n.splitlines(), "lua", "native", lineterm="", n=0)
+            raise AssertionError(f"ur item {i}:\n" + "\n".join(list(diff)[:20]))
+
+
 def _split(data: bytes) -> list[bytes]:
     """A stream cut at its declared lengths where they are plausible (else kept whole)."""
     out, pos = [], 0
@@ -167,8 +185,10 @@ def _prefs(hint: str) -> tuple[str, ...]:
 
 @pytest.mark.parametrize("hint", HINTS, ids=lambda h: h or "no hint")
 def test_golden_vectors_in_every_segmentation(hint):
-    shown = assert_same(_golden_capture(hint), *_prefs(hint))
+    data = _golden_capture(hint)
+    shown = assert_same(data, *_prefs(hint))
     assert sum(1 for layer in shown.layers if layer) > len(SEGMENTATIONS)
+    assert_same_tree(data, *_prefs(hint))
 
 
 def _generation_capture() -> bytes:
@@ -186,13 +206,16 @@ def _generation_capture() -> bytes:
 
 
 def test_generation_sessions():
-    assert_same(_generation_capture())
+    data = _generation_capture()
+    assert_same(data)
+    assert_same_tree(data)
 
 
 @pytest.mark.parametrize("sample", ["primary_session.pcapng", "secondary_session.pcap"])
 def test_bundled_samples(sample):
     shown = assert_same(SAMPLES / sample)
     assert any(shown.layers)
+    assert_same_tree(SAMPLES / sample)
 
 
 # ---- the fuzzers' kept corpora, as tests/lua/test_fuzz_corpus.py feeds them ----
@@ -211,8 +234,10 @@ def _corpus_capture(version: str) -> bytes:
 @pytest.mark.parametrize("version", sorted(fuzz_corpus.GROUPS), ids=lambda v: v or "no hint")
 def test_fuzz_corpus(version):
     """Faults, resynchronisation and their experts included."""
-    shown = assert_same(_corpus_capture(version), *_prefs(version))
+    data = _corpus_capture(version)
+    shown = assert_same(data, *_prefs(version))
     assert shown.experts
+    assert_same_tree(data, *_prefs(version))
 
 
 # ---- the same captures through the plugin built with ASan and UBSan ----
@@ -281,6 +306,7 @@ def test_tree_cap_client_direction_and_two_robots():
     with tempfile.TemporaryDirectory() as folder:
         data = capture.write(Path(folder) / "cap.pcap", frames).read_bytes()
     shown = assert_same(data)
+    assert_same_tree(data)
     texts = [e.get("_ws.expert.message", "") for e in shown.experts]
     assert any(t.endswith("more items not shown (a message shows at most 10000)") for t in texts), texts[:5]
     assert any("unknown value type 99" in t for t in texts)
@@ -304,6 +330,7 @@ def test_decode_as_and_the_ports_preference(how):
         data = capture.write(Path(folder) / "port.pcap", frames).read_bytes()
     shown = assert_same(data, *how)
     assert sum(1 for layer in shown.layers if layer) > 50
+    assert_same_tree(data, *how)
 
 
 @pytest.mark.parametrize("args", [
@@ -318,3 +345,15 @@ def test_fields_and_filters_on_the_sample(args):
     native, lua = harness.checked(harness.run_native(sample, *args)), harness.checked(LUA(sample, *args))
     assert native == lua
     assert native.strip()
+
+
+@pytest.mark.parametrize("group", ["golden", "corpus"])
+def test_packet_list_without_a_tree(group):
+    """tshark's packet list, one pass: no tree, only framing, the version state and the Info column."""
+    captures = ({h: _golden_capture(h) for h in HINTS} if group == "golden"
+                else {v: _corpus_capture(v) for v in sorted(fuzz_corpus.GROUPS)})
+    for hint, data in captures.items():
+        native = harness.checked(harness.run_native(data, *_prefs(hint)))
+        lua = harness.checked(LUA(data, *_prefs(hint)))
+        assert native.splitlines() == lua.splitlines(), hint
+        assert " UR " in native
