@@ -167,10 +167,10 @@ SEGMENTATIONS = {
 }
 
 
-def _golden_capture(hint: str) -> bytes:
-    """Every golden vector of this version hint, in every segmentation, one session each."""
+def _golden_capture(hint: str, segmentations: tuple[str, ...] = tuple(SEGMENTATIONS)) -> bytes:
+    """Every golden vector of this version hint, in these segmentations, one session each."""
     streams, handshakes, retransmit = [], [], []
-    for cut, handshake, every in SEGMENTATIONS.values():
+    for cut, handshake, every in (SEGMENTATIONS[name] for name in segmentations):
         for case in GOLDEN:
             if (case.version or "") == hint:
                 streams.append(cut(_split(case.data)))
@@ -357,3 +357,10 @@ def test_packet_list_without_a_tree(group):
         lua = harness.checked(LUA(data, *_prefs(hint)))
         assert native.splitlines() == lua.splitlines(), hint
         assert " UR " in native
+
+
+def test_without_tcp_reassembly():
+    """A message split over segments, with reassembly off: what each segment holds, as Lua shows it."""
+    data = _golden_capture("", ("whole", "random_cuts", "1-7 bytes"))
+    shown = assert_same(data, "-o", "tcp.desegment_tcp_streams:FALSE")
+    assert any("Continuation" in line for line in shown.info)
