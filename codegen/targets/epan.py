@@ -274,7 +274,7 @@ class _Builder:
                 flags.append("UR_VALUE")
             row.update(n=data["size"], flags=flags, unit=data.get("unit"), vs=self.table(data.get("vs")),
                        names=self.table(data.get("tables")), label=data.get("label"),
-                       keep=self.keep_slot(data.get("keep")), count=data.get("count", 1))
+                       keep=self.keep_slot(data.get("keep")), count=data.get("count", 0))
             if d.kind == "bits":
                 name = f"{owner}_bits{len(self.bit_lists)}"
                 self.bit_lists.append(dict(name=name, hfs=[self.hf(b) for b in data["bits"]]))

@@ -1106,7 +1106,7 @@ static const ur_value_fields ur_values_global_variables_update_values0 = {
 };
 
 static const ur_desc ur_desc_robot_mode_data_cond1[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_CONTROL_MODE, .n = 1, .count = 1, .path = "control_mode",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_CONTROL_MODE, .n = 1, .path = "control_mode",
         .vs = ur_vs_control_mode },
 };
 static const ur_layout ur_layout_robot_mode_data_cond1 = {
@@ -1114,7 +1114,7 @@ static const ur_layout ur_layout_robot_mode_data_cond1 = {
 };
 
 static const ur_desc ur_desc_robot_mode_data_cond2[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_SPEED_SCALING, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_SPEED_SCALING, .n = 8, .flags = UR_FLOAT,
         .path = "speed_scaling" },
 };
 static const ur_layout ur_layout_robot_mode_data_cond2 = {
@@ -1122,42 +1122,37 @@ static const ur_layout ur_layout_robot_mode_data_cond2 = {
 };
 
 static const ur_desc ur_desc_robot_mode_data_cond3[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TARGET_SPEED_FRACTION_LIMIT, .n = 8, .count = 1,
-        .flags = UR_FLOAT, .path = "target_speed_fraction_limit" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TARGET_SPEED_FRACTION_LIMIT, .n = 8, .flags = UR_FLOAT,
+        .path = "target_speed_fraction_limit" },
 };
 static const ur_layout ur_layout_robot_mode_data_cond3 = {
     ur_desc_robot_mode_data_cond3, 1
 };
 
 static const ur_desc ur_desc_robot_mode_data_cond4[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_RESERVED, .n = 1, .count = 1, .path = "reserved" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_RESERVED, .n = 1, .path = "reserved" },
 };
 static const ur_layout ur_layout_robot_mode_data_cond4 = {
     ur_desc_robot_mode_data_cond4, 1
 };
 
 static const ur_desc ur_desc_robot_mode_data[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_REAL_ROBOT_CONNECTED, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_REAL_ROBOT_CONNECTED, .n = 1,
         .path = "is_real_robot_connected" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_REAL_ROBOT_ENABLED, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_REAL_ROBOT_ENABLED, .n = 1,
         .path = "is_real_robot_enabled" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_ROBOT_POWER_ON, .n = 1, .count = 1,
-        .path = "is_robot_power_on" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_EMERGENCY_STOPPED, .n = 1, .count = 1,
-        .path = "is_emergency_stopped" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROTECTIVE_STOPPED, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_ROBOT_POWER_ON, .n = 1, .path = "is_robot_power_on" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_EMERGENCY_STOPPED, .n = 1, .path = "is_emergency_stopped" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROTECTIVE_STOPPED, .n = 1,
         .path = "is_protective_stopped" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROGRAM_RUNNING, .n = 1, .count = 1,
-        .path = "is_program_running" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROGRAM_PAUSED, .n = 1, .count = 1,
-        .path = "is_program_paused" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_ROBOT_MODE, .n = 1, .count = 1, .flags = UR_SIGNED,
-        .path = "robot_mode", .show = "", .label = "Robot mode", .vs = ur_vs_robot_mode,
-        .names = &ur_names_robot_mode },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROGRAM_RUNNING, .n = 1, .path = "is_program_running" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROGRAM_PAUSED, .n = 1, .path = "is_program_paused" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_ROBOT_MODE, .n = 1, .flags = UR_SIGNED, .path = "robot_mode",
+        .show = "", .label = "Robot mode", .vs = ur_vs_robot_mode, .names = &ur_names_robot_mode },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_robot_mode_data_cond1 },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TARGET_SPEED_FRACTION, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TARGET_SPEED_FRACTION, .n = 8, .flags = UR_FLOAT,
         .path = "target_speed_fraction" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_robot_mode_data_cond2 },
@@ -1171,21 +1166,21 @@ static const ur_layout ur_layout_robot_mode_data = {
 };
 
 static const ur_desc ur_desc_joint_data_joint[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_ACTUAL, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "q_actual",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_ACTUAL, .n = 8, .flags = UR_FLOAT, .path = "q_actual",
         .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_TARGET, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "q_target",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_TARGET, .n = 8, .flags = UR_FLOAT, .path = "q_target",
         .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_QD_ACTUAL, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "qd_actual", .unit = " rad/s" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_I_ACTUAL, .n = 4, .count = 1, .flags = UR_FLOAT, .path = "i_actual",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_QD_ACTUAL, .n = 8, .flags = UR_FLOAT, .path = "qd_actual",
+        .unit = " rad/s" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_I_ACTUAL, .n = 4, .flags = UR_FLOAT, .path = "i_actual",
         .unit = " A" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_V_ACTUAL, .n = 4, .count = 1, .flags = UR_FLOAT, .path = "v_actual",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_V_ACTUAL, .n = 4, .flags = UR_FLOAT, .path = "v_actual",
         .unit = " V" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MOTOR, .n = 4, .count = 1, .flags = UR_FLOAT, .path = "t_motor",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MOTOR, .n = 4, .flags = UR_FLOAT, .path = "t_motor",
         .unit = " \302\260C" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MICRO, .n = 4, .count = 1, .flags = UR_FLOAT, .path = "t_micro" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_JOINT_MODE, .n = 1, .count = 1, .path = "joint_mode",
-        .label = "Joint mode", .vs = ur_vs_joint_mode, .names = &ur_names_joint_mode },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MICRO, .n = 4, .flags = UR_FLOAT, .path = "t_micro" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_JOINT_MODE, .n = 1, .path = "joint_mode", .label = "Joint mode",
+        .vs = ur_vs_joint_mode, .names = &ur_names_joint_mode },
 };
 static const ur_layout ur_layout_joint_data_joint = {
     ur_desc_joint_data_joint, 8
@@ -1200,24 +1195,18 @@ static const ur_layout ur_layout_joint_data = {
 };
 
 static const ur_desc ur_desc_tool_data[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT_RANGE0, .n = 1, .count = 1,
-        .path = "analog_input_range0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT_RANGE1, .n = 1, .count = 1,
-        .path = "analog_input_range1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT0, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "analog_input0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT1, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "analog_input1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_VOLTAGE_48V, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT_RANGE0, .n = 1, .path = "analog_input_range0" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT_RANGE1, .n = 1, .path = "analog_input_range1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT0, .n = 8, .flags = UR_FLOAT, .path = "analog_input0" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT1, .n = 8, .flags = UR_FLOAT, .path = "analog_input1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_VOLTAGE_48V, .n = 4, .flags = UR_FLOAT,
         .path = "tool_voltage_48v", .unit = " V" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_OUTPUT_VOLTAGE, .n = 1, .count = 1,
-        .path = "tool_output_voltage" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "tool_current", .unit = " A" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_TEMPERATURE, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_OUTPUT_VOLTAGE, .n = 1, .path = "tool_output_voltage" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_CURRENT, .n = 4, .flags = UR_FLOAT, .path = "tool_current",
+        .unit = " A" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_TEMPERATURE, .n = 4, .flags = UR_FLOAT,
         .path = "tool_temperature", .unit = " \302\260C" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_MODE, .n = 1, .count = 1, .path = "tool_mode",
-        .vs = ur_vs_tool_mode },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_MODE, .n = 1, .path = "tool_mode", .vs = ur_vs_tool_mode },
 };
 static const ur_layout ur_layout_tool_data = {
     ur_desc_tool_data, 9
@@ -1256,27 +1245,26 @@ static const ur_layout ur_layout_masterboard_data_cond8 = {
 };
 
 static const ur_desc ur_desc_masterboard_data_cond9[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_SAFETY_STATE, .n = 1, .count = 1,
-        .path = "master_safety_state", .vs = ur_vs_master_safety_state },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_ON_OFF_STATE, .n = 1, .count = 1,
-        .path = "master_on_off_state", .vs = ur_vs_master_on_off_state },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_SAFETY_STATE, .n = 1, .path = "master_safety_state",
+        .vs = ur_vs_master_safety_state },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_ON_OFF_STATE, .n = 1, .path = "master_on_off_state",
+        .vs = ur_vs_master_on_off_state },
 };
 static const ur_layout ur_layout_masterboard_data_cond9 = {
     ur_desc_masterboard_data_cond9, 2
 };
 
 static const ur_desc ur_desc_masterboard_data_cond10[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_SAFETY_MODE, .n = 1, .count = 1, .path = "safety_mode",
-        .show = "", .vs = ur_vs_safety_mode },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_IN_REDUCED_MODE, .n = 1, .count = 1,
-        .path = "in_reduced_mode" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_SAFETY_MODE, .n = 1, .path = "safety_mode", .show = "",
+        .vs = ur_vs_safety_mode },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_IN_REDUCED_MODE, .n = 1, .path = "in_reduced_mode" },
 };
 static const ur_layout ur_layout_masterboard_data_cond10 = {
     ur_desc_masterboard_data_cond10, 2
 };
 
 static const ur_desc ur_desc_masterboard_data_cond11[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP67_INTERFACE_INSTALLED, .n = 1, .count = 1, .keep = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP67_INTERFACE_INSTALLED, .n = 1, .keep = 1,
         .path = "euromap67_interface_installed" },
 };
 static const ur_layout ur_layout_masterboard_data_cond11 = {
@@ -1284,19 +1272,17 @@ static const ur_layout ur_layout_masterboard_data_cond11 = {
 };
 
 static const ur_desc ur_desc_masterboard_data_cond12[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_INPUT_BITS, .n = 4, .count = 1,
-        .path = "euromap_input_bits" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_OUTPUT_BITS, .n = 4, .count = 1,
-        .path = "euromap_output_bits" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_INPUT_BITS, .n = 4, .path = "euromap_input_bits" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_OUTPUT_BITS, .n = 4, .path = "euromap_output_bits" },
 };
 static const ur_layout ur_layout_masterboard_data_cond12 = {
     ur_desc_masterboard_data_cond12, 2
 };
 
 static const ur_desc ur_desc_masterboard_data_cond13[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_CB2, .n = 2, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_CB2, .n = 2, .flags = UR_SIGNED,
         .path = "euromap_voltage_cb2" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT_CB2, .n = 2, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT_CB2, .n = 2, .flags = UR_SIGNED,
         .path = "euromap_current_cb2" },
 };
 static const ur_layout ur_layout_masterboard_data_cond13 = {
@@ -1304,9 +1290,9 @@ static const ur_layout ur_layout_masterboard_data_cond13 = {
 };
 
 static const ur_desc ur_desc_masterboard_data_cond14[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_24V, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_24V, .n = 4, .flags = UR_FLOAT,
         .path = "euromap_voltage_24v", .unit = " V" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT, .n = 4, .flags = UR_FLOAT,
         .path = "euromap_current" },
 };
 static const ur_layout ur_layout_masterboard_data_cond14 = {
@@ -1314,16 +1300,16 @@ static const ur_layout ur_layout_masterboard_data_cond14 = {
 };
 
 static const ur_desc ur_desc_masterboard_data_cond15[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_0, .n = 4, .count = 1, .path = "reserved_0" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_0, .n = 4, .path = "reserved_0" },
 };
 static const ur_layout ur_layout_masterboard_data_cond15 = {
     ur_desc_masterboard_data_cond15, 1
 };
 
 static const ur_desc ur_desc_masterboard_data_cond16[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_OPERATIONAL_MODE_SELECTOR_INPUT, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_OPERATIONAL_MODE_SELECTOR_INPUT, .n = 1,
         .path = "operational_mode_selector_input" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_THREE_POSITION_ENABLING_DEVICE_INPUT, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_THREE_POSITION_ENABLING_DEVICE_INPUT, .n = 1,
         .path = "three_position_enabling_device_input" },
 };
 static const ur_layout ur_layout_masterboard_data_cond16 = {
@@ -1331,14 +1317,14 @@ static const ur_layout ur_layout_masterboard_data_cond16 = {
 };
 
 static const ur_desc ur_desc_masterboard_data_cond17[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_1, .n = 1, .count = 1, .path = "reserved_1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_1, .n = 1, .path = "reserved_1" },
 };
 static const ur_layout ur_layout_masterboard_data_cond17 = {
     ur_desc_masterboard_data_cond17, 1
 };
 
 static const ur_desc ur_desc_masterboard_data_cond18[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_1, .n = 1, .count = 1, .path = "reserved_1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_1, .n = 1, .path = "reserved_1" },
 };
 static const ur_layout ur_layout_masterboard_data_cond18 = {
     ur_desc_masterboard_data_cond18, 1
@@ -1353,29 +1339,27 @@ static const ur_desc ur_desc_masterboard_data[] = {
         .inner = &ur_layout_masterboard_data_cond7 },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_masterboard_data_cond8 },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT_RANGE0, .n = 1, .count = 1,
-        .path = "analog_input_range0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT_RANGE1, .n = 1, .count = 1,
-        .path = "analog_input_range1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT0, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT_RANGE0, .n = 1, .path = "analog_input_range0" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT_RANGE1, .n = 1, .path = "analog_input_range1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT0, .n = 8, .flags = UR_FLOAT,
         .path = "analog_input0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT1, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT1, .n = 8, .flags = UR_FLOAT,
         .path = "analog_input1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT_DOMAIN0, .n = 1, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT_DOMAIN0, .n = 1, .flags = UR_SIGNED,
         .path = "analog_output_domain0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT_DOMAIN1, .n = 1, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT_DOMAIN1, .n = 1, .flags = UR_SIGNED,
         .path = "analog_output_domain1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT0, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT0, .n = 8, .flags = UR_FLOAT,
         .path = "analog_output0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT1, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT1, .n = 8, .flags = UR_FLOAT,
         .path = "analog_output1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_BOARD_TEMPERATURE, .n = 4, .count = 1,
-        .flags = UR_FLOAT, .path = "master_board_temperature", .unit = " \302\260C" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_VOLTAGE_48V, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_BOARD_TEMPERATURE, .n = 4, .flags = UR_FLOAT,
+        .path = "master_board_temperature", .unit = " \302\260C" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_VOLTAGE_48V, .n = 4, .flags = UR_FLOAT,
         .path = "robot_voltage_48v", .unit = " V" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_CURRENT, .n = 4, .flags = UR_FLOAT,
         .path = "robot_current", .unit = " A" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_IO_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_IO_CURRENT, .n = 4, .flags = UR_FLOAT,
         .path = "master_io_current" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 1006000u, .high = 1008999u,
         .inner = &ur_layout_masterboard_data_cond9 },
@@ -1403,17 +1387,17 @@ static const ur_layout ur_layout_masterboard_data = {
 };
 
 static const ur_desc ur_desc_cartesian_info_cond19[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_X, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_x", .unit = " m" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Y, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_y", .unit = " m" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Z, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_z", .unit = " m" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RX, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_X, .n = 8, .flags = UR_FLOAT, .path = "tcp_offset_x",
+        .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Y, .n = 8, .flags = UR_FLOAT, .path = "tcp_offset_y",
+        .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Z, .n = 8, .flags = UR_FLOAT, .path = "tcp_offset_z",
+        .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RX, .n = 8, .flags = UR_FLOAT,
         .path = "tcp_offset_rx", .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RY, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RY, .n = 8, .flags = UR_FLOAT,
         .path = "tcp_offset_ry", .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RZ, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RZ, .n = 8, .flags = UR_FLOAT,
         .path = "tcp_offset_rz", .unit = " rad" },
 };
 static const ur_layout ur_layout_cartesian_info_cond19 = {
@@ -1421,18 +1405,12 @@ static const ur_layout ur_layout_cartesian_info_cond19 = {
 };
 
 static const ur_desc ur_desc_cartesian_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_X, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "x",
-        .unit = " m" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Y, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "y",
-        .unit = " m" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Z, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "z",
-        .unit = " m" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "rx",
-        .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "ry",
-        .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "rz",
-        .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_X, .n = 8, .flags = UR_FLOAT, .path = "x", .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Y, .n = 8, .flags = UR_FLOAT, .path = "y", .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Z, .n = 8, .flags = UR_FLOAT, .path = "z", .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RX, .n = 8, .flags = UR_FLOAT, .path = "rx", .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RY, .n = 8, .flags = UR_FLOAT, .path = "ry", .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RZ, .n = 8, .flags = UR_FLOAT, .path = "rz", .unit = " rad" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 6, .low = 3001000u, .high = 4294967295u,
         .inner = &ur_layout_cartesian_info_cond19 },
 };
@@ -1441,9 +1419,9 @@ static const ur_layout ur_layout_cartesian_info = {
 };
 
 static const ur_desc ur_desc_laser_pointer[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_X, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "x" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_Y, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "y" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_Z, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "z" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_X, .n = 8, .flags = UR_FLOAT, .path = "x" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_Y, .n = 8, .flags = UR_FLOAT, .path = "y" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_Z, .n = 8, .flags = UR_FLOAT, .path = "z" },
 };
 static const ur_layout ur_layout_laser_pointer = {
     ur_desc_laser_pointer, 3
@@ -1459,17 +1437,16 @@ static const ur_desc ur_desc_kinematics_info[] = {
         .unit = " m" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_ALPHA, .n = 8, .count = 6, .flags = UR_FLOAT,
         .path = "dh_alpha", .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_KINEMATICS_INFO_CALIBRATION_STATUS, .n = 4, .count = 1,
-        .path = "calibration_status" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_KINEMATICS_INFO_CALIBRATION_STATUS, .n = 4, .path = "calibration_status" },
 };
 static const ur_layout ur_layout_kinematics_info = {
     ur_desc_kinematics_info, 6
 };
 
 static const ur_desc ur_desc_configuration_data_joint_position_limit[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MIN_LIMIT, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MIN_LIMIT, .n = 8, .flags = UR_FLOAT,
         .path = "joint_min_limit", .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_LIMIT, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_LIMIT, .n = 8, .flags = UR_FLOAT,
         .path = "joint_max_limit", .unit = " rad" },
 };
 static const ur_layout ur_layout_configuration_data_joint_position_limit = {
@@ -1477,10 +1454,10 @@ static const ur_layout ur_layout_configuration_data_joint_position_limit = {
 };
 
 static const ur_desc ur_desc_configuration_data_joint_motion_limit[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_SPEED, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_SPEED, .n = 8, .flags = UR_FLOAT,
         .path = "joint_max_speed", .unit = " rad/s" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_ACCELERATION, .n = 8, .count = 1,
-        .flags = UR_FLOAT, .path = "joint_max_acceleration", .unit = " rad/s\302\262" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_ACCELERATION, .n = 8, .flags = UR_FLOAT,
+        .path = "joint_max_acceleration", .unit = " rad/s\302\262" },
 };
 static const ur_layout ur_layout_configuration_data_joint_motion_limit = {
     ur_desc_configuration_data_joint_motion_limit, 2
@@ -1495,9 +1472,9 @@ static const ur_layout ur_layout_configuration_data_cond20 = {
 };
 
 static const ur_desc ur_desc_configuration_data_cond21[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_RESERVED_1, .n = 2, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_RESERVED_1, .n = 2, .flags = UR_SIGNED,
         .path = "reserved_1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_RESERVED_2, .n = 2, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_RESERVED_2, .n = 2, .flags = UR_SIGNED,
         .path = "reserved_2" },
 };
 static const ur_layout ur_layout_configuration_data_cond21 = {
@@ -1510,16 +1487,15 @@ static const ur_desc ur_desc_configuration_data[] = {
         .inner = &ur_layout_configuration_data_joint_position_limit },
     { .kind = UR_D_GROUP, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MOTION_LIMITS, .count = 6, .size = 16,
         .path = "joint_motion_limits", .label = "Joint", .inner = &ur_layout_configuration_data_joint_motion_limit },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_JOINT_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_JOINT_DEFAULT, .n = 8, .flags = UR_FLOAT,
         .path = "v_joint_default", .unit = " rad/s" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_JOINT_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_JOINT_DEFAULT, .n = 8, .flags = UR_FLOAT,
         .path = "a_joint_default", .unit = " rad/s\302\262" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_TOOL_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_TOOL_DEFAULT, .n = 8, .flags = UR_FLOAT,
         .path = "v_tool_default", .unit = " m/s" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_TOOL_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_TOOL_DEFAULT, .n = 8, .flags = UR_FLOAT,
         .path = "a_tool_default", .unit = " m/s\302\262" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_EQ_RADIUS, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "eq_radius" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_EQ_RADIUS, .n = 8, .flags = UR_FLOAT, .path = "eq_radius" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a",
         .unit = " m" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d",
@@ -1528,13 +1504,13 @@ static const ur_desc ur_desc_configuration_data[] = {
         .path = "dh_alpha", .unit = " rad" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_THETA, .n = 8, .count = 6, .flags = UR_FLOAT,
         .path = "dh_theta", .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_MASTERBOARD_VERSION, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_MASTERBOARD_VERSION, .n = 4, .flags = UR_SIGNED,
         .path = "masterboard_version" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_CONTROLLER_BOX_TYPE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_CONTROLLER_BOX_TYPE, .n = 4, .flags = UR_SIGNED,
         .path = "controller_box_type" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_ROBOT_TYPE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_ROBOT_TYPE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_type" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_ROBOT_SUB_TYPE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_ROBOT_SUB_TYPE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_sub_type" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 1008999u,
         .inner = &ur_layout_configuration_data_cond20 },
@@ -1546,19 +1522,13 @@ static const ur_layout ur_layout_configuration_data = {
 };
 
 static const ur_desc ur_desc_force_mode_data[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fx",
-        .unit = " N" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fy",
-        .unit = " N" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fz",
-        .unit = " N" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frx",
-        .unit = " Nm" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fry",
-        .unit = " Nm" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frz",
-        .unit = " Nm" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_ROBOT_DEXTERITY, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FX, .n = 8, .flags = UR_FLOAT, .path = "fx", .unit = " N" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FY, .n = 8, .flags = UR_FLOAT, .path = "fy", .unit = " N" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FZ, .n = 8, .flags = UR_FLOAT, .path = "fz", .unit = " N" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRX, .n = 8, .flags = UR_FLOAT, .path = "frx", .unit = " Nm" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRY, .n = 8, .flags = UR_FLOAT, .path = "fry", .unit = " Nm" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRZ, .n = 8, .flags = UR_FLOAT, .path = "frz", .unit = " Nm" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_ROBOT_DEXTERITY, .n = 8, .flags = UR_FLOAT,
         .path = "robot_dexterity" },
 };
 static const ur_layout ur_layout_force_mode_data = {
@@ -1566,17 +1536,16 @@ static const ur_layout ur_layout_force_mode_data = {
 };
 
 static const ur_desc ur_desc_additional_info_cond22[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_CTRL_BITS, .n = 4, .count = 1, .path = "ctrl_bits" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_TEACH_BUTTON, .n = 1, .count = 1, .path = "teach_button" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_CTRL_BITS, .n = 4, .path = "ctrl_bits" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_TEACH_BUTTON, .n = 1, .path = "teach_button" },
 };
 static const ur_layout ur_layout_additional_info_cond22 = {
     ur_desc_additional_info_cond22, 2
 };
 
 static const ur_desc ur_desc_additional_info_cond23[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_TP_BUTTON_STATE, .n = 1, .count = 1,
-        .path = "tp_button_state" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_FREEDRIVE_BUTTON_ENABLED, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_TP_BUTTON_STATE, .n = 1, .path = "tp_button_state" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_FREEDRIVE_BUTTON_ENABLED, .n = 1,
         .path = "freedrive_button_enabled" },
 };
 static const ur_layout ur_layout_additional_info_cond23 = {
@@ -1584,15 +1553,14 @@ static const ur_layout ur_layout_additional_info_cond23 = {
 };
 
 static const ur_desc ur_desc_additional_info_cond24[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_IO_ENABLED_FREEDRIVE, .n = 1, .count = 1,
-        .path = "io_enabled_freedrive" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_IO_ENABLED_FREEDRIVE, .n = 1, .path = "io_enabled_freedrive" },
 };
 static const ur_layout ur_layout_additional_info_cond24 = {
     ur_desc_additional_info_cond24, 1
 };
 
 static const ur_desc ur_desc_additional_info_cond25[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_RESERVED, .n = 1, .count = 1, .path = "reserved" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_RESERVED, .n = 1, .path = "reserved" },
 };
 static const ur_layout ur_layout_additional_info_cond25 = {
     ur_desc_additional_info_cond25, 1
@@ -1613,12 +1581,12 @@ static const ur_layout ur_layout_additional_info = {
 };
 
 static const ur_desc ur_desc_calibration_data[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fx" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fy" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fz" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frx" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fry" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frz" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FX, .n = 8, .flags = UR_FLOAT, .path = "fx" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FY, .n = 8, .flags = UR_FLOAT, .path = "fy" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FZ, .n = 8, .flags = UR_FLOAT, .path = "fz" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRX, .n = 8, .flags = UR_FLOAT, .path = "frx" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRY, .n = 8, .flags = UR_FLOAT, .path = "fry" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRZ, .n = 8, .flags = UR_FLOAT, .path = "frz" },
 };
 static const ur_layout ur_layout_calibration_data = {
     ur_desc_calibration_data, 6
@@ -1632,17 +1600,14 @@ static const ur_layout ur_layout_safety_data = {
 };
 
 static const ur_desc ur_desc_tool_comm_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_TOOL_COMMUNICATION_IS_ENABLED, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_TOOL_COMMUNICATION_IS_ENABLED, .n = 1,
         .path = "tool_communication_is_enabled" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_BAUD_RATE, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "baud_rate" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_PARITY, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "parity" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_STOP_BITS, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "stop_bits" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_RX_IDLE_CHARS, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_BAUD_RATE, .n = 4, .flags = UR_SIGNED, .path = "baud_rate" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_PARITY, .n = 4, .flags = UR_SIGNED, .path = "parity" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_STOP_BITS, .n = 4, .flags = UR_SIGNED, .path = "stop_bits" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_RX_IDLE_CHARS, .n = 4, .flags = UR_FLOAT,
         .path = "rx_idle_chars" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_TX_IDLE_CHARS, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_TX_IDLE_CHARS, .n = 4, .flags = UR_FLOAT,
         .path = "tx_idle_chars" },
 };
 static const ur_layout ur_layout_tool_comm_info = {
@@ -1650,10 +1615,10 @@ static const ur_layout ur_layout_tool_comm_info = {
 };
 
 static const ur_desc ur_desc_tool_mode_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_OUTPUT_MODE, .n = 1, .count = 1, .path = "output_mode" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_DIGITAL_OUTPUT_MODE_OUTPUT_0, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_OUTPUT_MODE, .n = 1, .path = "output_mode" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_DIGITAL_OUTPUT_MODE_OUTPUT_0, .n = 1,
         .path = "digital_output_mode_output_0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_DIGITAL_OUTPUT_MODE_OUTPUT_1, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_DIGITAL_OUTPUT_MODE_OUTPUT_1, .n = 1,
         .path = "digital_output_mode_output_1" },
 };
 static const ur_layout ur_layout_tool_mode_info = {
@@ -1661,18 +1626,15 @@ static const ur_layout ur_layout_tool_mode_info = {
 };
 
 static const ur_desc ur_desc_singularity_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SINGULARITY_INFO_SINGULARITY_SEVERITY, .n = 1, .count = 1,
-        .path = "singularity_severity" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SINGULARITY_INFO_SINGULARITY_TYPE, .n = 1, .count = 1,
-        .path = "singularity_type" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SINGULARITY_INFO_SINGULARITY_SEVERITY, .n = 1, .path = "singularity_severity" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SINGULARITY_INFO_SINGULARITY_TYPE, .n = 1, .path = "singularity_type" },
 };
 static const ur_layout ur_layout_singularity_info = {
     ur_desc_singularity_info, 2
 };
 
 static const ur_desc ur_desc_payload_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PAYLOAD_INFO_MASS, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "mass",
-        .unit = " kg" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PAYLOAD_INFO_MASS, .n = 8, .flags = UR_FLOAT, .path = "mass", .unit = " kg" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_CENTER_OF_GRAVITY, .n = 8, .count = 3, .flags = UR_FLOAT,
         .path = "center_of_gravity", .unit = " m" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_INERTIA, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "inertia",
@@ -1683,39 +1645,37 @@ static const ur_layout ur_layout_payload_info = {
 };
 
 static const ur_desc ur_desc_robot_message[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_ROBOT_MESSAGE_TYPE, .n = 1, .count = 1,
-        .path = "robot_message_type", .label = "Robot message type", .vs = ur_vs_robot_message_type,
-        .names = &ur_names_robot_message_type },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_ROBOT_MESSAGE_TYPE, .n = 1, .path = "robot_message_type",
+        .label = "Robot message type", .vs = ur_vs_robot_message_type, .names = &ur_names_robot_message_type },
 };
 static const ur_layout ur_layout_robot_message = {
     ur_desc_robot_message, 3
 };
 
 static const ur_desc ur_desc_version_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_version_header = {
     ur_desc_version_header, 2
 };
 
 static const ur_desc ur_desc_version_cond26[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_SVN_REVISION, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "svn_revision" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_SVN_REVISION, .n = 4, .flags = UR_SIGNED, .path = "svn_revision" },
 };
 static const ur_layout ur_layout_version_cond26 = {
     ur_desc_version_cond26, 1
 };
 
 static const ur_desc ur_desc_version_cond27[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_BUGFIX_VERSION, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "bugfix_version", .show = "." },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_BUILD_NUMBER, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "build_number", .show = "." },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_BUGFIX_VERSION, .n = 4, .flags = UR_SIGNED, .path = "bugfix_version",
+        .show = "." },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_BUILD_NUMBER, .n = 4, .flags = UR_SIGNED, .path = "build_number",
+        .show = "." },
 };
 static const ur_layout ur_layout_version_cond27 = {
     ur_desc_version_cond27, 2
@@ -1724,10 +1684,8 @@ static const ur_layout ur_layout_version_cond27 = {
 static const ur_desc ur_desc_version[] = {
     { .kind = UR_D_PSTRING, .hf = UR_HF_VERSION_PROJECT_NAME, .n = 1, .flags = UR_SIGNED, .path = "project_name",
         .show = "" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_MAJOR_VERSION, .n = 1, .count = 1, .path = "major_version",
-        .show = " " },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_MINOR_VERSION, .n = 1, .count = 1, .path = "minor_version",
-        .show = "." },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_MAJOR_VERSION, .n = 1, .path = "major_version", .show = " " },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_MINOR_VERSION, .n = 1, .path = "minor_version", .show = "." },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 3002999u,
         .inner = &ur_layout_version_cond26 },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3003000u, .high = 4294967295u,
@@ -1739,8 +1697,8 @@ static const ur_layout ur_layout_version = {
 };
 
 static const ur_desc ur_desc_safety_mode_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_safety_mode_header = {
@@ -1748,10 +1706,9 @@ static const ur_layout ur_layout_safety_mode_header = {
 };
 
 static const ur_desc ur_desc_safety_mode_cond28[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_SAFETY_MODE_TYPE, .n = 1, .count = 1, .path = "safety_mode_type",
-        .show = "", .vs = ur_vs_safety_mode },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_REPORT_DATA_TYPE, .n = 4, .count = 1, .keep = 2,
-        .path = "report_data_type" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_SAFETY_MODE_TYPE, .n = 1, .path = "safety_mode_type", .show = "",
+        .vs = ur_vs_safety_mode },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_REPORT_DATA_TYPE, .n = 4, .keep = 2, .path = "report_data_type" },
     { .kind = UR_D_SWITCH, .hf = UR_HF_NONE, .keep = 2, .path = "report_data",
         .sw = &ur_switch_safety_mode_cond28_switch0 },
 };
@@ -1767,9 +1724,9 @@ static const ur_layout ur_layout_safety_mode_cond29 = {
 };
 
 static const ur_desc ur_desc_safety_mode[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_ROBOT_MESSAGE_CODE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_code" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_ROBOT_MESSAGE_ARGUMENT, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_ROBOT_MESSAGE_ARGUMENT, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_argument" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 3, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_safety_mode_cond28 },
@@ -1781,8 +1738,8 @@ static const ur_layout ur_layout_safety_mode = {
 };
 
 static const ur_desc ur_desc_robot_comm_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_robot_comm_header = {
@@ -1790,21 +1747,19 @@ static const ur_layout ur_layout_robot_comm_header = {
 };
 
 static const ur_desc ur_desc_robot_comm_cond30[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_REPORT_LEVEL, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_REPORT_LEVEL, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_report_level", .show = "", .vs = ur_vs_report_level },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_DATA_TYPE, .n = 4, .count = 1,
-        .path = "robot_message_data_type" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_DATA, .n = 4, .count = 1,
-        .path = "robot_message_data" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_DATA_TYPE, .n = 4, .path = "robot_message_data_type" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_DATA, .n = 4, .path = "robot_message_data" },
 };
 static const ur_layout ur_layout_robot_comm_cond30 = {
     ur_desc_robot_comm_cond30, 3
 };
 
 static const ur_desc ur_desc_robot_comm[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_CODE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_code" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_ARGUMENT, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_ARGUMENT, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_argument" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 3, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_robot_comm_cond30 },
@@ -1815,18 +1770,18 @@ static const ur_layout ur_layout_robot_comm = {
 };
 
 static const ur_desc ur_desc_key_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_key_header = {
     ur_desc_key_header, 2
 };
 
 static const ur_desc ur_desc_key[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_ROBOT_MESSAGE_CODE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_code" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_ROBOT_MESSAGE_ARGUMENT, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_ROBOT_MESSAGE_ARGUMENT, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_argument" },
     { .kind = UR_D_PSTRING, .hf = UR_HF_KEY_TITLE, .n = 1, .path = "title", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_KEY_TEXT, .path = "text", .show = ": " },
@@ -1836,17 +1791,16 @@ static const ur_layout ur_layout_key = {
 };
 
 static const ur_desc ur_desc_program_threads_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED,
-        .path = "source", .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
+        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_program_threads_header = {
     ur_desc_program_threads_header, 2
 };
 
 static const ur_desc ur_desc_program_threads_program_thread[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_LABEL_ID, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "label_id" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_LABEL_ID, .n = 4, .flags = UR_SIGNED, .path = "label_id" },
     { .kind = UR_D_PSTRING, .hf = UR_HF_PROGRAM_THREADS_LABEL_NAME, .n = 4, .flags = UR_SIGNED, .path = "label_name" },
     { .kind = UR_D_PSTRING, .hf = UR_HF_PROGRAM_THREADS_THREAD_NAME, .n = 4, .flags = UR_SIGNED,
         .path = "thread_name" },
@@ -1864,17 +1818,17 @@ static const ur_layout ur_layout_program_threads = {
 };
 
 static const ur_desc ur_desc_popup_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_popup_header = {
     ur_desc_popup_header, 2
 };
 
 static const ur_desc ur_desc_popup_cond31[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_REQUEST_ID, .n = 4, .count = 1, .path = "request_id" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_REQUESTED_TYPE, .n = 4, .count = 1, .path = "requested_type",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_REQUEST_ID, .n = 4, .path = "request_id" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_REQUESTED_TYPE, .n = 4, .path = "requested_type",
         .vs = ur_vs_requested_type },
 };
 static const ur_layout ur_layout_popup_cond31 = {
@@ -1882,7 +1836,7 @@ static const ur_layout ur_layout_popup_cond31 = {
 };
 
 static const ur_desc ur_desc_popup_cond32[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_BLOCKING, .n = 1, .count = 1, .path = "blocking" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_BLOCKING, .n = 1, .path = "blocking" },
 };
 static const ur_layout ur_layout_popup_cond32 = {
     ur_desc_popup_cond32, 1
@@ -1891,8 +1845,8 @@ static const ur_layout ur_layout_popup_cond32 = {
 static const ur_desc ur_desc_popup[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_popup_cond31 },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_WARNING, .n = 1, .count = 1, .path = "warning" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_ERROR, .n = 1, .count = 1, .path = "error" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_WARNING, .n = 1, .path = "warning" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_ERROR, .n = 1, .path = "error" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_popup_cond32 },
     { .kind = UR_D_PSTRING, .hf = UR_HF_POPUP_TITLE, .n = 1, .path = "title", .show = "" },
@@ -1903,16 +1857,16 @@ static const ur_layout ur_layout_popup = {
 };
 
 static const ur_desc ur_desc_label_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_label_header = {
     ur_desc_label_header, 2
 };
 
 static const ur_desc ur_desc_label[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_ID, .n = 4, .count = 1, .flags = UR_SIGNED, .path = "id", .show = "" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_ID, .n = 4, .flags = UR_SIGNED, .path = "id", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_LABEL_TEXT, .path = "text", .show = ": " },
 };
 static const ur_layout ur_layout_label = {
@@ -1920,18 +1874,18 @@ static const ur_layout ur_layout_label = {
 };
 
 static const ur_desc ur_desc_var_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_var_header = {
     ur_desc_var_header, 2
 };
 
 static const ur_desc ur_desc_var[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_ROBOT_MESSAGE_CODE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_code" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_ROBOT_MESSAGE_ARGUMENT, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_ROBOT_MESSAGE_ARGUMENT, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_argument" },
     { .kind = UR_D_PSTRING, .hf = UR_HF_VAR_TITLE, .n = 1, .path = "title", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_VAR_TEXT, .path = "text", .show = ": " },
@@ -1941,8 +1895,8 @@ static const ur_layout ur_layout_var = {
 };
 
 static const ur_desc ur_desc_hardware_info_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_hardware_info_header = {
@@ -1950,13 +1904,13 @@ static const ur_layout ur_layout_hardware_info_header = {
 };
 
 static const ur_desc ur_desc_hardware_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_ROBOT_TYPE, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "robot_type", .show = "robot type " },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_RESERVED_1, .n = 2, .count = 1, .path = "reserved_1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_CONTROL_BOX_TYPE, .n = 2, .count = 1, .path = "control_box_type",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_ROBOT_TYPE, .n = 4, .flags = UR_SIGNED, .path = "robot_type",
+        .show = "robot type " },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_RESERVED_1, .n = 2, .path = "reserved_1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_CONTROL_BOX_TYPE, .n = 2, .path = "control_box_type",
         .show = ", control box ", .vs = ur_vs_control_box_type },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_RESERVED_2, .n = 2, .count = 1, .path = "reserved_2" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_TOOL_FLANGE_TYPE, .n = 2, .count = 1, .path = "tool_flange_type",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_RESERVED_2, .n = 2, .path = "reserved_2" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_TOOL_FLANGE_TYPE, .n = 2, .path = "tool_flange_type",
         .show = ", tool flange ", .vs = ur_vs_tool_flange_type },
 };
 static const ur_layout ur_layout_hardware_info = {
@@ -1964,9 +1918,9 @@ static const ur_layout ur_layout_hardware_info = {
 };
 
 static const ur_desc ur_desc_robot_message_12_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_12_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_12_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED,
-        .path = "source", .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_12_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_12_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
+        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_robot_message_12_header = {
     ur_desc_robot_message_12_header, 2
@@ -1980,8 +1934,8 @@ static const ur_layout ur_layout_robot_message_12 = {
 };
 
 static const ur_desc ur_desc_request_value_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_request_value_header = {
@@ -1989,9 +1943,9 @@ static const ur_layout ur_layout_request_value_header = {
 };
 
 static const ur_desc ur_desc_request_value[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_REQUEST_ID, .n = 4, .count = 1, .path = "request_id" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_REQUESTED_TYPE, .n = 4, .count = 1, .path = "requested_type",
-        .show = "", .vs = ur_vs_requested_type },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_REQUEST_ID, .n = 4, .path = "request_id" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_REQUESTED_TYPE, .n = 4, .path = "requested_type", .show = "",
+        .vs = ur_vs_requested_type },
     { .kind = UR_D_STRING, .hf = UR_HF_REQUEST_VALUE_TEXT, .path = "text", .show = ": " },
 };
 static const ur_layout ur_layout_request_value = {
@@ -1999,9 +1953,9 @@ static const ur_layout ur_layout_request_value = {
 };
 
 static const ur_desc ur_desc_text_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TEXT_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TEXT_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TEXT_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TEXT_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_text_header = {
     ur_desc_text_header, 2
@@ -2015,18 +1969,18 @@ static const ur_layout ur_layout_text = {
 };
 
 static const ur_desc ur_desc_runtime_exception_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED,
-        .path = "source", .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
+        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
 static const ur_layout ur_layout_runtime_exception_header = {
     ur_desc_runtime_exception_header, 2
 };
 
 static const ur_desc ur_desc_runtime_exception[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SCRIPT_LINE_NUMBER, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SCRIPT_LINE_NUMBER, .n = 4, .flags = UR_SIGNED,
         .path = "script_line_number", .show = "line " },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SCRIPT_COLUMN_NUMBER, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SCRIPT_COLUMN_NUMBER, .n = 4, .flags = UR_SIGNED,
         .path = "script_column_number", .show = ":" },
     { .kind = UR_D_STRING, .hf = UR_HF_RUNTIME_EXCEPTION_TEXT, .path = "text", .show = ": " },
 };
@@ -2035,23 +1989,23 @@ static const ur_layout ur_layout_runtime_exception = {
 };
 
 static const ur_desc ur_desc_program_state[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_STATE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_STATE_ROBOT_MESSAGE_TYPE, .n = 1, .count = 1,
-        .path = "robot_message_type", .vs = ur_vs_program_state_message_type },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_STATE_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_STATE_ROBOT_MESSAGE_TYPE, .n = 1, .path = "robot_message_type",
+        .vs = ur_vs_program_state_message_type },
 };
 static const ur_layout ur_layout_program_state = {
     ur_desc_program_state, 2
 };
 
 static const ur_desc ur_desc_global_variables_setup_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_TIMESTAMP, .n = 8, .path = "timestamp" },
 };
 static const ur_layout ur_layout_global_variables_setup_header = {
     ur_desc_global_variables_setup_header, 1
 };
 
 static const ur_desc ur_desc_global_variables_setup[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_START_INDEX, .n = 2, .count = 1, .path = "start_index" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_START_INDEX, .n = 2, .path = "start_index" },
     { .kind = UR_D_STRINGS, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_VARIABLE_NAMES, .n = 10, .path = "variable_names" },
 };
 static const ur_layout ur_layout_global_variables_setup = {
@@ -2059,15 +2013,14 @@ static const ur_layout ur_layout_global_variables_setup = {
 };
 
 static const ur_desc ur_desc_global_variables_update_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_UPDATE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_UPDATE_TIMESTAMP, .n = 8, .path = "timestamp" },
 };
 static const ur_layout ur_layout_global_variables_update_header = {
     ur_desc_global_variables_update_header, 1
 };
 
 static const ur_desc ur_desc_global_variables_update[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_UPDATE_START_INDEX, .n = 2, .count = 1,
-        .path = "start_index" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_UPDATE_START_INDEX, .n = 2, .path = "start_index" },
     { .kind = UR_D_VALUES, .hf = UR_HF_NONE, .n = 10, .path = "variables", .label = "Variable",
         .values = &ur_values_global_variables_update_values0 },
 };
