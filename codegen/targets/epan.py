@@ -4,7 +4,7 @@ the Lua dissector (generated/lua/urwire.lua).
 
 The two must be interchangeable (same protocol, field abbreviations, names, types, bases, value
 strings, tree, Info column and expert infos), so the fields, the layouts' descriptors and the
-forms of every type code come from the Lua target's builder (lua._Builder), which decides them
+forms of every type code come from the Lua target's model (lua.view_model), which decides them
 once over the plan; this module only maps that model to C: hf indices by a generated enum, the
 descriptors as const tables (as upstream's generated packet-eti.c walks its fields), the forms and
 segments of the version axis as tables the runtime looks a version up in. The code that walks
@@ -129,8 +129,7 @@ class _Builder:
     def __init__(self, protocol_plan: plan.ProtocolPlan):
         self.plan = protocol_plan
         self.p = protocol_plan.protocol
-        self.lua = lua._Builder(protocol_plan)
-        self.model = self.lua.build()
+        self.model = lua.view_model(protocol_plan)
         self.field_index: dict[str, str] = {}
         self.arrays: list[dict] = []          # descriptor arrays, inner ones first
         self.bit_lists: list[dict] = []
