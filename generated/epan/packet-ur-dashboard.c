@@ -789,37 +789,37 @@ void proto_register_ur_dashboard(void)
         { &hf_ur_dashboard_command,
           { "Command", "ur_dashboard.command",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "The command line as the client sent it.", HFILL }
         },
         { &hf_ur_dashboard_command_name,
           { "Command name", "ur_dashboard.command_name",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "The command a command line is, or the command a reply answers.", HFILL }
         },
         { &hf_ur_dashboard_argument,
           { "Argument", "ur_dashboard.argument",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "What follows the command's text and a space (a program's path, a popup's text).", HFILL }
         },
         { &hf_ur_dashboard_available,
           { "Available", "ur_dashboard.available",
             FT_BOOLEAN, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "False when the conversation's software version lacks the command.", HFILL }
         },
         { &hf_ur_dashboard_reply,
           { "Reply", "ur_dashboard.reply",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "The reply line as the server sent it (the banner too).", HFILL }
         },
         { &hf_ur_dashboard_reply_name,
           { "Reply meaning", "ur_dashboard.reply_name",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "Which of the command's documented replies it is.", HFILL }
         },
         { &hf_ur_dashboard_error,
           { "Says an error", "ur_dashboard.error",
             FT_BOOLEAN, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "True when the reply says that the command failed.", HFILL }
         },
     };
     static gint *ett[] = {

@@ -526,37 +526,37 @@ void proto_register_ur_script_sender(void)
         { &hf_ur_script_sender_command,
           { "Request", "ur_script_sender.command",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "The request line the robot sent.", HFILL }
         },
         { &hf_ur_script_sender_command_name,
           { "Request name", "ur_script_sender.command_name",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "The request a line is, or the request a program line answers.", HFILL }
         },
         { &hf_ur_script_sender_argument,
           { "Argument", "ur_script_sender.argument",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "What follows the request's text and a space (none is defined).", HFILL }
         },
         { &hf_ur_script_sender_available,
           { "Available", "ur_script_sender.available",
             FT_BOOLEAN, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "False when the conversation's version lacks the request.", HFILL }
         },
         { &hf_ur_script_sender_reply,
           { "Program line", "ur_script_sender.reply",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "One line of the URScript program the control PC sends.", HFILL }
         },
         { &hf_ur_script_sender_reply_name,
           { "Line kind", "ur_script_sender.reply_name",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "What the line is: a line of the program.", HFILL }
         },
         { &hf_ur_script_sender_error,
           { "Says an error", "ur_script_sender.error",
             FT_BOOLEAN, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "Always false: the program has no error replies.", HFILL }
         },
     };
     static gint *ett[] = {
