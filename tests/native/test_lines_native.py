@@ -6,9 +6,11 @@ same captures the same `-T json` layers, Info column and expert infos.
 The captures: every golden vector of the interface as a TCP session, whole and again cut into 1-7
 byte segments, in one capture per software-version preference; the dashboard fuzzer's kept
 corpus (tests/fuzz/corpus/ur_dashboard), each input a session of its segments; the dashboard and
-script-sender conversations of the cell sample; a session on another port under Decode As. The
-same captures go through the plugin built with ASan and UBSan, where any report fails the run.
-The runtime's pure functions (runtime/epan/lines_match.c) are compiled and tested alone."""
+script-sender conversations of the cell sample; hostile conversations (junk, long lines, more
+commands in flight than a conversation keeps), with TCP reassembly on and off; a session on
+another port under Decode As. The same captures go through the plugin built with ASan and UBSan,
+where any report fails the run. Also: the packet list with no tree, text that is not UTF-8, and
+the runtime's pure functions (runtime/epan/lines_match.c) compiled and tested alone."""
 from __future__ import annotations
 
 import functools
@@ -149,7 +151,7 @@ def corpus_captures(tmp_path: Path) -> list[tuple[Path, tuple[str, ...]]]:
     return out
 
 
-# ---- 1 and 2: the dashboard server and the script sender, native against Lua ----
+# ---- the dashboard server and the script sender, native against Lua ----
 
 def test_the_plugin_builds_with_gcc_and_clang():
     for variant in ("gcc", "clang"):
@@ -172,7 +174,7 @@ def test_the_same_fields_experts_and_ports_are_registered(interface):
         assert mine and mine == theirs, report
 
 
-# Each capture through the plain build and the one built with ASan and UBSan (3).
+# Each capture through the plain build and the one built with ASan and UBSan.
 VARIANTS = ("gcc", "asan")
 
 
