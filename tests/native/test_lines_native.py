@@ -17,6 +17,7 @@ import functools
 import hashlib
 import json
 import random
+import re
 import subprocess
 from pathlib import Path
 
@@ -299,3 +300,20 @@ def test_hostile_conversations(tmp_path, variant):
     # The same with TCP reassembly off: a line cut by a segment shows as a part of a line.
     shown = assert_same(pcap, ["ur_dashboard"], "-o", "tcp.desegment_tcp_streams:FALSE", variant=variant)
     assert "Part of a line (reassembly is off)" in json.dumps(shown.layers)
+
+
+@pytest.mark.parametrize("interface", INTERFACES)
+def test_every_handle_is_declared_registered_and_used(interface):
+    """What Wireshark's tools/checkhf.pl checks, for hf_, ett_ and ei_ handles alike: each static
+    handle of the generated file is in its registration array and used outside it."""
+    text = (ROOT / "generated" / "epan" / f"packet-{interface.replace('_', '-')}.c").read_text()
+    code = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
+    code = re.sub(r'"(?:\\.|[^"\\])*"', '""', code)
+    declared = re.findall(r"^static (?:int|expert_field) ((?:hf|ett|ei)_\w+) = (?:-1|EI_INIT);", code, re.M)
+    assert len(declared) == 7 + 1 + 4
+    registration = code[code.index(f"void proto_register_{interface}(void)\n{{"):]
+    registration = registration[:registration.index("\n}\n")]
+    elsewhere = code.replace(registration, "")
+    for handle in declared:
+        assert f"&{handle}" in registration, f"{handle} is not registered"
+        assert len(re.findall(rf"\b{handle}\b", elsewhere)) >= 2, f"{handle} is declared but not used"
