@@ -41,6 +41,7 @@ enum {
     RTDE_HF_DIRECTION,
     RTDE_HF_RECIPE_FRAME,
     RTDE_HF_PROTOCOL,
+    RTDE_HF_UNKNOWN_VARIABLE,
     RTDE_HF_RECIPE_ID,
     RTDE_HF_PROTOCOL_VERSION,
     RTDE_HF_ACCEPTED,
@@ -1244,6 +1245,7 @@ typedef struct rtde_recipe {
     const struct rtde_recipe *previous;     /* the recipe of the same id before it */
     guint n;
     int *field;
+    const char **name;          /* " (name)" after a name the table lacks, else NULL (a NUL in it ends it) */
     const char **unit;
     guint8 *type;
     guint size;                 /* the bytes of all its values */
@@ -1442,6 +1444,18 @@ rtde_refusal_text(const rtde_request *request, guint i, const guint8 *word, guin
     return text;
 }
 
+/* " (name)", the text after the value of a variable the table lacks. */
+static const char *
+rtde_name_text(const rtde_request *request, guint i)
+{
+    guint length = request->length[i];
+    char *text = (char *)wmem_alloc(wmem_file_scope(), length + 4);
+    memcpy(text, " (", 2);
+    memcpy(text + 2, request->text + request->start[i], length);
+    memcpy(text + 2 + length, ")", 2);
+    return text;
+}
+
 static void
 rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_when when, rtde_notes *notes)
 {
@@ -1479,6 +1493,7 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
     recipe->n = n;
     recipe->field = wmem_alloc_array(wmem_file_scope(), int, n + 1);
     recipe->unit = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
+    recipe->name = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->type = wmem_alloc_array(wmem_file_scope(), guint8, n + 1);
     recipe->frame = when.frame;
     recipe->when = when;
@@ -1487,6 +1502,7 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
         const rtde_variable *variable = rtde_variable_named(request->text + request->start[i], request->length[i]);
         recipe->field[i] = variable ? variable->field : -1;
         recipe->unit[i] = variable ? variable->unit : NULL;
+        recipe->name[i] = variable ? NULL : rtde_name_text(request, i);
         recipe->type[i] = (guint8)type[i];
         recipe->size += (guint)vt->size * vt->count;
     }
@@ -1652,14 +1668,18 @@ rtde_text_of(tvbuff_t *tvb, int pos, guint n)
 }
 
 /* A recipe's values, an item per scalar (a vector's items in order, each by the variable's field,
- * with its index). A name the variable table lacks has no field and shows nothing. */
+ * with its index). A name the variable table lacks (a newer controller's) shows its value's bytes
+ * whole, with the name. */
 static void
 rtde_add_values(proto_tree *tree, tvbuff_t *tvb, int pos, const rtde_recipe *recipe)
 {
     guint i, j;
     for (i = 0; i < recipe->n; i++) {
         const rtde_value_type *vt = &rtde_value_types[recipe->type[i]];
-        if (recipe->field[i] >= 0) {
+        if (recipe->field[i] < 0) {
+            proto_item_append_text(proto_tree_add_item(tree, hf_rtde[RTDE_HF_UNKNOWN_VARIABLE], tvb, pos,
+                                                       vt->size * vt->count, ENC_NA), "%s", recipe->name[i]);
+        } else {
             for (j = 0; j < vt->count; j++) {
                 proto_item *item = proto_tree_add_item(tree, hf_rtde[recipe->field[i]], tvb, pos + (int)(j * vt->size),
                                                        vt->size, ENC_BIG_ENDIAN);
@@ -1903,6 +1923,8 @@ proto_register_rtde(void)
           0x0, NULL, HFILL } },
         { &hf_rtde[RTDE_HF_PROTOCOL], { "Protocol version in force", "rtde.protocol", FT_UINT8, BASE_DEC, NULL, 0x0,
           NULL, HFILL } },
+        { &hf_rtde[RTDE_HF_UNKNOWN_VARIABLE], { "Variable not in the table", "rtde.unknown_variable", FT_BYTES,
+          BASE_NONE, NULL, 0x0, NULL, HFILL } },
         { &hf_rtde[RTDE_HF_RECIPE_ID], { "Recipe id", "rtde.recipe_id", FT_UINT8, BASE_DEC, NULL, 0x0, NULL, HFILL } },
         { &hf_rtde[RTDE_HF_PROTOCOL_VERSION], { "Protocol version", "rtde.protocol_version", FT_UINT16, BASE_DEC, NULL,
           0x0, NULL, HFILL } },

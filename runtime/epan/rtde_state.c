@@ -40,6 +40,7 @@ typedef struct rtde_recipe {
     const struct rtde_recipe *previous;     /* the recipe of the same id before it */
     guint n;
     int *field;
+    const char **name;          /* " (name)" after a name the table lacks, else NULL (a NUL in it ends it) */
     const char **unit;
     guint8 *type;
     guint size;                 /* the bytes of all its values */
@@ -238,6 +239,18 @@ rtde_refusal_text(const rtde_request *request, guint i, const guint8 *word, guin
     return text;
 }
 
+/* " (name)", the text after the value of a variable the table lacks. */
+static const char *
+rtde_name_text(const rtde_request *request, guint i)
+{
+    guint length = request->length[i];
+    char *text = (char *)wmem_alloc(wmem_file_scope(), length + 4);
+    memcpy(text, " (", 2);
+    memcpy(text + 2, request->text + request->start[i], length);
+    memcpy(text + 2 + length, ")", 2);
+    return text;
+}
+
 static void
 rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_when when, rtde_notes *notes)
 {
@@ -275,6 +288,7 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
     recipe->n = n;
     recipe->field = wmem_alloc_array(wmem_file_scope(), int, n + 1);
     recipe->unit = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
+    recipe->name = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->type = wmem_alloc_array(wmem_file_scope(), guint8, n + 1);
     recipe->frame = when.frame;
     recipe->when = when;
@@ -283,6 +297,7 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
         const rtde_variable *variable = rtde_variable_named(request->text + request->start[i], request->length[i]);
         recipe->field[i] = variable ? variable->field : -1;
         recipe->unit[i] = variable ? variable->unit : NULL;
+        recipe->name[i] = variable ? NULL : rtde_name_text(request, i);
         recipe->type[i] = (guint8)type[i];
         recipe->size += (guint)vt->size * vt->count;
     }

@@ -217,3 +217,31 @@ def test_a_message_reassembled_and_one_after_it_in_a_frame_keep_their_own_views(
     last = shown.layers[9]["rtde"]            # frame 10: the last segment
     assert last[0]["rtde.timestamp"] == "2" and "_ws.expert" not in last[0]
     assert last[1]["_ws.expert"]["_ws.expert.message"] == "the robot refused to start"
+
+
+def _recipe_session(names: bytes, types: bytes, values: bytes, port: int = PORT) -> bytes:
+    pieces = [Segment(False, bytes([0, 3 + 8 + len(names), 0x4F]) + bytes.fromhex("405f400000000000") + names),
+              Segment(True, bytes([0, 3 + 1 + len(types), 0x4F, 1]) + types),
+              Segment(True, bytes([0, 3 + 1 + len(values), 0x55, 1]) + values)]
+    return _pcap(capture.session_frames(pieces, port=port, client_port=50000))
+
+
+def test_a_variable_the_table_lacks_shows_its_bytes_and_name():
+    """A newer controller's variable, accepted by the robot: its value's bytes under
+    rtde.unknown_variable with its name, and the next value still under its own field."""
+    captured = _recipe_session(b"a_newer_variable,timestamp", b"VECTOR3D,DOUBLE",
+                               bytes(24) + bytes.fromhex("4029000000000000"))
+    shown = assert_same(captured)
+    package = shown.layers[7]["rtde"]
+    assert package["rtde.unknown_variable"] == ":".join(["00"] * 24) and package["rtde.timestamp"] == "12.5"
+    text = harness.checked(native(captured, "-O", "rtde", "-V"))
+    assert "Variable not in the table: " + "00" * 24 + " (a_newer_variable)" in text
+
+
+def test_decode_as_and_the_ports_preference():
+    """A robot behind a port forward: Decode As (-d) and the ports preference read it as on 30004."""
+    captured = _recipe_session(b"timestamp", b"DOUBLE", bytes.fromhex("4029000000000000"), port=40004)
+    assert "rtde" not in harness.checked(native(captured, "-T", "fields", "-e", "frame.protocols"))
+    for args in (["-d", "tcp.port==40004,rtde"], ["-o", "rtde.ports:40004"]):
+        shown = assert_same(captured, *args)
+        assert shown.layers[7]["rtde"]["rtde.timestamp"] == "12.5"

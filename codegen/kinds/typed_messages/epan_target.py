@@ -160,6 +160,7 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
     fields.add("direction", "Direction", "FT_STRING", "BASE_NONE", own=True)
     fields.add("recipe_frame", "Recipe set up in frame", "FT_FRAMENUM", "BASE_NONE", own=True)
     fields.add("protocol", "Protocol version in force", "FT_UINT8", "BASE_DEC", own=True)
+    fields.add("unknown_variable", "Variable not in the table", "FT_BYTES", "BASE_NONE", own=True)
     fields.add("recipe_id", "Recipe id", "FT_UINT8", "BASE_DEC")
     for m in interface.messages:
         for f in m.fields:
