@@ -34,9 +34,11 @@ def _readable(data: bytes) -> Path:
     CAPTURES.mkdir(parents=True, exist_ok=True)
     CAPTURES.chmod(0o755)
     path = CAPTURES / f"{hashlib.sha256(data).hexdigest()[:20]}.pcap"
-    if not path.exists():
-        path.write_bytes(data)
-        path.chmod(0o644)
+    if not path.exists():           # written whole under another name first: test processes share it
+        part = path.with_suffix(f".{os.getpid()}.part")
+        part.write_bytes(data)
+        part.chmod(0o644)
+        os.replace(part, path)
     return path
 
 
