@@ -1236,7 +1236,6 @@ typedef struct {
     guint n;
     guint *start;
     guint *length;
-    guint32 frame;
 } rtde_request;
 
 /* A recipe: for each value, its variable's field (-1: a name the table does not have), unit and type. */
@@ -1249,7 +1248,6 @@ typedef struct rtde_recipe {
     const char **unit;
     guint8 *type;
     guint size;                 /* the bytes of all its values */
-    guint32 frame;              /* the frame of the setup reply that made it */
 } rtde_recipe;
 
 /* A protocol version a version exchange set. */
@@ -1392,7 +1390,7 @@ rtde_recipe_at(const rtde_state *state, gboolean from_robot, int recipe_id, rtde
 }
 
 static void
-rtde_remember_request(rtde_state *state, int kind, const rtde_values *values, guint32 frame)
+rtde_remember_request(rtde_state *state, int kind, const rtde_values *values)
 {
     rtde_request *request = wmem_new0(wmem_file_scope(), rtde_request);
     guint n = rtde_split(values->variables, values->variables_length, NULL, NULL), i, kept = 0;
@@ -1410,7 +1408,6 @@ rtde_remember_request(rtde_state *state, int kind, const rtde_values *values, gu
     request->n = kept;
     request->start = start;
     request->length = length;
-    request->frame = frame;
     if (state->pending_count[kind] >= RTDE_MAX_PENDING_SETUPS) {    /* the oldest goes */
         state->pending_first[kind] = (state->pending_first[kind] + 1) % RTDE_MAX_PENDING_SETUPS;
         state->pending_count[kind]--;
@@ -1495,7 +1492,6 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
     recipe->unit = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->name = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->type = wmem_alloc_array(wmem_file_scope(), guint8, n + 1);
-    recipe->frame = when.frame;
     recipe->when = when;
     for (i = 0; i < n; i++) {
         const rtde_value_type *vt = &rtde_value_types[type[i]];
@@ -1529,7 +1525,7 @@ rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *val
         break;
     }
     case RTDE_ROLE_SETUP_REQUEST:
-        rtde_remember_request(state, layout->kind, values, when.frame);
+        rtde_remember_request(state, layout->kind, values);
         break;
     case RTDE_ROLE_SETUP_REPLY:
         rtde_make_recipe(state, layout->kind, values, when, notes);
@@ -1754,7 +1750,7 @@ rtde_step_at(const rtde_step *s, proto_tree *tree, tvbuff_t *tvb, int pos, int s
             return -1;
         if (tree) {
             proto_item_set_generated(proto_tree_add_uint(tree, hf_rtde[RTDE_HF_RECIPE_FRAME], tvb, pos, 0,
-                                                         recipe->frame));
+                                                         recipe->when.frame));
             rtde_add_values(tree, tvb, pos, recipe);
         }
         return pos + (int)recipe->size;

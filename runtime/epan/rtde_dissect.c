@@ -206,7 +206,7 @@ rtde_step_at(const rtde_step *s, proto_tree *tree, tvbuff_t *tvb, int pos, int s
             return -1;
         if (tree) {
             proto_item_set_generated(proto_tree_add_uint(tree, hf_rtde[RTDE_HF_RECIPE_FRAME], tvb, pos, 0,
-                                                         recipe->frame));
+                                                         recipe->when.frame));
             rtde_add_values(tree, tvb, pos, recipe);
         }
         return pos + (int)recipe->size;

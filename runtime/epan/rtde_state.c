@@ -31,7 +31,6 @@ typedef struct {
     guint n;
     guint *start;
     guint *length;
-    guint32 frame;
 } rtde_request;
 
 /* A recipe: for each value, its variable's field (-1: a name the table does not have), unit and type. */
@@ -44,7 +43,6 @@ typedef struct rtde_recipe {
     const char **unit;
     guint8 *type;
     guint size;                 /* the bytes of all its values */
-    guint32 frame;              /* the frame of the setup reply that made it */
 } rtde_recipe;
 
 /* A protocol version a version exchange set. */
@@ -187,7 +185,7 @@ rtde_recipe_at(const rtde_state *state, gboolean from_robot, int recipe_id, rtde
 }
 
 static void
-rtde_remember_request(rtde_state *state, int kind, const rtde_values *values, guint32 frame)
+rtde_remember_request(rtde_state *state, int kind, const rtde_values *values)
 {
     rtde_request *request = wmem_new0(wmem_file_scope(), rtde_request);
     guint n = rtde_split(values->variables, values->variables_length, NULL, NULL), i, kept = 0;
@@ -205,7 +203,6 @@ rtde_remember_request(rtde_state *state, int kind, const rtde_values *values, gu
     request->n = kept;
     request->start = start;
     request->length = length;
-    request->frame = frame;
     if (state->pending_count[kind] >= RTDE_MAX_PENDING_SETUPS) {    /* the oldest goes */
         state->pending_first[kind] = (state->pending_first[kind] + 1) % RTDE_MAX_PENDING_SETUPS;
         state->pending_count[kind]--;
@@ -290,7 +287,6 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
     recipe->unit = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->name = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->type = wmem_alloc_array(wmem_file_scope(), guint8, n + 1);
-    recipe->frame = when.frame;
     recipe->when = when;
     for (i = 0; i < n; i++) {
         const rtde_value_type *vt = &rtde_value_types[type[i]];
@@ -324,7 +320,7 @@ rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *val
         break;
     }
     case RTDE_ROLE_SETUP_REQUEST:
-        rtde_remember_request(state, layout->kind, values, when.frame);
+        rtde_remember_request(state, layout->kind, values);
         break;
     case RTDE_ROLE_SETUP_REPLY:
         rtde_make_recipe(state, layout->kind, values, when, notes);
