@@ -4,14 +4,14 @@ golden exchange (whole and in 1-7-byte segments), the RTDE conversations of the 
 fuzz corpus as TCP sessions, the same -T json layers, Info column and expert infos; then the same
 captures through the plugin built with ASan and UBSan, with no sanitizer report.
 
-Both read the capture from a file: tshark -2, which keeps the recipes of a first pass for the second
-as the GUI does, cannot read a pipe."""
+The comparisons run tshark -2, which keeps the recipes of a first pass for the second as the GUI
+does, and the -V text on one pass."""
 from __future__ import annotations
 
-import hashlib
 import os
 import random
 import subprocess
+import tempfile
 from functools import lru_cache
 from pathlib import Path
 
@@ -26,24 +26,10 @@ PORT = 30004
 PROTOCOLS = ["rtde"]
 CORPUS = harness.ROOT / "tests" / "fuzz" / "corpus" / "rtde"
 CELL_SAMPLE = harness.ROOT / "dissector" / "samples" / "cell_session.pcapng"
-CAPTURES = harness.BUILDS / "rtde-captures"
 
 
-def _readable(data: bytes) -> Path:
-    """The capture as a file that tshark can read as the user nobody too."""
-    CAPTURES.mkdir(parents=True, exist_ok=True)
-    CAPTURES.chmod(0o755)
-    path = CAPTURES / f"{hashlib.sha256(data).hexdigest()[:20]}.pcap"
-    if not path.exists():           # written whole under another name first: test processes share it
-        part = path.with_suffix(f".{os.getpid()}.part")
-        part.write_bytes(data)
-        part.chmod(0o644)
-        os.replace(part, path)
-    return path
-
-
-def native(capture_: harness.Capture, *args: str, variant: str = "gcc") -> subprocess.CompletedProcess:
-    return harness.native_tshark(["-r", str(_readable(harness._input(capture_))), *args], variant=variant)
+def native(capture_: harness.Capture, *args: str) -> subprocess.CompletedProcess:
+    return harness.run_native(capture_, *args)
 
 
 def native_asan(capture_: harness.Capture, *args: str) -> subprocess.CompletedProcess:
@@ -51,16 +37,11 @@ def native_asan(capture_: harness.Capture, *args: str) -> subprocess.CompletedPr
     libasan = subprocess.run(["gcc", "-print-file-name=libasan.so"], capture_output=True, text=True).stdout.strip()
     env = {"LD_PRELOAD": libasan, "ASAN_OPTIONS": "detect_leaks=0:abort_on_error=0",
            "UBSAN_OPTIONS": "print_stacktrace=1:halt_on_error=1"}
-    path = _readable(harness._input(capture_))
-    return harness.native_tshark(["-r", str(path), *args], variant="asan", env=env)
+    return harness.run_native(capture_, *args, variant="asan", env=env)
 
 
 def lua(capture_: harness.Capture, *args: str) -> subprocess.CompletedProcess:
-    environment = {**os.environ, "HOME": str(harness._empty_home())}
-    environment.pop("XDG_CONFIG_HOME", None)
-    path = _readable(harness._input(capture_))
-    return subprocess.run(["tshark", "-r", str(path), "-X", f"lua_script:{harness.lua_plugin('rtde')}", *args],
-                          capture_output=True, env=environment, timeout=600)
+    return harness.run_lua(capture_, *args, lua=[harness.lua_plugin("rtde")])
 
 
 # ---- the captures: one TCP session per case, each on its own client port ----
@@ -111,12 +92,8 @@ def corpus_capture() -> bytes:
 
 
 def _pcap(frames: list[bytes]) -> bytes:
-    CAPTURES.mkdir(parents=True, exist_ok=True)
-    path = CAPTURES / f"build-{os.getpid()}.pcap"
-    capture.write(path, frames)
-    data = path.read_bytes()
-    path.unlink()
-    return data
+    with tempfile.TemporaryDirectory() as folder:
+        return capture.write(Path(folder) / "sessions.pcap", frames).read_bytes()
 
 
 def assert_same(capture_: harness.Capture, *args: str) -> harness.Shown:
