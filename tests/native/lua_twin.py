@@ -6,6 +6,7 @@ Helpers of the fixed-layout interfaces (real-time, the ROS driver's sockets); ha
 tshark."""
 from __future__ import annotations
 
+import functools
 import os
 import random
 import re
@@ -156,17 +157,31 @@ def _lua_home(protocol: str) -> Path:
     return home
 
 
-def registered(protocol: str, lua: bool) -> list[str]:
-    """`tshark -G fields` lines of the protocol and its fields, sorted (Lua registers its fields in
-    table order)."""
-    if lua:
+REPORTS = ("fields", "protocols", "defaultprefs")
+
+
+@functools.lru_cache(maxsize=None)
+def _report(report: str, lua_of: str) -> tuple[str, ...]:
+    """The lines of `tshark -G <report>`: with the native plugin, or with only the Lua dissector
+    of the protocol `lua_of`."""
+    if lua_of:
         as_user = harness.NOBODY if os.geteuid() == 0 else []
-        env = {**os.environ, "HOME": str(_lua_home(protocol))}
+        env = {**os.environ, "HOME": str(_lua_home(lua_of))}
         env.pop("XDG_CONFIG_HOME", None)
-        out = subprocess.run([*as_user, "tshark", "-G", "fields"], capture_output=True, env=env, timeout=300)
+        out = subprocess.run([*as_user, "tshark", "-G", report], capture_output=True, env=env, timeout=300)
     else:
-        out = harness.native_tshark(["-G", "fields"])
+        out = harness.native_tshark(["-G", report])
     assert out.returncode == 0, out.stderr
-    lines = out.stdout.decode().splitlines()
-    return sorted(line for line in lines
-                  if line.split("\t")[2:3] == [protocol] or line.split("\t")[2].startswith(protocol + "."))
+    return tuple(out.stdout.decode().splitlines())
+
+
+def registered(protocol: str, lua: bool) -> list[str]:
+    """What the protocol registers, as tshark -G reports it: its fields (`fields`), its names
+    (`protocols`) and its preferences with their defaults (`defaultprefs`), sorted (Lua registers
+    its fields in table order)."""
+    def ours(line: str) -> bool:
+        words = line.lstrip("#").split("\t")
+        return any(w == protocol or w.startswith(protocol + ".") for w in words)
+
+    return sorted(f"{report}: {line}" for report in REPORTS for line in _report(report, protocol if lua else "")
+                  if ours(line))

@@ -72,6 +72,7 @@ def test_the_same_fields_are_registered():
     for name in NAMES:
         native = registered(name, lua=False)
         assert any(f"\t{name}." in line for line in native), name
+        assert f"defaultprefs: #{name}.release: " in native, name
         assert native == registered(name, lua=True), name
 
 

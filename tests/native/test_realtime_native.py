@@ -46,6 +46,9 @@ def _corpus():
 def test_the_same_fields_are_registered():
     native = registered(PROTOCOL, lua=False)
     assert any("\tur_realtime.q_actual\tFT_DOUBLE" in line for line in native)
+    assert "defaultprefs: #ur_realtime.ports: 30003,30013" in native
+    assert "defaultprefs: #ur_realtime.version: " in native
+    assert "protocols: Universal Robots real-time client interface\tUR_REALTIME\tur_realtime" in native
     assert native == registered(PROTOCOL, lua=True)
 
 
