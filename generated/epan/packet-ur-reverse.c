@@ -7,10 +7,10 @@
  * commands: a read timeout, six targets and a control mode, every field a big-endian int32, the
  * targets scaled by 1,000,000.
  *
- * Scaled fields show their value, with their raw int32 as <field>_raw beside it. The driver
- * release preference (default 2.14) chooses the record layouts. The generated part
- * declares the handles, the enum names and each direction's layouts by release; the hand-written
- * runtime joined into it frames the TCP stream and walks them.
+ * Scaled fields show their value, with their raw int32 as <field>_raw beside it. The driver release
+ * preference (default 2.14) chooses the record layouts. The generated part declares the handles,
+ * the enum names and each direction's layouts by release; the hand-written runtime joined into it
+ * frames the TCP stream and walks them.
  *
  * SPDX-License-Identifier: MIT
  */

@@ -7,10 +7,10 @@
  * points (positions, velocities, accelerations, a duration, a blend radius and a motion type),
  * every field a big-endian int32; the robot answers with the result when the trajectory ends.
  *
- * Scaled fields show their value, with their raw int32 as <field>_raw beside it. The driver
- * release preference (default 2.14) chooses the record layouts. The generated part
- * declares the handles, the enum names and each direction's layouts by release; the hand-written
- * runtime joined into it frames the TCP stream and walks them.
+ * Scaled fields show their value, with their raw int32 as <field>_raw beside it. The driver release
+ * preference (default 2.14) chooses the record layouts. The generated part declares the handles,
+ * the enum names and each direction's layouts by release; the hand-written runtime joined into it
+ * frames the TCP stream and walks them.
  *
  * SPDX-License-Identifier: MIT
  */
