@@ -130,6 +130,18 @@ static int int32_records_dissect_record(tvbuff_t *tvb, packet_info *pinfo _U_, p
     return layout->size;
 }
 
+/* Without TCP reassembly (its preference off) each segment is read on its own, as the Lua twin
+ * reads it: its whole records, then the part of one it holds. (Given a cut record,
+ * tcp_dissect_pdus would mark the segments after it as its continuation.) */
+static void int32_records_each_whole_record(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree,
+                                            int32_records_call *call)
+{
+    guint offset = 0;
+
+    while (offset < tvb_captured_length(tvb))
+        offset += int32_records_dissect_record(tvb_new_subset_remaining(tvb, offset), pinfo, tree, call);
+}
+
 static int dissect_int32_records(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
 {
     gboolean from_robot = pinfo->destport == pinfo->match_uint;
@@ -142,7 +154,12 @@ static int dissect_int32_records(tvbuff_t *tvb, packet_info *pinfo, proto_tree *
         return tvb_captured_length(tvb);
     }
     call.layout = int32_records_layout_of(call.record, int32_records_release);
-    tcp_dissect_pdus(tvb, pinfo, tree, TRUE, 1, int32_records_size, int32_records_dissect_record, &call);
+    /* The size is known without reading: fixed_len 1 has TCP ask for exactly the bytes a cut
+     * record lacks, as the Lua twin asks. */
+    if (pinfo->can_desegment)
+        tcp_dissect_pdus(tvb, pinfo, tree, TRUE, 1, int32_records_size, int32_records_dissect_record, &call);
+    else
+        int32_records_each_whole_record(tvb, pinfo, tree, &call);
     if (call.count == 1)
         col_add_str(pinfo->cinfo, COL_INFO, call.record->label);
     else if (call.count > 1)

@@ -245,6 +245,21 @@ static int dissect_ur_realtime_packet(tvbuff_t *tvb, packet_info *pinfo, proto_t
     return size;
 }
 
+/* Without TCP reassembly (its preference off) each segment is read on its own, as the Lua twin
+ * reads it: its whole packets, up to the first it does not hold whole, or a bad size. (Given a cut
+ * packet, tcp_dissect_pdus would mark the segments after it as its continuation.) */
+static void ur_realtime_each_whole_packet(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_realtime_infos *infos)
+{
+    gint offset = 0, left;
+
+    while ((left = tvb_captured_length_remaining(tvb, offset)) >= UR_REALTIME_SIZE_BYTES) {
+        guint size = ur_realtime_packet_size(pinfo, tvb, offset, NULL);
+        if (size > (guint)left)
+            break;
+        offset += dissect_ur_realtime_packet(tvb_new_subset_length(tvb, offset, size), pinfo, tree, infos);
+    }
+}
+
 static int dissect_ur_realtime(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
 {
     ur_realtime_infos infos = {NULL, 0};
@@ -258,8 +273,11 @@ static int dissect_ur_realtime(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tr
         ur_realtime_show_info(pinfo, "URScript");
         return tvb_captured_length(tvb);
     }
-    tcp_dissect_pdus(tvb, pinfo, tree, TRUE, UR_REALTIME_SIZE_BYTES, ur_realtime_packet_size,
-                     dissect_ur_realtime_packet, &infos);
+    if (pinfo->can_desegment)
+        tcp_dissect_pdus(tvb, pinfo, tree, TRUE, UR_REALTIME_SIZE_BYTES, ur_realtime_packet_size,
+                         dissect_ur_realtime_packet, &infos);
+    else
+        ur_realtime_each_whole_packet(tvb, pinfo, tree, &infos);
     if (infos.count == 1)
         ur_realtime_show_info(pinfo, infos.first);
     else if (infos.count > 1)

@@ -97,6 +97,13 @@ def test_the_cell_sample(name):
     assert any(shown.layers), f"the sample has a {name} conversation"
 
 
+@pytest.mark.parametrize("name", NAMES)
+def test_without_tcp_reassembly(name):
+    """With TCP reassembly off the part of a record a segment holds is shown as such, as by Lua."""
+    for path, args in _vectors(name):
+        compare(path, name, "-o", "tcp.desegment_tcp_streams:FALSE", *args)
+
+
 def test_decode_as_on_another_port():
     case = next(c for c in conversation_cases("ur_trajectory") if c.name == "point_and_result_2_14")
     shown = compare(sessions([_on_the_wire(case.segments)], 40003, "trajectory-40003"), "ur_trajectory",
@@ -139,6 +146,7 @@ def test_under_asan_and_ubsan_no_report(name):
     """The plugin built with -fsanitize=address,undefined over the captures above, with and without
     a tree: tshark ends well, with nothing on stderr."""
     captures = _vectors(name) + [(readable(CELL), [])]
+    captures += [(path, ["-o", "tcp.desegment_tcp_streams:FALSE", *args]) for path, args in _vectors(name)]
     captures += [(sessions(_corpus_streams(name), PORTS[name], f"{name}-corpus-{r}"), _release(name, r))
                  for r in (None, "1.0.0")]
     for path, args in captures:

@@ -64,6 +64,11 @@ def test_every_vector_whole_and_in_small_segments(version):
         assert any("Packet size 28 matches no layout" in str(e) for e in shown.experts)
 
 
+def test_without_tcp_reassembly():
+    """With TCP reassembly off a packet split over segments is not shown, as the Lua twin shows none."""
+    compare(_vectors(None), PROTOCOL, "-o", "tcp.desegment_tcp_streams:FALSE")
+
+
 def test_the_client_side_is_urscript():
     compare(sessions([[CASES[0].data]], PORT, "rt-client", client_says=b"movej([0,0,0,0,0,0])\n"), PROTOCOL)
 
@@ -131,6 +136,7 @@ def test_under_asan_and_ubsan_no_report():
     """The plugin built with -fsanitize=address,undefined over every capture above, with and
     without a tree: tshark ends well, with nothing on stderr."""
     captures = [(_vectors(v), _preference(v)) for v in VERSIONS] + [(_corpus(), []), (readable(CELL), [])]
+    captures.append((_vectors(None), ["-o", "tcp.desegment_tcp_streams:FALSE"]))
     captures.append((sessions([[CASES[0].data]], PORT, "rt-client", client_says=b"movej([0,0,0,0,0,0])\n"), []))
     for path, args in captures:
         for view in (["-V"], []):
