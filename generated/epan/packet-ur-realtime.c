@@ -713,6 +713,37 @@ static const ur_realtime_size_forms ur_realtime_sizes[] = {
     { 1220, 11, 1 },
 };
 
+/* ---- runtime/epan/dotted_version.c ---- */
+/* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around
+ * it allowed, a missing third number 0. It reads what the Lua dissectors' pattern
+ * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads, into doubles as Lua's numbers are. */
+
+/* The three numbers of the version; FALSE for text that is not one. */
+static gboolean dotted_version_parts(const char *text, double part[3])
+{
+    const char *p = text;
+    int i;
+
+    if (p == NULL)
+        return FALSE;
+    while (g_ascii_isspace(*p))
+        p++;
+    for (i = 0; i < 3; i++) {
+        part[i] = 0;
+        if (i == 1 && *p++ != '.')
+            return FALSE;
+        if (i == 2 && *p == '.')
+            p++;
+        if (i < 2 && !g_ascii_isdigit(*p))
+            return FALSE;
+        for (; g_ascii_isdigit(*p); p++)
+            part[i] = part[i] * 10 + (*p - '0');
+    }
+    while (g_ascii_isspace(*p))
+        p++;
+    return *p == '\0';
+}
+
 /* ---- runtime/epan/ur_realtime_dissect.c ---- */
 /* The real-time dissector's runtime: frames the robot's TCP stream by each packet's int32 size
  * (tcp_dissect_pdus reassembles a packet split over segments), chooses the packet's layout by the
@@ -742,31 +773,13 @@ static const char *ur_realtime_pref_version = "";
 static gboolean ur_realtime_version_known;
 static double ur_realtime_version;
 
-/* "5.9" or "3.15.2" (blanks around it allowed) -> the version number the forms are written in;
- * FALSE for anything else. Numbers are doubles, as the Lua dissector's are. */
+/* The version preference's text -> the version number the forms are written in (a bugfix above
+ * 999 counts as 999); FALSE for text that is not a version. */
 static gboolean ur_realtime_parse_version(const char *text, double *number)
 {
-    double part[3] = {0, 0, 0};
-    const char *p = text;
-    int i;
+    double part[3];
 
-    if (p == NULL)
-        return FALSE;
-    while (g_ascii_isspace(*p))
-        p++;
-    for (i = 0; i < 3; i++) {
-        if (i == 1 && *p++ != '.')
-            return FALSE;
-        if (i == 2 && *p == '.')
-            p++;
-        if (i < 2 && !g_ascii_isdigit(*p))
-            return FALSE;
-        for (; g_ascii_isdigit(*p); p++)
-            part[i] = part[i] * 10 + (*p - '0');
-    }
-    while (g_ascii_isspace(*p))
-        p++;
-    if (*p != '\0')
+    if (!dotted_version_parts(text, part))
         return FALSE;
     *number = (part[0] * 1000 + part[1]) * 1000 + MIN(part[2], 999);
     return TRUE;

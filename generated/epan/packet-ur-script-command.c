@@ -135,6 +135,37 @@ static const int32_records_interface int32_records_spec = {
     ur_script_command_ports, array_length(ur_script_command_ports)
 };
 
+/* ---- runtime/epan/dotted_version.c ---- */
+/* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around
+ * it allowed, a missing third number 0. It reads what the Lua dissectors' pattern
+ * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads, into doubles as Lua's numbers are. */
+
+/* The three numbers of the version; FALSE for text that is not one. */
+static gboolean dotted_version_parts(const char *text, double part[3])
+{
+    const char *p = text;
+    int i;
+
+    if (p == NULL)
+        return FALSE;
+    while (g_ascii_isspace(*p))
+        p++;
+    for (i = 0; i < 3; i++) {
+        part[i] = 0;
+        if (i == 1 && *p++ != '.')
+            return FALSE;
+        if (i == 2 && *p == '.')
+            p++;
+        if (i < 2 && !g_ascii_isdigit(*p))
+            return FALSE;
+        for (; g_ascii_isdigit(*p); p++)
+            part[i] = part[i] * 10 + (*p - '0');
+    }
+    while (g_ascii_isspace(*p))
+        p++;
+    return *p == '\0';
+}
+
 /* ---- runtime/epan/int32_records.c ---- */
 /* A dissector of fixed int32 records (the ROS driver's reverse, trajectory and script command
  * sockets): each direction cut into records of the size the driver release gives (a preference;
@@ -158,32 +189,13 @@ static dissector_handle_t int32_records_handle;
 static const char *int32_records_pref_release = "";
 static guint32 int32_records_release = INT32_RECORDS_DEFAULT_RELEASE;
 
-/* "2.10" or "2.10.0" (blanks around it allowed) -> (major * 1000 + minor) * 1000 + patch; the
- * default release for anything else. Numbers are doubles, as the Lua dissector's are. */
+/* The release preference's text -> (major * 1000 + minor) * 1000 + patch; the default release
+ * for text that is not a release. */
 static guint32 int32_records_parse_release(const char *text)
 {
-    double part[3] = {0, 0, 0};
-    const char *p = text;
-    double number;
-    int i;
+    double part[3], number;
 
-    if (p == NULL)
-        return INT32_RECORDS_DEFAULT_RELEASE;
-    while (g_ascii_isspace(*p))
-        p++;
-    for (i = 0; i < 3; i++) {
-        if (i == 1 && *p++ != '.')
-            return INT32_RECORDS_DEFAULT_RELEASE;
-        if (i == 2 && *p == '.')
-            p++;
-        if (i < 2 && !g_ascii_isdigit(*p))
-            return INT32_RECORDS_DEFAULT_RELEASE;
-        for (; g_ascii_isdigit(*p); p++)
-            part[i] = part[i] * 10 + (*p - '0');
-    }
-    while (g_ascii_isspace(*p))
-        p++;
-    if (*p != '\0')
+    if (!dotted_version_parts(text, part))
         return INT32_RECORDS_DEFAULT_RELEASE;
     number = (part[0] * 1000 + part[1]) * 1000 + part[2];
     return number < G_MAXUINT32 ? (guint32)number : G_MAXUINT32;

@@ -16,6 +16,7 @@
 #include <epan/unit_strings.h>
 #include <epan/dissectors/packet-tcp.h>
 #include "ur_realtime_types.h"
+#include "dotted_version.c"
 #define UR_REALTIME_SIZE_BYTES 4
 #define UR_REALTIME_MIN_SIZE 12
 #define UR_REALTIME_MAX_SIZE 12200
@@ -45,31 +46,13 @@ static const char *ur_realtime_pref_version = "";
 static gboolean ur_realtime_version_known;
 static double ur_realtime_version;
 
-/* "5.9" or "3.15.2" (blanks around it allowed) -> the version number the forms are written in;
- * FALSE for anything else. Numbers are doubles, as the Lua dissector's are. */
+/* The version preference's text -> the version number the forms are written in (a bugfix above
+ * 999 counts as 999); FALSE for text that is not a version. */
 static gboolean ur_realtime_parse_version(const char *text, double *number)
 {
-    double part[3] = {0, 0, 0};
-    const char *p = text;
-    int i;
+    double part[3];
 
-    if (p == NULL)
-        return FALSE;
-    while (g_ascii_isspace(*p))
-        p++;
-    for (i = 0; i < 3; i++) {
-        if (i == 1 && *p++ != '.')
-            return FALSE;
-        if (i == 2 && *p == '.')
-            p++;
-        if (i < 2 && !g_ascii_isdigit(*p))
-            return FALSE;
-        for (; g_ascii_isdigit(*p); p++)
-            part[i] = part[i] * 10 + (*p - '0');
-    }
-    while (g_ascii_isspace(*p))
-        p++;
-    if (*p != '\0')
+    if (!dotted_version_parts(text, part))
         return FALSE;
     *number = (part[0] * 1000 + part[1]) * 1000 + MIN(part[2], 999);
     return TRUE;

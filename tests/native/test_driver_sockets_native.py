@@ -117,7 +117,7 @@ def test_without_tcp_reassembly():
         compare(path, NAMES, *NO_REASSEMBLY, *args)
 
 
-@pytest.mark.parametrize("release", [None, "1.0.0"], ids=["default-release", "release-1.0.0"])
+@pytest.mark.parametrize("release", [None, "1.0.0", " 1.3.1 ", "not a release"])
 def test_the_fuzz_corpus(release):
     shown = compare(_corpus(), NAMES, *_release(release))
     assert all(any(name in layer for layer in shown.layers) for name in NAMES)

@@ -5,6 +5,7 @@ the real-time conversation of the cell sample, the same -T json layers, Info col
 infos."""
 from __future__ import annotations
 
+import struct
 from pathlib import Path
 
 import pytest
@@ -69,6 +70,21 @@ def test_without_tcp_reassembly():
     compare(_vectors(None), PROTOCOL, "-o", "tcp.desegment_tcp_streams:FALSE")
 
 
+@pytest.mark.parametrize("text", ["3.6.5000", " 3.6. ", "3.6x", "5.1"])
+def test_the_version_preference_reads_as_lua_reads_it(text):
+    """A 1108-byte packet is CB3 3.5-3.9 or e-Series 5.0-5.3: joint mode 248 has a name in CB3's
+    table only. Texts the pattern takes (a bugfix over 999, blanks, a trailing dot) and one it
+    does not choose the same form in both dissectors."""
+    n = (1108 - 4) // 8
+    doubles = [0.0] * n
+    doubles[95:101] = [248.0] * 6
+    packet = struct.pack(f">i{n}d", 1108, *doubles)
+    path, preference = sessions([[packet]], PORT, "rt-1108"), ["-o", f"{PROTOCOL}.version:{text}"]
+    compare(path, PROTOCOL, *preference)
+    tree = harness.checked(run_native(path, "-V", *preference))
+    assert ("Joint mode: 248 (PART_D_CALIBRATION_ERROR)" in tree) == text.strip().startswith("3.6.")
+
+
 def test_the_client_side_is_urscript():
     compare(sessions([[CASES[0].data]], PORT, "rt-client", client_says=b"movej([0,0,0,0,0,0])\n"), PROTOCOL)
 
@@ -118,7 +134,7 @@ def test_the_tree_reads_in_words_with_units_and_names():
     assert "UR_REALTIME, rt_3_2" in text or "client interface, rt_3_2" in text
 
 
-@pytest.mark.parametrize("name", ["ur_realtime_types.h", "ur_realtime_dissect.c"])
+@pytest.mark.parametrize("name", ["ur_realtime_types.h", "dotted_version.c", "ur_realtime_dissect.c"])
 def test_each_runtime_file_compiles_alone(name):
     """runtime/epan/<file> with the lines it needs alone (its <standalone> part), strict."""
     import shlex

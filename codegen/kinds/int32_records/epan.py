@@ -17,7 +17,7 @@ from .model import FROM_ROBOT
 from .plan import RecordsPlan
 
 RUNTIME_HEAD = ["int32_records_types.h"]    # the table types, before the tables
-RUNTIME_TAIL = ["int32_records.c"]          # the dissector, after the tables it walks
+RUNTIME_TAIL = ["dotted_version.c", "int32_records.c"]   # the release's text; the dissector, after the tables
 
 
 @dataclass

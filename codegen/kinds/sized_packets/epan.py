@@ -17,6 +17,7 @@ from .plan import SizedPlan
 
 RUNTIME_HEAD = ["types.h"]      # runtime/epan/<name>_types.h: the table types, before the tables
 RUNTIME_TAIL = ["dissect.c"]    # runtime/epan/<name>_dissect.c: after the tables it walks
+SHARED = ["dotted_version.c"]   # runtime/epan/dotted_version.c: reads the version preference, before the tail
 INFO_FIELD = "robot_mode"       # the field whose name the Info column shows beside the layout's
 
 
@@ -108,8 +109,8 @@ def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
                      for e in enums]
             forms.append(EpanForm(f"{size} bytes, {form.describe()}", form.low, form.high,
                                   form.layout, names))
-    runtime = [dict(path=runtime_path("epan", f"{name}_{part}"), source=runtime_source("epan", f"{name}_{part}"))
-               for part in RUNTIME_HEAD + RUNTIME_TAIL]
+    files = [f"{name}_{part}" for part in RUNTIME_HEAD] + SHARED + [f"{name}_{part}" for part in RUNTIME_TAIL]
+    runtime = [dict(path=runtime_path("epan", file), source=runtime_source("epan", file)) for file in files]
     context = dict(
         banner=banner, protocol=protocol, name=name, upper=upper, file=f"packet-{name.replace('_', '-')}.c",
         short_name=upper, doc=node_text(protocol), ports=",".join(str(p) for p in protocol.ports),
