@@ -33,7 +33,8 @@ static int hf_ur_realtime_layout = -1;
 static int hf_ur_realtime_urscript = -1;
 static int hf_ur_realtime_raw = -1;
 
-/* Framed, and kept: a layout the spec does not know yet, not a broken stream. */
+/* A size no layout has (framed and kept: a layout the spec does not know yet, not a broken
+ * stream), and a size that cannot frame a packet. */
 static expert_field ei_ur_realtime_unknown_size = EI_INIT;
 static expert_field ei_ur_realtime_bad_size = EI_INIT;
 

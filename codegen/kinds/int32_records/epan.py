@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import value_text
 from ...emit import environment, runtime_path, runtime_source
-from ...epan_units import c_string
+from ...epan_c import c_string, value_literal
 from ...naming import column_name
 from .model import FROM_ROBOT
 from .plan import RecordsPlan
@@ -49,11 +49,6 @@ class EpanRecord:
     items: list[str]             # the int32_records_record initializer, member by member
 
 
-def _c_value(value: int) -> str:
-    """A value_string's value: guint32, negative codes as their two's complement (-2 is 0xfffffffe)."""
-    return str(value) if value >= 0 else f"(guint32){value}"
-
-
 def _field(name: str, hf: str, label: str, abbrev: str, ftype: str, base: str, strings: str) -> EpanField:
     return EpanField(hf, [c_string(label), c_string(abbrev), ftype, base, strings, "0x0", "NULL", "HFILL"])
 
@@ -61,7 +56,7 @@ def _field(name: str, hf: str, label: str, abbrev: str, ftype: str, base: str, s
 def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:
     m = p.model
     name = m.name
-    tables = [EpanTable(f"{name}_{e.name}_vals", [(_c_value(v.value), c_string(v.name), value_text(v))
+    tables = [EpanTable(f"{name}_{e.name}_vals", [(value_literal(v.value), c_string(v.name), value_text(v))
                                                   for v in e.values])
               for e in m.enums.values()]
     fields, seen = [], set()
