@@ -32,11 +32,14 @@ void proto_reg_handoff_ur_reverse(void);
 
 static int proto_ur_reverse = -1;
 
-static int hf_ur_reverse_keepalive = -1;
+static int hf_ur_reverse_keepalive = -1;  /* Keepalive count. A count the script checks to know the PC is alive. */
+/* Read timeout. The timeout in milliseconds of the script's next read from this socket. */
 static int hf_ur_reverse_read_timeout = -1;
+/* Motion target. Joint positions (rad, SERVOJ), joint velocities (rad/s, SPEEDJ), a pose or its
+ * velocity, or trajectory and freedrive instructions, as the control mode says. */
 static int hf_ur_reverse_target = -1;
 static int hf_ur_reverse_target_raw = -1;
-static int hf_ur_reverse_control_mode = -1;
+static int hf_ur_reverse_control_mode = -1;  /* Control mode. */
 
 static gint ett_ur_reverse = -1;
 static gint ett_ur_reverse_scaled = -1;

@@ -33,7 +33,9 @@ void proto_reg_handoff_ur_script_command(void);
 
 static int proto_ur_script_command = -1;
 
-static int hf_ur_script_command_command = -1;
+static int hf_ur_script_command_command = -1;  /* Command. */
+/* Arguments. The command's data, each scaled by MULT_JOINTSTATE but where the command says
+ * otherwise. */
 static int hf_ur_script_command_arguments = -1;
 static int hf_ur_script_command_arguments_raw = -1;
 

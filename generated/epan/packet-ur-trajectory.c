@@ -32,18 +32,24 @@ void proto_reg_handoff_ur_trajectory(void);
 
 static int proto_ur_trajectory = -1;
 
+/* Positions. Joint positions (rad) or a pose (m, m, m, rad, rad, rad), as the motion type says. */
 static int hf_ur_trajectory_positions = -1;
 static int hf_ur_trajectory_positions_raw = -1;
+/* Velocities. Joint velocities of a spline point, a via point of a circular move, or a joint hint. */
 static int hf_ur_trajectory_velocities = -1;
 static int hf_ur_trajectory_velocities_raw = -1;
+/* Accelerations. Joint accelerations of a spline point; else velocity, acceleration and a mode or
+ * flag first. */
 static int hf_ur_trajectory_accelerations = -1;
 static int hf_ur_trajectory_accelerations_raw = -1;
-static int hf_ur_trajectory_duration = -1;
+static int hf_ur_trajectory_duration = -1;  /* Segment duration (s). */
 static int hf_ur_trajectory_duration_raw = -1;
+/* Blend radius (m). The blend radius of a move; for a spline point, the spline type (1 cubic, 2
+ * quintic) unscaled. */
 static int hf_ur_trajectory_blend_radius = -1;
 static int hf_ur_trajectory_blend_radius_raw = -1;
-static int hf_ur_trajectory_motion_type = -1;
-static int hf_ur_trajectory_result = -1;
+static int hf_ur_trajectory_motion_type = -1;  /* Motion type. */
+static int hf_ur_trajectory_result = -1;  /* Result. */
 
 static gint ett_ur_trajectory = -1;
 static gint ett_ur_trajectory_scaled = -1;

@@ -24,6 +24,7 @@ RUNTIME_TAIL = ["dotted_version.c", "int32_records.c"]   # the release's text; t
 class EpanField:
     hf: str
     items: list[str]             # the header_field_info initializer, member by member
+    comment: str = ""
 
 
 @dataclass
@@ -49,8 +50,9 @@ class EpanRecord:
     items: list[str]             # the int32_records_record initializer, member by member
 
 
-def _field(name: str, hf: str, label: str, abbrev: str, ftype: str, base: str, strings: str) -> EpanField:
-    return EpanField(hf, [c_string(label), c_string(abbrev), ftype, base, strings, "0x0", "NULL", "HFILL"])
+def _field(name: str, hf: str, label: str, abbrev: str, ftype: str, base: str, strings: str,
+           comment: str = "") -> EpanField:
+    return EpanField(hf, [c_string(label), c_string(abbrev), ftype, base, strings, "0x0", "NULL", "HFILL"], comment)
 
 
 def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:
@@ -66,14 +68,15 @@ def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:
                 continue
             seen.add(f.name)
             hf, abbrev = f"hf_{name}_{f.name}", f"{name}.{f.name}"
+            comment = " ".join(t for t in (f"{f.label}{f' ({f.unit})' if f.unit else ''}.", f.doc.strip()) if t)
             if f.scaled:
                 label = f.label + (f" ({f.unit})" if f.unit else "")
-                fields.append(_field(name, hf, label, abbrev, "FT_DOUBLE", "BASE_NONE", "NULL"))
+                fields.append(_field(name, hf, label, abbrev, "FT_DOUBLE", "BASE_NONE", "NULL", comment))
                 fields.append(_field(name, hf + "_raw", f"{f.label} (raw int32)", abbrev + "_raw", "FT_INT32",
                                      "BASE_DEC", "NULL"))
             else:
                 strings = f"VALS({name}_{f.enum.name}_vals)" if f.enum else "NULL"
-                fields.append(_field(name, hf, f.label, abbrev, "FT_INT32", "BASE_DEC", strings))
+                fields.append(_field(name, hf, f.label, abbrev, "FT_INT32", "BASE_DEC", strings, comment))
     records = {}
     for r in p.records:
         ident = f"{name}_{r.record.name}"
