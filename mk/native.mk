@@ -1,0 +1,20 @@
+# The native Wireshark plugin: every generated/epan/packet-*.c built into one epan plugin,
+# urwire.so, with CMake and find_package(Wireshark) against the installed Wireshark
+# (dissector/native/CMakeLists.txt; wireshark-dev, cmake and a C compiler, from scripts/setup.sh).
+
+NATIVE_BUILD ?= build/native
+# the folder of the packet-*.c to build (the tests point it at a fixture)
+URWIRE_EPAN_DIR ?= $(CURDIR)/generated/epan
+NATIVE_CMAKE_FLAGS ?=
+
+.PHONY: native-dissector
+
+## native-dissector: build the native plugin under build/native and print where it is
+native-dissector:
+	@command -v cmake >/dev/null || { echo "native-dissector: cmake is not installed (scripts/setup.sh)" >&2; exit 2; }
+	@mkdir -p $(NATIVE_BUILD)
+	cmake -S dissector/native -B $(NATIVE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+		-DURWIRE_EPAN_DIR=$(abspath $(URWIRE_EPAN_DIR)) $(NATIVE_CMAKE_FLAGS) >$(NATIVE_BUILD)/configure.log 2>&1 \
+		|| { cat $(NATIVE_BUILD)/configure.log >&2; exit 1; }
+	cmake --build $(NATIVE_BUILD)
+	@echo "native-dissector: $$(find $(NATIVE_BUILD)/plugins -name urwire.so)"
