@@ -6,15 +6,28 @@ NATIVE_BUILD ?= build/native
 # the folder of the packet-*.c to build (the tests point it at a fixture)
 URWIRE_EPAN_DIR ?= $(CURDIR)/generated/epan
 NATIVE_CMAKE_FLAGS ?=
+CMAKE ?= cmake
+# install-dissector: auto (the native plugin where it builds, else Lua), yes (native or fail), no (Lua)
+NATIVE ?= auto
 
-.PHONY: native-dissector
+.PHONY: native-dissector install-dissector uninstall-dissector
 
 ## native-dissector: build the native plugin under build/native and print where it is
 native-dissector:
-	@command -v cmake >/dev/null || { echo "native-dissector: cmake is not installed (scripts/setup.sh)" >&2; exit 2; }
+	@command -v $(CMAKE) >/dev/null || { echo "native-dissector: cmake is not installed (scripts/setup.sh)" >&2; exit 2; }
 	@mkdir -p $(NATIVE_BUILD)
-	cmake -S dissector/native -B $(NATIVE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	$(CMAKE) -S dissector/native -B $(NATIVE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 		-DURWIRE_EPAN_DIR=$(abspath $(URWIRE_EPAN_DIR)) $(NATIVE_CMAKE_FLAGS) >$(NATIVE_BUILD)/configure.log 2>&1 \
 		|| { cat $(NATIVE_BUILD)/configure.log >&2; exit 1; }
-	cmake --build $(NATIVE_BUILD)
+	$(CMAKE) --build $(NATIVE_BUILD)
 	@echo "native-dissector: $$(find $(NATIVE_BUILD)/plugins -name urwire.so)"
+
+## install-dissector: the native plugin into tshark's personal plugins folder (`tshark -G folders`)
+## where it builds, else the Lua dissectors into the personal Lua folder; never both, as they
+## register the same protocols (NATIVE=no installs Lua, NATIVE=yes fails rather than fall back)
+install-dissector:
+	@NATIVE=$(NATIVE) TSHARK=$(TSHARK) MAKE="$(MAKE)" LUA_PLUGINS="$(LUA_PLUGINS)" bash scripts/install-dissector.sh install
+
+## uninstall-dissector: remove both the native plugin and the Lua dissectors
+uninstall-dissector:
+	@TSHARK=$(TSHARK) LUA_PLUGINS="$(LUA_PLUGINS)" bash scripts/install-dissector.sh uninstall
