@@ -10,7 +10,9 @@ CMAKE ?= cmake
 # install-dissector: auto (the native plugin where it builds, else Lua), yes (native or fail), no (Lua)
 NATIVE ?= auto
 
-.PHONY: native-dissector install-dissector uninstall-dissector
+BENCH_TARGETS += bench-wireshark
+
+.PHONY: native-dissector install-dissector uninstall-dissector bench-wireshark
 
 ## native-dissector: build the native plugin under build/native and print where it is
 native-dissector:
@@ -31,3 +33,10 @@ install-dissector:
 ## uninstall-dissector: remove both the native plugin and the Lua dissectors
 uninstall-dissector:
 	@TSHARK=$(TSHARK) LUA_PLUGINS="$(LUA_PLUGINS)" bash scripts/install-dissector.sh uninstall
+
+## bench-wireshark: tshark with the native plugin and with the Lua dissector of each interface, each
+## against --disable-protocol on the same file, at 30k and 100k messages, beside their goals
+## (BENCH_SMALL=1: 2k and 6k, a quick look; BENCH_WIRESHARK_ARGS="--interfaces ur rtde")
+BENCH_WIRESHARK_ARGS ?=
+bench-wireshark:
+	$(PYTHON) tests/bench/bench_wireshark.py $(BENCH_WIRESHARK_ARGS)
