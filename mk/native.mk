@@ -40,3 +40,12 @@ uninstall-dissector:
 BENCH_WIRESHARK_ARGS ?=
 bench-wireshark:
 	$(PYTHON) tests/bench/bench_wireshark.py $(BENCH_WIRESHARK_ARGS)
+
+## fuzz-wireshark: Wireshark's fuzz-test.sh approach for FUZZ_SECONDS: editcap -E mutations of the
+## sample captures and of every golden vector (whole and in 1-7 byte segments), each read by
+## tshark -nVx with the native plugin under ASan+UBSan and, separately, with the Lua dissectors;
+## a failing capture is kept under build/fuzz-wireshark/failures/ (tests/fuzz/fuzz_wireshark.py)
+.PHONY: fuzz-wireshark
+fuzz: fuzz-wireshark
+fuzz-wireshark:
+	$(PYTHON) tests/fuzz/fuzz_wireshark.py --seconds $(FUZZ_SECONDS)
