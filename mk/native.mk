@@ -49,3 +49,20 @@ bench-wireshark:
 fuzz: fuzz-wireshark
 fuzz-wireshark:
 	$(PYTHON) tests/fuzz/fuzz_wireshark.py --seconds $(FUZZ_SECONDS)
+
+## upstream-patch: lay out under build/upstream/ exactly the files a Wireshark patch would carry
+## (epan/dissectors/packet-*.c, the generator under tools/; docs/wireshark-upstream.md), then build
+## an out-of-tree plugin from exactly those dissector files
+UPSTREAM ?= build/upstream
+.PHONY: upstream-patch check-upstream
+upstream-patch:
+	$(PYTHON) scripts/upstream-patch.py $(UPSTREAM) $(URWIRE_EPAN_DIR)
+	$(MAKE) --no-print-directory native-dissector URWIRE_EPAN_DIR=$(abspath $(UPSTREAM))/epan/dissectors \
+		NATIVE_BUILD=$(UPSTREAM)-plugin
+
+## check-upstream: Wireshark's own source checks (checkAPIs.pl, checkhf.pl,
+## check_typed_item_calls.py ...) from a Wireshark checkout, which Debian does not package, on
+## the generated dissectors: make check-upstream WIRESHARK_SOURCE=~/src/wireshark
+check-upstream:
+	@[ -n "$(WIRESHARK_SOURCE)" ] || { echo "check-upstream: set WIRESHARK_SOURCE to a Wireshark checkout" >&2; exit 2; }
+	@bash scripts/check-upstream.sh $(WIRESHARK_SOURCE) $(wildcard $(URWIRE_EPAN_DIR)/packet-*.c)

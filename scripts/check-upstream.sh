@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# check-upstream.sh WIRESHARK_SOURCE FILE...: Wireshark's own source checks, from a Wireshark
+# checkout's tools/, on the generated dissectors (Debian ships none of them). Each check that
+# the checkout has runs on every file; a check that reports a problem makes the exit status 1.
+#   checkAPIs.pl               prohibited and deprecated APIs, bad value_string and hf arrays
+#   checkhf.pl                 hf_ handles declared but not registered, or never used
+#   check_typed_item_calls.py  each proto_tree_add_* call against its field's type, masks, labels
+#   check_tfs.py               true_false_strings that tfs.h already has
+#   check_val_to_str.py        val_to_str formats
+# check_static.py needs a whole Wireshark build folder; tests/native/test_plugin.py checks the same
+# thing (each packet file defines only its proto_register_ and proto_reg_handoff_ globally).
+set -u
+source=${1:?usage: check-upstream.sh WIRESHARK_SOURCE FILE...}
+shift
+if [ ! -d "$source/tools" ]; then
+    echo "check-upstream: $source has no tools/ folder: give WIRESHARK_SOURCE a Wireshark checkout" >&2
+    exit 2
+fi
+files=()
+for f in "$@"; do files+=("$(realpath "$f")"); done
+[ ${#files[@]} -gt 0 ] || { echo "check-upstream: no files to check" >&2; exit 2; }
+status=0
+ran=0
+
+finding() {
+    echo "check-upstream: $1 reports problems"
+    status=1
+}
+
+if [ -f "$source/tools/checkAPIs.pl" ]; then
+    echo "== checkAPIs.pl"; ran=$((ran + 1))
+    (cd "$source" && perl tools/checkAPIs.pl "${files[@]}") || finding checkAPIs.pl
+fi
+if [ -f "$source/tools/checkhf.pl" ]; then
+    echo "== checkhf.pl"; ran=$((ran + 1))
+    out=$(cd "$source" && perl tools/checkhf.pl "${files[@]}" 2>&1); rc=$?
+    [ -n "$out" ] && echo "$out"
+    { [ $rc -ne 0 ] || echo "$out" | grep -qE "Unused entry|NO ARRAY"; } && finding checkhf.pl
+fi
+for check in check_typed_item_calls.py check_tfs.py check_val_to_str.py; do
+    [ -f "$source/tools/$check" ] || continue
+    echo "== $check"; ran=$((ran + 1))
+    args=()
+    for f in "${files[@]}"; do args+=(--file "$f"); done
+    [ "$check" = check_typed_item_calls.py ] && args+=(--mask --label --consecutive)
+    out=$(cd "$source" && python3 "tools/$check" "${args[@]}" 2>&1); rc=$?
+    echo "$out"
+    { [ $rc -ne 0 ] || echo "$out" | grep -qE "^[1-9][0-9]* (issues|warnings) found|^Error|Traceback"; } && finding "$check"
+done
+if [ $ran -eq 0 ]; then
+    echo "check-upstream: none of Wireshark's checks is under $source/tools" >&2
+    exit 2
+fi
+echo "check-upstream: $ran checks on ${#files[@]} files, $([ $status -eq 0 ] && echo "no problem" || echo "problems above")"
+exit $status
