@@ -28,7 +28,8 @@ native-dissector:
 ## where it builds, else the Lua dissectors into the personal Lua folder; never both, as they
 ## register the same protocols (NATIVE=no installs Lua, NATIVE=yes fails rather than fall back)
 install-dissector:
-	@NATIVE=$(NATIVE) TSHARK=$(TSHARK) MAKE="$(MAKE)" LUA_PLUGINS="$(LUA_PLUGINS)" bash scripts/install-dissector.sh install
+	@NATIVE=$(NATIVE) TSHARK=$(TSHARK) MAKE="$(MAKE)" LUA_PLUGINS="$(LUA_PLUGINS)" \
+		bash scripts/install-dissector.sh install
 
 ## uninstall-dissector: remove both the native plugin and the Lua dissectors
 uninstall-dissector:

@@ -45,11 +45,13 @@ for check in check_typed_item_calls.py check_tfs.py check_val_to_str.py; do
     [ "$check" = check_typed_item_calls.py ] && args+=(--mask --label --consecutive)
     out=$(cd "$source" && python3 "tools/$check" "${args[@]}" 2>&1); rc=$?
     echo "$out"
-    { [ $rc -ne 0 ] || echo "$out" | grep -qE "^[1-9][0-9]* (issues|warnings) found|^Error|Traceback"; } && finding "$check"
+    problems="^[1-9][0-9]* (issues|warnings) found|^Error|Traceback"
+    { [ $rc -ne 0 ] || echo "$out" | grep -qE "$problems"; } && finding "$check"
 done
 if [ $ran -eq 0 ]; then
     echo "check-upstream: none of Wireshark's checks is under $source/tools" >&2
     exit 2
 fi
-echo "check-upstream: $ran checks on ${#files[@]} files, $([ $status -eq 0 ] && echo "no problem" || echo "problems above")"
+verdict=$([ $status -eq 0 ] && echo "no problem" || echo "problems above")
+echo "check-upstream: $ran checks on ${#files[@]} files, $verdict"
 exit $status

@@ -21,7 +21,8 @@ LUA_PLUGINS=${LUA_PLUGINS:-$(ls generated/lua/*.lua)}
 PLUGIN_NAME=urwire.so
 
 folder() {  # the folder `tshark -G folders` lists under this name
-    "$TSHARK" -G folders 2>/dev/null | awk -F'\t' -v name="$1:" '$1 ~ "^" name {gsub(/^[ \t]+/, "", $2); print $2; exit}'
+    "$TSHARK" -G folders 2>/dev/null |
+        awk -F'\t' -v name="$1:" '$1 ~ "^" name {gsub(/^[ \t]+/, "", $2); print $2; exit}'
 }
 
 native_dir=$(folder "Personal Plugins")

@@ -107,8 +107,8 @@ def test_a_native_build_that_fails_falls_back_to_lua(home, tmp_path, failure, re
         variables = [f"URWIRE_EPAN_DIR={FIXTURE_EPAN}", failing, "CMAKE=/nonexistent/cmake"]
     elif failure == "no wireshark-dev":
         # CMake told to look nowhere a Wireshark is installed, as on a machine without wireshark-dev
-        variables = [f"URWIRE_EPAN_DIR={FIXTURE_EPAN}", failing, "NATIVE_CMAKE_FLAGS=-DCMAKE_IGNORE_PREFIX_PATH='/usr;/' "
-                     "-DCMAKE_SYSTEM_IGNORE_PREFIX_PATH='/usr;/'"]
+        variables = [f"URWIRE_EPAN_DIR={FIXTURE_EPAN}", failing,
+                     "NATIVE_CMAKE_FLAGS=-DCMAKE_IGNORE_PREFIX_PATH='/usr;/' -DCMAKE_SYSTEM_IGNORE_PREFIX_PATH='/usr;/'"]
     result = make(home, "install-dissector", *variables)
     assert_lua_only(home, result)
     assert reason in result.stderr and "installing the Lua dissectors instead" in result.stderr, result.stderr

@@ -195,3 +195,39 @@ def test_plugin_c_declares_plugin_describe_from_4_2(tmp_path):
 def test_plugin_c_has_no_plugin_describe_on_4_0(tmp_path):
     defined = compile_plugin_c(tmp_path, None)
     assert "plugin_describe" not in defined and "plugin_register" in defined
+
+
+# Everything but the two registration functions is static (what Wireshark's tools/check_static.py
+# asks of a dissector in the tree; it needs a whole Wireshark build, so the objects are read here)
+
+def globals_of_packet_objects(built: harness.Plugin) -> dict[str, list[str]]:
+    folder = harness.BUILDS / built.home.name.removeprefix("home-")
+    out = {}
+    for obj in sorted(folder.rglob("packet-*.c.o")):
+        listing = subprocess.run(["nm", "--defined-only", str(obj)], capture_output=True, text=True, check=True)
+        out[obj.name.removesuffix(".c.o")] = sorted(parts[2] for parts in map(str.split, listing.stdout.splitlines())
+                                                    if len(parts) == 3 and parts[1].isupper())
+    return out
+
+
+def registration_only(objects: dict[str, list[str]]) -> None:
+    assert objects, "no packet-*.c object in the build"
+    for stem, names in objects.items():
+        protocol = protocol_of(Path(stem + ".c"))
+        assert names == sorted([f"proto_register_{protocol}", f"proto_reg_handoff_{protocol}"]), (stem, names)
+
+
+def test_fixture_defines_only_its_registration_functions_globally():
+    registration_only(globals_of_packet_objects(harness.build_plugin("gcc", FIXTURE_EPAN)))
+
+
+def test_static_check_sees_a_global(tmp_path):
+    (tmp_path / "packet-urwire-fixture.c").write_text((FIXTURE_EPAN / "packet-urwire-fixture.c").read_text()
+                                                      + "\nint urwire_fixture_leak;\n")
+    with pytest.raises(AssertionError, match="urwire_fixture_leak"):
+        registration_only(globals_of_packet_objects(harness.build_plugin("gcc", tmp_path)))
+
+
+@NO_GENERATED
+def test_generated_define_only_their_registration_functions_globally():
+    registration_only(globals_of_packet_objects(harness.plugin("gcc")))
