@@ -37,16 +37,18 @@ if [ -f "$source/tools/checkhf.pl" ]; then
     [ -n "$out" ] && echo "$out"
     { [ $rc -ne 0 ] || echo "$out" | grep -qE "Unused entry|NO ARRAY"; } && finding checkhf.pl
 fi
+# One file a run: some releases of these scripts keep only the last --file.
 for check in check_typed_item_calls.py check_tfs.py check_val_to_str.py; do
     [ -f "$source/tools/$check" ] || continue
     echo "== $check"; ran=$((ran + 1))
-    args=()
-    for f in "${files[@]}"; do args+=(--file "$f"); done
-    [ "$check" = check_typed_item_calls.py ] && args+=(--mask --label --consecutive)
-    out=$(cd "$source" && python3 "tools/$check" "${args[@]}" 2>&1); rc=$?
-    echo "$out"
-    problems="^[1-9][0-9]* (issues|warnings) found|^Error|Traceback"
-    { [ $rc -ne 0 ] || echo "$out" | grep -qE "$problems"; } && finding "$check"
+    extra=()
+    [ "$check" = check_typed_item_calls.py ] && extra=(--mask --label --consecutive)
+    for f in "${files[@]}"; do
+        out=$(cd "$source" && python3 "tools/$check" --file "$f" "${extra[@]}" 2>&1); rc=$?
+        echo "$out"
+        problems="^[1-9][0-9]* (issues|warnings) found|^Error|Traceback"
+        { [ $rc -ne 0 ] || echo "$out" | grep -qE "$problems"; } && finding "$check on $(basename "$f")"
+    done
 done
 if [ $ran -eq 0 ]; then
     echo "check-upstream: none of Wireshark's checks is under $source/tools" >&2
