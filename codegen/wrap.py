@@ -48,9 +48,11 @@ def docstring(text: str, indent: str = "") -> str:
 
 def trailing(code: str, comment: str, indent: str = "", syntax: str = "c") -> str:
     """`code` with its comment after it on the same line when both fit in LIMIT, else the
-    comment wrapped on the lines above it."""
+    comment wrapped on the lines above it; no comment when it is empty."""
     marks = {"c": ("/* ", " */"), "lua": ("-- ", ""), "python": ("# ", "")}
     opening, closing = marks[syntax]
+    if not comment:
+        return f"{indent}{code}"
     one = f"{indent}{code}  {opening}{comment}{closing}"
     if columns(one) <= LIMIT:
         return one

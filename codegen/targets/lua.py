@@ -163,6 +163,8 @@ class PField:
     bits: int = 0              # flag: width of the parent integer
     mask: int = 0              # flag: its bit
     parent: Optional[str] = None   # flag: the key of its integer
+    unit: Optional[str] = None     # integer or float: its spec unit ("rad"), for targets that register it
+    enum: Optional[str] = None     # integer: the name of its enum (its newest table names it)
 
 
 @dataclass
@@ -224,15 +226,16 @@ class _Builder:
         unit string of a float field."""
         self.entries.setdefault(f"{owner}.{name}", []).append((s, where, enum))
         if s.is_float:
-            return self.owned_field(owner, name, "float", PROTOFIELD[s.name], label, doc, where)
+            return self.owned_field(owner, name, "float", PROTOFIELD[s.name], label, doc, where, unit=unit)
         if s.is_bool:
             return self.owned_field(owner, name, "bool", "bool", label, doc, where)
         if unit:
             return self.owned_field(owner, name, "integer", PROTOFIELD[s.name], label, doc, where,
-                                    base="UNIT_STRING", vs="{ " + lua_str(unit_text(unit)) + " }")
+                                    base="UNIT_STRING", vs="{ " + lua_str(unit_text(unit)) + " }", unit=unit)
         return self.owned_field(owner, name, "integer", PROTOFIELD[s.name], label, doc, where,
                                 base="HEX" if hex_base else "DEC",
-                                vs=self.enum_var[enum.name] if enum is not None else None)
+                                vs=self.enum_var[enum.name] if enum is not None else None,
+                                enum=enum.name if enum is not None else None)
 
     def read(self, data: dict, key: str, s: ir.Scalar) -> dict:
         """A descriptor that reads a scalar into field `key`: told after every layout is built
@@ -263,7 +266,8 @@ class _Builder:
     def header_field(self, key: str, h: ir.HeaderField) -> str:
         """ur.length, ur.type, ur.package.*: outside the owner.field scheme."""
         return self.add_field(PField(key, "integer", PROTOFIELD[h.scalar.name], f"ur.{key}", h.label, h.doc,
-                                     base="DEC", vs=self.enum_var[h.enum.name] if h.enum is not None else None),
+                                     base="DEC", vs=self.enum_var[h.enum.name] if h.enum is not None else None,
+                                     enum=h.enum.name if h.enum is not None else None),
                               h.where)
 
     def add_item(self, name: str, label: str, doc: str, where: ir.Where) -> str:

@@ -722,6 +722,7 @@ local UNDOCUMENTED = {
 
 local spec = {
     proto = proto,
+    name = "rtde",
     title = "Universal Robots Real-Time Data Exchange (RTDE)",
     default_ports = "30004",
     header_size = 3,
@@ -879,24 +880,25 @@ local spec, rt = ...
 local proto, F = spec.proto, spec.F
 local HEADER = spec.header_size
 
+-- Expert names are the protocol's filter name and the expert's (rtde.refused), as the fields' are.
 local E = {
-    bad_header = ProtoExpert.new(proto.name .. ".bad_header", "Bad message header",
+    bad_header = ProtoExpert.new(spec.name .. ".bad_header", "Bad message header",
         expert.group.MALFORMED, expert.severity.ERROR),
-    short = ProtoExpert.new(proto.name .. ".short", "Message shorter than its layout",
+    short = ProtoExpert.new(spec.name .. ".short", "Message shorter than its layout",
         expert.group.MALFORMED, expert.severity.ERROR),
-    extra = ProtoExpert.new(proto.name .. ".extra", "Bytes after the layout",
+    extra = ProtoExpert.new(spec.name .. ".extra", "Bytes after the layout",
         expert.group.PROTOCOL, expert.severity.WARN),
-    refused = ProtoExpert.new(proto.name .. ".refused", "Setup refused a variable (NOT_FOUND or IN_USE)",
+    refused = ProtoExpert.new(spec.name .. ".refused", "Setup refused a variable (NOT_FOUND or IN_USE)",
         expert.group.RESPONSE_CODE, expert.severity.WARN),
-    unknown_recipe = ProtoExpert.new(proto.name .. ".unknown_recipe",
+    unknown_recipe = ProtoExpert.new(spec.name .. ".unknown_recipe",
         "Data package of a recipe this conversation did not set up", expert.group.SEQUENCE, expert.severity.WARN),
-    start_refused = ProtoExpert.new(proto.name .. ".start_refused", "The robot refused to start",
+    start_refused = ProtoExpert.new(spec.name .. ".start_refused", "The robot refused to start",
         expert.group.RESPONSE_CODE, expert.severity.WARN),
-    warning = ProtoExpert.new(proto.name .. ".setup_warning", "Setup exchange out of order",
+    warning = ProtoExpert.new(spec.name .. ".setup_warning", "Setup exchange out of order",
         expert.group.SEQUENCE, expert.severity.WARN),
-    undocumented = ProtoExpert.new(proto.name .. ".undocumented", "Message type with no public layout",
+    undocumented = ProtoExpert.new(spec.name .. ".undocumented", "Message type with no public layout",
         expert.group.UNDECODED, expert.severity.NOTE),
-    unknown_type = ProtoExpert.new(proto.name .. ".unknown_type", "Message type with no layout in this direction",
+    unknown_type = ProtoExpert.new(spec.name .. ".unknown_type", "Message type with no layout in this direction",
         expert.group.UNDECODED, expert.severity.WARN),
 }
 proto.experts = { E.bad_header, E.short, E.extra, E.refused, E.unknown_recipe, E.start_refused, E.warning,
@@ -990,9 +992,12 @@ function STEP.values(s, tree, tvb, pos, stop, values, view)
     return pos
 end
 
--- What the state says about one message, worked out on the first pass and kept for the others.
-local function view_of(pinfo, index, state, from_robot, raw, offset, layout)
-    local key = pinfo.number .. ":" .. index
+-- What the state says about one message, worked out on the first pass and kept for the others,
+-- under the message's place among the frame's bytes: a message reassembled from earlier segments
+-- starts at 0 in its own data, the messages after it in the frame's own bytes later, so that two
+-- calls for one frame (the reassembled message, then the rest of the segment) keep two views.
+local function view_of(pinfo, tvb, state, offset)
+    local key = pinfo.number .. ":" .. (tvb:offset() + offset)
     local view = views[key]
     if view and pinfo.visited then return view, false end
     view = { protocol = rt.protocol_of(state), assumed = state.protocol == nil }
@@ -1000,13 +1005,13 @@ local function view_of(pinfo, index, state, from_robot, raw, offset, layout)
     return view, true
 end
 
-local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state, from_robot, index)
+local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state, from_robot)
     local stop = offset + size
     local item = tree:add(proto, tvb(offset, size))
     item:add(F.length, tvb(offset, 2))
     item:add(F.type, tvb(offset + 2, 1))
     item:add(F.direction, tvb(offset + 2, 1), from_robot and "robot to client" or "client to robot"):set_generated()
-    local view, first = view_of(pinfo, index, state, from_robot, raw, offset)
+    local view, first = view_of(pinfo, tvb, state, offset)
     local layout = spec.messages[code .. ":" .. (from_robot and 1 or 0) .. ":" .. view.protocol]
     local shown = item:add(F.protocol, tvb(offset + 2, 1), view.protocol)
     shown:set_generated()
@@ -1070,7 +1075,7 @@ function proto.dissector(tvb, pinfo, tree)
         states[key] = state
     end
     pinfo.cols.protocol = "RTDE"
-    local labels, offset, index = {}, 0, 0
+    local labels, offset = {}, 0
     while offset < len do
         if len - offset < HEADER then
             pinfo.desegment_offset = offset
@@ -1094,8 +1099,7 @@ function proto.dissector(tvb, pinfo, tree)
             pinfo.desegment_len = size - (len - offset)
             break
         else
-            index = index + 1
-            labels[#labels + 1] = dissect_message(tvb, raw, offset, size, code, pinfo, tree, state, from_robot, index)
+            labels[#labels + 1] = dissect_message(tvb, raw, offset, size, code, pinfo, tree, state, from_robot)
             offset = offset + size
         end
     end

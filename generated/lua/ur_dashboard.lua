@@ -397,7 +397,49 @@ local function parse_version(text)
     return version_number(tonumber(major), tonumber(minor), tonumber(bugfix) or 0)
 end
 
-rt.matches, rt.find_command, rt.classify = matches, find_command, classify
+-- Text as every output shows it: up to its first NUL (as C strings end), in UTF-8, each
+-- ill-formed sequence replaced by one U+FFFD per maximal subpart (the Unicode Standard's Table 3-7,
+-- as Wireshark's ENC_UTF_8 and Python's decode("utf-8", "replace") do).
+local REPLACEMENT = "\239\191\189"
+local function shown(text)
+    local nul = find(text, "\0", 1, true)
+    if nul then text = sub(text, 1, nul - 1) end
+    if not find(text, "[\128-\255]") then return text end
+    local out, at, start, n = {}, 1, 1, #text
+    while at <= n do
+        local b = string.byte(text, at)
+        if b < 0x80 then
+            at = at + 1
+        else
+            -- how many continuation bytes the lead byte wants, and the range of the first of them
+            local need, lo, hi = 0, 0x80, 0xBF
+            if b >= 0xC2 and b <= 0xDF then need = 1
+            elseif b == 0xE0 then need, lo = 2, 0xA0
+            elseif (b >= 0xE1 and b <= 0xEC) or b == 0xEE or b == 0xEF then need = 2
+            elseif b == 0xED then need, hi = 2, 0x9F
+            elseif b == 0xF0 then need, lo = 3, 0x90
+            elseif b >= 0xF1 and b <= 0xF3 then need = 3
+            elseif b == 0xF4 then need, hi = 3, 0x8F
+            end
+            local next_at, got = at + 1, 0
+            while got < need do
+                local c = string.byte(text, next_at)
+                if not c or c < lo or c > hi then break end
+                lo, hi = 0x80, 0xBF
+                next_at, got = next_at + 1, got + 1
+            end
+            if need == 0 or got < need then
+                out[#out + 1] = sub(text, start, at - 1) .. REPLACEMENT
+                start = next_at
+            end
+            at = next_at
+        end
+    end
+    out[#out + 1] = sub(text, start)
+    return table.concat(out)
+end
+
+rt.matches, rt.find_command, rt.classify, rt.shown = matches, find_command, classify, shown
 rt.available, rt.version_in, rt.parse_version = available, version_in, parse_version
 
 end)(spec, rt)
@@ -414,7 +456,7 @@ do
 -- ports: two robots or two clients never share it), expert infos for a reply that says an error,
 -- an unknown command, a command the version lacks, a line too long.
 local spec, rt = ...
-local matches, find_command, classify = rt.matches, rt.find_command, rt.classify
+local matches, find_command, classify, shown = rt.matches, rt.find_command, rt.classify, rt.shown
 local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version
 
 local proto = Proto(spec.name, spec.title)
@@ -507,7 +549,7 @@ local function show_command(tree, range, text, d)
     item:add(F.command, range, text)
     if d.command then
         item:add(F.command_name, range, spec.commands[d.command].name):set_generated()
-        if d.argument then item:add(F.argument, range, d.argument) end
+        if d.argument then item:add(F.argument, range, shown(d.argument)) end
         if d.available ~= nil then
             local it = item:add(F.available, range, d.available):set_generated()
             if not d.available then
@@ -584,7 +626,7 @@ local function dissect(tvb, pinfo, tree)
                     d = requests and decide_command(c, text) or decide_reply(c, text)
                     decided[slot] = d
                 end
-                infos[#infos + 1] = (requests and show_command or show_reply)(tree, range, text, d)
+                infos[#infos + 1] = (requests and show_command or show_reply)(tree, range, shown(text), d)
                 at = nl
             end
         end

@@ -125,7 +125,10 @@ end
 local function dissect(tvb, pinfo, tree)
     local n = tvb:len()
     local from_robot = pinfo.dst_port == pinfo.match_uint
-    local record = from_robot and spec.from_robot or spec.to_robot
+    -- Not `from_robot and spec.from_robot or spec.to_robot`: with no record from the robot, that
+    -- would read the robot's bytes as the PC's records.
+    local record
+    if from_robot then record = spec.from_robot else record = spec.to_robot end
     pinfo.cols.protocol = spec.short
     if not record then
         tree:add(proto, tvb()):add_proto_expert_info(E.unspecified)

@@ -4,7 +4,7 @@
 -- ports: two robots or two clients never share it), expert infos for a reply that says an error,
 -- an unknown command, a command the version lacks, a line too long.
 local spec, rt = ...
-local matches, find_command, classify = rt.matches, rt.find_command, rt.classify
+local matches, find_command, classify, shown = rt.matches, rt.find_command, rt.classify, rt.shown
 local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version
 
 local proto = Proto(spec.name, spec.title)
@@ -97,7 +97,7 @@ local function show_command(tree, range, text, d)
     item:add(F.command, range, text)
     if d.command then
         item:add(F.command_name, range, spec.commands[d.command].name):set_generated()
-        if d.argument then item:add(F.argument, range, d.argument) end
+        if d.argument then item:add(F.argument, range, shown(d.argument)) end
         if d.available ~= nil then
             local it = item:add(F.available, range, d.available):set_generated()
             if not d.available then
@@ -174,7 +174,7 @@ local function dissect(tvb, pinfo, tree)
                     d = requests and decide_command(c, text) or decide_reply(c, text)
                     decided[slot] = d
                 end
-                infos[#infos + 1] = (requests and show_command or show_reply)(tree, range, text, d)
+                infos[#infos + 1] = (requests and show_command or show_reply)(tree, range, shown(text), d)
                 at = nl
             end
         end

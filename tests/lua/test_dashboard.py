@@ -188,6 +188,11 @@ assert(rt.version_in("URSoftware 5.11.1.108318 (Nov 26 2021)") == 5011001)
 assert(rt.version_in("URSoftware 5.11") == 5011000 and rt.version_in("URSoftware 5.11.") == nil)
 assert(rt.version_in("URSoftware 5.1x") == nil and rt.version_in("URSoftware 1234.1") == nil)
 assert(rt.available(2, 3002000) and not rt.available(2, 5011000) and not rt.available(1, 1003000))
+-- as Python's decode("utf-8", "replace"): one U+FFFD per maximal ill-formed part; a NUL ends the text
+local R = "\239\191\189"
+assert(rt.shown("caf\233 \255") == "caf" .. R .. " " .. R and rt.shown("a\226\130b") == "a" .. R .. "b")
+assert(rt.shown("\240\159\152\128") == "\240\159\152\128" and rt.shown("\237\160\128") == R .. R .. R)
+assert(rt.shown("\192\175") == R .. R and rt.shown("x\0y") == "x" and rt.shown("plain") == "plain")
 print("ok")
 """
 

@@ -62,6 +62,8 @@ def records(name: str, frames: list) -> list[dict]:
                     for sub, raw in (value.items() if isinstance(value, dict) else []):
                         rec.setdefault(sub[len(name) + 1:], []).extend(float(v) for v in
                                                                        (raw if isinstance(raw, list) else [raw]))
+            if not rec and f"{name}.unspecified" in json.dumps(item.get("_ws.expert")):
+                continue                         # bytes where no record is specified: flagged, not a record
             out.append(rec)
     return out
 

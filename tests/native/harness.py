@@ -3,8 +3,9 @@ Lua dissector alone, on the same capture, and compare what the two show.
 
 Wireshark loads a plugin from its plugin folders only. A personal folder under $HOME is skipped
 when tshark runs as root (Wireshark drops plugins for a privileged user), so under root tshark
-runs as the user nobody, with a HOME that holds only the plugin built here, and reads the capture
-from stdin (pytest's temporary folders are private to root). The Lua runs get an empty HOME too,
+runs as the user nobody, with a HOME that holds only the plugin built here, and reads a copy of
+the capture that every user may read (pytest's temporary folders are private to root; a pipe
+would do, but tshark reads a pipe in one pass only and `-2` needs a file). The Lua runs get an empty HOME too,
 so that nothing installed on the machine loads beside the dissector under test.
 """
 from __future__ import annotations
@@ -113,8 +114,24 @@ def _empty_home() -> Path:
 Capture = Union[bytes, Path]
 
 
-def _input(capture: Capture) -> bytes:
-    return capture if isinstance(capture, bytes) else Path(capture).read_bytes()
+def _readable(capture: Capture) -> Path:
+    """The capture as a file every user may read (tshark reads a pipe in one pass only, and `-2`
+    needs a file): a copy under build/native-tests/captures named by its content."""
+    data = capture if isinstance(capture, bytes) else Path(capture).read_bytes()
+    folder = BUILDS / "captures"
+    folder.mkdir(parents=True, exist_ok=True)
+    folder.chmod(0o755)
+    for path in [BUILDS, *BUILDS.parents]:
+        if path == Path("/"):
+            break
+        path.chmod(path.stat().st_mode | 0o001)   # nobody may pass through to it
+    path = folder / f"{hashlib.sha256(data).hexdigest()[:24]}.pcap"
+    if not path.is_file():
+        partial = path.with_suffix(f".{os.getpid()}.part")
+        partial.write_bytes(data)
+        partial.chmod(0o644)
+        partial.replace(path)
+    return path
 
 
 def native_tshark(args: Sequence[str], stdin: bytes = b"", variant: str = "gcc", env: Optional[dict] = None,
@@ -135,16 +152,16 @@ def tshark_with(built: Plugin, args: Sequence[str], stdin: bytes = b"", env: Opt
 
 def run_native(capture: Capture, *args: str, variant: str = "gcc", env: Optional[dict] = None,
                timeout: float = 600) -> subprocess.CompletedProcess:
-    """tshark -r - with the native plugin."""
-    return native_tshark(["-r", "-", *args], _input(capture), variant, env, timeout)
+    """tshark -r with the native plugin."""
+    return native_tshark(["-r", str(_readable(capture)), *args], b"", variant, env, timeout)
 
 
 def run_lua(capture: Capture, *args: str, lua: Sequence[Path] = (), timeout: float = 600) -> subprocess.CompletedProcess:
-    """tshark -r - with these Lua dissectors only (generated/lua/<name>.lua)."""
+    """tshark -r with these Lua dissectors only (generated/lua/<name>.lua)."""
     scripts = [a for path in lua for a in ("-X", f"lua_script:{path}")]
     environment = {**os.environ, "HOME": str(_empty_home())}
     environment.pop("XDG_CONFIG_HOME", None)
-    return subprocess.run(["tshark", "-r", "-", *scripts, *args], input=_input(capture), capture_output=True,
+    return subprocess.run(["tshark", "-r", str(_readable(capture)), *scripts, *args], capture_output=True,
                           env=environment, timeout=timeout)
 
 

@@ -6,12 +6,12 @@ from __future__ import annotations
 from typing import Optional
 
 from .. import Kind, render_targets
-from . import c, lua, python
+from . import c, epan, lua, python
 from .model import RecordsProtocol
 from .plan import plan
 from .resolve import resolve
 
-_TARGETS = {"c": c.render, "lua": lua.render, "python": python.render}
+_TARGETS = {"c": c.render, "epan": epan.render, "lua": lua.render, "python": python.render}
 
 
 def render(model: RecordsProtocol, banner: list[str], only: Optional[list[str]] = None) -> dict[str, str]:

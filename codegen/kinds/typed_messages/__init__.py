@@ -1,18 +1,19 @@
 """The kind `typed_messages`: length-framed messages whose type code means one layout per direction
 and negotiated protocol version, with state kept per connection (RTDE's recipes). The spec language
 part is codegen/schema/typed_messages.schema.json; `resolve` makes the IR (model.py); each target
-renders it (python.py, lua.py, c.py)."""
+renders it (python_target.py, lua_target.py, c_target.py, epan_target.py)."""
 from __future__ import annotations
 
 from typing import Optional
 
 from .. import Kind, render_targets
-from . import c_target, lua_target, python_target
+from . import c_target, epan_target, lua_target, python_target
 from .model import Interface
 from .resolve import resolve
 
 
-_TARGETS = {"c": c_target.render, "lua": lua_target.render, "python": python_target.render}
+_TARGETS = {"c": c_target.render, "epan": epan_target.render, "lua": lua_target.render,
+            "python": python_target.render}
 
 
 def render(interface: Interface, banner: list[str], only_targets: Optional[list[str]]) -> dict[str, str]:

@@ -1,0 +1,129 @@
+"""The epan target of a text-line interface: generated/epan/packet-<name>.c, a native Wireshark
+dissector as an upstream epan/dissectors/packet-*.c reads, the twin of the Lua one
+(generated/lua/<name>.lua): the same protocol, fields, expert infos, preference and ports. The
+spec's tables as C data, with runtime/epan/lines_*.c joined in, from the plan."""
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import dataclass
+
+from ...emit import environment, runtime_path, runtime_source
+from ...wrap import lines as wrapped
+from ...naming import column_name
+from .model import Reply
+from .plan import LinesPlan
+
+FOLDER = "epan"
+RUNTIME_TYPES = "lines_match.c"           # the tables' types and the pure functions over them
+RUNTIME_DISSECTOR = "lines_dissect.c"     # the dissector itself, after the tables
+
+
+@dataclass(frozen=True)
+class Field:
+    name: str
+    type: str
+    display: str
+
+
+# The fields of every line, in the order the Lua runtime (runtime/lua/lines_dissect.lua) declares
+# them; their labels are the spec's.
+FIELDS = (Field("command", "FT_STRING", "BASE_NONE"), Field("command_name", "FT_STRING", "BASE_NONE"),
+          Field("argument", "FT_STRING", "BASE_NONE"), Field("available", "FT_BOOLEAN", "BASE_NONE"),
+          Field("reply", "FT_STRING", "BASE_NONE"), Field("reply_name", "FT_STRING", "BASE_NONE"),
+          Field("error", "FT_BOOLEAN", "BASE_NONE"))
+
+
+@dataclass(frozen=True)
+class Expert:
+    name: str
+    group: str
+    severity: str
+    text: str
+
+
+def experts(max_line: int) -> tuple[Expert, ...]:
+    """The expert infos, named, grouped and worded as the Lua runtime's. (Its internal_error, a Lua
+    error caught while dissecting, has no native twin.)"""
+    return (Expert("error_reply", "PI_RESPONSE_CODE", "PI_WARN", "The reply says an error"),
+            Expert("unknown_command", "PI_MALFORMED", "PI_WARN", "Unknown command"),
+            Expert("unavailable", "PI_PROTOCOL", "PI_WARN", "The software version lacks this command"),
+            Expert("too_long", "PI_MALFORMED", "PI_ERROR", f"Line longer than {max_line} bytes"))
+
+
+# The version preference, as the Lua runtime names and words it.
+PREFERENCE = ("version", "Software version",
+              "Controller software version (as 5.11 or 3.15.7) assumed until a PolyscopeVersion reply tells it: "
+              "commands it lacks are flagged. Empty: none assumed.")
+
+
+def _string(text: str) -> str:
+    """A C string literal (the schema keeps spec texts printable ASCII; JSON escapes suit C)."""
+    return json.dumps(text)
+
+
+def _literals(text: str) -> list[str]:
+    """Prose as adjacent C string literals, one per line, that C joins into one string."""
+    words = wrapped(text, "", "", width=90)
+    return [_string(w + " ") for w in words[:-1]] + [_string(words[-1])]
+
+
+def _joined(name: str, interface: str) -> str:
+    """A runtime file as joined into one interface's file. The names that are the interface's own,
+    written with the kind's name so that the file compiles alone (proto_lines, hf_lines_command,
+    ei_lines_too_long, ett_lines, dissect_lines, lines_spec, lines_version_preference), take the
+    interface's, as an upstream dissector names them after its protocol; the runtime's own types
+    and helpers (lines_matches, lines_conversation_t) keep the kind's."""
+    text = runtime_source(FOLDER, name)
+    text = re.sub(r"\b(hf|ei)_lines_", rf"\1_{interface}_", text)
+    text = re.sub(r"\b(ett|proto|dissect)_lines\b", rf"\1_{interface}", text)
+    text = re.sub(r"\blines_(spec|version_preference)\b", rf"{interface}_\1", text)
+    return f"/* ---- {runtime_path(FOLDER, name)} ---- */\n" + text.rstrip("\n")
+
+
+def _reply(reply: Reply) -> dict:
+    return dict(pattern=reply.pattern, name=_string(reply.name), pieces=[_string(p) for p in reply.pieces],
+                error="true" if reply.error else "false")
+
+
+def file_name(name: str) -> str:
+    """packet-ur-dashboard.c: upstream's name for the dissector of protocol ur_dashboard."""
+    return f"packet-{name.replace('_', '-')}.c"
+
+
+def view(p: LinesPlan) -> dict:
+    m = p.model
+    name = m.name
+    commands = [dict(comment=f"{c.command.text}{' <' + c.command.argument + '>' if c.command.argument else ''}: "
+                             f"{c.command.doc} ({c.command.since_text()})",
+                     name=_string(c.command.name), text=_string(c.command.text),
+                     argument="true" if c.command.argument else "false",
+                     since_cb=f"{c.since_cb or 0}u", since_e_series=f"{c.since_e_series or 0}u",
+                     replies=[_reply(r) for r in c.command.replies])
+                for c in p.commands]
+    return dict(
+        file=file_name(name), name=name, title=m.title, doc=wrapped(m.doc, " * ", " * "),
+        title_literal=_string(m.title),
+        short_name=_string(name.upper()), column=_string(column_name(name)), ports=list(m.ports),
+        max_line=m.max_line,
+        fields=[dict(name=f.name, label=_string(m.fields[f.name].label), abbrev=_string(f"{name}.{f.name}"),
+                     type=f.type, display=f.display) for f in FIELDS],
+        experts=[dict(name=e.name, abbrev=_string(f"{name}.{e.name}"), group=e.group, severity=e.severity,
+                      text=_string(e.text)) for e in experts(m.max_line)],
+        preference=dict(name=_string(PREFERENCE[0]), title=_string(PREFERENCE[1]), doc=_literals(PREFERENCE[2])),
+        banner_reply=_reply(m.banner) if m.banner else None,
+        robot_is_client="true" if m.robot_is_client else "false",
+        requests_from_robot="true" if m.requests_from_robot else "false",
+        one_reply_per_request="true" if m.one_reply_per_request else "false",
+        common=[_reply(r) for r in m.common_replies], commands=commands,
+        lookup=[str(c.index) for c in p.lookup],
+        version_command=f"{p.version_command.index},  /* {p.version_command.command.name} */" if p.version_command
+        else "LINES_NONE,",
+        version_prefix=_string(m.version_prefix), e_series_from=f"{p.e_series_from}u",
+        runtime_types=_joined(RUNTIME_TYPES, name), runtime_dissector=_joined(RUNTIME_DISSECTOR, name),
+    )
+
+
+def render(p: LinesPlan, banner: list[str]) -> dict[str, str]:
+    text = environment(FOLDER).get_template("lines/packet.c.j2").render(banner=banner, **view(p))
+    return {f"{FOLDER}/{file_name(p.model.name)}": text}

@@ -1,0 +1,125 @@
+"""epan target of a sized-packets interface: the plan -> a view model ->
+generated/epan/packet-<name with dashes>.c, a native Wireshark dissector, the twin of the Lua one
+(kinds/sized_packets/lua.py): the same protocol, fields, tree, Info column, experts and
+preferences. The generated part declares the handles, one double field per spec field (its unit
+through BASE_UNIT_STRING), the enum names as value_strings, the layouts' slots and the forms by
+size; the hand-written runtime (runtime/epan/<name>_*, joined in) frames the TCP stream and walks
+them."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ... import ir
+from ...comments import field_text, node_text, value_text
+from ...emit import environment, runtime_path, runtime_source
+from ...epan_units import c_string, own_units, unit_ident
+from .plan import SizedPlan
+
+RUNTIME_HEAD = ["types.h"]      # runtime/epan/<name>_types.h: the table types, before the tables
+RUNTIME_TAIL = ["dissect.c"]    # runtime/epan/<name>_dissect.c: after the tables it walks
+INFO_FIELD = "robot_mode"       # the field whose name the Info column shows beside the layout's
+
+
+@dataclass
+class EpanField:
+    hf: str
+    label: str
+    abbrev: str
+    display: str
+    strings: str
+    comment: str
+
+
+@dataclass
+class EpanTable:
+    ident: str
+    entries: list[tuple[str, str, str]]     # C value, name, comment
+
+
+@dataclass
+class EpanLayout:
+    ident: str
+    name: str
+    comment: str
+    slots: list[list[str]]                   # each slot's C initializer, member by member
+    info_at: int
+    info_names: str
+
+
+@dataclass
+class EpanForm:
+    versions: str
+    low: int
+    high: int
+    layout: int                              # index into the layouts
+    names: list[str]                         # per enum: its value_string or NULL
+
+
+def _c_value(value: int) -> str:
+    """A value_string's value: guint32, negative codes as their two's complement (-1 is 0xffffffff)."""
+    return str(value) if value >= 0 else f"(guint32){value}"
+
+
+def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
+    protocol = planned.protocol
+    name = protocol.name
+    upper = name.upper()
+    size_field = protocol.size_field
+    fields = []
+    for f in protocol.catalogue:
+        unit = f.unit or ""
+        fields.append(EpanField(f"hf_{name}_{f.name}", f.label, f"{name}.{f.name}",
+                                "BASE_NONE|BASE_UNIT_STRING" if unit else "BASE_NONE",
+                                f"&{unit_ident(unit)}" if unit else "NULL", field_text([f], versions=False)))
+    arrays = [f for f in protocol.catalogue if isinstance(f, ir.ArrayField)]
+    etts = [f"ett_{name}"] + [f"ett_{name}_{f.name}" for f in arrays]
+    enums = planned.enums
+    enum_ids = {e.name: f"{upper}_NAMES_{e.name.upper()}" for e in enums}
+    tables = {}
+    for e in enums:
+        for i, table in enumerate(e.tables):
+            tables[(e.name, i)] = EpanTable(f"{name}_{e.name}_{i}",
+                                            [(_c_value(v.value), c_string(v.name), value_text(v))
+                                             for v in table.values])
+    layouts = []
+    for lp in planned.layouts:
+        layout = lp.layout
+        slots, info_at, info_names = [], -1, "-1"
+        for s in lp.slots:
+            f = s.field
+            names = enum_ids[s.enum.name] if s.enum is not None else "-1"
+            unit = f"&{unit_ident(f.unit)}" if f.unit else "NULL"
+            if isinstance(f, ir.ArrayField):
+                group = f.label + (f" ({f.unit})" if f.unit else "")
+                slots.append([f"&hf_{name}_{f.name}", f"&ett_{name}_{f.name}", c_string(group), str(s.offset),
+                              str(s.count), names, unit])
+            else:
+                slots.append([f"&hf_{name}_{f.name}", "NULL", "NULL", str(s.offset), "1", names, unit])
+            if f.name == INFO_FIELD:
+                info_at, info_names = s.offset, names
+        comment = f"{layout.label}: sent by software {layout.describe()}."
+        layouts.append(EpanLayout(f"{name}_{layout.name}", layout.name, comment, slots, info_at, info_names))
+    forms, sizes = [], []
+    for size in planned.sizes:
+        sizes.append((size, len(forms), len(planned.by_size[size])))
+        for index in planned.by_size[size]:
+            form = planned.forms[index]
+            names = [tables[(e.name, e.tables.index(form.tables[e.name]))].ident if e.name in form.tables else "NULL"
+                     for e in enums]
+            forms.append(EpanForm(f"{size} bytes, {form.describe()}", form.low, form.high,
+                                  form.layout, names))
+    runtime = [dict(path=runtime_path("epan", f"{name}_{part}"), source=runtime_source("epan", f"{name}_{part}"))
+               for part in RUNTIME_HEAD + RUNTIME_TAIL]
+    context = dict(
+        banner=banner, protocol=protocol, name=name, upper=upper, file=f"packet-{name.replace('_', '-')}.c",
+        short_name=upper, doc=node_text(protocol), ports=",".join(str(p) for p in protocol.ports),
+        size_field=EpanField(f"hf_{name}_{size_field.name}", size_field.label, f"{name}.{size_field.name}",
+                             "BASE_DEC", "NULL", ""),
+        fields=fields, etts=etts, own_units=own_units([f.unit or "" for f in protocol.catalogue]),
+        enums=[(enum_ids[e.name], node_text(e) or e.name) for e in enums], tables=list(tables.values()),
+        layouts=layouts, forms=forms, sizes=sizes, same_size=protocol.same_size,
+        size_bytes=protocol.size_field_bytes, min_size=protocol.size_field_bytes + 8,
+        max_size=protocol.max_message_size,
+        head=runtime[:len(RUNTIME_HEAD)], tail=runtime[len(RUNTIME_HEAD):])
+    text = environment("epan").get_template("sized_packets/dissector.c.j2").render(**context)
+    return {f"epan/{context['file']}": text}

@@ -1,0 +1,358 @@
+/* The RTDE dissector: frames the messages of a TCP stream, shows each by its layout (chosen by type
+ * code, direction and the protocol version in force), a data package's values by the variables of
+ * its recipe with a link to the frame that set the recipe up, and expert infos for refused setups,
+ * unknown recipes, a refused start and bad framing. The state (runtime/epan/rtde_state.c) is kept
+ * per conversation on the first pass, and each message's view of it is kept for later passes and
+ * the GUI. The twin of runtime/lua/rtde_dissect.lua: the same tree, Info column and experts.
+ *
+ * It frames by hand rather than with tcp_dissect_pdus: a bad header (a size below the header or a
+ * type code no layout has) is shown and skipped up to the next plausible header, as the Lua
+ * dissector does, where tcp_dissect_pdus would give up on the rest of the segment. */
+
+static expert_field ei_rtde_bad_header = EI_INIT;
+static expert_field ei_rtde_short = EI_INIT;
+static expert_field ei_rtde_extra = EI_INIT;
+static expert_field ei_rtde_refused = EI_INIT;
+static expert_field ei_rtde_unknown_recipe = EI_INIT;
+static expert_field ei_rtde_start_refused = EI_INIT;
+static expert_field ei_rtde_setup_warning = EI_INIT;
+static expert_field ei_rtde_undocumented = EI_INIT;
+static expert_field ei_rtde_unknown_type = EI_INIT;
+
+static void
+rtde_register_experts(int proto)
+{
+    static ei_register_info ei[] = {
+        { &ei_rtde_bad_header, { "rtde.bad_header", PI_MALFORMED, PI_ERROR, "Bad message header", EXPFILL } },
+        { &ei_rtde_short, { "rtde.short", PI_MALFORMED, PI_ERROR, "Message shorter than its layout", EXPFILL } },
+        { &ei_rtde_extra, { "rtde.extra", PI_PROTOCOL, PI_WARN, "Bytes after the layout", EXPFILL } },
+        { &ei_rtde_refused, { "rtde.refused", PI_RESPONSE_CODE, PI_WARN,
+            "Setup refused a variable (NOT_FOUND or IN_USE)", EXPFILL } },
+        { &ei_rtde_unknown_recipe, { "rtde.unknown_recipe", PI_SEQUENCE, PI_WARN,
+            "Data package of a recipe this conversation did not set up", EXPFILL } },
+        { &ei_rtde_start_refused, { "rtde.start_refused", PI_RESPONSE_CODE, PI_WARN, "The robot refused to start",
+            EXPFILL } },
+        { &ei_rtde_setup_warning, { "rtde.setup_warning", PI_SEQUENCE, PI_WARN, "Setup exchange out of order",
+            EXPFILL } },
+        { &ei_rtde_undocumented, { "rtde.undocumented", PI_UNDECODED, PI_NOTE, "Message type with no public layout",
+            EXPFILL } },
+        { &ei_rtde_unknown_type, { "rtde.unknown_type", PI_UNDECODED, PI_WARN,
+            "Message type with no layout in this direction", EXPFILL } },
+    };
+    expert_register_field_array(expert_register_protocol(proto), ei, array_length(ei));
+}
+
+/* What the state says about one message: the protocol in force and a data package's recipe, found
+ * in the state's history on any pass; what the message changed (its notes), kept from the first
+ * pass for the others when there is something to show. */
+typedef struct {
+    guint protocol;
+    gboolean assumed;           /* no version exchange seen: the spec's default */
+    const rtde_recipe *recipe;  /* a data package's */
+    const rtde_notes *notes;
+} rtde_view;
+
+static const rtde_notes rtde_no_notes = { NULL, 0, NULL };
+
+static const rtde_layout *
+rtde_layout_for(guint8 code, gboolean from_robot, guint protocol)
+{
+    guint8 index;
+    if (protocol > RTDE_MAX_PROTOCOL)
+        return NULL;
+    index = rtde_layout_of[code][from_robot ? 1 : 0][protocol];
+    return index ? &rtde_layouts[index - 1] : NULL;
+}
+
+static const rtde_undocumented *
+rtde_undocumented_for(guint8 code)
+{
+    guint i;
+    for (i = 0; i < G_N_ELEMENTS(rtde_undocumented_types); i++)
+        if (rtde_undocumented_types[i].code == code)
+            return &rtde_undocumented_types[i];
+    return NULL;
+}
+
+static gboolean
+rtde_plausible(tvbuff_t *tvb, int at)
+{
+    return tvb_get_ntohs(tvb, at) >= RTDE_HEADER_SIZE && rtde_type_known[tvb_get_guint8(tvb, at + 2)];
+}
+
+/* The notes a message left on the first pass (rtde_follow), kept under its place in the frame. */
+static const rtde_notes *
+rtde_kept_notes(packet_info *pinfo, rtde_when when)
+{
+    const rtde_notes *notes = (const rtde_notes *)p_get_proto_data(wmem_file_scope(), pinfo, proto_rtde, when.place);
+    return notes ? notes : &rtde_no_notes;
+}
+
+static void
+rtde_keep_notes(packet_info *pinfo, rtde_when when, const rtde_notes *notes)
+{
+    if (notes->warning || notes->n_refused)
+        p_add_proto_data(wmem_file_scope(), pinfo, proto_rtde, when.place,
+                         wmem_memdup(wmem_file_scope(), notes, sizeof *notes));
+}
+
+/* The text of n bytes as the Lua dissector reads it (TvbRange:string() in 4.0): their ASCII decoding,
+ * a byte above 127 as U+FFFD, cut to n bytes, NULs kept; NUL-terminated for the C calls that show it. */
+static const guint8 *
+rtde_text_of(tvbuff_t *tvb, int pos, guint n)
+{
+    static const guint8 replacement[3] = { 0xEF, 0xBF, 0xBD };
+    const guint8 *bytes = n ? tvb_get_ptr(tvb, pos, n) : NULL;
+    guint8 *text = (guint8 *)wmem_alloc(wmem_packet_scope(), n + 1);
+    guint in = 0, out = 0;
+    while (out < n) {
+        if (bytes[in] < 0x80) {
+            text[out++] = bytes[in];
+        } else {
+            guint k;
+            for (k = 0; k < 3 && out < n; k++)
+                text[out++] = replacement[k];
+        }
+        in++;
+    }
+    text[n] = '\0';
+    return text;
+}
+
+/* A recipe's values, an item per scalar (a vector's items in order, each by the variable's field,
+ * with its index). A name the variable table lacks has no field and shows nothing. */
+static void
+rtde_add_values(proto_tree *tree, tvbuff_t *tvb, int pos, const rtde_recipe *recipe)
+{
+    guint i, j;
+    for (i = 0; i < recipe->n; i++) {
+        const rtde_value_type *vt = &rtde_value_types[recipe->type[i]];
+        if (recipe->field[i] >= 0) {
+            for (j = 0; j < vt->count; j++) {
+                proto_item *item = proto_tree_add_item(tree, hf_rtde[recipe->field[i]], tvb, pos + (int)(j * vt->size),
+                                                       vt->size, ENC_BIG_ENDIAN);
+                if (recipe->unit[i])
+                    proto_item_append_text(item, "%s", recipe->unit[i]);
+                if (vt->count > 1)
+                    proto_item_append_text(item, " [%u]", j);
+            }
+        }
+        pos += vt->size * vt->count;
+    }
+}
+
+/* One step of a layout: adds its items (when there is a tree) and returns the next position, or -1
+ * when it does not fit. */
+static int
+rtde_step_at(const rtde_step *s, proto_tree *tree, tvbuff_t *tvb, int pos, int stop, rtde_values *values,
+             const rtde_view *view)
+{
+    switch (s->kind) {
+    case RTDE_STEP_SCALAR: {
+        if (pos + s->size > stop)
+            return -1;
+        if (tree) {
+            proto_item *item = proto_tree_add_item(tree, hf_rtde[s->field], tvb, pos, s->size, ENC_BIG_ENDIAN);
+            if (s->unit)
+                proto_item_append_text(item, "%s", s->unit);
+        }
+        if (s->integer) {
+            guint32 value = s->size == 1 ? tvb_get_guint8(tvb, pos)
+                          : s->size == 2 ? tvb_get_ntohs(tvb, pos) : tvb_get_ntohl(tvb, pos);
+            if (s->slot == RTDE_SLOT_PROTOCOL_VERSION)
+                values->protocol_version = value;
+            else if (s->slot == RTDE_SLOT_ACCEPTED)
+                values->accepted = value;
+            else if (s->slot == RTDE_SLOT_RECIPE_ID)
+                values->recipe_id = (int)value;
+        }
+        return pos + s->size;
+    }
+    case RTDE_STEP_PREFIXED_TEXT: {
+        guint n;
+        if (pos + s->size > stop)
+            return -1;
+        n = s->size == 1 ? tvb_get_guint8(tvb, pos) : tvb_get_ntohs(tvb, pos);
+        if (pos + s->size + (int)n > stop)
+            return -1;
+        if (tree)
+            proto_tree_add_string(tree, hf_rtde[s->field], tvb, pos, s->size + n,
+                                  (const char *)rtde_text_of(tvb, pos + s->size, n));
+        return pos + s->size + (int)n;
+    }
+    case RTDE_STEP_REST_TEXT:
+    case RTDE_STEP_NAMES: {
+        guint n = (guint)(stop > pos ? stop - pos : 0);
+        if (s->slot == RTDE_SLOT_VARIABLES) {
+            values->variables = rtde_text_of(tvb, pos, n);
+            values->variables_length = n;
+        } else if (s->slot == RTDE_SLOT_TYPES) {
+            values->types = rtde_text_of(tvb, pos, n);
+            values->types_length = n;
+        }
+        if (n)
+            proto_tree_add_item(tree, hf_rtde[s->field], tvb, pos, n, ENC_ASCII);
+        else
+            proto_tree_add_string(tree, hf_rtde[s->field], tvb, pos, 0, "");
+        return stop;
+    }
+    case RTDE_STEP_VALUES: {
+        const rtde_recipe *recipe = view->recipe;
+        if (pos + (int)recipe->size > stop)
+            return -1;
+        if (tree) {
+            proto_item_set_generated(proto_tree_add_uint(tree, hf_rtde[RTDE_HF_RECIPE_FRAME], tvb, pos, 0,
+                                                         recipe->frame));
+            rtde_add_values(tree, tvb, pos, recipe);
+        }
+        return pos + (int)recipe->size;
+    }
+    }
+    return -1;
+}
+
+/* One message: its items, what it changes in the state, and its label for the Info column. */
+static const char *
+rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int offset, int size, guint8 code,
+                     rtde_state *state, gboolean from_robot)
+{
+    int stop = offset + size, pos = offset + RTDE_HEADER_SIZE;
+    proto_item *item = proto_tree_add_item(tree, proto_rtde, tvb, offset, size, ENC_NA);
+    proto_tree *msg_tree = proto_item_add_subtree(item, ett_rtde);
+    const rtde_layout *layout;
+    rtde_values values = { 0, 0, -1, NULL, 0, NULL, 0 };
+    rtde_when when = { pinfo->num, (guint32)(tvb_raw_offset(tvb) + offset) };
+    gboolean first = !pinfo->fd->visited;
+    rtde_view view = { 0, FALSE, NULL, &rtde_no_notes };
+    rtde_notes notes = { NULL, 0, NULL };
+    guint i;
+
+    proto_tree_add_item(msg_tree, hf_rtde[RTDE_HF_LENGTH], tvb, offset, 2, ENC_BIG_ENDIAN);
+    proto_tree_add_item(msg_tree, hf_rtde[RTDE_HF_TYPE], tvb, offset + 2, 1, ENC_BIG_ENDIAN);
+    if (msg_tree)
+        proto_item_set_generated(proto_tree_add_string(msg_tree, hf_rtde[RTDE_HF_DIRECTION], tvb, offset + 2, 1,
+                                                       from_robot ? "robot to client" : "client to robot"));
+    view.protocol = rtde_protocol_at(state, when, &view.assumed);
+    layout = rtde_layout_for(code, from_robot, view.protocol);
+    if (msg_tree) {
+        proto_item *shown = proto_tree_add_uint(msg_tree, hf_rtde[RTDE_HF_PROTOCOL], tvb, offset + 2, 1,
+                                                view.protocol);
+        proto_item_set_generated(shown);
+        if (view.assumed)
+            proto_item_append_text(shown, " (assumed: no version exchange seen)");
+    }
+    if (!layout) {
+        const rtde_undocumented *named = rtde_undocumented_for(code);
+        if (msg_tree)
+            proto_item_set_generated(proto_tree_add_string(msg_tree, hf_rtde[RTDE_HF_KIND], tvb, offset + 2, 1,
+                                                           named ? named->name : "unknown"));
+        expert_add_info(pinfo, item, named ? &ei_rtde_undocumented : &ei_rtde_unknown_type);
+        return named ? named->label : wmem_strdup_printf(wmem_packet_scope(), "Unknown type %u", code);
+    }
+    if (msg_tree) {
+        proto_item_set_generated(proto_tree_add_string(msg_tree, hf_rtde[RTDE_HF_KIND], tvb, offset + 2, 1,
+                                                       layout->name));
+        proto_item_append_text(item, ": %s", layout->label);
+    }
+    if (layout->role == RTDE_ROLE_DATA) {
+        gboolean has_id = layout->recipe_id_first && size > RTDE_HEADER_SIZE;
+        view.recipe = rtde_recipe_at(state, from_robot, has_id ? tvb_get_guint8(tvb, pos) : -1, when);
+        if (!view.recipe) {
+            if (has_id)
+                proto_tree_add_item(msg_tree, hf_rtde[RTDE_HF_RECIPE_ID], tvb, pos, 1, ENC_BIG_ENDIAN);
+            expert_add_info(pinfo, item, &ei_rtde_unknown_recipe);
+            return layout->label;
+        }
+    }
+    for (i = 0; i < layout->n_steps; i++) {
+        const rtde_step *s = &layout->steps[i];
+        int next = rtde_step_at(s, msg_tree, tvb, pos, stop, &values, &view);
+        if (next < 0) {
+            expert_add_info_format(pinfo, item, &ei_rtde_short, "%s at offset %d: does not fit", s->name,
+                                   pos - offset);
+            return layout->label;
+        }
+        pos = next;
+    }
+    if (pos < stop)
+        expert_add_info_format(pinfo, item, &ei_rtde_extra, "%d bytes after the layout", stop - pos);
+    if (first) {
+        rtde_follow(state, layout, &values, when, &notes);
+        rtde_keep_notes(pinfo, when, &notes);
+        view.notes = &notes;
+    } else {
+        view.notes = rtde_kept_notes(pinfo, when);
+    }
+    for (i = 0; i < view.notes->n_refused; i++)
+        expert_add_info_format(pinfo, item, &ei_rtde_refused, "%s", view.notes->refused[i]);
+    if (view.notes->warning)
+        expert_add_info_format(pinfo, item, layout->role == RTDE_ROLE_START_REPLY ? &ei_rtde_start_refused
+                                                                                  : &ei_rtde_setup_warning,
+                               "%s", view.notes->warning);
+    return layout->label;
+}
+
+static rtde_state *
+rtde_conversation_state(packet_info *pinfo)
+{
+    conversation_t *conversation = find_or_create_conversation(pinfo);
+    rtde_state *state = (rtde_state *)conversation_get_proto_data(conversation, proto_rtde);
+    if (!state) {
+        state = rtde_state_new();
+        conversation_add_proto_data(conversation, proto_rtde, state);
+    }
+    return state;
+}
+
+static int
+dissect_rtde(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
+{
+    int len = (int)tvb_captured_length(tvb), offset = 0;
+    gboolean from_robot = pinfo->srcport == pinfo->match_uint;
+    rtde_state *state = rtde_conversation_state(pinfo);
+    wmem_strbuf_t *info = NULL;
+
+    col_set_str(pinfo->cinfo, COL_PROTOCOL, "RTDE");
+    while (offset < len) {
+        guint size;
+        guint8 code;
+        const char *label;
+        if (len - offset < RTDE_HEADER_SIZE) {
+            pinfo->desegment_offset = offset;
+            pinfo->desegment_len = DESEGMENT_ONE_MORE_SEGMENT;
+            break;
+        }
+        size = tvb_get_ntohs(tvb, offset);
+        code = tvb_get_guint8(tvb, offset + 2);
+        if (size < RTDE_HEADER_SIZE || size > RTDE_MAX_MESSAGE_LENGTH || !rtde_type_known[code]) {
+            int at = offset + 1;
+            proto_item *item;
+            while (len - at >= RTDE_HEADER_SIZE && !rtde_plausible(tvb, at))
+                at++;
+            /* Fewer bytes than a header left: the scan ends with this segment (it is not carried
+             * over, or its next part would show the same fault again). */
+            if (len - at < RTDE_HEADER_SIZE)
+                at = len;
+            item = proto_tree_add_item(tree, proto_rtde, tvb, offset, at - offset, ENC_NA);
+            expert_add_info_format(pinfo, item, &ei_rtde_bad_header, "size %u, type %u", size, code);
+            label = "Bad header";
+            offset = at;
+        } else if ((guint)(len - offset) < size) {
+            pinfo->desegment_offset = offset;
+            pinfo->desegment_len = size - (guint)(len - offset);
+            break;
+        } else {
+            label = rtde_dissect_message(tvb, pinfo, tree, offset, (int)size, code, state, from_robot);
+            offset += (int)size;
+        }
+        if (!info)
+            info = wmem_strbuf_new(wmem_packet_scope(), label);
+        else {
+            wmem_strbuf_append(info, ", ");
+            wmem_strbuf_append(info, label);
+        }
+    }
+    if (info)
+        col_add_str(pinfo->cinfo, COL_INFO, wmem_strbuf_get_str(info));
+    return len;
+}

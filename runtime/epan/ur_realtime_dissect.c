@@ -1,0 +1,321 @@
+/* The real-time dissector's runtime: frames the robot's TCP stream by each packet's int32 size
+ * (tcp_dissect_pdus reassembles a packet split over segments), chooses the packet's layout by the
+ * spec's same-size rule over the generated ur_realtime_sizes and ur_realtime_forms, and walks the
+ * layout's slots into the tree. What a client sends to the port is URScript text. The interface
+ * has no version message: the only state is the software-version preference, and nothing is kept
+ * per conversation. Without a tree only the framing and the Info column's words are worked out.
+ *
+ * It is the twin of runtime/lua/ur_realtime_dissect.lua: the same fields, tree, Info column,
+ * expert infos and preferences, so that either dissector can stand for the other. */
+/* <standalone> */
+#include <ws_version.h>
+#include <epan/packet.h>
+#include <epan/expert.h>
+#include <epan/prefs.h>
+#include <epan/proto_data.h>
+#include <epan/unit_strings.h>
+#include <epan/dissectors/packet-tcp.h>
+#include "ur_realtime_types.h"
+#define UR_REALTIME_SIZE_BYTES 4
+#define UR_REALTIME_MIN_SIZE 12
+#define UR_REALTIME_MAX_SIZE 12200
+#define UR_REALTIME_PORTS "30003"
+static int proto_ur_realtime = -1;
+static int hf_ur_realtime_message_size = -1;
+static gint ett_ur_realtime = -1;
+static const ur_realtime_form ur_realtime_forms[1];
+static const ur_realtime_size_forms ur_realtime_sizes[1];
+/* </standalone> */
+
+/* The dissector's own fields and experts, beside the spec's. */
+static int hf_ur_realtime_layout = -1;
+static int hf_ur_realtime_urscript = -1;
+static int hf_ur_realtime_raw = -1;
+
+/* Framed, and kept: a layout the spec does not know yet, not a broken stream. */
+static expert_field ei_ur_realtime_unknown_size = EI_INIT;
+static expert_field ei_ur_realtime_bad_size = EI_INIT;
+
+static dissector_handle_t ur_realtime_handle;
+
+/* Preferences: the ports, and the software version that chooses among layouts of one size. */
+static range_t *ur_realtime_pref_ports;
+static range_t *ur_realtime_registered_ports;
+static const char *ur_realtime_pref_version = "";
+static gboolean ur_realtime_version_known;
+static double ur_realtime_version;
+
+/* "5.9" or "3.15.2" (blanks around it allowed) -> the version number the forms are written in;
+ * FALSE for anything else. Numbers are doubles, as the Lua dissector's are. */
+static gboolean ur_realtime_parse_version(const char *text, double *number)
+{
+    double part[3] = {0, 0, 0};
+    const char *p = text;
+    int i;
+
+    if (p == NULL)
+        return FALSE;
+    while (g_ascii_isspace(*p))
+        p++;
+    for (i = 0; i < 3; i++) {
+        if (i == 1 && *p++ != '.')
+            return FALSE;
+        if (i == 2 && *p == '.')
+            p++;
+        if (i < 2 && !g_ascii_isdigit(*p))
+            return FALSE;
+        for (; g_ascii_isdigit(*p); p++)
+            part[i] = part[i] * 10 + (*p - '0');
+    }
+    while (g_ascii_isspace(*p))
+        p++;
+    if (*p != '\0')
+        return FALSE;
+    *number = (part[0] * 1000 + part[1]) * 1000 + MIN(part[2], 999);
+    return TRUE;
+}
+
+/* The same-size rule: the first form of the size whose versions hold the version, else the last;
+ * NULL for a size no layout has. */
+static const ur_realtime_form *ur_realtime_form_of(gint32 size)
+{
+    guint i, j;
+
+    for (i = 0; i < G_N_ELEMENTS(ur_realtime_sizes); i++) {
+        const ur_realtime_size_forms *entry = &ur_realtime_sizes[i];
+        if (entry->size != size)
+            continue;
+        if (ur_realtime_version_known) {
+            for (j = entry->first; j < entry->first + entry->count; j++) {
+                if (ur_realtime_forms[j].low <= ur_realtime_version && ur_realtime_version <= ur_realtime_forms[j].high)
+                    return &ur_realtime_forms[j];
+            }
+        }
+        return &ur_realtime_forms[entry->first + entry->count - 1];
+    }
+    return NULL;
+}
+
+/* An enum code's name: a double that holds a whole code the table names, else NULL. */
+static const char *ur_realtime_name_of(double value, const value_string *names)
+{
+    if (names == NULL || !(value >= G_MININT32 && value <= G_MAXINT32) || (double)(gint32)value != value)
+        return NULL;
+    return try_val_to_str((guint32)(gint32)value, names);
+}
+
+/* Wireshark 4.0 labels a double without the unit its BASE_UNIT_STRING names (earlier and later
+ * releases show it): there the unit is appended as the Lua dissector appends it. */
+#if WIRESHARK_VERSION_MAJOR == 4 && WIRESHARK_VERSION_MINOR == 0
+#define UR_REALTIME_APPEND_UNITS 1
+#else
+#define UR_REALTIME_APPEND_UNITS 0
+#endif
+
+/* One double, with its unit; an enum code's name after it where the form has one. */
+static void ur_realtime_add_value(proto_tree *tree, const ur_realtime_slot *slot, tvbuff_t *tvb, gint at,
+                                  const value_string *names)
+{
+    proto_item *item = proto_tree_add_item(tree, *slot->hf, tvb, at, 8, ENC_BIG_ENDIAN);
+    double value;
+    const char *name;
+
+    if (names == NULL && !(UR_REALTIME_APPEND_UNITS && slot->unit != NULL))
+        return;
+    value = tvb_get_ntohieee_double(tvb, at);
+    if (UR_REALTIME_APPEND_UNITS && slot->unit != NULL)
+        proto_item_append_text(item, "%s", unit_name_string_get_double(value, slot->unit));
+    name = ur_realtime_name_of(value, names);
+    if (name != NULL)
+        proto_item_append_text(item, " (%s)", name);
+}
+
+/* The Info column's words for a packet of a known layout: its name, and its robot mode's. */
+static const char *ur_realtime_info_of(tvbuff_t *tvb, packet_info *pinfo, const ur_realtime_form *form)
+{
+    const ur_realtime_layout *layout = form->layout;
+    const char *mode;
+
+    if (layout->info_at < 0 || layout->info_names < 0)
+        return layout->name;
+    mode = ur_realtime_name_of(tvb_get_ntohieee_double(tvb, layout->info_at), form->names[layout->info_names]);
+    return mode ? wmem_strdup_printf(pinfo->pool, "%s, %s", layout->name, mode) : layout->name;
+}
+
+/* What one call of the dissector shows in the Info column: the first packet's words and how many
+ * packets there were (the words of the others are never formatted). */
+typedef struct {
+    const char *first;
+    guint count;
+} ur_realtime_infos;
+
+/* TCP calls the dissector once per reassembled packet and again for the rest of a segment: a
+ * later call of the same frame adds its words to the earlier one's, when the column still holds
+ * them (what this dissection of the frame showed is kept in packet scope). */
+static void ur_realtime_show_info(packet_info *pinfo, const char *words)
+{
+    const char *shown = (const char *)p_get_proto_data(pinfo->pool, pinfo, proto_ur_realtime, 0);
+    const char *column = col_get_text(pinfo->cinfo, COL_INFO);
+
+    if (shown != NULL && column != NULL && g_strcmp0(shown, column) == 0) {
+        col_append_str(pinfo->cinfo, COL_INFO, ", ");
+        col_append_str(pinfo->cinfo, COL_INFO, words);
+        shown = wmem_strdup_printf(pinfo->pool, "%s, %s", shown, words);
+    } else {
+        col_add_str(pinfo->cinfo, COL_INFO, words);
+        shown = words;
+    }
+    p_set_proto_data(pinfo->pool, pinfo, proto_ur_realtime, 0, (void *)shown);
+}
+
+static guint ur_realtime_packet_size(packet_info *pinfo _U_, tvbuff_t *tvb, int offset, void *data _U_)
+{
+    gint32 size = tvb_get_ntohil(tvb, offset);
+
+    /* A size that cannot frame a packet takes the rest of the segment, where it is reported. */
+    if (size < UR_REALTIME_MIN_SIZE || size > UR_REALTIME_MAX_SIZE)
+        return (guint)tvb_reported_length_remaining(tvb, offset);
+    return (guint)size;
+}
+
+/* A packet of a size no layout has: its bytes, kept, and a warning. */
+static void ur_realtime_unknown(tvbuff_t *tvb, packet_info *pinfo, proto_item *item, proto_tree *tree, gint32 size)
+{
+    proto_item_append_text(item, ", unknown size %d", size);
+    proto_tree_add_item(tree, hf_ur_realtime_raw, tvb, UR_REALTIME_SIZE_BYTES, size - UR_REALTIME_SIZE_BYTES, ENC_NA);
+    expert_add_info_format(pinfo, item, &ei_ur_realtime_unknown_size, "Packet size %d matches no layout", size);
+}
+
+/* The slots of a known layout, each double under the packet's tree or its array's subtree. */
+static void ur_realtime_walk(tvbuff_t *tvb, proto_tree *tree, const ur_realtime_form *form)
+{
+    const ur_realtime_layout *layout = form->layout;
+    guint i, k;
+
+    for (i = 0; i < layout->n_slots; i++) {
+        const ur_realtime_slot *slot = &layout->slots[i];
+        const value_string *names = slot->names >= 0 ? form->names[slot->names] : NULL;
+        if (slot->ett == NULL) {
+            ur_realtime_add_value(tree, slot, tvb, slot->offset, names);
+            continue;
+        }
+        proto_tree *group = proto_tree_add_subtree(tree, tvb, slot->offset, 8 * slot->count, *slot->ett, NULL,
+                                                   slot->group);
+        for (k = 0; k < slot->count; k++)
+            ur_realtime_add_value(group, slot, tvb, slot->offset + 8 * k, names);
+    }
+}
+
+/* One whole packet (or, after a bad size, the rest of the segment). */
+static int dissect_ur_realtime_packet(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data)
+{
+    ur_realtime_infos *infos = (ur_realtime_infos *)data;
+    gint32 size = tvb_get_ntohil(tvb, 0);
+    gboolean first = infos->count++ == 0;
+    const ur_realtime_form *form;
+    proto_item *item;
+    proto_tree *sub;
+
+    if (size < UR_REALTIME_MIN_SIZE || size > UR_REALTIME_MAX_SIZE) {
+        item = proto_tree_add_item(tree, proto_ur_realtime, tvb, 0, -1, ENC_NA);
+        expert_add_info_format(pinfo, item, &ei_ur_realtime_bad_size,
+                               "Packet size %d cannot frame a packet (%d to %d)", size, UR_REALTIME_MIN_SIZE,
+                               UR_REALTIME_MAX_SIZE);
+        if (first)
+            infos->first = wmem_strdup_printf(pinfo->pool, "Bad size %d", size);
+        return tvb_captured_length(tvb);
+    }
+    form = ur_realtime_form_of(size);
+    if (first && form != NULL)
+        infos->first = ur_realtime_info_of(tvb, pinfo, form);
+    if (form != NULL && tree == NULL)
+        return size;
+    item = proto_tree_add_item(tree, proto_ur_realtime, tvb, 0, size, ENC_NA);
+    sub = proto_item_add_subtree(item, ett_ur_realtime);
+    proto_tree_add_item(sub, hf_ur_realtime_message_size, tvb, 0, UR_REALTIME_SIZE_BYTES, ENC_BIG_ENDIAN);
+    if (form == NULL) {
+        ur_realtime_unknown(tvb, pinfo, item, sub, size);
+        if (first)
+            infos->first = wmem_strdup_printf(pinfo->pool, "Unknown size %d", size);
+        return size;
+    }
+    proto_item_append_text(item, ", %s", form->layout->name);
+    proto_item_set_generated(proto_tree_add_string(sub, hf_ur_realtime_layout, tvb, 0, 0, form->layout->name));
+    ur_realtime_walk(tvb, sub, form);
+    return size;
+}
+
+static int dissect_ur_realtime(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
+{
+    ur_realtime_infos infos = {NULL, 0};
+
+    col_set_str(pinfo->cinfo, COL_PROTOCOL, "UR real-time");
+    if (pinfo->srcport != pinfo->match_uint) {
+        /* Client to robot: URScript text, not decoded. */
+        proto_item *item = proto_tree_add_item(tree, proto_ur_realtime, tvb, 0, -1, ENC_NA);
+        proto_tree_add_item(proto_item_add_subtree(item, ett_ur_realtime), hf_ur_realtime_urscript, tvb, 0, -1,
+                            ENC_ASCII);
+        ur_realtime_show_info(pinfo, "URScript");
+        return tvb_captured_length(tvb);
+    }
+    tcp_dissect_pdus(tvb, pinfo, tree, TRUE, UR_REALTIME_SIZE_BYTES, ur_realtime_packet_size,
+                     dissect_ur_realtime_packet, &infos);
+    if (infos.count == 1)
+        ur_realtime_show_info(pinfo, infos.first);
+    else if (infos.count > 1)
+        ur_realtime_show_info(pinfo, wmem_strdup_printf(pinfo->pool, "%s (+%u)", infos.first, infos.count - 1));
+    return tvb_captured_length(tvb);
+}
+
+/* The ports preference, applied: the dissector leaves the ports it had and takes the new ones;
+ * the version preference is read once here, not per packet. */
+static void ur_realtime_apply_prefs(void)
+{
+    ur_realtime_version_known = ur_realtime_parse_version(ur_realtime_pref_version, &ur_realtime_version);
+    if (ur_realtime_registered_ports != NULL) {
+        dissector_delete_uint_range("tcp.port", ur_realtime_registered_ports, ur_realtime_handle);
+        wmem_free(wmem_epan_scope(), ur_realtime_registered_ports);
+    }
+    ur_realtime_registered_ports = range_copy(wmem_epan_scope(), ur_realtime_pref_ports);
+    dissector_add_uint_range("tcp.port", ur_realtime_registered_ports, ur_realtime_handle);
+}
+
+/* What proto_register_ur_realtime adds to the spec's fields: the dissector, its own fields and
+ * experts, and the preferences. */
+static void ur_realtime_register_runtime(void)
+{
+    static hf_register_info hf[] = {
+        { &hf_ur_realtime_layout,
+          { "Layout", "ur_realtime.layout", FT_STRING, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+        { &hf_ur_realtime_urscript,
+          { "URScript", "ur_realtime.urscript", FT_STRING, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+        { &hf_ur_realtime_raw,
+          { "Bytes of a packet of unknown size", "ur_realtime.raw", FT_BYTES, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+    };
+    static ei_register_info ei[] = {
+        { &ei_ur_realtime_unknown_size,
+          { "ur_realtime.unknown_size", PI_PROTOCOL, PI_WARN, "Packet size matches no layout", EXPFILL } },
+        { &ei_ur_realtime_bad_size,
+          { "ur_realtime.bad_size", PI_MALFORMED, PI_ERROR, "Packet size cannot frame a packet", EXPFILL } },
+    };
+    module_t *module;
+
+    proto_register_field_array(proto_ur_realtime, hf, array_length(hf));
+    expert_register_field_array(expert_register_protocol(proto_ur_realtime), ei, array_length(ei));
+    ur_realtime_handle = register_dissector("ur_realtime", dissect_ur_realtime, proto_ur_realtime);
+
+    module = prefs_register_protocol(proto_ur_realtime, ur_realtime_apply_prefs);
+    range_convert_str(wmem_epan_scope(), &ur_realtime_pref_ports, UR_REALTIME_PORTS, 65535);
+    prefs_register_range_preference(module, "ports", "Ports", "TCP ports of the real-time interface",
+                                    &ur_realtime_pref_ports, 65535);
+    prefs_register_string_preference(module, "version", "Software version",
+                                     "The controller's software version (5.9, 3.15.2): chooses among layouts that "
+                                     "share a size; empty: the newest of them", &ur_realtime_pref_version);
+}
+
+/* Ports and Decode As. */
+static void ur_realtime_handoff_runtime(void)
+{
+    dissector_add_for_decode_as("tcp.port", ur_realtime_handle);
+    ur_realtime_apply_prefs();
+}

@@ -1,0 +1,146 @@
+"""The native dissectors of the ROS driver's reverse, trajectory and script command sockets
+(generated/epan/packet-ur-reverse.c and its siblings, in the plugin) against their Lua twins: the
+same fields registered, and on every golden vector (both directions, whole and in 1-7-byte
+segments, under its release), each socket's fuzz corpus under two releases and the cell sample,
+the same -T json layers, Info column and expert infos."""
+from __future__ import annotations
+
+import random
+import shlex
+import subprocess
+
+import pytest
+
+from tests.interface_vectors import conversation_cases
+from tests.native import harness
+from tests.native.lua_twin import compare, cuts, readable, registered, run_lua, run_native, run_sanitized, sessions
+from tests.tools.capture import Segment
+
+PORTS = {"ur_reverse": 50001, "ur_trajectory": 50003, "ur_script_command": 50004}
+NAMES = tuple(PORTS)
+CELL = harness.ROOT / "dissector" / "samples" / "cell_session.pcapng"
+CORPUS = harness.ROOT / "tests" / "fuzz" / "corpus"
+
+
+@pytest.fixture(scope="module", autouse=True)
+def built():
+    return harness.plugin("gcc")
+
+
+def _release(name: str, release) -> list[str]:
+    return ["-o", f"{name}.release:{release}"] if release is not None else []
+
+
+def _on_the_wire(segments) -> list[Segment]:
+    """A vector's segments as the capture writer takes them: the control PC listens on the port,
+    so the side on the port is the PC, not the robot."""
+    return [Segment(not s.from_robot, s.data) for s in segments]
+
+
+def _small(segments, seed: int) -> list[Segment]:
+    rng = random.Random(seed)
+    return [Segment(s.from_robot, piece) for s in segments for piece in cuts(s.payload, rng.randrange(1 << 30))]
+
+
+def _corpus_streams(name: str) -> list[list[Segment]]:
+    """Each kept fuzz input as the harness reads it (tests/c/fuzz_int32_records.c): a release byte,
+    then chunks, each a byte (bit 0: from the robot; bits 1-7: the length) and its bytes."""
+    streams = []
+    for path in sorted((CORPUS / name).iterdir()):
+        data, at, segments = path.read_bytes(), 1, []
+        while at < len(data):
+            head, at = data[at], at + 1
+            chunk, at = data[at:at + (head >> 1)], at + (head >> 1)
+            segments.append(Segment(not head & 1, chunk))      # on the wire: see _on_the_wire
+        streams.append(segments)
+    return streams
+
+
+def _vectors(name: str) -> list:
+    """(capture, tshark arguments) for each release the vectors name: its vectors, each whole and
+    in 1-7-byte segments, one session each."""
+    cases, out = conversation_cases(name), []
+    for release in sorted({c.version for c in cases}, key=str):
+        chosen = [c for c in cases if c.version == release]
+        streams = [_on_the_wire(c.segments) for c in chosen]
+        streams += [_small(_on_the_wire(c.segments), seed=i) for i, c in enumerate(chosen)]
+        out.append((sessions(streams, PORTS[name], f"{name}-{release}"), _release(name, release)))
+    return out
+
+
+def test_the_same_fields_are_registered():
+    for name in NAMES:
+        native = registered(name, lua=False)
+        assert any(f"\t{name}." in line for line in native), name
+        assert native == registered(name, lua=True), name
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_every_vector_whole_and_in_small_segments(name):
+    """Each vector in a capture of the vectors of its release (whole, and in 1-7-byte segments)."""
+    for path, args in _vectors(name):
+        shown = compare(path, name, *args)
+        assert any(shown.layers), (name, args)
+
+
+@pytest.mark.parametrize("release", [None, "1.0.0"], ids=["default-release", "release-1.0.0"])
+@pytest.mark.parametrize("name", NAMES)
+def test_the_fuzz_corpus(name, release):
+    streams = _corpus_streams(name)
+    compare(sessions(streams, PORTS[name], f"{name}-corpus-{release}"), name, *_release(name, release))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_the_cell_sample(name):
+    shown = compare(readable(CELL), name)
+    assert any(shown.layers), f"the sample has a {name} conversation"
+
+
+def test_decode_as_on_another_port():
+    case = next(c for c in conversation_cases("ur_trajectory") if c.name == "point_and_result_2_14")
+    shown = compare(sessions([_on_the_wire(case.segments)], 40003, "trajectory-40003"), "ur_trajectory",
+                    "-d", "tcp.port==40003,ur_trajectory")
+    assert any(shown.layers)
+
+
+def test_without_a_tree_the_summary_is_the_same():
+    for name in NAMES:
+        cases = conversation_cases(name)
+        path = sessions([_small(_on_the_wire(c.segments), seed=i) for i, c in enumerate(cases)], PORTS[name],
+                        f"{name}-summary")
+        native = harness.checked(run_native(path, alone=name))
+        assert native == harness.checked(run_lua(path, protocol=name)), name
+
+
+def test_the_tree_shows_scaled_values_with_their_raw_int32_and_enum_names():
+    case = next(c for c in conversation_cases("ur_reverse") if c.name == "servoj_and_idle")
+    path = sessions([_on_the_wire(case.segments)], PORTS["ur_reverse"], "reverse-words")
+    text = harness.checked(run_native(path, "-O", "ur_reverse"))
+    assert "Control mode: SERVOJ (1)" in text and "(raw 500000, scaled by MULT_JOINTSTATE = 1000000)" in text
+    fields = harness.checked(run_native(path, "-Y", "ur_reverse.control_mode == 1 && ur_reverse.target > 2000",
+                                        "-T", "fields", "-e", "ur_reverse.target_raw"))
+    assert fields.split() == ["500000,-1570796,0,3141593,-1,2147483647,0,0,0,0,0,-2147483648"]
+
+
+@pytest.mark.parametrize("name", ["int32_records_types.h", "int32_records.c"])
+def test_each_runtime_file_compiles_alone(name):
+    """runtime/epan/<file> with the lines it needs alone (its <standalone> part), strict."""
+    flags = subprocess.run(["pkg-config", "--cflags", "wireshark"], capture_output=True, text=True, check=True)
+    folder = harness.ROOT / "runtime" / "epan"
+    result = subprocess.run(["gcc", "-fsyntax-only", "-Wall", "-Wextra", "-Werror", "-Wno-unused-function", "-x", "c",
+                             *shlex.split(flags.stdout), f"-I{folder}", str(folder / name)],
+                            capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_under_asan_and_ubsan_no_report(name):
+    """The plugin built with -fsanitize=address,undefined over the captures above, with and without
+    a tree: tshark ends well, with nothing on stderr."""
+    captures = _vectors(name) + [(readable(CELL), [])]
+    captures += [(sessions(_corpus_streams(name), PORTS[name], f"{name}-corpus-{r}"), _release(name, r))
+                 for r in (None, "1.0.0")]
+    for path, args in captures:
+        for view in (["-V"], []):
+            out = harness.checked(run_sanitized(path, "-2", *view, *args))
+            assert name in out or "UR " in out, (path, view)

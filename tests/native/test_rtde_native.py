@@ -1,0 +1,219 @@
+"""The native RTDE dissector (generated/epan/packet-rtde.c, in the plugin of dissector/native) against
+its Lua twin (generated/lua/rtde.lua), each loaded alone in real tshark: the same fields, and on every
+golden exchange (whole and in 1-7-byte segments), the RTDE conversations of the cell sample and the
+fuzz corpus as TCP sessions, the same -T json layers, Info column and expert infos; then the same
+captures through the plugin built with ASan and UBSan, with no sanitizer report.
+
+Both read the capture from a file: tshark -2, which keeps the recipes of a first pass for the second
+as the GUI does, cannot read a pipe."""
+from __future__ import annotations
+
+import hashlib
+import os
+import random
+import subprocess
+from functools import lru_cache
+from pathlib import Path
+
+import pytest
+
+from tests.native import harness
+from tests.rtde_vectors import rtde_cases
+from tests.tools import capture
+from tests.tools.capture import Segment
+
+PORT = 30004
+PROTOCOLS = ["rtde"]
+CORPUS = harness.ROOT / "tests" / "fuzz" / "corpus" / "rtde"
+CELL_SAMPLE = harness.ROOT / "dissector" / "samples" / "cell_session.pcapng"
+CAPTURES = harness.BUILDS / "rtde-captures"
+
+
+def _readable(data: bytes) -> Path:
+    """The capture as a file that tshark can read as the user nobody too."""
+    CAPTURES.mkdir(parents=True, exist_ok=True)
+    CAPTURES.chmod(0o755)
+    path = CAPTURES / f"{hashlib.sha256(data).hexdigest()[:20]}.pcap"
+    if not path.exists():
+        path.write_bytes(data)
+        path.chmod(0o644)
+    return path
+
+
+def native(capture_: harness.Capture, *args: str, variant: str = "gcc") -> subprocess.CompletedProcess:
+    return harness.native_tshark(["-r", str(_readable(harness._input(capture_))), *args], variant=variant)
+
+
+def native_asan(capture_: harness.Capture, *args: str) -> subprocess.CompletedProcess:
+    """The ASan/UBSan build; the sanitizer runtime preloaded into tshark, which is not built with it."""
+    libasan = subprocess.run(["gcc", "-print-file-name=libasan.so"], capture_output=True, text=True).stdout.strip()
+    env = {"LD_PRELOAD": libasan, "ASAN_OPTIONS": "detect_leaks=0:abort_on_error=0",
+           "UBSAN_OPTIONS": "print_stacktrace=1:halt_on_error=1"}
+    path = _readable(harness._input(capture_))
+    return harness.native_tshark(["-r", str(path), *args], variant="asan", env=env)
+
+
+def lua(capture_: harness.Capture, *args: str) -> subprocess.CompletedProcess:
+    environment = {**os.environ, "HOME": str(harness._empty_home())}
+    environment.pop("XDG_CONFIG_HOME", None)
+    path = _readable(harness._input(capture_))
+    return subprocess.run(["tshark", "-r", str(path), "-X", f"lua_script:{harness.lua_plugin('rtde')}", *args],
+                          capture_output=True, env=environment, timeout=600)
+
+
+# ---- the captures: one TCP session per case, each on its own client port ----
+
+def _cut(data: bytes, rng: random.Random) -> list[bytes]:
+    out, at = [], 0
+    while at < len(data):
+        n = rng.randint(1, 7)
+        out.append(data[at:at + n])
+        at += n
+    return out
+
+
+@lru_cache(maxsize=None)
+def golden_capture(segmented: bool) -> bytes:
+    """Every golden exchange, its messages whole or cut into 1-7-byte segments (the same seed)."""
+    rng = random.Random(24)
+    frames = []
+    for i, case in enumerate(rtde_cases()):
+        pieces = ([Segment(fr, p) for fr, data in case.messages for p in _cut(data, rng)] if segmented
+                  else [Segment(fr, data) for fr, data in case.messages])
+        frames += capture.session_frames(pieces, port=PORT, client_port=51000 + i)
+    return _pcap(frames)
+
+
+def corpus_sessions() -> list[list[Segment]]:
+    """Each input of the RTDE fuzz corpus as a TCP session: after its protocol byte, pieces of a
+    direction bit and a 7-bit length (tests/c/fuzz_rtde.c), one segment each."""
+    sessions = []
+    for path in sorted(CORPUS.iterdir()):
+        data, at, pieces = path.read_bytes(), 1, []
+        while at < len(data):
+            n, from_robot = data[at] & 0x7F, bool(data[at] & 0x80)
+            piece = data[at + 1:at + 1 + n]
+            at += 1 + n
+            if piece:
+                pieces.append(Segment(from_robot, piece))
+        sessions.append(pieces)
+    return sessions
+
+
+@lru_cache(maxsize=None)
+def corpus_capture() -> bytes:
+    frames = []
+    for i, pieces in enumerate(corpus_sessions()):
+        frames += capture.session_frames(pieces, port=PORT, client_port=40000 + i)
+    return _pcap(frames)
+
+
+def _pcap(frames: list[bytes]) -> bytes:
+    CAPTURES.mkdir(parents=True, exist_ok=True)
+    path = CAPTURES / f"build-{os.getpid()}.pcap"
+    capture.write(path, frames)
+    data = path.read_bytes()
+    path.unlink()
+    return data
+
+
+def assert_same(capture_: harness.Capture, *args: str) -> harness.Shown:
+    want = harness.shown(lua, capture_, PROTOCOLS, *args)
+    got = harness.shown(native, capture_, PROTOCOLS, *args)
+    for frame, (w, g) in enumerate(zip(want.layers, got.layers), start=1):
+        assert g == w, f"frame {frame}: native {g} against Lua {w}"
+    assert len(got.layers) == len(want.layers)
+    assert got.info == want.info
+    assert got.experts == want.experts
+    # The tree's text too: labels, units after values, vector indices, generated items.
+    detail = ["-2", "-O", "rtde", "-V", *args]
+    assert harness.checked(native(capture_, *detail)) == harness.checked(lua(capture_, *detail))
+    return got
+
+
+# ---- 1: the same fields ----
+
+def _fields(result: subprocess.CompletedProcess) -> list[str]:
+    """The rtde lines of tshark -G fields (not harness.checked: the list names _ws.lua.error itself)."""
+    assert result.returncode == 0, result.stderr[-2000:]
+    lines = result.stdout.decode().splitlines()
+    return sorted(line for line in lines if line.split("\t")[:1] == ["P"] and line.endswith("\trtde")
+                  or len(line.split("\t")) > 4 and line.split("\t")[4] == "rtde")
+
+
+def test_fields_are_the_lua_dissectors():
+    """tshark -G fields lists the same protocol and fields, line for line (names, abbrevs, types,
+    bases), with the experts' names; the Lua one lists them in its table's order, hence sorted."""
+    environment = {**os.environ, "HOME": str(harness._empty_home())}
+    lua_fields = subprocess.run(["tshark", "-G", "fields", "-X", f"lua_script:{harness.lua_plugin('rtde')}"],
+                                capture_output=True, env=environment, timeout=300)
+    native_fields = _fields(harness.native_tshark(["-G", "fields"]))
+    assert len(native_fields) > 400          # the variable table is in
+    assert native_fields == _fields(lua_fields)
+
+
+# ---- 2: golden exchanges, in segments, the cell sample ----
+
+def test_golden_exchanges_show_as_in_lua():
+    shown = assert_same(golden_capture(False))
+    assert any("rtde.actual_q" in str(layer) for layer in shown.layers)
+    assert any("NOT_FOUND" in str(e) for e in shown.experts)
+
+
+def test_golden_exchanges_in_small_segments_show_as_in_lua():
+    shown = assert_same(golden_capture(True))
+    assert any("rtde.recipe_frame" in str(layer) for layer in shown.layers)
+
+
+def test_cell_sample_rtde_conversations_show_as_in_lua():
+    shown = assert_same(CELL_SAMPLE, "-Y", f"tcp.port == {PORT}")
+    assert any("rtde.actual_q" in str(layer) for layer in shown.layers)
+
+
+# ---- 3: the fuzz corpus ----
+
+def test_fuzz_corpus_as_streams_shows_as_in_lua():
+    """Each kept input of the RTDE fuzzer as a TCP session of its own: bad headers, resynchronising,
+    cut messages, refused and unknown recipes, in either direction."""
+    shown = assert_same(corpus_capture())
+    assert len(corpus_sessions()) >= 100
+    assert any("Bad message header" in str(e) or "size " in str(e) for e in shown.experts)
+
+
+# ---- 4: the same captures under ASan and UBSan ----
+
+@pytest.mark.parametrize("name", ["golden", "golden_segmented", "corpus", "cell_sample"])
+def test_sanitized_build_reports_nothing(name):
+    """The plugin built with -fsanitize=address,undefined reads every capture above, with and
+    without a tree, on one pass and on two: exit 0, nothing on stderr, and the same Info column as
+    the plain build."""
+    symbols = subprocess.run(["nm", "-D", str(harness.plugin("asan").library)], capture_output=True, text=True).stdout
+    assert "__asan_" in symbols and "__ubsan_" in symbols      # the build under test is instrumented
+    captured = {"golden": lambda: golden_capture(False), "golden_segmented": lambda: golden_capture(True),
+                "corpus": corpus_capture, "cell_sample": lambda: CELL_SAMPLE.read_bytes()}[name]()
+    for args in (["-2", "-V"], ["-T", "fields", "-e", "_ws.col.Info"]):
+        result = native_asan(captured, *args)
+        err = result.stderr.decode(errors="replace")
+        assert "Sanitizer" not in err and "runtime error" not in err, err[:4000]
+        out = harness.checked(result)
+        if args[0] == "-T":
+            assert out == harness.checked(native(captured, *args))
+        else:
+            assert "Real-Time Data Exchange (RTDE)" in out
+
+
+def test_a_message_reassembled_and_one_after_it_in_a_frame_keep_their_own_views():
+    """A data package completed by a segment that also holds a whole start reply: the frame is
+    dissected in two calls (the reassembled package, then the rest), and on the second pass each
+    message still finds its own recipe and notes (both dissectors key them by the message's place
+    in the frame's bytes, not by its rank within a call)."""
+    names = b"timestamp"
+    data = bytes([0, 12, 0x55, 1]) + bytes.fromhex("4000000000000000")
+    pieces = [Segment(False, bytes([0, 3 + 8 + len(names), 0x4F]) + bytes(8) + names),
+              Segment(True, bytes([0, 3 + 1 + 6, 0x4F, 1]) + b"DOUBLE"),
+              Segment(True, data[:5]), Segment(True, data[5:] + bytes([0, 4, 0x53, 0]))]
+    captured = _pcap(capture.session_frames(pieces, port=PORT, client_port=50000))
+    shown = assert_same(captured)
+    last = shown.layers[9]["rtde"]            # frame 10: the last segment
+    assert last[0]["rtde.timestamp"] == "2" and "_ws.expert" not in last[0]
+    assert last[1]["_ws.expert"]["_ws.expert.message"] == "the robot refused to start"
