@@ -157,10 +157,49 @@ def test_glossary_comparison_sees_a_difference(tmp_path):
         assert_same_glossary(harness.build_plugin("gcc", FIXTURE_EPAN), "urwire_fixture", twin)
 
 
+def _string_blurb_dropped_by_lua(lua: list[str] | None, native: list[str] | None) -> bool:
+    return (lua is not None and native is not None and lua[3] in ("FT_STRING", "FT_STRINGZ")
+            and lua[:7] == native[:7] and lua[7:] in ([], [""]) and native[7] != "")
+
+
+def _lua_internal_error_expert(lua: list[str] | None, native: list[str] | None) -> bool:
+    return native is None and lua is not None and lua[2].endswith(".internal_error")
+
+
+# Differences between the generated twins that are known and open, each with what fixes it. The
+# test fails on any other difference, and when a known one is gone (remove it from here).
+KNOWN_DIVERGENCES = {
+    "ur": ("Wireshark 4.0's Lua drops the description of ProtoField.string(abbr, name, base.UNICODE, desc) "
+           "(the three-argument form ProtoField.string(abbr, name, desc) keeps it): the Lua string fields have "
+           "no blurb, the native ones have the spec's", _string_blurb_dropped_by_lua),
+    "ur_dashboard": ("the Lua dissector registers the expert ur_dashboard.internal_error (its guard around the "
+                     "runtime), the native one does not", _lua_internal_error_expert),
+    "ur_script_sender": ("the Lua dissector registers the expert ur_script_sender.internal_error (its guard "
+                         "around the runtime), the native one does not", _lua_internal_error_expert),
+}
+
+
 @pytest.mark.parametrize("protocol", GENERATED or ["(none)"])
 @NO_GENERATED
 def test_generated_glossary_matches_lua(protocol):
-    assert_same_glossary(harness.plugin("gcc"), protocol, harness.lua_plugin(protocol))
+    if protocol not in KNOWN_DIVERGENCES:
+        assert_same_glossary(harness.plugin("gcc"), protocol, harness.lua_plugin(protocol))
+        return
+    reason, known = KNOWN_DIVERGENCES[protocol]
+    built, script = harness.plugin("gcc"), harness.lua_plugin(protocol)
+    open_known = []
+    for what in ("fields", "protocols"):
+        native = {r.split("\t")[2]: r.split("\t")
+                  for r in of_protocol(glossary(harness.tshark_with(built, ["-G", what])), what, protocol)}
+        lua = {r.split("\t")[2]: r.split("\t") for r in of_protocol(lua_glossary(what, script), what, protocol)}
+        for abbrev in sorted(set(native) | set(lua)):
+            if native.get(abbrev) == lua.get(abbrev):
+                continue
+            assert known(lua.get(abbrev), native.get(abbrev)), \
+                f"-G {what} of {protocol}, {abbrev}: Lua {lua.get(abbrev)}, native {native.get(abbrev)}"
+            open_known.append(abbrev)
+    assert open_known, f"the known divergence of {protocol} is fixed: remove it from KNOWN_DIVERGENCES"
+    pytest.xfail(f"{reason} ({len(open_known)}: {', '.join(open_known[:4])}...)")
 
 
 # plugin.c guards the API of newer Wireshark releases by version
