@@ -29,7 +29,13 @@ finding() {
 
 if [ -f "$source/tools/checkAPIs.pl" ]; then
     echo "== checkAPIs.pl"; ran=$((ran + 1))
-    (cd "$source" && perl tools/checkAPIs.pl "${files[@]}") || finding checkAPIs.pl
+    # As Wireshark's git pre-commit hook runs it: one file at a time, with -p where the script
+    # knows it (then a packet-*.c is also checked for abort() and terminal output).
+    precommit=()
+    grep -q "'pre-commit'" "$source/tools/checkAPIs.pl" && precommit=(-p)
+    for f in "${files[@]}"; do
+        (cd "$source" && perl tools/checkAPIs.pl "${precommit[@]}" "$f") || finding "checkAPIs.pl on $(basename "$f")"
+    done
 fi
 if [ -f "$source/tools/checkhf.pl" ]; then
     echo "== checkhf.pl"; ran=$((ran + 1))
