@@ -9,6 +9,7 @@ and keep testing the comparison itself.
 """
 from __future__ import annotations
 
+import functools
 import os
 import shutil
 import subprocess
@@ -117,6 +118,12 @@ def lua_home(scripts: list[Path], name: str) -> Path:
     return home
 
 
+@functools.lru_cache(maxsize=None)
+def native_glossary(built: harness.Plugin, what: str) -> str:
+    """`tshark -G <what>` with this build of the plugin, once per test process."""
+    return glossary(harness.tshark_with(built, ["-G", what]))
+
+
 def lua_glossary(what: str, script: Path) -> str:
     env = {**os.environ, "HOME": str(lua_home([script], script.stem))}
     env.pop("XDG_CONFIG_HOME", None)
@@ -136,7 +143,7 @@ def of_protocol(glossary: str, what: str, protocol: str) -> list[str]:
 
 def assert_same_glossary(built: harness.Plugin, protocol: str, script: Path):
     for what in ("fields", "protocols"):
-        native = of_protocol(glossary(harness.tshark_with(built, ["-G", what])), what, protocol)
+        native = of_protocol(native_glossary(built, what), what, protocol)
         lua = of_protocol(lua_glossary(what, script), what, protocol)
         assert native, f"the native plugin registers no {what} of {protocol}"
         missing = sorted(set(lua) - set(native))
@@ -190,7 +197,7 @@ def test_generated_glossary_matches_lua(protocol):
     open_known = []
     for what in ("fields", "protocols"):
         native = {r.split("\t")[2]: r.split("\t")
-                  for r in of_protocol(glossary(harness.tshark_with(built, ["-G", what])), what, protocol)}
+                  for r in of_protocol(native_glossary(built, what), what, protocol)}
         lua = {r.split("\t")[2]: r.split("\t") for r in of_protocol(lua_glossary(what, script), what, protocol)}
         for abbrev in sorted(set(native) | set(lua)):
             if native.get(abbrev) == lua.get(abbrev):
