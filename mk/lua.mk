@@ -9,10 +9,7 @@ LUA_PLUGINS := $(wildcard generated/lua/*.lua)
 BENCH_TARGETS += bench-lua
 DEMO_TARGETS += demo-lua
 
-.PHONY: test-lua bench-lua demo-lua samples screenshots install-dissector uninstall-dissector
-
-# The personal Lua plugins folder, as tshark reports it ("Personal Lua Plugins:" in 4.0+).
-LUA_PLUGIN_DIR = $(shell $(TSHARK) -G folders 2>/dev/null | awk -F'\t' '/^Personal Lua Plugins:/ {print $$2; exit}')
+.PHONY: test-lua bench-lua demo-lua samples screenshots
 
 ## test-lua: the dissector in real tshark against every vector, segmentation and mutated stream
 test-lua:
@@ -43,15 +40,3 @@ screenshots:
 ## samples: rewrite dissector/samples/ from the conformance bytes (deterministic)
 samples:
 	$(PYTHON) dissector/make_samples.py
-
-## install-dissector: copy the plugins (one file per interface) into the personal Lua plugins
-## folder of tshark/Wireshark
-install-dissector: $(LUA_PLUGINS)
-	@dir="$(LUA_PLUGIN_DIR)"; if [ -z "$$dir" ]; then echo "install-dissector: cannot find the personal Lua plugins folder with '$(TSHARK) -G folders'" >&2; exit 2; fi; \
-	mkdir -p "$$dir" && for f in $(LUA_PLUGINS); do cp $$f "$$dir/" && echo "installed $$dir/$$(basename $$f)"; done
-
-## uninstall-dissector: remove them again
-uninstall-dissector:
-	@dir="$(LUA_PLUGIN_DIR)"; for f in $(LUA_PLUGINS); do name=$$(basename $$f); \
-	if [ -n "$$dir" ] && [ -f "$$dir/$$name" ]; then rm -f "$$dir/$$name" && echo "removed $$dir/$$name"; \
-	else echo "$$name is not installed"; fi; done

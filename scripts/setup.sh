@@ -8,8 +8,10 @@ cd "$(dirname "$0")/.."
 
 # wireshark-qt, xvfb, xdotool and imagemagick: the GUI smoke test and `make screenshots` run the
 # real Wireshark GUI on a virtual X server.
+# cmake and wireshark-dev (headers, libwireshark-dev, WiresharkConfig.cmake): the native plugin,
+# built against the installed Wireshark by `make native-dissector`.
 APT_PACKAGES=(tshark clang lua5.2 lua5.3 lua5.4 libclang-rt-14-dev llvm make gcc
-              wireshark-qt xvfb xdotool imagemagick)
+              wireshark-qt xvfb xdotool imagemagick cmake wireshark-dev)
 
 missing=()
 for pkg in "${APT_PACKAGES[@]}"; do

@@ -563,7 +563,7 @@ typedef struct lines_decision {
 /* The decisions of one frame in one direction, by the line's offset in the data it came in. */
 typedef struct lines_frame {
     bool skipping;                        /* the direction was inside a line too long when the frame came */
-    wmem_tree_t *lines;
+    wmem_tree_t *lines;                   /* lines_decision_t by offset; NULL until the first line */
 } lines_frame_t;
 
 static lines_conversation_t *lines_conversation(packet_info *pinfo)
@@ -691,7 +691,7 @@ static lines_frame_t *lines_frame(packet_info *pinfo, lines_conversation_t *c, b
     if (frame == NULL) {
         frame = wmem_new(wmem_file_scope(), lines_frame_t);
         frame->skipping = c->skipping[from_robot];
-        frame->lines = wmem_tree_new(wmem_file_scope());
+        frame->lines = NULL;                          /* made with the frame's first line */
         p_add_proto_data(wmem_file_scope(), pinfo, proto_ur_dashboard, from_robot, frame);
     }
     return frame;
@@ -757,11 +757,13 @@ static int dissect_ur_dashboard(tvbuff_t *tvb, packet_info *pinfo, proto_tree *t
                 skipping = nl < 0;
                 at = nl >= 0 ? nl + 1 : n;
             } else {
-                lines_decision_t *d = first_pass ? NULL
+                lines_decision_t *d = first_pass || frame->lines == NULL ? NULL
                     : (lines_decision_t *)wmem_tree_lookup32(frame->lines, (guint32)at);
                 if (d == NULL) {
                     d = requests ? lines_decide_command(c, buf + at, (size_t)len)
                                  : lines_decide_reply(c, buf + at, (size_t)len);
+                    if (frame->lines == NULL)
+                        frame->lines = wmem_tree_new(wmem_file_scope());
                     wmem_tree_insert32(frame->lines, (guint32)at, d);
                 }
                 if (info != NULL || tree != NULL) {    /* the text, only where it is shown */
@@ -789,37 +791,37 @@ void proto_register_ur_dashboard(void)
         { &hf_ur_dashboard_command,
           { "Command", "ur_dashboard.command",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "The command line as the client sent it.", HFILL }
         },
         { &hf_ur_dashboard_command_name,
           { "Command name", "ur_dashboard.command_name",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "The command a command line is, or the command a reply answers.", HFILL }
         },
         { &hf_ur_dashboard_argument,
           { "Argument", "ur_dashboard.argument",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "What follows the command's text and a space (a program's path, a popup's text).", HFILL }
         },
         { &hf_ur_dashboard_available,
           { "Available", "ur_dashboard.available",
             FT_BOOLEAN, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "False when the conversation's software version lacks the command.", HFILL }
         },
         { &hf_ur_dashboard_reply,
           { "Reply", "ur_dashboard.reply",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "The reply line as the server sent it (the banner too).", HFILL }
         },
         { &hf_ur_dashboard_reply_name,
           { "Reply meaning", "ur_dashboard.reply_name",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "Which of the command's documented replies it is.", HFILL }
         },
         { &hf_ur_dashboard_error,
           { "Says an error", "ur_dashboard.error",
             FT_BOOLEAN, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "True when the reply says that the command failed.", HFILL }
         },
     };
     static gint *ett[] = {

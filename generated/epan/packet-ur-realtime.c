@@ -36,49 +36,61 @@ void proto_reg_handoff_ur_realtime(void);
 static int proto_ur_realtime = -1;
 
 /* One field per spec field, a double each (codes of enums included), and the size field. */
-static int hf_ur_realtime_message_size = -1;
-static int hf_ur_realtime_time = -1;
-static int hf_ur_realtime_q_target = -1;
-static int hf_ur_realtime_qd_target = -1;
-static int hf_ur_realtime_qdd_target = -1;
-static int hf_ur_realtime_i_target = -1;
-static int hf_ur_realtime_m_target = -1;
-static int hf_ur_realtime_q_actual = -1;
-static int hf_ur_realtime_qd_actual = -1;
-static int hf_ur_realtime_i_actual = -1;
-static int hf_ur_realtime_i_control = -1;
+static int hf_ur_realtime_message_size = -1;  /* Message size. Total message length in bytes, this field included. */
+static int hf_ur_realtime_time = -1;  /* Time (s). Time elapsed since the controller was started. */
+static int hf_ur_realtime_q_target = -1;  /* Target joint position (rad). */
+static int hf_ur_realtime_qd_target = -1;  /* Target joint velocity (rad/s). */
+static int hf_ur_realtime_qdd_target = -1;  /* Target joint acceleration (rad/s²). */
+static int hf_ur_realtime_i_target = -1;  /* Target joint current (A). */
+static int hf_ur_realtime_m_target = -1;  /* Target joint moment (Nm). Target joint torques. */
+static int hf_ur_realtime_q_actual = -1;  /* Actual joint position (rad). */
+static int hf_ur_realtime_qd_actual = -1;  /* Actual joint velocity (rad/s). */
+static int hf_ur_realtime_i_actual = -1;  /* Actual joint current (A). */
+static int hf_ur_realtime_i_control = -1;  /* Joint control current (A). */
+/* Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a rotation
+ * vector in rad). */
 static int hf_ur_realtime_tool_vector_actual = -1;
+/* Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, then rad/s). */
 static int hf_ur_realtime_tcp_speed_actual = -1;
-static int hf_ur_realtime_tcp_force = -1;
+static int hf_ur_realtime_tcp_force = -1;  /* TCP force. Generalised forces in the TCP (N, then Nm). */
+/* Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a rotation
+ * vector in rad). */
 static int hf_ur_realtime_tool_vector_target = -1;
+/* Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, then rad/s). */
 static int hf_ur_realtime_tcp_speed_target = -1;
+/* Digital input bits. Current state of the digital inputs, as a double whose integer value holds
+ * the bits (5.0 is bits 0 and 2). */
 static int hf_ur_realtime_digital_input_bits = -1;
-static int hf_ur_realtime_motor_temperatures = -1;
-static int hf_ur_realtime_controller_timer = -1;
-static int hf_ur_realtime_test_value = -1;
-static int hf_ur_realtime_robot_mode = -1;
-static int hf_ur_realtime_joint_modes = -1;
-static int hf_ur_realtime_safety_mode = -1;
+static int hf_ur_realtime_motor_temperatures = -1;  /* Motor temperature (°C). */
+static int hf_ur_realtime_controller_timer = -1;  /* Controller timer. Controller real-time thread execution time. */
+static int hf_ur_realtime_test_value = -1;  /* Test value. A value used by Universal Robots software only. */
+static int hf_ur_realtime_robot_mode = -1;  /* Robot mode. */
+static int hf_ur_realtime_joint_modes = -1;  /* Joint mode. */
+static int hf_ur_realtime_safety_mode = -1;  /* Safety mode. */
+/* Tool accelerometer (m/s²). Tool x, y and z accelerometer values. */
 static int hf_ur_realtime_tool_accelerometer_values = -1;
-static int hf_ur_realtime_speed_scaling = -1;
-static int hf_ur_realtime_linear_momentum_norm = -1;
-static int hf_ur_realtime_v_main = -1;
-static int hf_ur_realtime_v_robot = -1;
-static int hf_ur_realtime_i_robot = -1;
-static int hf_ur_realtime_v_actual = -1;
+static int hf_ur_realtime_speed_scaling = -1;  /* Speed scaling. Speed scaling of the trajectory limiter. */
+static int hf_ur_realtime_linear_momentum_norm = -1;  /* Linear momentum norm. Norm of Cartesian linear momentum. */
+static int hf_ur_realtime_v_main = -1;  /* Main voltage (V). Masterboard: main voltage. */
+static int hf_ur_realtime_v_robot = -1;  /* Robot voltage (V). Masterboard: robot voltage (48 V). */
+static int hf_ur_realtime_i_robot = -1;  /* Robot current (A). Masterboard: robot current. */
+static int hf_ur_realtime_v_actual = -1;  /* Actual joint voltage (V). */
+/* Digital outputs. Current state of the digital outputs, as a double whose integer value holds the
+ * bits. */
 static int hf_ur_realtime_digital_outputs = -1;
-static int hf_ur_realtime_program_state = -1;
-static int hf_ur_realtime_elbow_position = -1;
-static int hf_ur_realtime_elbow_velocity = -1;
-static int hf_ur_realtime_safety_status = -1;
-static int hf_ur_realtime_payload_mass = -1;
-static int hf_ur_realtime_payload_cog = -1;
+static int hf_ur_realtime_program_state = -1;  /* Program state. */
+static int hf_ur_realtime_elbow_position = -1;  /* Elbow position (m). */
+static int hf_ur_realtime_elbow_velocity = -1;  /* Elbow velocity (m/s). */
+static int hf_ur_realtime_safety_status = -1;  /* Safety status. */
+static int hf_ur_realtime_payload_mass = -1;  /* Payload mass (kg). */
+static int hf_ur_realtime_payload_cog = -1;  /* Payload centre of gravity (m). */
+/* Payload inertia. Payload inertia matrix (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) in kg·m². */
 static int hf_ur_realtime_payload_inertia = -1;
-static int hf_ur_realtime_unused_1 = -1;
-static int hf_ur_realtime_unused_2 = -1;
-static int hf_ur_realtime_unused_3 = -1;
-static int hf_ur_realtime_unused_4 = -1;
-static int hf_ur_realtime_unused_5 = -1;
+static int hf_ur_realtime_unused_1 = -1;  /* Unused 1. Doubles UR marks unused. */
+static int hf_ur_realtime_unused_2 = -1;  /* Unused 2. Doubles UR marks unused. */
+static int hf_ur_realtime_unused_3 = -1;  /* Unused 3. Doubles UR marks unused. */
+static int hf_ur_realtime_unused_4 = -1;  /* Unused 4. Doubles UR marks unused. */
+static int hf_ur_realtime_unused_5 = -1;  /* Unused 5. Doubles UR marks unused. */
 
 static gint ett_ur_realtime = -1;
 static gint ett_ur_realtime_q_target = -1;
@@ -713,6 +725,37 @@ static const ur_realtime_size_forms ur_realtime_sizes[] = {
     { 1220, 11, 1 },
 };
 
+/* ---- runtime/epan/dotted_version.c ---- */
+/* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around
+ * it allowed, a missing third number 0. It reads what the Lua dissectors' pattern
+ * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads, into doubles as Lua's numbers are. */
+
+/* The three numbers of the version; FALSE for text that is not one. */
+static gboolean dotted_version_parts(const char *text, double part[3])
+{
+    const char *p = text;
+    int i;
+
+    if (p == NULL)
+        return FALSE;
+    while (g_ascii_isspace(*p))
+        p++;
+    for (i = 0; i < 3; i++) {
+        part[i] = 0;
+        if (i == 1 && *p++ != '.')
+            return FALSE;
+        if (i == 2 && *p == '.')
+            p++;
+        if (i < 2 && !g_ascii_isdigit(*p))
+            return FALSE;
+        for (; g_ascii_isdigit(*p); p++)
+            part[i] = part[i] * 10 + (*p - '0');
+    }
+    while (g_ascii_isspace(*p))
+        p++;
+    return *p == '\0';
+}
+
 /* ---- runtime/epan/ur_realtime_dissect.c ---- */
 /* The real-time dissector's runtime: frames the robot's TCP stream by each packet's int32 size
  * (tcp_dissect_pdus reassembles a packet split over segments), chooses the packet's layout by the
@@ -729,7 +772,8 @@ static int hf_ur_realtime_layout = -1;
 static int hf_ur_realtime_urscript = -1;
 static int hf_ur_realtime_raw = -1;
 
-/* Framed, and kept: a layout the spec does not know yet, not a broken stream. */
+/* A size no layout has (framed and kept: a layout the spec does not know yet, not a broken
+ * stream), and a size that cannot frame a packet. */
 static expert_field ei_ur_realtime_unknown_size = EI_INIT;
 static expert_field ei_ur_realtime_bad_size = EI_INIT;
 
@@ -742,31 +786,13 @@ static const char *ur_realtime_pref_version = "";
 static gboolean ur_realtime_version_known;
 static double ur_realtime_version;
 
-/* "5.9" or "3.15.2" (blanks around it allowed) -> the version number the forms are written in;
- * FALSE for anything else. Numbers are doubles, as the Lua dissector's are. */
+/* The version preference's text -> the version number the forms are written in (a bugfix above
+ * 999 counts as 999); FALSE for text that is not a version. */
 static gboolean ur_realtime_parse_version(const char *text, double *number)
 {
-    double part[3] = {0, 0, 0};
-    const char *p = text;
-    int i;
+    double part[3];
 
-    if (p == NULL)
-        return FALSE;
-    while (g_ascii_isspace(*p))
-        p++;
-    for (i = 0; i < 3; i++) {
-        if (i == 1 && *p++ != '.')
-            return FALSE;
-        if (i == 2 && *p == '.')
-            p++;
-        if (i < 2 && !g_ascii_isdigit(*p))
-            return FALSE;
-        for (; g_ascii_isdigit(*p); p++)
-            part[i] = part[i] * 10 + (*p - '0');
-    }
-    while (g_ascii_isspace(*p))
-        p++;
-    if (*p != '\0')
+    if (!dotted_version_parts(text, part))
         return FALSE;
     *number = (part[0] * 1000 + part[1]) * 1000 + MIN(part[2], 999);
     return TRUE;
@@ -942,6 +968,21 @@ static int dissect_ur_realtime_packet(tvbuff_t *tvb, packet_info *pinfo, proto_t
     return size;
 }
 
+/* Without TCP reassembly (its preference off) each segment is read on its own, as the Lua twin
+ * reads it: its whole packets, up to the first it does not hold whole, or a bad size. (Given a cut
+ * packet, tcp_dissect_pdus would mark the segments after it as its continuation.) */
+static void ur_realtime_each_whole_packet(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_realtime_infos *infos)
+{
+    gint offset = 0, left;
+
+    while ((left = tvb_captured_length_remaining(tvb, offset)) >= UR_REALTIME_SIZE_BYTES) {
+        guint size = ur_realtime_packet_size(pinfo, tvb, offset, NULL);
+        if (size > (guint)left)
+            break;
+        offset += dissect_ur_realtime_packet(tvb_new_subset_length(tvb, offset, size), pinfo, tree, infos);
+    }
+}
+
 static int dissect_ur_realtime(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
 {
     ur_realtime_infos infos = {NULL, 0};
@@ -955,8 +996,11 @@ static int dissect_ur_realtime(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tr
         ur_realtime_show_info(pinfo, "URScript");
         return tvb_captured_length(tvb);
     }
-    tcp_dissect_pdus(tvb, pinfo, tree, TRUE, UR_REALTIME_SIZE_BYTES, ur_realtime_packet_size,
-                     dissect_ur_realtime_packet, &infos);
+    if (pinfo->can_desegment)
+        tcp_dissect_pdus(tvb, pinfo, tree, TRUE, UR_REALTIME_SIZE_BYTES, ur_realtime_packet_size,
+                         dissect_ur_realtime_packet, &infos);
+    else
+        ur_realtime_each_whole_packet(tvb, pinfo, tree, &infos);
     if (infos.count == 1)
         ur_realtime_show_info(pinfo, infos.first);
     else if (infos.count > 1)

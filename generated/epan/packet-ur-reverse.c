@@ -7,10 +7,10 @@
  * commands: a read timeout, six targets and a control mode, every field a big-endian int32, the
  * targets scaled by 1,000,000.
  *
- * Scaled fields show their value, with their raw int32 as <field>_raw beside it. The driver
- * release preference (default 2.14) chooses the record layouts. The generated part
- * declares the handles, the enum names and each direction's layouts by release; the hand-written
- * runtime joined into it frames the TCP stream and walks them.
+ * Scaled fields show their value, with their raw int32 as <field>_raw beside it. The driver release
+ * preference (default 2.14) chooses the record layouts. The generated part declares the handles,
+ * the enum names and each direction's layouts by release; the hand-written runtime joined into it
+ * frames the TCP stream and walks them.
  *
  * SPDX-License-Identifier: MIT
  */
@@ -32,11 +32,14 @@ void proto_reg_handoff_ur_reverse(void);
 
 static int proto_ur_reverse = -1;
 
-static int hf_ur_reverse_keepalive = -1;
+static int hf_ur_reverse_keepalive = -1;  /* Keepalive count. A count the script checks to know the PC is alive. */
+/* Read timeout. The timeout in milliseconds of the script's next read from this socket. */
 static int hf_ur_reverse_read_timeout = -1;
+/* Motion target. Joint positions (rad, SERVOJ), joint velocities (rad/s, SPEEDJ), a pose or its
+ * velocity, or trajectory and freedrive instructions, as the control mode says. */
 static int hf_ur_reverse_target = -1;
 static int hf_ur_reverse_target_raw = -1;
-static int hf_ur_reverse_control_mode = -1;
+static int hf_ur_reverse_control_mode = -1;  /* Control mode. */
 
 static gint ett_ur_reverse = -1;
 static gint ett_ur_reverse_scaled = -1;
@@ -130,6 +133,37 @@ static const int32_records_interface int32_records_spec = {
     ur_reverse_ports, array_length(ur_reverse_ports)
 };
 
+/* ---- runtime/epan/dotted_version.c ---- */
+/* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around
+ * it allowed, a missing third number 0. It reads what the Lua dissectors' pattern
+ * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads, into doubles as Lua's numbers are. */
+
+/* The three numbers of the version; FALSE for text that is not one. */
+static gboolean dotted_version_parts(const char *text, double part[3])
+{
+    const char *p = text;
+    int i;
+
+    if (p == NULL)
+        return FALSE;
+    while (g_ascii_isspace(*p))
+        p++;
+    for (i = 0; i < 3; i++) {
+        part[i] = 0;
+        if (i == 1 && *p++ != '.')
+            return FALSE;
+        if (i == 2 && *p == '.')
+            p++;
+        if (i < 2 && !g_ascii_isdigit(*p))
+            return FALSE;
+        for (; g_ascii_isdigit(*p); p++)
+            part[i] = part[i] * 10 + (*p - '0');
+    }
+    while (g_ascii_isspace(*p))
+        p++;
+    return *p == '\0';
+}
+
 /* ---- runtime/epan/int32_records.c ---- */
 /* A dissector of fixed int32 records (the ROS driver's reverse, trajectory and script command
  * sockets): each direction cut into records of the size the driver release gives (a preference;
@@ -153,32 +187,13 @@ static dissector_handle_t int32_records_handle;
 static const char *int32_records_pref_release = "";
 static guint32 int32_records_release = INT32_RECORDS_DEFAULT_RELEASE;
 
-/* "2.10" or "2.10.0" (blanks around it allowed) -> (major * 1000 + minor) * 1000 + patch; the
- * default release for anything else. Numbers are doubles, as the Lua dissector's are. */
+/* The release preference's text -> (major * 1000 + minor) * 1000 + patch; the default release
+ * for text that is not a release. */
 static guint32 int32_records_parse_release(const char *text)
 {
-    double part[3] = {0, 0, 0};
-    const char *p = text;
-    double number;
-    int i;
+    double part[3], number;
 
-    if (p == NULL)
-        return INT32_RECORDS_DEFAULT_RELEASE;
-    while (g_ascii_isspace(*p))
-        p++;
-    for (i = 0; i < 3; i++) {
-        if (i == 1 && *p++ != '.')
-            return INT32_RECORDS_DEFAULT_RELEASE;
-        if (i == 2 && *p == '.')
-            p++;
-        if (i < 2 && !g_ascii_isdigit(*p))
-            return INT32_RECORDS_DEFAULT_RELEASE;
-        for (; g_ascii_isdigit(*p); p++)
-            part[i] = part[i] * 10 + (*p - '0');
-    }
-    while (g_ascii_isspace(*p))
-        p++;
-    if (*p != '\0')
+    if (!dotted_version_parts(text, part))
         return INT32_RECORDS_DEFAULT_RELEASE;
     number = (part[0] * 1000 + part[1]) * 1000 + part[2];
     return number < G_MAXUINT32 ? (guint32)number : G_MAXUINT32;
@@ -251,6 +266,18 @@ static int int32_records_dissect_record(tvbuff_t *tvb, packet_info *pinfo _U_, p
     return layout->size;
 }
 
+/* Without TCP reassembly (its preference off) each segment is read on its own, as the Lua twin
+ * reads it: its whole records, then the part of one it holds. (Given a cut record,
+ * tcp_dissect_pdus would mark the segments after it as its continuation.) */
+static void int32_records_each_whole_record(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree,
+                                            int32_records_call *call)
+{
+    guint offset = 0;
+
+    while (offset < tvb_captured_length(tvb))
+        offset += int32_records_dissect_record(tvb_new_subset_remaining(tvb, offset), pinfo, tree, call);
+}
+
 static int dissect_int32_records(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
 {
     gboolean from_robot = pinfo->destport == pinfo->match_uint;
@@ -263,7 +290,12 @@ static int dissect_int32_records(tvbuff_t *tvb, packet_info *pinfo, proto_tree *
         return tvb_captured_length(tvb);
     }
     call.layout = int32_records_layout_of(call.record, int32_records_release);
-    tcp_dissect_pdus(tvb, pinfo, tree, TRUE, 1, int32_records_size, int32_records_dissect_record, &call);
+    /* The size is known without reading: fixed_len 1 has TCP ask for exactly the bytes a cut
+     * record lacks, as the Lua twin asks. */
+    if (pinfo->can_desegment)
+        tcp_dissect_pdus(tvb, pinfo, tree, TRUE, 1, int32_records_size, int32_records_dissect_record, &call);
+    else
+        int32_records_each_whole_record(tvb, pinfo, tree, &call);
     if (call.count == 1)
         col_add_str(pinfo->cinfo, COL_INFO, call.record->label);
     else if (call.count > 1)

@@ -300,7 +300,7 @@ typedef struct lines_decision {
 /* The decisions of one frame in one direction, by the line's offset in the data it came in. */
 typedef struct lines_frame {
     bool skipping;                        /* the direction was inside a line too long when the frame came */
-    wmem_tree_t *lines;
+    wmem_tree_t *lines;                   /* lines_decision_t by offset; NULL until the first line */
 } lines_frame_t;
 
 static lines_conversation_t *lines_conversation(packet_info *pinfo)
@@ -428,7 +428,7 @@ static lines_frame_t *lines_frame(packet_info *pinfo, lines_conversation_t *c, b
     if (frame == NULL) {
         frame = wmem_new(wmem_file_scope(), lines_frame_t);
         frame->skipping = c->skipping[from_robot];
-        frame->lines = wmem_tree_new(wmem_file_scope());
+        frame->lines = NULL;                          /* made with the frame's first line */
         p_add_proto_data(wmem_file_scope(), pinfo, proto_ur_script_sender, from_robot, frame);
     }
     return frame;
@@ -494,11 +494,13 @@ static int dissect_ur_script_sender(tvbuff_t *tvb, packet_info *pinfo, proto_tre
                 skipping = nl < 0;
                 at = nl >= 0 ? nl + 1 : n;
             } else {
-                lines_decision_t *d = first_pass ? NULL
+                lines_decision_t *d = first_pass || frame->lines == NULL ? NULL
                     : (lines_decision_t *)wmem_tree_lookup32(frame->lines, (guint32)at);
                 if (d == NULL) {
                     d = requests ? lines_decide_command(c, buf + at, (size_t)len)
                                  : lines_decide_reply(c, buf + at, (size_t)len);
+                    if (frame->lines == NULL)
+                        frame->lines = wmem_tree_new(wmem_file_scope());
                     wmem_tree_insert32(frame->lines, (guint32)at, d);
                 }
                 if (info != NULL || tree != NULL) {    /* the text, only where it is shown */
@@ -526,37 +528,37 @@ void proto_register_ur_script_sender(void)
         { &hf_ur_script_sender_command,
           { "Request", "ur_script_sender.command",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "The request line the robot sent.", HFILL }
         },
         { &hf_ur_script_sender_command_name,
           { "Request name", "ur_script_sender.command_name",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "The request a line is, or the request a program line answers.", HFILL }
         },
         { &hf_ur_script_sender_argument,
           { "Argument", "ur_script_sender.argument",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "What follows the request's text and a space (none is defined).", HFILL }
         },
         { &hf_ur_script_sender_available,
           { "Available", "ur_script_sender.available",
             FT_BOOLEAN, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "False when the conversation's version lacks the request.", HFILL }
         },
         { &hf_ur_script_sender_reply,
           { "Program line", "ur_script_sender.reply",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "One line of the URScript program the control PC sends.", HFILL }
         },
         { &hf_ur_script_sender_reply_name,
           { "Line kind", "ur_script_sender.reply_name",
             FT_STRING, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "What the line is: a line of the program.", HFILL }
         },
         { &hf_ur_script_sender_error,
           { "Says an error", "ur_script_sender.error",
             FT_BOOLEAN, BASE_NONE, NULL, 0x0,
-            NULL, HFILL }
+            "Always false: the program has no error replies.", HFILL }
         },
     };
     static gint *ett[] = {

@@ -7,10 +7,10 @@
  * points (positions, velocities, accelerations, a duration, a blend radius and a motion type),
  * every field a big-endian int32; the robot answers with the result when the trajectory ends.
  *
- * Scaled fields show their value, with their raw int32 as <field>_raw beside it. The driver
- * release preference (default 2.14) chooses the record layouts. The generated part
- * declares the handles, the enum names and each direction's layouts by release; the hand-written
- * runtime joined into it frames the TCP stream and walks them.
+ * Scaled fields show their value, with their raw int32 as <field>_raw beside it. The driver release
+ * preference (default 2.14) chooses the record layouts. The generated part declares the handles,
+ * the enum names and each direction's layouts by release; the hand-written runtime joined into it
+ * frames the TCP stream and walks them.
  *
  * SPDX-License-Identifier: MIT
  */
@@ -32,18 +32,24 @@ void proto_reg_handoff_ur_trajectory(void);
 
 static int proto_ur_trajectory = -1;
 
+/* Positions. Joint positions (rad) or a pose (m, m, m, rad, rad, rad), as the motion type says. */
 static int hf_ur_trajectory_positions = -1;
 static int hf_ur_trajectory_positions_raw = -1;
+/* Velocities. Joint velocities of a spline point, a via point of a circular move, or a joint hint. */
 static int hf_ur_trajectory_velocities = -1;
 static int hf_ur_trajectory_velocities_raw = -1;
+/* Accelerations. Joint accelerations of a spline point; else velocity, acceleration and a mode or
+ * flag first. */
 static int hf_ur_trajectory_accelerations = -1;
 static int hf_ur_trajectory_accelerations_raw = -1;
-static int hf_ur_trajectory_duration = -1;
+static int hf_ur_trajectory_duration = -1;  /* Segment duration (s). */
 static int hf_ur_trajectory_duration_raw = -1;
+/* Blend radius (m). The blend radius of a move; for a spline point, the spline type (1 cubic, 2
+ * quintic) unscaled. */
 static int hf_ur_trajectory_blend_radius = -1;
 static int hf_ur_trajectory_blend_radius_raw = -1;
-static int hf_ur_trajectory_motion_type = -1;
-static int hf_ur_trajectory_result = -1;
+static int hf_ur_trajectory_motion_type = -1;  /* Motion type. */
+static int hf_ur_trajectory_result = -1;  /* Result. */
 
 static gint ett_ur_trajectory = -1;
 static gint ett_ur_trajectory_scaled = -1;
@@ -176,6 +182,37 @@ static const int32_records_interface int32_records_spec = {
     ur_trajectory_ports, array_length(ur_trajectory_ports)
 };
 
+/* ---- runtime/epan/dotted_version.c ---- */
+/* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around
+ * it allowed, a missing third number 0. It reads what the Lua dissectors' pattern
+ * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads, into doubles as Lua's numbers are. */
+
+/* The three numbers of the version; FALSE for text that is not one. */
+static gboolean dotted_version_parts(const char *text, double part[3])
+{
+    const char *p = text;
+    int i;
+
+    if (p == NULL)
+        return FALSE;
+    while (g_ascii_isspace(*p))
+        p++;
+    for (i = 0; i < 3; i++) {
+        part[i] = 0;
+        if (i == 1 && *p++ != '.')
+            return FALSE;
+        if (i == 2 && *p == '.')
+            p++;
+        if (i < 2 && !g_ascii_isdigit(*p))
+            return FALSE;
+        for (; g_ascii_isdigit(*p); p++)
+            part[i] = part[i] * 10 + (*p - '0');
+    }
+    while (g_ascii_isspace(*p))
+        p++;
+    return *p == '\0';
+}
+
 /* ---- runtime/epan/int32_records.c ---- */
 /* A dissector of fixed int32 records (the ROS driver's reverse, trajectory and script command
  * sockets): each direction cut into records of the size the driver release gives (a preference;
@@ -199,32 +236,13 @@ static dissector_handle_t int32_records_handle;
 static const char *int32_records_pref_release = "";
 static guint32 int32_records_release = INT32_RECORDS_DEFAULT_RELEASE;
 
-/* "2.10" or "2.10.0" (blanks around it allowed) -> (major * 1000 + minor) * 1000 + patch; the
- * default release for anything else. Numbers are doubles, as the Lua dissector's are. */
+/* The release preference's text -> (major * 1000 + minor) * 1000 + patch; the default release
+ * for text that is not a release. */
 static guint32 int32_records_parse_release(const char *text)
 {
-    double part[3] = {0, 0, 0};
-    const char *p = text;
-    double number;
-    int i;
+    double part[3], number;
 
-    if (p == NULL)
-        return INT32_RECORDS_DEFAULT_RELEASE;
-    while (g_ascii_isspace(*p))
-        p++;
-    for (i = 0; i < 3; i++) {
-        if (i == 1 && *p++ != '.')
-            return INT32_RECORDS_DEFAULT_RELEASE;
-        if (i == 2 && *p == '.')
-            p++;
-        if (i < 2 && !g_ascii_isdigit(*p))
-            return INT32_RECORDS_DEFAULT_RELEASE;
-        for (; g_ascii_isdigit(*p); p++)
-            part[i] = part[i] * 10 + (*p - '0');
-    }
-    while (g_ascii_isspace(*p))
-        p++;
-    if (*p != '\0')
+    if (!dotted_version_parts(text, part))
         return INT32_RECORDS_DEFAULT_RELEASE;
     number = (part[0] * 1000 + part[1]) * 1000 + part[2];
     return number < G_MAXUINT32 ? (guint32)number : G_MAXUINT32;
@@ -297,6 +315,18 @@ static int int32_records_dissect_record(tvbuff_t *tvb, packet_info *pinfo _U_, p
     return layout->size;
 }
 
+/* Without TCP reassembly (its preference off) each segment is read on its own, as the Lua twin
+ * reads it: its whole records, then the part of one it holds. (Given a cut record,
+ * tcp_dissect_pdus would mark the segments after it as its continuation.) */
+static void int32_records_each_whole_record(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree,
+                                            int32_records_call *call)
+{
+    guint offset = 0;
+
+    while (offset < tvb_captured_length(tvb))
+        offset += int32_records_dissect_record(tvb_new_subset_remaining(tvb, offset), pinfo, tree, call);
+}
+
 static int dissect_int32_records(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
 {
     gboolean from_robot = pinfo->destport == pinfo->match_uint;
@@ -309,7 +339,12 @@ static int dissect_int32_records(tvbuff_t *tvb, packet_info *pinfo, proto_tree *
         return tvb_captured_length(tvb);
     }
     call.layout = int32_records_layout_of(call.record, int32_records_release);
-    tcp_dissect_pdus(tvb, pinfo, tree, TRUE, 1, int32_records_size, int32_records_dissect_record, &call);
+    /* The size is known without reading: fixed_len 1 has TCP ask for exactly the bytes a cut
+     * record lacks, as the Lua twin asks. */
+    if (pinfo->can_desegment)
+        tcp_dissect_pdus(tvb, pinfo, tree, TRUE, 1, int32_records_size, int32_records_dissect_record, &call);
+    else
+        int32_records_each_whole_record(tvb, pinfo, tree, &call);
     if (call.count == 1)
         col_add_str(pinfo->cinfo, COL_INFO, call.record->label);
     else if (call.count > 1)

@@ -298,6 +298,16 @@ local spec = {
         reply_name = "Reply meaning",
         error = "Says an error",
     },
+    -- What each field is (its description in Wireshark).
+    docs = {
+        command = "The command line as the client sent it.",
+        command_name = "The command a command line is, or the command a reply answers.",
+        argument = "What follows the command's text and a space (a program's path, a popup's text).",
+        available = "False when the conversation's software version lacks the command.",
+        reply = "The reply line as the server sent it (the banner too).",
+        reply_name = "Which of the command's documented replies it is.",
+        error = "True when the reply says that the command failed.",
+    },
 }
 local rt = {}
 
@@ -460,15 +470,17 @@ local matches, find_command, classify, shown = rt.matches, rt.find_command, rt.c
 local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version
 
 local proto = Proto(spec.name, spec.title)
-local L = spec.labels
+local L, D = spec.labels, spec.docs or {}
+local function text_field(name)
+    return ProtoField.string(spec.name .. "." .. name, L[name], base.NONE, D[name])
+end
+local function bool_field(name)
+    return ProtoField.bool(spec.name .. "." .. name, L[name], base.NONE, nil, nil, D[name])
+end
 local F = {
-    command = ProtoField.string(spec.name .. ".command", L.command),
-    command_name = ProtoField.string(spec.name .. ".command_name", L.command_name),
-    argument = ProtoField.string(spec.name .. ".argument", L.argument),
-    available = ProtoField.bool(spec.name .. ".available", L.available),
-    reply = ProtoField.string(spec.name .. ".reply", L.reply),
-    reply_name = ProtoField.string(spec.name .. ".reply_name", L.reply_name),
-    error = ProtoField.bool(spec.name .. ".error", L.error),
+    command = text_field("command"), command_name = text_field("command_name"), argument = text_field("argument"),
+    available = bool_field("available"), reply = text_field("reply"), reply_name = text_field("reply_name"),
+    error = bool_field("error"),
 }
 local E = {
     error_reply = ProtoExpert.new(spec.name .. ".error_reply", "The reply says an error",

@@ -48,6 +48,16 @@ local spec = {
         reply_name = "Line kind",
         error = "Says an error",
     },
+    -- What each field is (its description in Wireshark).
+    docs = {
+        command = "The request line the robot sent.",
+        command_name = "The request a line is, or the request a program line answers.",
+        argument = "What follows the request's text and a space (none is defined).",
+        available = "False when the conversation's version lacks the request.",
+        reply = "One line of the URScript program the control PC sends.",
+        reply_name = "What the line is: a line of the program.",
+        error = "Always false: the program has no error replies.",
+    },
 }
 local rt = {}
 
@@ -210,15 +220,17 @@ local matches, find_command, classify, shown = rt.matches, rt.find_command, rt.c
 local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version
 
 local proto = Proto(spec.name, spec.title)
-local L = spec.labels
+local L, D = spec.labels, spec.docs or {}
+local function text_field(name)
+    return ProtoField.string(spec.name .. "." .. name, L[name], base.NONE, D[name])
+end
+local function bool_field(name)
+    return ProtoField.bool(spec.name .. "." .. name, L[name], base.NONE, nil, nil, D[name])
+end
 local F = {
-    command = ProtoField.string(spec.name .. ".command", L.command),
-    command_name = ProtoField.string(spec.name .. ".command_name", L.command_name),
-    argument = ProtoField.string(spec.name .. ".argument", L.argument),
-    available = ProtoField.bool(spec.name .. ".available", L.available),
-    reply = ProtoField.string(spec.name .. ".reply", L.reply),
-    reply_name = ProtoField.string(spec.name .. ".reply_name", L.reply_name),
-    error = ProtoField.bool(spec.name .. ".error", L.error),
+    command = text_field("command"), command_name = text_field("command_name"), argument = text_field("argument"),
+    available = bool_field("available"), reply = text_field("reply"), reply_name = text_field("reply_name"),
+    error = bool_field("error"),
 }
 local E = {
     error_reply = ProtoExpert.new(spec.name .. ".error_reply", "The reply says an error",

@@ -14,6 +14,7 @@
 #include <epan/prefs.h>
 #include <epan/dissectors/packet-tcp.h>
 #include "int32_records_types.h"
+#include "dotted_version.c"
 #define INT32_RECORDS_NAME "ur_reverse"
 #define INT32_RECORDS_COLUMN "UR reverse"
 #define INT32_RECORDS_DEFAULT_RELEASE 2014000
@@ -32,32 +33,13 @@ static dissector_handle_t int32_records_handle;
 static const char *int32_records_pref_release = "";
 static guint32 int32_records_release = INT32_RECORDS_DEFAULT_RELEASE;
 
-/* "2.10" or "2.10.0" (blanks around it allowed) -> (major * 1000 + minor) * 1000 + patch; the
- * default release for anything else. Numbers are doubles, as the Lua dissector's are. */
+/* The release preference's text -> (major * 1000 + minor) * 1000 + patch; the default release
+ * for text that is not a release. */
 static guint32 int32_records_parse_release(const char *text)
 {
-    double part[3] = {0, 0, 0};
-    const char *p = text;
-    double number;
-    int i;
+    double part[3], number;
 
-    if (p == NULL)
-        return INT32_RECORDS_DEFAULT_RELEASE;
-    while (g_ascii_isspace(*p))
-        p++;
-    for (i = 0; i < 3; i++) {
-        if (i == 1 && *p++ != '.')
-            return INT32_RECORDS_DEFAULT_RELEASE;
-        if (i == 2 && *p == '.')
-            p++;
-        if (i < 2 && !g_ascii_isdigit(*p))
-            return INT32_RECORDS_DEFAULT_RELEASE;
-        for (; g_ascii_isdigit(*p); p++)
-            part[i] = part[i] * 10 + (*p - '0');
-    }
-    while (g_ascii_isspace(*p))
-        p++;
-    if (*p != '\0')
+    if (!dotted_version_parts(text, part))
         return INT32_RECORDS_DEFAULT_RELEASE;
     number = (part[0] * 1000 + part[1]) * 1000 + part[2];
     return number < G_MAXUINT32 ? (guint32)number : G_MAXUINT32;
@@ -130,6 +112,18 @@ static int int32_records_dissect_record(tvbuff_t *tvb, packet_info *pinfo _U_, p
     return layout->size;
 }
 
+/* Without TCP reassembly (its preference off) each segment is read on its own, as the Lua twin
+ * reads it: its whole records, then the part of one it holds. (Given a cut record,
+ * tcp_dissect_pdus would mark the segments after it as its continuation.) */
+static void int32_records_each_whole_record(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree,
+                                            int32_records_call *call)
+{
+    guint offset = 0;
+
+    while (offset < tvb_captured_length(tvb))
+        offset += int32_records_dissect_record(tvb_new_subset_remaining(tvb, offset), pinfo, tree, call);
+}
+
 static int dissect_int32_records(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
 {
     gboolean from_robot = pinfo->destport == pinfo->match_uint;
@@ -142,7 +136,12 @@ static int dissect_int32_records(tvbuff_t *tvb, packet_info *pinfo, proto_tree *
         return tvb_captured_length(tvb);
     }
     call.layout = int32_records_layout_of(call.record, int32_records_release);
-    tcp_dissect_pdus(tvb, pinfo, tree, TRUE, 1, int32_records_size, int32_records_dissect_record, &call);
+    /* The size is known without reading: fixed_len 1 has TCP ask for exactly the bytes a cut
+     * record lacks, as the Lua twin asks. */
+    if (pinfo->can_desegment)
+        tcp_dissect_pdus(tvb, pinfo, tree, TRUE, 1, int32_records_size, int32_records_dissect_record, &call);
+    else
+        int32_records_each_whole_record(tvb, pinfo, tree, &call);
     if (call.count == 1)
         col_add_str(pinfo->cinfo, COL_INFO, call.record->label);
     else if (call.count > 1)

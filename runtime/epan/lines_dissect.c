@@ -47,7 +47,7 @@ typedef struct lines_decision {
 /* The decisions of one frame in one direction, by the line's offset in the data it came in. */
 typedef struct lines_frame {
     bool skipping;                        /* the direction was inside a line too long when the frame came */
-    wmem_tree_t *lines;
+    wmem_tree_t *lines;                   /* lines_decision_t by offset; NULL until the first line */
 } lines_frame_t;
 
 static lines_conversation_t *lines_conversation(packet_info *pinfo)
@@ -175,7 +175,7 @@ static lines_frame_t *lines_frame(packet_info *pinfo, lines_conversation_t *c, b
     if (frame == NULL) {
         frame = wmem_new(wmem_file_scope(), lines_frame_t);
         frame->skipping = c->skipping[from_robot];
-        frame->lines = wmem_tree_new(wmem_file_scope());
+        frame->lines = NULL;                          /* made with the frame's first line */
         p_add_proto_data(wmem_file_scope(), pinfo, proto_lines, from_robot, frame);
     }
     return frame;
@@ -241,11 +241,13 @@ static int dissect_lines(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, vo
                 skipping = nl < 0;
                 at = nl >= 0 ? nl + 1 : n;
             } else {
-                lines_decision_t *d = first_pass ? NULL
+                lines_decision_t *d = first_pass || frame->lines == NULL ? NULL
                     : (lines_decision_t *)wmem_tree_lookup32(frame->lines, (guint32)at);
                 if (d == NULL) {
                     d = requests ? lines_decide_command(c, buf + at, (size_t)len)
                                  : lines_decide_reply(c, buf + at, (size_t)len);
+                    if (frame->lines == NULL)
+                        frame->lines = wmem_tree_new(wmem_file_scope());
                     wmem_tree_insert32(frame->lines, (guint32)at, d);
                 }
                 if (info != NULL || tree != NULL) {    /* the text, only where it is shown */

@@ -120,14 +120,18 @@ rtde_text_of(tvbuff_t *tvb, int pos, guint n)
 }
 
 /* A recipe's values, an item per scalar (a vector's items in order, each by the variable's field,
- * with its index). A name the variable table lacks has no field and shows nothing. */
+ * with its index). A name the variable table lacks (a newer controller's) shows its value's bytes
+ * whole, with the name. */
 static void
 rtde_add_values(proto_tree *tree, tvbuff_t *tvb, int pos, const rtde_recipe *recipe)
 {
     guint i, j;
     for (i = 0; i < recipe->n; i++) {
         const rtde_value_type *vt = &rtde_value_types[recipe->type[i]];
-        if (recipe->field[i] >= 0) {
+        if (recipe->field[i] < 0) {
+            proto_item_append_text(proto_tree_add_item(tree, hf_rtde[RTDE_HF_UNKNOWN_VARIABLE], tvb, pos,
+                                                       vt->size * vt->count, ENC_NA), "%s", recipe->name[i]);
+        } else {
             for (j = 0; j < vt->count; j++) {
                 proto_item *item = proto_tree_add_item(tree, hf_rtde[recipe->field[i]], tvb, pos + (int)(j * vt->size),
                                                        vt->size, ENC_BIG_ENDIAN);
@@ -202,7 +206,7 @@ rtde_step_at(const rtde_step *s, proto_tree *tree, tvbuff_t *tvb, int pos, int s
             return -1;
         if (tree) {
             proto_item_set_generated(proto_tree_add_uint(tree, hf_rtde[RTDE_HF_RECIPE_FRAME], tvb, pos, 0,
-                                                         recipe->frame));
+                                                         recipe->when.frame));
             rtde_add_values(tree, tvb, pos, recipe);
         }
         return pos + (int)recipe->size;

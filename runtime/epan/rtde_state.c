@@ -31,7 +31,6 @@ typedef struct {
     guint n;
     guint *start;
     guint *length;
-    guint32 frame;
 } rtde_request;
 
 /* A recipe: for each value, its variable's field (-1: a name the table does not have), unit and type. */
@@ -40,10 +39,10 @@ typedef struct rtde_recipe {
     const struct rtde_recipe *previous;     /* the recipe of the same id before it */
     guint n;
     int *field;
+    const char **name;          /* " (name)" after a name the table lacks, else NULL (a NUL in it ends it) */
     const char **unit;
     guint8 *type;
     guint size;                 /* the bytes of all its values */
-    guint32 frame;              /* the frame of the setup reply that made it */
 } rtde_recipe;
 
 /* A protocol version a version exchange set. */
@@ -186,7 +185,7 @@ rtde_recipe_at(const rtde_state *state, gboolean from_robot, int recipe_id, rtde
 }
 
 static void
-rtde_remember_request(rtde_state *state, int kind, const rtde_values *values, guint32 frame)
+rtde_remember_request(rtde_state *state, int kind, const rtde_values *values)
 {
     rtde_request *request = wmem_new0(wmem_file_scope(), rtde_request);
     guint n = rtde_split(values->variables, values->variables_length, NULL, NULL), i, kept = 0;
@@ -204,7 +203,6 @@ rtde_remember_request(rtde_state *state, int kind, const rtde_values *values, gu
     request->n = kept;
     request->start = start;
     request->length = length;
-    request->frame = frame;
     if (state->pending_count[kind] >= RTDE_MAX_PENDING_SETUPS) {    /* the oldest goes */
         state->pending_first[kind] = (state->pending_first[kind] + 1) % RTDE_MAX_PENDING_SETUPS;
         state->pending_count[kind]--;
@@ -235,6 +233,18 @@ rtde_refusal_text(const rtde_request *request, guint i, const guint8 *word, guin
     memcpy(text + name_length, ": ", 2);
     memcpy(text + name_length + 2, word, word_length);
     text[name_length + 2 + word_length] = '\0';
+    return text;
+}
+
+/* " (name)", the text after the value of a variable the table lacks. */
+static const char *
+rtde_name_text(const rtde_request *request, guint i)
+{
+    guint length = request->length[i];
+    char *text = (char *)wmem_alloc(wmem_file_scope(), length + 4);
+    memcpy(text, " (", 2);
+    memcpy(text + 2, request->text + request->start[i], length);
+    memcpy(text + 2 + length, ")", 2);
     return text;
 }
 
@@ -275,14 +285,15 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
     recipe->n = n;
     recipe->field = wmem_alloc_array(wmem_file_scope(), int, n + 1);
     recipe->unit = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
+    recipe->name = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->type = wmem_alloc_array(wmem_file_scope(), guint8, n + 1);
-    recipe->frame = when.frame;
     recipe->when = when;
     for (i = 0; i < n; i++) {
         const rtde_value_type *vt = &rtde_value_types[type[i]];
         const rtde_variable *variable = rtde_variable_named(request->text + request->start[i], request->length[i]);
         recipe->field[i] = variable ? variable->field : -1;
         recipe->unit[i] = variable ? variable->unit : NULL;
+        recipe->name[i] = variable ? NULL : rtde_name_text(request, i);
         recipe->type[i] = (guint8)type[i];
         recipe->size += (guint)vt->size * vt->count;
     }
@@ -309,7 +320,7 @@ rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *val
         break;
     }
     case RTDE_ROLE_SETUP_REQUEST:
-        rtde_remember_request(state, layout->kind, values, when.frame);
+        rtde_remember_request(state, layout->kind, values);
         break;
     case RTDE_ROLE_SETUP_REPLY:
         rtde_make_recipe(state, layout->kind, values, when, notes);

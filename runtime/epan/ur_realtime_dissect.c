@@ -16,6 +16,7 @@
 #include <epan/unit_strings.h>
 #include <epan/dissectors/packet-tcp.h>
 #include "ur_realtime_types.h"
+#include "dotted_version.c"
 #define UR_REALTIME_SIZE_BYTES 4
 #define UR_REALTIME_MIN_SIZE 12
 #define UR_REALTIME_MAX_SIZE 12200
@@ -32,7 +33,8 @@ static int hf_ur_realtime_layout = -1;
 static int hf_ur_realtime_urscript = -1;
 static int hf_ur_realtime_raw = -1;
 
-/* Framed, and kept: a layout the spec does not know yet, not a broken stream. */
+/* A size no layout has (framed and kept: a layout the spec does not know yet, not a broken
+ * stream), and a size that cannot frame a packet. */
 static expert_field ei_ur_realtime_unknown_size = EI_INIT;
 static expert_field ei_ur_realtime_bad_size = EI_INIT;
 
@@ -45,31 +47,13 @@ static const char *ur_realtime_pref_version = "";
 static gboolean ur_realtime_version_known;
 static double ur_realtime_version;
 
-/* "5.9" or "3.15.2" (blanks around it allowed) -> the version number the forms are written in;
- * FALSE for anything else. Numbers are doubles, as the Lua dissector's are. */
+/* The version preference's text -> the version number the forms are written in (a bugfix above
+ * 999 counts as 999); FALSE for text that is not a version. */
 static gboolean ur_realtime_parse_version(const char *text, double *number)
 {
-    double part[3] = {0, 0, 0};
-    const char *p = text;
-    int i;
+    double part[3];
 
-    if (p == NULL)
-        return FALSE;
-    while (g_ascii_isspace(*p))
-        p++;
-    for (i = 0; i < 3; i++) {
-        if (i == 1 && *p++ != '.')
-            return FALSE;
-        if (i == 2 && *p == '.')
-            p++;
-        if (i < 2 && !g_ascii_isdigit(*p))
-            return FALSE;
-        for (; g_ascii_isdigit(*p); p++)
-            part[i] = part[i] * 10 + (*p - '0');
-    }
-    while (g_ascii_isspace(*p))
-        p++;
-    if (*p != '\0')
+    if (!dotted_version_parts(text, part))
         return FALSE;
     *number = (part[0] * 1000 + part[1]) * 1000 + MIN(part[2], 999);
     return TRUE;
@@ -245,6 +229,21 @@ static int dissect_ur_realtime_packet(tvbuff_t *tvb, packet_info *pinfo, proto_t
     return size;
 }
 
+/* Without TCP reassembly (its preference off) each segment is read on its own, as the Lua twin
+ * reads it: its whole packets, up to the first it does not hold whole, or a bad size. (Given a cut
+ * packet, tcp_dissect_pdus would mark the segments after it as its continuation.) */
+static void ur_realtime_each_whole_packet(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_realtime_infos *infos)
+{
+    gint offset = 0, left;
+
+    while ((left = tvb_captured_length_remaining(tvb, offset)) >= UR_REALTIME_SIZE_BYTES) {
+        guint size = ur_realtime_packet_size(pinfo, tvb, offset, NULL);
+        if (size > (guint)left)
+            break;
+        offset += dissect_ur_realtime_packet(tvb_new_subset_length(tvb, offset, size), pinfo, tree, infos);
+    }
+}
+
 static int dissect_ur_realtime(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
 {
     ur_realtime_infos infos = {NULL, 0};
@@ -258,8 +257,11 @@ static int dissect_ur_realtime(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tr
         ur_realtime_show_info(pinfo, "URScript");
         return tvb_captured_length(tvb);
     }
-    tcp_dissect_pdus(tvb, pinfo, tree, TRUE, UR_REALTIME_SIZE_BYTES, ur_realtime_packet_size,
-                     dissect_ur_realtime_packet, &infos);
+    if (pinfo->can_desegment)
+        tcp_dissect_pdus(tvb, pinfo, tree, TRUE, UR_REALTIME_SIZE_BYTES, ur_realtime_packet_size,
+                         dissect_ur_realtime_packet, &infos);
+    else
+        ur_realtime_each_whole_packet(tvb, pinfo, tree, &infos);
     if (infos.count == 1)
         ur_realtime_show_info(pinfo, infos.first);
     else if (infos.count > 1)

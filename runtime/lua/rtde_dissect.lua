@@ -67,9 +67,14 @@ local READ = {
 }
 
 -- One value of a recipe: an item per scalar (a vector's items in order, each filterable by the
--- variable's name, with its index).
+-- variable's name, with its index). A name the variable table lacks (a newer controller's) shows
+-- its value's bytes whole, with the name.
 local function add_value(tree, tvb, pos, name, vt)
     local f, unit = F[name], spec.variable_units[name]
+    if not f then
+        tree:add(F.unknown_variable, tvb(pos, vt.size * vt.count)):append_text(" (" .. name .. ")")
+        return
+    end
     for i = 0, vt.count - 1 do
         local item = tree:add(f, tvb(pos + i * vt.size, vt.size))
         if unit then item:append_text(unit) end

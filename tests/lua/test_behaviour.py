@@ -145,7 +145,7 @@ def test_bad_lengths_are_experts_and_resynchronise(tmp_path):
 def test_install_and_uninstall(tmp_path):
     env = dict(os.environ, HOME=str(tmp_path))
     make = shutil.which("make")
-    subprocess.run([make, "-C", str(ROOT), "install-dissector"], env=env, check=True, capture_output=True)
+    subprocess.run([make, "-C", str(ROOT), "install-dissector", "NATIVE=no"], env=env, check=True, capture_output=True)
     installed = tmp_path / ".local" / "lib" / "wireshark" / "plugins" / "urwire.lua"
     assert installed.read_text() == PLUGIN.read_text()
     prefs = subprocess.run(["tshark", "-G", "currentprefs"], env=env, capture_output=True, text=True).stdout

@@ -139,7 +139,7 @@ def test_installed_beside_the_primary_dissector_each_loads_on_its_own(tmp_path):
 
     env = dict(os.environ, HOME=str(tmp_path))
     make = shutil.which("make")
-    subprocess.run([make, "-C", str(ROOT), "install-dissector"], env=env, check=True, capture_output=True)
+    subprocess.run([make, "-C", str(ROOT), "install-dissector", "NATIVE=no"], env=env, check=True, capture_output=True)
     folder = tmp_path / ".local" / "lib" / "wireshark" / "plugins"
     assert (folder / "ur_realtime.lua").read_text() == PLUGIN.read_text() and (folder / "urwire.lua").exists()
     plugins = subprocess.run(["tshark", "-G", "plugins"], env=env, capture_output=True, text=True).stdout

@@ -45,32 +45,35 @@ class Plugin:
     library: Path       # the .so
 
 
-def _stamp(variant: str) -> str:
-    digest = hashlib.sha256(repr(VARIANTS[variant]).encode())
-    for path in sorted([*EPAN.glob("*"), *SOURCE.glob("*")]):
+def _stamp(variant: str, epan_dir: Path) -> str:
+    digest = hashlib.sha256(repr((VARIANTS[variant], str(epan_dir))).encode())
+    for path in sorted([*epan_dir.glob("*"), *SOURCE.glob("*")]):
         if path.is_file():
             digest.update(path.name.encode() + b"\0" + path.read_bytes())
     return digest.hexdigest()
 
 
-def build_plugin(variant: str = "gcc") -> Plugin:
+def build_plugin(variant: str = "gcc", epan_dir: Path = EPAN) -> Plugin:
     """The plugin built with CMake under build/native-tests/<variant>, once for every test process
-    (under a lock; a stamp of the sources says whether a build is current)."""
+    (under a lock; a stamp of the sources says whether a build is current). `epan_dir` builds it
+    from other packet-*.c (the fixture of tests/native/fixtures/epan), under <variant>-<folder>."""
     cc, cflags, ldflags = VARIANTS[variant]
     for tool in ("cmake", cc, "setpriv"):
         if shutil.which(tool) is None:
             pytest.fail(f"{tool} is not installed (scripts/setup.sh installs it)")
-    folder = BUILDS / variant
-    home = BUILDS / f"home-{variant}"
+    name = variant if epan_dir == EPAN else f"{variant}-{hashlib.sha256(str(epan_dir).encode()).hexdigest()[:12]}"
+    folder = BUILDS / name
+    home = BUILDS / f"home-{name}"
     BUILDS.mkdir(parents=True, exist_ok=True)
-    with open(BUILDS / f"{variant}.lock", "w") as lock:
+    with open(BUILDS / f"{name}.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
-        stamp, want = folder / "stamp", _stamp(variant)
+        stamp, want = folder / "stamp", _stamp(variant, epan_dir)
         if not (stamp.is_file() and stamp.read_text() == want):
             stamp.unlink(missing_ok=True)
             shutil.rmtree(folder, ignore_errors=True)
             env = {**os.environ, "CC": cc}
             configure = ["cmake", "-S", str(SOURCE), "-B", str(folder), "-DCMAKE_BUILD_TYPE=RelWithDebInfo",
+                         f"-DURWIRE_EPAN_DIR={epan_dir}",
                          f"-DURWIRE_EXTRA_CFLAGS={cflags.replace(' ', ';')}",
                          f"-DURWIRE_EXTRA_LDFLAGS={ldflags.replace(' ', ';')}"]
             for cmd in (configure, ["cmake", "--build", str(folder)]):
@@ -134,7 +137,12 @@ def _readable(capture: Capture) -> Path:
 def native_tshark(args: Sequence[str], stdin: bytes = b"", variant: str = "gcc", env: Optional[dict] = None,
                   timeout: float = 600) -> subprocess.CompletedProcess:
     """tshark with the native plugin and these arguments (`-G plugins`, `-r - ...`)."""
-    built = plugin(variant)
+    return tshark_with(plugin(variant), args, stdin, env, timeout)
+
+
+def tshark_with(built: Plugin, args: Sequence[str], stdin: bytes = b"", env: Optional[dict] = None,
+                timeout: float = 600) -> subprocess.CompletedProcess:
+    """tshark with this build of the plugin (as nobody under root) and these arguments."""
     as_user = NOBODY if os.geteuid() == 0 else []
     environment = {**os.environ, "HOME": str(built.home), **(env or {})}
     environment.pop("XDG_CONFIG_HOME", None)

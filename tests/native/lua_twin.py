@@ -6,6 +6,7 @@ Helpers of the fixed-layout interfaces (real-time, the ROS driver's sockets); ha
 tshark."""
 from __future__ import annotations
 
+import functools
 import os
 import random
 import re
@@ -18,6 +19,13 @@ from typing import Iterable, Sequence, Union
 from tests.native import harness
 from tests.tools import capture
 from tests.tools.capture import Segment
+
+
+Protocols = Union[str, Sequence[str]]
+
+
+def _names(protocols: Protocols) -> list[str]:
+    return [protocols] if isinstance(protocols, str) else sorted(protocols)
 
 
 def cuts(data: bytes, seed: int, smallest: int = 1, largest: int = 7) -> list[bytes]:
@@ -63,11 +71,12 @@ def readable(path: Path) -> Path:
     return path
 
 
-def run_native(path: Path, *args: str, variant: str = "gcc", alone: str = "") -> subprocess.CompletedProcess:
-    """tshark with the native plugin; `alone`: with every other protocol of the plugin disabled,
-    as the Lua dissector it is compared with is loaded alone."""
-    others = [a for name in _plugin_protocols(variant) if name != alone for a in ("--disable-protocol", name)] \
-        if alone else []
+def run_native(path: Path, *args: str, variant: str = "gcc", alone: Protocols = ()) -> subprocess.CompletedProcess:
+    """tshark with the native plugin; `alone`: only these of its protocols enabled, as only their
+    Lua dissectors are loaded in the run it is compared with."""
+    keep = _names(alone)
+    others = [a for name in _plugin_protocols(variant) if name not in keep for a in ("--disable-protocol", name)] \
+        if keep else []
     return harness.native_tshark(["-r", str(path), *others, *args], variant=variant)
 
 
@@ -94,20 +103,22 @@ def _plugin_protocols(variant: str) -> list[str]:
     return _PROTOCOLS[variant]
 
 
-def run_lua(path: Path, *args: str, protocol: str) -> subprocess.CompletedProcess:
-    """tshark with only the protocol's Lua dissector, as harness.run_lua, reading the file by name."""
+def run_lua(path: Path, *args: str, protocol: Protocols) -> subprocess.CompletedProcess:
+    """tshark with only these protocols' Lua dissectors, as harness.run_lua, reading the file by name."""
     env = {**os.environ, "HOME": str(harness.BUILDS / "home-empty")}
     (harness.BUILDS / "home-empty").mkdir(parents=True, exist_ok=True)
     env.pop("XDG_CONFIG_HOME", None)
-    return subprocess.run(["tshark", "-r", str(path), "-X", f"lua_script:{harness.lua_plugin(protocol)}", *args],
-                          capture_output=True, env=env, timeout=600)
+    scripts = [a for name in _names(protocol) for a in ("-X", f"lua_script:{harness.lua_plugin(name)}")]
+    return subprocess.run(["tshark", "-r", str(path), *scripts, *args], capture_output=True, env=env, timeout=600)
 
 
-def compare(path: Path, protocol: str, *args: str, variant: str = "gcc") -> harness.Shown:
-    """The native dissector and the Lua one, each alone, on one capture: the same -T json layers
-    of the protocol, Info column and expert infos. Returns what they showed."""
-    native = harness.shown(partial(run_native, variant=variant, alone=protocol), path, [protocol], *args)
-    twin = harness.shown(partial(run_lua, protocol=protocol), path, [protocol], *args)
+def compare(path: Path, protocol: Protocols, *args: str, variant: str = "gcc") -> harness.Shown:
+    """The native dissectors and the Lua ones of these protocols, each side alone, on one capture:
+    the same -T json layers of the protocols, Info column and expert infos. Returns what the
+    native ones showed."""
+    names = _names(protocol)
+    native = harness.shown(partial(run_native, variant=variant, alone=names), path, names, *args)
+    twin = harness.shown(partial(run_lua, protocol=names), path, names, *args)
     native.layers = [as_lua_writes(layer) for layer in native.layers]
     assert len(native.info) == len(twin.info)
     for frame, (mine, theirs) in enumerate(zip(native.info, twin.info)):
@@ -144,29 +155,46 @@ def as_lua_writes(node):
     return out
 
 
-def _lua_home(protocol: str) -> Path:
-    """A HOME whose personal plugin folder holds only the protocol's Lua dissector: where
+def _lua_home(protocols: tuple[str, ...]) -> Path:
+    """A HOME whose personal plugin folder holds only these protocols' Lua dissectors: where
     `tshark -G` sees a Lua dissector's fields (it reads -G before any -X option)."""
-    home = harness.BUILDS / f"home-lua-{protocol}"
+    home = harness.BUILDS / f"home-lua-{'-'.join(protocols)}"
     folder = home / ".local" / "lib" / "wireshark" / "plugins"
+    shutil.rmtree(folder, ignore_errors=True)
     folder.mkdir(parents=True, exist_ok=True)
-    shutil.copy(harness.lua_plugin(protocol), folder / harness.lua_plugin(protocol).name)
+    for name in protocols:
+        shutil.copy(harness.lua_plugin(name), folder / harness.lua_plugin(name).name)
     for path in [home, *home.rglob("*")]:
         path.chmod(0o755 if path.is_dir() else 0o644)
     return home
 
 
-def registered(protocol: str, lua: bool) -> list[str]:
-    """`tshark -G fields` lines of the protocol and its fields, sorted (Lua registers its fields in
-    table order)."""
-    if lua:
+REPORTS = ("fields", "protocols", "defaultprefs")
+
+
+@functools.lru_cache(maxsize=None)
+def _report(report: str, lua_of: tuple[str, ...]) -> tuple[str, ...]:
+    """The lines of `tshark -G <report>`: with the native plugin, or with only the Lua dissectors
+    of the protocols `lua_of`."""
+    if lua_of:
         as_user = harness.NOBODY if os.geteuid() == 0 else []
-        env = {**os.environ, "HOME": str(_lua_home(protocol))}
+        env = {**os.environ, "HOME": str(_lua_home(lua_of))}
         env.pop("XDG_CONFIG_HOME", None)
-        out = subprocess.run([*as_user, "tshark", "-G", "fields"], capture_output=True, env=env, timeout=300)
+        out = subprocess.run([*as_user, "tshark", "-G", report], capture_output=True, env=env, timeout=300)
     else:
-        out = harness.native_tshark(["-G", "fields"])
+        out = harness.native_tshark(["-G", report])
     assert out.returncode == 0, out.stderr
-    lines = out.stdout.decode().splitlines()
-    return sorted(line for line in lines
-                  if line.split("\t")[2:3] == [protocol] or line.split("\t")[2].startswith(protocol + "."))
+    return tuple(out.stdout.decode().splitlines())
+
+
+def registered(protocol: str, lua: bool, loaded: Protocols = ()) -> list[str]:
+    """What the protocol registers, as tshark -G reports it: its fields (`fields`), its names
+    (`protocols`) and its preferences with their defaults (`defaultprefs`), sorted (Lua registers
+    its fields in table order). With `lua`, the Lua dissectors of `loaded` (default: the protocol
+    alone) are those tshark loads."""
+    def ours(line: str) -> bool:
+        words = line.lstrip("#").split("\t")
+        return any(w == protocol or w.startswith(protocol + ".") for w in words)
+
+    lua_of = tuple(_names(loaded or protocol)) if lua else ()
+    return sorted(f"{report}: {line}" for report in REPORTS for line in _report(report, lua_of) if ours(line))

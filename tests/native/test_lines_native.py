@@ -6,15 +6,18 @@ same captures the same `-T json` layers, Info column and expert infos.
 The captures: every golden vector of the interface as a TCP session, whole and again cut into 1-7
 byte segments, in one capture per software-version preference; the dashboard fuzzer's kept
 corpus (tests/fuzz/corpus/ur_dashboard), each input a session of its segments; the dashboard and
-script-sender conversations of the cell sample; a session on another port under Decode As. The
-same captures go through the plugin built with ASan and UBSan, where any report fails the run.
-The runtime's pure functions (runtime/epan/lines_match.c) are compiled and tested alone."""
+script-sender conversations of the cell sample; hostile conversations (junk, long lines, more
+commands in flight than a conversation keeps), with TCP reassembly on and off; a session on
+another port under Decode As. The same captures go through the plugin built with ASan and UBSan,
+where any report fails the run. Also: the packet list with no tree, text that is not UTF-8, and
+the runtime's pure functions (runtime/epan/lines_match.c) compiled and tested alone."""
 from __future__ import annotations
 
 import functools
 import hashlib
 import json
 import random
+import re
 import subprocess
 from pathlib import Path
 
@@ -149,7 +152,7 @@ def corpus_captures(tmp_path: Path) -> list[tuple[Path, tuple[str, ...]]]:
     return out
 
 
-# ---- 1 and 2: the dashboard server and the script sender, native against Lua ----
+# ---- the dashboard server and the script sender, native against Lua ----
 
 def test_the_plugin_builds_with_gcc_and_clang():
     for variant in ("gcc", "clang"):
@@ -172,7 +175,7 @@ def test_the_same_fields_experts_and_ports_are_registered(interface):
         assert mine and mine == theirs, report
 
 
-# Each capture through the plain build and the one built with ASan and UBSan (3).
+# Each capture through the plain build and the one built with ASan and UBSan.
 VARIANTS = ("gcc", "asan")
 
 
@@ -297,3 +300,20 @@ def test_hostile_conversations(tmp_path, variant):
     # The same with TCP reassembly off: a line cut by a segment shows as a part of a line.
     shown = assert_same(pcap, ["ur_dashboard"], "-o", "tcp.desegment_tcp_streams:FALSE", variant=variant)
     assert "Part of a line (reassembly is off)" in json.dumps(shown.layers)
+
+
+@pytest.mark.parametrize("interface", INTERFACES)
+def test_every_handle_is_declared_registered_and_used(interface):
+    """What Wireshark's tools/checkhf.pl checks, for hf_, ett_ and ei_ handles alike: each static
+    handle of the generated file is in its registration array and used outside it."""
+    text = (ROOT / "generated" / "epan" / f"packet-{interface.replace('_', '-')}.c").read_text()
+    code = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
+    code = re.sub(r'"(?:\\.|[^"\\])*"', '""', code)
+    declared = re.findall(r"^static (?:int|expert_field) ((?:hf|ett|ei)_\w+) = (?:-1|EI_INIT);", code, re.M)
+    assert len(declared) == 7 + 1 + 4
+    registration = code[code.index(f"void proto_register_{interface}(void)\n{{"):]
+    registration = registration[:registration.index("\n}\n")]
+    elsewhere = code.replace(registration, "")
+    for handle in declared:
+        assert f"&{handle}" in registration, f"{handle} is not registered"
+        assert len(re.findall(rf"\b{handle}\b", elsewhere)) >= 2, f"{handle} is declared but not used"

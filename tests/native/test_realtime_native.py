@@ -5,6 +5,7 @@ the real-time conversation of the cell sample, the same -T json layers, Info col
 infos."""
 from __future__ import annotations
 
+import struct
 from pathlib import Path
 
 import pytest
@@ -46,6 +47,9 @@ def _corpus():
 def test_the_same_fields_are_registered():
     native = registered(PROTOCOL, lua=False)
     assert any("\tur_realtime.q_actual\tFT_DOUBLE" in line for line in native)
+    assert "defaultprefs: #ur_realtime.ports: 30003,30013" in native
+    assert "defaultprefs: #ur_realtime.version: " in native
+    assert "protocols: Universal Robots real-time client interface\tUR_REALTIME\tur_realtime" in native
     assert native == registered(PROTOCOL, lua=True)
 
 
@@ -59,6 +63,26 @@ def test_every_vector_whole_and_in_small_segments(version):
     assert len(layouts) >= 2 * len(chosen)
     if version is None:
         assert any("Packet size 28 matches no layout" in str(e) for e in shown.experts)
+
+
+def test_without_tcp_reassembly():
+    """With TCP reassembly off a packet split over segments is not shown, as the Lua twin shows none."""
+    compare(_vectors(None), PROTOCOL, "-o", "tcp.desegment_tcp_streams:FALSE")
+
+
+@pytest.mark.parametrize("text", ["3.6.5000", " 3.6. ", "3.6x", "5.1"])
+def test_the_version_preference_reads_as_lua_reads_it(text):
+    """A 1108-byte packet is CB3 3.5-3.9 or e-Series 5.0-5.3: joint mode 248 has a name in CB3's
+    table only. Texts the pattern takes (a bugfix over 999, blanks, a trailing dot) and one it
+    does not choose the same form in both dissectors."""
+    n = (1108 - 4) // 8
+    doubles = [0.0] * n
+    doubles[95:101] = [248.0] * 6
+    packet = struct.pack(f">i{n}d", 1108, *doubles)
+    path, preference = sessions([[packet]], PORT, "rt-1108"), ["-o", f"{PROTOCOL}.version:{text}"]
+    compare(path, PROTOCOL, *preference)
+    tree = harness.checked(run_native(path, "-V", *preference))
+    assert ("Joint mode: 248 (PART_D_CALIBRATION_ERROR)" in tree) == text.strip().startswith("3.6.")
 
 
 def test_the_client_side_is_urscript():
@@ -110,7 +134,7 @@ def test_the_tree_reads_in_words_with_units_and_names():
     assert "UR_REALTIME, rt_3_2" in text or "client interface, rt_3_2" in text
 
 
-@pytest.mark.parametrize("name", ["ur_realtime_types.h", "ur_realtime_dissect.c"])
+@pytest.mark.parametrize("name", ["ur_realtime_types.h", "dotted_version.c", "ur_realtime_dissect.c"])
 def test_each_runtime_file_compiles_alone(name):
     """runtime/epan/<file> with the lines it needs alone (its <standalone> part), strict."""
     import shlex
@@ -128,6 +152,7 @@ def test_under_asan_and_ubsan_no_report():
     """The plugin built with -fsanitize=address,undefined over every capture above, with and
     without a tree: tshark ends well, with nothing on stderr."""
     captures = [(_vectors(v), _preference(v)) for v in VERSIONS] + [(_corpus(), []), (readable(CELL), [])]
+    captures.append((_vectors(None), ["-o", "tcp.desegment_tcp_streams:FALSE"]))
     captures.append((sessions([[CASES[0].data]], PORT, "rt-client", client_says=b"movej([0,0,0,0,0,0])\n"), []))
     for path, args in captures:
         for view in (["-V"], []):

@@ -4,14 +4,14 @@ golden exchange (whole and in 1-7-byte segments), the RTDE conversations of the 
 fuzz corpus as TCP sessions, the same -T json layers, Info column and expert infos; then the same
 captures through the plugin built with ASan and UBSan, with no sanitizer report.
 
-Both read the capture from a file: tshark -2, which keeps the recipes of a first pass for the second
-as the GUI does, cannot read a pipe."""
+The comparisons run tshark -2, which keeps the recipes of a first pass for the second as the GUI
+does, and the -V text on one pass."""
 from __future__ import annotations
 
-import hashlib
 import os
 import random
 import subprocess
+import tempfile
 from functools import lru_cache
 from pathlib import Path
 
@@ -26,22 +26,10 @@ PORT = 30004
 PROTOCOLS = ["rtde"]
 CORPUS = harness.ROOT / "tests" / "fuzz" / "corpus" / "rtde"
 CELL_SAMPLE = harness.ROOT / "dissector" / "samples" / "cell_session.pcapng"
-CAPTURES = harness.BUILDS / "rtde-captures"
 
 
-def _readable(data: bytes) -> Path:
-    """The capture as a file that tshark can read as the user nobody too."""
-    CAPTURES.mkdir(parents=True, exist_ok=True)
-    CAPTURES.chmod(0o755)
-    path = CAPTURES / f"{hashlib.sha256(data).hexdigest()[:20]}.pcap"
-    if not path.exists():
-        path.write_bytes(data)
-        path.chmod(0o644)
-    return path
-
-
-def native(capture_: harness.Capture, *args: str, variant: str = "gcc") -> subprocess.CompletedProcess:
-    return harness.native_tshark(["-r", str(_readable(harness._input(capture_))), *args], variant=variant)
+def native(capture_: harness.Capture, *args: str) -> subprocess.CompletedProcess:
+    return harness.run_native(capture_, *args)
 
 
 def native_asan(capture_: harness.Capture, *args: str) -> subprocess.CompletedProcess:
@@ -49,16 +37,11 @@ def native_asan(capture_: harness.Capture, *args: str) -> subprocess.CompletedPr
     libasan = subprocess.run(["gcc", "-print-file-name=libasan.so"], capture_output=True, text=True).stdout.strip()
     env = {"LD_PRELOAD": libasan, "ASAN_OPTIONS": "detect_leaks=0:abort_on_error=0",
            "UBSAN_OPTIONS": "print_stacktrace=1:halt_on_error=1"}
-    path = _readable(harness._input(capture_))
-    return harness.native_tshark(["-r", str(path), *args], variant="asan", env=env)
+    return harness.run_native(capture_, *args, variant="asan", env=env)
 
 
 def lua(capture_: harness.Capture, *args: str) -> subprocess.CompletedProcess:
-    environment = {**os.environ, "HOME": str(harness._empty_home())}
-    environment.pop("XDG_CONFIG_HOME", None)
-    path = _readable(harness._input(capture_))
-    return subprocess.run(["tshark", "-r", str(path), "-X", f"lua_script:{harness.lua_plugin('rtde')}", *args],
-                          capture_output=True, env=environment, timeout=600)
+    return harness.run_lua(capture_, *args, lua=[harness.lua_plugin("rtde")])
 
 
 # ---- the captures: one TCP session per case, each on its own client port ----
@@ -109,12 +92,8 @@ def corpus_capture() -> bytes:
 
 
 def _pcap(frames: list[bytes]) -> bytes:
-    CAPTURES.mkdir(parents=True, exist_ok=True)
-    path = CAPTURES / f"build-{os.getpid()}.pcap"
-    capture.write(path, frames)
-    data = path.read_bytes()
-    path.unlink()
-    return data
+    with tempfile.TemporaryDirectory() as folder:
+        return capture.write(Path(folder) / "sessions.pcap", frames).read_bytes()
 
 
 def assert_same(capture_: harness.Capture, *args: str) -> harness.Shown:
@@ -125,8 +104,9 @@ def assert_same(capture_: harness.Capture, *args: str) -> harness.Shown:
     assert len(got.layers) == len(want.layers)
     assert got.info == want.info
     assert got.experts == want.experts
-    # The tree's text too: labels, units after values, vector indices, generated items.
-    detail = ["-2", "-O", "rtde", "-V", *args]
+    # The tree's text too (labels, units after values, vector indices, generated items), on one pass
+    # this time: the state followed while the tree is built, where -2 builds it from the kept state.
+    detail = ["-O", "rtde", "-V", *args]
     assert harness.checked(native(capture_, *detail)) == harness.checked(lua(capture_, *detail))
     return got
 
@@ -217,3 +197,31 @@ def test_a_message_reassembled_and_one_after_it_in_a_frame_keep_their_own_views(
     last = shown.layers[9]["rtde"]            # frame 10: the last segment
     assert last[0]["rtde.timestamp"] == "2" and "_ws.expert" not in last[0]
     assert last[1]["_ws.expert"]["_ws.expert.message"] == "the robot refused to start"
+
+
+def _recipe_session(names: bytes, types: bytes, values: bytes, port: int = PORT) -> bytes:
+    pieces = [Segment(False, bytes([0, 3 + 8 + len(names), 0x4F]) + bytes.fromhex("405f400000000000") + names),
+              Segment(True, bytes([0, 3 + 1 + len(types), 0x4F, 1]) + types),
+              Segment(True, bytes([0, 3 + 1 + len(values), 0x55, 1]) + values)]
+    return _pcap(capture.session_frames(pieces, port=port, client_port=50000))
+
+
+def test_a_variable_the_table_lacks_shows_its_bytes_and_name():
+    """A newer controller's variable, accepted by the robot: its value's bytes under
+    rtde.unknown_variable with its name, and the next value still under its own field."""
+    captured = _recipe_session(b"a_newer_variable,timestamp", b"VECTOR3D,DOUBLE",
+                               bytes(24) + bytes.fromhex("4029000000000000"))
+    shown = assert_same(captured)
+    package = shown.layers[7]["rtde"]
+    assert package["rtde.unknown_variable"] == ":".join(["00"] * 24) and package["rtde.timestamp"] == "12.5"
+    text = harness.checked(native(captured, "-O", "rtde", "-V"))
+    assert "Variable not in the table: " + "00" * 24 + " (a_newer_variable)" in text
+
+
+def test_decode_as_and_the_ports_preference():
+    """A robot behind a port forward: Decode As (-d) and the ports preference read it as on 30004."""
+    captured = _recipe_session(b"timestamp", b"DOUBLE", bytes.fromhex("4029000000000000"), port=40004)
+    assert "rtde" not in harness.checked(native(captured, "-T", "fields", "-e", "frame.protocols"))
+    for args in (["-d", "tcp.port==40004,rtde"], ["-o", "rtde.ports:40004"]):
+        shown = assert_same(captured, *args)
+        assert shown.layers[7]["rtde"]["rtde.timestamp"] == "12.5"

@@ -11,19 +11,20 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import value_text
 from ...emit import environment, runtime_path, runtime_source
-from ...epan_units import c_string
+from ...epan_c import c_string, value_literal
 from ...naming import column_name
 from .model import FROM_ROBOT
 from .plan import RecordsPlan
 
 RUNTIME_HEAD = ["int32_records_types.h"]    # the table types, before the tables
-RUNTIME_TAIL = ["int32_records.c"]          # the dissector, after the tables it walks
+RUNTIME_TAIL = ["dotted_version.c", "int32_records.c"]   # the release's text; the dissector, after the tables
 
 
 @dataclass
 class EpanField:
     hf: str
     items: list[str]             # the header_field_info initializer, member by member
+    comment: str = ""
 
 
 @dataclass
@@ -49,19 +50,15 @@ class EpanRecord:
     items: list[str]             # the int32_records_record initializer, member by member
 
 
-def _c_value(value: int) -> str:
-    """A value_string's value: guint32, negative codes as their two's complement (-2 is 0xfffffffe)."""
-    return str(value) if value >= 0 else f"(guint32){value}"
-
-
-def _field(name: str, hf: str, label: str, abbrev: str, ftype: str, base: str, strings: str) -> EpanField:
-    return EpanField(hf, [c_string(label), c_string(abbrev), ftype, base, strings, "0x0", "NULL", "HFILL"])
+def _field(name: str, hf: str, label: str, abbrev: str, ftype: str, base: str, strings: str,
+           comment: str = "") -> EpanField:
+    return EpanField(hf, [c_string(label), c_string(abbrev), ftype, base, strings, "0x0", "NULL", "HFILL"], comment)
 
 
 def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:
     m = p.model
     name = m.name
-    tables = [EpanTable(f"{name}_{e.name}_vals", [(_c_value(v.value), c_string(v.name), value_text(v))
+    tables = [EpanTable(f"{name}_{e.name}_vals", [(value_literal(v.value), c_string(v.name), value_text(v))
                                                   for v in e.values])
               for e in m.enums.values()]
     fields, seen = [], set()
@@ -71,14 +68,15 @@ def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:
                 continue
             seen.add(f.name)
             hf, abbrev = f"hf_{name}_{f.name}", f"{name}.{f.name}"
+            comment = " ".join(t for t in (f"{f.label}{f' ({f.unit})' if f.unit else ''}.", f.doc.strip()) if t)
             if f.scaled:
                 label = f.label + (f" ({f.unit})" if f.unit else "")
-                fields.append(_field(name, hf, label, abbrev, "FT_DOUBLE", "BASE_NONE", "NULL"))
+                fields.append(_field(name, hf, label, abbrev, "FT_DOUBLE", "BASE_NONE", "NULL", comment))
                 fields.append(_field(name, hf + "_raw", f"{f.label} (raw int32)", abbrev + "_raw", "FT_INT32",
                                      "BASE_DEC", "NULL"))
             else:
                 strings = f"VALS({name}_{f.enum.name}_vals)" if f.enum else "NULL"
-                fields.append(_field(name, hf, f.label, abbrev, "FT_INT32", "BASE_DEC", strings))
+                fields.append(_field(name, hf, f.label, abbrev, "FT_INT32", "BASE_DEC", strings, comment))
     records = {}
     for r in p.records:
         ident = f"{name}_{r.record.name}"

@@ -107,7 +107,7 @@ def view(p: LinesPlan) -> dict:
         short_name=_string(name.upper()), column=_string(column_name(name)), ports=list(m.ports),
         max_line=m.max_line,
         fields=[dict(name=f.name, label=_string(m.fields[f.name].label), abbrev=_string(f"{name}.{f.name}"),
-                     type=f.type, display=f.display) for f in FIELDS],
+                     type=f.type, display=f.display, blurb=_string(m.fields[f.name].doc)) for f in FIELDS],
         experts=[dict(name=e.name, abbrev=_string(f"{name}.{e.name}"), group=e.group, severity=e.severity,
                       text=_string(e.text)) for e in experts(m.max_line)],
         preference=dict(name=_string(PREFERENCE[0]), title=_string(PREFERENCE[1]), doc=_literals(PREFERENCE[2])),

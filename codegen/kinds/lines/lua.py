@@ -45,7 +45,7 @@ def view(p: LinesPlan) -> dict:
         lookup=[str(c.index + 1) for c in p.lookup],
         version_command=_number(p.version_command.index + 1 if p.version_command else None),
         version_prefix=_string(m.version_prefix), e_series_from=p.e_series_from,
-        labels=[dict(name=name, label=_string(f.label)) for name, f in m.fields.items()],
+        labels=[dict(name=name, label=_string(f.label), doc=_string(f.doc)) for name, f in m.fields.items()],
         runtime=[dict(path=runtime_path("lua", f"lines_{name}"), source=runtime_source("lua", f"lines_{name}"))
                  for name in RUNTIME],
     )

@@ -12,11 +12,12 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import field_text, node_text, value_text
 from ...emit import environment, runtime_path, runtime_source
-from ...epan_units import c_string, own_units, unit_ident
+from ...epan_c import c_string, own_units, unit_ident, value_literal
 from .plan import SizedPlan
 
 RUNTIME_HEAD = ["types.h"]      # runtime/epan/<name>_types.h: the table types, before the tables
 RUNTIME_TAIL = ["dissect.c"]    # runtime/epan/<name>_dissect.c: after the tables it walks
+SHARED = ["dotted_version.c"]   # runtime/epan/dotted_version.c: reads the version preference, before the tail
 INFO_FIELD = "robot_mode"       # the field whose name the Info column shows beside the layout's
 
 
@@ -55,9 +56,54 @@ class EpanForm:
     names: list[str]                         # per enum: its value_string or NULL
 
 
-def _c_value(value: int) -> str:
-    """A value_string's value: guint32, negative codes as their two's complement (-1 is 0xffffffff)."""
-    return str(value) if value >= 0 else f"(guint32){value}"
+def _unit(field) -> str:
+    return f"&{unit_ident(field.unit)}" if field.unit else "NULL"
+
+
+def _fields(name: str, catalogue: list[ir.AnyField]) -> list[EpanField]:
+    return [EpanField(f"hf_{name}_{f.name}", f.label, f"{name}.{f.name}",
+                      "BASE_NONE|BASE_UNIT_STRING" if f.unit else "BASE_NONE", _unit(f),
+                      field_text([f], versions=False))
+            for f in catalogue]
+
+
+def _tables(name: str, enums: list[ir.Enum]) -> dict[tuple[str, int], EpanTable]:
+    """Each enum's names, one value_string per version range of its codes."""
+    return {(e.name, i): EpanTable(f"{name}_{e.name}_{i}", [(value_literal(v.value), c_string(v.name), value_text(v))
+                                                            for v in table.values])
+            for e in enums for i, table in enumerate(e.tables)}
+
+
+def _layout(name: str, lp, enum_ids: dict[str, str]) -> EpanLayout:
+    """A layout's slots in packet order, and where it sends the field the Info column names."""
+    slots, info_at, info_names = [], -1, "-1"
+    for s in lp.slots:
+        f = s.field
+        names = enum_ids[s.enum.name] if s.enum is not None else "-1"
+        if isinstance(f, ir.ArrayField):
+            group = f.label + (f" ({f.unit})" if f.unit else "")
+            slots.append([f"&hf_{name}_{f.name}", f"&ett_{name}_{f.name}", c_string(group), str(s.offset),
+                          str(s.count), names, _unit(f)])
+        else:
+            slots.append([f"&hf_{name}_{f.name}", "NULL", "NULL", str(s.offset), "1", names, _unit(f)])
+        if f.name == INFO_FIELD:
+            info_at, info_names = s.offset, names
+    layout = lp.layout
+    return EpanLayout(f"{name}_{layout.name}", layout.name, f"{layout.label}: sent by software {layout.describe()}.",
+                      slots, info_at, info_names)
+
+
+def _forms(planned: SizedPlan, tables: dict) -> tuple[list[EpanForm], list[tuple[int, int, int]]]:
+    """The forms in the order the same-size rule tries them, and each size's first form and count."""
+    forms, sizes = [], []
+    for size in planned.sizes:
+        sizes.append((size, len(forms), len(planned.by_size[size])))
+        for index in planned.by_size[size]:
+            form = planned.forms[index]
+            names = [tables[(e.name, e.tables.index(form.tables[e.name]))].ident if e.name in form.tables else "NULL"
+                     for e in planned.enums]
+            forms.append(EpanForm(f"{size} bytes, {form.describe()}", form.low, form.high, form.layout, names))
+    return forms, sizes
 
 
 def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
@@ -65,61 +111,23 @@ def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
     name = protocol.name
     upper = name.upper()
     size_field = protocol.size_field
-    fields = []
-    for f in protocol.catalogue:
-        unit = f.unit or ""
-        fields.append(EpanField(f"hf_{name}_{f.name}", f.label, f"{name}.{f.name}",
-                                "BASE_NONE|BASE_UNIT_STRING" if unit else "BASE_NONE",
-                                f"&{unit_ident(unit)}" if unit else "NULL", field_text([f], versions=False)))
     arrays = [f for f in protocol.catalogue if isinstance(f, ir.ArrayField)]
-    etts = [f"ett_{name}"] + [f"ett_{name}_{f.name}" for f in arrays]
-    enums = planned.enums
-    enum_ids = {e.name: f"{upper}_NAMES_{e.name.upper()}" for e in enums}
-    tables = {}
-    for e in enums:
-        for i, table in enumerate(e.tables):
-            tables[(e.name, i)] = EpanTable(f"{name}_{e.name}_{i}",
-                                            [(_c_value(v.value), c_string(v.name), value_text(v))
-                                             for v in table.values])
-    layouts = []
-    for lp in planned.layouts:
-        layout = lp.layout
-        slots, info_at, info_names = [], -1, "-1"
-        for s in lp.slots:
-            f = s.field
-            names = enum_ids[s.enum.name] if s.enum is not None else "-1"
-            unit = f"&{unit_ident(f.unit)}" if f.unit else "NULL"
-            if isinstance(f, ir.ArrayField):
-                group = f.label + (f" ({f.unit})" if f.unit else "")
-                slots.append([f"&hf_{name}_{f.name}", f"&ett_{name}_{f.name}", c_string(group), str(s.offset),
-                              str(s.count), names, unit])
-            else:
-                slots.append([f"&hf_{name}_{f.name}", "NULL", "NULL", str(s.offset), "1", names, unit])
-            if f.name == INFO_FIELD:
-                info_at, info_names = s.offset, names
-        comment = f"{layout.label}: sent by software {layout.describe()}."
-        layouts.append(EpanLayout(f"{name}_{layout.name}", layout.name, comment, slots, info_at, info_names))
-    forms, sizes = [], []
-    for size in planned.sizes:
-        sizes.append((size, len(forms), len(planned.by_size[size])))
-        for index in planned.by_size[size]:
-            form = planned.forms[index]
-            names = [tables[(e.name, e.tables.index(form.tables[e.name]))].ident if e.name in form.tables else "NULL"
-                     for e in enums]
-            forms.append(EpanForm(f"{size} bytes, {form.describe()}", form.low, form.high,
-                                  form.layout, names))
-    runtime = [dict(path=runtime_path("epan", f"{name}_{part}"), source=runtime_source("epan", f"{name}_{part}"))
-               for part in RUNTIME_HEAD + RUNTIME_TAIL]
+    enum_ids = {e.name: f"{upper}_NAMES_{e.name.upper()}" for e in planned.enums}
+    tables = _tables(name, planned.enums)
+    forms, sizes = _forms(planned, tables)
+    files = [f"{name}_{part}" for part in RUNTIME_HEAD] + SHARED + [f"{name}_{part}" for part in RUNTIME_TAIL]
+    runtime = [dict(path=runtime_path("epan", file), source=runtime_source("epan", file)) for file in files]
     context = dict(
         banner=banner, protocol=protocol, name=name, upper=upper, file=f"packet-{name.replace('_', '-')}.c",
         short_name=upper, doc=node_text(protocol), ports=",".join(str(p) for p in protocol.ports),
         size_field=EpanField(f"hf_{name}_{size_field.name}", size_field.label, f"{name}.{size_field.name}",
-                             "BASE_DEC", "NULL", ""),
-        fields=fields, etts=etts, own_units=own_units([f.unit or "" for f in protocol.catalogue]),
-        enums=[(enum_ids[e.name], node_text(e) or e.name) for e in enums], tables=list(tables.values()),
-        layouts=layouts, forms=forms, sizes=sizes, same_size=protocol.same_size,
-        size_bytes=protocol.size_field_bytes, min_size=protocol.size_field_bytes + 8,
-        max_size=protocol.max_message_size,
+                             "BASE_DEC", "NULL", field_text([size_field], versions=False)),
+        fields=_fields(name, protocol.catalogue), etts=[f"ett_{name}"] + [f"ett_{name}_{f.name}" for f in arrays],
+        own_units=own_units([f.unit or "" for f in protocol.catalogue]),
+        enums=[(enum_ids[e.name], node_text(e) or e.name) for e in planned.enums], tables=list(tables.values()),
+        layouts=[_layout(name, lp, enum_ids) for lp in planned.layouts], forms=forms, sizes=sizes,
+        same_size=protocol.same_size, size_bytes=protocol.size_field_bytes,
+        min_size=protocol.size_field_bytes + 8, max_size=protocol.max_message_size,
         head=runtime[:len(RUNTIME_HEAD)], tail=runtime[len(RUNTIME_HEAD):])
     text = environment("epan").get_template("sized_packets/dissector.c.j2").render(**context)
     return {f"epan/{context['file']}": text}

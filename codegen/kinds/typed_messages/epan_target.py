@@ -46,6 +46,7 @@ def c_string(text: Optional[str]) -> str:
 @dataclass
 class FieldView:
     """One hf_register_info entry."""
+    prefix: str                # the protocol's filter name: the hf array is hf_<prefix>
     name: str
     enum: str                  # its index into the hf array
     label: str
@@ -56,7 +57,7 @@ class FieldView:
 
     @property
     def line(self) -> str:
-        return spread([f"&hf_{self.abbrev.split('.')[0]}[{self.enum}]", "{ " + c_string(self.label),
+        return spread([f"&hf_{self.prefix}[{self.enum}]", "{ " + c_string(self.label),
                        c_string(self.abbrev), self.ftype, self.base, self.strings, "0x0", "NULL", "HFILL } }"],
                       "{ ", ",", "        ")
 
@@ -90,7 +91,7 @@ class _Fields:
             self.problems.append(Problem(where.path, f"epan target: {self.prefix}.{name} and another field are "
                                                      f"both {enum} in C", where.line))
             return
-        self.by_name[name] = FieldView(name, enum, label, f"{self.prefix}.{name}", ftype, base, strings)
+        self.by_name[name] = FieldView(self.prefix, name, enum, label, f"{self.prefix}.{name}", ftype, base, strings)
 
     def scalar(self, name: str, label: str, scalar: ir.Scalar, unit: Optional[str], vs: Optional[str],
                where: ir.Where) -> None:
@@ -160,6 +161,7 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
     fields.add("direction", "Direction", "FT_STRING", "BASE_NONE", own=True)
     fields.add("recipe_frame", "Recipe set up in frame", "FT_FRAMENUM", "BASE_NONE", own=True)
     fields.add("protocol", "Protocol version in force", "FT_UINT8", "BASE_DEC", own=True)
+    fields.add("unknown_variable", "Variable not in the table", "FT_BYTES", "BASE_NONE", own=True)
     fields.add("recipe_id", "Recipe id", "FT_UINT8", "BASE_DEC")
     for m in interface.messages:
         for f in m.fields:

@@ -24,7 +24,7 @@ PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16"
 READER = {"bool": "uint", "int8": "int", "uint8": "uint", "int16": "int", "uint16": "uint", "int32": "int",
           "uint32": "uint", "int64": "int64", "uint64": "uint64", "float32": "float", "float64": "float"}
 # Header fields and the fields the runtime adds itself; no message field or variable may take these names.
-OWN_FIELDS = ("length", "type", "kind", "recipe_frame", "direction", "protocol")
+OWN_FIELDS = ("length", "type", "kind", "recipe_frame", "direction", "protocol", "unknown_variable")
 
 
 @dataclass

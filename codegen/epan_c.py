@@ -1,6 +1,9 @@
-"""Units as the epan target shows them: a spec unit -> the `unit_name_string` a field's
-BASE_UNIT_STRING display names. Wireshark's own (epan/unit_strings.h) where it has the unit, else
-one the generated file defines (`static const unit_name_string`), named after the unit.
+"""What the epan renderers of every kind write alike in C: string literals, value_string values,
+and units.
+
+A spec unit -> the `unit_name_string` a field's BASE_UNIT_STRING display names: Wireshark's own
+(epan/unit_strings.h) where it has the unit, else one the generated file defines
+(`static const unit_name_string`), named after the unit.
 
 Wireshark's abbreviations carry no space ("48V", "30.5°C"); its names do (" seconds"), and so do
 the project's own (" rad"), which read as the Lua dissector's appended units do."""
@@ -47,3 +50,9 @@ def own_units(units: list[str]) -> list[OwnUnit]:
 def c_string(text: str) -> str:
     """A C string literal of text (UTF-8 as it is; quotes and backslashes escaped)."""
     return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def value_literal(value: int) -> str:
+    """A value_string's value: a guint32, a negative code as its two's complement (-1 is 0xffffffff),
+    which is what a signed field's value is looked up as."""
+    return str(value) if value >= 0 else f"(guint32){value}"

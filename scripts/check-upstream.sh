@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# check-upstream.sh WIRESHARK_SOURCE FILE...: Wireshark's own source checks, from a Wireshark
+# checkout's tools/, on the generated dissectors (Debian ships none of them). Each check that
+# the checkout has runs on every file; a check that reports a problem makes the exit status 1.
+#   checkAPIs.pl               prohibited and deprecated APIs, bad value_string and hf arrays
+#   checkhf.pl                 hf_ handles declared but not registered, or never used
+#   check_typed_item_calls.py  each proto_tree_add_* call against its field's type, masks, labels
+#   check_tfs.py               true_false_strings that tfs.h already has
+#   check_val_to_str.py        val_to_str formats
+# check_static.py needs a whole Wireshark build folder; tests/native/test_plugin.py checks the same
+# thing (each packet file defines only its proto_register_ and proto_reg_handoff_ globally).
+set -u
+source=${1:?usage: check-upstream.sh WIRESHARK_SOURCE FILE...}
+shift
+if [ ! -d "$source/tools" ]; then
+    echo "check-upstream: $source has no tools/ folder: give WIRESHARK_SOURCE a Wireshark checkout" >&2
+    exit 2
+fi
+files=()
+for f in "$@"; do files+=("$(realpath "$f")"); done
+[ ${#files[@]} -gt 0 ] || { echo "check-upstream: no files to check" >&2; exit 2; }
+status=0
+ran=0
+
+finding() {
+    echo "check-upstream: $1 reports problems"
+    status=1
+}
+
+if [ -f "$source/tools/checkAPIs.pl" ]; then
+    echo "== checkAPIs.pl"; ran=$((ran + 1))
+    # As Wireshark's git pre-commit hook runs it: one file at a time, with -p where the script
+    # knows it (then a packet-*.c is also checked for abort() and terminal output).
+    precommit=()
+    grep -q "'pre-commit'" "$source/tools/checkAPIs.pl" && precommit=(-p)
+    for f in "${files[@]}"; do
+        (cd "$source" && perl tools/checkAPIs.pl "${precommit[@]}" "$f") || finding "checkAPIs.pl on $(basename "$f")"
+    done
+fi
+if [ -f "$source/tools/checkhf.pl" ]; then
+    echo "== checkhf.pl"; ran=$((ran + 1))
+    out=$(cd "$source" && perl tools/checkhf.pl "${files[@]}" 2>&1); rc=$?
+    [ -n "$out" ] && echo "$out"
+    { [ $rc -ne 0 ] || echo "$out" | grep -qE "Unused entry|NO ARRAY"; } && finding checkhf.pl
+fi
+# One file a run: some releases of these scripts keep only the last --file.
+for check in check_typed_item_calls.py check_tfs.py check_val_to_str.py; do
+    [ -f "$source/tools/$check" ] || continue
+    echo "== $check"; ran=$((ran + 1))
+    extra=()
+    [ "$check" = check_typed_item_calls.py ] && extra=(--mask --label --consecutive)
+    for f in "${files[@]}"; do
+        out=$(cd "$source" && python3 "tools/$check" --file "$f" "${extra[@]}" 2>&1); rc=$?
+        echo "$out"
+        problems="^[1-9][0-9]* (issues|warnings) found|^Error|Traceback"
+        { [ $rc -ne 0 ] || echo "$out" | grep -qE "$problems"; } && finding "$check on $(basename "$f")"
+    done
+done
+if [ $ran -eq 0 ]; then
+    echo "check-upstream: none of Wireshark's checks is under $source/tools" >&2
+    exit 2
+fi
+verdict=$([ $status -eq 0 ] && echo "no problem" || echo "problems above")
+echo "check-upstream: $ran checks on ${#files[@]} files, $verdict"
+exit $status

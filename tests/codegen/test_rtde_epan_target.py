@@ -1,0 +1,58 @@
+"""The epan target of the typed-messages kind (codegen/kinds/typed_messages/epan_target.py): what the
+runtime relies on in the tables of generated/epan/packet-rtde.c, and the names it refuses."""
+from __future__ import annotations
+
+import re
+
+import yaml
+
+from codegen.compile import SPEC_DIR, compile_text
+from codegen.emit import banner_lines
+from codegen.errors import SpecError
+from codegen.kinds.typed_messages import epan_target
+
+SPEC = SPEC_DIR / "rtde.yaml"
+TEXT = SPEC.read_text(encoding="utf-8")
+
+
+def rendered(text: str = TEXT) -> str:
+    files = epan_target.render(compile_text(text, str(SPEC)), banner_lines("spec/rtde.yaml", text))
+    assert list(files) == ["epan/packet-rtde.c"]
+    return files["epan/packet-rtde.c"]
+
+
+def _table(source: str, name: str) -> str:
+    return source.split(f"{name}[] = {{", 1)[1].split("\n};", 1)[0]
+
+
+def test_the_variable_table_is_sorted_as_the_binary_search_compares():
+    """runtime/epan/rtde_state.c finds a recipe's names by a binary search over memcmp: the table
+    must be in byte order, hold every variable once, and each row name its own field."""
+    source = rendered()
+    rows = re.findall(r'\{ "([^"]+)", RTDE_HF_([A-Z0-9_]+), ', _table(source, "rtde_variables"))
+    names = [name for name, _ in rows]
+    assert len(names) > 400 and len(set(names)) == len(names)
+    assert names == sorted(names, key=lambda n: n.encode())
+    assert all(field == name.upper() for name, field in rows)
+    assert {"actual_q", "input_int_register_24", "timestamp"} <= set(names)
+
+
+def test_every_layout_is_reachable_by_code_direction_and_protocol():
+    """rtde_layout_of holds 1 + each layout's index exactly once."""
+    source = rendered()
+    layouts = _table(source, "rtde_layouts").count('{ "')
+    entries = [int(n) for n in re.findall(r"\d+", " ".join(
+        line.split("=", 1)[1].split("/*")[0] for line in source.split("rtde_layout_of[256]", 1)[1]
+        .split("\n};", 1)[0].splitlines()[1:]))]
+    assert sorted(n for n in entries if n) == list(range(1, layouts + 1))
+
+
+def test_a_field_named_like_the_dissectors_own_is_refused():
+    data = yaml.safe_load(TEXT)
+    data["variables"][0]["name"] = "unknown_variable"
+    try:
+        rendered(yaml.safe_dump(data, sort_keys=False, allow_unicode=True))
+    except SpecError as caught:
+        assert any("rtde.unknown_variable is the dissector's own field" in p.message for p in caught.problems)
+    else:
+        raise AssertionError("the epan target took a variable named like its own field")

@@ -1,0 +1,96 @@
+"""tests/fuzz/fuzz_wireshark.py (make fuzz-wireshark), Wireshark's fuzz-test.sh approach: a short
+fixed run of it (a few editcap mutations), and proof that it fails, keeping the capture, on what
+it is there to find: a sanitizer report from the native plugin, a Lua error, a crash.
+
+The native plugin is generated/epan's, or the fixture dissector's until generated/epan has files.
+"""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.fuzz import fuzz_wireshark
+from tests.native import harness
+from tests.tools import capture, golden_sessions
+
+ROOT = harness.ROOT
+FIXTURES = Path(__file__).resolve().parent / "fixtures"
+SCRIPT = ROOT / "tests" / "fuzz" / "fuzz_wireshark.py"
+EPAN = harness.EPAN if any(harness.EPAN.glob("packet-*.c")) else FIXTURES / "epan"
+
+
+def fuzz(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(SCRIPT), *args], capture_output=True, text=True, timeout=900)
+
+
+def fixture_capture(path: Path, kind: int) -> Path:
+    """Two fixture messages on the fixture's port: a VALUE, then one of `kind`."""
+    messages = [b"\x00\x07\x02\x00\x00\x00\x05", bytes([0, 3, kind])]
+    return capture.write(path, capture.robot_session(messages, port=40999))
+
+
+def test_a_short_fixed_run(tmp_path):
+    golden = golden_sessions.write(tmp_path / "golden_vectors.pcap")
+    result = fuzz("--epan-dir", str(EPAN), "--out", str(tmp_path / "out"), "--seed", "1", "--mutations", "3",
+                  "--seconds", "600", "--only-inputs", str(golden),
+                  str(ROOT / "dissector" / "samples" / "cell_session.pcapng"))
+    assert result.returncode == 0, result.stdout + result.stderr[-3000:]
+    assert "native (ASan+UBSan" in result.stdout and "Lua (" in result.stdout
+    assert "3 mutations read without a crash" in result.stdout
+    assert not (tmp_path / "out" / "failures").exists()
+
+
+def test_a_sanitizer_report_fails_and_the_capture_is_kept(tmp_path):
+    """A fixture whose kind 3 writes past a heap block of the size its message gives (a size UBSan
+    cannot know): ASan, preloaded into tshark, reports it."""
+    epan = tmp_path / "epan"
+    epan.mkdir()
+    source = (FIXTURES / "epan" / "packet-urwire-fixture.c").read_text()
+    bug = ("    if (kind == 3) {\n        guint8 *block = (guint8 *)g_malloc(length);\n"
+           "        block[length] = kind;\n        g_free(block);\n    }\n")
+    marker = "    proto_tree_add_item(subtree, hf_urwire_fixture_kind, tvb, 2, 1, ENC_NA);\n"
+    assert marker in source
+    (epan / "packet-urwire-fixture.c").write_text(source.replace(marker, marker + bug))
+    pcap = fixture_capture(tmp_path / "kind3.pcap", 3)
+    result = fuzz("--epan-dir", str(epan), "--lua", "--out", str(tmp_path / "out"), "--seconds", "0",
+                  "--only-inputs", str(pcap))
+    assert result.returncode == 1, result.stdout + result.stderr[-3000:]
+    assert "sanitizer report" in result.stderr
+    kept = tmp_path / "out" / "failures" / "kind3-original.pcap"
+    assert kept.read_bytes() == pcap.read_bytes()
+    assert "AddressSanitizer" in kept.with_suffix(".txt").read_text()
+
+
+def test_a_lua_error_fails_and_the_capture_is_kept(tmp_path):
+    script = tmp_path / "urwire_fixture.lua"
+    script.write_text((FIXTURES / "lua" / "urwire_fixture.lua").read_text().replace(
+        "    local subtree = tree:add(proto, tvb())\n",
+        "    if kind == 3 then error(\"kind 3\") end\n    local subtree = tree:add(proto, tvb())\n"))
+    pcap = fixture_capture(tmp_path / "kind3.pcap", 3)
+    result = fuzz("--epan-dir", str(tmp_path), "--lua", str(script), "--out", str(tmp_path / "out"),
+                  "--seconds", "0", "--only-inputs", str(pcap))
+    assert result.returncode == 1, result.stdout + result.stderr[-3000:]
+    assert "Lua error" in result.stderr
+    assert (tmp_path / "out" / "failures" / "kind3-original.pcap").is_file()
+    # the same capture with a kind the script reads is fine
+    fine = fixture_capture(tmp_path / "kind1.pcap", 1)
+    result = fuzz("--epan-dir", str(tmp_path), "--lua", str(script), "--out", str(tmp_path / "out2"),
+                  "--seconds", "0", "--only-inputs", str(fine))
+    assert result.returncode == 0, result.stdout + result.stderr[-3000:]
+
+
+@pytest.mark.parametrize("returncode, stdout, stderr, why", [
+    (-11, b"", b"", "killed by signal 11"),
+    (86, b"", b"==1==ERROR: AddressSanitizer: heap-buffer-overflow", "sanitizer report"),
+    (1, b"", b"packet.c:10:3: runtime error: signed integer overflow", "sanitizer report"),
+    (0, b"    [Dissector bug, protocol ur: proto.c:1: failed assertion]", b"", "dissector bug"),
+    (0, b"    Lua Error: urwire.lua:10: attempt to index a nil value", b"", "Lua error"),
+    (2, b"", b"tshark: The file \"-\" isn't a capture file", "exit status 2"),
+    (0, b"Frame 1", b"Running as user \"root\"", None),
+])
+def test_what_counts_as_a_failure(returncode, stdout, stderr, why):
+    found = fuzz_wireshark.problem(subprocess.CompletedProcess([], returncode, stdout, stderr))
+    assert (found is None) if why is None else (found is not None and found.startswith(why))
