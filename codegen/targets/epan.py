@@ -16,6 +16,7 @@ import re
 from typing import Optional
 
 from .. import ir, plan, wrap
+from ..epan_c import value_literal
 from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ..errors import SpecError
 from ..view import Step
@@ -224,7 +225,7 @@ class _Builder:
                     continue
                 tables.append(dict(name=name, versions=t["versions"], low=self.low(t["low"]), high=self.high(t["high"]),
                                    ext=ext,
-                                   entries=[(f"(guint32){v}" if v < 0 else str(v), n) for v, n in entries]))
+                                   entries=[(value_literal(v), n) for v, n in entries]))
             if not tables:
                 continue
             out.append(dict(name=e["name"], doc=e["doc"], versioned=e["versioned"] and
