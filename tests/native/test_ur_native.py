@@ -365,3 +365,10 @@ def test_without_tcp_reassembly():
     data = _golden_capture("", ("whole", "random_cuts", "1-7 bytes"))
     shown = assert_same(data, "-o", "tcp.desegment_tcp_streams:FALSE")
     assert any("Continuation" in line for line in shown.info)
+
+
+@pytest.mark.parametrize("text", ["5.1500", "5.9.x", " 3.2", "3.2.", "abc", "10.7.5000"])
+def test_odd_version_preferences(text):
+    """The ur.version preference's text read as Lua reads it: blanks, a trailing dot or word, a
+    bugfix over 999, a minor over 999 (carried into the major), no version at all."""
+    assert_same(_golden_capture("", ("whole",)), "-o", f"ur.version:{text}")
