@@ -11,7 +11,7 @@ DEMO_TARGETS :=
 DEMO_CELL_TARGETS :=
 BENCH_TARGETS :=
 
-.PHONY: all generate check-generated spec-diff setup test test-codegen test-python test-python-range soak demo demo-python \
+.PHONY: all generate check-generated spec-diff setup test test-deep test-codegen test-python test-python-range soak demo demo-python \
 	bench bench-python
 
 all: build-all
@@ -53,9 +53,15 @@ TEST_JOBS ?= auto
 test: check-generated $(TEST_BUILDS)
 	@mkdir -p build
 	@$(PYTEST) -q $(LIVE_TESTS) > build/live-tests.log 2>&1 & live=$$!; \
-	$(PYTEST) -q -n $(TEST_JOBS) --dist loadfile tests $(LIVE_TESTS:%=--ignore=%); rest=$$?; \
+	$(PYTEST) -q -n $(TEST_JOBS) --dist loadfile -m "not deep" tests $(LIVE_TESTS:%=--ignore=%); rest=$$?; \
 	wait $$live; live=$$?; echo "== the live tools' tests"; cat build/live-tests.log; \
 	[ $$rest -eq 0 ] && [ $$live -eq 0 ]
+
+## test-deep: the long sweeps that `make test` leaves out (tests marked `deep`: the native
+## dissectors against Lua on every segmentation and the whole fuzz corpora, and under ASan); CI
+## runs it after `make test`
+test-deep: $(TEST_BUILDS)
+	$(PYTEST) -q -n $(TEST_JOBS) --dist loadfile -m deep tests $(LIVE_TESTS:%=--ignore=%)
 
 ## test-codegen, test-python (and test-c, test-lua): the tests of one folder
 test-codegen:

@@ -187,7 +187,7 @@ def test_every_golden_vector_whole_and_in_1_to_7_byte_segments(tmp_path, interfa
         assert any(shown.layers), "the dissector showed nothing"
 
 
-@pytest.mark.parametrize("variant", VARIANTS)
+@pytest.mark.parametrize("variant", [v if v != "asan" else pytest.param(v, marks=pytest.mark.deep) for v in VARIANTS])
 def test_the_dashboard_fuzz_corpus(tmp_path, variant):
     captures = corpus_captures(tmp_path)
     assert len(captures) == len(FUZZ_VERSIONS)

@@ -183,6 +183,19 @@ def _prefs(hint: str) -> tuple[str, ...]:
     return ("-o", f"ur.version:{hint}") if hint else ()
 
 
+# `make test` cuts the vectors two ways; `make test-deep` (CI) every way.
+QUICK = ("whole", "1-7 bytes")
+
+
+@pytest.mark.parametrize("hint", HINTS, ids=lambda h: h or "no hint")
+def test_golden_vectors_whole_and_in_1_to_7_byte_segments(hint):
+    data = _golden_capture(hint, QUICK)
+    shown = assert_same(data, *_prefs(hint))
+    assert sum(1 for layer in shown.layers if layer) > len(QUICK)
+    assert_same_tree(data, *_prefs(hint))
+
+
+@pytest.mark.deep
 @pytest.mark.parametrize("hint", HINTS, ids=lambda h: h or "no hint")
 def test_golden_vectors_in_every_segmentation(hint):
     data = _golden_capture(hint)
@@ -205,6 +218,7 @@ def _generation_capture() -> bytes:
     return _sessions(streams)
 
 
+@pytest.mark.deep
 def test_generation_sessions():
     data = _generation_capture()
     assert_same(data)
@@ -231,6 +245,7 @@ def _corpus_capture(version: str) -> bytes:
     return _sessions(streams)
 
 
+@pytest.mark.deep
 @pytest.mark.parametrize("version", sorted(fuzz_corpus.GROUPS), ids=lambda v: v or "no hint")
 def test_fuzz_corpus(version):
     """Faults, resynchronisation and their experts included."""
@@ -253,6 +268,8 @@ def _sanitizer_env() -> dict:
 def _captures(name: str) -> dict[str, tuple[bytes, tuple[str, ...]]]:
     """The captures the differential tests read, by group: each with its preferences."""
     if name == "golden":
+        return {f"golden {h or 'no hint'}": (_golden_capture(h, QUICK), _prefs(h)) for h in HINTS}
+    if name == "golden, every segmentation":
         return {f"golden {h or 'no hint'}": (_golden_capture(h), _prefs(h)) for h in HINTS}
     if name == "corpus":
         return {f"corpus {v or 'no hint'}": (_corpus_capture(v), _prefs(v)) for v in sorted(fuzz_corpus.GROUPS)}
@@ -261,7 +278,8 @@ def _captures(name: str) -> dict[str, tuple[bytes, tuple[str, ...]]]:
     return {s: ((SAMPLES / s).read_bytes(), ()) for s in ("primary_session.pcapng", "secondary_session.pcap")}
 
 
-@pytest.mark.parametrize("name", ["golden", "generations", "corpus", "samples"])
+@pytest.mark.parametrize("name", ["golden", "samples"] + [pytest.param(name, marks=pytest.mark.deep) for name in (
+    "golden, every segmentation", "generations", "corpus")])
 def test_no_sanitizer_report(name):
     """With a tree (-V; its first pass builds neither tree nor columns) and without one (the packet
     list: the Info column only)."""
@@ -348,10 +366,10 @@ def test_fields_and_filters_on_the_sample(args):
     assert native.strip()
 
 
-@pytest.mark.parametrize("group", ["golden", "corpus"])
+@pytest.mark.parametrize("group", ["golden", pytest.param("corpus", marks=pytest.mark.deep)])
 def test_packet_list_without_a_tree(group):
     """tshark's packet list, one pass: no tree, only framing, the version state and the Info column."""
-    captures = ({h: _golden_capture(h) for h in HINTS} if group == "golden"
+    captures = ({h: _golden_capture(h, QUICK) for h in HINTS} if group == "golden"
                 else {v: _corpus_capture(v) for v in sorted(fuzz_corpus.GROUPS)})
     for hint, data in captures.items():
         native = harness.checked(harness.run_native(data, *_prefs(hint)))
