@@ -16,6 +16,7 @@ import re
 from typing import Optional
 
 from .. import ir, plan, wrap
+from .. import epan_c
 from ..epan_c import value_literal
 from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ..errors import SpecError
@@ -139,7 +140,7 @@ class _Builder:
         self.value_lists: list[dict] = []
         self.keep_slots: dict[str, int] = {}
         self.units: dict[str, str] = {}       # unit -> its own unit_name_string, where Wireshark has none
-        self.labels: dict[tuple[str, str], str] = {}   # (float type, unit) -> its label function
+        self.labels: dict[tuple[str, str], epan_c.UnitLabel] = {}   # (float type, unit) -> its label function
         self.labelled: set[str] = set()       # the float fields whose label function shows their unit
         self.n_arrays = 0
         self.used: set[str] = set()           # value strings and names by version that the tables use
@@ -170,14 +171,9 @@ class _Builder:
         return self.units[unit]
 
     def label_of(self, ft: str, unit: str) -> str:
-        """The BASE_CUSTOM function that labels a float field with its unit, as the Lua twin shows
-        it: the value as Wireshark prints the type, then the unit. Wireshark builds a label only
-        when the tree is printed, where appending the unit to an item built every label at once
-        (tshark -T fields builds the whole tree, and printed none of it)."""
-        key = (ft, unit)
-        if key not in self.labels:
-            self.labels[key] = f"ur_label_{ident(unit) or 'unit'}_{len(self.labels)}"
-        return self.labels[key]
+        """The label function (BASE_CUSTOM) of a float field with a unit (epan_c.UnitLabel)."""
+        label = self.labels.setdefault((ft, unit), epan_c.unit_label("ur", unit, double=ft == "FT_DOUBLE"))
+        return label.ident
 
     def check_unit(self, key: Optional[str], unit: Optional[str]) -> None:
         """A read's unit is its field's, which the field's label shows (the runtime adds none)."""
@@ -417,8 +413,7 @@ class _Builder:
                     switches=self.switches, value_lists=self.value_lists, messages=messages,
                     value_tables=self.value_tables(), value_kinds=list(KIND_CONST.items()),
                     units=sorted(self.units.items(), key=lambda kv: kv[1]), keep_slots=len(self.keep_slots),
-                    labels=[dict(name=name, digits="DBL_DIG" if ft == "FT_DOUBLE" else "FLT_DIG",
-                                 suffix=lua.unit_text(unit)) for (ft, unit), name in self.labels.items()],
+                    labels=list(self.labels.values()),
                     known_codes=m["known_codes"], message_type_names=m_names,
                     message_type_tables=m_tables, constants=m["constants"],
                     version=version, bugfix=version["bugfix"], experts=EXPERTS,

@@ -567,81 +567,81 @@ static const unit_name_string ur_units_0_v = { " V", NULL };
 /* ---- Labels of float fields with a unit: the value as Wireshark prints its type, then the unit ---- */
 
 static void
-ur_label_rad_0(gchar *text, double value)
+ur_label_rad_double(gchar *text, double value)
 {
     snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " rad");
 }
 
 static void
-ur_label_rad_s_1(gchar *text, double value)
+ur_label_rad_per_s_double(gchar *text, double value)
 {
     snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " rad/s");
 }
 
 static void
-ur_label_a_2(gchar *text, double value)
+ur_label_a_float(gchar *text, double value)
 {
     snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", FLT_DIG, value, " A");
 }
 
 static void
-ur_label_v_3(gchar *text, double value)
+ur_label_v_float(gchar *text, double value)
 {
     snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", FLT_DIG, value, " V");
 }
 
 static void
-ur_label_c_4(gchar *text, double value)
+ur_label_degc_float(gchar *text, double value)
 {
-    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", FLT_DIG, value, " \302\260C");
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", FLT_DIG, value, " °C");
 }
 
 static void
-ur_label_m_5(gchar *text, double value)
+ur_label_m_double(gchar *text, double value)
 {
     snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " m");
 }
 
 static void
-ur_label_rad_s_6(gchar *text, double value)
+ur_label_rad_per_s2_double(gchar *text, double value)
 {
-    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " rad/s\302\262");
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " rad/s²");
 }
 
 static void
-ur_label_m_s_7(gchar *text, double value)
+ur_label_m_per_s_double(gchar *text, double value)
 {
     snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " m/s");
 }
 
 static void
-ur_label_m_s_8(gchar *text, double value)
+ur_label_m_per_s2_double(gchar *text, double value)
 {
-    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " m/s\302\262");
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " m/s²");
 }
 
 static void
-ur_label_n_9(gchar *text, double value)
+ur_label_n_double(gchar *text, double value)
 {
     snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " N");
 }
 
 static void
-ur_label_nm_10(gchar *text, double value)
+ur_label_nm_double(gchar *text, double value)
 {
     snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " Nm");
 }
 
 static void
-ur_label_kg_11(gchar *text, double value)
+ur_label_kg_double(gchar *text, double value)
 {
     snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " kg");
 }
 
 static void
-ur_label_kg_m_12(gchar *text, double value)
+ur_label_kg_m2_double(gchar *text, double value)
 {
-    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " kg\302\267m\302\262");
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " kg·m²");
 }
 
 /* ---- Value strings: every enum of the spec, by wire value; one per version range where the
@@ -5118,32 +5118,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_JOINT_DATA_Q_ACTUAL],
           { "Actual joint position", "ur.joint_data.q_actual",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Measured angle of the joint. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_Q_TARGET],
           { "Target joint position", "ur.joint_data.q_target",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Angle the controller commands. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_QD_ACTUAL],
           { "Actual joint velocity", "ur.joint_data.qd_actual",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_s_1), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_per_s_double), 0x0,
             "Measured angular velocity of the joint. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_I_ACTUAL],
           { "Actual joint current", "ur.joint_data.i_actual",
-            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_a_2), 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_a_float), 0x0,
             "Measured motor current; l_actual in the document. In A.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_V_ACTUAL],
           { "Actual joint voltage", "ur.joint_data.v_actual",
-            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_3), 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_float), 0x0,
             "Measured joint voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_T_MOTOR],
           { "Motor temperature", "ur.joint_data.t_motor",
-            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_c_4), 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_degc_float), 0x0,
             "Temperature of the joint. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_T_MICRO],
@@ -5183,7 +5183,7 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_VOLTAGE_48V],
           { "Tool voltage", "ur.tool_data.tool_voltage_48v",
-            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_3), 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_float), 0x0,
             "Tool voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_OUTPUT_VOLTAGE],
@@ -5193,12 +5193,12 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_CURRENT],
           { "Tool current", "ur.tool_data.tool_current",
-            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_a_2), 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_a_float), 0x0,
             "Tool current. In A.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_TEMPERATURE],
           { "Tool temperature", "ur.tool_data.tool_temperature",
-            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_c_4), 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_degc_float), 0x0,
             "Tool temperature. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_MODE],
@@ -5446,17 +5446,17 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_MASTER_BOARD_TEMPERATURE],
           { "Masterboard temperature", "ur.masterboard_data.master_board_temperature",
-            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_c_4), 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_degc_float), 0x0,
             "Masterboard temperature. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_ROBOT_VOLTAGE_48V],
           { "Robot voltage", "ur.masterboard_data.robot_voltage_48v",
-            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_3), 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_float), 0x0,
             "Robot voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_ROBOT_CURRENT],
           { "Robot current", "ur.masterboard_data.robot_current",
-            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_a_2), 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_a_float), 0x0,
             "Robot current. In A.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_MASTER_IO_CURRENT],
@@ -5517,7 +5517,7 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_24V],
           { "Euromap67 24 V voltage", "ur.masterboard_data.euromap_voltage_24v",
-            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_3), 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_float), 0x0,
             "Euromap67 24 V voltage. In V. Sent by software 3.0 and later.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT],
@@ -5555,62 +5555,62 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_X],
           { "TCP position X", "ur.cartesian_info.x",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_5), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "Position of the tool centre point in base coordinates, X. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_Y],
           { "TCP position Y", "ur.cartesian_info.y",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_5), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "Position of the tool centre point in base coordinates, Y. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_Z],
           { "TCP position Z", "ur.cartesian_info.z",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_5), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "Position of the tool centre point in base coordinates, Z. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RX],
           { "TCP rotation Rx", "ur.cartesian_info.rx",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Orientation of the tool as a rotation vector, Rx. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RY],
           { "TCP rotation Ry", "ur.cartesian_info.ry",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Orientation of the tool as a rotation vector, Ry. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RZ],
           { "TCP rotation Rz", "ur.cartesian_info.rz",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Orientation of the tool as a rotation vector, Rz. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_X],
           { "TCP offset X", "ur.cartesian_info.tcp_offset_x",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_5), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "TCP offset X. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_Y],
           { "TCP offset Y", "ur.cartesian_info.tcp_offset_y",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_5), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "TCP offset Y. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_Z],
           { "TCP offset Z", "ur.cartesian_info.tcp_offset_z",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_5), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "TCP offset Z. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RX],
           { "TCP offset Rx", "ur.cartesian_info.tcp_offset_rx",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "TCP offset Rx. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RY],
           { "TCP offset Ry", "ur.cartesian_info.tcp_offset_ry",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "TCP offset Ry. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RZ],
           { "TCP offset Rz", "ur.cartesian_info.tcp_offset_rz",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "TCP offset Rz. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO],
@@ -5647,22 +5647,22 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_THETA],
           { "DH theta", "ur.kinematics_info.dh_theta",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "DH theta. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_A],
           { "DH a", "ur.kinematics_info.dh_a",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_5), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "DH a. In m.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_D],
           { "DH d", "ur.kinematics_info.dh_d",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_5), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "Dhd in the document. In m.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_ALPHA],
           { "DH alpha", "ur.kinematics_info.dh_alpha",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "DH alpha. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_CALIBRATION_STATUS],
@@ -5683,12 +5683,12 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MIN_LIMIT],
           { "Minimum joint position", "ur.configuration_data.joint_min_limit",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Minimum joint position. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_LIMIT],
           { "Maximum joint position", "ur.configuration_data.joint_max_limit",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "jointMaxLimitt in the document. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MOTION_LIMITS],
@@ -5698,32 +5698,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_SPEED],
           { "Maximum joint speed", "ur.configuration_data.joint_max_speed",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_s_1), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_per_s_double), 0x0,
             "Maximum joint speed. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_ACCELERATION],
           { "Maximum joint acceleration", "ur.configuration_data.joint_max_acceleration",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_s_6), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_per_s2_double), 0x0,
             "Maximum joint acceleration. In rad/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_V_JOINT_DEFAULT],
           { "Default joint speed", "ur.configuration_data.v_joint_default",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_s_1), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_per_s_double), 0x0,
             "Default joint speed. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_A_JOINT_DEFAULT],
           { "Default joint acceleration", "ur.configuration_data.a_joint_default",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_s_6), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_per_s2_double), 0x0,
             "Default joint acceleration. In rad/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_V_TOOL_DEFAULT],
           { "Default tool speed", "ur.configuration_data.v_tool_default",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_s_7), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_per_s_double), 0x0,
             "Default tool speed. In m/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_A_TOOL_DEFAULT],
           { "Default tool acceleration", "ur.configuration_data.a_tool_default",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_s_8), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_per_s2_double), 0x0,
             "Default tool acceleration. In m/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_EQ_RADIUS],
@@ -5733,22 +5733,22 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_A],
           { "DH a", "ur.configuration_data.dh_a",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_5), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "DH a. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_D],
           { "DH d", "ur.configuration_data.dh_d",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_5), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "DH d. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_ALPHA],
           { "DH alpha", "ur.configuration_data.dh_alpha",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "DH alpha. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_THETA],
           { "DH theta", "ur.configuration_data.dh_theta",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_0), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "DH theta. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_MASTERBOARD_VERSION],
@@ -5796,32 +5796,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FX],
           { "Force X", "ur.force_mode_data.fx",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_n_9), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_n_double), 0x0,
             "Force X. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FY],
           { "Force Y", "ur.force_mode_data.fy",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_n_9), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_n_double), 0x0,
             "Force Y. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FZ],
           { "Force Z", "ur.force_mode_data.fz",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_n_9), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_n_double), 0x0,
             "Force Z. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRX],
           { "Torque X", "ur.force_mode_data.frx",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_nm_10), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_nm_double), 0x0,
             "Torque X. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRY],
           { "Torque Y", "ur.force_mode_data.fry",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_nm_10), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_nm_double), 0x0,
             "Torque Y. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRZ],
           { "Torque Z", "ur.force_mode_data.frz",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_nm_10), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_nm_double), 0x0,
             "Torque Z. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_ROBOT_DEXTERITY],
@@ -5993,17 +5993,17 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_MASS],
           { "Payload mass", "ur.payload_info.mass",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_kg_11), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_kg_double), 0x0,
             "Payload mass. In kg.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_CENTER_OF_GRAVITY],
           { "Payload centre of gravity", "ur.payload_info.center_of_gravity",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_5), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "CoGx, CoGy, CoGz from the tool flange. In m.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_INERTIA],
           { "Payload inertia", "ur.payload_info.inertia",
-            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_kg_m_12), 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_kg_m2_double), 0x0,
             "Ixx, Iyy, Izz, Ixy, Ixz, Iyz. In kg\302\267m\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO],
