@@ -1,50 +1,30 @@
 """What the epan renderers of every kind write alike in C: string literals, value_string values,
-and units.
+and the labels of float fields with a unit.
 
-A spec unit -> the `unit_name_string` a field's BASE_UNIT_STRING display names: Wireshark's own
-(epan/unit_strings.h) where it has the unit, else one the generated file defines
-(`static const unit_name_string`), named after the unit.
-
-Wireshark's abbreviations carry no space ("48V", "30.5°C"); its names do (" seconds"), and so do
-the project's own (" rad"), which read as the Lua dissector's appended units do."""
+A float field's unit is shown by a label function (BASE_CUSTOM), as the Lua dissector shows it
+(" rad" after the value). Wireshark 4.0 shows no unit string of a float field; appending the unit
+to each item instead would build every label while dissecting, where Wireshark builds a label
+only when the tree is printed (`tshark -T fields` builds the whole tree and prints none of it)."""
 from __future__ import annotations
 
 import re
 from dataclasses import dataclass
 
-# Spec unit -> Wireshark 4.0's unit_name_string for it.
-WIRESHARK = {
-    "s": "units_second_seconds",
-    "m": "units_meter_meters",
-    "V": "units_volt",
-    "A": "units_amp",
-    "°C": "units_degree_celsius",
-    "Nm": "units_newton_metre",
-    "m/s": "units_meter_sec",
-    "m/s²": "units_meter_sec_squared",
-    "%": "units_percent",
-}
-
-
 @dataclass(frozen=True)
-class OwnUnit:
-    """A unit Wireshark does not name: the generated file defines it."""
-    ident: str      # units_rad_s
-    text: str       # " rad/s"
+class UnitLabel:
+    """The label function of float fields with one unit: the value as Wireshark prints the field's
+    type (%.*g with DBL_DIG or FLT_DIG digits), then the unit as the Lua dissector appends it."""
+    ident: str      # ur_label_rad_s_double
+    digits: str     # DBL_DIG or FLT_DIG
+    suffix: str     # " rad/s"
 
 
-def unit_ident(unit: str) -> str:
-    """The C name of a unit: Wireshark's, or units_<unit> with its symbols spelled out."""
-    if unit in WIRESHARK:
-        return WIRESHARK[unit]
+def unit_label(prefix: str, unit: str, double: bool = True) -> UnitLabel:
+    """The label function of a float field of `unit`, its name under `prefix`."""
     spelled = unit.replace("²", "2").replace("³", "3").replace("°", "deg").replace("/", "_per_")
-    return "units_" + re.sub(r"[^0-9A-Za-z]+", "_", spelled).strip("_").lower()
-
-
-def own_units(units: list[str]) -> list[OwnUnit]:
-    """The units of `units` that the generated file must define, once each, in first-seen order."""
-    seen = dict.fromkeys(u for u in units if u and u not in WIRESHARK)
-    return [OwnUnit(unit_ident(u), " " + u) for u in seen]
+    spelled = re.sub(r"[^0-9A-Za-z]+", "_", spelled).strip("_").lower() or "unit"
+    kind = "double" if double else "float"
+    return UnitLabel(f"{prefix}_label_{spelled}_{kind}", "DBL_DIG" if double else "FLT_DIG", " " + unit)
 
 
 def c_string(text: str) -> str:

@@ -16,6 +16,7 @@ import re
 from typing import Optional
 
 from .. import ir, plan, wrap
+from .. import epan_c
 from ..epan_c import value_literal
 from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ..errors import SpecError
@@ -131,6 +132,7 @@ class _Builder:
         self.plan = protocol_plan
         self.p = protocol_plan.protocol
         self.model = lua.view_model(protocol_plan)
+        self.model_fields = {pf.key: pf for pf in self.model["fields"]}
         self.field_index: dict[str, str] = {}
         self.arrays: list[dict] = []          # descriptor arrays, inner ones first
         self.bit_lists: list[dict] = []
@@ -138,6 +140,8 @@ class _Builder:
         self.value_lists: list[dict] = []
         self.keep_slots: dict[str, int] = {}
         self.units: dict[str, str] = {}       # unit -> its own unit_name_string, where Wireshark has none
+        self.labels: dict[tuple[str, str], epan_c.UnitLabel] = {}   # (float type, unit) -> its label function
+        self.labelled: set[str] = set()       # the float fields whose label function shows their unit
         self.n_arrays = 0
         self.used: set[str] = set()           # value strings and names by version that the tables use
 
@@ -166,6 +170,18 @@ class _Builder:
             self.units[unit] = f"ur_units_{len(self.units)}_{ident(unit) or 'unit'}"
         return self.units[unit]
 
+    def label_of(self, ft: str, unit: str) -> str:
+        """The label function (BASE_CUSTOM) of a float field with a unit (epan_c.UnitLabel)."""
+        label = self.labels.setdefault((ft, unit), epan_c.unit_label("ur", unit, double=ft == "FT_DOUBLE"))
+        return label.ident
+
+    def check_unit(self, key: Optional[str], unit: Optional[str]) -> None:
+        """A read's unit is its field's, which the field's label shows (the runtime adds none)."""
+        pf = self.model_fields.get(key) if key is not None else None
+        shown = lua.unit_text(pf.unit) if pf is not None and pf.key in self.labelled else None
+        if unit != shown:
+            raise ValueError(f"epan target: {key} is read with the unit {unit!r}, its label shows {shown!r}")
+
     def keep_slot(self, name: Optional[str]) -> int:
         """A value kept for a later field (present_if, a switch's selector): its slot, 1-based."""
         if name is None:
@@ -190,8 +206,12 @@ class _Builder:
                     strings = self.value_strings_ref(pf.vs)
                     if strings.startswith("VALS_EXT_PTR"):
                         display += "|BASE_EXT_STRING"
-            # A float's unit follows its value as text, as in the Lua twin: Wireshark 4.0 shows no
-            # unit string of a float field (BASE_UNIT_STRING shows on integers only).
+            # Wireshark 4.0 shows no unit string of a float field (BASE_UNIT_STRING shows on
+            # integers only): its label function does.
+            elif pf.shape == "float" and pf.unit:
+                display = "BASE_CUSTOM"
+                strings = f"CF_FUNC({self.label_of(ft, pf.unit)})"
+                self.labelled.add(pf.key)
             elif pf.shape == "flag":
                 display = str(pf.bits)
             elif pf.shape == "text":
@@ -252,7 +272,7 @@ class _Builder:
 
     def descriptor(self, owner: str, d: Step) -> dict:
         row = dict(kind="UR_D_" + d.kind.upper(), hf="UR_HF_NONE", n=0, count=0, size=0, flags=[], keep=0,
-                   low=ANY_LOW, high=ANY_HIGH, path=None, show=None, label=None, unit=None, vs="NULL", names="NULL",
+                   low=ANY_LOW, high=ANY_HIGH, path=None, show=None, label=None, vs="NULL", names="NULL",
                    inner="NULL", bits="NULL", sw="NULL", values="NULL")
         data = d.data
         if d.kind == "cond":
@@ -272,7 +292,8 @@ class _Builder:
                 flags.append("UR_FLOAT")
             if data.get("value"):
                 flags.append("UR_VALUE")
-            row.update(n=data["size"], flags=flags, unit=data.get("unit"), vs=self.table(data.get("vs")),
+            self.check_unit(data.get("field"), data.get("unit"))
+            row.update(n=data["size"], flags=flags, vs=self.table(data.get("vs")),
                        names=self.table(data.get("tables")), label=data.get("label"),
                        keep=self.keep_slot(data.get("keep")), count=data.get("count", 0))
             if d.kind == "bits":
@@ -288,11 +309,12 @@ class _Builder:
             row.update(n=data["term"])
         elif d.kind == "switch":
             name = f"{owner}_switch{len(self.switches)}"
-            cases = [dict(code=c["code"], hf=self.hf(c["field"]), n=c["size"], unit=c_literal(c.get("unit")))
-                     for c in data["cases"]]
             default = data["default"]
-            self.switches.append(dict(name=name, default=dict(hf=self.hf(default["field"]), n=default["size"],
-                                                              unit=c_literal(default.get("unit"))), cases=cases))
+            for c in [*data["cases"], default]:
+                self.check_unit(c["field"], c.get("unit"))
+            cases = [dict(code=c["code"], hf=self.hf(c["field"]), n=c["size"]) for c in data["cases"]]
+            self.switches.append(dict(name=name, default=dict(hf=self.hf(default["field"]), n=default["size"]),
+                                      cases=cases))
             row.update(keep=self.keep_slot(data["sel"]), sw=f"&ur_switch_{name}")
         elif d.kind == "values":
             name = f"{owner}_values{len(self.value_lists)}"
@@ -311,7 +333,7 @@ class _Builder:
         for key, value in row.items():
             if key == "flags":
                 value = "|".join(value) or "0"
-            if key in ("path", "show", "label", "unit"):
+            if key in ("path", "show", "label"):
                 if value is not None:
                     out.append(f".{key} = {c_str(value)}")
             elif key in ("low", "high"):
@@ -391,6 +413,7 @@ class _Builder:
                     switches=self.switches, value_lists=self.value_lists, messages=messages,
                     value_tables=self.value_tables(), value_kinds=list(KIND_CONST.items()),
                     units=sorted(self.units.items(), key=lambda kv: kv[1]), keep_slots=len(self.keep_slots),
+                    labels=list(self.labels.values()),
                     known_codes=m["known_codes"], message_type_names=m_names,
                     message_type_tables=m_tables, constants=m["constants"],
                     version=version, bugfix=version["bugfix"], experts=EXPERTS,

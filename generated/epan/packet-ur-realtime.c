@@ -17,12 +17,12 @@
 
 #include "config.h"
 
+#include <float.h>
 #include <ws_version.h>
 #include <epan/packet.h>
 #include <epan/expert.h>
 #include <epan/prefs.h>
 #include <epan/proto_data.h>
-#include <epan/unit_strings.h>
 #include <epan/dissectors/packet-tcp.h>
 
 void proto_register_ur_realtime(void);
@@ -121,11 +121,80 @@ static gint ett_ur_realtime_unused_3 = -1;
 static gint ett_ur_realtime_unused_4 = -1;
 static gint ett_ur_realtime_unused_5 = -1;
 
-/* Units Wireshark does not name. */
-static const unit_name_string units_rad = { " rad", NULL };
-static const unit_name_string units_rad_per_s = { " rad/s", NULL };
-static const unit_name_string units_rad_per_s2 = { " rad/s²", NULL };
-static const unit_name_string units_kg = { " kg", NULL };
+/* The labels of fields with a unit: the value as Wireshark prints a double, then the unit. */
+
+static void
+ur_realtime_label_s_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " s");
+}
+
+static void
+ur_realtime_label_rad_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " rad");
+}
+
+static void
+ur_realtime_label_rad_per_s_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " rad/s");
+}
+
+static void
+ur_realtime_label_rad_per_s2_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " rad/s²");
+}
+
+static void
+ur_realtime_label_a_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " A");
+}
+
+static void
+ur_realtime_label_nm_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " Nm");
+}
+
+static void
+ur_realtime_label_degc_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " °C");
+}
+
+static void
+ur_realtime_label_m_per_s2_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " m/s²");
+}
+
+static void
+ur_realtime_label_v_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " V");
+}
+
+static void
+ur_realtime_label_m_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " m");
+}
+
+static void
+ur_realtime_label_m_per_s_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " m/s");
+}
+
+static void
+ur_realtime_label_kg_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " kg");
+}
+
 
 /* The enums whose names a form gives, by index. */
 enum {
@@ -264,7 +333,6 @@ typedef struct {
     guint16 offset;             /* in the packet, size field included */
     guint16 count;              /* doubles */
     gint8 names;                /* the field's enum, an index into a form's names; -1 none */
-    const unit_name_string *unit;   /* the field's unit (its BASE_UNIT_STRING), or NULL */
 } ur_realtime_slot;
 
 typedef struct {
@@ -288,371 +356,320 @@ typedef struct {
 
 
 /* Layouts: each field's handle, subtree and its text (an array), offset in the packet, count of
- * doubles, enum and unit, in packet order. */
+ * doubles and enum, in packet order. */
 /* Real-time state, earliest CB2 (540 bytes): sent by software up to 1.4. */
 static const ur_realtime_slot ur_realtime_rt_540_slots[] = {
-    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1, &units_second_seconds},
-    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1,
-     &units_rad_per_s2},
-    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1, &units_amp},
-    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1, &units_newton_metre},
-    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1, &units_amp},
+    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1},
+    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1},
+    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1},
+    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1},
+    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1},
+    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1},
+    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1},
+    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1},
+    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1},
     {&hf_ur_realtime_tool_accelerometer_values, &ett_ur_realtime_tool_accelerometer_values,
-     "Tool accelerometer (m/s²)", 396, 3, -1, &units_meter_sec_squared},
-    {&hf_ur_realtime_unused_1, &ett_ur_realtime_unused_1, "Unused 1", 420, 15, -1, NULL},
+     "Tool accelerometer (m/s²)", 396, 3, -1},
+    {&hf_ur_realtime_unused_1, &ett_ur_realtime_unused_1, "Unused 1", 420, 15, -1},
 };
 
 /* Real-time state, early CB2 (692 bytes): sent by software up to 1.4. */
 static const ur_realtime_slot ur_realtime_rt_692_slots[] = {
-    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1, &units_second_seconds},
-    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1,
-     &units_rad_per_s2},
-    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1, &units_amp},
-    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1, &units_newton_metre},
-    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1, &units_amp},
+    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1},
+    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1},
+    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1},
+    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1},
+    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1},
+    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1},
+    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1},
+    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1},
+    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1},
     {&hf_ur_realtime_tool_accelerometer_values, &ett_ur_realtime_tool_accelerometer_values,
-     "Tool accelerometer (m/s²)", 396, 3, -1, &units_meter_sec_squared},
-    {&hf_ur_realtime_unused_1, &ett_ur_realtime_unused_1, "Unused 1", 420, 15, -1, NULL},
-    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1, NULL},
-    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 588, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 636, 6, -1, NULL},
-    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1, NULL},
+     "Tool accelerometer (m/s²)", 396, 3, -1},
+    {&hf_ur_realtime_unused_1, &ett_ur_realtime_unused_1, "Unused 1", 420, 15, -1},
+    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1},
+    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 588, 6, -1},
+    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 636, 6, -1},
+    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1},
 };
 
 /* Real-time state, CB2 1.5 (756 bytes): sent by software 1.5. */
 static const ur_realtime_slot ur_realtime_rt_1_5_slots[] = {
-    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1, &units_second_seconds},
-    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1,
-     &units_rad_per_s2},
-    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1, &units_amp},
-    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1, &units_newton_metre},
-    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1, &units_amp},
+    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1},
+    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1},
+    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1},
+    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1},
+    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1},
+    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1},
+    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1},
+    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1},
+    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1},
     {&hf_ur_realtime_tool_accelerometer_values, &ett_ur_realtime_tool_accelerometer_values,
-     "Tool accelerometer (m/s²)", 396, 3, -1, &units_meter_sec_squared},
-    {&hf_ur_realtime_unused_1, &ett_ur_realtime_unused_1, "Unused 1", 420, 15, -1, NULL},
-    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1, NULL},
-    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 588, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 636, 6, -1, NULL},
-    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1, NULL},
-    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1,
-     &units_degree_celsius},
-    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1, NULL},
-    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1, NULL},
+     "Tool accelerometer (m/s²)", 396, 3, -1},
+    {&hf_ur_realtime_unused_1, &ett_ur_realtime_unused_1, "Unused 1", 420, 15, -1},
+    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1},
+    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 588, 6, -1},
+    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 636, 6, -1},
+    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1},
+    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1},
+    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1},
+    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1},
 };
 
 /* Real-time state, CB2 1.6 to 1.7 (764 bytes): sent by software 1.6 to 1.7. */
 static const ur_realtime_slot ur_realtime_rt_1_6_slots[] = {
-    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1, &units_second_seconds},
-    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1,
-     &units_rad_per_s2},
-    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1, &units_amp},
-    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1, &units_newton_metre},
-    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1, &units_amp},
+    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1},
+    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1},
+    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1},
+    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1},
+    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1},
+    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1},
+    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1},
+    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1},
+    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1},
     {&hf_ur_realtime_tool_accelerometer_values, &ett_ur_realtime_tool_accelerometer_values,
-     "Tool accelerometer (m/s²)", 396, 3, -1, &units_meter_sec_squared},
-    {&hf_ur_realtime_unused_1, &ett_ur_realtime_unused_1, "Unused 1", 420, 15, -1, NULL},
-    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1, NULL},
-    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 588, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 636, 6, -1, NULL},
-    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1, NULL},
-    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1,
-     &units_degree_celsius},
-    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1, NULL},
-    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1, NULL},
-    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE, NULL},
+     "Tool accelerometer (m/s²)", 396, 3, -1},
+    {&hf_ur_realtime_unused_1, &ett_ur_realtime_unused_1, "Unused 1", 420, 15, -1},
+    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1},
+    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 588, 6, -1},
+    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 636, 6, -1},
+    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1},
+    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1},
+    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1},
+    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1},
+    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE},
 };
 
 /* Real-time state, CB2 1.8 (812 bytes): sent by software 1.8. */
 static const ur_realtime_slot ur_realtime_rt_1_8_slots[] = {
-    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1, &units_second_seconds},
-    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1,
-     &units_rad_per_s2},
-    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1, &units_amp},
-    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1, &units_newton_metre},
-    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1, &units_amp},
+    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1},
+    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1},
+    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1},
+    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1},
+    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1},
+    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1},
+    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1},
+    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1},
+    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1},
     {&hf_ur_realtime_tool_accelerometer_values, &ett_ur_realtime_tool_accelerometer_values,
-     "Tool accelerometer (m/s²)", 396, 3, -1, &units_meter_sec_squared},
-    {&hf_ur_realtime_unused_1, &ett_ur_realtime_unused_1, "Unused 1", 420, 15, -1, NULL},
-    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1, NULL},
-    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 588, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 636, 6, -1, NULL},
-    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1, NULL},
-    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1,
-     &units_degree_celsius},
-    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1, NULL},
-    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1, NULL},
-    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE, NULL},
-    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE,
-     NULL},
+     "Tool accelerometer (m/s²)", 396, 3, -1},
+    {&hf_ur_realtime_unused_1, &ett_ur_realtime_unused_1, "Unused 1", 420, 15, -1},
+    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1},
+    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 588, 6, -1},
+    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 636, 6, -1},
+    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1},
+    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1},
+    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1},
+    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1},
+    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE},
+    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE},
 };
 
 /* Real-time state, CB3 3.0 to 3.1 (1044 bytes): sent by software 3.0 to 3.1. */
 static const ur_realtime_slot ur_realtime_rt_3_0_slots[] = {
-    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1, &units_second_seconds},
-    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1,
-     &units_rad_per_s2},
-    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1, &units_amp},
-    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1, &units_newton_metre},
-    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1, &units_amp},
-    {&hf_ur_realtime_i_control, &ett_ur_realtime_i_control, "Joint control current (A)", 396, 6, -1, &units_amp},
-    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 444, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 492, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1, NULL},
-    {&hf_ur_realtime_tool_vector_target, &ett_ur_realtime_tool_vector_target, "Target tool pose", 588, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_target, &ett_ur_realtime_tcp_speed_target, "Target TCP speed", 636, 6, -1, NULL},
-    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1, NULL},
-    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1,
-     &units_degree_celsius},
-    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1, NULL},
-    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1, NULL},
-    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE, NULL},
-    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE,
-     NULL},
-    {&hf_ur_realtime_safety_mode, NULL, NULL, 812, 1, UR_REALTIME_NAMES_SAFETY_MODE, NULL},
-    {&hf_ur_realtime_unused_2, &ett_ur_realtime_unused_2, "Unused 2", 820, 6, -1, NULL},
+    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1},
+    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1},
+    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1},
+    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1},
+    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1},
+    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1},
+    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1},
+    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1},
+    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1},
+    {&hf_ur_realtime_i_control, &ett_ur_realtime_i_control, "Joint control current (A)", 396, 6, -1},
+    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 444, 6, -1},
+    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 492, 6, -1},
+    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1},
+    {&hf_ur_realtime_tool_vector_target, &ett_ur_realtime_tool_vector_target, "Target tool pose", 588, 6, -1},
+    {&hf_ur_realtime_tcp_speed_target, &ett_ur_realtime_tcp_speed_target, "Target TCP speed", 636, 6, -1},
+    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1},
+    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1},
+    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1},
+    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1},
+    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE},
+    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE},
+    {&hf_ur_realtime_safety_mode, NULL, NULL, 812, 1, UR_REALTIME_NAMES_SAFETY_MODE},
+    {&hf_ur_realtime_unused_2, &ett_ur_realtime_unused_2, "Unused 2", 820, 6, -1},
     {&hf_ur_realtime_tool_accelerometer_values, &ett_ur_realtime_tool_accelerometer_values,
-     "Tool accelerometer (m/s²)", 868, 3, -1, &units_meter_sec_squared},
-    {&hf_ur_realtime_unused_3, &ett_ur_realtime_unused_3, "Unused 3", 892, 6, -1, NULL},
-    {&hf_ur_realtime_speed_scaling, NULL, NULL, 940, 1, -1, NULL},
-    {&hf_ur_realtime_linear_momentum_norm, NULL, NULL, 948, 1, -1, NULL},
-    {&hf_ur_realtime_unused_4, &ett_ur_realtime_unused_4, "Unused 4", 956, 2, -1, NULL},
-    {&hf_ur_realtime_v_main, NULL, NULL, 972, 1, -1, &units_volt},
-    {&hf_ur_realtime_v_robot, NULL, NULL, 980, 1, -1, &units_volt},
-    {&hf_ur_realtime_i_robot, NULL, NULL, 988, 1, -1, &units_amp},
-    {&hf_ur_realtime_v_actual, &ett_ur_realtime_v_actual, "Actual joint voltage (V)", 996, 6, -1, &units_volt},
+     "Tool accelerometer (m/s²)", 868, 3, -1},
+    {&hf_ur_realtime_unused_3, &ett_ur_realtime_unused_3, "Unused 3", 892, 6, -1},
+    {&hf_ur_realtime_speed_scaling, NULL, NULL, 940, 1, -1},
+    {&hf_ur_realtime_linear_momentum_norm, NULL, NULL, 948, 1, -1},
+    {&hf_ur_realtime_unused_4, &ett_ur_realtime_unused_4, "Unused 4", 956, 2, -1},
+    {&hf_ur_realtime_v_main, NULL, NULL, 972, 1, -1},
+    {&hf_ur_realtime_v_robot, NULL, NULL, 980, 1, -1},
+    {&hf_ur_realtime_i_robot, NULL, NULL, 988, 1, -1},
+    {&hf_ur_realtime_v_actual, &ett_ur_realtime_v_actual, "Actual joint voltage (V)", 996, 6, -1},
 };
 
 /* Real-time state, CB3 3.2 to 3.4 (1060 bytes): sent by software 3.2 to 3.4. */
 static const ur_realtime_slot ur_realtime_rt_3_2_slots[] = {
-    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1, &units_second_seconds},
-    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1,
-     &units_rad_per_s2},
-    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1, &units_amp},
-    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1, &units_newton_metre},
-    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1, &units_amp},
-    {&hf_ur_realtime_i_control, &ett_ur_realtime_i_control, "Joint control current (A)", 396, 6, -1, &units_amp},
-    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 444, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 492, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1, NULL},
-    {&hf_ur_realtime_tool_vector_target, &ett_ur_realtime_tool_vector_target, "Target tool pose", 588, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_target, &ett_ur_realtime_tcp_speed_target, "Target TCP speed", 636, 6, -1, NULL},
-    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1, NULL},
-    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1,
-     &units_degree_celsius},
-    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1, NULL},
-    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1, NULL},
-    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE, NULL},
-    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE,
-     NULL},
-    {&hf_ur_realtime_safety_mode, NULL, NULL, 812, 1, UR_REALTIME_NAMES_SAFETY_MODE, NULL},
-    {&hf_ur_realtime_unused_2, &ett_ur_realtime_unused_2, "Unused 2", 820, 6, -1, NULL},
+    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1},
+    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1},
+    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1},
+    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1},
+    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1},
+    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1},
+    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1},
+    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1},
+    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1},
+    {&hf_ur_realtime_i_control, &ett_ur_realtime_i_control, "Joint control current (A)", 396, 6, -1},
+    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 444, 6, -1},
+    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 492, 6, -1},
+    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1},
+    {&hf_ur_realtime_tool_vector_target, &ett_ur_realtime_tool_vector_target, "Target tool pose", 588, 6, -1},
+    {&hf_ur_realtime_tcp_speed_target, &ett_ur_realtime_tcp_speed_target, "Target TCP speed", 636, 6, -1},
+    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1},
+    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1},
+    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1},
+    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1},
+    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE},
+    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE},
+    {&hf_ur_realtime_safety_mode, NULL, NULL, 812, 1, UR_REALTIME_NAMES_SAFETY_MODE},
+    {&hf_ur_realtime_unused_2, &ett_ur_realtime_unused_2, "Unused 2", 820, 6, -1},
     {&hf_ur_realtime_tool_accelerometer_values, &ett_ur_realtime_tool_accelerometer_values,
-     "Tool accelerometer (m/s²)", 868, 3, -1, &units_meter_sec_squared},
-    {&hf_ur_realtime_unused_3, &ett_ur_realtime_unused_3, "Unused 3", 892, 6, -1, NULL},
-    {&hf_ur_realtime_speed_scaling, NULL, NULL, 940, 1, -1, NULL},
-    {&hf_ur_realtime_linear_momentum_norm, NULL, NULL, 948, 1, -1, NULL},
-    {&hf_ur_realtime_unused_4, &ett_ur_realtime_unused_4, "Unused 4", 956, 2, -1, NULL},
-    {&hf_ur_realtime_v_main, NULL, NULL, 972, 1, -1, &units_volt},
-    {&hf_ur_realtime_v_robot, NULL, NULL, 980, 1, -1, &units_volt},
-    {&hf_ur_realtime_i_robot, NULL, NULL, 988, 1, -1, &units_amp},
-    {&hf_ur_realtime_v_actual, &ett_ur_realtime_v_actual, "Actual joint voltage (V)", 996, 6, -1, &units_volt},
-    {&hf_ur_realtime_digital_outputs, NULL, NULL, 1044, 1, -1, NULL},
-    {&hf_ur_realtime_program_state, NULL, NULL, 1052, 1, UR_REALTIME_NAMES_PROGRAM_STATE, NULL},
+     "Tool accelerometer (m/s²)", 868, 3, -1},
+    {&hf_ur_realtime_unused_3, &ett_ur_realtime_unused_3, "Unused 3", 892, 6, -1},
+    {&hf_ur_realtime_speed_scaling, NULL, NULL, 940, 1, -1},
+    {&hf_ur_realtime_linear_momentum_norm, NULL, NULL, 948, 1, -1},
+    {&hf_ur_realtime_unused_4, &ett_ur_realtime_unused_4, "Unused 4", 956, 2, -1},
+    {&hf_ur_realtime_v_main, NULL, NULL, 972, 1, -1},
+    {&hf_ur_realtime_v_robot, NULL, NULL, 980, 1, -1},
+    {&hf_ur_realtime_i_robot, NULL, NULL, 988, 1, -1},
+    {&hf_ur_realtime_v_actual, &ett_ur_realtime_v_actual, "Actual joint voltage (V)", 996, 6, -1},
+    {&hf_ur_realtime_digital_outputs, NULL, NULL, 1044, 1, -1},
+    {&hf_ur_realtime_program_state, NULL, NULL, 1052, 1, UR_REALTIME_NAMES_PROGRAM_STATE},
 };
 
 /* Real-time state, CB3 3.5 to 3.9 and e-Series 5.0 to 5.3 (1108 bytes): sent by software 3.5 to 3.9
  * or 5.0 to 5.3. */
 static const ur_realtime_slot ur_realtime_rt_3_5_slots[] = {
-    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1, &units_second_seconds},
-    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1,
-     &units_rad_per_s2},
-    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1, &units_amp},
-    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1, &units_newton_metre},
-    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1, &units_amp},
-    {&hf_ur_realtime_i_control, &ett_ur_realtime_i_control, "Joint control current (A)", 396, 6, -1, &units_amp},
-    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 444, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 492, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1, NULL},
-    {&hf_ur_realtime_tool_vector_target, &ett_ur_realtime_tool_vector_target, "Target tool pose", 588, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_target, &ett_ur_realtime_tcp_speed_target, "Target TCP speed", 636, 6, -1, NULL},
-    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1, NULL},
-    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1,
-     &units_degree_celsius},
-    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1, NULL},
-    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1, NULL},
-    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE, NULL},
-    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE,
-     NULL},
-    {&hf_ur_realtime_safety_mode, NULL, NULL, 812, 1, UR_REALTIME_NAMES_SAFETY_MODE, NULL},
-    {&hf_ur_realtime_unused_2, &ett_ur_realtime_unused_2, "Unused 2", 820, 6, -1, NULL},
+    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1},
+    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1},
+    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1},
+    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1},
+    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1},
+    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1},
+    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1},
+    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1},
+    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1},
+    {&hf_ur_realtime_i_control, &ett_ur_realtime_i_control, "Joint control current (A)", 396, 6, -1},
+    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 444, 6, -1},
+    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 492, 6, -1},
+    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1},
+    {&hf_ur_realtime_tool_vector_target, &ett_ur_realtime_tool_vector_target, "Target tool pose", 588, 6, -1},
+    {&hf_ur_realtime_tcp_speed_target, &ett_ur_realtime_tcp_speed_target, "Target TCP speed", 636, 6, -1},
+    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1},
+    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1},
+    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1},
+    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1},
+    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE},
+    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE},
+    {&hf_ur_realtime_safety_mode, NULL, NULL, 812, 1, UR_REALTIME_NAMES_SAFETY_MODE},
+    {&hf_ur_realtime_unused_2, &ett_ur_realtime_unused_2, "Unused 2", 820, 6, -1},
     {&hf_ur_realtime_tool_accelerometer_values, &ett_ur_realtime_tool_accelerometer_values,
-     "Tool accelerometer (m/s²)", 868, 3, -1, &units_meter_sec_squared},
-    {&hf_ur_realtime_unused_3, &ett_ur_realtime_unused_3, "Unused 3", 892, 6, -1, NULL},
-    {&hf_ur_realtime_speed_scaling, NULL, NULL, 940, 1, -1, NULL},
-    {&hf_ur_realtime_linear_momentum_norm, NULL, NULL, 948, 1, -1, NULL},
-    {&hf_ur_realtime_unused_4, &ett_ur_realtime_unused_4, "Unused 4", 956, 2, -1, NULL},
-    {&hf_ur_realtime_v_main, NULL, NULL, 972, 1, -1, &units_volt},
-    {&hf_ur_realtime_v_robot, NULL, NULL, 980, 1, -1, &units_volt},
-    {&hf_ur_realtime_i_robot, NULL, NULL, 988, 1, -1, &units_amp},
-    {&hf_ur_realtime_v_actual, &ett_ur_realtime_v_actual, "Actual joint voltage (V)", 996, 6, -1, &units_volt},
-    {&hf_ur_realtime_digital_outputs, NULL, NULL, 1044, 1, -1, NULL},
-    {&hf_ur_realtime_program_state, NULL, NULL, 1052, 1, UR_REALTIME_NAMES_PROGRAM_STATE, NULL},
-    {&hf_ur_realtime_elbow_position, &ett_ur_realtime_elbow_position, "Elbow position (m)", 1060, 3, -1,
-     &units_meter_meters},
-    {&hf_ur_realtime_elbow_velocity, &ett_ur_realtime_elbow_velocity, "Elbow velocity (m/s)", 1084, 3, -1,
-     &units_meter_sec},
+     "Tool accelerometer (m/s²)", 868, 3, -1},
+    {&hf_ur_realtime_unused_3, &ett_ur_realtime_unused_3, "Unused 3", 892, 6, -1},
+    {&hf_ur_realtime_speed_scaling, NULL, NULL, 940, 1, -1},
+    {&hf_ur_realtime_linear_momentum_norm, NULL, NULL, 948, 1, -1},
+    {&hf_ur_realtime_unused_4, &ett_ur_realtime_unused_4, "Unused 4", 956, 2, -1},
+    {&hf_ur_realtime_v_main, NULL, NULL, 972, 1, -1},
+    {&hf_ur_realtime_v_robot, NULL, NULL, 980, 1, -1},
+    {&hf_ur_realtime_i_robot, NULL, NULL, 988, 1, -1},
+    {&hf_ur_realtime_v_actual, &ett_ur_realtime_v_actual, "Actual joint voltage (V)", 996, 6, -1},
+    {&hf_ur_realtime_digital_outputs, NULL, NULL, 1044, 1, -1},
+    {&hf_ur_realtime_program_state, NULL, NULL, 1052, 1, UR_REALTIME_NAMES_PROGRAM_STATE},
+    {&hf_ur_realtime_elbow_position, &ett_ur_realtime_elbow_position, "Elbow position (m)", 1060, 3, -1},
+    {&hf_ur_realtime_elbow_velocity, &ett_ur_realtime_elbow_velocity, "Elbow velocity (m/s)", 1084, 3, -1},
 };
 
 /* Real-time state, CB3 3.10 to 3.15 and e-Series 5.4 to 5.9 (1116 bytes): sent by software 3.10 to
  * 3.15 or 5.4 to 5.9. */
 static const ur_realtime_slot ur_realtime_rt_3_10_slots[] = {
-    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1, &units_second_seconds},
-    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1,
-     &units_rad_per_s2},
-    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1, &units_amp},
-    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1, &units_newton_metre},
-    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1, &units_amp},
-    {&hf_ur_realtime_i_control, &ett_ur_realtime_i_control, "Joint control current (A)", 396, 6, -1, &units_amp},
-    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 444, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 492, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1, NULL},
-    {&hf_ur_realtime_tool_vector_target, &ett_ur_realtime_tool_vector_target, "Target tool pose", 588, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_target, &ett_ur_realtime_tcp_speed_target, "Target TCP speed", 636, 6, -1, NULL},
-    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1, NULL},
-    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1,
-     &units_degree_celsius},
-    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1, NULL},
-    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1, NULL},
-    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE, NULL},
-    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE,
-     NULL},
-    {&hf_ur_realtime_safety_mode, NULL, NULL, 812, 1, UR_REALTIME_NAMES_SAFETY_MODE, NULL},
-    {&hf_ur_realtime_unused_2, &ett_ur_realtime_unused_2, "Unused 2", 820, 6, -1, NULL},
+    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1},
+    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1},
+    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1},
+    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1},
+    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1},
+    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1},
+    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1},
+    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1},
+    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1},
+    {&hf_ur_realtime_i_control, &ett_ur_realtime_i_control, "Joint control current (A)", 396, 6, -1},
+    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 444, 6, -1},
+    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 492, 6, -1},
+    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1},
+    {&hf_ur_realtime_tool_vector_target, &ett_ur_realtime_tool_vector_target, "Target tool pose", 588, 6, -1},
+    {&hf_ur_realtime_tcp_speed_target, &ett_ur_realtime_tcp_speed_target, "Target TCP speed", 636, 6, -1},
+    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1},
+    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1},
+    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1},
+    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1},
+    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE},
+    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE},
+    {&hf_ur_realtime_safety_mode, NULL, NULL, 812, 1, UR_REALTIME_NAMES_SAFETY_MODE},
+    {&hf_ur_realtime_unused_2, &ett_ur_realtime_unused_2, "Unused 2", 820, 6, -1},
     {&hf_ur_realtime_tool_accelerometer_values, &ett_ur_realtime_tool_accelerometer_values,
-     "Tool accelerometer (m/s²)", 868, 3, -1, &units_meter_sec_squared},
-    {&hf_ur_realtime_unused_3, &ett_ur_realtime_unused_3, "Unused 3", 892, 6, -1, NULL},
-    {&hf_ur_realtime_speed_scaling, NULL, NULL, 940, 1, -1, NULL},
-    {&hf_ur_realtime_linear_momentum_norm, NULL, NULL, 948, 1, -1, NULL},
-    {&hf_ur_realtime_unused_4, &ett_ur_realtime_unused_4, "Unused 4", 956, 2, -1, NULL},
-    {&hf_ur_realtime_v_main, NULL, NULL, 972, 1, -1, &units_volt},
-    {&hf_ur_realtime_v_robot, NULL, NULL, 980, 1, -1, &units_volt},
-    {&hf_ur_realtime_i_robot, NULL, NULL, 988, 1, -1, &units_amp},
-    {&hf_ur_realtime_v_actual, &ett_ur_realtime_v_actual, "Actual joint voltage (V)", 996, 6, -1, &units_volt},
-    {&hf_ur_realtime_digital_outputs, NULL, NULL, 1044, 1, -1, NULL},
-    {&hf_ur_realtime_program_state, NULL, NULL, 1052, 1, UR_REALTIME_NAMES_PROGRAM_STATE, NULL},
-    {&hf_ur_realtime_elbow_position, &ett_ur_realtime_elbow_position, "Elbow position (m)", 1060, 3, -1,
-     &units_meter_meters},
-    {&hf_ur_realtime_elbow_velocity, &ett_ur_realtime_elbow_velocity, "Elbow velocity (m/s)", 1084, 3, -1,
-     &units_meter_sec},
-    {&hf_ur_realtime_safety_status, NULL, NULL, 1108, 1, UR_REALTIME_NAMES_SAFETY_MODE, NULL},
+     "Tool accelerometer (m/s²)", 868, 3, -1},
+    {&hf_ur_realtime_unused_3, &ett_ur_realtime_unused_3, "Unused 3", 892, 6, -1},
+    {&hf_ur_realtime_speed_scaling, NULL, NULL, 940, 1, -1},
+    {&hf_ur_realtime_linear_momentum_norm, NULL, NULL, 948, 1, -1},
+    {&hf_ur_realtime_unused_4, &ett_ur_realtime_unused_4, "Unused 4", 956, 2, -1},
+    {&hf_ur_realtime_v_main, NULL, NULL, 972, 1, -1},
+    {&hf_ur_realtime_v_robot, NULL, NULL, 980, 1, -1},
+    {&hf_ur_realtime_i_robot, NULL, NULL, 988, 1, -1},
+    {&hf_ur_realtime_v_actual, &ett_ur_realtime_v_actual, "Actual joint voltage (V)", 996, 6, -1},
+    {&hf_ur_realtime_digital_outputs, NULL, NULL, 1044, 1, -1},
+    {&hf_ur_realtime_program_state, NULL, NULL, 1052, 1, UR_REALTIME_NAMES_PROGRAM_STATE},
+    {&hf_ur_realtime_elbow_position, &ett_ur_realtime_elbow_position, "Elbow position (m)", 1060, 3, -1},
+    {&hf_ur_realtime_elbow_velocity, &ett_ur_realtime_elbow_velocity, "Elbow velocity (m/s)", 1084, 3, -1},
+    {&hf_ur_realtime_safety_status, NULL, NULL, 1108, 1, UR_REALTIME_NAMES_SAFETY_MODE},
 };
 
 /* Real-time state, e-Series 5.10 and later (1220 bytes): sent by software 5.10 and later. */
 static const ur_realtime_slot ur_realtime_rt_5_10_slots[] = {
-    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1, &units_second_seconds},
-    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1,
-     &units_rad_per_s2},
-    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1, &units_amp},
-    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1, &units_newton_metre},
-    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1, &units_rad},
-    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1,
-     &units_rad_per_s},
-    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1, &units_amp},
-    {&hf_ur_realtime_i_control, &ett_ur_realtime_i_control, "Joint control current (A)", 396, 6, -1, &units_amp},
-    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 444, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 492, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1, NULL},
-    {&hf_ur_realtime_tool_vector_target, &ett_ur_realtime_tool_vector_target, "Target tool pose", 588, 6, -1, NULL},
-    {&hf_ur_realtime_tcp_speed_target, &ett_ur_realtime_tcp_speed_target, "Target TCP speed", 636, 6, -1, NULL},
-    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1, NULL},
-    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1,
-     &units_degree_celsius},
-    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1, NULL},
-    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1, NULL},
-    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE, NULL},
-    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE,
-     NULL},
-    {&hf_ur_realtime_safety_mode, NULL, NULL, 812, 1, UR_REALTIME_NAMES_SAFETY_MODE, NULL},
-    {&hf_ur_realtime_unused_2, &ett_ur_realtime_unused_2, "Unused 2", 820, 6, -1, NULL},
+    {&hf_ur_realtime_time, NULL, NULL, 4, 1, -1},
+    {&hf_ur_realtime_q_target, &ett_ur_realtime_q_target, "Target joint position (rad)", 12, 6, -1},
+    {&hf_ur_realtime_qd_target, &ett_ur_realtime_qd_target, "Target joint velocity (rad/s)", 60, 6, -1},
+    {&hf_ur_realtime_qdd_target, &ett_ur_realtime_qdd_target, "Target joint acceleration (rad/s²)", 108, 6, -1},
+    {&hf_ur_realtime_i_target, &ett_ur_realtime_i_target, "Target joint current (A)", 156, 6, -1},
+    {&hf_ur_realtime_m_target, &ett_ur_realtime_m_target, "Target joint moment (Nm)", 204, 6, -1},
+    {&hf_ur_realtime_q_actual, &ett_ur_realtime_q_actual, "Actual joint position (rad)", 252, 6, -1},
+    {&hf_ur_realtime_qd_actual, &ett_ur_realtime_qd_actual, "Actual joint velocity (rad/s)", 300, 6, -1},
+    {&hf_ur_realtime_i_actual, &ett_ur_realtime_i_actual, "Actual joint current (A)", 348, 6, -1},
+    {&hf_ur_realtime_i_control, &ett_ur_realtime_i_control, "Joint control current (A)", 396, 6, -1},
+    {&hf_ur_realtime_tool_vector_actual, &ett_ur_realtime_tool_vector_actual, "Actual tool pose", 444, 6, -1},
+    {&hf_ur_realtime_tcp_speed_actual, &ett_ur_realtime_tcp_speed_actual, "Actual TCP speed", 492, 6, -1},
+    {&hf_ur_realtime_tcp_force, &ett_ur_realtime_tcp_force, "TCP force", 540, 6, -1},
+    {&hf_ur_realtime_tool_vector_target, &ett_ur_realtime_tool_vector_target, "Target tool pose", 588, 6, -1},
+    {&hf_ur_realtime_tcp_speed_target, &ett_ur_realtime_tcp_speed_target, "Target TCP speed", 636, 6, -1},
+    {&hf_ur_realtime_digital_input_bits, NULL, NULL, 684, 1, -1},
+    {&hf_ur_realtime_motor_temperatures, &ett_ur_realtime_motor_temperatures, "Motor temperature (°C)", 692, 6, -1},
+    {&hf_ur_realtime_controller_timer, NULL, NULL, 740, 1, -1},
+    {&hf_ur_realtime_test_value, NULL, NULL, 748, 1, -1},
+    {&hf_ur_realtime_robot_mode, NULL, NULL, 756, 1, UR_REALTIME_NAMES_ROBOT_MODE},
+    {&hf_ur_realtime_joint_modes, &ett_ur_realtime_joint_modes, "Joint mode", 764, 6, UR_REALTIME_NAMES_JOINT_MODE},
+    {&hf_ur_realtime_safety_mode, NULL, NULL, 812, 1, UR_REALTIME_NAMES_SAFETY_MODE},
+    {&hf_ur_realtime_unused_2, &ett_ur_realtime_unused_2, "Unused 2", 820, 6, -1},
     {&hf_ur_realtime_tool_accelerometer_values, &ett_ur_realtime_tool_accelerometer_values,
-     "Tool accelerometer (m/s²)", 868, 3, -1, &units_meter_sec_squared},
-    {&hf_ur_realtime_unused_3, &ett_ur_realtime_unused_3, "Unused 3", 892, 6, -1, NULL},
-    {&hf_ur_realtime_speed_scaling, NULL, NULL, 940, 1, -1, NULL},
-    {&hf_ur_realtime_linear_momentum_norm, NULL, NULL, 948, 1, -1, NULL},
-    {&hf_ur_realtime_unused_4, &ett_ur_realtime_unused_4, "Unused 4", 956, 2, -1, NULL},
-    {&hf_ur_realtime_v_main, NULL, NULL, 972, 1, -1, &units_volt},
-    {&hf_ur_realtime_v_robot, NULL, NULL, 980, 1, -1, &units_volt},
-    {&hf_ur_realtime_i_robot, NULL, NULL, 988, 1, -1, &units_amp},
-    {&hf_ur_realtime_v_actual, &ett_ur_realtime_v_actual, "Actual joint voltage (V)", 996, 6, -1, &units_volt},
-    {&hf_ur_realtime_digital_outputs, NULL, NULL, 1044, 1, -1, NULL},
-    {&hf_ur_realtime_program_state, NULL, NULL, 1052, 1, UR_REALTIME_NAMES_PROGRAM_STATE, NULL},
-    {&hf_ur_realtime_elbow_position, &ett_ur_realtime_elbow_position, "Elbow position (m)", 1060, 3, -1,
-     &units_meter_meters},
-    {&hf_ur_realtime_elbow_velocity, &ett_ur_realtime_elbow_velocity, "Elbow velocity (m/s)", 1084, 3, -1,
-     &units_meter_sec},
-    {&hf_ur_realtime_safety_status, NULL, NULL, 1108, 1, UR_REALTIME_NAMES_SAFETY_MODE, NULL},
-    {&hf_ur_realtime_unused_5, &ett_ur_realtime_unused_5, "Unused 5", 1116, 3, -1, NULL},
-    {&hf_ur_realtime_payload_mass, NULL, NULL, 1140, 1, -1, &units_kg},
-    {&hf_ur_realtime_payload_cog, &ett_ur_realtime_payload_cog, "Payload centre of gravity (m)", 1148, 3, -1,
-     &units_meter_meters},
-    {&hf_ur_realtime_payload_inertia, &ett_ur_realtime_payload_inertia, "Payload inertia", 1172, 6, -1, NULL},
+     "Tool accelerometer (m/s²)", 868, 3, -1},
+    {&hf_ur_realtime_unused_3, &ett_ur_realtime_unused_3, "Unused 3", 892, 6, -1},
+    {&hf_ur_realtime_speed_scaling, NULL, NULL, 940, 1, -1},
+    {&hf_ur_realtime_linear_momentum_norm, NULL, NULL, 948, 1, -1},
+    {&hf_ur_realtime_unused_4, &ett_ur_realtime_unused_4, "Unused 4", 956, 2, -1},
+    {&hf_ur_realtime_v_main, NULL, NULL, 972, 1, -1},
+    {&hf_ur_realtime_v_robot, NULL, NULL, 980, 1, -1},
+    {&hf_ur_realtime_i_robot, NULL, NULL, 988, 1, -1},
+    {&hf_ur_realtime_v_actual, &ett_ur_realtime_v_actual, "Actual joint voltage (V)", 996, 6, -1},
+    {&hf_ur_realtime_digital_outputs, NULL, NULL, 1044, 1, -1},
+    {&hf_ur_realtime_program_state, NULL, NULL, 1052, 1, UR_REALTIME_NAMES_PROGRAM_STATE},
+    {&hf_ur_realtime_elbow_position, &ett_ur_realtime_elbow_position, "Elbow position (m)", 1060, 3, -1},
+    {&hf_ur_realtime_elbow_velocity, &ett_ur_realtime_elbow_velocity, "Elbow velocity (m/s)", 1084, 3, -1},
+    {&hf_ur_realtime_safety_status, NULL, NULL, 1108, 1, UR_REALTIME_NAMES_SAFETY_MODE},
+    {&hf_ur_realtime_unused_5, &ett_ur_realtime_unused_5, "Unused 5", 1116, 3, -1},
+    {&hf_ur_realtime_payload_mass, NULL, NULL, 1140, 1, -1},
+    {&hf_ur_realtime_payload_cog, &ett_ur_realtime_payload_cog, "Payload centre of gravity (m)", 1148, 3, -1},
+    {&hf_ur_realtime_payload_inertia, &ett_ur_realtime_payload_inertia, "Payload inertia", 1172, 6, -1},
 };
 
 
@@ -827,28 +844,17 @@ static const char *ur_realtime_name_of(double value, const value_string *names)
     return try_val_to_str((guint32)(gint32)value, names);
 }
 
-/* Wireshark 4.0 labels a double without the unit its BASE_UNIT_STRING names (earlier and later
- * releases show it): there the unit is appended as the Lua dissector appends it. */
-#if WIRESHARK_VERSION_MAJOR == 4 && WIRESHARK_VERSION_MINOR == 0
-#define UR_REALTIME_APPEND_UNITS 1
-#else
-#define UR_REALTIME_APPEND_UNITS 0
-#endif
-
-/* One double, with its unit; an enum code's name after it where the form has one. */
+/* One double (its field's label shows its unit); an enum code's name after it where the form has
+ * one. */
 static void ur_realtime_add_value(proto_tree *tree, const ur_realtime_slot *slot, tvbuff_t *tvb, gint at,
                                   const value_string *names)
 {
     proto_item *item = proto_tree_add_item(tree, *slot->hf, tvb, at, 8, ENC_BIG_ENDIAN);
-    double value;
     const char *name;
 
-    if (names == NULL && !(UR_REALTIME_APPEND_UNITS && slot->unit != NULL))
+    if (names == NULL)
         return;
-    value = tvb_get_ntohieee_double(tvb, at);
-    if (UR_REALTIME_APPEND_UNITS && slot->unit != NULL)
-        proto_item_append_text(item, "%s", unit_name_string_get_double(value, slot->unit));
-    name = ur_realtime_name_of(value, names);
+    name = ur_realtime_name_of(tvb_get_ntohieee_double(tvb, at), names);
     if (name != NULL)
         proto_item_append_text(item, " (%s)", name);
 }
@@ -1068,35 +1074,35 @@ void proto_register_ur_realtime(void)
         { &hf_ur_realtime_message_size,
           { "Message size", "ur_realtime.message_size", FT_INT32, BASE_DEC, NULL, 0x0, NULL, HFILL } },
         { &hf_ur_realtime_time,
-          { "Time", "ur_realtime.time", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_second_seconds, 0x0, NULL,
+          { "Time", "ur_realtime.time", FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_realtime_label_s_double), 0x0, NULL,
             HFILL } },
         { &hf_ur_realtime_q_target,
-          { "Target joint position", "ur_realtime.q_target", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_rad, 0x0,
-            NULL, HFILL } },
+          { "Target joint position", "ur_realtime.q_target", FT_DOUBLE, BASE_CUSTOM,
+            CF_FUNC(ur_realtime_label_rad_double), 0x0, NULL, HFILL } },
         { &hf_ur_realtime_qd_target,
-          { "Target joint velocity", "ur_realtime.qd_target", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_rad_per_s,
-            0x0, NULL, HFILL } },
+          { "Target joint velocity", "ur_realtime.qd_target", FT_DOUBLE, BASE_CUSTOM,
+            CF_FUNC(ur_realtime_label_rad_per_s_double), 0x0, NULL, HFILL } },
         { &hf_ur_realtime_qdd_target,
-          { "Target joint acceleration", "ur_realtime.qdd_target", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING,
-            &units_rad_per_s2, 0x0, NULL, HFILL } },
+          { "Target joint acceleration", "ur_realtime.qdd_target", FT_DOUBLE, BASE_CUSTOM,
+            CF_FUNC(ur_realtime_label_rad_per_s2_double), 0x0, NULL, HFILL } },
         { &hf_ur_realtime_i_target,
-          { "Target joint current", "ur_realtime.i_target", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_amp, 0x0,
-            NULL, HFILL } },
+          { "Target joint current", "ur_realtime.i_target", FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_realtime_label_a_double),
+            0x0, NULL, HFILL } },
         { &hf_ur_realtime_m_target,
-          { "Target joint moment", "ur_realtime.m_target", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_newton_metre,
+          { "Target joint moment", "ur_realtime.m_target", FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_realtime_label_nm_double),
             0x0, NULL, HFILL } },
         { &hf_ur_realtime_q_actual,
-          { "Actual joint position", "ur_realtime.q_actual", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_rad, 0x0,
-            NULL, HFILL } },
+          { "Actual joint position", "ur_realtime.q_actual", FT_DOUBLE, BASE_CUSTOM,
+            CF_FUNC(ur_realtime_label_rad_double), 0x0, NULL, HFILL } },
         { &hf_ur_realtime_qd_actual,
-          { "Actual joint velocity", "ur_realtime.qd_actual", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_rad_per_s,
-            0x0, NULL, HFILL } },
+          { "Actual joint velocity", "ur_realtime.qd_actual", FT_DOUBLE, BASE_CUSTOM,
+            CF_FUNC(ur_realtime_label_rad_per_s_double), 0x0, NULL, HFILL } },
         { &hf_ur_realtime_i_actual,
-          { "Actual joint current", "ur_realtime.i_actual", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_amp, 0x0,
-            NULL, HFILL } },
+          { "Actual joint current", "ur_realtime.i_actual", FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_realtime_label_a_double),
+            0x0, NULL, HFILL } },
         { &hf_ur_realtime_i_control,
-          { "Joint control current", "ur_realtime.i_control", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_amp, 0x0,
-            NULL, HFILL } },
+          { "Joint control current", "ur_realtime.i_control", FT_DOUBLE, BASE_CUSTOM,
+            CF_FUNC(ur_realtime_label_a_double), 0x0, NULL, HFILL } },
         { &hf_ur_realtime_tool_vector_actual,
           { "Actual tool pose", "ur_realtime.tool_vector_actual", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
         { &hf_ur_realtime_tcp_speed_actual,
@@ -1110,8 +1116,8 @@ void proto_register_ur_realtime(void)
         { &hf_ur_realtime_digital_input_bits,
           { "Digital input bits", "ur_realtime.digital_input_bits", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
         { &hf_ur_realtime_motor_temperatures,
-          { "Motor temperature", "ur_realtime.motor_temperatures", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING,
-            &units_degree_celsius, 0x0, NULL, HFILL } },
+          { "Motor temperature", "ur_realtime.motor_temperatures", FT_DOUBLE, BASE_CUSTOM,
+            CF_FUNC(ur_realtime_label_degc_double), 0x0, NULL, HFILL } },
         { &hf_ur_realtime_controller_timer,
           { "Controller timer", "ur_realtime.controller_timer", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
         { &hf_ur_realtime_test_value,
@@ -1123,43 +1129,43 @@ void proto_register_ur_realtime(void)
         { &hf_ur_realtime_safety_mode,
           { "Safety mode", "ur_realtime.safety_mode", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
         { &hf_ur_realtime_tool_accelerometer_values,
-          { "Tool accelerometer", "ur_realtime.tool_accelerometer_values", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING,
-            &units_meter_sec_squared, 0x0, NULL, HFILL } },
+          { "Tool accelerometer", "ur_realtime.tool_accelerometer_values", FT_DOUBLE, BASE_CUSTOM,
+            CF_FUNC(ur_realtime_label_m_per_s2_double), 0x0, NULL, HFILL } },
         { &hf_ur_realtime_speed_scaling,
           { "Speed scaling", "ur_realtime.speed_scaling", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
         { &hf_ur_realtime_linear_momentum_norm,
           { "Linear momentum norm", "ur_realtime.linear_momentum_norm", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL,
             HFILL } },
         { &hf_ur_realtime_v_main,
-          { "Main voltage", "ur_realtime.v_main", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_volt, 0x0, NULL,
-            HFILL } },
-        { &hf_ur_realtime_v_robot,
-          { "Robot voltage", "ur_realtime.v_robot", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_volt, 0x0, NULL,
-            HFILL } },
-        { &hf_ur_realtime_i_robot,
-          { "Robot current", "ur_realtime.i_robot", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_amp, 0x0, NULL,
-            HFILL } },
-        { &hf_ur_realtime_v_actual,
-          { "Actual joint voltage", "ur_realtime.v_actual", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_volt, 0x0,
+          { "Main voltage", "ur_realtime.v_main", FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_realtime_label_v_double), 0x0,
             NULL, HFILL } },
+        { &hf_ur_realtime_v_robot,
+          { "Robot voltage", "ur_realtime.v_robot", FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_realtime_label_v_double), 0x0,
+            NULL, HFILL } },
+        { &hf_ur_realtime_i_robot,
+          { "Robot current", "ur_realtime.i_robot", FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_realtime_label_a_double), 0x0,
+            NULL, HFILL } },
+        { &hf_ur_realtime_v_actual,
+          { "Actual joint voltage", "ur_realtime.v_actual", FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_realtime_label_v_double),
+            0x0, NULL, HFILL } },
         { &hf_ur_realtime_digital_outputs,
           { "Digital outputs", "ur_realtime.digital_outputs", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
         { &hf_ur_realtime_program_state,
           { "Program state", "ur_realtime.program_state", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
         { &hf_ur_realtime_elbow_position,
-          { "Elbow position", "ur_realtime.elbow_position", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_meter_meters,
+          { "Elbow position", "ur_realtime.elbow_position", FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_realtime_label_m_double),
             0x0, NULL, HFILL } },
         { &hf_ur_realtime_elbow_velocity,
-          { "Elbow velocity", "ur_realtime.elbow_velocity", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_meter_sec,
-            0x0, NULL, HFILL } },
+          { "Elbow velocity", "ur_realtime.elbow_velocity", FT_DOUBLE, BASE_CUSTOM,
+            CF_FUNC(ur_realtime_label_m_per_s_double), 0x0, NULL, HFILL } },
         { &hf_ur_realtime_safety_status,
           { "Safety status", "ur_realtime.safety_status", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
         { &hf_ur_realtime_payload_mass,
-          { "Payload mass", "ur_realtime.payload_mass", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING, &units_kg, 0x0, NULL,
-            HFILL } },
+          { "Payload mass", "ur_realtime.payload_mass", FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_realtime_label_kg_double),
+            0x0, NULL, HFILL } },
         { &hf_ur_realtime_payload_cog,
-          { "Payload centre of gravity", "ur_realtime.payload_cog", FT_DOUBLE, BASE_NONE|BASE_UNIT_STRING,
-            &units_meter_meters, 0x0, NULL, HFILL } },
+          { "Payload centre of gravity", "ur_realtime.payload_cog", FT_DOUBLE, BASE_CUSTOM,
+            CF_FUNC(ur_realtime_label_m_double), 0x0, NULL, HFILL } },
         { &hf_ur_realtime_payload_inertia,
           { "Payload inertia", "ur_realtime.payload_inertia", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
         { &hf_ur_realtime_unused_1,

@@ -16,6 +16,8 @@
 
 #include "config.h"
 
+#include <float.h>
+
 #include <epan/packet.h>
 #include <epan/conversation.h>
 #include <epan/expert.h>
@@ -452,13 +454,11 @@ typedef struct {
     int code;
     int hf;
     unsigned n;
-    const char *unit;               /* a float's unit, shown after its value (" rad") */
 } ur_case;
 
 typedef struct {
     int default_hf;
     unsigned default_n;
-    const char *default_unit;
     const ur_case *cases;
     unsigned n_cases;
 } ur_switch;
@@ -500,8 +500,6 @@ struct ur_desc {
     const char *path;               /* in error texts */
     const char *show;               /* Info column: the text before its value; NULL: not shown */
     const char *label;              /* group item label; the name of an enum named by version */
-    const char *unit;               /* a float's unit, shown after its value: Wireshark 4.0 shows no unit
-                                     * string of a float field */
     const value_string *vs;         /* enum names, for the Info column */
     const ur_names *names;          /* enum names by version, NULL when they do not depend on it */
     const ur_layout *inner;         /* group item, cond fields */
@@ -565,6 +563,86 @@ typedef struct {
 
 /* ---- Units Wireshark has no name for ---- */
 static const unit_name_string ur_units_0_v = { " V", NULL };
+
+/* ---- Labels of float fields with a unit: the value as Wireshark prints its type, then the unit ---- */
+
+static void
+ur_label_rad_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " rad");
+}
+
+static void
+ur_label_rad_per_s_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " rad/s");
+}
+
+static void
+ur_label_a_float(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", FLT_DIG, value, " A");
+}
+
+static void
+ur_label_v_float(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", FLT_DIG, value, " V");
+}
+
+static void
+ur_label_degc_float(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", FLT_DIG, value, " °C");
+}
+
+static void
+ur_label_m_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " m");
+}
+
+static void
+ur_label_rad_per_s2_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " rad/s²");
+}
+
+static void
+ur_label_m_per_s_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " m/s");
+}
+
+static void
+ur_label_m_per_s2_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " m/s²");
+}
+
+static void
+ur_label_n_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " N");
+}
+
+static void
+ur_label_nm_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " Nm");
+}
+
+static void
+ur_label_kg_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " kg");
+}
+
+static void
+ur_label_kg_m2_double(gchar *text, double value)
+{
+    snprintf(text, ITEM_LABEL_LENGTH, "%.*g%s", DBL_DIG, value, " kg·m²");
+}
 
 /* ---- Value strings: every enum of the spec, by wire value; one per version range where the
  * names depend on it (the field's is the newest, so that filters by name follow today's firmware) */
@@ -1087,11 +1165,11 @@ static const int ur_bits_masterboard_data_cond8_bits3[] = {
     UR_HF_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_TOOL_1,
 };
 static const ur_case ur_switch_safety_mode_cond28_switch0_cases[] = {
-    { 2, UR_HF_SAFETY_MODE_REPORT_DATA_INT32, 4, NULL },
-    { 3, UR_HF_SAFETY_MODE_REPORT_DATA_FLOAT32, 4, NULL },
+    { 2, UR_HF_SAFETY_MODE_REPORT_DATA_INT32, 4 },
+    { 3, UR_HF_SAFETY_MODE_REPORT_DATA_FLOAT32, 4 },
 };
 static const ur_switch ur_switch_safety_mode_cond28_switch0 = {
-    UR_HF_SAFETY_MODE_REPORT_DATA, 4, NULL, ur_switch_safety_mode_cond28_switch0_cases, 2
+    UR_HF_SAFETY_MODE_REPORT_DATA, 4, ur_switch_safety_mode_cond28_switch0_cases, 2
 };
 static const ur_value_fields ur_values_global_variables_update_values0 = {
     .item = UR_HF_GLOBAL_VARIABLES_UPDATE_VARIABLES, .type = UR_HF_GLOBAL_VARIABLES_UPDATE_TYPE,
@@ -1166,18 +1244,12 @@ static const ur_layout ur_layout_robot_mode_data = {
 };
 
 static const ur_desc ur_desc_joint_data_joint[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_ACTUAL, .n = 8, .flags = UR_FLOAT, .path = "q_actual",
-        .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_TARGET, .n = 8, .flags = UR_FLOAT, .path = "q_target",
-        .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_QD_ACTUAL, .n = 8, .flags = UR_FLOAT, .path = "qd_actual",
-        .unit = " rad/s" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_I_ACTUAL, .n = 4, .flags = UR_FLOAT, .path = "i_actual",
-        .unit = " A" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_V_ACTUAL, .n = 4, .flags = UR_FLOAT, .path = "v_actual",
-        .unit = " V" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MOTOR, .n = 4, .flags = UR_FLOAT, .path = "t_motor",
-        .unit = " \302\260C" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_ACTUAL, .n = 8, .flags = UR_FLOAT, .path = "q_actual" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_TARGET, .n = 8, .flags = UR_FLOAT, .path = "q_target" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_QD_ACTUAL, .n = 8, .flags = UR_FLOAT, .path = "qd_actual" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_I_ACTUAL, .n = 4, .flags = UR_FLOAT, .path = "i_actual" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_V_ACTUAL, .n = 4, .flags = UR_FLOAT, .path = "v_actual" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MOTOR, .n = 4, .flags = UR_FLOAT, .path = "t_motor" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MICRO, .n = 4, .flags = UR_FLOAT, .path = "t_micro" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_JOINT_MODE, .n = 1, .path = "joint_mode", .label = "Joint mode",
         .vs = ur_vs_joint_mode, .names = &ur_names_joint_mode },
@@ -1200,12 +1272,11 @@ static const ur_desc ur_desc_tool_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT0, .n = 8, .flags = UR_FLOAT, .path = "analog_input0" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT1, .n = 8, .flags = UR_FLOAT, .path = "analog_input1" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_VOLTAGE_48V, .n = 4, .flags = UR_FLOAT,
-        .path = "tool_voltage_48v", .unit = " V" },
+        .path = "tool_voltage_48v" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_OUTPUT_VOLTAGE, .n = 1, .path = "tool_output_voltage" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_CURRENT, .n = 4, .flags = UR_FLOAT, .path = "tool_current",
-        .unit = " A" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_CURRENT, .n = 4, .flags = UR_FLOAT, .path = "tool_current" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_TEMPERATURE, .n = 4, .flags = UR_FLOAT,
-        .path = "tool_temperature", .unit = " \302\260C" },
+        .path = "tool_temperature" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_MODE, .n = 1, .path = "tool_mode", .vs = ur_vs_tool_mode },
 };
 static const ur_layout ur_layout_tool_data = {
@@ -1291,7 +1362,7 @@ static const ur_layout ur_layout_masterboard_data_cond13 = {
 
 static const ur_desc ur_desc_masterboard_data_cond14[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_24V, .n = 4, .flags = UR_FLOAT,
-        .path = "euromap_voltage_24v", .unit = " V" },
+        .path = "euromap_voltage_24v" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT, .n = 4, .flags = UR_FLOAT,
         .path = "euromap_current" },
 };
@@ -1354,11 +1425,11 @@ static const ur_desc ur_desc_masterboard_data[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT1, .n = 8, .flags = UR_FLOAT,
         .path = "analog_output1" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_BOARD_TEMPERATURE, .n = 4, .flags = UR_FLOAT,
-        .path = "master_board_temperature", .unit = " \302\260C" },
+        .path = "master_board_temperature" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_VOLTAGE_48V, .n = 4, .flags = UR_FLOAT,
-        .path = "robot_voltage_48v", .unit = " V" },
+        .path = "robot_voltage_48v" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_CURRENT, .n = 4, .flags = UR_FLOAT,
-        .path = "robot_current", .unit = " A" },
+        .path = "robot_current" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_IO_CURRENT, .n = 4, .flags = UR_FLOAT,
         .path = "master_io_current" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 1006000u, .high = 1008999u,
@@ -1387,30 +1458,30 @@ static const ur_layout ur_layout_masterboard_data = {
 };
 
 static const ur_desc ur_desc_cartesian_info_cond19[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_X, .n = 8, .flags = UR_FLOAT, .path = "tcp_offset_x",
-        .unit = " m" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Y, .n = 8, .flags = UR_FLOAT, .path = "tcp_offset_y",
-        .unit = " m" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Z, .n = 8, .flags = UR_FLOAT, .path = "tcp_offset_z",
-        .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_X, .n = 8, .flags = UR_FLOAT,
+        .path = "tcp_offset_x" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Y, .n = 8, .flags = UR_FLOAT,
+        .path = "tcp_offset_y" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Z, .n = 8, .flags = UR_FLOAT,
+        .path = "tcp_offset_z" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RX, .n = 8, .flags = UR_FLOAT,
-        .path = "tcp_offset_rx", .unit = " rad" },
+        .path = "tcp_offset_rx" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RY, .n = 8, .flags = UR_FLOAT,
-        .path = "tcp_offset_ry", .unit = " rad" },
+        .path = "tcp_offset_ry" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RZ, .n = 8, .flags = UR_FLOAT,
-        .path = "tcp_offset_rz", .unit = " rad" },
+        .path = "tcp_offset_rz" },
 };
 static const ur_layout ur_layout_cartesian_info_cond19 = {
     ur_desc_cartesian_info_cond19, 6
 };
 
 static const ur_desc ur_desc_cartesian_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_X, .n = 8, .flags = UR_FLOAT, .path = "x", .unit = " m" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Y, .n = 8, .flags = UR_FLOAT, .path = "y", .unit = " m" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Z, .n = 8, .flags = UR_FLOAT, .path = "z", .unit = " m" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RX, .n = 8, .flags = UR_FLOAT, .path = "rx", .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RY, .n = 8, .flags = UR_FLOAT, .path = "ry", .unit = " rad" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RZ, .n = 8, .flags = UR_FLOAT, .path = "rz", .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_X, .n = 8, .flags = UR_FLOAT, .path = "x" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Y, .n = 8, .flags = UR_FLOAT, .path = "y" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Z, .n = 8, .flags = UR_FLOAT, .path = "z" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RX, .n = 8, .flags = UR_FLOAT, .path = "rx" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RY, .n = 8, .flags = UR_FLOAT, .path = "ry" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RZ, .n = 8, .flags = UR_FLOAT, .path = "rz" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 6, .low = 3001000u, .high = 4294967295u,
         .inner = &ur_layout_cartesian_info_cond19 },
 };
@@ -1430,13 +1501,11 @@ static const ur_layout ur_layout_laser_pointer = {
 static const ur_desc ur_desc_kinematics_info[] = {
     { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_CHECKSUM, .n = 4, .count = 6, .path = "checksum" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_THETA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_theta", .unit = " rad" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a",
-        .unit = " m" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d",
-        .unit = " m" },
+        .path = "dh_theta" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_ALPHA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_alpha", .unit = " rad" },
+        .path = "dh_alpha" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_KINEMATICS_INFO_CALIBRATION_STATUS, .n = 4, .path = "calibration_status" },
 };
 static const ur_layout ur_layout_kinematics_info = {
@@ -1445,9 +1514,9 @@ static const ur_layout ur_layout_kinematics_info = {
 
 static const ur_desc ur_desc_configuration_data_joint_position_limit[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MIN_LIMIT, .n = 8, .flags = UR_FLOAT,
-        .path = "joint_min_limit", .unit = " rad" },
+        .path = "joint_min_limit" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_LIMIT, .n = 8, .flags = UR_FLOAT,
-        .path = "joint_max_limit", .unit = " rad" },
+        .path = "joint_max_limit" },
 };
 static const ur_layout ur_layout_configuration_data_joint_position_limit = {
     ur_desc_configuration_data_joint_position_limit, 2
@@ -1455,9 +1524,9 @@ static const ur_layout ur_layout_configuration_data_joint_position_limit = {
 
 static const ur_desc ur_desc_configuration_data_joint_motion_limit[] = {
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_SPEED, .n = 8, .flags = UR_FLOAT,
-        .path = "joint_max_speed", .unit = " rad/s" },
+        .path = "joint_max_speed" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_ACCELERATION, .n = 8, .flags = UR_FLOAT,
-        .path = "joint_max_acceleration", .unit = " rad/s\302\262" },
+        .path = "joint_max_acceleration" },
 };
 static const ur_layout ur_layout_configuration_data_joint_motion_limit = {
     ur_desc_configuration_data_joint_motion_limit, 2
@@ -1488,22 +1557,20 @@ static const ur_desc ur_desc_configuration_data[] = {
     { .kind = UR_D_GROUP, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MOTION_LIMITS, .count = 6, .size = 16,
         .path = "joint_motion_limits", .label = "Joint", .inner = &ur_layout_configuration_data_joint_motion_limit },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_JOINT_DEFAULT, .n = 8, .flags = UR_FLOAT,
-        .path = "v_joint_default", .unit = " rad/s" },
+        .path = "v_joint_default" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_JOINT_DEFAULT, .n = 8, .flags = UR_FLOAT,
-        .path = "a_joint_default", .unit = " rad/s\302\262" },
+        .path = "a_joint_default" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_TOOL_DEFAULT, .n = 8, .flags = UR_FLOAT,
-        .path = "v_tool_default", .unit = " m/s" },
+        .path = "v_tool_default" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_TOOL_DEFAULT, .n = 8, .flags = UR_FLOAT,
-        .path = "a_tool_default", .unit = " m/s\302\262" },
+        .path = "a_tool_default" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_EQ_RADIUS, .n = 8, .flags = UR_FLOAT, .path = "eq_radius" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a",
-        .unit = " m" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d",
-        .unit = " m" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_ALPHA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_alpha", .unit = " rad" },
+        .path = "dh_alpha" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_THETA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_theta", .unit = " rad" },
+        .path = "dh_theta" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_MASTERBOARD_VERSION, .n = 4, .flags = UR_SIGNED,
         .path = "masterboard_version" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_CONTROLLER_BOX_TYPE, .n = 4, .flags = UR_SIGNED,
@@ -1522,12 +1589,12 @@ static const ur_layout ur_layout_configuration_data = {
 };
 
 static const ur_desc ur_desc_force_mode_data[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FX, .n = 8, .flags = UR_FLOAT, .path = "fx", .unit = " N" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FY, .n = 8, .flags = UR_FLOAT, .path = "fy", .unit = " N" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FZ, .n = 8, .flags = UR_FLOAT, .path = "fz", .unit = " N" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRX, .n = 8, .flags = UR_FLOAT, .path = "frx", .unit = " Nm" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRY, .n = 8, .flags = UR_FLOAT, .path = "fry", .unit = " Nm" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRZ, .n = 8, .flags = UR_FLOAT, .path = "frz", .unit = " Nm" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FX, .n = 8, .flags = UR_FLOAT, .path = "fx" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FY, .n = 8, .flags = UR_FLOAT, .path = "fy" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FZ, .n = 8, .flags = UR_FLOAT, .path = "fz" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRX, .n = 8, .flags = UR_FLOAT, .path = "frx" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRY, .n = 8, .flags = UR_FLOAT, .path = "fry" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRZ, .n = 8, .flags = UR_FLOAT, .path = "frz" },
     { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_ROBOT_DEXTERITY, .n = 8, .flags = UR_FLOAT,
         .path = "robot_dexterity" },
 };
@@ -1634,11 +1701,10 @@ static const ur_layout ur_layout_singularity_info = {
 };
 
 static const ur_desc ur_desc_payload_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PAYLOAD_INFO_MASS, .n = 8, .flags = UR_FLOAT, .path = "mass", .unit = " kg" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PAYLOAD_INFO_MASS, .n = 8, .flags = UR_FLOAT, .path = "mass" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_CENTER_OF_GRAVITY, .n = 8, .count = 3, .flags = UR_FLOAT,
-        .path = "center_of_gravity", .unit = " m" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_INERTIA, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "inertia",
-        .unit = " kg\302\267m\302\262" },
+        .path = "center_of_gravity" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_INERTIA, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "inertia" },
 };
 static const ur_layout ur_layout_payload_info = {
     ur_desc_payload_info, 3
@@ -3348,14 +3414,6 @@ ur_add_labelled(ur_msg *st, proto_tree *tree, int field, int o, int n, const cha
     return item;
 }
 
-/* A float's unit after its value. */
-static inline void
-ur_unit(ur_msg *st, proto_item *item, const char *unit)
-{
-    if (unit != NULL && item != NULL && st->visible)
-        proto_item_append_text(item, "%s", unit);
-}
-
 /* An expert info on item; past the cap, the first goes to the message's item. */
 static void
 ur_expert(ur_msg *st, proto_item *item, expert_field *ei, const char *text)
@@ -3504,11 +3562,8 @@ ur_add_value(ur_msg *st, proto_tree *tree, int field, int o, int n, gint64 value
 static proto_item *
 ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
 {
-    if (!(d->flags & UR_VALUE) && d->names == NULL && d->keep == 0) {
-        proto_item *item = ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
-        ur_unit(st, item, d->unit);
-        return item;
-    }
+    if (!(d->flags & UR_VALUE) && d->names == NULL && d->keep == 0)
+        return ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
     gint64 v = 0;
     double real = 0;
     if (d->flags & UR_FLOAT)
@@ -3519,7 +3574,6 @@ ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
                                             : ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
     if (d->names != NULL && st->visible)
         ur_rename(item, d->label, d->names, st->version, v);
-    ur_unit(st, item, d->unit);
     if (d->keep != 0) {
         st->kept[d->keep] = v;
         st->kept_set[d->keep] = TRUE;
@@ -3632,13 +3686,11 @@ ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
 {
     int hf = d->sw->default_hf;
     unsigned n = d->sw->default_n;
-    const char *unit = d->sw->default_unit;
     if (st->kept_set[d->keep]) {
         for (unsigned i = 0; i < d->sw->n_cases; i++) {
             if (d->sw->cases[i].code == st->kept[d->keep]) {
                 hf = d->sw->cases[i].hf;
                 n = d->sw->cases[i].n;
-                unit = d->sw->cases[i].unit;
             }
         }
     }
@@ -3646,7 +3698,7 @@ ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
         *err = ur_short(st, pre, d->path, o, n, e);
         return -1;
     }
-    ur_unit(st, ur_add(st, tree, hf, o, (int)n, ENC_BIG_ENDIAN), unit);
+    ur_add(st, tree, hf, o, (int)n, ENC_BIG_ENDIAN);
     return o + (int)n;
 }
 
@@ -5066,32 +5118,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_JOINT_DATA_Q_ACTUAL],
           { "Actual joint position", "ur.joint_data.q_actual",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Measured angle of the joint. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_Q_TARGET],
           { "Target joint position", "ur.joint_data.q_target",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Angle the controller commands. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_QD_ACTUAL],
           { "Actual joint velocity", "ur.joint_data.qd_actual",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_per_s_double), 0x0,
             "Measured angular velocity of the joint. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_I_ACTUAL],
           { "Actual joint current", "ur.joint_data.i_actual",
-            FT_FLOAT, BASE_NONE, NULL, 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_a_float), 0x0,
             "Measured motor current; l_actual in the document. In A.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_V_ACTUAL],
           { "Actual joint voltage", "ur.joint_data.v_actual",
-            FT_FLOAT, BASE_NONE, NULL, 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_float), 0x0,
             "Measured joint voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_T_MOTOR],
           { "Motor temperature", "ur.joint_data.t_motor",
-            FT_FLOAT, BASE_NONE, NULL, 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_degc_float), 0x0,
             "Temperature of the joint. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_T_MICRO],
@@ -5131,7 +5183,7 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_VOLTAGE_48V],
           { "Tool voltage", "ur.tool_data.tool_voltage_48v",
-            FT_FLOAT, BASE_NONE, NULL, 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_float), 0x0,
             "Tool voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_OUTPUT_VOLTAGE],
@@ -5141,12 +5193,12 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_CURRENT],
           { "Tool current", "ur.tool_data.tool_current",
-            FT_FLOAT, BASE_NONE, NULL, 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_a_float), 0x0,
             "Tool current. In A.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_TEMPERATURE],
           { "Tool temperature", "ur.tool_data.tool_temperature",
-            FT_FLOAT, BASE_NONE, NULL, 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_degc_float), 0x0,
             "Tool temperature. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_MODE],
@@ -5394,17 +5446,17 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_MASTER_BOARD_TEMPERATURE],
           { "Masterboard temperature", "ur.masterboard_data.master_board_temperature",
-            FT_FLOAT, BASE_NONE, NULL, 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_degc_float), 0x0,
             "Masterboard temperature. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_ROBOT_VOLTAGE_48V],
           { "Robot voltage", "ur.masterboard_data.robot_voltage_48v",
-            FT_FLOAT, BASE_NONE, NULL, 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_float), 0x0,
             "Robot voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_ROBOT_CURRENT],
           { "Robot current", "ur.masterboard_data.robot_current",
-            FT_FLOAT, BASE_NONE, NULL, 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_a_float), 0x0,
             "Robot current. In A.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_MASTER_IO_CURRENT],
@@ -5465,7 +5517,7 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_24V],
           { "Euromap67 24 V voltage", "ur.masterboard_data.euromap_voltage_24v",
-            FT_FLOAT, BASE_NONE, NULL, 0x0,
+            FT_FLOAT, BASE_CUSTOM, CF_FUNC(ur_label_v_float), 0x0,
             "Euromap67 24 V voltage. In V. Sent by software 3.0 and later.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT],
@@ -5503,62 +5555,62 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_X],
           { "TCP position X", "ur.cartesian_info.x",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "Position of the tool centre point in base coordinates, X. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_Y],
           { "TCP position Y", "ur.cartesian_info.y",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "Position of the tool centre point in base coordinates, Y. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_Z],
           { "TCP position Z", "ur.cartesian_info.z",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "Position of the tool centre point in base coordinates, Z. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RX],
           { "TCP rotation Rx", "ur.cartesian_info.rx",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Orientation of the tool as a rotation vector, Rx. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RY],
           { "TCP rotation Ry", "ur.cartesian_info.ry",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Orientation of the tool as a rotation vector, Ry. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RZ],
           { "TCP rotation Rz", "ur.cartesian_info.rz",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Orientation of the tool as a rotation vector, Rz. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_X],
           { "TCP offset X", "ur.cartesian_info.tcp_offset_x",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "TCP offset X. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_Y],
           { "TCP offset Y", "ur.cartesian_info.tcp_offset_y",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "TCP offset Y. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_Z],
           { "TCP offset Z", "ur.cartesian_info.tcp_offset_z",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "TCP offset Z. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RX],
           { "TCP offset Rx", "ur.cartesian_info.tcp_offset_rx",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "TCP offset Rx. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RY],
           { "TCP offset Ry", "ur.cartesian_info.tcp_offset_ry",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "TCP offset Ry. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RZ],
           { "TCP offset Rz", "ur.cartesian_info.tcp_offset_rz",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "TCP offset Rz. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO],
@@ -5595,22 +5647,22 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_THETA],
           { "DH theta", "ur.kinematics_info.dh_theta",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "DH theta. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_A],
           { "DH a", "ur.kinematics_info.dh_a",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "DH a. In m.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_D],
           { "DH d", "ur.kinematics_info.dh_d",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "Dhd in the document. In m.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_ALPHA],
           { "DH alpha", "ur.kinematics_info.dh_alpha",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "DH alpha. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_CALIBRATION_STATUS],
@@ -5631,12 +5683,12 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MIN_LIMIT],
           { "Minimum joint position", "ur.configuration_data.joint_min_limit",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "Minimum joint position. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_LIMIT],
           { "Maximum joint position", "ur.configuration_data.joint_max_limit",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "jointMaxLimitt in the document. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MOTION_LIMITS],
@@ -5646,32 +5698,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_SPEED],
           { "Maximum joint speed", "ur.configuration_data.joint_max_speed",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_per_s_double), 0x0,
             "Maximum joint speed. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_ACCELERATION],
           { "Maximum joint acceleration", "ur.configuration_data.joint_max_acceleration",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_per_s2_double), 0x0,
             "Maximum joint acceleration. In rad/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_V_JOINT_DEFAULT],
           { "Default joint speed", "ur.configuration_data.v_joint_default",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_per_s_double), 0x0,
             "Default joint speed. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_A_JOINT_DEFAULT],
           { "Default joint acceleration", "ur.configuration_data.a_joint_default",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_per_s2_double), 0x0,
             "Default joint acceleration. In rad/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_V_TOOL_DEFAULT],
           { "Default tool speed", "ur.configuration_data.v_tool_default",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_per_s_double), 0x0,
             "Default tool speed. In m/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_A_TOOL_DEFAULT],
           { "Default tool acceleration", "ur.configuration_data.a_tool_default",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_per_s2_double), 0x0,
             "Default tool acceleration. In m/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_EQ_RADIUS],
@@ -5681,22 +5733,22 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_A],
           { "DH a", "ur.configuration_data.dh_a",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "DH a. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_D],
           { "DH d", "ur.configuration_data.dh_d",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "DH d. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_ALPHA],
           { "DH alpha", "ur.configuration_data.dh_alpha",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "DH alpha. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_THETA],
           { "DH theta", "ur.configuration_data.dh_theta",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_rad_double), 0x0,
             "DH theta. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_MASTERBOARD_VERSION],
@@ -5744,32 +5796,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FX],
           { "Force X", "ur.force_mode_data.fx",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_n_double), 0x0,
             "Force X. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FY],
           { "Force Y", "ur.force_mode_data.fy",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_n_double), 0x0,
             "Force Y. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FZ],
           { "Force Z", "ur.force_mode_data.fz",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_n_double), 0x0,
             "Force Z. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRX],
           { "Torque X", "ur.force_mode_data.frx",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_nm_double), 0x0,
             "Torque X. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRY],
           { "Torque Y", "ur.force_mode_data.fry",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_nm_double), 0x0,
             "Torque Y. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRZ],
           { "Torque Z", "ur.force_mode_data.frz",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_nm_double), 0x0,
             "Torque Z. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_ROBOT_DEXTERITY],
@@ -5941,17 +5993,17 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_MASS],
           { "Payload mass", "ur.payload_info.mass",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_kg_double), 0x0,
             "Payload mass. In kg.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_CENTER_OF_GRAVITY],
           { "Payload centre of gravity", "ur.payload_info.center_of_gravity",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_m_double), 0x0,
             "CoGx, CoGy, CoGz from the tool flange. In m.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_INERTIA],
           { "Payload inertia", "ur.payload_info.inertia",
-            FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            FT_DOUBLE, BASE_CUSTOM, CF_FUNC(ur_label_kg_m2_double), 0x0,
             "Ixx, Iyy, Izz, Ixy, Ixz, Iyz. In kg\302\267m\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO],

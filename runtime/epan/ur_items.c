@@ -79,14 +79,6 @@ ur_add_labelled(ur_msg *st, proto_tree *tree, int field, int o, int n, const cha
     return item;
 }
 
-/* A float's unit after its value. */
-static inline void
-ur_unit(ur_msg *st, proto_item *item, const char *unit)
-{
-    if (unit != NULL && item != NULL && st->visible)
-        proto_item_append_text(item, "%s", unit);
-}
-
 /* An expert info on item; past the cap, the first goes to the message's item. */
 static void
 ur_expert(ur_msg *st, proto_item *item, expert_field *ei, const char *text)

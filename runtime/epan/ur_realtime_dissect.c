@@ -13,7 +13,6 @@
 #include <epan/expert.h>
 #include <epan/prefs.h>
 #include <epan/proto_data.h>
-#include <epan/unit_strings.h>
 #include <epan/dissectors/packet-tcp.h>
 #include "ur_realtime_types.h"
 #include "dotted_version.c"
@@ -88,28 +87,17 @@ static const char *ur_realtime_name_of(double value, const value_string *names)
     return try_val_to_str((guint32)(gint32)value, names);
 }
 
-/* Wireshark 4.0 labels a double without the unit its BASE_UNIT_STRING names (earlier and later
- * releases show it): there the unit is appended as the Lua dissector appends it. */
-#if WIRESHARK_VERSION_MAJOR == 4 && WIRESHARK_VERSION_MINOR == 0
-#define UR_REALTIME_APPEND_UNITS 1
-#else
-#define UR_REALTIME_APPEND_UNITS 0
-#endif
-
-/* One double, with its unit; an enum code's name after it where the form has one. */
+/* One double (its field's label shows its unit); an enum code's name after it where the form has
+ * one. */
 static void ur_realtime_add_value(proto_tree *tree, const ur_realtime_slot *slot, tvbuff_t *tvb, gint at,
                                   const value_string *names)
 {
     proto_item *item = proto_tree_add_item(tree, *slot->hf, tvb, at, 8, ENC_BIG_ENDIAN);
-    double value;
     const char *name;
 
-    if (names == NULL && !(UR_REALTIME_APPEND_UNITS && slot->unit != NULL))
+    if (names == NULL)
         return;
-    value = tvb_get_ntohieee_double(tvb, at);
-    if (UR_REALTIME_APPEND_UNITS && slot->unit != NULL)
-        proto_item_append_text(item, "%s", unit_name_string_get_double(value, slot->unit));
-    name = ur_realtime_name_of(value, names);
+    name = ur_realtime_name_of(tvb_get_ntohieee_double(tvb, at), names);
     if (name != NULL)
         proto_item_append_text(item, " (%s)", name);
 }

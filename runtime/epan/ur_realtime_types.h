@@ -4,7 +4,6 @@
  * packet size, its forms in the order the spec's same-size rule tries them. */
 /* <standalone> */
 #include <epan/packet.h>
-#include <epan/unit_strings.h>
 #define UR_REALTIME_ENUMS 4
 /* </standalone> */
 
@@ -15,7 +14,6 @@ typedef struct {
     guint16 offset;             /* in the packet, size field included */
     guint16 count;              /* doubles */
     gint8 names;                /* the field's enum, an index into a form's names; -1 none */
-    const unit_name_string *unit;   /* the field's unit (its BASE_UNIT_STRING), or NULL */
 } ur_realtime_slot;
 
 typedef struct {

@@ -129,11 +129,8 @@ ur_add_value(ur_msg *st, proto_tree *tree, int field, int o, int n, gint64 value
 static proto_item *
 ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
 {
-    if (!(d->flags & UR_VALUE) && d->names == NULL && d->keep == 0) {
-        proto_item *item = ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
-        ur_unit(st, item, d->unit);
-        return item;
-    }
+    if (!(d->flags & UR_VALUE) && d->names == NULL && d->keep == 0)
+        return ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
     gint64 v = 0;
     double real = 0;
     if (d->flags & UR_FLOAT)
@@ -144,7 +141,6 @@ ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
                                             : ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
     if (d->names != NULL && st->visible)
         ur_rename(item, d->label, d->names, st->version, v);
-    ur_unit(st, item, d->unit);
     if (d->keep != 0) {
         st->kept[d->keep] = v;
         st->kept_set[d->keep] = TRUE;
@@ -257,13 +253,11 @@ ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
 {
     int hf = d->sw->default_hf;
     unsigned n = d->sw->default_n;
-    const char *unit = d->sw->default_unit;
     if (st->kept_set[d->keep]) {
         for (unsigned i = 0; i < d->sw->n_cases; i++) {
             if (d->sw->cases[i].code == st->kept[d->keep]) {
                 hf = d->sw->cases[i].hf;
                 n = d->sw->cases[i].n;
-                unit = d->sw->cases[i].unit;
             }
         }
     }
@@ -271,7 +265,7 @@ ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
         *err = ur_short(st, pre, d->path, o, n, e);
         return -1;
     }
-    ur_unit(st, ur_add(st, tree, hf, o, (int)n, ENC_BIG_ENDIAN), unit);
+    ur_add(st, tree, hf, o, (int)n, ENC_BIG_ENDIAN);
     return o + (int)n;
 }
 

@@ -129,7 +129,7 @@ def test_the_tree_reads_in_words_with_units_and_names():
     case = next(c for c in CASES if c.name.endswith("cb3_3_2"))
     text = harness.checked(run_native(sessions([[case.data]], PORT, "rt-words"), "-V"))
     assert "Actual joint position (rad)" in text and "Actual joint position: 0.501953125 rad" in text
-    assert "Motor temperature: 30.5°C" in text                  # Wireshark's units_degree_celsius
+    assert "Motor temperature: 30.5 °C" in text                 # the unit as the Lua dissector shows it
     assert "Robot mode: 7 (RUNNING)" in text and "Program state: 2 (PLAYING)" in text
     assert "UR_REALTIME, rt_3_2" in text or "client interface, rt_3_2" in text
 
@@ -158,3 +158,17 @@ def test_under_asan_and_ubsan_no_report():
         for view in (["-V"], []):
             out = harness.checked(run_sanitized(path, "-2", *view, *args))
             assert "UR real-time" in out or "ur_realtime" in out, (path, view)
+
+
+def test_the_tree_reads_as_lua_word_for_word():
+    """Each double's label shows its unit as the Lua dissector appends it (" s", " °C"), so the
+    two trees print alike; only TCP's "[PDU Size: N]" is the native one's own, which
+    tcp_dissect_pdus adds."""
+    path = sessions([[c.data] for c in CASES], PORT, "rt-verbose")
+
+    def lines(text: str) -> list[str]:
+        return [line for line in text.splitlines() if not line.strip().startswith("[PDU Size: ")]
+
+    native = harness.checked(run_native(path, "-V", alone=PROTOCOL))
+    assert " °C" in native and " rad/s" in native
+    assert lines(native) == lines(harness.checked(run_lua(path, "-V", protocol=PROTOCOL)))

@@ -2,7 +2,7 @@
 generated/epan/packet-<name with dashes>.c, a native Wireshark dissector, the twin of the Lua one
 (kinds/sized_packets/lua.py): the same protocol, fields, tree, Info column, experts and
 preferences. The generated part declares the handles, one double field per spec field (its unit
-through BASE_UNIT_STRING), the enum names as value_strings, the layouts' slots and the forms by
+shown by a label function: epan_c.UnitLabel), the enum names as value_strings, the layouts' slots and the forms by
 size; the hand-written runtime (runtime/epan/<name>_*, joined in) frames the TCP stream and walks
 them."""
 from __future__ import annotations
@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import field_text, node_text, value_text
 from ...emit import environment, runtime_path, runtime_source
-from ...epan_c import c_string, own_units, unit_ident, value_literal
+from ...epan_c import c_string, unit_label, value_literal
 from .plan import SizedPlan
 
 RUNTIME_HEAD = ["types.h"]      # runtime/epan/<name>_types.h: the table types, before the tables
@@ -56,13 +56,10 @@ class EpanForm:
     names: list[str]                         # per enum: its value_string or NULL
 
 
-def _unit(field) -> str:
-    return f"&{unit_ident(field.unit)}" if field.unit else "NULL"
-
-
 def _fields(name: str, catalogue: list[ir.AnyField]) -> list[EpanField]:
     return [EpanField(f"hf_{name}_{f.name}", f.label, f"{name}.{f.name}",
-                      "BASE_NONE|BASE_UNIT_STRING" if f.unit else "BASE_NONE", _unit(f),
+                      "BASE_CUSTOM" if f.unit else "BASE_NONE",
+                      f"CF_FUNC({unit_label(name, f.unit).ident})" if f.unit else "NULL",
                       field_text([f], versions=False))
             for f in catalogue]
 
@@ -83,9 +80,9 @@ def _layout(name: str, lp, enum_ids: dict[str, str]) -> EpanLayout:
         if isinstance(f, ir.ArrayField):
             group = f.label + (f" ({f.unit})" if f.unit else "")
             slots.append([f"&hf_{name}_{f.name}", f"&ett_{name}_{f.name}", c_string(group), str(s.offset),
-                          str(s.count), names, _unit(f)])
+                          str(s.count), names])
         else:
-            slots.append([f"&hf_{name}_{f.name}", "NULL", "NULL", str(s.offset), "1", names, _unit(f)])
+            slots.append([f"&hf_{name}_{f.name}", "NULL", "NULL", str(s.offset), "1", names])
         if f.name == INFO_FIELD:
             info_at, info_names = s.offset, names
     layout = lp.layout
@@ -123,7 +120,7 @@ def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
         size_field=EpanField(f"hf_{name}_{size_field.name}", size_field.label, f"{name}.{size_field.name}",
                              "BASE_DEC", "NULL", field_text([size_field], versions=False)),
         fields=_fields(name, protocol.catalogue), etts=[f"ett_{name}"] + [f"ett_{name}_{f.name}" for f in arrays],
-        own_units=own_units([f.unit or "" for f in protocol.catalogue]),
+        labels=list(dict.fromkeys(unit_label(name, f.unit) for f in protocol.catalogue if f.unit)),
         enums=[(enum_ids[e.name], node_text(e) or e.name) for e in planned.enums], tables=list(tables.values()),
         layouts=[_layout(name, lp, enum_ids) for lp in planned.layouts], forms=forms, sizes=sizes,
         same_size=protocol.same_size, size_bytes=protocol.size_field_bytes,
