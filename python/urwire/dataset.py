@@ -1,0 +1,384 @@
+"""`urwire export --dataset ROOT`: captures as one Hive-partitioned Parquet dataset (docs/tables.md).
+
+    ROOT/interface=ur/kind=joint_data/robot=<id>/date=<YYYY-MM-DD>/part-<capture id>-<n>.parquet
+
+- One schema per kind, the same for every software version: a column for each field of any layout
+  of the kind (the generated class holds the union of its layouts, a version's missing fields
+  being None), null where a version has none, so that the files of a fleet union. It is read from
+  the generated classes (`dataset_schema`): fixed-count lists and groups take a column per item
+  (the count is in the field's metadata), lists of a count only a record knows, name lists and
+  global-variable values take their canonical JSON text.
+- Each row starts with `capture` (the capture id: a hash of the capture's bytes), `source` (the
+  file it came from), `position` (the record's place in the capture, as `urwire export` counts)
+  and `capture_time` (UTC; null in a raw stream).
+- A robot is its address in a .pcap or .pcapng (the primary and real-time streams carry no serial
+  number), or the name given for a raw stream. A row's date is its capture time's (UTC), or, in a
+  raw stream, the date given (the command line gives the file's mtime by default).
+- Exporting a capture again replaces its own files (they are named by its id); another capture's
+  files are added beside them.
+- Rows are built into Arrow columns a batch at a time, and written in row groups of up to 1M rows
+  or 128 MiB of column data, whichever comes first, with statistics (ROW_GROUP_ROWS says why).
+
+The dataset holds the primary interface's kinds; the other interfaces of a cell stay in `--out`'s
+per-capture tables.
+"""
+from __future__ import annotations
+
+import dataclasses
+import datetime
+import hashlib
+import inspect
+import io
+import json
+import os
+from pathlib import Path
+from typing import Any, Callable, Iterable, Iterator, NamedTuple, Optional, Union
+
+from .canonical import has_error, member_text, shown_text, to_dict, to_json_line
+from .capture import is_capture
+from .cell import ports_of, timed_robot_records
+from .envelope import Enveloped
+from .generated import messages
+from .interfaces import INTERFACES
+from .reading import records_of_raw
+
+PRIMARY = "ur"
+# Which part of a file a row group is: DuckDB and Spark give each row group to one thread, and
+# skip a row group whose statistics rule it out, so a group wants to be large enough to be worth a
+# thread (DuckDB's guidance is 100k to 1M rows) and small enough to be skipped often and held in
+# memory while it is written: 1M rows, or fewer where a row is wide (joint_data's 55 columns reach
+# 128 MiB at about 330k rows).
+ROW_GROUP_ROWS = 1 << 20
+ROW_GROUP_BYTES = 128 << 20
+BATCH_ROWS = 1 << 14           # rows turned into Arrow columns at a time
+_LEAD = ("capture", "source", "position", "capture_time")
+_ERROR_KINDS = ("errors", "unknown")
+_ROBOT_STATE = "robot_state"
+
+
+class Part(NamedTuple):
+    """Rows of one kind, of one robot on one day, in the kind's schema (`dataset_schema`)."""
+
+    interface: str
+    kind: str
+    robot: str
+    date: str           # YYYY-MM-DD
+    table: Any          # pyarrow.Table
+
+
+# ---- the schema of each kind ---------------------------------------------------------------
+
+_ARROW = {"int": "int64", "enum": "int64", "uint64": "uint64", "bool": "bool_", "f32": "float32",
+          "f64": "float64", "text": "string", "hex": "binary", "texts": "string", "values": "string",
+          "json": "string", "int|f32": "float64", "int|f64": "float64"}
+
+
+class Column(NamedTuple):
+    name: str
+    kind: str                     # a key of _ARROW
+    read: Callable[[Any], Any]    # the record's value in the column's plain type
+
+
+def _plain(kind: str) -> Callable[[Any], Any]:
+    """A value as `urwire decode` shows it, in the type its column takes (as export.py writes it)."""
+    if kind == "bool":
+        return lambda v: None if v is None else bool(v)
+    if kind == "text":
+        return lambda v: None if v is None else shown_text(v)
+    if kind in ("int", "enum", "uint64"):
+        return lambda v: None if v is None else int(v)
+    if kind in ("texts", "values"):
+        return lambda v: None if v is None else member_text(kind, v)
+    if kind == "hex":
+        return lambda v: None if v is None else bytes(v)
+    return lambda v: None if v is None else float(v)
+
+
+def _getter(name: str, then: Callable) -> Callable:
+    return lambda obj: then(getattr(obj, name))
+
+
+def _item(name: str, j: int, then: Callable) -> Callable:
+    def read(obj):
+        items = getattr(obj, name)
+        return None if items is None or j >= len(items) else then(items[j])
+    return read
+
+
+def _as_json(name: str) -> Callable:
+    def read(obj):
+        return None if getattr(obj, name) is None else json.dumps(to_dict(obj)[name], ensure_ascii=False)
+    return read
+
+
+def class_columns(cls: type) -> list[Column]:
+    """The columns of a generated class, in the order of its fields: a fixed-count group's fields
+    per item (`q_actual_0` ..., prefixed with the group's name where a kind has two groups), a
+    fixed-count list's items (`dh_a_0` ...), anything of a count only a record knows as JSON text."""
+    meta = {f.name: f.metadata for f in dataclasses.fields(cls)}
+    groups = [name for name, kind, _ in cls.JSON if kind == "items"]
+    out: list[Column] = []
+    for name, kind, _ in cls.JSON:
+        count = meta[name].get("count")
+        if meta[name].get("wire") == "uint64":
+            kind = "list:uint64" if kind.startswith("list:") else "uint64"
+        if kind == "items" and count is not None:
+            prefix = f"{name}_" if len(groups) > 1 else ""
+            for j in range(count):
+                out += [Column(f"{prefix}{c.name}_{j}", c.kind, _item(name, j, c.read))
+                        for c in class_columns(cls.ITEMS[name])]
+        elif kind.startswith("list:") and count is not None:
+            item_kind = kind[len("list:"):]
+            out += [Column(f"{name}_{j}", item_kind, _item(name, j, _plain(item_kind))) for j in range(count)]
+        elif kind == "items" or kind.startswith("list:"):
+            out.append(Column(name, "json", _as_json(name)))
+        else:
+            out.append(Column(name, kind, _getter(name, _plain(kind))))
+    return out
+
+
+def _primary_classes() -> dict[str, type]:
+    """Every kind of the primary interface that has a table: sub-packages and messages by TYPE."""
+    return {cls.TYPE: cls for cls in vars(messages).values()
+            if inspect.isclass(cls) and hasattr(cls, "JSON") and isinstance(getattr(cls, "TYPE", None), str)}
+
+
+_CLASSES = _primary_classes()
+_SPECIAL = {_ROBOT_STATE: [Column("packages", "int", len)],
+            **{kind: [Column("record", "text", to_json_line)] for kind in _ERROR_KINDS}}
+_COLUMNS: dict[str, list[Column]] = {}
+
+
+def kinds(interface: str = PRIMARY) -> list[str]:
+    """The kinds an interface's part of the dataset has, each a folder `kind=<name>`."""
+    _known(interface)
+    return [*_CLASSES, _ROBOT_STATE, *_ERROR_KINDS]
+
+
+def _known(interface: str) -> None:
+    if interface != PRIMARY:
+        raise ValueError(f"the dataset holds the primary interface ({PRIMARY!r}), not {interface!r}")
+
+
+def columns_of(interface: str, kind: str) -> list[Column]:
+    _known(interface)
+    if kind not in _COLUMNS:
+        if kind in _SPECIAL:
+            _COLUMNS[kind] = _SPECIAL[kind]
+        elif kind in _CLASSES:
+            _COLUMNS[kind] = class_columns(_CLASSES[kind])
+        else:
+            raise ValueError(f"no kind {kind!r} in interface {interface!r}")
+    return _COLUMNS[kind]
+
+
+def dataset_schema(interface: str, kind: str):
+    """The kind's pyarrow schema, the same for every capture and software version."""
+    import pyarrow as pa
+    lead = [pa.field("capture", pa.string(), nullable=False), pa.field("source", pa.string()),
+            pa.field("position", pa.int64(), nullable=False), pa.field("capture_time", pa.timestamp("us", "UTC"))]
+    return pa.schema(lead + [pa.field(c.name, getattr(pa, _ARROW[c.kind])()) for c in columns_of(interface, kind)])
+
+
+# ---- rows of a capture ---------------------------------------------------------------------
+
+def capture_id(data: Union[bytes, bytearray, memoryview]) -> str:
+    """A capture's id: the first 16 hex digits of the SHA-256 of its bytes, so that the same
+    capture exported again is known as the same, whatever its file is called."""
+    return hashlib.sha256(data).hexdigest()[:16]
+
+
+def file_capture_id(path: Union[str, os.PathLike]) -> str:
+    digest = hashlib.sha256()
+    with open(path, "rb") as fh:
+        while chunk := fh.read(1 << 20):
+            digest.update(chunk)
+    return digest.hexdigest()[:16]
+
+
+def _utc_date(time: float) -> str:
+    return datetime.datetime.fromtimestamp(time, datetime.timezone.utc).date().isoformat()
+
+
+class _Rows:
+    """Rows of one kind, robot and date, held as tuples until a batch is full."""
+
+    __slots__ = ("key", "columns", "rows")
+
+    def __init__(self, key: tuple, columns: list[Column]) -> None:
+        self.key, self.columns, self.rows = key, columns, []
+
+
+class PartBuilder:
+    """Turns (capture time, robot, record) into Parts, BATCH_ROWS rows of a key at a time."""
+
+    def __init__(self, capture: str, source: str, date: Optional[str], robot: Optional[str]) -> None:
+        self.capture, self.source, self.date, self.robot = capture, source, date, robot
+        self._open: dict[tuple, _Rows] = {}
+
+    def add(self, position: int, time: Optional[float], robot: Optional[str], record) -> Iterator[Part]:
+        if isinstance(record, Enveloped):          # another interface of the cell: not in the dataset
+            return
+        robot = robot or self.robot
+        if robot is None:
+            raise ValueError("a raw stream needs the robot's name (--robot)")
+        date = _utc_date(time) if time is not None else self.date
+        if date is None:
+            raise ValueError("a raw stream needs a date (--date)")
+        if has_error(record) or getattr(record, "TYPE", "unknown") == "unknown":
+            yield from self._row(_ERROR_KINDS[0] if has_error(record) else _ERROR_KINDS[1],
+                                 robot, date, position, time, record)
+            return
+        if hasattr(record, "packages"):
+            yield from self._row(_ROBOT_STATE, robot, date, position, time, record.packages)
+            for pkg in record.packages:
+                if hasattr(pkg, "JSON") and not has_error(pkg):
+                    yield from self._row(pkg.TYPE, robot, date, position, time, pkg)
+                else:
+                    yield from self._row("errors" if has_error(pkg) else "unknown", robot, date, position, time, pkg)
+            return
+        yield from self._row(record.TYPE, robot, date, position, time, record)
+
+    def _row(self, kind: str, robot: str, date: str, position: int, time, obj) -> Iterator[Part]:
+        key = (kind, robot, date)
+        rows = self._open.get(key)
+        if rows is None:
+            rows = self._open[key] = _Rows(key, columns_of(PRIMARY, kind))
+        rows.rows.append((position, time, *[c.read(obj) for c in rows.columns]))
+        if len(rows.rows) >= BATCH_ROWS:
+            yield self._part(rows)
+
+    def _part(self, rows: _Rows) -> Part:
+        import pyarrow as pa
+        kind, robot, date = rows.key
+        schema = dataset_schema(PRIMARY, kind)
+        count = len(rows.rows)
+        values = list(zip(*rows.rows))
+        rows.rows = []
+        times = pa.array(values[1], pa.float64())
+        micros = pa.compute.cast(pa.compute.round(pa.compute.multiply(times, 1e6)), pa.int64())
+        arrays = [pa.array([self.capture] * count, pa.string()), pa.array([self.source] * count, pa.string()),
+                  pa.array(values[0], pa.int64()), micros.cast(pa.timestamp("us", "UTC"))]
+        arrays += [pa.array(column, field.type) for column, field in zip(values[2:], list(schema)[len(_LEAD):])]
+        return Part(PRIMARY, kind, robot, date, pa.Table.from_arrays(arrays, schema=schema))
+
+    def finish(self) -> Iterator[Part]:
+        for rows in self._open.values():
+            if rows.rows:
+                yield self._part(rows)
+        self._open.clear()
+
+
+def _timed(fh, version_hint) -> Iterator[tuple]:
+    """(capture time, robot address, record) of a capture, or of a raw primary stream (no time,
+    no address)."""
+    head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+    if is_capture(head):
+        yield from timed_robot_records(fh, version_hint, ports_of(INTERFACES.values()))
+        return
+
+    for record in records_of_raw(fh, version_hint, lambda n: None):
+        yield None, None, record
+
+
+def parts_of(fh, capture: str, source: str, version_hint=None, robot: Optional[str] = None,
+             date: Optional[str] = None) -> Iterator[Part]:
+    """The Parts of a capture read from a binary file object (see capture_parts)."""
+    import pyarrow.compute  # noqa: F401  (the builder casts times with it)
+    builder = PartBuilder(capture, source, date, robot)
+    for position, (time, address, record) in enumerate(_timed(fh, version_hint)):
+        yield from builder.add(position, time, address, record)
+    yield from builder.finish()
+
+
+def capture_parts(data: bytes, source: str, version_hint=None, robot: Optional[str] = None,
+                  date: Optional[str] = None) -> Iterator[Part]:
+    """The dataset's Parts of one capture held in memory (a raw stream, .pcap or .pcapng): each
+    Part a batch of rows of one kind, robot and day. A capture's robots are their addresses; a raw
+    stream's robot is `robot` and its day `date` (YYYY-MM-DD), without which it is a ValueError."""
+    return parts_of(io.BufferedReader(io.BytesIO(data)), capture_id(data), source, version_hint, robot, date)
+
+
+# ---- the files -----------------------------------------------------------------------------
+
+def part_folder(root: Union[str, os.PathLike], interface: str, kind: str, robot: str, date: str) -> Path:
+    return Path(root) / f"interface={interface}" / f"kind={kind}" / f"robot={_safe(robot)}" / f"date={date}"
+
+
+def _safe(value: str) -> str:
+    """A partition value as a folder name: '/' and ':' (an IPv6 address) cannot stand in one."""
+    return value.replace("/", "_").replace(":", "_")
+
+
+def _row_group_rows(schema) -> int:
+    return max(1, min(ROW_GROUP_ROWS, ROW_GROUP_BYTES // sum(map(_width, schema))))
+
+
+def _width(field) -> int:
+    """Bytes a value of the column takes in memory, a text counted as 32."""
+    try:
+        return max(1, field.type.bit_width // 8)
+    except ValueError:      # variable width
+        return 32
+
+
+class _File:
+    """One file being written: its Arrow tables wait until a row group's worth is there."""
+
+    def __init__(self, path: Path, schema) -> None:
+        import pyarrow.parquet as pq
+        self.path, self.tmp = path, path.with_name("." + path.name + ".tmp")
+        self.group_rows = _row_group_rows(schema)
+        self.writer = pq.ParquetWriter(self.tmp, schema, compression="zstd", write_statistics=True)
+        self.waiting: list = []
+        self.rows = 0
+
+    def add(self, table) -> None:
+        self.waiting.append(table)
+        self.rows += table.num_rows
+        if self.rows >= self.group_rows:
+            self.flush()
+
+    def flush(self) -> None:
+        import pyarrow as pa
+        if self.waiting:
+            table = pa.concat_tables(self.waiting).combine_chunks()
+            self.writer.write_table(table, row_group_size=self.group_rows)
+        self.waiting, self.rows = [], 0
+
+    def close(self) -> None:
+        self.flush()
+        self.writer.close()
+
+
+def write_parts(root: Union[str, os.PathLike], parts: Iterable[Part], capture_id: str) -> dict[str, int]:
+    """Write a capture's Parts under `root` as `part-<capture_id>-<n>.parquet`, one file per kind,
+    robot and day (n counts a capture's files in one folder, 0 unless another writer adds more);
+    files a former export of the same capture left are removed once the new ones are complete.
+    Returns the rows written per kind."""
+    files: dict[tuple, _File] = {}
+    counts: dict[str, int] = {}
+    try:
+        for part in parts:
+            key = (part.interface, part.kind, part.robot, part.date)
+            out = files.get(key)
+            if out is None:
+                folder = part_folder(root, *key)
+                folder.mkdir(parents=True, exist_ok=True)
+                out = files[key] = _File(folder / f"part-{capture_id}-0.parquet", part.table.schema)
+            out.add(part.table)
+            counts[part.kind] = counts.get(part.kind, 0) + part.table.num_rows
+        for out in files.values():
+            out.close()
+    except BaseException:
+        for out in files.values():
+            out.writer.close()
+            out.tmp.unlink(missing_ok=True)
+        raise
+    written = {out.path for out in files.values()}
+    for old in Path(root).glob(f"interface=*/kind=*/robot=*/date=*/part-{capture_id}-*.parquet"):
+        if old not in written:
+            old.unlink()
+    for out in files.values():
+        os.replace(out.tmp, out.path)
+    return counts
