@@ -8,9 +8,10 @@
   the generated classes (`dataset_schema`): fixed-count lists and groups take a column per item
   (the count is in the field's metadata), lists of a count only a record knows, name lists and
   global-variable values take their canonical JSON text.
-- Each row starts with `capture` (the capture id: a hash of the capture's bytes), `source` (the
-  file it came from), `position` (the record's place in the capture, as `urwire export` counts)
-  and `capture_time` (UTC; null in a raw stream).
+- Each row starts with `capture` (the capture id: a hash of the capture's bytes), `capture_file`
+  (the name of the file it came from; a robot message has a `source` of its own), `position`
+  (the record's place in the capture, as `urwire export` counts) and `capture_time` (UTC; null
+  in a raw stream).
 - A robot is its address in a .pcap or .pcapng (the primary and real-time streams carry no serial
   number), or the name given for a raw stream. A row's date is its capture time's (UTC), or, in a
   raw stream, the date given (the command line gives the file's mtime by default).
@@ -43,15 +44,15 @@ from .interfaces import INTERFACES
 from .reading import records_of_raw
 
 PRIMARY = "ur"
-# Which part of a file a row group is: DuckDB and Spark give each row group to one thread, and
+# The size of a row group: DuckDB and Spark give each row group to one thread, and
 # skip a row group whose statistics rule it out, so a group wants to be large enough to be worth a
 # thread (DuckDB's guidance is 100k to 1M rows) and small enough to be skipped often and held in
-# memory while it is written: 1M rows, or fewer where a row is wide (joint_data's 55 columns reach
-# 128 MiB at about 330k rows).
+# memory while it is written: 1M rows, or fewer where a row is wide (joint_data's 52 columns reach
+# 128 MiB at about 365k rows).
 ROW_GROUP_ROWS = 1 << 20
 ROW_GROUP_BYTES = 128 << 20
 BATCH_ROWS = 1 << 14           # rows turned into Arrow columns at a time
-_LEAD = ("capture", "source", "position", "capture_time")
+_LEAD = ("capture", "capture_file", "position", "capture_time")
 _ERROR_KINDS = ("errors", "unknown")
 _ROBOT_STATE = "robot_state"
 
@@ -175,7 +176,7 @@ def columns_of(interface: str, kind: str) -> list[Column]:
 def dataset_schema(interface: str, kind: str):
     """The kind's pyarrow schema, the same for every capture and software version."""
     import pyarrow as pa
-    lead = [pa.field("capture", pa.string(), nullable=False), pa.field("source", pa.string()),
+    lead = [pa.field("capture", pa.string(), nullable=False), pa.field("capture_file", pa.string()),
             pa.field("position", pa.int64(), nullable=False), pa.field("capture_time", pa.timestamp("us", "UTC"))]
     return pa.schema(lead + [pa.field(c.name, getattr(pa, _ARROW[c.kind])()) for c in columns_of(interface, kind)])
 
@@ -337,14 +338,18 @@ class _File:
         self.waiting.append(table)
         self.rows += table.num_rows
         if self.rows >= self.group_rows:
-            self.flush()
+            self.flush(whole_groups_only=True)
 
-    def flush(self) -> None:
+    def flush(self, whole_groups_only: bool = False) -> None:
+        """Write what waits as row groups of group_rows, the rest in a last group unless more may come."""
         import pyarrow as pa
-        if self.waiting:
-            table = pa.concat_tables(self.waiting).combine_chunks()
-            self.writer.write_table(table, row_group_size=self.group_rows)
-        self.waiting, self.rows = [], 0
+        if not self.waiting:
+            return
+        table = pa.concat_tables(self.waiting)
+        ready = self.rows - self.rows % self.group_rows if whole_groups_only else self.rows
+        self.writer.write_table(table.slice(0, ready).combine_chunks(), row_group_size=self.group_rows)
+        rest = table.slice(ready)
+        self.waiting, self.rows = ([rest] if rest.num_rows else []), rest.num_rows
 
     def close(self) -> None:
         self.flush()
@@ -379,6 +384,14 @@ def write_parts(root: Union[str, os.PathLike], parts: Iterable[Part], capture_id
     for old in Path(root).glob(f"interface=*/kind=*/robot=*/date=*/part-{capture_id}-*.parquet"):
         if old not in written:
             old.unlink()
+            _remove_empty(old.parent, Path(root))
     for out in files.values():
         os.replace(out.tmp, out.path)
     return counts
+
+
+def _remove_empty(folder: Path, root: Path) -> None:
+    """Remove a partition folder a capture's files left empty, and its parents up to `root`."""
+    while folder != root and not any(folder.iterdir()):
+        folder.rmdir()
+        folder = folder.parent
