@@ -51,7 +51,7 @@ PRIMARY = "ur"
 # 128 MiB at about 365k rows).
 ROW_GROUP_ROWS = 1 << 20
 ROW_GROUP_BYTES = 128 << 20
-BATCH_ROWS = 1 << 14           # rows turned into Arrow columns at a time
+BATCH_ROWS = 1 << 12           # records turned into Arrow columns at a time
 _LEAD = ("capture", "capture_file", "position", "capture_time")
 _ERROR_KINDS = ("errors", "unknown")
 _ROBOT_STATE = "robot_state"
@@ -76,40 +76,40 @@ _ARROW = {"int": "int64", "enum": "int64", "uint64": "uint64", "bool": "bool_", 
 
 class Column(NamedTuple):
     name: str
-    kind: str                     # a key of _ARROW
-    read: Callable[[Any], Any]    # the record's value in the column's plain type
+    kind: str                            # a key of _ARROW
+    read: Callable[[list], list]         # a batch of records -> the column's values for them
 
 
-def _plain(kind: str) -> Callable[[Any], Any]:
-    """A value as `urwire decode` shows it, in the type its column takes (as export.py writes it)."""
+def _attr(name: str) -> Callable[[list], list]:
+    return lambda objs: [None if o is None else getattr(o, name) for o in objs]
+
+
+def _nth(j: int) -> Callable[[list], list]:
+    return lambda items: [None if i is None or j >= len(i) else i[j] for i in items]
+
+
+def _then(first: Callable[[list], list], second: Callable[[list], list]) -> Callable[[list], list]:
+    return lambda objs: second(first(objs))
+
+
+def _plain(kind: str) -> Callable[[list], list]:
+    """Values as `urwire decode` shows them, in the type their column takes (as export.py writes
+    them): any nonzero bool byte as true, text with each invalid UTF-8 byte as U+FFFD, name lists
+    and values as their JSON; numbers and enums go to Arrow as they are."""
     if kind == "bool":
-        return lambda v: None if v is None else bool(v)
+        return lambda vs: [None if v is None else bool(v) for v in vs]
     if kind == "text":
-        return lambda v: None if v is None else shown_text(v)
-    if kind in ("int", "enum", "uint64"):
-        return lambda v: None if v is None else int(v)
+        return lambda vs: [None if v is None else shown_text(v) for v in vs]
     if kind in ("texts", "values"):
-        return lambda v: None if v is None else member_text(kind, v)
+        return lambda vs: [None if v is None else member_text(kind, v) for v in vs]
     if kind == "hex":
-        return lambda v: None if v is None else bytes(v)
-    return lambda v: None if v is None else float(v)
+        return lambda vs: [None if v is None else bytes(v) for v in vs]
+    return lambda vs: vs
 
 
-def _getter(name: str, then: Callable) -> Callable:
-    return lambda obj: then(getattr(obj, name))
-
-
-def _item(name: str, j: int, then: Callable) -> Callable:
-    def read(obj):
-        items = getattr(obj, name)
-        return None if items is None or j >= len(items) else then(items[j])
-    return read
-
-
-def _as_json(name: str) -> Callable:
-    def read(obj):
-        return None if getattr(obj, name) is None else json.dumps(to_dict(obj)[name], ensure_ascii=False)
-    return read
+def _as_json(name: str) -> Callable[[list], list]:
+    return lambda objs: [None if getattr(o, name) is None else json.dumps(to_dict(o)[name], ensure_ascii=False)
+                         for o in objs]
 
 
 def class_columns(cls: type) -> list[Column]:
@@ -126,15 +126,17 @@ def class_columns(cls: type) -> list[Column]:
         if kind == "items" and count is not None:
             prefix = f"{name}_" if len(groups) > 1 else ""
             for j in range(count):
-                out += [Column(f"{prefix}{c.name}_{j}", c.kind, _item(name, j, c.read))
+                item = _then(_attr(name), _nth(j))
+                out += [Column(f"{prefix}{c.name}_{j}", c.kind, _then(item, c.read))
                         for c in class_columns(cls.ITEMS[name])]
         elif kind.startswith("list:") and count is not None:
             item_kind = kind[len("list:"):]
-            out += [Column(f"{name}_{j}", item_kind, _item(name, j, _plain(item_kind))) for j in range(count)]
+            out += [Column(f"{name}_{j}", item_kind, _then(_then(_attr(name), _nth(j)), _plain(item_kind)))
+                    for j in range(count)]
         elif kind == "items" or kind.startswith("list:"):
             out.append(Column(name, "json", _as_json(name)))
         else:
-            out.append(Column(name, kind, _getter(name, _plain(kind))))
+            out.append(Column(name, kind, _then(_attr(name), _plain(kind))))
     return out
 
 
@@ -145,8 +147,9 @@ def _primary_classes() -> dict[str, type]:
 
 
 _CLASSES = _primary_classes()
-_SPECIAL = {_ROBOT_STATE: [Column("packages", "int", len)],
-            **{kind: [Column("record", "text", to_json_line)] for kind in _ERROR_KINDS}}
+_SPECIAL = {_ROBOT_STATE: [Column("packages", "int", lambda objs: [len(o) for o in objs])],
+            **{kind: [Column("record", "text", lambda objs: [to_json_line(o) for o in objs])]
+               for kind in _ERROR_KINDS}}
 _COLUMNS: dict[str, list[Column]] = {}
 
 
@@ -202,12 +205,12 @@ def _utc_date(time: float) -> str:
 
 
 class _Rows:
-    """Rows of one kind, robot and date, held as tuples until a batch is full."""
+    """Records of one kind, robot and date, held until a batch is full."""
 
-    __slots__ = ("key", "columns", "rows")
+    __slots__ = ("key", "positions", "times", "objs")
 
-    def __init__(self, key: tuple, columns: list[Column]) -> None:
-        self.key, self.columns, self.rows = key, columns, []
+    def __init__(self, key: tuple) -> None:
+        self.key, self.positions, self.times, self.objs = key, [], [], []
 
 
 class PartBuilder:
@@ -244,28 +247,31 @@ class PartBuilder:
         key = (kind, robot, date)
         rows = self._open.get(key)
         if rows is None:
-            rows = self._open[key] = _Rows(key, columns_of(PRIMARY, kind))
-        rows.rows.append((position, time, *[c.read(obj) for c in rows.columns]))
-        if len(rows.rows) >= BATCH_ROWS:
+            rows = self._open[key] = _Rows(key)
+        rows.positions.append(position)
+        rows.times.append(time)
+        rows.objs.append(obj)
+        if len(rows.objs) >= BATCH_ROWS:
             yield self._part(rows)
 
     def _part(self, rows: _Rows) -> Part:
+        """The held records as Arrow columns, a column at a time."""
         import pyarrow as pa
+        import pyarrow.compute as pc
         kind, robot, date = rows.key
         schema = dataset_schema(PRIMARY, kind)
-        count = len(rows.rows)
-        values = list(zip(*rows.rows))
-        rows.rows = []
-        times = pa.array(values[1], pa.float64())
-        micros = pa.compute.cast(pa.compute.round(pa.compute.multiply(times, 1e6)), pa.int64())
+        count, objs = len(rows.objs), rows.objs
+        micros = pc.cast(pc.round(pc.multiply(pa.array(rows.times, pa.float64()), 1e6)), pa.int64())
         arrays = [pa.array([self.capture] * count, pa.string()), pa.array([self.source] * count, pa.string()),
-                  pa.array(values[0], pa.int64()), micros.cast(pa.timestamp("us", "UTC"))]
-        arrays += [pa.array(column, field.type) for column, field in zip(values[2:], list(schema)[len(_LEAD):])]
+                  pa.array(rows.positions, pa.int64()), micros.cast(pa.timestamp("us", "UTC"))]
+        arrays += [pa.array(column.read(objs), field.type)
+                   for column, field in zip(columns_of(PRIMARY, kind), list(schema)[len(_LEAD):])]
+        rows.positions, rows.times, rows.objs = [], [], []
         return Part(PRIMARY, kind, robot, date, pa.Table.from_arrays(arrays, schema=schema))
 
     def finish(self) -> Iterator[Part]:
         for rows in self._open.values():
-            if rows.rows:
+            if rows.objs:
                 yield self._part(rows)
         self._open.clear()
 
@@ -285,7 +291,6 @@ def _timed(fh, version_hint) -> Iterator[tuple]:
 def parts_of(fh, capture: str, source: str, version_hint=None, robot: Optional[str] = None,
              date: Optional[str] = None) -> Iterator[Part]:
     """The Parts of a capture read from a binary file object (see capture_parts)."""
-    import pyarrow.compute  # noqa: F401  (the builder casts times with it)
     builder = PartBuilder(capture, source, date, robot)
     for position, (time, address, record) in enumerate(_timed(fh, version_hint)):
         yield from builder.add(position, time, address, record)
