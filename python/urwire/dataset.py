@@ -1,6 +1,7 @@
 """`urwire export --dataset ROOT`: captures as one Hive-partitioned Parquet dataset (docs/tables.md).
 
     ROOT/interface=ur/kind=joint_data/robot=<id>/date=<YYYY-MM-DD>/part-<capture id>-<n>.parquet
+    ROOT/interface=ur_realtime/kind=state/robot=<id>/date=<YYYY-MM-DD>/part-<capture id>-<n>.parquet
 
 - One schema per kind, the same for every software version: a column for each field of any layout
   of the kind (the generated class holds the union of its layouts, a version's missing fields
@@ -20,8 +21,9 @@
 - Rows are built into Arrow columns a batch at a time, and written in row groups of up to 1M rows
   or 128 MiB of column data, whichever comes first, with statistics (ROW_GROUP_ROWS says why).
 
-The dataset holds the primary interface's kinds; the other interfaces of a cell stay in `--out`'s
-per-capture tables.
+The dataset holds the primary interface's kinds (`ur`) and the real-time interface's (`ur_realtime`:
+`state`, one table for every layout, `type` naming it); a capture's other interfaces stay in
+`--out`'s per-capture tables.
 """
 from __future__ import annotations
 
@@ -39,11 +41,13 @@ from .canonical import has_error, member_text, shown_text, to_dict, to_json_line
 from .capture import is_capture
 from .cell import ports_of, timed_robot_records
 from .envelope import Enveloped
-from .generated import messages
+from .generated import messages, ur_realtime
 from .interfaces import INTERFACES
 from .reading import records_of_raw
 
 PRIMARY = "ur"
+REALTIME = "ur_realtime"
+REALTIME_STATE = "state"
 # The size of a row group: DuckDB and Spark give each row group to one thread, and
 # skip a row group whose statistics rule it out, so a group wants to be large enough to be worth a
 # thread (DuckDB's guidance is 100k to 1M rows) and small enough to be skipped often and held in
@@ -81,7 +85,8 @@ class Column(NamedTuple):
 
 
 def _attr(name: str) -> Callable[[list], list]:
-    return lambda objs: [None if o is None else getattr(o, name) for o in objs]
+    # a layout that lacks the field (another real-time layout) gives None
+    return lambda objs: [None if o is None else getattr(o, name, None) for o in objs]
 
 
 def _nth(j: int) -> Callable[[list], list]:
@@ -146,34 +151,47 @@ def _primary_classes() -> dict[str, type]:
             if inspect.isclass(cls) and hasattr(cls, "JSON") and isinstance(getattr(cls, "TYPE", None), str)}
 
 
+def _realtime_columns() -> list[Column]:
+    """One real-time table for every layout: `type` names the layout, then the fields of every
+    layout, oldest first, each once (a field that a layout lacks is null)."""
+    seen: dict[str, Column] = {"type": Column("type", "text", lambda objs: [o.TYPE for o in objs])}
+    for forms in ur_realtime.FORMS_BY_SIZE.values():
+        for *_, cls, _ in forms:
+            for column in class_columns(cls):
+                seen.setdefault(column.name, column)
+    return list(seen.values())
+
+
 _CLASSES = _primary_classes()
-_SPECIAL = {_ROBOT_STATE: [Column("packages", "int", lambda objs: [len(o) for o in objs])],
-            **{kind: [Column("record", "text", lambda objs: [to_json_line(o) for o in objs])]
-               for kind in _ERROR_KINDS}}
-_COLUMNS: dict[str, list[Column]] = {}
+_APART = {kind: [Column("record", "text", lambda objs: [to_json_line(o) for o in objs])] for kind in _ERROR_KINDS}
+# Each interface's kinds, each with the function that gives its columns.
+_KINDS: dict[str, dict[str, Callable[[], list[Column]]]] = {
+    PRIMARY: {**{kind: (lambda cls=cls: class_columns(cls)) for kind, cls in _CLASSES.items()},
+              _ROBOT_STATE: lambda: [Column("packages", "int", lambda objs: [len(o) for o in objs])],
+              **{kind: (lambda kind=kind: _APART[kind]) for kind in _ERROR_KINDS}},
+    REALTIME: {REALTIME_STATE: _realtime_columns, **{kind: (lambda kind=kind: _APART[kind]) for kind in _ERROR_KINDS}},
+}
+_COLUMNS: dict[tuple, list[Column]] = {}
+
+
+def interfaces() -> list[str]:
+    """The interfaces the dataset holds, each a folder `interface=<name>`."""
+    return list(_KINDS)
 
 
 def kinds(interface: str = PRIMARY) -> list[str]:
     """The kinds an interface's part of the dataset has, each a folder `kind=<name>`."""
-    _known(interface)
-    return [*_CLASSES, _ROBOT_STATE, *_ERROR_KINDS]
-
-
-def _known(interface: str) -> None:
-    if interface != PRIMARY:
-        raise ValueError(f"the dataset holds the primary interface ({PRIMARY!r}), not {interface!r}")
+    if interface not in _KINDS:
+        raise ValueError(f"the dataset holds the interfaces {', '.join(_KINDS)}, not {interface!r}")
+    return list(_KINDS[interface])
 
 
 def columns_of(interface: str, kind: str) -> list[Column]:
-    _known(interface)
-    if kind not in _COLUMNS:
-        if kind in _SPECIAL:
-            _COLUMNS[kind] = _SPECIAL[kind]
-        elif kind in _CLASSES:
-            _COLUMNS[kind] = class_columns(_CLASSES[kind])
-        else:
+    if (interface, kind) not in _COLUMNS:
+        if kind not in kinds(interface):
             raise ValueError(f"no kind {kind!r} in interface {interface!r}")
-    return _COLUMNS[kind]
+        _COLUMNS[(interface, kind)] = _KINDS[interface][kind]()
+    return _COLUMNS[(interface, kind)]
 
 
 def dataset_schema(interface: str, kind: str):
@@ -221,7 +239,8 @@ class PartBuilder:
         self._open: dict[tuple, _Rows] = {}
 
     def add(self, position: int, time: Optional[float], robot: Optional[str], record) -> Iterator[Part]:
-        if isinstance(record, Enveloped):          # another interface of the cell: not in the dataset
+        interface = record.interface if isinstance(record, Enveloped) else PRIMARY
+        if interface not in _KINDS:         # another interface of the cell: in `--out`'s tables only
             return
         robot = robot or self.robot
         if robot is None:
@@ -229,22 +248,27 @@ class PartBuilder:
         date = _utc_date(time) if time is not None else self.date
         if date is None:
             raise ValueError("a raw stream needs a date (--date)")
-        if has_error(record) or getattr(record, "TYPE", "unknown") == "unknown":
-            yield from self._row(_ERROR_KINDS[0] if has_error(record) else _ERROR_KINDS[1],
+        inner = record.record if isinstance(record, Enveloped) else record
+        if has_error(record) or getattr(inner, "TYPE", "unknown") == "unknown":
+            yield from self._row(interface, _ERROR_KINDS[0] if has_error(record) else _ERROR_KINDS[1],
                                  robot, date, position, time, record)
             return
+        if interface == REALTIME:
+            yield from self._row(REALTIME, REALTIME_STATE, robot, date, position, time, inner)
+            return
         if hasattr(record, "packages"):
-            yield from self._row(_ROBOT_STATE, robot, date, position, time, record.packages)
+            yield from self._row(PRIMARY, _ROBOT_STATE, robot, date, position, time, record.packages)
             for pkg in record.packages:
                 if hasattr(pkg, "JSON") and not has_error(pkg):
-                    yield from self._row(pkg.TYPE, robot, date, position, time, pkg)
+                    yield from self._row(PRIMARY, pkg.TYPE, robot, date, position, time, pkg)
                 else:
-                    yield from self._row("errors" if has_error(pkg) else "unknown", robot, date, position, time, pkg)
+                    yield from self._row(PRIMARY, "errors" if has_error(pkg) else "unknown", robot, date, position,
+                                         time, pkg)
             return
-        yield from self._row(record.TYPE, robot, date, position, time, record)
+        yield from self._row(PRIMARY, record.TYPE, robot, date, position, time, record)
 
-    def _row(self, kind: str, robot: str, date: str, position: int, time, obj) -> Iterator[Part]:
-        key = (kind, robot, date)
+    def _row(self, interface: str, kind: str, robot: str, date: str, position: int, time, obj) -> Iterator[Part]:
+        key = (interface, kind, robot, date)
         rows = self._open.get(key)
         if rows is None:
             rows = self._open[key] = _Rows(key)
@@ -258,16 +282,16 @@ class PartBuilder:
         """The held records as Arrow columns, a column at a time."""
         import pyarrow as pa
         import pyarrow.compute as pc
-        kind, robot, date = rows.key
-        schema = dataset_schema(PRIMARY, kind)
+        interface, kind, robot, date = rows.key
+        schema = dataset_schema(interface, kind)
         count, objs = len(rows.objs), rows.objs
         micros = pc.cast(pc.round(pc.multiply(pa.array(rows.times, pa.float64()), 1e6)), pa.int64())
         arrays = [pa.array([self.capture] * count, pa.string()), pa.array([self.source] * count, pa.string()),
                   pa.array(rows.positions, pa.int64()), micros.cast(pa.timestamp("us", "UTC"))]
         arrays += [pa.array(column.read(objs), field.type)
-                   for column, field in zip(columns_of(PRIMARY, kind), list(schema)[len(_LEAD):])]
+                   for column, field in zip(columns_of(interface, kind), list(schema)[len(_LEAD):])]
         rows.positions, rows.times, rows.objs = [], [], []
-        return Part(PRIMARY, kind, robot, date, pa.Table.from_arrays(arrays, schema=schema))
+        return Part(interface, kind, robot, date, pa.Table.from_arrays(arrays, schema=schema))
 
     def finish(self) -> Iterator[Part]:
         for rows in self._open.values():

@@ -76,7 +76,7 @@ def test_every_kind_has_one_schema_of_the_lead_columns_then_its_fields():
 
 
 def test_unknown_interfaces_and_kinds_are_refused():
-    with pytest.raises(ValueError, match="primary interface"):
+    with pytest.raises(ValueError, match="holds the interfaces ur, ur_realtime"):
         dataset.dataset_schema("rtde", "outputs")
     with pytest.raises(ValueError, match="no kind"):
         dataset.dataset_schema("ur", "joint_dat")
@@ -104,6 +104,29 @@ def test_every_layout_fills_its_kinds_schema_with_what_export_writes(case):
                 else:           # a field this version's layout lacks
                     assert row[name] is None, (obj.TYPE, name)
             assert set(written) <= set(row) or json_columns, (obj.TYPE, set(written) - set(row))
+
+
+REALTIME_CASES = vectors.interface_cases("ur_realtime")
+
+
+@pytest.mark.parametrize("case", REALTIME_CASES, ids=lambda c: c.name)
+def test_every_real_time_layout_fills_one_schema_with_what_export_writes(case, tmp_path):
+    from urwire import realtime
+    from urwire.export_cell import value_columns
+
+    pcap = capture.write(tmp_path / "rt.pcap", capture.robot_session([case.data], port=30003))
+    parts = list(dataset.capture_parts(pcap.read_bytes(), "rt.pcap", case.version))
+    assert {(p.interface, p.kind) for p in parts} <= {("ur_realtime", "state"), ("ur_realtime", "errors")}
+    rows = [row for p in parts if p.kind == "state" for row in p.table.to_pylist()]
+    schema = dataset.dataset_schema("ur_realtime", "state")
+    assert all(p.table.schema == dataset.dataset_schema(p.interface, p.kind) for p in parts)
+    decoded = [r for r in realtime.decode_stream(case.data, case.version) if not has_error(r)]
+    assert len(rows) == len(decoded) and decoded
+    for row, record in zip(rows, decoded):
+        written = {name: value for key, value in to_dict(record).items() for name, _, value in value_columns(key, value)}
+        assert written["type"] == row["type"]
+        for name in schema.names[len(LEAD):]:
+            assert _same(written.get(name), row[name]), (case.name, name)
 
 
 def test_the_vectors_reach_every_kind_of_the_schema():
