@@ -123,7 +123,8 @@ def test_every_real_time_layout_fills_one_schema_with_what_export_writes(case, t
     decoded = [r for r in realtime.decode_stream(case.data, case.version) if not has_error(r)]
     assert len(rows) == len(decoded) and decoded
     for row, record in zip(rows, decoded):
-        written = {name: value for key, value in to_dict(record).items() for name, _, value in value_columns(key, value)}
+        written = {name: value for key, value in to_dict(record).items()
+                   for name, _, value in value_columns(key, value)}
         assert written["type"] == row["type"]
         for name in schema.names[len(LEAD):]:
             assert _same(written.get(name), row[name]), (case.name, name)
