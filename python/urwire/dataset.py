@@ -13,8 +13,9 @@
   (the name of the file it came from; a robot message has a `source` of its own), `position`
   (the record's place in the capture, as `urwire export` counts) and `capture_time` (UTC; null
   in a raw stream).
-- A robot is its address in a .pcap or .pcapng (the primary and real-time streams carry no serial
-  number), or the name given for a raw stream. A row's date is its capture time's (UTC), or, in a
+- A robot is its serial number where a capture holds the dashboard server's answer to `get serial
+  number` (the primary and real-time streams carry none), else its address in the .pcap or
+  .pcapng, or the name given for a raw stream. A row's date is its capture time's (UTC), or, in a
   raw stream, the date given (the command line gives the file's mtime by default).
 - Exporting a capture again replaces its own files (they are named by its id); another capture's
   files are added beside them.
@@ -41,7 +42,7 @@ from .canonical import has_error, member_text, shown_text, to_dict, to_json_line
 from .capture import is_capture
 from .cell import ports_of, timed_robot_records
 from .envelope import Enveloped
-from .generated import messages, ur_realtime
+from .generated import messages, ur_dashboard, ur_realtime
 from .interfaces import INTERFACES
 from .reading import records_of_raw
 
@@ -239,6 +240,8 @@ class PartBuilder:
         self._open: dict[tuple, _Rows] = {}
 
     def add(self, position: int, time: Optional[float], robot: Optional[str], record) -> Iterator[Part]:
+        """The Parts that this record fills: `robot` is its serial number or address (None in a raw
+        stream, whose robot the builder was given)."""
         interface = record.interface if isinstance(record, Enveloped) else PRIMARY
         if interface not in _KINDS:         # another interface of the cell: in `--out`'s tables only
             return
@@ -301,15 +304,31 @@ class PartBuilder:
 
 
 def _timed(fh, version_hint) -> Iterator[tuple]:
-    """(capture time, robot address, record) of a capture, or of a raw primary stream (no time,
-    no address)."""
+    """(capture time, robot, record) of a capture, each robot by its serial number where the
+    capture holds it, else its address; or of a raw primary stream (no time, no robot)."""
     head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
     if is_capture(head):
-        yield from timed_robot_records(fh, version_hint, ports_of(INTERFACES.values()))
+        start = fh.tell()
+        serials = serial_numbers(fh)
+        fh.seek(start)
+        for time, address, record in timed_robot_records(fh, version_hint, ports_of(INTERFACES.values())):
+            yield time, serials.get(address, address), record
         return
-
     for record in records_of_raw(fh, version_hint, lambda n: None):
         yield None, None, record
+
+
+def serial_numbers(fh) -> dict[str, str]:
+    """Robot address -> serial number, from the dashboard server's answers to `get serial number`
+    in a capture: the one place a UR cell's traffic carries it. Only the dashboard's conversations
+    are read (a first pass over the file)."""
+    dashboard = INTERFACES[ur_dashboard.NAME]
+    serials = {}
+    for _, address, record in timed_robot_records(fh, None, ports_of([dashboard])):
+        reply = getattr(record, "record", None)
+        if getattr(reply, "reply_name", None) == "serial_number" and not reply.error:
+            serials[address] = reply.reply.strip()
+    return serials
 
 
 def parts_of(fh, capture: str, source: str, version_hint=None, robot: Optional[str] = None,
@@ -324,8 +343,9 @@ def parts_of(fh, capture: str, source: str, version_hint=None, robot: Optional[s
 def capture_parts(data: bytes, source: str, version_hint=None, robot: Optional[str] = None,
                   date: Optional[str] = None) -> Iterator[Part]:
     """The dataset's Parts of one capture held in memory (a raw stream, .pcap or .pcapng): each
-    Part a batch of rows of one kind, robot and day. A capture's robots are their addresses; a raw
-    stream's robot is `robot` and its day `date` (YYYY-MM-DD), without which it is a ValueError."""
+    Part a batch of rows of one kind, robot and day. A capture's robots are their serial numbers
+    where its dashboard traffic tells them, else their addresses; a raw stream's robot is `robot`
+    and its day `date` (YYYY-MM-DD), without which it is a ValueError."""
     return parts_of(io.BufferedReader(io.BytesIO(data)), capture_id(data), source, version_hint, robot, date)
 
 

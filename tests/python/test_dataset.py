@@ -164,6 +164,18 @@ def test_a_capture_appends_and_the_same_capture_again_replaces_its_own_rows(tmp_
     assert not list(root.rglob(".*.tmp"))
 
 
+def test_a_robot_is_its_serial_number_where_the_dashboard_told_it(tmp_path):
+    states = robot_inputs.real_states()[:3]
+    dashboard = capture.session_frames([capture.Segment(False, b"get serial number\n"),
+                                        capture.Segment(True, b"20165500123\n")], port=29999, client_port=50200)
+    primary = capture.robot_session(states)
+    other = capture.robot_session(states, robot="192.168.56.102", client_port=50300)
+    told = capture.write(tmp_path / "cell.pcap", primary + dashboard + other)
+    folders = {(p.interface, p.robot) for p in dataset.capture_parts(told.read_bytes(), "cell.pcap")}
+    # the primary rows before the answer too; the robot nobody asked stays its address
+    assert folders == {("ur", "20165500123"), ("ur", "192.168.56.102")}
+
+
 def test_a_raw_stream_needs_a_robot_and_takes_its_files_date(tmp_path):
     stream = tmp_path / "robot.bin"
     stream.write_bytes(b"".join(robot_inputs.real_states()[:3]))
