@@ -373,36 +373,50 @@ def _width(field) -> int:
 
 
 class _File:
-    """One file being written: its Arrow tables wait until a row group's worth is there."""
+    """One Parquet file being written. Its rows go first to an Arrow stream beside it (on the disk
+    the dataset is on), and become Parquet row groups when the capture ends: a row group is
+    written whole, so only one, of one file, is ever held in memory, however many kinds,
+    robots and days a capture fills at once."""
 
     def __init__(self, path: Path, schema) -> None:
-        import pyarrow.parquet as pq
-        self.path, self.tmp = path, path.with_name("." + path.name + ".tmp")
-        self.group_rows = _row_group_rows(schema)
-        self.writer = pq.ParquetWriter(self.tmp, schema, compression="zstd", write_statistics=True)
-        self.waiting: list = []
-        self.rows = 0
+        import pyarrow as pa
+        self.path, self.schema = path, schema
+        self.tmp = path.with_name("." + path.name + ".tmp")
+        self.spill = path.with_name("." + path.name + ".arrows")
+        self._sink = pa.OSFile(str(self.spill), "wb")
+        self._stream = pa.ipc.new_stream(self._sink, schema)
 
     def add(self, table) -> None:
-        self.waiting.append(table)
-        self.rows += table.num_rows
-        if self.rows >= self.group_rows:
-            self.flush(whole_groups_only=True)
-
-    def flush(self, whole_groups_only: bool = False) -> None:
-        """Write what waits as row groups of group_rows, the rest in a last group unless more may come."""
-        import pyarrow as pa
-        if not self.waiting:
-            return
-        table = pa.concat_tables(self.waiting)
-        ready = self.rows - self.rows % self.group_rows if whole_groups_only else self.rows
-        self.writer.write_table(table.slice(0, ready).combine_chunks(), row_group_size=self.group_rows)
-        rest = table.slice(ready)
-        self.waiting, self.rows = ([rest] if rest.num_rows else []), rest.num_rows
+        self._stream.write_table(table)
 
     def close(self) -> None:
-        self.flush()
-        self.writer.close()
+        """Write the Parquet file (as .tmp) from the Arrow stream, group_rows rows a row group."""
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+        self._stream.close()
+        self._sink.close()
+        group_rows = _row_group_rows(self.schema)
+        with pa.OSFile(str(self.spill), "rb") as source, \
+                pq.ParquetWriter(self.tmp, self.schema, compression="zstd", write_statistics=True) as writer:
+            waiting, rows = [], 0
+            for batch in pa.ipc.open_stream(source):
+                waiting.append(batch)
+                rows += batch.num_rows
+                while rows >= group_rows:
+                    table = pa.Table.from_batches(waiting, self.schema)
+                    writer.write_table(table.slice(0, group_rows), row_group_size=group_rows)
+                    rest = table.slice(group_rows)
+                    waiting, rows = rest.to_batches(), rest.num_rows
+            if rows:
+                writer.write_table(pa.Table.from_batches(waiting, self.schema), row_group_size=group_rows)
+        self.spill.unlink()
+
+    def discard(self) -> None:
+        if not self._sink.closed:
+            self._stream.close()
+            self._sink.close()
+        self.spill.unlink(missing_ok=True)
+        self.tmp.unlink(missing_ok=True)
 
 
 def write_parts(root: Union[str, os.PathLike], parts: Iterable[Part], capture_id: str) -> dict[str, int]:
@@ -426,8 +440,7 @@ def write_parts(root: Union[str, os.PathLike], parts: Iterable[Part], capture_id
             out.close()
     except BaseException:
         for out in files.values():
-            out.writer.close()
-            out.tmp.unlink(missing_ok=True)
+            out.discard()
         raise
     written = {out.path for out in files.values()}
     for old in Path(root).glob(f"interface=*/kind=*/robot=*/date=*/part-{capture_id}-*.parquet"):

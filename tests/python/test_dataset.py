@@ -161,7 +161,7 @@ def test_a_capture_appends_and_the_same_capture_again_replaces_its_own_rows(tmp_
         by_robot.setdefault((robot, name), 0)
         by_robot[(robot, name)] += 1
     assert by_robot == {("192.168.56.101", again.name): robot_inputs.message_count(1), ("192.168.56.102", "b.pcap"): 5}
-    assert not list(root.rglob(".*.tmp"))
+    assert not list(root.rglob(".*.tmp")) and not list(root.rglob(".*.arrows"))
 
 
 def test_a_robot_is_its_serial_number_where_the_dashboard_told_it(tmp_path):
@@ -195,13 +195,14 @@ def test_a_raw_stream_needs_a_robot_and_takes_its_files_date(tmp_path):
     assert run("export", "--dataset", str(root), "--out", str(tmp_path / "t"), str(stream)).returncode == 2
 
 
-def test_row_groups_take_a_kinds_share_of_the_bound_and_carry_statistics(tmp_path, monkeypatch):
+@pytest.mark.parametrize("batch", [64, 256])     # batches smaller and larger than a row group
+def test_row_groups_take_a_kinds_share_of_the_bound_and_carry_statistics(tmp_path, monkeypatch, batch):
     schema = dataset.dataset_schema("ur", "joint_data")
     assert dataset._row_group_rows(schema) == dataset.ROW_GROUP_BYTES // sum(map(dataset._width, schema))
     assert 300_000 < dataset._row_group_rows(schema) < dataset.ROW_GROUP_ROWS
     assert dataset._row_group_rows(pa.schema([("position", pa.int64())])) == dataset.ROW_GROUP_ROWS
     monkeypatch.setattr(dataset, "ROW_GROUP_BYTES", sum(map(dataset._width, schema)) * 100)   # 100 rows
-    monkeypatch.setattr(dataset, "BATCH_ROWS", 64)
+    monkeypatch.setattr(dataset, "BATCH_ROWS", batch)
     data = robot_inputs.capture(1).read_bytes()
     dataset.write_parts(tmp_path, dataset.capture_parts(data, "one.pcap"), "c0ffee")
     meta = pq.ParquetFile(next((tmp_path / "interface=ur" / "kind=joint_data").rglob("*.parquet"))).metadata
