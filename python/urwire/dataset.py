@@ -34,6 +34,7 @@ import hashlib
 import inspect
 import io
 import json
+import operator
 import os
 from pathlib import Path
 from typing import Any, Callable, Iterable, Iterator, NamedTuple, Optional, Union
@@ -86,12 +87,25 @@ class Column(NamedTuple):
 
 
 def _attr(name: str) -> Callable[[list], list]:
-    # a layout that lacks the field (another real-time layout) gives None
-    return lambda objs: [None if o is None else getattr(o, name, None) for o in objs]
+    get = operator.attrgetter(name)
+
+    def read(objs: list) -> list:
+        try:
+            return list(map(get, objs))
+        except (AttributeError, TypeError):  # a missing group, or a layout without the field
+            return [None if o is None else getattr(o, name, None) for o in objs]
+    return read
 
 
 def _nth(j: int) -> Callable[[list], list]:
-    return lambda items: [None if i is None or j >= len(i) else i[j] for i in items]
+    get = operator.itemgetter(j)
+
+    def read(lists: list) -> list:
+        try:
+            return list(map(get, lists))
+        except (IndexError, TypeError):      # a list that is missing or shorter
+            return [None if i is None or j >= len(i) else i[j] for i in lists]
+    return read
 
 
 def _then(first: Callable[[list], list], second: Callable[[list], list]) -> Callable[[list], list]:
