@@ -100,8 +100,8 @@ def main(argv: list[str]) -> int:
                   f"{usage.peak / MIB:>8.0f} MiB peak")
             shutil.rmtree(f"{tmp}/tables", ignore_errors=True)
         (old, old_usage), (new, new_usage) = rows.values()
-        print(f"   speed-up: {old / new:.2f}x the baseline's wall time, {old_usage.cpu / new_usage.cpu:.2f}x its CPU time"
-              " (goal: >= 10x with the C backend)")
+        print(f"   speed-up: {old / new:.2f}x the baseline's wall time, "
+              f"{old_usage.cpu / new_usage.cpu:.2f}x its CPU time (goal: >= 10x with the C backend)")
     return 0
 
 
