@@ -252,6 +252,7 @@ class PartBuilder:
     def __init__(self, capture: str, source: str, date: Optional[str], robot: Optional[str]) -> None:
         self.capture, self.source, self.date, self.robot = capture, source, date, robot
         self._open: dict[tuple, _Rows] = {}
+        self._last: tuple = (None, None)     # the robot and date of the last row
 
     def add(self, position: int, time: Optional[float], robot: Optional[str], record) -> Iterator[Part]:
         """The Parts that this record fills: `robot` is its serial number or address (None in a raw
@@ -259,12 +260,14 @@ class PartBuilder:
         interface = record.interface if isinstance(record, Enveloped) else PRIMARY
         if interface not in _KINDS:         # another interface of the cell: in `--out`'s tables only
             return
-        robot = robot or self.robot
+        # A fault of a capture file has neither robot nor time: it goes with the rows before it.
+        robot = robot or self.robot or self._last[0]
         if robot is None:
             raise ValueError("a raw stream needs the robot's name (--robot)")
-        date = _utc_date(time) if time is not None else self.date
+        date = _utc_date(time) if time is not None else self.date or self._last[1]
         if date is None:
             raise ValueError("a raw stream needs a date (--date)")
+        self._last = (robot, date)
         inner = record.record if isinstance(record, Enveloped) else record
         if has_error(record) or getattr(inner, "TYPE", "unknown") == "unknown":
             yield from self._row(interface, _ERROR_KINDS[0] if has_error(record) else _ERROR_KINDS[1],

@@ -176,6 +176,19 @@ def test_a_robot_is_its_serial_number_where_the_dashboard_told_it(tmp_path):
     assert folders == {("ur", "20165500123"), ("ur", "192.168.56.102")}
 
 
+def test_a_capture_cut_short_keeps_its_rows_and_files_the_fault_with_them(tmp_path):
+    whole = robot_inputs.capture(1).read_bytes()
+    cut = tmp_path / "cut.pcap"
+    cut.write_bytes(whole[:len(whole) // 2] + b"garbage")
+    root = tmp_path / "fleet"
+    result = run("export", "--dataset", str(root), str(cut))
+    assert result.returncode == 1, result.stderr      # an error record, as decode gives
+    errors = pq.read_table(root / "interface=ur" / "kind=errors")
+    assert errors.num_rows == 1 and "capture cut short" in errors.column("record")[0].as_py()
+    assert errors.column("robot")[0].as_py() == "192.168.56.101"
+    assert pq.read_table(root / "interface=ur" / "kind=robot_state").num_rows > 500
+
+
 def test_a_raw_stream_needs_a_robot_and_takes_its_files_date(tmp_path):
     stream = tmp_path / "robot.bin"
     stream.write_bytes(b"".join(robot_inputs.real_states()[:3]))
