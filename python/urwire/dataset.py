@@ -440,7 +440,10 @@ def write_parts(root: Union[str, os.PathLike], parts: Iterable[Part], capture_id
     """Write a capture's Parts under `root` as `part-<capture_id>-<n>.parquet`, one file per kind,
     robot and day (n counts a capture's files in one folder, 0 unless another writer adds more);
     files a former export of the same capture left are removed once the new ones are complete.
-    Returns the rows written per kind."""
+    `root` is a folder, or a URI pyarrow writes (s3://bucket/prefix, gs://..., hdfs://...: see
+    _write_remote). Returns the rows written per kind."""
+    if "://" in str(root):
+        return _write_remote(str(root), parts, capture_id)
     files: dict[tuple, _File] = {}
     counts: dict[str, int] = {}
     try:
@@ -474,3 +477,29 @@ def _remove_empty(folder: Path, root: Path) -> None:
     while folder != root and not any(folder.iterdir()):
         folder.rmdir()
         folder = folder.parent
+
+
+def _write_remote(uri: str, parts: Iterable[Part], capture_id: str) -> dict[str, int]:
+    """write_parts to a filesystem pyarrow knows by its URI (a cluster's object store): the
+    capture's files are made in a local temporary folder, copied over, and then the capture's
+    former files are removed, found by listing the dataset (object stores have no glob)."""
+    import tempfile
+
+    from pyarrow import fs
+
+    filesystem, base = fs.FileSystem.from_uri(uri)
+    base = base.rstrip("/")
+    with tempfile.TemporaryDirectory(prefix="urwire-parts-") as local:
+        counts = write_parts(local, parts, capture_id)
+        written = set()
+        for path in sorted(Path(local).rglob(f"part-{capture_id}-*.parquet")):
+            target = f"{base}/{path.relative_to(local).as_posix()}"
+            filesystem.create_dir(target.rsplit("/", 1)[0], recursive=True)
+            fs.copy_files(str(path), target, source_filesystem=fs.LocalFileSystem(),
+                          destination_filesystem=filesystem)
+            written.add(target)
+    for info in filesystem.get_file_info(fs.FileSelector(base, recursive=True, allow_not_found=True)):
+        if (info.type == fs.FileType.File and info.base_name.startswith(f"part-{capture_id}-")
+                and info.path not in written):
+            filesystem.delete_file(info.path)
+    return counts

@@ -164,6 +164,22 @@ def test_a_capture_appends_and_the_same_capture_again_replaces_its_own_rows(tmp_
     assert not list(root.rglob(".*.tmp")) and not list(root.rglob(".*.arrows"))
 
 
+def test_a_root_given_as_a_uri_is_written_through_pyarrows_filesystem(tmp_path):
+    states = robot_inputs.real_states()
+    day = capture.write(tmp_path / "a.pcap", capture.robot_session(states[:4]))
+    data = day.read_bytes()
+    uri = (tmp_path / "fleet").as_uri()          # file:///...: what s3:// and gs:// go through
+    stale = tmp_path / "fleet" / "interface=ur" / "kind=joint_data" / "robot=old" / "date=2024-01-01"
+    stale.mkdir(parents=True)
+    (stale / f"part-{dataset.capture_id(data)}-0.parquet").write_bytes(b"a former export's file")
+    for _ in range(2):
+        counts = dataset.write_parts(uri, dataset.capture_parts(data, "a.pcap"), dataset.capture_id(data))
+    assert counts["robot_state"] == 4
+    table = pq.read_table(tmp_path / "fleet" / "interface=ur" / "kind=robot_state")
+    assert table.num_rows == 4                   # written twice, held once
+    assert not list(stale.iterdir())
+
+
 def test_a_robot_is_its_serial_number_where_the_dashboard_told_it(tmp_path):
     states = robot_inputs.real_states()[:3]
     dashboard = capture.session_frames([capture.Segment(False, b"get serial number\n"),
