@@ -19,7 +19,7 @@ pa = pytest.importorskip("pyarrow")
 pq = pytest.importorskip("pyarrow.parquet")
 
 import urwire  # noqa: E402
-from urwire import dataset, export  # noqa: E402
+from urwire import dataset, dataset_files, export  # noqa: E402
 from urwire.canonical import has_error, to_dict  # noqa: E402
 
 from tests import vectors  # noqa: E402
@@ -227,10 +227,12 @@ def test_a_raw_stream_needs_a_robot_and_takes_its_files_date(tmp_path):
 @pytest.mark.parametrize("batch", [64, 256])     # batches smaller and larger than a row group
 def test_row_groups_take_a_kinds_share_of_the_bound_and_carry_statistics(tmp_path, monkeypatch, batch):
     schema = dataset.dataset_schema("ur", "joint_data")
-    assert dataset._row_group_rows(schema) == dataset.ROW_GROUP_BYTES // sum(map(dataset._width, schema))
-    assert 300_000 < dataset._row_group_rows(schema) < dataset.ROW_GROUP_ROWS
-    assert dataset._row_group_rows(pa.schema([("position", pa.int64())])) == dataset.ROW_GROUP_ROWS
-    monkeypatch.setattr(dataset, "ROW_GROUP_BYTES", sum(map(dataset._width, schema)) * 100)   # 100 rows
+    files = dataset_files
+    row_bytes = sum(map(files._width, schema))
+    assert files._row_group_rows(schema) == files.ROW_GROUP_BYTES // row_bytes
+    assert 300_000 < files._row_group_rows(schema) < files.ROW_GROUP_ROWS
+    assert files._row_group_rows(pa.schema([("position", pa.int64())])) == files.ROW_GROUP_ROWS
+    monkeypatch.setattr(files, "ROW_GROUP_BYTES", row_bytes * 100)   # 100 rows a group
     monkeypatch.setattr(dataset, "BATCH_ROWS", batch)
     data = robot_inputs.capture(1).read_bytes()
     dataset.write_parts(tmp_path, dataset.capture_parts(data, "one.pcap"), "c0ffee")
