@@ -5,6 +5,7 @@ replacing the files a former export of the same capture left.
 from __future__ import annotations
 
 import os
+import tempfile
 from pathlib import Path
 from typing import Iterable, Union
 
@@ -134,8 +135,6 @@ def _write_remote(uri: str, parts: Iterable[Part], capture_id: str) -> dict[str,
     """write_parts to a filesystem pyarrow knows by its URI (a cluster's object store): the
     capture's files are made in a local temporary folder, copied over, and then the capture's
     former files are removed, found by listing the dataset (object stores have no glob)."""
-    import tempfile
-
     from pyarrow import fs
 
     filesystem, base = fs.FileSystem.from_uri(uri)
