@@ -81,19 +81,31 @@ def capture_parts(data: bytes, source: str, version_hint=None) -> Iterator[Part]
             tables.close()
 
 
+def _filesystem(root: str):
+    """pyarrow's filesystem of a root and the path in it: a local folder, or a URI pyarrow
+    writes (s3://bucket/prefix, gs://..., hdfs://...)."""
+    from pyarrow import fs
+
+    if "://" in str(root):
+        return fs.FileSystem.from_uri(str(root))
+    return fs.LocalFileSystem(), str(Path(root).resolve())
+
+
 def write_parts(root, parts: Iterable[Part], capture_id: str) -> None:
     """ROOT/interface=/kind=/robot=/date=/part-<capture id>-<n>.parquet; a capture written
     again replaces its own parts in the folders it writes."""
     import pyarrow.parquet as pq
+    from pyarrow import fs
 
-    cleared: set[Path] = set()
+    filesystem, base = _filesystem(root)
+    written: dict[str, int] = {}
     for part in parts:
-        folder = (Path(root) / f"interface={part.interface}" / f"kind={part.kind}" / f"robot={part.robot}"
-                  / f"date={part.date}")
-        if folder not in cleared:
-            folder.mkdir(parents=True, exist_ok=True)
-            for old in folder.glob(f"part-{capture_id}-*.parquet"):
-                old.unlink()
-            cleared.add(folder)
-        n = len(list(folder.glob(f"part-{capture_id}-*.parquet")))
-        pq.write_table(part.table, folder / f"part-{capture_id}-{n}.parquet")
+        folder = f"{base}/interface={part.interface}/kind={part.kind}/robot={part.robot}/date={part.date}"
+        if folder not in written:
+            filesystem.create_dir(folder, recursive=True)
+            for old in filesystem.get_file_info(fs.FileSelector(folder)):
+                if old.base_name.startswith(f"part-{capture_id}-"):
+                    filesystem.delete_file(old.path)
+            written[folder] = 0
+        pq.write_table(part.table, f"{folder}/part-{capture_id}-{written[folder]}.parquet", filesystem=filesystem)
+        written[folder] += 1

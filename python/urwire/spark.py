@@ -1,8 +1,8 @@
 """`urwire spark`: a folder of captures (raw streams, .pcap, .pcapng) decoded in parallel on
 Apache Spark into the dataset `urwire export --dataset` writes, one Spark task per capture.
 
-    spark-submit --py-files urwire.whl -m urwire.spark --out s3a://plant/urwire s3a://plant/captures
-    python -m urwire.spark --master local[2] --out dataset/ captures/
+    spark-submit --archives urwire-env.tar.gz#env python/urwire/spark.py --out s3://plant/urwire s3a://plant/captures
+    urwire spark --master local[2] --out dataset/ captures/      (or python -m urwire.spark)
 
 How: Spark's `binaryFile` source lists the folder and gives each file's bytes; `mapInArrow`
 runs urwire's decoder on each (dataset.capture_parts) and writes its tables with the same call
@@ -23,10 +23,11 @@ import argparse
 import sys
 from typing import Callable, Iterable, Iterator
 
+# Imported by its absolute name, so that spark-submit can run this file as its main script.
 try:
-    from . import dataset
+    from urwire import dataset
 except ImportError:  # a package without the dataset module: export's tables, one part each
-    from . import dataset_fallback as dataset
+    from urwire import dataset_fallback as dataset
 
 MANIFEST = "path string, interface string, kind string, robot string, date string, rows long"
 
@@ -111,7 +112,7 @@ def spark_command(args: argparse.Namespace) -> int:
 
 
 def main(argv=None) -> int:
-    from .cli import _version_arg
+    from urwire.cli import _version_arg
 
     parser = argparse.ArgumentParser(prog="urwire.spark", description=__doc__.split("\n\n")[0])
     _arguments(parser, _version_arg)
