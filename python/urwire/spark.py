@@ -23,11 +23,20 @@ import argparse
 import sys
 from typing import Callable, Iterable, Iterator
 
-# Imported by its absolute name, so that spark-submit can run this file as its main script.
-try:
-    from urwire import dataset
-except ImportError:  # a package without the dataset module: export's tables, one part each
-    from urwire import dataset_fallback as dataset
+
+def dataset_module():
+    """The dataset calls: urwire.dataset, else export's tables, a part each (dataset_fallback).
+    Imported when used, and by the absolute name, so that `urwire` starts without pyarrow and
+    spark-submit can run this file as its main script."""
+    import importlib
+
+    try:
+        return importlib.import_module("urwire.dataset")
+    except ModuleNotFoundError as missing:
+        if missing.name != "urwire.dataset":
+            raise
+        return importlib.import_module("urwire.dataset_fallback")
+
 
 MANIFEST = "path string, interface string, kind string, robot string, date string, rows long"
 
@@ -45,6 +54,7 @@ def decode_files(root: str, version_hint=None) -> Callable:
     def run(batches):
         import pyarrow as pa
 
+        dataset = dataset_module()
         for batch in batches:
             paths, contents = batch.column("path"), batch.column("content")
             for i in range(batch.num_rows):
@@ -70,7 +80,7 @@ def export_folder(spark, captures: str, root: str, version_hint=None):
     spark.conf.set("spark.sql.files.maxPartitionBytes", "1")
     spark.conf.set("spark.sql.execution.arrow.maxRecordsPerBatch", "1")
     files = (spark.read.format("binaryFile").option("recursiveFileLookup", "true")
-             .option("pathGlobFilter", "[!.]*").load(captures).select("path", "content"))
+             .load(captures).select("path", "content"))   # names starting with . or _ are left out
     manifest = files.mapInArrow(decode_files(root, version_hint), MANIFEST)
     return manifest.localCheckpoint(eager=True)
 

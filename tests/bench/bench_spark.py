@@ -41,7 +41,8 @@ ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROO
 SEQUENTIAL = """
 import sys
 from pathlib import Path
-from urwire.spark import dataset
+from urwire.spark import dataset_module
+dataset = dataset_module()
 out = sys.argv[1]
 for path in sorted(p for p in Path(sys.argv[2]).rglob("*") if p.is_file()):
     data = path.read_bytes()

@@ -55,7 +55,8 @@ def captures(tmp_path_factory) -> Path:
 
 
 def sequential_export(captures: Path, out: Path) -> Path:
-    from urwire.spark import dataset
+    from urwire.spark import dataset_module
+    dataset = dataset_module()
 
     for path in sorted(p for p in captures.rglob("*") if p.is_file()):
         data = path.read_bytes()
