@@ -2,9 +2,9 @@
 capture_id), in their simplest form, for an installation whose package has no `urwire.dataset`:
 the tables of `urwire export` (export.Tables), one Part per table.
 
-A Part's robot is the name of the folder the capture is in, its date the UTC day of the
-capture's first frame ("unknown" for a raw stream), and its schema the table's own: a kind's
-columns are those its capture shows, so dataset_schema knows none in advance (None).
+A Part's robot is the one given for a raw stream, "unknown" in a capture, its date the UTC day of the capture's first
+frame, else the one given, and its schema the table's own: a kind's columns are those its
+capture shows, so dataset_schema knows none in advance (None).
 """
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import datetime
 import hashlib
 import io
 import tempfile
-from pathlib import Path, PurePosixPath
+from pathlib import Path
 from typing import Iterable, Iterator, NamedTuple, Optional
 
 from .capture import is_capture
@@ -57,10 +57,11 @@ def _timed_records(data: bytes, version_hint) -> Iterator[tuple]:
             yield None, record
 
 
-def capture_parts(data: bytes, source: str, version_hint=None) -> Iterator[Part]:
+def capture_parts(data: bytes, source: str, version_hint=None, robot: Optional[str] = None,
+                  date: Optional[str] = None) -> Iterator[Part]:
     import pyarrow as pa
 
-    robot = PurePosixPath(source).parent.name or "unknown"
+    robot = "unknown" if robot is None or is_capture(bytes(data[:4])) else robot
     first_time: Optional[float] = None
     with tempfile.TemporaryDirectory(prefix="urwire-rows-") as spill:
         tables = Tables(Path(spill))
@@ -70,8 +71,9 @@ def capture_parts(data: bytes, source: str, version_hint=None) -> Iterator[Part]
                     first_time = time
                 tables.add_record(position, record, time)
             tables.cell.finish()
-            date = ("unknown" if first_time is None else
-                    datetime.datetime.fromtimestamp(first_time, datetime.timezone.utc).date().isoformat())
+            if first_time is not None:
+                date = datetime.datetime.fromtimestamp(first_time, datetime.timezone.utc).date().isoformat()
+            date = date or "unknown"
             for name, kinds in tables.kinds.items():
                 schema = pa.schema([(col, getattr(pa, _ARROW_TYPES.get(kind, "string"))()) for col, kind in kinds.items()])
                 batches = [pa.Table.from_arrays([pa.array(v, type=f.type) for v, f in zip(columns, schema)],

@@ -1,7 +1,7 @@
 """`urwire spark`: a folder of captures (raw streams, .pcap, .pcapng) decoded in parallel on
 Apache Spark into the dataset `urwire export --dataset` writes, one Spark task per capture.
 
-    spark-submit --archives urwire-env.tar.gz#env python/urwire/spark.py --out s3://plant/urwire s3a://plant/captures
+    spark-submit --archives urwire-env.tar.gz#env urwire/spark.py --out /mnt/plant/urwire s3a://plant/captures
     urwire spark --master local[2] --out dataset/ captures/      (or python -m urwire.spark)
 
 How: Spark's `binaryFile` source lists the folder and gives each file's bytes; `mapInArrow`
@@ -20,8 +20,10 @@ capture gives a table per kind.
 from __future__ import annotations
 
 import argparse
+import datetime
 import sys
-from typing import Callable, Iterable, Iterator
+from pathlib import PurePosixPath
+from typing import Callable, Iterable, Iterator, Optional
 
 
 def dataset_module():
@@ -48,20 +50,31 @@ def _counted(parts: Iterable, seen: list) -> Iterator:
         yield part
 
 
-def decode_files(root: str, version_hint=None) -> Callable:
+def utc_date(when: datetime.datetime) -> str:
+    """The UTC day of a binaryFile modificationTime (Arrow gives Spark's timestamps in UTC,
+    with or without the zone named)."""
+    if when.tzinfo is None:
+        when = when.replace(tzinfo=datetime.timezone.utc)
+    return when.astimezone(datetime.timezone.utc).date().isoformat()
+
+
+def decode_files(root: str, version_hint=None, robot: Optional[str] = None, date: Optional[str] = None) -> Callable:
     """The mapInArrow function: each capture of a batch of binaryFile rows decoded and written
-    under `root`, then a manifest batch of the parts it wrote."""
+    under `root`, then a manifest batch of the parts it wrote. As `urwire export --dataset`
+    reads a file: its source is its name, a raw stream's robot is `robot` and its day `date`,
+    else the day the file was last modified (UTC)."""
     def run(batches):
         import pyarrow as pa
 
         dataset = dataset_module()
         for batch in batches:
-            paths, contents = batch.column("path"), batch.column("content")
+            paths, times, contents = (batch.column(name) for name in ("path", "modificationTime", "content"))
             for i in range(batch.num_rows):
                 path, data = paths[i].as_py(), contents[i].as_py()
                 seen: list = []
-                dataset.write_parts(root, _counted(dataset.capture_parts(data, path, version_hint), seen),
-                                    dataset.capture_id(data))
+                parts = dataset.capture_parts(data, PurePosixPath(path).name, version_hint, robot,
+                                              date or utc_date(times[i].as_py()))
+                dataset.write_parts(root, _counted(parts, seen), dataset.capture_id(data))
                 columns = list(zip(*seen)) or [()] * 5
                 yield pa.RecordBatch.from_arrays(
                     [pa.array([path] * len(seen), pa.string())] +
@@ -71,7 +84,8 @@ def decode_files(root: str, version_hint=None) -> Callable:
     return run
 
 
-def export_folder(spark, captures: str, root: str, version_hint=None):
+def export_folder(spark, captures: str, root: str, version_hint=None, robot: Optional[str] = None,
+                  date: Optional[str] = None):
     """Decode every file under `captures` (any Hadoop path: a folder, s3a://...) into the
     dataset at `root` (a path every executor can write); returns the manifest DataFrame,
     already computed."""
@@ -80,8 +94,8 @@ def export_folder(spark, captures: str, root: str, version_hint=None):
     spark.conf.set("spark.sql.files.maxPartitionBytes", "1")
     spark.conf.set("spark.sql.execution.arrow.maxRecordsPerBatch", "1")
     files = (spark.read.format("binaryFile").option("recursiveFileLookup", "true")
-             .load(captures).select("path", "content"))   # names starting with . or _ are left out
-    manifest = files.mapInArrow(decode_files(root, version_hint), MANIFEST)
+             .load(captures).select("path", "modificationTime", "content"))   # names starting with . or _ are left out
+    manifest = files.mapInArrow(decode_files(root, version_hint, robot, date), MANIFEST)
     return manifest.localCheckpoint(eager=True)
 
 
@@ -100,6 +114,9 @@ def _arguments(p: argparse.ArgumentParser, version_arg) -> None:
     p.add_argument("--master", help="Spark master (default: spark-submit's, else local[*])")
     p.add_argument("--version-hint", type=version_arg, metavar="X.Y[.Z]",
                    help="software version to assume until a Version message is seen")
+    p.add_argument("--robot", metavar="NAME", help="the robot of the raw streams (a capture's robots are in it)")
+    p.add_argument("--date", metavar="YYYY-MM-DD",
+                   help="the day of the raw streams, which have no capture times (default: each file's mtime, UTC)")
 
 
 def spark_command(args: argparse.Namespace) -> int:
@@ -113,7 +130,7 @@ def spark_command(args: argparse.Namespace) -> int:
         builder = builder.master(args.master)
     spark = builder.getOrCreate()
     try:
-        rows = export_folder(spark, args.captures, args.out, args.version_hint).collect()
+        rows = export_folder(spark, args.captures, args.out, args.version_hint, args.robot, args.date).collect()
     finally:
         spark.stop()
     files = len({row.path for row in rows})

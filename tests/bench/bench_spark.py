@@ -39,14 +39,15 @@ ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROO
            # local mode runs the tasks' JVM side in the driver: room for two robot-days in flight
            PYSPARK_SUBMIT_ARGS=os.environ.get("PYSPARK_SUBMIT_ARGS", "--driver-memory 8g pyspark-shell"))
 SEQUENTIAL = """
-import sys
+import datetime, sys
 from pathlib import Path
-from urwire.spark import dataset_module
+from urwire.spark import dataset_module, utc_date
 dataset = dataset_module()
 out = sys.argv[1]
 for path in sorted(p for p in Path(sys.argv[2]).rglob("*") if p.is_file()):
     data = path.read_bytes()
-    dataset.write_parts(out, dataset.capture_parts(data, str(path)), dataset.capture_id(data))
+    day = utc_date(datetime.datetime.fromtimestamp(path.stat().st_mtime, datetime.timezone.utc))
+    dataset.write_parts(out, dataset.capture_parts(data, path.name, None, None, day), dataset.capture_id(data))
 """
 
 
