@@ -70,7 +70,8 @@ def decode_files(root: str, version_hint=None, robot: Optional[str] = None, date
         for batch in batches:
             paths, times, contents = (batch.column(name) for name in ("path", "modificationTime", "content"))
             for i in range(batch.num_rows):
-                path, data = paths[i].as_py(), contents[i].as_py()
+                # the bytes where Arrow holds them, not a copy: a robot-day is over a gigabyte
+                path, data = paths[i].as_py(), memoryview(contents[i].as_buffer())
                 seen: list = []
                 parts = dataset.capture_parts(data, PurePosixPath(path).name, version_hint, robot,
                                               date or utc_date(times[i].as_py()))
