@@ -4,7 +4,7 @@ the Lua dissector (generated/lua/urwire.lua).
 
 The two must be interchangeable (same protocol, field abbreviations, names, types, bases, value
 strings, tree, Info column and expert infos), so the fields, the layouts' descriptors and the
-forms of every type code come from the Lua target's builder (lua._Builder), which decides them
+forms of every type code come from the Lua target's model (lua.view_model), which decides them
 once over the plan; this module only maps that model to C: hf indices by a generated enum, the
 descriptors as const tables (as upstream's generated packet-eti.c walks its fields), the forms and
 segments of the version axis as tables the runtime looks a version up in. The code that walks
@@ -16,6 +16,7 @@ import re
 from typing import Optional
 
 from .. import ir, plan, wrap
+from ..epan_c import value_literal
 from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ..errors import SpecError
 from ..view import Step
@@ -34,10 +35,10 @@ FT = {"int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16", "uint16": "FT
       "uint32": "FT_UINT32", "int64": "FT_INT64", "uint64": "FT_UINT64", "float": "FT_FLOAT",
       "double": "FT_DOUBLE", "bool": "FT_BOOLEAN", "none": "FT_NONE", "string": "FT_STRING", "bytes": "FT_BYTES"}
 
-# Units Wireshark names (epan/unit_strings.h); the others are the dissector's own.
-WIRESHARK_UNITS = {"m": "units_meters", "m/s": "units_meter_sec", "m/s²": "units_meter_sec_squared",
-                   "V": "units_volt", "A": "units_amp", "°C": "units_degree_celsius", "Nm": "units_newton_metre",
-                   "s": "units_seconds", "ms": "units_milliseconds", "Hz": "units_hz"}
+# Units of integer fields Wireshark names (epan/unit_strings.h) as the Lua twin shows them (" <unit>"
+# after the value); the others are the dissector's own. Wireshark's volt reads "24V", without the
+# space: the dissector's own " V" keeps the tree the Lua one's.
+WIRESHARK_UNITS = {"s": "units_seconds", "ms": "units_milliseconds"}
 
 # A value string this long is looked up by bisection (value_string_ext), as upstream does.
 EXT_STRINGS = 32
@@ -129,8 +130,7 @@ class _Builder:
     def __init__(self, protocol_plan: plan.ProtocolPlan):
         self.plan = protocol_plan
         self.p = protocol_plan.protocol
-        self.lua = lua._Builder(protocol_plan)
-        self.model = self.lua.build()
+        self.model = lua.view_model(protocol_plan)
         self.field_index: dict[str, str] = {}
         self.arrays: list[dict] = []          # descriptor arrays, inner ones first
         self.bit_lists: list[dict] = []
@@ -190,9 +190,8 @@ class _Builder:
                     strings = self.value_strings_ref(pf.vs)
                     if strings.startswith("VALS_EXT_PTR"):
                         display += "|BASE_EXT_STRING"
-            elif pf.shape == "float" and pf.unit:
-                display = "BASE_UNIT_STRING"
-                strings = f"&{self.unit_of(pf.unit)}"
+            # A float's unit follows its value as text, as in the Lua twin: Wireshark 4.0 shows no
+            # unit string of a float field (BASE_UNIT_STRING shows on integers only).
             elif pf.shape == "flag":
                 display = str(pf.bits)
             elif pf.shape == "text":
@@ -226,7 +225,7 @@ class _Builder:
                     continue
                 tables.append(dict(name=name, versions=t["versions"], low=self.low(t["low"]), high=self.high(t["high"]),
                                    ext=ext,
-                                   entries=[(f"(guint32){v}" if v < 0 else str(v), n) for v, n in entries]))
+                                   entries=[(value_literal(v), n) for v, n in entries]))
             if not tables:
                 continue
             out.append(dict(name=e["name"], doc=e["doc"], versioned=e["versioned"] and
@@ -253,7 +252,7 @@ class _Builder:
 
     def descriptor(self, owner: str, d: Step) -> dict:
         row = dict(kind="UR_D_" + d.kind.upper(), hf="UR_HF_NONE", n=0, count=0, size=0, flags=[], keep=0,
-                   low=ANY_LOW, high=ANY_HIGH, path=None, show=None, label=None, vs="NULL", names="NULL",
+                   low=ANY_LOW, high=ANY_HIGH, path=None, show=None, label=None, unit=None, vs="NULL", names="NULL",
                    inner="NULL", bits="NULL", sw="NULL", values="NULL")
         data = d.data
         if d.kind == "cond":
@@ -273,9 +272,9 @@ class _Builder:
                 flags.append("UR_FLOAT")
             if data.get("value"):
                 flags.append("UR_VALUE")
-            row.update(n=data["size"], flags=flags, vs=self.table(data.get("vs")),
+            row.update(n=data["size"], flags=flags, unit=data.get("unit"), vs=self.table(data.get("vs")),
                        names=self.table(data.get("tables")), label=data.get("label"),
-                       keep=self.keep_slot(data.get("keep")), count=data.get("count", 1))
+                       keep=self.keep_slot(data.get("keep")), count=data.get("count", 0))
             if d.kind == "bits":
                 name = f"{owner}_bits{len(self.bit_lists)}"
                 self.bit_lists.append(dict(name=name, hfs=[self.hf(b) for b in data["bits"]]))
@@ -289,9 +288,11 @@ class _Builder:
             row.update(n=data["term"])
         elif d.kind == "switch":
             name = f"{owner}_switch{len(self.switches)}"
-            cases = [dict(code=c["code"], hf=self.hf(c["field"]), n=c["size"]) for c in data["cases"]]
-            self.switches.append(dict(name=name, default=dict(hf=self.hf(data["default"]["field"]),
-                                                             n=data["default"]["size"]), cases=cases))
+            cases = [dict(code=c["code"], hf=self.hf(c["field"]), n=c["size"], unit=c_literal(c.get("unit")))
+                     for c in data["cases"]]
+            default = data["default"]
+            self.switches.append(dict(name=name, default=dict(hf=self.hf(default["field"]), n=default["size"],
+                                                              unit=c_literal(default.get("unit"))), cases=cases))
             row.update(keep=self.keep_slot(data["sel"]), sw=f"&ur_switch_{name}")
         elif d.kind == "values":
             name = f"{owner}_values{len(self.value_lists)}"
@@ -310,7 +311,7 @@ class _Builder:
         for key, value in row.items():
             if key == "flags":
                 value = "|".join(value) or "0"
-            if key in ("path", "show", "label"):
+            if key in ("path", "show", "label", "unit"):
                 if value is not None:
                     out.append(f".{key} = {c_str(value)}")
             elif key in ("low", "high"):
@@ -397,8 +398,12 @@ class _Builder:
                     default_version=ir.version_number(self.p.default_version))
 
 
-# The scalar kinds a typed value can hold, as the runtime names them.
-KIND_CONST = {name: f"UR_VK_{name.upper()}" for name in sorted(ir.SCALARS)}
+# The scalar kinds a typed value can hold, in the order of the runtime's UR_VK_* (ur_types.c).
+VALUE_KINDS = ("bool", "float32", "float64", "int16", "int32", "int64", "int8", "uint16", "uint32", "uint64",
+               "uint8")
+if set(VALUE_KINDS) != set(ir.SCALARS):
+    raise ValueError(f"epan target: the runtime's value kinds {VALUE_KINDS} differ from the spec's scalars")
+KIND_CONST = {name: f"UR_VK_{name.upper()}" for name in VALUE_KINDS}
 
 
 def runtime(names: tuple[str, ...]) -> list[dict]:

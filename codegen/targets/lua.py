@@ -638,6 +638,12 @@ class _Builder:
                     steps=steps, tail=v.tail + (0 if v.skips else v.body_offset), rest=v.rest, bugfix=bugfix)
 
 
+def view_model(protocol_plan: plan.ProtocolPlan) -> dict:
+    """The dissector's model: fields, value strings, layouts (descriptors), messages and their forms.
+    The native dissector (targets/epan.py) renders the same model, so that the two stay twins."""
+    return _Builder(protocol_plan).build()
+
+
 def runtime() -> list[dict]:
     """The runtime files in joining order, as joined (standalone-only lines removed)."""
     folder = RUNTIME_FOLDER / "lua"
@@ -654,6 +660,6 @@ def render(protocol_plan, banner: list[str]) -> dict[str, str]:
     env.filters["lua"] = lua_literal
     env.filters["lua_text"] = lua_text
     env.filters["lua_field"] = lua_field
-    model = _Builder(protocol_plan).build()
+    model = view_model(protocol_plan)
     ctx = dict(banner=banner, p=p, doc=one_line(p.doc), runtime=runtime(), **model)
     return {OUT: env.get_template("urwire.lua.j2").render(**ctx)}

@@ -400,6 +400,7 @@ static expert_field ei_ur_internal = EI_INIT;
 static range_t *ur_ports;
 static const char *ur_version_pref = "";
 static guint ur_max_length = UR_MAX_MESSAGE_LENGTH;
+static gboolean ur_named_fields_only = TRUE;   /* the Lua twin's; see proto_register_ur */
 
 /* ---- Sizes and limits the spec gives ---- */
 #define UR_HEADER_SIZE 5
@@ -451,11 +452,13 @@ typedef struct {
     int code;
     int hf;
     unsigned n;
+    const char *unit;               /* a float's unit, shown after its value (" rad") */
 } ur_case;
 
 typedef struct {
     int default_hf;
     unsigned default_n;
+    const char *default_unit;
     const ur_case *cases;
     unsigned n_cases;
 } ur_switch;
@@ -497,6 +500,8 @@ struct ur_desc {
     const char *path;               /* in error texts */
     const char *show;               /* Info column: the text before its value; NULL: not shown */
     const char *label;              /* group item label; the name of an enum named by version */
+    const char *unit;               /* a float's unit, shown after its value: Wireshark 4.0 shows no unit
+                                     * string of a float field */
     const value_string *vs;         /* enum names, for the Info column */
     const ur_names *names;          /* enum names by version, NULL when they do not depend on it */
     const ur_layout *inner;         /* group item, cond fields */
@@ -559,12 +564,7 @@ typedef struct {
 
 
 /* ---- Units Wireshark has no name for ---- */
-static const unit_name_string ur_units_0_rad = { " rad", NULL };
-static const unit_name_string ur_units_1_rad_s = { " rad/s", NULL };
-static const unit_name_string ur_units_2_rad_s = { " rad/s\302\262", NULL };
-static const unit_name_string ur_units_3_n = { " N", NULL };
-static const unit_name_string ur_units_4_kg = { " kg", NULL };
-static const unit_name_string ur_units_5_kg_m = { " kg\302\267m\302\262", NULL };
+static const unit_name_string ur_units_0_v = { " V", NULL };
 
 /* ---- Value strings: every enum of the spec, by wire value; one per version range where the
  * names depend on it (the field's is the newest, so that filters by name follow today's firmware) */
@@ -1087,10 +1087,12 @@ static const int ur_bits_masterboard_data_cond8_bits3[] = {
     UR_HF_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS_TOOL_1,
 };
 static const ur_case ur_switch_safety_mode_cond28_switch0_cases[] = {
-    { 2, UR_HF_SAFETY_MODE_REPORT_DATA_INT32, 4 },
-    { 3, UR_HF_SAFETY_MODE_REPORT_DATA_FLOAT32, 4 },
+    { 2, UR_HF_SAFETY_MODE_REPORT_DATA_INT32, 4, NULL },
+    { 3, UR_HF_SAFETY_MODE_REPORT_DATA_FLOAT32, 4, NULL },
 };
-static const ur_switch ur_switch_safety_mode_cond28_switch0 = { UR_HF_SAFETY_MODE_REPORT_DATA, 4, ur_switch_safety_mode_cond28_switch0_cases, 2 };
+static const ur_switch ur_switch_safety_mode_cond28_switch0 = {
+    UR_HF_SAFETY_MODE_REPORT_DATA, 4, NULL, ur_switch_safety_mode_cond28_switch0_cases, 2
+};
 static const ur_value_fields ur_values_global_variables_update_values0 = {
     .item = UR_HF_GLOBAL_VARIABLES_UPDATE_VARIABLES, .type = UR_HF_GLOBAL_VARIABLES_UPDATE_TYPE,
     .code = UR_HF_GLOBAL_VARIABLES_UPDATE_TYPE_CODE, .count = UR_HF_GLOBAL_VARIABLES_UPDATE_LENGTH,
@@ -1104,50 +1106,53 @@ static const ur_value_fields ur_values_global_variables_update_values0 = {
 };
 
 static const ur_desc ur_desc_robot_mode_data_cond1[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_CONTROL_MODE, .n = 1, .count = 1, .path = "control_mode",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_CONTROL_MODE, .n = 1, .path = "control_mode",
         .vs = ur_vs_control_mode },
 };
-static const ur_layout ur_layout_robot_mode_data_cond1 = { ur_desc_robot_mode_data_cond1, 1 };
+static const ur_layout ur_layout_robot_mode_data_cond1 = {
+    ur_desc_robot_mode_data_cond1, 1
+};
 
 static const ur_desc ur_desc_robot_mode_data_cond2[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_SPEED_SCALING, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_SPEED_SCALING, .n = 8, .flags = UR_FLOAT,
         .path = "speed_scaling" },
 };
-static const ur_layout ur_layout_robot_mode_data_cond2 = { ur_desc_robot_mode_data_cond2, 1 };
+static const ur_layout ur_layout_robot_mode_data_cond2 = {
+    ur_desc_robot_mode_data_cond2, 1
+};
 
 static const ur_desc ur_desc_robot_mode_data_cond3[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TARGET_SPEED_FRACTION_LIMIT, .n = 8, .count = 1,
-        .flags = UR_FLOAT, .path = "target_speed_fraction_limit" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TARGET_SPEED_FRACTION_LIMIT, .n = 8, .flags = UR_FLOAT,
+        .path = "target_speed_fraction_limit" },
 };
-static const ur_layout ur_layout_robot_mode_data_cond3 = { ur_desc_robot_mode_data_cond3, 1 };
+static const ur_layout ur_layout_robot_mode_data_cond3 = {
+    ur_desc_robot_mode_data_cond3, 1
+};
 
 static const ur_desc ur_desc_robot_mode_data_cond4[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_RESERVED, .n = 1, .count = 1, .path = "reserved" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_RESERVED, .n = 1, .path = "reserved" },
 };
-static const ur_layout ur_layout_robot_mode_data_cond4 = { ur_desc_robot_mode_data_cond4, 1 };
+static const ur_layout ur_layout_robot_mode_data_cond4 = {
+    ur_desc_robot_mode_data_cond4, 1
+};
 
 static const ur_desc ur_desc_robot_mode_data[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_REAL_ROBOT_CONNECTED, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_REAL_ROBOT_CONNECTED, .n = 1,
         .path = "is_real_robot_connected" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_REAL_ROBOT_ENABLED, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_REAL_ROBOT_ENABLED, .n = 1,
         .path = "is_real_robot_enabled" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_ROBOT_POWER_ON, .n = 1, .count = 1,
-        .path = "is_robot_power_on" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_EMERGENCY_STOPPED, .n = 1, .count = 1,
-        .path = "is_emergency_stopped" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROTECTIVE_STOPPED, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_ROBOT_POWER_ON, .n = 1, .path = "is_robot_power_on" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_EMERGENCY_STOPPED, .n = 1, .path = "is_emergency_stopped" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROTECTIVE_STOPPED, .n = 1,
         .path = "is_protective_stopped" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROGRAM_RUNNING, .n = 1, .count = 1,
-        .path = "is_program_running" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROGRAM_PAUSED, .n = 1, .count = 1,
-        .path = "is_program_paused" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_ROBOT_MODE, .n = 1, .count = 1, .flags = UR_SIGNED,
-        .path = "robot_mode", .show = "", .label = "Robot mode", .vs = ur_vs_robot_mode,
-        .names = &ur_names_robot_mode },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROGRAM_RUNNING, .n = 1, .path = "is_program_running" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_IS_PROGRAM_PAUSED, .n = 1, .path = "is_program_paused" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_ROBOT_MODE, .n = 1, .flags = UR_SIGNED, .path = "robot_mode",
+        .show = "", .label = "Robot mode", .vs = ur_vs_robot_mode, .names = &ur_names_robot_mode },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_robot_mode_data_cond1 },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TARGET_SPEED_FRACTION, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MODE_DATA_TARGET_SPEED_FRACTION, .n = 8, .flags = UR_FLOAT,
         .path = "target_speed_fraction" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_robot_mode_data_cond2 },
@@ -1156,146 +1161,174 @@ static const ur_desc ur_desc_robot_mode_data[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3005000u, .high = 4294967295u,
         .inner = &ur_layout_robot_mode_data_cond4 },
 };
-static const ur_layout ur_layout_robot_mode_data = { ur_desc_robot_mode_data, 14 };
+static const ur_layout ur_layout_robot_mode_data = {
+    ur_desc_robot_mode_data, 14
+};
 
 static const ur_desc ur_desc_joint_data_joint[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_ACTUAL, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "q_actual" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_TARGET, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "q_target" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_QD_ACTUAL, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "qd_actual" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_I_ACTUAL, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "i_actual" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_V_ACTUAL, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "v_actual" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MOTOR, .n = 4, .count = 1, .flags = UR_FLOAT, .path = "t_motor" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MICRO, .n = 4, .count = 1, .flags = UR_FLOAT, .path = "t_micro" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_JOINT_MODE, .n = 1, .count = 1, .path = "joint_mode",
-        .label = "Joint mode", .vs = ur_vs_joint_mode, .names = &ur_names_joint_mode },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_ACTUAL, .n = 8, .flags = UR_FLOAT, .path = "q_actual",
+        .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_Q_TARGET, .n = 8, .flags = UR_FLOAT, .path = "q_target",
+        .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_QD_ACTUAL, .n = 8, .flags = UR_FLOAT, .path = "qd_actual",
+        .unit = " rad/s" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_I_ACTUAL, .n = 4, .flags = UR_FLOAT, .path = "i_actual",
+        .unit = " A" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_V_ACTUAL, .n = 4, .flags = UR_FLOAT, .path = "v_actual",
+        .unit = " V" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MOTOR, .n = 4, .flags = UR_FLOAT, .path = "t_motor",
+        .unit = " \302\260C" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_T_MICRO, .n = 4, .flags = UR_FLOAT, .path = "t_micro" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_JOINT_DATA_JOINT_MODE, .n = 1, .path = "joint_mode", .label = "Joint mode",
+        .vs = ur_vs_joint_mode, .names = &ur_names_joint_mode },
 };
-static const ur_layout ur_layout_joint_data_joint = { ur_desc_joint_data_joint, 8 };
+static const ur_layout ur_layout_joint_data_joint = {
+    ur_desc_joint_data_joint, 8
+};
 
 static const ur_desc ur_desc_joint_data[] = {
     { .kind = UR_D_GROUP, .hf = UR_HF_JOINT_DATA_JOINTS, .count = 6, .size = 41, .path = "joints", .label = "Joint",
         .inner = &ur_layout_joint_data_joint },
 };
-static const ur_layout ur_layout_joint_data = { ur_desc_joint_data, 1 };
+static const ur_layout ur_layout_joint_data = {
+    ur_desc_joint_data, 1
+};
 
 static const ur_desc ur_desc_tool_data[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT_RANGE0, .n = 1, .count = 1,
-        .path = "analog_input_range0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT_RANGE1, .n = 1, .count = 1,
-        .path = "analog_input_range1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT0, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "analog_input0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT1, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "analog_input1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_VOLTAGE_48V, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "tool_voltage_48v" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_OUTPUT_VOLTAGE, .n = 1, .count = 1,
-        .path = "tool_output_voltage" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "tool_current" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_TEMPERATURE, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "tool_temperature" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_MODE, .n = 1, .count = 1, .path = "tool_mode",
-        .vs = ur_vs_tool_mode },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT_RANGE0, .n = 1, .path = "analog_input_range0" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT_RANGE1, .n = 1, .path = "analog_input_range1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT0, .n = 8, .flags = UR_FLOAT, .path = "analog_input0" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_ANALOG_INPUT1, .n = 8, .flags = UR_FLOAT, .path = "analog_input1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_VOLTAGE_48V, .n = 4, .flags = UR_FLOAT,
+        .path = "tool_voltage_48v", .unit = " V" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_OUTPUT_VOLTAGE, .n = 1, .path = "tool_output_voltage" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_CURRENT, .n = 4, .flags = UR_FLOAT, .path = "tool_current",
+        .unit = " A" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_TEMPERATURE, .n = 4, .flags = UR_FLOAT,
+        .path = "tool_temperature", .unit = " \302\260C" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_DATA_TOOL_MODE, .n = 1, .path = "tool_mode", .vs = ur_vs_tool_mode },
 };
-static const ur_layout ur_layout_tool_data = { ur_desc_tool_data, 9 };
+static const ur_layout ur_layout_tool_data = {
+    ur_desc_tool_data, 9
+};
 
 static const ur_desc ur_desc_masterboard_data_cond5[] = {
     { .kind = UR_D_BITS, .hf = UR_HF_MASTERBOARD_DATA_DIGITAL_INPUT_BITS, .n = 2, .count = 16,
         .flags = UR_SIGNED|UR_VALUE, .path = "digital_input_bits", .bits = ur_bits_masterboard_data_cond5_bits0 },
 };
-static const ur_layout ur_layout_masterboard_data_cond5 = { ur_desc_masterboard_data_cond5, 1 };
+static const ur_layout ur_layout_masterboard_data_cond5 = {
+    ur_desc_masterboard_data_cond5, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond6[] = {
     { .kind = UR_D_BITS, .hf = UR_HF_MASTERBOARD_DATA_DIGITAL_INPUT_BITS, .n = 4, .count = 18, .flags = UR_SIGNED,
         .path = "digital_input_bits", .bits = ur_bits_masterboard_data_cond6_bits1 },
 };
-static const ur_layout ur_layout_masterboard_data_cond6 = { ur_desc_masterboard_data_cond6, 1 };
+static const ur_layout ur_layout_masterboard_data_cond6 = {
+    ur_desc_masterboard_data_cond6, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond7[] = {
     { .kind = UR_D_BITS, .hf = UR_HF_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS, .n = 2, .count = 16,
         .flags = UR_SIGNED|UR_VALUE, .path = "digital_output_bits", .bits = ur_bits_masterboard_data_cond7_bits2 },
 };
-static const ur_layout ur_layout_masterboard_data_cond7 = { ur_desc_masterboard_data_cond7, 1 };
+static const ur_layout ur_layout_masterboard_data_cond7 = {
+    ur_desc_masterboard_data_cond7, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond8[] = {
     { .kind = UR_D_BITS, .hf = UR_HF_MASTERBOARD_DATA_DIGITAL_OUTPUT_BITS, .n = 4, .count = 18, .flags = UR_SIGNED,
         .path = "digital_output_bits", .bits = ur_bits_masterboard_data_cond8_bits3 },
 };
-static const ur_layout ur_layout_masterboard_data_cond8 = { ur_desc_masterboard_data_cond8, 1 };
+static const ur_layout ur_layout_masterboard_data_cond8 = {
+    ur_desc_masterboard_data_cond8, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond9[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_SAFETY_STATE, .n = 1, .count = 1,
-        .path = "master_safety_state", .vs = ur_vs_master_safety_state },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_ON_OFF_STATE, .n = 1, .count = 1,
-        .path = "master_on_off_state", .vs = ur_vs_master_on_off_state },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_SAFETY_STATE, .n = 1, .path = "master_safety_state",
+        .vs = ur_vs_master_safety_state },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_ON_OFF_STATE, .n = 1, .path = "master_on_off_state",
+        .vs = ur_vs_master_on_off_state },
 };
-static const ur_layout ur_layout_masterboard_data_cond9 = { ur_desc_masterboard_data_cond9, 2 };
+static const ur_layout ur_layout_masterboard_data_cond9 = {
+    ur_desc_masterboard_data_cond9, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond10[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_SAFETY_MODE, .n = 1, .count = 1, .path = "safety_mode",
-        .show = "", .vs = ur_vs_safety_mode },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_IN_REDUCED_MODE, .n = 1, .count = 1,
-        .path = "in_reduced_mode" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_SAFETY_MODE, .n = 1, .path = "safety_mode", .show = "",
+        .vs = ur_vs_safety_mode },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_IN_REDUCED_MODE, .n = 1, .path = "in_reduced_mode" },
 };
-static const ur_layout ur_layout_masterboard_data_cond10 = { ur_desc_masterboard_data_cond10, 2 };
+static const ur_layout ur_layout_masterboard_data_cond10 = {
+    ur_desc_masterboard_data_cond10, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond11[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP67_INTERFACE_INSTALLED, .n = 1, .count = 1, .keep = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP67_INTERFACE_INSTALLED, .n = 1, .keep = 1,
         .path = "euromap67_interface_installed" },
 };
-static const ur_layout ur_layout_masterboard_data_cond11 = { ur_desc_masterboard_data_cond11, 1 };
+static const ur_layout ur_layout_masterboard_data_cond11 = {
+    ur_desc_masterboard_data_cond11, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond12[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_INPUT_BITS, .n = 4, .count = 1,
-        .path = "euromap_input_bits" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_OUTPUT_BITS, .n = 4, .count = 1,
-        .path = "euromap_output_bits" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_INPUT_BITS, .n = 4, .path = "euromap_input_bits" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_OUTPUT_BITS, .n = 4, .path = "euromap_output_bits" },
 };
-static const ur_layout ur_layout_masterboard_data_cond12 = { ur_desc_masterboard_data_cond12, 2 };
+static const ur_layout ur_layout_masterboard_data_cond12 = {
+    ur_desc_masterboard_data_cond12, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond13[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_CB2, .n = 2, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_CB2, .n = 2, .flags = UR_SIGNED,
         .path = "euromap_voltage_cb2" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT_CB2, .n = 2, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT_CB2, .n = 2, .flags = UR_SIGNED,
         .path = "euromap_current_cb2" },
 };
-static const ur_layout ur_layout_masterboard_data_cond13 = { ur_desc_masterboard_data_cond13, 2 };
+static const ur_layout ur_layout_masterboard_data_cond13 = {
+    ur_desc_masterboard_data_cond13, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond14[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_24V, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "euromap_voltage_24v" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_24V, .n = 4, .flags = UR_FLOAT,
+        .path = "euromap_voltage_24v", .unit = " V" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT, .n = 4, .flags = UR_FLOAT,
         .path = "euromap_current" },
 };
-static const ur_layout ur_layout_masterboard_data_cond14 = { ur_desc_masterboard_data_cond14, 2 };
+static const ur_layout ur_layout_masterboard_data_cond14 = {
+    ur_desc_masterboard_data_cond14, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond15[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_0, .n = 4, .count = 1, .path = "reserved_0" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_0, .n = 4, .path = "reserved_0" },
 };
-static const ur_layout ur_layout_masterboard_data_cond15 = { ur_desc_masterboard_data_cond15, 1 };
+static const ur_layout ur_layout_masterboard_data_cond15 = {
+    ur_desc_masterboard_data_cond15, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond16[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_OPERATIONAL_MODE_SELECTOR_INPUT, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_OPERATIONAL_MODE_SELECTOR_INPUT, .n = 1,
         .path = "operational_mode_selector_input" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_THREE_POSITION_ENABLING_DEVICE_INPUT, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_THREE_POSITION_ENABLING_DEVICE_INPUT, .n = 1,
         .path = "three_position_enabling_device_input" },
 };
-static const ur_layout ur_layout_masterboard_data_cond16 = { ur_desc_masterboard_data_cond16, 2 };
+static const ur_layout ur_layout_masterboard_data_cond16 = {
+    ur_desc_masterboard_data_cond16, 2
+};
 
 static const ur_desc ur_desc_masterboard_data_cond17[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_1, .n = 1, .count = 1, .path = "reserved_1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_1, .n = 1, .path = "reserved_1" },
 };
-static const ur_layout ur_layout_masterboard_data_cond17 = { ur_desc_masterboard_data_cond17, 1 };
+static const ur_layout ur_layout_masterboard_data_cond17 = {
+    ur_desc_masterboard_data_cond17, 1
+};
 
 static const ur_desc ur_desc_masterboard_data_cond18[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_1, .n = 1, .count = 1, .path = "reserved_1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_RESERVED_1, .n = 1, .path = "reserved_1" },
 };
-static const ur_layout ur_layout_masterboard_data_cond18 = { ur_desc_masterboard_data_cond18, 1 };
+static const ur_layout ur_layout_masterboard_data_cond18 = {
+    ur_desc_masterboard_data_cond18, 1
+};
 
 static const ur_desc ur_desc_masterboard_data[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 1008999u,
@@ -1306,29 +1339,27 @@ static const ur_desc ur_desc_masterboard_data[] = {
         .inner = &ur_layout_masterboard_data_cond7 },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_masterboard_data_cond8 },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT_RANGE0, .n = 1, .count = 1,
-        .path = "analog_input_range0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT_RANGE1, .n = 1, .count = 1,
-        .path = "analog_input_range1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT0, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT_RANGE0, .n = 1, .path = "analog_input_range0" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT_RANGE1, .n = 1, .path = "analog_input_range1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT0, .n = 8, .flags = UR_FLOAT,
         .path = "analog_input0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT1, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_INPUT1, .n = 8, .flags = UR_FLOAT,
         .path = "analog_input1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT_DOMAIN0, .n = 1, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT_DOMAIN0, .n = 1, .flags = UR_SIGNED,
         .path = "analog_output_domain0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT_DOMAIN1, .n = 1, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT_DOMAIN1, .n = 1, .flags = UR_SIGNED,
         .path = "analog_output_domain1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT0, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT0, .n = 8, .flags = UR_FLOAT,
         .path = "analog_output0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT1, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ANALOG_OUTPUT1, .n = 8, .flags = UR_FLOAT,
         .path = "analog_output1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_BOARD_TEMPERATURE, .n = 4, .count = 1,
-        .flags = UR_FLOAT, .path = "master_board_temperature" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_VOLTAGE_48V, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "robot_voltage_48v" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
-        .path = "robot_current" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_IO_CURRENT, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_BOARD_TEMPERATURE, .n = 4, .flags = UR_FLOAT,
+        .path = "master_board_temperature", .unit = " \302\260C" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_VOLTAGE_48V, .n = 4, .flags = UR_FLOAT,
+        .path = "robot_voltage_48v", .unit = " V" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_ROBOT_CURRENT, .n = 4, .flags = UR_FLOAT,
+        .path = "robot_current", .unit = " A" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_MASTERBOARD_DATA_MASTER_IO_CURRENT, .n = 4, .flags = UR_FLOAT,
         .path = "master_io_current" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 1006000u, .high = 1008999u,
         .inner = &ur_layout_masterboard_data_cond9 },
@@ -1351,85 +1382,104 @@ static const ur_desc ur_desc_masterboard_data[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 5004000u, .high = 4294967295u,
         .inner = &ur_layout_masterboard_data_cond18 },
 };
-static const ur_layout ur_layout_masterboard_data = { ur_desc_masterboard_data, 26 };
+static const ur_layout ur_layout_masterboard_data = {
+    ur_desc_masterboard_data, 26
+};
 
 static const ur_desc ur_desc_cartesian_info_cond19[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_X, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_x" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Y, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_y" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Z, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_z" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RX, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_rx" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RY, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_ry" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RZ, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "tcp_offset_rz" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_X, .n = 8, .flags = UR_FLOAT, .path = "tcp_offset_x",
+        .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Y, .n = 8, .flags = UR_FLOAT, .path = "tcp_offset_y",
+        .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_Z, .n = 8, .flags = UR_FLOAT, .path = "tcp_offset_z",
+        .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RX, .n = 8, .flags = UR_FLOAT,
+        .path = "tcp_offset_rx", .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RY, .n = 8, .flags = UR_FLOAT,
+        .path = "tcp_offset_ry", .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_TCP_OFFSET_RZ, .n = 8, .flags = UR_FLOAT,
+        .path = "tcp_offset_rz", .unit = " rad" },
 };
-static const ur_layout ur_layout_cartesian_info_cond19 = { ur_desc_cartesian_info_cond19, 6 };
+static const ur_layout ur_layout_cartesian_info_cond19 = {
+    ur_desc_cartesian_info_cond19, 6
+};
 
 static const ur_desc ur_desc_cartesian_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_X, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "x" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Y, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "y" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Z, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "z" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "rx" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "ry" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "rz" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_X, .n = 8, .flags = UR_FLOAT, .path = "x", .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Y, .n = 8, .flags = UR_FLOAT, .path = "y", .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_Z, .n = 8, .flags = UR_FLOAT, .path = "z", .unit = " m" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RX, .n = 8, .flags = UR_FLOAT, .path = "rx", .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RY, .n = 8, .flags = UR_FLOAT, .path = "ry", .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CARTESIAN_INFO_RZ, .n = 8, .flags = UR_FLOAT, .path = "rz", .unit = " rad" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 6, .low = 3001000u, .high = 4294967295u,
         .inner = &ur_layout_cartesian_info_cond19 },
 };
-static const ur_layout ur_layout_cartesian_info = { ur_desc_cartesian_info, 7 };
+static const ur_layout ur_layout_cartesian_info = {
+    ur_desc_cartesian_info, 7
+};
 
 static const ur_desc ur_desc_laser_pointer[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_X, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "x" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_Y, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "y" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_Z, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "z" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_X, .n = 8, .flags = UR_FLOAT, .path = "x" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_Y, .n = 8, .flags = UR_FLOAT, .path = "y" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LASER_POINTER_Z, .n = 8, .flags = UR_FLOAT, .path = "z" },
 };
-static const ur_layout ur_layout_laser_pointer = { ur_desc_laser_pointer, 3 };
+static const ur_layout ur_layout_laser_pointer = {
+    ur_desc_laser_pointer, 3
+};
 
 static const ur_desc ur_desc_kinematics_info[] = {
     { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_CHECKSUM, .n = 4, .count = 6, .path = "checksum" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_THETA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_theta" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d" },
+        .path = "dh_theta", .unit = " rad" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a",
+        .unit = " m" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d",
+        .unit = " m" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_KINEMATICS_INFO_DH_ALPHA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_alpha" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_KINEMATICS_INFO_CALIBRATION_STATUS, .n = 4, .count = 1,
-        .path = "calibration_status" },
+        .path = "dh_alpha", .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_KINEMATICS_INFO_CALIBRATION_STATUS, .n = 4, .path = "calibration_status" },
 };
-static const ur_layout ur_layout_kinematics_info = { ur_desc_kinematics_info, 6 };
+static const ur_layout ur_layout_kinematics_info = {
+    ur_desc_kinematics_info, 6
+};
 
 static const ur_desc ur_desc_configuration_data_joint_position_limit[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MIN_LIMIT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "joint_min_limit" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_LIMIT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "joint_max_limit" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MIN_LIMIT, .n = 8, .flags = UR_FLOAT,
+        .path = "joint_min_limit", .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_LIMIT, .n = 8, .flags = UR_FLOAT,
+        .path = "joint_max_limit", .unit = " rad" },
 };
-static const ur_layout ur_layout_configuration_data_joint_position_limit = { ur_desc_configuration_data_joint_position_limit, 2 };
+static const ur_layout ur_layout_configuration_data_joint_position_limit = {
+    ur_desc_configuration_data_joint_position_limit, 2
+};
 
 static const ur_desc ur_desc_configuration_data_joint_motion_limit[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_SPEED, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "joint_max_speed" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_ACCELERATION, .n = 8, .count = 1,
-        .flags = UR_FLOAT, .path = "joint_max_acceleration" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_SPEED, .n = 8, .flags = UR_FLOAT,
+        .path = "joint_max_speed", .unit = " rad/s" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MAX_ACCELERATION, .n = 8, .flags = UR_FLOAT,
+        .path = "joint_max_acceleration", .unit = " rad/s\302\262" },
 };
-static const ur_layout ur_layout_configuration_data_joint_motion_limit = { ur_desc_configuration_data_joint_motion_limit, 2 };
+static const ur_layout ur_layout_configuration_data_joint_motion_limit = {
+    ur_desc_configuration_data_joint_motion_limit, 2
+};
 
 static const ur_desc ur_desc_configuration_data_cond20[] = {
     { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_MOTOR_TYPE, .n = 4, .count = 6, .flags = UR_SIGNED,
         .path = "motor_type" },
 };
-static const ur_layout ur_layout_configuration_data_cond20 = { ur_desc_configuration_data_cond20, 1 };
+static const ur_layout ur_layout_configuration_data_cond20 = {
+    ur_desc_configuration_data_cond20, 1
+};
 
 static const ur_desc ur_desc_configuration_data_cond21[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_RESERVED_1, .n = 2, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_RESERVED_1, .n = 2, .flags = UR_SIGNED,
         .path = "reserved_1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_RESERVED_2, .n = 2, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_RESERVED_2, .n = 2, .flags = UR_SIGNED,
         .path = "reserved_2" },
 };
-static const ur_layout ur_layout_configuration_data_cond21 = { ur_desc_configuration_data_cond21, 2 };
+static const ur_layout ur_layout_configuration_data_cond21 = {
+    ur_desc_configuration_data_cond21, 2
+};
 
 static const ur_desc ur_desc_configuration_data[] = {
     { .kind = UR_D_GROUP, .hf = UR_HF_CONFIGURATION_DATA_JOINT_POSITION_LIMITS, .count = 6, .size = 16,
@@ -1437,73 +1487,84 @@ static const ur_desc ur_desc_configuration_data[] = {
         .inner = &ur_layout_configuration_data_joint_position_limit },
     { .kind = UR_D_GROUP, .hf = UR_HF_CONFIGURATION_DATA_JOINT_MOTION_LIMITS, .count = 6, .size = 16,
         .path = "joint_motion_limits", .label = "Joint", .inner = &ur_layout_configuration_data_joint_motion_limit },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_JOINT_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "v_joint_default" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_JOINT_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "a_joint_default" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_TOOL_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "v_tool_default" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_TOOL_DEFAULT, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "a_tool_default" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_EQ_RADIUS, .n = 8, .count = 1, .flags = UR_FLOAT,
-        .path = "eq_radius" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_JOINT_DEFAULT, .n = 8, .flags = UR_FLOAT,
+        .path = "v_joint_default", .unit = " rad/s" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_JOINT_DEFAULT, .n = 8, .flags = UR_FLOAT,
+        .path = "a_joint_default", .unit = " rad/s\302\262" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_V_TOOL_DEFAULT, .n = 8, .flags = UR_FLOAT,
+        .path = "v_tool_default", .unit = " m/s" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_A_TOOL_DEFAULT, .n = 8, .flags = UR_FLOAT,
+        .path = "a_tool_default", .unit = " m/s\302\262" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_EQ_RADIUS, .n = 8, .flags = UR_FLOAT, .path = "eq_radius" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_A, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_a",
+        .unit = " m" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_D, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "dh_d",
+        .unit = " m" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_ALPHA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_alpha" },
+        .path = "dh_alpha", .unit = " rad" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_CONFIGURATION_DATA_DH_THETA, .n = 8, .count = 6, .flags = UR_FLOAT,
-        .path = "dh_theta" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_MASTERBOARD_VERSION, .n = 4, .count = 1, .flags = UR_SIGNED,
+        .path = "dh_theta", .unit = " rad" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_MASTERBOARD_VERSION, .n = 4, .flags = UR_SIGNED,
         .path = "masterboard_version" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_CONTROLLER_BOX_TYPE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_CONTROLLER_BOX_TYPE, .n = 4, .flags = UR_SIGNED,
         .path = "controller_box_type" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_ROBOT_TYPE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_ROBOT_TYPE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_type" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_ROBOT_SUB_TYPE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CONFIGURATION_DATA_ROBOT_SUB_TYPE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_sub_type" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 1008999u,
         .inner = &ur_layout_configuration_data_cond20 },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 5025001u, .high = 4294967295u,
         .inner = &ur_layout_configuration_data_cond21 },
 };
-static const ur_layout ur_layout_configuration_data = { ur_desc_configuration_data, 17 };
+static const ur_layout ur_layout_configuration_data = {
+    ur_desc_configuration_data, 17
+};
 
 static const ur_desc ur_desc_force_mode_data[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fx" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fy" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fz" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frx" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fry" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frz" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_ROBOT_DEXTERITY, .n = 8, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FX, .n = 8, .flags = UR_FLOAT, .path = "fx", .unit = " N" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FY, .n = 8, .flags = UR_FLOAT, .path = "fy", .unit = " N" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FZ, .n = 8, .flags = UR_FLOAT, .path = "fz", .unit = " N" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRX, .n = 8, .flags = UR_FLOAT, .path = "frx", .unit = " Nm" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRY, .n = 8, .flags = UR_FLOAT, .path = "fry", .unit = " Nm" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_FRZ, .n = 8, .flags = UR_FLOAT, .path = "frz", .unit = " Nm" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_FORCE_MODE_DATA_ROBOT_DEXTERITY, .n = 8, .flags = UR_FLOAT,
         .path = "robot_dexterity" },
 };
-static const ur_layout ur_layout_force_mode_data = { ur_desc_force_mode_data, 7 };
+static const ur_layout ur_layout_force_mode_data = {
+    ur_desc_force_mode_data, 7
+};
 
 static const ur_desc ur_desc_additional_info_cond22[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_CTRL_BITS, .n = 4, .count = 1, .path = "ctrl_bits" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_TEACH_BUTTON, .n = 1, .count = 1, .path = "teach_button" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_CTRL_BITS, .n = 4, .path = "ctrl_bits" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_TEACH_BUTTON, .n = 1, .path = "teach_button" },
 };
-static const ur_layout ur_layout_additional_info_cond22 = { ur_desc_additional_info_cond22, 2 };
+static const ur_layout ur_layout_additional_info_cond22 = {
+    ur_desc_additional_info_cond22, 2
+};
 
 static const ur_desc ur_desc_additional_info_cond23[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_TP_BUTTON_STATE, .n = 1, .count = 1,
-        .path = "tp_button_state" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_FREEDRIVE_BUTTON_ENABLED, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_TP_BUTTON_STATE, .n = 1, .path = "tp_button_state" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_FREEDRIVE_BUTTON_ENABLED, .n = 1,
         .path = "freedrive_button_enabled" },
 };
-static const ur_layout ur_layout_additional_info_cond23 = { ur_desc_additional_info_cond23, 2 };
+static const ur_layout ur_layout_additional_info_cond23 = {
+    ur_desc_additional_info_cond23, 2
+};
 
 static const ur_desc ur_desc_additional_info_cond24[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_IO_ENABLED_FREEDRIVE, .n = 1, .count = 1,
-        .path = "io_enabled_freedrive" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_IO_ENABLED_FREEDRIVE, .n = 1, .path = "io_enabled_freedrive" },
 };
-static const ur_layout ur_layout_additional_info_cond24 = { ur_desc_additional_info_cond24, 1 };
+static const ur_layout ur_layout_additional_info_cond24 = {
+    ur_desc_additional_info_cond24, 1
+};
 
 static const ur_desc ur_desc_additional_info_cond25[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_RESERVED, .n = 1, .count = 1, .path = "reserved" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ADDITIONAL_INFO_RESERVED, .n = 1, .path = "reserved" },
 };
-static const ur_layout ur_layout_additional_info_cond25 = { ur_desc_additional_info_cond25, 1 };
+static const ur_layout ur_layout_additional_info_cond25 = {
+    ur_desc_additional_info_cond25, 1
+};
 
 static const ur_desc ur_desc_additional_info[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 0u, .high = 1007999u,
@@ -1515,464 +1576,617 @@ static const ur_desc ur_desc_additional_info[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 5000000u, .high = 4294967295u,
         .inner = &ur_layout_additional_info_cond25 },
 };
-static const ur_layout ur_layout_additional_info = { ur_desc_additional_info, 4 };
+static const ur_layout ur_layout_additional_info = {
+    ur_desc_additional_info, 4
+};
 
 static const ur_desc ur_desc_calibration_data[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fx" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fy" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fz" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRX, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frx" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRY, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "fry" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRZ, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "frz" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FX, .n = 8, .flags = UR_FLOAT, .path = "fx" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FY, .n = 8, .flags = UR_FLOAT, .path = "fy" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FZ, .n = 8, .flags = UR_FLOAT, .path = "fz" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRX, .n = 8, .flags = UR_FLOAT, .path = "frx" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRY, .n = 8, .flags = UR_FLOAT, .path = "fry" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_CALIBRATION_DATA_FRZ, .n = 8, .flags = UR_FLOAT, .path = "frz" },
 };
-static const ur_layout ur_layout_calibration_data = { ur_desc_calibration_data, 6 };
+static const ur_layout ur_layout_calibration_data = {
+    ur_desc_calibration_data, 6
+};
 
 static const ur_desc ur_desc_safety_data[] = {
     { .kind = UR_D_BYTES, .hf = UR_HF_SAFETY_DATA_RAW, .path = "raw" },
 };
-static const ur_layout ur_layout_safety_data = { ur_desc_safety_data, 1 };
+static const ur_layout ur_layout_safety_data = {
+    ur_desc_safety_data, 1
+};
 
 static const ur_desc ur_desc_tool_comm_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_TOOL_COMMUNICATION_IS_ENABLED, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_TOOL_COMMUNICATION_IS_ENABLED, .n = 1,
         .path = "tool_communication_is_enabled" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_BAUD_RATE, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "baud_rate" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_PARITY, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "parity" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_STOP_BITS, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "stop_bits" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_RX_IDLE_CHARS, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_BAUD_RATE, .n = 4, .flags = UR_SIGNED, .path = "baud_rate" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_PARITY, .n = 4, .flags = UR_SIGNED, .path = "parity" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_STOP_BITS, .n = 4, .flags = UR_SIGNED, .path = "stop_bits" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_RX_IDLE_CHARS, .n = 4, .flags = UR_FLOAT,
         .path = "rx_idle_chars" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_TX_IDLE_CHARS, .n = 4, .count = 1, .flags = UR_FLOAT,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_COMM_INFO_TX_IDLE_CHARS, .n = 4, .flags = UR_FLOAT,
         .path = "tx_idle_chars" },
 };
-static const ur_layout ur_layout_tool_comm_info = { ur_desc_tool_comm_info, 6 };
+static const ur_layout ur_layout_tool_comm_info = {
+    ur_desc_tool_comm_info, 6
+};
 
 static const ur_desc ur_desc_tool_mode_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_OUTPUT_MODE, .n = 1, .count = 1, .path = "output_mode" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_DIGITAL_OUTPUT_MODE_OUTPUT_0, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_OUTPUT_MODE, .n = 1, .path = "output_mode" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_DIGITAL_OUTPUT_MODE_OUTPUT_0, .n = 1,
         .path = "digital_output_mode_output_0" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_DIGITAL_OUTPUT_MODE_OUTPUT_1, .n = 1, .count = 1,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TOOL_MODE_INFO_DIGITAL_OUTPUT_MODE_OUTPUT_1, .n = 1,
         .path = "digital_output_mode_output_1" },
 };
-static const ur_layout ur_layout_tool_mode_info = { ur_desc_tool_mode_info, 3 };
+static const ur_layout ur_layout_tool_mode_info = {
+    ur_desc_tool_mode_info, 3
+};
 
 static const ur_desc ur_desc_singularity_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SINGULARITY_INFO_SINGULARITY_SEVERITY, .n = 1, .count = 1,
-        .path = "singularity_severity" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SINGULARITY_INFO_SINGULARITY_TYPE, .n = 1, .count = 1,
-        .path = "singularity_type" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SINGULARITY_INFO_SINGULARITY_SEVERITY, .n = 1, .path = "singularity_severity" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SINGULARITY_INFO_SINGULARITY_TYPE, .n = 1, .path = "singularity_type" },
 };
-static const ur_layout ur_layout_singularity_info = { ur_desc_singularity_info, 2 };
+static const ur_layout ur_layout_singularity_info = {
+    ur_desc_singularity_info, 2
+};
 
 static const ur_desc ur_desc_payload_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PAYLOAD_INFO_MASS, .n = 8, .count = 1, .flags = UR_FLOAT, .path = "mass" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PAYLOAD_INFO_MASS, .n = 8, .flags = UR_FLOAT, .path = "mass", .unit = " kg" },
     { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_CENTER_OF_GRAVITY, .n = 8, .count = 3, .flags = UR_FLOAT,
-        .path = "center_of_gravity" },
-    { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_INERTIA, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "inertia" },
+        .path = "center_of_gravity", .unit = " m" },
+    { .kind = UR_D_ARRAY, .hf = UR_HF_PAYLOAD_INFO_INERTIA, .n = 8, .count = 6, .flags = UR_FLOAT, .path = "inertia",
+        .unit = " kg\302\267m\302\262" },
 };
-static const ur_layout ur_layout_payload_info = { ur_desc_payload_info, 3 };
+static const ur_layout ur_layout_payload_info = {
+    ur_desc_payload_info, 3
+};
 
 static const ur_desc ur_desc_robot_message[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_ROBOT_MESSAGE_TYPE, .n = 1, .count = 1,
-        .path = "robot_message_type", .label = "Robot message type", .vs = ur_vs_robot_message_type,
-        .names = &ur_names_robot_message_type },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_ROBOT_MESSAGE_TYPE, .n = 1, .path = "robot_message_type",
+        .label = "Robot message type", .vs = ur_vs_robot_message_type, .names = &ur_names_robot_message_type },
 };
-static const ur_layout ur_layout_robot_message = { ur_desc_robot_message, 3 };
+static const ur_layout ur_layout_robot_message = {
+    ur_desc_robot_message, 3
+};
 
 static const ur_desc ur_desc_version_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_version_header = { ur_desc_version_header, 2 };
+static const ur_layout ur_layout_version_header = {
+    ur_desc_version_header, 2
+};
 
 static const ur_desc ur_desc_version_cond26[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_SVN_REVISION, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "svn_revision" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_SVN_REVISION, .n = 4, .flags = UR_SIGNED, .path = "svn_revision" },
 };
-static const ur_layout ur_layout_version_cond26 = { ur_desc_version_cond26, 1 };
+static const ur_layout ur_layout_version_cond26 = {
+    ur_desc_version_cond26, 1
+};
 
 static const ur_desc ur_desc_version_cond27[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_BUGFIX_VERSION, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "bugfix_version", .show = "." },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_BUILD_NUMBER, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "build_number", .show = "." },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_BUGFIX_VERSION, .n = 4, .flags = UR_SIGNED, .path = "bugfix_version",
+        .show = "." },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_BUILD_NUMBER, .n = 4, .flags = UR_SIGNED, .path = "build_number",
+        .show = "." },
 };
-static const ur_layout ur_layout_version_cond27 = { ur_desc_version_cond27, 2 };
+static const ur_layout ur_layout_version_cond27 = {
+    ur_desc_version_cond27, 2
+};
 
 static const ur_desc ur_desc_version[] = {
     { .kind = UR_D_PSTRING, .hf = UR_HF_VERSION_PROJECT_NAME, .n = 1, .flags = UR_SIGNED, .path = "project_name",
         .show = "" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_MAJOR_VERSION, .n = 1, .count = 1, .path = "major_version",
-        .show = " " },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_MINOR_VERSION, .n = 1, .count = 1, .path = "minor_version",
-        .show = "." },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_MAJOR_VERSION, .n = 1, .path = "major_version", .show = " " },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VERSION_MINOR_VERSION, .n = 1, .path = "minor_version", .show = "." },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 3002999u,
         .inner = &ur_layout_version_cond26 },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3003000u, .high = 4294967295u,
         .inner = &ur_layout_version_cond27 },
     { .kind = UR_D_STRING, .hf = UR_HF_VERSION_BUILD_DATE, .path = "build_date" },
 };
-static const ur_layout ur_layout_version = { ur_desc_version, 6 };
+static const ur_layout ur_layout_version = {
+    ur_desc_version, 6
+};
 
 static const ur_desc ur_desc_safety_mode_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_safety_mode_header = { ur_desc_safety_mode_header, 2 };
+static const ur_layout ur_layout_safety_mode_header = {
+    ur_desc_safety_mode_header, 2
+};
 
 static const ur_desc ur_desc_safety_mode_cond28[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_SAFETY_MODE_TYPE, .n = 1, .count = 1, .path = "safety_mode_type",
-        .show = "", .vs = ur_vs_safety_mode },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_REPORT_DATA_TYPE, .n = 4, .count = 1, .keep = 2,
-        .path = "report_data_type" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_SAFETY_MODE_TYPE, .n = 1, .path = "safety_mode_type", .show = "",
+        .vs = ur_vs_safety_mode },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_REPORT_DATA_TYPE, .n = 4, .keep = 2, .path = "report_data_type" },
     { .kind = UR_D_SWITCH, .hf = UR_HF_NONE, .keep = 2, .path = "report_data",
         .sw = &ur_switch_safety_mode_cond28_switch0 },
 };
-static const ur_layout ur_layout_safety_mode_cond28 = { ur_desc_safety_mode_cond28, 3 };
+static const ur_layout ur_layout_safety_mode_cond28 = {
+    ur_desc_safety_mode_cond28, 3
+};
 
 static const ur_desc ur_desc_safety_mode_cond29[] = {
     { .kind = UR_D_STRING, .hf = UR_HF_SAFETY_MODE_TEXT, .path = "text" },
 };
-static const ur_layout ur_layout_safety_mode_cond29 = { ur_desc_safety_mode_cond29, 1 };
+static const ur_layout ur_layout_safety_mode_cond29 = {
+    ur_desc_safety_mode_cond29, 1
+};
 
 static const ur_desc ur_desc_safety_mode[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_ROBOT_MESSAGE_CODE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_code" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_ROBOT_MESSAGE_ARGUMENT, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_SAFETY_MODE_ROBOT_MESSAGE_ARGUMENT, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_argument" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 3, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_safety_mode_cond28 },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 0u, .high = 1008999u,
         .inner = &ur_layout_safety_mode_cond29 },
 };
-static const ur_layout ur_layout_safety_mode = { ur_desc_safety_mode, 4 };
+static const ur_layout ur_layout_safety_mode = {
+    ur_desc_safety_mode, 4
+};
 
 static const ur_desc ur_desc_robot_comm_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_robot_comm_header = { ur_desc_robot_comm_header, 2 };
+static const ur_layout ur_layout_robot_comm_header = {
+    ur_desc_robot_comm_header, 2
+};
 
 static const ur_desc ur_desc_robot_comm_cond30[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_REPORT_LEVEL, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_REPORT_LEVEL, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_report_level", .show = "", .vs = ur_vs_report_level },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_DATA_TYPE, .n = 4, .count = 1,
-        .path = "robot_message_data_type" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_DATA, .n = 4, .count = 1,
-        .path = "robot_message_data" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_DATA_TYPE, .n = 4, .path = "robot_message_data_type" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_DATA, .n = 4, .path = "robot_message_data" },
 };
-static const ur_layout ur_layout_robot_comm_cond30 = { ur_desc_robot_comm_cond30, 3 };
+static const ur_layout ur_layout_robot_comm_cond30 = {
+    ur_desc_robot_comm_cond30, 3
+};
 
 static const ur_desc ur_desc_robot_comm[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_CODE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_code" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_ARGUMENT, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_COMM_ROBOT_MESSAGE_ARGUMENT, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_argument" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 3, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_robot_comm_cond30 },
     { .kind = UR_D_STRING, .hf = UR_HF_ROBOT_COMM_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_robot_comm = { ur_desc_robot_comm, 4 };
+static const ur_layout ur_layout_robot_comm = {
+    ur_desc_robot_comm, 4
+};
 
 static const ur_desc ur_desc_key_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_key_header = { ur_desc_key_header, 2 };
+static const ur_layout ur_layout_key_header = {
+    ur_desc_key_header, 2
+};
 
 static const ur_desc ur_desc_key[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_ROBOT_MESSAGE_CODE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_code" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_ROBOT_MESSAGE_ARGUMENT, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_KEY_ROBOT_MESSAGE_ARGUMENT, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_argument" },
     { .kind = UR_D_PSTRING, .hf = UR_HF_KEY_TITLE, .n = 1, .path = "title", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_KEY_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_key = { ur_desc_key, 4 };
+static const ur_layout ur_layout_key = {
+    ur_desc_key, 4
+};
 
 static const ur_desc ur_desc_program_threads_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED,
-        .path = "source", .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
+        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_program_threads_header = { ur_desc_program_threads_header, 2 };
+static const ur_layout ur_layout_program_threads_header = {
+    ur_desc_program_threads_header, 2
+};
 
 static const ur_desc ur_desc_program_threads_program_thread[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_LABEL_ID, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "label_id" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_THREADS_LABEL_ID, .n = 4, .flags = UR_SIGNED, .path = "label_id" },
     { .kind = UR_D_PSTRING, .hf = UR_HF_PROGRAM_THREADS_LABEL_NAME, .n = 4, .flags = UR_SIGNED, .path = "label_name" },
     { .kind = UR_D_PSTRING, .hf = UR_HF_PROGRAM_THREADS_THREAD_NAME, .n = 4, .flags = UR_SIGNED,
         .path = "thread_name" },
 };
-static const ur_layout ur_layout_program_threads_program_thread = { ur_desc_program_threads_program_thread, 3 };
+static const ur_layout ur_layout_program_threads_program_thread = {
+    ur_desc_program_threads_program_thread, 3
+};
 
 static const ur_desc ur_desc_program_threads[] = {
     { .kind = UR_D_GROUP, .hf = UR_HF_PROGRAM_THREADS_THREADS, .path = "threads", .label = "Thread",
         .inner = &ur_layout_program_threads_program_thread },
 };
-static const ur_layout ur_layout_program_threads = { ur_desc_program_threads, 1 };
+static const ur_layout ur_layout_program_threads = {
+    ur_desc_program_threads, 1
+};
 
 static const ur_desc ur_desc_popup_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_popup_header = { ur_desc_popup_header, 2 };
+static const ur_layout ur_layout_popup_header = {
+    ur_desc_popup_header, 2
+};
 
 static const ur_desc ur_desc_popup_cond31[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_REQUEST_ID, .n = 4, .count = 1, .path = "request_id" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_REQUESTED_TYPE, .n = 4, .count = 1, .path = "requested_type",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_REQUEST_ID, .n = 4, .path = "request_id" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_REQUESTED_TYPE, .n = 4, .path = "requested_type",
         .vs = ur_vs_requested_type },
 };
-static const ur_layout ur_layout_popup_cond31 = { ur_desc_popup_cond31, 2 };
+static const ur_layout ur_layout_popup_cond31 = {
+    ur_desc_popup_cond31, 2
+};
 
 static const ur_desc ur_desc_popup_cond32[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_BLOCKING, .n = 1, .count = 1, .path = "blocking" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_BLOCKING, .n = 1, .path = "blocking" },
 };
-static const ur_layout ur_layout_popup_cond32 = { ur_desc_popup_cond32, 1 };
+static const ur_layout ur_layout_popup_cond32 = {
+    ur_desc_popup_cond32, 1
+};
 
 static const ur_desc ur_desc_popup[] = {
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 2, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_popup_cond31 },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_WARNING, .n = 1, .count = 1, .path = "warning" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_ERROR, .n = 1, .count = 1, .path = "error" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_WARNING, .n = 1, .path = "warning" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_POPUP_ERROR, .n = 1, .path = "error" },
     { .kind = UR_D_COND, .hf = UR_HF_NONE, .count = 1, .low = 3000000u, .high = 4294967295u,
         .inner = &ur_layout_popup_cond32 },
     { .kind = UR_D_PSTRING, .hf = UR_HF_POPUP_TITLE, .n = 1, .path = "title", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_POPUP_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_popup = { ur_desc_popup, 6 };
+static const ur_layout ur_layout_popup = {
+    ur_desc_popup, 6
+};
 
 static const ur_desc ur_desc_label_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_label_header = { ur_desc_label_header, 2 };
+static const ur_layout ur_layout_label_header = {
+    ur_desc_label_header, 2
+};
 
 static const ur_desc ur_desc_label[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_ID, .n = 4, .count = 1, .flags = UR_SIGNED, .path = "id", .show = "" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_LABEL_ID, .n = 4, .flags = UR_SIGNED, .path = "id", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_LABEL_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_label = { ur_desc_label, 2 };
+static const ur_layout ur_layout_label = {
+    ur_desc_label, 2
+};
 
 static const ur_desc ur_desc_var_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_var_header = { ur_desc_var_header, 2 };
+static const ur_layout ur_layout_var_header = {
+    ur_desc_var_header, 2
+};
 
 static const ur_desc ur_desc_var[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_ROBOT_MESSAGE_CODE, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_ROBOT_MESSAGE_CODE, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_code" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_ROBOT_MESSAGE_ARGUMENT, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_VAR_ROBOT_MESSAGE_ARGUMENT, .n = 4, .flags = UR_SIGNED,
         .path = "robot_message_argument" },
     { .kind = UR_D_PSTRING, .hf = UR_HF_VAR_TITLE, .n = 1, .path = "title", .show = "" },
     { .kind = UR_D_STRING, .hf = UR_HF_VAR_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_var = { ur_desc_var, 4 };
+static const ur_layout ur_layout_var = {
+    ur_desc_var, 4
+};
 
 static const ur_desc ur_desc_hardware_info_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_hardware_info_header = { ur_desc_hardware_info_header, 2 };
+static const ur_layout ur_layout_hardware_info_header = {
+    ur_desc_hardware_info_header, 2
+};
 
 static const ur_desc ur_desc_hardware_info[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_ROBOT_TYPE, .n = 4, .count = 1, .flags = UR_SIGNED,
-        .path = "robot_type", .show = "robot type " },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_RESERVED_1, .n = 2, .count = 1, .path = "reserved_1" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_CONTROL_BOX_TYPE, .n = 2, .count = 1, .path = "control_box_type",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_ROBOT_TYPE, .n = 4, .flags = UR_SIGNED, .path = "robot_type",
+        .show = "robot type " },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_RESERVED_1, .n = 2, .path = "reserved_1" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_CONTROL_BOX_TYPE, .n = 2, .path = "control_box_type",
         .show = ", control box ", .vs = ur_vs_control_box_type },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_RESERVED_2, .n = 2, .count = 1, .path = "reserved_2" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_TOOL_FLANGE_TYPE, .n = 2, .count = 1, .path = "tool_flange_type",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_RESERVED_2, .n = 2, .path = "reserved_2" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_HARDWARE_INFO_TOOL_FLANGE_TYPE, .n = 2, .path = "tool_flange_type",
         .show = ", tool flange ", .vs = ur_vs_tool_flange_type },
 };
-static const ur_layout ur_layout_hardware_info = { ur_desc_hardware_info, 5 };
+static const ur_layout ur_layout_hardware_info = {
+    ur_desc_hardware_info, 5
+};
 
 static const ur_desc ur_desc_robot_message_12_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_12_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_12_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED,
-        .path = "source", .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_12_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_ROBOT_MESSAGE_12_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
+        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_robot_message_12_header = { ur_desc_robot_message_12_header, 2 };
+static const ur_layout ur_layout_robot_message_12_header = {
+    ur_desc_robot_message_12_header, 2
+};
 
 static const ur_desc ur_desc_robot_message_12[] = {
     { .kind = UR_D_BYTES, .hf = UR_HF_ROBOT_MESSAGE_12_RAW, .path = "raw" },
 };
-static const ur_layout ur_layout_robot_message_12 = { ur_desc_robot_message_12, 1 };
+static const ur_layout ur_layout_robot_message_12 = {
+    ur_desc_robot_message_12, 1
+};
 
 static const ur_desc ur_desc_request_value_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
+    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
         .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_request_value_header = { ur_desc_request_value_header, 2 };
+static const ur_layout ur_layout_request_value_header = {
+    ur_desc_request_value_header, 2
+};
 
 static const ur_desc ur_desc_request_value[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_REQUEST_ID, .n = 4, .count = 1, .path = "request_id" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_REQUESTED_TYPE, .n = 4, .count = 1, .path = "requested_type",
-        .show = "", .vs = ur_vs_requested_type },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_REQUEST_ID, .n = 4, .path = "request_id" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_REQUEST_VALUE_REQUESTED_TYPE, .n = 4, .path = "requested_type", .show = "",
+        .vs = ur_vs_requested_type },
     { .kind = UR_D_STRING, .hf = UR_HF_REQUEST_VALUE_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_request_value = { ur_desc_request_value, 3 };
+static const ur_layout ur_layout_request_value = {
+    ur_desc_request_value, 3
+};
 
 static const ur_desc ur_desc_text_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TEXT_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_TEXT_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED, .path = "source",
-        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TEXT_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_TEXT_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source", .label = "Source",
+        .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_text_header = { ur_desc_text_header, 2 };
+static const ur_layout ur_layout_text_header = {
+    ur_desc_text_header, 2
+};
 
 static const ur_desc ur_desc_text[] = {
     { .kind = UR_D_STRING, .hf = UR_HF_TEXT_TEXT, .path = "text", .show = "" },
 };
-static const ur_layout ur_layout_text = { ur_desc_text, 1 };
+static const ur_layout ur_layout_text = {
+    ur_desc_text, 1
+};
 
 static const ur_desc ur_desc_runtime_exception_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SOURCE, .n = 1, .count = 1, .flags = UR_SIGNED,
-        .path = "source", .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SOURCE, .n = 1, .flags = UR_SIGNED, .path = "source",
+        .label = "Source", .vs = ur_vs_message_source, .names = &ur_names_message_source },
 };
-static const ur_layout ur_layout_runtime_exception_header = { ur_desc_runtime_exception_header, 2 };
+static const ur_layout ur_layout_runtime_exception_header = {
+    ur_desc_runtime_exception_header, 2
+};
 
 static const ur_desc ur_desc_runtime_exception[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SCRIPT_LINE_NUMBER, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SCRIPT_LINE_NUMBER, .n = 4, .flags = UR_SIGNED,
         .path = "script_line_number", .show = "line " },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SCRIPT_COLUMN_NUMBER, .n = 4, .count = 1, .flags = UR_SIGNED,
+    { .kind = UR_D_SCALAR, .hf = UR_HF_RUNTIME_EXCEPTION_SCRIPT_COLUMN_NUMBER, .n = 4, .flags = UR_SIGNED,
         .path = "script_column_number", .show = ":" },
     { .kind = UR_D_STRING, .hf = UR_HF_RUNTIME_EXCEPTION_TEXT, .path = "text", .show = ": " },
 };
-static const ur_layout ur_layout_runtime_exception = { ur_desc_runtime_exception, 3 };
+static const ur_layout ur_layout_runtime_exception = {
+    ur_desc_runtime_exception, 3
+};
 
 static const ur_desc ur_desc_program_state[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_STATE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
-    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_STATE_ROBOT_MESSAGE_TYPE, .n = 1, .count = 1,
-        .path = "robot_message_type", .vs = ur_vs_program_state_message_type },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_STATE_TIMESTAMP, .n = 8, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_PROGRAM_STATE_ROBOT_MESSAGE_TYPE, .n = 1, .path = "robot_message_type",
+        .vs = ur_vs_program_state_message_type },
 };
-static const ur_layout ur_layout_program_state = { ur_desc_program_state, 2 };
+static const ur_layout ur_layout_program_state = {
+    ur_desc_program_state, 2
+};
 
 static const ur_desc ur_desc_global_variables_setup_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_TIMESTAMP, .n = 8, .path = "timestamp" },
 };
-static const ur_layout ur_layout_global_variables_setup_header = { ur_desc_global_variables_setup_header, 1 };
+static const ur_layout ur_layout_global_variables_setup_header = {
+    ur_desc_global_variables_setup_header, 1
+};
 
 static const ur_desc ur_desc_global_variables_setup[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_START_INDEX, .n = 2, .count = 1, .path = "start_index" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_START_INDEX, .n = 2, .path = "start_index" },
     { .kind = UR_D_STRINGS, .hf = UR_HF_GLOBAL_VARIABLES_SETUP_VARIABLE_NAMES, .n = 10, .path = "variable_names" },
 };
-static const ur_layout ur_layout_global_variables_setup = { ur_desc_global_variables_setup, 2 };
+static const ur_layout ur_layout_global_variables_setup = {
+    ur_desc_global_variables_setup, 2
+};
 
 static const ur_desc ur_desc_global_variables_update_header[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_UPDATE_TIMESTAMP, .n = 8, .count = 1, .path = "timestamp" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_UPDATE_TIMESTAMP, .n = 8, .path = "timestamp" },
 };
-static const ur_layout ur_layout_global_variables_update_header = { ur_desc_global_variables_update_header, 1 };
+static const ur_layout ur_layout_global_variables_update_header = {
+    ur_desc_global_variables_update_header, 1
+};
 
 static const ur_desc ur_desc_global_variables_update[] = {
-    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_UPDATE_START_INDEX, .n = 2, .count = 1,
-        .path = "start_index" },
+    { .kind = UR_D_SCALAR, .hf = UR_HF_GLOBAL_VARIABLES_UPDATE_START_INDEX, .n = 2, .path = "start_index" },
     { .kind = UR_D_VALUES, .hf = UR_HF_NONE, .n = 10, .path = "variables", .label = "Variable",
         .values = &ur_values_global_variables_update_values0 },
 };
-static const ur_layout ur_layout_global_variables_update = { ur_desc_global_variables_update, 2 };
+static const ur_layout ur_layout_global_variables_update = {
+    ur_desc_global_variables_update, 2
+};
 
 static const ur_desc ur_desc_modbus_info[] = {
     { .kind = UR_D_BYTES, .hf = UR_HF_MODBUS_INFO_RAW, .path = "raw" },
 };
-static const ur_layout ur_layout_modbus_info = { ur_desc_modbus_info, 1 };
+static const ur_layout ur_layout_modbus_info = {
+    ur_desc_modbus_info, 1
+};
 
 static const ur_desc ur_desc_hmc[] = {
     { .kind = UR_D_BYTES, .hf = UR_HF_HMC_RAW, .path = "raw" },
 };
-static const ur_layout ur_layout_hmc = { ur_desc_hmc, 1 };
+static const ur_layout ur_layout_hmc = {
+    ur_desc_hmc, 1
+};
 
 static const ur_desc ur_desc_safety_setup_broadcast[] = {
     { .kind = UR_D_BYTES, .hf = UR_HF_SAFETY_SETUP_BROADCAST_RAW, .path = "raw" },
 };
-static const ur_layout ur_layout_safety_setup_broadcast = { ur_desc_safety_setup_broadcast, 1 };
+static const ur_layout ur_layout_safety_setup_broadcast = {
+    ur_desc_safety_setup_broadcast, 1
+};
 
 static const ur_desc ur_desc_safety_compliance_tolerances[] = {
     { .kind = UR_D_ARRAY, .hf = UR_HF_SAFETY_COMPLIANCE_TOLERANCES_TOLERANCES, .n = 8, .count = 22, .flags = UR_FLOAT,
         .path = "tolerances" },
 };
-static const ur_layout ur_layout_safety_compliance_tolerances = { ur_desc_safety_compliance_tolerances, 1 };
+static const ur_layout ur_layout_safety_compliance_tolerances = {
+    ur_desc_safety_compliance_tolerances, 1
+};
 
 /* ---- Messages by type ---- */
 
 /* Robot state, sent at 10 Hz to primary and secondary clients. Any subset of the sub-packages, in
  * any order, each framed by its own length. */
 static const ur_part ur_part_robot_mode_data = {
-    "robot_mode_data", "Robot mode data", UR_HF_ROBOT_MODE_DATA, &ur_layout_robot_mode_data, NULL,
+    "robot_mode_data",
+    "Robot mode data",
+    UR_HF_ROBOT_MODE_DATA,
+    &ur_layout_robot_mode_data,
+    NULL,
     TRUE, FALSE
 };
 static const ur_part ur_part_joint_data = {
-    "joint_data", "Joint data", UR_HF_JOINT_DATA, &ur_layout_joint_data, NULL,
+    "joint_data",
+    "Joint data",
+    UR_HF_JOINT_DATA,
+    &ur_layout_joint_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_tool_data = {
-    "tool_data", "Tool data", UR_HF_TOOL_DATA, &ur_layout_tool_data, NULL,
+    "tool_data",
+    "Tool data",
+    UR_HF_TOOL_DATA,
+    &ur_layout_tool_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_masterboard_data = {
-    "masterboard_data", "Masterboard data", UR_HF_MASTERBOARD_DATA, &ur_layout_masterboard_data, NULL,
+    "masterboard_data",
+    "Masterboard data",
+    UR_HF_MASTERBOARD_DATA,
+    &ur_layout_masterboard_data,
+    NULL,
     TRUE, FALSE
 };
 static const ur_part ur_part_cartesian_info = {
-    "cartesian_info", "Cartesian info", UR_HF_CARTESIAN_INFO, &ur_layout_cartesian_info, NULL,
+    "cartesian_info",
+    "Cartesian info",
+    UR_HF_CARTESIAN_INFO,
+    &ur_layout_cartesian_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_laser_pointer = {
-    "laser_pointer", "Laser pointer", UR_HF_LASER_POINTER, &ur_layout_laser_pointer, NULL,
+    "laser_pointer",
+    "Laser pointer",
+    UR_HF_LASER_POINTER,
+    &ur_layout_laser_pointer,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_kinematics_info = {
-    "kinematics_info", "Kinematics info", UR_HF_KINEMATICS_INFO, &ur_layout_kinematics_info, NULL,
+    "kinematics_info",
+    "Kinematics info",
+    UR_HF_KINEMATICS_INFO,
+    &ur_layout_kinematics_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_configuration_data = {
-    "configuration_data", "Configuration data", UR_HF_CONFIGURATION_DATA, &ur_layout_configuration_data, NULL,
+    "configuration_data",
+    "Configuration data",
+    UR_HF_CONFIGURATION_DATA,
+    &ur_layout_configuration_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_force_mode_data = {
-    "force_mode_data", "Force mode data", UR_HF_FORCE_MODE_DATA, &ur_layout_force_mode_data, NULL,
+    "force_mode_data",
+    "Force mode data",
+    UR_HF_FORCE_MODE_DATA,
+    &ur_layout_force_mode_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_additional_info = {
-    "additional_info", "Additional info", UR_HF_ADDITIONAL_INFO, &ur_layout_additional_info, NULL,
+    "additional_info",
+    "Additional info",
+    UR_HF_ADDITIONAL_INFO,
+    &ur_layout_additional_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_calibration_data = {
-    "calibration_data", "Calibration data", UR_HF_CALIBRATION_DATA, &ur_layout_calibration_data, NULL,
+    "calibration_data",
+    "Calibration data",
+    UR_HF_CALIBRATION_DATA,
+    &ur_layout_calibration_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_safety_data = {
-    "safety_data", "Safety data", UR_HF_SAFETY_DATA, &ur_layout_safety_data, NULL,
+    "safety_data",
+    "Safety data",
+    UR_HF_SAFETY_DATA,
+    &ur_layout_safety_data,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_tool_comm_info = {
-    "tool_comm_info", "Tool comm info", UR_HF_TOOL_COMM_INFO, &ur_layout_tool_comm_info, NULL,
+    "tool_comm_info",
+    "Tool comm info",
+    UR_HF_TOOL_COMM_INFO,
+    &ur_layout_tool_comm_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_tool_mode_info = {
-    "tool_mode_info", "Tool mode info", UR_HF_TOOL_MODE_INFO, &ur_layout_tool_mode_info, NULL,
+    "tool_mode_info",
+    "Tool mode info",
+    UR_HF_TOOL_MODE_INFO,
+    &ur_layout_tool_mode_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_singularity_info = {
-    "singularity_info", "Singularity info", UR_HF_SINGULARITY_INFO, &ur_layout_singularity_info, NULL,
+    "singularity_info",
+    "Singularity info",
+    UR_HF_SINGULARITY_INFO,
+    &ur_layout_singularity_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_part ur_part_payload_info = {
-    "payload_info", "Payload info (undocumented, inferred)", UR_HF_PAYLOAD_INFO, &ur_layout_payload_info, NULL,
+    "payload_info",
+    "Payload info (undocumented, inferred)",
+    UR_HF_PAYLOAD_INFO,
+    &ur_layout_payload_info,
+    NULL,
     FALSE, FALSE
 };
 static const ur_by_length ur_forms_robot_state_packages_0_by_length[] = {
@@ -1986,18 +2200,23 @@ static const unsigned ur_forms_robot_state_packages_0_sizes_2[] = { 33 };
 static const unsigned ur_forms_robot_state_packages_0_sizes_3[] = { 41 };
 static const unsigned ur_forms_robot_state_packages_0_sizes_4[] = { 42 };
 static const ur_form ur_forms_robot_state_packages_0_forms[] = {
-    { &ur_part_robot_mode_data, ur_forms_robot_state_packages_0_sizes_1, 1, 24, 1008000u,
-      "up to 1.8" },
-    { &ur_part_robot_mode_data, ur_forms_robot_state_packages_0_sizes_2, 1, 33, 3001000u,
-      "3.0 to 3.1" },
-    { &ur_part_robot_mode_data, ur_forms_robot_state_packages_0_sizes_3, 1, 41, 3004000u,
-      "3.2 to 3.4" },
-    { &ur_part_robot_mode_data, ur_forms_robot_state_packages_0_sizes_4, 1, 42, 5009000u,
-      "3.5 and later" },
+    { &ur_part_robot_mode_data,
+      ur_forms_robot_state_packages_0_sizes_1,
+      1, 24, 1008000u, "up to 1.8" },
+    { &ur_part_robot_mode_data,
+      ur_forms_robot_state_packages_0_sizes_2,
+      1, 33, 3001000u, "3.0 to 3.1" },
+    { &ur_part_robot_mode_data,
+      ur_forms_robot_state_packages_0_sizes_3,
+      1, 41, 3004000u, "3.2 to 3.4" },
+    { &ur_part_robot_mode_data,
+      ur_forms_robot_state_packages_0_sizes_4,
+      1, 42, 5009000u, "3.5 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_0 = {
     FALSE, TRUE, ur_forms_robot_state_packages_0_segments,
-    ur_forms_robot_state_packages_0_by_length, 4, ur_forms_robot_state_packages_0_forms
+    ur_forms_robot_state_packages_0_by_length, 4,
+    ur_forms_robot_state_packages_0_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_1_by_length[] = {
@@ -2008,12 +2227,14 @@ static const int ur_forms_robot_state_packages_1_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_1_sizes_1[] = { 246 };
 static const ur_form ur_forms_robot_state_packages_1_forms[] = {
-    { &ur_part_joint_data, ur_forms_robot_state_packages_1_sizes_1, 1, 246, 5009000u,
-      "all versions" },
+    { &ur_part_joint_data,
+      ur_forms_robot_state_packages_1_sizes_1,
+      1, 246, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_1 = {
     FALSE, FALSE, ur_forms_robot_state_packages_1_segments,
-    ur_forms_robot_state_packages_1_by_length, 1, ur_forms_robot_state_packages_1_forms
+    ur_forms_robot_state_packages_1_by_length, 1,
+    ur_forms_robot_state_packages_1_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_2_by_length[] = {
@@ -2024,12 +2245,14 @@ static const int ur_forms_robot_state_packages_2_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_2_sizes_1[] = { 32 };
 static const ur_form ur_forms_robot_state_packages_2_forms[] = {
-    { &ur_part_tool_data, ur_forms_robot_state_packages_2_sizes_1, 1, 32, 5009000u,
-      "all versions" },
+    { &ur_part_tool_data,
+      ur_forms_robot_state_packages_2_sizes_1,
+      1, 32, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_2 = {
     FALSE, FALSE, ur_forms_robot_state_packages_2_segments,
-    ur_forms_robot_state_packages_2_by_length, 1, ur_forms_robot_state_packages_2_forms
+    ur_forms_robot_state_packages_2_by_length, 1,
+    ur_forms_robot_state_packages_2_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_3_by_length[] = {
@@ -2044,20 +2267,26 @@ static const unsigned ur_forms_robot_state_packages_3_sizes_3[] = { 67, 83 };
 static const unsigned ur_forms_robot_state_packages_3_sizes_4[] = { 69, 85 };
 static const unsigned ur_forms_robot_state_packages_3_sizes_5[] = { 70, 86 };
 static const ur_form ur_forms_robot_state_packages_3_forms[] = {
-    { &ur_part_masterboard_data, ur_forms_robot_state_packages_3_sizes_1, 1, 56, 1005000u,
-      "up to 1.5" },
-    { &ur_part_masterboard_data, ur_forms_robot_state_packages_3_sizes_2, 2, 59, 1008000u,
-      "1.6 to 1.8" },
-    { &ur_part_masterboard_data, ur_forms_robot_state_packages_3_sizes_3, 2, 67, 3001000u,
-      "3.0 to 3.1" },
-    { &ur_part_masterboard_data, ur_forms_robot_state_packages_3_sizes_4, 2, 69, 5003000u,
-      "3.2 to 3.9 or 5.0 to 5.3" },
-    { &ur_part_masterboard_data, ur_forms_robot_state_packages_3_sizes_5, 2, 70, 5009000u,
-      "3.10 to 3.15 or 5.4 and later" },
+    { &ur_part_masterboard_data,
+      ur_forms_robot_state_packages_3_sizes_1,
+      1, 56, 1005000u, "up to 1.5" },
+    { &ur_part_masterboard_data,
+      ur_forms_robot_state_packages_3_sizes_2,
+      2, 59, 1008000u, "1.6 to 1.8" },
+    { &ur_part_masterboard_data,
+      ur_forms_robot_state_packages_3_sizes_3,
+      2, 67, 3001000u, "3.0 to 3.1" },
+    { &ur_part_masterboard_data,
+      ur_forms_robot_state_packages_3_sizes_4,
+      2, 69, 5003000u, "3.2 to 3.9 or 5.0 to 5.3" },
+    { &ur_part_masterboard_data,
+      ur_forms_robot_state_packages_3_sizes_5,
+      2, 70, 5009000u, "3.10 to 3.15 or 5.4 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_3 = {
     FALSE, TRUE, ur_forms_robot_state_packages_3_segments,
-    ur_forms_robot_state_packages_3_by_length, 9, ur_forms_robot_state_packages_3_forms
+    ur_forms_robot_state_packages_3_by_length, 9,
+    ur_forms_robot_state_packages_3_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_4_by_length[] = {
@@ -2069,14 +2298,17 @@ static const int ur_forms_robot_state_packages_4_segments[] = {
 static const unsigned ur_forms_robot_state_packages_4_sizes_1[] = { 48 };
 static const unsigned ur_forms_robot_state_packages_4_sizes_2[] = { 96 };
 static const ur_form ur_forms_robot_state_packages_4_forms[] = {
-    { &ur_part_cartesian_info, ur_forms_robot_state_packages_4_sizes_1, 1, 48, 3000000u,
-      "up to 3.0" },
-    { &ur_part_cartesian_info, ur_forms_robot_state_packages_4_sizes_2, 1, 96, 5009000u,
-      "3.1 and later" },
+    { &ur_part_cartesian_info,
+      ur_forms_robot_state_packages_4_sizes_1,
+      1, 48, 3000000u, "up to 3.0" },
+    { &ur_part_cartesian_info,
+      ur_forms_robot_state_packages_4_sizes_2,
+      1, 96, 5009000u, "3.1 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_4 = {
     FALSE, FALSE, ur_forms_robot_state_packages_4_segments,
-    ur_forms_robot_state_packages_4_by_length, 2, ur_forms_robot_state_packages_4_forms
+    ur_forms_robot_state_packages_4_by_length, 2,
+    ur_forms_robot_state_packages_4_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_5_by_length[] = {
@@ -2088,14 +2320,17 @@ static const int ur_forms_robot_state_packages_5_segments[] = {
 static const unsigned ur_forms_robot_state_packages_5_sizes_1[] = { 24 };
 static const unsigned ur_forms_robot_state_packages_5_sizes_2[] = { 220 };
 static const ur_form ur_forms_robot_state_packages_5_forms[] = {
-    { &ur_part_laser_pointer, ur_forms_robot_state_packages_5_sizes_1, 1, 24, 1007000u,
-      "up to 1.7" },
-    { &ur_part_kinematics_info, ur_forms_robot_state_packages_5_sizes_2, 1, 220, 5009000u,
-      "1.8 and later" },
+    { &ur_part_laser_pointer,
+      ur_forms_robot_state_packages_5_sizes_1,
+      1, 24, 1007000u, "up to 1.7" },
+    { &ur_part_kinematics_info,
+      ur_forms_robot_state_packages_5_sizes_2,
+      1, 220, 5009000u, "1.8 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_5 = {
     FALSE, FALSE, ur_forms_robot_state_packages_5_segments,
-    ur_forms_robot_state_packages_5_by_length, 2, ur_forms_robot_state_packages_5_forms
+    ur_forms_robot_state_packages_5_by_length, 2,
+    ur_forms_robot_state_packages_5_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_6_by_length[] = {
@@ -2108,16 +2343,20 @@ static const unsigned ur_forms_robot_state_packages_6_sizes_1[] = { 464 };
 static const unsigned ur_forms_robot_state_packages_6_sizes_2[] = { 440 };
 static const unsigned ur_forms_robot_state_packages_6_sizes_3[] = { 444 };
 static const ur_form ur_forms_robot_state_packages_6_forms[] = {
-    { &ur_part_configuration_data, ur_forms_robot_state_packages_6_sizes_1, 1, 464, 1008000u,
-      "up to 1.8" },
-    { &ur_part_configuration_data, ur_forms_robot_state_packages_6_sizes_2, 1, 440, 5009000u,
-      "3.0 to 5.25.0" },
-    { &ur_part_configuration_data, ur_forms_robot_state_packages_6_sizes_3, 1, 444, 5025001u,
-      "5.25.1 and later" },
+    { &ur_part_configuration_data,
+      ur_forms_robot_state_packages_6_sizes_1,
+      1, 464, 1008000u, "up to 1.8" },
+    { &ur_part_configuration_data,
+      ur_forms_robot_state_packages_6_sizes_2,
+      1, 440, 5009000u, "3.0 to 5.25.0" },
+    { &ur_part_configuration_data,
+      ur_forms_robot_state_packages_6_sizes_3,
+      1, 444, 5025001u, "5.25.1 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_6 = {
     FALSE, FALSE, ur_forms_robot_state_packages_6_segments,
-    ur_forms_robot_state_packages_6_by_length, 3, ur_forms_robot_state_packages_6_forms
+    ur_forms_robot_state_packages_6_by_length, 3,
+    ur_forms_robot_state_packages_6_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_7_by_length[] = {
@@ -2128,12 +2367,14 @@ static const int ur_forms_robot_state_packages_7_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_7_sizes_1[] = { 56 };
 static const ur_form ur_forms_robot_state_packages_7_forms[] = {
-    { &ur_part_force_mode_data, ur_forms_robot_state_packages_7_sizes_1, 1, 56, 5009000u,
-      "all versions" },
+    { &ur_part_force_mode_data,
+      ur_forms_robot_state_packages_7_sizes_1,
+      1, 56, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_7 = {
     FALSE, FALSE, ur_forms_robot_state_packages_7_segments,
-    ur_forms_robot_state_packages_7_by_length, 1, ur_forms_robot_state_packages_7_forms
+    ur_forms_robot_state_packages_7_by_length, 1,
+    ur_forms_robot_state_packages_7_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_8_by_length[] = {
@@ -2147,18 +2388,23 @@ static const unsigned ur_forms_robot_state_packages_8_sizes_2[] = { 2 };
 static const unsigned ur_forms_robot_state_packages_8_sizes_3[] = { 3 };
 static const unsigned ur_forms_robot_state_packages_8_sizes_4[] = { 4 };
 static const ur_form ur_forms_robot_state_packages_8_forms[] = {
-    { &ur_part_additional_info, ur_forms_robot_state_packages_8_sizes_1, 1, 5, 1007000u,
-      "up to 1.7" },
-    { &ur_part_additional_info, ur_forms_robot_state_packages_8_sizes_2, 1, 2, 3001000u,
-      "1.8 to 3.1" },
-    { &ur_part_additional_info, ur_forms_robot_state_packages_8_sizes_3, 1, 3, 3015000u,
-      "3.2 to 3.15" },
-    { &ur_part_additional_info, ur_forms_robot_state_packages_8_sizes_4, 1, 4, 5009000u,
-      "5.0 and later" },
+    { &ur_part_additional_info,
+      ur_forms_robot_state_packages_8_sizes_1,
+      1, 5, 1007000u, "up to 1.7" },
+    { &ur_part_additional_info,
+      ur_forms_robot_state_packages_8_sizes_2,
+      1, 2, 3001000u, "1.8 to 3.1" },
+    { &ur_part_additional_info,
+      ur_forms_robot_state_packages_8_sizes_3,
+      1, 3, 3015000u, "3.2 to 3.15" },
+    { &ur_part_additional_info,
+      ur_forms_robot_state_packages_8_sizes_4,
+      1, 4, 5009000u, "5.0 and later" },
 };
 static const ur_forms ur_forms_robot_state_packages_8 = {
     FALSE, FALSE, ur_forms_robot_state_packages_8_segments,
-    ur_forms_robot_state_packages_8_by_length, 4, ur_forms_robot_state_packages_8_forms
+    ur_forms_robot_state_packages_8_by_length, 4,
+    ur_forms_robot_state_packages_8_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_9_by_length[] = {
@@ -2169,24 +2415,28 @@ static const int ur_forms_robot_state_packages_9_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_9_sizes_1[] = { 48 };
 static const ur_form ur_forms_robot_state_packages_9_forms[] = {
-    { &ur_part_calibration_data, ur_forms_robot_state_packages_9_sizes_1, 1, 48, 5009000u,
-      "all versions" },
+    { &ur_part_calibration_data,
+      ur_forms_robot_state_packages_9_sizes_1,
+      1, 48, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_9 = {
     FALSE, FALSE, ur_forms_robot_state_packages_9_segments,
-    ur_forms_robot_state_packages_9_by_length, 1, ur_forms_robot_state_packages_9_forms
+    ur_forms_robot_state_packages_9_by_length, 1,
+    ur_forms_robot_state_packages_9_forms
 };
 
 static const int ur_forms_robot_state_packages_10_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_state_packages_10_forms[] = {
-    { &ur_part_safety_data, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_safety_data,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_10 = {
     FALSE, FALSE, ur_forms_robot_state_packages_10_segments,
-    NULL, 0, ur_forms_robot_state_packages_10_forms
+    NULL, 0,
+    ur_forms_robot_state_packages_10_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_11_by_length[] = {
@@ -2197,12 +2447,14 @@ static const int ur_forms_robot_state_packages_11_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_11_sizes_1[] = { 21 };
 static const ur_form ur_forms_robot_state_packages_11_forms[] = {
-    { &ur_part_tool_comm_info, ur_forms_robot_state_packages_11_sizes_1, 1, 21, 5009000u,
-      "all versions" },
+    { &ur_part_tool_comm_info,
+      ur_forms_robot_state_packages_11_sizes_1,
+      1, 21, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_11 = {
     FALSE, FALSE, ur_forms_robot_state_packages_11_segments,
-    ur_forms_robot_state_packages_11_by_length, 1, ur_forms_robot_state_packages_11_forms
+    ur_forms_robot_state_packages_11_by_length, 1,
+    ur_forms_robot_state_packages_11_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_12_by_length[] = {
@@ -2213,12 +2465,14 @@ static const int ur_forms_robot_state_packages_12_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_12_sizes_1[] = { 3 };
 static const ur_form ur_forms_robot_state_packages_12_forms[] = {
-    { &ur_part_tool_mode_info, ur_forms_robot_state_packages_12_sizes_1, 1, 3, 5009000u,
-      "all versions" },
+    { &ur_part_tool_mode_info,
+      ur_forms_robot_state_packages_12_sizes_1,
+      1, 3, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_12 = {
     FALSE, FALSE, ur_forms_robot_state_packages_12_segments,
-    ur_forms_robot_state_packages_12_by_length, 1, ur_forms_robot_state_packages_12_forms
+    ur_forms_robot_state_packages_12_by_length, 1,
+    ur_forms_robot_state_packages_12_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_13_by_length[] = {
@@ -2229,12 +2483,14 @@ static const int ur_forms_robot_state_packages_13_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_13_sizes_1[] = { 2 };
 static const ur_form ur_forms_robot_state_packages_13_forms[] = {
-    { &ur_part_singularity_info, ur_forms_robot_state_packages_13_sizes_1, 1, 2, 5009000u,
-      "all versions" },
+    { &ur_part_singularity_info,
+      ur_forms_robot_state_packages_13_sizes_1,
+      1, 2, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_13 = {
     FALSE, FALSE, ur_forms_robot_state_packages_13_segments,
-    ur_forms_robot_state_packages_13_by_length, 1, ur_forms_robot_state_packages_13_forms
+    ur_forms_robot_state_packages_13_by_length, 1,
+    ur_forms_robot_state_packages_13_forms
 };
 
 static const ur_by_length ur_forms_robot_state_packages_14_by_length[] = {
@@ -2245,12 +2501,14 @@ static const int ur_forms_robot_state_packages_14_segments[] = {
 };
 static const unsigned ur_forms_robot_state_packages_14_sizes_1[] = { 80 };
 static const ur_form ur_forms_robot_state_packages_14_forms[] = {
-    { &ur_part_payload_info, ur_forms_robot_state_packages_14_sizes_1, 1, 80, 5009000u,
-      "all versions" },
+    { &ur_part_payload_info,
+      ur_forms_robot_state_packages_14_sizes_1,
+      1, 80, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_state_packages_14 = {
     FALSE, FALSE, ur_forms_robot_state_packages_14_segments,
-    ur_forms_robot_state_packages_14_by_length, 1, ur_forms_robot_state_packages_14_forms
+    ur_forms_robot_state_packages_14_by_length, 1,
+    ur_forms_robot_state_packages_14_forms
 };
 
 static const ur_forms *const ur_forms_robot_state_packages[256] = {
@@ -2264,7 +2522,9 @@ static const ur_forms *const ur_forms_robot_state_packages[256] = {
     [14] = &ur_forms_robot_state_packages_14,
 };
 static const ur_message ur_message_16 = {
-    .kind = UR_M_PACKAGES, .code = 16, .label = "Robot state", .suffix = ", Robot state",
+    .kind = UR_M_PACKAGES, .code = 16,
+    .label = "Robot state",
+    .suffix = ", Robot state",
     .forms = ur_forms_robot_state_packages, .names = ur_vs_package_type, .tables = &ur_names_package_type,
     .length_hf = UR_HF_PACKAGE_LENGTH, .type_hf = UR_HF_PACKAGE_TYPE, .needs_version = TRUE,
     .body_offset = 0, .header = NULL, .subtype_hf = UR_HF_NONE,
@@ -2273,107 +2533,169 @@ static const ur_message ur_message_16 = {
 
 /* Robot message. The version message goes to every client, the others to primary clients only. */
 static const ur_part ur_part_version = {
-    "version", "Version", UR_HF_VERSION, &ur_layout_version, &ur_layout_version_header,
+    "version",
+    "Version",
+    UR_HF_VERSION,
+    &ur_layout_version,
+    &ur_layout_version_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_safety_mode = {
-    "safety_mode", "Safety mode", UR_HF_SAFETY_MODE, &ur_layout_safety_mode, &ur_layout_safety_mode_header,
+    "safety_mode",
+    "Safety mode",
+    UR_HF_SAFETY_MODE,
+    &ur_layout_safety_mode,
+    &ur_layout_safety_mode_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_robot_comm = {
-    "robot_comm", "Robot comm", UR_HF_ROBOT_COMM, &ur_layout_robot_comm, &ur_layout_robot_comm_header,
+    "robot_comm",
+    "Robot comm",
+    UR_HF_ROBOT_COMM,
+    &ur_layout_robot_comm,
+    &ur_layout_robot_comm_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_key = {
-    "key", "Key", UR_HF_KEY, &ur_layout_key, &ur_layout_key_header,
+    "key",
+    "Key",
+    UR_HF_KEY,
+    &ur_layout_key,
+    &ur_layout_key_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_program_threads = {
-    "program_threads", "Program threads", UR_HF_PROGRAM_THREADS, &ur_layout_program_threads, &ur_layout_program_threads_header,
+    "program_threads",
+    "Program threads",
+    UR_HF_PROGRAM_THREADS,
+    &ur_layout_program_threads,
+    &ur_layout_program_threads_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_popup = {
-    "popup", "Popup", UR_HF_POPUP, &ur_layout_popup, &ur_layout_popup_header,
+    "popup",
+    "Popup",
+    UR_HF_POPUP,
+    &ur_layout_popup,
+    &ur_layout_popup_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_label = {
-    "label", "Label", UR_HF_LABEL, &ur_layout_label, &ur_layout_label_header,
+    "label",
+    "Label",
+    UR_HF_LABEL,
+    &ur_layout_label,
+    &ur_layout_label_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_var = {
-    "var", "Var", UR_HF_VAR, &ur_layout_var, &ur_layout_var_header,
+    "var",
+    "Var",
+    UR_HF_VAR,
+    &ur_layout_var,
+    &ur_layout_var_header,
     FALSE, TRUE
 };
 static const ur_part ur_part_hardware_info = {
-    "hardware_info", "Hardware info", UR_HF_HARDWARE_INFO, &ur_layout_hardware_info, &ur_layout_hardware_info_header,
+    "hardware_info",
+    "Hardware info",
+    UR_HF_HARDWARE_INFO,
+    &ur_layout_hardware_info,
+    &ur_layout_hardware_info_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_robot_message_12 = {
-    "robot_message_12", "Robot message 12 (undocumented)", UR_HF_ROBOT_MESSAGE_12, &ur_layout_robot_message_12, &ur_layout_robot_message_12_header,
+    "robot_message_12",
+    "Robot message 12 (undocumented)",
+    UR_HF_ROBOT_MESSAGE_12,
+    &ur_layout_robot_message_12,
+    &ur_layout_robot_message_12_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_request_value = {
-    "request_value", "Request value", UR_HF_REQUEST_VALUE, &ur_layout_request_value, &ur_layout_request_value_header,
+    "request_value",
+    "Request value",
+    UR_HF_REQUEST_VALUE,
+    &ur_layout_request_value,
+    &ur_layout_request_value_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_text = {
-    "text", "Text", UR_HF_TEXT, &ur_layout_text, &ur_layout_text_header,
+    "text",
+    "Text",
+    UR_HF_TEXT,
+    &ur_layout_text,
+    &ur_layout_text_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_runtime_exception = {
-    "runtime_exception", "Runtime exception", UR_HF_RUNTIME_EXCEPTION, &ur_layout_runtime_exception, &ur_layout_runtime_exception_header,
+    "runtime_exception",
+    "Runtime exception",
+    UR_HF_RUNTIME_EXCEPTION,
+    &ur_layout_runtime_exception,
+    &ur_layout_runtime_exception_header,
     FALSE, FALSE
 };
 static const int ur_forms_robot_message_subtypes_0_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_0_forms[] = {
-    { &ur_part_text, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_text,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_0 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_0_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_0_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_0_forms
 };
 
 static const int ur_forms_robot_message_subtypes_1_segments[] = {
     1, 1, 1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
 };
 static const ur_form ur_forms_robot_message_subtypes_1_forms[] = {
-    { &ur_part_label, NULL, 0, 4, 1008000u,
-      "up to 1.8" },
+    { &ur_part_label,
+      NULL,
+      0, 4, 1008000u, "up to 1.8" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_1 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_1_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_1_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_1_forms
 };
 
 static const int ur_forms_robot_message_subtypes_2_segments[] = {
     1, 1, 1, -1, 2, 2, 2, 2, 2, 2, -2, 2, 2, 2, -2, 2,
 };
 static const ur_form ur_forms_robot_message_subtypes_2_forms[] = {
-    { &ur_part_popup, NULL, 0, 3, 1008000u,
-      "up to 1.8" },
-    { &ur_part_popup, NULL, 0, 12, 5009000u,
-      "3.0 and later" },
+    { &ur_part_popup,
+      NULL,
+      0, 3, 1008000u, "up to 1.8" },
+    { &ur_part_popup,
+      NULL,
+      0, 12, 5009000u, "3.0 and later" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_2 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_2_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_2_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_2_forms
 };
 
 static const int ur_forms_robot_message_subtypes_3_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 2, 2, 2, -2, 2, 2, 2, -2, 2,
 };
 static const ur_form ur_forms_robot_message_subtypes_3_forms[] = {
-    { &ur_part_version, NULL, 0, 7, 3002000u,
-      "up to 3.2" },
-    { &ur_part_version, NULL, 0, 11, 5009000u,
-      "3.3 and later" },
+    { &ur_part_version,
+      NULL,
+      0, 7, 3002000u, "up to 3.2" },
+    { &ur_part_version,
+      NULL,
+      0, 11, 5009000u, "3.3 and later" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_3 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_3_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_3_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_3_forms
 };
 
 static const ur_by_length ur_forms_robot_message_subtypes_5_by_length[] = {
@@ -2384,100 +2706,118 @@ static const int ur_forms_robot_message_subtypes_5_segments[] = {
 };
 static const unsigned ur_forms_robot_message_subtypes_5_sizes_2[] = { 17 };
 static const ur_form ur_forms_robot_message_subtypes_5_forms[] = {
-    { &ur_part_safety_mode, NULL, 0, 8, 1008000u,
-      "up to 1.8" },
-    { &ur_part_safety_mode, ur_forms_robot_message_subtypes_5_sizes_2, 1, 17, 5009000u,
-      "3.0 and later" },
+    { &ur_part_safety_mode,
+      NULL,
+      0, 8, 1008000u, "up to 1.8" },
+    { &ur_part_safety_mode,
+      ur_forms_robot_message_subtypes_5_sizes_2,
+      1, 17, 5009000u, "3.0 and later" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_5 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_5_segments,
-    ur_forms_robot_message_subtypes_5_by_length, 1, ur_forms_robot_message_subtypes_5_forms
+    ur_forms_robot_message_subtypes_5_by_length, 1,
+    ur_forms_robot_message_subtypes_5_forms
 };
 
 static const int ur_forms_robot_message_subtypes_6_segments[] = {
     1, 1, 1, -1, 2, 2, 2, 2, 2, 2, -2, 2, 2, 2, -2, 2,
 };
 static const ur_form ur_forms_robot_message_subtypes_6_forms[] = {
-    { &ur_part_robot_comm, NULL, 0, 8, 1008000u,
-      "up to 1.8" },
-    { &ur_part_robot_comm, NULL, 0, 20, 5009000u,
-      "3.0 and later" },
+    { &ur_part_robot_comm,
+      NULL,
+      0, 8, 1008000u, "up to 1.8" },
+    { &ur_part_robot_comm,
+      NULL,
+      0, 20, 5009000u, "3.0 and later" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_6 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_6_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_6_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_6_forms
 };
 
 static const int ur_forms_robot_message_subtypes_7_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_7_forms[] = {
-    { &ur_part_key, NULL, 0, 9, 5009000u,
-      "all versions" },
+    { &ur_part_key,
+      NULL,
+      0, 9, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_7 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_7_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_7_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_7_forms
 };
 
 static const int ur_forms_robot_message_subtypes_8_segments[] = {
     1, 1, 1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
 };
 static const ur_form ur_forms_robot_message_subtypes_8_forms[] = {
-    { &ur_part_var, NULL, 0, 9, 1008000u,
-      "up to 1.8" },
+    { &ur_part_var,
+      NULL,
+      0, 9, 1008000u, "up to 1.8" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_8 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_8_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_8_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_8_forms
 };
 
 static const int ur_forms_robot_message_subtypes_9_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_9_forms[] = {
-    { &ur_part_request_value, NULL, 0, 8, 5009000u,
-      "all versions" },
+    { &ur_part_request_value,
+      NULL,
+      0, 8, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_9 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_9_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_9_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_9_forms
 };
 
 static const int ur_forms_robot_message_subtypes_10_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_10_forms[] = {
-    { &ur_part_runtime_exception, NULL, 0, 8, 5009000u,
-      "all versions" },
+    { &ur_part_runtime_exception,
+      NULL,
+      0, 8, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_10 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_10_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_10_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_10_forms
 };
 
 static const int ur_forms_robot_message_subtypes_12_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_12_forms[] = {
-    { &ur_part_robot_message_12, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_robot_message_12,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_12 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_12_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_12_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_12_forms
 };
 
 static const int ur_forms_robot_message_subtypes_14_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_robot_message_subtypes_14_forms[] = {
-    { &ur_part_program_threads, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_program_threads,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_14 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_14_segments,
-    NULL, 0, ur_forms_robot_message_subtypes_14_forms
+    NULL, 0,
+    ur_forms_robot_message_subtypes_14_forms
 };
 
 static const ur_by_length ur_forms_robot_message_subtypes_18_by_length[] = {
@@ -2488,12 +2828,14 @@ static const int ur_forms_robot_message_subtypes_18_segments[] = {
 };
 static const unsigned ur_forms_robot_message_subtypes_18_sizes_1[] = { 12 };
 static const ur_form ur_forms_robot_message_subtypes_18_forms[] = {
-    { &ur_part_hardware_info, ur_forms_robot_message_subtypes_18_sizes_1, 1, 12, 5009000u,
-      "all versions" },
+    { &ur_part_hardware_info,
+      ur_forms_robot_message_subtypes_18_sizes_1,
+      1, 12, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_robot_message_subtypes_18 = {
     FALSE, FALSE, ur_forms_robot_message_subtypes_18_segments,
-    ur_forms_robot_message_subtypes_18_by_length, 1, ur_forms_robot_message_subtypes_18_forms
+    ur_forms_robot_message_subtypes_18_by_length, 1,
+    ur_forms_robot_message_subtypes_18_forms
 };
 
 static const ur_forms *const ur_forms_robot_message_subtypes[256] = {
@@ -2506,7 +2848,9 @@ static const ur_forms *const ur_forms_robot_message_subtypes[256] = {
     [18] = &ur_forms_robot_message_subtypes_18,
 };
 static const ur_message ur_message_20 = {
-    .kind = UR_M_SUBTYPES, .code = 20, .label = "Robot message", .suffix = ", Robot message",
+    .kind = UR_M_SUBTYPES, .code = 20,
+    .label = "Robot message",
+    .suffix = ", Robot message",
     .forms = ur_forms_robot_message_subtypes, .names = ur_vs_robot_message_type, .tables = &ur_names_robot_message_type,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 15, .header = &ur_layout_robot_message, .subtype_hf = UR_HF_ROBOT_MESSAGE_ROBOT_MESSAGE_TYPE,
@@ -2515,42 +2859,56 @@ static const ur_message ur_message_20 = {
 
 /* Program-state message, sent to primary clients only. */
 static const ur_part ur_part_global_variables_setup = {
-    "global_variables_setup", "Global variables setup", UR_HF_GLOBAL_VARIABLES_SETUP, &ur_layout_global_variables_setup, &ur_layout_global_variables_setup_header,
+    "global_variables_setup",
+    "Global variables setup",
+    UR_HF_GLOBAL_VARIABLES_SETUP,
+    &ur_layout_global_variables_setup,
+    &ur_layout_global_variables_setup_header,
     FALSE, FALSE
 };
 static const ur_part ur_part_global_variables_update = {
-    "global_variables_update", "Global variables update", UR_HF_GLOBAL_VARIABLES_UPDATE, &ur_layout_global_variables_update, &ur_layout_global_variables_update_header,
+    "global_variables_update",
+    "Global variables update",
+    UR_HF_GLOBAL_VARIABLES_UPDATE,
+    &ur_layout_global_variables_update,
+    &ur_layout_global_variables_update_header,
     FALSE, TRUE
 };
 static const int ur_forms_program_state_subtypes_0_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_program_state_subtypes_0_forms[] = {
-    { &ur_part_global_variables_setup, NULL, 0, 2, 5009000u,
-      "all versions" },
+    { &ur_part_global_variables_setup,
+      NULL,
+      0, 2, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_program_state_subtypes_0 = {
     FALSE, FALSE, ur_forms_program_state_subtypes_0_segments,
-    NULL, 0, ur_forms_program_state_subtypes_0_forms
+    NULL, 0,
+    ur_forms_program_state_subtypes_0_forms
 };
 
 static const int ur_forms_program_state_subtypes_1_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_program_state_subtypes_1_forms[] = {
-    { &ur_part_global_variables_update, NULL, 0, 2, 5009000u,
-      "all versions" },
+    { &ur_part_global_variables_update,
+      NULL,
+      0, 2, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_program_state_subtypes_1 = {
     FALSE, FALSE, ur_forms_program_state_subtypes_1_segments,
-    NULL, 0, ur_forms_program_state_subtypes_1_forms
+    NULL, 0,
+    ur_forms_program_state_subtypes_1_forms
 };
 
 static const ur_forms *const ur_forms_program_state_subtypes[256] = {
     [0] = &ur_forms_program_state_subtypes_0, [1] = &ur_forms_program_state_subtypes_1,
 };
 static const ur_message ur_message_25 = {
-    .kind = UR_M_SUBTYPES, .code = 25, .label = "Program state", .suffix = ", Program state",
+    .kind = UR_M_SUBTYPES, .code = 25,
+    .label = "Program state",
+    .suffix = ", Program state",
     .forms = ur_forms_program_state_subtypes, .names = ur_vs_program_state_message_type, .tables = NULL,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 14, .header = &ur_layout_program_state, .subtype_hf = UR_HF_PROGRAM_STATE_ROBOT_MESSAGE_TYPE,
@@ -2560,26 +2918,34 @@ static const ur_message ur_message_25 = {
 /* Modbus info message (type 5), named by the document without a layout: 9 bytes on e-Series URSim
  * 5.4, its 4-byte payload zero. Kept as bytes. */
 static const ur_part ur_part_modbus_info = {
-    "modbus_info", "Modbus info (undocumented)", UR_HF_MODBUS_INFO, &ur_layout_modbus_info, NULL,
+    "modbus_info",
+    "Modbus info (undocumented)",
+    UR_HF_MODBUS_INFO,
+    &ur_layout_modbus_info,
+    NULL,
     FALSE, FALSE
 };
 static const int ur_forms_modbus_info_forms_5_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_modbus_info_forms_5_forms[] = {
-    { &ur_part_modbus_info, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_modbus_info,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_modbus_info_forms_5 = {
     FALSE, FALSE, ur_forms_modbus_info_forms_5_segments,
-    NULL, 0, ur_forms_modbus_info_forms_5_forms
+    NULL, 0,
+    ur_forms_modbus_info_forms_5_forms
 };
 
 static const ur_forms *const ur_forms_modbus_info_forms[256] = {
     [5] = &ur_forms_modbus_info_forms_5,
 };
 static const ur_message ur_message_5 = {
-    .kind = UR_M_BODY, .code = 5, .label = "Modbus info (undocumented)", .suffix = ", Modbus info (undocumented)",
+    .kind = UR_M_BODY, .code = 5,
+    .label = "Modbus info (undocumented)",
+    .suffix = ", Modbus info (undocumented)",
     .forms = ur_forms_modbus_info_forms, .names = NULL, .tables = NULL,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 5, .header = NULL, .subtype_hf = UR_HF_NONE,
@@ -2588,26 +2954,34 @@ static const ur_message ur_message_5 = {
 
 /* HMC message (type 22), named by the document without a layout. Kept as bytes. */
 static const ur_part ur_part_hmc = {
-    "hmc", "HMC (undocumented)", UR_HF_HMC, &ur_layout_hmc, NULL,
+    "hmc",
+    "HMC (undocumented)",
+    UR_HF_HMC,
+    &ur_layout_hmc,
+    NULL,
     FALSE, FALSE
 };
 static const int ur_forms_hmc_forms_22_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_hmc_forms_22_forms[] = {
-    { &ur_part_hmc, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_hmc,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_hmc_forms_22 = {
     FALSE, FALSE, ur_forms_hmc_forms_22_segments,
-    NULL, 0, ur_forms_hmc_forms_22_forms
+    NULL, 0,
+    ur_forms_hmc_forms_22_forms
 };
 
 static const ur_forms *const ur_forms_hmc_forms[256] = {
     [22] = &ur_forms_hmc_forms_22,
 };
 static const ur_message ur_message_22 = {
-    .kind = UR_M_BODY, .code = 22, .label = "HMC (undocumented)", .suffix = ", HMC (undocumented)",
+    .kind = UR_M_BODY, .code = 22,
+    .label = "HMC (undocumented)",
+    .suffix = ", HMC (undocumented)",
     .forms = ur_forms_hmc_forms, .names = NULL, .tables = NULL,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 5, .header = NULL, .subtype_hf = UR_HF_NONE,
@@ -2616,26 +2990,34 @@ static const ur_message ur_message_22 = {
 
 /* Safety setup broadcast message (type 23), named by the document without a layout. Kept as bytes. */
 static const ur_part ur_part_safety_setup_broadcast = {
-    "safety_setup_broadcast", "Safety setup broadcast (undocumented)", UR_HF_SAFETY_SETUP_BROADCAST, &ur_layout_safety_setup_broadcast, NULL,
+    "safety_setup_broadcast",
+    "Safety setup broadcast (undocumented)",
+    UR_HF_SAFETY_SETUP_BROADCAST,
+    &ur_layout_safety_setup_broadcast,
+    NULL,
     FALSE, FALSE
 };
 static const int ur_forms_safety_setup_broadcast_forms_23_segments[] = {
     1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1,
 };
 static const ur_form ur_forms_safety_setup_broadcast_forms_23_forms[] = {
-    { &ur_part_safety_setup_broadcast, NULL, 0, 0, 5009000u,
-      "all versions" },
+    { &ur_part_safety_setup_broadcast,
+      NULL,
+      0, 0, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_safety_setup_broadcast_forms_23 = {
     FALSE, FALSE, ur_forms_safety_setup_broadcast_forms_23_segments,
-    NULL, 0, ur_forms_safety_setup_broadcast_forms_23_forms
+    NULL, 0,
+    ur_forms_safety_setup_broadcast_forms_23_forms
 };
 
 static const ur_forms *const ur_forms_safety_setup_broadcast_forms[256] = {
     [23] = &ur_forms_safety_setup_broadcast_forms_23,
 };
 static const ur_message ur_message_23 = {
-    .kind = UR_M_BODY, .code = 23, .label = "Safety setup broadcast (undocumented)", .suffix = ", Safety setup broadcast (undocumented)",
+    .kind = UR_M_BODY, .code = 23,
+    .label = "Safety setup broadcast (undocumented)",
+    .suffix = ", Safety setup broadcast (undocumented)",
     .forms = ur_forms_safety_setup_broadcast_forms, .names = NULL, .tables = NULL,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 5, .header = NULL, .subtype_hf = UR_HF_NONE,
@@ -2646,7 +3028,11 @@ static const ur_message ur_message_23 = {
  * bytes, sent right after robot message 12 when a client connects. 22 float64 with no timestamp;
  * what each one means is not known. */
 static const ur_part ur_part_safety_compliance_tolerances = {
-    "safety_compliance_tolerances", "Safety compliance tolerances (undocumented, inferred)", UR_HF_SAFETY_COMPLIANCE_TOLERANCES, &ur_layout_safety_compliance_tolerances, NULL,
+    "safety_compliance_tolerances",
+    "Safety compliance tolerances (undocumented, inferred)",
+    UR_HF_SAFETY_COMPLIANCE_TOLERANCES,
+    &ur_layout_safety_compliance_tolerances,
+    NULL,
     FALSE, FALSE
 };
 static const ur_by_length ur_forms_safety_compliance_tolerances_forms_24_by_length[] = {
@@ -2657,19 +3043,23 @@ static const int ur_forms_safety_compliance_tolerances_forms_24_segments[] = {
 };
 static const unsigned ur_forms_safety_compliance_tolerances_forms_24_sizes_1[] = { 176 };
 static const ur_form ur_forms_safety_compliance_tolerances_forms_24_forms[] = {
-    { &ur_part_safety_compliance_tolerances, ur_forms_safety_compliance_tolerances_forms_24_sizes_1, 1, 176, 5009000u,
-      "all versions" },
+    { &ur_part_safety_compliance_tolerances,
+      ur_forms_safety_compliance_tolerances_forms_24_sizes_1,
+      1, 176, 5009000u, "all versions" },
 };
 static const ur_forms ur_forms_safety_compliance_tolerances_forms_24 = {
     FALSE, FALSE, ur_forms_safety_compliance_tolerances_forms_24_segments,
-    ur_forms_safety_compliance_tolerances_forms_24_by_length, 1, ur_forms_safety_compliance_tolerances_forms_24_forms
+    ur_forms_safety_compliance_tolerances_forms_24_by_length, 1,
+    ur_forms_safety_compliance_tolerances_forms_24_forms
 };
 
 static const ur_forms *const ur_forms_safety_compliance_tolerances_forms[256] = {
     [24] = &ur_forms_safety_compliance_tolerances_forms_24,
 };
 static const ur_message ur_message_24 = {
-    .kind = UR_M_BODY, .code = 24, .label = "Safety compliance tolerances (undocumented, inferred)", .suffix = ", Safety compliance tolerances (undocumented, inferred)",
+    .kind = UR_M_BODY, .code = 24,
+    .label = "Safety compliance tolerances (undocumented, inferred)",
+    .suffix = ", Safety compliance tolerances (undocumented, inferred)",
     .forms = ur_forms_safety_compliance_tolerances_forms, .names = NULL, .tables = NULL,
     .length_hf = UR_HF_NONE, .type_hf = UR_HF_NONE, .needs_version = FALSE,
     .body_offset = 5, .header = NULL, .subtype_hf = UR_HF_NONE,
@@ -2761,9 +3151,11 @@ ur_parse_version(const char *text)
             p++;
         }
     }
-    if (part[0] > 4000 || part[1] > 999)
-        return UR_VERSION_NONE;     /* beyond what one number holds */
-    return ur_version_number((guint32)part[0], (guint32)part[1], (gint64)part[2]);
+    guint64 bugfix = part[2] > UR_BUGFIX_ANY ? UR_BUGFIX_ANY : part[2];
+    guint64 v = (part[0] * 1000 + part[1]) * 1000 + bugfix;
+    /* As Lua's numbers do, a minor of 1000 or more carries into the major; a version past what
+     * one number holds reads as the newest there is. */
+    return v >= UR_VERSION_NONE ? UR_VERSION_NONE - 1 : (guint32)v;
 }
 
 /* 5009000 -> "5.9", 5025001 -> "5.25.1", 5008999 (any 5.8.x) -> "5.8", into buf. */
@@ -2883,7 +3275,8 @@ ur_choose(const ur_forms *forms, unsigned size, guint32 v, guint32 *use, gboolea
  * so that a malformed message still reads as one. As runtime/lua/items.lua. */
 typedef struct {
     packet_info *pinfo;
-    tvbuff_t *tvb;
+    tvbuff_t *tvb;              /* the message's bytes (carried-over bytes first, when there are) */
+    tvbuff_t *call_tvb;         /* the bytes the call was handed: generated items stand at its start */
     int base;                   /* the message's first byte: error offsets count from it */
     guint32 version;            /* the version it is read with (moves on when layout sizes tell it) */
     gboolean known;             /* announced or from the preference */
@@ -2892,6 +3285,7 @@ typedef struct {
     const char *implied;        /* the versions of the form whose size told the version, or NULL */
     guint32 message_version;    /* what the message's tree shows */
     const char *message_implied;
+    gboolean visible;           /* the tree is shown: item texts are worth writing */
     gint64 kept[UR_KEEP_SLOTS]; /* values later fields depend on (present_if, switch) */
     gboolean kept_set[UR_KEEP_SLOTS];
     /* the tree cap */
@@ -2943,14 +3337,23 @@ ur_add(ur_msg *st, proto_tree *tree, int field, int o, int n, guint encoding)
     return proto_tree_add_item(tree, ur_hf(field), st->tvb, o, n, encoding);
 }
 
-/* A subtree item with its own text (a group's "Joint 0"); counted. */
+/* A subtree item with its own text (a group's "Joint 0"); counted. Item texts are written only
+ * where the tree is shown: a field no one asked for is the parent's item, faked by Wireshark. */
 static proto_item *
 ur_add_labelled(ur_msg *st, proto_tree *tree, int field, int o, int n, const char *label)
 {
     proto_item *item = ur_add(st, tree, field, o, n, ENC_NA);
-    if (item)
+    if (item && st->visible)
         proto_item_set_text(item, "%s", label);
     return item;
+}
+
+/* A float's unit after its value. */
+static inline void
+ur_unit(ur_msg *st, proto_item *item, const char *unit)
+{
+    if (unit != NULL && item != NULL && st->visible)
+        proto_item_append_text(item, "%s", unit);
 }
 
 /* An expert info on item; past the cap, the first goes to the message's item. */
@@ -2975,29 +3378,79 @@ ur_expert(ur_msg *st, proto_item *item, expert_field *ei, const char *text)
  * the layout ends. A walk returns the offset after the layout, or -1 with the canonical error text
  * in *err ("joints[2].q_actual at offset 31: needs 8 bytes, 3 left", offsets from the message's
  * first byte, as every target words it). As runtime/lua/walk.lua. */
-static int ur_walk(ur_msg *st, proto_tree *tree, int o, int e, const ur_layout *layout, const char *pre,
+/* Where a field stands, for error texts only: made as the walk goes down (a group's item
+ * "joints[2].", a value "variables[1][0]"), written out only when an error names it. */
+typedef struct ur_path {
+    const struct ur_path *up;
+    const char *name;           /* NULL: an index of what `up` names */
+    gint64 index;               /* -1: none */
+    gboolean dot;               /* a group item: its fields follow after a dot */
+} ur_path;
+
+static void
+ur_path_write(wmem_strbuf_t *out, const ur_path *at)
+{
+    if (at == NULL)
+        return;
+    ur_path_write(out, at->up);
+    if (at->name != NULL)
+        wmem_strbuf_append(out, at->name);
+    if (at->index >= 0)
+        wmem_strbuf_append_printf(out, "[%" G_GINT64_MODIFIER "d]", at->index);
+    if (at->dot)
+        wmem_strbuf_append_c(out, '.');
+}
+
+/* The path `at`, then `name`, as text. */
+static const char *
+ur_path_text(ur_msg *st, const ur_path *at, const char *name)
+{
+    wmem_strbuf_t *out = wmem_strbuf_new(st->pinfo->pool, "");
+    ur_path_write(out, at);
+    wmem_strbuf_append(out, name);
+    return wmem_strbuf_get_str(out);
+}
+
+static int ur_walk(ur_msg *st, proto_tree *tree, int o, int e, const ur_layout *layout, const ur_path *pre,
                    const char **err);
 
 static const char *
-ur_short(ur_msg *st, const char *pre, const char *path, int o, gint64 need, int e)
+ur_short(ur_msg *st, const ur_path *pre, const char *path, int o, gint64 need, int e)
 {
     int left = e - o < 0 ? 0 : e - o;
-    return wmem_strdup_printf(st->pinfo->pool, "%s%s at offset %d: needs %" G_GINT64_MODIFIER "d bytes, %d left",
-                              pre ? pre : "", path, o - st->base, need, left);
+    return wmem_strdup_printf(st->pinfo->pool, "%s at offset %d: needs %" G_GINT64_MODIFIER "d bytes, %d left",
+                              ur_path_text(st, pre, path), o - st->base, need, left);
 }
 
 static const char *
-ur_negative(ur_msg *st, const char *pre, const char *path, int o, gint64 n)
+ur_negative(ur_msg *st, const ur_path *pre, const char *path, int o, gint64 n)
 {
-    return wmem_strdup_printf(st->pinfo->pool, "%s%s at offset %d: negative length %" G_GINT64_MODIFIER "d",
-                              pre ? pre : "", path, o - st->base, n);
+    return wmem_strdup_printf(st->pinfo->pool, "%s at offset %d: negative length %" G_GINT64_MODIFIER "d",
+                              ur_path_text(st, pre, path), o - st->base, n);
 }
 
 /* An integer of n bytes (1 to 8) at o, big-endian, signed or not. */
 static gint64
 ur_int_at(tvbuff_t *tvb, int o, unsigned n, gboolean is_signed)
 {
-    guint64 v = tvb_get_bits64(tvb, (guint)o * 8, (gint)n * 8, ENC_BIG_ENDIAN);
+    guint64 v;
+    switch (n) {
+    case 1:
+        v = tvb_get_guint8(tvb, o);
+        break;
+    case 2:
+        v = tvb_get_ntohs(tvb, o);
+        break;
+    case 4:
+        v = tvb_get_ntohl(tvb, o);
+        break;
+    case 8:
+        v = tvb_get_ntoh64(tvb, o);
+        break;
+    default:
+        v = tvb_get_bits64(tvb, (guint)o * 8, (gint)n * 8, ENC_BIG_ENDIAN);
+        break;
+    }
     if (is_signed && n < 8 && (v >> (n * 8 - 1)) & 1)
         return (gint64)(v | ~((G_GUINT64_CONSTANT(1) << (n * 8)) - 1));
     return (gint64)v;
@@ -3051,8 +3504,11 @@ ur_add_value(ur_msg *st, proto_tree *tree, int field, int o, int n, gint64 value
 static proto_item *
 ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
 {
-    if (!(d->flags & UR_VALUE) && d->names == NULL && d->keep == 0)
-        return ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
+    if (!(d->flags & UR_VALUE) && d->names == NULL && d->keep == 0) {
+        proto_item *item = ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
+        ur_unit(st, item, d->unit);
+        return item;
+    }
     gint64 v = 0;
     double real = 0;
     if (d->flags & UR_FLOAT)
@@ -3061,8 +3517,9 @@ ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
         v = ur_int_at(st->tvb, o, d->n, (d->flags & UR_SIGNED) != 0);
     proto_item *item = (d->flags & UR_VALUE) ? ur_add_value(st, tree, d->hf, o, (int)d->n, v, real)
                                             : ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
-    if (d->names != NULL)
+    if (d->names != NULL && st->visible)
         ur_rename(item, d->label, d->names, st->version, v);
+    ur_unit(st, item, d->unit);
     if (d->keep != 0) {
         st->kept[d->keep] = v;
         st->kept_set[d->keep] = TRUE;
@@ -3071,7 +3528,7 @@ ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
 }
 
 static int
-ur_walk_scalar(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_scalar(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     if (o + (int)d->n > e) {
         *err = ur_short(st, pre, d->path, o, (int)d->n, e);
@@ -3083,7 +3540,7 @@ ur_walk_scalar(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
 
 /* An integer whose bits are shown one by one; the bits read the integer's own bytes. */
 static int
-ur_walk_bits(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_bits(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     if (o + (int)d->n > e) {
         *err = ur_short(st, pre, d->path, o, (int)d->n, e);
@@ -3097,11 +3554,12 @@ ur_walk_bits(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const
 
 /* count scalars in a row; an error names the element ("q_actual[3]"). */
 static int
-ur_walk_array(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_array(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     for (unsigned i = 0; i < d->count; i++) {
         if (o + (int)d->n > e) {
-            *err = ur_short(st, pre, wmem_strdup_printf(st->pinfo->pool, "%s[%u]", d->path, i), o, (int)d->n, e);
+            ur_path element = { pre, d->path, i, FALSE };
+            *err = ur_short(st, &element, "", o, (int)d->n, e);
             return -1;
         }
         ur_add_scalar(st, tree, o, d);
@@ -3112,7 +3570,7 @@ ur_walk_array(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, cons
 
 /* A repeated group ("Joint 0".."Joint 5"), count times or to the end of the layout. */
 static int
-ur_walk_group(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_group(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     for (unsigned i = 0; d->count ? i < d->count : o < e; i++) {
         int start = o;
@@ -3120,8 +3578,8 @@ ur_walk_group(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, cons
         char label[64];
         snprintf(label, sizeof label, "%s %u", d->label, i);
         proto_item *item = ur_add_labelled(st, tree, d->hf, o, fits ? (int)d->size : 0, label);
-        const char *prefix = wmem_strdup_printf(st->pinfo->pool, "%s%s[%u].", pre ? pre : "", d->path, i);
-        o = ur_walk(st, ur_sub(item), o, e, d->inner, prefix, err);
+        ur_path at = { pre, d->path, i, TRUE };
+        o = ur_walk(st, ur_sub(item), o, e, d->inner, &at, err);
         if (o < 0) {
             proto_item_set_len(item, e - start);
             return -1;
@@ -3134,7 +3592,7 @@ ur_walk_group(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, cons
 
 /* A text with a length prefix. */
 static int
-ur_walk_pstring(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_pstring(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     if (o + (int)d->n > e) {
         *err = ur_short(st, pre, d->path, o, (int)d->n, e);
@@ -3170,15 +3628,17 @@ ur_walk_strings(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d)
 
 /* One scalar whose type follows an earlier field. */
 static int
-ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     int hf = d->sw->default_hf;
     unsigned n = d->sw->default_n;
+    const char *unit = d->sw->default_unit;
     if (st->kept_set[d->keep]) {
         for (unsigned i = 0; i < d->sw->n_cases; i++) {
             if (d->sw->cases[i].code == st->kept[d->keep]) {
                 hf = d->sw->cases[i].hf;
                 n = d->sw->cases[i].n;
+                unit = d->sw->cases[i].unit;
             }
         }
     }
@@ -3186,17 +3646,17 @@ ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
         *err = ur_short(st, pre, d->path, o, n, e);
         return -1;
     }
-    ur_add(st, tree, hf, o, (int)n, ENC_BIG_ENDIAN);
+    ur_unit(st, ur_add(st, tree, hf, o, (int)n, ENC_BIG_ENDIAN), unit);
     return o + (int)n;
 }
 
-static int ur_walk_values(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre,
+static int ur_walk_values(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre,
                           const char **err);
 
 /* Walk a layout from o to at most e. pre is the error path of the enclosing group item
  * ("joints[2]."), NULL at the top. */
 static int
-ur_walk(ur_msg *st, proto_tree *tree, int o, int e, const ur_layout *layout, const char *pre, const char **err)
+ur_walk(ur_msg *st, proto_tree *tree, int o, int e, const ur_layout *layout, const ur_path *pre, const char **err)
 {
     for (unsigned i = 0; i < layout->n && o >= 0; i++) {
         const ur_desc *d = &layout->d[i];
@@ -3255,12 +3715,12 @@ ur_walk(ur_msg *st, proto_tree *tree, int o, int e, const ur_layout *layout, con
 /* Items that cannot fit in the bytes from o to e (each takes at least vt->min_size) are refused
  * before any is read; at is the offset of their count. */
 static const char *
-ur_too_many(ur_msg *st, const ur_value_table *vt, const char *path, int at, gint64 items, int o, int e)
+ur_too_many(ur_msg *st, const ur_value_table *vt, const ur_path *path, int at, gint64 items, int o, int e)
 {
     if (items * (gint64)vt->min_size > e - o)
         return wmem_strdup_printf(st->pinfo->pool,
                                   "%s at offset %d: %" G_GINT64_MODIFIER "d items need more than the %d bytes left",
-                                  path, at - st->base, items, e - o);
+                                  ur_path_text(st, path, ""), at - st->base, items, e - o);
     return NULL;
 }
 
@@ -3268,7 +3728,7 @@ ur_too_many(ur_msg *st, const ur_value_table *vt, const char *path, int at, gint
  * names it in errors ("variables[2][0]"). The offset after it, or -1 and the error in *err. */
 static int
 ur_walk_value(ur_msg *st, proto_tree *tree, int o, int e, const ur_value_fields *vf, const ur_value_table *vt,
-              const char *label, const char *path, int depth, const char **err)
+              const char *label, const ur_path *path, int depth, const char **err)
 {
     wmem_allocator_t *pool = st->pinfo->pool;
     if (o >= e) {
@@ -3277,18 +3737,21 @@ ur_walk_value(ur_msg *st, proto_tree *tree, int o, int e, const ur_value_fields 
     }
     guint8 code = tvb_get_guint8(st->tvb, o);
     if (depth > UR_MAX_VALUE_DEPTH) {
-        *err = wmem_strdup_printf(pool, "%s at offset %d: nesting deeper than %d", path, o - st->base,
+        *err = wmem_strdup_printf(pool, "%s at offset %d: nesting deeper than %d", ur_path_text(st, path, ""),
+                                  o - st->base,
                                   UR_MAX_VALUE_DEPTH);
         return -1;
     }
     const ur_value_kind *kind = &vt->kinds[code];
     if (kind->name == NULL) {
-        *err = wmem_strdup_printf(pool, "%s.type at offset %d: unknown value type %u", path, o - st->base, code);
+        *err = wmem_strdup_printf(pool, "%s at offset %d: unknown value type %u", ur_path_text(st, path, ".type"),
+                                  o - st->base, code);
         return -1;
     }
     int start = o;
-    proto_item *item = ur_add_labelled(st, tree, vf->item, o, 1,
-                                       wmem_strdup_printf(pool, "%s: %s", label, kind->name));
+    char text[80];
+    snprintf(text, sizeof text, "%s: %s", label, kind->name);
+    proto_item *item = ur_add_labelled(st, tree, vf->item, o, 1, text);
     proto_tree *sub = ur_sub(item);
     if (ur_room(st, sub))
         proto_tree_add_string(sub, ur_hf(vf->type), st->tvb, o, 1, kind->name);
@@ -3298,7 +3761,7 @@ ur_walk_value(ur_msg *st, proto_tree *tree, int o, int e, const ur_value_fields 
     if (kind->layout == UR_V_SCALAR || kind->layout == UR_V_ARRAY) {
         int need = (int)(kind->n * kind->count);
         if (o + need > e) {
-            *err = ur_short(st, NULL, path, o, need, e);
+            *err = ur_short(st, path, "", o, need, e);
             return -1;
         }
         for (unsigned i = 0; i < kind->count; i++) {
@@ -3307,30 +3770,30 @@ ur_walk_value(ur_msg *st, proto_tree *tree, int o, int e, const ur_value_fields 
         }
     } else if (kind->layout == UR_V_STRING) {
         if (o + len > e) {
-            *err = ur_short(st, NULL, path, o, len, e);
+            *err = ur_short(st, path, "", o, len, e);
             return -1;
         }
         gint64 n = ur_int_at(st->tvb, o, kind->len, TRUE);
         if (n < 0) {
-            *err = ur_negative(st, NULL, path, o, n);
+            *err = ur_negative(st, path, "", o, n);
             return -1;
         }
         ur_add(st, sub, vf->count, o, len, ENC_BIG_ENDIAN);
         o += len;
         if (o + n > e) {
-            *err = ur_short(st, NULL, path, o, n, e);
+            *err = ur_short(st, path, "", o, n, e);
             return -1;
         }
         ur_add_text(st, sub, vf->string, o, (int)n);
         o += (int)n;
     } else if (kind->layout == UR_V_LIST) {
         if (o + len > e) {
-            *err = ur_short(st, NULL, path, o, len, e);
+            *err = ur_short(st, path, "", o, len, e);
             return -1;
         }
         gint64 n = ur_int_at(st->tvb, o, kind->len, TRUE);
         if (n < 0) {
-            *err = ur_negative(st, NULL, path, o, n);
+            *err = ur_negative(st, path, "", o, n);
             return -1;
         }
         if ((*err = ur_too_many(st, vt, path, o, n, o + len, e)) != NULL)
@@ -3338,30 +3801,31 @@ ur_walk_value(ur_msg *st, proto_tree *tree, int o, int e, const ur_value_fields 
         ur_add(st, sub, vf->count, o, len, ENC_BIG_ENDIAN);
         o += len;
         for (gint64 i = 0; i < n; i++) {
-            o = ur_walk_value(st, sub, o, e, vf, vt,
-                              wmem_strdup_printf(pool, "Item %" G_GINT64_MODIFIER "d", i),
-                              wmem_strdup_printf(pool, "%s[%" G_GINT64_MODIFIER "d]", path, i), depth + 1, err);
+            char item_label[32];
+            ur_path at = { path, NULL, i, FALSE };
+            snprintf(item_label, sizeof item_label, "Item %" G_GINT64_MODIFIER "d", i);
+            o = ur_walk_value(st, sub, o, e, vf, vt, item_label, &at, depth + 1, err);
             if (o < 0)
                 return -1;
         }
     } else if (kind->layout == UR_V_MATRIX) {
         if (o + 2 * len > e) {
-            *err = ur_short(st, NULL, path, o, 2 * len, e);
+            *err = ur_short(st, path, "", o, 2 * len, e);
             return -1;
         }
         gint64 rows = ur_int_at(st->tvb, o, kind->len, TRUE), cols = ur_int_at(st->tvb, o + len, kind->len, TRUE);
         if (rows < 0) {
-            *err = ur_negative(st, NULL, path, o, rows);
+            *err = ur_negative(st, path, "", o, rows);
             return -1;
         }
         if (cols < 0) {
-            *err = ur_negative(st, NULL, path, o + len, cols);
+            *err = ur_negative(st, path, "", o + len, cols);
             return -1;
         }
         /* Rows of no items would take no bytes at all: any number of them fits in none. */
         if (rows > 0 && cols == 0) {
-            *err = wmem_strdup_printf(pool, "%s at offset %d: %" G_GINT64_MODIFIER "d rows of 0 columns", path,
-                                      o - st->base, rows);
+            *err = wmem_strdup_printf(pool, "%s at offset %d: %" G_GINT64_MODIFIER "d rows of 0 columns",
+                                      ur_path_text(st, path, ""), o - st->base, rows);
             return -1;
         }
         if ((*err = ur_too_many(st, vt, path, o, rows * cols, o + 2 * len, e)) != NULL)
@@ -3370,14 +3834,15 @@ ur_walk_value(ur_msg *st, proto_tree *tree, int o, int e, const ur_value_fields 
         ur_add(st, sub, vf->cols, o + len, len, ENC_BIG_ENDIAN);
         o += 2 * len;
         for (gint64 r = 0; r < rows; r++) {
-            proto_item *row = ur_add_labelled(st, sub, vf->row, o, 0,
-                                              wmem_strdup_printf(pool, "Row %" G_GINT64_MODIFIER "d", r));
+            char text[32];
+            snprintf(text, sizeof text, "Row %" G_GINT64_MODIFIER "d", r);
+            proto_item *row = ur_add_labelled(st, sub, vf->row, o, 0, text);
+            ur_path row_at = { path, NULL, r, FALSE };
             int row_start = o;
             for (gint64 c = 0; c < cols; c++) {
-                o = ur_walk_value(st, ur_sub(row), o, e, vf, vt,
-                                  wmem_strdup_printf(pool, "Column %" G_GINT64_MODIFIER "d", c),
-                                  wmem_strdup_printf(pool, "%s[%" G_GINT64_MODIFIER "d][%" G_GINT64_MODIFIER "d]",
-                                                     path, r, c), depth + 1, err);
+                ur_path at = { &row_at, NULL, c, FALSE };
+                snprintf(text, sizeof text, "Column %" G_GINT64_MODIFIER "d", c);
+                o = ur_walk_value(st, ur_sub(row), o, e, vf, vt, text, &at, depth + 1, err);
                 if (o < 0)
                     return -1;
             }
@@ -3390,24 +3855,26 @@ ur_walk_value(ur_msg *st, proto_tree *tree, int o, int e, const ur_value_fields 
 
 /* Typed values, each followed by a terminator, to the end of the layout. */
 static int
-ur_walk_values(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_values(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre,
+               const char **err)
 {
     const ur_value_table *vt = ur_value_table_of(st->version);
     wmem_allocator_t *pool = st->pinfo->pool;
     for (unsigned i = 0; o < e; i++) {
-        const char *path = wmem_strdup_printf(pool, "%s%s[%u]", pre ? pre : "", d->path, i);
-        o = ur_walk_value(st, tree, o, e, d->values, vt, wmem_strdup_printf(pool, "%s %u", d->label, i), path, 1,
-                          err);
+        char label[64];
+        ur_path at = { pre, d->path, i, FALSE };
+        snprintf(label, sizeof label, "%s %u", d->label, i);
+        o = ur_walk_value(st, tree, o, e, d->values, vt, label, &at, 1, err);
         if (o < 0)
             return -1;
         if (o >= e) {
-            *err = ur_short(st, NULL, path, o, 1, e);
+            *err = ur_short(st, &at, "", o, 1, e);
             return -1;
         }
         guint8 b = tvb_get_guint8(st->tvb, o);
         if (b != d->n) {
-            *err = wmem_strdup_printf(pool, "%s at offset %d: expected terminator 0x%02x, found 0x%02x", path,
-                                      o - st->base, d->n, b);
+            *err = wmem_strdup_printf(pool, "%s at offset %d: expected terminator 0x%02x, found 0x%02x",
+                                      ur_path_text(st, &at, ""), o - st->base, d->n, b);
             return -1;
         }
         o++;
@@ -3657,7 +4124,7 @@ ur_add_code(ur_msg *st, proto_tree *tree, int field, int o, int n, const char *l
             guint32 v, guint32 code)
 {
     proto_item *item = ur_add(st, tree, field, o, n, ENC_BIG_ENDIAN);
-    if (tables != NULL)
+    if (tables != NULL && st->visible)
         ur_rename(item, label, tables, v, code);
     return item;
 }
@@ -3683,11 +4150,11 @@ ur_show_version(ur_msg *st, proto_item *item)
         ? wmem_strdup_printf(pool, "%s (from layout sizes)", st->message_implied)
         : ur_version_text(st->message_version, buf);
     if (ur_room(st, tree))
-        proto_item_set_generated(proto_tree_add_string(tree, ur_hf(UR_HF_SOFTWARE_VERSION), st->tvb, 0, 0, text));
+        proto_item_set_generated(proto_tree_add_string(tree, ur_hf(UR_HF_SOFTWARE_VERSION), st->call_tvb, 0, 0, text));
     if (st->announced)
         return;
     if (ur_room(st, tree))
-        proto_item_set_generated(proto_tree_add_boolean(tree, ur_hf(UR_HF_VERSION_ASSUMED), st->tvb, 0, 0, TRUE));
+        proto_item_set_generated(proto_tree_add_boolean(tree, ur_hf(UR_HF_VERSION_ASSUMED), st->call_tvb, 0, 0, TRUE));
     if (st->message_implied)
         text = wmem_strdup_printf(pool, "no Version message seen on this stream: software %s, as the layout sizes "
                                   "show", st->message_implied);
@@ -3719,7 +4186,7 @@ ur_package(ur_msg *st, const ur_message *m, proto_tree *tree, int p, int size, g
     proto_item *item = ur_add(st, tree, pk ? pk->item : UR_HF_UNKNOWN_PACKAGE, p, size, ENC_NA);
     gboolean named;
     const char *name = ur_code_name(m->names, m->tables, v, code, &named);
-    if (pk == NULL && item != NULL)
+    if (pk == NULL && item != NULL && st->visible)
         proto_item_set_text(item, "Unknown package %u (%s)", code, name ? name : "not in the spec");
     proto_tree *sub = ur_sub(item);
     ur_add(st, sub, m->length_hf, p, UR_PACKAGE_LENGTH_SIZE, ENC_BIG_ENDIAN);
@@ -3964,7 +4431,8 @@ ur_carry_new(const guint8 *bytes, unsigned n)
 {
     ur_carry *c = wmem_new(wmem_file_scope(), ur_carry);
     c->bytes = wmem_array_sized_new(wmem_file_scope(), 1, n > 64 ? n : 64);
-    wmem_array_append(c->bytes, bytes, n);
+    if (n > 0)
+        wmem_array_append(c->bytes, bytes, n);
     return c;
 }
 
@@ -4193,7 +4661,7 @@ ur_scan(tvbuff_t *tvb, int p, int n, int *stop)
 static int
 ur_dissect_client(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree)
 {
-    int n = tvb_reported_length(tvb);
+    int n = tvb_captured_length(tvb);
     col_set_str(pinfo->cinfo, COL_PROTOCOL, "UR");
     proto_item *item = proto_tree_add_item(tree, proto_ur, tvb, 0, -1, ENC_NA);
     proto_tree_add_item(proto_item_add_subtree(item, ett_ur), hf_ur[UR_HF_URSCRIPT], tvb, 0, -1, ENC_UTF_8);
@@ -4271,7 +4739,8 @@ ur_announced_version(tvbuff_t *tvb, int o, int e, gint64 *bad_bugfix, int *bugfi
 
 /* One whole message from o to e (its declared length): version, Info column, tree. */
 static void
-ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call *cur, int o, int e, guint8 type)
+ur_dissect_message(tvbuff_t *tvb, tvbuff_t *call_tvb, packet_info *pinfo, proto_tree *tree, ur_call *cur, int o,
+                   int e, guint8 type)
 {
     const ur_message *m = ur_messages[type];
     gint64 bad_bugfix = 0;
@@ -4289,6 +4758,7 @@ ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call 
     memset(&st, 0, sizeof st);
     st.pinfo = pinfo;
     st.tvb = tvb;
+    st.call_tvb = call_tvb;
     st.base = o;
     ur_begin(&st, version, implied);
     wmem_strbuf_t *text = m ? ur_message_info(&st, m, o, e, cur->columns) : NULL;
@@ -4304,6 +4774,7 @@ ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call 
         return;
     proto_item *item = proto_tree_add_item(tree, proto_ur, tvb, o, e - o, ENC_NA);
     proto_tree *sub = proto_item_add_subtree(item, ett_ur);
+    st.visible = PTREE_DATA(tree)->visible;
     proto_tree_add_item(sub, hf_ur[UR_HF_LENGTH], tvb, o, UR_LENGTH_SIZE, ENC_BIG_ENDIAN);
     proto_item *type_item = proto_tree_add_item(sub, hf_ur[UR_HF_TYPE], tvb, o + UR_LENGTH_SIZE,
                                                 UR_HEADER_SIZE - UR_LENGTH_SIZE, ENC_BIG_ENDIAN);
@@ -4348,7 +4819,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
 {
     if (pinfo->srcport != pinfo->match_uint)
         return ur_dissect_client(tvb, pinfo, tree);
-    int n = tvb_reported_length(tvb);
+    int n = tvb_captured_length(tvb);
     ur_call cur;
     /* Field work only when someone looks: a tree, or a filter or column naming ur. */
     cur.detail = tree != NULL && proto_field_is_referenced(tree, proto_ur);
@@ -4383,7 +4854,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
         buf = tvb_new_child_real_data(tvb, joined, snap->carried + n, snap->carried + n);
         add_new_data_source(pinfo, buf, "UR bytes carried over");
     }
-    int len = tvb_reported_length(buf);
+    int len = tvb_captured_length(buf);
     carry = NULL;
     int o = 0, stop = 0;
     if (resync) {
@@ -4463,7 +4934,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
                 ur_set_info_text(pinfo, cur.first, "Continuation");
             break;
         } else {
-            ur_dissect_message(buf, pinfo, tree, &cur, o, o + (int)size, type);
+            ur_dissect_message(buf, tvb, pinfo, tree, &cur, o, o + (int)size, type);
             o += (int)size;
         }
     }
@@ -4595,32 +5066,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_JOINT_DATA_Q_ACTUAL],
           { "Actual joint position", "ur.joint_data.q_actual",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Measured angle of the joint. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_Q_TARGET],
           { "Target joint position", "ur.joint_data.q_target",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Angle the controller commands. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_QD_ACTUAL],
           { "Actual joint velocity", "ur.joint_data.qd_actual",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_1_rad_s, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Measured angular velocity of the joint. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_I_ACTUAL],
           { "Actual joint current", "ur.joint_data.i_actual",
-            FT_FLOAT, BASE_UNIT_STRING, &units_amp, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Measured motor current; l_actual in the document. In A.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_V_ACTUAL],
           { "Actual joint voltage", "ur.joint_data.v_actual",
-            FT_FLOAT, BASE_UNIT_STRING, &units_volt, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Measured joint voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_T_MOTOR],
           { "Motor temperature", "ur.joint_data.t_motor",
-            FT_FLOAT, BASE_UNIT_STRING, &units_degree_celsius, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Temperature of the joint. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_JOINT_DATA_T_MICRO],
@@ -4660,22 +5131,22 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_VOLTAGE_48V],
           { "Tool voltage", "ur.tool_data.tool_voltage_48v",
-            FT_FLOAT, BASE_UNIT_STRING, &units_volt, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Tool voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_OUTPUT_VOLTAGE],
           { "Tool output voltage", "ur.tool_data.tool_output_voltage",
-            FT_UINT8, BASE_DEC|BASE_UNIT_STRING, &units_volt, 0x0,
+            FT_UINT8, BASE_DEC|BASE_UNIT_STRING, &ur_units_0_v, 0x0,
             "Tool output voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_CURRENT],
           { "Tool current", "ur.tool_data.tool_current",
-            FT_FLOAT, BASE_UNIT_STRING, &units_amp, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Tool current. In A.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_TEMPERATURE],
           { "Tool temperature", "ur.tool_data.tool_temperature",
-            FT_FLOAT, BASE_UNIT_STRING, &units_degree_celsius, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Tool temperature. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_TOOL_DATA_TOOL_MODE],
@@ -4923,17 +5394,17 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_MASTER_BOARD_TEMPERATURE],
           { "Masterboard temperature", "ur.masterboard_data.master_board_temperature",
-            FT_FLOAT, BASE_UNIT_STRING, &units_degree_celsius, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Masterboard temperature. In \302\260C.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_ROBOT_VOLTAGE_48V],
           { "Robot voltage", "ur.masterboard_data.robot_voltage_48v",
-            FT_FLOAT, BASE_UNIT_STRING, &units_volt, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Robot voltage. In V.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_ROBOT_CURRENT],
           { "Robot current", "ur.masterboard_data.robot_current",
-            FT_FLOAT, BASE_UNIT_STRING, &units_amp, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Robot current. In A.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_MASTER_IO_CURRENT],
@@ -4994,7 +5465,7 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_EUROMAP_VOLTAGE_24V],
           { "Euromap67 24 V voltage", "ur.masterboard_data.euromap_voltage_24v",
-            FT_FLOAT, BASE_UNIT_STRING, &units_volt, 0x0,
+            FT_FLOAT, BASE_NONE, NULL, 0x0,
             "Euromap67 24 V voltage. In V. Sent by software 3.0 and later.", HFILL }
         },
         { &hf_ur[UR_HF_MASTERBOARD_DATA_EUROMAP_CURRENT],
@@ -5032,62 +5503,62 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_X],
           { "TCP position X", "ur.cartesian_info.x",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Position of the tool centre point in base coordinates, X. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_Y],
           { "TCP position Y", "ur.cartesian_info.y",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Position of the tool centre point in base coordinates, Y. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_Z],
           { "TCP position Z", "ur.cartesian_info.z",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Position of the tool centre point in base coordinates, Z. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RX],
           { "TCP rotation Rx", "ur.cartesian_info.rx",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Orientation of the tool as a rotation vector, Rx. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RY],
           { "TCP rotation Ry", "ur.cartesian_info.ry",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Orientation of the tool as a rotation vector, Ry. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_RZ],
           { "TCP rotation Rz", "ur.cartesian_info.rz",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Orientation of the tool as a rotation vector, Rz. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_X],
           { "TCP offset X", "ur.cartesian_info.tcp_offset_x",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset X. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_Y],
           { "TCP offset Y", "ur.cartesian_info.tcp_offset_y",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset Y. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_Z],
           { "TCP offset Z", "ur.cartesian_info.tcp_offset_z",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset Z. In m. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RX],
           { "TCP offset Rx", "ur.cartesian_info.tcp_offset_rx",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset Rx. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RY],
           { "TCP offset Ry", "ur.cartesian_info.tcp_offset_ry",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset Ry. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO_TCP_OFFSET_RZ],
           { "TCP offset Rz", "ur.cartesian_info.tcp_offset_rz",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "TCP offset Rz. In rad. Sent by software 3.1 and later.", HFILL }
         },
         { &hf_ur[UR_HF_CARTESIAN_INFO],
@@ -5124,22 +5595,22 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_THETA],
           { "DH theta", "ur.kinematics_info.dh_theta",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH theta. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_A],
           { "DH a", "ur.kinematics_info.dh_a",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH a. In m.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_D],
           { "DH d", "ur.kinematics_info.dh_d",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Dhd in the document. In m.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_DH_ALPHA],
           { "DH alpha", "ur.kinematics_info.dh_alpha",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH alpha. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_KINEMATICS_INFO_CALIBRATION_STATUS],
@@ -5160,12 +5631,12 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MIN_LIMIT],
           { "Minimum joint position", "ur.configuration_data.joint_min_limit",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Minimum joint position. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_LIMIT],
           { "Maximum joint position", "ur.configuration_data.joint_max_limit",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "jointMaxLimitt in the document. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MOTION_LIMITS],
@@ -5175,32 +5646,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_SPEED],
           { "Maximum joint speed", "ur.configuration_data.joint_max_speed",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_1_rad_s, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Maximum joint speed. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_JOINT_MAX_ACCELERATION],
           { "Maximum joint acceleration", "ur.configuration_data.joint_max_acceleration",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_2_rad_s, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Maximum joint acceleration. In rad/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_V_JOINT_DEFAULT],
           { "Default joint speed", "ur.configuration_data.v_joint_default",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_1_rad_s, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Default joint speed. In rad/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_A_JOINT_DEFAULT],
           { "Default joint acceleration", "ur.configuration_data.a_joint_default",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_2_rad_s, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Default joint acceleration. In rad/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_V_TOOL_DEFAULT],
           { "Default tool speed", "ur.configuration_data.v_tool_default",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meter_sec, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Default tool speed. In m/s.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_A_TOOL_DEFAULT],
           { "Default tool acceleration", "ur.configuration_data.a_tool_default",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meter_sec_squared, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Default tool acceleration. In m/s\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_EQ_RADIUS],
@@ -5210,22 +5681,22 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_A],
           { "DH a", "ur.configuration_data.dh_a",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH a. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_D],
           { "DH d", "ur.configuration_data.dh_d",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH d. In m.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_ALPHA],
           { "DH alpha", "ur.configuration_data.dh_alpha",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH alpha. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_DH_THETA],
           { "DH theta", "ur.configuration_data.dh_theta",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_0_rad, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "DH theta. In rad.", HFILL }
         },
         { &hf_ur[UR_HF_CONFIGURATION_DATA_MASTERBOARD_VERSION],
@@ -5273,32 +5744,32 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FX],
           { "Force X", "ur.force_mode_data.fx",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_3_n, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Force X. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FY],
           { "Force Y", "ur.force_mode_data.fy",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_3_n, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Force Y. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FZ],
           { "Force Z", "ur.force_mode_data.fz",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_3_n, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Force Z. In N.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRX],
           { "Torque X", "ur.force_mode_data.frx",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_newton_metre, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Torque X. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRY],
           { "Torque Y", "ur.force_mode_data.fry",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_newton_metre, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Torque Y. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_FRZ],
           { "Torque Z", "ur.force_mode_data.frz",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_newton_metre, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Torque Z. In Nm.", HFILL }
         },
         { &hf_ur[UR_HF_FORCE_MODE_DATA_ROBOT_DEXTERITY],
@@ -5470,17 +5941,17 @@ proto_register_ur(void)
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_MASS],
           { "Payload mass", "ur.payload_info.mass",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_4_kg, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Payload mass. In kg.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_CENTER_OF_GRAVITY],
           { "Payload centre of gravity", "ur.payload_info.center_of_gravity",
-            FT_DOUBLE, BASE_UNIT_STRING, &units_meters, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "CoGx, CoGy, CoGz from the tool flange. In m.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO_INERTIA],
           { "Payload inertia", "ur.payload_info.inertia",
-            FT_DOUBLE, BASE_UNIT_STRING, &ur_units_5_kg_m, 0x0,
+            FT_DOUBLE, BASE_NONE, NULL, 0x0,
             "Ixx, Iyy, Izz, Ixy, Ixz, Iyz. In kg\302\267m\302\262.", HFILL }
         },
         { &hf_ur[UR_HF_PAYLOAD_INFO],
@@ -6180,16 +6651,46 @@ proto_register_ur(void)
     };
 
     static ei_register_info ei[] = {
-        { &ei_ur_bad_length, { "ur.bad_length", PI_MALFORMED, PI_ERROR, "Message length out of range (resynchronising)", EXPFILL } },
-        { &ei_ur_bad_type, { "ur.bad_type", PI_MALFORMED, PI_ERROR, "Unknown message type (resynchronising)", EXPFILL } },
-        { &ei_ur_malformed, { "ur.malformed", PI_MALFORMED, PI_ERROR, "Package or message too short or malformed", EXPFILL } },
-        { &ei_ur_extra, { "ur.extra_bytes", PI_PROTOCOL, PI_WARN, "Bytes after the known layout", EXPFILL } },
-        { &ei_ur_unknown, { "ur.unknown", PI_UNDECODED, PI_NOTE, "Type not laid out by the spec, kept raw", EXPFILL } },
-        { &ei_ur_assumed, { "ur.assumed_version", PI_ASSUMPTION, PI_NOTE, "Software version assumed (no Version message seen)", EXPFILL } },
-        { &ei_ur_version_range, { "ur.version_out_of_range", PI_PROTOCOL, PI_WARN, "Version message number out of range: set aside, the stream is read as major.minor", EXPFILL } },
-        { &ei_ur_by_length, { "ur.layout_by_length", PI_ASSUMPTION, PI_NOTE, "Layout chosen by its length, not by the software version", EXPFILL } },
-        { &ei_ur_items_hidden, { "ur.items_hidden", PI_UNDECODED, PI_NOTE, "More tree items than a message shows", EXPFILL } },
-        { &ei_ur_internal, { "ur.internal_error", PI_MALFORMED, PI_ERROR, "urwire dissector error", EXPFILL } },
+        { &ei_ur_bad_length,
+          { "ur.bad_length", PI_MALFORMED, PI_ERROR,
+            "Message length out of range (resynchronising)", EXPFILL }
+        },
+        { &ei_ur_bad_type,
+          { "ur.bad_type", PI_MALFORMED, PI_ERROR,
+            "Unknown message type (resynchronising)", EXPFILL }
+        },
+        { &ei_ur_malformed,
+          { "ur.malformed", PI_MALFORMED, PI_ERROR,
+            "Package or message too short or malformed", EXPFILL }
+        },
+        { &ei_ur_extra,
+          { "ur.extra_bytes", PI_PROTOCOL, PI_WARN,
+            "Bytes after the known layout", EXPFILL }
+        },
+        { &ei_ur_unknown,
+          { "ur.unknown", PI_UNDECODED, PI_NOTE,
+            "Type not laid out by the spec, kept raw", EXPFILL }
+        },
+        { &ei_ur_assumed,
+          { "ur.assumed_version", PI_ASSUMPTION, PI_NOTE,
+            "Software version assumed (no Version message seen)", EXPFILL }
+        },
+        { &ei_ur_version_range,
+          { "ur.version_out_of_range", PI_PROTOCOL, PI_WARN,
+            "Version message number out of range: set aside, the stream is read as major.minor", EXPFILL }
+        },
+        { &ei_ur_by_length,
+          { "ur.layout_by_length", PI_ASSUMPTION, PI_NOTE,
+            "Layout chosen by its length, not by the software version", EXPFILL }
+        },
+        { &ei_ur_items_hidden,
+          { "ur.items_hidden", PI_UNDECODED, PI_NOTE,
+            "More tree items than a message shows", EXPFILL }
+        },
+        { &ei_ur_internal,
+          { "ur.internal_error", PI_MALFORMED, PI_ERROR,
+            "urwire dissector error", EXPFILL }
+        },
     };
 
     module_t *ur_module;
@@ -6210,12 +6711,14 @@ proto_register_ur(void)
         "Version message is seen on a stream: it chooses the layouts, the enum names and the "
         "global-variable value types. Empty: the layout sizes tell it where they can, else "
         "5.9" ".", &ur_version_pref);
+    /* The Lua twin's way to build only the packages tshark -T fields names; Wireshark fakes the
+     * items no one asked for of a native dissector by itself. Kept so that the same command lines
+     * and preference files work with either. */
+    prefs_register_bool_preference(ur_module, "named_fields_only", "Only the fields tshark -T fields names",
+        "Read by the Lua dissector only: a native dissector's fields cost nothing when no one asks for them",
+        &ur_named_fields_only);
     prefs_register_uint_preference(ur_module, "max_length", "Maximum message length",
         "Longer declared lengths are treated as malformed, and the dissector resynchronises", 10, &ur_max_length);
-
-    /* tshark -T fields needs no help to build only what it prints: Wireshark fakes the items no
-     * one asked for. Kept so that the Lua dissector's command lines work unchanged. */
-    prefs_register_obsolete_preference(ur_module, "named_fields_only");
 
     ur_handle = register_dissector("ur", dissect_ur, proto_ur);
 }

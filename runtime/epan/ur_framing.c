@@ -107,7 +107,7 @@ ur_scan(tvbuff_t *tvb, int p, int n, int *stop)
 static int
 ur_dissect_client(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree)
 {
-    int n = tvb_reported_length(tvb);
+    int n = tvb_captured_length(tvb);
     col_set_str(pinfo->cinfo, COL_PROTOCOL, "UR");
     proto_item *item = proto_tree_add_item(tree, proto_ur, tvb, 0, -1, ENC_NA);
     proto_tree_add_item(proto_item_add_subtree(item, ett_ur), hf_ur[UR_HF_URSCRIPT], tvb, 0, -1, ENC_UTF_8);
@@ -185,7 +185,8 @@ ur_announced_version(tvbuff_t *tvb, int o, int e, gint64 *bad_bugfix, int *bugfi
 
 /* One whole message from o to e (its declared length): version, Info column, tree. */
 static void
-ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call *cur, int o, int e, guint8 type)
+ur_dissect_message(tvbuff_t *tvb, tvbuff_t *call_tvb, packet_info *pinfo, proto_tree *tree, ur_call *cur, int o,
+                   int e, guint8 type)
 {
     const ur_message *m = ur_messages[type];
     gint64 bad_bugfix = 0;
@@ -203,6 +204,7 @@ ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call 
     memset(&st, 0, sizeof st);
     st.pinfo = pinfo;
     st.tvb = tvb;
+    st.call_tvb = call_tvb;
     st.base = o;
     ur_begin(&st, version, implied);
     wmem_strbuf_t *text = m ? ur_message_info(&st, m, o, e, cur->columns) : NULL;
@@ -218,6 +220,7 @@ ur_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_call 
         return;
     proto_item *item = proto_tree_add_item(tree, proto_ur, tvb, o, e - o, ENC_NA);
     proto_tree *sub = proto_item_add_subtree(item, ett_ur);
+    st.visible = PTREE_DATA(tree)->visible;
     proto_tree_add_item(sub, hf_ur[UR_HF_LENGTH], tvb, o, UR_LENGTH_SIZE, ENC_BIG_ENDIAN);
     proto_item *type_item = proto_tree_add_item(sub, hf_ur[UR_HF_TYPE], tvb, o + UR_LENGTH_SIZE,
                                                 UR_HEADER_SIZE - UR_LENGTH_SIZE, ENC_BIG_ENDIAN);
@@ -262,7 +265,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
 {
     if (pinfo->srcport != pinfo->match_uint)
         return ur_dissect_client(tvb, pinfo, tree);
-    int n = tvb_reported_length(tvb);
+    int n = tvb_captured_length(tvb);
     ur_call cur;
     /* Field work only when someone looks: a tree, or a filter or column naming ur. */
     cur.detail = tree != NULL && proto_field_is_referenced(tree, proto_ur);
@@ -297,7 +300,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
         buf = tvb_new_child_real_data(tvb, joined, snap->carried + n, snap->carried + n);
         add_new_data_source(pinfo, buf, "UR bytes carried over");
     }
-    int len = tvb_reported_length(buf);
+    int len = tvb_captured_length(buf);
     carry = NULL;
     int o = 0, stop = 0;
     if (resync) {
@@ -377,7 +380,7 @@ dissect_ur(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
                 ur_set_info_text(pinfo, cur.first, "Continuation");
             break;
         } else {
-            ur_dissect_message(buf, pinfo, tree, &cur, o, o + (int)size, type);
+            ur_dissect_message(buf, tvb, pinfo, tree, &cur, o, o + (int)size, type);
             o += (int)size;
         }
     }

@@ -6,7 +6,8 @@
  * so that a malformed message still reads as one. As runtime/lua/items.lua. */
 typedef struct {
     packet_info *pinfo;
-    tvbuff_t *tvb;
+    tvbuff_t *tvb;              /* the message's bytes (carried-over bytes first, when there are) */
+    tvbuff_t *call_tvb;         /* the bytes the call was handed: generated items stand at its start */
     int base;                   /* the message's first byte: error offsets count from it */
     guint32 version;            /* the version it is read with (moves on when layout sizes tell it) */
     gboolean known;             /* announced or from the preference */
@@ -15,6 +16,7 @@ typedef struct {
     const char *implied;        /* the versions of the form whose size told the version, or NULL */
     guint32 message_version;    /* what the message's tree shows */
     const char *message_implied;
+    gboolean visible;           /* the tree is shown: item texts are worth writing */
     gint64 kept[UR_KEEP_SLOTS]; /* values later fields depend on (present_if, switch) */
     gboolean kept_set[UR_KEEP_SLOTS];
     /* the tree cap */
@@ -66,14 +68,23 @@ ur_add(ur_msg *st, proto_tree *tree, int field, int o, int n, guint encoding)
     return proto_tree_add_item(tree, ur_hf(field), st->tvb, o, n, encoding);
 }
 
-/* A subtree item with its own text (a group's "Joint 0"); counted. */
+/* A subtree item with its own text (a group's "Joint 0"); counted. Item texts are written only
+ * where the tree is shown: a field no one asked for is the parent's item, faked by Wireshark. */
 static proto_item *
 ur_add_labelled(ur_msg *st, proto_tree *tree, int field, int o, int n, const char *label)
 {
     proto_item *item = ur_add(st, tree, field, o, n, ENC_NA);
-    if (item)
+    if (item && st->visible)
         proto_item_set_text(item, "%s", label);
     return item;
+}
+
+/* A float's unit after its value. */
+static inline void
+ur_unit(ur_msg *st, proto_item *item, const char *unit)
+{
+    if (unit != NULL && item != NULL && st->visible)
+        proto_item_append_text(item, "%s", unit);
 }
 
 /* An expert info on item; past the cap, the first goes to the message's item. */

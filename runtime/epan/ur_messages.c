@@ -30,7 +30,7 @@ ur_add_code(ur_msg *st, proto_tree *tree, int field, int o, int n, const char *l
             guint32 v, guint32 code)
 {
     proto_item *item = ur_add(st, tree, field, o, n, ENC_BIG_ENDIAN);
-    if (tables != NULL)
+    if (tables != NULL && st->visible)
         ur_rename(item, label, tables, v, code);
     return item;
 }
@@ -56,11 +56,11 @@ ur_show_version(ur_msg *st, proto_item *item)
         ? wmem_strdup_printf(pool, "%s (from layout sizes)", st->message_implied)
         : ur_version_text(st->message_version, buf);
     if (ur_room(st, tree))
-        proto_item_set_generated(proto_tree_add_string(tree, ur_hf(UR_HF_SOFTWARE_VERSION), st->tvb, 0, 0, text));
+        proto_item_set_generated(proto_tree_add_string(tree, ur_hf(UR_HF_SOFTWARE_VERSION), st->call_tvb, 0, 0, text));
     if (st->announced)
         return;
     if (ur_room(st, tree))
-        proto_item_set_generated(proto_tree_add_boolean(tree, ur_hf(UR_HF_VERSION_ASSUMED), st->tvb, 0, 0, TRUE));
+        proto_item_set_generated(proto_tree_add_boolean(tree, ur_hf(UR_HF_VERSION_ASSUMED), st->call_tvb, 0, 0, TRUE));
     if (st->message_implied)
         text = wmem_strdup_printf(pool, "no Version message seen on this stream: software %s, as the layout sizes "
                                   "show", st->message_implied);
@@ -92,7 +92,7 @@ ur_package(ur_msg *st, const ur_message *m, proto_tree *tree, int p, int size, g
     proto_item *item = ur_add(st, tree, pk ? pk->item : UR_HF_UNKNOWN_PACKAGE, p, size, ENC_NA);
     gboolean named;
     const char *name = ur_code_name(m->names, m->tables, v, code, &named);
-    if (pk == NULL && item != NULL)
+    if (pk == NULL && item != NULL && st->visible)
         proto_item_set_text(item, "Unknown package %u (%s)", code, name ? name : "not in the spec");
     proto_tree *sub = ur_sub(item);
     ur_add(st, sub, m->length_hf, p, UR_PACKAGE_LENGTH_SIZE, ENC_BIG_ENDIAN);

@@ -53,7 +53,8 @@ ur_carry_new(const guint8 *bytes, unsigned n)
 {
     ur_carry *c = wmem_new(wmem_file_scope(), ur_carry);
     c->bytes = wmem_array_sized_new(wmem_file_scope(), 1, n > 64 ? n : 64);
-    wmem_array_append(c->bytes, bytes, n);
+    if (n > 0)
+        wmem_array_append(c->bytes, bytes, n);
     return c;
 }
 

@@ -37,11 +37,13 @@ typedef struct {
     int code;
     int hf;
     unsigned n;
+    const char *unit;               /* a float's unit, shown after its value (" rad") */
 } ur_case;
 
 typedef struct {
     int default_hf;
     unsigned default_n;
+    const char *default_unit;
     const ur_case *cases;
     unsigned n_cases;
 } ur_switch;
@@ -83,6 +85,8 @@ struct ur_desc {
     const char *path;               /* in error texts */
     const char *show;               /* Info column: the text before its value; NULL: not shown */
     const char *label;              /* group item label; the name of an enum named by version */
+    const char *unit;               /* a float's unit, shown after its value: Wireshark 4.0 shows no unit
+                                     * string of a float field */
     const value_string *vs;         /* enum names, for the Info column */
     const ur_names *names;          /* enum names by version, NULL when they do not depend on it */
     const ur_layout *inner;         /* group item, cond fields */

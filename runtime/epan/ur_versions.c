@@ -45,9 +45,11 @@ ur_parse_version(const char *text)
             p++;
         }
     }
-    if (part[0] > 4000 || part[1] > 999)
-        return UR_VERSION_NONE;     /* beyond what one number holds */
-    return ur_version_number((guint32)part[0], (guint32)part[1], (gint64)part[2]);
+    guint64 bugfix = part[2] > UR_BUGFIX_ANY ? UR_BUGFIX_ANY : part[2];
+    guint64 v = (part[0] * 1000 + part[1]) * 1000 + bugfix;
+    /* As Lua's numbers do, a minor of 1000 or more carries into the major; a version past what
+     * one number holds reads as the newest there is. */
+    return v >= UR_VERSION_NONE ? UR_VERSION_NONE - 1 : (guint32)v;
 }
 
 /* 5009000 -> "5.9", 5025001 -> "5.25.1", 5008999 (any 5.8.x) -> "5.8", into buf. */

@@ -3,29 +3,79 @@
  * the layout ends. A walk returns the offset after the layout, or -1 with the canonical error text
  * in *err ("joints[2].q_actual at offset 31: needs 8 bytes, 3 left", offsets from the message's
  * first byte, as every target words it). As runtime/lua/walk.lua. */
-static int ur_walk(ur_msg *st, proto_tree *tree, int o, int e, const ur_layout *layout, const char *pre,
+/* Where a field stands, for error texts only: made as the walk goes down (a group's item
+ * "joints[2].", a value "variables[1][0]"), written out only when an error names it. */
+typedef struct ur_path {
+    const struct ur_path *up;
+    const char *name;           /* NULL: an index of what `up` names */
+    gint64 index;               /* -1: none */
+    gboolean dot;               /* a group item: its fields follow after a dot */
+} ur_path;
+
+static void
+ur_path_write(wmem_strbuf_t *out, const ur_path *at)
+{
+    if (at == NULL)
+        return;
+    ur_path_write(out, at->up);
+    if (at->name != NULL)
+        wmem_strbuf_append(out, at->name);
+    if (at->index >= 0)
+        wmem_strbuf_append_printf(out, "[%" G_GINT64_MODIFIER "d]", at->index);
+    if (at->dot)
+        wmem_strbuf_append_c(out, '.');
+}
+
+/* The path `at`, then `name`, as text. */
+static const char *
+ur_path_text(ur_msg *st, const ur_path *at, const char *name)
+{
+    wmem_strbuf_t *out = wmem_strbuf_new(st->pinfo->pool, "");
+    ur_path_write(out, at);
+    wmem_strbuf_append(out, name);
+    return wmem_strbuf_get_str(out);
+}
+
+static int ur_walk(ur_msg *st, proto_tree *tree, int o, int e, const ur_layout *layout, const ur_path *pre,
                    const char **err);
 
 static const char *
-ur_short(ur_msg *st, const char *pre, const char *path, int o, gint64 need, int e)
+ur_short(ur_msg *st, const ur_path *pre, const char *path, int o, gint64 need, int e)
 {
     int left = e - o < 0 ? 0 : e - o;
-    return wmem_strdup_printf(st->pinfo->pool, "%s%s at offset %d: needs %" G_GINT64_MODIFIER "d bytes, %d left",
-                              pre ? pre : "", path, o - st->base, need, left);
+    return wmem_strdup_printf(st->pinfo->pool, "%s at offset %d: needs %" G_GINT64_MODIFIER "d bytes, %d left",
+                              ur_path_text(st, pre, path), o - st->base, need, left);
 }
 
 static const char *
-ur_negative(ur_msg *st, const char *pre, const char *path, int o, gint64 n)
+ur_negative(ur_msg *st, const ur_path *pre, const char *path, int o, gint64 n)
 {
-    return wmem_strdup_printf(st->pinfo->pool, "%s%s at offset %d: negative length %" G_GINT64_MODIFIER "d",
-                              pre ? pre : "", path, o - st->base, n);
+    return wmem_strdup_printf(st->pinfo->pool, "%s at offset %d: negative length %" G_GINT64_MODIFIER "d",
+                              ur_path_text(st, pre, path), o - st->base, n);
 }
 
 /* An integer of n bytes (1 to 8) at o, big-endian, signed or not. */
 static gint64
 ur_int_at(tvbuff_t *tvb, int o, unsigned n, gboolean is_signed)
 {
-    guint64 v = tvb_get_bits64(tvb, (guint)o * 8, (gint)n * 8, ENC_BIG_ENDIAN);
+    guint64 v;
+    switch (n) {
+    case 1:
+        v = tvb_get_guint8(tvb, o);
+        break;
+    case 2:
+        v = tvb_get_ntohs(tvb, o);
+        break;
+    case 4:
+        v = tvb_get_ntohl(tvb, o);
+        break;
+    case 8:
+        v = tvb_get_ntoh64(tvb, o);
+        break;
+    default:
+        v = tvb_get_bits64(tvb, (guint)o * 8, (gint)n * 8, ENC_BIG_ENDIAN);
+        break;
+    }
     if (is_signed && n < 8 && (v >> (n * 8 - 1)) & 1)
         return (gint64)(v | ~((G_GUINT64_CONSTANT(1) << (n * 8)) - 1));
     return (gint64)v;
@@ -79,8 +129,11 @@ ur_add_value(ur_msg *st, proto_tree *tree, int field, int o, int n, gint64 value
 static proto_item *
 ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
 {
-    if (!(d->flags & UR_VALUE) && d->names == NULL && d->keep == 0)
-        return ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
+    if (!(d->flags & UR_VALUE) && d->names == NULL && d->keep == 0) {
+        proto_item *item = ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
+        ur_unit(st, item, d->unit);
+        return item;
+    }
     gint64 v = 0;
     double real = 0;
     if (d->flags & UR_FLOAT)
@@ -89,8 +142,9 @@ ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
         v = ur_int_at(st->tvb, o, d->n, (d->flags & UR_SIGNED) != 0);
     proto_item *item = (d->flags & UR_VALUE) ? ur_add_value(st, tree, d->hf, o, (int)d->n, v, real)
                                             : ur_add(st, tree, d->hf, o, (int)d->n, ENC_BIG_ENDIAN);
-    if (d->names != NULL)
+    if (d->names != NULL && st->visible)
         ur_rename(item, d->label, d->names, st->version, v);
+    ur_unit(st, item, d->unit);
     if (d->keep != 0) {
         st->kept[d->keep] = v;
         st->kept_set[d->keep] = TRUE;
@@ -99,7 +153,7 @@ ur_add_scalar(ur_msg *st, proto_tree *tree, int o, const ur_desc *d)
 }
 
 static int
-ur_walk_scalar(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_scalar(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     if (o + (int)d->n > e) {
         *err = ur_short(st, pre, d->path, o, (int)d->n, e);
@@ -111,7 +165,7 @@ ur_walk_scalar(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
 
 /* An integer whose bits are shown one by one; the bits read the integer's own bytes. */
 static int
-ur_walk_bits(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_bits(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     if (o + (int)d->n > e) {
         *err = ur_short(st, pre, d->path, o, (int)d->n, e);
@@ -125,11 +179,12 @@ ur_walk_bits(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const
 
 /* count scalars in a row; an error names the element ("q_actual[3]"). */
 static int
-ur_walk_array(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_array(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     for (unsigned i = 0; i < d->count; i++) {
         if (o + (int)d->n > e) {
-            *err = ur_short(st, pre, wmem_strdup_printf(st->pinfo->pool, "%s[%u]", d->path, i), o, (int)d->n, e);
+            ur_path element = { pre, d->path, i, FALSE };
+            *err = ur_short(st, &element, "", o, (int)d->n, e);
             return -1;
         }
         ur_add_scalar(st, tree, o, d);
@@ -140,7 +195,7 @@ ur_walk_array(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, cons
 
 /* A repeated group ("Joint 0".."Joint 5"), count times or to the end of the layout. */
 static int
-ur_walk_group(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_group(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     for (unsigned i = 0; d->count ? i < d->count : o < e; i++) {
         int start = o;
@@ -148,8 +203,8 @@ ur_walk_group(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, cons
         char label[64];
         snprintf(label, sizeof label, "%s %u", d->label, i);
         proto_item *item = ur_add_labelled(st, tree, d->hf, o, fits ? (int)d->size : 0, label);
-        const char *prefix = wmem_strdup_printf(st->pinfo->pool, "%s%s[%u].", pre ? pre : "", d->path, i);
-        o = ur_walk(st, ur_sub(item), o, e, d->inner, prefix, err);
+        ur_path at = { pre, d->path, i, TRUE };
+        o = ur_walk(st, ur_sub(item), o, e, d->inner, &at, err);
         if (o < 0) {
             proto_item_set_len(item, e - start);
             return -1;
@@ -162,7 +217,7 @@ ur_walk_group(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, cons
 
 /* A text with a length prefix. */
 static int
-ur_walk_pstring(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_pstring(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     if (o + (int)d->n > e) {
         *err = ur_short(st, pre, d->path, o, (int)d->n, e);
@@ -198,15 +253,17 @@ ur_walk_strings(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d)
 
 /* One scalar whose type follows an earlier field. */
 static int
-ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre, const char **err)
+ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre, const char **err)
 {
     int hf = d->sw->default_hf;
     unsigned n = d->sw->default_n;
+    const char *unit = d->sw->default_unit;
     if (st->kept_set[d->keep]) {
         for (unsigned i = 0; i < d->sw->n_cases; i++) {
             if (d->sw->cases[i].code == st->kept[d->keep]) {
                 hf = d->sw->cases[i].hf;
                 n = d->sw->cases[i].n;
+                unit = d->sw->cases[i].unit;
             }
         }
     }
@@ -214,17 +271,17 @@ ur_walk_switch(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
         *err = ur_short(st, pre, d->path, o, n, e);
         return -1;
     }
-    ur_add(st, tree, hf, o, (int)n, ENC_BIG_ENDIAN);
+    ur_unit(st, ur_add(st, tree, hf, o, (int)n, ENC_BIG_ENDIAN), unit);
     return o + (int)n;
 }
 
-static int ur_walk_values(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const char *pre,
+static int ur_walk_values(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, const ur_path *pre,
                           const char **err);
 
 /* Walk a layout from o to at most e. pre is the error path of the enclosing group item
  * ("joints[2]."), NULL at the top. */
 static int
-ur_walk(ur_msg *st, proto_tree *tree, int o, int e, const ur_layout *layout, const char *pre, const char **err)
+ur_walk(ur_msg *st, proto_tree *tree, int o, int e, const ur_layout *layout, const ur_path *pre, const char **err)
 {
     for (unsigned i = 0; i < layout->n && o >= 0; i++) {
         const ur_desc *d = &layout->d[i];

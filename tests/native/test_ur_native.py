@@ -5,10 +5,13 @@ on every capture the Lua dissector is tested with. The captures are batched: man
 per capture, so that a few tshark runs cover every vector."""
 from __future__ import annotations
 
+import difflib
 import functools
 import json
 import os
 import random
+import re
+import struct
 import subprocess
 import tempfile
 from pathlib import Path
@@ -104,6 +107,22 @@ def assert_same(capture_bytes: bytes, *args: str) -> harness.Shown:
     return native
 
 
+def _ur_pdml(result) -> list[str]:
+    """The `ur` protocol elements of tshark -T pdml: every item's label (showname), offset and size."""
+    return re.findall(r'<proto name="ur".*?</proto>', harness.checked(result), re.S)
+
+
+def assert_same_tree(capture_bytes: bytes, *args: str) -> None:
+    """Both dissectors build the same tree, item texts, offsets and sizes included (-T pdml)."""
+    native = _ur_pdml(harness.run_native(capture_bytes, "-2", "-T", "pdml", "-Y", "ur", *args))
+    lua = _ur_pdml(LUA(capture_bytes, "-2", "-T", "pdml", "-Y", "ur", *args))
+    assert len(native) == len(lua) and native
+    for i, (n, l) in enumerate(zip(native, lua)):
+        if n != l:
+            diff = difflib.unified_diff(l.splitlines(), n.splitlines(), "lua", "native", lineterm="", n=0)
+            raise AssertionError(f"ur item {i}:\n" + "\n".join(list(diff)[:20]))
+
+
 def _split(data: bytes) -> list[bytes]:
     """A stream cut at its declared lengths where they are plausible (else kept whole)."""
     out, pos = [], 0
@@ -148,10 +167,10 @@ SEGMENTATIONS = {
 }
 
 
-def _golden_capture(hint: str) -> bytes:
-    """Every golden vector of this version hint, in every segmentation, one session each."""
+def _golden_capture(hint: str, segmentations: tuple[str, ...] = tuple(SEGMENTATIONS)) -> bytes:
+    """Every golden vector of this version hint, in these segmentations, one session each."""
     streams, handshakes, retransmit = [], [], []
-    for cut, handshake, every in SEGMENTATIONS.values():
+    for cut, handshake, every in (SEGMENTATIONS[name] for name in segmentations):
         for case in GOLDEN:
             if (case.version or "") == hint:
                 streams.append(cut(_split(case.data)))
@@ -166,11 +185,13 @@ def _prefs(hint: str) -> tuple[str, ...]:
 
 @pytest.mark.parametrize("hint", HINTS, ids=lambda h: h or "no hint")
 def test_golden_vectors_in_every_segmentation(hint):
-    shown = assert_same(_golden_capture(hint), *_prefs(hint))
+    data = _golden_capture(hint)
+    shown = assert_same(data, *_prefs(hint))
     assert sum(1 for layer in shown.layers if layer) > len(SEGMENTATIONS)
+    assert_same_tree(data, *_prefs(hint))
 
 
-def test_generation_sessions():
+def _generation_capture() -> bytes:
     """Sessions of random valid messages of every controller generation (tests/tools/valid.py),
     with and without their Version message, in 7- and 400-byte segments."""
     streams = []
@@ -181,13 +202,20 @@ def test_generation_sessions():
                 session = valid.session(rng, version, 10)
                 for data in (session, session[int.from_bytes(session[:4], "big"):]):
                     streams.append(capture.random_cuts([data], seed=len(streams), max_len=max_len))
-    assert_same(_sessions(streams))
+    return _sessions(streams)
+
+
+def test_generation_sessions():
+    data = _generation_capture()
+    assert_same(data)
+    assert_same_tree(data)
 
 
 @pytest.mark.parametrize("sample", ["primary_session.pcapng", "secondary_session.pcap"])
 def test_bundled_samples(sample):
     shown = assert_same(SAMPLES / sample)
     assert any(shown.layers)
+    assert_same_tree(SAMPLES / sample)
 
 
 # ---- the fuzzers' kept corpora, as tests/lua/test_fuzz_corpus.py feeds them ----
@@ -206,5 +234,141 @@ def _corpus_capture(version: str) -> bytes:
 @pytest.mark.parametrize("version", sorted(fuzz_corpus.GROUPS), ids=lambda v: v or "no hint")
 def test_fuzz_corpus(version):
     """Faults, resynchronisation and their experts included."""
-    shown = assert_same(_corpus_capture(version), *_prefs(version))
+    data = _corpus_capture(version)
+    shown = assert_same(data, *_prefs(version))
     assert shown.experts
+    assert_same_tree(data, *_prefs(version))
+
+
+# ---- the same captures through the plugin built with ASan and UBSan ----
+
+def _sanitizer_env() -> dict:
+    """tshark is not built with ASan: its runtime is preloaded (leaks are Wireshark's to keep)."""
+    runtime = subprocess.run(["gcc", "-print-file-name=libasan.so"], capture_output=True, text=True).stdout.strip()
+    assert os.path.isabs(runtime), f"no libasan.so: {runtime}"
+    return {"LD_PRELOAD": runtime, "ASAN_OPTIONS": "detect_leaks=0:abort_on_error=0",
+            "UBSAN_OPTIONS": "print_stacktrace=1:halt_on_error=1"}
+
+
+def _captures(name: str) -> dict[str, tuple[bytes, tuple[str, ...]]]:
+    """The captures the differential tests read, by group: each with its preferences."""
+    if name == "golden":
+        return {f"golden {h or 'no hint'}": (_golden_capture(h), _prefs(h)) for h in HINTS}
+    if name == "corpus":
+        return {f"corpus {v or 'no hint'}": (_corpus_capture(v), _prefs(v)) for v in sorted(fuzz_corpus.GROUPS)}
+    if name == "generations":
+        return {"generation sessions": (_generation_capture(), ())}
+    return {s: ((SAMPLES / s).read_bytes(), ()) for s in ("primary_session.pcapng", "secondary_session.pcap")}
+
+
+@pytest.mark.parametrize("name", ["golden", "generations", "corpus", "samples"])
+def test_no_sanitizer_report(name):
+    """With a tree (-V; its first pass builds neither tree nor columns) and without one (the packet
+    list: the Info column only)."""
+    env = _sanitizer_env()
+    for label, (data, prefs) in _captures(name).items():
+        for args in (("-2", "-V"), ()):
+            result = harness.run_native(data, *args, *prefs, variant="asan", env=env)
+            err = result.stderr.decode(errors="replace")
+            assert "Sanitizer" not in err and "runtime error" not in err, f"{label} {args}:\n{err[:4000]}"
+            assert result.returncode == 0, f"{label} {args}: exit {result.returncode}\n{err[:2000]}"
+            if "-V" in args:
+                assert b"Universal Robots primary/secondary" in result.stdout, f"{label}: the plugin did not load"
+
+
+# ---- the tree cap, the client's direction, two robots on the same ports ----
+
+def _update(values: bytes) -> bytes:
+    """A global variables update (timestamp, subtype 1, start index 0), then the values."""
+    body = struct.pack(">QBH", 7, 1, 0) + values
+    return struct.pack(">iB", 5 + len(body), 25) + body
+
+
+def _int_list(n: int) -> bytes:
+    """One value: a LIST (17 from 5.9) of n INTs (15), then the terminator."""
+    return struct.pack(">Bh", 17, n) + b"".join(struct.pack(">Bi", 15, i) for i in range(n)) + b"\x0a"
+
+
+def test_tree_cap_client_direction_and_two_robots():
+    """As tests/lua/test_tree_cap.py, test_two_robots.py and the URScript a client sends."""
+    cases = {c.name: c for c in GOLDEN}
+    frames = capture.session_frames([capture.Segment(True, _update(_int_list(3000))),
+                                     capture.Segment(True, _update(_int_list(3000) + bytes([99])))],
+                                    client_port=50001)
+    script = [b"def prog():\n  movej([0, -1.57, 0, -1.57, 0, 0])\nend\n", "textmsg(\"\u00e9t\u00e9\")\n".encode()]
+    robot = _split(cases["key_message"].data)
+    frames += capture.session_frames([capture.Segment(False, script[0]), capture.Segment(True, robot[0]),
+                                      capture.Segment(False, script[1])], client_port=50002)
+    sessions = [capture.session_frames([capture.Segment(True, m) for m in _split(cases[name].data)], port=30001,
+                                       client_port=50123, robot=address)
+                for address, name in (("192.168.56.101", "global_variables_update_3_2_version_message"),
+                                      ("192.168.56.102", "global_variables_update_5_0_version_message"))]
+    frames += [f for pair in zip(*sessions) for f in pair] + max(sessions, key=len)[min(map(len, sessions)):]
+    with tempfile.TemporaryDirectory() as folder:
+        data = capture.write(Path(folder) / "cap.pcap", frames).read_bytes()
+    shown = assert_same(data)
+    assert_same_tree(data)
+    texts = [e.get("_ws.expert.message", "") for e in shown.experts]
+    assert any(t.endswith("more items not shown (a message shows at most 10000)") for t in texts), texts[:5]
+    assert any("unknown value type 99" in t for t in texts)
+    assert any(i.startswith("URScript: def prog():") for i in shown.info)
+
+
+def test_builds_with_clang_too():
+    """-Wall -Wextra -Werror under clang as under gcc (the gcc build is every other test's)."""
+    assert harness.plugin("clang").library.is_file()
+
+
+@pytest.mark.parametrize("how", [("-d", "tcp.port==40000,ur"), ("-o", "ur.ports:40000")],
+                         ids=["decode as", "ports preference"])
+def test_decode_as_and_the_ports_preference(how):
+    """A robot on another port: Decode As, or the ports preference, makes both read it."""
+    frames = []
+    for i, case in enumerate(c for c in GOLDEN if not c.version):
+        frames += capture.session_frames([capture.Segment(True, m) for m in _split(case.data)], port=40000,
+                                         client_port=21000 + i)
+    with tempfile.TemporaryDirectory() as folder:
+        data = capture.write(Path(folder) / "port.pcap", frames).read_bytes()
+    shown = assert_same(data, *how)
+    assert sum(1 for layer in shown.layers if layer) > 50
+    assert_same_tree(data, *how)
+
+
+@pytest.mark.parametrize("args", [
+    ("-T", "fields", "-e", "ur.joint_data.q_actual", "-e", "ur.robot_mode_data.robot_mode", "-e", "_ws.col.Info"),
+    ("-Y", 'ur.robot_mode_data.robot_mode == "RUNNING" && ur.joint_data.q_actual > 0', "-T", "fields",
+     "-e", "frame.number"),
+    ("-2", "-Y", "ur.key.title contains \"PROGRAM\" || ur.version", "-T", "fields", "-e", "frame.number"),
+], ids=["fields", "filter", "filter two passes"])
+def test_fields_and_filters_on_the_sample(args):
+    """tshark -T fields and display filters, where only some fields are asked for."""
+    sample = SAMPLES / "primary_session.pcapng"
+    native, lua = harness.checked(harness.run_native(sample, *args)), harness.checked(LUA(sample, *args))
+    assert native == lua
+    assert native.strip()
+
+
+@pytest.mark.parametrize("group", ["golden", "corpus"])
+def test_packet_list_without_a_tree(group):
+    """tshark's packet list, one pass: no tree, only framing, the version state and the Info column."""
+    captures = ({h: _golden_capture(h) for h in HINTS} if group == "golden"
+                else {v: _corpus_capture(v) for v in sorted(fuzz_corpus.GROUPS)})
+    for hint, data in captures.items():
+        native = harness.checked(harness.run_native(data, *_prefs(hint)))
+        lua = harness.checked(LUA(data, *_prefs(hint)))
+        assert native.splitlines() == lua.splitlines(), hint
+        assert " UR " in native
+
+
+def test_without_tcp_reassembly():
+    """A message split over segments, with reassembly off: what each segment holds, as Lua shows it."""
+    data = _golden_capture("", ("whole", "random_cuts", "1-7 bytes"))
+    shown = assert_same(data, "-o", "tcp.desegment_tcp_streams:FALSE")
+    assert any("Continuation" in line for line in shown.info)
+
+
+@pytest.mark.parametrize("text", ["5.1500", "5.9.x", " 3.2", "3.2.", "abc", "10.7.5000"])
+def test_odd_version_preferences(text):
+    """The ur.version preference's text read as Lua reads it: blanks, a trailing dot or word, a
+    bugfix over 999, a minor over 999 (carried into the major), no version at all."""
+    assert_same(_golden_capture("", ("whole",)), "-o", f"ur.version:{text}")
