@@ -32,12 +32,17 @@ SAMPLES = ROOT / "dissector" / "samples"
 def spark():
     from pyspark.sql import SparkSession
 
+    before = os.environ.get("PYSPARK_PYTHON")
     os.environ["PYSPARK_PYTHON"] = sys.executable   # the executors import urwire as this process does
     session = (SparkSession.builder.master("local[2]").appName("urwire-test")
                .config("spark.ui.enabled", "false").config("spark.sql.shuffle.partitions", "2").getOrCreate())
     session.sparkContext.setLogLevel("ERROR")
     yield session
     session.stop()
+    if before is None:
+        del os.environ["PYSPARK_PYTHON"]
+    else:
+        os.environ["PYSPARK_PYTHON"] = before
 
 
 @pytest.fixture(scope="module")
