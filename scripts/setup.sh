@@ -10,8 +10,10 @@ cd "$(dirname "$0")/.."
 # real Wireshark GUI on a virtual X server.
 # cmake and wireshark-dev (headers, libwireshark-dev, WiresharkConfig.cmake): the native plugin,
 # built against the installed Wireshark by `make native-dissector`.
+# openjdk-17-jre-headless: the JVM that `urwire spark`'s tests run Spark local[2] on.
 APT_PACKAGES=(tshark clang lua5.2 lua5.3 lua5.4 libclang-rt-14-dev llvm make gcc
-              wireshark-qt xvfb xdotool imagemagick cmake wireshark-dev)
+              wireshark-qt xvfb xdotool imagemagick cmake wireshark-dev
+              openjdk-17-jre-headless)
 
 missing=()
 for pkg in "${APT_PACKAGES[@]}"; do

@@ -9,7 +9,7 @@ import os
 import sys
 from typing import BinaryIO, Callable, Optional
 
-from . import __version__, export, listen, plot, serve
+from . import __version__, export, listen, plot, serve, spark
 from .arguments import parse_version
 from .capture import is_capture
 from .canonical import has_error, to_json_line
@@ -64,7 +64,7 @@ def build_parser() -> argparse.ArgumentParser:
                           f"each interface's own ports, the primary's {' '.join(map(str, PORTS))} among them)")
     dec.add_argument("--no-progress", action="store_true", help="never show a progress bar")
     dec.set_defaults(run=decode_command)
-    for tool in (serve, listen, export, plot):
+    for tool in (serve, listen, export, plot, spark):
         tool.add_parser(sub, _version_arg)
     return parser
 
