@@ -27,17 +27,11 @@ from typing import Callable, Iterable, Iterator, Optional
 
 
 def dataset_module():
-    """The dataset calls: urwire.dataset, else export's tables, a part each (dataset_fallback).
-    Imported when used, and by the absolute name, so that `urwire` starts without pyarrow and
-    spark-submit can run this file as its main script."""
+    """The dataset calls (urwire.dataset). Imported when used, and by the absolute name, so that
+    `urwire` starts without pyarrow and spark-submit can run this file as its main script."""
     import importlib
 
-    try:
-        return importlib.import_module("urwire.dataset")
-    except ModuleNotFoundError as missing:
-        if missing.name != "urwire.dataset":
-            raise
-        return importlib.import_module("urwire.dataset_fallback")
+    return importlib.import_module("urwire.dataset")
 
 
 MANIFEST = "path string, interface string, kind string, robot string, date string, rows long"
