@@ -58,7 +58,8 @@ test: check-generated $(TEST_BUILDS)
 	[ $$rest -eq 0 ] && [ $$live -eq 0 ]
 
 ## test-deep: the long sweeps that `make test` leaves out (tests marked `deep`: the native
-## dissectors against Lua on every segmentation and the whole fuzz corpora, and under ASan); CI
+## dissectors against Lua on every segmentation and the whole fuzz corpora, and every run of the
+## plugin built with ASan+UBSan: tests/native/conftest.py); CI
 ## runs it after `make test`
 test-deep: $(TEST_BUILDS)
 	$(PYTEST) -q -n $(TEST_JOBS) --dist loadfile -m deep tests $(LIVE_TESTS:%=--ignore=%)
