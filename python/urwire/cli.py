@@ -116,12 +116,14 @@ def _write_json_lines(fh: BinaryIO, hint, advance: Callable[[int], None], out) -
     when one of the records held an error."""
     lines = JsonLines(hint)
     out.flush()
-    sink = out.buffer
+    # The lines are UTF-8 bytes: they go to stdout's bytes underneath, else (an io.StringIO put in
+    # its place) as text.
+    sink = out.buffer.write if hasattr(out, "buffer") else lambda data: out.write(data.decode())
     while chunk := fh.read(CHUNK):
         advance(len(chunk))
-        sink.write(lines.feed(chunk))
-    sink.write(lines.close())
-    sink.flush()
+        sink(lines.feed(chunk))
+    sink(lines.close())
+    out.flush()
     return lines.errors
 
 

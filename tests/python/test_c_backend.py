@@ -130,3 +130,21 @@ def test_the_command_prints_the_same_bytes_under_both_backends(ccore, tmp_path):
         runs[value] = (result.returncode, result.stdout, result.stderr)
     assert runs["c"] == runs["python"]
     assert runs["c"][0] == 1 and runs["c"][1].count(b"\n") > 100
+
+
+def test_the_command_writes_to_a_text_stdout_in_its_place(ccore, tmp_path, monkeypatch):
+    """In-process, with stdout an io.StringIO: the C backend's lines come out as text (the C
+    backend chosen here whatever URWIRE_BACKEND says)."""
+    import contextlib
+    import io
+
+    from urwire import backends, cli
+
+    case = next(c for c in all_cases() if c.name == "text_message_invalid_utf8")
+    stream = tmp_path / "stream.bin"
+    stream.write_bytes(case.data)
+    monkeypatch.setattr(backends, "_CCORE", ccore)
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        code = cli.main(["decode", "--no-progress", str(stream)])
+    assert (code, out.getvalue().encode()) == (0, python_json_lines(case.data, None)[0])
