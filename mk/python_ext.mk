@@ -20,3 +20,12 @@ $(PYTHON_EXT_STAMP): $(PYTHON_EXT_SOURCES)
 	@mkdir -p build
 	$(PYTHON) setup.py --quiet build_ext --inplace --build-temp build/python-ext --build-lib build/python-ext/lib
 	@touch $@
+
+## test-python-backend: the tests of what the C backend changes (urwire decode of a raw primary
+## stream) under pure Python (URWIRE_BACKEND=python); `make test` runs them so, and everything
+## else under the default backend, the C one, which it builds first
+PYTHON_BACKEND_TESTS := tests/python/test_cli.py tests/python/test_hostile_bytes.py tests/python/test_c_backend.py
+TEST_BUILDS += test-python-backend
+.PHONY: test-python-backend
+test-python-backend: python-ext
+	URWIRE_BACKEND=python $(PYTEST) -q $(PYTHON_BACKEND_TESTS)
