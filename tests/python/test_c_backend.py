@@ -102,7 +102,7 @@ def backend_under(value) -> subprocess.CompletedProcess:
     env.pop("URWIRE_BACKEND", None)
     if value is not None:
         env["URWIRE_BACKEND"] = value
-    return subprocess.run([sys.executable, "-c", "import urwire.backends as b; print(b.backend())"],
+    return subprocess.run([sys.executable, "-c", "import urwire; print(urwire.backend())"],
                           env=env, capture_output=True, text=True, timeout=60)
 
 
