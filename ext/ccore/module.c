@@ -75,7 +75,8 @@ static PyObject *take_lines(FILE *out, char **text, size_t *size)
     return lines;
 }
 
-/* Feeds data (NULL: the stream has ended) and prints every record that is then ready. */
+/* Feeds data (NULL: the stream has ended) and prints every record that is then ready. The GIL
+ * stays held: two threads feeding one object would otherwise share its framer and writer. */
 static PyObject *print_records(PrimaryJsonLines *self, const uint8_t *data, size_t n)
 {
     char *text = NULL;
@@ -93,7 +94,6 @@ static PyObject *print_records(PrimaryJsonLines *self, const uint8_t *data, size
     if (!out)
         return PyErr_SetFromErrno(PyExc_OSError);
     self->writer->out = out;
-    Py_BEGIN_ALLOW_THREADS
     if (data) {
         while (off < n) {
             off += urwire_framer_feed(&self->framer, data + off, n - off);
@@ -104,7 +104,6 @@ static PyObject *print_records(PrimaryJsonLines *self, const uint8_t *data, size
         self->errors |= print_ready_records(&self->framer, &self->visitor, self->writer);
         self->finished = 1;
     }
-    Py_END_ALLOW_THREADS
     self->writer->out = NULL;
     return take_lines(out, &text, &size);
 }
