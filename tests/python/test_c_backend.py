@@ -148,3 +148,25 @@ def test_the_command_writes_to_a_text_stdout_in_its_place(ccore, tmp_path, monke
     with contextlib.redirect_stdout(out):
         code = cli.main(["decode", "--no-progress", str(stream)])
     assert (code, out.getvalue().encode()) == (0, python_json_lines(case.data, None)[0])
+
+
+def test_the_extension_under_asan_and_ubsan(tmp_path):
+    """urwire._ccore's own C (the module, and the memory stream each feed writes into) built with
+    ASan and UBSan and run over every vector and kept fuzz input (tests/python/ccore_asan_peer.py):
+    no report, the same lines."""
+    import sysconfig
+
+    library = tmp_path / ("_ccore" + sysconfig.get_config_var("EXT_SUFFIX"))
+    sources = ["ext/ccore/module.c", "generated/c/urwire.c", "tools/urwire-decode/json.c",
+               "tools/urwire-decode/shortest.c", "tools/urwire-decode/records.c"]
+    subprocess.run(["gcc", "-shared", "-fPIC", "-g", "-O1", "-std=c99", "-fsanitize=address,undefined",
+                    "-fno-sanitize-recover=all", "-Igenerated/c", "-Itools/urwire-decode",
+                    "-I" + sysconfig.get_paths()["include"], *sources, "-lm", "-o", str(library)],
+                   cwd=ROOT, check=True, timeout=300)
+    runtimes = [subprocess.run(["gcc", f"-print-file-name={name}"], capture_output=True, text=True,
+                               check=True).stdout.strip() for name in ("libasan.so", "libubsan.so")]
+    env = dict(os.environ, LD_PRELOAD=":".join(runtimes), ASAN_OPTIONS="detect_leaks=0")
+    result = subprocess.run([sys.executable, str(ROOT / "tests" / "python" / "ccore_asan_peer.py"), str(library)],
+                            env=env, capture_output=True, text=True, timeout=600)
+    assert result.returncode == 0 and "ERROR" not in result.stderr, result.stderr[-3000:]
+    assert int(result.stdout) > 300
