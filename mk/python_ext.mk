@@ -19,6 +19,9 @@ python-ext: $(PYTHON_EXT_STAMP)
 $(PYTHON_EXT_STAMP): $(PYTHON_EXT_SOURCES)
 	@mkdir -p build
 	$(PYTHON) setup.py --quiet build_ext --inplace --build-temp build/python-ext --build-lib build/python-ext/lib
+	@# setup.py leaves the extension out rather than fail (pip install must work without a compiler);
+	@# here its absence is an error.
+	PYTHONPATH=python:generated/python URWIRE_BACKEND=c $(PYTHON) -c "import urwire"
 	@touch $@
 
 ## test-python-backend: the tests of what the C backend changes (urwire decode of a raw primary
