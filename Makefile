@@ -11,7 +11,7 @@ DEMO_TARGETS :=
 DEMO_CELL_TARGETS :=
 BENCH_TARGETS :=
 
-.PHONY: all generate check-generated spec-diff setup test test-deep test-codegen test-python test-python-range soak demo demo-python \
+.PHONY: all generate check-generated spec-diff setup test test-deep test-codegen test-python test-python-range soak demo demo-python bench-export \
 	bench bench-python
 
 all: build-all
@@ -103,3 +103,12 @@ BENCH_PY_MB ?= 10 100
 bench-python:
 	PYTHONPATH=python:generated/python $(PYTHON) tests/bench/bench_python.py --base $(BENCH_PY_BASE) \
 		--generations-base $(BENCH_PY_GENERATIONS) $(BENCH_PY_MB)
+
+## bench-export: `urwire export` of one robot-day (BENCH_EXPORT_STATES real robot states) to the
+## dataset, against `urwire export --out` of BENCH_EXPORT_BASE: time, states/s, peak memory, ratio
+BENCH_TARGETS += bench-export
+BENCH_EXPORT_BASE ?= a8e2eb2
+BENCH_EXPORT_STATES ?= 864000
+bench-export:
+	PYTHONPATH=python:generated/python $(PYTHON) tests/bench/bench_export.py --base $(BENCH_EXPORT_BASE) \
+		--states $(BENCH_EXPORT_STATES)

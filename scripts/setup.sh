@@ -10,8 +10,11 @@ cd "$(dirname "$0")/.."
 # real Wireshark GUI on a virtual X server.
 # cmake and wireshark-dev (headers, libwireshark-dev, WiresharkConfig.cmake): the native plugin,
 # built against the installed Wireshark by `make native-dissector`.
+# openjdk-17-jre-headless: the JVM that `urwire spark`'s tests run Spark local[2] on.
+# python3-dev: the headers the C extension urwire._ccore builds against.
 APT_PACKAGES=(tshark clang lua5.2 lua5.3 lua5.4 libclang-rt-14-dev llvm make gcc
-              wireshark-qt xvfb xdotool imagemagick cmake wireshark-dev)
+              wireshark-qt xvfb xdotool imagemagick cmake wireshark-dev
+              openjdk-17-jre-headless python3-dev)
 
 missing=()
 for pkg in "${APT_PACKAGES[@]}"; do
@@ -29,4 +32,6 @@ fi
 
 python3 -m pip install -q --disable-pip-version-check -r requirements-dev.txt
 python3 -m pip install -q --disable-pip-version-check .
+# The C extension in place too, for the tree's Python (PYTHONPATH=python:generated/python).
+make --no-print-directory python-ext PYTHON=python3
 echo "setup: done"

@@ -40,7 +40,8 @@ def attr(f: ir.AnyField, annotation: str, optional: bool = False, entries: tuple
     """An attribute: its docstring starts with the field's label and unit, and its metadata
     holds them for code that shows records to people (human.py, a GUI), and tables (export.py)."""
     unit = json.dumps(f.unit, ensure_ascii=False) if f.unit else "None"
-    metadata = f'{{"label": {json.dumps(f.label, ensure_ascii=False)}, "unit": {unit}{_wide_wire(f)}}}'
+    metadata = (f'{{"label": {json.dumps(f.label, ensure_ascii=False)}, "unit": {unit}{_wide_wire(f)}'
+                f'{_fixed_count(f)}}}')
     return Attr(f.name, annotation, one_line(field_text(entries or [f])), ir.json_kind(f), optional, metadata)
 
 
@@ -49,6 +50,13 @@ def _wide_wire(f: ir.AnyField) -> str:
     int64's range, so that a typed column (a Parquet table) can be chosen before any value is seen."""
     scalar = getattr(f, "scalar", None)
     return ', "wire": "uint64"' if scalar is not None and scalar.name == "uint64" else ""
+
+
+def _fixed_count(f: ir.AnyField) -> str:
+    """`"count": N` for a list or group of a fixed number of items in every layout, so that a
+    table can give each item a column of its own before any record is seen (dataset.py)."""
+    count = getattr(f, "count", None) if isinstance(f, (ir.ArrayField, ir.GroupField)) else None
+    return f', "count": {count}' if count is not None else ""
 
 
 @dataclass

@@ -31,6 +31,7 @@ from .generated.messages import *  # noqa: F401,F403,E402  (every message and su
 from .decoding import decode_message, encode_message, package_classes  # noqa: E402
 from .message_kinds import encode_package  # noqa: E402
 from .reading import decode_file  # noqa: E402
+from .backends import backend  # noqa: E402
 from .generated.spec import DEFAULT_VERSION, DOCUMENTED_VERSIONS, PORTS  # noqa: E402
 
 __version__ = "0.1.0"
@@ -39,5 +40,5 @@ __all__ = [
     "DecodeError", "EncodeError", "GlobalValue", "MalformedPackage", "MalformedSubtype", "StreamError",
     "UnknownMessage", "UnknownPackage", "UnknownSubtype", "Framer", "decode_stream", "parse_version",
     "decode_file", "decode_message", "encode_message", "package_classes", "to_dict", "to_json_line",
-    "DEFAULT_VERSION", "DOCUMENTED_VERSIONS", "PORTS",
+    "DEFAULT_VERSION", "DOCUMENTED_VERSIONS", "PORTS", "backend",
 ]

@@ -39,13 +39,21 @@ def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inter
     A conversation closes when its listening side ends (or the capture does). The software version a
     robot's primary stream announces is passed on to its other conversations (the real-time one
     chooses among layouts of one size with it)."""
+    for time, _, record in timed_robot_records(fh, hint, by_port, advance):
+        yield time, record
+
+
+def timed_robot_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
+                        advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
+    """(capture time, robot address, record), as timed_cell_records gives them, with the address of
+    the robot each record's conversation belongs to (None for a fault of the capture file)."""
     conversations: dict = {}
     versions: dict = {}      # robot address -> the software version one of its conversations learnt
     both_ways = {port for port, i in by_port.items() if i.both_directions}
     last = 0
     for item in timed_streams(fh, set(by_port), both_ways):
         if isinstance(item, CaptureFault):  # its offset is the capture file's, not a stream's
-            yield None, StreamError(item.offset, item.error)
+            yield None, None, StreamError(item.offset, item.error)
             continue
         key, from_port, data, ended, time = item
         interface = by_port[key[1]]
@@ -69,11 +77,11 @@ def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inter
             del conversations[key]
         if interface.name == PRIMARY:
             for record in records:
-                yield time, record
+                yield time, key[0], record
         else:
             name, direction = _conversation_name(key), FROM_ROBOT if from_robot else TO_ROBOT
             for record in records:
-                yield time, Enveloped(interface.name, direction, name, record)
+                yield time, key[0], Enveloped(interface.name, direction, name, record)
         if fh.seekable():
             pos = fh.tell()
             advance(pos - last)

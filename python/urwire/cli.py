@@ -9,8 +9,9 @@ import os
 import sys
 from typing import BinaryIO, Callable, Optional
 
-from . import __version__, export, listen, plot, serve
+from . import __version__, export, listen, plot, serve, spark
 from .arguments import parse_version
+from .backends import JsonLines, backend
 from .capture import is_capture
 from .canonical import has_error, to_json_line
 from .human import line as human_line
@@ -64,7 +65,7 @@ def build_parser() -> argparse.ArgumentParser:
                           f"each interface's own ports, the primary's {' '.join(map(str, PORTS))} among them)")
     dec.add_argument("--no-progress", action="store_true", help="never show a progress bar")
     dec.set_defaults(run=decode_command)
-    for tool in (serve, listen, export, plot):
+    for tool in (serve, listen, export, plot, spark):
         tool.add_parser(sub, _version_arg)
     return parser
 
@@ -101,6 +102,31 @@ def _records(fh: BinaryIO, args: argparse.Namespace, advance: Callable[[int], No
                                    (args.file, args.to_robot or ""))
 
 
+def _is_c_json_lines(fh: BinaryIO, args: argparse.Namespace) -> bool:
+    """Whether the C backend prints this input: JSON Lines of a raw primary/secondary stream."""
+    if backend() != "c" or args.format != "json" or args.to_robot is not None:
+        return False
+    if (args.protocol or "ur") != "ur" or not hasattr(fh, "peek"):
+        return False
+    return not is_capture(fh.peek(4)[:4])
+
+
+def _write_json_lines(fh: BinaryIO, hint, advance: Callable[[int], None], out) -> bool:
+    """The C backend's JSON Lines of a raw primary/secondary stream, written as they come; True
+    when one of the records held an error."""
+    lines = JsonLines(hint)
+    out.flush()
+    # The lines are UTF-8 bytes: they go to stdout's bytes underneath, else (an io.StringIO put in
+    # its place) as text.
+    sink = out.buffer.write if hasattr(out, "buffer") else lambda data: out.write(data.decode())
+    while chunk := fh.read(CHUNK):
+        advance(len(chunk))
+        sink(lines.feed(chunk))
+    sink(lines.close())
+    out.flush()
+    return lines.errors
+
+
 def decode_command(args: argparse.Namespace) -> int:
     if args.to_robot is not None and not interface_named(args.protocol or "ur").both_directions:
         # As the C command: an interface that reads the robot's side only has no client stream to take.
@@ -116,17 +142,20 @@ def decode_command(args: argparse.Namespace) -> int:
     advance = _progress(size, args.no_progress)
     render = {"json": to_json_line, "text": human_line, "tree": human_tree}[args.format]
     try:
-        records = _records(fh, args, advance)
+        records = None if _is_c_json_lines(fh, args) else _records(fh, args, advance)
     except OSError as exc:
         print(f"urwire: cannot read {args.to_robot}: {exc.strerror or exc}", file=sys.stderr)
         return 2
     failed = False
     out = sys.stdout
     try:
-        for record in records:
-            failed = failed or has_error(record)
-            out.write(render(record))
-            out.write("\n")
+        if records is None:
+            failed = _write_json_lines(fh, args.version_hint, advance, out)
+        else:
+            for record in records:
+                failed = failed or has_error(record)
+                out.write(render(record))
+                out.write("\n")
         out.flush()
     except BrokenPipeError:
         # The reader went away (| head): stop quietly, as command-line tools do.

@@ -28,6 +28,7 @@ from typing import BinaryIO, Iterator
 from .canonical import has_error, shown_text, to_json_line
 from .cell import ports_of
 from .envelope import Enveloped
+from . import export_dataset
 from .export_cell import CellRows
 from .interfaces import INTERFACES
 from .reading import input_kind, timed_records
@@ -44,9 +45,19 @@ def add_parser(sub, version_arg) -> None:
                                    "(robot_mode_data, joint_data, ...), one row per occurrence; a capture's "
                                    "other interfaces get tables named by interface (rtde_outputs_<hash> per "
                                    "RTDE recipe, ur_realtime, ur_dashboard, ...: docs/tables.md).")
-    p.add_argument("file", help="a raw stream, a .pcap or a .pcapng file")
+    p.add_argument("files", nargs="+", metavar="FILE",
+                   help="a raw stream, a .pcap or a .pcapng file (--dataset: any number)")
     p.add_argument("--format", choices=("parquet", "csv"), default="parquet", help="table format (default: parquet)")
-    p.add_argument("--out", required=True, metavar="DIR", help="folder for the tables (made if missing)")
+    where = p.add_mutually_exclusive_group(required=True)
+    where.add_argument("--out", metavar="DIR", help="folder for one capture's tables (made if missing)")
+    where.add_argument("--dataset", metavar="ROOT",
+                       help="add the captures to the Hive-partitioned Parquet dataset at ROOT (docs/tables.md): "
+                            "interface=/kind=/robot=/date= folders; a capture exported again replaces its own rows")
+    p.add_argument("--robot", metavar="NAME", help="--dataset: the robot of a raw stream (a capture's robots are "
+                                                   "their addresses)")
+    p.add_argument("--date", type=export_dataset.date_arg, metavar="YYYY-MM-DD",
+                   help="--dataset: the day of a raw stream, which has no capture times (default: its file's "
+                        "modification time, UTC)")
     p.add_argument("--version-hint", type=version_arg, metavar="X.Y[.Z]",
                    help="software version to assume until a Version message is seen")
     p.set_defaults(run=export_command)
@@ -220,6 +231,12 @@ def write_parquet(tables: Tables, out: Path) -> None:
 
 
 def export_command(args: argparse.Namespace) -> int:
+    if args.dataset is not None:
+        return export_dataset.dataset_command(args)
+    if len(args.files) > 1:
+        print("urwire export: --out takes one capture (--dataset takes many)", file=sys.stderr)
+        return 2
+    args.file = args.files[0]
     if args.format == "parquet":
         try:
             import pyarrow  # noqa: F401

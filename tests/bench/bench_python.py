@@ -15,6 +15,10 @@
    pipe; MB per second of CPU time and peak resident memory. The command of --base runs on the
    smallest files too, and decode_stream over a whole buffer runs in both packages.
 4. A capture whose TCP segments come in reverse order, against the same capture in order.
+5. The C backend (urwire._ccore, `make python-ext`): a robot state framed, decoded and written as
+   its canonical JSON line by the C parser, against python-urx's decode and pure Python's decode
+   plus to_json_line, at rest and in motion; and `urwire decode` of the raw files under both
+   backends (part 3's command column runs under the default backend, the C one where it is built).
 
 Machines here are shared and noisy: each in-process figure is a range over ROUNDS rounds (each
 the best of REPEAT x NUMBER calls, the contenders taking turns), and the ratios are what count.
@@ -197,8 +201,9 @@ def json_per_message(base: Path | None) -> None:
                   f"{us(t['decode']) if case == 'at rest' else '':>8}")
 
 
-def run(package: Path | str, args: list[str], expected: int, count_lines: bool) -> measure.Usage:
-    env = dict(os.environ, PYTHONPATH=str(package))
+def run(package: Path | str, args: list[str], expected: int, count_lines: bool,
+        extra_env: dict | None = None) -> measure.Usage:
+    env = dict(os.environ, PYTHONPATH=str(package), **(extra_env or {}))
     usage = measure.watch([sys.executable, *args], env)
     records = usage.lines if count_lines else int(usage.last or 0)
     assert usage.returncode == 0 and records == expected, (args, usage.returncode, records, expected)
@@ -254,19 +259,71 @@ def reversed_segments() -> None:
           f"{seconds[backwards]:.2f} s ({seconds[backwards] / seconds[in_order]:.2f}x the in-order time; goal: about 1x)")
 
 
+def c_backend_per_message() -> None:
+    """Per robot state: python-urx's decode, pure Python's decode and JSON line, and the C
+    backend's JSON line (a Python call per state: the framer fed one message)."""
+    from urwire import backends
+
+    logging.disable(logging.CRITICAL)
+    from urx.ursecmon import ParserUtils
+
+    if backends.backend() != "c":
+        print("== C backend: not built or not chosen (make python-ext; URWIRE_BACKEND unset)")
+        return
+    print("== C backend per robot state: us (median of the rounds) and ratios (their range)")
+    print(f"   {'message':<36}{'robot':<11}{'urx':>7}{'python':>8}{'C line':>8}"
+          f"{'C vs urx':>14}{'C vs python':>14}")
+    for name in SAMPLES:
+        data = sample(name)
+        moving = in_motion(data)
+        for robot, states in (("at rest", [data]), ("in motion", moving)):
+            lines = backends._CCORE.PrimaryJsonLines(None)
+            py_next, c_next = itertools.cycle(states).__next__, itertools.cycle(states).__next__
+            assert lines.feed(data) == (urwire.to_json_line(urwire.decode_message(data)) + "\n").encode(), name
+            t = rounds({"urx": lambda: ParserUtils().parse(data),
+                        "python": lambda: urwire.to_json_line(urwire.decode_message(py_next())),
+                        "c": lambda: lines.feed(c_next())})
+            print(f"   {name if robot == 'at rest' else '':<36}{robot:<11}{us(t['urx']):>7}{us(t['python']):>8}"
+                  f"{us(t['c']):>8}{spread([u / c for u, c in zip(t['urx'], t['c'])]):>14}"
+                  f"{spread([p / c for p, c in zip(t['python'], t['c'])]):>14}")
+
+
+def c_backend_files(sizes: list[int]) -> None:
+    """`urwire decode` of a raw file of real robot states under each backend, in its own process."""
+    states = robot_inputs.real_states()
+    now = os.pathsep.join(str(ROOT / part) for part in ("python", "generated/python"))
+    print("== urwire decode of raw robot states under each backend: MB/s of CPU time, peak memory")
+    for megabytes in sizes:
+        count = robot_inputs.message_count(megabytes, states)
+        path = robot_inputs.raw_stream(megabytes, states)
+        mb = path.stat().st_size / 1e6
+        usage = {backend: run(now, ["-m", "urwire", "decode", "--no-progress", str(path)], count, True,
+                              {"URWIRE_BACKEND": backend}) for backend in ("python", "c")}
+        print(f"   {f'{megabytes} MB raw':<16}" + "".join(
+            f"{backend:>8} {mb / u.cpu:>7.1f} MB/s {u.peak / MIB:>4.0f} MiB" for backend, u in usage.items())
+            + f"   C {usage['python'].cpu / usage['c'].cpu:.1f}x faster")
+
+
 def main(argv: list[str]) -> int:
     global BASE, GENERATIONS_BASE
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--base", default=BASE)
     parser.add_argument("--generations-base", default=GENERATIONS_BASE)
     parser.add_argument("sizes", nargs="*", type=int, default=[10, 100])
+    parser.add_argument("--only-c", action="store_true", help="part 5 only (the C backend)")
     args = parser.parse_args(argv)
+    if args.only_c:
+        c_backend_per_message()
+        c_backend_files(sorted(args.sizes))
+        return 0
     BASE, GENERATIONS_BASE = args.base, args.generations_base
     base, generations = package_of(BASE), package_of(GENERATIONS_BASE)
     decode_per_message(generations)
     json_per_message(base)
     files(sorted(args.sizes), base)
     reversed_segments()
+    c_backend_per_message()
+    c_backend_files(sorted(args.sizes))
     return 0
 
 

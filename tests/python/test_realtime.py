@@ -40,7 +40,7 @@ def test_fields_sit_where_the_document_puts_them():
 def test_labels_and_units_are_metadata():
     import dataclasses
     meta = {f.name: f.metadata for f in dataclasses.fields(rt.Rt3_10)}
-    assert meta["q_actual"] == {"label": "Actual joint position", "unit": "rad"}
+    assert meta["q_actual"] == {"label": "Actual joint position", "unit": "rad", "count": 6}
     assert meta["motor_temperatures"]["unit"] == "°C"
 
 

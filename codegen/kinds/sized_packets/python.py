@@ -62,8 +62,10 @@ class PyForm:
     tables: list[str]                      # '"enum name": ITS_TABLE', the items of a dict display
 
 
-def _metadata(f: ir.AnyField) -> str:
-    return "{" + f'"label": {f.label!r}, "unit": {f.unit!r}' + "}"
+def _metadata(f: ir.AnyField, count: int = 0) -> str:
+    """The label and unit, and an array's count, so that a table can give each item a column
+    before any packet is seen (dataset.py)."""
+    return "{" + f'"label": {f.label!r}, "unit": {f.unit!r}' + (f', "count": {count}' if count else "") + "}"
 
 
 def _layout(lp: LayoutPlan, size_field: ir.ScalarField) -> PyLayout:
@@ -74,7 +76,7 @@ def _layout(lp: LayoutPlan, size_field: ir.ScalarField) -> PyLayout:
         start = s.first + 1
         attrs.append(PyAttr(s.field.name, "tuple[float, ...]" if s.is_array else "float",
                             field_text([s.field], versions=False), "list:f64" if s.is_array else "f64",
-                            _metadata(s.field), start, start + s.count, s.is_array))
+                            _metadata(s.field, s.count if s.is_array else 0), start, start + s.count, s.is_array))
     doc = f"{layout.label}: sent by software {layout.describe()}."
     if node_text(layout):
         doc += " " + node_text(layout)

@@ -452,7 +452,7 @@ class JointData(_kinds.Package):
     ITEMS: ClassVar[dict] = {"joints": Joint}
     """The class of each group member's items."""
 
-    joints: list[Joint] = field(metadata={"label": "Joints", "unit": None})
+    joints: list[Joint] = field(metadata={"label": "Joints", "unit": None, "count": 6})
     """Joints. One entry per joint, base first."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
@@ -1408,15 +1408,15 @@ class KinematicsInfo(_kinds.Package):
     )
     SUMMARY: ClassVar[tuple] = ()
 
-    checksum: list[int] = field(metadata={"label": "Joint checksum", "unit": None})
+    checksum: list[int] = field(metadata={"label": "Joint checksum", "unit": None, "count": 6})
     """Joint checksum. One per joint; cheksum in the document."""
-    dh_theta: list[float] = field(metadata={"label": "DH theta", "unit": "rad"})
+    dh_theta: list[float] = field(metadata={"label": "DH theta", "unit": "rad", "count": 6})
     """DH theta (rad)."""
-    dh_a: list[float] = field(metadata={"label": "DH a", "unit": "m"})
+    dh_a: list[float] = field(metadata={"label": "DH a", "unit": "m", "count": 6})
     """DH a (m)."""
-    dh_d: list[float] = field(metadata={"label": "DH d", "unit": "m"})
+    dh_d: list[float] = field(metadata={"label": "DH d", "unit": "m", "count": 6})
     """DH d (m). Dhd in the document."""
-    dh_alpha: list[float] = field(metadata={"label": "DH alpha", "unit": "rad"})
+    dh_alpha: list[float] = field(metadata={"label": "DH alpha", "unit": "rad", "count": 6})
     """DH alpha (rad)."""
     calibration_status: int = field(metadata={"label": "Calibration status", "unit": None})
     """Calibration status."""
@@ -1749,9 +1749,11 @@ class ConfigurationData(_kinds.Package):
     ITEMS: ClassVar[dict] = {"joint_position_limits": JointPositionLimit, "joint_motion_limits": JointMotionLimit}
     """The class of each group member's items."""
 
-    joint_position_limits: list[JointPositionLimit] = field(metadata={"label": "Joint position limits", "unit": None})
+    joint_position_limits: list[JointPositionLimit] = field(
+        metadata={"label": "Joint position limits", "unit": None, "count": 6})
     """Joint position limits."""
-    joint_motion_limits: list[JointMotionLimit] = field(metadata={"label": "Joint motion limits", "unit": None})
+    joint_motion_limits: list[JointMotionLimit] = field(
+        metadata={"label": "Joint motion limits", "unit": None, "count": 6})
     """Joint motion limits."""
     v_joint_default: float = field(metadata={"label": "Default joint speed", "unit": "rad/s"})
     """Default joint speed (rad/s)."""
@@ -1763,13 +1765,13 @@ class ConfigurationData(_kinds.Package):
     """Default tool acceleration (m/s²)."""
     eq_radius: float = field(metadata={"label": "Equivalent radius", "unit": None})
     """Equivalent radius."""
-    dh_a: list[float] = field(metadata={"label": "DH a", "unit": "m"})
+    dh_a: list[float] = field(metadata={"label": "DH a", "unit": "m", "count": 6})
     """DH a (m)."""
-    dh_d: list[float] = field(metadata={"label": "DH d", "unit": "m"})
+    dh_d: list[float] = field(metadata={"label": "DH d", "unit": "m", "count": 6})
     """DH d (m)."""
-    dh_alpha: list[float] = field(metadata={"label": "DH alpha", "unit": "rad"})
+    dh_alpha: list[float] = field(metadata={"label": "DH alpha", "unit": "rad", "count": 6})
     """DH alpha (rad)."""
-    dh_theta: list[float] = field(metadata={"label": "DH theta", "unit": "rad"})
+    dh_theta: list[float] = field(metadata={"label": "DH theta", "unit": "rad", "count": 6})
     """DH theta (rad)."""
     masterboard_version: int = field(metadata={"label": "Masterboard version", "unit": None})
     """Masterboard version."""
@@ -1779,7 +1781,7 @@ class ConfigurationData(_kinds.Package):
     """Robot type."""
     robot_sub_type: int = field(metadata={"label": "Robot subtype", "unit": None})
     """Robot subtype."""
-    motor_type: Optional[list[int]] = field(metadata={"label": "Motor type", "unit": None})
+    motor_type: Optional[list[int]] = field(metadata={"label": "Motor type", "unit": None, "count": 6})
     """Motor type. One per joint; motorType in the CB2 documents ("Have values 1 or 2"). Sent by
     software up to 1.8.
     """
@@ -2433,9 +2435,9 @@ class PayloadInfo(_kinds.Package):
 
     mass: float = field(metadata={"label": "Payload mass", "unit": "kg"})
     """Payload mass (kg)."""
-    center_of_gravity: list[float] = field(metadata={"label": "Payload centre of gravity", "unit": "m"})
+    center_of_gravity: list[float] = field(metadata={"label": "Payload centre of gravity", "unit": "m", "count": 3})
     """Payload centre of gravity (m). CoGx, CoGy, CoGz from the tool flange."""
-    inertia: list[float] = field(metadata={"label": "Payload inertia", "unit": "kg·m²"})
+    inertia: list[float] = field(metadata={"label": "Payload inertia", "unit": "kg·m²", "count": 6})
     """Payload inertia (kg·m²). Ixx, Iyy, Izz, Ixy, Ixz, Iyz."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""
@@ -3659,7 +3661,7 @@ class SafetyComplianceTolerancesMessage(_kinds.Subtype):
     )
     SUMMARY: ClassVar[tuple] = ()
 
-    tolerances: list[float] = field(metadata={"label": "Tolerances", "unit": None})
+    tolerances: list[float] = field(metadata={"label": "Tolerances", "unit": None, "count": 22})
     """Tolerances. Six and six of them look like one value per joint."""
     extra: bytes = b""
     """Bytes after the known layout, kept so that encoding gives them back."""

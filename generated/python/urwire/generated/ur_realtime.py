@@ -239,25 +239,27 @@ class Rt540:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad'})
+    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s'})
+    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(metadata={"label": 'Target joint acceleration', "unit": 'rad/s²'})
+    qdd_target: tuple[float, ...] = field(
+        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A'})
+    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm'})
+    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad'})
+    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s'})
+    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A'})
+    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
     """Actual joint current (A)."""
-    tool_accelerometer_values: tuple[float, ...] = field(metadata={"label": 'Tool accelerometer', "unit": 'm/s²'})
+    tool_accelerometer_values: tuple[float, ...] = field(
+        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
-    unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None})
+    unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None, "count": 15})
     """Unused 1. Doubles UR marks unused."""
     extra: bytes = b""
     """Always empty: the size chose a layout that fills the packet. Kept for the JSON writer."""
@@ -331,33 +333,35 @@ class Rt692:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad'})
+    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s'})
+    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(metadata={"label": 'Target joint acceleration', "unit": 'rad/s²'})
+    qdd_target: tuple[float, ...] = field(
+        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A'})
+    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm'})
+    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad'})
+    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s'})
+    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A'})
+    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
     """Actual joint current (A)."""
-    tool_accelerometer_values: tuple[float, ...] = field(metadata={"label": 'Tool accelerometer', "unit": 'm/s²'})
+    tool_accelerometer_values: tuple[float, ...] = field(
+        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
-    unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None})
+    unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None, "count": 15})
     """Unused 1. Doubles UR marks unused."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None})
+    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None, "count": 6})
     """TCP force. Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None})
+    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None, "count": 6})
     """Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None, "count": 6})
     """Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
     digital_input_bits: float = field(metadata={"label": 'Digital input bits', "unit": None})
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
@@ -446,39 +450,41 @@ class Rt1_5:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad'})
+    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s'})
+    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(metadata={"label": 'Target joint acceleration', "unit": 'rad/s²'})
+    qdd_target: tuple[float, ...] = field(
+        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A'})
+    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm'})
+    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad'})
+    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s'})
+    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A'})
+    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
     """Actual joint current (A)."""
-    tool_accelerometer_values: tuple[float, ...] = field(metadata={"label": 'Tool accelerometer', "unit": 'm/s²'})
+    tool_accelerometer_values: tuple[float, ...] = field(
+        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
-    unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None})
+    unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None, "count": 15})
     """Unused 1. Doubles UR marks unused."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None})
+    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None, "count": 6})
     """TCP force. Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None})
+    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None, "count": 6})
     """Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None, "count": 6})
     """Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
     digital_input_bits: float = field(metadata={"label": 'Digital input bits', "unit": None})
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C'})
+    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time."""
@@ -574,39 +580,41 @@ class Rt1_6:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad'})
+    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s'})
+    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(metadata={"label": 'Target joint acceleration', "unit": 'rad/s²'})
+    qdd_target: tuple[float, ...] = field(
+        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A'})
+    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm'})
+    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad'})
+    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s'})
+    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A'})
+    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
     """Actual joint current (A)."""
-    tool_accelerometer_values: tuple[float, ...] = field(metadata={"label": 'Tool accelerometer', "unit": 'm/s²'})
+    tool_accelerometer_values: tuple[float, ...] = field(
+        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
-    unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None})
+    unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None, "count": 15})
     """Unused 1. Doubles UR marks unused."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None})
+    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None, "count": 6})
     """TCP force. Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None})
+    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None, "count": 6})
     """Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None, "count": 6})
     """Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
     digital_input_bits: float = field(metadata={"label": 'Digital input bits', "unit": None})
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C'})
+    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time."""
@@ -707,39 +715,41 @@ class Rt1_8:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad'})
+    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s'})
+    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(metadata={"label": 'Target joint acceleration', "unit": 'rad/s²'})
+    qdd_target: tuple[float, ...] = field(
+        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A'})
+    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm'})
+    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad'})
+    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s'})
+    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A'})
+    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
     """Actual joint current (A)."""
-    tool_accelerometer_values: tuple[float, ...] = field(metadata={"label": 'Tool accelerometer', "unit": 'm/s²'})
+    tool_accelerometer_values: tuple[float, ...] = field(
+        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
-    unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None})
+    unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None, "count": 15})
     """Unused 1. Doubles UR marks unused."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None})
+    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None, "count": 6})
     """TCP force. Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None})
+    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None, "count": 6})
     """Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None, "count": 6})
     """Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
     digital_input_bits: float = field(metadata={"label": 'Digital input bits', "unit": None})
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C'})
+    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time."""
@@ -747,7 +757,7 @@ class Rt1_8:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
     """Joint mode."""
     extra: bytes = b""
     """Always empty: the size chose a layout that fills the packet. Kept for the JSON writer."""
@@ -856,43 +866,44 @@ class Rt3_0:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad'})
+    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s'})
+    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(metadata={"label": 'Target joint acceleration', "unit": 'rad/s²'})
+    qdd_target: tuple[float, ...] = field(
+        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A'})
+    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm'})
+    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad'})
+    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s'})
+    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A'})
+    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
     """Actual joint current (A)."""
-    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A'})
+    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A', "count": 6})
     """Joint control current (A)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None})
+    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None, "count": 6})
     """Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None, "count": 6})
     """Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None})
+    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None, "count": 6})
     """TCP force. Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": None})
+    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": None, "count": 6})
     """Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_target: tuple[float, ...] = field(metadata={"label": 'Target TCP speed', "unit": None})
+    tcp_speed_target: tuple[float, ...] = field(metadata={"label": 'Target TCP speed', "unit": None, "count": 6})
     """Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
     digital_input_bits: float = field(metadata={"label": 'Digital input bits', "unit": None})
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C'})
+    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time."""
@@ -900,21 +911,22 @@ class Rt3_0:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
     """Joint mode."""
     safety_mode: float = field(metadata={"label": 'Safety mode', "unit": None})
     """Safety mode."""
-    unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None})
+    unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None, "count": 6})
     """Unused 2. Doubles UR marks unused."""
-    tool_accelerometer_values: tuple[float, ...] = field(metadata={"label": 'Tool accelerometer', "unit": 'm/s²'})
+    tool_accelerometer_values: tuple[float, ...] = field(
+        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
-    unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None})
+    unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None, "count": 6})
     """Unused 3. Doubles UR marks unused."""
     speed_scaling: float = field(metadata={"label": 'Speed scaling', "unit": None})
     """Speed scaling. Speed scaling of the trajectory limiter."""
     linear_momentum_norm: float = field(metadata={"label": 'Linear momentum norm', "unit": None})
     """Linear momentum norm. Norm of Cartesian linear momentum."""
-    unused_4: tuple[float, ...] = field(metadata={"label": 'Unused 4', "unit": None})
+    unused_4: tuple[float, ...] = field(metadata={"label": 'Unused 4', "unit": None, "count": 2})
     """Unused 4. Doubles UR marks unused."""
     v_main: float = field(metadata={"label": 'Main voltage', "unit": 'V'})
     """Main voltage (V). Masterboard: main voltage."""
@@ -922,7 +934,7 @@ class Rt3_0:
     """Robot voltage (V). Masterboard: robot voltage (48 V)."""
     i_robot: float = field(metadata={"label": 'Robot current', "unit": 'A'})
     """Robot current (A). Masterboard: robot current."""
-    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V'})
+    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V', "count": 6})
     """Actual joint voltage (V)."""
     extra: bytes = b""
     """Always empty: the size chose a layout that fills the packet. Kept for the JSON writer."""
@@ -1057,43 +1069,44 @@ class Rt3_2:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad'})
+    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s'})
+    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(metadata={"label": 'Target joint acceleration', "unit": 'rad/s²'})
+    qdd_target: tuple[float, ...] = field(
+        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A'})
+    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm'})
+    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad'})
+    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s'})
+    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A'})
+    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
     """Actual joint current (A)."""
-    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A'})
+    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A', "count": 6})
     """Joint control current (A)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None})
+    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None, "count": 6})
     """Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None, "count": 6})
     """Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None})
+    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None, "count": 6})
     """TCP force. Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": None})
+    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": None, "count": 6})
     """Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_target: tuple[float, ...] = field(metadata={"label": 'Target TCP speed', "unit": None})
+    tcp_speed_target: tuple[float, ...] = field(metadata={"label": 'Target TCP speed', "unit": None, "count": 6})
     """Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
     digital_input_bits: float = field(metadata={"label": 'Digital input bits', "unit": None})
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C'})
+    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time."""
@@ -1101,21 +1114,22 @@ class Rt3_2:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
     """Joint mode."""
     safety_mode: float = field(metadata={"label": 'Safety mode', "unit": None})
     """Safety mode."""
-    unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None})
+    unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None, "count": 6})
     """Unused 2. Doubles UR marks unused."""
-    tool_accelerometer_values: tuple[float, ...] = field(metadata={"label": 'Tool accelerometer', "unit": 'm/s²'})
+    tool_accelerometer_values: tuple[float, ...] = field(
+        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
-    unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None})
+    unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None, "count": 6})
     """Unused 3. Doubles UR marks unused."""
     speed_scaling: float = field(metadata={"label": 'Speed scaling', "unit": None})
     """Speed scaling. Speed scaling of the trajectory limiter."""
     linear_momentum_norm: float = field(metadata={"label": 'Linear momentum norm', "unit": None})
     """Linear momentum norm. Norm of Cartesian linear momentum."""
-    unused_4: tuple[float, ...] = field(metadata={"label": 'Unused 4', "unit": None})
+    unused_4: tuple[float, ...] = field(metadata={"label": 'Unused 4', "unit": None, "count": 2})
     """Unused 4. Doubles UR marks unused."""
     v_main: float = field(metadata={"label": 'Main voltage', "unit": 'V'})
     """Main voltage (V). Masterboard: main voltage."""
@@ -1123,7 +1137,7 @@ class Rt3_2:
     """Robot voltage (V). Masterboard: robot voltage (48 V)."""
     i_robot: float = field(metadata={"label": 'Robot current', "unit": 'A'})
     """Robot current (A). Masterboard: robot current."""
-    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V'})
+    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V', "count": 6})
     """Actual joint voltage (V)."""
     digital_outputs: float = field(metadata={"label": 'Digital outputs', "unit": None})
     """Digital outputs. Current state of the digital outputs, as a double whose integer value holds
@@ -1272,43 +1286,44 @@ class Rt3_5:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad'})
+    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s'})
+    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(metadata={"label": 'Target joint acceleration', "unit": 'rad/s²'})
+    qdd_target: tuple[float, ...] = field(
+        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A'})
+    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm'})
+    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad'})
+    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s'})
+    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A'})
+    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
     """Actual joint current (A)."""
-    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A'})
+    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A', "count": 6})
     """Joint control current (A)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None})
+    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None, "count": 6})
     """Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None, "count": 6})
     """Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None})
+    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None, "count": 6})
     """TCP force. Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": None})
+    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": None, "count": 6})
     """Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_target: tuple[float, ...] = field(metadata={"label": 'Target TCP speed', "unit": None})
+    tcp_speed_target: tuple[float, ...] = field(metadata={"label": 'Target TCP speed', "unit": None, "count": 6})
     """Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
     digital_input_bits: float = field(metadata={"label": 'Digital input bits', "unit": None})
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C'})
+    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time."""
@@ -1316,21 +1331,22 @@ class Rt3_5:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
     """Joint mode."""
     safety_mode: float = field(metadata={"label": 'Safety mode', "unit": None})
     """Safety mode."""
-    unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None})
+    unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None, "count": 6})
     """Unused 2. Doubles UR marks unused."""
-    tool_accelerometer_values: tuple[float, ...] = field(metadata={"label": 'Tool accelerometer', "unit": 'm/s²'})
+    tool_accelerometer_values: tuple[float, ...] = field(
+        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
-    unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None})
+    unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None, "count": 6})
     """Unused 3. Doubles UR marks unused."""
     speed_scaling: float = field(metadata={"label": 'Speed scaling', "unit": None})
     """Speed scaling. Speed scaling of the trajectory limiter."""
     linear_momentum_norm: float = field(metadata={"label": 'Linear momentum norm', "unit": None})
     """Linear momentum norm. Norm of Cartesian linear momentum."""
-    unused_4: tuple[float, ...] = field(metadata={"label": 'Unused 4', "unit": None})
+    unused_4: tuple[float, ...] = field(metadata={"label": 'Unused 4', "unit": None, "count": 2})
     """Unused 4. Doubles UR marks unused."""
     v_main: float = field(metadata={"label": 'Main voltage', "unit": 'V'})
     """Main voltage (V). Masterboard: main voltage."""
@@ -1338,7 +1354,7 @@ class Rt3_5:
     """Robot voltage (V). Masterboard: robot voltage (48 V)."""
     i_robot: float = field(metadata={"label": 'Robot current', "unit": 'A'})
     """Robot current (A). Masterboard: robot current."""
-    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V'})
+    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V', "count": 6})
     """Actual joint voltage (V)."""
     digital_outputs: float = field(metadata={"label": 'Digital outputs', "unit": None})
     """Digital outputs. Current state of the digital outputs, as a double whose integer value holds
@@ -1346,9 +1362,9 @@ class Rt3_5:
     """
     program_state: float = field(metadata={"label": 'Program state', "unit": None})
     """Program state."""
-    elbow_position: tuple[float, ...] = field(metadata={"label": 'Elbow position', "unit": 'm'})
+    elbow_position: tuple[float, ...] = field(metadata={"label": 'Elbow position', "unit": 'm', "count": 3})
     """Elbow position (m)."""
-    elbow_velocity: tuple[float, ...] = field(metadata={"label": 'Elbow velocity', "unit": 'm/s'})
+    elbow_velocity: tuple[float, ...] = field(metadata={"label": 'Elbow velocity', "unit": 'm/s', "count": 3})
     """Elbow velocity (m/s)."""
     extra: bytes = b""
     """Always empty: the size chose a layout that fills the packet. Kept for the JSON writer."""
@@ -1496,43 +1512,44 @@ class Rt3_10:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad'})
+    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s'})
+    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(metadata={"label": 'Target joint acceleration', "unit": 'rad/s²'})
+    qdd_target: tuple[float, ...] = field(
+        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A'})
+    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm'})
+    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad'})
+    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s'})
+    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A'})
+    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
     """Actual joint current (A)."""
-    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A'})
+    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A', "count": 6})
     """Joint control current (A)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None})
+    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None, "count": 6})
     """Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None, "count": 6})
     """Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None})
+    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None, "count": 6})
     """TCP force. Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": None})
+    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": None, "count": 6})
     """Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_target: tuple[float, ...] = field(metadata={"label": 'Target TCP speed', "unit": None})
+    tcp_speed_target: tuple[float, ...] = field(metadata={"label": 'Target TCP speed', "unit": None, "count": 6})
     """Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
     digital_input_bits: float = field(metadata={"label": 'Digital input bits', "unit": None})
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C'})
+    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time."""
@@ -1540,21 +1557,22 @@ class Rt3_10:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
     """Joint mode."""
     safety_mode: float = field(metadata={"label": 'Safety mode', "unit": None})
     """Safety mode."""
-    unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None})
+    unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None, "count": 6})
     """Unused 2. Doubles UR marks unused."""
-    tool_accelerometer_values: tuple[float, ...] = field(metadata={"label": 'Tool accelerometer', "unit": 'm/s²'})
+    tool_accelerometer_values: tuple[float, ...] = field(
+        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
-    unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None})
+    unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None, "count": 6})
     """Unused 3. Doubles UR marks unused."""
     speed_scaling: float = field(metadata={"label": 'Speed scaling', "unit": None})
     """Speed scaling. Speed scaling of the trajectory limiter."""
     linear_momentum_norm: float = field(metadata={"label": 'Linear momentum norm', "unit": None})
     """Linear momentum norm. Norm of Cartesian linear momentum."""
-    unused_4: tuple[float, ...] = field(metadata={"label": 'Unused 4', "unit": None})
+    unused_4: tuple[float, ...] = field(metadata={"label": 'Unused 4', "unit": None, "count": 2})
     """Unused 4. Doubles UR marks unused."""
     v_main: float = field(metadata={"label": 'Main voltage', "unit": 'V'})
     """Main voltage (V). Masterboard: main voltage."""
@@ -1562,7 +1580,7 @@ class Rt3_10:
     """Robot voltage (V). Masterboard: robot voltage (48 V)."""
     i_robot: float = field(metadata={"label": 'Robot current', "unit": 'A'})
     """Robot current (A). Masterboard: robot current."""
-    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V'})
+    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V', "count": 6})
     """Actual joint voltage (V)."""
     digital_outputs: float = field(metadata={"label": 'Digital outputs', "unit": None})
     """Digital outputs. Current state of the digital outputs, as a double whose integer value holds
@@ -1570,9 +1588,9 @@ class Rt3_10:
     """
     program_state: float = field(metadata={"label": 'Program state', "unit": None})
     """Program state."""
-    elbow_position: tuple[float, ...] = field(metadata={"label": 'Elbow position', "unit": 'm'})
+    elbow_position: tuple[float, ...] = field(metadata={"label": 'Elbow position', "unit": 'm', "count": 3})
     """Elbow position (m)."""
-    elbow_velocity: tuple[float, ...] = field(metadata={"label": 'Elbow velocity', "unit": 'm/s'})
+    elbow_velocity: tuple[float, ...] = field(metadata={"label": 'Elbow velocity', "unit": 'm/s', "count": 3})
     """Elbow velocity (m/s)."""
     safety_status: float = field(metadata={"label": 'Safety status', "unit": None})
     """Safety status."""
@@ -1726,43 +1744,44 @@ class Rt5_10:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad'})
+    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s'})
+    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(metadata={"label": 'Target joint acceleration', "unit": 'rad/s²'})
+    qdd_target: tuple[float, ...] = field(
+        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A'})
+    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm'})
+    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad'})
+    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s'})
+    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A'})
+    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
     """Actual joint current (A)."""
-    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A'})
+    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A', "count": 6})
     """Joint control current (A)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None})
+    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": None, "count": 6})
     """Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={"label": 'Actual TCP speed', "unit": None, "count": 6})
     """Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None})
+    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": None, "count": 6})
     """TCP force. Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": None})
+    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": None, "count": 6})
     """Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz a
     rotation vector in rad).
     """
-    tcp_speed_target: tuple[float, ...] = field(metadata={"label": 'Target TCP speed', "unit": None})
+    tcp_speed_target: tuple[float, ...] = field(metadata={"label": 'Target TCP speed', "unit": None, "count": 6})
     """Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, then rad/s)."""
     digital_input_bits: float = field(metadata={"label": 'Digital input bits', "unit": None})
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C'})
+    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time."""
@@ -1770,21 +1789,22 @@ class Rt5_10:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
     """Joint mode."""
     safety_mode: float = field(metadata={"label": 'Safety mode', "unit": None})
     """Safety mode."""
-    unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None})
+    unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None, "count": 6})
     """Unused 2. Doubles UR marks unused."""
-    tool_accelerometer_values: tuple[float, ...] = field(metadata={"label": 'Tool accelerometer', "unit": 'm/s²'})
+    tool_accelerometer_values: tuple[float, ...] = field(
+        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
-    unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None})
+    unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None, "count": 6})
     """Unused 3. Doubles UR marks unused."""
     speed_scaling: float = field(metadata={"label": 'Speed scaling', "unit": None})
     """Speed scaling. Speed scaling of the trajectory limiter."""
     linear_momentum_norm: float = field(metadata={"label": 'Linear momentum norm', "unit": None})
     """Linear momentum norm. Norm of Cartesian linear momentum."""
-    unused_4: tuple[float, ...] = field(metadata={"label": 'Unused 4', "unit": None})
+    unused_4: tuple[float, ...] = field(metadata={"label": 'Unused 4', "unit": None, "count": 2})
     """Unused 4. Doubles UR marks unused."""
     v_main: float = field(metadata={"label": 'Main voltage', "unit": 'V'})
     """Main voltage (V). Masterboard: main voltage."""
@@ -1792,7 +1812,7 @@ class Rt5_10:
     """Robot voltage (V). Masterboard: robot voltage (48 V)."""
     i_robot: float = field(metadata={"label": 'Robot current', "unit": 'A'})
     """Robot current (A). Masterboard: robot current."""
-    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V'})
+    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V', "count": 6})
     """Actual joint voltage (V)."""
     digital_outputs: float = field(metadata={"label": 'Digital outputs', "unit": None})
     """Digital outputs. Current state of the digital outputs, as a double whose integer value holds
@@ -1800,19 +1820,19 @@ class Rt5_10:
     """
     program_state: float = field(metadata={"label": 'Program state', "unit": None})
     """Program state."""
-    elbow_position: tuple[float, ...] = field(metadata={"label": 'Elbow position', "unit": 'm'})
+    elbow_position: tuple[float, ...] = field(metadata={"label": 'Elbow position', "unit": 'm', "count": 3})
     """Elbow position (m)."""
-    elbow_velocity: tuple[float, ...] = field(metadata={"label": 'Elbow velocity', "unit": 'm/s'})
+    elbow_velocity: tuple[float, ...] = field(metadata={"label": 'Elbow velocity', "unit": 'm/s', "count": 3})
     """Elbow velocity (m/s)."""
     safety_status: float = field(metadata={"label": 'Safety status', "unit": None})
     """Safety status."""
-    unused_5: tuple[float, ...] = field(metadata={"label": 'Unused 5', "unit": None})
+    unused_5: tuple[float, ...] = field(metadata={"label": 'Unused 5', "unit": None, "count": 3})
     """Unused 5. Doubles UR marks unused."""
     payload_mass: float = field(metadata={"label": 'Payload mass', "unit": 'kg'})
     """Payload mass (kg)."""
-    payload_cog: tuple[float, ...] = field(metadata={"label": 'Payload centre of gravity', "unit": 'm'})
+    payload_cog: tuple[float, ...] = field(metadata={"label": 'Payload centre of gravity', "unit": 'm', "count": 3})
     """Payload centre of gravity (m)."""
-    payload_inertia: tuple[float, ...] = field(metadata={"label": 'Payload inertia', "unit": None})
+    payload_inertia: tuple[float, ...] = field(metadata={"label": 'Payload inertia', "unit": None, "count": 6})
     """Payload inertia. Payload inertia matrix (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) in kg·m²."""
     extra: bytes = b""
     """Always empty: the size chose a layout that fills the packet. Kept for the JSON writer."""

@@ -1,0 +1,180 @@
+/* urwire._ccore: the generated C parser (generated/c/urwire.c) and the C command's canonical JSON
+ * writer (tools/urwire-decode/json.c), reachable from Python.
+ *
+ * PrimaryJsonLines frames a primary/secondary stream fed in chunks of any size and gives back the
+ * canonical JSON Lines of its records, the same bytes as `urwire.to_json_line` of each record the
+ * pure-Python Framer makes, with the C parser and writer doing the work. The Python side that
+ * picks it over pure Python is urwire/backends.py. */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "json.h"
+#include "records.h"
+#include "urwire.h"
+
+typedef struct {
+    PyObject_HEAD
+    urwire_framer framer;
+    uint8_t *framer_buffer;         /* URWIRE_FRAMER_MIN_BUFFER bytes: frames every legal message */
+    json_writer *writer;            /* large (its kept package texts): on the heap */
+    urwire_visitor visitor;
+    int errors;                     /* a record written so far held an error */
+    int finished;
+} PrimaryJsonLines;
+
+static void lines_dealloc(PrimaryJsonLines *self)
+{
+    PyMem_Free(self->framer_buffer);
+    PyMem_Free(self->writer);
+    Py_TYPE(self)->tp_free((PyObject *)self);
+}
+
+/* PrimaryJsonLines(version_hint=None): version_hint is a text such as "5.25.1", checked by the
+ * caller (urwire.arguments.parse_version) and read again here by the C parser. */
+static int lines_init(PrimaryJsonLines *self, PyObject *args, PyObject *kwargs)
+{
+    static char *names[] = {"version_hint", NULL};
+    const char *hint = NULL;
+    urwire_sw_version version = URWIRE_DEFAULT_VERSION;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "|z", names, &hint))
+        return -1;
+    if (hint && !urwire_parse_version(hint, &version)) {
+        PyErr_Format(PyExc_ValueError, "not a software version: %s", hint);
+        return -1;
+    }
+    PyMem_Free(self->framer_buffer);
+    PyMem_Free(self->writer);
+    self->framer_buffer = PyMem_Malloc(URWIRE_FRAMER_MIN_BUFFER);
+    self->writer = PyMem_Calloc(1, sizeof *self->writer);
+    if (!self->framer_buffer || !self->writer) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    urwire_framer_init(&self->framer, self->framer_buffer, URWIRE_FRAMER_MIN_BUFFER, version);
+    self->visitor = json_visitor(self->writer);
+    self->errors = 0;
+    self->finished = 0;
+    return 0;
+}
+
+/* The lines the writer printed into a memory stream, as bytes; NULL with an exception set.
+ * *text and *size are the stream's, final once it is closed. */
+static PyObject *take_lines(FILE *out, char **text, size_t *size)
+{
+    PyObject *lines;
+    if (fclose(out) != 0) {
+        free(*text);
+        return PyErr_SetFromErrno(PyExc_OSError);
+    }
+    lines = PyBytes_FromStringAndSize(*text ? *text : "", (Py_ssize_t)*size);
+    free(*text);
+    return lines;
+}
+
+/* Feeds data (NULL: the stream has ended) and prints every record that is then ready. The GIL
+ * stays held: two threads feeding one object would otherwise share its framer and writer. */
+static PyObject *print_records(PrimaryJsonLines *self, const uint8_t *data, size_t n)
+{
+    char *text = NULL;
+    size_t size = 0, off = 0;
+    FILE *out;
+    if (!self->writer) {
+        PyErr_SetString(PyExc_RuntimeError, "PrimaryJsonLines was not initialised");
+        return NULL;
+    }
+    if (self->finished) {
+        PyErr_SetString(PyExc_ValueError, "the stream has ended (close() was called)");
+        return NULL;
+    }
+    out = open_memstream(&text, &size);
+    if (!out)
+        return PyErr_SetFromErrno(PyExc_OSError);
+    self->writer->out = out;
+    if (data) {
+        while (off < n) {
+            off += urwire_framer_feed(&self->framer, data + off, n - off);
+            self->errors |= print_ready_records(&self->framer, &self->visitor, self->writer);
+        }
+    } else {
+        urwire_framer_finish(&self->framer);
+        self->errors |= print_ready_records(&self->framer, &self->visitor, self->writer);
+        self->finished = 1;
+    }
+    self->writer->out = NULL;
+    return take_lines(out, &text, &size);
+}
+
+static PyObject *lines_feed(PrimaryJsonLines *self, PyObject *arg)
+{
+    Py_buffer view;
+    PyObject *lines;
+    if (PyObject_GetBuffer(arg, &view, PyBUF_SIMPLE) != 0)
+        return NULL;
+    lines = print_records(self, view.buf, (size_t)view.len);
+    PyBuffer_Release(&view);
+    return lines;
+}
+
+static PyObject *lines_close(PrimaryJsonLines *self, PyObject *Py_UNUSED(ignored))
+{
+    return print_records(self, NULL, 0);
+}
+
+static PyObject *lines_errors(PrimaryJsonLines *self, void *Py_UNUSED(closure))
+{
+    return PyBool_FromLong(self->errors);
+}
+
+static PyMethodDef lines_methods[] = {
+    {"feed", (PyCFunction)lines_feed, METH_O,
+     "feed(data) -> bytes: the JSON Lines of the records the bytes so far complete"},
+    {"close", (PyCFunction)lines_close, METH_NOARGS,
+     "close() -> bytes: the JSON Lines of what the end of the stream completes (a cut tail's fault)"},
+    {NULL, NULL, 0, NULL},
+};
+
+static PyGetSetDef lines_getset[] = {
+    {"errors", (getter)lines_errors, NULL, "whether a record written so far held an error", NULL},
+    {NULL, NULL, NULL, NULL, NULL},
+};
+
+static PyTypeObject PrimaryJsonLinesType = {
+    PyVarObject_HEAD_INIT(NULL, 0)
+    .tp_name = "urwire._ccore.PrimaryJsonLines",
+    .tp_doc = "A primary/secondary stream in, its canonical JSON Lines out (the C parser and writer).",
+    .tp_basicsize = sizeof(PrimaryJsonLines),
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_new = PyType_GenericNew,
+    .tp_init = (initproc)lines_init,
+    .tp_dealloc = (destructor)lines_dealloc,
+    .tp_methods = lines_methods,
+    .tp_getset = lines_getset,
+};
+
+static struct PyModuleDef ccore_module = {
+    PyModuleDef_HEAD_INIT,
+    .m_name = "urwire._ccore",
+    .m_doc = "The generated C parser of the primary/secondary interface, for urwire's Python package.",
+    .m_size = -1,
+};
+
+PyMODINIT_FUNC PyInit__ccore(void)
+{
+    PyObject *module;
+    if (PyType_Ready(&PrimaryJsonLinesType) < 0)
+        return NULL;
+    module = PyModule_Create(&ccore_module);
+    if (!module)
+        return NULL;
+    Py_INCREF(&PrimaryJsonLinesType);
+    if (PyModule_AddObject(module, "PrimaryJsonLines", (PyObject *)&PrimaryJsonLinesType) < 0) {
+        Py_DECREF(&PrimaryJsonLinesType);
+        Py_DECREF(module);
+        return NULL;
+    }
+    return module;
+}

@@ -1,0 +1,34 @@
+# The optional C extension urwire._ccore (ext/ccore/module.c over generated/c/urwire.c and the C
+# command's JSON writer, tools/urwire-decode): built in place beside python/urwire so that the
+# tree's Python (PYTHONPATH=python:generated/python) decodes through it; setup.py builds the same
+# module for `pip install .` and `pip wheel .`.
+
+PYTHON_EXT_SOURCES := setup.py ext/ccore/module.c generated/c/urwire.c generated/c/urwire.h \
+	tools/urwire-decode/json.c tools/urwire-decode/json.h tools/urwire-decode/shortest.c \
+	tools/urwire-decode/shortest.h tools/urwire-decode/records.c tools/urwire-decode/records.h
+PYTHON_EXT_STAMP := build/python-ext.stamp
+
+ALL_TARGETS += python-ext
+TEST_BUILDS += python-ext
+
+.PHONY: python-ext
+
+## python-ext: build urwire._ccore in place (python/urwire/_ccore*.so); URWIRE_BACKEND=python ignores it
+python-ext: $(PYTHON_EXT_STAMP)
+
+$(PYTHON_EXT_STAMP): $(PYTHON_EXT_SOURCES)
+	@mkdir -p build
+	$(PYTHON) setup.py --quiet build_ext --inplace --build-temp build/python-ext --build-lib build/python-ext/lib
+	@# setup.py leaves the extension out rather than fail (pip install must work without a compiler);
+	@# here its absence is an error.
+	PYTHONPATH=python:generated/python URWIRE_BACKEND=c $(PYTHON) -c "import urwire"
+	@touch $@
+
+## test-python-backend: the tests of what the C backend changes (urwire decode of a raw primary
+## stream) under pure Python (URWIRE_BACKEND=python); `make test` runs them so, and everything
+## else under the default backend, the C one, which it builds first
+PYTHON_BACKEND_TESTS := tests/python/test_cli.py tests/python/test_hostile_bytes.py tests/python/test_c_backend.py
+TEST_BUILDS += test-python-backend
+.PHONY: test-python-backend
+test-python-backend: python-ext
+	URWIRE_BACKEND=python $(PYTEST) -q $(PYTHON_BACKEND_TESTS)

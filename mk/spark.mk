@@ -1,0 +1,13 @@
+# Apache Spark: `urwire spark` (python/urwire/spark.py) and its benchmark. Its tests are
+# tests/python/test_spark.py, run with the other Python tests (skipped without pyspark or java).
+
+BENCH_TARGETS += bench-spark
+BENCH_SPARK_DAYS ?= 10
+
+.PHONY: bench-spark
+
+## bench-spark: BENCH_SPARK_DAYS robot-days (864,000 real robot states each, .pcap, built once under
+## build/bench-spark/) to a dataset by `urwire spark` in Spark local[2] and by a sequential export of
+## the same files, in one run: seconds, states/s and the ratio (BENCH_SMALL=1: 2,000 states a day)
+bench-spark:
+	PYTHONPATH=python:generated/python $(PYTHON) tests/bench/bench_spark.py --days $(BENCH_SPARK_DAYS)

@@ -1,0 +1,145 @@
+"""`urwire spark`: a folder of captures (raw streams, .pcap, .pcapng) decoded in parallel on
+Apache Spark into the dataset `urwire export --dataset` writes, one Spark task per capture.
+
+    spark-submit --archives urwire-env.tar.gz#env urwire/spark.py --out /mnt/plant/urwire s3a://plant/captures
+    urwire spark --master local[2] --out dataset/ captures/      (or python -m urwire.spark)
+
+How: Spark's `binaryFile` source lists the folder and gives each file's bytes; `mapInArrow`
+runs urwire's decoder on each (dataset.capture_parts) and writes its tables with the same call
+the export makes (dataset.write_parts), then returns one row per table part written (path,
+interface, kind, robot, date, rows): the job's manifest.
+
+Why the tasks write the parts rather than Spark's own writer (partitionBy): a capture feeds many
+tables, and each is decoded once here, where a DataFrame per kind would decode it again or move
+every table through a shuffle; the part files are those of the export, named by the capture's
+content, so submitting a folder again replaces its captures' parts instead of adding their rows
+twice, and a task that Spark runs twice writes the same files. Why not a Python data source
+(`spark.read.format("urwire")`): a data source reads into one DataFrame of one schema, and a
+capture gives a table per kind.
+"""
+from __future__ import annotations
+
+import argparse
+import datetime
+import sys
+from pathlib import PurePosixPath
+from typing import Callable, Iterable, Iterator, Optional
+
+
+def dataset_module():
+    """The dataset calls (urwire.dataset). Imported when used, and by the absolute name, so that
+    `urwire` starts without pyarrow and spark-submit can run this file as its main script."""
+    import importlib
+
+    return importlib.import_module("urwire.dataset")
+
+
+MANIFEST = "path string, interface string, kind string, robot string, date string, rows long"
+
+
+def _counted(parts: Iterable, seen: list) -> Iterator:
+    """The parts, each noted in `seen` as it goes to the writer."""
+    for part in parts:
+        seen.append((part.interface, part.kind, part.robot, part.date, part.table.num_rows))
+        yield part
+
+
+def utc_date(when: datetime.datetime) -> str:
+    """The UTC day of a binaryFile modificationTime (Arrow gives Spark's timestamps in UTC,
+    with or without the zone named)."""
+    if when.tzinfo is None:
+        when = when.replace(tzinfo=datetime.timezone.utc)
+    return when.astimezone(datetime.timezone.utc).date().isoformat()
+
+
+def decode_files(root: str, version_hint=None, robot: Optional[str] = None, date: Optional[str] = None) -> Callable:
+    """The mapInArrow function: each capture of a batch of binaryFile rows decoded and written
+    under `root`, then a manifest batch of the parts it wrote. As `urwire export --dataset`
+    reads a file: its source is its name, a raw stream's robot is `robot` and its day `date`,
+    else the day the file was last modified (UTC)."""
+    def run(batches):
+        import pyarrow as pa
+
+        dataset = dataset_module()
+        for batch in batches:
+            paths, times, contents = (batch.column(name) for name in ("path", "modificationTime", "content"))
+            for i in range(batch.num_rows):
+                # the bytes where Arrow holds them, not a copy: a robot-day is over a gigabyte
+                path, data = paths[i].as_py(), memoryview(contents[i].as_buffer())
+                seen: list = []
+                parts = dataset.capture_parts(data, PurePosixPath(path).name, version_hint, robot,
+                                              date or utc_date(times[i].as_py()))
+                dataset.write_parts(root, _counted(parts, seen), dataset.capture_id(data))
+                columns = list(zip(*seen)) or [()] * 5
+                yield pa.RecordBatch.from_arrays(
+                    [pa.array([path] * len(seen), pa.string())] +
+                    [pa.array(values, pa.string()) for values in columns[:4]] +
+                    [pa.array(columns[4], pa.int64())],
+                    names=["path", "interface", "kind", "robot", "date", "rows"])
+    return run
+
+
+def export_folder(spark, captures: str, root: str, version_hint=None, robot: Optional[str] = None,
+                  date: Optional[str] = None):
+    """Decode every file under `captures` (any Hadoop path: a folder, s3a://...) into the
+    dataset at `root` (a path every executor can write); returns the manifest DataFrame,
+    already computed."""
+    # binaryFile never splits a file; one file per partition spreads the captures over the
+    # tasks, where the default packs small files into one.
+    spark.conf.set("spark.sql.files.maxPartitionBytes", "1")
+    spark.conf.set("spark.sql.execution.arrow.maxRecordsPerBatch", "1")
+    files = (spark.read.format("binaryFile").option("recursiveFileLookup", "true")
+             .load(captures).select("path", "modificationTime", "content"))   # names starting with . or _ are left out
+    manifest = files.mapInArrow(decode_files(root, version_hint, robot, date), MANIFEST)
+    return manifest.localCheckpoint(eager=True)
+
+
+def add_parser(sub, version_arg) -> None:
+    p = sub.add_parser("spark", help="decode a folder of captures in parallel on Apache Spark into a dataset",
+                       description="Decode every raw stream, .pcap and .pcapng under FOLDER on Apache Spark, "
+                                   "a task per file, into the dataset `urwire export --dataset` writes "
+                                   "(docs/tables.md). Needs pyspark: pip install urwire[spark].")
+    _arguments(p, version_arg)
+    p.set_defaults(run=spark_command)
+
+
+def _arguments(p: argparse.ArgumentParser, version_arg) -> None:
+    p.add_argument("captures", metavar="FOLDER", help="folder of captures (a path Spark reads: file:, hdfs:, s3a:)")
+    p.add_argument("--out", required=True, metavar="ROOT", help="the dataset's root, written by every executor")
+    p.add_argument("--master", help="Spark master (default: spark-submit's, else local[*])")
+    p.add_argument("--version-hint", type=version_arg, metavar="X.Y[.Z]",
+                   help="software version to assume until a Version message is seen")
+    p.add_argument("--robot", metavar="NAME", help="the robot of the raw streams (a capture's robots are in it)")
+    p.add_argument("--date", metavar="YYYY-MM-DD",
+                   help="the day of the raw streams, which have no capture times (default: each file's mtime, UTC)")
+
+
+def spark_command(args: argparse.Namespace) -> int:
+    try:
+        from pyspark.sql import SparkSession
+    except ImportError:
+        print("urwire spark: needs pyspark: pip install urwire[spark]", file=sys.stderr)
+        return 2
+    builder = SparkSession.builder.appName("urwire")
+    if args.master:
+        builder = builder.master(args.master)
+    spark = builder.getOrCreate()
+    try:
+        rows = export_folder(spark, args.captures, args.out, args.version_hint, args.robot, args.date).collect()
+    finally:
+        spark.stop()
+    files = len({row.path for row in rows})
+    print(f"{files} captures, {len(rows)} table parts, {sum(row.rows for row in rows)} rows", file=sys.stderr)
+    return 0
+
+
+def main(argv=None) -> int:
+    from urwire.cli import _version_arg
+
+    parser = argparse.ArgumentParser(prog="urwire.spark", description=__doc__.split("\n\n")[0])
+    _arguments(parser, _version_arg)
+    return spark_command(parser.parse_args(argv))
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,39 @@
+"""The optional C extension urwire._ccore: the generated C parser (generated/c) and the C
+command's canonical JSON writer (tools/urwire-decode) behind a small CPython module (ext/ccore).
+
+It is optional: where no compiler is at hand, `pip install .` still installs the pure-Python
+package, which then decodes on its own (urwire.backend() says which one runs). Everything else
+about the package is in pyproject.toml.
+"""
+from setuptools import Extension, setup
+from setuptools.command.build_ext import build_ext
+
+JSON_WRITER = ["tools/urwire-decode/json.c", "tools/urwire-decode/shortest.c", "tools/urwire-decode/records.c"]
+
+
+class OptionalBuildExt(build_ext):
+    """Builds the extension where it can; a failed build leaves the pure-Python package."""
+
+    def run(self):
+        try:
+            super().run()
+        except Exception as exc:  # no compiler, no Python headers: setuptools raises several kinds
+            print(f"urwire: the C extension is not built ({exc}); the package decodes in pure Python")
+
+    def build_extension(self, ext):
+        try:
+            super().build_extension(ext)
+        except Exception as exc:
+            print(f"urwire: the C extension {ext.name} is not built ({exc}); the package decodes in pure Python")
+
+
+setup(
+    ext_modules=[Extension(
+        "urwire._ccore",
+        sources=["ext/ccore/module.c", "generated/c/urwire.c", *JSON_WRITER],
+        include_dirs=["generated/c", "tools/urwire-decode"],
+        extra_compile_args=["-std=c99", "-O2"],
+        optional=True,
+    )],
+    cmdclass={"build_ext": OptionalBuildExt},
+)

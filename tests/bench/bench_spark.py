@@ -1,0 +1,128 @@
+"""make bench-spark: robot-days of real robot states (864,000 each: a day at 10 Hz) written to
+a dataset by `urwire spark` on Spark local[2] and by a sequential export of the same files, one
+after the other, in one run: wall-clock seconds of each, states per second, and their ratio.
+
+    python3 tests/bench/bench_spark.py [--days 10] [--states 864000]
+    BENCH_SMALL=1 python3 tests/bench/bench_spark.py        (2,000 states a day: a quick look)
+
+Each robot-day is a .pcap of one session in its own robot's folder, a state per TCP segment, its
+frames 100 ms apart from its own midnight (so that days differ in their bytes and dates), built
+once under build/bench-spark/ from the robot states of tests/tools/robot_inputs.py (the bundled
+5.11 capture's and the conformance captures' that decode cleanly), repeated. The sequential
+export runs in one process: for each file, dataset.capture_parts then dataset.write_parts, the
+calls `urwire export --dataset` makes. Spark's time includes starting its JVM, as a submitted
+job's does. Before the ratio, the two datasets are checked to hold the same part files with the
+same row counts.
+"""
+from __future__ import annotations
+
+import argparse
+import hashlib
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python"), str(ROOT)]
+
+from tests.tools import capture, robot_inputs  # noqa: E402
+
+WORK = ROOT / "build" / "bench-spark"
+DAY = 864_000            # robot states in a day at 10 Hz
+SMALL_DAY = 2_000
+MIDNIGHT = 1_700_006_400.0   # 2023-11-15 00:00 UTC
+ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")]),
+           PYSPARK_PYTHON=sys.executable, PYSPARK_DRIVER_PYTHON=sys.executable,
+           # local mode runs the tasks' JVM side in the driver: room for two robot-days in flight
+           PYSPARK_SUBMIT_ARGS=os.environ.get("PYSPARK_SUBMIT_ARGS", "--driver-memory 8g pyspark-shell"))
+SEQUENTIAL = """
+import datetime, sys
+from pathlib import Path
+from urwire.spark import dataset_module, utc_date
+dataset = dataset_module()
+out = sys.argv[1]
+for path in sorted(p for p in Path(sys.argv[2]).rglob("*") if p.is_file()):
+    data = path.read_bytes()
+    day = utc_date(datetime.datetime.fromtimestamp(path.stat().st_mtime, datetime.timezone.utc))
+    dataset.write_parts(out, dataset.capture_parts(data, path.name, None, None, day), dataset.capture_id(data))
+"""
+
+
+def robot_days(days: int, states: int) -> Path:
+    """The folder of `days` captures of `states` robot states each, robot-NN/day.pcap."""
+    real = robot_inputs.real_states()
+    digest = hashlib.sha256(b"".join(real)).hexdigest()[:8]
+    folder = WORK / f"captures-{digest}-{states}"
+    for day in range(days):
+        path = folder / f"robot-{day:02d}" / "day.pcap"
+        if path.is_file():
+            continue
+        path.parent.mkdir(parents=True, exist_ok=True)
+        payloads = (real * (states // len(real) + 1))[:states]
+        partial = path.with_suffix(f".{os.getpid()}.partial")
+        capture.write(partial, capture.robot_session(payloads, robot=f"192.168.56.{101 + day}"),
+                      start=MIDNIGHT + day * 86_400)
+        partial.replace(path)
+    # a folder of exactly `days` days: others built before by a larger run are left out
+    chosen = WORK / f"run-{days}x{states}"
+    shutil.rmtree(chosen, ignore_errors=True)
+    for day in range(days):
+        (chosen / f"robot-{day:02d}").mkdir(parents=True)
+        os.link(folder / f"robot-{day:02d}" / "day.pcap", chosen / f"robot-{day:02d}" / "day.pcap")
+    return chosen
+
+
+def timed(cmd: list[str]) -> float:
+    start = time.perf_counter()
+    result = subprocess.run(cmd, env=ENV, capture_output=True, text=True)
+    seconds = time.perf_counter() - start
+    if result.returncode != 0:
+        sys.exit(f"{cmd[:4]} exited {result.returncode}:\n{result.stderr[-3000:]}")
+    return seconds
+
+
+def part_rows(root: Path) -> dict[str, int]:
+    import pyarrow.parquet as pq
+
+    return {str(p.relative_to(root)): pq.read_metadata(p).num_rows for p in root.rglob("*.parquet")}
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--days", type=int, default=10, help="robot-days, each its own robot (default: 10)")
+    parser.add_argument("--states", type=int, default=SMALL_DAY if os.environ.get("BENCH_SMALL") else DAY,
+                        help=f"robot states a day (default: {DAY:,}; {SMALL_DAY:,} with BENCH_SMALL=1)")
+    args = parser.parse_args()
+    try:
+        import pyspark  # noqa: F401
+    except ImportError:
+        print("bench-spark needs pyspark: pip install urwire[spark]", file=sys.stderr)
+        return 2
+
+    captures = robot_days(args.days, args.states)
+    size = sum(p.stat().st_size for p in captures.rglob("*.pcap"))
+    total = args.days * args.states
+    print(f"== {args.days} robot-days of {args.states:,} real robot states (.pcap, {size / 1e6:,.0f} MB in all) "
+          f"to a dataset: Spark local[2] against a sequential export")
+    sequential_out, spark_out = WORK / "dataset-sequential", WORK / "dataset-spark"
+    for out in (sequential_out, spark_out):
+        shutil.rmtree(out, ignore_errors=True)
+    sequential = timed([sys.executable, "-c", SEQUENTIAL, str(sequential_out), str(captures)])
+    spark = timed([sys.executable, "-m", "urwire.spark", "--master", "local[2]", "--out", str(spark_out),
+                   str(captures)])
+    expected, got = part_rows(sequential_out), part_rows(spark_out)
+    same = expected == got
+    print(f"   the datasets: {'the same part files and rows' if same else 'DIFFERENT'} "
+          f"({len(got)} parts, {sum(got.values()):,} rows)")
+    print(f"   sequential export: {sequential:8.1f} s  {total / sequential:10,.0f} states/s")
+    print(f"   Spark local[2]:    {spark:8.1f} s  {total / spark:10,.0f} states/s")
+    print(f"   ratio: Spark local[2] is {sequential / spark:.2f}x the sequential export "
+          f"(local[2]: two tasks at a time; the JVM's start included)")
+    return 0 if same else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
