@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "columns.h"
 #include "json.h"
 #include "records.h"
 #include "urwire.h"
@@ -165,7 +166,7 @@ static struct PyModuleDef ccore_module = {
 PyMODINIT_FUNC PyInit__ccore(void)
 {
     PyObject *module;
-    if (PyType_Ready(&PrimaryJsonLinesType) < 0)
+    if (PyType_Ready(&PrimaryJsonLinesType) < 0 || PyType_Ready(&PrimaryColumnsType) < 0)
         return NULL;
     module = PyModule_Create(&ccore_module);
     if (!module)
@@ -173,6 +174,12 @@ PyMODINIT_FUNC PyInit__ccore(void)
     Py_INCREF(&PrimaryJsonLinesType);
     if (PyModule_AddObject(module, "PrimaryJsonLines", (PyObject *)&PrimaryJsonLinesType) < 0) {
         Py_DECREF(&PrimaryJsonLinesType);
+        Py_DECREF(module);
+        return NULL;
+    }
+    Py_INCREF(&PrimaryColumnsType);
+    if (PyModule_AddObject(module, "PrimaryColumns", (PyObject *)&PrimaryColumnsType) < 0) {
+        Py_DECREF(&PrimaryColumnsType);
         Py_DECREF(module);
         return NULL;
     }

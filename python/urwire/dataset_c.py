@@ -1,0 +1,108 @@
+"""The dataset's rows of a raw primary/secondary stream made in C (dataset.py, under the C backend).
+
+The extension's PrimaryColumns (ext/ccore/columns.c) frames and decodes the stream with the
+generated C parser and appends each record's values straight into per-kind column buffers; a
+kind's full batch comes back as buffers that become Arrow arrays without a Python object per
+value. The columns are the dataset's schema (dataset_columns): Python gives C, once, each kind's
+column paths and types in schema order. A kind that holds JSON text of its own (name lists,
+global-variable values, program threads: rare messages) has no columns in C: its messages come
+back as bytes and go through the Python decoder and PartBuilder, so every kind's rows are made in
+one place, in stream order. The result is the same Parts as the pure-Python path
+(tests/python/test_dataset_c.py compares them).
+"""
+from __future__ import annotations
+
+from typing import Iterator, Optional
+
+from .arguments import parse_version
+from .backends import ccore
+from .dataset_columns import ERROR_KINDS, PRIMARY, ROBOT_STATE, LEAD, Part, columns_of, dataset_schema, kinds
+from .decoding import decode_message
+
+BATCH_ROWS = 1 << 15        # rows of a kind the C side holds before it hands them over
+CHUNK = 1 << 20             # bytes of the stream read at a time
+_PYTHON_KINDS = ("texts", "values", "json")   # columns whose JSON text Python writes
+
+
+def _type_code(arrow_type) -> int:
+    """A column's Arrow type as columns.c numbers it."""
+    import pyarrow as pa
+    codes = {pa.int64(): 0, pa.uint64(): 1, pa.bool_(): 2, pa.float32(): 3, pa.float64(): 4, pa.string(): 5,
+             pa.binary(): 6}
+    return codes[arrow_type]
+
+
+def layout() -> list[tuple]:
+    """Each primary kind as C is given it: (kind, [(path, type code), ...]) in schema order after
+    the lead columns, or (kind, None) for a kind Python makes."""
+    out = []
+    for kind in kinds(PRIMARY):
+        columns = columns_of(PRIMARY, kind)
+        if kind not in ERROR_KINDS + (ROBOT_STATE,) and any(c.kind in _PYTHON_KINDS for c in columns):
+            out.append((kind, None))
+            continue
+        fields = list(dataset_schema(PRIMARY, kind))[len(LEAD):]
+        out.append((kind, [(c.path, _type_code(f.type)) for c, f in zip(columns, fields)]))
+    return out
+
+
+def available() -> bool:
+    """Whether C makes the rows of a raw stream: the C backend, with PrimaryColumns."""
+    return hasattr(ccore(), "PrimaryColumns")
+
+
+class _Tables:
+    """C's batches as Parts of one robot and day."""
+
+    def __init__(self, capture: str, source: str, robot: Optional[str], date: Optional[str]) -> None:
+        import pyarrow as pa
+        self.capture, self.source, self.robot, self.date = capture, source, robot, date
+        self.kinds = [kind for kind, _ in layout()]
+        self.schemas = [dataset_schema(PRIMARY, kind) for kind in self.kinds]
+        self._time = pa.timestamp("us", "UTC")
+
+    def part(self, index: int, rows: int, buffers: list) -> Part:
+        import pyarrow as pa
+        if self.robot is None:
+            raise ValueError("a raw stream needs the robot's name (--robot)")
+        if self.date is None:
+            raise ValueError("a raw stream needs a date (--date)")
+        schema = self.schemas[index]
+        fields = list(schema)
+        arrays = [pa.array([self.capture] * rows, pa.string()), pa.array([self.source] * rows, pa.string()),
+                  _array(fields[2].type, rows, buffers[0]), pa.nulls(rows, self._time)]
+        arrays += [_array(f.type, rows, b) for f, b in zip(fields[len(LEAD):], buffers[1:])]
+        return Part(PRIMARY, self.kinds[index], self.robot, self.date, pa.Table.from_arrays(arrays, schema=schema))
+
+
+def _array(arrow_type, rows: int, buffers: tuple):
+    import pyarrow as pa
+    valid, data, offsets = buffers
+    parts = [None if valid is None else pa.py_buffer(valid)]
+    if offsets is not None:
+        parts.append(pa.py_buffer(offsets))
+    parts.append(pa.py_buffer(data))
+    return pa.Array.from_buffers(arrow_type, rows, parts)
+
+
+def raw_parts(fh, capture: str, source: str, version_hint=None, robot: Optional[str] = None,
+              date: Optional[str] = None) -> Iterator[Part]:
+    """The Parts of a raw primary/secondary stream read from a binary file object, as
+    dataset.parts_of gives them (its robot `robot`, its day `date`)."""
+    from .dataset import PartBuilder
+    hint = parse_version(version_hint)
+    stream = ccore().PrimaryColumns(None if hint is None else "%d.%d.%d" % hint, layout(), BATCH_ROWS)
+    tables = _Tables(capture, source, robot, date)
+    builder = PartBuilder(capture, source, date, robot)     # the kinds Python makes
+
+    def parts(output) -> Iterator[Part]:
+        batches, messages = output
+        for index, rows, buffers in batches:
+            yield tables.part(index, rows, buffers)
+        for _, position, frame, version, known in messages:
+            yield from builder.add(position, None, None, decode_message(frame, version, known))
+
+    while chunk := fh.read(CHUNK):
+        yield from parts(stream.feed(chunk))
+    yield from parts(stream.close())
+    yield from builder.finish()
