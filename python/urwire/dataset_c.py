@@ -69,7 +69,8 @@ class _Tables:
             raise ValueError("a raw stream needs a date (--date)")
         schema = self.schemas[index]
         fields = list(schema)
-        arrays = [pa.array([self.capture] * rows, pa.string()), pa.array([self.source] * rows, pa.string()),
+        arrays = [pa.repeat(pa.scalar(self.capture, pa.string()), rows),
+                  pa.repeat(pa.scalar(self.source, pa.string()), rows),
                   _array(fields[2].type, rows, buffers[0]), pa.nulls(rows, self._time)]
         arrays += [_array(f.type, rows, b) for f, b in zip(fields[len(LEAD):], buffers[1:])]
         return Part(PRIMARY, self.kinds[index], self.robot, self.date, pa.Table.from_arrays(arrays, schema=schema))
