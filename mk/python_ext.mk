@@ -25,9 +25,10 @@ $(PYTHON_EXT_STAMP): $(PYTHON_EXT_SOURCES)
 	@touch $@
 
 ## test-python-backend: the tests of what the C backend changes (urwire decode of a raw primary
-## stream) under pure Python (URWIRE_BACKEND=python); `make test` runs them so, and everything
+## stream, the dataset's columns of one) under pure Python (URWIRE_BACKEND=python); `make test` runs them so, and everything
 ## else under the default backend, the C one, which it builds first
-PYTHON_BACKEND_TESTS := tests/python/test_cli.py tests/python/test_hostile_bytes.py tests/python/test_c_backend.py
+PYTHON_BACKEND_TESTS := tests/python/test_cli.py tests/python/test_hostile_bytes.py tests/python/test_c_backend.py \
+	tests/python/test_dataset.py
 TEST_BUILDS += test-python-backend
 .PHONY: test-python-backend
 test-python-backend: python-ext
