@@ -100,6 +100,7 @@ typedef struct {
     int matching;
     frame stack[MAX_DEPTH];
     int nframes;
+    int too_deep;           /* containers open beyond MAX_DEPTH: their values are skipped */
     /* kind names seen -> tables: the visitor's names are the parser's constants */
     const uint8_t *name_ptr[64];
     int name_table[64];
@@ -137,7 +138,7 @@ static int column_grow(column *c)
     return 0;
 }
 
-/* A slot for the column's next row, valid; NULL with MemoryError set. */
+/* Marks the column's next row valid, making room for it; -1 with MemoryError set. */
 static int column_slot(column *c)
 {
     if (c->filled == c->cap && column_grow(c) < 0) {
@@ -365,6 +366,7 @@ static int row_begin(PrimaryColumns *self, table *t)
     self->step = 0;
     self->matching = 1;
     self->nframes = 0;
+    self->too_deep = 0;
     return put_i64(&t->columns[0], self->position);
 }
 
@@ -468,6 +470,8 @@ static void check(PrimaryColumns *self, int rc)
         self->failed = 1;
 }
 
+/* The table of a kind's name, -1 for none. The names a record's "type" gives are the parser's
+ * constants, so each is looked up once and then known by its address. */
 static int table_named(PrimaryColumns *self, urwire_bytes name)
 {
     int i;
@@ -499,11 +503,11 @@ static void walk_begin(void *ctx, const char *key, unsigned char event)
     }
     if (!self->row || self->failed)
         return;
-    locate(self, event, key);
-    if (self->nframes == MAX_DEPTH) {
-        self->row = NULL;   /* deeper than any layout: the rest of the row is null */
+    if (self->too_deep || self->nframes == MAX_DEPTH) {
+        self->too_deep++;   /* deeper than any layout: what it holds has no column */
         return;
     }
+    locate(self, event, key);
     parent_array = self->nframes && self->stack[self->nframes - 1].array;
     self->stack[self->nframes].key = key;
     self->stack[self->nframes].index = 0;
@@ -531,6 +535,10 @@ static void walk_end(void *ctx, unsigned char event)
     }
     if (!self->row || self->failed || self->depth < self->row_depth)
         return;
+    if (self->too_deep) {
+        self->too_deep--;
+        return;
+    }
     locate(self, event, NULL);
     if (self->nframes) {
         self->nframes--;
