@@ -32,6 +32,7 @@ static const size_t col_width[COL_TYPES] = {8, 8, 0, 4, 8, 0, 0};
 #define TEXT_FLUSH_BYTES ((size_t)64 << 20)
 #define MAX_DEPTH 32
 #define PATH_MAX_TEXT 512
+#define LEAD_COLUMNS 2          /* every kind's first columns: the position and the capture time */
 
 typedef struct {
     char *path;
@@ -73,10 +74,20 @@ typedef struct {
     int array;
 } frame;
 
+/* A primary stream's framing state: one per connection of a capture (PrimaryStream), or the
+ * raw stream's own. */
 typedef struct {
     PyObject_HEAD
     urwire_framer framer;
+    uint8_t *buffer;
+    int finished;
+} PrimaryStream;
+
+typedef struct {
+    PyObject_HEAD
+    urwire_framer own;      /* a raw stream's (feed, close) */
     uint8_t *framer_buffer;
+    urwire_framer *framer;  /* the stream being read */
     json_writer *writer;
     urwire_visitor json;
     table *tables;
@@ -84,6 +95,8 @@ typedef struct {
     int robot_state, errors, unknown;   /* table indexes */
     Py_ssize_t batch_rows;
     long long position;
+    long long time_us;      /* the capture time of the bytes being read (UTC, microseconds) */
+    int has_time;           /* 0: none (a raw stream) */
     PyObject *batches;      /* full batches not yet taken */
     PyObject *messages;     /* messages for Python not yet taken */
     int failed;             /* a Python error is set */
@@ -359,7 +372,7 @@ static int table_flush(PrimaryColumns *self, int index)
     return i;
 }
 
-/* A row of t begins: its position first. */
+/* A row of t begins: its position and capture time first. */
 static int row_begin(PrimaryColumns *self, table *t)
 {
     self->row = t;
@@ -367,7 +380,9 @@ static int row_begin(PrimaryColumns *self, table *t)
     self->matching = 1;
     self->nframes = 0;
     self->too_deep = 0;
-    return put_i64(&t->columns[0], self->position);
+    if (put_i64(&t->columns[0], self->position) < 0)
+        return -1;
+    return self->has_time ? put_i64(&t->columns[1], self->time_us) : put_null(&t->columns[1]);
 }
 
 /* The row ends: the columns it gave no value are null; a full batch is handed over. */
@@ -375,7 +390,7 @@ static int row_end(PrimaryColumns *self, table *t)
 {
     int i;
     self->row = NULL;
-    for (i = 1; i < t->ncolumns; i++)
+    for (i = LEAD_COLUMNS; i < t->ncolumns; i++)
         if (t->columns[i].filled == t->rows && put_null(&t->columns[i]) < 0)
             return -1;
     t->rows++;
@@ -410,7 +425,7 @@ static void value_path(const PrimaryColumns *self, const char *key, char *out, s
 static int find_column(const table *t, const char *path)
 {
     int i;
-    for (i = 1; i < t->ncolumns; i++)
+    for (i = LEAD_COLUMNS; i < t->ncolumns; i++)
         if (strcmp(t->columns[i].path, path) == 0)
             return i;
     return -1;
@@ -528,7 +543,7 @@ static void walk_end(void *ctx, unsigned char event)
         table *t = &self->tables[self->robot_state];
         check(self, row_begin(self, t));
         if (!self->failed)
-            check(self, put_i64(&t->columns[1], self->packages));
+            check(self, put_i64(&t->columns[LEAD_COLUMNS], self->packages));
         if (!self->failed)
             check(self, row_end(self, t));
         return;
@@ -712,7 +727,7 @@ static int json_row(PrimaryColumns *self, int index, const urwire_message *m, co
     }
     rc = row_begin(self, t);
     if (rc == 0)
-        rc = put_bytes(&t->columns[1], text ? text : "", size, &t->text_bytes);
+        rc = put_bytes(&t->columns[LEAD_COLUMNS], text ? text : "", size, &t->text_bytes);
     free(text);
     return rc == 0 ? row_end(self, t) : -1;
 }
@@ -732,9 +747,10 @@ static bool on_package(void *ctx, const urwire_package *pkg)
 
 static int message_for_python(PrimaryColumns *self, int index, const urwire_frame *frame)
 {
-    PyObject *item = Py_BuildValue("(iLy#(iii)O)", index, self->position, (const char *)frame->bytes,
-                                   (Py_ssize_t)frame->length, frame->version.major, frame->version.minor,
-                                   frame->version.bugfix, frame->version.assumed ? Py_False : Py_True);
+    PyObject *time = self->has_time ? PyLong_FromLongLong(self->time_us) : (Py_INCREF(Py_None), Py_None);
+    PyObject *item = time ? Py_BuildValue("(iLNy#(iii)O)", index, self->position, time, (const char *)frame->bytes,
+                                          (Py_ssize_t)frame->length, frame->version.major, frame->version.minor,
+                                          frame->version.bugfix, frame->version.assumed ? Py_False : Py_True) : NULL;
     int rc;
     if (!item)
         return -1;
@@ -772,7 +788,7 @@ static int add_ready(PrimaryColumns *self)
     urwire_frame frame;
     urwire_message m;
     for (;;) {
-        urwire_frame_kind kind = urwire_framer_next(&self->framer, &frame);
+        urwire_frame_kind kind = urwire_framer_next(self->framer, &frame);
         int rc;
         if (kind == URWIRE_FRAME_NEED_MORE || kind == URWIRE_FRAME_END)
             return 0;
@@ -780,7 +796,7 @@ static int add_ready(PrimaryColumns *self)
             rc = json_row(self, self->errors, NULL, &frame.fault, NULL);
         } else {
             urwire_decode_message(frame.bytes, frame.length, frame.version, &m);
-            urwire_framer_learn(&self->framer, &m);
+            urwire_framer_learn(self->framer, &m);
             rc = add_message(self, &frame, &m);
         }
         self->position++;
@@ -842,12 +858,13 @@ static int table_init(table *t, PyObject *spec)
     n = t->fallback ? 0 : PySequence_Size(columns);
     if (n < 0)
         return -1;
-    t->columns = PyMem_Calloc((size_t)n + 1, sizeof *t->columns);
+    t->columns = PyMem_Calloc((size_t)n + LEAD_COLUMNS, sizeof *t->columns);
     if (!t->columns)
         return PyErr_NoMemory(), -1;
-    t->ncolumns = (int)n + 1;
+    t->ncolumns = (int)n + LEAD_COLUMNS;
     t->columns[0].type = COL_INT64;         /* the position */
-    if (!(t->columns[0].path = copy_text("")))
+    t->columns[1].type = COL_INT64;         /* the capture time */
+    if (!(t->columns[0].path = copy_text("")) || !(t->columns[1].path = copy_text("")))
         return PyErr_NoMemory(), -1;
     for (i = 0; i < n; i++) {
         PyObject *item = PySequence_GetItem(columns, i);
@@ -863,8 +880,8 @@ static int table_init(table *t, PyObject *spec)
             PyErr_Format(PyExc_ValueError, "column %s of %s: no type %d", path, name, type);
             return -1;
         }
-        t->columns[i + 1].type = type;
-        if (!(t->columns[i + 1].path = copy_text(path)))
+        t->columns[i + LEAD_COLUMNS].type = type;
+        if (!(t->columns[i + LEAD_COLUMNS].path = copy_text(path)))
             return PyErr_NoMemory(), -1;
     }
     return 0;
@@ -937,7 +954,9 @@ static int columns_init(PrimaryColumns *self, PyObject *args, PyObject *kwargs)
     if ((self->robot_state = kind_index(self, "robot_state")) < 0 || (self->errors = kind_index(self, "errors")) < 0
         || (self->unknown = kind_index(self, "unknown")) < 0)
         return -1;
-    urwire_framer_init(&self->framer, self->framer_buffer, URWIRE_FRAMER_MIN_BUFFER, version);
+    urwire_framer_init(&self->own, self->framer_buffer, URWIRE_FRAMER_MIN_BUFFER, version);
+    self->framer = &self->own;
+    self->has_time = 0;
     self->json = json_visitor(self->writer);
     self->batch_rows = batch_rows;
     self->position = 0;
@@ -980,36 +999,146 @@ static int usable(PrimaryColumns *self)
     return 1;
 }
 
+/* Feeds data to the stream being read (self->framer) and adds every record it completes. */
+static int feed_framer(PrimaryColumns *self, Py_buffer *view)
+{
+    size_t off = 0;
+    int rc = 0;
+    while (off < (size_t)view->len && rc == 0) {
+        off += urwire_framer_feed(self->framer, (const uint8_t *)view->buf + off, (size_t)view->len - off);
+        rc = add_ready(self);
+    }
+    return rc;
+}
+
 static PyObject *columns_feed(PrimaryColumns *self, PyObject *arg)
 {
     Py_buffer view;
-    size_t off = 0;
-    int rc = 0;
+    int rc;
     if (!usable(self))
         return NULL;
     if (PyObject_GetBuffer(arg, &view, PyBUF_SIMPLE) != 0)
         return NULL;
-    while (off < (size_t)view.len && rc == 0) {
-        off += urwire_framer_feed(&self->framer, (const uint8_t *)view.buf + off, (size_t)view.len - off);
-        rc = add_ready(self);
-    }
+    self->framer = &self->own;
+    self->has_time = 0;
+    rc = feed_framer(self, &view);
     PyBuffer_Release(&view);
     return rc == 0 ? take_output(self) : NULL;
 }
 
-static PyObject *columns_close(PrimaryColumns *self, PyObject *Py_UNUSED(ignored))
+static int flush_all(PrimaryColumns *self)
 {
     int i;
-    if (!usable(self))
-        return NULL;
-    urwire_framer_finish(&self->framer);
-    self->finished = 1;
-    if (add_ready(self) < 0)
-        return NULL;
     for (i = 0; i < self->ntables; i++)
         if (table_flush(self, i) < 0)
-            return NULL;
+            return -1;
+    return 0;
+}
+
+static PyObject *columns_close(PrimaryColumns *self, PyObject *Py_UNUSED(ignored))
+{
+    if (!usable(self))
+        return NULL;
+    self->framer = &self->own;
+    self->has_time = 0;
+    urwire_framer_finish(self->framer);
+    self->finished = 1;
+    if (add_ready(self) < 0 || flush_all(self) < 0)
+        return NULL;
     return take_output(self);
+}
+
+/* The position and capture time (microseconds, or None) of what comes next. */
+static int place(PrimaryColumns *self, long long position, PyObject *time)
+{
+    self->position = position;
+    self->has_time = time != Py_None;
+    self->time_us = self->has_time ? PyLong_AsLongLong(time) : 0;
+    return self->has_time && self->time_us == -1 && PyErr_Occurred() ? -1 : 0;
+}
+
+static PyTypeObject PrimaryStreamType;
+
+/* feed_stream(stream, data, position, time) -> the records the bytes complete in that stream of a
+ * capture, numbered from position, dated time (UTC microseconds); their rows wait for take(). */
+static PyObject *columns_feed_stream(PrimaryColumns *self, PyObject *args)
+{
+    PrimaryStream *stream;
+    Py_buffer view;
+    long long position, start;
+    PyObject *time;
+    int rc;
+    if (!PyArg_ParseTuple(args, "O!y*LO", &PrimaryStreamType, &stream, &view, &position, &time))
+        return NULL;
+    if (!usable(self) || !stream->buffer || stream->finished || place(self, position, time) < 0) {
+        if (!PyErr_Occurred())
+            PyErr_SetString(PyExc_ValueError, "the stream has ended, or was not initialised");
+        PyBuffer_Release(&view);
+        return NULL;
+    }
+    start = self->position;
+    self->framer = &stream->framer;
+    rc = feed_framer(self, &view);
+    self->framer = &self->own;
+    PyBuffer_Release(&view);
+    return rc == 0 ? PyLong_FromLongLong(self->position - start) : NULL;
+}
+
+/* close_stream(stream, position, time) -> the records the end of that stream completes. */
+static PyObject *columns_close_stream(PrimaryColumns *self, PyObject *args)
+{
+    PrimaryStream *stream;
+    long long position, start;
+    PyObject *time;
+    int rc;
+    if (!PyArg_ParseTuple(args, "O!LO", &PrimaryStreamType, &stream, &position, &time))
+        return NULL;
+    if (!usable(self) || place(self, position, time) < 0)
+        return NULL;
+    if (!stream->buffer || stream->finished)
+        return PyLong_FromLong(0);
+    start = self->position;
+    self->framer = &stream->framer;
+    urwire_framer_finish(self->framer);
+    stream->finished = 1;
+    rc = add_ready(self);
+    self->framer = &self->own;
+    return rc == 0 ? PyLong_FromLongLong(self->position - start) : NULL;
+}
+
+/* add_record(kind, position, time, text): a row of `errors` or `unknown` that Python wrote (a
+ * fault of the capture file), in its place among C's rows. */
+static PyObject *columns_add_record(PrimaryColumns *self, PyObject *args)
+{
+    const char *kind, *text;
+    Py_ssize_t size;
+    long long position;
+    PyObject *time;
+    table *t;
+    int index;
+    if (!PyArg_ParseTuple(args, "sLOs#", &kind, &position, &time, &text, &size))
+        return NULL;
+    if (!usable(self) || place(self, position, time) < 0 || (index = kind_index(self, kind)) < 0)
+        return NULL;
+    t = &self->tables[index];
+    if (t->fallback || t->ncolumns != LEAD_COLUMNS + 1 || t->columns[LEAD_COLUMNS].type != COL_STRING) {
+        PyErr_Format(PyExc_ValueError, "%s is not a kind of records", kind);
+        return NULL;
+    }
+    if (row_begin(self, t) < 0 || put_bytes(&t->columns[LEAD_COLUMNS], text, (size_t)size, &t->text_bytes) < 0
+        || row_end(self, t) < 0)
+        return NULL;
+    Py_RETURN_NONE;
+}
+
+static PyObject *columns_take(PrimaryColumns *self, PyObject *Py_UNUSED(ignored))
+{
+    return usable(self) ? take_output(self) : NULL;
+}
+
+static PyObject *columns_flush(PrimaryColumns *self, PyObject *Py_UNUSED(ignored))
+{
+    return usable(self) && flush_all(self) == 0 ? take_output(self) : NULL;
 }
 
 static PyMethodDef columns_methods[] = {
@@ -1018,10 +1147,18 @@ static PyMethodDef columns_methods[] = {
      "of kinds without columns"},
     {"close", (PyCFunction)columns_close, METH_NOARGS,
      "close() -> (batches, messages): what the end of the stream completes, and every kind's last batch"},
+    {"feed_stream", (PyCFunction)columns_feed_stream, METH_VARARGS,
+     "feed_stream(stream, data, position, time) -> records: a capture's stream, its rows kept for take()"},
+    {"close_stream", (PyCFunction)columns_close_stream, METH_VARARGS,
+     "close_stream(stream, position, time) -> records: what the end of a capture's stream completes"},
+    {"add_record", (PyCFunction)columns_add_record, METH_VARARGS,
+     "add_record(kind, position, time, text): a row of errors or unknown written in Python"},
+    {"take", (PyCFunction)columns_take, METH_NOARGS, "take() -> (batches, messages) filled so far"},
+    {"flush", (PyCFunction)columns_flush, METH_NOARGS, "flush() -> (batches, messages): every kind's rows so far"},
     {NULL, NULL, 0, NULL},
 };
 
-PyTypeObject PrimaryColumnsType = {
+static PyTypeObject PrimaryColumnsType = {
     PyVarObject_HEAD_INIT(NULL, 0)
     .tp_name = "urwire._ccore.PrimaryColumns",
     .tp_doc = "A primary/secondary stream in, the dataset's column buffers of each kind out.",
@@ -1032,3 +1169,79 @@ PyTypeObject PrimaryColumnsType = {
     .tp_dealloc = (destructor)columns_dealloc,
     .tp_methods = columns_methods,
 };
+
+/* ---- a capture's primary stream ------------------------------------------------------------- */
+
+static void stream_dealloc(PrimaryStream *self)
+{
+    PyMem_Free(self->buffer);
+    Py_TYPE(self)->tp_free((PyObject *)self);
+}
+
+/* PrimaryStream(version_hint=None) */
+static int stream_init(PrimaryStream *self, PyObject *args, PyObject *kwargs)
+{
+    static char *names[] = {"version_hint", NULL};
+    const char *hint = NULL;
+    urwire_sw_version version = URWIRE_DEFAULT_VERSION;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "|z", names, &hint))
+        return -1;
+    if (hint && !urwire_parse_version(hint, &version)) {
+        PyErr_Format(PyExc_ValueError, "not a software version: %s", hint);
+        return -1;
+    }
+    PyMem_Free(self->buffer);
+    if (!(self->buffer = PyMem_Malloc(URWIRE_FRAMER_MIN_BUFFER))) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    urwire_framer_init(&self->framer, self->buffer, URWIRE_FRAMER_MIN_BUFFER, version);
+    self->finished = 0;
+    return 0;
+}
+
+/* The version the stream's last Version message announced, else None. */
+static PyObject *stream_software_version(PrimaryStream *self, void *Py_UNUSED(closure))
+{
+    if (!self->buffer || !self->framer.version_seen)
+        Py_RETURN_NONE;
+    return Py_BuildValue("(iii)", self->framer.version.major, self->framer.version.minor,
+                         self->framer.version.bugfix);
+}
+
+static PyGetSetDef stream_getset[] = {
+    {"software_version", (getter)stream_software_version, NULL,
+     "the version the stream's last Version message announced, else None", NULL},
+    {NULL, NULL, NULL, NULL, NULL},
+};
+
+static PyTypeObject PrimaryStreamType = {
+    PyVarObject_HEAD_INIT(NULL, 0)
+    .tp_name = "urwire._ccore.PrimaryStream",
+    .tp_doc = "The framing state of one primary/secondary stream of a capture (PrimaryColumns.feed_stream).",
+    .tp_basicsize = sizeof(PrimaryStream),
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_new = PyType_GenericNew,
+    .tp_init = (initproc)stream_init,
+    .tp_dealloc = (destructor)stream_dealloc,
+    .tp_getset = stream_getset,
+};
+
+static int add_type(PyObject *module, const char *name, PyTypeObject *type)
+{
+    if (PyType_Ready(type) < 0)
+        return -1;
+    Py_INCREF(type);
+    if (PyModule_AddObject(module, name, (PyObject *)type) < 0) {
+        Py_DECREF(type);
+        return -1;
+    }
+    return 0;
+}
+
+int columns_add_types(PyObject *module)
+{
+    if (add_type(module, "PrimaryColumns", &PrimaryColumnsType) < 0)
+        return -1;
+    return add_type(module, "PrimaryStream", &PrimaryStreamType);
+}

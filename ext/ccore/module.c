@@ -166,7 +166,7 @@ static struct PyModuleDef ccore_module = {
 PyMODINIT_FUNC PyInit__ccore(void)
 {
     PyObject *module;
-    if (PyType_Ready(&PrimaryJsonLinesType) < 0 || PyType_Ready(&PrimaryColumnsType) < 0)
+    if (PyType_Ready(&PrimaryJsonLinesType) < 0)
         return NULL;
     module = PyModule_Create(&ccore_module);
     if (!module)
@@ -177,9 +177,7 @@ PyMODINIT_FUNC PyInit__ccore(void)
         Py_DECREF(module);
         return NULL;
     }
-    Py_INCREF(&PrimaryColumnsType);
-    if (PyModule_AddObject(module, "PrimaryColumns", (PyObject *)&PrimaryColumnsType) < 0) {
-        Py_DECREF(&PrimaryColumnsType);
+    if (columns_add_types(module) < 0) {
         Py_DECREF(module);
         return NULL;
     }

@@ -183,10 +183,11 @@ def serial_numbers(fh) -> dict[str, str]:
 def parts_of(fh, capture: str, source: str, version_hint=None, robot: Optional[str] = None,
              date: Optional[str] = None) -> Iterator[Part]:
     """The Parts of a capture read from a binary file object (see capture_parts). Under the C
-    backend, C makes the columns of a raw stream (dataset_c.py)."""
+    backend, C makes the columns of the primary interface (dataset_c.py)."""
     head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
-    if not is_capture(head) and dataset_c.available():
-        yield from dataset_c.raw_parts(fh, capture, source, version_hint, robot, date)
+    if dataset_c.available():
+        made = dataset_c.capture_parts if is_capture(head) else dataset_c.raw_parts
+        yield from made(fh, capture, source, version_hint, robot, date)
         return
     builder = PartBuilder(capture, source, date, robot)
     for position, (time, address, record) in enumerate(_timed(fh, version_hint)):

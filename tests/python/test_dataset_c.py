@@ -1,13 +1,16 @@
 """The dataset's columns made in C (urwire._ccore.PrimaryColumns, python/urwire/dataset_c.py)
-against pure Python's (dataset.PartBuilder over the Python decoder): every kind's table, row for
-row, with its types and nulls, over every golden and conformance vector, every kept fuzz input,
-sessions of every controller generation, the primary streams of the bundled captures and a run of
-real robot states; in batches of any size; and `urwire export --dataset` writes the same files
-under both backends. The C code also runs under ASan and UBSan (dataset_c_asan_peer.py).
+against pure Python's (dataset.PartBuilder over the Python decoder): every kind's table of every
+robot and day, row for row, with its types and nulls, over every golden and conformance vector,
+every kept fuzz input, sessions of every controller generation and a run of real robot states as
+raw streams; the bundled captures, every golden vector of every interface in one capture (whole and
+cut in segments), a capture cut short, two robots across midnight; in batches of any size; and
+`urwire export --dataset` writes the same files under both backends. The C code also runs under
+ASan and UBSan (dataset_c_asan_peer.py).
 
 The extension is built by `make python-ext`; without it these tests fail."""
 from __future__ import annotations
 
+import datetime
 import io
 import math
 import os
@@ -24,7 +27,7 @@ pq = pytest.importorskip("pyarrow.parquet")
 import urwire  # noqa: E402
 from urwire import capture, dataset, dataset_c  # noqa: E402
 
-from tests.tools import robot_inputs, valid  # noqa: E402
+from tests.tools import capture as capture_file, golden_sessions, robot_inputs, valid  # noqa: E402
 from tests.tools.fuzz_inputs import HARNESSES, kept, split  # noqa: E402
 from tests.vectors import all_cases  # noqa: E402
 
@@ -39,22 +42,22 @@ def c_columns():
         pytest.fail("the C extension urwire._ccore is not built (make python-ext), or URWIRE_BACKEND=python")
 
 
-def python_tables(data: bytes, hint) -> dict:
-    """Each kind's rows as pure Python makes them (the C path turned off)."""
+def python_tables(data: bytes, hint, robot="r", date="2024-01-01") -> dict:
+    """Each kind's rows of each robot and day as pure Python makes them (the C path turned off)."""
     available = dataset_c.available
     dataset_c.available = lambda: False
     try:
-        stream = io.BufferedReader(io.BytesIO(data))
-        return _tables(dataset.parts_of(stream, "c0ffee", "in.bin", hint, "r", "2024-01-01"))
+        return _tables(dataset.parts_of(io.BufferedReader(io.BytesIO(data)), "c0ffee", "in.bin", hint, robot, date))
     finally:
         dataset_c.available = available
 
 
-def c_tables(data: bytes, hint, batch: int = dataset_c.BATCH_ROWS, chunk: int = dataset_c.CHUNK) -> dict:
+def c_tables(data: bytes, hint, batch: int = dataset_c.BATCH_ROWS, chunk: int = dataset_c.CHUNK, robot="r",
+             date="2024-01-01") -> dict:
     saved = dataset_c.BATCH_ROWS, dataset_c.CHUNK
     dataset_c.BATCH_ROWS, dataset_c.CHUNK = batch, chunk
     try:
-        return _tables(dataset_c.raw_parts(io.BytesIO(data), "c0ffee", "in.bin", hint, "r", "2024-01-01"))
+        return _tables(dataset.parts_of(io.BufferedReader(io.BytesIO(data)), "c0ffee", "in.bin", hint, robot, date))
     finally:
         dataset_c.BATCH_ROWS, dataset_c.CHUNK = saved
 
@@ -63,9 +66,8 @@ def _tables(parts) -> dict:
     tables: dict = {}
     for part in parts:
         assert part.table.schema == dataset.dataset_schema(part.interface, part.kind), part.kind
-        assert (part.robot, part.date) == ("r", "2024-01-01")
-        tables.setdefault((part.interface, part.kind), []).append(part.table)
-    return {kind: pa.concat_tables(batches) for kind, batches in tables.items()}
+        tables.setdefault((part.interface, part.kind, part.robot, part.date), []).append(part.table)
+    return {key: pa.concat_tables(batches) for key, batches in tables.items()}
 
 
 def _same_value(a, b) -> bool:
@@ -74,11 +76,12 @@ def _same_value(a, b) -> bool:
     return a == b and type(a) is type(b)
 
 
-def assert_same(data: bytes, hint, what: str, batches=(dataset_c.BATCH_ROWS, 3), chunks=(dataset_c.CHUNK,)) -> None:
-    expected = python_tables(data, hint)
+def assert_same(data: bytes, hint, what: str, batches=(dataset_c.BATCH_ROWS, 3), chunks=(dataset_c.CHUNK,),
+                robot="r", date="2024-01-01") -> dict:
+    expected = python_tables(data, hint, robot, date)
     for batch in batches:
         for chunk in chunks:
-            actual = c_tables(data, hint, batch, chunk)
+            actual = c_tables(data, hint, batch, chunk, robot, date)
             assert sorted(actual) == sorted(expected), f"{what}: the kinds (batch {batch}, chunk {chunk})"
             for kind, table in expected.items():
                 got = actual[kind]
@@ -89,6 +92,7 @@ def assert_same(data: bytes, hint, what: str, batches=(dataset_c.BATCH_ROWS, 3),
                     want, have = table.column(name).to_pylist(), got.column(name).to_pylist()
                     bad = [i for i, (w, h) in enumerate(zip(want, have)) if not _same_value(w, h)]
                     assert not bad, f"{what}: {kind}.{name} row {bad[0]}: {want[bad[0]]!r} != {have[bad[0]]!r}"
+    return expected
 
 
 @pytest.mark.parametrize("case", all_cases(), ids=lambda c: c.name)
@@ -141,9 +145,51 @@ def test_the_primary_streams_of_the_bundled_captures_give_the_same_tables(path):
 def test_real_robot_states_give_the_same_tables_and_fill_the_robot_state_kinds():
     data = b"".join(robot_inputs.real_states() * 3)
     assert_same(data, None, "real states", batches=(dataset_c.BATCH_ROWS, 64), chunks=(dataset_c.CHUNK, 1000))
-    tables = c_tables(data, None)
-    assert tables[("ur", "joint_data")].num_rows == len(robot_inputs.real_states()) * 3
-    assert tables[("ur", "joint_data")].column("t_motor_5").null_count == 0
+    joints = c_tables(data, None)[("ur", "joint_data", "r", "2024-01-01")]
+    assert joints.num_rows == len(robot_inputs.real_states()) * 3
+    assert joints.column("t_motor_5").null_count == 0
+
+
+# ---- captures: Python reads the file, C makes each robot's primary rows --------------------------
+
+@pytest.mark.parametrize("path", [SAMPLES / "cell_session.pcapng", SAMPLES / "primary_session.pcapng",
+                                  SAMPLES / "secondary_session.pcap", robot_inputs.capture(1),
+                                  robot_inputs.capture(1, pcapng=True)], ids=lambda p: p.name)
+def test_the_bundled_captures_give_the_same_tables(path):
+    tables = assert_same(path.read_bytes(), None, path.name, batches=(dataset_c.BATCH_ROWS, 50), robot=None,
+                         date=None)
+    assert any(kind[:2] == ("ur", "robot_state") for kind in tables)
+
+
+@pytest.mark.parametrize("cut", [False, True], ids=["whole", "segments"])
+def test_every_vector_of_every_interface_in_one_capture_gives_the_same_tables(tmp_path, cut):
+    path = golden_sessions.write(tmp_path / "golden.pcapng", cut=cut, pcapng=True)
+    tables = assert_same(path.read_bytes(), None, path.name, batches=(dataset_c.BATCH_ROWS, 4), robot=None,
+                         date="2024-01-01")
+    assert {kind[0] for kind in tables} == {"ur", "ur_realtime"}
+
+
+def test_a_capture_cut_short_files_its_fault_with_the_rows_before_it():
+    whole = robot_inputs.capture(1).read_bytes()
+    data = whole[:len(whole) // 2] + b"garbage"
+    tables = assert_same(data, None, "cut", batches=(dataset_c.BATCH_ROWS, 7), robot=None, date=None)
+    errors = [table for kind, table in tables.items() if kind[1] == "errors"]
+    assert len(errors) == 1 and errors[0].num_rows == 1
+    assert errors[0].column("capture_time").null_count == 1
+
+
+def test_two_robots_across_midnight_give_the_same_tables_by_robot_and_day(tmp_path):
+    states = robot_inputs.real_states()[:40]
+    frames = []
+    for n, robot in enumerate(("192.168.56.101", "192.168.56.102")):
+        frames.append(capture_file.robot_session(states, robot=robot, client_port=50000 + n))
+    interleaved = [frame for pair in zip(*frames) for frame in pair]
+    midnight = datetime.datetime(2024, 3, 5, tzinfo=datetime.timezone.utc).timestamp()
+    path = capture_file.write(tmp_path / "two.pcap", interleaved, start=midnight - 3.0, step=0.05)
+    tables = assert_same(path.read_bytes(), None, "two robots", batches=(dataset_c.BATCH_ROWS, 16), robot=None,
+                         date=None)
+    days = {(kind[2], kind[3]) for kind in tables if kind[1] == "joint_data"}
+    assert days == {(r, d) for r in ("192.168.56.101", "192.168.56.102") for d in ("2024-03-04", "2024-03-05")}
 
 
 def test_a_raw_stream_without_robot_or_date_is_refused_at_its_first_row():
