@@ -92,14 +92,7 @@ class PartBuilder:
         interface = record.interface if isinstance(record, Enveloped) else PRIMARY
         if interface not in interfaces():   # another interface of the cell: in `--out`'s tables only
             return
-        # A fault of a capture file has neither robot nor time: it goes with the rows before it.
-        robot = robot or self.robot or self._last[0]
-        if robot is None:
-            raise ValueError("a raw stream needs the robot's name (--robot)")
-        date = _utc_date(time) if time is not None else self.date or self._last[1]
-        if date is None:
-            raise ValueError("a raw stream needs a date (--date)")
-        self._last = (robot, date)
+        robot, date = self.place(time, robot)
         inner = record.record if isinstance(record, Enveloped) else record
         if has_error(record) or getattr(inner, "TYPE", "unknown") == "unknown":
             yield from self._row(interface, ERROR_KINDS[0] if has_error(record) else ERROR_KINDS[1],
@@ -118,6 +111,18 @@ class PartBuilder:
                                          time, pkg)
             return
         yield from self._row(PRIMARY, record.TYPE, robot, date, position, time, record)
+
+    def place(self, time: Optional[float], robot: Optional[str]) -> tuple[str, str]:
+        """The robot and day of a row at `time` from `robot`, which are then the last row's. A fault
+        of a capture file has neither robot nor time: it goes with the rows before it."""
+        robot = robot or self.robot or self._last[0]
+        if robot is None:
+            raise ValueError("a raw stream needs the robot's name (--robot)")
+        date = _utc_date(time) if time is not None else self.date or self._last[1]
+        if date is None:
+            raise ValueError("a raw stream needs a date (--date)")
+        self._last = (robot, date)
+        return robot, date
 
     def _row(self, interface: str, kind: str, robot: str, date: str, position: int, time, obj) -> Iterator[Part]:
         key = (interface, kind, robot, date)

@@ -233,7 +233,7 @@ def capture_parts(fh, capture: str, source: str, version_hint=None, robot: Optio
                   date: Optional[str] = None) -> Iterator[Part]:
     """The Parts of a .pcap or .pcapng read from a binary file object, as dataset.parts_of gives
     them, each robot's primary rows made in C."""
-    from .dataset import PartBuilder, _utc_date, serial_numbers
+    from .dataset import PartBuilder, serial_numbers
     start = fh.tell()
     rows = _CaptureRows(version_hint, serial_numbers(fh))
     fh.seek(start)
@@ -251,12 +251,10 @@ def capture_parts(fh, capture: str, source: str, version_hint=None, robot: Optio
     for position, (time, address, record) in enumerate(timed_robot_records(fh, version_hint, rows.interfaces())):
         rows.next_position = position + 1
         if record is MADE_IN_C:
-            builder._last = (rows.robot_of(address), _utc_date(time))
-        elif address is None and not isinstance(record, Enveloped) and has_error(record) and \
-                (robot or builder._last[0]) is not None and (date or builder._last[1]) is not None:
-            # A fault of the capture file: a primary error row of the robot of the rows before it.
-            owner, day = robot or builder._last[0], date or builder._last[1]
-            builder._last = (owner, day)
+            builder.place(time, rows.robot_of(address))
+        elif address is None and not isinstance(record, Enveloped) and has_error(record):
+            # A fault of the capture file: a primary error row, among C's rows of the robot before it.
+            owner, day = builder.place(None, None)
             tables.fault_dates[(owner, position)] = day
             rows.columns(owner).add_record("errors", position, None, to_json_line(record))
         else:
