@@ -273,7 +273,8 @@ static int utf8_valid(const uint8_t *p, size_t n)
                 return 0;
             cp = (cp << 6) | (p[i + k] & 0x3F);
         }
-        if ((more == 2 && (cp < 0x800 || (cp >= 0xD800 && cp <= 0xDFFF))) || (more == 3 && (cp < 0x10000 || cp > 0x10FFFF)))
+        if ((more == 2 && (cp < 0x800 || (cp >= 0xD800 && cp <= 0xDFFF)))   /* overlong, a surrogate */
+            || (more == 3 && (cp < 0x10000 || cp > 0x10FFFF)))
             return 0;
         i += more + 1;
     }
@@ -321,7 +322,8 @@ static PyObject *column_take(column *c)
         Py_INCREF(valid);
     }
     if (c->offsets) {
-        offsets = PyBytes_FromStringAndSize((const char *)c->offsets, (Py_ssize_t)(sizeof(int32_t) * (size_t)(c->filled + 1)));
+        offsets = PyBytes_FromStringAndSize((const char *)c->offsets,
+                                            (Py_ssize_t)(sizeof(int32_t) * (size_t)(c->filled + 1)));
         data = PyBytes_FromStringAndSize(c->text ? c->text : "", (Py_ssize_t)c->text_len);
     } else {
         offsets = Py_None;

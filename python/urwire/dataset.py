@@ -35,7 +35,7 @@ import io
 import os
 from typing import Iterator, Optional, Union
 
-from . import dataset_c
+from . import dataset_c, dataset_c_capture
 from .canonical import has_error
 from .capture import is_capture
 from .cell import ports_of, timed_robot_records
@@ -191,7 +191,7 @@ def parts_of(fh, capture: str, source: str, version_hint=None, robot: Optional[s
     backend, C makes the columns of the primary interface (dataset_c.py)."""
     head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
     if dataset_c.available():
-        made = dataset_c.capture_parts if is_capture(head) else dataset_c.raw_parts
+        made = dataset_c_capture.capture_parts if is_capture(head) else dataset_c.raw_parts
         yield from made(fh, capture, source, version_hint, robot, date)
         return
     builder = PartBuilder(capture, source, date, robot)

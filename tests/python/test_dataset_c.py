@@ -258,3 +258,15 @@ def test_the_columns_under_asan_and_ubsan(tmp_path):
                             env=env, capture_output=True, text=True, timeout=600)
     assert result.returncode == 0 and "ERROR" not in result.stderr, result.stderr[-3000:]
     assert int(result.stdout) > 300
+
+
+@pytest.mark.parametrize("bad", [b"\xff\xfe", b"\xed\xa0\x80", b"\xe0\x80\x80", b"\xf4\x90\x80\x80", b"a\xc3"])
+def test_text_that_is_not_utf8_is_replaced_as_python_replaces_it(bad):
+    """A text message's bytes made invalid UTF-8 (a stray byte, a surrogate, overlong, beyond
+    U+10FFFF, cut short): the C column holds what bytes.decode("utf-8", "replace") gives."""
+    case = next(c for c in all_cases() if c.name == "stream_fault_garbage_at_end")
+    at = case.data.index(b"before")
+    data = case.data[:at] + bad + case.data[at + len(bad):]
+    tables = assert_same(data, None, repr(bad))
+    texts = tables[("ur", "text", "r", "2024-01-01")].column("text").to_pylist()
+    assert "\ufffd" in texts[0]
