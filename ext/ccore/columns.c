@@ -1,10 +1,13 @@
-/* urwire._ccore.PrimaryColumns: the dataset's columns of a raw primary/secondary stream, made in C
- * (python/urwire/dataset_c.py turns them into Arrow tables; docs/tables.md).
+/* urwire._ccore.PrimaryColumns and PrimaryStream: the dataset's columns of the primary/secondary
+ * interface, made in C (python/urwire/dataset_c.py and dataset_c_capture.py turn them into Arrow
+ * tables; docs/tables.md).
  *
- * The C parser frames and decodes the stream; a visitor appends each record's values straight
- * into the column buffers of its kind, in the layout Python decided from the dataset's schema
+ * The C parser frames and decodes a raw stream (feed, close), or the streams of a capture's
+ * connections, each framed by its PrimaryStream (feed_stream, close_stream: their records numbered
+ * and dated by the caller); a visitor appends each record's values straight into the column
+ * buffers of its kind, in the layout Python decided from the dataset's schema
  * (dataset_columns.dataset_schema): per kind, one column per field path ("joints/0/q_actual",
- * "dh_a/3", "timestamp") with its Arrow type. Column 0 of every kind is the record's position.
+ * "dh_a/3", "timestamp") with its Arrow type, after the record's position and capture time.
  * A kind fills a batch of rows at a time; a full batch is handed over as bytes (validity bitmap,
  * values, offsets), ready for pyarrow.Array.from_buffers, with no Python object per value.
  *
