@@ -7,8 +7,8 @@ which one runs.
 
 What the extension does today: the canonical JSON Lines of a primary/secondary stream
 (`primary_json_lines`, what `urwire decode` prints for a raw stream), and the dataset's columns of
-a raw primary/secondary stream (dataset_c.py). Records as objects (decode_stream, Framer,
-decode_message) are made in Python under either backend.
+the primary/secondary interface, of raw streams and captures (dataset_c.py, dataset_c_capture.py).
+Records as objects (decode_stream, Framer, decode_message) are made in Python under either backend.
 """
 from __future__ import annotations
 
