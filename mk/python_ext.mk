@@ -3,8 +3,8 @@
 # tree's Python (PYTHONPATH=python:generated/python) decodes through it; setup.py builds the same
 # module for `pip install .` and `pip wheel .`.
 
-PYTHON_EXT_SOURCES := setup.py ext/ccore/module.c generated/c/urwire.c generated/c/urwire.h \
-	tools/urwire-decode/json.c tools/urwire-decode/json.h tools/urwire-decode/shortest.c \
+PYTHON_EXT_SOURCES := setup.py ext/ccore/module.c ext/ccore/columns.c ext/ccore/columns.h \
+	generated/c/urwire.c generated/c/urwire.h tools/urwire-decode/json.c tools/urwire-decode/json.h tools/urwire-decode/shortest.c \
 	tools/urwire-decode/shortest.h tools/urwire-decode/records.c tools/urwire-decode/records.h
 PYTHON_EXT_STAMP := build/python-ext.stamp
 
@@ -25,9 +25,10 @@ $(PYTHON_EXT_STAMP): $(PYTHON_EXT_SOURCES)
 	@touch $@
 
 ## test-python-backend: the tests of what the C backend changes (urwire decode of a raw primary
-## stream) under pure Python (URWIRE_BACKEND=python); `make test` runs them so, and everything
-## else under the default backend, the C one, which it builds first
-PYTHON_BACKEND_TESTS := tests/python/test_cli.py tests/python/test_hostile_bytes.py tests/python/test_c_backend.py
+## stream, the dataset's primary columns) under pure Python (URWIRE_BACKEND=python); `make test`
+## runs them so, and everything else under the default backend, the C one, which it builds first
+PYTHON_BACKEND_TESTS := tests/python/test_cli.py tests/python/test_hostile_bytes.py tests/python/test_c_backend.py \
+	tests/python/test_dataset.py
 TEST_BUILDS += test-python-backend
 .PHONY: test-python-backend
 test-python-backend: python-ext

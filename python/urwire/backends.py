@@ -6,8 +6,9 @@ ways); URWIRE_BACKEND=c insists on the extension and fails to import without it.
 which one runs.
 
 What the extension does today: the canonical JSON Lines of a primary/secondary stream
-(`primary_json_lines`, what `urwire decode` prints for a raw stream). Records as objects
-(decode_stream, Framer, decode_message) are made in Python under either backend.
+(`primary_json_lines`, what `urwire decode` prints for a raw stream), and the dataset's columns of
+the primary/secondary interface, of raw streams and captures (dataset_c.py, dataset_c_capture.py).
+Records as objects (decode_stream, Framer, decode_message) are made in Python under either backend.
 """
 from __future__ import annotations
 
@@ -38,6 +39,11 @@ def _load_ccore():
 
 
 _CCORE = _load_ccore()
+
+
+def ccore():
+    """The extension module urwire._ccore where it decodes, else None."""
+    return _CCORE
 
 
 def backend() -> str:

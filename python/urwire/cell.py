@@ -68,6 +68,9 @@ def timed_robot_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inte
         learn = getattr(conv, "learn_version", None)
         if learn is not None and key[0] in versions:
             learn(versions[key[0]])
+        at = getattr(conv, "at", None)
+        if at is not None:      # a conversation that files its records itself (dataset_c_capture.py)
+            at(time, key[0])
         records = conv.feed(data, from_robot) if data else []
         learnt = getattr(conv, "software_version", None)
         if learnt is not None:

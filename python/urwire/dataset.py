@@ -35,6 +35,7 @@ import io
 import os
 from typing import Iterator, Optional, Union
 
+from . import dataset_c, dataset_c_capture
 from .canonical import has_error
 from .capture import is_capture
 from .cell import ports_of, timed_robot_records
@@ -91,14 +92,7 @@ class PartBuilder:
         interface = record.interface if isinstance(record, Enveloped) else PRIMARY
         if interface not in interfaces():   # another interface of the cell: in `--out`'s tables only
             return
-        # A fault of a capture file has neither robot nor time: it goes with the rows before it.
-        robot = robot or self.robot or self._last[0]
-        if robot is None:
-            raise ValueError("a raw stream needs the robot's name (--robot)")
-        date = _utc_date(time) if time is not None else self.date or self._last[1]
-        if date is None:
-            raise ValueError("a raw stream needs a date (--date)")
-        self._last = (robot, date)
+        robot, date = self.place(time, robot)
         inner = record.record if isinstance(record, Enveloped) else record
         if has_error(record) or getattr(inner, "TYPE", "unknown") == "unknown":
             yield from self._row(interface, ERROR_KINDS[0] if has_error(record) else ERROR_KINDS[1],
@@ -117,6 +111,18 @@ class PartBuilder:
                                          time, pkg)
             return
         yield from self._row(PRIMARY, record.TYPE, robot, date, position, time, record)
+
+    def place(self, time: Optional[float], robot: Optional[str]) -> tuple[str, str]:
+        """The robot and day of a row at `time` from `robot`, which are then the last row's. A fault
+        of a capture file has neither robot nor time: it goes with the rows before it."""
+        robot = robot or self.robot or self._last[0]
+        if robot is None:
+            raise ValueError("a raw stream needs the robot's name (--robot)")
+        date = _utc_date(time) if time is not None else self.date or self._last[1]
+        if date is None:
+            raise ValueError("a raw stream needs a date (--date)")
+        self._last = (robot, date)
+        return robot, date
 
     def _row(self, interface: str, kind: str, robot: str, date: str, position: int, time, obj) -> Iterator[Part]:
         key = (interface, kind, robot, date)
@@ -181,7 +187,13 @@ def serial_numbers(fh) -> dict[str, str]:
 
 def parts_of(fh, capture: str, source: str, version_hint=None, robot: Optional[str] = None,
              date: Optional[str] = None) -> Iterator[Part]:
-    """The Parts of a capture read from a binary file object (see capture_parts)."""
+    """The Parts of a capture read from a binary file object (see capture_parts). Under the C
+    backend, C makes the columns of the primary interface (dataset_c.py)."""
+    head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+    if dataset_c.available():
+        made = dataset_c_capture.capture_parts if is_capture(head) else dataset_c.raw_parts
+        yield from made(fh, capture, source, version_hint, robot, date)
+        return
     builder = PartBuilder(capture, source, date, robot)
     for position, (time, address, record) in enumerate(_timed(fh, version_hint)):
         yield from builder.add(position, time, address, record)

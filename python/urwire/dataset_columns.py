@@ -46,6 +46,8 @@ class Column(NamedTuple):
     name: str
     kind: str                            # a key of _ARROW
     read: Callable[[list], list]         # a batch of records -> the column's values for them
+    path: str = ""                       # where the value is in the record's canonical form: keys and
+    #                                      array indexes joined by '/' ("joints/0/q_actual", "dh_a/3")
 
 
 def _attr(name: str) -> Callable[[list], list]:
@@ -109,16 +111,16 @@ def class_columns(cls: type) -> list[Column]:
             prefix = f"{name}_" if len(groups) > 1 else ""
             for j in range(count):
                 item = _then(_attr(name), _nth(j))
-                out += [Column(f"{prefix}{c.name}_{j}", c.kind, _then(item, c.read))
+                out += [Column(f"{prefix}{c.name}_{j}", c.kind, _then(item, c.read), f"{name}/{j}/{c.path}")
                         for c in class_columns(cls.ITEMS[name])]
         elif kind.startswith("list:") and count is not None:
             item_kind = kind[len("list:"):]
-            out += [Column(f"{name}_{j}", item_kind, _then(_then(_attr(name), _nth(j)), _plain(item_kind)))
-                    for j in range(count)]
+            out += [Column(f"{name}_{j}", item_kind, _then(_then(_attr(name), _nth(j)), _plain(item_kind)),
+                           f"{name}/{j}") for j in range(count)]
         elif kind == "items" or kind.startswith("list:"):
-            out.append(Column(name, "json", _as_json(name)))
+            out.append(Column(name, "json", _as_json(name), name))
         else:
-            out.append(Column(name, kind, _then(_attr(name), _plain(kind))))
+            out.append(Column(name, kind, _then(_attr(name), _plain(kind)), name))
     return out
 
 
@@ -131,7 +133,7 @@ def _primary_classes() -> dict[str, type]:
 def _realtime_columns() -> list[Column]:
     """One real-time table for every layout: `type` names the layout, then the fields of every
     layout, oldest first, each once (a field that a layout lacks is null)."""
-    seen: dict[str, Column] = {"type": Column("type", "text", lambda objs: [o.TYPE for o in objs])}
+    seen: dict[str, Column] = {"type": Column("type", "text", lambda objs: [o.TYPE for o in objs], "type")}
     for forms in ur_realtime.FORMS_BY_SIZE.values():
         for *_, cls, _ in forms:
             for column in class_columns(cls):
@@ -140,11 +142,12 @@ def _realtime_columns() -> list[Column]:
 
 
 _CLASSES = _primary_classes()
-_APART = {kind: [Column("record", "text", lambda objs: [to_json_line(o) for o in objs])] for kind in ERROR_KINDS}
+_APART = {kind: [Column("record", "text", lambda objs: [to_json_line(o) for o in objs], "record")]
+          for kind in ERROR_KINDS}
 # Each interface's kinds, each with the function that gives its columns.
 _KINDS: dict[str, dict[str, Callable[[], list[Column]]]] = {
     PRIMARY: {**{kind: (lambda cls=cls: class_columns(cls)) for kind, cls in _CLASSES.items()},
-              ROBOT_STATE: lambda: [Column("packages", "int", lambda objs: [len(o) for o in objs])],
+              ROBOT_STATE: lambda: [Column("packages", "int", lambda objs: [len(o) for o in objs], "packages")],
               **{kind: (lambda kind=kind: _APART[kind]) for kind in ERROR_KINDS}},
     REALTIME: {REALTIME_STATE: _realtime_columns, **{kind: (lambda kind=kind: _APART[kind]) for kind in ERROR_KINDS}},
 }

@@ -157,10 +157,10 @@ def test_the_extension_under_asan_and_ubsan(tmp_path):
     import sysconfig
 
     library = tmp_path / ("_ccore" + sysconfig.get_config_var("EXT_SUFFIX"))
-    sources = ["ext/ccore/module.c", "generated/c/urwire.c", "tools/urwire-decode/json.c",
+    sources = ["ext/ccore/module.c", "ext/ccore/columns.c", "generated/c/urwire.c", "tools/urwire-decode/json.c",
                "tools/urwire-decode/shortest.c", "tools/urwire-decode/records.c"]
     subprocess.run(["gcc", "-shared", "-fPIC", "-g", "-O1", "-std=c99", "-fsanitize=address,undefined",
-                    "-fno-sanitize-recover=all", "-Igenerated/c", "-Itools/urwire-decode",
+                    "-fno-sanitize-recover=all", "-Iext/ccore", "-Igenerated/c", "-Itools/urwire-decode",
                     "-I" + sysconfig.get_paths()["include"], *sources, "-lm", "-o", str(library)],
                    cwd=ROOT, check=True, timeout=300)
     runtimes = [subprocess.run(["gcc", f"-print-file-name={name}"], capture_output=True, text=True,

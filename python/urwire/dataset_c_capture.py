@@ -1,0 +1,133 @@
+"""The dataset's rows of a .pcap or .pcapng under the C backend (dataset.py, dataset_c.py).
+
+In a capture Python still reads the file and reassembles the TCP streams, and makes the rows of
+the other interfaces; each robot's primary and secondary streams go to C (a PrimaryStream per
+connection, one PrimaryColumns per robot, so that the rows of its connections stay in capture
+order), and the capture reader counts one placeholder per record C made, so that every record
+keeps its position.
+"""
+from __future__ import annotations
+
+import dataclasses
+from typing import Iterator, Optional
+
+from .backends import ccore
+from .canonical import has_error, to_json_line
+from .cell import ports_of, timed_robot_records
+from .dataset_c import Tables, columns, hint_text, micros
+from .dataset_columns import PRIMARY, Part
+from .decoding import decode_message
+from .envelope import Enveloped
+from .interfaces import INTERFACES
+
+
+class _MadeInC:
+    """What the capture reader yields for a record whose rows C made: it counts as one record."""
+
+
+MADE_IN_C = _MadeInC()
+
+
+class _CaptureRows:
+    """A capture's primary rows from C: one PrimaryColumns per robot, whose output waits here for
+    the loop that reads the capture (capture_parts) to turn it into Parts."""
+
+    def __init__(self, version_hint, serials: dict) -> None:
+        self.version_hint, self.serials = version_hint, serials
+        self.next_position = 0          # the position of the next record the reader yields
+        self.robots: dict = {}          # robot -> its PrimaryColumns
+        self.waiting: list = []         # (robot, capture time, (batches, messages))
+
+    def robot_of(self, address: str) -> str:
+        return self.serials.get(address, address)
+
+    def columns(self, robot: str):
+        if robot not in self.robots:
+            self.robots[robot] = columns(self.version_hint)
+        return self.robots[robot]
+
+    def conversation(self, version_hint=None) -> "_PrimaryConversation":
+        return _PrimaryConversation(self, version_hint)
+
+    def interfaces(self) -> dict:
+        """The capture reader's ports, the primary interface's conversations made here."""
+        by_port = ports_of(INTERFACES.values())
+        primary = dataclasses.replace(INTERFACES[PRIMARY], conversation=self.conversation)
+        return {port: primary if i.name == PRIMARY else i for port, i in by_port.items()}
+
+
+class _PrimaryConversation:
+    """interfaces.PrimaryConversation with C's framer: it gives a placeholder per record, whose rows
+    C has made, numbered from the reader's next position and dated by the bytes' capture time."""
+
+    def __init__(self, rows: _CaptureRows, version_hint) -> None:
+        self.rows = rows
+        self.stream = ccore().PrimaryStream(hint_text(version_hint))
+        self.time: Optional[float] = None
+        self.robot: Optional[str] = None
+        self.next_position = 0
+
+    def at(self, time: Optional[float], address: str) -> None:
+        self.time, self.robot = time, self.rows.robot_of(address)
+
+    def feed(self, data: bytes, from_robot: bool) -> list:
+        if not from_robot:
+            return []
+        columns = self.rows.columns(self.robot)
+        return self._made(columns, columns.feed_stream(self.stream, data, self._position(), micros(self.time)))
+
+    def close(self) -> list:
+        if self.robot is None:          # nothing was fed
+            return []
+        columns = self.rows.columns(self.robot)
+        return self._made(columns, columns.close_stream(self.stream, self._position(), micros(self.time)))
+
+    def _position(self) -> int:
+        # Records fed and closed in one step of the reader are not counted yet when it closes.
+        return max(self.rows.next_position, self.next_position)
+
+    def _made(self, columns, count: int) -> list:
+        self.next_position = self._position() + count
+        self.rows.waiting.append((self.robot, self.time, columns.take()))
+        return [MADE_IN_C] * count
+
+    @property
+    def software_version(self):
+        return self.stream.software_version
+
+
+def capture_parts(fh, capture: str, source: str, version_hint=None, robot: Optional[str] = None,
+                  date: Optional[str] = None) -> Iterator[Part]:
+    """The Parts of a .pcap or .pcapng read from a binary file object, as dataset.parts_of gives
+    them, each robot's primary rows made in C."""
+    from .dataset import PartBuilder, serial_numbers
+    start = fh.tell()
+    rows = _CaptureRows(version_hint, serial_numbers(fh))
+    fh.seek(start)
+    tables = Tables(capture, source, date)
+    builder = PartBuilder(capture, source, date, robot)     # the other interfaces, the kinds Python makes
+
+    def waiting() -> Iterator[Part]:
+        for owner, time, (batches, messages) in rows.waiting:
+            for index, count, buffers in batches:
+                yield from tables.parts(owner, index, count, buffers)
+            for _, position, _, frame, version, known in messages:
+                yield from builder.add(position, time, owner, decode_message(frame, version, known))
+        rows.waiting.clear()
+
+    for position, (time, address, record) in enumerate(timed_robot_records(fh, version_hint, rows.interfaces())):
+        rows.next_position = position + 1
+        if record is MADE_IN_C:
+            builder.place(time, rows.robot_of(address))
+        elif address is None and not isinstance(record, Enveloped) and has_error(record):
+            # A fault of the capture file: a primary error row, among C's rows of the robot before it.
+            owner, day = builder.place(None, None)
+            tables.fault_dates[(owner, position)] = day
+            rows.columns(owner).add_record("errors", position, None, to_json_line(record))
+        else:
+            yield from builder.add(position, time, None if address is None else rows.robot_of(address), record)
+        yield from waiting()
+    for owner, columns in rows.robots.items():
+        rows.waiting.append((owner, None, columns.flush()))
+    yield from waiting()
+    yield from builder.finish()
