@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ccore_records.h"
 #include "json.h"
 #include "records.h"
 #include "urwire.h"
@@ -173,6 +174,10 @@ PyMODINIT_FUNC PyInit__ccore(void)
     Py_INCREF(&PrimaryJsonLinesType);
     if (PyModule_AddObject(module, "PrimaryJsonLines", (PyObject *)&PrimaryJsonLinesType) < 0) {
         Py_DECREF(&PrimaryJsonLinesType);
+        Py_DECREF(module);
+        return NULL;
+    }
+    if (records_add_types(module) < 0) {
         Py_DECREF(module);
         return NULL;
     }

@@ -1,5 +1,9 @@
 """One framed message to a record and back: decode_message, encode_message, and package_classes,
-over the table of message types that urwire.generated.messages makes (MESSAGES)."""
+over the table of message types that urwire.generated.messages makes (MESSAGES).
+
+Under the C backend (extension.py) robot states are framed in C (urwire._ccore.PackageStates),
+each sub-package a copy of the record the same bytes gave last, else read by the version's form
+as PackageList.decode reads it; what that common case does not cover is read here in Python."""
 from __future__ import annotations
 
 from typing import Optional
@@ -7,12 +11,17 @@ from typing import Optional
 from . import _runtime as _rt
 from ._runtime import MalformedSubtype, UnknownMessage, UnknownSubtype
 from .arguments import bytes_of, version_of
+from .extension import CCORE
 from .generated.messages import MESSAGES
 from .generated.spec import DEFAULT_VERSION, HEADER, MESSAGE_TYPE_OFFSET
 from .message_kinds import PackageList
 
 # The message of sub-packages (the robot state): the one whose sub-package classes are asked for.
 (_PACKAGE_LIST,) = (kind for kind in MESSAGES.values() if isinstance(kind, PackageList))
+_PACKAGE_LIST_TYPE = next(code for code, kind in MESSAGES.items() if kind is _PACKAGE_LIST)
+# Its records from C under the C backend; None under pure Python.
+_C_STATES = None if CCORE is None else CCORE.PackageStates(_PACKAGE_LIST.cls, _PACKAGE_LIST.forms,
+                                                             _PACKAGE_LIST.body_offset)
 
 
 def package_classes(version) -> dict:
@@ -37,9 +46,14 @@ def decode_message(buf, version: Optional[tuple] = None, known: Optional[bool] =
         return UnknownMessage(0, buf, _rt.short("length", 0, HEADER.size, len(buf)).text)
     if version is not None:
         version = version_of(version)
-    kind = MESSAGES.get(buf[MESSAGE_TYPE_OFFSET])
+    code = buf[MESSAGE_TYPE_OFFSET]
+    if code == _PACKAGE_LIST_TYPE and _C_STATES is not None:
+        msg = _C_STATES.decode(buf, DEFAULT_VERSION if version is None else version)
+        if msg is not None:
+            return msg
+    kind = MESSAGES.get(code)
     if kind is None:
-        return UnknownMessage(buf[MESSAGE_TYPE_OFFSET], bytes(buf[HEADER.size:]))
+        return UnknownMessage(code, bytes(buf[HEADER.size:]))
     if version is None:
         return kind.decode(buf, DEFAULT_VERSION, bool(known))
     return kind.decode(buf, version, known is not False)
