@@ -114,20 +114,26 @@ static int layout_of(PyTypeObject *type, slot_layout **layout)
     return find_layout(type, layout);
 }
 
-/* Values a copy may share with its original: nothing in them can change. */
+/* Values a copy may share with its original: nothing in them can change. The exact types that
+ * most values have are asked first; int subclasses are the enum members, float ones keep a NaN's
+ * bits. */
 static int is_immutable(PyObject *value)
 {
     PyTypeObject *type = Py_TYPE(value);
     Py_ssize_t i;
-    if (value == Py_None || PyLong_Check(value) || PyFloat_Check(value) || type == &PyUnicode_Type
-        || type == &PyBytes_Type)
-        return 1;      /* int subclasses are the enum members; float ones keep a NaN's bits */
-    if (type != &PyTuple_Type)
+    if (type == &PyFloat_Type || type == &PyLong_Type || type == &PyBool_Type || value == Py_None)
+        return 1;
+    if (PyType_HasFeature(type, Py_TPFLAGS_LONG_SUBCLASS) || type == &PyUnicode_Type || type == &PyBytes_Type)
+        return 1;
+    if (type == &PyList_Type)
         return 0;
-    for (i = 0; i < PyTuple_GET_SIZE(value); i++)
-        if (!is_immutable(PyTuple_GET_ITEM(value, i)))
-            return 0;
-    return 1;
+    if (type == &PyTuple_Type) {
+        for (i = 0; i < PyTuple_GET_SIZE(value); i++)
+            if (!is_immutable(PyTuple_GET_ITEM(value, i)))
+                return 0;
+        return 1;
+    }
+    return PyFloat_Check(value);
 }
 
 static PyObject *copy_value(PyObject *value, int depth);

@@ -46,14 +46,19 @@ def decode_message(buf, version: Optional[tuple] = None, known: Optional[bool] =
         return UnknownMessage(0, buf, _rt.short("length", 0, HEADER.size, len(buf)).text)
     if version is not None:
         version = version_of(version)
-    code = buf[MESSAGE_TYPE_OFFSET]
-    if code == _PACKAGE_LIST_TYPE and _C_STATES is not None:
+    if buf[MESSAGE_TYPE_OFFSET] == _PACKAGE_LIST_TYPE and _C_STATES is not None:
         msg = _C_STATES.decode(buf, DEFAULT_VERSION if version is None else version)
         if msg is not None:
             return msg
-    kind = MESSAGES.get(code)
+    return decode_in_python(buf, version, known)
+
+
+def decode_in_python(buf: bytes, version: Optional[tuple], known: Optional[bool]):
+    """decode_message in pure Python, whatever the backend: buf is bytes of at least a header,
+    version a tuple or None."""
+    kind = MESSAGES.get(buf[MESSAGE_TYPE_OFFSET])
     if kind is None:
-        return UnknownMessage(code, bytes(buf[HEADER.size:]))
+        return UnknownMessage(buf[MESSAGE_TYPE_OFFSET], bytes(buf[HEADER.size:]))
     if version is None:
         return kind.decode(buf, DEFAULT_VERSION, bool(known))
     return kind.decode(buf, version, known is not False)
