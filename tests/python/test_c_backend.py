@@ -1,13 +1,17 @@
 """The C backend (the extension urwire._ccore: the generated C parser and the C command's JSON
 writer) against pure Python: every golden and conformance vector, every input of the fuzzers' kept
 corpora and sessions of every controller generation (tests/tools/valid.py) give the same canonical
-JSON Lines, byte for byte, and the same error flag, whole and fed in pieces; and the backend is
-picked as URWIRE_BACKEND says.
+JSON Lines, byte for byte, and the same error flag, whole and fed in pieces; the same records
+through the Framer (robot states from urwire._ccore.PackageStates): equal under ==, with the same
+to_dict, JSON line, bytes again and versions, first read and then copied from what the same bytes
+gave before; hostile robot states (cut short, lengths past the end) the same errors; and the
+backend is picked as URWIRE_BACKEND says.
 
 The extension is built by `make python-ext` (and by scripts/setup.sh and `make test`); without it
 these tests fail, as the differential cannot run."""
 from __future__ import annotations
 
+import contextlib
 import os
 import random
 import subprocess
@@ -21,6 +25,8 @@ from tests.tools.fuzz_inputs import HARNESSES, kept, split
 from tests.vectors import all_cases
 
 import urwire
+from urwire import decoding
+from urwire._runtime import StreamError
 from urwire.canonical import has_error
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -55,6 +61,209 @@ def assert_same(ccore, data: bytes, hint, what: str, pieces=PIECES) -> None:
     assert c_json_lines(ccore, data, hint) == expected, what
     for piece in pieces:
         assert c_json_lines(ccore, data, hint, piece) == expected, f"{what} in pieces of {piece}"
+
+
+# ---- records: robot states from C (PackageStates) against pure Python ----------------------
+
+def new_states(ccore):
+    """A PackageStates of the robot state, with nothing remembered yet."""
+    kind = decoding._PACKAGE_LIST
+    return ccore.PackageStates(kind.cls, kind.forms, kind.body_offset)
+
+
+@contextlib.contextmanager
+def robot_states_from(states):
+    """decode_message (and so the Framer) reads robot states with `states`; None: pure Python."""
+    saved = decoding._C_STATES
+    decoding._C_STATES = states
+    try:
+        yield
+    finally:
+        decoding._C_STATES = saved
+
+
+def framed(data: bytes, hint, piece: int = 0) -> list:
+    framer = urwire.Framer(hint)
+    step = piece or max(len(data), 1)
+    records = []
+    for at in range(0, len(data), step):
+        records += framer.feed(data[at:at + step])
+    return records + framer.close()
+
+
+def versions_of(record) -> tuple:
+    """The versions == leaves out: the one each part was read in, and the one a state implied."""
+    parts = getattr(record, "packages", None) or [record]
+    return (getattr(record, "implied_version", None), tuple(getattr(p, "decoded_version", None) for p in parts))
+
+
+def described(records: list) -> list:
+    """All that must agree about each record: itself, its dict, its JSON line, its bytes again
+    (stream faults have none) and its versions."""
+    return [(r, urwire.to_dict(r), urwire.to_json_line(r),
+             None if isinstance(r, StreamError) else urwire.encode_message(r), versions_of(r)) for r in records]
+
+
+def assert_same_described(got: list, expected: list, again: list, what: str) -> None:
+    """got against expected, item by item. A record holding a NaN is not equal even to itself
+    read again (NaN != NaN): where pure Python's two reads differ, the records are compared by
+    repr, JSON line, bytes and versions instead."""
+    assert len(got) == len(expected), what
+    for k, (g, e, a) in enumerate(zip(got, expected, again)):
+        assert type(g[0]) is type(e[0]), f"{what}: record {k}"
+        if e == a:
+            assert g == e, f"{what}: record {k}"
+        else:
+            assert (repr(g[0]), *g[2:]) == (repr(e[0]), *e[2:]), f"{what}: record {k}"
+
+
+def assert_same_records(states, data: bytes, hint, what: str, pieces=PIECES) -> None:
+    with robot_states_from(None):
+        expected, again = described(framed(data, hint)), described(framed(data, hint))
+    with robot_states_from(states):
+        # Twice whole: first read, then copied from what the same packages gave the first time.
+        for piece in (0, 0, *pieces):
+            assert_same_described(described(framed(data, hint, piece)), expected, again,
+                                  f"{what} in pieces of {piece}")
+
+
+@pytest.mark.parametrize("case", all_cases(), ids=lambda c: c.name)
+def test_every_vector_gives_the_same_records(ccore, case):
+    assert_same_records(new_states(ccore), case.data, case.version, case.name)
+
+
+@pytest.mark.parametrize("harness", HARNESSES)
+def test_every_kept_fuzz_input_gives_the_same_records(ccore, harness):
+    states = new_states(ccore)
+    for raw in kept(harness):
+        hint, data = split(harness, raw)
+        try:
+            urwire.parse_version(hint or None)
+        except ValueError:
+            continue
+        assert_same_records(states, data, hint or None, f"{harness} input {raw[:40].hex()}", pieces=(1, 97))
+
+
+@pytest.mark.parametrize("version", valid.versions(), ids=lambda v: ".".join(map(str, v)))
+def test_sessions_of_every_generation_give_the_same_records(ccore, version):
+    rng = random.Random(hash(version))
+    hint = ".".join(map(str, version))
+    states = new_states(ccore)
+    for _ in range(4):
+        data = valid.session(rng, version, 12)
+        cut = data[int.from_bytes(data[:4], "big"):]
+        for stream, given in ((data, None), (cut, None), (cut, hint)):
+            assert_same_records(states, stream, given, f"{given} {stream[:40].hex()}", pieces=(5, 1000))
+
+
+def real_states() -> list[bytes]:
+    folder = ROOT / "tests" / "conformance" / "Universal_Robots_Client_Library"
+    return [bytes.fromhex((folder / f"{name}.hex").read_text().strip())
+            for name in ("robot_state_real_robot_5.11_pr137", "robot_state_ursim5.8_ur5e_first")]
+
+
+def hostile(state: bytes, rng: random.Random) -> list[bytes]:
+    """A real robot state's variants, each framed as one message: cut at random places (the
+    message length follows), and each sub-package length set to 0, 4, one past the end, the
+    largest int32 and a negative one."""
+    out = []
+    for cut in sorted(rng.sample(range(5, len(state)), 40)):
+        out.append(cut.to_bytes(4, "big") + state[4:cut])
+    pos = 5
+    while pos + 5 <= len(state):
+        size = int.from_bytes(state[pos:pos + 4], "big")
+        for bad in (0, 4, len(state) - pos + 1, 0x7FFFFFFF, 0xFFFFFFF0):
+            out.append(state[:pos] + bad.to_bytes(4, "big") + state[pos + 4:])
+        pos += max(size, 5)
+    return out
+
+
+def test_hostile_robot_states_give_the_same_records_and_errors(ccore):
+    """Read after the same packages were seen whole (so that copies are at hand), every variant
+    gives pure Python's record: its errors with their fields and offsets, in the same places."""
+    rng = random.Random(25)
+    states = new_states(ccore)
+    faults = 0
+    for state in real_states():
+        for version in (None, (5, 11, 0), (3, 2, 0)):
+            with robot_states_from(states):
+                decoding.decode_message(state, version)
+            for msg in hostile(state, rng):
+                with robot_states_from(None):
+                    expected = described([decoding.decode_message(msg, version)])
+                    again = described([decoding.decode_message(msg, version)])
+                with robot_states_from(states):
+                    got = described([decoding.decode_message(msg, version)])
+                assert_same_described(got, expected, again, msg[:40].hex())
+                faults += has_error(expected[0][0])
+    assert faults > 100
+
+
+def mutable_parts(obj, seen: list) -> list:
+    """Every list and record object reachable from obj (ints, floats, texts and enum members
+    are immutable)."""
+    if isinstance(obj, list):
+        seen.append(obj)
+        for item in obj:
+            mutable_parts(item, seen)
+    elif hasattr(obj, "__dataclass_fields__"):
+        seen.append(obj)
+        for name in obj.__dataclass_fields__:
+            mutable_parts(getattr(obj, name), seen)
+    return seen
+
+
+def test_records_from_c_share_nothing_that_can_change(ccore):
+    """Two reads of the same state share no list or record, and changing one record changes
+    neither the next read nor what the C side keeps."""
+    states = new_states(ccore)
+    state = real_states()[0]
+    with robot_states_from(None):
+        expected = decoding.decode_message(state, (5, 11, 0))
+    with robot_states_from(states):
+        first = decoding.decode_message(state, (5, 11, 0))
+        second = decoding.decode_message(state, (5, 11, 0))
+        assert first == second == expected
+        assert not {id(x) for x in mutable_parts(first, [])} & {id(x) for x in mutable_parts(second, [])}
+        joints = first.package(urwire.JointData).joints
+        joints[0].q_actual += 1.0
+        joints.pop()
+        first.packages.clear()
+        assert decoding.decode_message(state, (5, 11, 0)) == expected
+        assert second == expected
+
+
+def test_records_from_c_are_the_classes_own(ccore):
+    """Made past __init__: the same classes, every slot set, usable as records built in Python
+    (replace, repr, the field defaults)."""
+    import dataclasses
+
+    states = new_states(ccore)
+    with robot_states_from(states):
+        for _ in range(2):
+            msg = decoding.decode_message(real_states()[0], (5, 11, 0))
+    assert type(msg) is urwire.RobotStateMessage and msg.error is None and msg.raw == b""
+    for pkg in msg.packages:
+        for f in dataclasses.fields(pkg):
+            getattr(pkg, f.name)        # AttributeError if a slot were left empty
+        assert dataclasses.replace(pkg) == pkg and repr(pkg)
+    assert msg.implied_version is None and dataclasses.replace(msg) == msg
+
+
+def test_under_the_c_backend_decode_message_reads_robot_states_in_c(ccore):
+    """decode_message goes through PackageStates for a robot state and no other message (a
+    stand-in that counts its calls)."""
+    calls = []
+
+    class Counting:
+        def decode(self, buf, version):
+            calls.append(buf[4])
+            return None         # None: pure Python reads it
+
+    with robot_states_from(Counting()):
+        records = framed(b"".join(real_states()) + all_cases()[0].data, None)
+    assert records and calls and set(calls) == {16}
+    assert len(calls) == sum(1 for r in records if type(r) is urwire.RobotStateMessage)
 
 
 @pytest.mark.parametrize("case", all_cases(), ids=lambda c: c.name)
