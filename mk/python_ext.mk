@@ -25,9 +25,12 @@ $(PYTHON_EXT_STAMP): $(PYTHON_EXT_SOURCES)
 	@touch $@
 
 ## test-python-backend: the tests of what the C backend changes (urwire decode of a raw primary
-## stream) under pure Python (URWIRE_BACKEND=python); `make test` runs them so, and everything
-## else under the default backend, the C one, which it builds first
-PYTHON_BACKEND_TESTS := tests/python/test_cli.py tests/python/test_hostile_bytes.py tests/python/test_c_backend.py
+## stream; the records of decode_message, the Framer and decode_stream: vectors, round trips,
+## any split, every generation) under pure Python (URWIRE_BACKEND=python); `make test` runs them
+## so, and everything else (these too) under the default backend, the C one, which it builds first
+PYTHON_BACKEND_TESTS := tests/python/test_cli.py tests/python/test_hostile_bytes.py tests/python/test_c_backend.py \
+	tests/python/test_vectors.py tests/python/test_roundtrip.py tests/python/test_streaming.py \
+	tests/python/test_generations.py tests/python/test_message_kinds.py tests/python/test_undocumented.py
 TEST_BUILDS += test-python-backend
 .PHONY: test-python-backend
 test-python-backend: python-ext

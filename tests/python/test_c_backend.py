@@ -360,16 +360,17 @@ def test_the_command_writes_to_a_text_stdout_in_its_place(ccore, tmp_path, monke
 
 
 def test_the_extension_under_asan_and_ubsan(tmp_path):
-    """urwire._ccore's own C (the module, and the memory stream each feed writes into) built with
-    ASan and UBSan and run over every vector and kept fuzz input (tests/python/ccore_asan_peer.py):
-    no report, the same lines."""
+    """urwire._ccore's own C (the module, the memory stream each feed writes into, the robot
+    states' records) built with ASan and UBSan and run over every vector and kept fuzz input and
+    the hostile robot states (tests/python/ccore_asan_peer.py): no report, the same lines and
+    records."""
     import sysconfig
 
     library = tmp_path / ("_ccore" + sysconfig.get_config_var("EXT_SUFFIX"))
-    sources = ["ext/ccore/module.c", "generated/c/urwire.c", "tools/urwire-decode/json.c",
+    sources = ["ext/ccore/module.c", "ext/ccore/records.c", "generated/c/urwire.c", "tools/urwire-decode/json.c",
                "tools/urwire-decode/shortest.c", "tools/urwire-decode/records.c"]
     subprocess.run(["gcc", "-shared", "-fPIC", "-g", "-O1", "-std=c99", "-fsanitize=address,undefined",
-                    "-fno-sanitize-recover=all", "-Igenerated/c", "-Itools/urwire-decode",
+                    "-fno-sanitize-recover=all", "-Iext/ccore", "-Igenerated/c", "-Itools/urwire-decode",
                     "-I" + sysconfig.get_paths()["include"], *sources, "-lm", "-o", str(library)],
                    cwd=ROOT, check=True, timeout=300)
     runtimes = [subprocess.run(["gcc", f"-print-file-name={name}"], capture_output=True, text=True,
@@ -378,4 +379,5 @@ def test_the_extension_under_asan_and_ubsan(tmp_path):
     result = subprocess.run([sys.executable, str(ROOT / "tests" / "python" / "ccore_asan_peer.py"), str(library)],
                             env=env, capture_output=True, text=True, timeout=600)
     assert result.returncode == 0 and "ERROR" not in result.stderr, result.stderr[-3000:]
-    assert int(result.stdout) > 300
+    lines, records = map(int, result.stdout.split())
+    assert lines > 300 and records > 300
