@@ -3,7 +3,8 @@
 # tree's Python (PYTHONPATH=python:generated/python) decodes through it; setup.py builds the same
 # module for `pip install .` and `pip wheel .`.
 
-PYTHON_EXT_SOURCES := setup.py ext/ccore/module.c ext/ccore/records.c ext/ccore/ccore_records.h generated/c/urwire.c generated/c/urwire.h \
+PYTHON_EXT_SOURCES := setup.py ext/ccore/module.c ext/ccore/records.c ext/ccore/ccore_records.h \
+	ext/ccore/runs.c ext/ccore/ccore_runs.h generated/c/urwire.c generated/c/urwire.h \
 	tools/urwire-decode/json.c tools/urwire-decode/json.h tools/urwire-decode/shortest.c \
 	tools/urwire-decode/shortest.h tools/urwire-decode/records.c tools/urwire-decode/records.h
 PYTHON_EXT_STAMP := build/python-ext.stamp

@@ -6,9 +6,10 @@
  * depends only on its type code, the software version and its bytes. So the state is framed here
  * and each sub-package whose bytes, code and version match the last ones seen is a copy of the
  * record they gave: made in C, past the classes' __init__, with the same slots (the immutable
- * values shared, lists and nested records copied, so no two states share what can change). A
- * package seen for the first time is read by the generated Python decoder of the version's form
- * (Forms.fast), exactly as PackageList.decode reads it.
+ * values shared, lists and nested records copied, so no two states share what can change).
+ * A package with new bytes is read by the version's form (Forms.fast), as PackageList.decode
+ * reads it: in C when the form is one fixed run (generated RUN_RECIPES: the run's struct and
+ * what each member becomes, run.c), else by the generated Python decoder.
  *
  * Anything the common case does not cover (a framing fault, a package that the version's form
  * does not read to its last byte, a code with no form) returns None: the caller then decodes the
@@ -21,6 +22,7 @@
 #include <string.h>
 
 #include "ccore_records.h"
+#include "ccore_runs.h"
 
 #define PACKAGE_HEADER_SIZE 5   /* int32 length (header included), uint8 type code */
 #define MAX_CODES 256
@@ -211,6 +213,7 @@ typedef struct {
     Py_ssize_t slot_packages, slot_error, slot_raw, slot_implied;   /* the message's slot offsets */
     PyObject *fast_version;    /* the version whose Forms.fast table `fast` is */
     PyObject *fast;
+    run_recipes *recipes;      /* the forms read by one fixed run, compiled on first use */
     package_memo memo[MAX_CODES];
 } PackageStates;
 
@@ -230,6 +233,7 @@ static void states_dealloc(PackageStates *self)
     Py_CLEAR(self->forms);
     Py_CLEAR(self->fast_version);
     Py_CLEAR(self->fast);
+    run_recipes_free(self->recipes);
     Py_TYPE(self)->tp_free((PyObject *)self);
 }
 
@@ -251,15 +255,18 @@ static Py_ssize_t slot_offset(PyObject *cls, const char *name)
     return offset;
 }
 
-/* PackageStates(message_class, forms, body_offset): message_class has exactly the slots
- * packages, error, raw and implied_version (urwire.message_kinds.PackageListMessage). */
+/* PackageStates(message_class, forms, body_offset, recipes=None, item_runs=None):
+ * message_class has exactly the slots packages, error, raw and implied_version
+ * (urwire.message_kinds.PackageListMessage); recipes and item_runs are the generated RUN_RECIPES
+ * and ITEM_RUNS (None: every new package is read by its Python decoder). */
 static int states_init(PackageStates *self, PyObject *args, PyObject *kwargs)
 {
-    static char *names[] = {"message_class", "forms", "body_offset", NULL};
-    PyObject *cls, *forms;
+    static char *names[] = {"message_class", "forms", "body_offset", "recipes", "item_runs", NULL};
+    PyObject *cls, *forms, *recipes = Py_None, *item_runs = Py_None;
     Py_ssize_t body_offset;
     slot_layout *layout;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O!On", names, &PyType_Type, &cls, &forms, &body_offset))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O!On|OO", names, &PyType_Type, &cls, &forms, &body_offset,
+                                     &recipes, &item_runs))
         return -1;
     if (body_offset < 0) {
         PyErr_SetString(PyExc_ValueError, "body_offset must not be negative");
@@ -282,6 +289,10 @@ static int states_init(PackageStates *self, PyObject *args, PyObject *kwargs)
     self->body_offset = body_offset;
     Py_CLEAR(self->fast_version);
     Py_CLEAR(self->fast);
+    run_recipes_free(self->recipes);
+    self->recipes = NULL;
+    if (recipes != Py_None && (self->recipes = run_recipes_new(recipes, item_runs)) == NULL)
+        return -1;
     return 0;
 }
 
@@ -394,6 +405,27 @@ static PyObject *read_package(PyObject *fast, PyObject *buf, int code, Py_ssize_
     return record;
 }
 
+/* The record of a package whose version's form is one fixed run of exactly its size, read in C;
+ * NULL with no exception set when the form is not such a run. */
+static PyObject *read_run(PackageStates *self, PyObject *fast, PyObject *buf, int code, Py_ssize_t body,
+                          Py_ssize_t stop, PyObject *version)
+{
+    PyObject *key, *decode;
+    const run_recipe *recipe;
+    if (self->recipes == NULL)
+        return NULL;
+    key = PyLong_FromLong(code);
+    if (key == NULL)
+        return NULL;
+    decode = PyDict_GetItemWithError(fast, key);
+    Py_DECREF(key);
+    if (decode == NULL)
+        return NULL;
+    if (run_recipe_of(self->recipes, decode, &recipe) < 0 || recipe == NULL)
+        return NULL;
+    return run_read(recipe, buf, body, stop, version);
+}
+
 static int32_t load_i32(const unsigned char *p)
 {
     return (int32_t)((uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | (uint32_t)p[3]);
@@ -460,7 +492,11 @@ static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ss
         if (pkg == NULL) {
             if (PyErr_Occurred())
                 goto failed;
-            pkg = read_package(fast, buf, code, body, stop, version);
+            pkg = read_run(self, fast, buf, code, body, stop, version);
+            if (pkg == NULL && PyErr_Occurred())
+                goto failed;
+            if (pkg == NULL)
+                pkg = read_package(fast, buf, code, body, stop, version);
             if (pkg == NULL) {
                 if (PyErr_Occurred())
                     goto failed;

@@ -3,7 +3,8 @@ over the table of message types that urwire.generated.messages makes (MESSAGES).
 
 Under the C backend (extension.py) robot states are framed in C (urwire._ccore.PackageStates),
 each sub-package a copy of the record the same bytes gave last, else read by the version's form
-as PackageList.decode reads it; what that common case does not cover is read here in Python."""
+as PackageList.decode reads it: in C for the forms of one fixed run (RUN_RECIPES), else by the
+form's Python decoder; what that common case does not cover is read here in Python."""
 from __future__ import annotations
 
 from typing import Optional
@@ -12,7 +13,7 @@ from . import _runtime as _rt
 from ._runtime import MalformedSubtype, UnknownMessage, UnknownSubtype
 from .arguments import bytes_of, version_of
 from .extension import CCORE
-from .generated.messages import MESSAGES
+from .generated.messages import ITEM_RUNS, MESSAGES, RUN_RECIPES
 from .generated.spec import DEFAULT_VERSION, HEADER, MESSAGE_TYPE_OFFSET
 from .message_kinds import PackageList
 
@@ -21,7 +22,7 @@ from .message_kinds import PackageList
 _PACKAGE_LIST_TYPE = next(code for code, kind in MESSAGES.items() if kind is _PACKAGE_LIST)
 # Its records from C under the C backend; None under pure Python.
 _C_STATES = None if CCORE is None else CCORE.PackageStates(_PACKAGE_LIST.cls, _PACKAGE_LIST.forms,
-                                                             _PACKAGE_LIST.body_offset)
+                                                             _PACKAGE_LIST.body_offset, RUN_RECIPES, ITEM_RUNS)
 
 
 def package_classes(version) -> dict:

@@ -127,6 +127,60 @@ def assert_same_records(states, data: bytes, hint, what: str, pieces=PIECES) -> 
                                   f"{what} in pieces of {piece}")
 
 
+def recipe_cases() -> list:
+    from urwire.generated.messages import RUN_RECIPES
+    return sorted(RUN_RECIPES.items(), key=lambda kv: kv[0].__qualname__)
+
+
+@pytest.mark.parametrize("decode, recipe", recipe_cases(), ids=lambda x: getattr(x, "__qualname__", ""))
+def test_every_run_recipe_builds_what_its_decoder_builds(ccore, decode, recipe):
+    """Each form read by one fixed run (RUN_RECIPES), made in C from random bytes of its size
+    (NaNs, bools of any byte and enum codes outside the tables among them) and from bytes of other
+    sizes: the record its Python decoder makes, or, where the size is not the run's, whatever
+    PackageList.decode makes. A stand-in decoder that fails the test if called shows that C
+    made the record."""
+    import types
+
+    from urwire.generated.messages import ITEM_RUNS
+
+    def never(buf, body, stop, version):
+        raise AssertionError(f"{decode.__qualname__}: read in Python")
+
+    cls = decode.__self__
+    stand_in = types.MethodType(never, cls)
+    code, form = next((c, f) for c, forms in decoding._PACKAGE_LIST.forms.by_code.items()
+                      for f in forms if f.decode == decode)
+
+    class OneForm:
+        def fast(self, version):
+            return {code: stand_in}
+
+    states = ccore.PackageStates(decoding._PACKAGE_LIST.cls, OneForm(), decoding._PACKAGE_LIST.body_offset,
+                                 {stand_in: recipe}, ITEM_RUNS)
+    size = recipe[0].size
+    rng = random.Random(decode.__qualname__)
+    nan_bits = (b"\x7f\xc0\x00\x00", b"\x7f\x80\x00\x01", b"\xff\xff\xff\xff")
+    sending = [v for v in valid.versions() if decoding._PACKAGE_LIST.forms.fast(v).get(code) == decode]
+    for version in {form.rep, *sending}:
+        for _ in range(10):
+            body = bytearray(rng.getrandbits(8) for _ in range(size))
+            for at in rng.sample(range(max(size - 3, 1)), min(3, max(size - 3, 1))):
+                body[at:at + 4] = rng.choice(nan_bits)
+            body = bytes(body[:size])
+            state = (10 + size).to_bytes(4, "big") + bytes([16]) + (5 + size).to_bytes(4, "big") + bytes([code]) + body
+            got = states.decode(state, version)
+            expected, used = decode(state, 10, len(state), version)
+            assert used == len(state) and got is not None
+            (pkg,) = got.packages
+            assert type(pkg) is cls
+            if expected == decode(state, 10, len(state), version)[0]:     # no NaN (NaN != NaN)
+                assert pkg == expected
+            assert (repr(pkg), pkg.encode(), pkg.decoded_version) == (repr(expected), expected.encode(), version)
+        for other in (size - 1, size + 1):
+            state = (10 + other).to_bytes(4, "big") + bytes([16]) + (5 + other).to_bytes(4, "big") + bytes([code])
+            assert states.decode(state + bytes(other), version) is None   # the Python decoder's case
+
+
 @pytest.mark.parametrize("case", all_cases(), ids=lambda c: c.name)
 def test_every_vector_gives_the_same_records(ccore, case):
     assert_same_records(new_states(ccore), case.data, case.version, case.name)
@@ -367,7 +421,7 @@ def test_the_extension_under_asan_and_ubsan(tmp_path):
     import sysconfig
 
     library = tmp_path / ("_ccore" + sysconfig.get_config_var("EXT_SUFFIX"))
-    sources = ["ext/ccore/module.c", "ext/ccore/records.c", "generated/c/urwire.c", "tools/urwire-decode/json.c",
+    sources = ["ext/ccore/module.c", "ext/ccore/records.c", "ext/ccore/runs.c", "generated/c/urwire.c", "tools/urwire-decode/json.c",
                "tools/urwire-decode/shortest.c", "tools/urwire-decode/records.c"]
     subprocess.run(["gcc", "-shared", "-fPIC", "-g", "-O1", "-std=c99", "-fsanitize=address,undefined",
                     "-fno-sanitize-recover=all", "-Iext/ccore", "-Igenerated/c", "-Itools/urwire-decode",
