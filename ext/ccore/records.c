@@ -103,17 +103,36 @@ static int find_layout(PyTypeObject *type, slot_layout **layout)
     return 0;
 }
 
+/* The layouts of the classes met last, by the class's address: a copy asks one per record,
+ * and a dict look-up each time would cost a sixth of the copy. The classes are held as keys of
+ * `layouts`, so an address is never another class's. */
+#define RECENT_LAYOUTS 64
+static struct {
+    PyTypeObject *type;
+    slot_layout *layout;
+} recent_layouts[RECENT_LAYOUTS];
+
 /* The slot layout of a class (NULL: its instances are not copied); -1 with an exception set. */
 static int layout_of(PyTypeObject *type, slot_layout **layout)
 {
-    PyObject *capsule = PyDict_GetItemWithError(layouts, (PyObject *)type);
-    if (capsule != NULL) {
-        *layout = capsule == Py_None ? NULL : PyCapsule_GetPointer(capsule, NULL);
+    size_t at = ((uintptr_t)type >> 6) % RECENT_LAYOUTS;
+    PyObject *capsule;
+    if (recent_layouts[at].type == type) {
+        *layout = recent_layouts[at].layout;
         return 0;
     }
-    if (PyErr_Occurred())
-        return -1;
-    return find_layout(type, layout);
+    capsule = PyDict_GetItemWithError(layouts, (PyObject *)type);
+    if (capsule == NULL) {
+        if (PyErr_Occurred() || find_layout(type, layout) < 0)
+            return -1;
+        capsule = PyDict_GetItemWithError(layouts, (PyObject *)type);
+        if (capsule == NULL)
+            return PyErr_Occurred() ? -1 : 0;
+    }
+    *layout = capsule == Py_None ? NULL : PyCapsule_GetPointer(capsule, NULL);
+    recent_layouts[at].type = type;
+    recent_layouts[at].layout = *layout;
+    return 0;
 }
 
 /* Values a copy may share with its original: nothing in them can change. The exact types that
@@ -210,6 +229,9 @@ typedef struct {
     PyObject *message_class;   /* the robot state's class (a PackageListMessage) */
     PyObject *forms;           /* its urwire._runtime.Forms */
     Py_ssize_t body_offset;    /* where its first sub-package starts */
+    int message_type;          /* its type code, at type_offset */
+    Py_ssize_t type_offset;
+    PyObject *default_version; /* the version of a stream that has not said */
     Py_ssize_t slot_packages, slot_error, slot_raw, slot_implied;   /* the message's slot offsets */
     PyObject *fast_version;    /* the version whose Forms.fast table `fast` is */
     PyObject *fast;
@@ -231,6 +253,7 @@ static void states_dealloc(PackageStates *self)
         forget(&self->memo[code]);
     Py_CLEAR(self->message_class);
     Py_CLEAR(self->forms);
+    Py_CLEAR(self->default_version);
     Py_CLEAR(self->fast_version);
     Py_CLEAR(self->fast);
     run_recipes_free(self->recipes);
@@ -255,19 +278,35 @@ static Py_ssize_t slot_offset(PyObject *cls, const char *name)
     return offset;
 }
 
-/* PackageStates(message_class, forms, body_offset, recipes=None, item_runs=None):
+/* PackageStates(message_class, forms, body_offset, recipes=None, item_runs=None, *,
+ *               message_type=16, type_offset=4, default_version=(5, 9, 0)):
  * message_class has exactly the slots packages, error, raw and implied_version
  * (urwire.message_kinds.PackageListMessage); recipes and item_runs are the generated RUN_RECIPES
- * and ITEM_RUNS (None: every new package is read by its Python decoder). */
+ * and ITEM_RUNS (None: every new package is read by its Python decoder); the message is the one
+ * whose type byte at type_offset is message_type. */
 static int states_init(PackageStates *self, PyObject *args, PyObject *kwargs)
 {
-    static char *names[] = {"message_class", "forms", "body_offset", "recipes", "item_runs", NULL};
-    PyObject *cls, *forms, *recipes = Py_None, *item_runs = Py_None;
-    Py_ssize_t body_offset;
+    static char *names[] = {"message_class", "forms", "body_offset", "recipes", "item_runs", "message_type",
+                            "type_offset", "default_version", NULL};
+    PyObject *cls, *forms, *recipes = Py_None, *item_runs = Py_None, *default_version = NULL;
+    Py_ssize_t body_offset, type_offset = 4;
+    int message_type = 16;
     slot_layout *layout;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O!On|OO", names, &PyType_Type, &cls, &forms, &body_offset,
-                                     &recipes, &item_runs))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "O!On|OO$inO!", names, &PyType_Type, &cls, &forms, &body_offset,
+                                     &recipes, &item_runs, &message_type, &type_offset, &PyTuple_Type,
+                                     &default_version))
         return -1;
+    if (type_offset < 0 || type_offset >= body_offset || message_type < 0 || message_type > 255) {
+        PyErr_SetString(PyExc_ValueError, "the type byte must lie before the body, and be a byte");
+        return -1;
+    }
+    self->message_type = message_type;
+    self->type_offset = type_offset;
+    if (default_version == NULL && (default_version = Py_BuildValue("(iii)", 5, 9, 0)) == NULL)
+        return -1;
+    else if (default_version != NULL)
+        Py_INCREF(default_version);
+    Py_XSETREF(self->default_version, default_version);
     if (body_offset < 0) {
         PyErr_SetString(PyExc_ValueError, "body_offset must not be negative");
         return -1;
@@ -451,15 +490,29 @@ static PyObject *new_message(PackageStates *self, PyObject *packages)
     return msg;
 }
 
-/* decode(buf, version): the record of one framed robot state (buf: bytes, its declared length
- * len(buf)) read as `version`, or None when Python must read it (see the top of this file). */
+/* A version as the decoders take it: (major, minor, bugfix) of ints, else NULL. */
+static int is_version(PyObject *version)
+{
+    Py_ssize_t i;
+    if (!PyTuple_CheckExact(version) || PyTuple_GET_SIZE(version) != 3)
+        return 0;
+    for (i = 0; i < 3; i++)
+        if (!PyLong_CheckExact(PyTuple_GET_ITEM(version, i)))
+            return 0;
+    return 1;
+}
+
+/* decode(buf, version): the record of one framed message (buf: its bytes, its declared length
+ * len(buf)) when it is a robot state read as `version` ((major, minor, bugfix), or None for
+ * the default), or None when Python must read it: another message, other types of argument,
+ * or what the top of this file says. */
 static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ssize_t nargs)
 {
     PyObject *buf, *version, *fast, *packages, *msg = NULL;
     const char *data;
     Py_ssize_t n, pos;
-    if (nargs != 2 || !PyBytes_CheckExact(args[0])) {
-        PyErr_SetString(PyExc_TypeError, "decode(buf: bytes, version: tuple)");
+    if (nargs != 2) {
+        PyErr_SetString(PyExc_TypeError, "decode(buf, version)");
         return NULL;
     }
     if (self->forms == NULL) {
@@ -467,7 +520,10 @@ static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ss
         return NULL;
     }
     buf = args[0];
-    version = args[1];
+    version = args[1] == Py_None ? self->default_version : args[1];
+    if (!PyBytes_CheckExact(buf) || PyBytes_GET_SIZE(buf) < self->body_offset || !is_version(version)
+        || (unsigned char)PyBytes_AS_STRING(buf)[self->type_offset] != self->message_type)
+        Py_RETURN_NONE;
     data = PyBytes_AS_STRING(buf);
     n = PyBytes_GET_SIZE(buf);
     fast = fast_table(self, version);

@@ -21,8 +21,9 @@ from .message_kinds import PackageList
 (_PACKAGE_LIST,) = (kind for kind in MESSAGES.values() if isinstance(kind, PackageList))
 _PACKAGE_LIST_TYPE = next(code for code, kind in MESSAGES.items() if kind is _PACKAGE_LIST)
 # Its records from C under the C backend; None under pure Python.
-_C_STATES = None if CCORE is None else CCORE.PackageStates(_PACKAGE_LIST.cls, _PACKAGE_LIST.forms,
-                                                             _PACKAGE_LIST.body_offset, RUN_RECIPES, ITEM_RUNS)
+_C_STATES = None if CCORE is None else CCORE.PackageStates(
+    _PACKAGE_LIST.cls, _PACKAGE_LIST.forms, _PACKAGE_LIST.body_offset, RUN_RECIPES, ITEM_RUNS,
+    message_type=_PACKAGE_LIST_TYPE, type_offset=MESSAGE_TYPE_OFFSET, default_version=DEFAULT_VERSION)
 
 
 def package_classes(version) -> dict:
@@ -41,14 +42,20 @@ def decode_message(buf, version: Optional[tuple] = None, known: Optional[bool] =
     state's layout sizes may overrule it (`implied_version`). `known` says whether `version` is
     known (announced or hinted) rather than assumed.
     """
+    if _C_STATES is not None:
+        # First the common case at C speed: a robot state's bytes, the version a tuple or None.
+        msg = _C_STATES.decode(buf, version)
+        if msg is not None:
+            return msg
+    given = buf, version
     if type(buf) is not bytes:
         buf = bytes_of(buf, "decode_message")
     if len(buf) < HEADER.size:
         return UnknownMessage(0, buf, _rt.short("length", 0, HEADER.size, len(buf)).text)
     if version is not None:
         version = version_of(version)
-    if buf[MESSAGE_TYPE_OFFSET] == _PACKAGE_LIST_TYPE and _C_STATES is not None:
-        msg = _C_STATES.decode(buf, DEFAULT_VERSION if version is None else version)
+    if _C_STATES is not None and (buf is not given[0] or version is not given[1]):
+        msg = _C_STATES.decode(buf, version)      # the same, once the arguments are as it takes them
         if msg is not None:
             return msg
     return decode_in_python(buf, version, known)

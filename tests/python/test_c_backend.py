@@ -304,20 +304,37 @@ def test_records_from_c_are_the_classes_own(ccore):
     assert msg.implied_version is None and dataclasses.replace(msg) == msg
 
 
-def test_under_the_c_backend_decode_message_reads_robot_states_in_c(ccore):
-    """decode_message goes through PackageStates for a robot state and no other message (a
-    stand-in that counts its calls)."""
+def test_under_the_c_backend_decode_message_asks_c_first(ccore):
+    """decode_message asks PackageStates first for every message, and pure Python reads what it
+    declines (a stand-in that counts its calls and declines them all); the real one declines
+    every message but a robot state, and arguments it does not take (a bytearray, a text version)
+    are made into those it does."""
     calls = []
 
-    class Counting:
+    class Declining:
         def decode(self, buf, version):
             calls.append(buf[4])
-            return None         # None: pure Python reads it
+            return None
 
-    with robot_states_from(Counting()):
-        records = framed(b"".join(real_states()) + all_cases()[0].data, None)
-    assert records and calls and set(calls) == {16}
-    assert len(calls) == sum(1 for r in records if type(r) is urwire.RobotStateMessage)
+    stream = b"".join(real_states()) + all_cases()[0].data
+    with robot_states_from(Declining()):
+        records = framed(stream, None)
+    with robot_states_from(None):
+        assert records == framed(stream, None)
+    assert len(calls) == len(records) - sum(1 for r in records if isinstance(r, StreamError))
+    states = new_states(ccore)
+    state = real_states()[0]
+    for buf in (b"\0\0\0\5\x14", b"\0\0\0\x10", b"\x10", b""):
+        assert states.decode(buf, None) is None
+    assert states.decode(b"\0\0\0\5\x10", None) == decoding.decode_in_python(b"\0\0\0\5\x10", None, None)
+    assert states.decode(state, (5, 11)) is None and states.decode(bytearray(state), None) is None
+    with robot_states_from(states):
+        assert type(decoding.decode_message(state, (5, 11, 0))) is urwire.RobotStateMessage
+    for buf, version in ((bytearray(state), "5.11"), (memoryview(state), (5, 11, 0))):
+        with robot_states_from(None):
+            expected = decoding.decode_message(buf, version)
+        with robot_states_from(states):
+            assert decoding.decode_message(buf, version) == expected
 
 
 @pytest.mark.parametrize("case", all_cases(), ids=lambda c: c.name)
