@@ -110,7 +110,7 @@ class Codec:
     decode: list[Step]
     encode: list[Step]
     versions: str = ""            # the versions that send the form, when a layout has several
-    run: Optional[dict] = None    # a form read by one fixed run: its struct, members, attributes left None
+    runs: Optional[dict] = None   # a form read by fixed runs alone (fixed_runs), as data
 
 
 @dataclass
@@ -302,14 +302,25 @@ class _ClassBuilder:
                 Step("group_to_end", dict(name=f.name)))
 
 
-def one_run(decode: list[Step]) -> Optional[dict]:
-    """A form whose decoder reads one fixed run (its other steps set absent attributes to None):
-    the run's struct, its members as data and those attributes (quoted); else None."""
-    runs = [s for s in decode if s.kind == "run"]
-    if len(runs) != 1 or any(s.kind not in ("run", "absent") for s in decode):
-        return None
-    absent = [json.dumps(name) for s in decode if s.kind == "absent" for name in s.data["names"]]
-    return dict(const=runs[0].data["const"], members=runs[0].data["run_members"], absent=absent)
+def fixed_runs(decode: list[Step]) -> Optional[dict]:
+    """A form whose decoder reads fixed runs one after the other, some only when an earlier field
+    is nonzero (its other steps set absent attributes to None): each run's struct, its members
+    as data, its flag and the attributes it leaves None when skipped, and those absent; else None.
+    Names are quoted."""
+    runs, absent = [], []
+    for s in decode:
+        if s.kind == "absent":
+            absent += [json.dumps(name) for name in s.names]
+        elif s.kind == "run":
+            runs.append(dict(const=s.const, members=s.run_members, flag="None", skipped=[]))
+        elif (s.kind == "cond" and s.condition.flag and s.condition.low is None and s.condition.high is None
+              and [inner.kind for inner in s.steps] == ["run"]):
+            (inner,) = s.steps
+            runs.append(dict(const=inner.const, members=inner.run_members, flag=json.dumps(s.condition.flag),
+                             skipped=[json.dumps(name) for name in s.names]))
+        else:
+            return None
+    return dict(runs=runs, absent=absent) if runs else None
 
 
 def item_enums(item: ir.Struct) -> list[str]:
@@ -369,13 +380,13 @@ class _Target:
                 absent = [f.name for f in struct.public_fields if not v.plan.struct.named(f.name)]
                 if absent:
                     decode.insert(0, Step("absent", dict(names=absent)))
-                codecs.append(Codec(f"_{k}", decode, encode, v.describe(), one_run(decode)))
+                codecs.append(Codec(f"_{k}", decode, encode, v.describe(), fixed_runs(decode)))
                 structs += form_builder.structs
         else:
             decode, encode = builder.steps(layout.steps)
             if builder.repeated:
                 decode.insert(0, Step("absent", dict(names=builder.repeated)))
-            codecs = [Codec("", decode, encode, run=one_run(decode))]
+            codecs = [Codec("", decode, encode, runs=fixed_runs(decode))]
             structs = builder.structs
         items = {f.name: self.item_classes[f.item.name].name for f in struct.fields if isinstance(f, ir.GroupField)}
         header_fields = [slot.field for slot in header or [] if not slot.is_subtype]

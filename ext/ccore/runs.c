@@ -1,9 +1,10 @@
-/* Sub-package forms read by one fixed run, made into the generated record objects in C.
+/* Sub-package forms read by fixed runs alone, made into the generated record objects in C.
  *
  * The generator writes, beside each such form's Python decoder, what it reads as data
- * (RUN_RECIPES in urwire.generated.messages): the run's struct, and for each member its
- * attribute, its conversion (plain, bool, f32, enum, venum, item_enum), its enum table and where
- * its values are among the struct's; fixed group items have theirs in ITEM_RUNS. A recipe is
+ * (RUN_RECIPES in urwire.generated.messages): its runs in order, each with its struct, the field
+ * whose nonzero value it needs (the Euromap67 block) and, for each member, its attribute, its
+ * conversion (plain, bool, f32, enum, venum, item_enum), its enum table and where its values are
+ * among the struct's; fixed group items have theirs in ITEM_RUNS. A recipe is
  * compiled here on first use (struct codes to byte offsets, attribute names to slot offsets) and
  * then read with no Python call: each value becomes what the decoder makes of it (an int, a float,
  * True/False or the byte, the enum member or the int), the record is made past __init__, and the
@@ -41,13 +42,21 @@ typedef struct run_member {
     PyObject *item_enums;      /* groups: a tuple of the versioned tables its items look up */
 } run_member;
 
-struct run_recipe {
-    PyTypeObject *cls;
+typedef struct {
     Py_ssize_t size;           /* bytes of the run */
     Py_ssize_t leaf_count;
     run_leaf *leaves;
     Py_ssize_t member_count;
     run_member *members;
+    Py_ssize_t flag;           /* the slot whose truth it needs; 0: read always */
+    Py_ssize_t skipped_count;
+    Py_ssize_t *skipped;       /* the slots left None when it is not read */
+} fixed_run;
+
+struct run_recipe {
+    PyTypeObject *cls;
+    Py_ssize_t run_count;
+    fixed_run *runs;
     Py_ssize_t absent_count;
     Py_ssize_t *absent;        /* slots left None */
     Py_ssize_t slot_extra, slot_version;
@@ -76,10 +85,15 @@ static void free_members(run_member *members, Py_ssize_t count)
 static void free_recipe(PyObject *capsule)
 {
     run_recipe *r = PyCapsule_GetPointer(capsule, NULL);
+    Py_ssize_t i;
     if (r == NULL)
         return;
-    PyMem_Free(r->leaves);
-    free_members(r->members, r->member_count);
+    for (i = 0; r->runs != NULL && i < r->run_count; i++) {
+        PyMem_Free(r->runs[i].leaves);
+        free_members(r->runs[i].members, r->runs[i].member_count);
+        PyMem_Free(r->runs[i].skipped);
+    }
+    PyMem_Free(r->runs);
     PyMem_Free(r->absent);
     Py_XDECREF(r->owned);
     Py_XDECREF((PyObject *)r->cls);
@@ -128,7 +142,7 @@ static Py_ssize_t slot_count(PyTypeObject *cls)
 
 /* The leaves of a struct format such as ">QBBd" (big-endian, no padding); 0 when the format
  * holds anything else, -1 with an exception set. */
-static int parse_format(PyObject *st, run_recipe *r)
+static int parse_format(PyObject *st, fixed_run *r)
 {
     PyObject *format = PyObject_GetAttrString(st, "format"), *size_obj;
     const char *f;
@@ -181,7 +195,7 @@ static int parse_format(PyObject *st, run_recipe *r)
     return ok;
 }
 
-static int compile_members(PyObject *spec, PyTypeObject *cls, const run_recipe *r, PyObject *item_runs,
+static int compile_members(PyObject *spec, PyTypeObject *cls, const fixed_run *r, PyObject *item_runs,
                            PyObject *owned, run_member **out, Py_ssize_t *count, int depth, Py_ssize_t base,
                            Py_ssize_t limit);
 
@@ -190,7 +204,7 @@ static const char *const CONVERSIONS[] = {"plain", "bool", "f32", "enum", "venum
 /* One member from (name, kind, conversion, table, first, count, item, width, size, enums), its
  * values among the `limit` from the run's value `base` (the run's, or its group's first item's);
  * 0 when it is one this does not read, -1 with an exception set. */
-static int compile_member(PyObject *entry, PyTypeObject *cls, const run_recipe *r, PyObject *item_runs,
+static int compile_member(PyObject *entry, PyTypeObject *cls, const fixed_run *r, PyObject *item_runs,
                           PyObject *owned, run_member *m, int depth, Py_ssize_t base, Py_ssize_t limit)
 {
     PyObject *name, *kind, *conv, *item;
@@ -268,7 +282,7 @@ static int compile_member(PyObject *entry, PyTypeObject *cls, const run_recipe *
 }
 
 /* The members of a recipe, or of an item (depth 1: their values count from the item's first). */
-static int compile_members(PyObject *spec, PyTypeObject *cls, const run_recipe *r, PyObject *item_runs,
+static int compile_members(PyObject *spec, PyTypeObject *cls, const fixed_run *r, PyObject *item_runs,
                            PyObject *owned, run_member **out, Py_ssize_t *count, int depth, Py_ssize_t base,
                            Py_ssize_t limit)
 {
@@ -297,36 +311,106 @@ static int compile_members(PyObject *spec, PyTypeObject *cls, const run_recipe *
     return 1;
 }
 
-/* A recipe from (struct, members, absent names) for the decoder's class; 0 when it cannot be
- * read here, -1 with an exception set. */
+/* The slots of a tuple of attribute names; 0 when one is not a slot, -1 with an exception set. */
+static int slots_of(PyTypeObject *cls, PyObject *names, Py_ssize_t **slots, Py_ssize_t *count)
+{
+    Py_ssize_t i;
+    if (!PyTuple_Check(names))
+        return 0;
+    *count = PyTuple_GET_SIZE(names);
+    *slots = PyMem_Calloc((size_t)*count + 1, sizeof(Py_ssize_t));
+    if (*slots == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    for (i = 0; i < *count; i++)
+        if (((*slots)[i] = slot_of(cls, PyTuple_GET_ITEM(names, i))) <= 0)
+            return (int)(*slots)[i];
+    return 1;
+}
+
+static int has_slot(const Py_ssize_t *slots, Py_ssize_t count, Py_ssize_t slot)
+{
+    Py_ssize_t i;
+    for (i = 0; i < count; i++)
+        if (slots[i] == slot)
+            return 1;
+    return 0;
+}
+
+/* One run from (struct, members, flag name or None, names left None when skipped); `read` holds
+ * the slots the runs before it set (its flag must be one), and gets its own. */
+static int compile_run(PyObject *spec, run_recipe *r, fixed_run *run, PyObject *item_runs, Py_ssize_t *read,
+                       Py_ssize_t *read_count)
+{
+    PyObject *flag;
+    Py_ssize_t i;
+    int ok;
+    if (!PyTuple_Check(spec) || PyTuple_GET_SIZE(spec) != 4)
+        return 0;
+    if ((ok = parse_format(PyTuple_GET_ITEM(spec, 0), run)) <= 0)
+        return ok;
+    ok = compile_members(PyTuple_GET_ITEM(spec, 1), r->cls, run, item_runs, r->owned, &run->members,
+                         &run->member_count, 0, 0, run->leaf_count);
+    if (ok <= 0)
+        return ok;
+    flag = PyTuple_GET_ITEM(spec, 2);
+    if (flag != Py_None) {
+        if ((run->flag = slot_of(r->cls, flag)) <= 0)
+            return (int)run->flag;
+        if (!has_slot(read, *read_count, run->flag))
+            return 0;               /* a flag the runs before have not read */
+    }
+    if ((ok = slots_of(r->cls, PyTuple_GET_ITEM(spec, 3), &run->skipped, &run->skipped_count)) <= 0)
+        return ok;
+    for (i = 0; i < run->member_count; i++) {
+        /* Skipped, a conditional run's attributes must still be set: each is among its names. */
+        if (run->flag && !has_slot(run->skipped, run->skipped_count, run->members[i].slot))
+            return 0;
+        read[(*read_count)++] = run->members[i].slot;
+    }
+    return 1;
+}
+
+/* A recipe from (runs, absent names) for the decoder's class; 0 when it cannot be read here,
+ * -1 with an exception set. */
 static int compile_recipe(PyObject *spec, PyObject *decode, PyObject *item_runs, run_recipe *r)
 {
-    PyObject *absent, *extra, *version;
-    Py_ssize_t i;
+    PyObject *runs, *extra, *version;
+    Py_ssize_t i, slots, *read, read_count = 0;
     int ok;
     if (!PyMethod_Check(decode) || !PyType_Check(PyMethod_GET_SELF(decode)))
         return 0;
     r->cls = (PyTypeObject *)Py_NewRef(PyMethod_GET_SELF(decode));
     if ((r->owned = PyList_New(0)) == NULL)
         return -1;
-    if (!PyTuple_Check(spec) || PyTuple_GET_SIZE(spec) != 3 || !PyTuple_Check(PyTuple_GET_ITEM(spec, 2)))
+    if (!PyTuple_Check(spec) || PyTuple_GET_SIZE(spec) != 2 || !PyTuple_Check(PyTuple_GET_ITEM(spec, 0)))
         return 0;
-    if ((ok = parse_format(PyTuple_GET_ITEM(spec, 0), r)) <= 0)
-        return ok;
-    ok = compile_members(PyTuple_GET_ITEM(spec, 1), r->cls, r, item_runs, r->owned, &r->members, &r->member_count, 0,
-                         0, r->leaf_count);
-    if (ok <= 0)
-        return ok;
-    absent = PyTuple_GET_ITEM(spec, 2);
-    r->absent_count = PyTuple_GET_SIZE(absent);
-    r->absent = PyMem_Calloc((size_t)r->absent_count + 1, sizeof(Py_ssize_t));
-    if (r->absent == NULL) {
+    if ((slots = slot_count(r->cls)) <= 0)
+        return 0;
+    runs = PyTuple_GET_ITEM(spec, 0);
+    r->run_count = PyTuple_GET_SIZE(runs);
+    r->runs = PyMem_Calloc((size_t)r->run_count + 1, sizeof(fixed_run));
+    read = PyMem_Calloc((size_t)slots + 1, sizeof(Py_ssize_t));
+    if (r->runs == NULL || read == NULL) {
+        PyMem_Free(read);
         PyErr_NoMemory();
         return -1;
     }
-    for (i = 0; i < r->absent_count; i++)
-        if ((r->absent[i] = slot_of(r->cls, PyTuple_GET_ITEM(absent, i))) <= 0)
-            return (int)r->absent[i];
+    ok = 1;
+    for (i = 0; i < r->run_count && ok > 0; i++) {
+        PyObject *run = PyTuple_GET_ITEM(runs, i);
+        if (PyTuple_Check(run) && PyTuple_GET_SIZE(run) == 4 && PyTuple_Check(PyTuple_GET_ITEM(run, 1))
+            && read_count + PyTuple_GET_SIZE(PyTuple_GET_ITEM(run, 1)) <= slots)
+            ok = compile_run(run, r, &r->runs[i], item_runs, read, &read_count);
+        else
+            ok = 0;
+    }
+    PyMem_Free(read);
+    if (ok <= 0)
+        return ok;
+    if ((ok = slots_of(r->cls, PyTuple_GET_ITEM(spec, 1), &r->absent, &r->absent_count)) <= 0)
+        return ok;
     if ((extra = PyUnicode_InternFromString("extra")) == NULL)
         return -1;
     r->slot_extra = slot_of(r->cls, extra);
@@ -337,8 +421,8 @@ static int compile_recipe(PyObject *spec, PyObject *decode, PyObject *item_runs,
     Py_DECREF(version);
     if (r->slot_extra <= 0 || r->slot_version <= 0)
         return r->slot_extra < 0 || r->slot_version < 0 ? -1 : 0;
-    /* Every attribute is set: the members, the absent ones, extra and decoded_version. */
-    return slot_count(r->cls) == r->member_count + r->absent_count + 2;
+    /* Every attribute is set once: the runs' members, the absent ones, extra and decoded_version. */
+    return slots == read_count + r->absent_count + 2;
 }
 
 run_recipes *run_recipes_new(PyObject *recipes, PyObject *item_runs)
@@ -447,11 +531,20 @@ static long long leaf_int(const run_leaf *leaf, const unsigned char *run, unsign
     }
 }
 
+/* Where a run is read: its leaves start at byte `start` of buf. */
+typedef struct {
+    const fixed_run *run;
+    PyObject *buf;
+    Py_ssize_t start;
+    PyObject *version;
+    PyObject *f32_nan;
+} reading;
+
 /* The value of leaf k as struct unpacks it (a float32 NaN with its bits, as f32_nan keeps them). */
-static PyObject *leaf_value(const run_recipe *r, Py_ssize_t k, PyObject *buf, Py_ssize_t body)
+static PyObject *leaf_value(const reading *at, Py_ssize_t k)
 {
-    const run_leaf *leaf = &r->leaves[k];
-    const unsigned char *run = (const unsigned char *)PyBytes_AS_STRING(buf) + body;
+    const run_leaf *leaf = &at->run->leaves[k];
+    const unsigned char *run = (const unsigned char *)PyBytes_AS_STRING(at->buf) + at->start;
     unsigned long long u;
     long long v;
     if (leaf->code == 'd') {
@@ -465,7 +558,7 @@ static PyObject *leaf_value(const run_recipe *r, Py_ssize_t k, PyObject *buf, Py
         float f;
         memcpy(&f, &bits, sizeof f);
         if (isnan(f))
-            return PyObject_CallFunction(r->f32_nan, "On", buf, body + leaf->offset);
+            return PyObject_CallFunction(at->f32_nan, "On", at->buf, at->start + leaf->offset);
         return PyFloat_FromDouble((double)f);
     }
     v = leaf_int(leaf, run, &u);
@@ -527,12 +620,16 @@ static PyObject *converted(const run_member *m, PyObject *value, PyObject *versi
     return Py_NewRef(member);
 }
 
-static PyObject *member_value(const run_recipe *r, const run_member *m, Py_ssize_t base, PyObject *buf,
-                              Py_ssize_t body, PyObject *version, PyObject *item_enums);
+/* An attribute slot of a record being made: set, or set again (a name the form left None). */
+static void set_slot(PyObject *record, Py_ssize_t slot, PyObject *value)
+{
+    Py_XSETREF(*(PyObject **)((char *)record + slot), value);
+}
+
+static PyObject *member_value(const reading *at, const run_member *m, Py_ssize_t base, PyObject *item_enums);
 
 /* A group's items: each a new instance of the item class, its members read from its values. */
-static PyObject *group_value(const run_recipe *r, const run_member *m, Py_ssize_t base, PyObject *buf,
-                             Py_ssize_t body, PyObject *version)
+static PyObject *group_value(const reading *at, const run_member *m, Py_ssize_t base)
 {
     PyObject *items = PyList_New(m->count), *enums;
     Py_ssize_t j, i, n = PyTuple_GET_SIZE(m->item_enums);
@@ -544,7 +641,7 @@ static PyObject *group_value(const run_recipe *r, const run_member *m, Py_ssize_
         return NULL;
     }
     for (i = 0; i < n; i++) {
-        PyObject *table = PyObject_GetItem(PyTuple_GET_ITEM(m->item_enums, i), version);
+        PyObject *table = PyObject_GetItem(PyTuple_GET_ITEM(m->item_enums, i), at->version);
         if (table == NULL)
             goto failed;
         PyTuple_SET_ITEM(enums, i, table);
@@ -556,10 +653,10 @@ static PyObject *group_value(const run_recipe *r, const run_member *m, Py_ssize_
         PyList_SET_ITEM(items, j, item);
         for (i = 0; i < m->item_count; i++) {
             const run_member *im = &m->item_members[i];
-            PyObject *value = member_value(r, im, base + m->first + j * m->width, buf, body, version, enums);
+            PyObject *value = member_value(at, im, base + m->first + j * m->width, enums);
             if (value == NULL)
                 goto failed;
-            *(PyObject **)((char *)item + im->slot) = value;
+            set_slot(item, im->slot, value);
         }
     }
     Py_DECREF(enums);
@@ -571,20 +668,19 @@ failed:
 }
 
 /* One member's attribute; `base` is the index its first value counts from (an item's first). */
-static PyObject *member_value(const run_recipe *r, const run_member *m, Py_ssize_t base, PyObject *buf,
-                              Py_ssize_t body, PyObject *version, PyObject *item_enums)
+static PyObject *member_value(const reading *at, const run_member *m, Py_ssize_t base, PyObject *item_enums)
 {
     PyObject *list;
     Py_ssize_t k;
     if (m->kind == KIND_SCALAR)
-        return converted(m, leaf_value(r, base + m->first, buf, body), version, item_enums);
+        return converted(m, leaf_value(at, base + m->first), at->version, item_enums);
     if (m->kind == KIND_GROUP)
-        return group_value(r, m, base, buf, body, version);
+        return group_value(at, m, base);
     list = PyList_New(m->count);
     if (list == NULL)
         return NULL;
     for (k = 0; k < m->count; k++) {
-        PyObject *value = converted(m, leaf_value(r, base + m->first + k, buf, body), version, item_enums);
+        PyObject *value = converted(m, leaf_value(at, base + m->first + k), at->version, item_enums);
         if (value == NULL) {
             Py_DECREF(list);
             return NULL;
@@ -594,31 +690,63 @@ static PyObject *member_value(const run_recipe *r, const run_member *m, Py_ssize
     return list;
 }
 
+/* Reads one run into the record, or, when its flag is not set, leaves its names None; the
+ * bytes it took, or -1 with an exception set, or -2 when it does not fit in the bytes left. */
+static Py_ssize_t read_run(const fixed_run *run, PyObject *record, PyObject *buf, Py_ssize_t start,
+                           Py_ssize_t stop, PyObject *version, PyObject *f32_nan)
+{
+    reading at = {run, buf, start, version, f32_nan};
+    Py_ssize_t i;
+    if (run->flag) {
+        int set = PyObject_IsTrue(*(PyObject **)((char *)record + run->flag));
+        if (set < 0)
+            return -1;
+        if (!set) {
+            for (i = 0; i < run->skipped_count; i++)
+                set_slot(record, run->skipped[i], Py_NewRef(Py_None));
+            return 0;
+        }
+    }
+    if (run->size > stop - start)
+        return -2;
+    for (i = 0; i < run->member_count; i++) {
+        const run_member *m = &run->members[i];
+        PyObject *value = member_value(&at, m, 0, NULL);
+        if (value == NULL)
+            return -1;
+        set_slot(record, m->slot, value);
+    }
+    return run->size;
+}
+
 PyObject *run_read(const run_recipe *r, PyObject *buf, Py_ssize_t body, Py_ssize_t stop, PyObject *version)
 {
-    PyObject *record, *empty;
-    Py_ssize_t i;
-    if (stop - body != r->size || stop > PyBytes_GET_SIZE(buf))
-        return NULL;                   /* short, or extra bytes: the Python decoder's case */
+    PyObject *record;
+    Py_ssize_t i, pos = body;
+    if (stop > PyBytes_GET_SIZE(buf) || body > stop)
+        return NULL;
     record = r->cls->tp_alloc(r->cls, 0);
     if (record == NULL)
         return NULL;
-    for (i = 0; i < r->member_count; i++) {
-        const run_member *m = &r->members[i];
-        PyObject *value = member_value(r, m, 0, buf, body, version, NULL);
-        if (value == NULL) {
-            Py_DECREF(record);
-            return NULL;
-        }
-        *(PyObject **)((char *)record + m->slot) = value;
-    }
     for (i = 0; i < r->absent_count; i++)
-        *(PyObject **)((char *)record + r->absent[i]) = Py_NewRef(Py_None);
-    if ((empty = PyBytes_FromStringAndSize(NULL, 0)) == NULL) {
+        set_slot(record, r->absent[i], Py_NewRef(Py_None));
+    for (i = 0; i < r->run_count; i++) {
+        Py_ssize_t took = read_run(&r->runs[i], record, buf, pos, stop, version, r->f32_nan);
+        if (took < 0) {
+            Py_DECREF(record);
+            return NULL;               /* -2, short: the Python decoder's case (no exception) */
+        }
+        pos += took;
+    }
+    if (pos != stop) {
+        Py_DECREF(record);             /* extra bytes: the Python decoder's case */
+        return NULL;
+    }
+    set_slot(record, r->slot_extra, PyBytes_FromStringAndSize(NULL, 0));
+    set_slot(record, r->slot_version, Py_NewRef(version));
+    if (*(PyObject **)((char *)record + r->slot_extra) == NULL) {
         Py_DECREF(record);
         return NULL;
     }
-    *(PyObject **)((char *)record + r->slot_extra) = empty;
-    *(PyObject **)((char *)record + r->slot_version) = Py_NewRef(version);
     return record;
 }

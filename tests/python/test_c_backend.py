@@ -134,11 +134,10 @@ def recipe_cases() -> list:
 
 @pytest.mark.parametrize("decode, recipe", recipe_cases(), ids=lambda x: getattr(x, "__qualname__", ""))
 def test_every_run_recipe_builds_what_its_decoder_builds(ccore, decode, recipe):
-    """Each form read by one fixed run (RUN_RECIPES), made in C from random bytes of its size
-    (NaNs, bools of any byte and enum codes outside the tables among them) and from bytes of other
-    sizes: the record its Python decoder makes, or, where the size is not the run's, whatever
-    PackageList.decode makes. A stand-in decoder that fails the test if called shows that C
-    made the record."""
+    """Each form read by fixed runs (RUN_RECIPES), made in C from random bytes of the size it reads
+    (NaNs, bools of any byte, enum codes outside the tables, the Euromap67 flag set or not among
+    them): the record its Python decoder makes, which a stand-in decoder that fails the test if
+    called shows was made in C; one byte short or extra, None (PackageList.decode's case)."""
     import types
 
     from urwire.generated.messages import ITEM_RUNS
@@ -157,17 +156,25 @@ def test_every_run_recipe_builds_what_its_decoder_builds(ccore, decode, recipe):
 
     states = ccore.PackageStates(decoding._PACKAGE_LIST.cls, OneForm(), decoding._PACKAGE_LIST.body_offset,
                                  {stand_in: recipe}, ITEM_RUNS)
-    size = recipe[0].size
+    runs, _ = recipe
+    size = sum(st.size for st, *_ in runs)          # every run read; fewer when a flag is zero
     rng = random.Random(decode.__qualname__)
     nan_bits = (b"\x7f\xc0\x00\x00", b"\x7f\x80\x00\x01", b"\xff\xff\xff\xff")
+
+    def framed_package(body: bytes) -> bytes:
+        return (10 + len(body)).to_bytes(4, "big") + bytes([16]) + (5 + len(body)).to_bytes(4, "big") \
+            + bytes([code]) + body
+
     sending = [v for v in valid.versions() if decoding._PACKAGE_LIST.forms.fast(v).get(code) == decode]
     for version in {form.rep, *sending}:
-        for _ in range(10):
+        for k in range(12):
             body = bytearray(rng.getrandbits(8) for _ in range(size))
             for at in rng.sample(range(max(size - 3, 1)), min(3, max(size - 3, 1))):
                 body[at:at + 4] = rng.choice(nan_bits)
-            body = bytes(body[:size])
-            state = (10 + size).to_bytes(4, "big") + bytes([16]) + (5 + size).to_bytes(4, "big") + bytes([code]) + body
+            if k % 3 == 0:
+                body = bytearray(len(body))             # zeros: flags unset, the smallest size
+            _, used = decode(framed_package(bytes(body[:size])), 10, 10 + size, version)
+            state = framed_package(bytes(body[:used - 10]))
             got = states.decode(state, version)
             expected, used = decode(state, 10, len(state), version)
             assert used == len(state) and got is not None
@@ -177,8 +184,8 @@ def test_every_run_recipe_builds_what_its_decoder_builds(ccore, decode, recipe):
                 assert pkg == expected
             assert (repr(pkg), pkg.encode(), pkg.decoded_version) == (repr(expected), expected.encode(), version)
         for other in (size - 1, size + 1):
-            state = (10 + other).to_bytes(4, "big") + bytes([16]) + (5 + other).to_bytes(4, "big") + bytes([code])
-            assert states.decode(state + bytes(other), version) is None   # the Python decoder's case
+            body = bytes([1]) * other                  # flags set: short by one, or one byte extra
+            assert states.decode(framed_package(body), version) is None   # the Python decoder's case
 
 
 @pytest.mark.parametrize("case", all_cases(), ids=lambda c: c.name)
