@@ -184,17 +184,20 @@ static PyObject *copy_record(PyObject *record, const slot_layout *layout, int de
 }
 
 /* A value as a copied record holds it: the same object when immutable, else a copy (lists and
- * slotted records); NULL with no exception set when it cannot be copied. */
+ * slotted records); NULL with no exception set when it cannot be copied. The exact types most
+ * values have are asked first, then lists and records, then the rarer immutable kinds. */
 static PyObject *copy_value(PyObject *value, int depth)
 {
+    PyTypeObject *type = Py_TYPE(value);
     slot_layout *layout;
-    if (is_immutable(value)) {
+    if (type == &PyFloat_Type || type == &PyLong_Type || type == &PyBool_Type || value == Py_None
+        || PyType_HasFeature(type, Py_TPFLAGS_LONG_SUBCLASS)) {
         Py_INCREF(value);
         return value;
     }
     if (depth > MAX_CLONE_DEPTH)
         return NULL;
-    if (Py_IS_TYPE(value, &PyList_Type)) {
+    if (type == &PyList_Type) {
         Py_ssize_t i, n = PyList_GET_SIZE(value);
         PyObject *copy = PyList_New(n);
         if (copy == NULL)
@@ -209,7 +212,11 @@ static PyObject *copy_value(PyObject *value, int depth)
         }
         return copy;
     }
-    if (layout_of(Py_TYPE(value), &layout) < 0 || layout == NULL)
+    if (is_immutable(value)) {
+        Py_INCREF(value);
+        return value;
+    }
+    if (layout_of(type, &layout) < 0 || layout == NULL)
         return NULL;
     return copy_record(value, layout, depth);
 }
