@@ -8,8 +8,10 @@
  * record they gave: made in C, past the classes' __init__, with the same slots (the immutable
  * values shared, lists and nested records copied, so no two states share what can change).
  * A package with new bytes is read by the version's form (Forms.fast), as PackageList.decode
- * reads it: in C when the form is one fixed run (generated RUN_RECIPES: the run's struct and
- * what each member becomes, run.c), else by the generated Python decoder.
+ * reads it: in C when the form is read by fixed runs (generated RUN_RECIPES: each run's struct
+ * and what each member becomes, runs.c), else by the generated Python decoder. A record made in
+ * C is kept for copying once the same bytes come twice in a row, so that a package that changes
+ * in every state (a moving joint) costs no copy; the Python decoder's record is kept at once.
  *
  * Anything the common case does not cover (a framing fault, a package that the version's form
  * does not read to its last byte, a code with no form) returns None: the caller then decodes the
@@ -223,8 +225,9 @@ static PyObject *copy_value(PyObject *value, int depth)
 
 /* ---- the sub-packages seen last ------------------------------------------------------------ */
 
-/* The record that the last package of one type code gave, with the bytes and version it came
- * from; a copy of its own, so that what a caller does to the records it gets never reaches it. */
+/* The bytes and version of the last package of one type code, and the record they gave: a copy
+ * of its own, so that what a caller does to the records it gets never reaches it (NULL: none kept
+ * yet, see the top of this file). */
 typedef struct {
     PyObject *record;
     PyObject *body;        /* bytes */
@@ -380,17 +383,22 @@ static PyObject *fast_table(PackageStates *self, PyObject *version)
     return table;
 }
 
-/* A copy of the record the same package gave last time; NULL with no exception set when there
- * is none, NULL with one set on failure. */
-static PyObject *remembered(package_memo *memo, const char *body, Py_ssize_t size, PyObject *version)
+/* Whether a package has the bytes and version of the last one of its code: 1 or 0, -1 with an
+ * exception set. */
+static int seen_last(const package_memo *memo, const char *body, Py_ssize_t size, PyObject *version)
+{
+    if (memo->body == NULL || PyBytes_GET_SIZE(memo->body) != size
+        || memcmp(PyBytes_AS_STRING(memo->body), body, (size_t)size) != 0)
+        return 0;
+    return same_version(memo->version, version);
+}
+
+/* A copy of the record kept for the last package of a code; NULL with no exception set when
+ * none is kept or it cannot be copied, NULL with one set on failure. */
+static PyObject *copy_kept(const package_memo *memo)
 {
     PyObject *record, *copy;
-    int same;
-    if (memo->record == NULL || PyBytes_GET_SIZE(memo->body) != size
-        || memcmp(PyBytes_AS_STRING(memo->body), body, (size_t)size) != 0)
-        return NULL;
-    same = same_version(memo->version, version);
-    if (same <= 0)
+    if (memo->record == NULL)
         return NULL;
     record = Py_NewRef(memo->record);     /* held: a collection while copying may run other code */
     copy = copy_value(record, 0);
@@ -398,18 +406,16 @@ static PyObject *remembered(package_memo *memo, const char *body, Py_ssize_t siz
     return copy;
 }
 
-/* Keeps a copy of the record a package gave (nothing when it cannot be copied); -1 with an
- * exception set on failure. */
+/* Remembers a package's bytes and version, and a copy of its record unless `record` is NULL
+ * (or it cannot be copied); -1 with an exception set on failure. */
 static int remember(package_memo *memo, PyObject *record, const char *body, Py_ssize_t size, PyObject *version)
 {
-    PyObject *copy = copy_value(record, 0), *bytes;
-    if (copy == NULL) {
-        forget(memo);
-        return PyErr_Occurred() ? -1 : 0;
-    }
+    PyObject *copy = NULL, *bytes;
+    if (record != NULL && (copy = copy_value(record, 0)) == NULL && PyErr_Occurred())
+        return -1;
     bytes = PyBytes_FromStringAndSize(body, size);
     if (bytes == NULL) {
-        Py_DECREF(copy);
+        Py_XDECREF(copy);
         return -1;
     }
     forget(memo);
@@ -541,7 +547,7 @@ static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ss
         goto done;
     for (pos = self->body_offset; pos < n;) {
         Py_ssize_t left = n - pos, size, body, stop;
-        int code, added;
+        int code, added, seen;
         PyObject *pkg;
         if (left < PACKAGE_HEADER_SIZE)
             goto to_python;
@@ -551,21 +557,28 @@ static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ss
             goto to_python;
         body = pos + PACKAGE_HEADER_SIZE;
         stop = pos + size;
-        pkg = remembered(&self->memo[code], data + body, stop - body, version);
+        seen = seen_last(&self->memo[code], data + body, stop - body, version);
+        if (seen < 0)
+            goto failed;
+        pkg = seen ? copy_kept(&self->memo[code]) : NULL;
         if (pkg == NULL) {
+            PyObject *keep;
             if (PyErr_Occurred())
                 goto failed;
+            /* Made in C, a package is kept once its bytes come again: one that changes in every
+             * state (a moving joint) then costs no copy. The Python decoder's, always. */
             pkg = read_run(self, fast, buf, code, body, stop, version);
             if (pkg == NULL && PyErr_Occurred())
                 goto failed;
+            keep = pkg != NULL && !seen ? NULL : pkg;
             if (pkg == NULL)
-                pkg = read_package(fast, buf, code, body, stop, version);
+                keep = pkg = read_package(fast, buf, code, body, stop, version);
             if (pkg == NULL) {
                 if (PyErr_Occurred())
                     goto failed;
                 goto to_python;
             }
-            if (remember(&self->memo[code], pkg, data + body, stop - body, version) < 0) {
+            if (remember(&self->memo[code], keep, data + body, stop - body, version) < 0) {
                 Py_DECREF(pkg);
                 goto failed;
             }
