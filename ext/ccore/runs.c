@@ -608,16 +608,18 @@ static PyObject *converted(const run_member *m, PyObject *value, PyObject *versi
         Py_DECREF(value);
         return member;
     }
-    Py_DECREF(table);
     if (member == NULL) {
+        Py_DECREF(table);
         if (PyErr_Occurred()) {
             Py_DECREF(value);
             return NULL;
         }
-        return value;
+        return value;               /* a code the table does not name: the int, as .get gives */
     }
+    Py_INCREF(member);              /* borrowed from the table: held before the table is let go */
+    Py_DECREF(table);
     Py_DECREF(value);
-    return Py_NewRef(member);
+    return member;
 }
 
 /* An attribute slot of a record being made: set, or set again (a name the form left None). */
