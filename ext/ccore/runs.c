@@ -505,30 +505,20 @@ int run_recipe_of(run_recipes *all, PyObject *decode, const run_recipe **recipe)
 
 /* ---- reading ------------------------------------------------------------------------------- */
 
-static uint64_t load_be(const unsigned char *p, int width)
+/* Big-endian loads, written out so that compilers make each one load and byte swap. */
+static uint16_t load16(const unsigned char *p)
 {
-    uint64_t v = 0;
-    int i;
-    for (i = 0; i < width; i++)
-        v = v << 8 | p[i];
-    return v;
+    return (uint16_t)(p[0] << 8 | p[1]);
 }
 
-/* The integer of an integer leaf. */
-static long long leaf_int(const run_leaf *leaf, const unsigned char *run, unsigned long long *unsigned_value)
+static uint32_t load32(const unsigned char *p)
 {
-    const unsigned char *p = run + leaf->offset;
-    *unsigned_value = 0;
-    switch (leaf->code) {
-    case 'b': return (int8_t)p[0];
-    case 'B': return p[0];
-    case 'h': return (int16_t)load_be(p, 2);
-    case 'H': return (long long)load_be(p, 2);
-    case 'i': return (int32_t)load_be(p, 4);
-    case 'I': return (long long)load_be(p, 4);
-    case 'q': return (long long)(int64_t)load_be(p, 8);
-    default:  *unsigned_value = load_be(p, 8); return 0;   /* 'Q' */
-    }
+    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | (uint32_t)p[3];
+}
+
+static uint64_t load64(const unsigned char *p)
+{
+    return (uint64_t)load32(p) << 32 | load32(p + 4);
 }
 
 /* Where a run is read: its leaves start at byte `start` of buf. */
@@ -544,25 +534,31 @@ typedef struct {
 static PyObject *leaf_value(const reading *at, Py_ssize_t k)
 {
     const run_leaf *leaf = &at->run->leaves[k];
-    const unsigned char *run = (const unsigned char *)PyBytes_AS_STRING(at->buf) + at->start;
-    unsigned long long u;
-    long long v;
-    if (leaf->code == 'd') {
-        uint64_t bits = load_be(run + leaf->offset, 8);
+    const unsigned char *p = (const unsigned char *)PyBytes_AS_STRING(at->buf) + at->start + leaf->offset;
+    switch (leaf->code) {
+    case 'd': {
+        uint64_t bits = load64(p);
         double d;
         memcpy(&d, &bits, sizeof d);
         return PyFloat_FromDouble(d);
     }
-    if (leaf->code == 'f') {
-        uint32_t bits = (uint32_t)load_be(run + leaf->offset, 4);
+    case 'f': {
+        uint32_t bits = load32(p);
         float f;
         memcpy(&f, &bits, sizeof f);
         if (isnan(f))
             return PyObject_CallFunction(at->f32_nan, "On", at->buf, at->start + leaf->offset);
         return PyFloat_FromDouble((double)f);
     }
-    v = leaf_int(leaf, run, &u);
-    return leaf->code == 'Q' ? PyLong_FromUnsignedLongLong(u) : PyLong_FromLongLong(v);
+    case 'b': return PyLong_FromLong((int8_t)p[0]);
+    case 'B': return PyLong_FromLong(p[0]);
+    case 'h': return PyLong_FromLong((int16_t)load16(p));
+    case 'H': return PyLong_FromLong(load16(p));
+    case 'i': return PyLong_FromLong((int32_t)load32(p));
+    case 'I': return PyLong_FromUnsignedLong(load32(p));
+    case 'q': return PyLong_FromLongLong((long long)(int64_t)load64(p));
+    default:  return PyLong_FromUnsignedLongLong(load64(p));      /* 'Q' */
+    }
 }
 
 /* A value as the member's conversion makes it: True/False or the byte, the enum member or the int. */
