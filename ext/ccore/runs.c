@@ -119,12 +119,14 @@ static Py_ssize_t slot_of(PyTypeObject *cls, PyObject *name)
 }
 
 /* How many attributes an instance of cls holds: its slots and its bases', when that is all it
- * holds (no __dict__); -1 when it holds something else. */
+ * holds (no __dict__) and its __init__ only sets them (no __post_init__: made here, past
+ * __init__, its records would miss what that adds); -1 otherwise. */
 static Py_ssize_t slot_count(PyTypeObject *cls)
 {
     PyObject *mro = cls->tp_mro;
     Py_ssize_t i, count = 0;
-    if (cls->tp_dictoffset != 0 || cls->tp_itemsize != 0 || mro == NULL)
+    if (cls->tp_dictoffset != 0 || cls->tp_itemsize != 0 || mro == NULL
+        || PyObject_HasAttrString((PyObject *)cls, "__post_init__"))
         return -1;
     for (i = 0; i < PyTuple_GET_SIZE(mro); i++) {
         PyObject *key, *value;

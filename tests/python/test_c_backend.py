@@ -194,6 +194,35 @@ def test_every_run_recipe_builds_what_its_decoder_builds(ccore, decode, recipe):
             assert states.decode(framed_package(body), version) is None   # the Python decoder's case
 
 
+def test_a_class_with_a_post_init_is_left_to_its_decoder(ccore):
+    """A record made past __init__ would miss what a __post_init__ adds: a class that has one is
+    never made from a recipe (its Python decoder reads it; here a stand-in that declines)."""
+    import dataclasses
+    import types
+
+    from urwire.generated.messages import ITEM_RUNS, RUN_RECIPES
+
+    @dataclasses.dataclass(slots=True)
+    class Noted(urwire.CartesianInfo):
+        def __post_init__(self):
+            pass
+
+    decode = next(d for d in RUN_RECIPES if d.__self__ is urwire.CartesianInfo)
+    code = urwire.CartesianInfo.CODE
+    calls = []
+    stand_in = types.MethodType(lambda cls, buf, body, stop, version: calls.append(stop) or (None, -1), Noted)
+
+    class OneForm:
+        def fast(self, version):
+            return {code: stand_in}
+
+    states = ccore.PackageStates(decoding._PACKAGE_LIST.cls, OneForm(), decoding._PACKAGE_LIST.body_offset,
+                                 {stand_in: RUN_RECIPES[decode]}, ITEM_RUNS)
+    size = sum(st.size for st, *_ in RUN_RECIPES[decode][0])
+    state = (10 + size).to_bytes(4, "big") + b"\x10" + (5 + size).to_bytes(4, "big") + bytes([code]) + bytes(size)
+    assert states.decode(state, (5, 11, 0)) is None and calls == [len(state)]
+
+
 @pytest.mark.parametrize("case", all_cases(), ids=lambda c: c.name)
 def test_every_vector_gives_the_same_records(ccore, case):
     assert_same_records(new_states(ccore), case.data, case.version, case.name)
