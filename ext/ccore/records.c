@@ -4,14 +4,15 @@
  * A robot sends most sub-packages again with the same bytes from one state to the next (its
  * configuration, kinematics and limits always; every package at rest), and a package's record
  * depends only on its type code, the software version and its bytes. So the state is framed here
- * and each sub-package whose bytes, code and version match the last ones seen is a copy of the
- * record they gave: made in C, past the classes' __init__, with the same slots (the immutable
- * values shared, lists and nested records copied, so no two states share what can change).
+ * and each sub-package whose bytes, code and version match one of the last few of its code
+ * (MEMO_WAYS: a capture may interleave robots) is a copy of the record they gave: made in C,
+ * past the classes' __init__, with the same slots (the immutable values shared, lists and nested
+ * records copied, so no two states share what can change).
  * A package with new bytes is read by the version's form (Forms.fast), as PackageList.decode
  * reads it: in C when the form is read by fixed runs (generated RUN_RECIPES: each run's struct
  * and what each member becomes, runs.c), else by the generated Python decoder. A record made in
- * C is kept for copying once the same bytes come twice in a row, so that a package that changes
- * in every state (a moving joint) costs no copy; the Python decoder's record is kept at once.
+ * C is kept for copying once the same bytes come again, so that a package that changes in every
+ * state (a moving joint) costs no copy; the Python decoder's record is kept at once.
  *
  * Anything the common case does not cover (a framing fault, a package that the version's form
  * does not read to its last byte, a code with no form) returns None: the caller then decodes the
@@ -234,6 +235,14 @@ typedef struct {
     PyObject *version;     /* (major, minor, bugfix) */
 } package_memo;
 
+/* The last MEMO_WAYS packages of one type code with distinct bytes or versions, replaced in turn:
+ * a capture may interleave robots (or a robot's forms), whose packages of a code differ. */
+#define MEMO_WAYS 4
+typedef struct {
+    package_memo way[MEMO_WAYS];
+    int next;                  /* the way a new package replaces */
+} code_memo;
+
 typedef struct {
     PyObject_HEAD
     PyObject *message_class;   /* the robot state's class (a PackageListMessage) */
@@ -246,7 +255,7 @@ typedef struct {
     PyObject *fast_version;    /* the version whose Forms.fast table `fast` is */
     PyObject *fast;
     run_recipes *recipes;      /* the forms read by one fixed run, compiled on first use */
-    package_memo memo[MAX_CODES];
+    code_memo memo[MAX_CODES];
 } PackageStates;
 
 static void forget(package_memo *memo)
@@ -258,9 +267,10 @@ static void forget(package_memo *memo)
 
 static void states_dealloc(PackageStates *self)
 {
-    int code;
+    int code, way;
     for (code = 0; code < MAX_CODES; code++)
-        forget(&self->memo[code]);
+        for (way = 0; way < MEMO_WAYS; way++)
+            forget(&self->memo[code].way[way]);
     Py_CLEAR(self->message_class);
     Py_CLEAR(self->forms);
     Py_CLEAR(self->default_version);
@@ -383,14 +393,40 @@ static PyObject *fast_table(PackageStates *self, PyObject *version)
     return table;
 }
 
-/* Whether a package has the bytes and version of the last one of its code: 1 or 0, -1 with an
+/* Whether a package has the bytes and version a remembered one has: 1 or 0, -1 with an
  * exception set. */
-static int seen_last(const package_memo *memo, const char *body, Py_ssize_t size, PyObject *version)
+static int same_package(const package_memo *memo, const char *body, Py_ssize_t size, PyObject *version)
 {
     if (memo->body == NULL || PyBytes_GET_SIZE(memo->body) != size
         || memcmp(PyBytes_AS_STRING(memo->body), body, (size_t)size) != 0)
         return 0;
     return same_version(memo->version, version);
+}
+
+/* The remembered package of its code with these bytes and version, or NULL (with an exception
+ * set when *failed). */
+static package_memo *seen_before(code_memo *memo, const char *body, Py_ssize_t size, PyObject *version,
+                                 int *failed)
+{
+    int way, same;
+    *failed = 0;
+    for (way = 0; way < MEMO_WAYS; way++) {
+        if ((same = same_package(&memo->way[way], body, size, version)) < 0) {
+            *failed = 1;
+            return NULL;
+        }
+        if (same)
+            return &memo->way[way];
+    }
+    return NULL;
+}
+
+/* The way a package not seen before is remembered in, in turn. */
+static package_memo *new_way(code_memo *memo)
+{
+    package_memo *way = &memo->way[memo->next];
+    memo->next = (memo->next + 1) % MEMO_WAYS;
+    return way;
 }
 
 /* A copy of the record kept for the last package of a code; NULL with no exception set when
@@ -547,7 +583,8 @@ static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ss
         goto done;
     for (pos = self->body_offset; pos < n;) {
         Py_ssize_t left = n - pos, size, body, stop;
-        int code, added, seen;
+        int code, added, failed_look;
+        package_memo *seen;
         PyObject *pkg;
         if (left < PACKAGE_HEADER_SIZE)
             goto to_python;
@@ -557,10 +594,10 @@ static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ss
             goto to_python;
         body = pos + PACKAGE_HEADER_SIZE;
         stop = pos + size;
-        seen = seen_last(&self->memo[code], data + body, stop - body, version);
-        if (seen < 0)
+        seen = seen_before(&self->memo[code], data + body, stop - body, version, &failed_look);
+        if (failed_look)
             goto failed;
-        pkg = seen ? copy_kept(&self->memo[code]) : NULL;
+        pkg = seen != NULL ? copy_kept(seen) : NULL;
         if (pkg == NULL) {
             PyObject *keep;
             if (PyErr_Occurred())
@@ -570,7 +607,7 @@ static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ss
             pkg = read_run(self, fast, buf, code, body, stop, version);
             if (pkg == NULL && PyErr_Occurred())
                 goto failed;
-            keep = pkg != NULL && !seen ? NULL : pkg;
+            keep = pkg != NULL && seen == NULL ? NULL : pkg;
             if (pkg == NULL)
                 keep = pkg = read_package(fast, buf, code, body, stop, version);
             if (pkg == NULL) {
@@ -578,7 +615,8 @@ static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ss
                     goto failed;
                 goto to_python;
             }
-            if (remember(&self->memo[code], keep, data + body, stop - body, version) < 0) {
+            if (remember(seen != NULL ? seen : new_way(&self->memo[code]), keep, data + body, stop - body,
+                         version) < 0) {
                 Py_DECREF(pkg);
                 goto failed;
             }
