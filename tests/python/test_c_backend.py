@@ -194,6 +194,16 @@ def test_every_run_recipe_builds_what_its_decoder_builds(ccore, decode, recipe):
             assert states.decode(framed_package(body), version) is None   # the Python decoder's case
 
 
+def test_every_form_of_fixed_sizes_has_a_recipe():
+    """The generator writes a recipe for every robot-state form whose sizes are fixed (the
+    Euromap67 block's two included); a form of open size (safety_data's raw bytes) has none."""
+    from urwire.generated.messages import RUN_RECIPES
+
+    forms = [f for fs in decoding._PACKAGE_LIST.forms.by_code.values() for f in fs]
+    assert [f.decode.__qualname__ for f in forms if (f.decode in RUN_RECIPES) != (f.sizes is not None)] == []
+    assert len(RUN_RECIPES) == sum(f.sizes is not None for f in forms) > 20
+
+
 def test_a_class_with_a_post_init_is_left_to_its_decoder(ccore):
     """A record made past __init__ would miss what a __post_init__ adds: a class that has one is
     never made from a recipe (its Python decoder reads it; here a stand-in that declines)."""
