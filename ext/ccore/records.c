@@ -160,6 +160,14 @@ static int is_immutable(PyObject *value)
     return PyFloat_Check(value);
 }
 
+/* The values most slots hold, shared by a copy: a test the copy makes inline. */
+static inline int is_plain_value(PyObject *value)
+{
+    PyTypeObject *type = Py_TYPE(value);
+    return type == &PyFloat_Type || type == &PyLong_Type || type == &PyBool_Type || value == Py_None
+        || PyType_HasFeature(type, Py_TPFLAGS_LONG_SUBCLASS);
+}
+
 static PyObject *copy_value(PyObject *value, int depth);
 
 /* A new instance of a slotted record with a copy of each slot; NULL with no exception set when
@@ -176,7 +184,7 @@ static PyObject *copy_record(PyObject *record, const slot_layout *layout, int de
         PyObject *copied;
         if (value == NULL)
             continue;
-        copied = copy_value(value, depth + 1);
+        copied = is_plain_value(value) ? Py_NewRef(value) : copy_value(value, depth + 1);
         if (copied == NULL) {
             Py_DECREF(copy);
             return NULL;
@@ -193,11 +201,8 @@ static PyObject *copy_value(PyObject *value, int depth)
 {
     PyTypeObject *type = Py_TYPE(value);
     slot_layout *layout;
-    if (type == &PyFloat_Type || type == &PyLong_Type || type == &PyBool_Type || value == Py_None
-        || PyType_HasFeature(type, Py_TPFLAGS_LONG_SUBCLASS)) {
-        Py_INCREF(value);
-        return value;
-    }
+    if (is_plain_value(value))
+        return Py_NewRef(value);
     if (depth > MAX_CLONE_DEPTH)
         return NULL;
     if (type == &PyList_Type) {
@@ -206,7 +211,8 @@ static PyObject *copy_value(PyObject *value, int depth)
         if (copy == NULL)
             return NULL;
         for (i = 0; i < n; i++) {
-            PyObject *item = copy_value(PyList_GET_ITEM(value, i), depth + 1);
+            PyObject *item = PyList_GET_ITEM(value, i);
+            item = is_plain_value(item) ? Py_NewRef(item) : copy_value(item, depth + 1);
             if (item == NULL) {
                 Py_DECREF(copy);
                 return NULL;
@@ -539,6 +545,23 @@ static PyObject *new_message(PackageStates *self, PyObject *packages)
     return msg;
 }
 
+/* How many sub-packages a robot state's body frames into, or -1 when a length does not frame
+ * one (the message is then Python's to report). */
+static Py_ssize_t count_packages(const char *data, Py_ssize_t n, Py_ssize_t pos)
+{
+    Py_ssize_t count = 0, size;
+    while (pos < n) {
+        if (n - pos < PACKAGE_HEADER_SIZE)
+            return -1;
+        size = load_i32((const unsigned char *)data + pos);
+        if (size < PACKAGE_HEADER_SIZE || size > n - pos)
+            return -1;
+        pos += size;
+        count++;
+    }
+    return count;
+}
+
 /* A version as the decoders take it: (major, minor, bugfix) of ints, else NULL. */
 static int is_version(PyObject *version)
 {
@@ -559,7 +582,7 @@ static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ss
 {
     PyObject *buf, *version, *fast, *packages, *msg = NULL;
     const char *data;
-    Py_ssize_t n, pos;
+    Py_ssize_t n, pos, count, k;
     if (nargs != 2) {
         PyErr_SetString(PyExc_TypeError, "decode(buf, version)");
         return NULL;
@@ -575,23 +598,21 @@ static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ss
         Py_RETURN_NONE;
     data = PyBytes_AS_STRING(buf);
     n = PyBytes_GET_SIZE(buf);
+    if ((count = count_packages(data, n, self->body_offset)) < 0)
+        Py_RETURN_NONE;
     fast = fast_table(self, version);
     if (fast == NULL)
         return NULL;
-    packages = PyList_New(0);
+    packages = PyList_New(count);       /* filled in order; an unfilled slot is NULL until then */
     if (packages == NULL)
         goto done;
-    for (pos = self->body_offset; pos < n;) {
-        Py_ssize_t left = n - pos, size, body, stop;
-        int code, added, failed_look;
+    for (pos = self->body_offset, k = 0; k < count; k++) {
+        Py_ssize_t size, body, stop;
+        int code, failed_look;
         package_memo *seen;
         PyObject *pkg;
-        if (left < PACKAGE_HEADER_SIZE)
-            goto to_python;
         size = load_i32((const unsigned char *)data + pos);
         code = (unsigned char)data[pos + 4];
-        if (size < PACKAGE_HEADER_SIZE || size > left)
-            goto to_python;
         body = pos + PACKAGE_HEADER_SIZE;
         stop = pos + size;
         seen = seen_before(&self->memo[code], data + body, stop - body, version, &failed_look);
@@ -621,10 +642,7 @@ static PyObject *states_decode(PackageStates *self, PyObject *const *args, Py_ss
                 goto failed;
             }
         }
-        added = PyList_Append(packages, pkg);
-        Py_DECREF(pkg);
-        if (added < 0)
-            goto failed;
+        PyList_SET_ITEM(packages, k, pkg);
         pos = stop;
     }
     msg = new_message(self, packages);
