@@ -8,7 +8,9 @@ ways); URWIRE_BACKEND=c insists on the extension and fails to import without it 
 What the extension does: the canonical JSON Lines of a primary/secondary stream
 (`primary_json_lines`, what `urwire decode` prints for a raw stream), and the records of robot
 states (decode_message, and so decode_stream, Framer and every tool over them: decoding.py),
-framed in C with each sub-package a copy of the record its bytes gave last.
+framed in C, each sub-package a copy of the record its bytes gave before or made in C; the
+records of real-time packets (realtime.py) and the values of RTDE data packages (typed_records.py),
+made in C from what their struct unpacks.
 """
 from __future__ import annotations
 

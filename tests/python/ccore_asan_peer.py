@@ -1,5 +1,6 @@
 """Run by tests/python/test_c_backend.py: the differentials of that file (JSON lines, and robot
-states' records) over every vector and kept fuzz input, and the hostile robot states, against an
+states' records) over every vector and kept fuzz input, and the hostile robot states, and those
+of test_c_backend_flat.py (real-time packets, RTDE data packages), against an
 urwire._ccore built with ASan and UBSan (its path: argv[1]), loaded in place of the in-tree one.
 A sanitizer's report ends the process with an error. Prints the inputs of each differential."""
 import importlib.util
@@ -11,6 +12,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python"), str(ROOT)]
 
 from tests.python import test_c_backend as differential  # noqa: E402
+from tests.python import test_c_backend_flat as flat  # noqa: E402
 from tests.tools.fuzz_inputs import HARNESSES, kept, split  # noqa: E402
 from tests.vectors import all_cases  # noqa: E402
 
@@ -42,6 +44,15 @@ def main(path: str) -> int:
         for msg in [state, *differential.hostile(state, rng)]:
             differential.assert_same_records(states, msg, "5.11", msg[:40].hex(), pieces=())
             records += 1
+    for case in flat.interface_cases("ur_realtime"):
+        flat.test_every_realtime_vector_gives_the_same_records(ccore, case)
+        records += 1
+    for cls in flat.FLAT_LAYOUTS:
+        flat.test_every_realtime_layout_made_in_c_is_its_decoders_record(ccore, cls)
+    for case in flat.rtde_cases():
+        flat.test_every_rtde_vector_gives_the_same_records(ccore, case)
+        records += 1
+    flat.test_values_by_name_are_the_python_loops(ccore)
     print(count, records)
     return 0
 
