@@ -196,7 +196,7 @@ static PyObject *flat_decode(FlatRecords *self, PyObject *const *args, Py_ssize_
     call[0] = l->st;
     call[1] = args[1];
     call[2] = args[2];
-    flat = PyObject_VectorcallMethod(self->unpack_from, call, 3 | PY_VECTORCALL_ARGUMENTS_OFFSET, NULL);
+    flat = PyObject_VectorcallMethod(self->unpack_from, call, 3, NULL);   /* struct.unpack_from(packet, offset) */
     if (flat == NULL)
         return NULL;
     n = PyTuple_Check(flat) ? PyTuple_GET_SIZE(flat) : -1;
