@@ -4,8 +4,9 @@
 
 1. Decode of real robot states in pure Python, per message: against python-urx
    (urx.ursecmon.ParserUtils, the `urx` package on PyPI), and against the package that
-   --generations-base generated (before every controller generation entered the spec). python-urx decodes less than urwire: it stops
-   at the sub-packages it knows, types no enums and keeps no bytes for re-encoding.
+   --generations-base generated (before every controller generation entered the spec).
+   python-urx decodes less than urwire: it stops at the sub-packages it knows, types no enums
+   and keeps no bytes for re-encoding.
 2. A canonical JSON line per robot state, against the package of --base (before the per-class
    writers): the same state again (at rest: a robot repeats most values from one state to the
    next), states whose moving packages change (in motion), and with nothing kept (every float

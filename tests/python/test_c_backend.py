@@ -492,7 +492,8 @@ def test_the_extension_under_asan_and_ubsan(tmp_path):
     import sysconfig
 
     library = tmp_path / ("_ccore" + sysconfig.get_config_var("EXT_SUFFIX"))
-    sources = ["ext/ccore/module.c", "ext/ccore/records.c", "ext/ccore/runs.c", "ext/ccore/flat.c", "generated/c/urwire.c", "tools/urwire-decode/json.c",
+    sources = ["ext/ccore/module.c", "ext/ccore/records.c", "ext/ccore/runs.c", "ext/ccore/flat.c",
+               "generated/c/urwire.c", "tools/urwire-decode/json.c",
                "tools/urwire-decode/shortest.c", "tools/urwire-decode/records.c"]
     subprocess.run(["gcc", "-shared", "-fPIC", "-g", "-O1", "-std=c99", "-fsanitize=address,undefined",
                     "-fno-sanitize-recover=all", "-Iext/ccore", "-Igenerated/c", "-Itools/urwire-decode",
