@@ -30,7 +30,8 @@ class OptionalBuildExt(build_ext):
 setup(
     ext_modules=[Extension(
         "urwire._ccore",
-        sources=["ext/ccore/module.c", "ext/ccore/columns.c", "generated/c/urwire.c", *JSON_WRITER],
+        sources=["ext/ccore/module.c", "ext/ccore/columns.c", "ext/ccore/records.c", "ext/ccore/runs.c",
+                 "ext/ccore/flat.c", "generated/c/urwire.c", *JSON_WRITER],
         include_dirs=["ext/ccore", "generated/c", "tools/urwire-decode"],
         extra_compile_args=["-std=c99", "-O2"],
         optional=True,

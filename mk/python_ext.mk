@@ -4,7 +4,9 @@
 # module for `pip install .` and `pip wheel .`.
 
 PYTHON_EXT_SOURCES := setup.py ext/ccore/module.c ext/ccore/columns.c ext/ccore/columns.h \
-	generated/c/urwire.c generated/c/urwire.h tools/urwire-decode/json.c tools/urwire-decode/json.h tools/urwire-decode/shortest.c \
+	ext/ccore/records.c ext/ccore/ccore_records.h ext/ccore/runs.c ext/ccore/ccore_runs.h \
+	ext/ccore/flat.c ext/ccore/ccore_flat.h generated/c/urwire.c generated/c/urwire.h \
+	tools/urwire-decode/json.c tools/urwire-decode/json.h tools/urwire-decode/shortest.c \
 	tools/urwire-decode/shortest.h tools/urwire-decode/records.c tools/urwire-decode/records.h
 PYTHON_EXT_STAMP := build/python-ext.stamp
 
@@ -25,9 +27,15 @@ $(PYTHON_EXT_STAMP): $(PYTHON_EXT_SOURCES)
 	@touch $@
 
 ## test-python-backend: the tests of what the C backend changes (urwire decode of a raw primary
-## stream, the dataset's primary columns) under pure Python (URWIRE_BACKEND=python); `make test`
-## runs them so, and everything else under the default backend, the C one, which it builds first
+## stream; the dataset's primary columns; the records of decode_message, the Framer and
+## decode_stream: vectors, round trips, any split, every generation; real-time packets and RTDE
+## data packages) under pure Python (URWIRE_BACKEND=python); `make test` runs them so, and
+## everything else (these too) under the default backend, the C one, which it builds first
 PYTHON_BACKEND_TESTS := tests/python/test_cli.py tests/python/test_hostile_bytes.py tests/python/test_c_backend.py \
+	tests/python/test_vectors.py tests/python/test_roundtrip.py tests/python/test_streaming.py \
+	tests/python/test_generations.py tests/python/test_message_kinds.py tests/python/test_undocumented.py \
+	tests/python/test_realtime.py tests/python/test_rtde.py tests/python/test_rtde_vectors.py \
+	tests/python/test_c_backend_flat.py \
 	tests/python/test_dataset.py
 TEST_BUILDS += test-python-backend
 .PHONY: test-python-backend

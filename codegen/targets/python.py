@@ -78,6 +78,23 @@ class MemberView:
 
 
 @dataclass
+class RunMember:
+    """One member of a fixed run as data, for readers other than the generated decoder (the C
+    extension's records: RUN_RECIPES in messages.py). Its values are those struct unpacks."""
+
+    name: str
+    kind: str            # scalar | array | group
+    conv: str            # plain | bool | f32 | enum | venum | item_enum
+    lookup: str = "None"  # enum, venum: the table (an expression); item_enum: its index among the item's
+    first: int = 0       # index of its first value in the run's (or the item's) unpacked values
+    count: int = 1       # arrays: values; groups: items
+    item: str = "None"   # groups: the item class
+    width: int = 0       # groups: values per item
+    size: int = 0        # groups: bytes per item
+    enums: list = field(default_factory=list)   # groups: the versioned tables its items look up
+
+
+@dataclass
 class StructConst:
     name: str
     fmt: str
@@ -93,6 +110,7 @@ class Codec:
     decode: list[Step]
     encode: list[Step]
     versions: str = ""            # the versions that send the form, when a layout has several
+    runs: Optional[dict] = None   # a form read by fixed runs alone (fixed_runs), as data
 
 
 @dataclass
@@ -109,6 +127,7 @@ class PyClass:
     structs: list[StructConst]
     fixed: bool = False            # item laid out in its parent's run
     members: list[MemberView] = field(default_factory=list)  # fixed items: read from the parent's run
+    run_members: list[RunMember] = field(default_factory=list)  # fixed items: the same, as data
     sets_version: Optional[tuple[str, str]] = None
     summary: list[str] = field(default_factory=list)
     items: dict[str, str] = field(default_factory=dict)   # group member -> its item class
@@ -203,6 +222,23 @@ class _ClassBuilder:
             view.conv, view.lookup = "item_enum", str(self.item_venums.index(f.name))
         return view
 
+    def run_member(self, m: plan.Member, in_item: bool) -> RunMember:
+        """A member of a run as data (RunMember); in_item: inside a fixed item's values."""
+        f = m.field
+        if isinstance(f, ir.GroupField):
+            return RunMember(f.name, "group", "plain", first=m.first_leaf, count=f.count,
+                             item=self.target.item_classes[f.item.name].name, width=m.item.leaf_count,
+                             size=m.item.layout.fixed_size, enums=["_e." + e for e in item_enums(f.item)])
+        conv, lookup = conversion(f.scalar, f.enum)
+        if conv == "venum" and in_item:
+            conv, lookup = "item_enum", str(self.item_venums.index(f.name))
+        elif conv in ("enum", "venum"):
+            lookup = "_e." + lookup
+        else:
+            lookup = "None"
+        kind = "array" if isinstance(f, ir.ArrayField) else "scalar"
+        return RunMember(f.name, kind, conv, lookup, m.first_leaf, m.leaf_count)
+
     def run_step(self, run: plan.FixedRun) -> tuple[Step, Step]:
         const = f"_{self.owner.upper()}_{run.index}"
         fmt = ">" + "".join(STRUCT_CODES[leaf.scalar.name] for leaf in run.leaves)
@@ -212,7 +248,8 @@ class _ClassBuilder:
         self.structs.append(StructConst(const, fmt, entries, ofmt if ofmt != fmt else None))
         # One plain value: unpack straight into its name, then convert it in place if needed.
         single = len(run.leaves) == 1 and members[0].conv != "f32"
-        decode = Step("run", dict(const=const, size=run.size, members=members, single=single))
+        decode = Step("run", dict(const=const, size=run.size, members=members, single=single,
+                                  run_members=[self.run_member(m, False) for m in run.members]))
         encode = Step("run", dict(const=const if ofmt == fmt else const + "_OUT", members=members))
         return decode, encode
 
@@ -263,6 +300,27 @@ class _ClassBuilder:
         item = self.target.item_classes[f.item.name]
         return (Step("group_to_end", dict(name=f.name, item=item.name, path=path)),
                 Step("group_to_end", dict(name=f.name)))
+
+
+def fixed_runs(decode: list[Step]) -> Optional[dict]:
+    """A form whose decoder reads fixed runs one after the other, some only when an earlier field
+    is nonzero (its other steps set absent attributes to None): each run's struct, its members
+    as data, its flag and the attributes it leaves None when skipped, and those absent; else None.
+    Names are quoted."""
+    runs, absent = [], []
+    for s in decode:
+        if s.kind == "absent":
+            absent += [json.dumps(name) for name in s.names]
+        elif s.kind == "run":
+            runs.append(dict(const=s.const, members=s.run_members, flag="None", skipped=[]))
+        elif (s.kind == "cond" and s.condition.flag and s.condition.low is None and s.condition.high is None
+              and [inner.kind for inner in s.steps] == ["run"]):
+            (inner,) = s.steps
+            runs.append(dict(const=inner.const, members=inner.run_members, flag=json.dumps(s.condition.flag),
+                             skipped=[json.dumps(name) for name in s.names]))
+        else:
+            return None
+    return dict(runs=runs, absent=absent) if runs else None
 
 
 def item_enums(item: ir.Struct) -> list[str]:
@@ -322,13 +380,13 @@ class _Target:
                 absent = [f.name for f in struct.public_fields if not v.plan.struct.named(f.name)]
                 if absent:
                     decode.insert(0, Step("absent", dict(names=absent)))
-                codecs.append(Codec(f"_{k}", decode, encode, v.describe()))
+                codecs.append(Codec(f"_{k}", decode, encode, v.describe(), fixed_runs(decode)))
                 structs += form_builder.structs
         else:
             decode, encode = builder.steps(layout.steps)
             if builder.repeated:
                 decode.insert(0, Step("absent", dict(names=builder.repeated)))
-            codecs = [Codec("", decode, encode)]
+            codecs = [Codec("", decode, encode, runs=fixed_runs(decode))]
             structs = builder.structs
         items = {f.name: self.item_classes[f.item.name].name for f in struct.fields if isinstance(f, ir.GroupField)}
         header_fields = [slot.field for slot in header or [] if not slot.is_subtype]
@@ -340,6 +398,7 @@ class _Target:
             # A fixed item is read inside its parent's run: from the parent's values and offset.
             cls.fixed = True
             cls.members = [builder.member(m, "i", "at") for m in layout.runs[0].members]
+            cls.run_members = [builder.run_member(m, True) for m in layout.runs[0].members]
         cls.summary = [field_name for _, field_name in summary or []]
         cls.items = items
         self.classes.append(cls)

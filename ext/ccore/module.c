@@ -12,6 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ccore_flat.h"
+#include "ccore_records.h"
 #include "columns.h"
 #include "json.h"
 #include "records.h"
@@ -177,7 +179,7 @@ PyMODINIT_FUNC PyInit__ccore(void)
         Py_DECREF(module);
         return NULL;
     }
-    if (columns_add_types(module) < 0) {
+    if (records_add_types(module) < 0 || flat_add_types(module) < 0 || columns_add_types(module) < 0) {
         Py_DECREF(module);
         return NULL;
     }

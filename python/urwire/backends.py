@@ -2,43 +2,27 @@
 JSON writer) where it is built, else pure Python, which needs nothing.
 
 URWIRE_BACKEND=python keeps to pure Python even where the extension is built (the tests run both
-ways); URWIRE_BACKEND=c insists on the extension and fails to import without it. `backend()` says
-which one runs.
+ways); URWIRE_BACKEND=c insists on the extension and fails to import without it (extension.py).
+`backend()` says which one runs.
 
-What the extension does today: the canonical JSON Lines of a primary/secondary stream
-(`primary_json_lines`, what `urwire decode` prints for a raw stream), and the dataset's columns of
-the primary/secondary interface, of raw streams and captures (dataset_c.py, dataset_c_capture.py).
-Records as objects (decode_stream, Framer, decode_message) are made in Python under either backend.
+What the extension does: the canonical JSON Lines of a primary/secondary stream
+(`primary_json_lines`, what `urwire decode` prints for a raw stream); the records of robot
+states (decode_message, and so decode_stream, Framer and every tool over them: decoding.py),
+framed in C, each sub-package a copy of the record its bytes gave before or made in C; the
+records of real-time packets (realtime.py) and the values of RTDE data packages (typed_records.py),
+made in C from what their struct unpacks; and the dataset's columns of the primary/secondary
+interface, of raw streams and captures (dataset_c.py, dataset_c_capture.py).
 """
 from __future__ import annotations
 
-import os
 from typing import Iterable, Iterator
 
 from .arguments import VersionLike, bytes_of, parse_version
 from .canonical import has_error, to_json_line
+from .extension import CCORE
 from .framer import Framer
 
-_CHOICES = ("c", "python")
-
-
-def _load_ccore():
-    choice = os.environ.get("URWIRE_BACKEND", "").strip().lower()
-    if choice and choice not in _CHOICES:
-        raise ImportError(f"URWIRE_BACKEND={choice!r}: expected one of {', '.join(_CHOICES)}")
-    if choice == "python":
-        return None
-    try:
-        from . import _ccore
-    except ImportError:
-        if choice == "c":
-            raise ImportError("URWIRE_BACKEND=c, but the C extension urwire._ccore is not built "
-                              "(make python-ext, or pip install . with a C compiler)") from None
-        return None
-    return _ccore
-
-
-_CCORE = _load_ccore()
+_CCORE = CCORE
 
 
 def ccore():

@@ -1,5 +1,10 @@
 """One framed message to a record and back: decode_message, encode_message, and package_classes,
-over the table of message types that urwire.generated.messages makes (MESSAGES)."""
+over the table of message types that urwire.generated.messages makes (MESSAGES).
+
+Under the C backend (extension.py) robot states are framed in C (urwire._ccore.PackageStates),
+each sub-package a copy of the record the same bytes gave last, else read by the version's form
+as PackageList.decode reads it: in C for the forms of one fixed run (RUN_RECIPES), else by the
+form's Python decoder; what that common case does not cover is read here in Python."""
 from __future__ import annotations
 
 from typing import Optional
@@ -7,12 +12,18 @@ from typing import Optional
 from . import _runtime as _rt
 from ._runtime import MalformedSubtype, UnknownMessage, UnknownSubtype
 from .arguments import bytes_of, version_of
-from .generated.messages import MESSAGES
+from .extension import CCORE
+from .generated.messages import ITEM_RUNS, MESSAGES, RUN_RECIPES
 from .generated.spec import DEFAULT_VERSION, HEADER, MESSAGE_TYPE_OFFSET
 from .message_kinds import PackageList
 
 # The message of sub-packages (the robot state): the one whose sub-package classes are asked for.
 (_PACKAGE_LIST,) = (kind for kind in MESSAGES.values() if isinstance(kind, PackageList))
+_PACKAGE_LIST_TYPE = next(code for code, kind in MESSAGES.items() if kind is _PACKAGE_LIST)
+# Its records from C under the C backend; None under pure Python.
+_C_STATES = None if CCORE is None else CCORE.PackageStates(
+    _PACKAGE_LIST.cls, _PACKAGE_LIST.forms, _PACKAGE_LIST.body_offset, RUN_RECIPES, ITEM_RUNS,
+    message_type=_PACKAGE_LIST_TYPE, type_offset=MESSAGE_TYPE_OFFSET, default_version=DEFAULT_VERSION)
 
 
 def package_classes(version) -> dict:
@@ -31,12 +42,28 @@ def decode_message(buf, version: Optional[tuple] = None, known: Optional[bool] =
     state's layout sizes may overrule it (`implied_version`). `known` says whether `version` is
     known (announced or hinted) rather than assumed.
     """
+    if _C_STATES is not None:
+        # First the common case at C speed: a robot state's bytes, the version a tuple or None.
+        msg = _C_STATES.decode(buf, version)
+        if msg is not None:
+            return msg
+    given = buf, version
     if type(buf) is not bytes:
         buf = bytes_of(buf, "decode_message")
     if len(buf) < HEADER.size:
         return UnknownMessage(0, buf, _rt.short("length", 0, HEADER.size, len(buf)).text)
     if version is not None:
         version = version_of(version)
+    if _C_STATES is not None and (buf is not given[0] or version is not given[1]):
+        msg = _C_STATES.decode(buf, version)      # the same, once the arguments are as it takes them
+        if msg is not None:
+            return msg
+    return decode_in_python(buf, version, known)
+
+
+def decode_in_python(buf: bytes, version: Optional[tuple], known: Optional[bool]):
+    """decode_message in pure Python, whatever the backend: buf is bytes of at least a header,
+    version a tuple or None."""
     kind = MESSAGES.get(buf[MESSAGE_TYPE_OFFSET])
     if kind is None:
         return UnknownMessage(buf[MESSAGE_TYPE_OFFSET], bytes(buf[HEADER.size:]))

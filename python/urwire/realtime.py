@@ -15,10 +15,14 @@ from typing import ClassVar, Iterable, Optional, Union
 
 from ._runtime import StreamError
 from .arguments import VersionLike, bytes_of, parse_version
-from .generated.ur_realtime import FORMS_BY_SIZE, MAX_MESSAGE_SIZE, SIZE_FIELD, SIZE_FIELD_BYTES
+from .extension import CCORE
+from .generated.ur_realtime import FLAT_LAYOUTS, FORMS_BY_SIZE, MAX_MESSAGE_SIZE, SIZE_FIELD, SIZE_FIELD_BYTES
 
 # The smallest size that frames a packet: the size field and one double.
 MIN_MESSAGE_SIZE = SIZE_FIELD_BYTES + 8
+# Under the C backend (extension.py) a packet's record is made in C from its layout's
+# FLAT_LAYOUTS entry, the same record its class's decoder makes; None under pure Python.
+_C_PACKETS = None if CCORE is None else CCORE.FlatRecords(FLAT_LAYOUTS)
 
 
 @dataclass(slots=True)
@@ -69,6 +73,10 @@ def decode_packet(packet, offset: int = 0, version: VersionLike = None, stream_o
         at = offset if stream_offset is None else stream_offset
         return UnknownPacket(size, f"packet at offset {at}: size {size} matches no layout",
                              bytes(packet[offset + SIZE_FIELD_BYTES:offset + size]))
+    if _C_PACKETS is not None:
+        record = _C_PACKETS.decode(form[2], packet, offset)
+        if record is not None:
+            return record
     return form[2].decode(packet, offset)
 
 

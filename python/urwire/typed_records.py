@@ -13,7 +13,11 @@ from typing import Any, Iterator, Optional
 
 from . import _runtime as _rt
 from ._runtime import DecodeError, StreamError
+from .extension import CCORE
 from .typed_json import message_json, raw_json
+
+# An RTDE data package's values by name, made in C under the C backend (extension.py).
+_values_by_name = None if CCORE is None else CCORE.values_by_name
 
 short = _rt.short
 read_prefixed_text = _rt.read_prefixed_text
@@ -72,7 +76,7 @@ class Recipe:
     names and their types in order, and where it was set up (the setup reply's index among the
     connection's records)."""
 
-    __slots__ = ("id", "kind", "names", "types", "defined_at", "_struct", "_shapes")
+    __slots__ = ("id", "kind", "names", "types", "defined_at", "_struct", "_shapes", "_plan")
 
     def __init__(self, recipe_id: Optional[int], kind: str, names: list, types: list,
                  value_types: dict, defined_at: int = -1):
@@ -81,6 +85,10 @@ class Recipe:
         shapes = [value_types[t] for t in types]
         self._shapes = tuple(shapes)
         self._struct = struct.Struct(">" + "".join(s.code * s.count for s in shapes))
+        # Where each variable's values lie among the unpacked ones, for the C backend's decode.
+        firsts = [sum(s.count for s in shapes[:k]) for k in range(len(shapes))]
+        self._plan = tuple((name, first, s.count, s.kind == "bool")
+                           for name, first, s in zip(self.names, firsts, shapes))
 
     @property
     def size(self) -> int:
@@ -90,6 +98,10 @@ class Recipe:
         if pos + self._struct.size > end:
             raise short("values", pos, self._struct.size, end)
         flat = self._struct.unpack_from(buf, pos)
+        if _values_by_name is not None:
+            values = _values_by_name(flat, self._plan)     # in C; None: a bool that is not a byte
+            if values is not None:
+                return values, pos + self._struct.size
         values, at = {}, 0
         for name, shape in zip(self.names, self._shapes):
             if shape.count == 1:

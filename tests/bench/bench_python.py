@@ -2,10 +2,11 @@
 
     python3 tests/bench/bench_python.py [--base REV] [--generations-base REV] [MB ...]   (default: 10 100)
 
-1. Decode of real robot states, per message: against python-urx (urx.ursecmon.ParserUtils, the
-   `urx` package on PyPI), and against the package that --generations-base generated (before
-   every controller generation entered the spec). python-urx decodes less than urwire: it stops
-   at the sub-packages it knows, types no enums and keeps no bytes for re-encoding.
+1. Decode of real robot states in pure Python, per message: against python-urx
+   (urx.ursecmon.ParserUtils, the `urx` package on PyPI), and against the package that
+   --generations-base generated (before every controller generation entered the spec).
+   python-urx decodes less than urwire: it stops at the sub-packages it knows, types no enums
+   and keeps no bytes for re-encoding.
 2. A canonical JSON line per robot state, against the package of --base (before the per-class
    writers): the same state again (at rest: a robot repeats most values from one state to the
    next), states whose moving packages change (in motion), and with nothing kept (every float
@@ -15,10 +16,13 @@
    pipe; MB per second of CPU time and peak resident memory. The command of --base runs on the
    smallest files too, and decode_stream over a whole buffer runs in both packages.
 4. A capture whose TCP segments come in reverse order, against the same capture in order.
-5. The C backend (urwire._ccore, `make python-ext`): a robot state framed, decoded and written as
-   its canonical JSON line by the C parser, against python-urx's decode and pure Python's decode
-   plus to_json_line, at rest and in motion; and `urwire decode` of the raw files under both
-   backends (part 3's command column runs under the default backend, the C one where it is built).
+5. The C backend (urwire._ccore, `make python-ext`), at rest and in motion: a robot state's
+   records (decode_message: framed in C, each sub-package a copy of what its bytes gave last,
+   else read by Python's decoder of its form) against python-urx's decode and pure Python's;
+   and its canonical JSON line framed, decoded and written by the C parser, against python-urx's
+   decode and pure Python's decode plus to_json_line; and `urwire decode` of the raw files under
+   both backends (part 3's command column runs under the default backend, the C one where it is
+   built). Parts 1 and 2 decode in pure Python whatever the backend.
 
 Machines here are shared and noisy: each in-process figure is a range over ROUNDS rounds (each
 the best of REPEAT x NUMBER calls, the contenders taking turns), and the ratios are what count.
@@ -27,6 +31,7 @@ The packages of older revisions are taken from git into build/bench-python/.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import dataclasses
 import importlib.util
 import itertools
@@ -46,6 +51,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python"), str(ROOT)]
 
 import urwire  # noqa: E402
+from urwire import decoding  # noqa: E402
 from tests.tools import measure, robot_inputs  # noqa: E402
 
 CONFORMANCE = ROOT / "tests" / "conformance" / "Universal_Robots_Client_Library"
@@ -113,6 +119,22 @@ def us(values: list) -> str:
     return f"{statistics.median(values) * 1e6:.1f}"
 
 
+@contextlib.contextmanager
+def pure_python():
+    """decode_message reads robot states in pure Python while inside, whatever the backend."""
+    saved = decoding._C_STATES
+    decoding._C_STATES = None
+    try:
+        yield
+    finally:
+        decoding._C_STATES = saved
+
+
+def python_decode(data: bytes):
+    """Pure Python's decode_message of a robot state, with the C backend chosen or not."""
+    return decoding.decode_in_python(data, None, None)
+
+
 def decode_per_message(generations: Path | None) -> None:
     logging.disable(logging.CRITICAL)  # urx logs every package it skips
     from urx.ursecmon import ParserUtils
@@ -124,7 +146,7 @@ def decode_per_message(generations: Path | None) -> None:
     for name in SAMPLES:
         data = sample(name)
         assert not urwire.canonical.has_error(urwire.decode_message(data)), name
-        contenders = {"urx": lambda: ParserUtils().parse(data), "now": lambda: urwire.decode_message(data)}
+        contenders = {"urx": lambda: ParserUtils().parse(data), "now": lambda: python_decode(data)}
         if old:
             contenders["then"] = lambda: old.decode_message(data)
         t = rounds(contenders)
@@ -134,7 +156,8 @@ def decode_per_message(generations: Path | None) -> None:
             line += f"{us(t['then']):>9}{spread([n / o for n, o in zip(t['now'], t['then'])]):>15}"
         print(line)
     stream = b"".join(sample(n) for n in SAMPLES) * 500
-    framed = min(timeit.repeat(lambda: sum(1 for _ in urwire.decode_stream(stream)), number=1, repeat=3))
+    with pure_python():
+        framed = min(timeit.repeat(lambda: sum(1 for _ in urwire.decode_stream(stream)), number=1, repeat=3))
     print(f"   framer + decode over a {len(stream) / 1e6:.1f} MB stream: {len(stream) / framed / 1e6:.1f} MB/s, "
           f"{1000 / framed:,.0f} messages/s")
 
@@ -181,6 +204,11 @@ def json_per_message(base: Path | None) -> None:
         urwire.canonical.forget_texts()
         return urwire.to_json_line(record)
 
+    with pure_python():
+        json_lines_against(old, anew)
+
+
+def json_lines_against(old, anew) -> None:
     print(f"== A JSON line per robot state against {BASE}, the same text: us and ratios as above")
     print(f"   {'message':<36}{'robot':<10}{BASE:>9}{'now':>7}{'faster':>13}{'decode':>8}")
     for name in SAMPLES:
@@ -261,7 +289,8 @@ def reversed_segments() -> None:
 
 def c_backend_per_message() -> None:
     """Per robot state: python-urx's decode, pure Python's decode and JSON line, and the C
-    backend's JSON line (a Python call per state: the framer fed one message)."""
+    backend's records (decode_message) and JSON line (a Python call per state: the framer fed
+    one message)."""
     from urwire import backends
 
     logging.disable(logging.CRITICAL)
@@ -271,21 +300,28 @@ def c_backend_per_message() -> None:
         print("== C backend: not built or not chosen (make python-ext; URWIRE_BACKEND unset)")
         return
     print("== C backend per robot state: us (median of the rounds) and ratios (their range)")
-    print(f"   {'message':<36}{'robot':<11}{'urx':>7}{'python':>8}{'C line':>8}"
-          f"{'C vs urx':>14}{'C vs python':>14}")
+    print(f"   {'message':<36}{'robot':<11}{'urx':>7}{'python':>8}{'C rec.':>8}"
+          f"{'C rec. vs urx':>16}{'vs python':>13}{'py line':>9}{'C line':>8}{'C line vs urx':>16}"
+          f"{'vs python':>13}")
     for name in SAMPLES:
         data = sample(name)
         moving = in_motion(data)
         for robot, states in (("at rest", [data]), ("in motion", moving)):
             lines = backends._CCORE.PrimaryJsonLines(None)
-            py_next, c_next = itertools.cycle(states).__next__, itertools.cycle(states).__next__
-            assert lines.feed(data) == (urwire.to_json_line(urwire.decode_message(data)) + "\n").encode(), name
+            nexts = {who: itertools.cycle(states).__next__ for who in ("python", "c", "py line", "c line")}
+            assert lines.feed(data) == (urwire.to_json_line(python_decode(data)) + "\n").encode(), name
+            assert all(urwire.decode_message(m) == python_decode(m) for m in states[:50]), name
             t = rounds({"urx": lambda: ParserUtils().parse(data),
-                        "python": lambda: urwire.to_json_line(urwire.decode_message(py_next())),
-                        "c": lambda: lines.feed(c_next())})
+                        "python": lambda: python_decode(nexts["python"]()),
+                        "c": lambda: urwire.decode_message(nexts["c"]()),
+                        "py line": lambda: urwire.to_json_line(python_decode(nexts["py line"]())),
+                        "c line": lambda: lines.feed(nexts["c line"]())})
             print(f"   {name if robot == 'at rest' else '':<36}{robot:<11}{us(t['urx']):>7}{us(t['python']):>8}"
-                  f"{us(t['c']):>8}{spread([u / c for u, c in zip(t['urx'], t['c'])]):>14}"
-                  f"{spread([p / c for p, c in zip(t['python'], t['c'])]):>14}")
+                  f"{us(t['c']):>8}{spread([u / c for u, c in zip(t['urx'], t['c'])]):>16}"
+                  f"{spread([p / c for p, c in zip(t['python'], t['c'])]):>13}"
+                  f"{us(t['py line']):>9}{us(t['c line']):>8}"
+                  f"{spread([u / c for u, c in zip(t['urx'], t['c line'])]):>16}"
+                  f"{spread([p / c for p, c in zip(t['py line'], t['c line'])]):>13}")
 
 
 def c_backend_files(sizes: list[int]) -> None:

@@ -1,7 +1,10 @@
-"""Run by tests/python/test_c_backend.py: the differential of that file over every vector and
-kept fuzz input, against an urwire._ccore built with ASan and UBSan (its path: argv[1]), loaded in
-place of the in-tree one. A sanitizer's report ends the process with an error."""
+"""Run by tests/python/test_c_backend.py: the differentials of that file (JSON lines, and robot
+states' records) over every vector and kept fuzz input, and the hostile robot states, and those
+of test_c_backend_flat.py (real-time packets, RTDE data packages), against an
+urwire._ccore built with ASan and UBSan (its path: argv[1]), loaded in place of the in-tree one.
+A sanitizer's report ends the process with an error. Prints the inputs of each differential."""
 import importlib.util
+import random
 import sys
 from pathlib import Path
 
@@ -9,6 +12,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python"), str(ROOT)]
 
 from tests.python import test_c_backend as differential  # noqa: E402
+from tests.python import test_c_backend_flat as flat  # noqa: E402
 from tests.tools.fuzz_inputs import HARNESSES, kept, split  # noqa: E402
 from tests.vectors import all_cases  # noqa: E402
 
@@ -17,10 +21,13 @@ def main(path: str) -> int:
     spec = importlib.util.spec_from_file_location("urwire._ccore", path)
     ccore = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(ccore)
-    count = 0
+    count = records = 0
+    states = differential.new_states(ccore)
     for case in all_cases():
         differential.assert_same(ccore, case.data, case.version, case.name)
+        differential.assert_same_records(states, case.data, case.version, case.name, pieces=(1, 97))
         count += 1
+        records += 1
     for harness in HARNESSES:
         for raw in kept(harness):
             hint, data = split(harness, raw)
@@ -29,8 +36,24 @@ def main(path: str) -> int:
             except ValueError:
                 continue
             differential.assert_same(ccore, data, hint or None, harness, pieces=(1, 97))
+            differential.assert_same_records(states, data, hint or None, harness, pieces=(97,))
             count += 1
-    print(count)
+            records += 1
+    rng = random.Random(25)
+    for state in differential.real_states():
+        for msg in [state, *differential.hostile(state, rng)]:
+            differential.assert_same_records(states, msg, "5.11", msg[:40].hex(), pieces=())
+            records += 1
+    for case in flat.interface_cases("ur_realtime"):
+        flat.test_every_realtime_vector_gives_the_same_records(ccore, case)
+        records += 1
+    for cls in flat.FLAT_LAYOUTS:
+        flat.test_every_realtime_layout_made_in_c_is_its_decoders_record(ccore, cls)
+    for case in flat.rtde_cases():
+        flat.test_every_rtde_vector_gives_the_same_records(ccore, case)
+        records += 1
+    flat.test_values_by_name_are_the_python_loops(ccore)
+    print(count, records)
     return 0
 
 
