@@ -5,10 +5,13 @@ It is optional: where no compiler is at hand, `pip install .` still installs the
 package, which then decodes on its own (urwire.backend() says which one runs). Everything else
 about the package is in pyproject.toml.
 """
+from pathlib import Path
+
 from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
 
-JSON_WRITER = ["tools/urwire-decode/json.c", "tools/urwire-decode/shortest.c", "tools/urwire-decode/records.c"]
+# The extension's C files, one per line: the Makefile and the sanitized test build read them too.
+SOURCES = (Path(__file__).resolve().parent / "ext" / "ccore" / "sources.txt").read_text().split()
 
 
 class OptionalBuildExt(build_ext):
@@ -30,8 +33,7 @@ class OptionalBuildExt(build_ext):
 setup(
     ext_modules=[Extension(
         "urwire._ccore",
-        sources=["ext/ccore/module.c", "ext/ccore/columns.c", "ext/ccore/records.c", "ext/ccore/runs.c",
-                 "ext/ccore/flat.c", "generated/c/urwire.c", *JSON_WRITER],
+        sources=SOURCES,
         include_dirs=["ext/ccore", "generated/c", "tools/urwire-decode"],
         extra_compile_args=["-std=c99", "-O2"],
         optional=True,

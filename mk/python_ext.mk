@@ -3,11 +3,8 @@
 # tree's Python (PYTHONPATH=python:generated/python) decodes through it; setup.py builds the same
 # module for `pip install .` and `pip wheel .`.
 
-PYTHON_EXT_SOURCES := setup.py ext/ccore/module.c ext/ccore/columns.c ext/ccore/columns.h \
-	ext/ccore/records.c ext/ccore/ccore_records.h ext/ccore/runs.c ext/ccore/ccore_runs.h \
-	ext/ccore/flat.c ext/ccore/ccore_flat.h generated/c/urwire.c generated/c/urwire.h \
-	tools/urwire-decode/json.c tools/urwire-decode/json.h tools/urwire-decode/shortest.c \
-	tools/urwire-decode/shortest.h tools/urwire-decode/records.c tools/urwire-decode/records.h
+PYTHON_EXT_SOURCES := setup.py ext/ccore/sources.txt $(shell cat ext/ccore/sources.txt) \
+	$(wildcard ext/ccore/*.h) generated/c/urwire.h $(wildcard tools/urwire-decode/*.h)
 PYTHON_EXT_STAMP := build/python-ext.stamp
 
 ALL_TARGETS += python-ext

@@ -23,6 +23,7 @@ import pytest
 from tests.tools import valid
 from tests.tools.fuzz_inputs import HARNESSES, kept, split
 from tests.vectors import all_cases
+from tests.tools import ccore_sanitized
 
 import urwire
 from urwire import decoding
@@ -489,21 +490,7 @@ def test_the_extension_under_asan_and_ubsan(tmp_path):
     states' records) built with ASan and UBSan and run over every vector and kept fuzz input and
     the hostile robot states (tests/python/ccore_asan_peer.py): no report, the same lines and
     records."""
-    import sysconfig
-
-    library = tmp_path / ("_ccore" + sysconfig.get_config_var("EXT_SUFFIX"))
-    sources = ["ext/ccore/module.c", "ext/ccore/columns.c", "ext/ccore/records.c", "ext/ccore/runs.c",
-               "ext/ccore/flat.c", "generated/c/urwire.c", "tools/urwire-decode/json.c",
-               "tools/urwire-decode/shortest.c", "tools/urwire-decode/records.c"]
-    subprocess.run(["gcc", "-shared", "-fPIC", "-g", "-O1", "-std=c99", "-fsanitize=address,undefined",
-                    "-fno-sanitize-recover=all", "-Iext/ccore", "-Igenerated/c", "-Itools/urwire-decode",
-                    "-I" + sysconfig.get_paths()["include"], *sources, "-lm", "-o", str(library)],
-                   cwd=ROOT, check=True, timeout=300)
-    runtimes = [subprocess.run(["gcc", f"-print-file-name={name}"], capture_output=True, text=True,
-                               check=True).stdout.strip() for name in ("libasan.so", "libubsan.so")]
-    env = dict(os.environ, LD_PRELOAD=":".join(runtimes), ASAN_OPTIONS="detect_leaks=0")
-    result = subprocess.run([sys.executable, str(ROOT / "tests" / "python" / "ccore_asan_peer.py"), str(library)],
-                            env=env, capture_output=True, text=True, timeout=600)
+    result = ccore_sanitized.run_peer("ccore_asan_peer.py", tmp_path)
     assert result.returncode == 0 and "ERROR" not in result.stderr, result.stderr[-3000:]
     lines, records = map(int, result.stdout.split())
     assert lines > 300 and records > 300

@@ -30,6 +30,7 @@ from urwire import capture, dataset, dataset_c  # noqa: E402
 from tests.tools import capture as capture_file, golden_sessions, robot_inputs, valid  # noqa: E402
 from tests.tools.fuzz_inputs import HARNESSES, kept, split  # noqa: E402
 from tests.vectors import all_cases  # noqa: E402
+from tests.tools import ccore_sanitized  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLES = ROOT / "dissector" / "samples"
@@ -242,20 +243,7 @@ def _nan_equal(a, b) -> bool:
 def test_the_columns_under_asan_and_ubsan(tmp_path):
     """columns.c built with ASan and UBSan into urwire._ccore and run over every vector and kept
     fuzz input, in batches of a few rows (dataset_c_asan_peer.py): no report."""
-    import sysconfig
-
-    library = tmp_path / ("_ccore" + sysconfig.get_config_var("EXT_SUFFIX"))
-    sources = ["ext/ccore/module.c", "ext/ccore/columns.c", "generated/c/urwire.c", "tools/urwire-decode/json.c",
-               "tools/urwire-decode/shortest.c", "tools/urwire-decode/records.c"]
-    subprocess.run(["gcc", "-shared", "-fPIC", "-g", "-O1", "-std=c99", "-D_GNU_SOURCE",
-                    "-fsanitize=address,undefined", "-fno-sanitize-recover=all", "-Iext/ccore", "-Igenerated/c",
-                    "-Itools/urwire-decode", "-I" + sysconfig.get_paths()["include"], *sources, "-lm",
-                    "-o", str(library)], cwd=ROOT, check=True, timeout=300)
-    runtimes = [subprocess.run(["gcc", f"-print-file-name={name}"], capture_output=True, text=True,
-                               check=True).stdout.strip() for name in ("libasan.so", "libubsan.so")]
-    env = dict(os.environ, LD_PRELOAD=":".join(runtimes), ASAN_OPTIONS="detect_leaks=0")
-    result = subprocess.run([sys.executable, str(ROOT / "tests" / "python" / "dataset_c_asan_peer.py"), str(library)],
-                            env=env, capture_output=True, text=True, timeout=600)
+    result = ccore_sanitized.run_peer("dataset_c_asan_peer.py", tmp_path)
     assert result.returncode == 0 and "ERROR" not in result.stderr, result.stderr[-3000:]
     assert int(result.stdout) > 300
 

@@ -1,0 +1,36 @@
+"""urwire._ccore built with ASan and UBSan from the sources setup.py builds it from
+(ext/ccore/sources.txt), and the environment a Python process needs to load it: the tests run
+their peers (tests/python/*_asan_peer.py) over it in a process of their own."""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import sysconfig
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+INCLUDES = ["ext/ccore", "generated/c", "tools/urwire-decode"]
+
+
+def sources() -> list[str]:
+    return (ROOT / "ext" / "ccore" / "sources.txt").read_text().split()
+
+
+def build(folder: Path) -> Path:
+    library = folder / ("_ccore" + sysconfig.get_config_var("EXT_SUFFIX"))
+    subprocess.run(["gcc", "-shared", "-fPIC", "-g", "-O1", "-std=c99", "-D_GNU_SOURCE",
+                    "-fsanitize=address,undefined", "-fno-sanitize-recover=all",
+                    *[f"-I{d}" for d in INCLUDES], "-I" + sysconfig.get_paths()["include"], *sources(), "-lm",
+                    "-o", str(library)], cwd=ROOT, check=True, timeout=300)
+    return library
+
+
+def run_peer(peer: str, folder: Path) -> subprocess.CompletedProcess:
+    """tests/python/<peer> run over a sanitized build made in folder, its runtimes preloaded."""
+    library = build(folder)
+    runtimes = [subprocess.run(["gcc", f"-print-file-name={name}"], capture_output=True, text=True,
+                               check=True).stdout.strip() for name in ("libasan.so", "libubsan.so")]
+    env = dict(os.environ, LD_PRELOAD=":".join(runtimes), ASAN_OPTIONS="detect_leaks=0")
+    return subprocess.run([sys.executable, str(ROOT / "tests" / "python" / peer), str(library)],
+                          env=env, capture_output=True, text=True, timeout=600)
