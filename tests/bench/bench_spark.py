@@ -2,12 +2,14 @@
 a dataset by `urwire spark` on Spark local[2] and by a sequential export of the same files, one
 after the other, in one run: wall-clock seconds of each, states per second, and their ratio.
 
-    python3 tests/bench/bench_spark.py [--days 10] [--states 864000]
+    python3 tests/bench/bench_spark.py [--days 10] [--states 864000] [--format pcap|raw]
     BENCH_SMALL=1 python3 tests/bench/bench_spark.py        (2,000 states a day: a quick look)
 
 Each robot-day is a .pcap of one session in its own robot's folder, a state per TCP segment, its
-frames 100 ms apart from its own midnight (so that days differ in their bytes and dates), built
-once under build/bench-spark/ from the robot states of tests/tools/robot_inputs.py (the bundled
+frames 100 ms apart from its own midnight (so that days differ in their bytes and dates); or, with
+--format raw, a raw primary stream of the same states (what a recorder of the port writes), its
+day told by its modification time and its robot by --robot, as `urwire spark` reads raw streams.
+Both are built once under build/bench-spark/ from the robot states of tests/tools/robot_inputs.py (the bundled
 5.11 capture's and the conformance captures' that decode cleanly), repeated. The sequential
 export runs in one process: for each file, dataset.capture_parts then dataset.write_parts, the
 calls `urwire export --dataset` makes. Spark's time includes starting its JVM, as a submitted
@@ -43,35 +45,44 @@ import datetime, sys
 from pathlib import Path
 from urwire.spark import dataset_module, utc_date
 dataset = dataset_module()
-out = sys.argv[1]
+out, robot = sys.argv[1], sys.argv[3] or None
 for path in sorted(p for p in Path(sys.argv[2]).rglob("*") if p.is_file()):
     data = path.read_bytes()
     day = utc_date(datetime.datetime.fromtimestamp(path.stat().st_mtime, datetime.timezone.utc))
-    dataset.write_parts(out, dataset.capture_parts(data, path.name, None, None, day), dataset.capture_id(data))
+    dataset.write_parts(out, dataset.capture_parts(data, path.name, None, robot, day), dataset.capture_id(data))
 """
 
 
-def robot_days(days: int, states: int) -> Path:
-    """The folder of `days` captures of `states` robot states each, robot-NN/day.pcap."""
+RAW_ROBOT = "bench-robot"   # the robot of the raw streams (--robot): they carry no address
+
+
+def robot_days(days: int, states: int, form: str = "pcap") -> Path:
+    """The folder of `days` captures of `states` robot states each, robot-NN/day.<form>."""
     real = robot_inputs.real_states()
     digest = hashlib.sha256(b"".join(real)).hexdigest()[:8]
     folder = WORK / f"captures-{digest}-{states}"
     for day in range(days):
-        path = folder / f"robot-{day:02d}" / "day.pcap"
+        path = folder / f"robot-{day:02d}" / f"day.{form}"
         if path.is_file():
             continue
         path.parent.mkdir(parents=True, exist_ok=True)
         payloads = (real * (states // len(real) + 1))[:states]
         partial = path.with_suffix(f".{os.getpid()}.partial")
-        capture.write(partial, capture.robot_session(payloads, robot=f"192.168.56.{101 + day}"),
-                      start=MIDNIGHT + day * 86_400)
+        midnight = MIDNIGHT + day * 86_400
+        if form == "raw":
+            with open(partial, "wb") as out:
+                for payload in payloads:
+                    out.write(payload)
+            os.utime(partial, (midnight + 43_200, midnight + 43_200))   # noon: its day in any zone's UTC
+        else:
+            capture.write(partial, capture.robot_session(payloads, robot=f"192.168.56.{101 + day}"), start=midnight)
         partial.replace(path)
     # a folder of exactly `days` days: others built before by a larger run are left out
-    chosen = WORK / f"run-{days}x{states}"
+    chosen = WORK / f"run-{days}x{states}-{form}"
     shutil.rmtree(chosen, ignore_errors=True)
     for day in range(days):
         (chosen / f"robot-{day:02d}").mkdir(parents=True)
-        os.link(folder / f"robot-{day:02d}" / "day.pcap", chosen / f"robot-{day:02d}" / "day.pcap")
+        os.link(folder / f"robot-{day:02d}" / f"day.{form}", chosen / f"robot-{day:02d}" / f"day.{form}")
     return chosen
 
 
@@ -95,6 +106,8 @@ def main() -> int:
     parser.add_argument("--days", type=int, default=10, help="robot-days, each its own robot (default: 10)")
     parser.add_argument("--states", type=int, default=SMALL_DAY if os.environ.get("BENCH_SMALL") else DAY,
                         help=f"robot states a day (default: {DAY:,}; {SMALL_DAY:,} with BENCH_SMALL=1)")
+    parser.add_argument("--format", choices=("pcap", "raw"), default="pcap",
+                        help="each robot-day as a .pcap (default) or as a raw primary stream")
     args = parser.parse_args()
     try:
         import pyspark  # noqa: F401
@@ -102,17 +115,18 @@ def main() -> int:
         print("bench-spark needs pyspark: pip install urwire[spark]", file=sys.stderr)
         return 2
 
-    captures = robot_days(args.days, args.states)
-    size = sum(p.stat().st_size for p in captures.rglob("*.pcap"))
+    captures = robot_days(args.days, args.states, args.format)
+    size = sum(p.stat().st_size for p in captures.rglob(f"*.{args.format}"))
+    robot = RAW_ROBOT if args.format == "raw" else ""
     total = args.days * args.states
-    print(f"== {args.days} robot-days of {args.states:,} real robot states (.pcap, {size / 1e6:,.0f} MB in all) "
+    print(f"== {args.days} robot-days of {args.states:,} real robot states (.{args.format}, {size / 1e6:,.0f} MB in all) "
           f"to a dataset: Spark local[2] against a sequential export")
     sequential_out, spark_out = WORK / "dataset-sequential", WORK / "dataset-spark"
     for out in (sequential_out, spark_out):
         shutil.rmtree(out, ignore_errors=True)
-    sequential = timed([sys.executable, "-c", SEQUENTIAL, str(sequential_out), str(captures)])
+    sequential = timed([sys.executable, "-c", SEQUENTIAL, str(sequential_out), str(captures), robot])
     spark = timed([sys.executable, "-m", "urwire.spark", "--master", "local[2]", "--out", str(spark_out),
-                   str(captures)])
+                   *(["--robot", robot] if robot else []), str(captures)])
     expected, got = part_rows(sequential_out), part_rows(spark_out)
     same = expected == got
     print(f"   the datasets: {'the same part files and rows' if same else 'DIFFERENT'} "
