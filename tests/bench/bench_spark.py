@@ -53,36 +53,51 @@ for path in sorted(p for p in Path(sys.argv[2]).rglob("*") if p.is_file()):
 """
 
 
+def stamped(state: bytes, at: float) -> bytes:
+    """A robot state whose robot mode data (its first sub-package: type 0 after the message's five
+    header bytes and its own five) says `at` in microseconds: a .pcap's frames differ by their
+    capture times, a raw stream's by what it holds, or two robot-days of the same states would be
+    one capture to the dataset (a part's name comes from its capture's content)."""
+    if len(state) < 18 or state[4] != 16 or state[9] != 0:
+        return state
+    return state[:10] + int(at * 1e6).to_bytes(8, "big") + state[18:]
+
+
 RAW_ROBOT = "bench-robot"   # the robot of the raw streams (--robot): they carry no address
 
 
-def robot_days(days: int, states: int, form: str = "pcap") -> Path:
-    """The folder of `days` captures of `states` robot states each, robot-NN/day.<form>."""
+def robot_days(days: int, states: int, form: str = "pcap", hours: int = 1) -> Path:
+    """The folder of `days` robot-days of `states` robot states each, robot-NN/day-HH.<form>: each
+    day in `hours` files of consecutive states, as a recorder that starts a file every 24 / hours
+    hours writes them (1: one file a day)."""
     real = robot_inputs.real_states()
     digest = hashlib.sha256(b"".join(real)).hexdigest()[:8]
-    folder = WORK / f"captures-{digest}-{states}"
-    for day in range(days):
-        path = folder / f"robot-{day:02d}" / f"day.{form}"
+    folder = WORK / f"captures-{digest}-{states}-{hours}"
+    names = [f"robot-{day:02d}/day-{hour:02d}.{form}" for day in range(days) for hour in range(hours)]
+    for name in names:
+        path = folder / name
         if path.is_file():
             continue
+        day, hour = divmod(names.index(name), hours)
         path.parent.mkdir(parents=True, exist_ok=True)
-        payloads = (real * (states // len(real) + 1))[:states]
+        first, last = states * hour // hours, states * (hour + 1) // hours
+        payloads = [real[i % len(real)] for i in range(first, last)]
         partial = path.with_suffix(f".{os.getpid()}.partial")
-        midnight = MIDNIGHT + day * 86_400
+        start = MIDNIGHT + day * 86_400 + first * 0.1
         if form == "raw":
             with open(partial, "wb") as out:
-                for payload in payloads:
-                    out.write(payload)
-            os.utime(partial, (midnight + 43_200, midnight + 43_200))   # noon: its day in any zone's UTC
+                out.write(b"".join(stamped(payload, start + i * 0.1) for i, payload in enumerate(payloads)))
+            middle = start + len(payloads) * 0.05    # its file's middle: the day of its states
+            os.utime(partial, (middle, middle))
         else:
-            capture.write(partial, capture.robot_session(payloads, robot=f"192.168.56.{101 + day}"), start=midnight)
+            capture.write(partial, capture.robot_session(payloads, robot=f"192.168.56.{101 + day}"), start=start)
         partial.replace(path)
     # a folder of exactly `days` days: others built before by a larger run are left out
-    chosen = WORK / f"run-{days}x{states}-{form}"
+    chosen = WORK / f"run-{days}x{states}-{hours}-{form}"
     shutil.rmtree(chosen, ignore_errors=True)
-    for day in range(days):
-        (chosen / f"robot-{day:02d}").mkdir(parents=True)
-        os.link(folder / f"robot-{day:02d}" / f"day.{form}", chosen / f"robot-{day:02d}" / f"day.{form}")
+    for name in names:
+        (chosen / name).parent.mkdir(parents=True, exist_ok=True)
+        os.link(folder / name, chosen / name)
     return chosen
 
 
@@ -108,6 +123,9 @@ def main() -> int:
                         help=f"robot states a day (default: {DAY:,}; {SMALL_DAY:,} with BENCH_SMALL=1)")
     parser.add_argument("--format", choices=("pcap", "raw"), default="pcap",
                         help="each robot-day as a .pcap (default) or as a raw primary stream")
+    parser.add_argument("--hours", type=int, default=1, choices=(1, 2, 3, 4, 6, 8, 12, 24),
+                        help="files a robot-day is split into, by time (default: 1; Spark holds each "
+                             "file whole in memory: a day of 1.2 GB needs room for several copies)")
     args = parser.parse_args()
     try:
         import pyspark  # noqa: F401
@@ -115,11 +133,11 @@ def main() -> int:
         print("bench-spark needs pyspark: pip install urwire[spark]", file=sys.stderr)
         return 2
 
-    captures = robot_days(args.days, args.states, args.format)
+    captures = robot_days(args.days, args.states, args.format, args.hours)
     size = sum(p.stat().st_size for p in captures.rglob(f"*.{args.format}"))
     robot = RAW_ROBOT if args.format == "raw" else ""
     total = args.days * args.states
-    print(f"== {args.days} robot-days of {args.states:,} real robot states (.{args.format}, {size / 1e6:,.0f} MB in all) "
+    print(f"== {args.days} robot-days of {args.states:,} real robot states (.{args.format}, {args.hours} file(s) a day, {size / 1e6:,.0f} MB in all) "
           f"to a dataset: Spark local[2] against a sequential export")
     sequential_out, spark_out = WORK / "dataset-sequential", WORK / "dataset-spark"
     for out in (sequential_out, spark_out):
