@@ -5,7 +5,8 @@ Apache Spark into the dataset `urwire export --dataset` writes, one Spark task p
     urwire spark --master local[2] --out dataset/ captures/      (or python -m urwire.spark)
 
 How: Spark's `binaryFile` source lists the folder and gives each file's bytes; `mapInArrow`
-runs urwire's decoder on each (dataset.capture_parts) and writes its tables with the same call
+runs urwire's decoder on each (where the folder is on a filesystem every executor mounts, a
+`file:` path, each task reads its file itself, which spares moving every byte through the JVM) (dataset.capture_parts) and writes its tables with the same call
 the export makes (dataset.write_parts), then returns one row per table part written (path,
 interface, kind, robot, date, rows): the job's manifest.
 
@@ -24,6 +25,7 @@ import datetime
 import sys
 from pathlib import PurePosixPath
 from typing import Callable, Iterable, Iterator, Optional
+from urllib.parse import unquote, urlparse
 
 
 def dataset_module():
@@ -52,20 +54,39 @@ def utc_date(when: datetime.datetime) -> str:
     return when.astimezone(datetime.timezone.utc).date().isoformat()
 
 
+def local_path(uri: str) -> Optional[str]:
+    """The path of a `file:` URI (as binaryFile names a local file), else None."""
+    parsed = urlparse(uri)
+    return unquote(parsed.path) if parsed.scheme == "file" else None
+
+
+def reads_locally(captures: str) -> bool:
+    """Whether the tasks can open the folder's files themselves: a local path or a file: URI."""
+    return urlparse(captures).scheme in ("", "file")
+
+
+def _read(path: str) -> bytes:
+    with open(local_path(path), "rb") as f:
+        return f.read()
+
+
 def decode_files(root: str, version_hint=None, robot: Optional[str] = None, date: Optional[str] = None) -> Callable:
     """The mapInArrow function: each capture of a batch of binaryFile rows decoded and written
     under `root`, then a manifest batch of the parts it wrote. As `urwire export --dataset`
     reads a file: its source is its name, a raw stream's robot is `robot` and its day `date`,
-    else the day the file was last modified (UTC)."""
+    else the day the file was last modified (UTC). Rows without a content column are files the
+    task reads itself (from a filesystem it mounts)."""
     def run(batches):
         import pyarrow as pa
 
         dataset = dataset_module()
         for batch in batches:
-            paths, times, contents = (batch.column(name) for name in ("path", "modificationTime", "content"))
+            paths, times = batch.column("path"), batch.column("modificationTime")
+            contents = batch.column("content") if "content" in batch.schema.names else None
             for i in range(batch.num_rows):
+                path = paths[i].as_py()
                 # the bytes where Arrow holds them, not a copy: a robot-day is over a gigabyte
-                path, data = paths[i].as_py(), memoryview(contents[i].as_buffer())
+                data = memoryview(contents[i].as_buffer()) if contents is not None else _read(path)
                 seen: list = []
                 parts = dataset.capture_parts(data, PurePosixPath(path).name, version_hint, robot,
                                               date or utc_date(times[i].as_py()))
@@ -80,16 +101,21 @@ def decode_files(root: str, version_hint=None, robot: Optional[str] = None, date
 
 
 def export_folder(spark, captures: str, root: str, version_hint=None, robot: Optional[str] = None,
-                  date: Optional[str] = None):
+                  date: Optional[str] = None, through_jvm: Optional[bool] = None):
     """Decode every file under `captures` (any Hadoop path: a folder, s3a://...) into the
     dataset at `root` (a path every executor can write); returns the manifest DataFrame,
-    already computed."""
+    already computed. The files' bytes go through the JVM (binaryFile's content) unless the
+    folder is local (a path or file:), where each task reads its own file: `through_jvm`
+    chooses (default: only where it must)."""
+    if through_jvm is None:
+        through_jvm = not reads_locally(captures)
     # binaryFile never splits a file; one file per partition spreads the captures over the
     # tasks, where the default packs small files into one.
     spark.conf.set("spark.sql.files.maxPartitionBytes", "1")
     spark.conf.set("spark.sql.execution.arrow.maxRecordsPerBatch", "1")
     files = (spark.read.format("binaryFile").option("recursiveFileLookup", "true")
-             .load(captures).select("path", "modificationTime", "content"))   # names starting with . or _ are left out
+             .load(captures)   # names starting with . or _ are left out
+             .select("path", "modificationTime", *(["content"] if through_jvm else [])))   # unread unless selected
     manifest = files.mapInArrow(decode_files(root, version_hint, robot, date), MANIFEST)
     return manifest.localCheckpoint(eager=True)
 

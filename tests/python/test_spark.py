@@ -80,12 +80,14 @@ def part_files(root: Path) -> dict[str, Path]:
     return {str(p.relative_to(root)): p for p in root.rglob("*.parquet")}
 
 
-@pytest.fixture(scope="module")
-def exported(spark, captures, tmp_path_factory):
+@pytest.fixture(scope="module", params=[False, True], ids=["tasks-read-files", "bytes-through-jvm"])
+def exported(request, spark, captures, tmp_path_factory):
+    """The dataset of `urwire spark`, each task reading its local file itself (the default for a
+    local folder) or given its bytes by binaryFile (as from s3a://)."""
     from urwire.spark import export_folder
 
     out = tmp_path_factory.mktemp("spark-dataset")
-    manifest = export_folder(spark, str(captures), str(out), robot=RAW_ROBOT).collect()
+    manifest = export_folder(spark, str(captures), str(out), robot=RAW_ROBOT, through_jvm=request.param).collect()
     return out, manifest
 
 
@@ -146,3 +148,12 @@ def test_command_line_without_pyspark_says_how_to_install(tmp_path):
                             capture_output=True, text=True, env=env, timeout=60)
     assert result.returncode == 2
     assert "pip install urwire[spark]" in result.stderr
+
+
+def test_tasks_read_only_what_they_can_open():
+    from urwire.spark import local_path, reads_locally
+
+    assert reads_locally("/plant/captures") and reads_locally("file:///plant/captures")
+    assert not reads_locally("s3a://plant/captures") and not reads_locally("hdfs://nn/captures")
+    assert local_path("file:/plant/robot%201/day.pcap") == "/plant/robot 1/day.pcap"
+    assert local_path("s3a://plant/day.pcap") is None
