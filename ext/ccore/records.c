@@ -221,13 +221,18 @@ static PyObject *copy_value(PyObject *value, int depth)
         }
         return copy;
     }
+    /* A record's class is found in the recent layouts at once; is_immutable would first ask
+     * PyFloat_Check, which walks the record class's MRO. A class with a layout has only slots
+     * over object (find_layout), never an immutable built-in base. */
+    if (layout_of(type, &layout) < 0)
+        return NULL;
+    if (layout != NULL)
+        return copy_record(value, layout, depth);
     if (is_immutable(value)) {
         Py_INCREF(value);
         return value;
     }
-    if (layout_of(type, &layout) < 0 || layout == NULL)
-        return NULL;
-    return copy_record(value, layout, depth);
+    return NULL;
 }
 
 /* ---- the sub-packages seen last ------------------------------------------------------------ */
