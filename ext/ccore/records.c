@@ -221,13 +221,18 @@ static PyObject *copy_value(PyObject *value, int depth)
         }
         return copy;
     }
+    /* A record's class is found in the recent layouts at once; is_immutable would first ask
+     * PyFloat_Check, which walks the record class's MRO. A class with a layout has only slots
+     * over object (find_layout), never an immutable built-in base. */
+    if (layout_of(type, &layout) < 0)
+        return NULL;
+    if (layout != NULL)
+        return copy_record(value, layout, depth);
     if (is_immutable(value)) {
         Py_INCREF(value);
         return value;
     }
-    if (layout_of(type, &layout) < 0 || layout == NULL)
-        return NULL;
-    return copy_record(value, layout, depth);
+    return NULL;
 }
 
 /* ---- the sub-packages seen last ------------------------------------------------------------ */
@@ -237,7 +242,9 @@ static PyObject *copy_value(PyObject *value, int depth)
  * yet, see the top of this file). */
 typedef struct {
     PyObject *record;
-    PyObject *body;        /* bytes */
+    char *body;            /* a copy of the package's bytes in a buffer of its own, reused: a */
+    Py_ssize_t size;       /* moving package's bytes change in every state, and a bytes object */
+    Py_ssize_t capacity;   /* made and freed for each would cost as much as a record */
     PyObject *version;     /* (major, minor, bugfix) */
 } package_memo;
 
@@ -267,7 +274,9 @@ typedef struct {
 static void forget(package_memo *memo)
 {
     Py_CLEAR(memo->record);
-    Py_CLEAR(memo->body);
+    PyMem_Free(memo->body);
+    memo->body = NULL;
+    memo->size = memo->capacity = 0;
     Py_CLEAR(memo->version);
 }
 
@@ -403,8 +412,7 @@ static PyObject *fast_table(PackageStates *self, PyObject *version)
  * exception set. */
 static int same_package(const package_memo *memo, const char *body, Py_ssize_t size, PyObject *version)
 {
-    if (memo->body == NULL || PyBytes_GET_SIZE(memo->body) != size
-        || memcmp(PyBytes_AS_STRING(memo->body), body, (size_t)size) != 0)
+    if (memo->body == NULL || memo->size != size || memcmp(memo->body, body, (size_t)size) != 0)
         return 0;
     return same_version(memo->version, version);
 }
@@ -452,19 +460,26 @@ static PyObject *copy_kept(const package_memo *memo)
  * (or it cannot be copied); -1 with an exception set on failure. */
 static int remember(package_memo *memo, PyObject *record, const char *body, Py_ssize_t size, PyObject *version)
 {
-    PyObject *copy = NULL, *bytes;
+    PyObject *copy = NULL;
     if (record != NULL && (copy = copy_value(record, 0)) == NULL && PyErr_Occurred())
         return -1;
-    bytes = PyBytes_FromStringAndSize(body, size);
-    if (bytes == NULL) {
-        Py_XDECREF(copy);
-        return -1;
+    if (memo->capacity < size || memo->body == NULL) {
+        char *grown = PyMem_Malloc(size > 0 ? (size_t)size : 1);
+        if (grown == NULL) {
+            Py_XDECREF(copy);
+            PyErr_NoMemory();
+            return -1;
+        }
+        PyMem_Free(memo->body);
+        memo->body = grown;
+        memo->capacity = size;
     }
-    forget(memo);
-    memo->record = copy;
-    memo->body = bytes;
+    if (memo->body != body)
+        memcpy(memo->body, body, (size_t)size);
+    memo->size = size;
+    Py_XSETREF(memo->record, copy);
     Py_INCREF(version);
-    memo->version = version;
+    Py_XSETREF(memo->version, version);
     return 0;
 }
 
