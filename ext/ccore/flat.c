@@ -12,6 +12,7 @@
 #include <structmember.h>
 
 #include "ccore_flat.h"
+#include "ccore_slots.h"
 
 #define MAX_FIELDS 256
 
@@ -39,45 +40,6 @@ static void free_layout(PyObject *capsule)
     PyMem_Free(l);
 }
 
-/* The slot offset of an attribute; 0 when it is not a slot, -1 with an exception set. */
-static Py_ssize_t slot_named(PyObject *cls, PyObject *name)
-{
-    PyObject *descr = PyObject_GetAttr(cls, name);
-    Py_ssize_t offset = 0;
-    if (descr == NULL) {
-        if (!PyErr_ExceptionMatches(PyExc_AttributeError))
-            return -1;
-        PyErr_Clear();
-        return 0;
-    }
-    if (Py_IS_TYPE(descr, &PyMemberDescr_Type) && ((PyMemberDescrObject *)descr)->d_member->type == T_OBJECT_EX)
-        offset = ((PyMemberDescrObject *)descr)->d_member->offset;
-    Py_DECREF(descr);
-    return offset;
-}
-
-/* Its slots and nothing else (no __dict__, no __post_init__): how many, else -1. */
-static Py_ssize_t slots_in(PyTypeObject *cls)
-{
-    PyObject *mro = cls->tp_mro;
-    Py_ssize_t i, count = 0;
-    if (cls->tp_dictoffset != 0 || cls->tp_itemsize != 0 || mro == NULL
-        || PyObject_HasAttrString((PyObject *)cls, "__post_init__"))
-        return -1;
-    for (i = 0; i < PyTuple_GET_SIZE(mro); i++) {
-        PyTypeObject *base = (PyTypeObject *)PyTuple_GET_ITEM(mro, i);
-        PyObject *key, *value;
-        Py_ssize_t at = 0;
-        if (base == &PyBaseObject_Type)
-            continue;
-        while (PyDict_Next(base->tp_dict, &at, &key, &value))
-            if (Py_IS_TYPE(value, &PyMemberDescr_Type)
-                && ((PyMemberDescrObject *)value)->d_member->type == T_OBJECT_EX)
-                count++;
-    }
-    return count;
-}
-
 /* A layout from (struct, fields); 0 when this cannot make the class's records, -1 with an
  * exception set. */
 static int compile_layout(PyObject *cls, PyObject *spec, flat_layout *l)
@@ -96,7 +58,7 @@ static int compile_layout(PyObject *cls, PyObject *spec, flat_layout *l)
         PyObject *f = PyTuple_GET_ITEM(fields, i);
         if (!PyTuple_Check(f) || PyTuple_GET_SIZE(f) != 3 || !PyLong_Check(PyTuple_GET_ITEM(f, 1)))
             return 0;
-        if ((l->slot[i] = slot_named(cls, PyTuple_GET_ITEM(f, 0))) <= 0)
+        if ((l->slot[i] = ccore_slot_of((PyTypeObject *)cls, PyTuple_GET_ITEM(f, 0))) <= 0)
             return (int)l->slot[i];
         l->first[i] = PyLong_AsSsize_t(PyTuple_GET_ITEM(f, 1));
         l->stop[i] = PyTuple_GET_ITEM(f, 2) == Py_None ? -1 : PyLong_AsSsize_t(PyTuple_GET_ITEM(f, 2));
@@ -107,11 +69,11 @@ static int compile_layout(PyObject *cls, PyObject *spec, flat_layout *l)
     }
     if ((extra = PyUnicode_InternFromString("extra")) == NULL)
         return -1;
-    l->slot_extra = slot_named(cls, extra);
+    l->slot_extra = ccore_slot_of((PyTypeObject *)cls, extra);
     Py_DECREF(extra);
     if (l->slot_extra <= 0)
         return (int)l->slot_extra;
-    return slots_in((PyTypeObject *)cls) == l->count + 1;   /* every attribute set: the fields, extra */
+    return ccore_slot_count((PyTypeObject *)cls) == l->count + 1;   /* every attribute set: the fields, extra */
 }
 
 /* The compiled layout of a class, or NULL with no exception set when it has none. */

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "ccore_runs.h"
+#include "ccore_slots.h"
 
 enum member_kind { KIND_SCALAR, KIND_ARRAY, KIND_GROUP };
 enum member_conv { CONV_PLAIN, CONV_BOOL, CONV_F32, CONV_ENUM, CONV_VENUM, CONV_ITEM_ENUM };
@@ -100,48 +101,6 @@ static void free_recipe(PyObject *capsule)
     PyMem_Free(r);
 }
 
-/* The slot offset of attribute `name` of cls; 0 (never a slot's offset) when it is not a slot,
- * -1 with an exception set. */
-static Py_ssize_t slot_of(PyTypeObject *cls, PyObject *name)
-{
-    PyObject *descr = PyObject_GetAttr((PyObject *)cls, name);
-    Py_ssize_t offset = 0;
-    if (descr == NULL) {
-        if (!PyErr_ExceptionMatches(PyExc_AttributeError))
-            return -1;
-        PyErr_Clear();
-        return 0;
-    }
-    if (Py_IS_TYPE(descr, &PyMemberDescr_Type) && ((PyMemberDescrObject *)descr)->d_member->type == T_OBJECT_EX)
-        offset = ((PyMemberDescrObject *)descr)->d_member->offset;
-    Py_DECREF(descr);
-    return offset;
-}
-
-/* How many attributes an instance of cls holds: its slots and its bases', when that is all it
- * holds (no __dict__) and its __init__ only sets them (no __post_init__: made here, past
- * __init__, its records would miss what that adds); -1 otherwise. */
-static Py_ssize_t slot_count(PyTypeObject *cls)
-{
-    PyObject *mro = cls->tp_mro;
-    Py_ssize_t i, count = 0;
-    if (cls->tp_dictoffset != 0 || cls->tp_itemsize != 0 || mro == NULL
-        || PyObject_HasAttrString((PyObject *)cls, "__post_init__"))
-        return -1;
-    for (i = 0; i < PyTuple_GET_SIZE(mro); i++) {
-        PyObject *key, *value;
-        Py_ssize_t at = 0;
-        PyTypeObject *base = (PyTypeObject *)PyTuple_GET_ITEM(mro, i);
-        if (base == &PyBaseObject_Type)
-            continue;
-        while (PyDict_Next(base->tp_dict, &at, &key, &value))
-            if (Py_IS_TYPE(value, &PyMemberDescr_Type)
-                && ((PyMemberDescrObject *)value)->d_member->type == T_OBJECT_EX)
-                count++;
-    }
-    return count;
-}
-
 /* The leaves of a struct format such as ">QBBd" (big-endian, no padding); 0 when the format
  * holds anything else, -1 with an exception set. */
 static int parse_format(PyObject *st, fixed_run *r)
@@ -220,7 +179,7 @@ static int compile_member(PyObject *entry, PyTypeObject *cls, const fixed_run *r
     item = PyTuple_GET_ITEM(entry, 6);
     if (!PyUnicode_Check(name) || !PyUnicode_Check(kind) || !PyUnicode_Check(conv))
         return 0;
-    if ((m->slot = slot_of(cls, name)) <= 0)
+    if ((m->slot = ccore_slot_of(cls, name)) <= 0)
         return (int)m->slot;
     text = PyUnicode_AsUTF8(kind);
     if (text == NULL)
@@ -308,7 +267,7 @@ static int compile_members(PyObject *spec, PyTypeObject *cls, const fixed_run *r
         if (PyList_Append(owned, (*out)[i].item_enums) < 0)
             return -1;
     }
-    if (depth > 0 && slot_count(cls) != n)
+    if (depth > 0 && ccore_slot_count(cls) != n)
         return 0;              /* an item must be its members and nothing else */
     return 1;
 }
@@ -326,7 +285,7 @@ static int slots_of(PyTypeObject *cls, PyObject *names, Py_ssize_t **slots, Py_s
         return -1;
     }
     for (i = 0; i < *count; i++)
-        if (((*slots)[i] = slot_of(cls, PyTuple_GET_ITEM(names, i))) <= 0)
+        if (((*slots)[i] = ccore_slot_of(cls, PyTuple_GET_ITEM(names, i))) <= 0)
             return (int)(*slots)[i];
     return 1;
 }
@@ -358,7 +317,7 @@ static int compile_run(PyObject *spec, run_recipe *r, fixed_run *run, PyObject *
         return ok;
     flag = PyTuple_GET_ITEM(spec, 2);
     if (flag != Py_None) {
-        if ((run->flag = slot_of(r->cls, flag)) <= 0)
+        if ((run->flag = ccore_slot_of(r->cls, flag)) <= 0)
             return (int)run->flag;
         if (!has_slot(read, *read_count, run->flag))
             return 0;               /* a flag the runs before have not read */
@@ -388,7 +347,7 @@ static int compile_recipe(PyObject *spec, PyObject *decode, PyObject *item_runs,
         return -1;
     if (!PyTuple_Check(spec) || PyTuple_GET_SIZE(spec) != 2 || !PyTuple_Check(PyTuple_GET_ITEM(spec, 0)))
         return 0;
-    if ((slots = slot_count(r->cls)) <= 0)
+    if ((slots = ccore_slot_count(r->cls)) <= 0)
         return 0;
     runs = PyTuple_GET_ITEM(spec, 0);
     r->run_count = PyTuple_GET_SIZE(runs);
@@ -415,11 +374,11 @@ static int compile_recipe(PyObject *spec, PyObject *decode, PyObject *item_runs,
         return ok;
     if ((extra = PyUnicode_InternFromString("extra")) == NULL)
         return -1;
-    r->slot_extra = slot_of(r->cls, extra);
+    r->slot_extra = ccore_slot_of(r->cls, extra);
     Py_DECREF(extra);
     if ((version = PyUnicode_InternFromString("decoded_version")) == NULL)
         return -1;
-    r->slot_version = slot_of(r->cls, version);
+    r->slot_version = ccore_slot_of(r->cls, version);
     Py_DECREF(version);
     if (r->slot_extra <= 0 || r->slot_version <= 0)
         return r->slot_extra < 0 || r->slot_version < 0 ? -1 : 0;
