@@ -45,5 +45,6 @@ for version in "${VERSIONS[@]}"; do
   fi
   echo "== python$version: pytest tests/python tests/codegen"
   # A test file per process at a time over every core (pytest-xdist), as `make test` runs them.
-  "$venv"/bin/python -m pytest -q -p no:cacheprovider -n auto --dist loadfile tests/python tests/codegen
+  # No C extension is built for these Pythons: the tests that need it skip instead of failing.
+  URWIRE_TESTS_WITHOUT_CCORE=1 "$venv"/bin/python -m pytest -q -p no:cacheprovider -n auto --dist loadfile tests/python tests/codegen
 done

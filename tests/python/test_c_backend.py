@@ -39,7 +39,7 @@ def ccore():
     try:
         from urwire import _ccore
     except ImportError:
-        pytest.fail("the C extension urwire._ccore is not built (make python-ext)")
+        ccore_sanitized.missing("the C extension urwire._ccore is not built (make python-ext)")
     return _ccore
 
 

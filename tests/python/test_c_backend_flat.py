@@ -21,6 +21,7 @@ from urwire.generated.ur_realtime import FLAT_LAYOUTS
 
 from tests.rtde_vectors import python_records, rtde_cases
 from tests.vectors import interface_cases
+from tests.tools import ccore_sanitized
 
 
 @pytest.fixture(scope="module")
@@ -28,7 +29,7 @@ def ccore():
     try:
         from urwire import _ccore
     except ImportError:
-        pytest.fail("the C extension urwire._ccore is not built (make python-ext)")
+        ccore_sanitized.missing("the C extension urwire._ccore is not built (make python-ext)")
     return _ccore
 
 

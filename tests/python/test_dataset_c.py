@@ -40,7 +40,7 @@ PRIMARY_PORTS = {30001, 30002, 30011, 30012}
 @pytest.fixture(scope="module", autouse=True)
 def c_columns():
     if not dataset_c.available():
-        pytest.fail("the C extension urwire._ccore is not built (make python-ext), or URWIRE_BACKEND=python")
+        ccore_sanitized.missing("the C extension urwire._ccore is not built (make python-ext), or URWIRE_BACKEND=python")
 
 
 def python_tables(data: bytes, hint, robot="r", date="2024-01-01") -> dict:

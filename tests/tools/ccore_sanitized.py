@@ -34,3 +34,14 @@ def run_peer(peer: str, folder: Path) -> subprocess.CompletedProcess:
     env = dict(os.environ, LD_PRELOAD=":".join(runtimes), ASAN_OPTIONS="detect_leaks=0")
     return subprocess.run([sys.executable, str(ROOT / "tests" / "python" / peer), str(library)],
                           env=env, capture_output=True, text=True, timeout=600)
+
+
+def missing(why: str) -> None:
+    """A test that needs the built extension, without it: a failure where it must be built (make
+    test builds it first), a skip where the run says it is not (URWIRE_TESTS_WITHOUT_CCORE=1:
+    scripts/test-python-range.sh, whose venvs run the pure-Python package on other Pythons)."""
+    import pytest
+
+    if os.environ.get("URWIRE_TESTS_WITHOUT_CCORE") == "1":
+        pytest.skip(why)
+    pytest.fail(why)
