@@ -20,22 +20,10 @@ from .message_kinds import PackageList
 # The message of sub-packages (the robot state): the one whose sub-package classes are asked for.
 (_PACKAGE_LIST,) = (kind for kind in MESSAGES.values() if isinstance(kind, PackageList))
 _PACKAGE_LIST_TYPE = next(code for code, kind in MESSAGES.items() if kind is _PACKAGE_LIST)
-
-
-def _c_states():
-    """Its records from C under the C backend; None under pure Python, or where C cannot fill
-    its classes (PackageStates refuses a class whose slots it does not know, as on Python 3.10)."""
-    if CCORE is None:
-        return None
-    try:
-        return CCORE.PackageStates(
-            _PACKAGE_LIST.cls, _PACKAGE_LIST.forms, _PACKAGE_LIST.body_offset, RUN_RECIPES, ITEM_RUNS,
-            message_type=_PACKAGE_LIST_TYPE, type_offset=MESSAGE_TYPE_OFFSET, default_version=DEFAULT_VERSION)
-    except TypeError:
-        return None
-
-
-_C_STATES = _c_states()
+# Its records from C under the C backend; None under pure Python.
+_C_STATES = None if CCORE is None else CCORE.PackageStates(
+    _PACKAGE_LIST.cls, _PACKAGE_LIST.forms, _PACKAGE_LIST.body_offset, RUN_RECIPES, ITEM_RUNS,
+    message_type=_PACKAGE_LIST_TYPE, type_offset=MESSAGE_TYPE_OFFSET, default_version=DEFAULT_VERSION)
 
 
 def package_classes(version) -> dict:
