@@ -26,6 +26,7 @@
 
 #include "ccore_records.h"
 #include "ccore_runs.h"
+#include "ccore_slots.h"
 
 #define PACKAGE_HEADER_SIZE 5   /* int32 length (header included), uint8 type code */
 #define MAX_CODES 256
@@ -50,13 +51,14 @@ static void free_layout(PyObject *capsule)
 }
 
 /* The member descriptors of a class and its bases, when they hold every attribute an instance
- * has: no __dict__, no items, nothing in the layout but object slots. *layout = NULL when the
+ * has: no __dict__, no items, nothing in the layout but object slots. A slot that a subclass
+ * hides is counted in the size but not copied: instances leave it empty. *layout = NULL when the
  * class keeps something else (its records are then not copied); -1 with an exception set. */
 static int find_layout(PyTypeObject *type, slot_layout **layout)
 {
     PyObject *mro = type->tp_mro, *capsule;
     slot_layout found;
-    Py_ssize_t i, base = (Py_ssize_t)sizeof(PyObject);
+    Py_ssize_t i, hidden = 0, base = (Py_ssize_t)sizeof(PyObject);
     *layout = NULL;
     if (type->tp_dictoffset != 0 || type->tp_itemsize != 0 || mro == NULL)
         return PyDict_SetItem(layouts, (PyObject *)type, Py_None);
@@ -76,6 +78,10 @@ static int find_layout(PyTypeObject *type, slot_layout **layout)
             member = ((PyMemberDescrObject *)value)->d_member;
             if (member->type != T_OBJECT_EX || (member->flags & READONLY))
                 continue;
+            if (!ccore_slot_is_visible(type, key, value)) {
+                hidden++;
+                continue;
+            }
             if (found.count == MAX_SLOTS)
                 return PyDict_SetItem(layouts, (PyObject *)type, Py_None);
             found.offsets[found.count++] = member->offset;
@@ -83,7 +89,7 @@ static int find_layout(PyTypeObject *type, slot_layout **layout)
     }
     if (type->tp_weaklistoffset != 0)
         base += (Py_ssize_t)sizeof(PyObject *);   /* left NULL in a copy, as in a new object */
-    if (base + found.count * (Py_ssize_t)sizeof(PyObject *) != type->tp_basicsize)
+    if (base + (found.count + hidden) * (Py_ssize_t)sizeof(PyObject *) != type->tp_basicsize)
         return PyDict_SetItem(layouts, (PyObject *)type, Py_None);
     *layout = PyMem_Malloc(sizeof found);
     if (*layout == NULL) {

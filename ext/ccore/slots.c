@@ -26,6 +26,17 @@ Py_ssize_t ccore_slot_of(PyTypeObject *cls, PyObject *name)
     return offset;
 }
 
+int ccore_slot_is_visible(PyTypeObject *cls, PyObject *name, PyObject *descr)
+{
+    PyObject *found = PyObject_GetAttr((PyObject *)cls, name);
+    if (found == NULL) {
+        PyErr_Clear();
+        return 0;
+    }
+    Py_DECREF(found);
+    return found == descr;
+}
+
 Py_ssize_t ccore_slot_count(PyTypeObject *cls)
 {
     PyObject *mro = cls->tp_mro;
@@ -40,7 +51,7 @@ Py_ssize_t ccore_slot_count(PyTypeObject *cls)
         if (base == &PyBaseObject_Type)
             continue;
         while (PyDict_Next(base->tp_dict, &at, &key, &value))
-            if (is_object_slot(value))
+            if (is_object_slot(value) && ccore_slot_is_visible(cls, key, value))
                 count++;
     }
     return count;
