@@ -15,8 +15,7 @@ from __future__ import annotations
 import re
 from typing import Optional
 
-from .. import ir, plan, wrap
-from .. import epan_c
+from .. import epan_c, ir, plan, wrap
 from ..epan_c import value_literal
 from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ..errors import SpecError

@@ -2,9 +2,9 @@
 generated/epan/packet-<name with dashes>.c, a native Wireshark dissector, the twin of the Lua one
 (kinds/sized_packets/lua.py): the same protocol, fields, tree, Info column, experts and
 preferences. The generated part declares the handles, one double field per spec field (its unit
-shown by a label function: epan_c.UnitLabel), the enum names as value_strings, the layouts' slots and the forms by
-size; the hand-written runtime (runtime/epan/<name>_*, joined in) frames the TCP stream and walks
-them."""
+shown by a label function: epan_c.UnitLabel), the enum names as value_strings, the layouts' slots
+and the forms by size; the hand-written runtime (runtime/epan/<name>_*, joined in) frames the TCP
+stream and walks them."""
 from __future__ import annotations
 
 from dataclasses import dataclass
