@@ -1,12 +1,14 @@
 # urwire: one spec (spec/) -> generator (codegen/) -> Python, C and Lua targets (generated/).
 # Target-specific rules live in mk/*.mk; each adds itself to ALL_TARGETS, TEST_BUILDS (what
-# `make test` builds before its tests), DEMO_TARGETS and BENCH_TARGETS.
+# `make test` builds before its tests), DEEP_TESTS (what `make test-deep` runs beside its sweeps),
+# DEMO_TARGETS and BENCH_TARGETS.
 
 PYTHON ?= python3
 PYTEST ?= $(PYTHON) -m pytest
 
 ALL_TARGETS :=
 TEST_BUILDS :=
+DEEP_TESTS :=
 DEMO_TARGETS :=
 DEMO_CELL_TARGETS :=
 BENCH_TARGETS :=
@@ -58,10 +60,10 @@ test: check-generated $(TEST_BUILDS)
 	[ $$rest -eq 0 ] && [ $$live -eq 0 ]
 
 ## test-deep: the long sweeps that `make test` leaves out (tests marked `deep`: the native
-## dissectors against Lua on every segmentation and the whole fuzz corpora, and every run of the
-## plugin built with ASan+UBSan: tests/native/conftest.py); CI
-## runs it after `make test`
-test-deep: $(TEST_BUILDS)
+## dissectors against Lua on every segmentation and the whole fuzz corpora, every run of the
+## plugin built with ASan+UBSan: tests/native/conftest.py, and the Python extension so built),
+## and DEEP_TESTS (the targets' own, such as test-python-backend); CI runs it after `make test`
+test-deep: $(TEST_BUILDS) $(DEEP_TESTS)
 	$(PYTEST) -q -n $(TEST_JOBS) --dist loadfile -m deep tests $(LIVE_TESTS:%=--ignore=%)
 
 ## test-codegen, test-python (and test-c, test-lua): the tests of one folder

@@ -26,15 +26,16 @@ $(PYTHON_EXT_STAMP): $(PYTHON_EXT_SOURCES)
 ## test-python-backend: the tests of what the C backend changes (urwire decode of a raw primary
 ## stream; the dataset's primary columns; the records of decode_message, the Framer and
 ## decode_stream: vectors, round trips, any split, every generation; real-time packets and RTDE
-## data packages) under pure Python (URWIRE_BACKEND=python); `make test` runs them so, and
-## everything else (these too) under the default backend, the C one, which it builds first
+## data packages) under pure Python (URWIRE_BACKEND=python); `make test-deep` runs them so (and
+## test-python-range runs every test without the extension), `make test` under the default
+## backend, the C one, which it builds first
 PYTHON_BACKEND_TESTS := tests/python/test_cli.py tests/python/test_hostile_bytes.py tests/python/test_c_backend.py \
 	tests/python/test_vectors.py tests/python/test_roundtrip.py tests/python/test_streaming.py \
 	tests/python/test_generations.py tests/python/test_message_kinds.py tests/python/test_undocumented.py \
 	tests/python/test_realtime.py tests/python/test_rtde.py tests/python/test_rtde_vectors.py \
 	tests/python/test_c_backend_flat.py \
 	tests/python/test_dataset.py
-TEST_BUILDS += test-python-backend
+DEEP_TESTS += test-python-backend
 .PHONY: test-python-backend
 test-python-backend: python-ext
 	URWIRE_BACKEND=python $(PYTEST) -q $(PYTHON_BACKEND_TESTS)

@@ -485,6 +485,7 @@ def test_the_command_writes_to_a_text_stdout_in_its_place(ccore, tmp_path, monke
     assert (code, out.getvalue().encode()) == (0, python_json_lines(case.data, None)[0])
 
 
+@pytest.mark.deep  # a sanitized build of the extension: make test-deep
 def test_the_extension_under_asan_and_ubsan(tmp_path):
     """urwire._ccore's own C (the module, the memory stream each feed writes into, the robot
     states' records) built with ASan and UBSan and run over every vector and kept fuzz input and

@@ -240,6 +240,7 @@ def _nan_equal(a, b) -> bool:
                zip(ra.values(), rb.values()))
 
 
+@pytest.mark.deep  # a sanitized build of the extension: make test-deep
 def test_the_columns_under_asan_and_ubsan(tmp_path):
     """columns.c built with ASan and UBSan into urwire._ccore and run over every vector and kept
     fuzz input, in batches of a few rows (dataset_c_asan_peer.py): no report."""
