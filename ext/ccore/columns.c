@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "ccore_framer.h"
 #include "columns.h"
 #include "json.h"
 #include "urwire.h"
@@ -1183,24 +1184,11 @@ static void stream_dealloc(PrimaryStream *self)
     Py_TYPE(self)->tp_free((PyObject *)self);
 }
 
-/* PrimaryStream(version_hint=None) */
+/* PrimaryStream(version_hint=None): as ccore_framer_open takes it. */
 static int stream_init(PrimaryStream *self, PyObject *args, PyObject *kwargs)
 {
-    static char *names[] = {"version_hint", NULL};
-    const char *hint = NULL;
-    urwire_sw_version version = URWIRE_DEFAULT_VERSION;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "|z", names, &hint))
+    if (ccore_framer_open(&self->framer, &self->buffer, args, kwargs) < 0)
         return -1;
-    if (hint && !urwire_parse_version(hint, &version)) {
-        PyErr_Format(PyExc_ValueError, "not a software version: %s", hint);
-        return -1;
-    }
-    PyMem_Free(self->buffer);
-    if (!(self->buffer = PyMem_Malloc(URWIRE_FRAMER_MIN_BUFFER))) {
-        PyErr_NoMemory();
-        return -1;
-    }
-    urwire_framer_init(&self->framer, self->buffer, URWIRE_FRAMER_MIN_BUFFER, version);
     self->finished = 0;
     return 0;
 }

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "ccore_flat.h"
+#include "ccore_framer.h"
 #include "ccore_records.h"
 #include "columns.h"
 #include "json.h"
@@ -36,28 +37,16 @@ static void lines_dealloc(PrimaryJsonLines *self)
     Py_TYPE(self)->tp_free((PyObject *)self);
 }
 
-/* PrimaryJsonLines(version_hint=None): version_hint is a text such as "5.25.1", checked by the
- * caller (urwire.arguments.parse_version) and read again here by the C parser. */
+/* PrimaryJsonLines(version_hint=None): as ccore_framer_open takes it. */
 static int lines_init(PrimaryJsonLines *self, PyObject *args, PyObject *kwargs)
 {
-    static char *names[] = {"version_hint", NULL};
-    const char *hint = NULL;
-    urwire_sw_version version = URWIRE_DEFAULT_VERSION;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "|z", names, &hint))
-        return -1;
-    if (hint && !urwire_parse_version(hint, &version)) {
-        PyErr_Format(PyExc_ValueError, "not a software version: %s", hint);
-        return -1;
-    }
-    PyMem_Free(self->framer_buffer);
     PyMem_Free(self->writer);
-    self->framer_buffer = PyMem_Malloc(URWIRE_FRAMER_MIN_BUFFER);
-    self->writer = PyMem_Calloc(1, sizeof *self->writer);
-    if (!self->framer_buffer || !self->writer) {
+    if (!(self->writer = PyMem_Calloc(1, sizeof *self->writer))) {
         PyErr_NoMemory();
         return -1;
     }
-    urwire_framer_init(&self->framer, self->framer_buffer, URWIRE_FRAMER_MIN_BUFFER, version);
+    if (ccore_framer_open(&self->framer, &self->framer_buffer, args, kwargs) < 0)
+        return -1;
     self->visitor = json_visitor(self->writer);
     self->errors = 0;
     self->finished = 0;
