@@ -3,7 +3,6 @@ states' records) over every vector and kept fuzz input, and the hostile robot st
 of test_c_backend_flat.py (real-time packets, RTDE data packages), against an
 urwire._ccore built with ASan and UBSan (its path: argv[1]), loaded in place of the in-tree one.
 A sanitizer's report ends the process with an error. Prints the inputs of each differential."""
-import importlib.util
 import random
 import sys
 from pathlib import Path
@@ -13,14 +12,13 @@ sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python"), str(RO
 
 from tests.python import test_c_backend as differential  # noqa: E402
 from tests.python import test_c_backend_flat as flat  # noqa: E402
+from tests.tools import ccore_sanitized  # noqa: E402
 from tests.tools.fuzz_inputs import HARNESSES, kept, split  # noqa: E402
 from tests.vectors import all_cases  # noqa: E402
 
 
 def main(path: str) -> int:
-    spec = importlib.util.spec_from_file_location("urwire._ccore", path)
-    ccore = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(ccore)
+    ccore = ccore_sanitized.load(path)
     count = records = 0
     states = differential.new_states(ccore)
     for case in all_cases():

@@ -2,7 +2,6 @@
 kept fuzz input, and every golden vector of every interface in a capture cut in segments, with an
 urwire._ccore built with ASan and UBSan (its path: argv[1]) in place of the in-tree one, in batches
 of a few rows and chunks of a few bytes. A sanitizer's report ends the process with an error."""
-import importlib.util
 import sys
 import tempfile
 from pathlib import Path
@@ -13,15 +12,13 @@ sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python"), str(RO
 from urwire import backends  # noqa: E402
 
 from tests.python import test_dataset_c as differential  # noqa: E402
-from tests.tools import golden_sessions  # noqa: E402
+from tests.tools import ccore_sanitized, golden_sessions  # noqa: E402
 from tests.tools.fuzz_inputs import HARNESSES, kept, split  # noqa: E402
 from tests.vectors import all_cases  # noqa: E402
 
 
 def main(path: str) -> int:
-    spec = importlib.util.spec_from_file_location("urwire._ccore", path)
-    ccore = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(ccore)
+    ccore = ccore_sanitized.load(path)
     backends._CCORE = ccore
     count = 0
     for case in all_cases():

@@ -3,6 +3,7 @@
 their peers (tests/python/*_asan_peer.py) over it in a process of their own."""
 from __future__ import annotations
 
+import importlib.util
 import os
 import subprocess
 import sys
@@ -19,11 +20,19 @@ def sources() -> list[str]:
 
 def build(folder: Path) -> Path:
     library = folder / ("_ccore" + sysconfig.get_config_var("EXT_SUFFIX"))
-    subprocess.run(["gcc", "-shared", "-fPIC", "-g", "-O1", "-std=c99", "-D_GNU_SOURCE",
+    subprocess.run(["gcc", "-shared", "-fPIC", "-g", "-O1", "-std=c99", "-D_GNU_SOURCE", "-Wall", "-Werror",
                     "-fsanitize=address,undefined", "-fno-sanitize-recover=all",
                     *[f"-I{d}" for d in INCLUDES], "-I" + sysconfig.get_paths()["include"], *sources(), "-lm",
                     "-o", str(library)], cwd=ROOT, check=True, timeout=300)
     return library
+
+
+def load(library: str):
+    """The module of a sanitized build, in a peer's process (in place of the in-tree one)."""
+    spec = importlib.util.spec_from_file_location("urwire._ccore", library)
+    ccore = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(ccore)
+    return ccore
 
 
 def run_peer(peer: str, folder: Path) -> subprocess.CompletedProcess:
