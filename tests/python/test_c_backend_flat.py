@@ -26,11 +26,7 @@ from tests.tools import ccore_sanitized
 
 @pytest.fixture(scope="module")
 def ccore():
-    try:
-        from urwire import _ccore
-    except ImportError:
-        ccore_sanitized.missing("the C extension urwire._ccore is not built (make python-ext)")
-    return _ccore
+    return ccore_sanitized.extension()
 
 
 @contextlib.contextmanager

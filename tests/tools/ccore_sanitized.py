@@ -45,6 +45,15 @@ def run_peer(peer: str, folder: Path) -> subprocess.CompletedProcess:
                           env=env, capture_output=True, text=True, timeout=600)
 
 
+def extension():
+    """The in-tree urwire._ccore, for a test that needs it (missing() when it is not built)."""
+    try:
+        from urwire import _ccore
+    except ImportError:
+        missing("the C extension urwire._ccore is not built (make python-ext)")
+    return _ccore
+
+
 def missing(why: str) -> None:
     """A test that needs the built extension, without it: a failure where it must be built (make
     test builds it first), a skip where the run says it is not (URWIRE_TESTS_WITHOUT_CCORE=1:

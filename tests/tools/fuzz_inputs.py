@@ -46,6 +46,22 @@ def kept(harness: str) -> list[bytes]:
             for p in sorted(folder.iterdir()) if p.is_file() and p.name != "README"]
 
 
+def decodable(harness: str) -> list[tuple[str | None, bytes, str]]:
+    """(version hint or None, stream, name) of each kept input of a harness whose hint is a
+    version: the ones a decoder reads (the command stops at any other hint, exit 2)."""
+    import urwire
+
+    out = []
+    for raw in kept(harness):
+        hint, data = split(harness, raw)
+        try:
+            urwire.parse_version(hint or None)
+        except ValueError:
+            continue
+        out.append((hint or None, data, f"{harness} input {raw[:40].hex()}"))
+    return out
+
+
 def fuzz_max_len() -> int:
     """mk/fuzz.mk's -max_len: two messages at the length limit, the framer's slack, the control byte."""
     from urwire.generated.spec import MAX_MESSAGE_LENGTH
