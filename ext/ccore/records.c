@@ -489,17 +489,25 @@ static int remember(package_memo *memo, PyObject *record, const char *body, Py_s
     return 0;
 }
 
+/* The version's decoder of a type code in its Forms.fast table (borrowed), or NULL: none (an
+ * exception set on failure). */
+static PyObject *decoder_of(PyObject *fast, int code)
+{
+    PyObject *key = PyLong_FromLong(code), *decode;
+    if (key == NULL)
+        return NULL;
+    decode = PyDict_GetItemWithError(fast, key);
+    Py_DECREF(key);
+    return decode;
+}
+
 /* The record of one sub-package read by the version's form, when it reads the package to its
  * last byte; NULL with no exception set otherwise (the caller decodes the message in Python). */
 static PyObject *read_package(PyObject *fast, PyObject *buf, int code, Py_ssize_t body, Py_ssize_t stop,
                               PyObject *version)
 {
-    PyObject *key = PyLong_FromLong(code), *decode, *result, *record = NULL;
+    PyObject *decode = decoder_of(fast, code), *result, *record = NULL;
     Py_ssize_t used;
-    if (key == NULL)
-        return NULL;
-    decode = PyDict_GetItemWithError(fast, key);
-    Py_DECREF(key);
     if (decode == NULL)
         return NULL;
     Py_INCREF(decode);
@@ -525,16 +533,9 @@ static PyObject *read_package(PyObject *fast, PyObject *buf, int code, Py_ssize_
 static PyObject *read_run(PackageStates *self, PyObject *fast, PyObject *buf, int code, Py_ssize_t body,
                           Py_ssize_t stop, PyObject *version)
 {
-    PyObject *key, *decode;
+    PyObject *decode;
     const run_recipe *recipe;
-    if (self->recipes == NULL)
-        return NULL;
-    key = PyLong_FromLong(code);
-    if (key == NULL)
-        return NULL;
-    decode = PyDict_GetItemWithError(fast, key);
-    Py_DECREF(key);
-    if (decode == NULL)
+    if (self->recipes == NULL || (decode = decoder_of(fast, code)) == NULL)
         return NULL;
     if (run_recipe_of(self->recipes, decode, &recipe) < 0 || recipe == NULL)
         return NULL;
