@@ -223,6 +223,7 @@ def test_the_primary_tables_are_as_before(tables, cell, tmp_path):
             [{k: v for k, v in r.items() if k not in drop} for r in rows(out, table)], table
 
 
+@pytest.mark.deep  # a long export (about 30 s): make test-deep
 def test_export_of_a_long_rtde_connection_takes_flat_memory(tmp_path):
     """RTDE's tables keep to the export's memory bound (test_memory.py): twice the data packages,
     the same memory, and every package a row of its recipe's table. CSV only: the rows wait on

@@ -80,6 +80,7 @@ def test_decode_stream_holds_its_buffer_and_a_bounded_part_of_its_records(states
     assert beyond[-1] - beyond[0] < GROWTH_LIMIT, f"{beyond[0] / MIB:.0f} -> {beyond[-1] / MIB:.0f} MiB"
 
 
+@pytest.mark.deep  # a long export (about 40 s of a core): make test-deep
 @pytest.mark.parametrize("form", ["parquet", "csv"])
 def test_export_takes_flat_memory(states, tmp_path, form):
     """`urwire export` keeps its rows on disk until the tables are written, a batch at a time:
