@@ -43,8 +43,9 @@ for version in "${VERSIONS[@]}"; do
     "$venv"/bin/python -m pip install -q --disable-pip-version-check -r "$requirements"
     cp "$requirements" "$stamp"
   fi
-  echo "== python$version: pytest tests/python tests/codegen"
+  echo "== python$version: pytest tests/python tests/codegen (not the long sweeps: they ask nothing of the Python)"
   # A test file per process at a time over every core (pytest-xdist), as `make test` runs them.
   # No C extension is built for these Pythons: the tests that need it skip instead of failing.
-  URWIRE_TESTS_WITHOUT_CCORE=1 "$venv"/bin/python -m pytest -q -p no:cacheprovider -n auto --dist loadfile tests/python tests/codegen
+  URWIRE_TESTS_WITHOUT_CCORE=1 "$venv"/bin/python -m pytest -q -p no:cacheprovider -n auto --dist loadfile -m "not deep" \
+    tests/python tests/codegen
 done
