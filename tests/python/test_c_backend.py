@@ -255,6 +255,26 @@ def test_sessions_of_every_generation_give_the_same_records(ccore, version):
             assert_same_records(states, stream, given, f"{given} {stream[:40].hex()}", pieces=(5, 1000))
 
 
+def test_a_message_class_that_declares_its_bases_slots_again_is_filled_through_the_visible_ones(ccore):
+    """dataclass(slots=True) on Python 3.10 declares every slot of a base again in the subclass,
+    where the base's are hidden and stay empty: PackageStates fills the visible ones (it once
+    refused such a class, and the package fell back to Python on 3.10)."""
+    from urwire.generated.messages import ITEM_RUNS, RUN_RECIPES
+
+    kind = decoding._PACKAGE_LIST
+    names = tuple(name for cls in kind.cls.__mro__ for name in getattr(cls, "__slots__", ()))
+    again = type("Again", (kind.cls,), {"__slots__": names})
+    assert again.__basicsize__ > kind.cls.__basicsize__          # the base's slots are still there
+    states = ccore.PackageStates(again, kind.forms, kind.body_offset, RUN_RECIPES, ITEM_RUNS,
+                                 message_type=decoding._PACKAGE_LIST_TYPE, type_offset=decoding.MESSAGE_TYPE_OFFSET,
+                                 default_version=decoding.DEFAULT_VERSION)
+    for state in real_states():
+        msg = states.decode(state, (5, 11, 0))
+        expected = decoding.decode_in_python(state, (5, 11, 0), None)
+        assert type(msg) is again
+        assert [getattr(msg, name) for name in names] == [getattr(expected, name) for name in names]
+
+
 def real_states() -> list[bytes]:
     folder = ROOT / "tests" / "conformance" / "Universal_Robots_Client_Library"
     return [bytes.fromhex((folder / f"{name}.hex").read_text().strip())
