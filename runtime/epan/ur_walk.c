@@ -196,9 +196,9 @@ ur_walk_group(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, cons
     for (unsigned i = 0; d->count ? i < d->count : o < e; i++) {
         int start = o;
         gboolean fits = d->size && o + (int)d->size <= e;
-        char label[64];
-        snprintf(label, sizeof label, "%s %u", d->label, i);
-        proto_item *item = ur_add_labelled(st, tree, d->hf, o, fits ? (int)d->size : 0, label);
+        proto_item *item = ur_add(st, tree, d->hf, o, fits ? (int)d->size : 0, ENC_NA);
+        if (item && st->visible)        /* formatted once, and only where the tree is shown */
+            proto_item_set_text(item, "%s %u", d->label, i);
         ur_path at = { pre, d->path, i, TRUE };
         o = ur_walk(st, ur_sub(item), o, e, d->inner, &at, err);
         if (o < 0) {
