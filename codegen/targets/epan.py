@@ -28,7 +28,7 @@ FOLDER = "epan"
 # The hand-written runtime, in the order it is joined: types before the generated tables, the
 # rest after them (runtime/epan/ur_*.c; files of other interfaces carry their own prefix).
 RUNTIME_TYPES = ("ur_types.c",)
-RUNTIME_CODE = ("ur_versions.c", "ur_items.c", "ur_walk.c", "ur_values.c", "ur_info.c", "ur_messages.c",
+RUNTIME_CODE = ("ur_versions.c", "ur_wanted.c", "ur_items.c", "ur_walk.c", "ur_values.c", "ur_info.c", "ur_messages.c",
                 "ur_stream.c", "ur_framing.c")
 
 FT = {"int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16", "uint16": "FT_UINT16", "int32": "FT_INT32",

@@ -402,7 +402,7 @@ static expert_field ei_ur_internal = EI_INIT;
 static range_t *ur_ports;
 static const char *ur_version_pref = "";
 static guint ur_max_length = UR_MAX_MESSAGE_LENGTH;
-static gboolean ur_named_fields_only = TRUE;   /* the Lua twin's; see proto_register_ur */
+static gboolean ur_named_fields_only = TRUE;   /* tshark -T fields: only the packages it names */
 
 /* ---- Sizes and limits the spec gives ---- */
 #define UR_HEADER_SIZE 5
@@ -3332,6 +3332,167 @@ ur_choose(const ur_forms *forms, unsigned size, guint32 v, guint32 *use, gboolea
 }
 
 
+/* ==== runtime/epan/ur_wanted.c ==== */
+/* Which robot-state packages a `tshark -T fields` run needs, as the Lua twin finds them
+ * (runtime/lua/wanted.lua). tshark builds the tree visible for -T fields (Wireshark 4.0 primes no
+ * output field), so every field counts as referenced and every package would be built to print
+ * one field. The fields are named on tshark's command line (-e, -Y, -R, -z, -o): where the system
+ * shows it (/proc/self/cmdline), a package is built when a field of it is named
+ * ("ur.joint_data.q_actual" names joint_data), or its item ("ur.joint_data"). Every package is
+ * built when the command line may need any: not tshark, or not -T fields; a display filter macro
+ * or field reference ("$"), expert infos ("expert"); a ur name that is not a field of the spec
+ * (ur.raw, ur.extra, ... show inside any package; ur.version is a preference); package headers
+ * (ur.package.*); or when the ur.named_fields_only preference is off. */
+
+#define UR_CMDLINE_MAX (1 << 16)        /* a longer command line is read as needing every package */
+
+/* The ur names of a run, found once: NULL when it needs every package. */
+typedef struct {
+    gboolean found;
+    GPtrArray *names;                   /* char *, kept for the life of the process */
+    GHashTable *parts;                  /* const ur_part * -> GINT_TO_POINTER(1 + wanted) */
+} ur_wanted_names;
+
+/* The arguments of this process, or NULL where the system does not show them. */
+static GPtrArray *
+ur_command_line(void)
+{
+    gchar *text = NULL;
+    gsize len = 0;
+    if (!g_file_get_contents("/proc/self/cmdline", &text, &len, NULL) || len == 0 || len > UR_CMDLINE_MAX) {
+        g_free(text);
+        return NULL;
+    }
+    GPtrArray *args = g_ptr_array_new_with_free_func(g_free);
+    for (gsize p = 0; p < len;) {
+        gsize z = p;
+        while (z < len && text[z] != '\0')
+            z++;
+        g_ptr_array_add(args, g_strndup(text + p, z - p));
+        p = z + 1;
+    }
+    g_free(text);
+    return args;
+}
+
+static gboolean
+ur_name_char(char c)
+{
+    return g_ascii_isalnum(c) || c == '_' || c == '.';
+}
+
+/* Whether name is a field of the spec (the dissector's own fields follow the spec's, from
+ * UR_HF_RAW on). */
+static gboolean
+ur_spec_field(const char *name)
+{
+    for (int i = 0; i < UR_HF_RAW; i++)
+        if (hf_ur[i] > 0 && strcmp(proto_registrar_get_nth(hf_ur[i])->abbrev, name) == 0)
+            return TRUE;
+    return FALSE;
+}
+
+/* Adds the ur names in arg ("ur." then letters, digits, '_' and '.', not ending in '.') to
+ * names; FALSE when one of them may need every package. */
+static gboolean
+ur_add_names(const char *arg, GPtrArray *names)
+{
+    for (const char *p = strstr(arg, "ur."); p != NULL; p = strstr(p, "ur.")) {
+        const char *e = p + 3;
+        while (ur_name_char(*e))
+            e++;
+        while (e > p + 3 && e[-1] == '.')
+            e--;
+        if (e == p + 3) {
+            p += 3;
+            continue;
+        }
+        char *name = g_strndup(p, (size_t)(e - p));
+        g_ptr_array_add(names, name);
+        /* A ur name that is not a spec field (tshark refuses one that is no field at all), or a
+         * package header's, may show in any package. */
+        if (!ur_spec_field(name) || g_str_has_prefix(name, "ur.package."))
+            return FALSE;
+        p = e;
+    }
+    return TRUE;
+}
+
+/* The ur names of a tshark -T fields command line; NULL when it may need any field. */
+static GPtrArray *
+ur_named_fields(GPtrArray *args)
+{
+    if (args == NULL || args->len == 0)
+        return NULL;
+    const char *program = g_ptr_array_index(args, 0);
+    const char *slash = strrchr(program, '/');
+    if (!g_str_has_prefix(slash ? slash + 1 : program, "tshark"))
+        return NULL;
+    const char *format = NULL;
+    for (guint i = 1; i < args->len; i++) {
+        const char *a = g_ptr_array_index(args, i);
+        if (strcmp(a, "-T") == 0)
+            format = i + 1 < args->len ? g_ptr_array_index(args, i + 1) : NULL;
+        else if (g_str_has_prefix(a, "-T"))
+            format = a + 2;
+    }
+    if (format == NULL || strcmp(format, "fields") != 0)
+        return NULL;
+    GPtrArray *names = g_ptr_array_new_with_free_func(g_free);
+    for (guint i = 1; i < args->len; i++) {
+        const char *a = g_ptr_array_index(args, i);
+        if (strchr(a, '$') != NULL || strstr(a, "expert") != NULL || !ur_add_names(a, names)) {
+            g_ptr_array_free(names, TRUE);
+            return NULL;
+        }
+    }
+    return names;
+}
+
+/* The names of this run, found on first use. */
+static ur_wanted_names *
+ur_wanted(void)
+{
+    static ur_wanted_names wanted;
+    if (!wanted.found) {
+        GPtrArray *args = ur_command_line();
+        wanted.found = TRUE;
+        wanted.names = ur_named_fields(args);
+        wanted.parts = g_hash_table_new(g_direct_hash, g_direct_equal);
+        if (args != NULL)
+            g_ptr_array_free(args, TRUE);
+    }
+    return &wanted;
+}
+
+/* Whether this run builds only the packages its command line names (ur_package_wanted). */
+static gboolean
+ur_only_named_packages(void)
+{
+    return ur_named_fields_only && ur_wanted()->names != NULL;
+}
+
+/* Whether a named-only run builds package pk: a name is its item's or one of its fields'. */
+static gboolean
+ur_package_wanted(const ur_part *pk)
+{
+    ur_wanted_names *wanted = ur_wanted();
+    gpointer known = g_hash_table_lookup(wanted->parts, pk);
+    if (known != NULL)
+        return GPOINTER_TO_INT(known) - 1;
+    char *own = g_strconcat("ur.", pk->name, NULL);
+    size_t n = strlen(own);
+    gboolean yes = FALSE;
+    for (guint i = 0; i < wanted->names->len && !yes; i++) {
+        const char *name = g_ptr_array_index(wanted->names, i);
+        yes = strncmp(name, own, n) == 0 && (name[n] == '\0' || name[n] == '.');
+    }
+    g_free(own);
+    g_hash_table_insert(wanted->parts, (gpointer)pk, GINT_TO_POINTER(1 + yes));
+    return yes;
+}
+
+
 /* ==== runtime/epan/ur_items.c ==== */
 /* The message being dissected, and its tree items: at most UR_MAX_TREE_ITEMS under the
  * message's item. A message of a megabyte can hold hundreds of thousands of values; Wireshark
@@ -3352,6 +3513,7 @@ typedef struct {
     guint32 message_version;    /* what the message's tree shows */
     const char *message_implied;
     gboolean visible;           /* the tree is shown: item texts are worth writing */
+    gboolean only;              /* a tshark -T fields run: only the packages it names (ur_wanted.c) */
     gint64 kept[UR_KEEP_SLOTS]; /* values later fields depend on (present_if, switch) */
     gboolean kept_set[UR_KEEP_SLOTS];
     /* the tree cap */
@@ -3629,9 +3791,9 @@ ur_walk_group(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, cons
     for (unsigned i = 0; d->count ? i < d->count : o < e; i++) {
         int start = o;
         gboolean fits = d->size && o + (int)d->size <= e;
-        char label[64];
-        snprintf(label, sizeof label, "%s %u", d->label, i);
-        proto_item *item = ur_add_labelled(st, tree, d->hf, o, fits ? (int)d->size : 0, label);
+        proto_item *item = ur_add(st, tree, d->hf, o, fits ? (int)d->size : 0, ENC_NA);
+        if (item && st->visible)        /* formatted once, and only where the tree is shown */
+            proto_item_set_text(item, "%s %u", d->label, i);
         ur_path at = { pre, d->path, i, TRUE };
         o = ur_walk(st, ur_sub(item), o, e, d->inner, &at, err);
         if (o < 0) {
@@ -4298,7 +4460,9 @@ ur_packages_tree(ur_msg *st, const ur_message *m, proto_item *item, int o, int e
         gboolean by_length = FALSE;
         if (forms != NULL)
             form = ur_pick(forms, (unsigned)size - UR_PACKAGE_HEADER_SIZE, st, &use, &by_length);
-        ur_package(st, m, tree, p, (int)size, code, form, use, by_length);
+        /* A tshark -T fields run that names no field of this package: not built at all. */
+        if (form == NULL || !st->only || ur_package_wanted(form->of))
+            ur_package(st, m, tree, p, (int)size, code, form, use, by_length);
         p += (int)size;
     }
     return NULL;
@@ -4827,6 +4991,7 @@ ur_dissect_message(tvbuff_t *tvb, tvbuff_t *call_tvb, packet_info *pinfo, proto_
     proto_item *item = proto_tree_add_item(tree, proto_ur, tvb, o, e - o, ENC_NA);
     proto_tree *sub = proto_item_add_subtree(item, ett_ur);
     st.visible = PTREE_DATA(tree)->visible;
+    st.only = st.visible && ur_only_named_packages();
     proto_tree_add_item(sub, hf_ur[UR_HF_LENGTH], tvb, o, UR_LENGTH_SIZE, ENC_BIG_ENDIAN);
     proto_item *type_item = proto_tree_add_item(sub, hf_ur[UR_HF_TYPE], tvb, o + UR_LENGTH_SIZE,
                                                 UR_HEADER_SIZE - UR_LENGTH_SIZE, ENC_BIG_ENDIAN);
@@ -6763,11 +6928,11 @@ proto_register_ur(void)
         "Version message is seen on a stream: it chooses the layouts, the enum names and the "
         "global-variable value types. Empty: the layout sizes tell it where they can, else "
         "5.9" ".", &ur_version_pref);
-    /* The Lua twin's way to build only the packages tshark -T fields names; Wireshark fakes the
-     * items no one asked for of a native dissector by itself. Kept so that the same command lines
-     * and preference files work with either. */
+    /* tshark -T fields builds the tree visible, so every field counts as asked for: the packages
+     * its command line names are found there instead (ur_wanted.c), as the Lua twin does. */
     prefs_register_bool_preference(ur_module, "named_fields_only", "Only the fields tshark -T fields names",
-        "Read by the Lua dissector only: a native dissector's fields cost nothing when no one asks for them",
+        "With tshark -T fields, build only the robot-state packages whose fields the command line names "
+        "(-e, -Y, -R, -z, -o); off: build every field, as for another Lua script reading ur fields with Field.new",
         &ur_named_fields_only);
     prefs_register_uint_preference(ur_module, "max_length", "Maximum message length",
         "Longer declared lengths are treated as malformed, and the dissector resynchronises", 10, &ur_max_length);

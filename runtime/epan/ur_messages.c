@@ -152,7 +152,9 @@ ur_packages_tree(ur_msg *st, const ur_message *m, proto_item *item, int o, int e
         gboolean by_length = FALSE;
         if (forms != NULL)
             form = ur_pick(forms, (unsigned)size - UR_PACKAGE_HEADER_SIZE, st, &use, &by_length);
-        ur_package(st, m, tree, p, (int)size, code, form, use, by_length);
+        /* A tshark -T fields run that names no field of this package: not built at all. */
+        if (form == NULL || !st->only || ur_package_wanted(form->of))
+            ur_package(st, m, tree, p, (int)size, code, form, use, by_length);
         p += (int)size;
     }
     return NULL;

@@ -366,6 +366,25 @@ def test_fields_and_filters_on_the_sample(args):
     assert native.strip()
 
 
+@pytest.mark.parametrize("args", [
+    ("-e", "ur.joint_data.q_actual", "-e", "ur.masterboard_data.robot_voltage_48v"),
+    ("-Y", 'ur.robot_mode_data.robot_mode == "RUNNING"', "-e", "frame.number", "-e", "ur.tool_data.tool_mode"),
+    ("-e", "ur.type", "-e", "ur.key.title", "-e", "ur.cartesian_info"),
+    ("-e", "ur.joint_data.q_actual", "-e", "ur.raw"),                     # not a spec field: every package
+    ("-e", "ur.joint_data.q_actual", "-e", "ur.package.type"),            # a package header: every package
+    ("-e", "ur.joint_data.q_actual", "-e", "_ws.expert.message"),         # expert infos: every package
+], ids=["two packages", "filter on another", "items", "own field", "package header", "experts"])
+def test_tshark_fields_builds_the_named_packages_as_the_full_tree_and_lua_do(args):
+    """tshark -T fields builds only the robot-state packages its command line names (ur_wanted.c,
+    the Lua twin's runtime/lua/wanted.lua): the same lines as the whole tree (ur.named_fields_only
+    off) and as Lua."""
+    sample = SAMPLES / "primary_session.pcapng"
+    named = harness.checked(harness.run_native(sample, "-T", "fields", *args))
+    assert named.strip()
+    assert named == harness.checked(harness.run_native(sample, "-o", "ur.named_fields_only:FALSE", "-T", "fields", *args))
+    assert named == harness.checked(LUA(sample, "-T", "fields", *args))
+
+
 @pytest.mark.parametrize("group", ["golden", pytest.param("corpus", marks=pytest.mark.deep)])
 def test_packet_list_without_a_tree(group):
     """tshark's packet list, one pass: no tree, only framing, the version state and the Info column."""
