@@ -61,8 +61,8 @@ test: check-generated $(TEST_BUILDS)
 
 ## test-deep: the long sweeps that `make test` leaves out (tests marked `deep`: the native
 ## dissectors against Lua on every segmentation and the whole fuzz corpora, every run of the
-## plugin built with ASan+UBSan: tests/native/conftest.py, the Python extension so built, and
-## the long exports that must take flat memory), and DEEP_TESTS (the targets' own, such as test-python-backend); CI runs it after `make test`
+## plugin built with ASan+UBSan: tests/native/conftest.py, the Python extension so built, the
+## long runs that must take flat memory, and a few builds of variants), and DEEP_TESTS (the targets' own, such as test-python-backend); CI runs it after `make test`
 test-deep: $(TEST_BUILDS) $(DEEP_TESTS)
 	$(PYTEST) -q -n $(TEST_JOBS) --dist loadfile -m deep tests $(LIVE_TESTS:%=--ignore=%)
 

@@ -7,6 +7,7 @@ import json
 import struct
 import subprocess
 
+import pytest
 import yaml
 
 from codegen.plan import plan
@@ -31,6 +32,7 @@ def variant_cli(tmp_path):
     return exe, driver
 
 
+@pytest.mark.deep  # builds a variant of the C library and the command (about 20 s): make test-deep
 def test_a_gated_field_is_read_only_from_its_version(tmp_path):
     exe, driver = variant_cli(tmp_path)
 

@@ -18,7 +18,8 @@ MESSAGES = [m for c in all_cases() for m in [c.data] if 5 <= len(m) <= 4000]
 COUNT = 400
 
 
-@pytest.mark.parametrize("seed,max_len", [(11, 300), (12, 5)])
+@pytest.mark.parametrize("seed,max_len", [(11, 300),
+                                          pytest.param(12, 5, marks=pytest.mark.deep)])  # 16 s: make test-deep
 def test_random_and_mutated_streams_agree_with_python(tmp_path, seed, max_len):
     """Cut anywhere: into segments of up to 300 bytes, and of up to 5 (headers split often)."""
     data = list(streams(MESSAGES, COUNT, seed=seed))

@@ -49,7 +49,10 @@ def states() -> list[bytes]:
     return robot_inputs.real_states()
 
 
-@pytest.mark.parametrize("how, form", [("decode_file", "bin"), ("decode_file", "pcap"), ("command", "pcapng")])
+# The captures' runs take 5-12 s each: make test-deep
+@pytest.mark.parametrize("how, form", [("decode_file", "bin"),
+                                       pytest.param("decode_file", "pcap", marks=pytest.mark.deep),
+                                       pytest.param("command", "pcapng", marks=pytest.mark.deep)])
 def test_reading_a_file_takes_flat_memory(states, how, form):
     peaks = []
     for megabytes in SIZES:
@@ -108,6 +111,7 @@ def rows(table: Path) -> int:
     return pq.read_metadata(table).num_rows
 
 
+@pytest.mark.deep  # a long plot (about 5 s): make test-deep
 def test_plot_takes_flat_memory(states, tmp_path):
     """`urwire plot` decimates as it reads (min/max per run of points): three times the capture,
     the same memory, and every state a point."""
