@@ -26,10 +26,12 @@ OUT = "epan/packet-ur.c"
 FOLDER = "epan"
 
 # The hand-written runtime, in the order it is joined: types before the generated tables, the
-# rest after them (runtime/epan/ur_*.c; files of other interfaces carry their own prefix).
+# rest after them (runtime/epan/ur_*.c; files of other interfaces carry their own prefix, and
+# SHARED_CODE serves more than one).
+SHARED_CODE = ("tshark_fields.c",)
 RUNTIME_TYPES = ("ur_types.c",)
-RUNTIME_CODE = ("ur_versions.c", "ur_wanted.c", "ur_items.c", "ur_walk.c", "ur_values.c", "ur_info.c", "ur_messages.c",
-                "ur_stream.c", "ur_framing.c")
+RUNTIME_CODE = ("ur_versions.c", "tshark_fields.c", "ur_wanted.c", "ur_items.c", "ur_walk.c", "ur_values.c",
+                "ur_info.c", "ur_messages.c", "ur_stream.c", "ur_framing.c")
 
 FT = {"int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16", "uint16": "FT_UINT16", "int32": "FT_INT32",
       "uint32": "FT_UINT32", "int64": "FT_INT64", "uint64": "FT_UINT64", "float": "FT_FLOAT",
@@ -434,7 +436,8 @@ def runtime(names: tuple[str, ...]) -> list[dict]:
 
 def check_runtime() -> None:
     folder = RUNTIME_FOLDER / FOLDER
-    found = sorted(p.name for p in folder.glob("ur_*.c") if not p.name.startswith("ur_realtime"))
+    found = sorted([p.name for p in folder.glob("ur_*.c") if not p.name.startswith("ur_realtime")]
+                   + [name for name in SHARED_CODE if (folder / name).exists()])
     if sorted(RUNTIME_TYPES + RUNTIME_CODE) != found:
         raise ValueError(f"epan target: runtime files {found} differ from the joining order")
 

@@ -1202,6 +1202,58 @@ static const guint8 rtde_layout_of[256][2][RTDE_MAX_PROTOCOL + 1] = {
     [118] = { { 0, 5, 6 }, { 0, 7, 8 } },   /* 'v' */
 };
 
+/* ---- runtime/epan/tshark_fields.c ---- */
+/* Whether this process is a `tshark -T fields` run, from its command line (/proc/self/cmdline, where
+ * the system shows it). tshark 4.0 builds the tree visible for -T fields and primes none of the fields
+ * it prints, so a dissector cannot tell from the tree that it prints field values only: no item's
+ * label, and no field that no argument names. Joined into the dissectors that use it. */
+
+#define TSHARK_CMDLINE_MAX (1 << 16)    /* a longer command line is read as any other program's */
+
+/* The arguments of this process, or NULL where the system does not show them. */
+static GPtrArray *
+tshark_command_line(void)
+{
+    gchar *text = NULL;
+    gsize len = 0;
+    if (!g_file_get_contents("/proc/self/cmdline", &text, &len, NULL) || len == 0 || len > TSHARK_CMDLINE_MAX) {
+        g_free(text);
+        return NULL;
+    }
+    GPtrArray *args = g_ptr_array_new_with_free_func(g_free);
+    for (gsize p = 0; p < len;) {
+        gsize z = p;
+        while (z < len && text[z] != '\0')
+            z++;
+        g_ptr_array_add(args, g_strndup(text + p, z - p));
+        p = z + 1;
+    }
+    g_free(text);
+    return args;
+}
+
+/* Whether args are tshark's with -T fields. */
+static gboolean
+tshark_fields_run(const GPtrArray *args)
+{
+    if (args == NULL || args->len == 0)
+        return FALSE;
+    const char *program = g_ptr_array_index(args, 0);
+    const char *slash = strrchr(program, '/');
+    if (!g_str_has_prefix(slash ? slash + 1 : program, "tshark"))
+        return FALSE;
+    const char *format = NULL;
+    for (guint i = 1; i < args->len; i++) {
+        const char *a = g_ptr_array_index(args, i);
+        if (strcmp(a, "-T") == 0)
+            format = i + 1 < args->len ? g_ptr_array_index(args, i + 1) : NULL;
+        else if (g_str_has_prefix(a, "-T"))
+            format = a + 2;
+    }
+    return format != NULL && strcmp(format, "fields") == 0;
+}
+
+
 /* ---- runtime/epan/rtde_state.c ---- */
 /* RTDE's state of one conversation: the protocol version negotiated, the setup requests waiting
  * for their replies, and the recipes the replies make, per recipe kind (one kind per direction of
@@ -1663,6 +1715,22 @@ rtde_text_of(tvbuff_t *tvb, int pos, guint n)
     return text;
 }
 
+/* Whether an item's label may be printed: not in a tshark -T fields run, which prints values only,
+ * so that the units and indexes appended below (which make Wireshark write each label at once)
+ * cost nothing there. Found once. */
+static gboolean
+rtde_labels_shown(void)
+{
+    static int shown = -1;
+    if (shown < 0) {
+        GPtrArray *args = tshark_command_line();
+        shown = !tshark_fields_run(args);
+        if (args != NULL)
+            g_ptr_array_free(args, TRUE);
+    }
+    return shown;
+}
+
 /* A recipe's values, an item per scalar (a vector's items in order, each by the variable's field,
  * with its index). A name the variable table lacks (a newer controller's) shows its value's bytes
  * whole, with the name. */
@@ -1670,6 +1738,7 @@ static void
 rtde_add_values(proto_tree *tree, tvbuff_t *tvb, int pos, const rtde_recipe *recipe)
 {
     guint i, j;
+    gboolean labels = rtde_labels_shown();
     for (i = 0; i < recipe->n; i++) {
         const rtde_value_type *vt = &rtde_value_types[recipe->type[i]];
         if (recipe->field[i] < 0) {
@@ -1679,9 +1748,9 @@ rtde_add_values(proto_tree *tree, tvbuff_t *tvb, int pos, const rtde_recipe *rec
             for (j = 0; j < vt->count; j++) {
                 proto_item *item = proto_tree_add_item(tree, hf_rtde[recipe->field[i]], tvb, pos + (int)(j * vt->size),
                                                        vt->size, ENC_BIG_ENDIAN);
-                if (recipe->unit[i])
+                if (labels && recipe->unit[i])
                     proto_item_append_text(item, "%s", recipe->unit[i]);
-                if (vt->count > 1)
+                if (labels && vt->count > 1)
                     proto_item_append_text(item, " [%u]", j);
             }
         }
@@ -1701,7 +1770,7 @@ rtde_step_at(const rtde_step *s, proto_tree *tree, tvbuff_t *tvb, int pos, int s
             return -1;
         if (tree) {
             proto_item *item = proto_tree_add_item(tree, hf_rtde[s->field], tvb, pos, s->size, ENC_BIG_ENDIAN);
-            if (s->unit)
+            if (s->unit && rtde_labels_shown())
                 proto_item_append_text(item, "%s", s->unit);
         }
         if (s->integer) {

@@ -3332,34 +3332,21 @@ ur_choose(const ur_forms *forms, unsigned size, guint32 v, guint32 *use, gboolea
 }
 
 
-/* ==== runtime/epan/ur_wanted.c ==== */
-/* Which robot-state packages a `tshark -T fields` run needs, as the Lua twin finds them
- * (runtime/lua/wanted.lua). tshark builds the tree visible for -T fields (Wireshark 4.0 primes no
- * output field), so every field counts as referenced and every package would be built to print
- * one field. The fields are named on tshark's command line (-e, -Y, -R, -z, -o): where the system
- * shows it (/proc/self/cmdline), a package is built when a field of it is named
- * ("ur.joint_data.q_actual" names joint_data), or its item ("ur.joint_data"). Every package is
- * built when the command line may need any: not tshark, or not -T fields; a display filter macro
- * or field reference ("$"), expert infos ("expert"); a ur name that is not a field of the spec
- * (ur.raw, ur.extra, ... show inside any package; ur.version is a preference); package headers
- * (ur.package.*); or when the ur.named_fields_only preference is off. */
+/* ==== runtime/epan/tshark_fields.c ==== */
+/* Whether this process is a `tshark -T fields` run, from its command line (/proc/self/cmdline, where
+ * the system shows it). tshark 4.0 builds the tree visible for -T fields and primes none of the fields
+ * it prints, so a dissector cannot tell from the tree that it prints field values only: no item's
+ * label, and no field that no argument names. Joined into the dissectors that use it. */
 
-#define UR_CMDLINE_MAX (1 << 16)        /* a longer command line is read as needing every package */
-
-/* The ur names of a run, found once: NULL when it needs every package. */
-typedef struct {
-    gboolean found;
-    GPtrArray *names;                   /* char *, kept for the life of the process */
-    GHashTable *parts;                  /* const ur_part * -> GINT_TO_POINTER(1 + wanted) */
-} ur_wanted_names;
+#define TSHARK_CMDLINE_MAX (1 << 16)    /* a longer command line is read as any other program's */
 
 /* The arguments of this process, or NULL where the system does not show them. */
 static GPtrArray *
-ur_command_line(void)
+tshark_command_line(void)
 {
     gchar *text = NULL;
     gsize len = 0;
-    if (!g_file_get_contents("/proc/self/cmdline", &text, &len, NULL) || len == 0 || len > UR_CMDLINE_MAX) {
+    if (!g_file_get_contents("/proc/self/cmdline", &text, &len, NULL) || len == 0 || len > TSHARK_CMDLINE_MAX) {
         g_free(text);
         return NULL;
     }
@@ -3374,6 +3361,48 @@ ur_command_line(void)
     g_free(text);
     return args;
 }
+
+/* Whether args are tshark's with -T fields. */
+static gboolean
+tshark_fields_run(const GPtrArray *args)
+{
+    if (args == NULL || args->len == 0)
+        return FALSE;
+    const char *program = g_ptr_array_index(args, 0);
+    const char *slash = strrchr(program, '/');
+    if (!g_str_has_prefix(slash ? slash + 1 : program, "tshark"))
+        return FALSE;
+    const char *format = NULL;
+    for (guint i = 1; i < args->len; i++) {
+        const char *a = g_ptr_array_index(args, i);
+        if (strcmp(a, "-T") == 0)
+            format = i + 1 < args->len ? g_ptr_array_index(args, i + 1) : NULL;
+        else if (g_str_has_prefix(a, "-T"))
+            format = a + 2;
+    }
+    return format != NULL && strcmp(format, "fields") == 0;
+}
+
+
+/* ==== runtime/epan/ur_wanted.c ==== */
+/* Which robot-state packages a `tshark -T fields` run needs, as the Lua twin finds them
+ * (runtime/lua/wanted.lua). tshark builds the tree visible for -T fields (Wireshark 4.0 primes no
+ * output field), so every field counts as referenced and every package would be built to print
+ * one field. The fields are named on tshark's command line (-e, -Y, -R, -z, -o): where the system
+ * shows it (/proc/self/cmdline), a package is built when a field of it is named
+ * ("ur.joint_data.q_actual" names joint_data), or its item ("ur.joint_data"). Every package is
+ * built when the command line may need any: not tshark, or not -T fields; a display filter macro
+ * or field reference ("$"), expert infos ("expert"); a ur name that is not a field of the spec
+ * (ur.raw, ur.extra, ... show inside any package; ur.version is a preference); package headers
+ * (ur.package.*); or when the ur.named_fields_only preference is off. The command line is
+ * tshark_fields.c's. */
+
+/* The ur names of a run, found once: NULL when it needs every package. */
+typedef struct {
+    gboolean found;
+    GPtrArray *names;                   /* char *, kept for the life of the process */
+    GHashTable *parts;                  /* const ur_part * -> GINT_TO_POINTER(1 + wanted) */
+} ur_wanted_names;
 
 static gboolean
 ur_name_char(char c)
@@ -3422,21 +3451,7 @@ ur_add_names(const char *arg, GPtrArray *names)
 static GPtrArray *
 ur_named_fields(GPtrArray *args)
 {
-    if (args == NULL || args->len == 0)
-        return NULL;
-    const char *program = g_ptr_array_index(args, 0);
-    const char *slash = strrchr(program, '/');
-    if (!g_str_has_prefix(slash ? slash + 1 : program, "tshark"))
-        return NULL;
-    const char *format = NULL;
-    for (guint i = 1; i < args->len; i++) {
-        const char *a = g_ptr_array_index(args, i);
-        if (strcmp(a, "-T") == 0)
-            format = i + 1 < args->len ? g_ptr_array_index(args, i + 1) : NULL;
-        else if (g_str_has_prefix(a, "-T"))
-            format = a + 2;
-    }
-    if (format == NULL || strcmp(format, "fields") != 0)
+    if (!tshark_fields_run(args))
         return NULL;
     GPtrArray *names = g_ptr_array_new_with_free_func(g_free);
     for (guint i = 1; i < args->len; i++) {
@@ -3455,7 +3470,7 @@ ur_wanted(void)
 {
     static ur_wanted_names wanted;
     if (!wanted.found) {
-        GPtrArray *args = ur_command_line();
+        GPtrArray *args = tshark_command_line();
         wanted.found = TRUE;
         wanted.names = ur_named_fields(args);
         wanted.parts = g_hash_table_new(g_direct_hash, g_direct_equal);

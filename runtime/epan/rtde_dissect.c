@@ -119,6 +119,22 @@ rtde_text_of(tvbuff_t *tvb, int pos, guint n)
     return text;
 }
 
+/* Whether an item's label may be printed: not in a tshark -T fields run, which prints values only,
+ * so that the units and indexes appended below (which make Wireshark write each label at once)
+ * cost nothing there. Found once. */
+static gboolean
+rtde_labels_shown(void)
+{
+    static int shown = -1;
+    if (shown < 0) {
+        GPtrArray *args = tshark_command_line();
+        shown = !tshark_fields_run(args);
+        if (args != NULL)
+            g_ptr_array_free(args, TRUE);
+    }
+    return shown;
+}
+
 /* A recipe's values, an item per scalar (a vector's items in order, each by the variable's field,
  * with its index). A name the variable table lacks (a newer controller's) shows its value's bytes
  * whole, with the name. */
@@ -126,6 +142,7 @@ static void
 rtde_add_values(proto_tree *tree, tvbuff_t *tvb, int pos, const rtde_recipe *recipe)
 {
     guint i, j;
+    gboolean labels = rtde_labels_shown();
     for (i = 0; i < recipe->n; i++) {
         const rtde_value_type *vt = &rtde_value_types[recipe->type[i]];
         if (recipe->field[i] < 0) {
@@ -135,9 +152,9 @@ rtde_add_values(proto_tree *tree, tvbuff_t *tvb, int pos, const rtde_recipe *rec
             for (j = 0; j < vt->count; j++) {
                 proto_item *item = proto_tree_add_item(tree, hf_rtde[recipe->field[i]], tvb, pos + (int)(j * vt->size),
                                                        vt->size, ENC_BIG_ENDIAN);
-                if (recipe->unit[i])
+                if (labels && recipe->unit[i])
                     proto_item_append_text(item, "%s", recipe->unit[i]);
-                if (vt->count > 1)
+                if (labels && vt->count > 1)
                     proto_item_append_text(item, " [%u]", j);
             }
         }
@@ -157,7 +174,7 @@ rtde_step_at(const rtde_step *s, proto_tree *tree, tvbuff_t *tvb, int pos, int s
             return -1;
         if (tree) {
             proto_item *item = proto_tree_add_item(tree, hf_rtde[s->field], tvb, pos, s->size, ENC_BIG_ENDIAN);
-            if (s->unit)
+            if (s->unit && rtde_labels_shown())
                 proto_item_append_text(item, "%s", s->unit);
         }
         if (s->integer) {

@@ -7,9 +7,8 @@
  * built when the command line may need any: not tshark, or not -T fields; a display filter macro
  * or field reference ("$"), expert infos ("expert"); a ur name that is not a field of the spec
  * (ur.raw, ur.extra, ... show inside any package; ur.version is a preference); package headers
- * (ur.package.*); or when the ur.named_fields_only preference is off. */
-
-#define UR_CMDLINE_MAX (1 << 16)        /* a longer command line is read as needing every package */
+ * (ur.package.*); or when the ur.named_fields_only preference is off. The command line is
+ * tshark_fields.c's. */
 
 /* The ur names of a run, found once: NULL when it needs every package. */
 typedef struct {
@@ -17,28 +16,6 @@ typedef struct {
     GPtrArray *names;                   /* char *, kept for the life of the process */
     GHashTable *parts;                  /* const ur_part * -> GINT_TO_POINTER(1 + wanted) */
 } ur_wanted_names;
-
-/* The arguments of this process, or NULL where the system does not show them. */
-static GPtrArray *
-ur_command_line(void)
-{
-    gchar *text = NULL;
-    gsize len = 0;
-    if (!g_file_get_contents("/proc/self/cmdline", &text, &len, NULL) || len == 0 || len > UR_CMDLINE_MAX) {
-        g_free(text);
-        return NULL;
-    }
-    GPtrArray *args = g_ptr_array_new_with_free_func(g_free);
-    for (gsize p = 0; p < len;) {
-        gsize z = p;
-        while (z < len && text[z] != '\0')
-            z++;
-        g_ptr_array_add(args, g_strndup(text + p, z - p));
-        p = z + 1;
-    }
-    g_free(text);
-    return args;
-}
 
 static gboolean
 ur_name_char(char c)
@@ -87,21 +64,7 @@ ur_add_names(const char *arg, GPtrArray *names)
 static GPtrArray *
 ur_named_fields(GPtrArray *args)
 {
-    if (args == NULL || args->len == 0)
-        return NULL;
-    const char *program = g_ptr_array_index(args, 0);
-    const char *slash = strrchr(program, '/');
-    if (!g_str_has_prefix(slash ? slash + 1 : program, "tshark"))
-        return NULL;
-    const char *format = NULL;
-    for (guint i = 1; i < args->len; i++) {
-        const char *a = g_ptr_array_index(args, i);
-        if (strcmp(a, "-T") == 0)
-            format = i + 1 < args->len ? g_ptr_array_index(args, i + 1) : NULL;
-        else if (g_str_has_prefix(a, "-T"))
-            format = a + 2;
-    }
-    if (format == NULL || strcmp(format, "fields") != 0)
+    if (!tshark_fields_run(args))
         return NULL;
     GPtrArray *names = g_ptr_array_new_with_free_func(g_free);
     for (guint i = 1; i < args->len; i++) {
@@ -120,7 +83,7 @@ ur_wanted(void)
 {
     static ur_wanted_names wanted;
     if (!wanted.found) {
-        GPtrArray *args = ur_command_line();
+        GPtrArray *args = tshark_command_line();
         wanted.found = TRUE;
         wanted.names = ur_named_fields(args);
         wanted.parts = g_hash_table_new(g_direct_hash, g_direct_equal);

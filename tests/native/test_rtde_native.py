@@ -150,6 +150,19 @@ def test_cell_sample_rtde_conversations_show_as_in_lua():
     assert any("rtde.actual_q" in str(layer) for layer in shown.layers)
 
 
+@pytest.mark.parametrize("args", [
+    ("-e", "rtde.actual_q", "-e", "rtde.timestamp", "-e", "rtde.protocol_version"),
+    ("-e", "rtde", "-e", "_ws.col.Info", "-e", "rtde.recipe_id", "-e", "rtde.target_q"),
+], ids=["values", "protocol item and Info"])
+def test_tshark_fields_prints_what_lua_prints(args):
+    """tshark -T fields, where the plugin appends no unit or index to its items (no label is
+    printed there): the same lines as Lua, which appends them."""
+    fields = ("-T", "fields", *args)
+    for capture_ in (golden_capture(False), CELL_SAMPLE):
+        out = harness.checked(native(capture_, "-Y", "rtde", *fields))
+        assert out.strip() and out == harness.checked(lua(capture_, "-Y", "rtde", *fields))
+
+
 # ---- 3: the fuzz corpus ----
 
 def test_fuzz_corpus_as_streams_shows_as_in_lua():

@@ -30,6 +30,9 @@ INTEGER_SCALARS = ("bool", "int8", "uint8", "int16", "uint16", "int32", "uint32"
 # field's unit text has: Wireshark 4.0 writes its own (units_volt: "V") right after the value ("24V").
 # A double's unit is appended to its item's text instead (runtime/epan/rtde_dissect.c), as the Lua
 # dissector does: 4.0 shows no unit string for FT_DOUBLE.
+# Runtime files the dissector shares with others, joined before its own: tshark_fields.c tells a
+# tshark -T fields run, where no item's label is printed.
+SHARED_CODE = ("tshark_fields.c",)
 # The messages the state follows, by the names runtime/lua/rtde_state.lua follows too.
 ROLE_OF_MESSAGE = {"request_protocol_version": "RTDE_ROLE_VERSION_REQUEST",
                    "request_protocol_version_reply": "RTDE_ROLE_VERSION_REPLY",
@@ -216,10 +219,14 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
         "n_kinds": len(interface.recipe_kinds),
         "refusals": [c_string(r.word) for r in interface.refusals],
         "runtime_types": _joined(prefix, ".h"),
-        "runtime": _joined(prefix, ".c"),
+        "runtime": [_shared(name) for name in SHARED_CODE] + _joined(prefix, ".c"),
     }
     text = environment("epan").get_template("typed_messages/packet.c.j2").render(**view)
     return {f"epan/packet-{prefix.replace('_', '-')}.c": text}
+
+
+def _shared(name: str) -> dict:
+    return {"path": runtime_path("epan", name), "source": runtime_source("epan", name)}
 
 
 def _joined(prefix: str, suffix: str) -> list[dict]:
