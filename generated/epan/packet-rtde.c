@@ -1253,6 +1253,24 @@ tshark_fields_run(const GPtrArray *args)
     return format != NULL && strcmp(format, "fields") == 0;
 }
 
+/* The arguments of this process when it is a tshark -T fields run, else NULL: found once, kept for
+ * the life of the process. */
+static const GPtrArray *
+tshark_fields_arguments(void)
+{
+    static gboolean found;
+    static GPtrArray *fields_run;
+    if (!found) {
+        GPtrArray *args = tshark_command_line();
+        found = TRUE;
+        if (tshark_fields_run(args))
+            fields_run = args;
+        else if (args != NULL)
+            g_ptr_array_free(args, TRUE);
+    }
+    return fields_run;
+}
+
 
 /* ---- runtime/epan/rtde_state.c ---- */
 /* RTDE's state of one conversation: the protocol version negotiated, the setup requests waiting
@@ -1717,18 +1735,11 @@ rtde_text_of(tvbuff_t *tvb, int pos, guint n)
 
 /* Whether an item's label may be printed: not in a tshark -T fields run, which prints values only,
  * so that the units and indexes appended below (which make Wireshark write each label at once)
- * cost nothing there. Found once. */
+ * cost nothing there. */
 static gboolean
 rtde_labels_shown(void)
 {
-    static int shown = -1;
-    if (shown < 0) {
-        GPtrArray *args = tshark_command_line();
-        shown = !tshark_fields_run(args);
-        if (args != NULL)
-            g_ptr_array_free(args, TRUE);
-    }
-    return shown;
+    return tshark_fields_arguments() == NULL;
 }
 
 /* A recipe's values, an item per scalar (a vector's items in order, each by the variable's field,

@@ -3383,6 +3383,24 @@ tshark_fields_run(const GPtrArray *args)
     return format != NULL && strcmp(format, "fields") == 0;
 }
 
+/* The arguments of this process when it is a tshark -T fields run, else NULL: found once, kept for
+ * the life of the process. */
+static const GPtrArray *
+tshark_fields_arguments(void)
+{
+    static gboolean found;
+    static GPtrArray *fields_run;
+    if (!found) {
+        GPtrArray *args = tshark_command_line();
+        found = TRUE;
+        if (tshark_fields_run(args))
+            fields_run = args;
+        else if (args != NULL)
+            g_ptr_array_free(args, TRUE);
+    }
+    return fields_run;
+}
+
 
 /* ==== runtime/epan/ur_wanted.c ==== */
 /* Which robot-state packages a `tshark -T fields` run needs, as the Lua twin finds them
@@ -3447,11 +3465,12 @@ ur_add_names(const char *arg, GPtrArray *names)
     return TRUE;
 }
 
-/* The ur names of a tshark -T fields command line; NULL when it may need any field. */
+/* The ur names of a tshark -T fields run's arguments (NULL: not such a run); NULL when it may need
+ * any field. */
 static GPtrArray *
-ur_named_fields(GPtrArray *args)
+ur_named_fields(const GPtrArray *args)
 {
-    if (!tshark_fields_run(args))
+    if (args == NULL)
         return NULL;
     GPtrArray *names = g_ptr_array_new_with_free_func(g_free);
     for (guint i = 1; i < args->len; i++) {
@@ -3470,12 +3489,9 @@ ur_wanted(void)
 {
     static ur_wanted_names wanted;
     if (!wanted.found) {
-        GPtrArray *args = tshark_command_line();
         wanted.found = TRUE;
-        wanted.names = ur_named_fields(args);
+        wanted.names = ur_named_fields(tshark_fields_arguments());
         wanted.parts = g_hash_table_new(g_direct_hash, g_direct_equal);
-        if (args != NULL)
-            g_ptr_array_free(args, TRUE);
     }
     return &wanted;
 }
@@ -3528,7 +3544,7 @@ typedef struct {
     guint32 message_version;    /* what the message's tree shows */
     const char *message_implied;
     gboolean visible;           /* the tree is shown: item texts are worth writing */
-    gboolean only;              /* a tshark -T fields run: only the packages it names (ur_wanted.c) */
+    gboolean only;              /* a tshark -T fields run: only the packages it names (ur_only_named_packages) */
     gint64 kept[UR_KEEP_SLOTS]; /* values later fields depend on (present_if, switch) */
     gboolean kept_set[UR_KEEP_SLOTS];
     /* the tree cap */

@@ -121,18 +121,11 @@ rtde_text_of(tvbuff_t *tvb, int pos, guint n)
 
 /* Whether an item's label may be printed: not in a tshark -T fields run, which prints values only,
  * so that the units and indexes appended below (which make Wireshark write each label at once)
- * cost nothing there. Found once. */
+ * cost nothing there. */
 static gboolean
 rtde_labels_shown(void)
 {
-    static int shown = -1;
-    if (shown < 0) {
-        GPtrArray *args = tshark_command_line();
-        shown = !tshark_fields_run(args);
-        if (args != NULL)
-            g_ptr_array_free(args, TRUE);
-    }
-    return shown;
+    return tshark_fields_arguments() == NULL;
 }
 
 /* A recipe's values, an item per scalar (a vector's items in order, each by the variable's field,

@@ -47,3 +47,21 @@ tshark_fields_run(const GPtrArray *args)
     }
     return format != NULL && strcmp(format, "fields") == 0;
 }
+
+/* The arguments of this process when it is a tshark -T fields run, else NULL: found once, kept for
+ * the life of the process. */
+static const GPtrArray *
+tshark_fields_arguments(void)
+{
+    static gboolean found;
+    static GPtrArray *fields_run;
+    if (!found) {
+        GPtrArray *args = tshark_command_line();
+        found = TRUE;
+        if (tshark_fields_run(args))
+            fields_run = args;
+        else if (args != NULL)
+            g_ptr_array_free(args, TRUE);
+    }
+    return fields_run;
+}

@@ -17,7 +17,7 @@ typedef struct {
     guint32 message_version;    /* what the message's tree shows */
     const char *message_implied;
     gboolean visible;           /* the tree is shown: item texts are worth writing */
-    gboolean only;              /* a tshark -T fields run: only the packages it names (ur_wanted.c) */
+    gboolean only;              /* a tshark -T fields run: only the packages it names (ur_only_named_packages) */
     gint64 kept[UR_KEEP_SLOTS]; /* values later fields depend on (present_if, switch) */
     gboolean kept_set[UR_KEEP_SLOTS];
     /* the tree cap */

@@ -60,11 +60,12 @@ ur_add_names(const char *arg, GPtrArray *names)
     return TRUE;
 }
 
-/* The ur names of a tshark -T fields command line; NULL when it may need any field. */
+/* The ur names of a tshark -T fields run's arguments (NULL: not such a run); NULL when it may need
+ * any field. */
 static GPtrArray *
-ur_named_fields(GPtrArray *args)
+ur_named_fields(const GPtrArray *args)
 {
-    if (!tshark_fields_run(args))
+    if (args == NULL)
         return NULL;
     GPtrArray *names = g_ptr_array_new_with_free_func(g_free);
     for (guint i = 1; i < args->len; i++) {
@@ -83,12 +84,9 @@ ur_wanted(void)
 {
     static ur_wanted_names wanted;
     if (!wanted.found) {
-        GPtrArray *args = tshark_command_line();
         wanted.found = TRUE;
-        wanted.names = ur_named_fields(args);
+        wanted.names = ur_named_fields(tshark_fields_arguments());
         wanted.parts = g_hash_table_new(g_direct_hash, g_direct_equal);
-        if (args != NULL)
-            g_ptr_array_free(args, TRUE);
     }
     return &wanted;
 }
