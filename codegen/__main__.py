@@ -1,6 +1,9 @@
 """python -m codegen [--check]: write generated/ from the specs (spec/*.yaml, one per interface), or
 check that it is current.
 
+`python -m codegen --target epan --upstream --out DIR` writes the copy of the epan dissectors for
+Wireshark's own tree (docs/wireshark-upstream.md): it reads no command line.
+
 Also: `python -m codegen diff 3.15 5.11` prints what changed between two software versions, and
 `python -m codegen reference [--check]` writes docs/protocol.md, the protocol reference.
 """
@@ -17,6 +20,7 @@ from .errors import SpecError
 from .pin import pin
 from .plan import plan
 from .reference import diff, protocol_markdown
+from .kinds import TargetOptions
 from .load import load_text
 from .targets import TARGETS
 
@@ -41,9 +45,17 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--pin", metavar="VERSION",
                         help="only what this software version sends, with no version branches (needs --out "
                              "outside generated/ and the primary spec), e.g. --pin 5.11 --target c --out build/pinned")
+    parser.add_argument("--upstream", action="store_true",
+                        help="the epan dissectors as Wireshark's own tree carries them, reading no command line "
+                             "(needs --target epan and --out outside generated/), e.g. --target epan --upstream "
+                             "--out build/upstream-epan")
     args = parser.parse_args(argv)
     if args.pin and args.out.resolve() == (ROOT / "generated").resolve():
         parser.error("--pin writes a build for one version: give --out a folder outside generated/")
+    if args.upstream and args.target != ["epan"]:
+        parser.error("--upstream renders the epan dissectors only: give --target epan")
+    if args.upstream and args.out.resolve().is_relative_to((ROOT / "generated").resolve()):
+        parser.error("--upstream writes Wireshark's copy of the dissectors: give --out a folder outside generated/")
     specs = args.spec or ([DEFAULT_SPEC] if args.pin else spec_files())
     outputs: dict[str, str] = {}
     try:
@@ -72,7 +84,11 @@ def _render_spec(spec: Path, args) -> dict[str, str]:
         if not isinstance(model, ir.Protocol):
             raise SpecError(str(spec), [loaded.problem("framing", "--pin applies to the primary interface's spec")])
         model = pin(model, ir.parse_version(args.pin))
-    return kind.render(model, banner_lines(str(spec_rel), text), args.target)
+    return kind.render(model, banner_lines(str(spec_rel), text), args.target, _target_options(args))
+
+
+def _target_options(args) -> TargetOptions:
+    return {"epan": {"upstream": True}} if args.upstream else {}
 
 
 def _planned(spec: Path):

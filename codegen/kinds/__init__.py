@@ -17,22 +17,29 @@ from ..load import LoadedSpec
 DEFAULT_KIND = "packages"
 
 
+# Keyword arguments of some targets' renderers, by target: {"epan": {"upstream": True}} renders the
+# copy of the dissectors for Wireshark's own tree (python -m codegen --upstream).
+TargetOptions = dict[str, dict[str, object]]
+
+
 @dataclass(frozen=True)
 class Kind:
     name: str
     schema: str                                          # a file name under codegen/schema
     resolve: Callable[[LoadedSpec], object]              # raises SpecError with every problem
-    # (model, banner lines, only these targets or None for all) -> {path under generated/: text}
-    render: Callable[[object, list[str], Optional[list[str]]], dict[str, str]]
+    # (model, banner lines, only these targets or None for all, options or None)
+    #   -> {path under generated/: text}
+    render: Callable[[object, list[str], Optional[list[str]], Optional[TargetOptions]], dict[str, str]]
 
 
-def render_targets(targets: dict[str, Callable[[object, list[str]], dict[str, str]]], model: object,
-                   banner: list[str], only: Optional[list[str]]) -> dict[str, str]:
-    """The files of every chosen target ({"c": render, ...}; `only` None for all) for one model."""
+def render_targets(targets: dict[str, Callable[..., dict[str, str]]], model: object, banner: list[str],
+                   only: Optional[list[str]], options: Optional[TargetOptions] = None) -> dict[str, str]:
+    """The files of every chosen target ({"c": render, ...}; `only` None for all) for one model,
+    each renderer given its target's options."""
     outputs: dict[str, str] = {}
     for name, render in targets.items():
         if only is None or name in only:
-            outputs.update(render(model, banner))
+            outputs.update(render(model, banner, **(options or {}).get(name, {})))
     return outputs
 
 

@@ -27,11 +27,13 @@ FOLDER = "epan"
 
 # The hand-written runtime, in the order it is joined: types before the generated tables, the
 # rest after them (runtime/epan/ur_*.c; files of other interfaces carry their own prefix, and
-# SHARED_CODE serves more than one).
-SHARED_CODE = ("tshark_fields.c",)
+# tshark_fields.c serves more than one).
 RUNTIME_TYPES = ("ur_types.c",)
 RUNTIME_CODE = ("ur_versions.c", "tshark_fields.c", "ur_wanted.c", "ur_items.c", "ur_walk.c", "ur_values.c",
                 "ur_info.c", "ur_messages.c", "ur_stream.c", "ur_framing.c")
+# The upstream copy (Wireshark's own tree) reads no command line: it joins no tshark_fields.c, and
+# ur_wanted_upstream.c stands in for ur_wanted.c (every package built), with no ur.named_fields_only.
+UPSTREAM_STAND_INS = {"tshark_fields.c": None, "ur_wanted.c": "ur_wanted_upstream.c"}
 
 FT = {"int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16", "uint16": "FT_UINT16", "int32": "FT_INT32",
       "uint32": "FT_UINT32", "int64": "FT_INT64", "uint64": "FT_UINT64", "float": "FT_FLOAT",
@@ -434,20 +436,34 @@ def runtime(names: tuple[str, ...]) -> list[dict]:
     return [dict(path=runtime_path(FOLDER, name), source=runtime_source(FOLDER, name)) for name in names]
 
 
-def check_runtime() -> None:
+def runtime_code(upstream: bool) -> tuple[str, ...]:
+    """The runtime joined after the tables: urwire's own, or the upstream copy's."""
+    if not upstream:
+        return RUNTIME_CODE
+    joined = (UPSTREAM_STAND_INS.get(name, name) for name in RUNTIME_CODE)
+    return tuple(name for name in joined if name is not None)
+
+
+def check_runtime(code: tuple[str, ...]) -> None:
+    """Every ur_*.c of the runtime is joined by one copy or the other, and the files this copy
+    joins are there (Wireshark's tree holds only the upstream copy's)."""
     folder = RUNTIME_FOLDER / FOLDER
-    found = sorted([p.name for p in folder.glob("ur_*.c") if not p.name.startswith("ur_realtime")]
-                   + [name for name in SHARED_CODE if (folder / name).exists()])
-    if sorted(RUNTIME_TYPES + RUNTIME_CODE) != found:
-        raise ValueError(f"epan target: runtime files {found} differ from the joining order")
+    known = set(RUNTIME_TYPES + runtime_code(False) + runtime_code(True))
+    own = {p.name for p in folder.glob("ur_*.c") if not p.name.startswith("ur_realtime")}
+    missing = [name for name in RUNTIME_TYPES + code if not (folder / name).exists()]
+    if own - known or missing:
+        raise ValueError(f"epan target: runtime files {sorted(own - known)} are in no joining order, "
+                         f"{missing} are missing")
 
 
-def render(protocol_plan, banner: list[str]) -> dict[str, str]:
-    check_runtime()
+def render(protocol_plan, banner: list[str], upstream: bool = False) -> dict[str, str]:
+    """packet-ur.c; `upstream`: the copy for Wireshark's tree, which reads no command line."""
+    code = runtime_code(upstream)
+    check_runtime(code)
     env = environment(FOLDER)
     env.filters["c"] = c_literal
     env.filters["c_text"] = c_text
     model = _Builder(protocol_plan).build()
-    ctx = dict(banner=banner, p=protocol_plan.protocol, types=runtime(RUNTIME_TYPES), code=runtime(RUNTIME_CODE),
-               any_low=ANY_LOW, any_high=ANY_HIGH, **model)
+    ctx = dict(banner=banner, p=protocol_plan.protocol, types=runtime(RUNTIME_TYPES), code=runtime(code),
+               named_fields_preference=not upstream, any_low=ANY_LOW, any_high=ANY_HIGH, **model)
     return {OUT: env.get_template("packet-ur.c.j2").render(**ctx)}

@@ -1,7 +1,8 @@
 /* Whether this process is a `tshark -T fields` run, from its command line (/proc/self/cmdline, where
  * the system shows it). tshark 4.0 builds the tree visible for -T fields and primes none of the fields
  * it prints, so a dissector cannot tell from the tree that it prints field values only: no item's
- * label, and no field that no argument names. Joined into the dissectors that use it. */
+ * label, and no field that no argument names. Joined into the dissectors of urwire's own plugin that
+ * use it; Wireshark's copy of them reads no command line and joins tshark_fields_upstream.c instead. */
 
 #define TSHARK_CMDLINE_MAX (1 << 16)    /* a longer command line is read as any other program's */
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Optional
 
-from .. import Kind, render_targets
+from .. import Kind, TargetOptions, render_targets
 from . import c, epan, lua, python
 from .model import RecordsProtocol
 from .plan import plan
@@ -14,8 +14,9 @@ from .resolve import resolve
 _TARGETS = {"c": c.render, "epan": epan.render, "lua": lua.render, "python": python.render}
 
 
-def render(model: RecordsProtocol, banner: list[str], only: Optional[list[str]] = None) -> dict[str, str]:
-    return render_targets(_TARGETS, plan(model), banner, only)
+def render(model: RecordsProtocol, banner: list[str], only: Optional[list[str]] = None,
+           options: Optional[TargetOptions] = None) -> dict[str, str]:
+    return render_targets(_TARGETS, plan(model), banner, only, options)
 
 
 KIND = Kind(name="int32_records", schema="int32_records.schema.json", resolve=resolve, render=render)

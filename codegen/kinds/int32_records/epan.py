@@ -55,7 +55,8 @@ def _field(name: str, hf: str, label: str, abbrev: str, ftype: str, base: str, s
     return EpanField(hf, [c_string(label), c_string(abbrev), ftype, base, strings, "0x0", "NULL", "HFILL"], comment)
 
 
-def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:
+def render(p: RecordsPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
+    """`upstream` (the copy for Wireshark's tree) changes nothing: this dissector reads no command line."""
     m = p.model
     name = m.name
     tables = [EpanTable(f"{name}_{e.name}_vals", [(value_literal(v.value), c_string(v.name), value_text(v))

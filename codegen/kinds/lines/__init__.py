@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from typing import Optional
 
-from .. import Kind, render_targets
+from .. import Kind, TargetOptions, render_targets
 from . import c, epan, lua, python
 from .model import LinesProtocol
 from .plan import plan
@@ -16,8 +16,9 @@ from .resolve import resolve
 _TARGETS = {"c": c.render, "epan": epan.render, "lua": lua.render, "python": python.render}
 
 
-def render(model: LinesProtocol, banner: list[str], only: Optional[list[str]] = None) -> dict[str, str]:
-    return render_targets(_TARGETS, plan(model), banner, only)
+def render(model: LinesProtocol, banner: list[str], only: Optional[list[str]] = None,
+           options: Optional[TargetOptions] = None) -> dict[str, str]:
+    return render_targets(_TARGETS, plan(model), banner, only, options)
 
 
 KIND = Kind(name="lines", schema="lines.schema.json", resolve=resolve, render=render)

@@ -124,6 +124,7 @@ def view(p: LinesPlan) -> dict:
     )
 
 
-def render(p: LinesPlan, banner: list[str]) -> dict[str, str]:
+def render(p: LinesPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
+    """`upstream` (the copy for Wireshark's tree) changes nothing: this dissector reads no command line."""
     text = environment(FOLDER).get_template("lines/packet.c.j2").render(banner=banner, **view(p))
     return {f"{FOLDER}/{file_name(p.model.name)}": text}

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Optional
 
-from .. import Kind, render_targets
+from .. import Kind, TargetOptions, render_targets
 from . import c, epan, lua, python
 from .plan import plan
 from .resolve import resolve
@@ -17,8 +17,9 @@ from .resolve import resolve
 _TARGETS = {"c": c.render, "epan": epan.render, "lua": lua.render, "python": python.render}
 
 
-def render(model, banner: list[str], only_targets: Optional[list[str]] = None) -> dict[str, str]:
-    return render_targets(_TARGETS, plan(model), banner, only_targets)
+def render(model, banner: list[str], only_targets: Optional[list[str]] = None,
+           options: Optional[TargetOptions] = None) -> dict[str, str]:
+    return render_targets(_TARGETS, plan(model), banner, only_targets, options)
 
 
 KIND = Kind(name="sized_packets", schema="sized_packets.schema.json", resolve=resolve, render=render)

@@ -103,7 +103,8 @@ def _forms(planned: SizedPlan, tables: dict) -> tuple[list[EpanForm], list[tuple
     return forms, sizes
 
 
-def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
+def render(planned: SizedPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
+    """`upstream` (the copy for Wireshark's tree) changes nothing: this dissector reads no command line."""
     protocol = planned.protocol
     name = protocol.name
     upper = name.upper()

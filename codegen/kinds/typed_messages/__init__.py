@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import Optional
 
-from .. import Kind, render_targets
+from .. import Kind, TargetOptions, render_targets
 from . import c_target, epan_target, lua_target, python_target
 from .model import Interface
 from .resolve import resolve
@@ -16,8 +16,9 @@ _TARGETS = {"c": c_target.render, "epan": epan_target.render, "lua": lua_target.
             "python": python_target.render}
 
 
-def render(interface: Interface, banner: list[str], only_targets: Optional[list[str]]) -> dict[str, str]:
-    return render_targets(_TARGETS, interface, banner, only_targets)
+def render(interface: Interface, banner: list[str], only_targets: Optional[list[str]],
+           options: Optional[TargetOptions] = None) -> dict[str, str]:
+    return render_targets(_TARGETS, interface, banner, only_targets, options)
 
 
 KIND = Kind(name="typed_messages", schema="typed_messages.schema.json", resolve=resolve, render=render)

@@ -31,8 +31,10 @@ INTEGER_SCALARS = ("bool", "int8", "uint8", "int16", "uint16", "int32", "uint32"
 # A double's unit is appended to its item's text instead (runtime/epan/rtde_dissect.c), as the Lua
 # dissector does: 4.0 shows no unit string for FT_DOUBLE.
 # Runtime files the dissector shares with others, joined before its own: tshark_fields.c tells a
-# tshark -T fields run, where no item's label is printed.
+# tshark -T fields run, where no item's label is printed. The upstream copy (Wireshark's own tree)
+# reads no command line: tshark_fields_upstream.c tells no run, so every label is whole.
 SHARED_CODE = ("tshark_fields.c",)
+UPSTREAM_SHARED_CODE = ("tshark_fields_upstream.c",)
 # The messages the state follows, by the names runtime/lua/rtde_state.lua follows too.
 ROLE_OF_MESSAGE = {"request_protocol_version": "RTDE_ROLE_VERSION_REQUEST",
                    "request_protocol_version_reply": "RTDE_ROLE_VERSION_REPLY",
@@ -153,7 +155,8 @@ def _role(m: model.Message, interface: model.Interface) -> tuple[str, int]:
     return ROLE_OF_MESSAGE.get(m.name, "RTDE_ROLE_NONE"), -1
 
 
-def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
+def render(interface: model.Interface, banner: list[str], upstream: bool = False) -> dict[str, str]:
+    """packet-<name>.c; `upstream`: the copy for Wireshark's tree, which reads no command line."""
     prefix = interface.name
     units = _Units(prefix)
     fields = _Fields(prefix, units)
@@ -219,7 +222,8 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
         "n_kinds": len(interface.recipe_kinds),
         "refusals": [c_string(r.word) for r in interface.refusals],
         "runtime_types": _joined(prefix, ".h"),
-        "runtime": [_shared(name) for name in SHARED_CODE] + _joined(prefix, ".c"),
+        "runtime": [_shared(name) for name in (UPSTREAM_SHARED_CODE if upstream else SHARED_CODE)]
+                   + _joined(prefix, ".c"),
     }
     text = environment("epan").get_template("typed_messages/packet.c.j2").render(**view)
     return {f"epan/packet-{prefix.replace('_', '-')}.c": text}
