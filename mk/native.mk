@@ -52,12 +52,13 @@ fuzz-wireshark:
 	$(PYTHON) tests/fuzz/fuzz_wireshark.py --seconds $(FUZZ_SECONDS)
 
 ## upstream-patch: lay out under build/upstream/ exactly the files a Wireshark patch would carry
-## (epan/dissectors/packet-*.c, the generator under tools/; docs/wireshark-upstream.md), then build
-## an out-of-tree plugin from exactly those dissector files
+## (epan/dissectors/packet-*.c, rendered as Wireshark's copy that reads no command line, and the
+## generator under tools/; docs/wireshark-upstream.md), then build an out-of-tree plugin from
+## exactly those dissector files (URWIRE_EPAN_DIR given: its packet-*.c instead of the rendered ones)
 UPSTREAM ?= build/upstream
 .PHONY: upstream-patch check-upstream
 upstream-patch:
-	$(PYTHON) scripts/upstream-patch.py $(UPSTREAM) $(URWIRE_EPAN_DIR)
+	$(PYTHON) scripts/upstream-patch.py $(UPSTREAM) $(if $(filter-out file,$(origin URWIRE_EPAN_DIR)),$(URWIRE_EPAN_DIR))
 	$(MAKE) --no-print-directory native-dissector URWIRE_EPAN_DIR=$(abspath $(UPSTREAM))/epan/dissectors \
 		NATIVE_BUILD=$(UPSTREAM)-plugin
 

@@ -10,8 +10,11 @@ generated and must not be edited by hand; change a spec or the generator, then r
     python3 tools/urwire2wireshark.py            # rewrite epan/dissectors/packet-*.c
     python3 tools/urwire2wireshark.py --check    # exit 1 if they are not what the specs give
 
-It needs Python 3.10 or later with PyYAML, Jinja2 and jsonschema. The generator comes from the
-urwire project, where the same specs also give Lua dissectors and C and Python decoders.
+It runs the generator's epan target with --upstream: the copy of the dissectors for Wireshark's
+tree, which reads no command line (urwire's own plugin reads tshark's to build less for a `tshark
+-T fields` run; here such a run builds the whole tree, as for any other dissector). It needs
+Python 3.10 or later with PyYAML, Jinja2 and jsonschema. The generator comes from the urwire
+project, where the same specs also give Lua dissectors and C and Python decoders.
 """
 from __future__ import annotations
 
@@ -27,8 +30,8 @@ DISSECTORS = TOOLS.parent / "epan" / "dissectors"
 
 
 def generated(folder: Path) -> dict[str, bytes]:
-    """The generator's epan target, written into `folder`: {file name: its bytes}."""
-    result = subprocess.run([sys.executable, "-m", "codegen", "--target", "epan", "--out", str(folder)],
+    """The generator's epan target, Wireshark's copy, written into `folder`: {file name: its bytes}."""
+    result = subprocess.run([sys.executable, "-m", "codegen", "--target", "epan", "--upstream", "--out", str(folder)],
                             cwd=GENERATOR, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"urwire2wireshark: the generator failed:\n{result.stderr}")
