@@ -79,20 +79,39 @@ def build_plugin(variant: str = "gcc", epan_dir: Path = EPAN) -> Plugin:
             for cmd in (configure, ["cmake", "--build", str(folder)]):
                 result = subprocess.run(cmd, capture_output=True, text=True, env=env)
                 assert result.returncode == 0, f"{' '.join(cmd)}\n{result.stdout[-4000:]}\n{result.stderr[-4000:]}"
-            shutil.rmtree(home, ignore_errors=True)
-            target = home / ".local" / "lib" / "wireshark"
-            target.mkdir(parents=True)
-            shutil.copytree(folder / "plugins", target / "plugins")
-            for path in [home, *home.rglob("*")]:
-                path.chmod(0o755 if path.is_dir() else 0o644)
-            for path in [BUILDS, *BUILDS.parents]:
-                if path == Path("/"):
-                    break
-                path.chmod(path.stat().st_mode | 0o001)   # nobody may pass through to HOME
+            _install(folder / "plugins", home)
             stamp.write_text(want)
+    return _installed(variant, home)
+
+
+def _install(plugins: Path, home: Path) -> None:
+    """A HOME under build/native-tests whose personal plugin folder holds these plugins only,
+    readable by the user nobody."""
+    shutil.rmtree(home, ignore_errors=True)
+    target = home / ".local" / "lib" / "wireshark"
+    target.mkdir(parents=True)
+    shutil.copytree(plugins, target / "plugins")
+    for path in [home, *home.rglob("*")]:
+        path.chmod(0o755 if path.is_dir() else 0o644)
+    for path in [BUILDS, *BUILDS.parents]:
+        if path == Path("/"):
+            break
+        path.chmod(path.stat().st_mode | 0o001)   # nobody may pass through to HOME
+
+
+def _installed(name: str, home: Path) -> Plugin:
     libraries = list((home / ".local" / "lib" / "wireshark" / "plugins").rglob("*.so"))
     assert len(libraries) == 1, libraries
-    return Plugin(variant, home, libraries[0])
+    return Plugin(name, home, libraries[0])
+
+
+def installed_plugin(name: str, build: Path) -> Plugin:
+    """A plugin built elsewhere (a CMake build folder of dissector/native, as `make upstream-patch`
+    leaves one), given a HOME of its own under build/native-tests/home-<name>."""
+    BUILDS.mkdir(parents=True, exist_ok=True)
+    home = BUILDS / f"home-{name}"
+    _install(build / "plugins", home)
+    return _installed(name, home)
 
 
 _PLUGINS: dict[str, Plugin] = {}
@@ -154,6 +173,11 @@ def run_native(capture: Capture, *args: str, variant: str = "gcc", env: Optional
                timeout: float = 600) -> subprocess.CompletedProcess:
     """tshark -r with the native plugin."""
     return native_tshark(["-r", str(_readable(capture)), *args], b"", variant, env, timeout)
+
+
+def run_plugin(built: Plugin, capture: Capture, *args: str, timeout: float = 600) -> subprocess.CompletedProcess:
+    """tshark -r with this build of the plugin."""
+    return tshark_with(built, ["-r", str(_readable(capture)), *args], timeout=timeout)
 
 
 def run_lua(capture: Capture, *args: str, lua: Sequence[Path] = (), timeout: float = 600) -> subprocess.CompletedProcess:
