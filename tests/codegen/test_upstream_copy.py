@@ -1,0 +1,63 @@
+"""python -m codegen --target epan --upstream: the copy of the epan dissectors for Wireshark's own
+tree (docs/wireshark-upstream.md), which reads no command line; tests/native/test_upstream.py
+builds and runs it."""
+import subprocess
+import sys
+
+import pytest
+
+from codegen.targets import epan
+from tests.codegen.test_generated_is_current import ROOT
+
+COMMAND_LINE_WORDS = ("/proc/self/cmdline", "tshark_command_line", "named_fields_only", "tshark_fields.c ----",
+                      "ur_wanted.c ====")
+
+
+def codegen(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "codegen", *args], cwd=ROOT, capture_output=True, text=True)
+
+
+@pytest.mark.parametrize("args", [
+    ("--upstream", "--target", "epan"),                                   # into generated/
+    ("--upstream", "--target", "epan", "--out", "generated/upstream"),
+    ("--upstream", "--out", "{tmp}"),                                     # every target
+    ("--upstream", "--target", "epan", "--target", "c", "--out", "{tmp}"),
+], ids=["generated", "under generated", "every target", "another target"])
+def test_upstream_is_refused_beside_urwires_own_files(tmp_path, args):
+    result = codegen(*(a.format(tmp=tmp_path) for a in args))
+    assert result.returncode == 2 and "--upstream" in result.stderr
+    assert not any(tmp_path.iterdir())
+
+
+def test_the_upstream_copy_reads_no_command_line(tmp_path):
+    assert codegen("--target", "epan", "--upstream", "--out", str(tmp_path)).returncode == 0
+    files = sorted((tmp_path / "epan").glob("packet-*.c"))
+    assert [p.name for p in files] == sorted(p.name for p in (ROOT / "generated" / "epan").glob("packet-*.c"))
+    for path in files:
+        text = path.read_text()
+        assert not [w for w in COMMAND_LINE_WORDS if w in text], path.name
+    assert "ur_wanted_upstream.c" in (tmp_path / "epan" / "packet-ur.c").read_text()
+    assert "tshark_fields_upstream.c" in (tmp_path / "epan" / "packet-rtde.c").read_text()
+
+
+def test_each_copy_joins_its_runtime():
+    assert "tshark_fields.c" in epan.runtime_code(False) and "ur_wanted.c" in epan.runtime_code(False)
+    upstream = epan.runtime_code(True)
+    assert "tshark_fields.c" not in upstream and "ur_wanted.c" not in upstream
+    assert upstream.index("ur_wanted_upstream.c") == epan.runtime_code(False).index("ur_wanted.c") - 1
+    epan.check_runtime(upstream)
+    epan.check_runtime(epan.runtime_code(False))
+
+
+def test_a_runtime_file_no_copy_joins_is_refused(tmp_path, monkeypatch):
+    folder = tmp_path / "epan"
+    folder.mkdir()
+    for name in (*epan.RUNTIME_TYPES, *epan.runtime_code(True)):
+        (folder / name).write_text("")
+    monkeypatch.setattr(epan, "RUNTIME_FOLDER", tmp_path)
+    epan.check_runtime(epan.runtime_code(True))           # Wireshark's tree: the upstream copy's files only
+    with pytest.raises(ValueError, match="ur_wanted.c"):
+        epan.check_runtime(epan.runtime_code(False))
+    (folder / "ur_stray.c").write_text("")
+    with pytest.raises(ValueError, match="ur_stray.c"):
+        epan.check_runtime(epan.runtime_code(True))
