@@ -30,9 +30,14 @@ finding() {
 if [ -f "$source/tools/checkAPIs.pl" ]; then
     echo "== checkAPIs.pl"; ran=$((ran + 1))
     # As Wireshark's git pre-commit hook runs it: one file at a time, with -p where the script
-    # knows it (then a packet-*.c is also checked for abort() and terminal output).
+    # knows it (then a packet-*.c is also checked for abort() and terminal output). Releases that
+    # name those groups dissectors-prohibited and dissectors-restricted still have -p ask for
+    # their old names, so they are asked for by name too.
     precommit=()
     grep -q "'pre-commit'" "$source/tools/checkAPIs.pl" && precommit=(-p)
+    for group in dissectors-prohibited dissectors-restricted; do
+        grep -q "'$group'" "$source/tools/checkAPIs.pl" && precommit+=(-g "$group")
+    done
     for f in "${files[@]}"; do
         (cd "$source" && perl tools/checkAPIs.pl "${precommit[@]}" "$f") || finding "checkAPIs.pl on $(basename "$f")"
     done
@@ -52,7 +57,8 @@ for check in check_typed_item_calls.py check_tfs.py check_val_to_str.py; do
     for f in "${files[@]}"; do
         out=$(cd "$source" && python3 "tools/$check" --file "$f" "${extra[@]}" 2>&1); rc=$?
         echo "$out"
-        problems="^[1-9][0-9]* (issues|warnings) found|^Error|Traceback"
+        # "3 warnings found", or "3 warnings" in releases of check_typed_item_calls.py
+        problems="^[1-9][0-9]* (issues|warnings)( found)?$|^Error|Traceback"
         { [ $rc -ne 0 ] || echo "$out" | grep -qE "$problems"; } && finding "$check on $(basename "$f")"
     done
 done

@@ -89,7 +89,7 @@ static const value_string ur_trajectory_motion_type_vals[] = {
 typedef struct {
     int *hf;                    /* the field: a double when scaled, else the int32 itself */
     int *hf_raw;                /* a scaled field's raw int32; NULL when not scaled */
-    guint16 index;              /* its first int32 in the record */
+    guint16 first;              /* its first int32 in the record */
     guint16 count;
     gint32 scale;               /* the wire holds round(value * scale); 0: not scaled */
     const char *scale_name;     /* the driver's constant for the scale (MULT_JOINTSTATE) */
@@ -251,13 +251,13 @@ static guint32 int32_records_parse_release(const char *text)
 /* The layout a release sends: the last whose first release it has reached. */
 static const int32_records_layout *int32_records_layout_of(const int32_records_record *record, guint32 release)
 {
-    guint i, index = 0;
+    guint i, layout = 0;
 
     for (i = 0; i < record->n_starts; i++) {
         if (release >= record->starts[i])
-            index = i + 1;
+            layout = i + 1;
     }
-    return &record->layouts[index];
+    return &record->layouts[layout];
 }
 
 /* What one call of the dissector is reading, and how many records it showed. */
@@ -277,7 +277,7 @@ static void int32_records_show_slot(proto_tree *tree, tvbuff_t *tvb, const int32
     guint k;
 
     for (k = 0; k < slot->count; k++) {
-        gint at = 4 * (slot->index + k);
+        gint at = 4 * (slot->first + k);
         if (slot->scale != 0) {
             gint32 raw = tvb_get_ntohil(tvb, at);
             proto_item *item = proto_tree_add_double(tree, *slot->hf, tvb, at, 4, (double)raw / slot->scale);

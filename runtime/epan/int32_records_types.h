@@ -9,7 +9,7 @@
 typedef struct {
     int *hf;                    /* the field: a double when scaled, else the int32 itself */
     int *hf_raw;                /* a scaled field's raw int32; NULL when not scaled */
-    guint16 index;              /* its first int32 in the record */
+    guint16 first;              /* its first int32 in the record */
     guint16 count;
     gint32 scale;               /* the wire holds round(value * scale); 0: not scaled */
     const char *scale_name;     /* the driver's constant for the scale (MULT_JOINTSTATE) */

@@ -55,9 +55,9 @@ ur_room(ur_msg *st, proto_tree *tree)
 }
 
 static inline int
-ur_hf(int index)
+ur_hf(int field)
 {
-    return index < 0 ? -1 : hf_ur[index];
+    return field < 0 ? -1 : hf_ur[field];
 }
 
 /* tree:add(f, tvb(o, n)); counted. */

@@ -8,7 +8,7 @@
 typedef struct ur_path {
     const struct ur_path *up;
     const char *name;           /* NULL: an index of what `up` names */
-    gint64 index;               /* -1: none */
+    gint64 position;            /* -1: none */
     gboolean dot;               /* a group item: its fields follow after a dot */
 } ur_path;
 
@@ -20,8 +20,8 @@ ur_path_write(wmem_strbuf_t *out, const ur_path *at)
     ur_path_write(out, at->up);
     if (at->name != NULL)
         wmem_strbuf_append(out, at->name);
-    if (at->index >= 0)
-        wmem_strbuf_append_printf(out, "[%" G_GINT64_MODIFIER "d]", at->index);
+    if (at->position >= 0)
+        wmem_strbuf_append_printf(out, "[%" G_GINT64_MODIFIER "d]", at->position);
     if (at->dot)
         wmem_strbuf_append_c(out, '.');
 }

@@ -8,7 +8,8 @@ sizes (30,000 and 100,000 messages; BENCH_SMALL=1 or --sizes for a quick look), 
 no tree (`-q -z io,stat,0`), one field (`-T fields -e <field>`) and the full tree (`-V`), each a
 ratio with its goal and PASS or MISS (goals, never asserted: a benchmark is no test). Then the
 dissector's cost per message, (with - disabled) / messages, at the larger size over the smaller:
-flat is 1.
+flat is 1. No ratio is given where that cost is smaller than the spread of the runs (the most less
+the least CPU time, of both, per message): such a ratio would measure the machine's noise.
 
 Workloads: the primary interface as tests/bench/bench_lua.py builds it (a Version message, then
 real robot states with a key message every 50th, half packed two per segment, half cut at
@@ -139,7 +140,13 @@ def lua_dissector(protocol: str) -> Dissector:
     return Dissector("Lua", in_home(harness._empty_home()), ["-X", f"lua_script:{harness.lua_plugin(protocol)}"])
 
 
-def seconds(dissector: Dissector, pcap: Path, args: list[str]) -> float:
+@dataclass(frozen=True)
+class Seconds:
+    best: float                # the least CPU time of the runs
+    spread: float              # the most less the least: how far one run strays from another
+
+
+def seconds(dissector: Dissector, pcap: Path, args: list[str]) -> Seconds:
     times = []
     for _ in range(REPEAT):
         cmd = [*dissector.prefix, "tshark", "-r", str(pcap), *dissector.args, *args]
@@ -147,7 +154,7 @@ def seconds(dissector: Dissector, pcap: Path, args: list[str]) -> float:
         if res.returncode != 0 or "Lua: Error" in res.stderr:
             sys.exit(f"tshark ({dissector.name}) failed: {res.stderr[:500]}")
         times.append(cpu)
-    return min(times)
+    return Seconds(min(times), max(times) - min(times))
 
 
 def verdict(ratio: float, goal: float) -> str:
@@ -157,6 +164,7 @@ def verdict(ratio: float, goal: float) -> str:
 def bench(interface: Interface, sizes: tuple[int, int], dissectors: list[Dissector]) -> None:
     off = ["--disable-protocol", interface.protocol]
     own: dict[tuple[str, str, int], float] = {}
+    noise: dict[tuple[str, str, int], float] = {}
     print(f"{interface.protocol}: tshark CPU seconds, best of {REPEAT}, with the dissector / with {' '.join(off)}")
     header = "".join(f" | {d.name:>6s} {'off':>6s} {'ratio':>6s} {'':4s}" for d in dissectors)
     for count in sizes:
@@ -167,8 +175,10 @@ def bench(interface: Interface, sizes: tuple[int, int], dissectors: list[Dissect
             args = [*args, interface.field] if name == "one field" else args
             row = ""
             for dissector in dissectors:
-                with_it, without = seconds(dissector, pcap, args), seconds(dissector, pcap, [*off, *args])
+                timed, baseline = seconds(dissector, pcap, args), seconds(dissector, pcap, [*off, *args])
+                with_it, without = timed.best, baseline.best
                 own[dissector.name, name, count] = (with_it - without) / count
+                noise[dissector.name, name, count] = (timed.spread + baseline.spread) / count
                 ratio = with_it / without
                 row += f" | {with_it:6.2f} {without:6.2f} {ratio:6.2f} {verdict(ratio, goal)}"
             print(f"    {name:10s} {goal:5.2f}{row}")
@@ -178,9 +188,16 @@ def bench(interface: Interface, sizes: tuple[int, int], dissectors: list[Dissect
         cells = []
         for dissector in dissectors:
             a, b = own[dissector.name, name, large], own[dissector.name, name, small]
+            spread = max(noise[dissector.name, name, large], noise[dissector.name, name, small])
             # without a tree the native dissector can cost less than the baseline, where another
-            # dissector (MRCPv2 on 30001-30004) reads the stream: no ratio then
-            ratio = f"{a / b:5.2f}" if a > 0 and b > 0 else "  n/a (below the baseline)"
+            # dissector (MRCPv2 on 30001-30004) reads the stream: no ratio then; nor when the cost
+            # is smaller than the runs' own spread, where a ratio would measure the noise
+            if a <= 0 or b <= 0:
+                ratio = "  n/a (below the baseline)"
+            elif min(a, b) < spread:
+                ratio = f"  n/a (within the runs' spread, {spread * 1e6:.2f} us)"
+            else:
+                ratio = f"{a / b:5.2f}"
             cells.append(f"{dissector.name} {a * 1e6:7.2f} us against {b * 1e6:7.2f} us, {ratio}")
         print(f"    {name:10s} " + "   ".join(cells))
 
