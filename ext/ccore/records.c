@@ -176,6 +176,9 @@ static inline int is_plain_value(PyObject *value)
 
 static PyObject *copy_value(PyObject *value, int depth);
 
+/* The last tuple a copy shared: a tuple cannot change, so it need not be looked through again. */
+static PyObject *last_immutable_tuple;
+
 /* A new instance of a slotted record with a copy of each slot; NULL with no exception set when
  * it holds something this does not copy, NULL with one set on failure. */
 static PyObject *copy_record(PyObject *record, const slot_layout *layout, int depth)
@@ -211,8 +214,15 @@ static PyObject *copy_value(PyObject *value, int depth)
         return Py_NewRef(value);
     if (depth > MAX_CLONE_DEPTH)
         return NULL;
-    if (type == &PyTuple_Type)          /* a record's decoded_version */
-        return is_immutable(value) ? Py_NewRef(value) : NULL;
+    if (type == &PyTuple_Type) {        /* a record's decoded_version: the same tuple in most */
+        if (value != last_immutable_tuple) {
+            if (!is_immutable(value))
+                return NULL;
+            Py_INCREF(value);           /* held, so that its address is no other tuple's */
+            Py_XSETREF(last_immutable_tuple, value);
+        }
+        return Py_NewRef(value);
+    }
     if (type == &PyList_Type) {
         Py_ssize_t i, n = PyList_GET_SIZE(value);
         PyObject *copy = PyList_New(n);
