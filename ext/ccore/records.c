@@ -171,10 +171,13 @@ static inline int is_plain_value(PyObject *value)
 {
     PyTypeObject *type = Py_TYPE(value);
     return type == &PyFloat_Type || type == &PyLong_Type || type == &PyBool_Type || value == Py_None
-        || PyType_HasFeature(type, Py_TPFLAGS_LONG_SUBCLASS);
+        || PyType_HasFeature(type, Py_TPFLAGS_LONG_SUBCLASS) || type == &PyBytes_Type || type == &PyUnicode_Type;
 }
 
 static PyObject *copy_value(PyObject *value, int depth);
+
+/* The last tuple a copy shared: a tuple cannot change, so it need not be looked through again. */
+static PyObject *last_immutable_tuple;
 
 /* A new instance of a slotted record with a copy of each slot; NULL with no exception set when
  * it holds something this does not copy, NULL with one set on failure. */
@@ -211,6 +214,15 @@ static PyObject *copy_value(PyObject *value, int depth)
         return Py_NewRef(value);
     if (depth > MAX_CLONE_DEPTH)
         return NULL;
+    if (type == &PyTuple_Type) {        /* a record's decoded_version: the same tuple in most */
+        if (value != last_immutable_tuple) {
+            if (!is_immutable(value))
+                return NULL;
+            Py_INCREF(value);           /* held, so that its address is no other tuple's */
+            Py_XSETREF(last_immutable_tuple, value);
+        }
+        return Py_NewRef(value);
+    }
     if (type == &PyList_Type) {
         Py_ssize_t i, n = PyList_GET_SIZE(value);
         PyObject *copy = PyList_New(n);
@@ -274,6 +286,10 @@ typedef struct {
     PyObject *fast_version;    /* the version whose Forms.fast table `fast` is */
     PyObject *fast;
     run_recipes *recipes;      /* the forms read by one fixed run, compiled on first use */
+    /* Each code's recipe in `fast` once asked (NULL: none); asked[code] says it was. Forgotten
+     * when `fast` is another version's: a moving package would otherwise cost two look-ups. */
+    const run_recipe *recipe_of_code[MAX_CODES];
+    char asked[MAX_CODES];
     code_memo memo[MAX_CODES];
 } PackageStates;
 
@@ -411,6 +427,7 @@ static PyObject *fast_table(PackageStates *self, PyObject *version)
     Py_XSETREF(self->fast_version, version);
     Py_INCREF(table);
     Py_XSETREF(self->fast, table);
+    memset(self->asked, 0, sizeof self->asked);
     return table;
 }
 
@@ -535,11 +552,18 @@ static PyObject *read_run(PackageStates *self, PyObject *fast, PyObject *buf, in
 {
     PyObject *decode;
     const run_recipe *recipe;
-    if (self->recipes == NULL || (decode = decoder_of(fast, code)) == NULL)
+    if (self->recipes == NULL)
         return NULL;
-    if (run_recipe_of(self->recipes, decode, &recipe) < 0 || recipe == NULL)
-        return NULL;
-    return run_read(recipe, buf, body, stop, version);
+    if (!self->asked[code]) {
+        if ((decode = decoder_of(fast, code)) == NULL)
+            return NULL;
+        if (run_recipe_of(self->recipes, decode, &recipe) < 0)
+            return NULL;
+        self->recipe_of_code[code] = recipe;
+        self->asked[code] = 1;
+    }
+    recipe = self->recipe_of_code[code];
+    return recipe == NULL ? NULL : run_read(recipe, buf, body, stop, version);
 }
 
 static int32_t load_i32(const unsigned char *p)

@@ -21,6 +21,10 @@
 #include "ccore_runs.h"
 #include "ccore_slots.h"
 
+#ifndef Py_ALWAYS_INLINE            /* Python 3.11 and later define it */
+#define Py_ALWAYS_INLINE
+#endif
+
 enum member_kind { KIND_SCALAR, KIND_ARRAY, KIND_GROUP };
 enum member_conv { CONV_PLAIN, CONV_BOOL, CONV_F32, CONV_ENUM, CONV_VENUM, CONV_ITEM_ENUM };
 
@@ -41,6 +45,10 @@ typedef struct run_member {
     struct run_member *item_members;
     Py_ssize_t item_count;
     PyObject *item_enums;      /* groups: a tuple of the versioned tables its items look up */
+    /* The table (venum) or the tuple of item tables (groups) last looked up, and the version it is
+     * for: a stream keeps its version, and looking one up hashes the version per value. */
+    PyObject *seen_version, *seen_tables;
+    int plain_scalar;          /* one value kept as read (no conversion): read inline */
 } run_member;
 
 typedef struct {
@@ -78,8 +86,11 @@ static void free_members(run_member *members, Py_ssize_t count)
     Py_ssize_t i;
     if (members == NULL)
         return;
-    for (i = 0; i < count; i++)
+    for (i = 0; i < count; i++) {
         free_members(members[i].item_members, members[i].item_count);
+        Py_XDECREF(members[i].seen_version);
+        Py_XDECREF(members[i].seen_tables);
+    }
     PyMem_Free(members);
 }
 
@@ -219,6 +230,7 @@ static int compile_member(PyObject *entry, PyTypeObject *cls, const fixed_run *r
         last = m->first + m->count;
         if (last > limit || (m->kind == KIND_SCALAR && m->count != 1))
             return 0;
+        m->plain_scalar = m->kind == KIND_SCALAR && (m->conv == CONV_PLAIN || m->conv == CONV_F32);
         for (k = m->first; k < last; k++) {
             char code = r->leaves[base + k].code;   /* an item's: those of its group's first */
             if (m->conv == CONV_F32 ? code != 'f' : code == 'f' || (code == 'd' && m->conv != CONV_PLAIN))
@@ -492,7 +504,7 @@ typedef struct {
 } reading;
 
 /* The value of leaf k as struct unpacks it (a float32 NaN with its bits, as f32_nan keeps them). */
-static PyObject *leaf_value(const reading *at, Py_ssize_t k)
+static inline Py_ALWAYS_INLINE PyObject *leaf_value(const reading *at, Py_ssize_t k)
 {
     const run_leaf *leaf = &at->run->leaves[k];
     const unsigned char *p = (const unsigned char *)PyBytes_AS_STRING(at->buf) + at->start + leaf->offset;
@@ -523,7 +535,9 @@ static PyObject *leaf_value(const reading *at, Py_ssize_t k)
 }
 
 /* A value as the member's conversion makes it: True/False or the byte, the enum member or the int. */
-static PyObject *converted(const run_member *m, PyObject *value, PyObject *version, PyObject *item_enums)
+static PyObject *tables_for(run_member *m, PyObject *version);
+
+static PyObject *converted(run_member *m, PyObject *value, PyObject *version, PyObject *item_enums)
 {
     PyObject *table = NULL, *member;
     switch (m->conv) {
@@ -543,7 +557,7 @@ static PyObject *converted(const run_member *m, PyObject *value, PyObject *versi
         table = Py_NewRef(m->table);
         break;
     case CONV_VENUM:
-        table = PyObject_GetItem(m->table, version);
+        table = Py_XNewRef(tables_for(m, version));
         break;
     case CONV_ITEM_ENUM:
         table = item_enums != NULL && m->lookup < PyTuple_GET_SIZE(item_enums)
@@ -585,34 +599,58 @@ static void set_slot(PyObject *record, Py_ssize_t slot, PyObject *value)
     Py_XSETREF(*(PyObject **)((char *)record + slot), value);
 }
 
-static PyObject *member_value(const reading *at, const run_member *m, Py_ssize_t base, PyObject *item_enums);
+/* What member m looks up for this version (a venum's table, a group's tuple of item tables),
+ * borrowed: the last one found is kept with its version (held, so that its address is not another
+ * version's); NULL with an exception set. */
+static PyObject *tables_for(run_member *m, PyObject *version)
+{
+    PyObject *found;
+    Py_ssize_t i, n;
+    if (m->seen_version == version)
+        return m->seen_tables;
+    if (m->kind != KIND_GROUP) {
+        found = PyObject_GetItem(m->table, version);
+    } else {
+        n = PyTuple_GET_SIZE(m->item_enums);
+        found = PyTuple_New(n);
+        for (i = 0; found != NULL && i < n; i++) {
+            PyObject *table = PyObject_GetItem(PyTuple_GET_ITEM(m->item_enums, i), version);
+            if (table == NULL)
+                Py_CLEAR(found);
+            else
+                PyTuple_SET_ITEM(found, i, table);
+        }
+    }
+    if (found == NULL)
+        return NULL;
+    Py_XSETREF(m->seen_tables, found);
+    Py_INCREF(version);
+    Py_XSETREF(m->seen_version, version);
+    return found;
+}
+
+static PyObject *member_value(const reading *at, run_member *m, Py_ssize_t base, PyObject *item_enums);
 
 /* A group's items: each a new instance of the item class, its members read from its values. */
-static PyObject *group_value(const reading *at, const run_member *m, Py_ssize_t base)
+static PyObject *group_value(const reading *at, run_member *m, Py_ssize_t base)
 {
-    PyObject *items = PyList_New(m->count), *enums;
-    Py_ssize_t j, i, n = PyTuple_GET_SIZE(m->item_enums);
+    PyObject *items, *enums = tables_for(m, at->version);  /* the items' versioned tables */
+    Py_ssize_t j, i;
+    if (enums == NULL)
+        return NULL;
+    items = PyList_New(m->count);
     if (items == NULL)
         return NULL;
-    enums = PyTuple_New(n);            /* the items' versioned tables, for this version */
-    if (enums == NULL) {
-        Py_DECREF(items);
-        return NULL;
-    }
-    for (i = 0; i < n; i++) {
-        PyObject *table = PyObject_GetItem(PyTuple_GET_ITEM(m->item_enums, i), at->version);
-        if (table == NULL)
-            goto failed;
-        PyTuple_SET_ITEM(enums, i, table);
-    }
+    Py_INCREF(enums);                  /* held while reading: a collection may run other code */
     for (j = 0; j < m->count; j++) {
         PyObject *item = m->item->tp_alloc(m->item, 0);
         if (item == NULL)
             goto failed;
         PyList_SET_ITEM(items, j, item);
         for (i = 0; i < m->item_count; i++) {
-            const run_member *im = &m->item_members[i];
-            PyObject *value = member_value(at, im, base + m->first + j * m->width, enums);
+            run_member *im = &m->item_members[i];
+            Py_ssize_t first = base + m->first + j * m->width;
+            PyObject *value = im->plain_scalar ? leaf_value(at, first + im->first) : member_value(at, im, first, enums);
             if (value == NULL)
                 goto failed;
             set_slot(item, im->slot, value);
@@ -627,19 +665,24 @@ failed:
 }
 
 /* One member's attribute; `base` is the index its first value counts from (an item's first). */
-static PyObject *member_value(const reading *at, const run_member *m, Py_ssize_t base, PyObject *item_enums)
+static PyObject *member_value(const reading *at, run_member *m, Py_ssize_t base, PyObject *item_enums)
 {
     PyObject *list;
     Py_ssize_t k;
-    if (m->kind == KIND_SCALAR)
-        return converted(m, leaf_value(at, base + m->first), at->version, item_enums);
+    int plain = m->conv == CONV_PLAIN || m->conv == CONV_F32;    /* the value as it is read */
+    if (m->kind == KIND_SCALAR) {
+        PyObject *value = leaf_value(at, base + m->first);
+        return plain ? value : converted(m, value, at->version, item_enums);
+    }
     if (m->kind == KIND_GROUP)
         return group_value(at, m, base);
     list = PyList_New(m->count);
     if (list == NULL)
         return NULL;
     for (k = 0; k < m->count; k++) {
-        PyObject *value = converted(m, leaf_value(at, base + m->first + k), at->version, item_enums);
+        PyObject *value = leaf_value(at, base + m->first + k);
+        if (!plain)
+            value = converted(m, value, at->version, item_enums);
         if (value == NULL) {
             Py_DECREF(list);
             return NULL;
@@ -669,8 +712,8 @@ static Py_ssize_t read_run(const fixed_run *run, PyObject *record, PyObject *buf
     if (run->size > stop - start)
         return -2;
     for (i = 0; i < run->member_count; i++) {
-        const run_member *m = &run->members[i];
-        PyObject *value = member_value(&at, m, 0, NULL);
+        run_member *m = &run->members[i];
+        PyObject *value = m->plain_scalar ? leaf_value(&at, m->first) : member_value(&at, m, 0, NULL);
         if (value == NULL)
             return -1;
         set_slot(record, m->slot, value);
