@@ -84,7 +84,8 @@ def _render_spec(spec: Path, args) -> dict[str, str]:
         if not isinstance(model, ir.Protocol):
             raise SpecError(str(spec), [loaded.problem("framing", "--pin applies to the primary interface's spec")])
         model = pin(model, ir.parse_version(args.pin))
-    return kind.render(model, banner_lines(str(spec_rel), text), args.target, _target_options(args))
+    banner = banner_lines(str(spec_rel), text, upstream=args.upstream)
+    return kind.render(model, banner, args.target, _target_options(args))
 
 
 def _target_options(args) -> TargetOptions:
