@@ -64,7 +64,11 @@ upstream-patch:
 
 ## check-upstream: Wireshark's own source checks (checkAPIs.pl, checkhf.pl,
 ## check_typed_item_calls.py ...) from a Wireshark checkout, which Debian does not package, on
-## the generated dissectors: make check-upstream WIRESHARK_SOURCE=~/src/wireshark
+## the copy of the dissectors a Wireshark patch carries (rendered under build/upstream-epan), or on
+## URWIRE_EPAN_DIR's when it is given: make check-upstream WIRESHARK_SOURCE=~/src/wireshark
+UPSTREAM_EPAN := build/upstream-epan
+CHECKED_EPAN = $(if $(filter-out file,$(origin URWIRE_EPAN_DIR)),$(URWIRE_EPAN_DIR),$(UPSTREAM_EPAN)/epan)
 check-upstream:
 	@[ -n "$(WIRESHARK_SOURCE)" ] || { echo "check-upstream: set WIRESHARK_SOURCE to a Wireshark checkout" >&2; exit 2; }
-	@bash scripts/check-upstream.sh $(WIRESHARK_SOURCE) $(wildcard $(URWIRE_EPAN_DIR)/packet-*.c)
+	@$(if $(filter-out file,$(origin URWIRE_EPAN_DIR)),:,$(PYTHON) -m codegen --target epan --upstream --out $(UPSTREAM_EPAN))
+	@bash scripts/check-upstream.sh $(WIRESHARK_SOURCE) $(CHECKED_EPAN)/packet-*.c
