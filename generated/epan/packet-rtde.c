@@ -1672,11 +1672,11 @@ static const rtde_notes rtde_no_notes = { NULL, 0, NULL };
 static const rtde_layout *
 rtde_layout_for(guint8 code, gboolean from_robot, guint protocol)
 {
-    guint8 index;
+    guint8 layout;
     if (protocol > RTDE_MAX_PROTOCOL)
         return NULL;
-    index = rtde_layout_of[code][from_robot ? 1 : 0][protocol];
-    return index ? &rtde_layouts[index - 1] : NULL;
+    layout = rtde_layout_of[code][from_robot ? 1 : 0][protocol];
+    return layout ? &rtde_layouts[layout - 1] : NULL;
 }
 
 static const rtde_undocumented *
