@@ -1,15 +1,18 @@
 """make bench-wireshark: tshark with the native plugin (generated/epan, built by dissector/native)
 and with the Lua dissector of the same interface, in one run, each against the same tshark with
-`--disable-protocol <protocol>` on the same file. Times are tshark's CPU seconds (user + system,
-the best of REPEAT runs): on a shared machine its wall time also counts the other jobs.
+`--disable-protocol <protocol>` on the same file. Times are tshark's CPU seconds (user + system):
+on a shared machine its wall time also counts the other jobs. The runs with and without the
+dissector take turns (with, without, with, ...: 5 of each for the native plugin, 3 for Lua), so
+that a slow stretch of the machine falls on both.
 
 For each interface whose native dissector exists (and the Lua one beside it, always), at two
 sizes (30,000 and 100,000 messages; BENCH_SMALL=1 or --sizes for a quick look), three measures:
 no tree (`-q -z io,stat,0`), one field (`-T fields -e <field>`) and the full tree (`-V`), each a
-ratio with its goal and PASS or MISS (goals, never asserted: a benchmark is no test). Then the
-dissector's cost per message, (with - disabled) / messages, at the larger size over the smaller:
-flat is 1. No ratio is given where that cost is smaller than the spread of the runs (the most less
-the least CPU time, of both, per message): such a ratio would measure the machine's noise.
+ratio of the least times with its goal and PASS or MISS (goals, never asserted: a benchmark is no
+test). Then the dissector's cost per message at the larger size over the smaller (flat is 1): the
+median of the turns' differences (with - without) per message. No ratio is given where that cost
+is smaller than the differences' own spread (their interquartile range, per message): such a ratio
+would measure the machine's noise.
 
 Workloads: the primary interface as tests/bench/bench_lua.py builds it (a Version message, then
 real robot states with a key message every 50th, half packed two per segment, half cut at
@@ -22,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import statistics
 import subprocess
 import sys
 from dataclasses import dataclass
@@ -32,7 +36,6 @@ sys.path[:0] = [str(ROOT), str(ROOT / "python"), str(ROOT / "generated" / "pytho
 from tests.tools import capture, measure  # noqa: E402
 
 OUT = ROOT / "build" / "bench-wireshark"
-REPEAT = 3
 SIZES = (30_000, 100_000)
 SMALL_SIZES = (2_000, 6_000)
 
@@ -121,6 +124,7 @@ class Dissector:
     name: str                  # "native" or "Lua"
     prefix: list[str]          # before "tshark": the user and the HOME it runs with (both exec)
     args: list[str]            # after it
+    turns: int                 # runs with it, and as many without; Lua costs 10-100x the noise
 
 
 def in_home(home: Path) -> list[str]:
@@ -132,29 +136,50 @@ def native_dissector() -> Dissector:
     loads no personal plugin for root."""
     from tests.native import harness
     built = harness.plugin("gcc")
-    return Dissector("native", [*(harness.NOBODY if os.geteuid() == 0 else []), *in_home(built.home)], [])
+    return Dissector("native", [*(harness.NOBODY if os.geteuid() == 0 else []), *in_home(built.home)], [], 5)
 
 
 def lua_dissector(protocol: str) -> Dissector:
     from tests.native import harness
-    return Dissector("Lua", in_home(harness._empty_home()), ["-X", f"lua_script:{harness.lua_plugin(protocol)}"])
+    return Dissector("Lua", in_home(harness._empty_home()), ["-X", f"lua_script:{harness.lua_plugin(protocol)}"], 3)
 
 
 @dataclass(frozen=True)
-class Seconds:
-    best: float                # the least CPU time of the runs
-    spread: float              # the most less the least: how far one run strays from another
+class Turns:
+    """CPU seconds of runs with the dissector and without it, in the order they took turns."""
+    on: list[float]
+    off: list[float]
+
+    def ratio(self) -> float:
+        return min(self.on) / min(self.off)
+
+    def differences(self) -> list[float]:
+        return [a - b for a, b in zip(self.on, self.off)]
+
+    def cost(self) -> float:
+        """What the dissector adds, by the median of the turns: robust to one slow stretch."""
+        return statistics.median(self.differences())
+
+    def spread(self) -> float:
+        """The interquartile range of the differences (with three turns, the most less the least)."""
+        low, _, high = statistics.quantiles(self.differences(), n=4)
+        return high - low
 
 
-def seconds(dissector: Dissector, pcap: Path, args: list[str]) -> Seconds:
-    times = []
-    for _ in range(REPEAT):
-        cmd = [*dissector.prefix, "tshark", "-r", str(pcap), *dissector.args, *args]
-        res, _, cpu, _ = measure.run_cpu(cmd, output=False)
-        if res.returncode != 0 or "Lua: Error" in res.stderr:
-            sys.exit(f"tshark ({dissector.name}) failed: {res.stderr[:500]}")
-        times.append(cpu)
-    return Seconds(min(times), max(times) - min(times))
+def cpu_seconds(dissector: Dissector, pcap: Path, args: list[str]) -> float:
+    cmd = [*dissector.prefix, "tshark", "-r", str(pcap), *dissector.args, *args]
+    res, _, cpu, _ = measure.run_cpu(cmd, output=False)
+    if res.returncode != 0 or "Lua: Error" in res.stderr:
+        sys.exit(f"tshark ({dissector.name}) failed: {res.stderr[:500]}")
+    return cpu
+
+
+def take_turns(dissector: Dissector, pcap: Path, args: list[str], off: list[str]) -> Turns:
+    on_times, off_times = [], []
+    for _ in range(dissector.turns):
+        on_times.append(cpu_seconds(dissector, pcap, args))
+        off_times.append(cpu_seconds(dissector, pcap, [*off, *args]))
+    return Turns(on_times, off_times)
 
 
 def verdict(ratio: float, goal: float) -> str:
@@ -163,9 +188,9 @@ def verdict(ratio: float, goal: float) -> str:
 
 def bench(interface: Interface, sizes: tuple[int, int], dissectors: list[Dissector]) -> None:
     off = ["--disable-protocol", interface.protocol]
-    own: dict[tuple[str, str, int], float] = {}
-    noise: dict[tuple[str, str, int], float] = {}
-    print(f"{interface.protocol}: tshark CPU seconds, best of {REPEAT}, with the dissector / with {' '.join(off)}")
+    turns: dict[tuple[str, str, int], Turns] = {}
+    print(f"{interface.protocol}: tshark CPU seconds, the least of the turns with the dissector / with {' '.join(off)}"
+          f" ({', '.join(f'{d.name} {d.turns}' for d in dissectors)} turns)")
     header = "".join(f" | {d.name:>6s} {'off':>6s} {'ratio':>6s} {'':4s}" for d in dissectors)
     for count in sizes:
         pcap = workload(interface.protocol, count)
@@ -175,27 +200,25 @@ def bench(interface: Interface, sizes: tuple[int, int], dissectors: list[Dissect
             args = [*args, interface.field] if name == "one field" else args
             row = ""
             for dissector in dissectors:
-                timed, baseline = seconds(dissector, pcap, args), seconds(dissector, pcap, [*off, *args])
-                with_it, without = timed.best, baseline.best
-                own[dissector.name, name, count] = (with_it - without) / count
-                noise[dissector.name, name, count] = (timed.spread + baseline.spread) / count
-                ratio = with_it / without
-                row += f" | {with_it:6.2f} {without:6.2f} {ratio:6.2f} {verdict(ratio, goal)}"
+                timed = turns[dissector.name, name, count] = take_turns(dissector, pcap, args, off)
+                row += f" | {min(timed.on):6.2f} {min(timed.off):6.2f} {timed.ratio():6.2f} {verdict(timed.ratio(), goal)}"
             print(f"    {name:10s} {goal:5.2f}{row}")
     small, large = sizes
-    print(f"  cost per message (with - off) / {interface.unit}, {large:,} against {small:,}: flat is 1.00")
+    print(f"  cost per message, the median of the turns' (with - off) / {interface.unit}, "
+          f"{large:,} against {small:,}: flat is 1.00")
     for name, *_ in MEASURES:
         cells = []
         for dissector in dissectors:
-            a, b = own[dissector.name, name, large], own[dissector.name, name, small]
-            spread = max(noise[dissector.name, name, large], noise[dissector.name, name, small])
+            at_large, at_small = turns[dissector.name, name, large], turns[dissector.name, name, small]
+            a, b = at_large.cost() / large, at_small.cost() / small
+            spread = max(at_large.spread() / large, at_small.spread() / small)
             # without a tree the native dissector can cost less than the baseline, where another
             # dissector (MRCPv2 on 30001-30004) reads the stream: no ratio then; nor when the cost
-            # is smaller than the runs' own spread, where a ratio would measure the noise
+            # is smaller than the turns' own spread, where a ratio would measure the noise
             if a <= 0 or b <= 0:
                 ratio = "  n/a (below the baseline)"
             elif min(a, b) < spread:
-                ratio = f"  n/a (within the runs' spread, {spread * 1e6:.2f} us)"
+                ratio = f"  n/a (within the turns' spread, {spread * 1e6:.2f} us)"
             else:
                 ratio = f"{a / b:5.2f}"
             cells.append(f"{dissector.name} {a * 1e6:7.2f} us against {b * 1e6:7.2f} us, {ratio}")
