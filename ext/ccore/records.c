@@ -7,7 +7,10 @@
  * and each sub-package whose bytes, code and version match one of the last few of its code
  * (MEMO_WAYS: a capture may interleave robots) is a copy of the record they gave: made in C,
  * past the classes' __init__, with the same slots (the immutable values shared, lists and nested
- * records copied, so no two states share what can change).
+ * records copied, so no two states share what can change). A copy handed out is taken back when
+ * the state it went in was dropped and nothing else references it or any part of it, untouched:
+ * a caller that drops each state after reading it (or the one before, as a loop does) then costs
+ * no copy and no free for a package that did not move.
  * A package with new bytes is read by the version's form (Forms.fast), as PackageList.decode
  * reads it: in C when the form is read by fixed runs (generated RUN_RECIPES: each run's struct
  * and what each member becomes, runs.c), else by the generated Python decoder. A record made in
@@ -258,12 +261,15 @@ static PyObject *copy_value(PyObject *value, int depth)
 /* The bytes and version of the last package of one type code, and the record they gave: a copy
  * of its own, so that what a caller does to the records it gets never reaches it (NULL: none kept
  * yet, see the top of this file). */
+#define LENT_COPIES 2
 typedef struct {
     PyObject *record;
     char *body;            /* a copy of the package's bytes in a buffer of its own, reused: a */
     Py_ssize_t size;       /* moving package's bytes change in every state, and a bytes object */
     Py_ssize_t capacity;   /* made and freed for each would cost as much as a record */
     PyObject *version;     /* (major, minor, bugfix) */
+    PyObject *lent[LENT_COPIES];   /* the copies of `record` handed out last (see take_back) */
+    int next_lent;                 /* the one a new copy replaces */
 } package_memo;
 
 /* The last MEMO_WAYS packages of one type code with distinct bytes or versions, replaced in turn:
@@ -293,8 +299,18 @@ typedef struct {
     code_memo memo[MAX_CODES];
 } PackageStates;
 
+/* Drops the copies lent out: they are copies of a record no longer kept. */
+static void forget_lent(package_memo *memo)
+{
+    int i;
+    for (i = 0; i < LENT_COPIES; i++)
+        Py_CLEAR(memo->lent[i]);
+    memo->next_lent = 0;
+}
+
 static void forget(package_memo *memo)
 {
+    forget_lent(memo);
     Py_CLEAR(memo->record);
     PyMem_Free(memo->body);
     memo->body = NULL;
@@ -466,16 +482,86 @@ static package_memo *new_way(code_memo *memo)
     return way;
 }
 
-/* A copy of the record kept for the last package of a code; NULL with no exception set when
- * none is kept or it cannot be copied, NULL with one set on failure. */
-static PyObject *copy_kept(const package_memo *memo)
+/* Whether a part of a copy lent out is still what a new copy of the kept part would be: the
+ * very object (an immutable value shared), or a list or record that nothing else references
+ * and that is untouched in turn. */
+static int is_untouched(PyObject *copy, PyObject *kept, int depth);
+
+static inline int same_part(PyObject *copy, PyObject *kept, int depth)
+{
+    if (copy == kept)
+        return 1;
+    if (copy == NULL || kept == NULL || Py_REFCNT(copy) != 1)
+        return 0;
+    return is_untouched(copy, kept, depth + 1);
+}
+
+static int is_untouched(PyObject *copy, PyObject *kept, int depth)
+{
+    PyTypeObject *type = Py_TYPE(kept);
+    slot_layout *layout;
+    Py_ssize_t i, n;
+    if (Py_TYPE(copy) != type || depth > MAX_CLONE_DEPTH)
+        return 0;
+    if (type == &PyList_Type) {
+        if ((n = PyList_GET_SIZE(kept)) != PyList_GET_SIZE(copy))
+            return 0;
+        for (i = 0; i < n; i++)
+            if (!same_part(PyList_GET_ITEM(copy, i), PyList_GET_ITEM(kept, i), depth))
+                return 0;
+        return 1;
+    }
+    if (layout_of(type, &layout) < 0) {
+        PyErr_Clear();               /* known since the copy was made: not reached */
+        return 0;
+    }
+    if (layout == NULL)
+        return 0;
+    if (type->tp_weaklistoffset > 0 && *(PyObject **)((char *)copy + type->tp_weaklistoffset) != NULL)
+        return 0;                    /* a weak reference could still reach it */
+    for (i = 0; i < layout->count; i++) {
+        Py_ssize_t at = layout->offsets[i];
+        if (!same_part(*(PyObject **)((char *)copy + at), *(PyObject **)((char *)kept + at), depth))
+            return 0;
+    }
+    return 1;
+}
+
+/* A copy lent out earlier that only this memo references now, untouched: the state it went out
+ * in was dropped as it came. Handing it out again is a copy that costs neither making nor
+ * freeing, and no one can tell it from a new one: nothing else reaches it or any part of it.
+ * A borrowed reference, or NULL. */
+static PyObject *take_back(package_memo *memo)
+{
+    int i;
+    for (i = 0; i < LENT_COPIES; i++) {
+        PyObject *lent = memo->lent[i];
+        if (lent != NULL && Py_REFCNT(lent) == 1 && is_untouched(lent, memo->record, 0)) {
+            memo->next_lent = (i + 1) % LENT_COPIES;
+            return lent;
+        }
+    }
+    return NULL;
+}
+
+/* A copy of the record kept for the last package of a code: one lent out before and taken back,
+ * else a new one, lent in place of the oldest (a caller that reads a stream holds the state
+ * before while the next is read, so two are lent). NULL with no exception set when none is kept
+ * or it cannot be copied, NULL with one set on failure. */
+static PyObject *copy_kept(package_memo *memo)
 {
     PyObject *record, *copy;
     if (memo->record == NULL)
         return NULL;
+    if ((copy = take_back(memo)) != NULL)
+        return Py_NewRef(copy);
     record = Py_NewRef(memo->record);     /* held: a collection while copying may run other code */
     copy = copy_value(record, 0);
     Py_DECREF(record);
+    if (copy != NULL) {
+        Py_XSETREF(memo->lent[memo->next_lent], Py_NewRef(copy));
+        memo->next_lent = (memo->next_lent + 1) % LENT_COPIES;
+    }
     return copy;
 }
 
@@ -500,6 +586,7 @@ static int remember(package_memo *memo, PyObject *record, const char *body, Py_s
     if (memo->body != body)
         memcpy(memo->body, body, (size_t)size);
     memo->size = size;
+    forget_lent(memo);
     Py_XSETREF(memo->record, copy);
     Py_INCREF(version);
     Py_XSETREF(memo->version, version);

@@ -8,7 +8,8 @@ ways); URWIRE_BACKEND=c insists on the extension and fails to import without it 
 What the extension does: the canonical JSON Lines of a primary/secondary stream
 (`primary_json_lines`, what `urwire decode` prints for a raw stream); the records of robot
 states (decode_message, and so decode_stream, Framer and every tool over them: decoding.py),
-framed in C, each sub-package a copy of the record its bytes gave before or made in C; the
+framed in C, each sub-package a copy of the record its bytes gave before (one handed out in a
+state that was dropped since, when nothing holds any part of it) or made in C; the
 records of real-time packets (realtime.py) and the values of RTDE data packages (typed_records.py),
 made in C from what their struct unpacks; and the dataset's columns of the primary/secondary
 interface, of raw streams and captures (dataset_c.py, dataset_c_capture.py).

@@ -82,8 +82,15 @@ class Framer:
 
     def feed(self, data: bytes) -> list:
         """The records that the bytes so far complete; data is any bytes-like object."""
+        return list(self.feed_lazily(data))
+
+    def feed_lazily(self, data: bytes) -> Iterator:
+        """feed(), each record made as it is iterated: a reader that drops each record before
+        the next holds one at a time, where feed() holds the whole chunk's (and the C backend then
+        hands the copies of a dropped robot state to the next, see urwire.backends). Iterate it to
+        the end before the next feed or close."""
         self._buf += bytes_of(data, "Framer.feed")
-        return list(self._drain(final=False))
+        return self._drain(final=False)
 
     def close(self) -> list:
         return list(self._drain(final=True))
@@ -170,5 +177,5 @@ def _records(framer: Framer, chunks: Iterable) -> Iterator:
     for chunk in chunks:
         data = memoryview(bytes_of(chunk, "a chunk of decode_stream"))
         for at in range(0, len(data), FEED):
-            yield from framer.feed(data[at:at + FEED])
+            yield from framer.feed_lazily(data[at:at + FEED])
     yield from framer.close()

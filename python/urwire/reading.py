@@ -26,7 +26,7 @@ def records_of_raw(fh: BinaryIO, hint: VersionLike, advance: Callable[[int], Non
         if not chunk:
             break
         advance(len(chunk))
-        yield from framer.feed(chunk)
+        yield from framer.feed_lazily(chunk)
     yield from framer.close()
 
 

@@ -18,7 +18,11 @@
 4. A capture whose TCP segments come in reverse order, against the same capture in order.
 5. The C backend (urwire._ccore, `make python-ext`), at rest and in motion: a robot state's
    records (decode_message: framed in C, each sub-package a copy of what its bytes gave last,
-   else read by Python's decoder of its form) against python-urx's decode and pure Python's;
+   else read by Python's decoder of its form) against python-urx's decode and pure Python's,
+   each state dropped as it comes (its copies are then taken back by the next read), and in
+   motion with the last three states held (every copy made and freed: a caller that keeps them);
+   decode_stream in a loop over states in motion, the garbage collector on, against python-urx's
+   loop over the same states;
    and its canonical JSON line framed, decoded and written by the C parser, against python-urx's
    decode and pure Python's decode plus to_json_line; and `urwire decode` of the raw files under
    both backends (part 3's command column runs under the default backend, the C one where it is
@@ -31,6 +35,7 @@ The packages of older revisions are taken from git into build/bench-python/.
 from __future__ import annotations
 
 import argparse
+import collections
 import contextlib
 import dataclasses
 import importlib.util
@@ -306,14 +311,15 @@ def c_backend_per_message() -> None:
     for name in SAMPLES:
         data = sample(name)
         moving = in_motion(data)
-        for robot, states in (("at rest", [data]), ("in motion", moving)):
+        for robot, states, held in (("at rest", [data], 0), ("in motion", moving, 0), ("3 held", moving, 3)):
             lines = backends._CCORE.PrimaryJsonLines(None)
             nexts = {who: itertools.cycle(states).__next__ for who in ("python", "c", "py line", "c line")}
+            keep = collections.deque(maxlen=held).append
             assert lines.feed(data) == (urwire.to_json_line(python_decode(data)) + "\n").encode(), name
             assert all(urwire.decode_message(m) == python_decode(m) for m in states[:50]), name
             t = rounds({"urx": lambda: ParserUtils().parse(data),
                         "python": lambda: python_decode(nexts["python"]()),
-                        "c": lambda: urwire.decode_message(nexts["c"]()),
+                        "c": lambda: keep(urwire.decode_message(nexts["c"]())),
                         "py line": lambda: urwire.to_json_line(python_decode(nexts["py line"]())),
                         "c line": lambda: lines.feed(nexts["c line"]())})
             print(f"   {name if robot == 'at rest' else '':<36}{robot:<11}{us(t['urx']):>7}{us(t['python']):>8}"
@@ -322,6 +328,41 @@ def c_backend_per_message() -> None:
                   f"{us(t['py line']):>9}{us(t['c line']):>8}"
                   f"{spread([u / c for u, c in zip(t['urx'], t['c line'])]):>16}"
                   f"{spread([p / c for p, c in zip(t['py line'], t['c line'])]):>13}")
+
+
+def c_backend_stream() -> None:
+    """A program's loop: decode_stream over a feed of MOTION_STATES real states in motion, each
+    record dropped as the loop goes on, against python-urx parsing the same states in a loop; and
+    list(decode_stream(...)), which holds every record. CPU seconds per state, the best of
+    ROUNDS x REPEAT runs taking turns, with the garbage collector on as in a program (timeit
+    turns it off for the per-state figures above)."""
+    from urwire import backends
+    from urx.ursecmon import ParserUtils
+
+    if backends.backend() != "c":
+        return
+    moving = in_motion(sample(SAMPLES[0]))
+    stream = b"".join(moving)
+
+    def loop():
+        for _ in urwire.decode_stream(stream):
+            pass
+
+    def urx():
+        for state in moving:
+            ParserUtils().parse(state)
+
+    contenders = {"decode_stream": loop, "urx": urx, "list": lambda: list(urwire.decode_stream(stream))}
+    best = dict.fromkeys(contenders, float("inf"))
+    for _ in range(ROUNDS * REPEAT):
+        for name, run_once in contenders.items():
+            start = time.process_time()
+            run_once()
+            best[name] = min(best[name], (time.process_time() - start) / len(moving))
+    print(f"== C backend in a loop, {SAMPLES[0]} in motion, {len(moving):,} states, the collector on: "
+          f"decode_stream {best['decode_stream'] * 1e6:.1f} us a state against urx's {best['urx'] * 1e6:.1f} "
+          f"({best['urx'] / best['decode_stream']:.1f}x); list(decode_stream) {best['list'] * 1e6:.1f} us "
+          f"({best['urx'] / best['list']:.1f}x)")
 
 
 def c_backend_files(sizes: list[int]) -> None:
@@ -350,6 +391,7 @@ def main(argv: list[str]) -> int:
     args = parser.parse_args(argv)
     if args.only_c:
         c_backend_per_message()
+        c_backend_stream()
         c_backend_files(sorted(args.sizes))
         return 0
     BASE, GENERATIONS_BASE = args.base, args.generations_base
@@ -359,6 +401,7 @@ def main(argv: list[str]) -> int:
     files(sorted(args.sizes), base)
     reversed_segments()
     c_backend_per_message()
+    c_backend_stream()
     c_backend_files(sorted(args.sizes))
     return 0
 

@@ -353,6 +353,75 @@ def test_records_from_c_share_nothing_that_can_change(ccore):
         assert second == expected
 
 
+def decoded_again(states, state: bytes, times: int = 3):
+    """The record of `state` read `times` times in a row, each read dropped but the last: the
+    packages are then kept, and copies of them were lent out and dropped."""
+    with robot_states_from(states):
+        for _ in range(times - 1):
+            decoding.decode_message(state, (5, 11, 0))
+        return decoding.decode_message(state, (5, 11, 0))
+
+
+def new_memory(read) -> int:
+    """The bytes that read() allocates and that are still in use once it returns (tracemalloc)."""
+    import tracemalloc
+    tracemalloc.start()
+    try:
+        before = tracemalloc.get_traced_memory()[0]
+        result = read()
+        after = tracemalloc.get_traced_memory()[0]
+    finally:
+        tracemalloc.stop()
+    del result
+    return after - before
+
+
+def test_a_dropped_state_lends_its_copies_to_the_next(ccore):
+    """Read again after the state before was dropped, the packages that did not move are the
+    copies that state had, taken back: the read allocates no more than the message and its list
+    (a few hundred bytes, where copies of a real state's packages take kilobytes), and its record
+    is still pure Python's."""
+    states = new_states(ccore)
+    state = real_states()[0]
+    with robot_states_from(None):
+        expected = decoding.decode_message(state, (5, 11, 0))
+    decoded_again(states, state)
+    with robot_states_from(states):
+        taken_back = new_memory(lambda: decoding.decode_message(state, (5, 11, 0)))
+        held = decoding.decode_message(state, (5, 11, 0)), decoding.decode_message(state, (5, 11, 0))
+        copied = new_memory(lambda: decoding.decode_message(state, (5, 11, 0)))   # both lent copies held
+        assert decoding.decode_message(state, (5, 11, 0)) == expected and held[0] == held[1] == expected
+    assert taken_back < 1000 and copied > 5 * taken_back, (taken_back, copied)
+
+
+def test_a_copy_is_not_lent_again_while_any_part_of_it_is_held(ccore):
+    """A state dropped while a list or record of it is still held, or after it was changed,
+    gives the next read new copies: the next state shares nothing with what is held, and equals
+    pure Python's record."""
+    states = new_states(ccore)
+    state = real_states()[0]
+    with robot_states_from(None):
+        expected = decoding.decode_message(state, (5, 11, 0))
+    first = decoded_again(states, state)
+    joints = first.package(urwire.JointData).joints
+    joint = joints[1]
+    del first
+    second = decoded_again(states, state, times=1)
+    assert second == expected
+    assert not {id(joints), id(joint)} & {id(x) for x in mutable_parts(second, [])}
+    joints.pop()
+    joint.q_actual += 1.0
+    assert second == expected
+    del second, joints, joint
+    for change in (lambda m: setattr(m.package(urwire.JointData).joints[0], "q_actual", 9.0),
+                   lambda m: m.package(urwire.JointData).joints.append(None),
+                   lambda m: m.package(urwire.JointData).joints.reverse()):
+        changed = decoded_again(states, state, times=1)
+        change(changed)
+        del changed
+        assert decoded_again(states, state, times=1) == expected
+
+
 def test_records_from_c_are_the_classes_own(ccore):
     """Made past __init__: the same classes, every slot set, usable as records built in Python
     (replace, repr, the field defaults)."""

@@ -163,3 +163,17 @@ def test_resynchronising_checks_only_the_places_a_header_could_start(monkeypatch
     records = list(urwire.decode_stream(b"\xff" + junk + after))
     assert lines(records[-1:]) == ['{"type": "text", "timestamp": 1, "source": -2, "text": "after"}']
     assert len(checks) < len(junk) // 1000
+
+
+def test_feed_lazily_makes_each_record_as_it_is_iterated():
+    """The same records as feed(), but the second is not read before the first is taken: a
+    Version message after the first record has not set the version yet. decode_stream reads so,
+    and so holds one record at a time for a reader that drops each."""
+    data = text_message(b"first") + MINIMAL_VERSION
+    framer = urwire.Framer()
+    records = framer.feed_lazily(data)
+    first = next(records)
+    assert not framer.version_seen
+    rest = list(records)
+    assert framer.version_seen and framer.version == (5, 24, 0)
+    assert lines([first, *rest]) == lines(urwire.Framer().feed(data)) and len(rest) == 1
