@@ -4,9 +4,10 @@ int32 size, and the records of packets no layout fits.
 The layouts, and the rule that chooses one for a size (`FORMS_BY_SIZE`, spec framing.same_size),
 are generated from spec/ur_realtime.yaml into urwire.generated.ur_realtime. Bad input never
 raises: a size no layout has is kept raw in an `UnknownPacket` with its error, and framing goes on
-after it; a size that cannot frame a packet (below 8, or above the largest plausible) ends the
-stream with a `StreamError`, since no later packet can be found; a packet cut short is reported
-by `close()`.
+after it; a size that cannot frame a packet (below 12, or above the largest plausible) is a
+`StreamError`, and framing goes on at the next plausible packet, the next size some layout has
+(docs/realtime.md); a packet cut
+short is reported by `close()`.
 """
 from __future__ import annotations
 
@@ -100,24 +101,52 @@ class RealtimeFramer:
         it from the primary stream of the same robot."""
         self._buffer = bytearray()
         self._offset = 0          # stream offset of the buffer's first byte
-        self._broken = False      # a size that cannot frame a packet was seen: nothing more is framed
+        self._scanning = False    # after a size that cannot frame a packet: looking for the next one
 
     def feed(self, data) -> list:
         data = bytes_of(data, "RealtimeFramer.feed")
-        if self._broken:
-            self._offset += len(data)
-            return []
+        self._buffer += data
+        return self._frame(final=False)
+
+    def close(self) -> list:
+        """What is left at the end of the stream: whole packets a scan found, and a packet cut short,
+        as a StreamError."""
+        out = self._frame(final=True)
+        tail, self._buffer = self._buffer, bytearray()
+        offset, left = self._offset, len(tail)
+        self._offset += left
+        if not left or self._scanning:
+            self._scanning = False
+            return out
+        needed = SIZE_FIELD.unpack_from(tail, 0)[0] if left >= SIZE_FIELD_BYTES else SIZE_FIELD_BYTES
+        return out + [StreamError(offset, f"packet at offset {offset}: needs {needed} bytes, {left} left")]
+
+    def restart(self, offset: int) -> list:
+        """The stream lost bytes: what is held is given up (close()'s records), and framing starts
+        afresh at stream offset `offset`, the version kept."""
+        out = self.close()
+        self._offset = offset
+        return out
+
+    def _frame(self, final: bool) -> list:
         buf = self._buffer
-        buf += data
         out, pos, end = [], 0, len(buf)
-        while end - pos >= SIZE_FIELD_BYTES:
+        while True:
+            if self._scanning:
+                pos = _next_packet(buf, pos, final)
+                if pos < 0:              # none yet: keep what could still start one
+                    pos = -pos - 1
+                    break
+                self._scanning = False
+            if end - pos < SIZE_FIELD_BYTES:
+                break
             size = SIZE_FIELD.unpack_from(buf, pos)[0]
             fault = _fault(size)
             if fault is not None:
                 out.append(StreamError(self._offset + pos, f"packet at offset {self._offset + pos}: {fault}"))
-                self._broken = True
-                pos = end
-                break
+                self._scanning = True
+                pos += 1
+                continue
             if end - pos < size:
                 break
             out.append(decode_packet(buf, pos, self.version, self._offset + pos))
@@ -126,16 +155,6 @@ class RealtimeFramer:
         self._offset += pos
         return out
 
-    def close(self) -> list:
-        """A packet cut short at the end of the stream, as a StreamError."""
-        tail, self._buffer = self._buffer, bytearray()
-        offset, left = self._offset, len(tail)
-        self._offset += left
-        if not left or self._broken:
-            return []
-        needed = SIZE_FIELD.unpack_from(tail, 0)[0] if left >= SIZE_FIELD_BYTES else SIZE_FIELD_BYTES
-        return [StreamError(offset, f"packet at offset {offset}: needs {needed} bytes, {left} left")]
-
 
 def _fault(size: int) -> Optional[str]:
     if size < MIN_MESSAGE_SIZE:
@@ -143,6 +162,19 @@ def _fault(size: int) -> Optional[str]:
     if size > MAX_MESSAGE_SIZE:
         return f"size {size} is above {MAX_MESSAGE_SIZE}"
     return None
+
+
+def _next_packet(buf: bytearray, pos: int, final: bool) -> int:
+    """Where the next plausible packet starts, from `pos` on: the next size some layout has (a size
+    no layout has is not trusted, since the doubles of a packet hold small int32s often enough).
+    -1 - p when none is found yet, p being where the scan goes on when more bytes come (-1 -
+    len(buf) at the end of the stream)."""
+    end = len(buf)
+    while end - pos >= SIZE_FIELD_BYTES:
+        if SIZE_FIELD.unpack_from(buf, pos)[0] in FORMS_BY_SIZE:
+            return pos
+        pos += 1
+    return -1 - (end if final else pos)
 
 
 def decode_stream(data: Union[bytes, Iterable[bytes]], version_hint: VersionLike = None) -> list:
@@ -172,8 +204,14 @@ class RealtimeConversation:
         if not self.hinted:
             self.framer.version = version
 
-    def close(self) -> list:
-        return self.framer.close()
+    def close(self, from_robot: Optional[bool] = None) -> list:
+        """A packet cut short at the end of the robot's stream; the client's is not decoded."""
+        return [] if from_robot is False else self.framer.close()
+
+    def lost(self, from_robot: bool, offset: int) -> list:
+        """Bytes of one direction are missing before stream offset `offset`: the packet they cut
+        short is reported, and the robot's stream is framed afresh from there."""
+        return self.framer.restart(offset) if from_robot else []
 
 
 __all__ = ["UnknownPacket", "RealtimeFramer", "RealtimeConversation", "decode_packet", "decode_stream",

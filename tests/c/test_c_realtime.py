@@ -131,6 +131,20 @@ def test_the_same_json_as_python_on_hostile_streams(tmp_path):
         assert c_lines(cli, data, tmp_path) == python_lines(data), i
 
 
+def test_after_a_size_that_cannot_frame_a_packet_both_go_on_at_the_next_one(tmp_path):
+    """A stream joined across lost bytes, in the middle of a packet: one error, then every packet
+    after it, the same lines and status from C and Python."""
+    cli = get_build("asan-clang").cli
+    rng = random.Random(5)
+    packets = [struct.pack(">i", 1116) + b"".join(struct.pack(">d", rng.uniform(-4, 4)) for _ in range(139))
+               for _ in range(12)]
+    cut = b"".join(packets[:5]) + packets[6][700:] + b"".join(packets[7:])
+    lines, status = c_lines(cli, cut, tmp_path)
+    assert (lines, status) == python_lines(cut)
+    assert [json.loads(line)["type"] for line in lines] == ["rt_3_10"] * 5 + ["error"] + ["rt_3_10"] * 5
+    assert status == 1
+
+
 def test_the_kept_corpus_passes_the_fuzz_harness():
     if shutil.which("clang") is None:
         pytest.fail("clang is not installed (scripts/setup.sh installs it)")

@@ -73,9 +73,30 @@ def test_a_cut_tail_and_a_broken_size_are_stream_errors():
     assert cut[-1] == StreamError(1116, "packet at offset 1116: needs 1116 bytes, 100 left")
     assert decode_stream(packet(1116)[:2]) == [StreamError(0, "packet at offset 0: needs 4 bytes, 2 left")]
     broken = decode_stream(struct.pack(">i", 3) + packet(1116))
-    assert broken == [StreamError(0, "packet at offset 0: size 3 is below 12")]
+    assert broken[0] == StreamError(0, "packet at offset 0: size 3 is below 12")
+    assert [r.message_size for r in broken[1:]] == [1116]      # framing goes on at the next packet
     huge = decode_stream(struct.pack(">i", 1 << 30) + bytes(100))
     assert huge == [StreamError(0, f"packet at offset 0: size {1 << 30} is above {rt.MAX_MESSAGE_SIZE}")]
+
+
+def test_after_a_size_that_cannot_frame_a_packet_framing_goes_on_at_the_next_one():
+    """The middle of a packet (a stream that lost bytes, or joined across them) reads as a bad size;
+    the scan finds the next packet by a size some layout has, and every packet after it is decoded."""
+    whole = b"".join(packet(1116, float(i)) for i in range(6))
+    stream = whole[:1116] + whole[2 * 1116 + 500:]          # from the middle of packet 2 on
+    records = decode_stream(stream)
+    errors = [r for r in records if isinstance(r, StreamError)]
+    assert len(errors) == 1 and errors[0].offset == 1116
+    assert [r.time for r in records if not isinstance(r, StreamError)] == [0.0, 3.0, 4.0, 5.0]
+
+
+def test_the_scan_trusts_only_sizes_a_layout_has():
+    """A packet's doubles hold small int32s (2.0 after 0.0 reads 64): a scan that took any size
+    that frames a packet would frame garbage."""
+    unknown = struct.pack(">i", 40) + bytes(36)
+    records = decode_stream(struct.pack(">i", 5) + bytes(9) + unknown * 3 + packet(812))
+    assert records[0] == StreamError(0, "packet at offset 0: size 5 is below 12")
+    assert [r.message_size for r in records[1:]] == [812]
 
 
 def test_the_version_picks_among_forms_of_one_size():

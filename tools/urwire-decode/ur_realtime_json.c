@@ -52,11 +52,45 @@ static void write_error(FILE *out, size_t offset, const char *what)
             (unsigned long)offset, (unsigned long)offset, what);
 }
 
+/* Whether some layout has this size: a packet of it, zeros after the size field, decodes. */
+static bool has_layout(int32_t size)
+{
+    static uint8_t probe[UR_REALTIME_MAX_MESSAGE_SIZE];
+    ur_realtime_packet p;
+    probe[0] = (uint8_t)((uint32_t)size >> 24);
+    probe[1] = (uint8_t)((uint32_t)size >> 16);
+    probe[2] = (uint8_t)((uint32_t)size >> 8);
+    probe[3] = (uint8_t)size;
+    return ur_realtime_decode(probe, (size_t)size, 0, &p) == UR_REALTIME_OK;
+}
+
+static int32_t size_at(const uint8_t *p)
+{
+    return (int32_t)((uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3]);
+}
+
+/* After a size that cannot frame a packet: where the next plausible packet starts, from pos on
+ * (the next size some layout has), as python/urwire/realtime.py finds it. False when none is found
+ * yet; *pos is then where the scan goes on when more bytes come (have, at the end of the stream). */
+static bool next_packet(const uint8_t *buf, size_t have, size_t *pos, bool eof)
+{
+    size_t p = *pos;
+    for (; have - p >= UR_REALTIME_SIZE_FIELD_BYTES; p++) {
+        int32_t size = size_at(buf + p);
+        if (size >= UR_REALTIME_MIN_MESSAGE_SIZE && size <= UR_REALTIME_MAX_MESSAGE_SIZE && has_layout(size)) {
+            *pos = p;
+            return true;
+        }
+    }
+    *pos = eof ? have : p;
+    return false;
+}
+
 int ur_realtime_print_stream(FILE *in, FILE *out, uint32_t version)
 {
     static uint8_t buf[UR_REALTIME_MAX_MESSAGE_SIZE + (1 << 16)];
     size_t have = 0, offset = 0;   /* bytes in buf; stream offset of buf[0] */
-    bool errors = false, eof = false;
+    bool errors = false, eof = false, scanning = false;
     while (!eof) {
         size_t pos = 0, got = fread(buf + have, 1, sizeof buf - have, in);
         if (got < sizeof buf - have) {
@@ -69,13 +103,22 @@ int ur_realtime_print_stream(FILE *in, FILE *out, uint32_t version)
             ur_realtime_packet p;
             char what[96];
             int32_t size = 0;
-            ur_realtime_error e = ur_realtime_frame(buf + pos, have - pos, &size);
+            ur_realtime_error e;
+            if (scanning) {
+                if (!next_packet(buf, have, &pos, eof))
+                    break;
+                scanning = false;
+            }
+            e = ur_realtime_frame(buf + pos, have - pos, &size);
             if (e == UR_REALTIME_E_SIZE_BELOW || e == UR_REALTIME_E_SIZE_ABOVE) {
-                /* Nothing after it can be framed: say so and read no further. */
+                /* Say so, and go on at the next plausible packet. */
                 sprintf(what, "size %ld is %s %d", (long)size, e == UR_REALTIME_E_SIZE_BELOW ? "below" : "above",
                         e == UR_REALTIME_E_SIZE_BELOW ? UR_REALTIME_MIN_MESSAGE_SIZE : UR_REALTIME_MAX_MESSAGE_SIZE);
                 write_error(out, offset + pos, what);
-                return 1;
+                errors = true;
+                scanning = true;
+                pos++;
+                continue;
             }
             if (e == UR_REALTIME_E_SHORT || (size_t)size > have - pos) {
                 if (eof && have > pos) {
