@@ -25,64 +25,141 @@ def is_capture(head: bytes) -> bool:
     return head[:4] in PCAP_MAGICS or head[:4] == PCAPNG_MAGIC
 
 
+HISTORY_KEPT = 256 << 10  # bytes of a stream kept after delivery, to compare retransmissions with
+
+
+@dataclass(frozen=True)
+class Gap:
+    """Bytes of one direction the capture does not hold: the reader went on without them."""
+
+    offset: int     # in the direction's stream, where the missing bytes start
+    length: int
+
+    @property
+    def error(self) -> str:
+        return f"{self.length} bytes missing from the capture at offset {self.offset}"
+
+
+@dataclass(frozen=True)
+class Differs:
+    """Bytes the capture holds twice, differently: the first copy was delivered (or held), the other
+    dropped; `length` bytes from `offset` on are at stake, of which `differing` differ."""
+
+    offset: int
+    length: int
+    differing: int = 0      # 0: the first copy is no longer kept, so the two were not compared
+
+    @property
+    def error(self) -> str:
+        if not self.differing:
+            return (f"{self.length} retransmitted bytes at offset {self.offset} reach back past the "
+                    f"{HISTORY_KEPT} bytes kept, and could not be compared")
+        return (f"retransmitted bytes at offset {self.offset} differ from those delivered first "
+                f"({self.differing} of {self.length}); the first kept")
+
+
+Piece = Union[bytes, Gap, Differs]
+
+
 @dataclass
 class _Reassembly:
+    """One direction of a TCP conversation: segments in, its stream out as pieces, in order: bytes,
+    a Gap where bytes are given up as missing, a Differs where a retransmission disagrees with the
+    bytes it repeats (identical retransmissions are dropped without a word)."""
+
     next_seq: Optional[int] = None
     position: int = 0       # where next_seq is in the stream: the bytes delivered so far
     held: dict = field(default_factory=dict)    # stream position -> bytes, ahead of next_seq
     order: list = field(default_factory=list)   # the positions in `held`, as a heap
     held_bytes: int = 0     # the memory they take: their bytes and SEGMENT_COST each
+    history: bytearray = field(default_factory=bytearray)  # the last bytes delivered, up to `position`
 
-    def add(self, seq: int, data: bytes) -> bytes:
+    def add(self, seq: int, data: bytes) -> list:
         if self.next_seq is None:
             self.next_seq = seq  # the capture starts mid-stream
         ahead = _delta(seq, self.next_seq)
+        out: list = []
         if ahead > 0:
-            return self._hold(self.position + ahead, data)
+            self._hold(self.position + ahead, data, out)
+            return out
         if -ahead >= len(data):
-            return b""  # a retransmission of bytes already delivered
+            self._compare(self.position + ahead, data, out)  # a retransmission of bytes delivered
+            return out
+        if ahead < 0:
+            self._compare(self.position + ahead, data[:-ahead], out)
         piece = data[-ahead:] if ahead < 0 else data
-        self._advance(len(piece))
-        if not self.order:
-            return piece
-        pieces = [piece]
-        self._drain(pieces)
-        return b"".join(pieces)
+        self._deliver(piece, out)
+        if self.order:
+            self._drain(out)
+        return out
 
-    def _hold(self, at: int, data: bytes) -> bytes:
+    def _hold(self, at: int, data: bytes, out: list) -> None:
         kept = self.held.get(at)
         if kept is None:
             heapq.heappush(self.order, at)
-        elif len(kept) >= len(data):
-            return b""  # a retransmission of bytes already held
+        else:
+            _same(at, kept, data, out)
+            if len(kept) >= len(data):
+                return  # a retransmission of bytes already held
+            data = kept + data[len(kept):]      # the first copy stands, the longer one adds to it
         self.held[at] = data
         self.held_bytes += len(data) - (len(kept) if kept is not None else -SEGMENT_COST)
-        return b""
 
-    def _drain(self, pieces: list) -> None:
-        """Append the held bytes the stream has reached, earliest first, each segment once."""
+    def _drain(self, out: list) -> None:
+        """Deliver the held bytes the stream has reached, earliest first, each segment once."""
         while self.order and self.order[0] <= self.position:
             at = heapq.heappop(self.order)
             data = self.held.pop(at)
             self.held_bytes -= len(data) + SEGMENT_COST
             seen = self.position - at
+            if seen:
+                self._compare(at, data[:seen], out)
             if seen < len(data):
-                pieces.append(data[seen:] if seen else data)
-                self._advance(len(data) - seen)
+                self._deliver(data[seen:] if seen else data, out)
+
+    def _deliver(self, piece: bytes, out: list) -> None:
+        out.append(piece)
+        self._advance(len(piece))
+        history = self.history
+        history += piece
+        if len(history) > 2 * HISTORY_KEPT:
+            del history[:-HISTORY_KEPT]
+
+    def _compare(self, at: int, data: bytes, out: list) -> None:
+        """Bytes of the stream from `at` on, delivered before: said when they differ."""
+        kept_from = self.position - len(self.history)
+        if at < kept_from:
+            out.append(Differs(at, len(data)))
+            return
+        start = at - kept_from
+        _same(at, bytes(self.history[start:start + len(data)]), data, out)
 
     def _advance(self, n: int) -> None:
         self.position += n
         self.next_seq = (self.next_seq + n) & 0xFFFFFFFF
 
-    def skip_gap(self) -> bytes:
-        """Give up on missing bytes: go on from the earliest segment held."""
-        self._advance(self.order[0] - self.position)
-        pieces: list = []
-        self._drain(pieces)
-        return b"".join(pieces)
+    def skip_gap(self) -> list:
+        """Give up on missing bytes: a Gap, then the stream from the earliest segment held."""
+        gap = Gap(self.position, self.order[0] - self.position)
+        self._advance(gap.length)
+        self.history.clear()    # what came before the gap is not what a retransmission repeats
+        out: list = [gap]
+        self._drain(out)
+        return out
 
-    def flush(self) -> bytes:
-        return self.skip_gap() if self.order else b""
+    def flush(self) -> list:
+        """The end of the stream: every gap before held bytes given up, every held byte delivered."""
+        out: list = []
+        while self.order:
+            out += self.skip_gap()
+        return out
+
+
+def _same(at: int, first: bytes, second: bytes, out: list) -> None:
+    """Two copies of the stream's bytes from `at` on: a Differs when their common part differs."""
+    n = min(len(first), len(second))
+    if first[:n] != second[:n]:
+        out.append(Differs(at, n, sum(a != b for a, b in zip(first[:n], second[:n]))))
 
 
 def _delta(seq: int, ref: int) -> int:
@@ -113,7 +190,8 @@ StreamKey = tuple  # (robot address, robot port, client address, client port)
 
 
 def robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[tuple[StreamKey, bytes, bool]]:
-    """(stream, bytes in order, stream ended) for each robot->client TCP stream on `ports`."""
+    """(stream, bytes in order, stream ended) for each robot->client TCP stream on `ports`; bytes
+    either side of a gap come out as they are, joined (timed_streams says where gaps are)."""
     for item in timed_robot_streams(fh, ports):
         if not isinstance(item, CaptureFault):
             key, data, ended, _ = item
@@ -128,18 +206,21 @@ def timed_robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[Union[tuple[S
     for item in timed_streams(fh, ports):
         if isinstance(item, CaptureFault):
             yield item
-        else:
+        elif isinstance(item[2], bytes):
             key, _, data, ended, ts = item
             yield key, data, ended, ts
 
 
 def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozenset()) -> Iterator[
-        Union[tuple[StreamKey, bool, bytes, bool, float], CaptureFault]]:
-    """(conversation, from robot, bytes in order, stream ended, capture time) for the TCP streams
-    whose robot side is on `ports`: robot->client always, client->robot too for the ports in
-    `both_ways` (the interfaces that read what clients send). The conversation is (robot address,
-    robot port, client address, client port) in both directions; each direction is reassembled on
-    its own. CaptureFaults as timed_robot_streams says."""
+        Union[tuple[StreamKey, bool, Piece, bool, float], CaptureFault]]:
+    """(conversation, from robot, piece, stream ended, capture time) for the TCP streams whose
+    robot side is on `ports`: robot->client always, client->robot too for the ports in `both_ways`
+    (the interfaces that read what clients send). The conversation is (robot address, robot port,
+    client address, client port) in both directions; each direction is reassembled on its own. A
+    piece is the bytes that came next (b"" when a stream ends with nothing more), or a Gap where
+    the reader gave up bytes the capture does not hold and went on after them, or a Differs where
+    a retransmission disagrees with the bytes it repeats. CaptureFaults as timed_robot_streams
+    says."""
     import dpkt
     import socket
 
@@ -175,23 +256,46 @@ def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozense
         if stream is not None:
             held -= stream.held_bytes  # added back below, as the segment leaves it
         if tcp.flags & dpkt.tcp.TH_SYN:
-            stream = streams[way] = _Reassembly((tcp.seq + 1) & 0xFFFFFFFF)
+            if stream is not None and stream.order:    # a new connection on the same ports
+                yield from _items(key, from_robot, stream.flush(), True, float(ts))
+            streams[way] = _Reassembly((tcp.seq + 1) & 0xFFFFFFFF)
             continue
         if stream is None:
             stream = streams[way] = _Reassembly()
-        data = stream.add(tcp.seq, bytes(tcp.data)) if tcp.data else b""
+        data = bytes(tcp.data)
+        pieces = [] if not data or _keep_alive(stream, tcp.seq, data) else stream.add(tcp.seq, data)
         ended = bool(tcp.flags & (dpkt.tcp.TH_FIN | dpkt.tcp.TH_RST))
         if ended:
-            data += stream.flush()
+            pieces += stream.flush()
             del streams[way]
         else:
             held += stream.held_bytes
-        if data or ended:
-            yield key, from_robot, data, ended, float(ts)
+        yield from _items(key, from_robot, pieces, ended, float(ts))
         while held > MAX_PENDING:  # the stream holding the most gives up its gap
             largest = max(streams, key=lambda k: streams[k].held_bytes)
             held -= streams[largest].held_bytes
-            yield largest[0], largest[1], streams[largest].skip_gap(), False, float(ts)
+            yield from _items(largest[0], largest[1], streams[largest].skip_gap(), False, float(ts))
             held += streams[largest].held_bytes
     for (key, from_robot), stream in streams.items():
-        yield key, from_robot, stream.flush(), True, float(ts)
+        yield from _items(key, from_robot, stream.flush(), True, float(ts))
+
+
+def _keep_alive(stream: _Reassembly, seq: int, data: bytes) -> bool:
+    """A TCP keep-alive probe: one byte (of any value) just before the next expected one."""
+    return len(data) == 1 and stream.next_seq is not None and _delta(seq, stream.next_seq) == -1
+
+
+def _items(key: StreamKey, from_robot: bool, pieces: list, ended: bool, ts: float) -> Iterator[tuple]:
+    """timed_streams' items for one segment's pieces: the bytes between faults joined; the last item
+    says whether the stream ended (an empty one when it ended with nothing more)."""
+    run: list = []
+    for piece in pieces:
+        if isinstance(piece, bytes):
+            run.append(piece)
+            continue
+        if run:
+            yield key, from_robot, b"".join(run), False, ts
+            run = []
+        yield key, from_robot, piece, False, ts
+    if run or ended:
+        yield key, from_robot, b"".join(run), ended, ts

@@ -14,7 +14,7 @@ from typing import BinaryIO, Callable, Iterable, Iterator, Optional
 
 from ._runtime import StreamError
 from .arguments import VersionLike
-from .capture import timed_streams
+from .capture import Differs, Gap, timed_streams
 from .capture_records import CaptureFault
 from .envelope import FROM_ROBOT, TO_ROBOT, Enveloped
 from .interfaces import INTERFACES, Interface
@@ -55,14 +55,14 @@ def timed_robot_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inte
         if isinstance(item, CaptureFault):  # its offset is the capture file's, not a stream's
             yield None, None, StreamError(item.offset, item.error)
             continue
-        key, from_port, data, ended, time = item
+        key, from_port, piece, ended, time = item
         interface = by_port[key[1]]
         # The side that listens on the port is the robot, except on the ROS driver's sockets,
         # where the robot connects to the control PC.
         from_robot = from_port != interface.robot_is_client
         conv = conversations.get(key)
         if conv is None:
-            if not data:                        # the end of a conversation already closed
+            if not piece:                       # the end of a conversation already closed
                 continue
             conv = conversations[key] = interface.conversation(hint)
         learn = getattr(conv, "learn_version", None)
@@ -71,20 +71,30 @@ def timed_robot_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inte
         at = getattr(conv, "at", None)
         if at is not None:      # a conversation that files its records itself (dataset_c_capture.py)
             at(time, key[0])
-        records = conv.feed(data, from_robot) if data else []
+        tails: list = []
+        if isinstance(piece, Gap):
+            # Named, then what the direction held before it given up, and its decoding started afresh.
+            records = [StreamError(piece.offset, piece.error)] + conv.lost(from_robot, piece.offset + piece.length)
+        elif isinstance(piece, Differs):
+            records = [StreamError(piece.offset, piece.error)]
+        else:
+            records = conv.feed(piece, from_robot) if piece else []
         learnt = getattr(conv, "software_version", None)
         if learnt is not None:
             versions[key[0]] = learnt
         if ended and from_port:
-            records = records + conv.close()
+            # Each direction's tail is its own: to_robot's first, then the robot's.
+            tails = [(False, conv.close(False)), (True, conv.close(True))]
             del conversations[key]
         if interface.name == PRIMARY:
-            for record in records:
+            for record in records + [r for _, side in tails for r in side]:
                 yield time, key[0], record
         else:
-            name, direction = _conversation_name(key), FROM_ROBOT if from_robot else TO_ROBOT
-            for record in records:
-                yield time, key[0], Enveloped(interface.name, direction, name, record)
+            name = _conversation_name(key)
+            for direction, side in [(from_robot, records)] + tails:
+                for record in side:
+                    yield time, key[0], Enveloped(interface.name, FROM_ROBOT if direction else TO_ROBOT, name,
+                                                  record)
         if fh.seekable():
             pos = fh.tell()
             advance(pos - last)
@@ -113,7 +123,10 @@ def records_of_raw_protocol(fh: BinaryIO, interface: Interface, hint: VersionLik
     if to_robot is not None:
         yield from read(to_robot, False, names[1])
     yield from read(fh, True, names[0])
-    for record in conv.close():
+    # Each stream's tail is its own, the client's first.
+    for record in conv.close(False):
+        yield record if to_robot is None else Enveloped(interface.name, TO_ROBOT, names[1], record)
+    for record in conv.close(True):
         yield record if to_robot is None else Enveloped(interface.name, FROM_ROBOT, names[0], record)
 
 

@@ -76,11 +76,16 @@ class _PrimaryConversation:
         columns = self.rows.columns(self.robot)
         return self._made(columns, columns.feed_stream(self.stream, data, self._position(), micros(self.time)))
 
-    def close(self) -> list:
-        if self.robot is None:          # nothing was fed
+    def close(self, from_robot: Optional[bool] = None) -> list:
+        if self.robot is None or from_robot is False:    # nothing was fed, or the client's side
             return []
         columns = self.rows.columns(self.robot)
         return self._made(columns, columns.close_stream(self.stream, self._position(), micros(self.time)))
+
+    def lost(self, from_robot: bool, offset: int) -> list:
+        # C's stream goes on over the gap (the reader's error record names it) and finds the next
+        # whole message by its own resynchronisation.
+        return []
 
     def _position(self) -> int:
         # Records fed and closed in one step of the reader are not counted yet when it closes.

@@ -95,6 +95,15 @@ class Framer:
     def close(self) -> list:
         return list(self._drain(final=True))
 
+    def restart(self, offset: int) -> list:
+        """The stream lost bytes: what is held is given up (close()'s records), and framing starts
+        afresh at stream offset `offset`, the version learnt kept."""
+        out = self.close()
+        self._buf.clear()
+        self._base = offset
+        self._resyncing = self._ended_inside = False
+        return out
+
     def _drain(self, final: bool) -> Iterator:
         buf = self._buf
         n = len(buf)

@@ -102,17 +102,26 @@ class RecordsConversation:
         d.offset += whole
         return out
 
-    def close(self) -> list:
-        out = []
-        for from_robot in (False, True):
-            d = self.directions[from_robot]
-            if not d.buffer:
-                continue
-            if d.kind is None:
-                out.append(StreamError(d.offset, f"{len(d.buffer)} bytes {_side(from_robot)}, where none are specified"))
-            else:
-                size = d.kind.layout(self.release).size
-                out.append(StreamError(d.offset, f"{len(d.buffer)} bytes left, short of a {size}-byte record"))
+    def close(self, from_robot: Optional[bool] = None) -> list:
+        """What one direction's end leaves (both, to_robot's first, when from_robot is None)."""
+        if from_robot is None:
+            return self.close(False) + self.close(True)
+        d = self.directions[from_robot]
+        if not d.buffer:
+            return []
+        left, at = len(d.buffer), d.offset
+        d.offset += left
+        d.buffer.clear()
+        if d.kind is None:
+            return [StreamError(at, f"{left} bytes {_side(from_robot)}, where none are specified")]
+        size = d.kind.layout(self.release).size
+        return [StreamError(at, f"{left} bytes left, short of a {size}-byte record")]
+
+    def lost(self, from_robot: bool, offset: int) -> list:
+        """Bytes of one direction are missing before `offset`: its partial record is given up as
+        close() gives it, and its records are cut afresh from there."""
+        out = self.close(from_robot)
+        self.directions[from_robot].offset = offset
         return out
 
 

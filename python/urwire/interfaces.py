@@ -23,8 +23,14 @@ class Conversation(Protocol):
     def feed(self, data: bytes, from_robot: bool) -> list:
         """The records the bytes so far complete, in order."""
 
-    def close(self) -> list:
-        """What the ends of the two streams leave: a truncated tail becomes an error record."""
+    def close(self, from_robot: Optional[bool] = None) -> list:
+        """What the end of one direction's stream leaves (both, to_robot's first, when
+        `from_robot` is None): a truncated tail becomes an error record of that direction."""
+
+    def lost(self, from_robot: bool, offset: int) -> list:
+        """Bytes of one direction are missing before its stream offset `offset`: what that
+        direction holds is given up as close() gives it, and its decoding starts afresh there,
+        keeping what the connection learnt (version, recipes, protocol)."""
 
     # Optional: `software_version` (the version the conversation learnt, else None) and
     # `learn_version(version)` (the version another conversation of the same robot learnt).
@@ -52,8 +58,11 @@ class PrimaryConversation:
     def feed(self, data: bytes, from_robot: bool) -> list:
         return self.framer.feed(data) if from_robot else []
 
-    def close(self) -> list:
-        return self.framer.close()
+    def close(self, from_robot: Optional[bool] = None) -> list:
+        return [] if from_robot is False else self.framer.close()
+
+    def lost(self, from_robot: bool, offset: int) -> list:
+        return self.framer.restart(offset) if from_robot else []
 
     @property
     def software_version(self):

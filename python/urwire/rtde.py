@@ -62,8 +62,18 @@ class Conversation:
             self.count += 1
         return out
 
-    def close(self) -> list:
-        out = self._framers[True].close() + self._framers[False].close()
+    def close(self, from_robot: Optional[bool] = None) -> list:
+        """A message cut short at the end of one direction's stream (both, to_robot's first, when
+        from_robot is None)."""
+        out = self._framers[False].close() if from_robot is not True else []
+        out += self._framers[True].close() if from_robot is not False else []
+        self.count += len(out)
+        return out
+
+    def lost(self, from_robot: bool, offset: int) -> list:
+        """Bytes of one direction are missing before `offset`: a message they cut short is given
+        up, and that direction is framed afresh from there; protocol and recipes are kept."""
+        out = self._framers[bool(from_robot)].restart(offset)
         self.count += len(out)
         return out
 

@@ -130,9 +130,20 @@ class _Lines:
         return StreamError(offset, f"line longer than {self.max_line} bytes")
 
     def close(self) -> list:
-        if self.buffer and not self.skipping:
-            return [StreamError(self.offset, f"{len(self.buffer)} bytes without a newline at the end of the stream")]
+        left, at = len(self.buffer), self.offset
+        self.buffer.clear()
+        self.offset += left
+        if left and not self.skipping:
+            return [StreamError(at, f"{left} bytes without a newline at the end of the stream")]
         return []
+
+    def restart(self, offset: int) -> list:
+        """The stream lost bytes: the line they cut is given up (close()'s record), and lines are
+        split afresh from stream offset `offset`."""
+        out = self.close()
+        self.offset = offset
+        self.skipping = False
+        return out
 
 
 class LinesConversation:
@@ -152,10 +163,20 @@ class LinesConversation:
         read = self._command if requests else self._reply
         return [line if isinstance(line, StreamError) else read(line[1]) for line in lines]
 
-    def close(self) -> list:
-        # The client's direction first, as the C and Lua decoders report them.
-        tails = (self.commands.close(), self.replies.close())
-        return tails[1] + tails[0] if self.tables.REQUESTS_FROM_ROBOT else tails[0] + tails[1]
+    def close(self, from_robot: Optional[bool] = None) -> list:
+        """A line cut short at the end of one direction's stream (both, to_robot's first, as the C
+        decoder reports them, when from_robot is None)."""
+        if from_robot is None:
+            return self.close(False) + self.close(True)
+        return self._lines(from_robot).close()
+
+    def lost(self, from_robot: bool, offset: int) -> list:
+        """Bytes of one direction are missing before `offset`: the line they cut is given up, and
+        that direction's lines are split afresh from there."""
+        return self._lines(from_robot).restart(offset)
+
+    def _lines(self, from_robot: bool) -> "_Lines":
+        return self.commands if from_robot == self.tables.REQUESTS_FROM_ROBOT else self.replies
 
     def _command(self, raw: bytes):
         t = self.tables

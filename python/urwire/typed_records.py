@@ -290,3 +290,11 @@ class Framer:
         self.offset += len(self.buf)
         self.buf.clear()
         return [fault]
+
+    def restart(self, offset: int) -> list:
+        """The stream lost bytes: what is held is given up (close()'s record), and framing starts
+        afresh at stream offset `offset`."""
+        out = self.close()
+        self.offset = offset
+        self.scanning = False
+        return out

@@ -117,7 +117,10 @@ class _Echo:
     def feed(self, data, from_robot):
         return [urwire.StreamError(len(data), "robot" if from_robot else "client")]
 
-    def close(self):
+    def close(self, from_robot=None):
+        return []
+
+    def lost(self, from_robot, offset):
         return []
 
 

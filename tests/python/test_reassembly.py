@@ -1,17 +1,33 @@
-"""TCP reassembly of robot->client streams: in order, retransmissions dropped, gaps closed."""
+"""TCP reassembly of robot->client streams: in order, retransmissions dropped, gaps closed,
+every byte given up or retransmitted differently named."""
 from __future__ import annotations
 
-from urwire.capture import _Reassembly
+from urwire.capture import Differs, Gap, _Reassembly
 
 DATA = bytes(range(200))
 
 
-def feed(segments, start=1000):
+def joined(pieces: list) -> bytes:
+    return b"".join(p for p in pieces if isinstance(p, bytes))
+
+
+def faults(pieces: list) -> list:
+    return [p for p in pieces if not isinstance(p, bytes)]
+
+
+def pieces_of(segments, start=1000) -> list:
     stream = _Reassembly(start)
-    out = b""
+    out: list = []
     for seq, data in segments:
         out += stream.add(seq, data)
     return out + stream.flush()
+
+
+def feed(segments, start=1000):
+    """The stream's bytes, where the segments leave no gap and repeat no byte differently."""
+    pieces = pieces_of(segments, start)
+    assert faults(pieces) == []
+    return joined(pieces)
 
 
 def test_in_order_segments_are_joined():
@@ -36,13 +52,46 @@ def test_sequence_numbers_wrap_around():
 
 def test_a_capture_starting_mid_stream_starts_at_its_first_segment():
     stream = _Reassembly()
-    assert stream.add(77777, DATA[:10]) == DATA[:10]
-    assert stream.add(77787, DATA[10:]) == DATA[10:]
+    assert stream.add(77777, DATA[:10]) == [DATA[:10]]
+    assert stream.add(77787, DATA[10:]) == [DATA[10:]]
 
 
-def test_a_gap_never_filled_is_given_up_at_the_end():
+def test_a_gap_never_filled_is_given_up_at_the_end_and_named():
     segs = [(1000, DATA[:50]), (1100, DATA[100:])]
-    assert feed(segs) == DATA[:50] + DATA[100:]
+    assert pieces_of(segs) == [DATA[:50], Gap(50, 50), DATA[100:]]
+
+
+def test_every_gap_before_held_bytes_is_named_at_the_end():
+    """Held segments behind two gaps: both gaps named, every held byte delivered after its gap."""
+    segs = [(1000, DATA[:20]), (1050, DATA[50:60]), (1100, DATA[100:120]), (1120, DATA[120:130])]
+    assert pieces_of(segs) == [DATA[:20], Gap(20, 30), DATA[50:60], Gap(60, 40), DATA[100:120], DATA[120:130]]
+
+
+def test_a_gap_at_the_start_of_a_stream_is_named():
+    assert pieces_of([(1010, DATA[10:40])]) == [Gap(0, 10), DATA[10:40]]
+
+
+def test_a_retransmission_that_differs_is_named_and_the_first_copy_kept():
+    changed = DATA[30:40] + b"\xff\xfe" + DATA[42:60]
+    pieces = pieces_of([(1000, DATA[:50]), (1030, changed), (1060, DATA[60:80])])
+    assert joined(pieces) == DATA[:80]
+    assert faults(pieces) == [Differs(30, 20, 2)]
+    assert "differ" in faults(pieces)[0].error
+
+
+def test_a_differing_copy_of_held_bytes_is_named():
+    pieces = pieces_of([(1050, DATA[50:70]), (1050, DATA[50:60] + b"x" * 15), (1000, DATA[:50])])
+    assert joined(pieces) == DATA[:70] + b"x" * 5      # the first copy, and what the longer one adds
+    assert faults(pieces) == [Differs(50, 20, 10)]
+
+
+def test_a_retransmission_past_the_bytes_kept_is_named(monkeypatch):
+    from urwire import capture
+
+    monkeypatch.setattr(capture, "HISTORY_KEPT", 16)
+    pieces = pieces_of([(1000 + i, DATA[i:i + 10]) for i in range(0, 200, 10)] + [(1000, DATA[:10])])
+    assert faults(pieces) == [Differs(0, 10)]
+    assert "could not be compared" in faults(pieces)[0].error
 
 
 def test_out_of_order_overlapping_and_repeated_segments_are_joined_once():
@@ -80,13 +129,14 @@ def test_reversed_segments_cost_what_in_order_ones_do(monkeypatch):
 
 def test_a_gap_given_up_goes_on_from_the_earliest_segment_held():
     stream = _Reassembly(1000)
-    assert stream.add(1000, DATA[:10]) == DATA[:10]
-    assert stream.add(1140, DATA[140:180]) == b""
-    assert stream.add(1100, DATA[100:140]) == b""
-    assert stream.skip_gap() == DATA[100:180]
+    assert stream.add(1000, DATA[:10]) == [DATA[:10]]
+    assert stream.add(1140, DATA[140:180]) == []
+    assert stream.add(1100, DATA[100:140]) == []
+    assert stream.skip_gap() == [Gap(10, 90), DATA[100:140], DATA[140:180]]
     assert stream.held_bytes == 0
-    assert stream.add(1180, DATA[180:]) == DATA[180:]
-    assert stream.add(1050, DATA[50:100]) == b""               # too late: already given up
+    assert stream.add(1180, DATA[180:]) == [DATA[180:]]
+    # Too late, already given up: bytes from before the gap, which cannot be compared.
+    assert stream.add(1050, DATA[50:100]) == [Differs(50, 50)]
 
 
 def test_each_held_segment_counts_what_holding_it_costs():
@@ -99,7 +149,7 @@ def test_each_held_segment_counts_what_holding_it_costs():
         stream.add(1000 + i, DATA[i:i + 1])
     stream.add(1120, DATA[120:125])   # a longer retransmission: its extra bytes only
     assert stream.held_bytes == 50 * (1 + SEGMENT_COST) + 4
-    assert stream.add(1000, DATA[:100]) == DATA[:150]
+    assert joined(stream.add(1000, DATA[:100])) == DATA[:150]
     assert stream.held_bytes == 0
 
 
@@ -133,12 +183,17 @@ def test_the_streams_together_hold_at_most_max_pending(monkeypatch, tmp_path):
     path = pcap.write(tmp_path / "gaps.pcap", frames)
     got: dict = {}
     before_the_end: dict = {}
+    gaps: dict = {}
     with path.open("rb") as fh:
-        for (_, _, _, port), data, ended in capture.robot_streams(fh, {30001}):
-            got[port] = got.get(port, b"") + data
+        for (_, _, _, port), _, piece, ended, _ in capture.timed_streams(fh, {30001}):
+            if isinstance(piece, Gap):
+                gaps.setdefault(port, []).append(piece)
+                continue
+            got[port] = got.get(port, b"") + piece
             if not ended:
                 before_the_end[port] = got[port]
     for port, sent in payloads.items():
         assert got[port] == sent[0] + b"".join(sent[2:])
         assert before_the_end[port].startswith(sent[0] + sent[2])
+        assert gaps[port] == [Gap(100, 100)]
     assert max(held) <= 2000 + 100 + capture.SEGMENT_COST
