@@ -17,12 +17,28 @@ from .capture_records import CaptureFault, CaptureFrames
 
 PCAP_MAGICS = {b"\xa1\xb2\xc3\xd4", b"\xd4\xc3\xb2\xa1", b"\xa1\xb2\x3c\x4d", b"\x4d\x3c\xb2\xa1"}
 PCAPNG_MAGIC = b"\x0a\x0d\x0d\x0a"
+PCAPNG_BYTE_ORDER = (b"\x1a\x2b\x3c\x4d", b"\x4d\x3c\x2b\x1a")
 MAX_PENDING = 16 << 20   # memory held for out-of-order segments, all streams together
 SEGMENT_COST = 200       # what holding a segment costs beyond its bytes: its object and entries
 
 
+HEAD_BYTES = 12           # what is_capture looks at
+
+
 def is_capture(head: bytes) -> bool:
-    return head[:4] in PCAP_MAGICS or head[:4] == PCAPNG_MAGIC
+    """Whether a file that starts with `head` (its first HEAD_BYTES bytes) is a capture: a whole
+    pcap file header (one of its four magics, then major version 2 in the magic's byte order) or the
+    start of a pcapng section header block (its type, a length, then the byte-order magic in either
+    order). A raw stream is anything else, though its first four bytes be a magic: a dashboard
+    session may well start with the pcapng one, "\\n\\r\\r\\n"."""
+    if head[:4] in PCAP_MAGICS:
+        return head[4:6] == (b"\x00\x02" if head[:1] == b"\xa1" else b"\x02\x00")
+    return head[:4] == PCAPNG_MAGIC and head[8:12] in PCAPNG_BYTE_ORDER
+
+
+def head_of(fh: BinaryIO) -> bytes:
+    """The first bytes of an open file, left to be read, as is_capture takes them."""
+    return fh.peek(HEAD_BYTES)[:HEAD_BYTES] if hasattr(fh, "peek") else b""
 
 
 HISTORY_KEPT = 256 << 10  # bytes of a stream kept after delivery, to compare retransmissions with

@@ -12,7 +12,7 @@ from typing import BinaryIO, Callable, Optional
 from . import __version__, export, listen, plot, serve, spark
 from .arguments import parse_version
 from .backends import JsonLines, backend
-from .capture import is_capture
+from .capture import head_of, is_capture
 from .canonical import has_error, to_json_line
 from .human import line as human_line
 from .human import tree as human_tree
@@ -90,7 +90,7 @@ def _progress(size: Optional[int], disabled: bool) -> Callable[[int], None]:
 def _records(fh: BinaryIO, args: argparse.Namespace, advance: Callable[[int], None]):
     """The records of the input: a capture's conversations by port, or a raw stream of one interface."""
     interface = interface_named(args.protocol or "ur")
-    head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+    head = head_of(fh)
     if args.to_robot is None and (interface.name == "ur" or is_capture(head)):
         if args.port:
             by_port = {port: interface for port in args.port}
@@ -108,7 +108,7 @@ def _is_c_json_lines(fh: BinaryIO, args: argparse.Namespace) -> bool:
         return False
     if (args.protocol or "ur") != "ur" or not hasattr(fh, "peek"):
         return False
-    return not is_capture(fh.peek(4)[:4])
+    return not is_capture(head_of(fh))
 
 
 def _write_json_lines(fh: BinaryIO, hint, advance: Callable[[int], None], out) -> bool:

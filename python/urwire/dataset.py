@@ -37,7 +37,7 @@ from typing import Iterator, Optional, Union
 
 from . import dataset_c, dataset_c_capture
 from .canonical import has_error
-from .capture import is_capture
+from .capture import head_of, is_capture
 from .cell import ports_of, timed_robot_records
 # what the module's callers use, from the modules that make it
 from .dataset_columns import ERROR_KINDS, PRIMARY, REALTIME, REALTIME_STATE, ROBOT_STATE, Part, interfaces
@@ -160,7 +160,7 @@ class PartBuilder:
 def _timed(fh, version_hint) -> Iterator[tuple]:
     """(capture time, robot, record) of a capture, each robot by its serial number where the
     capture holds it, else its address; or of a raw primary stream (no time, no robot)."""
-    head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+    head = head_of(fh)
     if is_capture(head):
         start = fh.tell()
         serials = serial_numbers(fh)
@@ -189,7 +189,7 @@ def parts_of(fh, capture: str, source: str, version_hint=None, robot: Optional[s
              date: Optional[str] = None) -> Iterator[Part]:
     """The Parts of a capture read from a binary file object (see capture_parts). Under the C
     backend, C makes the columns of the primary interface (dataset_c.py)."""
-    head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+    head = head_of(fh)
     if dataset_c.available():
         made = dataset_c_capture.capture_parts if is_capture(head) else dataset_c.raw_parts
         yield from made(fh, capture, source, version_hint, robot, date)

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import BinaryIO, Callable, Iterable, Iterator, Optional, Union
 
 from .arguments import VersionLike
-from .capture import is_capture
+from .capture import HEAD_BYTES, head_of, is_capture
 from .cell import timed_cell_records
 from .framer import Framer
 from .generated.spec import PORTS
@@ -53,7 +53,7 @@ def records_of(fh: BinaryIO, hint: VersionLike = None, ports: Iterable[int] = PO
                by_port: Optional[dict[int, Interface]] = None) -> Iterator:
     """Records of an open binary file: a raw stream of the primary interface, a .pcap or a .pcapng
     (told by its magic; `ports` and `by_port` as timed_records_of_capture takes them)."""
-    head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+    head = head_of(fh)
     if is_capture(head):
         return records_of_capture(fh, hint, ports, advance, by_port)
     return records_of_raw(fh, hint, advance)
@@ -72,7 +72,7 @@ def timed_records(path: Union[str, os.PathLike], version_hint: VersionLike = Non
     """(capture time in seconds since the epoch, record) of a .pcap or .pcapng file (`ports` and
     `by_port` as timed_records_of_capture takes them); a raw stream has no times (None)."""
     with open(Path(path), "rb") as fh:
-        head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
+        head = head_of(fh)
         if is_capture(head):
             yield from timed_records_of_capture(fh, version_hint, ports or by_port or PORTS, by_port=by_port)
         else:
@@ -84,6 +84,6 @@ def input_kind(path: Union[str, os.PathLike]) -> str:
     """"capture" or "stream": what a file is read as, for messages that name it."""
     try:
         with open(Path(path), "rb") as fh:
-            return "capture" if is_capture(fh.read(4)) else "stream"
+            return "capture" if is_capture(fh.read(HEAD_BYTES)) else "stream"
     except OSError:
         return "file"
