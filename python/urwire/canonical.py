@@ -498,6 +498,16 @@ def to_dict(record: Any) -> dict:
     return json.loads(to_json_line(record))
 
 
+def fails(record: Any) -> bool:
+    """Whether a record makes a command exit 1, the same rule for every interface: its JSON is
+    {"type": "error", ...} or carries an "error" text, at its top (a message of any interface kept
+    whole with one, such as an RTDE data package of a recipe never set up) or in a part. An
+    "error" that is a decoded bool (a dashboard reply that says an error) is the robot's word, not
+    a fault of decoding."""
+    inner = record.record if isinstance(record, Enveloped) else record
+    return has_error(inner) or isinstance(getattr(inner, "error", None), str)
+
+
 def has_error(record: Any) -> bool:
     """True when the record is a stream fault or holds a part that could not be decoded."""
     if isinstance(record, Enveloped):

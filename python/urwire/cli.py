@@ -13,7 +13,7 @@ from . import __version__, export, listen, plot, serve, spark
 from .arguments import parse_version
 from .backends import JsonLines, backend
 from .capture import head_of, is_capture
-from .canonical import has_error, to_json_line
+from .canonical import fails, to_json_line
 from .human import line as human_line
 from .human import tree as human_tree
 from .cell import interface_named, ports_of, records_of_raw_protocol
@@ -153,7 +153,7 @@ def decode_command(args: argparse.Namespace) -> int:
             failed = _write_json_lines(fh, args.version_hint, advance, out)
         else:
             for record in records:
-                failed = failed or has_error(record)
+                failed = failed or fails(record)
                 out.write(render(record))
                 out.write("\n")
         out.flush()

@@ -28,7 +28,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator, Optional
 
-from .canonical import has_error, to_json_line
+from .canonical import fails, to_json_line
 from .framer import Framer
 from .human import line as human_line
 from .listen_rtde import PORT as RTDE_PORT
@@ -207,7 +207,7 @@ class Outputs:
     def write(self, records: list) -> None:
         with self.writing(self.out_name):
             for record in records:
-                self.failed = self.failed or has_error(record)
+                self.failed = self.failed or fails(record)
                 self.out.write(self.render(record))
                 self.out.write("\n")
                 self.records += 1

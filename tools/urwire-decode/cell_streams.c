@@ -23,7 +23,8 @@ static const envelope *envelope_of(const cell_inputs *in, bool from_robot)
 /* A text-line interface: lines split in the held bytes, one JSON line per record. The two
  * interfaces of this kind have the same API under their own prefixes. P##_read_stream reads one
  * direction to its end and leaves in *tail the bytes of an unended line, which P##_finish reports
- * once both streams are read (the client's first, as the Python decoder closes them). */
+ * once both streams are read (the client's first, as the Python decoder closes them), each in its
+ * own direction's envelope. */
 #define LINES_PRINT_STREAMS(P, UPPER)                                                                 \
     static int P##_read_stream(P##_conversation *c, const cell_inputs *in, bool from_robot, FILE *out, \
                                size_t *tail)                                                       \
@@ -73,7 +74,7 @@ static const envelope *envelope_of(const cell_inputs *in, bool from_robot)
         for (k = in->client ? 0 : 1; k < 2; k++) {                                                 \
             if (P##_finish(&c, k == 1, tail[k], &rec)) {                                           \
                 P##_json(&rec, line, sizeof line);                                                 \
-                envelope_line(out, in->from_robot, line);                                          \
+                envelope_line(out, envelope_of(in, k == 1), line);                                 \
                 status = 1;                                                                        \
             }                                                                                      \
         }                                                                                          \
@@ -143,7 +144,7 @@ static int records_print_streams(const records_api *api, const cell_inputs *in, 
     for (k = in->client ? 0 : 1; k < 2; k++) {
         if (tail[k].left > 0) {
             api->tail_json(k == 1, tail[k].offset, tail[k].left, release, line, sizeof line);
-            envelope_line(out, in->from_robot, line);
+            envelope_line(out, envelope_of(in, k == 1), line);
             status = 1;
         }
     }

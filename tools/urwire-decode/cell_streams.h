@@ -11,8 +11,8 @@
 #include "envelope.h"
 
 /* The streams of one connection: the robot's, and the client's (NULL: not given), which is read
- * first. With the client's, each record comes in its direction's envelope; what the ends of the
- * streams leave comes in the robot's, as `urwire decode --to-robot` writes it. */
+ * first. With the client's, each record comes in its direction's envelope, and so does what the
+ * end of each stream leaves, as `urwire decode --to-robot` writes it. */
 typedef struct cell_inputs {
     FILE *robot;
     FILE *client;

@@ -221,7 +221,7 @@ int rtde_json_record(FILE *out, const envelope *env, const rtde_message *m, rtde
         fputs(", \"raw\": ", out);
         put_hex(out, msg, size);
         fputs("}\n", out);
-        return 0;       /* a message kept whole is a record, not a stream fault */
+        return e != RTDE_UNKNOWN_TYPE;   /* a code no layout has is kept whole without an error */
     }
     envelope_open(out, env);
     fprintf(out, "\"type\": \"%s\"", info->name);
@@ -281,7 +281,7 @@ static int frame(rtde_json_stream *s, rtde_json_direction *d, bool from_robot, F
             rtde_message m;
             size_t at;
             rtde_error de = rtde_decode(&s->conversation, d->buf + pos, size, from_robot, &m, &at);
-            rtde_json_record(out, s->envelope[from_robot ? 1 : 0], &m, de, at, d->buf + pos, size);
+            errors += rtde_json_record(out, s->envelope[from_robot ? 1 : 0], &m, de, at, d->buf + pos, size);
         }
         pos += size;
     }
@@ -309,10 +309,10 @@ int rtde_json_feed(rtde_json_stream *s, const uint8_t *data, size_t length, bool
 int rtde_json_close(rtde_json_stream *s, FILE *out)
 {
     int errors = 0, k;
-    for (k = 1; k >= 0; k--) {
+    for (k = 0; k < 2; k++) {       /* the client's tail first, each in its own direction's envelope */
         rtde_json_direction *d = &s->direction[k];
         if (d->length) {
-            envelope_open(out, s->envelope[1]);
+            envelope_open(out, s->envelope[k]);
             fprintf(out, "\"type\": \"error\", \"offset\": %llu, \"error\": \"truncated message: %lu bytes at the end "
                     "of the stream\"}\n", (unsigned long long)d->offset, (unsigned long)d->length);
             d->offset += d->length;

@@ -34,15 +34,17 @@ typedef struct rtde_json_stream {
 void rtde_json_stream_init(rtde_json_stream *s);
 
 /* Bytes of one direction, as they arrive: each record they complete, one line each, on out.
- * Returns the number of stream faults written (bad headers); a message kept whole with an
- * "error" (short, long, of an unknown recipe) is a record, as in the Python command. */
+ * Returns the number of error records written: stream faults (bad headers) and messages kept
+ * whole with an "error" (short, long, of an unknown recipe), each of which makes the command
+ * exit 1, as in the Python command. */
 int rtde_json_feed(rtde_json_stream *s, const uint8_t *data, size_t length, bool from_robot, FILE *out);
 
-/* The ends of both streams (the robot's first): a truncated tail becomes an error record. */
+/* The ends of both streams (the client's first): a truncated tail becomes an error record, in
+ * its own direction's envelope. Returns how many it wrote. */
 int rtde_json_close(rtde_json_stream *s, FILE *out);
 
 /* One decoded message (or what rtde_decode said of it) as one line, in envelope e if not NULL.
- * Returns 0. */
+ * Returns 1 when the line carries an "error", else 0. */
 int rtde_json_record(FILE *out, const envelope *e, const rtde_message *m, rtde_error de, size_t at,
                      const uint8_t *msg, size_t size);
 
