@@ -67,17 +67,42 @@ def test_a_lost_segment_inside_a_packet_is_named_and_every_later_packet_decoded(
     assert all(r["conversation"] == records[0]["conversation"] for r in records)
 
 
-def test_the_same_capture_in_tshark_shows_no_packet_python_misses(tmp_path):
-    """Real tshark with the Lua dissector: every packet it shows after the gap, Python decodes."""
-    pcap, _, _ = lost_segment_capture(tmp_path)
+def tshark_times(pcap) -> list[float]:
+    """The time of every real-time packet real tshark shows with the Lua dissector."""
     out = subprocess.run(["tshark", "-r", str(pcap), "-X", f"lua_script:{REALTIME_LUA}", "-2", "-T", "json",
                           "-e", "ur_realtime.time", "-Y", "ur_realtime.time"],
                          capture_output=True, text=True, timeout=600)
     assert out.returncode == 0, out.stderr
-    shown = sorted(float(t) for p in json.loads(out.stdout) for t in p["_source"]["layers"]["ur_realtime.time"])
+    return sorted(float(t) for p in json.loads(out.stdout) for t in p["_source"]["layers"]["ur_realtime.time"])
+
+
+def test_the_same_capture_in_tshark_shows_no_packet_python_misses(tmp_path):
+    """Real tshark with the Lua dissector: every packet it shows after the gap, Python decodes."""
+    pcap, _, _ = lost_segment_capture(tmp_path)
+    shown = tshark_times(pcap)
     records, _ = decode(str(pcap))
     decoded = sorted(r["time"] for r in records if r["type"] == "rt_3_10")
     assert len(shown) == COUNT - 2 and shown == decoded
+
+
+def test_segments_cut_anywhere_lose_only_the_packets_the_gap_touches(tmp_path):
+    """A robot's stream in segments of any size, one lost from the middle: Python decodes every
+    packet the gap does not touch, a superset of what tshark shows (which skips a segment that
+    starts inside a packet)."""
+    stream = b"".join(packet(i) for i in range(COUNT))
+    payloads = capture.random_cuts([stream], seed=3, max_len=1448)
+    lost = len(payloads) // 2
+    start = sum(map(len, payloads[:lost]))
+    end = start + len(payloads[lost])
+    frames = capture.session_frames([Segment(True, p) for p in payloads], port=30003)
+    del frames[3 + 2 * lost]
+    pcap = capture.write(tmp_path / "cuts.pcap", frames)
+    records, status = decode(str(pcap))
+    assert status == 1
+    decoded = sorted(r["time"] for r in records if r["type"] == "rt_3_10")
+    touched = {i for i in range(COUNT) if i * SIZE < end and start < (i + 1) * SIZE}
+    assert decoded == [float(i) for i in range(COUNT) if i not in touched]
+    assert set(tshark_times(pcap)) <= set(decoded)
 
 
 def test_a_gap_in_the_primary_stream_is_an_unenveloped_error_and_decoding_restarts(tmp_path):
