@@ -36,8 +36,8 @@ extern "C" {
 typedef enum ur_realtime_error {
     UR_REALTIME_OK = 0,
     UR_REALTIME_E_SHORT,           /* fewer bytes than the size field, or than the size it declares */
-    UR_REALTIME_E_SIZE_BELOW,      /* a size below UR_REALTIME_MIN_MESSAGE_SIZE: nothing can be framed */
-    UR_REALTIME_E_SIZE_ABOVE,      /* a size above UR_REALTIME_MAX_MESSAGE_SIZE: nothing can be framed */
+    UR_REALTIME_E_SIZE_BELOW,      /* a size below UR_REALTIME_MIN_MESSAGE_SIZE: frames no packet */
+    UR_REALTIME_E_SIZE_ABOVE,      /* a size above UR_REALTIME_MAX_MESSAGE_SIZE: frames no packet */
     UR_REALTIME_E_UNKNOWN_SIZE     /* framed, but no layout has the size: raw is its bytes */
 } ur_realtime_error;
 
