@@ -1112,6 +1112,40 @@ static PyObject *columns_close_stream(PrimaryColumns *self, PyObject *args)
     return rc == 0 ? PyLong_FromLongLong(self->position - start) : NULL;
 }
 
+/* restart_stream(stream, offset, position, time) -> records: the stream lost bytes before stream
+ * offset `offset` (a gap in the capture): what it holds is given up as close_stream gives it, and
+ * it is framed afresh from `offset`, the version it learnt kept (framer.py's Framer.restart). */
+static PyObject *columns_restart_stream(PrimaryColumns *self, PyObject *args)
+{
+    PrimaryStream *stream;
+    long long position, start, offset;
+    PyObject *time;
+    int rc = 0;
+    urwire_framer *f;
+    if (!PyArg_ParseTuple(args, "O!LLO", &PrimaryStreamType, &stream, &offset, &position, &time))
+        return NULL;
+    if (offset < 0) {
+        PyErr_SetString(PyExc_ValueError, "restart_stream: a stream offset is not negative");
+        return NULL;
+    }
+    if (!usable(self) || place(self, position, time) < 0)
+        return NULL;
+    if (!stream->buffer || stream->finished)
+        return PyLong_FromLong(0);
+    start = self->position;
+    f = &stream->framer;
+    self->framer = f;
+    urwire_framer_finish(f);
+    rc = add_ready(self);
+    self->framer = &self->own;
+    f->head = f->len = 0;
+    f->base = (uint64_t)offset;
+    f->skip = 0;
+    f->resyncing = f->finished = f->ended_inside = false;
+    f->unlearnt = 0;
+    return rc == 0 ? PyLong_FromLongLong(self->position - start) : NULL;
+}
+
 /* add_record(kind, position, time, text): a row of `errors` or `unknown` that Python wrote (a
  * fault of the capture file), in its place among C's rows. */
 static PyObject *columns_add_record(PrimaryColumns *self, PyObject *args)
@@ -1157,6 +1191,9 @@ static PyMethodDef columns_methods[] = {
      "feed_stream(stream, data, position, time) -> records: a capture's stream, its rows kept for take()"},
     {"close_stream", (PyCFunction)columns_close_stream, METH_VARARGS,
      "close_stream(stream, position, time) -> records: what the end of a capture's stream completes"},
+    {"restart_stream", (PyCFunction)columns_restart_stream, METH_VARARGS,
+     "restart_stream(stream, offset, position, time) -> records: a capture's stream that lost bytes "
+     "before offset: its tail, then framed afresh from there"},
     {"add_record", (PyCFunction)columns_add_record, METH_VARARGS,
      "add_record(kind, position, time, text): a row of errors or unknown written in Python"},
     {"take", (PyCFunction)columns_take, METH_NOARGS, "take() -> (batches, messages) filled so far"},

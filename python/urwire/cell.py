@@ -73,8 +73,10 @@ def timed_robot_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inte
             at(time, key[0])
         tails: list = []
         if isinstance(piece, Gap):
-            # Named, then what the direction held before it given up, and its decoding started afresh.
-            records = [StreamError(piece.offset, piece.error)] + conv.lost(from_robot, piece.offset + piece.length)
+            # Named first (a conversation that files its records itself numbers what follows after
+            # it), then what the direction held before it given up, and its decoding started afresh.
+            yield from _filed(interface, key, [(from_robot, [StreamError(piece.offset, piece.error)])], time)
+            records = conv.lost(from_robot, piece.offset + piece.length)
         elif isinstance(piece, Differs):
             records = [StreamError(piece.offset, piece.error)]
         else:
@@ -86,19 +88,25 @@ def timed_robot_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inte
             # Each direction's tail is its own: to_robot's first, then the robot's.
             tails = [(False, conv.close(False)), (True, conv.close(True))]
             del conversations[key]
-        if interface.name == PRIMARY:
-            for record in records + [r for _, side in tails for r in side]:
-                yield time, key[0], record
-        else:
-            name = _conversation_name(key)
-            for direction, side in [(from_robot, records)] + tails:
-                for record in side:
-                    yield time, key[0], Enveloped(interface.name, FROM_ROBOT if direction else TO_ROBOT, name,
-                                                  record)
+        yield from _filed(interface, key, [(from_robot, records)] + tails, time)
         if fh.seekable():
             pos = fh.tell()
             advance(pos - last)
             last = pos
+
+
+def _filed(interface: Interface, key: tuple, sides: list, time) -> Iterator[tuple]:
+    """(capture time, robot address, record) of each (from robot, records) side: the primary
+    interface's records as they are, any other's in the envelope of its direction."""
+    if interface.name == PRIMARY:
+        for _, side in sides:
+            for record in side:
+                yield time, key[0], record
+        return
+    name = _conversation_name(key)
+    for from_robot, side in sides:
+        for record in side:
+            yield time, key[0], Enveloped(interface.name, FROM_ROBOT if from_robot else TO_ROBOT, name, record)
 
 
 def records_of_raw_protocol(fh: BinaryIO, interface: Interface, hint: VersionLike, chunk: int,

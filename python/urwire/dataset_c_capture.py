@@ -12,6 +12,7 @@ import dataclasses
 from typing import Iterator, Optional
 
 from .backends import ccore
+from ._runtime import StreamError
 from .canonical import has_error, to_json_line
 from .cell import ports_of, timed_robot_records
 from .dataset_c import Tables, columns, hint_text, micros
@@ -83,9 +84,10 @@ class _PrimaryConversation:
         return self._made(columns, columns.close_stream(self.stream, self._position(), micros(self.time)))
 
     def lost(self, from_robot: bool, offset: int) -> list:
-        # C's stream goes on over the gap (the reader's error record names it) and finds the next
-        # whole message by its own resynchronisation.
-        return []
+        if self.robot is None or not from_robot:
+            return []
+        columns = self.rows.columns(self.robot)
+        return self._made(columns, columns.restart_stream(self.stream, offset, self._position(), micros(self.time)))
 
     def _position(self) -> int:
         # Records fed and closed in one step of the reader are not counted yet when it closes.
@@ -129,6 +131,11 @@ def capture_parts(fh, capture: str, source: str, version_hint=None, robot: Optio
             owner, day = builder.place(None, None)
             tables.fault_dates[(owner, position)] = day
             rows.columns(owner).add_record("errors", position, None, to_json_line(record))
+        elif isinstance(record, StreamError):
+            # The reader's record of a primary stream's gap or differing retransmission: an error row
+            # among C's rows of its robot.
+            owner, _ = builder.place(time, rows.robot_of(address))
+            rows.columns(owner).add_record("errors", position, micros(time), to_json_line(record))
         else:
             yield from builder.add(position, time, None if address is None else rows.robot_of(address), record)
         yield from waiting()

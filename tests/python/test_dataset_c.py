@@ -174,6 +174,23 @@ def test_a_capture_cut_short_files_its_fault_with_the_rows_before_it():
     assert errors[0].column("capture_time").null_count == 1
 
 
+def test_a_capture_that_lost_a_segment_gives_the_same_tables(tmp_path):
+    """A gap inside a message of a primary stream: its error row, the message it cut short, then
+    the stream framed afresh after it, the same rows in C as in Python."""
+    from tests.vectors import golden_cases
+
+    state = next(c for c in golden_cases() if c.name == "generation_cb3_3_10_robot_state").data
+    payloads = [state] * 4 + [state[:30], state[30:60], state[60:]] + [state] * 3
+    frames = capture_file.session_frames([capture_file.Segment(True, p) for p in payloads], port=30001)
+    del frames[3 + 2 * 5]
+    data = capture_file.write(tmp_path / "lost.pcap", frames).read_bytes()
+    tables = assert_same(data, None, "lost", batches=(dataset_c.BATCH_ROWS, 3), robot=None, date=None)
+    errors = [table for kind, table in tables.items() if kind[1] == "errors"]
+    assert len(errors) == 1 and errors[0].num_rows >= 3       # the gap, the cut state, the resync
+    assert [kind for kind in tables if kind[1] == "version"] and \
+        sum(t.num_rows for kind, t in tables.items() if kind[1] == "version") == 7
+
+
 def test_two_robots_across_midnight_give_the_same_tables_by_robot_and_day(tmp_path):
     states = robot_inputs.real_states()[:40]
     frames = []
