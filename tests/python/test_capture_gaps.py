@@ -167,3 +167,33 @@ def test_a_clients_cut_tail_in_a_capture_is_the_clients(tmp_path, interface, por
     assert status == 1
     (tail,) = [r for r in records if r["type"] == "error"]
     assert tail["direction"] == "to_robot"
+
+
+def test_an_rtde_conversation_keeps_its_recipe_across_a_gap(tmp_path):
+    """A gap inside the robot's data packages: the package it cut short and the middle of the next
+    are named, and every later package is still read with the recipe the client set up."""
+    from urwire import rtde
+    from urwire.generated import rtde as g
+
+    recipe = rtde.Recipe(1, "outputs", ["timestamp"], ["DOUBLE"], g.VALUE_TYPES)
+    packages = [g.DataPackage(1, {"timestamp": float(i)}).encode(recipe) for i in range(12)]
+    size = len(packages[0])
+    robot = [g.RequestProtocolVersionReply(True).encode(), g.SetupOutputsReply(1, ["DOUBLE"]).encode(),
+             g.StartReply(True).encode()]
+    segments = [Segment(False, rtde.request_protocol_version(2)), Segment(True, robot[0]),
+                Segment(False, rtde.setup_outputs(["timestamp"], 125.0)), Segment(True, robot[1]),
+                Segment(False, rtde.start()), Segment(True, robot[2])]
+    cut = packages[:5] + [packages[5][:5], packages[5][5:] + packages[6][:6], packages[6][6:]] + packages[7:]
+    segments += [Segment(True, p) for p in cut]
+    frames = capture.session_frames(segments, port=30004)
+    del frames[3 + 2 * (len(segments) - len(cut) + 6)]        # the middle one of packages 5 and 6
+    records, status = decode(str(capture.write(tmp_path / "rtde.pcap", frames)))
+    assert status == 1
+    robot_offset = sum(map(len, robot)) + 5 * size
+    errors = [r for r in records if r["type"] == "error"]
+    assert [(e["direction"], e["offset"]) for e in errors[:2]] == [("from_robot", robot_offset + 5),
+                                                                  ("from_robot", robot_offset)]
+    assert errors[0]["error"] == f"{size + 1} bytes missing from the capture at offset {robot_offset + 5}"
+    stamps = [r["timestamp"] for r in records if r["type"] == "data_package"]
+    assert stamps == [float(i) for i in range(12) if i not in (5, 6)]
+    assert all("error" not in r for r in records if r["type"] == "data_package")
