@@ -17,7 +17,8 @@ def stream(capture: Path, port: int, from_listener: bool = True) -> bytes:
     out = bytearray()
     with capture.open("rb") as fh:
         for item in timed_streams(fh, {port}, frozenset({port})):
-            if not isinstance(item, CaptureFault) and item[1] == from_listener:
+            # The bytes only: a raw stream has no place for a gap's or a retransmission's record.
+            if not isinstance(item, CaptureFault) and item[1] == from_listener and isinstance(item[2], bytes):
                 out += item[2]
     return bytes(out)
 
