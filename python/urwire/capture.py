@@ -68,8 +68,8 @@ class Differs:
     @property
     def error(self) -> str:
         if not self.differing:
-            return (f"{self.length} retransmitted bytes at offset {self.offset} reach back past the "
-                    f"{HISTORY_KEPT} bytes kept, and could not be compared")
+            return (f"{self.length} retransmitted bytes at offset {self.offset} could not be compared: the "
+                    f"bytes they repeat are no longer kept")
         return (f"retransmitted bytes at offset {self.offset} differ from those delivered first "
                 f"({self.differing} of {self.length}); the first kept")
 
