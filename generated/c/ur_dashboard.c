@@ -518,12 +518,16 @@ static void read_command(ur_dashboard_conversation *c, ur_dashboard_record *rec)
     rec->command_name = command;
     rec->available = command == UR_DASHBOARD_NONE || c->version == 0 ? -1
                                                                       : ur_dashboard_available(command, c->version);
-    if (c->count == UR_DASHBOARD_PENDING) {   /* the oldest is forgotten, as a bounded queue does */
-        c->head = (c->head + 1) % UR_DASHBOARD_PENDING;
-        c->count--;
+    if (!UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {          /* only the latest request counts */
+        c->pending[0] = (int16_t)command;
+        c->count = 1;
+    } else if (c->lost > 0 || c->count == UR_DASHBOARD_PENDING) {
+        rec->not_kept = true;
+        c->lost++;
+    } else {
+        c->pending[(c->head + c->count) % UR_DASHBOARD_PENDING] = (int16_t)command;
+        c->count++;
     }
-    c->pending[(c->head + c->count) % UR_DASHBOARD_PENDING] = (int16_t)command;
-    c->count++;
 }
 
 static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
@@ -544,6 +548,9 @@ static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
         c->count--;
     } else if (c->count > 0) {    /* every answering line belongs to the latest request */
         command = c->pending[(c->head + c->count - 1) % UR_DASHBOARD_PENDING];
+    } else if (c->lost > 0) {     /* it answers a command that was not kept */
+        rec->not_kept = true;
+        c->lost--;
     }
     rec->command_name = command;
     rec->reply_name = ur_dashboard_classify(command, rec->text);
@@ -760,9 +767,8 @@ size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap)
             out_string(&o, rec->argument);
         }
         if (rec->available >= 0)
-            out_text(&o, rec->available ? ", \"available\": true}" : ", \"available\": false}");
-        else
-            out_text(&o, "}");
+            out_text(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
+        out_text(&o, rec->not_kept ? ", \"error\": \"" UR_DASHBOARD_NOT_KEPT "\"}" : "}");
     } else {
         out_text(&o, "{\"type\": \"reply\", \"reply\": ");
         out_string(&o, rec->text);
@@ -770,7 +776,10 @@ size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap)
             out_name(&o, ", \"command_name\": ", ur_dashboard_commands[rec->command_name].name);
         if (rec->reply_name != NULL)
             out_name(&o, ", \"reply_name\": ", rec->reply_name->name);
-        out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
+        if (rec->not_kept)
+            out_text(&o, ", \"error\": \"" UR_DASHBOARD_REPLY_NOT_KEPT "\"}");
+        else
+            out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
     }
     if (cap > 0)
         out[o.len < cap ? o.len : cap - 1] = '\0';

@@ -117,6 +117,9 @@ typedef enum ur_dashboard_command_id {
 /* ---- lines, commands and replies ----------------------------------------------------------- */
 
 #define UR_DASHBOARD_PENDING 256     /* commands awaiting a reply that a conversation keeps */
+/* The error of a command past them, and of a reply that answers such a command (it pairs with none). */
+#define UR_DASHBOARD_NOT_KEPT "command not kept: more than 256 commands awaited replies"
+#define UR_DASHBOARD_REPLY_NOT_KEPT "reply to a command that was not kept: more than 256 commands awaited replies"
 #define UR_DASHBOARD_NONE (-1)       /* no command: an unknown one, or a reply with none pending */
 
 /* Bytes of the caller's buffer: never copied, valid while the buffer is. */
@@ -163,6 +166,8 @@ typedef struct ur_dashboard_record {
     int available;                     /* commands: 1 or 0 when the version is known, else -1 */
     const ur_dashboard_reply_spec *reply_name;   /* replies: the one matched, or NULL */
     bool error;                        /* replies: reply_name says an error */
+    bool not_kept;                     /* commands: not kept to pair (UR_DASHBOARD_NOT_KEPT); replies:
+                                          answers such a command (UR_DASHBOARD_REPLY_NOT_KEPT) */
     ur_dashboard_fault fault;          /* faults: what, where (the direction's offset) and how many bytes */
     uint64_t offset;
     size_t bytes;
@@ -173,11 +178,13 @@ typedef struct ur_dashboard_direction {
     bool skipping;                     /* inside a line too long, dropped up to its newline */
 } ur_dashboard_direction;
 
-/* One TCP connection: both directions and the commands awaiting their replies. Caller-owned. */
+/* One TCP connection: both directions and the commands awaiting their replies. Caller-owned.
+ * A command that comes when UR_DASHBOARD_PENDING await is not kept but counted lost, and so is every
+ * command behind a lost one (replies come in order); a reply with none kept answers a lost one. */
 typedef struct ur_dashboard_conversation {
     ur_dashboard_direction commands, replies;
     int16_t pending[UR_DASHBOARD_PENDING];
-    size_t head, count;
+    size_t head, count, lost;
     uint32_t version;                  /* ur_dashboard_version(...), 0 while unknown */
     bool greeted;
 } ur_dashboard_conversation;

@@ -43,6 +43,9 @@ typedef enum ur_script_sender_command_id {
 /* ---- lines, commands and replies ----------------------------------------------------------- */
 
 #define UR_SCRIPT_SENDER_PENDING 256     /* commands awaiting a reply that a conversation keeps */
+/* The error of a command past them, and of a reply that answers such a command (it pairs with none). */
+#define UR_SCRIPT_SENDER_NOT_KEPT "command not kept: more than 256 commands awaited replies"
+#define UR_SCRIPT_SENDER_REPLY_NOT_KEPT "reply to a command that was not kept: more than 256 commands awaited replies"
 #define UR_SCRIPT_SENDER_NONE (-1)       /* no command: an unknown one, or a reply with none pending */
 
 /* Bytes of the caller's buffer: never copied, valid while the buffer is. */
@@ -89,6 +92,8 @@ typedef struct ur_script_sender_record {
     int available;                     /* commands: 1 or 0 when the version is known, else -1 */
     const ur_script_sender_reply_spec *reply_name;   /* replies: the one matched, or NULL */
     bool error;                        /* replies: reply_name says an error */
+    bool not_kept;                     /* commands: not kept to pair (UR_SCRIPT_SENDER_NOT_KEPT); replies:
+                                          answers such a command (UR_SCRIPT_SENDER_REPLY_NOT_KEPT) */
     ur_script_sender_fault fault;          /* faults: what, where (the direction's offset) and how many bytes */
     uint64_t offset;
     size_t bytes;
@@ -99,11 +104,13 @@ typedef struct ur_script_sender_direction {
     bool skipping;                     /* inside a line too long, dropped up to its newline */
 } ur_script_sender_direction;
 
-/* One TCP connection: both directions and the commands awaiting their replies. Caller-owned. */
+/* One TCP connection: both directions and the commands awaiting their replies. Caller-owned.
+ * A command that comes when UR_SCRIPT_SENDER_PENDING await is not kept but counted lost, and so is every
+ * command behind a lost one (replies come in order); a reply with none kept answers a lost one. */
 typedef struct ur_script_sender_conversation {
     ur_script_sender_direction commands, replies;
     int16_t pending[UR_SCRIPT_SENDER_PENDING];
-    size_t head, count;
+    size_t head, count, lost;
     uint32_t version;                  /* ur_script_sender_version(...), 0 while unknown */
     bool greeted;
 } ur_script_sender_conversation;

@@ -18,6 +18,8 @@ from .arguments import parse_version
 Version = tuple[int, int, int]
 E_SERIES_MAJOR = 5
 PENDING_KEPT = 256   # commands awaiting a reply; a client that never reads cannot grow it further
+NOT_KEPT = f"command not kept: more than {PENDING_KEPT} commands awaited replies"
+REPLY_NOT_KEPT = f"reply to a command that was not kept: more than {PENDING_KEPT} commands awaited replies"
 
 
 @dataclass(frozen=True)
@@ -135,6 +137,55 @@ class _Lines:
         return []
 
 
+class Pending:
+    """Commands awaiting their replies, oldest first, at most PENDING_KEPT of them. A command that
+    comes when the queue is full is not kept but counted as lost, and so is every command after
+    it while lost ones are ahead of it (replies come in order); a reply that comes when none is
+    kept but some are lost answers a lost one. So no reply is ever paired with another command."""
+
+    def __init__(self):
+        self.kept: deque = deque()
+        self.lost = 0
+
+    def __len__(self) -> int:
+        return len(self.kept)
+
+    def push(self, command) -> bool:
+        """Whether the command was kept."""
+        if self.lost or len(self.kept) >= PENDING_KEPT:
+            self.lost += 1
+            return False
+        self.kept.append(command)
+        return True
+
+    def pop(self) -> tuple:
+        """(the command the next reply answers or None, whether it answers a lost one)."""
+        if self.kept:
+            return self.kept.popleft(), False
+        if self.lost:
+            self.lost -= 1
+            return None, True
+        return None, False
+
+
+class Latest:
+    """Where every answering line belongs to the latest request: only that one is kept."""
+
+    def __init__(self):
+        self.command = None
+        self.any = False
+
+    def __len__(self) -> int:
+        return int(self.any)
+
+    def push(self, command) -> bool:
+        self.command, self.any = command, True
+        return True
+
+    def pop(self) -> tuple:
+        return self.command, False
+
+
 class LinesConversation:
     """One TCP connection of a text-line interface: `feed(data, from_robot)` -> records in order."""
 
@@ -143,7 +194,7 @@ class LinesConversation:
         self.version: Optional[Version] = parse_version(version_hint) if version_hint is not None else None
         self.commands = _Lines(tables.MAX_LINE)
         self.replies = _Lines(tables.MAX_LINE)
-        self.pending: deque = deque(maxlen=PENDING_KEPT)
+        self.pending = Pending() if tables.ONE_REPLY_PER_REQUEST else Latest()
         self.greeted = False
 
     def feed(self, data: bytes, from_robot: bool) -> list:
@@ -161,11 +212,11 @@ class LinesConversation:
         t = self.tables
         text = raw.decode("utf-8", "surrogateescape")
         command, argument = find_command(t.LOOKUP, text)
-        self.pending.append(command)
+        error = None if self.pending.push(command) else NOT_KEPT
         if command is None:
-            return t.Command(text)
+            return t.Command(text, error=error)
         available = None if self.version is None else command.available(self.version)
-        return t.Command(text, command.name, argument, available)
+        return t.Command(text, command.name, argument, available, error)
 
     def _reply(self, raw: bytes):
         t = self.tables
@@ -174,12 +225,10 @@ class LinesConversation:
             self.greeted = True
             if t.BANNER is not None and matches(t.BANNER.pieces, text):
                 return t.Reply(text, None, t.BANNER.name, False)
-        if t.ONE_REPLY_PER_REQUEST:
-            command = self.pending.popleft() if self.pending else None
-        else:
-            command = self.pending[-1] if self.pending else None
+        command, lost = self.pending.pop()
         reply = classify(t.COMMON_REPLIES, command, text)
         if command is not None and command.name == t.VERSION_COMMAND:
             self.version = version_in(text, t.VERSION_PREFIX) or self.version
-        return t.Reply(text, command.name if command else None, reply.name if reply else None,
-                       reply.error if reply else False)
+        # A reply to a lost command says so in place of whether it says an error.
+        error = REPLY_NOT_KEPT if lost else (reply.error if reply else False)
+        return t.Reply(text, command.name if command else None, reply.name if reply else None, error)

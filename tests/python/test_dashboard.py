@@ -80,6 +80,46 @@ def test_commands_never_answered_keep_bounded_memory():
     assert len(conversation.pending) == PENDING_KEPT
 
 
+NOT_KEPT = f"command not kept: more than {PENDING_KEPT} commands awaited replies"
+REPLY_NOT_KEPT = f"reply to a command that was not kept: more than {PENDING_KEPT} commands awaited replies"
+
+
+def test_past_the_kept_commands_a_reply_pairs_with_nothing_and_says_why():
+    # 256 commands kept, then "play" and "robotmode" not kept: their replies must not be read as
+    # the replies of other commands ("Starting program" as a robotmode reply).
+    conversation = ur_dashboard.conversation()
+    said = conversation.feed(b"robotmode\n" * PENDING_KEPT + b"play\nrobotmode\n", False)
+    answers = conversation.feed(b"Robotmode: IDLE\n" * PENDING_KEPT + b"Starting program\nRobotmode: IDLE\n", True)
+    assert [to_dict(c).get("error") for c in said] == [None] * PENDING_KEPT + [NOT_KEPT, NOT_KEPT]
+    assert all(to_dict(r) == {"type": "reply", "reply": "Robotmode: IDLE", "command_name": "robotmode",
+                              "reply_name": "robotmode", "error": False} for r in answers[:PENDING_KEPT])
+    assert [to_dict(r) for r in answers[PENDING_KEPT:]] == [
+        {"type": "reply", "reply": "Starting program", "error": REPLY_NOT_KEPT},
+        {"type": "reply", "reply": "Robotmode: IDLE", "error": REPLY_NOT_KEPT}]
+    # Every lost command answered, pairing starts again.
+    (command,) = conversation.feed(b"stop\n", False)
+    (reply,) = conversation.feed(b"Stopped\n", True)
+    assert to_dict(command).get("error") is None and reply.command_name == "stop" and reply.error is False
+
+
+def test_a_command_behind_a_lost_one_is_lost_too_though_there_is_room():
+    conversation = ur_dashboard.conversation()
+    conversation.feed(b"robotmode\n" * (PENDING_KEPT + 1), False)      # the last one lost
+    conversation.feed(b"Robotmode: IDLE\n", True)                     # room for one again
+    (late,) = conversation.feed(b"play\n", False)
+    assert late.error == NOT_KEPT                                     # its reply comes after the lost one's
+    replies = conversation.feed(b"Robotmode: IDLE\n" * (PENDING_KEPT - 1) + b"Robotmode: IDLE\nStarting program\n", True)
+    assert [r.command_name for r in replies] == ["robotmode"] * (PENDING_KEPT - 1) + [None, None]
+    assert [r.error for r in replies[-2:]] == [REPLY_NOT_KEPT, REPLY_NOT_KEPT]
+
+
+def test_the_script_sender_keeps_only_its_latest_request_and_never_overflows():
+    from urwire.generated import ur_script_sender
+    conversation = ur_script_sender.conversation()
+    records = conversation.feed(b"request_program\n" * (PENDING_KEPT * 2), True)
+    assert not any(to_dict(r).get("error") for r in records)
+
+
 def test_random_bytes_never_raise_and_every_record_renders():
     rng = random.Random(23)
     for _ in range(200):

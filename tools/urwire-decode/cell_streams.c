@@ -40,7 +40,7 @@ static const envelope *envelope_of(const cell_inputs *in, bool from_robot)
                 if (got) {                                                                         \
                     P##_json(&rec, line, sizeof line);                                             \
                     envelope_line(out, envelope_of(in, from_robot), line);                         \
-                    errors |= rec.type == UPPER##_FAULT;                                           \
+                    errors |= rec.type == UPPER##_FAULT || rec.not_kept;                           \
                 }                                                                                  \
                 at += used;                                                                        \
             }                                                                                      \

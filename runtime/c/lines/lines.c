@@ -145,12 +145,16 @@ static void read_command(lines_conversation *c, lines_record *rec)
     rec->command_name = command;
     rec->available = command == LINES_NONE || c->version == 0 ? -1
                                                                       : lines_available(command, c->version);
-    if (c->count == LINES_PENDING) {   /* the oldest is forgotten, as a bounded queue does */
-        c->head = (c->head + 1) % LINES_PENDING;
-        c->count--;
+    if (!LINES_ONE_REPLY_PER_REQUEST) {          /* only the latest request counts */
+        c->pending[0] = (int16_t)command;
+        c->count = 1;
+    } else if (c->lost > 0 || c->count == LINES_PENDING) {
+        rec->not_kept = true;
+        c->lost++;
+    } else {
+        c->pending[(c->head + c->count) % LINES_PENDING] = (int16_t)command;
+        c->count++;
     }
-    c->pending[(c->head + c->count) % LINES_PENDING] = (int16_t)command;
-    c->count++;
 }
 
 static void read_reply(lines_conversation *c, lines_record *rec)
@@ -171,6 +175,9 @@ static void read_reply(lines_conversation *c, lines_record *rec)
         c->count--;
     } else if (c->count > 0) {    /* every answering line belongs to the latest request */
         command = c->pending[(c->head + c->count - 1) % LINES_PENDING];
+    } else if (c->lost > 0) {     /* it answers a command that was not kept */
+        rec->not_kept = true;
+        c->lost--;
     }
     rec->command_name = command;
     rec->reply_name = lines_classify(command, rec->text);

@@ -9,6 +9,9 @@
 /* ---- lines, commands and replies ----------------------------------------------------------- */
 
 #define LINES_PENDING 256     /* commands awaiting a reply that a conversation keeps */
+/* The error of a command past them, and of a reply that answers such a command (it pairs with none). */
+#define LINES_NOT_KEPT "command not kept: more than 256 commands awaited replies"
+#define LINES_REPLY_NOT_KEPT "reply to a command that was not kept: more than 256 commands awaited replies"
 #define LINES_NONE (-1)       /* no command: an unknown one, or a reply with none pending */
 
 /* Bytes of the caller's buffer: never copied, valid while the buffer is. */
@@ -55,6 +58,8 @@ typedef struct lines_record {
     int available;                     /* commands: 1 or 0 when the version is known, else -1 */
     const lines_reply_spec *reply_name;   /* replies: the one matched, or NULL */
     bool error;                        /* replies: reply_name says an error */
+    bool not_kept;                     /* commands: not kept to pair (LINES_NOT_KEPT); replies:
+                                          answers such a command (LINES_REPLY_NOT_KEPT) */
     lines_fault fault;          /* faults: what, where (the direction's offset) and how many bytes */
     uint64_t offset;
     size_t bytes;
@@ -65,11 +70,13 @@ typedef struct lines_direction {
     bool skipping;                     /* inside a line too long, dropped up to its newline */
 } lines_direction;
 
-/* One TCP connection: both directions and the commands awaiting their replies. Caller-owned. */
+/* One TCP connection: both directions and the commands awaiting their replies. Caller-owned.
+ * A command that comes when LINES_PENDING await is not kept but counted lost, and so is every
+ * command behind a lost one (replies come in order); a reply with none kept answers a lost one. */
 typedef struct lines_conversation {
     lines_direction commands, replies;
     int16_t pending[LINES_PENDING];
-    size_t head, count;
+    size_t head, count, lost;
     uint32_t version;                  /* lines_version(...), 0 while unknown */
     bool greeted;
 } lines_conversation;
