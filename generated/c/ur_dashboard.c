@@ -511,6 +511,40 @@ static uint32_t version_in(ur_dashboard_view line)
     return count >= 2 ? ur_dashboard_version(parts[0], parts[1], parts[2]) : 0;
 }
 
+/* A request awaits its reply; false when it is not kept (see ur_dashboard_conversation). */
+static bool keep(ur_dashboard_conversation *c, int command)
+{
+    if (!UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {          /* only the latest request counts */
+        c->pending[0] = (int16_t)command;
+        c->count = 1;
+    } else if (c->lost > 0 || c->count == UR_DASHBOARD_PENDING) {
+        c->lost++;
+        return false;
+    } else {
+        c->pending[(c->head + c->count) % UR_DASHBOARD_PENDING] = (int16_t)command;
+        c->count++;
+    }
+    return true;
+}
+
+/* The request a reply answers (UR_DASHBOARD_NONE: none), *not_kept when it answers one not kept. */
+static int answered(ur_dashboard_conversation *c, bool *not_kept)
+{
+    int command = UR_DASHBOARD_NONE;
+    *not_kept = false;
+    if (c->count > 0 && UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {
+        command = c->pending[c->head];
+        c->head = (c->head + 1) % UR_DASHBOARD_PENDING;
+        c->count--;
+    } else if (c->count > 0) {    /* every answering line belongs to the latest request */
+        command = c->pending[(c->head + c->count - 1) % UR_DASHBOARD_PENDING];
+    } else if (c->lost > 0) {     /* it answers a command that was not kept */
+        *not_kept = true;
+        c->lost--;
+    }
+    return command;
+}
+
 static void read_command(ur_dashboard_conversation *c, ur_dashboard_record *rec)
 {
     int command = ur_dashboard_find_command(rec->text, &rec->argument, &rec->has_argument);
@@ -518,21 +552,12 @@ static void read_command(ur_dashboard_conversation *c, ur_dashboard_record *rec)
     rec->command_name = command;
     rec->available = command == UR_DASHBOARD_NONE || c->version == 0 ? -1
                                                                       : ur_dashboard_available(command, c->version);
-    if (!UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {          /* only the latest request counts */
-        c->pending[0] = (int16_t)command;
-        c->count = 1;
-    } else if (c->lost > 0 || c->count == UR_DASHBOARD_PENDING) {
-        rec->not_kept = true;
-        c->lost++;
-    } else {
-        c->pending[(c->head + c->count) % UR_DASHBOARD_PENDING] = (int16_t)command;
-        c->count++;
-    }
+    rec->not_kept = !keep(c, command);
 }
 
 static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
 {
-    int command = UR_DASHBOARD_NONE;
+    int command;
     rec->type = UR_DASHBOARD_REPLY;
     rec->command_name = UR_DASHBOARD_NONE;
     if (!c->greeted) {
@@ -542,16 +567,7 @@ static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
             return;
         }
     }
-    if (c->count > 0 && UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {
-        command = c->pending[c->head];
-        c->head = (c->head + 1) % UR_DASHBOARD_PENDING;
-        c->count--;
-    } else if (c->count > 0) {    /* every answering line belongs to the latest request */
-        command = c->pending[(c->head + c->count - 1) % UR_DASHBOARD_PENDING];
-    } else if (c->lost > 0) {     /* it answers a command that was not kept */
-        rec->not_kept = true;
-        c->lost--;
-    }
+    command = answered(c, &rec->not_kept);
     rec->command_name = command;
     rec->reply_name = ur_dashboard_classify(command, rec->text);
     rec->error = rec->reply_name != NULL && rec->reply_name->error;
@@ -597,6 +613,15 @@ size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const 
     *got = true;
     d->offset += used;
     if (newline == NULL || len > UR_DASHBOARD_MAX_LINE) {
+        /* Still a line: a command the server answers, or the reply to one, so that the pairing
+         * of the lines after it holds. */
+        bool not_kept;
+        if (requests) {
+            keep(c, UR_DASHBOARD_NONE);
+        } else {
+            c->greeted = true;
+            answered(c, &not_kept);
+        }
         rec->type = UR_DASHBOARD_FAULT;
         rec->fault = UR_DASHBOARD_LINE_TOO_LONG;
         return used;

@@ -320,21 +320,58 @@ static lines_conversation_t *lines_conversation(packet_info *pinfo)
     return c;
 }
 
+/* A request awaits its reply; false when it is not kept (see lines_conversation_t). */
+static bool lines_keep(lines_conversation_t *c, int command)
+{
+    if (!ur_script_sender_spec.one_reply_per_request) {        /* only the latest request counts */
+        c->first = 0;
+        c->count = 1;
+        c->pending[0] = command;
+    } else if (c->lost > 0 || c->count == LINES_PENDING_KEPT) {
+        c->lost++;
+        return false;
+    } else {
+        c->pending[(c->first + c->count++) % LINES_PENDING_KEPT] = command;
+    }
+    return true;
+}
+
+/* The request a reply answers (LINES_NONE: none), *not_kept when it answers one not kept. */
+static int lines_answered(lines_conversation_t *c, bool *not_kept)
+{
+    int command = LINES_NONE;
+    *not_kept = false;
+    if (c->count > 0 && ur_script_sender_spec.one_reply_per_request) {
+        command = c->pending[c->first];
+        c->first = (c->first + 1) % LINES_PENDING_KEPT;
+        c->count--;
+    } else if (c->count > 0) {                      /* every answering line belongs to the latest request */
+        command = c->pending[(c->first + c->count - 1) % LINES_PENDING_KEPT];
+    } else if (c->lost > 0) {                       /* it answers a command that was not kept */
+        *not_kept = true;
+        c->lost--;
+    }
+    return command;
+}
+
+/* A line too long is still a line: a command the server answers, or the reply to one, so that
+ * the pairing of the lines after it holds. */
+static void lines_count_too_long(lines_conversation_t *c, bool requests)
+{
+    bool not_kept;
+    if (requests) {
+        lines_keep(c, LINES_NONE);
+    } else {
+        c->greeted = true;
+        lines_answered(c, &not_kept);
+    }
+}
+
 static lines_decision_t *lines_decide_command(lines_conversation_t *c, const uint8_t *text, size_t len)
 {
     lines_decision_t *d = wmem_new(wmem_file_scope(), lines_decision_t);
     d->command = lines_find_command(&ur_script_sender_spec, text, len, &d->argument);
-    d->not_kept = false;
-    if (!ur_script_sender_spec.one_reply_per_request) {        /* only the latest request counts */
-        c->first = 0;
-        c->count = 1;
-        c->pending[0] = d->command;
-    } else if (c->lost > 0 || c->count == LINES_PENDING_KEPT) {
-        d->not_kept = true;
-        c->lost++;
-    } else {
-        c->pending[(c->first + c->count++) % LINES_PENDING_KEPT] = d->command;
-    }
+    d->not_kept = !lines_keep(c, d->command);
     d->available = d->command != LINES_NONE && c->has_version
         ? lines_available(&ur_script_sender_spec, d->command, c->version) : -1;
     d->reply = NULL;
@@ -355,16 +392,7 @@ static lines_decision_t *lines_decide_reply(lines_conversation_t *c, const uint8
             return d;
         }
     }
-    if (c->count > 0 && ur_script_sender_spec.one_reply_per_request) {
-        d->command = c->pending[c->first];
-        c->first = (c->first + 1) % LINES_PENDING_KEPT;
-        c->count--;
-    } else if (c->count > 0) {                      /* every answering line belongs to the latest request */
-        d->command = c->pending[(c->first + c->count - 1) % LINES_PENDING_KEPT];
-    } else if (c->lost > 0) {                       /* it answers a command that was not kept */
-        d->not_kept = true;
-        c->lost--;
-    }
+    d->command = lines_answered(c, &d->not_kept);
     if (d->command != LINES_NONE && d->command == ur_script_sender_spec.version_command) {
         uint64_t version;
         if (lines_version_in(&ur_script_sender_spec, text, len, &version)) {
@@ -510,6 +538,8 @@ static int dissect_ur_script_sender(tvbuff_t *tvb, packet_info *pinfo, proto_tre
                 expert_add_info(pinfo, proto_tree_add_item(tree, proto_ur_script_sender, tvb, at, stop - at, ENC_NA),
                                 &ei_ur_script_sender_too_long);
                 lines_info(info, "Line too long", "");
+                if (first_pass)
+                    lines_count_too_long(c, requests);
                 skipping = nl < 0;
                 at = nl >= 0 ? nl + 1 : n;
             } else {

@@ -94,7 +94,7 @@ def _is_number(part: str) -> bool:
     return 1 <= len(part) <= 3 and part.isascii() and part.isdigit()
 
 
-class _Lines:
+class LineSplitter:
     """One direction's bytes -> (offset, text) lines; a line over max_line bytes is an error."""
 
     def __init__(self, max_line: int):
@@ -192,8 +192,8 @@ class LinesConversation:
     def __init__(self, tables: ModuleType, version_hint=None):
         self.tables = tables
         self.version: Optional[Version] = parse_version(version_hint) if version_hint is not None else None
-        self.commands = _Lines(tables.MAX_LINE)
-        self.replies = _Lines(tables.MAX_LINE)
+        self.commands = LineSplitter(tables.MAX_LINE)
+        self.replies = LineSplitter(tables.MAX_LINE)
         self.pending = Pending() if tables.ONE_REPLY_PER_REQUEST else Latest()
         self.greeted = False
 
@@ -201,12 +201,22 @@ class LinesConversation:
         requests = from_robot == self.tables.REQUESTS_FROM_ROBOT
         lines = (self.commands if requests else self.replies).feed(data)
         read = self._command if requests else self._reply
-        return [line if isinstance(line, StreamError) else read(line[1]) for line in lines]
+        return [self._too_long(line, requests) if isinstance(line, StreamError) else read(line[1]) for line in lines]
 
     def close(self) -> list:
         # The client's direction first, as the C and Lua decoders report them.
         tails = (self.commands.close(), self.replies.close())
         return tails[1] + tails[0] if self.tables.REQUESTS_FROM_ROBOT else tails[0] + tails[1]
+
+    def _too_long(self, error: StreamError, requests: bool) -> StreamError:
+        """A line too long is still a line: a command that the server answers, or the reply to
+        the oldest one, so the pairing of the lines after it holds."""
+        if requests:
+            self.pending.push(None)
+        else:
+            self.greeted = True
+            self.pending.pop()
+        return error
 
     def _command(self, raw: bytes):
         t = self.tables

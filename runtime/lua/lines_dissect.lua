@@ -63,23 +63,55 @@ local function conversation(key)
     return c
 end
 
--- A command's line: its name, argument, and whether the version has it (nil: version unknown).
--- A command that comes when pending_kept await replies is not kept but counted lost, and so is
--- every command behind a lost one (replies come in order): no reply is paired with another command.
-local function decide_command(c, text)
-    local index, argument = find_command(text)
-    local not_kept = false
+-- A request awaits its reply; false when it is not kept. A command that comes when pending_kept
+-- await replies is not kept but counted lost, and so is every command behind a lost one (replies
+-- come in order): no reply is paired with another command.
+local function keep(c, index)
     if not spec.one_reply_per_request then     -- only the latest request counts
         c.pending[c.last] = nil
         c.first, c.last = 1, 1
         c.pending[1] = index or false
     elseif c.lost > 0 or c.last - c.first + 1 >= spec.pending_kept then
-        not_kept = true
         c.lost = c.lost + 1
+        return false
     else
         c.last = c.last + 1
         c.pending[c.last] = index or false
     end
+    return true
+end
+
+-- The request a reply answers (nil: none), and whether it answers one that was not kept.
+local function answered(c)
+    if c.first <= c.last and spec.one_reply_per_request then
+        local command = c.pending[c.first] or nil
+        c.pending[c.first] = nil
+        c.first = c.first + 1
+        return command, false
+    elseif c.first <= c.last then
+        return c.pending[c.last] or nil, false   -- every answering line belongs to the latest request
+    elseif c.lost > 0 then
+        c.lost = c.lost - 1
+        return nil, true
+    end
+    return nil, false
+end
+
+-- A line too long is still a line: a command the server answers, or the reply to one, so that
+-- the pairing of the lines after it holds.
+local function count_too_long(c, requests)
+    if requests then
+        keep(c, nil)
+    else
+        c.greeted = true
+        answered(c)
+    end
+end
+
+-- A command's line: its name, argument, and whether the version has it (nil: version unknown).
+local function decide_command(c, text)
+    local index, argument = find_command(text)
+    local not_kept = not keep(c, index)
     local has = nil
     if index and c.version then has = available(index, c.version) end
     return {command = index, argument = argument, available = has, not_kept = not_kept}
@@ -91,17 +123,7 @@ local function decide_reply(c, text)
         c.greeted = true
         if spec.banner and matches(spec.banner.pieces, text) then return {reply = spec.banner} end
     end
-    local command, not_kept = nil, false
-    if c.first <= c.last and spec.one_reply_per_request then
-        command = c.pending[c.first] or nil
-        c.pending[c.first] = nil
-        c.first = c.first + 1
-    elseif c.first <= c.last then
-        command = c.pending[c.last] or nil   -- every answering line belongs to the latest request
-    elseif c.lost > 0 then                   -- it answers a command that was not kept
-        not_kept = true
-        c.lost = c.lost - 1
-    end
+    local command, not_kept = answered(c)
     if command and command == spec.version_command then
         c.version = version_in(text) or c.version
     end
@@ -183,6 +205,7 @@ local function dissect(tvb, pinfo, tree)
                 local item = tree:add(proto, tvb(at, stop - at))
                 item:add_proto_expert_info(E.too_long, "Line longer than " .. spec.max_line .. " bytes")
                 infos[#infos + 1] = "Line too long"
+                if first_pass then count_too_long(c, requests) end
                 if not nl then skipping = true end
                 at = nl or n
             else

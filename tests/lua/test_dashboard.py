@@ -139,6 +139,15 @@ def test_past_the_kept_commands_a_reply_pairs_with_nothing_and_an_expert_says_wh
     assert messages.count("Reply to a command that was not kept: more than 256 commands awaited replies") == 2
 
 
+def test_a_line_too_long_still_takes_its_place_in_the_pairing(tmp_path):
+    segments = conversation((True, b"Connected: Universal Robots Dashboard Server\n"),
+                            (False, b"popup " + b"x" * 5000 + b"\nplay\n"),
+                            (True, b"could not understand: 'line longer than 4096 bytes'\nStarting program\n"),
+                            (False, b"robotmode\nstop\n"), (True, b"Robotmode: " + b"y" * 5000 + b"\nStopped\n"))
+    replies = [r for r in dissect(tmp_path, segments) if r["type"] == "reply"]
+    assert [r.get("command_name") for r in replies] == [None, None, "play", "stop"]
+
+
 def test_filters_name_the_banner_a_reply_and_error_replies(tmp_path):
     segments = conversation((True, b"Connected: Universal Robots Dashboard Server\n"), (False, b"play\n"),
                             (True, b"Failed to execute: play\n"))

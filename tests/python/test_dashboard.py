@@ -67,6 +67,19 @@ def test_a_line_too_long_is_one_error_and_the_next_line_reads():
     assert len(conversation.commands.buffer) == 0     # nothing of the long line was kept
 
 
+def test_a_line_too_long_still_takes_its_place_in_the_pairing():
+    # The server answers the long command with one line; "play" gets the next one.
+    conversation = ur_dashboard.conversation()
+    records = conversation.feed(b"Connected: Universal Robots Dashboard Server\n", True)
+    records += conversation.feed(b"popup " + b"x" * 5000 + b"\nplay\n", False)
+    records += conversation.feed(b"could not understand: 'line longer than 4096 bytes'\nStarting program\n", True)
+    assert [r.command_name for r in records[-2:]] == [None, "play"]
+    # A reply too long answers the oldest command: "stop" gets the line after it.
+    records = conversation.feed(b"robotmode\nstop\n", False)
+    records += conversation.feed(b"Robotmode: " + b"y" * 5000 + b"\nStopped\n", True)
+    assert to_dict(records[2])["type"] == "error" and records[3].command_name == "stop"
+
+
 def test_a_line_of_exactly_max_line_bytes_reads_and_one_more_is_too_long():
     for ending in (b"\n", b"\r\n"):
         ok = ur_dashboard.conversation().feed(b"p" * ur_dashboard.MAX_LINE + ending, False)
