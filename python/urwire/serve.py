@@ -179,7 +179,8 @@ class RtdeClient(Session):
 
     def eof_received(self) -> bool:
         self.rtde.inputs_ended()             # it can write no more inputs: another client may take them
-        return super().eof_received()
+        # A half-closed client still reads what streams; with nothing streaming, the session is over.
+        return bool(self.rtde.streams)
 
     def connection_lost(self, exc) -> None:
         self.rtde.closed()

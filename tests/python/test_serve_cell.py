@@ -164,10 +164,11 @@ def test_rtde_protocol_1_on_cb3_at_most_125_hz(server):
     motion = Motion(model_for((3, 15, 0)))
     assert all(p.values["actual_q"] == list(motion.joints(p.values["timestamp"]).q) for p in packages)
     client.close()
-    # Protocol 2 asks for 500 Hz; a CB3 sends 125.
+    # Protocol 2 at 125 Hz, a CB3's most; 500 Hz it refuses (recipe id 0: no recipe to start).
     client = RtdeClient(server)
     client.ask(rtde.request_protocol_version(2), g.RequestProtocolVersionReply)
-    client.ask(rtde.setup_outputs(["timestamp"], 500.0), g.SetupOutputsReply)
+    assert client.ask(rtde.setup_outputs(["timestamp"], 500.0), g.SetupOutputsReply).recipe_id == 0
+    assert client.ask(rtde.setup_outputs(["timestamp"], 125.0), g.SetupOutputsReply).recipe_id == 1
     client.ask(rtde.start(), g.StartReply)
     stamps = [p.values["timestamp"] for p in client.packages(10)]
     assert all(abs(b - a - 1 / 125) < 1e-9 for a, b in zip(stamps, stamps[1:]))

@@ -5,9 +5,16 @@ maximum) gets a reply without a recipe, and the server neither streams nor spins
 and socket is bounded in count and time."""
 from __future__ import annotations
 
+import math
+import os
+import socket
 import time
 
+import pytest
+
 from tests.python.cell_server import CellServer, read_until
+from urwire import rtde
+from urwire.generated import rtde as g
 from urwire.generated import ur_dashboard
 
 BANNER = "Connected: Universal Robots Dashboard Server"
@@ -52,3 +59,59 @@ def test_what_serve_says_decodes_as_the_decoder_splits_it(tmp_path):
     assert replies == [(None, BANNER), (None, "could not understand: 'line longer than 4096 bytes'"),
                        ("robotmode", "Robotmode: RUNNING"), (None, "could not understand: 'line longer than 4096 bytes'"),
                        ("get_robot_model", "UR5")]
+
+
+# ---- RTDE: frequencies a robot refuses ------------------------------------------------------
+
+def cpu_seconds(pid: int) -> float:
+    """User and system CPU time of a process so far (/proc/<pid>/stat, in clock ticks)."""
+    fields = open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def rtde_send(sock, conversation, data: bytes) -> None:
+    conversation.feed(data, False)          # the replies are read in the protocol the requests ask
+    sock.sendall(data)
+
+
+def rtde_replies(sock, conversation, count: int) -> list:
+    return read_until(sock, lambda chunk: conversation.feed(chunk, True), lambda r: len(r) >= count)
+
+
+@pytest.mark.parametrize("software,frequency", [("5.11", math.nan), ("5.11", math.inf), ("5.11", -math.inf),
+                                                ("5.11", 0.0), ("5.11", -125.0), ("5.11", 500.5), ("5.11", 1e308),
+                                                ("3.15", 126.0), ("3.15", 500.0)])
+def test_a_frequency_the_robot_refuses_gets_no_recipe_and_the_server_neither_streams_nor_spins(
+        tmp_path, software, frequency):
+    with CellServer(tmp_path, "--software", software) as server:
+        with server.connect("rtde") as sock:
+            conversation = rtde.Conversation(protocol=1)
+            rtde_send(sock, conversation, rtde.request_protocol_version(2))
+            rtde_replies(sock, conversation, 1)
+            rtde_send(sock, conversation, g.SetupOutputs(frequency, ["timestamp", "actual_q"]).encode() + rtde.start())
+            setup, start = rtde_replies(sock, conversation, 2)[:2]
+            assert isinstance(setup, g.SetupOutputsReply) and setup.recipe_id == 0
+            assert setup.types == ["DOUBLE", "VECTOR6D"]
+            assert isinstance(start, g.StartReply) and not start.accepted
+            before = cpu_seconds(server.proc.pid)
+            sock.settimeout(1.0)
+            with pytest.raises(socket.timeout):
+                sock.recv(65536)                     # no data package comes
+            sock.shutdown(socket.SHUT_WR)            # the client is done: the session ends
+            sock.settimeout(5.0)
+            assert sock.recv(65536) == b""
+            assert cpu_seconds(server.proc.pid) - before < 0.5    # no core spun in that second
+        assert server.stop() == 0
+
+
+@pytest.mark.parametrize("software,frequency", [("5.11", 500.0), ("5.11", 0.5), ("3.15", 125.0)])
+def test_a_frequency_the_robot_runs_gets_a_recipe_and_streams(tmp_path, software, frequency):
+    with CellServer(tmp_path, "--software", software) as server:
+        with server.connect("rtde") as sock:
+            conversation = rtde.Conversation(protocol=1)
+            rtde_send(sock, conversation, rtde.request_protocol_version(2))
+            rtde_replies(sock, conversation, 1)
+            rtde_send(sock, conversation, g.SetupOutputs(frequency, ["timestamp"]).encode() + rtde.start())
+            setup, start, package = rtde_replies(sock, conversation, 3)[:3]
+            assert setup.recipe_id == 1 and start.accepted and isinstance(package, g.DataPackage)
+        assert server.stop() == 0
