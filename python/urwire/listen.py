@@ -30,11 +30,13 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator, Optional
 
+from .arguments import finite_number
 from .canonical import has_error, to_json_line
 from .framer import Framer
 from .human import line as human_line
 from .listen_rtde import PORT as RTDE_PORT
 from .listen_rtde import RtdeRecorder
+from .serve_rtde import MAX_FREQUENCY
 
 BACKOFF_FIRST = 0.5
 BACKOFF_MAX = 10.0
@@ -42,6 +44,7 @@ CHUNK = 1 << 16
 IDLE_TIMEOUT = 2.0          # 20 periods of the controller's 10 Hz state
 CONNECT_TIMEOUT = 5.0
 KEEPALIVE = {"TCP_KEEPIDLE": 5, "TCP_KEEPINTVL": 2, "TCP_KEEPCNT": 3}   # seconds, seconds, probes
+HIGHEST_FREQUENCY = max(MAX_FREQUENCY.values())   # RTDE: what an e-Series runs; a CB3 refuses above 125
 
 
 def add_parser(sub, version_arg) -> None:
@@ -59,15 +62,16 @@ def add_parser(sub, version_arg) -> None:
                         ".1, .2, ... before its extension (each readable by decode); with --rtde, what listen "
                         "sent too, in FILE with .to_robot before its extension (decode's --to-robot)")
     p.add_argument("--count", type=int, metavar="N", help="stop after N records")
-    p.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
-    p.add_argument("--idle-timeout", type=float, default=IDLE_TIMEOUT, metavar="S",
+    p.add_argument("--duration", type=finite_number, metavar="S", help="stop after S seconds")
+    p.add_argument("--idle-timeout", type=finite_number, default=IDLE_TIMEOUT, metavar="S",
                    help=f"drop and reconnect a connection that sends nothing for S seconds "
                         f"(default: {IDLE_TIMEOUT})")
     p.add_argument("--rtde", metavar="NAMES",
                    help="record RTDE instead: set up an output recipe of these variables (comma-separated, e.g. "
                         "actual_q,actual_TCP_pose), start it and write each message the robot sends")
-    p.add_argument("--frequency", type=float, default=125.0, metavar="HZ",
-                   help="with --rtde: data packages per second under protocol 2 (default: 125)")
+    p.add_argument("--frequency", type=finite_number, default=125.0, metavar="HZ",
+                   help=f"with --rtde: data packages per second under protocol 2, above 0 and at most "
+                        f"{HIGHEST_FREQUENCY:g} (CB3: 125) (default: 125)")
     p.set_defaults(run=listen_command)
 
 
@@ -305,8 +309,12 @@ def listen_command(args: argparse.Namespace) -> int:
     if args.idle_timeout <= 0:
         print("urwire listen: --idle-timeout must be more than 0", file=sys.stderr)
         return 2
-    if args.rtde is not None and (not args.rtde.strip(", ") or args.frequency <= 0):
-        print("urwire listen: --rtde needs variable names and --frequency a rate above 0", file=sys.stderr)
+    if args.duration is not None and args.duration < 0 or args.count is not None and args.count < 1:
+        print("urwire listen: --duration must be 0 or more and --count 1 or more", file=sys.stderr)
+        return 2
+    if args.rtde is not None and (not args.rtde.strip(", ") or not 0 < args.frequency <= HIGHEST_FREQUENCY):
+        print(f"urwire listen: --rtde needs variable names and --frequency a rate above 0 and at most "
+              f"{HIGHEST_FREQUENCY:g}, as a robot runs (CB3: 125)", file=sys.stderr)
         return 2
     try:
         outputs = Outputs(args)

@@ -8,11 +8,13 @@ from __future__ import annotations
 import math
 import os
 import socket
+import subprocess
+import sys
 import time
 
 import pytest
 
-from tests.python.cell_server import CellServer, read_until
+from tests.python.cell_server import ENV, CellServer, read_until
 from urwire import rtde
 from urwire.generated import rtde as g
 from urwire.generated import ur_dashboard
@@ -115,3 +117,28 @@ def test_a_frequency_the_robot_runs_gets_a_recipe_and_streams(tmp_path, software
             setup, start, package = rtde_replies(sock, conversation, 3)[:3]
             assert setup.recipe_id == 1 and start.accepted and isinstance(package, g.DataPackage)
         assert server.stop() == 0
+
+
+# ---- numbers on the command line that no robot would run ----------------------------------
+
+def urwire(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "urwire", *args], capture_output=True, text=True, env=ENV,
+                          timeout=30)
+
+
+@pytest.mark.parametrize("args", [("--rate", "nan"), ("--rate", "inf"), ("--rate", "0"), ("--rate", "-10"),
+                                  ("--duration", "nan"), ("--duration", "-1")])
+def test_serve_refuses_a_rate_or_duration_it_could_only_spin_on(args):
+    res = urwire("serve", "--port", "0", "--duration", "2", *args)
+    assert res.returncode == 2 and "urwire serve" in res.stderr and args[0] in res.stderr, res.stderr
+    assert "Traceback" not in res.stderr
+
+
+@pytest.mark.parametrize("args", [("--frequency", "nan"), ("--frequency", "inf"), ("--frequency", "0"),
+                                  ("--frequency", "-125"), ("--frequency", "500.5"), ("--idle-timeout", "nan"),
+                                  ("--idle-timeout", "-1"), ("--duration", "nan"), ("--duration", "-1"),
+                                  ("--count", "0")])
+def test_listen_refuses_a_frequency_timeout_or_count_no_robot_would_take(args):
+    res = urwire("listen", "127.0.0.1:9", "--rtde", "timestamp", "--duration", "1", *args)
+    assert res.returncode == 2 and "urwire listen" in res.stderr and args[0] in res.stderr, res.stderr
+    assert "Traceback" not in res.stderr and "cannot connect" not in res.stderr
