@@ -402,6 +402,18 @@ void ur_dashboard_init(ur_dashboard_conversation *c, uint32_t version)
 {
     memset(c, 0, sizeof *c);
     c->version = version;
+    c->kept = UR_DASHBOARD_PENDING;
+}
+
+void ur_dashboard_keep_pending(ur_dashboard_conversation *c, int16_t *queue, size_t n)
+{
+    c->more = queue;
+    c->kept = n;
+}
+
+static int16_t *queue_of(ur_dashboard_conversation *c)
+{
+    return c->more != NULL ? c->more : c->pending;
 }
 
 static bool starts_with(ur_dashboard_view v, const char *text, size_t n)
@@ -515,13 +527,13 @@ static uint32_t version_in(ur_dashboard_view line)
 static bool keep(ur_dashboard_conversation *c, int command)
 {
     if (!UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {          /* only the latest request counts */
-        c->pending[0] = (int16_t)command;
+        queue_of(c)[0] = (int16_t)command;
         c->count = 1;
-    } else if (c->lost > 0 || c->count == UR_DASHBOARD_PENDING) {
+    } else if (c->lost > 0 || c->count == c->kept) {
         c->lost++;
         return false;
     } else {
-        c->pending[(c->head + c->count) % UR_DASHBOARD_PENDING] = (int16_t)command;
+        queue_of(c)[(c->head + c->count) % c->kept] = (int16_t)command;
         c->count++;
     }
     return true;
@@ -533,11 +545,11 @@ static int answered(ur_dashboard_conversation *c, bool *not_kept)
     int command = UR_DASHBOARD_NONE;
     *not_kept = false;
     if (c->count > 0 && UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {
-        command = c->pending[c->head];
-        c->head = (c->head + 1) % UR_DASHBOARD_PENDING;
+        command = queue_of(c)[c->head];
+        c->head = (c->head + 1) % c->kept;
         c->count--;
     } else if (c->count > 0) {    /* every answering line belongs to the latest request */
-        command = c->pending[(c->head + c->count - 1) % UR_DASHBOARD_PENDING];
+        command = queue_of(c)[(c->head + c->count - 1) % c->kept];
     } else if (c->lost > 0) {     /* it answers a command that was not kept */
         *not_kept = true;
         c->lost--;
@@ -553,6 +565,7 @@ static void read_command(ur_dashboard_conversation *c, ur_dashboard_record *rec)
     rec->available = command == UR_DASHBOARD_NONE || c->version == 0 ? -1
                                                                       : ur_dashboard_available(command, c->version);
     rec->not_kept = !keep(c, command);
+    rec->kept = c->kept;
 }
 
 static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
@@ -568,6 +581,7 @@ static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
         }
     }
     command = answered(c, &rec->not_kept);
+    rec->kept = c->kept;
     rec->command_name = command;
     rec->reply_name = ur_dashboard_classify(command, rec->text);
     rec->error = rec->reply_name != NULL && rec->reply_name->error;
@@ -793,7 +807,12 @@ size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap)
         }
         if (rec->available >= 0)
             out_text(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
-        out_text(&o, rec->not_kept ? ", \"error\": \"" UR_DASHBOARD_NOT_KEPT "\"}" : "}");
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"command not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"");
+        }
+        out_text(&o, "}");
     } else {
         out_text(&o, "{\"type\": \"reply\", \"reply\": ");
         out_string(&o, rec->text);
@@ -801,9 +820,11 @@ size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap)
             out_name(&o, ", \"command_name\": ", ur_dashboard_commands[rec->command_name].name);
         if (rec->reply_name != NULL)
             out_name(&o, ", \"reply_name\": ", rec->reply_name->name);
-        if (rec->not_kept)
-            out_text(&o, ", \"error\": \"" UR_DASHBOARD_REPLY_NOT_KEPT "\"}");
-        else
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"reply to a command that was not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"}");
+        } else
             out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
     }
     if (cap > 0)

@@ -44,6 +44,18 @@ void ur_script_sender_init(ur_script_sender_conversation *c, uint32_t version)
 {
     memset(c, 0, sizeof *c);
     c->version = version;
+    c->kept = UR_SCRIPT_SENDER_PENDING;
+}
+
+void ur_script_sender_keep_pending(ur_script_sender_conversation *c, int16_t *queue, size_t n)
+{
+    c->more = queue;
+    c->kept = n;
+}
+
+static int16_t *queue_of(ur_script_sender_conversation *c)
+{
+    return c->more != NULL ? c->more : c->pending;
 }
 
 static bool starts_with(ur_script_sender_view v, const char *text, size_t n)
@@ -157,13 +169,13 @@ static uint32_t version_in(ur_script_sender_view line)
 static bool keep(ur_script_sender_conversation *c, int command)
 {
     if (!UR_SCRIPT_SENDER_ONE_REPLY_PER_REQUEST) {          /* only the latest request counts */
-        c->pending[0] = (int16_t)command;
+        queue_of(c)[0] = (int16_t)command;
         c->count = 1;
-    } else if (c->lost > 0 || c->count == UR_SCRIPT_SENDER_PENDING) {
+    } else if (c->lost > 0 || c->count == c->kept) {
         c->lost++;
         return false;
     } else {
-        c->pending[(c->head + c->count) % UR_SCRIPT_SENDER_PENDING] = (int16_t)command;
+        queue_of(c)[(c->head + c->count) % c->kept] = (int16_t)command;
         c->count++;
     }
     return true;
@@ -175,11 +187,11 @@ static int answered(ur_script_sender_conversation *c, bool *not_kept)
     int command = UR_SCRIPT_SENDER_NONE;
     *not_kept = false;
     if (c->count > 0 && UR_SCRIPT_SENDER_ONE_REPLY_PER_REQUEST) {
-        command = c->pending[c->head];
-        c->head = (c->head + 1) % UR_SCRIPT_SENDER_PENDING;
+        command = queue_of(c)[c->head];
+        c->head = (c->head + 1) % c->kept;
         c->count--;
     } else if (c->count > 0) {    /* every answering line belongs to the latest request */
-        command = c->pending[(c->head + c->count - 1) % UR_SCRIPT_SENDER_PENDING];
+        command = queue_of(c)[(c->head + c->count - 1) % c->kept];
     } else if (c->lost > 0) {     /* it answers a command that was not kept */
         *not_kept = true;
         c->lost--;
@@ -195,6 +207,7 @@ static void read_command(ur_script_sender_conversation *c, ur_script_sender_reco
     rec->available = command == UR_SCRIPT_SENDER_NONE || c->version == 0 ? -1
                                                                       : ur_script_sender_available(command, c->version);
     rec->not_kept = !keep(c, command);
+    rec->kept = c->kept;
 }
 
 static void read_reply(ur_script_sender_conversation *c, ur_script_sender_record *rec)
@@ -210,6 +223,7 @@ static void read_reply(ur_script_sender_conversation *c, ur_script_sender_record
         }
     }
     command = answered(c, &rec->not_kept);
+    rec->kept = c->kept;
     rec->command_name = command;
     rec->reply_name = ur_script_sender_classify(command, rec->text);
     rec->error = rec->reply_name != NULL && rec->reply_name->error;
@@ -435,7 +449,12 @@ size_t ur_script_sender_json(const ur_script_sender_record *rec, char *out, size
         }
         if (rec->available >= 0)
             out_text(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
-        out_text(&o, rec->not_kept ? ", \"error\": \"" UR_SCRIPT_SENDER_NOT_KEPT "\"}" : "}");
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"command not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"");
+        }
+        out_text(&o, "}");
     } else {
         out_text(&o, "{\"type\": \"reply\", \"reply\": ");
         out_string(&o, rec->text);
@@ -443,9 +462,11 @@ size_t ur_script_sender_json(const ur_script_sender_record *rec, char *out, size
             out_name(&o, ", \"command_name\": ", ur_script_sender_commands[rec->command_name].name);
         if (rec->reply_name != NULL)
             out_name(&o, ", \"reply_name\": ", rec->reply_name->name);
-        if (rec->not_kept)
-            out_text(&o, ", \"error\": \"" UR_SCRIPT_SENDER_REPLY_NOT_KEPT "\"}");
-        else
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"reply to a command that was not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"}");
+        } else
             out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
     }
     if (cap > 0)

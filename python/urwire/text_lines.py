@@ -18,8 +18,17 @@ from .arguments import parse_version
 Version = tuple[int, int, int]
 E_SERIES_MAJOR = 5
 PENDING_KEPT = 256   # commands awaiting a reply; a client that never reads cannot grow it further
-NOT_KEPT = f"command not kept: more than {PENDING_KEPT} commands awaited replies"
-REPLY_NOT_KEPT = f"reply to a command that was not kept: more than {PENDING_KEPT} commands awaited replies"
+# Reading a client's whole raw file before the server's, every command of the session awaits its
+# reply at once: raw files keep this many (references, a few MiB) before one is not kept.
+PENDING_KEPT_RAW = 1 << 20
+
+
+def not_kept(kept: int) -> str:
+    return f"command not kept: more than {kept} commands awaited replies"
+
+
+def reply_not_kept(kept: int) -> str:
+    return f"reply to a command that was not kept: more than {kept} commands awaited replies"
 
 
 @dataclass(frozen=True)
@@ -138,12 +147,13 @@ class LineSplitter:
 
 
 class Pending:
-    """Commands awaiting their replies, oldest first, at most PENDING_KEPT of them. A command that
+    """Commands awaiting their replies, oldest first, at most `limit` of them. A command that
     comes when the queue is full is not kept but counted as lost, and so is every command after
     it while lost ones are ahead of it (replies come in order); a reply that comes when none is
     kept but some are lost answers a lost one. So no reply is ever paired with another command."""
 
-    def __init__(self):
+    def __init__(self, limit: int = PENDING_KEPT):
+        self.limit = limit
         self.kept: deque = deque()
         self.lost = 0
 
@@ -152,7 +162,7 @@ class Pending:
 
     def push(self, command) -> bool:
         """Whether the command was kept."""
-        if self.lost or len(self.kept) >= PENDING_KEPT:
+        if self.lost or len(self.kept) >= self.limit:
             self.lost += 1
             return False
         self.kept.append(command)
@@ -170,6 +180,8 @@ class Pending:
 
 class Latest:
     """Where every answering line belongs to the latest request: only that one is kept."""
+
+    limit = 1
 
     def __init__(self):
         self.command = None
@@ -208,6 +220,11 @@ class LinesConversation:
         tails = (self.commands.close(), self.replies.close())
         return tails[1] + tails[0] if self.tables.REQUESTS_FROM_ROBOT else tails[0] + tails[1]
 
+    def keep_pending(self, limit: int) -> None:
+        """Keep up to `limit` commands awaiting replies (raw files: PENDING_KEPT_RAW), before any."""
+        if isinstance(self.pending, Pending):
+            self.pending.limit = limit
+
     def _too_long(self, error: StreamError, requests: bool) -> StreamError:
         """A line too long is still a line: a command that the server answers, or the reply to
         the oldest one, so the pairing of the lines after it holds."""
@@ -222,7 +239,7 @@ class LinesConversation:
         t = self.tables
         text = raw.decode("utf-8", "surrogateescape")
         command, argument = find_command(t.LOOKUP, text)
-        error = None if self.pending.push(command) else NOT_KEPT
+        error = None if self.pending.push(command) else not_kept(self.pending.limit)
         if command is None:
             return t.Command(text, error=error)
         available = None if self.version is None else command.available(self.version)
@@ -240,5 +257,5 @@ class LinesConversation:
         if command is not None and command.name == t.VERSION_COMMAND:
             self.version = version_in(text, t.VERSION_PREFIX) or self.version
         # A reply to a lost command says so in place of whether it says an error.
-        error = REPLY_NOT_KEPT if lost else (reply.error if reply else False)
+        error = reply_not_kept(self.pending.limit) if lost else (reply.error if reply else False)
         return t.Reply(text, command.name if command else None, reply.name if reply else None, error)

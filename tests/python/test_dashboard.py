@@ -126,6 +126,17 @@ def test_a_command_behind_a_lost_one_is_lost_too_though_there_is_room():
     assert [r.error for r in replies[-2:]] == [REPLY_NOT_KEPT, REPLY_NOT_KEPT]
 
 
+def test_a_conversation_told_to_keep_more_pairs_past_256_and_says_its_own_bound():
+    conversation = ur_dashboard.conversation()
+    conversation.keep_pending(PENDING_KEPT + 2)
+    said = conversation.feed(b"robotmode\n" * (PENDING_KEPT + 3), False)
+    answers = conversation.feed(b"Robotmode: IDLE\n" * (PENDING_KEPT + 3), True)
+    assert [r.command_name for r in answers] == ["robotmode"] * (PENDING_KEPT + 2) + [None]
+    bound = f"more than {PENDING_KEPT + 2} commands awaited replies"
+    assert said[-1].error == f"command not kept: {bound}"
+    assert answers[-1].error == f"reply to a command that was not kept: {bound}"
+
+
 def test_the_script_sender_keeps_only_its_latest_request_and_never_overflows():
     from urwire.generated import ur_script_sender
     conversation = ur_script_sender.conversation()

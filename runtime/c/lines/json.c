@@ -144,7 +144,12 @@ size_t lines_json(const lines_record *rec, char *out, size_t cap)
         }
         if (rec->available >= 0)
             out_text(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
-        out_text(&o, rec->not_kept ? ", \"error\": \"" LINES_NOT_KEPT "\"}" : "}");
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"command not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"");
+        }
+        out_text(&o, "}");
     } else {
         out_text(&o, "{\"type\": \"reply\", \"reply\": ");
         out_string(&o, rec->text);
@@ -152,9 +157,11 @@ size_t lines_json(const lines_record *rec, char *out, size_t cap)
             out_name(&o, ", \"command_name\": ", lines_commands[rec->command_name].name);
         if (rec->reply_name != NULL)
             out_name(&o, ", \"reply_name\": ", rec->reply_name->name);
-        if (rec->not_kept)
-            out_text(&o, ", \"error\": \"" LINES_REPLY_NOT_KEPT "\"}");
-        else
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"reply to a command that was not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"}");
+        } else
             out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
     }
     if (cap > 0)

@@ -29,6 +29,18 @@ void lines_init(lines_conversation *c, uint32_t version)
 {
     memset(c, 0, sizeof *c);
     c->version = version;
+    c->kept = LINES_PENDING;
+}
+
+void lines_keep_pending(lines_conversation *c, int16_t *queue, size_t n)
+{
+    c->more = queue;
+    c->kept = n;
+}
+
+static int16_t *queue_of(lines_conversation *c)
+{
+    return c->more != NULL ? c->more : c->pending;
 }
 
 static bool starts_with(lines_view v, const char *text, size_t n)
@@ -142,13 +154,13 @@ static uint32_t version_in(lines_view line)
 static bool keep(lines_conversation *c, int command)
 {
     if (!LINES_ONE_REPLY_PER_REQUEST) {          /* only the latest request counts */
-        c->pending[0] = (int16_t)command;
+        queue_of(c)[0] = (int16_t)command;
         c->count = 1;
-    } else if (c->lost > 0 || c->count == LINES_PENDING) {
+    } else if (c->lost > 0 || c->count == c->kept) {
         c->lost++;
         return false;
     } else {
-        c->pending[(c->head + c->count) % LINES_PENDING] = (int16_t)command;
+        queue_of(c)[(c->head + c->count) % c->kept] = (int16_t)command;
         c->count++;
     }
     return true;
@@ -160,11 +172,11 @@ static int answered(lines_conversation *c, bool *not_kept)
     int command = LINES_NONE;
     *not_kept = false;
     if (c->count > 0 && LINES_ONE_REPLY_PER_REQUEST) {
-        command = c->pending[c->head];
-        c->head = (c->head + 1) % LINES_PENDING;
+        command = queue_of(c)[c->head];
+        c->head = (c->head + 1) % c->kept;
         c->count--;
     } else if (c->count > 0) {    /* every answering line belongs to the latest request */
-        command = c->pending[(c->head + c->count - 1) % LINES_PENDING];
+        command = queue_of(c)[(c->head + c->count - 1) % c->kept];
     } else if (c->lost > 0) {     /* it answers a command that was not kept */
         *not_kept = true;
         c->lost--;
@@ -180,6 +192,7 @@ static void read_command(lines_conversation *c, lines_record *rec)
     rec->available = command == LINES_NONE || c->version == 0 ? -1
                                                                       : lines_available(command, c->version);
     rec->not_kept = !keep(c, command);
+    rec->kept = c->kept;
 }
 
 static void read_reply(lines_conversation *c, lines_record *rec)
@@ -195,6 +208,7 @@ static void read_reply(lines_conversation *c, lines_record *rec)
         }
     }
     command = answered(c, &rec->not_kept);
+    rec->kept = c->kept;
     rec->command_name = command;
     rec->reply_name = lines_classify(command, rec->text);
     rec->error = rec->reply_name != NULL && rec->reply_name->error;
