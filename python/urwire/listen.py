@@ -58,7 +58,8 @@ def add_parser(sub, version_arg) -> None:
                    help="jsonl: canonical JSON Lines (default); csv: position, time, type, JSON; "
                         "text: one readable line per message")
     p.add_argument("--raw", metavar="FILE",
-                   help="also keep the exact bytes received, one file per connection: FILE, then FILE with "
+                   help="also keep the exact bytes received, one file per connection that received any: FILE, "
+                        "then FILE with "
                         ".1, .2, ... before its extension (each readable by decode); with --rtde, what listen "
                         "sent too, in FILE with .to_robot before its extension (decode's --to-robot)")
     p.add_argument("--count", type=int, metavar="N", help="stop after N records")
