@@ -402,6 +402,18 @@ void ur_dashboard_init(ur_dashboard_conversation *c, uint32_t version)
 {
     memset(c, 0, sizeof *c);
     c->version = version;
+    c->kept = UR_DASHBOARD_PENDING;
+}
+
+void ur_dashboard_keep_pending(ur_dashboard_conversation *c, int16_t *queue, size_t n)
+{
+    c->more = queue;
+    c->kept = n;
+}
+
+static int16_t *queue_of(ur_dashboard_conversation *c)
+{
+    return c->more != NULL ? c->more : c->pending;
 }
 
 static bool starts_with(ur_dashboard_view v, const char *text, size_t n)
@@ -511,6 +523,40 @@ static uint32_t version_in(ur_dashboard_view line)
     return count >= 2 ? ur_dashboard_version(parts[0], parts[1], parts[2]) : 0;
 }
 
+/* A request awaits its reply; false when it is not kept (see ur_dashboard_conversation). */
+static bool keep(ur_dashboard_conversation *c, int command)
+{
+    if (!UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {          /* only the latest request counts */
+        queue_of(c)[0] = (int16_t)command;
+        c->count = 1;
+    } else if (c->lost > 0 || c->count == c->kept) {
+        c->lost++;
+        return false;
+    } else {
+        queue_of(c)[(c->head + c->count) % c->kept] = (int16_t)command;
+        c->count++;
+    }
+    return true;
+}
+
+/* The request a reply answers (UR_DASHBOARD_NONE: none), *not_kept when it answers one not kept. */
+static int answered(ur_dashboard_conversation *c, bool *not_kept)
+{
+    int command = UR_DASHBOARD_NONE;
+    *not_kept = false;
+    if (c->count > 0 && UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {
+        command = queue_of(c)[c->head];
+        c->head = (c->head + 1) % c->kept;
+        c->count--;
+    } else if (c->count > 0) {    /* every answering line belongs to the latest request */
+        command = queue_of(c)[(c->head + c->count - 1) % c->kept];
+    } else if (c->lost > 0) {     /* it answers a command that was not kept */
+        *not_kept = true;
+        c->lost--;
+    }
+    return command;
+}
+
 static void read_command(ur_dashboard_conversation *c, ur_dashboard_record *rec)
 {
     int command = ur_dashboard_find_command(rec->text, &rec->argument, &rec->has_argument);
@@ -518,17 +564,13 @@ static void read_command(ur_dashboard_conversation *c, ur_dashboard_record *rec)
     rec->command_name = command;
     rec->available = command == UR_DASHBOARD_NONE || c->version == 0 ? -1
                                                                       : ur_dashboard_available(command, c->version);
-    if (c->count == UR_DASHBOARD_PENDING) {   /* the oldest is forgotten, as a bounded queue does */
-        c->head = (c->head + 1) % UR_DASHBOARD_PENDING;
-        c->count--;
-    }
-    c->pending[(c->head + c->count) % UR_DASHBOARD_PENDING] = (int16_t)command;
-    c->count++;
+    rec->not_kept = !keep(c, command);
+    rec->kept = c->kept;
 }
 
 static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
 {
-    int command = UR_DASHBOARD_NONE;
+    int command;
     rec->type = UR_DASHBOARD_REPLY;
     rec->command_name = UR_DASHBOARD_NONE;
     if (!c->greeted) {
@@ -538,13 +580,8 @@ static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
             return;
         }
     }
-    if (c->count > 0 && UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {
-        command = c->pending[c->head];
-        c->head = (c->head + 1) % UR_DASHBOARD_PENDING;
-        c->count--;
-    } else if (c->count > 0) {    /* every answering line belongs to the latest request */
-        command = c->pending[(c->head + c->count - 1) % UR_DASHBOARD_PENDING];
-    }
+    command = answered(c, &rec->not_kept);
+    rec->kept = c->kept;
     rec->command_name = command;
     rec->reply_name = ur_dashboard_classify(command, rec->text);
     rec->error = rec->reply_name != NULL && rec->reply_name->error;
@@ -590,6 +627,15 @@ size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const 
     *got = true;
     d->offset += used;
     if (newline == NULL || len > UR_DASHBOARD_MAX_LINE) {
+        /* Still a line: a command the server answers, or the reply to one, so that the pairing
+         * of the lines after it holds. */
+        bool not_kept;
+        if (requests) {
+            keep(c, UR_DASHBOARD_NONE);
+        } else {
+            c->greeted = true;
+            answered(c, &not_kept);
+        }
         rec->type = UR_DASHBOARD_FAULT;
         rec->fault = UR_DASHBOARD_LINE_TOO_LONG;
         return used;
@@ -760,9 +806,13 @@ size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap)
             out_string(&o, rec->argument);
         }
         if (rec->available >= 0)
-            out_text(&o, rec->available ? ", \"available\": true}" : ", \"available\": false}");
-        else
-            out_text(&o, "}");
+            out_text(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"command not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"");
+        }
+        out_text(&o, "}");
     } else {
         out_text(&o, "{\"type\": \"reply\", \"reply\": ");
         out_string(&o, rec->text);
@@ -770,7 +820,12 @@ size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap)
             out_name(&o, ", \"command_name\": ", ur_dashboard_commands[rec->command_name].name);
         if (rec->reply_name != NULL)
             out_name(&o, ", \"reply_name\": ", rec->reply_name->name);
-        out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"reply to a command that was not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"}");
+        } else
+            out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
     }
     if (cap > 0)
         out[o.len < cap ? o.len : cap - 1] = '\0';

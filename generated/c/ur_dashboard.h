@@ -117,6 +117,9 @@ typedef enum ur_dashboard_command_id {
 /* ---- lines, commands and replies ----------------------------------------------------------- */
 
 #define UR_DASHBOARD_PENDING 256     /* commands awaiting a reply that a conversation keeps */
+/* What a reader of raw files keeps in a queue of its own (ur_dashboard_keep_pending): the client's whole
+ * file comes before the server's, so every command of a session awaits its reply at once. */
+#define UR_DASHBOARD_PENDING_RAW (1u << 20)
 #define UR_DASHBOARD_NONE (-1)       /* no command: an unknown one, or a reply with none pending */
 
 /* Bytes of the caller's buffer: never copied, valid while the buffer is. */
@@ -163,6 +166,9 @@ typedef struct ur_dashboard_record {
     int available;                     /* commands: 1 or 0 when the version is known, else -1 */
     const ur_dashboard_reply_spec *reply_name;   /* replies: the one matched, or NULL */
     bool error;                        /* replies: reply_name says an error */
+    bool not_kept;                     /* commands: not kept to pair; replies: answers such a
+                                          command ("more than <kept> commands awaited replies") */
+    size_t kept;                       /* the conversation's bound, when not_kept */
     ur_dashboard_fault fault;          /* faults: what, where (the direction's offset) and how many bytes */
     uint64_t offset;
     size_t bytes;
@@ -173,11 +179,14 @@ typedef struct ur_dashboard_direction {
     bool skipping;                     /* inside a line too long, dropped up to its newline */
 } ur_dashboard_direction;
 
-/* One TCP connection: both directions and the commands awaiting their replies. Caller-owned. */
+/* One TCP connection: both directions and the commands awaiting their replies. Caller-owned.
+ * A command that comes when UR_DASHBOARD_PENDING await is not kept but counted lost, and so is every
+ * command behind a lost one (replies come in order); a reply with none kept answers a lost one. */
 typedef struct ur_dashboard_conversation {
     ur_dashboard_direction commands, replies;
     int16_t pending[UR_DASHBOARD_PENDING];
-    size_t head, count;
+    int16_t *more;                     /* the caller's longer queue (ur_dashboard_keep_pending), or NULL */
+    size_t head, count, lost, kept;
     uint32_t version;                  /* ur_dashboard_version(...), 0 while unknown */
     bool greeted;
 } ur_dashboard_conversation;
@@ -186,6 +195,9 @@ typedef struct ur_dashboard_conversation {
 uint32_t ur_dashboard_version(uint32_t major, uint32_t minor, uint32_t bugfix);
 /* A conversation with nothing read; version 0 when not known (the version reply teaches it). */
 void ur_dashboard_init(ur_dashboard_conversation *c, uint32_t version);
+/* Before any line: keep up to n commands awaiting replies in queue (n entries, the caller's, as
+ * long as the conversation) instead of UR_DASHBOARD_PENDING; raw files take UR_DASHBOARD_PENDING_RAW. */
+void ur_dashboard_keep_pending(ur_dashboard_conversation *c, int16_t *queue, size_t n);
 /* Read one record from the front of buf, the next bytes of one direction. Returns the bytes
  * used, and sets *got when rec holds a record. 0 with *got false: a line is not whole yet;
  * call again with more bytes (at most UR_DASHBOARD_MAX_LINE + 2 are ever needed). */

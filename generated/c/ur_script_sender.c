@@ -44,6 +44,18 @@ void ur_script_sender_init(ur_script_sender_conversation *c, uint32_t version)
 {
     memset(c, 0, sizeof *c);
     c->version = version;
+    c->kept = UR_SCRIPT_SENDER_PENDING;
+}
+
+void ur_script_sender_keep_pending(ur_script_sender_conversation *c, int16_t *queue, size_t n)
+{
+    c->more = queue;
+    c->kept = n;
+}
+
+static int16_t *queue_of(ur_script_sender_conversation *c)
+{
+    return c->more != NULL ? c->more : c->pending;
 }
 
 static bool starts_with(ur_script_sender_view v, const char *text, size_t n)
@@ -153,6 +165,40 @@ static uint32_t version_in(ur_script_sender_view line)
     return count >= 2 ? ur_script_sender_version(parts[0], parts[1], parts[2]) : 0;
 }
 
+/* A request awaits its reply; false when it is not kept (see ur_script_sender_conversation). */
+static bool keep(ur_script_sender_conversation *c, int command)
+{
+    if (!UR_SCRIPT_SENDER_ONE_REPLY_PER_REQUEST) {          /* only the latest request counts */
+        queue_of(c)[0] = (int16_t)command;
+        c->count = 1;
+    } else if (c->lost > 0 || c->count == c->kept) {
+        c->lost++;
+        return false;
+    } else {
+        queue_of(c)[(c->head + c->count) % c->kept] = (int16_t)command;
+        c->count++;
+    }
+    return true;
+}
+
+/* The request a reply answers (UR_SCRIPT_SENDER_NONE: none), *not_kept when it answers one not kept. */
+static int answered(ur_script_sender_conversation *c, bool *not_kept)
+{
+    int command = UR_SCRIPT_SENDER_NONE;
+    *not_kept = false;
+    if (c->count > 0 && UR_SCRIPT_SENDER_ONE_REPLY_PER_REQUEST) {
+        command = queue_of(c)[c->head];
+        c->head = (c->head + 1) % c->kept;
+        c->count--;
+    } else if (c->count > 0) {    /* every answering line belongs to the latest request */
+        command = queue_of(c)[(c->head + c->count - 1) % c->kept];
+    } else if (c->lost > 0) {     /* it answers a command that was not kept */
+        *not_kept = true;
+        c->lost--;
+    }
+    return command;
+}
+
 static void read_command(ur_script_sender_conversation *c, ur_script_sender_record *rec)
 {
     int command = ur_script_sender_find_command(rec->text, &rec->argument, &rec->has_argument);
@@ -160,17 +206,13 @@ static void read_command(ur_script_sender_conversation *c, ur_script_sender_reco
     rec->command_name = command;
     rec->available = command == UR_SCRIPT_SENDER_NONE || c->version == 0 ? -1
                                                                       : ur_script_sender_available(command, c->version);
-    if (c->count == UR_SCRIPT_SENDER_PENDING) {   /* the oldest is forgotten, as a bounded queue does */
-        c->head = (c->head + 1) % UR_SCRIPT_SENDER_PENDING;
-        c->count--;
-    }
-    c->pending[(c->head + c->count) % UR_SCRIPT_SENDER_PENDING] = (int16_t)command;
-    c->count++;
+    rec->not_kept = !keep(c, command);
+    rec->kept = c->kept;
 }
 
 static void read_reply(ur_script_sender_conversation *c, ur_script_sender_record *rec)
 {
-    int command = UR_SCRIPT_SENDER_NONE;
+    int command;
     rec->type = UR_SCRIPT_SENDER_REPLY;
     rec->command_name = UR_SCRIPT_SENDER_NONE;
     if (!c->greeted) {
@@ -180,13 +222,8 @@ static void read_reply(ur_script_sender_conversation *c, ur_script_sender_record
             return;
         }
     }
-    if (c->count > 0 && UR_SCRIPT_SENDER_ONE_REPLY_PER_REQUEST) {
-        command = c->pending[c->head];
-        c->head = (c->head + 1) % UR_SCRIPT_SENDER_PENDING;
-        c->count--;
-    } else if (c->count > 0) {    /* every answering line belongs to the latest request */
-        command = c->pending[(c->head + c->count - 1) % UR_SCRIPT_SENDER_PENDING];
-    }
+    command = answered(c, &rec->not_kept);
+    rec->kept = c->kept;
     rec->command_name = command;
     rec->reply_name = ur_script_sender_classify(command, rec->text);
     rec->error = rec->reply_name != NULL && rec->reply_name->error;
@@ -232,6 +269,15 @@ size_t ur_script_sender_decode(ur_script_sender_conversation *c, bool from_robot
     *got = true;
     d->offset += used;
     if (newline == NULL || len > UR_SCRIPT_SENDER_MAX_LINE) {
+        /* Still a line: a command the server answers, or the reply to one, so that the pairing
+         * of the lines after it holds. */
+        bool not_kept;
+        if (requests) {
+            keep(c, UR_SCRIPT_SENDER_NONE);
+        } else {
+            c->greeted = true;
+            answered(c, &not_kept);
+        }
         rec->type = UR_SCRIPT_SENDER_FAULT;
         rec->fault = UR_SCRIPT_SENDER_LINE_TOO_LONG;
         return used;
@@ -402,9 +448,13 @@ size_t ur_script_sender_json(const ur_script_sender_record *rec, char *out, size
             out_string(&o, rec->argument);
         }
         if (rec->available >= 0)
-            out_text(&o, rec->available ? ", \"available\": true}" : ", \"available\": false}");
-        else
-            out_text(&o, "}");
+            out_text(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"command not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"");
+        }
+        out_text(&o, "}");
     } else {
         out_text(&o, "{\"type\": \"reply\", \"reply\": ");
         out_string(&o, rec->text);
@@ -412,7 +462,12 @@ size_t ur_script_sender_json(const ur_script_sender_record *rec, char *out, size
             out_name(&o, ", \"command_name\": ", ur_script_sender_commands[rec->command_name].name);
         if (rec->reply_name != NULL)
             out_name(&o, ", \"reply_name\": ", rec->reply_name->name);
-        out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"reply to a command that was not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"}");
+        } else
+            out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
     }
     if (cap > 0)
         out[o.len < cap ? o.len : cap - 1] = '\0';

@@ -40,6 +40,8 @@ static expert_field ei_ur_script_sender_error_reply = EI_INIT;
 static expert_field ei_ur_script_sender_unknown_command = EI_INIT;
 static expert_field ei_ur_script_sender_unavailable = EI_INIT;
 static expert_field ei_ur_script_sender_too_long = EI_INIT;
+static expert_field ei_ur_script_sender_not_kept = EI_INIT;
+static expert_field ei_ur_script_sender_reply_not_kept = EI_INIT;
 
 static dissector_handle_t ur_script_sender_handle;
 
@@ -279,10 +281,12 @@ static const lines_spec_t ur_script_sender_spec = {
 
 #define LINES_PENDING_KEPT 256            /* commands awaiting a reply that a conversation keeps */
 
-/* What a conversation has seen so far, in the first pass. */
+/* What a conversation has seen so far, in the first pass. A command that comes when
+ * LINES_PENDING_KEPT await replies is not kept but counted lost, and so is every command behind a
+ * lost one (replies come in order); a reply with none kept answers a lost one, and pairs with none. */
 typedef struct lines_conversation {
     int pending[LINES_PENDING_KEPT];      /* commands awaiting a reply, oldest at `first` */
-    unsigned first, count;
+    unsigned first, count, lost;
     bool greeted;                         /* a line came from the server */
     bool has_version;
     uint64_t version;                     /* lines_version(), when has_version */
@@ -295,6 +299,7 @@ typedef struct lines_decision {
     long argument;                        /* commands: the argument's offset in the line, or -1 */
     int available;                        /* commands: 1 or 0 when the version is known, else -1 */
     const lines_reply_t *reply;           /* replies: the one it is, or NULL */
+    bool not_kept;                        /* a command not kept, or a reply to one */
 } lines_decision_t;
 
 /* The decisions of one frame in one direction, by the line's offset in the data it came in. */
@@ -315,15 +320,58 @@ static lines_conversation_t *lines_conversation(packet_info *pinfo)
     return c;
 }
 
+/* A request awaits its reply; false when it is not kept (see lines_conversation_t). */
+static bool lines_keep(lines_conversation_t *c, int command)
+{
+    if (!ur_script_sender_spec.one_reply_per_request) {        /* only the latest request counts */
+        c->first = 0;
+        c->count = 1;
+        c->pending[0] = command;
+    } else if (c->lost > 0 || c->count == LINES_PENDING_KEPT) {
+        c->lost++;
+        return false;
+    } else {
+        c->pending[(c->first + c->count++) % LINES_PENDING_KEPT] = command;
+    }
+    return true;
+}
+
+/* The request a reply answers (LINES_NONE: none), *not_kept when it answers one not kept. */
+static int lines_answered(lines_conversation_t *c, bool *not_kept)
+{
+    int command = LINES_NONE;
+    *not_kept = false;
+    if (c->count > 0 && ur_script_sender_spec.one_reply_per_request) {
+        command = c->pending[c->first];
+        c->first = (c->first + 1) % LINES_PENDING_KEPT;
+        c->count--;
+    } else if (c->count > 0) {                      /* every answering line belongs to the latest request */
+        command = c->pending[(c->first + c->count - 1) % LINES_PENDING_KEPT];
+    } else if (c->lost > 0) {                       /* it answers a command that was not kept */
+        *not_kept = true;
+        c->lost--;
+    }
+    return command;
+}
+
+/* A line too long is still a line: a command the server answers, or the reply to one, so that
+ * the pairing of the lines after it holds. */
+static void lines_count_too_long(lines_conversation_t *c, bool requests)
+{
+    bool not_kept;
+    if (requests) {
+        lines_keep(c, LINES_NONE);
+    } else {
+        c->greeted = true;
+        lines_answered(c, &not_kept);
+    }
+}
+
 static lines_decision_t *lines_decide_command(lines_conversation_t *c, const uint8_t *text, size_t len)
 {
     lines_decision_t *d = wmem_new(wmem_file_scope(), lines_decision_t);
     d->command = lines_find_command(&ur_script_sender_spec, text, len, &d->argument);
-    if (c->count == LINES_PENDING_KEPT) {           /* the oldest command is forgotten */
-        c->first = (c->first + 1) % LINES_PENDING_KEPT;
-        c->count--;
-    }
-    c->pending[(c->first + c->count++) % LINES_PENDING_KEPT] = d->command;
+    d->not_kept = !lines_keep(c, d->command);
     d->available = d->command != LINES_NONE && c->has_version
         ? lines_available(&ur_script_sender_spec, d->command, c->version) : -1;
     d->reply = NULL;
@@ -336,6 +384,7 @@ static lines_decision_t *lines_decide_reply(lines_conversation_t *c, const uint8
     d->argument = -1;
     d->available = -1;
     d->command = LINES_NONE;
+    d->not_kept = false;
     if (!c->greeted) {
         c->greeted = true;
         if (ur_script_sender_spec.banner != NULL && lines_matches(ur_script_sender_spec.banner, text, len)) {
@@ -343,13 +392,7 @@ static lines_decision_t *lines_decide_reply(lines_conversation_t *c, const uint8
             return d;
         }
     }
-    if (c->count > 0 && ur_script_sender_spec.one_reply_per_request) {
-        d->command = c->pending[c->first];
-        c->first = (c->first + 1) % LINES_PENDING_KEPT;
-        c->count--;
-    } else if (c->count > 0) {                      /* every answering line belongs to the latest request */
-        d->command = c->pending[(c->first + c->count - 1) % LINES_PENDING_KEPT];
-    }
+    d->command = lines_answered(c, &d->not_kept);
     if (d->command != LINES_NONE && d->command == ur_script_sender_spec.version_command) {
         uint64_t version;
         if (lines_version_in(&ur_script_sender_spec, text, len, &version)) {
@@ -393,6 +436,8 @@ static void lines_show_command(proto_tree *tree, packet_info *pinfo, tvbuff_t *t
     } else {
         expert_add_info(pinfo, item, &ei_ur_script_sender_unknown_command);
     }
+    if (d->not_kept)
+        expert_add_info(pinfo, item, &ei_ur_script_sender_not_kept);
     proto_item_append_text(item, ": %s", text);
 }
 
@@ -415,6 +460,8 @@ static void lines_show_reply(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb
     proto_item_set_generated(error);
     if (says_error)
         expert_add_info(pinfo, error, &ei_ur_script_sender_error_reply);
+    if (d->not_kept)
+        expert_add_info(pinfo, item, &ei_ur_script_sender_reply_not_kept);
     proto_item_append_text(item, ": %s", text);
 }
 
@@ -491,6 +538,8 @@ static int dissect_ur_script_sender(tvbuff_t *tvb, packet_info *pinfo, proto_tre
                 expert_add_info(pinfo, proto_tree_add_item(tree, proto_ur_script_sender, tvb, at, stop - at, ENC_NA),
                                 &ei_ur_script_sender_too_long);
                 lines_info(info, "Line too long", "");
+                if (first_pass)
+                    lines_count_too_long(c, requests);
                 skipping = nl < 0;
                 at = nl >= 0 ? nl + 1 : n;
             } else {
@@ -580,6 +629,14 @@ void proto_register_ur_script_sender(void)
         { &ei_ur_script_sender_too_long,
           { "ur_script_sender.too_long", PI_MALFORMED, PI_ERROR,
             "Line longer than 4096 bytes", EXPFILL }
+        },
+        { &ei_ur_script_sender_not_kept,
+          { "ur_script_sender.not_kept", PI_SEQUENCE, PI_ERROR,
+            "Command not kept: more than 256 commands awaited replies", EXPFILL }
+        },
+        { &ei_ur_script_sender_reply_not_kept,
+          { "ur_script_sender.reply_not_kept", PI_SEQUENCE, PI_ERROR,
+            "Reply to a command that was not kept: more than 256 commands awaited replies", EXPFILL }
         },
     };
     module_t *module;

@@ -16,6 +16,9 @@ local spec = {
     ports = {29999},
     max_line = 4096,  -- longer lines are flagged and skipped up to their newline
     pending_kept = 256,  -- commands awaiting a reply that a conversation keeps
+    -- The expert info of a command past them, and of a reply to such a command (it pairs with none).
+    not_kept = "Command not kept: more than 256 commands awaited replies",
+    reply_not_kept = "Reply to a command that was not kept: more than 256 commands awaited replies",
     e_series_from = 5000000,  -- versions are (major * 1000 + minor) * 1000 + bugfix
     -- the line the server greets a client with, if any
     banner = {name = "connected", pieces = {"Connected: Universal Robots Dashboard Server"}, error = false},
@@ -491,11 +494,14 @@ local E = {
         expert.group.PROTOCOL, expert.severity.WARN),
     too_long = ProtoExpert.new(spec.name .. ".too_long", "Line longer than " .. spec.max_line .. " bytes",
         expert.group.MALFORMED, expert.severity.ERROR),
+    not_kept = ProtoExpert.new(spec.name .. ".not_kept", spec.not_kept, expert.group.SEQUENCE, expert.severity.ERROR),
+    reply_not_kept = ProtoExpert.new(spec.name .. ".reply_not_kept", spec.reply_not_kept,
+        expert.group.SEQUENCE, expert.severity.ERROR),
     internal = ProtoExpert.new(spec.name .. ".internal_error", "Dissector error",
         expert.group.MALFORMED, expert.severity.ERROR),
 }
 proto.fields = {F.command, F.command_name, F.argument, F.available, F.reply, F.reply_name, F.error}
-proto.experts = {E.error_reply, E.unknown_command, E.unavailable, E.too_long, E.internal}
+proto.experts = {E.error_reply, E.unknown_command, E.unavailable, E.too_long, E.not_kept, E.reply_not_kept, E.internal}
 proto.prefs.version = Pref.string("Software version", "",
     "Controller software version (as 5.11 or 3.15.7) assumed until a PolyscopeVersion reply tells it: \z
     commands it lacks are flagged. Empty: none assumed.")
@@ -515,23 +521,65 @@ end
 local function conversation(key)
     local c = conversations[key]
     if not c then
-        c = {pending = {}, first = 1, last = 0, greeted = false, version = parse_version(proto.prefs.version),
+        c = {pending = {}, first = 1, last = 0, lost = 0, greeted = false, version = parse_version(proto.prefs.version),
              skipping = {[true] = false, [false] = false}}
         conversations[key] = c
     end
     return c
 end
 
+-- A request awaits its reply; false when it is not kept. A command that comes when pending_kept
+-- await replies is not kept but counted lost, and so is every command behind a lost one (replies
+-- come in order): no reply is paired with another command.
+local function keep(c, index)
+    if not spec.one_reply_per_request then     -- only the latest request counts
+        c.pending[c.last] = nil
+        c.first, c.last = 1, 1
+        c.pending[1] = index or false
+    elseif c.lost > 0 or c.last - c.first + 1 >= spec.pending_kept then
+        c.lost = c.lost + 1
+        return false
+    else
+        c.last = c.last + 1
+        c.pending[c.last] = index or false
+    end
+    return true
+end
+
+-- The request a reply answers (nil: none), and whether it answers one that was not kept.
+local function answered(c)
+    if c.first <= c.last and spec.one_reply_per_request then
+        local command = c.pending[c.first] or nil
+        c.pending[c.first] = nil
+        c.first = c.first + 1
+        return command, false
+    elseif c.first <= c.last then
+        return c.pending[c.last] or nil, false   -- every answering line belongs to the latest request
+    elseif c.lost > 0 then
+        c.lost = c.lost - 1
+        return nil, true
+    end
+    return nil, false
+end
+
+-- A line too long is still a line: a command the server answers, or the reply to one, so that
+-- the pairing of the lines after it holds.
+local function count_too_long(c, requests)
+    if requests then
+        keep(c, nil)
+    else
+        c.greeted = true
+        answered(c)
+    end
+end
+
 -- A command's line: its name, argument, and whether the version has it (nil: version unknown).
 local function decide_command(c, text)
     local index, argument = find_command(text)
-    if c.last - c.first + 1 >= spec.pending_kept then c.first = c.first + 1 end
-    c.last = c.last + 1
-    c.pending[c.last] = index or false
-    c.pending[c.first - 1] = nil
+    local not_kept = not keep(c, index)
     local has = nil
     if index and c.version then has = available(index, c.version) end
-    return {command = index, argument = argument, available = has}
+    return {command = index, argument = argument, available = has, not_kept = not_kept}
 end
 
 -- A reply's line: the banner, or the command it answers and what it says.
@@ -540,18 +588,11 @@ local function decide_reply(c, text)
         c.greeted = true
         if spec.banner and matches(spec.banner.pieces, text) then return {reply = spec.banner} end
     end
-    local command = nil
-    if c.first <= c.last and spec.one_reply_per_request then
-        command = c.pending[c.first] or nil
-        c.pending[c.first] = nil
-        c.first = c.first + 1
-    elseif c.first <= c.last then
-        command = c.pending[c.last] or nil   -- every answering line belongs to the latest request
-    end
+    local command, not_kept = answered(c)
     if command and command == spec.version_command then
         c.version = version_in(text) or c.version
     end
-    return {command = command, reply = classify(command, text)}
+    return {command = command, reply = classify(command, text), not_kept = not_kept}
 end
 
 -- ---- the tree ----
@@ -571,6 +612,7 @@ local function show_command(tree, range, text, d)
     else
         item:add_proto_expert_info(E.unknown_command, "Unknown command")
     end
+    if d.not_kept then item:add_proto_expert_info(E.not_kept, spec.not_kept) end
     item:append_text(": " .. text)
     return "Command: " .. text
 end
@@ -583,6 +625,7 @@ local function show_reply(tree, range, text, d)
     local says_error = d.reply ~= nil and d.reply.error
     local it = item:add(F.error, range, says_error):set_generated()
     if says_error then it:add_proto_expert_info(E.error_reply, "The reply says an error") end
+    if d.not_kept then item:add_proto_expert_info(E.reply_not_kept, spec.reply_not_kept) end
     item:append_text(": " .. text)
     return "Reply: " .. text
 end
@@ -627,6 +670,7 @@ local function dissect(tvb, pinfo, tree)
                 local item = tree:add(proto, tvb(at, stop - at))
                 item:add_proto_expert_info(E.too_long, "Line longer than " .. spec.max_line .. " bytes")
                 infos[#infos + 1] = "Line too long"
+                if first_pass then count_too_long(c, requests) end
                 if not nl then skipping = true end
                 at = nl or n
             else

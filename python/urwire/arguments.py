@@ -3,6 +3,8 @@ door so that a wrong type is a TypeError saying what is wanted, not a failure de
 """
 from __future__ import annotations
 
+import argparse
+import math
 from typing import Optional, Union
 
 VersionLike = Union[str, tuple, None]
@@ -54,6 +56,18 @@ def parse_version(version: VersionLike) -> Optional[tuple[int, int, int]]:
         raise TypeError(f"a software version is {_VERSION_TYPES}, not {type(version).__name__}")
     major, minor, bugfix = (numbers + [0])[:3]
     return major, minor, bugfix
+
+
+def finite_number(text: str) -> float:
+    """A command-line number that is one: "nan" and "inf" are refused (argparse: exit 2) as a
+    robot refuses them, where float() alone would take them and the live tools spin on them."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"not a finite number: {text!r}")
+    return value
 
 
 def version_of(version) -> Optional[tuple[int, int, int]]:

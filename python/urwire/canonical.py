@@ -242,6 +242,7 @@ _KINDS = {
     "int": "{@:d}",
     "enum": "{@:d}",
     "bool": '{"true" if @ else "false"}',
+    "bool|text": '{text(@) if @.__class__ is str else "true" if @ else "false"}',   # a text says what went wrong
     "f32": "{f32(@)}",
     "f64": "{f64(@)}",
     "int|f32": "{f32(@)}",

@@ -18,6 +18,7 @@ from .capture import Differs, Gap, timed_streams
 from .capture_records import CaptureFault
 from .envelope import FROM_ROBOT, TO_ROBOT, Enveloped
 from .interfaces import INTERFACES, Interface
+from .text_lines import PENDING_KEPT_RAW
 
 PRIMARY = "ur"
 
@@ -117,6 +118,9 @@ def records_of_raw_protocol(fh: BinaryIO, interface: Interface, hint: VersionLik
     a stream's records are as the interface writes them; with `to_robot`, each is Enveloped with
     its direction, its conversation being the file it came from."""
     conv = interface.conversation(hint)
+    keep_pending = getattr(conv, "keep_pending", None)
+    if keep_pending is not None:        # the client's whole file comes before any reply
+        keep_pending(PENDING_KEPT_RAW)
 
     def read(stream: BinaryIO, from_robot: bool, name: str) -> Iterator:
         while True:

@@ -33,7 +33,6 @@ from typing import Callable, Optional
 from .canonical import has_error, to_dict, to_json_line
 from .envelope import Enveloped
 from .generated.ur_dashboard import BANNER as _BANNER
-from .text_lines import PENDING_KEPT
 
 ENVELOPE = ("interface", "direction", "conversation")
 DASHBOARD = "ur_dashboard"
@@ -135,9 +134,7 @@ class CellRows:
         """Pairs as the decoder does (text_lines.LinesConversation): each command waits in turn;
         each reply answers the oldest, except a banner as the first reply."""
         pending, greeted = self._pending.setdefault(conversation, deque()), conversation in self._greeted
-        if fields["type"] == "command":
-            if len(pending) == PENDING_KEPT:     # as the decoder, forget the oldest
-                self._dashboard_row(conversation, pending.popleft(), None)
+        if fields["type"] == "command":     # one the decoder did not keep is an error record
             pending.append((position, time, fields))
             return
         self._greeted.add(conversation)

@@ -2,11 +2,13 @@
 or with `--rtde NAMES` an RTDE output recipe (listen_rtde sets it up on each connection).
 
 Connects, frames and decodes the bytes as they arrive and writes each record at once, flushed,
-so `tail -f` follows it. `--raw FILE` also keeps the exact bytes, one file per connection
-(`FILE`, then `session.1.raw`, `session.2.raw`, ... for `session.raw`), so that each file is one
-controller session that `urwire decode` reads back into exactly the records listen wrote.
-A dropped, refused or silent connection is retried with a growing pause, said on stderr; each
-new connection gets a new framer, since the controller starts it with a Version message.
+so `tail -f` follows it. `--raw FILE` also keeps the exact bytes, one file per connection that
+received any (`FILE`, then `session.1.raw`, `session.2.raw`, ... for `session.raw`), so that each
+file is one controller session that `urwire decode` reads back into exactly the records listen
+wrote. A dropped, refused or silent connection is retried with a pause that doubles up to 10 s,
+said on stderr, and starts again from 0.5 s only after a connection whose data flowed (a robot
+state, an RTDE data package); each new connection gets a new framer, since the controller starts
+it with a Version message.
 A peer that sends nothing for the idle timeout (10 Hz robots send ten states a second) is
 dropped; TCP keepalive also finds a dead link where the platform supports it.
 Exit codes as for decode: 0 everything decoded, 1 some records hold errors, 2 usage or I/O error
@@ -28,11 +30,13 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator, Optional
 
+from .arguments import finite_number
 from .canonical import fails, to_json_line
 from .framer import Framer
 from .human import line as human_line
 from .listen_rtde import PORT as RTDE_PORT
 from .listen_rtde import RtdeRecorder
+from .serve_rtde import MAX_FREQUENCY
 
 BACKOFF_FIRST = 0.5
 BACKOFF_MAX = 10.0
@@ -40,6 +44,7 @@ CHUNK = 1 << 16
 IDLE_TIMEOUT = 2.0          # 20 periods of the controller's 10 Hz state
 CONNECT_TIMEOUT = 5.0
 KEEPALIVE = {"TCP_KEEPIDLE": 5, "TCP_KEEPINTVL": 2, "TCP_KEEPCNT": 3}   # seconds, seconds, probes
+HIGHEST_FREQUENCY = max(MAX_FREQUENCY.values())   # RTDE: what an e-Series runs; a CB3 refuses above 125
 
 
 def add_parser(sub, version_arg) -> None:
@@ -53,19 +58,21 @@ def add_parser(sub, version_arg) -> None:
                    help="jsonl: canonical JSON Lines (default); csv: position, time, type, JSON; "
                         "text: one readable line per message")
     p.add_argument("--raw", metavar="FILE",
-                   help="also keep the exact bytes received, one file per connection: FILE, then FILE with "
+                   help="also keep the exact bytes received, one file per connection that received any: FILE, "
+                        "then FILE with "
                         ".1, .2, ... before its extension (each readable by decode); with --rtde, what listen "
                         "sent too, in FILE with .to_robot before its extension (decode's --to-robot)")
     p.add_argument("--count", type=int, metavar="N", help="stop after N records")
-    p.add_argument("--duration", type=float, metavar="S", help="stop after S seconds")
-    p.add_argument("--idle-timeout", type=float, default=IDLE_TIMEOUT, metavar="S",
+    p.add_argument("--duration", type=finite_number, metavar="S", help="stop after S seconds")
+    p.add_argument("--idle-timeout", type=finite_number, default=IDLE_TIMEOUT, metavar="S",
                    help=f"drop and reconnect a connection that sends nothing for S seconds "
                         f"(default: {IDLE_TIMEOUT})")
     p.add_argument("--rtde", metavar="NAMES",
                    help="record RTDE instead: set up an output recipe of these variables (comma-separated, e.g. "
                         "actual_q,actual_TCP_pose), start it and write each message the robot sends")
-    p.add_argument("--frequency", type=float, default=125.0, metavar="HZ",
-                   help="with --rtde: data packages per second under protocol 2 (default: 125)")
+    p.add_argument("--frequency", type=finite_number, default=125.0, metavar="HZ",
+                   help=f"with --rtde: data packages per second under protocol 2, above 0 and at most "
+                        f"{HIGHEST_FREQUENCY:g} (CB3: 125) (default: 125)")
     p.set_defaults(run=listen_command)
 
 
@@ -159,6 +166,8 @@ class Outputs:
                 earlier.unlink()
         self.raw = None
         self.raw_name = ""
+        self.raw_files = 0                       # connections that received bytes so far
+        self.unsent_kept = bytearray()           # sent on this connection before its first byte came
         self.keeps_sent = args.rtde is not None
         self.sent = None
         self.sent_name = ""
@@ -180,25 +189,34 @@ class Outputs:
         except OSError as exc:
             raise OutputError(name, exc) from None
 
-    def new_connection(self, number: int) -> None:
-        """Closes the last connection's raw file and opens this one's (number counts from 0)."""
+    def new_connection(self) -> None:
+        """Closes the last connection's raw files. This one's are made with its first byte
+        received: a connection that got none leaves no files (what listen sent on it is dropped)."""
         self.close_raw()
-        if self.raw_first:
-            self.raw_name = raw_path(self.raw_first, number)
-            with self.writing(self.raw_name):
-                self.raw = open(self.raw_name, "wb")
-            if self.keeps_sent:
-                self.sent_name = to_robot_path(self.raw_name)
-                with self.writing(self.sent_name):
-                    self.sent = open(self.sent_name, "wb")
+        self.unsent_kept = bytearray()
+
+    def _open_raw(self) -> None:
+        self.raw_name = raw_path(self.raw_first, self.raw_files)
+        self.raw_files += 1
+        with self.writing(self.raw_name):
+            self.raw = open(self.raw_name, "wb")
+        if self.keeps_sent:
+            self.sent_name = to_robot_path(self.raw_name)
+            with self.writing(self.sent_name):
+                self.sent = open(self.sent_name, "wb")
+            self.keep_sent(bytes(self.unsent_kept))
 
     def keep_sent(self, data: bytes) -> None:
         if self.sent:
             with self.writing(self.sent_name):
                 self.sent.write(data)
                 self.sent.flush()
+        elif self.keeps_sent and self.raw_first:
+            self.unsent_kept += data             # written once the robot has sent a byte
 
     def keep_raw(self, chunk: bytes) -> None:
+        if self.raw_first and not self.raw:
+            self._open_raw()
         if self.raw:
             with self.writing(self.raw_name):
                 self.raw.write(chunk)
@@ -253,15 +271,19 @@ class PrimaryReader:
     since the controller starts each with a Version message)."""
 
     refused: Optional[str] = None
+    send_failed: Optional[OSError] = None
 
     def __init__(self, send: Callable[[bytes], None]):
         self.framer = Framer()
+        self.streaming = False                   # a robot state came: the session worked
 
     def opening(self) -> None:
         pass
 
     def feed(self, chunk: bytes) -> list:
-        return self.framer.feed(chunk)
+        records = self.framer.feed(chunk)
+        self.streaming = self.streaming or any(hasattr(r, "packages") for r in records)
+        return records
 
     def close(self) -> list:
         return self.framer.close()
@@ -288,8 +310,12 @@ def listen_command(args: argparse.Namespace) -> int:
     if args.idle_timeout <= 0:
         print("urwire listen: --idle-timeout must be more than 0", file=sys.stderr)
         return 2
-    if args.rtde is not None and (not args.rtde.strip(", ") or args.frequency <= 0):
-        print("urwire listen: --rtde needs variable names and --frequency a rate above 0", file=sys.stderr)
+    if args.duration is not None and args.duration < 0 or args.count is not None and args.count < 1:
+        print("urwire listen: --duration must be 0 or more and --count 1 or more", file=sys.stderr)
+        return 2
+    if args.rtde is not None and (not args.rtde.strip(", ") or not 0 < args.frequency <= HIGHEST_FREQUENCY):
+        print(f"urwire listen: --rtde needs variable names and --frequency a rate above 0 and at most "
+              f"{HIGHEST_FREQUENCY:g}, as a robot runs (CB3: 125)", file=sys.stderr)
         return 2
     try:
         outputs = Outputs(args)
@@ -365,7 +391,7 @@ class Link:
             else:
                 self.say(f"reconnected to {where} (connection {self.connections}); "
                          f"{self.outputs.records} records so far")
-            self.outputs.new_connection(self.connections - 1)
+            self.outputs.new_connection()
             reader = self.new_reader(lambda data, sock=sock: self.send(sock, data))
             with sock:
                 try:
@@ -402,13 +428,12 @@ class Link:
             if not chunk:
                 return f"connection to {where} lost: closed by the peer"
             quiet_since = time.monotonic()
-            self.pause = BACKOFF_FIRST     # the connection worked: start the backoff again
             self.received += len(chunk)
             self.outputs.keep_raw(chunk)
-            try:
-                records = reader.feed(chunk)
-            except OSError as exc:                # a request the reader sends back fails
-                return f"connection to {where} lost: {exc.strerror or exc}"
-            self.outputs.write(records)
+            self.outputs.write(reader.feed(chunk))     # every byte decoded and written first
+            if reader.streaming:
+                self.pause = BACKOFF_FIRST     # data flowed: the next failure starts the backoff again
+            if reader.send_failed is not None:  # a request the reader sent back failed
+                return f"connection to {where} lost: {reader.send_failed.strerror or reader.send_failed}"
             if reader.refused:
                 raise _Refused(reader.refused)

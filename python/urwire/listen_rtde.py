@@ -5,6 +5,9 @@ gets protocol 1. Then it sets up the output recipe (at --frequency under protoco
 no frequency) and starts it once the robot accepts. Every message the robot sends comes out as a
 record (the replies, text messages and the data packages with their values by name). A recipe or
 a start the robot refuses ends the recording (`Refused`): asking again would get the same answer.
+A request that cannot be sent (the robot reset the connection) never costs a record: every message
+received is decoded first, and the failure is kept in `send_failed` for listen to act on after
+writing them.
 """
 from __future__ import annotations
 
@@ -27,6 +30,8 @@ class RtdeRecorder:
         self.send = send
         self.conversation = rtde.Conversation(protocol=1)     # a robot starts in protocol 1
         self.asked_protocol = 2
+        self.send_failed: Optional[OSError] = None
+        self.streaming = False                   # a data package came: the session worked
 
     def _send(self, data: bytes) -> None:
         self.conversation.feed(data, False)
@@ -37,8 +42,11 @@ class RtdeRecorder:
 
     def feed(self, chunk: bytes) -> list:
         records = self.conversation.feed(chunk, True)
-        for record in records:
-            self._follow(record)
+        try:
+            for record in records:
+                self._follow(record)
+        except OSError as exc:                   # the records stand; listen ends the connection
+            self.send_failed = exc
         return records
 
     def close(self) -> list:
@@ -46,7 +54,11 @@ class RtdeRecorder:
 
     def _follow(self, record) -> None:
         kind = type(record)
-        if kind is _g.RequestProtocolVersionReply:
+        if self.send_failed is not None:
+            return                               # nothing more can be asked on this connection
+        if kind in (_g.DataPackage, _g.DataPackageV1):
+            self.streaming = True
+        elif kind is _g.RequestProtocolVersionReply:
             protocol = self.asked_protocol if record.accepted else 1
             self._send(rtde.setup_outputs(self.names, self.frequency, protocol=protocol))
         elif kind in (_g.SetupOutputsReply, _g.SetupOutputsReplyV1):

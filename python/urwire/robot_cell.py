@@ -184,7 +184,9 @@ class RobotCell:
             if name.endswith("_mask"):
                 continue
             if name == "speed_slider_fraction":
-                if values.get("speed_slider_mask", 1) & 1:      # bit 0: use the fraction
+                # Bit 0 of the mask: use the fraction. A slider runs from 0 to 1: any other value
+                # (NaN too) moves it nowhere, and the speed every interface reports stays.
+                if values.get("speed_slider_mask", 1) & 1 and 0.0 <= value <= 1.0:
                     kept[name] = value
                 continue
             mask = values.get(f"{name}_mask")

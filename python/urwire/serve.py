@@ -24,6 +24,7 @@ import sys
 from dataclasses import dataclass
 from typing import Callable, Optional
 
+from .arguments import finite_number
 from .robot_cell import RobotCell
 from .robot_models import MODELS, RobotModel, model_for
 from .serve_dashboard import DashboardSession
@@ -60,8 +61,10 @@ def add_parser(sub, version_arg) -> None:
     p.add_argument("--model", type=str.lower, choices=list(MODELS), metavar="MODEL",
                    help="the arm: ur3 (CB3), ur5, ur10 (CB2, CB3), ur3e, ur5e, ur10e, ur16e, ur20, ur30 (e-Series, "
                         "PolyScope X) (default: ur5 on CB2 and CB3, ur5e on e-Series and PolyScope X)")
-    p.add_argument("--rate", type=float, default=10.0, help="primary robot states per second (default: 10)")
-    p.add_argument("--duration", type=float, metavar="S", help="stop after S seconds (default: run until stopped)")
+    p.add_argument("--rate", type=finite_number, default=10.0,
+                   help="primary robot states per second, a finite number above 0 (default: 10)")
+    p.add_argument("--duration", type=finite_number, metavar="S",
+                   help="stop after S seconds (default: run until stopped)")
     p.add_argument("--max-unsent", type=int, default=DEFAULT_MAX_UNSENT_KB, metavar="KB",
                    help="drop a client once this much data waits unsent for it "
                         f"(default: {DEFAULT_MAX_UNSENT_KB})")
@@ -179,7 +182,8 @@ class RtdeClient(Session):
 
     def eof_received(self) -> bool:
         self.rtde.inputs_ended()             # it can write no more inputs: another client may take them
-        return super().eof_received()
+        # A half-closed client still reads what streams; with nothing streaming, the session is over.
+        return bool(self.rtde.streams)
 
     def connection_lost(self, exc) -> None:
         self.rtde.closed()
@@ -277,6 +281,9 @@ async def stop_all(servers: list, sessions: set) -> None:
 def serve_command(args: argparse.Namespace) -> int:
     if args.rate <= 0:
         print("urwire serve: --rate must be above 0", file=sys.stderr)
+        return 2
+    if args.duration is not None and args.duration < 0:
+        print("urwire serve: --duration must be 0 or more", file=sys.stderr)
         return 2
     if args.max_unsent <= 0:
         print("urwire serve: --max-unsent must be above 0", file=sys.stderr)

@@ -3,6 +3,10 @@ command line, with the replies' texts as the dashboard spec gives them (UR's das
 articles), for the commands the served software version has; any other line gets the server's
 "could not understand" reply. Commands that change the robot (load, play, stop, pause, power
 on/off, brake release) change the one robot every interface reports.
+
+Lines are split as the decoder splits them (text_lines.LineSplitter): a line longer than the
+spec's limit gets one "could not understand" reply that names the fault, and none of its bytes,
+up to its newline, are ever read as a command.
 """
 from __future__ import annotations
 
@@ -10,7 +14,8 @@ from typing import Callable
 
 from .generated import ur_dashboard as _g
 from .robot_cell import BUILD_DATE, BUILD_NUMBER, IDLE, PAUSED, PLAYING, POWER_OFF, RUNNING, RobotCell
-from .text_lines import ReplySpec, find_command
+from ._runtime import StreamError
+from .text_lines import LineSplitter, ReplySpec, find_command
 
 
 def say(reply: ReplySpec, value: str = "") -> str:
@@ -28,23 +33,23 @@ class DashboardSession:
     def __init__(self, cell: RobotCell, clock: Callable[[], float]):
         self.cell = cell
         self.clock = clock
-        self.buffer = bytearray()
+        self.lines = LineSplitter(_g.MAX_LINE)
         self.closing = False                     # after `quit`: the reply is sent, then the connection closed
 
     def banner(self) -> bytes:
         return (say(_g.BANNER) + "\n").encode()
 
     def received(self, data: bytes) -> bytes:
-        """The replies to every whole line in `data`; a line longer than the spec's limit is dropped
-        with the rest of the buffer."""
-        self.buffer += data
+        """The replies to every whole line in `data`, and to a line too long as soon as it is
+        (its rest, up to its newline, is dropped)."""
         out = []
-        while not self.closing and (end := self.buffer.find(b"\n")) >= 0:
-            line = bytes(self.buffer[:end]).rstrip(b"\r").decode("utf-8", "replace")
-            del self.buffer[:end + 1]
-            out.append(self.answer(line) + "\n")
-        if len(self.buffer) > _g.MAX_LINE:
-            self.buffer.clear()
+        for line in self.lines.feed(data):
+            if self.closing:
+                break
+            if isinstance(line, StreamError):
+                out.append(say(_g.COMMON_REPLIES[0], line.error) + "\n")
+            else:
+                out.append(self.answer(line[1].decode("utf-8", "replace")) + "\n")
         return "".join(out).encode()
 
     def answer(self, line: str) -> str:

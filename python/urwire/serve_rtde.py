@@ -4,8 +4,9 @@ client, built from the RTDE spec's generated classes and encoder.
 A session starts in protocol 1, as a controller does, and takes protocol 1 or 2 when asked; it
 answers the controller version; answers a setup with each variable's type, or NOT_FOUND for a name
 the served software version's variable table lacks, or IN_USE for an input another connection
-holds; starts and pauses; streams an output data package per recipe at the asked frequency (at
-most the generation's: 125 Hz on CB3, 500 Hz on e-Series), with the values of the robot's one
+holds; refuses (recipe id 0) a frequency the robot would not run: not a number, infinite, zero or
+below, or above the generation's maximum (125 Hz on CB3, 500 Hz on e-Series); starts and pauses;
+streams an output data package per recipe at its frequency, with the values of the robot's one
 motion at the package's time; and writes the inputs it receives into the robot's state.
 """
 from __future__ import annotations
@@ -31,6 +32,11 @@ def has_rtde(version: tuple) -> bool:
 
 def max_frequency(version: tuple) -> float:
     return MAX_FREQUENCY.get(generation(version), 125.0)
+
+
+def frequency_refused(frequency: float, version: tuple) -> bool:
+    """Whether a controller of `version` refuses an output frequency: NaN fails every comparison."""
+    return not 0.0 < frequency <= max_frequency(version)
 
 
 def _version_tuple(text: str) -> tuple:
@@ -166,13 +172,13 @@ class RtdeSession:
         names = [n for n in message.variables if n]           # an empty name (a trailing comma) names nothing
         types = self.types_of(names, "output")
         refused = any(t in _g.REFUSALS for t in types)
-        limit = max_frequency(self.cell.version)
-        frequency = min(float(getattr(message, "output_frequency", limit)), limit)
-        if isinstance(message, _g.SetupOutputsV1):
+        if isinstance(message, _g.SetupOutputsV1):        # no frequency: the controller's own
             if not refused:
+                frequency = max_frequency(self.cell.version)
                 self.outputs = {None: (rtde.Recipe(None, "outputs", names, types, _g.VALUE_TYPES), frequency)}
             return _g.SetupOutputsReplyV1(types).encode()
-        recipe_id = 0 if refused or frequency <= 0 else self._new_id()
+        frequency = float(message.output_frequency)
+        recipe_id = 0 if refused or frequency_refused(frequency, self.cell.version) else self._new_id()
         if recipe_id:
             self.outputs[recipe_id] = (rtde.Recipe(recipe_id, "outputs", names, types, _g.VALUE_TYPES), frequency)
         return _g.SetupOutputsReply(recipe_id, types).encode()

@@ -18,6 +18,17 @@ from .arguments import parse_version
 Version = tuple[int, int, int]
 E_SERIES_MAJOR = 5
 PENDING_KEPT = 256   # commands awaiting a reply; a client that never reads cannot grow it further
+# Reading a client's whole raw file before the server's, every command of the session awaits its
+# reply at once: raw files keep this many (references, a few MiB) before one is not kept.
+PENDING_KEPT_RAW = 1 << 20
+
+
+def not_kept(kept: int) -> str:
+    return f"command not kept: more than {kept} commands awaited replies"
+
+
+def reply_not_kept(kept: int) -> str:
+    return f"reply to a command that was not kept: more than {kept} commands awaited replies"
 
 
 @dataclass(frozen=True)
@@ -92,7 +103,7 @@ def _is_number(part: str) -> bool:
     return 1 <= len(part) <= 3 and part.isascii() and part.isdigit()
 
 
-class _Lines:
+class LineSplitter:
     """One direction's bytes -> (offset, text) lines; a line over max_line bytes is an error."""
 
     def __init__(self, max_line: int):
@@ -146,22 +157,74 @@ class _Lines:
         return out
 
 
+class Pending:
+    """Commands awaiting their replies, oldest first, at most `limit` of them. A command that
+    comes when the queue is full is not kept but counted as lost, and so is every command after
+    it while lost ones are ahead of it (replies come in order); a reply that comes when none is
+    kept but some are lost answers a lost one. So no reply is ever paired with another command."""
+
+    def __init__(self, limit: int = PENDING_KEPT):
+        self.limit = limit
+        self.kept: deque = deque()
+        self.lost = 0
+
+    def __len__(self) -> int:
+        return len(self.kept)
+
+    def push(self, command) -> bool:
+        """Whether the command was kept."""
+        if self.lost or len(self.kept) >= self.limit:
+            self.lost += 1
+            return False
+        self.kept.append(command)
+        return True
+
+    def pop(self) -> tuple:
+        """(the command the next reply answers or None, whether it answers a lost one)."""
+        if self.kept:
+            return self.kept.popleft(), False
+        if self.lost:
+            self.lost -= 1
+            return None, True
+        return None, False
+
+
+class Latest:
+    """Where every answering line belongs to the latest request: only that one is kept."""
+
+    limit = 1
+
+    def __init__(self):
+        self.command = None
+        self.any = False
+
+    def __len__(self) -> int:
+        return int(self.any)
+
+    def push(self, command) -> bool:
+        self.command, self.any = command, True
+        return True
+
+    def pop(self) -> tuple:
+        return self.command, False
+
+
 class LinesConversation:
     """One TCP connection of a text-line interface: `feed(data, from_robot)` -> records in order."""
 
     def __init__(self, tables: ModuleType, version_hint=None):
         self.tables = tables
         self.version: Optional[Version] = parse_version(version_hint) if version_hint is not None else None
-        self.commands = _Lines(tables.MAX_LINE)
-        self.replies = _Lines(tables.MAX_LINE)
-        self.pending: deque = deque(maxlen=PENDING_KEPT)
+        self.commands = LineSplitter(tables.MAX_LINE)
+        self.replies = LineSplitter(tables.MAX_LINE)
+        self.pending = Pending() if tables.ONE_REPLY_PER_REQUEST else Latest()
         self.greeted = False
 
     def feed(self, data: bytes, from_robot: bool) -> list:
         requests = from_robot == self.tables.REQUESTS_FROM_ROBOT
         lines = (self.commands if requests else self.replies).feed(data)
         read = self._command if requests else self._reply
-        return [line if isinstance(line, StreamError) else read(line[1]) for line in lines]
+        return [self._too_long(line, requests) if isinstance(line, StreamError) else read(line[1]) for line in lines]
 
     def close(self, from_robot: Optional[bool] = None) -> list:
         """A line cut short at the end of one direction's stream (both, to_robot's first, as the C
@@ -178,15 +241,30 @@ class LinesConversation:
     def _lines(self, from_robot: bool) -> "_Lines":
         return self.commands if from_robot == self.tables.REQUESTS_FROM_ROBOT else self.replies
 
+    def keep_pending(self, limit: int) -> None:
+        """Keep up to `limit` commands awaiting replies (raw files: PENDING_KEPT_RAW), before any."""
+        if isinstance(self.pending, Pending):
+            self.pending.limit = limit
+
+    def _too_long(self, error: StreamError, requests: bool) -> StreamError:
+        """A line too long is still a line: a command that the server answers, or the reply to
+        the oldest one, so the pairing of the lines after it holds."""
+        if requests:
+            self.pending.push(None)
+        else:
+            self.greeted = True
+            self.pending.pop()
+        return error
+
     def _command(self, raw: bytes):
         t = self.tables
         text = raw.decode("utf-8", "surrogateescape")
         command, argument = find_command(t.LOOKUP, text)
-        self.pending.append(command)
+        error = None if self.pending.push(command) else not_kept(self.pending.limit)
         if command is None:
-            return t.Command(text)
+            return t.Command(text, error=error)
         available = None if self.version is None else command.available(self.version)
-        return t.Command(text, command.name, argument, available)
+        return t.Command(text, command.name, argument, available, error)
 
     def _reply(self, raw: bytes):
         t = self.tables
@@ -195,12 +273,10 @@ class LinesConversation:
             self.greeted = True
             if t.BANNER is not None and matches(t.BANNER.pieces, text):
                 return t.Reply(text, None, t.BANNER.name, False)
-        if t.ONE_REPLY_PER_REQUEST:
-            command = self.pending.popleft() if self.pending else None
-        else:
-            command = self.pending[-1] if self.pending else None
+        command, lost = self.pending.pop()
         reply = classify(t.COMMON_REPLIES, command, text)
         if command is not None and command.name == t.VERSION_COMMAND:
             self.version = version_in(text, t.VERSION_PREFIX) or self.version
-        return t.Reply(text, command.name if command else None, reply.name if reply else None,
-                       reply.error if reply else False)
+        # A reply to a lost command says so in place of whether it says an error.
+        error = reply_not_kept(self.pending.limit) if lost else (reply.error if reply else False)
+        return t.Reply(text, command.name if command else None, reply.name if reply else None, error)

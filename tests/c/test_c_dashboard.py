@@ -136,3 +136,44 @@ def test_urwire_decode_protocol_prints_what_python_prints_of_the_robots_stream(n
     lines = python_lines(robot, case.version, name)
     assert result.stdout.decode("utf-8").splitlines() == lines, result.stderr
     assert result.returncode == (1 if any('"type": "error"' in line for line in lines) else 0)
+
+
+def overflowing_session(rng: random.Random) -> list[Segment]:
+    """More commands awaiting replies than a conversation keeps, answered in bursts of every size,
+    so that lost commands sit behind kept ones and new commands come while lost ones are ahead."""
+    words = [b"robotmode", b"play", b"stop", b"PolyscopeVersion", b"nonsense"]
+    answers = [b"Robotmode: IDLE", b"Starting program", b"Stopped", b"URSoftware 5.11.1.1 (x)", b"could not understand: 'x'"]
+    segments = [Segment(True, b"Connected: Universal Robots Dashboard Server\n")]
+    for _ in range(rng.randint(2, 6)):
+        segments.append(Segment(False, b"".join(rng.choice(words) + b"\n" for _ in range(rng.randint(1, 400)))))
+        segments.append(Segment(True, b"".join(rng.choice(answers) + b"\n" for _ in range(rng.randint(1, 400)))))
+    return segments
+
+
+@pytest.mark.parametrize("variant", ["gcc", "asan-clang"])
+def test_past_the_kept_commands_the_same_lines_as_python_and_no_reply_paired_wrongly(variant):
+    rng = random.Random(256)
+    lost = 0
+    for _ in range(12):
+        segments = overflowing_session(rng)
+        lines = c_lines(variant, segments)
+        assert lines == python_lines(segments)
+        lost += sum('"error": "reply to a command that was not kept' in line for line in lines)
+    assert lost > 100         # the sessions did overflow
+
+
+def test_urwire_decode_to_robot_of_a_long_session_pairs_each_reply_with_its_own_command(tmp_path):
+    # The client's file is read first, so all 301 commands await their replies at once: raw files
+    # keep PENDING_KEPT_RAW of them, and every reply is paired with its own command.
+    from tests.c.harness_c import get_build
+    from tests.python.test_cell import urwire_decode
+
+    client, robot = tmp_path / "client.raw", tmp_path / "robot.raw"
+    client.write_bytes(b"robotmode\n" * 300 + b"play\n")
+    robot.write_bytes(b"Connected: Universal Robots Dashboard Server\n" + b"Robotmode: IDLE\n" * 300 + b"Starting program\n")
+    c = subprocess.run([str(get_build("asan-gcc").cli), "--protocol", "ur_dashboard", str(robot), "--to-robot", str(client)],
+                       capture_output=True, timeout=60)
+    python = urwire_decode("--protocol", "ur_dashboard", "--to-robot", str(client), str(robot))
+    assert c.stdout.decode() == python.stdout and c.returncode == python.returncode == 0
+    replies = [json.loads(line) for line in python.stdout.splitlines() if '"type": "reply"' in line]
+    assert [r.get("command_name") for r in replies] == [None] + ["robotmode"] * 300 + ["play"]

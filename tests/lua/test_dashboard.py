@@ -124,6 +124,30 @@ def test_expert_infos_flag_error_replies_unknown_and_unavailable_commands_and_lo
         assert expected.replace(" ", ",") in messages, (expected, text)
 
 
+def test_past_the_kept_commands_a_reply_pairs_with_nothing_and_an_expert_says_why(tmp_path):
+    segments = conversation((False, b"robotmode\n" * 256 + b"play\nrobotmode\n"),
+                            (True, b"Robotmode: IDLE\n" * 256 + b"Starting program\nRobotmode: IDLE\n"),
+                            (False, b"stop\n"), (True, b"Stopped\n"))
+    records = dissect(tmp_path, segments)
+    replies = [r for r in records if r["type"] == "reply"]
+    assert all(r.get("command_name") == "robotmode" for r in replies[:256])
+    assert [r.get("command_name") for r in replies[256:]] == [None, None, "stop"]
+    pcap = capture.write(tmp_path / "kept.pcap", capture.session_frames(tcp_segments(segments), port=29999))
+    text = run_tshark(pcap, "-2", "-T", "fields", "-e", "_ws.expert.message", "-Y", "_ws.expert", plugin=PLUGIN)
+    messages = text.replace(",", "\n").split("\n")
+    assert messages.count("Command not kept: more than 256 commands awaited replies") == 2
+    assert messages.count("Reply to a command that was not kept: more than 256 commands awaited replies") == 2
+
+
+def test_a_line_too_long_still_takes_its_place_in_the_pairing(tmp_path):
+    segments = conversation((True, b"Connected: Universal Robots Dashboard Server\n"),
+                            (False, b"popup " + b"x" * 5000 + b"\nplay\n"),
+                            (True, b"could not understand: 'line longer than 4096 bytes'\nStarting program\n"),
+                            (False, b"robotmode\nstop\n"), (True, b"Robotmode: " + b"y" * 5000 + b"\nStopped\n"))
+    replies = [r for r in dissect(tmp_path, segments) if r["type"] == "reply"]
+    assert [r.get("command_name") for r in replies] == [None, None, "play", "stop"]
+
+
 def test_filters_name_the_banner_a_reply_and_error_replies(tmp_path):
     segments = conversation((True, b"Connected: Universal Robots Dashboard Server\n"), (False, b"play\n"),
                             (True, b"Failed to execute: play\n"))

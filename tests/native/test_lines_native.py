@@ -286,6 +286,9 @@ def hostile_conversations() -> list[tuple[Segment, ...]]:
         (Segment(False, b"x" * 5000 + b"\nstop\n"), Segment(True, b"y" * 4097 + b"\r\nStopped\r\n"),
          Segment(False, b"\r\n" + b"p" * 9000), Segment(False, b"\nplay\n")),
         (Segment(True, b"Starting program\n"), Segment(False, many), Segment(True, b"Starting program\n" * 301)),
+        (Segment(False, b"robotmode\n" * 256 + b"play\n"), Segment(True, b"Robotmode: IDLE\n" * 200),
+         Segment(False, b"stop\n"), Segment(True, b"Robotmode: IDLE\n" * 56 + b"Starting program\nStopped\n"),
+         Segment(False, b"stop\n"), Segment(True, b"Stopped\n")),
     ]
     rng = random.Random("hostile")
     return (short + long + [in_pieces(c, rng, 7) for c in short] + [in_pieces(c, rng, 700) for c in long])
@@ -296,7 +299,9 @@ def test_hostile_conversations(tmp_path, variant):
     pcap = sessions(tmp_path, "ur_dashboard", hostile_conversations())
     shown = assert_same(pcap, ["ur_dashboard"], variant=variant)
     messages = {e["_ws.expert.message"] for e in shown.experts}
-    assert {"Line longer than 4096 bytes", "Unknown command", "The software version lacks this command"} <= messages
+    assert {"Line longer than 4096 bytes", "Unknown command", "The software version lacks this command",
+            "Command not kept: more than 256 commands awaited replies",
+            "Reply to a command that was not kept: more than 256 commands awaited replies"} <= messages
     # The same with TCP reassembly off: a line cut by a segment shows as a part of a line.
     shown = assert_same(pcap, ["ur_dashboard"], "-o", "tcp.desegment_tcp_streams:FALSE", variant=variant)
     assert "Part of a line (reassembly is off)" in json.dumps(shown.layers)
@@ -310,7 +315,7 @@ def test_every_handle_is_declared_registered_and_used(interface):
     code = re.sub(r"/\*.*?\*/", "", text, flags=re.S)
     code = re.sub(r'"(?:\\.|[^"\\])*"', '""', code)
     declared = re.findall(r"^static (?:int|expert_field) ((?:hf|ett|ei)_\w+) = (?:-1|EI_INIT);", code, re.M)
-    assert len(declared) == 7 + 1 + 4
+    assert len(declared) == 7 + 1 + 6
     registration = code[code.index(f"void proto_register_{interface}(void)\n{{"):]
     registration = registration[:registration.index("\n}\n")]
     elsewhere = code.replace(registration, "")

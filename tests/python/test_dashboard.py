@@ -67,6 +67,19 @@ def test_a_line_too_long_is_one_error_and_the_next_line_reads():
     assert len(conversation.commands.buffer) == 0     # nothing of the long line was kept
 
 
+def test_a_line_too_long_still_takes_its_place_in_the_pairing():
+    # The server answers the long command with one line; "play" gets the next one.
+    conversation = ur_dashboard.conversation()
+    records = conversation.feed(b"Connected: Universal Robots Dashboard Server\n", True)
+    records += conversation.feed(b"popup " + b"x" * 5000 + b"\nplay\n", False)
+    records += conversation.feed(b"could not understand: 'line longer than 4096 bytes'\nStarting program\n", True)
+    assert [r.command_name for r in records[-2:]] == [None, "play"]
+    # A reply too long answers the oldest command: "stop" gets the line after it.
+    records = conversation.feed(b"robotmode\nstop\n", False)
+    records += conversation.feed(b"Robotmode: " + b"y" * 5000 + b"\nStopped\n", True)
+    assert to_dict(records[2])["type"] == "error" and records[3].command_name == "stop"
+
+
 def test_a_line_of_exactly_max_line_bytes_reads_and_one_more_is_too_long():
     for ending in (b"\n", b"\r\n"):
         ok = ur_dashboard.conversation().feed(b"p" * ur_dashboard.MAX_LINE + ending, False)
@@ -78,6 +91,57 @@ def test_commands_never_answered_keep_bounded_memory():
     conversation = ur_dashboard.conversation()
     conversation.feed(b"play\n" * (PENDING_KEPT * 4), False)
     assert len(conversation.pending) == PENDING_KEPT
+
+
+NOT_KEPT = f"command not kept: more than {PENDING_KEPT} commands awaited replies"
+REPLY_NOT_KEPT = f"reply to a command that was not kept: more than {PENDING_KEPT} commands awaited replies"
+
+
+def test_past_the_kept_commands_a_reply_pairs_with_nothing_and_says_why():
+    # 256 commands kept, then "play" and "robotmode" not kept: their replies must not be read as
+    # the replies of other commands ("Starting program" as a robotmode reply).
+    conversation = ur_dashboard.conversation()
+    said = conversation.feed(b"robotmode\n" * PENDING_KEPT + b"play\nrobotmode\n", False)
+    answers = conversation.feed(b"Robotmode: IDLE\n" * PENDING_KEPT + b"Starting program\nRobotmode: IDLE\n", True)
+    assert [to_dict(c).get("error") for c in said] == [None] * PENDING_KEPT + [NOT_KEPT, NOT_KEPT]
+    assert all(to_dict(r) == {"type": "reply", "reply": "Robotmode: IDLE", "command_name": "robotmode",
+                              "reply_name": "robotmode", "error": False} for r in answers[:PENDING_KEPT])
+    assert [to_dict(r) for r in answers[PENDING_KEPT:]] == [
+        {"type": "reply", "reply": "Starting program", "error": REPLY_NOT_KEPT},
+        {"type": "reply", "reply": "Robotmode: IDLE", "error": REPLY_NOT_KEPT}]
+    # Every lost command answered, pairing starts again.
+    (command,) = conversation.feed(b"stop\n", False)
+    (reply,) = conversation.feed(b"Stopped\n", True)
+    assert to_dict(command).get("error") is None and reply.command_name == "stop" and reply.error is False
+
+
+def test_a_command_behind_a_lost_one_is_lost_too_though_there_is_room():
+    conversation = ur_dashboard.conversation()
+    conversation.feed(b"robotmode\n" * (PENDING_KEPT + 1), False)      # the last one lost
+    conversation.feed(b"Robotmode: IDLE\n", True)                     # room for one again
+    (late,) = conversation.feed(b"play\n", False)
+    assert late.error == NOT_KEPT                                     # its reply comes after the lost one's
+    replies = conversation.feed(b"Robotmode: IDLE\n" * (PENDING_KEPT - 1) + b"Robotmode: IDLE\nStarting program\n", True)
+    assert [r.command_name for r in replies] == ["robotmode"] * (PENDING_KEPT - 1) + [None, None]
+    assert [r.error for r in replies[-2:]] == [REPLY_NOT_KEPT, REPLY_NOT_KEPT]
+
+
+def test_a_conversation_told_to_keep_more_pairs_past_256_and_says_its_own_bound():
+    conversation = ur_dashboard.conversation()
+    conversation.keep_pending(PENDING_KEPT + 2)
+    said = conversation.feed(b"robotmode\n" * (PENDING_KEPT + 3), False)
+    answers = conversation.feed(b"Robotmode: IDLE\n" * (PENDING_KEPT + 3), True)
+    assert [r.command_name for r in answers] == ["robotmode"] * (PENDING_KEPT + 2) + [None]
+    bound = f"more than {PENDING_KEPT + 2} commands awaited replies"
+    assert said[-1].error == f"command not kept: {bound}"
+    assert answers[-1].error == f"reply to a command that was not kept: {bound}"
+
+
+def test_the_script_sender_keeps_only_its_latest_request_and_never_overflows():
+    from urwire.generated import ur_script_sender
+    conversation = ur_script_sender.conversation()
+    records = conversation.feed(b"request_program\n" * (PENDING_KEPT * 2), True)
+    assert not any(to_dict(r).get("error") for r in records)
 
 
 def test_random_bytes_never_raise_and_every_record_renders():

@@ -73,10 +73,13 @@ def test_one_byte_per_segment(tmp_path):
 
 
 def test_drops_inside_headers_and_bodies(tmp_path):
-    cuts = [1, 4, 5, 60, len(SESSION) - 1]
+    # Inside the Version message's header (no robot state came: the pause grows), then inside a
+    # robot state's header and body after a whole one (data flowed: the pause starts again).
+    working = len(session_bytes(1))
+    cuts = [1, 4] + [working + cut for cut in (1, 4, 5, 60)] + [len(SESSION) - 1]
     out, raw = tmp_path / "out.jsonl", tmp_path / "s.raw"
     with Peer([sends(SESSION[:cut], linger=0) for cut in cuts]) as peer:
-        res = listen(peer.port, "--out", str(out), "--raw", str(raw), "--duration", "4")
+        res = listen(peer.port, "--out", str(out), "--raw", str(raw), "--duration", "6")
     assert_survived(res)
     assert out.read_text().splitlines() == [line for cut in cuts for line in expected(SESSION[:cut])]
     assert res.stderr.count("reconnected") >= len(cuts) - 1
@@ -112,9 +115,24 @@ def test_storm_of_connections_closed_at_once(tmp_path):
 
 
 def test_storm_of_short_sessions(tmp_path):
+    # Each session sends its Version and one tick: data flowed, so each reconnect waits 0.5 s.
+    short = session_bytes(1)
+    out = tmp_path / "out.jsonl"
+    with Peer([sends(short, linger=0)] * 6) as peer:
+        res = listen(peer.port, "--out", str(out), "--count", str(6 * len(expected(short))), "--duration", "8")
+    assert res.returncode == 0, res.stderr
+    assert out.read_text().splitlines() == expected(short) * 6
+    assert set(re.findall(r"reconnecting in (\d+\.\d) s", res.stderr)) == {"0.5"}
+
+
+def test_sessions_that_end_after_the_version_message_back_off(tmp_path):
+    # A Version message and no robot state: no session worked, so the pause grows as when
+    # nothing at all is received, and every message that came is recorded.
     version = session_bytes(0)
     out = tmp_path / "out.jsonl"
     with Peer([sends(version, linger=0)] * 6) as peer:
-        res = listen(peer.port, "--out", str(out), "--count", "6", "--duration", "8")
+        res = listen(peer.port, "--out", str(out), "--duration", "4")
     assert res.returncode == 0, res.stderr
-    assert [r["type"] for r in records(out)] == ["version"] * 6
+    waits = [float(w) for w in re.findall(r"reconnecting in (\d+\.\d) s", res.stderr)]
+    assert waits[:3] == [0.5, 1.0, 2.0], res.stderr
+    assert [r["type"] for r in records(out)] == ["version"] * (res.stderr.count("reconnected") + 1)

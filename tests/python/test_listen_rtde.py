@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import socket
+import struct
 import subprocess
 import sys
 import threading
@@ -154,3 +155,64 @@ def test_listen_rtde_reconnects(tmp_path):
     assert [r["type"] for r in records].count("start_reply") == 2
     for raw in ("session.raw", "session.1.raw", "session.to_robot.raw", "session.1.to_robot.raw"):
         assert (tmp_path / raw).stat().st_size > 0, raw
+
+
+class ResettingPeer:
+    """A robot that answers the protocol request of each connection and resets it at once
+    (SO_LINGER 0: an RST, not a FIN), so that listen's next request fails."""
+
+    def __init__(self):
+        self.listener = socket.create_server(("127.0.0.1", 0))
+        self.port = self.listener.getsockname()[1]
+        self.connections = 0
+        self.thread = threading.Thread(target=self.run, daemon=True)
+        self.thread.start()
+
+    def run(self) -> None:
+        self.listener.settimeout(0.2)
+        while self.listener.fileno() >= 0:
+            try:
+                conn, _ = self.listener.accept()
+            except socket.timeout:
+                continue
+            except OSError:
+                return
+            self.connections += 1
+            conn.settimeout(5)
+            try:
+                conversation = rtde.Conversation(protocol=1)
+                while not any(isinstance(m, g.RequestProtocolVersion) for m in conversation.feed(conn.recv(4096), False)):
+                    pass
+                conn.sendall(g.RequestProtocolVersionReply(True).encode())
+            finally:
+                conn.setsockopt(socket.SOL_SOCKET, socket.SO_LINGER, struct.pack("ii", 1, 0))
+                conn.close()
+
+    def close(self) -> None:
+        self.listener.close()
+        self.thread.join(5)
+
+
+def test_listen_rtde_against_a_robot_that_resets_after_each_reply(tmp_path):
+    # Every reply received is written though the request after it fails; the pause between
+    # connections grows (0.5, 1, 2 s), as no data ever flowed; a raw file pair per connection.
+    peer = ResettingPeer()
+    try:
+        res, records = listen(peer.port, tmp_path, "--rtde", "timestamp", "--duration", "4", timeout=30)
+    finally:
+        peer.close()
+    assert 2 <= peer.connections <= 4, (peer.connections, res.stderr)
+    assert res.returncode == 0, res.stderr
+    assert [r["type"] for r in records] == ["request_protocol_version_reply"] * len(records)
+    assert len(records) >= 2
+    raws = sorted(tmp_path.glob("session*.raw"))
+    assert len(raws) == 2 * len(records) and all(p.stat().st_size > 0 for p in raws)
+    decoded = []
+    for n in range(len(records)):
+        raw = tmp_path / ("session.raw" if n == 0 else f"session.{n}.raw")
+        out = subprocess.run([sys.executable, "-m", "urwire", "decode", "--protocol", "rtde", str(raw),
+                              "--to-robot", str(raw.with_name(raw.stem + ".to_robot.raw"))],
+                             capture_output=True, text=True, env=ENV, timeout=60)
+        decoded += [{k: v for k, v in json.loads(line).items() if k not in ("interface", "direction", "conversation")}
+                    for line in out.stdout.splitlines() if '"from_robot"' in line]
+    assert decoded == records

@@ -9,6 +9,7 @@ Each client here is urwire's own decoder for the interface; the values are check
 urwire.motion.Motion, the one motion every interface samples, worked out apart from the server."""
 from __future__ import annotations
 
+import math
 import socket
 import subprocess
 import sys
@@ -164,10 +165,11 @@ def test_rtde_protocol_1_on_cb3_at_most_125_hz(server):
     motion = Motion(model_for((3, 15, 0)))
     assert all(p.values["actual_q"] == list(motion.joints(p.values["timestamp"]).q) for p in packages)
     client.close()
-    # Protocol 2 asks for 500 Hz; a CB3 sends 125.
+    # Protocol 2 at 125 Hz, a CB3's most; 500 Hz it refuses (recipe id 0: no recipe to start).
     client = RtdeClient(server)
     client.ask(rtde.request_protocol_version(2), g.RequestProtocolVersionReply)
-    client.ask(rtde.setup_outputs(["timestamp"], 500.0), g.SetupOutputsReply)
+    assert client.ask(rtde.setup_outputs(["timestamp"], 500.0), g.SetupOutputsReply).recipe_id == 0
+    assert client.ask(rtde.setup_outputs(["timestamp"], 125.0), g.SetupOutputsReply).recipe_id == 1
     client.ask(rtde.start(), g.StartReply)
     stamps = [p.values["timestamp"] for p in client.packages(10)]
     assert all(abs(b - a - 1 / 125) < 1e-9 for a, b in zip(stamps, stamps[1:]))
@@ -211,6 +213,19 @@ def test_rtde_inputs_in_use_and_what_they_change(server):
     assert third.ask(rtde.setup_inputs(["standard_digital_output"]), g.SetupInputsReply).recipe_id >= 1
     second.close()
     third.close()
+
+
+def test_rtde_a_speed_slider_fraction_off_the_slider_is_not_taken(server):
+    client = RtdeClient(server)
+    client.ask(rtde.request_protocol_version(2), g.RequestProtocolVersionReply)
+    held = client.ask(rtde.setup_inputs(["speed_slider_mask", "speed_slider_fraction"]), g.SetupInputsReply)
+    recipe = client.conversation.recipes["inputs"][held.recipe_id]
+    for fraction in (0.25, math.nan, math.inf, -0.5, 1.5):
+        client.send(rtde.input_data(recipe, {"speed_slider_mask": 1, "speed_slider_fraction": fraction}))
+    client.ask(rtde.setup_outputs(["target_speed_fraction"], 125.0), g.SetupOutputsReply)
+    client.ask(rtde.start(), g.StartReply)
+    assert client.packages(2)[-1].values == {"target_speed_fraction": 0.25}
+    client.close()
 
 
 @pytest.mark.parametrize("server,size,rate", [("5.11", 1220, 500), ("3.15", 1116, 125), ("1.8", 812, 125)],

@@ -41,7 +41,7 @@ static const envelope *envelope_of(const cell_inputs *in, bool from_robot)
                 if (got) {                                                                         \
                     P##_json(&rec, line, sizeof line);                                             \
                     envelope_line(out, envelope_of(in, from_robot), line);                         \
-                    errors |= rec.type == UPPER##_FAULT;                                           \
+                    errors |= rec.type == UPPER##_FAULT || rec.not_kept;                           \
                 }                                                                                  \
                 at += used;                                                                        \
             }                                                                                      \
@@ -64,7 +64,9 @@ static const envelope *envelope_of(const cell_inputs *in, bool from_robot)
         P##_record rec;                                                                            \
         size_t tail[2] = {0, 0};                                                                   \
         int status = 0, k;                                                                         \
+        static int16_t queue[UPPER##_PENDING_RAW]; /* the client's file is read first */           \
         P##_init(&c, given ? P##_version(major, minor, bugfix) : 0u);                              \
+        P##_keep_pending(&c, queue, UPPER##_PENDING_RAW);                                          \
         for (k = in->client ? 0 : 1; k < 2; k++) {                                                 \
             int read = P##_read_stream(&c, in, k == 1, out, &tail[k]);                             \
             if (read == 2)                                                                         \

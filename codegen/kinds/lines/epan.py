@@ -48,7 +48,10 @@ def experts(max_line: int) -> tuple[Expert, ...]:
     return (Expert("error_reply", "PI_RESPONSE_CODE", "PI_WARN", "The reply says an error"),
             Expert("unknown_command", "PI_MALFORMED", "PI_WARN", "Unknown command"),
             Expert("unavailable", "PI_PROTOCOL", "PI_WARN", "The software version lacks this command"),
-            Expert("too_long", "PI_MALFORMED", "PI_ERROR", f"Line longer than {max_line} bytes"))
+            Expert("too_long", "PI_MALFORMED", "PI_ERROR", f"Line longer than {max_line} bytes"),
+            Expert("not_kept", "PI_SEQUENCE", "PI_ERROR", "Command not kept: more than 256 commands awaited replies"),
+            Expert("reply_not_kept", "PI_SEQUENCE", "PI_ERROR",
+                   "Reply to a command that was not kept: more than 256 commands awaited replies"))
 
 
 # The version preference, as the Lua runtime names and words it.

@@ -143,9 +143,13 @@ size_t lines_json(const lines_record *rec, char *out, size_t cap)
             out_string(&o, rec->argument);
         }
         if (rec->available >= 0)
-            out_text(&o, rec->available ? ", \"available\": true}" : ", \"available\": false}");
-        else
-            out_text(&o, "}");
+            out_text(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"command not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"");
+        }
+        out_text(&o, "}");
     } else {
         out_text(&o, "{\"type\": \"reply\", \"reply\": ");
         out_string(&o, rec->text);
@@ -153,7 +157,12 @@ size_t lines_json(const lines_record *rec, char *out, size_t cap)
             out_name(&o, ", \"command_name\": ", lines_commands[rec->command_name].name);
         if (rec->reply_name != NULL)
             out_name(&o, ", \"reply_name\": ", rec->reply_name->name);
-        out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
+        if (rec->not_kept) {
+            out_text(&o, ", \"error\": \"reply to a command that was not kept: more than ");
+            out_number(&o, rec->kept);
+            out_text(&o, " commands awaited replies\"}");
+        } else
+            out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
     }
     if (cap > 0)
         out[o.len < cap ? o.len : cap - 1] = '\0';

@@ -29,6 +29,18 @@ void lines_init(lines_conversation *c, uint32_t version)
 {
     memset(c, 0, sizeof *c);
     c->version = version;
+    c->kept = LINES_PENDING;
+}
+
+void lines_keep_pending(lines_conversation *c, int16_t *queue, size_t n)
+{
+    c->more = queue;
+    c->kept = n;
+}
+
+static int16_t *queue_of(lines_conversation *c)
+{
+    return c->more != NULL ? c->more : c->pending;
 }
 
 static bool starts_with(lines_view v, const char *text, size_t n)
@@ -138,6 +150,40 @@ static uint32_t version_in(lines_view line)
     return count >= 2 ? lines_version(parts[0], parts[1], parts[2]) : 0;
 }
 
+/* A request awaits its reply; false when it is not kept (see lines_conversation). */
+static bool keep(lines_conversation *c, int command)
+{
+    if (!LINES_ONE_REPLY_PER_REQUEST) {          /* only the latest request counts */
+        queue_of(c)[0] = (int16_t)command;
+        c->count = 1;
+    } else if (c->lost > 0 || c->count == c->kept) {
+        c->lost++;
+        return false;
+    } else {
+        queue_of(c)[(c->head + c->count) % c->kept] = (int16_t)command;
+        c->count++;
+    }
+    return true;
+}
+
+/* The request a reply answers (LINES_NONE: none), *not_kept when it answers one not kept. */
+static int answered(lines_conversation *c, bool *not_kept)
+{
+    int command = LINES_NONE;
+    *not_kept = false;
+    if (c->count > 0 && LINES_ONE_REPLY_PER_REQUEST) {
+        command = queue_of(c)[c->head];
+        c->head = (c->head + 1) % c->kept;
+        c->count--;
+    } else if (c->count > 0) {    /* every answering line belongs to the latest request */
+        command = queue_of(c)[(c->head + c->count - 1) % c->kept];
+    } else if (c->lost > 0) {     /* it answers a command that was not kept */
+        *not_kept = true;
+        c->lost--;
+    }
+    return command;
+}
+
 static void read_command(lines_conversation *c, lines_record *rec)
 {
     int command = lines_find_command(rec->text, &rec->argument, &rec->has_argument);
@@ -145,17 +191,13 @@ static void read_command(lines_conversation *c, lines_record *rec)
     rec->command_name = command;
     rec->available = command == LINES_NONE || c->version == 0 ? -1
                                                                       : lines_available(command, c->version);
-    if (c->count == LINES_PENDING) {   /* the oldest is forgotten, as a bounded queue does */
-        c->head = (c->head + 1) % LINES_PENDING;
-        c->count--;
-    }
-    c->pending[(c->head + c->count) % LINES_PENDING] = (int16_t)command;
-    c->count++;
+    rec->not_kept = !keep(c, command);
+    rec->kept = c->kept;
 }
 
 static void read_reply(lines_conversation *c, lines_record *rec)
 {
-    int command = LINES_NONE;
+    int command;
     rec->type = LINES_REPLY;
     rec->command_name = LINES_NONE;
     if (!c->greeted) {
@@ -165,13 +207,8 @@ static void read_reply(lines_conversation *c, lines_record *rec)
             return;
         }
     }
-    if (c->count > 0 && LINES_ONE_REPLY_PER_REQUEST) {
-        command = c->pending[c->head];
-        c->head = (c->head + 1) % LINES_PENDING;
-        c->count--;
-    } else if (c->count > 0) {    /* every answering line belongs to the latest request */
-        command = c->pending[(c->head + c->count - 1) % LINES_PENDING];
-    }
+    command = answered(c, &rec->not_kept);
+    rec->kept = c->kept;
     rec->command_name = command;
     rec->reply_name = lines_classify(command, rec->text);
     rec->error = rec->reply_name != NULL && rec->reply_name->error;
@@ -217,6 +254,15 @@ size_t lines_decode(lines_conversation *c, bool from_robot, const uint8_t *buf, 
     *got = true;
     d->offset += used;
     if (newline == NULL || len > LINES_MAX_LINE) {
+        /* Still a line: a command the server answers, or the reply to one, so that the pairing
+         * of the lines after it holds. */
+        bool not_kept;
+        if (requests) {
+            keep(c, LINES_NONE);
+        } else {
+            c->greeted = true;
+            answered(c, &not_kept);
+        }
         rec->type = LINES_FAULT;
         rec->fault = LINES_LINE_TOO_LONG;
         return used;

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import sys
 from dataclasses import dataclass, field
-from typing import Optional
+from typing import Optional, Union
 
 from .. import text_lines as _rt
 
@@ -251,8 +251,10 @@ class Command:
     TYPE = "command"
     LABEL = "Command"
     JSON = (("command", "text", False), ("command_name", "text", True), ("argument", "text", True),
-            ("available", "bool", True))
+            ("available", "bool", True), ("error", "text", True))
     extra = b""
+    # An error record (urwire decode exits 1) when the command was not kept to pair.
+    IS_ERROR = property(lambda self: self.error is not None)
 
     command: str = field(metadata={"label": "Command", "unit": None})
     # The command a command line is, or the command a reply answers.
@@ -261,6 +263,8 @@ class Command:
     argument: Optional[str] = field(default=None, metadata={"label": "Argument", "unit": None})
     # False when the conversation's software version lacks the command.
     available: Optional[bool] = field(default=None, metadata={"label": "Available", "unit": None})
+    # Why no reply can be paired with the command (more commands awaited replies than are kept).
+    error: Optional[str] = field(default=None, metadata={"label": "Not kept", "unit": None})
 
 
 @dataclass(slots=True)
@@ -270,8 +274,10 @@ class Reply:
     TYPE = "reply"
     LABEL = "Reply"
     JSON = (("reply", "text", False), ("command_name", "text", True), ("reply_name", "text", True),
-            ("error", "bool", False))
+            ("error", "bool|text", False))
     extra = b""
+    # An error record when it answers a command that was not kept (its error is then a text).
+    IS_ERROR = property(lambda self: isinstance(self.error, str))
 
     reply: str = field(metadata={"label": "Reply", "unit": None})
     # The command a command line is, or the command a reply answers.
@@ -279,7 +285,8 @@ class Reply:
     # Which of the command's documented replies it is.
     reply_name: Optional[str] = field(default=None, metadata={"label": "Reply meaning", "unit": None})
     # True when the reply says that the command failed.
-    error: bool = field(default=False, metadata={"label": "Says an error", "unit": None})
+    # (A text instead when the reply answers a command that was not kept: it pairs with none.)
+    error: Union[bool, str] = field(default=False, metadata={"label": "Says an error", "unit": None})
 
 
 def conversation(version_hint=None) -> _rt.LinesConversation:
