@@ -38,6 +38,9 @@ DRIVER_HINTS = ("", "1.0.0", "1.3.1", "2.9", "3.0")
 LENGTH_FIELDS = {"ur_realtime": 4, "rtde": 2}
 MAX_SESSION = 256 * 1024
 REPEATS = (1, 1, 1, 2, 3, 8, 9, 65, 257, 300)     # past the bounded queues and the RTDE limits
+LONG_RUNS = (4000, 4090, 4094, 4095, 4096, 4097, 5000, 65536, 70000)   # the lines' limit is 4096 bytes
+RTDE_SIZES = {b"BOOL": 1, b"UINT8": 1, b"UINT32": 4, b"INT32": 4, b"UINT64": 8, b"DOUBLE": 8, b"VECTOR3D": 24,
+              b"VECTOR6D": 48, b"VECTOR6INT32": 24, b"VECTOR6UINT32": 24}
 INTERESTING = (0, 1, 2, 3, 4, 5, 7, 8, 0x7f, 0x80, 0xff, 0x100, 0x7fff, 0x8000, 0xffff, 0x10000,
                0x7fffffff, 0x80000000, 0xffffffff)
 TEXT_BITS = (b"\n", b"\r\n", b"\r", b"\0", b" ", b"\xff", b"\xc3", b"popup ", b"robotmode\n", b"Robotmode: ",
@@ -111,10 +114,11 @@ def seeds(interface: str) -> list[Session]:
         out = [Session(tuple((True, m) for m in messages(interface, c.data)), c.version or "", False)
                for c in interface_cases(interface)]
     elif interface == "rtde":
-        out = [Session(tuple(c.messages)) for c in rtde_cases()]
+        out = [Session(tuple((robot, m) for robot, data in c.messages for m in messages(interface, data)))
+               for c in rtde_cases()]
     else:
-        out = [Session(tuple((s.from_robot, s.data) for s in c.segments if s.data), c.version or "")
-               for c in conversation_cases(interface)]
+        out = [Session(tuple((s.from_robot, m) for s in c.segments for m in messages(interface, s.data)),
+                       c.version or "") for c in conversation_cases(interface)]
     if interface not in ROBOT_ONLY:
         out += [Session(tuple(p for p in s.pieces if p[0]), s.hint, False) for s in out]
     return out + [load(interface, raw) for raw in kept(interface)]
@@ -142,7 +146,9 @@ class Mutator:
         if interface not in ROBOT_ONLY:
             self.ops += [self.other_direction, self.client_or_not]
         if interface in ("ur_dashboard", "ur_script_sender"):
-            self.ops += [self.text] * 3
+            self.ops += [self.text] * 3 + [self.stretch]
+        if interface == "rtde":
+            self.ops += [self.twin_names]
 
     def __call__(self, session: Session, pool: list[Session]) -> Session:
         for _ in range(self.rng.choice((1, 1, 2, 3, 4))):
@@ -206,6 +212,14 @@ class Mutator:
             return bytes(b[:at]) + self.rng.choice(TEXT_BITS) + bytes(b[at:])
         return self._bytes(session, change)
 
+    def stretch(self, session, pool):
+        """A run of one byte inserted: lines at, around and far past the line limit."""
+        def change(b):
+            at = self.rng.randrange(len(b) + 1)
+            run = bytes([self.rng.choice(b"x \t\xc3\x00")]) * self.rng.choice(LONG_RUNS)
+            return bytes(b[:at]) + run + bytes(b[at:])
+        return self._bytes(session, change)
+
     def integer(self, session, pool):
         def change(b):
             width = self.rng.choice((1, 2, 4, 8))
@@ -244,6 +258,44 @@ class Mutator:
                 return bytes(b[:w.start()] + b[w.end():])
             return bytes(b[:w.end()]) + self.rng.choice((b",", b" ")) + w.group() + bytes(b[w.end():])
         return self._bytes(session, change)
+
+    def twin_names(self, session, pool):
+        """RTDE: the k-th name of a setup repeated in its list, and the k-th type of the next reply
+        from the robot with as many: a recipe naming a variable twice, typed alike (or as many
+        times as the repeats say: past the limits on names)."""
+        def names(robot: bool, data: bytes) -> list:
+            if data[2:3] not in (b"O", b"I"):
+                return []
+            found = list(re.finditer(rb"[A-Za-z_][A-Za-z_0-9]*", data[3:]))
+            return [w for w in found if w.group() in RTDE_SIZES or w.group() in (b"NOT_FOUND", b"IN_USE")] \
+                if robot else found
+
+        lists = [(i, names(robot, data)) for i, (robot, data) in enumerate(session.pieces)]
+        setups = [(i, words) for i, words in lists if not session.pieces[i][0] and words]
+        if not setups:
+            return session
+        i, words = self.rng.choice(setups)
+        last = self.rng.random() < 0.5
+        k, times = len(words) - 1 if last else self.rng.randrange(len(words)), self.rng.choice((1, 1, 2, 64))
+        reply = next(((j, w) for j, w in lists[i + 1:] if session.pieces[j][0] and len(w) == len(words)
+                      and session.pieces[j][1][2:3] == session.pieces[i][1][2:3]), None)
+        pieces = list(session.pieces)
+
+        def grow(at: int, data: bytes) -> None:
+            if len(data) < 1 << 16:
+                pieces[at] = (pieces[at][0], len(data).to_bytes(2, "big") + data[2:])
+
+        for at, found in [(i, words)] + ([reply] if reply else []):
+            data, word = pieces[at][1], found[k]
+            grow(at, data[:3 + word.end()] + (b"," + word.group()) * times + data[3 + word.end():])
+        size = RTDE_SIZES.get(reply[1][k].group()) if reply and last else None
+        if size:    # the reply's data packages carry the last value as many times more
+            for at in range(reply[0] + 1, len(pieces)):
+                robot, data = pieces[at]
+                recipe = pieces[reply[0]][1][3:4]
+                if robot and data[2:3] == b"U" and len(data) >= 4 + size and data[3:4] == recipe:
+                    grow(at, data + b"".join(self.rng.choice((data[-size:], self.rng.randbytes(size))) for _ in range(times)))
+        return replace(session, pieces=tuple(pieces))
 
     # -- message mutations
     def repeat(self, session, pool):
