@@ -41,6 +41,7 @@ REPEATS = (1, 1, 1, 2, 3, 8, 9, 65, 257, 300)     # past the bounded queues and 
 LONG_RUNS = (4000, 4090, 4094, 4095, 4096, 4097, 5000, 65536, 70000)   # the lines' limit is 4096 bytes
 RTDE_SIZES = {b"BOOL": 1, b"UINT8": 1, b"UINT32": 4, b"INT32": 4, b"UINT64": 8, b"DOUBLE": 8, b"VECTOR3D": 24,
               b"VECTOR6D": 48, b"VECTOR6INT32": 24, b"VECTOR6UINT32": 24}
+MAGICS = (b"\xd4\xc3\xb2\xa1", b"\xa1\xb2\xc3\xd4", b"\x4d\x3c\xb2\xa1", b"\n\r\r\n")   # pcap, pcapng
 INTERESTING = (0, 1, 2, 3, 4, 5, 7, 8, 0x7f, 0x80, 0xff, 0x100, 0x7fff, 0x8000, 0xffff, 0x10000,
                0x7fffffff, 0x80000000, 0xffffffff)
 TEXT_BITS = (b"\n", b"\r\n", b"\r", b"\0", b" ", b"\xff", b"\xc3", b"popup ", b"robotmode\n", b"Robotmode: ",
@@ -142,7 +143,7 @@ class Mutator:
     def __init__(self, interface: str, rng: random.Random):
         self.interface, self.rng = interface, rng
         self.ops = [self.flip, self.set_byte, self.insert, self.delete, self.cut, self.repeat, self.drop,
-                    self.swap, self.splice, self.length_field, self.integer, self.hint, self.names]
+                    self.swap, self.splice, self.length_field, self.integer, self.hint, self.names, self.magic]
         if interface not in ROBOT_ONLY:
             self.ops += [self.other_direction, self.client_or_not]
         if interface in ("ur_dashboard", "ur_script_sender"):
@@ -219,6 +220,13 @@ class Mutator:
             run = bytes([self.rng.choice(b"x \t\xc3\x00")]) * self.rng.choice(LONG_RUNS)
             return bytes(b[:at]) + run + bytes(b[at:])
         return self._bytes(session, change)
+
+    def magic(self, session, pool):
+        """The robot's stream opened with a capture file's magic: a raw stream is still raw."""
+        first = next((i for i, (robot, _) in enumerate(session.pieces) if robot), None)
+        if first is None:
+            return session
+        return self._with(session, first, self.rng.choice(MAGICS) + session.pieces[first][1])
 
     def integer(self, session, pool):
         def change(b):
