@@ -31,6 +31,7 @@ from __future__ import annotations
 import argparse
 import os
 import random
+import re
 import shutil
 import subprocess
 import sys
@@ -68,6 +69,7 @@ SANITIZERS = {
 }
 SANITIZER_REPORTS = ("ERROR: AddressSanitizer", "runtime error:", "UndefinedBehaviorSanitizer",
                      "ERROR: LeakSanitizer")
+FRAME = re.compile(r"Frame \d+: ")     # the line that opens a frame in tshark -V
 LUA_ERRORS = ("Lua: Error", "Lua Error", "_ws.lua.error")
 
 
@@ -132,8 +134,8 @@ def malformed_frames(result: subprocess.CompletedProcess) -> tuple[int, int]:
     shows "[Malformed Packet"; an expert info of the Malformed group "(<severity>/Malformed)"."""
     malformed = exceptions = 0
     flagged = thrown = False
-    for line in result.stdout.decode(errors="replace").splitlines() + ["Frame end"]:
-        if line.startswith("Frame "):
+    for line in result.stdout.decode(errors="replace").splitlines() + ["Frame 0: end"]:
+        if FRAME.match(line):           # not -x's "Frame (60 bytes):" above a hex dump
             malformed, exceptions = malformed + flagged, exceptions + thrown
             flagged = thrown = False
         elif "[Malformed Packet" in line:

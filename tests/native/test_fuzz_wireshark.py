@@ -55,6 +55,7 @@ def test_malformed_packets_are_counted_by_frame():
             "    [Expert Info (Error/Malformed): again]\n"
             "Frame 2: 60 bytes\nUniversal Robots RTDE\n[Malformed Packet: RTDE]\n"
             "    [Expert Info (Error/Malformed): Malformed Packet (Exception occurred)]\n"
+            "Frame (60 bytes):\n0000  00 01\nReassembled TCP (9 bytes):\n0000  00 01\n"
             "Frame 3: 60 bytes\n    [Expert Info (Warning/Sequence): not malformed]\n")
     result = subprocess.CompletedProcess([], 0, text.encode(), b"")
     assert fuzz_wireshark.malformed_frames(result) == (2, 1)
