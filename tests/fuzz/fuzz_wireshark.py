@@ -17,8 +17,11 @@ exception, or an expert info of the Malformed group, which is how the dissectors
 exceptions among them ("[Malformed Packet"), and the failures: a crash, a non-zero exit, a
 sanitizer report, a dissector bug, a Lua error, and an exception on an unmutated capture (a golden
 vector or a sample: real input must not make a dissector read past what it checked). Mutated input
-is malformed by design, so its malformed packets are counted, not failures. Each failing capture
-and what tshark said are kept under build/fuzz-wireshark/failures/; the run fails if any.
+is malformed by design, so its malformed packets are counted, not failures. The frames whose
+protocol lines (each protocol's summary in -V) differ between the native plugin and Lua are
+counted too: a failure on an unmutated capture, and on a mutated one a finding, its capture kept
+under build/fuzz-wireshark/differences/. Each failing capture and what tshark said are kept under
+build/fuzz-wireshark/failures/; the run fails if any.
 
 `--replay` reads the kept corpora instead (tests/fuzz/corpus/wireshark_<interface>/: mutated
 captures, each once), as `make test` does (tests/native/test_fuzz_wireshark.py).
@@ -70,6 +73,9 @@ SANITIZERS = {
 SANITIZER_REPORTS = ("ERROR: AddressSanitizer", "runtime error:", "UndefinedBehaviorSanitizer",
                      "ERROR: LeakSanitizer")
 FRAME = re.compile(r"Frame \d+: ")     # the line that opens a frame in tshark -V
+HEX_LINE = re.compile(r"[0-9a-f]{4,}  ")                 # tshark -x: a line of a hex dump
+DUMP_TITLE = re.compile(r"[A-Za-z][A-Za-z0-9 ]* \(\d+ bytes\):$")   # and the title of one data source
+MAX_DIFFERENCES_KEPT = 20
 LUA_ERRORS = ("Lua: Error", "Lua Error", "_ws.lua.error")
 
 
@@ -126,7 +132,8 @@ def problem(result: subprocess.CompletedProcess) -> Optional[str]:
 
 # The failure classes of `problem`, by the start of its text, as the summary counts them.
 KINDS = {"killed by signal": "crashes", "sanitizer report": "sanitizer reports", "Lua error": "Lua errors",
-         "dissector bug": "dissector bugs", "exit status": "other exits", "exception": "exceptions unmutated"}
+         "dissector bug": "dissector bugs", "exit status": "other exits", "exception": "exceptions unmutated",
+         "dissectors differ": "dissectors differ unmutated"}
 
 
 def malformed_frames(result: subprocess.CompletedProcess) -> tuple[int, int]:
@@ -153,6 +160,7 @@ class Tally:
     malformed: Counter = field(default_factory=Counter)     # by reader
     exceptions: Counter = field(default_factory=Counter)    # by reader
     failures: Counter = field(default_factory=Counter)      # by KINDS value
+    differing: int = 0          # frames whose top lines differ between the native plugin and Lua
 
 
 def interface_ports(interface: str) -> tuple[int, ...]:
@@ -211,11 +219,49 @@ def keep(capture: Path, reader: Reader, result: subprocess.CompletedProcess, why
     return kept
 
 
+def tree_roots(result: subprocess.CompletedProcess) -> dict[str, list[str]]:
+    """Each frame's top lines in tshark -V: one per protocol, with the summary its dissector gave
+    (not -x's hex dumps nor their "Frame (60 bytes):" titles)."""
+    frames: dict[str, list[str]] = {}
+    lines: list[str] = []
+    for line in result.stdout.decode(errors="replace").splitlines():
+        if FRAME.match(line):
+            lines = frames[line.split(":", 1)[0]] = []
+        elif line and not line[0].isspace() and not HEX_LINE.match(line) and not DUMP_TITLE.match(line):
+            lines.append(line)
+    return frames
+
+
+def differing_frames(native: subprocess.CompletedProcess, lua: subprocess.CompletedProcess) -> list[str]:
+    """The frames whose protocols or summaries differ between two readers, with both texts."""
+    a, b = tree_roots(native), tree_roots(lua)
+    out = []
+    for frame in sorted(set(a) | set(b), key=lambda f: int(f.split()[1])):
+        one, other = a.get(frame, []), b.get(frame, [])
+        if one != other:
+            same = next((i for i, (x, y) in enumerate(zip(one, other)) if x != y), min(len(one), len(other)))
+            out.append(f"{frame}, from its protocol {same + 1} on:\n  {' | '.join(one[same:]) or '(nothing)'}\n"
+                       f"  {' | '.join(other[same:]) or '(nothing)'}")
+    return out
+
+
+def keep_difference(capture: Path, readers: list[Reader], frames: list[str], label: str, out: Path) -> None:
+    folder = out / "differences"
+    folder.mkdir(parents=True, exist_ok=True)
+    if len(list(folder.glob("*.txt"))) < MAX_DIFFERENCES_KEPT:
+        shutil.copy(capture, folder / f"{label}{capture.suffix}")
+        (folder / f"{label}.txt").write_text(f"{len(frames)} frames differ between {readers[0].name} and "
+                                            f"{readers[1].name}:\n" + "\n".join(frames[:50]) + "\n")
+
+
 def read_all(capture: Path, readers: list[Reader], label: str, out: Path, tally: Tally, mutated: bool) -> bool:
-    """Every reader on one capture, counted into the tally; False on a failure (the capture kept)."""
-    data, fine = capture.read_bytes(), True
+    """Every reader on one capture, counted into the tally; False on a failure (the capture kept).
+    With two readers, the frames where their trees' top lines differ are counted too; on a capture
+    that is not mutated that is a failure, on a mutated one the capture is kept under differences/."""
+    data, fine, results = capture.read_bytes(), True, []
     for reader in readers:
         result = reader.run(data)
+        results.append(result)
         malformed, exceptions = malformed_frames(result)
         tally.malformed[reader.name] += malformed
         tally.exceptions[reader.name] += exceptions
@@ -228,6 +274,16 @@ def read_all(capture: Path, readers: list[Reader], label: str, out: Path, tally:
             print(f"fuzz-wireshark: FAILED: {reader.name} on {label}: {why}; kept {kept} "
                   f"(and {kept.with_suffix('.txt').name})", file=sys.stderr)
             fine = False
+    frames = differing_frames(*results[:2]) if len(results) == 2 and fine else []
+    tally.differing += len(frames)
+    if frames and not mutated:
+        why = f"dissectors differ on an unmutated capture: {len(frames)} frames, first {frames[0]}"
+        tally.failures["dissectors differ unmutated"] += 1
+        kept = keep(capture, readers[1], results[1], why, label, out)
+        print(f"fuzz-wireshark: FAILED: {why}; kept {kept}", file=sys.stderr)
+        fine = False
+    elif frames:
+        keep_difference(capture, readers, frames, label, out)
     return fine
 
 
@@ -263,9 +319,10 @@ def summary(tallies: dict[str, Tally], readers: list[Reader]) -> str:
     short = ["native" if r.name.startswith("native") else "Lua" for r in readers]
     kinds = list(dict.fromkeys(KINDS.values()))
     head = (["interface", "inputs", "mutations"] + [f"malformed {s}" for s in short]
-            + [f"exceptions {s}" for s in short] + kinds)
+            + [f"exceptions {s}" for s in short] + ["frames differ"] + kinds)
     rows = [[name, t.inputs, t.mutations] + [t.malformed[r.name] for r in readers]
-            + [t.exceptions[r.name] for r in readers] + [t.failures[k] for k in kinds] for name, t in tallies.items()]
+            + [t.exceptions[r.name] for r in readers] + [t.differing] + [t.failures[k] for k in kinds]
+            for name, t in tallies.items()]
     widths = [max(len(str(x)) for x in column) for column in zip(head, *rows)]
     return "\n".join("  ".join(str(x).rjust(w) if i else str(x).ljust(w) for i, (x, w) in enumerate(zip(row, widths)))
                      for row in [head, *rows])

@@ -44,9 +44,10 @@ def test_the_kept_corpora_replay_without_a_failure(native, tmp_path):
     assert result.returncode == 0, result.stdout + result.stderr[-3000:]
     table = {line.split()[0]: line.split()[1:] for line in result.stdout.splitlines()[2:-1]}
     assert set(table) == set(fuzz_wireshark.INTERFACES), result.stdout
-    # inputs, mutations, then malformed native and Lua: every corpus is malformed somewhere
-    assert all(int(row[0]) >= 2 and row[1] == "0" and int(row[2]) + int(row[3]) > 0 for row in table.values()), \
-        result.stdout
+    # inputs, mutations, malformed native and Lua (every corpus is malformed somewhere), exceptions
+    # native and Lua, then the frames whose protocol summaries differ between the two: none
+    assert all(int(row[0]) >= 2 and row[1] == "0" and int(row[2]) + int(row[3]) > 0 and row[6] == "0"
+               for row in table.values()), result.stdout
     assert not (tmp_path / "out" / "failures").exists()
 
 
@@ -59,6 +60,33 @@ def test_malformed_packets_are_counted_by_frame():
             "Frame 3: 60 bytes\n    [Expert Info (Warning/Sequence): not malformed]\n")
     result = subprocess.CompletedProcess([], 0, text.encode(), b"")
     assert fuzz_wireshark.malformed_frames(result) == (2, 1)
+
+
+def test_frames_the_dissectors_show_otherwise_are_found():
+    """The top line of each protocol in tshark -V, not the hex dumps of -x, compared frame by frame."""
+    def run(*frames: str) -> subprocess.CompletedProcess:
+        return subprocess.CompletedProcess([], 0, "".join(frames).encode(), b"")
+    dump = "0000  00 01 02\nReassembled TCP (3 bytes):\n0000  00 01 02\n"
+    native = run("Frame 1: 60 bytes\nTCP, Len: 3\nUniversal Robots RTDE, Start\n    Size: 3\n" + dump,
+                 "Frame 2: 60 bytes\nTCP, Len: 3\nUniversal Robots RTDE, Pause\n")
+    lua = run("Frame 1: 60 bytes\nTCP, Len: 3\nUniversal Robots RTDE, Start\n    Size: 4\n" + dump.replace("02", "03"),
+              "Frame 2: 60 bytes\nTCP, Len: 3\n")
+    (only,) = fuzz_wireshark.differing_frames(native, lua)
+    assert only.startswith("Frame 2, from its protocol 2 on:") and "(nothing)" in only
+
+
+def test_dissectors_that_differ_on_an_unmutated_capture_fail(tmp_path):
+    """The fixture's Lua twin given a protocol item of another name: every frame it reads differs
+    from the native plugin's, and on a capture that is not mutated that fails the run."""
+    script = tmp_path / "urwire_fixture.lua"
+    script.write_text((FIXTURES / "lua" / "urwire_fixture.lua").read_text().replace(
+        "    local subtree = tree:add(proto, tvb())\n", "    local subtree = tree:add(proto, tvb(), \"other\")\n"))
+    pcap = fixture_capture(tmp_path / "kind1.pcap", 1)
+    result = fuzz("--epan-dir", str(FIXTURES / "epan"), "--native", "gcc", "--lua", str(script), "--out",
+                  str(tmp_path / "out"), "--seconds", "0", "--only-inputs", str(pcap))
+    assert result.returncode == 1, result.stdout + result.stderr[-3000:]
+    assert "dissectors differ on an unmutated capture" in result.stderr
+    assert (tmp_path / "out" / "failures" / "kind1-original.pcap").is_file()
 
 
 def test_a_short_fixed_run(tmp_path):
