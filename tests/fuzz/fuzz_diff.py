@@ -4,17 +4,17 @@ and `urwire-decode`, which must print the same lines, byte for byte, and exit al
 
 Each input is a session of one interface (tests/fuzz/diff_sessions.py): the robot's stream, the
 client's (for the interfaces that decode both directions) and a version hint, written to two
-files and read as
+files, which both commands read:
 
     urwire decode --protocol X ROBOT --to-robot CLIENT [--version-hint V]
     urwire-decode --protocol X ROBOT --to-robot CLIENT [--version-hint V]
 
-read it. Python runs in this process (the command's own `urwire.cli.main`, its output caught);
+Python runs in this process (the command's own `urwire.cli.main`, its output caught);
 the C command runs in one long-lived process (tests/c/decode_driver.c: the command's main linked
 in, ASan and UBSan on), so that an input costs no process. Sessions start from the interface's
 golden vectors and kept corpus (tests/fuzz/corpus/diff_<interface>/) and are mutated with a
-seeded mutator; a mutant whose records show something new (a record type, an error text, a
-direction) joins the pool that later mutants are drawn from.
+seeded mutator; a mutant whose records show something new (a record type, key set, error text,
+flag or short value) joins the pool that later mutants are drawn from.
 
 On a difference, an exception in Python, or the C process dying, the session is written to
 build/fuzz/crashes/diff_<interface>/ (with a .txt of the difference) and the run fails; with
@@ -225,6 +225,7 @@ def fuzz(interface: str, seconds: float, runs: int, rng: random.Random, peer: CP
     done = failures = 0
     started = time.monotonic()
     queue = list(pool)           # the seeds themselves first
+    seeded = len(queue)
     while (queue or time.monotonic() - started < seconds) and not (runs and done >= runs):
         session = queue.pop(0) if queue else mutate(rng.choice(pool), pool)
         try:
@@ -243,7 +244,7 @@ def fuzz(interface: str, seconds: float, runs: int, rng: random.Random, peer: CP
         new = features(output) - seen
         if new:
             seen |= new
-            if done > len(pool) and len(pool) < MAX_POOL:
+            if done > seeded and len(pool) < MAX_POOL:
                 pool.append(session)
                 if new_corpus is not None:
                     new_corpus.mkdir(parents=True, exist_ok=True)
@@ -279,7 +280,7 @@ def minimize(path: Path, interface: str, peer: CPeer, space: Workspace) -> Path:
         changed = False
         for i in reversed(range(len(session.pieces))):
             smaller = Session(session.pieces[:i] + session.pieces[i + 1:], session.hint, session.to_robot)
-            if i < len(session.pieces) and fails(smaller):
+            if fails(smaller):
                 session, changed = smaller, True
         for i in range(len(session.pieces)):
             robot, data = session.pieces[i]
