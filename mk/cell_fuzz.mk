@@ -38,3 +38,34 @@ fuzz-driver-sockets: $(INT32_RECORD_INTERFACES:%=build/fuzz/fuzz_%)
 	done
 
 fuzz: fuzz-driver-sockets
+
+# The differential fuzzer of the cell's other interfaces (tests/fuzz/fuzz_diff.py): `urwire decode`
+# in-process against urwire-decode's main run again and again in one process
+# (tests/c/decode_driver.c, ASan and UBSan on), on mutated sessions of both directions. The
+# interfaces run in three groups, one process each, so that `make -j2 fuzz` spreads them; the
+# driver sockets share their group's FUZZ_SECONDS. Failing sessions land in
+# build/fuzz/crashes/diff_<interface>/; kept corpora are tests/fuzz/corpus/diff_<interface>/,
+# replayed by tests/c/test_diff_fuzz_corpus.py.
+DIFF_CC := $(CC) $(C_STRICT) -g -O1 -fsanitize=address,undefined -fno-sanitize-recover=all -Igenerated/c \
+	-Itools/urwire-decode
+DIFF_GROUPS := rtde dashboard-realtime driver-sockets
+DIFF_rtde := rtde
+DIFF_dashboard-realtime := ur_dashboard ur_realtime
+DIFF_driver-sockets := ur_reverse ur_script_sender ur_trajectory ur_script_command
+
+.PHONY: fuzz-diff $(DIFF_GROUPS:%=fuzz-diff-%)
+
+build/fuzz/decode_driver: tests/c/decode_driver.c $(C_LIB) $(C_CLI)
+	@mkdir -p build/fuzz
+	$(DIFF_CC) -Dmain=urwire_decode_main -c -o build/fuzz/urwire_decode_main.o tools/urwire-decode/main.c
+	$(DIFF_CC) -o $@ tests/c/decode_driver.c build/fuzz/urwire_decode_main.o $(CLI_LIB) $(C_SOURCES) -lm
+
+## fuzz-diff: every interface but the primary, Python against C on mutated sessions, FUZZ_SECONDS a
+## group: fuzz-diff-rtde, fuzz-diff-dashboard-realtime, fuzz-diff-driver-sockets (one interface:
+## python3 tests/fuzz/fuzz_diff.py --seconds 60 ur_trajectory)
+fuzz-diff: $(DIFF_GROUPS:%=fuzz-diff-%)
+
+$(DIFF_GROUPS:%=fuzz-diff-%): fuzz-diff-%: build/fuzz/decode_driver
+	$(PYTHON) tests/fuzz/fuzz_diff.py --peer build/fuzz/decode_driver --seconds $(FUZZ_SECONDS) $(DIFF_$*)
+
+fuzz: fuzz-diff

@@ -9,6 +9,9 @@
 # `make test` does not fuzz: it builds each harness and runs it once over its kept corpus and
 # seeds (tests/c/test_c_fuzz_corpus.py, tests/python/test_fuzz_corpus.py), and replays the kept
 # corpora through C against Python and through tshark (tests/lua/test_fuzz_corpus.py).
+# The cell's other interfaces: their C harnesses and the differential fuzzer of Python against C
+# are in mk/cell_fuzz.mk (fuzz-diff), tshark's fuzzing of every interface in mk/native.mk
+# (fuzz-wireshark); tests/fuzz/README.md lists them all.
 
 FUZZ_SECONDS ?= 60
 FUZZ_LONG_SECONDS ?= 3600

@@ -42,14 +42,23 @@ BENCH_WIRESHARK_ARGS ?=
 bench-wireshark:
 	$(PYTHON) tests/bench/bench_wireshark.py $(BENCH_WIRESHARK_ARGS)
 
-## fuzz-wireshark: Wireshark's fuzz-test.sh approach for FUZZ_SECONDS: editcap -E mutations of the
-## sample captures and of every golden vector (whole and in 1-7 byte segments), each read by
-## tshark -nVx with the native plugin under ASan+UBSan and, separately, with the Lua dissectors;
-## a failing capture is kept under build/fuzz-wireshark/failures/ (tests/fuzz/fuzz_wireshark.py)
-.PHONY: fuzz-wireshark
+## fuzz-wireshark: Wireshark's fuzz-test.sh approach, per interface: editcap -E mutations of its golden
+## vectors (whole and in 1-7 byte segments) and of its conversations in the sample captures, each read
+## by tshark -nVx with the native plugin under ASan+UBSan and, separately, with the Lua dissectors;
+## a table counts malformed packets and failures per interface; a failing capture is kept under
+## build/fuzz-wireshark/failures/ (tests/fuzz/fuzz_wireshark.py). Four groups of interfaces, FUZZ_SECONDS
+## of mutations each after its unmutated pass: fuzz-wireshark-primary-realtime, -rtde,
+## -dashboard-sender, -driver-sockets (one interface: python3 tests/fuzz/fuzz_wireshark.py --seconds 60 rtde)
+WIRESHARK_GROUPS := primary-realtime rtde dashboard-sender driver-sockets
+WIRESHARK_primary-realtime := ur ur_realtime
+WIRESHARK_rtde := rtde
+WIRESHARK_dashboard-sender := ur_dashboard ur_script_sender
+WIRESHARK_driver-sockets := ur_reverse ur_trajectory ur_script_command
+.PHONY: fuzz-wireshark $(WIRESHARK_GROUPS:%=fuzz-wireshark-%)
 fuzz: fuzz-wireshark
-fuzz-wireshark:
-	$(PYTHON) tests/fuzz/fuzz_wireshark.py --seconds $(FUZZ_SECONDS)
+fuzz-wireshark: $(WIRESHARK_GROUPS:%=fuzz-wireshark-%)
+$(WIRESHARK_GROUPS:%=fuzz-wireshark-%): fuzz-wireshark-%:
+	$(PYTHON) tests/fuzz/fuzz_wireshark.py --seconds $(FUZZ_SECONDS) $(WIRESHARK_$*)
 
 ## upstream-patch: lay out under build/upstream/ exactly the files a Wireshark patch would carry
 ## (epan/dissectors/packet-*.c, rendered as Wireshark's copy that reads no command line, and the

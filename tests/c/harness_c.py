@@ -98,6 +98,23 @@ def build_variant(name: str) -> Build:
     return Build(name, cli, driver)
 
 
+def build_decode_driver(name: str = "asan-gcc") -> Path:
+    """tests/c/decode_driver.c (urwire-decode's main run again for each request, in one process:
+    the differential fuzzer's peer), linked from a variant's objects and main.c renamed, as
+    mk/cell_fuzz.mk builds it; rebuilt by each test process that asks, under the variant's lock."""
+    build = get_build(name)
+    cc, flags = VARIANTS[name]
+    folder = build.cli.parent
+    out = OUT / name / "decode_driver"
+    with open(SHARED / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        main = OUT / name / "urwire_decode_main.o"
+        compile_c(cc, flags + ["-c", "-Dmain=urwire_decode_main"], [CLI / "main.c"], main)
+        objects = [folder / f"{source.stem}.o" for source in [*CLI_LIBRARY, GEN / "urwire.c"]]
+        compile_c(cc, flags, [ROOT / "tests" / "c" / "decode_driver.c", main, *objects], out, ["-lm"])
+    return out
+
+
 _BUILDS: dict[str, Build] = {}
 
 

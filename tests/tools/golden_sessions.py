@@ -46,16 +46,19 @@ def _cut(segments: list[Segment], rng: random.Random) -> list[Segment]:
     return pieces
 
 
-def conversations(cut: bool = False, seed: int = 7) -> list[Conversation]:
+def conversations(cut: bool = False, seed: int = 7, interface: str | None = None) -> list[Conversation]:
+    """The sessions of every interface, or of `interface` alone ("ur": the primary one)."""
     rng = random.Random(seed)
     out = []
     for i, (vector, port, robot_listens, segments) in enumerate(_listener_sessions()):
+        if interface is not None and vector.split("/", 1)[0] != interface:
+            continue
         segments = [s for s in segments if s.payload]
         out.append(Conversation(vector, port, 20000 + i, tuple(_cut(segments, rng) if cut else segments),
                                 robot_listens))
     return out
 
 
-def write(path: Path, cut: bool = False, pcapng: bool = False) -> Path:
-    frames = [frame for conversation in conversations(cut) for frame in conversation.frames()]
+def write(path: Path, cut: bool = False, pcapng: bool = False, interface: str | None = None) -> Path:
+    frames = [frame for conversation in conversations(cut, interface=interface) for frame in conversation.frames()]
     return capture.write(path, frames, pcapng=pcapng, step=0.001)
