@@ -13,7 +13,8 @@ int main(int argc, char **argv)
 {
     static uint8_t piece[1 << 20];
     int direction;
-    rtde_json_stream_init(&stream);
+    if (!rtde_json_stream_init(&stream))
+        return 2;
     if (argc > 1)
         stream.conversation.protocol = (uint8_t)atoi(argv[1]);
     while ((direction = getchar()) != EOF) {

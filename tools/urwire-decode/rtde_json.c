@@ -1,6 +1,7 @@
 /* RTDE records as canonical JSON lines. See rtde_json.h. */
 #include "rtde_json.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 #include "json.h"
@@ -233,17 +234,36 @@ int rtde_json_record(FILE *out, const envelope *env, const rtde_message *m, rtde
         fputs(", \"warning\": ", out);
         put_text(out, (const uint8_t *)m->warning, strlen(m->warning));
     }
+    if (m->error) {
+        fputs(", \"error\": ", out);
+        put_text(out, (const uint8_t *)m->error, strlen(m->error));
+    }
     fputs("}\n", out);
     return 0;
 }
 
-void rtde_json_stream_init(rtde_json_stream *s)
+/* The protocol's own limits: the command keeps every recipe a connection can make, as the Python
+ * decoder does. The storage is reserved, not touched: only what a connection uses costs memory. */
+static const rtde_limits protocol_limits = {RTDE_PROTOCOL_RECIPES, RTDE_PROTOCOL_VARIABLES, RTDE_PROTOCOL_NAMES};
+
+bool rtde_json_stream_init(rtde_json_stream *s)
 {
-    rtde_conversation_init(&s->conversation);
+    size_t size = rtde_storage_size(&protocol_limits);
+    if (s->storage == NULL && (s->storage = malloc(size)) == NULL)
+        return false;
+    if (!rtde_conversation_init_in(&s->conversation, &protocol_limits, s->storage, size))
+        return false;
     s->direction[0].length = s->direction[1].length = 0;
     s->direction[0].offset = s->direction[1].offset = 0;
     s->direction[0].scanning = s->direction[1].scanning = false;
     s->envelope[0] = s->envelope[1] = NULL;
+    return true;
+}
+
+void rtde_json_stream_free(rtde_json_stream *s)
+{
+    free(s->storage);
+    s->storage = NULL;
 }
 
 static bool plausible(const uint8_t *p)

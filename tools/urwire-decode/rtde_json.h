@@ -24,14 +24,19 @@ typedef struct rtde_json_direction {
 /* One connection: its RTDE state and both directions' framing. */
 typedef struct rtde_json_stream {
     rtde_conversation conversation;
+    void *storage;                      /* the conversation's recipes, sized to the protocol's limits */
     rtde_json_direction direction[2];   /* [1]: from the robot */
     /* Each direction's records' envelope ([1]: from the robot; NULL: records as they are). The
      * ends of the streams are the robot's file's, as `urwire decode --to-robot` reports them. */
     const envelope *envelope[2];
 } rtde_json_stream;
 
-/* A connection with no envelopes; set s->envelope after this to have them. */
-void rtde_json_stream_init(rtde_json_stream *s);
+/* A connection with no envelopes; set s->envelope after this to have them. s is zeroed before its
+ * first init (static, or memset); a later init starts a new connection in the same storage. False
+ * when the storage cannot be had. */
+bool rtde_json_stream_init(rtde_json_stream *s);
+/* Gives the storage back. */
+void rtde_json_stream_free(rtde_json_stream *s);
 
 /* Bytes of one direction, as they arrive: each record they complete, one line each, on out.
  * Returns the number of stream faults written (bad headers); a message kept whole with an
