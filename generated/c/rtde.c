@@ -1196,18 +1196,15 @@ void rtde_conversation_init(rtde_conversation *c)
 /* The storage's parts, each rounded up to a multiple of 16 bytes so that the next is aligned. */
 static size_t rtde__round(size_t n)
 {
-    return (n + 15u) & ~(size_t)15u;
+    return RTDE__ROUND16(n);
 }
 
 size_t rtde_storage_size(const rtde_limits *limits)
 {
-    size_t slots = limits->recipes * limits->variables;
     if (limits->recipes == 0 || limits->variables == 0 || limits->names == 0 || limits->recipes > RTDE_PROTOCOL_RECIPES
         || limits->variables > RTDE_PROTOCOL_VARIABLES || limits->names > RTDE_PROTOCOL_NAMES)
         return 0;
-    return rtde__round(limits->recipes * sizeof(rtde_recipe)) + 2 * rtde__round(slots * sizeof(uint16_t))
-         + rtde__round(slots) + rtde__round(limits->recipes * limits->names)
-         + rtde__round((2 * RTDE_MAX_PENDING + 1) * limits->names);
+    return RTDE_STORAGE_SIZE(limits->recipes, limits->variables, limits->names);
 }
 
 bool rtde_conversation_init_in(rtde_conversation *c, const rtde_limits *limits, void *storage, size_t size)

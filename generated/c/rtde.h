@@ -391,8 +391,16 @@ typedef struct rtde_conversation {
 /* A connection with the RTDE_MAX_* limits, its state in the conversation itself. */
 void rtde_conversation_init(rtde_conversation *c);
 /* Bytes of storage rtde_conversation_init_in needs for these limits; 0 when a limit is 0 or above
- * the protocol's own (RTDE_PROTOCOL_*). */
+ * the protocol's own (RTDE_PROTOCOL_*). RTDE_STORAGE_SIZE is the same as a constant expression, for
+ * static storage. */
 size_t rtde_storage_size(const rtde_limits *limits);
+#define RTDE__ROUND16(n) ((((size_t)(n)) + 15u) & ~(size_t)15u)
+#define RTDE_STORAGE_SIZE(recipes, variables, names)                                                  \
+    (RTDE__ROUND16((size_t)(recipes) * sizeof(rtde_recipe))                                           \
+     + 2 * RTDE__ROUND16((size_t)(recipes) * (size_t)(variables) * sizeof(uint16_t))                  \
+     + RTDE__ROUND16((size_t)(recipes) * (size_t)(variables))                                          \
+     + RTDE__ROUND16((size_t)(recipes) * (size_t)(names))                                              \
+     + RTDE__ROUND16((size_t)(2 * RTDE_MAX_PENDING + 1) * (size_t)(names)))
 /* A connection whose recipes and pending names live in the caller's storage (size bytes, aligned as
  * malloc aligns, not read before it is written): false when size is below rtde_storage_size. A
  * command sizes it to the protocol's own limits, so that every recipe a robot makes is kept; a

@@ -13,8 +13,7 @@ int main(int argc, char **argv)
 {
     static uint8_t piece[1 << 20];
     int direction;
-    if (!rtde_json_stream_init(&stream))
-        return 2;
+    rtde_json_stream_init(&stream);
     if (argc > 1)
         stream.conversation.protocol = (uint8_t)atoi(argv[1]);
     while ((direction = getchar()) != EOF) {

@@ -94,10 +94,7 @@ static int run_rtde(const cell_inputs *in, urwire_sw_version version, bool hinte
     int faults = 0;
     (void)version;
     (void)hinted;
-    if (!rtde_json_stream_init(&rtde_stream)) {
-        fputs("urwire-decode: no memory for an RTDE connection's recipes\n", stderr);
-        return 2;
-    }
+    rtde_json_stream_init(&rtde_stream);
     rtde_stream.envelope[0] = in->to_robot;
     rtde_stream.envelope[1] = in->from_robot;
     if (in->client && feed_rtde(in->client, false, &faults) == 2)
@@ -105,7 +102,6 @@ static int run_rtde(const cell_inputs *in, urwire_sw_version version, bool hinte
     if (feed_rtde(in->robot, true, &faults) == 2)
         return 2;
     faults += rtde_json_close(&rtde_stream, stdout);
-    rtde_json_stream_free(&rtde_stream);
     return faults ? 1 : 0;
 }
 

@@ -1,7 +1,6 @@
 /* RTDE records as canonical JSON lines. See rtde_json.h. */
 #include "rtde_json.h"
 
-#include <stdlib.h>
 #include <string.h>
 
 #include "json.h"
@@ -243,27 +242,16 @@ int rtde_json_record(FILE *out, const envelope *env, const rtde_message *m, rtde
 }
 
 /* The protocol's own limits: the command keeps every recipe a connection can make, as the Python
- * decoder does. The storage is reserved, not touched: only what a connection uses costs memory. */
+ * decoder does. */
 static const rtde_limits protocol_limits = {RTDE_PROTOCOL_RECIPES, RTDE_PROTOCOL_VARIABLES, RTDE_PROTOCOL_NAMES};
 
-bool rtde_json_stream_init(rtde_json_stream *s)
+void rtde_json_stream_init(rtde_json_stream *s)
 {
-    size_t size = rtde_storage_size(&protocol_limits);
-    if (s->storage == NULL && (s->storage = malloc(size)) == NULL)
-        return false;
-    if (!rtde_conversation_init_in(&s->conversation, &protocol_limits, s->storage, size))
-        return false;
+    rtde_conversation_init_in(&s->conversation, &protocol_limits, s->storage.bytes, sizeof s->storage.bytes);
     s->direction[0].length = s->direction[1].length = 0;
     s->direction[0].offset = s->direction[1].offset = 0;
     s->direction[0].scanning = s->direction[1].scanning = false;
     s->envelope[0] = s->envelope[1] = NULL;
-    return true;
-}
-
-void rtde_json_stream_free(rtde_json_stream *s)
-{
-    free(s->storage);
-    s->storage = NULL;
 }
 
 static bool plausible(const uint8_t *p)
