@@ -139,7 +139,8 @@ class Values(Mapping):
     __hash__ = None
 
     def __repr__(self) -> str:
-        return f"Values({self.pairs()!r})"
+        # As a dict shows, with a repeated name once per value: the text views print it so.
+        return "{" + ", ".join(f"{name!r}: {value!r}" for name, value in self.pairs()) + "}"
 
 
 class Recipe:
