@@ -2,7 +2,8 @@
 them through the Python Conversation. The C and Lua tests feed the same cases to their targets."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+import json
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
@@ -20,7 +21,8 @@ class RtdeCase:
     description: str
     protocol: Optional[int]
     messages: list[tuple[bool, bytes]]     # (from the robot, bytes), in the order they crossed
-    expect: list
+    expect: list                           # records; one whose JSON repeats a key: as shown_as() parses it
+    exact: dict = field(default_factory=dict)   # index in expect -> the record's exact JSON line
 
     @property
     def robot_bytes(self) -> bytes:
@@ -40,8 +42,35 @@ def rtde_cases() -> list[RtdeCase]:
             if m["from"] not in ("robot", "client"):
                 raise ValueError(f"{path.name}: messages[{i}].from is robot or client")
             messages.append((m["from"] == "robot", parse_hex(m["hex"], f"{path.name} messages[{i}]")))
-        cases.append(RtdeCase(path.stem, path, doc["description"], doc.get("protocol"), messages, doc["expect"]))
+        expect, exact = [], {}
+        for i, record in enumerate(doc["expect"]):
+            if isinstance(record, str):      # the exact line of a record that repeats a key
+                exact[i] = record
+                record = shown_as(record)
+            expect.append(record)
+        cases.append(RtdeCase(path.stem, path, doc["description"], doc.get("protocol"), messages, expect, exact))
     return cases
+
+
+def shown_as(line: str) -> dict:
+    """A JSON line as a dict in which a key that comes more than once (a variable a recipe names
+    twice) holds the list of its values, in order: as tshark's -T json lists a field shown twice."""
+    def pairs(items):
+        out: dict = {}
+        for key, value in items:
+            if key in out:
+                out[key] = (out[key] if isinstance(out[key], _Repeated) else _Repeated([out[key]])) + [value]
+            else:
+                out[key] = value
+        return {k: list(v) if isinstance(v, _Repeated) else v for k, v in out.items()}
+    return json.loads(line, object_pairs_hook=pairs)
+
+
+class _Repeated(list):
+    """The values of a key seen more than once."""
+
+    def __add__(self, other):
+        return _Repeated(list(self) + list(other))
 
 
 def python_records(case: RtdeCase) -> list:
@@ -55,4 +84,4 @@ def python_records(case: RtdeCase) -> list:
     return records + conversation.close()
 
 
-__all__ = ["RtdeCase", "rtde_cases", "python_records", "mismatches"]
+__all__ = ["RtdeCase", "rtde_cases", "python_records", "mismatches", "shown_as"]

@@ -119,9 +119,12 @@ class CellRows:
                 ("variables", "text", ",".join(recipe.names)), ("types", "text", ",".join(recipe.types))], time)
         values = item.record.values
         columns = [("conversation", "text", item.conversation), ("recipe_id", "int", recipe.id)]
-        for name, shape in recipe.json_kinds():
+        seen: dict[str, int] = {}
+        for (name, shape), value in zip(recipe.json_kinds(), values.in_order()):
             kind = "uint64" if shape.name == "UINT64" else _RTDE_KINDS[shape.kind]
-            value = values[name]
+            seen[name] = seen.get(name, 0) + 1
+            if seen[name] > 1:              # a name the recipe repeats: a column for each of its values
+                name = f"{name}#{seen[name]}"
             if shape.count == 1:
                 columns.append((name, kind, _plain(kind, value)))
             else:

@@ -6,7 +6,9 @@ each made from a setup request's variable names and its reply's types (urwire.ge
 RECIPE_KINDS say which messages those are). Data packages come out with their values by variable
 name; one of a recipe the connection never set up is kept raw with an error; a setup reply that
 refuses names (NOT_FOUND, IN_USE) is noted and makes no recipe. Data packages may arrive between
-a request and its reply: replies are matched to requests of their own kind, in order.
+a request and its reply: replies are matched to requests of their own kind, in order. A bounded
+number of requests await their replies (`Awaiting`): one beyond is not kept, and both it and its
+reply say so, rather than a reply taking another request's names.
 
 The functions at the end build what a client sends: `setup_outputs(["actual_q"], 125.0)`.
 """
@@ -16,9 +18,9 @@ from collections import deque
 from typing import Optional
 
 from .generated import rtde as _g
-from .typed_records import DecodeError, Framer, Message, RawMessage, Recipe
+from .typed_records import DecodeError, Framer, Message, RawMessage, Recipe, Values
 
-__all__ = ["Conversation", "Recipe", "VARIABLES", "variable", "request_protocol_version", "setup_outputs",
+__all__ = ["Conversation", "Recipe", "Values", "VARIABLES", "variable", "request_protocol_version", "setup_outputs",
            "setup_inputs", "start", "pause", "input_data", "send_text_message"]
 
 NAME, TITLE, PORTS = _g.NAME, _g.TITLE, _g.PORTS
@@ -37,6 +39,40 @@ def variable(name: str, direction: str = "output") -> Optional[_g._r.Variable]:
 _VARIABLE_INDEX = {(v.name, v.direction): v for v in VARIABLES}
 
 
+class Awaiting:
+    """Requests awaiting their replies, oldest first, at most `size` kept. A request beyond is not
+    kept but counted, and so is every later one while a counted one is ahead of it: replies come in
+    the order of the requests, so a kept one behind a lost one would take the lost one's reply."""
+
+    def __init__(self, size: int, what: str):
+        self.kept: deque = deque()
+        self.lost = 0
+        self.size = size
+        self.what = what                # "setups", "protocol version requests": for the errors' texts
+
+    def push(self, request) -> bool:
+        """Keep a request; False when it is not kept (then counted)."""
+        if self.lost or len(self.kept) >= self.size:
+            self.lost += 1
+            return False
+        self.kept.append(request)
+        return True
+
+    def pop(self) -> tuple[bool, object]:
+        """The request a reply answers: (True, request), or (False, None) when it answers one not
+        kept, or (True, None) when no request awaits."""
+        if self.kept:
+            return True, self.kept.popleft()
+        if self.lost:
+            self.lost -= 1
+            return False, None
+        return True, None
+
+    @property
+    def overflow(self) -> str:
+        return f"more than {self.size} {self.what} awaited replies"
+
+
 class Conversation:
     """One RTDE connection. `protocol` is the version in force: given, or negotiated, or until then
     DEFAULT_PROTOCOL_VERSION for a capture that starts after the version exchange."""
@@ -44,9 +80,8 @@ class Conversation:
     def __init__(self, version_hint=None, protocol: Optional[int] = None):
         self.protocol: Optional[int] = protocol        # None until given or negotiated
         self._framers = {True: Framer(_KNOWN_CODES), False: Framer(_KNOWN_CODES)}
-        self._asked_version: deque = deque()
-        self._pending: dict[str, deque] = {kind.name: deque(maxlen=_g.MAX_PENDING_SETUPS)
-                                           for kind in _g.RECIPE_KINDS}
+        self._asked_version = Awaiting(_g.MAX_PENDING_VERSION_REQUESTS, "protocol version requests")
+        self._pending = {kind.name: Awaiting(_g.MAX_PENDING_SETUPS, "setups") for kind in _g.RECIPE_KINDS}
         self.recipes: dict[str, dict[Optional[int], Recipe]] = {kind.name: {} for kind in _g.RECIPE_KINDS}
         self.count = 0                                 # records given out so far, both directions
 
@@ -110,23 +145,45 @@ class Conversation:
         """What a message changes in the connection's state."""
         cls = type(record)
         if cls is _g.RequestProtocolVersion:
-            self._asked_version.append(record.protocol_version)
+            if not self._asked_version.push(record.protocol_version):
+                record.note("error", f"protocol version request not kept: {self._asked_version.overflow}")
         elif cls is _g.RequestProtocolVersionReply:
-            asked = self._asked_version.popleft() if self._asked_version else None
-            if record.accepted and asked is not None:
-                self.protocol = asked
-            elif not record.accepted and self.protocol is None:
-                self.protocol = 1                       # the robot keeps protocol 1 until one is accepted
+            self._version_reply(record)
         elif cls in _KIND_OF_REQUEST:
-            self._pending[_KIND_OF_REQUEST[cls].name].append(record.variables)
+            pending = self._pending[_KIND_OF_REQUEST[cls].name]
+            if not pending.push(record.variables):
+                record.note("error", f"setup not kept: {pending.overflow}")
         elif cls in _KIND_OF_REPLY:
             self._make_recipe(_KIND_OF_REPLY[cls], record)
         elif cls is _g.StartReply and not record.accepted:
             record.note("warning", "the robot refused to start")
 
+    def _version_reply(self, reply: Message) -> None:
+        """Only a protocol that has layouts is taken: a robot accepting any other (0, 3, 300) leaves
+        the one in force, and the reply says so."""
+        paired, asked = self._asked_version.pop()
+        if not paired:
+            reply.note("error", f"reply to a protocol version request that was not kept: "
+                                f"{self._asked_version.overflow}")
+        if reply.accepted and asked is not None:
+            if asked in _g.PROTOCOL_VERSIONS:
+                self.protocol = asked
+            else:
+                reply.note("error", f"protocol version {asked} accepted, which has no layouts: "
+                                    f"protocol {self.protocol_in_force} stays in force")
+        elif not reply.accepted and self.protocol is None:
+            self.protocol = 1                           # the robot keeps protocol 1 until one is accepted
+
     def _make_recipe(self, kind, reply: Message) -> None:
         pending = self._pending[kind.name]
-        names = [n for n in pending.popleft() if n] if pending else None   # an empty name names nothing
+        paired, request = pending.pop()
+        if not paired:
+            # Its recipe's names are unknown: data packages of its id are kept raw from here on,
+            # rather than read by the recipe this reply replaced.
+            reply.note("error", f"reply to a setup that was not kept: {pending.overflow}")
+            self.recipes[kind.name].pop(getattr(reply, "recipe_id", None), None)
+            return
+        names = [n for n in request if n] if request is not None else None   # an empty name names nothing
         if names is None:
             reply.note("warning", "a setup reply without a request seen: its recipe's names are unknown")
             return
@@ -175,6 +232,7 @@ def send_text_message(message: str, source: str = "urwire", level: int = 3) -> b
     return _g.SendTextMessage(message, source, level).encode()
 
 
-def input_data(recipe: Recipe, values: dict) -> bytes:
-    """An input data package for an input recipe the robot accepted; `values` by variable name."""
-    return _g.InputDataPackage(recipe.id, dict(values)).encode(recipe)
+def input_data(recipe: Recipe, values) -> bytes:
+    """An input data package for an input recipe the robot accepted; `values` by variable name (a
+    dict), or a Values of the recipe's names, one value each in order (for a name given twice)."""
+    return _g.InputDataPackage(recipe.id, Values.of(values)).encode(recipe)

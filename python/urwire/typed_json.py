@@ -23,10 +23,16 @@ def _by_python_type(value: Any) -> str:
     return _value(value, kind)
 
 
-def _values(values: dict, recipe) -> list[str]:
+def _values(values, recipe) -> list[str]:
+    """Every value under its variable's name, in recipe order: a name the recipe repeats is printed
+    once per value, as the C writer prints it."""
     if recipe is not None:
-        return [f"{_text(name)}: {_value(values[name], shape.kind)}" for name, shape in recipe.json_kinds()]
-    return [f"{_text(name)}: {_by_python_type(value)}" for name, value in values.items()]
+        in_order = values.in_order() if getattr(values, "names", None) == recipe.names \
+            else [values[name] for name in recipe.names]            # a dict a caller built
+        return [f"{_text(name)}: {_value(value, shape.kind)}"
+                for (name, shape), value in zip(recipe.json_kinds(), in_order)]
+    pairs = values.pairs() if hasattr(values, "pairs") else values.items()
+    return [f"{_text(name)}: {_by_python_type(value)}" for name, value in pairs]
 
 
 def message_json(obj) -> str:
@@ -46,6 +52,8 @@ def message_json(obj) -> str:
         parts.append('"refused": {' + ", ".join(f"{_text(n)}: {_text(w)}" for n, w in notes["refused"]) + "}")
     if "warning" in notes:
         parts.append(f'"warning": {_text(notes["warning"])}')
+    if "error" in notes:
+        parts.append(f'"error": {_text(notes["error"])}')
     return "{" + ", ".join(parts) + "}"
 
 

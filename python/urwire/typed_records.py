@@ -8,6 +8,7 @@ what no layout fits. Connection state lives in the interface's own module (urwir
 from __future__ import annotations
 
 import struct
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, Iterator, Optional
 
@@ -71,12 +72,83 @@ class RecipeKind:
     replies: tuple
 
 
+class Values(Mapping):
+    """A data package's values, every one in its recipe's order. By name it is a mapping
+    (`values["actual_q"]`); a recipe may name a variable twice, and then the name gives the first
+    of its values, as the C library's rtde_data_find does, and `all(name)` gives each. `in_order()`
+    is every value in recipe order, `pairs()` each with its name: what the JSON prints and the
+    bytes hold."""
+
+    __slots__ = ("_names", "_ordered", "_by_name")
+
+    def __init__(self, names, ordered: Optional[list] = None, by_name: Optional[dict] = None):
+        self._names = tuple(names)
+        self._ordered = ordered            # one value per name, in order (made from by_name when needed)
+        self._by_name = by_name            # the first value of each name (made from ordered when needed)
+
+    @classmethod
+    def of(cls, values) -> "Values":
+        """Values as given: a Values, a dict by name, or (name, value) pairs."""
+        if isinstance(values, Values):
+            return values
+        if isinstance(values, Mapping):
+            return cls(tuple(values), by_name=dict(values))
+        pairs = list(values)
+        return cls([n for n, _ in pairs], [v for _, v in pairs])
+
+    @property
+    def names(self) -> tuple:
+        return self._names
+
+    def in_order(self) -> list:
+        if self._ordered is None:
+            self._ordered = [self._by_name[name] for name in self._names]
+        return self._ordered
+
+    def pairs(self) -> list[tuple[str, Any]]:
+        return list(zip(self._names, self.in_order()))
+
+    def all(self, name: str) -> list:
+        """Every value of this name, in recipe order: one, or several where the recipe repeats it."""
+        return [v for n, v in zip(self._names, self.in_order()) if n == name]
+
+    def _first(self) -> dict:
+        if self._by_name is None:
+            by_name: dict = {}
+            for name, value in zip(self._names, self._ordered):
+                by_name.setdefault(name, value)
+            self._by_name = by_name
+        return self._by_name
+
+    def __getitem__(self, name: str):
+        return self._first()[name]
+
+    def __iter__(self):
+        return iter(self._first())
+
+    def __len__(self) -> int:
+        return len(self._first())
+
+    def __eq__(self, other) -> bool:
+        if isinstance(other, Values):
+            return self.pairs() == other.pairs()
+        if isinstance(other, Mapping):     # a dict by name: equal where no name is repeated
+            return len(self._names) == len(self._first()) and self._first() == dict(other)
+        return NotImplemented
+
+    __hash__ = None
+
+    def __repr__(self) -> str:
+        # As a dict shows, with a repeated name once per value: the text views print it so.
+        return "{" + ", ".join(f"{name!r}: {value!r}" for name, value in self.pairs()) + "}"
+
+
 class Recipe:
     """A recipe of one connection: its id (None for protocol 1's one output recipe), the variable
     names and their types in order, and where it was set up (the setup reply's index among the
-    connection's records)."""
+    connection's records). A name may come twice: each gets its own value."""
 
-    __slots__ = ("id", "kind", "names", "types", "defined_at", "_struct", "_shapes", "_plan")
+    __slots__ = ("id", "kind", "names", "types", "defined_at", "_struct", "_shapes", "_plan", "_repeats")
 
     def __init__(self, recipe_id: Optional[int], kind: str, names: list, types: list,
                  value_types: dict, defined_at: int = -1):
@@ -89,32 +161,38 @@ class Recipe:
         firsts = [sum(s.count for s in shapes[:k]) for k in range(len(shapes))]
         self._plan = tuple((name, first, s.count, s.kind == "bool")
                            for name, first, s in zip(self.names, firsts, shapes))
+        self._repeats = len(set(self.names)) < len(self.names)
 
     @property
     def size(self) -> int:
         return self._struct.size
 
-    def decode(self, buf, pos: int, end: int) -> tuple[dict, int]:
+    def decode(self, buf, pos: int, end: int) -> tuple[Values, int]:
         if pos + self._struct.size > end:
             raise short("values", pos, self._struct.size, end)
         flat = self._struct.unpack_from(buf, pos)
-        if _values_by_name is not None:
+        if _values_by_name is not None and not self._repeats:
             values = _values_by_name(flat, self._plan)     # in C; None: a bool that is not a byte
             if values is not None:
-                return values, pos + self._struct.size
-        values, at = {}, 0
-        for name, shape in zip(self.names, self._shapes):
+                return Values(self.names, by_name=values), pos + self._struct.size
+        ordered, at = [], 0
+        for shape in self._shapes:
             if shape.count == 1:
-                values[name] = _rt.BOOL[flat[at]] if shape.kind == "bool" else flat[at]
+                ordered.append(_rt.BOOL[flat[at]] if shape.kind == "bool" else flat[at])
             else:
-                values[name] = list(flat[at:at + shape.count])
+                ordered.append(list(flat[at:at + shape.count]))
             at += shape.count
-        return values, pos + self._struct.size
+        return Values(self.names, ordered), pos + self._struct.size
 
-    def encode(self, out: bytearray, values: dict) -> None:
+    def encode(self, out: bytearray, values) -> None:
+        """Values in recipe order: a Values of this recipe's names by position (a name given twice
+        keeps both values), anything else by name."""
+        if isinstance(values, Values) and values.names == self.names:
+            in_order = values.in_order()
+        else:
+            in_order = [values[name] for name in self.names]
         flat: list = []
-        for name, shape in zip(self.names, self._shapes):
-            value = values[name]
+        for value, shape in zip(in_order, self._shapes):
             if shape.count == 1:
                 flat.append(int(value) if shape.kind == "bool" else value)
             else:
@@ -152,7 +230,7 @@ def write_names(out: bytearray, names: list, separator: str) -> None:
     out += _rt.text_bytes(separator.join(names))
 
 
-def read_values(buf, pos: int, end: int, recipe: Optional[Recipe]) -> tuple[dict, int]:
+def read_values(buf, pos: int, end: int, recipe: Optional[Recipe]) -> tuple[Values, int]:
     if recipe is None:
         raise DecodeError("values", pos, "no recipe to read them by")
     return recipe.decode(buf, pos, end)

@@ -1,36 +1,71 @@
 /* ---- the RTDE connection: state, decoding, the client's messages -------------------------- */
 
-/* A recipe of one connection: its variables' names (a copy) and types, in order. */
+/* A recipe of one connection: its variables' names (a copy) and types, in order, in the storage of
+ * its connection. */
 typedef struct rtde_recipe {
     bool used;
     bool from_robot;                        /* outputs (the robot's data) or inputs (the client's) */
     int16_t id;                             /* -1: protocol 1's one output recipe, which has no id */
-    uint16_t count;
-    uint16_t size;                          /* bytes of one data package's values */
-    uint8_t types[RTDE_MAX_VARIABLES];      /* rtde_value_type */
-    uint16_t name_at[RTDE_MAX_VARIABLES];
-    uint16_t name_length[RTDE_MAX_VARIABLES];
-    char names[RTDE_MAX_NAMES];
+    size_t count;
+    size_t size;                            /* bytes of one data package's values */
+    uint8_t *types;                         /* rtde_value_type, count of them */
+    uint16_t *name_at;
+    uint16_t *name_length;
+    char *names;
 } rtde_recipe;
 
+/* A setup request's names, awaiting its reply. */
 typedef struct rtde_pending {
-    uint16_t length;
-    char names[RTDE_MAX_NAMES];
+    size_t length;                          /* RTDE_NAMES_NOT_KEPT: longer than the connection's limit */
+    char *names;
 } rtde_pending;
 
-/* Everything RTDE's messages depend on, for one TCP connection: owned by the caller, zeroed by
- * rtde_conversation_init, never allocated. */
+#define RTDE_NAMES_NOT_KEPT ((size_t)-1)
+
+/* Everything RTDE's messages depend on, for one TCP connection: owned by the caller, never
+ * allocated. Its recipes and pending names live in `own` (rtde_conversation_init) or in storage the
+ * caller gives (rtde_conversation_init_in); a conversation is not copied. */
 typedef struct rtde_conversation {
     uint8_t protocol;                       /* 0 until negotiated: RTDE_DEFAULT_PROTOCOL applies */
-    uint16_t asked[4];                      /* protocol versions asked for, awaiting replies */
+    uint16_t asked[RTDE_MAX_PENDING_VERSIONS];  /* protocol versions asked for, awaiting replies */
     uint8_t asked_count;
+    uint64_t asked_lost;                    /* requests not kept (the queue was full), awaiting replies */
     rtde_pending pending[2][RTDE_MAX_PENDING];  /* [0] outputs, [1] inputs: setups awaiting replies */
     uint8_t pending_count[2];
-    rtde_recipe recipes[RTDE_MAX_RECIPES];
-    rtde_pending refused;                   /* the names of the last reply's refusals (a view's home) */
+    uint64_t pending_lost[2];
+    rtde_pending refused;                   /* the names of the last reply's request (a view's home) */
+    char said[112];                         /* the text of the last message's error (a view's home) */
+    rtde_limits limits;
+    rtde_recipe *recipes;                   /* limits.recipes slots */
+    size_t recipes_used;                    /* slots used so far: the rest were never used */
+    struct {
+        rtde_recipe recipes[RTDE_MAX_RECIPES];
+        uint8_t types[RTDE_MAX_RECIPES][RTDE_MAX_VARIABLES];
+        uint16_t name_at[RTDE_MAX_RECIPES][RTDE_MAX_VARIABLES];
+        uint16_t name_length[RTDE_MAX_RECIPES][RTDE_MAX_VARIABLES];
+        char names[RTDE_MAX_RECIPES][RTDE_MAX_NAMES];
+        char pending[2 * RTDE_MAX_PENDING + 1][RTDE_MAX_NAMES];
+    } own;                                  /* rtde_conversation_init's storage */
 } rtde_conversation;
 
+/* A connection with the RTDE_MAX_* limits, its state in the conversation itself. */
 void rtde_conversation_init(rtde_conversation *c);
+/* Bytes of storage rtde_conversation_init_in needs for these limits; 0 when a limit is 0 or above
+ * the protocol's own (RTDE_PROTOCOL_*). RTDE_STORAGE_SIZE is the same as a constant expression, for
+ * static storage. */
+size_t rtde_storage_size(const rtde_limits *limits);
+#define RTDE__ROUND16(n) ((((size_t)(n)) + 15u) & ~(size_t)15u)
+#define RTDE_STORAGE_SIZE(recipes, variables, names)                                                  \
+    (RTDE__ROUND16((size_t)(recipes) * sizeof(rtde_recipe))                                           \
+     + 2 * RTDE__ROUND16((size_t)(recipes) * (size_t)(variables) * sizeof(uint16_t))                  \
+     + RTDE__ROUND16((size_t)(recipes) * (size_t)(variables))                                          \
+     + RTDE__ROUND16((size_t)(recipes) * (size_t)(names))                                              \
+     + RTDE__ROUND16((size_t)(2 * RTDE_MAX_PENDING + 1) * (size_t)(names)))
+/* A connection whose recipes and pending names live in the caller's storage (size bytes, aligned as
+ * malloc aligns, not read before it is written): false when size is below rtde_storage_size. A
+ * command sizes it to the protocol's own limits, so that every recipe a robot makes is kept; a
+ * firmware to what it needs. */
+bool rtde_conversation_init_in(rtde_conversation *c, const rtde_limits *limits, void *storage, size_t size);
 uint8_t rtde_protocol_in_force(const rtde_conversation *c);
 
 /* The size of the message that starts buf (header included), once its header is there:
@@ -55,7 +90,7 @@ bool rtde_data_find(const rtde_data *d, const char *name, rtde_value *out);
 const rtde_recipe *rtde_recipe_of(const rtde_conversation *c, bool from_robot, int id);
 
 /* What a client sends: each writes one message into out (cap bytes) and returns its size, or 0
- * when it does not fit (or a name list is longer than RTDE_MAX_NAMES). */
+ * when it does not fit (or a name list is longer than the protocol's RTDE_PROTOCOL_NAMES). */
 size_t rtde_build_request_protocol_version(uint8_t *out, size_t cap, uint16_t version);
 size_t rtde_build_get_controller_version(uint8_t *out, size_t cap);
 size_t rtde_build_setup_outputs(uint8_t *out, size_t cap, uint8_t protocol, double frequency,

@@ -17,9 +17,82 @@ static bool rtde__values(rtde__reader *r, rtde_data *out)
     return true;
 }
 
+#define RTDE__TEXT(x) #x
+#define RTDE__NUMBER(x) RTDE__TEXT(x)
+#define RTDE__SETUPS_OVERFLOW "more than " RTDE__NUMBER(RTDE_MAX_PENDING) " setups awaited replies"
+#define RTDE__VERSIONS_OVERFLOW "more than " RTDE__NUMBER(RTDE_MAX_PENDING_VERSIONS) \
+    " protocol version requests awaited replies"
+
+/* Points the recipe slots and the pending names at their storage: the slots' arrays one after
+ * another in each of the given arrays. */
+static void rtde__place(rtde_conversation *c, const rtde_limits *limits, rtde_recipe *recipes, uint8_t *types,
+                        uint16_t *name_at, uint16_t *name_length, char *names, char *pending)
+{
+    size_t i, k;
+    c->limits = *limits;
+    c->recipes = recipes;
+    c->recipes_used = 0;
+    for (i = 0; i < limits->recipes; i++) {
+        recipes[i].used = false;
+        recipes[i].types = types + i * limits->variables;
+        recipes[i].name_at = name_at + i * limits->variables;
+        recipes[i].name_length = name_length + i * limits->variables;
+        recipes[i].names = names + i * limits->names;
+    }
+    for (k = 0; k < 2; k++)
+        for (i = 0; i < RTDE_MAX_PENDING; i++)
+            c->pending[k][i].names = pending + (k * RTDE_MAX_PENDING + i) * limits->names;
+    c->refused.names = pending + 2 * RTDE_MAX_PENDING * limits->names;
+}
+
 void rtde_conversation_init(rtde_conversation *c)
 {
+    rtde_limits limits;
+    limits.recipes = RTDE_MAX_RECIPES;
+    limits.variables = RTDE_MAX_VARIABLES;
+    limits.names = RTDE_MAX_NAMES;
     memset(c, 0, sizeof *c);
+    rtde__place(c, &limits, c->own.recipes, &c->own.types[0][0], &c->own.name_at[0][0], &c->own.name_length[0][0],
+                &c->own.names[0][0], &c->own.pending[0][0]);
+}
+
+/* The storage's parts, each rounded up to a multiple of 16 bytes so that the next is aligned. */
+static size_t rtde__round(size_t n)
+{
+    return RTDE__ROUND16(n);
+}
+
+size_t rtde_storage_size(const rtde_limits *limits)
+{
+    if (limits->recipes == 0 || limits->variables == 0 || limits->names == 0 || limits->recipes > RTDE_PROTOCOL_RECIPES
+        || limits->variables > RTDE_PROTOCOL_VARIABLES || limits->names > RTDE_PROTOCOL_NAMES)
+        return 0;
+    return RTDE_STORAGE_SIZE(limits->recipes, limits->variables, limits->names);
+}
+
+bool rtde_conversation_init_in(rtde_conversation *c, const rtde_limits *limits, void *storage, size_t size)
+{
+    size_t need = rtde_storage_size(limits), slots = limits->recipes * limits->variables;
+    uint8_t *at = (uint8_t *)storage;
+    rtde_recipe *recipes;
+    uint16_t *name_at, *name_length;
+    uint8_t *types;
+    char *names;
+    if (need == 0 || size < need || storage == NULL)
+        return false;
+    memset(c, 0, offsetof(rtde_conversation, own));
+    recipes = (rtde_recipe *)(void *)at;
+    at += rtde__round(limits->recipes * sizeof(rtde_recipe));
+    name_at = (uint16_t *)(void *)at;
+    at += rtde__round(slots * sizeof(uint16_t));
+    name_length = (uint16_t *)(void *)at;
+    at += rtde__round(slots * sizeof(uint16_t));
+    types = at;
+    at += rtde__round(slots);
+    names = (char *)at;
+    at += rtde__round(limits->recipes * limits->names);
+    rtde__place(c, limits, recipes, types, name_at, name_length, names, (char *)at);
+    return true;
 }
 
 uint8_t rtde_protocol_in_force(const rtde_conversation *c)
@@ -87,10 +160,32 @@ static uint8_t rtde__layout_for(uint8_t code, bool from_robot, uint8_t protocol)
 const rtde_recipe *rtde_recipe_of(const rtde_conversation *c, bool from_robot, int id)
 {
     size_t i;
-    for (i = 0; i < RTDE_MAX_RECIPES; i++)
+    for (i = 0; i < c->recipes_used; i++)
         if (c->recipes[i].used && c->recipes[i].from_robot == from_robot && c->recipes[i].id == id)
             return &c->recipes[i];
     return NULL;
+}
+
+/* The recipe a reply replaces: gone, when the reply makes none that can be kept, so that its data
+ * packages are not read by the old one. */
+static void rtde__forget_recipe(rtde_conversation *c, bool from_robot, int id)
+{
+    rtde_recipe *old = (rtde_recipe *)rtde_recipe_of(c, from_robot, id);
+    if (old)
+        old->used = false;
+}
+
+/* The slot a new recipe of this direction and id goes in: the one it replaces, or a free one. */
+static rtde_recipe *rtde__recipe_slot(rtde_conversation *c, bool from_robot, int id)
+{
+    rtde_recipe *slot = (rtde_recipe *)rtde_recipe_of(c, from_robot, id);
+    size_t i;
+    if (slot)
+        return slot;
+    for (i = 0; i < c->recipes_used; i++)
+        if (!c->recipes[i].used)
+            return &c->recipes[i];
+    return c->recipes_used < c->limits.recipes ? &c->recipes[c->recipes_used++] : NULL;
 }
 
 /* The next name of a comma-separated list at *at (advanced past it and its comma). */
@@ -116,75 +211,160 @@ static bool rtde__is_refusal(const uint8_t *word, size_t n)
     return rtde_value_type_of(word, n) < 0;
 }
 
-/* A reply's types against its request's names: a recipe, or the refusal noted on the message. */
-static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text types, int id, rtde_message *m)
+/* The oldest setup request of a kind, taken for its reply: it becomes c->refused (the view's home),
+ * and c->refused's buffer goes to the queue's end for a later request. */
+static void rtde__take_request(rtde_conversation *c, int kind)
 {
-    rtde_pending *request;
-    rtde_recipe recipe;
-    size_t at_names = 0, at_types = 0, s1, n1, s2, n2, i, size = 0;
-    bool refused = false;
-    if (c->pending_count[kind] == 0) {
-        m->warning = "a setup reply without a request seen: its recipe's names are unknown";
-        return RTDE_OK;
-    }
-    request = &c->pending[kind][0];
-    c->refused = *request;                  /* kept for the message's view of its names */
+    char *spare = c->refused.names;
+    size_t i;
+    c->refused = c->pending[kind][0];
     for (i = 1; i < c->pending_count[kind]; i++)
         c->pending[kind][i - 1] = c->pending[kind][i];
     c->pending_count[kind]--;
-    m->request_names.data = (const uint8_t *)c->refused.names;
-    m->request_names.length = c->refused.length;
-    memset(&recipe, 0, sizeof recipe);
-    recipe.used = true;
-    recipe.from_robot = kind == 0;
-    recipe.id = (int16_t)id;
-    memcpy(recipe.names, c->refused.names, c->refused.length);
-    for (;;) {
-        bool more_names = rtde__next_name((const uint8_t *)c->refused.names, c->refused.length, &at_names, &s1, &n1);
-        bool more_types;
-        int t;
-        while (more_names && n1 == 0)           /* an empty name names no variable */
-            more_names = rtde__next_name((const uint8_t *)c->refused.names, c->refused.length, &at_names, &s1, &n1);
-        more_types = rtde__next_name(types.data, types.length, &at_types, &s2, &n2);
-        if (!more_names || !more_types) {
-            if (more_names != more_types) {
-                m->warning = "names asked and types answered differ in number";
-                m->refused = false;
-                return RTDE_OK;
-            }
-            break;
+    c->pending[kind][c->pending_count[kind]].names = spare;
+}
+
+/* A reply's types against its request's names: a recipe, or the refusal noted on the message. */
+static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text types, int id, rtde_message *m)
+{
+    const uint8_t *names;
+    rtde_recipe *recipe = NULL;
+    size_t at_names = 0, at_types = 0, s1, n1, s2, n2, count = 0, size = 0, pass;
+    bool refused = false, from_robot = kind == 0;
+    if (c->pending_count[kind] == 0) {
+        if (c->pending_lost[kind] > 0) {    /* its request was not kept: its names are unknown */
+            c->pending_lost[kind]--;
+            m->error = "reply to a setup that was not kept: " RTDE__SETUPS_OVERFLOW;
+            rtde__forget_recipe(c, from_robot, id);
+            return RTDE_OK;
         }
-        if (rtde__is_refusal(types.data + s2, n2)) {
-            refused = true;
-            continue;
-        }
-        if (recipe.count == RTDE_MAX_VARIABLES)
-            return RTDE_TOO_MANY;
-        t = rtde_value_type_of(types.data + s2, n2);
-        recipe.types[recipe.count] = (uint8_t)t;
-        recipe.name_at[recipe.count] = (uint16_t)s1;
-        recipe.name_length[recipe.count] = (uint16_t)n1;
-        recipe.count++;
-        size += (size_t)rtde__value_types[t].size * rtde__value_types[t].count;
-    }
-    if (refused) {
-        m->refused = true;
+        m->warning = "a setup reply without a request seen: its recipe's names are unknown";
         return RTDE_OK;
     }
-    recipe.size = (uint16_t)size;
-    for (i = 0; i < RTDE_MAX_RECIPES; i++) {    /* a recipe of the same direction and id is replaced */
-        rtde_recipe *slot = &c->recipes[i];
-        if (slot->used && slot->from_robot == recipe.from_robot && slot->id == recipe.id) {
-            *slot = recipe;
+    rtde__take_request(c, kind);
+    if (c->refused.length == RTDE_NAMES_NOT_KEPT) {    /* longer than this connection keeps */
+        c->refused.length = 0;
+        rtde__forget_recipe(c, from_robot, id);
+        return RTDE_TOO_MANY;
+    }
+    names = (const uint8_t *)c->refused.names;
+    m->request_names.data = names;
+    m->request_names.length = c->refused.length;
+    /* Pass 0 checks the pairs (their numbers, refusals, the limit); pass 1 writes the recipe. */
+    for (pass = 0; pass < 2; pass++) {
+        at_names = at_types = 0;
+        count = size = 0;
+        if (pass == 1) {
+            recipe = rtde__recipe_slot(c, from_robot, id);
+            if (recipe == NULL)
+                return RTDE_TOO_MANY;
+            recipe->used = true;
+            recipe->from_robot = from_robot;
+            recipe->id = (int16_t)id;
+            memcpy(recipe->names, names, c->refused.length);
+        }
+        for (;;) {
+            bool more_names = rtde__next_name(names, c->refused.length, &at_names, &s1, &n1);
+            bool more_types;
+            int t;
+            while (more_names && n1 == 0)           /* an empty name names no variable */
+                more_names = rtde__next_name(names, c->refused.length, &at_names, &s1, &n1);
+            more_types = rtde__next_name(types.data, types.length, &at_types, &s2, &n2);
+            if (!more_names || !more_types) {
+                if (more_names != more_types) {
+                    m->warning = "names asked and types answered differ in number";
+                    return RTDE_OK;
+                }
+                break;
+            }
+            if (rtde__is_refusal(types.data + s2, n2)) {
+                refused = true;
+                continue;
+            }
+            t = rtde_value_type_of(types.data + s2, n2);
+            if (recipe != NULL) {
+                recipe->types[count] = (uint8_t)t;
+                recipe->name_at[count] = (uint16_t)s1;
+                recipe->name_length[count] = (uint16_t)n1;
+            }
+            count++;
+            size += (size_t)rtde__value_types[t].size * rtde__value_types[t].count;
+        }
+        if (refused) {
+            m->refused = true;
             return RTDE_OK;
+        }
+        if (count > c->limits.variables) {
+            rtde__forget_recipe(c, from_robot, id);
+            return RTDE_TOO_MANY;
         }
     }
-    for (i = 0; i < RTDE_MAX_RECIPES; i++)
-        if (!c->recipes[i].used) {
-            c->recipes[i] = recipe;
-            return RTDE_OK;
+    if (recipe != NULL) {
+        recipe->count = count;
+        recipe->size = size;
+    }
+    return RTDE_OK;
+}
+
+/* Whether the spec lays out any message in this protocol version. */
+static bool rtde__protocol_has_layouts(uint16_t protocol)
+{
+    size_t i;
+    for (i = 0; i < sizeof rtde__dispatch / sizeof rtde__dispatch[0]; i++)
+        if (rtde__dispatch[i].protocol == protocol)
+            return true;
+    return false;
+}
+
+/* Decimal digits of n at out; returns the position after them. */
+static char *rtde__put_number(char *out, unsigned n)
+{
+    char digits[10];
+    size_t k = 0;
+    do {
+        digits[k++] = (char)('0' + n % 10u);
+        n /= 10u;
+    } while (n);
+    while (k)
+        *out++ = digits[--k];
+    return out;
+}
+
+static char *rtde__put_text(char *out, const char *text)
+{
+    size_t n = strlen(text);
+    memcpy(out, text, n);
+    return out + n;
+}
+
+/* A protocol version reply: only a version with layouts is taken (a robot accepting 0 or 300
+ * leaves the one in force, and its reply says so). */
+static void rtde__version_reply(rtde_conversation *c, rtde_message *m)
+{
+    bool any = c->asked_count > 0, accepted = m->u.request_protocol_version_reply.accepted != 0;
+    uint16_t asked = c->asked[0];
+    if (any) {
+        memmove(c->asked, c->asked + 1, sizeof c->asked - sizeof c->asked[0]);
+        c->asked_count--;
+    } else if (c->asked_lost > 0) {
+        c->asked_lost--;
+        m->error = "reply to a protocol version request that was not kept: " RTDE__VERSIONS_OVERFLOW;
+    }
+    if (accepted && any) {
+        if (rtde__protocol_has_layouts(asked)) {
+            c->protocol = (uint8_t)asked;
+        } else {
+            char *p = rtde__put_text(c->said, "protocol version ");
+            p = rtde__put_number(p, asked);
+            p = rtde__put_text(p, " accepted, which has no layouts: protocol ");
+            p = rtde__put_number(p, rtde_protocol_in_force(c));
+            p = rtde__put_text(p, " stays in force");
+            *p = '\0';
+            m->error = c->said;
         }
-    return RTDE_TOO_MANY;
+    } else if (!accepted && c->protocol == 0) {
+        c->protocol = 1;                    /* the robot keeps protocol 1 until one is accepted */
+    }
 }
 
 /* What a message changes in the connection. */
@@ -192,36 +372,31 @@ static rtde_error rtde__follow(rtde_conversation *c, rtde_message *m)
 {
     uint8_t layout = m->layout;
     if (layout == RTDE_LAYOUT_REQUEST_PROTOCOL_VERSION) {
-        if (c->asked_count == sizeof c->asked / sizeof c->asked[0])
-            return RTDE_TOO_MANY;
-        c->asked[c->asked_count++] = m->u.request_protocol_version.protocol_version;
-    } else if (layout == RTDE_LAYOUT_REQUEST_PROTOCOL_VERSION_REPLY) {
-        uint16_t asked = c->asked[0];
-        bool any = c->asked_count > 0;
-        if (any) {
-            memmove(c->asked, c->asked + 1, sizeof c->asked - sizeof c->asked[0]);
-            c->asked_count--;
+        if (c->asked_lost > 0 || c->asked_count == RTDE_MAX_PENDING_VERSIONS) {
+            c->asked_lost++;                /* not kept: its reply will say so */
+            m->error = "protocol version request not kept: " RTDE__VERSIONS_OVERFLOW;
+        } else {
+            c->asked[c->asked_count++] = m->u.request_protocol_version.protocol_version;
         }
-        if (m->u.request_protocol_version_reply.accepted && any && asked <= 255)
-            c->protocol = (uint8_t)asked;
-        else if (!m->u.request_protocol_version_reply.accepted && c->protocol == 0)
-            c->protocol = 1;                /* the robot keeps protocol 1 until one is accepted */
+    } else if (layout == RTDE_LAYOUT_REQUEST_PROTOCOL_VERSION_REPLY) {
+        rtde__version_reply(c, m);
     } else if (rtde__roles[layout].request_kind >= 0) {
         int kind = rtde__roles[layout].request_kind;
         const rtde_text *names = layout == RTDE_LAYOUT_SETUP_OUTPUTS ? &m->u.setup_outputs.variables
                                : layout == RTDE_LAYOUT_SETUP_OUTPUTS_V1 ? &m->u.setup_outputs_v1.variables
                                : &m->u.setup_inputs.variables;
         rtde_pending *slot;
-        size_t i;
-        if (names->length > RTDE_MAX_NAMES)
-            return RTDE_TOO_MANY;
-        if (c->pending_count[kind] == RTDE_MAX_PENDING) {   /* the oldest is forgotten */
-            for (i = 1; i < RTDE_MAX_PENDING; i++)
-                c->pending[kind][i - 1] = c->pending[kind][i];
-            c->pending_count[kind]--;
+        if (c->pending_lost[kind] > 0 || c->pending_count[kind] == RTDE_MAX_PENDING) {
+            c->pending_lost[kind]++;        /* not kept: its reply will say so */
+            m->error = "setup not kept: " RTDE__SETUPS_OVERFLOW;
+            return RTDE_OK;
         }
         slot = &c->pending[kind][c->pending_count[kind]++];
-        slot->length = (uint16_t)names->length;
+        if (names->length > c->limits.names) {
+            slot->length = RTDE_NAMES_NOT_KEPT;     /* kept in its place, so that its reply finds it */
+            return RTDE_TOO_MANY;
+        }
+        slot->length = names->length;
         memcpy(slot->names, names->data, names->length);
     } else if (layout == RTDE_LAYOUT_SETUP_OUTPUTS_REPLY) {
         return rtde__make_recipe(c, 0, m->u.setup_outputs_reply.types, m->u.setup_outputs_reply.recipe_id, m);
@@ -412,7 +587,7 @@ size_t rtde_build_setup_outputs(uint8_t *out, size_t cap, uint8_t protocol, doub
                                 const char *const *names, size_t count)
 {
     size_t n = rtde__names_length(names, count), head = protocol == 1 ? 3u : 11u;
-    if (n > RTDE_MAX_NAMES || !rtde__header(out, cap, head + n, 'O'))
+    if (!rtde__header(out, cap, head + n, 'O'))
         return 0;
     if (protocol != 1)
         rtde__store(out + 3, rtde__f64_bits(frequency), 8);
@@ -423,7 +598,7 @@ size_t rtde_build_setup_outputs(uint8_t *out, size_t cap, uint8_t protocol, doub
 size_t rtde_build_setup_inputs(uint8_t *out, size_t cap, const char *const *names, size_t count)
 {
     size_t n = rtde__names_length(names, count);
-    if (n > RTDE_MAX_NAMES || !rtde__header(out, cap, 3 + n, 'I'))
+    if (!rtde__header(out, cap, 3 + n, 'I'))
         return 0;
     rtde__put_names(out + 3, names, count);
     return 3 + n;
@@ -469,7 +644,7 @@ const char *rtde_error_text(rtde_error e)
     case RTDE_EXTRA: return "bytes after the layout";
     case RTDE_UNKNOWN_TYPE: return "no layout for this type";
     case RTDE_UNKNOWN_RECIPE: return "data package of a recipe this connection did not set up";
-    case RTDE_TOO_MANY: return "more than the RTDE_MAX_* limits hold";
+    case RTDE_TOO_MANY: return "more names, variables or recipes than this decoder's limits hold";
     case RTDE_NO_ROOM: return "output buffer too small";
     }
     return "unknown error";

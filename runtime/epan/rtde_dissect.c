@@ -18,6 +18,9 @@ static expert_field ei_rtde_start_refused = EI_INIT;
 static expert_field ei_rtde_setup_warning = EI_INIT;
 static expert_field ei_rtde_undocumented = EI_INIT;
 static expert_field ei_rtde_unknown_type = EI_INIT;
+static expert_field ei_rtde_not_kept = EI_INIT;
+static expert_field ei_rtde_protocol_unknown = EI_INIT;
+static expert_field ei_rtde_retyped = EI_INIT;
 
 static void
 rtde_register_experts(int proto)
@@ -38,6 +41,12 @@ rtde_register_experts(int proto)
             EXPFILL } },
         { &ei_rtde_unknown_type, { "rtde.unknown_type", PI_UNDECODED, PI_WARN,
             "Message type with no layout in this direction", EXPFILL } },
+        { &ei_rtde_not_kept, { "rtde.not_kept", PI_SEQUENCE, PI_ERROR,
+            "More requests awaited replies than a conversation keeps", EXPFILL } },
+        { &ei_rtde_protocol_unknown, { "rtde.protocol_unknown", PI_PROTOCOL, PI_ERROR,
+            "Accepted protocol version with no layouts", EXPFILL } },
+        { &ei_rtde_retyped, { "rtde.retyped", PI_PROTOCOL, PI_WARN,
+            "Setup reply types a variable otherwise than the table", EXPFILL } },
     };
     expert_register_field_array(expert_register_protocol(proto), ei, array_length(ei));
 }
@@ -52,7 +61,7 @@ typedef struct {
     const rtde_notes *notes;
 } rtde_view;
 
-static const rtde_notes rtde_no_notes = { NULL, 0, NULL };
+static const rtde_notes rtde_no_notes = { NULL, 0, NULL, 0, NULL, NULL, NULL };
 
 static const rtde_layout *
 rtde_layout_for(guint8 code, gboolean from_robot, guint protocol)
@@ -91,7 +100,7 @@ rtde_kept_notes(packet_info *pinfo, rtde_when when)
 static void
 rtde_keep_notes(packet_info *pinfo, rtde_when when, const rtde_notes *notes)
 {
-    if (notes->warning || notes->n_refused)
+    if (notes->warning || notes->n_refused || notes->n_retyped || notes->not_kept || notes->protocol_error)
         p_add_proto_data(wmem_file_scope(), pinfo, proto_rtde, when.place,
                          wmem_memdup(wmem_file_scope(), notes, sizeof *notes));
 }
@@ -130,9 +139,10 @@ rtde_labels_shown(void)
 
 /* A recipe's values, an item per scalar (a vector's items in order, each by the variable's field,
  * with its index). A name the variable table lacks (a newer controller's) shows its value's bytes
- * whole, with the name. */
+ * whole, with the name. A variable the setup reply types otherwise than the table is read by the
+ * reply's type, under the field of that type, with its name and an expert. */
 static void
-rtde_add_values(proto_tree *tree, tvbuff_t *tvb, int pos, const rtde_recipe *recipe)
+rtde_add_values(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb, int pos, const rtde_recipe *recipe)
 {
     guint i, j;
     gboolean labels = rtde_labels_shown();
@@ -145,10 +155,14 @@ rtde_add_values(proto_tree *tree, tvbuff_t *tvb, int pos, const rtde_recipe *rec
             for (j = 0; j < vt->count; j++) {
                 proto_item *item = proto_tree_add_item(tree, hf_rtde[recipe->field[i]], tvb, pos + (int)(j * vt->size),
                                                        vt->size, ENC_BIG_ENDIAN);
+                if (labels && recipe->name[i])
+                    proto_item_append_text(item, "%s", recipe->name[i]);
                 if (labels && recipe->unit[i])
                     proto_item_append_text(item, "%s", recipe->unit[i]);
                 if (labels && vt->count > 1)
                     proto_item_append_text(item, " [%u]", j);
+                if (recipe->retyped[i] && j == 0)
+                    expert_add_info_format(pinfo, item, &ei_rtde_retyped, "%s", recipe->retyped[i]);
             }
         }
         pos += vt->size * vt->count;
@@ -158,8 +172,8 @@ rtde_add_values(proto_tree *tree, tvbuff_t *tvb, int pos, const rtde_recipe *rec
 /* One step of a layout: adds its items (when there is a tree) and returns the next position, or -1
  * when it does not fit. */
 static int
-rtde_step_at(const rtde_step *s, proto_tree *tree, tvbuff_t *tvb, int pos, int stop, rtde_values *values,
-             const rtde_view *view)
+rtde_step_at(const rtde_step *s, proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb, int pos, int stop,
+             rtde_values *values, const rtde_view *view)
 {
     switch (s->kind) {
     case RTDE_STEP_SCALAR: {
@@ -217,7 +231,7 @@ rtde_step_at(const rtde_step *s, proto_tree *tree, tvbuff_t *tvb, int pos, int s
         if (tree) {
             proto_item_set_generated(proto_tree_add_uint(tree, hf_rtde[RTDE_HF_RECIPE_FRAME], tvb, pos, 0,
                                                          recipe->when.frame));
-            rtde_add_values(tree, tvb, pos, recipe);
+            rtde_add_values(tree, pinfo, tvb, pos, recipe);
         }
         return pos + (int)recipe->size;
     }
@@ -238,7 +252,7 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     rtde_when when = { pinfo->num, (guint32)(tvb_raw_offset(tvb) + offset) };
     gboolean first = !pinfo->fd->visited;
     rtde_view view = { 0, FALSE, NULL, &rtde_no_notes };
-    rtde_notes notes = { NULL, 0, NULL };
+    rtde_notes notes = { NULL, 0, NULL, 0, NULL, NULL, NULL };
     guint i;
 
     proto_tree_add_item(msg_tree, hf_rtde[RTDE_HF_LENGTH], tvb, offset, 2, ENC_BIG_ENDIAN);
@@ -280,7 +294,7 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     }
     for (i = 0; i < layout->n_steps; i++) {
         const rtde_step *s = &layout->steps[i];
-        int next = rtde_step_at(s, msg_tree, tvb, pos, stop, &values, &view);
+        int next = rtde_step_at(s, msg_tree, pinfo, tvb, pos, stop, &values, &view);
         if (next < 0) {
             expert_add_info_format(pinfo, item, &ei_rtde_short, "%s at offset %d: does not fit", s->name,
                                    pos - offset);
@@ -299,10 +313,16 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     }
     for (i = 0; i < view.notes->n_refused; i++)
         expert_add_info_format(pinfo, item, &ei_rtde_refused, "%s", view.notes->refused[i]);
+    for (i = 0; i < view.notes->n_retyped; i++)
+        expert_add_info_format(pinfo, item, &ei_rtde_retyped, "%s", view.notes->retyped[i]);
     if (view.notes->warning)
         expert_add_info_format(pinfo, item, layout->role == RTDE_ROLE_START_REPLY ? &ei_rtde_start_refused
                                                                                   : &ei_rtde_setup_warning,
                                "%s", view.notes->warning);
+    if (view.notes->not_kept)
+        expert_add_info_format(pinfo, item, &ei_rtde_not_kept, "%s", view.notes->not_kept);
+    if (view.notes->protocol_error)
+        expert_add_info_format(pinfo, item, &ei_rtde_protocol_unknown, "%s", view.notes->protocol_error);
     return layout->label;
 }
 

@@ -33,13 +33,16 @@ typedef struct {
     guint *length;
 } rtde_request;
 
-/* A recipe: for each value, its variable's field (-1: a name the table does not have), unit and type. */
+/* A recipe: for each value, its variable's field (-1: a name the table does not have), unit and type.
+ * A recipe of n 0 and `gone` marks a reply whose names are unknown: from it on, its id has none. */
 typedef struct rtde_recipe {
     rtde_when when;             /* the setup reply that made it */
     const struct rtde_recipe *previous;     /* the recipe of the same id before it */
+    gboolean gone;
     guint n;
     int *field;
-    const char **name;          /* " (name)" after a name the table lacks, else NULL (a NUL in it ends it) */
+    const char **name;          /* " (name)" after a name the table lacks or one retyped, else NULL */
+    const char **retyped;       /* what the expert says of a variable the reply types otherwise, else NULL */
     const char **unit;
     guint8 *type;
     guint size;                 /* the bytes of all its values */
@@ -54,12 +57,21 @@ typedef struct rtde_protocol_change {
 
 typedef struct {
     const rtde_protocol_change *protocol;   /* the newest, NULL before any exchange */
-    wmem_queue_t *asked;        /* protocol versions requested, awaiting their replies */
+    guint asked[RTDE_MAX_PENDING_VERSIONS]; /* protocol versions requested, awaiting their replies */
+    guint asked_first, asked_count;
+    guint64 asked_lost;         /* requests not kept (the queue was full), awaiting replies */
     rtde_request *pending[RTDE_N_KINDS][RTDE_MAX_PENDING_SETUPS];
     guint pending_first[RTDE_N_KINDS];
     guint pending_count[RTDE_N_KINDS];
+    guint64 pending_lost[RTDE_N_KINDS];
     rtde_recipe *recipes[RTDE_N_KINDS][RTDE_NO_ID + 1];
 } rtde_state;
+
+#define RTDE_TEXT(x) #x
+#define RTDE_NUMBER(x) RTDE_TEXT(x)
+#define RTDE_SETUPS_OVERFLOW "more than " RTDE_NUMBER(RTDE_MAX_PENDING_SETUPS) " setups awaited replies"
+#define RTDE_VERSIONS_OVERFLOW "more than " RTDE_NUMBER(RTDE_MAX_PENDING_VERSIONS) \
+    " protocol version requests awaited replies"
 
 /* The fields of one message that the state reads, as its steps found them; texts as the Lua
  * dissector reads them (rtde_text_of). */
@@ -73,20 +85,23 @@ typedef struct {
     guint types_length;
 } rtde_values;
 
-/* What a message changed that the dissector shows: a warning, or the variables a setup refused
- * ("name: WORD" each). */
+/* What a message changed that the dissector shows: a warning, the variables a setup refused
+ * ("name: WORD" each) or types otherwise than the table, a request not kept or the reply to one,
+ * a protocol version accepted that has no layouts. */
 typedef struct {
     const char *warning;
     guint n_refused;
     char **refused;
+    guint n_retyped;
+    const char **retyped;
+    const char *not_kept;
+    const char *protocol_error;
 } rtde_notes;
 
 static rtde_state *
 rtde_state_new(void)
 {
-    rtde_state *state = wmem_new0(wmem_file_scope(), rtde_state);
-    state->asked = wmem_queue_new(wmem_file_scope());
-    return state;
+    return wmem_new0(wmem_file_scope(), rtde_state);
 }
 
 /* The protocol version in force before a message: negotiated, or (assumed) the spec's default for
@@ -181,7 +196,14 @@ rtde_recipe_at(const rtde_state *state, gboolean from_robot, int recipe_id, rtde
                                                                                                   : recipe_id];
     while (recipe && !rtde_before(recipe->when, when))
         recipe = recipe->previous;
-    return recipe;
+    return recipe && !recipe->gone ? recipe : NULL;
+}
+
+static void
+rtde_keep_recipe(rtde_state *state, int kind, int recipe_id, rtde_recipe *recipe)
+{
+    recipe->previous = state->recipes[kind][recipe_id < 0 ? RTDE_NO_ID : recipe_id];
+    state->recipes[kind][recipe_id < 0 ? RTDE_NO_ID : recipe_id] = recipe;
 }
 
 static void
@@ -203,12 +225,20 @@ rtde_remember_request(rtde_state *state, int kind, const rtde_values *values)
     request->n = kept;
     request->start = start;
     request->length = length;
-    if (state->pending_count[kind] >= RTDE_MAX_PENDING_SETUPS) {    /* the oldest goes */
-        state->pending_first[kind] = (state->pending_first[kind] + 1) % RTDE_MAX_PENDING_SETUPS;
-        state->pending_count[kind]--;
-    }
     state->pending[kind][(state->pending_first[kind] + state->pending_count[kind]) % RTDE_MAX_PENDING_SETUPS] = request;
     state->pending_count[kind]++;
+}
+
+/* Whether a request of this kind can be kept: not while the queue is full or a request not kept is
+ * ahead of it (replies come in the order of the requests). One not kept is counted. */
+static gboolean
+rtde_keeps_request(rtde_state *state, int kind)
+{
+    if (state->pending_lost[kind] > 0 || state->pending_count[kind] >= RTDE_MAX_PENDING_SETUPS) {
+        state->pending_lost[kind]++;
+        return FALSE;
+    }
+    return TRUE;
 }
 
 static rtde_request *
@@ -248,6 +278,15 @@ rtde_name_text(const rtde_request *request, guint i)
     return text;
 }
 
+/* "name: REPLY by the setup reply, TABLE in the variable table", for a variable retyped. */
+static const char *
+rtde_retyped_text(const rtde_request *request, guint i, const rtde_value_type *reply, const rtde_value_type *table)
+{
+    return wmem_strdup_printf(wmem_file_scope(), "%.*s: %s by the setup reply, %s in the variable table",
+                              (int)request->length[i], (const char *)request->text + request->start[i], reply->name,
+                              table->name);
+}
+
 static void
 rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_when when, rtde_notes *notes)
 {
@@ -255,6 +294,16 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
     rtde_recipe *recipe;
     guint n, i, *start, *length;
     int *type;
+    if (!request && state->pending_lost[kind] > 0) {
+        /* Its request was not kept: its names are unknown, and its id has no recipe from here on. */
+        state->pending_lost[kind]--;
+        notes->not_kept = "reply to a setup that was not kept: " RTDE_SETUPS_OVERFLOW;
+        recipe = wmem_new0(wmem_file_scope(), rtde_recipe);
+        recipe->when = when;
+        recipe->gone = TRUE;
+        rtde_keep_recipe(state, kind, values->recipe_id, recipe);
+        return;
+    }
     if (!request) {
         notes->warning = "a setup reply without a request seen: its recipe's names are unknown";
         return;
@@ -286,19 +335,61 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
     recipe->field = wmem_alloc_array(wmem_file_scope(), int, n + 1);
     recipe->unit = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->name = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
+    recipe->retyped = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->type = wmem_alloc_array(wmem_file_scope(), guint8, n + 1);
     recipe->when = when;
+    notes->retyped = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     for (i = 0; i < n; i++) {
         const rtde_value_type *vt = &rtde_value_types[type[i]];
         const rtde_variable *variable = rtde_variable_named(request->text + request->start[i], request->length[i]);
-        recipe->field[i] = variable ? variable->field : -1;
-        recipe->unit[i] = variable ? variable->unit : NULL;
-        recipe->name[i] = variable ? NULL : rtde_name_text(request, i);
+        gboolean retyped = variable && variable->type != (guint8)type[i];
+        recipe->field[i] = !variable ? -1 : retyped ? vt->field : variable->field;
+        recipe->unit[i] = variable && !retyped ? variable->unit : NULL;
+        recipe->name[i] = variable && !retyped ? NULL : rtde_name_text(request, i);
+        recipe->retyped[i] = retyped ? rtde_retyped_text(request, i, vt, &rtde_value_types[variable->type]) : NULL;
+        if (retyped)
+            notes->retyped[notes->n_retyped++] = recipe->retyped[i];
         recipe->type[i] = (guint8)type[i];
         recipe->size += (guint)vt->size * vt->count;
     }
-    recipe->previous = state->recipes[kind][values->recipe_id < 0 ? RTDE_NO_ID : values->recipe_id];
-    state->recipes[kind][values->recipe_id < 0 ? RTDE_NO_ID : values->recipe_id] = recipe;
+    rtde_keep_recipe(state, kind, values->recipe_id, recipe);
+}
+
+/* Whether the spec lays out any message in this protocol version. */
+static gboolean
+rtde_protocol_has_layouts(guint protocol)
+{
+    guint i;
+    for (i = 0; i < G_N_ELEMENTS(rtde_protocol_versions); i++)
+        if (rtde_protocol_versions[i] == protocol)
+            return TRUE;
+    return FALSE;
+}
+
+/* A protocol version reply: only a version with layouts is taken (a robot accepting 0 or 300
+ * leaves the one in force, and the reply says so). */
+static void
+rtde_version_reply(rtde_state *state, const rtde_values *values, rtde_when when, rtde_notes *notes)
+{
+    gboolean asked = state->asked_count > 0, assumed;
+    guint version = asked ? state->asked[state->asked_first] : 0;
+    if (asked) {
+        state->asked_first = (state->asked_first + 1) % RTDE_MAX_PENDING_VERSIONS;
+        state->asked_count--;
+    } else if (state->asked_lost > 0) {
+        state->asked_lost--;
+        notes->not_kept = "reply to a protocol version request that was not kept: " RTDE_VERSIONS_OVERFLOW;
+    }
+    if (values->accepted != 0 && asked) {
+        if (rtde_protocol_has_layouts(version))
+            rtde_set_protocol(state, when, version);
+        else
+            notes->protocol_error = wmem_strdup_printf(wmem_file_scope(), "protocol version %u accepted, which has "
+                                                       "no layouts: protocol %u stays in force", version,
+                                                       rtde_protocol_at(state, when, &assumed));
+    } else if (values->accepted == 0 && !state->protocol) {
+        rtde_set_protocol(state, when, 1);      /* the robot keeps protocol 1 until a request is accepted */
+    }
 }
 
 /* What a whole message changes, and what the dissector should show of it. */
@@ -308,19 +399,23 @@ rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *val
 {
     switch (layout->role) {
     case RTDE_ROLE_VERSION_REQUEST:
-        wmem_queue_push(state->asked, GUINT_TO_POINTER(values->protocol_version));
+        if (state->asked_lost > 0 || state->asked_count >= RTDE_MAX_PENDING_VERSIONS) {
+            state->asked_lost++;                /* not kept: its reply will say so */
+            notes->not_kept = "protocol version request not kept: " RTDE_VERSIONS_OVERFLOW;
+        } else {
+            state->asked[(state->asked_first + state->asked_count) % RTDE_MAX_PENDING_VERSIONS] =
+                values->protocol_version;
+            state->asked_count++;
+        }
         break;
-    case RTDE_ROLE_VERSION_REPLY: {
-        gboolean asked = wmem_queue_count(state->asked) > 0;
-        guint version = asked ? GPOINTER_TO_UINT(wmem_queue_pop(state->asked)) : 0;
-        if (values->accepted != 0 && asked)
-            rtde_set_protocol(state, when, version);
-        else if (values->accepted == 0 && !state->protocol)
-            rtde_set_protocol(state, when, 1);      /* the robot keeps protocol 1 until a request is accepted */
+    case RTDE_ROLE_VERSION_REPLY:
+        rtde_version_reply(state, values, when, notes);
         break;
-    }
     case RTDE_ROLE_SETUP_REQUEST:
-        rtde_remember_request(state, layout->kind, values);
+        if (rtde_keeps_request(state, layout->kind))
+            rtde_remember_request(state, layout->kind, values);
+        else
+            notes->not_kept = "setup not kept: " RTDE_SETUPS_OVERFLOW;
         break;
     case RTDE_ROLE_SETUP_REPLY:
         rtde_make_recipe(state, layout->kind, values, when, notes);

@@ -55,11 +55,13 @@ typedef struct {
     guint n_steps;
 } rtde_layout;
 
-/* One value of an RTDE type: count items of size bytes. */
+/* One value of an RTDE type: count items of size bytes; `field` shows an item where a setup reply
+ * types a variable otherwise than the variable table. */
 typedef struct {
     const char *name;
     guint8 size;
     guint8 count;
+    int field;
 } rtde_value_type;
 
 /* The variable table, sorted by name (byte order): a recipe finds each name's field once, when
@@ -68,6 +70,7 @@ typedef struct {
     const char *name;
     int field;
     const char *unit;           /* a double's unit, appended to its items' text; NULL for none */
+    guint8 type;                /* its value type in the table (index into rtde_value_types) */
 } rtde_variable;
 
 typedef struct {

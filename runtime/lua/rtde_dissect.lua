@@ -28,9 +28,15 @@ local E = {
         expert.group.UNDECODED, expert.severity.NOTE),
     unknown_type = ProtoExpert.new(spec.name .. ".unknown_type", "Message type with no layout in this direction",
         expert.group.UNDECODED, expert.severity.WARN),
+    not_kept = ProtoExpert.new(spec.name .. ".not_kept", "More requests awaited replies than a conversation keeps",
+        expert.group.SEQUENCE, expert.severity.ERROR),
+    protocol_unknown = ProtoExpert.new(spec.name .. ".protocol_unknown", "Accepted protocol version with no layouts",
+        expert.group.PROTOCOL, expert.severity.ERROR),
+    retyped = ProtoExpert.new(spec.name .. ".retyped", "Setup reply types a variable otherwise than the table",
+        expert.group.PROTOCOL, expert.severity.WARN),
 }
 proto.experts = { E.bad_header, E.short, E.extra, E.refused, E.unknown_recipe, E.start_refused, E.warning,
-                  E.undocumented, E.unknown_type }
+                  E.undocumented, E.unknown_type, E.not_kept, E.protocol_unknown, E.retyped }
 
 do
     local list = {}
@@ -68,17 +74,24 @@ local READ = {
 
 -- One value of a recipe: an item per scalar (a vector's items in order, each filterable by the
 -- variable's name, with its index). A name the variable table lacks (a newer controller's) shows
--- its value's bytes whole, with the name.
-local function add_value(tree, tvb, pos, name, vt)
+-- its value's bytes whole, with the name. A variable the setup reply types otherwise than the
+-- table is read by the reply's type, under the field of that type (rtde.value_float64...), with
+-- its name and an expert.
+local function add_value(tree, tvb, pos, name, type_name)
+    local vt = spec.value_types[type_name]
     local f, unit = F[name], spec.variable_units[name]
     if not f then
         tree:add(F.unknown_variable, tvb(pos, vt.size * vt.count)):append_text(" (" .. name .. ")")
         return
     end
+    local retyped = rt.retyped(name, type_name)
+    if retyped then f, unit = F[vt.field], nil end
     for i = 0, vt.count - 1 do
         local item = tree:add(f, tvb(pos + i * vt.size, vt.size))
+        if retyped then item:append_text(" (" .. name .. ")") end
         if unit then item:append_text(unit) end
         if vt.count > 1 then item:append_text(" [" .. i .. "]") end
+        if retyped and i == 0 then item:add_proto_expert_info(E.retyped, retyped) end
     end
 end
 
@@ -119,7 +132,7 @@ function STEP.values(s, tree, tvb, pos, stop, values, view)
     tree:add(F.recipe_frame, tvb(pos, 0), recipe.frame):set_generated()
     for i, name in ipairs(recipe.names) do
         local vt = spec.value_types[recipe.types[i]]
-        add_value(tree, tvb, pos, name, vt)
+        add_value(tree, tvb, pos, name, recipe.types[i])
         pos = pos + vt.size * vt.count
     end
     return pos
@@ -191,9 +204,14 @@ local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state,
             item:add_proto_expert_info(E.refused, pair[1] .. ": " .. pair[2])
         end
     end
+    if notes and notes.retyped then
+        for _, text in ipairs(notes.retyped) do item:add_proto_expert_info(E.retyped, text) end
+    end
     if notes and notes.warning then
         item:add_proto_expert_info(layout.name == "start_reply" and E.start_refused or E.warning, notes.warning)
     end
+    if notes and notes.not_kept then item:add_proto_expert_info(E.not_kept, notes.not_kept) end
+    if notes and notes.protocol_error then item:add_proto_expert_info(E.protocol_unknown, notes.protocol_error) end
     return layout.label
 end
 

@@ -14,20 +14,46 @@ end
 -- Protocol 1's one output recipe has no id: it is kept under this key.
 local NO_ID = -1
 
-local function queue() return { first = 1, last = 0 } end
-local function push(q, v) q.last = q.last + 1; q[q.last] = v end
+-- Requests awaiting their replies, oldest first, at most `size` kept. A request beyond is not kept
+-- but counted (`lost`), and so is every later one while a counted one is ahead of it: replies come
+-- in the order of the requests, so a kept one behind a lost one would take the lost one's reply.
+local function queue(size, what)
+    return { first = 1, last = 0, lost = 0, size = size,
+             overflow = "more than " .. size .. " " .. what .. " awaited replies" }
+end
+
+-- Keeps a request; false when it is not kept (then counted).
+local function push(q, v)
+    if q.lost > 0 or q.last - q.first + 1 >= q.size then
+        q.lost = q.lost + 1
+        return false
+    end
+    q.last = q.last + 1
+    q[q.last] = v
+    return true
+end
+
+-- The request a reply answers: true and the request, or false for one not kept, or true and nil
+-- when no request awaits.
 local function pop(q)
-    if q.first > q.last then return nil end
+    if q.first > q.last then
+        if q.lost > 0 then
+            q.lost = q.lost - 1
+            return false, nil
+        end
+        return true, nil
+    end
     local v = q[q.first]
     q[q.first] = nil
     q.first = q.first + 1
-    return v
+    return true, v
 end
 
 function rt.new_state()
-    local state = { protocol = nil, asked = queue(), pending = {}, recipes = {} }
+    local state = { protocol = nil, asked = queue(spec.max_pending_version_requests, "protocol version requests"),
+                    pending = {}, recipes = {} }
     for _, kind in ipairs(spec.recipe_kinds) do
-        state.pending[kind.name] = queue()
+        state.pending[kind.name] = queue(spec.max_pending_setups, "setups")
         state.recipes[kind.name] = {}
     end
     return state
@@ -59,27 +85,46 @@ function rt.recipe_for(state, from_robot, recipe_id)
     return state.recipes[KIND_OF_DATA[from_robot]][recipe_id or NO_ID]
 end
 
+-- A protocol version reply: only a version with layouts is taken (a robot accepting 0 or 300 leaves
+-- the one in force, and the reply says so).
+local function version_reply(state, values)
+    local paired, asked = pop(state.asked)
+    local notes = nil
+    if not paired then
+        notes = { not_kept = "reply to a protocol version request that was not kept: " .. state.asked.overflow }
+    end
+    if values.accepted ~= 0 and asked then
+        if spec.protocol_versions[asked] then
+            state.protocol = asked
+        else
+            notes = { protocol_error = "protocol version " .. asked .. " accepted, which has no layouts: protocol "
+                                       .. rt.protocol_of(state) .. " stays in force" }
+        end
+    elseif values.accepted == 0 and state.protocol == nil then
+        state.protocol = 1   -- the robot keeps protocol 1 until a request is accepted
+    end
+    return notes
+end
+
 -- What a message changes. `values` holds the message's fields as read (numbers and texts);
 -- `frame` is its frame number. Returns what the dissector should show: { refused = { {name, word} },
--- warning = text } or nil.
+-- retyped = { text }, warning = text, not_kept = text, protocol_error = text } or nil.
 function rt.follow(state, name, values, frame)
     if name == "request_protocol_version" then
-        push(state.asked, values.protocol_version)
-    elseif name == "request_protocol_version_reply" then
-        local asked = pop(state.asked)
-        if values.accepted ~= 0 and asked then
-            state.protocol = asked
-        elseif values.accepted == 0 and state.protocol == nil then
-            state.protocol = 1   -- the robot keeps protocol 1 until a request is accepted
+        if not push(state.asked, values.protocol_version) then
+            return { not_kept = "protocol version request not kept: " .. state.asked.overflow }
         end
+    elseif name == "request_protocol_version_reply" then
+        return version_reply(state, values)
     elseif KIND_OF_REQUEST[name] then
         local pending = state.pending[KIND_OF_REQUEST[name]]
-        if pending.last - pending.first + 1 >= spec.max_pending_setups then pop(pending) end   -- the oldest
         local names = {}
         for _, name in ipairs(rt.split(values.variables, ",")) do
             if name ~= "" then names[#names + 1] = name end   -- an empty name names no variable
         end
-        push(pending, { names = names, frame = frame })
+        if not push(pending, { names = names, frame = frame }) then
+            return { not_kept = "setup not kept: " .. pending.overflow }
+        end
     elseif KIND_OF_REPLY[name] then
         return rt.make_recipe(state, KIND_OF_REPLY[name], values, frame)
     elseif name == "start_reply" and values.accepted == 0 then
@@ -89,7 +134,12 @@ function rt.follow(state, name, values, frame)
 end
 
 function rt.make_recipe(state, kind, values, frame)
-    local request = pop(state.pending[kind])
+    local paired, request = pop(state.pending[kind])
+    if not paired then
+        -- Its recipe's names are unknown: data packages of its id are not read by the recipe it replaced.
+        state.recipes[kind][values.recipe_id or NO_ID] = nil
+        return { not_kept = "reply to a setup that was not kept: " .. state.pending[kind].overflow }
+    end
     if not request then
         return { warning = "a setup reply without a request seen: its recipe's names are unknown" }
     end
@@ -105,5 +155,21 @@ function rt.make_recipe(state, kind, values, frame)
     local id = values.recipe_id
     state.recipes[kind][id or NO_ID] = { id = id, names = request.names, types = types, frame = frame,
                                          request_frame = request.frame }
+    local retyped = {}
+    for i, t in ipairs(types) do
+        local text = rt.retyped(request.names[i], t)
+        if text then retyped[#retyped + 1] = text end
+    end
+    if #retyped > 0 then return { retyped = retyped } end
+    return nil
+end
+
+-- What to say of a variable the reply types otherwise than the variable table, or nil: its value is
+-- shown by the reply's type, under a field of that type.
+function rt.retyped(name, type_name)
+    local table_type = spec.variable_types[name]
+    if table_type and table_type ~= type_name then
+        return name .. ": " .. type_name .. " by the setup reply, " .. table_type .. " in the variable table"
+    end
     return nil
 end

@@ -14,7 +14,7 @@ import pytest
 
 import urwire
 from tests.c.harness_c import CLI, GEN, OUT, ROOT, SANITIZE, STRICT
-from tests.rtde_vectors import python_records, rtde_cases
+from tests.rtde_vectors import mismatches, python_records, rtde_cases, shown_as
 from urwire.rtde import Conversation
 
 CASES = rtde_cases()
@@ -89,7 +89,11 @@ def test_the_library_builds_strictly_and_alone(cc):
 def test_c_prints_what_python_prints(driver, case):
     """Every golden exchange: the C lines equal the Python lines byte for byte, and equal the vector."""
     python = python_lines(case.messages, case.protocol)
-    assert c_lines(driver, case.messages, case.protocol) == python
+    lines = c_lines(driver, case.messages, case.protocol)
+    assert lines == python
+    problems = mismatches(case.expect, [shown_as(line) for line in lines], partial=False, tolerance=0.0)
+    assert not problems, "\n".join(problems)
+    assert all(lines[i] == line for i, line in case.exact.items())
     bytewise = [(fr, d[i:i + 1]) for fr, d in case.messages for i in range(len(d))]
     assert c_lines(driver, bytewise, case.protocol) == python
 
@@ -179,3 +183,87 @@ def test_urwire_decode_protocol_rtde_prints_what_python_prints(fast_cli):
                             capture_output=True, timeout=60,
                             env={**__import__("os").environ, "PYTHONPATH": f"{ROOT / 'python'}:{ROOT / 'generated' / 'python'}"})
         assert (c.returncode, c.stdout) == (py.returncode, py.stdout), case.name
+
+
+# ---- what the protocol can carry: the command keeps it all, as Python does ----
+
+def _setup(names: list[str], frequency: float = 125.0) -> bytes:
+    body = struct.pack(">d", frequency) + ",".join(names).encode()
+    return struct.pack(">HB", 3 + len(body), ord("O")) + body
+
+
+def _reply(recipe_id: int, types: list[str], code: str = "O") -> bytes:
+    body = bytes([recipe_id]) + ",".join(types).encode()
+    return struct.pack(">HB", 3 + len(body), ord(code)) + body
+
+
+def _data(recipe_id: int, values: bytes, from_robot: bool = True) -> tuple[bool, bytes]:
+    return from_robot, struct.pack(">HBB", 4 + len(values), ord("U"), recipe_id) + values
+
+
+def _large_sessions() -> dict[str, list]:
+    many = [f"standard_analog_input_number_{k:03d}" for k in range(200)]          # 200 variables, 7000 bytes
+    wide = [(False, _setup(many)), (True, _reply(1, ["DOUBLE"] * 200)),
+            _data(1, b"".join(struct.pack(">d", k / 4) for k in range(200)))]
+    # The most a reply can type: 13106 BOOLs in 65533 bytes, and a setup of as many one-letter names.
+    most = 13106
+    widest = [(False, _setup(["a"] * most)), (True, _reply(7, ["BOOL"] * most)), _data(7, bytes([1, 0, 2]) * (most // 3) + bytes(most % 3))]
+    # Every recipe id both ways, each set up and answered in turn, then data of some of them.
+    recipes = []
+    for recipe_id in range(256):
+        recipes += [(False, _setup([f"output_int_register_{recipe_id % 24}"])), (True, _reply(recipe_id, ["INT32"]))]
+        body = f"input_int_register_{recipe_id % 24}".encode()
+        recipes += [(False, struct.pack(">HB", 3 + len(body), ord("I")) + body), (True, _reply(recipe_id, ["INT32"], "I"))]
+    for recipe_id in (0, 8, 9, 100, 255):
+        recipes += [_data(recipe_id, struct.pack(">i", -recipe_id)), _data(recipe_id, struct.pack(">i", recipe_id), False)]
+    # Version requests awaiting replies: more than the 4 the command kept, and more than the 8 all keep.
+    versions = [(False, struct.pack(">HBH", 5, ord("V"), 2)) for _ in range(10)] + \
+               [(True, struct.pack(">HBB", 4, ord("V"), 1)) for _ in range(10)] + \
+               [(False, _setup(["timestamp"])), (True, _reply(1, ["DOUBLE"])), _data(1, struct.pack(">d", 1.5))]
+    return {"200 variables, 7000 bytes of names": wide, "13106 variables": widest, "512 recipes": recipes,
+            "10 version requests awaiting replies": versions}
+
+
+@pytest.mark.parametrize("name", list(_large_sessions()))
+def test_the_command_keeps_what_the_protocol_can_carry(driver, fast_cli, name, tmp_path):
+    """Sessions past the fixed limits the command had (64 variables, 2048 bytes of names, 8
+    recipes, 4 version requests awaiting replies): the C lines are Python's, byte for byte, with no
+    error of a limit; the command on the two raw streams prints what `urwire decode` prints."""
+    import os
+    import sys
+    messages = _large_sessions()[name]
+    python = python_lines(messages, 2)
+    assert c_lines(driver, messages, 2) == python
+    assert not any("limits" in line for line in python)
+    robot, client = tmp_path / "robot.bin", tmp_path / "client.bin"
+    robot.write_bytes(b"".join(d for fr, d in messages if fr))
+    client.write_bytes(b"".join(d for fr, d in messages if not fr))
+    args = ["--protocol", "rtde", str(robot), "--to-robot", str(client)]
+    c = subprocess.run([fast_cli, *args], capture_output=True, timeout=120)
+    py = subprocess.run([sys.executable, "-m", "urwire", "decode", *args], capture_output=True, timeout=120,
+                        env={**os.environ, "PYTHONPATH": f"{ROOT / 'python'}:{ROOT / 'generated' / 'python'}"})
+    assert c.stderr == b"" and (c.returncode, c.stdout) == (py.returncode, py.stdout)
+
+
+def test_an_embedded_caller_past_its_limits_is_told(tmp_path):
+    """rtde_conversation_init's small limits (8 recipes, 64 variables, 2048 bytes of names), and
+    rtde_conversation_init_in's own: past one, rtde_decode says RTDE_TOO_MANY for that message, a
+    later reply still pairs with its own request, and data of a recipe not kept is of no recipe
+    (never read by the recipe its id had before)."""
+    exe = build("gcc", ["-O1", "-g", *SANITIZE], [ROOT / "tests" / "c" / "rtde_limits.c", GEN / "rtde.c"], "limits")
+    res = subprocess.run([exe], capture_output=True, text=True, timeout=60)
+    assert res.returncode == 0 and res.stderr == "", res.stderr
+    assert res.stdout.splitlines() == [
+        "65 variables: reply too many",                     # more variables than a recipe holds
+        "data of recipe 1 after it: unknown recipe",        # recipe 1 (timestamp) is not read instead
+        "2100 bytes of names: setup too many",              # the names do not fit: kept in place
+        "its reply: too many",
+        "the next setup's reply: ok, recipe 2 reads actual_q",
+        "recipes 3 to 9: ok",                               # recipe 1 is gone: 2 to 9 are the 8 kept
+        "recipe 10: reply too many",
+        "data of recipe 10: unknown recipe",
+        "storage for 2 recipes of 4 variables and 64 bytes: ok",
+        "storage one byte short: refused",
+        "a third recipe: reply too many",
+        "limits above the protocol's: no storage size",
+    ]

@@ -238,3 +238,36 @@ def test_decode_as_and_the_ports_preference():
     for args in (["-d", "tcp.port==40004,rtde"], ["-o", "rtde.ports:40004"]):
         shown = assert_same(captured, *args)
         assert shown.layers[7]["rtde"]["rtde.timestamp"] == "12.5"
+
+
+def test_a_variable_the_reply_types_otherwise_is_read_by_the_replys_type():
+    """timestamp typed UINT8 by the setup reply (the table's DOUBLE): its byte under
+    rtde.value_uint8 with an expert, and the values after it under their own fields; no exception,
+    no malformed packet (both dissectors threw on fetching 8 bytes from 1)."""
+    captured = _recipe_session(b"timestamp,actual_q,robot_mode", b"UINT8,VECTOR6D,INT32",
+                               bytes([7]) + bytes(48) + bytes.fromhex("00000009"))
+    shown = assert_same(captured)
+    reply, package = shown.layers[5]["rtde"], shown.layers[7]["rtde"]
+    said = "timestamp: UINT8 by the setup reply, DOUBLE in the variable table"
+    assert reply["_ws.expert"]["_ws.expert.message"] == said
+    assert package["rtde.value_uint8"] == "7" and "rtde.timestamp" not in package
+    assert package["rtde.actual_q"] == ["0"] * 6 and package["rtde.robot_mode"] == "9"
+    text = harness.checked(native(captured, "-O", "rtde", "-V"))
+    assert "Malformed" not in text and said in text
+    assert "Value of the setup reply's type (uint8): 7 (timestamp)" in text
+
+
+def test_queues_and_protocol_versions_say_what_they_could_not_follow():
+    """The golden exchanges of requests not kept and of protocol versions with no layouts: the
+    native dissector's experts say so, as the records' errors do."""
+    cases = {c.name: i for i, c in enumerate(rtde_cases())}
+    text = harness.checked(native(golden_capture(False), "-O", "rtde", "-V"))
+    for said in ("setup not kept: more than 8 setups awaited replies",
+                 "reply to a setup that was not kept: more than 8 setups awaited replies",
+                 "protocol version request not kept: more than 8 protocol version requests awaited replies",
+                 "reply to a protocol version request that was not kept: more than 8 protocol version requests "
+                 "awaited replies",
+                 "protocol version 300 accepted, which has no layouts: protocol 1 stays in force"):
+        assert said in text, said
+    assert {"pending_setups_overflow", "pending_version_requests_overflow",
+            "protocol_version_without_layouts"} <= set(cases)

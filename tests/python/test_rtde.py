@@ -202,3 +202,54 @@ def test_any_recipe_reads_back_what_it_wrote():
         assert record.encode() == message
 
     check()
+
+
+def _repeated_session():
+    case = [c for c in rtde_cases() if c.name == "repeated_variable"][0]
+    return case, python_records(case)
+
+
+def test_a_name_given_twice_keeps_each_value():
+    """Values of a recipe that names timestamp twice: by name the first (as C's rtde_data_find),
+    each with all(), every one in order, and the record encodes back to its bytes."""
+    case, records = _repeated_session()
+    values = records[2].values
+    assert values["timestamp"] == 1.5 and values.all("timestamp") == [1.5, 2.5]
+    assert values.in_order() == [1.5, [0.0, 1.0, 2.0, 3.0, 4.0, 5.0], 2.5]
+    assert values.pairs()[2] == ("timestamp", 2.5) and list(values) == ["timestamp", "actual_q"]
+    assert values != {"timestamp": 1.5, "actual_q": [0.0, 1.0, 2.0, 3.0, 4.0, 5.0]}   # a dict holds one of them
+    assert records[2].encode() == case.messages[2][1]
+    assert records[5].encode() == case.messages[5][1]
+    assert records[5].values.all("input_double_register_0") == [0.5, 0.75]
+
+
+def test_values_without_a_repeat_are_a_mapping_by_name():
+    case = [c for c in rtde_cases() if c.name == "protocol2_session"][0]
+    package = [r for r in python_records(case) if r.NAME == "data_package"][0]
+    assert dict(package.values) == {n: package.values[n] for n in package.values.names}
+    assert package.values == dict(package.values) and len(package.values) == len(package.values.names)
+
+
+def test_input_data_takes_a_dict_or_values_in_order():
+    """input_data by name (a dict) or, for a recipe naming a variable twice, a Values in order."""
+    recipe = rtde.Recipe(1, "inputs", ["input_double_register_0", "input_double_register_0"], ["DOUBLE", "DOUBLE"],
+                         generated.VALUE_TYPES)
+    two = rtde.input_data(recipe, rtde.Values(recipe.names, [0.5, 0.75]))
+    assert two == bytes.fromhex("001455" "01" "3fe0000000000000" "3fe8000000000000")
+    assert rtde.input_data(recipe, {"input_double_register_0": 0.5})[4:] == struct.pack(">dd", 0.5, 0.5)
+
+
+def test_a_reply_paired_with_nothing_leaves_its_id_without_a_recipe():
+    """Recipe 9 is set up (timestamp), then nine more setups: the ninth is not kept, and its reply,
+    which gives id 9 again, makes none: recipe 9's data come out raw, never as timestamp."""
+    c = rtde.Conversation(protocol=2)
+    c.feed(rtde.setup_outputs(["timestamp"], 125.0), False)
+    c.feed(struct.pack(">HBB", 10, ord("O"), 9) + b"DOUBLE", True)
+    for k in range(9):
+        c.feed(rtde.setup_outputs(["actual_q"], 125.0), False)
+    replies = []
+    for recipe_id in range(1, 10):
+        replies += c.feed(struct.pack(">HBB", 12, ord("O"), recipe_id) + b"VECTOR6D", True)
+    assert "error" in replies[-1].notes and 9 not in c.recipes["outputs"]
+    package = c.feed(struct.pack(">HBBd", 12, ord("U"), 9, 1.0), True)[0]
+    assert urwire.to_dict(package)["error"] == "data package of a recipe this connection did not set up"

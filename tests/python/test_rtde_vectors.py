@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 import urwire
-from tests.rtde_vectors import mismatches, python_records, rtde_cases
+from tests.rtde_vectors import mismatches, python_records, rtde_cases, shown_as
 from urwire.rtde import Conversation
 from urwire._runtime import StreamError
 
@@ -14,9 +14,12 @@ CASES = rtde_cases()
 
 @pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
 def test_python_decodes_vector(case):
-    got = [urwire.to_dict(r) for r in python_records(case)]
+    records = python_records(case)
+    got = [shown_as(urwire.to_json_line(r)) for r in records]
     problems = mismatches(case.expect, got, partial=False, tolerance=0.0)
     assert not problems, "\n".join(problems)
+    for index, line in case.exact.items():
+        assert urwire.to_json_line(records[index]) == line
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])

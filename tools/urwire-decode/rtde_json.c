@@ -233,13 +233,21 @@ int rtde_json_record(FILE *out, const envelope *env, const rtde_message *m, rtde
         fputs(", \"warning\": ", out);
         put_text(out, (const uint8_t *)m->warning, strlen(m->warning));
     }
+    if (m->error) {
+        fputs(", \"error\": ", out);
+        put_text(out, (const uint8_t *)m->error, strlen(m->error));
+    }
     fputs("}\n", out);
     return 0;
 }
 
+/* The protocol's own limits: the command keeps every recipe a connection can make, as the Python
+ * decoder does. */
+static const rtde_limits protocol_limits = {RTDE_PROTOCOL_RECIPES, RTDE_PROTOCOL_VARIABLES, RTDE_PROTOCOL_NAMES};
+
 void rtde_json_stream_init(rtde_json_stream *s)
 {
-    rtde_conversation_init(&s->conversation);
+    rtde_conversation_init_in(&s->conversation, &protocol_limits, s->storage.bytes, sizeof s->storage.bytes);
     s->direction[0].length = s->direction[1].length = 0;
     s->direction[0].offset = s->direction[1].offset = 0;
     s->direction[0].scanning = s->direction[1].scanning = false;

@@ -21,9 +21,20 @@ typedef struct rtde_json_direction {
     bool scanning;                      /* looking for the next plausible header after a fault */
 } rtde_json_direction;
 
-/* One connection: its RTDE state and both directions' framing. */
+/* The storage of a connection's recipes and pending names at the protocol's own limits (67 MB):
+ * every recipe a robot and a client can make is kept, as the Python decoder keeps them. */
+#define RTDE_JSON_STORAGE RTDE_STORAGE_SIZE(RTDE_PROTOCOL_RECIPES, RTDE_PROTOCOL_VARIABLES, RTDE_PROTOCOL_NAMES)
+
+/* One connection: its RTDE state and both directions' framing. Large: static, where only the pages
+ * a connection uses are ever touched. */
 typedef struct rtde_json_stream {
     rtde_conversation conversation;
+    union {
+        unsigned char bytes[RTDE_JSON_STORAGE];
+        uint64_t align_u;
+        double align_d;
+        void *align_p;
+    } storage;                          /* the conversation's recipes and pending names */
     rtde_json_direction direction[2];   /* [1]: from the robot */
     /* Each direction's records' envelope ([1]: from the robot; NULL: records as they are). The
      * ends of the streams are the robot's file's, as `urwire decode --to-robot` reports them. */

@@ -18,7 +18,7 @@ from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtim
 from ...errors import Problem, SpecError
 from ...wrap import spread
 from . import model
-from .lua_target import OWN_FIELDS
+from .lua_target import OWN_FIELDS, value_field, value_fields, value_label
 
 FIELD_TYPES = {"bool": "FT_BOOLEAN", "int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16",
                "uint16": "FT_UINT16", "int32": "FT_INT32", "uint32": "FT_UINT32", "int64": "FT_INT64",
@@ -81,7 +81,7 @@ class _Fields:
 
     def add(self, name: str, label: str, ftype: str, base: str, strings: str = "NULL",
             where: ir.Where = ir.NOWHERE, own: bool = False) -> None:
-        if name in OWN_FIELDS and not own:
+        if (name in OWN_FIELDS or name.startswith("value_")) and not own:
             self.problems.append(Problem(where.path, f"epan target: {self.prefix}.{name} is the dissector's own field",
                                          where.line))
             return
@@ -168,6 +168,9 @@ def render(interface: model.Interface, banner: list[str], upstream: bool = False
     fields.add("recipe_frame", "Recipe set up in frame", "FT_FRAMENUM", "BASE_NONE", own=True)
     fields.add("protocol", "Protocol version in force", "FT_UINT8", "BASE_DEC", own=True)
     fields.add("unknown_variable", "Variable not in the table", "FT_BYTES", "BASE_NONE", own=True)
+    for scalar in value_fields(interface):
+        fields.add(value_field(scalar), value_label(scalar), FIELD_TYPES[scalar.name],
+                   "BASE_DEC" if not (scalar.is_bool or scalar.is_float) else "BASE_NONE", own=True)
     fields.add("recipe_id", "Recipe id", "FT_UINT8", "BASE_DEC")
     for m in interface.messages:
         for f in m.fields:
@@ -209,10 +212,11 @@ def render(interface: model.Interface, banner: list[str], upstream: bool = False
         "type_names": [(code, chr(code)) for code in codes],
         "enums": [{"var": enums[e.name], "members": [(v.value, v.name) for v in e.values]} for e in interface.enums],
         "own_units": [{"var": var, "text": c_string(" " + unit)} for unit, var in units.own.items()],
-        "value_types": [{"name": c_string(t.name), "size": t.scalar.size, "count": t.count}
-                        for t in interface.value_types],
+        "value_types": [{"name": c_string(t.name), "size": t.scalar.size, "count": t.count,
+                         "field": fields.enum_of(value_field(t.scalar))} for t in interface.value_types],
         "variables": [{"name": c_string(v.name), "field": fields.enum_of(v.name),
-                       "unit": c_string(" " + v.unit) if v.unit and v.value_type.scalar.is_float else "NULL"}
+                       "unit": c_string(" " + v.unit) if v.unit and v.value_type.scalar.is_float else "NULL",
+                       "type": [t.name for t in interface.value_types].index(v.value_type.name)}
                       for v in variables],
         "steps": [s for s in steps if s["rows"]],
         "layouts": layouts, "index": index, "max_protocol": max_protocol, "codes": codes,

@@ -25,6 +25,21 @@ READER = {"bool": "uint", "int8": "int", "uint8": "uint", "int16": "int", "uint1
           "uint32": "uint", "int64": "int64", "uint64": "uint64", "float32": "float", "float64": "float"}
 # Header fields and the fields the runtime adds itself; no message field or variable may take these names.
 OWN_FIELDS = ("length", "type", "kind", "recipe_frame", "direction", "protocol", "unknown_variable")
+# The fields of a value a setup reply types otherwise than the variable table, one per scalar of the
+# value types: `value_<scalar>` (rtde.value_float64), also the dissector's own.
+
+
+def value_field(scalar: ir.Scalar) -> str:
+    return f"value_{scalar.name}"
+
+
+def value_label(scalar: ir.Scalar) -> str:
+    return f"Value of the setup reply's type ({scalar.name})"
+
+
+def value_fields(interface: model.Interface) -> list[ir.Scalar]:
+    """The scalars of the value types, once each, in the spec's order."""
+    return list({t.scalar.name: t.scalar for t in interface.value_types}.values())
 
 
 @dataclass
@@ -61,7 +76,7 @@ class _Fields:
         self.problems: list[Problem] = []
 
     def add(self, name: str, call: str, label: str, args: str, where: ir.Where) -> None:
-        if name in OWN_FIELDS:
+        if name in OWN_FIELDS or name.startswith("value_"):
             self.problems.append(Problem(where.path, f"lua target: {self.prefix}.{name} is the dissector's own field",
                                          where.line))
             return
@@ -121,9 +136,12 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
         for p in m.protocols:
             messages.append({"key": f"{m.code}:{1 if m.from_robot else 0}:{p}", "name": m.name, "label": m.label,
                              "letter": m.letter, "steps": steps})
-    value_types = [{"name": t.name, "size": t.scalar.size, "count": t.count, "read": READER[t.scalar.name]}
-                   for t in interface.value_types]
-    variables = [{"name": v.name, "unit": _unit(v.unit if v.value_type.scalar.is_float else None)}
+    value_types = [{"name": t.name, "size": t.scalar.size, "count": t.count, "read": READER[t.scalar.name],
+                    "field": value_field(t.scalar)} for t in interface.value_types]
+    own_values = [{"name": value_field(s), "call": PROTOFIELD[s.name], "label": value_label(s),
+                   "args": _field_args(s, None, None)} for s in value_fields(interface)]
+    variables = [{"name": v.name, "unit": _unit(v.unit if v.value_type.scalar.is_float else None),
+                  "type": v.value_type.name}
                  for v in {v.name: v for v in interface.variables}.values()]
     kinds = [{"name": k.name, "from_robot": k.data_from_robot, "requests": [r.name for r in k.requests],
               "replies": [r.name for r in k.replies]} for k in interface.recipe_kinds]
@@ -134,6 +152,7 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
         "enums": [{"var": enums[e.name], "members": [(v.value, v.name) for v in e.values]} for e in interface.enums],
         "fields": list(fields.by_name.values()),
         "messages": messages, "value_types": value_types, "variables": variables, "kinds": kinds,
+        "own_values": own_values,
         "refusals": [r.word for r in interface.refusals],
         "max_pending": interface.max_pending_setups,
         "codes": codes,

@@ -144,6 +144,7 @@ class Interface:
     refusals: list[Refusal]
     generations: list[Generation]
     max_pending_setups: int = 1         # setup requests of one kind a connection keeps awaiting replies
+    max_pending_version_requests: int = 1   # protocol version requests a connection keeps awaiting replies
     variables: list[Variable] = field(default_factory=list)
 
     @property

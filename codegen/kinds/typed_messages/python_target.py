@@ -93,7 +93,8 @@ def _attr(f, message: model.Message) -> AttrView:
     if isinstance(f, model.NamesField):
         return AttrView(f.name, "list[str]", "names", metadata, f.label + ".")
     if isinstance(f, model.RecipeValuesField):
-        return AttrView(f.name, "dict[str, Any]", "values", metadata, f.label + ", by variable name.")
+        return AttrView(f.name, "Union[_r.Values, dict[str, Any]]", "values", metadata,
+                        f.label + ": every one in recipe order, and by variable name (a Values; a dict when built).")
     doc = one_line(field_text([f], versions=False))
     if isinstance(f, ir.StringField):
         return AttrView(f.name, "str", "text", metadata, doc)

@@ -49,6 +49,7 @@ class _TypedResolver(_Resolver):
             length_counts_header=framing["length_counts_header"], enums=list(self.enums.values()),
             value_types=value_types, messages=messages, undocumented=undocumented, recipe_kinds=kinds,
             refusals=refusals, generations=generations, max_pending_setups=data["recipes"]["max_pending_setups"],
+            max_pending_version_requests=data["recipes"]["max_pending_version_requests"],
             variables=variables)
 
     def value_types(self, raws) -> list[model.ValueType]:

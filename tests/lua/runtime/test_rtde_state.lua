@@ -1,9 +1,13 @@
 -- runtime/rtde_state.lua: the protocol version negotiated, setup replies matched to their requests
--- in order, recipes per direction, refusals and a refused start.
+-- in order, recipes per direction, refusals and a refused start; requests beyond the bounds not
+-- kept and their replies paired with nothing; versions with no layouts; variables retyped.
 local S = dofile("stubs.lua")
 local spec = {
     default_protocol = 2,
     max_pending_setups = 4,
+    max_pending_version_requests = 2,
+    protocol_versions = { [1] = true, [2] = true },
+    variable_types = { timestamp = "DOUBLE", actual_q = "VECTOR6D" },
     recipe_kinds = {
         { name = "outputs", from_robot = true, requests = { "setup_outputs", "setup_outputs_v1" },
           replies = { "setup_outputs_reply", "setup_outputs_reply_v1" } },
@@ -50,4 +54,41 @@ S.eq(rt.recipe_for(st, true, nil).frame, 13, "the one output recipe")
 S.eq(rt.follow(st, "start_reply", { accepted = 0 }, 14).warning, "the robot refused to start", "refused start")
 S.eq(rt.follow(st, "start_reply", { accepted = 1 }, 15), nil, "a start")
 S.eq(rt.new_state().recipes.outputs[1], nil, "every conversation starts empty")
+
+-- A version with no layouts changes nothing, and says so.
+st = rt.new_state()
+rt.follow(st, "request_protocol_version", { protocol_version = 300 }, 1)
+notes = rt.follow(st, "request_protocol_version_reply", { accepted = 1 }, 2)
+S.eq(notes.protocol_error, "protocol version 300 accepted, which has no layouts: protocol 2 stays in force", "300")
+S.eq(st.protocol, nil, "the protocol in force stays")
+
+-- Version requests beyond the bound (2 here): not kept, and their replies pair with nothing.
+st = rt.new_state()
+for frame = 1, 3 do
+    notes = rt.follow(st, "request_protocol_version", { protocol_version = frame == 3 and 1 or 2 }, frame)
+end
+S.eq(notes.not_kept, "protocol version request not kept: more than 2 protocol version requests awaited replies",
+     "the third request")
+rt.follow(st, "request_protocol_version_reply", { accepted = 1 }, 4)
+rt.follow(st, "request_protocol_version_reply", { accepted = 1 }, 5)
+notes = rt.follow(st, "request_protocol_version_reply", { accepted = 1 }, 6)
+S.eq(notes.not_kept ~= nil and rt.protocol_of(st), 2, "the third reply pairs with nothing: protocol 1 never asked")
+
+-- Setups beyond the bound (4 here): the fifth and, while its reply is ahead, the sixth are not kept.
+st = rt.new_state()
+for frame = 1, 5 do rt.follow(st, "setup_outputs", { variables = "v" .. frame }, frame) end
+for id = 1, 4 do rt.follow(st, "setup_outputs_reply", { recipe_id = id, types = "DOUBLE" }, 10 + id) end
+S.eq(rt.recipe_for(st, true, 4).names[1], "v4", "reply 4 keeps its own request's names")
+notes = rt.follow(st, "setup_outputs", { variables = "v6" }, 20)
+S.eq(notes.not_kept, "setup not kept: more than 4 setups awaited replies", "the sixth, behind a lost one")
+rt.follow(st, "setup_outputs", { variables = "v" }, 21)
+st.recipes.outputs[5] = { names = { "old" } }
+notes = rt.follow(st, "setup_outputs_reply", { recipe_id = 5, types = "DOUBLE" }, 22)
+S.eq(notes.not_kept, "reply to a setup that was not kept: more than 4 setups awaited replies", "reply 5")
+S.eq(rt.recipe_for(st, true, 5), nil, "its id has no recipe: not the one it replaced")
+
+-- A variable the reply types otherwise than the table.
+S.eq(rt.retyped("timestamp", "UINT8"), "timestamp: UINT8 by the setup reply, DOUBLE in the variable table", "retyped")
+S.eq(rt.retyped("timestamp", "DOUBLE"), nil, "as the table types it")
+S.eq(rt.retyped("a_newer_one", "UINT8"), nil, "a name the table lacks")
 print("ok")
