@@ -506,7 +506,9 @@ def fails(record: Any) -> bool:
     "error" that is a decoded bool (a dashboard reply that says an error) is the robot's word, not
     a fault of decoding."""
     inner = record.record if isinstance(record, Enveloped) else record
-    return has_error(inner) or isinstance(getattr(inner, "error", None), str)
+    noted = getattr(inner, "notes", None)
+    return (has_error(inner) or isinstance(getattr(inner, "error", None), str)
+            or isinstance(noted, dict) and isinstance(noted.get("error"), str))
 
 
 def has_error(record: Any) -> bool:

@@ -143,3 +143,26 @@ def test_listen_rtde_exits_1_when_its_records_hold_errors(tmp_path):
     assert [r["type"] for r in records[3:]] == ["data_package"] * 4
     assert all(r["error"] == "data package of a recipe this connection did not set up" for r in records[3:])
     assert res.returncode == 1, res.stderr
+
+
+def _golden_exchanges():
+    from tests.rtde_vectors import rtde_cases
+    return [case for case in rtde_cases() if case.client_bytes and case.robot_bytes]
+
+
+@pytest.mark.parametrize("case", _golden_exchanges(), ids=lambda case: case.name)
+def test_an_rtde_record_with_an_error_text_makes_both_commands_exit_1(tmp_path, case):
+    """A message the conversation could not follow (a request a full queue did not keep, a protocol
+    version with no layouts) is decoded, but its record carries an error text: exit 1, as for a
+    message kept whole with one."""
+    robot, client = tmp_path / "robot.bin", tmp_path / "client.bin"
+    robot.write_bytes(case.robot_bytes)
+    client.write_bytes(case.client_bytes)
+    python = subprocess.run([sys.executable, "-m", "urwire", "decode", "--protocol", "rtde", str(robot),
+                             "--to-robot", str(client)], capture_output=True, text=True, env=ENV, timeout=60)
+    c = subprocess.run([str(get_build("gcc").cli), "--protocol", "rtde", str(robot), "--to-robot", str(client)],
+                       capture_output=True, text=True, timeout=60)
+    assert python.stdout == c.stdout
+    records = [json.loads(line) for line in python.stdout.splitlines()]
+    expected = 1 if any(isinstance(r.get("error"), str) or r.get("type") == "error" for r in records) else 0
+    assert (python.returncode, c.returncode) == (expected, expected), python.stdout

@@ -238,7 +238,7 @@ int rtde_json_record(FILE *out, const envelope *env, const rtde_message *m, rtde
         put_text(out, (const uint8_t *)m->error, strlen(m->error));
     }
     fputs("}\n", out);
-    return 0;
+    return m->error != NULL;   /* a record the conversation could not follow (a queue, a version) */
 }
 
 /* The protocol's own limits: the command keeps every recipe a connection can make, as the Python
