@@ -19,9 +19,9 @@ table named by its interface:
 
 Every value is the one `urwire decode` shows: rows are made from the record's canonical JSON,
 lists of numbers one column per item, other lists and objects kept as their JSON text. Error
-records go to `errors`, and records kept raw with their reason (an RTDE data package of a recipe
-the capture did not show being set up) to `unknown`, each with its JSON, as the primary
-interface's do.
+records go to `errors` with their JSON: every record that makes `urwire decode` exit 1
+(canonical.fails), among them a message kept raw with its reason (an RTDE data package of a recipe
+the capture did not show being set up) and a reply a full queue could not pair.
 """
 from __future__ import annotations
 
@@ -30,7 +30,7 @@ import json
 from collections import deque
 from typing import Callable, Optional
 
-from .canonical import has_error, to_dict, to_json_line
+from .canonical import fails, to_dict, to_json_line
 from .envelope import Enveloped
 from .generated.ur_dashboard import BANNER as _BANNER
 
@@ -89,7 +89,7 @@ class CellRows:
 
     def add(self, position: int, item: Enveloped, time=None) -> None:
         record = item.record
-        if has_error(record):
+        if fails(record):
             self._add("errors", position, [("record", "text", to_json_line(item))], time)
             return
         recipe = getattr(record, "notes", {}).get("recipe") if item.interface == RTDE else None
@@ -97,9 +97,7 @@ class CellRows:
             self._rtde_data(position, item, recipe, time)
             return
         fields = to_dict(item)
-        if "error" in fields and isinstance(fields["error"], str):   # kept raw with its reason
-            self._add("unknown", position, [("record", "text", to_json_line(item))], time)
-        elif item.interface == DASHBOARD:
+        if item.interface == DASHBOARD:
             self._dashboard(position, item.conversation, fields, time)
         else:
             table = f"{RTDE}_messages" if item.interface == RTDE else item.interface
