@@ -31,6 +31,10 @@ def reply_not_kept(kept: int) -> str:
     return f"reply to a command that was not kept: more than {kept} commands awaited replies"
 
 
+def reply_unknown(request: str) -> str:
+    return f"reply after bytes lost from the capture: its {request} is unknown"
+
+
 @dataclass(frozen=True)
 class ReplySpec:
     name: str
@@ -158,55 +162,87 @@ class LineSplitter:
 
 
 class Pending:
-    """Commands awaiting their replies, oldest first, at most `limit` of them. A command that
-    comes when the queue is full is not kept but counted as lost, and so is every command after
+    """Requests awaiting their replies, oldest first, at most `limit` of them. A request that
+    comes when the queue is full is not kept but counted as lost, and so is every request after
     it while lost ones are ahead of it (replies come in order); a reply that comes when none is
-    kept but some are lost answers a lost one. So no reply is ever paired with another command."""
+    kept but some are lost answers a lost one. So no reply is ever paired with another request.
+
+    Bytes lost from a capture make the count of lost requests unknown (`unknown`), for good: no
+    byte after a gap tells how many requests or replies it swallowed, and a client may send its
+    next request before the last reply, so no later moment is known to have none awaiting."""
 
     def __init__(self, limit: int = PENDING_KEPT):
         self.limit = limit
         self.kept: deque = deque()
         self.lost = 0
+        self.unknown = False
 
     def __len__(self) -> int:
         return len(self.kept)
 
-    def push(self, command) -> bool:
-        """Whether the command was kept."""
-        if self.lost or len(self.kept) >= self.limit:
+    def push(self, request) -> bool:
+        """Whether the request was kept."""
+        if self.unknown or self.lost or len(self.kept) >= self.limit:
             self.lost += 1
             return False
-        self.kept.append(command)
+        self.kept.append(request)
         return True
 
     def pop(self) -> tuple:
-        """(the command the next reply answers or None, whether it answers a lost one)."""
+        """(the request the next reply answers or None, why it pairs with none: None when it
+        pairs, or none was asked, else `NOT_KEPT` or `UNKNOWN`)."""
         if self.kept:
-            return self.kept.popleft(), False
+            return self.kept.popleft(), None
+        if self.unknown:
+            return None, UNKNOWN
         if self.lost:
             self.lost -= 1
-            return None, True
-        return None, False
+            return None, NOT_KEPT
+        return None, None
+
+    def requests_lost(self) -> None:
+        """The capture lost bytes of the requests: those kept came before them and keep their
+        replies, which come first; every later request is behind an unknown number of lost ones."""
+        self.unknown = True
+
+    def replies_lost(self) -> None:
+        """The capture lost bytes of the replies: how many of the awaiting requests they answered
+        is unknown, unless none awaited (bytes sent then answer nothing)."""
+        if self.kept or self.lost:
+            self.kept.clear()
+            self.unknown = True
+
+
+NOT_KEPT, UNKNOWN = "not kept", "unknown"
 
 
 class Latest:
-    """Where every answering line belongs to the latest request: only that one is kept."""
+    """Where every answering line belongs to the latest request: only that one is kept. Bytes
+    lost from the requests may have held a later one: until a request comes after them, an
+    answering line's request is unknown. Bytes lost from the answers change nothing."""
 
     limit = 1
 
     def __init__(self):
         self.command = None
         self.any = False
+        self.unknown = False
 
     def __len__(self) -> int:
         return int(self.any)
 
     def push(self, command) -> bool:
-        self.command, self.any = command, True
+        self.command, self.any, self.unknown = command, True, False
         return True
 
     def pop(self) -> tuple:
-        return self.command, False
+        return (None, UNKNOWN) if self.unknown else (self.command, None)
+
+    def requests_lost(self) -> None:
+        self.command, self.unknown = None, True
+
+    def replies_lost(self) -> None:
+        pass
 
 
 class LinesConversation:
@@ -235,7 +271,12 @@ class LinesConversation:
 
     def lost(self, from_robot: bool, offset: int) -> list:
         """Bytes of one direction are missing before `offset`: the line they cut is given up, and
-        that direction's lines are split afresh from there."""
+        that direction's lines are split afresh from there; the requests they may have held, or
+        answered, leave the pairing unknown (Pending)."""
+        if from_robot == self.tables.REQUESTS_FROM_ROBOT:
+            self.pending.requests_lost()
+        else:
+            self.pending.replies_lost()
         return self._lines(from_robot).restart(offset)
 
     def _lines(self, from_robot: bool) -> "_Lines":
@@ -273,10 +314,15 @@ class LinesConversation:
             self.greeted = True
             if t.BANNER is not None and matches(t.BANNER.pieces, text):
                 return t.Reply(text, None, t.BANNER.name, False)
-        command, lost = self.pending.pop()
+        command, unpaired = self.pending.pop()
         reply = classify(t.COMMON_REPLIES, command, text)
         if command is not None and command.name == t.VERSION_COMMAND:
             self.version = version_in(text, t.VERSION_PREFIX) or self.version
-        # A reply to a lost command says so in place of whether it says an error.
-        error = reply_not_kept(self.pending.limit) if lost else (reply.error if reply else False)
+        # A reply that pairs with none says why in place of whether it says an error.
+        if unpaired == NOT_KEPT:
+            error = reply_not_kept(self.pending.limit)
+        elif unpaired == UNKNOWN:
+            error = reply_unknown("command")
+        else:
+            error = reply.error if reply else False
         return t.Reply(text, command.name if command else None, reply.name if reply else None, error)

@@ -276,7 +276,8 @@ class Reply:
     JSON = (("reply", "text", False), ("command_name", "text", True), ("reply_name", "text", True),
             ("error", "bool|text", False))
     extra = b""
-    # An error record when it answers a command that was not kept (its error is then a text).
+    # An error record when it answers a command that was not kept, or one that bytes lost from a
+    # capture leave unknown (its error is then a text).
     IS_ERROR = property(lambda self: isinstance(self.error, str))
 
     reply: str = field(metadata={"label": "Reply", "unit": None})
@@ -285,7 +286,8 @@ class Reply:
     # Which of the command's documented replies it is.
     reply_name: Optional[str] = field(default=None, metadata={"label": "Reply meaning", "unit": None})
     # True when the reply says that the command failed.
-    # (A text instead when the reply answers a command that was not kept: it pairs with none.)
+    # (A text instead when the reply answers a command that was not kept, or one bytes lost from a
+    # capture leave unknown: it pairs with none.)
     error: Union[bool, str] = field(default=False, metadata={"label": "Says an error", "unit": None})
 
 

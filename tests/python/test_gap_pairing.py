@@ -1,0 +1,130 @@
+"""After bytes are lost from a capture, no reply is paired with a request it did not answer: the
+requests a gap may have swallowed, or whose replies it may have swallowed, leave the pairing
+unknown, and every reply after that pairs with nothing and says so."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import dpkt
+
+from tests.tools import capture
+
+ROOT = __import__("pathlib").Path(__file__).resolve().parents[2]
+ENV = {"PYTHONPATH": f"{ROOT / 'python'}:{ROOT / 'generated' / 'python'}"}
+FIN = None          # in an exchange: the side closes its half of the connection
+DASHBOARD_UNKNOWN = "reply after bytes lost from the capture: its command is unknown"
+BANNER = b"Connected: Universal Robots Dashboard Server\n"
+
+
+def exchange_frames(steps: list, port: int, lose: int) -> list[bytes]:
+    """A TCP session of (from robot, payload or FIN) steps, each acknowledged by the other side;
+    the frame of step `lose` is not in the capture (its acknowledgement is)."""
+    A, PA, F = dpkt.tcp.TH_ACK, dpkt.tcp.TH_PUSH | dpkt.tcp.TH_ACK, dpkt.tcp.TH_FIN | dpkt.tcp.TH_ACK
+    seq = {True: 1000, False: 5000}
+    ends = {True: (capture.ROBOT, port, capture.ROBOT_MAC), False: (capture.CLIENT, 50123, capture.CLIENT_MAC)}
+
+    def frame(from_robot: bool, flags: int, data: bytes = b"") -> bytes:
+        (src, sport, smac), (dst, dport, dmac) = ends[from_robot], ends[not from_robot]
+        return capture._frame(src, dst, sport, dport, seq[from_robot], seq[not from_robot], flags, data, smac, dmac)
+
+    frames = capture.session_frames([], port=port)[:3]           # the handshake
+    for i, (from_robot, payload) in enumerate(steps):
+        sent = frame(from_robot, F if payload is FIN else PA, payload or b"")
+        if i != lose:
+            frames.append(sent)
+        seq[from_robot] += 1 if payload is FIN else len(payload)
+        frames.append(frame(not from_robot, A))
+    return frames
+
+
+def decode(tmp_path, steps: list, port: int, lose: int) -> tuple[list[dict], int]:
+    pcap = capture.write(tmp_path / "gap.pcap", exchange_frames(steps, port, lose))
+    res = subprocess.run([sys.executable, "-m", "urwire", "decode", str(pcap)], capture_output=True, text=True,
+                         env=ENV, timeout=120)
+    assert res.returncode in (0, 1), res.stderr
+    return [json.loads(line) for line in res.stdout.splitlines()], res.returncode
+
+
+ANSWERS = {"Powering on": "power_on", "Brake releasing": "brake_release", "Robotmode: IDLE": "robotmode",
+           "Loaded program: /x.urp": "get_loaded_program", "Starting program": "play"}
+COMMANDS = [b"power on\n", b"brake release\n", b"robotmode\n", b"get loaded program\n", b"play\n"]
+REPLIES = [b"Powering on\n", b"Brake releasing\n", b"Robotmode: IDLE\n", b"Loaded program: /x.urp\n",
+           b"Starting program\n"]
+
+
+def replies(records: list[dict]) -> list[dict]:
+    return [r for r in records if r["type"] == "reply" and r.get("reply_name") != "connected"]
+
+
+def assert_none_mispaired(records: list[dict]) -> None:
+    for reply in replies(records):
+        assert reply.get("command_name") in (None, ANSWERS[reply["reply"]]), reply
+
+
+def test_a_gap_that_swallows_a_reply_leaves_the_later_replies_unpaired(tmp_path):
+    """A client that waits for each reply: the robot's reply to robotmode is lost, and the robot's
+    later segments wait in the reader until its side closes, behind the commands they answer."""
+    steps = [(True, BANNER)]
+    for command, reply in zip(COMMANDS, REPLIES):
+        steps += [(False, command), (True, reply)]
+    steps += [(True, FIN), (False, FIN)]
+    records, status = decode(tmp_path, steps, 29999, lose=6)
+    assert status == 1
+    assert_none_mispaired(records)
+    paired = [(r["reply"], r.get("command_name"), r.get("error")) for r in replies(records)]
+    assert paired == [("Powering on", "power_on", False), ("Brake releasing", "brake_release", False),
+                      ("Loaded program: /x.urp", None, DASHBOARD_UNKNOWN),
+                      ("Starting program", None, DASHBOARD_UNKNOWN)]
+
+
+def test_a_gap_that_swallows_a_command_leaves_the_later_replies_unpaired(tmp_path):
+    """A client that sends its commands at once and closes its side: brake release is lost; the
+    reply to power on, sent before it, still pairs; every later one pairs with nothing."""
+    steps = [(True, BANNER)] + [(False, c) for c in COMMANDS] + [(False, FIN)]
+    steps += [(True, r) for r in REPLIES] + [(True, FIN)]
+    records, status = decode(tmp_path, steps, 29999, lose=2)
+    assert status == 1
+    assert_none_mispaired(records)
+    paired = [(r["reply"], r.get("command_name"), r.get("error")) for r in replies(records)]
+    assert paired == [("Powering on", "power_on", False)] + [(r.decode().strip(), None, DASHBOARD_UNKNOWN)
+                                                             for r in REPLIES[1:]]
+    gap = [r for r in records if r["type"] == "error" and "missing from the capture" in r["error"]]
+    assert [g["direction"] for g in gap] == ["to_robot"]
+
+
+def test_a_gap_in_the_replies_when_none_awaits_keeps_the_pairing():
+    """Bytes the robot sent while no command awaited a reply cannot hold one: pairing goes on (the
+    capture reader names such a gap when the robot's later bytes come, before what they answer)."""
+    from urwire.generated import ur_dashboard
+
+    conversation = ur_dashboard.conversation()
+    conversation.feed(BANNER, True)
+    conversation.feed(COMMANDS[0], False)
+    conversation.feed(REPLIES[0], True)
+    conversation.lost(True, len(BANNER) + len(REPLIES[0]) + 11)
+    conversation.feed(COMMANDS[1], False)
+    (reply,) = conversation.feed(REPLIES[1], True)
+    assert (reply.command_name, reply.error) == ("brake_release", False)
+    conversation.feed(COMMANDS[2], False)
+    conversation.lost(True, 200)                    # now one awaits: its reply may be among the lost
+    (reply,) = conversation.feed(REPLIES[2], True)
+    assert (reply.command_name, reply.error) == (None, DASHBOARD_UNKNOWN)
+
+
+def test_the_script_senders_latest_request_is_unknown_after_a_gap_in_the_requests():
+    """The program lines answer the latest request_program: after a gap in the robot's requests
+    they answer one that may be lost, until the next request comes."""
+    from urwire.generated import ur_script_sender
+
+    conversation = ur_script_sender.conversation()
+    conversation.feed(b"request_program\n", True)
+    assert conversation.feed(b"def prog():\n", False)[0].command_name == "request_program"
+    conversation.lost(False, 100)                   # the program's lines: the request is still known
+    assert conversation.feed(b"end\n", False)[0].command_name == "request_program"
+    conversation.lost(True, 100)
+    (line,) = conversation.feed(b"def prog():\n", False)
+    assert (line.command_name, line.error) == (None, DASHBOARD_UNKNOWN)
+    conversation.feed(b"request_program\n", True)
+    assert conversation.feed(b"end\n", False)[0].command_name == "request_program"
