@@ -15,6 +15,7 @@ ROOT = __import__("pathlib").Path(__file__).resolve().parents[2]
 ENV = {"PYTHONPATH": f"{ROOT / 'python'}:{ROOT / 'generated' / 'python'}"}
 FIN = None          # in an exchange: the side closes its half of the connection
 DASHBOARD_UNKNOWN = "reply after bytes lost from the capture: its command is unknown"
+SETUP_UNKNOWN = "reply after bytes lost from the capture: its setup is unknown"
 BANNER = b"Connected: Universal Robots Dashboard Server\n"
 
 
@@ -128,3 +129,31 @@ def test_the_script_senders_latest_request_is_unknown_after_a_gap_in_the_request
     assert (line.command_name, line.error) == (None, DASHBOARD_UNKNOWN)
     conversation.feed(b"request_program\n", True)
     assert conversation.feed(b"end\n", False)[0].command_name == "request_program"
+
+
+def test_an_rtde_gap_that_swallows_a_setup_request_makes_no_recipe_from_another(tmp_path):
+    """The first of two setups is lost: its reply does not take the second's names, the recipe
+    set up before the gap is kept, and no data package is read with names it was not set up with."""
+    from urwire import rtde
+    from urwire.generated import rtde as g
+
+    first = rtde.Recipe(1, "outputs", ["timestamp"], ["DOUBLE"], g.VALUE_TYPES)
+    second = rtde.Recipe(2, "outputs", ["target_speed_fraction"], ["DOUBLE"], g.VALUE_TYPES)
+    third = rtde.Recipe(3, "outputs", ["speed_scaling"], ["DOUBLE"], g.VALUE_TYPES)
+    steps = [(False, rtde.request_protocol_version(2)), (True, g.RequestProtocolVersionReply(True).encode()),
+             (False, rtde.setup_outputs(["timestamp"], 125.0)), (True, g.SetupOutputsReply(1, ["DOUBLE"]).encode()),
+             (False, rtde.setup_outputs(["target_speed_fraction"], 125.0)),       # lost
+             (False, rtde.setup_outputs(["speed_scaling"], 125.0)),
+             (False, rtde.start()), (False, FIN),
+             (True, g.SetupOutputsReply(2, ["DOUBLE"]).encode()), (True, g.SetupOutputsReply(3, ["DOUBLE"]).encode()),
+             (True, g.StartReply(True).encode())]
+    steps += [(True, g.DataPackage(r.id, {r.names[0]: 0.5}).encode(r)) for r in (first, second, third)]
+    steps += [(True, FIN)]
+    records, status = decode(tmp_path, steps, 30004, lose=4)
+    assert status == 1
+    setups = [r for r in records if r["type"] == "setup_outputs_reply"]
+    assert [(s["recipe_id"], s.get("error")) for s in setups] == [(1, None), (2, SETUP_UNKNOWN), (3, SETUP_UNKNOWN)]
+    data = [r for r in records if r["type"] == "data_package"]
+    assert data[0]["timestamp"] == 0.5 and "error" not in data[0]          # set up before the gap
+    assert [d["recipe_id"] for d in data[1:]] == [2, 3]
+    assert all("error" in d and "speed_scaling" not in d and "target_speed_fraction" not in d for d in data[1:])
