@@ -18,7 +18,7 @@ from __future__ import annotations
 from typing import Optional
 
 from .generated import rtde as _g
-from .text_lines import UNKNOWN, Pending, reply_unknown
+from .text_lines import NOT_KEPT, UNKNOWN, Pending, reply_unknown
 from .typed_records import DecodeError, Framer, Message, RawMessage, Recipe, Values
 
 __all__ = ["Conversation", "Recipe", "Values", "VARIABLES", "variable", "request_protocol_version", "setup_outputs",
@@ -137,13 +137,13 @@ class Conversation:
         """What a message changes in the connection's state."""
         cls = type(record)
         if cls is _g.RequestProtocolVersion:
-            if not self._asked_version.push(record.protocol_version):
+            if self._asked_version.push(record.protocol_version) == NOT_KEPT:
                 record.note("error", f"protocol version request not kept: {self._asked_version.overflow}")
         elif cls is _g.RequestProtocolVersionReply:
             self._version_reply(record)
         elif cls in _KIND_OF_REQUEST:
             pending = self._pending[_KIND_OF_REQUEST[cls].name]
-            if not pending.push(record.variables):
+            if pending.push(record.variables) == NOT_KEPT:
                 record.note("error", f"setup not kept: {pending.overflow}")
         elif cls in _KIND_OF_REPLY:
             self._make_recipe(_KIND_OF_REPLY[cls], record)

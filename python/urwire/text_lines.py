@@ -161,6 +161,9 @@ class LineSplitter:
         return out
 
 
+NOT_KEPT, UNKNOWN = "not kept", "unknown"      # why a request or reply pairs with none
+
+
 class Pending:
     """Requests awaiting their replies, oldest first, at most `limit` of them. A request that
     comes when the queue is full is not kept but counted as lost, and so is every request after
@@ -180,13 +183,14 @@ class Pending:
     def __len__(self) -> int:
         return len(self.kept)
 
-    def push(self, request) -> bool:
-        """Whether the request was kept."""
+    def push(self, request) -> Optional[str]:
+        """None when the request is kept, else why not: `NOT_KEPT` (the queue is full, or one not
+        kept is ahead), which its record says, or `UNKNOWN` (after a gap), which the gap's says."""
         if self.unknown or self.lost or len(self.kept) >= self.limit:
             self.lost += 1
-            return False
+            return UNKNOWN if self.unknown else NOT_KEPT
         self.kept.append(request)
-        return True
+        return None
 
     def pop(self) -> tuple:
         """(the request the next reply answers or None, why it pairs with none: None when it
@@ -213,9 +217,6 @@ class Pending:
             self.unknown = True
 
 
-NOT_KEPT, UNKNOWN = "not kept", "unknown"
-
-
 class Latest:
     """Where every answering line belongs to the latest request: only that one is kept. Bytes
     lost from the requests may have held a later one: until a request comes after them, an
@@ -231,9 +232,9 @@ class Latest:
     def __len__(self) -> int:
         return int(self.any)
 
-    def push(self, command) -> bool:
+    def push(self, command) -> Optional[str]:
         self.command, self.any, self.unknown = command, True, False
-        return True
+        return None
 
     def pop(self) -> tuple:
         return (None, UNKNOWN) if self.unknown else (self.command, None)
@@ -301,7 +302,7 @@ class LinesConversation:
         t = self.tables
         text = raw.decode("utf-8", "surrogateescape")
         command, argument = find_command(t.LOOKUP, text)
-        error = None if self.pending.push(command) else not_kept(self.pending.limit)
+        error = not_kept(self.pending.limit) if self.pending.push(command) == NOT_KEPT else None
         if command is None:
             return t.Command(text, error=error)
         available = None if self.version is None else command.available(self.version)

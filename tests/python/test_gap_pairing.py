@@ -93,6 +93,9 @@ def test_a_gap_that_swallows_a_command_leaves_the_later_replies_unpaired(tmp_pat
                                                              for r in REPLIES[1:]]
     gap = [r for r in records if r["type"] == "error" and "missing from the capture" in r["error"]]
     assert [g["direction"] for g in gap] == ["to_robot"]
+    # The commands after the gap are decoded, and are not the overflow's: only the gap is an error.
+    assert [(r["command_name"], r.get("error")) for r in records if r["type"] == "command"] == [
+        ("power_on", None), ("robotmode", None), ("get_loaded_program", None), ("play", None)]
 
 
 def test_a_gap_in_the_replies_when_none_awaits_keeps_the_pairing():
@@ -151,6 +154,8 @@ def test_an_rtde_gap_that_swallows_a_setup_request_makes_no_recipe_from_another(
     steps += [(True, FIN)]
     records, status = decode(tmp_path, steps, 30004, lose=4)
     assert status == 1
+    asked = [r for r in records if r["type"] == "setup_outputs"]
+    assert [("error" in r) for r in asked] == [False, False]            # the gap's record says it
     setups = [r for r in records if r["type"] == "setup_outputs_reply"]
     assert [(s["recipe_id"], s.get("error")) for s in setups] == [(1, None), (2, SETUP_UNKNOWN), (3, SETUP_UNKNOWN)]
     data = [r for r in records if r["type"] == "data_package"]
