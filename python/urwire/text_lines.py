@@ -31,6 +31,11 @@ def reply_not_kept(kept: int) -> str:
     return f"reply to a command that was not kept: more than {kept} commands awaited replies"
 
 
+# The first line after a gap: the gap may have ended inside a line ("popup power off" may show as
+# "power off"), so the line is decoded but not taken for a whole one.
+LINE_AFTER_GAP = "line after bytes lost from the capture: its start may be lost"
+
+
 def reply_unknown(request: str) -> str:
     return f"reply after bytes lost from the capture: its {request} is unknown"
 
@@ -256,12 +261,20 @@ class LinesConversation:
         self.replies = LineSplitter(tables.MAX_LINE)
         self.pending = Pending() if tables.ONE_REPLY_PER_REQUEST else Latest()
         self.greeted = False
+        self.cut = {True: False, False: False}      # by direction: the next line follows a gap
 
     def feed(self, data: bytes, from_robot: bool) -> list:
         requests = from_robot == self.tables.REQUESTS_FROM_ROBOT
         lines = (self.commands if requests else self.replies).feed(data)
         read = self._command if requests else self._reply
-        return [self._too_long(line, requests) if isinstance(line, StreamError) else read(line[1]) for line in lines]
+        out = []
+        for line in lines:
+            if isinstance(line, StreamError):
+                out.append(self._too_long(line, requests))
+            else:
+                out.append(read(line[1], self.cut[from_robot]))
+            self.cut[from_robot] = False
+        return out
 
     def close(self, from_robot: Optional[bool] = None) -> list:
         """A line cut short at the end of one direction's stream (both, to_robot's first, as the C
@@ -274,6 +287,7 @@ class LinesConversation:
         """Bytes of one direction are missing before `offset`: the line they cut is given up, and
         that direction's lines are split afresh from there; the requests they may have held, or
         answered, leave the pairing unknown (Pending)."""
+        self.cut[from_robot] = True
         if from_robot == self.tables.REQUESTS_FROM_ROBOT:
             self.pending.requests_lost()
         else:
@@ -298,24 +312,27 @@ class LinesConversation:
             self.pending.pop()
         return error
 
-    def _command(self, raw: bytes):
+    def _command(self, raw: bytes, cut: bool = False):
         t = self.tables
         text = raw.decode("utf-8", "surrogateescape")
         command, argument = find_command(t.LOOKUP, text)
         error = not_kept(self.pending.limit) if self.pending.push(command) == NOT_KEPT else None
+        error = LINE_AFTER_GAP if cut else error
         if command is None:
             return t.Command(text, error=error)
         available = None if self.version is None else command.available(self.version)
         return t.Command(text, command.name, argument, available, error)
 
-    def _reply(self, raw: bytes):
+    def _reply(self, raw: bytes, cut: bool = False):
         t = self.tables
         text = raw.decode("utf-8", "surrogateescape")
         if not self.greeted:
             self.greeted = True
             if t.BANNER is not None and matches(t.BANNER.pieces, text):
                 return t.Reply(text, None, t.BANNER.name, False)
-        command, unpaired = self.pending.pop()
+        # The end of a line begun in the lost bytes answers none of the commands seen since; a
+        # whole line then answers none seen either (Pending.replies_lost): it pairs with none.
+        command, unpaired = self.pending.pop() if not cut else (None, None)
         reply = classify(t.COMMON_REPLIES, command, text)
         if command is not None and command.name == t.VERSION_COMMAND:
             self.version = version_in(text, t.VERSION_PREFIX) or self.version
@@ -324,6 +341,8 @@ class LinesConversation:
             error = reply_not_kept(self.pending.limit)
         elif unpaired == UNKNOWN:
             error = reply_unknown("command")
+        elif cut:
+            error = LINE_AFTER_GAP
         else:
             error = reply.error if reply else False
         return t.Reply(text, command.name if command else None, reply.name if reply else None, error)

@@ -15,6 +15,7 @@ ROOT = __import__("pathlib").Path(__file__).resolve().parents[2]
 ENV = {"PYTHONPATH": f"{ROOT / 'python'}:{ROOT / 'generated' / 'python'}"}
 FIN = None          # in an exchange: the side closes its half of the connection
 DASHBOARD_UNKNOWN = "reply after bytes lost from the capture: its command is unknown"
+LINE_CUT = "line after bytes lost from the capture: its start may be lost"
 SETUP_UNKNOWN = "reply after bytes lost from the capture: its setup is unknown"
 BANNER = b"Connected: Universal Robots Dashboard Server\n"
 
@@ -76,7 +77,7 @@ def test_a_gap_that_swallows_a_reply_leaves_the_later_replies_unpaired(tmp_path)
     assert_none_mispaired(records)
     paired = [(r["reply"], r.get("command_name"), r.get("error")) for r in replies(records)]
     assert paired == [("Powering on", "power_on", False), ("Brake releasing", "brake_release", False),
-                      ("Loaded program: /x.urp", None, DASHBOARD_UNKNOWN),
+                      ("Loaded program: /x.urp", None, LINE_CUT),
                       ("Starting program", None, DASHBOARD_UNKNOWN)]
 
 
@@ -94,8 +95,20 @@ def test_a_gap_that_swallows_a_command_leaves_the_later_replies_unpaired(tmp_pat
     gap = [r for r in records if r["type"] == "error" and "missing from the capture" in r["error"]]
     assert [g["direction"] for g in gap] == ["to_robot"]
     # The commands after the gap are decoded, and are not the overflow's: only the gap is an error.
+    # The first line after the gap may be the end of a longer one, and says so.
     assert [(r["command_name"], r.get("error")) for r in records if r["type"] == "command"] == [
-        ("power_on", None), ("robotmode", None), ("get_loaded_program", None), ("play", None)]
+        ("power_on", None), ("robotmode", LINE_CUT), ("get_loaded_program", None), ("play", None)]
+
+
+def test_the_end_of_a_line_after_a_gap_is_not_taken_for_a_whole_command(tmp_path):
+    """"popup power off" whose first segment is lost: "power off" is decoded, but not as a
+    command the client surely sent."""
+    steps = [(True, BANNER), (False, b"power on\n"), (True, REPLIES[0]), (False, b"popup "), (False, b"power off\n"),
+             (True, b"showing popup\n"), (False, b"robotmode\n"), (True, REPLIES[2]), (False, FIN), (True, FIN)]
+    records, status = decode(tmp_path, steps, 29999, lose=3)
+    assert status == 1
+    commands = [(r["command"], r.get("error")) for r in records if r["type"] == "command"]
+    assert commands == [("power on", None), ("power off", LINE_CUT), ("robotmode", None)]
 
 
 def test_a_gap_in_the_replies_when_none_awaits_keeps_the_pairing():
@@ -109,11 +122,16 @@ def test_a_gap_in_the_replies_when_none_awaits_keeps_the_pairing():
     conversation.feed(REPLIES[0], True)
     conversation.lost(True, len(BANNER) + len(REPLIES[0]) + 11)
     conversation.feed(COMMANDS[1], False)
+    (cut,) = conversation.feed(b"ing\n", True)     # the end of a line the lost bytes began
+    assert (cut.command_name, cut.error) == (None, LINE_CUT)
     (reply,) = conversation.feed(REPLIES[1], True)
     assert (reply.command_name, reply.error) == ("brake_release", False)
     conversation.feed(COMMANDS[2], False)
     conversation.lost(True, 200)                    # now one awaits: its reply may be among the lost
     (reply,) = conversation.feed(REPLIES[2], True)
+    assert (reply.command_name, reply.error) == (None, LINE_CUT)
+    conversation.feed(COMMANDS[3], False)
+    (reply,) = conversation.feed(REPLIES[3], True)
     assert (reply.command_name, reply.error) == (None, DASHBOARD_UNKNOWN)
 
 
@@ -126,6 +144,8 @@ def test_the_script_senders_latest_request_is_unknown_after_a_gap_in_the_request
     conversation.feed(b"request_program\n", True)
     assert conversation.feed(b"def prog():\n", False)[0].command_name == "request_program"
     conversation.lost(False, 100)                   # the program's lines: the request is still known
+    (cut,) = conversation.feed(b"x = 1\n", False)   # but this line's start may be lost
+    assert (cut.command_name, cut.error) == (None, LINE_CUT)
     assert conversation.feed(b"end\n", False)[0].command_name == "request_program"
     conversation.lost(True, 100)
     (line,) = conversation.feed(b"def prog():\n", False)

@@ -45,7 +45,8 @@ class Command:
     JSON = (("command", "text", False), ("command_name", "text", True), ("argument", "text", True),
             ("available", "bool", True), ("error", "text", True))
     extra = b""
-    # An error record (urwire decode exits 1) when the command was not kept to pair.
+    # An error record (urwire decode exits 1) when the command was not kept to pair, or is the
+    # first line after bytes lost from a capture.
     IS_ERROR = property(lambda self: self.error is not None)
 
     command: str = field(metadata={"label": "Request", "unit": None})
@@ -55,7 +56,8 @@ class Command:
     argument: Optional[str] = field(default=None, metadata={"label": "Argument", "unit": None})
     # False when the conversation's version lacks the request.
     available: Optional[bool] = field(default=None, metadata={"label": "Available", "unit": None})
-    # Why no reply can be paired with the command (more commands awaited replies than are kept).
+    # Why no reply can be paired with the command (more commands awaited replies than are kept),
+    # or that it follows bytes lost from a capture, which may have held its start.
     error: Optional[str] = field(default=None, metadata={"label": "Not kept", "unit": None})
 
 
@@ -69,7 +71,7 @@ class Reply:
             ("error", "bool|text", False))
     extra = b""
     # An error record when it answers a command that was not kept, or one that bytes lost from a
-    # capture leave unknown (its error is then a text).
+    # capture leave unknown, or is the first line after such bytes (its error is then a text).
     IS_ERROR = property(lambda self: isinstance(self.error, str))
 
     reply: str = field(metadata={"label": "Program line", "unit": None})
