@@ -182,3 +182,27 @@ def test_an_rtde_gap_that_swallows_a_setup_request_makes_no_recipe_from_another(
     assert data[0]["timestamp"] == 0.5 and "error" not in data[0]          # set up before the gap
     assert [d["recipe_id"] for d in data[1:]] == [2, 3]
     assert all("error" in d and "speed_scaling" not in d and "target_speed_fraction" not in d for d in data[1:])
+
+
+def test_a_driver_socket_cuts_its_records_on_their_grid_after_a_gap():
+    """Records of one size from the stream's start: after a gap that ends inside one, its end is
+    named and the next records are read whole, not shifted by the gap's remainder."""
+    from urwire.generated import ur_reverse
+
+    conversation = ur_reverse.conversation("1.3.4")
+    size = ur_reverse.RECORDS[False].layout((1, 3, 4)).size
+    record = lambda keepalive: (b"".join(int.to_bytes(v, 4, "big", signed=True)   # noqa: E731
+                                         for v in [keepalive] + [0] * (size // 4 - 1)))
+    stream = b"".join(record(i) for i in range(6))
+    assert [r.read_timeout for r in conversation.feed(stream[:size], False)] == [0]
+    cut = 2 * size + 12                             # bytes from size on lost, up to 12 bytes into record 2
+    assert conversation.lost(False, cut) == []
+    out = conversation.feed(stream[cut:], False)
+    assert out[0].offset == cut and out[0].error.startswith(f"{size - 12} bytes after bytes lost")
+    assert [r.read_timeout for r in out[1:]] == [3, 4, 5]
+    # A stream that ends before the next record's start names what it dropped when it closes.
+    conversation.lost(False, 7 * size + 4)
+    assert conversation.feed(b"\0" * 8, False) == []
+    (end,) = conversation.close(False)
+    assert (end.offset, end.error) == (7 * size + 4, "8 bytes after bytes lost from the capture: the end of a "
+                                                     "record whose start is lost")
