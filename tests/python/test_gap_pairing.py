@@ -7,42 +7,19 @@ import json
 import subprocess
 import sys
 
-import dpkt
-
 from tests.tools import capture
+from tests.tools.capture import FIN, exchange_frames
 
 ROOT = __import__("pathlib").Path(__file__).resolve().parents[2]
 ENV = {"PYTHONPATH": f"{ROOT / 'python'}:{ROOT / 'generated' / 'python'}"}
-FIN = None          # in an exchange: the side closes its half of the connection
 DASHBOARD_UNKNOWN = "reply after bytes lost from the capture: its command is unknown"
 LINE_CUT = "line after bytes lost from the capture: its start may be lost"
 SETUP_UNKNOWN = "reply after bytes lost from the capture: its setup is unknown"
 BANNER = b"Connected: Universal Robots Dashboard Server\n"
 
 
-def exchange_frames(steps: list, port: int, lose: int) -> list[bytes]:
-    """A TCP session of (from robot, payload or FIN) steps, each acknowledged by the other side;
-    the frame of step `lose` is not in the capture (its acknowledgement is)."""
-    A, PA, F = dpkt.tcp.TH_ACK, dpkt.tcp.TH_PUSH | dpkt.tcp.TH_ACK, dpkt.tcp.TH_FIN | dpkt.tcp.TH_ACK
-    seq = {True: 1000, False: 5000}
-    ends = {True: (capture.ROBOT, port, capture.ROBOT_MAC), False: (capture.CLIENT, 50123, capture.CLIENT_MAC)}
-
-    def frame(from_robot: bool, flags: int, data: bytes = b"") -> bytes:
-        (src, sport, smac), (dst, dport, dmac) = ends[from_robot], ends[not from_robot]
-        return capture._frame(src, dst, sport, dport, seq[from_robot], seq[not from_robot], flags, data, smac, dmac)
-
-    frames = capture.session_frames([], port=port)[:3]           # the handshake
-    for i, (from_robot, payload) in enumerate(steps):
-        sent = frame(from_robot, F if payload is FIN else PA, payload or b"")
-        if i != lose:
-            frames.append(sent)
-        seq[from_robot] += 1 if payload is FIN else len(payload)
-        frames.append(frame(not from_robot, A))
-    return frames
-
-
 def decode(tmp_path, steps: list, port: int, lose: int) -> tuple[list[dict], int]:
-    pcap = capture.write(tmp_path / "gap.pcap", exchange_frames(steps, port, lose))
+    pcap = capture.write(tmp_path / "gap.pcap", exchange_frames(steps, port, lose=lose))
     res = subprocess.run([sys.executable, "-m", "urwire", "decode", str(pcap)], capture_output=True, text=True,
                          env=ENV, timeout=120)
     assert res.returncode in (0, 1), res.stderr
