@@ -78,6 +78,8 @@ class _Direction:
         self.kind = kind
         self.buffer = bytearray()
         self.offset = 0
+        self.skip = 0           # after a gap: bytes to the next record's start, still to drop
+        self.skipped = 0        # of those, dropped so far
 
 
 class RecordsConversation:
@@ -95,9 +97,10 @@ class RecordsConversation:
             d.buffer += data
             return []
         d.buffer += data
+        out = self._realign(d) if d.skip else []
         size = d.kind.layout(self.release).size
         whole = len(d.buffer) - len(d.buffer) % size
-        out = [decode_record(d.kind, bytes(d.buffer[at:at + size]), self.release) for at in range(0, whole, size)]
+        out += [decode_record(d.kind, bytes(d.buffer[at:at + size]), self.release) for at in range(0, whole, size)]
         del d.buffer[:whole]
         d.offset += whole
         return out
@@ -107,6 +110,8 @@ class RecordsConversation:
         if from_robot is None:
             return self.close(False) + self.close(True)
         d = self.directions[from_robot]
+        if d.skipped:                       # the stream ended before the next record's start
+            return self._realigned(d)
         if not d.buffer:
             return []
         left, at = len(d.buffer), d.offset
@@ -119,10 +124,29 @@ class RecordsConversation:
 
     def lost(self, from_robot: bool, offset: int) -> list:
         """Bytes of one direction are missing before `offset`: its partial record is given up as
-        close() gives it, and its records are cut afresh from there."""
+        close() gives it, and its records are cut afresh from the next record's start: records
+        are all one size from the stream's start, so bytes before it are the end of a record
+        whose start is lost, named by an error record, not read as one misaligned."""
         out = self.close(from_robot)
-        self.directions[from_robot].offset = offset
+        d = self.directions[from_robot]
+        d.offset = offset
+        if d.kind is not None:
+            d.skip = -offset % d.kind.layout(self.release).size
         return out
+
+    def _realign(self, d: _Direction) -> list:
+        n = min(d.skip, len(d.buffer))
+        del d.buffer[:n]
+        d.offset += n
+        d.skip -= n
+        d.skipped += n
+        return [] if d.skip else self._realigned(d)
+
+    @staticmethod
+    def _realigned(d: _Direction) -> list:
+        n, d.skipped, d.skip = d.skipped, 0, 0
+        return [StreamError(d.offset - n, f"{n} bytes after bytes lost from the capture: the end of a record "
+                                          f"whose start is lost")]
 
 
 def _side(from_robot: bool) -> str:

@@ -8,16 +8,17 @@ name; one of a recipe the connection never set up is kept raw with an error; a s
 refuses names (NOT_FOUND, IN_USE) is noted and makes no recipe. Data packages may arrive between
 a request and its reply: replies are matched to requests of their own kind, in order. A bounded
 number of requests await their replies (`Awaiting`): one beyond is not kept, and both it and its
-reply say so, rather than a reply taking another request's names.
+reply say so, rather than a reply taking another request's names. After bytes lost from a capture,
+a reply whose request the gap leaves unknown pairs with none and says so (text_lines.Pending).
 
 The functions at the end build what a client sends: `setup_outputs(["actual_q"], 125.0)`.
 """
 from __future__ import annotations
 
-from collections import deque
 from typing import Optional
 
 from .generated import rtde as _g
+from .text_lines import NOT_KEPT, UNKNOWN, Pending, reply_unknown
 from .typed_records import DecodeError, Framer, Message, RawMessage, Recipe, Values
 
 __all__ = ["Conversation", "Recipe", "Values", "VARIABLES", "variable", "request_protocol_version", "setup_outputs",
@@ -39,38 +40,24 @@ def variable(name: str, direction: str = "output") -> Optional[_g._r.Variable]:
 _VARIABLE_INDEX = {(v.name, v.direction): v for v in VARIABLES}
 
 
-class Awaiting:
-    """Requests awaiting their replies, oldest first, at most `size` kept. A request beyond is not
-    kept but counted, and so is every later one while a counted one is ahead of it: replies come in
-    the order of the requests, so a kept one behind a lost one would take the lost one's reply."""
+class Awaiting(Pending):
+    """Requests of one kind awaiting their replies, oldest first, at most `size` kept: the
+    dashboard's queue (text_lines.Pending), with what its errors name."""
 
-    def __init__(self, size: int, what: str):
-        self.kept: deque = deque()
-        self.lost = 0
-        self.size = size
+    def __init__(self, size: int, what: str, request: str):
+        super().__init__(size)
         self.what = what                # "setups", "protocol version requests": for the errors' texts
+        self.request = request          # "setup", "protocol version request"
 
-    def push(self, request) -> bool:
-        """Keep a request; False when it is not kept (then counted)."""
-        if self.lost or len(self.kept) >= self.size:
-            self.lost += 1
-            return False
-        self.kept.append(request)
-        return True
-
-    def pop(self) -> tuple[bool, object]:
-        """The request a reply answers: (True, request), or (False, None) when it answers one not
-        kept, or (True, None) when no request awaits."""
-        if self.kept:
-            return True, self.kept.popleft()
-        if self.lost:
-            self.lost -= 1
-            return False, None
-        return True, None
+    def unpaired(self, why: str) -> str:
+        """The error of a reply that pairs with none, for Pending.pop's reason."""
+        if why == UNKNOWN:
+            return reply_unknown(self.request)
+        return f"reply to a {self.request} that was not kept: {self.overflow}"
 
     @property
     def overflow(self) -> str:
-        return f"more than {self.size} {self.what} awaited replies"
+        return f"more than {self.limit} {self.what} awaited replies"
 
 
 class Conversation:
@@ -80,8 +67,9 @@ class Conversation:
     def __init__(self, version_hint=None, protocol: Optional[int] = None):
         self.protocol: Optional[int] = protocol        # None until given or negotiated
         self._framers = {True: Framer(_KNOWN_CODES), False: Framer(_KNOWN_CODES)}
-        self._asked_version = Awaiting(_g.MAX_PENDING_VERSION_REQUESTS, "protocol version requests")
-        self._pending = {kind.name: Awaiting(_g.MAX_PENDING_SETUPS, "setups") for kind in _g.RECIPE_KINDS}
+        self._asked_version = Awaiting(_g.MAX_PENDING_VERSION_REQUESTS, "protocol version requests",
+                                       "protocol version request")
+        self._pending = {kind.name: Awaiting(_g.MAX_PENDING_SETUPS, "setups", "setup") for kind in _g.RECIPE_KINDS}
         self.recipes: dict[str, dict[Optional[int], Recipe]] = {kind.name: {} for kind in _g.RECIPE_KINDS}
         self.count = 0                                 # records given out so far, both directions
 
@@ -107,7 +95,11 @@ class Conversation:
 
     def lost(self, from_robot: bool, offset: int) -> list:
         """Bytes of one direction are missing before `offset`: a message they cut short is given
-        up, and that direction is framed afresh from there; protocol and recipes are kept."""
+        up, and that direction is framed afresh from there; protocol and recipes are kept (by
+        their ids), but the requests the bytes may have held, or answered, leave each queue's
+        pairing unknown (text_lines.Pending)."""
+        for awaiting in (self._asked_version, *self._pending.values()):
+            awaiting.replies_lost() if from_robot else awaiting.requests_lost()
         out = self._framers[bool(from_robot)].restart(offset)
         self.count += len(out)
         return out
@@ -145,13 +137,13 @@ class Conversation:
         """What a message changes in the connection's state."""
         cls = type(record)
         if cls is _g.RequestProtocolVersion:
-            if not self._asked_version.push(record.protocol_version):
+            if self._asked_version.push(record.protocol_version) == NOT_KEPT:
                 record.note("error", f"protocol version request not kept: {self._asked_version.overflow}")
         elif cls is _g.RequestProtocolVersionReply:
             self._version_reply(record)
         elif cls in _KIND_OF_REQUEST:
             pending = self._pending[_KIND_OF_REQUEST[cls].name]
-            if not pending.push(record.variables):
+            if pending.push(record.variables) == NOT_KEPT:
                 record.note("error", f"setup not kept: {pending.overflow}")
         elif cls in _KIND_OF_REPLY:
             self._make_recipe(_KIND_OF_REPLY[cls], record)
@@ -161,10 +153,9 @@ class Conversation:
     def _version_reply(self, reply: Message) -> None:
         """Only a protocol that has layouts is taken: a robot accepting any other (0, 3, 300) leaves
         the one in force, and the reply says so."""
-        paired, asked = self._asked_version.pop()
-        if not paired:
-            reply.note("error", f"reply to a protocol version request that was not kept: "
-                                f"{self._asked_version.overflow}")
+        asked, why = self._asked_version.pop()
+        if why is not None:
+            reply.note("error", self._asked_version.unpaired(why))
         if reply.accepted and asked is not None:
             if asked in _g.PROTOCOL_VERSIONS:
                 self.protocol = asked
@@ -176,17 +167,17 @@ class Conversation:
 
     def _make_recipe(self, kind, reply: Message) -> None:
         pending = self._pending[kind.name]
-        paired, request = pending.pop()
-        if not paired:
+        request, why = pending.pop()
+        if why is not None:
             # Its recipe's names are unknown: data packages of its id are kept raw from here on,
             # rather than read by the recipe this reply replaced.
-            reply.note("error", f"reply to a setup that was not kept: {pending.overflow}")
+            reply.note("error", pending.unpaired(why))
             self.recipes[kind.name].pop(getattr(reply, "recipe_id", None), None)
             return
-        names = [n for n in request if n] if request is not None else None   # an empty name names nothing
-        if names is None:
+        if request is None:
             reply.note("warning", "a setup reply without a request seen: its recipe's names are unknown")
             return
+        names = [n for n in request if n]   # an empty name names nothing
         if len(names) != len(reply.types):
             reply.note("warning", "names asked and types answered differ in number")
             return

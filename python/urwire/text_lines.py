@@ -31,6 +31,15 @@ def reply_not_kept(kept: int) -> str:
     return f"reply to a command that was not kept: more than {kept} commands awaited replies"
 
 
+# The first line after a gap: the gap may have ended inside a line ("popup power off" may show as
+# "power off"), so the line is decoded but not taken for a whole one.
+LINE_AFTER_GAP = "line after bytes lost from the capture: its start may be lost"
+
+
+def reply_unknown(request: str) -> str:
+    return f"reply after bytes lost from the capture: its {request} is unknown"
+
+
 @dataclass(frozen=True)
 class ReplySpec:
     name: str
@@ -157,56 +166,89 @@ class LineSplitter:
         return out
 
 
+NOT_KEPT, UNKNOWN = "not kept", "unknown"      # why a request or reply pairs with none
+
+
 class Pending:
-    """Commands awaiting their replies, oldest first, at most `limit` of them. A command that
-    comes when the queue is full is not kept but counted as lost, and so is every command after
+    """Requests awaiting their replies, oldest first, at most `limit` of them. A request that
+    comes when the queue is full is not kept but counted as lost, and so is every request after
     it while lost ones are ahead of it (replies come in order); a reply that comes when none is
-    kept but some are lost answers a lost one. So no reply is ever paired with another command."""
+    kept but some are lost answers a lost one. So no reply is ever paired with another request.
+
+    Bytes lost from a capture make the count of lost requests unknown (`unknown`), for good: no
+    byte after a gap tells how many requests or replies it swallowed, and a client may send its
+    next request before the last reply, so no later moment is known to have none awaiting."""
 
     def __init__(self, limit: int = PENDING_KEPT):
         self.limit = limit
         self.kept: deque = deque()
         self.lost = 0
+        self.unknown = False
 
     def __len__(self) -> int:
         return len(self.kept)
 
-    def push(self, command) -> bool:
-        """Whether the command was kept."""
-        if self.lost or len(self.kept) >= self.limit:
+    def push(self, request) -> Optional[str]:
+        """None when the request is kept, else why not: `NOT_KEPT` (the queue is full, or one not
+        kept is ahead), which its record says, or `UNKNOWN` (after a gap), which the gap's says."""
+        if self.unknown or self.lost or len(self.kept) >= self.limit:
             self.lost += 1
-            return False
-        self.kept.append(command)
-        return True
+            return UNKNOWN if self.unknown else NOT_KEPT
+        self.kept.append(request)
+        return None
 
     def pop(self) -> tuple:
-        """(the command the next reply answers or None, whether it answers a lost one)."""
+        """(the request the next reply answers or None, why it pairs with none: None when it
+        pairs, or none was asked, else `NOT_KEPT` or `UNKNOWN`)."""
         if self.kept:
-            return self.kept.popleft(), False
+            return self.kept.popleft(), None
+        if self.unknown:
+            return None, UNKNOWN
         if self.lost:
             self.lost -= 1
-            return None, True
-        return None, False
+            return None, NOT_KEPT
+        return None, None
+
+    def requests_lost(self) -> None:
+        """The capture lost bytes of the requests: those kept came before them and keep their
+        replies, which come first; every later request is behind an unknown number of lost ones."""
+        self.unknown = True
+
+    def replies_lost(self) -> None:
+        """The capture lost bytes of the replies: how many of the awaiting requests they answered
+        is unknown, unless none awaited (bytes sent then answer nothing)."""
+        if self.kept or self.lost:
+            self.kept.clear()
+            self.unknown = True
 
 
 class Latest:
-    """Where every answering line belongs to the latest request: only that one is kept."""
+    """Where every answering line belongs to the latest request: only that one is kept. Bytes
+    lost from the requests may have held a later one: until a request comes after them, an
+    answering line's request is unknown. Bytes lost from the answers change nothing."""
 
     limit = 1
 
     def __init__(self):
         self.command = None
         self.any = False
+        self.unknown = False
 
     def __len__(self) -> int:
         return int(self.any)
 
-    def push(self, command) -> bool:
-        self.command, self.any = command, True
-        return True
+    def push(self, command) -> Optional[str]:
+        self.command, self.any, self.unknown = command, True, False
+        return None
 
     def pop(self) -> tuple:
-        return self.command, False
+        return (None, UNKNOWN) if self.unknown else (self.command, None)
+
+    def requests_lost(self) -> None:
+        self.command, self.unknown = None, True
+
+    def replies_lost(self) -> None:
+        pass
 
 
 class LinesConversation:
@@ -219,12 +261,20 @@ class LinesConversation:
         self.replies = LineSplitter(tables.MAX_LINE)
         self.pending = Pending() if tables.ONE_REPLY_PER_REQUEST else Latest()
         self.greeted = False
+        self.cut = {True: False, False: False}      # by direction: the next line follows a gap
 
     def feed(self, data: bytes, from_robot: bool) -> list:
         requests = from_robot == self.tables.REQUESTS_FROM_ROBOT
         lines = (self.commands if requests else self.replies).feed(data)
         read = self._command if requests else self._reply
-        return [self._too_long(line, requests) if isinstance(line, StreamError) else read(line[1]) for line in lines]
+        out = []
+        for line in lines:
+            if isinstance(line, StreamError):
+                out.append(self._too_long(line, requests))
+            else:
+                out.append(read(line[1], self.cut[from_robot]))
+            self.cut[from_robot] = False
+        return out
 
     def close(self, from_robot: Optional[bool] = None) -> list:
         """A line cut short at the end of one direction's stream (both, to_robot's first, as the C
@@ -235,7 +285,13 @@ class LinesConversation:
 
     def lost(self, from_robot: bool, offset: int) -> list:
         """Bytes of one direction are missing before `offset`: the line they cut is given up, and
-        that direction's lines are split afresh from there."""
+        that direction's lines are split afresh from there; the requests they may have held, or
+        answered, leave the pairing unknown (Pending)."""
+        self.cut[from_robot] = True
+        if from_robot == self.tables.REQUESTS_FROM_ROBOT:
+            self.pending.requests_lost()
+        else:
+            self.pending.replies_lost()
         return self._lines(from_robot).restart(offset)
 
     def _lines(self, from_robot: bool) -> "_Lines":
@@ -256,27 +312,37 @@ class LinesConversation:
             self.pending.pop()
         return error
 
-    def _command(self, raw: bytes):
+    def _command(self, raw: bytes, cut: bool = False):
         t = self.tables
         text = raw.decode("utf-8", "surrogateescape")
         command, argument = find_command(t.LOOKUP, text)
-        error = None if self.pending.push(command) else not_kept(self.pending.limit)
+        error = not_kept(self.pending.limit) if self.pending.push(command) == NOT_KEPT else None
+        error = LINE_AFTER_GAP if cut else error
         if command is None:
             return t.Command(text, error=error)
         available = None if self.version is None else command.available(self.version)
         return t.Command(text, command.name, argument, available, error)
 
-    def _reply(self, raw: bytes):
+    def _reply(self, raw: bytes, cut: bool = False):
         t = self.tables
         text = raw.decode("utf-8", "surrogateescape")
         if not self.greeted:
             self.greeted = True
             if t.BANNER is not None and matches(t.BANNER.pieces, text):
                 return t.Reply(text, None, t.BANNER.name, False)
-        command, lost = self.pending.pop()
+        # The end of a line begun in the lost bytes answers none of the commands seen since; a
+        # whole line then answers none seen either (Pending.replies_lost): it pairs with none.
+        command, unpaired = self.pending.pop() if not cut else (None, None)
         reply = classify(t.COMMON_REPLIES, command, text)
         if command is not None and command.name == t.VERSION_COMMAND:
             self.version = version_in(text, t.VERSION_PREFIX) or self.version
-        # A reply to a lost command says so in place of whether it says an error.
-        error = reply_not_kept(self.pending.limit) if lost else (reply.error if reply else False)
+        # A reply that pairs with none says why in place of whether it says an error.
+        if unpaired == NOT_KEPT:
+            error = reply_not_kept(self.pending.limit)
+        elif unpaired == UNKNOWN:
+            error = reply_unknown("command")
+        elif cut:
+            error = LINE_AFTER_GAP
+        else:
+            error = reply.error if reply else False
         return t.Reply(text, command.name if command else None, reply.name if reply else None, error)

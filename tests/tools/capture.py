@@ -74,6 +74,32 @@ def session_frames(segments: Iterable[Segment], port: int = 30001, client_port: 
     return frames
 
 
+FIN = None      # in exchange_frames' steps: the side closes its half of the connection
+
+
+def exchange_frames(steps: Sequence[tuple], port: int, client_port: int = 50123, lose: Optional[int] = None,
+                    robot: str = ROBOT, client: str = CLIENT) -> list[bytes]:
+    """Ethernet frames of one TCP session of (from robot, payload or FIN) steps in this order, each
+    acknowledged by the other side, either side free to close first; the frame of step `lose`, if
+    any, is not in the capture (its acknowledgement is), as a capture that missed a segment."""
+    A, PA, F = dpkt.tcp.TH_ACK, dpkt.tcp.TH_PUSH | dpkt.tcp.TH_ACK, dpkt.tcp.TH_FIN | dpkt.tcp.TH_ACK
+    seq = {True: 1000, False: 5000}
+    ends = {True: (robot, port, ROBOT_MAC), False: (client, client_port, CLIENT_MAC)}
+
+    def frame(from_robot: bool, flags: int, data: bytes = b"") -> bytes:
+        (src, sport, smac), (dst, dport, dmac) = ends[from_robot], ends[not from_robot]
+        return _frame(src, dst, sport, dport, seq[from_robot], seq[not from_robot], flags, data, smac, dmac)
+
+    frames = session_frames([], port=port, client_port=client_port, robot=robot, client=client)[:3]  # handshake
+    for i, (from_robot, payload) in enumerate(steps):
+        sent = frame(from_robot, F if payload is FIN else PA, payload or b"")
+        if i != lose:
+            frames.append(sent)
+        seq[from_robot] += 1 if payload is FIN else len(payload)
+        frames.append(frame(not from_robot, A))
+    return frames
+
+
 def write(path: Path, frames: Iterable[bytes], pcapng: bool = False, start: float = 1_700_000_000.0,
           step: float = 0.1, times: Optional[Sequence[float]] = None) -> Path:
     """Write frames, 100 ms apart (the robot-state rate), or at `times` (seconds after `start`,

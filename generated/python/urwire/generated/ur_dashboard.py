@@ -253,7 +253,8 @@ class Command:
     JSON = (("command", "text", False), ("command_name", "text", True), ("argument", "text", True),
             ("available", "bool", True), ("error", "text", True))
     extra = b""
-    # An error record (urwire decode exits 1) when the command was not kept to pair.
+    # An error record (urwire decode exits 1) when the command was not kept to pair, or is the
+    # first line after bytes lost from a capture.
     IS_ERROR = property(lambda self: self.error is not None)
 
     command: str = field(metadata={"label": "Command", "unit": None})
@@ -263,7 +264,8 @@ class Command:
     argument: Optional[str] = field(default=None, metadata={"label": "Argument", "unit": None})
     # False when the conversation's software version lacks the command.
     available: Optional[bool] = field(default=None, metadata={"label": "Available", "unit": None})
-    # Why no reply can be paired with the command (more commands awaited replies than are kept).
+    # Why no reply can be paired with the command (more commands awaited replies than are kept),
+    # or that it follows bytes lost from a capture, which may have held its start.
     error: Optional[str] = field(default=None, metadata={"label": "Not kept", "unit": None})
 
 
@@ -276,7 +278,8 @@ class Reply:
     JSON = (("reply", "text", False), ("command_name", "text", True), ("reply_name", "text", True),
             ("error", "bool|text", False))
     extra = b""
-    # An error record when it answers a command that was not kept (its error is then a text).
+    # An error record when it answers a command that was not kept, or one that bytes lost from a
+    # capture leave unknown, or is the first line after such bytes (its error is then a text).
     IS_ERROR = property(lambda self: isinstance(self.error, str))
 
     reply: str = field(metadata={"label": "Reply", "unit": None})
@@ -285,7 +288,8 @@ class Reply:
     # Which of the command's documented replies it is.
     reply_name: Optional[str] = field(default=None, metadata={"label": "Reply meaning", "unit": None})
     # True when the reply says that the command failed.
-    # (A text instead when the reply answers a command that was not kept: it pairs with none.)
+    # (A text instead when the reply answers a command that was not kept, or one bytes lost from a
+    # capture leave unknown: it pairs with none.)
     error: Union[bool, str] = field(default=False, metadata={"label": "Says an error", "unit": None})
 
 

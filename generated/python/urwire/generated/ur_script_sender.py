@@ -45,7 +45,8 @@ class Command:
     JSON = (("command", "text", False), ("command_name", "text", True), ("argument", "text", True),
             ("available", "bool", True), ("error", "text", True))
     extra = b""
-    # An error record (urwire decode exits 1) when the command was not kept to pair.
+    # An error record (urwire decode exits 1) when the command was not kept to pair, or is the
+    # first line after bytes lost from a capture.
     IS_ERROR = property(lambda self: self.error is not None)
 
     command: str = field(metadata={"label": "Request", "unit": None})
@@ -55,7 +56,8 @@ class Command:
     argument: Optional[str] = field(default=None, metadata={"label": "Argument", "unit": None})
     # False when the conversation's version lacks the request.
     available: Optional[bool] = field(default=None, metadata={"label": "Available", "unit": None})
-    # Why no reply can be paired with the command (more commands awaited replies than are kept).
+    # Why no reply can be paired with the command (more commands awaited replies than are kept),
+    # or that it follows bytes lost from a capture, which may have held its start.
     error: Optional[str] = field(default=None, metadata={"label": "Not kept", "unit": None})
 
 
@@ -68,7 +70,8 @@ class Reply:
     JSON = (("reply", "text", False), ("command_name", "text", True), ("reply_name", "text", True),
             ("error", "bool|text", False))
     extra = b""
-    # An error record when it answers a command that was not kept (its error is then a text).
+    # An error record when it answers a command that was not kept, or one that bytes lost from a
+    # capture leave unknown, or is the first line after such bytes (its error is then a text).
     IS_ERROR = property(lambda self: isinstance(self.error, str))
 
     reply: str = field(metadata={"label": "Program line", "unit": None})
@@ -77,7 +80,8 @@ class Reply:
     # What the line is: a line of the program.
     reply_name: Optional[str] = field(default=None, metadata={"label": "Line kind", "unit": None})
     # Always false: the program has no error replies.
-    # (A text instead when the reply answers a command that was not kept: it pairs with none.)
+    # (A text instead when the reply answers a command that was not kept, or one bytes lost from a
+    # capture leave unknown: it pairs with none.)
     error: Union[bool, str] = field(default=False, metadata={"label": "Says an error", "unit": None})
 
 
