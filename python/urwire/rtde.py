@@ -5,7 +5,8 @@ keeps what RTDE's messages depend on: the negotiated protocol version (1 or 2) a
 each made from a setup request's variable names and its reply's types (urwire.generated.rtde's
 RECIPE_KINDS say which messages those are). Data packages come out with their values by variable
 name; one of a recipe the connection never set up is kept raw with an error; a setup reply that
-refuses names (NOT_FOUND, IN_USE) is noted and makes no recipe. Data packages may arrive between
+refuses names (NOT_FOUND, IN_USE) is noted and makes no recipe, and one whose recipe cannot be made
+otherwise (its request unknown, names and types differing in number) removes its id's old one. Data packages may arrive between
 a request and its reply: replies are matched to requests of their own kind, in order. A bounded
 number of requests await their replies (`Awaiting`): one beyond is not kept, and both it and its
 reply say so, rather than a reply taking another request's names. After bytes lost from a capture,
@@ -166,21 +167,26 @@ class Conversation:
             self.protocol = 1                           # the robot keeps protocol 1 until one is accepted
 
     def _make_recipe(self, kind, reply: Message) -> None:
+        """A reply's types against its request's names. A reply the robot set up something with
+        but whose recipe cannot be made (its request unknown, or names and types differing in
+        number) removes the recipe its id had: data packages of that id are kept raw from here on,
+        rather than read by the recipe this reply replaced. A refusal (NOT_FOUND, IN_USE) sets up
+        nothing (recipe id 0, in the RTDE guide), so the recipe in force stays."""
         pending = self._pending[kind.name]
         request, why = pending.pop()
+        names = [n for n in request if n] if request is not None else []   # an empty name names nothing
         if why is not None:
-            # Its recipe's names are unknown: data packages of its id are kept raw from here on,
-            # rather than read by the recipe this reply replaced.
             reply.note("error", pending.unpaired(why))
-            self.recipes[kind.name].pop(getattr(reply, "recipe_id", None), None)
-            return
-        if request is None:
+        elif request is None:
             reply.note("warning", "a setup reply without a request seen: its recipe's names are unknown")
-            return
-        names = [n for n in request if n]   # an empty name names nothing
-        if len(names) != len(reply.types):
+        elif len(names) != len(reply.types):
             reply.note("warning", "names asked and types answered differ in number")
+        else:
+            self._recipe_from(kind, reply, names)
             return
+        self.recipes[kind.name].pop(getattr(reply, "recipe_id", None), None)
+
+    def _recipe_from(self, kind, reply: Message, names: list) -> None:
         refused = [(n, t) for n, t in zip(names, reply.types) if t in _g.REFUSALS or t not in _g.VALUE_TYPES]
         if refused:
             reply.note("refused", refused)
