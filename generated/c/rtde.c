@@ -1303,8 +1303,9 @@ const rtde_recipe *rtde_recipe_of(const rtde_conversation *c, bool from_robot, i
     return NULL;
 }
 
-/* The recipe a reply replaces: gone, when the reply makes none that can be kept, so that its data
- * packages are not read by the old one. */
+/* The recipe a reply replaces: gone, when the reply makes none that can be kept (its request
+ * unknown or not kept, names and types differing in number, past the limits), so that its data
+ * packages are not read by the old one. A refusal sets up nothing (recipe id 0) and keeps it. */
 static void rtde__forget_recipe(rtde_conversation *c, bool from_robot, int id)
 {
     rtde_recipe *old = (rtde_recipe *)rtde_recipe_of(c, from_robot, id);
@@ -1376,6 +1377,7 @@ static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text ty
             return RTDE_OK;
         }
         m->warning = "a setup reply without a request seen: its recipe's names are unknown";
+        rtde__forget_recipe(c, from_robot, id);
         return RTDE_OK;
     }
     rtde__take_request(c, kind);
@@ -1410,6 +1412,7 @@ static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text ty
             if (!more_names || !more_types) {
                 if (more_names != more_types) {
                     m->warning = "names asked and types answered differ in number";
+                    rtde__forget_recipe(c, from_robot, id);
                     return RTDE_OK;
                 }
                 break;
