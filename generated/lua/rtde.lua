@@ -1323,19 +1323,23 @@ function rt.follow(state, name, values, frame)
     return nil
 end
 
+-- A reply the robot set up something with but whose recipe cannot be made (its request not kept or
+-- unknown, names and types differing in number) removes the recipe its id had, so that data packages
+-- of that id are not read by it. A refusal sets up nothing (recipe id 0): the recipe in force stays.
 function rt.make_recipe(state, kind, values, frame)
     local paired, request = pop(state.pending[kind])
-    if not paired then
-        -- Its recipe's names are unknown: data packages of its id are not read by the recipe it replaced.
-        state.recipes[kind][values.recipe_id or NO_ID] = nil
-        return { not_kept = "reply to a setup that was not kept: " .. state.pending[kind].overflow }
-    end
-    if not request then
-        return { warning = "a setup reply without a request seen: its recipe's names are unknown" }
-    end
     local types = rt.split(values.types, ",")
-    if #types ~= #request.names then
-        return { warning = "names asked and types answered differ in number" }
+    local notes = nil
+    if not paired then
+        notes = { not_kept = "reply to a setup that was not kept: " .. state.pending[kind].overflow }
+    elseif not request then
+        notes = { warning = "a setup reply without a request seen: its recipe's names are unknown" }
+    elseif #types ~= #request.names then
+        notes = { warning = "names asked and types answered differ in number" }
+    end
+    if notes then
+        state.recipes[kind][values.recipe_id or NO_ID] = nil
+        return notes
     end
     local refused = {}
     for i, t in ipairs(types) do
