@@ -287,6 +287,19 @@ rtde_retyped_text(const rtde_request *request, guint i, const rtde_value_type *r
                               table->name);
 }
 
+/* A reply the robot set up something with but whose recipe cannot be made (its request not kept or
+ * unknown, names and types differing in number): its names are unknown, and its id has no recipe
+ * from here on, rather than the one the reply replaced. A refusal sets up nothing (recipe id 0) and
+ * does not come here. */
+static void
+rtde_forget_recipe(rtde_state *state, int kind, int recipe_id, rtde_when when)
+{
+    rtde_recipe *gone = wmem_new0(wmem_file_scope(), rtde_recipe);
+    gone->when = when;
+    gone->gone = TRUE;
+    rtde_keep_recipe(state, kind, recipe_id, gone);
+}
+
 static void
 rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_when when, rtde_notes *notes)
 {
@@ -295,22 +308,20 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
     guint n, i, *start, *length;
     int *type;
     if (!request && state->pending_lost[kind] > 0) {
-        /* Its request was not kept: its names are unknown, and its id has no recipe from here on. */
         state->pending_lost[kind]--;
         notes->not_kept = "reply to a setup that was not kept: " RTDE_SETUPS_OVERFLOW;
-        recipe = wmem_new0(wmem_file_scope(), rtde_recipe);
-        recipe->when = when;
-        recipe->gone = TRUE;
-        rtde_keep_recipe(state, kind, values->recipe_id, recipe);
+        rtde_forget_recipe(state, kind, values->recipe_id, when);
         return;
     }
     if (!request) {
         notes->warning = "a setup reply without a request seen: its recipe's names are unknown";
+        rtde_forget_recipe(state, kind, values->recipe_id, when);
         return;
     }
     n = rtde_split(values->types, values->types_length, NULL, NULL);
     if (n != request->n) {
         notes->warning = "names asked and types answered differ in number";
+        rtde_forget_recipe(state, kind, values->recipe_id, when);
         return;
     }
     start = wmem_alloc_array(wmem_packet_scope(), guint, n + 1);
