@@ -133,6 +133,17 @@ local function show_info(pinfo, words)
     info_frame = pinfo.number
 end
 
+-- Where the next plausible packet starts from offset o on: the next size some layout has (a size
+-- no layout has is not trusted, since a packet's doubles hold small int32s often enough); nil when
+-- the bytes up to len hold none whole.
+local function next_packet(tvb, o, len)
+    while len - o >= SIZE_BYTES do
+        if FORMS[tvb(o, SIZE_BYTES):int()] then return o end
+        o = o + 1
+    end
+    return nil
+end
+
 local handle = nil
 
 function proto.dissector(tvb, pinfo, tree)
@@ -156,18 +167,27 @@ function proto.dissector(tvb, pinfo, tree)
         end
         local size = tvb(o, SIZE_BYTES):int()
         if size < MIN_SIZE or size > MAX_SIZE then
-            local item = tree:add(proto, tvb(o, left))
+            -- The middle of a packet (a segment after a lost one): skip to the next size some
+            -- layout has; where the segment holds none, its last bytes may begin one, and wait
+            -- for the next segment.
+            local found = next_packet(tvb, o + 1, len)
+            local stop = found or len - (SIZE_BYTES - 1)
+            local item = tree:add(proto, tvb(o, stop - o))
             item:add_proto_expert_info(E.bad_size, fmt("Packet size %d cannot frame a packet (%d to %d)",
                 size, MIN_SIZE, MAX_SIZE))
             infos[#infos + 1] = fmt("Bad size %d", size)
-            break
-        end
-        if left < size then
+            if not found then
+                pinfo.desegment_offset, pinfo.desegment_len = stop, DESEGMENT_ONE_MORE_SEGMENT
+                break
+            end
+            o = found
+        elseif left < size then
             pinfo.desegment_offset, pinfo.desegment_len = o, size - left
             break
+        else
+            infos[#infos + 1] = dissect_packet(tvb, tree, o, size, detail)
+            o = o + size
         end
-        infos[#infos + 1] = dissect_packet(tvb, tree, o, size, detail)
-        o = o + size
     end
     if #infos > 0 then
         show_info(pinfo, #infos == 1 and infos[1] or fmt("%s (+%d)", infos[1], #infos - 1))
