@@ -775,7 +775,7 @@ static gboolean dotted_version_parts(const char *text, double part[3])
 
 /* ---- runtime/epan/ur_realtime_dissect.c ---- */
 /* The real-time dissector's runtime: frames the robot's TCP stream by each packet's int32 size
- * (tcp_dissect_pdus reassembles a packet split over segments), chooses the packet's layout by the
+ * (asking TCP to reassemble a packet split over segments), chooses the packet's layout by the
  * spec's same-size rule over the generated ur_realtime_sizes and ur_realtime_forms, and walks the
  * layout's slots into the tree. What a client sends to the port is URScript text. The interface
  * has no version message: the only state is the software-version preference, and nothing is kept
@@ -897,16 +897,6 @@ static void ur_realtime_show_info(packet_info *pinfo, const char *words)
     p_set_proto_data(pinfo->pool, pinfo, proto_ur_realtime, 0, (void *)shown);
 }
 
-static guint ur_realtime_packet_size(packet_info *pinfo _U_, tvbuff_t *tvb, int offset, void *data _U_)
-{
-    gint32 size = tvb_get_ntohil(tvb, offset);
-
-    /* A size that cannot frame a packet takes the rest of the segment, where it is reported. */
-    if (size < UR_REALTIME_MIN_SIZE || size > UR_REALTIME_MAX_SIZE)
-        return (guint)tvb_reported_length_remaining(tvb, offset);
-    return (guint)size;
-}
-
 /* A packet of a size no layout has: its bytes, kept, and a warning. */
 static void ur_realtime_unknown(tvbuff_t *tvb, packet_info *pinfo, proto_item *item, proto_tree *tree, gint32 size)
 {
@@ -935,7 +925,7 @@ static void ur_realtime_walk(tvbuff_t *tvb, proto_tree *tree, const ur_realtime_
     }
 }
 
-/* One whole packet (or, after a bad size, the rest of the segment). */
+/* One whole packet. */
 static int dissect_ur_realtime_packet(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data)
 {
     ur_realtime_infos *infos = (ur_realtime_infos *)data;
@@ -945,15 +935,6 @@ static int dissect_ur_realtime_packet(tvbuff_t *tvb, packet_info *pinfo, proto_t
     proto_item *item;
     proto_tree *sub;
 
-    if (size < UR_REALTIME_MIN_SIZE || size > UR_REALTIME_MAX_SIZE) {
-        item = proto_tree_add_item(tree, proto_ur_realtime, tvb, 0, -1, ENC_NA);
-        expert_add_info_format(pinfo, item, &ei_ur_realtime_bad_size,
-                               "Packet size %d cannot frame a packet (%d to %d)", size, UR_REALTIME_MIN_SIZE,
-                               UR_REALTIME_MAX_SIZE);
-        if (first)
-            infos->first = wmem_strdup_printf(pinfo->pool, "Bad size %d", size);
-        return tvb_captured_length(tvb);
-    }
     form = ur_realtime_form_of(size);
     if (first && form != NULL)
         infos->first = ur_realtime_info_of(tvb, pinfo, form);
@@ -974,18 +955,72 @@ static int dissect_ur_realtime_packet(tvbuff_t *tvb, packet_info *pinfo, proto_t
     return size;
 }
 
-/* Without TCP reassembly (its preference off) each segment is read on its own, as the Lua twin
- * reads it: its whole packets, up to the first it does not hold whole, or a bad size. (Given a cut
- * packet, tcp_dissect_pdus would mark the segments after it as its continuation.) */
-static void ur_realtime_each_whole_packet(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_realtime_infos *infos)
+/* Where the next plausible packet starts from `offset` on: the next size some layout has (a size
+ * no layout has is not trusted, since a packet's doubles hold small int32s often enough); -1 when
+ * the bytes up to `end` hold none whole. */
+static gint ur_realtime_next_packet(tvbuff_t *tvb, gint offset, gint end)
 {
-    gint offset = 0, left;
+    for (; end - offset >= UR_REALTIME_SIZE_BYTES; offset++) {
+        gint32 size = tvb_get_ntohil(tvb, offset);
+        if (size >= UR_REALTIME_MIN_SIZE && size <= UR_REALTIME_MAX_SIZE && ur_realtime_form_of(size) != NULL)
+            return offset;
+    }
+    return -1;
+}
 
-    while ((left = tvb_captured_length_remaining(tvb, offset)) >= UR_REALTIME_SIZE_BYTES) {
-        guint size = ur_realtime_packet_size(pinfo, tvb, offset, NULL);
-        if (size > (guint)left)
-            break;
-        offset += dissect_ur_realtime_packet(tvb_new_subset_length(tvb, offset, size), pinfo, tree, infos);
+/* The bytes skipped after a size that cannot frame a packet, named by one error. */
+static void ur_realtime_bad_size(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, gint offset, gint length,
+                                 gint32 size, ur_realtime_infos *infos)
+{
+    proto_item *item = proto_tree_add_item(tree, proto_ur_realtime, tvb, offset, length, ENC_NA);
+
+    expert_add_info_format(pinfo, item, &ei_ur_realtime_bad_size, "Packet size %d cannot frame a packet (%d to %d)",
+                           size, UR_REALTIME_MIN_SIZE, UR_REALTIME_MAX_SIZE);
+    if (infos->count++ == 0)
+        infos->first = wmem_strdup_printf(pinfo->pool, "Bad size %d", size);
+}
+
+/* TCP asks for this: the bytes from `offset` on wait for `more` bytes of the next segments
+ * (ignored when TCP reassembly is off, where a packet split over segments is not shown). */
+static void ur_realtime_desegment(packet_info *pinfo, gint offset, guint32 more)
+{
+    pinfo->desegment_offset = offset;
+    pinfo->desegment_len = more;
+}
+
+/* The segment's (or reassembled bytes') whole packets, as the Lua twin frames them: a packet the
+ * segment does not hold whole waits for the next; after a size that cannot frame a packet (the
+ * middle of one, after a lost segment) the bytes up to the next size some layout has are skipped,
+ * and where the segment holds none its last 3 bytes, which may begin one, wait. (tcp_dissect_pdus
+ * cannot scan.) */
+static void ur_realtime_frame(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, ur_realtime_infos *infos)
+{
+    gint offset = 0, end = (gint)tvb_captured_length(tvb);
+
+    while (offset < end) {
+        gint left = end - offset, next;
+        gint32 size;
+
+        if (left < UR_REALTIME_SIZE_BYTES) {
+            ur_realtime_desegment(pinfo, offset, DESEGMENT_ONE_MORE_SEGMENT);
+            return;
+        }
+        size = tvb_get_ntohil(tvb, offset);
+        if (size < UR_REALTIME_MIN_SIZE || size > UR_REALTIME_MAX_SIZE) {
+            next = ur_realtime_next_packet(tvb, offset + 1, end);
+            if (next < 0) {
+                ur_realtime_bad_size(tvb, pinfo, tree, offset, end - (UR_REALTIME_SIZE_BYTES - 1) - offset, size, infos);
+                ur_realtime_desegment(pinfo, end - (UR_REALTIME_SIZE_BYTES - 1), DESEGMENT_ONE_MORE_SEGMENT);
+                return;
+            }
+            ur_realtime_bad_size(tvb, pinfo, tree, offset, next - offset, size, infos);
+            offset = next;
+        } else if (left < size) {
+            ur_realtime_desegment(pinfo, offset, (guint32)(size - left));
+            return;
+        } else {
+            offset += dissect_ur_realtime_packet(tvb_new_subset_length(tvb, offset, size), pinfo, tree, infos);
+        }
     }
 }
 
@@ -1002,11 +1037,7 @@ static int dissect_ur_realtime(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tr
         ur_realtime_show_info(pinfo, "URScript");
         return tvb_captured_length(tvb);
     }
-    if (pinfo->can_desegment)
-        tcp_dissect_pdus(tvb, pinfo, tree, TRUE, UR_REALTIME_SIZE_BYTES, ur_realtime_packet_size,
-                         dissect_ur_realtime_packet, &infos);
-    else
-        ur_realtime_each_whole_packet(tvb, pinfo, tree, &infos);
+    ur_realtime_frame(tvb, pinfo, tree, &infos);
     if (infos.count == 1)
         ur_realtime_show_info(pinfo, infos.first);
     else if (infos.count > 1)
