@@ -211,6 +211,17 @@ static void lines_show_reply(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb
     proto_item_append_text(item, ": %s", text);
 }
 
+/* Whether the line's items carry an expert info (those of lines_show_command and
+ * lines_show_reply): they are added without a tree too, as the Lua twin adds them. */
+static bool lines_has_expert(const lines_decision_t *d, bool command)
+{
+    if (d->not_kept)
+        return true;
+    if (command)
+        return d->command == LINES_NONE || (d->available >= 0 && !d->available);
+    return d->reply != NULL && d->reply->error;
+}
+
 /* ---- lines ---- */
 
 /* The decisions of this frame in this direction: made now in the first pass, else those kept. */
@@ -298,10 +309,13 @@ static int dissect_lines(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, vo
                         frame->lines = wmem_tree_new(wmem_file_scope());
                     wmem_tree_insert32(frame->lines, (guint32)at, d);
                 }
-                if (info != NULL || tree != NULL) {    /* the text, only where it is shown */
+                /* The text, only where it is shown; the line's items where there is a tree or
+                 * an expert info to add (the expert tap, -z expert, builds no tree). */
+                const bool items = tree != NULL || lines_has_expert(d, requests);
+                if (info != NULL || items) {
                     const char *text = lines_text(pinfo, tvb, at, len);
                     lines_info(info, requests ? "Command: " : "Reply: ", text);
-                    if (tree != NULL)
+                    if (items)
                         (requests ? lines_show_command : lines_show_reply)(tree, pinfo, tvb, at, len, text, d);
                 }
                 at = nl + 1;

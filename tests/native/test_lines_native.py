@@ -307,6 +307,20 @@ def test_hostile_conversations(tmp_path, variant):
     assert "Part of a line (reassembly is off)" in json.dumps(shown.layers)
 
 
+def test_the_expert_tap_lists_the_same_experts_as_the_lua_twin(tmp_path):
+    """`tshark -q -z expert` builds no tree: the experts a line's items carry (a command or reply
+    not kept past 256 awaited replies, an unknown or unavailable command, a reply that says an
+    error) are listed by the native dissector as by the Lua one, not only under a tree."""
+    pcap = sessions(tmp_path, "ur_dashboard", hostile_conversations())
+    lua = harness.checked(lua_run(["ur_dashboard"])(pcap, "-q", "-z", "expert"))
+    native = harness.checked(harness.run_native(pcap, "-q", "-z", "expert"))
+    for summary in ("Command not kept: more than 256 commands awaited replies",
+                    "Reply to a command that was not kept: more than 256 commands awaited replies",
+                    "The reply says an error", "Unknown command", "The software version lacks this command"):
+        assert summary in lua
+    assert native == lua
+
+
 @pytest.mark.parametrize("interface", INTERFACES)
 def test_every_handle_is_declared_registered_and_used(interface):
     """What Wireshark's tools/checkhf.pl checks, for hf_, ett_ and ei_ handles alike: each static
