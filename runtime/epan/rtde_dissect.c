@@ -169,6 +169,18 @@ rtde_add_values(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb, int pos, co
     }
 }
 
+/* Without a tree (the expert tap, -z expert, builds none), the experts rtde_add_values adds to
+ * the values of retyped variables, as the Lua twin adds them always. */
+static void
+rtde_retyped_experts(packet_info *pinfo, const rtde_recipe *recipe)
+{
+    guint i;
+    for (i = 0; i < recipe->n; i++) {
+        if (recipe->field[i] >= 0 && recipe->retyped[i] && rtde_value_types[recipe->type[i]].count > 0)
+            expert_add_info_format(pinfo, NULL, &ei_rtde_retyped, "%s", recipe->retyped[i]);
+    }
+}
+
 /* One step of a layout: adds its items (when there is a tree) and returns the next position, or -1
  * when it does not fit. */
 static int
@@ -232,6 +244,8 @@ rtde_step_at(const rtde_step *s, proto_tree *tree, packet_info *pinfo, tvbuff_t 
             proto_item_set_generated(proto_tree_add_uint(tree, hf_rtde[RTDE_HF_RECIPE_FRAME], tvb, pos, 0,
                                                          recipe->when.frame));
             rtde_add_values(tree, pinfo, tvb, pos, recipe);
+        } else {
+            rtde_retyped_experts(pinfo, recipe);
         }
         return pos + (int)recipe->size;
     }

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import random
+import re
 import subprocess
 import tempfile
 from functools import lru_cache
@@ -148,6 +149,18 @@ def test_golden_exchanges_in_small_segments_show_as_in_lua():
 def test_cell_sample_rtde_conversations_show_as_in_lua():
     shown = assert_same(CELL_SAMPLE, "-Y", f"tcp.port == {PORT}")
     assert any("rtde.actual_q" in str(layer) for layer in shown.layers)
+
+
+@pytest.mark.parametrize("segmented", [False, True], ids=["whole", "segments"])
+def test_the_expert_tap_lists_the_same_experts_as_lua(segmented):
+    """`tshark -q -z expert` builds no tree: the expert a retyped variable's value carries in each
+    data package is listed by the plugin as by Lua, not only under a tree."""
+    capture_ = golden_capture(segmented)
+    want = harness.checked(lua(capture_, "-q", "-z", "expert"))
+    retyped = "timestamp: UINT8 by the setup reply, DOUBLE in the variable table"
+    # once on the setup reply, once on the data package's value
+    assert re.search(r"\n +2 +Protocol +RTDE +" + re.escape(retyped), want), want
+    assert harness.checked(native(capture_, "-q", "-z", "expert")) == want
 
 
 @pytest.mark.parametrize("args", [
