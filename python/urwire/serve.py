@@ -24,7 +24,7 @@ import sys
 from dataclasses import dataclass
 from typing import Callable, Optional
 
-from .arguments import finite_number
+from .arguments import HIGHEST_PORT, finite_number, port_number
 from .robot_cell import RobotCell
 from .robot_models import MODELS, RobotModel, model_for
 from .serve_dashboard import DashboardSession
@@ -48,12 +48,12 @@ def add_parser(sub, version_arg) -> None:
                                    "robot states and program messages), RTDE, the real-time interface and the "
                                    "dashboard server, each on its port, all reporting one motion.")
     p.add_argument("--host", default="127.0.0.1", help="address to listen on (default: 127.0.0.1)")
-    p.add_argument("--port", type=int, default=PRIMARY_PORT,
+    p.add_argument("--port", type=port_number, default=PRIMARY_PORT,
                    help="the primary interface's TCP port; 0 picks a free one for it and, unless given, for every "
                         "other interface (default: 30001)")
     for name, offset, title in (("rtde", 3, "RTDE (from software 3.3)"), ("realtime", 2, "the real-time interface"),
                                 ("dashboard", -2, "the dashboard server")):
-        p.add_argument(f"--{name}-port", type=int, metavar="PORT",
+        p.add_argument(f"--{name}-port", type=port_number, metavar="PORT",
                        help=f"{title}'s TCP port; 0 picks a free one (default: --port {offset:+d}, "
                             f"{PRIMARY_PORT + offset} for 30001)")
     p.add_argument("--software", type=version_arg, default=(5, 11, 0), metavar="X.Y[.Z]",
@@ -282,6 +282,12 @@ def serve_command(args: argparse.Namespace) -> int:
     if args.rate <= 0:
         print("urwire serve: --rate must be above 0", file=sys.stderr)
         return 2
+    ports = {"rtde": args.rtde_port, "realtime": args.realtime_port, "dashboard": args.dashboard_port}
+    for name, number in interface_ports(args.port, ports).items():
+        if not 0 <= number <= HIGHEST_PORT:
+            print(f"urwire serve: --port {args.port} puts the {TITLES[name]} port at {number}, outside 0 to "
+                  f"{HIGHEST_PORT}: give --{name}-port", file=sys.stderr)
+            return 2
     if args.duration is not None and args.duration < 0:
         print("urwire serve: --duration must be 0 or more", file=sys.stderr)
         return 2
@@ -294,7 +300,6 @@ def serve_command(args: argparse.Namespace) -> int:
         print(f"urwire serve: --model: {exc}", file=sys.stderr)
         return 2
     raise_open_file_limit()
-    ports = {"rtde": args.rtde_port, "realtime": args.realtime_port, "dashboard": args.dashboard_port}
     try:
         asyncio.run(serve(args.host, args.port, args.software, args.rate, args.duration, args.max_unsent, model,
                           ports))

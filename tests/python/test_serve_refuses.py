@@ -142,3 +142,24 @@ def test_listen_refuses_a_frequency_timeout_or_count_no_robot_would_take(args):
     res = urwire("listen", "127.0.0.1:9", "--rtde", "timestamp", "--duration", "1", *args)
     assert res.returncode == 2 and "urwire listen" in res.stderr and args[0] in res.stderr, res.stderr
     assert "Traceback" not in res.stderr and "cannot connect" not in res.stderr
+
+
+# ---- ports outside TCP's ----------------------------------------------------------------------
+
+@pytest.mark.parametrize("args", [("--port", "-1"), ("--port", "65536"), ("--dashboard-port", "70000"),
+                                  ("--rtde-port", "-5"), ("--realtime-port", "99999"), ("--port", "+80"),
+                                  ("--dashboard-port", "\u0667")])
+def test_serve_refuses_a_port_outside_tcps(args):
+    res = urwire("serve", "--duration", "2", *args)
+    assert res.returncode == 2 and "Traceback" not in res.stderr, res.stderr
+    last = res.stderr.strip().splitlines()[-1]
+    assert last.startswith("urwire serve: error: argument " + args[0]) and "0 to 65535" in last, res.stderr
+
+
+@pytest.mark.parametrize("port,given,other", [("65533", (), "rtde"), ("65534", ("--rtde-port", "0"), "realtime"),
+                                              ("1", (), "dashboard")])
+def test_serve_refuses_a_port_that_puts_another_interface_outside_tcps(port, given, other):
+    res = urwire("serve", "--port", port, *given, "--duration", "2")
+    assert res.returncode == 2 and "Traceback" not in res.stderr, res.stderr
+    (line,) = res.stderr.strip().splitlines()
+    assert line.startswith(f"urwire serve: --port {port} puts the ") and line.endswith(f"give --{other}-port")
