@@ -163,3 +163,11 @@ def test_serve_refuses_a_port_that_puts_another_interface_outside_tcps(port, giv
     assert res.returncode == 2 and "Traceback" not in res.stderr, res.stderr
     (line,) = res.stderr.strip().splitlines()
     assert line.startswith(f"urwire serve: --port {port} puts the ") and line.endswith(f"give --{other}-port")
+
+
+@pytest.mark.parametrize("port", ["99999", "65536", "0", "-1", "+30001", "\u0667"])
+def test_listen_refuses_a_port_outside_tcps(port):
+    res = urwire("listen", f"127.0.0.1:{port}", "--duration", "1")
+    assert res.returncode == 2 and "Traceback" not in res.stderr, res.stderr
+    (line,) = res.stderr.strip().splitlines()
+    assert line.startswith(f"urwire listen: not an address: 127.0.0.1:{port}") and "1 to 65535" in line
