@@ -40,6 +40,10 @@ STOP_GRACE_SECONDS = 1.0
 PRIMARY_PORT = 30001
 # Each other interface's port is its offset from the primary's: 30004, 30003 and 29999 by default.
 OFFSETS = {"rtde": 3, "realtime": 2, "dashboard": -2}
+# The fastest a UR controller sends on any interface: an e-Series' real-time and RTDE data, at
+# 500 Hz (the primary interface's states come at 10 Hz). A faster --rate is no robot's, and only
+# burns the server's processor.
+HIGHEST_RATE = 500.0
 
 
 def add_parser(sub, version_arg) -> None:
@@ -62,7 +66,8 @@ def add_parser(sub, version_arg) -> None:
                    help="the arm: ur3 (CB3), ur5, ur10 (CB2, CB3), ur3e, ur5e, ur10e, ur16e, ur20, ur30 (e-Series, "
                         "PolyScope X) (default: ur5 on CB2 and CB3, ur5e on e-Series and PolyScope X)")
     p.add_argument("--rate", type=finite_number, default=10.0,
-                   help="primary robot states per second, a finite number above 0 (default: 10)")
+                   help=f"primary robot states per second, above 0 and at most {HIGHEST_RATE:g}, the fastest a "
+                        f"controller sends on any interface (default: 10, as a controller sends them)")
     p.add_argument("--duration", type=finite_number, metavar="S",
                    help="stop after S seconds (default: run until stopped)")
     p.add_argument("--max-unsent", type=int, default=DEFAULT_MAX_UNSENT_KB, metavar="KB",
@@ -279,8 +284,9 @@ async def stop_all(servers: list, sessions: set) -> None:
 
 
 def serve_command(args: argparse.Namespace) -> int:
-    if args.rate <= 0:
-        print("urwire serve: --rate must be above 0", file=sys.stderr)
+    if not 0 < args.rate <= HIGHEST_RATE:
+        print(f"urwire serve: --rate must be above 0 and at most {HIGHEST_RATE:g}, the fastest a controller "
+              f"sends on any interface", file=sys.stderr)
         return 2
     ports = {"rtde": args.rtde_port, "realtime": args.realtime_port, "dashboard": args.dashboard_port}
     for name, number in interface_ports(args.port, ports).items():

@@ -127,6 +127,7 @@ def urwire(*args: str) -> subprocess.CompletedProcess:
 
 
 @pytest.mark.parametrize("args", [("--rate", "nan"), ("--rate", "inf"), ("--rate", "0"), ("--rate", "-10"),
+                                  ("--rate", "1e308"), ("--rate", "1e6"), ("--rate", "500.5"),
                                   ("--duration", "nan"), ("--duration", "-1")])
 def test_serve_refuses_a_rate_or_duration_it_could_only_spin_on(args):
     res = urwire("serve", "--port", "0", "--duration", "2", *args)
@@ -142,6 +143,11 @@ def test_listen_refuses_a_frequency_timeout_or_count_no_robot_would_take(args):
     res = urwire("listen", "127.0.0.1:9", "--rtde", "timestamp", "--duration", "1", *args)
     assert res.returncode == 2 and "urwire listen" in res.stderr and args[0] in res.stderr, res.stderr
     assert "Traceback" not in res.stderr and "cannot connect" not in res.stderr
+
+
+def test_serve_runs_at_the_fastest_rate_a_controller_sends():
+    res = urwire("serve", "--port", "0", "--rate", "500", "--duration", "0.3")
+    assert res.returncode == 0, res.stderr
 
 
 # ---- ports outside TCP's ----------------------------------------------------------------------
