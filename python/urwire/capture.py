@@ -4,9 +4,9 @@ reassembled from TCP segments.
 dpkt reads the capture formats (a record at a time, see capture_records) and parses the link, IP and TCP layers; reassembly is ours:
 segments in sequence order, retransmitted and overlapping bytes dropped, out-of-order ones
 held (ordered by their place in the stream) until the gap closes, or until the capture shows the
-gap is final: the peer acknowledges bytes beyond it (it got them, the capture did not), or the
-bytes held reach further than the peer's largest window lets a sender go unacknowledged (the
-acknowledgement was lost too). As a last bound, when the streams together hold MAX_PENDING bytes,
+gap is final: the peer acknowledges bytes held beyond it (so it got the gap's, which the capture
+did not), or the bytes held reach further than the peer's largest window lets a sender go
+unacknowledged (the acknowledgements were lost too). As a last bound, when the streams together hold MAX_PENDING bytes,
 the stream holding the most gives up its gap. The capture is read a record at a time.
 """
 from __future__ import annotations
@@ -92,7 +92,6 @@ class _Reassembly:
     order: list = field(default_factory=list)   # the positions in `held`, as a heap
     held_bytes: int = 0     # the memory they take: their bytes and SEGMENT_COST each
     history: bytearray = field(default_factory=bytearray)  # the last bytes delivered, up to `position`
-    acked: Optional[int] = None     # the peer's furthest acknowledgement number
     window: int = 0         # the peer's largest window, in bytes (0: none seen yet)
     furthest: int = 0       # the stream position where the bytes held end
 
@@ -103,7 +102,7 @@ class _Reassembly:
         out: list = []
         if ahead > 0:
             self._hold(self.position + ahead, data, out)
-            out += self._decide()
+            out += self._beyond_window()
             return out
         if -ahead >= len(data):
             self._compare(self.position + ahead, data, out)  # a retransmission of bytes delivered
@@ -163,38 +162,33 @@ class _Reassembly:
         self.next_seq = (self.next_seq + n) & 0xFFFFFFFF
 
     def ack(self, seq: int, window: int) -> list:
-        """The peer acknowledged the stream up to `seq` and offered `window` bytes: a gap it
-        acknowledged is decided at once, as Wireshark's "ACKed segment that wasn't captured"."""
-        if self.acked is None or _delta(seq, self.acked) > 0:
-            self.acked = seq
+        """The peer acknowledged the stream up to `seq` and offered `window` bytes. Acknowledging
+        bytes held behind a gap, it shows it got the gap's bytes, which the capture missed: the gap
+        is given up at once, as Wireshark's "ACKed segment that wasn't captured". One that covers
+        no held byte decides nothing: a capture may show an acknowledgement before the segment it
+        acknowledges (its two directions reordered), and that segment may yet come."""
         self.window = max(self.window, window)
-        return self._decide() if self.order else []
-
-    def _decide(self) -> list:
-        """Give up the gaps the capture shows final: acknowledged by the peer (up to where it
-        acknowledged), or behind held bytes that reach further than its largest window."""
         out: list = []
-        while self.order:
-            beyond = 0 if self.acked is None else _delta(self.acked, self.next_seq)
-            if 0 < beyond < self.order[0] - self.position:
-                out.append(self._give_up(beyond))   # only these are proven missing; the rest may come
-            elif beyond > 0 or 0 < self.window < self.furthest - self.position:
-                out += self.skip_gap()
-            else:
-                break
+        while self.order and _delta(seq, self.next_seq) > self.order[0] - self.position:
+            out += self.skip_gap()
+        return out + self._beyond_window()
+
+    def _beyond_window(self) -> list:
+        """Give up the gaps behind held bytes that reach further than the peer's largest window:
+        no sender goes that far past what was acknowledged, so the acknowledgements are lost too."""
+        out: list = []
+        while self.order and 0 < self.window < self.furthest - self.position:
+            out += self.skip_gap()
         return out
 
     def skip_gap(self) -> list:
         """Give up on missing bytes: a Gap, then the stream from the earliest segment held."""
-        out: list = [self._give_up(self.order[0] - self.position)]
+        gap = Gap(self.position, self.order[0] - self.position)
+        self._advance(gap.length)
+        self.history.clear()    # what came before the gap is not what a retransmission repeats
+        out: list = [gap]
         self._drain(out)
         return out
-
-    def _give_up(self, length: int) -> Gap:
-        gap = Gap(self.position, length)
-        self._advance(length)
-        self.history.clear()    # what came before the gap is not what a retransmission repeats
-        return gap
 
     def flush(self) -> list:
         """The end of the stream: every gap before held bytes given up, every held byte delivered."""

@@ -318,3 +318,30 @@ def test_a_retransmission_before_the_acknowledgement_passes_still_fills_the_gap(
     records, status = decode(str(capture.write(tmp_path / "retransmitted.pcap", frames)))
     assert status == 0
     assert [r["time"] for r in records] == [float(i) for i in range(12)]
+
+
+def test_an_acknowledgement_captured_before_its_segment_makes_no_gap(tmp_path):
+    """The capture shows the client's acknowledgement of a robot segment before the segment, which
+    comes after the next one (a capture that reordered them): the acknowledgement covers no byte
+    held behind the gap, so the late segment still fills it."""
+    packets = [packet(i) for i in range(10)]
+    frames = capture.session_frames([Segment(True, p) for p in packets], port=30003)
+    seg = {i: frames[3 + 2 * i] for i in range(10)}
+    ack = {i: frames[3 + 2 * i + 1] for i in range(10)}
+    frames = frames[:3 + 2 * 4] + [ack[4], seg[5], seg[4], ack[5]] + frames[3 + 2 * 6:]
+    records, status = decode(str(capture.write(tmp_path / "reordered.pcap", frames)))
+    assert status == 0
+    assert [r["time"] for r in records] == [float(i) for i in range(10)]
+
+
+def test_a_window_scaled_in_the_handshake_holds_what_it_lets_a_sender_send(monkeypatch, tmp_path):
+    """The same capture, but the SYNs ask for a window scale of 7 (8 MiB): 400 packets behind the
+    gap are within it, so they wait for the end of the stream, where the gap is given up."""
+    packets = [packet(i) for i in range(400)]
+    frames = capture.session_frames([Segment(True, p) for p in packets], port=30003, window_shift=7)
+    frames = frames[:3] + frames[3:3 + 2 * 400:2] + frames[3 + 2 * 400:]
+    del frames[3 + 10]
+    path = capture.write(tmp_path / "scaled.pcap", frames)
+    assert max(held_while_reading(monkeypatch, path)) > 389 * SIZE
+    records, _ = decode(str(path))
+    assert [r["type"] for r in records] == ["rt_3_10"] * 10 + ["error"] + ["rt_3_10"] * 389

@@ -213,19 +213,25 @@ def test_a_gap_the_peer_acknowledged_is_given_up_at_once():
     assert stream.held_bytes == 0
 
 
-def test_an_acknowledgement_remembered_decides_a_gap_met_later():
+def test_an_acknowledgement_of_no_held_byte_decides_nothing():
+    """A capture may show an acknowledgement before the segment it acknowledges (its directions
+    reordered): only one that covers bytes held behind the gap shows the gap final."""
     stream = _Reassembly(1000)
     assert stream.add(1000, DATA[:10]) == [DATA[:10]]
-    assert stream.ack(1100, 65535) == []          # nothing held yet: nothing waits
-    assert stream.add(1100, DATA[100:140]) == [Gap(10, 90), DATA[100:140]]
+    assert stream.ack(1140, 65535) == []          # nothing held yet
+    assert stream.add(1100, DATA[100:140]) == []
+    assert stream.ack(1100, 65535) == []          # up to the bytes held, not into them
+    assert stream.add(1010, DATA[10:100]) == [DATA[10:100], DATA[100:140]]
+    assert stream.flush() == []
 
 
-def test_only_the_bytes_acknowledged_are_given_up():
+def test_an_acknowledgement_gives_up_every_gap_before_the_bytes_it_covers():
     stream = _Reassembly(1000)
     stream.add(1000, DATA[:10])
+    stream.add(1050, DATA[50:60])
     stream.add(1100, DATA[100:140])
-    assert stream.ack(1050, 65535) == [Gap(10, 40)]
-    assert stream.add(1050, DATA[50:100]) == [DATA[50:100], DATA[100:140]]
+    assert stream.ack(1055, 65535) == [Gap(10, 40), DATA[50:60]]
+    assert stream.ack(1101, 65535) == [Gap(60, 40), DATA[100:140]]
 
 
 def test_a_retransmission_before_the_acknowledgement_passes_fills_the_gap():
