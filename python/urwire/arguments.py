@@ -70,6 +70,25 @@ def finite_number(text: str) -> float:
     return value
 
 
+HIGHEST_PORT = 65535
+
+
+def port_of(text: str, lowest: int = 0) -> int:
+    """A TCP port number written in ASCII digits, from `lowest` to 65535, else ValueError. int()
+    alone would take "-1", " 7" and "٧", and a socket call then fails on the number, or wraps it."""
+    if not (text.isascii() and text.isdigit()) or not lowest <= int(text) <= HIGHEST_PORT:
+        raise ValueError(f"not a TCP port: {text!r} ({lowest} to {HIGHEST_PORT})")
+    return int(text)
+
+
+def port_number(text: str) -> int:
+    """A command-line port to listen on: 0 (a free one) to 65535, else refused (argparse: exit 2)."""
+    try:
+        return port_of(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
 def version_of(version) -> Optional[tuple[int, int, int]]:
     """A version argument as (major, minor, bugfix): the framer's own tuples pass untouched."""
     if type(version) is tuple and len(version) == 3 and type(version[0]) is int and type(version[1]) is int \

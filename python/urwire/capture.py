@@ -3,9 +3,11 @@ reassembled from TCP segments.
 
 dpkt reads the capture formats (a record at a time, see capture_records) and parses the link, IP and TCP layers; reassembly is ours:
 segments in sequence order, retransmitted and overlapping bytes dropped, out-of-order ones
-held (ordered by their place in the stream) until the gap closes, or until the streams together
-hold MAX_PENDING bytes: then the stream holding the most gives up its gap. The capture is read
-a record at a time.
+held (ordered by their place in the stream) until the gap closes, or until the capture shows the
+gap is final: the peer acknowledges bytes held beyond it (so it got the gap's, which the capture
+did not), or the bytes held reach further than the peer's largest window lets a sender go
+unacknowledged (the acknowledgements were lost too). As a last bound, when the streams together hold MAX_PENDING bytes,
+the stream holding the most gives up its gap. The capture is read a record at a time.
 """
 from __future__ import annotations
 
@@ -22,6 +24,7 @@ MAX_PENDING = 16 << 20   # memory held for out-of-order segments, all streams to
 SEGMENT_COST = 200       # what holding a segment costs beyond its bytes: its object and entries
 
 
+UNKNOWN_SHIFT = 14        # a window's scale when the handshake is not in the capture: the largest
 HEAD_BYTES = 12           # what is_capture looks at
 
 
@@ -89,6 +92,8 @@ class _Reassembly:
     order: list = field(default_factory=list)   # the positions in `held`, as a heap
     held_bytes: int = 0     # the memory they take: their bytes and SEGMENT_COST each
     history: bytearray = field(default_factory=bytearray)  # the last bytes delivered, up to `position`
+    window: int = 0         # the peer's largest window, in bytes (0: none seen yet)
+    furthest: int = 0       # the stream position where the bytes held end
 
     def add(self, seq: int, data: bytes) -> list:
         if self.next_seq is None:
@@ -97,6 +102,7 @@ class _Reassembly:
         out: list = []
         if ahead > 0:
             self._hold(self.position + ahead, data, out)
+            out += self._beyond_window()
             return out
         if -ahead >= len(data):
             self._compare(self.position + ahead, data, out)  # a retransmission of bytes delivered
@@ -119,6 +125,7 @@ class _Reassembly:
                 return  # a retransmission of bytes already held
             data = kept + data[len(kept):]      # the first copy stands, the longer one adds to it
         self.held[at] = data
+        self.furthest = max(self.furthest, at + len(data))
         self.held_bytes += len(data) - (len(kept) if kept is not None else -SEGMENT_COST)
 
     def _drain(self, out: list) -> None:
@@ -153,6 +160,26 @@ class _Reassembly:
     def _advance(self, n: int) -> None:
         self.position += n
         self.next_seq = (self.next_seq + n) & 0xFFFFFFFF
+
+    def ack(self, seq: int, window: int) -> list:
+        """The peer acknowledged the stream up to `seq` and offered `window` bytes. Acknowledging
+        bytes held behind a gap, it shows it got the gap's bytes, which the capture missed: the gap
+        is given up at once, as Wireshark's "ACKed segment that wasn't captured". One that covers
+        no held byte decides nothing: a capture may show an acknowledgement before the segment it
+        acknowledges (its two directions reordered), and that segment may yet come."""
+        self.window = max(self.window, window)
+        out: list = []
+        while self.order and _delta(seq, self.next_seq) > self.order[0] - self.position:
+            out += self.skip_gap()
+        return out + self._beyond_window()
+
+    def _beyond_window(self) -> list:
+        """Give up the gaps behind held bytes that reach further than the peer's largest window:
+        no sender goes that far past what was acknowledged, so the acknowledgements are lost too."""
+        out: list = []
+        while self.order and 0 < self.window < self.furthest - self.position:
+            out += self.skip_gap()
+        return out
 
     def skip_gap(self) -> list:
         """Give up on missing bytes: a Gap, then the stream from the earliest segment held."""
@@ -243,6 +270,7 @@ def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozense
     head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
     reader = CaptureFrames(fh, pcapng=head == PCAPNG_MAGIC)
     streams: dict[tuple, _Reassembly] = {}   # by (conversation, from robot)
+    shifts: dict[tuple, int] = {}   # the window scale each side's SYN asked for, the same way
     held = 0  # bytes held out of order by all the streams, as held_bytes counts them
     ts = 0.0
     for item in reader:
@@ -260,14 +288,25 @@ def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozense
             continue
         if tcp.sport in ports:
             from_robot = True
-        elif tcp.dport in both_ways:
-            from_robot = False
+        elif tcp.dport in ports:
+            from_robot = False      # read for its acknowledgements, and for its bytes where asked
         else:
             continue
         family = socket.AF_INET if isinstance(ip, dpkt.ip.IP) else socket.AF_INET6
         src, dst = socket.inet_ntop(family, ip.src), socket.inet_ntop(family, ip.dst)
         key = (src, tcp.sport, dst, tcp.dport) if from_robot else (dst, tcp.dport, src, tcp.sport)
         way = (key, from_robot)
+        if tcp.flags & dpkt.tcp.TH_SYN:
+            shifts[way] = _window_shift(tcp)
+        elif tcp.flags & dpkt.tcp.TH_ACK:
+            peer = streams.get((key, not from_robot))
+            if peer is not None:    # its gaps this acknowledgement decides came before this segment
+                held -= peer.held_bytes
+                window = tcp.win << shifts.get(way, UNKNOWN_SHIFT)
+                yield from _items(key, not from_robot, peer.ack(tcp.ack, window), False, float(ts))
+                held += peer.held_bytes
+        if not from_robot and tcp.dport not in both_ways:
+            continue
         stream = streams.get(way)
         if stream is not None:
             held -= stream.held_bytes  # added back below, as the segment leaves it
@@ -294,6 +333,20 @@ def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozense
             held += streams[largest].held_bytes
     for (key, from_robot), stream in streams.items():
         yield from _items(key, from_robot, stream.flush(), True, float(ts))
+
+
+def _window_shift(tcp) -> int:
+    """The window scale a SYN segment asks for (RFC 7323: at most 14), 0 without the option."""
+    import dpkt
+
+    try:
+        options = dpkt.tcp.parse_opts(tcp.opts)
+    except (dpkt.UnpackError, ValueError, IndexError):
+        return UNKNOWN_SHIFT
+    for kind, value in options:
+        if kind == dpkt.tcp.TCP_OPT_WSCALE and len(value) == 1:
+            return min(value[0], 14)
+    return 0
 
 
 def _keep_alive(stream: _Reassembly, seq: int, data: bytes) -> bool:

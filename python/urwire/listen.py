@@ -30,7 +30,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator, Optional
 
-from .arguments import finite_number
+from .arguments import finite_number, port_of
 from .canonical import fails, to_json_line
 from .framer import Framer
 from .human import line as human_line
@@ -80,7 +80,7 @@ def split_address(text: str, default_port: int = 30001) -> tuple[str, int]:
     host, sep, port = text.rpartition(":")
     if not sep or "]" in port:          # no port, or a bare IPv6 address
         return text.strip("[]"), default_port
-    return host.strip("[]"), int(port)
+    return host.strip("[]"), port_of(port, lowest=1)   # no robot listens on port 0
 
 
 def raw_path(first: str, connection: int) -> str:
@@ -304,8 +304,8 @@ def reader_factory(args: argparse.Namespace) -> Callable:
 def listen_command(args: argparse.Namespace) -> int:
     try:
         host, port = split_address(args.address, RTDE_PORT if args.rtde is not None else 30001)
-    except ValueError:
-        print(f"urwire listen: not an address: {args.address}", file=sys.stderr)
+    except ValueError as exc:
+        print(f"urwire listen: not an address: {args.address}: {exc}", file=sys.stderr)
         return 2
     if args.idle_timeout <= 0:
         print("urwire listen: --idle-timeout must be more than 0", file=sys.stderr)

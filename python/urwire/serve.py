@@ -24,7 +24,7 @@ import sys
 from dataclasses import dataclass
 from typing import Callable, Optional
 
-from .arguments import finite_number
+from .arguments import HIGHEST_PORT, finite_number, port_number
 from .robot_cell import RobotCell
 from .robot_models import MODELS, RobotModel, model_for
 from .serve_dashboard import DashboardSession
@@ -40,6 +40,10 @@ STOP_GRACE_SECONDS = 1.0
 PRIMARY_PORT = 30001
 # Each other interface's port is its offset from the primary's: 30004, 30003 and 29999 by default.
 OFFSETS = {"rtde": 3, "realtime": 2, "dashboard": -2}
+# The fastest a UR controller sends on any interface: an e-Series' real-time and RTDE data, at
+# 500 Hz (the primary interface's states come at 10 Hz). A faster --rate is no robot's, and only
+# burns the server's processor.
+HIGHEST_RATE = 500.0
 
 
 def add_parser(sub, version_arg) -> None:
@@ -48,12 +52,12 @@ def add_parser(sub, version_arg) -> None:
                                    "robot states and program messages), RTDE, the real-time interface and the "
                                    "dashboard server, each on its port, all reporting one motion.")
     p.add_argument("--host", default="127.0.0.1", help="address to listen on (default: 127.0.0.1)")
-    p.add_argument("--port", type=int, default=PRIMARY_PORT,
+    p.add_argument("--port", type=port_number, default=PRIMARY_PORT,
                    help="the primary interface's TCP port; 0 picks a free one for it and, unless given, for every "
                         "other interface (default: 30001)")
     for name, offset, title in (("rtde", 3, "RTDE (from software 3.3)"), ("realtime", 2, "the real-time interface"),
                                 ("dashboard", -2, "the dashboard server")):
-        p.add_argument(f"--{name}-port", type=int, metavar="PORT",
+        p.add_argument(f"--{name}-port", type=port_number, metavar="PORT",
                        help=f"{title}'s TCP port; 0 picks a free one (default: --port {offset:+d}, "
                             f"{PRIMARY_PORT + offset} for 30001)")
     p.add_argument("--software", type=version_arg, default=(5, 11, 0), metavar="X.Y[.Z]",
@@ -62,7 +66,8 @@ def add_parser(sub, version_arg) -> None:
                    help="the arm: ur3 (CB3), ur5, ur10 (CB2, CB3), ur3e, ur5e, ur10e, ur16e, ur20, ur30 (e-Series, "
                         "PolyScope X) (default: ur5 on CB2 and CB3, ur5e on e-Series and PolyScope X)")
     p.add_argument("--rate", type=finite_number, default=10.0,
-                   help="primary robot states per second, a finite number above 0 (default: 10)")
+                   help=f"primary robot states per second, above 0 and at most {HIGHEST_RATE:g}, the fastest a "
+                        f"controller sends on any interface (default: 10, as a controller sends them)")
     p.add_argument("--duration", type=finite_number, metavar="S",
                    help="stop after S seconds (default: run until stopped)")
     p.add_argument("--max-unsent", type=int, default=DEFAULT_MAX_UNSENT_KB, metavar="KB",
@@ -279,9 +284,16 @@ async def stop_all(servers: list, sessions: set) -> None:
 
 
 def serve_command(args: argparse.Namespace) -> int:
-    if args.rate <= 0:
-        print("urwire serve: --rate must be above 0", file=sys.stderr)
+    if not 0 < args.rate <= HIGHEST_RATE:
+        print(f"urwire serve: --rate must be above 0 and at most {HIGHEST_RATE:g}, the fastest a controller "
+              f"sends on any interface", file=sys.stderr)
         return 2
+    ports = {"rtde": args.rtde_port, "realtime": args.realtime_port, "dashboard": args.dashboard_port}
+    for name, number in interface_ports(args.port, ports).items():
+        if not 0 <= number <= HIGHEST_PORT:
+            print(f"urwire serve: --port {args.port} puts the {TITLES[name]} port at {number}, outside 0 to "
+                  f"{HIGHEST_PORT}: give --{name}-port", file=sys.stderr)
+            return 2
     if args.duration is not None and args.duration < 0:
         print("urwire serve: --duration must be 0 or more", file=sys.stderr)
         return 2
@@ -294,7 +306,6 @@ def serve_command(args: argparse.Namespace) -> int:
         print(f"urwire serve: --model: {exc}", file=sys.stderr)
         return 2
     raise_open_file_limit()
-    ports = {"rtde": args.rtde_port, "realtime": args.realtime_port, "dashboard": args.dashboard_port}
     try:
         asyncio.run(serve(args.host, args.port, args.software, args.rate, args.duration, args.max_unsent, model,
                           ports))

@@ -279,7 +279,9 @@ def reversed_segments() -> None:
     from tests.tools import capture
 
     messages = [sample(n) for n in SAMPLES]
-    frames = capture.robot_session([messages[i % len(messages)] for i in range(CAPTURE_MESSAGES)])
+    # A window as large as TCP scales one (2**14 times 65,535 bytes): else segments held further
+    # than the client's window would read as past a gap whose acknowledgements were lost too.
+    frames = capture.robot_session([messages[i % len(messages)] for i in range(CAPTURE_MESSAGES)], window_shift=14)
     handshake, data, closing = frames[:3], frames[3:-3], frames[-3:]
     with tempfile.TemporaryDirectory() as tmp:
         in_order = capture.write(Path(tmp) / "in_order.pcap", frames)

@@ -197,3 +197,151 @@ def test_an_rtde_conversation_keeps_its_recipe_across_a_gap(tmp_path):
     stamps = [r["timestamp"] for r in records if r["type"] == "data_package"]
     assert stamps == [float(i) for i in range(12) if i not in (5, 6)]
     assert all("error" not in r for r in records if r["type"] == "data_package")
+
+
+# ---- a gap the capture shows final is decided where it shows it, not at the end ----
+
+def dashboard_exchanges(count: int) -> list[tuple]:
+    steps = [(True, b"Connected: Universal Robots Dashboard Server\n")]
+    for i in range(count):
+        steps += [(False, f"get loaded program {i}\n".encode()), (True, f"Loaded program: /p{i}.urp\n".encode())]
+    return steps
+
+
+def test_records_after_an_acknowledged_gap_come_in_capture_order(tmp_path):
+    """A long dashboard session missing one robot reply, which the client acknowledged: every
+    later reply comes right after its command, as in the capture, not all at the end; the gap's
+    record comes where the next reply showed it final."""
+    steps = dashboard_exchanges(50)
+    frames = capture.exchange_frames(steps, port=29999, lose=4)     # the reply to the second command
+    records, status = decode(str(capture.write(tmp_path / "dash.pcap", frames)))
+    assert status == 1
+    kinds = [("gap" if r["type"] == "error" else r["direction"]) for r in records]
+    assert kinds == ["from_robot"] + ["to_robot", "from_robot"] + ["to_robot", "to_robot", "gap", "from_robot"] + \
+        ["to_robot", "from_robot"] * 47
+    gap = records[kinds.index("gap")]
+    assert gap["direction"] == "from_robot"
+    assert gap["error"] == f"{len(steps[4][1])} bytes missing from the capture at offset " \
+                           f"{len(steps[0][1]) + len(steps[2][1])}"
+    replies = [r["reply"] for r in records if r["direction"] == "from_robot" and "reply" in r]
+    assert replies[-1] == "Loaded program: /p49.urp"
+
+
+def test_rtde_replies_after_a_lost_client_segment_come_after_their_requests(tmp_path):
+    """A client segment was lost and the robot acknowledged it: the client's later setup comes
+    before the robot's reply to it, as in the capture, so the reply is not one "without a request
+    seen"; the gap before it leaves its pairing unknown, which the reply says."""
+    from urwire import rtde
+    from urwire.generated import rtde as g
+
+    recipe = rtde.Recipe(1, "outputs", ["timestamp"], ["DOUBLE"], g.VALUE_TYPES)
+    steps = [(False, rtde.request_protocol_version(2)), (True, g.RequestProtocolVersionReply(True).encode()),
+             (False, rtde.send_text_message("hello")),
+             (False, rtde.setup_outputs(["timestamp"], 125.0)), (True, g.SetupOutputsReply(1, ["DOUBLE"]).encode()),
+             (False, rtde.start()), (True, g.StartReply(True).encode())]
+    steps += [(True, g.DataPackage(1, {"timestamp": float(i)}).encode(recipe)) for i in range(30)]
+    frames = capture.exchange_frames(steps, port=30004, lose=2)
+    records, status = decode(str(capture.write(tmp_path / "rtde.pcap", frames)))
+    assert status == 1
+    assert not [r for r in records if "without a request seen" in r.get("warning", "")]
+    types = [r["type"] for r in records]
+    assert types[:7] == ["request_protocol_version", "request_protocol_version_reply", "error", "setup_outputs",
+                         "setup_outputs_reply", "start", "start_reply"]
+    assert records[2]["direction"] == "to_robot"
+    assert records[4]["error"] == "reply after bytes lost from the capture: its setup is unknown"
+    assert types[7:] == ["data_package"] * 30
+
+
+def held_while_reading(monkeypatch, path) -> list[int]:
+    """The bytes held out of order by all streams after each segment, while timed_streams reads."""
+    from urwire import capture as reader
+    from urwire.capture import _Reassembly
+
+    streams: list = []
+    held: list = []
+
+    class Watched(_Reassembly):
+        def __init__(self, *args):
+            super().__init__(*args)
+            streams.append(self)
+
+        def add(self, seq, data):
+            out = super().add(seq, data)
+            held.append(sum(s.held_bytes for s in streams))
+            return out
+
+    monkeypatch.setattr(reader, "_Reassembly", Watched)
+    with open(path, "rb") as fh:
+        for _ in reader.timed_streams(fh, {30003}):
+            pass
+    return held
+
+
+def test_an_acknowledged_gap_holds_nothing_in_a_long_capture(monkeypatch, tmp_path):
+    """A 2,000-packet real-time stream missing its tenth packet: the client's acknowledgement
+    decides the gap at once, so no packet is held waiting for the end of the capture."""
+    from urwire.capture import SEGMENT_COST
+
+    packets = [packet(i) for i in range(2000)]
+    frames = capture.session_frames([Segment(True, p) for p in packets], port=30003)
+    del frames[3 + 2 * 10]
+    held = held_while_reading(monkeypatch, capture.write(tmp_path / "long.pcap", frames))
+    assert max(held) <= SIZE + SEGMENT_COST
+
+
+def test_without_acknowledgements_the_peers_window_bounds_what_a_gap_holds(monkeypatch, tmp_path):
+    """The client's acknowledgements are not in the capture either: what a stream holds behind a
+    gap stays within the 65,535-byte window the client offered (no window scale in its SYN)."""
+    from urwire.capture import SEGMENT_COST
+
+    packets = [packet(i) for i in range(400)]
+    frames = capture.session_frames([Segment(True, p) for p in packets], port=30003)
+    frames = frames[:3] + frames[3:3 + 2 * 400:2] + frames[3 + 2 * 400:]   # the robot's segments only
+    del frames[3 + 10]
+    path = capture.write(tmp_path / "noacks.pcap", frames)
+    held = held_while_reading(monkeypatch, path)
+    assert max(held) <= 65535 + SIZE + (65535 // SIZE + 1) * SEGMENT_COST
+    records, _ = decode(str(path))
+    kinds = [r["type"] for r in records]
+    assert kinds == ["rt_3_10"] * 10 + ["error"] + ["rt_3_10"] * 389
+
+
+def test_a_retransmission_before_the_acknowledgement_passes_still_fills_the_gap(tmp_path):
+    """The robot's segment is lost and retransmitted after later ones; the client's
+    acknowledgements meanwhile stay at the gap: the retransmission fills it, nothing is missing."""
+    packets = [packet(i) for i in range(12)]
+    frames = capture.session_frames([Segment(True, p) for p in packets], port=30003)
+    lost = frames[3 + 2 * 4]
+    dup_ack = frames[3 + 2 * 3 + 1]           # the acknowledgement of the packet before it
+    later = [frames[3 + 2 * i] for i in (5, 6, 7)]
+    frames = frames[:3 + 2 * 4] + [f for seg in later for f in (seg, dup_ack)] + [lost] + frames[3 + 2 * 7 + 1:]
+    records, status = decode(str(capture.write(tmp_path / "retransmitted.pcap", frames)))
+    assert status == 0
+    assert [r["time"] for r in records] == [float(i) for i in range(12)]
+
+
+def test_an_acknowledgement_captured_before_its_segment_makes_no_gap(tmp_path):
+    """The capture shows the client's acknowledgement of a robot segment before the segment, which
+    comes after the next one (a capture that reordered them): the acknowledgement covers no byte
+    held behind the gap, so the late segment still fills it."""
+    packets = [packet(i) for i in range(10)]
+    frames = capture.session_frames([Segment(True, p) for p in packets], port=30003)
+    seg = {i: frames[3 + 2 * i] for i in range(10)}
+    ack = {i: frames[3 + 2 * i + 1] for i in range(10)}
+    frames = frames[:3 + 2 * 4] + [ack[4], seg[5], seg[4], ack[5]] + frames[3 + 2 * 6:]
+    records, status = decode(str(capture.write(tmp_path / "reordered.pcap", frames)))
+    assert status == 0
+    assert [r["time"] for r in records] == [float(i) for i in range(10)]
+
+
+def test_a_window_scaled_in_the_handshake_holds_what_it_lets_a_sender_send(monkeypatch, tmp_path):
+    """The same capture, but the SYNs ask for a window scale of 7 (8 MiB): 400 packets behind the
+    gap are within it, so they wait for the end of the stream, where the gap is given up."""
+    packets = [packet(i) for i in range(400)]
+    frames = capture.session_frames([Segment(True, p) for p in packets], port=30003, window_shift=7)
+    frames = frames[:3] + frames[3:3 + 2 * 400:2] + frames[3 + 2 * 400:]
+    del frames[3 + 10]
+    path = capture.write(tmp_path / "scaled.pcap", frames)
+    assert max(held_while_reading(monkeypatch, path)) > 389 * SIZE
+    records, _ = decode(str(path))
+    assert [r["type"] for r in records] == ["rt_3_10"] * 10 + ["error"] + ["rt_3_10"] * 389

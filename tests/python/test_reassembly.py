@@ -154,8 +154,9 @@ def test_each_held_segment_counts_what_holding_it_costs():
 
 
 def test_the_streams_together_hold_at_most_max_pending(monkeypatch, tmp_path):
-    """Two sessions, each missing its second segment: the one holding the most gives up its gap
-    whenever all of them hold more than MAX_PENDING, long before the capture ends."""
+    """Two sessions, each missing its second segment and every acknowledgement: the one holding
+    the most gives up its gap whenever all of them hold more than MAX_PENDING, long before the
+    capture ends."""
     from tests.tools import capture as pcap
     from urwire import capture
 
@@ -177,8 +178,11 @@ def test_the_streams_together_hold_at_most_max_pending(monkeypatch, tmp_path):
     payloads = {port: [bytes([port % 256, i]) * 50 for i in range(40)] for port in (50001, 50002)}
     sessions = [pcap.session_frames([pcap.Segment(True, p) for p in payloads[port]], client_port=port)
                 for port in payloads]
-    for frames in sessions:
-        del frames[3 + 2 * 1]          # the robot's second segment was not captured
+    for i, frames in enumerate(sessions):
+        # Only the robot's segments after the handshake (no acknowledgement decides a gap), and of
+        # them not the second.
+        frames = sessions[i] = frames[:3] + frames[3:3 + 2 * 40:2]
+        del frames[3 + 1]
     frames = [f for pair in zip(*sessions) for f in pair]
     path = pcap.write(tmp_path / "gaps.pcap", frames)
     got: dict = {}
@@ -197,3 +201,54 @@ def test_the_streams_together_hold_at_most_max_pending(monkeypatch, tmp_path):
         assert before_the_end[port].startswith(sent[0] + sent[2])
         assert gaps[port] == [Gap(100, 100)]
     assert max(held) <= 2000 + 100 + capture.SEGMENT_COST
+
+
+def test_a_gap_the_peer_acknowledged_is_given_up_at_once():
+    """The peer acknowledged bytes beyond the gap: it got them and the capture did not, so the
+    stream goes on at once instead of waiting for the end of the capture."""
+    stream = _Reassembly(1000)
+    assert stream.add(1000, DATA[:10]) == [DATA[:10]]
+    assert stream.add(1100, DATA[100:140]) == []
+    assert stream.ack(1140, 65535) == [Gap(10, 90), DATA[100:140]]
+    assert stream.held_bytes == 0
+
+
+def test_an_acknowledgement_of_no_held_byte_decides_nothing():
+    """A capture may show an acknowledgement before the segment it acknowledges (its directions
+    reordered): only one that covers bytes held behind the gap shows the gap final."""
+    stream = _Reassembly(1000)
+    assert stream.add(1000, DATA[:10]) == [DATA[:10]]
+    assert stream.ack(1140, 65535) == []          # nothing held yet
+    assert stream.add(1100, DATA[100:140]) == []
+    assert stream.ack(1100, 65535) == []          # up to the bytes held, not into them
+    assert stream.add(1010, DATA[10:100]) == [DATA[10:100], DATA[100:140]]
+    assert stream.flush() == []
+
+
+def test_an_acknowledgement_gives_up_every_gap_before_the_bytes_it_covers():
+    stream = _Reassembly(1000)
+    stream.add(1000, DATA[:10])
+    stream.add(1050, DATA[50:60])
+    stream.add(1100, DATA[100:140])
+    assert stream.ack(1055, 65535) == [Gap(10, 40), DATA[50:60]]
+    assert stream.ack(1101, 65535) == [Gap(60, 40), DATA[100:140]]
+
+
+def test_a_retransmission_before_the_acknowledgement_passes_fills_the_gap():
+    stream = _Reassembly(1000)
+    stream.add(1000, DATA[:10])
+    stream.add(1100, DATA[100:140])
+    assert stream.ack(1010, 65535) == []          # duplicate acknowledgements: the gap is not final
+    assert stream.ack(1010, 65535) == []
+    assert stream.add(1010, DATA[10:100]) == [DATA[10:100], DATA[100:140]]
+    assert stream.flush() == []
+
+
+def test_held_bytes_beyond_the_peers_window_give_up_the_gap():
+    """The acknowledgement was lost too: a sender never goes further than the window the peer
+    offered beyond what it acknowledged, so bytes held further than that are past a final gap."""
+    stream = _Reassembly(1000)
+    stream.add(1000, DATA[:10])
+    stream.ack(1010, 100)
+    assert stream.add(1100, DATA[100:105]) == []          # 95 bytes ahead: within the window
+    assert stream.add(1105, DATA[105:140]) == [Gap(10, 90), DATA[100:105], DATA[105:140]]

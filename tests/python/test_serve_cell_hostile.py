@@ -92,7 +92,7 @@ def test_garbage_on_rtde_and_the_dashboard_leaves_the_server_answering(tmp_path)
 
 
 def test_stops_within_2s_with_clients_on_every_port(tmp_path):
-    with CellServer(tmp_path, "--software", "5.11", "--rate", "1000", "--max-unsent", "1000000") as server:
+    with CellServer(tmp_path, "--software", "5.11", "--rate", "500", "--max-unsent", "1000000") as server:
         socks = [stalled_client(server, name) for name in ("primary", "realtime", "rtde", "dashboard")]
         streaming_rtde(socks[2])
         socks[3].sendall(b"play\n" * 100000)                      # replies it never reads

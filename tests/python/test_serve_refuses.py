@@ -127,6 +127,7 @@ def urwire(*args: str) -> subprocess.CompletedProcess:
 
 
 @pytest.mark.parametrize("args", [("--rate", "nan"), ("--rate", "inf"), ("--rate", "0"), ("--rate", "-10"),
+                                  ("--rate", "1e308"), ("--rate", "1e6"), ("--rate", "500.5"),
                                   ("--duration", "nan"), ("--duration", "-1")])
 def test_serve_refuses_a_rate_or_duration_it_could_only_spin_on(args):
     res = urwire("serve", "--port", "0", "--duration", "2", *args)
@@ -142,3 +143,37 @@ def test_listen_refuses_a_frequency_timeout_or_count_no_robot_would_take(args):
     res = urwire("listen", "127.0.0.1:9", "--rtde", "timestamp", "--duration", "1", *args)
     assert res.returncode == 2 and "urwire listen" in res.stderr and args[0] in res.stderr, res.stderr
     assert "Traceback" not in res.stderr and "cannot connect" not in res.stderr
+
+
+def test_serve_runs_at_the_fastest_rate_a_controller_sends():
+    res = urwire("serve", "--port", "0", "--rate", "500", "--duration", "0.3")
+    assert res.returncode == 0, res.stderr
+
+
+# ---- ports outside TCP's ----------------------------------------------------------------------
+
+@pytest.mark.parametrize("args", [("--port", "-1"), ("--port", "65536"), ("--dashboard-port", "70000"),
+                                  ("--rtde-port", "-5"), ("--realtime-port", "99999"), ("--port", "+80"),
+                                  ("--dashboard-port", "\u0667")])
+def test_serve_refuses_a_port_outside_tcps(args):
+    res = urwire("serve", "--duration", "2", *args)
+    assert res.returncode == 2 and "Traceback" not in res.stderr, res.stderr
+    last = res.stderr.strip().splitlines()[-1]
+    assert last.startswith("urwire serve: error: argument " + args[0]) and "0 to 65535" in last, res.stderr
+
+
+@pytest.mark.parametrize("port,given,other", [("65533", (), "rtde"), ("65534", ("--rtde-port", "0"), "realtime"),
+                                              ("1", (), "dashboard")])
+def test_serve_refuses_a_port_that_puts_another_interface_outside_tcps(port, given, other):
+    res = urwire("serve", "--port", port, *given, "--duration", "2")
+    assert res.returncode == 2 and "Traceback" not in res.stderr, res.stderr
+    (line,) = res.stderr.strip().splitlines()
+    assert line.startswith(f"urwire serve: --port {port} puts the ") and line.endswith(f"give --{other}-port")
+
+
+@pytest.mark.parametrize("port", ["99999", "65536", "0", "-1", "+30001", "\u0667"])
+def test_listen_refuses_a_port_outside_tcps(port):
+    res = urwire("listen", f"127.0.0.1:{port}", "--duration", "1")
+    assert res.returncode == 2 and "Traceback" not in res.stderr, res.stderr
+    (line,) = res.stderr.strip().splitlines()
+    assert line.startswith(f"urwire listen: not an address: 127.0.0.1:{port}") and "1 to 65535" in line

@@ -25,8 +25,9 @@ class Segment:
     payload: bytes
 
 
-def _frame(src, dst, sport, dport, seq, ack, flags, payload, src_mac, dst_mac) -> bytes:
-    tcp = dpkt.tcp.TCP(sport=sport, dport=dport, seq=seq, ack=ack, flags=flags, win=65535, data=payload)
+def _frame(src, dst, sport, dport, seq, ack, flags, payload, src_mac, dst_mac, opts: bytes = b"") -> bytes:
+    tcp = dpkt.tcp.TCP(sport=sport, dport=dport, seq=seq, ack=ack, flags=flags, win=65535, data=payload,
+                       opts=opts, off=5 + len(opts) // 4)
     ip = dpkt.ip.IP(src=socket.inet_aton(src), dst=socket.inet_aton(dst), p=dpkt.ip.IP_PROTO_TCP, ttl=64,
                     data=tcp)
     ip.len = len(ip)
@@ -36,9 +37,11 @@ def _frame(src, dst, sport, dport, seq, ack, flags, payload, src_mac, dst_mac) -
 
 def session_frames(segments: Iterable[Segment], port: int = 30001, client_port: int = 50123,
                    handshake: bool = True, robot_isn: int = 1000, client_isn: int = 5000,
-                   retransmit: Sequence[int] = (), robot: str = ROBOT, client: str = CLIENT) -> list[bytes]:
+                   retransmit: Sequence[int] = (), robot: str = ROBOT, client: str = CLIENT,
+                   window_shift: Optional[int] = None) -> list[bytes]:
     """Ethernet frames of one TCP session between `robot` and `client` (IPv4 addresses);
-    indices in `retransmit` are sent twice."""
+    indices in `retransmit` are sent twice. Each side offers a 65,535-byte window, scaled by
+    2**window_shift when given (the window scale option in both SYNs)."""
     ROBOT, CLIENT = robot, client  # noqa: N806 (the module's defaults, or the addresses given)
     A, PA, S, SA, F = (dpkt.tcp.TH_ACK, dpkt.tcp.TH_PUSH | dpkt.tcp.TH_ACK, dpkt.tcp.TH_SYN,
                        dpkt.tcp.TH_SYN | dpkt.tcp.TH_ACK, dpkt.tcp.TH_FIN | dpkt.tcp.TH_ACK)
@@ -51,9 +54,12 @@ def session_frames(segments: Iterable[Segment], port: int = 30001, client_port: 
         return _frame(CLIENT, ROBOT, client_port, port, c_seq, r_seq, flags, data, CLIENT_MAC, ROBOT_MAC)
 
     frames = []
+    # Window scale (kind 3, length 3), then a no-operation to end the options on a 32-bit word.
+    opts = b"" if window_shift is None else bytes([3, 3, window_shift, 1])
     if handshake:
-        frames.append(_frame(CLIENT, ROBOT, client_port, port, c_seq - 1, 0, S, b"", CLIENT_MAC, ROBOT_MAC))
-        frames.append(_frame(ROBOT, CLIENT, port, client_port, r_seq - 1, c_seq, SA, b"", ROBOT_MAC, CLIENT_MAC))
+        frames.append(_frame(CLIENT, ROBOT, client_port, port, c_seq - 1, 0, S, b"", CLIENT_MAC, ROBOT_MAC, opts))
+        frames.append(_frame(ROBOT, CLIENT, port, client_port, r_seq - 1, c_seq, SA, b"", ROBOT_MAC, CLIENT_MAC,
+                             opts))
         frames.append(client(A))
     for i, seg in enumerate(segments):
         if seg.from_robot:
