@@ -10,7 +10,7 @@ import sys
 from typing import BinaryIO, Callable, Optional
 
 from . import __version__, export, listen, plot, serve, spark
-from .arguments import parse_version
+from .arguments import parse_version, port_number
 from .backends import JsonLines, backend
 from .capture import head_of, is_capture
 from .canonical import fails, to_json_line
@@ -60,7 +60,7 @@ def build_parser() -> argparse.ArgumentParser:
     dec.add_argument("--format", choices=("json", "text", "tree"), default="json",
                      help="json: canonical JSON Lines (default); text: one readable line per message; "
                           "tree: every field of every message on a line of its own, with its label and unit")
-    dec.add_argument("--port", type=int, action="append", metavar="PORT",
+    dec.add_argument("--port", type=port_number, action="append", metavar="PORT",
                      help=f"robot-side TCP port(s) to decode in captures, as the --protocol interface (default: "
                           f"each interface's own ports, the primary's {' '.join(map(str, PORTS))} among them)")
     dec.add_argument("--no-progress", action="store_true", help="never show a progress bar")

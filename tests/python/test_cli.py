@@ -196,3 +196,12 @@ def test_no_progress_bar_when_stderr_is_not_a_terminal(tmp_path):
     result = subprocess.run([sys.executable, "-m", "urwire", "decode", str(path)], env=ENV,
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     assert result.returncode == 0 and result.stderr == b""
+
+
+@pytest.mark.parametrize("port", ["-1", "65536", "99999", "30o01"])
+def test_decode_refuses_a_port_no_tcp_conversation_has(port):
+    """A capture's TCP ports are 0 to 65535: any other --port could only ever match nothing."""
+    res = subprocess.run([sys.executable, "-m", "urwire", "decode", "--port", port, "-"], input=b"",
+                         capture_output=True, env=ENV, timeout=60)
+    assert res.returncode == 2
+    assert b"--port" in res.stderr and b"Traceback" not in res.stderr
