@@ -11,13 +11,16 @@
 -- bisection). A capture in step costs memory per stream, not per frame.
 -- Streams are keyed by both addresses and both ports ("192.168.56.101 192.168.56.1 30001 50000"),
 -- so that two robots, or two clients of one robot, never share a state, even on the same port
--- numbers. Field.new("tcp.stream") gives nothing on a first pass without a tree (tshark -2), and
--- Conversation only exists from Wireshark 4.6. A reused address and port pair starts over with
--- its Version message.
+-- numbers. A stream starts over, as the native plugin's conversation does, where Wireshark's TCP
+-- starts a new conversation on the same addresses and ports (a SYN, even a mutated one on the
+-- client's side): the first pass sees it as a new tcp.stream index. Field.new("tcp.stream") gives
+-- nothing on a first pass without a tree (tshark -2 with no filter), and Conversation only exists
+-- from Wireshark 4.6: there a reused address and port pair starts over only with its Version message.
 local spec, rt = ...
 local floor = math.floor
 
 local CALL_SPAN = 1048576   -- a call's key: frame number * CALL_SPAN + tvb length mod CALL_SPAN
+local tcp_stream = Field.new("tcp.stream")
 
 -- A snapshot: { version, implied, resync, carry, carried = how many bytes the carry held }.
 -- NONE: a stream that nothing has happened on yet.
@@ -123,6 +126,23 @@ local function stream_key(pinfo)
     return last_key
 end
 
+-- The TCP conversation of this frame (the innermost tcp.stream), nil when the tree lacks it.
+local function conversation_index()
+    local all = { tcp_stream() }
+    local last = all[#all]
+    return last and last.value
+end
+
+-- First pass: a stream whose TCP conversation is not the one it was seen in last starts over.
+local function follow_conversation(s)
+    local index = conversation_index()
+    if index == nil then return end
+    if s.conversation ~= nil and s.conversation ~= index then
+        s.version, s.implied, s.resync, s.carry = nil, nil, false, nil
+    end
+    s.conversation = index
+end
+
 -- The state as a call with n bytes starts: version, implied, resync, carry, how many bytes of
 -- the carry are this call's (nil: no carry), and the stream's key for stream_save.
 local function stream_load(pinfo, n)
@@ -130,7 +150,13 @@ local function stream_load(pinfo, n)
     local frame = pinfo.number
     local key = frame * CALL_SPAN + n % CALL_SPAN
     local snap
-    if pinfo.visited then snap = recall(stream, key, frame) else snap = note(stream_of(stream), key, frame) end
+    if pinfo.visited then
+        snap = recall(stream, key, frame)
+    else
+        local s = stream_of(stream)
+        follow_conversation(s)
+        snap = note(s, key, frame)
+    end
     return snap.version, snap.implied, snap.resync, snap.carry, snap.carried, stream
 end
 

@@ -67,3 +67,16 @@ def test_a_difference_stops_the_run_and_keeps_the_session(peer, space, tmp_path,
     again, first = load("rtde", kept_file.read_bytes()), seeds("rtde")[0]
     assert (again.stream(True), again.stream(False)) == (first.stream(True), first.stream(False))
     assert "lines from python" in kept_file.with_suffix(".txt").read_text()
+
+
+def test_a_robot_file_read_as_a_capture_is_not_compared(peer, space):
+    """urwire-decode reads raw streams only: a lone robot stream opening with a whole pcap header
+    (a big-endian magic, then major version 2) is a capture to `urwire decode` alone, which must
+    still raise nothing; a magic without the version stays raw to both and is compared."""
+    session = load("rtde", bytes.fromhex("000000000000" "a1b2c3d4" "0002"))
+    assert fuzz_diff.read_as_capture(session)
+    why, output = fuzz_diff.check("rtde", session, peer, space)
+    assert why is None and b"capture header unreadable" in output
+    raw = load("rtde", bytes.fromhex("000000000000" "a1b2c3d4" "0003"))
+    assert not fuzz_diff.read_as_capture(raw)
+    assert fuzz_diff.check("rtde", raw, peer, space)[0] is None

@@ -336,3 +336,20 @@ def test_every_handle_is_declared_registered_and_used(interface):
     for handle in declared:
         assert f"&{handle}" in registration, f"{handle} is not registered"
         assert len(re.findall(rf"\b{handle}\b", elsewhere)) >= 2, f"{handle} is declared but not used"
+
+
+def test_a_new_connection_on_the_same_ports_pairs_nothing_with_the_last_ones_commands(tmp_path):
+    """Commands with no reply on one connection, then a new connection from the same client port
+    whose replies come: Wireshark's TCP starts a new conversation at the SYN, and neither
+    dissector pairs those replies with the last connection's commands (Lua labelled "Starting
+    program" a reply to robotmode). -Y: Lua sees the TCP conversation on a first pass with a tree
+    only (dissector/README.md)."""
+    frames = capture.session_frames([capture.Segment(False, b"robotmode\n"), capture.Segment(False, b"play\n")],
+                                    port=29999, client_port=41000)
+    frames += capture.session_frames([capture.Segment(True, b"Connected: Universal Robots Dashboard Server\n"),
+                                      capture.Segment(True, b"Starting program\n")], port=29999,
+                                     client_port=41000, robot_isn=90000, client_isn=70000)
+    pcap = capture.write(tmp_path / "reused.pcap", frames)
+    shown = assert_same(pcap, ["ur_dashboard"], "-Y", "ur_dashboard")
+    reply = shown.layers[-1]["ur_dashboard"]
+    assert reply["ur_dashboard.reply"] == "Starting program" and "ur_dashboard.command_name" not in reply

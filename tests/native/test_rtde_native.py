@@ -284,3 +284,20 @@ def test_queues_and_protocol_versions_say_what_they_could_not_follow():
         assert said in text, said
     assert {"pending_setups_overflow", "pending_version_requests_overflow",
             "protocol_version_without_layouts"} <= set(cases)
+
+
+def test_a_new_connection_on_the_same_ports_keeps_no_recipe():
+    """A recipe set up on one connection, then a new connection from the same client port that
+    sends a data package of that recipe id without a setup: Wireshark's TCP starts a new
+    conversation at the SYN, and the package's recipe is unknown there, in both dissectors (Lua
+    read it with the last connection's recipe). -Y: Lua sees the TCP conversation on a first
+    pass with a tree only (dissector/README.md)."""
+    names, value = b"timestamp", bytes.fromhex("4029000000000000")
+    setup = [Segment(False, bytes([0, 3 + 8 + len(names), 0x4F]) + bytes.fromhex("405f400000000000") + names),
+             Segment(True, bytes([0, 3 + 1 + 6, 0x4F, 1]) + b"DOUBLE")]
+    frames = capture.session_frames(setup, port=PORT, client_port=50000)
+    frames += capture.session_frames([Segment(True, bytes([0, 3 + 1 + 8, 0x55, 1]) + value)], port=PORT,
+                                     client_port=50000, robot_isn=90000, client_isn=70000)
+    shown = assert_same(_pcap(frames), "-Y", "rtde")
+    package = shown.layers[-1]["rtde"]
+    assert "rtde.timestamp" not in package and "_ws.expert" in package

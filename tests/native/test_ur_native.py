@@ -409,3 +409,19 @@ def test_odd_version_preferences(text):
     """The ur.version preference's text read as Lua reads it: blanks, a trailing dot or word, a
     bugfix over 999, a minor over 999 (carried into the major), no version at all."""
     assert_same(_golden_capture("", ("whole",)), "-o", f"ur.version:{text}")
+
+
+def test_a_new_connection_on_the_same_ports_starts_over():
+    """The robot's stream left carrying by hand a message that never ends (a bad header, then one
+    declaring 100000 bytes), then a new connection from the same client port (its SYN makes
+    Wireshark's TCP start a new conversation): the native plugin's state is the conversation's,
+    and Lua's starts over with it, so both decode every message of the new connection."""
+    stuck = b"\xff" * 5 + b"\x00\x01\x86\xa0\x10" + bytes(20)
+    messages = _split(valid.session(random.Random(3), valid.versions()[-1], 4))
+    frames = capture.session_frames([capture.Segment(True, stuck)], client_port=50124)
+    frames += capture.session_frames([capture.Segment(True, m) for m in messages], client_port=50124,
+                                     robot_isn=90000, client_isn=70000)
+    with tempfile.TemporaryDirectory() as folder:
+        data = capture.write(Path(folder) / "reused.pcap", frames).read_bytes()
+    shown = assert_same(data)
+    assert len(messages) == 5 and sum(1 for line in shown.info if "Bad header" not in line) == len(messages)

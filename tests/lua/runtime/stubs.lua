@@ -144,6 +144,11 @@ end
 
 ENC_UTF_8 = ENC_UTF_8 or 0x2
 
+-- Field.new: an extractor giving the value S.fields holds for its field now (nil: none, as on a
+-- first pass without a tree); each value a table with .value, as a FieldInfo has.
+S.fields = {}
+Field = Field or { new = function(name) return function() return S.fields[name] end end }
+
 -- The Wireshark globals a whole dissector uses at load time, as recorders: a ProtoField is its
 -- filter name, a preference its default value, registered ports are kept in S.ports.
 function S.wireshark_globals()

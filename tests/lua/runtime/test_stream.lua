@@ -51,6 +51,27 @@ S.eq((call(5, 1)), 5010000, "the first pass's state")
 rt.stream_reset()
 S.eq((call(5, 1)), nil, "a new capture starts over")
 
+-- A new TCP conversation on the same addresses and ports (tcp.stream, where the tree has it)
+-- starts the stream over, as the native plugin's conversation does; no index changes nothing.
+rt.stream_reset()
+S.fields["tcp.stream"] = { value = 0 }
+_, _, _, _, _, stream = call(1, 10)
+rt.stream_save(S.pinfo(1), stream, 5009000, nil, true, rt.carry_new("xy"))
+S.fields["tcp.stream"] = nil
+v, _, resync = call(2, 10)
+S.eq(v, 5009000, "no index: the same stream"); S.eq(resync, true, "still resynchronising")
+rt.stream_save(S.pinfo(2), stream, 5009000, nil, true, nil)
+S.fields["tcp.stream"] = { value = 0 }
+S.eq((call(3, 10)), 5009000, "the same conversation")
+rt.stream_save(S.pinfo(3), stream, 5009000, nil, true, nil)
+S.fields["tcp.stream"] = { value = 7 }
+v, implied, resync, carry = call(4, 10)
+S.eq(v, nil, "a new conversation: no version"); S.eq(resync, false, "in step")
+S.eq(carry, nil, "nothing carried")
+S.eq((call(3, 10, true)), 5009000, "a later pass: frame 3 still had the last conversation's")
+S.eq((call(4, 10, true)), nil, "and frame 4 the new one's")
+S.fields["tcp.stream"] = nil
+
 -- A stream in step keeps snapshots where its state changes, not per frame: 10,000 frames after
 -- a Version message keep the frame that first started with it, whatever the frames before.
 rt.stream_reset()
