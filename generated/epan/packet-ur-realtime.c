@@ -1008,9 +1008,10 @@ static void ur_realtime_frame(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tre
         size = tvb_get_ntohil(tvb, offset);
         if (size < UR_REALTIME_MIN_SIZE || size > UR_REALTIME_MAX_SIZE) {
             next = ur_realtime_next_packet(tvb, offset + 1, end);
-            if (next < 0) {
-                ur_realtime_bad_size(tvb, pinfo, tree, offset, end - (UR_REALTIME_SIZE_BYTES - 1) - offset, size, infos);
-                ur_realtime_desegment(pinfo, end - (UR_REALTIME_SIZE_BYTES - 1), DESEGMENT_ONE_MORE_SEGMENT);
+            if (next < 0) {     /* none here: the last bytes may open a size the next segment ends */
+                gint kept = end - (UR_REALTIME_SIZE_BYTES - 1);
+                ur_realtime_bad_size(tvb, pinfo, tree, offset, kept - offset, size, infos);
+                ur_realtime_desegment(pinfo, kept, DESEGMENT_ONE_MORE_SEGMENT);
                 return;
             }
             ur_realtime_bad_size(tvb, pinfo, tree, offset, next - offset, size, infos);
