@@ -10,6 +10,9 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from .lang.c import string as c_string, value_key as value_literal  # noqa: F401 (the kinds' epan renderers)
+
+
 @dataclass(frozen=True)
 class UnitLabel:
     """The label function of float fields with one unit: the value as Wireshark prints the field's
@@ -25,14 +28,3 @@ def unit_label(prefix: str, unit: str, double: bool = True) -> UnitLabel:
     spelled = re.sub(r"[^0-9A-Za-z]+", "_", spelled).strip("_").lower() or "unit"
     kind = "double" if double else "float"
     return UnitLabel(f"{prefix}_label_{spelled}_{kind}", "DBL_DIG" if double else "FLT_DIG", " " + unit)
-
-
-def c_string(text: str) -> str:
-    """A C string literal of text (UTF-8 as it is; quotes and backslashes escaped)."""
-    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
-
-
-def value_literal(value: int) -> str:
-    """A value_string's value: a guint32, a negative code as its two's complement (-1 is 0xffffffff),
-    which is what a signed field's value is looked up as."""
-    return str(value) if value >= 0 else f"(guint32){value}"

@@ -9,7 +9,6 @@ no stdio: one header and one source, generated/c/urwire.{h,c}.
 """
 from __future__ import annotations
 
-import textwrap
 from dataclasses import dataclass, field
 from typing import Optional
 
@@ -17,6 +16,7 @@ from .. import ir, plan
 from ..comments import field_text, node_text, value_text
 from ..emit import environment, runtime_path, runtime_source
 from ..errors import Problem, SpecError
+from ..lang.c import comment, inline
 from ..naming import c_enum_const, c_enum_prefix, c_enum_tag, c_member_const, c_table_suffix
 from ..view import Step
 
@@ -57,16 +57,6 @@ VALUE_LAYOUTS = {"empty": "URWIRE__LAYOUT_EMPTY", "string": "URWIRE__LAYOUT_STRI
                  "scalar": "URWIRE__LAYOUT_SCALAR", "list": "URWIRE__LAYOUT_LIST", "matrix": "URWIRE__LAYOUT_MATRIX"}
 # A bit per sub-package code (urwire_robot_state.present) and per sub-package layout (.layouts).
 MASK_BITS = 32
-
-
-def comment(*texts: str, width: int = 92) -> list[str]:
-    """Doc strings as the lines of a C comment body (no delimiters), wrapped."""
-    text = " ".join(t.strip() for t in texts if t and t.strip()).replace("*/", "* /")
-    return textwrap.wrap(text, width) if text else []
-
-
-def inline(*texts: str) -> str:
-    return " ".join(t.strip() for t in texts if t and t.strip()).replace("*/", "* /")
 
 
 # ---- versions and conditions, as data -----------------------------------------------------

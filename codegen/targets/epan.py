@@ -19,6 +19,7 @@ from .. import epan_c, ir, plan, wrap
 from ..epan_c import value_literal
 from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ..errors import SpecError
+from ..lang.c import identifier as ident, literal as c_literal, prose as c_text, string as c_str
 from ..view import Step
 from . import lua
 
@@ -86,48 +87,6 @@ EXPERTS = [
 ]
 
 ANY_LOW, ANY_HIGH = 0, 0xFFFFFFFF    # an open version bound
-
-
-def c_str(text: str) -> str:
-    """A C string literal; bytes outside ASCII as octal escapes, so the file is ASCII-clean."""
-    out = []
-    for b in text.encode("utf-8"):
-        ch = chr(b)
-        if ch == "\\":
-            out.append("\\\\")
-        elif ch == '"':
-            out.append('\\"')
-        elif ch == "\n":
-            out.append("\\n")
-        elif b < 32 or b > 126:
-            out.append(f"\\{b:03o}")
-        else:
-            out.append(ch)
-    return '"' + "".join(out) + '"'
-
-
-def c_text(text: str, indent: str) -> str:
-    """A long C string literal as adjacent literals, one per line, at most PROSE wide."""
-    pieces = wrap.lines(text, "", "", wrap.PROSE - len(indent) - 4)
-    words = [p + (" " if i < len(pieces) - 1 else "") for i, p in enumerate(pieces)]
-    return ("\n" + indent).join(c_str(w) for w in words)
-
-
-def c_literal(value) -> str:
-    if value is None:
-        return "NULL"
-    if isinstance(value, bool):
-        return "TRUE" if value else "FALSE"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, str):
-        return c_str(value)
-    raise TypeError(f"epan target: no C literal for {value!r}")
-
-
-def ident(text: str) -> str:
-    """A C identifier part from a Lua table name or field key."""
-    return re.sub(r"[^0-9A-Za-z]+", "_", text).strip("_").lower()
 
 
 class _Builder:

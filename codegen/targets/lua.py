@@ -13,7 +13,6 @@ descriptors is hand-written Lua in runtime/lua/, joined after the generated tabl
 from __future__ import annotations
 
 import textwrap
-
 from dataclasses import dataclass
 from typing import Optional
 
@@ -21,6 +20,7 @@ from .. import ir, plan, wrap
 from ..comments import node_text
 from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ..errors import Problem, SpecError
+from ..lang.lua import field as lua_field, literal as lua_literal, string as lua_str, text as lua_text
 from ..naming import layout_label, table_suffix, wireshark_field, words
 from ..view import Step
 
@@ -39,74 +39,6 @@ MAX_TREE_ITEMS = 10_000
 PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16", "uint16": "uint16",
               "int32": "int32", "uint32": "uint32", "int64": "int64", "uint64": "uint64",
               "float32": "float", "float64": "double"}
-
-
-def lua_str(text: str) -> str:
-    """A Lua double-quoted string literal."""
-    out = []
-    for ch in text:
-        if ch == "\\":
-            out.append("\\\\")
-        elif ch == '"':
-            out.append('\\"')
-        elif ch == "\n":
-            out.append("\\n")
-        elif ord(ch) < 32:
-            out.append(f"\\{ord(ch)}")
-        else:
-            out.append(ch)
-    return '"' + "".join(out) + '"'
-
-
-def lua_text(text: str, indent: str = "", column: int = 0) -> str:
-    """A long Lua string literal over several lines: each line but the last ends in a space and
-    `\\z`, which makes Lua skip the line break and the next line's indentation, so the value is
-    the text exactly. It breaks only before a word (never before a space the text keeps)."""
-    words = text.split(" ")
-    lines, line = [], []
-    for word in words:
-        width = (wrap.PROSE - column if not lines else wrap.PROSE - len(indent)) - 4
-        if line and word and len(lua_str(" ".join(line + [word]))) > width:
-            lines.append(" ".join(line))
-            line = [word]
-        else:
-            line.append(word)
-    lines.append(" ".join(line))
-    literals = [lua_str(piece)[1:-1] for piece in lines]
-    return '"' + (" \\z\n" + indent).join(literals) + '"'
-
-
-def lua_field(call: str, key: str, text: str, indent: str = "    ") -> str:
-    """One entry of the field table, `[key] = ProtoField.x(..., text),` where `call` is the
-    constructor up to its last argument, the description `text`, one argument a line: on one
-    line when it fits, else the description (wrapped by lua_text) on the lines under it, and the
-    constructor under the key when even that is long."""
-    args = "\n".join(a.strip() for a in call.splitlines() if a.strip())
-    flat = args.replace("\n", " ")
-    one = f"{indent}[{key}] = {flat}, {lua_str(text)}),"
-    if len(one) <= wrap.LIMIT:
-        return one
-    inner = indent + "    "
-    head = f"{indent}[{key}] = {flat},"
-    if len(head) <= wrap.LIMIT:
-        lines = [head]
-    else:
-        lines = [f"{indent}[{key}] ="] + [inner + line for line in wrap.pack(args, len(inner), 4).split("\n")]
-        lines[-1] += ","
-    return "\n".join(lines + [inner + lua_text(text, inner, len(inner)) + "),"])
-
-
-def lua_literal(value) -> str:
-    """The template's `lua` filter: a Python value as a Lua literal (None is nil)."""
-    if value is None:
-        return "nil"
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, str):
-        return lua_str(value)
-    raise TypeError(f"lua target: no Lua literal for {value!r}")
 
 
 def one_line(*texts: str) -> str:
