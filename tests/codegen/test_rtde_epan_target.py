@@ -1,4 +1,4 @@
-"""The epan target of the typed-messages kind (codegen/kinds/typed_messages/epan_target.py): what the
+"""The epan target of the typed-messages kind (codegen/kinds/typed_messages/epan.py): what the
 runtime relies on in the tables of generated/epan/packet-rtde.c, and the names it refuses."""
 from __future__ import annotations
 
@@ -9,14 +9,15 @@ import yaml
 from codegen.compile import SPEC_DIR, compile_text
 from codegen.emit import banner_lines
 from codegen.errors import SpecError
-from codegen.kinds.typed_messages import epan_target
+from codegen.kinds.typed_messages import epan
+from codegen.kinds.typed_messages.plan import plan
 
 SPEC = SPEC_DIR / "rtde.yaml"
 TEXT = SPEC.read_text(encoding="utf-8")
 
 
 def rendered(text: str = TEXT) -> str:
-    files = epan_target.render(compile_text(text, str(SPEC)), banner_lines("spec/rtde.yaml", text))
+    files = epan.render(plan(compile_text(text, str(SPEC))), banner_lines("spec/rtde.yaml", text))
     assert list(files) == ["epan/packet-rtde.c"]
     return files["epan/packet-rtde.c"]
 

@@ -8,7 +8,6 @@ and unit; each message layout's steps as table rows; what each message means to 
 state (its role, read by runtime/epan/rtde_state.c as runtime/lua/rtde_state.lua reads the names)."""
 from __future__ import annotations
 
-import json
 import re
 from dataclasses import dataclass
 from typing import Optional
@@ -16,9 +15,11 @@ from typing import Optional
 from ... import ir
 from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ...errors import Problem, SpecError
+from ...lang import c
 from ...wrap import spread
 from . import model
-from .lua_target import OWN_FIELDS, value_field, value_fields, value_label
+from .lua import OWN_FIELDS, value_field, value_label
+from .plan import MessagePlan, TypedPlan
 
 FIELD_TYPES = {"bool": "FT_BOOLEAN", "int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16",
                "uint16": "FT_UINT16", "int32": "FT_INT32", "uint32": "FT_UINT32", "int64": "FT_INT64",
@@ -44,10 +45,6 @@ SLOT_OF_FIELD = {"protocol_version": "RTDE_SLOT_PROTOCOL_VERSION", "accepted": "
                  "recipe_id": "RTDE_SLOT_RECIPE_ID", "variables": "RTDE_SLOT_VARIABLES", "types": "RTDE_SLOT_TYPES"}
 
 
-def c_string(text: Optional[str]) -> str:
-    return "NULL" if text is None else json.dumps(text, ensure_ascii=False)
-
-
 @dataclass
 class FieldView:
     """One hf_register_info entry."""
@@ -62,8 +59,8 @@ class FieldView:
 
     @property
     def line(self) -> str:
-        return spread([f"&hf_{self.prefix}[{self.enum}]", "{ " + c_string(self.label),
-                       c_string(self.abbrev), self.ftype, self.base, self.strings, "0x0", "NULL", "HFILL } }"],
+        return spread([f"&hf_{self.prefix}[{self.enum}]", "{ " + c.string(self.label),
+                       c.string(self.abbrev), self.ftype, self.base, self.strings, "0x0", "NULL", "HFILL } }"],
                       "{ ", ",", "        ")
 
 
@@ -139,24 +136,25 @@ def _step(f, fields: _Fields) -> str:
                                else ("RTDE_STEP_PREFIXED_TEXT", f.length.size, False))
     else:
         kind, size, integer = "RTDE_STEP_SCALAR", f.scalar.size, f.scalar.name in INTEGER_SCALARS
-    unit = c_string(" " + f.unit) if kind == "RTDE_STEP_SCALAR" and f.unit else "NULL"
+    unit = c.string(" " + f.unit) if kind == "RTDE_STEP_SCALAR" and f.unit else "NULL"
     return (f'{{ {kind}, {fields.enum_of(f.name)}, {size}, {"TRUE" if integer else "FALSE"}, {slot}, '
             f'"{f.name}", {unit} }}')
 
 
-def _role(m: model.Message, interface: model.Interface) -> tuple[str, int]:
-    for index, kind in enumerate(interface.recipe_kinds):
-        if any(r.name == m.name for r in kind.requests):
-            return "RTDE_ROLE_SETUP_REQUEST", index
-        if any(r.name == m.name for r in kind.replies):
-            return "RTDE_ROLE_SETUP_REPLY", index
+def _role(mp: MessagePlan) -> tuple[str, int]:
+    if mp.request_kind is not None:
+        return "RTDE_ROLE_SETUP_REQUEST", mp.request_kind
+    if mp.reply_kind is not None:
+        return "RTDE_ROLE_SETUP_REPLY", mp.reply_kind
+    m = mp.message
     if m.recipe_values is not None:
         return "RTDE_ROLE_DATA", -1
     return ROLE_OF_MESSAGE.get(m.name, "RTDE_ROLE_NONE"), -1
 
 
-def render(interface: model.Interface, banner: list[str], upstream: bool = False) -> dict[str, str]:
+def render(planned: TypedPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
     """packet-<name>.c; `upstream`: the copy for Wireshark's tree, which reads no command line."""
+    interface = planned.interface
     prefix = interface.name
     units = _Units(prefix)
     fields = _Fields(prefix, units)
@@ -168,7 +166,7 @@ def render(interface: model.Interface, banner: list[str], upstream: bool = False
     fields.add("recipe_frame", "Recipe set up in frame", "FT_FRAMENUM", "BASE_NONE", own=True)
     fields.add("protocol", "Protocol version in force", "FT_UINT8", "BASE_DEC", own=True)
     fields.add("unknown_variable", "Variable not in the table", "FT_BYTES", "BASE_NONE", own=True)
-    for scalar in value_fields(interface):
+    for scalar in planned.value_scalars:
         fields.add(value_field(scalar), value_label(scalar), FIELD_TYPES[scalar.name],
                    "BASE_DEC" if not (scalar.is_bool or scalar.is_float) else "BASE_NONE", own=True)
     fields.add("recipe_id", "Recipe id", "FT_UINT8", "BASE_DEC")
@@ -186,13 +184,14 @@ def render(interface: model.Interface, banner: list[str], upstream: bool = False
         raise SpecError(interface.name, fields.problems)
 
     layouts, steps, layout_of = [], [], {}
-    for m in interface.messages:
-        role, kind = _role(m, interface)
+    for mp in planned.messages:
+        m = mp.message
+        role, kind = _role(mp)
         first = m.fields[0].name if m.fields else None
         steps.append({"name": f"{prefix}_steps_{m.name}", "rows": [_step(f, fields) for f in m.fields]})
         for p in m.protocols:
             layouts.append(spread([
-                c_string(m.name), c_string(m.label), role, str(kind),
+                c.string(m.name), c.string(m.label), role, str(kind),
                 "TRUE" if role == "RTDE_ROLE_DATA" and first == "recipe_id" else "FALSE",
                 f"{prefix}_steps_{m.name}" if m.fields else "NULL",
                 f"G_N_ELEMENTS({prefix}_steps_{m.name})" if m.fields else "0"], "{ ", " },", "    "))
@@ -202,29 +201,28 @@ def render(interface: model.Interface, banner: list[str], upstream: bool = False
               "rows": ["{ " + ", ".join(str(by_dir.get(d, {}).get(p, 0)) for p in range(max_protocol + 1)) + " }"
                        for d in (0, 1)]}
              for code, by_dir in sorted(layout_of.items())]
-    codes = sorted({m.code for m in interface.messages} | {u.code for u in interface.undocumented})
     data_kind = {k.data_from_robot: i for i, k in enumerate(interface.recipe_kinds)}
     variables = sorted({v.name: v for v in interface.variables}.values(), key=lambda v: v.name.encode())
     view = {
         "banner": banner, "p": interface, "prefix": prefix,
         "ports": ",".join(str(port) for port in interface.ports),
         "fields": list(fields.by_name.values()),
-        "type_names": [(code, chr(code)) for code in codes],
+        "type_names": planned.codes,
         "enums": [{"var": enums[e.name], "members": [(v.value, v.name) for v in e.values]} for e in interface.enums],
-        "own_units": [{"var": var, "text": c_string(" " + unit)} for unit, var in units.own.items()],
-        "value_types": [{"name": c_string(t.name), "size": t.scalar.size, "count": t.count,
+        "own_units": [{"var": var, "text": c.string(" " + unit)} for unit, var in units.own.items()],
+        "value_types": [{"name": c.string(t.name), "size": t.scalar.size, "count": t.count,
                          "field": fields.enum_of(value_field(t.scalar))} for t in interface.value_types],
-        "variables": [{"name": c_string(v.name), "field": fields.enum_of(v.name),
-                       "unit": c_string(" " + v.unit) if v.unit and v.value_type.scalar.is_float else "NULL",
+        "variables": [{"name": c.string(v.name), "field": fields.enum_of(v.name),
+                       "unit": c.string(" " + v.unit) if v.unit and v.value_type.scalar.is_float else "NULL",
                        "type": [t.name for t in interface.value_types].index(v.value_type.name)}
                       for v in variables],
         "steps": [s for s in steps if s["rows"]],
-        "layouts": layouts, "index": index, "max_protocol": max_protocol, "codes": codes,
-        "undocumented": [{"code": u.code, "name": c_string(u.name), "label": c_string(u.label)}
+        "layouts": layouts, "index": index, "max_protocol": max_protocol, "codes": [code for code, _ in planned.codes],
+        "undocumented": [{"code": u.code, "name": c.string(u.name), "label": c.string(u.label)}
                          for u in interface.undocumented],
         "data_kind": [data_kind[False], data_kind[True]],
         "n_kinds": len(interface.recipe_kinds),
-        "refusals": [c_string(r.word) for r in interface.refusals],
+        "refusals": [c.string(r.word) for r in interface.refusals],
         "runtime_types": _joined(prefix, ".h"),
         "runtime": [_shared(name) for name in (UPSTREAM_SHARED_CODE if upstream else SHARED_CODE)]
                    + _joined(prefix, ".c"),

@@ -1,4 +1,4 @@
-"""Lua target of the typed-messages kind: the IR -> plain data -> templates/lua/typed_messages/ ->
+"""Lua target of the typed-messages kind: the plan -> plain data -> templates/lua/typed_messages/ ->
 generated/lua/<name>.lua, one Wireshark protocol that loads on its own, with the hand-written runtime
 of runtime/lua/<name>_*.lua joined after the tables.
 
@@ -12,9 +12,10 @@ from typing import Optional
 from ... import ir
 from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ...errors import Problem, SpecError
-from ...targets.lua import lua_literal, lua_str
+from ...lang import lua as lang
 from ...wrap import spread
 from . import model
+from .plan import TypedPlan
 
 # Wireshark field constructors by scalar.
 PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16", "uint16": "uint16",
@@ -37,11 +38,6 @@ def value_label(scalar: ir.Scalar) -> str:
     return f"Value of the setup reply's type ({scalar.name})"
 
 
-def value_fields(interface: model.Interface) -> list[ir.Scalar]:
-    """The scalars of the value types, once each, in the spec's order."""
-    return list({t.scalar.name: t.scalar for t in interface.value_types}.values())
-
-
 @dataclass
 class FieldView:
     name: str
@@ -53,7 +49,7 @@ class FieldView:
     @property
     def line(self) -> str:
         """Its entry of the F table, wrapped under its first argument when long."""
-        return spread([f'"{self.prefix}.{self.name}"', lua_str(self.label), self.args],
+        return spread([f'"{self.prefix}.{self.name}"', lang.string(self.label), self.args],
                       f'["{self.name}"] = ProtoField.{self.call}(', "),", "    ")
 
 
@@ -63,7 +59,7 @@ def _field_args(scalar: ir.Scalar, unit: Optional[str], vs: Optional[str]) -> st
     if scalar.is_bool:
         return "base.NONE"
     if unit:
-        return f'base.UNIT_STRING, {{ {lua_str(" " + unit)} }}'
+        return f'base.UNIT_STRING, {{ {lang.string(" " + unit)} }}'
     return f"base.DEC, {vs}" if vs else "base.DEC"
 
 
@@ -90,13 +86,13 @@ class _Fields:
 
 
 def _unit(unit: Optional[str]) -> Optional[str]:
-    return lua_str(" " + unit) if unit else "nil"
+    return lang.string(" " + unit) if unit else "nil"
 
 
 def _step(f, enums: dict) -> str:
     """A field's step, as a Lua table the runtime's STEP functions read."""
     if isinstance(f, model.NamesField):
-        return f'{{ kind = "names", name = "{f.name}", separator = {lua_str(f.separator)} }}'
+        return f'{{ kind = "names", name = "{f.name}", separator = {lang.string(f.separator)} }}'
     if isinstance(f, model.RecipeValuesField):
         return f'{{ kind = "values", name = "{f.name}" }}'
     if isinstance(f, ir.StringField):
@@ -107,7 +103,8 @@ def _step(f, enums: dict) -> str:
             f'unit = {_unit(f.unit)} }}')
 
 
-def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
+def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
+    interface = planned.interface
     prefix = interface.name
     fields = _Fields(prefix)
     enums = {e.name: "VS_" + e.name.upper() for e in interface.enums}
@@ -130,22 +127,18 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
     if fields.problems:
         raise SpecError(interface.name, fields.problems)
 
-    messages = []
-    for m in interface.messages:
-        steps = [_step(f, enums) for f in m.fields]
-        for p in m.protocols:
-            messages.append({"key": f"{m.code}:{1 if m.from_robot else 0}:{p}", "name": m.name, "label": m.label,
-                             "letter": m.letter, "steps": steps})
+    messages = [{"key": f"{mp.message.code}:{1 if mp.message.from_robot else 0}:{p}", "name": mp.message.name,
+                 "label": mp.message.label, "letter": mp.message.letter,
+                 "steps": [_step(f, enums) for f in mp.message.fields]} for mp, p in planned.dispatch]
     value_types = [{"name": t.name, "size": t.scalar.size, "count": t.count, "read": READER[t.scalar.name],
                     "field": value_field(t.scalar)} for t in interface.value_types]
     own_values = [{"name": value_field(s), "call": PROTOFIELD[s.name], "label": value_label(s),
-                   "args": _field_args(s, None, None)} for s in value_fields(interface)]
+                   "args": _field_args(s, None, None)} for s in planned.value_scalars]
     variables = [{"name": v.name, "unit": _unit(v.unit if v.value_type.scalar.is_float else None),
                   "type": v.value_type.name}
                  for v in {v.name: v for v in interface.variables}.values()]
     kinds = [{"name": k.name, "from_robot": k.data_from_robot, "requests": [r.name for r in k.requests],
               "replies": [r.name for r in k.replies]} for k in interface.recipe_kinds]
-    codes = sorted({(m.code, m.letter) for m in interface.messages} | {(u.code, chr(u.code)) for u in interface.undocumented})
     view = {
         "banner": banner, "p": interface, "prefix": prefix,
         "ports": ",".join(str(p) for p in interface.ports),
@@ -155,12 +148,12 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
         "own_values": own_values,
         "refusals": [r.word for r in interface.refusals],
         "max_pending": interface.max_pending_setups,
-        "codes": codes,
+        "codes": planned.codes,
         "undocumented": [{"code": u.code, "name": u.name, "label": u.label} for u in interface.undocumented],
         "runtime": [{"path": runtime_path("lua", n), "source": runtime_source("lua", n)} for n in runtime_files(prefix)],
     }
     env = environment("lua")
-    env.filters["lua"] = lua_literal
+    env.filters["lua"] = lang.literal
     text = env.get_template("typed_messages/interface.lua.j2").render(**view)
     return {f"lua/{prefix}.lua": text}
 
