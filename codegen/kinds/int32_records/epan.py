@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import value_text
 from ...emit import environment, runtime_path, runtime_source
-from ...epan_c import c_string, value_literal
+from ...lang.c import string, value_key
 from ...naming import column_name
 from .model import FROM_ROBOT
 from .plan import RecordsPlan
@@ -52,14 +52,14 @@ class EpanRecord:
 
 def _field(name: str, hf: str, label: str, abbrev: str, ftype: str, base: str, strings: str,
            comment: str = "") -> EpanField:
-    return EpanField(hf, [c_string(label), c_string(abbrev), ftype, base, strings, "0x0", "NULL", "HFILL"], comment)
+    return EpanField(hf, [string(label), string(abbrev), ftype, base, strings, "0x0", "NULL", "HFILL"], comment)
 
 
 def render(p: RecordsPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
     """`upstream` (the copy for Wireshark's tree) changes nothing: this dissector reads no command line."""
     m = p.model
     name = m.name
-    tables = [EpanTable(f"{name}_{e.name}_vals", [(value_literal(v.value), c_string(v.name), value_text(v))
+    tables = [EpanTable(f"{name}_{e.name}_vals", [(value_key(v.value), string(v.name), value_text(v))
                                                   for v in e.values])
               for e in m.enums.values()]
     fields, seen = [], set()
@@ -84,11 +84,11 @@ def render(p: RecordsPlan, banner: list[str], upstream: bool = False) -> dict[st
         layouts = []
         for i, lay in enumerate(r.layouts):
             slots = [[f"&hf_{name}_{s.field.name}", f"&hf_{name}_{s.field.name}_raw" if s.scale else "NULL",
-                      str(s.index), str(s.count), str(s.scale or 0), c_string(s.scale_name) if s.scale else "NULL"]
+                      str(s.index), str(s.count), str(s.scale or 0), string(s.scale_name) if s.scale else "NULL"]
                      for s in lay.slots]
             layouts.append(EpanLayout(f"{ident}_{i}", lay.describe(), 4 * lay.size, slots))
         starts = [str(ir.version_number(s)) for s in r.starts]
-        items = [c_string(r.record.label), f"{ident}_starts" if starts else "NULL",
+        items = [string(r.record.label), f"{ident}_starts" if starts else "NULL",
                  f"array_length({ident}_starts)" if starts else "0", f"{ident}_layouts"]
         records["from_robot" if r.record.direction == FROM_ROBOT else "to_robot"] = EpanRecord(
             ident, r.record.label, starts, layouts, items)

@@ -4,11 +4,11 @@ dissector as an upstream epan/dissectors/packet-*.c reads, the twin of the Lua o
 spec's tables as C data, with runtime/epan/lines_*.c joined in, from the plan."""
 from __future__ import annotations
 
-import json
 import re
 from dataclasses import dataclass
 
 from ...emit import environment, runtime_path, runtime_source
+from ...lang.c import prose, string
 from ...wrap import lines as wrapped
 from ...naming import column_name
 from .model import Reply
@@ -60,17 +60,6 @@ PREFERENCE = ("version", "Software version",
               "commands it lacks are flagged. Empty: none assumed.")
 
 
-def _string(text: str) -> str:
-    """A C string literal (the schema keeps spec texts printable ASCII; JSON escapes suit C)."""
-    return json.dumps(text)
-
-
-def _literals(text: str) -> list[str]:
-    """Prose as adjacent C string literals, one per line, that C joins into one string."""
-    words = wrapped(text, "", "", width=90)
-    return [_string(w + " ") for w in words[:-1]] + [_string(words[-1])]
-
-
 def _joined(name: str, interface: str) -> str:
     """A runtime file as joined into one interface's file. The names that are the interface's own,
     written with the kind's name so that the file compiles alone (proto_lines, hf_lines_command,
@@ -85,7 +74,7 @@ def _joined(name: str, interface: str) -> str:
 
 
 def _reply(reply: Reply) -> dict:
-    return dict(pattern=reply.pattern, name=_string(reply.name), pieces=[_string(p) for p in reply.pieces],
+    return dict(pattern=reply.pattern, name=string(reply.name), pieces=[string(p) for p in reply.pieces],
                 error="true" if reply.error else "false")
 
 
@@ -99,21 +88,21 @@ def view(p: LinesPlan) -> dict:
     name = m.name
     commands = [dict(comment=f"{c.command.text}{' <' + c.command.argument + '>' if c.command.argument else ''}: "
                              f"{c.command.doc} ({c.command.since_text()})",
-                     name=_string(c.command.name), text=_string(c.command.text),
+                     name=string(c.command.name), text=string(c.command.text),
                      argument="true" if c.command.argument else "false",
                      since_cb=f"{c.since_cb or 0}u", since_e_series=f"{c.since_e_series or 0}u",
                      replies=[_reply(r) for r in c.command.replies])
                 for c in p.commands]
     return dict(
         file=file_name(name), name=name, title=m.title, doc=wrapped(m.doc, " * ", " * "),
-        title_literal=_string(m.title),
-        short_name=_string(name.upper()), column=_string(column_name(name)), ports=list(m.ports),
+        title_literal=string(m.title),
+        short_name=string(name.upper()), column=string(column_name(name)), ports=list(m.ports),
         max_line=m.max_line,
-        fields=[dict(name=f.name, label=_string(m.fields[f.name].label), abbrev=_string(f"{name}.{f.name}"),
-                     type=f.type, display=f.display, blurb=_string(m.fields[f.name].doc)) for f in FIELDS],
-        experts=[dict(name=e.name, abbrev=_string(f"{name}.{e.name}"), group=e.group, severity=e.severity,
-                      text=_string(e.text)) for e in experts(m.max_line)],
-        preference=dict(name=_string(PREFERENCE[0]), title=_string(PREFERENCE[1]), doc=_literals(PREFERENCE[2])),
+        fields=[dict(name=f.name, label=string(m.fields[f.name].label), abbrev=string(f"{name}.{f.name}"),
+                     type=f.type, display=f.display, blurb=string(m.fields[f.name].doc)) for f in FIELDS],
+        experts=[dict(name=e.name, abbrev=string(f"{name}.{e.name}"), group=e.group, severity=e.severity,
+                      text=string(e.text)) for e in experts(m.max_line)],
+        preference=dict(name=string(PREFERENCE[0]), title=string(PREFERENCE[1]), doc=prose(PREFERENCE[2], "        ")),
         banner_reply=_reply(m.banner) if m.banner else None,
         robot_is_client="true" if m.robot_is_client else "false",
         requests_from_robot="true" if m.requests_from_robot else "false",
@@ -122,7 +111,7 @@ def view(p: LinesPlan) -> dict:
         lookup=[str(c.index) for c in p.lookup],
         version_command=f"{p.version_command.index},  /* {p.version_command.command.name} */" if p.version_command
         else "LINES_NONE,",
-        version_prefix=_string(m.version_prefix), e_series_from=f"{p.e_series_from}u",
+        version_prefix=string(m.version_prefix), e_series_from=f"{p.e_series_from}u",
         runtime_types=_joined(RUNTIME_TYPES, name), runtime_dissector=_joined(RUNTIME_DISSECTOR, name),
     )
 

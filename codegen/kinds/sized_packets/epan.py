@@ -12,7 +12,8 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import field_text, node_text, value_text
 from ...emit import environment, runtime_path, runtime_source
-from ...epan_c import c_string, unit_label, value_literal
+from ...epan_c import unit_label
+from ...lang.c import string, value_key
 from .plan import SizedPlan
 
 RUNTIME_HEAD = ["types.h"]      # runtime/epan/<name>_types.h: the table types, before the tables
@@ -66,7 +67,7 @@ def _fields(name: str, catalogue: list[ir.AnyField]) -> list[EpanField]:
 
 def _tables(name: str, enums: list[ir.Enum]) -> dict[tuple[str, int], EpanTable]:
     """Each enum's names, one value_string per version range of its codes."""
-    return {(e.name, i): EpanTable(f"{name}_{e.name}_{i}", [(value_literal(v.value), c_string(v.name), value_text(v))
+    return {(e.name, i): EpanTable(f"{name}_{e.name}_{i}", [(value_key(v.value), string(v.name), value_text(v))
                                                             for v in table.values])
             for e in enums for i, table in enumerate(e.tables)}
 
@@ -79,7 +80,7 @@ def _layout(name: str, lp, enum_ids: dict[str, str]) -> EpanLayout:
         names = enum_ids[s.enum.name] if s.enum is not None else "-1"
         if isinstance(f, ir.ArrayField):
             group = f.label + (f" ({f.unit})" if f.unit else "")
-            slots.append([f"&hf_{name}_{f.name}", f"&ett_{name}_{f.name}", c_string(group), str(s.offset),
+            slots.append([f"&hf_{name}_{f.name}", f"&ett_{name}_{f.name}", string(group), str(s.offset),
                           str(s.count), names])
         else:
             slots.append([f"&hf_{name}_{f.name}", "NULL", "NULL", str(s.offset), "1", names])
