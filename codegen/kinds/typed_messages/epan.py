@@ -1,29 +1,28 @@
-"""epan target of the typed-messages kind: the IR -> a view model -> templates/epan/typed_messages/ ->
+"""epan target of the typed-messages kind: the dissector model (dissector.py) -> a view model ->
+templates/epan/typed_messages/ ->
 generated/epan/packet-<name>.c, a native Wireshark dissector as an upstream epan/dissectors file reads,
 with the hand-written runtime of runtime/epan/<name>_*.{h,c} joined in (each section naming its file).
 
-It is the twin of the Lua target (lua_target.py): the same protocol, field abbrevs, names, types and
-bases, preference and experts. Every decision is made here: each field's FT_ type, base, value string
-and unit; each message layout's steps as table rows; what each message means to the conversation's
-state (its role, read by runtime/epan/rtde_state.c as runtime/lua/rtde_state.lua reads the names)."""
+It is the twin of the Lua target (lua.py): both render one dissector model, so the protocol, fields,
+labels, types and steps are the same. What is C's is decided here: each field's FT_ type, base and
+value string, the unit strings, each message layout's steps as table rows, and what each message means
+to the conversation's state (its role, read by runtime/epan/rtde_state.c as runtime/lua/rtde_state.lua
+reads the names)."""
 from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from typing import Optional
 
-from ... import ir
 from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
-from ...errors import Problem, SpecError
 from ...lang import c
 from ...wrap import spread
-from . import model
-from .lua import OWN_FIELDS, value_field, value_label
-from .plan import MessagePlan, TypedPlan
+from .dissector import TYPE_CODES, Dissector, Field, Message, Step, dissector
+from .plan import TypedPlan
 
 FIELD_TYPES = {"bool": "FT_BOOLEAN", "int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16",
                "uint16": "FT_UINT16", "int32": "FT_INT32", "uint32": "FT_UINT32", "int64": "FT_INT64",
-               "uint64": "FT_UINT64", "float32": "FT_FLOAT", "float64": "FT_DOUBLE"}
+               "uint64": "FT_UINT64", "float32": "FT_FLOAT", "float64": "FT_DOUBLE", "string": "FT_STRING",
+               "framenum": "FT_FRAMENUM", "bytes": "FT_BYTES"}
 # Scalars the state may read (runtime/epan/rtde_dissect.c reads 1, 2 or 4 bytes as an integer), as
 # the Lua runtime keeps the values it reads with uint() and int().
 INTEGER_SCALARS = ("bool", "int8", "uint8", "int16", "uint16", "int32", "uint32")
@@ -64,50 +63,6 @@ class FieldView:
                       "{ ", ",", "        ")
 
 
-class _Fields:
-    """Every filterable field once, with one type per name, as the Lua target keeps them."""
-
-    def __init__(self, prefix: str, units: "_Units"):
-        self.prefix = prefix
-        self.units = units
-        self.by_name: dict[str, FieldView] = {}
-        self.problems: list[Problem] = []
-
-    def enum_of(self, name: str) -> str:
-        return f"{self.prefix.upper()}_HF_{name.upper()}"
-
-    def add(self, name: str, label: str, ftype: str, base: str, strings: str = "NULL",
-            where: ir.Where = ir.NOWHERE, own: bool = False) -> None:
-        if (name in OWN_FIELDS or name.startswith("value_")) and not own:
-            self.problems.append(Problem(where.path, f"epan target: {self.prefix}.{name} is the dissector's own field",
-                                         where.line))
-            return
-        known = self.by_name.get(name)
-        if known is not None:
-            if known.ftype != ftype:
-                self.problems.append(Problem(where.path, f"epan target: {self.prefix}.{name} would be both a "
-                                                         f"{known.ftype} and a {ftype} field", where.line))
-            return
-        enum = self.enum_of(name)
-        if any(f.enum == enum for f in self.by_name.values()):
-            self.problems.append(Problem(where.path, f"epan target: {self.prefix}.{name} and another field are "
-                                                     f"both {enum} in C", where.line))
-            return
-        self.by_name[name] = FieldView(self.prefix, name, enum, label, f"{self.prefix}.{name}", ftype, base, strings)
-
-    def scalar(self, name: str, label: str, scalar: ir.Scalar, unit: Optional[str], vs: Optional[str],
-               where: ir.Where) -> None:
-        ftype = FIELD_TYPES[scalar.name]
-        if scalar.is_bool:
-            self.add(name, label, ftype, "BASE_NONE", where=where)
-        elif scalar.is_float:
-            self.add(name, label, ftype, "BASE_NONE", where=where)
-        elif unit:
-            self.add(name, label, ftype, "BASE_DEC|BASE_UNIT_STRING", f"&{self.units.of(unit)}", where)
-        else:
-            self.add(name, label, ftype, "BASE_DEC", f"VALS({vs})" if vs else "NULL", where)
-
-
 class _Units:
     """The unit_name_string of each unit text."""
 
@@ -124,100 +79,92 @@ class _Units:
         return self.own[unit]
 
 
-def _step(f, fields: _Fields) -> str:
+def _strings(f: Field, prefix: str, units: _Units) -> tuple[str, str]:
+    """A field's base and value string."""
+    if not f.is_integer:
+        return "BASE_NONE", "NULL"
+    if f.unit:
+        return "BASE_DEC|BASE_UNIT_STRING", f"&{units.of(f.unit)}"
+    if f.enum:
+        return "BASE_DEC", f"VALS({_vals(f.enum, prefix)})"
+    return "BASE_DEC", "NULL"
+
+
+def _vals(enum: str, prefix: str) -> str:
+    return f"{prefix}_type_vals" if enum == TYPE_CODES else f"{prefix}_{enum}_vals"
+
+
+def _hf(name: str, prefix: str) -> str:
+    return f"{prefix.upper()}_HF_{name.upper()}"
+
+
+def _step(s: Step, prefix: str) -> str:
     """A layout step as a row of the runtime's rtde_step table."""
-    slot = SLOT_OF_FIELD.get(f.name, "RTDE_SLOT_NONE")
-    if isinstance(f, model.NamesField):
-        kind, size, integer = "RTDE_STEP_NAMES", 0, False
-    elif isinstance(f, model.RecipeValuesField):
-        return f'{{ RTDE_STEP_VALUES, 0, 0, FALSE, RTDE_SLOT_NONE, "{f.name}", NULL }}'
-    elif isinstance(f, ir.StringField):
-        kind, size, integer = (("RTDE_STEP_REST_TEXT", 0, False) if f.length is None
-                               else ("RTDE_STEP_PREFIXED_TEXT", f.length.size, False))
-    else:
-        kind, size, integer = "RTDE_STEP_SCALAR", f.scalar.size, f.scalar.name in INTEGER_SCALARS
-    unit = c.string(" " + f.unit) if kind == "RTDE_STEP_SCALAR" and f.unit else "NULL"
-    return (f'{{ {kind}, {fields.enum_of(f.name)}, {size}, {"TRUE" if integer else "FALSE"}, {slot}, '
-            f'"{f.name}", {unit} }}')
+    if s.kind == "values":
+        return f'{{ RTDE_STEP_VALUES, 0, 0, FALSE, RTDE_SLOT_NONE, {c.string(s.name)}, NULL }}'
+    kind = {"names": "RTDE_STEP_NAMES", "rest_text": "RTDE_STEP_REST_TEXT",
+            "prefixed_text": "RTDE_STEP_PREFIXED_TEXT", "scalar": "RTDE_STEP_SCALAR"}[s.kind]
+    integer = s.kind == "scalar" and s.scalar.name in INTEGER_SCALARS
+    unit = c.string(" " + s.unit) if s.kind == "scalar" and s.unit else "NULL"
+    return (f'{{ {kind}, {_hf(s.name, prefix)}, {s.size}, {"TRUE" if integer else "FALSE"}, '
+            f'{SLOT_OF_FIELD.get(s.name, "RTDE_SLOT_NONE")}, {c.string(s.name)}, {unit} }}')
 
 
-def _role(mp: MessagePlan) -> tuple[str, int]:
+def _role(m: Message) -> tuple[str, int]:
+    mp = m.plan
     if mp.request_kind is not None:
         return "RTDE_ROLE_SETUP_REQUEST", mp.request_kind
     if mp.reply_kind is not None:
         return "RTDE_ROLE_SETUP_REPLY", mp.reply_kind
-    m = mp.message
-    if m.recipe_values is not None:
+    if m.message.recipe_values is not None:
         return "RTDE_ROLE_DATA", -1
-    return ROLE_OF_MESSAGE.get(m.name, "RTDE_ROLE_NONE"), -1
+    return ROLE_OF_MESSAGE.get(m.message.name, "RTDE_ROLE_NONE"), -1
 
 
-def render(planned: TypedPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
-    """packet-<name>.c; `upstream`: the copy for Wireshark's tree, which reads no command line."""
-    interface = planned.interface
+def view(d: Dissector, upstream: bool) -> dict:
+    interface = d.plan.interface
     prefix = interface.name
     units = _Units(prefix)
-    fields = _Fields(prefix, units)
-    enums = {e.name: f"{prefix}_{e.name}_vals" for e in interface.enums}
-    fields.add("length", "Size", "FT_UINT16", "BASE_DEC", own=True)
-    fields.add("type", "Type", "FT_UINT8", "BASE_DEC", f"VALS({prefix}_type_vals)", own=True)
-    fields.add("kind", "Message", "FT_STRING", "BASE_NONE", own=True)
-    fields.add("direction", "Direction", "FT_STRING", "BASE_NONE", own=True)
-    fields.add("recipe_frame", "Recipe set up in frame", "FT_FRAMENUM", "BASE_NONE", own=True)
-    fields.add("protocol", "Protocol version in force", "FT_UINT8", "BASE_DEC", own=True)
-    fields.add("unknown_variable", "Variable not in the table", "FT_BYTES", "BASE_NONE", own=True)
-    for scalar in planned.value_scalars:
-        fields.add(value_field(scalar), value_label(scalar), FIELD_TYPES[scalar.name],
-                   "BASE_DEC" if not (scalar.is_bool or scalar.is_float) else "BASE_NONE", own=True)
-    fields.add("recipe_id", "Recipe id", "FT_UINT8", "BASE_DEC")
-    for m in interface.messages:
-        for f in m.fields:
-            if isinstance(f, model.RecipeValuesField):
-                continue
-            if isinstance(f, (model.NamesField, ir.StringField)):
-                fields.add(f.name, f.label, "FT_STRING", "BASE_NONE", where=f.where)
-            else:
-                fields.scalar(f.name, f.label, f.scalar, f.unit, enums[f.enum.name] if f.enum else None, f.where)
-    for v in interface.variables:
-        fields.scalar(v.name, v.label, v.value_type.scalar, v.unit, None, v.where)
-    if fields.problems:
-        raise SpecError(interface.name, fields.problems)
-
+    fields = []
+    for f in d.all_fields:
+        base, strings = _strings(f, prefix, units)
+        fields.append(FieldView(prefix, f.name, _hf(f.name, prefix), f.label, f"{prefix}.{f.name}",
+                                FIELD_TYPES[f.type], base, strings))
     layouts, steps, layout_of = [], [], {}
-    for mp in planned.messages:
-        m = mp.message
-        role, kind = _role(mp)
-        first = m.fields[0].name if m.fields else None
-        steps.append({"name": f"{prefix}_steps_{m.name}", "rows": [_step(f, fields) for f in m.fields]})
-        for p in m.protocols:
-            layouts.append(spread([
-                c.string(m.name), c.string(m.label), role, str(kind),
-                "TRUE" if role == "RTDE_ROLE_DATA" and first == "recipe_id" else "FALSE",
-                f"{prefix}_steps_{m.name}" if m.fields else "NULL",
-                f"G_N_ELEMENTS({prefix}_steps_{m.name})" if m.fields else "0"], "{ ", " },", "    "))
-            layout_of.setdefault(m.code, {}).setdefault(1 if m.from_robot else 0, {})[p] = len(layouts)
+    for m in d.messages:
+        steps.append({"name": f"{prefix}_steps_{m.message.name}", "rows": [_step(s, prefix) for s in m.steps]})
+    for m, p in d.dispatch:
+        role, kind = _role(m)
+        name = m.message.name
+        first = m.steps[0].name if m.steps else None
+        layouts.append(spread([
+            c.string(name), c.string(m.message.label), role, str(kind),
+            "TRUE" if role == "RTDE_ROLE_DATA" and first == "recipe_id" else "FALSE",
+            f"{prefix}_steps_{name}" if m.steps else "NULL",
+            f"G_N_ELEMENTS({prefix}_steps_{name})" if m.steps else "0"], "{ ", " },", "    "))
+        layout_of.setdefault(m.message.code, {}).setdefault(1 if m.message.from_robot else 0, {})[p] = len(layouts)
     max_protocol = max(interface.protocol_versions)
     index = [{"code": code, "letter": chr(code),
               "rows": ["{ " + ", ".join(str(by_dir.get(d, {}).get(p, 0)) for p in range(max_protocol + 1)) + " }"
                        for d in (0, 1)]}
              for code, by_dir in sorted(layout_of.items())]
     data_kind = {k.data_from_robot: i for i, k in enumerate(interface.recipe_kinds)}
-    variables = sorted({v.name: v for v in interface.variables}.values(), key=lambda v: v.name.encode())
-    view = {
-        "banner": banner, "p": interface, "prefix": prefix,
+    value_types = [t.name for t in d.value_types]
+    return {
+        "p": interface, "prefix": prefix,
         "ports": ",".join(str(port) for port in interface.ports),
-        "fields": list(fields.by_name.values()),
-        "type_names": planned.codes,
-        "enums": [{"var": enums[e.name], "members": [(v.value, v.name) for v in e.values]} for e in interface.enums],
+        "fields": fields,
+        "type_names": d.plan.codes,
+        "enums": [{"var": _vals(e.name, prefix), "members": [(v.value, v.name) for v in e.values]} for e in d.enums],
         "own_units": [{"var": var, "text": c.string(" " + unit)} for unit, var in units.own.items()],
-        "value_types": [{"name": c.string(t.name), "size": t.scalar.size, "count": t.count,
-                         "field": fields.enum_of(value_field(t.scalar))} for t in interface.value_types],
-        "variables": [{"name": c.string(v.name), "field": fields.enum_of(v.name),
-                       "unit": c.string(" " + v.unit) if v.unit and v.value_type.scalar.is_float else "NULL",
-                       "type": [t.name for t in interface.value_types].index(v.value_type.name)}
-                      for v in variables],
+        "value_types": [{"name": c.string(t.name), "size": t.size, "count": t.count, "field": _hf(t.field, prefix)}
+                        for t in d.value_types],
+        "variables": [{"name": c.string(v.name), "field": _hf(v.name, prefix),
+                       "unit": c.string(" " + v.unit) if v.unit else "NULL", "type": value_types.index(v.value_type)}
+                      for v in sorted(d.variables, key=lambda v: v.name.encode())],
         "steps": [s for s in steps if s["rows"]],
-        "layouts": layouts, "index": index, "max_protocol": max_protocol, "codes": [code for code, _ in planned.codes],
+        "layouts": layouts, "index": index, "max_protocol": max_protocol,
+        "codes": [code for code, _ in d.plan.codes],
         "undocumented": [{"code": u.code, "name": c.string(u.name), "label": c.string(u.label)}
                          for u in interface.undocumented],
         "data_kind": [data_kind[False], data_kind[True]],
@@ -227,8 +174,13 @@ def render(planned: TypedPlan, banner: list[str], upstream: bool = False) -> dic
         "runtime": [_shared(name) for name in (UPSTREAM_SHARED_CODE if upstream else SHARED_CODE)]
                    + _joined(prefix, ".c"),
     }
-    text = environment("epan").get_template("typed_messages/packet.c.j2").render(**view)
-    return {f"epan/packet-{prefix.replace('_', '-')}.c": text}
+
+
+def render(planned: TypedPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
+    """packet-<name>.c; `upstream`: the copy for Wireshark's tree, which reads no command line."""
+    text = environment("epan").get_template("typed_messages/packet.c.j2").render(
+        banner=banner, **view(dissector(planned), upstream))
+    return {f"epan/packet-{planned.interface.name.replace('_', '-')}.c": text}
 
 
 def _shared(name: str) -> dict:

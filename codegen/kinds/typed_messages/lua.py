@@ -1,41 +1,25 @@
-"""Lua target of the typed-messages kind: the plan -> plain data -> templates/lua/typed_messages/ ->
-generated/lua/<name>.lua, one Wireshark protocol that loads on its own, with the hand-written runtime
-of runtime/lua/<name>_*.lua joined after the tables.
-
-Every message field and every variable is one filterable field `<name>.<field>`; a name that two of
-them share must have one Wireshark type, and the generator refuses the spec otherwise."""
+"""Lua target of the typed-messages kind: the dissector model (dissector.py) -> plain data ->
+templates/lua/typed_messages/ -> generated/lua/<name>.lua, one Wireshark protocol that loads on its
+own, with the hand-written runtime of runtime/lua/<name>_*.lua joined after the tables."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Optional
 
-from ... import ir
 from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
-from ...errors import Problem, SpecError
 from ...lang import lua as lang
 from ...wrap import spread
-from . import model
+from .dissector import TYPE_CODES, Dissector, Field, Step, dissector
 from .plan import TypedPlan
 
-# Wireshark field constructors by scalar.
+# Wireshark field constructors by field type.
 PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16", "uint16": "uint16",
               "int32": "int32", "uint32": "uint32", "int64": "int64", "uint64": "uint64",
-              "float32": "float", "float64": "double"}
+              "float32": "float", "float64": "double", "string": "string", "framenum": "framenum", "bytes": "bytes"}
 # How the runtime reads a scalar from a TvbRange (runtime/lua/rtde_dissect.lua's READ table).
 READER = {"bool": "uint", "int8": "int", "uint8": "uint", "int16": "int", "uint16": "uint", "int32": "int",
           "uint32": "uint", "int64": "int64", "uint64": "uint64", "float32": "float", "float64": "float"}
-# Header fields and the fields the runtime adds itself; no message field or variable may take these names.
-OWN_FIELDS = ("length", "type", "kind", "recipe_frame", "direction", "protocol", "unknown_variable")
-# The fields of a value a setup reply types otherwise than the variable table, one per scalar of the
-# value types: `value_<scalar>` (rtde.value_float64), also the dissector's own.
-
-
-def value_field(scalar: ir.Scalar) -> str:
-    return f"value_{scalar.name}"
-
-
-def value_label(scalar: ir.Scalar) -> str:
-    return f"Value of the setup reply's type ({scalar.name})"
+TYPE_NAMES = "TYPE_NAMES"               # the Lua table of the type codes' letters
 
 
 @dataclass
@@ -53,109 +37,72 @@ class FieldView:
                       f'["{self.name}"] = ProtoField.{self.call}(', "),", "    ")
 
 
-def _field_args(scalar: ir.Scalar, unit: Optional[str], vs: Optional[str]) -> str:
-    if scalar.is_float:
+def _enum_table(name: str) -> str:
+    return TYPE_NAMES if name == TYPE_CODES else "VS_" + name.upper()
+
+
+def _args(f: Field) -> str:
+    if f.is_float:
         return "nil"
-    if scalar.is_bool:
+    if not f.is_integer:
         return "base.NONE"
-    if unit:
-        return f'base.UNIT_STRING, {{ {lang.string(" " + unit)} }}'
-    return f"base.DEC, {vs}" if vs else "base.DEC"
+    if f.unit:
+        return f'base.UNIT_STRING, {{ {lang.string(" " + f.unit)} }}'
+    return f"base.DEC, {_enum_table(f.enum)}" if f.enum else "base.DEC"
 
 
-class _Fields:
-    """Every filterable field once, with one type per name."""
-
-    def __init__(self, prefix: str):
-        self.prefix = prefix
-        self.by_name: dict[str, FieldView] = {}
-        self.problems: list[Problem] = []
-
-    def add(self, name: str, call: str, label: str, args: str, where: ir.Where) -> None:
-        if name in OWN_FIELDS or name.startswith("value_"):
-            self.problems.append(Problem(where.path, f"lua target: {self.prefix}.{name} is the dissector's own field",
-                                         where.line))
-            return
-        known = self.by_name.get(name)
-        if known is not None:
-            if known.call != call:
-                self.problems.append(Problem(where.path, f"lua target: {self.prefix}.{name} would be both a "
-                                                         f"{known.call} and a {call} field", where.line))
-            return
-        self.by_name[name] = FieldView(name, call, label, args, self.prefix)
+def _field(f: Field, prefix: str) -> FieldView:
+    return FieldView(f.name, PROTOFIELD[f.type], f.label, _args(f), prefix)
 
 
-def _unit(unit: Optional[str]) -> Optional[str]:
+def _unit(unit: Optional[str]) -> str:
     return lang.string(" " + unit) if unit else "nil"
 
 
-def _step(f, enums: dict) -> str:
+def _step(s: Step) -> str:
     """A field's step, as a Lua table the runtime's STEP functions read."""
-    if isinstance(f, model.NamesField):
-        return f'{{ kind = "names", name = "{f.name}", separator = {lang.string(f.separator)} }}'
-    if isinstance(f, model.RecipeValuesField):
-        return f'{{ kind = "values", name = "{f.name}" }}'
-    if isinstance(f, ir.StringField):
-        if f.length is None:
-            return f'{{ kind = "rest_text", name = "{f.name}" }}'
-        return f'{{ kind = "prefixed_text", name = "{f.name}", prefix = {f.length.size} }}'
-    return (f'{{ kind = "scalar", name = "{f.name}", size = {f.scalar.size}, read = "{READER[f.scalar.name]}", '
-            f'unit = {_unit(f.unit)} }}')
+    name = lang.string(s.name)
+    if s.kind == "names":
+        return f'{{ kind = "names", name = {name}, separator = {lang.string(s.separator)} }}'
+    if s.kind == "prefixed_text":
+        return f'{{ kind = "prefixed_text", name = {name}, prefix = {s.size} }}'
+    if s.kind == "scalar":
+        return (f'{{ kind = "scalar", name = {name}, size = {s.size}, read = "{READER[s.scalar.name]}", '
+                f'unit = {_unit(s.unit)} }}')
+    return f'{{ kind = "{s.kind}", name = {name} }}'
 
 
-def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
-    interface = planned.interface
+def view(d: Dissector) -> dict:
+    interface = d.plan.interface
     prefix = interface.name
-    fields = _Fields(prefix)
-    enums = {e.name: "VS_" + e.name.upper() for e in interface.enums}
-    fields.add("recipe_id", "uint8", "Recipe id", "base.DEC", ir.NOWHERE)
-    for m in interface.messages:
-        for f in m.fields:
-            if isinstance(f, model.NamesField):
-                fields.add(f.name, "string", f.label, "base.NONE", f.where)
-            elif isinstance(f, model.RecipeValuesField):
-                continue
-            elif isinstance(f, ir.StringField):
-                fields.add(f.name, "string", f.label, "base.NONE", f.where)
-            else:
-                vs = enums[f.enum.name] if f.enum is not None else None
-                fields.add(f.name, PROTOFIELD[f.scalar.name], f.label, _field_args(f.scalar, f.unit, vs), f.where)
-    for v in interface.variables:
-        s = v.value_type.scalar
-        fields.add(v.name, PROTOFIELD[s.name], v.label, _field_args(s, v.unit if not s.is_float else None, None),
-                   v.where)
-    if fields.problems:
-        raise SpecError(interface.name, fields.problems)
-
-    messages = [{"key": f"{mp.message.code}:{1 if mp.message.from_robot else 0}:{p}", "name": mp.message.name,
-                 "label": mp.message.label, "letter": mp.message.letter,
-                 "steps": [_step(f, enums) for f in mp.message.fields]} for mp, p in planned.dispatch]
-    value_types = [{"name": t.name, "size": t.scalar.size, "count": t.count, "read": READER[t.scalar.name],
-                    "field": value_field(t.scalar)} for t in interface.value_types]
-    own_values = [{"name": value_field(s), "call": PROTOFIELD[s.name], "label": value_label(s),
-                   "args": _field_args(s, None, None)} for s in planned.value_scalars]
-    variables = [{"name": v.name, "unit": _unit(v.unit if v.value_type.scalar.is_float else None),
-                  "type": v.value_type.name}
-                 for v in {v.name: v for v in interface.variables}.values()]
+    messages = [{"key": f"{m.message.code}:{1 if m.message.from_robot else 0}:{p}", "name": m.message.name,
+                 "label": m.message.label, "letter": m.message.letter, "steps": [_step(s) for s in m.steps]}
+                for m, p in d.dispatch]
     kinds = [{"name": k.name, "from_robot": k.data_from_robot, "requests": [r.name for r in k.requests],
               "replies": [r.name for r in k.replies]} for k in interface.recipe_kinds]
-    view = {
-        "banner": banner, "p": interface, "prefix": prefix,
+    return {
+        "p": interface, "prefix": prefix,
         "ports": ",".join(str(p) for p in interface.ports),
-        "enums": [{"var": enums[e.name], "members": [(v.value, v.name) for v in e.values]} for e in interface.enums],
-        "fields": list(fields.by_name.values()),
-        "messages": messages, "value_types": value_types, "variables": variables, "kinds": kinds,
-        "own_values": own_values,
+        "enums": [{"var": _enum_table(e.name), "members": [(v.value, v.name) for v in e.values]} for e in d.enums],
+        "header": [_field(f, prefix) for f in d.header], "own_values": [_field(f, prefix) for f in d.values],
+        "fields": [_field(f, prefix) for f in d.fields],
+        "messages": messages, "kinds": kinds,
+        "value_types": [{"name": t.name, "size": t.size, "count": t.count, "read": READER[t.scalar.name],
+                         "field": t.field} for t in d.value_types],
+        "variables": [{"name": v.name, "unit": _unit(v.unit), "type": v.value_type} for v in d.variables],
         "refusals": [r.word for r in interface.refusals],
         "max_pending": interface.max_pending_setups,
-        "codes": planned.codes,
+        "codes": d.plan.codes,
         "undocumented": [{"code": u.code, "name": u.name, "label": u.label} for u in interface.undocumented],
         "runtime": [{"path": runtime_path("lua", n), "source": runtime_source("lua", n)} for n in runtime_files(prefix)],
     }
+
+
+def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
     env = environment("lua")
     env.filters["lua"] = lang.literal
-    text = env.get_template("typed_messages/interface.lua.j2").render(**view)
-    return {f"lua/{prefix}.lua": text}
+    text = env.get_template("typed_messages/interface.lua.j2").render(banner=banner, **view(dissector(planned)))
+    return {f"lua/{planned.interface.name}.lua": text}
 
 
 def runtime_files(prefix: str) -> list[str]:
