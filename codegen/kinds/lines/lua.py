@@ -1,10 +1,11 @@
 """The Lua target of a text-line interface: generated/lua/<name>.lua, a Wireshark dissector that
-loads on its own: the spec's tables, then runtime/lua/<name>_*.lua joined in, from the plan."""
+loads on its own: the spec's tables from the plan and the dissector model (dissector.py, which
+the epan target renders too), then runtime/lua/<name>_*.lua joined in."""
 from __future__ import annotations
 
 from ...emit import environment, runtime_path, runtime_source
 from ...lang.lua import literal, string
-from ...naming import column_name
+from .dissector import PENDING_KEPT, Dissector, dissector
 from .model import Reply
 from .plan import LinesPlan
 
@@ -16,10 +17,11 @@ def _reply(reply: Reply) -> str:
     return f"{{name = {string(reply.name)}, pieces = {{{pieces}}}, error = {literal(reply.error)}}}"
 
 
-def view(p: LinesPlan) -> dict:
+def view(d: Dissector) -> dict:
+    p = d.plan
     m = p.model
     return dict(
-        name=string(m.name), title=string(m.title), short=string(column_name(m.name)), doc=f"{m.title}: {m.doc}", max_line=m.max_line,
+        name=string(m.name), title=string(m.title), short=string(d.column), doc=f"{m.title}: {m.doc}", max_line=m.max_line,
         ports=", ".join(str(port) for port in m.ports), filters=f"{m.name}.command_name == \"load\", "
         f"{m.name}.reply, {m.name}.error == 1",
         banner_reply=_reply(m.banner) if m.banner else "nil",
@@ -34,12 +36,14 @@ def view(p: LinesPlan) -> dict:
         lookup=[str(c.index + 1) for c in p.lookup],
         version_command=literal(p.version_command.index + 1 if p.version_command else None),
         version_prefix=string(m.version_prefix), e_series_from=p.e_series_from,
-        labels=[dict(name=name, label=string(f.label), doc=string(f.doc)) for name, f in m.fields.items()],
+        labels=[dict(name=f.name, label=string(f.label), doc=string(f.doc)) for f in d.fields],
+        pending_kept=PENDING_KEPT, not_kept=string(d.expert("not_kept").text),
+        reply_not_kept=string(d.expert("reply_not_kept").text),
         runtime=[dict(path=runtime_path("lua", f"lines_{name}"), source=runtime_source("lua", f"lines_{name}"))
                  for name in RUNTIME],
     )
 
 
 def render(p: LinesPlan, banner: list[str]) -> dict[str, str]:
-    text = environment("lua").get_template("lines/lines.lua.j2").render(banner=banner, **view(p))
+    text = environment("lua").get_template("lines/lines.lua.j2").render(banner=banner, **view(dissector(p)))
     return {f"lua/{p.model.name}.lua": text}
