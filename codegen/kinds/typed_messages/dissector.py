@@ -3,15 +3,14 @@ dissector declares (its filter name, label, type, unit and value names), each me
 the variable table and the value types, as plain data that lua.py and epan.py both render.
 
 Every message field and every variable is one filterable field `<name>.<field>`, first come first
-kept (its label is the first one's); the names the dissector keeps for itself are model.OWN_FIELDS
-and the value_<scalar> fields."""
+kept (its label is the first one's); resolve.py has checked that each name has one type and is
+none of the dissector's own (model.OWN_FIELDS, value_<scalar>)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Optional
 
 from ... import ir
-from ...errors import Problem, SpecError
 from . import model
 from .plan import MessagePlan, TypedPlan
 
@@ -93,10 +92,11 @@ class Dissector:
 
 
 def value_field(scalar: ir.Scalar) -> str:
-    return f"value_{scalar.name}"
+    return f"{model.VALUE_FIELD_PREFIX}{scalar.name}"
 
 
 def _header() -> tuple[Field, ...]:
+    """model.OWN_FIELDS, labelled and typed."""
     return (Field("length", "Size", "uint16"), Field("type", "Type", "uint8", enum=TYPE_CODES),
             Field("kind", "Message", "string"), Field("direction", "Direction", "string"),
             Field("recipe_frame", "Recipe set up in frame", "framenum"),
@@ -111,10 +111,11 @@ def _scalar(name: str, label: str, scalar: ir.Scalar, unit: Optional[str], enum:
 
 
 def _body_field(f) -> Optional[Field]:
-    if isinstance(f, model.RecipeValuesField):
+    kind = model.filter_type(f)
+    if kind is None:
         return None
-    if isinstance(f, (model.NamesField, ir.StringField)):
-        return Field(f.name, f.label, "string", where=f.where)
+    if kind == "string":
+        return Field(f.name, f.label, kind, where=f.where)
     return _scalar(f.name, f.label, f.scalar, f.unit, f.enum, f.where)
 
 
@@ -128,55 +129,21 @@ def _step(f) -> Step:
     return Step("scalar", f.name, f.scalar, f.scalar.size, unit=f.unit)
 
 
-class _Fields:
-    """Every filterable field once, with one type per name."""
-
-    def __init__(self, prefix: str, own: set[str]):
-        self.prefix = prefix
-        self.own = own
-        self.by_name: dict[str, Field] = {}
-        self.problems: list[Problem] = []
-
-    def add(self, field: Field) -> None:
-        where = field.where
-        if field.name in self.own or field.name.startswith("value_"):
-            self.problems.append(Problem(where.path, f"{self.prefix}.{field.name} is the dissector's own field",
-                                         where.line))
-            return
-        known = self.by_name.get(field.name)
-        if known is not None:
-            if known.type != field.type:
-                self.problems.append(Problem(where.path, f"{self.prefix}.{field.name} would be both a "
-                                                         f"{known.type} and a {field.type} field", where.line))
-            return
-        if any(f.name.upper() == field.name.upper() for f in self.by_name.values()):
-            self.problems.append(Problem(where.path, f"{self.prefix}.{field.name} and another field differ only "
-                                                     f"in case", where.line))
-            return
-        self.by_name[field.name] = field
-
-
 def dissector(planned: TypedPlan) -> Dissector:
     interface = planned.interface
     header = _header()
     values = tuple(Field(value_field(s), f"Value of the setup reply's type ({s.name})", s.name)
                    for s in planned.value_scalars)
-    fields = _Fields(interface.name, {f.name for f in header})
-    fields.add(Field("recipe_id", "Recipe id", "uint8"))
-    for m in interface.messages:
-        for f in m.fields:
-            field = _body_field(f)
-            if field is not None:
-                fields.add(field)
-    for v in interface.variables:
-        fields.add(_scalar(v.name, v.label, v.value_type.scalar, v.unit, None, v.where))
-    if fields.problems:
-        raise SpecError(interface.name, fields.problems)
+    fields: dict[str, Field] = {model.RECIPE_ID[0]: Field(model.RECIPE_ID[0], "Recipe id", model.RECIPE_ID[1])}
+    for f in [_body_field(f) for m in interface.messages for f in m.fields] \
+            + [_scalar(v.name, v.label, v.value_type.scalar, v.unit, None, v.where) for v in interface.variables]:
+        if f is not None:
+            fields.setdefault(f.name, f)
     messages = tuple(Message(mp, tuple(_step(f) for f in mp.message.fields)) for mp in planned.messages)
     by_name = {m.message.name: m for m in messages}
     variables = tuple(Variable(v.name, v.value_type.name, v.unit if v.value_type.scalar.is_float else None)
                       for v in {v.name: v for v in interface.variables}.values())
     value_types = tuple(ValueType(t.name, t.scalar, t.scalar.size, t.count, value_field(t.scalar))
                         for t in interface.value_types)
-    return Dissector(planned, header, values, tuple(fields.by_name.values()), tuple(interface.enums), messages,
+    return Dissector(planned, header, values, tuple(fields.values()), tuple(interface.enums), messages,
                      tuple((by_name[mp.message.name], p) for mp, p in planned.dispatch), variables, value_types)
