@@ -81,5 +81,7 @@ def view(d: Dissector) -> dict:
 
 def render(p: LinesPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
     """`upstream` (the copy for Wireshark's tree) changes nothing: this dissector reads no command line."""
-    text = environment(FOLDER).get_template("lines/packet.c.j2").render(banner=banner, **view(dissector(p)))
+    env = environment(FOLDER)
+    env.filters["c"] = string
+    text = env.get_template("lines/packet.c.j2").render(banner=banner, **view(dissector(p)))
     return {f"{FOLDER}/{file_name(p.model.name)}": text}

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import field_text, node_text, value_text
 from ...emit import environment
-from ...lang.python import class_name
+from ...lang.python import class_name, string
 from .plan import Form, LayoutPlan, SizedPlan
 
 PACKAGE = "python/urwire/generated"
@@ -100,7 +100,7 @@ def _form(planned: SizedPlan, form: Form) -> PyForm:
     names = {e.name: _table_const(e, e.tables.index(form.tables[e.name])) for e in planned.enums
              if e.name in form.tables}
     return PyForm(form.low, form.high, class_name(planned.layouts[form.layout].layout.name), form.describe(),
-                  [f'"{k}": {v}' for k, v in names.items()])
+                  [f"{string(k)}: {v}" for k, v in names.items()])
 
 
 def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:

@@ -119,6 +119,7 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
         "runtime_h": {n: _joined(n) for n in RUNTIME_H}, "runtime_c": {n: _joined(n) for n in RUNTIME_C},
     }
     env = environment(FOLDER)
+    env.filters["c"] = c.string
     return {f"{FOLDER}/{name}.h": env.get_template("typed_messages/interface.h.j2").render(**view),
             f"{FOLDER}/{name}.c": env.get_template("typed_messages/interface.c.j2").render(**view)}
 

@@ -178,7 +178,9 @@ def view(d: Dissector, upstream: bool) -> dict:
 
 def render(planned: TypedPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
     """packet-<name>.c; `upstream`: the copy for Wireshark's tree, which reads no command line."""
-    text = environment("epan").get_template("typed_messages/packet.c.j2").render(
+    env = environment("epan")
+    env.filters["c"] = c.string
+    text = env.get_template("typed_messages/packet.c.j2").render(
         banner=banner, **view(dissector(planned), upstream))
     return {f"epan/packet-{planned.interface.name.replace('_', '-')}.c": text}
 

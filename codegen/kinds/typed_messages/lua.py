@@ -33,8 +33,8 @@ class FieldView:
     @property
     def line(self) -> str:
         """Its entry of the F table, wrapped under its first argument when long."""
-        return spread([f'"{self.prefix}.{self.name}"', lang.string(self.label), self.args],
-                      f'["{self.name}"] = ProtoField.{self.call}(', "),", "    ")
+        return spread([lang.string(f"{self.prefix}.{self.name}"), lang.string(self.label), self.args],
+                      f"[{lang.string(self.name)}] = ProtoField.{self.call}(", "),", "    ")
 
 
 def _enum_table(name: str) -> str:

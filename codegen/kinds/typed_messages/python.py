@@ -144,8 +144,8 @@ def _enum(e: ir.Enum) -> dict:
 
 
 def _variable(v: model.Variable) -> dict:
-    since = ", ".join(f'"{g}": "{v.since_text(g)}"' for g in v.since)
-    return {"args": [f'"{v.name}"', f'"{v.value_type.name}"', f'"{v.direction}"',
+    since = ", ".join(f"{string(g)}: {string(v.since_text(g))}" for g in v.since)
+    return {"args": [string(v.name), string(v.value_type.name), string(v.direction),
                      string(v.label), string_or_none(v.unit or None), f"{{{since}}}"]}
 
 
@@ -164,7 +164,7 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
         "ports": tuple_text([str(p) for p in interface.ports]),
         "protocol_versions": tuple_text([str(p) for p in interface.protocol_versions]),
         "max_pending": interface.max_pending_setups,
-        "refusals": tuple_text([f'"{r.word}"' for r in interface.refusals]),
+        "refusals": tuple_text([string(r.word) for r in interface.refusals]),
         "recipe_kinds": tuple_text([k.name.upper() for k in interface.recipe_kinds]),
         "header_format": ">" + STRUCT_CODES[interface.length.name] + STRUCT_CODES[interface.type.name],
         "enums": [_enum(e) for e in interface.enums],
