@@ -8,17 +8,16 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ...naming import column_name
+from .model import RecordField
 from .plan import LinesPlan
 
 PENDING_KEPT = 256              # commands awaiting a reply that a conversation keeps (both runtimes)
 
 
 @dataclass(frozen=True)
-class Field:
-    name: str                   # filtered as <protocol>.<name>
-    type: str                   # string or boolean
-    label: str
-    doc: str
+class Field(RecordField):
+    """A spec field (filtered as <protocol>.<name>) with the type the runtimes give it."""
+    type: str = "string"        # string or boolean
 
 
 @dataclass(frozen=True)
@@ -73,5 +72,5 @@ PREFERENCE = Preference("version", "Software version",
 
 def dissector(planned: LinesPlan) -> Dissector:
     m = planned.model
-    fields = tuple(Field(name, type_, m.fields[name].label, m.fields[name].doc) for name, type_ in FIELD_TYPES)
+    fields = tuple(Field(name, m.fields[name].label, m.fields[name].doc, type_) for name, type_ in FIELD_TYPES)
     return Dissector(planned, column_name(m.name), fields, _experts(m.max_line), PREFERENCE)
