@@ -2,7 +2,8 @@
 -> generated/python/urwire/generated/<name>.py, imported by the hand-written runtime
 (python/urwire/rtde_records.py for the base classes, python/urwire/rtde.py for a connection).
 
-Every decision (struct formats, the step of each field, enum conversions) is made here; the
+The plan says how a message is read (runs of scalars, the fields between them); what is Python's
+(each run's struct format, the enum conversions, the attributes' types) is decided here, and the
 template only lays the strings out."""
 from __future__ import annotations
 
