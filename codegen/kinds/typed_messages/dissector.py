@@ -22,7 +22,6 @@ class Field:
     type: str                          # a scalar's name (uint8, float64), or string, framenum or bytes
     unit: Optional[str] = None         # an integer's unit, shown after its value
     enum: Optional[str] = None         # the enum whose names an integer shows; TYPE_CODES: the type codes
-    where: ir.Where = ir.NOWHERE
 
     @property
     def is_float(self) -> bool:
@@ -104,10 +103,9 @@ def _header() -> tuple[Field, ...]:
             Field("unknown_variable", "Variable not in the table", "bytes"))
 
 
-def _scalar(name: str, label: str, scalar: ir.Scalar, unit: Optional[str], enum: Optional[ir.Enum],
-            where: ir.Where) -> Field:
+def _scalar(name: str, label: str, scalar: ir.Scalar, unit: Optional[str], enum: Optional[ir.Enum]) -> Field:
     integer = not (scalar.is_float or scalar.is_bool)
-    return Field(name, label, scalar.name, unit if integer else None, enum.name if enum and integer else None, where)
+    return Field(name, label, scalar.name, unit if integer else None, enum.name if enum and integer else None)
 
 
 def _body_field(f) -> Optional[Field]:
@@ -115,8 +113,8 @@ def _body_field(f) -> Optional[Field]:
     if kind is None:
         return None
     if kind == "string":
-        return Field(f.name, f.label, kind, where=f.where)
-    return _scalar(f.name, f.label, f.scalar, f.unit, f.enum, f.where)
+        return Field(f.name, f.label, kind)
+    return _scalar(f.name, f.label, f.scalar, f.unit, f.enum)
 
 
 def _step(f) -> Step:
@@ -136,7 +134,7 @@ def dissector(planned: TypedPlan) -> Dissector:
                    for s in planned.value_scalars)
     fields: dict[str, Field] = {model.RECIPE_ID[0]: Field(model.RECIPE_ID[0], "Recipe id", model.RECIPE_ID[1])}
     for f in [_body_field(f) for m in interface.messages for f in m.fields] \
-            + [_scalar(v.name, v.label, v.value_type.scalar, v.unit, None, v.where) for v in interface.variables]:
+            + [_scalar(v.name, v.label, v.value_type.scalar, v.unit, None) for v in interface.variables]:
         if f is not None:
             fields.setdefault(f.name, f)
     messages = tuple(Message(mp, tuple(_step(f) for f in mp.message.fields)) for mp in planned.messages)
