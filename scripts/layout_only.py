@@ -2,10 +2,13 @@
 
     python3 scripts/layout_only.py [REV]      # REV defaults to where this branch left main
 
-C: both revisions' urwire.c are compiled with -O2 and their object files (`objdump -d -s -r`:
-code, data and relocations) must be equal. Lua: `luac -l -l` listings of both urwire.lua, with line numbers and source names taken
-out, must be equal. Python: each generated module's syntax tree, docstrings left out, must be
-equal. It prints one line per file and exits 1 when any file behaves differently.
+C: every generated/c/*.c is compiled with -O2 (beside its revision's headers), every
+generated/epan/*.c too with the Wireshark include flags (pkg-config wireshark, an empty config.h
+as the native build writes one), and both revisions' object files (`objdump -d -s -r`: code, data
+and relocations) must be equal. Lua: `luac -l -l` listings of every generated/lua/*.lua, with line
+numbers and source names taken out, must be equal. Python: each generated module's syntax tree,
+docstrings left out, must be equal. It prints one line per file and exits 1 when any file behaves
+differently.
 """
 from __future__ import annotations
 
@@ -25,17 +28,24 @@ def old_text(rev: str, path: str) -> str:
                           capture_output=True, text=True).stdout
 
 
-def python_modules(rev: str) -> list[str]:
-    """The generated Python modules that both this work tree and `rev` have."""
+def files(rev: str, folder: str, suffix: str) -> list[str]:
+    """The files of a generated folder that both this work tree and `rev` have."""
     def listed(*args: str) -> set[str]:
         out = subprocess.run(["git", *args], cwd=ROOT, check=True, capture_output=True, text=True).stdout
-        return {p for p in out.split() if p.endswith(".py")}
-    return sorted(listed("ls-files", "generated/python") & listed("ls-tree", "-r", "--name-only", rev, "generated/python"))
+        return {p for p in out.split() if p.endswith(suffix)}
+    return sorted(listed("ls-files", folder) & listed("ls-tree", "-r", "--name-only", rev, folder))
 
 
-def c_object_code(source_dir: Path) -> str:
-    obj = source_dir / "urwire.o"
-    subprocess.run(["gcc", "-std=c99", "-O2", "-c", str(source_dir / "urwire.c"), "-o", str(obj)], check=True)
+def wireshark_flags() -> list[str]:
+    out = subprocess.run(["pkg-config", "--cflags", "wireshark"], check=True, capture_output=True, text=True).stdout
+    return out.split()
+
+
+def c_object_code(source: Path, flags: list[str]) -> str:
+    obj = source.with_suffix(".o")
+    # __FILE__ (Wireshark's assertions) names the file as if both revisions sat in one folder.
+    subprocess.run(["gcc", "-std=gnu11", "-O2", *flags, f"-I{source.parent}", f"-ffile-prefix-map={source.parent}=.",
+                    "-c", str(source), "-o", str(obj)], check=True)
     # Code (-d), every section's bytes (-s: the tables are data) and the relocations (-r: what
     # the tables' pointers point at).
     listing = subprocess.run(["objdump", "-d", "-s", "-r", "--no-show-raw-insn", str(obj)], check=True,
@@ -71,28 +81,42 @@ def python_tree(text: str) -> str:
     return ast.dump(_NoDocstrings().visit(ast.parse(text)))
 
 
+def same_c(rev: str, tmp: Path, folder: str, flags: list[str]) -> bool:
+    """Every C file of a folder, each revision's beside that revision's headers."""
+    same = True
+    for side in ("old", "new"):
+        (tmp / side / folder).mkdir(parents=True)
+        (tmp / side / folder / "config.h").write_text("/* empty, as out of the Wireshark tree */\n")
+        for path in files(rev, folder, ".h"):
+            name = Path(path).name
+            (tmp / side / folder / name).write_text(old_text(rev, path) if side == "old" else (ROOT / path).read_text())
+    for path in files(rev, folder, ".c"):
+        name = Path(path).name
+        (tmp / "old" / folder / name).write_text(old_text(rev, path))
+        shutil.copy(ROOT / path, tmp / "new" / folder / name)
+        ok = c_object_code(tmp / "old" / folder / name, flags) == c_object_code(tmp / "new" / folder / name, flags)
+        print(f"{path}: object file (gcc -O2) {'same' if ok else 'DIFFERS'}")
+        same &= ok
+    return same
+
+
 def main(argv: list[str]) -> int:
     rev = argv[1] if len(argv) > 1 else subprocess.run(["git", "merge-base", "main", "HEAD"], cwd=ROOT, check=True,
                                                        capture_output=True, text=True).stdout.strip()
     same = True
-    with tempfile.TemporaryDirectory() as tmp:
-        old, new = Path(tmp, "old"), Path(tmp, "new")
-        for d in (old, new):
-            d.mkdir()
-        for name in ("urwire.c", "urwire.h"):
-            (old / name).write_text(old_text(rev, f"generated/c/{name}"))
-            shutil.copy(ROOT / "generated/c" / name, new / name)
-        ok = c_object_code(old) == c_object_code(new)
-        print(f"generated/c/urwire.c: object file (gcc -O2) {'same' if ok else 'DIFFERS'}")
-        same &= ok
+    with tempfile.TemporaryDirectory() as name:
+        tmp = Path(name)
+        same &= same_c(rev, tmp, "generated/c", [])
+        same &= same_c(rev, tmp, "generated/epan", wireshark_flags())
+        for path in files(rev, "generated/lua", ".lua"):
+            old, new = tmp / "old" / Path(path).name, tmp / "new" / Path(path).name
+            old.write_text(old_text(rev, path))
+            shutil.copy(ROOT / path, new)
+            ok = lua_listing(old) == lua_listing(new)
+            print(f"{path}: luac listing {'same' if ok else 'DIFFERS'}")
+            same &= ok
 
-        (old / "urwire.lua").write_text(old_text(rev, "generated/lua/urwire.lua"))
-        shutil.copy(ROOT / "generated/lua/urwire.lua", new / "urwire.lua")
-        ok = lua_listing(old / "urwire.lua") == lua_listing(new / "urwire.lua")
-        print(f"generated/lua/urwire.lua: luac listing {'same' if ok else 'DIFFERS'}")
-        same &= ok
-
-    for path in python_modules(rev):
+    for path in files(rev, "generated/python", ".py"):
         ok = python_tree(old_text(rev, path)) == python_tree((ROOT / path).read_text())
         print(f"{path}: syntax tree without docstrings {'same' if ok else 'DIFFERS'}")
         same &= ok

@@ -1,22 +1,21 @@
-"""The epan target of the typed-messages kind (codegen/kinds/typed_messages/epan_target.py): what the
-runtime relies on in the tables of generated/epan/packet-rtde.c, and the names it refuses."""
+"""The epan target of the typed-messages kind (codegen/kinds/typed_messages/epan.py): what the
+runtime relies on in the tables of generated/epan/packet-rtde.c. (The filter names it would refuse
+are refused by the kind's resolver: tests/codegen/test_rtde_filter_names.py.)"""
 from __future__ import annotations
 
 import re
 
-import yaml
-
 from codegen.compile import SPEC_DIR, compile_text
 from codegen.emit import banner_lines
-from codegen.errors import SpecError
-from codegen.kinds.typed_messages import epan_target
+from codegen.kinds.typed_messages import epan
+from codegen.kinds.typed_messages.plan import plan
 
 SPEC = SPEC_DIR / "rtde.yaml"
 TEXT = SPEC.read_text(encoding="utf-8")
 
 
 def rendered(text: str = TEXT) -> str:
-    files = epan_target.render(compile_text(text, str(SPEC)), banner_lines("spec/rtde.yaml", text))
+    files = epan.render(plan(compile_text(text, str(SPEC))), banner_lines("spec/rtde.yaml", text))
     assert list(files) == ["epan/packet-rtde.c"]
     return files["epan/packet-rtde.c"]
 
@@ -45,14 +44,3 @@ def test_every_layout_is_reachable_by_code_direction_and_protocol():
         line.split("=", 1)[1].split("/*")[0] for line in source.split("rtde_layout_of[256]", 1)[1]
         .split("\n};", 1)[0].splitlines()[1:]))]
     assert sorted(n for n in entries if n) == list(range(1, layouts + 1))
-
-
-def test_a_field_named_like_the_dissectors_own_is_refused():
-    data = yaml.safe_load(TEXT)
-    data["variables"][0]["name"] = "unknown_variable"
-    try:
-        rendered(yaml.safe_dump(data, sort_keys=False, allow_unicode=True))
-    except SpecError as caught:
-        assert any("rtde.unknown_variable is the dissector's own field" in p.message for p in caught.problems)
-    else:
-        raise AssertionError("the epan target took a variable named like its own field")

@@ -1,5 +1,9 @@
 """The sized-packets kind (spec/ur_realtime.yaml): its resolver checks sizes and names with their
 YAML paths, its plan places every field, and the same_size rule picks a layout by version."""
+import subprocess
+import sys
+from pathlib import Path
+
 import pytest
 import yaml
 
@@ -9,6 +13,7 @@ from codegen.errors import SpecError
 from codegen.kinds.sized_packets.plan import choose, plan
 
 SPEC = SPEC_DIR / "ur_realtime.yaml"
+ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture(scope="module")
@@ -123,3 +128,19 @@ def test_the_real_time_page_lists_every_layout_as_the_spec_has_it():
     rows = [tuple(cell.strip() for cell in line.strip("|").split("|"))
             for line in page.splitlines() if re.match(r"\| \d+ \|", line)]
     assert rows == want
+
+
+def test_a_field_named_like_the_size_field_is_refused_by_target_c(tmp_path):
+    """The size field is ur_realtime.message_size in both dissectors, beside every field; a field of
+    that name would make two fields of one filter name. The C target renders no dissector and still
+    refuses the spec, at the field's YAML path."""
+    def rename(data):
+        data["fields"][0]["name"] = data["framing"]["size"]["name"]
+    bad = tmp_path / "ur_realtime.yaml"
+    bad.write_text(_spec_with(rename), encoding="utf-8")
+    result = subprocess.run([sys.executable, "-m", "codegen", "--spec", str(bad), "--target", "c",
+                             "--out", str(tmp_path / "out")], cwd=ROOT,
+                            capture_output=True, text=True)
+    assert result.returncode != 0
+    assert "fields[0].name" in result.stderr, result.stderr
+    assert "ur_realtime.message_size is the size field's filter name" in result.stderr

@@ -1,7 +1,7 @@
 """The epan target of an int32-record interface: generated/epan/packet-<name with dashes>.c, a
-native Wireshark dissector, the twin of the Lua one (kinds/int32_records/lua.py): the same
-protocol, fields (a scaled field's label carries its unit, as the Lua field's does, and its raw
-int32 is a field beside it), tree, Info column, experts and release preference. The generated
+native Wireshark dissector, the twin of the Lua one (lua.py renders the same dissector model): the
+same protocol, fields (a scaled field's label carries its unit, as the Lua field's does, and its
+raw int32 is a field beside it), tree, Info column, experts and release preference. The generated
 part declares the handles, the enums' value_strings and each direction's record layouts by
 release; runtime/epan/int32_records*.{h,c}, joined in, frames the TCP stream and walks them."""
 from __future__ import annotations
@@ -11,9 +11,10 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import value_text
 from ...emit import environment, runtime_path, runtime_source
-from ...epan_c import c_string, value_literal
+from ...lang.c import string, value_key
 from ...naming import column_name
-from .model import FROM_ROBOT
+from .dissector import Dissector, dissector
+from .model import FROM_ROBOT, TO_ROBOT
 from .plan import RecordsPlan
 
 RUNTIME_HEAD = ["int32_records_types.h"]    # the table types, before the tables
@@ -50,55 +51,52 @@ class EpanRecord:
     items: list[str]             # the int32_records_record initializer, member by member
 
 
-def _field(name: str, hf: str, label: str, abbrev: str, ftype: str, base: str, strings: str,
-           comment: str = "") -> EpanField:
-    return EpanField(hf, [c_string(label), c_string(abbrev), ftype, base, strings, "0x0", "NULL", "HFILL"], comment)
+def _field(hf: str, label: str, abbrev: str, ftype: str, base: str, strings: str, comment: str = "") -> EpanField:
+    return EpanField(hf, [string(label), string(abbrev), ftype, base, strings, "0x0", "NULL", "HFILL"], comment)
+
+
+def view(d: Dissector) -> dict:
+    m = d.plan.model
+    name = m.name
+    tables = [EpanTable(f"{name}_{e.name}_vals", [(value_key(v.value), string(v.name), value_text(v))
+                                                  for v in e.values])
+              for e in d.enums]
+    fields = []
+    for f in d.fields:
+        hf, abbrev = f"hf_{name}_{f.name}", f"{name}.{f.name}"
+        if f.scaled:
+            fields.append(_field(hf, f.shown_label, abbrev, "FT_DOUBLE", "BASE_NONE", "NULL", f.comment))
+            fields.append(_field(hf + "_raw", f"{f.label} (raw int32)", abbrev + "_raw", "FT_INT32", "BASE_DEC", "NULL"))
+        else:
+            strings = f"VALS({name}_{f.enum}_vals)" if f.enum else "NULL"
+            fields.append(_field(hf, f.label, abbrev, "FT_INT32", "BASE_DEC", strings, f.comment))
+    records = {}
+    for r in d.records:
+        ident = f"{name}_{r.name}"
+        layouts = []
+        for i, lay in enumerate(r.layouts):
+            slots = [[f"&hf_{name}_{s.field.name}", f"&hf_{name}_{s.field.name}_raw" if s.scale else "NULL",
+                      str(s.index), str(s.count), str(s.scale or 0), string(s.scale_name) if s.scale else "NULL"]
+                     for s in lay.slots]
+            layouts.append(EpanLayout(f"{ident}_{i}", lay.describe, lay.size, slots))
+        starts = [str(s) for s in r.starts]
+        items = [string(r.label), f"{ident}_starts" if starts else "NULL",
+                 f"array_length({ident}_starts)" if starts else "0", f"{ident}_layouts"]
+        records[r.direction] = EpanRecord(ident, r.label, starts, layouts, items)
+    runtime = [dict(path=runtime_path("epan", part), source=runtime_source("epan", part))
+               for part in RUNTIME_HEAD + RUNTIME_TAIL]
+    return dict(
+        name=name, title=m.title, doc=m.doc, file=f"packet-{name.replace('_', '-')}.c",
+        short_name=name.upper(), column=column_name(name), ports=[str(port) for port in m.ports],
+        default_release=ir.version_number(m.default_release), default_text=ir.version_text(m.default_release),
+        tables=tables, fields=fields, records=records, to_robot=records.get(TO_ROBOT),
+        from_robot=records.get(FROM_ROBOT), head=runtime[:len(RUNTIME_HEAD)], tail=runtime[len(RUNTIME_HEAD):])
 
 
 def render(p: RecordsPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
     """`upstream` (the copy for Wireshark's tree) changes nothing: this dissector reads no command line."""
-    m = p.model
-    name = m.name
-    tables = [EpanTable(f"{name}_{e.name}_vals", [(value_literal(v.value), c_string(v.name), value_text(v))
-                                                  for v in e.values])
-              for e in m.enums.values()]
-    fields, seen = [], set()
-    for r in p.records:
-        for f in r.fields:
-            if f.name in seen:
-                continue
-            seen.add(f.name)
-            hf, abbrev = f"hf_{name}_{f.name}", f"{name}.{f.name}"
-            comment = " ".join(t for t in (f"{f.label}{f' ({f.unit})' if f.unit else ''}.", f.doc.strip()) if t)
-            if f.scaled:
-                label = f.label + (f" ({f.unit})" if f.unit else "")
-                fields.append(_field(name, hf, label, abbrev, "FT_DOUBLE", "BASE_NONE", "NULL", comment))
-                fields.append(_field(name, hf + "_raw", f"{f.label} (raw int32)", abbrev + "_raw", "FT_INT32",
-                                     "BASE_DEC", "NULL"))
-            else:
-                strings = f"VALS({name}_{f.enum.name}_vals)" if f.enum else "NULL"
-                fields.append(_field(name, hf, f.label, abbrev, "FT_INT32", "BASE_DEC", strings, comment))
-    records = {}
-    for r in p.records:
-        ident = f"{name}_{r.record.name}"
-        layouts = []
-        for i, lay in enumerate(r.layouts):
-            slots = [[f"&hf_{name}_{s.field.name}", f"&hf_{name}_{s.field.name}_raw" if s.scale else "NULL",
-                      str(s.index), str(s.count), str(s.scale or 0), c_string(s.scale_name) if s.scale else "NULL"]
-                     for s in lay.slots]
-            layouts.append(EpanLayout(f"{ident}_{i}", lay.describe(), 4 * lay.size, slots))
-        starts = [str(ir.version_number(s)) for s in r.starts]
-        items = [c_string(r.record.label), f"{ident}_starts" if starts else "NULL",
-                 f"array_length({ident}_starts)" if starts else "0", f"{ident}_layouts"]
-        records["from_robot" if r.record.direction == FROM_ROBOT else "to_robot"] = EpanRecord(
-            ident, r.record.label, starts, layouts, items)
-    runtime = [dict(path=runtime_path("epan", part), source=runtime_source("epan", part))
-               for part in RUNTIME_HEAD + RUNTIME_TAIL]
-    context = dict(
-        banner=banner, name=name, title=m.title, doc=m.doc, file=f"packet-{name.replace('_', '-')}.c",
-        short_name=name.upper(), column=column_name(name), ports=[str(port) for port in m.ports],
-        default_release=ir.version_number(m.default_release), default_text=ir.version_text(m.default_release),
-        tables=tables, fields=fields, records=records, to_robot=records.get("to_robot"),
-        from_robot=records.get("from_robot"), head=runtime[:len(RUNTIME_HEAD)], tail=runtime[len(RUNTIME_HEAD):])
-    text = environment("epan").get_template("int32_records/dissector.c.j2").render(**context)
+    context = view(dissector(p))
+    env = environment("epan")
+    env.filters["c"] = string
+    text = env.get_template("int32_records/dissector.c.j2").render(banner=banner, **context)
     return {f"epan/{context['file']}": text}

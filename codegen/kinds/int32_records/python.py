@@ -4,12 +4,9 @@ from __future__ import annotations
 
 from ... import ir
 from ...emit import environment
+from ...lang.python import class_name
 from .model import FROM_ROBOT
 from .plan import PublicField, RecordsPlan
-
-
-def class_name(name: str) -> str:
-    return "".join(part.capitalize() for part in name.split("_"))
 
 
 def _json_kind(f: PublicField) -> str:

@@ -28,11 +28,26 @@ class _RecordsResolver(_Resolver):
                 if earlier.versions.overlaps(field.versions):
                     self.fail(parts + ["fields", i, "versions"], f"{field.name} is sent twice in "
                               f"{earlier.versions.describe()} and {field.versions.describe()}")
-                if (earlier.scale is None) != (field.scale is None) or earlier.enum != field.enum \
-                        or (earlier.count == 1) != (field.count == 1):
+                if _kind(earlier) != _kind(field):
                     self.fail(parts + ["fields", i], f"{field.name} changes its kind between releases")
             fields.append(field)
         return Record(raw["name"], raw["direction"], raw["label"], raw["doc"], tuple(fields), self.where(parts))
+
+    def check_filter_names(self, protocol: str, records: list[Record]) -> None:
+        """Each field is the filter <protocol>.<name> in both dissectors, one per name over both
+        records, and a scaled field's raw int32 is <protocol>.<name>_raw beside it: a name both
+        records send keeps one kind, and no field takes a scaled field's raw name."""
+        first: dict[str, tuple[Record, Int32Field]] = {}
+        raw = {f"{f.name}_raw": f.name for r in records for f in r.fields if f.scale is not None}
+        for i, record in enumerate(records):
+            for j, field in enumerate(record.fields):
+                other, earlier = first.setdefault(field.name, (record, field))
+                if other is not record and _kind(earlier) != _kind(field):
+                    self.fail(["records", i, "fields", j], f"{protocol}.{field.name} is a field of {other.name} "
+                                                           f"too, of another kind: one filter name, one kind")
+                if field.name in raw:
+                    self.fail(["records", i, "fields", j, "name"], f"{protocol}.{field.name} is the raw int32 of "
+                                                                   f"the scaled field {raw[field.name]}")
 
     def protocol(self) -> RecordsProtocol:
         data = self.spec.data
@@ -47,6 +62,7 @@ class _RecordsResolver(_Resolver):
                 self.fail(["records", i, "direction"], f"a second record {record.direction}")
             records.append(record)
         framing, proto = data["framing"], data["protocol"]
+        self.check_filter_names(proto["name"], records)
         releases = tuple(ir.parse_version(v) for v in framing["releases"])
         if list(releases) != sorted(set(releases)):
             self.fail(["framing", "releases"], "releases are listed once each, oldest first")
@@ -55,6 +71,11 @@ class _RecordsResolver(_Resolver):
             self.fail(["framing", "default_release"], f"{framing['default_release']} is not among the releases")
         return RecordsProtocol(proto["name"], proto["title"], proto["doc"], tuple(proto["ports"]), releases, default,
                                dict(self.enums), tuple(records))
+
+
+def _kind(f: Int32Field) -> tuple:
+    """What a field's name stands for wherever it is sent: scaled or not, its enum, one value or a list."""
+    return f.scale is None, f.enum, f.count == 1
 
 
 def resolve(spec: LoadedSpec) -> RecordsProtocol:

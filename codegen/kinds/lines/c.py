@@ -2,20 +2,15 @@
 runtime of runtime/c/<name>_*.{h,c} joined in, from the plan."""
 from __future__ import annotations
 
-import json
 import re
 
 from ...emit import environment, runtime_path, runtime_source
+from ...lang.c import string
 from ...wrap import LIMIT
 from .model import Reply
 from .plan import LinesPlan
 
 FOLDER = "c"
-
-
-def _string(text: str) -> str:
-    """A C string literal of the text (ASCII from the schema, escaped like JSON)."""
-    return json.dumps(text)
 
 
 def _joined(name: str, prefix: str) -> str:
@@ -29,7 +24,7 @@ def _joined(name: str, prefix: str) -> str:
 
 
 def _reply(symbol: str, reply: Reply) -> dict:
-    return dict(symbol=symbol, name=_string(reply.name), pieces=[_string(p) for p in reply.pieces],
+    return dict(symbol=symbol, name=string(reply.name), pieces=[string(p) for p in reply.pieces],
                 count=len(reply.pieces), error="true" if reply.error else "false", pattern=reply.pattern)
 
 
@@ -41,12 +36,12 @@ def view(p: LinesPlan) -> dict:
         cmd = c.command
         replies = [_reply(f"{prefix}__{cmd.name}_{i}", r) for i, r in enumerate(cmd.replies)]
         commands.append(dict(
-            constant=f"{prefix.upper()}_{cmd.name.upper()}", name=_string(cmd.name), text=_string(cmd.text),
+            constant=f"{prefix.upper()}_{cmd.name.upper()}", name=string(cmd.name), text=string(cmd.text),
             doc=f"{cmd.text}{' <' + cmd.argument + '>' if cmd.argument else ''}: {cmd.doc} ({cmd.since_text()})",
             takes_argument="true" if cmd.argument else "false",
             since_cb=c.since_cb or 0, since_e_series=c.since_e_series or 0,
             replies=replies, replies_symbol=f"{prefix}__{cmd.name}_replies",
-            row=[_string(cmd.name), _string(cmd.text), "true" if cmd.argument else "false", f"{c.since_cb or 0}u",
+            row=[string(cmd.name), string(cmd.text), "true" if cmd.argument else "false", f"{c.since_cb or 0}u",
                  f"{c.since_e_series or 0}u", f"{prefix}__{cmd.name}_replies", str(len(replies))]))
     return dict(
         prefix=prefix, upper=prefix.upper(), title=m.title, doc=m.doc, ports=m.ports, max_line=m.max_line,
@@ -56,7 +51,7 @@ def view(p: LinesPlan) -> dict:
         common=[_reply(f"{prefix}__common_{i}", r) for i, r in enumerate(m.common_replies)],
         version_command=f"{prefix.upper()}_{p.version_command.command.name.upper()}" if p.version_command
         else f"{prefix.upper()}_NONE",
-        version_prefix=_string(m.version_prefix),
+        version_prefix=string(m.version_prefix),
         runtime_header=_joined("lines/lines.h", prefix),
         runtime_sources=[_joined("lines/lines.c", prefix), _joined("lines/json.c", prefix)],
         limit=LIMIT,

@@ -1,56 +1,49 @@
 """The Lua target of a text-line interface: generated/lua/<name>.lua, a Wireshark dissector that
-loads on its own: the spec's tables, then runtime/lua/<name>_*.lua joined in, from the plan."""
+loads on its own: the spec's tables from the plan and the dissector model (dissector.py, which
+the epan target renders too), then runtime/lua/<name>_*.lua joined in."""
 from __future__ import annotations
 
-import json
-
 from ...emit import environment, runtime_path, runtime_source
-from ...naming import column_name
+from ...lang.lua import literal, string
+from .dissector import PENDING_KEPT, Dissector, dissector
 from .model import Reply
 from .plan import LinesPlan
 
 RUNTIME = ("match.lua", "dissect.lua")
 
 
-def _string(text: str) -> str:
-    """A Lua string literal (the schema keeps spec texts printable ASCII; JSON escapes suit Lua)."""
-    return json.dumps(text)
-
-
 def _reply(reply: Reply) -> str:
-    pieces = ", ".join(_string(p) for p in reply.pieces)
-    return f"{{name = {_string(reply.name)}, pieces = {{{pieces}}}, error = {'true' if reply.error else 'false'}}}"
+    pieces = ", ".join(string(p) for p in reply.pieces)
+    return f"{{name = {string(reply.name)}, pieces = {{{pieces}}}, error = {literal(reply.error)}}}"
 
 
-def _number(n) -> str:
-    return "nil" if n is None else str(n)
-
-
-def view(p: LinesPlan) -> dict:
+def view(d: Dissector) -> dict:
+    p = d.plan
     m = p.model
     return dict(
-        name=_string(m.name), title=_string(m.title), short=_string(column_name(m.name)), doc=f"{m.title}: {m.doc}", max_line=m.max_line,
+        name=string(m.name), title=string(m.title), short=string(d.column), doc=f"{m.title}: {m.doc}", max_line=m.max_line,
         ports=", ".join(str(port) for port in m.ports), filters=f"{m.name}.command_name == \"load\", "
         f"{m.name}.reply, {m.name}.error == 1",
         banner_reply=_reply(m.banner) if m.banner else "nil",
-        requests_from_robot="true" if m.requests_from_robot else "false",
-        one_reply_per_request="true" if m.one_reply_per_request else "false",
-        robot_is_client="true" if m.robot_is_client else "false", common=[_reply(r) for r in m.common_replies],
+        requests_from_robot=literal(m.requests_from_robot), one_reply_per_request=literal(m.one_reply_per_request),
+        robot_is_client=literal(m.robot_is_client), common=[_reply(r) for r in m.common_replies],
         commands=[dict(comment=f"{c.command.text}: {c.command.doc} ({c.command.since_text()})",
-                       entries=[f"name = {_string(c.command.name)}", f"text = {_string(c.command.text)}",
-                             f"argument = {'true' if c.command.argument else 'false'}",
-                             f"since_cb = {_number(c.since_cb)}", f"since_e_series = {_number(c.since_e_series)}"],
+                       entries=[f"name = {string(c.command.name)}", f"text = {string(c.command.text)}",
+                             f"argument = {literal(c.command.argument is not None)}",
+                             f"since_cb = {literal(c.since_cb)}", f"since_e_series = {literal(c.since_e_series)}"],
                        replies=[_reply(r) for r in c.command.replies])
                   for c in p.commands],
         lookup=[str(c.index + 1) for c in p.lookup],
-        version_command=_number(p.version_command.index + 1 if p.version_command else None),
-        version_prefix=_string(m.version_prefix), e_series_from=p.e_series_from,
-        labels=[dict(name=name, label=_string(f.label), doc=_string(f.doc)) for name, f in m.fields.items()],
+        version_command=literal(p.version_command.index + 1 if p.version_command else None),
+        version_prefix=string(m.version_prefix), e_series_from=p.e_series_from,
+        labels=[dict(name=f.name, label=string(f.label), doc=string(f.doc)) for f in d.fields],
+        pending_kept=PENDING_KEPT, not_kept=string(d.expert("not_kept").text),
+        reply_not_kept=string(d.expert("reply_not_kept").text),
         runtime=[dict(path=runtime_path("lua", f"lines_{name}"), source=runtime_source("lua", f"lines_{name}"))
                  for name in RUNTIME],
     )
 
 
 def render(p: LinesPlan, banner: list[str]) -> dict[str, str]:
-    text = environment("lua").get_template("lines/lines.lua.j2").render(banner=banner, **view(p))
+    text = environment("lua").get_template("lines/lines.lua.j2").render(banner=banner, **view(dissector(p)))
     return {f"lua/{p.model.name}.lua": text}

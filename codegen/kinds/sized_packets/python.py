@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import field_text, node_text, value_text
 from ...emit import environment
-from ...naming import camel
+from ...lang.python import class_name, string
 from .plan import Form, LayoutPlan, SizedPlan
 
 PACKAGE = "python/urwire/generated"
@@ -93,22 +93,14 @@ def _enum(enum: ir.Enum) -> PyEnum:
     for i, table in enumerate(enum.tables):
         entries = [(v.value, v.name, value_text(v)) for v in table.values]
         tables.append((table.versions.describe(), PyTable(_table_const(enum, i), entries)))
-    return PyEnum(camel(enum.name), node_text(enum), tables[-1][1], tables)
+    return PyEnum(class_name(enum.name), node_text(enum), tables[-1][1], tables)
 
 
 def _form(planned: SizedPlan, form: Form) -> PyForm:
     names = {e.name: _table_const(e, e.tables.index(form.tables[e.name])) for e in planned.enums
              if e.name in form.tables}
     return PyForm(form.low, form.high, class_name(planned.layouts[form.layout].layout.name), form.describe(),
-                  [f'"{k}": {v}' for k, v in names.items()])
-
-
-def class_name(layout_name: str) -> str:
-    """rt_3_10 -> Rt3_10: the version's numbers stay apart."""
-    out = ""
-    for part in layout_name.split("_"):
-        out += ("_" if out[-1:].isdigit() and part[:1].isdigit() else "") + camel(part)
-    return out
+                  [f"{string(k)}: {v}" for k, v in names.items()])
 
 
 def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:

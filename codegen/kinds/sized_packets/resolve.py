@@ -18,6 +18,7 @@ def resolve(spec: LoadedSpec) -> SizedProtocol:
     catalogue = _catalogue(r, data["fields"])
     size_raw = data["framing"]["size"]
     size_field = r.field(dict(size_raw), ["framing", "size"], [])
+    _check_filter_names(r, data["protocol"]["name"], data["fields"], size_field)
     layouts: dict[str, SizedLayout] = {}
     for name, raw in data["layouts"].items():
         layouts[name] = _layout(r, name, raw, catalogue, layouts, size_field.scalar.size)
@@ -39,6 +40,14 @@ def _catalogue(r: _Resolver, raw_fields: list) -> dict[str, ir.AnyField]:
             r.fail(["fields", i, "name"], f"field '{raw['name']}' is described twice")
         out[raw["name"]] = r.field(raw, ["fields", i], [])
     return out
+
+
+def _check_filter_names(r: _Resolver, protocol: str, raw_fields: list, size_field: ir.AnyField) -> None:
+    """Every field and the size field are the filters <protocol>.<name> in both dissectors: no
+    field takes the size field's name."""
+    for i, raw in enumerate(raw_fields):
+        if raw["name"] == size_field.name:
+            r.fail(["fields", i, "name"], f"{protocol}.{raw['name']} is the size field's filter name (framing.size)")
 
 
 def _layout(r: _Resolver, name: str, raw: dict, catalogue: dict, earlier: dict, size_bytes: int) -> SizedLayout:

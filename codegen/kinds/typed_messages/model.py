@@ -48,6 +48,26 @@ class RecipeValuesField:
 
 BodyField = Union[ir.ScalarField, ir.StringField, NamesField, RecipeValuesField]
 
+# Every message field and every variable is one filterable field `<protocol>.<name>` in the
+# dissectors. These names are the dissectors' own: the header's fields, those the state adds, and
+# value_<scalar> (a value a setup reply types otherwise than the variable table).
+OWN_FIELDS = ("length", "type", "kind", "direction", "recipe_frame", "protocol", "unknown_variable")
+VALUE_FIELD_PREFIX = "value_"
+# Declared by the dissectors whether a message has it or not, with this type.
+RECIPE_ID = ("recipe_id", "uint8")
+
+
+def filter_type(f: Union[BodyField, "Variable"]) -> Optional[str]:
+    """The type of the filterable field a message field or variable is: its scalar's name, or
+    string; None for a recipe's values, which show under each variable's own field."""
+    if isinstance(f, Variable):
+        return f.value_type.scalar.name
+    if isinstance(f, RecipeValuesField):
+        return None
+    if isinstance(f, (NamesField, ir.StringField)):
+        return "string"
+    return f.scalar.name
+
 
 @dataclass
 class Message:

@@ -5,7 +5,7 @@ they become the same ir.Enum and ir.Field objects; every problem names its YAML 
 from __future__ import annotations
 
 from ... import ir
-from ...errors import SpecError
+from ...errors import Problem, SpecError
 from ...load import LoadedSpec
 from ...resolve import _Resolver
 from . import model
@@ -41,6 +41,7 @@ class _TypedResolver(_Resolver):
         generations = [model.Generation(g["name"], g["label"], _FIRST.get(g["name"], (0, 0, 0)))
                        for g in data.get("generations", [])]
         variables = self.variables(data["variables"], {t.name: t for t in value_types}, generations)
+        self.check_filter_names(proto["name"], messages, variables)
         return model.Interface(
             name=proto["name"], title=proto["title"], doc=proto["doc"], ports=tuple(proto["ports"]),
             protocol_versions=tuple(proto["protocol_versions"]),
@@ -95,6 +96,30 @@ class _TypedResolver(_Resolver):
                     self.fail(["messages", i], f"'{m.letter}' {'from' if m.from_robot else 'to'} the robot in "
                                                f"protocol {p} is already '{seen[key]}'")
                 seen[key] = m.name
+
+    def check_filter_names(self, protocol: str, messages: list[model.Message], variables: list[model.Variable]) -> None:
+        """Every message field and variable is the filterable field <protocol>.<name> in the
+        dissectors: a name has one type, is none of the dissectors' own, and differs from every
+        other in more than case (the native dissector names its fields in upper case)."""
+        types = dict([model.RECIPE_ID])
+        for f in [f for m in messages for f in m.fields] + list(variables):
+            kind = model.filter_type(f)
+            if kind is None:
+                continue
+            problem = None
+            if f.name in model.OWN_FIELDS or f.name.startswith(model.VALUE_FIELD_PREFIX):
+                problem = f"{protocol}.{f.name} is the dissector's own field"
+            elif f.name in types:
+                if types[f.name] != kind:
+                    problem = f"{protocol}.{f.name} would be both a {types[f.name]} and a {kind} field"
+            else:
+                same = next((n for n in types if n.upper() == f.name.upper()), None)
+                if same is not None:
+                    problem = f"{protocol}.{f.name} and {protocol}.{same} differ only in case"
+                else:
+                    types[f.name] = kind
+            if problem:
+                self.problems.append(Problem(f.where.path, problem, f.where.line))
 
     def recipe_kind(self, raw: dict, parts, by_name: dict) -> model.RecipeKind:
         def named(names, key, want_role, from_robot):

@@ -1,21 +1,22 @@
-"""Python target of the typed-messages kind: the IR -> a view model -> templates/python/typed_messages/
+"""Python target of the typed-messages kind: the plan -> a view model -> templates/python/typed_messages/
 -> generated/python/urwire/generated/<name>.py, imported by the hand-written runtime
 (python/urwire/rtde_records.py for the base classes, python/urwire/rtde.py for a connection).
 
-Every decision (struct formats, the step of each field, enum conversions) is made here; the
+The plan says how a message is read (runs of scalars, the fields between them); what is Python's
+(each run's struct format, the enum conversions, the attributes' types) is decided here, and the
 template only lays the strings out."""
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 
 from ... import ir
 from ...comments import field_text, value_text
 from ...emit import environment
-from ...naming import camel
+from ...lang.python import class_name, string, string_or_none
 from ...view import one_line
 from ...wrap import spread
 from . import model
+from .plan import MessagePlan, TypedPlan
 
 PACKAGE = "python/urwire/generated"
 STRUCT_CODES = {"bool": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H", "int32": "i",
@@ -88,8 +89,7 @@ def _struct_name(message: model.Message, index: int) -> str:
 
 
 def _attr(f, message: model.Message) -> AttrView:
-    unit = json.dumps(f.unit, ensure_ascii=False) if f.unit else "None"
-    metadata = f'{{"label": {json.dumps(f.label, ensure_ascii=False)}, "unit": {unit}}}'
+    metadata = f'{{"label": {string(f.label)}, "unit": {string_or_none(f.unit or None)}}}'
     if isinstance(f, model.NamesField):
         return AttrView(f.name, "list[str]", "names", metadata, f.label + ".")
     if isinstance(f, model.RecipeValuesField):
@@ -99,7 +99,7 @@ def _attr(f, message: model.Message) -> AttrView:
     if isinstance(f, ir.StringField):
         return AttrView(f.name, "str", "text", metadata, doc)
     if f.enum is not None:
-        return AttrView(f.name, f"Union[{camel(f.enum.name)}, int]", "int", metadata, doc)
+        return AttrView(f.name, f"Union[{class_name(f.enum.name)}, int]", "int", metadata, doc)
     if f.scalar.is_bool:
         return AttrView(f.name, "Union[bool, int]", "bool", metadata, doc)
     if f.scalar.is_float:
@@ -107,77 +107,65 @@ def _attr(f, message: model.Message) -> AttrView:
     return AttrView(f.name, "int", "int", metadata, doc)
 
 
-def _steps(message: model.Message) -> tuple[list[StepView], list[tuple[str, str]]]:
-    """Consecutive scalars become one Struct; every other field is a step of its own."""
+def _steps(mp: MessagePlan) -> tuple[list[StepView], list[tuple[str, str]]]:
+    """The plan's steps: each run one Struct, each prefixed text its prefix's Struct."""
     steps: list[StepView] = []
     structs: list[tuple[str, str]] = []
-    run: list[ir.ScalarField] = []
-
-    def close_run():
-        if not run:
-            return
-        name = _struct_name(message, len(structs))
-        structs.append((name, ">" + "".join(STRUCT_CODES[f.scalar.name] for f in run)))
-        converts = tuple((f.name, camel(f.enum.name) if f.enum else "_BOOL") for f in run
-                         if f.enum is not None or f.scalar.is_bool)
-        steps.append(StepView("run", [f.name for f in run], name, sum(f.scalar.size for f in run),
-                              run[0].name, converts))
-        run.clear()
-
-    for f in message.fields:
-        if isinstance(f, ir.ScalarField):
-            run.append(f)
-            continue
-        close_run()
-        if isinstance(f, model.NamesField):
-            steps.append(StepView("names", [f.name], separator=f.separator))
-        elif isinstance(f, model.RecipeValuesField):
-            steps.append(StepView("values", [f.name]))
-        elif f.length is not None:
-            name = _struct_name(message, len(structs))
+    for step in mp.steps:
+        f = step.fields[0]
+        if step.kind == "run":
+            name = _struct_name(mp.message, len(structs))
+            structs.append((name, ">" + "".join(STRUCT_CODES[g.scalar.name] for g in step.fields)))
+            converts = tuple((g.name, class_name(g.enum.name) if g.enum else "_BOOL") for g in step.fields
+                             if g.enum is not None or g.scalar.is_bool)
+            steps.append(StepView("run", [g.name for g in step.fields], name, step.size, f.name, converts))
+        elif step.kind == "prefixed_text":
+            name = _struct_name(mp.message, len(structs))
             structs.append((name, ">" + STRUCT_CODES[f.length.name]))
             steps.append(StepView("prefixed_text", [f.name], name, path=f.name))
+        elif step.kind == "names":
+            steps.append(StepView("names", [f.name], separator=f.separator))
         else:
-            steps.append(StepView("rest_text", [f.name]))
-    close_run()
+            steps.append(StepView(step.kind, [f.name]))
     return steps, structs
 
 
-def _message(m: model.Message) -> MessageView:
-    steps, structs = _steps(m)
+def _message(mp: MessagePlan) -> MessageView:
+    m = mp.message
+    steps, structs = _steps(mp)
     protocols = tuple_text([str(p) for p in m.protocols])
     doc = m.label + "." + (" " + m.doc if m.doc else "")
-    return MessageView(camel(m.name), m.name, m.code, m.letter, m.from_robot, protocols, m.label, doc,
+    return MessageView(class_name(m.name), m.name, m.code, m.letter, m.from_robot, protocols, m.label, doc,
                        [_attr(f, m) for f in m.fields], steps, structs)
 
 
 def _enum(e: ir.Enum) -> dict:
-    return {"cls": camel(e.name), "doc": e.doc,
+    return {"cls": class_name(e.name), "doc": e.doc,
             "members": [{"name": v.name, "value": v.value, "doc": value_text(v)} for v in e.values]}
 
 
 def _variable(v: model.Variable) -> dict:
-    since = ", ".join(f'"{g}": "{v.since_text(g)}"' for g in v.since)
-    unit = json.dumps(v.unit, ensure_ascii=False) if v.unit else "None"
-    return {"args": [f'"{v.name}"', f'"{v.value_type.name}"', f'"{v.direction}"',
-                     json.dumps(v.label, ensure_ascii=False), unit, f"{{{since}}}"]}
+    since = ", ".join(f"{string(g)}: {string(v.since_text(g))}" for g in v.since)
+    return {"args": [string(v.name), string(v.value_type.name), string(v.direction),
+                     string(v.label), string_or_none(v.unit or None), f"{{{since}}}"]}
 
 
-def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
-    messages = [_message(m) for m in interface.messages]
+def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
+    interface = planned.interface
+    messages = [_message(mp) for mp in planned.messages]
     by_name = {m.name: m for m in messages}
     kinds = [{"name": k.name, "const": k.name.upper(), "from_robot": k.data_from_robot,
               "requests": tuple_text([by_name[r.name].cls for r in k.requests]),
               "replies": tuple_text([by_name[r.name].cls for r in k.replies])} for k in interface.recipe_kinds]
-    dispatch = [{"code": m.code, "letter": m.letter, "from_robot": m.from_robot, "protocol": p,
-                 "cls": camel(m.name)} for m in interface.messages for p in m.protocols]
+    dispatch = [{"code": mp.message.code, "letter": mp.message.letter, "from_robot": mp.message.from_robot,
+                 "protocol": p, "cls": by_name[mp.message.name].cls} for mp, p in planned.dispatch]
     view = {
         "banner": banner,
         "p": interface,
         "ports": tuple_text([str(p) for p in interface.ports]),
         "protocol_versions": tuple_text([str(p) for p in interface.protocol_versions]),
         "max_pending": interface.max_pending_setups,
-        "refusals": tuple_text([f'"{r.word}"' for r in interface.refusals]),
+        "refusals": tuple_text([string(r.word) for r in interface.refusals]),
         "recipe_kinds": tuple_text([k.name.upper() for k in interface.recipe_kinds]),
         "header_format": ">" + STRUCT_CODES[interface.length.name] + STRUCT_CODES[interface.type.name],
         "enums": [_enum(e) for e in interface.enums],

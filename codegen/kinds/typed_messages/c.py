@@ -1,17 +1,18 @@
-"""C target of the typed-messages kind: the IR -> a view model -> templates/c/typed_messages/ ->
+"""C target of the typed-messages kind: the plan -> a view model -> templates/c/typed_messages/ ->
 generated/c/<name>.{h,c}, with the hand-written runtime of runtime/c/<name>_*.{h,c} joined in
 (each section naming its file). C99, no malloc: the connection's state is the caller's struct.
 
 Every decision (C types, member kinds, tables) is made here; the templates lay them out."""
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 
 from ... import ir
 from ...emit import environment, runtime_path, runtime_source
+from ...lang import c
 from ...wrap import spread
 from . import model
+from .plan import Step, TypedPlan
 
 FOLDER = "c"
 C_TYPES = {"bool": "uint8_t", "int8": "int8_t", "uint8": "uint8_t", "int16": "int16_t", "uint16": "uint16_t",
@@ -35,7 +36,6 @@ class MemberView:
     name: str
     ctype: str
     kind: str                 # RTDE_MEMBER_*: how the JSON writer reads it
-    step: str                 # scalar | text | prefixed_text | values
     reader: str = ""
     size: int = 0
     prefix: int = 0
@@ -44,23 +44,22 @@ class MemberView:
 
 def _member(f) -> MemberView:
     if isinstance(f, model.NamesField):
-        return MemberView(f.name, "rtde_text", "RTDE_MEMBER_NAMES", "text", comment=f.label)
+        return MemberView(f.name, "rtde_text", "RTDE_MEMBER_NAMES", comment=f.label)
     if isinstance(f, model.RecipeValuesField):
-        return MemberView(f.name, "rtde_data", "RTDE_MEMBER_VALUES", "values", comment=f.label)
+        return MemberView(f.name, "rtde_data", "RTDE_MEMBER_VALUES", comment=f.label)
     if isinstance(f, ir.StringField):
         if f.length is None:
-            return MemberView(f.name, "rtde_text", "RTDE_MEMBER_TEXT", "text", comment=f.label)
-        return MemberView(f.name, "rtde_text", "RTDE_MEMBER_TEXT", "prefixed_text", prefix=f.length.size,
+            return MemberView(f.name, "rtde_text", "RTDE_MEMBER_TEXT", comment=f.label)
+        return MemberView(f.name, "rtde_text", "RTDE_MEMBER_TEXT", prefix=f.length.size,
                           comment=f.label)
     s = f.scalar.name
     comment = f.label + (f" ({f.unit})" if f.unit else "") + (f"; enum {f.enum.name}" if f.enum else "")
-    return MemberView(f.name, C_TYPES[s], MEMBER_KINDS[s], "scalar", READERS[s], f.scalar.size, comment=comment)
+    return MemberView(f.name, C_TYPES[s], MEMBER_KINDS[s], READERS[s], f.scalar.size, comment=comment)
 
 
 @dataclass
 class StepView:
-    """How the decoder reads: consecutive scalars as one run behind one bounds check (named by its
-    first field, as the Python decoder's struct run is), every other field alone."""
+    """A step of the plan as the decoder template reads it."""
     kind: str                 # run | text | prefixed_text | values
     members: list[MemberView]
     size: int = 0
@@ -71,57 +70,56 @@ class StepView:
         return [f"out->{m.name} = ({m.ctype}){m.reader};" for m in self.members]
 
 
-def _steps(members: list[MemberView]) -> list[StepView]:
-    steps: list[StepView] = []
-    for m in members:
-        if m.step == "scalar" and steps and steps[-1].kind == "run":
-            steps[-1].members.append(m)
-            steps[-1].size += m.size
-        elif m.step == "scalar":
-            steps.append(StepView("run", [m], m.size))
-        else:
-            steps.append(StepView(m.step, [m]))
-    return steps
+# A plan step's kind as the C decoder reads it: a text running to the end is one, names or not.
+STEP_KINDS = {"run": "run", "names": "text", "rest_text": "text", "prefixed_text": "prefixed_text",
+              "values": "values"}
 
 
-def _c_string(text) -> str:
-    return "NULL" if text is None else json.dumps(text, ensure_ascii=False)
+def _step(step: Step, members: dict[str, MemberView]) -> StepView:
+    return StepView(STEP_KINDS[step.kind], [members[f.name] for f in step.fields],
+                    step.size if step.kind == "run" else 0)
 
 
-def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
+def _kind(index) -> int:
+    return -1 if index is None else index
+
+
+def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
+    interface = planned.interface
     name = interface.name
-    kinds = {k.name: i for i, k in enumerate(interface.recipe_kinds)}
-    kind_of_request = {m.name: kinds[k.name] for k in interface.recipe_kinds for m in k.requests}
-    kind_of_reply = {m.name: kinds[k.name] for k in interface.recipe_kinds for m in k.replies}
     layouts = []
-    for m in interface.messages:
+    for mp in planned.messages:
+        m = mp.message
         members = [_member(f) for f in m.fields]
+        by_name = {member.name: member for member in members}
         layouts.append({
             "name": m.name, "const": f"{name.upper()}_LAYOUT_{m.name.upper()}", "label": m.label,
             "code": m.code, "letter": m.letter, "from_robot": "true" if m.from_robot else "false",
-            "protocols": m.protocols, "members": members, "steps": _steps(members),
-            "request_kind": kind_of_request.get(m.name, -1), "reply_kind": kind_of_reply.get(m.name, -1),
+            "protocols": m.protocols, "members": members, "steps": [_step(s, by_name) for s in mp.steps],
+            "request_kind": _kind(mp.request_kind), "reply_kind": _kind(mp.reply_kind),
             "has_recipe_id": "true" if m.recipe_values and m.field_named("recipe_id") else "false",
             "is_data": "true" if m.recipe_values else "false",
         })
-    dispatch = [{"code": m.code, "letter": m.letter, "from_robot": "true" if m.from_robot else "false", "protocol": p,
-                 "const": f"{name.upper()}_LAYOUT_{m.name.upper()}"} for m in interface.messages for p in m.protocols]
-    codes = sorted({(m.code, m.letter) for m in interface.messages} | {(u.code, chr(u.code)) for u in interface.undocumented})
+    dispatch = [{"code": mp.message.code, "letter": mp.message.letter,
+                 "from_robot": "true" if mp.message.from_robot else "false", "protocol": p,
+                 "const": f"{name.upper()}_LAYOUT_{mp.message.name.upper()}"} for mp, p in planned.dispatch]
     variables = []
     for v in interface.variables:
-        items = [_c_string(v.name), f"{name.upper()}_VT_{v.value_type.name}", "true" if v.direction == "output" else "false",
-                 _c_string(v.label), _c_string(v.unit), _c_string(v.since_text("cb3")), _c_string(v.since_text("eseries"))]
+        items = [c.string(v.name), f"{name.upper()}_VT_{v.value_type.name}", "true" if v.direction == "output" else "false",
+                 c.string(v.label), c.string_or_null(v.unit), c.string(v.since_text("cb3")),
+                 c.string(v.since_text("eseries"))]
         variables.append(spread(items, "{", "},", "    "))
     view = {
         "banner": banner, "p": interface, "prefix": name, "PREFIX": name.upper(),
         "value_types": [{"name": t.name, "size": t.scalar.size, "count": t.count, "kind": VALUE_KIND[t.scalar.name]}
                         for t in interface.value_types],
-        "layouts": layouts, "dispatch": dispatch, "codes": codes, "variables": variables,
+        "layouts": layouts, "dispatch": dispatch, "codes": planned.codes, "variables": variables,
         "refusals": [r.word for r in interface.refusals],
         "undocumented": interface.undocumented,
         "runtime_h": {n: _joined(n) for n in RUNTIME_H}, "runtime_c": {n: _joined(n) for n in RUNTIME_C},
     }
     env = environment(FOLDER)
+    env.filters["c"] = c.string
     return {f"{FOLDER}/{name}.h": env.get_template("typed_messages/interface.h.j2").render(**view),
             f"{FOLDER}/{name}.c": env.get_template("typed_messages/interface.c.j2").render(**view)}
 

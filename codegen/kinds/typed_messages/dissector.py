@@ -1,0 +1,147 @@
+"""The Wireshark model of a typed-messages interface, computed once from the plan: every field a
+dissector declares (its filter name, label, type, unit and value names), each message's steps,
+the variable table and the value types, as plain data that lua.py and epan.py both render.
+
+Every message field and every variable is one filterable field `<name>.<field>`, first come first
+kept (its label is the first one's); resolve.py has checked that each name has one type and is
+none of the dissector's own (model.OWN_FIELDS, value_<scalar>)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+from ... import ir
+from . import model
+from .plan import MessagePlan, TypedPlan
+
+
+@dataclass(frozen=True)
+class Field:
+    name: str                          # filtered as <protocol>.<name>
+    label: str
+    type: str                          # a scalar's name (uint8, float64), or string, framenum or bytes
+    unit: Optional[str] = None         # an integer's unit, shown after its value
+    enum: Optional[str] = None         # the enum whose names an integer shows; TYPE_CODES: the type codes
+
+    @property
+    def is_float(self) -> bool:
+        return self.type in ("float32", "float64")
+
+    @property
+    def is_integer(self) -> bool:
+        return self.type in ir.SCALARS and not self.is_float and self.type != "bool"
+
+
+TYPE_CODES = "type"                    # Field.enum of the header's type: the letters of the type codes
+
+
+@dataclass(frozen=True)
+class Step:
+    """How the dissector shows one field of a message."""
+    kind: str                          # scalar | names | values | prefixed_text | rest_text
+    name: str
+    scalar: Optional[ir.Scalar] = None
+    size: int = 0                      # a scalar's bytes; a prefixed text's prefix bytes
+    separator: str = ""
+    unit: Optional[str] = None         # what a scalar's item shows after its value
+
+
+@dataclass(frozen=True)
+class Message:
+    plan: MessagePlan
+    steps: tuple[Step, ...]
+
+    @property
+    def message(self) -> model.Message:
+        return self.plan.message
+
+
+@dataclass(frozen=True)
+class Variable:
+    """A row of the variable table: its field is the one named like it."""
+    name: str
+    value_type: str
+    unit: Optional[str]                # a double's unit, shown after its value (integers' is their field's)
+
+
+@dataclass(frozen=True)
+class ValueType:
+    name: str
+    scalar: ir.Scalar
+    size: int                          # an item's bytes
+    count: int
+    field: str                         # the field a value of this type shows in when a reply retypes it
+
+
+@dataclass(frozen=True)
+class Dissector:
+    plan: TypedPlan
+    header: tuple[Field, ...]          # the header's fields and the dissector's own
+    values: tuple[Field, ...]          # value_<scalar>: a value the setup reply types otherwise
+    fields: tuple[Field, ...]          # the message fields and the variables, one per name
+    enums: tuple[ir.Enum, ...]
+    messages: tuple[Message, ...]      # spec order
+    dispatch: tuple[tuple[Message, int], ...]   # each message in each protocol version it is sent in
+    variables: tuple[Variable, ...]    # one per name, spec order
+    value_types: tuple[ValueType, ...]
+
+    @property
+    def all_fields(self) -> tuple[Field, ...]:
+        return self.header + self.values + self.fields
+
+
+def value_field(scalar: ir.Scalar) -> str:
+    return f"{model.VALUE_FIELD_PREFIX}{scalar.name}"
+
+
+def _header() -> tuple[Field, ...]:
+    """model.OWN_FIELDS, labelled and typed."""
+    return (Field("length", "Size", "uint16"), Field("type", "Type", "uint8", enum=TYPE_CODES),
+            Field("kind", "Message", "string"), Field("direction", "Direction", "string"),
+            Field("recipe_frame", "Recipe set up in frame", "framenum"),
+            Field("protocol", "Protocol version in force", "uint8"),
+            Field("unknown_variable", "Variable not in the table", "bytes"))
+
+
+def _scalar(name: str, label: str, scalar: ir.Scalar, unit: Optional[str], enum: Optional[ir.Enum]) -> Field:
+    integer = not (scalar.is_float or scalar.is_bool)
+    return Field(name, label, scalar.name, unit if integer else None, enum.name if enum and integer else None)
+
+
+def _body_field(f) -> Optional[Field]:
+    kind = model.filter_type(f)
+    if kind is None:
+        return None
+    if kind == "string":
+        return Field(f.name, f.label, kind)
+    return _scalar(f.name, f.label, f.scalar, f.unit, f.enum)
+
+
+def _step(f) -> Step:
+    if isinstance(f, model.NamesField):
+        return Step("names", f.name, separator=f.separator)
+    if isinstance(f, model.RecipeValuesField):
+        return Step("values", f.name)
+    if isinstance(f, ir.StringField):
+        return Step("rest_text", f.name) if f.length is None else Step("prefixed_text", f.name, size=f.length.size)
+    return Step("scalar", f.name, f.scalar, f.scalar.size, unit=f.unit)
+
+
+def dissector(planned: TypedPlan) -> Dissector:
+    interface = planned.interface
+    header = _header()
+    values = tuple(Field(value_field(s), f"Value of the setup reply's type ({s.name})", s.name)
+                   for s in planned.value_scalars)
+    fields: dict[str, Field] = {model.RECIPE_ID[0]: Field(model.RECIPE_ID[0], "Recipe id", model.RECIPE_ID[1])}
+    for f in [_body_field(f) for m in interface.messages for f in m.fields] \
+            + [_scalar(v.name, v.label, v.value_type.scalar, v.unit, None) for v in interface.variables]:
+        if f is not None:
+            fields.setdefault(f.name, f)
+    messages = tuple(Message(mp, tuple(_step(f) for f in mp.message.fields)) for mp in planned.messages)
+    by_name = {m.message.name: m for m in messages}
+    variables = tuple(Variable(v.name, v.value_type.name, v.unit if v.value_type.scalar.is_float else None)
+                      for v in {v.name: v for v in interface.variables}.values())
+    value_types = tuple(ValueType(t.name, t.scalar, t.scalar.size, t.count, value_field(t.scalar))
+                        for t in interface.value_types)
+    return Dissector(planned, header, values, tuple(fields.values()), tuple(interface.enums), messages,
+                     tuple((by_name[mp.message.name], p) for mp, p in planned.dispatch), variables, value_types)

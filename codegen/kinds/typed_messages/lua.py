@@ -1,0 +1,111 @@
+"""Lua target of the typed-messages kind: the dissector model (dissector.py) -> plain data ->
+templates/lua/typed_messages/ -> generated/lua/<name>.lua, one Wireshark protocol that loads on its
+own, with the hand-written runtime of runtime/lua/<name>_*.lua joined after the tables."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ...lang import lua as lang
+from ...wrap import spread
+from .dissector import TYPE_CODES, Dissector, Field, Step, dissector
+from .plan import TypedPlan
+
+# Wireshark field constructors by field type.
+PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16", "uint16": "uint16",
+              "int32": "int32", "uint32": "uint32", "int64": "int64", "uint64": "uint64",
+              "float32": "float", "float64": "double", "string": "string", "framenum": "framenum", "bytes": "bytes"}
+# How the runtime reads a scalar from a TvbRange (runtime/lua/rtde_dissect.lua's READ table).
+READER = {"bool": "uint", "int8": "int", "uint8": "uint", "int16": "int", "uint16": "uint", "int32": "int",
+          "uint32": "uint", "int64": "int64", "uint64": "uint64", "float32": "float", "float64": "float"}
+TYPE_NAMES = "TYPE_NAMES"               # the Lua table of the type codes' letters
+
+
+@dataclass
+class FieldView:
+    name: str
+    call: str                # the ProtoField constructor
+    label: str
+    args: str                # what follows the label: base and value string, or a description
+    prefix: str = ""
+
+    @property
+    def line(self) -> str:
+        """Its entry of the F table, wrapped under its first argument when long."""
+        return spread([lang.string(f"{self.prefix}.{self.name}"), lang.string(self.label), self.args],
+                      f"[{lang.string(self.name)}] = ProtoField.{self.call}(", "),", "    ")
+
+
+def _enum_table(name: str) -> str:
+    return TYPE_NAMES if name == TYPE_CODES else "VS_" + name.upper()
+
+
+def _args(f: Field) -> str:
+    if f.is_float:
+        return "nil"
+    if not f.is_integer:
+        return "base.NONE"
+    if f.unit:
+        return f'base.UNIT_STRING, {{ {lang.string(" " + f.unit)} }}'
+    return f"base.DEC, {_enum_table(f.enum)}" if f.enum else "base.DEC"
+
+
+def _field(f: Field, prefix: str) -> FieldView:
+    return FieldView(f.name, PROTOFIELD[f.type], f.label, _args(f), prefix)
+
+
+def _unit(unit: Optional[str]) -> str:
+    return lang.string(" " + unit) if unit else "nil"
+
+
+def _step(s: Step) -> str:
+    """A field's step, as a Lua table the runtime's STEP functions read."""
+    name = lang.string(s.name)
+    if s.kind == "names":
+        return f'{{ kind = "names", name = {name}, separator = {lang.string(s.separator)} }}'
+    if s.kind == "prefixed_text":
+        return f'{{ kind = "prefixed_text", name = {name}, prefix = {s.size} }}'
+    if s.kind == "scalar":
+        return (f'{{ kind = "scalar", name = {name}, size = {s.size}, read = "{READER[s.scalar.name]}", '
+                f'unit = {_unit(s.unit)} }}')
+    return f'{{ kind = "{s.kind}", name = {name} }}'
+
+
+def view(d: Dissector) -> dict:
+    interface = d.plan.interface
+    prefix = interface.name
+    messages = [{"key": f"{m.message.code}:{1 if m.message.from_robot else 0}:{p}", "name": m.message.name,
+                 "label": m.message.label, "letter": m.message.letter, "steps": [_step(s) for s in m.steps]}
+                for m, p in d.dispatch]
+    kinds = [{"name": k.name, "from_robot": k.data_from_robot, "requests": [r.name for r in k.requests],
+              "replies": [r.name for r in k.replies]} for k in interface.recipe_kinds]
+    return {
+        "p": interface, "prefix": prefix,
+        "ports": ",".join(str(p) for p in interface.ports),
+        "enums": [{"var": _enum_table(e.name), "members": [(v.value, v.name) for v in e.values]} for e in d.enums],
+        "header": [_field(f, prefix) for f in d.header], "own_values": [_field(f, prefix) for f in d.values],
+        "fields": [_field(f, prefix) for f in d.fields],
+        "messages": messages, "kinds": kinds,
+        "value_types": [{"name": t.name, "size": t.size, "count": t.count, "read": READER[t.scalar.name],
+                         "field": t.field} for t in d.value_types],
+        "variables": [{"name": v.name, "unit": _unit(v.unit), "type": v.value_type} for v in d.variables],
+        "refusals": [r.word for r in interface.refusals],
+        "max_pending": interface.max_pending_setups,
+        "codes": d.plan.codes,
+        "undocumented": [{"code": u.code, "name": u.name, "label": u.label} for u in interface.undocumented],
+        "runtime": [{"path": runtime_path("lua", n), "source": runtime_source("lua", n)} for n in runtime_files(prefix)],
+    }
+
+
+def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
+    env = environment("lua")
+    env.filters["lua"] = lang.literal
+    text = env.get_template("typed_messages/interface.lua.j2").render(banner=banner, **view(dissector(planned)))
+    return {f"lua/{planned.interface.name}.lua": text}
+
+
+def runtime_files(prefix: str) -> list[str]:
+    """The interface's own runtime files (runtime/lua/<name>_*.lua): the state first, then the dissector."""
+    found = sorted(p.name for p in (RUNTIME_FOLDER / "lua").glob(f"{prefix}_*.lua"))
+    return sorted(found, key=lambda n: (not n.endswith("_state.lua"), n))
