@@ -19,8 +19,8 @@ from codegen.compile import compile_text
 BASE_SPEC = Path(__file__).resolve().parents[1] / "fixtures" / "ur_primary_5_9_only.yaml"
 from codegen.emit import TEMPLATES
 from codegen.errors import SpecError
-from codegen.plan import plan
-from codegen.targets import lua
+from codegen.kinds.packages.plan import plan
+from codegen.kinds.packages import lua
 from codegen.view import Step
 
 

@@ -12,7 +12,7 @@ from typing import Optional
 from ... import ir
 from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
 from ...errors import Problem, SpecError
-from ...targets.lua import lua_literal, lua_str
+from ...lang.lua import literal as lua_literal, string as lua_str
 from ...wrap import spread
 from . import model
 

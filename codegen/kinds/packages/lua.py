@@ -16,13 +16,15 @@ import textwrap
 from dataclasses import dataclass
 from typing import Optional
 
-from .. import ir, plan, wrap
-from ..comments import node_text
-from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
-from ..errors import Problem, SpecError
-from ..lang.lua import field as lua_field, literal as lua_literal, string as lua_str, text as lua_text
-from ..naming import layout_label, table_suffix, wireshark_field, words
-from ..view import Step
+from ... import ir
+from ...comments import node_text
+from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ...errors import Problem, SpecError
+from ...lang.lua import field as lua_field, literal as lua_literal, string as lua_str, text as lua_text
+from ...naming import words
+from ...view import Step
+from . import model, plan
+from .naming import layout_label, table_suffix, wireshark_field
 
 OUT = "lua/urwire.lua"
 
@@ -195,7 +197,7 @@ class _Builder:
             wide = self.wide.get(key, s)
             data["value"] = s.name != wide.name
 
-    def header_field(self, key: str, h: ir.HeaderField) -> str:
+    def header_field(self, key: str, h: model.HeaderField) -> str:
         """ur.length, ur.type, ur.package.*: outside the owner.field scheme."""
         return self.add_field(PField(key, "integer", PROTOFIELD[h.scalar.name], f"ur.{key}", h.label, h.doc,
                                      base="DEC", vs=self.enum_var[h.enum.name] if h.enum is not None else None,
@@ -346,7 +348,7 @@ class _Builder:
                                                                   s.field.name, set(), None) for s in slots]))
         return var
 
-    def check_summary(self, layout: ir.Layout, descriptors: list[Step], show: dict) -> None:
+    def check_summary(self, layout: model.Layout, descriptors: list[Step], show: dict) -> None:
         """The Info column reads a summary from the raw bytes (runtime/info.lua): each field must
         be one it can show, after fields it can step over (fixed ones, texts, version-gated parts)."""
         missing = set(show)
@@ -376,7 +378,7 @@ class _Builder:
             self.problems.append(layout.where.problem(
                 f"lua target: the summary's field '{name}' comes after a field the Info column cannot step over"))
 
-    def shown_layout(self, lay: ir.Layout, choice_plan: plan.LayoutPlan) -> tuple[str, bool]:
+    def shown_layout(self, lay: model.Layout, choice_plan: plan.LayoutPlan) -> tuple[str, bool]:
         """The descriptor list of a package or subtype, its summary fields marked `show` with the
         text put before each; and whether it has a summary."""
         show = {name: before for before, name in lay.summary}
@@ -404,7 +406,7 @@ class _Builder:
         return out
 
     @staticmethod
-    def version_dependent(mp: plan.MessagePlan, lay: ir.Layout) -> bool:
+    def version_dependent(mp: plan.MessagePlan, lay: model.Layout) -> bool:
         """True when reading this layout, or choosing it, depends on the software version."""
         return lay.struct.needs_version or not lay.versions.unbounded or len(mp.variants[lay.code.value]) > 1
 
@@ -572,7 +574,7 @@ class _Builder:
 
 def view_model(protocol_plan: plan.ProtocolPlan) -> dict:
     """The dissector's model: fields, value strings, layouts (descriptors), messages and their forms.
-    The native dissector (targets/epan.py) renders the same model, so that the two stay twins."""
+    The native dissector (epan.py) renders the same model, so that the two stay twins."""
     return _Builder(protocol_plan).build()
 
 

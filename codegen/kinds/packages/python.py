@@ -11,13 +11,15 @@ import json
 from dataclasses import dataclass, field
 from typing import Optional
 
-from .. import ir, plan
-from ..emit import environment
-from ..errors import Problem, SpecError
-from ..comments import field_text, node_text, value_text
-from ..view import Step, one_line
-from ..naming import (camel, layout_label, py_enum_class, py_item_class, py_layout_class, py_lookup,
-                      py_message_class, py_table_class, words)
+from ... import ir
+from ...emit import environment
+from ...errors import Problem, SpecError
+from ...comments import field_text, node_text, value_text
+from ...view import Step, one_line
+from ...naming import words
+from . import model, plan
+from .naming import (layout_label, py_enum_class, py_item_class, py_layout_class, py_lookup, py_message_class,
+                     py_table_class)
 
 # The generated subpackage urwire.generated; the hand-written package is python/urwire/.
 PACKAGE = "python/urwire/generated"
@@ -428,7 +430,7 @@ class _Target:
                 classes[id(c.layout)].encoder_by_segment = self.encoder_by_segment(mp, c.layout)
 
     @staticmethod
-    def encoder_by_segment(mp: plan.MessagePlan, layout: ir.Layout) -> str:
+    def encoder_by_segment(mp: plan.MessagePlan, layout: model.Layout) -> str:
         """For a layout of several forms: the index of its encoder in each segment (that of the
         form its code takes there; where that is another layout's form, its last)."""
         forms = mp.forms_of(layout)
@@ -507,7 +509,7 @@ class _Target:
                     + STRUCT_CODES[p.package_type.scalar.name])
 
 
-def enum_views(p: ir.Protocol) -> list[dict]:
+def enum_views(p: model.Protocol) -> list[dict]:
     views = []
     for e in p.enums.values():
         tables = []
@@ -522,7 +524,7 @@ def enum_views(p: ir.Protocol) -> list[dict]:
     return views
 
 
-def value_kind_views(p: ir.Protocol) -> list[dict]:
+def value_kind_views(p: model.Protocol) -> list[dict]:
     """Per value-type table: code -> (name, layout, struct format, is bool), and the fewest bytes a value takes."""
     out = []
     for t in p.value_type.tables:

@@ -12,16 +12,14 @@ the tables is hand-written C in runtime/epan/ur_*.c, joined after the generated 
 """
 from __future__ import annotations
 
-import re
 from typing import Optional
 
-from .. import epan_c, ir, plan, wrap
-from ..epan_c import value_literal
-from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
-from ..errors import SpecError
-from ..lang.c import identifier as ident, literal as c_literal, prose as c_text, string as c_str
-from ..view import Step
-from . import lua
+from ... import epan_c, ir
+from ...epan_c import value_literal
+from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ...lang.c import identifier as ident, literal as c_literal, prose as c_text, string as c_str
+from ...view import Step
+from . import lua, plan
 
 OUT = "epan/packet-ur.c"
 FOLDER = "epan"
