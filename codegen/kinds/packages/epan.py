@@ -1,25 +1,23 @@
-"""epan target: the plan -> a view model of plain data -> templates/epan/packet-ur.c.j2 +
+"""epan target: the dissector model (dissector.py) -> templates/epan/packet-ur.c.j2 +
 runtime/epan/ur_*.c, one native Wireshark dissector (generated/epan/packet-ur.c), the twin of
 the Lua dissector (generated/lua/urwire.lua).
 
 The two must be interchangeable (same protocol, field abbreviations, names, types, bases, value
-strings, tree, Info column and expert infos), so the fields, the layouts' descriptors and the
-forms of every type code come from the Lua target's model (lua.view_model), which decides them
-once over the plan; this module only maps that model to C: hf indices by a generated enum, the
-descriptors as const tables (as upstream's generated packet-eti.c walks its fields), the forms and
-segments of the version axis as tables the runtime looks a version up in. The code that walks
-the tables is hand-written C in runtime/epan/ur_*.c, joined after the generated tables.
+strings, tree, Info column and expert infos), so both render the one model that decides the
+fields, the layouts' descriptors and the forms of every type code; this module only spells it in
+C: hf indices by a generated enum, the descriptors as const tables (as upstream's generated
+packet-eti.c walks its fields), the forms and segments of the version axis as tables the runtime
+looks a version up in. The code that walks the tables is hand-written C in runtime/epan/ur_*.c,
+joined after the generated tables.
 """
 from __future__ import annotations
 
 from typing import Optional
 
 from ... import epan_c, ir
-from ...epan_c import value_literal
 from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
-from ...lang.c import identifier as ident, literal as c_literal, prose as c_text, string as c_str
-from ...view import Step
-from . import lua, plan
+from ...lang.c import identifier as ident, literal as c_literal, prose as c_text, string as c_str, value_key
+from . import dissector
 
 OUT = "epan/packet-ur.c"
 FOLDER = "epan"
@@ -34,9 +32,11 @@ RUNTIME_CODE = ("ur_versions.c", "tshark_fields.c", "ur_wanted.c", "ur_items.c",
 # ur_wanted_upstream.c stands in for ur_wanted.c (every package built), with no ur.named_fields_only.
 UPSTREAM_STAND_INS = {"tshark_fields.c": None, "ur_wanted.c": "ur_wanted_upstream.c"}
 
+# The field type of a field: by its scalar (integer, float, bool), else by its shape.
 FT = {"int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16", "uint16": "FT_UINT16", "int32": "FT_INT32",
-      "uint32": "FT_UINT32", "int64": "FT_INT64", "uint64": "FT_UINT64", "float": "FT_FLOAT",
-      "double": "FT_DOUBLE", "bool": "FT_BOOLEAN", "none": "FT_NONE", "string": "FT_STRING", "bytes": "FT_BYTES"}
+      "uint32": "FT_UINT32", "int64": "FT_INT64", "uint64": "FT_UINT64", "float32": "FT_FLOAT",
+      "float64": "FT_DOUBLE", "bool": "FT_BOOLEAN", "flag": "FT_BOOLEAN", "none": "FT_NONE", "text": "FT_STRING",
+      "bytes": "FT_BYTES"}
 
 # Units of integer fields Wireshark names (epan/unit_strings.h) as the Lua twin shows them (" <unit>"
 # after the value); the others are the dissector's own. Wireshark's volt reads "24V", without the
@@ -88,11 +88,11 @@ ANY_LOW, ANY_HIGH = 0, 0xFFFFFFFF    # an open version bound
 
 
 class _Builder:
-    def __init__(self, protocol_plan: plan.ProtocolPlan):
-        self.plan = protocol_plan
-        self.p = protocol_plan.protocol
-        self.model = lua.view_model(protocol_plan)
-        self.model_fields = {pf.key: pf for pf in self.model["fields"]}
+    """The dissector model (dissector.py) spelled in C: hf indices, value_string arrays, descriptor
+    arrays (a condition group's, bit lists, switches and typed values as arrays of their own)."""
+
+    def __init__(self, d: dissector.Dissector):
+        self.d = d
         self.field_index: dict[str, str] = {}
         self.arrays: list[dict] = []          # descriptor arrays, inner ones first
         self.bit_lists: list[dict] = []
@@ -101,25 +101,50 @@ class _Builder:
         self.keep_slots: dict[str, int] = {}
         self.units: dict[str, str] = {}       # unit -> its own unit_name_string, where Wireshark has none
         self.labels: dict[tuple[str, str], epan_c.UnitLabel] = {}   # (float type, unit) -> its label function
-        self.labelled: set[str] = set()       # the float fields whose label function shows their unit
         self.n_arrays = 0
-        self.used: set[str] = set()           # value strings and names by version that the tables use
+        # Only the value strings the tables use are written: enums whose newest value strings a
+        # field, descriptor or message names, and enums named by version.
+        self.named: set[str] = set()
+        self.by_version: set[str] = set()
+        # Long value strings are looked up by bisection (value_string_ext).
+        self.ext_tables = {self.vs_name(e, t) for e in d.enums for t in e.tables if len(t.entries) >= EXT_STRINGS}
 
     # ---- names ----
 
     def hf(self, key: Optional[str]) -> str:
         return "UR_HF_NONE" if key is None else self.field_index[key]
 
-    def table(self, lua_var: Optional[str]) -> str:
-        """VS.ROBOT_MODE -> ur_vs_robot_mode; NAMES.X -> &ur_names_x; L.x -> &ur_layout_x; the
-        value strings and names by version are noted as used (only those are written)."""
-        if lua_var is None:
+    @staticmethod
+    def vs_name(enum: dissector.EnumStrings, table: Optional[dissector.ValueStrings] = None) -> str:
+        """ur_vs_robot_mode, the newest table; ur_vs_robot_mode_upto3_2 an older one."""
+        table = table or enum.newest
+        return "ur_vs_" + ident(enum.name + (f"_{table.suffix}" if table.suffix else ""))
+
+    @staticmethod
+    def names_name(enum: dissector.EnumStrings) -> str:
+        return f"ur_names_{ident(enum.name)}"
+
+    def vs(self, enum: Optional[dissector.EnumStrings]) -> str:
+        """An enum's newest value strings, noted as used; NULL for none."""
+        if enum is None:
             return "NULL"
-        kind, _, name = lua_var.partition(".")
-        if kind in ("VS", "NAMES"):
-            self.used.add(f"ur_{kind.lower()}_{ident(name)}")
-        return {"VS": f"ur_vs_{ident(name)}", "NAMES": f"&ur_names_{ident(name)}",
-                "L": f"&ur_layout_{ident(name)}", "PART": f"&ur_part_{ident(name)}"}[kind]
+        self.named.add(enum.name)
+        return self.vs_name(enum)
+
+    def names(self, enum: Optional[dissector.EnumStrings]) -> str:
+        """An enum's names by version, noted as used; NULL for an enum whose codes do not depend on it."""
+        if enum is None or not enum.versioned:
+            return "NULL"
+        self.by_version.add(enum.name)
+        return "&" + self.names_name(enum)
+
+    @staticmethod
+    def layout(name: Optional[str]) -> str:
+        return "NULL" if name is None else f"&ur_layout_{ident(name)}"
+
+    @staticmethod
+    def part(name: str) -> str:
+        return f"ur_part_{ident(name)}"
 
     def unit_of(self, unit: Optional[str]) -> Optional[str]:
         if unit is None:
@@ -135,13 +160,6 @@ class _Builder:
         label = self.labels.setdefault((ft, unit), epan_c.unit_label("ur", unit, double=ft == "FT_DOUBLE"))
         return label.ident
 
-    def check_unit(self, key: Optional[str], unit: Optional[str]) -> None:
-        """A read's unit is its field's, which the field's label shows (the runtime adds none)."""
-        pf = self.model_fields.get(key) if key is not None else None
-        shown = lua.unit_text(pf.unit) if pf is not None and pf.key in self.labelled else None
-        if unit != shown:
-            raise ValueError(f"epan target: {key} is read with the unit {unit!r}, its label shows {shown!r}")
-
     def keep_slot(self, name: Optional[str]) -> int:
         """A value kept for a later field (present_if, a switch's selector): its slot, 1-based."""
         if name is None:
@@ -152,32 +170,32 @@ class _Builder:
 
     def fields(self) -> list[dict]:
         out = []
-        for pf in self.model["fields"]:
-            const = f"UR_HF_{ident(pf.key).upper()}"
-            self.field_index[pf.key] = const
-            ft = FT[pf.ctor]
+        for f in self.d.fields:
+            const = f"UR_HF_{ident(f.key).upper()}"
+            self.field_index[f.key] = const
+            ft = FT[f.scalar] if f.shape in ("integer", "float", "bool") else FT[f.shape]
             strings, display = "NULL", "BASE_NONE"
-            if pf.shape == "integer":
-                display = "BASE_HEX" if pf.base == "HEX" else "BASE_DEC"
-                if pf.unit:
+            if f.shape == "integer":
+                display = "BASE_HEX" if f.hex else "BASE_DEC"
+                if f.unit:
                     display += "|BASE_UNIT_STRING"
-                    strings = f"&{self.unit_of(pf.unit)}"
-                elif pf.enum:
-                    strings = self.value_strings_ref(pf.vs)
-                    if strings.startswith("VALS_EXT_PTR"):
-                        display += "|BASE_EXT_STRING"
+                    strings = f"&{self.unit_of(f.unit)}"
+                elif f.enum is not None:
+                    name = self.vs(f.enum)
+                    if name in self.ext_tables:
+                        strings, display = f"VALS_EXT_PTR(&{name}_ext)", display + "|BASE_EXT_STRING"
+                    else:
+                        strings = f"VALS({name})"
             # Wireshark 4.0 shows no unit string of a float field (BASE_UNIT_STRING shows on
             # integers only): its label function does.
-            elif pf.shape == "float" and pf.unit:
+            elif f.shape == "float" and f.unit:
                 display = "BASE_CUSTOM"
-                strings = f"CF_FUNC({self.label_of(ft, pf.unit)})"
-                self.labelled.add(pf.key)
-            elif pf.shape == "flag":
-                display = str(pf.bits)
-            elif pf.shape == "text":
-                display = "BASE_NONE"   # 4.0 has no STR_UNICODE; Lua base.UNICODE and base.ASCII are both that
-            out.append(dict(const=const, label=pf.label, abbr=pf.abbr, ft=ft, display=display, strings=strings,
-                            mask=f"0x{pf.mask:x}" if pf.shape == "flag" else "0x0", blurb=pf.desc))
+                strings = f"CF_FUNC({self.label_of(ft, f.unit)})"
+            elif f.shape == "flag":
+                display = str(f.bits)
+            # A text field is BASE_NONE: 4.0 has no STR_UNICODE; Lua base.UNICODE and base.ASCII are both that.
+            out.append(dict(const=const, label=f.label, abbr=f.filter, ft=ft, display=display, strings=strings,
+                            mask=f"0x{f.mask:x}" if f.shape == "flag" else "0x0", blurb=f.description))
         for key, label, abbr, ft, display, blurb in OWN_FIELDS:
             const = f"UR_HF_{key.upper()}"
             self.field_index["!" + key] = const
@@ -185,32 +203,24 @@ class _Builder:
                             mask="0x0", blurb=blurb))
         return out
 
-    def value_strings_ref(self, lua_var: str) -> str:
-        name = self.table(lua_var)
-        if name in self.ext_tables:
-            return f"VALS_EXT_PTR(&{name}_ext)"
-        return f"VALS({name})"
-
     def enums(self) -> list[dict]:
         """Every enum's value strings that a field, descriptor or message uses; a versioned enum's
         tables by version where something names it by version."""
         out = []
-        for e in self.model["enums"]:
+        for e in self.d.enums:
+            by_version = e.name in self.by_version
             tables = []
-            for t in e["tables"]:
-                name = f"ur_vs_{ident(t['var'][3:])}"
-                entries = sorted(t["entries"], key=lambda kv: kv[0] & 0xFFFFFFFF)
-                ext = name in self.ext_tables
-                if name not in self.used and f"ur_names_{ident(e['upper'])}" not in self.used:
+            for t in e.tables:
+                if not (by_version or (t is e.newest and e.name in self.named)):
                     continue
-                tables.append(dict(name=name, versions=t["versions"], low=self.low(t["low"]), high=self.high(t["high"]),
-                                   ext=ext,
-                                   entries=[(value_literal(v), n) for v, n in entries]))
+                name = self.vs_name(e, t)
+                entries = sorted(t.entries, key=lambda kv: kv[0] & 0xFFFFFFFF)
+                tables.append(dict(name=name, versions=t.versions, low=self.low(t.low), high=self.high(t.high),
+                                   ext=name in self.ext_tables, entries=[(value_key(v), n) for v, n in entries]))
             if not tables:
                 continue
-            out.append(dict(name=e["name"], doc=e["doc"], versioned=e["versioned"] and
-                            f"ur_names_{ident(e['upper'])}" in self.used, tables=tables,
-                            names=f"ur_names_{ident(e['upper'])}", newest=f"ur_vs_{ident(e['upper'])}"))
+            out.append(dict(name=e.name, doc=e.doc, versioned=e.versioned and by_version, tables=tables,
+                            names=self.names_name(e), newest=self.vs_name(e)))
         return out
 
     @staticmethod
@@ -223,67 +233,57 @@ class _Builder:
 
     # ---- descriptors ----
 
-    def array(self, name: str, steps: list[Step]) -> str:
+    def array(self, name: str, descriptors: list[dissector.AnyDescriptor]) -> str:
         """A descriptor array (its inner arrays first); its C name."""
-        rows = [self.descriptor(name, d) for d in steps]
+        rows = [self.descriptor(name, d) for d in descriptors]
         self.arrays.append(dict(name=f"ur_desc_{name}", layout=f"ur_layout_{name}", rows=rows,
                                 first=f"ur_desc_{name}" if rows else "NULL"))
         return name
 
-    def descriptor(self, owner: str, d: Step) -> dict:
+    def descriptor(self, owner: str, d: dissector.AnyDescriptor) -> list[str]:
         row = dict(kind="UR_D_" + d.kind.upper(), hf="UR_HF_NONE", n=0, count=0, size=0, flags=[], keep=0,
                    low=ANY_LOW, high=ANY_HIGH, path=None, show=None, label=None, vs="NULL", names="NULL",
                    inner="NULL", bits="NULL", sw="NULL", values="NULL")
-        data = d.data
-        if d.kind == "cond":
+        if isinstance(d, dissector.Cond):
             self.n_arrays += 1
-            inner = self.array(f"{owner}_cond{self.n_arrays}", data["fields"])
-            row.update(keep=self.keep_slot(data["present_if"]), low=self.low(data["low"]), high=self.high(data["high"]),
-                       inner=f"&ur_layout_{inner}", count=len(data["fields"]))
+            inner = self.array(f"{owner}_cond{self.n_arrays}", d.fields)
+            row.update(keep=self.keep_slot(d.present_if), low=self.low(d.low), high=self.high(d.high),
+                       inner=f"&ur_layout_{inner}", count=len(d.fields))
             return self.members(row)
-        row.update(path=data.get("path"), show=data.get("show"))
-        if "field" in data:
-            row["hf"] = self.hf(data["field"])
-        if d.kind in ("scalar", "bits", "array"):
-            flags = []
-            if data.get("signed"):
-                flags.append("UR_SIGNED")
-            if data.get("float"):
-                flags.append("UR_FLOAT")
-            if data.get("value"):
-                flags.append("UR_VALUE")
-            self.check_unit(data.get("field"), data.get("unit"))
-            row.update(n=data["size"], flags=flags, vs=self.table(data.get("vs")),
-                       names=self.table(data.get("tables")), label=data.get("label"),
-                       keep=self.keep_slot(data.get("keep")), count=data.get("count", 0))
-            if d.kind == "bits":
+        row.update(path=d.path, show=d.show)
+        if getattr(d, "field", None) is not None:
+            row["hf"] = self.hf(d.field)
+        if isinstance(d, dissector.Read):
+            flags = [flag for flag, on in (("UR_SIGNED", d.signed), ("UR_FLOAT", d.float), ("UR_VALUE", d.value))
+                     if on]
+            row.update(n=d.size, flags=flags, names=self.names(d.enum), label=d.label if d.by_version else None)
+            if isinstance(d, dissector.Scalar):
+                row.update(vs=self.vs(d.enum), keep=self.keep_slot(d.keep))
+            if isinstance(d, dissector.Array):
+                row.update(count=d.count)
+            if isinstance(d, dissector.Bits):
                 name = f"{owner}_bits{len(self.bit_lists)}"
-                self.bit_lists.append(dict(name=name, hfs=[self.hf(b) for b in data["bits"]]))
-                row.update(bits=f"ur_bits_{name}", count=len(data["bits"]))
-        elif d.kind == "group":
-            row.update(label=data["label"], count=data["count"] or 0, size=data["size"] or 0,
-                       inner=self.table(data["item"]))
-        elif d.kind == "pstring":
-            row.update(n=data["size"], flags=["UR_SIGNED"] if data["signed"] else [])
-        elif d.kind == "strings":
-            row.update(n=data["term"])
-        elif d.kind == "switch":
+                self.bit_lists.append(dict(name=name, hfs=[self.hf(b) for b in d.bits]))
+                row.update(bits=f"ur_bits_{name}", count=len(d.bits))
+        elif isinstance(d, dissector.Group):
+            row.update(label=d.label, count=d.count or 0, size=d.size or 0, inner=self.layout(d.item))
+        elif isinstance(d, dissector.PString):
+            row.update(n=d.size, flags=["UR_SIGNED"] if d.signed else [])
+        elif isinstance(d, dissector.Strings):
+            row.update(n=d.term)
+        elif isinstance(d, dissector.Switch):
             name = f"{owner}_switch{len(self.switches)}"
-            default = data["default"]
-            for c in [*data["cases"], default]:
-                self.check_unit(c["field"], c.get("unit"))
-            cases = [dict(code=c["code"], hf=self.hf(c["field"]), n=c["size"]) for c in data["cases"]]
-            self.switches.append(dict(name=name, default=dict(hf=self.hf(default["field"]), n=default["size"]),
+            cases = [dict(code=c.code, hf=self.hf(c.field), n=c.size) for c in d.cases]
+            self.switches.append(dict(name=name, default=dict(hf=self.hf(d.default.field), n=d.default.size),
                                       cases=cases))
-            row.update(keep=self.keep_slot(data["sel"]), sw=f"&ur_switch_{name}")
-        elif d.kind == "values":
+            row.update(keep=self.keep_slot(d.sel), sw=f"&ur_switch_{name}")
+        elif isinstance(d, dissector.Values):
             name = f"{owner}_values{len(self.value_lists)}"
-            roles = dict(data["roles"])
-            kinds = dict(data["kinds"])
-            self.value_lists.append(dict(name=name, roles={r: self.hf(k) for r, k in roles.items()},
+            kinds = dict(d.kinds)
+            self.value_lists.append(dict(name=name, roles={r: self.hf(k) for r, k in d.roles},
                                          kinds=[(const, self.hf(kinds.get(k))) for k, const in KIND_CONST.items()],
-                                         string=self.hf(data["string"])))
-            row.update(n=data["term"], label=data["label"], values=f"&ur_values_{name}")
+                                         string=self.hf(d.string)))
+            row.update(n=d.term, label=d.label, values=f"&ur_values_{name}")
         return self.members(row)
 
     @staticmethod
@@ -304,81 +304,62 @@ class _Builder:
         return out
 
     def layouts(self) -> None:
-        for view in self.model["layouts"]:
-            self.array(ident(view.var[2:]), view.descriptors)
+        for layout in self.d.layouts:
+            self.array(ident(layout.name), layout.descriptors)
 
     # ---- messages ----
 
-    def forms(self, owner: str, codes: list[dict]) -> list[dict]:
+    def forms(self, owner: str, codes: list[dissector.Code]) -> list[dict]:
         out = []
         for c in codes:
-            name = f"ur_forms_{owner}_{c['code']}"
-            forms = [dict(part=self.table(f["part"]), sizes=f["sizes"], min=f["min"],
-                          rep=ir.version_number(ir.parse_version(f["rep"])), versions=f["versions"])
-                     for f in c["forms"]]
-            out.append(dict(name=name, code=c["code"], single=c["single"], summary=c.get("summary", False),
-                            segments=c["segments"], by_length=[(b["size"], b["form"]) for b in c["by_length"]],
-                            forms=forms))
+            forms = [dict(part="&" + self.part(f.part.name), sizes=f.sizes, min=f.min, rep=ir.version_number(f.rep),
+                          versions=f.versions) for f in c.forms]
+            out.append(dict(name=f"ur_forms_{owner}_{c.code}", code=c.code, single=c.single, summary=c.summary,
+                            segments=c.segments, by_length=c.by_length, forms=forms))
         return out
 
     def messages(self) -> list[dict]:
         out = []
-        for m in self.model["messages"]:
-            owner = ident(m.var)
-            parts = []
-            for part in m.parts:
-                parts.append(dict(name=self.table(part["var"])[1:], key=part["name"], label=part["label"],
-                                  item=self.hf(part["item"]), layout=self.table(part["layout"]),
-                                  header=self.table(part.get("header")), summary=part.get("summary", False),
-                                  needs_version=part.get("needs_version", False)))
+        for m in self.d.messages:
+            owner = ident(m.forms_table)
+            parts = [dict(name=self.part(part.name), key=part.key, label=part.label, item=self.hf(part.item),
+                          layout=self.layout(part.layout), header=self.layout(part.header), summary=part.summary,
+                          needs_version=part.needs_version) for part in m.parts]
             view = dict(kind="UR_M_" + m.kind.upper(), code=m.code, label=m.label, doc=m.doc, owner=owner,
-                        parts=parts, codes=self.forms(owner, m.codes), body_offset=0, header="NULL",
-                        subtype_hf="UR_HF_NONE", subtype_label=None, names="NULL", tables="NULL",
-                        length_hf="UR_HF_NONE", type_hf="UR_HF_NONE", needs_version=False)
-            if m.kind == "packages":
-                view.update(names=self.table(m.types), tables=self.table(m.type_tables),
-                            length_hf=self.hf(m.length), type_hf=self.hf(m.type), needs_version=m.needs_version)
-            elif m.kind == "subtypes":
-                view.update(body_offset=m.body_offset, header=self.table(m.header), subtype_hf=self.hf(m.subtype_field),
-                            subtype_label=m.subtype_label, names=self.table(m.subtype_names),
-                            tables=self.table(m.subtype_tables))
-            else:
-                view.update(body_offset=m.body_offset)
+                        parts=parts, codes=self.forms(owner, m.codes), body_offset=m.body_offset,
+                        header=self.layout(m.header), subtype_hf=self.hf(m.subtype_field),
+                        subtype_label=m.subtype_label, names=self.vs(m.names), tables=self.names(m.names),
+                        length_hf=self.hf(m.length), type_hf=self.hf(m.type), needs_version=m.needs_version)
             out.append(view)
         return out
 
     def value_tables(self) -> list[dict]:
         out = []
-        for i, t in enumerate(self.model["value_tables"]):
-            kinds = [dict(code=k["code"], name=k["name"], layout="UR_V_" + k["layout"].upper(),
-                          item=KIND_CONST[k["item"]] if k["item"] else "UR_VK_NONE", n=k["size"], count=k["count"],
-                          len=k["length"]) for k in t["kinds"]]
-            out.append(dict(name=f"ur_value_kinds_{i}", low=self.low(t["low"]), high=self.high(t["high"]),
-                            versions=t["versions"], min_size=t["min_size"], kinds=kinds))
+        for i, t in enumerate(self.d.value_tables):
+            kinds = [dict(code=k.code, name=k.name, layout="UR_V_" + k.layout.upper(),
+                          item=KIND_CONST[k.item] if k.item else "UR_VK_NONE", n=k.size, count=k.count,
+                          len=k.length) for k in t.kinds]
+            out.append(dict(name=f"ur_value_kinds_{i}", low=self.low(t.low), high=self.high(t.high),
+                            versions=t.versions, min_size=t.min_size, kinds=kinds))
         return out
 
     def build(self) -> dict:
-        # Long value strings are looked up by bisection (value_string_ext).
-        self.ext_tables = {f"ur_vs_{ident(t['var'][3:])}" for e in self.model["enums"] for t in e["tables"]
-                           if len(t["entries"]) >= EXT_STRINGS}
-        self.used.clear()
+        d = self.d
         fields = self.fields()
         self.layouts()
         messages = self.messages()
-        m = self.model
-        m_names, m_tables = self.table(m["message_type_names"]), self.table(m["message_type_tables"])
+        m_names, m_tables = self.vs(d.message_types), self.names(d.message_types)
         enums = self.enums()
-        version = m["version"]
         return dict(enums=enums, fields=fields, arrays=self.arrays, bit_lists=self.bit_lists,
                     switches=self.switches, value_lists=self.value_lists, messages=messages,
                     value_tables=self.value_tables(), value_kinds=list(KIND_CONST.items()),
                     units=sorted(self.units.items(), key=lambda kv: kv[1]), keep_slots=len(self.keep_slots),
                     labels=list(self.labels.values()),
-                    known_codes=m["known_codes"], message_type_names=m_names,
-                    message_type_tables=m_tables, constants=m["constants"],
-                    version=version, bugfix=version["bugfix"], experts=EXPERTS,
-                    segment_starts=[ir.version_number(s.first) for s in self.plan.segments if s.first],
-                    default_version=ir.version_number(self.p.default_version))
+                    known_codes=d.known_codes, message_type_names=m_names,
+                    message_type_tables=m_tables, constants=d.constants, title=d.title,
+                    version=d.version, bugfix=d.version.bugfix, experts=EXPERTS,
+                    segment_starts=[ir.version_number(v) for v in d.segment_starts],
+                    default_version=ir.version_number(d.default_version))
 
 
 # The scalar kinds a typed value can hold, in the order of the runtime's UR_VK_* (ur_types.c).
@@ -420,7 +401,7 @@ def render(protocol_plan, banner: list[str], upstream: bool = False) -> dict[str
     env = environment(FOLDER)
     env.filters["c"] = c_literal
     env.filters["c_text"] = c_text
-    model = _Builder(protocol_plan).build()
-    ctx = dict(banner=banner, p=protocol_plan.protocol, types=runtime(RUNTIME_TYPES), code=runtime(code),
+    model = _Builder(dissector.dissector(protocol_plan)).build()
+    ctx = dict(banner=banner, types=runtime(RUNTIME_TYPES), code=runtime(code),
                named_fields_preference=not upstream, any_low=ANY_LOW, any_high=ANY_HIGH, **model)
     return {OUT: env.get_template("packet-ur.c.j2").render(**ctx)}
