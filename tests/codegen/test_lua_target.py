@@ -182,9 +182,9 @@ def test_a_summary_the_info_column_cannot_read_is_a_problem():
         render_text(variant(edit))
     found = {(p.path, p.message) for p in caught.value.problems}
     assert ("messages.robot_message.subtypes.safety_mode",
-            "lua target: the summary's field 'after' comes after a field the Info column cannot step over") in found
+            "the summary's field 'after' comes after a field the Info column cannot step over") in found
     assert ("messages.robot_state.packages.robot_mode_data",
-            "lua target: the summary cannot show 'speed_scaling', a float field") in found
+            "the summary cannot show 'speed_scaling', a float field") in found
 
 
 def test_a_filter_name_with_two_types_is_a_problem():

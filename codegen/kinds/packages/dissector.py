@@ -80,6 +80,53 @@ class Field:
     parent: Optional[str] = None      # flag: the key of its integer
 
 
+# The dissector's own fields and expert infos, after the spec's: the Lua dissector declares the
+# same in runtime/lua/declare.lua, in the same order. No spec field may take their filter names.
+OWN_FIELDS = [
+    Field("raw", "bytes", "ur.raw", "Raw",
+          "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),
+    Field("extra", "bytes", "ur.extra", "Extra bytes", "Bytes after the known layout of a package or message."),
+    Field("skipped", "bytes", "ur.skipped", "Skipped bytes",
+          "Bytes skipped while looking for the next plausible message header."),
+    Field("software_version", "text", "ur.software_version", "Software version",
+          "The software version this message is read with (its layouts, enum names and value types): the "
+          "stream's Version message, else the ur.version preference, else what the layout sizes show (\"3.2 to "
+          "3.4 (from layout sizes)\"), else the default.", ascii=True),
+    Field("version_assumed", "bool", "ur.version_assumed", "Version assumed",
+          "True when no Version message was seen on this stream: the version comes from the ur.version "
+          "preference, the layout sizes or the default.", scalar="bool"),
+    Field("unknown_package", "none", "ur.unknown_package", "Unknown package",
+          "A sub-package type the spec does not lay out, kept raw."),
+    Field("urscript", "text", "ur.urscript", "URScript", "Bytes from the client to the robot: URScript program text."),
+]
+
+
+@dataclass(frozen=True)
+class Expert:
+    name: str
+    filter: str
+    group: str                        # malformed, protocol, undecoded, assumption (Wireshark's PI_ groups)
+    severity: str                     # error, warn, note
+    text: str
+
+
+EXPERTS = [
+    Expert("bad_length", "ur.bad_length", "malformed", "error", "Message length out of range (resynchronising)"),
+    Expert("bad_type", "ur.bad_type", "malformed", "error", "Unknown message type (resynchronising)"),
+    Expert("malformed", "ur.malformed", "malformed", "error", "Package or message too short or malformed"),
+    Expert("extra", "ur.extra_bytes", "protocol", "warn", "Bytes after the known layout"),
+    Expert("unknown", "ur.unknown", "undecoded", "note", "Type not laid out by the spec, kept raw"),
+    Expert("assumed", "ur.assumed_version", "assumption", "note", "Software version assumed (no Version message seen)"),
+    Expert("version_range", "ur.version_out_of_range", "protocol", "warn",
+           "Version message number out of range: set aside, the stream is read as major.minor"),
+    Expert("by_length", "ur.layout_by_length", "assumption", "note",
+           "Layout chosen by its length, not by the software version"),
+    Expert("items_hidden", "ur.items_hidden", "undecoded", "note", "More tree items than a message shows"),
+    Expert("internal", "ur.internal_error", "malformed", "error", "urwire dissector error"),
+]
+OWN_NAMES = {f.filter for f in OWN_FIELDS} | {e.filter for e in EXPERTS}
+
+
 # ---- descriptors: what the runtime walks, one per field ---------------------------------------
 
 @dataclass
@@ -346,6 +393,8 @@ class Dissector:
     constants: dict                   # sizes and defaults the runtime reads
     segment_starts: list[ir.Version]  # where every segment of the version axis but the first starts
     default_version: ir.Version
+    own_fields: list[Field] = field(default_factory=lambda: list(OWN_FIELDS))
+    experts: list[Expert] = field(default_factory=lambda: list(EXPERTS))
 
 
 # ---- building it ------------------------------------------------------------------------------
@@ -371,6 +420,10 @@ def sent_by(struct: ir.Struct, owner: str, out: dict) -> None:
         for e in entries:
             if isinstance(e, ir.GroupField):
                 sent_by(e.item, owner, out)
+
+
+def _a(word: str) -> str:
+    return ("an " if word[0] in "aeiou" else "a ") + word
 
 
 def unit_text(unit: Optional[str]) -> Optional[str]:
@@ -412,15 +465,18 @@ class _Builder:
         """Declare a field once (a header layout shared by subtypes names it again, a name may
         repeat in another version's entry); its key."""
         known = self.by_key.get(pf.key)
+        if known is None and pf.filter in OWN_NAMES:
+            self.problems.append(where.problem(f"{pf.filter} is the dissector's own name: give the field or "
+                                               f"layout a name of its own"))
         if known is None:
             self.by_key[pf.key] = pf
             self.fields.append(pf)
         elif known.shape != pf.shape and not {known.shape, pf.shape} <= SCALAR_SHAPES:
             self.problems.append(where.problem(
-                f"lua target: {pf.filter} would be both a {known.shape} and a {pf.shape} field: "
+                f"{pf.filter} would be both {_a(known.shape)} and {_a(pf.shape)} field: "
                 "a Wireshark filter name has one type, give one of them a name of its own"))
         elif known.shape == "flag" and known.mask != pf.mask:
-            self.problems.append(where.problem(f"lua target: the bit {pf.filter} stands at two places"))
+            self.problems.append(where.problem(f"the bit {pf.filter} stands at two places"))
         elif pf.description:
             known.description = pf.description   # a name's later entry is its newer form: its doc describes it
         return pf.key
@@ -476,7 +532,7 @@ class _Builder:
     def add_item(self, name: str, label: str, doc: str, where: ir.Where) -> str:
         """The subtree field of a package or message: ur.<name>, true when it is present."""
         if name in self.by_key:
-            self.problems.append(where.problem(f"lua target: the filter name ur.{name} is taken already"))
+            self.problems.append(where.problem(f"the filter name ur.{name} is taken already"))
         return self.add_field(Field(name, "none", f"ur.{name}", label, doc), where)
 
     def unique(self, space: str, name: str) -> str:
@@ -561,7 +617,7 @@ class _Builder:
             return Switch(path, show, f.selector.name, default, cases)
         if isinstance(f, ir.ValueListField):
             return self.values(owner, f, path, show)
-        self.problems.append(f.where.problem(f"lua target: no descriptor for a {type(f).__name__}"))
+        self.problems.append(f.where.problem(f"no Wireshark descriptor for a {type(f).__name__}"))
         return Bytes(path, show, None)
 
     def values(self, owner: str, f: ir.ValueListField, path: str, show: Optional[str]) -> Values:
@@ -630,7 +686,7 @@ class _Builder:
                     is_float = isinstance(d, Scalar) and d.float
                     if d.kind not in SHOWS or is_float:
                         self.problems.append(layout.where.problem(
-                            f"lua target: the summary cannot show '{d.path}', a {'float' if is_float else d.kind} field"))
+                            f"the summary cannot show '{d.path}', a {'float' if is_float else d.kind} field"))
                     missing.discard(d.path)
                 if not missing:
                     return False
@@ -642,7 +698,7 @@ class _Builder:
         check(descriptors)
         for name in sorted(missing):
             self.problems.append(layout.where.problem(
-                f"lua target: the summary's field '{name}' comes after a field the Info column cannot step over"))
+                f"the summary's field '{name}' comes after a field the Info column cannot step over"))
 
     def shown_layout(self, lay: model.Layout, choice_plan: plan.LayoutPlan) -> tuple[str, bool]:
         """The layout of a package or subtype, its summary fields marked `show` with the text put
@@ -752,7 +808,7 @@ class _Builder:
         for what, h in (("message type", p.message_type), ("package type", p.package_type)):
             if h.scalar.size != 1:
                 self.problems.append(h.where.problem(
-                    f"lua target: the {what} must be one byte (the runtime reads it with string.byte)"))
+                    f"the {what} must be one byte (the dissectors read it as one)"))
         return dict(title=p.title, header_size=p.header_size, length_size=p.message_length.scalar.size,
                     package_header_size=p.package_header_size, package_length_size=p.package_length.scalar.size,
                     max_message_length=p.max_message_length, max_value_depth=p.max_value_depth,
@@ -777,13 +833,14 @@ class _Builder:
     def version_reader(self) -> VersionReader:
         v = self.plan.version
         if any(f.fixed_size != 1 for f in (v.major, v.minor)):
-            self.problems.append(v.layout.where.problem("lua target: major and minor versions must be one byte each"))
+            self.problems.append(v.layout.where.problem(
+                "major and minor versions must be one byte each (the dissectors read them so)"))
         bugfix = None
         if v.bugfix is not None:
             s = v.bugfix.scalar
             if s.is_float or s.is_bool or s.size > 4:
                 self.problems.append(v.bugfix.where.problem(
-                    "lua target: the bugfix number must be an integer of at most 4 bytes"))
+                    "the bugfix number must be an integer of at most 4 bytes (the dissectors read it so)"))
             bugfix = Bugfix(s.size, s.signed, version_number(v.bugfix.versions.low),
                             version_number(v.bugfix.versions.high))
         steps = [VersionStep(skip.fixed + (v.body_offset if i == 0 else 0), skip.prefix, skip.signed)

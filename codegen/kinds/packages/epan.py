@@ -46,44 +46,6 @@ WIRESHARK_UNITS = {"s": "units_seconds", "ms": "units_milliseconds"}
 # A value string this long is looked up by bisection (value_string_ext), as upstream does.
 EXT_STRINGS = 32
 
-# The dissector's own fields and expert infos, after the spec's: the same as the Lua dissector
-# declares (runtime/lua/declare.lua), in the same order.
-OWN_FIELDS = [
-    ("raw", "Raw", "ur.raw", "FT_BYTES", "BASE_NONE",
-     "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),
-    ("extra", "Extra bytes", "ur.extra", "FT_BYTES", "BASE_NONE",
-     "Bytes after the known layout of a package or message."),
-    ("skipped", "Skipped bytes", "ur.skipped", "FT_BYTES", "BASE_NONE",
-     "Bytes skipped while looking for the next plausible message header."),
-    ("software_version", "Software version", "ur.software_version", "FT_STRING", "BASE_NONE",
-     "The software version this message is read with (its layouts, enum names and value types): the stream's "
-     "Version message, else the ur.version preference, else what the layout sizes show (\"3.2 to 3.4 (from "
-     "layout sizes)\"), else the default."),
-    ("version_assumed", "Version assumed", "ur.version_assumed", "FT_BOOLEAN", "BASE_NONE",
-     "True when no Version message was seen on this stream: the version comes from the ur.version preference, "
-     "the layout sizes or the default."),
-    ("unknown_package", "Unknown package", "ur.unknown_package", "FT_NONE", "BASE_NONE",
-     "A sub-package type the spec does not lay out, kept raw."),
-    ("urscript", "URScript", "ur.urscript", "FT_STRING", "BASE_NONE",
-     "Bytes from the client to the robot: URScript program text."),
-]
-
-EXPERTS = [
-    ("bad_length", "ur.bad_length", "PI_MALFORMED", "PI_ERROR", "Message length out of range (resynchronising)"),
-    ("bad_type", "ur.bad_type", "PI_MALFORMED", "PI_ERROR", "Unknown message type (resynchronising)"),
-    ("malformed", "ur.malformed", "PI_MALFORMED", "PI_ERROR", "Package or message too short or malformed"),
-    ("extra", "ur.extra_bytes", "PI_PROTOCOL", "PI_WARN", "Bytes after the known layout"),
-    ("unknown", "ur.unknown", "PI_UNDECODED", "PI_NOTE", "Type not laid out by the spec, kept raw"),
-    ("assumed", "ur.assumed_version", "PI_ASSUMPTION", "PI_NOTE",
-     "Software version assumed (no Version message seen)"),
-    ("version_range", "ur.version_out_of_range", "PI_PROTOCOL", "PI_WARN",
-     "Version message number out of range: set aside, the stream is read as major.minor"),
-    ("by_length", "ur.layout_by_length", "PI_ASSUMPTION", "PI_NOTE",
-     "Layout chosen by its length, not by the software version"),
-    ("items_hidden", "ur.items_hidden", "PI_UNDECODED", "PI_NOTE", "More tree items than a message shows"),
-    ("internal", "ur.internal_error", "PI_MALFORMED", "PI_ERROR", "urwire dissector error"),
-]
-
 ANY_LOW, ANY_HIGH = 0, 0xFFFFFFFF    # an open version bound
 
 
@@ -170,7 +132,8 @@ class _Builder:
 
     def fields(self) -> list[dict]:
         out = []
-        for f in self.d.fields:
+        # The spec's fields, then the dissector's own (runtime/epan/ur_*.c names them UR_HF_<KEY>).
+        for f in (*self.d.fields, *self.d.own_fields):
             const = f"UR_HF_{ident(f.key).upper()}"
             self.field_index[f.key] = const
             ft = FT[f.scalar] if f.shape in ("integer", "float", "bool") else FT[f.shape]
@@ -196,11 +159,6 @@ class _Builder:
             # A text field is BASE_NONE: 4.0 has no STR_UNICODE; Lua base.UNICODE and base.ASCII are both that.
             out.append(dict(const=const, label=f.label, abbr=f.filter, ft=ft, display=display, strings=strings,
                             mask=f"0x{f.mask:x}" if f.shape == "flag" else "0x0", blurb=f.description))
-        for key, label, abbr, ft, display, blurb in OWN_FIELDS:
-            const = f"UR_HF_{key.upper()}"
-            self.field_index["!" + key] = const
-            out.append(dict(const=const, label=label, abbr=abbr, ft=ft, display=display, strings="NULL",
-                            mask="0x0", blurb=blurb))
         return out
 
     def enums(self) -> list[dict]:
@@ -357,7 +315,9 @@ class _Builder:
                     labels=list(self.labels.values()),
                     known_codes=d.known_codes, message_type_names=m_names,
                     message_type_tables=m_tables, constants=d.constants, title=d.title,
-                    version=d.version, bugfix=d.version.bugfix, experts=EXPERTS,
+                    version=d.version, bugfix=d.version.bugfix,
+                    experts=[(e.name, e.filter, f"PI_{e.group.upper()}", f"PI_{e.severity.upper()}", e.text)
+                             for e in d.experts],
                     segment_starts=[ir.version_number(v) for v in d.segment_starts],
                     default_version=ir.version_number(d.default_version))
 

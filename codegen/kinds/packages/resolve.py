@@ -10,6 +10,8 @@ from ...errors import SpecError
 from ...load import LoadedSpec
 from ...resolve import _Resolver, field_named
 from . import model
+from .dissector import dissector
+from .plan import plan
 
 
 class _PackagesResolver(_Resolver):
@@ -147,4 +149,9 @@ class _PackagesResolver(_Resolver):
 
 
 def resolve(spec: LoadedSpec) -> model.Protocol:
-    return _PackagesResolver(spec).resolve()
+    protocol = _PackagesResolver(spec).resolve()
+    # What the Wireshark dissectors show obeys rules of the spec, not of one target: one type per
+    # filter name, none of the dissector's own names, summaries the Info column can read. The
+    # model is built here, so that every target (`--target c` too) reports them at their path.
+    dissector(plan(protocol))
+    return protocol
