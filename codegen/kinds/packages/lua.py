@@ -80,6 +80,6 @@ def render(protocol_plan, banner: list[str]) -> dict[str, str]:
     env = environment("lua")
     env.filters.update(FILTERS)
     d = dissector(protocol_plan)
-    segment_lines = textwrap.wrap(", ".join(f'"{ir.version_text(v)}"' for v in d.segment_starts), 100)
+    segment_lines = textwrap.wrap(", ".join(lua_str(ir.version_text(v)) for v in d.segment_starts), 100)
     ctx = dict(banner=banner, model=d, segment_lines=segment_lines, runtime=runtime())
     return {OUT: env.get_template("urwire.lua.j2").render(**ctx)}

@@ -7,12 +7,12 @@ only lay the strings out. Fixed runs of fields become one precompiled struct.Str
 """
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from typing import Optional
 
 from ... import ir
 from ...emit import environment
+from ...lang.python import string as py_string, string_or_none as py_string_or_none
 from ...errors import Problem, SpecError
 from ...comments import field_text, node_text, value_text
 from ...view import Step, one_line
@@ -41,8 +41,8 @@ class Attr:
 def attr(f: ir.AnyField, annotation: str, optional: bool = False, entries: tuple = ()) -> Attr:
     """An attribute: its docstring starts with the field's label and unit, and its metadata
     holds them for code that shows records to people (human.py, a GUI), and tables (export.py)."""
-    unit = json.dumps(f.unit, ensure_ascii=False) if f.unit else "None"
-    metadata = (f'{{"label": {json.dumps(f.label, ensure_ascii=False)}, "unit": {unit}{_wide_wire(f)}'
+    unit = py_string_or_none(f.unit)
+    metadata = (f'{{"label": {py_string(f.label)}, "unit": {unit}{_wide_wire(f)}'
                 f'{_fixed_count(f)}}}')
     return Attr(f.name, annotation, one_line(field_text(entries or [f])), ir.json_kind(f), optional, metadata)
 
@@ -312,14 +312,14 @@ def fixed_runs(decode: list[Step]) -> Optional[dict]:
     runs, absent = [], []
     for s in decode:
         if s.kind == "absent":
-            absent += [json.dumps(name) for name in s.names]
+            absent += [py_string(name) for name in s.names]
         elif s.kind == "run":
             runs.append(dict(const=s.const, members=s.run_members, flag="None", skipped=[]))
         elif (s.kind == "cond" and s.condition.flag and s.condition.low is None and s.condition.high is None
               and [inner.kind for inner in s.steps] == ["run"]):
             (inner,) = s.steps
-            runs.append(dict(const=inner.const, members=inner.run_members, flag=json.dumps(s.condition.flag),
-                             skipped=[json.dumps(name) for name in s.names]))
+            runs.append(dict(const=inner.const, members=inner.run_members, flag=py_string(s.condition.flag),
+                             skipped=[py_string(name) for name in s.names]))
         else:
             return None
     return dict(runs=runs, absent=absent) if runs else None
@@ -492,7 +492,7 @@ class _Target:
                 header_run=[(slot.field.name, slot.offset, slot.field.scalar.size) for slot in mp.header],
                 header_offset=mp.header[0].offset if mp.header else mp.body_offset,
                 header_names=[f.name for f in fields], header_converts=converts,
-                subtype=json.dumps(subtype) if subtype else "None",
+                subtype=py_string_or_none(subtype),
                 body_offset=mp.body_offset, announces=announces, **self.forms(mp, classes)))
         if self.problems:
             raise SpecError(self.p.source, self.problems)
