@@ -13,7 +13,7 @@ language, and versions stay versions (ir.Version) or ir.version_number integers.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field as dc_field
 from typing import ClassVar, Optional, Union
 
 from ... import ir
@@ -165,7 +165,7 @@ class Scalar(Read):
 @dataclass
 class Bits(Scalar):
     kind: ClassVar[str] = "bits"
-    bits: list[str] = field(default_factory=list)    # one flag field per named bit
+    bits: list[str] = dc_field(default_factory=list)    # one flag field per named bit
 
 
 @dataclass
@@ -275,7 +275,7 @@ class Part:
     header: Optional[str] = None      # subtypes: the header layout, its fields under the subtype's name
     summary: bool = False             # packages: it has an Info summary
     needs_version: bool = False       # subtypes and bodies: reading or choosing it depends on the version
-    refs: list[str] = field(default_factory=list)   # packages: its fields (what a filter may ask for)
+    refs: list[str] = dc_field(default_factory=list)   # packages: its fields (what a filter may ask for)
 
 
 @dataclass
@@ -393,8 +393,8 @@ class Dissector:
     constants: dict                   # sizes and defaults the runtime reads
     segment_starts: list[ir.Version]  # where every segment of the version axis but the first starts
     default_version: ir.Version
-    own_fields: list[Field] = field(default_factory=lambda: list(OWN_FIELDS))
-    experts: list[Expert] = field(default_factory=lambda: list(EXPERTS))
+    own_fields: list[Field] = dc_field(default_factory=lambda: list(OWN_FIELDS))
+    experts: list[Expert] = dc_field(default_factory=lambda: list(EXPERTS))
 
 
 # ---- building it ------------------------------------------------------------------------------
