@@ -1,11 +1,7 @@
-"""Naming rules every kind shares: spec names as words, class-name parts and column names. A
-kind's own names for its identifiers live in the kind (kinds/packages/naming.py)."""
+"""Naming rules every kind shares: spec names as words and as column names. Class names are
+codegen/lang/python.py's; a kind's own names for its identifiers live in the kind
+(kinds/packages/naming.py)."""
 from __future__ import annotations
-
-
-def camel(name: str) -> str:
-    """robot_mode_data -> RobotModeData"""
-    return "".join(part[:1].upper() + part[1:] for part in name.split("_"))
 
 
 def words(name: str) -> str:

@@ -3,7 +3,8 @@ each target (C enum constants, Python classes, Wireshark filter names) and label
 from __future__ import annotations
 
 from ... import ir
-from ...naming import camel, words
+from ...lang.python import class_name
+from ...naming import words
 from . import model
 
 
@@ -15,7 +16,7 @@ def layout_label(layout: model.Layout) -> str:
 
 
 def py_enum_class(enum: ir.Enum) -> str:
-    return camel(enum.name)
+    return class_name(enum.name)
 
 
 def _table_bounds(table: ir.EnumTable) -> tuple[str, str]:
@@ -78,8 +79,8 @@ def py_table_class(enum: ir.Enum, table: ir.EnumTable) -> str:
     written for today's controllers reads the same; older ones say their versions
     (RobotModeUpTo1_8, ValueType3_3To5_8)."""
     if table is enum.tables[-1]:
-        return camel(enum.name)
-    return camel(enum.name) + table_suffix(table)
+        return class_name(enum.name)
+    return class_name(enum.name) + table_suffix(table)
 
 
 def py_lookup(enum: ir.Enum) -> str:
@@ -89,16 +90,16 @@ def py_lookup(enum: ir.Enum) -> str:
 
 def py_layout_class(layout: model.Layout, in_dispatch: bool) -> str:
     """Sub-packages keep their name; whole messages end in Message (VersionMessage)."""
-    base = camel(layout.name)
+    base = class_name(layout.name)
     return base + "Message" if in_dispatch and not base.endswith("Message") else base
 
 
 def py_message_class(message: model.Message) -> str:
-    return camel(message.name) + "Message"
+    return class_name(message.name) + "Message"
 
 
 def py_item_class(group: ir.GroupField) -> str:
-    return camel(group.item.name)
+    return class_name(group.item.name)
 
 
 def wireshark_field(owner: str, name: str) -> str:

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import field_text, node_text, value_text
 from ...emit import environment
-from ...naming import camel
+from ...lang.python import class_name as camel
 from .plan import Form, LayoutPlan, SizedPlan
 
 PACKAGE = "python/urwire/generated"

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import field_text, value_text
 from ...emit import environment
-from ...naming import camel
+from ...lang.python import class_name as camel
 from ...view import one_line
 from ...wrap import spread
 from . import model
