@@ -17,12 +17,12 @@ from . import ir
 from .compile import DEFAULT_SPEC, compile_file, compile_loaded, kind_of, spec_files
 from .emit import banner_lines
 from .errors import SpecError
-from .pin import pin
-from .plan import plan
-from .reference import diff, protocol_markdown
-from .kinds import TargetOptions
+from .kinds import TARGETS, TargetOptions
+from .kinds.packages.model import Protocol
+from .kinds.packages.pin import pin
+from .kinds.packages.plan import plan
+from .kinds.packages.reference import diff, protocol_markdown
 from .load import load_text
-from .targets import TARGETS
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -81,7 +81,7 @@ def _render_spec(spec: Path, args) -> dict[str, str]:
     kind = kind_of(loaded)
     model = compile_loaded(loaded)
     if args.pin:
-        if not isinstance(model, ir.Protocol):
+        if not isinstance(model, Protocol):
             raise SpecError(str(spec), [loaded.problem("framing", "--pin applies to the primary interface's spec")])
         model = pin(model, ir.parse_version(args.pin))
     banner = banner_lines(str(spec_rel), text, upstream=args.upstream)

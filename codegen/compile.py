@@ -26,7 +26,7 @@ def kind_of(spec: LoadedSpec) -> Kind:
 
 
 def compile_loaded(spec: LoadedSpec):
-    """The spec's IR: an ir.Protocol for the primary interface, its kind's model for the others."""
+    """The spec's IR, its kind's model (kinds/<kind>/model.py)."""
     kind = kind_of(spec)
     problems: list[Problem] = schema_problems(spec, kind.schema)
     if problems:

@@ -1,19 +1,20 @@
-"""Pass 3: turn the validated spec into the typed IR, checking what a schema cannot.
+"""Pass 3, the part every kind shares: software versions, enums and fields of the validated spec
+into the typed IR (codegen/ir.py), checking what a schema cannot. Each kind's resolve.py builds
+on Resolver for the rest of its spec (the primary interface's: kinds/packages/resolve.py).
 
 Checks collect problems instead of stopping at the first, so one run shows every mistake.
 """
 from __future__ import annotations
 
-import re
 from typing import Optional
 
 from . import ir
-from .errors import Problem, SpecError
+from .errors import Problem
 from .load import LoadedSpec
 from .naming import words
 
 
-class _Resolver:
+class Resolver:
     def __init__(self, spec: LoadedSpec):
         self.spec = spec
         self.problems: list[Problem] = []
@@ -138,7 +139,7 @@ class _Resolver:
                       field_note=raw.get("field_note", ""), present_if=raw.get("present_if"),
                       versions=self.versions(raw.get("versions"), parts + ["versions"]), where=self.where(parts))
         if common["present_if"] is not None:
-            cond = _find(earlier, common["present_if"])
+            cond = field_named(earlier, common["present_if"])
             if not isinstance(cond, ir.ScalarField) or cond.scalar.is_float:
                 self.fail(parts + ["present_if"], f"'{common['present_if']}' must name an earlier bool or integer field")
         enum = self.enum_ref(raw["enum"], parts + ["enum"]) if "enum" in raw else None
@@ -146,7 +147,7 @@ class _Resolver:
             self.fail(parts + ["unit"], "a unit needs a number: an integer or float field with no enum and no bits")
 
         if "switch" in raw:
-            selector = _find(earlier, raw["switch"])
+            selector = field_named(earlier, raw["switch"])
             if not isinstance(selector, ir.ScalarField) or not selector.scalar.is_integer:
                 self.fail(parts + ["switch"], f"'{raw['switch']}' must name an earlier integer field")
                 selector = ir.ScalarField(name=raw["switch"])
@@ -197,140 +198,6 @@ class _Resolver:
             return ir.ArrayField(**common, scalar=scalar, count=raw["count"], enum=enum)
         bits = list(raw.get("bits", []))
         return ir.ScalarField(**common, scalar=scalar, enum=enum, bits=bits, bit_labels=[words(b) for b in bits])
-
-    # ---- layouts and messages ----
-
-    def layout(self, name: str, raw: dict, code_enum: Optional[ir.Enum], parts) -> ir.Layout:
-        struct = ir.Struct(name, raw["doc"], self.fields(raw["fields"], parts + ["fields"]))
-        sets_version = None
-        if "sets_version" in raw:
-            sv = raw["sets_version"]
-            for key in ("major", "minor", "bugfix"):
-                if key not in sv:
-                    continue
-                f = _find(struct.fields, sv[key])
-                if not isinstance(f, ir.ScalarField) or not f.scalar.is_integer:
-                    self.fail(parts + ["sets_version", key], f"'{sv[key]}' must name an integer field of this layout")
-                elif key != "bugfix" and f.conditional:
-                    self.fail(parts + ["sets_version", key], f"'{sv[key]}' must be in every form of the layout")
-            sets_version = (sv["major"], sv["minor"], sv.get("bugfix"))
-        summary = self.summary(raw.get("summary"), struct, parts + ["summary"])
-        versions = self.versions(raw.get("versions"), parts + ["versions"])
-        return ir.Layout(name, self.member(code_enum, raw["code"], parts + ["code"], versions), raw["doc"],
-                         raw.get("field_note", ""), struct, sets_version, summary, self.where(parts), versions,
-                         raw.get("inferred", False), raw.get("label", ""))
-
-    def summary(self, text: Optional[str], struct: ir.Struct, parts) -> list[tuple[str, str]]:
-        """'{title}: {text}' -> [('', 'title'), (': ', 'text')]; only scalar and string fields."""
-        if not text:
-            return []
-        pieces = re.split(r"\{([a-z][a-z0-9_]*)\}", text)
-        if pieces[-1]:
-            self.fail(parts, f"text after the last field ('{pieces[-1]}') is not shown; end with a field")
-        out = []
-        for before, name in zip(pieces[0::2], pieces[1::2]):
-            f = _find(struct.fields, name)
-            if not isinstance(f, (ir.ScalarField, ir.StringField)):
-                self.fail(parts, f"'{name}' is not a scalar or string field of this layout")
-            out.append((before, name))
-        return out
-
-    def header_field(self, raw: dict, parts) -> ir.HeaderField:
-        enum = self.enum_ref(raw["enum"], parts + ["enum"]) if "enum" in raw else None
-        return ir.HeaderField(ir.SCALARS[raw["type"]], enum, raw.get("doc", ""), self.where(parts), raw["label"])
-
-    def unique_codes(self, layouts: list[ir.Layout], parts) -> None:
-        """Two layouts may share a code only for software versions that do not overlap."""
-        seen: list[ir.Layout] = []
-        for lay in layouts:
-            if id(lay.code) in self.unresolved:
-                continue
-            for other in seen:
-                if other.code.value == lay.code.value and other.versions.overlaps(lay.versions):
-                    self.fail(parts + [lay.name, "code"], f"code {lay.code.name} is already used by '{other.name}' "
-                                                          f"for {other.versions.describe()}")
-            seen.append(lay)
-
-    def resolve(self) -> ir.Protocol:
-        data = self.spec.data
-        for name, raw in data["enums"].items():
-            self.enums[name] = self.enum(name, raw)
-
-        proto = data["protocol"]
-        framing = data["framing"]
-        mh = {k: self.header_field(v, ["framing", "message_header", k]) for k, v in framing["message_header"].items()}
-        ph = {k: self.header_field(v, ["framing", "package_header", k]) for k, v in framing["package_header"].items()}
-        if mh["type"].enum is None:
-            self.fail(["framing", "message_header", "type"], "the message type needs an enum")
-        if ph["type"].enum is None:
-            self.fail(["framing", "package_header", "type"], "the package type needs an enum")
-
-        layouts_by_name: dict[str, list] = {}
-        messages: list[ir.Message] = []
-        for name, raw in data["messages"].items():
-            parts = ["messages", name]
-            code = self.member(mh["type"].enum, raw["code"], parts + ["code"])
-            if "packages" in raw:
-                packages = [self.layout(n, r, ph["type"].enum, parts + ["packages", n]) for n, r in raw["packages"].items()]
-                self.unique_codes(packages, parts + ["packages"])
-                messages.append(ir.PackageListMessage(name, code, raw["doc"], raw.get("field_note", ""), packages,
-                                                      ph["type"].enum, self.where(parts)))
-                layouts = packages
-            elif "fields" in raw:
-                # A body message: one layout after the message header, named as the message.
-                body = self.layout(name, raw, mh["type"].enum, parts)
-                messages.append(ir.DispatchMessage(name, code, raw["doc"], raw.get("field_note", ""),
-                                                   ir.Struct(name + "_header", raw["doc"], []), None, [body],
-                                                   self.where(parts), mh["type"].enum))
-                continue
-            else:
-                header = ir.Struct(name + "_header", raw["doc"], self.fields(raw["header"], parts + ["header"]))
-                if header.fixed_size is None:
-                    self.fail(parts + ["header"], "a message header must have a fixed size")
-                st = raw["subtype"]
-                sub_enum = self.enum_ref(st["enum"], parts + ["subtype", "enum"])
-                subtype = ir.ScalarField(name=st["name"], label=st["label"], doc=st.get("doc", ""),
-                                         scalar=ir.SCALARS[st["type"]], enum=sub_enum,
-                                         where=self.where(parts + ["subtype"]))
-                subtypes = [self.layout(n, r, sub_enum, parts + ["subtypes", n]) for n, r in raw["subtypes"].items()]
-                self.unique_codes(subtypes, parts + ["subtypes"])
-                messages.append(ir.DispatchMessage(name, code, raw["doc"], raw.get("field_note", ""), header,
-                                                   subtype, subtypes, self.where(parts)))
-                layouts = subtypes
-            for lay in layouts:
-                layouts_by_name.setdefault(lay.name, []).append(parts)
-        for lname, where in layouts_by_name.items():
-            if len(where) > 1 or lname in data["messages"]:
-                self.fail(where[-1], f"layout name '{lname}' is used more than once")
-        seen_codes: dict[int, str] = {}
-        for m in messages:
-            if m.code.value in seen_codes:
-                self.fail(["messages", m.name, "code"], f"code {m.code.name} is already used by '{seen_codes[m.code.value]}'")
-            seen_codes[m.code.value] = m.name
-
-        value_layouts = {}
-        for tname, raw in data["value_layouts"].items():
-            value_layouts[tname] = ir.ValueLayout(
-                tname, raw["layout"], ir.SCALARS.get(raw.get("length", "")), ir.SCALARS.get(raw.get("item", "")),
-                raw.get("count", 0), raw.get("doc", ""), self.where(["value_layouts", tname]))
-        for ename in sorted(self.value_enums):
-            for name in self.enums[ename].names:
-                if name not in value_layouts:
-                    self.fail(["enums", ename], f"value type {name} has no entry in value_layouts")
-
-        documented = [ir.parse_version(v) for v in proto["documented_versions"]]
-        protocol = ir.Protocol(
-            name=proto["name"], title=proto["title"], doc=proto["doc"], ports=list(proto["ports"]),
-            max_message_length=proto["max_message_length"], max_value_depth=proto["max_value_depth"],
-            documented_versions=documented, default_version=ir.parse_version(proto["default_version"]),
-            enums=self.enums, value_layouts=value_layouts,
-            message_length=mh["length"], message_type=mh["type"],
-            package_length=ph["length"], package_type=ph["type"], messages=messages, source=self.spec.source,
-            generations=[(g["name"], self.versions(g["versions"], ["protocol", "generations", i, "versions"]))
-                         for i, g in enumerate(proto.get("generations", []))])
-        if self.problems:
-            raise SpecError(self.spec.source, self.problems)
-        return protocol
 
 
 def _tables_by_member(values: list[ir.EnumValue]) -> list[ir.EnumTable]:
@@ -385,7 +252,8 @@ def _kind(s: ir.Scalar) -> str:
     return "bool" if s.is_bool else "float" if s.is_float else "int"
 
 
-def _find(fields: list, name: str):
+def field_named(fields: list, name: str):
+    """The first field of `fields` called `name`, or None."""
     for f in fields:
         if f.name == name:
             return f
@@ -396,7 +264,3 @@ def _runs_to_end(f: ir.AnyField) -> bool:
     return (isinstance(f, (ir.StringListField, ir.BytesField, ir.ValueListField))
             or (isinstance(f, ir.StringField) and f.to_end)
             or (isinstance(f, ir.GroupField) and f.to_end))
-
-
-def resolve(spec: LoadedSpec) -> ir.Protocol:
-    return _Resolver(spec).resolve()

@@ -1,20 +1,26 @@
 """Interface kinds: what `framing.kind` a spec declares decides which part of the spec language it
-uses. Each kind brings its schema (a file under codegen/schema that may $ref the shared
-definitions of spec.schema.json), its resolver (LoadedSpec -> its IR) and its renderers (IR ->
-{path under generated/: text}). The primary interface is the kind `packages`: length-framed
-messages holding sub-packages, and a spec that names no kind is one of those.
+uses. Each kind is a package here with the same modules: its schema (a file under codegen/schema
+that may $ref the shared definitions of spec.schema.json), `resolve.py` (LoadedSpec -> its IR,
+model.py), `plan.py` (the IR -> its plan) and one renderer per target, named after it (`c.py`,
+`epan.py`, `lua.py`, `python.py`: plan -> {path under generated/: text}). The primary interface
+is the kind `packages`: length-framed messages holding sub-packages, and a spec that names no
+kind is one of those. A kind imports nothing from another kind.
 
-Adding a kind is adding a module here that defines `KIND`."""
+Adding a kind is adding a package here whose __init__.py defines `KIND = define(...)`."""
 from __future__ import annotations
 
 import importlib
 import pkgutil
 from dataclasses import dataclass
+from types import ModuleType
 from typing import Callable, Optional
 
 from ..load import LoadedSpec
 
 DEFAULT_KIND = "packages"
+
+# Every kind renders every target, each with a module of this name (python -m codegen --target).
+TARGETS = ("c", "epan", "lua", "python")
 
 
 # Keyword arguments of some targets' renderers, by target: {"epan": {"upstream": True}} renders the
@@ -30,6 +36,20 @@ class Kind:
     # (model, banner lines, only these targets or None for all, options or None)
     #   -> {path under generated/: text}
     render: Callable[[object, list[str], Optional[list[str]], Optional[TargetOptions]], dict[str, str]]
+
+
+def define(name: str, schema: str, resolve: ModuleType, plan: ModuleType, renderers: list[ModuleType]) -> Kind:
+    """A kind from its package's modules: resolve.resolve (LoadedSpec -> IR), plan.plan (IR ->
+    plan) and one module per target, named after it, with render(plan, banner, **options)."""
+    targets = {module.__name__.rpartition(".")[2]: module.render for module in renderers}
+    if sorted(targets) != sorted(TARGETS):
+        raise ValueError(f"kind {name}: renderers for {sorted(targets)}, every kind has {sorted(TARGETS)}")
+
+    def render(model: object, banner: list[str], only: Optional[list[str]] = None,
+               options: Optional[TargetOptions] = None) -> dict[str, str]:
+        return render_targets(targets, plan.plan(model), banner, only, options)
+
+    return Kind(name=name, schema=schema, resolve=resolve.resolve, render=render)
 
 
 def render_targets(targets: dict[str, Callable[..., dict[str, str]]], model: object, banner: list[str],

@@ -11,7 +11,7 @@ import jinja2
 import pytest
 
 from codegen.emit import RUNTIME as RUNTIME_ROOT, environment, runtime_source
-from codegen.targets.c import FOLDER, RUNTIME
+from codegen.kinds.packages.c import FOLDER, RUNTIME
 from codegen.view import Step
 from tests.c.harness_c import GEN, OUT, ROOT, SANITIZE, STRICT
 

@@ -10,9 +10,9 @@ import subprocess
 import pytest
 import yaml
 
-from codegen.plan import plan
+from codegen.kinds.packages.plan import plan
 from codegen.compile import DEFAULT_SPEC, compile_text
-from codegen.targets import c as c_target
+from codegen.kinds.packages import c as c_target
 from tests.c import state_members
 from tests.c.harness_c import CLI_LIBRARY, CLI_SOURCES, ROOT, compile_c
 

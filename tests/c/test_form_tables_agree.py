@@ -14,7 +14,7 @@ import pytest
 
 from codegen import ir
 from codegen.compile import DEFAULT_SPEC, compile_file
-from codegen.plan import plan
+from codegen.kinds.packages.plan import plan
 from tests.c.harness_c import GEN, OUT, ROOT
 
 LUA_PLUGIN = ROOT / "generated" / "lua" / "urwire.lua"

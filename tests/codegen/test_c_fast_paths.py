@@ -1,4 +1,4 @@
-"""The C target's robot-state fast paths (codegen/targets/c.py fast_paths): which rows of forms
+"""The C target's robot-state fast paths (codegen/kinds/packages/c.py fast_paths): which rows of forms
 get a loop of their own, what each case checks, and which segments take each loop."""
 from __future__ import annotations
 
@@ -6,9 +6,9 @@ import pytest
 
 from codegen import ir
 from codegen.compile import DEFAULT_SPEC, compile_file
-from codegen.pin import pin
-from codegen.plan import plan
-from codegen.targets import c as c_target
+from codegen.kinds.packages.pin import pin
+from codegen.kinds.packages.plan import plan
+from codegen.kinds.packages import c as c_target
 
 
 @pytest.fixture(scope="module")

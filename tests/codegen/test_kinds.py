@@ -24,3 +24,40 @@ def test_every_spec_names_a_known_kind():
     for spec in spec_files():
         import yaml
         assert kind_name(yaml.safe_load(spec.read_text(encoding="utf-8"))) in KINDS, spec
+
+
+def test_a_kind_is_defined_by_its_modules_and_renders_every_target():
+    """kinds.define builds a kind from its package's resolve, plan and renderer modules, one per
+    target and named after it; it refuses a kind that lacks one."""
+    from codegen.kinds import TARGETS, define
+    from codegen.kinds.packages import c, epan, lua, plan, python, resolve
+
+    kind = define("probe", "spec.schema.json", resolve, plan, [c, epan, lua, python])
+    assert kind.resolve is resolve.resolve
+    with pytest.raises(ValueError, match="epan"):
+        define("probe", "spec.schema.json", resolve, plan, [c, lua, python])
+    assert sorted(TARGETS) == ["c", "epan", "lua", "python"]
+
+
+def test_a_kind_imports_nothing_from_another_kind():
+    """What kinds share lives at the top of codegen/ (ir, resolve, lang, emit, ...), never in a
+    kind that the others borrow from."""
+    import ast
+    from pathlib import Path
+
+    kinds = Path(__file__).resolve().parents[2] / "codegen" / "kinds"
+    names = {p.name for p in kinds.iterdir() if (p / "__init__.py").exists()}
+    for package in sorted(names):
+        for source in sorted((kinds / package).glob("*.py")):
+            for node in ast.walk(ast.parse(source.read_text(encoding="utf-8"))):
+                if not isinstance(node, ast.ImportFrom):
+                    continue
+                module = node.module or ""
+                if node.level == 2:      # from ..x import y, in a kind's module: x or y may be a kind
+                    borrowed = {module.split(".")[0]} if module else {a.name for a in node.names}
+                elif module.startswith("codegen.kinds."):
+                    borrowed = {module.split(".")[2]}
+                else:
+                    borrowed = set()
+                assert not borrowed & (names - {package}), \
+                    f"{source.relative_to(kinds)} imports {'.' * node.level}{module} from another kind"

@@ -9,9 +9,9 @@ from pathlib import Path
 from codegen import ir
 from codegen.comments import field_text, repeats
 from codegen.compile import DEFAULT_SPEC, compile_text
-from codegen.plan import plan
-from codegen.reference import forms_at, protocol_markdown
-from codegen.targets import c, lua, python
+from codegen.kinds.packages.plan import plan
+from codegen.kinds.packages.reference import forms_at, protocol_markdown
+from codegen.kinds.packages import c, lua, python
 
 ROOT = Path(__file__).resolve().parents[2]
 # Notes the project was researched from but does not hold; spelled in pieces so that this file

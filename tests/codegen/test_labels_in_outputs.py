@@ -3,9 +3,9 @@ comments and the protocol reference (the Lua and Python targets are tested with 
 from __future__ import annotations
 
 from codegen.compile import DEFAULT_SPEC, compile_text
-from codegen.plan import plan
-from codegen.reference import protocol_markdown
-from codegen.targets import c
+from codegen.kinds.packages.plan import plan
+from codegen.kinds.packages.reference import protocol_markdown
+from codegen.kinds.packages import c
 
 PLAN = plan(compile_text(DEFAULT_SPEC.read_text(encoding="utf-8")))
 

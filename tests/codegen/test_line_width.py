@@ -50,7 +50,7 @@ def test_a_short_docstring_stays_on_one_line():
 def test_a_wrapped_lua_string_keeps_its_value():
     import re
 
-    from codegen.targets.lua import lua_str, lua_text
+    from codegen.lang.lua import string as lua_str, text as lua_text
 
     text = 'A "quoted" word,  two spaces, a\\backslash and ' + " ".join(f"w{n}" for n in range(80))
     literal = lua_text(text, "        ", 8)

@@ -1,5 +1,5 @@
-"""The Lua target's builder hands the template data, and the template refuses what it cannot
-render: an unknown descriptor kind or field shape is an error at generation time, not a broken
+"""The Lua target renders the dissector model (dissector.py), and the template refuses what it
+cannot render: an unknown descriptor kind or field shape is an error at generation time, not a broken
 dissector. Constants reach the runtime through the generated `spec` table."""
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ from pathlib import Path
 import copy
 import dataclasses
 import re
+from typing import ClassVar
 
 import jinja2
 import pytest
@@ -19,9 +20,8 @@ from codegen.compile import compile_text
 BASE_SPEC = Path(__file__).resolve().parents[1] / "fixtures" / "ur_primary_5_9_only.yaml"
 from codegen.emit import TEMPLATES
 from codegen.errors import SpecError
-from codegen.plan import plan
-from codegen.targets import lua
-from codegen.view import Step
+from codegen.kinds.packages.plan import plan
+from codegen.kinds.packages import dissector, lua
 
 
 @pytest.fixture(scope="module")
@@ -30,26 +30,30 @@ def protocol():
 
 
 def test_an_unknown_descriptor_kind_is_an_error(protocol, monkeypatch):
-    real = lua._Builder.descriptor
+    real = dissector._Builder.descriptor
+
+    @dataclasses.dataclass
+    class Tlv(dissector.String):
+        kind: ClassVar[str] = "tlv"
 
     def descriptor(self, owner, f, doc, path, keep, show):
-        step = real(self, owner, f, doc, path, keep, show)
-        return Step("tlv", step.data) if path == "tool_temperature" else step
+        d = real(self, owner, f, doc, path, keep, show)
+        return Tlv(d.path, d.show, d.field) if path == "tool_temperature" else d
 
-    monkeypatch.setattr(lua._Builder, "descriptor", descriptor)
+    monkeypatch.setattr(dissector._Builder, "descriptor", descriptor)
     with pytest.raises(jinja2.UndefinedError, match="tlv"):
         lua.render(plan(protocol), ["test"])
 
 
 def test_an_unknown_field_shape_is_an_error(protocol, monkeypatch):
-    real = lua._Builder.add_field
+    real = dissector._Builder.add_field
 
     def add_field(self, pf, *where):
         if pf.key == "robot_mode_data.timestamp":
             pf = dataclasses.replace(pf, shape="timestamp")
         return real(self, pf, *where)
 
-    monkeypatch.setattr(lua._Builder, "add_field", add_field)
+    monkeypatch.setattr(dissector._Builder, "add_field", add_field)
     with pytest.raises(jinja2.UndefinedError, match="timestamp"):
         lua.render(plan(protocol), ["test"])
 
@@ -178,9 +182,9 @@ def test_a_summary_the_info_column_cannot_read_is_a_problem():
         render_text(variant(edit))
     found = {(p.path, p.message) for p in caught.value.problems}
     assert ("messages.robot_message.subtypes.safety_mode",
-            "lua target: the summary's field 'after' comes after a field the Info column cannot step over") in found
+            "the summary's field 'after' comes after a field the Info column cannot step over") in found
     assert ("messages.robot_state.packages.robot_mode_data",
-            "lua target: the summary cannot show 'speed_scaling', a float field") in found
+            "the summary cannot show 'speed_scaling', a float field") in found
 
 
 def test_a_filter_name_with_two_types_is_a_problem():

@@ -6,13 +6,13 @@ import yaml
 
 from codegen import ir
 from codegen.compile import DEFAULT_SPEC, compile_file, compile_text
-from codegen.plan import CondGroup, FixedRun, VarField, plan
+from codegen.kinds.packages.plan import CondGroup, FixedRun, VarField, plan
 
 
 @pytest.fixture(scope="module")
 def planned():
-    """The plan of what software 5.10 sends (codegen.pin): one form per code, no version gates."""
-    from codegen.pin import pin
+    """The plan of what software 5.10 sends (codegen.kinds.packages.pin): one form per code, no version gates."""
+    from codegen.kinds.packages.pin import pin
 
     return plan(pin(compile_file(), (5, 10, 0)))
 
@@ -99,7 +99,7 @@ def test_version_gated_fields_group_by_their_range():
 
 
 def test_a_pinned_protocol_has_no_version_branches():
-    from codegen.pin import pin
+    from codegen.kinds.packages.pin import pin
 
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
     fields = data["messages"]["robot_state"]["packages"]["tool_mode_info"]["fields"]
@@ -140,7 +140,7 @@ def test_every_form_of_a_code_with_its_versions_sizes_and_representative(full):
 def test_a_pinned_version_message_without_a_bugfix_number_plans():
     """Up to 3.2 the Version message has an svn revision where later ones have the bugfix
     number: pinned there, the version is announced without a bugfix (0)."""
-    from codegen.pin import pin
+    from codegen.kinds.packages.pin import pin
 
     protocol = compile_text(DEFAULT_SPEC.read_text(encoding="utf-8"))
     for version, bugfix in (((3, 2, 0), None), ((1, 8, 0), None), ((5, 11, 0), "bugfix_version")):
@@ -152,7 +152,7 @@ def test_a_pinned_version_message_without_a_bugfix_number_plans():
 def test_the_fewest_bytes_of_a_value_is_worked_out_once_and_rendered_by_every_target():
     """What bounds LIST and MATRIX counts: the type byte alone while a table has NONE, else the
     type byte and the smallest data (BOOL's one byte)."""
-    from codegen.targets import c as c_target, lua as lua_target, python as python_target
+    from codegen.kinds.packages import c as c_target, lua as lua_target, python as python_target
 
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
     newest = data["enums"]["value_type"]["tables"][-1]["values"]

@@ -8,8 +8,8 @@ from pathlib import Path
 import yaml
 
 from codegen.compile import DEFAULT_SPEC, compile_text
-from codegen.plan import plan
-from codegen.reference import diff, forms_at, protocol_markdown
+from codegen.kinds.packages.plan import plan
+from codegen.kinds.packages.reference import diff, forms_at, protocol_markdown
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -119,10 +119,10 @@ def test_a_repeated_name_may_not_change_its_signedness():
 
 
 def test_a_repeated_name_may_widen_and_every_target_renders_it():
-    from codegen.targets import render_all
+    from codegen.kinds.packages import KIND
 
     protocol = compile_text(spec_with(repeated_probe("uint16", "uint32")))
-    outputs = render_all(protocol, "probe.yaml", "")
+    outputs = KIND.render(protocol, ["probe.yaml"])
     # One C member of the widest type, the narrower entry read into it.
     assert "    uint32_t probe;" in outputs["c/urwire.h"]
     assert "out->probe = (uint32_t)urwire__u16(p + 41);" in outputs["c/urwire.c"]

@@ -12,8 +12,8 @@ import yaml
 from codegen.compile import DEFAULT_SPEC, compile_text
 from codegen.emit import environment
 from codegen.errors import SpecError
-from codegen.plan import plan
-from codegen.targets import python as python_target
+from codegen.kinds.packages.plan import plan
+from codegen.kinds.packages import python as python_target
 from codegen.view import Step
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -69,7 +69,7 @@ def test_an_unknown_step_kind_fails_at_generation_time(target, template, macro):
 
 
 def test_a_c_keyword_as_a_field_name_is_a_c_target_problem():
-    from codegen.targets import c as c_target
+    from codegen.kinds.packages import c as c_target
 
     def edit(data):
         data["messages"]["robot_state"]["packages"]["tool_data"]["fields"][1]["name"] = "switch"

@@ -10,9 +10,9 @@ import pytest
 from codegen import ir
 from codegen.compile import DEFAULT_SPEC, compile_text
 from codegen.errors import SpecError
-from codegen.naming import layout_label
-from codegen.plan import plan
-from codegen.targets import c, lua, python
+from codegen.kinds.packages.naming import layout_label
+from codegen.kinds.packages.plan import plan
+from codegen.kinds.packages import c, lua, python
 
 SPEC_TEXT = DEFAULT_SPEC.read_text(encoding="utf-8")
 PROTOCOL = compile_text(SPEC_TEXT)

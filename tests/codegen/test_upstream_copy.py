@@ -6,7 +6,7 @@ import sys
 
 import pytest
 
-from codegen.targets import epan
+from codegen.kinds.packages import epan
 from tests.codegen.test_generated_is_current import ROOT
 
 COMMAND_LINE_WORDS = ("/proc/self/cmdline", "tshark_command_line", "named_fields_only", "tshark_fields.c ----",

@@ -11,10 +11,10 @@ import sys
 
 import yaml
 
-from codegen.plan import plan
+from codegen.kinds.packages.plan import plan
 from codegen.compile import DEFAULT_SPEC, compile_file, compile_text, kind_of, spec_files
 from codegen.load import load_file
-from codegen.targets import python as python_target
+from codegen.kinds.packages import python as python_target
 
 
 def render_variant(tmp_path, edit):

@@ -18,6 +18,7 @@ sys.path.insert(0, str(ROOT))
 sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python")]
 
 from codegen import ir  # noqa: E402
+from codegen.kinds.packages import model  # noqa: E402
 from codegen.compile import compile_file  # noqa: E402
 from tests.tools import capture, measure  # noqa: E402
 from tests.tools.capture import Segment  # noqa: E402
@@ -146,7 +147,7 @@ def _kinds() -> dict[str, tuple]:
                 out[abbr] = ("values", f)
 
     for m in PROTOCOL.messages:
-        if isinstance(m, ir.PackageListMessage):
+        if isinstance(m, model.PackageListMessage):
             for pk in m.packages:
                 walk(pk.name, pk.struct.fields)
         else:
@@ -158,7 +159,7 @@ def _kinds() -> dict[str, tuple]:
 
 KINDS = _kinds()
 LAYOUTS = {lay.name: lay for lay in PROTOCOL.all_layouts()}
-PACKAGE_NAMES = {pk.name for m in PROTOCOL.messages if isinstance(m, ir.PackageListMessage) for pk in m.packages}
+PACKAGE_NAMES = {pk.name for m in PROTOCOL.messages if isinstance(m, model.PackageListMessage) for pk in m.packages}
 
 
 def _as_list(v) -> list:
@@ -273,9 +274,9 @@ def _fields(owner: str, obj: dict, rec: dict) -> None:
             rec[name] = _number(kind, v)
 
 
-def _dispatch_message(code: int) -> Optional[ir.DispatchMessage]:
+def _dispatch_message(code: int) -> Optional[model.DispatchMessage]:
     for m in PROTOCOL.messages:
-        if isinstance(m, ir.DispatchMessage) and m.code.value == code:
+        if isinstance(m, model.DispatchMessage) and m.code.value == code:
             return m
     return None
 

@@ -28,8 +28,8 @@ from codegen.compile import compile_text
 
 # The generator's features on a small frozen spec, not on whatever the real spec holds today.
 BASE_SPEC = Path(__file__).resolve().parents[1] / "fixtures" / "ur_primary_5_9_only.yaml"
-from codegen.plan import plan
-from codegen.targets import lua as lua_target
+from codegen.kinds.packages.plan import plan
+from codegen.kinds.packages import lua as lua_target
 from tests.lua.harness import parse_json, run_tshark, ur_items_by_stream, write_sessions
 
 

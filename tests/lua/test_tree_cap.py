@@ -9,7 +9,7 @@ import xml.etree.ElementTree as ET
 from tests.lua.harness import run_tshark
 from tests.tools import capture
 
-from codegen.targets.lua import MAX_TREE_ITEMS
+from codegen.kinds.packages.dissector import MAX_TREE_ITEMS
 
 LIST, INT = 17, 15   # value type codes from software 5.9 (the default with no Version message)
 HEADER_FIELDS = {"ur.length", "ur.type"}   # the message's header, outside the cap

@@ -154,7 +154,7 @@ def test_the_upstream_plugin_has_no_named_fields_preference(upstream_plugin):
 
 def has_epan_target() -> bool:
     sys.path.insert(0, str(ROOT))
-    from codegen.targets import TARGETS
+    from codegen.kinds import TARGETS
     return "epan" in TARGETS
 
 

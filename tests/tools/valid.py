@@ -11,8 +11,9 @@ import random
 import struct
 
 from codegen import ir
+from codegen.kinds.packages import model
 from codegen.compile import compile_file
-from codegen.plan import plan
+from codegen.kinds.packages.plan import plan
 
 PROTOCOL = compile_file()
 
@@ -120,7 +121,7 @@ def message(rng: random.Random, version: tuple[int, int, int] = PROTOCOL.default
     """One valid message of a random laid-out kind, in the form `version` sends it."""
     gen = _Gen(rng, version)
     m = rng.choice(PROTOCOL.messages)
-    if isinstance(m, ir.PackageListMessage):
+    if isinstance(m, model.PackageListMessage):
         body = b""
         packages = [pkg for pkg in m.packages if pkg.versions.contains(version)]
         for pkg in rng.sample(packages, rng.randint(0, len(packages))):

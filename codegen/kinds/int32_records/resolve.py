@@ -4,11 +4,11 @@ from __future__ import annotations
 from ... import ir
 from ...errors import SpecError
 from ...load import LoadedSpec
-from ...resolve import _Resolver
+from ...resolve import Resolver
 from .model import Int32Field, Record, RecordsProtocol
 
 
-class _RecordsResolver(_Resolver):
+class _RecordsResolver(Resolver):
     def field(self, raw: dict, parts) -> Int32Field:
         enum = self.enum_ref(raw["enum"], parts + ["enum"]) if "enum" in raw else None
         if enum is not None and enum.scalar.name != "int32":

@@ -6,7 +6,7 @@ import re
 from ... import ir
 from ...errors import SpecError
 from ...load import LoadedSpec
-from ...resolve import _Resolver
+from ...resolve import Resolver
 from .model import Command, LinesProtocol, RecordField, Reply
 
 _PLACEHOLDER = re.compile(r"<[a-z][a-z0-9_. ]*>")
@@ -18,7 +18,7 @@ def pattern_pieces(pattern: str) -> tuple[str, ...]:
     return tuple(_PLACEHOLDER.split(pattern))
 
 
-class _LinesResolver(_Resolver):
+class _LinesResolver(Resolver):
     def reply(self, raw: dict, parts) -> Reply:
         pattern = raw["pattern"]
         pieces = pattern_pieces(pattern)

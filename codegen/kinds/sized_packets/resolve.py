@@ -6,12 +6,12 @@ from __future__ import annotations
 from ... import ir
 from ...errors import SpecError
 from ...load import LoadedSpec
-from ...resolve import _Resolver
+from ...resolve import Resolver
 from .model import SizedLayout, SizedProtocol
 
 
 def resolve(spec: LoadedSpec) -> SizedProtocol:
-    r = _Resolver(spec)
+    r = Resolver(spec)
     data = spec.data
     for name, raw in data["enums"].items():
         r.enums[name] = r.enum(name, raw)
@@ -33,7 +33,7 @@ def resolve(spec: LoadedSpec) -> SizedProtocol:
                          r.enums, list(catalogue.values()), list(layouts.values()))
 
 
-def _catalogue(r: _Resolver, raw_fields: list) -> dict[str, ir.AnyField]:
+def _catalogue(r: Resolver, raw_fields: list) -> dict[str, ir.AnyField]:
     out: dict[str, ir.AnyField] = {}
     for i, raw in enumerate(raw_fields):
         if raw["name"] in out:
@@ -42,7 +42,7 @@ def _catalogue(r: _Resolver, raw_fields: list) -> dict[str, ir.AnyField]:
     return out
 
 
-def _check_filter_names(r: _Resolver, protocol: str, raw_fields: list, size_field: ir.AnyField) -> None:
+def _check_filter_names(r: Resolver, protocol: str, raw_fields: list, size_field: ir.AnyField) -> None:
     """Every field and the size field are the filters <protocol>.<name> in both dissectors: no
     field takes the size field's name."""
     for i, raw in enumerate(raw_fields):
@@ -50,7 +50,7 @@ def _check_filter_names(r: _Resolver, protocol: str, raw_fields: list, size_fiel
             r.fail(["fields", i, "name"], f"{protocol}.{raw['name']} is the size field's filter name (framing.size)")
 
 
-def _layout(r: _Resolver, name: str, raw: dict, catalogue: dict, earlier: dict, size_bytes: int) -> SizedLayout:
+def _layout(r: Resolver, name: str, raw: dict, catalogue: dict, earlier: dict, size_bytes: int) -> SizedLayout:
     parts = ["layouts", name]
     fields: list[ir.AnyField] = []
     if "extends" in raw:
@@ -80,7 +80,7 @@ def _layout(r: _Resolver, name: str, raw: dict, catalogue: dict, earlier: dict, 
                        versions, fields, r.where(parts))
 
 
-def _check_sizes(r: _Resolver, layouts: list[SizedLayout], max_size: int) -> None:
+def _check_sizes(r: Resolver, layouts: list[SizedLayout], max_size: int) -> None:
     """Layouts may share a size (the spec's same_size rule tells them apart), but two that share
     one must not both be sent by one version: the version would then not tell them apart."""
     for i, layout in enumerate(layouts):

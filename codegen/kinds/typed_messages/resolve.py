@@ -1,20 +1,20 @@
 """LoadedSpec -> the typed-messages IR (model.Interface), checking what the schema cannot.
 
-Enums and scalar/string fields go through the primary resolver (codegen.resolve._Resolver), so
+Enums and scalar/string fields go through the primary resolver (codegen.resolve.Resolver), so
 they become the same ir.Enum and ir.Field objects; every problem names its YAML path and line."""
 from __future__ import annotations
 
 from ... import ir
 from ...errors import Problem, SpecError
 from ...load import LoadedSpec
-from ...resolve import _Resolver
+from ...resolve import Resolver
 from . import model
 
 # Where RTDE begins in each generation: a variable without `since` is there from these on.
 _FIRST = {"cb3": ir.parse_version("3.3"), "eseries": ir.parse_version("5.0")}
 
 
-class _TypedResolver(_Resolver):
+class _TypedResolver(Resolver):
 
     def resolve_interface(self) -> model.Interface:
         data = self.spec.data

@@ -12,13 +12,14 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Optional
 
-from .. import ir, plan
-from ..comments import field_text, node_text, value_text
-from ..emit import environment, runtime_path, runtime_source
-from ..errors import Problem, SpecError
-from ..lang.c import comment, inline
-from ..naming import c_enum_const, c_enum_prefix, c_enum_tag, c_member_const, c_table_suffix
-from ..view import Step
+from ... import ir
+from ...comments import field_text, node_text, value_text
+from ...emit import environment, runtime_path, runtime_source
+from ...errors import Problem, SpecError
+from ...lang.c import comment, inline
+from ...view import Step
+from . import model, plan
+from .naming import c_enum_const, c_enum_prefix, c_enum_tag, c_member_const, c_table_suffix
 
 FOLDER = "c"
 C_TYPES = {"bool": "uint8_t", "int8": "int8_t", "uint8": "uint8_t", "int16": "int16_t", "uint16": "uint16_t",
@@ -463,7 +464,7 @@ def uses_index(steps: list[Step]) -> bool:
 
 # ---- enums ----------------------------------------------------------------------------------
 
-def enum_views(p: ir.Protocol) -> list[dict]:
+def enum_views(p: model.Protocol) -> list[dict]:
     views = []
     for e in p.enums.values():
         tables = []
@@ -488,7 +489,7 @@ def enum_views(p: ir.Protocol) -> list[dict]:
     return views
 
 
-def value_views(p: ir.Protocol) -> dict:
+def value_views(p: model.Protocol) -> dict:
     problems: list[Problem] = []
     kinds = list(p.value_layouts)
     tables = []
@@ -726,7 +727,7 @@ def decoder_views(mp: plan.MessagePlan, table: dict, structs: dict[int, CStruct]
     return codes
 
 
-def framing(p: ir.Protocol, packages: dict, vst: CStruct, vmsg: dict, vs: plan.VersionSource) -> dict:
+def framing(p: model.Protocol, packages: dict, vst: CStruct, vmsg: dict, vs: plan.VersionSource) -> dict:
     """What the runtime reads of the spec's framing through private macros: where the header
     fields are, which message is the sub-package list, which layout announces the version and
     how to reach its numbers before its layout is chosen."""
@@ -753,7 +754,7 @@ def framing(p: ir.Protocol, packages: dict, vst: CStruct, vmsg: dict, vs: plan.V
                              skips=skips, tail=vs.tail))
 
 
-def known_types(p: ir.Protocol) -> list[str]:
+def known_types(p: model.Protocol) -> list[str]:
     """The message types a plausible header may carry (the framer resynchronises on the others)."""
     return [c_enum_const(p.message_type_enum, code) for code in sorted({v.value for v in p.message_type_enum.values})]
 

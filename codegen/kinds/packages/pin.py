@@ -10,15 +10,16 @@ from __future__ import annotations
 import copy
 import dataclasses
 
-from . import ir
+from ... import ir
+from . import model
 
 
-def pin(protocol: ir.Protocol, version: ir.Version) -> ir.Protocol:
+def pin(protocol: model.Protocol, version: ir.Version) -> model.Protocol:
     p = copy.deepcopy(protocol)
     for e in p.enums.values():
         e.tables = [_table_for(e, version)]
     for m in p.messages:
-        if isinstance(m, ir.PackageListMessage):
+        if isinstance(m, model.PackageListMessage):
             m.packages = [_layout(lay, version) for lay in m.packages if lay.versions.contains(version)]
         else:
             m.header = m.header.at(version)
@@ -33,7 +34,7 @@ def _table_for(e: ir.Enum, version: ir.Version) -> ir.EnumTable:
     return ir.EnumTable(ir.ALL_VERSIONS, [dataclasses.replace(v, versions=ir.ALL_VERSIONS) for v in table.values])
 
 
-def _layout(lay: ir.Layout, version: ir.Version) -> ir.Layout:
+def _layout(lay: model.Layout, version: ir.Version) -> model.Layout:
     struct = lay.struct.at(version)
     sets_version = lay.sets_version
     if sets_version and sets_version[2] and not struct.named(sets_version[2]):

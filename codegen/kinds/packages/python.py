@@ -7,17 +7,19 @@ only lay the strings out. Fixed runs of fields become one precompiled struct.Str
 """
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from typing import Optional
 
-from .. import ir, plan
-from ..emit import environment
-from ..errors import Problem, SpecError
-from ..comments import field_text, node_text, value_text
-from ..view import Step, one_line
-from ..naming import (camel, layout_label, py_enum_class, py_item_class, py_layout_class, py_lookup,
-                      py_message_class, py_table_class, words)
+from ... import ir
+from ...emit import environment
+from ...lang.python import string as py_string, string_or_none as py_string_or_none
+from ...errors import Problem, SpecError
+from ...comments import field_text, node_text, value_text
+from ...view import Step, one_line
+from ...naming import words
+from . import model, plan
+from .naming import (layout_label, py_enum_class, py_item_class, py_layout_class, py_lookup, py_message_class,
+                     py_table_class)
 
 # The generated subpackage urwire.generated; the hand-written package is python/urwire/.
 PACKAGE = "python/urwire/generated"
@@ -39,8 +41,8 @@ class Attr:
 def attr(f: ir.AnyField, annotation: str, optional: bool = False, entries: tuple = ()) -> Attr:
     """An attribute: its docstring starts with the field's label and unit, and its metadata
     holds them for code that shows records to people (human.py, a GUI), and tables (export.py)."""
-    unit = json.dumps(f.unit, ensure_ascii=False) if f.unit else "None"
-    metadata = (f'{{"label": {json.dumps(f.label, ensure_ascii=False)}, "unit": {unit}{_wide_wire(f)}'
+    unit = py_string_or_none(f.unit)
+    metadata = (f'{{"label": {py_string(f.label)}, "unit": {unit}{_wide_wire(f)}'
                 f'{_fixed_count(f)}}}')
     return Attr(f.name, annotation, one_line(field_text(entries or [f])), ir.json_kind(f), optional, metadata)
 
@@ -310,14 +312,14 @@ def fixed_runs(decode: list[Step]) -> Optional[dict]:
     runs, absent = [], []
     for s in decode:
         if s.kind == "absent":
-            absent += [json.dumps(name) for name in s.names]
+            absent += [py_string(name) for name in s.names]
         elif s.kind == "run":
             runs.append(dict(const=s.const, members=s.run_members, flag="None", skipped=[]))
         elif (s.kind == "cond" and s.condition.flag and s.condition.low is None and s.condition.high is None
               and [inner.kind for inner in s.steps] == ["run"]):
             (inner,) = s.steps
-            runs.append(dict(const=inner.const, members=inner.run_members, flag=json.dumps(s.condition.flag),
-                             skipped=[json.dumps(name) for name in s.names]))
+            runs.append(dict(const=inner.const, members=inner.run_members, flag=py_string(s.condition.flag),
+                             skipped=[py_string(name) for name in s.names]))
         else:
             return None
     return dict(runs=runs, absent=absent) if runs else None
@@ -428,7 +430,7 @@ class _Target:
                 classes[id(c.layout)].encoder_by_segment = self.encoder_by_segment(mp, c.layout)
 
     @staticmethod
-    def encoder_by_segment(mp: plan.MessagePlan, layout: ir.Layout) -> str:
+    def encoder_by_segment(mp: plan.MessagePlan, layout: model.Layout) -> str:
         """For a layout of several forms: the index of its encoder in each segment (that of the
         form its code takes there; where that is another layout's form, its last)."""
         forms = mp.forms_of(layout)
@@ -490,7 +492,7 @@ class _Target:
                 header_run=[(slot.field.name, slot.offset, slot.field.scalar.size) for slot in mp.header],
                 header_offset=mp.header[0].offset if mp.header else mp.body_offset,
                 header_names=[f.name for f in fields], header_converts=converts,
-                subtype=json.dumps(subtype) if subtype else "None",
+                subtype=py_string_or_none(subtype),
                 body_offset=mp.body_offset, announces=announces, **self.forms(mp, classes)))
         if self.problems:
             raise SpecError(self.p.source, self.problems)
@@ -507,7 +509,7 @@ class _Target:
                     + STRUCT_CODES[p.package_type.scalar.name])
 
 
-def enum_views(p: ir.Protocol) -> list[dict]:
+def enum_views(p: model.Protocol) -> list[dict]:
     views = []
     for e in p.enums.values():
         tables = []
@@ -522,7 +524,7 @@ def enum_views(p: ir.Protocol) -> list[dict]:
     return views
 
 
-def value_kind_views(p: ir.Protocol) -> list[dict]:
+def value_kind_views(p: model.Protocol) -> list[dict]:
     """Per value-type table: code -> (name, layout, struct format, is bool), and the fewest bytes a value takes."""
     out = []
     for t in p.value_type.tables:

@@ -8,8 +8,9 @@ import re
 from dataclasses import dataclass
 from typing import Optional
 
-from . import ir, plan
-from .naming import words
+from ... import ir
+from ...naming import words
+from . import model, plan
 
 
 @dataclass
@@ -139,7 +140,7 @@ def _form_sources(v: plan.Variant) -> str:
     return ", ".join(f"[{c.split('#')[1]}]({c})" for c in cited) or "the 5.9 document"
 
 
-def _notes(lay: ir.Layout) -> list[str]:
+def _notes(lay: model.Layout) -> list[str]:
     """The layout's and its fields' field_note texts (sources and confidence), as a list."""
     rows = [f"- {_one_line(_linked(lay.field_note))}"] if lay.field_note else []
     for f in lay.struct.fields:
@@ -200,7 +201,7 @@ def protocol_markdown(p: plan.ProtocolPlan, spec_path: str) -> str:
     return "\n".join(out).rstrip() + "\n"
 
 
-def _marked(layout: ir.Layout) -> str:
+def _marked(layout: model.Layout) -> str:
     """A layout's name and its marks: "payload_info (undocumented, inferred)"."""
     return f"{layout.name} ({', '.join(layout.marks)})" if layout.marks else layout.name
 

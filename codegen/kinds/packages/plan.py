@@ -20,8 +20,9 @@ import copy
 from dataclasses import dataclass, field
 from typing import Optional, Union
 
-from . import ir
-from .errors import Problem, SpecError
+from ... import ir
+from ...errors import Problem, SpecError
+from . import model
 
 
 # ---- conditions ---------------------------------------------------------------------------
@@ -227,7 +228,7 @@ class HeaderSlot:
 class LayoutChoice:
     """A layout a type code can have."""
 
-    layout: ir.Layout
+    layout: model.Layout
     plan: LayoutPlan
 
 
@@ -248,7 +249,7 @@ class Variant:
     releases: list[tuple[int, int]] = field(default_factory=list)   # the released series (numbers)
 
     @property
-    def layout(self) -> ir.Layout:
+    def layout(self) -> model.Layout:
         return self.choice.layout
 
     def describe(self) -> str:
@@ -309,7 +310,7 @@ class SegmentForm:
 
 @dataclass
 class MessagePlan:
-    message: ir.Message
+    message: model.Message
     header: list[HeaderSlot]         # dispatch messages: the common header, then the subtype
     body_offset: int                 # the first sub-package, or the subtype's (body's) first field
     subtype_offset: Optional[int]    # None for a robot state or a body message
@@ -323,13 +324,13 @@ class MessagePlan:
 
     @property
     def is_dispatch(self) -> bool:
-        return isinstance(self.message, ir.DispatchMessage)
+        return isinstance(self.message, model.DispatchMessage)
 
     @property
     def layouts(self) -> list[LayoutChoice]:
         return [c for choices in self.choices.values() for c in choices]
 
-    def forms_of(self, layout: ir.Layout) -> list["Variant"]:
+    def forms_of(self, layout: model.Layout) -> list["Variant"]:
         """The forms of one layout (a code with two layouts has forms of each)."""
         return [v for v in self.variants.get(layout.code.value, []) if v.layout is layout]
 
@@ -353,7 +354,7 @@ class VersionSource:
     subtype_code: int
     subtype_offset: int
     body_offset: int
-    layout: ir.Layout
+    layout: model.Layout
     major: ir.ScalarField
     minor: ir.ScalarField
     bugfix: Optional[ir.ScalarField]  # right after minor, in the versions its condition gives
@@ -364,7 +365,7 @@ class VersionSource:
 
 @dataclass
 class ProtocolPlan:
-    protocol: ir.Protocol
+    protocol: model.Protocol
     header_size: int
     package_header_size: int
     messages: list[MessagePlan]
@@ -389,7 +390,7 @@ class ProtocolPlan:
         raise KeyError(group.name)
 
 
-def _version_source(p: ir.Protocol, messages: list[MessagePlan], problems: list[Problem]) -> Optional[VersionSource]:
+def _version_source(p: model.Protocol, messages: list[MessagePlan], problems: list[Problem]) -> Optional[VersionSource]:
     found = [(m, c.layout) for m in messages for c in m.layouts if c.layout.sets_version]
     if len(found) != 1:
         where = found[1][1].where if found[1:] else p.messages[0].where if p.messages else ir.NOWHERE
@@ -484,7 +485,7 @@ def _signature(f: ir.AnyField) -> tuple:
             id(getattr(f, "enum", None)))
 
 
-def _releases(p: ir.Protocol) -> list[tuple[int, int]]:
+def _releases(p: model.Protocol) -> list[tuple[int, int]]:
     """The released version series as number ranges: only the gaps between them are left out,
     so that a version before the first or after the last still has its forms."""
     ranges = [_bounds(r) for _, r in p.generations] or [(0, _TOP)]
@@ -588,7 +589,7 @@ def _by_length(variants: list[Variant]) -> dict[int, int]:
     return {size: ks[0] for size, ks in sorted(holders.items()) if len(ks) == 1}
 
 
-def plan(p: ir.Protocol) -> ProtocolPlan:
+def plan(p: model.Protocol) -> ProtocolPlan:
     """Plan every layout of the protocol; problems name the spec's path and line."""
     problems: list[Problem] = []
     planner = _Planner(problems)
@@ -596,7 +597,7 @@ def plan(p: ir.Protocol) -> ProtocolPlan:
     messages = []
     for m in p.messages:
         choices: dict[int, list[LayoutChoice]] = {}
-        if isinstance(m, ir.PackageListMessage):
+        if isinstance(m, model.PackageListMessage):
             header, body, subtype_offset = [], p.header_size, None
             layouts = m.packages
         else:
