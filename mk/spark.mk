@@ -1,4 +1,4 @@
-# Apache Spark: `urwire spark` (python/urwire/spark.py) and its benchmark. Its tests are
+# Apache Spark: `urwire spark` (python/urwire/data/spark.py) and its benchmark. Its tests are
 # tests/python/test_spark.py, run with the other Python tests (skipped without pyspark or java).
 
 BENCH_TARGETS += bench-spark

@@ -1,5 +1,5 @@
 /* urwire._ccore.PrimaryColumns and PrimaryStream: the dataset's columns of the primary/secondary
- * interface, made in C (python/urwire/dataset_c.py and dataset_c_capture.py turn them into Arrow
+ * interface, made in C (python/urwire/data/dataset_c.py and dataset_c_capture.py turn them into Arrow
  * tables; docs/tables.md).
  *
  * The C parser frames and decodes a raw stream (feed, close), or the streams of a capture's

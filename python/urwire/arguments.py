@@ -1,5 +1,6 @@
-"""What the public functions take: bytes-like input and software versions, checked once at the
-door so that a wrong type is a TypeError saying what is wanted, not a failure deep inside.
+"""What the public functions and the commands take: bytes-like input, software versions, ports
+and numbers, checked once at the door so that a wrong type is a TypeError saying what is wanted
+(a command's: argparse's one-line error, exit 2), not a failure deep inside.
 """
 from __future__ import annotations
 
@@ -56,6 +57,14 @@ def parse_version(version: VersionLike) -> Optional[tuple[int, int, int]]:
         raise TypeError(f"a software version is {_VERSION_TYPES}, not {type(version).__name__}")
     major, minor, bugfix = (numbers + [0])[:3]
     return major, minor, bugfix
+
+
+def software_version(text: str) -> tuple[int, int, int]:
+    """A command-line software version (X.Y or X.Y.Z), else refused (argparse: exit 2)."""
+    try:
+        return parse_version(text)  # type: ignore[return-value]
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def finite_number(text: str) -> float:

@@ -12,7 +12,7 @@ framed in C, each sub-package a copy of the record its bytes gave before (one ha
 state that was dropped since, when nothing holds any part of it) or made in C; the
 records of real-time packets (realtime.py) and the values of RTDE data packages (typed_records.py),
 made in C from what their struct unpacks; and the dataset's columns of the primary/secondary
-interface, of raw streams and captures (dataset_c.py, dataset_c_capture.py).
+interface, of raw streams and captures (data/dataset_c.py, data/dataset_c_capture.py).
 """
 from __future__ import annotations
 

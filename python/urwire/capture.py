@@ -12,10 +12,12 @@ the stream holding the most gives up its gap. The capture is read a record at a 
 from __future__ import annotations
 
 import heapq
+import socket
 from dataclasses import dataclass, field
 from typing import BinaryIO, Iterator, Optional, Union
 
 from .capture_records import CaptureFault, CaptureFrames
+# dpkt is imported by the functions that read a capture: `import urwire` needs the standard library only.
 
 PCAP_MAGICS = {b"\xa1\xb2\xc3\xd4", b"\xd4\xc3\xb2\xa1", b"\xa1\xb2\x3c\x4d", b"\x4d\x3c\xb2\xa1"}
 PCAPNG_MAGIC = b"\x0a\x0d\x0d\x0a"
@@ -265,7 +267,6 @@ def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozense
     a retransmission disagrees with the bytes it repeats. CaptureFaults as timed_robot_streams
     says."""
     import dpkt
-    import socket
 
     head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
     reader = CaptureFrames(fh, pcapng=head == PCAPNG_MAGIC)

@@ -19,6 +19,7 @@ from __future__ import annotations
 import struct
 from dataclasses import dataclass
 from typing import BinaryIO, Iterator, Union
+# dpkt is imported by the functions that read a capture: `import urwire` needs the standard library only.
 
 PCAP_RECORD_MAX = 262144       # Wireshark's largest record for Ethernet
 PCAPNG_BLOCK_MIN = 12           # type, length, trailing length

@@ -70,7 +70,7 @@ def timed_robot_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inte
         if learn is not None and key[0] in versions:
             learn(versions[key[0]])
         at = getattr(conv, "at", None)
-        if at is not None:      # a conversation that files its records itself (dataset_c_capture.py)
+        if at is not None:      # a conversation that files its records itself (data/dataset_c_capture.py)
             at(time, key[0])
         tails: list = []
         if isinstance(piece, Gap):

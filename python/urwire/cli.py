@@ -9,8 +9,8 @@ import os
 import sys
 from typing import BinaryIO, Callable, Optional
 
-from . import __version__, export, listen, plot, serve, spark
-from .arguments import parse_version, port_number
+from . import __version__
+from .arguments import port_number, software_version
 from .backends import JsonLines, backend
 from .capture import head_of, is_capture
 from .canonical import fails, to_json_line
@@ -20,6 +20,8 @@ from .cell import interface_named, ports_of, records_of_raw_protocol
 from .interfaces import INTERFACES
 from .reading import CHUNK, input_kind, records_of
 from .generated.spec import DEFAULT_VERSION, PORTS
+from .data import export, plot, spark
+from .live import listen, serve
 
 PROGRESS_MIN_BYTES = 8 << 20
 
@@ -27,13 +29,6 @@ PROGRESS_MIN_BYTES = 8 << 20
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str):  # one line on stderr, exit 2, as the contract says
         self.exit(2, f"{self.prog}: error: {message}\n")
-
-
-def _version_arg(text: str) -> tuple[int, int, int]:
-    try:
-        return parse_version(text)  # type: ignore[return-value]
-    except ValueError as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -52,7 +47,7 @@ def build_parser() -> argparse.ArgumentParser:
     dec.add_argument("--to-robot", metavar="FILE2",
                      help="with a raw stream: the client->robot stream of the same connection, read first; "
                           "each record then names its interface, direction and file")
-    dec.add_argument("--version-hint", type=_version_arg, metavar="X.Y[.Z]",
+    dec.add_argument("--version-hint", type=software_version, metavar="X.Y[.Z]",
                      help=f"software version to assume until a Version message is seen (e.g. 3.2 or 5.25.1): it "
                           f"chooses each part's layout and the meaning of version-dependent codes, such as the "
                           f"value types of global variables (default: {default}, i.e. {default} and later, "
@@ -66,7 +61,7 @@ def build_parser() -> argparse.ArgumentParser:
     dec.add_argument("--no-progress", action="store_true", help="never show a progress bar")
     dec.set_defaults(run=decode_command)
     for tool in (serve, listen, export, plot, spark):
-        tool.add_parser(sub, _version_arg)
+        tool.add_parser(sub)
     return parser
 
 
@@ -81,7 +76,7 @@ def _open(path: str) -> tuple[BinaryIO, Optional[int]]:
 def _progress(size: Optional[int], disabled: bool) -> Callable[[int], None]:
     if disabled or size is None or size < PROGRESS_MIN_BYTES or not sys.stderr.isatty():
         return lambda n: None
-    from tqdm import tqdm
+    from tqdm import tqdm  # needed only when a bar is shown
 
     bar = tqdm(total=size, unit="B", unit_scale=True, desc="decoding", file=sys.stderr, leave=False)
     return bar.update

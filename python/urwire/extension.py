@@ -10,22 +10,15 @@ from __future__ import annotations
 import os
 
 _CHOICES = ("c", "python")
+_CHOICE = os.environ.get("URWIRE_BACKEND", "").strip().lower()
+if _CHOICE and _CHOICE not in _CHOICES:
+    raise ImportError(f"URWIRE_BACKEND={_CHOICE!r}: expected one of {', '.join(_CHOICES)}")
 
-
-def load_ccore():
-    choice = os.environ.get("URWIRE_BACKEND", "").strip().lower()
-    if choice and choice not in _CHOICES:
-        raise ImportError(f"URWIRE_BACKEND={choice!r}: expected one of {', '.join(_CHOICES)}")
-    if choice == "python":
-        return None
+CCORE = None
+if _CHOICE != "python":
     try:
-        from . import _ccore
+        from . import _ccore as CCORE
     except ImportError:
-        if choice == "c":
+        if _CHOICE == "c":
             raise ImportError("URWIRE_BACKEND=c, but the C extension urwire._ccore is not built "
                               "(make python-ext, or pip install . with a C compiler)") from None
-        return None
-    return _ccore
-
-
-CCORE = load_ccore()

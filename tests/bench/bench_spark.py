@@ -43,8 +43,8 @@ ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROO
 SEQUENTIAL = """
 import datetime, sys
 from pathlib import Path
-from urwire.spark import dataset_module, utc_date
-dataset = dataset_module()
+from urwire.data import dataset
+from urwire.data.spark import utc_date
 out, robot = sys.argv[1], sys.argv[3] or None
 for path in sorted(p for p in Path(sys.argv[2]).rglob("*") if p.is_file()):
     data = path.read_bytes()
@@ -143,7 +143,7 @@ def main() -> int:
     for out in (sequential_out, spark_out):
         shutil.rmtree(out, ignore_errors=True)
     sequential = timed([sys.executable, "-c", SEQUENTIAL, str(sequential_out), str(captures), robot])
-    spark = timed([sys.executable, "-m", "urwire.spark", "--master", "local[2]", "--out", str(spark_out),
+    spark = timed([sys.executable, "-m", "urwire.data.spark", "--master", "local[2]", "--out", str(spark_out),
                    *(["--robot", robot] if robot else []), str(captures)])
     expected, got = part_rows(sequential_out), part_rows(spark_out)
     same = expected == got

@@ -12,7 +12,7 @@ import time
 from pathlib import Path
 from typing import Callable, Iterable, Optional
 
-from urwire.simulated import Controller
+from urwire.live.simulated import Controller
 
 ROOT = Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")]))

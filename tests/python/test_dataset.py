@@ -1,4 +1,4 @@
-"""`urwire export --dataset` and urwire.dataset: one schema per kind that every layout of every
+"""`urwire export --dataset` and urwire.data.dataset: one schema per kind that every layout of every
 vector fills with the values `urwire export --out` writes (null where a version has no field);
 folders by interface, kind, robot and day; another capture appends, the same capture replaces
 its rows; row groups of the size docs/tables.md gives, with statistics; and the DuckDB queries of
@@ -19,7 +19,7 @@ pa = pytest.importorskip("pyarrow")
 pq = pytest.importorskip("pyarrow.parquet")
 
 import urwire  # noqa: E402
-from urwire import dataset, dataset_files, export  # noqa: E402
+from urwire.data import dataset, dataset_files, dataset_rows, export  # noqa: E402
 from urwire.canonical import has_error, to_dict  # noqa: E402
 
 from tests import vectors  # noqa: E402
@@ -112,7 +112,7 @@ REALTIME_CASES = vectors.interface_cases("ur_realtime")
 @pytest.mark.parametrize("case", REALTIME_CASES, ids=lambda c: c.name)
 def test_every_real_time_layout_fills_one_schema_with_what_export_writes(case, tmp_path):
     from urwire import realtime
-    from urwire.export_cell import value_columns
+    from urwire.data.export_cell import value_columns
 
     pcap = capture.write(tmp_path / "rt.pcap", capture.robot_session([case.data], port=30003))
     parts = list(dataset.capture_parts(pcap.read_bytes(), "rt.pcap", case.version))
@@ -233,7 +233,7 @@ def test_row_groups_take_a_kinds_share_of_the_bound_and_carry_statistics(tmp_pat
     assert 300_000 < files._row_group_rows(schema) < files.ROW_GROUP_ROWS
     assert files._row_group_rows(pa.schema([("position", pa.int64())])) == files.ROW_GROUP_ROWS
     monkeypatch.setattr(files, "ROW_GROUP_BYTES", row_bytes * 100)   # 100 rows a group
-    monkeypatch.setattr(dataset, "BATCH_ROWS", batch)
+    monkeypatch.setattr(dataset_rows, "BATCH_ROWS", batch)
     data = robot_inputs.capture(1).read_bytes()
     dataset.write_parts(tmp_path, dataset.capture_parts(data, "one.pcap"), "c0ffee")
     meta = pq.ParquetFile(next((tmp_path / "interface=ur" / "kind=joint_data").rglob("*.parquet"))).metadata

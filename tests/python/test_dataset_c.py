@@ -1,4 +1,4 @@
-"""The dataset's columns made in C (urwire._ccore.PrimaryColumns, python/urwire/dataset_c.py)
+"""The dataset's columns made in C (urwire._ccore.PrimaryColumns, python/urwire/data/dataset_c.py)
 against pure Python's (dataset.PartBuilder over the Python decoder): every kind's table of every
 robot and day, row for row, with its types and nulls, over every golden and conformance vector,
 every kept fuzz input, sessions of every controller generation and a run of real robot states as
@@ -25,7 +25,8 @@ pa = pytest.importorskip("pyarrow")
 pq = pytest.importorskip("pyarrow.parquet")
 
 import urwire  # noqa: E402
-from urwire import capture, dataset, dataset_c  # noqa: E402
+from urwire import capture  # noqa: E402
+from urwire.data import dataset, dataset_c  # noqa: E402
 
 from tests.tools import capture as capture_file, golden_sessions, robot_inputs, valid  # noqa: E402
 from tests.tools.fuzz_inputs import HARNESSES, decodable  # noqa: E402

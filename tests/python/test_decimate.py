@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import math
 
-from urwire.decimate import MinMaxLines
+from urwire.data.decimate import MinMaxLines
 
 
 def test_few_points_come_back_as_they_went_in():

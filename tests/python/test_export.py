@@ -7,7 +7,7 @@ from __future__ import annotations
 import random
 
 import pytest
-from urwire import export
+from urwire.data import export
 
 
 def table_rows(tables: export.Tables, name: str) -> list[dict]:

@@ -142,7 +142,8 @@ def test_every_unsigned_64_bit_field_is_marked_for_typed_columns():
 
 
 def test_export_names_a_stream_as_a_stream_when_it_cannot_read_it(tmp_path, monkeypatch, capsys):
-    from urwire import cli, export
+    from urwire import cli
+    from urwire.data import export
 
     def fails(*args, **kwargs):
         raise ValueError("bad bytes")

@@ -91,7 +91,7 @@ def test_stopped_inside_a_message_the_raw_file_still_decodes_to_the_records(tmp_
 
 
 def test_raw_file_names(tmp_path):
-    from urwire.listen import earlier_raw_files, raw_path
+    from urwire.live.listen import earlier_raw_files, raw_path
     assert [raw_path("logs/session.raw", n) for n in range(3)] == \
         ["logs/session.raw", "logs/session.1.raw", "logs/session.2.raw"]
     assert raw_path("session", 4) == "session.4"
@@ -166,7 +166,7 @@ def test_idle_timeout_defaults_to_two_seconds(tmp_path):
 
 def test_socket_has_keepalive():
     import importlib
-    listen_module = importlib.import_module("urwire.listen")
+    listen_module = importlib.import_module("urwire.live.listen")
     with socket.create_server(("127.0.0.1", 0)) as server:
         sock = listen_module.connect("127.0.0.1", server.getsockname()[1], timeout=2)
         with sock:

@@ -17,8 +17,8 @@ from pathlib import Path
 from tests.python.cell_server import ENV, CellServer
 from urwire import rtde
 from urwire.generated import rtde as g
-from urwire.motion import Motion
-from urwire.robot_models import model_for
+from urwire.live.motion import Motion
+from urwire.live.robot_models import model_for
 
 
 def listen(port: int, tmp: Path, *args: str, timeout: float = 60) -> tuple[subprocess.CompletedProcess, list]:

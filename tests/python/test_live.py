@@ -85,7 +85,7 @@ def test_serve_listen(software, tmp_path):
 def test_program_loop_in_every_generation():
     """A run of the simulated program says everything the protocol can: the version's value
     types, key and text messages, a protective stop and its safety mode."""
-    from urwire.simulated import Controller
+    from urwire.live.simulated import Controller
 
     for version in GENERATIONS.values():
         sim = Controller(version, 10)
@@ -169,7 +169,7 @@ def test_capture_on_loopback_dissects_cleanly(software, tmp_path):
 def test_export_row_counts(tmp_path):
     import pyarrow  # noqa: F401  (the parquet extra; requirements-dev.txt installs it)
     import pyarrow.parquet as pq
-    from urwire.simulated import Controller
+    from urwire.live.simulated import Controller
 
     sim = Controller((3, 15, 0), 10)
     raw = tmp_path / "session.raw"
@@ -211,7 +211,7 @@ def test_export_dates_capture_rows_by_the_frame_that_completed_them(tmp_path):
 
 
 def test_export_csv_needs_nothing(tmp_path):
-    from urwire.simulated import Controller
+    from urwire.live.simulated import Controller
 
     sim = Controller((1, 8, 0), 10)
     raw = tmp_path / "session.raw"
@@ -225,7 +225,7 @@ def test_export_csv_needs_nothing(tmp_path):
 
 def test_plot_writes_an_image(tmp_path):
     import matplotlib  # noqa: F401  (the plot extra; requirements-dev.txt installs it)
-    from urwire.simulated import Controller
+    from urwire.live.simulated import Controller
 
     sim = Controller((5, 11, 0), 10)
     raw = tmp_path / "session.raw"
@@ -239,7 +239,7 @@ def test_plot_writes_an_image(tmp_path):
 
 
 def test_plot_axis_names_the_field_as_the_spec_labels_it():
-    from urwire import plot
+    from urwire.data import plot
     from urwire.generated import messages
 
     assert plot.axis_title(messages.Joint, "q_actual") == "Actual joint position (rad)"

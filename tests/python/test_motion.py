@@ -8,8 +8,8 @@ import random
 
 import pytest
 
-from urwire.motion import Motion, forward_kinematics, rotation_vector
-from urwire.robot_models import MODELS
+from urwire.live.motion import Motion, forward_kinematics, rotation_vector
+from urwire.live.robot_models import MODELS
 
 # UR5e, from UR's article "DH Parameters for calculations of kinematics and dynamics":
 # d1 0.1625, a2 -0.425, a3 -0.3922, d4 0.1333, d5 0.0997, d6 0.0996; alpha pi/2, 0, 0, pi/2, -pi/2, 0.

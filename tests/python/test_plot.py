@@ -31,7 +31,7 @@ def test_the_list_holds_the_numeric_fields_of_the_kind_asked_for(tmp_path):
 
 
 def test_plottable_fields_are_the_numeric_fields_of_the_generated_classes():
-    from urwire import plot
+    from urwire.data import plot
 
     fields = plot.plottable_fields()
     assert "joint_data.q_actual" in fields and "tool_data.tool_current" in fields

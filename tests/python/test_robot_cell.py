@@ -3,9 +3,9 @@ plays and it is powered, so the motion's time is the time spent moving; a stoppe
 joints with zero speeds; inputs follow their masks; an input is held by one connection at a time."""
 from __future__ import annotations
 
-from urwire.motion import Motion
-from urwire.robot_cell import IDLE, PAUSED, POWER_OFF, RUNNING, STOPPED, RobotCell
-from urwire.robot_models import model_for
+from urwire.live.motion import Motion
+from urwire.live.robot_cell import IDLE, PAUSED, POWER_OFF, RUNNING, STOPPED, RobotCell
+from urwire.live.robot_models import model_for
 
 
 def cell() -> RobotCell:

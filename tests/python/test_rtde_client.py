@@ -1,6 +1,6 @@
 """The real `ur-rtde` client (SDU Robotics, PyPI) against `urwire serve`, on real loopback TCP:
 RTDEReceiveInterface reads the served robot's motion (its joints and tool pose equal
-urwire.motion.Motion's at the package's timestamp), and RTDEIOInterface's inputs (the speed
+urwire.live.motion.Motion's at the package's timestamp), and RTDEIOInterface's inputs (the speed
 slider, a standard digital output) change what the robot reports.
 
 ur-rtde connects to the standard ports only, so `serve` listens on an address of 127/8 of its own.
@@ -13,8 +13,8 @@ import time
 import pytest
 
 from tests.python.cell_server import CellServer, loopback_address
-from urwire.motion import Motion
-from urwire.robot_models import model_for
+from urwire.live.motion import Motion
+from urwire.live.robot_models import model_for
 
 rtde_receive = pytest.importorskip("rtde_receive", reason="the ur-rtde client (pip install ur-rtde) is not installed")
 rtde_io = pytest.importorskip("rtde_io", reason="the ur-rtde client (pip install ur-rtde) is not installed")

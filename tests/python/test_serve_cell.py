@@ -6,7 +6,7 @@ at the generation's rate, the motion's joints) and the dashboard server (the ban
 texts by version, play, stop and pause changing the program state every interface reports).
 
 Each client here is urwire's own decoder for the interface; the values are checked against
-urwire.motion.Motion, the one motion every interface samples, worked out apart from the server."""
+urwire.live.motion.Motion, the one motion every interface samples, worked out apart from the server."""
 from __future__ import annotations
 
 import math
@@ -21,9 +21,9 @@ from tests.python.cell_server import ENV, CellServer, read_until
 from urwire import rtde
 from urwire.generated import rtde as g
 from urwire.generated import ur_dashboard
-from urwire.motion import Motion
+from urwire.live.motion import Motion
 from urwire.realtime import RealtimeFramer
-from urwire.robot_models import model_for
+from urwire.live.robot_models import model_for
 from urwire.framer import Framer
 import urwire
 
@@ -333,7 +333,7 @@ def test_dashboard_commands_of_the_version_only(server):
 
 
 def test_every_dashboard_command_has_an_answer():
-    from urwire.serve_dashboard import _HANDLERS
+    from urwire.live.serve_dashboard import _HANDLERS
     assert set(_HANDLERS) == {c.name for c in ur_dashboard.COMMANDS}
 
 

@@ -17,7 +17,7 @@ from urwire import rtde
 from urwire.generated import rtde as g
 from urwire.generated import ur_dashboard
 from urwire.realtime import RealtimeFramer
-from urwire.serve_rtde import offers
+from urwire.live.serve_rtde import offers
 
 
 def stalled_client(server: CellServer, interface: str) -> socket.socket:

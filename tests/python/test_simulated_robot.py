@@ -12,9 +12,9 @@ from pathlib import Path
 import pytest
 import urwire
 from urwire.generated import enums as e
-from urwire.motion import Motion
-from urwire.robot_models import MODELS, model_for
-from urwire.simulated import Controller
+from urwire.live.motion import Motion
+from urwire.live.robot_models import MODELS, model_for
+from urwire.live.simulated import Controller
 
 ROOT = Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")]))
@@ -156,7 +156,7 @@ def test_payload_info_is_sent_from_5_11_with_a_real_robots_values(version, sent)
 
 
 def test_serial_numbers_are_eleven_digits_of_the_generation():
-    from urwire.robot_models import serial_number
+    from urwire.live.robot_models import serial_number
 
     ur5e, ur10 = serial_number(MODELS["ur5e"], (5, 11, 0)), serial_number(MODELS["ur10"], (3, 15, 0))
     assert ur5e.isdigit() and len(ur5e) == 11 and ur5e.startswith("2021")

@@ -1,4 +1,4 @@
-"""`urwire spark` (python/urwire/spark.py) in Spark's local[2] mode: a folder of captures of
+"""`urwire spark` (python/urwire/data/spark.py) in Spark's local[2] mode: a folder of captures of
 robots, raw streams, .pcap and .pcapng, gives the dataset that exporting each capture in turn
 gives (dataset.capture_parts, then dataset.write_parts, with the file's name, the raw streams'
 robot and the file's day: what `urwire export --dataset` does), file for file and row for row; its manifest counts those rows, and a second run over the same
@@ -33,9 +33,11 @@ def spark():
     from pyspark.sql import SparkSession
 
     before = os.environ.get("PYSPARK_PYTHON")
-    os.environ["PYSPARK_PYTHON"] = sys.executable   # the executors import urwire as this process does
+    os.environ["PYSPARK_PYTHON"] = sys.executable   # the executors import urwire as this process does:
+    tree = os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")])   # this tree's, not an install's
     session = (SparkSession.builder.master("local[2]").appName("urwire-test")
-               .config("spark.ui.enabled", "false").config("spark.sql.shuffle.partitions", "2").getOrCreate())
+               .config("spark.ui.enabled", "false").config("spark.sql.shuffle.partitions", "2")
+               .config("spark.executorEnv.PYTHONPATH", tree).getOrCreate())
     session.sparkContext.setLogLevel("ERROR")
     yield session
     session.stop()
@@ -65,9 +67,9 @@ RAW_ROBOT = "robot-raw"
 
 
 def sequential_export(captures: Path, out: Path) -> Path:
-    from urwire.spark import dataset_module, utc_date
+    from urwire.data import dataset
+    from urwire.data.spark import utc_date
 
-    dataset = dataset_module()
     for path in sorted(p for p in captures.rglob("*") if p.is_file()):
         data = path.read_bytes()
         day = utc_date(datetime.datetime.fromtimestamp(path.stat().st_mtime, datetime.timezone.utc))
@@ -84,7 +86,7 @@ def part_files(root: Path) -> dict[str, Path]:
 def exported(request, spark, captures, tmp_path_factory):
     """The dataset of `urwire spark`, each task reading its local file itself (the default for a
     local folder) or given its bytes by binaryFile (as from s3a://)."""
-    from urwire.spark import export_folder
+    from urwire.data.spark import export_folder
 
     out = tmp_path_factory.mktemp("spark-dataset")
     manifest = export_folder(spark, str(captures), str(out), robot=RAW_ROBOT, through_jvm=request.param).collect()
@@ -131,7 +133,7 @@ def test_manifest_counts_the_rows_written(exported):
 
 
 def test_a_second_run_replaces_its_parts(spark, captures, tmp_path):
-    from urwire.spark import export_folder
+    from urwire.data.spark import export_folder
 
     out = tmp_path / "twice"
     export_folder(spark, str(captures), str(out), robot=RAW_ROBOT).collect()
@@ -151,7 +153,7 @@ def test_command_line_without_pyspark_says_how_to_install(tmp_path):
 
 
 def test_tasks_read_only_what_they_can_open():
-    from urwire.spark import local_path, reads_locally
+    from urwire.data.spark import local_path, reads_locally
 
     assert reads_locally("/plant/captures") and reads_locally("file:///plant/captures")
     assert not reads_locally("s3a://plant/captures") and not reads_locally("hdfs://nn/captures")

@@ -17,8 +17,8 @@ import pytest
 
 from tests.python.cell_server import ROOT, CellServer, loopback_address
 from tests.tools import urcl
-from urwire.motion import Motion
-from urwire.robot_models import model_for
+from urwire.live.motion import Motion
+from urwire.live.robot_models import model_for
 
 COUNT = 50
 pytestmark = pytest.mark.skipif(urcl.source_dir() is None or shutil.which("g++") is None,

@@ -19,8 +19,8 @@ from pathlib import Path
 
 import pytest
 import urwire
-from urwire.robot_models import MODELS
-from urwire.simulated import Controller
+from urwire.live.robot_models import MODELS
+from urwire.live.simulated import Controller
 
 from tests.tools import urcl
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 import urwire
-from urwire.simulated import Controller
+from urwire.live.simulated import Controller
 
 ursecmon = pytest.importorskip("urx.ursecmon")
 

@@ -6,8 +6,8 @@ kind's full batch comes back as buffers that become Arrow arrays without a Pytho
 value. The columns are the dataset's schema (dataset_columns): Python gives C, once, each kind's
 column paths and types in schema order. A kind that holds JSON text of its own (name lists,
 global-variable values, program threads: rare messages) has no columns in C: its messages come
-back as bytes and go through the Python decoder and PartBuilder, so every kind's rows are made in
-one place, in stream order. The result is the same Parts as the pure-Python path
+back as bytes and go through the Python decoder and PartBuilder (dataset_rows.py), so every
+kind's rows are made in one place, in stream order. The result is the same Parts as the pure-Python path
 (tests/python/test_dataset_c.py compares them). Captures: dataset_c_capture.py.
 """
 from __future__ import annotations
@@ -16,10 +16,12 @@ import datetime
 import functools
 from typing import Iterator, Optional
 
-from .arguments import parse_version
-from .backends import ccore
+from ..arguments import parse_version
+from ..backends import ccore
+from ..decoding import decode_message
 from .dataset_columns import ERROR_KINDS, LEAD, PRIMARY, ROBOT_STATE, Part, columns_of, dataset_schema, kinds
-from .decoding import decode_message
+from .dataset_rows import PartBuilder
+# pyarrow, an optional extra (urwire[parquet]), is imported by the functions that make columns.
 
 BATCH_ROWS = 1 << 15        # rows of a kind the C side holds before it hands them over
 CHUNK = 1 << 20             # bytes of the stream read at a time
@@ -106,7 +108,7 @@ def _day(days: int) -> str:
 
 
 def micros(time: Optional[float]) -> Optional[int]:
-    """A capture time as the dataset's column holds it (dataset.PartBuilder: rounded to the µs)."""
+    """A capture time as the dataset's column holds it (dataset_rows.PartBuilder: rounded to the µs)."""
     return None if time is None else round(time * 1e6)
 
 
@@ -134,7 +136,6 @@ def raw_parts(fh, capture: str, source: str, version_hint=None, robot: Optional[
               date: Optional[str] = None) -> Iterator[Part]:
     """The Parts of a raw primary/secondary stream read from a binary file object, as
     dataset.parts_of gives them (its robot `robot`, its day `date`)."""
-    from .dataset import PartBuilder
     stream = columns(version_hint)
     tables = Tables(capture, source, date)
     builder = PartBuilder(capture, source, date, robot)     # the kinds Python makes

@@ -25,13 +25,15 @@ import tempfile
 from pathlib import Path
 from typing import BinaryIO, Iterator
 
-from .canonical import has_error, shown_text, to_json_line
-from .cell import ports_of
-from .envelope import Enveloped
+from ..arguments import software_version
+from ..canonical import has_error, member_text, shown_text, to_json_line
+from ..cell import ports_of
+from ..envelope import Enveloped
+from ..interfaces import INTERFACES
+from ..reading import input_kind, timed_records
 from . import export_dataset
 from .export_cell import CellRows
-from .interfaces import INTERFACES
-from .reading import input_kind, timed_records
+# pyarrow, an optional extra (urwire[parquet]), is imported where Parquet is written: CSV needs none.
 
 # A switch member that holds an int32 or a float32 (int|f32) fits a float64 column exactly.
 _ARROW_TYPES = {"int": "int64", "uint64": "uint64", "list:uint64": "uint64", "enum": "int64", "bool": "bool_", "f32": "float32", "f64": "float64", "text": "string",
@@ -39,7 +41,7 @@ _ARROW_TYPES = {"int": "int64", "uint64": "uint64", "list:uint64": "uint64", "en
                 "list:f32": "float32", "list:bool": "bool_", "int|f32": "float64", "int|f64": "float64"}
 
 
-def add_parser(sub, version_arg) -> None:
+def add_parser(sub) -> None:
     p = sub.add_parser("export", help="write a capture as Parquet or CSV tables, one per message kind",
                        description="Write one table per message kind and per sub-package kind "
                                    "(robot_mode_data, joint_data, ...), one row per occurrence; a capture's "
@@ -58,7 +60,7 @@ def add_parser(sub, version_arg) -> None:
     p.add_argument("--date", type=export_dataset.date_arg, metavar="YYYY-MM-DD",
                    help="--dataset: the day of a raw stream, which has no capture times (default: its file's "
                         "modification time, UTC)")
-    p.add_argument("--version-hint", type=version_arg, metavar="X.Y[.Z]",
+    p.add_argument("--version-hint", type=software_version, metavar="X.Y[.Z]",
                    help="software version to assume until a Version message is seen")
     p.set_defaults(run=export_command)
 
@@ -105,7 +107,6 @@ def _cell(kind: str, value):
 
 
 def _json_of(kind: str, value) -> str:
-    from .canonical import member_text
     return member_text(kind, value)
 
 

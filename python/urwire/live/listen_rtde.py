@@ -13,8 +13,8 @@ from __future__ import annotations
 
 from typing import Callable, Optional
 
-from . import rtde
-from .generated import rtde as _g
+from .. import rtde
+from ..generated import rtde as _g
 
 PORT = 30004
 

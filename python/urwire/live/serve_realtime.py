@@ -10,8 +10,8 @@ import asyncio
 import dataclasses
 from typing import Optional
 
-from .generated import ur_realtime as _g
-from .realtime import version_number
+from ..generated import ur_realtime as _g
+from ..realtime import version_number
 from .robot_cell import RobotCell, Snapshot
 from .robot_models import CB2, CB3, generation
 

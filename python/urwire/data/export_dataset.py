@@ -6,7 +6,8 @@ import datetime
 import os
 import sys
 
-from .reading import input_kind
+from ..reading import input_kind
+from . import dataset
 
 
 def date_arg(text: str) -> str:
@@ -25,7 +26,7 @@ def dataset_command(args: argparse.Namespace) -> int:
         print("urwire export: --dataset writes Parquet only", file=sys.stderr)
         return 2
     try:
-        from . import dataset
+        import pyarrow  # noqa: F401  (an optional extra: urwire[parquet]; the dataset's files are written with it)
     except ImportError:
         print("urwire export: --dataset needs pyarrow: pip install urwire[parquet]", file=sys.stderr)
         return 2

@@ -30,9 +30,9 @@ import json
 from collections import deque
 from typing import Callable, Optional
 
-from .canonical import fails, to_dict, to_json_line
-from .envelope import Enveloped
-from .generated.ur_dashboard import BANNER as _BANNER
+from ..canonical import fails, to_dict, to_json_line
+from ..envelope import Enveloped
+from ..generated.ur_dashboard import BANNER as _BANNER
 
 ENVELOPE = ("interface", "direction", "conversation")
 DASHBOARD = "ur_dashboard"

@@ -1,8 +1,8 @@
 """`urwire spark`: a folder of captures (raw streams, .pcap, .pcapng) decoded in parallel on
 Apache Spark into the dataset `urwire export --dataset` writes, one Spark task per capture.
 
-    spark-submit --archives urwire-env.tar.gz#env urwire/spark.py --out /mnt/plant/urwire s3a://plant/captures
-    urwire spark --master local[2] --out dataset/ captures/      (or python -m urwire.spark)
+    spark-submit --archives urwire-env.tar.gz#env urwire/data/spark.py --out /mnt/plant/urwire s3a://plant/captures
+    urwire spark --master local[2] --out dataset/ captures/      (or python -m urwire.data.spark)
 
 How: Spark's `binaryFile` source lists the folder and gives each file's bytes; `mapInArrow`
 runs urwire's decoder on each (where the folder is on a filesystem every executor mounts, a
@@ -27,13 +27,9 @@ from pathlib import PurePosixPath
 from typing import Callable, Iterable, Iterator, Optional
 from urllib.parse import unquote, urlparse
 
-
-def dataset_module():
-    """The dataset calls (urwire.dataset). Imported when used, and by the absolute name, so that
-    `urwire` starts without pyarrow and spark-submit can run this file as its main script."""
-    import importlib
-
-    return importlib.import_module("urwire.dataset")
+# By their absolute names: spark-submit runs this file as its main script, outside the package.
+from urwire.arguments import software_version
+from urwire.data import dataset
 
 
 MANIFEST = "path string, interface string, kind string, robot string, date string, rows long"
@@ -77,9 +73,8 @@ def decode_files(root: str, version_hint=None, robot: Optional[str] = None, date
     else the day the file was last modified (UTC). Rows without a content column are files the
     task reads itself (from a filesystem it mounts)."""
     def run(batches):
-        import pyarrow as pa
+        import pyarrow as pa  # an optional extra (urwire[spark]), there wherever Spark runs this
 
-        dataset = dataset_module()
         for batch in batches:
             paths, times = batch.column("path"), batch.column("modificationTime")
             contents = batch.column("content") if "content" in batch.schema.names else None
@@ -120,20 +115,20 @@ def export_folder(spark, captures: str, root: str, version_hint=None, robot: Opt
     return manifest.localCheckpoint(eager=True)
 
 
-def add_parser(sub, version_arg) -> None:
+def add_parser(sub) -> None:
     p = sub.add_parser("spark", help="decode a folder of captures in parallel on Apache Spark into a dataset",
                        description="Decode every raw stream, .pcap and .pcapng under FOLDER on Apache Spark, "
                                    "a task per file, into the dataset `urwire export --dataset` writes "
                                    "(docs/tables.md). Needs pyspark: pip install urwire[spark].")
-    _arguments(p, version_arg)
+    _arguments(p)
     p.set_defaults(run=spark_command)
 
 
-def _arguments(p: argparse.ArgumentParser, version_arg) -> None:
+def _arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("captures", metavar="FOLDER", help="folder of captures (a path Spark reads: file:, hdfs:, s3a:)")
     p.add_argument("--out", required=True, metavar="ROOT", help="the dataset's root, written by every executor")
     p.add_argument("--master", help="Spark master (default: spark-submit's, else local[*])")
-    p.add_argument("--version-hint", type=version_arg, metavar="X.Y[.Z]",
+    p.add_argument("--version-hint", type=software_version, metavar="X.Y[.Z]",
                    help="software version to assume until a Version message is seen")
     p.add_argument("--robot", metavar="NAME", help="the robot of the raw streams (a capture's robots are in it)")
     p.add_argument("--date", metavar="YYYY-MM-DD",
@@ -142,7 +137,7 @@ def _arguments(p: argparse.ArgumentParser, version_arg) -> None:
 
 def spark_command(args: argparse.Namespace) -> int:
     try:
-        from pyspark.sql import SparkSession
+        from pyspark.sql import SparkSession  # an optional extra: urwire[spark]
     except ImportError:
         print("urwire spark: needs pyspark: pip install urwire[spark]", file=sys.stderr)
         return 2
@@ -160,10 +155,8 @@ def spark_command(args: argparse.Namespace) -> int:
 
 
 def main(argv=None) -> int:
-    from urwire.cli import _version_arg
-
-    parser = argparse.ArgumentParser(prog="urwire.spark", description=__doc__.split("\n\n")[0])
-    _arguments(parser, _version_arg)
+    parser = argparse.ArgumentParser(prog="urwire.data.spark", description=__doc__.split("\n\n")[0])
+    _arguments(parser)
     return spark_command(parser.parse_args(argv))
 
 

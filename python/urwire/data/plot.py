@@ -16,13 +16,14 @@ import sys
 
 from typing import Callable
 
-from .canonical import has_error, to_json_line
+from ..arguments import software_version
+from ..canonical import has_error, to_json_line
+from ..generated import messages as _m
+from ..reading import decode_file
 from .decimate import MAX_BUCKETS, MinMaxLines
-from .generated import messages as _m
-from .reading import decode_file
 
 
-def add_parser(sub, version_arg) -> None:
+def add_parser(sub) -> None:
     p = sub.add_parser("plot", help="plot one field of a capture over time",
                        description="Plot a numeric field such as joint_data.q_actual: a line per joint or per "
                                    "value. Long inputs are decimated in flat memory: each line keeps its "
@@ -32,7 +33,7 @@ def add_parser(sub, version_arg) -> None:
     p.add_argument("--field", required=True, metavar="KIND.FIELD",
                    help="a numeric field, e.g. joint_data.q_actual or tool_data.tool_current")
     p.add_argument("--out", default="plot.png", metavar="FILE", help="image to write (default: plot.png)")
-    p.add_argument("--version-hint", type=version_arg, metavar="X.Y[.Z]",
+    p.add_argument("--version-hint", type=software_version, metavar="X.Y[.Z]",
                    help="software version to assume until a Version message is seen")
     p.set_defaults(run=plot_command)
 
@@ -131,7 +132,7 @@ def plot_command(args: argparse.Namespace) -> int:
               f"{', '.join(known)}", file=sys.stderr)
         return 2
     try:
-        import matplotlib
+        import matplotlib  # an optional extra: urwire[plot]
         matplotlib.use("Agg")
         # Agg rasterises a line at once, and one that doubles back (several sessions in a
         # capture: their clocks restart) covers the image again each time; in chunks of

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Iterable, Union
 
 from .dataset_columns import Part
+# pyarrow, an optional extra (urwire[parquet]), is imported by the functions that write.
 
 # The size of a row group: DuckDB and Spark give each row group to one thread, and skip a row
 # group whose statistics rule it out, so a group wants to be large enough to be worth a thread

@@ -11,15 +11,16 @@ from __future__ import annotations
 import dataclasses
 from typing import Iterator, Optional
 
-from .backends import ccore
-from ._runtime import StreamError
-from .canonical import has_error, to_json_line
-from .cell import ports_of, timed_robot_records
+from .._runtime import StreamError
+from ..backends import ccore
+from ..canonical import has_error, to_json_line
+from ..cell import ports_of, timed_robot_records
+from ..decoding import decode_message
+from ..envelope import Enveloped
+from ..interfaces import INTERFACES
 from .dataset_c import Tables, columns, hint_text, micros
 from .dataset_columns import PRIMARY, Part
-from .decoding import decode_message
-from .envelope import Enveloped
-from .interfaces import INTERFACES
+from .dataset_rows import PartBuilder, serial_numbers
 
 
 class _MadeInC:
@@ -107,7 +108,6 @@ def capture_parts(fh, capture: str, source: str, version_hint=None, robot: Optio
                   date: Optional[str] = None) -> Iterator[Part]:
     """The Parts of a .pcap or .pcapng read from a binary file object, as dataset.parts_of gives
     them, each robot's primary rows made in C."""
-    from .dataset import PartBuilder, serial_numbers
     start = fh.tell()
     rows = _CaptureRows(version_hint, serial_numbers(fh))
     fh.seek(start)

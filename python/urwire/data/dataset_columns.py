@@ -16,8 +16,9 @@ import json
 import operator
 from typing import Any, Callable, NamedTuple
 
-from .canonical import member_text, shown_text, to_dict, to_json_line
-from .generated import messages, ur_realtime
+from ..canonical import member_text, shown_text, to_dict, to_json_line
+from ..generated import messages, ur_realtime
+# pyarrow, an optional extra (urwire[parquet]), is imported by the function that makes the schema.
 
 PRIMARY = "ur"
 REALTIME = "ur_realtime"

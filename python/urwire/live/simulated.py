@@ -18,11 +18,11 @@ import math
 import re
 from typing import Iterator
 
-from .generated import enums as _e
-from .generated import messages as _m
-from ._runtime import GlobalValue
-from .decoding import encode_message, package_classes
-from .generated.spec import value_codec
+from .._runtime import GlobalValue
+from ..decoding import encode_message, package_classes
+from ..generated import enums as _e
+from ..generated import messages as _m
+from ..generated.spec import value_codec
 from .motion import Motion
 from .robot_cell import PAUSED, POWER_OFF, RobotCell
 from .robot_models import BOARDS, RobotModel, generation, kinematics_checksums, model_for

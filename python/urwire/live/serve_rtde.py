@@ -14,8 +14,8 @@ from __future__ import annotations
 import asyncio
 from typing import Callable, Optional
 
-from . import rtde
-from .generated import rtde as _g
+from .. import rtde
+from ..generated import rtde as _g
 from .robot_cell import BUILD_NUMBER, RobotCell, Snapshot
 from .robot_models import CB3, E_SERIES, POLYSCOPE_X, generation
 

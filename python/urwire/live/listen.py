@@ -30,10 +30,10 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator, Optional
 
-from .arguments import finite_number, port_of
-from .canonical import fails, to_json_line
-from .framer import Framer
-from .human import line as human_line
+from ..arguments import finite_number, port_of
+from ..canonical import fails, to_json_line
+from ..framer import Framer
+from ..human import line as human_line
 from .listen_rtde import PORT as RTDE_PORT
 from .listen_rtde import RtdeRecorder
 from .serve_rtde import MAX_FREQUENCY
@@ -47,7 +47,7 @@ KEEPALIVE = {"TCP_KEEPIDLE": 5, "TCP_KEEPINTVL": 2, "TCP_KEEPCNT": 3}   # second
 HIGHEST_FREQUENCY = max(MAX_FREQUENCY.values())   # RTDE: what an e-Series runs; a CB3 refuses above 125
 
 
-def add_parser(sub, version_arg) -> None:
+def add_parser(sub) -> None:
     p = sub.add_parser("listen", help="connect to a controller and record what it sends",
                        description="Connect to a controller's primary/secondary port and write one record "
                                    "per message as it arrives.")

@@ -24,7 +24,7 @@ import sys
 from dataclasses import dataclass
 from typing import Callable, Optional
 
-from .arguments import HIGHEST_PORT, finite_number, port_number
+from ..arguments import HIGHEST_PORT, finite_number, port_number, software_version
 from .robot_cell import RobotCell
 from .robot_models import MODELS, RobotModel, model_for
 from .serve_dashboard import DashboardSession
@@ -46,7 +46,7 @@ OFFSETS = {"rtde": 3, "realtime": 2, "dashboard": -2}
 HIGHEST_RATE = 500.0
 
 
-def add_parser(sub, version_arg) -> None:
+def add_parser(sub) -> None:
     p = sub.add_parser("serve", help="simulate a robot of any software version on every interface of a UR cell",
                        description="Serve a simulated robot: the primary interface (its Version message, then "
                                    "robot states and program messages), RTDE, the real-time interface and the "
@@ -60,7 +60,7 @@ def add_parser(sub, version_arg) -> None:
         p.add_argument(f"--{name}-port", type=port_number, metavar="PORT",
                        help=f"{title}'s TCP port; 0 picks a free one (default: --port {offset:+d}, "
                             f"{PRIMARY_PORT + offset} for 30001)")
-    p.add_argument("--software", type=version_arg, default=(5, 11, 0), metavar="X.Y[.Z]",
+    p.add_argument("--software", type=software_version, default=(5, 11, 0), metavar="X.Y[.Z]",
                    help="software version to simulate, e.g. 1.8, 3.15 or 5.11 (default: 5.11)")
     p.add_argument("--model", type=str.lower, choices=list(MODELS), metavar="MODEL",
                    help="the arm: ur3 (CB3), ur5, ur10 (CB2, CB3), ur3e, ur5e, ur10e, ur16e, ur20, ur30 (e-Series, "
@@ -79,7 +79,7 @@ def add_parser(sub, version_arg) -> None:
 def raise_open_file_limit() -> None:
     """Every client is a file descriptor: take the hard limit so a crowd of clients fits."""
     try:
-        import resource
+        import resource  # Unix only
     except ImportError:  # not on this platform
         return
     soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)

@@ -12,10 +12,10 @@ from __future__ import annotations
 
 from typing import Callable
 
-from .generated import ur_dashboard as _g
+from .._runtime import StreamError
+from ..generated import ur_dashboard as _g
+from ..text_lines import LineSplitter, ReplySpec, find_command
 from .robot_cell import BUILD_DATE, BUILD_NUMBER, IDLE, PAUSED, PLAYING, POWER_OFF, RUNNING, RobotCell
-from ._runtime import StreamError
-from .text_lines import LineSplitter, ReplySpec, find_command
 
 
 def say(reply: ReplySpec, value: str = "") -> str:
