@@ -5,28 +5,9 @@
 
 #include "json.h"
 
-static void put_f64(FILE *out, double x)
-{
-    char text[40];
-    json_f64_text(x, text, sizeof text);
-    fputs(text, out);
-}
-
 static void put_text(FILE *out, const uint8_t *p, size_t n)
 {
     json_write_text(out, p, n);
-}
-
-static void put_hex(FILE *out, const uint8_t *p, size_t n)
-{
-    static const char digits[] = "0123456789abcdef";
-    size_t i;
-    fputc('"', out);
-    for (i = 0; i < n; i++) {
-        fputc(digits[p[i] >> 4], out);
-        fputc(digits[p[i] & 15], out);
-    }
-    fputc('"', out);
 }
 
 /* Names joined by commas as a JSON list; no bytes are no names. */
@@ -53,7 +34,7 @@ static void put_item(FILE *out, const rtde_value *v, size_t k)
     if (strcmp(type, "BOOL") == 0)
         fputs(v->item[k].u64 ? "true" : "false", out);
     else if (strcmp(type, "DOUBLE") == 0 || strcmp(type, "VECTOR3D") == 0 || strcmp(type, "VECTOR6D") == 0)
-        put_f64(out, v->item[k].f64);
+        json_write_f64(out, v->item[k].f64);
     else if (strcmp(type, "INT32") == 0 || strcmp(type, "VECTOR6INT32") == 0)
         fprintf(out, "%lld", (long long)v->item[k].i64);
     else
@@ -115,7 +96,7 @@ static void put_member(FILE *out, const rtde_member *mb, const uint8_t *base, bo
     } else if (mb->kind == RTDE_MEMBER_F64) {
         double d;
         memcpy(&d, p, sizeof d);
-        put_f64(out, d);
+        json_write_f64(out, d);
     } else {
         /* Integers of their own width in the struct (uint8_t to uint64_t, int32_t). */
         uint64_t u = 0;
@@ -219,7 +200,7 @@ int rtde_json_record(FILE *out, const envelope *env, const rtde_message *m, rtde
             fprintf(out, ", \"error\": \"%s\"", rtde_error_text(e));
         }
         fputs(", \"raw\": ", out);
-        put_hex(out, msg, size);
+        json_write_hex(out, msg, size);
         fputs("}\n", out);
         return e != RTDE_UNKNOWN_TYPE;   /* a code no layout has is kept whole without an error */
     }
