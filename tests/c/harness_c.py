@@ -22,10 +22,11 @@ ROOT = Path(__file__).resolve().parents[2]
 GEN = ROOT / "generated" / "c"
 CLI = ROOT / "tools" / "urwire-decode"
 # The C runtime compiled beside generated/c (as mk/c.mk's C_RUNTIME): canonical JSON, float digits
-# and the record loop (urwire._ccore compiles them too).
+# and the record loop (urwire._ccore compiles them too), and RTDE stream framing.
 JSON_RUNTIME = ROOT / "runtime" / "c" / "json"
-RUNTIME_SOURCES = sorted(JSON_RUNTIME.glob("*.c"))
-INCLUDES = [GEN, JSON_RUNTIME, CLI]    # as mk/c.mk's C_INCLUDES
+RTDE_STREAM = ROOT / "runtime" / "c" / "rtde" / "stream.c"
+RUNTIME_SOURCES = sorted(JSON_RUNTIME.glob("*.c")) + [RTDE_STREAM]
+INCLUDES = [GEN, JSON_RUNTIME, RTDE_STREAM.parent, CLI]    # as mk/c.mk's C_INCLUDES
 # The other interfaces' parsers (generated/c/<interface>.c), which the CLI links beside urwire.c,
 # whichever urwire.c (full or pinned) a test builds.
 INTERFACES_C = [p for p in sorted(GEN.glob("*.c")) if p.name != "urwire.c"]
@@ -72,8 +73,8 @@ SHARED = ROOT / "build" / "c-tests" / "variants"
 
 def _sources_stamp(name: str) -> str:
     digest = hashlib.sha256(repr(VARIANTS[name]).encode())
-    inputs = [*GEN.iterdir(), *CLI.iterdir(), *JSON_RUNTIME.iterdir(), ROOT / "tests" / "c" / "driver.c",
-              Path(state_members.__file__)]
+    inputs = [*GEN.iterdir(), *CLI.iterdir(), *JSON_RUNTIME.iterdir(), RTDE_STREAM, RTDE_STREAM.with_suffix(".h"),
+              ROOT / "tests" / "c" / "driver.c", Path(state_members.__file__)]
     for path in sorted(p for p in inputs if p.is_file()):
         digest.update(path.name.encode() + b"\0" + path.read_bytes())
     return digest.hexdigest()

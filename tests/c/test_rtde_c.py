@@ -1,5 +1,6 @@
-"""The RTDE C library (generated/c/rtde.{h,c}) and the command's JSON writer of it
-(tools/urwire-decode/rtde_json.c): strict builds with gcc and clang, the same JSON lines as the Python Conversation on every golden exchange (whole and byte by
+"""The RTDE C library (generated/c/rtde.{h,c}), its stream framing (runtime/c/rtde/stream.c) and
+the command's JSON writer of it (tools/urwire-decode/rtde_json.c): strict builds with gcc and
+clang, the same JSON lines as the Python Conversation on every golden exchange (whole and byte by
 byte) and on hostile bytes, under ASan and UBSan; the client API; the fuzz harness replayed over
 its kept corpus."""
 from __future__ import annotations
@@ -13,12 +14,12 @@ import subprocess
 import pytest
 
 import urwire
-from tests.c.harness_c import CLI, GEN, INCLUDES as INCLUDE_DIRS, JSON, OUT, ROOT, SANITIZE, STRICT
+from tests.c.harness_c import CLI, GEN, INCLUDES as INCLUDE_DIRS, JSON, OUT, RTDE_STREAM, ROOT, SANITIZE, STRICT
 from tests.rtde_vectors import mismatches, python_records, rtde_cases, shown_as
 from urwire.rtde import Conversation
 
 CASES = rtde_cases()
-JSON_SOURCES = [CLI / "rtde_json.c", CLI / "envelope.c", *JSON, GEN / "urwire.c", GEN / "rtde.c"]
+JSON_SOURCES = [CLI / "rtde_json.c", CLI / "envelope.c", RTDE_STREAM, *JSON, GEN / "urwire.c", GEN / "rtde.c"]
 INCLUDES = [f"-I{d}" for d in INCLUDE_DIRS]
 CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "rtde"
 
