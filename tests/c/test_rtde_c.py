@@ -121,6 +121,25 @@ def test_hostile_bytes_give_the_same_lines(driver, seed):
     assert c_lines(driver, messages) == python_lines(messages)
 
 
+def test_every_value_type_is_written_as_its_kind(driver):
+    """One recipe of every value type the spec has, one data package whose bytes all have their top
+    bit set: a bool is true, a signed item negative, an unsigned one large, a float a float, as
+    Python writes them (a writer that read one kind's items as another's would differ)."""
+    from urwire.generated import rtde as g
+
+    types = list(g.VALUE_TYPES)
+    names = [f"value_{t.lower()}" for t in types]
+    reply = ",".join(types).encode()
+    size = sum(struct.calcsize(">" + v.code) * v.count for v in g.VALUE_TYPES.values())
+    values = bytes((0xF7 - 13 * i) % 256 | 0x80 for i in range(size))
+    messages = [(False, urwire.rtde.setup_outputs(names, 125.0)),
+                (True, struct.pack(">HBB", 4 + len(reply), ord("O"), 1) + reply),
+                (True, struct.pack(">HBB", 4 + size, ord("U"), 1) + values)]
+    lines = c_lines(driver, messages)
+    assert lines == python_lines(messages)
+    assert '"value_bool": true' in lines[-1] and '"value_int32": -' in lines[-1], lines[-1]
+
+
 def test_the_client_api(tmp_path):
     exe = build("gcc", ["-O1", "-g", *SANITIZE], [ROOT / "tests" / "c" / "rtde_api.c", GEN / "rtde.c"], "api")
     res = subprocess.run([exe], capture_output=True, text=True, timeout=60)

@@ -28,17 +28,31 @@ static void put_names(FILE *out, rtde_text t)
     fputc(']', out);
 }
 
+/* An item of a value: its type in the generated table (rtde_value_type) says which member of the
+ * item holds it; a type added to the spec and not here fails the build (-Wswitch). */
 static void put_item(FILE *out, const rtde_value *v, size_t k)
 {
-    const char *type = rtde_value_type_name(v->type);
-    if (strcmp(type, "BOOL") == 0)
+    switch ((rtde_value_type)v->type) {
+    case RTDE_VT_BOOL:
         fputs(v->item[k].u64 ? "true" : "false", out);
-    else if (strcmp(type, "DOUBLE") == 0 || strcmp(type, "VECTOR3D") == 0 || strcmp(type, "VECTOR6D") == 0)
+        break;
+    case RTDE_VT_DOUBLE:
+    case RTDE_VT_VECTOR3D:
+    case RTDE_VT_VECTOR6D:
         json_write_f64(out, v->item[k].f64);
-    else if (strcmp(type, "INT32") == 0 || strcmp(type, "VECTOR6INT32") == 0)
+        break;
+    case RTDE_VT_INT32:
+    case RTDE_VT_VECTOR6INT32:
         fprintf(out, "%lld", (long long)v->item[k].i64);
-    else
+        break;
+    case RTDE_VT_UINT8:
+    case RTDE_VT_UINT32:
+    case RTDE_VT_UINT64:
+    case RTDE_VT_VECTOR6UINT32:
+    case RTDE_VT_COUNT:
         fprintf(out, "%llu", (unsigned long long)v->item[k].u64);
+        break;
+    }
 }
 
 static void put_values(FILE *out, const rtde_data *d, bool *first)
