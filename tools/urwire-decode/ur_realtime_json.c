@@ -56,11 +56,6 @@ static bool has_layout(int32_t size)
     return ur_realtime_decode(probe, (size_t)size, 0, &p) == UR_REALTIME_OK;
 }
 
-static int32_t size_at(const uint8_t *p)
-{
-    return (int32_t)((uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3]);
-}
-
 /* After a size that cannot frame a packet: where the next plausible packet starts, from pos on
  * (the next size some layout has), as python/urwire/realtime.py finds it. False when none is found
  * yet; *pos is then where the scan goes on when more bytes come (have, at the end of the stream). */
@@ -68,8 +63,8 @@ static bool next_packet(const uint8_t *buf, size_t have, size_t *pos, bool eof)
 {
     size_t p = *pos;
     for (; have - p >= UR_REALTIME_SIZE_FIELD_BYTES; p++) {
-        int32_t size = size_at(buf + p);
-        if (size >= UR_REALTIME_MIN_MESSAGE_SIZE && size <= UR_REALTIME_MAX_MESSAGE_SIZE && has_layout(size)) {
+        int32_t size = 0;
+        if (ur_realtime_frame(buf + p, have - p, &size) == UR_REALTIME_OK && has_layout(size)) {
             *pos = p;
             return true;
         }
