@@ -308,24 +308,26 @@ static void write_hex(json_writer *w, const unsigned char *p, size_t n)
     put_char(w, '"');
 }
 
-void json_write_text(FILE *out, const unsigned char *p, size_t n)
+/* Bytes written alone, straight to out, by a writer of their own. */
+static void write_alone(FILE *out, void (*write)(json_writer *, const unsigned char *, size_t),
+                        const unsigned char *p, size_t n)
 {
     json_writer w;
     w.out = out;
     w.len = 0;
     w.flushes = 0;
-    write_text(&w, p, n);
+    write(&w, p, n);
     flush(&w);
+}
+
+void json_write_text(FILE *out, const unsigned char *p, size_t n)
+{
+    write_alone(out, write_text, p, n);
 }
 
 void json_write_hex(FILE *out, const unsigned char *p, size_t n)
 {
-    json_writer w;
-    w.out = out;
-    w.len = 0;
-    w.flushes = 0;
-    write_hex(&w, p, n);
-    flush(&w);
+    write_alone(out, write_hex, p, n);
 }
 
 void json_write_f64(FILE *out, double x)
