@@ -1,5 +1,5 @@
 """The optional C extension urwire._ccore: the generated C parser (generated/c) and the C
-command's canonical JSON writer (tools/urwire-decode) behind a small CPython module (ext/ccore).
+runtime's canonical JSON writer (runtime/c/json) behind a small CPython module (ext/ccore).
 
 It is optional: where no compiler is at hand, `pip install .` still installs the pure-Python
 package, which then decodes on its own (urwire.backend() says which one runs). Everything else
@@ -34,7 +34,7 @@ setup(
     ext_modules=[Extension(
         "urwire._ccore",
         sources=SOURCES,
-        include_dirs=["ext/ccore", "generated/c", "tools/urwire-decode"],
+        include_dirs=["ext/ccore", "generated/c", "runtime/c/json"],
         extra_compile_args=["-std=c99", "-O2"],
         optional=True,
     )],

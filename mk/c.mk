@@ -1,5 +1,6 @@
 # C target: generated/c/*.{h,c} (written by `make generate`: urwire.{h,c} for the primary interface,
-# one <interface>.{h,c} pair for each other interface of the cell), the urwire-decode CLI, its
+# one <interface>.{h,c} pair for each other interface of the cell), the urwire-decode CLI and the
+# C runtime it compiles, its
 # tests (gcc, clang, ASan/UBSan, differential against Python), the benchmark, a demo and
 # installation. Its fuzzers are in mk/fuzz.mk.
 
@@ -9,7 +10,12 @@ C_STRICT := -std=c99 -Wall -Wextra -Werror -pedantic -Wconversion -Wshadow
 C_OPT ?= -O2
 C_SOURCES := $(wildcard generated/c/*.c)
 C_LIB := $(C_SOURCES) $(wildcard generated/c/*.h)
-C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h)
+# The C runtime compiled beside generated/c, not joined into it: runtime/c/json (canonical JSON,
+# float digits, the record loop; urwire._ccore compiles it too) and runtime/c/rtde/stream.c (RTDE
+# stream framing). The command itself is tools/urwire-decode.
+C_RUNTIME := $(wildcard runtime/c/json/*.c runtime/c/json/*.h) runtime/c/rtde/stream.c runtime/c/rtde/stream.h
+C_INCLUDES := -Igenerated/c -Iruntime/c/json -Iruntime/c/rtde -Itools/urwire-decode
+C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h) $(C_RUNTIME)
 PREFIX ?= /usr/local
 BENCH_C_LEVELS ?= -O3 -O2 -Os
 BENCH_C_BASE ?= b8aabfa
@@ -26,8 +32,7 @@ PINNED_C := build/pinned
 
 build/urwire-decode: $(C_LIB) $(C_CLI)
 	@mkdir -p build
-	$(CC) $(C_STRICT) $(C_OPT) -Igenerated/c -Itools/urwire-decode -o $@ \
-		$(filter %.c,$(C_CLI)) $(C_SOURCES) -lm
+	$(CC) $(C_STRICT) $(C_OPT) $(C_INCLUDES) -o $@ $(filter %.c,$(C_CLI)) $(C_SOURCES) -lm
 
 build/liburwire.a: $(C_LIB)
 	@mkdir -p build/obj

@@ -46,8 +46,7 @@ fuzz: fuzz-driver-sockets
 # driver sockets share their group's FUZZ_SECONDS. Failing sessions land in
 # build/fuzz/crashes/diff_<interface>/; kept corpora are tests/fuzz/corpus/diff_<interface>/,
 # replayed by tests/c/test_diff_fuzz_corpus.py.
-DIFF_CC := $(CC) $(C_STRICT) -g -O1 -fsanitize=address,undefined -fno-sanitize-recover=all -Igenerated/c \
-	-Itools/urwire-decode
+DIFF_CC := $(CC) $(C_STRICT) -g -O1 -fsanitize=address,undefined -fno-sanitize-recover=all $(C_INCLUDES)
 DIFF_GROUPS := rtde dashboard-realtime driver-sockets
 DIFF_rtde := rtde
 DIFF_dashboard-realtime := ur_dashboard ur_realtime

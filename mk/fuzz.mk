@@ -24,7 +24,7 @@ FUZZ_MAX_LEN := $(shell echo $$((2 * $(URWIRE_MAX_MESSAGE) + 4096 + 1)))
 FUZZ_FLAGS = -max_len=$(FUZZ_MAX_LEN) -entropic_scale_per_exec_time=1 -max_total_time=$(FUZZ_SECONDS) \
 	-print_final_stats=1
 FUZZ_CC := $(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-	-Igenerated/c -Itools/urwire-decode
+	$(C_INCLUDES)
 CLI_LIB := $(filter-out %/main.c,$(filter %.c,$(C_CLI)))
 
 .PHONY: fuzz fuzz-c fuzz-json fuzz-python fuzz-ur-realtime fuzz-rtde fuzz-long fuzz-corpus
@@ -48,7 +48,7 @@ build/fuzz/fuzz_json: tests/c/fuzz_json.c $(C_LIB) $(C_CLI)
 build/fuzz/driver: tests/c/driver.c tests/c/state_members.py $(C_LIB) $(C_CLI)
 	@mkdir -p build/fuzz
 	$(PYTHON) tests/c/state_members.py generated/c/urwire.h build/fuzz
-	$(CC) $(C_STRICT) $(C_OPT) -Igenerated/c -Itools/urwire-decode -Ibuild/fuzz -o $@ tests/c/driver.c $(CLI_LIB) \
+	$(CC) $(C_STRICT) $(C_OPT) $(C_INCLUDES) -Ibuild/fuzz -o $@ tests/c/driver.c $(CLI_LIB) \
 		$(C_SOURCES) -lm
 
 # $(call fuzz_run,HARNESS,COMMAND,MORE SEED FOLDERS)

@@ -1,10 +1,10 @@
 # The optional C extension urwire._ccore (ext/ccore/module.c over generated/c/urwire.c and the C
-# command's JSON writer, tools/urwire-decode): built in place beside python/urwire so that the
+# runtime's JSON writer, runtime/c/json): built in place beside python/urwire so that the
 # tree's Python (PYTHONPATH=python:generated/python) decodes through it; setup.py builds the same
 # module for `pip install .` and `pip wheel .`.
 
 PYTHON_EXT_SOURCES := setup.py ext/ccore/sources.txt $(shell cat ext/ccore/sources.txt) \
-	$(wildcard ext/ccore/*.h) generated/c/urwire.h $(wildcard tools/urwire-decode/*.h)
+	$(wildcard ext/ccore/*.h) generated/c/urwire.h $(wildcard runtime/c/json/*.h)
 PYTHON_EXT_STAMP := build/python-ext.stamp
 
 ALL_TARGETS += python-ext

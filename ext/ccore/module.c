@@ -1,5 +1,5 @@
-/* urwire._ccore: the generated C parser (generated/c/urwire.c) and the C command's canonical JSON
- * writer (tools/urwire-decode/json.c), reachable from Python.
+/* urwire._ccore: the generated C parser (generated/c/urwire.c) and the C runtime's canonical JSON
+ * writer (runtime/c/json/json.c), reachable from Python.
  *
  * PrimaryJsonLines frames a primary/secondary stream fed in chunks of any size and gives back the
  * canonical JSON Lines of its records, the same bytes as `urwire.to_json_line` of each record the

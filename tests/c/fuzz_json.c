@@ -1,5 +1,5 @@
 /* libFuzzer harness: urwire-decode's side of the stream, from the version hint to the JSON Lines
- * (tools/urwire-decode: records.c, json.c; the library's urwire_parse_version).
+ * (runtime/c/json: records.c, json.c; the library's urwire_parse_version).
  *
  * Input: one control byte, then the stream. The control byte's low bits pick a version hint
  * ("", 3.2, 5.0, 5.12); with bit 2 set, the hint is the text that follows, up to a NUL. Bits 3-7

@@ -1,7 +1,8 @@
-/* libFuzzer harness of the RTDE C library (generated/c/rtde.c) and its JSON writer
- * (tools/urwire-decode/rtde_json.c). An input is a protocol byte (the version in force before
- * any exchange: its value mod 3, 0 for the default), then pieces: a byte whose top bit is the
- * direction (set: from the robot) and whose other bits are the piece's length, then its bytes.
+/* libFuzzer harness of the RTDE C library (generated/c/rtde.c), its stream framing
+ * (runtime/c/rtde/stream.c) and the command's JSON writer (tools/urwire-decode/rtde_json.c). An
+ * input is a protocol byte (the version in force before any exchange: its value mod 3, 0 for the
+ * default), then pieces: a byte whose top bit is the direction (set: from the robot) and whose
+ * other bits are the piece's length, then its bytes.
  * Checks on every input: ASan, UBSan; every data package's values read back by index and by name;
  * every record a line that starts with {"type": and ends with }; the state never over its limits. */
 #define _GNU_SOURCE   /* fmemopen */

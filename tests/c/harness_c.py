@@ -21,12 +21,18 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 GEN = ROOT / "generated" / "c"
 CLI = ROOT / "tools" / "urwire-decode"
+# The C runtime compiled beside generated/c (as mk/c.mk's C_RUNTIME): canonical JSON, float digits
+# and the record loop (urwire._ccore compiles them too), and RTDE stream framing.
+JSON_RUNTIME = ROOT / "runtime" / "c" / "json"
+RTDE_STREAM = ROOT / "runtime" / "c" / "rtde" / "stream.c"
+RUNTIME_SOURCES = sorted(JSON_RUNTIME.glob("*.c")) + [RTDE_STREAM]
+INCLUDES = [GEN, JSON_RUNTIME, RTDE_STREAM.parent, CLI]    # as mk/c.mk's C_INCLUDES
 # The other interfaces' parsers (generated/c/<interface>.c), which the CLI links beside urwire.c,
 # whichever urwire.c (full or pinned) a test builds.
 INTERFACES_C = [p for p in sorted(GEN.glob("*.c")) if p.name != "urwire.c"]
-CLI_SOURCES = sorted(CLI.glob("*.c")) + INTERFACES_C   # main.c and what it links
+CLI_SOURCES = sorted(CLI.glob("*.c")) + RUNTIME_SOURCES + INTERFACES_C   # main.c and what it links
 CLI_LIBRARY = [p for p in CLI_SOURCES if p.name != "main.c"]   # the same, for the test driver
-JSON = [CLI / "json.c", CLI / "shortest.c"]  # the JSON writer and the float digits it prints
+JSON = [JSON_RUNTIME / "json.c", JSON_RUNTIME / "shortest.c"]  # the JSON writer and the float digits it prints
 # One folder per test process (pytest-xdist names its workers), so parallel runs never build over each other.
 OUT = ROOT / "build" / "c-tests" / os.environ.get("PYTEST_XDIST_WORKER", "main")
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Wconversion", "-Wshadow"]
@@ -53,7 +59,7 @@ class Build:
 
 def compile_c(cc: str, flags: list[str], sources: list[Path], output: Path, extra: list[str] = ()) -> None:
     output.parent.mkdir(parents=True, exist_ok=True)
-    cmd = [cc, *STRICT, *flags, f"-I{GEN}", f"-I{CLI}", "-o", str(output), *map(str, sources), *extra]
+    cmd = [cc, *STRICT, *flags, *(f"-I{d}" for d in INCLUDES), "-o", str(output), *map(str, sources), *extra]
     result = subprocess.run(cmd, capture_output=True, text=True)
     assert result.returncode == 0, f"{' '.join(cmd)}\n{result.stderr}"
     assert result.stderr == "", result.stderr  # not even a note
@@ -67,7 +73,8 @@ SHARED = ROOT / "build" / "c-tests" / "variants"
 
 def _sources_stamp(name: str) -> str:
     digest = hashlib.sha256(repr(VARIANTS[name]).encode())
-    inputs = [*GEN.iterdir(), *CLI.iterdir(), ROOT / "tests" / "c" / "driver.c", Path(state_members.__file__)]
+    inputs = [*GEN.iterdir(), *CLI.iterdir(), *JSON_RUNTIME.iterdir(), RTDE_STREAM, RTDE_STREAM.with_suffix(".h"),
+              ROOT / "tests" / "c" / "driver.c", Path(state_members.__file__)]
     for path in sorted(p for p in inputs if p.is_file()):
         digest.update(path.name.encode() + b"\0" + path.read_bytes())
     return digest.hexdigest()

@@ -1,8 +1,9 @@
-/* The CLI's JSON writer on its own. Float texts (json_f64_text, json_f32_text over shortest.c)
- * on hard cases, each with the text Python prints (repr for float64, canonical.f32_text for
- * float32), then properties over pseudo-random bit patterns: every text reads back as its
+/* The C runtime's JSON writer on its own (runtime/c/json). Float texts (json_f64_text,
+ * json_f32_text over shortest.c) on hard cases, each with the text Python prints (repr for
+ * float64, canonical.f32_text for float32), then properties over pseudo-random bit patterns: every text reads back as its
  * float and is the correctly rounded decimal of its length. Then the writer's record buffer:
- * records longer than it, a key longer than it, each record whole in out when it ends.
+ * records longer than it, a key longer than it, each record whole in out when it ends. Then
+ * string escapes and invalid UTF-8.
  * Prints "all json checks passed". */
 #include <math.h>
 #include <stdint.h>
@@ -336,6 +337,53 @@ static void writer_records(void)
     fclose(out);
 }
 
+static void expect_text(const char *bytes, size_t n, const char *want)
+{
+    FILE *out = tmpfile();
+    if (!out) {
+        puts("text: no tmpfile");
+        failures++;
+        return;
+    }
+    json_write_text(out, (const unsigned char *)bytes, n);
+    expect_output(out, want, "a string");
+    fclose(out);
+}
+
+/* Strings as Python's json.dumps(bytes.decode("utf-8", "replace"), ensure_ascii=False) writes
+ * them: the short escapes, \u00XX for the other control bytes, UTF-8 kept, and one U+FFFD per
+ * maximal invalid subpart (a lone continuation byte, a cut sequence, an overlong form, a
+ * surrogate, a code point above U+10FFFF). Then the hex and float64 texts of the FILE helpers. */
+static void text_escapes(void)
+{
+    FILE *out;
+    static const unsigned char raw[] = {0x00, 0x7f, 0xab, 0xff};
+    expect_text("plain", 5, "\"plain\"");
+    expect_text("q\"b\\s/", 6, "\"q\\\"b\\\\s/\"");
+    expect_text("\n\r\t\b\f\0\x01\x1f\x7f", 9, "\"\\n\\r\\t\\b\\f\\u0000\\u0001\\u001f\x7f\"");
+    expect_text("\xc3\xa9\xe2\x82\xac\xf0\x9f\x98\x80", 9, "\"\xc3\xa9\xe2\x82\xac\xf0\x9f\x98\x80\"");
+    expect_text("\x80", 1, "\"\xef\xbf\xbd\"");
+    expect_text("a\xe2\x82", 3, "\"a\xef\xbf\xbd\"");
+    expect_text("\xc0\xaf", 2, "\"\xef\xbf\xbd\xef\xbf\xbd\"");
+    expect_text("\xed\xa0\x80", 3, "\"\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd\"");
+    expect_text("\xf4\x90\x80\x80", 4, "\"\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd\xef\xbf\xbd\"");
+    expect_text("\xf0\x9f\x98", 3, "\"\xef\xbf\xbd\"");
+    expect_text("\xe2\x82\xac\xff", 4, "\"\xe2\x82\xac\xef\xbf\xbd\"");
+    out = tmpfile();
+    if (!out) {
+        puts("text: no tmpfile");
+        failures++;
+        return;
+    }
+    json_write_hex(out, raw, sizeof raw);
+    fputc(' ', out);
+    json_write_f64(out, 1e-5);
+    fputc(' ', out);
+    json_write_f64(out, -0.0);
+    expect_output(out, "\"007fabff\" 1e-05 -0.0", "hex and float64 texts");
+    fclose(out);
+}
+
 int main(int argc, char **argv)
 {
     float64_cases();
@@ -343,6 +391,7 @@ int main(int argc, char **argv)
     cut_texts();
     properties(argc > 1 ? atol(argv[1]) : 200000);
     writer_records();
+    text_escapes();
     if (failures) {
         printf("%d json checks failed\n", failures);
         return 1;

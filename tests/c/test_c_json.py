@@ -1,5 +1,5 @@
-"""The C CLI's JSON writer (tools/urwire-decode/json.c, shortest.c): its unit checks in C
-(tests/c/json_unit.c: hard float cases, the record buffer) under gcc, clang and the sanitizers,
+"""The C runtime's JSON writer (runtime/c/json/json.c, shortest.c): its unit checks in C
+(tests/c/json_unit.c: hard float cases, string escapes, the record buffer) under gcc, clang and the sanitizers,
 then the float texts against Python: millions of random bit patterns through the test driver
 in one run each, compared with repr() for float64 and canonical.f32_text for float32."""
 from __future__ import annotations
@@ -12,7 +12,7 @@ import sys
 
 import pytest
 
-from tests.c.harness_c import CLI, JSON, OUT, ROOT, SANITIZE, compile_c
+from tests.c.harness_c import JSON, JSON_RUNTIME, OUT, ROOT, SANITIZE, compile_c
 
 from urwire.canonical import f32_text
 
@@ -24,7 +24,8 @@ UNIT_BUILDS = {
 
 
 def test_pow5_table_is_what_its_script_writes():
-    result = subprocess.run([sys.executable, str(CLI / "pow5_table.py"), "--check"], capture_output=True, text=True)
+    result = subprocess.run([sys.executable, str(JSON_RUNTIME / "pow5_table.py"), "--check"], capture_output=True,
+                            text=True)
     assert result.returncode == 0, result.stdout + result.stderr
 
 

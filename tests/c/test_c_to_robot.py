@@ -13,7 +13,7 @@ import subprocess
 
 import pytest
 
-from tests.c.harness_c import CLI, GEN, OUT, STRICT, get_build
+from tests.c.harness_c import CLI, INCLUDES, OUT, RUNTIME_SOURCES, STRICT, get_build
 from tests.interface_vectors import conversation_cases
 from tests.rtde_vectors import rtde_cases
 from urwire.cli import main as python_main
@@ -160,8 +160,9 @@ def test_the_commands_decoding_references_no_malloc(tmp_path):
     both files through static state: no malloc, calloc, realloc or free in its objects."""
     folder = OUT / "to_robot_nm"
     folder.mkdir(parents=True, exist_ok=True)
-    for source in sorted(CLI.glob("*.c")):
+    for source in [*sorted(CLI.glob("*.c")), *RUNTIME_SOURCES]:
         obj = folder / f"{source.stem}.o"
-        subprocess.run(["gcc", *STRICT, "-O2", f"-I{GEN}", f"-I{CLI}", "-c", str(source), "-o", str(obj)], check=True)
+        subprocess.run(["gcc", *STRICT, "-O2", *(f"-I{d}" for d in INCLUDES), "-c", str(source), "-o", str(obj)],
+                       check=True)
         undefined = subprocess.run(["nm", "-u", str(obj)], capture_output=True, text=True, check=True).stdout.split()
         assert not {"malloc", "calloc", "realloc", "free", "strdup"} & set(undefined), source.name

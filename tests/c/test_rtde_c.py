@@ -1,7 +1,8 @@
-"""The RTDE C library (generated/c/rtde.{h,c}) and its JSON writer
-(tools/urwire-decode/rtde_json.c): strict builds with gcc and clang, the same JSON lines as the
-Python Conversation on every golden exchange (whole and byte by byte) and on hostile bytes, under
-ASan and UBSan; the client API; the fuzz harness replayed over its kept corpus."""
+"""The RTDE C library (generated/c/rtde.{h,c}), its stream framing (runtime/c/rtde/stream.c) and
+the command's JSON writer of it (tools/urwire-decode/rtde_json.c): strict builds with gcc and
+clang, the same JSON lines as the Python Conversation on every golden exchange (whole and byte by
+byte) and on hostile bytes, under ASan and UBSan; the client API; the fuzz harness replayed over
+its kept corpus."""
 from __future__ import annotations
 
 import random
@@ -13,13 +14,13 @@ import subprocess
 import pytest
 
 import urwire
-from tests.c.harness_c import CLI, GEN, OUT, ROOT, SANITIZE, STRICT
+from tests.c.harness_c import CLI, GEN, INCLUDES as INCLUDE_DIRS, JSON, OUT, RTDE_STREAM, ROOT, SANITIZE, STRICT
 from tests.rtde_vectors import mismatches, python_records, rtde_cases, shown_as
 from urwire.rtde import Conversation
 
 CASES = rtde_cases()
-JSON_SOURCES = [CLI / "rtde_json.c", CLI / "envelope.c", CLI / "json.c", CLI / "shortest.c", GEN / "urwire.c", GEN / "rtde.c"]
-INCLUDES = [f"-I{GEN}", f"-I{CLI}"]
+JSON_SOURCES = [CLI / "rtde_json.c", CLI / "envelope.c", RTDE_STREAM, *JSON, GEN / "urwire.c", GEN / "rtde.c"]
+INCLUDES = [f"-I{d}" for d in INCLUDE_DIRS]
 CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "rtde"
 
 
@@ -118,6 +119,25 @@ def test_hostile_bytes_give_the_same_lines(driver, seed):
             data = bytearray(rng.getrandbits(8) for _ in range(rng.randrange(1, 80)))
         messages.append((from_robot, bytes(data)))
     assert c_lines(driver, messages) == python_lines(messages)
+
+
+def test_every_value_type_is_written_as_its_kind(driver):
+    """One recipe of every value type the spec has, one data package whose bytes all have their top
+    bit set: a bool is true, a signed item negative, an unsigned one large, a float a float, as
+    Python writes them (a writer that read one kind's items as another's would differ)."""
+    from urwire.generated import rtde as g
+
+    types = list(g.VALUE_TYPES)
+    names = [f"value_{t.lower()}" for t in types]
+    reply = ",".join(types).encode()
+    size = sum(struct.calcsize(">" + v.code) * v.count for v in g.VALUE_TYPES.values())
+    values = bytes((0xF7 - 13 * i) % 256 | 0x80 for i in range(size))
+    messages = [(False, urwire.rtde.setup_outputs(names, 125.0)),
+                (True, struct.pack(">HBB", 4 + len(reply), ord("O"), 1) + reply),
+                (True, struct.pack(">HBB", 4 + size, ord("U"), 1) + values)]
+    lines = c_lines(driver, messages)
+    assert lines == python_lines(messages)
+    assert '"value_bool": true' in lines[-1] and '"value_int32": -' in lines[-1], lines[-1]
 
 
 def test_the_client_api(tmp_path):

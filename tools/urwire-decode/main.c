@@ -77,13 +77,13 @@ static int run_realtime(FILE *in, urwire_sw_version version, bool hinted)
 /* RTDE: the client's stream (when given) and then the robot's, through one connection's state, so
  * that a data package is read with the recipe the client set up. With the robot's stream alone,
  * data packages come out whole, with an error, as in `urwire decode --protocol rtde`. */
-static rtde_json_stream rtde_stream;
+static rtde_json_stream rtde_connection;
 
 static int feed_rtde(FILE *in, bool from_robot, int *faults)
 {
     for (;;) {
         size_t n = fread(chunk, 1, sizeof chunk, in);
-        *faults += rtde_json_feed(&rtde_stream, chunk, n, from_robot, stdout);
+        *faults += rtde_json_feed(&rtde_connection, chunk, n, from_robot, stdout);
         if (n < sizeof chunk)
             return ferror(in) ? 2 : 0;
     }
@@ -94,14 +94,14 @@ static int run_rtde(const cell_inputs *in, urwire_sw_version version, bool hinte
     int faults = 0;
     (void)version;
     (void)hinted;
-    rtde_json_stream_init(&rtde_stream);
-    rtde_stream.envelope[0] = in->to_robot;
-    rtde_stream.envelope[1] = in->from_robot;
+    rtde_json_stream_init(&rtde_connection);
+    rtde_connection.envelope[0] = in->to_robot;
+    rtde_connection.envelope[1] = in->from_robot;
     if (in->client && feed_rtde(in->client, false, &faults) == 2)
         return 2;
     if (feed_rtde(in->robot, true, &faults) == 2)
         return 2;
-    faults += rtde_json_close(&rtde_stream, stdout);
+    faults += rtde_json_close(&rtde_connection, stdout);
     return faults ? 1 : 0;
 }
 

@@ -5,28 +5,9 @@
 
 #include "json.h"
 
-static void put_f64(FILE *out, double x)
-{
-    char text[40];
-    json_f64_text(x, text, sizeof text);
-    fputs(text, out);
-}
-
 static void put_text(FILE *out, const uint8_t *p, size_t n)
 {
     json_write_text(out, p, n);
-}
-
-static void put_hex(FILE *out, const uint8_t *p, size_t n)
-{
-    static const char digits[] = "0123456789abcdef";
-    size_t i;
-    fputc('"', out);
-    for (i = 0; i < n; i++) {
-        fputc(digits[p[i] >> 4], out);
-        fputc(digits[p[i] & 15], out);
-    }
-    fputc('"', out);
 }
 
 /* Names joined by commas as a JSON list; no bytes are no names. */
@@ -47,17 +28,31 @@ static void put_names(FILE *out, rtde_text t)
     fputc(']', out);
 }
 
+/* An item of a value: its type in the generated table (rtde_value_type) says which member of the
+ * item holds it; a type added to the spec and not here fails the build (-Wswitch). */
 static void put_item(FILE *out, const rtde_value *v, size_t k)
 {
-    const char *type = rtde_value_type_name(v->type);
-    if (strcmp(type, "BOOL") == 0)
+    switch ((rtde_value_type)v->type) {
+    case RTDE_VT_BOOL:
         fputs(v->item[k].u64 ? "true" : "false", out);
-    else if (strcmp(type, "DOUBLE") == 0 || strcmp(type, "VECTOR3D") == 0 || strcmp(type, "VECTOR6D") == 0)
-        put_f64(out, v->item[k].f64);
-    else if (strcmp(type, "INT32") == 0 || strcmp(type, "VECTOR6INT32") == 0)
+        break;
+    case RTDE_VT_DOUBLE:
+    case RTDE_VT_VECTOR3D:
+    case RTDE_VT_VECTOR6D:
+        json_write_f64(out, v->item[k].f64);
+        break;
+    case RTDE_VT_INT32:
+    case RTDE_VT_VECTOR6INT32:
         fprintf(out, "%lld", (long long)v->item[k].i64);
-    else
+        break;
+    case RTDE_VT_UINT8:
+    case RTDE_VT_UINT32:
+    case RTDE_VT_UINT64:
+    case RTDE_VT_VECTOR6UINT32:
+    case RTDE_VT_COUNT:
         fprintf(out, "%llu", (unsigned long long)v->item[k].u64);
+        break;
+    }
 }
 
 static void put_values(FILE *out, const rtde_data *d, bool *first)
@@ -83,15 +78,6 @@ static void put_values(FILE *out, const rtde_data *d, bool *first)
     }
 }
 
-static uint64_t load(const uint8_t *p, size_t n)
-{
-    uint64_t v = 0;
-    size_t i;
-    for (i = 0; i < n; i++)
-        v = (v << 8) | p[i];
-    return v;
-}
-
 static void put_member(FILE *out, const rtde_member *mb, const uint8_t *base, bool *first)
 {
     const uint8_t *p = base + mb->offset;
@@ -115,7 +101,7 @@ static void put_member(FILE *out, const rtde_member *mb, const uint8_t *base, bo
     } else if (mb->kind == RTDE_MEMBER_F64) {
         double d;
         memcpy(&d, p, sizeof d);
-        put_f64(out, d);
+        json_write_f64(out, d);
     } else {
         /* Integers of their own width in the struct (uint8_t to uint64_t, int32_t). */
         uint64_t u = 0;
@@ -219,7 +205,7 @@ int rtde_json_record(FILE *out, const envelope *env, const rtde_message *m, rtde
             fprintf(out, ", \"error\": \"%s\"", rtde_error_text(e));
         }
         fputs(", \"raw\": ", out);
-        put_hex(out, msg, size);
+        json_write_hex(out, msg, size);
         fputs("}\n", out);
         return e != RTDE_UNKNOWN_TYPE;   /* a code no layout has is kept whole without an error */
     }
@@ -248,68 +234,55 @@ static const rtde_limits protocol_limits = {RTDE_PROTOCOL_RECIPES, RTDE_PROTOCOL
 void rtde_json_stream_init(rtde_json_stream *s)
 {
     rtde_conversation_init_in(&s->conversation, &protocol_limits, s->storage.bytes, sizeof s->storage.bytes);
-    s->direction[0].length = s->direction[1].length = 0;
-    s->direction[0].offset = s->direction[1].offset = 0;
-    s->direction[0].scanning = s->direction[1].scanning = false;
+    rtde_stream_init(&s->direction[0]);
+    rtde_stream_init(&s->direction[1]);
     s->envelope[0] = s->envelope[1] = NULL;
 }
 
-static bool plausible(const uint8_t *p)
+/* Every record the direction's framed bytes make, in the direction's envelope; the number of
+ * error records. */
+static int drain(rtde_json_stream *s, bool from_robot, FILE *out)
 {
-    size_t size;
-    return rtde_message_size(p, RTDE_HEADER_SIZE, &size) != RTDE_BAD_HEADER;
-}
-
-static int frame(rtde_json_stream *s, rtde_json_direction *d, bool from_robot, FILE *out)
-{
-    size_t pos = 0, size;
+    rtde_stream *d = &s->direction[from_robot ? 1 : 0];
+    const envelope *env = s->envelope[from_robot ? 1 : 0];
+    rtde_frame f;
+    rtde_message m;
+    rtde_error e;
+    size_t at;
     int errors = 0;
-    while (d->length - pos >= RTDE_HEADER_SIZE) {
-        rtde_error e = rtde_message_size(d->buf + pos, d->length - pos, &size);
-        if (e == RTDE_BAD_HEADER) {
-            /* One fault per scan, however the bytes were cut: a scan that ran out of bytes goes on
-             * silently when more come. */
-            if (!d->scanning) {
-                envelope_open(out, s->envelope[from_robot ? 1 : 0]);
-                fprintf(out, "\"type\": \"error\", \"offset\": %llu, \"error\": \"bad message header: size %u, "
-                        "type %u\"}\n", (unsigned long long)(d->offset + pos), (unsigned)load(d->buf + pos, 2),
-                        (unsigned)d->buf[pos + 2]);
-                errors++;
-            }
-            d->scanning = true;
-            pos++;
-            while (d->length - pos >= RTDE_HEADER_SIZE && !plausible(d->buf + pos))
-                pos++;
-            continue;
-        }
-        d->scanning = false;
-        if (e == RTDE_NEED_MORE)
+    for (;;) {
+        switch (rtde_stream_next(d, &f)) {
+        case RTDE_FRAME_NEED_MORE:
+        case RTDE_FRAME_END:
+            return errors;
+        case RTDE_FRAME_MESSAGE:
+            e = rtde_decode(&s->conversation, f.bytes, f.length, from_robot, &m, &at);
+            errors += rtde_json_record(out, env, &m, e, at, f.bytes, f.length);
             break;
-        {
-            rtde_message m;
-            size_t at;
-            rtde_error de = rtde_decode(&s->conversation, d->buf + pos, size, from_robot, &m, &at);
-            errors += rtde_json_record(out, s->envelope[from_robot ? 1 : 0], &m, de, at, d->buf + pos, size);
+        case RTDE_FRAME_BAD_HEADER:
+            envelope_open(out, env);
+            fprintf(out, "\"type\": \"error\", \"offset\": %llu, \"error\": \"bad message header: size %lu, "
+                    "type %u\"}\n", (unsigned long long)f.offset, (unsigned long)f.size, (unsigned)f.code);
+            errors++;
+            break;
+        case RTDE_FRAME_TRUNCATED:
+            envelope_open(out, env);
+            fprintf(out, "\"type\": \"error\", \"offset\": %llu, \"error\": \"truncated message: %lu bytes at "
+                    "the end of the stream\"}\n", (unsigned long long)f.offset, (unsigned long)f.length);
+            errors++;
+            break;
         }
-        pos += size;
     }
-    memmove(d->buf, d->buf + pos, d->length - pos);
-    d->length -= pos;
-    d->offset += pos;
-    return errors;
 }
 
 int rtde_json_feed(rtde_json_stream *s, const uint8_t *data, size_t length, bool from_robot, FILE *out)
 {
-    rtde_json_direction *d = &s->direction[from_robot ? 1 : 0];
     int errors = 0;
     while (length) {
-        size_t room = RTDE_JSON_BUFFER - d->length, n = length < room ? length : room;
-        memcpy(d->buf + d->length, data, n);
-        d->length += n;
+        size_t n = rtde_stream_feed(&s->direction[from_robot ? 1 : 0], data, length);
         data += n;
         length -= n;
-        errors += frame(s, d, from_robot, out);
+        errors += drain(s, from_robot, out);
     }
     return errors;
 }
@@ -318,15 +291,8 @@ int rtde_json_close(rtde_json_stream *s, FILE *out)
 {
     int errors = 0, k;
     for (k = 0; k < 2; k++) {       /* the client's tail first, each in its own direction's envelope */
-        rtde_json_direction *d = &s->direction[k];
-        if (d->length) {
-            envelope_open(out, s->envelope[k]);
-            fprintf(out, "\"type\": \"error\", \"offset\": %llu, \"error\": \"truncated message: %lu bytes at the end "
-                    "of the stream\"}\n", (unsigned long long)d->offset, (unsigned long)d->length);
-            d->offset += d->length;
-            d->length = 0;
-            errors++;
-        }
+        rtde_stream_finish(&s->direction[k]);
+        errors += drain(s, k == 1, out);
     }
     return errors;
 }

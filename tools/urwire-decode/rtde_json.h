@@ -10,23 +10,14 @@
 
 #include "envelope.h"
 #include "rtde.h"
-
-#define RTDE_JSON_BUFFER 65536          /* the largest message a uint16 size allows */
-
-/* One direction of a connection: the bytes of a message still arriving. */
-typedef struct rtde_json_direction {
-    uint8_t buf[RTDE_JSON_BUFFER];
-    size_t length;
-    uint64_t offset;                    /* of buf[0] in the direction's stream */
-    bool scanning;                      /* looking for the next plausible header after a fault */
-} rtde_json_direction;
+#include "stream.h"
 
 /* The storage of a connection's recipes and pending names at the protocol's own limits (67 MB):
  * every recipe a robot and a client can make is kept, as the Python decoder keeps them. */
 #define RTDE_JSON_STORAGE RTDE_STORAGE_SIZE(RTDE_PROTOCOL_RECIPES, RTDE_PROTOCOL_VARIABLES, RTDE_PROTOCOL_NAMES)
 
-/* One connection: its RTDE state and both directions' framing. Large: static, where only the pages
- * a connection uses are ever touched. */
+/* One connection: its RTDE state and both directions' framing (runtime/c/rtde/stream.h). Large:
+ * static, where only the pages a connection uses are ever touched. */
 typedef struct rtde_json_stream {
     rtde_conversation conversation;
     union {
@@ -35,9 +26,9 @@ typedef struct rtde_json_stream {
         double align_d;
         void *align_p;
     } storage;                          /* the conversation's recipes and pending names */
-    rtde_json_direction direction[2];   /* [1]: from the robot */
-    /* Each direction's records' envelope ([1]: from the robot; NULL: records as they are). The
-     * ends of the streams are the robot's file's, as `urwire decode --to-robot` reports them. */
+    rtde_stream direction[2];           /* [1]: from the robot */
+    /* Each direction's records' envelope ([1]: from the robot; NULL: records as they are), the
+     * end of its stream included, as `urwire decode --to-robot` reports them. */
     const envelope *envelope[2];
 } rtde_json_stream;
 

@@ -5,24 +5,16 @@
 
 #include "json.h"
 
-static void write_double(FILE *out, double x)
-{
-    char text[40];
-    json_f64_text(x, text, sizeof text);
-    fputs(text, out);
-}
-
 void ur_realtime_write_json(FILE *out, const ur_realtime_packet *p, size_t stream_offset)
 {
     const ur_realtime_slot *slots;
     size_t i, j, n;
     if (p->layout == UR_REALTIME_UNKNOWN) {
         fprintf(out, "{\"type\": \"unknown\", \"message_size\": %ld, \"error\": \"packet at offset %lu: size %ld "
-                     "matches no layout\", \"raw\": \"", (long)p->message_size, (unsigned long)stream_offset,
+                     "matches no layout\", \"raw\": ", (long)p->message_size, (unsigned long)stream_offset,
                 (long)p->message_size);
-        for (i = 0; i < p->raw_length; i++)
-            fprintf(out, "%02x", p->raw[i]);
-        fputs("\"}\n", out);
+        json_write_hex(out, p->raw, p->raw_length);
+        fputs("}\n", out);
         return;
     }
     fprintf(out, "{\"type\": \"%s\", \"message_size\": %ld", ur_realtime_layout_name(p->layout), (long)p->message_size);
@@ -32,14 +24,14 @@ void ur_realtime_write_json(FILE *out, const ur_realtime_packet *p, size_t strea
         const double *values = ur_realtime_values(p, slots[i].field);
         fprintf(out, ", \"%s\": ", info->name);
         if (slots[i].count == 1) {
-            write_double(out, values[0]);
+            json_write_f64(out, values[0]);
             continue;
         }
         fputc('[', out);
         for (j = 0; j < slots[i].count; j++) {
             if (j)
                 fputs(", ", out);
-            write_double(out, values[j]);
+            json_write_f64(out, values[j]);
         }
         fputc(']', out);
     }
@@ -64,11 +56,6 @@ static bool has_layout(int32_t size)
     return ur_realtime_decode(probe, (size_t)size, 0, &p) == UR_REALTIME_OK;
 }
 
-static int32_t size_at(const uint8_t *p)
-{
-    return (int32_t)((uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3]);
-}
-
 /* After a size that cannot frame a packet: where the next plausible packet starts, from pos on
  * (the next size some layout has), as python/urwire/realtime.py finds it. False when none is found
  * yet; *pos is then where the scan goes on when more bytes come (have, at the end of the stream). */
@@ -76,8 +63,8 @@ static bool next_packet(const uint8_t *buf, size_t have, size_t *pos, bool eof)
 {
     size_t p = *pos;
     for (; have - p >= UR_REALTIME_SIZE_FIELD_BYTES; p++) {
-        int32_t size = size_at(buf + p);
-        if (size >= UR_REALTIME_MIN_MESSAGE_SIZE && size <= UR_REALTIME_MAX_MESSAGE_SIZE && has_layout(size)) {
+        int32_t size = 0;
+        if (ur_realtime_frame(buf + p, have - p, &size) == UR_REALTIME_OK && has_layout(size)) {
             *pos = p;
             return true;
         }

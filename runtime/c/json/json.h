@@ -1,5 +1,6 @@
 /* Canonical JSON Lines writer for urwire records (docs/canonical-json.md), built on the
- * library's visitor. Hand-written; part of the CLI, not of the parser. */
+ * library's visitor, and the texts every JSON writer in C shares (strings, floats, hex). C runtime
+ * beside the parser, not joined into it: urwire-decode and urwire._ccore compile it. */
 #ifndef URWIRE_JSON_H
 #define URWIRE_JSON_H
 
@@ -51,5 +52,11 @@ void json_f64_text(double x, char *buf, size_t cap);
 /* Bytes as a JSON string: invalid UTF-8 replaced by U+FFFD exactly as Python's
  * bytes.decode("utf-8", "replace") does (one U+FFFD per maximal invalid subpart). */
 void json_write_text(FILE *out, const unsigned char *p, size_t n);
+
+/* Bytes as a JSON string of lowercase hex digits, two a byte. */
+void json_write_hex(FILE *out, const unsigned char *p, size_t n);
+
+/* A float64 as json_f64_text writes it. */
+void json_write_f64(FILE *out, double x);
 
 #endif

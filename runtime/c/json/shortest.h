@@ -1,7 +1,7 @@
 /* The decimal digits that canonical JSON prints for a float64 or a float32
  * (docs/canonical-json.md), found with Ryū: Ulf Adams, "Ryū: fast float-to-string
- * conversion", PLDI 2018, https://doi.org/10.1145/3192366.3192369. Part of the CLI, not of
- * the parser. */
+ * conversion", PLDI 2018, https://doi.org/10.1145/3192366.3192369. C runtime beside the
+ * parser (not joined into it): json.c prints with it, for urwire-decode and urwire._ccore. */
 #ifndef URWIRE_SHORTEST_H
 #define URWIRE_SHORTEST_H
 

@@ -289,13 +289,51 @@ static void write_text(json_writer *w, const unsigned char *p, size_t n)
     put_char(w, '"');
 }
 
-void json_write_text(FILE *out, const unsigned char *p, size_t n)
+/* Bytes as a JSON string of hex digits into w's buffer (see json_write_hex). */
+static void write_hex(json_writer *w, const unsigned char *p, size_t n)
+{
+    static const char hex[] = "0123456789abcdef";
+    size_t i = 0, k;
+    char *at;
+    put_char(w, '"');
+    while (i < n) {
+        size_t chunk = n - i < sizeof w->buf / 2 ? n - i : sizeof w->buf / 2;
+        at = reserve(w, 2 * chunk);
+        for (k = 0; k < chunk; k++, i++) {
+            *at++ = hex[p[i] >> 4];
+            *at++ = hex[p[i] & 15];
+        }
+        w->len += 2 * chunk;
+    }
+    put_char(w, '"');
+}
+
+/* Bytes written alone, straight to out, by a writer of their own. */
+static void write_alone(FILE *out, void (*write)(json_writer *, const unsigned char *, size_t),
+                        const unsigned char *p, size_t n)
 {
     json_writer w;
     w.out = out;
     w.len = 0;
-    write_text(&w, p, n);
+    w.flushes = 0;
+    write(&w, p, n);
     flush(&w);
+}
+
+void json_write_text(FILE *out, const unsigned char *p, size_t n)
+{
+    write_alone(out, write_text, p, n);
+}
+
+void json_write_hex(FILE *out, const unsigned char *p, size_t n)
+{
+    write_alone(out, write_hex, p, n);
+}
+
+void json_write_f64(FILE *out, double x)
+{
+    char text[TEXT_ROOM];
+    fwrite(text, 1, f64_text(x, text), out);
 }
 
 /* A record is written: hand it to out. */
@@ -445,22 +483,9 @@ static void on_text(void *ctx, const char *key, urwire_bytes t)
 
 static void on_hex(void *ctx, const char *key, urwire_bytes b)
 {
-    static const char hex[] = "0123456789abcdef";
     json_writer *w = (json_writer *)ctx;
-    size_t i = 0, k;
-    char *at = field(w, key, 1);
-    *at = '"';
-    w->len = (size_t)(at - w->buf) + 1;
-    while (i < b.len) {
-        size_t chunk = b.len - i < sizeof w->buf / 2 ? b.len - i : sizeof w->buf / 2;
-        at = reserve(w, 2 * chunk);
-        for (k = 0; k < chunk; k++, i++) {
-            *at++ = hex[b.ptr[i] >> 4];
-            *at++ = hex[b.ptr[i] & 15];
-        }
-        w->len += 2 * chunk;
-    }
-    put_char(w, '"');
+    w->len = (size_t)(field(w, key, 0) - w->buf);
+    write_hex(w, b.ptr, b.len);
     record_end(w);
 }
 

@@ -1,7 +1,7 @@
 """Write pow5_table.h: the 125-bit powers of five that shortest.c multiplies by (Ryū's tables).
 
-    python3 tools/urwire-decode/pow5_table.py          rewrite pow5_table.h beside this file
-    python3 tools/urwire-decode/pow5_table.py --check  fail if pow5_table.h is not what it writes
+    python3 runtime/c/json/pow5_table.py          rewrite pow5_table.h beside this file
+    python3 runtime/c/json/pow5_table.py --check  fail if pow5_table.h is not what it writes
 
 POW5[i]     = 5^i scaled by a power of two to exactly 125 bits (rounded down), i < 326:
               doubles below 1 are multiplied by 5^i
@@ -46,7 +46,7 @@ def render() -> str:
         return "\n".join(f"    {{0x{v & mask:016x}u, 0x{v >> 64:016x}u}}, /* {i} */" for i, v in enumerate(values))
 
     return f"""/* Powers of five for shortest.c, 125 bits each as {{low, high}} words. Written by
- * pow5_table.py (python3 tools/urwire-decode/pow5_table.py); do not edit by hand.
+ * pow5_table.py (python3 runtime/c/json/pow5_table.py); do not edit by hand.
  * POW5[i] = 5^i scaled to 125 bits; POW5_INV[q] = floor(2^(bitlength(5^q) - 1 + 125) / 5^q) + 1. */
 #ifndef URWIRE_POW5_TABLE_H
 #define URWIRE_POW5_TABLE_H
@@ -71,7 +71,7 @@ def main(argv: list[str]) -> int:
     text = render()
     if argv == ["--check"]:
         if OUT.read_text() != text:
-            print(f"{OUT.name} is stale: run python3 tools/urwire-decode/pow5_table.py")
+            print(f"{OUT.name} is stale: run python3 runtime/c/json/pow5_table.py")
             return 1
         return 0
     OUT.write_text(text)

@@ -1,5 +1,5 @@
 /* Powers of five for shortest.c, 125 bits each as {low, high} words. Written by
- * pow5_table.py (python3 tools/urwire-decode/pow5_table.py); do not edit by hand.
+ * pow5_table.py (python3 runtime/c/json/pow5_table.py); do not edit by hand.
  * POW5[i] = 5^i scaled to 125 bits; POW5_INV[q] = floor(2^(bitlength(5^q) - 1 + 125) / 5^q) + 1. */
 #ifndef URWIRE_POW5_TABLE_H
 #define URWIRE_POW5_TABLE_H

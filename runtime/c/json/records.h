@@ -1,5 +1,6 @@
-/* The records a framer has ready, printed as canonical JSON Lines: the loop of urwire-decode,
- * in a file of its own so that its tests and fuzzer run the same code. Part of the CLI. */
+/* The records a framer has ready, printed as canonical JSON Lines: the record loop of
+ * urwire-decode and of urwire._ccore's JSON lines, in a file of its own so that both, the tests
+ * and the fuzzer run the same code. C runtime beside the parser, not joined into it. */
 #ifndef URWIRE_RECORDS_H
 #define URWIRE_RECORDS_H
 
