@@ -3,8 +3,8 @@
     python3 scripts/layout_only.py [REV]      # REV defaults to where this branch left main
 
 C: both revisions' urwire.c are compiled with -O2 and their object files (`objdump -d -s -r`:
-code, data and relocations) must be equal. Lua: `luac -l -l` listings of both urwire.lua, with line numbers and source names taken
-out, must be equal. Python: each generated module's syntax tree, docstrings left out, must be
+code, data and relocations) must be equal. Lua: `luac -l -l` listings of each generated/lua/*.lua
+that both revisions have, with line numbers and source names taken out, must be equal. Python: each generated module's syntax tree, docstrings left out, must be
 equal. It prints one line per file and exits 1 when any file behaves differently.
 """
 from __future__ import annotations
@@ -25,12 +25,17 @@ def old_text(rev: str, path: str) -> str:
                           capture_output=True, text=True).stdout
 
 
-def python_modules(rev: str) -> list[str]:
-    """The generated Python modules that both this work tree and `rev` have."""
+def generated_files(rev: str, folder: str, suffix: str) -> list[str]:
+    """The generated files of `folder` ending in `suffix` that both this work tree and `rev` have."""
     def listed(*args: str) -> set[str]:
         out = subprocess.run(["git", *args], cwd=ROOT, check=True, capture_output=True, text=True).stdout
-        return {p for p in out.split() if p.endswith(".py")}
-    return sorted(listed("ls-files", "generated/python") & listed("ls-tree", "-r", "--name-only", rev, "generated/python"))
+        return {p for p in out.split() if p.endswith(suffix)}
+    return sorted(listed("ls-files", folder) & listed("ls-tree", "-r", "--name-only", rev, folder))
+
+
+def python_modules(rev: str) -> list[str]:
+    """The generated Python modules that both this work tree and `rev` have."""
+    return generated_files(rev, "generated/python", ".py")
 
 
 def c_object_code(source_dir: Path) -> str:
@@ -86,11 +91,13 @@ def main(argv: list[str]) -> int:
         print(f"generated/c/urwire.c: object file (gcc -O2) {'same' if ok else 'DIFFERS'}")
         same &= ok
 
-        (old / "urwire.lua").write_text(old_text(rev, "generated/lua/urwire.lua"))
-        shutil.copy(ROOT / "generated/lua/urwire.lua", new / "urwire.lua")
-        ok = lua_listing(old / "urwire.lua") == lua_listing(new / "urwire.lua")
-        print(f"generated/lua/urwire.lua: luac listing {'same' if ok else 'DIFFERS'}")
-        same &= ok
+        for path in generated_files(rev, "generated/lua", ".lua"):
+            name = Path(path).name
+            (old / name).write_text(old_text(rev, path))
+            shutil.copy(ROOT / path, new / name)
+            ok = lua_listing(old / name) == lua_listing(new / name)
+            print(f"{path}: luac listing {'same' if ok else 'DIFFERS'}")
+            same &= ok
 
     for path in python_modules(rev):
         ok = python_tree(old_text(rev, path)) == python_tree((ROOT / path).read_text())
