@@ -49,7 +49,7 @@ WIRESHARK_UNITS = {"s": "units_seconds", "ms": "units_milliseconds"}
 EXT_STRINGS = 32
 
 # The dissector's own fields and expert infos, after the spec's: the same as the Lua dissector
-# declares (runtime/lua/declare.lua), in the same order.
+# declares (runtime/lua/packages/declare.lua), in the same order.
 OWN_FIELDS = [
     ("raw", "Raw", "ur.raw", "FT_BYTES", "BASE_NONE",
      "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),

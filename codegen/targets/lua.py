@@ -1,4 +1,4 @@
-"""Lua target: the IR -> plain data -> templates/lua/urwire.lua.j2 + runtime/*.lua, one Wireshark
+"""Lua target: the IR -> plain data -> templates/lua/urwire.lua.j2 + runtime/lua/packages, one Wireshark
 dissector in one self-contained file.
 
 Every decision is made here: which ProtoField each field becomes (one per name, of the widest
@@ -8,7 +8,7 @@ type among the name's entries in every version), its abbreviation
 software versions (plan.Variant), where the Version message keeps its numbers, and which fields
 the Info column shows. Versions reach the runtime as ir.version_number integers. The builder hands the template data only (dicts and `Step`s); the template writes
 each descriptor kind and each ProtoField shape with a macro of its own. The code that walks the
-descriptors is hand-written Lua in runtime/lua/, joined after the generated tables.
+descriptors is hand-written Lua in runtime/lua/packages, joined after the generated tables.
 """
 from __future__ import annotations
 
@@ -26,12 +26,12 @@ from ..view import Step
 
 OUT = "lua/urwire.lua"
 
-# The hand-written runtime, in the order it is joined. Each file is a chunk that receives
-# (spec, rt): `spec` is the generated data, `rt` what earlier runtime files export.
+# The hand-written runtime (runtime/lua/packages), in the order it is joined. Each file is a chunk
+# that receives (spec, rt): `spec` is the generated data, `rt` what earlier runtime files export.
 RUNTIME = ("declare.lua", "bytes.lua", "versions.lua", "items.lua", "collector.lua", "walk.lua", "values.lua",
-           "info.lua", "messages.lua", "wanted.lua", "carry.lua", "stream.lua", "framing.lua", "register.lua")
+           "info.lua", "messages.lua", "wanted.lua", "carry.lua", "stream.lua", "framing.lua", "preferences.lua")
 
-# The most tree items one message shows in Wireshark (runtime/items.lua); an expert note says
+# The most tree items one message shows in Wireshark (runtime/lua/packages/items.lua); an expert note says
 # how many more it holds. Wireshark itself stops a packet at a million items.
 MAX_TREE_ITEMS = 10_000
 
@@ -75,7 +75,7 @@ def version_number(v: Optional[ir.Version]) -> Optional[int]:
 
 
 # Descriptor kinds the Info column can step over on its way to a summary field, and the kinds it
-# can show (runtime/info.lua).
+# can show (runtime/lua/packages/info.lua).
 STEPS_OVER = {"scalar", "bits", "array", "pstring", "string"}
 SHOWS = {"scalar", "bits", "pstring", "string"}
 
@@ -347,7 +347,7 @@ class _Builder:
         return var
 
     def check_summary(self, layout: ir.Layout, descriptors: list[Step], show: dict) -> None:
-        """The Info column reads a summary from the raw bytes (runtime/info.lua): each field must
+        """The Info column reads a summary from the raw bytes (runtime/lua/packages/info.lua): each field must
         be one it can show, after fields it can step over (fixed ones, texts, version-gated parts)."""
         missing = set(show)
 
@@ -578,12 +578,12 @@ def view_model(protocol_plan: plan.ProtocolPlan) -> dict:
 
 def runtime() -> list[dict]:
     """The runtime files in joining order, as joined (standalone-only lines removed)."""
-    folder = RUNTIME_FOLDER / "lua"
-    # runtime/lua/<interface>_<part>.lua belongs to another interface's dissector, not to this one.
-    found = sorted(p.name for p in folder.glob("*.lua") if "_" not in p.stem)
+    folder = RUNTIME_FOLDER / "lua" / "packages"
+    found = sorted(p.name for p in folder.glob("*.lua"))
     if sorted(RUNTIME) != found:
         raise ValueError(f"lua target: runtime files {found} differ from the joining order {list(RUNTIME)}")
-    return [dict(name=name, path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in RUNTIME]
+    names = [f"packages/{name}" for name in RUNTIME]
+    return [dict(name=name, path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in names]
 
 
 def render(protocol_plan, banner: list[str]) -> dict[str, str]:

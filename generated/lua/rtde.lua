@@ -1184,14 +1184,14 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
--- ---- runtime/lua/rtde_state.lua ----
+-- ---- runtime/lua/typed_messages/state.lua ----
 -- =============================================================================================
 do
 (function(...)
 -- RTDE's state of one conversation, as plain Lua (no Wireshark object): the protocol version
 -- negotiated, the setup requests waiting for their replies, and the recipes that replies make.
--- runtime/lua/rtde_dissect.lua keeps one per conversation and calls rt.follow on each message,
--- in capture order, on the first pass.
+-- runtime/lua/typed_messages/dissect.lua keeps one per conversation and calls rt.follow on each
+-- message, in capture order, on the first pass.
 local spec, rt = ...
 
 local KIND_OF_REQUEST, KIND_OF_REPLY, KIND_OF_DATA = {}, {}, {}
@@ -1371,7 +1371,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/rtde_dissect.lua ----
+-- ---- runtime/lua/typed_messages/dissect.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -1380,7 +1380,7 @@ do
 -- values by the names of its recipe with a link to the frame that set the recipe up, and expert
 -- infos for refused setups, unknown recipes, a refused start and bad framing. State is kept per
 -- conversation (both addresses and both ports) on the first pass, and each message's view of it
--- is kept for later passes and the GUI (runtime/lua/rtde_state.lua holds the state itself).
+-- is kept for later passes and the GUI (runtime/lua/typed_messages/state.lua holds the state itself).
 local spec, rt = ...
 local proto, F = spec.proto, spec.F
 local HEADER = spec.header_size

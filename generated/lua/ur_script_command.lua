@@ -56,7 +56,7 @@ for _, f in ipairs(spec.fields) do spec.fields_by_name[f.name] = f end
 local rt = {}
 
 -- =============================================================================================
--- ---- runtime/lua/int32_records.lua ----
+-- ---- runtime/lua/int32_records/dissect.lua ----
 -- =============================================================================================
 do
 (function(...)

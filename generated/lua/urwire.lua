@@ -18,7 +18,7 @@
 --
 -- The file has two parts. First the tables generated from the spec: value strings, fields,
 -- layouts (one descriptor per field), messages; all handed over in one table, `spec`. Then the
--- hand-written runtime that walks them (runtime/lua/*.lua), one chunk per
+-- hand-written runtime that walks them (runtime/lua/packages), one chunk per
 -- file, each called with (spec, rt); `rt` holds what earlier chunks export.
 
 local ur = Proto("ur", "Universal Robots primary/secondary client interface")
@@ -1290,7 +1290,7 @@ local F = {
         layout: 181 bytes, sent right after robot message 12 when a client connects. 22 \z
         float64 with no timestamp; what each one means is not known."),
 }
--- In the order they are registered (runtime/declare.lua adds the dissector's own).
+-- In the order they are registered (runtime/lua/packages/declare.lua adds the dissector's own).
 local FIELDS = {
     F["length"],
     F["type"],
@@ -1614,7 +1614,7 @@ local FIELDS = {
 }
 
 -- ---------------------------------------------------------------------------------------------
--- Layouts: one descriptor per field, in wire order, walked by walk() in runtime/walk.lua
+-- Layouts: one descriptor per field, in wire order, walked by walk() in runtime/lua/packages/walk.lua
 -- ---------------------------------------------------------------------------------------------
 local L = {}
 
@@ -2313,7 +2313,7 @@ L.safety_compliance_tolerances = {
 }
 
 -- ---------------------------------------------------------------------------------------------
--- Messages by type: data for the runtime's message kinds (runtime/messages.lua)
+-- Messages by type: data for the runtime's message kinds (runtime/lua/packages/messages.lua)
 -- ---------------------------------------------------------------------------------------------
 local MESSAGE, PART = {}, {}
 
@@ -2420,9 +2420,9 @@ PART.payload_info = { name = "payload_info", label = "Payload info (undocumented
     F["payload_info.mass"] } }
 
 -- The forms each type code of the robot state takes: chosen by the software version, else by the
--- body size (runtime/versions.lua); `single` when one form serves every version. `segments`: the
--- form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is the nearest
--- version's below); `by_length`: the body sizes that recognise one form.
+-- body size (runtime/lua/packages/versions.lua); `single` when one form serves every version.
+-- `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is
+-- the nearest version's below); `by_length`: the body sizes that recognise one form.
 local ROBOT_STATE_PACKAGES = {
     [0] = { single = false, summary = true,
         segments = { 1, 1, 1, -1, 2, 2, 3, 3, 4, 4, -4, 4, 4, 4, -4, 4 },
@@ -2582,9 +2582,9 @@ PART.runtime_exception = { name = "runtime_exception", label = "Runtime exceptio
     header = L.runtime_exception_header, layout = L.runtime_exception, needs_version = false }
 
 -- The forms each type code of the robot message takes: chosen by the software version, else by the
--- body size (runtime/versions.lua); `single` when one form serves every version. `segments`: the
--- form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is the nearest
--- version's below); `by_length`: the body sizes that recognise one form.
+-- body size (runtime/lua/packages/versions.lua); `single` when one form serves every version.
+-- `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is
+-- the nearest version's below); `by_length`: the body sizes that recognise one form.
 local ROBOT_MESSAGE_SUBTYPES = {
     [0] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2692,9 +2692,9 @@ PART.global_variables_update = { name = "global_variables_update", label = "Glob
     needs_version = true }
 
 -- The forms each type code of the program state takes: chosen by the software version, else by the
--- body size (runtime/versions.lua); `single` when one form serves every version. `segments`: the
--- form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is the nearest
--- version's below); `by_length`: the body sizes that recognise one form.
+-- body size (runtime/lua/packages/versions.lua); `single` when one form serves every version.
+-- `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is
+-- the nearest version's below); `by_length`: the body sizes that recognise one form.
 local PROGRAM_STATE_SUBTYPES = {
     [0] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2723,9 +2723,9 @@ PART.modbus_info = { name = "modbus_info", label = "Modbus info (undocumented)",
     layout = L.modbus_info, needs_version = false }
 
 -- The forms each type code of the modbus info (undocumented) takes: chosen by the software version,
--- else by the body size (runtime/versions.lua); `single` when one form serves every version.
--- `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is
--- the nearest version's below); `by_length`: the body sizes that recognise one form.
+-- else by the body size (runtime/lua/packages/versions.lua); `single` when one form serves every
+-- version. `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there,
+-- the form is the nearest version's below); `by_length`: the body sizes that recognise one form.
 local MODBUS_INFO_FORMS = {
     [5] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2746,9 +2746,9 @@ MESSAGE[5] = {
 PART.hmc = { name = "hmc", label = "HMC (undocumented)", item = F["hmc"], layout = L.hmc, needs_version = false }
 
 -- The forms each type code of the hmc (undocumented) takes: chosen by the software version, else by
--- the body size (runtime/versions.lua); `single` when one form serves every version. `segments`:
--- the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is the nearest
--- version's below); `by_length`: the body sizes that recognise one form.
+-- the body size (runtime/lua/packages/versions.lua); `single` when one form serves every version.
+-- `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is
+-- the nearest version's below); `by_length`: the body sizes that recognise one form.
 local HMC_FORMS = {
     [22] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2769,10 +2769,10 @@ PART.safety_setup_broadcast = { name = "safety_setup_broadcast", label = "Safety
     item = F["safety_setup_broadcast"], layout = L.safety_setup_broadcast, needs_version = false }
 
 -- The forms each type code of the safety setup broadcast (undocumented) takes: chosen by the
--- software version, else by the body size (runtime/versions.lua); `single` when one form serves
--- every version. `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent
--- there, the form is the nearest version's below); `by_length`: the body sizes that recognise one
--- form.
+-- software version, else by the body size (runtime/lua/packages/versions.lua); `single` when one
+-- form serves every version. `segments`: the form of each segment of SEGMENT_STARTS (negative: none
+-- is sent there, the form is the nearest version's below); `by_length`: the body sizes that
+-- recognise one form.
 local SAFETY_SETUP_BROADCAST_FORMS = {
     [23] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2795,10 +2795,10 @@ PART.safety_compliance_tolerances = { name = "safety_compliance_tolerances",
     layout = L.safety_compliance_tolerances, needs_version = false }
 
 -- The forms each type code of the safety compliance tolerances (undocumented, inferred) takes:
--- chosen by the software version, else by the body size (runtime/versions.lua); `single` when one
--- form serves every version. `segments`: the form of each segment of SEGMENT_STARTS (negative: none
--- is sent there, the form is the nearest version's below); `by_length`: the body sizes that
--- recognise one form.
+-- chosen by the software version, else by the body size (runtime/lua/packages/versions.lua);
+-- `single` when one form serves every version. `segments`: the form of each segment of
+-- SEGMENT_STARTS (negative: none is sent there, the form is the nearest version's below);
+-- `by_length`: the body sizes that recognise one form.
 local SAFETY_COMPLIANCE_TOLERANCES_FORMS = {
     [24] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2862,7 +2862,7 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
--- ---- runtime/lua/declare.lua ----
+-- ---- runtime/lua/packages/declare.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2931,7 +2931,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/bytes.lua ----
+-- ---- runtime/lua/packages/bytes.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2983,7 +2983,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/versions.lua ----
+-- ---- runtime/lua/packages/versions.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3175,7 +3175,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/items.lua ----
+-- ---- runtime/lua/packages/items.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3285,7 +3285,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/collector.lua ----
+-- ---- runtime/lua/packages/collector.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3314,7 +3314,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/walk.lua ----
+-- ---- runtime/lua/packages/walk.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3646,7 +3646,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/values.lua ----
+-- ---- runtime/lua/packages/values.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3771,7 +3771,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/info.lua ----
+-- ---- runtime/lua/packages/info.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3938,7 +3938,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/messages.lua ----
+-- ---- runtime/lua/packages/messages.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4104,7 +4104,7 @@ KINDS.packages = {
                 pk = form.of
             end
             -- A tshark -T fields run that names no field of this package: not built at all
-            -- (runtime/wanted.lua).
+            -- (runtime/lua/packages/wanted.lua).
             if not (pk and st.only and not st.only[pk]) then
                 package(m, tvb, tree, p, size, st, code, form, use, by_length)
             end
@@ -4194,7 +4194,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/wanted.lua ----
+-- ---- runtime/lua/packages/wanted.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4303,7 +4303,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/carry.lua ----
+-- ---- runtime/lua/packages/carry.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4347,14 +4347,14 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/stream.lua ----
+-- ---- runtime/lua/packages/stream.lua ----
 -- =============================================================================================
 do
 (function(...)
 -- State of each TCP stream: the software version its Version message announced or its layout
 -- sizes showed (nil: none yet; `implied` names the versions of the form whose size showed it),
 -- whether the dissector is resynchronising after a bad header, and the bytes carried over
--- from earlier segments while it does (a carry, runtime/carry.lua). First pass: the state moves
+-- from earlier segments while it does (a carry, runtime/lua/packages/carry.lua). First pass: the state moves
 -- along. Later passes (tshark -2, clicks in the GUI, in any order) must start each dissector
 -- call (frame number and tvb length) with the state its first-pass call started with.
 -- That state changes rarely (a Version message, a bad header, the calls that carry bytes), so
@@ -4534,7 +4534,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/framing.lua ----
+-- ---- runtime/lua/packages/framing.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4568,7 +4568,7 @@ local function assume_version(v) pref_version = v end
 -- neither (known is false: then implied, when set, names the versions the layout sizes showed);
 -- message_version and message_implied: the version shown on the message.
 -- call: counts dissector calls (what is asked of a tree is asked once per call); only: the
--- packages a tshark -T fields run needs (runtime/wanted.lua), nil for all.
+-- packages a tshark -T fields run needs (runtime/lua/packages/wanted.lua), nil for all.
 local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false,
              call = 0, only = nil }
 
@@ -4803,14 +4803,14 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/register.lua ----
+-- ---- runtime/lua/packages/preferences.lua ----
 -- =============================================================================================
 do
 (function(...)
 -- Preferences and registration: the robot-side ports (taken over from MRCPv2, which claims
 -- TCP 30000-30200 in Wireshark 4.0; "Decode As" works on others), the software version assumed
 -- until a Version message is seen (empty: none), whether tshark -T fields builds only the
--- packages its command line names (runtime/wanted.lua), and the longest plausible message.
+-- packages its command line names (runtime/lua/packages/wanted.lua), and the longest plausible message.
 local spec, rt = ...
 local ur = spec.proto
 local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only

@@ -1,5 +1,5 @@
 """The Lua target of an int32-record interface: generated/lua/<name>.lua, a Wireshark dissector
-that loads on its own: the tables of the plan, then runtime/lua/int32_records.lua joined in."""
+that loads on its own: the tables of the plan, then runtime/lua/int32_records joined in."""
 from __future__ import annotations
 
 import json
@@ -9,6 +9,9 @@ from ...emit import environment, runtime_path, runtime_source
 from ...naming import column_name
 from .model import FROM_ROBOT
 from .plan import RecordsPlan
+
+# The runtime joined after the tables (runtime/lua/int32_records).
+RUNTIME = ("int32_records/dissect.lua",)
 
 
 def _lua(value) -> str:
@@ -45,8 +48,7 @@ def view(p: RecordsPlan) -> dict:
                 ports=", ".join(map(str, m.ports)), default_release=ir.version_number(m.default_release),
                 default_text=_lua(ir.version_text(m.default_release)), fields=fields, records=records, enums=enums,
                 filter_example=f"{m.name}.{p.records[0].fields[-1].name}",
-                runtime=dict(path=runtime_path("lua", "int32_records.lua"),
-                             source=runtime_source("lua", "int32_records.lua")))
+                runtime=[dict(path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in RUNTIME])
 
 
 def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:

@@ -26,7 +26,7 @@ class Field:
     display: str
 
 
-# The fields of every line, in the order the Lua runtime (runtime/lua/lines_dissect.lua) declares
+# The fields of every line, in the order the Lua runtime (runtime/lua/lines/dissect.lua) declares
 # them; their labels are the spec's.
 FIELDS = (Field("command", "FT_STRING", "BASE_NONE"), Field("command_name", "FT_STRING", "BASE_NONE"),
           Field("argument", "FT_STRING", "BASE_NONE"), Field("available", "FT_BOOLEAN", "BASE_NONE"),

@@ -1,5 +1,5 @@
 """The Lua target of a text-line interface: generated/lua/<name>.lua, a Wireshark dissector that
-loads on its own: the spec's tables, then runtime/lua/<name>_*.lua joined in, from the plan."""
+loads on its own: the spec's tables, then runtime/lua/lines joined in."""
 from __future__ import annotations
 
 import json
@@ -9,7 +9,8 @@ from ...naming import column_name
 from .model import Reply
 from .plan import LinesPlan
 
-RUNTIME = ("match.lua", "dissect.lua")
+# The runtime joined after the tables, in order (runtime/lua/lines).
+RUNTIME = ("lines/match.lua", "lines/dissect.lua")
 
 
 def _string(text: str) -> str:
@@ -46,8 +47,7 @@ def view(p: LinesPlan) -> dict:
         version_command=_number(p.version_command.index + 1 if p.version_command else None),
         version_prefix=_string(m.version_prefix), e_series_from=p.e_series_from,
         labels=[dict(name=name, label=_string(f.label), doc=_string(f.doc)) for name, f in m.fields.items()],
-        runtime=[dict(path=runtime_path("lua", f"lines_{name}"), source=runtime_source("lua", f"lines_{name}"))
-                 for name in RUNTIME],
+        runtime=[dict(path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in RUNTIME],
     )
 
 

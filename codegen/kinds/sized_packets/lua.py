@@ -2,7 +2,7 @@
 generated/lua/<name>.lua, a dissector that loads on its own beside urwire.lua. The generated part
 declares the protocol, one field per spec field (filterable as <name>.<field>), the enum name
 tables, the layouts' slots and the forms by size; the hand-written runtime
-(runtime/lua/<name>_*.lua, joined after it) frames the TCP stream by the size field and walks them."""
+(runtime/lua/sized_packets, joined after it) frames the TCP stream by the size field and walks them."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -12,7 +12,8 @@ from ...comments import field_text, node_text
 from ...emit import environment, runtime_path, runtime_source
 from .plan import SizedPlan
 
-RUNTIME = ["dissect.lua"]   # runtime/lua/<name>_dissect.lua
+# The runtime joined after the tables (runtime/lua/sized_packets).
+RUNTIME = ("sized_packets/dissect.lua",)
 
 
 @dataclass
@@ -68,8 +69,7 @@ def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
                      for e in planned.enums if e.name in form.tables]
             row.append(LuaForm(form.low, form.high, form.layout + 1, form.describe(), names))
         forms.append((size, row))
-    runtime = [dict(path=runtime_path("lua", f"{name}_{part}"), source=runtime_source("lua", f"{name}_{part}"))
-               for part in RUNTIME]
+    runtime = [dict(path=runtime_path("lua", part), source=runtime_source("lua", part)) for part in RUNTIME]
     text = environment("lua").get_template("sized_packets/dissector.lua.j2").render(
         banner=banner, protocol=protocol, name=name, doc=node_text(protocol), fields=fields, enum_of=enum_of,
         layouts=layouts, tables=tables, forms=forms, size_field=protocol.size_field,

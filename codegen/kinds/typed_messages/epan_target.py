@@ -5,7 +5,7 @@ with the hand-written runtime of runtime/epan/<name>_*.{h,c} joined in (each sec
 It is the twin of the Lua target (lua_target.py): the same protocol, field abbrevs, names, types and
 bases, preference and experts. Every decision is made here: each field's FT_ type, base, value string
 and unit; each message layout's steps as table rows; what each message means to the conversation's
-state (its role, read by runtime/epan/rtde_state.c as runtime/lua/rtde_state.lua reads the names)."""
+state (its role, read by runtime/epan/rtde_state.c as runtime/lua/typed_messages/state.lua reads the names)."""
 from __future__ import annotations
 
 import json
@@ -35,7 +35,7 @@ INTEGER_SCALARS = ("bool", "int8", "uint8", "int16", "uint16", "int32", "uint32"
 # reads no command line: tshark_fields_upstream.c tells no run, so every label is whole.
 SHARED_CODE = ("tshark_fields.c",)
 UPSTREAM_SHARED_CODE = ("tshark_fields_upstream.c",)
-# The messages the state follows, by the names runtime/lua/rtde_state.lua follows too.
+# The messages the state follows, by the names runtime/lua/typed_messages/state.lua follows too.
 ROLE_OF_MESSAGE = {"request_protocol_version": "RTDE_ROLE_VERSION_REQUEST",
                    "request_protocol_version_reply": "RTDE_ROLE_VERSION_REPLY",
                    "start_reply": "RTDE_ROLE_START_REPLY"}

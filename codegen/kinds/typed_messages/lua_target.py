@@ -1,6 +1,6 @@
 """Lua target of the typed-messages kind: the IR -> plain data -> templates/lua/typed_messages/ ->
 generated/lua/<name>.lua, one Wireshark protocol that loads on its own, with the hand-written runtime
-of runtime/lua/<name>_*.lua joined after the tables.
+of runtime/lua/typed_messages joined after the tables.
 
 Every message field and every variable is one filterable field `<name>.<field>`; a name that two of
 them share must have one Wireshark type, and the generator refuses the spec otherwise."""
@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 from ... import ir
-from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ...emit import environment, runtime_path, runtime_source
 from ...errors import Problem, SpecError
 from ...targets.lua import lua_literal, lua_str
 from ...wrap import spread
@@ -20,11 +20,14 @@ from . import model
 PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16", "uint16": "uint16",
               "int32": "int32", "uint32": "uint32", "int64": "int64", "uint64": "uint64",
               "float32": "float", "float64": "double"}
-# How the runtime reads a scalar from a TvbRange (runtime/lua/rtde_dissect.lua's READ table).
+# How the runtime reads a scalar from a TvbRange (runtime/lua/typed_messages/dissect.lua's READ table).
 READER = {"bool": "uint", "int8": "int", "uint8": "uint", "int16": "int", "uint16": "uint", "int32": "int",
           "uint32": "uint", "int64": "int64", "uint64": "uint64", "float32": "float", "float64": "float"}
 # Header fields and the fields the runtime adds itself; no message field or variable may take these names.
 OWN_FIELDS = ("length", "type", "kind", "recipe_frame", "direction", "protocol", "unknown_variable")
+# The runtime joined after the tables, in order (runtime/lua/typed_messages): the state first,
+# then the dissector.
+RUNTIME = ("typed_messages/state.lua", "typed_messages/dissect.lua")
 # The fields of a value a setup reply types otherwise than the variable table, one per scalar of the
 # value types: `value_<scalar>` (rtde.value_float64), also the dissector's own.
 
@@ -157,15 +160,10 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
         "max_pending": interface.max_pending_setups,
         "codes": codes,
         "undocumented": [{"code": u.code, "name": u.name, "label": u.label} for u in interface.undocumented],
-        "runtime": [{"path": runtime_path("lua", n), "source": runtime_source("lua", n)} for n in runtime_files(prefix)],
+        "runtime": [{"path": runtime_path("lua", n), "source": runtime_source("lua", n)} for n in RUNTIME],
     }
     env = environment("lua")
     env.filters["lua"] = lua_literal
     text = env.get_template("typed_messages/interface.lua.j2").render(**view)
     return {f"lua/{prefix}.lua": text}
 
-
-def runtime_files(prefix: str) -> list[str]:
-    """The interface's own runtime files (runtime/lua/<name>_*.lua): the state first, then the dissector."""
-    found = sorted(p.name for p in (RUNTIME_FOLDER / "lua").glob(f"{prefix}_*.lua"))
-    return sorted(found, key=lambda n: (not n.endswith("_state.lua"), n))

@@ -1,6 +1,7 @@
--- runtime/bytes.lua: big-endian reads from a raw string, and the texts of a read that does not fit.
+-- runtime/lua/packages/bytes.lua: big-endian reads from a raw string, and the texts of a read that
+-- does not fit.
 local S = dofile("stubs.lua")
-local rt = S.load("bytes.lua")
+local rt = S.load("packages/bytes.lua")
 
 local raw = S.bytes(0x00, 0x00, 0x01, 0x02, 0xff, 0xfe, 0x80, 0x00, 0x00, 0x00, 0x7f)
 S.eq(rt.be_uint(raw, 0, 4), 258, "uint32 00 00 01 02")

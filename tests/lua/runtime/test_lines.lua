@@ -1,4 +1,4 @@
--- runtime/lines_match.lua and runtime/lines_dissect.lua: commands and replies looked up, a
+-- runtime/lua/lines/match.lua and runtime/lua/lines/dissect.lua: commands and replies looked up, a
 -- conversation's replies paired with its commands, the version learnt, lines reassembled.
 local S = dofile("stubs.lua")
 S.wireshark_globals()
@@ -22,7 +22,7 @@ local spec = {
     labels = {command = "Command", command_name = "Command name", argument = "Argument", available = "Available",
               reply = "Reply", reply_name = "Reply meaning", error = "Says an error"},
 }
-local rt = S.load("lines_match.lua", spec)
+local rt = S.load("lines/match.lua", spec)
 S.eq(rt.find_command("load /a.urp"), 1, "a command with its argument")
 S.eq(select(2, rt.find_command("load /a.urp")), "/a.urp", "the argument")
 S.eq(rt.find_command("loadx"), nil, "a text that only opens like a command")
@@ -35,7 +35,7 @@ S.eq(rt.available(3, 5004000), true, "from its first version")
 local made
 local make_proto = Proto
 Proto = function(...) made = make_proto(...); return made end
-S.load("lines_dissect.lua", spec, rt)
+S.load("lines/dissect.lua", spec, rt)
 S.eq(S.ports["tcp.port"], 29999, "the port registered")
 
 -- A conversation: the client's lines go to port 29999, the replies come from it.

@@ -1,7 +1,7 @@
 -- State of each TCP stream: the software version its Version message announced or its layout
 -- sizes showed (nil: none yet; `implied` names the versions of the form whose size showed it),
 -- whether the dissector is resynchronising after a bad header, and the bytes carried over
--- from earlier segments while it does (a carry, runtime/carry.lua). First pass: the state moves
+-- from earlier segments while it does (a carry, runtime/lua/packages/carry.lua). First pass: the state moves
 -- along. Later passes (tshark -2, clicks in the GUI, in any order) must start each dissector
 -- call (frame number and tvb length) with the state its first-pass call started with.
 -- That state changes rarely (a Version message, a bad header, the calls that carry bytes), so

@@ -3,7 +3,7 @@
 -- values by the names of its recipe with a link to the frame that set the recipe up, and expert
 -- infos for refused setups, unknown recipes, a refused start and bad framing. State is kept per
 -- conversation (both addresses and both ports) on the first pass, and each message's view of it
--- is kept for later passes and the GUI (runtime/lua/rtde_state.lua holds the state itself).
+-- is kept for later passes and the GUI (runtime/lua/typed_messages/state.lua holds the state itself).
 local spec, rt = ...
 local proto, F = spec.proto, spec.F
 local HEADER = spec.header_size

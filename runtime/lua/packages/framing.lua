@@ -28,7 +28,7 @@ local function assume_version(v) pref_version = v end
 -- neither (known is false: then implied, when set, names the versions the layout sizes showed);
 -- message_version and message_implied: the version shown on the message.
 -- call: counts dissector calls (what is asked of a tree is asked once per call); only: the
--- packages a tshark -T fields run needs (runtime/wanted.lua), nil for all.
+-- packages a tshark -T fields run needs (runtime/lua/packages/wanted.lua), nil for all.
 local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false,
              call = 0, only = nil }
 

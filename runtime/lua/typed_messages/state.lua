@@ -1,7 +1,7 @@
 -- RTDE's state of one conversation, as plain Lua (no Wireshark object): the protocol version
 -- negotiated, the setup requests waiting for their replies, and the recipes that replies make.
--- runtime/lua/rtde_dissect.lua keeps one per conversation and calls rt.follow on each message,
--- in capture order, on the first pass.
+-- runtime/lua/typed_messages/dissect.lua keeps one per conversation and calls rt.follow on each
+-- message, in capture order, on the first pass.
 local spec, rt = ...
 
 local KIND_OF_REQUEST, KIND_OF_REPLY, KIND_OF_DATA = {}, {}, {}
