@@ -1,4 +1,4 @@
-"""Lua target: the IR -> plain data -> templates/lua/urwire.lua.j2 + runtime/lua/packages, one Wireshark
+"""Lua target: the IR -> plain data -> templates/lua/urwire.lua.j2 + runtime/lua/{common,packages}, one Wireshark
 dissector in one self-contained file.
 
 Every decision is made here: which ProtoField each field becomes (one per name, of the widest
@@ -8,7 +8,7 @@ type among the name's entries in every version), its abbreviation
 software versions (plan.Variant), where the Version message keeps its numbers, and which fields
 the Info column shows. Versions reach the runtime as ir.version_number integers. The builder hands the template data only (dicts and `Step`s); the template writes
 each descriptor kind and each ProtoField shape with a macro of its own. The code that walks the
-descriptors is hand-written Lua in runtime/lua/packages, joined after the generated tables.
+descriptors is hand-written Lua in runtime/lua/packages (and runtime/lua/common), joined after the generated tables.
 """
 from __future__ import annotations
 
@@ -26,8 +26,10 @@ from ..view import Step
 
 OUT = "lua/urwire.lua"
 
-# The hand-written runtime (runtime/lua/packages), in the order it is joined. Each file is a chunk
-# that receives (spec, rt): `spec` is the generated data, `rt` what earlier runtime files export.
+# The hand-written runtime, in the order it is joined: the files every kind's dissector shares
+# (runtime/lua/common), then this kind's own (runtime/lua/packages). Each file is a chunk that
+# receives (spec, rt): `spec` is the generated data, `rt` what earlier runtime files export.
+COMMON = ("register.lua", "guard.lua")
 RUNTIME = ("declare.lua", "bytes.lua", "versions.lua", "items.lua", "collector.lua", "walk.lua", "values.lua",
            "info.lua", "messages.lua", "wanted.lua", "carry.lua", "stream.lua", "framing.lua", "preferences.lua")
 
@@ -582,7 +584,7 @@ def runtime() -> list[dict]:
     found = sorted(p.name for p in folder.glob("*.lua"))
     if sorted(RUNTIME) != found:
         raise ValueError(f"lua target: runtime files {found} differ from the joining order {list(RUNTIME)}")
-    names = [f"packages/{name}" for name in RUNTIME]
+    names = [f"common/{name}" for name in COMMON] + [f"packages/{name}" for name in RUNTIME]
     return [dict(name=name, path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in names]
 
 

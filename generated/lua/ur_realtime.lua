@@ -400,6 +400,30 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
+-- ---- runtime/lua/common/register.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Port registration, as every dissector does it: the protocol takes its TCP ports from the
+-- tcp.port table, and when they change (a preference) gives up the ones it held and takes the
+-- new ones. Each generated file is a plugin of its own and joins its own copy of this file.
+local spec, rt = ...
+
+local tcp_port = DissectorTable.get("tcp.port")
+local registered = nil   -- the ports this plugin's protocol holds
+
+-- Take `ports` (a port, or a range as text or a preference: "30001-30004,30011") for proto.
+local function register_ports(proto, ports)
+    if registered then tcp_port:remove(registered, proto) end
+    registered = ports
+    tcp_port:add(registered, proto)
+end
+
+rt.register_ports = register_ports
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/sized_packets/dissect.lua ----
 -- =============================================================================================
 do
@@ -601,21 +625,12 @@ function proto.dissector(tvb, pinfo, tree)
     return len
 end
 
-local tcp_port = DissectorTable.get("tcp.port")
-local registered = nil
-
-local function register_ports()
-    if registered then tcp_port:remove(registered, proto) end
-    registered = proto.prefs.ports
-    tcp_port:add(registered, proto)
-end
-
 function proto.prefs_changed()
     version = version_number(proto.prefs.version)
-    register_ports()
+    rt.register_ports(proto, proto.prefs.ports)
 end
 
-register_ports()
+rt.register_ports(proto, proto.prefs.ports)
 rt.version_number, rt.form_of = version_number, form_of
 end)(spec, rt)
 end

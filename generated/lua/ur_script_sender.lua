@@ -65,6 +65,57 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
+-- ---- runtime/lua/common/register.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Port registration, as every dissector does it: the protocol takes its TCP ports from the
+-- tcp.port table, and when they change (a preference) gives up the ones it held and takes the
+-- new ones. Each generated file is a plugin of its own and joins its own copy of this file.
+local spec, rt = ...
+
+local tcp_port = DissectorTable.get("tcp.port")
+local registered = nil   -- the ports this plugin's protocol holds
+
+-- Take `ports` (a port, or a range as text or a preference: "30001-30004,30011") for proto.
+local function register_ports(proto, ports)
+    if registered then tcp_port:remove(registered, proto) end
+    registered = ports
+    tcp_port:add(registered, proto)
+end
+
+rt.register_ports = register_ports
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/guard.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The error guard every dissector runs behind: a Lua error while dissecting never reaches the
+-- user as a Lua error, but shows as an expert info on the packet, and the packet's bytes count
+-- as dissected.
+local spec, rt = ...
+
+-- A dissector function for proto that runs dissect(tvb, pinfo, tree) behind pcall; an error
+-- becomes the expert `internal`, its text after `label` ("urwire: ...").
+local function guard(proto, dissect, internal, label)
+    return function(tvb, pinfo, tree)
+        local ok, result = pcall(dissect, tvb, pinfo, tree)
+        if ok then return result end
+        tree:add(proto, tvb()):add_proto_expert_info(internal, label .. ": " .. tostring(result))
+        return tvb:len()
+    end
+end
+
+rt.guard = guard
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/lines/match.lua ----
 -- =============================================================================================
 do
@@ -449,19 +500,13 @@ local function dissect(tvb, pinfo, tree)
     return n
 end
 
-function proto.dissector(tvb, pinfo, tree)
-    local ok, result = pcall(dissect, tvb, pinfo, tree)
-    if ok then return result end
-    tree:add(proto, tvb()):add_proto_expert_info(E.internal, spec.name .. ": " .. tostring(result))
-    return tvb:len()
-end
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 
 function proto.init()
     conversations, decided = {}, {}
 end
 
-local tcp_port = DissectorTable.get("tcp.port")
-for _, port in ipairs(spec.ports) do tcp_port:add(port, proto) end
+rt.register_ports(proto, table.concat(spec.ports, ","))
 
 end)(spec, rt)
 end

@@ -18,7 +18,7 @@
 --
 -- The file has two parts. First the tables generated from the spec: value strings, fields,
 -- layouts (one descriptor per field), messages; all handed over in one table, `spec`. Then the
--- hand-written runtime that walks them (runtime/lua/packages), one chunk per
+-- hand-written runtime that walks them (runtime/lua/common, runtime/lua/packages), one chunk per
 -- file, each called with (spec, rt); `rt` holds what earlier chunks export.
 
 local ur = Proto("ur", "Universal Robots primary/secondary client interface")
@@ -2862,6 +2862,55 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
+-- ---- runtime/lua/common/register.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Port registration, as every dissector does it: the protocol takes its TCP ports from the
+-- tcp.port table, and when they change (a preference) gives up the ones it held and takes the
+-- new ones. Each generated file is a plugin of its own and joins its own copy of this file.
+local spec, rt = ...
+
+local tcp_port = DissectorTable.get("tcp.port")
+local registered = nil   -- the ports this plugin's protocol holds
+
+-- Take `ports` (a port, or a range as text or a preference: "30001-30004,30011") for proto.
+local function register_ports(proto, ports)
+    if registered then tcp_port:remove(registered, proto) end
+    registered = ports
+    tcp_port:add(registered, proto)
+end
+
+rt.register_ports = register_ports
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/guard.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The error guard every dissector runs behind: a Lua error while dissecting never reaches the
+-- user as a Lua error, but shows as an expert info on the packet, and the packet's bytes count
+-- as dissected.
+local spec, rt = ...
+
+-- A dissector function for proto that runs dissect(tvb, pinfo, tree) behind pcall; an error
+-- becomes the expert `internal`, its text after `label` ("urwire: ...").
+local function guard(proto, dissect, internal, label)
+    return function(tvb, pinfo, tree)
+        local ok, result = pcall(dissect, tvb, pinfo, tree)
+        if ok then return result end
+        tree:add(proto, tvb()):add_proto_expert_info(internal, label .. ": " .. tostring(result))
+        return tvb:len()
+    end
+end
+
+rt.guard = guard
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/packages/declare.lua ----
 -- =============================================================================================
 do
@@ -4790,13 +4839,7 @@ local function dissect(tvb, pinfo, tree)
     return tvb:len()
 end
 
-function ur.dissector(tvb, pinfo, tree)
-    local ok, result = pcall(dissect, tvb, pinfo, tree)
-    if ok then return result end
-    -- Never let a Lua error reach the user: show it as an expert info on the packet.
-    tree:add(ur, tvb()):add_proto_expert_info(E.internal, "urwire: " .. tostring(result))
-    return tvb:len()
-end
+ur.dissector = rt.guard(ur, dissect, E.internal, "urwire")
 
 rt.plausible, rt.header_fault, rt.scan, rt.assume_version = plausible, header_fault, scan, assume_version
 end)(spec, rt)
@@ -4814,6 +4857,7 @@ do
 local spec, rt = ...
 local ur = spec.proto
 local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only
+local register_ports = rt.register_ports
 
 ur.prefs.ports = Pref.range("TCP ports", spec.default_ports,
     "Robot-side TCP ports of the primary/secondary interfaces", 65535)
@@ -4827,22 +4871,13 @@ ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names",
 ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length,
     "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
-local tcp_port = DissectorTable.get("tcp.port")
-local registered = nil
-
-local function register_ports()
-    if registered then tcp_port:remove(registered, ur) end
-    registered = ur.prefs.ports
-    tcp_port:add(registered, ur)
-end
-
 function ur.prefs_changed()
     assume_version(parse_version(ur.prefs.version))
     named_only(ur.prefs.named_fields_only)
-    register_ports()
+    register_ports(ur, ur.prefs.ports)
 end
 
-register_ports()
+register_ports(ur, ur.prefs.ports)
 
 set_plugin_info({
     version = "0.1.0",

@@ -1,5 +1,5 @@
 """The Lua target of an int32-record interface: generated/lua/<name>.lua, a Wireshark dissector
-that loads on its own: the tables of the plan, then runtime/lua/int32_records joined in."""
+that loads on its own: the tables of the plan, then runtime/lua/common and runtime/lua/int32_records joined in."""
 from __future__ import annotations
 
 import json
@@ -10,8 +10,8 @@ from ...naming import column_name
 from .model import FROM_ROBOT
 from .plan import RecordsPlan
 
-# The runtime joined after the tables (runtime/lua/int32_records).
-RUNTIME = ("int32_records/dissect.lua",)
+# The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
+RUNTIME = ("common/register.lua", "common/guard.lua", "int32_records/dissect.lua")
 
 
 def _lua(value) -> str:

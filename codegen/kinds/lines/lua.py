@@ -1,5 +1,5 @@
 """The Lua target of a text-line interface: generated/lua/<name>.lua, a Wireshark dissector that
-loads on its own: the spec's tables, then runtime/lua/lines joined in."""
+loads on its own: the spec's tables, then runtime/lua/common and runtime/lua/lines joined in."""
 from __future__ import annotations
 
 import json
@@ -9,8 +9,8 @@ from ...naming import column_name
 from .model import Reply
 from .plan import LinesPlan
 
-# The runtime joined after the tables, in order (runtime/lua/lines).
-RUNTIME = ("lines/match.lua", "lines/dissect.lua")
+# The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
+RUNTIME = ("common/register.lua", "common/guard.lua", "lines/match.lua", "lines/dissect.lua")
 
 
 def _string(text: str) -> str:

@@ -12,8 +12,8 @@ from ...comments import field_text, node_text
 from ...emit import environment, runtime_path, runtime_source
 from .plan import SizedPlan
 
-# The runtime joined after the tables (runtime/lua/sized_packets).
-RUNTIME = ("sized_packets/dissect.lua",)
+# The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
+RUNTIME = ("common/register.lua", "sized_packets/dissect.lua")
 
 
 @dataclass

@@ -1,6 +1,6 @@
 """Lua target of the typed-messages kind: the IR -> plain data -> templates/lua/typed_messages/ ->
 generated/lua/<name>.lua, one Wireshark protocol that loads on its own, with the hand-written runtime
-of runtime/lua/typed_messages joined after the tables.
+of runtime/lua/common and runtime/lua/typed_messages joined after the tables.
 
 Every message field and every variable is one filterable field `<name>.<field>`; a name that two of
 them share must have one Wireshark type, and the generator refuses the spec otherwise."""
@@ -25,9 +25,9 @@ READER = {"bool": "uint", "int8": "int", "uint8": "uint", "int16": "int", "uint1
           "uint32": "uint", "int64": "int64", "uint64": "uint64", "float32": "float", "float64": "float"}
 # Header fields and the fields the runtime adds itself; no message field or variable may take these names.
 OWN_FIELDS = ("length", "type", "kind", "recipe_frame", "direction", "protocol", "unknown_variable")
-# The runtime joined after the tables, in order (runtime/lua/typed_messages): the state first,
-# then the dissector.
-RUNTIME = ("typed_messages/state.lua", "typed_messages/dissect.lua")
+# The runtime joined after the tables, in order (runtime/lua/common, then this kind's own: the
+# state first, then the dissector).
+RUNTIME = ("common/register.lua", "typed_messages/state.lua", "typed_messages/dissect.lua")
 # The fields of a value a setup reply types otherwise than the variable table, one per scalar of the
 # value types: `value_<scalar>` (rtde.value_float64), also the dissector's own.
 

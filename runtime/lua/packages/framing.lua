@@ -250,12 +250,6 @@ local function dissect(tvb, pinfo, tree)
     return tvb:len()
 end
 
-function ur.dissector(tvb, pinfo, tree)
-    local ok, result = pcall(dissect, tvb, pinfo, tree)
-    if ok then return result end
-    -- Never let a Lua error reach the user: show it as an expert info on the packet.
-    tree:add(ur, tvb()):add_proto_expert_info(E.internal, "urwire: " .. tostring(result))
-    return tvb:len()
-end
+ur.dissector = rt.guard(ur, dissect, E.internal, "urwire")
 
 rt.plausible, rt.header_fault, rt.scan, rt.assume_version = plausible, header_fault, scan, assume_version

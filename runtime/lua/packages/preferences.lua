@@ -5,6 +5,7 @@
 local spec, rt = ...
 local ur = spec.proto
 local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only
+local register_ports = rt.register_ports
 
 ur.prefs.ports = Pref.range("TCP ports", spec.default_ports,
     "Robot-side TCP ports of the primary/secondary interfaces", 65535)
@@ -18,22 +19,13 @@ ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names",
 ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length,
     "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
-local tcp_port = DissectorTable.get("tcp.port")
-local registered = nil
-
-local function register_ports()
-    if registered then tcp_port:remove(registered, ur) end
-    registered = ur.prefs.ports
-    tcp_port:add(registered, ur)
-end
-
 function ur.prefs_changed()
     assume_version(parse_version(ur.prefs.version))
     named_only(ur.prefs.named_fields_only)
-    register_ports()
+    register_ports(ur, ur.prefs.ports)
 end
 
-register_ports()
+register_ports(ur, ur.prefs.ports)
 
 set_plugin_info({
     version = "0.1.0",

@@ -195,19 +195,10 @@ function proto.dissector(tvb, pinfo, tree)
     return len
 end
 
-local tcp_port = DissectorTable.get("tcp.port")
-local registered = nil
-
-local function register_ports()
-    if registered then tcp_port:remove(registered, proto) end
-    registered = proto.prefs.ports
-    tcp_port:add(registered, proto)
-end
-
 function proto.prefs_changed()
     version = version_number(proto.prefs.version)
-    register_ports()
+    rt.register_ports(proto, proto.prefs.ports)
 end
 
-register_ports()
+rt.register_ports(proto, proto.prefs.ports)
 rt.version_number, rt.form_of = version_number, form_of

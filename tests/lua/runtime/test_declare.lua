@@ -19,6 +19,7 @@ S.eq(rt.E.assumed, "ur.assumed_version", "experts exported")
 local assumed, named_only
 rt.assume_version = function(v) assumed = v end
 rt.named_only = function(on) named_only = on end
+S.load("common/register.lua", spec, rt)
 S.load("packages/preferences.lua", spec, rt)
 S.eq(ur.prefs.named_fields_only, true, "tshark -T fields builds the packages it names, by default")
 S.eq(ur.prefs.ports, "30001,30002", "ports preference from the spec")

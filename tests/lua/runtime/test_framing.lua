@@ -20,6 +20,7 @@ S.load("packages/info.lua", spec, rt)
 S.load("packages/carry.lua", spec, rt)
 S.load("packages/stream.lua", spec, rt)
 S.load("packages/wanted.lua", spec, rt)
+S.load("common/guard.lua", spec, rt)
 S.load("packages/framing.lua", spec, rt)
 
 local function header(len, mtype) return S.bytes(0, 0, 0, len, mtype) end

@@ -35,8 +35,10 @@ S.eq(rt.available(3, 5004000), true, "from its first version")
 local made
 local make_proto = Proto
 Proto = function(...) made = make_proto(...); return made end
+S.load("common/register.lua", spec, rt)
+S.load("common/guard.lua", spec, rt)
 S.load("lines/dissect.lua", spec, rt)
-S.eq(S.ports["tcp.port"], 29999, "the port registered")
+S.eq(S.ports["tcp.port"], "29999", "the port registered")
 
 -- A conversation: the client's lines go to port 29999, the replies come from it.
 local function pinfo(number, from_robot)

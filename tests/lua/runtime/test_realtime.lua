@@ -11,7 +11,8 @@ local spec = {
     forms_by_size = { [20] = { { 0, 3002999, 1, {} }, { 3003000, 5999999, 2, {} } } },
     size_field_bytes = 4, min_message_size = 12, max_message_size = 100,
 }
-local rt = S.load("sized_packets/dissect.lua", spec)
+local rt = S.load("common/register.lua", spec)
+S.load("sized_packets/dissect.lua", spec, rt)
 
 S.eq(rt.version_number("5.9"), 5009000, "major.minor")
 S.eq(rt.version_number(" 3.15.2 "), 3015002, "major.minor.bugfix, blanks around")
