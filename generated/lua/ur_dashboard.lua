@@ -366,6 +366,28 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/dotted_version.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- A version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around it allowed, a
+-- missing third number 0 (runtime/epan/dotted_version.c reads it alike). Each kind makes its
+-- own version number of the three parts: how far a part may run is the kind's rule.
+local spec, rt = ...
+
+-- " 3.15.2 " -> 3, 15, 2; "5.9" -> 5, 9, 0; nil for anything else ("5", "5.9 beta", "latest").
+local function dotted_version(text)
+    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    if not major then return nil end
+    return tonumber(major), tonumber(minor), tonumber(bugfix) or 0
+end
+
+rt.dotted_version = dotted_version
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/lines/match.lua ----
 -- =============================================================================================
 do
@@ -377,6 +399,7 @@ do
 local spec, rt = ...
 
 local find, sub = string.find, string.sub
+local dotted_version = rt.dotted_version
 
 -- The whole text is the pattern: its first piece opens it, its last ends it, the others follow
 -- in order between them, and each placeholder takes any text.
@@ -456,9 +479,9 @@ end
 
 -- "5.11" or "5.11.1" -> its version_number; nil for anything else.
 local function parse_version(text)
-    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    local major, minor, bugfix = dotted_version(text)
     if not major then return nil end
-    return version_number(tonumber(major), tonumber(minor), tonumber(bugfix) or 0)
+    return version_number(major, minor, bugfix)
 end
 
 -- Text as every output shows it: up to its first NUL (as C strings end), in UTF-8, each

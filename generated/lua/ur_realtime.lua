@@ -424,6 +424,27 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/dotted_version.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- A version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around it allowed, a
+-- missing third number 0 (runtime/epan/dotted_version.c reads it alike). Each kind makes its
+-- own version number of the three parts: how far a part may run is the kind's rule.
+local spec, rt = ...
+
+-- " 3.15.2 " -> 3, 15, 2; "5.9" -> 5, 9, 0; nil for anything else ("5", "5.9 beta", "latest").
+local function dotted_version(text)
+    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    if not major then return nil end
+    return tonumber(major), tonumber(minor), tonumber(bugfix) or 0
+end
+
+rt.dotted_version = dotted_version
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/sized_packets/dissect.lua ----
 -- =============================================================================================
 do
@@ -468,11 +489,10 @@ proto.prefs.version = Pref.string("Software version", "",
 
 -- "5.9" or "3.15.2" -> the version number the forms are written in; nil for anything else.
 local function version_number(text)
-    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    local major, minor, bugfix = rt.dotted_version(text)
     if not major then return nil end
-    bugfix = tonumber(bugfix) or 0
     if bugfix > 999 then bugfix = 999 end
-    return (tonumber(major) * 1000 + tonumber(minor)) * 1000 + bugfix
+    return (major * 1000 + minor) * 1000 + bugfix
 end
 
 local version = nil

@@ -11,7 +11,7 @@ from .model import FROM_ROBOT
 from .plan import RecordsPlan
 
 # The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
-RUNTIME = ("common/register.lua", "common/guard.lua", "int32_records/dissect.lua")
+RUNTIME = ("common/register.lua", "common/guard.lua", "common/dotted_version.lua", "int32_records/dissect.lua")
 
 
 def _lua(value) -> str:

@@ -32,9 +32,9 @@ proto.prefs.release = Pref.string("Driver release", "",
 
 -- "2.10" or "2.10.0" -> (major * 1000 + minor) * 1000 + patch; nil for anything else.
 local function parse_release(text)
-    local major, minor, patch = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    local major, minor, patch = rt.dotted_version(text)
     if not major then return nil end
-    return (tonumber(major) * 1000 + tonumber(minor)) * 1000 + (tonumber(patch) or 0)
+    return (major * 1000 + minor) * 1000 + patch
 end
 
 local function layout_of(record, release)

@@ -38,11 +38,10 @@ proto.prefs.version = Pref.string("Software version", "",
 
 -- "5.9" or "3.15.2" -> the version number the forms are written in; nil for anything else.
 local function version_number(text)
-    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    local major, minor, bugfix = rt.dotted_version(text)
     if not major then return nil end
-    bugfix = tonumber(bugfix) or 0
     if bugfix > 999 then bugfix = 999 end
-    return (tonumber(major) * 1000 + tonumber(minor)) * 1000 + bugfix
+    return (major * 1000 + minor) * 1000 + bugfix
 end
 
 local version = nil

@@ -22,13 +22,17 @@ local spec = {
     labels = {command = "Command", command_name = "Command name", argument = "Argument", available = "Available",
               reply = "Reply", reply_name = "Reply meaning", error = "Says an error"},
 }
-local rt = S.load("lines/match.lua", spec)
+local rt = S.load("common/dotted_version.lua", spec)
+S.load("lines/match.lua", spec, rt)
 S.eq(rt.find_command("load /a.urp"), 1, "a command with its argument")
 S.eq(select(2, rt.find_command("load /a.urp")), "/a.urp", "the argument")
 S.eq(rt.find_command("loadx"), nil, "a text that only opens like a command")
 S.eq(rt.classify(1, "File not found: x").name, "not_found", "a command's reply")
 S.eq(rt.classify(nil, "could not understand: 'x'").error, true, "a common reply, with no command")
 S.eq(rt.version_in("URSoftware 3.15.7.1 (x)"), 3015007, "the version a reply tells")
+S.eq(rt.parse_version(" 5.11.1 "), 5011001, "the version preference")
+S.eq(rt.parse_version("3.1234.5"), 3999005, "a minor past 999 stands at 999")
+S.eq(rt.parse_version("5.11 beta"), nil, "not a version preference")
 S.eq(rt.available(3, 3015007), false, "an e-Series command on a CB3")
 S.eq(rt.available(3, 5004000), true, "from its first version")
 

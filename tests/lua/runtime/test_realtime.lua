@@ -12,6 +12,7 @@ local spec = {
     size_field_bytes = 4, min_message_size = 12, max_message_size = 100,
 }
 local rt = S.load("common/register.lua", spec)
+S.load("common/dotted_version.lua", spec, rt)
 S.load("sized_packets/dissect.lua", spec, rt)
 
 S.eq(rt.version_number("5.9"), 5009000, "major.minor")
