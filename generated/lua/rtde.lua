@@ -1208,6 +1208,30 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/tcp_stream.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Which TCP conversation a frame belongs to, as Wireshark's TCP numbers them (tcp.stream): a new
+-- connection on the same addresses and ports is a new number, so that a dissector's state per
+-- conversation starts afresh there, as the native plugins' conversations do.
+local spec, rt = ...
+
+local tcp_stream = Field.new("tcp.stream")
+
+-- The frame's innermost tcp.stream (the last in the tree: TCP inside a tunnel comes after the
+-- outer one), nil when the tree lacks it (a first pass without a tree: tshark -2, no filter).
+local function tcp_stream_index()
+    local all = { tcp_stream() }
+    local last = all[#all]
+    return last and last.value
+end
+
+rt.tcp_stream_index = tcp_stream_index
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/typed_messages/state.lua ----
 -- =============================================================================================
 do
@@ -1454,14 +1478,13 @@ end
 -- A conversation: both ends, and Wireshark's TCP conversation where the tree has it (the
 -- innermost tcp.stream), so that a new connection on the same addresses and ports starts afresh,
 -- as in the native plugin. Only the first pass reads a conversation's state.
-local tcp_stream = Field.new("tcp.stream")
+local tcp_stream_index = rt.tcp_stream_index
 
 local function conversation_key(pinfo)
     local a = tostring(pinfo.src) .. ":" .. tostring(pinfo.src_port)
     local b = tostring(pinfo.dst) .. ":" .. tostring(pinfo.dst_port)
-    local all = { tcp_stream() }
-    local index = all[#all]
-    local tcp = index and "#" .. tostring(index.value) or ""
+    local index = tcp_stream_index()
+    local tcp = index and "#" .. tostring(index) or ""
     if a < b then return a .. "|" .. b .. tcp end
     return b .. "|" .. a .. tcp
 end

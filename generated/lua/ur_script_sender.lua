@@ -138,6 +138,31 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/tcp_stream.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Which TCP conversation a frame belongs to, as Wireshark's TCP numbers them (tcp.stream): a new
+-- connection on the same addresses and ports is a new number, so that a dissector's state per
+-- conversation starts afresh there, as the native plugins' conversations do.
+local spec, rt = ...
+
+local tcp_stream = Field.new("tcp.stream")
+
+-- The frame's innermost tcp.stream (the last in the tree: TCP inside a tunnel comes after the
+-- outer one), nil when the tree lacks it (a first pass without a tree: tshark -2, no filter).
+local function tcp_stream_index()
+    local all = { tcp_stream() }
+    local last = all[#all]
+    return last and last.value
+end
+
+rt.tcp_stream_index = tcp_stream_index
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/lines/match.lua ----
 -- =============================================================================================
 do
@@ -337,16 +362,15 @@ local conversations, decided = {}, {}
 -- A conversation: both ends, and Wireshark's TCP conversation where the tree has it (the
 -- innermost tcp.stream), so that a new connection on the same addresses and ports pairs nothing
 -- with the last one's commands, as in the native plugin.
-local tcp_stream = Field.new("tcp.stream")
+local tcp_stream_index = rt.tcp_stream_index
 
 local function conversation_key(pinfo, from_server)
     local server = tostring(from_server and pinfo.src or pinfo.dst) .. ":" ..
         (from_server and pinfo.src_port or pinfo.dst_port)
     local client = tostring(from_server and pinfo.dst or pinfo.src) .. ":" ..
         (from_server and pinfo.dst_port or pinfo.src_port)
-    local all = { tcp_stream() }
-    local index = all[#all]
-    return server .. "<>" .. client .. (index and "#" .. tostring(index.value) or "")
+    local index = tcp_stream_index()
+    return server .. "<>" .. client .. (index and "#" .. tostring(index) or "")
 end
 
 local function conversation(key)

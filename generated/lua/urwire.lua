@@ -2911,6 +2911,30 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/tcp_stream.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Which TCP conversation a frame belongs to, as Wireshark's TCP numbers them (tcp.stream): a new
+-- connection on the same addresses and ports is a new number, so that a dissector's state per
+-- conversation starts afresh there, as the native plugins' conversations do.
+local spec, rt = ...
+
+local tcp_stream = Field.new("tcp.stream")
+
+-- The frame's innermost tcp.stream (the last in the tree: TCP inside a tunnel comes after the
+-- outer one), nil when the tree lacks it (a first pass without a tree: tshark -2, no filter).
+local function tcp_stream_index()
+    local all = { tcp_stream() }
+    local last = all[#all]
+    return last and last.value
+end
+
+rt.tcp_stream_index = tcp_stream_index
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/packages/declare.lua ----
 -- =============================================================================================
 do
@@ -4422,7 +4446,7 @@ local spec, rt = ...
 local floor = math.floor
 
 local CALL_SPAN = 1048576   -- a call's key: frame number * CALL_SPAN + tvb length mod CALL_SPAN
-local tcp_stream = Field.new("tcp.stream")
+local tcp_stream_index = rt.tcp_stream_index
 
 -- A snapshot: { version, implied, resync, carry, carried = how many bytes the carry held }.
 -- NONE: a stream that nothing has happened on yet.
@@ -4528,16 +4552,9 @@ local function stream_key(pinfo)
     return last_key
 end
 
--- The TCP conversation of this frame (the innermost tcp.stream), nil when the tree lacks it.
-local function conversation_index()
-    local all = { tcp_stream() }
-    local last = all[#all]
-    return last and last.value
-end
-
 -- First pass: a stream whose TCP conversation is not the one it was seen in last starts over.
 local function follow_conversation(s)
-    local index = conversation_index()
+    local index = tcp_stream_index()
     if index == nil then return end
     if s.conversation ~= nil and s.conversation ~= index then
         s.version, s.implied, s.resync, s.carry = nil, nil, false, nil

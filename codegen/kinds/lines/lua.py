@@ -10,8 +10,8 @@ from .model import Reply
 from .plan import LinesPlan
 
 # The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
-RUNTIME = ("common/register.lua", "common/guard.lua", "common/dotted_version.lua", "lines/match.lua",
-           "lines/dissect.lua")
+RUNTIME = ("common/register.lua", "common/guard.lua", "common/dotted_version.lua", "common/tcp_stream.lua",
+           "lines/match.lua", "lines/dissect.lua")
 
 
 def _string(text: str) -> str:

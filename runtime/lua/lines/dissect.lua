@@ -48,16 +48,15 @@ local conversations, decided = {}, {}
 -- A conversation: both ends, and Wireshark's TCP conversation where the tree has it (the
 -- innermost tcp.stream), so that a new connection on the same addresses and ports pairs nothing
 -- with the last one's commands, as in the native plugin.
-local tcp_stream = Field.new("tcp.stream")
+local tcp_stream_index = rt.tcp_stream_index
 
 local function conversation_key(pinfo, from_server)
     local server = tostring(from_server and pinfo.src or pinfo.dst) .. ":" ..
         (from_server and pinfo.src_port or pinfo.dst_port)
     local client = tostring(from_server and pinfo.dst or pinfo.src) .. ":" ..
         (from_server and pinfo.dst_port or pinfo.src_port)
-    local all = { tcp_stream() }
-    local index = all[#all]
-    return server .. "<>" .. client .. (index and "#" .. tostring(index.value) or "")
+    local index = tcp_stream_index()
+    return server .. "<>" .. client .. (index and "#" .. tostring(index) or "")
 end
 
 local function conversation(key)

@@ -53,14 +53,13 @@ end
 -- A conversation: both ends, and Wireshark's TCP conversation where the tree has it (the
 -- innermost tcp.stream), so that a new connection on the same addresses and ports starts afresh,
 -- as in the native plugin. Only the first pass reads a conversation's state.
-local tcp_stream = Field.new("tcp.stream")
+local tcp_stream_index = rt.tcp_stream_index
 
 local function conversation_key(pinfo)
     local a = tostring(pinfo.src) .. ":" .. tostring(pinfo.src_port)
     local b = tostring(pinfo.dst) .. ":" .. tostring(pinfo.dst_port)
-    local all = { tcp_stream() }
-    local index = all[#all]
-    local tcp = index and "#" .. tostring(index.value) or ""
+    local index = tcp_stream_index()
+    local tcp = index and "#" .. tostring(index) or ""
     if a < b then return a .. "|" .. b .. tcp end
     return b .. "|" .. a .. tcp
 end

@@ -18,6 +18,7 @@ local rt = S.base_rt(spec)
 rt.X, rt.E, rt.handlers = S.X, S.E, { [20] = handler }
 S.load("packages/info.lua", spec, rt)
 S.load("packages/carry.lua", spec, rt)
+S.load("common/tcp_stream.lua", spec, rt)
 S.load("packages/stream.lua", spec, rt)
 S.load("packages/wanted.lua", spec, rt)
 S.load("common/guard.lua", spec, rt)

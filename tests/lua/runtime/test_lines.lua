@@ -41,6 +41,7 @@ local make_proto = Proto
 Proto = function(...) made = make_proto(...); return made end
 S.load("common/register.lua", spec, rt)
 S.load("common/guard.lua", spec, rt)
+S.load("common/tcp_stream.lua", spec, rt)
 S.load("lines/dissect.lua", spec, rt)
 S.eq(S.ports["tcp.port"], "29999", "the port registered")
 

@@ -2,6 +2,7 @@
 local S = dofile("stubs.lua")
 local spec = { proto = {}, header_size = 5 }
 local rt = S.load("packages/carry.lua", spec)
+S.load("common/tcp_stream.lua", spec, rt)
 S.load("packages/stream.lua", spec, rt)
 S.eq(spec.proto.init, rt.stream_reset, "ur.init forgets every stream")
 
