@@ -7,6 +7,7 @@
 local spec, rt = ...
 local proto, F = spec.proto, spec.F
 local HEADER = spec.header_size
+local be_uint = rt.be_uint
 
 -- Expert names are the protocol's filter name and the expert's (rtde.refused), as the fields' are.
 local E = {
@@ -65,7 +66,7 @@ local function conversation_key(pinfo)
 end
 
 local function plausible(raw, at)
-    local size = string.byte(raw, at + 1) * 256 + string.byte(raw, at + 2)
+    local size = be_uint(raw, at, 2)
     local code = string.byte(raw, at + 3)
     return size >= HEADER and spec.type_names[code] ~= nil
 end
@@ -240,7 +241,7 @@ function proto.dissector(tvb, pinfo, tree)
             pinfo.desegment_len = DESEGMENT_ONE_MORE_SEGMENT
             break
         end
-        local size = string.byte(raw, offset + 1) * 256 + string.byte(raw, offset + 2)
+        local size = be_uint(raw, offset, 2)
         local code = string.byte(raw, offset + 3)
         if size < HEADER or size > spec.max_message_length or not spec.type_names[code] then
             local at = offset + 1

@@ -121,12 +121,13 @@ S.X = { raw = "ur.raw", extra = "ur.extra", skipped = "ur.skipped", version = "u
 S.E = { bad_length = "bad_length", bad_type = "bad_type", malformed = "malformed", extra = "extra",
         unknown = "unknown", assumed = "assumed", by_length = "by_length", internal = "internal" }
 
--- rt after bytes.lua, versions.lua and items.lua, and after the walker.
+-- rt after bytes.lua, read_faults.lua, versions.lua and items.lua, and after the walker.
 function S.base_rt(spec)
     spec = spec or {}
     spec.default_version = spec.default_version or "5.9"
     spec.max_tree_items = spec.max_tree_items or 10000
-    local rt = S.load("packages/bytes.lua", spec)
+    local rt = S.load("common/bytes.lua", spec)
+    S.load("packages/read_faults.lua", spec, rt)
     S.load("packages/versions.lua", spec, rt)
     S.load("packages/items.lua", spec, rt)
     return rt, spec
