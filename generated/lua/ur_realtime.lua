@@ -445,6 +445,38 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/info_column.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The Info column of a frame that the dissector is called for more than once: TCP calls it for
+-- a message reassembled from earlier segments, then again for the rest of the segment. A later
+-- call adds its words to the earlier one's while the column still holds them; a later pass, or
+-- the GUI dissecting the frame again, starts from a fresh column and writes it anew.
+local spec, rt = ...
+
+-- A writer of the Info column that joins words with `separator`: write(pinfo, col, words,
+-- append) puts words after the column's text when `append` (a call's later message) or when
+-- the column holds what this writer last wrote for the same frame, else in its place.
+local function info_writer(separator)
+    local frame, text = -1, ""
+    return function(pinfo, col, words, append)
+        if append or (frame == pinfo.number and tostring(col) == text) then
+            text = text .. separator .. words
+            col:append(separator .. words)
+        else
+            text = words
+            col:set(words)
+        end
+        frame = pinfo.number
+    end
+end
+
+rt.info_writer = info_writer
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/sized_packets/dissect.lua ----
 -- =============================================================================================
 do
@@ -566,21 +598,11 @@ local function dissect_packet(tvb, tree, o, size, detail)
     return info_of(tvb, o, form)
 end
 
--- TCP calls the dissector once per reassembled packet and again for the rest of a segment: a
--- later call of the same frame adds its words to the earlier one's, when the column still holds
--- them (a later pass, or the GUI dissecting the frame again, starts from a fresh column).
-local info_frame, info_text = -1, ""
+-- A call's words, after an earlier call's for the same frame (runtime/lua/common/info_column.lua).
+local write_info = rt.info_writer(", ")
 
 local function show_info(pinfo, words)
-    local col = pinfo.cols.info
-    if info_frame == pinfo.number and tostring(col) == info_text then
-        info_text = info_text .. ", " .. words
-        col:append(", " .. words)
-    else
-        info_text = words
-        col:set(words)
-    end
-    info_frame = pinfo.number
+    write_info(pinfo, pinfo.cols.info, words, false)
 end
 
 -- Where the next plausible packet starts from offset o on: the next size some layout has (a size

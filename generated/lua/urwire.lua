@@ -2974,6 +2974,38 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/info_column.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The Info column of a frame that the dissector is called for more than once: TCP calls it for
+-- a message reassembled from earlier segments, then again for the rest of the segment. A later
+-- call adds its words to the earlier one's while the column still holds them; a later pass, or
+-- the GUI dissecting the frame again, starts from a fresh column and writes it anew.
+local spec, rt = ...
+
+-- A writer of the Info column that joins words with `separator`: write(pinfo, col, words,
+-- append) puts words after the column's text when `append` (a call's later message) or when
+-- the column holds what this writer last wrote for the same frame, else in its place.
+local function info_writer(separator)
+    local frame, text = -1, ""
+    return function(pinfo, col, words, append)
+        if append or (frame == pinfo.number and tostring(col) == text) then
+            text = text .. separator .. words
+            col:append(separator .. words)
+        else
+            text = words
+            col:set(words)
+        end
+        frame = pinfo.number
+    end
+end
+
+rt.info_writer = info_writer
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/packages/declare.lua ----
 -- =============================================================================================
 do
@@ -4003,19 +4035,11 @@ local function info_begin(pinfo)
     return columns
 end
 
--- TCP may call the dissector twice for one frame (a reassembled message, then the rest of the
--- segment): the first message of the later call appends to what the earlier one wrote.
-local info_frame, info_text = -1, ""
+-- A call's messages, "; " between them; the first message of a call appends to what an
+-- earlier call for the same frame wrote (runtime/lua/common/info_column.lua).
+local write_info = rt.info_writer("; ")
 local function set_info(pinfo, first, text)
-    if not columns then return end
-    if first and not (info_frame == pinfo.number and tostring(info_col) == info_text) then
-        info_text = text
-        info_col:set(text)
-    else
-        info_text = info_text .. "; " .. text
-        info_col:append("; " .. text)
-    end
-    info_frame = pinfo.number
+    if columns then write_info(pinfo, info_col, text, not first) end
 end
 
 rt.layout_summary, rt.package_summary, rt.labelled = layout_summary, package_summary, labelled

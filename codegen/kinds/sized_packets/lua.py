@@ -13,7 +13,7 @@ from ...emit import environment, runtime_path, runtime_source
 from .plan import SizedPlan
 
 # The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
-RUNTIME = ("common/register.lua", "common/dotted_version.lua", "sized_packets/dissect.lua")
+RUNTIME = ("common/register.lua", "common/dotted_version.lua", "common/info_column.lua", "sized_packets/dissect.lua")
 
 
 @dataclass

@@ -115,21 +115,11 @@ local function dissect_packet(tvb, tree, o, size, detail)
     return info_of(tvb, o, form)
 end
 
--- TCP calls the dissector once per reassembled packet and again for the rest of a segment: a
--- later call of the same frame adds its words to the earlier one's, when the column still holds
--- them (a later pass, or the GUI dissecting the frame again, starts from a fresh column).
-local info_frame, info_text = -1, ""
+-- A call's words, after an earlier call's for the same frame (runtime/lua/common/info_column.lua).
+local write_info = rt.info_writer(", ")
 
 local function show_info(pinfo, words)
-    local col = pinfo.cols.info
-    if info_frame == pinfo.number and tostring(col) == info_text then
-        info_text = info_text .. ", " .. words
-        col:append(", " .. words)
-    else
-        info_text = words
-        col:set(words)
-    end
-    info_frame = pinfo.number
+    write_info(pinfo, pinfo.cols.info, words, false)
 end
 
 -- Where the next plausible packet starts from offset o on: the next size some layout has (a size

@@ -16,6 +16,7 @@ local spec = { proto = ur, F = { length = "ur.length", type = "ur.type" }, heade
                version_reader = { message = 99 }, default_version = "5.9" }
 local rt = S.base_rt(spec)
 rt.X, rt.E, rt.handlers = S.X, S.E, { [20] = handler }
+S.load("common/info_column.lua", spec, rt)
 S.load("packages/info.lua", spec, rt)
 S.load("packages/carry.lua", spec, rt)
 S.load("common/tcp_stream.lua", spec, rt)

@@ -7,6 +7,7 @@ local function message_rt(messages)
                    segment_starts = { "1.9", "3.0" } }
     local rt = S.walker_rt(spec)
     rt.X, rt.E = S.X, S.E
+    S.load("common/info_column.lua", spec, rt)
     S.load("packages/info.lua", spec, rt)
     S.load("packages/messages.lua", spec, rt)
     return rt
