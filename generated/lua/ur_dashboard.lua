@@ -413,6 +413,54 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/pending.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Requests awaiting their replies, oldest first, at most `size` kept: how a reply is paired with
+-- the request it answers (the RTDE setup exchange, the dashboard server's commands). A request
+-- beyond is not kept but counted (`lost`), and so is every later one while a counted one is
+-- ahead of it: replies come in the order of the requests, so a kept one behind a lost one would
+-- take the lost one's reply.
+local spec, rt = ...
+
+local function pending_queue(size)
+    return { first = 1, last = 0, lost = 0, size = size }
+end
+
+-- Keeps a request v (not nil); false when it is not kept (then counted).
+local function pending_push(q, v)
+    if q.lost > 0 or q.last - q.first + 1 >= q.size then
+        q.lost = q.lost + 1
+        return false
+    end
+    q.last = q.last + 1
+    q[q.last] = v
+    return true
+end
+
+-- The request a reply answers: true and the request, or false for one not kept, or true and nil
+-- when no request awaits.
+local function pending_pop(q)
+    if q.first > q.last then
+        if q.lost > 0 then
+            q.lost = q.lost - 1
+            return false, nil
+        end
+        return true, nil
+    end
+    local v = q[q.first]
+    q[q.first] = nil
+    q.first = q.first + 1
+    return true, v
+end
+
+rt.pending_queue, rt.pending_push, rt.pending_pop = pending_queue, pending_push, pending_pop
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/lines/match.lua ----
 -- =============================================================================================
 do
@@ -570,6 +618,7 @@ do
 local spec, rt = ...
 local matches, find_command, classify, shown = rt.matches, rt.find_command, rt.classify, rt.shown
 local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version
+local pending_queue, push, pop = rt.pending_queue, rt.pending_push, rt.pending_pop
 
 local proto = Proto(spec.name, spec.title)
 local L, D = spec.labels, spec.docs or {}
@@ -626,7 +675,7 @@ end
 local function conversation(key)
     local c = conversations[key]
     if not c then
-        c = {pending = {}, first = 1, last = 0, lost = 0, greeted = false, version = parse_version(proto.prefs.version),
+        c = {pending = pending_queue(spec.pending_kept), greeted = false, version = parse_version(proto.prefs.version),
              skipping = {[true] = false, [false] = false}}
         conversations[key] = c
     end
@@ -635,36 +684,23 @@ end
 
 -- A request awaits its reply; false when it is not kept. A command that comes when pending_kept
 -- await replies is not kept but counted lost, and so is every command behind a lost one (replies
--- come in order): no reply is paired with another command.
+-- come in order, runtime/lua/common/pending.lua): no reply is paired with another command. An
+-- unknown command is kept as false.
 local function keep(c, index)
-    if not spec.one_reply_per_request then     -- only the latest request counts
-        c.pending[c.last] = nil
-        c.first, c.last = 1, 1
-        c.pending[1] = index or false
-    elseif c.lost > 0 or c.last - c.first + 1 >= spec.pending_kept then
-        c.lost = c.lost + 1
-        return false
-    else
-        c.last = c.last + 1
-        c.pending[c.last] = index or false
+    if not spec.one_reply_per_request then     -- only the latest request counts (c.latest)
+        c.latest = index or false
+        return true
     end
-    return true
+    return push(c.pending, index or false)
 end
 
 -- The request a reply answers (nil: none), and whether it answers one that was not kept.
 local function answered(c)
-    if c.first <= c.last and spec.one_reply_per_request then
-        local command = c.pending[c.first] or nil
-        c.pending[c.first] = nil
-        c.first = c.first + 1
-        return command, false
-    elseif c.first <= c.last then
-        return c.pending[c.last] or nil, false   -- every answering line belongs to the latest request
-    elseif c.lost > 0 then
-        c.lost = c.lost - 1
-        return nil, true
+    if not spec.one_reply_per_request then
+        return c.latest or nil, false   -- every answering line belongs to the latest request
     end
-    return nil, false
+    local paired, command = pop(c.pending)
+    return command or nil, not paired
 end
 
 -- A line too long is still a line: a command the server answers, or the reply to one, so that

@@ -11,7 +11,7 @@ from .plan import LinesPlan
 
 # The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
 RUNTIME = ("common/register.lua", "common/guard.lua", "common/dotted_version.lua", "common/tcp_stream.lua",
-           "lines/match.lua", "lines/dissect.lua")
+           "common/pending.lua", "lines/match.lua", "lines/dissect.lua")
 
 
 def _string(text: str) -> str:

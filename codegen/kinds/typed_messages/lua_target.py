@@ -27,8 +27,8 @@ READER = {"bool": "uint", "int8": "int", "uint8": "uint", "int16": "int", "uint1
 OWN_FIELDS = ("length", "type", "kind", "recipe_frame", "direction", "protocol", "unknown_variable")
 # The runtime joined after the tables, in order (runtime/lua/common, then this kind's own: the
 # state first, then the dissector).
-RUNTIME = ("common/register.lua", "common/tcp_stream.lua", "common/bytes.lua", "typed_messages/state.lua",
-           "typed_messages/dissect.lua")
+RUNTIME = ("common/register.lua", "common/tcp_stream.lua", "common/bytes.lua", "common/pending.lua",
+           "typed_messages/state.lua", "typed_messages/dissect.lua")
 # The fields of a value a setup reply types otherwise than the variable table, one per scalar of the
 # value types: `value_<scalar>` (rtde.value_float64), also the dissector's own.
 

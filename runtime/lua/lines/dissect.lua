@@ -6,6 +6,7 @@
 local spec, rt = ...
 local matches, find_command, classify, shown = rt.matches, rt.find_command, rt.classify, rt.shown
 local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version
+local pending_queue, push, pop = rt.pending_queue, rt.pending_push, rt.pending_pop
 
 local proto = Proto(spec.name, spec.title)
 local L, D = spec.labels, spec.docs or {}
@@ -62,7 +63,7 @@ end
 local function conversation(key)
     local c = conversations[key]
     if not c then
-        c = {pending = {}, first = 1, last = 0, lost = 0, greeted = false, version = parse_version(proto.prefs.version),
+        c = {pending = pending_queue(spec.pending_kept), greeted = false, version = parse_version(proto.prefs.version),
              skipping = {[true] = false, [false] = false}}
         conversations[key] = c
     end
@@ -71,36 +72,23 @@ end
 
 -- A request awaits its reply; false when it is not kept. A command that comes when pending_kept
 -- await replies is not kept but counted lost, and so is every command behind a lost one (replies
--- come in order): no reply is paired with another command.
+-- come in order, runtime/lua/common/pending.lua): no reply is paired with another command. An
+-- unknown command is kept as false.
 local function keep(c, index)
-    if not spec.one_reply_per_request then     -- only the latest request counts
-        c.pending[c.last] = nil
-        c.first, c.last = 1, 1
-        c.pending[1] = index or false
-    elseif c.lost > 0 or c.last - c.first + 1 >= spec.pending_kept then
-        c.lost = c.lost + 1
-        return false
-    else
-        c.last = c.last + 1
-        c.pending[c.last] = index or false
+    if not spec.one_reply_per_request then     -- only the latest request counts (c.latest)
+        c.latest = index or false
+        return true
     end
-    return true
+    return push(c.pending, index or false)
 end
 
 -- The request a reply answers (nil: none), and whether it answers one that was not kept.
 local function answered(c)
-    if c.first <= c.last and spec.one_reply_per_request then
-        local command = c.pending[c.first] or nil
-        c.pending[c.first] = nil
-        c.first = c.first + 1
-        return command, false
-    elseif c.first <= c.last then
-        return c.pending[c.last] or nil, false   -- every answering line belongs to the latest request
-    elseif c.lost > 0 then
-        c.lost = c.lost - 1
-        return nil, true
+    if not spec.one_reply_per_request then
+        return c.latest or nil, false   -- every answering line belongs to the latest request
     end
-    return nil, false
+    local paired, command = pop(c.pending)
+    return command or nil, not paired
 end
 
 -- A line too long is still a line: a command the server answers, or the reply to one, so that

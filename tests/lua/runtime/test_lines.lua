@@ -21,6 +21,7 @@ local spec = {
     lookup = {2, 3, 1},
     labels = {command = "Command", command_name = "Command name", argument = "Argument", available = "Available",
               reply = "Reply", reply_name = "Reply meaning", error = "Says an error"},
+    not_kept = "command not kept", reply_not_kept = "reply to a command not kept",
 }
 local rt = S.load("common/dotted_version.lua", spec)
 S.load("lines/match.lua", spec, rt)
@@ -42,6 +43,7 @@ Proto = function(...) made = make_proto(...); return made end
 S.load("common/register.lua", spec, rt)
 S.load("common/guard.lua", spec, rt)
 S.load("common/tcp_stream.lua", spec, rt)
+S.load("common/pending.lua", spec, rt)
 S.load("lines/dissect.lua", spec, rt)
 S.eq(S.ports["tcp.port"], "29999", "the port registered")
 
@@ -83,4 +85,36 @@ assert(out:find("!ur_dashboard.too_long", 1, true), out)
 out = dissect(7, false, "xx\nload b\n")
 assert(out:find("Rest of a line too long", 1, true), out)
 assert(out:find("ur_dashboard.command_name @3+6 = load", 1, true), out)
+
+-- Pairing in a new TCP conversation: pending_kept (4) commands await replies; the fifth is not
+-- kept, nor the sixth behind it, and their replies are paired with no command.
+local function count(text, what)
+    local n = 0
+    for _ in text:gmatch(what) do n = n + 1 end
+    return n
+end
+S.fields["tcp.stream"] = { value = 1 }
+dissect(8, true, "Connected\n")
+out = dissect(9, false, "load a\nload b\nload c\nload d\nload e\n")
+S.eq(count(out, "!ur_dashboard%.not_kept: command not kept"), 1, "the fifth command is not kept")
+out = dissect(10, false, "load f\n")
+S.eq(count(out, "!ur_dashboard%.not_kept"), 1, "nor one behind it")
+out = dissect(11, true, "Loading: a\nLoading: b\nLoading: c\nLoading: d\nLoading: e\nLoading: f\n")
+S.eq(count(out, "command_name @%d+%+%d+ = load"), 4, "four replies paired with their commands")
+S.eq(count(out, "!ur_dashboard%.reply_not_kept: reply to a command not kept"), 2, "two paired with none")
+out = dissect(12, false, "load g\n")
+S.eq(count(out, "not_kept"), 0, "every lost one answered: kept again")
+out = dissect(13, true, "Loading: g\n")
+S.eq(count(out, "command_name @0%+10 = load"), 1, "and paired")
+
+-- The script sender's rule: only the latest request counts, every reply belongs to it.
+spec.one_reply_per_request = false
+S.fields["tcp.stream"] = { value = 2 }
+dissect(14, true, "Connected\n")
+out = dissect(15, true, "Loading: x\n")
+S.eq(count(out, "command_name"), 0, "no request yet: paired with none")
+S.eq(count(out, "not_kept"), 0, "and none lost")
+dissect(16, false, "load a\nPolyscopeVersion\n")
+out = dissect(17, true, "URSoftware 5.11\nURSoftware 5.12\n")
+S.eq(count(out, "command_name @%d+%+%d+ = polyscope_version"), 2, "both replies to the latest request")
 print("ok")

@@ -17,7 +17,8 @@ local spec = {
     refusals = { NOT_FOUND = true, IN_USE = true },
     value_types = { DOUBLE = {}, VECTOR6D = {}, INT32 = {} },
 }
-local rt = S.load("typed_messages/state.lua", spec)
+local rt = S.load("common/pending.lua", spec)
+S.load("typed_messages/state.lua", spec, rt)
 
 S.eq(table.concat(rt.split("a,b,c", ","), "|"), "a|b|c", "split")
 S.eq(#rt.split("", ","), 0, "no names")
