@@ -1184,14 +1184,148 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
--- ---- runtime/lua/rtde_state.lua ----
+-- ---- runtime/lua/common/register.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Port registration, as every dissector does it: the protocol takes its TCP ports from the
+-- tcp.port table, and when they change (a preference) gives up the ones it held and takes the
+-- new ones. Each generated file is a plugin of its own and joins its own copy of this file.
+local spec, rt = ...
+
+local tcp_port = DissectorTable.get("tcp.port")
+local registered = nil   -- the ports this plugin's protocol holds
+
+-- Take `ports` (a port, or a range as text or a preference: "30001-30004,30011") for proto.
+local function register_ports(proto, ports)
+    if registered then tcp_port:remove(registered, proto) end
+    registered = ports
+    tcp_port:add(registered, proto)
+end
+
+rt.register_ports = register_ports
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/tcp_stream.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Which TCP conversation a frame belongs to, as Wireshark's TCP numbers them (tcp.stream): a new
+-- connection on the same addresses and ports is a new number, so that a dissector's state per
+-- conversation starts afresh there, as the native plugins' conversations do.
+local spec, rt = ...
+
+local tcp_stream = Field.new("tcp.stream")
+
+-- The frame's innermost tcp.stream (the last in the tree: TCP inside a tunnel comes after the
+-- outer one), nil when the tree lacks it (a first pass without a tree: tshark -2, no filter).
+local function tcp_stream_index()
+    local all = { tcp_stream() }
+    local last = all[#all]
+    return last and last.value
+end
+
+rt.tcp_stream_index = tcp_stream_index
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/bytes.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Big-endian numbers read from a message's raw bytes (the Lua string of tvb:raw(), offsets
+-- counted from 0 as in the tvb). string.byte on the raw string costs a seventh of
+-- tvb(o, n):uint() in tshark 4.0.
+local spec, rt = ...
+local byte = string.byte
+
+-- An unsigned integer of n bytes at offset o.
+local function be_uint(raw, o, n)
+    local v = 0
+    for i = o + 1, o + n do v = v * 256 + byte(raw, i) end
+    return v
+end
+
+-- 2^(8n - 1) for n = 1..4, made by multiplying so that it stays an integer on Lua 5.3 and 5.4:
+-- be_int then returns integers there (Wireshark's TreeItem:add takes them as they are).
+local HALF = {}
+for n = 1, 4 do
+    local h = 1
+    for _ = 1, 8 * n - 1 do h = h * 2 end
+    HALF[n] = h
+end
+
+-- A two's-complement integer of n bytes at offset o.
+local function be_int(raw, o, n)
+    local v = be_uint(raw, o, n)
+    local half = HALF[n] or 2 ^ (8 * n - 1)
+    if v >= half then v = v - 2 * half end
+    return v
+end
+
+rt.be_uint, rt.be_int = be_uint, be_int
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/pending.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Requests awaiting their replies, oldest first, at most `size` kept: how a reply is paired with
+-- the request it answers (the RTDE setup exchange, the dashboard server's commands). A request
+-- beyond is not kept but counted (`lost`), and so is every later one while a counted one is
+-- ahead of it: replies come in the order of the requests, so a kept one behind a lost one would
+-- take the lost one's reply.
+local spec, rt = ...
+
+local function pending_queue(size)
+    return { first = 1, last = 0, lost = 0, size = size }
+end
+
+-- Keeps a request v (not nil); false when it is not kept (then counted).
+local function pending_push(q, v)
+    if q.lost > 0 or q.last - q.first + 1 >= q.size then
+        q.lost = q.lost + 1
+        return false
+    end
+    q.last = q.last + 1
+    q[q.last] = v
+    return true
+end
+
+-- The request a reply answers: true and the request, or false for one not kept, or true and nil
+-- when no request awaits.
+local function pending_pop(q)
+    if q.first > q.last then
+        if q.lost > 0 then
+            q.lost = q.lost - 1
+            return false, nil
+        end
+        return true, nil
+    end
+    local v = q[q.first]
+    q[q.first] = nil
+    q.first = q.first + 1
+    return true, v
+end
+
+rt.pending_queue, rt.pending_push, rt.pending_pop = pending_queue, pending_push, pending_pop
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/typed_messages/state.lua ----
 -- =============================================================================================
 do
 (function(...)
 -- RTDE's state of one conversation, as plain Lua (no Wireshark object): the protocol version
 -- negotiated, the setup requests waiting for their replies, and the recipes that replies make.
--- runtime/lua/rtde_dissect.lua keeps one per conversation and calls rt.follow on each message,
--- in capture order, on the first pass.
+-- runtime/lua/typed_messages/dissect.lua keeps one per conversation and calls rt.follow on each
+-- message, in capture order, on the first pass.
 local spec, rt = ...
 
 local KIND_OF_REQUEST, KIND_OF_REPLY, KIND_OF_DATA = {}, {}, {}
@@ -1204,39 +1338,13 @@ end
 -- Protocol 1's one output recipe has no id: it is kept under this key.
 local NO_ID = -1
 
--- Requests awaiting their replies, oldest first, at most `size` kept. A request beyond is not kept
--- but counted (`lost`), and so is every later one while a counted one is ahead of it: replies come
--- in the order of the requests, so a kept one behind a lost one would take the lost one's reply.
+-- Requests awaiting their replies (runtime/lua/common/pending.lua), with the words that say
+-- how many a conversation keeps.
+local push, pop = rt.pending_push, rt.pending_pop
 local function queue(size, what)
-    return { first = 1, last = 0, lost = 0, size = size,
-             overflow = "more than " .. size .. " " .. what .. " awaited replies" }
-end
-
--- Keeps a request; false when it is not kept (then counted).
-local function push(q, v)
-    if q.lost > 0 or q.last - q.first + 1 >= q.size then
-        q.lost = q.lost + 1
-        return false
-    end
-    q.last = q.last + 1
-    q[q.last] = v
-    return true
-end
-
--- The request a reply answers: true and the request, or false for one not kept, or true and nil
--- when no request awaits.
-local function pop(q)
-    if q.first > q.last then
-        if q.lost > 0 then
-            q.lost = q.lost - 1
-            return false, nil
-        end
-        return true, nil
-    end
-    local v = q[q.first]
-    q[q.first] = nil
-    q.first = q.first + 1
-    return true, v
+    local q = rt.pending_queue(size)
+    q.overflow = "more than " .. size .. " " .. what .. " awaited replies"
+    return q
 end
 
 function rt.new_state()
@@ -1371,7 +1479,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/rtde_dissect.lua ----
+-- ---- runtime/lua/typed_messages/dissect.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -1380,10 +1488,11 @@ do
 -- values by the names of its recipe with a link to the frame that set the recipe up, and expert
 -- infos for refused setups, unknown recipes, a refused start and bad framing. State is kept per
 -- conversation (both addresses and both ports) on the first pass, and each message's view of it
--- is kept for later passes and the GUI (runtime/lua/rtde_state.lua holds the state itself).
+-- is kept for later passes and the GUI (runtime/lua/typed_messages/state.lua holds the state itself).
 local spec, rt = ...
 local proto, F = spec.proto, spec.F
 local HEADER = spec.header_size
+local be_uint = rt.be_uint
 
 -- Expert names are the protocol's filter name and the expert's (rtde.refused), as the fields' are.
 local E = {
@@ -1430,20 +1539,19 @@ end
 -- A conversation: both ends, and Wireshark's TCP conversation where the tree has it (the
 -- innermost tcp.stream), so that a new connection on the same addresses and ports starts afresh,
 -- as in the native plugin. Only the first pass reads a conversation's state.
-local tcp_stream = Field.new("tcp.stream")
+local tcp_stream_index = rt.tcp_stream_index
 
 local function conversation_key(pinfo)
     local a = tostring(pinfo.src) .. ":" .. tostring(pinfo.src_port)
     local b = tostring(pinfo.dst) .. ":" .. tostring(pinfo.dst_port)
-    local all = { tcp_stream() }
-    local index = all[#all]
-    local tcp = index and "#" .. tostring(index.value) or ""
+    local index = tcp_stream_index()
+    local tcp = index and "#" .. tostring(index) or ""
     if a < b then return a .. "|" .. b .. tcp end
     return b .. "|" .. a .. tcp
 end
 
 local function plausible(raw, at)
-    local size = string.byte(raw, at + 1) * 256 + string.byte(raw, at + 2)
+    local size = be_uint(raw, at, 2)
     local code = string.byte(raw, at + 3)
     return size >= HEADER and spec.type_names[code] ~= nil
 end
@@ -1618,7 +1726,7 @@ function proto.dissector(tvb, pinfo, tree)
             pinfo.desegment_len = DESEGMENT_ONE_MORE_SEGMENT
             break
         end
-        local size = string.byte(raw, offset + 1) * 256 + string.byte(raw, offset + 2)
+        local size = be_uint(raw, offset, 2)
         local code = string.byte(raw, offset + 3)
         if size < HEADER or size > spec.max_message_length or not spec.type_names[code] then
             local at = offset + 1
@@ -1644,19 +1752,11 @@ function proto.dissector(tvb, pinfo, tree)
 end
 
 proto.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of " .. spec.title, 65535)
-local tcp_port = DissectorTable.get("tcp.port")
-local registered = nil
-
-local function register_ports()
-    if registered then tcp_port:remove(registered, proto) end
-    registered = proto.prefs.ports
-    tcp_port:add(registered, proto)
-end
 
 function proto.prefs_changed()
-    register_ports()
+    rt.register_ports(proto, proto.prefs.ports)
 end
 
-register_ports()
+rt.register_ports(proto, proto.prefs.ports)
 end)(spec, rt)
 end

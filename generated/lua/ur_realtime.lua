@@ -400,7 +400,84 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
--- ---- runtime/lua/ur_realtime_dissect.lua ----
+-- ---- runtime/lua/common/register.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Port registration, as every dissector does it: the protocol takes its TCP ports from the
+-- tcp.port table, and when they change (a preference) gives up the ones it held and takes the
+-- new ones. Each generated file is a plugin of its own and joins its own copy of this file.
+local spec, rt = ...
+
+local tcp_port = DissectorTable.get("tcp.port")
+local registered = nil   -- the ports this plugin's protocol holds
+
+-- Take `ports` (a port, or a range as text or a preference: "30001-30004,30011") for proto.
+local function register_ports(proto, ports)
+    if registered then tcp_port:remove(registered, proto) end
+    registered = ports
+    tcp_port:add(registered, proto)
+end
+
+rt.register_ports = register_ports
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/dotted_version.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- A version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around it allowed, a
+-- missing third number 0 (runtime/epan/dotted_version.c reads it alike). Each kind makes its
+-- own version number of the three parts: how far a part may run is the kind's rule.
+local spec, rt = ...
+
+-- " 3.15.2 " -> 3, 15, 2; "5.9" -> 5, 9, 0; nil for anything else ("5", "5.9 beta", "latest").
+local function dotted_version(text)
+    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    if not major then return nil end
+    return tonumber(major), tonumber(minor), tonumber(bugfix) or 0
+end
+
+rt.dotted_version = dotted_version
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/info_column.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The Info column of a frame that the dissector is called for more than once: TCP calls it for
+-- a message reassembled from earlier segments, then again for the rest of the segment. A later
+-- call adds its words to the earlier one's while the column still holds them; a later pass, or
+-- the GUI dissecting the frame again, starts from a fresh column and writes it anew.
+local spec, rt = ...
+
+-- A writer of the Info column that joins words with `separator`: write(pinfo, col, words,
+-- append) puts words after the column's text when `append` (a call's later message) or when
+-- the column holds what this writer last wrote for the same frame, else in its place.
+local function info_writer(separator)
+    local frame, text = -1, ""
+    return function(pinfo, col, words, append)
+        if append or (frame == pinfo.number and tostring(col) == text) then
+            text = text .. separator .. words
+            col:append(separator .. words)
+        else
+            text = words
+            col:set(words)
+        end
+        frame = pinfo.number
+    end
+end
+
+rt.info_writer = info_writer
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/sized_packets/dissect.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -444,11 +521,10 @@ proto.prefs.version = Pref.string("Software version", "",
 
 -- "5.9" or "3.15.2" -> the version number the forms are written in; nil for anything else.
 local function version_number(text)
-    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    local major, minor, bugfix = rt.dotted_version(text)
     if not major then return nil end
-    bugfix = tonumber(bugfix) or 0
     if bugfix > 999 then bugfix = 999 end
-    return (tonumber(major) * 1000 + tonumber(minor)) * 1000 + bugfix
+    return (major * 1000 + minor) * 1000 + bugfix
 end
 
 local version = nil
@@ -522,21 +598,11 @@ local function dissect_packet(tvb, tree, o, size, detail)
     return info_of(tvb, o, form)
 end
 
--- TCP calls the dissector once per reassembled packet and again for the rest of a segment: a
--- later call of the same frame adds its words to the earlier one's, when the column still holds
--- them (a later pass, or the GUI dissecting the frame again, starts from a fresh column).
-local info_frame, info_text = -1, ""
+-- A call's words, after an earlier call's for the same frame (runtime/lua/common/info_column.lua).
+local write_info = rt.info_writer(", ")
 
 local function show_info(pinfo, words)
-    local col = pinfo.cols.info
-    if info_frame == pinfo.number and tostring(col) == info_text then
-        info_text = info_text .. ", " .. words
-        col:append(", " .. words)
-    else
-        info_text = words
-        col:set(words)
-    end
-    info_frame = pinfo.number
+    write_info(pinfo, pinfo.cols.info, words, false)
 end
 
 -- Where the next plausible packet starts from offset o on: the next size some layout has (a size
@@ -601,21 +667,12 @@ function proto.dissector(tvb, pinfo, tree)
     return len
 end
 
-local tcp_port = DissectorTable.get("tcp.port")
-local registered = nil
-
-local function register_ports()
-    if registered then tcp_port:remove(registered, proto) end
-    registered = proto.prefs.ports
-    tcp_port:add(registered, proto)
-end
-
 function proto.prefs_changed()
     version = version_number(proto.prefs.version)
-    register_ports()
+    rt.register_ports(proto, proto.prefs.ports)
 end
 
-register_ports()
+rt.register_ports(proto, proto.prefs.ports)
 rt.version_number, rt.form_of = version_number, form_of
 end)(spec, rt)
 end

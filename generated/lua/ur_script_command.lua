@@ -56,7 +56,80 @@ for _, f in ipairs(spec.fields) do spec.fields_by_name[f.name] = f end
 local rt = {}
 
 -- =============================================================================================
--- ---- runtime/lua/int32_records.lua ----
+-- ---- runtime/lua/common/register.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Port registration, as every dissector does it: the protocol takes its TCP ports from the
+-- tcp.port table, and when they change (a preference) gives up the ones it held and takes the
+-- new ones. Each generated file is a plugin of its own and joins its own copy of this file.
+local spec, rt = ...
+
+local tcp_port = DissectorTable.get("tcp.port")
+local registered = nil   -- the ports this plugin's protocol holds
+
+-- Take `ports` (a port, or a range as text or a preference: "30001-30004,30011") for proto.
+local function register_ports(proto, ports)
+    if registered then tcp_port:remove(registered, proto) end
+    registered = ports
+    tcp_port:add(registered, proto)
+end
+
+rt.register_ports = register_ports
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/guard.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The error guard every dissector runs behind: a Lua error while dissecting never reaches the
+-- user as a Lua error, but shows as an expert info on the packet, and the packet's bytes count
+-- as dissected.
+local spec, rt = ...
+
+-- A dissector function for proto that runs dissect(tvb, pinfo, tree) behind pcall; an error
+-- becomes the expert `internal`, its text after `label` ("urwire: ...").
+local function guard(proto, dissect, internal, label)
+    return function(tvb, pinfo, tree)
+        local ok, result = pcall(dissect, tvb, pinfo, tree)
+        if ok then return result end
+        tree:add(proto, tvb()):add_proto_expert_info(internal, label .. ": " .. tostring(result))
+        return tvb:len()
+    end
+end
+
+rt.guard = guard
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/dotted_version.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- A version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around it allowed, a
+-- missing third number 0 (runtime/epan/dotted_version.c reads it alike). Each kind makes its
+-- own version number of the three parts: how far a part may run is the kind's rule.
+local spec, rt = ...
+
+-- " 3.15.2 " -> 3, 15, 2; "5.9" -> 5, 9, 0; nil for anything else ("5", "5.9 beta", "latest").
+local function dotted_version(text)
+    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    if not major then return nil end
+    return tonumber(major), tonumber(minor), tonumber(bugfix) or 0
+end
+
+rt.dotted_version = dotted_version
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/int32_records/dissect.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -94,9 +167,9 @@ proto.prefs.release = Pref.string("Driver release", "",
 
 -- "2.10" or "2.10.0" -> (major * 1000 + minor) * 1000 + patch; nil for anything else.
 local function parse_release(text)
-    local major, minor, patch = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    local major, minor, patch = rt.dotted_version(text)
     if not major then return nil end
-    return (tonumber(major) * 1000 + tonumber(minor)) * 1000 + (tonumber(patch) or 0)
+    return (major * 1000 + minor) * 1000 + patch
 end
 
 local function layout_of(record, release)
@@ -154,15 +227,8 @@ local function dissect(tvb, pinfo, tree)
     return n
 end
 
-function proto.dissector(tvb, pinfo, tree)
-    local ok, result = pcall(dissect, tvb, pinfo, tree)
-    if ok then return result end
-    tree:add(proto, tvb()):add_proto_expert_info(E.internal, spec.name .. ": " .. tostring(result))
-    return tvb:len()
-end
-
-local tcp_port = DissectorTable.get("tcp.port")
-for _, port in ipairs(spec.ports) do tcp_port:add(port, proto) end
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
+rt.register_ports(proto, table.concat(spec.ports, ","))
 rt.parse_release, rt.layout_of = parse_release, layout_of
 
 end)(spec, rt)

@@ -65,7 +65,153 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
--- ---- runtime/lua/lines_match.lua ----
+-- ---- runtime/lua/common/register.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Port registration, as every dissector does it: the protocol takes its TCP ports from the
+-- tcp.port table, and when they change (a preference) gives up the ones it held and takes the
+-- new ones. Each generated file is a plugin of its own and joins its own copy of this file.
+local spec, rt = ...
+
+local tcp_port = DissectorTable.get("tcp.port")
+local registered = nil   -- the ports this plugin's protocol holds
+
+-- Take `ports` (a port, or a range as text or a preference: "30001-30004,30011") for proto.
+local function register_ports(proto, ports)
+    if registered then tcp_port:remove(registered, proto) end
+    registered = ports
+    tcp_port:add(registered, proto)
+end
+
+rt.register_ports = register_ports
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/guard.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The error guard every dissector runs behind: a Lua error while dissecting never reaches the
+-- user as a Lua error, but shows as an expert info on the packet, and the packet's bytes count
+-- as dissected.
+local spec, rt = ...
+
+-- A dissector function for proto that runs dissect(tvb, pinfo, tree) behind pcall; an error
+-- becomes the expert `internal`, its text after `label` ("urwire: ...").
+local function guard(proto, dissect, internal, label)
+    return function(tvb, pinfo, tree)
+        local ok, result = pcall(dissect, tvb, pinfo, tree)
+        if ok then return result end
+        tree:add(proto, tvb()):add_proto_expert_info(internal, label .. ": " .. tostring(result))
+        return tvb:len()
+    end
+end
+
+rt.guard = guard
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/dotted_version.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- A version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around it allowed, a
+-- missing third number 0 (runtime/epan/dotted_version.c reads it alike). Each kind makes its
+-- own version number of the three parts: how far a part may run is the kind's rule.
+local spec, rt = ...
+
+-- " 3.15.2 " -> 3, 15, 2; "5.9" -> 5, 9, 0; nil for anything else ("5", "5.9 beta", "latest").
+local function dotted_version(text)
+    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    if not major then return nil end
+    return tonumber(major), tonumber(minor), tonumber(bugfix) or 0
+end
+
+rt.dotted_version = dotted_version
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/tcp_stream.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Which TCP conversation a frame belongs to, as Wireshark's TCP numbers them (tcp.stream): a new
+-- connection on the same addresses and ports is a new number, so that a dissector's state per
+-- conversation starts afresh there, as the native plugins' conversations do.
+local spec, rt = ...
+
+local tcp_stream = Field.new("tcp.stream")
+
+-- The frame's innermost tcp.stream (the last in the tree: TCP inside a tunnel comes after the
+-- outer one), nil when the tree lacks it (a first pass without a tree: tshark -2, no filter).
+local function tcp_stream_index()
+    local all = { tcp_stream() }
+    local last = all[#all]
+    return last and last.value
+end
+
+rt.tcp_stream_index = tcp_stream_index
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/pending.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Requests awaiting their replies, oldest first, at most `size` kept: how a reply is paired with
+-- the request it answers (the RTDE setup exchange, the dashboard server's commands). A request
+-- beyond is not kept but counted (`lost`), and so is every later one while a counted one is
+-- ahead of it: replies come in the order of the requests, so a kept one behind a lost one would
+-- take the lost one's reply.
+local spec, rt = ...
+
+local function pending_queue(size)
+    return { first = 1, last = 0, lost = 0, size = size }
+end
+
+-- Keeps a request v (not nil); false when it is not kept (then counted).
+local function pending_push(q, v)
+    if q.lost > 0 or q.last - q.first + 1 >= q.size then
+        q.lost = q.lost + 1
+        return false
+    end
+    q.last = q.last + 1
+    q[q.last] = v
+    return true
+end
+
+-- The request a reply answers: true and the request, or false for one not kept, or true and nil
+-- when no request awaits.
+local function pending_pop(q)
+    if q.first > q.last then
+        if q.lost > 0 then
+            q.lost = q.lost - 1
+            return false, nil
+        end
+        return true, nil
+    end
+    local v = q[q.first]
+    q[q.first] = nil
+    q.first = q.first + 1
+    return true, v
+end
+
+rt.pending_queue, rt.pending_push, rt.pending_pop = pending_queue, pending_push, pending_pop
+
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/lines/match.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -76,6 +222,7 @@ do
 local spec, rt = ...
 
 local find, sub = string.find, string.sub
+local dotted_version = rt.dotted_version
 
 -- The whole text is the pattern: its first piece opens it, its last ends it, the others follow
 -- in order between them, and each placeholder takes any text.
@@ -155,9 +302,9 @@ end
 
 -- "5.11" or "5.11.1" -> its version_number; nil for anything else.
 local function parse_version(text)
-    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    local major, minor, bugfix = dotted_version(text)
     if not major then return nil end
-    return version_number(tonumber(major), tonumber(minor), tonumber(bugfix) or 0)
+    return version_number(major, minor, bugfix)
 end
 
 -- Text as every output shows it: up to its first NUL (as C strings end), in UTF-8, each
@@ -209,7 +356,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/lines_dissect.lua ----
+-- ---- runtime/lua/lines/dissect.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -221,6 +368,7 @@ do
 local spec, rt = ...
 local matches, find_command, classify, shown = rt.matches, rt.find_command, rt.classify, rt.shown
 local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version
+local pending_queue, push, pop = rt.pending_queue, rt.pending_push, rt.pending_pop
 
 local proto = Proto(spec.name, spec.title)
 local L, D = spec.labels, spec.docs or {}
@@ -263,22 +411,21 @@ local conversations, decided = {}, {}
 -- A conversation: both ends, and Wireshark's TCP conversation where the tree has it (the
 -- innermost tcp.stream), so that a new connection on the same addresses and ports pairs nothing
 -- with the last one's commands, as in the native plugin.
-local tcp_stream = Field.new("tcp.stream")
+local tcp_stream_index = rt.tcp_stream_index
 
 local function conversation_key(pinfo, from_server)
     local server = tostring(from_server and pinfo.src or pinfo.dst) .. ":" ..
         (from_server and pinfo.src_port or pinfo.dst_port)
     local client = tostring(from_server and pinfo.dst or pinfo.src) .. ":" ..
         (from_server and pinfo.dst_port or pinfo.src_port)
-    local all = { tcp_stream() }
-    local index = all[#all]
-    return server .. "<>" .. client .. (index and "#" .. tostring(index.value) or "")
+    local index = tcp_stream_index()
+    return server .. "<>" .. client .. (index and "#" .. tostring(index) or "")
 end
 
 local function conversation(key)
     local c = conversations[key]
     if not c then
-        c = {pending = {}, first = 1, last = 0, lost = 0, greeted = false, version = parse_version(proto.prefs.version),
+        c = {pending = pending_queue(spec.pending_kept), greeted = false, version = parse_version(proto.prefs.version),
              skipping = {[true] = false, [false] = false}}
         conversations[key] = c
     end
@@ -287,36 +434,23 @@ end
 
 -- A request awaits its reply; false when it is not kept. A command that comes when pending_kept
 -- await replies is not kept but counted lost, and so is every command behind a lost one (replies
--- come in order): no reply is paired with another command.
+-- come in order, runtime/lua/common/pending.lua): no reply is paired with another command. An
+-- unknown command is kept as false.
 local function keep(c, index)
-    if not spec.one_reply_per_request then     -- only the latest request counts
-        c.pending[c.last] = nil
-        c.first, c.last = 1, 1
-        c.pending[1] = index or false
-    elseif c.lost > 0 or c.last - c.first + 1 >= spec.pending_kept then
-        c.lost = c.lost + 1
-        return false
-    else
-        c.last = c.last + 1
-        c.pending[c.last] = index or false
+    if not spec.one_reply_per_request then     -- only the latest request counts (c.latest)
+        c.latest = index or false
+        return true
     end
-    return true
+    return push(c.pending, index or false)
 end
 
 -- The request a reply answers (nil: none), and whether it answers one that was not kept.
 local function answered(c)
-    if c.first <= c.last and spec.one_reply_per_request then
-        local command = c.pending[c.first] or nil
-        c.pending[c.first] = nil
-        c.first = c.first + 1
-        return command, false
-    elseif c.first <= c.last then
-        return c.pending[c.last] or nil, false   -- every answering line belongs to the latest request
-    elseif c.lost > 0 then
-        c.lost = c.lost - 1
-        return nil, true
+    if not spec.one_reply_per_request then
+        return c.latest or nil, false   -- every answering line belongs to the latest request
     end
-    return nil, false
+    local paired, command = pop(c.pending)
+    return command or nil, not paired
 end
 
 -- A line too long is still a line: a command the server answers, or the reply to one, so that
@@ -449,19 +583,13 @@ local function dissect(tvb, pinfo, tree)
     return n
 end
 
-function proto.dissector(tvb, pinfo, tree)
-    local ok, result = pcall(dissect, tvb, pinfo, tree)
-    if ok then return result end
-    tree:add(proto, tvb()):add_proto_expert_info(E.internal, spec.name .. ": " .. tostring(result))
-    return tvb:len()
-end
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 
 function proto.init()
     conversations, decided = {}, {}
 end
 
-local tcp_port = DissectorTable.get("tcp.port")
-for _, port in ipairs(spec.ports) do tcp_port:add(port, proto) end
+rt.register_ports(proto, table.concat(spec.ports, ","))
 
 end)(spec, rt)
 end

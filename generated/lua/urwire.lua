@@ -18,7 +18,7 @@
 --
 -- The file has two parts. First the tables generated from the spec: value strings, fields,
 -- layouts (one descriptor per field), messages; all handed over in one table, `spec`. Then the
--- hand-written runtime that walks them (runtime/lua/*.lua), one chunk per
+-- hand-written runtime that walks them (runtime/lua/common, runtime/lua/packages), one chunk per
 -- file, each called with (spec, rt); `rt` holds what earlier chunks export.
 
 local ur = Proto("ur", "Universal Robots primary/secondary client interface")
@@ -1290,7 +1290,7 @@ local F = {
         layout: 181 bytes, sent right after robot message 12 when a client connects. 22 \z
         float64 with no timestamp; what each one means is not known."),
 }
--- In the order they are registered (runtime/declare.lua adds the dissector's own).
+-- In the order they are registered (runtime/lua/packages/declare.lua adds the dissector's own).
 local FIELDS = {
     F["length"],
     F["type"],
@@ -1614,7 +1614,7 @@ local FIELDS = {
 }
 
 -- ---------------------------------------------------------------------------------------------
--- Layouts: one descriptor per field, in wire order, walked by walk() in runtime/walk.lua
+-- Layouts: one descriptor per field, in wire order, walked by walk() in runtime/lua/packages/walk.lua
 -- ---------------------------------------------------------------------------------------------
 local L = {}
 
@@ -2313,7 +2313,7 @@ L.safety_compliance_tolerances = {
 }
 
 -- ---------------------------------------------------------------------------------------------
--- Messages by type: data for the runtime's message kinds (runtime/messages.lua)
+-- Messages by type: data for the runtime's message kinds (runtime/lua/packages/messages.lua)
 -- ---------------------------------------------------------------------------------------------
 local MESSAGE, PART = {}, {}
 
@@ -2420,9 +2420,9 @@ PART.payload_info = { name = "payload_info", label = "Payload info (undocumented
     F["payload_info.mass"] } }
 
 -- The forms each type code of the robot state takes: chosen by the software version, else by the
--- body size (runtime/versions.lua); `single` when one form serves every version. `segments`: the
--- form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is the nearest
--- version's below); `by_length`: the body sizes that recognise one form.
+-- body size (runtime/lua/packages/versions.lua); `single` when one form serves every version.
+-- `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is
+-- the nearest version's below); `by_length`: the body sizes that recognise one form.
 local ROBOT_STATE_PACKAGES = {
     [0] = { single = false, summary = true,
         segments = { 1, 1, 1, -1, 2, 2, 3, 3, 4, 4, -4, 4, 4, 4, -4, 4 },
@@ -2582,9 +2582,9 @@ PART.runtime_exception = { name = "runtime_exception", label = "Runtime exceptio
     header = L.runtime_exception_header, layout = L.runtime_exception, needs_version = false }
 
 -- The forms each type code of the robot message takes: chosen by the software version, else by the
--- body size (runtime/versions.lua); `single` when one form serves every version. `segments`: the
--- form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is the nearest
--- version's below); `by_length`: the body sizes that recognise one form.
+-- body size (runtime/lua/packages/versions.lua); `single` when one form serves every version.
+-- `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is
+-- the nearest version's below); `by_length`: the body sizes that recognise one form.
 local ROBOT_MESSAGE_SUBTYPES = {
     [0] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2692,9 +2692,9 @@ PART.global_variables_update = { name = "global_variables_update", label = "Glob
     needs_version = true }
 
 -- The forms each type code of the program state takes: chosen by the software version, else by the
--- body size (runtime/versions.lua); `single` when one form serves every version. `segments`: the
--- form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is the nearest
--- version's below); `by_length`: the body sizes that recognise one form.
+-- body size (runtime/lua/packages/versions.lua); `single` when one form serves every version.
+-- `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is
+-- the nearest version's below); `by_length`: the body sizes that recognise one form.
 local PROGRAM_STATE_SUBTYPES = {
     [0] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2723,9 +2723,9 @@ PART.modbus_info = { name = "modbus_info", label = "Modbus info (undocumented)",
     layout = L.modbus_info, needs_version = false }
 
 -- The forms each type code of the modbus info (undocumented) takes: chosen by the software version,
--- else by the body size (runtime/versions.lua); `single` when one form serves every version.
--- `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is
--- the nearest version's below); `by_length`: the body sizes that recognise one form.
+-- else by the body size (runtime/lua/packages/versions.lua); `single` when one form serves every
+-- version. `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there,
+-- the form is the nearest version's below); `by_length`: the body sizes that recognise one form.
 local MODBUS_INFO_FORMS = {
     [5] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2746,9 +2746,9 @@ MESSAGE[5] = {
 PART.hmc = { name = "hmc", label = "HMC (undocumented)", item = F["hmc"], layout = L.hmc, needs_version = false }
 
 -- The forms each type code of the hmc (undocumented) takes: chosen by the software version, else by
--- the body size (runtime/versions.lua); `single` when one form serves every version. `segments`:
--- the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is the nearest
--- version's below); `by_length`: the body sizes that recognise one form.
+-- the body size (runtime/lua/packages/versions.lua); `single` when one form serves every version.
+-- `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent there, the form is
+-- the nearest version's below); `by_length`: the body sizes that recognise one form.
 local HMC_FORMS = {
     [22] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2769,10 +2769,10 @@ PART.safety_setup_broadcast = { name = "safety_setup_broadcast", label = "Safety
     item = F["safety_setup_broadcast"], layout = L.safety_setup_broadcast, needs_version = false }
 
 -- The forms each type code of the safety setup broadcast (undocumented) takes: chosen by the
--- software version, else by the body size (runtime/versions.lua); `single` when one form serves
--- every version. `segments`: the form of each segment of SEGMENT_STARTS (negative: none is sent
--- there, the form is the nearest version's below); `by_length`: the body sizes that recognise one
--- form.
+-- software version, else by the body size (runtime/lua/packages/versions.lua); `single` when one
+-- form serves every version. `segments`: the form of each segment of SEGMENT_STARTS (negative: none
+-- is sent there, the form is the nearest version's below); `by_length`: the body sizes that
+-- recognise one form.
 local SAFETY_SETUP_BROADCAST_FORMS = {
     [23] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2795,10 +2795,10 @@ PART.safety_compliance_tolerances = { name = "safety_compliance_tolerances",
     layout = L.safety_compliance_tolerances, needs_version = false }
 
 -- The forms each type code of the safety compliance tolerances (undocumented, inferred) takes:
--- chosen by the software version, else by the body size (runtime/versions.lua); `single` when one
--- form serves every version. `segments`: the form of each segment of SEGMENT_STARTS (negative: none
--- is sent there, the form is the nearest version's below); `by_length`: the body sizes that
--- recognise one form.
+-- chosen by the software version, else by the body size (runtime/lua/packages/versions.lua);
+-- `single` when one form serves every version. `segments`: the form of each segment of
+-- SEGMENT_STARTS (negative: none is sent there, the form is the nearest version's below);
+-- `by_length`: the body sizes that recognise one form.
 local SAFETY_COMPLIANCE_TOLERANCES_FORMS = {
     [24] = { single = false,
         segments = { 1, 1, 1, -1, 1, 1, 1, 1, 1, 1, -1, 1, 1, 1, -1, 1 },
@@ -2862,7 +2862,151 @@ local spec = {
 local rt = {}
 
 -- =============================================================================================
--- ---- runtime/lua/declare.lua ----
+-- ---- runtime/lua/common/register.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Port registration, as every dissector does it: the protocol takes its TCP ports from the
+-- tcp.port table, and when they change (a preference) gives up the ones it held and takes the
+-- new ones. Each generated file is a plugin of its own and joins its own copy of this file.
+local spec, rt = ...
+
+local tcp_port = DissectorTable.get("tcp.port")
+local registered = nil   -- the ports this plugin's protocol holds
+
+-- Take `ports` (a port, or a range as text or a preference: "30001-30004,30011") for proto.
+local function register_ports(proto, ports)
+    if registered then tcp_port:remove(registered, proto) end
+    registered = ports
+    tcp_port:add(registered, proto)
+end
+
+rt.register_ports = register_ports
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/guard.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The error guard every dissector runs behind: a Lua error while dissecting never reaches the
+-- user as a Lua error, but shows as an expert info on the packet, and the packet's bytes count
+-- as dissected.
+local spec, rt = ...
+
+-- A dissector function for proto that runs dissect(tvb, pinfo, tree) behind pcall; an error
+-- becomes the expert `internal`, its text after `label` ("urwire: ...").
+local function guard(proto, dissect, internal, label)
+    return function(tvb, pinfo, tree)
+        local ok, result = pcall(dissect, tvb, pinfo, tree)
+        if ok then return result end
+        tree:add(proto, tvb()):add_proto_expert_info(internal, label .. ": " .. tostring(result))
+        return tvb:len()
+    end
+end
+
+rt.guard = guard
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/tcp_stream.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Which TCP conversation a frame belongs to, as Wireshark's TCP numbers them (tcp.stream): a new
+-- connection on the same addresses and ports is a new number, so that a dissector's state per
+-- conversation starts afresh there, as the native plugins' conversations do.
+local spec, rt = ...
+
+local tcp_stream = Field.new("tcp.stream")
+
+-- The frame's innermost tcp.stream (the last in the tree: TCP inside a tunnel comes after the
+-- outer one), nil when the tree lacks it (a first pass without a tree: tshark -2, no filter).
+local function tcp_stream_index()
+    local all = { tcp_stream() }
+    local last = all[#all]
+    return last and last.value
+end
+
+rt.tcp_stream_index = tcp_stream_index
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/bytes.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Big-endian numbers read from a message's raw bytes (the Lua string of tvb:raw(), offsets
+-- counted from 0 as in the tvb). string.byte on the raw string costs a seventh of
+-- tvb(o, n):uint() in tshark 4.0.
+local spec, rt = ...
+local byte = string.byte
+
+-- An unsigned integer of n bytes at offset o.
+local function be_uint(raw, o, n)
+    local v = 0
+    for i = o + 1, o + n do v = v * 256 + byte(raw, i) end
+    return v
+end
+
+-- 2^(8n - 1) for n = 1..4, made by multiplying so that it stays an integer on Lua 5.3 and 5.4:
+-- be_int then returns integers there (Wireshark's TreeItem:add takes them as they are).
+local HALF = {}
+for n = 1, 4 do
+    local h = 1
+    for _ = 1, 8 * n - 1 do h = h * 2 end
+    HALF[n] = h
+end
+
+-- A two's-complement integer of n bytes at offset o.
+local function be_int(raw, o, n)
+    local v = be_uint(raw, o, n)
+    local half = HALF[n] or 2 ^ (8 * n - 1)
+    if v >= half then v = v - 2 * half end
+    return v
+end
+
+rt.be_uint, rt.be_int = be_uint, be_int
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/info_column.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The Info column of a frame that the dissector is called for more than once: TCP calls it for
+-- a message reassembled from earlier segments, then again for the rest of the segment. A later
+-- call adds its words to the earlier one's while the column still holds them; a later pass, or
+-- the GUI dissecting the frame again, starts from a fresh column and writes it anew.
+local spec, rt = ...
+
+-- A writer of the Info column that joins words with `separator`: write(pinfo, col, words,
+-- append) puts words after the column's text when `append` (a call's later message) or when
+-- the column holds what this writer last wrote for the same frame, else in its place.
+local function info_writer(separator)
+    local frame, text = -1, ""
+    return function(pinfo, col, words, append)
+        if append or (frame == pinfo.number and tostring(col) == text) then
+            text = text .. separator .. words
+            col:append(separator .. words)
+        else
+            text = words
+            col:set(words)
+        end
+        frame = pinfo.number
+    end
+end
+
+rt.info_writer = info_writer
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/packages/declare.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -2931,42 +3075,16 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/bytes.lua ----
+-- ---- runtime/lua/packages/read_faults.lua ----
 -- =============================================================================================
 do
 (function(...)
--- Big-endian numbers read from a message's raw bytes (the Lua string of tvb:raw(), offsets
--- counted from 0 as in the tvb), and the canonical texts of a read that does not fit.
--- string.byte on the raw string costs a seventh of tvb(o, n):uint() in tshark 4.0.
+-- The canonical texts of a read that does not fit in its message, as every target words them.
 local spec, rt = ...
-local fmt, byte = string.format, string.byte
-
--- An unsigned integer of n bytes at offset o.
-local function be_uint(raw, o, n)
-    local v = 0
-    for i = o + 1, o + n do v = v * 256 + byte(raw, i) end
-    return v
-end
-
--- 2^(8n - 1) for n = 1..4, made by multiplying so that it stays an integer on Lua 5.3 and 5.4:
--- be_int then returns integers there (Wireshark's TreeItem:add takes them as they are).
-local HALF = {}
-for n = 1, 4 do
-    local h = 1
-    for _ = 1, 8 * n - 1 do h = h * 2 end
-    HALF[n] = h
-end
-
--- A two's-complement integer of n bytes at offset o.
-local function be_int(raw, o, n)
-    local v = be_uint(raw, o, n)
-    local half = HALF[n] or 2 ^ (8 * n - 1)
-    if v >= half then v = v - 2 * half end
-    return v
-end
+local fmt = string.format
 
 -- "<path> at offset <o>: needs <need> bytes, <left> left"; offsets from the message's first
--- byte (st.base), as every target words it.
+-- byte (st.base).
 local function short(st, path, o, need, e)
     local left = e - o
     if left < 0 then left = 0 end
@@ -2978,12 +3096,12 @@ local function negative(st, path, o, n)
     return fmt("%s at offset %d: negative length %d", path, o - st.base, n)
 end
 
-rt.be_uint, rt.be_int, rt.short, rt.negative = be_uint, be_int, short, negative
+rt.short, rt.negative = short, negative
 end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/versions.lua ----
+-- ---- runtime/lua/packages/versions.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3175,7 +3293,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/items.lua ----
+-- ---- runtime/lua/packages/items.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3285,7 +3403,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/collector.lua ----
+-- ---- runtime/lua/packages/collector.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3314,7 +3432,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/walk.lua ----
+-- ---- runtime/lua/packages/walk.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3646,7 +3764,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/values.lua ----
+-- ---- runtime/lua/packages/values.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3771,7 +3889,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/info.lua ----
+-- ---- runtime/lua/packages/info.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -3917,19 +4035,11 @@ local function info_begin(pinfo)
     return columns
 end
 
--- TCP may call the dissector twice for one frame (a reassembled message, then the rest of the
--- segment): the first message of the later call appends to what the earlier one wrote.
-local info_frame, info_text = -1, ""
+-- A call's messages, "; " between them; the first message of a call appends to what an
+-- earlier call for the same frame wrote (runtime/lua/common/info_column.lua).
+local write_info = rt.info_writer("; ")
 local function set_info(pinfo, first, text)
-    if not columns then return end
-    if first and not (info_frame == pinfo.number and tostring(info_col) == info_text) then
-        info_text = text
-        info_col:set(text)
-    else
-        info_text = info_text .. "; " .. text
-        info_col:append("; " .. text)
-    end
-    info_frame = pinfo.number
+    if columns then write_info(pinfo, info_col, text, not first) end
 end
 
 rt.layout_summary, rt.package_summary, rt.labelled = layout_summary, package_summary, labelled
@@ -3938,7 +4048,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/messages.lua ----
+-- ---- runtime/lua/packages/messages.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4104,7 +4214,7 @@ KINDS.packages = {
                 pk = form.of
             end
             -- A tshark -T fields run that names no field of this package: not built at all
-            -- (runtime/wanted.lua).
+            -- (runtime/lua/packages/wanted.lua).
             if not (pk and st.only and not st.only[pk]) then
                 package(m, tvb, tree, p, size, st, code, form, use, by_length)
             end
@@ -4194,7 +4304,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/wanted.lua ----
+-- ---- runtime/lua/packages/wanted.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4303,7 +4413,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/carry.lua ----
+-- ---- runtime/lua/packages/carry.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4347,14 +4457,14 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/stream.lua ----
+-- ---- runtime/lua/packages/stream.lua ----
 -- =============================================================================================
 do
 (function(...)
 -- State of each TCP stream: the software version its Version message announced or its layout
 -- sizes showed (nil: none yet; `implied` names the versions of the form whose size showed it),
 -- whether the dissector is resynchronising after a bad header, and the bytes carried over
--- from earlier segments while it does (a carry, runtime/carry.lua). First pass: the state moves
+-- from earlier segments while it does (a carry, runtime/lua/packages/carry.lua). First pass: the state moves
 -- along. Later passes (tshark -2, clicks in the GUI, in any order) must start each dissector
 -- call (frame number and tvb length) with the state its first-pass call started with.
 -- That state changes rarely (a Version message, a bad header, the calls that carry bytes), so
@@ -4373,7 +4483,7 @@ local spec, rt = ...
 local floor = math.floor
 
 local CALL_SPAN = 1048576   -- a call's key: frame number * CALL_SPAN + tvb length mod CALL_SPAN
-local tcp_stream = Field.new("tcp.stream")
+local tcp_stream_index = rt.tcp_stream_index
 
 -- A snapshot: { version, implied, resync, carry, carried = how many bytes the carry held }.
 -- NONE: a stream that nothing has happened on yet.
@@ -4479,16 +4589,9 @@ local function stream_key(pinfo)
     return last_key
 end
 
--- The TCP conversation of this frame (the innermost tcp.stream), nil when the tree lacks it.
-local function conversation_index()
-    local all = { tcp_stream() }
-    local last = all[#all]
-    return last and last.value
-end
-
 -- First pass: a stream whose TCP conversation is not the one it was seen in last starts over.
 local function follow_conversation(s)
-    local index = conversation_index()
+    local index = tcp_stream_index()
     if index == nil then return end
     if s.conversation ~= nil and s.conversation ~= index then
         s.version, s.implied, s.resync, s.carry = nil, nil, false, nil
@@ -4534,7 +4637,7 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/framing.lua ----
+-- ---- runtime/lua/packages/framing.lua ----
 -- =============================================================================================
 do
 (function(...)
@@ -4568,7 +4671,7 @@ local function assume_version(v) pref_version = v end
 -- neither (known is false: then implied, when set, names the versions the layout sizes showed);
 -- message_version and message_implied: the version shown on the message.
 -- call: counts dissector calls (what is asked of a tree is asked once per call); only: the
--- packages a tshark -T fields run needs (runtime/wanted.lua), nil for all.
+-- packages a tshark -T fields run needs (runtime/lua/packages/wanted.lua), nil for all.
 local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false,
              call = 0, only = nil }
 
@@ -4790,30 +4893,25 @@ local function dissect(tvb, pinfo, tree)
     return tvb:len()
 end
 
-function ur.dissector(tvb, pinfo, tree)
-    local ok, result = pcall(dissect, tvb, pinfo, tree)
-    if ok then return result end
-    -- Never let a Lua error reach the user: show it as an expert info on the packet.
-    tree:add(ur, tvb()):add_proto_expert_info(E.internal, "urwire: " .. tostring(result))
-    return tvb:len()
-end
+ur.dissector = rt.guard(ur, dissect, E.internal, "urwire")
 
 rt.plausible, rt.header_fault, rt.scan, rt.assume_version = plausible, header_fault, scan, assume_version
 end)(spec, rt)
 end
 
 -- =============================================================================================
--- ---- runtime/lua/register.lua ----
+-- ---- runtime/lua/packages/preferences.lua ----
 -- =============================================================================================
 do
 (function(...)
 -- Preferences and registration: the robot-side ports (taken over from MRCPv2, which claims
 -- TCP 30000-30200 in Wireshark 4.0; "Decode As" works on others), the software version assumed
 -- until a Version message is seen (empty: none), whether tshark -T fields builds only the
--- packages its command line names (runtime/wanted.lua), and the longest plausible message.
+-- packages its command line names (runtime/lua/packages/wanted.lua), and the longest plausible message.
 local spec, rt = ...
 local ur = spec.proto
 local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only
+local register_ports = rt.register_ports
 
 ur.prefs.ports = Pref.range("TCP ports", spec.default_ports,
     "Robot-side TCP ports of the primary/secondary interfaces", 65535)
@@ -4827,22 +4925,13 @@ ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names",
 ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length,
     "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
-local tcp_port = DissectorTable.get("tcp.port")
-local registered = nil
-
-local function register_ports()
-    if registered then tcp_port:remove(registered, ur) end
-    registered = ur.prefs.ports
-    tcp_port:add(registered, ur)
-end
-
 function ur.prefs_changed()
     assume_version(parse_version(ur.prefs.version))
     named_only(ur.prefs.named_fields_only)
-    register_ports()
+    register_ports(ur, ur.prefs.ports)
 end
 
-register_ports()
+register_ports(ur, ur.prefs.ports)
 
 set_plugin_info({
     version = "0.1.0",

@@ -13,7 +13,7 @@ point of the capture. tshark is flat here by itself (-V without the dissector: 0
 6.16 s at 10k, 30k and 100k messages, 0.71, 1.83 and 5.69 s with the dissector that only
 frames), and so is the Lua heap with the dissector (1 to 2 MB at any length); what grew was
 collecting the TvbRange and TreeItem of every field at Lua's default pace from a C heap that
-grows with the capture (runtime/collector.lua). Without a tree the figure is a difference of a
+grows with the capture (runtime/lua/packages/collector.lua). Without a tree the figure is a difference of a
 few hundredths of a second at 10k: it takes more runs. Then memory: peak RSS with the
 dissector, less without it, per message, on 100,000 messages, beside what TCP reassembly alone
 costs (the dissector that only frames).

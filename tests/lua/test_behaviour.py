@@ -167,7 +167,7 @@ def test_info_of_a_frame_called_twice_joins_both_calls(tmp_path):
 
 def test_tshark_fields_builds_the_named_packages_as_the_full_tree_does():
     """tshark -T fields builds only the robot-state packages its command line names
-    (runtime/wanted.lua): their values are those of the whole tree (ur.named_fields_only off),
+    (runtime/lua/packages/wanted.lua): their values are those of the whole tree (ur.named_fields_only off),
     and a filter on another package selects the same frames."""
     full = ("-o", "ur.named_fields_only:FALSE")
     for args in (("-e", "ur.joint_data.q_actual", "-e", "ur.masterboard_data.robot_voltage_48v"),

@@ -227,7 +227,7 @@ def test_the_match_runtime_alone(tmp_path, lua):
         pytest.fail(f"{lua} is not installed (scripts/setup.sh installs it)")
     script = tmp_path / "match_test.lua"
     script.write_text(MATCH_TEST)
-    result = subprocess.run([lua, str(script), str(ROOT / "runtime" / "lua" / "lines_match.lua")],
+    result = subprocess.run([lua, str(script), str(ROOT / "runtime" / "lua" / "lines" / "match.lua")],
                             capture_output=True, text=True)
     assert result.stdout == "ok\n", result.stderr
 

@@ -1,7 +1,8 @@
-"""The dissector's hand-written runtime (runtime/lua/*.lua), file by file:
-each parses with every Lua that Wireshark embeds, assigns no global, and passes its own small
-tests (tests/lua/runtime/test_*.lua) under plain lua5.2, lua5.3 and lua5.4, with stub
-Wireshark objects (tests/lua/runtime/stubs.lua). No tshark here: these run in seconds."""
+"""The dissectors' hand-written runtime (runtime/lua/common, shared by every kind, and
+runtime/lua/<kind>), file by file: each parses with every Lua that Wireshark embeds, assigns no
+global, and passes its own small tests (tests/lua/runtime/test_*.lua) under plain lua5.2, lua5.3
+and lua5.4, with stub Wireshark objects (tests/lua/runtime/stubs.lua). No tshark here: these run
+in seconds."""
 from __future__ import annotations
 
 import os
@@ -17,13 +18,17 @@ from tests.lua.harness import PLUGIN, ROOT
 RUNTIME = ROOT / "runtime" / "lua"
 TESTS = Path(__file__).resolve().parent / "runtime"
 LUAS = ["5.2", "5.3", "5.4"]
-# The primary dissector's files; runtime/lua/<interface>_<part>.lua belong to another interface's.
-FILES = sorted(p.name for p in RUNTIME.glob("*.lua") if "_" not in p.stem)
+# Every runtime file, as the tests load it: "common/guard.lua", "packages/walk.lua"...
+FILES = sorted(p.relative_to(RUNTIME).as_posix() for p in RUNTIME.glob("*/*.lua"))
+KINDS = ("packages", "typed_messages", "sized_packets", "lines", "int32_records")
 SCRIPTS = sorted(p.name for p in TESTS.glob("test_*.lua"))
 
 
 def test_the_runtime_and_its_tests_are_there():
     assert len(FILES) >= 8 and SCRIPTS
+    folders = sorted({name.split("/")[0] for name in FILES})
+    assert folders == sorted(("common",) + KINDS), f"runtime/lua holds a folder per kind and common/: {folders}"
+    assert not list(RUNTIME.glob("*.lua")), "every runtime file sits in its kind's folder or in common/"
     loaded = "".join(p.read_text(encoding="utf-8") for p in TESTS.glob("*.lua"))
     untested = [name for name in FILES if f'"{name}"' not in loaded]
     assert not untested, f"runtime files no test loads: {untested}"

@@ -376,7 +376,7 @@ def test_fields_and_filters_on_the_sample(args):
 ], ids=["two packages", "filter on another", "items", "own field", "package header", "experts"])
 def test_tshark_fields_builds_the_named_packages_as_the_full_tree_and_lua_do(args):
     """tshark -T fields builds only the robot-state packages its command line names (ur_wanted.c,
-    the Lua twin's runtime/lua/wanted.lua): the same lines as the whole tree (ur.named_fields_only
+    the Lua twin's runtime/lua/packages/wanted.lua): the same lines as the whole tree (ur.named_fields_only
     off) and as Lua."""
     sample = SAMPLES / "primary_session.pcapng"
     named = harness.checked(harness.run_native(sample, "-T", "fields", *args))

@@ -1,6 +1,6 @@
 """The Lua target of an int32-record interface: generated/lua/<name>.lua, a Wireshark dissector
-that loads on its own: the dissector model (dissector.py), then runtime/lua/int32_records.lua
-joined in."""
+that loads on its own: the dissector model (dissector.py), then runtime/lua/common and
+runtime/lua/int32_records joined in."""
 from __future__ import annotations
 
 from ... import ir
@@ -9,6 +9,9 @@ from ...lang.lua import literal
 from ...naming import column_name
 from .dissector import Dissector, dissector
 from .plan import RecordsPlan
+
+# The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
+RUNTIME = ("common/register.lua", "common/guard.lua", "common/dotted_version.lua", "int32_records/dissect.lua")
 
 
 def view(d: Dissector) -> dict:
@@ -29,8 +32,7 @@ def view(d: Dissector) -> dict:
                 default_release=ir.version_number(m.default_release),
                 default_text=literal(ir.version_text(m.default_release)), fields=fields, records=records, enums=enums,
                 filter_example=f"{m.name}.{d.plan.records[0].fields[-1].name}",
-                runtime=dict(path=runtime_path("lua", "int32_records.lua"),
-                             source=runtime_source("lua", "int32_records.lua")))
+                runtime=[dict(path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in RUNTIME])
 
 
 def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:

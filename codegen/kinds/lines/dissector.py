@@ -1,7 +1,7 @@
 """The Wireshark model of a text-line interface, computed once from the plan: the fields every line
 shows (with the spec's labels and descriptions), the expert infos, the version preference and the
 Protocol column, as plain data that lua.py and epan.py both render. Much of the dissector is the
-hand-written runtime (runtime/lua/lines_*.lua, runtime/epan/lines_*.c); the model is what the
+hand-written runtime (runtime/lua/lines/*.lua, runtime/epan/lines_*.c); the model is what the
 two must show alike."""
 from __future__ import annotations
 

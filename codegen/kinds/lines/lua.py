@@ -1,6 +1,6 @@
 """The Lua target of a text-line interface: generated/lua/<name>.lua, a Wireshark dissector that
 loads on its own: the spec's tables from the plan and the dissector model (dissector.py, which
-the epan target renders too), then runtime/lua/<name>_*.lua joined in."""
+the epan target renders too), then runtime/lua/common and runtime/lua/lines joined in."""
 from __future__ import annotations
 
 from ...emit import environment, runtime_path, runtime_source
@@ -9,7 +9,9 @@ from .dissector import PENDING_KEPT, Dissector, dissector
 from .model import Reply
 from .plan import LinesPlan
 
-RUNTIME = ("match.lua", "dissect.lua")
+# The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
+RUNTIME = ("common/register.lua", "common/guard.lua", "common/dotted_version.lua", "common/tcp_stream.lua",
+           "common/pending.lua", "lines/match.lua", "lines/dissect.lua")
 
 
 def _reply(reply: Reply) -> str:
@@ -39,8 +41,7 @@ def view(d: Dissector) -> dict:
         labels=[dict(name=f.name, label=string(f.label), doc=string(f.doc)) for f in d.fields],
         pending_kept=PENDING_KEPT, not_kept=string(d.expert("not_kept").text),
         reply_not_kept=string(d.expert("reply_not_kept").text),
-        runtime=[dict(path=runtime_path("lua", f"lines_{name}"), source=runtime_source("lua", f"lines_{name}"))
-                 for name in RUNTIME],
+        runtime=[dict(path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in RUNTIME],
     )
 
 

@@ -1,11 +1,11 @@
-"""Lua target: the dissector model (dissector.py) -> templates/lua/urwire.lua.j2 + runtime/lua/*.lua,
+"""Lua target: the dissector model (dissector.py) -> templates/lua/urwire.lua.j2 + runtime/lua/{common,packages},
 one Wireshark dissector in one self-contained file.
 
 The model decides every field, value string, descriptor and form; this module only spells them in
 Lua: the ProtoField constructor and base of each field, and the tables' names (VS.<ENUM> value
 strings, NAMES.<ENUM> names by version, L.<layout>, PART.<part>). The template writes each
 descriptor kind and each ProtoField shape with a macro of its own. The code that walks the
-descriptors is hand-written Lua in runtime/lua/, joined after the generated tables.
+descriptors is hand-written Lua in runtime/lua/packages (and runtime/lua/common), joined after the generated tables.
 """
 from __future__ import annotations
 
@@ -19,10 +19,12 @@ from .dissector import EnumStrings, Field, ValueStrings, dissector
 
 OUT = "lua/urwire.lua"
 
-# The hand-written runtime, in the order it is joined. Each file is a chunk that receives
-# (spec, rt): `spec` is the generated data, `rt` what earlier runtime files export.
-RUNTIME = ("declare.lua", "bytes.lua", "versions.lua", "items.lua", "collector.lua", "walk.lua", "values.lua",
-           "info.lua", "messages.lua", "wanted.lua", "carry.lua", "stream.lua", "framing.lua", "register.lua")
+# The hand-written runtime, in the order it is joined: the files every kind's dissector shares
+# (runtime/lua/common), then this kind's own (runtime/lua/packages). Each file is a chunk that
+# receives (spec, rt): `spec` is the generated data, `rt` what earlier runtime files export.
+COMMON = ("register.lua", "guard.lua", "tcp_stream.lua", "bytes.lua", "info_column.lua")
+RUNTIME = ("declare.lua", "read_faults.lua", "versions.lua", "items.lua", "collector.lua", "walk.lua", "values.lua",
+           "info.lua", "messages.lua", "wanted.lua", "carry.lua", "stream.lua", "framing.lua", "preferences.lua")
 
 # ProtoField constructor per scalar (integers take base and value strings, floats do not).
 PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16", "uint16": "uint16",
@@ -68,12 +70,12 @@ FILTERS = {"lua": lua_literal, "lua_text": lua_text, "lua_field": lua_field, "va
 
 def runtime() -> list[dict]:
     """The runtime files in joining order, as joined (standalone-only lines removed)."""
-    folder = RUNTIME_FOLDER / "lua"
-    # runtime/lua/<interface>_<part>.lua belongs to another interface's dissector, not to this one.
-    found = sorted(p.name for p in folder.glob("*.lua") if "_" not in p.stem)
+    folder = RUNTIME_FOLDER / "lua" / "packages"
+    found = sorted(p.name for p in folder.glob("*.lua"))
     if sorted(RUNTIME) != found:
         raise ValueError(f"lua target: runtime files {found} differ from the joining order {list(RUNTIME)}")
-    return [dict(name=name, path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in RUNTIME]
+    names = [f"common/{name}" for name in COMMON] + [f"packages/{name}" for name in RUNTIME]
+    return [dict(name=name, path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in names]
 
 
 def render(protocol_plan, banner: list[str]) -> dict[str, str]:

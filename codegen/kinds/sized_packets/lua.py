@@ -2,7 +2,7 @@
 view model -> generated/lua/<name>.lua, a dissector that loads on its own beside urwire.lua. The
 generated part declares the protocol, one field per spec field (filterable as <name>.<field>), the
 enum name tables, the layouts' slots and the forms by size; the hand-written runtime
-(runtime/lua/<name>_*.lua, joined after it) frames the TCP stream by the size field and walks them."""
+(runtime/lua/sized_packets, joined after it) frames the TCP stream by the size field and walks them."""
 from __future__ import annotations
 
 from ...comments import node_text
@@ -11,7 +11,8 @@ from ...lang.lua import literal, string
 from .dissector import Dissector, dissector
 from .plan import SizedPlan
 
-RUNTIME = ["dissect.lua"]   # runtime/lua/<name>_dissect.lua
+# The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
+RUNTIME = ("common/register.lua", "common/dotted_version.lua", "common/info_column.lua", "sized_packets/dissect.lua")
 
 
 def view(d: Dissector) -> dict:
@@ -31,8 +32,7 @@ def view(d: Dissector) -> dict:
         enum_of=[(f.name, f.enum) for f in d.fields if f.enum is not None],
         layouts=layouts, tables=tables, forms=forms, min_size=protocol.size_field_bytes + 8,
         same_size=protocol.same_size,
-        runtime=[dict(path=runtime_path("lua", f"{name}_{part}"), source=runtime_source("lua", f"{name}_{part}"))
-                 for part in RUNTIME])
+        runtime=[dict(path=runtime_path("lua", part), source=runtime_source("lua", part)) for part in RUNTIME])
 
 
 def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:

@@ -1,12 +1,12 @@
 """Lua target of the typed-messages kind: the dissector model (dissector.py) -> plain data ->
 templates/lua/typed_messages/ -> generated/lua/<name>.lua, one Wireshark protocol that loads on its
-own, with the hand-written runtime of runtime/lua/<name>_*.lua joined after the tables."""
+own, with the hand-written runtime of runtime/lua/common and runtime/lua/typed_messages joined after the tables."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Optional
 
-from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ...emit import environment, runtime_path, runtime_source
 from ...lang import lua as lang
 from ...wrap import spread
 from .dissector import TYPE_CODES, Dissector, Field, Step, dissector
@@ -16,9 +16,13 @@ from .plan import TypedPlan
 PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16", "uint16": "uint16",
               "int32": "int32", "uint32": "uint32", "int64": "int64", "uint64": "uint64",
               "float32": "float", "float64": "double", "string": "string", "framenum": "framenum", "bytes": "bytes"}
-# How the runtime reads a scalar from a TvbRange (runtime/lua/rtde_dissect.lua's READ table).
+# How the runtime reads a scalar from a TvbRange (runtime/lua/typed_messages/dissect.lua's READ table).
 READER = {"bool": "uint", "int8": "int", "uint8": "uint", "int16": "int", "uint16": "uint", "int32": "int",
           "uint32": "uint", "int64": "int64", "uint64": "uint64", "float32": "float", "float64": "float"}
+# The runtime joined after the tables, in order (runtime/lua/common, then this kind's own: the
+# state first, then the dissector).
+RUNTIME = ("common/register.lua", "common/tcp_stream.lua", "common/bytes.lua", "common/pending.lua",
+           "typed_messages/state.lua", "typed_messages/dissect.lua")
 TYPE_NAMES = "TYPE_NAMES"               # the Lua table of the type codes' letters
 
 
@@ -94,7 +98,7 @@ def view(d: Dissector) -> dict:
         "max_pending": interface.max_pending_setups,
         "codes": d.plan.codes,
         "undocumented": [{"code": u.code, "name": u.name, "label": u.label} for u in interface.undocumented],
-        "runtime": [{"path": runtime_path("lua", n), "source": runtime_source("lua", n)} for n in runtime_files(prefix)],
+        "runtime": [{"path": runtime_path("lua", n), "source": runtime_source("lua", n)} for n in RUNTIME],
     }
 
 
@@ -103,9 +107,3 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
     env.filters["lua"] = lang.literal
     text = env.get_template("typed_messages/interface.lua.j2").render(banner=banner, **view(dissector(planned)))
     return {f"lua/{planned.interface.name}.lua": text}
-
-
-def runtime_files(prefix: str) -> list[str]:
-    """The interface's own runtime files (runtime/lua/<name>_*.lua): the state first, then the dissector."""
-    found = sorted(p.name for p in (RUNTIME_FOLDER / "lua").glob(f"{prefix}_*.lua"))
-    return sorted(found, key=lambda n: (not n.endswith("_state.lua"), n))

@@ -115,20 +115,21 @@ function S.st(raw, version)
              message_version = version or 5009000 }
 end
 
--- The expert infos and extra fields of runtime/declare.lua, as plain strings.
+-- The expert infos and extra fields of runtime/lua/packages/declare.lua, as plain strings.
 S.X = { raw = "ur.raw", extra = "ur.extra", skipped = "ur.skipped", version = "ur.software_version",
         assumed = "ur.version_assumed", unknown_package = "ur.unknown_package", urscript = "ur.urscript" }
 S.E = { bad_length = "bad_length", bad_type = "bad_type", malformed = "malformed", extra = "extra",
         unknown = "unknown", assumed = "assumed", by_length = "by_length", internal = "internal" }
 
--- rt after bytes.lua, versions.lua and items.lua, and after the walker.
+-- rt after bytes.lua, read_faults.lua, versions.lua and items.lua, and after the walker.
 function S.base_rt(spec)
     spec = spec or {}
     spec.default_version = spec.default_version or "5.9"
     spec.max_tree_items = spec.max_tree_items or 10000
-    local rt = S.load("bytes.lua", spec)
-    S.load("versions.lua", spec, rt)
-    S.load("items.lua", spec, rt)
+    local rt = S.load("common/bytes.lua", spec)
+    S.load("packages/read_faults.lua", spec, rt)
+    S.load("packages/versions.lua", spec, rt)
+    S.load("packages/items.lua", spec, rt)
     return rt, spec
 end
 
@@ -137,8 +138,8 @@ function S.walker_rt(spec)
     rt, spec = S.base_rt(spec)
     spec.max_value_depth = spec.max_value_depth or 8
     spec.value_tables = spec.value_tables or { { kinds = {}, min_size = 1 } }
-    S.load("walk.lua", spec, rt)
-    S.load("values.lua", spec, rt)
+    S.load("packages/walk.lua", spec, rt)
+    S.load("packages/values.lua", spec, rt)
     return rt, spec
 end
 

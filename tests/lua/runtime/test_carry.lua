@@ -1,6 +1,6 @@
--- runtime/carry.lua: bytes carried by hand, kept as parts and joined once.
+-- runtime/lua/packages/carry.lua: bytes carried by hand, kept as parts and joined once.
 local S = dofile("stubs.lua")
-local rt = S.load("carry.lua", { header_size = 5 })
+local rt = S.load("packages/carry.lua", { header_size = 5 })
 
 local c = rt.carry_new("ab")
 S.eq(c.size, 2, "a new carry holds its bytes"); S.eq(c.head, "ab", "less than a header")

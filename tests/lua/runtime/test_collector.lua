@@ -1,8 +1,8 @@
--- runtime/collector.lua: the collector's pace is set as the file loads.
+-- runtime/lua/packages/collector.lua: the collector's pace is set as the file loads.
 local S = dofile("stubs.lua")
 collectgarbage("setpause", 200)
 collectgarbage("setstepmul", 200)
-local rt = S.load("collector.lua")
+local rt = S.load("packages/collector.lua")
 local pace = rt.collector_pace
 S.eq(pace.pause < 200 and pace.stepmul > 200, true, "sooner and larger than Lua's default")
 -- Setting a value answers the one before it (Lua 5.4 keeps the pause in steps of 4).

@@ -1,4 +1,5 @@
--- runtime/declare.lua and runtime/register.lua: what is registered with Wireshark at load time.
+-- runtime/lua/packages/declare.lua and runtime/lua/packages/preferences.lua: what is registered
+-- with Wireshark at load time.
 local S = dofile("stubs.lua")
 S.wireshark_globals()
 
@@ -6,7 +7,7 @@ local ur = Proto("ur", "UR")
 local spec = { proto = ur, fields = { "ur.length", "ur.type", "ur.key.text" }, title = "Universal Robots",
                default_ports = "30001,30002", default_version = "5.9", max_message_length = 4096 }
 local rt = S.base_rt(spec)
-S.load("declare.lua", spec, rt)
+S.load("packages/declare.lua", spec, rt)
 S.eq(table.concat(ur.fields, " "), "ur.length ur.type ur.key.text ur.raw ur.extra ur.skipped ur.software_version " ..
      "ur.version_assumed ur.unknown_package ur.urscript", "the spec's fields, then the dissector's own")
 S.eq(#ur.experts, 10, "experts")
@@ -18,7 +19,8 @@ S.eq(rt.E.assumed, "ur.assumed_version", "experts exported")
 local assumed, named_only
 rt.assume_version = function(v) assumed = v end
 rt.named_only = function(on) named_only = on end
-S.load("register.lua", spec, rt)
+S.load("common/register.lua", spec, rt)
+S.load("packages/preferences.lua", spec, rt)
 S.eq(ur.prefs.named_fields_only, true, "tshark -T fields builds the packages it names, by default")
 S.eq(ur.prefs.ports, "30001,30002", "ports preference from the spec")
 S.eq(ur.prefs.version, "", "no version preference: the layout sizes, else the spec's default")

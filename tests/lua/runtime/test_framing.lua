@@ -1,4 +1,4 @@
--- runtime/framing.lua: header faults, the resynchronising scan, and whole calls of the
+-- runtime/lua/packages/framing.lua: header faults, the resynchronising scan, and whole calls of the
 -- dissector over a stub tvb: messages split, packed, and after a bad header.
 local S = dofile("stubs.lua")
 S.wireshark_globals()
@@ -16,11 +16,14 @@ local spec = { proto = ur, F = { length = "ur.length", type = "ur.type" }, heade
                version_reader = { message = 99 }, default_version = "5.9" }
 local rt = S.base_rt(spec)
 rt.X, rt.E, rt.handlers = S.X, S.E, { [20] = handler }
-S.load("info.lua", spec, rt)
-S.load("carry.lua", spec, rt)
-S.load("stream.lua", spec, rt)
-S.load("wanted.lua", spec, rt)
-S.load("framing.lua", spec, rt)
+S.load("common/info_column.lua", spec, rt)
+S.load("packages/info.lua", spec, rt)
+S.load("packages/carry.lua", spec, rt)
+S.load("common/tcp_stream.lua", spec, rt)
+S.load("packages/stream.lua", spec, rt)
+S.load("packages/wanted.lua", spec, rt)
+S.load("common/guard.lua", spec, rt)
+S.load("packages/framing.lua", spec, rt)
 
 local function header(len, mtype) return S.bytes(0, 0, 0, len, mtype) end
 S.eq(rt.plausible(header(5, 20), 0, 100), true, "a plausible header")

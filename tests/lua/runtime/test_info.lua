@@ -1,8 +1,10 @@
--- runtime/info.lua: the Info column from raw bytes, and its text across two calls for a frame.
+-- runtime/lua/packages/info.lua: the Info column from raw bytes, and its text across two calls for
+-- a frame.
 local S = dofile("stubs.lua")
 -- Two series of forms: up to 1.8, and from 3.0 (1.9 to 3.0 is no one's).
 local rt = S.base_rt({ package_header_size = 5, package_length_size = 4, segment_starts = { "1.9", "3.0" } })
-S.load("info.lua", { package_header_size = 5, package_length_size = 4 }, rt)
+S.load("common/info_column.lua", {}, rt)
+S.load("packages/info.lua", { package_header_size = 5, package_length_size = 4 }, rt)
 
 local MODE = { [-1] = "NO_CONTROLLER", [7] = "RUNNING" }
 local L = {

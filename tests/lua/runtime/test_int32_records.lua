@@ -1,5 +1,5 @@
--- runtime/int32_records.lua: records cut by the release's layout, scaled values beside their raw
--- int32, a record cut by the segment waiting for the rest, the release preference read.
+-- runtime/lua/int32_records/dissect.lua: records cut by the release's layout, scaled values beside
+-- their raw int32, a record cut by the segment waiting for the rest, the release preference read.
 local S = dofile("stubs.lua")
 S.wireshark_globals()
 
@@ -24,12 +24,16 @@ for _, f in ipairs(spec.fields) do spec.fields_by_name[f.name] = f end
 local made
 local make_proto = Proto
 Proto = function(...) made = make_proto(...); return made end
-local rt = S.load("int32_records.lua", spec)
+local rt = S.load("common/register.lua", spec)
+S.load("common/guard.lua", spec, rt)
+S.load("common/dotted_version.lua", spec, rt)
+S.load("int32_records/dissect.lua", spec, rt)
 S.eq(rt.parse_release("2.9"), 2009000, "a release preference")
 S.eq(rt.parse_release("latest"), nil, "not a release")
+S.eq(rt.parse_release(" 2.10.1234 "), 2011234, "a patch past 999 carries into the minor (no clamp)")
 S.eq(rt.layout_of(spec.to_robot, 2009000).slots[2].scale, 1000, "the layout before 2.10")
 S.eq(rt.layout_of(spec.to_robot, 2010000).slots[2].scale, 1000000, "the layout from 2.10")
-S.eq(S.ports["tcp.port"], 50003, "the port registered")
+S.eq(S.ports["tcp.port"], "50003", "the port registered")
 
 -- A tvb whose ranges read big-endian int32s.
 local function tvb(raw)

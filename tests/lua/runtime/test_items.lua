@@ -1,6 +1,7 @@
--- runtime/items.lua: a message's tree shows at most max_tree_items items; the rest are counted.
+-- runtime/lua/packages/items.lua: a message's tree shows at most max_tree_items items; the rest are
+-- counted.
 local S = dofile("stubs.lua")
-local rt = S.load("items.lua", { max_tree_items = 3 })
+local rt = S.load("packages/items.lua", { max_tree_items = 3 })
 local range = S.tvb("abcdef")(0, 2)
 
 local top = S.tree()
@@ -53,7 +54,7 @@ S.eq(rt.room(1), false, "then none")
 -- A Wireshark without the class tables: the methods are called by name.
 local classes = { TreeItem, Tvb }
 TreeItem, Tvb = nil, nil
-local by_name = S.load("items.lua", { max_tree_items = 3 })
+local by_name = S.load("packages/items.lua", { max_tree_items = 3 })
 TreeItem, Tvb = classes[1], classes[2]
 local root = S.tree()
 by_name.items_begin(root)

@@ -1,4 +1,4 @@
--- runtime/lines_match.lua and runtime/lines_dissect.lua: commands and replies looked up, a
+-- runtime/lua/lines/match.lua and runtime/lua/lines/dissect.lua: commands and replies looked up, a
 -- conversation's replies paired with its commands, the version learnt, lines reassembled.
 local S = dofile("stubs.lua")
 S.wireshark_globals()
@@ -21,22 +21,31 @@ local spec = {
     lookup = {2, 3, 1},
     labels = {command = "Command", command_name = "Command name", argument = "Argument", available = "Available",
               reply = "Reply", reply_name = "Reply meaning", error = "Says an error"},
+    not_kept = "command not kept", reply_not_kept = "reply to a command not kept",
 }
-local rt = S.load("lines_match.lua", spec)
+local rt = S.load("common/dotted_version.lua", spec)
+S.load("lines/match.lua", spec, rt)
 S.eq(rt.find_command("load /a.urp"), 1, "a command with its argument")
 S.eq(select(2, rt.find_command("load /a.urp")), "/a.urp", "the argument")
 S.eq(rt.find_command("loadx"), nil, "a text that only opens like a command")
 S.eq(rt.classify(1, "File not found: x").name, "not_found", "a command's reply")
 S.eq(rt.classify(nil, "could not understand: 'x'").error, true, "a common reply, with no command")
 S.eq(rt.version_in("URSoftware 3.15.7.1 (x)"), 3015007, "the version a reply tells")
+S.eq(rt.parse_version(" 5.11.1 "), 5011001, "the version preference")
+S.eq(rt.parse_version("3.1234.5"), 3999005, "a minor past 999 stands at 999")
+S.eq(rt.parse_version("5.11 beta"), nil, "not a version preference")
 S.eq(rt.available(3, 3015007), false, "an e-Series command on a CB3")
 S.eq(rt.available(3, 5004000), true, "from its first version")
 
 local made
 local make_proto = Proto
 Proto = function(...) made = make_proto(...); return made end
-S.load("lines_dissect.lua", spec, rt)
-S.eq(S.ports["tcp.port"], 29999, "the port registered")
+S.load("common/register.lua", spec, rt)
+S.load("common/guard.lua", spec, rt)
+S.load("common/tcp_stream.lua", spec, rt)
+S.load("common/pending.lua", spec, rt)
+S.load("lines/dissect.lua", spec, rt)
+S.eq(S.ports["tcp.port"], "29999", "the port registered")
 
 -- A conversation: the client's lines go to port 29999, the replies come from it.
 local function pinfo(number, from_robot)
@@ -76,4 +85,36 @@ assert(out:find("!ur_dashboard.too_long", 1, true), out)
 out = dissect(7, false, "xx\nload b\n")
 assert(out:find("Rest of a line too long", 1, true), out)
 assert(out:find("ur_dashboard.command_name @3+6 = load", 1, true), out)
+
+-- Pairing in a new TCP conversation: pending_kept (4) commands await replies; the fifth is not
+-- kept, nor the sixth behind it, and their replies are paired with no command.
+local function count(text, what)
+    local n = 0
+    for _ in text:gmatch(what) do n = n + 1 end
+    return n
+end
+S.fields["tcp.stream"] = { value = 1 }
+dissect(8, true, "Connected\n")
+out = dissect(9, false, "load a\nload b\nload c\nload d\nload e\n")
+S.eq(count(out, "!ur_dashboard%.not_kept: command not kept"), 1, "the fifth command is not kept")
+out = dissect(10, false, "load f\n")
+S.eq(count(out, "!ur_dashboard%.not_kept"), 1, "nor one behind it")
+out = dissect(11, true, "Loading: a\nLoading: b\nLoading: c\nLoading: d\nLoading: e\nLoading: f\n")
+S.eq(count(out, "command_name @%d+%+%d+ = load"), 4, "four replies paired with their commands")
+S.eq(count(out, "!ur_dashboard%.reply_not_kept: reply to a command not kept"), 2, "two paired with none")
+out = dissect(12, false, "load g\n")
+S.eq(count(out, "not_kept"), 0, "every lost one answered: kept again")
+out = dissect(13, true, "Loading: g\n")
+S.eq(count(out, "command_name @0%+10 = load"), 1, "and paired")
+
+-- The script sender's rule: only the latest request counts, every reply belongs to it.
+spec.one_reply_per_request = false
+S.fields["tcp.stream"] = { value = 2 }
+dissect(14, true, "Connected\n")
+out = dissect(15, true, "Loading: x\n")
+S.eq(count(out, "command_name"), 0, "no request yet: paired with none")
+S.eq(count(out, "not_kept"), 0, "and none lost")
+dissect(16, false, "load a\nPolyscopeVersion\n")
+out = dissect(17, true, "URSoftware 5.11\nURSoftware 5.12\n")
+S.eq(count(out, "command_name @%d+%+%d+ = polyscope_version"), 2, "both replies to the latest request")
 print("ok")

@@ -1,4 +1,4 @@
--- runtime/messages.lua: one function pair per message kind, driven by each message's data.
+-- runtime/lua/packages/messages.lua: one function pair per message kind, driven by each message's data.
 local S = dofile("stubs.lua")
 
 local function message_rt(messages)
@@ -7,8 +7,9 @@ local function message_rt(messages)
                    segment_starts = { "1.9", "3.0" } }
     local rt = S.walker_rt(spec)
     rt.X, rt.E = S.X, S.E
-    S.load("info.lua", spec, rt)
-    S.load("messages.lua", spec, rt)
+    S.load("common/info_column.lua", spec, rt)
+    S.load("packages/info.lua", spec, rt)
+    S.load("packages/messages.lua", spec, rt)
     return rt
 end
 
@@ -202,7 +203,7 @@ st.call = 2
 state.tree(state.m, S.tvb(robot_state), tree, 0, #robot_state, st)
 S.eq(S.dump(tree):match("ur.mode.mode @10%+1") ~= nil, true, "walked when a filter asks for its field")
 
--- A tshark -T fields run that names no field of a package (st.only, runtime/wanted.lua): the
+-- A tshark -T fields run that names no field of a package (st.only, runtime/lua/packages/wanted.lua): the
 -- package is not built; the packages it names are, whole.
 tree = S.tree()
 st = state_of(robot_state)

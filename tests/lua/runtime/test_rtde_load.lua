@@ -1,5 +1,6 @@
--- generated/lua/rtde.lua (with runtime/rtde_state.lua and runtime/rtde_dissect.lua joined) loads on
--- its own under this Lua with stub Wireshark globals: one protocol, its port, its fields, no global.
+-- generated/lua/rtde.lua (with runtime/lua/typed_messages/state.lua and
+-- runtime/lua/typed_messages/dissect.lua joined) loads on its own under this Lua with stub
+-- Wireshark globals: one protocol, its port, its fields, no global.
 local S = dofile("stubs.lua")
 S.wireshark_globals()
 local plugin = assert(os.getenv("URWIRE_PLUGIN"), "set URWIRE_PLUGIN"):gsub("urwire%.lua$", "rtde.lua")
@@ -32,7 +33,7 @@ end
 local file = assert(io.open(plugin))
 local text = file:read("*a")
 file:close()
-for _, name in ipairs({ "rtde_state.lua", "rtde_dissect.lua" }) do
+for _, name in ipairs({ "typed_messages/state.lua", "typed_messages/dissect.lua" }) do
     S.eq(text:find("-- ---- runtime/lua/" .. name .. " ----", 1, true) ~= nil, true, name .. " is joined")
 end
 print("ok")

@@ -1,6 +1,7 @@
--- runtime/rtde_state.lua: the protocol version negotiated, setup replies matched to their requests
--- in order, recipes per direction, refusals and a refused start; requests beyond the bounds not
--- kept and their replies paired with nothing; versions with no layouts; variables retyped.
+-- runtime/lua/typed_messages/state.lua: the protocol version negotiated, setup replies matched to
+-- their requests in order, recipes per direction, refusals and a refused start; requests beyond the
+-- bounds not kept and their replies paired with nothing; versions with no layouts; variables
+-- retyped.
 local S = dofile("stubs.lua")
 local spec = {
     default_protocol = 2,
@@ -16,7 +17,8 @@ local spec = {
     refusals = { NOT_FOUND = true, IN_USE = true },
     value_types = { DOUBLE = {}, VECTOR6D = {}, INT32 = {} },
 }
-local rt = S.load("rtde_state.lua", spec)
+local rt = S.load("common/pending.lua", spec)
+S.load("typed_messages/state.lua", spec, rt)
 
 S.eq(table.concat(rt.split("a,b,c", ","), "|"), "a|b|c", "split")
 S.eq(#rt.split("", ","), 0, "no names")

@@ -1,8 +1,9 @@
--- runtime/stream.lua: per-stream state on the first pass, snapshots on later ones.
+-- runtime/lua/packages/stream.lua: per-stream state on the first pass, snapshots on later ones.
 local S = dofile("stubs.lua")
 local spec = { proto = {}, header_size = 5 }
-local rt = S.load("carry.lua", spec)
-S.load("stream.lua", spec, rt)
+local rt = S.load("packages/carry.lua", spec)
+S.load("common/tcp_stream.lua", spec, rt)
+S.load("packages/stream.lua", spec, rt)
 S.eq(spec.proto.init, rt.stream_reset, "ur.init forgets every stream")
 
 local function call(number, n, visited)

@@ -1,4 +1,4 @@
--- runtime/values.lua: typed values of global variables, nested, with the table of the
+-- runtime/lua/packages/values.lua: typed values of global variables, nested, with the table of the
 -- stream's software version.
 local S = dofile("stubs.lua")
 

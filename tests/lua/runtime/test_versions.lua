@@ -1,5 +1,5 @@
--- runtime/versions.lua: parse, show and compare versions (major.minor.bugfix as one number);
--- choose a value table, an enum's names and a package's form by the version, else by the
+-- runtime/lua/packages/versions.lua: parse, show and compare versions (major.minor.bugfix as one
+-- number); choose a value table, an enum's names and a package's form by the version, else by the
 -- length; read the version a Version message announces.
 local S = dofile("stubs.lua")
 local rt = S.base_rt({ default_version = "5.9" })

@@ -1,4 +1,4 @@
--- runtime/walk.lua: a small descriptor list walked into a stub tree, and the error paths.
+-- runtime/lua/packages/walk.lua: a small descriptor list walked into a stub tree, and the error paths.
 local S = dofile("stubs.lua")
 local rt = S.walker_rt()
 local walk = rt.walk

@@ -1,4 +1,4 @@
--- runtime/wanted.lua: which robot-state packages a tshark -T fields command line needs.
+-- runtime/lua/packages/wanted.lua: which robot-state packages a tshark -T fields command line needs.
 local S = dofile("stubs.lua")
 
 local JOINTS = { name = "joint_data" }
@@ -13,7 +13,7 @@ local spec = {
         [20] = { kind = "subtypes" },
     },
 }
-local rt = S.load("wanted.lua", spec, {})
+local rt = S.load("packages/wanted.lua", spec, {})
 
 local function names(...) return rt.named_fields({ ... }) end
 local function set(t)

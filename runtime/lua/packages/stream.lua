@@ -1,7 +1,7 @@
 -- State of each TCP stream: the software version its Version message announced or its layout
 -- sizes showed (nil: none yet; `implied` names the versions of the form whose size showed it),
 -- whether the dissector is resynchronising after a bad header, and the bytes carried over
--- from earlier segments while it does (a carry, runtime/carry.lua). First pass: the state moves
+-- from earlier segments while it does (a carry, runtime/lua/packages/carry.lua). First pass: the state moves
 -- along. Later passes (tshark -2, clicks in the GUI, in any order) must start each dissector
 -- call (frame number and tvb length) with the state its first-pass call started with.
 -- That state changes rarely (a Version message, a bad header, the calls that carry bytes), so
@@ -20,7 +20,7 @@ local spec, rt = ...
 local floor = math.floor
 
 local CALL_SPAN = 1048576   -- a call's key: frame number * CALL_SPAN + tvb length mod CALL_SPAN
-local tcp_stream = Field.new("tcp.stream")
+local tcp_stream_index = rt.tcp_stream_index
 
 -- A snapshot: { version, implied, resync, carry, carried = how many bytes the carry held }.
 -- NONE: a stream that nothing has happened on yet.
@@ -126,16 +126,9 @@ local function stream_key(pinfo)
     return last_key
 end
 
--- The TCP conversation of this frame (the innermost tcp.stream), nil when the tree lacks it.
-local function conversation_index()
-    local all = { tcp_stream() }
-    local last = all[#all]
-    return last and last.value
-end
-
 -- First pass: a stream whose TCP conversation is not the one it was seen in last starts over.
 local function follow_conversation(s)
-    local index = conversation_index()
+    local index = tcp_stream_index()
     if index == nil then return end
     if s.conversation ~= nil and s.conversation ~= index then
         s.version, s.implied, s.resync, s.carry = nil, nil, false, nil

@@ -5,6 +5,7 @@
 local spec, rt = ...
 
 local find, sub = string.find, string.sub
+local dotted_version = rt.dotted_version
 
 -- The whole text is the pattern: its first piece opens it, its last ends it, the others follow
 -- in order between them, and each placeholder takes any text.
@@ -84,9 +85,9 @@ end
 
 -- "5.11" or "5.11.1" -> its version_number; nil for anything else.
 local function parse_version(text)
-    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    local major, minor, bugfix = dotted_version(text)
     if not major then return nil end
-    return version_number(tonumber(major), tonumber(minor), tonumber(bugfix) or 0)
+    return version_number(major, minor, bugfix)
 end
 
 -- Text as every output shows it: up to its first NUL (as C strings end), in UTF-8, each

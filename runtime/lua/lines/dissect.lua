@@ -6,6 +6,7 @@
 local spec, rt = ...
 local matches, find_command, classify, shown = rt.matches, rt.find_command, rt.classify, rt.shown
 local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version
+local pending_queue, push, pop = rt.pending_queue, rt.pending_push, rt.pending_pop
 
 local proto = Proto(spec.name, spec.title)
 local L, D = spec.labels, spec.docs or {}
@@ -48,22 +49,21 @@ local conversations, decided = {}, {}
 -- A conversation: both ends, and Wireshark's TCP conversation where the tree has it (the
 -- innermost tcp.stream), so that a new connection on the same addresses and ports pairs nothing
 -- with the last one's commands, as in the native plugin.
-local tcp_stream = Field.new("tcp.stream")
+local tcp_stream_index = rt.tcp_stream_index
 
 local function conversation_key(pinfo, from_server)
     local server = tostring(from_server and pinfo.src or pinfo.dst) .. ":" ..
         (from_server and pinfo.src_port or pinfo.dst_port)
     local client = tostring(from_server and pinfo.dst or pinfo.src) .. ":" ..
         (from_server and pinfo.dst_port or pinfo.src_port)
-    local all = { tcp_stream() }
-    local index = all[#all]
-    return server .. "<>" .. client .. (index and "#" .. tostring(index.value) or "")
+    local index = tcp_stream_index()
+    return server .. "<>" .. client .. (index and "#" .. tostring(index) or "")
 end
 
 local function conversation(key)
     local c = conversations[key]
     if not c then
-        c = {pending = {}, first = 1, last = 0, lost = 0, greeted = false, version = parse_version(proto.prefs.version),
+        c = {pending = pending_queue(spec.pending_kept), greeted = false, version = parse_version(proto.prefs.version),
              skipping = {[true] = false, [false] = false}}
         conversations[key] = c
     end
@@ -72,36 +72,23 @@ end
 
 -- A request awaits its reply; false when it is not kept. A command that comes when pending_kept
 -- await replies is not kept but counted lost, and so is every command behind a lost one (replies
--- come in order): no reply is paired with another command.
+-- come in order, runtime/lua/common/pending.lua): no reply is paired with another command. An
+-- unknown command is kept as false.
 local function keep(c, index)
-    if not spec.one_reply_per_request then     -- only the latest request counts
-        c.pending[c.last] = nil
-        c.first, c.last = 1, 1
-        c.pending[1] = index or false
-    elseif c.lost > 0 or c.last - c.first + 1 >= spec.pending_kept then
-        c.lost = c.lost + 1
-        return false
-    else
-        c.last = c.last + 1
-        c.pending[c.last] = index or false
+    if not spec.one_reply_per_request then     -- only the latest request counts (c.latest)
+        c.latest = index or false
+        return true
     end
-    return true
+    return push(c.pending, index or false)
 end
 
 -- The request a reply answers (nil: none), and whether it answers one that was not kept.
 local function answered(c)
-    if c.first <= c.last and spec.one_reply_per_request then
-        local command = c.pending[c.first] or nil
-        c.pending[c.first] = nil
-        c.first = c.first + 1
-        return command, false
-    elseif c.first <= c.last then
-        return c.pending[c.last] or nil, false   -- every answering line belongs to the latest request
-    elseif c.lost > 0 then
-        c.lost = c.lost - 1
-        return nil, true
+    if not spec.one_reply_per_request then
+        return c.latest or nil, false   -- every answering line belongs to the latest request
     end
-    return nil, false
+    local paired, command = pop(c.pending)
+    return command or nil, not paired
 end
 
 -- A line too long is still a line: a command the server answers, or the reply to one, so that
@@ -234,16 +221,10 @@ local function dissect(tvb, pinfo, tree)
     return n
 end
 
-function proto.dissector(tvb, pinfo, tree)
-    local ok, result = pcall(dissect, tvb, pinfo, tree)
-    if ok then return result end
-    tree:add(proto, tvb()):add_proto_expert_info(E.internal, spec.name .. ": " .. tostring(result))
-    return tvb:len()
-end
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 
 function proto.init()
     conversations, decided = {}, {}
 end
 
-local tcp_port = DissectorTable.get("tcp.port")
-for _, port in ipairs(spec.ports) do tcp_port:add(port, proto) end
+rt.register_ports(proto, table.concat(spec.ports, ","))

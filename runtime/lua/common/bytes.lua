@@ -1,8 +1,8 @@
 -- Big-endian numbers read from a message's raw bytes (the Lua string of tvb:raw(), offsets
--- counted from 0 as in the tvb), and the canonical texts of a read that does not fit.
--- string.byte on the raw string costs a seventh of tvb(o, n):uint() in tshark 4.0.
+-- counted from 0 as in the tvb). string.byte on the raw string costs a seventh of
+-- tvb(o, n):uint() in tshark 4.0.
 local spec, rt = ...
-local fmt, byte = string.format, string.byte
+local byte = string.byte
 
 -- An unsigned integer of n bytes at offset o.
 local function be_uint(raw, o, n)
@@ -28,17 +28,4 @@ local function be_int(raw, o, n)
     return v
 end
 
--- "<path> at offset <o>: needs <need> bytes, <left> left"; offsets from the message's first
--- byte (st.base), as every target words it.
-local function short(st, path, o, need, e)
-    local left = e - o
-    if left < 0 then left = 0 end
-    return fmt("%s at offset %d: needs %d bytes, %d left", path, o - st.base, need, left)
-end
-
--- A length prefix, list count or matrix size below zero.
-local function negative(st, path, o, n)
-    return fmt("%s at offset %d: negative length %d", path, o - st.base, n)
-end
-
-rt.be_uint, rt.be_int, rt.short, rt.negative = be_uint, be_int, short, negative
+rt.be_uint, rt.be_int = be_uint, be_int

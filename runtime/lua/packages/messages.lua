@@ -160,7 +160,7 @@ KINDS.packages = {
                 pk = form.of
             end
             -- A tshark -T fields run that names no field of this package: not built at all
-            -- (runtime/wanted.lua).
+            -- (runtime/lua/packages/wanted.lua).
             if not (pk and st.only and not st.only[pk]) then
                 package(m, tvb, tree, p, size, st, code, form, use, by_length)
             end

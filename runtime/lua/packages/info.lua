@@ -140,19 +140,11 @@ local function info_begin(pinfo)
     return columns
 end
 
--- TCP may call the dissector twice for one frame (a reassembled message, then the rest of the
--- segment): the first message of the later call appends to what the earlier one wrote.
-local info_frame, info_text = -1, ""
+-- A call's messages, "; " between them; the first message of a call appends to what an
+-- earlier call for the same frame wrote (runtime/lua/common/info_column.lua).
+local write_info = rt.info_writer("; ")
 local function set_info(pinfo, first, text)
-    if not columns then return end
-    if first and not (info_frame == pinfo.number and tostring(info_col) == info_text) then
-        info_text = text
-        info_col:set(text)
-    else
-        info_text = info_text .. "; " .. text
-        info_col:append("; " .. text)
-    end
-    info_frame = pinfo.number
+    if columns then write_info(pinfo, info_col, text, not first) end
 end
 
 rt.layout_summary, rt.package_summary, rt.labelled = layout_summary, package_summary, labelled

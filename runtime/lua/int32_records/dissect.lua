@@ -32,9 +32,9 @@ proto.prefs.release = Pref.string("Driver release", "",
 
 -- "2.10" or "2.10.0" -> (major * 1000 + minor) * 1000 + patch; nil for anything else.
 local function parse_release(text)
-    local major, minor, patch = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    local major, minor, patch = rt.dotted_version(text)
     if not major then return nil end
-    return (tonumber(major) * 1000 + tonumber(minor)) * 1000 + (tonumber(patch) or 0)
+    return (major * 1000 + minor) * 1000 + patch
 end
 
 local function layout_of(record, release)
@@ -92,13 +92,6 @@ local function dissect(tvb, pinfo, tree)
     return n
 end
 
-function proto.dissector(tvb, pinfo, tree)
-    local ok, result = pcall(dissect, tvb, pinfo, tree)
-    if ok then return result end
-    tree:add(proto, tvb()):add_proto_expert_info(E.internal, spec.name .. ": " .. tostring(result))
-    return tvb:len()
-end
-
-local tcp_port = DissectorTable.get("tcp.port")
-for _, port in ipairs(spec.ports) do tcp_port:add(port, proto) end
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
+rt.register_ports(proto, table.concat(spec.ports, ","))
 rt.parse_release, rt.layout_of = parse_release, layout_of

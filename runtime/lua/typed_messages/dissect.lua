@@ -3,10 +3,11 @@
 -- values by the names of its recipe with a link to the frame that set the recipe up, and expert
 -- infos for refused setups, unknown recipes, a refused start and bad framing. State is kept per
 -- conversation (both addresses and both ports) on the first pass, and each message's view of it
--- is kept for later passes and the GUI (runtime/lua/rtde_state.lua holds the state itself).
+-- is kept for later passes and the GUI (runtime/lua/typed_messages/state.lua holds the state itself).
 local spec, rt = ...
 local proto, F = spec.proto, spec.F
 local HEADER = spec.header_size
+local be_uint = rt.be_uint
 
 -- Expert names are the protocol's filter name and the expert's (rtde.refused), as the fields' are.
 local E = {
@@ -53,20 +54,19 @@ end
 -- A conversation: both ends, and Wireshark's TCP conversation where the tree has it (the
 -- innermost tcp.stream), so that a new connection on the same addresses and ports starts afresh,
 -- as in the native plugin. Only the first pass reads a conversation's state.
-local tcp_stream = Field.new("tcp.stream")
+local tcp_stream_index = rt.tcp_stream_index
 
 local function conversation_key(pinfo)
     local a = tostring(pinfo.src) .. ":" .. tostring(pinfo.src_port)
     local b = tostring(pinfo.dst) .. ":" .. tostring(pinfo.dst_port)
-    local all = { tcp_stream() }
-    local index = all[#all]
-    local tcp = index and "#" .. tostring(index.value) or ""
+    local index = tcp_stream_index()
+    local tcp = index and "#" .. tostring(index) or ""
     if a < b then return a .. "|" .. b .. tcp end
     return b .. "|" .. a .. tcp
 end
 
 local function plausible(raw, at)
-    local size = string.byte(raw, at + 1) * 256 + string.byte(raw, at + 2)
+    local size = be_uint(raw, at, 2)
     local code = string.byte(raw, at + 3)
     return size >= HEADER and spec.type_names[code] ~= nil
 end
@@ -241,7 +241,7 @@ function proto.dissector(tvb, pinfo, tree)
             pinfo.desegment_len = DESEGMENT_ONE_MORE_SEGMENT
             break
         end
-        local size = string.byte(raw, offset + 1) * 256 + string.byte(raw, offset + 2)
+        local size = be_uint(raw, offset, 2)
         local code = string.byte(raw, offset + 3)
         if size < HEADER or size > spec.max_message_length or not spec.type_names[code] then
             local at = offset + 1
@@ -267,17 +267,9 @@ function proto.dissector(tvb, pinfo, tree)
 end
 
 proto.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of " .. spec.title, 65535)
-local tcp_port = DissectorTable.get("tcp.port")
-local registered = nil
-
-local function register_ports()
-    if registered then tcp_port:remove(registered, proto) end
-    registered = proto.prefs.ports
-    tcp_port:add(registered, proto)
-end
 
 function proto.prefs_changed()
-    register_ports()
+    rt.register_ports(proto, proto.prefs.ports)
 end
 
-register_ports()
+rt.register_ports(proto, proto.prefs.ports)

@@ -1,7 +1,7 @@
 -- RTDE's state of one conversation, as plain Lua (no Wireshark object): the protocol version
 -- negotiated, the setup requests waiting for their replies, and the recipes that replies make.
--- runtime/lua/rtde_dissect.lua keeps one per conversation and calls rt.follow on each message,
--- in capture order, on the first pass.
+-- runtime/lua/typed_messages/dissect.lua keeps one per conversation and calls rt.follow on each
+-- message, in capture order, on the first pass.
 local spec, rt = ...
 
 local KIND_OF_REQUEST, KIND_OF_REPLY, KIND_OF_DATA = {}, {}, {}
@@ -14,39 +14,13 @@ end
 -- Protocol 1's one output recipe has no id: it is kept under this key.
 local NO_ID = -1
 
--- Requests awaiting their replies, oldest first, at most `size` kept. A request beyond is not kept
--- but counted (`lost`), and so is every later one while a counted one is ahead of it: replies come
--- in the order of the requests, so a kept one behind a lost one would take the lost one's reply.
+-- Requests awaiting their replies (runtime/lua/common/pending.lua), with the words that say
+-- how many a conversation keeps.
+local push, pop = rt.pending_push, rt.pending_pop
 local function queue(size, what)
-    return { first = 1, last = 0, lost = 0, size = size,
-             overflow = "more than " .. size .. " " .. what .. " awaited replies" }
-end
-
--- Keeps a request; false when it is not kept (then counted).
-local function push(q, v)
-    if q.lost > 0 or q.last - q.first + 1 >= q.size then
-        q.lost = q.lost + 1
-        return false
-    end
-    q.last = q.last + 1
-    q[q.last] = v
-    return true
-end
-
--- The request a reply answers: true and the request, or false for one not kept, or true and nil
--- when no request awaits.
-local function pop(q)
-    if q.first > q.last then
-        if q.lost > 0 then
-            q.lost = q.lost - 1
-            return false, nil
-        end
-        return true, nil
-    end
-    local v = q[q.first]
-    q[q.first] = nil
-    q.first = q.first + 1
-    return true, v
+    local q = rt.pending_queue(size)
+    q.overflow = "more than " .. size .. " " .. what .. " awaited replies"
+    return q
 end
 
 function rt.new_state()

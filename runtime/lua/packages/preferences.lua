@@ -1,10 +1,11 @@
 -- Preferences and registration: the robot-side ports (taken over from MRCPv2, which claims
 -- TCP 30000-30200 in Wireshark 4.0; "Decode As" works on others), the software version assumed
 -- until a Version message is seen (empty: none), whether tshark -T fields builds only the
--- packages its command line names (runtime/wanted.lua), and the longest plausible message.
+-- packages its command line names (runtime/lua/packages/wanted.lua), and the longest plausible message.
 local spec, rt = ...
 local ur = spec.proto
 local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only
+local register_ports = rt.register_ports
 
 ur.prefs.ports = Pref.range("TCP ports", spec.default_ports,
     "Robot-side TCP ports of the primary/secondary interfaces", 65535)
@@ -18,22 +19,13 @@ ur.prefs.named_fields_only = Pref.bool("Only the fields tshark -T fields names",
 ur.prefs.max_length = Pref.uint("Maximum message length", spec.max_message_length,
     "Longer declared lengths are treated as malformed, and the dissector resynchronises")
 
-local tcp_port = DissectorTable.get("tcp.port")
-local registered = nil
-
-local function register_ports()
-    if registered then tcp_port:remove(registered, ur) end
-    registered = ur.prefs.ports
-    tcp_port:add(registered, ur)
-end
-
 function ur.prefs_changed()
     assume_version(parse_version(ur.prefs.version))
     named_only(ur.prefs.named_fields_only)
-    register_ports()
+    register_ports(ur, ur.prefs.ports)
 end
 
-register_ports()
+register_ports(ur, ur.prefs.ports)
 
 set_plugin_info({
     version = "0.1.0",

@@ -28,7 +28,7 @@ local function assume_version(v) pref_version = v end
 -- neither (known is false: then implied, when set, names the versions the layout sizes showed);
 -- message_version and message_implied: the version shown on the message.
 -- call: counts dissector calls (what is asked of a tree is asked once per call); only: the
--- packages a tshark -T fields run needs (runtime/wanted.lua), nil for all.
+-- packages a tshark -T fields run needs (runtime/lua/packages/wanted.lua), nil for all.
 local st = { raw = "", base = 0, version = DEFAULT_VERSION, known = false, announced = false, from_pref = false,
              call = 0, only = nil }
 
@@ -250,12 +250,6 @@ local function dissect(tvb, pinfo, tree)
     return tvb:len()
 end
 
-function ur.dissector(tvb, pinfo, tree)
-    local ok, result = pcall(dissect, tvb, pinfo, tree)
-    if ok then return result end
-    -- Never let a Lua error reach the user: show it as an expert info on the packet.
-    tree:add(ur, tvb()):add_proto_expert_info(E.internal, "urwire: " .. tostring(result))
-    return tvb:len()
-end
+ur.dissector = rt.guard(ur, dissect, E.internal, "urwire")
 
 rt.plausible, rt.header_fault, rt.scan, rt.assume_version = plausible, header_fault, scan, assume_version

@@ -38,11 +38,10 @@ proto.prefs.version = Pref.string("Software version", "",
 
 -- "5.9" or "3.15.2" -> the version number the forms are written in; nil for anything else.
 local function version_number(text)
-    local major, minor, bugfix = string.match(text or "", "^%s*(%d+)%.(%d+)%.?(%d*)%s*$")
+    local major, minor, bugfix = rt.dotted_version(text)
     if not major then return nil end
-    bugfix = tonumber(bugfix) or 0
     if bugfix > 999 then bugfix = 999 end
-    return (tonumber(major) * 1000 + tonumber(minor)) * 1000 + bugfix
+    return (major * 1000 + minor) * 1000 + bugfix
 end
 
 local version = nil
@@ -116,21 +115,11 @@ local function dissect_packet(tvb, tree, o, size, detail)
     return info_of(tvb, o, form)
 end
 
--- TCP calls the dissector once per reassembled packet and again for the rest of a segment: a
--- later call of the same frame adds its words to the earlier one's, when the column still holds
--- them (a later pass, or the GUI dissecting the frame again, starts from a fresh column).
-local info_frame, info_text = -1, ""
+-- A call's words, after an earlier call's for the same frame (runtime/lua/common/info_column.lua).
+local write_info = rt.info_writer(", ")
 
 local function show_info(pinfo, words)
-    local col = pinfo.cols.info
-    if info_frame == pinfo.number and tostring(col) == info_text then
-        info_text = info_text .. ", " .. words
-        col:append(", " .. words)
-    else
-        info_text = words
-        col:set(words)
-    end
-    info_frame = pinfo.number
+    write_info(pinfo, pinfo.cols.info, words, false)
 end
 
 -- Where the next plausible packet starts from offset o on: the next size some layout has (a size
@@ -195,19 +184,10 @@ function proto.dissector(tvb, pinfo, tree)
     return len
 end
 
-local tcp_port = DissectorTable.get("tcp.port")
-local registered = nil
-
-local function register_ports()
-    if registered then tcp_port:remove(registered, proto) end
-    registered = proto.prefs.ports
-    tcp_port:add(registered, proto)
-end
-
 function proto.prefs_changed()
     version = version_number(proto.prefs.version)
-    register_ports()
+    rt.register_ports(proto, proto.prefs.ports)
 end
 
-register_ports()
+rt.register_ports(proto, proto.prefs.ports)
 rt.version_number, rt.form_of = version_number, form_of
