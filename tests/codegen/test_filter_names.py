@@ -65,8 +65,8 @@ def test_a_layout_may_not_take_the_dissectors_own_name(name):
 
 
 def test_the_own_names_are_those_the_lua_dissector_declares():
-    """runtime/lua/declare.lua declares the Lua dissector's own fields and expert infos by hand; the
+    """runtime/lua/packages/declare.lua declares the Lua dissector's own fields and expert infos by hand; the
     rule above guards the same names."""
-    declared = (ROOT / "runtime" / "lua" / "declare.lua").read_text(encoding="utf-8")
+    declared = (ROOT / "runtime" / "lua" / "packages" / "declare.lua").read_text(encoding="utf-8")
     for name in [f.filter for f in OWN_FIELDS] + [e.filter for e in EXPERTS]:
         assert f'"{name}"' in declared, name
