@@ -54,7 +54,7 @@ _STANDALONE = re.compile(r"^[^\n]*<standalone>[^\n]*\n.*?^[^\n]*</standalone>[^\
 
 
 def runtime_path(language: str, name: str) -> str:
-    """Where a runtime file lives, as a joined section names it (runtime/c/framer.c)."""
+    """Where a runtime file lives, as a joined section names it (runtime/c/packages/framer.c)."""
     return f"{RUNTIME.name}/{language}/{name}"
 
 
@@ -63,3 +63,16 @@ def runtime_source(language: str, name: str) -> str:
     file: its standalone-only lines removed."""
     text = (RUNTIME / language / name).read_text(encoding="utf-8")
     return _STANDALONE.sub("", text)
+
+
+# How a section opens in each language's comments.
+_SECTION = {"c": "/* ---- {} ---- */", "epan": "/* ---- {} ---- */", "lua": "-- ---- {} ----"}
+
+
+def runtime_section(language: str, name: str) -> str:
+    """The one way a runtime joins a generated file, for every kind and target: the file
+    (runtime/<language>/<kind or common>/<file>) verbatim but for its standalone lines, after a
+    line naming it, and no trailing blank line. Names are never rewritten: a runtime that several
+    interfaces join keeps its functions static and takes the interface's tables as arguments, and
+    the generated part, written around it, names the interface's own API."""
+    return _SECTION[language].format(runtime_path(language, name)) + "\n" + runtime_source(language, name).rstrip("\n")

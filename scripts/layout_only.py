@@ -2,8 +2,9 @@
 
     python3 scripts/layout_only.py [REV]      # REV defaults to where this branch left main
 
-C: both revisions' urwire.c are compiled with -O2 and their object files (`objdump -d -s -r`:
-code, data and relocations) must be equal. Lua: `luac -l -l` listings of both urwire.lua, with line numbers and source names taken
+C: both revisions' generated/c/*.c, and generated/epan/*.c against Wireshark's headers
+(`pkg-config --cflags wireshark`, as the native plugin builds), are compiled with -O2 and their
+object files (`objdump -d -s -r`: code, data and relocations) must be equal. Lua: `luac -l -l` listings of both urwire.lua, with line numbers and source names taken
 out, must be equal. Python: each generated module's syntax tree, docstrings left out, must be
 equal. It prints one line per file and exits 1 when any file behaves differently.
 """
@@ -33,14 +34,23 @@ def python_modules(rev: str) -> list[str]:
     return sorted(listed("ls-files", "generated/python") & listed("ls-tree", "-r", "--name-only", rev, "generated/python"))
 
 
-def c_object_code(source_dir: Path) -> str:
-    obj = source_dir / "urwire.o"
-    subprocess.run(["gcc", "-std=c99", "-O2", "-c", str(source_dir / "urwire.c"), "-o", str(obj)], check=True)
+def c_object_code(source_dir: Path, name: str = "urwire.c", flags: tuple[str, ...] = ()) -> str:
+    obj = source_dir / (name + ".o")
+    # Where a line is, and in which folder, is layout: assertions print both (__LINE__, __FILE__).
+    where = ["-w", "-D__LINE__=0", f'-D__FILE__="{name}"']
+    subprocess.run(["gcc", "-std=c99", "-O2", *flags, *where, "-c", str(source_dir / name), "-o", str(obj)],
+                   check=True)
     # Code (-d), every section's bytes (-s: the tables are data) and the relocations (-r: what
     # the tables' pointers point at).
     listing = subprocess.run(["objdump", "-d", "-s", "-r", "--no-show-raw-insn", str(obj)], check=True,
                              capture_output=True, text=True).stdout
     return listing.split("\n", 2)[2]   # past the line that names the object file
+
+
+def wireshark_flags() -> list[str]:
+    """What the native plugin compiles its dissectors with (Wireshark's and GLib's headers)."""
+    flags = subprocess.run(["pkg-config", "--cflags", "wireshark"], check=True, capture_output=True, text=True)
+    return ["-std=gnu11", *flags.stdout.split(), "-I/usr/include/wireshark/epan/dissectors"]
 
 
 def lua_listing(source: Path) -> str:
@@ -79,12 +89,17 @@ def main(argv: list[str]) -> int:
         old, new = Path(tmp, "old"), Path(tmp, "new")
         for d in (old, new):
             d.mkdir()
-        for name in ("urwire.c", "urwire.h"):
-            (old / name).write_text(old_text(rev, f"generated/c/{name}"))
-            shutil.copy(ROOT / "generated/c" / name, new / name)
-        ok = c_object_code(old) == c_object_code(new)
-        print(f"generated/c/urwire.c: object file (gcc -O2) {'same' if ok else 'DIFFERS'}")
-        same &= ok
+        for folder, flags in (("c", ()), ("epan", tuple(wireshark_flags()))):
+            names = sorted(p.name for p in (ROOT / "generated" / folder).iterdir())
+            (old / "config.h").write_text("")   # empty out of Wireshark's tree (dissector/native)
+            (new / "config.h").write_text("")
+            for name in names:
+                (old / name).write_text(old_text(rev, f"generated/{folder}/{name}"))
+                shutil.copy(ROOT / "generated" / folder / name, new / name)
+            for name in (n for n in names if n.endswith(".c")):
+                ok = c_object_code(old, name, flags) == c_object_code(new, name, flags)
+                print(f"generated/{folder}/{name}: object file (gcc -O2) {'same' if ok else 'DIFFERS'}")
+                same &= ok
 
         (old / "urwire.lua").write_text(old_text(rev, "generated/lua/urwire.lua"))
         shutil.copy(ROOT / "generated/lua/urwire.lua", new / "urwire.lua")

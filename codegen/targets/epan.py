@@ -17,7 +17,7 @@ from typing import Optional
 
 from .. import epan_c, ir, plan, wrap
 from ..epan_c import value_literal
-from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_section
 from ..errors import SpecError
 from ..view import Step
 from . import lua
@@ -26,8 +26,8 @@ OUT = "epan/packet-ur.c"
 FOLDER = "epan"
 
 # The hand-written runtime, in the order it is joined: types before the generated tables, the
-# rest after them (runtime/epan/ur_*.c; files of other interfaces carry their own prefix, and
-# tshark_fields.c serves more than one).
+# rest after them (runtime/epan/packages/ur_*.c, and runtime/epan/common/tshark_fields*.c, which
+# every kind's dissector joins).
 RUNTIME_TYPES = ("ur_types.c",)
 RUNTIME_CODE = ("ur_versions.c", "tshark_fields.c", "ur_wanted.c", "ur_items.c", "ur_walk.c", "ur_values.c",
                 "ur_info.c", "ur_messages.c", "ur_stream.c", "ur_framing.c")
@@ -432,8 +432,13 @@ if set(VALUE_KINDS) != set(ir.SCALARS):
 KIND_CONST = {name: f"UR_VK_{name.upper()}" for name in VALUE_KINDS}
 
 
-def runtime(names: tuple[str, ...]) -> list[dict]:
-    return [dict(path=runtime_path(FOLDER, name), source=runtime_source(FOLDER, name)) for name in names]
+def runtime_file(name: str) -> str:
+    """Where a runtime file of this kind lives under runtime/epan: its own folder, or the shared one."""
+    return f"common/{name}" if name.startswith("tshark_fields") else f"packages/{name}"
+
+
+def runtime(names: tuple[str, ...]) -> list[str]:
+    return [runtime_section(FOLDER, runtime_file(name)) for name in names]
 
 
 def runtime_code(upstream: bool) -> tuple[str, ...]:
@@ -449,8 +454,8 @@ def check_runtime(code: tuple[str, ...]) -> None:
     joins are there (Wireshark's tree holds only the upstream copy's)."""
     folder = RUNTIME_FOLDER / FOLDER
     known = set(RUNTIME_TYPES + runtime_code(False) + runtime_code(True))
-    own = {p.name for p in folder.glob("ur_*.c") if not p.name.startswith("ur_realtime")}
-    missing = [name for name in RUNTIME_TYPES + code if not (folder / name).exists()]
+    own = {p.name for p in (folder / "packages").glob("ur_*.c")}
+    missing = [name for name in RUNTIME_TYPES + code if not (folder / runtime_file(name)).exists()]
     if own - known or missing:
         raise ValueError(f"epan target: runtime files {sorted(own - known)} are in no joining order, "
                          f"{missing} are missing")

@@ -6,7 +6,7 @@
 
 #include <string.h>
 
-/* ---- runtime/c/rtde_read.c ---- */
+/* ---- runtime/c/typed_messages/rtde_read.c ---- */
 /* ---- reading a message: big-endian loads, each after a bounds check ------------------------- */
 
 typedef struct rtde__reader {
@@ -88,7 +88,6 @@ static rtde_error rtde__end(rtde__reader *r)
     }
     return RTDE_OK;
 }
-
 /* ---- the spec's tables ---------------------------------------------------------------------- */
 
 /* Each value type: bytes per item, items, and how an item reads ('u', 'i', 'f', 'b'). */
@@ -1134,7 +1133,7 @@ static rtde_error rtde__decode_layout(uint8_t layout, rtde__reader *r, rtde_mess
     }
 }
 
-/* ---- runtime/c/rtde_conversation.c ---- */
+/* ---- runtime/c/typed_messages/rtde_conversation.c ---- */
 /* ---- a connection: framing, following the setup exchanges, values, the client's messages ---- */
 
 #define RTDE__NO_ID (-1)
@@ -1789,4 +1788,3 @@ const char *rtde_error_text(rtde_error e)
     }
     return "unknown error";
 }
-

@@ -664,7 +664,6 @@ bool ur_dashboard_finish(ur_dashboard_conversation *c, bool from_robot, size_t n
     rec->bytes = n;
     return true;
 }
-
 /* ---- runtime/c/lines/json.c ---- */
 /* ---- canonical JSON of a record (docs/canonical-json.md) ---------------------------------- */
 
@@ -831,4 +830,3 @@ size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap)
         out[o.len < cap ? o.len : cap - 1] = '\0';
     return o.len;
 }
-

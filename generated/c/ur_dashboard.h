@@ -215,7 +215,6 @@ bool ur_dashboard_available(int command, uint32_t version);
 /* The record as a line of canonical JSON (no newline) in out, NUL-terminated when cap > 0.
  * Returns its length; when that is cap or more, out holds its first cap - 1 bytes. */
 size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap);
-
 /* ---- the spec's tables ----------------------------------------------------------------------- */
 
 extern const ur_dashboard_command_spec ur_dashboard_commands[UR_DASHBOARD_COMMAND_COUNT];

@@ -10,7 +10,7 @@
 
 #include <string.h>
 
-/* ---- runtime/c/ur_realtime_loads.h ---- */
+/* ---- runtime/c/sized_packets/ur_realtime_loads.h ---- */
 /* Big-endian loads of the real-time packet: its int32 size and its doubles, assembled from bytes
  * with shifts, so that they are right on any host and never read out of bounds (the caller has
  * checked the packet's length once). */
@@ -51,7 +51,6 @@ UR_REALTIME__INLINE void ur_realtime__f64s(double *out, const uint8_t *p, size_t
     for (i = 0; i < count; i++)
         out[i] = ur_realtime__f64(p + 8 * i);
 }
-
 
 /* ---- the spec's layouts ------------------------------------------------------------------- */
 
@@ -931,7 +930,7 @@ static const ur_realtime__form ur_realtime__forms[UR_REALTIME__FORM_COUNT] = {
                                                        {ur_realtime__program_state_names_0, 6}}},
 };
 
-/* ---- runtime/c/ur_realtime_decode.c ---- */
+/* ---- runtime/c/sized_packets/ur_realtime_decode.c ---- */
 /* Framing and decoding of one real-time packet: the size field checked, the layout chosen by the
  * spec's same_size rule over the generated forms table, then the layout's generated decoder. */
 
@@ -1063,4 +1062,3 @@ const char *ur_realtime_enum_name(const ur_realtime_packet *p, ur_realtime_field
             return table->entries[i].name;
     return NULL;
 }
-

@@ -135,7 +135,6 @@ I32R_PRIVATE size_t i32r_fault(uint64_t offset, size_t left, size_t size, bool f
     return i32r_end(&o);
 }
 
-
 /* ---- reverse_command ---------------------------------------------------------------------------- */
 
 size_t ur_reverse_reverse_command_size(uint32_t release)

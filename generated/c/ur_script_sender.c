@@ -306,7 +306,6 @@ bool ur_script_sender_finish(ur_script_sender_conversation *c, bool from_robot, 
     rec->bytes = n;
     return true;
 }
-
 /* ---- runtime/c/lines/json.c ---- */
 /* ---- canonical JSON of a record (docs/canonical-json.md) ---------------------------------- */
 
@@ -473,4 +472,3 @@ size_t ur_script_sender_json(const ur_script_sender_record *rec, char *out, size
         out[o.len < cap ? o.len : cap - 1] = '\0';
     return o.len;
 }
-

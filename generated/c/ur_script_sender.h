@@ -141,7 +141,6 @@ bool ur_script_sender_available(int command, uint32_t version);
 /* The record as a line of canonical JSON (no newline) in out, NUL-terminated when cap > 0.
  * Returns its length; when that is cap or more, out holds its first cap - 1 bytes. */
 size_t ur_script_sender_json(const ur_script_sender_record *rec, char *out, size_t cap);
-
 /* ---- the spec's tables ----------------------------------------------------------------------- */
 
 extern const ur_script_sender_command_spec ur_script_sender_commands[UR_SCRIPT_SENDER_COMMAND_COUNT];

@@ -135,7 +135,6 @@ I32R_PRIVATE size_t i32r_fault(uint64_t offset, size_t left, size_t size, bool f
     return i32r_end(&o);
 }
 
-
 /* ---- trajectory_point ---------------------------------------------------------------------------- */
 
 size_t ur_trajectory_trajectory_point_size(uint32_t release)

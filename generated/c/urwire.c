@@ -38,7 +38,7 @@
 /* exact body sizes a form of a type code can have, at most (its flag-conditioned parts in or out) */
 #define URWIRE__FORM_SIZES 2
 
-/* ---- runtime/c/private.h ---- */
+/* ---- runtime/c/packages/private.h ---- */
 /* ---- what the runtime and the generated layouts share ------------------------------------- */
 
 /* A range of software versions; a missing bound is open. */
@@ -345,7 +345,7 @@ URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urw
 URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);
 URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v);
 
-/* ---- runtime/c/loads.h ---- */
+/* ---- runtime/c/common/loads.h ---- */
 /* ---- big-endian loads and stores ---------------------------------------------------------- */
 
 /* Every field is read with memcpy into an integer (one unaligned load) and a byte swap built of
@@ -465,7 +465,7 @@ URWIRE__INLINE void urwire__put_f64(uint8_t *p, double v)
     urwire__put_u64(p, bits);
 }
 
-/* ---- runtime/c/views.c ---- */
+/* ---- runtime/c/packages/views.c ---- */
 /* ---- views -------------------------------------------------------------------------------- */
 
 URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len)
@@ -495,7 +495,7 @@ URWIRE__PRIVATE urwire_bytes urwire__seq_bytes(const urwire_seq *s)
     return urwire__view(s->msg + s->pos, s->end - s->pos);
 }
 
-/* ---- runtime/c/version.c ---- */
+/* ---- runtime/c/packages/version.c ---- */
 /* ---- versions ----------------------------------------------------------------------------- */
 
 const urwire_sw_version URWIRE_DEFAULT_VERSION = URWIRE_DEFAULT_VERSION_INIT;
@@ -568,7 +568,7 @@ bool urwire_parse_version(const char *text, urwire_sw_version *out)
     return true;
 }
 
-/* ---- runtime/c/format.c ---- */
+/* ---- runtime/c/packages/format.c ---- */
 /* ---- number formatting -------------------------------------------------------------------- */
 
 /* Digits of v into buf (at least 24 bytes, not NUL-terminated); returns their count. */
@@ -615,7 +615,7 @@ URWIRE__PRIVATE void urwire__hex2(urwire__text *t, int64_t v)
     urwire__str(t, buf);
 }
 
-/* ---- runtime/c/errors.c ---- */
+/* ---- runtime/c/packages/errors.c ---- */
 /* ---- errors ------------------------------------------------------------------------------- */
 
 static void urwire__set_path(urwire_error *e, const char *path)
@@ -851,7 +851,7 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
     return t.n;
 }
 
-/* ---- runtime/c/text.c ---- */
+/* ---- runtime/c/packages/text.c ---- */
 /* ---- text: length-prefixed strings and terminated names ----------------------------------- */
 
 /* A length prefix of size bytes (big-endian, signed or not), then that many bytes. */
@@ -912,7 +912,7 @@ bool urwire_next_text(urwire_seq *seq, urwire_bytes *out)
     return true;
 }
 
-/* ---- runtime/c/put.c ---- */
+/* ---- runtime/c/packages/put.c ---- */
 /* ---- encoding helpers: bytes and length-prefixed text ------------------------------------- */
 
 /* Bytes as they are, at *pos. */
@@ -940,7 +940,6 @@ URWIRE__PRIVATE bool urwire__put_prefixed(uint8_t *out, size_t cap, size_t *pos,
     *pos += size;
     return urwire__put_view(out, cap, pos, b, err);
 }
-
 /* ---- enum names --------------------------------------------------------------------------- */
 
 const char *urwire_message_type_name(int64_t value)
@@ -6877,7 +6876,7 @@ static const bool urwire__known_message_types[256] = {
     [URWIRE_MESSAGE_TYPE_DISCONNECT] = true,
 };
 
-/* ---- runtime/c/values.c ---- */
+/* ---- runtime/c/packages/values.c ---- */
 /* ---- global-variable values --------------------------------------------------------------- */
 /* The value types of each software version are the generated urwire__value_tables, each for
  * the versions of its urwire__value_ranges. String
@@ -7042,7 +7041,7 @@ bool urwire_next_value(urwire_seq *seq, urwire_value *out)
     return true;
 }
 
-/* ---- runtime/c/kinds.c ---- */
+/* ---- runtime/c/packages/kinds.c ---- */
 /* ---- the tables of kinds ------------------------------------------------------------------ */
 /* Lookups in the generated tables: urwire__message_types (top-level types with a layout),
  * urwire__message_kinds (by urwire_message_kind) and urwire__package_kinds (by
@@ -7083,7 +7082,7 @@ URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_mes
     return k != NULL && k->type != NULL && !k->type->packages ? k->type : NULL;
 }
 
-/* ---- runtime/c/forms.c ---- */
+/* ---- runtime/c/packages/forms.c ---- */
 /* ---- forms: the layout a type code is read in, by software version and by length ---------- */
 /* The generated part cuts the version axis where any form of any type code starts or ends
  * (urwire__segment_bounds) and gives, for each type byte (the sub-package types, the subtypes
@@ -7189,7 +7188,7 @@ URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire
     return true;
 }
 
-/* ---- runtime/c/decode.c ---- */
+/* ---- runtime/c/packages/decode.c ---- */
 /* ---- decoding messages -------------------------------------------------------------------- */
 /* The one sub-package list is URWIRE__PACKAGES_TYPE, decoded as URWIRE__PACKAGES_KIND; each
  * sub-package is read in the form urwire__choose gives (forms.c), through the generated
@@ -7633,7 +7632,7 @@ URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urw
     return true;
 }
 
-/* ---- runtime/c/encode.c ---- */
+/* ---- runtime/c/packages/encode.c ---- */
 /* ---- encoding messages and sub-packages --------------------------------------------------- */
 
 size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err)
@@ -7707,7 +7706,7 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
     return pos;
 }
 
-/* ---- runtime/c/visit.c ---- */
+/* ---- runtime/c/packages/visit.c ---- */
 /* ---- visiting ----------------------------------------------------------------------------- */
 
 static void urwire__name(const urwire_visitor *v, const char *key, const char *name)
@@ -7871,7 +7870,7 @@ void urwire_visit_fault(const urwire_error *fault, const urwire_visitor *v)
     v->end_object(v->ctx);
 }
 
-/* ---- runtime/c/framer.c ---- */
+/* ---- runtime/c/packages/framer.c ---- */
 /* ---- the framer --------------------------------------------------------------------------- */
 
 /* A header the spec could have sent: a length from the header's size to the maximum, and a

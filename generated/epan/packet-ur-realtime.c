@@ -320,7 +320,7 @@ static const value_string ur_realtime_program_state_0[] = {
     { 0, NULL }
 };
 
-/* ---- runtime/epan/ur_realtime_types.h ---- */
+/* ---- runtime/epan/sized_packets/ur_realtime_types.h ---- */
 /* The tables the real-time dissector walks, as the generated part of packet-ur-realtime.c fills
  * them from the spec: each layout's slots (a field's offset and count of doubles), the forms (a
  * layout as one range of software versions sends it, with that range's enum names) and, for each
@@ -353,7 +353,6 @@ typedef struct {
     gint32 size;
     guint first, count;         /* its forms in ur_realtime_forms, in the order the rule tries them */
 } ur_realtime_size_forms;
-
 
 /* Layouts: each field's handle, subtree and its text (an array), offset in the packet, count of
  * doubles and enum, in packet order. */
@@ -742,7 +741,7 @@ static const ur_realtime_size_forms ur_realtime_sizes[] = {
     { 1220, 11, 1 },
 };
 
-/* ---- runtime/epan/dotted_version.c ---- */
+/* ---- runtime/epan/common/dotted_version.c ---- */
 /* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around
  * it allowed, a missing third number 0. It reads what the Lua dissectors' pattern
  * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads, into doubles as Lua's numbers are. */
@@ -772,8 +771,7 @@ static gboolean dotted_version_parts(const char *text, double part[3])
         p++;
     return *p == '\0';
 }
-
-/* ---- runtime/epan/ur_realtime_dissect.c ---- */
+/* ---- runtime/epan/sized_packets/ur_realtime_dissect.c ---- */
 /* The real-time dissector's runtime: frames the robot's TCP stream by each packet's int32 size
  * (asking TCP to reassemble a packet split over segments), chooses the packet's layout by the
  * spec's same-size rule over the generated ur_realtime_sizes and ur_realtime_forms, and walks the
@@ -1098,7 +1096,6 @@ static void ur_realtime_handoff_runtime(void)
     dissector_add_for_decode_as("tcp.port", ur_realtime_handle);
     ur_realtime_apply_prefs();
 }
-
 
 void proto_register_ur_realtime(void)
 {

@@ -59,7 +59,7 @@ static const value_string ur_script_command_command_code_vals[] = {
     { 0, NULL }
 };
 
-/* ---- runtime/epan/int32_records_types.h ---- */
+/* ---- runtime/epan/int32_records/int32_records_types.h ---- */
 /* The tables a dissector of fixed int32 records walks (the ROS driver's reverse, trajectory and
  * script command sockets), as the generated part of each packet-<name>.c fills them from its
  * spec: each direction's record, its layouts along the driver-release axis, and each layout's
@@ -96,7 +96,6 @@ typedef struct {
     const guint32 *ports;
     guint n_ports;
 } int32_records_interface;
-
 
 /* Script command (to robot): each slot's field, raw int32, first int32, count, scale. */
 /* up to 1.3.1 */
@@ -137,7 +136,7 @@ static const int32_records_interface int32_records_spec = {
     ur_script_command_ports, array_length(ur_script_command_ports)
 };
 
-/* ---- runtime/epan/dotted_version.c ---- */
+/* ---- runtime/epan/common/dotted_version.c ---- */
 /* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around
  * it allowed, a missing third number 0. It reads what the Lua dissectors' pattern
  * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads, into doubles as Lua's numbers are. */
@@ -167,8 +166,7 @@ static gboolean dotted_version_parts(const char *text, double part[3])
         p++;
     return *p == '\0';
 }
-
-/* ---- runtime/epan/int32_records.c ---- */
+/* ---- runtime/epan/int32_records/int32_records.c ---- */
 /* A dissector of fixed int32 records (the ROS driver's reverse, trajectory and script command
  * sockets): each direction cut into records of the size the driver release gives (a preference;
  * a capture does not tell it), reassembled across TCP segments by tcp_dissect_pdus, every int32
@@ -345,7 +343,6 @@ static void int32_records_handoff_runtime(void)
     dissector_add_for_decode_as("tcp.port", int32_records_handle);
     int32_records_apply_prefs();
 }
-
 
 void proto_register_ur_script_command(void)
 {

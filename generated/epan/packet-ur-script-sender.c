@@ -48,7 +48,7 @@ static dissector_handle_t ur_script_sender_handle;
 /* The software version assumed until a reply tells it (a preference). */
 static const char *ur_script_sender_version_preference = "";
 
-/* ---- runtime/epan/lines_match.c ---- */
+/* ---- runtime/epan/lines/lines_match.c ---- */
 /* Lines, commands and replies of a text-line interface, as the spec's tables say: which command a
  * line is, which reply a line is (the common replies first, then the command's own), whether a
  * software version has a command, and the version a version reply tells. Pure functions of the
@@ -270,7 +270,7 @@ static const lines_spec_t ur_script_sender_spec = {
     .e_series_from = 5000000u,
 };
 
-/* ---- runtime/epan/lines_dissect.c ---- */
+/* ---- runtime/epan/lines/lines_dissect.c ---- */
 /* A dissector of text lines (the dashboard server, the driver's script sender), the twin of
  * runtime/lua/lines_dissect.lua: lines reassembled across TCP segments, each shown as a request
  * (command) or a reply, replies paired with their requests and the software version learnt per

@@ -1,4 +1,4 @@
-/* runtime/epan/lines_match.c alone: its pure functions over a small table of its own, without
+/* runtime/epan/lines/lines_match.c alone: its pure functions over a small table of its own, without
  * Wireshark. Built and run by tests/native/test_lines_native.py; prints "ok" or the failed check. */
 #include <stdio.h>
 #include <stdlib.h>

@@ -10,7 +10,7 @@ script-sender conversations of the cell sample; hostile conversations (junk, lon
 commands in flight than a conversation keeps), with TCP reassembly on and off; a session on
 another port under Decode As. The same captures go through the plugin built with ASan and UBSan,
 where any report fails the run. Also: the packet list with no tree, text that is not UTF-8, and
-the runtime's pure functions (runtime/epan/lines_match.c) compiled and tested alone."""
+the runtime's pure functions (runtime/epan/lines/lines_match.c) compiled and tested alone."""
 from __future__ import annotations
 
 import functools
@@ -30,7 +30,7 @@ from tests.tools import capture
 ROOT = Path(__file__).resolve().parents[2]
 CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "ur_dashboard"
 CELL = ROOT / "dissector" / "samples" / "cell_session.pcapng"
-RUNTIME = ROOT / "runtime" / "epan"
+RUNTIME = ROOT / "runtime" / "epan" / "lines"
 INTERFACES = ("ur_dashboard", "ur_script_sender")
 PORTS = {"ur_dashboard": 29999, "ur_script_sender": 50002}
 # The script sender's port is the control PC's, and the robot connects to it: in the capture

@@ -104,7 +104,8 @@ def test_upstream_patch_of_the_generated_files(patch):
         assert same == (path.name not in COMMAND_LINE_READERS), path.name
     joined = {name for path in dissectors
               for name in re.findall(r"^/\* [-=]{4} runtime/epan/(\S+) [-=]{4} \*/$", path.read_text(), re.M)}
-    assert joined == {p.name for p in (patch / "tools" / "urwire" / "runtime" / "epan").iterdir()}
+    folder = patch / "tools" / "urwire" / "runtime" / "epan"
+    assert joined == {p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file()}
 
 
 def test_the_patch_reads_no_command_line(patch):

@@ -4,7 +4,7 @@ runtime/c/int32_records.c joined in (static, so that every interface holds its o
 from __future__ import annotations
 
 from ... import ir
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from .model import FROM_ROBOT
 from .plan import PublicField, RecordsPlan
 
@@ -50,8 +50,7 @@ def view(p: RecordsPlan) -> dict:
     return dict(prefix=prefix, upper=upper, title=m.title, doc=m.doc, ports=m.ports, enums=enums, records=records,
                 to_robot=directions.get(False), from_robot=directions.get(True),
                 default_release=_release(m.default_release), default_text=ir.version_text(m.default_release),
-                runtime=f"/* ---- {runtime_path('c', 'int32_records/records.c')} ---- */\n"
-                        + runtime_source("c", "int32_records/records.c"))
+                runtime=runtime_section("c", "int32_records/records.c"))
 
 
 def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:

@@ -10,14 +10,15 @@ from dataclasses import dataclass
 
 from ... import ir
 from ...comments import value_text
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...epan_c import c_string, value_literal
 from ...naming import column_name
 from .model import FROM_ROBOT
 from .plan import RecordsPlan
 
-RUNTIME_HEAD = ["int32_records_types.h"]    # the table types, before the tables
-RUNTIME_TAIL = ["dotted_version.c", "int32_records.c"]   # the release's text; the dissector, after the tables
+RUNTIME_HEAD = ["int32_records/int32_records_types.h"]    # the table types, before the tables
+# the release's text; the dissector, after the tables
+RUNTIME_TAIL = ["common/dotted_version.c", "int32_records/int32_records.c"]
 
 
 @dataclass
@@ -92,8 +93,7 @@ def render(p: RecordsPlan, banner: list[str], upstream: bool = False) -> dict[st
                  f"array_length({ident}_starts)" if starts else "0", f"{ident}_layouts"]
         records["from_robot" if r.record.direction == FROM_ROBOT else "to_robot"] = EpanRecord(
             ident, r.record.label, starts, layouts, items)
-    runtime = [dict(path=runtime_path("epan", part), source=runtime_source("epan", part))
-               for part in RUNTIME_HEAD + RUNTIME_TAIL]
+    runtime = [runtime_section("epan", part) for part in RUNTIME_HEAD + RUNTIME_TAIL]
     context = dict(
         banner=banner, name=name, title=m.title, doc=m.doc, file=f"packet-{name.replace('_', '-')}.c",
         short_name=name.upper(), column=column_name(name), ports=[str(port) for port in m.ports],

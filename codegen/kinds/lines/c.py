@@ -1,11 +1,11 @@
 """The C target of a text-line interface: generated/c/<name>.{h,c}, the tables as C data and the
-runtime of runtime/c/<name>_*.{h,c} joined in, from the plan."""
+runtime of runtime/c/lines/*.{h,c} joined in, from the plan."""
 from __future__ import annotations
 
 import json
 import re
 
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...wrap import LIMIT
 from .model import Reply
 from .plan import LinesPlan
@@ -22,10 +22,9 @@ def _joined(name: str, prefix: str) -> str:
     """A runtime file of the kind as joined into one interface's files: its names, written with
     the kind's prefix (lines_, LINES_) so that the file builds alone, take the interface's, so
     that two interfaces of the kind link into one library."""
-    text = runtime_source(FOLDER, name)
+    text = runtime_section(FOLDER, name)
     text = re.sub(r"\blines_", f"{prefix}_", text)
-    text = re.sub(r"\bLINES_", f"{prefix.upper()}_", text)
-    return f"/* ---- {runtime_path(FOLDER, name)} ---- */\n" + text
+    return re.sub(r"\bLINES_", f"{prefix.upper()}_", text)
 
 
 def _reply(symbol: str, reply: Reply) -> dict:

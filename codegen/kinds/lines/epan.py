@@ -8,15 +8,15 @@ import json
 import re
 from dataclasses import dataclass
 
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...wrap import lines as wrapped
 from ...naming import column_name
 from .model import Reply
 from .plan import LinesPlan
 
 FOLDER = "epan"
-RUNTIME_TYPES = "lines_match.c"           # the tables' types and the pure functions over them
-RUNTIME_DISSECTOR = "lines_dissect.c"     # the dissector itself, after the tables
+RUNTIME_TYPES = "lines/lines_match.c"         # the tables' types and the pure functions over them
+RUNTIME_DISSECTOR = "lines/lines_dissect.c"   # the dissector itself, after the tables
 
 
 @dataclass(frozen=True)
@@ -77,11 +77,10 @@ def _joined(name: str, interface: str) -> str:
     ei_lines_too_long, ett_lines, dissect_lines, lines_spec, lines_version_preference), take the
     interface's, as an upstream dissector names them after its protocol; the runtime's own types
     and helpers (lines_matches, lines_conversation_t) keep the kind's."""
-    text = runtime_source(FOLDER, name)
+    text = runtime_section(FOLDER, name)
     text = re.sub(r"\b(hf|ei)_lines_", rf"\1_{interface}_", text)
     text = re.sub(r"\b(ett|proto|dissect)_lines\b", rf"\1_{interface}", text)
-    text = re.sub(r"\blines_(spec|version_preference)\b", rf"{interface}_\1", text)
-    return f"/* ---- {runtime_path(FOLDER, name)} ---- */\n" + text.rstrip("\n")
+    return re.sub(r"\blines_(spec|version_preference)\b", rf"{interface}_\1", text)
 
 
 def _reply(reply: Reply) -> dict:

@@ -3,14 +3,14 @@
 One struct holds every field any layout sends; its `layout` says which it holds (the layout's
 slots, in packet order, are what a JSON writer walks). Each layout gets a straight-line decoder
 at the offsets of the plan; the forms table renders the same_size rule, and the hand-written
-runtime (runtime/c/<name>_*.c) frames, chooses and dispatches."""
+runtime (runtime/c/sized_packets/<name>_*.c) frames, chooses and dispatches."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 from ... import ir
 from ...comments import field_text, node_text, value_text
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from .plan import SizedPlan
 
 RUNTIME_HEAD = ["loads.h"]      # before the generated decoders, which read with them
@@ -65,8 +65,7 @@ class CForm:
 
 
 def _section(prefix: str, name: str) -> str:
-    file = f"{prefix}_{name}"
-    return f"/* ---- {runtime_path('c', file)} ---- */\n" + runtime_source("c", file)
+    return runtime_section("c", f"sized_packets/{prefix}_{name}")
 
 
 def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:

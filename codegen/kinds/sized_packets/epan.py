@@ -3,7 +3,7 @@ generated/epan/packet-<name with dashes>.c, a native Wireshark dissector, the tw
 (kinds/sized_packets/lua.py): the same protocol, fields, tree, Info column, experts and
 preferences. The generated part declares the handles, one double field per spec field (its unit
 shown by a label function: epan_c.UnitLabel), the enum names as value_strings, the layouts' slots
-and the forms by size; the hand-written runtime (runtime/epan/<name>_*, joined in) frames the TCP
+and the forms by size; the hand-written runtime (runtime/epan/sized_packets/<name>_*, joined in) frames the TCP
 stream and walks them."""
 from __future__ import annotations
 
@@ -11,13 +11,13 @@ from dataclasses import dataclass
 
 from ... import ir
 from ...comments import field_text, node_text, value_text
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...epan_c import c_string, unit_label, value_literal
 from .plan import SizedPlan
 
-RUNTIME_HEAD = ["types.h"]      # runtime/epan/<name>_types.h: the table types, before the tables
-RUNTIME_TAIL = ["dissect.c"]    # runtime/epan/<name>_dissect.c: after the tables it walks
-SHARED = ["dotted_version.c"]   # runtime/epan/dotted_version.c: reads the version preference, before the tail
+RUNTIME_HEAD = ["types.h"]      # runtime/epan/sized_packets/<name>_types.h: the table types, before the tables
+RUNTIME_TAIL = ["dissect.c"]    # runtime/epan/sized_packets/<name>_dissect.c: after the tables it walks
+SHARED = ["dotted_version.c"]   # runtime/epan/common/dotted_version.c: reads the version preference, before the tail
 INFO_FIELD = "robot_mode"       # the field whose name the Info column shows beside the layout's
 
 
@@ -113,8 +113,9 @@ def render(planned: SizedPlan, banner: list[str], upstream: bool = False) -> dic
     enum_ids = {e.name: f"{upper}_NAMES_{e.name.upper()}" for e in planned.enums}
     tables = _tables(name, planned.enums)
     forms, sizes = _forms(planned, tables)
-    files = [f"{name}_{part}" for part in RUNTIME_HEAD] + SHARED + [f"{name}_{part}" for part in RUNTIME_TAIL]
-    runtime = [dict(path=runtime_path("epan", file), source=runtime_source("epan", file)) for file in files]
+    files = ([f"sized_packets/{name}_{part}" for part in RUNTIME_HEAD] + [f"common/{file}" for file in SHARED]
+             + [f"sized_packets/{name}_{part}" for part in RUNTIME_TAIL])
+    runtime = [runtime_section("epan", file) for file in files]
     context = dict(
         banner=banner, protocol=protocol, name=name, upper=upper, file=f"packet-{name.replace('_', '-')}.c",
         short_name=upper, doc=node_text(protocol), ports=",".join(str(p) for p in protocol.ports),

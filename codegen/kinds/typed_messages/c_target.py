@@ -1,5 +1,5 @@
 """C target of the typed-messages kind: the IR -> a view model -> templates/c/typed_messages/ ->
-generated/c/<name>.{h,c}, with the hand-written runtime of runtime/c/<name>_*.{h,c} joined in
+generated/c/<name>.{h,c}, with the hand-written runtime of runtime/c/typed_messages/<name>_*.{h,c} joined in
 (each section naming its file). C99, no malloc: the connection's state is the caller's struct.
 
 Every decision (C types, member kinds, tables) is made here; the templates lay them out."""
@@ -9,7 +9,7 @@ import json
 from dataclasses import dataclass
 
 from ... import ir
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...wrap import spread
 from . import model
 
@@ -17,7 +17,7 @@ FOLDER = "c"
 C_TYPES = {"bool": "uint8_t", "int8": "int8_t", "uint8": "uint8_t", "int16": "int16_t", "uint16": "uint16_t",
            "int32": "int32_t", "uint32": "uint32_t", "int64": "int64_t", "uint64": "uint64_t",
            "float32": "float", "float64": "double"}
-# How a scalar is read: an expression over the reader's next bytes (runtime/c/rtde_read.c).
+# How a scalar is read: an expression over the reader's next bytes (runtime/c/typed_messages/rtde_read.c).
 READERS = {"bool": "rtde__take(r, 1)", "uint8": "rtde__take(r, 1)", "uint16": "rtde__take(r, 2)",
            "uint32": "rtde__take(r, 4)", "uint64": "rtde__take(r, 8)", "int32": "rtde__as_i32(rtde__take(r, 4))",
            "float64": "rtde__as_f64(rtde__take(r, 8))"}
@@ -127,4 +127,4 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
 
 
 def _joined(file: str) -> str:
-    return f"/* ---- {runtime_path('c', file)} ---- */\n" + runtime_source("c", file)
+    return runtime_section("c", f"typed_messages/{file}")

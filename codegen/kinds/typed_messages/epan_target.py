@@ -1,11 +1,11 @@
 """epan target of the typed-messages kind: the IR -> a view model -> templates/epan/typed_messages/ ->
 generated/epan/packet-<name>.c, a native Wireshark dissector as an upstream epan/dissectors file reads,
-with the hand-written runtime of runtime/epan/<name>_*.{h,c} joined in (each section naming its file).
+with the hand-written runtime of runtime/epan/typed_messages/<name>_*.{h,c} joined in (each section naming its file).
 
 It is the twin of the Lua target (lua_target.py): the same protocol, field abbrevs, names, types and
 bases, preference and experts. Every decision is made here: each field's FT_ type, base, value string
 and unit; each message layout's steps as table rows; what each message means to the conversation's
-state (its role, read by runtime/epan/rtde_state.c as runtime/lua/rtde_state.lua reads the names)."""
+state (its role, read by runtime/epan/typed_messages/rtde_state.c as runtime/lua/rtde_state.lua reads the names)."""
 from __future__ import annotations
 
 import json
@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 from ... import ir
-from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_section
 from ...errors import Problem, SpecError
 from ...wrap import spread
 from . import model
@@ -23,12 +23,12 @@ from .lua_target import OWN_FIELDS, value_field, value_fields, value_label
 FIELD_TYPES = {"bool": "FT_BOOLEAN", "int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16",
                "uint16": "FT_UINT16", "int32": "FT_INT32", "uint32": "FT_UINT32", "int64": "FT_INT64",
                "uint64": "FT_UINT64", "float32": "FT_FLOAT", "float64": "FT_DOUBLE"}
-# Scalars the state may read (runtime/epan/rtde_dissect.c reads 1, 2 or 4 bytes as an integer), as
+# Scalars the state may read (runtime/epan/typed_messages/rtde_dissect.c reads 1, 2 or 4 bytes as an integer), as
 # the Lua runtime keeps the values it reads with uint() and int().
 INTEGER_SCALARS = ("bool", "int8", "uint8", "int16", "uint16", "int32", "uint32")
 # Units are the dissector's own unit_name_strings, with the space before the unit that the Lua
 # field's unit text has: Wireshark 4.0 writes its own (units_volt: "V") right after the value ("24V").
-# A double's unit is appended to its item's text instead (runtime/epan/rtde_dissect.c), as the Lua
+# A double's unit is appended to its item's text instead (runtime/epan/typed_messages/rtde_dissect.c), as the Lua
 # dissector does: 4.0 shows no unit string for FT_DOUBLE.
 # Runtime files the dissector shares with others, joined before its own: tshark_fields.c tells a
 # tshark -T fields run, where no item's label is printed. The upstream copy (Wireshark's own tree)
@@ -233,13 +233,13 @@ def render(interface: model.Interface, banner: list[str], upstream: bool = False
     return {f"epan/packet-{prefix.replace('_', '-')}.c": text}
 
 
-def _shared(name: str) -> dict:
-    return {"path": runtime_path("epan", name), "source": runtime_source("epan", name)}
+def _shared(name: str) -> str:
+    return runtime_section("epan", f"common/{name}")
 
 
-def _joined(prefix: str, suffix: str) -> list[dict]:
-    """The interface's runtime files with this suffix (runtime/epan/<name>_*), the state before the
-    dissector that uses it."""
-    names = sorted(p.name for p in (RUNTIME_FOLDER / "epan").glob(f"{prefix}_*{suffix}"))
+def _joined(prefix: str, suffix: str) -> list[str]:
+    """The interface's runtime files with this suffix (runtime/epan/typed_messages/<name>_*), the
+    state before the dissector that uses it."""
+    names = sorted(p.name for p in (RUNTIME_FOLDER / "epan" / "typed_messages").glob(f"{prefix}_*{suffix}"))
     names.sort(key=lambda n: (not n.endswith("_state.c"), n))
-    return [{"path": runtime_path("epan", n), "source": runtime_source("epan", n)} for n in names]
+    return [runtime_section("epan", f"typed_messages/{n}") for n in names]

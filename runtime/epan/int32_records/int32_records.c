@@ -14,7 +14,7 @@
 #include <epan/prefs.h>
 #include <epan/dissectors/packet-tcp.h>
 #include "int32_records_types.h"
-#include "dotted_version.c"
+#include "../common/dotted_version.c"
 #define INT32_RECORDS_NAME "ur_reverse"
 #define INT32_RECORDS_COLUMN "UR reverse"
 #define INT32_RECORDS_DEFAULT_RELEASE 2014000

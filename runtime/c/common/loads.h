@@ -3,7 +3,7 @@
 #define URWIRE_RUNTIME_LOADS_H
 #include <stdint.h>
 #include <string.h>
-#include "private.h"
+#include "../packages/private.h"
 /* </standalone> */
 /* ---- big-endian loads and stores ---------------------------------------------------------- */
 

@@ -15,7 +15,7 @@
 #include <epan/proto_data.h>
 #include <epan/dissectors/packet-tcp.h>
 #include "ur_realtime_types.h"
-#include "dotted_version.c"
+#include "../common/dotted_version.c"
 #define UR_REALTIME_SIZE_BYTES 4
 #define UR_REALTIME_MIN_SIZE 12
 #define UR_REALTIME_MAX_SIZE 12200
