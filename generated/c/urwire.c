@@ -38,6 +38,35 @@
 /* exact body sizes a form of a type code can have, at most (its flag-conditioned parts in or out) */
 #define URWIRE__FORM_SIZES 2
 
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
+
+/* Private functions live in the generated .c file that joins them, a copy in each. */
+#define URWIRE__PRIVATE static
+
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+
+/* ---- runtime/c/common/buffer.h ---- */
+/* ---- a text written into the caller's bounded buffer (buffer.c) --------------------------- */
+
+typedef struct urwire__text {
+    char *out;
+    size_t cap;
+    size_t n;                 /* the text's length, what did not fit too */
+} urwire__text;
+
+URWIRE__PRIVATE void urwire__bytes(urwire__text *t, const char *p, size_t n);
+URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s);
+URWIRE__PRIVATE size_t urwire__end(urwire__text *t);
+
 /* ---- runtime/c/packages/private.h ---- */
 /* ---- what the runtime and the generated layouts share ------------------------------------- */
 
@@ -49,20 +78,7 @@ typedef struct urwire__versions {
     urwire_sw_version high;
 } urwire__versions;
 
-/* Private functions live in urwire.c alone. */
-#define URWIRE__PRIVATE static
-
 #define URWIRE__COUNT(a) (sizeof(a) / sizeof((a)[0]))
-
-/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
- * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
- * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
- * unused static inline function, clang does in a .c file unless told `unused`). */
-#if defined(__GNUC__)
-#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
-#else
-#define URWIRE__INLINE static inline
-#endif
 
 /* Tests that the robot-state fast path passes (or fails) almost always: gcc and clang then lay
  * that path out straight, with no jump taken (a few ns per robot state). */
@@ -282,13 +298,6 @@ typedef struct urwire__value_table {
     size_t min_size;                /* the fewest bytes a value takes: bounds LIST/MATRIX counts */
 } urwire__value_table;
 
-/* Text written into a caller's buffer, cut to fit; n counts what did not fit too. */
-typedef struct urwire__text {
-    char *out;
-    size_t cap;
-    size_t n;
-} urwire__text;
-
 /* ---- the runtime's functions that other files call, file by file ---- */
 /* (A helper that only its own file calls is static there.) */
 
@@ -302,7 +311,6 @@ URWIRE__PRIVATE bool urwire__in_versions(urwire_sw_version v, const urwire__vers
 URWIRE__PRIVATE size_t urwire__table_index(urwire_sw_version v, const urwire__versions *ranges, size_t count);
 /* format.c */
 URWIRE__PRIVATE size_t urwire__digits(char *buf, int64_t v);
-URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s);
 URWIRE__PRIVATE void urwire__num(urwire__text *t, int64_t v);
 URWIRE__PRIVATE void urwire__hex2(urwire__text *t, int64_t v);
 /* errors.c */
@@ -348,9 +356,10 @@ URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *
 /* ---- runtime/c/common/loads.h ---- */
 /* ---- big-endian loads and stores ---------------------------------------------------------- */
 
-/* Every field is read with memcpy into an integer (one unaligned load) and a byte swap built of
- * shifts, which compilers fold into one instruction. They must be inlined to be fast (see
- * URWIRE__INLINE in private.h). */
+/* The one set of big-endian loads of the C runtime: every kind's generated C joins it, and the C
+ * command includes it. Every field is read with memcpy into an integer (one unaligned load) and
+ * a byte swap built of shifts, which compilers fold into one instruction. They must be inlined to
+ * be fast (see URWIRE__INLINE in macros.h). The caller has checked that the bytes are there. */
 
 /* The host's byte order, a constant once optimised: 1 on a big-endian machine. */
 URWIRE__INLINE int urwire__host_is_big_endian(void)
@@ -405,6 +414,17 @@ URWIRE__INLINE uint64_t urwire__u64(const uint8_t *p)
     return urwire__from_be64(v);
 }
 
+/* n bytes (1 to 8, known when inlined) as an unsigned integer: a length prefix or a value of a
+ * width read from a table. */
+URWIRE__INLINE uint64_t urwire__uint(const uint8_t *p, size_t n)
+{
+    uint64_t v = 0;
+    size_t i;
+    for (i = 0; i < n; i++)
+        v = v << 8 | p[i];
+    return v;
+}
+
 URWIRE__INLINE int16_t urwire__i16(const uint8_t *p) { return (int16_t)urwire__u16(p); }
 URWIRE__INLINE int32_t urwire__i32(const uint8_t *p) { return (int32_t)urwire__u32(p); }
 URWIRE__INLINE int64_t urwire__i64(const uint8_t *p) { return (int64_t)urwire__u64(p); }
@@ -418,12 +438,25 @@ URWIRE__INLINE float urwire__f32(const uint8_t *p)
     return f;
 }
 
-URWIRE__INLINE double urwire__f64(const uint8_t *p)
+/* A double from its bit pattern, NaN payloads included. */
+URWIRE__INLINE double urwire__f64_of(uint64_t bits)
 {
-    uint64_t bits = urwire__u64(p);
     double d;
     memcpy(&d, &bits, sizeof d);
     return d;
+}
+
+URWIRE__INLINE double urwire__f64(const uint8_t *p)
+{
+    return urwire__f64_of(urwire__u64(p));
+}
+
+/* count doubles in a row into out. */
+URWIRE__INLINE void urwire__f64s(double *out, const uint8_t *p, size_t count)
+{
+    size_t i;
+    for (i = 0; i < count; i++)
+        out[i] = urwire__f64(p + 8 * i);
 }
 
 URWIRE__INLINE void urwire__put_u8(uint8_t *p, uint8_t v) { p[0] = v; }
@@ -463,6 +496,32 @@ URWIRE__INLINE void urwire__put_f64(uint8_t *p, double v)
     uint64_t bits;
     memcpy(&bits, &v, sizeof bits);
     urwire__put_u64(p, bits);
+}
+
+/* ---- runtime/c/common/buffer.c ---- */
+/* ---- a text written into the caller's bounded buffer -------------------------------------- */
+
+/* Appends n bytes; those past the buffer's end (cap - 1, room for the NUL) are counted only. */
+URWIRE__PRIVATE void urwire__bytes(urwire__text *t, const char *p, size_t n)
+{
+    size_t room = t->cap > t->n + 1 ? t->cap - t->n - 1 : 0;
+    if (room > 0)
+        memcpy(t->out + t->n, p, n < room ? n : room);
+    t->n += n;
+}
+
+URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s)
+{
+    urwire__bytes(t, s, strlen(s));
+}
+
+/* Ends the text with a NUL (when cap > 0) and returns the length it needed: when that is cap or
+ * more, the buffer holds its first cap - 1 bytes. */
+URWIRE__PRIVATE size_t urwire__end(urwire__text *t)
+{
+    if (t->cap > 0)
+        t->out[t->n < t->cap ? t->n : t->cap - 1] = '\0';
+    return t->n;
 }
 
 /* ---- runtime/c/packages/views.c ---- */
@@ -587,13 +646,6 @@ URWIRE__PRIVATE size_t urwire__digits(char *buf, int64_t v)
     while (n)
         buf[k++] = tmp[--n];
     return k;
-}
-
-URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s)
-{
-    for (; *s; s++, t->n++)
-        if (t->n + 1 < t->cap)
-            t->out[t->n] = *s;
 }
 
 URWIRE__PRIVATE void urwire__num(urwire__text *t, int64_t v)
@@ -846,9 +898,7 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         urwire__str(&t, ")");
         break;
     }
-    if (cap)
-        out[t.n < cap ? t.n : cap - 1] = '\0';
-    return t.n;
+    return urwire__end(&t);
 }
 
 /* ---- runtime/c/packages/text.c ---- */
@@ -858,13 +908,12 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
 URWIRE__PRIVATE bool urwire__read_prefixed(const uint8_t *msg, size_t *at, size_t end, size_t size, bool is_signed,
                                            const char *path, urwire_bytes *out, urwire_error *err)
 {
-    size_t pos = *at, k;
-    uint64_t raw = 0;
+    size_t pos = *at;
+    uint64_t raw;
     int64_t n;
     if (end - pos < size)
         return urwire__short(err, path, pos, size, end);
-    for (k = 0; k < size; k++)
-        raw = raw << 8 | msg[pos + k];
+    raw = urwire__uint(msg + pos, size);
     n = (int64_t)raw;
     if (is_signed && (raw >> (size * 8 - 1)) & 1u)
         n = (int64_t)(raw | ~(uint64_t)0 << (size * 8 - 1));
