@@ -10,7 +10,8 @@ script-sender conversations of the cell sample; hostile conversations (junk, lon
 commands in flight than a conversation keeps), with TCP reassembly on and off; a session on
 another port under Decode As. The same captures go through the plugin built with ASan and UBSan,
 where any report fails the run. Also: the packet list with no tree, text that is not UTF-8, and
-the runtime's pure functions (runtime/epan/lines/lines_match.c) compiled and tested alone."""
+the runtime's pure functions (runtime/c/lines/match.c, the C library's matcher) compiled and
+tested alone."""
 from __future__ import annotations
 
 import functools
@@ -31,6 +32,7 @@ ROOT = Path(__file__).resolve().parents[2]
 CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "ur_dashboard"
 CELL = ROOT / "dissector" / "samples" / "cell_session.pcapng"
 RUNTIME = ROOT / "runtime" / "epan" / "lines"
+MATCH = ROOT / "runtime" / "c" / "lines"         # the matcher, the C library's, which the dissector joins
 INTERFACES = ("ur_dashboard", "ur_script_sender")
 PORTS = {"ur_dashboard": 29999, "ur_script_sender": 50002}
 # The script sender's port is the control PC's, and the robot connects to it: in the capture
@@ -226,7 +228,7 @@ def test_the_match_runtime_alone(tmp_path, cc):
     binary = tmp_path / "lines_match_unit"
     source = ROOT / "tests" / "native" / "lines_match_unit.c"
     build = subprocess.run([cc, "-std=c11", "-Wall", "-Wextra", "-Werror", "-fsanitize=address,undefined",
-                            "-fno-sanitize-recover=all", f"-I{RUNTIME}", str(source), "-o", str(binary)],
+                            "-fno-sanitize-recover=all", f"-I{RUNTIME}", f"-I{MATCH}", str(source), "-o", str(binary)],
                            capture_output=True, text=True)
     assert build.returncode == 0, build.stderr
     run = subprocess.run([str(binary)], capture_output=True, text=True, env={"ASAN_OPTIONS": "detect_leaks=0"})
@@ -236,7 +238,7 @@ def test_the_match_runtime_alone(tmp_path, cc):
 def test_the_dissector_runtime_compiles_alone():
     flags = subprocess.run(["pkg-config", "--cflags", "wireshark"], capture_output=True, text=True, check=True)
     result = subprocess.run(["gcc", "-std=c11", "-Wall", "-Wextra", "-Werror", "-Wno-unused-function", "-fsyntax-only",
-                             *flags.stdout.split(), f"-I{RUNTIME}", str(RUNTIME / "lines_dissect.c")],
+                             *flags.stdout.split(), f"-I{RUNTIME}", f"-I{MATCH}", str(RUNTIME / "lines_dissect.c")],
                             capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
 

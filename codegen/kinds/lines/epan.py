@@ -1,11 +1,11 @@
 """The epan target of a text-line interface: generated/epan/packet-<name>.c, a native Wireshark
 dissector as an upstream epan/dissectors/packet-*.c reads, the twin of the Lua one
 (generated/lua/<name>.lua): the same protocol, fields, expert infos, preference and ports. The
-spec's tables as C data, with runtime/epan/lines_*.c joined in, from the plan."""
+spec's tables as C data, with runtime/c/lines/match.{h,c}, runtime/epan/common/dotted_version.c and
+runtime/epan/lines/lines_dissect.c joined in, from the plan."""
 from __future__ import annotations
 
 import json
-import re
 from dataclasses import dataclass
 
 from ...emit import environment, runtime_section
@@ -15,8 +15,10 @@ from .model import Reply
 from .plan import LinesPlan
 
 FOLDER = "epan"
-RUNTIME_TYPES = "lines/lines_match.c"         # the tables' types and the pure functions over them
-RUNTIME_DISSECTOR = "lines/lines_dissect.c"   # the dissector itself, after the tables
+# Before the tables: their types and the matcher over them, the C library's own (runtime/c/lines/);
+# after them, the version preference's reader that every dissector shares, and the dissector itself.
+RUNTIME_TYPES = (("c", "common/macros.h"), ("c", "lines/match.h"), ("c", "lines/match.c"))
+RUNTIME_DISSECTOR = ("common/dotted_version.c", "lines/lines_dissect.c")
 
 
 @dataclass(frozen=True)
@@ -71,18 +73,6 @@ def _literals(text: str) -> list[str]:
     return [_string(w + " ") for w in words[:-1]] + [_string(words[-1])]
 
 
-def _joined(name: str, interface: str) -> str:
-    """A runtime file as joined into one interface's file. The names that are the interface's own,
-    written with the kind's name so that the file compiles alone (proto_lines, hf_lines_command,
-    ei_lines_too_long, ett_lines, dissect_lines, lines_spec, lines_version_preference), take the
-    interface's, as an upstream dissector names them after its protocol; the runtime's own types
-    and helpers (lines_matches, lines_conversation_t) keep the kind's."""
-    text = runtime_section(FOLDER, name)
-    text = re.sub(r"\b(hf|ei)_lines_", rf"\1_{interface}_", text)
-    text = re.sub(r"\b(ett|proto|dissect)_lines\b", rf"\1_{interface}", text)
-    return re.sub(r"\blines_(spec|version_preference)\b", rf"{interface}_\1", text)
-
-
 def _reply(reply: Reply) -> dict:
     return dict(pattern=reply.pattern, name=_string(reply.name), pieces=[_string(p) for p in reply.pieces],
                 error="true" if reply.error else "false")
@@ -122,7 +112,8 @@ def view(p: LinesPlan) -> dict:
         version_command=f"{p.version_command.index},  /* {p.version_command.command.name} */" if p.version_command
         else "LINES_NONE,",
         version_prefix=_string(m.version_prefix), e_series_from=f"{p.e_series_from}u",
-        runtime_types=_joined(RUNTIME_TYPES, name), runtime_dissector=_joined(RUNTIME_DISSECTOR, name),
+        runtime_types="\n\n".join(runtime_section(language, name) for language, name in RUNTIME_TYPES),
+        runtime_dissector="\n\n".join(runtime_section(FOLDER, name) for name in RUNTIME_DISSECTOR),
     )
 
 

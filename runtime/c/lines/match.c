@@ -1,62 +1,25 @@
 /* <standalone> */
-#include <stdbool.h>
-#include <stddef.h>
-#include <stdint.h>
 #include <string.h>
+#include "../common/macros.h"
+#include "match.h"
 /* </standalone> */
+/* ---- lines: which command, which reply, which version ------------------------------------- */
 /* Lines, commands and replies of a text-line interface, as the spec's tables say: which command a
  * line is, which reply a line is (the common replies first, then the command's own), whether a
  * software version has a command, and the version a version reply tells. Pure functions of the
- * tables and the line's bytes, with no Wireshark API, so that they compile and are tested alone;
- * runtime/lua/lines_match.lua is their twin. */
-
-#define LINES_NONE (-1)                   /* no command: an unknown one, or a reply with none pending */
-
-/* A reply pattern: literal pieces, each placeholder between two of them taking any text. */
-typedef struct lines_reply {
-    const char *name;
-    const char *const *pieces;
-    size_t piece_count;
-    bool error;                           /* the reply says that the command failed */
-} lines_reply_t;
-
-typedef struct lines_command {
-    const char *name;
-    const char *text;                     /* the words that open the line */
-    bool takes_argument;
-    uint64_t since_cb;                    /* lines_version() of the first CB2/CB3 version; 0: none */
-    uint64_t since_e_series;              /* the same for the e-Series (5.x and later); 0: none */
-    const lines_reply_t *replies;
-    size_t reply_count;
-} lines_command_t;
-
-/* One interface's tables, as the generator writes them from its spec. */
-typedef struct lines_spec {
-    const char *column;                   /* the Protocol column */
-    size_t max_line;                      /* longer lines are flagged and skipped up to their newline */
-    const lines_reply_t *banner;          /* the line the server greets a client with, or NULL */
-    bool robot_is_client;                 /* the robot connects to the port (the driver's sockets) */
-    bool requests_from_robot;             /* the robot asks and the other side answers */
-    bool one_reply_per_request;           /* else every answering line belongs to the latest request */
-    const lines_reply_t *common;          /* replies any command may get, read before its own */
-    size_t common_count;
-    const lines_command_t *commands;      /* spec order */
-    size_t command_count;
-    const int *lookup;                    /* command indices in the order a line is tried: longest text first */
-    int version_command;                  /* the command whose reply tells the version, or LINES_NONE */
-    const char *version_prefix;           /* the text before the version in that reply */
-    uint64_t e_series_from;               /* lines_version(5, 0, 0) */
-} lines_spec_t;
+ * tables and the line's bytes, the one matcher of the C library (runtime/c/lines/lines.c) and the
+ * Wireshark dissector (runtime/epan/lines/lines_dissect.c); runtime/lua/lines_match.lua is their
+ * twin. */
 
 /* Versions as one number: (major * 1000 + minor) * 1000 + bugfix, minor and bugfix at most 999. */
-static uint64_t lines_version(uint64_t major, uint64_t minor, uint64_t bugfix)
+URWIRE__PRIVATE uint64_t lines_version(uint64_t major, uint64_t minor, uint64_t bugfix)
 {
     return (major * 1000 + (minor < 999 ? minor : 999)) * 1000 + (bugfix < 999 ? bugfix : 999);
 }
 
 /* The whole text is the pattern: its first piece opens it, its last ends it, the others follow in
  * order between them, and each placeholder takes any text. */
-static bool lines_matches(const lines_reply_t *reply, const uint8_t *text, size_t len)
+URWIRE__PRIVATE bool lines_matches(const lines_reply_t *reply, const uint8_t *text, size_t len)
 {
     const char *first = reply->pieces[0], *last = reply->pieces[reply->piece_count - 1];
     size_t first_len = strlen(first), last_len = strlen(last), at, end, i;
@@ -80,7 +43,8 @@ static bool lines_matches(const lines_reply_t *reply, const uint8_t *text, size_
 
 /* The command a line is (its index in spec->commands) or LINES_NONE; *argument is the offset of
  * its argument in the line (the text after the words and a space, perhaps empty), or -1. */
-static int lines_find_command(const lines_spec_t *spec, const uint8_t *text, size_t len, long *argument)
+URWIRE__PRIVATE int lines_find_command(const lines_spec_t *spec, const uint8_t *text, size_t len,
+                                       long *argument)
 {
     size_t i;
     *argument = -1;
@@ -99,7 +63,8 @@ static int lines_find_command(const lines_spec_t *spec, const uint8_t *text, siz
 }
 
 /* The reply a line is, given the command it answers (an index or LINES_NONE), or NULL. */
-static const lines_reply_t *lines_classify(const lines_spec_t *spec, int command, const uint8_t *text, size_t len)
+URWIRE__PRIVATE const lines_reply_t *lines_classify(const lines_spec_t *spec, int command, const uint8_t *text,
+                                                    size_t len)
 {
     size_t i;
     for (i = 0; i < spec->common_count; i++)
@@ -114,7 +79,7 @@ static const lines_reply_t *lines_classify(const lines_spec_t *spec, int command
 }
 
 /* Whether the software version (a lines_version()) has the command. */
-static bool lines_available(const lines_spec_t *spec, int command, uint64_t version)
+URWIRE__PRIVATE bool lines_available(const lines_spec_t *spec, int command, uint64_t version)
 {
     const lines_command_t *c = &spec->commands[command];
     uint64_t since = version >= spec->e_series_from ? c->since_e_series : c->since_cb;
@@ -128,7 +93,8 @@ static bool lines_is_digit(uint8_t c)
 
 /* "URSoftware 5.11.1.108318 (Nov 26 2021)" -> *version = lines_version(5, 11, 1), or false: the
  * word after the prefix, split at its dots, whose first two or three parts are 1 to 3 digits. */
-static bool lines_version_in(const lines_spec_t *spec, const uint8_t *text, size_t len, uint64_t *version)
+URWIRE__PRIVATE bool lines_version_in(const lines_spec_t *spec, const uint8_t *text, size_t len,
+                                      uint64_t *version)
 {
     size_t prefix = strlen(spec->version_prefix), at, parts = 0;
     uint64_t value[3] = {0, 0, 0};
@@ -153,42 +119,5 @@ static bool lines_version_in(const lines_spec_t *spec, const uint8_t *text, size
     if (parts < 2)
         return false;
     *version = lines_version(value[0], value[1], value[2]);
-    return true;
-}
-
-static bool lines_is_space(char c)
-{
-    return c == ' ' || (c >= '\t' && c <= '\r');
-}
-
-/* Digits from *at, their value saturated far above any version; false when there are none. */
-static bool lines_number(const char **at, uint64_t *value)
-{
-    const char *start = *at;
-    *value = 0;
-    for (; **at >= '0' && **at <= '9'; (*at)++)
-        *value = *value >= 1000000000u ? *value : *value * 10 + (uint64_t)(**at - '0');
-    return *at != start;
-}
-
-/* "5.11" or "5.11.1", with spaces around it (the version preference) -> *version =
- * its lines_version(), or false for anything else. */
-static bool lines_parse_version(const char *text, uint64_t *version)
-{
-    uint64_t major, minor, bugfix = 0;
-    if (text == NULL)
-        return false;
-    while (lines_is_space(*text))
-        text++;
-    if (!lines_number(&text, &major) || *text++ != '.' || !lines_number(&text, &minor))
-        return false;
-    if (*text == '.')
-        text++;
-    lines_number(&text, &bugfix);
-    while (lines_is_space(*text))
-        text++;
-    if (*text != '\0')
-        return false;
-    *version = lines_version(major, minor, bugfix);
     return true;
 }
