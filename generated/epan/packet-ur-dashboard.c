@@ -528,32 +528,53 @@ static const lines_spec_t lines_spec = {
 };
 
 /* ---- runtime/epan/common/dotted_version.c ---- */
-/* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around
- * it allowed, a missing third number 0. It reads what the Lua dissectors' pattern
- * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads, into doubles as Lua's numbers are. */
+/* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks before
+ * it allowed, a missing third number 0: the one reader of a version's text that every dissector
+ * joins. whole: blanks after it and nothing else, what the Lua dissectors' pattern
+ * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads; else the text may go on after it, as the primary interface's
+ * preference always has (a third number then needs its digit after the dot). vt_blank: a vertical
+ * tab is a blank too, as for Lua's %s; only the text-line dissectors have read it so. */
+
+/* A part stops growing at DOTTED_VERSION_BIG or more (its first thirteen digits): far past every
+ * version a table names, and never an overflow. */
+#define DOTTED_VERSION_BIG G_GUINT64_CONSTANT(1000000000000)
+
+static gboolean dotted_version_blank(char c, gboolean vt_blank)
+{
+    return g_ascii_isspace(c) || (vt_blank && c == '\v');
+}
 
 /* The three numbers of the version; FALSE for text that is not one. */
-static gboolean dotted_version_parts(const char *text, double part[3])
+static gboolean dotted_version_parts(const char *text, gboolean whole, gboolean vt_blank, guint64 part[3])
 {
     const char *p = text;
     int i;
 
     if (p == NULL)
         return FALSE;
-    while (g_ascii_isspace(*p))
+    while (dotted_version_blank(*p, vt_blank))
         p++;
     for (i = 0; i < 3; i++) {
         part[i] = 0;
         if (i == 1 && *p++ != '.')
             return FALSE;
-        if (i == 2 && *p == '.')
+        if (i == 2 && !(*p == '.' && g_ascii_isdigit(p[1]))) {
+            if (whole && *p == '.')
+                p++;                            /* "5.9." reads as 5.9 */
+            break;
+        }
+        if (i == 2)
             p++;
-        if (i < 2 && !g_ascii_isdigit(*p))
+        if (!g_ascii_isdigit(*p))
             return FALSE;
-        for (; g_ascii_isdigit(*p); p++)
-            part[i] = part[i] * 10 + (*p - '0');
+        for (; g_ascii_isdigit(*p); p++) {
+            if (part[i] < DOTTED_VERSION_BIG)
+                part[i] = part[i] * 10 + (guint64)(*p - '0');
+        }
     }
-    while (g_ascii_isspace(*p))
+    if (!whole)
+        return TRUE;
+    while (dotted_version_blank(*p, vt_blank))
         p++;
     return *p == '\0';
 }
@@ -601,13 +622,10 @@ typedef struct lines_frame {
  * past every command's first version already, and stops there (no overflow). */
 static bool lines_parse_version(const char *text, uint64_t *version)
 {
-    double part[3];
-    int i;
-    if (!dotted_version_parts(text, part))
+    guint64 part[3];
+    if (!dotted_version_parts(text, TRUE, TRUE, part))
         return false;
-    for (i = 0; i < 3; i++)
-        part[i] = part[i] < 1e9 ? part[i] : 1e9;
-    *version = lines_version((uint64_t)part[0], (uint64_t)part[1], (uint64_t)part[2]);
+    *version = lines_version(MIN(part[0], 1000000000), part[1], part[2]);
     return true;
 }
 

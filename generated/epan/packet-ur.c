@@ -3168,6 +3168,58 @@ static const ur_version_step ur_version_steps[] = {
 #define UR_BUGFIX_LOW 3003000u
 #define UR_BUGFIX_HIGH 4294967295u
 
+/* ---- runtime/epan/common/dotted_version.c ---- */
+/* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks before
+ * it allowed, a missing third number 0: the one reader of a version's text that every dissector
+ * joins. whole: blanks after it and nothing else, what the Lua dissectors' pattern
+ * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads; else the text may go on after it, as the primary interface's
+ * preference always has (a third number then needs its digit after the dot). vt_blank: a vertical
+ * tab is a blank too, as for Lua's %s; only the text-line dissectors have read it so. */
+
+/* A part stops growing at DOTTED_VERSION_BIG or more (its first thirteen digits): far past every
+ * version a table names, and never an overflow. */
+#define DOTTED_VERSION_BIG G_GUINT64_CONSTANT(1000000000000)
+
+static gboolean dotted_version_blank(char c, gboolean vt_blank)
+{
+    return g_ascii_isspace(c) || (vt_blank && c == '\v');
+}
+
+/* The three numbers of the version; FALSE for text that is not one. */
+static gboolean dotted_version_parts(const char *text, gboolean whole, gboolean vt_blank, guint64 part[3])
+{
+    const char *p = text;
+    int i;
+
+    if (p == NULL)
+        return FALSE;
+    while (dotted_version_blank(*p, vt_blank))
+        p++;
+    for (i = 0; i < 3; i++) {
+        part[i] = 0;
+        if (i == 1 && *p++ != '.')
+            return FALSE;
+        if (i == 2 && !(*p == '.' && g_ascii_isdigit(p[1]))) {
+            if (whole && *p == '.')
+                p++;                            /* "5.9." reads as 5.9 */
+            break;
+        }
+        if (i == 2)
+            p++;
+        if (!g_ascii_isdigit(*p))
+            return FALSE;
+        for (; g_ascii_isdigit(*p); p++) {
+            if (part[i] < DOTTED_VERSION_BIG)
+                part[i] = part[i] * 10 + (guint64)(*p - '0');
+        }
+    }
+    if (!whole)
+        return TRUE;
+    while (dotted_version_blank(*p, vt_blank))
+        p++;
+    return *p == '\0';
+}
+
 /* ---- runtime/epan/packages/ur_versions.c ---- */
 /* Software versions as one number, (major * 1000 + minor) * 1000 + bugfix (5.9 is 5009000,
  * 5.25.1 is 5025001; an upper bound written 5.8 is 5008999, any 5.8.x): parsed from the
@@ -3188,33 +3240,17 @@ ur_version_number(guint32 major, guint32 minor, gint64 bugfix)
     return (major * 1000 + minor) * 1000 + (guint32)bugfix;
 }
 
-/* "5.9" -> 5009000, "5.25.1" -> 5025001 (leading spaces allowed); UR_VERSION_NONE when the text
- * is no version. */
+/* "5.9" -> 5009000, "5.25.1" -> 5025001 (leading spaces allowed, and any text after the version:
+ * common/dotted_version.c); UR_VERSION_NONE when the text is no version. */
 static guint32
 ur_parse_version(const char *text)
 {
-    guint64 part[3] = { 0, 0, 0 };
-    const char *p = text;
-    if (p == NULL)
+    guint64 part[3];
+    if (!dotted_version_parts(text, FALSE, FALSE, part))
         return UR_VERSION_NONE;
-    while (g_ascii_isspace(*p))
-        p++;
     for (unsigned i = 0; i < 3; i++) {
-        if (i > 0) {
-            if (*p != '.' || !g_ascii_isdigit(p[1])) {
-                if (i < 2)
-                    return UR_VERSION_NONE;
-                break;
-            }
-            p++;
-        }
-        if (!g_ascii_isdigit(*p))
-            return UR_VERSION_NONE;
-        while (g_ascii_isdigit(*p)) {
-            if (part[i] < 1000000)
-                part[i] = part[i] * 10 + (guint64)(*p - '0');
-            p++;
-        }
+        while (part[i] >= 10000000)     /* a part of eight digits or more reads as its first seven */
+            part[i] /= 10;
     }
     guint64 bugfix = part[2] > UR_BUGFIX_ANY ? UR_BUGFIX_ANY : part[2];
     guint64 v = (part[0] * 1000 + part[1]) * 1000 + bugfix;

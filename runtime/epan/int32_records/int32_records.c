@@ -37,11 +37,12 @@ static guint32 int32_records_release = INT32_RECORDS_DEFAULT_RELEASE;
  * for text that is not a release. */
 static guint32 int32_records_parse_release(const char *text)
 {
-    double part[3], number;
+    guint64 part[3];
+    double number;
 
-    if (!dotted_version_parts(text, part))
+    if (!dotted_version_parts(text, TRUE, FALSE, part))
         return INT32_RECORDS_DEFAULT_RELEASE;
-    number = (part[0] * 1000 + part[1]) * 1000 + part[2];
+    number = ((double)part[0] * 1000 + (double)part[1]) * 1000 + (double)part[2];
     return number < G_MAXUINT32 ? (guint32)number : G_MAXUINT32;
 }
 

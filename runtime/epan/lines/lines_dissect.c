@@ -60,13 +60,10 @@ typedef struct lines_frame {
  * past every command's first version already, and stops there (no overflow). */
 static bool lines_parse_version(const char *text, uint64_t *version)
 {
-    double part[3];
-    int i;
-    if (!dotted_version_parts(text, part))
+    guint64 part[3];
+    if (!dotted_version_parts(text, TRUE, TRUE, part))
         return false;
-    for (i = 0; i < 3; i++)
-        part[i] = part[i] < 1e9 ? part[i] : 1e9;
-    *version = lines_version((uint64_t)part[0], (uint64_t)part[1], (uint64_t)part[2]);
+    *version = lines_version(MIN(part[0], 1000000000), part[1], part[2]);
     return true;
 }
 

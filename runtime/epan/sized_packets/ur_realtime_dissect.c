@@ -50,11 +50,11 @@ static double ur_realtime_version;
  * 999 counts as 999); FALSE for text that is not a version. */
 static gboolean ur_realtime_parse_version(const char *text, double *number)
 {
-    double part[3];
+    guint64 part[3];
 
-    if (!dotted_version_parts(text, part))
+    if (!dotted_version_parts(text, TRUE, FALSE, part))
         return FALSE;
-    *number = (part[0] * 1000 + part[1]) * 1000 + MIN(part[2], 999);
+    *number = ((double)part[0] * 1000 + (double)part[1]) * 1000 + (double)MIN(part[2], 999);
     return TRUE;
 }
 
