@@ -65,8 +65,12 @@ def runtime_source(language: str, name: str) -> str:
     return _STANDALONE.sub("", text)
 
 
-# How a section opens in each language's comments.
-_SECTION = {"c": "/* ---- {} ---- */", "epan": "/* ---- {} ---- */", "lua": "-- ---- {} ----"}
+# How a joined section opens and closes, per language: a C comment naming the file; in Lua the
+# same, then the file inside a function of its own, which reads the generated tables (spec) and
+# shares the runtime's table (rt) with the other files, so that no local of one leaks into another.
+_RULE = "-- " + "=" * 93
+_SECTION = {"c": ("/* ---- {} ---- */\n", ""), "epan": ("/* ---- {} ---- */\n", ""),
+            "lua": (f"{_RULE}\n-- ---- {{}} ----\n{_RULE}\ndo\n(function(...)\n", "\nend)(spec, rt)\nend")}
 
 
 def runtime_section(language: str, name: str) -> str:
@@ -75,4 +79,5 @@ def runtime_section(language: str, name: str) -> str:
     line naming it, and no trailing blank line. Names are never rewritten: a runtime that several
     interfaces join keeps its functions static and takes the interface's tables as arguments, and
     the generated part, written around it, names the interface's own API."""
-    return _SECTION[language].format(runtime_path(language, name)) + "\n" + runtime_source(language, name).rstrip("\n")
+    opening, closing = _SECTION[language]
+    return opening.format(runtime_path(language, name)) + runtime_source(language, name).rstrip("\n") + closing

@@ -4,9 +4,10 @@
 
 C: both revisions' generated/c/*.c, and generated/epan/*.c against Wireshark's headers
 (`pkg-config --cflags wireshark`, as the native plugin builds), are compiled with -O2 and their
-object files (`objdump -d -s -r`: code, data and relocations) must be equal. Lua: `luac -l -l` listings of both urwire.lua, with line numbers and source names taken
-out, must be equal. Python: each generated module's syntax tree, docstrings left out, must be
-equal. It prints one line per file and exits 1 when any file behaves differently.
+object files (`objdump -d -s -r`: code, data and relocations) must be equal. Lua: the
+`luac -l -l` listings of both revisions' generated/lua/*.lua, with line numbers and source names
+taken out, must be equal. Python: each generated module's syntax tree, docstrings left out, must
+be equal. It prints one line per file and exits 1 when any file behaves differently.
 """
 from __future__ import annotations
 
@@ -101,11 +102,12 @@ def main(argv: list[str]) -> int:
                 print(f"generated/{folder}/{name}: object file (gcc -O2) {'same' if ok else 'DIFFERS'}")
                 same &= ok
 
-        (old / "urwire.lua").write_text(old_text(rev, "generated/lua/urwire.lua"))
-        shutil.copy(ROOT / "generated/lua/urwire.lua", new / "urwire.lua")
-        ok = lua_listing(old / "urwire.lua") == lua_listing(new / "urwire.lua")
-        print(f"generated/lua/urwire.lua: luac listing {'same' if ok else 'DIFFERS'}")
-        same &= ok
+        for path in sorted((ROOT / "generated" / "lua").glob("*.lua")):
+            (old / path.name).write_text(old_text(rev, f"generated/lua/{path.name}"))
+            shutil.copy(path, new / path.name)
+            ok = lua_listing(old / path.name) == lua_listing(new / path.name)
+            print(f"generated/lua/{path.name}: luac listing {'same' if ok else 'DIFFERS'}")
+            same &= ok
 
     for path in python_modules(rev):
         ok = python_tree(old_text(rev, path)) == python_tree((ROOT / path).read_text())

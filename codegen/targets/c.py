@@ -71,7 +71,7 @@ def inline(*texts: str) -> str:
 
 # ---- versions and conditions, as data -----------------------------------------------------
 
-# The largest parts urwire__version_key (runtime/private.h) orders exactly: bounds must stay below.
+# The largest parts urwire__version_key (runtime/c/packages/private.h) orders exactly: bounds must stay below.
 KEY_MAJOR, KEY_PART = 1 << 21, 1 << 20
 
 
@@ -84,7 +84,7 @@ def version_view(v: ir.Version) -> dict:
 
 
 def range_view(r: ir.VersionRange) -> dict:
-    """A version range as the initializer of an urwire__versions (runtime/private.h) renders it."""
+    """A version range as the initializer of an urwire__versions (runtime/c/packages/private.h) renders it."""
     return dict(low=version_view(r.low) if r.low else None, high=version_view(r.high) if r.high else None)
 
 

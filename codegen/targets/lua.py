@@ -19,7 +19,7 @@ from typing import Optional
 
 from .. import ir, plan, wrap
 from ..comments import node_text
-from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ..emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_section
 from ..errors import Problem, SpecError
 from ..naming import layout_label, table_suffix, wireshark_field, words
 from ..view import Step
@@ -644,14 +644,14 @@ def view_model(protocol_plan: plan.ProtocolPlan) -> dict:
     return _Builder(protocol_plan).build()
 
 
-def runtime() -> list[dict]:
-    """The runtime files in joining order, as joined (standalone-only lines removed)."""
+def runtime() -> list[str]:
+    """The runtime files in joining order, as joined (emit.runtime_section)."""
     folder = RUNTIME_FOLDER / "lua"
     # runtime/lua/<interface>_<part>.lua belongs to another interface's dissector, not to this one.
     found = sorted(p.name for p in folder.glob("*.lua") if "_" not in p.stem)
     if sorted(RUNTIME) != found:
         raise ValueError(f"lua target: runtime files {found} differ from the joining order {list(RUNTIME)}")
-    return [dict(name=name, path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in RUNTIME]
+    return [runtime_section("lua", name) for name in RUNTIME]
 
 
 def render(protocol_plan, banner: list[str]) -> dict[str, str]:

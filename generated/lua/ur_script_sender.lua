@@ -204,7 +204,6 @@ end
 
 rt.matches, rt.find_command, rt.classify, rt.shown = matches, find_command, classify, shown
 rt.available, rt.version_in, rt.parse_version = available, version_in, parse_version
-
 end)(spec, rt)
 end
 
@@ -462,6 +461,5 @@ end
 
 local tcp_port = DissectorTable.get("tcp.port")
 for _, port in ipairs(spec.ports) do tcp_port:add(port, proto) end
-
 end)(spec, rt)
 end

@@ -189,6 +189,5 @@ end
 local tcp_port = DissectorTable.get("tcp.port")
 for _, port in ipairs(spec.ports) do tcp_port:add(port, proto) end
 rt.parse_release, rt.layout_of = parse_release, layout_of
-
 end)(spec, rt)
 end

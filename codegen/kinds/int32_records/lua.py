@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 
 from ... import ir
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...naming import column_name
 from .model import FROM_ROBOT
 from .plan import RecordsPlan
@@ -45,8 +45,7 @@ def view(p: RecordsPlan) -> dict:
                 ports=", ".join(map(str, m.ports)), default_release=ir.version_number(m.default_release),
                 default_text=_lua(ir.version_text(m.default_release)), fields=fields, records=records, enums=enums,
                 filter_example=f"{m.name}.{p.records[0].fields[-1].name}",
-                runtime=dict(path=runtime_path("lua", "int32_records.lua"),
-                             source=runtime_source("lua", "int32_records.lua")))
+                runtime=runtime_section("lua", "int32_records.lua"))
 
 
 def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:

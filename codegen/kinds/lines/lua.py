@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...naming import column_name
 from .model import Reply
 from .plan import LinesPlan
@@ -46,8 +46,7 @@ def view(p: LinesPlan) -> dict:
         version_command=_number(p.version_command.index + 1 if p.version_command else None),
         version_prefix=_string(m.version_prefix), e_series_from=p.e_series_from,
         labels=[dict(name=name, label=_string(f.label), doc=_string(f.doc)) for name, f in m.fields.items()],
-        runtime=[dict(path=runtime_path("lua", f"lines_{name}"), source=runtime_source("lua", f"lines_{name}"))
-                 for name in RUNTIME],
+        runtime=[runtime_section("lua", f"lines_{name}") for name in RUNTIME],
     )
 
 

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 from ... import ir
 from ...comments import field_text, node_text
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from .plan import SizedPlan
 
 RUNTIME = ["dissect.lua"]   # runtime/lua/<name>_dissect.lua
@@ -68,8 +68,7 @@ def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
                      for e in planned.enums if e.name in form.tables]
             row.append(LuaForm(form.low, form.high, form.layout + 1, form.describe(), names))
         forms.append((size, row))
-    runtime = [dict(path=runtime_path("lua", f"{name}_{part}"), source=runtime_source("lua", f"{name}_{part}"))
-               for part in RUNTIME]
+    runtime = [runtime_section("lua", f"{name}_{part}") for part in RUNTIME]
     text = environment("lua").get_template("sized_packets/dissector.lua.j2").render(
         banner=banner, protocol=protocol, name=name, doc=node_text(protocol), fields=fields, enum_of=enum_of,
         layouts=layouts, tables=tables, forms=forms, size_field=protocol.size_field,

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 from ... import ir
-from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_section
 from ...errors import Problem, SpecError
 from ...targets.lua import lua_literal, lua_str
 from ...wrap import spread
@@ -157,7 +157,7 @@ def render(interface: model.Interface, banner: list[str]) -> dict[str, str]:
         "max_pending": interface.max_pending_setups,
         "codes": codes,
         "undocumented": [{"code": u.code, "name": u.name, "label": u.label} for u in interface.undocumented],
-        "runtime": [{"path": runtime_path("lua", n), "source": runtime_source("lua", n)} for n in runtime_files(prefix)],
+        "runtime": [runtime_section("lua", n) for n in runtime_files(prefix)],
     }
     env = environment("lua")
     env.filters["lua"] = lua_literal
