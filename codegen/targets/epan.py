@@ -26,10 +26,11 @@ OUT = "epan/packet-ur.c"
 FOLDER = "epan"
 
 # The hand-written runtime, in the order it is joined: types before the generated tables, the
-# rest after them (runtime/epan/packages/ur_*.c, and runtime/epan/common/{dotted_version,tshark_fields*}.c,
-# which every kind's dissector joins).
+# rest after them (runtime/epan/packages/ur_*.c, and runtime/epan/common/tshark_fields*.c, which every
+# kind's dissector joins), after the C library's reader of a version's text (runtime/c/common/).
 RUNTIME_TYPES = ("ur_types.c",)
-RUNTIME_CODE = ("dotted_version.c", "ur_versions.c", "tshark_fields.c", "ur_wanted.c", "ur_items.c", "ur_walk.c",
+C_RUNTIME = ("common/macros.h", "common/version_text.h", "common/version_text.c")
+RUNTIME_CODE = ("ur_versions.c", "tshark_fields.c", "ur_wanted.c", "ur_items.c", "ur_walk.c",
                 "ur_values.c", "ur_info.c", "ur_messages.c", "ur_stream.c", "ur_framing.c")
 # The upstream copy (Wireshark's own tree) reads no command line: it joins no tshark_fields.c, and
 # ur_wanted_upstream.c stands in for ur_wanted.c (every package built), with no ur.named_fields_only.
@@ -434,7 +435,7 @@ KIND_CONST = {name: f"UR_VK_{name.upper()}" for name in VALUE_KINDS}
 
 def runtime_file(name: str) -> str:
     """Where a runtime file of this kind lives under runtime/epan: its own folder, or the shared one."""
-    return f"common/{name}" if name.startswith(("tshark_fields", "dotted_version")) else f"packages/{name}"
+    return f"common/{name}" if name.startswith("tshark_fields") else f"packages/{name}"
 
 
 def runtime(names: tuple[str, ...]) -> list[str]:
@@ -469,6 +470,7 @@ def render(protocol_plan, banner: list[str], upstream: bool = False) -> dict[str
     env.filters["c"] = c_literal
     env.filters["c_text"] = c_text
     model = _Builder(protocol_plan).build()
-    ctx = dict(banner=banner, p=protocol_plan.protocol, types=runtime(RUNTIME_TYPES), code=runtime(code),
+    ctx = dict(banner=banner, p=protocol_plan.protocol, types=runtime(RUNTIME_TYPES),
+               code=[runtime_section("c", name) for name in C_RUNTIME] + runtime(code),
                named_fields_preference=not upstream, any_low=ANY_LOW, any_high=ANY_HIGH, **model)
     return {OUT: env.get_template("packet-ur.c.j2").render(**ctx)}

@@ -455,6 +455,89 @@ URWIRE__PRIVATE size_t urwire__end(urwire__text *t)
     return t->n;
 }
 
+/* ---- runtime/c/common/version_text.h ---- */
+/* ---- a software version's text (version_text.c) ----------------------------------------- */
+
+/* A part stops growing at its first thirteen digits: far past every version a table names, and
+ * never an overflow. */
+#define URWIRE__VERSION_PART_BIG 1000000000000u
+
+typedef struct urwire__version_text {
+    uint64_t part[3];           /* major, minor, bugfix; a missing bugfix 0 */
+    size_t parts;               /* the numbers read: 2 or 3 */
+    size_t longest;             /* the digits of the longest number */
+    bool dot_after;             /* whole: a dot with no number after it ("5.9.") */
+    const char *end;            /* past what was read */
+} urwire__version_text;
+
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out);
+
+/* ---- runtime/c/common/version_text.c ---- */
+/* ---- a software version's text ---------------------------------------------------------- */
+/* The one reader of a version's text in C: the C library's urwire_parse_version, the version a
+ * dashboard reply tells ("URSoftware 5.11.1.108318 (...)"), and every Wireshark dissector's
+ * version preference ("5.9", " 3.15.2 "). Each caller's rules that differ are its parameters and
+ * its checks of what was read (how many digits, what follows). */
+
+/* Blanks as Wireshark's g_ascii_isspace sees them; vt_blank: a vertical tab too, as C's isspace
+ * and Lua's %s see it. */
+static bool urwire__version_blank(char c, bool vt_blank)
+{
+    return c == ' ' || c == '\t' || c == '\n' || c == '\f' || c == '\r' || (vt_blank && c == '\v');
+}
+
+static bool urwire__version_digit(const char *at, const char *end)
+{
+    return at < end && *at >= '0' && *at <= '9';
+}
+
+/* major.minor or major.minor.bugfix in [text, end), after blanks. whole: nothing but blanks may
+ * follow (a dot with no number after it too); else anything may, and a third number needs its
+ * digit right after the dot. False for text that is not a version. */
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out)
+{
+    const char *p = text;
+    size_t i;
+    out->parts = 0;
+    out->longest = 0;
+    out->dot_after = false;
+    while (p < end && urwire__version_blank(*p, vt_blank))
+        p++;
+    for (i = 0; i < 3; i++) {
+        size_t digits = 0;
+        out->part[i] = 0;
+        if (i == 1 && (p == end || *p++ != '.'))
+            return false;
+        if (i == 2 && !(p < end && *p == '.' && urwire__version_digit(p + 1, end))) {
+            if (whole && p < end && *p == '.') {
+                out->dot_after = true;
+                p++;
+            }
+            break;
+        }
+        if (i == 2)
+            p++;
+        if (!urwire__version_digit(p, end))
+            return false;
+        for (; urwire__version_digit(p, end); p++, digits++) {
+            if (out->part[i] < URWIRE__VERSION_PART_BIG)
+                out->part[i] = out->part[i] * 10u + (uint64_t)(*p - '0');
+        }
+        out->parts = i + 1;
+        out->longest = digits > out->longest ? digits : out->longest;
+    }
+    if (whole) {
+        while (p < end && urwire__version_blank(*p, vt_blank))
+            p++;
+        if (p != end)
+            return false;
+    }
+    out->end = p;
+    return true;
+}
+
 /* ---- runtime/c/lines/match.c ---- */
 /* ---- lines: which command, which reply, which version ------------------------------------- */
 /* Lines, commands and replies of a text-line interface, as the spec's tables say: which command a
@@ -539,39 +622,21 @@ URWIRE__PRIVATE bool lines_available(const lines_spec_t *spec, int command, uint
     return since != 0 && version >= since;
 }
 
-static bool lines_is_digit(uint8_t c)
-{
-    return c >= '0' && c <= '9';
-}
-
 /* "URSoftware 5.11.1.108318 (Nov 26 2021)" -> *version = lines_version(5, 11, 1), or false: the
- * word after the prefix, split at its dots, whose first two or three parts are 1 to 3 digits. */
+ * word right after the prefix (runtime/c/common/version_text.c reads it), whose first two or three
+ * numbers are 1 to 3 digits; the word ends there, or at a dot after the third (the build). */
 URWIRE__PRIVATE bool lines_version_in(const lines_spec_t *spec, const uint8_t *text, size_t len,
                                       uint64_t *version)
 {
-    size_t prefix = strlen(spec->version_prefix), at, parts = 0;
-    uint64_t value[3] = {0, 0, 0};
-    if (len < prefix || memcmp(text, spec->version_prefix, prefix) != 0)
+    size_t prefix = strlen(spec->version_prefix);
+    const char *at = (const char *)text + prefix, *end = (const char *)text + len;
+    urwire__version_text v;
+    if (len <= prefix || memcmp(text, spec->version_prefix, prefix) != 0 || *at < '0' || *at > '9'
+        || !urwire__read_version(at, end, false, false, &v) || v.longest > 3)
         return false;
-    at = prefix;
-    while (parts < 3) {
-        size_t digits = 0;
-        while (at < len && text[at] != ' ' && text[at] != '.') {
-            if (!lines_is_digit(text[at]) || ++digits > 3)
-                return false;
-            value[parts] = value[parts] * 10 + (uint64_t)(text[at] - '0');
-            at++;
-        }
-        if (digits == 0)
-            return false;
-        parts++;
-        if (at == len || text[at] == ' ')
-            break;
-        at++;                             /* past the dot */
-    }
-    if (parts < 2)
+    if (v.end != end && *v.end != ' ' && !(v.parts == 3 && *v.end == '.'))
         return false;
-    *version = lines_version(value[0], value[1], value[2]);
+    *version = lines_version(v.part[0], v.part[1], v.part[2]);
     return true;
 }
 

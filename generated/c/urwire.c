@@ -67,6 +67,24 @@ URWIRE__PRIVATE void urwire__bytes(urwire__text *t, const char *p, size_t n);
 URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s);
 URWIRE__PRIVATE size_t urwire__end(urwire__text *t);
 
+/* ---- runtime/c/common/version_text.h ---- */
+/* ---- a software version's text (version_text.c) ----------------------------------------- */
+
+/* A part stops growing at its first thirteen digits: far past every version a table names, and
+ * never an overflow. */
+#define URWIRE__VERSION_PART_BIG 1000000000000u
+
+typedef struct urwire__version_text {
+    uint64_t part[3];           /* major, minor, bugfix; a missing bugfix 0 */
+    size_t parts;               /* the numbers read: 2 or 3 */
+    size_t longest;             /* the digits of the longest number */
+    bool dot_after;             /* whole: a dot with no number after it ("5.9.") */
+    const char *end;            /* past what was read */
+} urwire__version_text;
+
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out);
+
 /* ---- runtime/c/packages/private.h ---- */
 /* ---- what the runtime and the generated layouts share ------------------------------------- */
 
@@ -524,6 +542,71 @@ URWIRE__PRIVATE size_t urwire__end(urwire__text *t)
     return t->n;
 }
 
+/* ---- runtime/c/common/version_text.c ---- */
+/* ---- a software version's text ---------------------------------------------------------- */
+/* The one reader of a version's text in C: the C library's urwire_parse_version, the version a
+ * dashboard reply tells ("URSoftware 5.11.1.108318 (...)"), and every Wireshark dissector's
+ * version preference ("5.9", " 3.15.2 "). Each caller's rules that differ are its parameters and
+ * its checks of what was read (how many digits, what follows). */
+
+/* Blanks as Wireshark's g_ascii_isspace sees them; vt_blank: a vertical tab too, as C's isspace
+ * and Lua's %s see it. */
+static bool urwire__version_blank(char c, bool vt_blank)
+{
+    return c == ' ' || c == '\t' || c == '\n' || c == '\f' || c == '\r' || (vt_blank && c == '\v');
+}
+
+static bool urwire__version_digit(const char *at, const char *end)
+{
+    return at < end && *at >= '0' && *at <= '9';
+}
+
+/* major.minor or major.minor.bugfix in [text, end), after blanks. whole: nothing but blanks may
+ * follow (a dot with no number after it too); else anything may, and a third number needs its
+ * digit right after the dot. False for text that is not a version. */
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out)
+{
+    const char *p = text;
+    size_t i;
+    out->parts = 0;
+    out->longest = 0;
+    out->dot_after = false;
+    while (p < end && urwire__version_blank(*p, vt_blank))
+        p++;
+    for (i = 0; i < 3; i++) {
+        size_t digits = 0;
+        out->part[i] = 0;
+        if (i == 1 && (p == end || *p++ != '.'))
+            return false;
+        if (i == 2 && !(p < end && *p == '.' && urwire__version_digit(p + 1, end))) {
+            if (whole && p < end && *p == '.') {
+                out->dot_after = true;
+                p++;
+            }
+            break;
+        }
+        if (i == 2)
+            p++;
+        if (!urwire__version_digit(p, end))
+            return false;
+        for (; urwire__version_digit(p, end); p++, digits++) {
+            if (out->part[i] < URWIRE__VERSION_PART_BIG)
+                out->part[i] = out->part[i] * 10u + (uint64_t)(*p - '0');
+        }
+        out->parts = i + 1;
+        out->longest = digits > out->longest ? digits : out->longest;
+    }
+    if (whole) {
+        while (p < end && urwire__version_blank(*p, vt_blank))
+            p++;
+        if (p != end)
+            return false;
+    }
+    out->end = p;
+    return true;
+}
+
 /* ---- runtime/c/packages/views.c ---- */
 /* ---- views -------------------------------------------------------------------------------- */
 
@@ -588,41 +671,17 @@ URWIRE__PRIVATE size_t urwire__table_index(urwire_sw_version v, const urwire__ve
     return count - 1;
 }
 
-static bool urwire__is_space(char c)
-{
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
-}
-
 bool urwire_parse_version(const char *text, urwire_sw_version *out)
 {
-    /* As Python's urwire.parse_version: "major.minor" or "major.minor.bugfix", every part
-     * digits. */
-    long parts[3] = {0, 0, 0};
-    size_t len = strlen(text), start = 0, i, nparts = 0, digits = 0;
-    while (start < len && urwire__is_space(text[start]))
-        start++;
-    while (len > start && urwire__is_space(text[len - 1]))
-        len--;
-    for (i = start; i <= len; i++) {
-        if (i == len || text[i] == '.') {
-            if (digits == 0 || nparts == 3)
-                return false;
-            nparts++;
-            digits = 0;
-        } else if (text[i] >= '0' && text[i] <= '9') {
-            if (++digits > 6)
-                return false;  /* no real version has such parts; keeps the ints small */
-            if (nparts < 3)
-                parts[nparts] = parts[nparts] * 10 + (text[i] - '0');
-        } else {
-            return false;
-        }
-    }
-    if (nparts < 2)
+    /* As Python's urwire.parse_version: "major.minor" or "major.minor.bugfix", blanks around it
+     * (C's isspace), every part 1 to 6 digits (no real version has more; it keeps the ints small),
+     * and no dot without a number after it. */
+    urwire__version_text v;
+    if (!urwire__read_version(text, text + strlen(text), true, true, &v) || v.dot_after || v.longest > 6)
         return false;
-    out->major = (int)parts[0];
-    out->minor = (int)parts[1];
-    out->bugfix = (int)parts[2];
+    out->major = (int)v.part[0];
+    out->minor = (int)v.part[1];
+    out->bugfix = (int)v.part[2];
     out->assumed = false;
     return true;
 }

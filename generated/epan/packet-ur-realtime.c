@@ -741,56 +741,101 @@ static const ur_realtime_size_forms ur_realtime_sizes[] = {
     { 1220, 11, 1 },
 };
 
-/* ---- runtime/epan/common/dotted_version.c ---- */
-/* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks before
- * it allowed, a missing third number 0: the one reader of a version's text that every dissector
- * joins. whole: blanks after it and nothing else, what the Lua dissectors' pattern
- * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads; else the text may go on after it, as the primary interface's
- * preference always has (a third number then needs its digit after the dot). vt_blank: a vertical
- * tab is a blank too, as for Lua's %s; only the text-line dissectors have read it so. */
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
 
-/* A part stops growing at DOTTED_VERSION_BIG or more (its first thirteen digits): far past every
- * version a table names, and never an overflow. */
-#define DOTTED_VERSION_BIG G_GUINT64_CONSTANT(1000000000000)
+/* Private functions live in the generated .c file that joins them, a copy in each. */
+#define URWIRE__PRIVATE static
 
-static gboolean dotted_version_blank(char c, gboolean vt_blank)
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+/* ---- runtime/c/common/version_text.h ---- */
+/* ---- a software version's text (version_text.c) ----------------------------------------- */
+
+/* A part stops growing at its first thirteen digits: far past every version a table names, and
+ * never an overflow. */
+#define URWIRE__VERSION_PART_BIG 1000000000000u
+
+typedef struct urwire__version_text {
+    uint64_t part[3];           /* major, minor, bugfix; a missing bugfix 0 */
+    size_t parts;               /* the numbers read: 2 or 3 */
+    size_t longest;             /* the digits of the longest number */
+    bool dot_after;             /* whole: a dot with no number after it ("5.9.") */
+    const char *end;            /* past what was read */
+} urwire__version_text;
+
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out);
+/* ---- runtime/c/common/version_text.c ---- */
+/* ---- a software version's text ---------------------------------------------------------- */
+/* The one reader of a version's text in C: the C library's urwire_parse_version, the version a
+ * dashboard reply tells ("URSoftware 5.11.1.108318 (...)"), and every Wireshark dissector's
+ * version preference ("5.9", " 3.15.2 "). Each caller's rules that differ are its parameters and
+ * its checks of what was read (how many digits, what follows). */
+
+/* Blanks as Wireshark's g_ascii_isspace sees them; vt_blank: a vertical tab too, as C's isspace
+ * and Lua's %s see it. */
+static bool urwire__version_blank(char c, bool vt_blank)
 {
-    return g_ascii_isspace(c) || (vt_blank && c == '\v');
+    return c == ' ' || c == '\t' || c == '\n' || c == '\f' || c == '\r' || (vt_blank && c == '\v');
 }
 
-/* The three numbers of the version; FALSE for text that is not one. */
-static gboolean dotted_version_parts(const char *text, gboolean whole, gboolean vt_blank, guint64 part[3])
+static bool urwire__version_digit(const char *at, const char *end)
+{
+    return at < end && *at >= '0' && *at <= '9';
+}
+
+/* major.minor or major.minor.bugfix in [text, end), after blanks. whole: nothing but blanks may
+ * follow (a dot with no number after it too); else anything may, and a third number needs its
+ * digit right after the dot. False for text that is not a version. */
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out)
 {
     const char *p = text;
-    int i;
-
-    if (p == NULL)
-        return FALSE;
-    while (dotted_version_blank(*p, vt_blank))
+    size_t i;
+    out->parts = 0;
+    out->longest = 0;
+    out->dot_after = false;
+    while (p < end && urwire__version_blank(*p, vt_blank))
         p++;
     for (i = 0; i < 3; i++) {
-        part[i] = 0;
-        if (i == 1 && *p++ != '.')
-            return FALSE;
-        if (i == 2 && !(*p == '.' && g_ascii_isdigit(p[1]))) {
-            if (whole && *p == '.')
-                p++;                            /* "5.9." reads as 5.9 */
+        size_t digits = 0;
+        out->part[i] = 0;
+        if (i == 1 && (p == end || *p++ != '.'))
+            return false;
+        if (i == 2 && !(p < end && *p == '.' && urwire__version_digit(p + 1, end))) {
+            if (whole && p < end && *p == '.') {
+                out->dot_after = true;
+                p++;
+            }
             break;
         }
         if (i == 2)
             p++;
-        if (!g_ascii_isdigit(*p))
-            return FALSE;
-        for (; g_ascii_isdigit(*p); p++) {
-            if (part[i] < DOTTED_VERSION_BIG)
-                part[i] = part[i] * 10 + (guint64)(*p - '0');
+        if (!urwire__version_digit(p, end))
+            return false;
+        for (; urwire__version_digit(p, end); p++, digits++) {
+            if (out->part[i] < URWIRE__VERSION_PART_BIG)
+                out->part[i] = out->part[i] * 10u + (uint64_t)(*p - '0');
         }
+        out->parts = i + 1;
+        out->longest = digits > out->longest ? digits : out->longest;
     }
-    if (!whole)
-        return TRUE;
-    while (dotted_version_blank(*p, vt_blank))
-        p++;
-    return *p == '\0';
+    if (whole) {
+        while (p < end && urwire__version_blank(*p, vt_blank))
+            p++;
+        if (p != end)
+            return false;
+    }
+    out->end = p;
+    return true;
 }
 /* ---- runtime/epan/sized_packets/ur_realtime_dissect.c ---- */
 /* The real-time dissector's runtime: frames the robot's TCP stream by each packet's int32 size
@@ -826,11 +871,11 @@ static double ur_realtime_version;
  * 999 counts as 999); FALSE for text that is not a version. */
 static gboolean ur_realtime_parse_version(const char *text, double *number)
 {
-    guint64 part[3];
+    urwire__version_text v;
 
-    if (!dotted_version_parts(text, TRUE, FALSE, part))
+    if (text == NULL || !urwire__read_version(text, text + strlen(text), true, false, &v))
         return FALSE;
-    *number = ((double)part[0] * 1000 + (double)part[1]) * 1000 + (double)MIN(part[2], 999);
+    *number = ((double)v.part[0] * 1000 + (double)v.part[1]) * 1000 + (double)MIN(v.part[2], 999);
     return TRUE;
 }
 

@@ -46,7 +46,8 @@ def expected_tools() -> list[str]:
     runtime = [f"tools/urwire/runtime/epan/{p.relative_to(ROOT / 'runtime' / 'epan')}"
                for p in (ROOT / "runtime" / "epan").rglob("*")
                if p.is_file() and "__pycache__" not in p.parts and p.name not in COMMAND_LINE_RUNTIME]
-    runtime += [f"tools/urwire/runtime/c/{name}" for name in ("common/macros.h", "lines/match.h", "lines/match.c")]
+    runtime += [f"tools/urwire/runtime/c/{name}" for name in ("common/macros.h", "common/version_text.h",
+                                                              "common/version_text.c", "lines/match.h", "lines/match.c")]
     return [*generator, *specs, *runtime, "tools/urwire2wireshark.py"]
 
 

@@ -16,9 +16,10 @@ from ...naming import column_name
 from .model import FROM_ROBOT
 from .plan import RecordsPlan
 
-RUNTIME_HEAD = ["int32_records/int32_records_types.h"]    # the table types, before the tables
-# the release's text; the dissector, after the tables
-RUNTIME_TAIL = ["common/dotted_version.c", "int32_records/int32_records.c"]
+RUNTIME_HEAD = [("epan", "int32_records/int32_records_types.h")]    # the table types, before the tables
+# the release's text (the C library's reader); the dissector, after the tables
+RUNTIME_TAIL = [("c", "common/macros.h"), ("c", "common/version_text.h"), ("c", "common/version_text.c"),
+                ("epan", "int32_records/int32_records.c")]
 
 
 @dataclass
@@ -93,7 +94,7 @@ def render(p: RecordsPlan, banner: list[str], upstream: bool = False) -> dict[st
                  f"array_length({ident}_starts)" if starts else "0", f"{ident}_layouts"]
         records["from_robot" if r.record.direction == FROM_ROBOT else "to_robot"] = EpanRecord(
             ident, r.record.label, starts, layouts, items)
-    runtime = [runtime_section("epan", part) for part in RUNTIME_HEAD + RUNTIME_TAIL]
+    runtime = [runtime_section(language, part) for language, part in RUNTIME_HEAD + RUNTIME_TAIL]
     context = dict(
         banner=banner, name=name, title=m.title, doc=m.doc, file=f"packet-{name.replace('_', '-')}.c",
         short_name=name.upper(), column=column_name(name), ports=[str(port) for port in m.ports],

@@ -1,7 +1,7 @@
 """The epan target of a text-line interface: generated/epan/packet-<name>.c, a native Wireshark
 dissector as an upstream epan/dissectors/packet-*.c reads, the twin of the Lua one
 (generated/lua/<name>.lua): the same protocol, fields, expert infos, preference and ports. The
-spec's tables as C data, with runtime/c/lines/match.{h,c}, runtime/epan/common/dotted_version.c and
+spec's tables as C data, with runtime/c/lines/match.{h,c}, runtime/c/common/version_text.{h,c} and
 runtime/epan/lines/lines_dissect.c joined in, from the plan."""
 from __future__ import annotations
 
@@ -15,10 +15,11 @@ from .model import Reply
 from .plan import LinesPlan
 
 FOLDER = "epan"
-# Before the tables: their types and the matcher over them, the C library's own (runtime/c/lines/);
-# after them, the version preference's reader that every dissector shares, and the dissector itself.
-RUNTIME_TYPES = (("c", "common/macros.h"), ("c", "lines/match.h"), ("c", "lines/match.c"))
-RUNTIME_DISSECTOR = ("common/dotted_version.c", "lines/lines_dissect.c")
+# Before the tables: their types and the matcher over them, and the reader of a version's text, the
+# C library's own (runtime/c/lines/, runtime/c/common/); after them, the dissector itself.
+RUNTIME_TYPES = (("c", "common/macros.h"), ("c", "common/version_text.h"), ("c", "common/version_text.c"),
+                 ("c", "lines/match.h"), ("c", "lines/match.c"))
+RUNTIME_DISSECTOR = ("lines/lines_dissect.c",)
 
 
 @dataclass(frozen=True)

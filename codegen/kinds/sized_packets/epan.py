@@ -17,7 +17,8 @@ from .plan import SizedPlan
 
 RUNTIME_HEAD = ["types.h"]      # runtime/epan/sized_packets/<name>_types.h: the table types, before the tables
 RUNTIME_TAIL = ["dissect.c"]    # runtime/epan/sized_packets/<name>_dissect.c: after the tables it walks
-SHARED = ["dotted_version.c"]   # runtime/epan/common/dotted_version.c: reads the version preference, before the tail
+# runtime/c/common/version_text.{h,c}: reads the version preference, before the tail
+SHARED = ["common/macros.h", "common/version_text.h", "common/version_text.c"]
 INFO_FIELD = "robot_mode"       # the field whose name the Info column shows beside the layout's
 
 
@@ -113,9 +114,9 @@ def render(planned: SizedPlan, banner: list[str], upstream: bool = False) -> dic
     enum_ids = {e.name: f"{upper}_NAMES_{e.name.upper()}" for e in planned.enums}
     tables = _tables(name, planned.enums)
     forms, sizes = _forms(planned, tables)
-    files = ([f"sized_packets/{name}_{part}" for part in RUNTIME_HEAD] + [f"common/{file}" for file in SHARED]
-             + [f"sized_packets/{name}_{part}" for part in RUNTIME_TAIL])
-    runtime = [runtime_section("epan", file) for file in files]
+    runtime = ([runtime_section("epan", f"sized_packets/{name}_{part}") for part in RUNTIME_HEAD]
+               + [runtime_section("c", file) for file in SHARED]
+               + [runtime_section("epan", f"sized_packets/{name}_{part}") for part in RUNTIME_TAIL])
     context = dict(
         banner=banner, protocol=protocol, name=name, upper=upper, file=f"packet-{name.replace('_', '-')}.c",
         short_name=upper, doc=node_text(protocol), ports=",".join(str(p) for p in protocol.ports),

@@ -1,6 +1,7 @@
 /* <standalone> */
 #include <string.h>
 #include "../common/macros.h"
+#include "../common/version_text.c"
 #include "match.h"
 /* </standalone> */
 /* ---- lines: which command, which reply, which version ------------------------------------- */
@@ -86,38 +87,20 @@ URWIRE__PRIVATE bool lines_available(const lines_spec_t *spec, int command, uint
     return since != 0 && version >= since;
 }
 
-static bool lines_is_digit(uint8_t c)
-{
-    return c >= '0' && c <= '9';
-}
-
 /* "URSoftware 5.11.1.108318 (Nov 26 2021)" -> *version = lines_version(5, 11, 1), or false: the
- * word after the prefix, split at its dots, whose first two or three parts are 1 to 3 digits. */
+ * word right after the prefix (runtime/c/common/version_text.c reads it), whose first two or three
+ * numbers are 1 to 3 digits; the word ends there, or at a dot after the third (the build). */
 URWIRE__PRIVATE bool lines_version_in(const lines_spec_t *spec, const uint8_t *text, size_t len,
                                       uint64_t *version)
 {
-    size_t prefix = strlen(spec->version_prefix), at, parts = 0;
-    uint64_t value[3] = {0, 0, 0};
-    if (len < prefix || memcmp(text, spec->version_prefix, prefix) != 0)
+    size_t prefix = strlen(spec->version_prefix);
+    const char *at = (const char *)text + prefix, *end = (const char *)text + len;
+    urwire__version_text v;
+    if (len <= prefix || memcmp(text, spec->version_prefix, prefix) != 0 || *at < '0' || *at > '9'
+        || !urwire__read_version(at, end, false, false, &v) || v.longest > 3)
         return false;
-    at = prefix;
-    while (parts < 3) {
-        size_t digits = 0;
-        while (at < len && text[at] != ' ' && text[at] != '.') {
-            if (!lines_is_digit(text[at]) || ++digits > 3)
-                return false;
-            value[parts] = value[parts] * 10 + (uint64_t)(text[at] - '0');
-            at++;
-        }
-        if (digits == 0)
-            return false;
-        parts++;
-        if (at == len || text[at] == ' ')
-            break;
-        at++;                             /* past the dot */
-    }
-    if (parts < 2)
+    if (v.end != end && *v.end != ' ' && !(v.parts == 3 && *v.end == '.'))
         return false;
-    *version = lines_version(value[0], value[1], value[2]);
+    *version = lines_version(v.part[0], v.part[1], v.part[2]);
     return true;
 }

@@ -4,6 +4,7 @@
 #include <string.h>
 #include "macros.h"
 #include "buffer.h"
+#include "version_text.h"
 #include "runtime_spec.h"
 #include "value.h"
 #include "visitor.h"

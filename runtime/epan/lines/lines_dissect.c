@@ -6,7 +6,6 @@
 #include <epan/expert.h>
 #include <epan/proto_data.h>
 #include "match.c"
-#include "../common/dotted_version.c"
 static int proto_lines = -1;
 static int hf_lines_command = -1, hf_lines_command_name = -1, hf_lines_argument = -1, hf_lines_available = -1;
 static int hf_lines_reply = -1, hf_lines_reply_name = -1, hf_lines_error = -1;
@@ -55,15 +54,16 @@ typedef struct lines_frame {
     wmem_tree_t *lines;                   /* lines_decision_t by offset; NULL until the first line */
 } lines_frame_t;
 
-/* The version preference ("5.11", "3.15.7", as every dissector reads it: common/dotted_version.c)
- * as a lines_version(); false for text that is not a version. A major of ten digits or more is
- * past every command's first version already, and stops there (no overflow). */
+/* The version preference ("5.11", "3.15.7", as every dissector reads it: runtime/c/common/
+ * version_text.c, a vertical tab a blank as for Lua's %s) as a lines_version(); false for text that
+ * is not a version. A major of ten digits or more is past every command's first version already,
+ * and stops there (no overflow). */
 static bool lines_parse_version(const char *text, uint64_t *version)
 {
-    guint64 part[3];
-    if (!dotted_version_parts(text, TRUE, TRUE, part))
+    urwire__version_text v;
+    if (text == NULL || !urwire__read_version(text, text + strlen(text), true, true, &v))
         return false;
-    *version = lines_version(MIN(part[0], 1000000000), part[1], part[2]);
+    *version = lines_version(MIN(v.part[0], 1000000000), v.part[1], v.part[2]);
     return true;
 }
 

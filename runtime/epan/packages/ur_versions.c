@@ -17,13 +17,14 @@ ur_version_number(guint32 major, guint32 minor, gint64 bugfix)
     return (major * 1000 + minor) * 1000 + (guint32)bugfix;
 }
 
-/* "5.9" -> 5009000, "5.25.1" -> 5025001 (leading spaces allowed, and any text after the version:
- * common/dotted_version.c); UR_VERSION_NONE when the text is no version. */
+/* "5.9" -> 5009000, "5.25.1" -> 5025001 (leading blanks allowed, and any text after the version:
+ * runtime/c/common/version_text.c); UR_VERSION_NONE when the text is no version. */
 static guint32
 ur_parse_version(const char *text)
 {
-    guint64 part[3];
-    if (!dotted_version_parts(text, FALSE, FALSE, part))
+    urwire__version_text t;
+    uint64_t *part = t.part;
+    if (text == NULL || !urwire__read_version(text, text + strlen(text), false, false, &t))
         return UR_VERSION_NONE;
     for (unsigned i = 0; i < 3; i++) {
         while (part[i] >= 10000000)     /* a part of eight digits or more reads as its first seven */
