@@ -10,8 +10,8 @@ script-sender conversations of the cell sample; hostile conversations (junk, lon
 commands in flight than a conversation keeps), with TCP reassembly on and off; a session on
 another port under Decode As. The same captures go through the plugin built with ASan and UBSan,
 where any report fails the run. Also: the packet list with no tree, text that is not UTF-8, and
-the runtime's pure functions (runtime/c/lines/match.c, the C library's matcher) compiled and
-tested alone."""
+the dissector's runtime compiled alone (the matcher it joins, runtime/c/lines/match.c, is the C
+library's, tested in tests/c/test_c_kind_runtimes.py)."""
 from __future__ import annotations
 
 import functools
@@ -221,18 +221,7 @@ def test_the_asan_build_is_instrumented():
     assert "__asan_report" in symbols and "__ubsan_handle" in symbols
 
 
-# ---- the runtime alone ----
-
-@pytest.mark.parametrize("cc", ["gcc", "clang"])
-def test_the_match_runtime_alone(tmp_path, cc):
-    binary = tmp_path / "lines_match_unit"
-    source = ROOT / "tests" / "native" / "lines_match_unit.c"
-    build = subprocess.run([cc, "-std=c11", "-Wall", "-Wextra", "-Werror", "-fsanitize=address,undefined",
-                            "-fno-sanitize-recover=all", f"-I{RUNTIME}", f"-I{MATCH}", str(source), "-o", str(binary)],
-                           capture_output=True, text=True)
-    assert build.returncode == 0, build.stderr
-    run = subprocess.run([str(binary)], capture_output=True, text=True, env={"ASAN_OPTIONS": "detect_leaks=0"})
-    assert run.stdout == "ok\n" and run.returncode == 0, run.stdout + run.stderr
+# ---- the runtime alone (the matcher's own test: tests/c/test_c_kind_runtimes.py) ----
 
 
 def test_the_dissector_runtime_compiles_alone():

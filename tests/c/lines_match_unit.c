@@ -1,5 +1,6 @@
 /* The lines matcher (runtime/c/lines/match.c, which the C library and the dissector join) alone:
- * its pure functions over a small table of its own, without Wireshark. Built and run by tests/native/test_lines_native.py; prints "ok" or the failed check. */
+ * its pure functions over a small table of its own, without Wireshark. Built and run by
+ * tests/c/test_c_kind_runtimes.py; prints "ok" or the failed check. */
 #include <stdio.h>
 #include <stdlib.h>
 
