@@ -54,7 +54,7 @@ _STANDALONE = re.compile(r"^[^\n]*<standalone>[^\n]*\n.*?^[^\n]*</standalone>[^\
 
 
 def runtime_path(language: str, name: str) -> str:
-    """Where a runtime file lives, as a joined section names it (runtime/c/framer.c)."""
+    """Where a runtime file lives, as a joined section names it (runtime/c/packages/framer.c)."""
     return f"{RUNTIME.name}/{language}/{name}"
 
 
@@ -63,3 +63,21 @@ def runtime_source(language: str, name: str) -> str:
     file: its standalone-only lines removed."""
     text = (RUNTIME / language / name).read_text(encoding="utf-8")
     return _STANDALONE.sub("", text)
+
+
+# How a joined section opens and closes, per language: a C comment naming the file; in Lua the
+# same, then the file inside a function of its own, which reads the generated tables (spec) and
+# shares the runtime's table (rt) with the other files, so that no local of one leaks into another.
+_RULE = "-- " + "=" * 93
+_SECTION = {"c": ("/* ---- {} ---- */\n", ""), "epan": ("/* ---- {} ---- */\n", ""),
+            "lua": (f"{_RULE}\n-- ---- {{}} ----\n{_RULE}\ndo\n(function(...)\n", "\nend)(spec, rt)\nend")}
+
+
+def runtime_section(language: str, name: str) -> str:
+    """The one way a runtime joins a generated file, for every kind and target: the file
+    (runtime/<language>/<kind or common>/<file>) verbatim but for its standalone lines, after a
+    line naming it, and no trailing blank line. Names are never rewritten: a runtime that several
+    interfaces join keeps its functions static and takes the interface's tables as arguments, and
+    the generated part, written around it, names the interface's own API."""
+    opening, closing = _SECTION[language]
+    return opening.format(runtime_path(language, name)) + runtime_source(language, name).rstrip("\n") + closing

@@ -43,14 +43,21 @@ def wireshark_flags() -> list[str]:
 
 def c_object_code(source: Path, flags: list[str]) -> str:
     obj = source.with_suffix(".o")
-    # __FILE__ (Wireshark's assertions) names the file as if both revisions sat in one folder.
+    # Where a line is, and in which folder, is layout: Wireshark's assertions print both
+    # (__LINE__, and __FILE__ named as if both revisions sat in one folder).
     subprocess.run(["gcc", "-std=gnu11", "-O2", *flags, f"-I{source.parent}", f"-ffile-prefix-map={source.parent}=.",
-                    "-c", str(source), "-o", str(obj)], check=True)
+                    "-w", "-D__LINE__=0", "-c", str(source), "-o", str(obj)], check=True)
     # Code (-d), every section's bytes (-s: the tables are data) and the relocations (-r: what
     # the tables' pointers point at).
     listing = subprocess.run(["objdump", "-d", "-s", "-r", "--no-show-raw-insn", str(obj)], check=True,
                              capture_output=True, text=True).stdout
     return listing.split("\n", 2)[2]   # past the line that names the object file
+
+
+def wireshark_flags() -> list[str]:
+    """What the native plugin compiles its dissectors with (Wireshark's and GLib's headers)."""
+    flags = subprocess.run(["pkg-config", "--cflags", "wireshark"], check=True, capture_output=True, text=True)
+    return ["-std=gnu11", *flags.stdout.split(), "-I/usr/include/wireshark/epan/dissectors"]
 
 
 def lua_listing(source: Path) -> str:

@@ -8,6 +8,7 @@ the generated dissectors would carry, as they would sit in a Wireshark source tr
     tools/urwire/codegen/           the generator
     tools/urwire/spec/*.yaml        one spec per interface
     tools/urwire/runtime/epan/      the hand-written C the dissectors join in
+    tools/urwire/runtime/c/         the C library's runtime files a dissector joins too (lines/match.c)
 
 The dissectors are the generator's upstream copy (python -m codegen --target epan --upstream),
 which reads no command line, unlike urwire's own plugin (generated/epan): the runtime files only
@@ -18,6 +19,7 @@ OUT is emptied first.
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -39,6 +41,12 @@ def lay_out_tools(out: Path) -> None:
     if (ROOT / "runtime" / "epan").is_dir():
         shutil.copytree(ROOT / "runtime" / "epan", generator / "runtime" / "epan",
                         ignore=shutil.ignore_patterns("__pycache__", "*.pyc", *COMMAND_LINE_RUNTIME))
+    # The C library's runtime files a dissector joins too (where the rule is the same: the lines
+    # matcher), as its sections name them.
+    for name in sorted({n for p in (ROOT / "generated" / "epan").glob("packet-*.c")
+                        for n in re.findall(r"^/\* ---- runtime/c/(\S+) ---- \*/$", p.read_text(), re.M)}):
+        (generator / "runtime" / "c" / name).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(ROOT / "runtime" / "c" / name, generator / "runtime" / "c" / name)
     shutil.copy(ROOT / "dissector" / "native" / "urwire2wireshark.py", tools / "urwire2wireshark.py")
 
 

@@ -6,7 +6,168 @@
 
 #include <string.h>
 
-/* ---- runtime/c/rtde_read.c ---- */
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
+
+/* Private functions live in the generated .c file that joins them, a copy in each. */
+#define URWIRE__PRIVATE static
+
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+
+/* ---- runtime/c/common/loads.h ---- */
+/* ---- big-endian loads and stores ---------------------------------------------------------- */
+
+/* The one set of big-endian loads of the C runtime: every kind's generated C joins it, and the C
+ * command includes it. Every field is read with memcpy into an integer (one unaligned load) and
+ * a byte swap built of shifts, which compilers fold into one instruction. They must be inlined to
+ * be fast (see URWIRE__INLINE in macros.h). The caller has checked that the bytes are there. */
+
+/* The host's byte order, a constant once optimised: 1 on a big-endian machine. */
+URWIRE__INLINE int urwire__host_is_big_endian(void)
+{
+    const uint16_t one = 1u;
+    uint8_t first;
+    memcpy(&first, &one, 1);
+    return first == 0;
+}
+
+URWIRE__INLINE uint16_t urwire__swap16(uint16_t v)
+{
+    return (uint16_t)((unsigned)v << 8 | (unsigned)v >> 8);
+}
+
+URWIRE__INLINE uint32_t urwire__swap32(uint32_t v)
+{
+    return (v & 0x000000ffu) << 24 | (v & 0x0000ff00u) << 8 | (v & 0x00ff0000u) >> 8 | (v & 0xff000000u) >> 24;
+}
+
+URWIRE__INLINE uint64_t urwire__swap64(uint64_t v)
+{
+    return (uint64_t)urwire__swap32((uint32_t)v) << 32 | urwire__swap32((uint32_t)(v >> 32));
+}
+
+/* Big-endian bytes at p as a host integer, and back. */
+URWIRE__INLINE uint16_t urwire__from_be16(uint16_t v) { return urwire__host_is_big_endian() ? v : urwire__swap16(v); }
+URWIRE__INLINE uint32_t urwire__from_be32(uint32_t v) { return urwire__host_is_big_endian() ? v : urwire__swap32(v); }
+URWIRE__INLINE uint64_t urwire__from_be64(uint64_t v) { return urwire__host_is_big_endian() ? v : urwire__swap64(v); }
+
+URWIRE__INLINE uint8_t urwire__u8(const uint8_t *p) { return p[0]; }
+URWIRE__INLINE int8_t urwire__i8(const uint8_t *p) { return (int8_t)p[0]; }
+
+URWIRE__INLINE uint16_t urwire__u16(const uint8_t *p)
+{
+    uint16_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be16(v);
+}
+
+URWIRE__INLINE uint32_t urwire__u32(const uint8_t *p)
+{
+    uint32_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be32(v);
+}
+
+URWIRE__INLINE uint64_t urwire__u64(const uint8_t *p)
+{
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be64(v);
+}
+
+/* n bytes (1 to 8, known when inlined) as an unsigned integer: a length prefix or a value of a
+ * width read from a table. */
+URWIRE__INLINE uint64_t urwire__uint(const uint8_t *p, size_t n)
+{
+    uint64_t v = 0;
+    size_t i;
+    for (i = 0; i < n; i++)
+        v = v << 8 | p[i];
+    return v;
+}
+
+URWIRE__INLINE int16_t urwire__i16(const uint8_t *p) { return (int16_t)urwire__u16(p); }
+URWIRE__INLINE int32_t urwire__i32(const uint8_t *p) { return (int32_t)urwire__u32(p); }
+URWIRE__INLINE int64_t urwire__i64(const uint8_t *p) { return (int64_t)urwire__u64(p); }
+
+/* Floats are read as their bit pattern, never byte-swapped as numbers. */
+URWIRE__INLINE float urwire__f32(const uint8_t *p)
+{
+    uint32_t bits = urwire__u32(p);
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+/* A double from its bit pattern, NaN payloads included. */
+URWIRE__INLINE double urwire__f64_of(uint64_t bits)
+{
+    double d;
+    memcpy(&d, &bits, sizeof d);
+    return d;
+}
+
+URWIRE__INLINE double urwire__f64(const uint8_t *p)
+{
+    return urwire__f64_of(urwire__u64(p));
+}
+
+/* count doubles in a row into out. */
+URWIRE__INLINE void urwire__f64s(double *out, const uint8_t *p, size_t count)
+{
+    size_t i;
+    for (i = 0; i < count; i++)
+        out[i] = urwire__f64(p + 8 * i);
+}
+
+URWIRE__INLINE void urwire__put_u8(uint8_t *p, uint8_t v) { p[0] = v; }
+URWIRE__INLINE void urwire__put_i8(uint8_t *p, int8_t v) { p[0] = (uint8_t)v; }
+
+URWIRE__INLINE void urwire__put_u16(uint8_t *p, uint16_t v)
+{
+    v = urwire__from_be16(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_u32(uint8_t *p, uint32_t v)
+{
+    v = urwire__from_be32(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_u64(uint8_t *p, uint64_t v)
+{
+    v = urwire__from_be64(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_i16(uint8_t *p, int16_t v) { urwire__put_u16(p, (uint16_t)v); }
+URWIRE__INLINE void urwire__put_i32(uint8_t *p, int32_t v) { urwire__put_u32(p, (uint32_t)v); }
+URWIRE__INLINE void urwire__put_i64(uint8_t *p, int64_t v) { urwire__put_u64(p, (uint64_t)v); }
+
+URWIRE__INLINE void urwire__put_f32(uint8_t *p, float v)
+{
+    uint32_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    urwire__put_u32(p, bits);
+}
+
+URWIRE__INLINE void urwire__put_f64(uint8_t *p, double v)
+{
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    urwire__put_u64(p, bits);
+}
+
+/* ---- runtime/c/typed_messages/rtde_read.c ---- */
 /* ---- reading a message: big-endian loads, each after a bounds check ------------------------- */
 
 typedef struct rtde__reader {
@@ -26,18 +187,9 @@ static bool rtde__need(rtde__reader *r, size_t n, const char *field)
     return true;
 }
 
-static uint64_t rtde__load(const uint8_t *p, size_t n)
-{
-    uint64_t v = 0;
-    size_t i;
-    for (i = 0; i < n; i++)
-        v = (v << 8) | p[i];
-    return v;
-}
-
 static uint64_t rtde__take(rtde__reader *r, size_t n)
 {
-    uint64_t v = rtde__load(r->buf + r->pos, n);
+    uint64_t v = urwire__uint(r->buf + r->pos, n);
     r->pos += n;
     return v;
 }
@@ -47,13 +199,6 @@ static int32_t rtde__as_i32(uint64_t u)
 {
     uint32_t v = (uint32_t)u;
     return v >= 0x80000000u ? -(int32_t)(0xffffffffu - v) - 1 : (int32_t)v;
-}
-
-static double rtde__as_f64(uint64_t bits)
-{
-    double d;
-    memcpy(&d, &bits, sizeof d);
-    return d;
 }
 
 static bool rtde__prefixed_text(rtde__reader *r, size_t prefix, rtde_text *out, const char *field)
@@ -88,7 +233,6 @@ static rtde_error rtde__end(rtde__reader *r)
     }
     return RTDE_OK;
 }
-
 /* ---- the spec's tables ---------------------------------------------------------------------- */
 
 /* Each value type: bytes per item, items, and how an item reads ('u', 'i', 'f', 'b'). */
@@ -991,7 +1135,7 @@ static rtde_error rtde__decode_setup_outputs(rtde__reader *r, rtde_setup_outputs
 {
     if (!rtde__need(r, 8, "output_frequency"))
         return RTDE_SHORT;
-    out->output_frequency = (double)rtde__as_f64(rtde__take(r, 8));
+    out->output_frequency = (double)urwire__f64_of(rtde__take(r, 8));
     rtde__rest(r, &out->variables);
     return rtde__end(r);
 }
@@ -1135,7 +1279,7 @@ static rtde_error rtde__decode_layout(uint8_t layout, rtde__reader *r, rtde_mess
     }
 }
 
-/* ---- runtime/c/rtde_conversation.c ---- */
+/* ---- runtime/c/typed_messages/rtde_conversation.c ---- */
 /* ---- a connection: framing, following the setup exchanges, values, the client's messages ---- */
 
 #define RTDE__NO_ID (-1)
@@ -1251,7 +1395,7 @@ rtde_error rtde_message_size(const uint8_t *buf, size_t length, size_t *size)
 {
     if (length < RTDE_HEADER_SIZE)
         return RTDE_NEED_MORE;
-    *size = (size_t)rtde__load(buf, 2);
+    *size = (size_t)urwire__uint(buf, 2);
     if (*size < RTDE_HEADER_SIZE || !rtde__known_code(buf[2]))
         return RTDE_BAD_HEADER;
     return *size > length ? RTDE_NEED_MORE : RTDE_OK;
@@ -1639,10 +1783,10 @@ bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
     out->count = rtde__value_types[out->type].count;
     for (k = 0; k < out->count; k++) {
         size_t n = rtde__value_types[out->type].size;
-        uint64_t bits = rtde__load(p + k * n, n);
+        uint64_t bits = urwire__uint(p + k * n, n);
         switch (rtde__value_types[out->type].kind) {
         case 'f':
-            out->item[k].f64 = rtde__as_f64(bits);
+            out->item[k].f64 = urwire__f64_of(bits);
             break;
         case 'i':
             out->item[k].i64 = rtde__as_i32(bits);
@@ -1790,4 +1934,3 @@ const char *rtde_error_text(rtde_error e)
     }
     return "unknown error";
 }
-

@@ -36,7 +36,7 @@ extern "C" {
 #define RTDE_MAX_PENDING 8
 #define RTDE_MAX_PENDING_VERSIONS 8
 
-/* ---- runtime/c/rtde_types.h ---- */
+/* ---- runtime/c/typed_messages/rtde_types.h ---- */
 /* ---- the RTDE API's basic types: limits, views, errors, values ----------------------------- */
 
 /* Limits of the state rtde_conversation_init keeps in the conversation itself; define them before
@@ -97,7 +97,6 @@ typedef struct rtde_value {
         uint64_t u64;       /* BOOL, UINT8, UINT32, UINT64 and the VECTOR6UINT32 items */
     } item[6];
 } rtde_value;
-
 /* ---- the spec's types ----------------------------------------------------------------------- */
 
 /* The type names a setup reply answers with. */
@@ -337,7 +336,7 @@ extern const rtde_variable rtde_variables[RTDE_VARIABLE_COUNT];
 int rtde_value_type_of(const uint8_t *name, size_t length);
 const char *rtde_value_type_name(uint8_t type);
 
-/* ---- runtime/c/rtde_api.h ---- */
+/* ---- runtime/c/typed_messages/rtde_api.h ---- */
 /* ---- the RTDE connection: state, decoding, the client's messages -------------------------- */
 
 /* A recipe of one connection: its variables' names (a copy) and types, in order, in the storage of
@@ -442,7 +441,6 @@ size_t rtde_build_pause(uint8_t *out, size_t cap);
 size_t rtde_build_input_data(uint8_t *out, size_t cap, const rtde_recipe *recipe, const rtde_value *values);
 
 const char *rtde_error_text(rtde_error e);
-
 #ifdef __cplusplus
 }
 #endif

@@ -384,149 +384,301 @@ const int ur_dashboard_lookup[UR_DASHBOARD_COMMAND_COUNT] = {
     UR_DASHBOARD_QUIT,
 };
 
-/* ---- runtime/c/lines/lines.c ---- */
-/* ---- lines: splitting, commands, replies, versions ----------------------------------------- */
+/* The tables as the kind's runtime reads them. */
+static const lines_spec_t ur_dashboard__spec = {
+    .max_line = UR_DASHBOARD_MAX_LINE,
+    .banner = &ur_dashboard__banner,
+    .requests_from_robot = UR_DASHBOARD_REQUESTS_FROM_ROBOT,
+    .one_reply_per_request = UR_DASHBOARD_ONE_REPLY_PER_REQUEST,
+    .common = ur_dashboard__common_replies,
+    .common_count = sizeof ur_dashboard__common_replies / sizeof ur_dashboard__common_replies[0],
+    .commands = ur_dashboard_commands,
+    .command_count = UR_DASHBOARD_COMMAND_COUNT,
+    .lookup = ur_dashboard_lookup,
+    .version_command = UR_DASHBOARD_VERSION_COMMAND,
+    .version_prefix = ur_dashboard_version_prefix,
+    .e_series_from = 5000000u,
+};
 
-#define UR_DASHBOARD_E_SERIES_MAJOR 5u
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
 
-uint32_t ur_dashboard_version(uint32_t major, uint32_t minor, uint32_t bugfix)
+/* Private functions live in the generated .c file that joins them, a copy in each. */
+#define URWIRE__PRIVATE static
+
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+
+/* ---- runtime/c/common/buffer.h ---- */
+/* ---- a text written into the caller's bounded buffer (buffer.c) --------------------------- */
+
+typedef struct urwire__text {
+    char *out;
+    size_t cap;
+    size_t n;                 /* the text's length, what did not fit too */
+} urwire__text;
+
+URWIRE__PRIVATE void urwire__bytes(urwire__text *t, const char *p, size_t n);
+URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s);
+URWIRE__PRIVATE size_t urwire__end(urwire__text *t);
+
+/* ---- runtime/c/common/buffer.c ---- */
+/* ---- a text written into the caller's bounded buffer -------------------------------------- */
+
+/* Appends n bytes; those past the buffer's end (cap - 1, room for the NUL) are counted only. */
+URWIRE__PRIVATE void urwire__bytes(urwire__text *t, const char *p, size_t n)
 {
-    if (minor > 999u)
-        minor = 999u;
-    if (bugfix > 999u)
-        bugfix = 999u;
-    return (major * 1000u + minor) * 1000u + bugfix;
+    size_t room = t->cap > t->n + 1 ? t->cap - t->n - 1 : 0;
+    if (room > 0)
+        memcpy(t->out + t->n, p, n < room ? n : room);
+    t->n += n;
 }
 
-void ur_dashboard_init(ur_dashboard_conversation *c, uint32_t version)
+URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s)
+{
+    urwire__bytes(t, s, strlen(s));
+}
+
+/* Ends the text with a NUL (when cap > 0) and returns the length it needed: when that is cap or
+ * more, the buffer holds its first cap - 1 bytes. */
+URWIRE__PRIVATE size_t urwire__end(urwire__text *t)
+{
+    if (t->cap > 0)
+        t->out[t->n < t->cap ? t->n : t->cap - 1] = '\0';
+    return t->n;
+}
+
+/* ---- runtime/c/common/version_text.h ---- */
+/* ---- a software version's text (version_text.c) ----------------------------------------- */
+
+/* A part stops growing at its first thirteen digits: far past every version a table names, and
+ * never an overflow. */
+#define URWIRE__VERSION_PART_BIG 1000000000000u
+
+typedef struct urwire__version_text {
+    uint64_t part[3];           /* major, minor, bugfix; a missing bugfix 0 */
+    size_t parts;               /* the numbers read: 2 or 3 */
+    size_t longest;             /* the digits of the longest number */
+    bool dot_after;             /* whole: a dot with no number after it ("5.9.") */
+    const char *end;            /* past what was read */
+} urwire__version_text;
+
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out);
+
+/* ---- runtime/c/common/version_text.c ---- */
+/* ---- a software version's text ---------------------------------------------------------- */
+/* The one reader of a version's text in C: the C library's urwire_parse_version, the version a
+ * dashboard reply tells ("URSoftware 5.11.1.108318 (...)"), and every Wireshark dissector's
+ * version preference ("5.9", " 3.15.2 "). Each caller's rules that differ are its parameters and
+ * its checks of what was read (how many digits, what follows). */
+
+/* Blanks as Wireshark's g_ascii_isspace sees them; vt_blank: a vertical tab too, as C's isspace
+ * and Lua's %s see it. */
+static bool urwire__version_blank(char c, bool vt_blank)
+{
+    return c == ' ' || c == '\t' || c == '\n' || c == '\f' || c == '\r' || (vt_blank && c == '\v');
+}
+
+static bool urwire__version_digit(const char *at, const char *end)
+{
+    return at < end && *at >= '0' && *at <= '9';
+}
+
+/* major.minor or major.minor.bugfix in [text, end), after blanks. whole: nothing but blanks may
+ * follow (a dot with no number after it too); else anything may, and a third number needs its
+ * digit right after the dot. False for text that is not a version. */
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out)
+{
+    const char *p = text;
+    size_t i;
+    out->parts = 0;
+    out->longest = 0;
+    out->dot_after = false;
+    while (p < end && urwire__version_blank(*p, vt_blank))
+        p++;
+    for (i = 0; i < 3; i++) {
+        size_t digits = 0;
+        out->part[i] = 0;
+        if (i == 1 && (p == end || *p++ != '.'))
+            return false;
+        if (i == 2 && !(p < end && *p == '.' && urwire__version_digit(p + 1, end))) {
+            if (whole && p < end && *p == '.') {
+                out->dot_after = true;
+                p++;
+            }
+            break;
+        }
+        if (i == 2)
+            p++;
+        if (!urwire__version_digit(p, end))
+            return false;
+        for (; urwire__version_digit(p, end); p++, digits++) {
+            if (out->part[i] < URWIRE__VERSION_PART_BIG)
+                out->part[i] = out->part[i] * 10u + (uint64_t)(*p - '0');
+        }
+        out->parts = i + 1;
+        out->longest = digits > out->longest ? digits : out->longest;
+    }
+    if (whole) {
+        while (p < end && urwire__version_blank(*p, vt_blank))
+            p++;
+        if (p != end)
+            return false;
+    }
+    out->end = p;
+    return true;
+}
+
+/* ---- runtime/c/lines/match.c ---- */
+/* ---- lines: which command, which reply, which version ------------------------------------- */
+/* Lines, commands and replies of a text-line interface, as the spec's tables say: which command a
+ * line is, which reply a line is (the common replies first, then the command's own), whether a
+ * software version has a command, and the version a version reply tells. Pure functions of the
+ * tables and the line's bytes, the one matcher of the C library (runtime/c/lines/lines.c) and the
+ * Wireshark dissector (runtime/epan/lines/lines_dissect.c); runtime/lua/lines_match.lua is their
+ * twin. */
+
+/* Versions as one number: (major * 1000 + minor) * 1000 + bugfix, minor and bugfix at most 999. */
+URWIRE__PRIVATE uint64_t lines_version(uint64_t major, uint64_t minor, uint64_t bugfix)
+{
+    return (major * 1000 + (minor < 999 ? minor : 999)) * 1000 + (bugfix < 999 ? bugfix : 999);
+}
+
+/* The whole text is the pattern: its first piece opens it, its last ends it, the others follow in
+ * order between them, and each placeholder takes any text. */
+URWIRE__PRIVATE bool lines_matches(const lines_reply_t *reply, const uint8_t *text, size_t len)
+{
+    const char *first = reply->pieces[0], *last = reply->pieces[reply->piece_count - 1];
+    size_t first_len = strlen(first), last_len = strlen(last), at, end, i;
+    if (reply->piece_count == 1)
+        return len == first_len && memcmp(text, first, first_len) == 0;
+    if (len < first_len + last_len || memcmp(text, first, first_len) != 0
+        || memcmp(text + len - last_len, last, last_len) != 0)
+        return false;
+    at = first_len;
+    end = len - last_len;
+    for (i = 1; i + 1 < reply->piece_count; i++) {
+        size_t piece_len = strlen(reply->pieces[i]);
+        while (at + piece_len <= end && memcmp(text + at, reply->pieces[i], piece_len) != 0)
+            at++;
+        if (at + piece_len > end)
+            return false;
+        at += piece_len;
+    }
+    return true;
+}
+
+/* The command a line is (its index in spec->commands) or LINES_NONE; *argument is the offset of
+ * its argument in the line (the text after the words and a space, perhaps empty), or -1. */
+URWIRE__PRIVATE int lines_find_command(const lines_spec_t *spec, const uint8_t *text, size_t len,
+                                       long *argument)
+{
+    size_t i;
+    *argument = -1;
+    for (i = 0; i < spec->command_count; i++) {
+        const lines_command_t *command = &spec->commands[spec->lookup[i]];
+        size_t words = strlen(command->text);
+        if (len == words && memcmp(text, command->text, words) == 0)
+            return spec->lookup[i];
+        if (command->takes_argument && len > words && memcmp(text, command->text, words) == 0
+            && text[words] == ' ') {
+            *argument = (long)words + 1;
+            return spec->lookup[i];
+        }
+    }
+    return LINES_NONE;
+}
+
+/* The reply a line is, given the command it answers (an index or LINES_NONE), or NULL. */
+URWIRE__PRIVATE const lines_reply_t *lines_classify(const lines_spec_t *spec, int command, const uint8_t *text,
+                                                    size_t len)
+{
+    size_t i;
+    for (i = 0; i < spec->common_count; i++)
+        if (lines_matches(&spec->common[i], text, len))
+            return &spec->common[i];
+    if (command == LINES_NONE)
+        return NULL;
+    for (i = 0; i < spec->commands[command].reply_count; i++)
+        if (lines_matches(&spec->commands[command].replies[i], text, len))
+            return &spec->commands[command].replies[i];
+    return NULL;
+}
+
+/* Whether the software version (a lines_version()) has the command. */
+URWIRE__PRIVATE bool lines_available(const lines_spec_t *spec, int command, uint64_t version)
+{
+    const lines_command_t *c = &spec->commands[command];
+    uint64_t since = version >= spec->e_series_from ? c->since_e_series : c->since_cb;
+    return since != 0 && version >= since;
+}
+
+/* "URSoftware 5.11.1.108318 (Nov 26 2021)" -> *version = lines_version(5, 11, 1), or false: the
+ * word right after the prefix (runtime/c/common/version_text.c reads it), whose first two or three
+ * numbers are 1 to 3 digits; the word ends there, or at a dot after the third (the build). */
+URWIRE__PRIVATE bool lines_version_in(const lines_spec_t *spec, const uint8_t *text, size_t len,
+                                      uint64_t *version)
+{
+    size_t prefix = strlen(spec->version_prefix);
+    const char *at = (const char *)text + prefix, *end = (const char *)text + len;
+    urwire__version_text v;
+    if (len <= prefix || memcmp(text, spec->version_prefix, prefix) != 0 || *at < '0' || *at > '9'
+        || !urwire__read_version(at, end, false, false, &v) || v.longest > 3)
+        return false;
+    if (v.end != end && *v.end != ' ' && !(v.parts == 3 && *v.end == '.'))
+        return false;
+    *version = lines_version(v.part[0], v.part[1], v.part[2]);
+    return true;
+}
+
+/* ---- runtime/c/lines/lines.c ---- */
+/* ---- lines: splitting, pairing, versions ------------------------------------------------------ */
+/* A conversation of the C library, over the interface's tables (spec), which the generated part
+ * passes: its public functions, named after the interface, call these. */
+
+URWIRE__PRIVATE void lines_init(lines_conversation *c, uint32_t version)
 {
     memset(c, 0, sizeof *c);
     c->version = version;
-    c->kept = UR_DASHBOARD_PENDING;
+    c->kept = LINES_PENDING;
 }
 
-void ur_dashboard_keep_pending(ur_dashboard_conversation *c, int16_t *queue, size_t n)
+URWIRE__PRIVATE void lines_keep_pending(lines_conversation *c, int16_t *queue, size_t n)
 {
     c->more = queue;
     c->kept = n;
 }
 
-static int16_t *queue_of(ur_dashboard_conversation *c)
+static int16_t *queue_of(lines_conversation *c)
 {
     return c->more != NULL ? c->more : c->pending;
 }
 
-static bool starts_with(ur_dashboard_view v, const char *text, size_t n)
+/* The command a line is (an index, or LINES_NONE), and its argument. */
+URWIRE__PRIVATE int lines_command_of(const lines_spec_t *spec, lines_view line, lines_view *argument,
+                                     bool *has_argument)
 {
-    return v.len >= n && memcmp(v.ptr, text, n) == 0;
+    long at;
+    int command = lines_find_command(spec, line.ptr, line.len, &at);
+    *has_argument = at >= 0;
+    argument->ptr = line.ptr + (at >= 0 ? (size_t)at : 0);
+    argument->len = at >= 0 ? line.len - (size_t)at : 0;
+    return command;
 }
 
-bool ur_dashboard_matches(const ur_dashboard_reply_spec *reply, ur_dashboard_view line)
+/* A request awaits its reply; false when it is not kept (see lines_conversation). */
+static bool keep(const lines_spec_t *spec, lines_conversation *c, int command)
 {
-    const char *first = reply->pieces[0];
-    const char *last = reply->pieces[reply->piece_count - 1];
-    size_t first_len = strlen(first), last_len = strlen(last), at, end, i;
-    if (reply->piece_count == 1)
-        return line.len == first_len && memcmp(line.ptr, first, first_len) == 0;
-    if (line.len < first_len + last_len || !starts_with(line, first, first_len)
-        || memcmp(line.ptr + line.len - last_len, last, last_len) != 0)
-        return false;
-    at = first_len;
-    end = line.len - last_len;
-    for (i = 1; i + 1 < reply->piece_count; i++) {
-        const char *piece = reply->pieces[i];
-        size_t len = strlen(piece);
-        while (at + len <= end && memcmp(line.ptr + at, piece, len) != 0)
-            at++;
-        if (at + len > end)
-            return false;
-        at += len;
-    }
-    return true;
-}
-
-int ur_dashboard_find_command(ur_dashboard_view line, ur_dashboard_view *argument, bool *has_argument)
-{
-    size_t i;
-    *has_argument = false;
-    argument->ptr = line.ptr;
-    argument->len = 0;
-    for (i = 0; i < UR_DASHBOARD_COMMAND_COUNT; i++) {
-        int index = ur_dashboard_lookup[i];
-        const ur_dashboard_command_spec *command = &ur_dashboard_commands[index];
-        size_t len = strlen(command->text);
-        if (!starts_with(line, command->text, len))
-            continue;
-        if (line.len == len)
-            return index;
-        if (command->takes_argument && line.ptr[len] == ' ') {
-            *has_argument = true;
-            argument->ptr = line.ptr + len + 1;
-            argument->len = line.len - len - 1;
-            return index;
-        }
-    }
-    return UR_DASHBOARD_NONE;
-}
-
-const ur_dashboard_reply_spec *ur_dashboard_classify(int command, ur_dashboard_view line)
-{
-    size_t i;
-    for (i = 0; i < ur_dashboard_common_reply_count; i++)
-        if (ur_dashboard_matches(&ur_dashboard_common_replies[i], line))
-            return &ur_dashboard_common_replies[i];
-    if (command == UR_DASHBOARD_NONE)
-        return NULL;
-    for (i = 0; i < ur_dashboard_commands[command].reply_count; i++)
-        if (ur_dashboard_matches(&ur_dashboard_commands[command].replies[i], line))
-            return &ur_dashboard_commands[command].replies[i];
-    return NULL;
-}
-
-bool ur_dashboard_available(int command, uint32_t version)
-{
-    const ur_dashboard_command_spec *spec = &ur_dashboard_commands[command];
-    uint32_t since = version >= ur_dashboard_version(UR_DASHBOARD_E_SERIES_MAJOR, 0, 0) ? spec->since_e_series
-                                                                                       : spec->since_cb;
-    return since != 0 && version >= since;
-}
-
-/* "URSoftware 5.11.1.108318 (...)" -> 5.11.1, or 0: the word after the prefix, split at its
- * dots, whose first two or three parts are 1 to 3 digits. */
-static uint32_t version_in(ur_dashboard_view line)
-{
-    size_t prefix = strlen(ur_dashboard_version_prefix), i;
-    uint32_t parts[3] = {0, 0, 0};
-    size_t count = 0, digits = 0;
-    if (!starts_with(line, ur_dashboard_version_prefix, prefix))
-        return 0;
-    for (i = prefix; i < line.len && line.ptr[i] != ' '; i++) {
-        uint8_t ch = line.ptr[i];
-        if (ch == '.') {
-            if (digits == 0)
-                return 0;
-            digits = 0;
-            if (++count == 3)
-                break;
-        } else if (ch >= '0' && ch <= '9' && digits < 3) {
-            parts[count] = parts[count] * 10u + (uint32_t)(ch - '0');
-            digits++;
-        } else {
-            return 0;
-        }
-    }
-    if (count < 3) {
-        if (digits == 0)
-            return 0;
-        count++;
-    }
-    return count >= 2 ? ur_dashboard_version(parts[0], parts[1], parts[2]) : 0;
-}
-
-/* A request awaits its reply; false when it is not kept (see ur_dashboard_conversation). */
-static bool keep(ur_dashboard_conversation *c, int command)
-{
-    if (!UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {          /* only the latest request counts */
+    if (!spec->one_reply_per_request) {          /* only the latest request counts */
         queue_of(c)[0] = (int16_t)command;
         c->count = 1;
     } else if (c->lost > 0 || c->count == c->kept) {
@@ -539,12 +691,12 @@ static bool keep(ur_dashboard_conversation *c, int command)
     return true;
 }
 
-/* The request a reply answers (UR_DASHBOARD_NONE: none), *not_kept when it answers one not kept. */
-static int answered(ur_dashboard_conversation *c, bool *not_kept)
+/* The request a reply answers (LINES_NONE: none), *not_kept when it answers one not kept. */
+static int answered(const lines_spec_t *spec, lines_conversation *c, bool *not_kept)
 {
-    int command = UR_DASHBOARD_NONE;
+    int command = LINES_NONE;
     *not_kept = false;
-    if (c->count > 0 && UR_DASHBOARD_ONE_REPLY_PER_REQUEST) {
+    if (c->count > 0 && spec->one_reply_per_request) {
         command = queue_of(c)[c->head];
         c->head = (c->head + 1) % c->kept;
         c->count--;
@@ -557,52 +709,53 @@ static int answered(ur_dashboard_conversation *c, bool *not_kept)
     return command;
 }
 
-static void read_command(ur_dashboard_conversation *c, ur_dashboard_record *rec)
+static void read_command(const lines_spec_t *spec, lines_conversation *c, lines_record *rec)
 {
-    int command = ur_dashboard_find_command(rec->text, &rec->argument, &rec->has_argument);
-    rec->type = UR_DASHBOARD_COMMAND;
+    int command = lines_command_of(spec, rec->text, &rec->argument, &rec->has_argument);
+    rec->type = LINES_COMMAND;
     rec->command_name = command;
-    rec->available = command == UR_DASHBOARD_NONE || c->version == 0 ? -1
-                                                                      : ur_dashboard_available(command, c->version);
-    rec->not_kept = !keep(c, command);
+    rec->available = command == LINES_NONE || c->version == 0 ? -1 : lines_available(spec, command, c->version);
+    rec->not_kept = !keep(spec, c, command);
     rec->kept = c->kept;
 }
 
-static void read_reply(ur_dashboard_conversation *c, ur_dashboard_record *rec)
+static void read_reply(const lines_spec_t *spec, lines_conversation *c, lines_record *rec)
 {
     int command;
-    rec->type = UR_DASHBOARD_REPLY;
-    rec->command_name = UR_DASHBOARD_NONE;
+    rec->type = LINES_REPLY;
+    rec->command_name = LINES_NONE;
     if (!c->greeted) {
         c->greeted = true;
-        if (ur_dashboard_banner != NULL && ur_dashboard_matches(ur_dashboard_banner, rec->text)) {
-            rec->reply_name = ur_dashboard_banner;
+        if (spec->banner != NULL && lines_matches(spec->banner, rec->text.ptr, rec->text.len)) {
+            rec->reply_name = spec->banner;
             return;
         }
     }
-    command = answered(c, &rec->not_kept);
+    command = answered(spec, c, &rec->not_kept);
     rec->kept = c->kept;
     rec->command_name = command;
-    rec->reply_name = ur_dashboard_classify(command, rec->text);
+    rec->reply_name = lines_classify(spec, command, rec->text.ptr, rec->text.len);
     rec->error = rec->reply_name != NULL && rec->reply_name->error;
-    if (command != UR_DASHBOARD_NONE && command == UR_DASHBOARD_VERSION_COMMAND) {
-        uint32_t version = version_in(rec->text);
-        if (version != 0)
-            c->version = version;
+    if (command != LINES_NONE && command == spec->version_command) {
+        uint64_t version;
+        if (lines_version_in(spec, rec->text.ptr, rec->text.len, &version) && version != 0)
+            c->version = (uint32_t)version;
     }
 }
 
-size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const uint8_t *buf, size_t n,
-                           ur_dashboard_record *rec, bool *got)
+/* One record from the front of buf, the next bytes of one direction: the bytes used, and *got
+ * when rec holds a record (0 with *got false: the line is not whole yet). */
+URWIRE__PRIVATE size_t lines_decode(const lines_spec_t *spec, lines_conversation *c, bool from_robot,
+                                    const uint8_t *buf, size_t n, lines_record *rec, bool *got)
 {
-    bool requests = from_robot == (bool)UR_DASHBOARD_REQUESTS_FROM_ROBOT;
-    ur_dashboard_direction *d = requests ? &c->commands : &c->replies;
-    size_t window = n < UR_DASHBOARD_MAX_LINE + 2 ? n : UR_DASHBOARD_MAX_LINE + 2;
+    bool requests = from_robot == spec->requests_from_robot;
+    lines_direction *d = requests ? &c->commands : &c->replies;
+    size_t window = n < spec->max_line + 2 ? n : spec->max_line + 2;
     const uint8_t *newline;
     size_t used, len;
     *got = false;
     memset(rec, 0, sizeof *rec);
-    rec->command_name = UR_DASHBOARD_NONE;
+    rec->command_name = LINES_NONE;
     rec->available = -1;
     rec->offset = d->offset;
     if (d->skipping) {
@@ -614,7 +767,7 @@ size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const 
     }
     newline = window ? memchr(buf, '\n', window) : NULL;
     if (newline == NULL) {
-        if (n <= UR_DASHBOARD_MAX_LINE + 1)
+        if (n <= spec->max_line + 1)
             return 0;                         /* not whole yet */
         d->skipping = true;
         used = window;
@@ -626,39 +779,41 @@ size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const 
         len--;
     *got = true;
     d->offset += used;
-    if (newline == NULL || len > UR_DASHBOARD_MAX_LINE) {
+    if (newline == NULL || len > spec->max_line) {
         /* Still a line: a command the server answers, or the reply to one, so that the pairing
          * of the lines after it holds. */
         bool not_kept;
         if (requests) {
-            keep(c, UR_DASHBOARD_NONE);
+            keep(spec, c, LINES_NONE);
         } else {
             c->greeted = true;
-            answered(c, &not_kept);
+            answered(spec, c, &not_kept);
         }
-        rec->type = UR_DASHBOARD_FAULT;
-        rec->fault = UR_DASHBOARD_LINE_TOO_LONG;
+        rec->type = LINES_FAULT;
+        rec->fault = LINES_LINE_TOO_LONG;
         return used;
     }
     rec->text.ptr = buf;
     rec->text.len = len;
     if (requests)
-        read_command(c, rec);
+        read_command(spec, c, rec);
     else
-        read_reply(c, rec);
+        read_reply(spec, c, rec);
     return used;
 }
 
-bool ur_dashboard_finish(ur_dashboard_conversation *c, bool from_robot, size_t n, ur_dashboard_record *rec)
+/* At the end of a direction: its n bytes left without a newline as a fault record (true). */
+URWIRE__PRIVATE bool lines_finish(const lines_spec_t *spec, lines_conversation *c, bool from_robot, size_t n,
+                                  lines_record *rec)
 {
-    bool requests = from_robot == (bool)UR_DASHBOARD_REQUESTS_FROM_ROBOT;
-    ur_dashboard_direction *d = requests ? &c->commands : &c->replies;
+    bool requests = from_robot == spec->requests_from_robot;
+    lines_direction *d = requests ? &c->commands : &c->replies;
     if (n == 0 || d->skipping)
         return false;
     memset(rec, 0, sizeof *rec);
-    rec->type = UR_DASHBOARD_FAULT;
-    rec->fault = UR_DASHBOARD_NO_NEWLINE_AT_END;
-    rec->command_name = UR_DASHBOARD_NONE;
+    rec->type = LINES_FAULT;
+    rec->fault = LINES_NO_NEWLINE_AT_END;
+    rec->command_name = LINES_NONE;
     rec->available = -1;
     rec->offset = d->offset;
     rec->bytes = n;
@@ -667,24 +822,6 @@ bool ur_dashboard_finish(ur_dashboard_conversation *c, bool from_robot, size_t n
 
 /* ---- runtime/c/lines/json.c ---- */
 /* ---- canonical JSON of a record (docs/canonical-json.md) ---------------------------------- */
-
-typedef struct ur_dashboard_out {
-    char *buf;
-    size_t cap, len;          /* len counts what did not fit too */
-} ur_dashboard_out;
-
-static void out_bytes(ur_dashboard_out *o, const char *p, size_t n)
-{
-    size_t room = o->cap > o->len + 1 ? o->cap - o->len - 1 : 0;
-    if (room > 0)
-        memcpy(o->buf + o->len, p, n < room ? n : room);
-    o->len += n;
-}
-
-static void out_text(ur_dashboard_out *o, const char *p)
-{
-    out_bytes(o, p, strlen(p));
-}
 
 /* Length of the valid UTF-8 sequence at p (1..4), or 0 with *bad set to the length of the
  * maximal subpart that one U+FFFD replaces, as Python's bytes.decode("utf-8", "replace"). */
@@ -718,56 +855,56 @@ static size_t utf8_sequence(const uint8_t *p, size_t n, size_t *bad)
 }
 
 /* Bytes as a JSON string, escaped as Python's json module does with ensure_ascii=False. */
-static void out_string(ur_dashboard_out *o, ur_dashboard_view v)
+static void out_string(urwire__text *o, lines_view v)
 {
     static const char hex[] = "0123456789abcdef";
     size_t i = 0, len, bad;
-    out_bytes(o, "\"", 1);
+    urwire__bytes(o, "\"", 1);
     while (i < v.len) {
         uint8_t ch = v.ptr[i];
         if (ch >= 0x80) {
             bad = 0;
             len = utf8_sequence(v.ptr + i, v.len - i, &bad);
             if (len) {
-                out_bytes(o, (const char *)v.ptr + i, len);
+                urwire__bytes(o, (const char *)v.ptr + i, len);
                 i += len;
             } else {
-                out_bytes(o, "\xEF\xBF\xBD", 3);
+                urwire__bytes(o, "\xEF\xBF\xBD", 3);
                 i += bad;
             }
             continue;
         }
         switch (ch) {
-        case '"': out_bytes(o, "\\\"", 2); break;
-        case '\\': out_bytes(o, "\\\\", 2); break;
-        case '\n': out_bytes(o, "\\n", 2); break;
-        case '\r': out_bytes(o, "\\r", 2); break;
-        case '\t': out_bytes(o, "\\t", 2); break;
-        case '\b': out_bytes(o, "\\b", 2); break;
-        case '\f': out_bytes(o, "\\f", 2); break;
+        case '"': urwire__bytes(o, "\\\"", 2); break;
+        case '\\': urwire__bytes(o, "\\\\", 2); break;
+        case '\n': urwire__bytes(o, "\\n", 2); break;
+        case '\r': urwire__bytes(o, "\\r", 2); break;
+        case '\t': urwire__bytes(o, "\\t", 2); break;
+        case '\b': urwire__bytes(o, "\\b", 2); break;
+        case '\f': urwire__bytes(o, "\\f", 2); break;
         default:
             if (ch < 0x20) {
                 char u[6] = {'\\', 'u', '0', '0', hex[ch >> 4], hex[ch & 15]};
-                out_bytes(o, u, sizeof u);
+                urwire__bytes(o, u, sizeof u);
             } else {
-                out_bytes(o, (const char *)&ch, 1);
+                urwire__bytes(o, (const char *)&ch, 1);
             }
         }
         i++;
     }
-    out_bytes(o, "\"", 1);
+    urwire__bytes(o, "\"", 1);
 }
 
-static void out_name(ur_dashboard_out *o, const char *key, const char *name)
+static void out_name(urwire__text *o, const char *key, const char *name)
 {
-    ur_dashboard_view v;
+    lines_view v;
     v.ptr = (const uint8_t *)name;
     v.len = strlen(name);
-    out_text(o, key);
+    urwire__str(o, key);
     out_string(o, v);
 }
 
-static void out_number(ur_dashboard_out *o, uint64_t n)
+static void out_number(urwire__text *o, uint64_t n)
 {
     char digits[21];
     size_t at = sizeof digits;
@@ -775,60 +912,112 @@ static void out_number(ur_dashboard_out *o, uint64_t n)
         digits[--at] = (char)('0' + (int)(n % 10u));
         n /= 10u;
     } while (n);
-    out_bytes(o, digits + at, sizeof digits - at);
+    urwire__bytes(o, digits + at, sizeof digits - at);
+}
+
+/* The record as a line of canonical JSON (no newline) in out, NUL-terminated when cap > 0.
+ * Returns its length; when that is cap or more, out holds its first cap - 1 bytes. */
+URWIRE__PRIVATE size_t lines_json(const lines_spec_t *spec, const lines_record *rec, char *out, size_t cap)
+{
+    urwire__text o;
+    o.out = out;
+    o.cap = cap;
+    o.n = 0;
+    if (rec->type == LINES_FAULT) {
+        urwire__str(&o, "{\"type\": \"error\", \"offset\": ");
+        out_number(&o, rec->offset);
+        if (rec->fault == LINES_LINE_TOO_LONG) {
+            urwire__str(&o, ", \"error\": \"line longer than ");
+            out_number(&o, spec->max_line);
+            urwire__str(&o, " bytes\"}");
+        } else {
+            urwire__str(&o, ", \"error\": \"");
+            out_number(&o, rec->bytes);
+            urwire__str(&o, " bytes without a newline at the end of the stream\"}");
+        }
+    } else if (rec->type == LINES_COMMAND) {
+        urwire__str(&o, "{\"type\": \"command\", \"command\": ");
+        out_string(&o, rec->text);
+        if (rec->command_name != LINES_NONE)
+            out_name(&o, ", \"command_name\": ", spec->commands[rec->command_name].name);
+        if (rec->has_argument) {
+            urwire__str(&o, ", \"argument\": ");
+            out_string(&o, rec->argument);
+        }
+        if (rec->available >= 0)
+            urwire__str(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
+        if (rec->not_kept) {
+            urwire__str(&o, ", \"error\": \"command not kept: more than ");
+            out_number(&o, rec->kept);
+            urwire__str(&o, " commands awaited replies\"");
+        }
+        urwire__str(&o, "}");
+    } else {
+        urwire__str(&o, "{\"type\": \"reply\", \"reply\": ");
+        out_string(&o, rec->text);
+        if (rec->command_name != LINES_NONE)
+            out_name(&o, ", \"command_name\": ", spec->commands[rec->command_name].name);
+        if (rec->reply_name != NULL)
+            out_name(&o, ", \"reply_name\": ", rec->reply_name->name);
+        if (rec->not_kept) {
+            urwire__str(&o, ", \"error\": \"reply to a command that was not kept: more than ");
+            out_number(&o, rec->kept);
+            urwire__str(&o, " commands awaited replies\"}");
+        } else
+            urwire__str(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
+    }
+    return urwire__end(&o);
+}
+
+/* ---- the interface's functions: the kind's runtime over this interface's tables --------------- */
+
+uint32_t ur_dashboard_version(uint32_t major, uint32_t minor, uint32_t bugfix)
+{
+    return (uint32_t)lines_version(major, minor, bugfix);
+}
+
+void ur_dashboard_init(ur_dashboard_conversation *c, uint32_t version)
+{
+    lines_init(c, version);
+}
+
+void ur_dashboard_keep_pending(ur_dashboard_conversation *c, int16_t *queue, size_t n)
+{
+    lines_keep_pending(c, queue, n);
+}
+
+size_t ur_dashboard_decode(ur_dashboard_conversation *c, bool from_robot, const uint8_t *buf, size_t n,
+    ur_dashboard_record *rec, bool *got)
+{
+    return lines_decode(&ur_dashboard__spec, c, from_robot, buf, n, rec, got);
+}
+
+bool ur_dashboard_finish(ur_dashboard_conversation *c, bool from_robot, size_t n, ur_dashboard_record *rec)
+{
+    return lines_finish(&ur_dashboard__spec, c, from_robot, n, rec);
+}
+
+int ur_dashboard_find_command(ur_dashboard_view line, ur_dashboard_view *argument, bool *has_argument)
+{
+    return lines_command_of(&ur_dashboard__spec, line, argument, has_argument);
+}
+
+const ur_dashboard_reply_spec *ur_dashboard_classify(int command, ur_dashboard_view line)
+{
+    return lines_classify(&ur_dashboard__spec, command, line.ptr, line.len);
+}
+
+bool ur_dashboard_matches(const ur_dashboard_reply_spec *reply, ur_dashboard_view line)
+{
+    return lines_matches(reply, line.ptr, line.len);
+}
+
+bool ur_dashboard_available(int command, uint32_t version)
+{
+    return lines_available(&ur_dashboard__spec, command, version);
 }
 
 size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap)
 {
-    ur_dashboard_out o;
-    o.buf = out;
-    o.cap = cap;
-    o.len = 0;
-    if (rec->type == UR_DASHBOARD_FAULT) {
-        out_text(&o, "{\"type\": \"error\", \"offset\": ");
-        out_number(&o, rec->offset);
-        if (rec->fault == UR_DASHBOARD_LINE_TOO_LONG) {
-            out_text(&o, ", \"error\": \"line longer than ");
-            out_number(&o, UR_DASHBOARD_MAX_LINE);
-            out_text(&o, " bytes\"}");
-        } else {
-            out_text(&o, ", \"error\": \"");
-            out_number(&o, rec->bytes);
-            out_text(&o, " bytes without a newline at the end of the stream\"}");
-        }
-    } else if (rec->type == UR_DASHBOARD_COMMAND) {
-        out_text(&o, "{\"type\": \"command\", \"command\": ");
-        out_string(&o, rec->text);
-        if (rec->command_name != UR_DASHBOARD_NONE)
-            out_name(&o, ", \"command_name\": ", ur_dashboard_commands[rec->command_name].name);
-        if (rec->has_argument) {
-            out_text(&o, ", \"argument\": ");
-            out_string(&o, rec->argument);
-        }
-        if (rec->available >= 0)
-            out_text(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
-        if (rec->not_kept) {
-            out_text(&o, ", \"error\": \"command not kept: more than ");
-            out_number(&o, rec->kept);
-            out_text(&o, " commands awaited replies\"");
-        }
-        out_text(&o, "}");
-    } else {
-        out_text(&o, "{\"type\": \"reply\", \"reply\": ");
-        out_string(&o, rec->text);
-        if (rec->command_name != UR_DASHBOARD_NONE)
-            out_name(&o, ", \"command_name\": ", ur_dashboard_commands[rec->command_name].name);
-        if (rec->reply_name != NULL)
-            out_name(&o, ", \"reply_name\": ", rec->reply_name->name);
-        if (rec->not_kept) {
-            out_text(&o, ", \"error\": \"reply to a command that was not kept: more than ");
-            out_number(&o, rec->kept);
-            out_text(&o, " commands awaited replies\"}");
-        } else
-            out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
-    }
-    if (cap > 0)
-        out[o.len < cap ? o.len : cap - 1] = '\0';
-    return o.len;
+    return lines_json(&ur_dashboard__spec, rec, out, cap);
 }
-

@@ -10,364 +10,482 @@
 
 #include <string.h>
 
-/* ---- runtime/c/ur_realtime_loads.h ---- */
-/* Big-endian loads of the real-time packet: its int32 size and its doubles, assembled from bytes
- * with shifts, so that they are right on any host and never read out of bounds (the caller has
- * checked the packet's length once). */
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
 
-/* Unused ones never warn: clang warns on an unused static inline function unless told `unused`. */
+/* Private functions live in the generated .c file that joins them, a copy in each. */
+#define URWIRE__PRIVATE static
+
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
 #if defined(__GNUC__)
-#define UR_REALTIME__INLINE static inline __attribute__((unused))
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
 #else
-#define UR_REALTIME__INLINE static inline
+#define URWIRE__INLINE static inline
 #endif
 
-UR_REALTIME__INLINE uint64_t ur_realtime__u64(const uint8_t *p)
+/* ---- runtime/c/common/loads.h ---- */
+/* ---- big-endian loads and stores ---------------------------------------------------------- */
+
+/* The one set of big-endian loads of the C runtime: every kind's generated C joins it, and the C
+ * command includes it. Every field is read with memcpy into an integer (one unaligned load) and
+ * a byte swap built of shifts, which compilers fold into one instruction. They must be inlined to
+ * be fast (see URWIRE__INLINE in macros.h). The caller has checked that the bytes are there. */
+
+/* The host's byte order, a constant once optimised: 1 on a big-endian machine. */
+URWIRE__INLINE int urwire__host_is_big_endian(void)
 {
-    return (uint64_t)p[0] << 56 | (uint64_t)p[1] << 48 | (uint64_t)p[2] << 40 | (uint64_t)p[3] << 32 |
-           (uint64_t)p[4] << 24 | (uint64_t)p[5] << 16 | (uint64_t)p[6] << 8 | (uint64_t)p[7];
+    const uint16_t one = 1u;
+    uint8_t first;
+    memcpy(&first, &one, 1);
+    return first == 0;
 }
 
-UR_REALTIME__INLINE int32_t ur_realtime__i32(const uint8_t *p)
+URWIRE__INLINE uint16_t urwire__swap16(uint16_t v)
 {
-    uint32_t u = (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | (uint32_t)p[3];
-    int32_t v;
-    memcpy(&v, &u, sizeof v);   /* two's complement, without an implementation-defined cast */
+    return (uint16_t)((unsigned)v << 8 | (unsigned)v >> 8);
+}
+
+URWIRE__INLINE uint32_t urwire__swap32(uint32_t v)
+{
+    return (v & 0x000000ffu) << 24 | (v & 0x0000ff00u) << 8 | (v & 0x00ff0000u) >> 8 | (v & 0xff000000u) >> 24;
+}
+
+URWIRE__INLINE uint64_t urwire__swap64(uint64_t v)
+{
+    return (uint64_t)urwire__swap32((uint32_t)v) << 32 | urwire__swap32((uint32_t)(v >> 32));
+}
+
+/* Big-endian bytes at p as a host integer, and back. */
+URWIRE__INLINE uint16_t urwire__from_be16(uint16_t v) { return urwire__host_is_big_endian() ? v : urwire__swap16(v); }
+URWIRE__INLINE uint32_t urwire__from_be32(uint32_t v) { return urwire__host_is_big_endian() ? v : urwire__swap32(v); }
+URWIRE__INLINE uint64_t urwire__from_be64(uint64_t v) { return urwire__host_is_big_endian() ? v : urwire__swap64(v); }
+
+URWIRE__INLINE uint8_t urwire__u8(const uint8_t *p) { return p[0]; }
+URWIRE__INLINE int8_t urwire__i8(const uint8_t *p) { return (int8_t)p[0]; }
+
+URWIRE__INLINE uint16_t urwire__u16(const uint8_t *p)
+{
+    uint16_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be16(v);
+}
+
+URWIRE__INLINE uint32_t urwire__u32(const uint8_t *p)
+{
+    uint32_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be32(v);
+}
+
+URWIRE__INLINE uint64_t urwire__u64(const uint8_t *p)
+{
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be64(v);
+}
+
+/* n bytes (1 to 8, known when inlined) as an unsigned integer: a length prefix or a value of a
+ * width read from a table. */
+URWIRE__INLINE uint64_t urwire__uint(const uint8_t *p, size_t n)
+{
+    uint64_t v = 0;
+    size_t i;
+    for (i = 0; i < n; i++)
+        v = v << 8 | p[i];
     return v;
 }
 
-/* A double is read as its bit pattern, NaN payloads included. */
-UR_REALTIME__INLINE double ur_realtime__f64(const uint8_t *p)
+URWIRE__INLINE int16_t urwire__i16(const uint8_t *p) { return (int16_t)urwire__u16(p); }
+URWIRE__INLINE int32_t urwire__i32(const uint8_t *p) { return (int32_t)urwire__u32(p); }
+URWIRE__INLINE int64_t urwire__i64(const uint8_t *p) { return (int64_t)urwire__u64(p); }
+
+/* Floats are read as their bit pattern, never byte-swapped as numbers. */
+URWIRE__INLINE float urwire__f32(const uint8_t *p)
 {
-    uint64_t bits = ur_realtime__u64(p);
+    uint32_t bits = urwire__u32(p);
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+/* A double from its bit pattern, NaN payloads included. */
+URWIRE__INLINE double urwire__f64_of(uint64_t bits)
+{
     double d;
     memcpy(&d, &bits, sizeof d);
     return d;
 }
 
-UR_REALTIME__INLINE void ur_realtime__f64s(double *out, const uint8_t *p, size_t count)
+URWIRE__INLINE double urwire__f64(const uint8_t *p)
+{
+    return urwire__f64_of(urwire__u64(p));
+}
+
+/* count doubles in a row into out. */
+URWIRE__INLINE void urwire__f64s(double *out, const uint8_t *p, size_t count)
 {
     size_t i;
     for (i = 0; i < count; i++)
-        out[i] = ur_realtime__f64(p + 8 * i);
+        out[i] = urwire__f64(p + 8 * i);
 }
 
+URWIRE__INLINE void urwire__put_u8(uint8_t *p, uint8_t v) { p[0] = v; }
+URWIRE__INLINE void urwire__put_i8(uint8_t *p, int8_t v) { p[0] = (uint8_t)v; }
+
+URWIRE__INLINE void urwire__put_u16(uint8_t *p, uint16_t v)
+{
+    v = urwire__from_be16(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_u32(uint8_t *p, uint32_t v)
+{
+    v = urwire__from_be32(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_u64(uint8_t *p, uint64_t v)
+{
+    v = urwire__from_be64(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_i16(uint8_t *p, int16_t v) { urwire__put_u16(p, (uint16_t)v); }
+URWIRE__INLINE void urwire__put_i32(uint8_t *p, int32_t v) { urwire__put_u32(p, (uint32_t)v); }
+URWIRE__INLINE void urwire__put_i64(uint8_t *p, int64_t v) { urwire__put_u64(p, (uint64_t)v); }
+
+URWIRE__INLINE void urwire__put_f32(uint8_t *p, float v)
+{
+    uint32_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    urwire__put_u32(p, bits);
+}
+
+URWIRE__INLINE void urwire__put_f64(uint8_t *p, double v)
+{
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    urwire__put_u64(p, bits);
+}
 
 /* ---- the spec's layouts ------------------------------------------------------------------- */
 
 /* Real-time state, earliest CB2 (540 bytes): sent by software up to 1.4. */
 static void ur_realtime__decode_rt_540(const uint8_t *p, ur_realtime_packet *out)
 {
-    out->time = ur_realtime__f64(p + 4);
-    ur_realtime__f64s(out->q_target, p + 12, 6);
-    ur_realtime__f64s(out->qd_target, p + 60, 6);
-    ur_realtime__f64s(out->qdd_target, p + 108, 6);
-    ur_realtime__f64s(out->i_target, p + 156, 6);
-    ur_realtime__f64s(out->m_target, p + 204, 6);
-    ur_realtime__f64s(out->q_actual, p + 252, 6);
-    ur_realtime__f64s(out->qd_actual, p + 300, 6);
-    ur_realtime__f64s(out->i_actual, p + 348, 6);
-    ur_realtime__f64s(out->tool_accelerometer_values, p + 396, 3);
-    ur_realtime__f64s(out->unused_1, p + 420, 15);
+    out->time = urwire__f64(p + 4);
+    urwire__f64s(out->q_target, p + 12, 6);
+    urwire__f64s(out->qd_target, p + 60, 6);
+    urwire__f64s(out->qdd_target, p + 108, 6);
+    urwire__f64s(out->i_target, p + 156, 6);
+    urwire__f64s(out->m_target, p + 204, 6);
+    urwire__f64s(out->q_actual, p + 252, 6);
+    urwire__f64s(out->qd_actual, p + 300, 6);
+    urwire__f64s(out->i_actual, p + 348, 6);
+    urwire__f64s(out->tool_accelerometer_values, p + 396, 3);
+    urwire__f64s(out->unused_1, p + 420, 15);
 }
 
 /* Real-time state, early CB2 (692 bytes): sent by software up to 1.4. */
 static void ur_realtime__decode_rt_692(const uint8_t *p, ur_realtime_packet *out)
 {
-    out->time = ur_realtime__f64(p + 4);
-    ur_realtime__f64s(out->q_target, p + 12, 6);
-    ur_realtime__f64s(out->qd_target, p + 60, 6);
-    ur_realtime__f64s(out->qdd_target, p + 108, 6);
-    ur_realtime__f64s(out->i_target, p + 156, 6);
-    ur_realtime__f64s(out->m_target, p + 204, 6);
-    ur_realtime__f64s(out->q_actual, p + 252, 6);
-    ur_realtime__f64s(out->qd_actual, p + 300, 6);
-    ur_realtime__f64s(out->i_actual, p + 348, 6);
-    ur_realtime__f64s(out->tool_accelerometer_values, p + 396, 3);
-    ur_realtime__f64s(out->unused_1, p + 420, 15);
-    ur_realtime__f64s(out->tcp_force, p + 540, 6);
-    ur_realtime__f64s(out->tool_vector_actual, p + 588, 6);
-    ur_realtime__f64s(out->tcp_speed_actual, p + 636, 6);
-    out->digital_input_bits = ur_realtime__f64(p + 684);
+    out->time = urwire__f64(p + 4);
+    urwire__f64s(out->q_target, p + 12, 6);
+    urwire__f64s(out->qd_target, p + 60, 6);
+    urwire__f64s(out->qdd_target, p + 108, 6);
+    urwire__f64s(out->i_target, p + 156, 6);
+    urwire__f64s(out->m_target, p + 204, 6);
+    urwire__f64s(out->q_actual, p + 252, 6);
+    urwire__f64s(out->qd_actual, p + 300, 6);
+    urwire__f64s(out->i_actual, p + 348, 6);
+    urwire__f64s(out->tool_accelerometer_values, p + 396, 3);
+    urwire__f64s(out->unused_1, p + 420, 15);
+    urwire__f64s(out->tcp_force, p + 540, 6);
+    urwire__f64s(out->tool_vector_actual, p + 588, 6);
+    urwire__f64s(out->tcp_speed_actual, p + 636, 6);
+    out->digital_input_bits = urwire__f64(p + 684);
 }
 
 /* Real-time state, CB2 1.5 (756 bytes): sent by software 1.5. */
 static void ur_realtime__decode_rt_1_5(const uint8_t *p, ur_realtime_packet *out)
 {
-    out->time = ur_realtime__f64(p + 4);
-    ur_realtime__f64s(out->q_target, p + 12, 6);
-    ur_realtime__f64s(out->qd_target, p + 60, 6);
-    ur_realtime__f64s(out->qdd_target, p + 108, 6);
-    ur_realtime__f64s(out->i_target, p + 156, 6);
-    ur_realtime__f64s(out->m_target, p + 204, 6);
-    ur_realtime__f64s(out->q_actual, p + 252, 6);
-    ur_realtime__f64s(out->qd_actual, p + 300, 6);
-    ur_realtime__f64s(out->i_actual, p + 348, 6);
-    ur_realtime__f64s(out->tool_accelerometer_values, p + 396, 3);
-    ur_realtime__f64s(out->unused_1, p + 420, 15);
-    ur_realtime__f64s(out->tcp_force, p + 540, 6);
-    ur_realtime__f64s(out->tool_vector_actual, p + 588, 6);
-    ur_realtime__f64s(out->tcp_speed_actual, p + 636, 6);
-    out->digital_input_bits = ur_realtime__f64(p + 684);
-    ur_realtime__f64s(out->motor_temperatures, p + 692, 6);
-    out->controller_timer = ur_realtime__f64(p + 740);
-    out->test_value = ur_realtime__f64(p + 748);
+    out->time = urwire__f64(p + 4);
+    urwire__f64s(out->q_target, p + 12, 6);
+    urwire__f64s(out->qd_target, p + 60, 6);
+    urwire__f64s(out->qdd_target, p + 108, 6);
+    urwire__f64s(out->i_target, p + 156, 6);
+    urwire__f64s(out->m_target, p + 204, 6);
+    urwire__f64s(out->q_actual, p + 252, 6);
+    urwire__f64s(out->qd_actual, p + 300, 6);
+    urwire__f64s(out->i_actual, p + 348, 6);
+    urwire__f64s(out->tool_accelerometer_values, p + 396, 3);
+    urwire__f64s(out->unused_1, p + 420, 15);
+    urwire__f64s(out->tcp_force, p + 540, 6);
+    urwire__f64s(out->tool_vector_actual, p + 588, 6);
+    urwire__f64s(out->tcp_speed_actual, p + 636, 6);
+    out->digital_input_bits = urwire__f64(p + 684);
+    urwire__f64s(out->motor_temperatures, p + 692, 6);
+    out->controller_timer = urwire__f64(p + 740);
+    out->test_value = urwire__f64(p + 748);
 }
 
 /* Real-time state, CB2 1.6 to 1.7 (764 bytes): sent by software 1.6 to 1.7. */
 static void ur_realtime__decode_rt_1_6(const uint8_t *p, ur_realtime_packet *out)
 {
-    out->time = ur_realtime__f64(p + 4);
-    ur_realtime__f64s(out->q_target, p + 12, 6);
-    ur_realtime__f64s(out->qd_target, p + 60, 6);
-    ur_realtime__f64s(out->qdd_target, p + 108, 6);
-    ur_realtime__f64s(out->i_target, p + 156, 6);
-    ur_realtime__f64s(out->m_target, p + 204, 6);
-    ur_realtime__f64s(out->q_actual, p + 252, 6);
-    ur_realtime__f64s(out->qd_actual, p + 300, 6);
-    ur_realtime__f64s(out->i_actual, p + 348, 6);
-    ur_realtime__f64s(out->tool_accelerometer_values, p + 396, 3);
-    ur_realtime__f64s(out->unused_1, p + 420, 15);
-    ur_realtime__f64s(out->tcp_force, p + 540, 6);
-    ur_realtime__f64s(out->tool_vector_actual, p + 588, 6);
-    ur_realtime__f64s(out->tcp_speed_actual, p + 636, 6);
-    out->digital_input_bits = ur_realtime__f64(p + 684);
-    ur_realtime__f64s(out->motor_temperatures, p + 692, 6);
-    out->controller_timer = ur_realtime__f64(p + 740);
-    out->test_value = ur_realtime__f64(p + 748);
-    out->robot_mode = ur_realtime__f64(p + 756);
+    out->time = urwire__f64(p + 4);
+    urwire__f64s(out->q_target, p + 12, 6);
+    urwire__f64s(out->qd_target, p + 60, 6);
+    urwire__f64s(out->qdd_target, p + 108, 6);
+    urwire__f64s(out->i_target, p + 156, 6);
+    urwire__f64s(out->m_target, p + 204, 6);
+    urwire__f64s(out->q_actual, p + 252, 6);
+    urwire__f64s(out->qd_actual, p + 300, 6);
+    urwire__f64s(out->i_actual, p + 348, 6);
+    urwire__f64s(out->tool_accelerometer_values, p + 396, 3);
+    urwire__f64s(out->unused_1, p + 420, 15);
+    urwire__f64s(out->tcp_force, p + 540, 6);
+    urwire__f64s(out->tool_vector_actual, p + 588, 6);
+    urwire__f64s(out->tcp_speed_actual, p + 636, 6);
+    out->digital_input_bits = urwire__f64(p + 684);
+    urwire__f64s(out->motor_temperatures, p + 692, 6);
+    out->controller_timer = urwire__f64(p + 740);
+    out->test_value = urwire__f64(p + 748);
+    out->robot_mode = urwire__f64(p + 756);
 }
 
 /* Real-time state, CB2 1.8 (812 bytes): sent by software 1.8. */
 static void ur_realtime__decode_rt_1_8(const uint8_t *p, ur_realtime_packet *out)
 {
-    out->time = ur_realtime__f64(p + 4);
-    ur_realtime__f64s(out->q_target, p + 12, 6);
-    ur_realtime__f64s(out->qd_target, p + 60, 6);
-    ur_realtime__f64s(out->qdd_target, p + 108, 6);
-    ur_realtime__f64s(out->i_target, p + 156, 6);
-    ur_realtime__f64s(out->m_target, p + 204, 6);
-    ur_realtime__f64s(out->q_actual, p + 252, 6);
-    ur_realtime__f64s(out->qd_actual, p + 300, 6);
-    ur_realtime__f64s(out->i_actual, p + 348, 6);
-    ur_realtime__f64s(out->tool_accelerometer_values, p + 396, 3);
-    ur_realtime__f64s(out->unused_1, p + 420, 15);
-    ur_realtime__f64s(out->tcp_force, p + 540, 6);
-    ur_realtime__f64s(out->tool_vector_actual, p + 588, 6);
-    ur_realtime__f64s(out->tcp_speed_actual, p + 636, 6);
-    out->digital_input_bits = ur_realtime__f64(p + 684);
-    ur_realtime__f64s(out->motor_temperatures, p + 692, 6);
-    out->controller_timer = ur_realtime__f64(p + 740);
-    out->test_value = ur_realtime__f64(p + 748);
-    out->robot_mode = ur_realtime__f64(p + 756);
-    ur_realtime__f64s(out->joint_modes, p + 764, 6);
+    out->time = urwire__f64(p + 4);
+    urwire__f64s(out->q_target, p + 12, 6);
+    urwire__f64s(out->qd_target, p + 60, 6);
+    urwire__f64s(out->qdd_target, p + 108, 6);
+    urwire__f64s(out->i_target, p + 156, 6);
+    urwire__f64s(out->m_target, p + 204, 6);
+    urwire__f64s(out->q_actual, p + 252, 6);
+    urwire__f64s(out->qd_actual, p + 300, 6);
+    urwire__f64s(out->i_actual, p + 348, 6);
+    urwire__f64s(out->tool_accelerometer_values, p + 396, 3);
+    urwire__f64s(out->unused_1, p + 420, 15);
+    urwire__f64s(out->tcp_force, p + 540, 6);
+    urwire__f64s(out->tool_vector_actual, p + 588, 6);
+    urwire__f64s(out->tcp_speed_actual, p + 636, 6);
+    out->digital_input_bits = urwire__f64(p + 684);
+    urwire__f64s(out->motor_temperatures, p + 692, 6);
+    out->controller_timer = urwire__f64(p + 740);
+    out->test_value = urwire__f64(p + 748);
+    out->robot_mode = urwire__f64(p + 756);
+    urwire__f64s(out->joint_modes, p + 764, 6);
 }
 
 /* Real-time state, CB3 3.0 to 3.1 (1044 bytes): sent by software 3.0 to 3.1. */
 static void ur_realtime__decode_rt_3_0(const uint8_t *p, ur_realtime_packet *out)
 {
-    out->time = ur_realtime__f64(p + 4);
-    ur_realtime__f64s(out->q_target, p + 12, 6);
-    ur_realtime__f64s(out->qd_target, p + 60, 6);
-    ur_realtime__f64s(out->qdd_target, p + 108, 6);
-    ur_realtime__f64s(out->i_target, p + 156, 6);
-    ur_realtime__f64s(out->m_target, p + 204, 6);
-    ur_realtime__f64s(out->q_actual, p + 252, 6);
-    ur_realtime__f64s(out->qd_actual, p + 300, 6);
-    ur_realtime__f64s(out->i_actual, p + 348, 6);
-    ur_realtime__f64s(out->i_control, p + 396, 6);
-    ur_realtime__f64s(out->tool_vector_actual, p + 444, 6);
-    ur_realtime__f64s(out->tcp_speed_actual, p + 492, 6);
-    ur_realtime__f64s(out->tcp_force, p + 540, 6);
-    ur_realtime__f64s(out->tool_vector_target, p + 588, 6);
-    ur_realtime__f64s(out->tcp_speed_target, p + 636, 6);
-    out->digital_input_bits = ur_realtime__f64(p + 684);
-    ur_realtime__f64s(out->motor_temperatures, p + 692, 6);
-    out->controller_timer = ur_realtime__f64(p + 740);
-    out->test_value = ur_realtime__f64(p + 748);
-    out->robot_mode = ur_realtime__f64(p + 756);
-    ur_realtime__f64s(out->joint_modes, p + 764, 6);
-    out->safety_mode = ur_realtime__f64(p + 812);
-    ur_realtime__f64s(out->unused_2, p + 820, 6);
-    ur_realtime__f64s(out->tool_accelerometer_values, p + 868, 3);
-    ur_realtime__f64s(out->unused_3, p + 892, 6);
-    out->speed_scaling = ur_realtime__f64(p + 940);
-    out->linear_momentum_norm = ur_realtime__f64(p + 948);
-    ur_realtime__f64s(out->unused_4, p + 956, 2);
-    out->v_main = ur_realtime__f64(p + 972);
-    out->v_robot = ur_realtime__f64(p + 980);
-    out->i_robot = ur_realtime__f64(p + 988);
-    ur_realtime__f64s(out->v_actual, p + 996, 6);
+    out->time = urwire__f64(p + 4);
+    urwire__f64s(out->q_target, p + 12, 6);
+    urwire__f64s(out->qd_target, p + 60, 6);
+    urwire__f64s(out->qdd_target, p + 108, 6);
+    urwire__f64s(out->i_target, p + 156, 6);
+    urwire__f64s(out->m_target, p + 204, 6);
+    urwire__f64s(out->q_actual, p + 252, 6);
+    urwire__f64s(out->qd_actual, p + 300, 6);
+    urwire__f64s(out->i_actual, p + 348, 6);
+    urwire__f64s(out->i_control, p + 396, 6);
+    urwire__f64s(out->tool_vector_actual, p + 444, 6);
+    urwire__f64s(out->tcp_speed_actual, p + 492, 6);
+    urwire__f64s(out->tcp_force, p + 540, 6);
+    urwire__f64s(out->tool_vector_target, p + 588, 6);
+    urwire__f64s(out->tcp_speed_target, p + 636, 6);
+    out->digital_input_bits = urwire__f64(p + 684);
+    urwire__f64s(out->motor_temperatures, p + 692, 6);
+    out->controller_timer = urwire__f64(p + 740);
+    out->test_value = urwire__f64(p + 748);
+    out->robot_mode = urwire__f64(p + 756);
+    urwire__f64s(out->joint_modes, p + 764, 6);
+    out->safety_mode = urwire__f64(p + 812);
+    urwire__f64s(out->unused_2, p + 820, 6);
+    urwire__f64s(out->tool_accelerometer_values, p + 868, 3);
+    urwire__f64s(out->unused_3, p + 892, 6);
+    out->speed_scaling = urwire__f64(p + 940);
+    out->linear_momentum_norm = urwire__f64(p + 948);
+    urwire__f64s(out->unused_4, p + 956, 2);
+    out->v_main = urwire__f64(p + 972);
+    out->v_robot = urwire__f64(p + 980);
+    out->i_robot = urwire__f64(p + 988);
+    urwire__f64s(out->v_actual, p + 996, 6);
 }
 
 /* Real-time state, CB3 3.2 to 3.4 (1060 bytes): sent by software 3.2 to 3.4. */
 static void ur_realtime__decode_rt_3_2(const uint8_t *p, ur_realtime_packet *out)
 {
-    out->time = ur_realtime__f64(p + 4);
-    ur_realtime__f64s(out->q_target, p + 12, 6);
-    ur_realtime__f64s(out->qd_target, p + 60, 6);
-    ur_realtime__f64s(out->qdd_target, p + 108, 6);
-    ur_realtime__f64s(out->i_target, p + 156, 6);
-    ur_realtime__f64s(out->m_target, p + 204, 6);
-    ur_realtime__f64s(out->q_actual, p + 252, 6);
-    ur_realtime__f64s(out->qd_actual, p + 300, 6);
-    ur_realtime__f64s(out->i_actual, p + 348, 6);
-    ur_realtime__f64s(out->i_control, p + 396, 6);
-    ur_realtime__f64s(out->tool_vector_actual, p + 444, 6);
-    ur_realtime__f64s(out->tcp_speed_actual, p + 492, 6);
-    ur_realtime__f64s(out->tcp_force, p + 540, 6);
-    ur_realtime__f64s(out->tool_vector_target, p + 588, 6);
-    ur_realtime__f64s(out->tcp_speed_target, p + 636, 6);
-    out->digital_input_bits = ur_realtime__f64(p + 684);
-    ur_realtime__f64s(out->motor_temperatures, p + 692, 6);
-    out->controller_timer = ur_realtime__f64(p + 740);
-    out->test_value = ur_realtime__f64(p + 748);
-    out->robot_mode = ur_realtime__f64(p + 756);
-    ur_realtime__f64s(out->joint_modes, p + 764, 6);
-    out->safety_mode = ur_realtime__f64(p + 812);
-    ur_realtime__f64s(out->unused_2, p + 820, 6);
-    ur_realtime__f64s(out->tool_accelerometer_values, p + 868, 3);
-    ur_realtime__f64s(out->unused_3, p + 892, 6);
-    out->speed_scaling = ur_realtime__f64(p + 940);
-    out->linear_momentum_norm = ur_realtime__f64(p + 948);
-    ur_realtime__f64s(out->unused_4, p + 956, 2);
-    out->v_main = ur_realtime__f64(p + 972);
-    out->v_robot = ur_realtime__f64(p + 980);
-    out->i_robot = ur_realtime__f64(p + 988);
-    ur_realtime__f64s(out->v_actual, p + 996, 6);
-    out->digital_outputs = ur_realtime__f64(p + 1044);
-    out->program_state = ur_realtime__f64(p + 1052);
+    out->time = urwire__f64(p + 4);
+    urwire__f64s(out->q_target, p + 12, 6);
+    urwire__f64s(out->qd_target, p + 60, 6);
+    urwire__f64s(out->qdd_target, p + 108, 6);
+    urwire__f64s(out->i_target, p + 156, 6);
+    urwire__f64s(out->m_target, p + 204, 6);
+    urwire__f64s(out->q_actual, p + 252, 6);
+    urwire__f64s(out->qd_actual, p + 300, 6);
+    urwire__f64s(out->i_actual, p + 348, 6);
+    urwire__f64s(out->i_control, p + 396, 6);
+    urwire__f64s(out->tool_vector_actual, p + 444, 6);
+    urwire__f64s(out->tcp_speed_actual, p + 492, 6);
+    urwire__f64s(out->tcp_force, p + 540, 6);
+    urwire__f64s(out->tool_vector_target, p + 588, 6);
+    urwire__f64s(out->tcp_speed_target, p + 636, 6);
+    out->digital_input_bits = urwire__f64(p + 684);
+    urwire__f64s(out->motor_temperatures, p + 692, 6);
+    out->controller_timer = urwire__f64(p + 740);
+    out->test_value = urwire__f64(p + 748);
+    out->robot_mode = urwire__f64(p + 756);
+    urwire__f64s(out->joint_modes, p + 764, 6);
+    out->safety_mode = urwire__f64(p + 812);
+    urwire__f64s(out->unused_2, p + 820, 6);
+    urwire__f64s(out->tool_accelerometer_values, p + 868, 3);
+    urwire__f64s(out->unused_3, p + 892, 6);
+    out->speed_scaling = urwire__f64(p + 940);
+    out->linear_momentum_norm = urwire__f64(p + 948);
+    urwire__f64s(out->unused_4, p + 956, 2);
+    out->v_main = urwire__f64(p + 972);
+    out->v_robot = urwire__f64(p + 980);
+    out->i_robot = urwire__f64(p + 988);
+    urwire__f64s(out->v_actual, p + 996, 6);
+    out->digital_outputs = urwire__f64(p + 1044);
+    out->program_state = urwire__f64(p + 1052);
 }
 
 /* Real-time state, CB3 3.5 to 3.9 and e-Series 5.0 to 5.3 (1108 bytes): sent by software 3.5 to 3.9
  * or 5.0 to 5.3. */
 static void ur_realtime__decode_rt_3_5(const uint8_t *p, ur_realtime_packet *out)
 {
-    out->time = ur_realtime__f64(p + 4);
-    ur_realtime__f64s(out->q_target, p + 12, 6);
-    ur_realtime__f64s(out->qd_target, p + 60, 6);
-    ur_realtime__f64s(out->qdd_target, p + 108, 6);
-    ur_realtime__f64s(out->i_target, p + 156, 6);
-    ur_realtime__f64s(out->m_target, p + 204, 6);
-    ur_realtime__f64s(out->q_actual, p + 252, 6);
-    ur_realtime__f64s(out->qd_actual, p + 300, 6);
-    ur_realtime__f64s(out->i_actual, p + 348, 6);
-    ur_realtime__f64s(out->i_control, p + 396, 6);
-    ur_realtime__f64s(out->tool_vector_actual, p + 444, 6);
-    ur_realtime__f64s(out->tcp_speed_actual, p + 492, 6);
-    ur_realtime__f64s(out->tcp_force, p + 540, 6);
-    ur_realtime__f64s(out->tool_vector_target, p + 588, 6);
-    ur_realtime__f64s(out->tcp_speed_target, p + 636, 6);
-    out->digital_input_bits = ur_realtime__f64(p + 684);
-    ur_realtime__f64s(out->motor_temperatures, p + 692, 6);
-    out->controller_timer = ur_realtime__f64(p + 740);
-    out->test_value = ur_realtime__f64(p + 748);
-    out->robot_mode = ur_realtime__f64(p + 756);
-    ur_realtime__f64s(out->joint_modes, p + 764, 6);
-    out->safety_mode = ur_realtime__f64(p + 812);
-    ur_realtime__f64s(out->unused_2, p + 820, 6);
-    ur_realtime__f64s(out->tool_accelerometer_values, p + 868, 3);
-    ur_realtime__f64s(out->unused_3, p + 892, 6);
-    out->speed_scaling = ur_realtime__f64(p + 940);
-    out->linear_momentum_norm = ur_realtime__f64(p + 948);
-    ur_realtime__f64s(out->unused_4, p + 956, 2);
-    out->v_main = ur_realtime__f64(p + 972);
-    out->v_robot = ur_realtime__f64(p + 980);
-    out->i_robot = ur_realtime__f64(p + 988);
-    ur_realtime__f64s(out->v_actual, p + 996, 6);
-    out->digital_outputs = ur_realtime__f64(p + 1044);
-    out->program_state = ur_realtime__f64(p + 1052);
-    ur_realtime__f64s(out->elbow_position, p + 1060, 3);
-    ur_realtime__f64s(out->elbow_velocity, p + 1084, 3);
+    out->time = urwire__f64(p + 4);
+    urwire__f64s(out->q_target, p + 12, 6);
+    urwire__f64s(out->qd_target, p + 60, 6);
+    urwire__f64s(out->qdd_target, p + 108, 6);
+    urwire__f64s(out->i_target, p + 156, 6);
+    urwire__f64s(out->m_target, p + 204, 6);
+    urwire__f64s(out->q_actual, p + 252, 6);
+    urwire__f64s(out->qd_actual, p + 300, 6);
+    urwire__f64s(out->i_actual, p + 348, 6);
+    urwire__f64s(out->i_control, p + 396, 6);
+    urwire__f64s(out->tool_vector_actual, p + 444, 6);
+    urwire__f64s(out->tcp_speed_actual, p + 492, 6);
+    urwire__f64s(out->tcp_force, p + 540, 6);
+    urwire__f64s(out->tool_vector_target, p + 588, 6);
+    urwire__f64s(out->tcp_speed_target, p + 636, 6);
+    out->digital_input_bits = urwire__f64(p + 684);
+    urwire__f64s(out->motor_temperatures, p + 692, 6);
+    out->controller_timer = urwire__f64(p + 740);
+    out->test_value = urwire__f64(p + 748);
+    out->robot_mode = urwire__f64(p + 756);
+    urwire__f64s(out->joint_modes, p + 764, 6);
+    out->safety_mode = urwire__f64(p + 812);
+    urwire__f64s(out->unused_2, p + 820, 6);
+    urwire__f64s(out->tool_accelerometer_values, p + 868, 3);
+    urwire__f64s(out->unused_3, p + 892, 6);
+    out->speed_scaling = urwire__f64(p + 940);
+    out->linear_momentum_norm = urwire__f64(p + 948);
+    urwire__f64s(out->unused_4, p + 956, 2);
+    out->v_main = urwire__f64(p + 972);
+    out->v_robot = urwire__f64(p + 980);
+    out->i_robot = urwire__f64(p + 988);
+    urwire__f64s(out->v_actual, p + 996, 6);
+    out->digital_outputs = urwire__f64(p + 1044);
+    out->program_state = urwire__f64(p + 1052);
+    urwire__f64s(out->elbow_position, p + 1060, 3);
+    urwire__f64s(out->elbow_velocity, p + 1084, 3);
 }
 
 /* Real-time state, CB3 3.10 to 3.15 and e-Series 5.4 to 5.9 (1116 bytes): sent by software 3.10 to
  * 3.15 or 5.4 to 5.9. */
 static void ur_realtime__decode_rt_3_10(const uint8_t *p, ur_realtime_packet *out)
 {
-    out->time = ur_realtime__f64(p + 4);
-    ur_realtime__f64s(out->q_target, p + 12, 6);
-    ur_realtime__f64s(out->qd_target, p + 60, 6);
-    ur_realtime__f64s(out->qdd_target, p + 108, 6);
-    ur_realtime__f64s(out->i_target, p + 156, 6);
-    ur_realtime__f64s(out->m_target, p + 204, 6);
-    ur_realtime__f64s(out->q_actual, p + 252, 6);
-    ur_realtime__f64s(out->qd_actual, p + 300, 6);
-    ur_realtime__f64s(out->i_actual, p + 348, 6);
-    ur_realtime__f64s(out->i_control, p + 396, 6);
-    ur_realtime__f64s(out->tool_vector_actual, p + 444, 6);
-    ur_realtime__f64s(out->tcp_speed_actual, p + 492, 6);
-    ur_realtime__f64s(out->tcp_force, p + 540, 6);
-    ur_realtime__f64s(out->tool_vector_target, p + 588, 6);
-    ur_realtime__f64s(out->tcp_speed_target, p + 636, 6);
-    out->digital_input_bits = ur_realtime__f64(p + 684);
-    ur_realtime__f64s(out->motor_temperatures, p + 692, 6);
-    out->controller_timer = ur_realtime__f64(p + 740);
-    out->test_value = ur_realtime__f64(p + 748);
-    out->robot_mode = ur_realtime__f64(p + 756);
-    ur_realtime__f64s(out->joint_modes, p + 764, 6);
-    out->safety_mode = ur_realtime__f64(p + 812);
-    ur_realtime__f64s(out->unused_2, p + 820, 6);
-    ur_realtime__f64s(out->tool_accelerometer_values, p + 868, 3);
-    ur_realtime__f64s(out->unused_3, p + 892, 6);
-    out->speed_scaling = ur_realtime__f64(p + 940);
-    out->linear_momentum_norm = ur_realtime__f64(p + 948);
-    ur_realtime__f64s(out->unused_4, p + 956, 2);
-    out->v_main = ur_realtime__f64(p + 972);
-    out->v_robot = ur_realtime__f64(p + 980);
-    out->i_robot = ur_realtime__f64(p + 988);
-    ur_realtime__f64s(out->v_actual, p + 996, 6);
-    out->digital_outputs = ur_realtime__f64(p + 1044);
-    out->program_state = ur_realtime__f64(p + 1052);
-    ur_realtime__f64s(out->elbow_position, p + 1060, 3);
-    ur_realtime__f64s(out->elbow_velocity, p + 1084, 3);
-    out->safety_status = ur_realtime__f64(p + 1108);
+    out->time = urwire__f64(p + 4);
+    urwire__f64s(out->q_target, p + 12, 6);
+    urwire__f64s(out->qd_target, p + 60, 6);
+    urwire__f64s(out->qdd_target, p + 108, 6);
+    urwire__f64s(out->i_target, p + 156, 6);
+    urwire__f64s(out->m_target, p + 204, 6);
+    urwire__f64s(out->q_actual, p + 252, 6);
+    urwire__f64s(out->qd_actual, p + 300, 6);
+    urwire__f64s(out->i_actual, p + 348, 6);
+    urwire__f64s(out->i_control, p + 396, 6);
+    urwire__f64s(out->tool_vector_actual, p + 444, 6);
+    urwire__f64s(out->tcp_speed_actual, p + 492, 6);
+    urwire__f64s(out->tcp_force, p + 540, 6);
+    urwire__f64s(out->tool_vector_target, p + 588, 6);
+    urwire__f64s(out->tcp_speed_target, p + 636, 6);
+    out->digital_input_bits = urwire__f64(p + 684);
+    urwire__f64s(out->motor_temperatures, p + 692, 6);
+    out->controller_timer = urwire__f64(p + 740);
+    out->test_value = urwire__f64(p + 748);
+    out->robot_mode = urwire__f64(p + 756);
+    urwire__f64s(out->joint_modes, p + 764, 6);
+    out->safety_mode = urwire__f64(p + 812);
+    urwire__f64s(out->unused_2, p + 820, 6);
+    urwire__f64s(out->tool_accelerometer_values, p + 868, 3);
+    urwire__f64s(out->unused_3, p + 892, 6);
+    out->speed_scaling = urwire__f64(p + 940);
+    out->linear_momentum_norm = urwire__f64(p + 948);
+    urwire__f64s(out->unused_4, p + 956, 2);
+    out->v_main = urwire__f64(p + 972);
+    out->v_robot = urwire__f64(p + 980);
+    out->i_robot = urwire__f64(p + 988);
+    urwire__f64s(out->v_actual, p + 996, 6);
+    out->digital_outputs = urwire__f64(p + 1044);
+    out->program_state = urwire__f64(p + 1052);
+    urwire__f64s(out->elbow_position, p + 1060, 3);
+    urwire__f64s(out->elbow_velocity, p + 1084, 3);
+    out->safety_status = urwire__f64(p + 1108);
 }
 
 /* Real-time state, e-Series 5.10 and later (1220 bytes): sent by software 5.10 and later. */
 static void ur_realtime__decode_rt_5_10(const uint8_t *p, ur_realtime_packet *out)
 {
-    out->time = ur_realtime__f64(p + 4);
-    ur_realtime__f64s(out->q_target, p + 12, 6);
-    ur_realtime__f64s(out->qd_target, p + 60, 6);
-    ur_realtime__f64s(out->qdd_target, p + 108, 6);
-    ur_realtime__f64s(out->i_target, p + 156, 6);
-    ur_realtime__f64s(out->m_target, p + 204, 6);
-    ur_realtime__f64s(out->q_actual, p + 252, 6);
-    ur_realtime__f64s(out->qd_actual, p + 300, 6);
-    ur_realtime__f64s(out->i_actual, p + 348, 6);
-    ur_realtime__f64s(out->i_control, p + 396, 6);
-    ur_realtime__f64s(out->tool_vector_actual, p + 444, 6);
-    ur_realtime__f64s(out->tcp_speed_actual, p + 492, 6);
-    ur_realtime__f64s(out->tcp_force, p + 540, 6);
-    ur_realtime__f64s(out->tool_vector_target, p + 588, 6);
-    ur_realtime__f64s(out->tcp_speed_target, p + 636, 6);
-    out->digital_input_bits = ur_realtime__f64(p + 684);
-    ur_realtime__f64s(out->motor_temperatures, p + 692, 6);
-    out->controller_timer = ur_realtime__f64(p + 740);
-    out->test_value = ur_realtime__f64(p + 748);
-    out->robot_mode = ur_realtime__f64(p + 756);
-    ur_realtime__f64s(out->joint_modes, p + 764, 6);
-    out->safety_mode = ur_realtime__f64(p + 812);
-    ur_realtime__f64s(out->unused_2, p + 820, 6);
-    ur_realtime__f64s(out->tool_accelerometer_values, p + 868, 3);
-    ur_realtime__f64s(out->unused_3, p + 892, 6);
-    out->speed_scaling = ur_realtime__f64(p + 940);
-    out->linear_momentum_norm = ur_realtime__f64(p + 948);
-    ur_realtime__f64s(out->unused_4, p + 956, 2);
-    out->v_main = ur_realtime__f64(p + 972);
-    out->v_robot = ur_realtime__f64(p + 980);
-    out->i_robot = ur_realtime__f64(p + 988);
-    ur_realtime__f64s(out->v_actual, p + 996, 6);
-    out->digital_outputs = ur_realtime__f64(p + 1044);
-    out->program_state = ur_realtime__f64(p + 1052);
-    ur_realtime__f64s(out->elbow_position, p + 1060, 3);
-    ur_realtime__f64s(out->elbow_velocity, p + 1084, 3);
-    out->safety_status = ur_realtime__f64(p + 1108);
-    ur_realtime__f64s(out->unused_5, p + 1116, 3);
-    out->payload_mass = ur_realtime__f64(p + 1140);
-    ur_realtime__f64s(out->payload_cog, p + 1148, 3);
-    ur_realtime__f64s(out->payload_inertia, p + 1172, 6);
+    out->time = urwire__f64(p + 4);
+    urwire__f64s(out->q_target, p + 12, 6);
+    urwire__f64s(out->qd_target, p + 60, 6);
+    urwire__f64s(out->qdd_target, p + 108, 6);
+    urwire__f64s(out->i_target, p + 156, 6);
+    urwire__f64s(out->m_target, p + 204, 6);
+    urwire__f64s(out->q_actual, p + 252, 6);
+    urwire__f64s(out->qd_actual, p + 300, 6);
+    urwire__f64s(out->i_actual, p + 348, 6);
+    urwire__f64s(out->i_control, p + 396, 6);
+    urwire__f64s(out->tool_vector_actual, p + 444, 6);
+    urwire__f64s(out->tcp_speed_actual, p + 492, 6);
+    urwire__f64s(out->tcp_force, p + 540, 6);
+    urwire__f64s(out->tool_vector_target, p + 588, 6);
+    urwire__f64s(out->tcp_speed_target, p + 636, 6);
+    out->digital_input_bits = urwire__f64(p + 684);
+    urwire__f64s(out->motor_temperatures, p + 692, 6);
+    out->controller_timer = urwire__f64(p + 740);
+    out->test_value = urwire__f64(p + 748);
+    out->robot_mode = urwire__f64(p + 756);
+    urwire__f64s(out->joint_modes, p + 764, 6);
+    out->safety_mode = urwire__f64(p + 812);
+    urwire__f64s(out->unused_2, p + 820, 6);
+    urwire__f64s(out->tool_accelerometer_values, p + 868, 3);
+    urwire__f64s(out->unused_3, p + 892, 6);
+    out->speed_scaling = urwire__f64(p + 940);
+    out->linear_momentum_norm = urwire__f64(p + 948);
+    urwire__f64s(out->unused_4, p + 956, 2);
+    out->v_main = urwire__f64(p + 972);
+    out->v_robot = urwire__f64(p + 980);
+    out->i_robot = urwire__f64(p + 988);
+    urwire__f64s(out->v_actual, p + 996, 6);
+    out->digital_outputs = urwire__f64(p + 1044);
+    out->program_state = urwire__f64(p + 1052);
+    urwire__f64s(out->elbow_position, p + 1060, 3);
+    urwire__f64s(out->elbow_velocity, p + 1084, 3);
+    out->safety_status = urwire__f64(p + 1108);
+    urwire__f64s(out->unused_5, p + 1116, 3);
+    out->payload_mass = urwire__f64(p + 1140);
+    urwire__f64s(out->payload_cog, p + 1148, 3);
+    urwire__f64s(out->payload_inertia, p + 1172, 6);
 }
 
 typedef void (*ur_realtime__decoder)(const uint8_t *p, ur_realtime_packet *out);
@@ -931,7 +1049,7 @@ static const ur_realtime__form ur_realtime__forms[UR_REALTIME__FORM_COUNT] = {
                                                        {ur_realtime__program_state_names_0, 6}}},
 };
 
-/* ---- runtime/c/ur_realtime_decode.c ---- */
+/* ---- runtime/c/sized_packets/ur_realtime_decode.c ---- */
 /* Framing and decoding of one real-time packet: the size field checked, the layout chosen by the
  * spec's same_size rule over the generated forms table, then the layout's generated decoder. */
 
@@ -959,7 +1077,7 @@ ur_realtime_error ur_realtime_frame(const uint8_t *buf, size_t len, int32_t *siz
     int32_t declared;
     if (len < UR_REALTIME_SIZE_FIELD_BYTES)
         return UR_REALTIME_E_SHORT;
-    declared = ur_realtime__i32(buf);
+    declared = urwire__i32(buf);
     *size = declared;
     if (declared < UR_REALTIME_MIN_MESSAGE_SIZE)
         return UR_REALTIME_E_SIZE_BELOW;
@@ -1063,4 +1181,3 @@ const char *ur_realtime_enum_name(const ur_realtime_packet *p, ur_realtime_field
             return table->entries[i].name;
     return NULL;
 }
-

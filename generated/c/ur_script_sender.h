@@ -39,83 +39,140 @@ typedef enum ur_script_sender_command_id {
     UR_SCRIPT_SENDER_COMMAND_COUNT
 } ur_script_sender_command_id;
 
-/* ---- runtime/c/lines/lines.h ---- */
-/* ---- lines, commands and replies ----------------------------------------------------------- */
+/* ---- runtime/c/lines/match.h ---- */
+/* ---- lines: the tables of a text-line interface ------------------------------------------ */
+/* The types of the spec's tables (the generated part writes them), which the matcher
+ * (runtime/c/lines/match.c) reads, for the C library and the Wireshark dissector alike. Guarded:
+ * two interfaces' headers may meet in one file. */
+#ifndef URWIRE_LINES_MATCH_H
+#define URWIRE_LINES_MATCH_H
 
-#define UR_SCRIPT_SENDER_PENDING 256     /* commands awaiting a reply that a conversation keeps */
-/* What a reader of raw files keeps in a queue of its own (ur_script_sender_keep_pending): the client's whole
- * file comes before the server's, so every command of a session awaits its reply at once. */
-#define UR_SCRIPT_SENDER_PENDING_RAW (1u << 20)
-#define UR_SCRIPT_SENDER_NONE (-1)       /* no command: an unknown one, or a reply with none pending */
-
-/* Bytes of the caller's buffer: never copied, valid while the buffer is. */
-typedef struct ur_script_sender_view {
-    const uint8_t *ptr;
-    size_t len;
-} ur_script_sender_view;
+#define LINES_NONE (-1)                   /* no command: an unknown one, or a reply with none pending */
 
 /* A reply pattern: literal pieces, each placeholder between two of them taking any text. */
-typedef struct ur_script_sender_reply_spec {
+typedef struct lines_reply {
     const char *name;
     const char *const *pieces;
     size_t piece_count;
-    bool error;               /* the reply says that the command failed */
-} ur_script_sender_reply_spec;
+    bool error;                           /* the reply says that the command failed */
+} lines_reply_t;
 
-typedef struct ur_script_sender_command_spec {
+typedef struct lines_command {
     const char *name;
-    const char *text;         /* the words that open the line */
+    const char *text;                     /* the words that open the line */
     bool takes_argument;
-    uint32_t since_cb;        /* ur_script_sender_version(...) of the first CB version; 0: none */
-    uint32_t since_e_series;  /* the same for the e-Series (5.x and later); 0: none */
-    const ur_script_sender_reply_spec *replies;
+    uint64_t since_cb;                    /* lines_version() of the first CB2/CB3 version; 0: none */
+    uint64_t since_e_series;              /* the same for the e-Series (5.x and later); 0: none */
+    const lines_reply_t *replies;
     size_t reply_count;
-} ur_script_sender_command_spec;
+} lines_command_t;
 
-typedef enum ur_script_sender_record_type {
-    UR_SCRIPT_SENDER_COMMAND,     /* a line from the client */
-    UR_SCRIPT_SENDER_REPLY,       /* a line from the server, the banner too */
-    UR_SCRIPT_SENDER_FAULT        /* a line too long, or bytes without a newline at the end */
-} ur_script_sender_record_type;
+/* One interface's tables, as the generator writes them from its spec. */
+typedef struct lines_spec {
+    const char *column;                   /* the Protocol column */
+    size_t max_line;                      /* longer lines are flagged and skipped up to their newline */
+    const lines_reply_t *banner;          /* the line the server greets a client with, or NULL */
+    bool robot_is_client;                 /* the robot connects to the port (the driver's sockets) */
+    bool requests_from_robot;             /* the robot asks and the other side answers */
+    bool one_reply_per_request;           /* else every answering line belongs to the latest request */
+    const lines_reply_t *common;          /* replies any command may get, read before its own */
+    size_t common_count;
+    const lines_command_t *commands;      /* spec order */
+    size_t command_count;
+    const int *lookup;                    /* command indices in the order a line is tried: longest text first */
+    int version_command;                  /* the command whose reply tells the version, or LINES_NONE */
+    const char *version_prefix;           /* the text before the version in that reply */
+    uint64_t e_series_from;               /* lines_version(5, 0, 0) */
+} lines_spec_t;
 
-typedef enum ur_script_sender_fault {
-    UR_SCRIPT_SENDER_LINE_TOO_LONG,        /* line longer than UR_SCRIPT_SENDER_MAX_LINE bytes */
-    UR_SCRIPT_SENDER_NO_NEWLINE_AT_END     /* <bytes> bytes without a newline at the end of the stream */
-} ur_script_sender_fault;
+#endif
 
-typedef struct ur_script_sender_record {
-    ur_script_sender_record_type type;
-    ur_script_sender_view text;            /* the line without its "\n" (or "\r\n") */
-    int command_name;                  /* the command (ur_script_sender_commands index) or UR_SCRIPT_SENDER_NONE */
+/* ---- runtime/c/lines/lines.h ---- */
+/* ---- lines, commands and replies ----------------------------------------------------------- */
+/* The types of the C library's records and conversations, which every interface of the kind
+ * shares: its generated header names them after the interface (ur_dashboard_record, ...) and
+ * declares its functions. Guarded: two interfaces' headers may meet in one file. */
+#ifndef URWIRE_LINES_H
+#define URWIRE_LINES_H
+
+#define LINES_PENDING 256     /* commands awaiting a reply that a conversation keeps */
+/* What a reader of raw files keeps in a queue of its own (lines_keep_pending): the client's whole
+ * file comes before the server's, so every command of a session awaits its reply at once. */
+#define LINES_PENDING_RAW (1u << 20)
+
+/* Bytes of the caller's buffer: never copied, valid while the buffer is. */
+typedef struct lines_view {
+    const uint8_t *ptr;
+    size_t len;
+} lines_view;
+
+typedef enum lines_record_type {
+    LINES_COMMAND,     /* a line from the client */
+    LINES_REPLY,       /* a line from the server, the banner too */
+    LINES_FAULT        /* a line too long, or bytes without a newline at the end */
+} lines_record_type;
+
+typedef enum lines_fault {
+    LINES_LINE_TOO_LONG,        /* line longer than the interface's longest (lines_spec_t.max_line) */
+    LINES_NO_NEWLINE_AT_END     /* <bytes> bytes without a newline at the end of the stream */
+} lines_fault;
+
+typedef struct lines_record {
+    lines_record_type type;
+    lines_view text;                   /* the line without its "\n" (or "\r\n") */
+    int command_name;                  /* the command (the spec's index) or LINES_NONE */
     bool has_argument;
-    ur_script_sender_view argument;
+    lines_view argument;
     int available;                     /* commands: 1 or 0 when the version is known, else -1 */
-    const ur_script_sender_reply_spec *reply_name;   /* replies: the one matched, or NULL */
+    const lines_reply_t *reply_name;   /* replies: the one matched, or NULL */
     bool error;                        /* replies: reply_name says an error */
     bool not_kept;                     /* commands: not kept to pair; replies: answers such a
                                           command ("more than <kept> commands awaited replies") */
     size_t kept;                       /* the conversation's bound, when not_kept */
-    ur_script_sender_fault fault;          /* faults: what, where (the direction's offset) and how many bytes */
+    lines_fault fault;                 /* faults: what, where (the direction's offset), how many bytes */
     uint64_t offset;
     size_t bytes;
-} ur_script_sender_record;
+} lines_record;
 
-typedef struct ur_script_sender_direction {
+typedef struct lines_direction {
     uint64_t offset;                   /* of the next byte to decode */
     bool skipping;                     /* inside a line too long, dropped up to its newline */
-} ur_script_sender_direction;
+} lines_direction;
 
 /* One TCP connection: both directions and the commands awaiting their replies. Caller-owned.
- * A command that comes when UR_SCRIPT_SENDER_PENDING await is not kept but counted lost, and so is every
+ * A command that comes when LINES_PENDING await is not kept but counted lost, and so is every
  * command behind a lost one (replies come in order); a reply with none kept answers a lost one. */
-typedef struct ur_script_sender_conversation {
-    ur_script_sender_direction commands, replies;
-    int16_t pending[UR_SCRIPT_SENDER_PENDING];
-    int16_t *more;                     /* the caller's longer queue (ur_script_sender_keep_pending), or NULL */
+typedef struct lines_conversation {
+    lines_direction commands, replies;
+    int16_t pending[LINES_PENDING];
+    int16_t *more;                     /* the caller's longer queue (lines_keep_pending), or NULL */
     size_t head, count, lost, kept;
-    uint32_t version;                  /* ur_script_sender_version(...), 0 while unknown */
+    uint32_t version;                  /* lines_version(...), 0 while unknown */
     bool greeted;
-} ur_script_sender_conversation;
+} lines_conversation;
+
+#endif
+
+/* ---- the interface's names for the kind's types --------------------------------------------- */
+
+typedef lines_view ur_script_sender_view;
+typedef lines_reply_t ur_script_sender_reply_spec;
+typedef lines_command_t ur_script_sender_command_spec;
+typedef lines_record_type ur_script_sender_record_type;
+typedef lines_fault ur_script_sender_fault;
+typedef lines_record ur_script_sender_record;
+typedef lines_direction ur_script_sender_direction;
+typedef lines_conversation ur_script_sender_conversation;
+#define UR_SCRIPT_SENDER_PENDING LINES_PENDING
+#define UR_SCRIPT_SENDER_PENDING_RAW LINES_PENDING_RAW
+#define UR_SCRIPT_SENDER_NONE LINES_NONE
+#define UR_SCRIPT_SENDER_COMMAND LINES_COMMAND
+#define UR_SCRIPT_SENDER_REPLY LINES_REPLY
+#define UR_SCRIPT_SENDER_FAULT LINES_FAULT
+#define UR_SCRIPT_SENDER_LINE_TOO_LONG LINES_LINE_TOO_LONG
+#define UR_SCRIPT_SENDER_NO_NEWLINE_AT_END LINES_NO_NEWLINE_AT_END
+
+/* ---- the interface's functions ---------------------------------------------------------------- */
 
 /* major.minor.bugfix as one number that compares in version order. */
 uint32_t ur_script_sender_version(uint32_t major, uint32_t minor, uint32_t bugfix);
@@ -128,7 +185,7 @@ void ur_script_sender_keep_pending(ur_script_sender_conversation *c, int16_t *qu
  * used, and sets *got when rec holds a record. 0 with *got false: a line is not whole yet;
  * call again with more bytes (at most UR_SCRIPT_SENDER_MAX_LINE + 2 are ever needed). */
 size_t ur_script_sender_decode(ur_script_sender_conversation *c, bool from_robot, const uint8_t *buf, size_t n,
-                           ur_script_sender_record *rec, bool *got);
+    ur_script_sender_record *rec, bool *got);
 /* At the end of a direction: the n bytes left without a newline, as a fault record (true), or
  * nothing to report (false). */
 bool ur_script_sender_finish(ur_script_sender_conversation *c, bool from_robot, size_t n, ur_script_sender_record *rec);

@@ -4,48 +4,213 @@
 
 #include "ur_trajectory.h"
 
-/* ---- runtime/c/int32_records/records.c ---- */
-/* ---- int32 records: loads, the JSON writer, scaled numbers as Python's repr writes them ------ */
-/* Every function is private: each interface of this kind joins its own copy. */
-#ifndef I32R_PRIVATE
-#define I32R_PRIVATE static
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
+
+/* Private functions live in the generated .c file that joins them, a copy in each. */
+#define URWIRE__PRIVATE static
+
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
 #endif
 
-I32R_PRIVATE int32_t i32r_load(const uint8_t *p)
+/* ---- runtime/c/common/buffer.h ---- */
+/* ---- a text written into the caller's bounded buffer (buffer.c) --------------------------- */
+
+typedef struct urwire__text {
+    char *out;
+    size_t cap;
+    size_t n;                 /* the text's length, what did not fit too */
+} urwire__text;
+
+URWIRE__PRIVATE void urwire__bytes(urwire__text *t, const char *p, size_t n);
+URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s);
+URWIRE__PRIVATE size_t urwire__end(urwire__text *t);
+
+/* ---- runtime/c/common/loads.h ---- */
+/* ---- big-endian loads and stores ---------------------------------------------------------- */
+
+/* The one set of big-endian loads of the C runtime: every kind's generated C joins it, and the C
+ * command includes it. Every field is read with memcpy into an integer (one unaligned load) and
+ * a byte swap built of shifts, which compilers fold into one instruction. They must be inlined to
+ * be fast (see URWIRE__INLINE in macros.h). The caller has checked that the bytes are there. */
+
+/* The host's byte order, a constant once optimised: 1 on a big-endian machine. */
+URWIRE__INLINE int urwire__host_is_big_endian(void)
 {
-    uint32_t u = (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | (uint32_t)p[3];
-    /* two's complement, without an implementation-defined cast */
-    return u <= 0x7FFFFFFFu ? (int32_t)u : -(int32_t)(~u) - 1;
+    const uint16_t one = 1u;
+    uint8_t first;
+    memcpy(&first, &one, 1);
+    return first == 0;
 }
 
-/* A JSON line in the caller's buffer; len counts what did not fit too. */
-typedef struct i32r_out {
-    char *buf;
-    size_t cap, len;
-} i32r_out;
-
-I32R_PRIVATE void i32r_bytes(i32r_out *o, const char *p, size_t n)
+URWIRE__INLINE uint16_t urwire__swap16(uint16_t v)
 {
-    size_t room = o->cap > o->len + 1 ? o->cap - o->len - 1 : 0;
+    return (uint16_t)((unsigned)v << 8 | (unsigned)v >> 8);
+}
+
+URWIRE__INLINE uint32_t urwire__swap32(uint32_t v)
+{
+    return (v & 0x000000ffu) << 24 | (v & 0x0000ff00u) << 8 | (v & 0x00ff0000u) >> 8 | (v & 0xff000000u) >> 24;
+}
+
+URWIRE__INLINE uint64_t urwire__swap64(uint64_t v)
+{
+    return (uint64_t)urwire__swap32((uint32_t)v) << 32 | urwire__swap32((uint32_t)(v >> 32));
+}
+
+/* Big-endian bytes at p as a host integer, and back. */
+URWIRE__INLINE uint16_t urwire__from_be16(uint16_t v) { return urwire__host_is_big_endian() ? v : urwire__swap16(v); }
+URWIRE__INLINE uint32_t urwire__from_be32(uint32_t v) { return urwire__host_is_big_endian() ? v : urwire__swap32(v); }
+URWIRE__INLINE uint64_t urwire__from_be64(uint64_t v) { return urwire__host_is_big_endian() ? v : urwire__swap64(v); }
+
+URWIRE__INLINE uint8_t urwire__u8(const uint8_t *p) { return p[0]; }
+URWIRE__INLINE int8_t urwire__i8(const uint8_t *p) { return (int8_t)p[0]; }
+
+URWIRE__INLINE uint16_t urwire__u16(const uint8_t *p)
+{
+    uint16_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be16(v);
+}
+
+URWIRE__INLINE uint32_t urwire__u32(const uint8_t *p)
+{
+    uint32_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be32(v);
+}
+
+URWIRE__INLINE uint64_t urwire__u64(const uint8_t *p)
+{
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be64(v);
+}
+
+/* n bytes (1 to 8, known when inlined) as an unsigned integer: a length prefix or a value of a
+ * width read from a table. */
+URWIRE__INLINE uint64_t urwire__uint(const uint8_t *p, size_t n)
+{
+    uint64_t v = 0;
+    size_t i;
+    for (i = 0; i < n; i++)
+        v = v << 8 | p[i];
+    return v;
+}
+
+URWIRE__INLINE int16_t urwire__i16(const uint8_t *p) { return (int16_t)urwire__u16(p); }
+URWIRE__INLINE int32_t urwire__i32(const uint8_t *p) { return (int32_t)urwire__u32(p); }
+URWIRE__INLINE int64_t urwire__i64(const uint8_t *p) { return (int64_t)urwire__u64(p); }
+
+/* Floats are read as their bit pattern, never byte-swapped as numbers. */
+URWIRE__INLINE float urwire__f32(const uint8_t *p)
+{
+    uint32_t bits = urwire__u32(p);
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+/* A double from its bit pattern, NaN payloads included. */
+URWIRE__INLINE double urwire__f64_of(uint64_t bits)
+{
+    double d;
+    memcpy(&d, &bits, sizeof d);
+    return d;
+}
+
+URWIRE__INLINE double urwire__f64(const uint8_t *p)
+{
+    return urwire__f64_of(urwire__u64(p));
+}
+
+/* count doubles in a row into out. */
+URWIRE__INLINE void urwire__f64s(double *out, const uint8_t *p, size_t count)
+{
+    size_t i;
+    for (i = 0; i < count; i++)
+        out[i] = urwire__f64(p + 8 * i);
+}
+
+URWIRE__INLINE void urwire__put_u8(uint8_t *p, uint8_t v) { p[0] = v; }
+URWIRE__INLINE void urwire__put_i8(uint8_t *p, int8_t v) { p[0] = (uint8_t)v; }
+
+URWIRE__INLINE void urwire__put_u16(uint8_t *p, uint16_t v)
+{
+    v = urwire__from_be16(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_u32(uint8_t *p, uint32_t v)
+{
+    v = urwire__from_be32(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_u64(uint8_t *p, uint64_t v)
+{
+    v = urwire__from_be64(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_i16(uint8_t *p, int16_t v) { urwire__put_u16(p, (uint16_t)v); }
+URWIRE__INLINE void urwire__put_i32(uint8_t *p, int32_t v) { urwire__put_u32(p, (uint32_t)v); }
+URWIRE__INLINE void urwire__put_i64(uint8_t *p, int64_t v) { urwire__put_u64(p, (uint64_t)v); }
+
+URWIRE__INLINE void urwire__put_f32(uint8_t *p, float v)
+{
+    uint32_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    urwire__put_u32(p, bits);
+}
+
+URWIRE__INLINE void urwire__put_f64(uint8_t *p, double v)
+{
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    urwire__put_u64(p, bits);
+}
+
+/* ---- runtime/c/common/buffer.c ---- */
+/* ---- a text written into the caller's bounded buffer -------------------------------------- */
+
+/* Appends n bytes; those past the buffer's end (cap - 1, room for the NUL) are counted only. */
+URWIRE__PRIVATE void urwire__bytes(urwire__text *t, const char *p, size_t n)
+{
+    size_t room = t->cap > t->n + 1 ? t->cap - t->n - 1 : 0;
     if (room > 0)
-        memcpy(o->buf + o->len, p, n < room ? n : room);
-    o->len += n;
+        memcpy(t->out + t->n, p, n < room ? n : room);
+    t->n += n;
 }
 
-I32R_PRIVATE void i32r_text(i32r_out *o, const char *p)
+URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s)
 {
-    i32r_bytes(o, p, strlen(p));
+    urwire__bytes(t, s, strlen(s));
 }
 
-I32R_PRIVATE size_t i32r_end(i32r_out *o)
+/* Ends the text with a NUL (when cap > 0) and returns the length it needed: when that is cap or
+ * more, the buffer holds its first cap - 1 bytes. */
+URWIRE__PRIVATE size_t urwire__end(urwire__text *t)
 {
-    if (o->cap > 0)
-        o->buf[o->len < o->cap ? o->len : o->cap - 1] = '\0';
-    return o->len;
+    if (t->cap > 0)
+        t->out[t->n < t->cap ? t->n : t->cap - 1] = '\0';
+    return t->n;
 }
+
+/* ---- runtime/c/int32_records/records.c ---- */
+/* ---- int32 records: the JSON writer, scaled numbers as Python's repr writes them ------------ */
+/* Every function is private: each interface of this kind joins its own copy, after
+ * runtime/c/common/ (loads, the output buffer). */
 
 /* The decimal digits of u, most significant first, in digits[]; returns their count. */
-I32R_PRIVATE size_t i32r_digits(uint64_t u, char digits[21])
+URWIRE__PRIVATE size_t i32r_digits(uint64_t u, char digits[21])
 {
     char rev[21];
     size_t n = 0, i;
@@ -58,26 +223,26 @@ I32R_PRIVATE size_t i32r_digits(uint64_t u, char digits[21])
     return n;
 }
 
-I32R_PRIVATE void i32r_int(i32r_out *o, int64_t v)
+URWIRE__PRIVATE void i32r_int(urwire__text *o, int64_t v)
 {
     char digits[21];
     uint64_t u = v < 0 ? (uint64_t)(-(v + 1)) + 1u : (uint64_t)v;
     if (v < 0)
-        i32r_bytes(o, "-", 1);
-    i32r_bytes(o, digits, i32r_digits(u, digits));
+        urwire__bytes(o, "-", 1);
+    urwire__bytes(o, digits, i32r_digits(u, digits));
 }
 
 /* raw / 10^decimals as Python's repr() writes the double nearest it: the exact decimal is the
  * shortest text that reads back (values of 10 digits at most are 1e-6 apart, far more than an
  * ulp), in fixed notation with at least one decimal, or as 1.5e-05 below 1e-4. */
-I32R_PRIVATE void i32r_scaled(i32r_out *o, int32_t raw, unsigned decimals)
+URWIRE__PRIVATE void i32r_scaled(urwire__text *o, int32_t raw, unsigned decimals)
 {
     char digits[21], text[48];
     uint64_t u = raw < 0 ? (uint64_t)(-(int64_t)raw) : (uint64_t)raw;
     size_t n, sig, at = 0, i;
     long exponent;
     if (raw == 0) {
-        i32r_text(o, "0.0");
+        urwire__str(o, "0.0");
         return;
     }
     if (raw < 0)
@@ -110,31 +275,30 @@ I32R_PRIVATE void i32r_scaled(i32r_out *o, int32_t raw, unsigned decimals)
         for (i = whole; i < end; i++)
             text[at++] = i < n ? digits[i] : '0';
     }
-    i32r_bytes(o, text, at);
+    urwire__bytes(o, text, at);
 }
 
-I32R_PRIVATE size_t i32r_fault(uint64_t offset, size_t left, size_t size, bool from_robot, char *out,
+URWIRE__PRIVATE size_t i32r_fault(uint64_t offset, size_t left, size_t size, bool from_robot, char *out,
                                 size_t cap)
 {
-    i32r_out o;
-    o.buf = out;
+    urwire__text o;
+    o.out = out;
     o.cap = cap;
-    o.len = 0;
-    i32r_text(&o, "{\"type\": \"error\", \"offset\": ");
+    o.n = 0;
+    urwire__str(&o, "{\"type\": \"error\", \"offset\": ");
     i32r_int(&o, (int64_t)offset);
-    i32r_text(&o, ", \"error\": \"");
+    urwire__str(&o, ", \"error\": \"");
     i32r_int(&o, (int64_t)left);
     if (size == 0) {
-        i32r_text(&o, from_robot ? " bytes from the robot, where none are specified\"}"
+        urwire__str(&o, from_robot ? " bytes from the robot, where none are specified\"}"
                                  : " bytes to the robot, where none are specified\"}");
     } else {
-        i32r_text(&o, " bytes left, short of a ");
+        urwire__str(&o, " bytes left, short of a ");
         i32r_int(&o, (int64_t)size);
-        i32r_text(&o, "-byte record\"}");
+        urwire__str(&o, "-byte record\"}");
     }
-    return i32r_end(&o);
+    return urwire__end(&o);
 }
-
 
 /* ---- trajectory_point ---------------------------------------------------------------------------- */
 
@@ -206,31 +370,31 @@ size_t ur_trajectory_decode_trajectory_point(const uint8_t *buf, size_t n, uint3
         out->layout = 2;
         out->positions_count = 6;
         for (i = 0; i < 6; i++) {
-            out->positions_raw[i] = i32r_load(buf + 4 * (0 + i));
+            out->positions_raw[i] = urwire__i32(buf + 4 * (0 + i));
             out->positions[i] = (double)out->positions_raw[i] / 1e6;
         }
 
         out->has_velocities = true;
         out->velocities_count = 6;
         for (i = 0; i < 6; i++) {
-            out->velocities_raw[i] = i32r_load(buf + 4 * (6 + i));
+            out->velocities_raw[i] = urwire__i32(buf + 4 * (6 + i));
             out->velocities[i] = (double)out->velocities_raw[i] / 1e6;
         }
 
         out->has_accelerations = true;
         out->accelerations_count = 6;
         for (i = 0; i < 6; i++) {
-            out->accelerations_raw[i] = i32r_load(buf + 4 * (12 + i));
+            out->accelerations_raw[i] = urwire__i32(buf + 4 * (12 + i));
             out->accelerations[i] = (double)out->accelerations_raw[i] / 1e6;
         }
 
-        out->duration_raw = i32r_load(buf + 4 * 18);
+        out->duration_raw = urwire__i32(buf + 4 * 18);
         out->duration = (double)out->duration_raw / 1e6;
 
-        out->blend_radius_raw = i32r_load(buf + 4 * 19);
+        out->blend_radius_raw = urwire__i32(buf + 4 * 19);
         out->blend_radius = (double)out->blend_radius_raw / 1e6;
 
-        out->motion_type = i32r_load(buf + 4 * 20);
+        out->motion_type = urwire__i32(buf + 4 * 20);
 
         return size;
     }
@@ -239,31 +403,31 @@ size_t ur_trajectory_decode_trajectory_point(const uint8_t *buf, size_t n, uint3
         out->layout = 1;
         out->positions_count = 6;
         for (i = 0; i < 6; i++) {
-            out->positions_raw[i] = i32r_load(buf + 4 * (0 + i));
+            out->positions_raw[i] = urwire__i32(buf + 4 * (0 + i));
             out->positions[i] = (double)out->positions_raw[i] / 1e6;
         }
 
         out->has_velocities = true;
         out->velocities_count = 6;
         for (i = 0; i < 6; i++) {
-            out->velocities_raw[i] = i32r_load(buf + 4 * (6 + i));
+            out->velocities_raw[i] = urwire__i32(buf + 4 * (6 + i));
             out->velocities[i] = (double)out->velocities_raw[i] / 1e6;
         }
 
         out->has_accelerations = true;
         out->accelerations_count = 6;
         for (i = 0; i < 6; i++) {
-            out->accelerations_raw[i] = i32r_load(buf + 4 * (12 + i));
+            out->accelerations_raw[i] = urwire__i32(buf + 4 * (12 + i));
             out->accelerations[i] = (double)out->accelerations_raw[i] / 1e6;
         }
 
-        out->duration_raw = i32r_load(buf + 4 * 18);
+        out->duration_raw = urwire__i32(buf + 4 * 18);
         out->duration = (double)out->duration_raw / 1e3;
 
-        out->blend_radius_raw = i32r_load(buf + 4 * 19);
+        out->blend_radius_raw = urwire__i32(buf + 4 * 19);
         out->blend_radius = (double)out->blend_radius_raw / 1e3;
 
-        out->motion_type = i32r_load(buf + 4 * 20);
+        out->motion_type = urwire__i32(buf + 4 * 20);
 
         return size;
     }
@@ -272,17 +436,17 @@ size_t ur_trajectory_decode_trajectory_point(const uint8_t *buf, size_t n, uint3
         out->layout = 0;
         out->positions_count = 6;
         for (i = 0; i < 6; i++) {
-            out->positions_raw[i] = i32r_load(buf + 4 * (0 + i));
+            out->positions_raw[i] = urwire__i32(buf + 4 * (0 + i));
             out->positions[i] = (double)out->positions_raw[i] / 1e6;
         }
 
-        out->duration_raw = i32r_load(buf + 4 * 6);
+        out->duration_raw = urwire__i32(buf + 4 * 6);
         out->duration = (double)out->duration_raw / 1e3;
 
-        out->blend_radius_raw = i32r_load(buf + 4 * 7);
+        out->blend_radius_raw = urwire__i32(buf + 4 * 7);
         out->blend_radius = (double)out->blend_radius_raw / 1e3;
 
-        out->motion_type = i32r_load(buf + 4 * 8);
+        out->motion_type = urwire__i32(buf + 4 * 8);
 
         return size;
     }
@@ -290,63 +454,63 @@ size_t ur_trajectory_decode_trajectory_point(const uint8_t *buf, size_t n, uint3
 
 size_t ur_trajectory_json_trajectory_point(const ur_trajectory_trajectory_point *r, char *out, size_t cap)
 {
-    i32r_out o;
+    urwire__text o;
     size_t i;
-    o.buf = out;
+    o.out = out;
     o.cap = cap;
-    o.len = 0;
+    o.n = 0;
     (void)i;
-    i32r_text(&o, "{\"type\": \"trajectory_point\"");
+    urwire__str(&o, "{\"type\": \"trajectory_point\"");
     {
-        i32r_text(&o, ", \"positions\": ");
-        i32r_text(&o, "[");
+        urwire__str(&o, ", \"positions\": ");
+        urwire__str(&o, "[");
         for (i = 0; i < r->positions_count; i++) {
             if (i)
-                i32r_text(&o, ", ");
+                urwire__str(&o, ", ");
             i32r_scaled(&o, r->positions_raw[i], trajectory_point_positions_decimals(r->layout));
         }
-        i32r_text(&o, "]");
+        urwire__str(&o, "]");
     }
 
     if (r->has_velocities) {
-        i32r_text(&o, ", \"velocities\": ");
-        i32r_text(&o, "[");
+        urwire__str(&o, ", \"velocities\": ");
+        urwire__str(&o, "[");
         for (i = 0; i < r->velocities_count; i++) {
             if (i)
-                i32r_text(&o, ", ");
+                urwire__str(&o, ", ");
             i32r_scaled(&o, r->velocities_raw[i], trajectory_point_velocities_decimals(r->layout));
         }
-        i32r_text(&o, "]");
+        urwire__str(&o, "]");
     }
 
     if (r->has_accelerations) {
-        i32r_text(&o, ", \"accelerations\": ");
-        i32r_text(&o, "[");
+        urwire__str(&o, ", \"accelerations\": ");
+        urwire__str(&o, "[");
         for (i = 0; i < r->accelerations_count; i++) {
             if (i)
-                i32r_text(&o, ", ");
+                urwire__str(&o, ", ");
             i32r_scaled(&o, r->accelerations_raw[i], trajectory_point_accelerations_decimals(r->layout));
         }
-        i32r_text(&o, "]");
+        urwire__str(&o, "]");
     }
 
     {
-        i32r_text(&o, ", \"duration\": ");
+        urwire__str(&o, ", \"duration\": ");
         i32r_scaled(&o, r->duration_raw, trajectory_point_duration_decimals(r->layout));
     }
 
     {
-        i32r_text(&o, ", \"blend_radius\": ");
+        urwire__str(&o, ", \"blend_radius\": ");
         i32r_scaled(&o, r->blend_radius_raw, trajectory_point_blend_radius_decimals(r->layout));
     }
 
     {
-        i32r_text(&o, ", \"motion_type\": ");
+        urwire__str(&o, ", \"motion_type\": ");
         i32r_int(&o, r->motion_type);
     }
 
-    i32r_text(&o, "}");
-    return i32r_end(&o);
+    urwire__str(&o, "}");
+    return urwire__end(&o);
 }
 
 /* ---- trajectory_result ---------------------------------------------------------------------------- */
@@ -366,7 +530,7 @@ size_t ur_trajectory_decode_trajectory_result(const uint8_t *buf, size_t n, uint
     memset(out, 0, sizeof *out);
     {   /* all versions */
         out->layout = 0;
-        out->result = i32r_load(buf + 4 * 0);
+        out->result = urwire__i32(buf + 4 * 0);
 
         return size;
     }
@@ -374,20 +538,20 @@ size_t ur_trajectory_decode_trajectory_result(const uint8_t *buf, size_t n, uint
 
 size_t ur_trajectory_json_trajectory_result(const ur_trajectory_trajectory_result *r, char *out, size_t cap)
 {
-    i32r_out o;
+    urwire__text o;
     size_t i;
-    o.buf = out;
+    o.out = out;
     o.cap = cap;
-    o.len = 0;
+    o.n = 0;
     (void)i;
-    i32r_text(&o, "{\"type\": \"trajectory_result\"");
+    urwire__str(&o, "{\"type\": \"trajectory_result\"");
     {
-        i32r_text(&o, ", \"result\": ");
+        urwire__str(&o, ", \"result\": ");
         i32r_int(&o, r->result);
     }
 
-    i32r_text(&o, "}");
-    return i32r_end(&o);
+    urwire__str(&o, "}");
+    return urwire__end(&o);
 }
 
 size_t ur_trajectory_record_size(bool from_robot, uint32_t release)

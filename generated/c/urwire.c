@@ -38,21 +38,11 @@
 /* exact body sizes a form of a type code can have, at most (its flag-conditioned parts in or out) */
 #define URWIRE__FORM_SIZES 2
 
-/* ---- runtime/c/private.h ---- */
-/* ---- what the runtime and the generated layouts share ------------------------------------- */
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
 
-/* A range of software versions; a missing bound is open. */
-typedef struct urwire__versions {
-    bool has_low;
-    urwire_sw_version low;
-    bool has_high;
-    urwire_sw_version high;
-} urwire__versions;
-
-/* Private functions live in urwire.c alone. */
+/* Private functions live in the generated .c file that joins them, a copy in each. */
 #define URWIRE__PRIVATE static
-
-#define URWIRE__COUNT(a) (sizeof(a) / sizeof((a)[0]))
 
 /* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
  * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
@@ -63,6 +53,50 @@ typedef struct urwire__versions {
 #else
 #define URWIRE__INLINE static inline
 #endif
+
+/* ---- runtime/c/common/buffer.h ---- */
+/* ---- a text written into the caller's bounded buffer (buffer.c) --------------------------- */
+
+typedef struct urwire__text {
+    char *out;
+    size_t cap;
+    size_t n;                 /* the text's length, what did not fit too */
+} urwire__text;
+
+URWIRE__PRIVATE void urwire__bytes(urwire__text *t, const char *p, size_t n);
+URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s);
+URWIRE__PRIVATE size_t urwire__end(urwire__text *t);
+
+/* ---- runtime/c/common/version_text.h ---- */
+/* ---- a software version's text (version_text.c) ----------------------------------------- */
+
+/* A part stops growing at its first thirteen digits: far past every version a table names, and
+ * never an overflow. */
+#define URWIRE__VERSION_PART_BIG 1000000000000u
+
+typedef struct urwire__version_text {
+    uint64_t part[3];           /* major, minor, bugfix; a missing bugfix 0 */
+    size_t parts;               /* the numbers read: 2 or 3 */
+    size_t longest;             /* the digits of the longest number */
+    bool dot_after;             /* whole: a dot with no number after it ("5.9.") */
+    const char *end;            /* past what was read */
+} urwire__version_text;
+
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out);
+
+/* ---- runtime/c/packages/private.h ---- */
+/* ---- what the runtime and the generated layouts share ------------------------------------- */
+
+/* A range of software versions; a missing bound is open. */
+typedef struct urwire__versions {
+    bool has_low;
+    urwire_sw_version low;
+    bool has_high;
+    urwire_sw_version high;
+} urwire__versions;
+
+#define URWIRE__COUNT(a) (sizeof(a) / sizeof((a)[0]))
 
 /* Tests that the robot-state fast path passes (or fails) almost always: gcc and clang then lay
  * that path out straight, with no jump taken (a few ns per robot state). */
@@ -282,13 +316,6 @@ typedef struct urwire__value_table {
     size_t min_size;                /* the fewest bytes a value takes: bounds LIST/MATRIX counts */
 } urwire__value_table;
 
-/* Text written into a caller's buffer, cut to fit; n counts what did not fit too. */
-typedef struct urwire__text {
-    char *out;
-    size_t cap;
-    size_t n;
-} urwire__text;
-
 /* ---- the runtime's functions that other files call, file by file ---- */
 /* (A helper that only its own file calls is static there.) */
 
@@ -302,7 +329,6 @@ URWIRE__PRIVATE bool urwire__in_versions(urwire_sw_version v, const urwire__vers
 URWIRE__PRIVATE size_t urwire__table_index(urwire_sw_version v, const urwire__versions *ranges, size_t count);
 /* format.c */
 URWIRE__PRIVATE size_t urwire__digits(char *buf, int64_t v);
-URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s);
 URWIRE__PRIVATE void urwire__num(urwire__text *t, int64_t v);
 URWIRE__PRIVATE void urwire__hex2(urwire__text *t, int64_t v);
 /* errors.c */
@@ -345,12 +371,13 @@ URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urw
 URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);
 URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v);
 
-/* ---- runtime/c/loads.h ---- */
+/* ---- runtime/c/common/loads.h ---- */
 /* ---- big-endian loads and stores ---------------------------------------------------------- */
 
-/* Every field is read with memcpy into an integer (one unaligned load) and a byte swap built of
- * shifts, which compilers fold into one instruction. They must be inlined to be fast (see
- * URWIRE__INLINE in private.h). */
+/* The one set of big-endian loads of the C runtime: every kind's generated C joins it, and the C
+ * command includes it. Every field is read with memcpy into an integer (one unaligned load) and
+ * a byte swap built of shifts, which compilers fold into one instruction. They must be inlined to
+ * be fast (see URWIRE__INLINE in macros.h). The caller has checked that the bytes are there. */
 
 /* The host's byte order, a constant once optimised: 1 on a big-endian machine. */
 URWIRE__INLINE int urwire__host_is_big_endian(void)
@@ -405,6 +432,17 @@ URWIRE__INLINE uint64_t urwire__u64(const uint8_t *p)
     return urwire__from_be64(v);
 }
 
+/* n bytes (1 to 8, known when inlined) as an unsigned integer: a length prefix or a value of a
+ * width read from a table. */
+URWIRE__INLINE uint64_t urwire__uint(const uint8_t *p, size_t n)
+{
+    uint64_t v = 0;
+    size_t i;
+    for (i = 0; i < n; i++)
+        v = v << 8 | p[i];
+    return v;
+}
+
 URWIRE__INLINE int16_t urwire__i16(const uint8_t *p) { return (int16_t)urwire__u16(p); }
 URWIRE__INLINE int32_t urwire__i32(const uint8_t *p) { return (int32_t)urwire__u32(p); }
 URWIRE__INLINE int64_t urwire__i64(const uint8_t *p) { return (int64_t)urwire__u64(p); }
@@ -418,12 +456,25 @@ URWIRE__INLINE float urwire__f32(const uint8_t *p)
     return f;
 }
 
-URWIRE__INLINE double urwire__f64(const uint8_t *p)
+/* A double from its bit pattern, NaN payloads included. */
+URWIRE__INLINE double urwire__f64_of(uint64_t bits)
 {
-    uint64_t bits = urwire__u64(p);
     double d;
     memcpy(&d, &bits, sizeof d);
     return d;
+}
+
+URWIRE__INLINE double urwire__f64(const uint8_t *p)
+{
+    return urwire__f64_of(urwire__u64(p));
+}
+
+/* count doubles in a row into out. */
+URWIRE__INLINE void urwire__f64s(double *out, const uint8_t *p, size_t count)
+{
+    size_t i;
+    for (i = 0; i < count; i++)
+        out[i] = urwire__f64(p + 8 * i);
 }
 
 URWIRE__INLINE void urwire__put_u8(uint8_t *p, uint8_t v) { p[0] = v; }
@@ -465,7 +516,98 @@ URWIRE__INLINE void urwire__put_f64(uint8_t *p, double v)
     urwire__put_u64(p, bits);
 }
 
-/* ---- runtime/c/views.c ---- */
+/* ---- runtime/c/common/buffer.c ---- */
+/* ---- a text written into the caller's bounded buffer -------------------------------------- */
+
+/* Appends n bytes; those past the buffer's end (cap - 1, room for the NUL) are counted only. */
+URWIRE__PRIVATE void urwire__bytes(urwire__text *t, const char *p, size_t n)
+{
+    size_t room = t->cap > t->n + 1 ? t->cap - t->n - 1 : 0;
+    if (room > 0)
+        memcpy(t->out + t->n, p, n < room ? n : room);
+    t->n += n;
+}
+
+URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s)
+{
+    urwire__bytes(t, s, strlen(s));
+}
+
+/* Ends the text with a NUL (when cap > 0) and returns the length it needed: when that is cap or
+ * more, the buffer holds its first cap - 1 bytes. */
+URWIRE__PRIVATE size_t urwire__end(urwire__text *t)
+{
+    if (t->cap > 0)
+        t->out[t->n < t->cap ? t->n : t->cap - 1] = '\0';
+    return t->n;
+}
+
+/* ---- runtime/c/common/version_text.c ---- */
+/* ---- a software version's text ---------------------------------------------------------- */
+/* The one reader of a version's text in C: the C library's urwire_parse_version, the version a
+ * dashboard reply tells ("URSoftware 5.11.1.108318 (...)"), and every Wireshark dissector's
+ * version preference ("5.9", " 3.15.2 "). Each caller's rules that differ are its parameters and
+ * its checks of what was read (how many digits, what follows). */
+
+/* Blanks as Wireshark's g_ascii_isspace sees them; vt_blank: a vertical tab too, as C's isspace
+ * and Lua's %s see it. */
+static bool urwire__version_blank(char c, bool vt_blank)
+{
+    return c == ' ' || c == '\t' || c == '\n' || c == '\f' || c == '\r' || (vt_blank && c == '\v');
+}
+
+static bool urwire__version_digit(const char *at, const char *end)
+{
+    return at < end && *at >= '0' && *at <= '9';
+}
+
+/* major.minor or major.minor.bugfix in [text, end), after blanks. whole: nothing but blanks may
+ * follow (a dot with no number after it too); else anything may, and a third number needs its
+ * digit right after the dot. False for text that is not a version. */
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out)
+{
+    const char *p = text;
+    size_t i;
+    out->parts = 0;
+    out->longest = 0;
+    out->dot_after = false;
+    while (p < end && urwire__version_blank(*p, vt_blank))
+        p++;
+    for (i = 0; i < 3; i++) {
+        size_t digits = 0;
+        out->part[i] = 0;
+        if (i == 1 && (p == end || *p++ != '.'))
+            return false;
+        if (i == 2 && !(p < end && *p == '.' && urwire__version_digit(p + 1, end))) {
+            if (whole && p < end && *p == '.') {
+                out->dot_after = true;
+                p++;
+            }
+            break;
+        }
+        if (i == 2)
+            p++;
+        if (!urwire__version_digit(p, end))
+            return false;
+        for (; urwire__version_digit(p, end); p++, digits++) {
+            if (out->part[i] < URWIRE__VERSION_PART_BIG)
+                out->part[i] = out->part[i] * 10u + (uint64_t)(*p - '0');
+        }
+        out->parts = i + 1;
+        out->longest = digits > out->longest ? digits : out->longest;
+    }
+    if (whole) {
+        while (p < end && urwire__version_blank(*p, vt_blank))
+            p++;
+        if (p != end)
+            return false;
+    }
+    out->end = p;
+    return true;
+}
+
+/* ---- runtime/c/packages/views.c ---- */
 /* ---- views -------------------------------------------------------------------------------- */
 
 URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len)
@@ -495,7 +637,7 @@ URWIRE__PRIVATE urwire_bytes urwire__seq_bytes(const urwire_seq *s)
     return urwire__view(s->msg + s->pos, s->end - s->pos);
 }
 
-/* ---- runtime/c/version.c ---- */
+/* ---- runtime/c/packages/version.c ---- */
 /* ---- versions ----------------------------------------------------------------------------- */
 
 const urwire_sw_version URWIRE_DEFAULT_VERSION = URWIRE_DEFAULT_VERSION_INIT;
@@ -529,46 +671,22 @@ URWIRE__PRIVATE size_t urwire__table_index(urwire_sw_version v, const urwire__ve
     return count - 1;
 }
 
-static bool urwire__is_space(char c)
-{
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
-}
-
 bool urwire_parse_version(const char *text, urwire_sw_version *out)
 {
-    /* As Python's urwire.parse_version: "major.minor" or "major.minor.bugfix", every part
-     * digits. */
-    long parts[3] = {0, 0, 0};
-    size_t len = strlen(text), start = 0, i, nparts = 0, digits = 0;
-    while (start < len && urwire__is_space(text[start]))
-        start++;
-    while (len > start && urwire__is_space(text[len - 1]))
-        len--;
-    for (i = start; i <= len; i++) {
-        if (i == len || text[i] == '.') {
-            if (digits == 0 || nparts == 3)
-                return false;
-            nparts++;
-            digits = 0;
-        } else if (text[i] >= '0' && text[i] <= '9') {
-            if (++digits > 6)
-                return false;  /* no real version has such parts; keeps the ints small */
-            if (nparts < 3)
-                parts[nparts] = parts[nparts] * 10 + (text[i] - '0');
-        } else {
-            return false;
-        }
-    }
-    if (nparts < 2)
+    /* As Python's urwire.parse_version: "major.minor" or "major.minor.bugfix", blanks around it
+     * (C's isspace), every part 1 to 6 digits (no real version has more; it keeps the ints small),
+     * and no dot without a number after it. */
+    urwire__version_text v;
+    if (!urwire__read_version(text, text + strlen(text), true, true, &v) || v.dot_after || v.longest > 6)
         return false;
-    out->major = (int)parts[0];
-    out->minor = (int)parts[1];
-    out->bugfix = (int)parts[2];
+    out->major = (int)v.part[0];
+    out->minor = (int)v.part[1];
+    out->bugfix = (int)v.part[2];
     out->assumed = false;
     return true;
 }
 
-/* ---- runtime/c/format.c ---- */
+/* ---- runtime/c/packages/format.c ---- */
 /* ---- number formatting -------------------------------------------------------------------- */
 
 /* Digits of v into buf (at least 24 bytes, not NUL-terminated); returns their count. */
@@ -587,13 +705,6 @@ URWIRE__PRIVATE size_t urwire__digits(char *buf, int64_t v)
     while (n)
         buf[k++] = tmp[--n];
     return k;
-}
-
-URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s)
-{
-    for (; *s; s++, t->n++)
-        if (t->n + 1 < t->cap)
-            t->out[t->n] = *s;
 }
 
 URWIRE__PRIVATE void urwire__num(urwire__text *t, int64_t v)
@@ -615,7 +726,7 @@ URWIRE__PRIVATE void urwire__hex2(urwire__text *t, int64_t v)
     urwire__str(t, buf);
 }
 
-/* ---- runtime/c/errors.c ---- */
+/* ---- runtime/c/packages/errors.c ---- */
 /* ---- errors ------------------------------------------------------------------------------- */
 
 static void urwire__set_path(urwire_error *e, const char *path)
@@ -846,25 +957,22 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         urwire__str(&t, ")");
         break;
     }
-    if (cap)
-        out[t.n < cap ? t.n : cap - 1] = '\0';
-    return t.n;
+    return urwire__end(&t);
 }
 
-/* ---- runtime/c/text.c ---- */
+/* ---- runtime/c/packages/text.c ---- */
 /* ---- text: length-prefixed strings and terminated names ----------------------------------- */
 
 /* A length prefix of size bytes (big-endian, signed or not), then that many bytes. */
 URWIRE__PRIVATE bool urwire__read_prefixed(const uint8_t *msg, size_t *at, size_t end, size_t size, bool is_signed,
                                            const char *path, urwire_bytes *out, urwire_error *err)
 {
-    size_t pos = *at, k;
-    uint64_t raw = 0;
+    size_t pos = *at;
+    uint64_t raw;
     int64_t n;
     if (end - pos < size)
         return urwire__short(err, path, pos, size, end);
-    for (k = 0; k < size; k++)
-        raw = raw << 8 | msg[pos + k];
+    raw = urwire__uint(msg + pos, size);
     n = (int64_t)raw;
     if (is_signed && (raw >> (size * 8 - 1)) & 1u)
         n = (int64_t)(raw | ~(uint64_t)0 << (size * 8 - 1));
@@ -912,7 +1020,7 @@ bool urwire_next_text(urwire_seq *seq, urwire_bytes *out)
     return true;
 }
 
-/* ---- runtime/c/put.c ---- */
+/* ---- runtime/c/packages/put.c ---- */
 /* ---- encoding helpers: bytes and length-prefixed text ------------------------------------- */
 
 /* Bytes as they are, at *pos. */
@@ -940,7 +1048,6 @@ URWIRE__PRIVATE bool urwire__put_prefixed(uint8_t *out, size_t cap, size_t *pos,
     *pos += size;
     return urwire__put_view(out, cap, pos, b, err);
 }
-
 /* ---- enum names --------------------------------------------------------------------------- */
 
 const char *urwire_message_type_name(int64_t value)
@@ -6877,7 +6984,7 @@ static const bool urwire__known_message_types[256] = {
     [URWIRE_MESSAGE_TYPE_DISCONNECT] = true,
 };
 
-/* ---- runtime/c/values.c ---- */
+/* ---- runtime/c/packages/values.c ---- */
 /* ---- global-variable values --------------------------------------------------------------- */
 /* The value types of each software version are the generated urwire__value_tables, each for
  * the versions of its urwire__value_ranges. String
@@ -7042,7 +7149,7 @@ bool urwire_next_value(urwire_seq *seq, urwire_value *out)
     return true;
 }
 
-/* ---- runtime/c/kinds.c ---- */
+/* ---- runtime/c/packages/kinds.c ---- */
 /* ---- the tables of kinds ------------------------------------------------------------------ */
 /* Lookups in the generated tables: urwire__message_types (top-level types with a layout),
  * urwire__message_kinds (by urwire_message_kind) and urwire__package_kinds (by
@@ -7083,7 +7190,7 @@ URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_mes
     return k != NULL && k->type != NULL && !k->type->packages ? k->type : NULL;
 }
 
-/* ---- runtime/c/forms.c ---- */
+/* ---- runtime/c/packages/forms.c ---- */
 /* ---- forms: the layout a type code is read in, by software version and by length ---------- */
 /* The generated part cuts the version axis where any form of any type code starts or ends
  * (urwire__segment_bounds) and gives, for each type byte (the sub-package types, the subtypes
@@ -7189,7 +7296,7 @@ URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire
     return true;
 }
 
-/* ---- runtime/c/decode.c ---- */
+/* ---- runtime/c/packages/decode.c ---- */
 /* ---- decoding messages -------------------------------------------------------------------- */
 /* The one sub-package list is URWIRE__PACKAGES_TYPE, decoded as URWIRE__PACKAGES_KIND; each
  * sub-package is read in the form urwire__choose gives (forms.c), through the generated
@@ -7633,7 +7740,7 @@ URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urw
     return true;
 }
 
-/* ---- runtime/c/encode.c ---- */
+/* ---- runtime/c/packages/encode.c ---- */
 /* ---- encoding messages and sub-packages --------------------------------------------------- */
 
 size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err)
@@ -7707,7 +7814,7 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
     return pos;
 }
 
-/* ---- runtime/c/visit.c ---- */
+/* ---- runtime/c/packages/visit.c ---- */
 /* ---- visiting ----------------------------------------------------------------------------- */
 
 static void urwire__name(const urwire_visitor *v, const char *key, const char *name)
@@ -7871,7 +7978,7 @@ void urwire_visit_fault(const urwire_error *fault, const urwire_visitor *v)
     v->end_object(v->ctx);
 }
 
-/* ---- runtime/c/framer.c ---- */
+/* ---- runtime/c/packages/framer.c ---- */
 /* ---- the framer --------------------------------------------------------------------------- */
 
 /* A header the spec could have sent: a length from the header's size to the maximum, and a

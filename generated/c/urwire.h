@@ -93,7 +93,7 @@ extern "C" {
  * bugfix a version can hold and still compare rightly with every bound. */
 #define URWIRE_BUGFIX_ANY 999
 
-/* ---- runtime/c/version.h ---- */
+/* ---- runtime/c/packages/version.h ---- */
 /* ---- software versions -------------------------------------------------------------------- */
 
 /* A controller software version, major.minor.bugfix: it chooses the layout of each part of a
@@ -117,7 +117,7 @@ extern const urwire_sw_version URWIRE_DEFAULT_VERSION;
  * anything else. */
 bool urwire_parse_version(const char *text, urwire_sw_version *out);
 
-/* ---- runtime/c/views.h ---- */
+/* ---- runtime/c/packages/views.h ---- */
 /* ---- views -------------------------------------------------------------------------------- */
 
 /* Bytes inside the caller's buffer: never copied, never owned. */
@@ -138,7 +138,7 @@ typedef struct urwire_seq {
     int terminator;          /* value lists and names: byte after each top-level item, else -1 */
 } urwire_seq;
 
-/* ---- runtime/c/errors.h ---- */
+/* ---- runtime/c/packages/errors.h ---- */
 /* ---- errors ------------------------------------------------------------------------------- */
 
 #define URWIRE_PATH_MAX 192                /* room for the longest field path of an error */
@@ -180,7 +180,6 @@ typedef struct urwire_error {
 const char *urwire_status_name(urwire_status status);
 /* The canonical text of an error, NUL-terminated, cut to fit; returns its full length. */
 size_t urwire_error_text(const urwire_error *e, char *out, size_t cap);
-
 /* ---- enums -------------------------------------------------------------------------------- */
 
 /* Type of a top-level message, the byte after messageSize. */
@@ -684,7 +683,7 @@ typedef enum urwire_value_kind {
     URWIRE_VALUE_KIND_COUNT
 } urwire_value_kind;
 
-/* ---- runtime/c/value.h ---- */
+/* ---- runtime/c/packages/value.h ---- */
 /* ---- global-variable values --------------------------------------------------------------- */
 
 /* One value: a type byte and its data. LIST and MATRIX hold their items as a seq to walk with
@@ -709,7 +708,6 @@ typedef struct urwire_value {
 bool urwire_next_text(urwire_seq *seq, urwire_bytes *out);
 /* The next value of a value seq (a message's values, or a LIST/MATRIX's items); false at the end. */
 bool urwire_next_value(urwire_seq *seq, urwire_value *out);
-
 /* ---- messages and sub-packages ------------------------------------------------------------ */
 
 /*
@@ -1673,7 +1671,7 @@ typedef struct urwire_robot_state {
     urwire_payload_info payload_info;
 } urwire_robot_state;
 
-/* ---- runtime/c/messages.h ---- */
+/* ---- runtime/c/packages/messages.h ---- */
 /* ---- decoding messages -------------------------------------------------------------------- */
 
 /* The bit of a sub-package type in urwire_robot_state.present and .malformed. */
@@ -1706,7 +1704,7 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
 /* One sub-package, its header included. */
 size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err);
 
-/* ---- runtime/c/visitor.h ---- */
+/* ---- runtime/c/packages/visitor.h ---- */
 /* ---- visiting: the canonical record shape, for JSON writers and the like ------------------ */
 
 /* Called in canonical JSON order; key is NULL inside arrays. */
@@ -1737,7 +1735,7 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v);
 /* A stream fault as its canonical record {"type": "error", "offset": N, "error": TEXT}. */
 void urwire_visit_fault(const urwire_error *fault, const urwire_visitor *v);
 
-/* ---- runtime/c/framer.h ---- */
+/* ---- runtime/c/packages/framer.h ---- */
 /* ---- framing a stream --------------------------------------------------------------------- */
 
 /* A framer buffer this large frames every legal message; smaller ones skip bigger messages. */
@@ -1803,7 +1801,6 @@ urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out);
  * the framer does not walk a robot state's sub-packages a second time. The versions it tracks
  * are the same either way; any other message is ignored. */
 void urwire_framer_learn(urwire_framer *f, const urwire_message *m);
-
 #ifdef __cplusplus
 }
 #endif

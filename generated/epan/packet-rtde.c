@@ -528,7 +528,7 @@ static const value_string rtde_message_level_vals[] = {
 /* Units, with the space the Lua dissector's fields put before them (4.0 writes a unit right after the value). */
 static const unit_name_string rtde_unit_V = { " V", NULL };
 
-/* ---- runtime/epan/rtde_types.h ---- */
+/* ---- runtime/epan/typed_messages/rtde_types.h ---- */
 /* The shapes of the tables the generator writes for an RTDE dissector (packet-rtde.c): message
  * layouts by type code, direction and protocol version, their steps, value types and the variable
  * table. Joined into the generated file before its tables; runtime/epan/rtde_state.c and
@@ -606,7 +606,6 @@ typedef struct {
     const char *name;
     const char *label;
 } rtde_undocumented;
-
 
 /* How one value of each type is laid out: `count` items of `size` bytes. */
 static const rtde_value_type rtde_value_types[] = {
@@ -1215,7 +1214,7 @@ static const guint8 rtde_layout_of[256][2][RTDE_MAX_PROTOCOL + 1] = {
     [118] = { { 0, 5, 6 }, { 0, 7, 8 } },   /* 'v' */
 };
 
-/* ---- runtime/epan/tshark_fields.c ---- */
+/* ---- runtime/epan/common/tshark_fields.c ---- */
 /* Whether this process is a `tshark -T fields` run, from its command line (/proc/self/cmdline, where
  * the system shows it). tshark 4.0 builds the tree visible for -T fields and primes none of the fields
  * it prints, so a dissector cannot tell from the tree that it prints field values only: no item's
@@ -1285,8 +1284,7 @@ tshark_fields_arguments(void)
     return fields_run;
 }
 
-
-/* ---- runtime/epan/rtde_state.c ---- */
+/* ---- runtime/epan/typed_messages/rtde_state.c ---- */
 /* RTDE's state of one conversation: the protocol version negotiated, the setup requests waiting
  * for their replies, and the recipes the replies make, per recipe kind (one kind per direction of
  * data packages). runtime/epan/rtde_dissect.c keeps one per conversation in wmem_file_scope() and
@@ -1730,8 +1728,7 @@ rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *val
     }
 }
 
-
-/* ---- runtime/epan/rtde_dissect.c ---- */
+/* ---- runtime/epan/typed_messages/rtde_dissect.c ---- */
 /* The RTDE dissector: frames the messages of a TCP stream, shows each by its layout (chosen by type
  * code, direction and the protocol version in force), a data package's values by the variables of
  * its recipe with a link to the frame that set the recipe up, and expert infos for refused setups,
@@ -2138,7 +2135,6 @@ dissect_rtde(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_
         col_add_str(pinfo->cinfo, COL_INFO, wmem_strbuf_get_str(info));
     return len;
 }
-
 
 void
 proto_register_rtde(void)

@@ -25,36 +25,136 @@
 void proto_register_ur_dashboard(void);
 void proto_reg_handoff_ur_dashboard(void);
 
-static int proto_ur_dashboard = -1;
+static int proto_lines = -1;
 
-static int hf_ur_dashboard_command = -1;
-static int hf_ur_dashboard_command_name = -1;
-static int hf_ur_dashboard_argument = -1;
-static int hf_ur_dashboard_available = -1;
-static int hf_ur_dashboard_reply = -1;
-static int hf_ur_dashboard_reply_name = -1;
-static int hf_ur_dashboard_error = -1;
+static int hf_lines_command = -1;
+static int hf_lines_command_name = -1;
+static int hf_lines_argument = -1;
+static int hf_lines_available = -1;
+static int hf_lines_reply = -1;
+static int hf_lines_reply_name = -1;
+static int hf_lines_error = -1;
 
-static int ett_ur_dashboard = -1;
+static int ett_lines = -1;
 
-static expert_field ei_ur_dashboard_error_reply = EI_INIT;
-static expert_field ei_ur_dashboard_unknown_command = EI_INIT;
-static expert_field ei_ur_dashboard_unavailable = EI_INIT;
-static expert_field ei_ur_dashboard_too_long = EI_INIT;
-static expert_field ei_ur_dashboard_not_kept = EI_INIT;
-static expert_field ei_ur_dashboard_reply_not_kept = EI_INIT;
+static expert_field ei_lines_error_reply = EI_INIT;
+static expert_field ei_lines_unknown_command = EI_INIT;
+static expert_field ei_lines_unavailable = EI_INIT;
+static expert_field ei_lines_too_long = EI_INIT;
+static expert_field ei_lines_not_kept = EI_INIT;
+static expert_field ei_lines_reply_not_kept = EI_INIT;
 
 static dissector_handle_t ur_dashboard_handle;
 
 /* The software version assumed until a reply tells it (a preference). */
-static const char *ur_dashboard_version_preference = "";
+static const char *lines_version_preference = "";
 
-/* ---- runtime/epan/lines_match.c ---- */
-/* Lines, commands and replies of a text-line interface, as the spec's tables say: which command a
- * line is, which reply a line is (the common replies first, then the command's own), whether a
- * software version has a command, and the version a version reply tells. Pure functions of the
- * tables and the line's bytes, with no Wireshark API, so that they compile and are tested alone;
- * runtime/lua/lines_match.lua is their twin. */
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
+
+/* Private functions live in the generated .c file that joins them, a copy in each. */
+#define URWIRE__PRIVATE static
+
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+
+/* ---- runtime/c/common/version_text.h ---- */
+/* ---- a software version's text (version_text.c) ----------------------------------------- */
+
+/* A part stops growing at its first thirteen digits: far past every version a table names, and
+ * never an overflow. */
+#define URWIRE__VERSION_PART_BIG 1000000000000u
+
+typedef struct urwire__version_text {
+    uint64_t part[3];           /* major, minor, bugfix; a missing bugfix 0 */
+    size_t parts;               /* the numbers read: 2 or 3 */
+    size_t longest;             /* the digits of the longest number */
+    bool dot_after;             /* whole: a dot with no number after it ("5.9.") */
+    const char *end;            /* past what was read */
+} urwire__version_text;
+
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out);
+
+/* ---- runtime/c/common/version_text.c ---- */
+/* ---- a software version's text ---------------------------------------------------------- */
+/* The one reader of a version's text in C: the C library's urwire_parse_version, the version a
+ * dashboard reply tells ("URSoftware 5.11.1.108318 (...)"), and every Wireshark dissector's
+ * version preference ("5.9", " 3.15.2 "). Each caller's rules that differ are its parameters and
+ * its checks of what was read (how many digits, what follows). */
+
+/* Blanks as Wireshark's g_ascii_isspace sees them; vt_blank: a vertical tab too, as C's isspace
+ * and Lua's %s see it. */
+static bool urwire__version_blank(char c, bool vt_blank)
+{
+    return c == ' ' || c == '\t' || c == '\n' || c == '\f' || c == '\r' || (vt_blank && c == '\v');
+}
+
+static bool urwire__version_digit(const char *at, const char *end)
+{
+    return at < end && *at >= '0' && *at <= '9';
+}
+
+/* major.minor or major.minor.bugfix in [text, end), after blanks. whole: nothing but blanks may
+ * follow (a dot with no number after it too); else anything may, and a third number needs its
+ * digit right after the dot. False for text that is not a version. */
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out)
+{
+    const char *p = text;
+    size_t i;
+    out->parts = 0;
+    out->longest = 0;
+    out->dot_after = false;
+    while (p < end && urwire__version_blank(*p, vt_blank))
+        p++;
+    for (i = 0; i < 3; i++) {
+        size_t digits = 0;
+        out->part[i] = 0;
+        if (i == 1 && (p == end || *p++ != '.'))
+            return false;
+        if (i == 2 && !(p < end && *p == '.' && urwire__version_digit(p + 1, end))) {
+            if (whole && p < end && *p == '.') {
+                out->dot_after = true;
+                p++;
+            }
+            break;
+        }
+        if (i == 2)
+            p++;
+        if (!urwire__version_digit(p, end))
+            return false;
+        for (; urwire__version_digit(p, end); p++, digits++) {
+            if (out->part[i] < URWIRE__VERSION_PART_BIG)
+                out->part[i] = out->part[i] * 10u + (uint64_t)(*p - '0');
+        }
+        out->parts = i + 1;
+        out->longest = digits > out->longest ? digits : out->longest;
+    }
+    if (whole) {
+        while (p < end && urwire__version_blank(*p, vt_blank))
+            p++;
+        if (p != end)
+            return false;
+    }
+    out->end = p;
+    return true;
+}
+
+/* ---- runtime/c/lines/match.h ---- */
+/* ---- lines: the tables of a text-line interface ------------------------------------------ */
+/* The types of the spec's tables (the generated part writes them), which the matcher
+ * (runtime/c/lines/match.c) reads, for the C library and the Wireshark dissector alike. Guarded:
+ * two interfaces' headers may meet in one file. */
+#ifndef URWIRE_LINES_MATCH_H
+#define URWIRE_LINES_MATCH_H
 
 #define LINES_NONE (-1)                   /* no command: an unknown one, or a reply with none pending */
 
@@ -77,7 +177,7 @@ typedef struct lines_command {
 } lines_command_t;
 
 /* One interface's tables, as the generator writes them from its spec. */
-typedef struct ur_dashboard_spec {
+typedef struct lines_spec {
     const char *column;                   /* the Protocol column */
     size_t max_line;                      /* longer lines are flagged and skipped up to their newline */
     const lines_reply_t *banner;          /* the line the server greets a client with, or NULL */
@@ -94,15 +194,26 @@ typedef struct ur_dashboard_spec {
     uint64_t e_series_from;               /* lines_version(5, 0, 0) */
 } lines_spec_t;
 
+#endif
+
+/* ---- runtime/c/lines/match.c ---- */
+/* ---- lines: which command, which reply, which version ------------------------------------- */
+/* Lines, commands and replies of a text-line interface, as the spec's tables say: which command a
+ * line is, which reply a line is (the common replies first, then the command's own), whether a
+ * software version has a command, and the version a version reply tells. Pure functions of the
+ * tables and the line's bytes, the one matcher of the C library (runtime/c/lines/lines.c) and the
+ * Wireshark dissector (runtime/epan/lines/lines_dissect.c); runtime/lua/lines_match.lua is their
+ * twin. */
+
 /* Versions as one number: (major * 1000 + minor) * 1000 + bugfix, minor and bugfix at most 999. */
-static uint64_t lines_version(uint64_t major, uint64_t minor, uint64_t bugfix)
+URWIRE__PRIVATE uint64_t lines_version(uint64_t major, uint64_t minor, uint64_t bugfix)
 {
     return (major * 1000 + (minor < 999 ? minor : 999)) * 1000 + (bugfix < 999 ? bugfix : 999);
 }
 
 /* The whole text is the pattern: its first piece opens it, its last ends it, the others follow in
  * order between them, and each placeholder takes any text. */
-static bool lines_matches(const lines_reply_t *reply, const uint8_t *text, size_t len)
+URWIRE__PRIVATE bool lines_matches(const lines_reply_t *reply, const uint8_t *text, size_t len)
 {
     const char *first = reply->pieces[0], *last = reply->pieces[reply->piece_count - 1];
     size_t first_len = strlen(first), last_len = strlen(last), at, end, i;
@@ -126,7 +237,8 @@ static bool lines_matches(const lines_reply_t *reply, const uint8_t *text, size_
 
 /* The command a line is (its index in spec->commands) or LINES_NONE; *argument is the offset of
  * its argument in the line (the text after the words and a space, perhaps empty), or -1. */
-static int lines_find_command(const lines_spec_t *spec, const uint8_t *text, size_t len, long *argument)
+URWIRE__PRIVATE int lines_find_command(const lines_spec_t *spec, const uint8_t *text, size_t len,
+                                       long *argument)
 {
     size_t i;
     *argument = -1;
@@ -145,7 +257,8 @@ static int lines_find_command(const lines_spec_t *spec, const uint8_t *text, siz
 }
 
 /* The reply a line is, given the command it answers (an index or LINES_NONE), or NULL. */
-static const lines_reply_t *lines_classify(const lines_spec_t *spec, int command, const uint8_t *text, size_t len)
+URWIRE__PRIVATE const lines_reply_t *lines_classify(const lines_spec_t *spec, int command, const uint8_t *text,
+                                                    size_t len)
 {
     size_t i;
     for (i = 0; i < spec->common_count; i++)
@@ -160,82 +273,28 @@ static const lines_reply_t *lines_classify(const lines_spec_t *spec, int command
 }
 
 /* Whether the software version (a lines_version()) has the command. */
-static bool lines_available(const lines_spec_t *spec, int command, uint64_t version)
+URWIRE__PRIVATE bool lines_available(const lines_spec_t *spec, int command, uint64_t version)
 {
     const lines_command_t *c = &spec->commands[command];
     uint64_t since = version >= spec->e_series_from ? c->since_e_series : c->since_cb;
     return since != 0 && version >= since;
 }
 
-static bool lines_is_digit(uint8_t c)
-{
-    return c >= '0' && c <= '9';
-}
-
 /* "URSoftware 5.11.1.108318 (Nov 26 2021)" -> *version = lines_version(5, 11, 1), or false: the
- * word after the prefix, split at its dots, whose first two or three parts are 1 to 3 digits. */
-static bool lines_version_in(const lines_spec_t *spec, const uint8_t *text, size_t len, uint64_t *version)
+ * word right after the prefix (runtime/c/common/version_text.c reads it), whose first two or three
+ * numbers are 1 to 3 digits; the word ends there, or at a dot after the third (the build). */
+URWIRE__PRIVATE bool lines_version_in(const lines_spec_t *spec, const uint8_t *text, size_t len,
+                                      uint64_t *version)
 {
-    size_t prefix = strlen(spec->version_prefix), at, parts = 0;
-    uint64_t value[3] = {0, 0, 0};
-    if (len < prefix || memcmp(text, spec->version_prefix, prefix) != 0)
+    size_t prefix = strlen(spec->version_prefix);
+    const char *at = (const char *)text + prefix, *end = (const char *)text + len;
+    urwire__version_text v;
+    if (len <= prefix || memcmp(text, spec->version_prefix, prefix) != 0 || *at < '0' || *at > '9'
+        || !urwire__read_version(at, end, false, false, &v) || v.longest > 3)
         return false;
-    at = prefix;
-    while (parts < 3) {
-        size_t digits = 0;
-        while (at < len && text[at] != ' ' && text[at] != '.') {
-            if (!lines_is_digit(text[at]) || ++digits > 3)
-                return false;
-            value[parts] = value[parts] * 10 + (uint64_t)(text[at] - '0');
-            at++;
-        }
-        if (digits == 0)
-            return false;
-        parts++;
-        if (at == len || text[at] == ' ')
-            break;
-        at++;                             /* past the dot */
-    }
-    if (parts < 2)
+    if (v.end != end && *v.end != ' ' && !(v.parts == 3 && *v.end == '.'))
         return false;
-    *version = lines_version(value[0], value[1], value[2]);
-    return true;
-}
-
-static bool lines_is_space(char c)
-{
-    return c == ' ' || (c >= '\t' && c <= '\r');
-}
-
-/* Digits from *at, their value saturated far above any version; false when there are none. */
-static bool lines_number(const char **at, uint64_t *value)
-{
-    const char *start = *at;
-    *value = 0;
-    for (; **at >= '0' && **at <= '9'; (*at)++)
-        *value = *value >= 1000000000u ? *value : *value * 10 + (uint64_t)(**at - '0');
-    return *at != start;
-}
-
-/* "5.11" or "5.11.1", with spaces around it (the version preference) -> *version =
- * its lines_version(), or false for anything else. */
-static bool lines_parse_version(const char *text, uint64_t *version)
-{
-    uint64_t major, minor, bugfix = 0;
-    if (text == NULL)
-        return false;
-    while (lines_is_space(*text))
-        text++;
-    if (!lines_number(&text, &major) || *text++ != '.' || !lines_number(&text, &minor))
-        return false;
-    if (*text == '.')
-        text++;
-    lines_number(&text, &bugfix);
-    while (lines_is_space(*text))
-        text++;
-    if (*text != '\0')
-        return false;
-    *version = lines_version(major, minor, bugfix);
+    *version = lines_version(v.part[0], v.part[1], v.part[2]);
     return true;
 }
 
@@ -516,7 +575,7 @@ static const lines_command_t ur_dashboard_commands[] = {
 static const int ur_dashboard_lookup[] = {20, 26, 33, 34, 18, 19, 30, 8, 27, 28, 31, 14, 32, 12, 29, 23, 13, 25, 10, 16,
                                           17, 24, 7, 22, 5, 11, 21, 6, 15, 35, 3, 9, 0, 1, 2, 4};
 
-static const lines_spec_t ur_dashboard_spec = {
+static const lines_spec_t lines_spec = {
     .column = "UR dashboard",
     .max_line = 4096,
     .banner = &ur_dashboard_banner,
@@ -533,7 +592,7 @@ static const lines_spec_t ur_dashboard_spec = {
     .e_series_from = 5000000u,
 };
 
-/* ---- runtime/epan/lines_dissect.c ---- */
+/* ---- runtime/epan/lines/lines_dissect.c ---- */
 /* A dissector of text lines (the dashboard server, the driver's script sender), the twin of
  * runtime/lua/lines_dissect.lua: lines reassembled across TCP segments, each shown as a request
  * (command) or a reply, replies paired with their requests and the software version learnt per
@@ -571,14 +630,27 @@ typedef struct lines_frame {
     wmem_tree_t *lines;                   /* lines_decision_t by offset; NULL until the first line */
 } lines_frame_t;
 
+/* The version preference ("5.11", "3.15.7", as every dissector reads it: runtime/c/common/
+ * version_text.c, a vertical tab a blank as for Lua's %s) as a lines_version(); false for text that
+ * is not a version. A major of ten digits or more is past every command's first version already,
+ * and stops there (no overflow). */
+static bool lines_parse_version(const char *text, uint64_t *version)
+{
+    urwire__version_text v;
+    if (text == NULL || !urwire__read_version(text, text + strlen(text), true, true, &v))
+        return false;
+    *version = lines_version(MIN(v.part[0], 1000000000), v.part[1], v.part[2]);
+    return true;
+}
+
 static lines_conversation_t *lines_conversation(packet_info *pinfo)
 {
     conversation_t *conversation = find_or_create_conversation(pinfo);
-    lines_conversation_t *c = (lines_conversation_t *)conversation_get_proto_data(conversation, proto_ur_dashboard);
+    lines_conversation_t *c = (lines_conversation_t *)conversation_get_proto_data(conversation, proto_lines);
     if (c == NULL) {
         c = wmem_new0(wmem_file_scope(), lines_conversation_t);
-        c->has_version = lines_parse_version(ur_dashboard_version_preference, &c->version);
-        conversation_add_proto_data(conversation, proto_ur_dashboard, c);
+        c->has_version = lines_parse_version(lines_version_preference, &c->version);
+        conversation_add_proto_data(conversation, proto_lines, c);
     }
     return c;
 }
@@ -586,7 +658,7 @@ static lines_conversation_t *lines_conversation(packet_info *pinfo)
 /* A request awaits its reply; false when it is not kept (see lines_conversation_t). */
 static bool lines_keep(lines_conversation_t *c, int command)
 {
-    if (!ur_dashboard_spec.one_reply_per_request) {        /* only the latest request counts */
+    if (!lines_spec.one_reply_per_request) {        /* only the latest request counts */
         c->first = 0;
         c->count = 1;
         c->pending[0] = command;
@@ -604,7 +676,7 @@ static int lines_answered(lines_conversation_t *c, bool *not_kept)
 {
     int command = LINES_NONE;
     *not_kept = false;
-    if (c->count > 0 && ur_dashboard_spec.one_reply_per_request) {
+    if (c->count > 0 && lines_spec.one_reply_per_request) {
         command = c->pending[c->first];
         c->first = (c->first + 1) % LINES_PENDING_KEPT;
         c->count--;
@@ -633,10 +705,10 @@ static void lines_count_too_long(lines_conversation_t *c, bool requests)
 static lines_decision_t *lines_decide_command(lines_conversation_t *c, const uint8_t *text, size_t len)
 {
     lines_decision_t *d = wmem_new(wmem_file_scope(), lines_decision_t);
-    d->command = lines_find_command(&ur_dashboard_spec, text, len, &d->argument);
+    d->command = lines_find_command(&lines_spec, text, len, &d->argument);
     d->not_kept = !lines_keep(c, d->command);
     d->available = d->command != LINES_NONE && c->has_version
-        ? lines_available(&ur_dashboard_spec, d->command, c->version) : -1;
+        ? lines_available(&lines_spec, d->command, c->version) : -1;
     d->reply = NULL;
     return d;
 }
@@ -650,20 +722,20 @@ static lines_decision_t *lines_decide_reply(lines_conversation_t *c, const uint8
     d->not_kept = false;
     if (!c->greeted) {
         c->greeted = true;
-        if (ur_dashboard_spec.banner != NULL && lines_matches(ur_dashboard_spec.banner, text, len)) {
-            d->reply = ur_dashboard_spec.banner;
+        if (lines_spec.banner != NULL && lines_matches(lines_spec.banner, text, len)) {
+            d->reply = lines_spec.banner;
             return d;
         }
     }
     d->command = lines_answered(c, &d->not_kept);
-    if (d->command != LINES_NONE && d->command == ur_dashboard_spec.version_command) {
+    if (d->command != LINES_NONE && d->command == lines_spec.version_command) {
         uint64_t version;
-        if (lines_version_in(&ur_dashboard_spec, text, len, &version)) {
+        if (lines_version_in(&lines_spec, text, len, &version)) {
             c->version = version;
             c->has_version = true;
         }
     }
-    d->reply = lines_classify(&ur_dashboard_spec, d->command, text, len);
+    d->reply = lines_classify(&lines_spec, d->command, text, len);
     return d;
 }
 
@@ -680,27 +752,27 @@ static void lines_show_command(proto_tree *tree, packet_info *pinfo, tvbuff_t *t
                                const char *text, const lines_decision_t *d)
 {
     const int span = len > 0 ? len : 1;        /* an empty line: its newline */
-    proto_item *item = proto_tree_add_item(tree, proto_ur_dashboard, tvb, at, span, ENC_NA);
-    proto_tree *line = proto_item_add_subtree(item, ett_ur_dashboard);
-    proto_tree_add_string(line, hf_ur_dashboard_command, tvb, at, span, text);
+    proto_item *item = proto_tree_add_item(tree, proto_lines, tvb, at, span, ENC_NA);
+    proto_tree *line = proto_item_add_subtree(item, ett_lines);
+    proto_tree_add_string(line, hf_lines_command, tvb, at, span, text);
     if (d->command != LINES_NONE) {
-        proto_item_set_generated(proto_tree_add_string(line, hf_ur_dashboard_command_name, tvb, at, span,
-                                                       ur_dashboard_spec.commands[d->command].name));
+        proto_item_set_generated(proto_tree_add_string(line, hf_lines_command_name, tvb, at, span,
+                                                       lines_spec.commands[d->command].name));
         if (d->argument >= 0)
-            proto_tree_add_string(line, hf_ur_dashboard_argument, tvb, at, span,
+            proto_tree_add_string(line, hf_lines_argument, tvb, at, span,
                                   lines_text(pinfo, tvb, at + (int)d->argument, len - (int)d->argument));
         if (d->available >= 0) {
             proto_item *available;
-            available = proto_tree_add_boolean(line, hf_ur_dashboard_available, tvb, at, span, d->available);
+            available = proto_tree_add_boolean(line, hf_lines_available, tvb, at, span, d->available);
             proto_item_set_generated(available);
             if (!d->available)
-                expert_add_info(pinfo, available, &ei_ur_dashboard_unavailable);
+                expert_add_info(pinfo, available, &ei_lines_unavailable);
         }
     } else {
-        expert_add_info(pinfo, item, &ei_ur_dashboard_unknown_command);
+        expert_add_info(pinfo, item, &ei_lines_unknown_command);
     }
     if (d->not_kept)
-        expert_add_info(pinfo, item, &ei_ur_dashboard_not_kept);
+        expert_add_info(pinfo, item, &ei_lines_not_kept);
     proto_item_append_text(item, ": %s", text);
 }
 
@@ -708,23 +780,23 @@ static void lines_show_reply(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb
                              const char *text, const lines_decision_t *d)
 {
     const int span = len > 0 ? len : 1;        /* an empty line: its newline */
-    proto_item *item = proto_tree_add_item(tree, proto_ur_dashboard, tvb, at, span, ENC_NA);
-    proto_tree *line = proto_item_add_subtree(item, ett_ur_dashboard);
+    proto_item *item = proto_tree_add_item(tree, proto_lines, tvb, at, span, ENC_NA);
+    proto_tree *line = proto_item_add_subtree(item, ett_lines);
     proto_item *error;
     bool says_error = d->reply != NULL && d->reply->error;
-    proto_tree_add_string(line, hf_ur_dashboard_reply, tvb, at, span, text);
+    proto_tree_add_string(line, hf_lines_reply, tvb, at, span, text);
     if (d->command != LINES_NONE)
-        proto_item_set_generated(proto_tree_add_string(line, hf_ur_dashboard_command_name, tvb, at, span,
-                                                       ur_dashboard_spec.commands[d->command].name));
+        proto_item_set_generated(proto_tree_add_string(line, hf_lines_command_name, tvb, at, span,
+                                                       lines_spec.commands[d->command].name));
     if (d->reply != NULL)
-        proto_item_set_generated(proto_tree_add_string(line, hf_ur_dashboard_reply_name, tvb, at, span,
+        proto_item_set_generated(proto_tree_add_string(line, hf_lines_reply_name, tvb, at, span,
                                                        d->reply->name));
-    error = proto_tree_add_boolean(line, hf_ur_dashboard_error, tvb, at, span, says_error);
+    error = proto_tree_add_boolean(line, hf_lines_error, tvb, at, span, says_error);
     proto_item_set_generated(error);
     if (says_error)
-        expert_add_info(pinfo, error, &ei_ur_dashboard_error_reply);
+        expert_add_info(pinfo, error, &ei_lines_error_reply);
     if (d->not_kept)
-        expert_add_info(pinfo, item, &ei_ur_dashboard_reply_not_kept);
+        expert_add_info(pinfo, item, &ei_lines_reply_not_kept);
     proto_item_append_text(item, ": %s", text);
 }
 
@@ -745,12 +817,12 @@ static bool lines_has_expert(const lines_decision_t *d, bool command)
 static lines_frame_t *lines_frame(packet_info *pinfo, lines_conversation_t *c, bool from_robot)
 {
     lines_frame_t *frame;
-    frame = (lines_frame_t *)p_get_proto_data(wmem_file_scope(), pinfo, proto_ur_dashboard, from_robot);
+    frame = (lines_frame_t *)p_get_proto_data(wmem_file_scope(), pinfo, proto_lines, from_robot);
     if (frame == NULL) {
         frame = wmem_new(wmem_file_scope(), lines_frame_t);
         frame->skipping = c->skipping[from_robot];
         frame->lines = NULL;                          /* made with the frame's first line */
-        p_add_proto_data(wmem_file_scope(), pinfo, proto_ur_dashboard, from_robot, frame);
+        p_add_proto_data(wmem_file_scope(), pinfo, proto_lines, from_robot, frame);
     }
     return frame;
 }
@@ -767,14 +839,14 @@ static void lines_info(wmem_strbuf_t *info, const char *what, const char *text)
     wmem_strbuf_append(info, text);
 }
 
-static int dissect_ur_dashboard(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
+static int dissect_lines(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data _U_)
 {
     const int n = (int)tvb_captured_length(tvb);
     const uint8_t *buf = tvb_get_ptr(tvb, 0, n);
     /* The server sends from its port; the robot is the server but for the driver's sockets. */
     const bool from_server = pinfo->srcport == pinfo->match_uint;
-    const bool from_robot = from_server != ur_dashboard_spec.robot_is_client;
-    const bool requests = from_robot == ur_dashboard_spec.requests_from_robot;
+    const bool from_robot = from_server != lines_spec.robot_is_client;
+    const bool requests = from_robot == lines_spec.requests_from_robot;
     const bool first_pass = !PINFO_FD_VISITED(pinfo);
     lines_conversation_t *c = lines_conversation(pinfo);
     lines_frame_t *frame = lines_frame(pinfo, c, from_robot);
@@ -783,24 +855,24 @@ static int dissect_ur_dashboard(tvbuff_t *tvb, packet_info *pinfo, proto_tree *t
     wmem_strbuf_t *info = pinfo->cinfo != NULL ? wmem_strbuf_new(pinfo->pool, "") : NULL;
     int at = 0;
 
-    col_set_str(pinfo->cinfo, COL_PROTOCOL, ur_dashboard_spec.column);
+    col_set_str(pinfo->cinfo, COL_PROTOCOL, lines_spec.column);
     while (at < n) {
         const uint8_t *newline = (const uint8_t *)memchr(buf + at, '\n', (size_t)(n - at));
         const int nl = newline != NULL ? (int)(newline - buf) : -1;   /* the newline's offset */
         if (skipping) {
             if (nl < 0)
                 break;
-            proto_item_set_text(proto_tree_add_item(tree, proto_ur_dashboard, tvb, at, nl + 1 - at, ENC_NA),
+            proto_item_set_text(proto_tree_add_item(tree, proto_lines, tvb, at, nl + 1 - at, ENC_NA),
                                 "Rest of a line too long");
             skipping = false;
             at = nl + 1;
-        } else if (nl < 0 && (size_t)(n - at) <= ur_dashboard_spec.max_line + 1) {
+        } else if (nl < 0 && (size_t)(n - at) <= lines_spec.max_line + 1) {
             if (pinfo->can_desegment > 0) {
                 pinfo->desegment_offset = at;
                 pinfo->desegment_len = DESEGMENT_ONE_MORE_SEGMENT;
                 break;
             }
-            proto_item_set_text(proto_tree_add_item(tree, proto_ur_dashboard, tvb, at, n - at, ENC_NA),
+            proto_item_set_text(proto_tree_add_item(tree, proto_lines, tvb, at, n - at, ENC_NA),
                                 "Part of a line (reassembly is off)");
             at = n;
         } else {
@@ -808,9 +880,9 @@ static int dissect_ur_dashboard(tvbuff_t *tvb, packet_info *pinfo, proto_tree *t
             int len = stop - at;
             if (nl >= 0 && len > 0 && buf[stop - 1] == '\r')
                 len--;
-            if (nl < 0 || (size_t)len > ur_dashboard_spec.max_line) {
-                expert_add_info(pinfo, proto_tree_add_item(tree, proto_ur_dashboard, tvb, at, stop - at, ENC_NA),
-                                &ei_ur_dashboard_too_long);
+            if (nl < 0 || (size_t)len > lines_spec.max_line) {
+                expert_add_info(pinfo, proto_tree_add_item(tree, proto_lines, tvb, at, stop - at, ENC_NA),
+                                &ei_lines_too_long);
                 lines_info(info, "Line too long", "");
                 if (first_pass)
                     lines_count_too_long(c, requests);
@@ -851,67 +923,67 @@ static int dissect_ur_dashboard(tvbuff_t *tvb, packet_info *pinfo, proto_tree *t
 void proto_register_ur_dashboard(void)
 {
     static hf_register_info hf[] = {
-        { &hf_ur_dashboard_command,
+        { &hf_lines_command,
           { "Command", "ur_dashboard.command",
             FT_STRING, BASE_NONE, NULL, 0x0,
             "The command line as the client sent it.", HFILL }
         },
-        { &hf_ur_dashboard_command_name,
+        { &hf_lines_command_name,
           { "Command name", "ur_dashboard.command_name",
             FT_STRING, BASE_NONE, NULL, 0x0,
             "The command a command line is, or the command a reply answers.", HFILL }
         },
-        { &hf_ur_dashboard_argument,
+        { &hf_lines_argument,
           { "Argument", "ur_dashboard.argument",
             FT_STRING, BASE_NONE, NULL, 0x0,
             "What follows the command's text and a space (a program's path, a popup's text).", HFILL }
         },
-        { &hf_ur_dashboard_available,
+        { &hf_lines_available,
           { "Available", "ur_dashboard.available",
             FT_BOOLEAN, BASE_NONE, NULL, 0x0,
             "False when the conversation's software version lacks the command.", HFILL }
         },
-        { &hf_ur_dashboard_reply,
+        { &hf_lines_reply,
           { "Reply", "ur_dashboard.reply",
             FT_STRING, BASE_NONE, NULL, 0x0,
             "The reply line as the server sent it (the banner too).", HFILL }
         },
-        { &hf_ur_dashboard_reply_name,
+        { &hf_lines_reply_name,
           { "Reply meaning", "ur_dashboard.reply_name",
             FT_STRING, BASE_NONE, NULL, 0x0,
             "Which of the command's documented replies it is.", HFILL }
         },
-        { &hf_ur_dashboard_error,
+        { &hf_lines_error,
           { "Says an error", "ur_dashboard.error",
             FT_BOOLEAN, BASE_NONE, NULL, 0x0,
             "True when the reply says that the command failed.", HFILL }
         },
     };
     static gint *ett[] = {
-        &ett_ur_dashboard,
+        &ett_lines,
     };
     static ei_register_info ei[] = {
-        { &ei_ur_dashboard_error_reply,
+        { &ei_lines_error_reply,
           { "ur_dashboard.error_reply", PI_RESPONSE_CODE, PI_WARN,
             "The reply says an error", EXPFILL }
         },
-        { &ei_ur_dashboard_unknown_command,
+        { &ei_lines_unknown_command,
           { "ur_dashboard.unknown_command", PI_MALFORMED, PI_WARN,
             "Unknown command", EXPFILL }
         },
-        { &ei_ur_dashboard_unavailable,
+        { &ei_lines_unavailable,
           { "ur_dashboard.unavailable", PI_PROTOCOL, PI_WARN,
             "The software version lacks this command", EXPFILL }
         },
-        { &ei_ur_dashboard_too_long,
+        { &ei_lines_too_long,
           { "ur_dashboard.too_long", PI_MALFORMED, PI_ERROR,
             "Line longer than 4096 bytes", EXPFILL }
         },
-        { &ei_ur_dashboard_not_kept,
+        { &ei_lines_not_kept,
           { "ur_dashboard.not_kept", PI_SEQUENCE, PI_ERROR,
             "Command not kept: more than 256 commands awaited replies", EXPFILL }
         },
-        { &ei_ur_dashboard_reply_not_kept,
+        { &ei_lines_reply_not_kept,
           { "ur_dashboard.reply_not_kept", PI_SEQUENCE, PI_ERROR,
             "Reply to a command that was not kept: more than 256 commands awaited replies", EXPFILL }
         },
@@ -919,17 +991,17 @@ void proto_register_ur_dashboard(void)
     module_t *module;
     expert_module_t *expert;
 
-    proto_ur_dashboard = proto_register_protocol("Universal Robots dashboard server", "UR_DASHBOARD", "ur_dashboard");
-    proto_register_field_array(proto_ur_dashboard, hf, array_length(hf));
+    proto_lines = proto_register_protocol("Universal Robots dashboard server", "UR_DASHBOARD", "ur_dashboard");
+    proto_register_field_array(proto_lines, hf, array_length(hf));
     proto_register_subtree_array(ett, array_length(ett));
-    expert = expert_register_protocol(proto_ur_dashboard);
+    expert = expert_register_protocol(proto_lines);
     expert_register_field_array(expert, ei, array_length(ei));
-    module = prefs_register_protocol(proto_ur_dashboard, NULL);
+    module = prefs_register_protocol(proto_lines, NULL);
     prefs_register_string_preference(module, "version", "Software version",
         "Controller software version (as 5.11 or 3.15.7) assumed until a PolyscopeVersion reply "
         "tells it: commands it lacks are flagged. Empty: none assumed.",
-        &ur_dashboard_version_preference);
-    ur_dashboard_handle = register_dissector("ur_dashboard", dissect_ur_dashboard, proto_ur_dashboard);
+        &lines_version_preference);
+    ur_dashboard_handle = register_dissector("ur_dashboard", dissect_lines, proto_lines);
 }
 
 void proto_reg_handoff_ur_dashboard(void)

@@ -320,7 +320,7 @@ static const value_string ur_realtime_program_state_0[] = {
     { 0, NULL }
 };
 
-/* ---- runtime/epan/ur_realtime_types.h ---- */
+/* ---- runtime/epan/sized_packets/ur_realtime_types.h ---- */
 /* The tables the real-time dissector walks, as the generated part of packet-ur-realtime.c fills
  * them from the spec: each layout's slots (a field's offset and count of doubles), the forms (a
  * layout as one range of software versions sends it, with that range's enum names) and, for each
@@ -353,7 +353,6 @@ typedef struct {
     gint32 size;
     guint first, count;         /* its forms in ur_realtime_forms, in the order the rule tries them */
 } ur_realtime_size_forms;
-
 
 /* Layouts: each field's handle, subtree and its text (an array), offset in the packet, count of
  * doubles and enum, in packet order. */
@@ -750,38 +749,103 @@ static const ur_realtime_size_forms ur_realtime_sizes[] = {
     { 1220, 11, 1 },
 };
 
-/* ---- runtime/epan/dotted_version.c ---- */
-/* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around
- * it allowed, a missing third number 0. It reads what the Lua dissectors' pattern
- * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads, into doubles as Lua's numbers are. */
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
 
-/* The three numbers of the version; FALSE for text that is not one. */
-static gboolean dotted_version_parts(const char *text, double part[3])
+/* Private functions live in the generated .c file that joins them, a copy in each. */
+#define URWIRE__PRIVATE static
+
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+/* ---- runtime/c/common/version_text.h ---- */
+/* ---- a software version's text (version_text.c) ----------------------------------------- */
+
+/* A part stops growing at its first thirteen digits: far past every version a table names, and
+ * never an overflow. */
+#define URWIRE__VERSION_PART_BIG 1000000000000u
+
+typedef struct urwire__version_text {
+    uint64_t part[3];           /* major, minor, bugfix; a missing bugfix 0 */
+    size_t parts;               /* the numbers read: 2 or 3 */
+    size_t longest;             /* the digits of the longest number */
+    bool dot_after;             /* whole: a dot with no number after it ("5.9.") */
+    const char *end;            /* past what was read */
+} urwire__version_text;
+
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out);
+/* ---- runtime/c/common/version_text.c ---- */
+/* ---- a software version's text ---------------------------------------------------------- */
+/* The one reader of a version's text in C: the C library's urwire_parse_version, the version a
+ * dashboard reply tells ("URSoftware 5.11.1.108318 (...)"), and every Wireshark dissector's
+ * version preference ("5.9", " 3.15.2 "). Each caller's rules that differ are its parameters and
+ * its checks of what was read (how many digits, what follows). */
+
+/* Blanks as Wireshark's g_ascii_isspace sees them; vt_blank: a vertical tab too, as C's isspace
+ * and Lua's %s see it. */
+static bool urwire__version_blank(char c, bool vt_blank)
 {
-    const char *p = text;
-    int i;
-
-    if (p == NULL)
-        return FALSE;
-    while (g_ascii_isspace(*p))
-        p++;
-    for (i = 0; i < 3; i++) {
-        part[i] = 0;
-        if (i == 1 && *p++ != '.')
-            return FALSE;
-        if (i == 2 && *p == '.')
-            p++;
-        if (i < 2 && !g_ascii_isdigit(*p))
-            return FALSE;
-        for (; g_ascii_isdigit(*p); p++)
-            part[i] = part[i] * 10 + (*p - '0');
-    }
-    while (g_ascii_isspace(*p))
-        p++;
-    return *p == '\0';
+    return c == ' ' || c == '\t' || c == '\n' || c == '\f' || c == '\r' || (vt_blank && c == '\v');
 }
 
-/* ---- runtime/epan/ur_realtime_dissect.c ---- */
+static bool urwire__version_digit(const char *at, const char *end)
+{
+    return at < end && *at >= '0' && *at <= '9';
+}
+
+/* major.minor or major.minor.bugfix in [text, end), after blanks. whole: nothing but blanks may
+ * follow (a dot with no number after it too); else anything may, and a third number needs its
+ * digit right after the dot. False for text that is not a version. */
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out)
+{
+    const char *p = text;
+    size_t i;
+    out->parts = 0;
+    out->longest = 0;
+    out->dot_after = false;
+    while (p < end && urwire__version_blank(*p, vt_blank))
+        p++;
+    for (i = 0; i < 3; i++) {
+        size_t digits = 0;
+        out->part[i] = 0;
+        if (i == 1 && (p == end || *p++ != '.'))
+            return false;
+        if (i == 2 && !(p < end && *p == '.' && urwire__version_digit(p + 1, end))) {
+            if (whole && p < end && *p == '.') {
+                out->dot_after = true;
+                p++;
+            }
+            break;
+        }
+        if (i == 2)
+            p++;
+        if (!urwire__version_digit(p, end))
+            return false;
+        for (; urwire__version_digit(p, end); p++, digits++) {
+            if (out->part[i] < URWIRE__VERSION_PART_BIG)
+                out->part[i] = out->part[i] * 10u + (uint64_t)(*p - '0');
+        }
+        out->parts = i + 1;
+        out->longest = digits > out->longest ? digits : out->longest;
+    }
+    if (whole) {
+        while (p < end && urwire__version_blank(*p, vt_blank))
+            p++;
+        if (p != end)
+            return false;
+    }
+    out->end = p;
+    return true;
+}
+/* ---- runtime/epan/sized_packets/ur_realtime_dissect.c ---- */
 /* The real-time dissector's runtime: frames the robot's TCP stream by each packet's int32 size
  * (asking TCP to reassemble a packet split over segments), chooses the packet's layout by the
  * spec's same-size rule over the generated ur_realtime_sizes and ur_realtime_forms, and walks the
@@ -815,11 +879,11 @@ static double ur_realtime_version;
  * 999 counts as 999); FALSE for text that is not a version. */
 static gboolean ur_realtime_parse_version(const char *text, double *number)
 {
-    double part[3];
+    urwire__version_text v;
 
-    if (!dotted_version_parts(text, part))
+    if (text == NULL || !urwire__read_version(text, text + strlen(text), true, false, &v))
         return FALSE;
-    *number = (part[0] * 1000 + part[1]) * 1000 + MIN(part[2], 999);
+    *number = ((double)v.part[0] * 1000 + (double)v.part[1]) * 1000 + (double)MIN(v.part[2], 999);
     return TRUE;
 }
 
@@ -1106,7 +1170,6 @@ static void ur_realtime_handoff_runtime(void)
     dissector_add_for_decode_as("tcp.port", ur_realtime_handle);
     ur_realtime_apply_prefs();
 }
-
 
 void proto_register_ur_realtime(void)
 {

@@ -59,7 +59,7 @@ static const value_string ur_reverse_control_mode_vals[] = {
     { 0, NULL }
 };
 
-/* ---- runtime/epan/int32_records_types.h ---- */
+/* ---- runtime/epan/int32_records/int32_records_types.h ---- */
 /* The tables a dissector of fixed int32 records walks (the ROS driver's reverse, trajectory and
  * script command sockets), as the generated part of each packet-<name>.c fills them from its
  * spec: each direction's record, its layouts along the driver-release axis, and each layout's
@@ -97,7 +97,6 @@ typedef struct {
     guint n_ports;
 } int32_records_interface;
 
-
 /* Reverse interface command (to robot): each slot's field, raw int32, first int32, count, scale. */
 /* up to 1.3.3 */
 static const int32_records_slot ur_reverse_reverse_command_0_slots[] = {
@@ -133,38 +132,103 @@ static const int32_records_interface int32_records_spec = {
     ur_reverse_ports, array_length(ur_reverse_ports)
 };
 
-/* ---- runtime/epan/dotted_version.c ---- */
-/* A software or driver version as a preference holds it: "5.9", "3.15.2" or "2.10.0", blanks around
- * it allowed, a missing third number 0. It reads what the Lua dissectors' pattern
- * ^%s*(%d+)%.(%d+)%.?(%d*)%s*$ reads, into doubles as Lua's numbers are. */
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
 
-/* The three numbers of the version; FALSE for text that is not one. */
-static gboolean dotted_version_parts(const char *text, double part[3])
+/* Private functions live in the generated .c file that joins them, a copy in each. */
+#define URWIRE__PRIVATE static
+
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+/* ---- runtime/c/common/version_text.h ---- */
+/* ---- a software version's text (version_text.c) ----------------------------------------- */
+
+/* A part stops growing at its first thirteen digits: far past every version a table names, and
+ * never an overflow. */
+#define URWIRE__VERSION_PART_BIG 1000000000000u
+
+typedef struct urwire__version_text {
+    uint64_t part[3];           /* major, minor, bugfix; a missing bugfix 0 */
+    size_t parts;               /* the numbers read: 2 or 3 */
+    size_t longest;             /* the digits of the longest number */
+    bool dot_after;             /* whole: a dot with no number after it ("5.9.") */
+    const char *end;            /* past what was read */
+} urwire__version_text;
+
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out);
+/* ---- runtime/c/common/version_text.c ---- */
+/* ---- a software version's text ---------------------------------------------------------- */
+/* The one reader of a version's text in C: the C library's urwire_parse_version, the version a
+ * dashboard reply tells ("URSoftware 5.11.1.108318 (...)"), and every Wireshark dissector's
+ * version preference ("5.9", " 3.15.2 "). Each caller's rules that differ are its parameters and
+ * its checks of what was read (how many digits, what follows). */
+
+/* Blanks as Wireshark's g_ascii_isspace sees them; vt_blank: a vertical tab too, as C's isspace
+ * and Lua's %s see it. */
+static bool urwire__version_blank(char c, bool vt_blank)
 {
-    const char *p = text;
-    int i;
-
-    if (p == NULL)
-        return FALSE;
-    while (g_ascii_isspace(*p))
-        p++;
-    for (i = 0; i < 3; i++) {
-        part[i] = 0;
-        if (i == 1 && *p++ != '.')
-            return FALSE;
-        if (i == 2 && *p == '.')
-            p++;
-        if (i < 2 && !g_ascii_isdigit(*p))
-            return FALSE;
-        for (; g_ascii_isdigit(*p); p++)
-            part[i] = part[i] * 10 + (*p - '0');
-    }
-    while (g_ascii_isspace(*p))
-        p++;
-    return *p == '\0';
+    return c == ' ' || c == '\t' || c == '\n' || c == '\f' || c == '\r' || (vt_blank && c == '\v');
 }
 
-/* ---- runtime/epan/int32_records.c ---- */
+static bool urwire__version_digit(const char *at, const char *end)
+{
+    return at < end && *at >= '0' && *at <= '9';
+}
+
+/* major.minor or major.minor.bugfix in [text, end), after blanks. whole: nothing but blanks may
+ * follow (a dot with no number after it too); else anything may, and a third number needs its
+ * digit right after the dot. False for text that is not a version. */
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out)
+{
+    const char *p = text;
+    size_t i;
+    out->parts = 0;
+    out->longest = 0;
+    out->dot_after = false;
+    while (p < end && urwire__version_blank(*p, vt_blank))
+        p++;
+    for (i = 0; i < 3; i++) {
+        size_t digits = 0;
+        out->part[i] = 0;
+        if (i == 1 && (p == end || *p++ != '.'))
+            return false;
+        if (i == 2 && !(p < end && *p == '.' && urwire__version_digit(p + 1, end))) {
+            if (whole && p < end && *p == '.') {
+                out->dot_after = true;
+                p++;
+            }
+            break;
+        }
+        if (i == 2)
+            p++;
+        if (!urwire__version_digit(p, end))
+            return false;
+        for (; urwire__version_digit(p, end); p++, digits++) {
+            if (out->part[i] < URWIRE__VERSION_PART_BIG)
+                out->part[i] = out->part[i] * 10u + (uint64_t)(*p - '0');
+        }
+        out->parts = i + 1;
+        out->longest = digits > out->longest ? digits : out->longest;
+    }
+    if (whole) {
+        while (p < end && urwire__version_blank(*p, vt_blank))
+            p++;
+        if (p != end)
+            return false;
+    }
+    out->end = p;
+    return true;
+}
+/* ---- runtime/epan/int32_records/int32_records.c ---- */
 /* A dissector of fixed int32 records (the ROS driver's reverse, trajectory and script command
  * sockets): each direction cut into records of the size the driver release gives (a preference;
  * a capture does not tell it), reassembled across TCP segments by tcp_dissect_pdus, every int32
@@ -191,11 +255,12 @@ static guint32 int32_records_release = INT32_RECORDS_DEFAULT_RELEASE;
  * for text that is not a release. */
 static guint32 int32_records_parse_release(const char *text)
 {
-    double part[3], number;
+    urwire__version_text v;
+    double number;
 
-    if (!dotted_version_parts(text, part))
+    if (text == NULL || !urwire__read_version(text, text + strlen(text), true, false, &v))
         return INT32_RECORDS_DEFAULT_RELEASE;
-    number = (part[0] * 1000 + part[1]) * 1000 + part[2];
+    number = ((double)v.part[0] * 1000 + (double)v.part[1]) * 1000 + (double)v.part[2];
     return number < G_MAXUINT32 ? (guint32)number : G_MAXUINT32;
 }
 
@@ -341,7 +406,6 @@ static void int32_records_handoff_runtime(void)
     dissector_add_for_decode_as("tcp.port", int32_records_handle);
     int32_records_apply_prefs();
 }
-
 
 void proto_register_ur_reverse(void)
 {

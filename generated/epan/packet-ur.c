@@ -414,7 +414,7 @@ static gboolean ur_named_fields_only = TRUE;   /* tshark -T fields: only the pac
 #define UR_DEFAULT_VERSION 5009000u
 #define UR_KEEP_SLOTS 3
 
-/* ==== runtime/epan/ur_types.c ==== */
+/* ---- runtime/epan/packages/ur_types.c ---- */
 /* The shapes of the tables generated from the spec (packet-ur.c, after this section) and walked
  * by the runtime after them: value strings by software version, field descriptors (one per field,
  * in wire order, as runtime/lua/walk.lua walks them), the forms of every type code across
@@ -559,7 +559,6 @@ typedef struct {
     int subtype_hf;
     const char *subtype_label;
 } ur_message;
-
 
 /* ---- Units Wireshark has no name for ---- */
 static const unit_name_string ur_units_0_v = { " V", NULL };
@@ -3169,7 +3168,106 @@ static const ur_version_step ur_version_steps[] = {
 #define UR_BUGFIX_LOW 3003000u
 #define UR_BUGFIX_HIGH 4294967295u
 
-/* ==== runtime/epan/ur_versions.c ==== */
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
+
+/* Private functions live in the generated .c file that joins them, a copy in each. */
+#define URWIRE__PRIVATE static
+
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+
+/* ---- runtime/c/common/version_text.h ---- */
+/* ---- a software version's text (version_text.c) ----------------------------------------- */
+
+/* A part stops growing at its first thirteen digits: far past every version a table names, and
+ * never an overflow. */
+#define URWIRE__VERSION_PART_BIG 1000000000000u
+
+typedef struct urwire__version_text {
+    uint64_t part[3];           /* major, minor, bugfix; a missing bugfix 0 */
+    size_t parts;               /* the numbers read: 2 or 3 */
+    size_t longest;             /* the digits of the longest number */
+    bool dot_after;             /* whole: a dot with no number after it ("5.9.") */
+    const char *end;            /* past what was read */
+} urwire__version_text;
+
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out);
+
+/* ---- runtime/c/common/version_text.c ---- */
+/* ---- a software version's text ---------------------------------------------------------- */
+/* The one reader of a version's text in C: the C library's urwire_parse_version, the version a
+ * dashboard reply tells ("URSoftware 5.11.1.108318 (...)"), and every Wireshark dissector's
+ * version preference ("5.9", " 3.15.2 "). Each caller's rules that differ are its parameters and
+ * its checks of what was read (how many digits, what follows). */
+
+/* Blanks as Wireshark's g_ascii_isspace sees them; vt_blank: a vertical tab too, as C's isspace
+ * and Lua's %s see it. */
+static bool urwire__version_blank(char c, bool vt_blank)
+{
+    return c == ' ' || c == '\t' || c == '\n' || c == '\f' || c == '\r' || (vt_blank && c == '\v');
+}
+
+static bool urwire__version_digit(const char *at, const char *end)
+{
+    return at < end && *at >= '0' && *at <= '9';
+}
+
+/* major.minor or major.minor.bugfix in [text, end), after blanks. whole: nothing but blanks may
+ * follow (a dot with no number after it too); else anything may, and a third number needs its
+ * digit right after the dot. False for text that is not a version. */
+URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, bool whole, bool vt_blank,
+                                          urwire__version_text *out)
+{
+    const char *p = text;
+    size_t i;
+    out->parts = 0;
+    out->longest = 0;
+    out->dot_after = false;
+    while (p < end && urwire__version_blank(*p, vt_blank))
+        p++;
+    for (i = 0; i < 3; i++) {
+        size_t digits = 0;
+        out->part[i] = 0;
+        if (i == 1 && (p == end || *p++ != '.'))
+            return false;
+        if (i == 2 && !(p < end && *p == '.' && urwire__version_digit(p + 1, end))) {
+            if (whole && p < end && *p == '.') {
+                out->dot_after = true;
+                p++;
+            }
+            break;
+        }
+        if (i == 2)
+            p++;
+        if (!urwire__version_digit(p, end))
+            return false;
+        for (; urwire__version_digit(p, end); p++, digits++) {
+            if (out->part[i] < URWIRE__VERSION_PART_BIG)
+                out->part[i] = out->part[i] * 10u + (uint64_t)(*p - '0');
+        }
+        out->parts = i + 1;
+        out->longest = digits > out->longest ? digits : out->longest;
+    }
+    if (whole) {
+        while (p < end && urwire__version_blank(*p, vt_blank))
+            p++;
+        if (p != end)
+            return false;
+    }
+    out->end = p;
+    return true;
+}
+
+/* ---- runtime/epan/packages/ur_versions.c ---- */
 /* Software versions as one number, (major * 1000 + minor) * 1000 + bugfix (5.9 is 5009000,
  * 5.25.1 is 5025001; an upper bound written 5.8 is 5008999, any 5.8.x): parsed from the
  * preference's text, shown back as text, tested against a range. What follows the version: the
@@ -3189,33 +3287,18 @@ ur_version_number(guint32 major, guint32 minor, gint64 bugfix)
     return (major * 1000 + minor) * 1000 + (guint32)bugfix;
 }
 
-/* "5.9" -> 5009000, "5.25.1" -> 5025001 (leading spaces allowed); UR_VERSION_NONE when the text
- * is no version. */
+/* "5.9" -> 5009000, "5.25.1" -> 5025001 (leading blanks allowed, and any text after the version:
+ * runtime/c/common/version_text.c); UR_VERSION_NONE when the text is no version. */
 static guint32
 ur_parse_version(const char *text)
 {
-    guint64 part[3] = { 0, 0, 0 };
-    const char *p = text;
-    if (p == NULL)
+    urwire__version_text t;
+    uint64_t *part = t.part;
+    if (text == NULL || !urwire__read_version(text, text + strlen(text), false, false, &t))
         return UR_VERSION_NONE;
-    while (g_ascii_isspace(*p))
-        p++;
     for (unsigned i = 0; i < 3; i++) {
-        if (i > 0) {
-            if (*p != '.' || !g_ascii_isdigit(p[1])) {
-                if (i < 2)
-                    return UR_VERSION_NONE;
-                break;
-            }
-            p++;
-        }
-        if (!g_ascii_isdigit(*p))
-            return UR_VERSION_NONE;
-        while (g_ascii_isdigit(*p)) {
-            if (part[i] < 1000000)
-                part[i] = part[i] * 10 + (guint64)(*p - '0');
-            p++;
-        }
+        while (part[i] >= 10000000)     /* a part of eight digits or more reads as its first seven */
+            part[i] /= 10;
     }
     guint64 bugfix = part[2] > UR_BUGFIX_ANY ? UR_BUGFIX_ANY : part[2];
     guint64 v = (part[0] * 1000 + part[1]) * 1000 + bugfix;
@@ -3331,8 +3414,7 @@ ur_choose(const ur_forms *forms, unsigned size, guint32 v, guint32 *use, gboolea
     return mine;
 }
 
-
-/* ==== runtime/epan/tshark_fields.c ==== */
+/* ---- runtime/epan/common/tshark_fields.c ---- */
 /* Whether this process is a `tshark -T fields` run, from its command line (/proc/self/cmdline, where
  * the system shows it). tshark 4.0 builds the tree visible for -T fields and primes none of the fields
  * it prints, so a dissector cannot tell from the tree that it prints field values only: no item's
@@ -3402,8 +3484,7 @@ tshark_fields_arguments(void)
     return fields_run;
 }
 
-
-/* ==== runtime/epan/ur_wanted.c ==== */
+/* ---- runtime/epan/packages/ur_wanted.c ---- */
 /* Which robot-state packages a `tshark -T fields` run needs, as the Lua twin finds them
  * (runtime/lua/wanted.lua). tshark builds the tree visible for -T fields (Wireshark 4.0 primes no
  * output field), so every field counts as referenced and every package would be built to print
@@ -3524,8 +3605,7 @@ ur_package_wanted(const ur_part *pk)
     return yes;
 }
 
-
-/* ==== runtime/epan/ur_items.c ==== */
+/* ---- runtime/epan/packages/ur_items.c ---- */
 /* The message being dissected, and its tree items: at most UR_MAX_TREE_ITEMS under the
  * message's item. A message of a megabyte can hold hundreds of thousands of values; Wireshark
  * slows down long before it stops at a million items per packet. Past the cap the fields are
@@ -3623,8 +3703,7 @@ ur_expert(ur_msg *st, proto_item *item, expert_field *ei, const char *text)
     expert_add_info_format(st->pinfo, item, ei, "%s", text);
 }
 
-
-/* ==== runtime/epan/ur_walk.c ==== */
+/* ---- runtime/epan/packages/ur_walk.c ---- */
 /* The generic walk of a layout: a list of field descriptors in wire order, each added to the
  * tree by the function of its kind. Offsets are tvb offsets; o is where a field starts and e where
  * the layout ends. A walk returns the offset after the layout, or -1 with the canonical error text
@@ -3953,8 +4032,7 @@ ur_walk(ur_msg *st, proto_tree *tree, int o, int e, const ur_layout *layout, con
     return o;
 }
 
-
-/* ==== runtime/epan/ur_values.c ==== */
+/* ---- runtime/epan/packages/ur_values.c ---- */
 /* Typed values of global variables: a type byte, then its data, nested for LIST and MATRIX.
  * The meaning of a type byte depends on the software version (ur_value_tables: one table per
  * version range). As runtime/lua/values.lua. */
@@ -4128,8 +4206,7 @@ ur_walk_values(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
     return o;
 }
 
-
-/* ==== runtime/epan/ur_info.c ==== */
+/* ---- runtime/epan/packages/ur_info.c ---- */
 /* The Info column. It is written on every pass, tree or not, so it reads the bytes and builds no
  * tree: the descriptors marked `show` of a layout (a message's, or a robot-state package's whose
  * layout has a summary). As runtime/lua/info.lua. */
@@ -4336,8 +4413,7 @@ ur_labelled(wmem_allocator_t *pool, const char *label, const wmem_strbuf_t *text
     return out;
 }
 
-
-/* ==== runtime/epan/ur_messages.c ==== */
+/* ---- runtime/epan/packages/ur_messages.c ---- */
 /* Messages: ur_messages holds one table per message type, and its kind says how it is
  * dissected: packages (a list of sub-packages, each framed by its own length: robot state),
  * subtypes (a header, then a subtype byte that chooses the layout of the rest) and body (one
@@ -4622,8 +4698,7 @@ ur_message_tree(ur_msg *st, const ur_message *m, proto_item *item, int o, int e)
     }
 }
 
-
-/* ==== runtime/epan/ur_stream.c ==== */
+/* ---- runtime/epan/packages/ur_stream.c ---- */
 /* State of each TCP conversation: the software version its Version message announced or its
  * layout sizes showed (UR_VERSION_NONE: none yet; `implied` names the versions of the form whose
  * size showed it), whether the dissector is resynchronising after a bad header, and the bytes
@@ -4798,8 +4873,7 @@ ur_stream_save(packet_info *pinfo, guint32 version, const char *implied, gboolea
     s->carry = carry;
 }
 
-
-/* ==== runtime/epan/ur_framing.c ==== */
+/* ---- runtime/epan/packages/ur_framing.c ---- */
 /* Framing: split the robot's bytes into messages over TCP, reassemble the split ones, and
  * resynchronise after a bad header; client-to-robot bytes are URScript text. The loop asks TCP
  * for more bytes itself (desegment_offset/len) rather than through tcp_dissect_pdus: once a call
@@ -5205,7 +5279,6 @@ ur_prefs_changed(void)
     registered = range_copy(wmem_epan_scope(), ur_ports);
     dissector_add_uint_range("tcp.port", registered, ur_handle);
 }
-
 
 /* ---- Registration ---- */
 

@@ -335,7 +335,6 @@ local function register_ports(proto, ports)
 end
 
 rt.register_ports = register_ports
-
 end)(spec, rt)
 end
 
@@ -361,7 +360,6 @@ local function guard(proto, dissect, internal, label)
 end
 
 rt.guard = guard
-
 end)(spec, rt)
 end
 
@@ -383,7 +381,6 @@ local function dotted_version(text)
 end
 
 rt.dotted_version = dotted_version
-
 end)(spec, rt)
 end
 
@@ -408,7 +405,6 @@ local function tcp_stream_index()
 end
 
 rt.tcp_stream_index = tcp_stream_index
-
 end)(spec, rt)
 end
 
@@ -456,7 +452,6 @@ local function pending_pop(q)
 end
 
 rt.pending_queue, rt.pending_push, rt.pending_pop = pending_queue, pending_push, pending_pop
-
 end)(spec, rt)
 end
 
@@ -601,7 +596,6 @@ end
 
 rt.matches, rt.find_command, rt.classify, rt.shown = matches, find_command, classify, shown
 rt.available, rt.version_in, rt.parse_version = available, version_in, parse_version
-
 end)(spec, rt)
 end
 
@@ -840,6 +834,5 @@ function proto.init()
 end
 
 rt.register_ports(proto, table.concat(spec.ports, ","))
-
 end)(spec, rt)
 end

@@ -76,7 +76,6 @@ local function register_ports(proto, ports)
 end
 
 rt.register_ports = register_ports
-
 end)(spec, rt)
 end
 
@@ -102,7 +101,6 @@ local function guard(proto, dissect, internal, label)
 end
 
 rt.guard = guard
-
 end)(spec, rt)
 end
 
@@ -124,7 +122,6 @@ local function dotted_version(text)
 end
 
 rt.dotted_version = dotted_version
-
 end)(spec, rt)
 end
 
@@ -230,6 +227,5 @@ end
 proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 rt.register_ports(proto, table.concat(spec.ports, ","))
 rt.parse_release, rt.layout_of = parse_release, layout_of
-
 end)(spec, rt)
 end

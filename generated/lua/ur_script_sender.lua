@@ -85,7 +85,6 @@ local function register_ports(proto, ports)
 end
 
 rt.register_ports = register_ports
-
 end)(spec, rt)
 end
 
@@ -111,7 +110,6 @@ local function guard(proto, dissect, internal, label)
 end
 
 rt.guard = guard
-
 end)(spec, rt)
 end
 
@@ -133,7 +131,6 @@ local function dotted_version(text)
 end
 
 rt.dotted_version = dotted_version
-
 end)(spec, rt)
 end
 
@@ -158,7 +155,6 @@ local function tcp_stream_index()
 end
 
 rt.tcp_stream_index = tcp_stream_index
-
 end)(spec, rt)
 end
 
@@ -206,7 +202,6 @@ local function pending_pop(q)
 end
 
 rt.pending_queue, rt.pending_push, rt.pending_pop = pending_queue, pending_push, pending_pop
-
 end)(spec, rt)
 end
 
@@ -351,7 +346,6 @@ end
 
 rt.matches, rt.find_command, rt.classify, rt.shown = matches, find_command, classify, shown
 rt.available, rt.version_in, rt.parse_version = available, version_in, parse_version
-
 end)(spec, rt)
 end
 
@@ -590,6 +584,5 @@ function proto.init()
 end
 
 rt.register_ports(proto, table.concat(spec.ports, ","))
-
 end)(spec, rt)
 end

@@ -2,6 +2,7 @@
  * one per line, for tests/c/test_c_kind_runtimes.py to hold against Python's repr(raw / 10**d). */
 #include <stdio.h>
 
+#include "../../runtime/c/common/buffer.c"
 #include "../../runtime/c/int32_records/records.c"
 
 int main(void)
@@ -10,12 +11,12 @@ int main(void)
     unsigned decimals;
     char buf[64];
     while (scanf("%ld %u", &raw, &decimals) == 2) {
-        i32r_out o;
-        o.buf = buf;
+        urwire__text o;
+        o.out = buf;
         o.cap = sizeof buf;
-        o.len = 0;
+        o.n = 0;
         i32r_scaled(&o, (int32_t)raw, decimals);
-        i32r_end(&o);
+        urwire__end(&o);
         puts(buf);
     }
     return 0;

@@ -1,6 +1,7 @@
 """The C runtimes of the other kinds (runtime/c/lines/, runtime/c/int32_records/) on their own:
-each file compiles alone under the strict flags, and the scaled numbers of the int32 records are
-written exactly as Python's repr() writes raw / 10**decimals."""
+each file compiles alone under the strict flags, the lines matcher (which the C library and the
+Wireshark dissector both join) passes lines_match_unit.c, and the scaled numbers of the int32
+records are written exactly as Python's repr() writes raw / 10**decimals."""
 from __future__ import annotations
 
 import random
@@ -23,6 +24,17 @@ def test_each_file_compiles_on_its_own(cc, path):
     cmd = [cc, *STRICT, "-O2", "-c", *header, f"-I{path.parent}", str(path), "-o", str(out)]
     result = subprocess.run(cmd, capture_output=True, text=True)
     assert result.returncode == 0 and result.stderr == "", result.stderr
+
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+def test_the_lines_matcher_alone(cc):
+    exe = OUT / "kind-runtime" / f"lines_match_unit-{cc}"
+    exe.parent.mkdir(parents=True, exist_ok=True)
+    build = subprocess.run([cc, *STRICT, "-O1", "-g", *SANITIZE, f"-I{RUNTIME / 'lines'}", "-o", str(exe),
+                            str(ROOT / "tests" / "c" / "lines_match_unit.c")], capture_output=True, text=True)
+    assert build.returncode == 0 and build.stderr == "", build.stderr
+    run = subprocess.run([str(exe)], capture_output=True, text=True)
+    assert run.stdout == "ok\n" and run.returncode == 0, run.stdout + run.stderr
 
 
 def test_scaled_numbers_are_written_as_python_writes_them():

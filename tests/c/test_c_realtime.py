@@ -18,7 +18,7 @@ from tests.c.harness_c import CLI_LIBRARY, GEN, OUT, ROOT, STRICT, compile_c, ge
 from tests.vectors import interface_cases, mismatches
 
 CASES = interface_cases("ur_realtime")
-RUNTIME = ROOT / "runtime" / "c"
+RUNTIME = ROOT / "runtime" / "c" / "sized_packets"
 FILES = sorted(p.name for p in RUNTIME.glob("ur_realtime_*"))
 CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "ur_realtime"
 FUZZER_FLAGS = ["-g", "-O1", "-fsanitize=fuzzer,address,undefined", "-fno-sanitize-recover=all"]
@@ -69,8 +69,8 @@ def test_each_runtime_file_compiles_on_its_own(cc, name):
 def test_each_runtime_file_is_joined_once():
     generated = (GEN / "ur_realtime.c").read_text()
     for name in FILES:
-        assert generated.count(f"---- runtime/c/{name} ----") == 1
-        assert runtime_source("c", name) in generated
+        assert generated.count(f"---- runtime/c/sized_packets/{name} ----") == 1
+        assert runtime_source("c", f"sized_packets/{name}").rstrip("\n") in generated
     assert "standalone>" not in generated
 
 

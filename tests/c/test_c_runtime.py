@@ -1,4 +1,5 @@
-"""The hand-written C runtime (runtime/c/) on its own: each file compiles
+"""The hand-written C runtime of the primary interface (runtime/c/packages/, and what it joins
+of runtime/c/common/) on its own: each file compiles
 alone under the strict flags with gcc and clang (tests/c/runtime_spec.h and runtime_support.h
 stand in for the generated part), tests/c/runtime_unit.c checks it over a made-up protocol, and
 the generator joins the files into generated/c/urwire.{h,c} minus their standalone-only lines.
@@ -16,11 +17,13 @@ from codegen.view import Step
 from tests.c.harness_c import GEN, OUT, ROOT, SANITIZE, STRICT
 
 RUNTIME_DIR = RUNTIME_ROOT / "c"
-# The other interfaces' runtimes (runtime/c/<interface>_*) join generated/c/<interface>.c, not
-# urwire.c; each interface tests its own, and the other kinds keep theirs in folders (runtime/c/lines/).
-OTHER_INTERFACES = tuple(p.stem + "_" for p in GEN.glob("*.c") if p.name != "urwire.c")
-FILES = sorted(p.name for p in RUNTIME_DIR.iterdir() if p.is_file() and not p.name.startswith(OTHER_INTERFACES))
-STANDALONE = [f"-I{RUNTIME_DIR}", f"-I{ROOT / 'tests' / 'c'}"]
+# The other kinds keep their runtimes in folders of their own (runtime/c/lines/, ...), each tested
+# with its kind; the shared folder's files are tested in tests/c/test_c_common.py, and those the
+# primary joins are compiled here too.
+SHARED = ("common/macros.h", "common/loads.h", "common/buffer.h", "common/buffer.c", "common/version_text.h",
+          "common/version_text.c")
+FILES = sorted([f"packages/{p.name}" for p in (RUNTIME_DIR / "packages").iterdir()] + list(SHARED))
+STANDALONE = [f"-I{RUNTIME_DIR / 'packages'}", f"-I{RUNTIME_DIR / 'common'}", f"-I{ROOT / 'tests' / 'c'}"]
 
 
 def compile_standalone(cc: str, flags: list[str], sources: list, output) -> None:
@@ -34,7 +37,8 @@ def compile_standalone(cc: str, flags: list[str], sources: list, output) -> None
 @pytest.mark.parametrize("name", FILES)
 def test_each_runtime_file_compiles_on_its_own(cc, name):
     header = ["-x", "c"] if name.endswith(".h") else []
-    compile_standalone(cc, ["-O2", "-c", *header], [RUNTIME_DIR / name], OUT / "runtime" / f"{name}-{cc}.o")
+    output = OUT / "runtime" / f"{name.replace('/', '-')}-{cc}.o"
+    compile_standalone(cc, ["-O2", "-c", *header], [RUNTIME_DIR / name], output)
 
 
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
@@ -55,7 +59,7 @@ def test_every_runtime_file_is_joined_once():
 def test_joined_files_are_the_runtime_minus_its_standalone_lines():
     generated = (GEN / "urwire.h").read_text() + (GEN / "urwire.c").read_text()
     for name in FILES:
-        text = runtime_source(FOLDER, name)
+        text = runtime_source(FOLDER, name).rstrip("\n")
         assert "standalone>" not in text and "runtime_support.h" not in text and "runtime_spec.h" not in text
         assert text.strip() and text in generated, name
     assert "standalone>" not in generated

@@ -1,4 +1,4 @@
-/* A stand-in for the generated part of ur_realtime.c, so that runtime/c/ur_realtime_decode.c
+/* A stand-in for the generated part of ur_realtime.c, so that runtime/c/sized_packets/ur_realtime_decode.c
  * compiles on its own: the header's types and a made-up spec of one 20-byte layout (a size field
  * and two doubles) sent by two version ranges, with the tables the runtime walks. */
 #ifndef UR_REALTIME_RUNTIME_SPEC_H
@@ -61,7 +61,7 @@ bool ur_realtime_has(const ur_realtime_packet *p, ur_realtime_field field);
 const double *ur_realtime_values(const ur_realtime_packet *p, ur_realtime_field field);
 const char *ur_realtime_enum_name(const ur_realtime_packet *p, ur_realtime_field field, double value);
 
-/* The generated decoders read with runtime/c/ur_realtime_loads.h, which the runtime includes after
+/* The generated decoders read with runtime/c/common/loads.h, which the runtime includes after
  * this file: a stand-in decoder reads the bytes itself. */
 static void ur_realtime__decode_one(const uint8_t *p, ur_realtime_packet *out)
 {

@@ -53,11 +53,12 @@ def test_a_runtime_file_no_copy_joins_is_refused(tmp_path, monkeypatch):
     folder = tmp_path / "epan"
     folder.mkdir()
     for name in (*epan.RUNTIME_TYPES, *epan.runtime_code(True)):
-        (folder / name).write_text("")
+        (folder / epan.runtime_file(name)).parent.mkdir(exist_ok=True)
+        (folder / epan.runtime_file(name)).write_text("")
     monkeypatch.setattr(epan, "RUNTIME_FOLDER", tmp_path)
     epan.check_runtime(epan.runtime_code(True))           # Wireshark's tree: the upstream copy's files only
     with pytest.raises(ValueError, match="ur_wanted.c"):
         epan.check_runtime(epan.runtime_code(False))
-    (folder / "ur_stray.c").write_text("")
+    (folder / "packages" / "ur_stray.c").write_text("")
     with pytest.raises(ValueError, match="ur_stray.c"):
         epan.check_runtime(epan.runtime_code(True))

@@ -167,9 +167,9 @@ def test_under_asan_and_ubsan_no_report():
                 (path, view)
 
 
-@pytest.mark.parametrize("name", ["int32_records_types.h", "int32_records.c"])
+@pytest.mark.parametrize("name", ["int32_records/int32_records_types.h", "int32_records/int32_records.c"])
 def test_each_runtime_file_compiles_alone(name):
-    """runtime/epan/<file> with the lines it needs alone (its <standalone> part), strict."""
+    """runtime/epan/<kind>/<file> with the lines it needs alone (its <standalone> part), strict."""
     flags = subprocess.run(["pkg-config", "--cflags", "wireshark"], capture_output=True, text=True, check=True)
     folder = harness.ROOT / "runtime" / "epan"
     result = subprocess.run(["gcc", "-fsyntax-only", "-Wall", "-Wextra", "-Werror", "-Wno-unused-function", "-x", "c",

@@ -10,7 +10,8 @@ script-sender conversations of the cell sample; hostile conversations (junk, lon
 commands in flight than a conversation keeps), with TCP reassembly on and off; a session on
 another port under Decode As. The same captures go through the plugin built with ASan and UBSan,
 where any report fails the run. Also: the packet list with no tree, text that is not UTF-8, and
-the runtime's pure functions (runtime/epan/lines_match.c) compiled and tested alone."""
+the dissector's runtime compiled alone (the matcher it joins, runtime/c/lines/match.c, is the C
+library's, tested in tests/c/test_c_kind_runtimes.py)."""
 from __future__ import annotations
 
 import functools
@@ -30,7 +31,8 @@ from tests.tools import capture
 ROOT = Path(__file__).resolve().parents[2]
 CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "ur_dashboard"
 CELL = ROOT / "dissector" / "samples" / "cell_session.pcapng"
-RUNTIME = ROOT / "runtime" / "epan"
+RUNTIME = ROOT / "runtime" / "epan" / "lines"
+MATCH = ROOT / "runtime" / "c" / "lines"         # the matcher, the C library's, which the dissector joins
 INTERFACES = ("ur_dashboard", "ur_script_sender")
 PORTS = {"ur_dashboard": 29999, "ur_script_sender": 50002}
 # The script sender's port is the control PC's, and the robot connects to it: in the capture
@@ -219,24 +221,13 @@ def test_the_asan_build_is_instrumented():
     assert "__asan_report" in symbols and "__ubsan_handle" in symbols
 
 
-# ---- the runtime alone ----
-
-@pytest.mark.parametrize("cc", ["gcc", "clang"])
-def test_the_match_runtime_alone(tmp_path, cc):
-    binary = tmp_path / "lines_match_unit"
-    source = ROOT / "tests" / "native" / "lines_match_unit.c"
-    build = subprocess.run([cc, "-std=c11", "-Wall", "-Wextra", "-Werror", "-fsanitize=address,undefined",
-                            "-fno-sanitize-recover=all", f"-I{RUNTIME}", str(source), "-o", str(binary)],
-                           capture_output=True, text=True)
-    assert build.returncode == 0, build.stderr
-    run = subprocess.run([str(binary)], capture_output=True, text=True, env={"ASAN_OPTIONS": "detect_leaks=0"})
-    assert run.stdout == "ok\n" and run.returncode == 0, run.stdout + run.stderr
+# ---- the runtime alone (the matcher's own test: tests/c/test_c_kind_runtimes.py) ----
 
 
 def test_the_dissector_runtime_compiles_alone():
     flags = subprocess.run(["pkg-config", "--cflags", "wireshark"], capture_output=True, text=True, check=True)
     result = subprocess.run(["gcc", "-std=c11", "-Wall", "-Wextra", "-Werror", "-Wno-unused-function", "-fsyntax-only",
-                             *flags.stdout.split(), f"-I{RUNTIME}", str(RUNTIME / "lines_dissect.c")],
+                             *flags.stdout.split(), f"-I{RUNTIME}", f"-I{MATCH}", str(RUNTIME / "lines_dissect.c")],
                             capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
 

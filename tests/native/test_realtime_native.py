@@ -134,9 +134,9 @@ def test_the_tree_reads_in_words_with_units_and_names():
     assert "UR_REALTIME, rt_3_2" in text or "client interface, rt_3_2" in text
 
 
-@pytest.mark.parametrize("name", ["ur_realtime_types.h", "dotted_version.c", "ur_realtime_dissect.c"])
+@pytest.mark.parametrize("name", ["sized_packets/ur_realtime_types.h", "sized_packets/ur_realtime_dissect.c"])
 def test_each_runtime_file_compiles_alone(name):
-    """runtime/epan/<file> with the lines it needs alone (its <standalone> part), strict."""
+    """runtime/epan/<kind>/<file> with the lines it needs alone (its <standalone> part), strict."""
     import shlex
     import subprocess
 

@@ -46,6 +46,8 @@ def expected_tools() -> list[str]:
     runtime = [f"tools/urwire/runtime/epan/{p.relative_to(ROOT / 'runtime' / 'epan')}"
                for p in (ROOT / "runtime" / "epan").rglob("*")
                if p.is_file() and "__pycache__" not in p.parts and p.name not in COMMAND_LINE_RUNTIME]
+    runtime += [f"tools/urwire/runtime/c/{name}" for name in ("common/macros.h", "common/version_text.h",
+                                                              "common/version_text.c", "lines/match.h", "lines/match.c")]
     return [*generator, *specs, *runtime, "tools/urwire2wireshark.py"]
 
 
@@ -102,9 +104,11 @@ def test_upstream_patch_of_the_generated_files(patch):
                                   "`python3 tools/urwire2wireshark.py`."), banner
         same = body == split_banner((harness.EPAN / path.name).read_text())[1]
         assert same == (path.name not in COMMAND_LINE_READERS), path.name
-    joined = {name for path in dissectors
-              for name in re.findall(r"^/\* [-=]{4} runtime/epan/(\S+) [-=]{4} \*/$", path.read_text(), re.M)}
-    assert joined == {p.name for p in (patch / "tools" / "urwire" / "runtime" / "epan").iterdir()}
+    for language in ("epan", "c"):      # a dissector joins the C library's runtime where the rule is the same
+        joined = {name for path in dissectors
+                  for name in re.findall(rf"^/\* ---- runtime/{language}/(\S+) ---- \*/$", path.read_text(), re.M)}
+        folder = patch / "tools" / "urwire" / "runtime" / language
+        assert joined == {p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.is_file()}, language
 
 
 def test_the_patch_reads_no_command_line(patch):

@@ -1,12 +1,16 @@
 """The C target of an int32-record interface: generated/c/<name>.{h,c}: enums, a caller-owned
 struct per record, its size and decoder by driver release, its JSON writer, with the runtime of
-runtime/c/int32_records.c joined in (static, so that every interface holds its own copy)."""
+runtime/c/common/ and runtime/c/int32_records/records.c joined in (static, so that every interface
+holds its own copy)."""
 from __future__ import annotations
 
 from ... import ir
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from .model import FROM_ROBOT
 from .plan import PublicField, RecordsPlan
+
+# The runtime each interface's .c joins, in order: what every kind shares, then the kind's own.
+RUNTIME = ("common/macros.h", "common/buffer.h", "common/loads.h", "common/buffer.c", "int32_records/records.c")
 
 
 def _member(f: PublicField) -> dict:
@@ -50,8 +54,7 @@ def view(p: RecordsPlan) -> dict:
     return dict(prefix=prefix, upper=upper, title=m.title, doc=m.doc, ports=m.ports, enums=enums, records=records,
                 to_robot=directions.get(False), from_robot=directions.get(True),
                 default_release=_release(m.default_release), default_text=ir.version_text(m.default_release),
-                runtime=f"/* ---- {runtime_path('c', 'int32_records/records.c')} ---- */\n"
-                        + runtime_source("c", "int32_records/records.c"))
+                runtime="\n\n".join(runtime_section("c", name) for name in RUNTIME))
 
 
 def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:

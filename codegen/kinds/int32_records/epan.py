@@ -10,15 +10,17 @@ from dataclasses import dataclass
 
 from ... import ir
 from ...comments import value_text
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...lang.c import string, value_key
 from ...naming import column_name
 from .dissector import Dissector, dissector
 from .model import FROM_ROBOT, TO_ROBOT
 from .plan import RecordsPlan
 
-RUNTIME_HEAD = ["int32_records_types.h"]    # the table types, before the tables
-RUNTIME_TAIL = ["dotted_version.c", "int32_records.c"]   # the release's text; the dissector, after the tables
+RUNTIME_HEAD = [("epan", "int32_records/int32_records_types.h")]    # the table types, before the tables
+# the release's text (the C library's reader); the dissector, after the tables
+RUNTIME_TAIL = [("c", "common/macros.h"), ("c", "common/version_text.h"), ("c", "common/version_text.c"),
+                ("epan", "int32_records/int32_records.c")]
 
 
 @dataclass
@@ -83,8 +85,7 @@ def view(d: Dissector) -> dict:
         items = [string(r.label), f"{ident}_starts" if starts else "NULL",
                  f"array_length({ident}_starts)" if starts else "0", f"{ident}_layouts"]
         records[r.direction] = EpanRecord(ident, r.label, starts, layouts, items)
-    runtime = [dict(path=runtime_path("epan", part), source=runtime_source("epan", part))
-               for part in RUNTIME_HEAD + RUNTIME_TAIL]
+    runtime = [runtime_section(language, part) for language, part in RUNTIME_HEAD + RUNTIME_TAIL]
     return dict(
         name=name, title=m.title, doc=m.doc, file=f"packet-{name.replace('_', '-')}.c",
         short_name=name.upper(), column=column_name(name), ports=[str(port) for port in m.ports],

@@ -4,7 +4,7 @@ runtime/lua/int32_records joined in."""
 from __future__ import annotations
 
 from ... import ir
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...lang.lua import literal
 from ...naming import column_name
 from .dissector import Dissector, dissector
@@ -32,7 +32,7 @@ def view(d: Dissector) -> dict:
                 default_release=ir.version_number(m.default_release),
                 default_text=literal(ir.version_text(m.default_release)), fields=fields, records=records, enums=enums,
                 filter_example=f"{m.name}.{d.plan.records[0].fields[-1].name}",
-                runtime=[dict(path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in RUNTIME])
+                runtime=[runtime_section("lua", name) for name in RUNTIME])
 
 
 def render(p: RecordsPlan, banner: list[str]) -> dict[str, str]:

@@ -1,26 +1,21 @@
 """The C target of a text-line interface: generated/c/<name>.{h,c}, the tables as C data and the
-runtime of runtime/c/<name>_*.{h,c} joined in, from the plan."""
+runtime of runtime/c/lines/*.{h,c} joined in, from the plan."""
 from __future__ import annotations
 
-import re
-
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...lang.c import string
 from ...wrap import LIMIT
 from .model import Reply
 from .plan import LinesPlan
 
 FOLDER = "c"
-
-
-def _joined(name: str, prefix: str) -> str:
-    """A runtime file of the kind as joined into one interface's files: its names, written with
-    the kind's prefix (lines_, LINES_) so that the file builds alone, take the interface's, so
-    that two interfaces of the kind link into one library."""
-    text = runtime_source(FOLDER, name)
-    text = re.sub(r"\blines_", f"{prefix}_", text)
-    text = re.sub(r"\bLINES_", f"{prefix.upper()}_", text)
-    return f"/* ---- {runtime_path(FOLDER, name)} ---- */\n" + text
+# The runtime each interface joins, verbatim: the types into its header, the code into its .c
+# (what every kind shares, the matcher, the conversation, the JSON writer), all static there.
+RUNTIME_HEADER = ("lines/match.h", "lines/lines.h")
+RUNTIME_SOURCES = ("common/macros.h", "common/buffer.h", "common/buffer.c", "common/version_text.h",
+                   "common/version_text.c", "lines/match.c", "lines/lines.c", "lines/json.c")
+# The kind's constants (runtime/c/lines/lines.h) the header names after the interface too.
+ALIASES = ("PENDING", "PENDING_RAW", "NONE", "COMMAND", "REPLY", "FAULT", "LINE_TOO_LONG", "NO_NEWLINE_AT_END")
 
 
 def _reply(symbol: str, reply: Reply) -> dict:
@@ -52,8 +47,9 @@ def view(p: LinesPlan) -> dict:
         version_command=f"{prefix.upper()}_{p.version_command.command.name.upper()}" if p.version_command
         else f"{prefix.upper()}_NONE",
         version_prefix=string(m.version_prefix),
-        runtime_header=_joined("lines/lines.h", prefix),
-        runtime_sources=[_joined("lines/lines.c", prefix), _joined("lines/json.c", prefix)],
+        runtime_header="\n\n".join(runtime_section(FOLDER, name) for name in RUNTIME_HEADER),
+        runtime_sources=[runtime_section(FOLDER, name) for name in RUNTIME_SOURCES],
+        aliases=ALIASES, e_series_from=f"{p.e_series_from}u",
         limit=LIMIT,
     )
 

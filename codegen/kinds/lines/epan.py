@@ -1,13 +1,11 @@
 """The epan target of a text-line interface: generated/epan/packet-<name>.c, a native Wireshark
 dissector as an upstream epan/dissectors/packet-*.c reads, the twin of the Lua one
 (generated/lua/<name>.lua): the same protocol, fields, expert infos, preference and ports, from
-one dissector model (dissector.py). The spec's tables as C data, with runtime/epan/lines_*.c
-joined in, from the plan."""
+one dissector model (dissector.py). The spec's tables as C data, with runtime/c/lines/match.{h,c},
+runtime/c/common/version_text.{h,c} and runtime/epan/lines/lines_dissect.c joined in, from the plan."""
 from __future__ import annotations
 
-import re
-
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...lang.c import prose, string
 from ...wrap import lines as wrapped
 from .dissector import Dissector, dissector
@@ -15,22 +13,12 @@ from .model import Reply
 from .plan import LinesPlan
 
 FOLDER = "epan"
-RUNTIME_TYPES = "lines_match.c"           # the tables' types and the pure functions over them
-RUNTIME_DISSECTOR = "lines_dissect.c"     # the dissector itself, after the tables
+# Before the tables: their types and the matcher over them, and the reader of a version's text, the
+# C library's own (runtime/c/lines/, runtime/c/common/); after them, the dissector itself.
+RUNTIME_TYPES = (("c", "common/macros.h"), ("c", "common/version_text.h"), ("c", "common/version_text.c"),
+                 ("c", "lines/match.h"), ("c", "lines/match.c"))
+RUNTIME_DISSECTOR = ("lines/lines_dissect.c",)
 FIELD_TYPES = {"string": ("FT_STRING", "BASE_NONE"), "boolean": ("FT_BOOLEAN", "BASE_NONE")}
-
-
-def _joined(name: str, interface: str) -> str:
-    """A runtime file as joined into one interface's file. The names that are the interface's own,
-    written with the kind's name so that the file compiles alone (proto_lines, hf_lines_command,
-    ei_lines_too_long, ett_lines, dissect_lines, lines_spec, lines_version_preference), take the
-    interface's, as an upstream dissector names them after its protocol; the runtime's own types
-    and helpers (lines_matches, lines_conversation_t) keep the kind's."""
-    text = runtime_source(FOLDER, name)
-    text = re.sub(r"\b(hf|ei)_lines_", rf"\1_{interface}_", text)
-    text = re.sub(r"\b(ett|proto|dissect)_lines\b", rf"\1_{interface}", text)
-    text = re.sub(r"\blines_(spec|version_preference)\b", rf"{interface}_\1", text)
-    return f"/* ---- {runtime_path(FOLDER, name)} ---- */\n" + text.rstrip("\n")
 
 
 def _reply(reply: Reply) -> dict:
@@ -75,7 +63,8 @@ def view(d: Dissector) -> dict:
         version_command=f"{p.version_command.index},  /* {p.version_command.command.name} */" if p.version_command
         else "LINES_NONE,",
         version_prefix=string(m.version_prefix), e_series_from=f"{p.e_series_from}u",
-        runtime_types=_joined(RUNTIME_TYPES, name), runtime_dissector=_joined(RUNTIME_DISSECTOR, name),
+        runtime_types="\n\n".join(runtime_section(language, name) for language, name in RUNTIME_TYPES),
+        runtime_dissector="\n\n".join(runtime_section(FOLDER, name) for name in RUNTIME_DISSECTOR),
     )
 
 

@@ -3,7 +3,7 @@ loads on its own: the spec's tables from the plan and the dissector model (disse
 the epan target renders too), then runtime/lua/common and runtime/lua/lines joined in."""
 from __future__ import annotations
 
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...lang.lua import literal, string
 from .dissector import PENDING_KEPT, Dissector, dissector
 from .model import Reply
@@ -41,7 +41,7 @@ def view(d: Dissector) -> dict:
         labels=[dict(name=f.name, label=string(f.label), doc=string(f.doc)) for f in d.fields],
         pending_kept=PENDING_KEPT, not_kept=string(d.expert("not_kept").text),
         reply_not_kept=string(d.expert("reply_not_kept").text),
-        runtime=[dict(path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in RUNTIME],
+        runtime=[runtime_section("lua", name) for name in RUNTIME],
     )
 
 

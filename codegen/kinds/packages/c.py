@@ -14,7 +14,7 @@ from typing import Optional
 
 from ... import ir
 from ...comments import field_text, node_text, value_text
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...errors import Problem, SpecError
 from ...lang.c import comment, inline
 from ...view import Step
@@ -52,7 +52,7 @@ C_KEYWORDS = {"auto", "break", "case", "char", "const", "continue", "default", "
 # Names the generated decoders, encoders and visitors use for themselves: no member may be
 # called so (the struct's own `version` and `extra` are added by the generator).
 RESERVED_MEMBERS = {"version", "extra"}
-# Value layouts the hand-written value decoder (runtime/c/values.c) knows.
+# Value layouts the hand-written value decoder (runtime/c/packages/values.c) knows.
 VALUE_ITEMS = {"bool": "URWIRE__ITEM_BOOL", "int32": "URWIRE__ITEM_I32", "float32": "URWIRE__ITEM_F32"}
 VALUE_LAYOUTS = {"empty": "URWIRE__LAYOUT_EMPTY", "string": "URWIRE__LAYOUT_STRING", "array": "URWIRE__LAYOUT_ARRAY",
                  "scalar": "URWIRE__LAYOUT_SCALAR", "list": "URWIRE__LAYOUT_LIST", "matrix": "URWIRE__LAYOUT_MATRIX"}
@@ -62,7 +62,7 @@ MASK_BITS = 32
 
 # ---- versions and conditions, as data -----------------------------------------------------
 
-# The largest parts urwire__version_key (runtime/private.h) orders exactly: bounds must stay below.
+# The largest parts urwire__version_key (runtime/c/packages/private.h) orders exactly: bounds must stay below.
 KEY_MAJOR, KEY_PART = 1 << 21, 1 << 20
 
 
@@ -75,7 +75,7 @@ def version_view(v: ir.Version) -> dict:
 
 
 def range_view(r: ir.VersionRange) -> dict:
-    """A version range as the initializer of an urwire__versions (runtime/private.h) renders it."""
+    """A version range as the initializer of an urwire__versions (runtime/c/packages/private.h) renders it."""
     return dict(low=version_view(r.low) if r.low else None, high=version_view(r.high) if r.high else None)
 
 
@@ -763,23 +763,21 @@ def known_types(p: model.Protocol) -> list[str]:
 # generated ones: public headers around the spec's types, then private code before the layouts
 # and, after them, the code that walks their tables.
 RUNTIME = {
-    "types": ("version.h", "views.h", "errors.h"),
-    "value": ("value.h",),
-    "api": ("messages.h", "visitor.h", "framer.h"),
-    "base": ("private.h", "loads.h", "views.c", "version.c", "format.c", "errors.c", "text.c", "put.c"),
-    "walkers": ("values.c", "kinds.c", "forms.c", "decode.c", "encode.c", "visit.c", "framer.c"),
+    "types": ("packages/version.h", "packages/views.h", "packages/errors.h"),
+    "value": ("packages/value.h",),
+    "api": ("packages/messages.h", "packages/visitor.h", "packages/framer.h"),
+    "base": ("common/macros.h", "common/buffer.h", "common/version_text.h", "packages/private.h", "common/loads.h",
+             "common/buffer.c", "common/version_text.c", "packages/views.c", "packages/version.c", "packages/format.c",
+             "packages/errors.c", "packages/text.c", "packages/put.c"),
+    "walkers": ("packages/values.c", "packages/kinds.c", "packages/forms.c", "packages/decode.c",
+                "packages/encode.c", "packages/visit.c", "packages/framer.c"),
 }
-
-
-def joined_section(name: str) -> str:
-    """A runtime file as urwire.h or urwire.c joins it: a first line names the file it came from."""
-    return f"/* ---- {runtime_path(FOLDER, name)} ---- */\n" + runtime_source(FOLDER, name)
 
 
 def render(protocol_plan, banner: list[str]) -> dict[str, str]:
     p = protocol_plan.protocol
     env = environment(FOLDER)
-    runtime = {part: "\n".join(joined_section(name) for name in names) for part, names in RUNTIME.items()}
+    runtime = {part: "\n\n".join(runtime_section(FOLDER, name) for name in names) for part, names in RUNTIME.items()}
     ctx = dict(banner=banner, p=p, enums=enum_views(p), values=value_views(p), runtime=runtime,
                default_version=version_view(p.default_version), default_text=ir.version_text(p.default_version),
                bugfix_any=ir.BUGFIX_ANY,

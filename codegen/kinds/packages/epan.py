@@ -1,5 +1,5 @@
 """epan target: the dissector model (dissector.py) -> templates/epan/packet-ur.c.j2 +
-runtime/epan/ur_*.c, one native Wireshark dissector (generated/epan/packet-ur.c), the twin of
+runtime/epan/packages/ur_*.c, one native Wireshark dissector (generated/epan/packet-ur.c), the twin of
 the Lua dissector (generated/lua/urwire.lua).
 
 The two must be interchangeable (same protocol, field abbreviations, names, types, bases, value
@@ -7,7 +7,7 @@ strings, tree, Info column and expert infos), so both render the one model that 
 fields, the layouts' descriptors and the forms of every type code; this module only spells it in
 C: hf indices by a generated enum, the descriptors as const tables (as upstream's generated
 packet-eti.c walks its fields), the forms and segments of the version axis as tables the runtime
-looks a version up in. The code that walks the tables is hand-written C in runtime/epan/ur_*.c,
+looks a version up in. The code that walks the tables is hand-written C in runtime/epan/packages/ur_*.c,
 joined after the generated tables.
 """
 from __future__ import annotations
@@ -15,7 +15,7 @@ from __future__ import annotations
 from typing import Optional
 
 from ... import epan_c, ir
-from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_section
 from ...lang.c import identifier as ident, literal as c_literal, prose as c_text, string as c_str, value_key
 from . import dissector
 
@@ -23,11 +23,12 @@ OUT = "epan/packet-ur.c"
 FOLDER = "epan"
 
 # The hand-written runtime, in the order it is joined: types before the generated tables, the
-# rest after them (runtime/epan/ur_*.c; files of other interfaces carry their own prefix, and
-# tshark_fields.c serves more than one).
+# rest after them (runtime/epan/packages/ur_*.c, and runtime/epan/common/tshark_fields*.c, which every
+# kind's dissector joins), after the C library's reader of a version's text (runtime/c/common/).
 RUNTIME_TYPES = ("ur_types.c",)
-RUNTIME_CODE = ("ur_versions.c", "tshark_fields.c", "ur_wanted.c", "ur_items.c", "ur_walk.c", "ur_values.c",
-                "ur_info.c", "ur_messages.c", "ur_stream.c", "ur_framing.c")
+C_RUNTIME = ("common/macros.h", "common/version_text.h", "common/version_text.c")
+RUNTIME_CODE = ("ur_versions.c", "tshark_fields.c", "ur_wanted.c", "ur_items.c", "ur_walk.c",
+                "ur_values.c", "ur_info.c", "ur_messages.c", "ur_stream.c", "ur_framing.c")
 # The upstream copy (Wireshark's own tree) reads no command line: it joins no tshark_fields.c, and
 # ur_wanted_upstream.c stands in for ur_wanted.c (every package built), with no ur.named_fields_only.
 UPSTREAM_STAND_INS = {"tshark_fields.c": None, "ur_wanted.c": "ur_wanted_upstream.c"}
@@ -330,8 +331,13 @@ if set(VALUE_KINDS) != set(ir.SCALARS):
 KIND_CONST = {name: f"UR_VK_{name.upper()}" for name in VALUE_KINDS}
 
 
-def runtime(names: tuple[str, ...]) -> list[dict]:
-    return [dict(path=runtime_path(FOLDER, name), source=runtime_source(FOLDER, name)) for name in names]
+def runtime_file(name: str) -> str:
+    """Where a runtime file of this kind lives under runtime/epan: its own folder, or the shared one."""
+    return f"common/{name}" if name.startswith("tshark_fields") else f"packages/{name}"
+
+
+def runtime(names: tuple[str, ...]) -> list[str]:
+    return [runtime_section(FOLDER, runtime_file(name)) for name in names]
 
 
 def runtime_code(upstream: bool) -> tuple[str, ...]:
@@ -347,8 +353,8 @@ def check_runtime(code: tuple[str, ...]) -> None:
     joins are there (Wireshark's tree holds only the upstream copy's)."""
     folder = RUNTIME_FOLDER / FOLDER
     known = set(RUNTIME_TYPES + runtime_code(False) + runtime_code(True))
-    own = {p.name for p in folder.glob("ur_*.c") if not p.name.startswith("ur_realtime")}
-    missing = [name for name in RUNTIME_TYPES + code if not (folder / name).exists()]
+    own = {p.name for p in (folder / "packages").glob("ur_*.c")}
+    missing = [name for name in RUNTIME_TYPES + code if not (folder / runtime_file(name)).exists()]
     if own - known or missing:
         raise ValueError(f"epan target: runtime files {sorted(own - known)} are in no joining order, "
                          f"{missing} are missing")
@@ -362,6 +368,7 @@ def render(protocol_plan, banner: list[str], upstream: bool = False) -> dict[str
     env.filters["c"] = c_literal
     env.filters["c_text"] = c_text
     model = _Builder(dissector.dissector(protocol_plan)).build()
-    ctx = dict(banner=banner, types=runtime(RUNTIME_TYPES), code=runtime(code),
+    ctx = dict(banner=banner, types=runtime(RUNTIME_TYPES),
+               code=[runtime_section("c", name) for name in C_RUNTIME] + runtime(code),
                named_fields_preference=not upstream, any_low=ANY_LOW, any_high=ANY_HIGH, **model)
     return {OUT: env.get_template("packet-ur.c.j2").render(**ctx)}

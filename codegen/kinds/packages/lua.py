@@ -13,7 +13,7 @@ import textwrap
 from typing import Optional
 
 from ... import ir
-from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_section
 from ...lang.lua import field as lua_field, literal as lua_literal, string as lua_str, text as lua_text
 from .dissector import EnumStrings, Field, ValueStrings, dissector
 
@@ -68,14 +68,14 @@ FILTERS = {"lua": lua_literal, "lua_text": lua_text, "lua_field": lua_field, "va
            "forms_table": str.upper, "version_text": ir.version_text}
 
 
-def runtime() -> list[dict]:
-    """The runtime files in joining order, as joined (standalone-only lines removed)."""
+def runtime() -> list[str]:
+    """The runtime files in joining order, as joined (emit.runtime_section)."""
     folder = RUNTIME_FOLDER / "lua" / "packages"
     found = sorted(p.name for p in folder.glob("*.lua"))
     if sorted(RUNTIME) != found:
         raise ValueError(f"lua target: runtime files {found} differ from the joining order {list(RUNTIME)}")
     names = [f"common/{name}" for name in COMMON] + [f"packages/{name}" for name in RUNTIME]
-    return [dict(name=name, path=runtime_path("lua", name), source=runtime_source("lua", name)) for name in names]
+    return [runtime_section("lua", name) for name in names]
 
 
 def render(protocol_plan, banner: list[str]) -> dict[str, str]:

@@ -3,17 +3,17 @@
 One struct holds every field any layout sends; its `layout` says which it holds (the layout's
 slots, in packet order, are what a JSON writer walks). Each layout gets a straight-line decoder
 at the offsets of the plan; the forms table renders the same_size rule, and the hand-written
-runtime (runtime/c/<name>_*.c) frames, chooses and dispatches."""
+runtime (runtime/c/sized_packets/<name>_*.c) frames, chooses and dispatches."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 from ... import ir
 from ...comments import field_text, node_text, value_text
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from .plan import SizedPlan
 
-RUNTIME_HEAD = ["loads.h"]      # before the generated decoders, which read with them
+RUNTIME_HEAD = ["common/macros.h", "common/loads.h"]   # before the generated decoders, which read with them
 RUNTIME_TAIL = ["decode.c"]     # after the tables they walk
 
 
@@ -65,8 +65,7 @@ class CForm:
 
 
 def _section(prefix: str, name: str) -> str:
-    file = f"{prefix}_{name}"
-    return f"/* ---- {runtime_path('c', file)} ---- */\n" + runtime_source("c", file)
+    return runtime_section("c", name if name.startswith("common/") else f"sized_packets/{prefix}_{name}")
 
 
 def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
@@ -115,7 +114,7 @@ def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
                    layouts=layouts, enums=[(enum_ids[e.name], e.name, node_text(e)) for e in enums],
                    tables=list(tables.values()), forms=forms, size_bytes=protocol.size_field_bytes,
                    min_size=protocol.size_field_bytes + 8, same_size=protocol.same_size,
-                   head="\n".join(_section(prefix, n) for n in RUNTIME_HEAD),
-                   tail="\n".join(_section(prefix, n) for n in RUNTIME_TAIL))
+                   head="\n\n".join(_section(prefix, n) for n in RUNTIME_HEAD),
+                   tail="\n\n".join(_section(prefix, n) for n in RUNTIME_TAIL))
     return {f"c/{prefix}.h": env.get_template("sized_packets/header.h.j2").render(**context),
             f"c/{prefix}.c": env.get_template("sized_packets/source.c.j2").render(**context)}

@@ -3,22 +3,23 @@ generated/epan/packet-<name with dashes>.c, a native Wireshark dissector, the tw
 (lua.py renders the same model): the same protocol, fields, tree, Info column, experts and
 preferences. The generated part declares the handles, one double field per spec field (its unit
 shown by a label function: epan_c.UnitLabel), the enum names as value_strings, the layouts' slots
-and the forms by size; the hand-written runtime (runtime/epan/<name>_*, joined in) frames the TCP
+and the forms by size; the hand-written runtime (runtime/epan/sized_packets/<name>_*, joined in) frames the TCP
 stream and walks them."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 from ...comments import node_text
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...epan_c import unit_label
 from ...lang.c import string, value_key
 from .dissector import Dissector, Field, Layout, dissector
 from .plan import SizedPlan
 
-RUNTIME_HEAD = ["types.h"]      # runtime/epan/<name>_types.h: the table types, before the tables
-RUNTIME_TAIL = ["dissect.c"]    # runtime/epan/<name>_dissect.c: after the tables it walks
-SHARED = ["dotted_version.c"]   # runtime/epan/dotted_version.c: reads the version preference, before the tail
+RUNTIME_HEAD = ["types.h"]      # runtime/epan/sized_packets/<name>_types.h: the table types, before the tables
+RUNTIME_TAIL = ["dissect.c"]    # runtime/epan/sized_packets/<name>_dissect.c: after the tables it walks
+# runtime/c/common/version_text.{h,c}: reads the version preference, before the tail
+SHARED = ["common/macros.h", "common/version_text.h", "common/version_text.c"]
 
 
 @dataclass
@@ -90,8 +91,9 @@ def view(d: Dissector) -> dict:
         sizes.append((size, len(forms), len(row)))
         forms += [EpanForm(f"{size} bytes, {f.versions}", f.low, f.high, f.layout,
                            [f"{name}_{t.ident}" if t is not None else "NULL" for t in f.tables]) for f in row]
-    files = [f"{name}_{part}" for part in RUNTIME_HEAD] + SHARED + [f"{name}_{part}" for part in RUNTIME_TAIL]
-    runtime = [dict(path=runtime_path("epan", file), source=runtime_source("epan", file)) for file in files]
+    runtime = ([runtime_section("epan", f"sized_packets/{name}_{part}") for part in RUNTIME_HEAD]
+               + [runtime_section("c", file) for file in SHARED]
+               + [runtime_section("epan", f"sized_packets/{name}_{part}") for part in RUNTIME_TAIL])
     return dict(
         protocol=protocol, name=name, upper=upper, file=f"packet-{name.replace('_', '-')}.c",
         short_name=upper, doc=node_text(protocol), ports=",".join(str(p) for p in protocol.ports),

@@ -6,7 +6,7 @@ enum name tables, the layouts' slots and the forms by size; the hand-written run
 from __future__ import annotations
 
 from ...comments import node_text
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...lang.lua import literal, string
 from .dissector import Dissector, dissector
 from .plan import SizedPlan
@@ -32,7 +32,7 @@ def view(d: Dissector) -> dict:
         enum_of=[(f.name, f.enum) for f in d.fields if f.enum is not None],
         layouts=layouts, tables=tables, forms=forms, min_size=protocol.size_field_bytes + 8,
         same_size=protocol.same_size,
-        runtime=[dict(path=runtime_path("lua", part), source=runtime_source("lua", part)) for part in RUNTIME])
+        runtime=[runtime_section("lua", part) for part in RUNTIME])
 
 
 def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:

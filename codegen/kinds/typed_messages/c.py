@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ... import ir
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...lang import c
 from ...wrap import spread
 from . import model
@@ -18,17 +18,18 @@ FOLDER = "c"
 C_TYPES = {"bool": "uint8_t", "int8": "int8_t", "uint8": "uint8_t", "int16": "int16_t", "uint16": "uint16_t",
            "int32": "int32_t", "uint32": "uint32_t", "int64": "int64_t", "uint64": "uint64_t",
            "float32": "float", "float64": "double"}
-# How a scalar is read: an expression over the reader's next bytes (runtime/c/rtde_read.c).
+# How a scalar is read: an expression over the reader's next bytes (runtime/c/typed_messages/rtde_read.c).
 READERS = {"bool": "rtde__take(r, 1)", "uint8": "rtde__take(r, 1)", "uint16": "rtde__take(r, 2)",
            "uint32": "rtde__take(r, 4)", "uint64": "rtde__take(r, 8)", "int32": "rtde__as_i32(rtde__take(r, 4))",
-           "float64": "rtde__as_f64(rtde__take(r, 8))"}
+           "float64": "urwire__f64_of(rtde__take(r, 8))"}
 MEMBER_KINDS = {"bool": "RTDE_MEMBER_BOOL", "uint8": "RTDE_MEMBER_UINT", "uint16": "RTDE_MEMBER_UINT",
                 "uint32": "RTDE_MEMBER_UINT", "uint64": "RTDE_MEMBER_UINT", "int32": "RTDE_MEMBER_INT",
                 "float64": "RTDE_MEMBER_F64"}
 # A value type's items as the runtime reads them: 'u' unsigned, 'i' signed, 'f' float.
 VALUE_KIND = {"bool": "'b'", "uint8": "'u'", "uint32": "'u'", "uint64": "'u'", "int32": "'i'", "float64": "'f'"}
 RUNTIME_H = ("rtde_types.h", "rtde_api.h")
-RUNTIME_C = ("rtde_read.c", "rtde_conversation.c")
+RUNTIME_C = {"read": ("common/macros.h", "common/loads.h", "typed_messages/rtde_read.c"),
+             "conversation": ("typed_messages/rtde_conversation.c",)}
 
 
 @dataclass
@@ -116,7 +117,8 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
         "layouts": layouts, "dispatch": dispatch, "codes": planned.codes, "variables": variables,
         "refusals": [r.word for r in interface.refusals],
         "undocumented": interface.undocumented,
-        "runtime_h": {n: _joined(n) for n in RUNTIME_H}, "runtime_c": {n: _joined(n) for n in RUNTIME_C},
+        "runtime_h": {n: _joined(n) for n in RUNTIME_H},
+        "runtime_c": {part: "\n\n".join(runtime_section("c", n) for n in names) for part, names in RUNTIME_C.items()},
     }
     env = environment(FOLDER)
     env.filters["c"] = c.string
@@ -125,4 +127,4 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
 
 
 def _joined(file: str) -> str:
-    return f"/* ---- {runtime_path('c', file)} ---- */\n" + runtime_source("c", file)
+    return runtime_section("c", f"typed_messages/{file}")

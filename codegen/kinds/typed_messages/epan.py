@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_path, runtime_source
+from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_section
 from ...lang import c
 from ...wrap import spread
 from .dissector import TYPE_CODES, Dissector, Field, Message, Step, dissector
@@ -185,13 +185,13 @@ def render(planned: TypedPlan, banner: list[str], upstream: bool = False) -> dic
     return {f"epan/packet-{planned.interface.name.replace('_', '-')}.c": text}
 
 
-def _shared(name: str) -> dict:
-    return {"path": runtime_path("epan", name), "source": runtime_source("epan", name)}
+def _shared(name: str) -> str:
+    return runtime_section("epan", f"common/{name}")
 
 
-def _joined(prefix: str, suffix: str) -> list[dict]:
-    """The interface's runtime files with this suffix (runtime/epan/<name>_*), the state before the
-    dissector that uses it."""
-    names = sorted(p.name for p in (RUNTIME_FOLDER / "epan").glob(f"{prefix}_*{suffix}"))
+def _joined(prefix: str, suffix: str) -> list[str]:
+    """The interface's runtime files with this suffix (runtime/epan/typed_messages/<name>_*), the
+    state before the dissector that uses it."""
+    names = sorted(p.name for p in (RUNTIME_FOLDER / "epan" / "typed_messages").glob(f"{prefix}_*{suffix}"))
     names.sort(key=lambda n: (not n.endswith("_state.c"), n))
-    return [{"path": runtime_path("epan", n), "source": runtime_source("epan", n)} for n in names]
+    return [runtime_section("epan", f"typed_messages/{n}") for n in names]

@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
-from ...emit import environment, runtime_path, runtime_source
+from ...emit import environment, runtime_section
 from ...lang import lua as lang
 from ...wrap import spread
 from .dissector import TYPE_CODES, Dissector, Field, Step, dissector
@@ -98,7 +98,7 @@ def view(d: Dissector) -> dict:
         "max_pending": interface.max_pending_setups,
         "codes": d.plan.codes,
         "undocumented": [{"code": u.code, "name": u.name, "label": u.label} for u in interface.undocumented],
-        "runtime": [{"path": runtime_path("lua", n), "source": runtime_source("lua", n)} for n in RUNTIME],
+        "runtime": [runtime_section("lua", n) for n in RUNTIME],
     }
 
 

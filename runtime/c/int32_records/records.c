@@ -3,49 +3,16 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
-#define I32R_PRIVATE /* compiled on its own, the functions are exported to its tests */
+#include "../common/macros.h"
+#include "../common/buffer.h"
+#include "../common/loads.h"
 /* </standalone> */
-/* ---- int32 records: loads, the JSON writer, scaled numbers as Python's repr writes them ------ */
-/* Every function is private: each interface of this kind joins its own copy. */
-#ifndef I32R_PRIVATE
-#define I32R_PRIVATE static
-#endif
-
-I32R_PRIVATE int32_t i32r_load(const uint8_t *p)
-{
-    uint32_t u = (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | (uint32_t)p[3];
-    /* two's complement, without an implementation-defined cast */
-    return u <= 0x7FFFFFFFu ? (int32_t)u : -(int32_t)(~u) - 1;
-}
-
-/* A JSON line in the caller's buffer; len counts what did not fit too. */
-typedef struct i32r_out {
-    char *buf;
-    size_t cap, len;
-} i32r_out;
-
-I32R_PRIVATE void i32r_bytes(i32r_out *o, const char *p, size_t n)
-{
-    size_t room = o->cap > o->len + 1 ? o->cap - o->len - 1 : 0;
-    if (room > 0)
-        memcpy(o->buf + o->len, p, n < room ? n : room);
-    o->len += n;
-}
-
-I32R_PRIVATE void i32r_text(i32r_out *o, const char *p)
-{
-    i32r_bytes(o, p, strlen(p));
-}
-
-I32R_PRIVATE size_t i32r_end(i32r_out *o)
-{
-    if (o->cap > 0)
-        o->buf[o->len < o->cap ? o->len : o->cap - 1] = '\0';
-    return o->len;
-}
+/* ---- int32 records: the JSON writer, scaled numbers as Python's repr writes them ------------ */
+/* Every function is private: each interface of this kind joins its own copy, after
+ * runtime/c/common/ (loads, the output buffer). */
 
 /* The decimal digits of u, most significant first, in digits[]; returns their count. */
-I32R_PRIVATE size_t i32r_digits(uint64_t u, char digits[21])
+URWIRE__PRIVATE size_t i32r_digits(uint64_t u, char digits[21])
 {
     char rev[21];
     size_t n = 0, i;
@@ -58,26 +25,26 @@ I32R_PRIVATE size_t i32r_digits(uint64_t u, char digits[21])
     return n;
 }
 
-I32R_PRIVATE void i32r_int(i32r_out *o, int64_t v)
+URWIRE__PRIVATE void i32r_int(urwire__text *o, int64_t v)
 {
     char digits[21];
     uint64_t u = v < 0 ? (uint64_t)(-(v + 1)) + 1u : (uint64_t)v;
     if (v < 0)
-        i32r_bytes(o, "-", 1);
-    i32r_bytes(o, digits, i32r_digits(u, digits));
+        urwire__bytes(o, "-", 1);
+    urwire__bytes(o, digits, i32r_digits(u, digits));
 }
 
 /* raw / 10^decimals as Python's repr() writes the double nearest it: the exact decimal is the
  * shortest text that reads back (values of 10 digits at most are 1e-6 apart, far more than an
  * ulp), in fixed notation with at least one decimal, or as 1.5e-05 below 1e-4. */
-I32R_PRIVATE void i32r_scaled(i32r_out *o, int32_t raw, unsigned decimals)
+URWIRE__PRIVATE void i32r_scaled(urwire__text *o, int32_t raw, unsigned decimals)
 {
     char digits[21], text[48];
     uint64_t u = raw < 0 ? (uint64_t)(-(int64_t)raw) : (uint64_t)raw;
     size_t n, sig, at = 0, i;
     long exponent;
     if (raw == 0) {
-        i32r_text(o, "0.0");
+        urwire__str(o, "0.0");
         return;
     }
     if (raw < 0)
@@ -110,27 +77,27 @@ I32R_PRIVATE void i32r_scaled(i32r_out *o, int32_t raw, unsigned decimals)
         for (i = whole; i < end; i++)
             text[at++] = i < n ? digits[i] : '0';
     }
-    i32r_bytes(o, text, at);
+    urwire__bytes(o, text, at);
 }
 
-I32R_PRIVATE size_t i32r_fault(uint64_t offset, size_t left, size_t size, bool from_robot, char *out,
+URWIRE__PRIVATE size_t i32r_fault(uint64_t offset, size_t left, size_t size, bool from_robot, char *out,
                                 size_t cap)
 {
-    i32r_out o;
-    o.buf = out;
+    urwire__text o;
+    o.out = out;
     o.cap = cap;
-    o.len = 0;
-    i32r_text(&o, "{\"type\": \"error\", \"offset\": ");
+    o.n = 0;
+    urwire__str(&o, "{\"type\": \"error\", \"offset\": ");
     i32r_int(&o, (int64_t)offset);
-    i32r_text(&o, ", \"error\": \"");
+    urwire__str(&o, ", \"error\": \"");
     i32r_int(&o, (int64_t)left);
     if (size == 0) {
-        i32r_text(&o, from_robot ? " bytes from the robot, where none are specified\"}"
+        urwire__str(&o, from_robot ? " bytes from the robot, where none are specified\"}"
                                  : " bytes to the robot, where none are specified\"}");
     } else {
-        i32r_text(&o, " bytes left, short of a ");
+        urwire__str(&o, " bytes left, short of a ");
         i32r_int(&o, (int64_t)size);
-        i32r_text(&o, "-byte record\"}");
+        urwire__str(&o, "-byte record\"}");
     }
-    return i32r_end(&o);
+    return urwire__end(&o);
 }

@@ -1,27 +1,11 @@
 /* <standalone> */
 #include <string.h>
+#include "../common/macros.h"
+#include "../common/buffer.h"
+#include "match.h"
 #include "lines.h"
-extern const lines_command_spec lines_commands[];
 /* </standalone> */
 /* ---- canonical JSON of a record (docs/canonical-json.md) ---------------------------------- */
-
-typedef struct lines_out {
-    char *buf;
-    size_t cap, len;          /* len counts what did not fit too */
-} lines_out;
-
-static void out_bytes(lines_out *o, const char *p, size_t n)
-{
-    size_t room = o->cap > o->len + 1 ? o->cap - o->len - 1 : 0;
-    if (room > 0)
-        memcpy(o->buf + o->len, p, n < room ? n : room);
-    o->len += n;
-}
-
-static void out_text(lines_out *o, const char *p)
-{
-    out_bytes(o, p, strlen(p));
-}
 
 /* Length of the valid UTF-8 sequence at p (1..4), or 0 with *bad set to the length of the
  * maximal subpart that one U+FFFD replaces, as Python's bytes.decode("utf-8", "replace"). */
@@ -55,56 +39,56 @@ static size_t utf8_sequence(const uint8_t *p, size_t n, size_t *bad)
 }
 
 /* Bytes as a JSON string, escaped as Python's json module does with ensure_ascii=False. */
-static void out_string(lines_out *o, lines_view v)
+static void out_string(urwire__text *o, lines_view v)
 {
     static const char hex[] = "0123456789abcdef";
     size_t i = 0, len, bad;
-    out_bytes(o, "\"", 1);
+    urwire__bytes(o, "\"", 1);
     while (i < v.len) {
         uint8_t ch = v.ptr[i];
         if (ch >= 0x80) {
             bad = 0;
             len = utf8_sequence(v.ptr + i, v.len - i, &bad);
             if (len) {
-                out_bytes(o, (const char *)v.ptr + i, len);
+                urwire__bytes(o, (const char *)v.ptr + i, len);
                 i += len;
             } else {
-                out_bytes(o, "\xEF\xBF\xBD", 3);
+                urwire__bytes(o, "\xEF\xBF\xBD", 3);
                 i += bad;
             }
             continue;
         }
         switch (ch) {
-        case '"': out_bytes(o, "\\\"", 2); break;
-        case '\\': out_bytes(o, "\\\\", 2); break;
-        case '\n': out_bytes(o, "\\n", 2); break;
-        case '\r': out_bytes(o, "\\r", 2); break;
-        case '\t': out_bytes(o, "\\t", 2); break;
-        case '\b': out_bytes(o, "\\b", 2); break;
-        case '\f': out_bytes(o, "\\f", 2); break;
+        case '"': urwire__bytes(o, "\\\"", 2); break;
+        case '\\': urwire__bytes(o, "\\\\", 2); break;
+        case '\n': urwire__bytes(o, "\\n", 2); break;
+        case '\r': urwire__bytes(o, "\\r", 2); break;
+        case '\t': urwire__bytes(o, "\\t", 2); break;
+        case '\b': urwire__bytes(o, "\\b", 2); break;
+        case '\f': urwire__bytes(o, "\\f", 2); break;
         default:
             if (ch < 0x20) {
                 char u[6] = {'\\', 'u', '0', '0', hex[ch >> 4], hex[ch & 15]};
-                out_bytes(o, u, sizeof u);
+                urwire__bytes(o, u, sizeof u);
             } else {
-                out_bytes(o, (const char *)&ch, 1);
+                urwire__bytes(o, (const char *)&ch, 1);
             }
         }
         i++;
     }
-    out_bytes(o, "\"", 1);
+    urwire__bytes(o, "\"", 1);
 }
 
-static void out_name(lines_out *o, const char *key, const char *name)
+static void out_name(urwire__text *o, const char *key, const char *name)
 {
     lines_view v;
     v.ptr = (const uint8_t *)name;
     v.len = strlen(name);
-    out_text(o, key);
+    urwire__str(o, key);
     out_string(o, v);
 }
 
-static void out_number(lines_out *o, uint64_t n)
+static void out_number(urwire__text *o, uint64_t n)
 {
     char digits[21];
     size_t at = sizeof digits;
@@ -112,59 +96,59 @@ static void out_number(lines_out *o, uint64_t n)
         digits[--at] = (char)('0' + (int)(n % 10u));
         n /= 10u;
     } while (n);
-    out_bytes(o, digits + at, sizeof digits - at);
+    urwire__bytes(o, digits + at, sizeof digits - at);
 }
 
-size_t lines_json(const lines_record *rec, char *out, size_t cap)
+/* The record as a line of canonical JSON (no newline) in out, NUL-terminated when cap > 0.
+ * Returns its length; when that is cap or more, out holds its first cap - 1 bytes. */
+URWIRE__PRIVATE size_t lines_json(const lines_spec_t *spec, const lines_record *rec, char *out, size_t cap)
 {
-    lines_out o;
-    o.buf = out;
+    urwire__text o;
+    o.out = out;
     o.cap = cap;
-    o.len = 0;
+    o.n = 0;
     if (rec->type == LINES_FAULT) {
-        out_text(&o, "{\"type\": \"error\", \"offset\": ");
+        urwire__str(&o, "{\"type\": \"error\", \"offset\": ");
         out_number(&o, rec->offset);
         if (rec->fault == LINES_LINE_TOO_LONG) {
-            out_text(&o, ", \"error\": \"line longer than ");
-            out_number(&o, LINES_MAX_LINE);
-            out_text(&o, " bytes\"}");
+            urwire__str(&o, ", \"error\": \"line longer than ");
+            out_number(&o, spec->max_line);
+            urwire__str(&o, " bytes\"}");
         } else {
-            out_text(&o, ", \"error\": \"");
+            urwire__str(&o, ", \"error\": \"");
             out_number(&o, rec->bytes);
-            out_text(&o, " bytes without a newline at the end of the stream\"}");
+            urwire__str(&o, " bytes without a newline at the end of the stream\"}");
         }
     } else if (rec->type == LINES_COMMAND) {
-        out_text(&o, "{\"type\": \"command\", \"command\": ");
+        urwire__str(&o, "{\"type\": \"command\", \"command\": ");
         out_string(&o, rec->text);
         if (rec->command_name != LINES_NONE)
-            out_name(&o, ", \"command_name\": ", lines_commands[rec->command_name].name);
+            out_name(&o, ", \"command_name\": ", spec->commands[rec->command_name].name);
         if (rec->has_argument) {
-            out_text(&o, ", \"argument\": ");
+            urwire__str(&o, ", \"argument\": ");
             out_string(&o, rec->argument);
         }
         if (rec->available >= 0)
-            out_text(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
+            urwire__str(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
         if (rec->not_kept) {
-            out_text(&o, ", \"error\": \"command not kept: more than ");
+            urwire__str(&o, ", \"error\": \"command not kept: more than ");
             out_number(&o, rec->kept);
-            out_text(&o, " commands awaited replies\"");
+            urwire__str(&o, " commands awaited replies\"");
         }
-        out_text(&o, "}");
+        urwire__str(&o, "}");
     } else {
-        out_text(&o, "{\"type\": \"reply\", \"reply\": ");
+        urwire__str(&o, "{\"type\": \"reply\", \"reply\": ");
         out_string(&o, rec->text);
         if (rec->command_name != LINES_NONE)
-            out_name(&o, ", \"command_name\": ", lines_commands[rec->command_name].name);
+            out_name(&o, ", \"command_name\": ", spec->commands[rec->command_name].name);
         if (rec->reply_name != NULL)
             out_name(&o, ", \"reply_name\": ", rec->reply_name->name);
         if (rec->not_kept) {
-            out_text(&o, ", \"error\": \"reply to a command that was not kept: more than ");
+            urwire__str(&o, ", \"error\": \"reply to a command that was not kept: more than ");
             out_number(&o, rec->kept);
-            out_text(&o, " commands awaited replies\"}");
+            urwire__str(&o, " commands awaited replies\"}");
         } else
-            out_text(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
+            urwire__str(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
     }
-    if (cap > 0)
-        out[o.len < cap ? o.len : cap - 1] = '\0';
-    return o.len;
+    return urwire__end(&o);
 }

@@ -1,6 +1,6 @@
 /* <standalone> */
 #include "ur_realtime_runtime_spec.h"
-#include "ur_realtime_loads.h"
+#include "../common/loads.h"
 /* </standalone> */
 /* Framing and decoding of one real-time packet: the size field checked, the layout chosen by the
  * spec's same_size rule over the generated forms table, then the layout's generated decoder. */
@@ -29,7 +29,7 @@ ur_realtime_error ur_realtime_frame(const uint8_t *buf, size_t len, int32_t *siz
     int32_t declared;
     if (len < UR_REALTIME_SIZE_FIELD_BYTES)
         return UR_REALTIME_E_SHORT;
-    declared = ur_realtime__i32(buf);
+    declared = urwire__i32(buf);
     *size = declared;
     if (declared < UR_REALTIME_MIN_MESSAGE_SIZE)
         return UR_REALTIME_E_SIZE_BELOW;

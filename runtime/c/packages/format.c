@@ -21,13 +21,6 @@ URWIRE__PRIVATE size_t urwire__digits(char *buf, int64_t v)
     return k;
 }
 
-URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s)
-{
-    for (; *s; s++, t->n++)
-        if (t->n + 1 < t->cap)
-            t->out[t->n] = *s;
-}
-
 URWIRE__PRIVATE void urwire__num(urwire__text *t, int64_t v)
 {
     char buf[24];

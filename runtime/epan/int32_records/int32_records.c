@@ -14,7 +14,7 @@
 #include <epan/prefs.h>
 #include <epan/dissectors/packet-tcp.h>
 #include "int32_records_types.h"
-#include "dotted_version.c"
+#include "../../c/common/version_text.c"
 #define INT32_RECORDS_NAME "ur_reverse"
 #define INT32_RECORDS_COLUMN "UR reverse"
 #define INT32_RECORDS_DEFAULT_RELEASE 2014000
@@ -37,11 +37,12 @@ static guint32 int32_records_release = INT32_RECORDS_DEFAULT_RELEASE;
  * for text that is not a release. */
 static guint32 int32_records_parse_release(const char *text)
 {
-    double part[3], number;
+    urwire__version_text v;
+    double number;
 
-    if (!dotted_version_parts(text, part))
+    if (text == NULL || !urwire__read_version(text, text + strlen(text), true, false, &v))
         return INT32_RECORDS_DEFAULT_RELEASE;
-    number = (part[0] * 1000 + part[1]) * 1000 + part[2];
+    number = ((double)v.part[0] * 1000 + (double)v.part[1]) * 1000 + (double)v.part[2];
     return number < G_MAXUINT32 ? (guint32)number : G_MAXUINT32;
 }
 

@@ -34,41 +34,17 @@ URWIRE__PRIVATE size_t urwire__table_index(urwire_sw_version v, const urwire__ve
     return count - 1;
 }
 
-static bool urwire__is_space(char c)
-{
-    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
-}
-
 bool urwire_parse_version(const char *text, urwire_sw_version *out)
 {
-    /* As Python's urwire.parse_version: "major.minor" or "major.minor.bugfix", every part
-     * digits. */
-    long parts[3] = {0, 0, 0};
-    size_t len = strlen(text), start = 0, i, nparts = 0, digits = 0;
-    while (start < len && urwire__is_space(text[start]))
-        start++;
-    while (len > start && urwire__is_space(text[len - 1]))
-        len--;
-    for (i = start; i <= len; i++) {
-        if (i == len || text[i] == '.') {
-            if (digits == 0 || nparts == 3)
-                return false;
-            nparts++;
-            digits = 0;
-        } else if (text[i] >= '0' && text[i] <= '9') {
-            if (++digits > 6)
-                return false;  /* no real version has such parts; keeps the ints small */
-            if (nparts < 3)
-                parts[nparts] = parts[nparts] * 10 + (text[i] - '0');
-        } else {
-            return false;
-        }
-    }
-    if (nparts < 2)
+    /* As Python's urwire.parse_version: "major.minor" or "major.minor.bugfix", blanks around it
+     * (C's isspace), every part 1 to 6 digits (no real version has more; it keeps the ints small),
+     * and no dot without a number after it. */
+    urwire__version_text v;
+    if (!urwire__read_version(text, text + strlen(text), true, true, &v) || v.dot_after || v.longest > 6)
         return false;
-    out->major = (int)parts[0];
-    out->minor = (int)parts[1];
-    out->bugfix = (int)parts[2];
+    out->major = (int)v.part[0];
+    out->minor = (int)v.part[1];
+    out->bugfix = (int)v.part[2];
     out->assumed = false;
     return true;
 }

@@ -17,33 +17,18 @@ ur_version_number(guint32 major, guint32 minor, gint64 bugfix)
     return (major * 1000 + minor) * 1000 + (guint32)bugfix;
 }
 
-/* "5.9" -> 5009000, "5.25.1" -> 5025001 (leading spaces allowed); UR_VERSION_NONE when the text
- * is no version. */
+/* "5.9" -> 5009000, "5.25.1" -> 5025001 (leading blanks allowed, and any text after the version:
+ * runtime/c/common/version_text.c); UR_VERSION_NONE when the text is no version. */
 static guint32
 ur_parse_version(const char *text)
 {
-    guint64 part[3] = { 0, 0, 0 };
-    const char *p = text;
-    if (p == NULL)
+    urwire__version_text t;
+    uint64_t *part = t.part;
+    if (text == NULL || !urwire__read_version(text, text + strlen(text), false, false, &t))
         return UR_VERSION_NONE;
-    while (g_ascii_isspace(*p))
-        p++;
     for (unsigned i = 0; i < 3; i++) {
-        if (i > 0) {
-            if (*p != '.' || !g_ascii_isdigit(p[1])) {
-                if (i < 2)
-                    return UR_VERSION_NONE;
-                break;
-            }
-            p++;
-        }
-        if (!g_ascii_isdigit(*p))
-            return UR_VERSION_NONE;
-        while (g_ascii_isdigit(*p)) {
-            if (part[i] < 1000000)
-                part[i] = part[i] * 10 + (guint64)(*p - '0');
-            p++;
-        }
+        while (part[i] >= 10000000)     /* a part of eight digits or more reads as its first seven */
+            part[i] /= 10;
     }
     guint64 bugfix = part[2] > UR_BUGFIX_ANY ? UR_BUGFIX_ANY : part[2];
     guint64 v = (part[0] * 1000 + part[1]) * 1000 + bugfix;

@@ -7,13 +7,12 @@
 URWIRE__PRIVATE bool urwire__read_prefixed(const uint8_t *msg, size_t *at, size_t end, size_t size, bool is_signed,
                                            const char *path, urwire_bytes *out, urwire_error *err)
 {
-    size_t pos = *at, k;
-    uint64_t raw = 0;
+    size_t pos = *at;
+    uint64_t raw;
     int64_t n;
     if (end - pos < size)
         return urwire__short(err, path, pos, size, end);
-    for (k = 0; k < size; k++)
-        raw = raw << 8 | msg[pos + k];
+    raw = urwire__uint(msg + pos, size);
     n = (int64_t)raw;
     if (is_signed && (raw >> (size * 8 - 1)) & 1u)
         n = (int64_t)(raw | ~(uint64_t)0 << (size * 8 - 1));

@@ -2,6 +2,9 @@
 #ifndef URWIRE_RUNTIME_PRIVATE_H
 #define URWIRE_RUNTIME_PRIVATE_H
 #include <string.h>
+#include "macros.h"
+#include "buffer.h"
+#include "version_text.h"
 #include "runtime_spec.h"
 #include "value.h"
 #include "visitor.h"
@@ -16,24 +19,7 @@ typedef struct urwire__versions {
     urwire_sw_version high;
 } urwire__versions;
 
-/* Private functions live in urwire.c alone. */
-#define URWIRE__PRIVATE static
-/* <standalone> */
-#undef URWIRE__PRIVATE
-#define URWIRE__PRIVATE /* a runtime file compiled on its own exports them to its unit tests */
-/* </standalone> */
-
 #define URWIRE__COUNT(a) (sizeof(a) / sizeof((a)[0]))
-
-/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
- * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
- * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
- * unused static inline function, clang does in a .c file unless told `unused`). */
-#if defined(__GNUC__)
-#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
-#else
-#define URWIRE__INLINE static inline
-#endif
 
 /* Tests that the robot-state fast path passes (or fails) almost always: gcc and clang then lay
  * that path out straight, with no jump taken (a few ns per robot state). */
@@ -253,13 +239,6 @@ typedef struct urwire__value_table {
     size_t min_size;                /* the fewest bytes a value takes: bounds LIST/MATRIX counts */
 } urwire__value_table;
 
-/* Text written into a caller's buffer, cut to fit; n counts what did not fit too. */
-typedef struct urwire__text {
-    char *out;
-    size_t cap;
-    size_t n;
-} urwire__text;
-
 /* ---- the runtime's functions that other files call, file by file ---- */
 /* (A helper that only its own file calls is static there.) */
 
@@ -273,7 +252,6 @@ URWIRE__PRIVATE bool urwire__in_versions(urwire_sw_version v, const urwire__vers
 URWIRE__PRIVATE size_t urwire__table_index(urwire_sw_version v, const urwire__versions *ranges, size_t count);
 /* format.c */
 URWIRE__PRIVATE size_t urwire__digits(char *buf, int64_t v);
-URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s);
 URWIRE__PRIVATE void urwire__num(urwire__text *t, int64_t v);
 URWIRE__PRIVATE void urwire__hex2(urwire__text *t, int64_t v);
 /* errors.c */

@@ -5,7 +5,7 @@
 #include <epan/conversation.h>
 #include <epan/expert.h>
 #include <epan/proto_data.h>
-#include "lines_match.c"
+#include "match.c"
 static int proto_lines = -1;
 static int hf_lines_command = -1, hf_lines_command_name = -1, hf_lines_argument = -1, hf_lines_available = -1;
 static int hf_lines_reply = -1, hf_lines_reply_name = -1, hf_lines_error = -1;
@@ -53,6 +53,19 @@ typedef struct lines_frame {
     bool skipping;                        /* the direction was inside a line too long when the frame came */
     wmem_tree_t *lines;                   /* lines_decision_t by offset; NULL until the first line */
 } lines_frame_t;
+
+/* The version preference ("5.11", "3.15.7", as every dissector reads it: runtime/c/common/
+ * version_text.c, a vertical tab a blank as for Lua's %s) as a lines_version(); false for text that
+ * is not a version. A major of ten digits or more is past every command's first version already,
+ * and stops there (no overflow). */
+static bool lines_parse_version(const char *text, uint64_t *version)
+{
+    urwire__version_text v;
+    if (text == NULL || !urwire__read_version(text, text + strlen(text), true, true, &v))
+        return false;
+    *version = lines_version(MIN(v.part[0], 1000000000), v.part[1], v.part[2]);
+    return true;
+}
 
 static lines_conversation_t *lines_conversation(packet_info *pinfo)
 {

@@ -113,7 +113,7 @@ rtde_error rtde_message_size(const uint8_t *buf, size_t length, size_t *size)
 {
     if (length < RTDE_HEADER_SIZE)
         return RTDE_NEED_MORE;
-    *size = (size_t)rtde__load(buf, 2);
+    *size = (size_t)urwire__uint(buf, 2);
     if (*size < RTDE_HEADER_SIZE || !rtde__known_code(buf[2]))
         return RTDE_BAD_HEADER;
     return *size > length ? RTDE_NEED_MORE : RTDE_OK;
@@ -501,10 +501,10 @@ bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
     out->count = rtde__value_types[out->type].count;
     for (k = 0; k < out->count; k++) {
         size_t n = rtde__value_types[out->type].size;
-        uint64_t bits = rtde__load(p + k * n, n);
+        uint64_t bits = urwire__uint(p + k * n, n);
         switch (rtde__value_types[out->type].kind) {
         case 'f':
-            out->item[k].f64 = rtde__as_f64(bits);
+            out->item[k].f64 = urwire__f64_of(bits);
             break;
         case 'i':
             out->item[k].i64 = rtde__as_i32(bits);

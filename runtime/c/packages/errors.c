@@ -231,7 +231,5 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         urwire__str(&t, ")");
         break;
     }
-    if (cap)
-        out[t.n < cap ? t.n : cap - 1] = '\0';
-    return t.n;
+    return urwire__end(&t);
 }

@@ -1,15 +1,17 @@
 /* <standalone> */
 #ifndef URWIRE_RUNTIME_LOADS_H
 #define URWIRE_RUNTIME_LOADS_H
+#include <stddef.h>
 #include <stdint.h>
 #include <string.h>
-#include "private.h"
+#include "macros.h"
 /* </standalone> */
 /* ---- big-endian loads and stores ---------------------------------------------------------- */
 
-/* Every field is read with memcpy into an integer (one unaligned load) and a byte swap built of
- * shifts, which compilers fold into one instruction. They must be inlined to be fast (see
- * URWIRE__INLINE in private.h). */
+/* The one set of big-endian loads of the C runtime: every kind's generated C joins it, and the C
+ * command includes it. Every field is read with memcpy into an integer (one unaligned load) and
+ * a byte swap built of shifts, which compilers fold into one instruction. They must be inlined to
+ * be fast (see URWIRE__INLINE in macros.h). The caller has checked that the bytes are there. */
 
 /* The host's byte order, a constant once optimised: 1 on a big-endian machine. */
 URWIRE__INLINE int urwire__host_is_big_endian(void)
@@ -64,6 +66,17 @@ URWIRE__INLINE uint64_t urwire__u64(const uint8_t *p)
     return urwire__from_be64(v);
 }
 
+/* n bytes (1 to 8, known when inlined) as an unsigned integer: a length prefix or a value of a
+ * width read from a table. */
+URWIRE__INLINE uint64_t urwire__uint(const uint8_t *p, size_t n)
+{
+    uint64_t v = 0;
+    size_t i;
+    for (i = 0; i < n; i++)
+        v = v << 8 | p[i];
+    return v;
+}
+
 URWIRE__INLINE int16_t urwire__i16(const uint8_t *p) { return (int16_t)urwire__u16(p); }
 URWIRE__INLINE int32_t urwire__i32(const uint8_t *p) { return (int32_t)urwire__u32(p); }
 URWIRE__INLINE int64_t urwire__i64(const uint8_t *p) { return (int64_t)urwire__u64(p); }
@@ -77,12 +90,25 @@ URWIRE__INLINE float urwire__f32(const uint8_t *p)
     return f;
 }
 
-URWIRE__INLINE double urwire__f64(const uint8_t *p)
+/* A double from its bit pattern, NaN payloads included. */
+URWIRE__INLINE double urwire__f64_of(uint64_t bits)
 {
-    uint64_t bits = urwire__u64(p);
     double d;
     memcpy(&d, &bits, sizeof d);
     return d;
+}
+
+URWIRE__INLINE double urwire__f64(const uint8_t *p)
+{
+    return urwire__f64_of(urwire__u64(p));
+}
+
+/* count doubles in a row into out. */
+URWIRE__INLINE void urwire__f64s(double *out, const uint8_t *p, size_t count)
+{
+    size_t i;
+    for (i = 0; i < count; i++)
+        out[i] = urwire__f64(p + 8 * i);
 }
 
 URWIRE__INLINE void urwire__put_u8(uint8_t *p, uint8_t v) { p[0] = v; }

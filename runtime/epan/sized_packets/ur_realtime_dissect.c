@@ -15,7 +15,7 @@
 #include <epan/proto_data.h>
 #include <epan/dissectors/packet-tcp.h>
 #include "ur_realtime_types.h"
-#include "dotted_version.c"
+#include "../../c/common/version_text.c"
 #define UR_REALTIME_SIZE_BYTES 4
 #define UR_REALTIME_MIN_SIZE 12
 #define UR_REALTIME_MAX_SIZE 12200
@@ -50,11 +50,11 @@ static double ur_realtime_version;
  * 999 counts as 999); FALSE for text that is not a version. */
 static gboolean ur_realtime_parse_version(const char *text, double *number)
 {
-    double part[3];
+    urwire__version_text v;
 
-    if (!dotted_version_parts(text, part))
+    if (text == NULL || !urwire__read_version(text, text + strlen(text), true, false, &v))
         return FALSE;
-    *number = (part[0] * 1000 + part[1]) * 1000 + MIN(part[2], 999);
+    *number = ((double)v.part[0] * 1000 + (double)v.part[1]) * 1000 + (double)MIN(v.part[2], 999);
     return TRUE;
 }
 

@@ -17,18 +17,9 @@ static bool rtde__need(rtde__reader *r, size_t n, const char *field)
     return true;
 }
 
-static uint64_t rtde__load(const uint8_t *p, size_t n)
-{
-    uint64_t v = 0;
-    size_t i;
-    for (i = 0; i < n; i++)
-        v = (v << 8) | p[i];
-    return v;
-}
-
 static uint64_t rtde__take(rtde__reader *r, size_t n)
 {
-    uint64_t v = rtde__load(r->buf + r->pos, n);
+    uint64_t v = urwire__uint(r->buf + r->pos, n);
     r->pos += n;
     return v;
 }
@@ -38,13 +29,6 @@ static int32_t rtde__as_i32(uint64_t u)
 {
     uint32_t v = (uint32_t)u;
     return v >= 0x80000000u ? -(int32_t)(0xffffffffu - v) - 1 : (int32_t)v;
-}
-
-static double rtde__as_f64(uint64_t bits)
-{
-    double d;
-    memcpy(&d, &bits, sizeof d);
-    return d;
 }
 
 static bool rtde__prefixed_text(rtde__reader *r, size_t prefix, rtde_text *out, const char *field)
