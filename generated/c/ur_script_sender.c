@@ -183,7 +183,7 @@ URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, boo
  * line is, which reply a line is (the common replies first, then the command's own), whether a
  * software version has a command, and the version a version reply tells. Pure functions of the
  * tables and the line's bytes, the one matcher of the C library (runtime/c/lines/lines.c) and the
- * Wireshark dissector (runtime/epan/lines/lines_dissect.c); runtime/lua/lines_match.lua is their
+ * Wireshark dissector (runtime/epan/lines/lines_dissect.c); runtime/lua/lines/match.lua is their
  * twin. */
 
 /* Versions as one number: (major * 1000 + minor) * 1000 + bugfix, minor and bugfix at most 999. */

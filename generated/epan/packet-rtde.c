@@ -531,10 +531,10 @@ static const unit_name_string rtde_unit_V = { " V", NULL };
 /* ---- runtime/epan/typed_messages/rtde_types.h ---- */
 /* The shapes of the tables the generator writes for an RTDE dissector (packet-rtde.c): message
  * layouts by type code, direction and protocol version, their steps, value types and the variable
- * table. Joined into the generated file before its tables; runtime/epan/rtde_state.c and
+ * table. Joined into the generated file before its tables; runtime/epan/typed_messages/rtde_state.c and
  * rtde_dissect.c walk them. */
 
-/* What a step keeps of its value for the conversation's state (runtime/epan/rtde_state.c). */
+/* What a step keeps of its value for the conversation's state (runtime/epan/typed_messages/rtde_state.c). */
 typedef enum {
     RTDE_SLOT_NONE,
     RTDE_SLOT_PROTOCOL_VERSION,
@@ -1287,9 +1287,9 @@ tshark_fields_arguments(void)
 /* ---- runtime/epan/typed_messages/rtde_state.c ---- */
 /* RTDE's state of one conversation: the protocol version negotiated, the setup requests waiting
  * for their replies, and the recipes the replies make, per recipe kind (one kind per direction of
- * data packages). runtime/epan/rtde_dissect.c keeps one per conversation in wmem_file_scope() and
+ * data packages). runtime/epan/typed_messages/rtde_dissect.c keeps one per conversation in wmem_file_scope() and
  * calls rtde_follow on each whole message, in capture order, on the first pass: the rules of
- * runtime/lua/rtde_state.lua, so that both dissectors show the same.
+ * runtime/lua/typed_messages/state.lua, so that both dissectors show the same.
  *
  * Each protocol version and recipe keeps the message that set it and the one it replaced, so that
  * a later pass (tshark -2, the GUI) finds what was in force at any message without the first pass
@@ -1732,9 +1732,9 @@ rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *val
 /* The RTDE dissector: frames the messages of a TCP stream, shows each by its layout (chosen by type
  * code, direction and the protocol version in force), a data package's values by the variables of
  * its recipe with a link to the frame that set the recipe up, and expert infos for refused setups,
- * unknown recipes, a refused start and bad framing. The state (runtime/epan/rtde_state.c) is kept
+ * unknown recipes, a refused start and bad framing. The state (runtime/epan/typed_messages/rtde_state.c) is kept
  * per conversation on the first pass, and each message's view of it is kept for later passes and
- * the GUI. The twin of runtime/lua/rtde_dissect.lua: the same tree, Info column and experts.
+ * the GUI. The twin of runtime/lua/typed_messages/dissect.lua: the same tree, Info column and experts.
  *
  * It frames by hand rather than with tcp_dissect_pdus: a bad header (a size below the header or a
  * type code no layout has) is shown and skipped up to the next plausible header, as the Lua

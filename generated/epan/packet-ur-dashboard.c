@@ -202,7 +202,7 @@ typedef struct lines_spec {
  * line is, which reply a line is (the common replies first, then the command's own), whether a
  * software version has a command, and the version a version reply tells. Pure functions of the
  * tables and the line's bytes, the one matcher of the C library (runtime/c/lines/lines.c) and the
- * Wireshark dissector (runtime/epan/lines/lines_dissect.c); runtime/lua/lines_match.lua is their
+ * Wireshark dissector (runtime/epan/lines/lines_dissect.c); runtime/lua/lines/match.lua is their
  * twin. */
 
 /* Versions as one number: (major * 1000 + minor) * 1000 + bugfix, minor and bugfix at most 999. */
@@ -594,7 +594,7 @@ static const lines_spec_t lines_spec = {
 
 /* ---- runtime/epan/lines/lines_dissect.c ---- */
 /* A dissector of text lines (the dashboard server, the driver's script sender), the twin of
- * runtime/lua/lines_dissect.lua: lines reassembled across TCP segments, each shown as a request
+ * runtime/lua/lines/dissect.lua: lines reassembled across TCP segments, each shown as a request
  * (command) or a reply, replies paired with their requests and the software version learnt per
  * conversation, expert infos for a reply that says an error, an unknown command, a command the
  * version lacks, a line too long. The first pass decides each line (which command, which reply,

@@ -853,7 +853,7 @@ URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, boo
  * has no version message: the only state is the software-version preference, and nothing is kept
  * per conversation. Without a tree only the framing and the Info column's words are worked out.
  *
- * It is the twin of runtime/lua/ur_realtime_dissect.lua: the same fields, tree, Info column,
+ * It is the twin of runtime/lua/sized_packets/dissect.lua: the same fields, tree, Info column,
  * expert infos and preferences, so that either dissector can stand for the other. */
 
 /* The dissector's own fields and experts, beside the spec's. */

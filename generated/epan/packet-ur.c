@@ -417,7 +417,7 @@ static gboolean ur_named_fields_only = TRUE;   /* tshark -T fields: only the pac
 /* ---- runtime/epan/packages/ur_types.c ---- */
 /* The shapes of the tables generated from the spec (packet-ur.c, after this section) and walked
  * by the runtime after them: value strings by software version, field descriptors (one per field,
- * in wire order, as runtime/lua/walk.lua walks them), the forms of every type code across
+ * in wire order, as runtime/lua/packages/walk.lua walks them), the forms of every type code across
  * software versions, and the messages by type. Versions are one number,
  * (major * 1000 + minor) * 1000 + bugfix; an open bound is 0 or G_MAXUINT32. */
 /* An enum whose names depend on the software version: its table for each range. */
@@ -3273,7 +3273,7 @@ URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, boo
  * preference's text, shown back as text, tested against a range. What follows the version: the
  * value-type table and the names of an enum whose codes depend on it, and the form (layout) of a
  * package or subtype, chosen by the version or else by the length
- * (docs/contract.md#choosing-a-layout). As runtime/lua/versions.lua. */
+ * (docs/contract.md#choosing-a-layout). As runtime/lua/packages/versions.lua. */
 #define UR_BUGFIX_ANY 999   /* a bugfix number that stands for every bugfix release of its minor */
 #define UR_VERSION_NONE G_MAXUINT32  /* no version known (a Version message may announce 0.0) */
 
@@ -3486,7 +3486,7 @@ tshark_fields_arguments(void)
 
 /* ---- runtime/epan/packages/ur_wanted.c ---- */
 /* Which robot-state packages a `tshark -T fields` run needs, as the Lua twin finds them
- * (runtime/lua/wanted.lua). tshark builds the tree visible for -T fields (Wireshark 4.0 primes no
+ * (runtime/lua/packages/wanted.lua). tshark builds the tree visible for -T fields (Wireshark 4.0 primes no
  * output field), so every field counts as referenced and every package would be built to print
  * one field. The fields are named on tshark's command line (-e, -Y, -R, -z, -o): where the system
  * shows it (/proc/self/cmdline), a package is built when a field of it is named
@@ -3611,7 +3611,7 @@ ur_package_wanted(const ur_part *pk)
  * slows down long before it stops at a million items per packet. Past the cap the fields are
  * still walked, so that errors are still found, but they are counted instead of added (a NULL
  * item stands for them); the first expert info one of them is given goes to the message's item,
- * so that a malformed message still reads as one. As runtime/lua/items.lua. */
+ * so that a malformed message still reads as one. As runtime/lua/packages/items.lua. */
 typedef struct {
     packet_info *pinfo;
     tvbuff_t *tvb;              /* the message's bytes (carried-over bytes first, when there are) */
@@ -3708,7 +3708,7 @@ ur_expert(ur_msg *st, proto_item *item, expert_field *ei, const char *text)
  * tree by the function of its kind. Offsets are tvb offsets; o is where a field starts and e where
  * the layout ends. A walk returns the offset after the layout, or -1 with the canonical error text
  * in *err ("joints[2].q_actual at offset 31: needs 8 bytes, 3 left", offsets from the message's
- * first byte, as every target words it). As runtime/lua/walk.lua. */
+ * first byte, as every target words it). As runtime/lua/packages/walk.lua. */
 /* Where a field stands, for error texts only: made as the walk goes down (a group's item
  * "joints[2].", a value "variables[1][0]"), written out only when an error names it. */
 typedef struct ur_path {
@@ -4035,7 +4035,7 @@ ur_walk(ur_msg *st, proto_tree *tree, int o, int e, const ur_layout *layout, con
 /* ---- runtime/epan/packages/ur_values.c ---- */
 /* Typed values of global variables: a type byte, then its data, nested for LIST and MATRIX.
  * The meaning of a type byte depends on the software version (ur_value_tables: one table per
- * version range). As runtime/lua/values.lua. */
+ * version range). As runtime/lua/packages/values.lua. */
 /* Items that cannot fit in the bytes from o to e (each takes at least vt->min_size) are refused
  * before any is read; at is the offset of their count. */
 static const char *
@@ -4209,7 +4209,7 @@ ur_walk_values(ur_msg *st, proto_tree *tree, int o, int e, const ur_desc *d, con
 /* ---- runtime/epan/packages/ur_info.c ---- */
 /* The Info column. It is written on every pass, tree or not, so it reads the bytes and builds no
  * tree: the descriptors marked `show` of a layout (a message's, or a robot-state package's whose
- * layout has a summary). As runtime/lua/info.lua. */
+ * layout has a summary). As runtime/lua/packages/info.lua. */
 /* A text field's bytes into the Info text as the Lua twin puts them there: UTF-8 with invalid
  * bytes replaced, cut at as many bytes as the field has (Wireshark's TvbRange:string keeps that
  * many bytes of the converted text), NUL bytes kept (the column then ends at the first). */
@@ -4418,7 +4418,7 @@ ur_labelled(wmem_allocator_t *pool, const char *label, const wmem_strbuf_t *text
  * dissected: packages (a list of sub-packages, each framed by its own length: robot state),
  * subtypes (a header, then a subtype byte that chooses the layout of the rest) and body (one
  * layout right after the message header: message types 5, 22, 23, 24). Each kind has an Info
- * text (from the bytes; NULL when no column is built) and a tree. As runtime/lua/messages.lua. */
+ * text (from the bytes; NULL when no column is built) and a tree. As runtime/lua/packages/messages.lua. */
 /* The body of a package or message from body to stop, walked with its layout for version v; what
  * cannot be read is kept raw, what is left over is shown as extra bytes, each with its expert. */
 static void
@@ -4708,7 +4708,7 @@ ur_message_tree(ur_msg *st, const ur_message *m, proto_item *item, int o, int e)
  * kept only where it changes: a frame in which some call starts with another state than the call
  * before it keeps a snapshot per call (frame data); a frame that keeps nothing starts with the
  * state the last call of the last kept frame before it started with (a tree by frame number). A
- * capture in step costs memory per conversation, not per frame. As runtime/lua/stream.lua. */
+ * capture in step costs memory per conversation, not per frame. As runtime/lua/packages/stream.lua. */
 /* Bytes carried over by hand while a stream is out of step with TCP reassembly: only appended
  * to, so its first k bytes, where a call started, stay the same for later passes. */
 typedef struct {
@@ -4879,7 +4879,7 @@ ur_stream_save(packet_info *pinfo, guint32 version, const char *implied, gboolea
  * for more bytes itself (desegment_offset/len) rather than through tcp_dissect_pdus: once a call
  * has met a bad header the rest of the stream is carried by hand until it is back in step, as
  * the Lua dissector does, so that every pass hands the same bytes and shows the same fault.
- * As runtime/lua/framing.lua. */
+ * As runtime/lua/packages/framing.lua. */
 static guint32 ur_pref_version = UR_VERSION_NONE;   /* the ur.version preference, parsed */
 
 /* The call being dissected: the stream's version (UR_VERSION_NONE: none yet) and, when the

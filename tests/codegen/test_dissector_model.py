@@ -35,7 +35,7 @@ def test_every_field_is_one_protofield_and_one_hf_entry(planned, model):
     spec = [f.filter for f in model.fields]
     own = [f.filter for f in model.own_fields]
     assert len(set(spec)) == len(spec)
-    # The own fields come last in both: Lua's from runtime/lua/declare.lua, joined after the tables.
+    # The own fields come last in both: Lua's from runtime/lua/packages/declare.lua, joined after the tables.
     assert lua_filters == spec + own
     assert c_filters == spec + own
 

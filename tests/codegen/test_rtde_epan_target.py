@@ -25,7 +25,7 @@ def _table(source: str, name: str) -> str:
 
 
 def test_the_variable_table_is_sorted_as_the_binary_search_compares():
-    """runtime/epan/rtde_state.c finds a recipe's names by a binary search over memcmp: the table
+    """runtime/epan/typed_messages/rtde_state.c finds a recipe's names by a binary search over memcmp: the table
     must be in byte order, hold every variable once, and each row name its own field."""
     source = rendered()
     rows = re.findall(r'\{ "([^"]+)", RTDE_HF_([A-Z0-9_]+), ', _table(source, "rtde_variables"))

@@ -23,7 +23,7 @@ from ...naming import words
 from . import model, plan
 from .naming import layout_label, table_suffix, wireshark_field
 
-# The most tree items one message shows in Wireshark (runtime/lua/items.lua, runtime/epan/ur_items.c);
+# The most tree items one message shows in Wireshark (runtime/lua/packages/items.lua, runtime/epan/packages/ur_items.c);
 # an expert note says how many more it holds. Wireshark itself stops a packet at a million items.
 MAX_TREE_ITEMS = 10_000
 
@@ -81,7 +81,7 @@ class Field:
 
 
 # The dissector's own fields and expert infos, after the spec's: the Lua dissector declares the
-# same in runtime/lua/declare.lua, in the same order. No spec field may take their filter names.
+# same in runtime/lua/packages/declare.lua, in the same order. No spec field may take their filter names.
 OWN_FIELDS = [
     Field("raw", "bytes", "ur.raw", "Raw",
           "Bytes kept whole: a type the spec does not lay out, or a part that could not be read."),
@@ -437,7 +437,7 @@ def version_number(v: Optional[ir.Version]) -> Optional[int]:
 
 
 # Descriptor kinds the Info column can step over on its way to a summary field, and the kinds it
-# can show (runtime/lua/info.lua, runtime/epan/ur_info.c).
+# can show (runtime/lua/packages/info.lua, runtime/epan/packages/ur_info.c).
 STEPS_OVER = {"scalar", "bits", "array", "pstring", "string"}
 SHOWS = {"scalar", "bits", "pstring", "string"}
 SCALAR_SHAPES = {"integer", "float", "bool"}
@@ -668,7 +668,7 @@ class _Builder:
         return unique
 
     def check_summary(self, layout: model.Layout, descriptors: list[AnyDescriptor], show: dict) -> None:
-        """The Info column reads a summary from the raw bytes (runtime/lua/info.lua): each field must
+        """The Info column reads a summary from the raw bytes (runtime/lua/packages/info.lua): each field must
         be one it can show, after fields it can step over (fixed ones, texts, version-gated parts)."""
         missing = set(show)
 

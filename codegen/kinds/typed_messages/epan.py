@@ -6,7 +6,7 @@ with the hand-written runtime of runtime/epan/<name>_*.{h,c} joined in (each sec
 It is the twin of the Lua target (lua.py): both render one dissector model, so the protocol, fields,
 labels, types and steps are the same. What is C's is decided here: each field's FT_ type, base and
 value string, the unit strings, each message layout's steps as table rows, and what each message means
-to the conversation's state (its role, read by runtime/epan/rtde_state.c as runtime/lua/rtde_state.lua
+to the conversation's state (its role, read by runtime/epan/typed_messages/rtde_state.c as runtime/lua/typed_messages/state.lua
 reads the names)."""
 from __future__ import annotations
 
@@ -23,19 +23,19 @@ FIELD_TYPES = {"bool": "FT_BOOLEAN", "int8": "FT_INT8", "uint8": "FT_UINT8", "in
                "uint16": "FT_UINT16", "int32": "FT_INT32", "uint32": "FT_UINT32", "int64": "FT_INT64",
                "uint64": "FT_UINT64", "float32": "FT_FLOAT", "float64": "FT_DOUBLE", "string": "FT_STRING",
                "framenum": "FT_FRAMENUM", "bytes": "FT_BYTES"}
-# Scalars the state may read (runtime/epan/rtde_dissect.c reads 1, 2 or 4 bytes as an integer), as
+# Scalars the state may read (runtime/epan/typed_messages/rtde_dissect.c reads 1, 2 or 4 bytes as an integer), as
 # the Lua runtime keeps the values it reads with uint() and int().
 INTEGER_SCALARS = ("bool", "int8", "uint8", "int16", "uint16", "int32", "uint32")
 # Units are the dissector's own unit_name_strings, with the space before the unit that the Lua
 # field's unit text has: Wireshark 4.0 writes its own (units_volt: "V") right after the value ("24V").
-# A double's unit is appended to its item's text instead (runtime/epan/rtde_dissect.c), as the Lua
+# A double's unit is appended to its item's text instead (runtime/epan/typed_messages/rtde_dissect.c), as the Lua
 # dissector does: 4.0 shows no unit string for FT_DOUBLE.
 # Runtime files the dissector shares with others, joined before its own: tshark_fields.c tells a
 # tshark -T fields run, where no item's label is printed. The upstream copy (Wireshark's own tree)
 # reads no command line: tshark_fields_upstream.c tells no run, so every label is whole.
 SHARED_CODE = ("tshark_fields.c",)
 UPSTREAM_SHARED_CODE = ("tshark_fields_upstream.c",)
-# The messages the state follows, by the names runtime/lua/rtde_state.lua follows too.
+# The messages the state follows, by the names runtime/lua/typed_messages/state.lua follows too.
 ROLE_OF_MESSAGE = {"request_protocol_version": "RTDE_ROLE_VERSION_REQUEST",
                    "request_protocol_version_reply": "RTDE_ROLE_VERSION_REPLY",
                    "start_reply": "RTDE_ROLE_START_REPLY"}

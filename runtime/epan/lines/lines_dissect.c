@@ -18,7 +18,7 @@ extern const lines_spec_t lines_spec;
 static int dissect_lines(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, void *data);
 /* </standalone> */
 /* A dissector of text lines (the dashboard server, the driver's script sender), the twin of
- * runtime/lua/lines_dissect.lua: lines reassembled across TCP segments, each shown as a request
+ * runtime/lua/lines/dissect.lua: lines reassembled across TCP segments, each shown as a request
  * (command) or a reply, replies paired with their requests and the software version learnt per
  * conversation, expert infos for a reply that says an error, an unknown command, a command the
  * version lacks, a line too long. The first pass decides each line (which command, which reply,

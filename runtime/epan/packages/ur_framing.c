@@ -3,7 +3,7 @@
  * for more bytes itself (desegment_offset/len) rather than through tcp_dissect_pdus: once a call
  * has met a bad header the rest of the stream is carried by hand until it is back in step, as
  * the Lua dissector does, so that every pass hands the same bytes and shows the same fault.
- * As runtime/lua/framing.lua. */
+ * As runtime/lua/packages/framing.lua. */
 static guint32 ur_pref_version = UR_VERSION_NONE;   /* the ur.version preference, parsed */
 
 /* The call being dissected: the stream's version (UR_VERSION_NONE: none yet) and, when the

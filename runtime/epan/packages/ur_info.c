@@ -1,6 +1,6 @@
 /* The Info column. It is written on every pass, tree or not, so it reads the bytes and builds no
  * tree: the descriptors marked `show` of a layout (a message's, or a robot-state package's whose
- * layout has a summary). As runtime/lua/info.lua. */
+ * layout has a summary). As runtime/lua/packages/info.lua. */
 /* A text field's bytes into the Info text as the Lua twin puts them there: UTF-8 with invalid
  * bytes replaced, cut at as many bytes as the field has (Wireshark's TvbRange:string keeps that
  * many bytes of the converted text), NUL bytes kept (the column then ends at the first). */

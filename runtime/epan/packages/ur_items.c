@@ -3,7 +3,7 @@
  * slows down long before it stops at a million items per packet. Past the cap the fields are
  * still walked, so that errors are still found, but they are counted instead of added (a NULL
  * item stands for them); the first expert info one of them is given goes to the message's item,
- * so that a malformed message still reads as one. As runtime/lua/items.lua. */
+ * so that a malformed message still reads as one. As runtime/lua/packages/items.lua. */
 typedef struct {
     packet_info *pinfo;
     tvbuff_t *tvb;              /* the message's bytes (carried-over bytes first, when there are) */

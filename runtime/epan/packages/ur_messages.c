@@ -2,7 +2,7 @@
  * dissected: packages (a list of sub-packages, each framed by its own length: robot state),
  * subtypes (a header, then a subtype byte that chooses the layout of the rest) and body (one
  * layout right after the message header: message types 5, 22, 23, 24). Each kind has an Info
- * text (from the bytes; NULL when no column is built) and a tree. As runtime/lua/messages.lua. */
+ * text (from the bytes; NULL when no column is built) and a tree. As runtime/lua/packages/messages.lua. */
 /* The body of a package or message from body to stop, walked with its layout for version v; what
  * cannot be read is kept raw, what is left over is shown as extra bytes, each with its expert. */
 static void

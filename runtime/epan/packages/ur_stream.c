@@ -7,7 +7,7 @@
  * kept only where it changes: a frame in which some call starts with another state than the call
  * before it keeps a snapshot per call (frame data); a frame that keeps nothing starts with the
  * state the last call of the last kept frame before it started with (a tree by frame number). A
- * capture in step costs memory per conversation, not per frame. As runtime/lua/stream.lua. */
+ * capture in step costs memory per conversation, not per frame. As runtime/lua/packages/stream.lua. */
 /* Bytes carried over by hand while a stream is out of step with TCP reassembly: only appended
  * to, so its first k bytes, where a call started, stay the same for later passes. */
 typedef struct {

@@ -1,6 +1,6 @@
 /* The shapes of the tables generated from the spec (packet-ur.c, after this section) and walked
  * by the runtime after them: value strings by software version, field descriptors (one per field,
- * in wire order, as runtime/lua/walk.lua walks them), the forms of every type code across
+ * in wire order, as runtime/lua/packages/walk.lua walks them), the forms of every type code across
  * software versions, and the messages by type. Versions are one number,
  * (major * 1000 + minor) * 1000 + bugfix; an open bound is 0 or G_MAXUINT32. */
 /* An enum whose names depend on the software version: its table for each range. */

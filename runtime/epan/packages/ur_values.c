@@ -1,6 +1,6 @@
 /* Typed values of global variables: a type byte, then its data, nested for LIST and MATRIX.
  * The meaning of a type byte depends on the software version (ur_value_tables: one table per
- * version range). As runtime/lua/values.lua. */
+ * version range). As runtime/lua/packages/values.lua. */
 /* Items that cannot fit in the bytes from o to e (each takes at least vt->min_size) are refused
  * before any is read; at is the offset of their count. */
 static const char *

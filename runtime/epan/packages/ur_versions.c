@@ -3,7 +3,7 @@
  * preference's text, shown back as text, tested against a range. What follows the version: the
  * value-type table and the names of an enum whose codes depend on it, and the form (layout) of a
  * package or subtype, chosen by the version or else by the length
- * (docs/contract.md#choosing-a-layout). As runtime/lua/versions.lua. */
+ * (docs/contract.md#choosing-a-layout). As runtime/lua/packages/versions.lua. */
 #define UR_BUGFIX_ANY 999   /* a bugfix number that stands for every bugfix release of its minor */
 #define UR_VERSION_NONE G_MAXUINT32  /* no version known (a Version message may announce 0.0) */
 

@@ -2,7 +2,7 @@
  * tree by the function of its kind. Offsets are tvb offsets; o is where a field starts and e where
  * the layout ends. A walk returns the offset after the layout, or -1 with the canonical error text
  * in *err ("joints[2].q_actual at offset 31: needs 8 bytes, 3 left", offsets from the message's
- * first byte, as every target words it). As runtime/lua/walk.lua. */
+ * first byte, as every target words it). As runtime/lua/packages/walk.lua. */
 /* Where a field stands, for error texts only: made as the walk goes down (a group's item
  * "joints[2].", a value "variables[1][0]"), written out only when an error names it. */
 typedef struct ur_path {

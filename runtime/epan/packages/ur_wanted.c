@@ -1,5 +1,5 @@
 /* Which robot-state packages a `tshark -T fields` run needs, as the Lua twin finds them
- * (runtime/lua/wanted.lua). tshark builds the tree visible for -T fields (Wireshark 4.0 primes no
+ * (runtime/lua/packages/wanted.lua). tshark builds the tree visible for -T fields (Wireshark 4.0 primes no
  * output field), so every field counts as referenced and every package would be built to print
  * one field. The fields are named on tshark's command line (-e, -Y, -R, -z, -o): where the system
  * shows it (/proc/self/cmdline), a package is built when a field of it is named

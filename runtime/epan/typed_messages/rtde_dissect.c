@@ -1,9 +1,9 @@
 /* The RTDE dissector: frames the messages of a TCP stream, shows each by its layout (chosen by type
  * code, direction and the protocol version in force), a data package's values by the variables of
  * its recipe with a link to the frame that set the recipe up, and expert infos for refused setups,
- * unknown recipes, a refused start and bad framing. The state (runtime/epan/rtde_state.c) is kept
+ * unknown recipes, a refused start and bad framing. The state (runtime/epan/typed_messages/rtde_state.c) is kept
  * per conversation on the first pass, and each message's view of it is kept for later passes and
- * the GUI. The twin of runtime/lua/rtde_dissect.lua: the same tree, Info column and experts.
+ * the GUI. The twin of runtime/lua/typed_messages/dissect.lua: the same tree, Info column and experts.
  *
  * It frames by hand rather than with tcp_dissect_pdus: a bad header (a size below the header or a
  * type code no layout has) is shown and skipped up to the next plausible header, as the Lua

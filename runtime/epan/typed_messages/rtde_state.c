@@ -1,8 +1,8 @@
 /* RTDE's state of one conversation: the protocol version negotiated, the setup requests waiting
  * for their replies, and the recipes the replies make, per recipe kind (one kind per direction of
- * data packages). runtime/epan/rtde_dissect.c keeps one per conversation in wmem_file_scope() and
+ * data packages). runtime/epan/typed_messages/rtde_dissect.c keeps one per conversation in wmem_file_scope() and
  * calls rtde_follow on each whole message, in capture order, on the first pass: the rules of
- * runtime/lua/rtde_state.lua, so that both dissectors show the same.
+ * runtime/lua/typed_messages/state.lua, so that both dissectors show the same.
  *
  * Each protocol version and recipe keeps the message that set it and the one it replaced, so that
  * a later pass (tshark -2, the GUI) finds what was in force at any message without the first pass

@@ -1,12 +1,12 @@
 /* The shapes of the tables the generator writes for an RTDE dissector (packet-rtde.c): message
  * layouts by type code, direction and protocol version, their steps, value types and the variable
- * table. Joined into the generated file before its tables; runtime/epan/rtde_state.c and
+ * table. Joined into the generated file before its tables; runtime/epan/typed_messages/rtde_state.c and
  * rtde_dissect.c walk them. */
 /* <standalone> */
 #include <glib.h>
 /* </standalone> */
 
-/* What a step keeps of its value for the conversation's state (runtime/epan/rtde_state.c). */
+/* What a step keeps of its value for the conversation's state (runtime/epan/typed_messages/rtde_state.c). */
 typedef enum {
     RTDE_SLOT_NONE,
     RTDE_SLOT_PROTOCOL_VERSION,
