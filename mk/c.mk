@@ -11,10 +11,10 @@ C_OPT ?= -O2
 C_SOURCES := $(wildcard generated/c/*.c)
 C_LIB := $(C_SOURCES) $(wildcard generated/c/*.h)
 # The C runtime compiled beside generated/c, not joined into it: runtime/c/json (canonical JSON,
-# float digits, the record loop; urwire._ccore compiles it too) and runtime/c/rtde/stream.c (RTDE
+# float digits, the record loop; urwire._ccore compiles it too) and runtime/c/typed_messages/rtde_stream.c (RTDE
 # stream framing). The command itself is tools/urwire-decode.
-C_RUNTIME := $(wildcard runtime/c/json/*.c runtime/c/json/*.h) runtime/c/rtde/stream.c runtime/c/rtde/stream.h
-C_INCLUDES := -Igenerated/c -Iruntime/c/json -Iruntime/c/rtde -Itools/urwire-decode
+C_RUNTIME := $(wildcard runtime/c/json/*.c runtime/c/json/*.h) runtime/c/typed_messages/rtde_stream.c runtime/c/typed_messages/rtde_stream.h
+C_INCLUDES := -Igenerated/c -Iruntime/c/json -Iruntime/c/typed_messages -Itools/urwire-decode
 C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h) $(C_RUNTIME)
 PREFIX ?= /usr/local
 BENCH_C_LEVELS ?= -O3 -O2 -Os

@@ -1,5 +1,5 @@
 /* libFuzzer harness of the RTDE C library (generated/c/rtde.c), its stream framing
- * (runtime/c/rtde/stream.c) and the command's JSON writer (tools/urwire-decode/rtde_json.c). An
+ * (runtime/c/typed_messages/rtde_stream.c) and the command's JSON writer (tools/urwire-decode/rtde_json.c). An
  * input is a protocol byte (the version in force before any exchange: its value mod 3, 0 for the
  * default), then pieces: a byte whose top bit is the direction (set: from the robot) and whose
  * other bits are the piece's length, then its bytes.

@@ -24,7 +24,7 @@ CLI = ROOT / "tools" / "urwire-decode"
 # The C runtime compiled beside generated/c (as mk/c.mk's C_RUNTIME): canonical JSON, float digits
 # and the record loop (urwire._ccore compiles them too), and RTDE stream framing.
 JSON_RUNTIME = ROOT / "runtime" / "c" / "json"
-RTDE_STREAM = ROOT / "runtime" / "c" / "rtde" / "stream.c"
+RTDE_STREAM = ROOT / "runtime" / "c" / "typed_messages" / "rtde_stream.c"
 RUNTIME_SOURCES = sorted(JSON_RUNTIME.glob("*.c")) + [RTDE_STREAM]
 INCLUDES = [GEN, JSON_RUNTIME, RTDE_STREAM.parent, CLI]    # as mk/c.mk's C_INCLUDES
 # The other interfaces' parsers (generated/c/<interface>.c), which the CLI links beside urwire.c,

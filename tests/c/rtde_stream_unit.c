@@ -1,4 +1,4 @@
-/* RTDE stream framing on its own (runtime/c/rtde/stream.c): each stream below is framed whole, a
+/* RTDE stream framing on its own (runtime/c/typed_messages/rtde_stream.c): each stream below is framed whole, a
  * byte at a time and cut at every point (or at a spread of points for the long ones), and must give
  * the frames it lists, with their offsets, sizes and bytes: whole messages, a garbage prefix as one
  * fault however it was cut, a fault after each of two garbage runs, the largest message a uint16
@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "stream.h"
+#include "rtde_stream.h"
 
 static int failures;
 static rtde_stream stream;                  /* 64 KiB: static, as the command keeps it */

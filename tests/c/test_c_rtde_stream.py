@@ -1,4 +1,4 @@
-"""RTDE stream framing on its own (runtime/c/rtde/stream.c, beside the RTDE parser it frames for):
+"""RTDE stream framing on its own (runtime/c/typed_messages/rtde_stream.c, beside the RTDE parser it frames for):
 tests/c/rtde_stream_unit.c under gcc and clang with ASan and UBSan, each stream framed whole, a
 byte at a time and cut at every point: whole messages, garbage prefixes (one fault however cut),
 the largest message, streams longer than the buffer, tails."""

@@ -1,4 +1,4 @@
-"""The RTDE C library (generated/c/rtde.{h,c}), its stream framing (runtime/c/rtde/stream.c) and
+"""The RTDE C library (generated/c/rtde.{h,c}), its stream framing (runtime/c/typed_messages/rtde_stream.c) and
 the command's JSON writer of it (tools/urwire-decode/rtde_json.c): strict builds with gcc and
 clang, the same JSON lines as the Python Conversation on every golden exchange (whole and byte by
 byte) and on hostile bytes, under ASan and UBSan; the client API; the fuzz harness replayed over

@@ -10,13 +10,13 @@
 
 #include "envelope.h"
 #include "rtde.h"
-#include "stream.h"
+#include "rtde_stream.h"
 
 /* The storage of a connection's recipes and pending names at the protocol's own limits (67 MB):
  * every recipe a robot and a client can make is kept, as the Python decoder keeps them. */
 #define RTDE_JSON_STORAGE RTDE_STORAGE_SIZE(RTDE_PROTOCOL_RECIPES, RTDE_PROTOCOL_VARIABLES, RTDE_PROTOCOL_NAMES)
 
-/* One connection: its RTDE state and both directions' framing (runtime/c/rtde/stream.h). Large:
+/* One connection: its RTDE state and both directions' framing (runtime/c/typed_messages/rtde_stream.h). Large:
  * static, where only the pages a connection uses are ever touched. */
 typedef struct rtde_json_stream {
     rtde_conversation conversation;

@@ -1,5 +1,5 @@
 /* RTDE stream framing. See stream.h. */
-#include "stream.h"
+#include "rtde_stream.h"
 
 #include <string.h>
 
