@@ -78,7 +78,7 @@ def test_standalone_blocks_only_include_or_guard():
 
 @pytest.mark.parametrize("macro", ["decode", "encode", "visit"])
 def test_an_unknown_step_kind_is_an_error_when_generating(macro):
-    steps = environment(FOLDER).get_template("steps.c.j2").module
+    steps = environment(FOLDER).get_template("packages/steps.c.j2").module
     known = {"decode": Step("rest", dict(name="x")), "encode": Step("bytes", dict(name="x")),
              "visit": Step("text", dict(name="x", when=[]))}[macro]
     assert '"x"' in str(getattr(steps, macro)([known], "    ")) or "->x" in str(getattr(steps, macro)([known], "    "))
@@ -96,7 +96,7 @@ FLAG = dict(kind="flag", name="f")
 
 
 def test_members_and_terms_are_data_rendered_by_kind():
-    steps = environment(FOLDER).get_template("steps.c.j2").module
+    steps = environment(FOLDER).get_template("packages/steps.c.j2").module
     text = str(steps.decode([run_step([SCALAR], [FLAG, dict(kind="from", major=5, minor=25, bugfix=1)])], ""))
     assert "if (out->f != 0 && ver->key >= URWIRE__V(5, 25, 1)) {" in text
     assert "out->x = urwire__u16(p + 2);" in text
@@ -108,6 +108,6 @@ def test_members_and_terms_are_data_rendered_by_kind():
 @pytest.mark.parametrize("member, term", [(dict(SCALAR, kind="no_such_member"), FLAG),
                                           (SCALAR, dict(FLAG, kind="no_such_term"))])
 def test_an_unknown_member_or_term_kind_is_an_error_when_generating(member, term):
-    steps = environment(FOLDER).get_template("steps.c.j2").module
+    steps = environment(FOLDER).get_template("packages/steps.c.j2").module
     with pytest.raises(jinja2.UndefinedError):
         steps.decode([run_step([member], [term])], "")

@@ -78,7 +78,7 @@ def test_constants_come_from_the_spec(protocol):
 
 
 def test_the_template_is_mostly_data():
-    template = (TEMPLATES / "lua" / "urwire.lua.j2").read_text(encoding="utf-8")
+    template = (TEMPLATES / "lua" / "packages" / "urwire.lua.j2").read_text(encoding="utf-8")
     assert len(template.splitlines()) < 600
     for statement in ("function", "while ", "local function"):
         assert statement not in template.replace("(function(...)", ""), statement

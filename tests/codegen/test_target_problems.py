@@ -59,8 +59,8 @@ def test_two_layouts_that_set_the_version_are_a_planning_problem():
 
 
 @pytest.mark.parametrize("target, template, macro", [
-    ("python", "steps.py.j2", "decode"),
-    ("python", "steps.py.j2", "encode"),
+    ("python", "packages/steps.py.j2", "decode"),
+    ("python", "packages/steps.py.j2", "encode"),
 ])
 def test_an_unknown_step_kind_fails_at_generation_time(target, template, macro):
     module = environment(target).get_template(template).module

@@ -1,4 +1,4 @@
-"""C target: the plan -> a view model of plain data -> templates/c/*.j2 (+ runtime/*.c, *.h).
+"""C target: the plan -> a view model of plain data -> templates/c/packages/*.j2 (+ runtime/c/{common,packages}).
 
 Every decision is made here: C types, struct members, the offset, reader and writer of every
 member of a fixed run, conditions as terms (a flag, a version bound), the forms of every type
@@ -783,5 +783,5 @@ def render(protocol_plan, banner: list[str]) -> dict[str, str]:
                bugfix_any=ir.BUGFIX_ANY,
                documented=", ".join(ir.version_text(v) for v in p.documented_versions),
                title=p.title, doc=comment(p.doc), **build(protocol_plan))
-    return {f"{FOLDER}/urwire.h": env.get_template("urwire.h.j2").render(**ctx),
-            f"{FOLDER}/urwire.c": env.get_template("urwire.c.j2").render(**ctx)}
+    return {f"{FOLDER}/urwire.h": env.get_template("packages/urwire.h.j2").render(**ctx),
+            f"{FOLDER}/urwire.c": env.get_template("packages/urwire.c.j2").render(**ctx)}

@@ -1,4 +1,4 @@
-"""epan target: the dissector model (dissector.py) -> templates/epan/packet-ur.c.j2 +
+"""epan target: the dissector model (dissector.py) -> templates/epan/packages/packet-ur.c.j2 +
 runtime/epan/packages/ur_*.c, one native Wireshark dissector (generated/epan/packet-ur.c), the twin of
 the Lua dissector (generated/lua/urwire.lua).
 
@@ -371,4 +371,4 @@ def render(protocol_plan, banner: list[str], upstream: bool = False) -> dict[str
     ctx = dict(banner=banner, types=runtime(RUNTIME_TYPES),
                code=[runtime_section("c", name) for name in C_RUNTIME] + runtime(code),
                named_fields_preference=not upstream, any_low=ANY_LOW, any_high=ANY_HIGH, **model)
-    return {OUT: env.get_template("packet-ur.c.j2").render(**ctx)}
+    return {OUT: env.get_template("packages/packet-ur.c.j2").render(**ctx)}

@@ -1,4 +1,4 @@
-"""Lua target: the dissector model (dissector.py) -> templates/lua/urwire.lua.j2 + runtime/lua/{common,packages},
+"""Lua target: the dissector model (dissector.py) -> templates/lua/packages/urwire.lua.j2 + runtime/lua/{common,packages},
 one Wireshark dissector in one self-contained file.
 
 The model decides every field, value string, descriptor and form; this module only spells them in
@@ -84,4 +84,4 @@ def render(protocol_plan, banner: list[str]) -> dict[str, str]:
     d = dissector(protocol_plan)
     segment_lines = textwrap.wrap(", ".join(lua_str(ir.version_text(v)) for v in d.segment_starts), 100)
     ctx = dict(banner=banner, model=d, segment_lines=segment_lines, runtime=runtime())
-    return {OUT: env.get_template("urwire.lua.j2").render(**ctx)}
+    return {OUT: env.get_template("packages/urwire.lua.j2").render(**ctx)}

@@ -1,4 +1,4 @@
-"""Python target: the IR -> a view model of decode/encode steps -> templates/python/*.py.j2 ->
+"""Python target: the IR -> a view model of decode/encode steps -> templates/python/packages/*.py.j2 ->
 the subpackage urwire.generated (generated/python/urwire/generated/): classes, forms and tables
 that the hand-written package python/urwire/ imports and walks.
 
@@ -552,5 +552,5 @@ def render(protocol_plan: plan.ProtocolPlan, banner: list[str]) -> dict[str, str
     model = _Target(protocol_plan).build()
     ctx = dict(banner=banner, p=p, enums=enum_views(p), value_tables=value_kind_views(p),
                version_text=ir.version_text, bugfix_any=ir.BUGFIX_ANY, **model)
-    return {f"{PACKAGE}/{name[:-3]}": env.get_template(name).render(**ctx)
+    return {f"{PACKAGE}/{name[:-3]}": env.get_template(f"packages/{name}").render(**ctx)
             for name in ("enums.py.j2", "messages.py.j2", "spec.py.j2", "__init__.py.j2")}
