@@ -33,7 +33,8 @@ class _Parser(argparse.ArgumentParser):
 
 def build_parser() -> argparse.ArgumentParser:
     default = f"{DEFAULT_VERSION[0]}.{DEFAULT_VERSION[1]}"
-    parser = _Parser(prog="urwire", description="Decode the Universal Robots primary/secondary client interface.")
+    parser = _Parser(prog="urwire", description="Decode every interface of a Universal Robots cell: "
+                                                "captures, streams and live robots.")
     parser.add_argument("--version", action="version", version=f"urwire {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     dec = sub.add_parser("decode", help="decode a raw stream, .pcap or .pcapng to canonical JSON Lines",
