@@ -1,5 +1,5 @@
-"""What the epan renderers of every kind write alike in C: string literals, value_string values,
-and the labels of float fields with a unit.
+"""What the epan renderers of every kind write alike in C beside codegen/lang/c.py: the labels of
+float fields with a unit.
 
 A float field's unit is shown by a label function (BASE_CUSTOM), as the Lua dissector shows it
 (" rad" after the value). Wireshark 4.0 shows no unit string of a float field; appending the unit
@@ -9,8 +9,6 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-
-from .lang.c import string as c_string, value_key as value_literal  # noqa: F401 (the kinds' epan renderers)
 
 
 @dataclass(frozen=True)
