@@ -11,10 +11,13 @@ C_OPT ?= -O2
 C_SOURCES := $(wildcard generated/c/*.c)
 C_LIB := $(C_SOURCES) $(wildcard generated/c/*.h)
 # The C runtime compiled beside generated/c, not joined into it: runtime/c/json (canonical JSON,
-# float digits, the record loop; urwire._ccore compiles it too) and runtime/c/typed_messages/rtde_stream.c (RTDE
-# stream framing). The command itself is tools/urwire-decode.
-C_RUNTIME := $(wildcard runtime/c/json/*.c runtime/c/json/*.h) runtime/c/typed_messages/rtde_stream.c runtime/c/typed_messages/rtde_stream.h
-C_INCLUDES := -Igenerated/c -Iruntime/c/json -Iruntime/c/typed_messages -Itools/urwire-decode
+# float digits, the record loop; urwire._ccore compiles it too) and the stream framing of RTDE
+# (runtime/c/typed_messages/rtde_stream.c) and of the real-time interface
+# (runtime/c/sized_packets/ur_realtime_stream.c). The command itself is tools/urwire-decode.
+C_STREAMS := runtime/c/typed_messages/rtde_stream runtime/c/sized_packets/ur_realtime_stream
+C_RUNTIME := $(wildcard runtime/c/json/*.c runtime/c/json/*.h) $(C_STREAMS:%=%.c) $(C_STREAMS:%=%.h)
+C_INCLUDES := -Igenerated/c -Iruntime/c/json -Iruntime/c/typed_messages -Iruntime/c/sized_packets \
+	-Itools/urwire-decode
 C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h) $(C_RUNTIME)
 PREFIX ?= /usr/local
 BENCH_C_LEVELS ?= -O3 -O2 -Os

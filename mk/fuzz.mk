@@ -4,8 +4,8 @@
 #   json    tests/c/fuzz_json.c            urwire-decode: version hint, record loop, JSON writer
 #   python  tests/python/fuzz_decoder.py   the Python decoder (atheris), and urwire-decode
 #                                          against it through one driver process
-#   ur_realtime  tests/c/fuzz_ur_realtime.c  the real-time decoder and its JSON writer (its kept
-#                                          corpus only)
+#   ur_realtime  tests/c/fuzz_ur_realtime.c  the real-time decoder, its stream framing and its JSON
+#                                          writer (its kept corpus only)
 # `make test` does not fuzz: it builds each harness and runs it once over its kept corpus and
 # seeds (tests/c/test_c_fuzz_corpus.py, tests/python/test_fuzz_corpus.py), and replays the kept
 # corpora through C against Python and through tshark (tests/lua/test_fuzz_corpus.py).
@@ -67,8 +67,9 @@ fuzz-c: build/fuzz/fuzz_urwire
 fuzz-json: build/fuzz/fuzz_json
 	$(call fuzz_run,json,build/fuzz/fuzz_json -timeout=25)
 
-## fuzz-ur-realtime: the real-time decoder and its JSON writer (tests/c/fuzz_ur_realtime.c); seeded
-## with its kept corpus only (tests/fuzz/corpus/ur_realtime/, the golden vectors with a control byte)
+## fuzz-ur-realtime: the real-time decoder, its stream framing and its JSON writer
+## (tests/c/fuzz_ur_realtime.c); seeded with its kept corpus only (tests/fuzz/corpus/ur_realtime/,
+## the golden vectors with a control byte)
 build/fuzz/fuzz_ur_realtime: tests/c/fuzz_ur_realtime.c $(C_LIB) $(C_CLI)
 	@mkdir -p build/fuzz
 	$(FUZZ_CC) -o $@ tests/c/fuzz_ur_realtime.c $(CLI_LIB) $(C_SOURCES) -lm

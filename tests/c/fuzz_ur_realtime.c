@@ -1,10 +1,14 @@
-/* libFuzzer harness: the real-time decoder (generated/c/ur_realtime.c) and its JSON writer
+/* libFuzzer harness: the real-time decoder (generated/c/ur_realtime.c), its stream framing
+ * (runtime/c/sized_packets/ur_realtime_stream.c) and its JSON writer
  * (tools/urwire-decode/ur_realtime_json.c) over any bytes.
  *
  * Input: one control byte, then the stream. The control byte's low two bits pick the software
- * version the decoder is told (unknown, 3.12, 5.2, 5.10). Checked on every input, packet by packet
- * as urwire-decode frames them:
- *   - framing: a size is either refused (below the smallest, above the largest) or whole;
+ * version the decoder is told (unknown, 3.12, 5.2, 5.10); its other six bits where the stream is cut
+ * in two feeds (0: fed whole; else at that many sixty-fourths of it). Checked on every input, frame
+ * by frame as urwire-decode frames them:
+ *   - framing: a packet's size frames one and is whole; a bad size is below the smallest or above
+ *     the largest, and a scan follows it: never two faults without a packet between them; frames
+ *     come in stream order, and only a finished stream ends with a truncated tail;
  *   - a decoded packet's layout has the declared size, and every slot lies inside it;
  *   - a packet of unknown size keeps exactly its bytes after the size field;
  *   - every field the layout has reads back through ur_realtime_values, and an enum name, when
@@ -20,6 +24,9 @@
 
 #include "ur_realtime.h"
 #include "ur_realtime_json.h"
+#include "ur_realtime_stream.h"
+
+static ur_realtime_stream stream;        /* about 90 KiB: static, as the command keeps it */
 
 static void check(int ok, const char *what)
 {
@@ -64,37 +71,67 @@ static void check_packet(const uint8_t *p, size_t len, int32_t size, const ur_re
     (void)len;
 }
 
+/* Every frame the stream has ready: packets checked and written, faults checked. */
+static void drain(uint32_t version, FILE *out, size_t *packets, bool *after_fault, uint64_t *next_offset)
+{
+    ur_realtime_stream_frame f;
+    ur_realtime_frame_kind kind;
+    while ((kind = ur_realtime_stream_next(&stream, &f)) != UR_REALTIME_FRAME_NEED_MORE &&
+           kind != UR_REALTIME_FRAME_END) {
+        int32_t declared = 0;
+        check(f.offset >= *next_offset, "frames in stream order");
+        if (kind == UR_REALTIME_FRAME_BAD_SIZE) {
+            check(!*after_fault, "one fault a garbage run");
+            check(ur_realtime_frame(f.bytes, f.length, &declared) == f.error && declared == f.size, "a bad size");
+            check(f.size < UR_REALTIME_MIN_MESSAGE_SIZE || f.size > UR_REALTIME_MAX_MESSAGE_SIZE, "out of bounds");
+            *after_fault = true;
+            *next_offset = f.offset + 1;
+        } else if (kind == UR_REALTIME_FRAME_TRUNCATED) {
+            check(f.length > 0 && f.length < f.needed, "a tail short of what it needs");
+            *next_offset = f.offset + f.length;
+        } else {
+            ur_realtime_packet pkt;
+            ur_realtime_error e;
+            check(ur_realtime_frame(f.bytes, f.length, &declared) == UR_REALTIME_OK, "a packet's size frames it");
+            check(declared >= UR_REALTIME_MIN_MESSAGE_SIZE && declared <= UR_REALTIME_MAX_MESSAGE_SIZE, "bounds");
+            check((size_t)declared == f.length, "a packet is whole");
+            e = ur_realtime_decode(f.bytes, f.length, version, &pkt);
+            check_packet(f.bytes, f.length, declared, &pkt, e);
+            ur_realtime_write_json(out, &pkt, (size_t)f.offset);
+            (*packets)++;
+            *after_fault = false;
+            *next_offset = f.offset + f.length;
+        }
+    }
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static const unsigned versions[4][3] = {{0, 0, 0}, {3, 12, 0}, {5, 2, 0}, {5, 10, 0}};
     uint32_t version;
-    size_t pos = 1;
     char *text = NULL;
-    size_t text_size = 0, lines = 0, packets = 0, k;
+    size_t text_size = 0, lines = 0, packets = 0, k, n, at = 0, cut;
+    bool after_fault = false;
+    uint64_t next_offset = 0;
     FILE *out;
     if (size < 1)
         return 0;
     version = data[0] & 3u ? ur_realtime_version(versions[data[0] & 3u][0], versions[data[0] & 3u][1],
                                                  versions[data[0] & 3u][2]) : 0u;
+    n = size - 1;
+    cut = (data[0] >> 2) ? n / 64 * (size_t)(data[0] >> 2) : n;
     out = open_memstream(&text, &text_size);
     check(out != NULL, "open_memstream");
-    while (pos < size) {
-        ur_realtime_packet pkt;
-        int32_t declared = 0;
-        ur_realtime_error e = ur_realtime_frame(data + pos, size - pos, &declared);
-        if (e != UR_REALTIME_OK)
-            break;
-        check(declared >= UR_REALTIME_MIN_MESSAGE_SIZE && declared <= UR_REALTIME_MAX_MESSAGE_SIZE, "frame bounds");
-        if ((size_t)declared > size - pos) {
-            check(ur_realtime_decode(data + pos, size - pos, version, &pkt) == UR_REALTIME_E_SHORT, "short");
-            break;
+    ur_realtime_stream_init(&stream);
+    while (at < n) {
+        size_t end = at < cut ? cut : n;
+        while (at < end) {
+            at += ur_realtime_stream_feed(&stream, data + 1 + at, end - at);
+            drain(version, out, &packets, &after_fault, &next_offset);
         }
-        e = ur_realtime_decode(data + pos, (size_t)declared, version, &pkt);
-        check_packet(data + pos, (size_t)declared, declared, &pkt, e);
-        ur_realtime_write_json(out, &pkt, pos - 1);
-        packets++;
-        pos += (size_t)declared;
     }
+    ur_realtime_stream_finish(&stream);
+    drain(version, out, &packets, &after_fault, &next_offset);
     fclose(out);
     for (k = 0; k < text_size; k++)
         if (text[k] == '\n')

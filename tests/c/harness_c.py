@@ -22,11 +22,13 @@ ROOT = Path(__file__).resolve().parents[2]
 GEN = ROOT / "generated" / "c"
 CLI = ROOT / "tools" / "urwire-decode"
 # The C runtime compiled beside generated/c (as mk/c.mk's C_RUNTIME): canonical JSON, float digits
-# and the record loop (urwire._ccore compiles them too), and RTDE stream framing.
+# and the record loop (urwire._ccore compiles them too), and the stream framing of RTDE and of the
+# real-time interface.
 JSON_RUNTIME = ROOT / "runtime" / "c" / "json"
 RTDE_STREAM = ROOT / "runtime" / "c" / "typed_messages" / "rtde_stream.c"
-RUNTIME_SOURCES = sorted(JSON_RUNTIME.glob("*.c")) + [RTDE_STREAM]
-INCLUDES = [GEN, JSON_RUNTIME, RTDE_STREAM.parent, CLI]    # as mk/c.mk's C_INCLUDES
+UR_REALTIME_STREAM = ROOT / "runtime" / "c" / "sized_packets" / "ur_realtime_stream.c"
+RUNTIME_SOURCES = sorted(JSON_RUNTIME.glob("*.c")) + [RTDE_STREAM, UR_REALTIME_STREAM]
+INCLUDES = [GEN, JSON_RUNTIME, RTDE_STREAM.parent, UR_REALTIME_STREAM.parent, CLI]    # as mk/c.mk's C_INCLUDES
 # The other interfaces' parsers (generated/c/<interface>.c), which the CLI links beside urwire.c,
 # whichever urwire.c (full or pinned) a test builds.
 INTERFACES_C = [p for p in sorted(GEN.glob("*.c")) if p.name != "urwire.c"]

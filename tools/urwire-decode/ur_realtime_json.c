@@ -1,9 +1,8 @@
 /* The real-time interface as canonical JSON Lines (ur_realtime_json.h). */
 #include "ur_realtime_json.h"
 
-#include <string.h>
-
 #include "json.h"
+#include "ur_realtime_stream.h"
 
 void ur_realtime_write_json(FILE *out, const ur_realtime_packet *p, size_t stream_offset)
 {
@@ -38,92 +37,62 @@ void ur_realtime_write_json(FILE *out, const ur_realtime_packet *p, size_t strea
     fputs("}\n", out);
 }
 
-static void write_error(FILE *out, size_t offset, const char *what)
+static void write_error(FILE *out, uint64_t offset, const char *what)
 {
     fprintf(out, "{\"type\": \"error\", \"offset\": %lu, \"error\": \"packet at offset %lu: %s\"}\n",
             (unsigned long)offset, (unsigned long)offset, what);
 }
 
-/* Whether some layout has this size: a packet of it, zeros after the size field, decodes. */
-static bool has_layout(int32_t size)
+/* Every frame the stream's bytes make, as JSON lines; whether one was an error. */
+static bool drain(ur_realtime_stream *s, FILE *out, uint32_t version)
 {
-    static uint8_t probe[UR_REALTIME_MAX_MESSAGE_SIZE];
+    ur_realtime_stream_frame f;
     ur_realtime_packet p;
-    probe[0] = (uint8_t)((uint32_t)size >> 24);
-    probe[1] = (uint8_t)((uint32_t)size >> 16);
-    probe[2] = (uint8_t)((uint32_t)size >> 8);
-    probe[3] = (uint8_t)size;
-    return ur_realtime_decode(probe, (size_t)size, 0, &p) == UR_REALTIME_OK;
-}
-
-/* After a size that cannot frame a packet: where the next plausible packet starts, from pos on
- * (the next size some layout has), as python/urwire/realtime.py finds it. False when none is found
- * yet; *pos is then where the scan goes on when more bytes come (have, at the end of the stream). */
-static bool next_packet(const uint8_t *buf, size_t have, size_t *pos, bool eof)
-{
-    size_t p = *pos;
-    for (; have - p >= UR_REALTIME_SIZE_FIELD_BYTES; p++) {
-        int32_t size = 0;
-        if (ur_realtime_frame(buf + p, have - p, &size) == UR_REALTIME_OK && has_layout(size)) {
-            *pos = p;
-            return true;
+    char what[96];
+    bool errors = false;
+    for (;;) {
+        switch (ur_realtime_stream_next(s, &f)) {
+        case UR_REALTIME_FRAME_NEED_MORE:
+        case UR_REALTIME_FRAME_END:
+            return errors;
+        case UR_REALTIME_FRAME_PACKET:
+            if (ur_realtime_decode(f.bytes, f.length, version, &p) != UR_REALTIME_OK)
+                errors = true;
+            ur_realtime_write_json(out, &p, (size_t)f.offset);
+            break;
+        case UR_REALTIME_FRAME_BAD_SIZE:
+            sprintf(what, "size %ld is %s %d", (long)f.size, f.error == UR_REALTIME_E_SIZE_BELOW ? "below" : "above",
+                    f.error == UR_REALTIME_E_SIZE_BELOW ? UR_REALTIME_MIN_MESSAGE_SIZE : UR_REALTIME_MAX_MESSAGE_SIZE);
+            write_error(out, f.offset, what);
+            errors = true;
+            break;
+        case UR_REALTIME_FRAME_TRUNCATED:
+            sprintf(what, "needs %ld bytes, %lu left", (long)f.needed, (unsigned long)f.length);
+            write_error(out, f.offset, what);
+            errors = true;
+            break;
         }
     }
-    *pos = eof ? have : p;
-    return false;
 }
 
 int ur_realtime_print_stream(FILE *in, FILE *out, uint32_t version)
 {
-    static uint8_t buf[UR_REALTIME_MAX_MESSAGE_SIZE + (1 << 16)];
-    size_t have = 0, offset = 0;   /* bytes in buf; stream offset of buf[0] */
-    bool errors = false, eof = false, scanning = false;
-    while (!eof) {
-        size_t pos = 0, got = fread(buf + have, 1, sizeof buf - have, in);
-        if (got < sizeof buf - have) {
-            if (ferror(in))
-                return 2;
-            eof = true;
+    static ur_realtime_stream stream;
+    static uint8_t chunk[1 << 16];
+    bool errors = false;
+    ur_realtime_stream_init(&stream);
+    for (;;) {
+        size_t n = fread(chunk, 1, sizeof chunk, in), off = 0;
+        if (n < sizeof chunk && ferror(in))
+            return 2;
+        while (off < n) {
+            off += ur_realtime_stream_feed(&stream, chunk + off, n - off);
+            errors |= drain(&stream, out, version);
         }
-        have += got;
-        for (;;) {
-            ur_realtime_packet p;
-            char what[96];
-            int32_t size = 0;
-            ur_realtime_error e;
-            if (scanning) {
-                if (!next_packet(buf, have, &pos, eof))
-                    break;
-                scanning = false;
-            }
-            e = ur_realtime_frame(buf + pos, have - pos, &size);
-            if (e == UR_REALTIME_E_SIZE_BELOW || e == UR_REALTIME_E_SIZE_ABOVE) {
-                /* Say so, and go on at the next plausible packet. */
-                sprintf(what, "size %ld is %s %d", (long)size, e == UR_REALTIME_E_SIZE_BELOW ? "below" : "above",
-                        e == UR_REALTIME_E_SIZE_BELOW ? UR_REALTIME_MIN_MESSAGE_SIZE : UR_REALTIME_MAX_MESSAGE_SIZE);
-                write_error(out, offset + pos, what);
-                errors = true;
-                scanning = true;
-                pos++;
-                continue;
-            }
-            if (e == UR_REALTIME_E_SHORT || (size_t)size > have - pos) {
-                if (eof && have > pos) {
-                    long needed = e == UR_REALTIME_E_SHORT ? (long)UR_REALTIME_SIZE_FIELD_BYTES : (long)size;
-                    sprintf(what, "needs %ld bytes, %lu left", needed, (unsigned long)(have - pos));
-                    write_error(out, offset + pos, what);
-                    errors = true;
-                }
-                break;
-            }
-            if (ur_realtime_decode(buf + pos, have - pos, version, &p) != UR_REALTIME_OK)
-                errors = true;
-            ur_realtime_write_json(out, &p, offset + pos);
-            pos += (size_t)size;
-        }
-        memmove(buf, buf + pos, have - pos);
-        have -= pos;
-        offset += pos;
+        if (n < sizeof chunk)
+            break;
     }
+    ur_realtime_stream_finish(&stream);
+    errors |= drain(&stream, out, version);
     return errors ? 1 : 0;
 }

@@ -1,5 +1,6 @@
-/* The real-time interface (30003) as canonical JSON Lines: a raw stream framed packet by packet,
- * each written as the Python decoder writes it (docs/canonical-json.md). Part of the CLI. */
+/* The real-time interface (30003) as canonical JSON Lines: a raw stream framed packet by packet
+ * (runtime/c/sized_packets/ur_realtime_stream.c), each packet and fault written as the Python
+ * decoder writes it (docs/canonical-json.md). Part of the CLI. */
 #ifndef URWIRE_UR_REALTIME_JSON_H
 #define URWIRE_UR_REALTIME_JSON_H
 
