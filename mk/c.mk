@@ -19,6 +19,9 @@ C_RUNTIME := $(wildcard runtime/c/json/*.c runtime/c/json/*.h) $(C_STREAMS:%=%.c
 C_INCLUDES := -Igenerated/c -Iruntime/c/json -Iruntime/c/typed_messages -Iruntime/c/sized_packets \
 	-Itools/urwire-decode
 C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h) $(C_RUNTIME)
+# The command compiles, from what every kind's C runtime shares, the UTF-8 decoder runtime/c/json
+# writes text with (the text-line interfaces join it into their generated C instead).
+C_CLI += runtime/c/common/utf8.c runtime/c/common/utf8.h runtime/c/common/macros.h
 PREFIX ?= /usr/local
 BENCH_C_LEVELS ?= -O3 -O2 -Os
 BENCH_C_BASE ?= b8aabfa

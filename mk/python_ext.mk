@@ -4,7 +4,8 @@
 # module for `pip install .` and `pip wheel .`.
 
 PYTHON_EXT_SOURCES := setup.py ext/ccore/sources.txt $(shell cat ext/ccore/sources.txt) \
-	$(wildcard ext/ccore/*.h) generated/c/urwire.h $(wildcard runtime/c/json/*.h)
+	$(wildcard ext/ccore/*.h) generated/c/urwire.h $(wildcard runtime/c/json/*.h) \
+	runtime/c/common/utf8.h runtime/c/common/macros.h
 PYTHON_EXT_STAMP := build/python-ext.stamp
 
 ALL_TARGETS += python-ext

@@ -94,6 +94,49 @@ URWIRE__PRIVATE size_t urwire__end(urwire__text *t)
     return t->n;
 }
 
+/* ---- runtime/c/common/utf8.h ---- */
+/* ---- UTF-8 read as Python reads it, each invalid part replaced (utf8.c) ------------------- */
+
+URWIRE__PRIVATE size_t urwire__utf8_sequence(const uint8_t *p, size_t n, size_t *bad);
+
+/* ---- runtime/c/common/utf8.c ---- */
+/* ---- UTF-8 read as Python reads it, each invalid part replaced ---------------------------- */
+
+/* The one UTF-8 decoder of the C runtime: the canonical JSON of text (runtime/c/json/json.c, and
+ * each text-line interface's JSON) writes what Python's bytes.decode("utf-8", "replace") gives.
+ * Length of the valid sequence at p, of the n bytes there are (n >= 1): 1 to 4; or 0, with *bad
+ * set to the length of the maximal subpart that one U+FFFD replaces (1 to 3). Valid is what
+ * Table 3-7 of the Unicode Standard allows: no overlong forms, no surrogates, nothing past
+ * U+10FFFF; a subpart is the longest start of a valid sequence, cut by a byte or by the end. */
+URWIRE__PRIVATE size_t urwire__utf8_sequence(const uint8_t *p, size_t n, size_t *bad)
+{
+    uint8_t b = p[0], lo = 0x80, hi = 0xBF;
+    size_t need, k;
+    if (b < 0x80)
+        return 1;
+    if (b >= 0xC2 && b <= 0xDF) {
+        need = 1;
+    } else if (b >= 0xE0 && b <= 0xEF) {
+        need = 2;
+        lo = b == 0xE0 ? 0xA0 : 0x80;   /* E0 80..9F would be overlong */
+        hi = b == 0xED ? 0x9F : 0xBF;   /* ED A0..BF would be a surrogate */
+    } else if (b >= 0xF0 && b <= 0xF4) {
+        need = 3;
+        lo = b == 0xF0 ? 0x90 : 0x80;   /* F0 80..8F would be overlong */
+        hi = b == 0xF4 ? 0x8F : 0xBF;   /* F4 90..BF would be past U+10FFFF */
+    } else {
+        *bad = 1;
+        return 0;
+    }
+    for (k = 1; k <= need; k++) {
+        if (k >= n || p[k] < (k == 1 ? lo : 0x80) || p[k] > (k == 1 ? hi : 0xBF)) {
+            *bad = k;
+            return 0;
+        }
+    }
+    return need + 1;
+}
+
 /* ---- runtime/c/common/version_text.h ---- */
 /* ---- a software version's text (version_text.c) ----------------------------------------- */
 
@@ -462,38 +505,8 @@ URWIRE__PRIVATE bool lines_finish(const lines_spec_t *spec, lines_conversation *
 /* ---- runtime/c/lines/json.c ---- */
 /* ---- canonical JSON of a record (docs/canonical-json.md) ---------------------------------- */
 
-/* Length of the valid UTF-8 sequence at p (1..4), or 0 with *bad set to the length of the
- * maximal subpart that one U+FFFD replaces, as Python's bytes.decode("utf-8", "replace"). */
-static size_t utf8_sequence(const uint8_t *p, size_t n, size_t *bad)
-{
-    uint8_t b = p[0], lo = 0x80, hi = 0xBF;
-    size_t need, k;
-    if (b < 0x80)
-        return 1;
-    if (b >= 0xC2 && b <= 0xDF) {
-        need = 1;
-    } else if (b >= 0xE0 && b <= 0xEF) {
-        need = 2;
-        lo = b == 0xE0 ? 0xA0 : 0x80;
-        hi = b == 0xED ? 0x9F : 0xBF;
-    } else if (b >= 0xF0 && b <= 0xF4) {
-        need = 3;
-        lo = b == 0xF0 ? 0x90 : 0x80;
-        hi = b == 0xF4 ? 0x8F : 0xBF;
-    } else {
-        *bad = 1;
-        return 0;
-    }
-    for (k = 1; k <= need; k++) {
-        if (k >= n || p[k] < (k == 1 ? lo : 0x80) || p[k] > (k == 1 ? hi : 0xBF)) {
-            *bad = k;
-            return 0;
-        }
-    }
-    return need + 1;
-}
-
-/* Bytes as a JSON string, escaped as Python's json module does with ensure_ascii=False. */
+/* Bytes as a JSON string, escaped as Python's json module does with ensure_ascii=False, invalid
+ * UTF-8 replaced as bytes.decode("utf-8", "replace") does (runtime/c/common/utf8.c). */
 static void out_string(urwire__text *o, lines_view v)
 {
     static const char hex[] = "0123456789abcdef";
@@ -503,7 +516,7 @@ static void out_string(urwire__text *o, lines_view v)
         uint8_t ch = v.ptr[i];
         if (ch >= 0x80) {
             bad = 0;
-            len = utf8_sequence(v.ptr + i, v.len - i, &bad);
+            len = urwire__utf8_sequence(v.ptr + i, v.len - i, &bad);
             if (len) {
                 urwire__bytes(o, (const char *)v.ptr + i, len);
                 i += len;

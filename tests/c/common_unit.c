@@ -1,11 +1,12 @@
 /* Unit checks of what every kind's C runtime shares (runtime/c/common/): the big-endian loads,
- * the bounded output buffer and the reader of a version's text, compiled alone. Built and run by tests/c/test_c_common.py;
+ * the bounded output buffer, the UTF-8 decoder and the reader of a version's text, compiled alone. Built and run by tests/c/test_c_common.py;
  * prints one line per failed check and "all common checks passed" at the end. */
 #include <stdio.h>
 
 #include "macros.h"
 #include "loads.h"
 #include "buffer.h"
+#include "utf8.h"
 #include "version_text.h"
 
 static int failures;
@@ -68,6 +69,64 @@ static void buffer(void)
     CHECK(written(out, 0) == 12 && out[0] == 'x');                          /* nothing written */
 }
 
+/* U+FFFD, what each invalid part of a text becomes */
+#define FFFD "\xef\xbf\xbd"
+
+/* Whether the n bytes of in, each valid sequence kept and each maximal invalid subpart replaced
+ * by U+FFFD as the JSON writers do, are want: what Python's bytes.decode("utf-8", "replace")
+ * gives (every case below was checked against it). */
+static int replaced(const char *in, size_t n, const char *want)
+{
+    char out[64];
+    size_t i = 0, at = 0, len, bad;
+    while (i < n) {
+        bad = 0;
+        len = urwire__utf8_sequence((const uint8_t *)in + i, n - i, &bad);
+        if (len) {
+            memcpy(out + at, in + i, len);
+            at += len;
+            i += len;
+        } else {
+            if (bad < 1 || bad > 3)
+                return 0;
+            memcpy(out + at, FFFD, 3);
+            at += 3;
+            i += bad;
+        }
+    }
+    return at == strlen(want) && memcmp(out, want, at) == 0;
+}
+
+#define REPLACED(in, want) replaced(in, sizeof in - 1, want)
+
+static void utf8(void)
+{
+    size_t bad = 0;
+    /* valid: one to four bytes, the ends of each range Table 3-7 allows */
+    CHECK(REPLACED("A\xc2\x80\xdf\xbf", "A\xc2\x80\xdf\xbf"));
+    CHECK(REPLACED("\xe0\xa0\x80\xed\x9f\xbf\xee\x80\x80", "\xe0\xa0\x80\xed\x9f\xbf\xee\x80\x80"));
+    CHECK(REPLACED("\xf0\x90\x80\x80\xf4\x8f\xbf\xbf", "\xf0\x90\x80\x80\xf4\x8f\xbf\xbf"));
+    /* a continuation byte alone, and bytes that never start a sequence: one U+FFFD each */
+    CHECK(REPLACED("\x80\xbf\xc0\xc1\xf5\xff", FFFD FFFD FFFD FFFD FFFD FFFD));
+    /* overlong forms: no valid start longer than their lead byte, so one U+FFFD a byte */
+    CHECK(REPLACED("\xc0\xaf", FFFD FFFD) && REPLACED("\xe0\x80\xaf", FFFD FFFD FFFD));
+    CHECK(REPLACED("\xf0\x80\x80\xaf", FFFD FFFD FFFD FFFD));
+    /* surrogates (ED A0..BF) and what lies past U+10FFFF (F4 90.., F5..): the same */
+    CHECK(REPLACED("\xed\xa0\x80", FFFD FFFD FFFD) && REPLACED("\xed\xbf\xbf", FFFD FFFD FFFD));
+    CHECK(REPLACED("\xf4\x90\x80\x80", FFFD FFFD FFFD FFFD) && REPLACED("\xf5\x80\x80\x80", FFFD FFFD FFFD FFFD));
+    /* a valid start cut by a byte that cannot go on: one U+FFFD for the start, then that byte */
+    CHECK(REPLACED("\xe2\x82" "A", FFFD "A") && REPLACED("\xf0\x9f\x98" " ", FFFD " "));
+    CHECK(REPLACED("\xc3" "(", FFFD "(") && REPLACED("\xf0\x9f" "\xf0\x9f\x98\x80", FFFD "\xf0\x9f\x98\x80"));
+    /* a valid start cut by the end of the text: one U+FFFD */
+    CHECK(REPLACED("x\xc3", "x" FFFD) && REPLACED("x\xe2\x82", "x" FFFD) && REPLACED("x\xf0\x9f\x98", "x" FFFD));
+    CHECK(REPLACED("\xf4\x8f\xbf", FFFD));
+    /* n bounds what is read: the bytes after it are not looked at */
+    CHECK(urwire__utf8_sequence((const uint8_t *)"\xe2\x82\xac", 2, &bad) == 0 && bad == 2);
+    CHECK(urwire__utf8_sequence((const uint8_t *)"\xe2\x82\xac", 3, &bad) == 3);
+    CHECK(urwire__utf8_sequence((const uint8_t *)"\xf0\x9f\x98\x80", 4, &bad) == 4);
+    CHECK(urwire__utf8_sequence((const uint8_t *)"\xf0\x9f\x98\x80", 3, &bad) == 0 && bad == 3);
+}
+
 static int reads(const char *text, bool whole, bool vt_blank, uint64_t a, uint64_t b, uint64_t c)
 {
     urwire__version_text v;
@@ -110,6 +169,7 @@ int main(void)
 {
     loads();
     buffer();
+    utf8();
     version_text();
     if (failures)
         return 1;

@@ -32,9 +32,13 @@ INCLUDES = [GEN, JSON_RUNTIME, RTDE_STREAM.parent, UR_REALTIME_STREAM.parent, CL
 # The other interfaces' parsers (generated/c/<interface>.c), which the CLI links beside urwire.c,
 # whichever urwire.c (full or pinned) a test builds.
 INTERFACES_C = [p for p in sorted(GEN.glob("*.c")) if p.name != "urwire.c"]
+# The UTF-8 decoder the JSON writer writes text with, from what every kind's C runtime shares (as
+# mk/c.mk's C_CLI): the command compiles it beside the runtime above.
+UTF8 = ROOT / "runtime" / "c" / "common" / "utf8.c"
+RUNTIME_SOURCES.append(UTF8)
 CLI_SOURCES = sorted(CLI.glob("*.c")) + RUNTIME_SOURCES + INTERFACES_C   # main.c and what it links
 CLI_LIBRARY = [p for p in CLI_SOURCES if p.name != "main.c"]   # the same, for the test driver
-JSON = [JSON_RUNTIME / "json.c", JSON_RUNTIME / "shortest.c"]  # the JSON writer and the float digits it prints
+JSON = [JSON_RUNTIME / "json.c", JSON_RUNTIME / "shortest.c", UTF8]  # the JSON writer, its floats, its UTF-8
 # One folder per test process (pytest-xdist names its workers), so parallel runs never build over each other.
 OUT = ROOT / "build" / "c-tests" / os.environ.get("PYTEST_XDIST_WORKER", "main")
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Wconversion", "-Wshadow"]
@@ -77,6 +81,7 @@ def _sources_stamp(name: str) -> str:
     digest = hashlib.sha256(repr(VARIANTS[name]).encode())
     inputs = [*GEN.iterdir(), *CLI.iterdir(), *JSON_RUNTIME.iterdir(), RTDE_STREAM, RTDE_STREAM.with_suffix(".h"),
               ROOT / "tests" / "c" / "driver.c", Path(state_members.__file__)]
+    inputs += [UTF8, UTF8.with_suffix(".h"), UTF8.with_name("macros.h")]
     for path in sorted(p for p in inputs if p.is_file()):
         digest.update(path.name.encode() + b"\0" + path.read_bytes())
     return digest.hexdigest()

@@ -12,8 +12,8 @@ FOLDER = "c"
 # The runtime each interface joins, verbatim: the types into its header, the code into its .c
 # (what every kind shares, the matcher, the conversation, the JSON writer), all static there.
 RUNTIME_HEADER = ("lines/match.h", "lines/lines.h")
-RUNTIME_SOURCES = ("common/macros.h", "common/buffer.h", "common/buffer.c", "common/version_text.h",
-                   "common/version_text.c", "lines/match.c", "lines/lines.c", "lines/json.c")
+RUNTIME_SOURCES = ("common/macros.h", "common/buffer.h", "common/buffer.c", "common/utf8.h", "common/utf8.c",
+                   "common/version_text.h", "common/version_text.c", "lines/match.c", "lines/lines.c", "lines/json.c")
 # The kind's constants (runtime/c/lines/lines.h) the header names after the interface too.
 ALIASES = ("PENDING", "PENDING_RAW", "NONE", "COMMAND", "REPLY", "FAULT", "LINE_TOO_LONG", "NO_NEWLINE_AT_END")
 

@@ -166,8 +166,19 @@ def annotation(f: ir.AnyField, items: dict[str, str]) -> str:
 
 def scalar_annotation(s: ir.Scalar, enum: Optional[ir.Enum]) -> str:
     if enum is not None:
-        return f"Union[{', '.join(py_table_class(enum, t) for t in reversed(enum.tables))}, int]"
+        return f"Union[{', '.join(enum_classes(enum))}, int]"
     return "bool" if s.is_bool else "float" if s.is_float else "int"
+
+
+def enum_classes(enum: ir.Enum) -> list[str]:
+    """The classes of an enum's tables, newest first: what an attribute that holds it is annotated
+    with, and what messages.py imports from enums.py by name."""
+    return [py_table_class(enum, t) for t in reversed(enum.tables)]
+
+
+def annotated_enum(f: ir.AnyField) -> Optional[ir.Enum]:
+    """The enum whose classes a field's annotation names (see annotation)."""
+    return f.enum if isinstance(f, (ir.ScalarField, ir.ArrayField)) else None
 
 
 def conversion(s: ir.Scalar, enum: Optional[ir.Enum]) -> tuple[str, str]:
@@ -344,6 +355,7 @@ class _Target:
         self.prefixes: dict[str, str] = {}
         self.switches: list[tuple[str, dict]] = []
         self.problems: list[Problem] = []
+        self.enum_imports: set[str] = set()   # the enum classes the attributes are annotated with
 
     def prefix_const(self, s: ir.Scalar) -> str:
         """Module constant: a struct of one scalar (length prefixes, switch cases)."""
@@ -394,6 +406,9 @@ class _Target:
         header_fields = [slot.field for slot in header or [] if not slot.is_subtype]
         attrs = [attr(f, annotation(f, {})) for f in header_fields]
         attrs += [attr(f, annotation(f, items), f.conditional, struct.named(f.name)) for f in struct.public_fields]
+        for f in [*header_fields, *struct.public_fields]:
+            if annotated_enum(f) is not None:
+                self.enum_imports.update(enum_classes(annotated_enum(f)))
         cls = PyClass(name, doc, role, label or words(json_type), json_type, code, attrs,
                       [f.name for f in header_fields], codecs, structs, sets_version=sets_version)
         if role == "item" and struct.fixed_item:
@@ -501,6 +516,7 @@ class _Target:
         skips = [dict(fixed=k.fixed, prefix=self.prefix_const(ir.SCALARS[("int" if k.signed else "uint") + str(8 * k.prefix)]))
                  for k in v.skips]
         return dict(messages=messages, classes=self.classes, prefixes=self.prefixes, switches=self.switches,
+                    enum_imports=sorted(self.enum_imports),
                     version=dict(skips=skips, tail=v.tail), package_header_size=self.plan.package_header_size,
                     segments=[dict(first=s.first, versions=s.describe()) for s in self.plan.segments if s.first],
                     type_offset=p.message_length.scalar.size,

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "shortest.h"
+#include "../common/utf8.h"
 
 /* Float texts are at most 25 bytes ("-2.2250738585072014e-308"). The layouts below copy a
  * fixed DIGIT_COPY bytes of digits, more than any float has, out of a buffer of twice that with
@@ -203,47 +204,6 @@ static void put_char(json_writer *w, char c)
     w->buf[w->len++] = c;
 }
 
-/* Length of the valid UTF-8 sequence at p (1..4), or 0 with *bad set to the length of the
- * maximal subpart to replace by one U+FFFD (Unicode 3-7, as CPython's decoder). */
-static size_t utf8_sequence(const unsigned char *p, size_t n, size_t *bad)
-{
-    unsigned char b = p[0], lo = 0x80, hi = 0xBF;
-    size_t need, k;
-    if (b < 0x80)
-        return 1;
-    if (b >= 0xC2 && b <= 0xDF)
-        need = 1;
-    else if (b >= 0xE0 && b <= 0xEF) {
-        need = 2;
-        if (b == 0xE0)
-            lo = 0xA0;
-        if (b == 0xED)
-            hi = 0x9F;
-    } else if (b >= 0xF0 && b <= 0xF4) {
-        need = 3;
-        if (b == 0xF0)
-            lo = 0x90;
-        if (b == 0xF4)
-            hi = 0x8F;
-    } else {
-        *bad = 1;
-        return 0;
-    }
-    for (k = 1; k <= need; k++) {
-        unsigned char c;
-        if (k >= n) {
-            *bad = k;
-            return 0;
-        }
-        c = p[k];
-        if (c < (k == 1 ? lo : 0x80) || c > (k == 1 ? hi : 0xBF)) {
-            *bad = k;
-            return 0;
-        }
-    }
-    return need + 1;
-}
-
 /* Bytes as a JSON string into w's buffer (see json_write_text). */
 static void write_text(json_writer *w, const unsigned char *p, size_t n)
 {
@@ -277,7 +237,7 @@ static void write_text(json_writer *w, const unsigned char *p, size_t n)
             continue;
         }
         bad = 0;
-        len = utf8_sequence(p + i, n - i, &bad);
+        len = urwire__utf8_sequence(p + i, n - i, &bad);
         if (len) {
             put(w, (const char *)p + i, len);
             i += len;

@@ -18,7 +18,9 @@ from .. import _runtime as _rt
 from .. import message_kinds as _kinds
 from . import enums as _e
 from .._runtime import DecodeError, GlobalValue
-from .enums import *  # noqa: F401,F403
+from .enums import (ControlBoxType, ControlMode, JointMode, JointMode3_0To3_15, JointMode5_0To5_0, JointModeUpTo1_8,
+                    MasterOnOffState, MasterSafetyState, MessageSource, MessageSourceUpTo1_8, ReportLevel,
+                    RequestedType, RobotMode, RobotModeUpTo1_8, SafetyMode, ToolFlangeType, ToolMode)
 from .spec import value_codec
 
 _BOOL = _rt.BOOL
