@@ -125,7 +125,10 @@ def test_listen_reconnects(tmp_path):
                                "--duration", "20"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=ENV)
     first = client.stderr.readline().decode()
     assert "retrying" in first
-    server = subprocess.Popen([sys.executable, "-m", "urwire", "serve", "--port", str(port), "--duration", "20"],
+    # Only the primary port is the one picked: the others take free ones, not --port's neighbours,
+    # which another test running beside this one may hold (serve would then not start).
+    server = subprocess.Popen([sys.executable, "-m", "urwire", "serve", "--port", str(port), "--rtde-port", "0",
+                               "--realtime-port", "0", "--dashboard-port", "0", "--duration", "20"],
                               stderr=subprocess.DEVNULL, env=ENV)
     try:
         out, _ = client.communicate(timeout=40)
