@@ -27,9 +27,15 @@ def test_ur_rtde_receives_the_motion_from_urwire_serve(tmp_path, software):
                                                                        "robot_mode", "safety_mode", "runtime_state"])
         time.sleep(0.5)
         readings = []
-        for _ in range(5):
-            readings.append((client.getTimestamp(), client.getActualQ(), client.getActualTCPPose()))
-            time.sleep(0.05)
+        for _ in range(1000):
+            if len(readings) == 5:
+                break
+            # The client takes each data package in a thread of its own: a reading is one package's
+            # only when the timestamp is the same before and after the values are read.
+            stamp, q, pose = client.getTimestamp(), client.getActualQ(), client.getActualTCPPose()
+            if client.getTimestamp() == stamp:
+                readings.append((stamp, q, pose))
+                time.sleep(0.05)
         modes = client.getRobotMode(), client.getSafetyMode(), client.getRuntimeState()
         client.disconnect()
         assert server.stop() == 0
