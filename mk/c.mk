@@ -22,6 +22,7 @@ C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h) $(C_RUNTIME
 # The command compiles, from what every kind's C runtime shares, the UTF-8 decoder runtime/c/json
 # writes text with (the text-line interfaces join it into their generated C instead).
 C_CLI += runtime/c/common/utf8.c runtime/c/common/utf8.h runtime/c/common/macros.h
+C_CLI += runtime/c/common/held.c runtime/c/common/held.h
 PREFIX ?= /usr/local
 BENCH_C_LEVELS ?= -O3 -O2 -Os
 BENCH_C_BASE ?= b8aabfa

@@ -1,11 +1,14 @@
 /* Unit checks of what every kind's C runtime shares (runtime/c/common/): the big-endian loads,
- * the bounded output buffer, the UTF-8 decoder and the reader of a version's text, compiled alone. Built and run by tests/c/test_c_common.py;
+ * the bounded output buffer, the UTF-8 decoder, the reader of a version's text and the bytes a
+ * stream framer holds, compiled alone. Built and run by tests/c/test_c_common.py;
  * prints one line per failed check and "all common checks passed" at the end. */
 #include <stdio.h>
+#include <string.h>
 
 #include "macros.h"
 #include "loads.h"
 #include "buffer.h"
+#include "held.h"
 #include "utf8.h"
 #include "version_text.h"
 
@@ -140,6 +143,27 @@ static int refused(const char *text, bool whole)
     return !urwire__read_version(text, text + strlen(text), whole, false, &v);
 }
 
+/* A framer holds bytes between feeds: what it framed is dropped and its offset kept, and a full
+ * buffer takes only what fits. */
+static void held(void)
+{
+    uint8_t buf[8];
+    size_t head = 0, length = 0, taken;
+    uint64_t base = 0;
+    taken = urwire__hold(buf, sizeof buf, &head, &length, &base, (const uint8_t *)"abcdef", 6);
+    CHECK(taken == 6 && length == 6 && base == 0 && memcmp(buf, "abcdef", 6) == 0);
+    head = 4;   /* "abcd" framed */
+    taken = urwire__hold(buf, sizeof buf, &head, &length, &base, (const uint8_t *)"ghijklmn", 8);
+    CHECK(taken == 6 && head == 0 && length == 8 && base == 4 && memcmp(buf, "efghijkl", 8) == 0);
+    taken = urwire__hold(buf, sizeof buf, &head, &length, &base, (const uint8_t *)"mn", 2);
+    CHECK(taken == 0 && length == 8 && base == 4);   /* full, nothing framed since */
+    head = 8;
+    taken = urwire__hold(buf, sizeof buf, &head, &length, &base, (const uint8_t *)"mn", 2);
+    CHECK(taken == 2 && length == 2 && base == 12 && memcmp(buf, "mn", 2) == 0);
+    taken = urwire__hold(buf, sizeof buf, &head, &length, &base, NULL, 0);
+    CHECK(taken == 0 && length == 2 && base == 12);
+}
+
 static void version_text(void)
 {
     urwire__version_text v;
@@ -170,6 +194,7 @@ int main(void)
     loads();
     buffer();
     utf8();
+    held();
     version_text();
     if (failures)
         return 1;

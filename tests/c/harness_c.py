@@ -36,6 +36,9 @@ INTERFACES_C = [p for p in sorted(GEN.glob("*.c")) if p.name != "urwire.c"]
 # mk/c.mk's C_CLI): the command compiles it beside the runtime above.
 UTF8 = ROOT / "runtime" / "c" / "common" / "utf8.c"
 RUNTIME_SOURCES.append(UTF8)
+# The bytes the stream framers hold between feeds, one window for both (runtime/c/common/held.c).
+HELD = ROOT / "runtime" / "c" / "common" / "held.c"
+RUNTIME_SOURCES.append(HELD)
 CLI_SOURCES = sorted(CLI.glob("*.c")) + RUNTIME_SOURCES + INTERFACES_C   # main.c and what it links
 CLI_LIBRARY = [p for p in CLI_SOURCES if p.name != "main.c"]   # the same, for the test driver
 JSON = [JSON_RUNTIME / "json.c", JSON_RUNTIME / "shortest.c", UTF8]  # the JSON writer, its floats, its UTF-8

@@ -1,7 +1,8 @@
 """What every kind's C runtime shares (runtime/c/common/: the big-endian loads, the output buffer,
-the UTF-8 decoder, the reader of a version's text, the macros that declare private and inlined functions) on its own: each file compiles alone under
-the strict flags with gcc and clang, tests/c/common_unit.c checks it, and every generated C file
-that joins a file joins it whole."""
+the UTF-8 decoder, the reader of a version's text, the bytes a stream framer holds, the macros that
+declare private and inlined functions) on its own: each file compiles alone under the strict flags
+with gcc and clang, tests/c/common_unit.c checks it, and every generated C file that joins a file
+joins it whole."""
 from __future__ import annotations
 
 import subprocess
@@ -32,8 +33,9 @@ def test_each_file_compiles_on_its_own(cc, name):
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
 def test_common_unit_checks(cc):
     exe = OUT / "common" / f"common-unit-{cc}"
-    _build(cc, ["-O1", "-g", *SANITIZE], [ROOT / "tests" / "c" / "common_unit.c", COMMON / "buffer.c", COMMON / "utf8.c",
-                           COMMON / "version_text.c"], exe)
+    sources = [ROOT / "tests" / "c" / "common_unit.c"] + [COMMON / name for name in
+                                                         ("buffer.c", "held.c", "utf8.c", "version_text.c")]
+    _build(cc, ["-O1", "-g", *SANITIZE], sources, exe)
     result = subprocess.run([str(exe)], capture_output=True, text=True)
     assert result.returncode == 0, result.stdout + result.stderr
     assert result.stdout.strip() == "all common checks passed"

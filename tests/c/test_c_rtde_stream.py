@@ -8,13 +8,13 @@ import subprocess
 
 import pytest
 
-from tests.c.harness_c import GEN, OUT, ROOT, RTDE_STREAM, SANITIZE, compile_c
+from tests.c.harness_c import GEN, HELD, OUT, ROOT, RTDE_STREAM, SANITIZE, compile_c
 
 
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
 def test_rtde_stream_unit_checks(cc):
     exe = OUT / f"rtde-stream-unit-{cc}"
-    compile_c(cc, ["-O1", "-g", *SANITIZE], [ROOT / "tests" / "c" / "rtde_stream_unit.c", RTDE_STREAM, GEN / "rtde.c"],
+    compile_c(cc, ["-O1", "-g", *SANITIZE], [ROOT / "tests" / "c" / "rtde_stream_unit.c", RTDE_STREAM, HELD, GEN / "rtde.c"],
               exe)
     result = subprocess.run([str(exe)], capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-3000:]

@@ -14,12 +14,12 @@ import subprocess
 import pytest
 
 import urwire
-from tests.c.harness_c import CLI, GEN, INCLUDES as INCLUDE_DIRS, JSON, OUT, RTDE_STREAM, ROOT, SANITIZE, STRICT
+from tests.c.harness_c import CLI, GEN, HELD, INCLUDES as INCLUDE_DIRS, JSON, OUT, RTDE_STREAM, ROOT, SANITIZE, STRICT
 from tests.rtde_vectors import mismatches, python_records, rtde_cases, shown_as
 from urwire.rtde import Conversation
 
 CASES = rtde_cases()
-JSON_SOURCES = [CLI / "rtde_json.c", CLI / "envelope.c", RTDE_STREAM, *JSON, GEN / "urwire.c", GEN / "rtde.c"]
+JSON_SOURCES = [CLI / "rtde_json.c", CLI / "envelope.c", RTDE_STREAM, HELD, *JSON, GEN / "urwire.c", GEN / "rtde.c"]
 INCLUDES = [f"-I{d}" for d in INCLUDE_DIRS]
 CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "rtde"
 

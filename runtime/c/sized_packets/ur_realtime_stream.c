@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "../common/held.h"
+
 void ur_realtime_stream_init(ur_realtime_stream *s)
 {
     memset(s->probe, 0, sizeof s->probe);
@@ -15,18 +17,7 @@ void ur_realtime_stream_init(ur_realtime_stream *s)
 
 size_t ur_realtime_stream_feed(ur_realtime_stream *s, const uint8_t *data, size_t n)
 {
-    size_t take;
-    if (s->head) {
-        memmove(s->buf, s->buf + s->head, s->length - s->head);
-        s->length -= s->head;
-        s->base += s->head;
-        s->head = 0;
-    }
-    take = n < sizeof s->buf - s->length ? n : sizeof s->buf - s->length;
-    if (take)
-        memcpy(s->buf + s->length, data, take);
-    s->length += take;
-    return take;
+    return urwire__hold(s->buf, sizeof s->buf, &s->head, &s->length, &s->base, data, n);
 }
 
 void ur_realtime_stream_finish(ur_realtime_stream *s)

@@ -1,7 +1,7 @@
-/* RTDE stream framing. See stream.h. */
+/* RTDE stream framing. See rtde_stream.h. */
 #include "rtde_stream.h"
 
-#include <string.h>
+#include "../common/held.h"
 
 void rtde_stream_init(rtde_stream *s)
 {
@@ -14,18 +14,7 @@ void rtde_stream_init(rtde_stream *s)
 
 size_t rtde_stream_feed(rtde_stream *s, const uint8_t *data, size_t n)
 {
-    size_t take;
-    if (s->head) {
-        memmove(s->buf, s->buf + s->head, s->length - s->head);
-        s->length -= s->head;
-        s->base += s->head;
-        s->head = 0;
-    }
-    take = n < sizeof s->buf - s->length ? n : sizeof s->buf - s->length;
-    if (take)
-        memcpy(s->buf + s->length, data, take);
-    s->length += take;
-    return take;
+    return urwire__hold(s->buf, sizeof s->buf, &s->head, &s->length, &s->base, data, n);
 }
 
 void rtde_stream_finish(rtde_stream *s)
