@@ -67,6 +67,12 @@ URWIRE__PRIVATE void urwire__bytes(urwire__text *t, const char *p, size_t n);
 URWIRE__PRIVATE void urwire__str(urwire__text *t, const char *s);
 URWIRE__PRIVATE size_t urwire__end(urwire__text *t);
 
+/* ---- runtime/c/common/held.h ---- */
+/* ---- the bytes a stream framer holds between feeds (held.c) ------------------------------- */
+
+URWIRE__PRIVATE size_t urwire__hold(uint8_t *buf, size_t capacity, size_t *head, size_t *length, uint64_t *base,
+                                    const uint8_t *data, size_t n);
+
 /* ---- runtime/c/common/version_text.h ---- */
 /* ---- a software version's text (version_text.c) ----------------------------------------- */
 
@@ -540,6 +546,31 @@ URWIRE__PRIVATE size_t urwire__end(urwire__text *t)
     if (t->cap > 0)
         t->out[t->n < t->cap ? t->n : t->cap - 1] = '\0';
     return t->n;
+}
+
+/* ---- runtime/c/common/held.c ---- */
+/* ---- the bytes a stream framer holds between feeds ---------------------------------------- */
+
+/* The one way the stream framers (RTDE's, the real-time interface's) take bytes in: buf holds
+ * `length` bytes, of which those before `head` are framed already; `base` is the stream offset
+ * of buf[0]. The framed bytes are dropped (base moves past them), then as many of data's n bytes
+ * as fit in the buffer's capacity are appended. Returns how many it took: fewer than n when the
+ * buffer is full, and the caller frames what is held before it feeds the rest. */
+URWIRE__PRIVATE size_t urwire__hold(uint8_t *buf, size_t capacity, size_t *head, size_t *length, uint64_t *base,
+                                    const uint8_t *data, size_t n)
+{
+    size_t take;
+    if (*head) {
+        memmove(buf, buf + *head, *length - *head);
+        *length -= *head;
+        *base += *head;
+        *head = 0;
+    }
+    take = n < capacity - *length ? n : capacity - *length;
+    if (take)
+        memcpy(buf + *length, data, take);
+    *length += take;
+    return take;
 }
 
 /* ---- runtime/c/common/version_text.c ---- */
@@ -8034,19 +8065,8 @@ void urwire_framer_learn(urwire_framer *f, const urwire_message *m)
 
 size_t urwire_framer_feed(urwire_framer *f, const uint8_t *data, size_t n)
 {
-    size_t take;
     urwire__learn_unlearnt(f);  /* before its bytes move */
-    if (f->head) {
-        memmove(f->buf, f->buf + f->head, f->len - f->head);
-        f->len -= f->head;
-        f->base += f->head;
-        f->head = 0;
-    }
-    take = n < f->cap - f->len ? n : f->cap - f->len;
-    if (take)
-        memcpy(f->buf + f->len, data, take);
-    f->len += take;
-    return take;
+    return urwire__hold(f->buf, f->cap, &f->head, &f->len, &f->base, data, n);
 }
 
 void urwire_framer_finish(urwire_framer *f)

@@ -14,6 +14,7 @@
 #include "framer.h"
 #include "private.h"
 #include "loads.h"
+#include "held.h"
 
 /* ---- the protocol's numbers ---- */
 

@@ -20,8 +20,8 @@ RUNTIME_DIR = RUNTIME_ROOT / "c"
 # The other kinds keep their runtimes in folders of their own (runtime/c/lines/, ...), each tested
 # with its kind; the shared folder's files are tested in tests/c/test_c_common.py, and those the
 # primary joins are compiled here too.
-SHARED = ("common/macros.h", "common/loads.h", "common/buffer.h", "common/buffer.c", "common/version_text.h",
-          "common/version_text.c")
+SHARED = ("common/macros.h", "common/loads.h", "common/buffer.h", "common/buffer.c", "common/held.h",
+          "common/held.c", "common/version_text.h", "common/version_text.c")
 FILES = sorted([f"packages/{p.name}" for p in (RUNTIME_DIR / "packages").iterdir()] + list(SHARED))
 STANDALONE = [f"-I{RUNTIME_DIR / 'packages'}", f"-I{RUNTIME_DIR / 'common'}", f"-I{ROOT / 'tests' / 'c'}"]
 

@@ -766,9 +766,9 @@ RUNTIME = {
     "types": ("packages/version.h", "packages/views.h", "packages/errors.h"),
     "value": ("packages/value.h",),
     "api": ("packages/messages.h", "packages/visitor.h", "packages/framer.h"),
-    "base": ("common/macros.h", "common/buffer.h", "common/version_text.h", "packages/private.h", "common/loads.h",
-             "common/buffer.c", "common/version_text.c", "packages/views.c", "packages/version.c", "packages/format.c",
-             "packages/errors.c", "packages/text.c", "packages/put.c"),
+    "base": ("common/macros.h", "common/buffer.h", "common/held.h", "common/version_text.h", "packages/private.h",
+             "common/loads.h", "common/buffer.c", "common/held.c", "common/version_text.c", "packages/views.c",
+             "packages/version.c", "packages/format.c", "packages/errors.c", "packages/text.c", "packages/put.c"),
     "walkers": ("packages/values.c", "packages/kinds.c", "packages/forms.c", "packages/decode.c",
                 "packages/encode.c", "packages/visit.c", "packages/framer.c"),
 }

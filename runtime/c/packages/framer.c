@@ -56,19 +56,8 @@ void urwire_framer_learn(urwire_framer *f, const urwire_message *m)
 
 size_t urwire_framer_feed(urwire_framer *f, const uint8_t *data, size_t n)
 {
-    size_t take;
     urwire__learn_unlearnt(f);  /* before its bytes move */
-    if (f->head) {
-        memmove(f->buf, f->buf + f->head, f->len - f->head);
-        f->len -= f->head;
-        f->base += f->head;
-        f->head = 0;
-    }
-    take = n < f->cap - f->len ? n : f->cap - f->len;
-    if (take)
-        memcpy(f->buf + f->len, data, take);
-    f->len += take;
-    return take;
+    return urwire__hold(f->buf, f->cap, &f->head, &f->len, &f->base, data, n);
 }
 
 void urwire_framer_finish(urwire_framer *f)
