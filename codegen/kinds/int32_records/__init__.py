@@ -3,20 +3,7 @@ length header, values scaled by powers of ten, layouts gated by driver release (
 reverse, trajectory and script command sockets: spec/ur_reverse.yaml and its siblings)."""
 from __future__ import annotations
 
-from typing import Optional
+from .. import define
+from . import c, epan, lua, plan, python, resolve
 
-from .. import Kind, TargetOptions, render_targets
-from . import c, epan, lua, python
-from .model import RecordsProtocol
-from .plan import plan
-from .resolve import resolve
-
-_TARGETS = {"c": c.render, "epan": epan.render, "lua": lua.render, "python": python.render}
-
-
-def render(model: RecordsProtocol, banner: list[str], only: Optional[list[str]] = None,
-           options: Optional[TargetOptions] = None) -> dict[str, str]:
-    return render_targets(_TARGETS, plan(model), banner, only, options)
-
-
-KIND = Kind(name="int32_records", schema="int32_records.schema.json", resolve=resolve, render=render)
+KIND = define("int32_records", "int32_records.schema.json", resolve, plan, [c, epan, lua, python])

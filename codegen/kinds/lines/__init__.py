@@ -5,20 +5,7 @@ every command with its replies (patterns with placeholders), which say an error,
 software versions that have each command (spec/ur_dashboard.yaml)."""
 from __future__ import annotations
 
-from typing import Optional
+from .. import define
+from . import c, epan, lua, plan, python, resolve
 
-from .. import Kind, TargetOptions, render_targets
-from . import c, epan, lua, python
-from .model import LinesProtocol
-from .plan import plan
-from .resolve import resolve
-
-_TARGETS = {"c": c.render, "epan": epan.render, "lua": lua.render, "python": python.render}
-
-
-def render(model: LinesProtocol, banner: list[str], only: Optional[list[str]] = None,
-           options: Optional[TargetOptions] = None) -> dict[str, str]:
-    return render_targets(_TARGETS, plan(model), banner, only, options)
-
-
-KIND = Kind(name="lines", schema="lines.schema.json", resolve=resolve, render=render)
+KIND = define("lines", "lines.schema.json", resolve, plan, [c, epan, lua, python])

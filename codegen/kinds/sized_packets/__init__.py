@@ -7,19 +7,7 @@ model.py holds its IR, resolve.py makes it, plan.py lays out offsets and the for
 one module per target renders them."""
 from __future__ import annotations
 
-from typing import Optional
+from .. import define
+from . import c, epan, lua, plan, python, resolve
 
-from .. import Kind, TargetOptions, render_targets
-from . import c, epan, lua, python
-from .plan import plan
-from .resolve import resolve
-
-_TARGETS = {"c": c.render, "epan": epan.render, "lua": lua.render, "python": python.render}
-
-
-def render(model, banner: list[str], only_targets: Optional[list[str]] = None,
-           options: Optional[TargetOptions] = None) -> dict[str, str]:
-    return render_targets(_TARGETS, plan(model), banner, only_targets, options)
-
-
-KIND = Kind(name="sized_packets", schema="sized_packets.schema.json", resolve=resolve, render=render)
+KIND = define("sized_packets", "sized_packets.schema.json", resolve, plan, [c, epan, lua, python])

@@ -5,20 +5,7 @@ decisions every target shares (plan.py); each target renders the plan (c.py, epa
 python.py)."""
 from __future__ import annotations
 
-from typing import Optional
+from .. import define
+from . import c, epan, lua, plan, python, resolve
 
-from .. import Kind, TargetOptions, render_targets
-from . import c, epan, lua, python
-from .model import Interface
-from .plan import plan
-from .resolve import resolve
-
-_TARGETS = {"c": c.render, "epan": epan.render, "lua": lua.render, "python": python.render}
-
-
-def render(interface: Interface, banner: list[str], only_targets: Optional[list[str]],
-           options: Optional[TargetOptions] = None) -> dict[str, str]:
-    return render_targets(_TARGETS, plan(interface), banner, only_targets, options)
-
-
-KIND = Kind(name="typed_messages", schema="typed_messages.schema.json", resolve=resolve, render=render)
+KIND = define("typed_messages", "typed_messages.schema.json", resolve, plan, [c, epan, lua, python])
