@@ -20,8 +20,8 @@ class Series:
     versions: ir.VersionRange
 
     def describe(self) -> str:
-        """"e-Series (5.0 to 5.99)", "PolyScope X (10.0 and later)"."""
-        return f"{self.name} ({self.versions.describe()})"
+        """"e-Series: 5.0 to 5.99", "PolyScope X: 10.0 and later"."""
+        return f"{self.name}: {self.versions.describe()}"
 
 
 def index_of(series: list[Series], version: ir.Version) -> Optional[int]:
@@ -45,7 +45,7 @@ def range_problems(series: list[Series], raw: dict, low: Optional[ir.Version],
         if "through" in raw:
             out.append(("through", "`through:` names a series, and this spec declares none"))
         return out
-    names = ", ".join(s.describe() for s in series)
+    names = "; ".join(s.describe() for s in series)
     first = None
     if low is not None:
         first = index_of(series, low)
