@@ -2,6 +2,10 @@
 series reaches the next only where the spec says so, and every refusal names its YAML path."""
 from __future__ import annotations
 
+import importlib
+import struct
+import sys
+
 import pytest
 import yaml
 
@@ -14,7 +18,7 @@ from codegen.kinds.packages.reference import diff, forms_at
 SPEC_TEXT = DEFAULT_SPEC.read_text(encoding="utf-8")
 SPEC = yaml.safe_load(SPEC_TEXT)
 ADDITIONAL_INFO = "messages.robot_state.packages.additional_info"
-NEW_FIELD = ADDITIONAL_INFO + f".fields[{len(SPEC['messages']['robot_state']['packages']['additional_info']['fields'])}]"
+NEW_FIELD = f"{ADDITIONAL_INFO}.fields[{len(SPEC['messages']['robot_state']['packages']['additional_info']['fields'])}]"
 LAST_SERIES = SPEC["protocol"]["generations"][-1]["name"]
 
 
@@ -113,9 +117,8 @@ def test_an_open_range_in_the_last_series_and_a_range_through_an_earlier_one_are
 
 
 def test_the_real_spec_opens_no_range_outside_the_last_series():
-    series = [ir.VersionRange(ir.parse_version(g["versions"]["from"]),
-                              ir.parse_version(g["versions"]["until"], upper=True) if "until" in g["versions"] else None)
-              for g in SPEC["protocol"]["generations"]]
+    last = SPEC["protocol"]["generations"][-1]["versions"]
+    assert "until" not in last
 
     def ranges(node, path):
         if isinstance(node, dict):
@@ -131,7 +134,47 @@ def test_the_real_spec_opens_no_range_outside_the_last_series():
     written = list(ranges(SPEC, []))
     assert len(written) > 40
     open_before_last = [path for path, r in written if "from" in r and "until" not in r and "through" not in r
-                        and not series[-1].contains(ir.parse_version(r["from"]))]
+                        and ir.parse_version(r["from"]) < ir.parse_version(last["from"])]
     assert open_before_last == []
     # Every range the series rule rewrote still reaches the last series, as it did.
     assert all(r["through"] == LAST_SERIES for _, r in written if "through" in r)
+
+
+# ---- what the decoders make of it ----
+
+def decoded_additional_info(tmp_path, versions: dict, body: bytes, version: str):
+    """Decode one additional-info package with bindings generated from the spec with the new field."""
+    from tests.codegen.test_version_gates import render_variant
+
+    def edit(data):
+        data.clear()
+        data.update(yaml.safe_load(with_field(versions)))
+    root = render_variant(tmp_path, edit)
+    (code,) = [v["value"] for v in SPEC["enums"]["package_type"]["values"] if v["name"] == "ADDITIONAL_INFO"]
+    pkg = struct.pack(">iB", 5 + len(body), code) + body
+    saved = {k: v for k, v in sys.modules.items() if k == "urwire" or k.startswith("urwire.")}
+    for k in saved:
+        del sys.modules[k]
+    sys.path.insert(0, str(root))
+    try:
+        stream = struct.pack(">iB", 5 + len(pkg), 16) + pkg
+        (message,) = importlib.import_module("urwire").decode_stream(stream, version)
+        return message.packages[0]
+    finally:
+        sys.path.remove(str(root))
+        for k in [k for k in sys.modules if k == "urwire" or k.startswith("urwire.")]:
+            del sys.modules[k]
+        sys.modules.update(saved)
+
+
+def test_a_10x_stream_keeps_its_layout_when_the_change_ends_with_the_e_series(tmp_path):
+    (layout,) = [lay for lay in compile_text(SPEC_TEXT).all_layouts() if lay.name == "additional_info"]
+    today = bytes(layout.struct.at((10, 13, 0)).fixed_size)
+    scaled = today + struct.pack(">d", 0.5)
+    through_e_series = {"from": "5.27", "through": "e-Series"}
+    assert decoded_additional_info(tmp_path / "a", through_e_series, scaled, "5.27").tcp_speed_scaling == 0.5
+    on_10x = decoded_additional_info(tmp_path / "b", through_e_series, today, "10.13")
+    assert on_10x.tcp_speed_scaling is None and on_10x.decoded_version == (10, 13, 0) and on_10x.extra == b""
+    # Through PolyScope X, the same 10.13 bytes no longer fit 10.13's layout: the length picks an older one.
+    leaked = decoded_additional_info(tmp_path / "c", {"from": "5.27", "through": LAST_SERIES}, today, "10.13")
+    assert leaked.tcp_speed_scaling is None and leaked.decoded_version < (5, 27, 0)
