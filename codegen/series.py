@@ -61,11 +61,11 @@ def range_problems(series: list[Series], raw: dict, low: Optional[ir.Version],
             out.append(("through", f"{series[named[0]].name} ends before {raw['from']} "
                                    f"({series[first].name}) starts"))
     elif "until" not in raw and first is not None and first < len(series) - 1:
-        out.append((None, open_range_message(series, first, raw["from"])))
+        out.append((None, _open_range_message(series, first, raw["from"])))
     return out
 
 
-def open_range_message(series: list[Series], first: int, start: str) -> str:
+def _open_range_message(series: list[Series], first: int, start: str) -> str:
     names = [s.name for s in series[first + 1:]]
     later = " and ".join([", ".join(names[:-1]), names[-1]] if len(names) > 1 else names)
     return (f"{{from: \"{start}\"}} has no end, so it would run on into {later}: say which series it runs "
