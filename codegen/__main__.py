@@ -18,6 +18,7 @@ from .compile import DEFAULT_SPEC, compile_file, compile_loaded, kind_of, spec_f
 from .emit import banner_lines
 from .errors import SpecError
 from .kinds import TARGETS, TargetOptions
+from .kinds.packages.c import fast_path_change
 from .kinds.packages.model import Protocol
 from .kinds.packages.pin import pin
 from .kinds.packages.plan import plan
@@ -119,6 +120,7 @@ def _diff(argv: list[str]) -> int:
                                            if lines else "no change"))
     for line in lines:
         print(line)
+    print(fast_path_change(planned, old, new))
     return 0
 
 

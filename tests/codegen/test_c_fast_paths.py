@@ -156,3 +156,12 @@ def test_a_newer_version_keeps_every_older_versions_fast_path(planned, built, se
     grew = case_of(grown, polyscope_x, "additional_info")[2] - case_of(built, polyscope_x, "additional_info")[2]
     assert grew == (8 if into_polyscope_x else 0)
 
+
+def test_the_spec_diff_says_whether_two_versions_take_the_same_loop(planned):
+    """`make spec-diff` names the loop each version takes, so that a new version's loop shows."""
+    assert c_target.fast_path_change(planned, (5, 4, 0), (5, 25, 0)) == \
+        "C robot-state fast path: the same, loop 1 (5.4 to 5.25.0)"
+    assert c_target.fast_path_change(planned, (3, 15, 0), (5, 9, 0)) == \
+        "C robot-state fast path: none (the general rule) -> loop 1 (5.4 to 5.25.0)"
+    assert c_target.fast_path_change(planned, (5, 25, 0), (5, 25, 1)).startswith(
+        "C robot-state fast path: loop 1 (5.4 to 5.25.0) -> loop 2 (5.25.1 to ")

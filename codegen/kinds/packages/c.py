@@ -718,6 +718,19 @@ def fast_paths(axis: _Forms, table: dict, decoders: list[dict], default: ir.Vers
     return dict(paths=paths, of_segment=of_segment, default_segment=default_segment)
 
 
+def fast_path_change(protocol_plan: plan.ProtocolPlan, a: ir.Version, b: ir.Version) -> str:
+    """What `make spec-diff` says of the C robot-state fast paths: whether software `a` and `b`
+    take the same loop (the same row of forms), and which."""
+    fast = build(protocol_plan)["package_fast"]
+
+    def taken(v: ir.Version) -> str:
+        number = fast["of_segment"][protocol_plan.segment_of(v)]
+        return f"loop {number} ({fast['paths'][number - 1]['segments']})" if number else "none (the general rule)"
+
+    x, y = taken(a), taken(b)
+    return f"C robot-state fast path: {'the same, ' + x if x == y else x + ' -> ' + y}"
+
+
 def decoder_views(mp: plan.MessagePlan, table: dict, structs: dict[int, CStruct]) -> list[dict]:
     """Per sub-package code, the decoder of each of its forms, by the form's number in the form
     list plus one: what urwire__decode_member and urwire__decode_package switch on. A code whose
