@@ -4,8 +4,9 @@ check that it is current.
 `python -m codegen --target epan --upstream --out DIR` writes the copy of the epan dissectors for
 Wireshark's own tree (docs/wireshark-upstream.md): it reads no command line.
 
-Also: `python -m codegen diff 3.15 5.11` prints what changed between two software versions, and
-`python -m codegen reference [--check]` writes docs/protocol.md, the protocol reference.
+Also: `python -m codegen diff 3.15 5.11` prints what changed between two software versions (and
+the C robot-state fast-path loop each takes), and `python -m codegen reference [--check]` writes
+docs/protocol.md, the protocol reference.
 """
 from __future__ import annotations
 
