@@ -4,8 +4,9 @@ check that it is current.
 `python -m codegen --target epan --upstream --out DIR` writes the copy of the epan dissectors for
 Wireshark's own tree (docs/wireshark-upstream.md): it reads no command line.
 
-Also: `python -m codegen diff 3.15 5.11` prints what changed between two software versions, and
-`python -m codegen reference [--check]` writes docs/protocol.md, the protocol reference.
+Also: `python -m codegen diff 3.15 5.11` prints what changed between two software versions (and
+the C robot-state fast-path loop each takes), and `python -m codegen reference [--check]` writes
+docs/protocol.md, the protocol reference.
 """
 from __future__ import annotations
 
@@ -18,6 +19,7 @@ from .compile import DEFAULT_SPEC, compile_file, compile_loaded, kind_of, spec_f
 from .emit import banner_lines
 from .errors import SpecError
 from .kinds import TARGETS, TargetOptions
+from .kinds.packages.c import fast_path_change
 from .kinds.packages.model import Protocol
 from .kinds.packages.pin import pin
 from .kinds.packages.plan import plan
@@ -119,6 +121,7 @@ def _diff(argv: list[str]) -> int:
                                            if lines else "no change"))
     for line in lines:
         print(line)
+    print(fast_path_change(planned, old, new))
     return 0
 
 

@@ -171,8 +171,17 @@ def test_the_fewest_bytes_of_a_value_is_worked_out_once_and_rendered_by_every_ta
 def test_segments_between_series_are_said_from_the_series_before():
     """A segment that no released series holds reads "after 3.15, before 5.0", never as a version
     no controller has (3.16, 5.100); segments inside a series read from their first version."""
-    texts = [s.describe() for s in plan(compile_file(DEFAULT_SPEC)).segments]
+    protocol = compile_file(DEFAULT_SPEC)
+    segments = plan(protocol).segments
+    texts = [s.describe() for s in segments]
     assert "after 1.8, before 3.0" in texts and "after 3.15, before 5.0" in texts
     assert "after 5.99, before 10.0" in texts
     assert not any("5.100" in t or "3.16" in t for t in texts), texts
-    assert texts[-1] == "10.0 and later" and "5.25.1 to 5.99" in texts
+    # The newest segment of a series runs to the series' end ("5.25.1 to 5.99" while 5.25.1 is
+    # the e-Series' newest form), and the newest of the last series on with no end.
+    series = [r for _, r in protocol.generations]
+    for r in series[:-1]:
+        newest = ir.version_text([s.first for s in segments if s.first and r.contains(s.first)][-1])
+        end = ir.version_text(r.high)
+        assert (newest if newest == end else f"{newest} to {end}") in texts, r
+    assert series[-1].contains(segments[-1].first) and texts[-1] == f"{ir.version_text(segments[-1].first)} and later"

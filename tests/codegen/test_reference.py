@@ -55,6 +55,7 @@ def test_the_command_and_the_committed_reference():
     result = subprocess.run([sys.executable, "-m", "codegen", "diff", "5.0", "5.9"], cwd=ROOT,
                             capture_output=True, text=True)
     assert result.returncode == 0 and "READY_FOR_POWER_OFF" in result.stdout
+    assert "C robot-state fast path: none (the general rule) -> loop 1 (" in result.stdout
     bad = subprocess.run([sys.executable, "-m", "codegen", "diff", "5.x", "5.9"], cwd=ROOT,
                          capture_output=True, text=True)
     assert bad.returncode == 2

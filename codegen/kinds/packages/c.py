@@ -674,28 +674,32 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
                 framing=framing(p, lists[0], vst, vmsg, vs), known_types=known_types(p))
 
 
+# urwire__package_fast_paths holds each segment's fast path in a uint8_t.
+MAX_FAST_PATHS = 255
+
+
 def fast_paths(axis: _Forms, table: dict, decoders: list[dict], default: ir.Version) -> dict:
-    """The robot-state loops written out for one row of forms each: the row of the default
-    version (every stream read before its Version message; in this spec also e-Series 5.4 to
-    5.25.0) and the newest row (here 5.25.1 and later, and PolyScope X). In such a loop each
+    """The robot-state loops, each written out for one row of forms (the form every sub-package
+    type sends in a segment of the version axis). The rule: every row that a segment at or after
+    the default version's sends gets a loop, the default's row first (every stream read before
+    its Version message takes it), the others in the order of the versions. A newer version cuts
+    the axis only at and after its own first version: every older version keeps its row, and so
+    its loop (its number may change; docs/c.md says what a loop costs). A segment whose every
+    form is the nearest below's (between two series) is no version's and gets none. Every
+    segment that sends a row with a loop takes it; the others (versions below the default, with
+    rows of their own) take the general rule (urwire__decode_general). In such a loop each
     sub-package type is a case that checks the body against one constant size and calls one
-    decoder; any other body is left to the general rule (urwire__decode_general). Every segment
-    that sends one of these rows takes its loop."""
+    decoder; any other body is left to the general rule."""
     rows = table["rows"]
-
-    def usable(row: dict) -> bool:
-        return any(n["kind"] != "none" for n in row["first"])
-
-    picks = [axis.plan.segment_of(default)] + [k for k in range(len(rows) - 1, -1, -1) if usable(rows[k])][:1]
-    if picks[0] == len(rows) - 1:
+    default_segment = axis.plan.segment_of(default)
+    if default_segment == len(rows) - 1:
         # urwire__segment tries the default's segment first, up to the bound after it.
         raise SpecError(axis.source, [ir.NOWHERE.problem("c target: the default version lies past every form's "
                                                          "versions")])
     paths: list[dict] = []
     by_number = {x["number"]: (c, x) for c in decoders for x in c["forms"]}
-    for k in picks:
-        row = rows[k]
-        if not usable(row) or any(p["forms"] == row["forms"] for p in paths):
+    for row in rows[default_segment:]:
+        if all(n["kind"] == "none" for n in row["first"]) or any(p["forms"] == row["forms"] for p in paths):
             continue
         cases = []
         for form, first in zip(row["forms"], row["first"]):
@@ -707,8 +711,24 @@ def fast_paths(axis: _Forms, table: dict, decoders: list[dict], default: ir.Vers
                               size=first["size"], versions=x["versions"]))
         paths.append(dict(number=len(paths) + 1, forms=row["forms"], cases=cases,
                           segments=", ".join(r["versions"] for r in rows if r["forms"] == row["forms"])))
+    if len(paths) > MAX_FAST_PATHS:
+        raise SpecError(axis.source, [ir.NOWHERE.problem(f"c target: more than {MAX_FAST_PATHS} rows of robot-state "
+                                                         "forms from the default version on")])
     of_segment = [next((p["number"] for p in paths if p["forms"] == r["forms"]), 0) for r in rows]
-    return dict(paths=paths, of_segment=of_segment, default_segment=picks[0])
+    return dict(paths=paths, of_segment=of_segment, default_segment=default_segment)
+
+
+def fast_path_change(protocol_plan: plan.ProtocolPlan, a: ir.Version, b: ir.Version) -> str:
+    """What `make spec-diff` says of the C robot-state fast paths: whether software `a` and `b`
+    take the same loop (the same row of forms), and which."""
+    fast = build(protocol_plan)["package_fast"]
+
+    def taken(v: ir.Version) -> str:
+        number = fast["of_segment"][protocol_plan.segment_of(v)]
+        return f"loop {number} ({fast['paths'][number - 1]['segments']})" if number else "none (the general rule)"
+
+    x, y = taken(a), taken(b)
+    return f"C robot-state fast path: {'the same, ' + x if x == y else x + ' -> ' + y}"
 
 
 def decoder_views(mp: plan.MessagePlan, table: dict, structs: dict[int, CStruct]) -> list[dict]:
