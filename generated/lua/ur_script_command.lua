@@ -141,12 +141,13 @@ local proto = Proto(spec.name, spec.title)
 local F, fields = {}, {}
 for _, f in ipairs(spec.fields) do
     local filter = spec.name .. "." .. f.name
+    local shown = f.label .. (f.unit and (" (" .. f.unit .. ")") or "")   -- a unit follows the label
     if f.scaled then
-        F[f.name] = ProtoField.double(filter, f.label .. (f.unit and (" (" .. f.unit .. ")") or ""))
+        F[f.name] = ProtoField.double(filter, shown)
         F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC)
         fields[#fields + 1] = F[f.name .. "_raw"]
     else
-        F[f.name] = ProtoField.int32(filter, f.label, base.DEC, f.enum and spec.enums[f.enum] or nil)
+        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil)
     end
     fields[#fields + 1] = F[f.name]
 end

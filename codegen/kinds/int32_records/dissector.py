@@ -22,7 +22,7 @@ class Field:
 
     @property
     def shown_label(self) -> str:
-        """The label with the unit, as a scaled field shows it."""
+        """The label with the unit, as the tree shows the field: "Read timeout (ms)"."""
         return self.label + (f" ({self.unit})" if self.unit else "")
 
     @property

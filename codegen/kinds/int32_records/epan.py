@@ -1,8 +1,8 @@
 """The epan target of an int32-record interface: generated/epan/packet-<name with dashes>.c, a
 native Wireshark dissector, the twin of the Lua one (lua.py renders the same dissector model): the
-same protocol, fields (a scaled field's label carries its unit, as the Lua field's does, and its
-raw int32 is a field beside it), tree, Info column, experts and release preference. The generated
-part declares the handles, the enums' value_strings and each direction's record layouts by
+same protocol, fields (a field's label carries its unit, as the Lua field's does, and a scaled
+one's raw int32 is a field beside it), tree, Info column, experts and release preference. The
+generated part declares the handles, the enums' value_strings and each direction's record layouts by
 release; runtime/epan/int32_records*.{h,c}, joined in, frames the TCP stream and walks them."""
 from __future__ import annotations
 
@@ -71,7 +71,7 @@ def view(d: Dissector) -> dict:
             fields.append(_field(hf + "_raw", f"{f.label} (raw int32)", abbrev + "_raw", "FT_INT32", "BASE_DEC", "NULL"))
         else:
             strings = f"VALS({name}_{f.enum}_vals)" if f.enum else "NULL"
-            fields.append(_field(hf, f.label, abbrev, "FT_INT32", "BASE_DEC", strings, f.comment))
+            fields.append(_field(hf, f.shown_label, abbrev, "FT_INT32", "BASE_DEC", strings, f.comment))
     records = {}
     for r in d.records:
         ident = f"{name}_{r.name}"
