@@ -332,11 +332,6 @@ def test_dashboard_commands_of_the_version_only(server):
     assert replies[6].error
 
 
-def test_every_dashboard_command_has_an_answer():
-    from urwire.live.serve_dashboard import _HANDLERS
-    assert set(_HANDLERS) == {c.name for c in ur_dashboard.COMMANDS}
-
-
 def test_serve_without_rtde_before_3_3(tmp_path):
     with CellServer(tmp_path, "--software", "1.8") as running:
         assert set(running.ports) == {"primary", "realtime", "dashboard"}
