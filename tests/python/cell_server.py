@@ -29,12 +29,13 @@ class CellServer:
     """`urwire serve` with its stderr in a file; `ports` maps primary, rtde, realtime and dashboard
     to where each listens."""
 
-    def __init__(self, tmp: Path, *args: str, host: str = "127.0.0.1", port: int = 0, duration: float = 60):
+    def __init__(self, tmp: Path, *args: str, host: str = "127.0.0.1", port: int = 0, duration: float = 60,
+                 env: dict = ENV):
         self.host = host
         self.log = tmp / f"serve-{random.randrange(1 << 30)}.log"
         with open(self.log, "w") as log:
             self.proc = subprocess.Popen([sys.executable, "-m", "urwire", "serve", "--host", host, "--port", str(port),
-                                          "--duration", str(duration), *args], stderr=log, env=ENV)
+                                          "--duration", str(duration), *args], stderr=log, env=env)
         self.ports = self.wait_for_ports()
 
     def wait_for_ports(self, timeout: float = 15) -> dict:
