@@ -46,8 +46,9 @@ class ReplySpec:
     pieces: tuple[str, ...]   # literal text around each placeholder of the pattern
     error: bool
     # What a simulated robot (`urwire serve`) answers with the reply: the text of its placeholder,
-    # each {name} in it a robot state's value, and the (state, value) pairs that must hold.
-    fill: Optional[str] = None
+    # literal text and robot state names alternately ("{a} ({b})": "", "a", " (", "b", ")"), and the
+    # (state, value) pairs that must hold.
+    fill: tuple[str, ...] = ()
     when: tuple[tuple[str, str], ...] = ()
 
 

@@ -27,6 +27,7 @@ class Reply:
     doc: str
     where: ir.Where
     fill: Optional[str] = None   # what the simulated robot puts in the placeholder; {name}: a robot state
+    fill_parts: tuple[str, ...] = ()          # the fill split: literal text and state names, alternately
     when: tuple[tuple[str, str], ...] = ()   # (robot state, value) pairs that must hold for it to answer
 
 

@@ -16,7 +16,7 @@ def _version(version: Optional[ir.Version]) -> str:
 
 def _reply_arguments(reply: Reply) -> list[str]:
     """ReplySpec's arguments: what the simulated robot answers with it only where the spec says."""
-    served = [f"fill={reply.fill!r}"] if reply.fill is not None else []
+    served = [f"fill={reply.fill_parts!r}"] if reply.fill_parts else []
     served += [f"when={reply.when!r}"] if reply.when else []
     return [repr(reply.name), repr(reply.pieces), repr(reply.error)] + served
 

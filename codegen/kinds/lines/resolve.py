@@ -20,9 +20,10 @@ def pattern_pieces(pattern: str) -> tuple[str, ...]:
     return tuple(_PLACEHOLDER.split(pattern))
 
 
-def state_refs(fill: str) -> list[str]:
-    """"{software_version} ({build_date})" -> ["software_version", "build_date"]."""
-    return _STATE_REF.findall(fill)
+def fill_parts(fill: Optional[str]) -> tuple[str, ...]:
+    """"{software_version} ({build_date})" -> ("", "software_version", " (", "build_date", ")"): literal
+    text and robot state names, alternately, the literal first (and last)."""
+    return tuple(_STATE_REF.split(fill)) if fill is not None else ()
 
 
 def _argument_fill(pattern: str, argument: Optional[str]) -> Optional[str]:
@@ -46,15 +47,16 @@ class _LinesResolver(Resolver):
         when = tuple(raw.get("when", {}).items())
         for state, _ in when:
             self.check_state(state, argument, parts + ["when", state])
+        fill = raw.get("fill", _argument_fill(pattern, argument) if served else None)
         return Reply(raw["name"], pattern, pieces, raw.get("error", False), raw.get("doc", ""), self.where(parts),
-                     raw.get("fill", _argument_fill(pattern, argument) if served else None), when)
+                     fill, fill_parts(fill), when)
 
     def check_fill(self, fill: str, placeholders: int, argument: Optional[str], parts) -> None:
         if placeholders != 1:
             self.fail(parts, f"fill gives the text of one placeholder; the pattern has {placeholders}")
         if "{" in _STATE_REF.sub("", fill) or "}" in _STATE_REF.sub("", fill):
             self.fail(parts, f"'{{' and '}}' only enclose a robot state's name: {fill!r}")
-        for state in state_refs(fill):
+        for state in fill_parts(fill)[1::2]:
             self.check_state(state, argument, parts)
 
     def check_state(self, state: str, argument: Optional[str], parts) -> None:

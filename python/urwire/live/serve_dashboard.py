@@ -17,16 +17,12 @@ up to its newline, are ever read as a command.
 """
 from __future__ import annotations
 
-import re
 from typing import Callable, Optional
 
 from .._runtime import StreamError
 from ..generated import ur_dashboard as _g
 from ..text_lines import LineSplitter, ReplySpec, find_command
 from .robot_cell import BUILD_DATE, BUILD_NUMBER, IDLE, PLAYING, POWER_OFF, RUNNING, RobotCell
-
-_STATE_REF = re.compile(r"\{(\w+)\}")
-
 
 def say(reply: ReplySpec, value: str = "") -> str:
     """A reply's text: its pattern with `value` in each placeholder."""
@@ -68,14 +64,12 @@ class DashboardSession:
         if command is None or not command.available(self.cell.version):
             return say(_g.COMMON_REPLIES[0], line)
         argument = argument or ""
-        done = _EFFECTS[command.effect](self, argument) if command.effect else True
-        errors = [r for r in command.replies if r.error]
-        if done:
+        if _EFFECTS[command.effect](self, argument) if command.effect else True:
             for reply in command.replies:
                 text = None if reply.error else self.filled(reply, argument)
                 if text is not None:
                     return text
-        reply = errors[0] if errors else command.replies[0]
+        reply = next((r for r in command.replies if r.error), command.replies[0])
         return self.filled(reply, argument) or say(reply)
 
     def filled(self, reply: ReplySpec, argument: str) -> Optional[str]:
@@ -83,10 +77,9 @@ class DashboardSession:
         its `fill` names has none."""
         if any(_STATES[state](self, argument) != value for state, value in reply.when):
             return None
-        values = {name: _STATES[name](self, argument) for name in _STATE_REF.findall(reply.fill or "")}
-        if None in values.values():
-            return None
-        return say(reply, _STATE_REF.sub(lambda m: values[m.group(1)], reply.fill or ""))
+        parts = list(reply.fill)
+        parts[1::2] = [_STATES[name](self, argument) for name in parts[1::2]]
+        return None if None in parts else say(reply, "".join(parts))
 
     def close_connection(self, _) -> bool:
         self.closing = True
