@@ -1,5 +1,6 @@
 """The IR of a text-line interface (the dashboard server): its commands, their replies and the
-versions that have them, as plain objects every target renders."""
+versions that have them, as plain objects every target renders; and what a simulated robot
+(`urwire serve`) does on each command and answers, which only the Python target carries."""
 from __future__ import annotations
 
 from dataclasses import dataclass

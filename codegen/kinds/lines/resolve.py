@@ -54,7 +54,8 @@ class _LinesResolver(Resolver):
     def check_fill(self, fill: str, placeholders: int, argument: Optional[str], parts) -> None:
         if placeholders != 1:
             self.fail(parts, f"fill gives the text of one placeholder; the pattern has {placeholders}")
-        if "{" in _STATE_REF.sub("", fill) or "}" in _STATE_REF.sub("", fill):
+        rest = _STATE_REF.sub("", fill)
+        if "{" in rest or "}" in rest:
             self.fail(parts, f"'{{' and '}}' only enclose a robot state's name: {fill!r}")
         for state in fill_parts(fill)[1::2]:
             self.check_state(state, argument, parts)
