@@ -24,6 +24,7 @@ from ..generated import ur_dashboard as _g
 from ..text_lines import LineSplitter, ReplySpec, find_command
 from .robot_cell import BUILD_DATE, BUILD_NUMBER, IDLE, PLAYING, POWER_OFF, RUNNING, RobotCell
 
+
 def say(reply: ReplySpec, value: str = "") -> str:
     """A reply's text: its pattern with `value` in each placeholder."""
     return value.join(reply.pieces)
@@ -64,7 +65,8 @@ class DashboardSession:
         if command is None or not command.available(self.cell.version):
             return say(_g.COMMON_REPLIES[0], line)
         argument = argument or ""
-        if _EFFECTS[command.effect](self, argument) if command.effect else True:
+        done = _EFFECTS[command.effect](self, argument) if command.effect else True
+        if done:
             for reply in command.replies:
                 text = None if reply.error else self.filled(reply, argument)
                 if text is not None:
