@@ -4,7 +4,7 @@ conversation."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Optional
+from typing import Any, Optional, Union
 
 FROM_ROBOT, TO_ROBOT = "from_robot", "to_robot"
 
@@ -59,6 +59,6 @@ class Enveloped:
 
     interface: Optional[str]        # the interface's name, which is its Wireshark protocol: "ur", "rtde"
     direction: Optional[str]        # FROM_ROBOT or TO_ROBOT
-    conversation: Optional[str]     # Endpoints in a capture, else the file of a raw stream
+    conversation: Union[Endpoints, str, None]   # Endpoints in a capture, else the file of a raw stream
     record: Any
     capture_time: Optional[float] = None

@@ -119,7 +119,7 @@ def capture_records(fh: BinaryIO, hint: VersionLike = None, by_port: Optional[di
     return CaptureRecords(lambda others: cell_records(fh, hint, by_port or ports_read(), advance, others))
 
 
-def decode_capture(path: Union[str, os.PathLike], version_hint: VersionLike = None, protocol: Optional[str] = None,
+def decode_capture(path: Union[str, os.PathLike], version_hint: VersionLike = None, *, protocol: Optional[str] = None,
                    ports: Optional[Iterable[int]] = None) -> CaptureRecords:
     """Every record of a .pcap or .pcapng capture of a cell, in capture order: each TCP
     conversation whose server port is one of an interface's (urwire.interfaces.INTERFACES) is

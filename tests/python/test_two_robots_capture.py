@@ -124,3 +124,13 @@ def test_decode_file_reads_the_primary_interface_as_it_always_has(two_robots, tm
     raw.write_bytes(ROBOTS[CB2][0].data)
     with pytest.raises(ValueError, match="not a .pcap or .pcapng capture"):
         urwire.decode_capture(raw)
+
+
+@pytest.mark.parametrize("first_from_client", [True, False])
+def test_a_conversation_seen_without_its_handshake_has_its_client_on_the_higher_port(tmp_path, first_from_client):
+    request, reply = Segment(False, b"\x00\x01\x00\x00\x00\x06\x01\x03\x00\x00\x00\x01"), Segment(True, b"\x00" * 11)
+    frames = capture.session_frames([request, reply] if first_from_client else [reply, request], port=502,
+                                    client_port=40123, handshake=False, robot="192.168.56.1", client="192.168.56.7")
+    records = urwire.decode_capture(capture.write(tmp_path / "modbus.pcap", frames))
+    assert list(records) == []
+    assert records.unclaimed == {"192.168.56.1:502-192.168.56.7:40123": 23}
