@@ -2,8 +2,9 @@
 from __future__ import annotations
 
 import re
+from typing import Optional
 
-from ... import ir
+from ... import ir, series
 from ...errors import SpecError
 from ...load import LoadedSpec
 from ...resolve import Resolver
@@ -35,7 +36,7 @@ class _LinesResolver(Resolver):
             out.append(reply)
         return tuple(out)
 
-    def command(self, raw: dict, parts) -> Command:
+    def command(self, raw: dict, parts, follows: Optional[ir.Version]) -> Command:
         since = raw.get("since", {"cb": "1.0", "e_series": "5.0"})   # no since: from the first software
         cb = ir.parse_version(since["cb"]) if "cb" in since else None
         e_series = ir.parse_version(since["e_series"]) if "e_series" in since else None
@@ -43,14 +44,22 @@ class _LinesResolver(Resolver):
             self.fail(parts + ["since", "cb"], f"{since['cb']} is not a CB-series version (below 5.0)")
         if e_series and e_series[0] < LinesProtocol.E_SERIES_MAJOR:
             self.fail(parts + ["since", "e_series"], f"{since['e_series']} is not an e-Series version (5.0 or later)")
-        return Command(raw["name"], raw["text"], raw.get("argument"), cb, e_series, "since" not in raw, raw["doc"],
+        polyscope_x = series.POLYSCOPE_X_FROM
+        if "since" in raw:   # PolyScope X reads the e-Series column only as far as it is known to follow it
+            polyscope_x, problem = series.polyscope_x_first(e_series or series.NONE, since.get("polyscope_x"), follows)
+            if problem:
+                self.fail(parts + ["since"] + (["polyscope_x"] if "polyscope_x" in since else []), problem)
+        return Command(raw["name"], raw["text"], raw.get("argument"), cb, e_series,
+                       None if polyscope_x == series.NONE else polyscope_x, "since" not in raw, raw["doc"],
                        self.replies(raw["replies"], parts + ["replies"]), self.where(parts))
 
     def protocol(self) -> LinesProtocol:
         data = self.spec.data
+        follows = data["protocol"].get("polyscope_x_follows")
+        follows = ir.parse_version(follows) if follows else None
         commands: list[Command] = []
         for i, raw in enumerate(data["commands"]):
-            command = self.command(raw, ["commands", i])
+            command = self.command(raw, ["commands", i], follows)
             for earlier in commands:
                 if earlier.name == command.name:
                     self.fail(["commands", i, "name"], f"duplicate command name {command.name}")
