@@ -80,6 +80,22 @@ def test_an_open_range_is_refused_in_enums_and_tables_too():
                and "into CB3, e-Series and PolyScope X" in p for p in problems), problems
 
 
+def test_the_real_time_spec_keeps_the_same_rule():
+    """spec/ur_realtime.yaml declares the same series: its three ranges that run on into 10.x say so."""
+    path = DEFAULT_SPEC.parent / "ur_realtime.yaml"
+    data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    enums = data["enums"]
+    assert enums["robot_mode"]["tables"][1]["versions"] == {"from": "3.0", "through": LAST_SERIES}
+    assert enums["joint_mode"]["tables"][2]["versions"] == {"from": "5.0", "through": LAST_SERIES}
+    assert data["layouts"]["rt_5_10"]["versions"] == [{"from": "5.10", "through": LAST_SERIES}]
+    # An open range is refused where it would leak; split at a series' end, the same reach is accepted.
+    enums["joint_mode"]["tables"][2]["versions"] = {"from": "5.0"}
+    data["layouts"]["rt_5_10"]["versions"] = [{"from": "5.10", "through": "e-Series"}, {"from": "10.0"}]
+    problems = problems_of(yaml.safe_dump(data, sort_keys=False, allow_unicode=True))
+    assert [p.split(" (line")[0] for p in problems] == ["enums.joint_mode.tables[2].versions"], problems
+    assert 'through: "e-Series"' in problems[0] and "into PolyScope X" in problems[0]
+
+
 def test_series_must_follow_one_another():
     data = yaml.safe_load(SPEC_TEXT)
     data["protocol"]["generations"][2]["versions"] = {"from": "3.10", "until": "5.99"}

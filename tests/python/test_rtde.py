@@ -119,7 +119,7 @@ def test_a_huge_size_waits_for_its_bytes_then_is_a_truncated_tail():
 def test_the_variable_table_has_labels_units_and_versions():
     q = rtde.variable("actual_q")
     assert (q.type, q.unit, q.label, q.since) == ("VECTOR6D", "rad", "Actual joint positions",
-                                                  {"cb3": "3.3", "eseries": "5.0"})
+                                                  {"cb3": "3.3", "eseries": "5.0", "polyscope_x": "10.0"})
     assert rtde.variable("speed_slider_fraction", "input").type == "DOUBLE"
     assert all(v.type in generated.VALUE_TYPES for v in rtde.VARIABLES.rows)
     assert rtde.variable("no_such_thing") is None
