@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Optional
 
-from . import ir
+from . import ir, series as series_rules
 from .errors import Problem
 from .load import LoadedSpec
 from .naming import words
@@ -21,6 +21,7 @@ class Resolver:
         self.enums: dict[str, ir.Enum] = {}
         self.unresolved: set[int] = set()
         self.value_enums: set[str] = set()     # enums that value fields take their type codes from
+        self.series: list[series_rules.Series] = []   # the spec's series, once declare_series has read them
 
     def fail(self, parts, message: str) -> None:
         self.problems.append(self.spec.problem(parts, message))
@@ -32,13 +33,34 @@ class Resolver:
     # ---- versions and enums ----
 
     def versions(self, raw: Optional[dict], parts) -> ir.VersionRange:
+        """A `versions:` range: `from:`, and `until:` (an explicit last version) or `through:` (the
+        last version of a series; none for the last series, which is open). Where the spec
+        declares series, the range keeps the rules of codegen/series.py."""
         if not raw:
             return ir.ALL_VERSIONS
         low = ir.parse_version(raw["from"]) if "from" in raw else None
-        high = ir.parse_version(raw["until"], upper=True) if "until" in raw else None
-        if low and high and low > high:
+        if "until" in raw:
+            high = ir.parse_version(raw["until"], upper=True)
+        else:
+            high = series_rules.through_end(self.series, raw["through"]) if "through" in raw else None
+        for key, message in series_rules.range_problems(self.series, raw, low, high):
+            self.fail(parts + ([key] if key else []), message)
+        if low and high and "until" in raw and low > high:
             self.fail(parts, f"version range starts after it ends ({raw['from']} > {raw['until']})")
         return ir.VersionRange(low, high)
+
+    def declare_series(self, raws: list[dict], parts) -> list[series_rules.Series]:
+        """The spec's series (`protocol.generations`), oldest first, each starting after the one
+        before ends; every `versions:` range resolved after this keeps the rules of series.py."""
+        declared: list[series_rules.Series] = []
+        for i, raw in enumerate(raws):
+            rng = self.versions(raw["versions"], parts + [i, "versions"])
+            before = declared[-1].versions if declared else None
+            if before is not None and (before.high is None or rng.low is None or rng.low <= before.high):
+                self.fail(parts + [i, "versions"], f"{raw['name']} must start after {declared[-1].name} ends")
+            declared.append(series_rules.Series(raw["name"], rng))
+        self.series = declared
+        return declared
 
     def enum_values(self, raw_values, scalar: ir.Scalar, parts) -> list[ir.EnumValue]:
         out: list[ir.EnumValue] = []

@@ -20,7 +20,7 @@ from tests.c.harness_c import CLI_LIBRARY, CLI_SOURCES, ROOT, compile_c
 def variant_cli(tmp_path):
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
     fields = data["messages"]["robot_state"]["packages"]["additional_info"]["fields"]
-    fields.append({"name": "gated_flag", "label": "Gated flag", "type": "uint16", "versions": {"from": "5.12"}})
+    fields.append({"name": "gated_flag", "label": "Gated flag", "type": "uint16", "versions": {"from": "5.12", "through": "PolyScope X"}})
     for rel, text in c_target.render(plan(compile_text(yaml.safe_dump(data, sort_keys=False))), ["test build"]).items():
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / rel).write_text(text)

@@ -88,9 +88,9 @@ def test_where_the_version_is_read(planned):
 def test_version_gated_fields_group_by_their_range():
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
     fields = data["messages"]["robot_state"]["packages"]["tool_mode_info"]["fields"]
-    fields += [{"name": "a", "label": "A", "type": "uint8", "versions": {"from": "5.12"}},
-               {"name": "b", "label": "B", "type": "uint8", "versions": {"from": "5.12"}},
-               {"name": "c", "label": "C", "type": "uint8", "versions": {"from": "5.13"}}]
+    fields += [{"name": "a", "label": "A", "type": "uint8", "versions": {"from": "5.12", "through": "PolyScope X"}},
+               {"name": "b", "label": "B", "type": "uint8", "versions": {"from": "5.12", "through": "PolyScope X"}},
+               {"name": "c", "label": "C", "type": "uint8", "versions": {"from": "5.13", "through": "PolyScope X"}}]
     planned = plan(compile_text(yaml.safe_dump(data, sort_keys=False)))
     steps = layout(planned, "robot_state", "tool_mode_info").steps
     assert [s.kind for s in steps] == ["run", "cond", "cond"]
@@ -103,7 +103,7 @@ def test_a_pinned_protocol_has_no_version_branches():
 
     data = yaml.safe_load(DEFAULT_SPEC.read_text(encoding="utf-8"))
     fields = data["messages"]["robot_state"]["packages"]["tool_mode_info"]["fields"]
-    fields += [{"name": "a", "label": "A", "type": "uint8", "versions": {"from": "5.12"}},
+    fields += [{"name": "a", "label": "A", "type": "uint8", "versions": {"from": "5.12", "through": "PolyScope X"}},
                {"name": "b", "label": "B", "type": "uint8", "versions": {"until": "5.11"}}]
     protocol = compile_text(yaml.safe_dump(data, sort_keys=False))
     for version, kept, gone in (((5, 11, 0), "b", "a"), ((5, 12, 0), "a", "b")):

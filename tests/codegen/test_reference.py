@@ -22,7 +22,7 @@ def planned_with(edit):
 
 def gate_two_fields(data):
     fields = data["messages"]["robot_state"]["packages"]["tool_mode_info"]["fields"]
-    fields.append({"name": "gated_flag", "label": "Gated flag", "type": "uint16", "versions": {"from": "5.12"}})
+    fields.append({"name": "gated_flag", "label": "Gated flag", "type": "uint16", "versions": {"from": "5.12", "through": "PolyScope X"}})
     fields.append({"name": "old_flag", "label": "Old flag", "type": "uint8", "versions": {"until": "5.11"}})
 
 

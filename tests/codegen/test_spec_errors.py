@@ -105,7 +105,7 @@ def repeated_probe(older: str, newer: str):
     def edit(d):
         robot_mode_fields(d).extend([
             {"name": "probe", "label": "Probe", "type": older, "versions": {"until": "3.4"}},
-            {"name": "probe", "label": "Probe", "type": newer, "versions": {"from": "3.5"}},
+            {"name": "probe", "label": "Probe", "type": newer, "versions": {"from": "3.5", "through": "PolyScope X"}},
         ])
     return edit
 

@@ -35,7 +35,7 @@ def render_variant(tmp_path, edit):
 
 def add_gated_field(data):
     fields = data["messages"]["robot_state"]["packages"]["tool_mode_info"]["fields"]
-    fields.append({"name": "gated_flag", "label": "Gated flag", "type": "uint16", "versions": {"from": "5.12"}})
+    fields.append({"name": "gated_flag", "label": "Gated flag", "type": "uint16", "versions": {"from": "5.12", "through": "PolyScope X"}})
 
 
 def robot_state(body: bytes) -> bytes:

@@ -68,10 +68,12 @@ class _PackagesResolver(Resolver):
 
     def resolve(self) -> model.Protocol:
         data = self.spec.data
+        proto = data["protocol"]
+        # The series first: every range after them is stated against them (codegen/series.py).
+        series = self.declare_series(proto.get("generations", []), ["protocol", "generations"])
         for name, raw in data["enums"].items():
             self.enums[name] = self.enum(name, raw)
 
-        proto = data["protocol"]
         framing = data["framing"]
         mh = {k: self.header_field(v, ["framing", "message_header", k]) for k, v in framing["message_header"].items()}
         ph = {k: self.header_field(v, ["framing", "package_header", k]) for k, v in framing["package_header"].items()}
@@ -141,8 +143,7 @@ class _PackagesResolver(Resolver):
             enums=self.enums, value_layouts=value_layouts,
             message_length=mh["length"], message_type=mh["type"],
             package_length=ph["length"], package_type=ph["type"], messages=messages, source=self.spec.source,
-            generations=[(g["name"], self.versions(g["versions"], ["protocol", "generations", i, "versions"]))
-                         for i, g in enumerate(proto.get("generations", []))])
+            generations=[(s.name, s.versions) for s in series])
         if self.problems:
             raise SpecError(self.spec.source, self.problems)
         return protocol
