@@ -45,6 +45,11 @@ class ReplySpec:
     name: str
     pieces: tuple[str, ...]   # literal text around each placeholder of the pattern
     error: bool
+    # What a simulated robot (`urwire serve`) answers with the reply: the text of its placeholder,
+    # literal text and robot state names alternately ("{a} ({b})": "", "a", " (", "b", ")"), and the
+    # (state, value) pairs that must hold.
+    fill: tuple[str, ...] = ()
+    when: tuple[tuple[str, str], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -55,6 +60,7 @@ class CommandSpec:
     since_cb: Optional[Version]
     since_e_series: Optional[Version]
     replies: tuple[ReplySpec, ...]
+    effect: Optional[str] = None      # what the command does to a simulated robot (`urwire serve`)
 
     def available(self, version: Version) -> bool:
         since = self.since_e_series if version[0] >= E_SERIES_MAJOR else self.since_cb

@@ -59,3 +59,31 @@ def test_the_schema_refuses_a_command_without_replies():
 """, "")
     (problem,) = problems(text)
     assert problem.path.startswith("commands[") and "replies" in problem.message
+
+
+def test_what_the_simulated_robot_answers_is_resolved_from_the_spec():
+    commands = {c.name: c for c in compile_text(SPEC).commands}
+    assert commands["play"].effect == "play" and commands["robotmode"].effect is None
+    # A placeholder named as the argument takes the argument, unless the reply's fill says otherwise.
+    assert [r.fill for r in commands["load"].replies] == ["{argument}"] * 3
+    assert commands["set_operational_mode"].replies[0].fill == "'{argument}'"
+    assert commands["program_state"].replies[1].when == (("program_state", "PLAYING"),)
+
+
+def test_an_unknown_effect_or_robot_state_and_a_misplaced_fill_are_named_at_their_paths():
+    text = (SPEC.replace("effect: play\n", "effect: dance\n")
+            .replace('fill: "{robot_mode}"', 'fill: "{robot_mood}"')
+            .replace('fill: "{program_running}"', 'fill: "{argument}"')
+            .replace('{name: stopped, pattern: "Stopped"}', '{name: stopped, pattern: "Stopped", fill: "x"}')
+            .replace("when: {program_state: PAUSED}", "when: {program_phase: PAUSED}")
+            .replace('fill: "{serial_number}"', 'fill: "{serial_number"')
+            .replace("    error: true\n    doc: The server", "    error: true\n    fill: x\n    doc: The server"))
+    found = {p.path: p.message for p in problems(text)}
+    assert "unknown effect 'dance'" in found["commands[1].effect"]
+    robotmode = next(k for k, v in found.items() if "robot_mood" in v)
+    assert robotmode.endswith("replies[0].fill") and "one of argument, program_state" in found[robotmode]
+    assert any("takes no argument" in v for v in found.values())
+    assert "the pattern has 0" in found["commands[2].replies[0].fill"]
+    assert any(k.endswith("when.program_phase") for k in found)
+    assert any("'{' and '}'" in v for v in found.values())
+    assert "only a command's reply" in found["common_replies[0].fill"]

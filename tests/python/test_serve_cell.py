@@ -17,7 +17,7 @@ import time
 
 import pytest
 
-from tests.python.cell_server import ENV, CellServer, read_until
+from tests.python.cell_server import ENV, CellServer, RtdeClient, read_until
 from urwire import rtde
 from urwire.generated import rtde as g
 from urwire.generated import ur_dashboard
@@ -28,44 +28,6 @@ from urwire.framer import Framer
 import urwire
 
 BUILD = 108318
-
-
-class RtdeClient:
-    """A blocking RTDE client that keeps both directions in one urwire Conversation."""
-
-    def __init__(self, server: CellServer):
-        self.sock = server.connect("rtde")
-        self.conversation = rtde.Conversation(protocol=1)     # a controller starts in protocol 1
-        self.pending: list = []
-
-    def send(self, data: bytes) -> None:
-        self.conversation.feed(data, False)
-        self.sock.sendall(data)
-
-    def ask(self, data: bytes, reply_type: type, timeout: float = 5.0):
-        """Sends a request and returns its reply; data packages that come first are kept."""
-        self.send(data)
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            for i, record in enumerate(self.pending):
-                if isinstance(record, reply_type):
-                    del self.pending[i]
-                    return record
-            self.pending += self.conversation.feed(self.sock.recv(65536), True)
-        raise AssertionError(f"no {reply_type.__name__} within {timeout} s")
-
-    def packages(self, count: int, timeout: float = 10.0) -> list:
-        out = [r for r in self.pending if type(r).__name__.startswith("DataPackage")]
-        self.pending = []
-        deadline = time.monotonic() + timeout
-        while len(out) < count and time.monotonic() < deadline:
-            out += [r for r in self.conversation.feed(self.sock.recv(65536), True)
-                    if type(r).__name__.startswith("DataPackage")]
-        assert len(out) >= count, f"{len(out)} data packages of {count}"
-        return out[:count]
-
-    def close(self) -> None:
-        self.sock.close()
 
 
 @pytest.fixture
@@ -330,11 +292,6 @@ def test_dashboard_commands_of_the_version_only(server):
     assert texts[3:] == ["Powering off", "Robotmode: POWER_OFF", "Failed to execute: play", "Powering on",
                          "Brake releasing", "Robotmode: RUNNING", "Disconnected"]
     assert replies[6].error
-
-
-def test_every_dashboard_command_has_an_answer():
-    from urwire.live.serve_dashboard import _HANDLERS
-    assert set(_HANDLERS) == {c.name for c in ur_dashboard.COMMANDS}
 
 
 def test_serve_without_rtde_before_3_3(tmp_path):

@@ -1,11 +1,22 @@
 """The IR of a text-line interface (the dashboard server): its commands, their replies and the
-versions that have them, as plain objects every target renders."""
+versions that have them, as plain objects every target renders; and what a simulated robot
+(`urwire serve`) does on each command and answers, which only the Python target carries."""
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Optional
 
 from ... import ir
+
+# What a command may do to the simulated robot (`effect:`); `urwire serve` does each, and those
+# that can fail (a load of no .urp, a play with nothing to play) answer with the command's first
+# error reply.
+EFFECTS = ("load_program", "play", "stop", "pause", "power_on", "power_off", "brake_release",
+           "close_connection", "add_to_log", "set_operational_mode", "clear_operational_mode")
+# The values of the simulated robot a reply's `fill:` text names as {name}, and its `when:` tests;
+# `argument` is the command's argument.
+ROBOT_STATES = ("argument", "program_state", "program_running", "program_name", "loaded_program", "robot_mode",
+                "software_version", "build_date", "serial_number", "robot_model", "operational_mode")
 
 
 @dataclass(frozen=True)
@@ -16,6 +27,9 @@ class Reply:
     error: bool
     doc: str
     where: ir.Where
+    fill: Optional[str] = None   # what the simulated robot puts in the placeholder; {name}: a robot state
+    fill_parts: tuple[str, ...] = ()          # the fill split: literal text and state names, alternately
+    when: tuple[tuple[str, str], ...] = ()   # (robot state, value) pairs that must hold for it to answer
 
 
 @dataclass(frozen=True)
@@ -29,6 +43,7 @@ class Command:
     doc: str
     replies: tuple[Reply, ...]
     where: ir.Where
+    effect: Optional[str] = None          # what it does to the simulated robot (EFFECTS)
 
     def since_text(self) -> str:
         """"CB 1.4, e-Series 5.0": where and from when the command exists, for comments."""

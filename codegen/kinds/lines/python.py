@@ -6,7 +6,7 @@ from typing import Optional
 
 from ... import ir
 from ...emit import environment
-from .model import Reply
+from .model import Command, Reply
 from .plan import LinesPlan
 
 
@@ -14,8 +14,20 @@ def _version(version: Optional[ir.Version]) -> str:
     return repr(version) if version else "None"
 
 
+def _reply_arguments(reply: Reply) -> list[str]:
+    """ReplySpec's arguments: what the simulated robot answers with it only where the spec says."""
+    served = [f"fill={reply.fill_parts!r}"] if reply.fill_parts else []
+    served += [f"when={reply.when!r}"] if reply.when else []
+    return [repr(reply.name), repr(reply.pieces), repr(reply.error)] + served
+
+
 def _reply(reply: Reply) -> str:
-    return f"_rt.ReplySpec({reply.name!r}, {reply.pieces!r}, {reply.error!r})"
+    return f"_rt.ReplySpec({', '.join(_reply_arguments(reply))})"
+
+
+def _command_end(command: Command) -> str:
+    """What closes a command's table entry: its effect on the simulated robot, if it has one."""
+    return f"), effect={command.effect!r})" if command.effect else "))"
 
 
 def view(p: LinesPlan) -> dict:
@@ -27,7 +39,7 @@ def view(p: LinesPlan) -> dict:
         commands=[dict(constant=c.command.name.upper(), doc=f"{c.command.doc} ({c.command.since_text()})",
                        arguments=[repr(c.command.name), repr(c.command.text), repr(c.command.argument is not None),
                                   _version(c.command.since_cb), _version(c.command.since_e_series)],
-                       replies=[_reply(r) for r in c.command.replies])
+                       replies=[_reply_arguments(r) for r in c.command.replies], end=_command_end(c.command))
                   for c in p.commands],
         lookup=[c.command.name.upper() for c in p.lookup],
         version_command=repr(m.version_command), version_prefix=repr(m.version_prefix),

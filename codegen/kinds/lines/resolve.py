@@ -2,14 +2,16 @@
 from __future__ import annotations
 
 import re
+from typing import Optional
 
 from ... import ir
 from ...errors import SpecError
 from ...load import LoadedSpec
 from ...resolve import Resolver
-from .model import Command, LinesProtocol, RecordField, Reply
+from .model import EFFECTS, ROBOT_STATES, Command, LinesProtocol, RecordField, Reply
 
 _PLACEHOLDER = re.compile(r"<[a-z][a-z0-9_. ]*>")
+_STATE_REF = re.compile(r"\{([^{}]*)\}")
 
 
 def pattern_pieces(pattern: str) -> tuple[str, ...]:
@@ -18,18 +20,56 @@ def pattern_pieces(pattern: str) -> tuple[str, ...]:
     return tuple(_PLACEHOLDER.split(pattern))
 
 
+def fill_parts(fill: Optional[str]) -> tuple[str, ...]:
+    """"{software_version} ({build_date})" -> ("", "software_version", " (", "build_date", ")"): literal
+    text and robot state names, alternately, the literal first (and last)."""
+    return tuple(_STATE_REF.split(fill)) if fill is not None else ()
+
+
+def _argument_fill(pattern: str, argument: Optional[str]) -> Optional[str]:
+    """A reply whose one placeholder is named as the command's argument ("File not found: <program>"
+    of `load <program>`) is filled with the argument unless its fill says otherwise."""
+    return "{argument}" if argument is not None and _PLACEHOLDER.findall(pattern) == [f"<{argument}>"] else None
+
+
 class _LinesResolver(Resolver):
-    def reply(self, raw: dict, parts) -> Reply:
+    def reply(self, raw: dict, parts, argument: Optional[str] = None, served: bool = False) -> Reply:
+        """`served`: a command's reply, which may say what the simulated robot answers with it."""
         pattern = raw["pattern"]
         pieces = pattern_pieces(pattern)
         if any("<" in piece or ">" in piece for piece in pieces):
             self.fail(parts + ["pattern"], f"'<' and '>' only enclose a placeholder name: {pattern!r}")
-        return Reply(raw["name"], pattern, pieces, raw.get("error", False), raw.get("doc", ""), self.where(parts))
+        for key in ("fill", "when"):
+            if key in raw and not served:
+                self.fail(parts + [key], f"only a command's reply says what the simulated robot answers ({key})")
+        if "fill" in raw:
+            self.check_fill(raw["fill"], len(pieces) - 1, argument, parts + ["fill"])
+        when = tuple(raw.get("when", {}).items())
+        for state, _ in when:
+            self.check_state(state, argument, parts + ["when", state])
+        fill = raw.get("fill", _argument_fill(pattern, argument) if served else None)
+        return Reply(raw["name"], pattern, pieces, raw.get("error", False), raw.get("doc", ""), self.where(parts),
+                     fill, fill_parts(fill), when)
 
-    def replies(self, raws: list, parts) -> tuple[Reply, ...]:
+    def check_fill(self, fill: str, placeholders: int, argument: Optional[str], parts) -> None:
+        if placeholders != 1:
+            self.fail(parts, f"fill gives the text of one placeholder; the pattern has {placeholders}")
+        rest = _STATE_REF.sub("", fill)
+        if "{" in rest or "}" in rest:
+            self.fail(parts, f"'{{' and '}}' only enclose a robot state's name: {fill!r}")
+        for state in fill_parts(fill)[1::2]:
+            self.check_state(state, argument, parts)
+
+    def check_state(self, state: str, argument: Optional[str], parts) -> None:
+        if state not in ROBOT_STATES:
+            self.fail(parts, f"unknown robot state {state!r}: one of {', '.join(ROBOT_STATES)}")
+        elif state == "argument" and argument is None:
+            self.fail(parts, "the command takes no argument")
+
+    def replies(self, raws: list, parts, argument: Optional[str] = None, served: bool = False) -> tuple[Reply, ...]:
         out = []
         for i, raw in enumerate(raws):
-            reply = self.reply(raw, parts + [i])
+            reply = self.reply(raw, parts + [i], argument, served)
             if any(r.name == reply.name for r in out):
                 self.fail(parts + [i, "name"], f"duplicate reply name {reply.name}")
             out.append(reply)
@@ -43,8 +83,13 @@ class _LinesResolver(Resolver):
             self.fail(parts + ["since", "cb"], f"{since['cb']} is not a CB-series version (below 5.0)")
         if e_series and e_series[0] < LinesProtocol.E_SERIES_MAJOR:
             self.fail(parts + ["since", "e_series"], f"{since['e_series']} is not an e-Series version (5.0 or later)")
-        return Command(raw["name"], raw["text"], raw.get("argument"), cb, e_series, "since" not in raw, raw["doc"],
-                       self.replies(raw["replies"], parts + ["replies"]), self.where(parts))
+        effect = raw.get("effect")
+        if effect is not None and effect not in EFFECTS:
+            self.fail(parts + ["effect"], f"unknown effect {effect!r}: one of {', '.join(EFFECTS)}")
+        argument = raw.get("argument")
+        return Command(raw["name"], raw["text"], argument, cb, e_series, "since" not in raw, raw["doc"],
+                       self.replies(raw["replies"], parts + ["replies"], argument, served=True), self.where(parts),
+                       effect)
 
     def protocol(self) -> LinesProtocol:
         data = self.spec.data

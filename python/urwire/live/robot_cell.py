@@ -7,7 +7,8 @@ clients change is kept here, so every interface reports it:
 - the program (dashboard `play`, `stop`, `pause`, `load`): the arm moves only while it plays, so
   the motion's own time is the time spent playing (`motion_time`), and a stopped or paused arm
   holds its joints, with zero speeds, on every interface;
-- the power (dashboard `power on`, `power off`, `brake release`), which sets the robot mode;
+- the power (dashboard `power on`, `power off`, `brake release`), which sets the robot mode, and
+  the operational mode the dashboard sets;
 - RTDE inputs (speed slider, standard digital outputs, input registers), and which RTDE connection
   holds each input, so that a second client asking for one gets `IN_USE`.
 """
@@ -32,6 +33,7 @@ DEMO_PROGRAM = "/programs/demo.urp"
 # replies give it (a 5.11.1 release's: "URSoftware 5.11.1.108318 (Nov 26 2021)").
 BUILD_NUMBER, BUILD_DATE = 108318, "Nov 26 2021"
 SAFETY_NORMAL = 1
+NO_OPERATIONAL_MODE = "NONE"
 KEPT_CHANGES = 64
 # Joint modes (3.0 and later): RUNNING 253, IDLE 255.
 JOINT_RUNNING, JOINT_IDLE = 253, 255
@@ -78,6 +80,7 @@ class RobotCell:
         self.program_state = PLAYING
         self.loaded_program: Optional[str] = DEMO_PROGRAM
         self.robot_mode = RUNNING
+        self.operational_mode = NO_OPERATIONAL_MODE   # the dashboard's: none set, the pendant decides
         self.inputs = RtdeInputs({"speed_slider_fraction": 1.0, "standard_digital_output": 0}, {})
         # Each time (server seconds) the arm started or stopped moving, with the seconds it had
         # moved by then and whether it moves after: the latest few, since interfaces sample times
@@ -152,9 +155,20 @@ class RobotCell:
         self._set(now, program_state=PAUSED)
         return True
 
-    def load(self, now: float, path: str) -> None:
+    def load(self, now: float, path: str) -> bool:
+        """Loads a program file (a .urp; any other path is not found) and stops the one playing."""
+        if not path.endswith(".urp"):
+            return False
         self._set(now, program_state=STOPPED)
         self.loaded_program = path
+        return True
+
+    def set_operational_mode(self, mode: Optional[str]) -> bool:
+        """"manual" or "automatic" as the dashboard sets it; None gives it back to the pendant."""
+        if mode not in (None, "manual", "automatic"):
+            return False
+        self.operational_mode = mode.upper() if mode else NO_OPERATIONAL_MODE
+        return True
 
     def power(self, now: float, mode: str) -> None:
         """POWER_OFF (stops the program), IDLE (powered, brakes on) or RUNNING (brakes released)."""

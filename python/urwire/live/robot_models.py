@@ -65,17 +65,18 @@ class RobotModel:
 
 
 _CB = (CB2, CB3)
-_E = (E_SERIES, POLYSCOPE_X)
+# The generations of the e-Series control box: PolyScope X runs on it and sends its layouts.
+E_SERIES_BOX = (E_SERIES, POLYSCOPE_X)
 MODELS = {m.name: m for m in (
     RobotModel("ur3", 3, (CB3,), 0.1519, -0.24365, -0.21325, 0.11235, 0.08535, 0.0819),
     RobotModel("ur5", 1, _CB, 0.089159, -0.425, -0.39225, 0.10915, 0.09465, 0.0823),
     RobotModel("ur10", 2, _CB, 0.1273, -0.612, -0.5723, 0.163941, 0.1157, 0.0922),
-    RobotModel("ur3e", 3, _E, 0.15185, -0.24355, -0.2132, 0.13105, 0.08535, 0.0921),
-    RobotModel("ur5e", 1, _E, 0.1625, -0.425, -0.3922, 0.1333, 0.0997, 0.0996),
-    RobotModel("ur10e", 2, _E, 0.1807, -0.6127, -0.57155, 0.17415, 0.11985, 0.11655),
-    RobotModel("ur16e", 4, _E, 0.1807, -0.4784, -0.36, 0.17415, 0.11985, 0.11655),
-    RobotModel("ur20", 7, _E, 0.2363, -0.862, -0.7287, 0.201, 0.1593, 0.1543),
-    RobotModel("ur30", 8, _E, 0.2363, -0.637, -0.5037, 0.201, 0.1593, 0.1543),
+    RobotModel("ur3e", 3, E_SERIES_BOX, 0.15185, -0.24355, -0.2132, 0.13105, 0.08535, 0.0921),
+    RobotModel("ur5e", 1, E_SERIES_BOX, 0.1625, -0.425, -0.3922, 0.1333, 0.0997, 0.0996),
+    RobotModel("ur10e", 2, E_SERIES_BOX, 0.1807, -0.6127, -0.57155, 0.17415, 0.11985, 0.11655),
+    RobotModel("ur16e", 4, E_SERIES_BOX, 0.1807, -0.4784, -0.36, 0.17415, 0.11985, 0.11655),
+    RobotModel("ur20", 7, E_SERIES_BOX, 0.2363, -0.862, -0.7287, 0.201, 0.1593, 0.1543),
+    RobotModel("ur30", 8, E_SERIES_BOX, 0.2363, -0.637, -0.5037, 0.201, 0.1593, 0.1543),
 )}
 DEFAULT_MODEL = {CB2: "ur5", CB3: "ur5", E_SERIES: "ur5e", POLYSCOPE_X: "ur5e"}
 

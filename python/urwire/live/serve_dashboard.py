@@ -1,8 +1,15 @@
 """The dashboard server (29999) as `urwire serve` serves it: the banner, then one reply line per
-command line, with the replies' texts as the dashboard spec gives them (UR's dashboard server
-articles), for the commands the served software version has; any other line gets the server's
-"could not understand" reply. Commands that change the robot (load, play, stop, pause, power
-on/off, brake release) change the one robot every interface reports.
+command line, for the commands the served software version has; any other line gets the server's
+"could not understand" reply. Every answer comes from the dashboard spec, through one routine
+(`DashboardSession.answer`) and no code per command:
+
+- a command's `effect` (spec/ur_dashboard.yaml) is what it does to the one robot every interface
+  reports (load, play, stop, pause, power on/off, brake release, the operational mode, quit);
+  one that fails (a load of no .urp, a play with nothing loaded or the arm not running) answers
+  with the command's first error reply;
+- otherwise the answer is the first reply that says no error, whose `when` holds and whose
+  `fill` has every robot state it names; none: the first error reply (`get loaded program` with
+  none loaded). The reply's placeholder takes its `fill`, each {name} in it a value of _STATES.
 
 Lines are split as the decoder splits them (text_lines.LineSplitter): a line longer than the
 spec's limit gets one "could not understand" reply that names the fault, and none of its bytes,
@@ -10,21 +17,22 @@ up to its newline, are ever read as a command.
 """
 from __future__ import annotations
 
-from typing import Callable
+from typing import Callable, Optional
 
 from .._runtime import StreamError
 from ..generated import ur_dashboard as _g
 from ..text_lines import LineSplitter, ReplySpec, find_command
-from .robot_cell import BUILD_DATE, BUILD_NUMBER, IDLE, PAUSED, PLAYING, POWER_OFF, RUNNING, RobotCell
+from .robot_cell import BUILD_DATE, BUILD_NUMBER, IDLE, PLAYING, POWER_OFF, RUNNING, RobotCell
 
 
 def say(reply: ReplySpec, value: str = "") -> str:
-    """A reply's text: its pattern with `value` in its placeholder (patterns have at most one)."""
-    return value.join(reply.pieces) if len(reply.pieces) > 1 else reply.pieces[0]
+    """A reply's text: its pattern with `value` in each placeholder."""
+    return value.join(reply.pieces)
 
 
-def reply_named(command, name: str) -> ReplySpec:
-    return next(r for r in command.replies if r.name == name)
+def software_version(version: tuple) -> str:
+    """"5.11.0.108318": the version and build the dashboard's version replies tell."""
+    return ".".join(map(str, version)) + f".{BUILD_NUMBER}"
 
 
 class DashboardSession:
@@ -56,104 +64,61 @@ class DashboardSession:
         command, argument = find_command(_g.LOOKUP, line)
         if command is None or not command.available(self.cell.version):
             return say(_g.COMMON_REPLIES[0], line)
-        name, value = _HANDLERS[command.name](self, argument or "")
-        return say(reply_named(command, name), value)
+        argument = argument or ""
+        done = _EFFECTS[command.effect](self, argument) if command.effect else True
+        if done:
+            for reply in command.replies:
+                text = None if reply.error else self.filled(reply, argument)
+                if text is not None:
+                    return text
+        reply = next((r for r in command.replies if r.error), command.replies[0])
+        return self.filled(reply, argument) or say(reply)
 
-    # ---- one command each; each returns (reply name, the text in its placeholder) ---------------
-    def load(self, path: str):
-        if not path.endswith(".urp"):
-            return "file_not_found", path
-        self.cell.load(self.clock(), path)
-        return "loading_program", path
+    def filled(self, reply: ReplySpec, argument: str) -> Optional[str]:
+        """The reply's text, or None when a robot state its `when` names has another value or one
+        its `fill` names has none."""
+        if any(_STATES[state](self, argument) != value for state, value in reply.when):
+            return None
+        parts = list(reply.fill)
+        parts[1::2] = [_STATES[name](self, argument) for name in parts[1::2]]
+        return None if None in parts else say(reply, "".join(parts))
 
-    def play(self, _):
-        return ("starting_program", "") if self.cell.play(self.clock()) else ("failed", "")
-
-    def stop(self, _):
-        return ("stopped", "") if self.cell.stop(self.clock()) else ("failed", "")
-
-    def pause(self, _):
-        return ("pausing_program", "") if self.cell.pause(self.clock()) else ("failed", "")
-
-    def quit(self, _):
+    def close_connection(self, _) -> bool:
         self.closing = True
-        return "disconnected", ""
+        return True
 
-    def running(self, _):
-        return "program_running", str(self.cell.program_state == PLAYING).lower()
-
-    def robotmode(self, _):
-        return "robotmode", self.cell.robot_mode
-
-    def loaded_program(self, _):
-        if self.cell.loaded_program is None:
-            return "no_program_loaded", ""
-        return "loaded_program", self.cell.loaded_program
-
-    def program_state(self, _):
-        name = {PLAYING: "playing", PAUSED: "paused"}.get(self.cell.program_state, "stopped")
-        return name, self.cell.program_name
-
-    def polyscope_version(self, _):
-        return "version", f"{self.version_text()} ({BUILD_DATE})"
-
-    def version(self, _):
-        return "version", self.version_text()
-
-    def version_text(self) -> str:
-        return ".".join(map(str, self.cell.version)) + f".{BUILD_NUMBER}"
-
-    def power(self, mode: str) -> Callable:
-        def handler(_):
-            self.cell.power(self.clock(), mode)
-            return {POWER_OFF: "powering_off", IDLE: "powering_on", RUNNING: "brake_releasing"}[mode], ""
-        return handler
-
-    def add_to_log(self, text: str):
-        return ("added_log_message", "") if text else ("no_log_message", "")
-
-    def operational_mode(self, mode: str):
-        if mode not in ("manual", "automatic"):
-            return "failed", mode
-        return "mode_set", f"'{mode}'"
-
-    def robot_model(self, _):
-        return "robot_model", self.cell.model.name.upper().rstrip("E")
+    def power(self, mode: str) -> bool:
+        self.cell.power(self.clock(), mode)
+        return True
 
 
-def _fixed(name: str, value: str = "") -> Callable:
-    return lambda session, argument: (name, value)
+# What each `effect` of the spec does; False: it failed, and the command's first error reply answers.
+_EFFECTS: dict[str, Callable[[DashboardSession, str], bool]] = {
+    "load_program": lambda s, path: s.cell.load(s.clock(), path),
+    "play": lambda s, _: s.cell.play(s.clock()),
+    "stop": lambda s, _: s.cell.stop(s.clock()),
+    "pause": lambda s, _: s.cell.pause(s.clock()),
+    "power_on": lambda s, _: s.power(IDLE),
+    "power_off": lambda s, _: s.power(POWER_OFF),
+    "brake_release": lambda s, _: s.power(RUNNING),
+    "close_connection": DashboardSession.close_connection,
+    "add_to_log": lambda s, text: bool(text),
+    "set_operational_mode": lambda s, mode: s.cell.set_operational_mode(mode),
+    "clear_operational_mode": lambda s, _: s.cell.set_operational_mode(None),
+}
 
-
-def _echo(name: str) -> Callable:
-    return lambda session, argument: (name, argument)
-
-
-_HANDLERS: dict[str, Callable] = {
-    "load": DashboardSession.load, "play": DashboardSession.play, "stop": DashboardSession.stop,
-    "pause": DashboardSession.pause, "quit": DashboardSession.quit,
-    "shutdown": _fixed("shutting_down"),             # the simulated controller keeps running
-    "running": DashboardSession.running, "robotmode": DashboardSession.robotmode,
-    "get_loaded_program": DashboardSession.loaded_program,
-    "popup": _fixed("showing_popup"), "close_popup": _fixed("closing_popup"),
-    "add_to_log": DashboardSession.add_to_log,
-    "is_program_saved": lambda s, a: ("saved", s.cell.program_name),
-    "program_state": DashboardSession.program_state,
-    "polyscope_version": DashboardSession.polyscope_version, "version": DashboardSession.version,
-    "set_user_role": _echo("setting_user_role"), "get_user_role": _fixed("role", "PROGRAMMER"),
-    "set_operational_mode": DashboardSession.operational_mode,
-    "get_operational_mode": _fixed("mode", "NONE"),
-    "clear_operational_mode": _fixed("cleared", "Current operational mode: 'NONE'."),
-    "power_on": lambda s, a: s.power(IDLE)(a), "power_off": lambda s, a: s.power(POWER_OFF)(a),
-    "brake_release": lambda s, a: s.power(RUNNING)(a),
-    "safetymode": _fixed("safetymode", "NORMAL"), "safetystatus": _fixed("safetystatus", "NORMAL"),
-    "unlock_protective_stop": _fixed("releasing"), "close_safety_popup": _fixed("closing_safety_popup"),
-    "load_installation": _echo("loading_installation"), "restart_safety": _fixed("restarting_safety"),
-    "is_in_remote_control": _fixed("remote"),
-    "get_serial_number": lambda s, a: ("serial_number", s.cell.serial),
-    "get_robot_model": DashboardSession.robot_model,
-    "generate_flight_report": _fixed("generating", "1764115200"),
-    "generate_support_file": lambda s, a: ("completed", f"{a.rstrip('/')}/ur_{s.cell.serial}_support_file.zip"),
-    "save_log": _fixed("log_saved"),
+# The robot states a reply's `fill` and `when` name: their texts, None for a state with no value.
+_STATES: dict[str, Callable[[DashboardSession, str], Optional[str]]] = {
+    "argument": lambda s, argument: argument,
+    "program_state": lambda s, _: s.cell.program_state,
+    "program_running": lambda s, _: str(s.cell.program_state == PLAYING).lower(),
+    "program_name": lambda s, _: s.cell.program_name,
+    "loaded_program": lambda s, _: s.cell.loaded_program,
+    "robot_mode": lambda s, _: s.cell.robot_mode,
+    "software_version": lambda s, _: software_version(s.cell.version),
+    "build_date": lambda s, _: BUILD_DATE,
+    "serial_number": lambda s, _: s.cell.serial,
+    "robot_model": lambda s, _: s.cell.model.name.upper().rstrip("E"),
+    "operational_mode": lambda s, _: s.cell.operational_mode,
 }
 

@@ -21,8 +21,6 @@ from .robot_models import CB3, E_SERIES, POLYSCOPE_X, generation
 
 # The highest output frequency of each generation (RTDE guide: "125 Hz on CB3, 500 Hz on e-Series").
 MAX_FREQUENCY = {CB3: 125.0, E_SERIES: 500.0, POLYSCOPE_X: 500.0}
-# Generations' names in the variable table's `since` columns.
-TABLE_COLUMN = {CB3: "cb3", E_SERIES: "eseries", POLYSCOPE_X: "eseries"}
 
 
 def has_rtde(version: tuple) -> bool:
@@ -39,18 +37,11 @@ def frequency_refused(frequency: float, version: tuple) -> bool:
     return not 0.0 < frequency <= max_frequency(version)
 
 
-def _version_tuple(text: str) -> tuple:
-    return tuple(int(p) for p in text.split("."))
-
-
 def offers(variable, version: tuple) -> bool:
-    """Whether a controller of `version` has this row of the variable table: from the first version
-    of its generation's column; a row whose first version the sources do not give is taken as
-    there from the start."""
-    since = variable.since.get(TABLE_COLUMN.get(generation(version), ""), "none")
-    if since == "none":
-        return False
-    return since == "unknown" or version >= _version_tuple(since)
+    """Whether a controller of `version` has this row of the variable table, as the table's own
+    rule says (Variable.available_in); a row whose first version the sources do not give is taken
+    as there from the start."""
+    return variable.available_in(version) is not False
 
 
 def output_value(name: str, value_type: _g._r.ValueType, state: Snapshot, cell: RobotCell):

@@ -25,7 +25,7 @@ from ..generated import messages as _m
 from ..generated.spec import value_codec
 from .motion import Motion
 from .robot_cell import PAUSED, POWER_OFF, RobotCell
-from .robot_models import BOARDS, RobotModel, generation, kinematics_checksums, model_for
+from .robot_models import BOARDS, E_SERIES_BOX, RobotModel, generation, kinematics_checksums, model_for
 
 JOINTS = 6
 CYCLE_TICKS = 100          # one program run, start to start
@@ -76,7 +76,7 @@ MESSAGE_12_VERSIONS = ((3, 3, 0), (5, 13, 99))
 def state_classes(version: tuple) -> list:
     """The sub-package classes a controller of `version` sends, in type-code order."""
     return [cls for cls in package_classes(version).values()
-            if cls not in INTERNAL and (version[0] >= 5 or cls not in E_SERIES_ONLY)
+            if cls not in INTERNAL and (generation(version) in E_SERIES_BOX or cls not in E_SERIES_ONLY)
             and (cls is not _m.PayloadInfo or version >= PAYLOAD_INFO_FROM)]
 
 
