@@ -29,12 +29,12 @@ PRIMARY_FIELD = """\
 """
 RTDE_VARIABLE = """\
   - {name: tcp_speed_scaling, type: DOUBLE, direction: output, label: TCP speed scaling,
-     since: {cb3: none, eseries: "5.27"}, field_note: "Made up for tests/test_adding_a_firmware.py."}
+     since: {cb3: none, eseries: "5.27", polyscope_x: none}, field_note: "Made up for tests/test_adding_a_firmware.py."}
 """
 DASHBOARD_COMMAND = """\
   - name: unlock_speed_scaling
     text: unlock speed scaling
-    since: {e_series: "5.27"}
+    since: {e_series: "5.27", polyscope_x: none}
     doc: Made up for tests/test_adding_a_firmware.py.
     replies:
       - {name: unlocked, pattern: "Speed scaling unlocked"}

@@ -69,7 +69,7 @@ def test_the_vocabulary_the_spec_may_name_is_what_serve_does():
 MADE_UP = """
   - name: get_tcp_speed_scaling
     text: get tcp speed scaling
-    since: {cb: "3.15", e_series: "5.11"}
+    since: {cb: "3.15", e_series: "5.11", polyscope_x: "10.7"}
     doc: A command no controller has, in the spec only; no key says what the simulated robot answers.
     replies:
       - {name: failed, pattern: "Failed: <reason>", error: true}
@@ -78,7 +78,7 @@ MADE_UP = """
     text: halt and tell
     argument: why
     effect: pause
-    since: {e_series: "5.11"}
+    since: {e_series: "5.11", polyscope_x: none}
     doc: A made-up command that pauses the program and says the program's state.
     replies:
       - {name: halted, pattern: "Halted (<state>)", fill: "{program_state}, {argument}"}
