@@ -42,11 +42,13 @@ def test_one_pass_shows_replies_links_but_not_yet_requests(tmp_path):
     assert not any(f.response_in for f in frames) and any(f.response_to for f in frames)
 
 
+# The plain build, and the one built with ASan and UBSan (a `deep` test: tests/native/conftest.py).
+@pytest.mark.parametrize("variant", ["gcc", "asan"])
 @pytest.mark.parametrize("protocol", ["ur_dashboard", "rtde"])
-def test_native_and_lua_show_the_same(tmp_path, protocol):
+def test_native_and_lua_show_the_same(tmp_path, protocol, variant):
     made = dashboard_capture(tmp_path) if protocol == "ur_dashboard" else rtde_capture(tmp_path)
     for pcap, args in ((made, ()), (CELL, ("-Y", f"tcp.port == {PORTS[protocol]}"))):
-        layers = assert_same(pcap, [protocol], *args).layers
+        layers = assert_same(pcap, [protocol], *args, variant=variant).layers
         assert any("response_in" in str(layer) for layer in layers), pcap
 
 
