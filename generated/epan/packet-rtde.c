@@ -1922,13 +1922,15 @@ rtde_follow_exchange(rtde_state *state, const rtde_layout *layout, packet_info *
     wmem_tree_insert32_array(x->links, key, link);
 }
 
-/* The message's generated items: a request's reply, a reply's request and the time since. */
+/* The message's generated items: a request's reply, a reply's request and the time since (no
+ * lookup for a message in no pair: a data package costs nothing here). */
 static void
-rtde_show_exchange(const rtde_state *state, proto_tree *tree, tvbuff_t *tvb, int at, rtde_when when)
+rtde_show_exchange(const rtde_state *state, const rtde_layout *layout, proto_tree *tree, tvbuff_t *tvb, int at,
+                   rtde_when when)
 {
     const rtde_link *link;
     wmem_tree_key_t key[] = { { 1, &when.frame }, { 1, &when.place }, { 0, NULL } };
-    if (!state->exchanges || !tree)
+    if (!state->exchanges || !tree || rtde_exchange_roles[layout - rtde_layouts].pair < 0)
         return;
     link = (const rtde_link *)wmem_tree_lookup32_array(state->exchanges->links, key);
     if (!link)
@@ -2239,7 +2241,7 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     }
     if (first)
         rtde_follow_exchange(state, layout, pinfo, when);
-    rtde_show_exchange(state, msg_tree, tvb, offset + 2, when);
+    rtde_show_exchange(state, layout, msg_tree, tvb, offset + 2, when);
     if (layout->role == RTDE_ROLE_DATA) {
         gboolean has_id = layout->recipe_id_first && size > RTDE_HEADER_SIZE;
         view.recipe = rtde_recipe_at(state, from_robot, has_id ? tvb_get_guint8(tvb, pos) : -1, when);

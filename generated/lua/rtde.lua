@@ -1786,7 +1786,7 @@ local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state,
     item:add(F.kind, tvb(offset + 2, 1), layout.name):set_generated()
     item:append_text(": " .. layout.label)
     if first then rt.follow_exchange(state, view, layout.name, pinfo) end
-    rt.show_exchange(item, tvb(offset + 2, 1), view)
+    if view.request or view.link then rt.show_exchange(item, tvb(offset + 2, 1), view) end
     local first_step = layout.steps[1]
     local is_data = false
     for _, s in ipairs(layout.steps) do

@@ -299,7 +299,7 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     }
     if (first)
         rtde_follow_exchange(state, layout, pinfo, when);
-    rtde_show_exchange(state, msg_tree, tvb, offset + 2, when);
+    rtde_show_exchange(state, layout, msg_tree, tvb, offset + 2, when);
     if (layout->role == RTDE_ROLE_DATA) {
         gboolean has_id = layout->recipe_id_first && size > RTDE_HEADER_SIZE;
         view.recipe = rtde_recipe_at(state, from_robot, has_id ? tvb_get_guint8(tvb, pos) : -1, when);
