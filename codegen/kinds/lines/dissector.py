@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ... import exchanges
 from ...naming import column_name
 from .model import RecordField
 from .plan import LinesPlan
@@ -42,6 +43,9 @@ class Dissector:
     fields: tuple[Field, ...]   # in the order the runtimes declare them
     experts: tuple[Expert, ...]
     preference: Preference
+    # A command's link to its reply and a reply's to its command: in order (one_reply_per_request),
+    # else every answering line's to the latest request.
+    exchange_fields: tuple[exchanges.ExchangeField, ...] = exchanges.FIELDS
 
     def expert(self, name: str) -> Expert:
         return next(e for e in self.experts if e.name == name)

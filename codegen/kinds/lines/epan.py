@@ -2,9 +2,11 @@
 dissector as an upstream epan/dissectors/packet-*.c reads, the twin of the Lua one
 (generated/lua/<name>.lua): the same protocol, fields, expert infos, preference and ports, from
 one dissector model (dissector.py). The spec's tables as C data, with runtime/c/lines/match.{h,c},
-runtime/c/common/version_text.{h,c} and runtime/epan/lines/lines_dissect.c joined in, from the plan."""
+runtime/c/common/version_text.{h,c}, runtime/epan/common/exchange.c (request/response links) and
+runtime/epan/lines/lines_dissect.c joined in, from the plan."""
 from __future__ import annotations
 
+from ... import exchanges
 from ...emit import environment, runtime_section
 from ...lang.c import prose, string
 from ...wrap import lines as wrapped
@@ -17,7 +19,7 @@ FOLDER = "epan"
 # C library's own (runtime/c/lines/, runtime/c/common/); after them, the dissector itself.
 RUNTIME_TYPES = (("c", "common/macros.h"), ("c", "common/version_text.h"), ("c", "common/version_text.c"),
                  ("c", "lines/match.h"), ("c", "lines/match.c"))
-RUNTIME_DISSECTOR = ("lines/lines_dissect.c",)
+RUNTIME_DISSECTOR = ("common/exchange.c", "lines/lines_dissect.c")
 FIELD_TYPES = {"string": ("FT_STRING", "BASE_NONE"), "boolean": ("FT_BOOLEAN", "BASE_NONE")}
 
 
@@ -49,8 +51,8 @@ def view(d: Dissector) -> dict:
         short_name=string(name.upper()), column=string(d.column), ports=list(m.ports),
         max_line=m.max_line,
         fields=[dict(name=f.name, label=string(f.label), abbrev=string(f"{name}.{f.name}"),
-                     type=FIELD_TYPES[f.type][0], display=FIELD_TYPES[f.type][1], blurb=string(f.doc))
-                for f in d.fields],
+                     type=FIELD_TYPES[f.type][0], display=FIELD_TYPES[f.type][1], strings="NULL", blurb=string(f.doc))
+                for f in d.fields] + [exchanges.epan_field(f, name) for f in d.exchange_fields],
         experts=[dict(name=e.name, abbrev=string(f"{name}.{e.name}"), group=e.group, severity=e.severity,
                       text=string(e.text)) for e in d.experts],
         preference=dict(name=string(d.preference.name), title=string(d.preference.title),

@@ -3,6 +3,7 @@ loads on its own: the spec's tables from the plan and the dissector model (disse
 the epan target renders too), then runtime/lua/common and runtime/lua/lines joined in."""
 from __future__ import annotations
 
+from ... import exchanges
 from ...emit import environment, runtime_section
 from ...lang.lua import literal, string
 from .dissector import PENDING_KEPT, Dissector, dissector
@@ -11,7 +12,7 @@ from .plan import LinesPlan
 
 # The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
 RUNTIME = ("common/register.lua", "common/guard.lua", "common/dotted_version.lua", "common/tcp_stream.lua",
-           "common/pending.lua", "lines/match.lua", "lines/dissect.lua")
+           "common/pending.lua", "common/exchange.lua", "lines/match.lua", "lines/dissect.lua")
 
 
 def _reply(reply: Reply) -> str:
@@ -42,6 +43,7 @@ def view(d: Dissector) -> dict:
         labels=[dict(name=f.name, label=string(f.label), doc=string(f.doc)) for f in d.fields],
         pending_kept=PENDING_KEPT, not_kept=string(d.expert("not_kept").text),
         reply_not_kept=string(d.expert("reply_not_kept").text),
+        exchange_fields=[exchanges.lua_field(f, m.name, f.name, "        ") for f in d.exchange_fields],
         runtime=[runtime_section("lua", name) for name in RUNTIME],
     )
 

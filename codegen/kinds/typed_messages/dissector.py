@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
-from ... import ir
+from ... import exchanges, ir
 from . import model
 from .plan import MessagePlan, TypedPlan
 
@@ -145,3 +145,29 @@ def dissector(planned: TypedPlan) -> Dissector:
                         for t in interface.value_types)
     return Dissector(planned, header, values, tuple(fields.values()), tuple(interface.enums), messages,
                      tuple((by_name[mp.message.name], p) for mp, p in planned.dispatch), variables, value_types)
+
+
+# ---- request/response tracking (codegen/exchanges.py) ----
+
+@dataclass(frozen=True)
+class Exchanges:
+    """What the dissectors link: each message of a pair by name, as the request or reply of pair
+    `index` (the spec's exchanges.pairs), the requests a connection keeps per pair, the fields."""
+    requests: dict[str, int]
+    replies: dict[str, int]
+    count: int
+    max_pending: int
+    fields: tuple[exchanges.ExchangeField, ...] = exchanges.FIELDS
+
+    def role(self, name: str) -> tuple[int, bool]:
+        """The pair a message is in (-1: none) and whether it is the reply."""
+        if name in self.replies:
+            return self.replies[name], True
+        return self.requests.get(name, -1), False
+
+
+def exchanges_of(planned: TypedPlan) -> Exchanges:
+    pairs = planned.interface.exchanges
+    return Exchanges({m.name: i for i, e in enumerate(pairs) for m in e.requests},
+                     {m.name: i for i, e in enumerate(pairs) for m in e.replies}, len(pairs),
+                     planned.interface.max_pending_requests)

@@ -13,10 +13,11 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from ... import exchanges
 from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_section
 from ...lang import c
 from ...wrap import spread
-from .dissector import TYPE_CODES, Dissector, Field, Message, Step, dissector
+from .dissector import TYPE_CODES, Dissector, Exchanges, Field, Message, Step, dissector, exchanges_of
 from .plan import TypedPlan
 
 FIELD_TYPES = {"bool": "FT_BOOLEAN", "int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16",
@@ -33,8 +34,8 @@ INTEGER_SCALARS = ("bool", "int8", "uint8", "int16", "uint16", "int32", "uint32"
 # Runtime files the dissector shares with others, joined before its own: tshark_fields.c tells a
 # tshark -T fields run, where no item's label is printed. The upstream copy (Wireshark's own tree)
 # reads no command line: tshark_fields_upstream.c tells no run, so every label is whole.
-SHARED_CODE = ("tshark_fields.c",)
-UPSTREAM_SHARED_CODE = ("tshark_fields_upstream.c",)
+SHARED_CODE = ("tshark_fields.c", "exchange.c")
+UPSTREAM_SHARED_CODE = ("tshark_fields_upstream.c", "exchange.c")
 # The messages the state follows, by the names runtime/lua/typed_messages/state.lua follows too.
 ROLE_OF_MESSAGE = {"request_protocol_version": "RTDE_ROLE_VERSION_REQUEST",
                    "request_protocol_version_reply": "RTDE_ROLE_VERSION_REPLY",
@@ -180,8 +181,9 @@ def render(planned: TypedPlan, banner: list[str], upstream: bool = False) -> dic
     """packet-<name>.c; `upstream`: the copy for Wireshark's tree, which reads no command line."""
     env = environment("epan")
     env.filters["c"] = c.string
+    d = dissector(planned)
     text = env.get_template("typed_messages/packet.c.j2").render(
-        banner=banner, **view(dissector(planned), upstream))
+        banner=banner, **merged(view(d, upstream), exchanges_view(d, exchanges_of(planned))))
     return {f"epan/packet-{planned.interface.name.replace('_', '-')}.c": text}
 
 
@@ -191,7 +193,39 @@ def _shared(name: str) -> str:
 
 def _joined(prefix: str, suffix: str) -> list[str]:
     """The interface's runtime files with this suffix (runtime/epan/typed_messages/<name>_*), the
-    state before the dissector that uses it."""
+    state first and the dissector, which uses the others, last."""
     names = sorted(p.name for p in (RUNTIME_FOLDER / "epan" / "typed_messages").glob(f"{prefix}_*{suffix}"))
-    names.sort(key=lambda n: (not n.endswith("_state.c"), n))
+    names.sort(key=lambda n: (n.endswith("_dissect.c"), not n.endswith("_state.c"), n))
     return [runtime_section("epan", f"typed_messages/{n}") for n in names]
+
+
+# ---- request/response tracking (codegen/exchanges.py, runtime/epan/typed_messages/rtde_exchanges.c) ----
+
+@dataclass
+class ExchangeFieldView:
+    """The hf_register_info entry of a link: a frame number of a request or reply, or a time."""
+    enum: str
+    line: str
+
+
+def exchanges_view(d: Dissector, x: Exchanges) -> dict:
+    """The links' fields (after the others in the hf array), each layout's role in the pairs in the
+    order of rtde_layouts, and the pairs' sizes."""
+    prefix = d.plan.interface.name
+    fields = []
+    for f in x.fields:
+        ftype, display, strings = exchanges.epan_type(f)
+        fields.append(ExchangeFieldView(_hf(f.name, prefix), spread(
+            [f"&hf_{prefix}[{_hf(f.name, prefix)}]", "{ " + c.string(f.label), c.string(f"{prefix}.{f.name}"),
+             ftype, display, strings, "0x0", c.string(f.doc), "HFILL } }"], "{ ", ",", "        ")))
+    roles = []
+    for m, _ in d.dispatch:
+        pair, reply = x.role(m.message.name)
+        roles.append(f"{{ {pair}, {'TRUE' if reply else 'FALSE'} }},   /* {m.message.name} */")
+    return {"exchange_fields": fields, "exchange_roles": roles, "exchange_count": x.count,
+            "exchange_max_pending": x.max_pending}
+
+
+def merged(view_: dict, more: dict) -> dict:
+    """The view with the links': their fields after the others."""
+    return {**view_, **more, "fields": view_["fields"] + more["exchange_fields"]}

@@ -6,10 +6,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
+from ... import exchanges
 from ...emit import environment, runtime_section
 from ...lang import lua as lang
 from ...wrap import spread
-from .dissector import TYPE_CODES, Dissector, Field, Step, dissector
+from .dissector import TYPE_CODES, Dissector, Exchanges, Field, Step, dissector, exchanges_of
 from .plan import TypedPlan
 
 # Wireshark field constructors by field type.
@@ -22,7 +23,8 @@ READER = {"bool": "uint", "int8": "int", "uint8": "uint", "int16": "int", "uint1
 # The runtime joined after the tables, in order (runtime/lua/common, then this kind's own: the
 # state first, then the dissector).
 RUNTIME = ("common/register.lua", "common/tcp_stream.lua", "common/bytes.lua", "common/pending.lua",
-           "typed_messages/state.lua", "typed_messages/dissect.lua")
+           "common/exchange.lua", "typed_messages/state.lua", "typed_messages/exchanges.lua",
+           "typed_messages/dissect.lua")
 TYPE_NAMES = "TYPE_NAMES"               # the Lua table of the type codes' letters
 
 
@@ -102,8 +104,17 @@ def view(d: Dissector) -> dict:
     }
 
 
+def exchanges_view(x: Exchanges, prefix: str) -> dict:
+    """The fields of the request/response links, and each pair's messages by name (pairs from 1)."""
+    return {"exchange_fields": [exchanges.lua_field(f, prefix, f.name, "    ") for f in x.fields],
+            "exchange_requests": [f"{name} = {i + 1}" for name, i in x.requests.items()],
+            "exchange_replies": [f"{name} = {i + 1}" for name, i in x.replies.items()],
+            "exchange_count": x.count, "exchange_max_pending": x.max_pending}
+
+
 def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
     env = environment("lua")
     env.filters["lua"] = lang.literal
-    text = env.get_template("typed_messages/interface.lua.j2").render(banner=banner, **view(dissector(planned)))
+    text = env.get_template("typed_messages/interface.lua.j2").render(
+        banner=banner, **view(dissector(planned)), **exchanges_view(exchanges_of(planned), planned.interface.name))
     return {f"lua/{planned.interface.name}.lua": text}

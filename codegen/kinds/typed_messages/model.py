@@ -8,7 +8,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Optional, Union
 
-from ... import ir
+from ... import exchanges, ir
 # A first version the sources do not give (UNKNOWN), and not in that generation at all (NONE): one
 # spelling for every table with a column per series.
 from ...series import NONE, UNKNOWN  # noqa: F401
@@ -55,6 +55,8 @@ BodyField = Union[ir.ScalarField, ir.StringField, NamesField, RecipeValuesField]
 # dissectors. These names are the dissectors' own: the header's fields, those the state adds, and
 # value_<scalar> (a value a setup reply types otherwise than the variable table).
 OWN_FIELDS = ("length", "type", "kind", "direction", "recipe_frame", "protocol", "unknown_variable")
+# The request/response links' fields are the dissectors' own too (rtde.response_in, rtde.time).
+LINK_FIELDS = exchanges.NAMES
 VALUE_FIELD_PREFIX = "value_"
 # Declared by the dissectors whether a message has it or not, with this type.
 RECIPE_ID = ("recipe_id", "uint8")
@@ -115,6 +117,14 @@ class RecipeKind:
 
 
 @dataclass
+class Exchange:
+    """Requests and the replies that answer them, in order (the spec's exchanges.pairs): what the
+    dissectors link (rtde.response_in, rtde.response_to, rtde.time)."""
+    requests: list[Message]
+    replies: list[Message]
+
+
+@dataclass
 class Refusal:
     word: str                           # what a setup reply says in place of a type: NOT_FOUND
     doc: str
@@ -168,6 +178,8 @@ class Interface:
     max_pending_setups: int = 1         # setup requests of one kind a connection keeps awaiting replies
     max_pending_version_requests: int = 1   # protocol version requests a connection keeps awaiting replies
     variables: list[Variable] = field(default_factory=list)
+    exchanges: list[Exchange] = field(default_factory=list)
+    max_pending_requests: int = 1       # requests of one exchange a connection keeps awaiting replies
 
     @property
     def header_size(self) -> int:

@@ -46,6 +46,7 @@ class _TypedResolver(Resolver):
         follows = ir.parse_version(proto["polyscope_x_follows"]) if "polyscope_x_follows" in proto else None
         variables = self.variables(data["variables"], {t.name: t for t in value_types}, generations, follows)
         self.check_filter_names(proto["name"], messages, variables)
+        exchanges = self.exchanges(data["exchanges"]["pairs"], by_name)
         return model.Interface(
             name=proto["name"], title=proto["title"], doc=proto["doc"], ports=tuple(proto["ports"]),
             protocol_versions=tuple(proto["protocol_versions"]),
@@ -55,7 +56,7 @@ class _TypedResolver(Resolver):
             value_types=value_types, messages=messages, undocumented=undocumented, recipe_kinds=kinds,
             refusals=refusals, generations=generations, max_pending_setups=data["recipes"]["max_pending_setups"],
             max_pending_version_requests=data["recipes"]["max_pending_version_requests"],
-            variables=variables)
+            variables=variables, exchanges=exchanges, max_pending_requests=data["exchanges"]["max_pending"])
 
     def value_types(self, raws) -> list[model.ValueType]:
         out = []
@@ -111,7 +112,7 @@ class _TypedResolver(Resolver):
             if kind is None:
                 continue
             problem = None
-            if f.name in model.OWN_FIELDS or f.name.startswith(model.VALUE_FIELD_PREFIX):
+            if f.name in model.OWN_FIELDS + model.LINK_FIELDS or f.name.startswith(model.VALUE_FIELD_PREFIX):
                 problem = f"{protocol}.{f.name} is the dissector's own field"
             elif f.name in types:
                 if types[f.name] != kind:
@@ -124,6 +125,29 @@ class _TypedResolver(Resolver):
                     types[f.name] = kind
             if problem:
                 self.problems.append(Problem(f.where.path, problem, f.where.line))
+
+    def exchanges(self, raws: list, by_name: dict) -> list[model.Exchange]:
+        """Each pair: requests to the robot, replies from it, every message in one pair at most."""
+        out, seen = [], set()
+        for i, raw in enumerate(raws):
+            sides = []
+            for key, from_robot in (("requests", False), ("replies", True)):
+                side = []
+                for j, name in enumerate(raw[key]):
+                    where = ["exchanges", "pairs", i, key, j]
+                    m = by_name.get(name)
+                    if m is None:
+                        self.fail(where, f"unknown message '{name}'")
+                    elif m.from_robot != from_robot:
+                        self.fail(where, f"'{name}' is not a message {'from' if from_robot else 'to'} the robot")
+                    elif name in seen:
+                        self.fail(where, f"'{name}' is in another pair already")
+                    else:
+                        seen.add(name)
+                        side.append(m)
+                sides.append(side)
+            out.append(model.Exchange(*sides))
+        return out
 
     def recipe_kind(self, raw: dict, parts, by_name: dict) -> model.RecipeKind:
         def named(names, key, want_role, from_robot):

@@ -6,9 +6,11 @@
 #include <epan/expert.h>
 #include <epan/proto_data.h>
 #include "match.c"
+#include "../common/exchange.c"
 static int proto_lines = -1;
 static int hf_lines_command = -1, hf_lines_command_name = -1, hf_lines_argument = -1, hf_lines_available = -1;
 static int hf_lines_reply = -1, hf_lines_reply_name = -1, hf_lines_error = -1;
+static int hf_lines_response_in = -1, hf_lines_response_to = -1, hf_lines_time = -1;
 static int ett_lines = -1;
 static expert_field ei_lines_error_reply = EI_INIT, ei_lines_unknown_command = EI_INIT;
 static expert_field ei_lines_unavailable = EI_INIT, ei_lines_too_long = EI_INIT;
@@ -19,25 +21,14 @@ static int dissect_lines(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, vo
 /* </standalone> */
 /* A dissector of text lines (the dashboard server, the driver's script sender), the twin of
  * runtime/lua/lines/dissect.lua: lines reassembled across TCP segments, each shown as a request
- * (command) or a reply, replies paired with their requests and the software version learnt per
- * conversation, expert infos for a reply that says an error, an unknown command, a command the
- * version lacks, a line too long. The first pass decides each line (which command, which reply,
+ * (command) or a reply, replies paired with their requests (and linked with them both ways:
+ * runtime/epan/common/exchange.c) and the software version learnt per conversation, expert
+ * infos for a reply that says an error, an unknown command, a command the version lacks, a line
+ * too long. The first pass decides each line (which command, which reply,
  * whether the version has it) and keeps the decision with its frame, so that later passes, in
  * any order, show what the first one saw. */
 
 #define LINES_PENDING_KEPT 256            /* commands awaiting a reply that a conversation keeps */
-
-/* What a conversation has seen so far, in the first pass. A command that comes when
- * LINES_PENDING_KEPT await replies is not kept but counted lost, and so is every command behind a
- * lost one (replies come in order); a reply with none kept answers a lost one, and pairs with none. */
-typedef struct lines_conversation {
-    int pending[LINES_PENDING_KEPT];      /* commands awaiting a reply, oldest at `first` */
-    unsigned first, count, lost;
-    bool greeted;                         /* a line came from the server */
-    bool has_version;
-    uint64_t version;                     /* lines_version(), when has_version */
-    bool skipping[2];                     /* per direction (from the robot): inside a line too long */
-} lines_conversation_t;
 
 /* What the first pass decided about one line. */
 typedef struct lines_decision {
@@ -46,7 +37,21 @@ typedef struct lines_decision {
     int available;                        /* commands: 1 or 0 when the version is known, else -1 */
     const lines_reply_t *reply;           /* replies: the one it is, or NULL */
     bool not_kept;                        /* a command not kept, or a reply to one */
+    exchange_request_t *request;          /* commands: its frame, time and reply's frame */
+    exchange_reply_t link;                /* replies: the command's frame and the time since */
 } lines_decision_t;
+
+/* What a conversation has seen so far, in the first pass. A command that comes when
+ * LINES_PENDING_KEPT await replies is not kept but counted lost, and so is every command behind a
+ * lost one (replies come in order); a reply with none kept answers a lost one, and pairs with none. */
+typedef struct lines_conversation {
+    lines_decision_t *pending[LINES_PENDING_KEPT];   /* commands awaiting a reply, oldest at `first` */
+    unsigned first, count, lost;
+    bool greeted;                         /* a line came from the server */
+    bool has_version;
+    uint64_t version;                     /* lines_version(), when has_version */
+    bool skipping[2];                     /* per direction (from the robot): inside a line too long */
+} lines_conversation_t;
 
 /* The decisions of one frame in one direction, by the line's offset in the data it came in. */
 typedef struct lines_frame {
@@ -79,67 +84,78 @@ static lines_conversation_t *lines_conversation(packet_info *pinfo)
     return c;
 }
 
-/* A request awaits its reply; false when it is not kept (see lines_conversation_t). */
-static bool lines_keep(lines_conversation_t *c, int command)
+/* A request awaits its reply (its decision: the command and its exchange); false when it is not
+ * kept (see lines_conversation_t). */
+static bool lines_keep(lines_conversation_t *c, lines_decision_t *request)
 {
     if (!lines_spec.one_reply_per_request) {        /* only the latest request counts */
         c->first = 0;
         c->count = 1;
-        c->pending[0] = command;
+        c->pending[0] = request;
     } else if (c->lost > 0 || c->count == LINES_PENDING_KEPT) {
         c->lost++;
         return false;
     } else {
-        c->pending[(c->first + c->count++) % LINES_PENDING_KEPT] = command;
+        c->pending[(c->first + c->count++) % LINES_PENDING_KEPT] = request;
     }
     return true;
 }
 
-/* The request a reply answers (LINES_NONE: none), *not_kept when it answers one not kept. */
-static int lines_answered(lines_conversation_t *c, bool *not_kept)
+/* The request a reply answers (NULL: none), *not_kept when it answers one not kept. */
+static lines_decision_t *lines_answered(lines_conversation_t *c, bool *not_kept)
 {
-    int command = LINES_NONE;
+    lines_decision_t *request = NULL;
     *not_kept = false;
     if (c->count > 0 && lines_spec.one_reply_per_request) {
-        command = c->pending[c->first];
+        request = c->pending[c->first];
         c->first = (c->first + 1) % LINES_PENDING_KEPT;
         c->count--;
     } else if (c->count > 0) {                      /* every answering line belongs to the latest request */
-        command = c->pending[(c->first + c->count - 1) % LINES_PENDING_KEPT];
+        request = c->pending[(c->first + c->count - 1) % LINES_PENDING_KEPT];
     } else if (c->lost > 0) {                       /* it answers a command that was not kept */
         *not_kept = true;
         c->lost--;
     }
-    return command;
+    return request;
 }
 
 /* A line too long is still a line: a command the server answers, or the reply to one, so that
- * the pairing of the lines after it holds. */
-static void lines_count_too_long(lines_conversation_t *c, bool requests)
+ * the pairing of the lines after it holds (and its exchange is linked, though not shown). */
+static void lines_count_too_long(lines_conversation_t *c, bool requests, packet_info *pinfo)
 {
     bool not_kept;
     if (requests) {
-        lines_keep(c, LINES_NONE);
+        lines_decision_t *d = wmem_new0(wmem_file_scope(), lines_decision_t);
+        d->command = LINES_NONE;
+        d->request = exchange_request(pinfo);
+        lines_keep(c, d);
     } else {
+        lines_decision_t *request;
+        exchange_reply_t link;
         c->greeted = true;
-        lines_answered(c, &not_kept);
+        request = lines_answered(c, &not_kept);
+        exchange_reply(request != NULL ? request->request : NULL, pinfo, &link);
     }
 }
 
-static lines_decision_t *lines_decide_command(lines_conversation_t *c, const uint8_t *text, size_t len)
+static lines_decision_t *lines_decide_command(lines_conversation_t *c, packet_info *pinfo, const uint8_t *text,
+                                              size_t len)
 {
-    lines_decision_t *d = wmem_new(wmem_file_scope(), lines_decision_t);
+    lines_decision_t *d = wmem_new0(wmem_file_scope(), lines_decision_t);
     d->command = lines_find_command(&lines_spec, text, len, &d->argument);
-    d->not_kept = !lines_keep(c, d->command);
+    d->request = exchange_request(pinfo);
+    d->not_kept = !lines_keep(c, d);
     d->available = d->command != LINES_NONE && c->has_version
         ? lines_available(&lines_spec, d->command, c->version) : -1;
     d->reply = NULL;
     return d;
 }
 
-static lines_decision_t *lines_decide_reply(lines_conversation_t *c, const uint8_t *text, size_t len)
+static lines_decision_t *lines_decide_reply(lines_conversation_t *c, packet_info *pinfo, const uint8_t *text,
+                                            size_t len)
 {
-    lines_decision_t *d = wmem_new(wmem_file_scope(), lines_decision_t);
+    lines_decision_t *d = wmem_new0(wmem_file_scope(), lines_decision_t);
+    lines_decision_t *request;
     d->argument = -1;
     d->available = -1;
     d->command = LINES_NONE;
@@ -151,7 +167,9 @@ static lines_decision_t *lines_decide_reply(lines_conversation_t *c, const uint8
             return d;
         }
     }
-    d->command = lines_answered(c, &d->not_kept);
+    request = lines_answered(c, &d->not_kept);
+    d->command = request != NULL ? request->command : LINES_NONE;
+    exchange_reply(request != NULL ? request->request : NULL, pinfo, &d->link);
     if (d->command != LINES_NONE && d->command == lines_spec.version_command) {
         uint64_t version;
         if (lines_version_in(&lines_spec, text, len, &version)) {
@@ -197,6 +215,7 @@ static void lines_show_command(proto_tree *tree, packet_info *pinfo, tvbuff_t *t
     }
     if (d->not_kept)
         expert_add_info(pinfo, item, &ei_lines_not_kept);
+    exchange_show_request(line, tvb, at, span, d->request, hf_lines_response_in);
     proto_item_append_text(item, ": %s", text);
 }
 
@@ -221,6 +240,7 @@ static void lines_show_reply(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb
         expert_add_info(pinfo, error, &ei_lines_error_reply);
     if (d->not_kept)
         expert_add_info(pinfo, item, &ei_lines_reply_not_kept);
+    exchange_show_reply(line, tvb, at, span, &d->link, hf_lines_response_to, hf_lines_time);
     proto_item_append_text(item, ": %s", text);
 }
 
@@ -309,15 +329,15 @@ static int dissect_lines(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, vo
                                 &ei_lines_too_long);
                 lines_info(info, "Line too long", "");
                 if (first_pass)
-                    lines_count_too_long(c, requests);
+                    lines_count_too_long(c, requests, pinfo);
                 skipping = nl < 0;
                 at = nl >= 0 ? nl + 1 : n;
             } else {
                 lines_decision_t *d = first_pass || frame->lines == NULL ? NULL
                     : (lines_decision_t *)wmem_tree_lookup32(frame->lines, (guint32)at);
                 if (d == NULL) {
-                    d = requests ? lines_decide_command(c, buf + at, (size_t)len)
-                                 : lines_decide_reply(c, buf + at, (size_t)len);
+                    d = requests ? lines_decide_command(c, pinfo, buf + at, (size_t)len)
+                                 : lines_decide_reply(c, pinfo, buf + at, (size_t)len);
                     if (frame->lines == NULL)
                         frame->lines = wmem_tree_new(wmem_file_scope());
                     wmem_tree_insert32(frame->lines, (guint32)at, d);

@@ -1,6 +1,7 @@
 /* The RTDE dissector: frames the messages of a TCP stream, shows each by its layout (chosen by type
  * code, direction and the protocol version in force), a data package's values by the variables of
- * its recipe with a link to the frame that set the recipe up, and expert infos for refused setups,
+ * its recipe with a link to the frame that set the recipe up, each reply linked with its request
+ * both ways (runtime/epan/typed_messages/rtde_exchanges.c), and expert infos for refused setups,
  * unknown recipes, a refused start and bad framing. The state (runtime/epan/typed_messages/rtde_state.c) is kept
  * per conversation on the first pass, and each message's view of it is kept for later passes and
  * the GUI. The twin of runtime/lua/typed_messages/dissect.lua: the same tree, Info column and experts.
@@ -296,6 +297,9 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
                                                        layout->name));
         proto_item_append_text(item, ": %s", layout->label);
     }
+    if (first)
+        rtde_follow_exchange(state, layout, pinfo, when);
+    rtde_show_exchange(state, layout, msg_tree, tvb, offset + 2, when);
     if (layout->role == RTDE_ROLE_DATA) {
         gboolean has_id = layout->recipe_id_first && size > RTDE_HEADER_SIZE;
         view.recipe = rtde_recipe_at(state, from_robot, has_id ? tvb_get_guint8(tvb, pos) : -1, when);

@@ -65,6 +65,7 @@ typedef struct {
     guint pending_count[RTDE_N_KINDS];
     guint64 pending_lost[RTDE_N_KINDS];
     rtde_recipe *recipes[RTDE_N_KINDS][RTDE_NO_ID + 1];
+    struct rtde_exchanges *exchanges;       /* request/response links: rtde_exchanges.c */
 } rtde_state;
 
 #define RTDE_TEXT(x) #x

@@ -1,6 +1,7 @@
 -- The RTDE dissector: frames the messages of a TCP stream, shows each by its layout (the spec's
 -- MESSAGES, chosen by type code, direction and the protocol version in force), a data package's
--- values by the names of its recipe with a link to the frame that set the recipe up, and expert
+-- values by the names of its recipe with a link to the frame that set the recipe up, each reply
+-- linked with its request both ways (runtime/lua/typed_messages/exchanges.lua), and expert
 -- infos for refused setups, unknown recipes, a refused start and bad framing. State is kept per
 -- conversation (both addresses and both ports) on the first pass, and each message's view of it
 -- is kept for later passes and the GUI (runtime/lua/typed_messages/state.lua holds the state itself).
@@ -42,6 +43,7 @@ proto.experts = { E.bad_header, E.short, E.extra, E.refused, E.unknown_recipe, E
 do
     local list = {}
     for _, f in pairs(F) do list[#list + 1] = f end
+    for _, f in ipairs(rt.exchange_field_list) do list[#list + 1] = f end
     proto.fields = list
 end
 
@@ -178,6 +180,8 @@ local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state,
     end
     item:add(F.kind, tvb(offset + 2, 1), layout.name):set_generated()
     item:append_text(": " .. layout.label)
+    if first then rt.follow_exchange(state, view, layout.name, pinfo) end
+    if view.request or view.link then rt.show_exchange(item, tvb(offset + 2, 1), view) end
     local first_step = layout.steps[1]
     local is_data = false
     for _, s in ipairs(layout.steps) do

@@ -187,6 +187,9 @@ function S.wireshark_globals()
     S.plugin_info = nil
     set_plugin_info = function(info) S.plugin_info = info end
     DESEGMENT_ONE_MORE_SEGMENT = 0x0fffffff
+    frametype = names
+    local nstime = { __tostring = function(t) return string.format("%d.%09d", t.secs, t.nsecs) end }
+    NSTime = { new = function(secs, nsecs) return setmetatable({ secs = secs, nsecs = nsecs }, nstime) end }
 end
 
 -- A pinfo for a call from the robot (port 30001) to a client; `robot` its address (a string

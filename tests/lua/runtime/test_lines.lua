@@ -23,6 +23,8 @@ local spec = {
     labels = {command = "Command", command_name = "Command name", argument = "Argument", available = "Available",
               reply = "Reply", reply_name = "Reply meaning", error = "Says an error"},
     not_kept = "command not kept", reply_not_kept = "reply to a command not kept",
+    exchange_fields = {response_in = "ur_dashboard.response_in", response_to = "ur_dashboard.response_to",
+                       time = "ur_dashboard.time"},
 }
 local rt = S.load("common/dotted_version.lua", spec)
 S.load("lines/match.lua", spec, rt)
@@ -47,18 +49,20 @@ S.load("common/register.lua", spec, rt)
 S.load("common/guard.lua", spec, rt)
 S.load("common/tcp_stream.lua", spec, rt)
 S.load("common/pending.lua", spec, rt)
+S.load("common/exchange.lua", spec, rt)
 S.load("lines/dissect.lua", spec, rt)
 S.eq(S.ports["tcp.port"], "29999", "the port registered")
 
 -- A conversation: the client's lines go to port 29999, the replies come from it.
-local function pinfo(number, from_robot)
-    return {number = number, visited = false, src_port = from_robot and 29999 or 50123,
+-- Frame n is n milliseconds into the capture.
+local function pinfo(number, from_robot, visited)
+    return {number = number, visited = visited or false, rel_ts = number / 1000, src_port = from_robot and 29999 or 50123,
             dst_port = from_robot and 50123 or 29999, match_uint = 29999, can_desegment = 2,
             src = from_robot and "robot" or "pc", dst = from_robot and "pc" or "robot",
             cols = {info = S.column(), protocol = S.column()}}
 end
-local function dissect(number, from_robot, raw)
-    local tree, p = S.tree(), pinfo(number, from_robot)
+local function dissect(number, from_robot, raw, visited)
+    local tree, p = S.tree(), pinfo(number, from_robot, visited)
     made.dissector(S.tvb(raw), p, tree)
     local dump = S.dump(tree)
     assert(not dump:find("internal_error", 1, true), dump)
@@ -105,6 +109,12 @@ S.eq(count(out, "!ur_dashboard%.not_kept"), 1, "nor one behind it")
 out = dissect(11, true, "Loading: a\nLoading: b\nLoading: c\nLoading: d\nLoading: e\nLoading: f\n")
 S.eq(count(out, "command_name @%d+%+%d+ = load"), 4, "four replies paired with their commands")
 S.eq(count(out, "!ur_dashboard%.reply_not_kept: reply to a command not kept"), 2, "two paired with none")
+S.eq(count(out, "ur_dashboard%.response_to @%d+%+%d+ = 9\n"), 4, "each linked with its command's frame")
+S.eq(count(out, "ur_dashboard%.time @%d+%+%d+ = 0%.002000000"), 4, "and the time since it")
+S.eq(count(out, "response_to"), 4, "a reply to a command not kept links to none")
+out = dissect(9, false, "load a\nload b\nload c\nload d\nload e\n", true)
+S.eq(count(out, "ur_dashboard%.response_in @%d+%+%d+ = 11"), 4, "a later pass: each kept command links to its reply")
+S.eq(count(out, "response_in"), 4, "the one not kept to none")
 out = dissect(12, false, "load g\n")
 S.eq(count(out, "not_kept"), 0, "every lost one answered: kept again")
 out = dissect(13, true, "Loading: g\n")
@@ -120,4 +130,7 @@ S.eq(count(out, "not_kept"), 0, "and none lost")
 dissect(16, false, "load a\nPolyscopeVersion\n")
 out = dissect(17, true, "URSoftware 5.11\nURSoftware 5.12\n")
 S.eq(count(out, "command_name @%d+%+%d+ = polyscope_version"), 2, "both replies to the latest request")
+S.eq(count(out, "response_to @%d+%+%d+ = 16"), 2, "both linked with its frame")
+out = dissect(16, false, "load a\nPolyscopeVersion\n", true)
+S.eq(count(out, "response_in @%d+%+%d+ = 17"), 1, "the latest request links to its first answering line")
 print("ok")
