@@ -87,7 +87,9 @@ class _LinesResolver(Resolver):
         if effect is not None and effect not in EFFECTS:
             self.fail(parts + ["effect"], f"unknown effect {effect!r}: one of {', '.join(EFFECTS)}")
         argument = raw.get("argument")
-        return Command(raw["name"], raw["text"], argument, cb, e_series, "since" not in raw, raw["doc"],
+        if "text" not in raw and argument is None:
+            self.fail(parts, "a command with no text (any other line) takes the whole line as its argument")
+        return Command(raw["name"], raw.get("text", ""), argument, cb, e_series, "since" not in raw, raw["doc"],
                        self.replies(raw["replies"], parts + ["replies"], argument, served=True), self.where(parts),
                        effect)
 
@@ -100,7 +102,8 @@ class _LinesResolver(Resolver):
                 if earlier.name == command.name:
                     self.fail(["commands", i, "name"], f"duplicate command name {command.name}")
                 if earlier.text == command.text:
-                    self.fail(["commands", i, "text"], f"the text {command.text!r} is {earlier.name}'s too")
+                    what = f"the text {command.text!r} is" if command.text else "any other line is"
+                    self.fail(["commands", i, "text"], f"{what} {earlier.name}'s too")
             commands.append(command)
         framing = data["framing"]
         version_reply = framing.get("version_reply")
