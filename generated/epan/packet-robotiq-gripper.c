@@ -331,7 +331,7 @@ static const lines_command_t robotiq_gripper_commands[] = {
 static const int robotiq_gripper_lookup[] = {0, 1};
 
 static const lines_spec_t lines_spec = {
-    .column = "robotiq gripper",
+    .column = "Robotiq gripper",
     .max_line = 1024,
     .banner = NULL,
     .robot_is_client = false,

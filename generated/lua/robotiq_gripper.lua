@@ -12,7 +12,7 @@
 local spec = {
     name = "robotiq_gripper",
     title = "Robotiq gripper URCap socket",
-    short = "robotiq gripper",  -- the Protocol column
+    short = "Robotiq gripper",  -- the Protocol column
     ports = {63352},
     max_line = 1024,  -- longer lines are flagged and skipped up to their newline
     pending_kept = 256,  -- commands awaiting a reply that a conversation keeps
