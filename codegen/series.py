@@ -80,3 +80,35 @@ def through_end(series: list[Series], name: str) -> Optional[ir.Version]:
         if s.name == name:
             return s.versions.high
     return None
+
+
+# ---- tables with a column per series (RTDE variables, dashboard commands) ----------------------
+
+NONE, UNKNOWN = "none", "unknown"      # a column's value that is no version
+E_SERIES_FROM = (5, 0, 0)              # the first e-Series and PolyScope X versions, as the
+POLYSCOPE_X_FROM = (10, 0, 0)          # primary spec's protocol.generations gives them
+
+
+def polyscope_x_first(e_series, stated, follows: Optional[ir.Version]):
+    """A table row's first PolyScope X version (a Version, NONE or UNKNOWN) and a problem, or None.
+
+    `stated` is the row's own `polyscope_x:` (a version text or "none"), which wins. Without it the
+    row is on PolyScope X from its first version exactly when the e-Series has it from a version
+    PolyScope X is known to follow (`polyscope_x_follows:`, `follows`): what 10.x read from the
+    e-Series column before the table had its own. A newer e-Series row must say so, or a row made
+    for 5.x would be offered on every 10.x."""
+    if stated is not None:
+        if stated == NONE:
+            return NONE, None
+        first = ir.parse_version(stated)
+        if first < POLYSCOPE_X_FROM:
+            return NONE, f"{stated} is not a PolyScope X version ({ir.version_text(POLYSCOPE_X_FROM)} or later)"
+        return first, None
+    if e_series in (NONE, UNKNOWN):
+        return e_series, None
+    if follows is not None and e_series <= follows:
+        return POLYSCOPE_X_FROM, None
+    known = f"`polyscope_x_follows: \"{ir.version_text(follows)}\"`" if follows else "no `polyscope_x_follows:`"
+    return NONE, (f"e-Series {ir.version_text(e_series)} is newer than the last e-Series version PolyScope X is "
+                  f"known to follow ({known}): state `polyscope_x:`, the first 10.x version that has it, "
+                  f"or \"none\"")

@@ -19,7 +19,8 @@ static const ur_script_sender_reply_spec ur_script_sender__request_program_repli
 };
 
 const ur_script_sender_command_spec ur_script_sender_commands[UR_SCRIPT_SENDER_COMMAND_COUNT] = {
-    {"request_program", "request_program", false, 1000000u, 5000000u, ur_script_sender__request_program_replies, 1},
+    {"request_program", "request_program", false, 1000000u, 5000000u, 10000000u,
+     ur_script_sender__request_program_replies, 1},
 };
 
 const int ur_script_sender_lookup[UR_SCRIPT_SENDER_COMMAND_COUNT] = {
@@ -37,6 +38,7 @@ static const lines_spec_t ur_script_sender__spec = {
     .version_command = UR_SCRIPT_SENDER_VERSION_COMMAND,
     .version_prefix = ur_script_sender_version_prefix,
     .e_series_from = 5000000u,
+    .polyscope_x_from = 10000000u,
 };
 
 /* ---- runtime/c/common/macros.h ---- */
@@ -305,7 +307,8 @@ URWIRE__PRIVATE const lines_reply_t *lines_classify(const lines_spec_t *spec, in
 URWIRE__PRIVATE bool lines_available(const lines_spec_t *spec, int command, uint64_t version)
 {
     const lines_command_t *c = &spec->commands[command];
-    uint64_t since = version >= spec->e_series_from ? c->since_e_series : c->since_cb;
+    uint64_t since = version >= spec->polyscope_x_from ? c->since_polyscope_x
+                     : version >= spec->e_series_from ? c->since_e_series : c->since_cb;
     return since != 0 && version >= since;
 }
 

@@ -62,7 +62,8 @@ typedef struct lines_command {
     const char *text;                     /* the words that open the line */
     bool takes_argument;
     uint64_t since_cb;                    /* lines_version() of the first CB2/CB3 version; 0: none */
-    uint64_t since_e_series;              /* the same for the e-Series (5.x and later); 0: none */
+    uint64_t since_e_series;              /* the same for the e-Series (5.x); 0: none */
+    uint64_t since_polyscope_x;           /* the same for PolyScope X (10.x); 0: none */
     const lines_reply_t *replies;
     size_t reply_count;
 } lines_command_t;
@@ -82,7 +83,8 @@ typedef struct lines_spec {
     const int *lookup;                    /* command indices in the order a line is tried: longest text first */
     int version_command;                  /* the command whose reply tells the version, or LINES_NONE */
     const char *version_prefix;           /* the text before the version in that reply */
-    uint64_t e_series_from;               /* lines_version(5, 0, 0) */
+    uint64_t e_series_from;               /* lines_version(5, 0, 0): the first read from since_e_series */
+    uint64_t polyscope_x_from;            /* lines_version(10, 0, 0): the first read from since_polyscope_x */
 } lines_spec_t;
 
 #endif

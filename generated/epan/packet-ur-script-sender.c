@@ -170,7 +170,8 @@ typedef struct lines_command {
     const char *text;                     /* the words that open the line */
     bool takes_argument;
     uint64_t since_cb;                    /* lines_version() of the first CB2/CB3 version; 0: none */
-    uint64_t since_e_series;              /* the same for the e-Series (5.x and later); 0: none */
+    uint64_t since_e_series;              /* the same for the e-Series (5.x); 0: none */
+    uint64_t since_polyscope_x;           /* the same for PolyScope X (10.x); 0: none */
     const lines_reply_t *replies;
     size_t reply_count;
 } lines_command_t;
@@ -190,7 +191,8 @@ typedef struct lines_spec {
     const int *lookup;                    /* command indices in the order a line is tried: longest text first */
     int version_command;                  /* the command whose reply tells the version, or LINES_NONE */
     const char *version_prefix;           /* the text before the version in that reply */
-    uint64_t e_series_from;               /* lines_version(5, 0, 0) */
+    uint64_t e_series_from;               /* lines_version(5, 0, 0): the first read from since_e_series */
+    uint64_t polyscope_x_from;            /* lines_version(10, 0, 0): the first read from since_polyscope_x */
 } lines_spec_t;
 
 #endif
@@ -280,7 +282,8 @@ URWIRE__PRIVATE const lines_reply_t *lines_classify(const lines_spec_t *spec, in
 URWIRE__PRIVATE bool lines_available(const lines_spec_t *spec, int command, uint64_t version)
 {
     const lines_command_t *c = &spec->commands[command];
-    uint64_t since = version >= spec->e_series_from ? c->since_e_series : c->since_cb;
+    uint64_t since = version >= spec->polyscope_x_from ? c->since_polyscope_x
+                     : version >= spec->e_series_from ? c->since_e_series : c->since_cb;
     return since != 0 && version >= since;
 }
 
@@ -307,7 +310,7 @@ URWIRE__PRIVATE bool lines_version_in(const lines_spec_t *spec, const uint8_t *t
 static const lines_command_t ur_script_sender_commands[] = {
     /* request_program: Ask for the program to run (the External Control node, at its start). (every
      * version) */
-    {"request_program", "request_program", false, 1000000u, 5000000u,
+    {"request_program", "request_program", false, 1000000u, 5000000u, 10000000u,
         (const lines_reply_t[]){
             /* <line> */
             {"program_line", (const char *const[]){"", ""}, 2, false},
@@ -332,6 +335,7 @@ static const lines_spec_t lines_spec = {
     .version_command = LINES_NONE,
     .version_prefix = "",
     .e_series_from = 5000000u,
+    .polyscope_x_from = 10000000u,
 };
 
 /* ---- runtime/epan/lines/lines_dissect.c ---- */

@@ -19,6 +19,7 @@ local spec = {
     not_kept = "Command not kept: more than 256 commands awaited replies",
     reply_not_kept = "Reply to a command that was not kept: more than 256 commands awaited replies",
     e_series_from = 5000000,  -- versions are (major * 1000 + minor) * 1000 + bugfix
+    polyscope_x_from = 10000000,
     banner = nil,  -- the line the server greets a client with, if any
     robot_is_client = true,  -- the robot connects to the port (the driver's sockets)
     requests_from_robot = true,  -- the robot asks and the other side answers
@@ -31,7 +32,7 @@ local spec = {
         -- request_program: Ask for the program to run (the External Control node, at its start).
         -- (every version)
         {name = "request_program", text = "request_program", argument = false, since_cb = 1000000,
-         since_e_series = 5000000,
+         since_e_series = 5000000, since_polyscope_x = 10000000,
             replies = {
                 {name = "program_line", pieces = {"", ""}, error = false},
             },
@@ -273,7 +274,9 @@ end
 local function available(command, version)
     local c = spec.commands[command]
     local since
-    if version >= spec.e_series_from then since = c.since_e_series else since = c.since_cb end
+    if version >= spec.polyscope_x_from then since = c.since_polyscope_x
+    elseif version >= spec.e_series_from then since = c.since_e_series
+    else since = c.since_cb end
     return since ~= nil and version >= since
 end
 

@@ -3,12 +3,15 @@ primary/secondary client interface, the real-time interface, RTDE, the dashboard
 ROS driver's sockets, on every software version from CB2 to PolyScope X.
 
     import urwire
-    for record in urwire.decode_file("session.pcapng"):   # a capture of the cell, or a raw stream
+    for record in urwire.decode_capture("session.pcapng"):   # every interface of a cell's capture
+        print(record.interface, record.conversation, urwire.to_json_line(record.record))
+    for record in urwire.decode_file("session.raw"):         # the primary interface: a raw stream or a capture
         print(urwire.to_json_line(record))
 
-This package is the decoding core. `decode_file` reads a .pcap/.pcapng capture (capture.py
+This package is the decoding core. `decode_capture` reads a .pcap/.pcapng capture (capture.py
 reassembles its TCP streams, cell.py hands each conversation to its interface's decoder by port,
-interfaces.py) or a raw primary/secondary stream; `Framer` and `decode_stream` frame such a
+interfaces.py), each record Enveloped with its interface, direction and conversation (Endpoints);
+`decode_file` reads the primary interface of a raw stream or a capture; `Framer` and `decode_stream` frame such a
 stream in chunks and `decode_message` decodes one message; realtime.py, rtde.py and the decoders
 of the dashboard and the driver's sockets (generated.ur_*, over text_lines.py and
 int32_records.py) do the same for the other interfaces; `to_dict` and `to_json_line` give the
@@ -40,7 +43,8 @@ from .canonical import to_dict, to_json_line  # noqa: E402
 from .decoding import decode_message, encode_message, package_classes  # noqa: E402
 from .framer import Framer, decode_stream  # noqa: E402
 from .message_kinds import encode_package  # noqa: E402
-from .reading import decode_file  # noqa: E402
+from .envelope import Endpoints, Enveloped  # noqa: E402
+from .reading import CaptureRecords, decode_capture, decode_file  # noqa: E402
 from .generated.spec import DEFAULT_VERSION, DOCUMENTED_VERSIONS, PORTS  # noqa: E402
 # The primary interface's records and enums by name (tests/python/test_package_layers.py checks
 # that every class of generated.messages and generated.enums is here).
@@ -64,6 +68,7 @@ __version__ = "0.1.0"
 __all__ = [
     "DecodeError", "EncodeError", "GlobalValue", "MalformedPackage", "MalformedSubtype", "StreamError",
     "UnknownMessage", "UnknownPackage", "UnknownSubtype", "Framer", "decode_stream", "parse_version",
-    "decode_file", "decode_message", "encode_message", "package_classes", "to_dict", "to_json_line",
+    "decode_file", "decode_capture", "CaptureRecords", "Enveloped", "Endpoints", "decode_message", "encode_message",
+    "package_classes", "to_dict", "to_json_line",
     "DEFAULT_VERSION", "DOCUMENTED_VERSIONS", "PORTS", "backend",
 ]

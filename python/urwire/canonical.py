@@ -458,8 +458,11 @@ def _packages(obj: Any) -> str:
 
 
 def _enveloped(obj: Enveloped) -> str:
-    """The envelope's keys first, then the record's own."""
+    """The envelope's keys first, then the record's own; a record of no conversation (a fault of
+    the capture file) as it is."""
     inner = _write(obj.record)
+    if obj.interface is None:
+        return inner
     return '{"interface": %s, "direction": %s, "conversation": %s, %s' % (
         _text(obj.interface), _text(obj.direction), _text(obj.conversation), inner[1:])
 

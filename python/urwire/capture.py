@@ -256,7 +256,31 @@ def timed_robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[Union[tuple[S
             yield key, data, ended, ts
 
 
-def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozenset()) -> Iterator[
+class OtherConversations:
+    """The TCP conversations of a capture on none of the ports read, as timed_streams meets them:
+    each as (server address, server port, client address, client port) with the bytes it carried.
+    The client is the side that sent the first SYN, when the capture holds it; else the side on
+    the higher port, as clients take theirs from the ephemeral range."""
+
+    def __init__(self) -> None:
+        self.bytes: dict[StreamKey, int] = {}
+        self._keys: dict[tuple, StreamKey] = {}    # either end first -> the conversation's key
+
+    def add(self, src: tuple, dst: tuple, flags: int, length: int) -> None:
+        key = self._keys.get((src, dst))
+        if key is None:
+            import dpkt
+
+            syn = flags & dpkt.tcp.TH_SYN
+            src_is_client = not flags & dpkt.tcp.TH_ACK if syn else src[1] > dst[1]
+            key = (*dst, *src) if src_is_client else (*src, *dst)
+            self._keys[src, dst] = self._keys[dst, src] = key
+            self.bytes[key] = 0
+        self.bytes[key] += length
+
+
+def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozenset(),
+                  others: Optional[OtherConversations] = None) -> Iterator[
         Union[tuple[StreamKey, bool, Piece, bool, float], CaptureFault]]:
     """(conversation, from robot, piece, stream ended, capture time) for the TCP streams whose
     robot side is on `ports`: robot->client always, client->robot too for the ports in `both_ways`
@@ -265,7 +289,7 @@ def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozense
     piece is the bytes that came next (b"" when a stream ends with nothing more), or a Gap where
     the reader gave up bytes the capture does not hold and went on after them, or a Differs where
     a retransmission disagrees with the bytes it repeats. CaptureFaults as timed_robot_streams
-    says."""
+    says. The TCP conversations on none of `ports` go to `others`, when given."""
     import dpkt
 
     head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
@@ -287,13 +311,16 @@ def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozense
         tcp = getattr(ip, "data", None)
         if not isinstance(tcp, dpkt.tcp.TCP):
             continue
+        family = socket.AF_INET if isinstance(ip, dpkt.ip.IP) else socket.AF_INET6
         if tcp.sport in ports:
             from_robot = True
         elif tcp.dport in ports:
             from_robot = False      # read for its acknowledgements, and for its bytes where asked
         else:
+            if others is not None:
+                others.add((socket.inet_ntop(family, ip.src), tcp.sport), (socket.inet_ntop(family, ip.dst), tcp.dport),
+                           tcp.flags, len(tcp.data))
             continue
-        family = socket.AF_INET if isinstance(ip, dpkt.ip.IP) else socket.AF_INET6
         src, dst = socket.inet_ntop(family, ip.src), socket.inet_ntop(family, ip.dst)
         key = (src, tcp.sport, dst, tcp.dport) if from_robot else (dst, tcp.dport, src, tcp.sport)
         way = (key, from_robot)

@@ -1,12 +1,11 @@
 """Every interface of a UR cell in one capture, or one interface's raw stream(s): records with
 the interface, direction and conversation they came from.
 
-A capture's TCP conversations are told apart by their robot-side port (interfaces.py); each gets
-its interface's `Conversation`, fed the bytes of each direction as they are reassembled. Records
-of the primary interface keep the form they have always had, so that what `urwire decode` printed
-for a capture of the primary interface does not change; every other interface's record comes in an
-`Enveloped`, whose JSON opens with "interface", "direction" and "conversation"
-(docs/canonical-json.md#records-of-the-other-interfaces).
+A capture's TCP conversations are told apart by their server-side port (interfaces.py); each gets
+its interface's `Conversation`, fed the bytes of each direction as they are reassembled. Each
+record comes in an `Enveloped` (cell_records), whose JSON opens with "interface", "direction" and
+"conversation" (docs/canonical-json.md#records-of-a-capture); the data tools, which read the
+primary interface's records apart, take those bare (timed_robot_records).
 """
 from __future__ import annotations
 
@@ -14,9 +13,9 @@ from typing import BinaryIO, Callable, Iterable, Iterator, Optional
 
 from ._runtime import StreamError
 from .arguments import VersionLike
-from .capture import Differs, Gap, timed_streams
+from .capture import Differs, Gap, OtherConversations, timed_streams
 from .capture_records import CaptureFault
-from .envelope import FROM_ROBOT, TO_ROBOT, Enveloped
+from .envelope import FROM_ROBOT, TO_ROBOT, Endpoints, Enveloped
 from .interfaces import INTERFACES, Interface
 from .text_lines import PENDING_KEPT_RAW
 
@@ -27,34 +26,73 @@ def ports_of(interfaces: Iterable[Interface]) -> dict[int, Interface]:
     return {port: i for i in interfaces for port in i.ports}
 
 
-def _conversation_name(key: tuple) -> str:
-    robot, robot_port, client, client_port = key
-    def at(address: str, port: int) -> str:
-        return f"[{address}]:{port}" if ":" in address else f"{address}:{port}"
-    return f"{at(robot, robot_port)}-{at(client, client_port)}"
-
-
 def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
                        advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
-    """(capture time, record) of every conversation of the capture on the ports of `by_port`.
-    A conversation closes when its listening side ends (or the capture does). The software version a
-    robot's primary stream announces is passed on to its other conversations (the real-time one
-    chooses among layouts of one size with it)."""
+    """(capture time, record) of every conversation of the capture on the ports of `by_port`, as
+    timed_robot_records gives them."""
     for time, _, record in timed_robot_records(fh, hint, by_port, advance):
         yield time, record
 
 
 def timed_robot_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
                         advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
-    """(capture time, robot address, record), as timed_cell_records gives them, with the address of
-    the robot each record's conversation belongs to (None for a fault of the capture file)."""
+    """(capture time, robot address, record) of every conversation of the capture on the ports of
+    `by_port`, for the data tools, which read the primary interface's records apart: those as they
+    are, every other interface's Enveloped; a fault of the capture file has neither time nor
+    address (None)."""
+    ends = _EndpointsOf()
+    for time, key, interface, from_robot, record in conversation_records(fh, hint, by_port, advance):
+        if key is None:
+            yield None, None, record
+        elif interface.name == PRIMARY:
+            yield time, key[0], record
+        else:
+            # The conversation as plain text, which the data tools' spill files (marshal) take.
+            yield time, key[0], Enveloped(interface.name, FROM_ROBOT if from_robot else TO_ROBOT,
+                                          str(ends(key, interface)), record, time)
+
+
+def cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
+                 advance: Callable[[int], None] = lambda n: None,
+                 others: Optional[OtherConversations] = None) -> Iterator[Enveloped]:
+    """Every record of the capture's conversations on the ports of `by_port`, each Enveloped with
+    its interface, direction, conversation and capture time, the primary interface's too; a
+    fault of the capture file with none of them. The conversations on other ports go to
+    `others`, when given."""
+    ends = _EndpointsOf()
+    for time, key, interface, from_robot, record in conversation_records(fh, hint, by_port, advance, others):
+        if key is None:
+            yield Enveloped(None, None, None, record)
+        else:
+            yield Enveloped(interface.name, FROM_ROBOT if from_robot else TO_ROBOT, ends(key, interface), record, time)
+
+
+class _EndpointsOf(dict):
+    """Each conversation's Endpoints, made once: its records share it."""
+
+    def __call__(self, key: tuple, interface: Interface) -> Endpoints:
+        ends = self.get(key)
+        if ends is None:
+            ends = self[key] = Endpoints(*key, robot_is_client=interface.robot_is_client)
+        return ends
+
+
+def conversation_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
+                         advance: Callable[[int], None] = lambda n: None,
+                         others: Optional[OtherConversations] = None) -> Iterator[tuple]:
+    """(capture time, conversation, interface, from robot, record) of every conversation of the
+    capture on the ports of `by_port`, the conversation being (server address, server port,
+    client address, client port); a fault of the capture file comes as (None, None, None, None,
+    error record). A conversation closes when its listening side ends (or the capture does). The
+    software version a robot's primary stream announces is passed on to its other conversations
+    (the real-time one chooses among layouts of one size with it)."""
     conversations: dict = {}
     versions: dict = {}      # robot address -> the software version one of its conversations learnt
     both_ways = {port for port, i in by_port.items() if i.both_directions}
     last = 0
-    for item in timed_streams(fh, set(by_port), both_ways):
+    for item in timed_streams(fh, set(by_port), both_ways, others):
         if isinstance(item, CaptureFault):  # its offset is the capture file's, not a stream's
-            yield None, None, StreamError(item.offset, item.error)
+            yield None, None, None, None, StreamError(item.offset, item.error)
             continue
         key, from_port, piece, ended, time = item
         interface = by_port[key[1]]
@@ -72,11 +110,11 @@ def timed_robot_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inte
         at = getattr(conv, "at", None)
         if at is not None:      # a conversation that files its records itself (data/dataset_c_capture.py)
             at(time, key[0])
-        tails: list = []
+        sides: list = []
         if isinstance(piece, Gap):
             # Named first (a conversation that files its records itself numbers what follows after
             # it), then what the direction held before it given up, and its decoding started afresh.
-            yield from _filed(interface, key, [(from_robot, [StreamError(piece.offset, piece.error)])], time)
+            yield time, key, interface, from_robot, StreamError(piece.offset, piece.error)
             records = conv.lost(from_robot, piece.offset + piece.length)
         elif isinstance(piece, Differs):
             records = [StreamError(piece.offset, piece.error)]
@@ -85,29 +123,18 @@ def timed_robot_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inte
         learnt = getattr(conv, "software_version", None)
         if learnt is not None:
             versions[key[0]] = learnt
+        sides.append((from_robot, records))
         if ended and from_port:
             # Each direction's tail is its own: to_robot's first, then the robot's.
-            tails = [(False, conv.close(False)), (True, conv.close(True))]
+            sides += [(False, conv.close(False)), (True, conv.close(True))]
             del conversations[key]
-        yield from _filed(interface, key, [(from_robot, records)] + tails, time)
+        for side_from_robot, side in sides:
+            for record in side:
+                yield time, key, interface, side_from_robot, record
         if fh.seekable():
             pos = fh.tell()
             advance(pos - last)
             last = pos
-
-
-def _filed(interface: Interface, key: tuple, sides: list, time) -> Iterator[tuple]:
-    """(capture time, robot address, record) of each (from robot, records) side: the primary
-    interface's records as they are, any other's in the envelope of its direction."""
-    if interface.name == PRIMARY:
-        for _, side in sides:
-            for record in side:
-                yield time, key[0], record
-        return
-    name = _conversation_name(key)
-    for from_robot, side in sides:
-        for record in side:
-            yield time, key[0], Enveloped(interface.name, FROM_ROBOT if from_robot else TO_ROBOT, name, record)
 
 
 def records_of_raw_protocol(fh: BinaryIO, interface: Interface, hint: VersionLike, chunk: int,

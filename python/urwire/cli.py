@@ -16,9 +16,9 @@ from .capture import head_of, is_capture
 from .canonical import fails, to_json_line
 from .human import line as human_line
 from .human import tree as human_tree
-from .cell import interface_named, ports_of, records_of_raw_protocol
+from .cell import interface_named, records_of_raw_protocol
 from .interfaces import INTERFACES
-from .reading import CHUNK, input_kind, records_of
+from .reading import CHUNK, capture_records, input_kind, ports_read, records_of_raw
 from .generated.spec import DEFAULT_VERSION, PORTS
 from .data import export, plot, spark
 from .live import listen, serve
@@ -38,8 +38,10 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"urwire {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     dec = sub.add_parser("decode", help="decode a raw stream, .pcap or .pcapng to canonical JSON Lines",
-                         description="Decode a raw robot->client stream, or every robot->client TCP stream "
-                                     "of a .pcap/.pcapng capture, and print one JSON object per message.")
+                         description="Decode a raw robot->client stream, or every TCP conversation of a "
+                                     ".pcap/.pcapng capture that an interface of the cell reads (each record "
+                                     "naming its interface, direction and conversation), and print one JSON "
+                                     "object per message.")
     dec.add_argument("file", help="a raw stream, a .pcap or a .pcapng file; - for standard input")
     dec.add_argument("--protocol", choices=sorted(INTERFACES), default=None,
                      help="the interface a raw stream is from (default: ur, the primary/secondary interface); "
@@ -84,15 +86,13 @@ def _progress(size: Optional[int], disabled: bool) -> Callable[[int], None]:
 
 
 def _records(fh: BinaryIO, args: argparse.Namespace, advance: Callable[[int], None]):
-    """The records of the input: a capture's conversations by port, or a raw stream of one interface."""
+    """The records of the input: a capture's conversations by port, each in its envelope, or a raw
+    stream of one interface."""
     interface = interface_named(args.protocol or "ur")
-    head = head_of(fh)
-    if args.to_robot is None and (interface.name == "ur" or is_capture(head)):
-        if args.port:
-            by_port = {port: interface for port in args.port}
-        else:
-            by_port = ports_of([interface] if args.protocol else INTERFACES.values())
-        return records_of(fh, args.version_hint, list(by_port), advance, by_port)
+    if args.to_robot is None and is_capture(head_of(fh)):
+        return capture_records(fh, args.version_hint, ports_read(args.protocol, args.port), advance)
+    if args.to_robot is None and interface.name == "ur":
+        return records_of_raw(fh, args.version_hint, advance)
     to_robot = open(args.to_robot, "rb") if args.to_robot else None
     return records_of_raw_protocol(fh, interface, args.version_hint, CHUNK, advance, to_robot,
                                    (args.file, args.to_robot or ""))
@@ -121,6 +121,19 @@ def _write_json_lines(fh: BinaryIO, hint, advance: Callable[[int], None], out) -
     sink(lines.close())
     out.flush()
     return lines.errors
+
+
+UNCLAIMED_NAMED = 10     # conversations named in the line that says what no interface read
+
+
+def _say_unclaimed(unclaimed: Optional[dict]) -> None:
+    """Once, on stderr: the conversations of a capture that no interface reads."""
+    if not unclaimed:
+        return
+    named = [f"{ends} ({count} bytes)" for ends, count in list(unclaimed.items())[:UNCLAIMED_NAMED]]
+    more = f" and {len(unclaimed) - len(named)} more" if len(unclaimed) > len(named) else ""
+    print(f"urwire: not decoded, {len(unclaimed)} TCP conversation(s) on ports no interface reads "
+          f"(--protocol NAME --port PORT reads one): {', '.join(named)}{more}", file=sys.stderr)
 
 
 def decode_command(args: argparse.Namespace) -> int:
@@ -153,6 +166,7 @@ def decode_command(args: argparse.Namespace) -> int:
                 out.write(render(record))
                 out.write("\n")
         out.flush()
+        _say_unclaimed(getattr(records, "unclaimed", None))
     except BrokenPipeError:
         # The reader went away (| head): stop quietly, as command-line tools do.
         devnull = os.open(os.devnull, os.O_WRONLY)

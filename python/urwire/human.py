@@ -72,6 +72,9 @@ def _package(p: Any) -> str:
 
 
 def _where(record: Enveloped) -> str:
+    """Where the record came from, as its JSON's envelope says (nothing for a fault of the capture file)."""
+    if record.interface is None:
+        return ""
     return f"[{record.interface} {record.direction} {record.conversation}] "
 
 

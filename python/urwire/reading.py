@@ -1,7 +1,9 @@
 """Records out of files: raw streams read in chunks, captures split into the TCP conversations of
-the interfaces asked for (by default the primary one), each decoded by its interface (cell.py).
+the interfaces asked for, each decoded by its interface (cell.py).
 
-Captures need dpkt, which is imported only when a capture is read.
+`decode_file` gives the primary interface's records of a raw stream or a capture, as they are;
+`decode_capture` every interface's records of a capture, each with its interface, direction,
+conversation and capture time. Captures need dpkt, which is imported only when a capture is read.
 """
 from __future__ import annotations
 
@@ -10,11 +12,12 @@ from pathlib import Path
 from typing import BinaryIO, Callable, Iterable, Iterator, Optional, Union
 
 from .arguments import VersionLike
-from .capture import HEAD_BYTES, head_of, is_capture
-from .cell import timed_cell_records
+from .capture import HEAD_BYTES, OtherConversations, head_of, is_capture
+from .cell import PRIMARY, cell_records, interface_named, ports_of, timed_cell_records
+from .envelope import Endpoints, Enveloped
 from .framer import Framer
 from .generated.spec import PORTS
-from .interfaces import INTERFACES, Interface
+from .interfaces import INTERFACES, Interface, interface_of_port
 
 CHUNK = 1 << 20
 
@@ -61,9 +64,86 @@ def records_of(fh: BinaryIO, hint: VersionLike = None, ports: Iterable[int] = PO
 
 def decode_file(path: Union[str, os.PathLike], version_hint: VersionLike = None,
                 ports: Optional[Iterable[int]] = None) -> Iterator:
-    """Every record of a raw stream, .pcap or .pcapng file, in order."""
+    """The primary interface's records of a raw stream, .pcap or .pcapng file, in order, as they
+    are (RobotStateMessage, VersionMessage, ...). In a capture these are the robot->client
+    streams on `ports` (default: the primary interface's), every robot's interleaved, with no
+    word of which conversation each came from: decode_capture gives that, and every other
+    interface's records."""
     with open(Path(path), "rb") as fh:
         yield from records_of(fh, version_hint, ports or PORTS)
+
+
+def ports_read(protocol: Optional[str] = None, ports: Optional[Iterable[int]] = None) -> dict[int, Interface]:
+    """Which interface reads each port of a capture: `ports` as `protocol`'s (default the primary
+    interface's); without them, `protocol`'s own ports, or every interface's."""
+    interface = interface_named(protocol or PRIMARY)
+    if ports:
+        return {port: interface for port in ports}
+    return ports_of([interface] if protocol else INTERFACES.values())
+
+
+def unclaimed_of(others: OtherConversations) -> dict[Endpoints, int]:
+    """The conversations of `others` that no interface reads on either port, with the bytes each
+    carried: what decode_capture and `urwire decode` did not decode because nothing claims them
+    (those on another interface's ports were left out as asked)."""
+    return {Endpoints(*key): count for key, count in others.bytes.items()
+            if interface_of_port(key[1]) is None and interface_of_port(key[3]) is None}
+
+
+class CaptureRecords:
+    """The records of a capture, decoded as they are iterated (see decode_capture).
+
+    `unclaimed`: the TCP conversations of the capture that no interface of the cell reads (none
+    of its ports is one of theirs), each with the bytes it carried, as far as the capture has
+    been read: complete once the records are. `--protocol NAME --port PORT` (or decode_capture's
+    `protocol` and `ports`) reads such a conversation as an interface's."""
+
+    def __init__(self, read: Callable[[OtherConversations], Iterator[Enveloped]]):
+        self._others = OtherConversations()
+        self._records = read(self._others)      # read(others): the records, telling others what it skips
+
+    def __iter__(self) -> "CaptureRecords":
+        return self
+
+    def __next__(self) -> Enveloped:
+        return next(self._records)
+
+    @property
+    def unclaimed(self) -> dict[Endpoints, int]:
+        return unclaimed_of(self._others)
+
+
+def capture_records(fh: BinaryIO, hint: VersionLike = None, by_port: Optional[dict[int, Interface]] = None,
+                    advance: Callable[[int], None] = lambda n: None) -> CaptureRecords:
+    """decode_capture's records of an open capture (by default, every interface by its ports)."""
+    return CaptureRecords(lambda others: cell_records(fh, hint, by_port or ports_read(), advance, others))
+
+
+def decode_capture(path: Union[str, os.PathLike], version_hint: VersionLike = None, *, protocol: Optional[str] = None,
+                   ports: Optional[Iterable[int]] = None) -> CaptureRecords:
+    """Every record of a .pcap or .pcapng capture of a cell, in capture order: each TCP
+    conversation whose server port is one of an interface's (urwire.interfaces.INTERFACES) is
+    decoded by that interface, each with a decoder of its own, so each learns its own robot's
+    version. Each record is an Enveloped: `interface` ("ur", "ur_realtime", "rtde", ...),
+    `direction` ("from_robot", "to_robot"), `conversation` (Endpoints: both addresses and ports),
+    `capture_time`, and `record`, what the interface decoded. A block of the capture file that
+    cannot be read gives a StreamError with no interface, direction or conversation.
+
+    `protocol` keeps one interface's conversations; `ports` reads those ports as `protocol`'s
+    (default the primary interface's), as `urwire decode --protocol --port` does. The result's
+    `unclaimed` names the conversations no interface reads. A file that is not a capture is a
+    ValueError: decode_file reads raw streams."""
+    by_port = ports_read(protocol, ports)
+    if input_kind(path) != "capture":
+        with open(Path(path), "rb"):      # an OSError of its own when it cannot be read
+            pass
+        raise ValueError(f"{os.fspath(path)} is not a .pcap or .pcapng capture: urwire.decode_file reads a raw stream")
+
+    def read(others: OtherConversations) -> Iterator[Enveloped]:
+        with open(Path(path), "rb") as fh:
+            yield from cell_records(fh, version_hint, by_port, lambda n: None, others)
+
+    return CaptureRecords(read)
 
 
 def timed_records(path: Union[str, os.PathLike], version_hint: VersionLike = None,

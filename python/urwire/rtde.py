@@ -16,17 +16,46 @@ The functions at the end build what a client sends: `setup_outputs(["actual_q"],
 """
 from __future__ import annotations
 
+from collections.abc import Iterator, Mapping
 from typing import Optional
 
 from .generated import rtde as _g
 from .text_lines import NOT_KEPT, UNKNOWN, Pending, reply_unknown
 from .typed_records import DecodeError, Framer, Message, RawMessage, Recipe, Values
 
-__all__ = ["Conversation", "Recipe", "Values", "VARIABLES", "variable", "request_protocol_version", "setup_outputs",
-           "setup_inputs", "start", "pause", "input_data", "send_text_message"]
+__all__ = ["Conversation", "Recipe", "Values", "VARIABLES", "VariableTable", "variable", "request_protocol_version",
+           "setup_outputs", "setup_inputs", "start", "pause", "input_data", "send_text_message"]
 
 NAME, TITLE, PORTS = _g.NAME, _g.TITLE, _g.PORTS
-VARIABLES = _g.VARIABLES
+
+
+class VariableTable(Mapping[str, _g._r.Variable]):
+    """The variable table by name: `VARIABLES["actual_q"]` is its row (type, direction, label,
+    unit, first versions). A name the client writes and the robot also sends back (the input
+    registers) has two rows: here the one the robot sends (what a data package from the robot
+    carries), `variable(name, "input")` the other. `rows` is every row, in the spec's order."""
+
+    def __init__(self, rows: tuple):
+        self.rows: tuple = rows
+        self._by_name: dict = {}
+        for v in rows:      # each name where it first comes, by the row the robot sends if it has one
+            if v.direction == "output" or v.name not in self._by_name:
+                self._by_name[v.name] = v
+
+    def __getitem__(self, name: str) -> _g._r.Variable:
+        return self._by_name[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._by_name)
+
+    def __len__(self) -> int:
+        return len(self._by_name)
+
+    def __repr__(self) -> str:
+        return f"<RTDE variable table: {len(self._by_name)} names, {len(self.rows)} rows>"
+
+
+VARIABLES = VariableTable(_g.VARIABLES)
 _KNOWN_CODES = frozenset({code for code, _, _ in _g.MESSAGES} | set(_g.UNDOCUMENTED))
 _KIND_OF_REQUEST = {cls: kind for kind in _g.RECIPE_KINDS for cls in kind.requests}
 _KIND_OF_REPLY = {cls: kind for kind in _g.RECIPE_KINDS for cls in kind.replies}
@@ -38,7 +67,7 @@ def variable(name: str, direction: str = "output") -> Optional[_g._r.Variable]:
     return _VARIABLE_INDEX.get((name, direction))
 
 
-_VARIABLE_INDEX = {(v.name, v.direction): v for v in VARIABLES}
+_VARIABLE_INDEX = {(v.name, v.direction): v for v in VARIABLES.rows}
 
 
 class Awaiting(Pending):

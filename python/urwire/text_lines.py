@@ -16,7 +16,6 @@ from ._runtime import StreamError
 from .arguments import parse_version
 
 Version = tuple[int, int, int]
-E_SERIES_MAJOR = 5
 PENDING_KEPT = 256   # commands awaiting a reply; a client that never reads cannot grow it further
 # Reading a client's whole raw file before the server's, every command of the session awaits its
 # reply at once: raw files keep this many (references, a few MiB) before one is not kept.
@@ -59,11 +58,15 @@ class CommandSpec:
     takes_argument: bool
     since_cb: Optional[Version]
     since_e_series: Optional[Version]
+    since_polyscope_x: Optional[Version]
+    series_from: tuple[Version, Version]   # the first versions read from since_e_series and since_polyscope_x
     replies: tuple[ReplySpec, ...]
     effect: Optional[str] = None      # what the command does to a simulated robot (`urwire serve`)
 
     def available(self, version: Version) -> bool:
-        since = self.since_e_series if version[0] >= E_SERIES_MAJOR else self.since_cb
+        e_series_from, polyscope_x_from = self.series_from
+        since = self.since_polyscope_x if version >= polyscope_x_from else \
+            self.since_e_series if version >= e_series_from else self.since_cb
         return since is not None and version >= since
 
 

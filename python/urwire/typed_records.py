@@ -49,18 +49,20 @@ class Variable:
     label: str
     unit: Optional[str]
     since: dict                    # generation -> first version, "none" or "unknown"
+    columns: tuple                 # (generation, first software version read from its column), in order
 
     def available_in(self, version: tuple) -> Optional[bool]:
         """Whether a controller of this software version (major, minor[, bugfix]) has the variable:
         None when the sources do not say (its first version is "unknown")."""
-        generation = "cb3" if version[0] < 5 else "eseries"
+        version = tuple(version) + (0,) * (3 - len(version))
+        generation = [name for name, start in self.columns if version >= start][-1]
         first = self.since.get(generation, "none")
         if first == "none":
             return False
         if first == "unknown":
             return None
         wanted = tuple(int(x) for x in first.split("."))
-        return tuple(version) + (0,) * (3 - len(version)) >= wanted + (0,) * (3 - len(wanted))
+        return version >= wanted + (0,) * (3 - len(wanted))
 
 
 @dataclass(frozen=True)

@@ -11,16 +11,16 @@
 
 static const lines_reply_t common[] = {{"no", (const char *const[]){"could not understand: '", "'"}, 2, true}};
 static const lines_command_t commands[] = {
-    {"load", "load", true, 1004000u, 5000000u,
+    {"load", "load", true, 1004000u, 5000000u, 10000000u,
      (const lines_reply_t[]){{"loading", (const char *const[]){"Loading program: ", ""}, 2, false}}, 1},
-    {"load_installation", "load installation", true, 3002000u, 0,
+    {"load_installation", "load installation", true, 3002000u, 5027000u, 0,
      (const lines_reply_t[]){{"three", (const char *const[]){"a", "b", "c"}, 3, false}}, 1},
 };
 static const int lookup[] = {1, 0};
 static const lines_spec_t spec = {
     .column = "T", .max_line = 16, .common = common, .common_count = 1, .commands = commands,
     .command_count = 2, .lookup = lookup, .version_command = 0, .version_prefix = "URSoftware ",
-    .e_series_from = 5000000u,
+    .e_series_from = 5000000u, .polyscope_x_from = 10000000u,
 };
 
 /* Interpreter mode's shape: a command with no text is any other line, tried last. */
@@ -52,6 +52,9 @@ int main(void)
     CHECK(lines_classify(&spec, 1, TEXT("a-b-c")) != NULL && lines_classify(&spec, 1, TEXT("abc")) != NULL);
     CHECK(lines_classify(&spec, 1, TEXT("ab")) == NULL && lines_classify(&spec, 1, TEXT("a-c-b")) == NULL);
     CHECK(lines_available(&spec, 1, 3002000u) && !lines_available(&spec, 1, 5011000u));
+    /* Each series reads its own column: 5.27 has it, no PolyScope X does. */
+    CHECK(lines_available(&spec, 1, 5027000u) && !lines_available(&spec, 1, 10013000u));
+    CHECK(lines_available(&spec, 0, 10000000u) && lines_available(&spec, 0, 10013000u));
     CHECK(!lines_available(&spec, 0, 1003000u) && lines_available(&spec, 0, 5000000u));
     CHECK(lines_version_in(&spec, TEXT("URSoftware 5.11.1.108318 (Nov 26 2021)"), &v) && v == 5011001u);
     CHECK(lines_version_in(&spec, TEXT("URSoftware 5.11"), &v) && v == 5011000u);

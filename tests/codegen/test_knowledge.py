@@ -123,9 +123,12 @@ def test_the_reference_links_each_form_to_its_history_and_sources():
     assert "- `reserved_1` (5.25.1 and later): From 5.25.1" in text and "URCL 15882dca" in text
 
 
-# The columns of docs/firmware-history.md#sizes-by-version, each as a version it stands for.
-SIZE_COLUMNS = [(1, 5, 0), (1, 6, 0), (1, 8, 0), (3, 0, 0), (3, 1, 0), (3, 2, 0), (3, 5, 0), (3, 10, 0),
-                (5, 0, 0), (5, 4, 0), (5, 25, 1)]
+def column_version(heading: str) -> tuple[int, int, int]:
+    """The version a column of docs/firmware-history.md#sizes-by-version stands for: the first
+    its heading names ("5.25.1 on", "3.2-3.4", "10.x"); early CB2 is taken as 1.5, as the spec does."""
+    if heading == "early CB2":
+        return (1, 5, 0)
+    return ir.parse_version(re.match(r"\d+\.(\d+|x)(\.\d+)?", heading).group().replace(".x", ".0"))
 
 
 def test_the_history_size_table_is_what_the_spec_decodes():
@@ -133,10 +136,12 @@ def test_the_history_size_table_is_what_the_spec_decodes():
     column's version (with Euromap67 where the cell says +N E); a cell may name several sizes
     ("10 or 7") when a release sends both. Dashes and question marks say nothing to check."""
     lines = (ROOT / "docs" / "firmware-history.md").read_text(encoding="utf-8").split("## Sizes by version")[1]
-    rows = [line.split("|")[1:-1] for line in lines.split("\n## ")[0].splitlines() if re.match(r"\| \d+ \|", line)]
-    assert len(rows) == 15
+    table = lines.split("\n## ")[0].splitlines()
+    headings = [cell.strip() for cell in next(line for line in table if line.startswith("| code |")).split("|")[3:-1]]
+    rows = [line.split("|")[1:-1] for line in table if re.match(r"\| \d+ \|", line)]
+    assert len(rows) == 15 and all(len(row) == len(headings) + 2 for row in rows)
     checked = 0
-    for version, column in zip(SIZE_COLUMNS, range(2, 13)):
+    for version, column in zip(map(column_version, headings), range(2, len(headings) + 2)):
         forms = forms_at(PLAN, version)
         for row in rows:
             form = forms.get(("robot_state", int(row[0])))

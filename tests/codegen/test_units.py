@@ -72,7 +72,7 @@ def values() -> Iterator[Value]:
                 for f in dataclasses.fields(cls):
                     if "label" in f.metadata:
                         yield Value(info.name, f.name, f.metadata["label"], f.metadata.get("unit"))
-    for v in rtde.VARIABLES:
+    for v in rtde.VARIABLES.rows:
         yield Value("rtde", v.name, v.label, v.unit)
 
 

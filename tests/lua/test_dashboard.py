@@ -195,7 +195,7 @@ def test_no_global_is_assigned():
 
 
 MATCH_TEST = r"""
-local spec = {lookup = {2, 1}, version_prefix = "URSoftware ", e_series_from = 5000000,
+local spec = {lookup = {2, 1}, version_prefix = "URSoftware ", e_series_from = 5000000, polyscope_x_from = 10000000,
     common = {{name = "no", pieces = {"could not understand: '", "'"}, error = true}},
     commands = {{name = "load", text = "load", argument = true, since_cb = 1004000, since_e_series = 5000000,
                  replies = {{name = "loading", pieces = {"Loading program: ", ""}, error = false}}},

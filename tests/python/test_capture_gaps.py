@@ -14,6 +14,7 @@ import pytest
 
 from tests.tools import capture
 from tests.tools.capture import Segment
+from tests.tools.envelope import bare, where
 
 ROOT = __import__("pathlib").Path(__file__).resolve().parents[2]
 ENV = {"PYTHONPATH": f"{ROOT / 'python'}:{ROOT / 'generated' / 'python'}"}
@@ -105,15 +106,17 @@ def test_segments_cut_anywhere_lose_only_the_packets_the_gap_touches(tmp_path):
     assert tshark_times(pcap) == decoded
 
 
-def test_a_gap_in_the_primary_stream_is_an_unenveloped_error_and_decoding_restarts(tmp_path):
+def test_a_gap_in_the_primary_stream_is_an_error_of_its_conversation_and_decoding_restarts(tmp_path):
     from tests.vectors import golden_cases
 
     state = next(c for c in golden_cases() if c.name == "generation_cb3_3_10_robot_state").data
     payloads = [state] * 4 + [state[:30], state[30:60], state[60:]] + [state] * 3   # a Version, a state
     frames = capture.session_frames([Segment(True, p) for p in payloads], port=30001)
     del frames[3 + 2 * 5]
-    records, status = decode(str(capture.write(tmp_path / "primary.pcap", frames)))
+    enveloped, status = decode(str(capture.write(tmp_path / "primary.pcap", frames)))
     assert status == 1
+    assert {where(r) for r in enveloped} == {("ur", "from_robot", "192.168.56.101:30001-192.168.56.1:50123")}
+    records = [bare(r) for r in enveloped]
     gap = {"type": "error", "offset": 4 * len(state) + 30, "error": f"30 bytes missing from the capture at offset "
                                                                     f"{4 * len(state) + 30}"}
     assert records[8] == gap                  # after the 4 copies' version and robot state

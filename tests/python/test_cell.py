@@ -1,7 +1,7 @@
 """The cell's plumbing: `urwire decode CAPTURE` reads every UR conversation of a capture by its
-port, each record of an interface other than the primary one naming its interface, direction and
-conversation; the primary's records keep their form; `urwire decode --protocol NAME` reads a raw
-stream of any interface, with `--to-robot` for the client's side."""
+port, each record naming its interface, direction and conversation, the primary interface's too;
+`urwire decode --protocol NAME` reads a raw stream of any interface, with `--to-robot` for the
+client's side."""
 from __future__ import annotations
 
 import json
@@ -17,6 +17,7 @@ from urwire.reading import records_of
 
 from tests.tools import capture
 from tests.tools.capture import Segment
+from tests.tools.envelope import bare, where
 from tests.vectors import golden_cases, interface_cases
 
 ROOT = __import__("pathlib").Path(__file__).resolve().parents[2]
@@ -54,8 +55,10 @@ def test_a_cell_capture_gives_every_conversation_with_its_envelope(tmp_path):
     res = urwire_decode(str(pcap))
     assert res.returncode == 0, res.stderr
     lines = [json.loads(line) for line in res.stdout.splitlines()]
-    # The primary interface's records are as they always were: no envelope.
-    assert [r for r in lines if "interface" not in r] == PRIMARY.expect
+    # The primary interface's records name their conversation too; the rest is the golden vector's.
+    primary_lines = [r for r in lines if r["interface"] == "ur"]
+    assert {where(r) for r in primary_lines} == {("ur", "from_robot", "192.168.56.101:30002-192.168.56.1:50123")}
+    assert [bare(r) for r in primary_lines] == PRIMARY.expect
     realtime = [r for r in lines if r.get("interface") == "ur_realtime"]
     assert [(r["conversation"], r["type"], r["time"]) for r in realtime] == [
         ("192.168.56.101:30003-192.168.56.1:40001", "rt_3_10", 1.0),
@@ -68,12 +71,18 @@ def test_a_cell_capture_gives_every_conversation_with_its_envelope(tmp_path):
     assert [json.loads(x) for x in only.stdout.splitlines()] == realtime
 
 
-def test_the_primary_alone_reads_as_before(tmp_path):
-    """A capture of the primary interface decodes to the lines decode_file gave before the cell."""
+def test_the_primary_alone_reads_as_before_with_its_conversation(tmp_path):
+    """A capture of the primary interface decodes to the lines decode_file gives, each in its
+    conversation's envelope, which decode_capture gives as attributes."""
     frames = capture.robot_session(capture.random_cuts([PRIMARY.data], seed=5))
     pcap = capture.write(tmp_path / "primary.pcap", frames)
     lines = [json.loads(x) for x in urwire_decode(str(pcap)).stdout.splitlines()]
-    assert lines == PRIMARY.expect == [urwire.to_dict(r) for r in urwire.decode_file(pcap)]
+    assert [bare(r) for r in lines] == PRIMARY.expect == [urwire.to_dict(r) for r in urwire.decode_file(pcap)]
+    records = list(urwire.decode_capture(pcap))
+    assert [urwire.to_dict(r) for r in records] == lines
+    assert [urwire.to_dict(r.record) for r in records] == PRIMARY.expect
+    assert {(r.interface, r.direction, r.conversation) for r in records} == {(x["interface"], x["direction"],
+                                                                              x["conversation"]) for x in lines}
 
 
 def test_a_raw_stream_of_an_interface_gives_its_records_as_they_are(tmp_path):

@@ -119,10 +119,29 @@ def test_a_huge_size_waits_for_its_bytes_then_is_a_truncated_tail():
 def test_the_variable_table_has_labels_units_and_versions():
     q = rtde.variable("actual_q")
     assert (q.type, q.unit, q.label, q.since) == ("VECTOR6D", "rad", "Actual joint positions",
-                                                  {"cb3": "3.3", "eseries": "5.0"})
+                                                  {"cb3": "3.3", "eseries": "5.0", "polyscope_x": "10.0"})
     assert rtde.variable("speed_slider_fraction", "input").type == "DOUBLE"
-    assert all(v.type in generated.VALUE_TYPES for v in rtde.VARIABLES)
+    assert all(v.type in generated.VALUE_TYPES for v in rtde.VARIABLES.rows)
     assert rtde.variable("no_such_thing") is None
+
+
+def test_the_variable_table_is_a_mapping_by_name():
+    """VARIABLES["actual_q"] is its row; a name in both directions (the input registers, which the
+    robot sends back) is the row the robot sends, its input row being variable(name, "input"); every
+    row stays in `rows`."""
+    from collections.abc import Mapping
+
+    table = rtde.VARIABLES
+    assert isinstance(table, Mapping) and table["actual_q"] is rtde.variable("actual_q")
+    assert "actual_q" in table and "no_such_thing" not in table and table.get("no_such_thing") is None
+    both = table["input_int_register_24"]
+    assert both.direction == "output" and rtde.variable("input_int_register_24", "input").direction == "input"
+    assert table["speed_slider_fraction"].direction == "input"          # written by the client only
+    assert list(table) == [name for name in dict.fromkeys(v.name for v in table.rows)]
+    assert len(table.rows) == len({(v.name, v.direction) for v in table.rows}) > len(table)
+    assert {(v.name, v.direction) for v in table.values()} | {(v.name, "input") for v in table.rows
+                                                              if v.direction == "input"} == \
+        {(v.name, v.direction) for v in table.rows}
 
 
 def test_which_controllers_have_a_variable():

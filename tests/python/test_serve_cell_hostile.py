@@ -39,7 +39,7 @@ def wait_for_log(server: CellServer, pattern: str, timeout: float = 15) -> re.Ma
 
 
 # Every output a 5.11 controller has: a few KB a package, so a stalled client fills its buffers in seconds.
-EVERY_OUTPUT = [v.name for v in rtde.VARIABLES if v.direction == "output" and offers(v, (5, 11, 0))]
+EVERY_OUTPUT = [v.name for v in rtde.VARIABLES.values() if v.direction == "output" and offers(v, (5, 11, 0))]
 
 
 def streaming_rtde(sock: socket.socket, frequency: float = 500.0) -> None:

@@ -42,7 +42,7 @@ def assert_of_its_type(name: str, type_name: str, value) -> None:
 @pytest.mark.parametrize("software", ["3.15", "5.11", "10.7"])
 def test_every_output_variable_of_the_version_is_offered_and_streamed(tmp_path, software):
     version = version_of(software)
-    outputs = [v for v in rtde.VARIABLES if v.direction == "output"]
+    outputs = [v for v in rtde.VARIABLES.rows if v.direction == "output"]
     offered = [v for v in outputs if v.available_in(version) is not False]
     lacking = [v.name for v in outputs if v.available_in(version) is False]
     assert any(v.name not in _OUTPUTS for v in offered)

@@ -37,7 +37,8 @@ def view(p: LinesPlan) -> dict:
             since_cb=c.since_cb or 0, since_e_series=c.since_e_series or 0,
             replies=replies, replies_symbol=f"{prefix}__{cmd.name}_replies",
             row=[string(cmd.name), string(cmd.text), "true" if cmd.argument else "false", f"{c.since_cb or 0}u",
-                 f"{c.since_e_series or 0}u", f"{prefix}__{cmd.name}_replies", str(len(replies))]))
+                 f"{c.since_e_series or 0}u", f"{c.since_polyscope_x or 0}u", f"{prefix}__{cmd.name}_replies",
+                 str(len(replies))]))
     return dict(
         prefix=prefix, upper=prefix.upper(), title=m.title, doc=m.doc, ports=m.ports, max_line=m.max_line,
         commands=commands, lookup=[f"{prefix.upper()}_{c.command.name.upper()}" for c in p.lookup],
@@ -49,7 +50,7 @@ def view(p: LinesPlan) -> dict:
         version_prefix=string(m.version_prefix),
         runtime_header="\n\n".join(runtime_section(FOLDER, name) for name in RUNTIME_HEADER),
         runtime_sources=[runtime_section(FOLDER, name) for name in RUNTIME_SOURCES],
-        aliases=ALIASES, e_series_from=f"{p.e_series_from}u",
+        aliases=ALIASES, e_series_from=f"{p.e_series_from}u", polyscope_x_from=f"{p.polyscope_x_from}u",
         limit=LIMIT,
     )
 

@@ -40,6 +40,7 @@ def view(d: Dissector) -> dict:
                      name=string(c.command.name), text=string(c.command.text),
                      argument="true" if c.command.argument else "false",
                      since_cb=f"{c.since_cb or 0}u", since_e_series=f"{c.since_e_series or 0}u",
+                     since_polyscope_x=f"{c.since_polyscope_x or 0}u",
                      replies=[_reply(r) for r in c.command.replies])
                 for c in p.commands]
     return dict(
@@ -63,6 +64,7 @@ def view(d: Dissector) -> dict:
         version_command=f"{p.version_command.index},  /* {p.version_command.command.name} */" if p.version_command
         else "LINES_NONE,",
         version_prefix=string(m.version_prefix), e_series_from=f"{p.e_series_from}u",
+        polyscope_x_from=f"{p.polyscope_x_from}u",
         runtime_types="\n\n".join(runtime_section(language, name) for language, name in RUNTIME_TYPES),
         runtime_dissector="\n\n".join(runtime_section(FOLDER, name) for name in RUNTIME_DISSECTOR),
     )

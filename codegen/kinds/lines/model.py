@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional
 
-from ... import ir
+from ... import ir, series
 
 # What a command may do to the simulated robot (`effect:`); `urwire serve` does each, and those
 # that can fail (a load of no .urp, a play with nothing to play) answer with the command's first
@@ -43,7 +43,8 @@ class Command:
     text: str                    # the words that open the line; "": any line no other command is
     argument: Optional[str]      # what the text after the words is, when the command takes one
     since_cb: Optional[ir.Version]        # first CB2/CB3 version with the command; None: none has it
-    since_e_series: Optional[ir.Version]  # first e-Series (5.x and later) version; None: none has it
+    since_e_series: Optional[ir.Version]  # first e-Series (5.x) version; None: none has it
+    since_polyscope_x: Optional[ir.Version]  # first PolyScope X (10.x) version (codegen/series.py); None: none
     every_version: bool                   # no `since:`: every version has it
     doc: str
     replies: tuple[Reply, ...]
@@ -67,6 +68,10 @@ class Command:
             return "every version"
         parts = [f"CB {ir.version_text(self.since_cb)}"] if self.since_cb else []
         parts += [f"e-Series {ir.version_text(self.since_e_series)}"] if self.since_e_series else []
+        # PolyScope X is named only where it does not simply follow the e-Series.
+        if self.since_polyscope_x != (series.POLYSCOPE_X_FROM if self.since_e_series else None):
+            parts.append(f"PolyScope X {ir.version_text(self.since_polyscope_x)}" if self.since_polyscope_x
+                         else "not PolyScope X")
         return ", ".join(parts)
 
 
@@ -94,4 +99,4 @@ class LinesProtocol:
     common_replies: tuple[Reply, ...]
     commands: tuple[Command, ...]
 
-    E_SERIES_MAJOR = 5                   # software 5.x and later is the e-Series' line of versions
+    E_SERIES_MAJOR = 5                   # software 5.x is the e-Series' line of versions, 10.x PolyScope X's

@@ -38,10 +38,12 @@ def view(p: LinesPlan) -> dict:
         one_reply_per_request=repr(m.one_reply_per_request), common_replies=[_reply(r) for r in m.common_replies],
         commands=[dict(constant=c.command.name.upper(), doc=f"{c.command.doc} ({c.command.since_text()})",
                        arguments=[repr(c.command.name), repr(c.command.text), repr(c.command.argument is not None),
-                                  _version(c.command.since_cb), _version(c.command.since_e_series)],
+                                  _version(c.command.since_cb), _version(c.command.since_e_series),
+                                  _version(c.command.since_polyscope_x), "SERIES_FROM"],
                        replies=[_reply_arguments(r) for r in c.command.replies], end=_command_end(c.command))
                   for c in p.commands],
         lookup=[c.command.name.upper() for c in p.lookup],
+        series_from=repr((ir.version_of_number(p.e_series_from), ir.version_of_number(p.polyscope_x_from))),
         version_command=repr(m.version_command), version_prefix=repr(m.version_prefix),
         fields={name: dict(label=f.label, doc=f.doc) for name, f in m.fields.items()},
     )

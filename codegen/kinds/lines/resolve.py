@@ -4,7 +4,7 @@ from __future__ import annotations
 import re
 from typing import Optional
 
-from ... import ir
+from ... import ir, series
 from ...errors import SpecError
 from ...load import LoadedSpec
 from ...resolve import Resolver
@@ -75,7 +75,7 @@ class _LinesResolver(Resolver):
             out.append(reply)
         return tuple(out)
 
-    def command(self, raw: dict, parts) -> Command:
+    def command(self, raw: dict, parts, follows: Optional[ir.Version]) -> Command:
         since = raw.get("since", {"cb": "1.0", "e_series": "5.0"})   # no since: from the first software
         cb = ir.parse_version(since["cb"]) if "cb" in since else None
         e_series = ir.parse_version(since["e_series"]) if "e_series" in since else None
@@ -86,18 +86,26 @@ class _LinesResolver(Resolver):
         effect = raw.get("effect")
         if effect is not None and effect not in EFFECTS:
             self.fail(parts + ["effect"], f"unknown effect {effect!r}: one of {', '.join(EFFECTS)}")
+        polyscope_x = series.POLYSCOPE_X_FROM
+        if "since" in raw:   # PolyScope X reads the e-Series column only as far as it is known to follow it
+            polyscope_x, problem = series.polyscope_x_first(e_series or series.NONE, since.get("polyscope_x"), follows)
+            if problem:
+                self.fail(parts + ["since"] + (["polyscope_x"] if "polyscope_x" in since else []), problem)
         argument = raw.get("argument")
         if "text" not in raw and argument is None:
             self.fail(parts, "a command with no text (any other line) takes the whole line as its argument")
-        return Command(raw["name"], raw.get("text", ""), argument, cb, e_series, "since" not in raw, raw["doc"],
+        return Command(raw["name"], raw.get("text", ""), argument, cb, e_series,
+                       None if polyscope_x == series.NONE else polyscope_x, "since" not in raw, raw["doc"],
                        self.replies(raw["replies"], parts + ["replies"], argument, served=True), self.where(parts),
                        effect)
 
     def protocol(self) -> LinesProtocol:
         data = self.spec.data
+        follows = data["protocol"].get("polyscope_x_follows")
+        follows = ir.parse_version(follows) if follows else None
         commands: list[Command] = []
         for i, raw in enumerate(data["commands"]):
-            command = self.command(raw, ["commands", i])
+            command = self.command(raw, ["commands", i], follows)
             for earlier in commands:
                 if earlier.name == command.name:
                     self.fail(["commands", i, "name"], f"duplicate command name {command.name}")

@@ -13,6 +13,9 @@ from .model import SizedLayout, SizedProtocol
 def resolve(spec: LoadedSpec) -> SizedProtocol:
     r = Resolver(spec)
     data = spec.data
+    proto = data["protocol"]
+    # The series first: every range after them is stated against them (codegen/series.py).
+    series = r.declare_series(proto["generations"], ["protocol", "generations"])
     for name, raw in data["enums"].items():
         r.enums[name] = r.enum(name, raw)
     catalogue = _catalogue(r, data["fields"])
@@ -25,12 +28,9 @@ def resolve(spec: LoadedSpec) -> SizedProtocol:
     _check_sizes(r, list(layouts.values()), data["protocol"]["max_message_size"])
     if r.problems:
         raise SpecError(spec.source, r.problems)
-    proto = data["protocol"]
-    generations = [(g["name"], r.versions(g["versions"], ["protocol", "generations", i, "versions"]))
-                   for i, g in enumerate(proto["generations"])]
     return SizedProtocol(proto["name"], proto["title"], proto["doc"], list(proto["ports"]),
-                         proto["max_message_size"], generations, size_field, data["framing"]["same_size"],
-                         r.enums, list(catalogue.values()), list(layouts.values()))
+                         proto["max_message_size"], [(s.name, s.versions) for s in series], size_field,
+                         data["framing"]["same_size"], r.enums, list(catalogue.values()), list(layouts.values()))
 
 
 def _catalogue(r: Resolver, raw_fields: list) -> dict[str, ir.AnyField]:

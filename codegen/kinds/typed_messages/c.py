@@ -108,7 +108,7 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
     for v in interface.variables:
         items = [c.string(v.name), f"{name.upper()}_VT_{v.value_type.name}", "true" if v.direction == "output" else "false",
                  c.string(v.label), c.string_or_null(v.unit), c.string(v.since_text("cb3")),
-                 c.string(v.since_text("eseries"))]
+                 c.string(v.since_text("eseries")), c.string(v.since_text("polyscope_x"))]
         variables.append(spread(items, "{", "},", "    "))
     view = {
         "banner": banner, "p": interface, "prefix": name, "PREFIX": name.upper(),

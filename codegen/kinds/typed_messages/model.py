@@ -9,6 +9,9 @@ from dataclasses import dataclass, field
 from typing import Optional, Union
 
 from ... import ir
+# A first version the sources do not give (UNKNOWN), and not in that generation at all (NONE): one
+# spelling for every table with a column per series.
+from ...series import NONE, UNKNOWN  # noqa: F401
 
 
 @dataclass(frozen=True)
@@ -117,8 +120,6 @@ class Refusal:
     doc: str
 
 
-UNKNOWN = "unknown"                     # a first version the sources do not give
-NONE = "none"                           # not in that generation at all
 
 
 @dataclass
@@ -142,6 +143,7 @@ class Generation:
     name: str
     label: str
     first: ir.Version                   # the first version RTDE has in this generation
+    column_from: ir.Version             # the first software version read from its column of the table
 
 
 @dataclass

@@ -147,7 +147,7 @@ def _enum(e: ir.Enum) -> dict:
 def _variable(v: model.Variable) -> dict:
     since = ", ".join(f"{string(g)}: {string(v.since_text(g))}" for g in v.since)
     return {"args": [string(v.name), string(v.value_type.name), string(v.direction),
-                     string(v.label), string_or_none(v.unit or None), f"{{{since}}}"]}
+                     string(v.label), string_or_none(v.unit or None), f"{{{since}}}", "COLUMNS"]}
 
 
 def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
@@ -173,6 +173,7 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
                          "kind": "bool" if t.scalar.is_bool else "float" if t.scalar.is_float else "int"}
                         for t in interface.value_types],
         "messages": messages,
+        "columns": tuple_text([f"({string(g.name)}, {g.column_from!r})" for g in interface.generations]),
         "dispatch": dispatch,
         "undocumented": interface.undocumented,
         "kinds": kinds,

@@ -4,14 +4,16 @@ Enums and scalar/string fields go through the primary resolver (codegen.resolve.
 they become the same ir.Enum and ir.Field objects; every problem names its YAML path and line."""
 from __future__ import annotations
 
-from ... import ir
+from ... import ir, series
 from ...errors import Problem, SpecError
 from ...load import LoadedSpec
 from ...resolve import Resolver
 from . import model
 
 # Where RTDE begins in each generation: a variable without `since` is there from these on.
-_FIRST = {"cb3": ir.parse_version("3.3"), "eseries": ir.parse_version("5.0")}
+_FIRST = {"cb3": ir.parse_version("3.3"), "eseries": series.E_SERIES_FROM, "polyscope_x": series.POLYSCOPE_X_FROM}
+# The software each generation's column is read for: from here to the next generation's start.
+_COLUMN_FROM = {"cb3": (0, 0, 0), "eseries": series.E_SERIES_FROM, "polyscope_x": series.POLYSCOPE_X_FROM}
 
 
 class _TypedResolver(Resolver):
@@ -38,9 +40,11 @@ class _TypedResolver(Resolver):
         if sorted(k.data_from_robot for k in kinds) != [False, True]:
             self.fail(["recipes", "kinds"], "needs one recipe kind for each direction's data packages")
         refusals = [model.Refusal(r["word"], r["doc"]) for r in data["recipes"]["refusals"]]
-        generations = [model.Generation(g["name"], g["label"], _FIRST.get(g["name"], (0, 0, 0)))
+        generations = [model.Generation(g["name"], g["label"], _FIRST.get(g["name"], (0, 0, 0)),
+                                        _COLUMN_FROM.get(g["name"], (0, 0, 0)))
                        for g in data.get("generations", [])]
-        variables = self.variables(data["variables"], {t.name: t for t in value_types}, generations)
+        follows = ir.parse_version(proto["polyscope_x_follows"]) if "polyscope_x_follows" in proto else None
+        variables = self.variables(data["variables"], {t.name: t for t in value_types}, generations, follows)
         self.check_filter_names(proto["name"], messages, variables)
         return model.Interface(
             name=proto["name"], title=proto["title"], doc=proto["doc"], ports=tuple(proto["ports"]),
@@ -139,7 +143,7 @@ class _TypedResolver(Resolver):
                                 named(raw["requests"], "requests", "variables", False),
                                 named(raw["replies"], "replies", "types", True), raw["doc"])
 
-    def variables(self, raws, types: dict, generations) -> list[model.Variable]:
+    def variables(self, raws, types: dict, generations, follows) -> list[model.Variable]:
         out: list[model.Variable] = []
         seen: set[tuple[str, str]] = set()
         for i, raw in enumerate(raws):
@@ -151,6 +155,13 @@ class _TypedResolver(Resolver):
             since = {}
             for g in generations:
                 given = (raw.get("since") or {}).get(g.name)
+                if g.name == "polyscope_x":
+                    # PolyScope X reads the e-Series column only as far as it is known to follow it.
+                    e_series = since.get("eseries", model.NONE)
+                    since[g.name], problem = series.polyscope_x_first(e_series, given, follows)
+                    if problem:
+                        self.fail(parts + ["since"] + (["polyscope_x"] if given else []), problem)
+                    continue
                 since[g.name] = given if given in (model.UNKNOWN, model.NONE) else \
                     (ir.parse_version(given) if given else g.first)
             pattern, indices = raw["name"], raw.get("indices")

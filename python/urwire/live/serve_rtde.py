@@ -39,8 +39,8 @@ def frequency_refused(frequency: float, version: tuple) -> bool:
 
 def offers(variable, version: tuple) -> bool:
     """Whether a controller of `version` has this row of the variable table, as the table's own
-    rule says (Variable.available_in); a row whose first version the sources do not give is taken
-    as there from the start."""
+    rule says (Variable.available_in: its series' column); a row whose first version the sources
+    do not give is taken as there from the start."""
     return variable.available_in(version) is not False
 
 

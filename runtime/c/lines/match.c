@@ -88,7 +88,8 @@ URWIRE__PRIVATE const lines_reply_t *lines_classify(const lines_spec_t *spec, in
 URWIRE__PRIVATE bool lines_available(const lines_spec_t *spec, int command, uint64_t version)
 {
     const lines_command_t *c = &spec->commands[command];
-    uint64_t since = version >= spec->e_series_from ? c->since_e_series : c->since_cb;
+    uint64_t since = version >= spec->polyscope_x_from ? c->since_polyscope_x
+                     : version >= spec->e_series_from ? c->since_e_series : c->since_cb;
     return since != 0 && version >= since;
 }
 

@@ -61,7 +61,9 @@ end
 local function available(command, version)
     local c = spec.commands[command]
     local since
-    if version >= spec.e_series_from then since = c.since_e_series else since = c.since_cb end
+    if version >= spec.polyscope_x_from then since = c.since_polyscope_x
+    elseif version >= spec.e_series_from then since = c.since_e_series
+    else since = c.since_cb end
     return since ~= nil and version >= since
 end
 

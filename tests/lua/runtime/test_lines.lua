@@ -5,7 +5,7 @@ S.wireshark_globals()
 
 local spec = {
     name = "ur_dashboard", title = "Dashboard", ports = {29999}, max_line = 32, pending_kept = 4,
-    e_series_from = 5000000, version_command = 2, version_prefix = "URSoftware ",
+    e_series_from = 5000000, polyscope_x_from = 10000000, version_command = 2, version_prefix = "URSoftware ",
     banner = {name = "connected", pieces = {"Connected"}, error = false},
     robot_is_client = false, requests_from_robot = false, one_reply_per_request = true,
     common = {{name = "not_understood", pieces = {"could not understand: '", "'"}, error = true}},
@@ -16,6 +16,7 @@ local spec = {
         {name = "polyscope_version", text = "PolyscopeVersion", argument = false, since_cb = 1008000,
          since_e_series = 5000000, replies = {{name = "version", pieces = {"URSoftware ", ""}, error = false}}},
         {name = "safetystatus", text = "safetystatus", argument = false, since_e_series = 5004000,
+         since_polyscope_x = 10013000,
          replies = {{name = "status", pieces = {"Safetystatus: ", ""}, error = false}}},
     },
     lookup = {2, 3, 1},
@@ -45,6 +46,8 @@ S.eq(rt.parse_version("3.1234.5"), 3999005, "a minor past 999 stands at 999")
 S.eq(rt.parse_version("5.11 beta"), nil, "not a version preference")
 S.eq(rt.available(3, 3015007), false, "an e-Series command on a CB3")
 S.eq(rt.available(3, 5004000), true, "from its first version")
+S.eq(rt.available(3, 10012000), false, "PolyScope X reads its own column")
+S.eq(rt.available(3, 10013000), true, "from its first PolyScope X version")
 
 local made
 local make_proto = Proto

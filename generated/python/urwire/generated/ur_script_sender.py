@@ -19,12 +19,15 @@ BANNER = None  # the line the server greets a client with, if any
 REQUESTS_FROM_ROBOT = True  # whether the robot asks and the other side answers
 # Whether each request gets one line back; else every answering line belongs to the latest request.
 ONE_REPLY_PER_REQUEST = False
+# The first software versions read from each command's e-Series and PolyScope X columns.
+SERIES_FROM = ((5, 0, 0), (10, 0, 0))
 # Replies any command may get; a reply is read against these before its command's own.
 COMMON_REPLIES = (
 )
 
 # Ask for the program to run (the External Control node, at its start). (every version)
-REQUEST_PROGRAM = _rt.CommandSpec('request_program', 'request_program', False, (1, 0, 0), (5, 0, 0), (
+REQUEST_PROGRAM = _rt.CommandSpec('request_program', 'request_program', False, (1, 0, 0), (5, 0, 0), (10, 0, 0),
+                                  SERIES_FROM, (
     _rt.ReplySpec('program_line', ('', ''), False),
 ))
 
