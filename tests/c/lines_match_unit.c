@@ -25,8 +25,10 @@ static const lines_spec_t spec = {
 
 /* Interpreter mode's shape: a command with no text is any other line, tried last. */
 static const lines_command_t statements[] = {
-    {"statement", "", true, 0, 5010000u, (const lines_reply_t[]){{"ack", (const char *const[]){"ack: ", ""}, 2, false}}, 1},
-    {"abort", "abort", false, 0, 5010000u, (const lines_reply_t[]){{"ack", (const char *const[]){"ack"}, 1, false}}, 1},
+    {"statement", "", true, 0, 5010000u, 0,
+     (const lines_reply_t[]){{"ack", (const char *const[]){"ack: ", ""}, 2, false}}, 1},
+    {"abort", "abort", false, 0, 5010000u, 0,
+     (const lines_reply_t[]){{"ack", (const char *const[]){"ack"}, 1, false}}, 1},
 };
 static const int statement_lookup[] = {1, 0};
 static const lines_spec_t any_line = {
