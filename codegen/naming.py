@@ -12,5 +12,6 @@ def words(name: str) -> str:
 
 def column_name(protocol: str) -> str:
     """What Wireshark's Protocol column shows for an interface: its name in words, with UR and
-    RTDE in capitals (ur_script_command -> "UR script command")."""
-    return " ".join(w.upper() if w in ("ur", "rtde") else w for w in protocol.split("_"))
+    RTDE in capitals and Robotiq a name (ur_script_command -> "UR script command")."""
+    return " ".join(w.upper() if w in ("ur", "rtde") else w.capitalize() if w == "robotiq" else w
+                    for w in protocol.split("_"))

@@ -12,8 +12,10 @@ cell_session.pcapng      a whole cell, every conversation from the golden vector
                          (tests/tools/cell_session.py): primary (30001), real-time (30003), RTDE
                          protocol 2 (30004: a setup with a NOT_FOUND, inputs IN_USE, start, data
                          both ways; a second client whose data arrive between a setup and its
-                         reply), the dashboard server (29999) and the ROS driver's four sockets
-                         (50001-50004, the robot connecting to the control PC).
+                         reply), the dashboard server (29999), the ROS driver's four sockets
+                         (50001-50004, the robot connecting to the control PC), interpreter mode
+                         (30020: statements acked with their ids) and a Robotiq gripper's socket
+                         (63352: activated, closed onto a part).
 
 The output is deterministic (fixed seeds and timestamps), so a re-run leaves git clean.
 """

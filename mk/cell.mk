@@ -4,7 +4,7 @@
 DEMO_CELL_TARGETS += demo-cell
 CELL_SAMPLE := dissector/samples/cell_session.pcapng
 CELL_PROTOCOLS := ur || ur_realtime || rtde || ur_dashboard || ur_reverse || ur_script_sender || ur_trajectory \
-	|| ur_script_command
+	|| ur_script_command || ur_interpreter || robotiq_gripper
 
 .PHONY: demo-cell
 

@@ -628,7 +628,8 @@ URWIRE__PRIVATE bool lines_matches(const lines_reply_t *reply, const uint8_t *te
 }
 
 /* The command a line is (its index in spec->commands) or LINES_NONE; *argument is the offset of
- * its argument in the line (the text after the words and a space, perhaps empty), or -1. */
+ * its argument in the line (the text after the words and a space, perhaps empty), or -1. A command
+ * with no text (interpreter mode's statement), tried last, is any line, its argument the whole. */
 URWIRE__PRIVATE int lines_find_command(const lines_spec_t *spec, const uint8_t *text, size_t len,
                                        long *argument)
 {
@@ -637,6 +638,10 @@ URWIRE__PRIVATE int lines_find_command(const lines_spec_t *spec, const uint8_t *
     for (i = 0; i < spec->command_count; i++) {
         const lines_command_t *command = &spec->commands[spec->lookup[i]];
         size_t words = strlen(command->text);
+        if (words == 0) {
+            *argument = 0;
+            return spec->lookup[i];
+        }
         if (len == words && memcmp(text, command->text, words) == 0)
             return spec->lookup[i];
         if (command->takes_argument && len > words && memcmp(text, command->text, words) == 0

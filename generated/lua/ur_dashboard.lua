@@ -573,11 +573,13 @@ local function matches(pieces, text)
     return true
 end
 
--- The command a line is (its index in spec.commands) and its argument, or nil.
+-- The command a line is (its index in spec.commands) and its argument, or nil. A command with no
+-- text (interpreter mode's statement), tried last, is any line, its argument the whole line.
 local function find_command(text)
     for _, index in ipairs(spec.lookup) do
         local command = spec.commands[index]
         local words = command.text
+        if words == "" then return index, text end
         if text == words then return index, nil end
         if command.argument and sub(text, 1, #words + 1) == words .. " " then
             return index, sub(text, #words + 2)

@@ -12,7 +12,8 @@ from typing import Callable, Optional, Protocol
 
 from . import rtde
 from .framer import Framer
-from .generated import ur_dashboard, ur_realtime, ur_reverse, ur_script_command, ur_script_sender, ur_trajectory
+from .generated import (robotiq_gripper, ur_dashboard, ur_interpreter, ur_realtime, ur_reverse, ur_script_command,
+                        ur_script_sender, ur_trajectory)
 from .generated.spec import PORTS
 from .realtime import RealtimeConversation
 
@@ -75,7 +76,8 @@ INTERFACES: dict[str, Interface] = {i.name: i for i in (
     Interface("ur", "Universal Robots primary/secondary client interface", tuple(PORTS), PrimaryConversation),
     Interface(ur_realtime.PROTOCOL, ur_realtime.TITLE, ur_realtime.PORTS, RealtimeConversation),
     Interface(rtde.NAME, rtde.TITLE, rtde.PORTS, rtde.Conversation, both_directions=True),
-    Interface(ur_dashboard.NAME, ur_dashboard.TITLE, ur_dashboard.PORTS, ur_dashboard.conversation, both_directions=True),
+    *(Interface(m.NAME, m.TITLE, m.PORTS, m.conversation, both_directions=True)
+      for m in (ur_dashboard, ur_interpreter, robotiq_gripper)),
     *(Interface(m.NAME, m.TITLE, m.PORTS, m.conversation, both_directions=True, robot_is_client=True)
       for m in (ur_reverse, ur_script_sender, ur_trajectory, ur_script_command)),
 )}

@@ -88,8 +88,11 @@ def matches(pieces: tuple[str, ...], text: str) -> bool:
 
 
 def find_command(lookup: tuple[CommandSpec, ...], text: str) -> tuple[Optional[CommandSpec], Optional[str]]:
-    """The command a line is and its argument (None when it has none), or (None, None)."""
+    """The command a line is and its argument (None when it has none), or (None, None). A command
+    with no text (interpreter mode's statement), tried last, is any line, its argument the whole."""
     for command in lookup:
+        if not command.text:
+            return command, text
         if text == command.text:
             return command, None
         if command.takes_argument and text.startswith(command.text + " "):

@@ -23,6 +23,19 @@ static const lines_spec_t spec = {
     .e_series_from = 5000000u, .polyscope_x_from = 10000000u,
 };
 
+/* Interpreter mode's shape: a command with no text is any other line, tried last. */
+static const lines_command_t statements[] = {
+    {"statement", "", true, 0, 5010000u, 0,
+     (const lines_reply_t[]){{"ack", (const char *const[]){"ack: ", ""}, 2, false}}, 1},
+    {"abort", "abort", false, 0, 5010000u, 0,
+     (const lines_reply_t[]){{"ack", (const char *const[]){"ack"}, 1, false}}, 1},
+};
+static const int statement_lookup[] = {1, 0};
+static const lines_spec_t any_line = {
+    .column = "I", .max_line = 16, .commands = statements, .command_count = 2, .lookup = statement_lookup,
+    .version_command = LINES_NONE, .version_prefix = "", .e_series_from = 5000000u,
+};
+
 int main(void)
 {
     long argument;
@@ -32,6 +45,9 @@ int main(void)
     CHECK(lines_find_command(&spec, TEXT("load "), &argument) == 0 && argument == 5);   /* an empty argument */
     CHECK(lines_find_command(&spec, TEXT("load"), &argument) == 0 && argument == -1);
     CHECK(lines_find_command(&spec, TEXT("loadx"), &argument) == LINES_NONE && argument == -1);
+    CHECK(lines_find_command(&any_line, TEXT("abort"), &argument) == 1 && argument == -1);
+    CHECK(lines_find_command(&any_line, TEXT("abort()"), &argument) == 0 && argument == 0);   /* the whole line */
+    CHECK(lines_find_command(&any_line, TEXT(""), &argument) == 0 && argument == 0);
     CHECK(lines_classify(&spec, 0, TEXT("Loading program: p")) == &commands[0].replies[0]);
     CHECK(lines_classify(&spec, LINES_NONE, TEXT("could not understand: 'x'")) == &common[0]);
     CHECK(lines_classify(&spec, LINES_NONE, TEXT("Loading program: p")) == NULL);

@@ -15,9 +15,9 @@ import pytest
 from tests.c.harness_c import GEN, OUT, ROOT, SANITIZE, VARIANTS, compile_c
 from tests.interface_vectors import Segment, bytewise, conversation_cases
 from urwire import to_json_line
-from urwire.generated import ur_dashboard, ur_script_sender
+from urwire.generated import robotiq_gripper, ur_dashboard, ur_interpreter, ur_script_sender
 
-MODULES = {m.NAME: m for m in (ur_dashboard, ur_script_sender)}
+MODULES = {m.NAME: m for m in (ur_dashboard, ur_script_sender, ur_interpreter, robotiq_gripper)}
 CASES = [(name, case) for name in MODULES for case in conversation_cases(name)]
 DRIVER = ROOT / "tests" / "c" / "lines_driver.c"
 HARNESS = ROOT / "tests" / "c" / "fuzz_ur_dashboard.c"

@@ -55,11 +55,12 @@ def test_each_interface_names_itself_in_the_protocol_column():
     res = subprocess.run(args, capture_output=True, text=True, timeout=120)
     assert res.returncode == 0, res.stderr
     want = {30001: "UR", 30002: "UR", 30003: "UR real-time", 30004: "RTDE", 29999: "UR dashboard",
-            50001: "UR reverse", 50002: "UR script sender", 50003: "UR trajectory", 50004: "UR script command"}
+            50001: "UR reverse", 50002: "UR script sender", 50003: "UR trajectory", 50004: "UR script command",
+            30020: "UR interpreter", 63352: "Robotiq gripper"}
     columns: dict[int, set] = {}
     for line in res.stdout.splitlines():
         source, destination, column = line.split("\t")
         port = int(source) if int(source) in want else int(destination)
         columns.setdefault(port, set()).add(column)
     assert {port: columns[port] for port in columns} == {port: {want[port]} for port in columns}
-    assert len(columns) >= 8
+    assert len(columns) >= 10

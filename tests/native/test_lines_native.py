@@ -33,11 +33,11 @@ CORPUS = ROOT / "tests" / "fuzz" / "corpus" / "ur_dashboard"
 CELL = ROOT / "dissector" / "samples" / "cell_session.pcapng"
 RUNTIME = ROOT / "runtime" / "epan" / "lines"
 MATCH = ROOT / "runtime" / "c" / "lines"         # the matcher, the C library's, which the dissector joins
-INTERFACES = ("ur_dashboard", "ur_script_sender")
-PORTS = {"ur_dashboard": 29999, "ur_script_sender": 50002}
+INTERFACES = ("ur_dashboard", "ur_script_sender", "ur_interpreter", "robotiq_gripper")
+PORTS = {"ur_dashboard": 29999, "ur_script_sender": 50002, "ur_interpreter": 30020, "robotiq_gripper": 63352}
 # The script sender's port is the control PC's, and the robot connects to it: in the capture
 # writer's terms (the side on the port sends "from_robot") its vectors' directions are swapped.
-PC_LISTENS = {"ur_dashboard": False, "ur_script_sender": True}
+PC_LISTENS = {"ur_dashboard": False, "ur_script_sender": True, "ur_interpreter": False, "robotiq_gripper": False}
 CLIENT_PORTS = 41000           # the client side of the n-th session: 41000 + n, no interface's port
 # The versions the dashboard fuzzer starts a conversation with, by its first byte's two low bits
 # (tests/c/fuzz_ur_dashboard.c).

@@ -16,11 +16,14 @@ from pathlib import Path
 from typing import Callable
 
 from urwire import rtde
+from urwire.arguments import software_version
+from urwire.live.serve import FIXED, HAS, OFFSETS
 
 ROOT = Path(__file__).resolve().parents[2]
 ENV = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT / "python"), str(ROOT / "generated" / "python")]))
 # The words each interface's log line opens with.
-LOG_NAMES = {"rtde": "RTDE", "realtime": "real-time", "dashboard": "dashboard"}
+LOG_NAMES = {"rtde": "RTDE", "realtime": "real-time", "dashboard": "dashboard", "interpreter": "interpreter mode",
+             "gripper": "Robotiq gripper"}
 
 
 def loopback_address() -> str:
@@ -30,12 +33,15 @@ def loopback_address() -> str:
 
 
 class CellServer:
-    """`urwire serve` with its stderr in a file; `ports` maps primary, rtde, realtime and dashboard
-    to where each listens."""
+    """`urwire serve` with its stderr in a file; `ports` maps primary, rtde, realtime, dashboard,
+    interpreter (from 5.10) and gripper to where each listens."""
 
     def __init__(self, tmp: Path, *args: str, host: str = "127.0.0.1", port: int = 0, duration: float = 60,
                  env: dict = ENV):
         self.host = host
+        software = software_version(args[args.index("--software") + 1]) if "--software" in args else (5, 11, 0)
+        # The interfaces serve says a port of: those the served version has.
+        self.expected = {"primary"} | {name for name in (*OFFSETS, *FIXED) if HAS.get(name, lambda _: True)(software)}
         self.log = tmp / f"serve-{random.randrange(1 << 30)}.log"
         with open(self.log, "w") as log:
             self.proc = subprocess.Popen([sys.executable, "-m", "urwire", "serve", "--host", host, "--port", str(port),
@@ -51,7 +57,7 @@ class CellServer:
             for match in filter(None, lines):
                 name = next((k for k, v in LOG_NAMES.items() if match.group(1) == v), "primary")
                 found[name] = int(match.group(2))
-            if "primary" in found and "dashboard" in found:      # the dashboard's line comes last
+            if set(found) == self.expected:
                 return found
             if self.proc.poll() is not None:
                 break

@@ -13,7 +13,7 @@ import pytest
 from codegen.kinds.lines import model
 from tests.python.cell_server import CellServer, generated_from_edited_spec, read_until
 from urwire.generated import ur_dashboard
-from urwire.live import serve_dashboard
+from urwire.live import serve_dashboard, serve_gripper, serve_interpreter
 
 # A CB3, an e-Series and a PolyScope X controller.
 SERVED = ["3.15", "5.11", "10.7"]
@@ -62,8 +62,9 @@ def test_every_command_of_the_spec_gets_one_of_its_replies_or_is_not_understood(
 
 
 def test_the_vocabulary_the_spec_may_name_is_what_serve_does():
-    assert set(serve_dashboard._EFFECTS) == set(model.EFFECTS)
-    assert set(serve_dashboard._STATES) == set(model.ROBOT_STATES)
+    served = (serve_dashboard, serve_interpreter, serve_gripper)
+    assert set().union(*(m._EFFECTS for m in served)) == set(model.EFFECTS)
+    assert set().union(*(getattr(m, "_STATES", {}) for m in served)) | {"argument"} == set(model.ROBOT_STATES)
 
 
 MADE_UP = """

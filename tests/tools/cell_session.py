@@ -1,7 +1,8 @@
 """A capture of a whole UR cell from the hand-made golden vectors: the primary interface, the
 real-time interface, RTDE (a protocol 2 session, and a second client whose data packages arrive
-in the middle of its setups), the dashboard server and the ROS driver's four sockets, each a TCP
-conversation of its own, overlapping in time as a cell's do.
+in the middle of its setups), the dashboard server, the ROS driver's four sockets, interpreter mode
+and a Robotiq gripper's socket, each a TCP conversation of its own, overlapping in time as a cell's
+do.
 
 `dissector/make_samples.py` writes it as dissector/samples/cell_session.pcapng; the export and
 sample tests build the same conversations. Every byte comes from a golden vector (tests/golden/),
@@ -63,6 +64,8 @@ def conversations() -> list[Conversation]:
     rtde = _one(rtde_cases(), "protocol2_session")
     rtde_busy = _one(rtde_cases(), "data_during_setup")
     dashboard = _one(conversation_cases("ur_dashboard"), "session_load_play")
+    interpreter = _one(conversation_cases("ur_interpreter"), "statements_acked")
+    gripper = _one(conversation_cases("robotiq_gripper"), "activate_and_close")
     return [
         Conversation(primary.name, 30001, 50101, (Segment(True, primary.data),)),
         Conversation(realtime.name, 30003, 50102, (Segment(True, realtime.data),)),
@@ -76,6 +79,10 @@ def conversations() -> list[Conversation]:
         _driver("ur_script_sender", "request_and_program", 50002, 40002),
         _driver("ur_trajectory", "point_and_result_2_14", 50003, 40003),
         _driver("ur_script_command", "set_payload_2_14", 50004, 40004),
+        Conversation(f"ur_interpreter/{interpreter.name}", 30020, 50106,
+                     tuple(Segment(s.from_robot, s.data) for s in interpreter.segments)),
+        Conversation(f"robotiq_gripper/{gripper.name}", 63352, 50107,
+                     tuple(Segment(s.from_robot, s.data) for s in gripper.segments)),
     ]
 
 

@@ -3,8 +3,8 @@ tshark runs then read them all. `cut=True` sends every segment in 1-7 byte piece
 that each dissector's reassembly meets every split.
 
 Ports are the interfaces' own: 30001 the primary interface, 30003 real-time, 30004 RTDE, 29999
-the dashboard server, 50001-50004 the ROS driver's sockets (where the control PC listens and the
-robot connects). Each session has a client port of its own.
+the dashboard server, 30020 interpreter mode, 63352 the Robotiq gripper's socket, 50001-50004 the
+ROS driver's sockets (where the control PC listens and the robot connects). Each session has a client port of its own.
 """
 from __future__ import annotations
 
@@ -18,6 +18,7 @@ from tests.tools.capture import Segment
 from tests.tools.cell_session import Conversation
 from tests.vectors import golden_cases, interface_cases
 
+LISTENING_LINES = {"ur_dashboard": 29999, "ur_interpreter": 30020, "robotiq_gripper": 63352}
 DRIVER_PORTS = {"ur_reverse": 50001, "ur_script_sender": 50002, "ur_trajectory": 50003, "ur_script_command": 50004}
 
 
@@ -26,8 +27,9 @@ def _listener_sessions() -> list[tuple[str, int, bool, list[Segment]]]:
     out = [(f"ur/{c.name}", 30001, True, [Segment(True, c.data)]) for c in golden_cases()]
     out += [(f"ur_realtime/{c.name}", 30003, True, [Segment(True, c.data)]) for c in interface_cases("ur_realtime")]
     out += [(f"rtde/{c.name}", 30004, True, [Segment(r, d) for r, d in c.messages]) for c in rtde_cases()]
-    out += [(f"ur_dashboard/{c.name}", 29999, True, [Segment(s.from_robot, s.data) for s in c.segments])
-            for c in conversation_cases("ur_dashboard")]
+    for interface, port in LISTENING_LINES.items():
+        out += [(f"{interface}/{c.name}", port, True, [Segment(s.from_robot, s.data) for s in c.segments])
+                for c in conversation_cases(interface)]
     for interface, port in DRIVER_PORTS.items():
         # the control PC listens: "from the listening side" is from the PC, not from the robot
         out += [(f"{interface}/{c.name}", port, False, [Segment(not s.from_robot, s.data) for s in c.segments])

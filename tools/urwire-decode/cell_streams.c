@@ -1,9 +1,12 @@
-/* The dashboard server and the ROS driver's sockets in urwire-decode (cell_streams.h). */
+/* The dashboard server, interpreter mode, the gripper's socket and the ROS driver's sockets in
+ * urwire-decode (cell_streams.h). */
 #include "cell_streams.h"
 
 #include <string.h>
 
+#include "robotiq_gripper.h"
 #include "ur_dashboard.h"
+#include "ur_interpreter.h"
 #include "ur_reverse.h"
 #include "ur_script_command.h"
 #include "ur_script_sender.h"
@@ -85,6 +88,8 @@ static const envelope *envelope_of(const cell_inputs *in, bool from_robot)
 
 LINES_PRINT_STREAMS(ur_dashboard, UR_DASHBOARD)
 LINES_PRINT_STREAMS(ur_script_sender, UR_SCRIPT_SENDER)
+LINES_PRINT_STREAMS(ur_interpreter, UR_INTERPRETER)
+LINES_PRINT_STREAMS(robotiq_gripper, ROBOTIQ_GRIPPER)
 
 /* An int32-record interface, through the three functions every one of them has. */
 typedef struct records_api {

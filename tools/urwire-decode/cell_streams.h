@@ -1,4 +1,5 @@
-/* The dashboard server (29999) and the ROS driver's sockets (50001-50004) as canonical JSON
+/* The dashboard server (29999), interpreter mode (30020), the Robotiq gripper's socket (63352) and
+ * the ROS driver's sockets (50001-50004) as canonical JSON
  * Lines: the raw streams of a connection, read record by record and written as the Python decoder
  * writes it (docs/dashboard.md, docs/driver-sockets.md). Part of the CLI. */
 #ifndef URWIRE_CELL_STREAMS_H
@@ -27,6 +28,10 @@ int ur_dashboard_print_streams(const cell_inputs *in, FILE *out, unsigned major,
                                bool given);
 int ur_script_sender_print_streams(const cell_inputs *in, FILE *out, unsigned major, unsigned minor,
                                    unsigned bugfix, bool given);
+int ur_interpreter_print_streams(const cell_inputs *in, FILE *out, unsigned major, unsigned minor,
+                                 unsigned bugfix, bool given);
+int robotiq_gripper_print_streams(const cell_inputs *in, FILE *out, unsigned major, unsigned minor,
+                                  unsigned bugfix, bool given);
 int ur_reverse_print_streams(const cell_inputs *in, FILE *out, unsigned major, unsigned minor, unsigned bugfix,
                              bool given);
 int ur_trajectory_print_streams(const cell_inputs *in, FILE *out, unsigned major, unsigned minor, unsigned bugfix,

@@ -24,13 +24,14 @@ static const char usage[] =
     "  --protocol NAME   the interface the stream is from: ur (primary/secondary, 30001/30002,\n"
     "                    the default), ur_realtime (real-time, 30003), rtde (RTDE, 30004:\n"
     "                    the robot's stream; its recipes come from the client's: --to-robot),\n"
-    "                    ur_dashboard (29999), or the driver's ur_reverse, ur_script_sender,\n"
+    "                    ur_dashboard (29999), ur_interpreter (30020), robotiq_gripper (63352),\n"
+    "                    or the driver's ur_reverse, ur_script_sender,\n"
     "                    ur_trajectory, ur_script_command (50001-50004, whose hint is the driver\n"
     "                    release)\n"
     "  --version-hint V  the software version (5.9, 5.25.1) until the stream shows a Version\n"
     "                    message: it chooses each part's layout and the global-variable value\n"
     "                    types (default: 5.9 and later, or what the layout sizes show)\n"
-    "  --to-robot FILE2  the client's stream of the same connection (rtde, ur_dashboard and the\n"
+    "  --to-robot FILE2  the client's stream of the same connection (rtde, the text lines and the\n"
     "                    driver's sockets), read first; each record then names its interface,\n"
     "                    direction and file\n"
     "Exit status: 0 all decoded, 1 the output holds error records, 2 usage or I/O error.\n";
@@ -131,6 +132,8 @@ static int run_realtime_row(const cell_inputs *in, urwire_sw_version version, bo
     }
 CELL_ROW(ur_dashboard)
 CELL_ROW(ur_script_sender)
+CELL_ROW(ur_interpreter)
+CELL_ROW(robotiq_gripper)
 CELL_ROW(ur_reverse)
 CELL_ROW(ur_trajectory)
 CELL_ROW(ur_script_command)
@@ -147,6 +150,8 @@ static const struct {
     {"rtde", run_rtde, true},
     {"ur_dashboard", run_ur_dashboard, true},
     {"ur_script_sender", run_ur_script_sender, true},
+    {"ur_interpreter", run_ur_interpreter, true},
+    {"robotiq_gripper", run_robotiq_gripper, true},
     {"ur_reverse", run_ur_reverse, true},
     {"ur_trajectory", run_ur_trajectory, true},
     {"ur_script_command", run_ur_script_command, true},

@@ -32,7 +32,7 @@ def view(p: LinesPlan) -> dict:
         replies = [_reply(f"{prefix}__{cmd.name}_{i}", r) for i, r in enumerate(cmd.replies)]
         commands.append(dict(
             constant=f"{prefix.upper()}_{cmd.name.upper()}", name=string(cmd.name), text=string(cmd.text),
-            doc=f"{cmd.text}{' <' + cmd.argument + '>' if cmd.argument else ''}: {cmd.doc} ({cmd.since_text()})",
+            doc=f"{cmd.heading}{' <' + cmd.argument + '>' if cmd.argument else ''}: {cmd.doc} ({cmd.since_text()})",
             takes_argument="true" if cmd.argument else "false",
             since_cb=c.since_cb or 0, since_e_series=c.since_e_series or 0,
             replies=replies, replies_symbol=f"{prefix}__{cmd.name}_replies",

@@ -37,7 +37,7 @@ def view(d: Dissector) -> dict:
     p = d.plan
     m = p.model
     name = m.name
-    commands = [dict(comment=f"{c.command.text}{' <' + c.command.argument + '>' if c.command.argument else ''}: "
+    commands = [dict(comment=f"{c.command.heading}{' <' + c.command.argument + '>' if c.command.argument else ''}: "
                              f"{c.command.doc} ({c.command.since_text()})",
                      name=string(c.command.name), text=string(c.command.text),
                      argument="true" if c.command.argument else "false",

@@ -30,7 +30,7 @@ def view(d: Dissector) -> dict:
         banner_reply=_reply(m.banner) if m.banner else "nil",
         requests_from_robot=literal(m.requests_from_robot), one_reply_per_request=literal(m.one_reply_per_request),
         robot_is_client=literal(m.robot_is_client), common=[_reply(r) for r in m.common_replies],
-        commands=[dict(comment=f"{c.command.text}: {c.command.doc} ({c.command.since_text()})",
+        commands=[dict(comment=f"{c.command.heading}: {c.command.doc} ({c.command.since_text()})",
                        entries=[f"name = {string(c.command.name)}", f"text = {string(c.command.text)}",
                              f"argument = {literal(c.command.argument is not None)}",
                              f"since_cb = {literal(c.since_cb)}", f"since_e_series = {literal(c.since_e_series)}",

@@ -12,11 +12,16 @@ from ... import ir, series
 # that can fail (a load of no .urp, a play with nothing to play) answer with the command's first
 # error reply.
 EFFECTS = ("load_program", "play", "stop", "pause", "power_on", "power_off", "brake_release",
-           "close_connection", "add_to_log", "set_operational_mode", "clear_operational_mode")
+           "close_connection", "add_to_log", "set_operational_mode", "clear_operational_mode",
+           # interpreter mode: a statement interpreted (acknowledged with its id), the buffer skipped,
+           # the running motion aborted; the Robotiq gripper: variables set
+           "interpret", "skip_buffer", "abort_motion", "set_variables")
 # The values of the simulated robot a reply's `fill:` text names as {name}, and its `when:` tests;
 # `argument` is the command's argument.
 ROBOT_STATES = ("argument", "program_state", "program_running", "program_name", "loaded_program", "robot_mode",
-                "software_version", "build_date", "serial_number", "robot_model", "operational_mode")
+                "software_version", "build_date", "serial_number", "robot_model", "operational_mode",
+                # interpreter mode: the ids its state queries tell, and the statements not yet executed
+                "last_executed", "last_interpreted", "last_cleared", "unexecuted")
 
 
 @dataclass(frozen=True)
@@ -35,7 +40,7 @@ class Reply:
 @dataclass(frozen=True)
 class Command:
     name: str
-    text: str                    # the words that open the line
+    text: str                    # the words that open the line; "": any line no other command is
     argument: Optional[str]      # what the text after the words is, when the command takes one
     since_cb: Optional[ir.Version]        # first CB2/CB3 version with the command; None: none has it
     since_e_series: Optional[ir.Version]  # first e-Series (5.x) version; None: none has it
@@ -45,6 +50,17 @@ class Command:
     replies: tuple[Reply, ...]
     where: ir.Where
     effect: Optional[str] = None          # what it does to the simulated robot (EFFECTS)
+
+    @property
+    def catch_all(self) -> bool:
+        """A command with no text (interpreter mode's statement): any line no other command is, the
+        whole line its argument. The longest text is tried first, so it is tried last."""
+        return not self.text
+
+    @property
+    def heading(self) -> str:
+        """What opens the command's line, for comments: its text, or that it is any other line."""
+        return self.text or "any other line"
 
     def since_text(self) -> str:
         """"CB 1.4, e-Series 5.0": where and from when the command exists, for comments."""

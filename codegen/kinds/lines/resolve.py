@@ -92,7 +92,9 @@ class _LinesResolver(Resolver):
             if problem:
                 self.fail(parts + ["since"] + (["polyscope_x"] if "polyscope_x" in since else []), problem)
         argument = raw.get("argument")
-        return Command(raw["name"], raw["text"], argument, cb, e_series,
+        if "text" not in raw and argument is None:
+            self.fail(parts, "a command with no text (any other line) takes the whole line as its argument")
+        return Command(raw["name"], raw.get("text", ""), argument, cb, e_series,
                        None if polyscope_x == series.NONE else polyscope_x, "since" not in raw, raw["doc"],
                        self.replies(raw["replies"], parts + ["replies"], argument, served=True), self.where(parts),
                        effect)
@@ -108,7 +110,8 @@ class _LinesResolver(Resolver):
                 if earlier.name == command.name:
                     self.fail(["commands", i, "name"], f"duplicate command name {command.name}")
                 if earlier.text == command.text:
-                    self.fail(["commands", i, "text"], f"the text {command.text!r} is {earlier.name}'s too")
+                    what = f"the text {command.text!r} is" if command.text else "any other line is"
+                    self.fail(["commands", i, "text"], f"{what} {earlier.name}'s too")
             commands.append(command)
         framing = data["framing"]
         version_reply = framing.get("version_reply")

@@ -1,9 +1,11 @@
 """`urwire serve`: a simulated robot on every interface of a UR cell, one session per client.
 
-One process serves one robot (robot_cell.RobotCell) on four ports: the primary interface (--port,
-default 30001), RTDE (30004, from 3.3), the real-time interface (30003) and the dashboard server
-(29999). Each other port defaults to its offset from --port (so `--port 0` gives every interface a
-free port) or takes its own option. Every interface samples the same motion on the server's clock,
+One process serves one robot (robot_cell.RobotCell) on six ports: the primary interface (--port,
+default 30001), RTDE (30004, from 3.3), the real-time interface (30003), the dashboard server
+(29999), interpreter mode (30020, from e-Series 5.10) and the Robotiq gripper URCap's socket
+(63352). Each other port defaults to its offset from --port (so `--port 0` gives every interface a
+free port) or takes its own option; the gripper's is the URCap's own, 63352, with the default
+--port, and a free one with any other. Every interface samples the same motion on the server's clock,
 and what a client changes (a dashboard `stop`, an RTDE input) every interface reports.
 
 Primary clients each get their own simulated.Controller: the Version message first (and the
@@ -21,13 +23,15 @@ import asyncio
 import os
 import signal
 import sys
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Callable, Optional
 
 from ..arguments import HIGHEST_PORT, finite_number, port_number, software_version
 from .robot_cell import RobotCell
 from .robot_models import MODELS, RobotModel, model_for
 from .serve_dashboard import DashboardSession
+from .serve_gripper import Gripper, GripperSession, has_gripper
+from .serve_interpreter import Interpreter, InterpreterSession, has_interpreter
 from .serve_realtime import RealtimePackets, RealtimeSession
 from .serve_rtde import RtdeSession, has_rtde
 from .simulated import Controller
@@ -38,8 +42,11 @@ DEFAULT_MAX_UNSENT_KB = 256
 # How long a stop waits for the aborted sessions to finish before giving up on them.
 STOP_GRACE_SECONDS = 1.0
 PRIMARY_PORT = 30001
-# Each other interface's port is its offset from the primary's: 30004, 30003 and 29999 by default.
-OFFSETS = {"rtde": 3, "realtime": 2, "dashboard": -2}
+# Each other interface's port is its offset from the primary's: 30004, 30003, 29999 and 30020 by
+# default. The gripper's is the URCap's own with the default primary port, and a free one with any
+# other (two servers on other ports then never meet on it).
+OFFSETS = {"rtde": 3, "realtime": 2, "dashboard": -2, "interpreter": 19}
+FIXED = {"gripper": 63352}
 # The fastest a UR controller sends on any interface: an e-Series' real-time and RTDE data, at
 # 500 Hz (the primary interface's states come at 10 Hz). A faster --rate is no robot's, and only
 # burns the server's processor.
@@ -49,17 +56,22 @@ HIGHEST_RATE = 500.0
 def add_parser(sub) -> None:
     p = sub.add_parser("serve", help="simulate a robot of any software version on every interface of a UR cell",
                        description="Serve a simulated robot: the primary interface (its Version message, then "
-                                   "robot states and program messages), RTDE, the real-time interface and the "
-                                   "dashboard server, each on its port, all reporting one motion.")
+                                   "robot states and program messages), RTDE, the real-time interface, the "
+                                   "dashboard server, interpreter mode and a Robotiq gripper's socket, each on "
+                                   "its port, all reporting one motion.")
     p.add_argument("--host", default="127.0.0.1", help="address to listen on (default: 127.0.0.1)")
     p.add_argument("--port", type=port_number, default=PRIMARY_PORT,
                    help="the primary interface's TCP port; 0 picks a free one for it and, unless given, for every "
                         "other interface (default: 30001)")
     for name, offset, title in (("rtde", 3, "RTDE (from software 3.3)"), ("realtime", 2, "the real-time interface"),
-                                ("dashboard", -2, "the dashboard server")):
+                                ("dashboard", -2, "the dashboard server"),
+                                ("interpreter", 19, "interpreter mode (from e-Series 5.10)")):
         p.add_argument(f"--{name}-port", type=port_number, metavar="PORT",
                        help=f"{title}'s TCP port; 0 picks a free one (default: --port {offset:+d}, "
                             f"{PRIMARY_PORT + offset} for 30001)")
+    p.add_argument("--gripper-port", type=port_number, metavar="PORT",
+                   help=f"the Robotiq gripper URCap's TCP port; 0 picks a free one (default: {FIXED['gripper']} "
+                        f"with --port {PRIMARY_PORT}, a free one with any other)")
     p.add_argument("--software", type=software_version, default=(5, 11, 0), metavar="X.Y[.Z]",
                    help="software version to simulate, e.g. 1.8, 3.15 or 5.11 (default: 5.11)")
     p.add_argument("--model", type=str.lower, choices=list(MODELS), metavar="MODEL",
@@ -104,6 +116,8 @@ class Robot:
     rate: float
     max_unsent: int
     sessions: set
+    interpreter: Interpreter = field(default_factory=Interpreter)   # one per robot, whichever client sends
+    gripper: Gripper = field(default_factory=Gripper)
 
 
 class Session(asyncio.Protocol):
@@ -213,16 +227,44 @@ class DashboardClient(Session):
             self.transport.close()                 # after `quit`: its reply goes out, then the connection ends
 
 
+class LineClient(Session):
+    """A client of a text-line interface that answers each line (interpreter mode, the gripper)."""
+
+    def __init__(self, robot: Robot, lines):
+        super().__init__(robot)
+        self.lines = lines
+
+    def data_received(self, data: bytes) -> None:
+        replies = self.lines.received(data)
+        if replies:
+            self.send(replies)
+
+
+def interpreter_client(robot: Robot) -> LineClient:
+    return LineClient(robot, InterpreterSession(robot.interpreter, robot.clock))
+
+
+def gripper_client(robot: Robot) -> LineClient:
+    return LineClient(robot, GripperSession(robot.gripper, robot.clock))
+
+
 def interface_ports(port: int, given: dict) -> dict:
-    """Each interface's port: given, else its offset from the primary's (0 stays 0: a free one)."""
+    """Each interface's port: given, else its offset from the primary's (0 stays 0: a free one), or
+    its fixed one with the default primary port and a free one with any other."""
     out = {"primary": port}
     for name, offset in OFFSETS.items():
         out[name] = given.get(name) if given.get(name) is not None else (port + offset if port else 0)
+    for name, fixed in FIXED.items():
+        out[name] = given.get(name) if given.get(name) is not None else (fixed if port == PRIMARY_PORT else 0)
     return out
 
 
-SESSIONS = {"primary": PrimarySession, "rtde": RtdeClient, "realtime": RealtimeClient, "dashboard": DashboardClient}
-TITLES = {"primary": "", "rtde": "RTDE", "realtime": "real-time", "dashboard": "dashboard"}
+# The interfaces a software version may lack.
+HAS = {"rtde": has_rtde, "interpreter": has_interpreter, "gripper": has_gripper}
+SESSIONS = {"primary": PrimarySession, "rtde": RtdeClient, "realtime": RealtimeClient, "dashboard": DashboardClient,
+            "interpreter": interpreter_client, "gripper": gripper_client}
+TITLES = {"primary": "", "rtde": "RTDE", "realtime": "real-time", "dashboard": "dashboard",
+          "interpreter": "interpreter mode", "gripper": "Robotiq gripper"}
 
 
 class ListenError(OSError):
@@ -248,7 +290,7 @@ async def serve(host: str, port: int, version: tuple, rate: float, duration: Opt
     servers = []
     try:
         for name, number in interface_ports(port, ports or {}).items():
-            if name == "rtde" and not has_rtde(version):
+            if not HAS.get(name, lambda _: True)(version):
                 continue
             try:
                 server = await loop.create_server(lambda cls=SESSIONS[name]: cls(robot), host, number, backlog=BACKLOG)
@@ -288,7 +330,8 @@ def serve_command(args: argparse.Namespace) -> int:
         print(f"urwire serve: --rate must be above 0 and at most {HIGHEST_RATE:g}, the fastest a controller "
               f"sends on any interface", file=sys.stderr)
         return 2
-    ports = {"rtde": args.rtde_port, "realtime": args.realtime_port, "dashboard": args.dashboard_port}
+    ports = {"rtde": args.rtde_port, "realtime": args.realtime_port, "dashboard": args.dashboard_port,
+             "interpreter": args.interpreter_port, "gripper": args.gripper_port}
     for name, number in interface_ports(args.port, ports).items():
         if not 0 <= number <= HIGHEST_PORT:
             print(f"urwire serve: --port {args.port} puts the {TITLES[name]} port at {number}, outside 0 to "

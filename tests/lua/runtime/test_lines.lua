@@ -31,6 +31,15 @@ S.load("lines/match.lua", spec, rt)
 S.eq(rt.find_command("load /a.urp"), 1, "a command with its argument")
 S.eq(select(2, rt.find_command("load /a.urp")), "/a.urp", "the argument")
 S.eq(rt.find_command("loadx"), nil, "a text that only opens like a command")
+-- Interpreter mode's shape: a command with no text is any other line, tried last, the whole its argument.
+local statements = {commands = {{name = "statement", text = "", argument = true, replies = {}},
+                                {name = "abort", text = "abort", argument = false, replies = {}}},
+                    lookup = {2, 1}, common = {}}
+local any = S.load("common/dotted_version.lua", statements)
+S.load("lines/match.lua", statements, any)
+S.eq(any.find_command("abort"), 2, "a command's text before any other line")
+S.eq(any.find_command("abort()"), 1, "any other line")
+S.eq(select(2, any.find_command("abort()")), "abort()", "the whole line its argument")
 S.eq(rt.classify(1, "File not found: x").name, "not_found", "a command's reply")
 S.eq(rt.classify(nil, "could not understand: 'x'").error, true, "a common reply, with no command")
 S.eq(rt.version_in("URSoftware 3.15.7.1 (x)"), 3015007, "the version a reply tells")
