@@ -34,6 +34,9 @@ static int hf_lines_available = -1;
 static int hf_lines_reply = -1;
 static int hf_lines_reply_name = -1;
 static int hf_lines_error = -1;
+static int hf_lines_response_in = -1;
+static int hf_lines_response_to = -1;
+static int hf_lines_time = -1;
 
 static int ett_lines = -1;
 
@@ -351,28 +354,81 @@ static const lines_spec_t lines_spec = {
     .polyscope_x_from = 10000000u,
 };
 
+/* ---- runtime/epan/common/exchange.c ---- */
+/* Request/response tracking, as Wireshark's request/response protocols show it (dns.response_in,
+ * dns.response_to, dns.time), the twin of runtime/lua/common/exchange.lua. On the first pass a
+ * request keeps its frame and time; the reply the dissector pairs with it links both ways: the
+ * request gets the frame of its first reply, the reply the request's frame and the time between.
+ * Which reply answers which request is the dissector's; these are only the links, kept in
+ * wmem_file_scope() with the first pass's decisions, so that later passes (tshark -2, the GUI) show a
+ * request's reply too. The fields are the dissector's (codegen/exchanges.py): passed in by handle. */
+
+typedef struct {
+    guint32 frame;              /* the request's */
+    nstime_t at;                /* its capture time */
+    guint32 response_in;        /* the frame of its first reply; 0: none seen */
+} exchange_request_t;
+
+typedef struct {
+    guint32 response_to;        /* the request's frame; 0: no request (the capture starts after it) */
+    nstime_t time;              /* from the request to the reply */
+} exchange_reply_t;
+
+/* A request as this frame holds it. */
+static exchange_request_t *
+exchange_request(packet_info *pinfo)
+{
+    exchange_request_t *request = wmem_new(wmem_file_scope(), exchange_request_t);
+    request->frame = pinfo->num;
+    request->at = pinfo->abs_ts;
+    request->response_in = 0;
+    return request;
+}
+
+/* A reply's link to the request it answers (NULL: none), and the request's to its first reply. */
+static void
+exchange_reply(exchange_request_t *request, packet_info *pinfo, exchange_reply_t *reply)
+{
+    reply->response_to = 0;
+    nstime_set_zero(&reply->time);
+    if (request == NULL)
+        return;
+    if (request->response_in == 0)
+        request->response_in = pinfo->num;
+    reply->response_to = request->frame;
+    nstime_delta(&reply->time, &pinfo->abs_ts, &request->at);
+}
+
+/* The generated items: a request's reply, once one is seen; a reply's request and the time since. */
+static void
+exchange_show_request(proto_tree *tree, tvbuff_t *tvb, int at, int len, const exchange_request_t *request,
+                      int hf_response_in)
+{
+    if (request != NULL && request->response_in != 0)
+        proto_item_set_generated(proto_tree_add_uint(tree, hf_response_in, tvb, at, len, request->response_in));
+}
+
+static void
+exchange_show_reply(proto_tree *tree, tvbuff_t *tvb, int at, int len, const exchange_reply_t *reply,
+                    int hf_response_to, int hf_time)
+{
+    if (reply->response_to == 0)
+        return;
+    proto_item_set_generated(proto_tree_add_uint(tree, hf_response_to, tvb, at, len, reply->response_to));
+    proto_item_set_generated(proto_tree_add_time(tree, hf_time, tvb, at, len, &reply->time));
+}
+
 /* ---- runtime/epan/lines/lines_dissect.c ---- */
 /* A dissector of text lines (the dashboard server, the driver's script sender), the twin of
  * runtime/lua/lines/dissect.lua: lines reassembled across TCP segments, each shown as a request
- * (command) or a reply, replies paired with their requests and the software version learnt per
- * conversation, expert infos for a reply that says an error, an unknown command, a command the
- * version lacks, a line too long. The first pass decides each line (which command, which reply,
+ * (command) or a reply, replies paired with their requests (and linked with them both ways:
+ * runtime/epan/common/exchange.c) and the software version learnt per conversation, expert
+ * infos for a reply that says an error, an unknown command, a command the version lacks, a line
+ * too long. The first pass decides each line (which command, which reply,
  * whether the version has it) and keeps the decision with its frame, so that later passes, in
  * any order, show what the first one saw. */
 
 #define LINES_PENDING_KEPT 256            /* commands awaiting a reply that a conversation keeps */
-
-/* What a conversation has seen so far, in the first pass. A command that comes when
- * LINES_PENDING_KEPT await replies is not kept but counted lost, and so is every command behind a
- * lost one (replies come in order); a reply with none kept answers a lost one, and pairs with none. */
-typedef struct lines_conversation {
-    int pending[LINES_PENDING_KEPT];      /* commands awaiting a reply, oldest at `first` */
-    unsigned first, count, lost;
-    bool greeted;                         /* a line came from the server */
-    bool has_version;
-    uint64_t version;                     /* lines_version(), when has_version */
-    bool skipping[2];                     /* per direction (from the robot): inside a line too long */
-} lines_conversation_t;
 
 /* What the first pass decided about one line. */
 typedef struct lines_decision {
@@ -381,7 +437,21 @@ typedef struct lines_decision {
     int available;                        /* commands: 1 or 0 when the version is known, else -1 */
     const lines_reply_t *reply;           /* replies: the one it is, or NULL */
     bool not_kept;                        /* a command not kept, or a reply to one */
+    exchange_request_t *request;          /* commands: its frame, time and reply's frame */
+    exchange_reply_t link;                /* replies: the command's frame and the time since */
 } lines_decision_t;
+
+/* What a conversation has seen so far, in the first pass. A command that comes when
+ * LINES_PENDING_KEPT await replies is not kept but counted lost, and so is every command behind a
+ * lost one (replies come in order); a reply with none kept answers a lost one, and pairs with none. */
+typedef struct lines_conversation {
+    lines_decision_t *pending[LINES_PENDING_KEPT];   /* commands awaiting a reply, oldest at `first` */
+    unsigned first, count, lost;
+    bool greeted;                         /* a line came from the server */
+    bool has_version;
+    uint64_t version;                     /* lines_version(), when has_version */
+    bool skipping[2];                     /* per direction (from the robot): inside a line too long */
+} lines_conversation_t;
 
 /* The decisions of one frame in one direction, by the line's offset in the data it came in. */
 typedef struct lines_frame {
@@ -414,67 +484,78 @@ static lines_conversation_t *lines_conversation(packet_info *pinfo)
     return c;
 }
 
-/* A request awaits its reply; false when it is not kept (see lines_conversation_t). */
-static bool lines_keep(lines_conversation_t *c, int command)
+/* A request awaits its reply (its decision: the command and its exchange); false when it is not
+ * kept (see lines_conversation_t). */
+static bool lines_keep(lines_conversation_t *c, lines_decision_t *request)
 {
     if (!lines_spec.one_reply_per_request) {        /* only the latest request counts */
         c->first = 0;
         c->count = 1;
-        c->pending[0] = command;
+        c->pending[0] = request;
     } else if (c->lost > 0 || c->count == LINES_PENDING_KEPT) {
         c->lost++;
         return false;
     } else {
-        c->pending[(c->first + c->count++) % LINES_PENDING_KEPT] = command;
+        c->pending[(c->first + c->count++) % LINES_PENDING_KEPT] = request;
     }
     return true;
 }
 
-/* The request a reply answers (LINES_NONE: none), *not_kept when it answers one not kept. */
-static int lines_answered(lines_conversation_t *c, bool *not_kept)
+/* The request a reply answers (NULL: none), *not_kept when it answers one not kept. */
+static lines_decision_t *lines_answered(lines_conversation_t *c, bool *not_kept)
 {
-    int command = LINES_NONE;
+    lines_decision_t *request = NULL;
     *not_kept = false;
     if (c->count > 0 && lines_spec.one_reply_per_request) {
-        command = c->pending[c->first];
+        request = c->pending[c->first];
         c->first = (c->first + 1) % LINES_PENDING_KEPT;
         c->count--;
     } else if (c->count > 0) {                      /* every answering line belongs to the latest request */
-        command = c->pending[(c->first + c->count - 1) % LINES_PENDING_KEPT];
+        request = c->pending[(c->first + c->count - 1) % LINES_PENDING_KEPT];
     } else if (c->lost > 0) {                       /* it answers a command that was not kept */
         *not_kept = true;
         c->lost--;
     }
-    return command;
+    return request;
 }
 
 /* A line too long is still a line: a command the server answers, or the reply to one, so that
- * the pairing of the lines after it holds. */
-static void lines_count_too_long(lines_conversation_t *c, bool requests)
+ * the pairing of the lines after it holds (and its exchange is linked, though not shown). */
+static void lines_count_too_long(lines_conversation_t *c, bool requests, packet_info *pinfo)
 {
     bool not_kept;
     if (requests) {
-        lines_keep(c, LINES_NONE);
+        lines_decision_t *d = wmem_new0(wmem_file_scope(), lines_decision_t);
+        d->command = LINES_NONE;
+        d->request = exchange_request(pinfo);
+        lines_keep(c, d);
     } else {
+        lines_decision_t *request;
+        exchange_reply_t link;
         c->greeted = true;
-        lines_answered(c, &not_kept);
+        request = lines_answered(c, &not_kept);
+        exchange_reply(request != NULL ? request->request : NULL, pinfo, &link);
     }
 }
 
-static lines_decision_t *lines_decide_command(lines_conversation_t *c, const uint8_t *text, size_t len)
+static lines_decision_t *lines_decide_command(lines_conversation_t *c, packet_info *pinfo, const uint8_t *text,
+                                              size_t len)
 {
-    lines_decision_t *d = wmem_new(wmem_file_scope(), lines_decision_t);
+    lines_decision_t *d = wmem_new0(wmem_file_scope(), lines_decision_t);
     d->command = lines_find_command(&lines_spec, text, len, &d->argument);
-    d->not_kept = !lines_keep(c, d->command);
+    d->request = exchange_request(pinfo);
+    d->not_kept = !lines_keep(c, d);
     d->available = d->command != LINES_NONE && c->has_version
         ? lines_available(&lines_spec, d->command, c->version) : -1;
     d->reply = NULL;
     return d;
 }
 
-static lines_decision_t *lines_decide_reply(lines_conversation_t *c, const uint8_t *text, size_t len)
+static lines_decision_t *lines_decide_reply(lines_conversation_t *c, packet_info *pinfo, const uint8_t *text,
+                                            size_t len)
 {
-    lines_decision_t *d = wmem_new(wmem_file_scope(), lines_decision_t);
+    lines_decision_t *d = wmem_new0(wmem_file_scope(), lines_decision_t);
+    lines_decision_t *request;
     d->argument = -1;
     d->available = -1;
     d->command = LINES_NONE;
@@ -486,7 +567,9 @@ static lines_decision_t *lines_decide_reply(lines_conversation_t *c, const uint8
             return d;
         }
     }
-    d->command = lines_answered(c, &d->not_kept);
+    request = lines_answered(c, &d->not_kept);
+    d->command = request != NULL ? request->command : LINES_NONE;
+    exchange_reply(request != NULL ? request->request : NULL, pinfo, &d->link);
     if (d->command != LINES_NONE && d->command == lines_spec.version_command) {
         uint64_t version;
         if (lines_version_in(&lines_spec, text, len, &version)) {
@@ -532,6 +615,7 @@ static void lines_show_command(proto_tree *tree, packet_info *pinfo, tvbuff_t *t
     }
     if (d->not_kept)
         expert_add_info(pinfo, item, &ei_lines_not_kept);
+    exchange_show_request(line, tvb, at, span, d->request, hf_lines_response_in);
     proto_item_append_text(item, ": %s", text);
 }
 
@@ -556,6 +640,7 @@ static void lines_show_reply(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb
         expert_add_info(pinfo, error, &ei_lines_error_reply);
     if (d->not_kept)
         expert_add_info(pinfo, item, &ei_lines_reply_not_kept);
+    exchange_show_reply(line, tvb, at, span, &d->link, hf_lines_response_to, hf_lines_time);
     proto_item_append_text(item, ": %s", text);
 }
 
@@ -644,15 +729,15 @@ static int dissect_lines(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, vo
                                 &ei_lines_too_long);
                 lines_info(info, "Line too long", "");
                 if (first_pass)
-                    lines_count_too_long(c, requests);
+                    lines_count_too_long(c, requests, pinfo);
                 skipping = nl < 0;
                 at = nl >= 0 ? nl + 1 : n;
             } else {
                 lines_decision_t *d = first_pass || frame->lines == NULL ? NULL
                     : (lines_decision_t *)wmem_tree_lookup32(frame->lines, (guint32)at);
                 if (d == NULL) {
-                    d = requests ? lines_decide_command(c, buf + at, (size_t)len)
-                                 : lines_decide_reply(c, buf + at, (size_t)len);
+                    d = requests ? lines_decide_command(c, pinfo, buf + at, (size_t)len)
+                                 : lines_decide_reply(c, pinfo, buf + at, (size_t)len);
                     if (frame->lines == NULL)
                         frame->lines = wmem_tree_new(wmem_file_scope());
                     wmem_tree_insert32(frame->lines, (guint32)at, d);
@@ -716,6 +801,21 @@ void proto_register_robotiq_gripper(void)
           { "Says an error", "robotiq_gripper.error",
             FT_BOOLEAN, BASE_NONE, NULL, 0x0,
             "True when a GET is answered without a value (emergency stop).", HFILL }
+        },
+        { &hf_lines_response_in,
+          { "Response in", "robotiq_gripper.response_in",
+            FT_FRAMENUM, BASE_NONE, FRAMENUM_TYPE(FT_FRAMENUM_RESPONSE), 0x0,
+            "The frame that holds the reply to this request.", HFILL }
+        },
+        { &hf_lines_response_to,
+          { "Request in", "robotiq_gripper.response_to",
+            FT_FRAMENUM, BASE_NONE, FRAMENUM_TYPE(FT_FRAMENUM_REQUEST), 0x0,
+            "The frame that holds the request this reply answers.", HFILL }
+        },
+        { &hf_lines_time,
+          { "Time since request", "robotiq_gripper.time",
+            FT_RELATIVE_TIME, BASE_NONE, NULL, 0x0,
+            "The time from the request to this reply.", HFILL }
         },
     };
     static gint *ett[] = {

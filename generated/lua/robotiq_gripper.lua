@@ -75,6 +75,15 @@ local spec = {
         reply_name = "Which of the command's replies it is (ack, value, no value).",
         error = "True when a GET is answered without a value (emergency stop).",
     },
+    -- A request's link to its reply and a reply's to its request (runtime/lua/common/exchange.lua).
+    exchange_fields = {
+        response_in = ProtoField.framenum("robotiq_gripper.response_in", "Response in", base.NONE, frametype.RESPONSE,
+                                          nil, "The frame that holds the reply to this request."),
+        response_to = ProtoField.framenum("robotiq_gripper.response_to", "Request in", base.NONE, frametype.REQUEST,
+                                          nil, "The frame that holds the request this reply answers."),
+        time = ProtoField.relative_time("robotiq_gripper.time", "Time since request",
+                                        "The time from the request to this reply."),
+    },
 }
 local rt = {}
 
@@ -216,6 +225,61 @@ local function pending_pop(q)
 end
 
 rt.pending_queue, rt.pending_push, rt.pending_pop = pending_queue, pending_push, pending_pop
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/exchange.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Request/response tracking, as Wireshark's request/response protocols show it (dns.response_in,
+-- dns.response_to, dns.time). On the first pass a request keeps its frame and time; the reply the
+-- dissector pairs with it links both ways: the request gets the frame of its first reply, the reply
+-- the request's frame and the time between. Which reply answers which request is the dissector's
+-- (in order: runtime/lua/common/pending.lua); these are only the links, kept with the first pass's
+-- decisions so that later passes (tshark -2, the GUI) show a request's reply too. The fields are the
+-- generated spec.exchange_fields (codegen/exchanges.py): response_in, response_to, time.
+local spec, rt = ...
+local F = spec.exchange_fields
+local BILLION = 1000000000
+
+-- A time difference in seconds as an NSTime, rounded to the nanosecond. The seconds are a
+-- difference of pinfo.rel_ts (from the capture's first frame, a double): exact to the nanosecond for
+-- captures shorter than about ten days, where Wireshark's own absolute time as a double is not.
+local function ns_time(seconds)
+    local total = math.floor(seconds * BILLION + 0.5)
+    local whole = total >= 0 and math.floor(total / BILLION) or -math.floor(-total / BILLION)
+    return NSTime.new(whole, total - whole * BILLION)
+end
+
+-- A request as this frame holds it: its frame, its time, later the frame of its reply.
+local function exchange_request(pinfo)
+    return { frame = pinfo.number, at = pinfo.rel_ts, response_in = nil }
+end
+
+-- A reply's link to the request it answers (nil: none, as in a capture that starts after the
+-- request), and the request's link to its first reply.
+local function exchange_reply(request, pinfo)
+    if not request then return nil end
+    if not request.response_in then request.response_in = pinfo.number end
+    return { response_to = request.frame, time = ns_time(pinfo.rel_ts - request.at) }
+end
+
+-- The generated items: a request's reply, once one is seen; a reply's request and the time since.
+local function show_request(item, range, request)
+    if request and request.response_in then item:add(F.response_in, range, request.response_in):set_generated() end
+end
+
+local function show_reply(item, range, link)
+    if not link then return end
+    item:add(F.response_to, range, link.response_to):set_generated()
+    item:add(F.time, range, link.time):set_generated()
+end
+
+rt.exchange_request, rt.exchange_reply = exchange_request, exchange_reply
+rt.show_exchange_request, rt.show_exchange_reply = show_request, show_reply
+rt.exchange_field_list = { F.response_in, F.response_to, F.time }
 end)(spec, rt)
 end
 
@@ -375,12 +439,14 @@ do
 -- A dissector of text lines (the dashboard server, the driver's script sender): lines
 -- reassembled across TCP segments, each shown as a request (command) or a reply, replies paired
 -- with their requests and the software version learnt per conversation (both addresses and both
--- ports: two robots or two clients never share it), expert infos for a reply that says an error,
--- an unknown command, a command the version lacks, a line too long.
+-- ports: two robots or two clients never share it), each reply linked with its request both ways
+-- (runtime/lua/common/exchange.lua), expert infos for a reply that says an error, an unknown
+-- command, a command the version lacks, a line too long.
 local spec, rt = ...
 local matches, find_command, classify, shown = rt.matches, rt.find_command, rt.classify, rt.shown
 local available, version_in, parse_version = rt.available, rt.version_in, rt.parse_version
 local pending_queue, push, pop = rt.pending_queue, rt.pending_push, rt.pending_pop
+local exchange_request, exchange_reply = rt.exchange_request, rt.exchange_reply
 
 local proto = Proto(spec.name, spec.title)
 local L, D = spec.labels, spec.docs or {}
@@ -411,6 +477,7 @@ local E = {
         expert.group.MALFORMED, expert.severity.ERROR),
 }
 proto.fields = {F.command, F.command_name, F.argument, F.available, F.reply, F.reply_name, F.error}
+for _, f in ipairs(rt.exchange_field_list) do proto.fields[#proto.fields + 1] = f end
 proto.experts = {E.error_reply, E.unknown_command, E.unavailable, E.too_long, E.not_kept, E.reply_not_kept, E.internal}
 proto.prefs.version = Pref.string("Software version", "",
     "Controller software version (as 5.11 or 3.15.7) assumed until a PolyscopeVersion reply tells it: \z
@@ -444,58 +511,62 @@ local function conversation(key)
     return c
 end
 
--- A request awaits its reply; false when it is not kept. A command that comes when pending_kept
--- await replies is not kept but counted lost, and so is every command behind a lost one (replies
--- come in order, runtime/lua/common/pending.lua): no reply is paired with another command. An
--- unknown command is kept as false.
-local function keep(c, index)
+-- A request awaits its reply: its decision (the command, nil when unknown, and its exchange); false
+-- when it is not kept. A command that comes when pending_kept await replies is not kept but counted
+-- lost, and so is every command behind a lost one (replies come in order,
+-- runtime/lua/common/pending.lua): no reply is paired with another command.
+local function keep(c, d)
     if not spec.one_reply_per_request then     -- only the latest request counts (c.latest)
-        c.latest = index or false
+        c.latest = d
         return true
     end
-    return push(c.pending, index or false)
+    return push(c.pending, d)
 end
 
 -- The request a reply answers (nil: none), and whether it answers one that was not kept.
 local function answered(c)
     if not spec.one_reply_per_request then
-        return c.latest or nil, false   -- every answering line belongs to the latest request
+        return c.latest, false   -- every answering line belongs to the latest request
     end
-    local paired, command = pop(c.pending)
-    return command or nil, not paired
+    local paired, d = pop(c.pending)
+    return d, not paired
 end
 
 -- A line too long is still a line: a command the server answers, or the reply to one, so that
--- the pairing of the lines after it holds.
-local function count_too_long(c, requests)
+-- the pairing of the lines after it holds (and its exchange is linked, though not shown).
+local function count_too_long(c, requests, pinfo)
     if requests then
-        keep(c, nil)
+        keep(c, {exchange = exchange_request(pinfo)})
     else
         c.greeted = true
-        answered(c)
+        local request = answered(c)
+        exchange_reply(request and request.exchange, pinfo)
     end
 end
 
--- A command's line: its name, argument, and whether the version has it (nil: version unknown).
-local function decide_command(c, text)
+-- A command's line: its name, argument, whether the version has it (nil: version unknown), and its
+-- exchange (which the reply paired with it completes).
+local function decide_command(c, text, pinfo)
     local index, argument = find_command(text)
-    local not_kept = not keep(c, index)
-    local has = nil
-    if index and c.version then has = available(index, c.version) end
-    return {command = index, argument = argument, available = has, not_kept = not_kept}
+    local d = {command = index, argument = argument, exchange = exchange_request(pinfo)}
+    d.not_kept = not keep(c, d)
+    if index and c.version then d.available = available(index, c.version) end
+    return d
 end
 
--- A reply's line: the banner, or the command it answers and what it says.
-local function decide_reply(c, text)
+-- A reply's line: the banner, or the command it answers, what it says and its link to the command.
+local function decide_reply(c, text, pinfo)
     if not c.greeted then
         c.greeted = true
         if spec.banner and matches(spec.banner.pieces, text) then return {reply = spec.banner} end
     end
-    local command, not_kept = answered(c)
+    local request, not_kept = answered(c)
+    local command = request and request.command
     if command and command == spec.version_command then
         c.version = version_in(text) or c.version
     end
-    return {command = command, reply = classify(command, text), not_kept = not_kept}
+    return {command = command, reply = classify(command, text), not_kept = not_kept,
+            link = exchange_reply(request and request.exchange, pinfo)}
 end
 
 -- ---- the tree ----
@@ -516,6 +587,7 @@ local function show_command(tree, range, text, d)
         item:add_proto_expert_info(E.unknown_command, "Unknown command")
     end
     if d.not_kept then item:add_proto_expert_info(E.not_kept, spec.not_kept) end
+    rt.show_exchange_request(item, range, d.exchange)
     item:append_text(": " .. text)
     return "Command: " .. text
 end
@@ -529,6 +601,7 @@ local function show_reply(tree, range, text, d)
     local it = item:add(F.error, range, says_error):set_generated()
     if says_error then it:add_proto_expert_info(E.error_reply, "The reply says an error") end
     if d.not_kept then item:add_proto_expert_info(E.reply_not_kept, spec.reply_not_kept) end
+    rt.show_exchange_reply(item, range, d.link)
     item:append_text(": " .. text)
     return "Reply: " .. text
 end
@@ -573,7 +646,7 @@ local function dissect(tvb, pinfo, tree)
                 local item = tree:add(proto, tvb(at, stop - at))
                 item:add_proto_expert_info(E.too_long, "Line longer than " .. spec.max_line .. " bytes")
                 infos[#infos + 1] = "Line too long"
-                if first_pass then count_too_long(c, requests) end
+                if first_pass then count_too_long(c, requests, pinfo) end
                 if not nl then skipping = true end
                 at = nl or n
             else
@@ -582,7 +655,7 @@ local function dissect(tvb, pinfo, tree)
                 local slot = here .. at
                 local d = decided[slot]
                 if first_pass or not d then
-                    d = requests and decide_command(c, text) or decide_reply(c, text)
+                    d = requests and decide_command(c, text, pinfo) or decide_reply(c, text, pinfo)
                     decided[slot] = d
                 end
                 infos[#infos + 1] = (requests and show_command or show_reply)(tree, range, shown(text), d)
