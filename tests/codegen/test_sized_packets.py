@@ -144,3 +144,28 @@ def test_a_field_named_like_the_size_field_is_refused_by_target_c(tmp_path):
     assert result.returncode != 0
     assert "fields[0].name" in result.stderr, result.stderr
     assert "ur_realtime.message_size is the size field's filter name" in result.stderr
+
+
+def _field(d, name):
+    return next(f for f in d["fields"] if f["name"] == name)
+
+
+def test_a_pose_without_item_names_cannot_share_its_two_units():
+    (p,) = _problems(lambda d: _field(d, "tool_vector_actual").pop("item_names"))
+    assert p.path.endswith(".unit") and "needs item_names" in p.message
+
+
+def test_item_names_of_another_count_and_bits_on_a_vector_are_refused():
+    def change(d):
+        _field(d, "elbow_position")["item_names"] = "joints"
+        _field(d, "q_actual")["bits"] = ["a"]
+    messages = [p.message for p in _problems(change)]
+    assert any("'joints' names 6 items, the vector has 3" in m for m in messages)
+    assert any("bits need one double" in m for m in messages)
+
+
+def test_the_items_take_the_parts_of_the_unit_in_runs(planned):
+    items = planned.protocol.items
+    assert [(i.label, i.unit) for i in items["tcp_speed_actual"]][2:4] == [("Z", "m/s"), ("RX", "rad/s")]
+    assert [i.label for i in items["joint_modes"]][-1] == "Wrist 3" and items["joint_modes"][0].unit is None
+    assert [b.mask for b in planned.protocol.bits["digital_outputs"]][:3] == [1, 2, 4]

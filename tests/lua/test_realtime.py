@@ -29,6 +29,8 @@ def _values(node, out: dict) -> None:
     if not isinstance(node, dict):
         return
     for key, value in node.items():
+        if key.startswith("ur_realtime.") and (key.endswith("_tree") or key.count(".") > 1):
+            continue                    # the flags of a double's bits: not a field of the record
         if key.startswith("ur_realtime."):
             out[key.split(".", 1)[1]] = value
         else:
@@ -100,8 +102,8 @@ def test_every_field_filters_and_an_unknown_size_is_an_expert(tmp_path):
 def test_the_tree_reads_in_words_with_units_and_names(tmp_path):
     case = next(c for c in CASES if c.name.endswith("cb3_3_2"))
     text = run_tshark(pcap_of(tmp_path, case.data, "whole"), "-2", "-V", "-Y", "ur_realtime", plugin=PLUGIN)
-    assert "Actual joint position: 0.501953125 rad" in text
-    assert "Motor temperature: 30.5 °C" in text
+    assert "Actual joint position (rad)\n        Base: 0.501953125 rad" in text   # joints named
+    assert "Motor temperature (°C)\n        Base: 30.5 °C" in text
     assert "Robot mode: 7 (RUNNING)" in text and "Program state: 2 (PLAYING)" in text
 
 
@@ -174,5 +176,5 @@ def test_the_version_preference_chooses_among_forms_of_one_size(tmp_path):
     pcap = pcap_of(tmp_path, struct.pack(f">i{n}d", 1108, *doubles), "whole")
     cb3 = run_tshark(pcap, "-2", "-V", "-o", "ur_realtime.version:3.6", plugin=PLUGIN)
     newest = run_tshark(pcap, "-2", "-V", plugin=PLUGIN)
-    assert "Joint mode: 248 (PART_D_CALIBRATION_ERROR)" in cb3
-    assert "Joint mode: 248\n" in newest and "PART_D_CALIBRATION_ERROR" not in newest
+    assert "Base: 248 (PART_D_CALIBRATION_ERROR)" in cb3
+    assert "Base: 248\n" in newest and "PART_D_CALIBRATION_ERROR" not in newest

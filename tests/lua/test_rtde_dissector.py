@@ -44,6 +44,10 @@ def messages_by_stream(pcap: Path) -> dict[int, list[dict]]:
         stream = int(layers["tcp"]["tcp.stream"])
         for item in items:
             flat = {k: v for k, v in item.items() if k.startswith("rtde.")}
+            # A vector with named items: its values under a subtree of text, keyed by the vector.
+            texts = item.get("_ws.lua.text", [])
+            for text in texts if isinstance(texts, list) else [texts]:
+                flat.update({k: v for k, v in text.items() if k.startswith("rtde.")} if isinstance(text, dict) else {})
             flat["experts"] = _experts(item)
             out.setdefault(stream, []).append(flat)
     return out

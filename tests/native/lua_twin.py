@@ -130,7 +130,7 @@ def compare(path: Path, protocol: Protocols, *args: str, variant: str = "gcc") -
     return native
 
 
-_ABBREV = re.compile(r"[a-z0-9_.-]+")
+_ABBREV = re.compile(r"[A-Za-z0-9_.-]+")     # RTDE names hold capitals: rtde.actual_TCP_pose
 LUA_TEXT = "_ws.lua.text"
 
 

@@ -82,7 +82,7 @@ def test_the_version_preference_reads_as_lua_reads_it(text):
     path, preference = sessions([[packet]], PORT, "rt-1108"), ["-o", f"{PROTOCOL}.version:{text}"]
     compare(path, PROTOCOL, *preference)
     tree = harness.checked(run_native(path, "-V", *preference))
-    assert ("Joint mode: 248 (PART_D_CALIBRATION_ERROR)" in tree) == text.strip().startswith("3.6.")
+    assert ("Wrist 3: 248 (PART_D_CALIBRATION_ERROR)" in tree) == text.strip().startswith("3.6.")
 
 
 def test_the_client_side_is_urscript():
@@ -128,8 +128,8 @@ def test_without_a_tree_the_summary_is_the_same():
 def test_the_tree_reads_in_words_with_units_and_names():
     case = next(c for c in CASES if c.name.endswith("cb3_3_2"))
     text = harness.checked(run_native(sessions([[case.data]], PORT, "rt-words"), "-V"))
-    assert "Actual joint position (rad)" in text and "Actual joint position: 0.501953125 rad" in text
-    assert "Motor temperature: 30.5 °C" in text                 # the unit as the Lua dissector shows it
+    assert "Actual joint position (rad)\n        Base: 0.501953125 rad" in text
+    assert "Motor temperature (°C)\n        Base: 30.5 °C" in text                 # the unit as the Lua dissector shows it
     assert "Robot mode: 7 (RUNNING)" in text and "Program state: 2 (PLAYING)" in text
     assert "UR_REALTIME, rt_3_2" in text or "client interface, rt_3_2" in text
 

@@ -1,6 +1,8 @@
 """The Wireshark model of a sized-packets interface, computed once from the plan: the fields (one
-double each, with label, unit and comment, and the size field), the enum names by version range,
-each layout's slots and the forms by size, as plain data that lua.py and epan.py both render."""
+double each, with label, unit and comment, and the size field; a vector with named items one per
+item, filtered by the vector's name; a double that carries bits one flag per bit), the enum names
+by version range, each layout's slots and the forms by size, as plain data that lua.py and epan.py
+both render."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -8,9 +10,19 @@ from typing import Optional
 
 from ... import ir
 from ...comments import field_text, node_text, value_text
+from ...items import Item, flag_width, titled
 from .plan import SizedPlan
 
 INFO_FIELD = "robot_mode"       # the field whose name the Info column shows beside the layout's
+
+
+@dataclass(frozen=True)
+class Flag:
+    """One named bit of a double's whole value."""
+    name: str                    # filtered as <protocol>.<field>.<name>
+    label: str
+    mask: int
+    comment: str
 
 
 @dataclass(frozen=True)
@@ -21,11 +33,14 @@ class Field:
     comment: str
     enum: Optional[str]          # the enum whose codes it carries
     is_array: bool
+    items: tuple[Item, ...] = ()         # a vector's named items: one field each, none for the vector
+    flags: tuple[Flag, ...] = ()
+    flag_width: int = 0                  # the bits its flags are shown in
 
     @property
     def group(self) -> str:
         """An array's subtree text: its label and unit."""
-        return self.label + (f" ({self.unit})" if self.unit else "")
+        return titled(self.label, self.unit)
 
 
 @dataclass(frozen=True)
@@ -87,15 +102,17 @@ class Dissector:
     by_size: tuple[tuple[int, tuple[Form, ...]], ...]   # sizes ascending, each's forms in the order tried
 
 
-def _field(f: ir.AnyField) -> Field:
+def _field(f: ir.AnyField, items: tuple[Item, ...] = (), bits: tuple = ()) -> Field:
     enum = getattr(f, "enum", None)
+    flags = tuple(Flag(b.name, b.label, b.mask, f"Bit {b.position} of {f.label}: {b.label}.") for b in bits)
     return Field(f.name, f.label, f.unit or None, field_text([f], versions=False), enum.name if enum else None,
-                 isinstance(f, ir.ArrayField))
+                 isinstance(f, ir.ArrayField), items, flags, flag_width(bits) if bits else 0)
 
 
 def dissector(planned: SizedPlan) -> Dissector:
     protocol = planned.protocol
-    fields = {f.name: _field(f) for f in protocol.catalogue}
+    fields = {f.name: _field(f, protocol.items.get(f.name, ()), protocol.bits.get(f.name, ()))
+              for f in protocol.catalogue}
     enums = planned.enums
     tables = {(e.name, i): NameTable(e.name, i, tuple((v.value, v.name, value_text(v)) for v in table.values))
               for e in enums for i, table in enumerate(e.tables)}

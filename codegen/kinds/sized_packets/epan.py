@@ -24,12 +24,11 @@ SHARED = ["common/macros.h", "common/version_text.h", "common/version_text.c"]
 
 @dataclass
 class EpanField:
+    """The handles of a field: one variable, or an array of `count` (its named items or flags)."""
     hf: str
-    label: str
-    abbrev: str
-    display: str
-    strings: str
     comment: str
+    registered: tuple[tuple[str, list[str]], ...]   # each handle and its hf_register_info members
+    count: int = 0
 
 
 @dataclass
@@ -57,9 +56,35 @@ class EpanForm:
     names: list[str]                         # per enum: its value_string or NULL
 
 
+def _double(name: str, hf: str, label: str, abbrev: str, unit) -> tuple[str, list[str]]:
+    """The hf_register_info entry of a double, its unit shown by a label function."""
+    return hf, [string(label), string(abbrev), "FT_DOUBLE", "BASE_CUSTOM" if unit else "BASE_NONE",
+                f"CF_FUNC({unit_label(name, unit).ident})" if unit else "NULL", "0x0", "NULL", "HFILL"]
+
+
 def _field(name: str, f: Field) -> EpanField:
-    return EpanField(f"hf_{name}_{f.name}", f.label, f"{name}.{f.name}", "BASE_CUSTOM" if f.unit else "BASE_NONE",
-                     f"CF_FUNC({unit_label(name, f.unit).ident})" if f.unit else "NULL", f.comment)
+    """A field's handle: one, or one per named item (filtered by the vector's name)."""
+    hf, abbrev = f"hf_{name}_{f.name}", f"{name}.{f.name}"
+    if f.items:
+        return EpanField(hf, f.comment, tuple(_double(name, f"{hf}[{k}]", i.label, abbrev, i.unit)
+                                              for k, i in enumerate(f.items)), len(f.items))
+    return EpanField(hf, f.comment, (_double(name, hf, f.label, abbrev, f.unit),))
+
+
+def _size_field(name: str, f: Field) -> EpanField:
+    hf = f"hf_{name}_{f.name}"
+    return EpanField(hf, f.comment, ((hf, [string(f.label), string(f"{name}.{f.name}"), "FT_INT32", "BASE_DEC",
+                                           "NULL", "0x0", "NULL", "HFILL"]),))
+
+
+def _flags(name: str, f: Field) -> EpanField:
+    """The flag handles of a double whose whole value carries bits."""
+    hf = f"hf_{name}_{f.name}_flags"
+    width = f.flag_width // 4
+    return EpanField(hf, f"The flags of {f.name}.", tuple(
+        (f"{hf}[{k}]", [string(g.label), string(f"{name}.{f.name}.{g.name}"), "FT_BOOLEAN", str(f.flag_width),
+                        "NULL", f"0x{g.mask:0{width}x}", string(g.comment), "HFILL"]) for k, g in enumerate(f.flags)),
+        len(f.flags))
 
 
 def _layout(name: str, layout: Layout, enum_ids: dict[str, str]) -> EpanLayout:
@@ -68,11 +93,14 @@ def _layout(name: str, layout: Layout, enum_ids: dict[str, str]) -> EpanLayout:
     for s in layout.slots:
         f = s.field
         names = enum_ids[f.enum] if f.enum is not None else "-1"
+        hf = f"hf_{name}_{f.name}" if f.items else f"&hf_{name}_{f.name}"
+        flags = [f"hf_{name}_{f.name}_flags", str(len(f.flags)), f"&ett_{name}_{f.name}"] if f.flags \
+            else ["NULL", "0", "NULL"]
         if f.is_array:
-            slots.append([f"&hf_{name}_{f.name}", f"&ett_{name}_{f.name}", string(f.group), str(s.offset),
-                          str(s.count), names])
+            slots.append([hf, "TRUE" if f.items else "FALSE", f"&ett_{name}_{f.name}", string(f.group),
+                          str(s.offset), str(s.count), names, *flags])
         else:
-            slots.append([f"&hf_{name}_{f.name}", "NULL", "NULL", str(s.offset), "1", names])
+            slots.append([hf, "FALSE", "NULL", "NULL", str(s.offset), "1", names, *flags])
     info = layout.info
     return EpanLayout(f"{name}_{layout.name}", layout.name, f"{layout.label}: sent by software {layout.versions}.",
                       slots, info.offset if info else -1,
@@ -97,11 +125,11 @@ def view(d: Dissector) -> dict:
     return dict(
         protocol=protocol, name=name, upper=upper, file=f"packet-{name.replace('_', '-')}.c",
         short_name=upper, doc=node_text(protocol), ports=",".join(str(p) for p in protocol.ports),
-        size_field=EpanField(f"hf_{name}_{d.size_field.name}", d.size_field.label, f"{name}.{d.size_field.name}",
-                             "BASE_DEC", "NULL", d.size_field.comment),
-        fields=[_field(name, f) for f in d.fields],
-        etts=[f"ett_{name}"] + [f"ett_{name}_{f.name}" for f in d.fields if f.is_array],
-        labels=list(dict.fromkeys(unit_label(name, f.unit) for f in d.fields if f.unit)),
+        size_field=_size_field(name, d.size_field),
+        fields=[_field(name, f) for f in d.fields] + [_flags(name, f) for f in d.fields if f.flags],
+        etts=[f"ett_{name}"] + [f"ett_{name}_{f.name}" for f in d.fields if f.is_array or f.flags],
+        labels=list(dict.fromkeys(unit_label(name, unit) for f in d.fields
+                                  for unit in ([i.unit for i in f.items] if f.items else [f.unit]) if unit)),
         enums=[(enum_ids[e.name], e.doc) for e in d.enums], tables=tables,
         layouts=[_layout(name, lay, enum_ids) for lay in d.layouts], forms=forms, sizes=sizes,
         same_size=protocol.same_size, size_bytes=protocol.size_field_bytes,

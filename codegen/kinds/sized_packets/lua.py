@@ -27,8 +27,15 @@ def view(d: Dissector) -> dict:
                           names=[f"{t.enum} = NAMES.{t.ident}" for t in f.tables if t is not None])
                      for f in row])
              for size, row in d.by_size]
+    items = [(f.name, [f"{{ProtoField.double({string(name + '.' + f.name)}, {string(i.label)}), "
+                       f"{string(' ' + i.unit) if i.unit else 'nil'}}}" for i in f.items])
+             for f in d.fields if f.items]
+    flags = [(f.name, [[string(f"{name}.{f.name}.{g.name}"), string(g.label), str(f.flag_width), "nil",
+                        f"0x{g.mask:0{f.flag_width // 4}x}", string(g.comment)] for g in f.flags])
+             for f in d.fields if f.flags]
     return dict(
         protocol=protocol, name=name, doc=node_text(protocol), fields=d.fields, size_field=d.size_field,
+        plain_fields=[f for f in d.fields if not f.items], items=items, flags=flags,
         enum_of=[(f.name, f.enum) for f in d.fields if f.enum is not None],
         layouts=layouts, tables=tables, forms=forms, min_size=protocol.size_field_bytes + 8,
         same_size=protocol.same_size,

@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ... import ir
+from ...items import Bit, Item
 
 
 @dataclass
@@ -39,6 +40,8 @@ class SizedProtocol:
     enums: dict[str, ir.Enum]
     catalogue: list[ir.AnyField]     # every field any layout sends, once, in the spec's order
     layouts: list[SizedLayout]
+    items: dict[str, tuple[Item, ...]]     # a vector's named items by its name (codegen/items.py)
+    bits: dict[str, tuple[Bit, ...]]       # the flags a double's whole value carries, by its name
 
     @property
     def size_field_bytes(self) -> int:

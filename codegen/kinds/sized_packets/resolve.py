@@ -3,7 +3,7 @@ own methods, then each layout's list of names (after the fields of the layout it
 its size checked against them. Every problem names its YAML path and line."""
 from __future__ import annotations
 
-from ... import ir
+from ... import ir, items
 from ...errors import SpecError
 from ...load import LoadedSpec
 from ...resolve import Resolver
@@ -18,7 +18,8 @@ def resolve(spec: LoadedSpec) -> SizedProtocol:
     series = r.declare_series(proto["generations"], ["protocol", "generations"])
     for name, raw in data["enums"].items():
         r.enums[name] = r.enum(name, raw)
-    catalogue = _catalogue(r, data["fields"])
+    sets = items.item_sets(r, data.get("item_names"))
+    catalogue, named, bits = _catalogue(r, data["fields"], sets)
     size_raw = data["framing"]["size"]
     size_field = r.field(dict(size_raw), ["framing", "size"], [])
     _check_filter_names(r, data["protocol"]["name"], data["fields"], size_field)
@@ -30,16 +31,33 @@ def resolve(spec: LoadedSpec) -> SizedProtocol:
         raise SpecError(spec.source, r.problems)
     return SizedProtocol(proto["name"], proto["title"], proto["doc"], list(proto["ports"]),
                          proto["max_message_size"], [(s.name, s.versions) for s in series], size_field,
-                         data["framing"]["same_size"], r.enums, list(catalogue.values()), list(layouts.values()))
+                         data["framing"]["same_size"], r.enums, list(catalogue.values()), list(layouts.values()),
+                         named, bits)
 
 
-def _catalogue(r: Resolver, raw_fields: list) -> dict[str, ir.AnyField]:
+def _catalogue(r: Resolver, raw_fields: list, sets: dict) -> tuple[dict, dict, dict]:
+    """The fields by name, the named items of vectors and the bits of doubles. Bits are read here:
+    the shared resolver keeps them to integer fields, and every value here is a double (a whole
+    one, where it carries bits)."""
     out: dict[str, ir.AnyField] = {}
+    named: dict[str, tuple[items.Item, ...]] = {}
+    bits: dict[str, tuple[items.Bit, ...]] = {}
     for i, raw in enumerate(raw_fields):
+        parts = ["fields", i]
         if raw["name"] in out:
-            r.fail(["fields", i, "name"], f"field '{raw['name']}' is described twice")
-        out[raw["name"]] = r.field(raw, ["fields", i], [])
-    return out
+            r.fail(parts + ["name"], f"field '{raw['name']}' is described twice")
+        f = r.field({k: v for k, v in raw.items() if k not in ("item_names", "bits")}, parts, [])
+        out[raw["name"]] = f
+        count = f.count if isinstance(f, ir.ArrayField) else 1
+        if count > 1 or "item_names" in raw:
+            found = items.items_of(r, parts, sets, raw.get("item_names"), count, f.unit)
+            if found:
+                named[f.name] = found
+        if "bits" in raw:
+            if count > 1 or getattr(f, "enum", None) is not None or f.unit:
+                r.fail(parts + ["bits"], "bits need one double with no enum and no unit")
+            bits[f.name] = items.bits_of(raw["bits"])
+    return out, named, bits
 
 
 def _check_filter_names(r: Resolver, protocol: str, raw_fields: list, size_field: ir.AnyField) -> None:

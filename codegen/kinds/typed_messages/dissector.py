@@ -7,21 +7,30 @@ kept (its label is the first one's); resolve.py has checked that each name has o
 none of the dissector's own (model.OWN_FIELDS, value_<scalar>)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Optional
 
 from ... import exchanges, ir
+from ...items import titled
 from . import model
 from .plan import MessagePlan, TypedPlan
 
 
 @dataclass(frozen=True)
 class Field:
-    name: str                          # filtered as <protocol>.<name>
+    name: str                          # filtered as <protocol>.<name>, unless `filter` says otherwise
     label: str
-    type: str                          # a scalar's name (uint8, float64), or string, framenum or bytes
+    type: str                          # a scalar's name (uint8, float64), or string, framenum, bytes or flag
     unit: Optional[str] = None         # an integer's unit, shown after its value
     enum: Optional[str] = None         # the enum whose names an integer shows; TYPE_CODES: the type codes
+    width: int = 0                     # a flag's: the bits of the integer it is one of
+    mask: int = 0                      # a flag's bit
+    filter: str = ""                   # a named item's: its vector's name, which filters every item
+
+    @property
+    def abbrev(self) -> str:
+        """The filter name after <protocol>."""
+        return self.filter or self.name
 
     @property
     def is_float(self) -> bool:
@@ -58,10 +67,15 @@ class Message:
 
 @dataclass(frozen=True)
 class Variable:
-    """A row of the variable table: its field is the one named like it."""
+    """A row of the variable table: its field is the one named like it; its flags' fields are
+    named <name>.<bit>, in bit order."""
     name: str
     value_type: str
     unit: Optional[str]                # a double's unit, shown after its value (integers' is their field's)
+    flags: tuple[str, ...] = ()
+    items: tuple[str, ...] = ()        # a vector's named items: their fields, in order (none for the vector)
+    item_units: tuple[Optional[str], ...] = ()   # each double item's unit
+    group: str = ""                    # a named vector's subtree text: its label and unit
 
 
 @dataclass(frozen=True)
@@ -100,12 +114,37 @@ def _header() -> tuple[Field, ...]:
             Field("kind", "Message", "string"), Field("direction", "Direction", "string"),
             Field("recipe_frame", "Recipe set up in frame", "framenum"),
             Field("protocol", "Protocol version in force", "uint8"),
-            Field("unknown_variable", "Variable not in the table", "bytes"))
+            Field("unknown_variable", "Variable not in the table", "bytes"),
+            Field("variable", "Variable a setup reply types", "string"))
 
 
 def _scalar(name: str, label: str, scalar: ir.Scalar, unit: Optional[str], enum: Optional[ir.Enum]) -> Field:
     integer = not (scalar.is_float or scalar.is_bool)
     return Field(name, label, scalar.name, unit if integer else None, enum.name if enum and integer else None)
+
+
+def item_field(variable: str, index: int) -> str:
+    """The key of a named item's field: not a filter name (the item filters as its vector)."""
+    return f"{variable}:{index}"
+
+
+def _variable_fields(v: model.Variable) -> list[Field]:
+    """A variable's field, then one per flag (a bit of the same bytes); a vector with named items
+    one field per item instead, each filtered by the vector's name."""
+    scalar = v.value_type.scalar
+    if v.items:
+        return [replace(_scalar(item_field(v.name, k), i.label, scalar, i.unit, v.enum), filter=v.name)
+                for k, i in enumerate(v.items)]
+    return [_scalar(v.name, v.label, scalar, v.unit, v.enum)] + [
+        Field(f"{v.name}.{b.name}", b.label, "flag", width=scalar.bits, mask=b.mask) for b in v.bits]
+
+
+def _variable(v: model.Variable) -> Variable:
+    double = v.value_type.scalar.is_float
+    return Variable(v.name, v.value_type.name, v.unit if double else None, tuple(f"{v.name}.{b.name}" for b in v.bits),
+                    tuple(item_field(v.name, k) for k in range(len(v.items))),
+                    tuple(i.unit if double else None for i in v.items),
+                    titled(v.label, v.unit) if v.items else "")
 
 
 def _body_field(f) -> Optional[Field]:
@@ -134,13 +173,12 @@ def dissector(planned: TypedPlan) -> Dissector:
                    for s in planned.value_scalars)
     fields: dict[str, Field] = {model.RECIPE_ID[0]: Field(model.RECIPE_ID[0], "Recipe id", model.RECIPE_ID[1])}
     for f in [_body_field(f) for m in interface.messages for f in m.fields] \
-            + [_scalar(v.name, v.label, v.value_type.scalar, v.unit, None) for v in interface.variables]:
+            + [g for v in interface.variables for g in _variable_fields(v)]:
         if f is not None:
             fields.setdefault(f.name, f)
     messages = tuple(Message(mp, tuple(_step(f) for f in mp.message.fields)) for mp in planned.messages)
     by_name = {m.message.name: m for m in messages}
-    variables = tuple(Variable(v.name, v.value_type.name, v.unit if v.value_type.scalar.is_float else None)
-                      for v in {v.name: v for v in interface.variables}.values())
+    variables = tuple(_variable(v) for v in {v.name: v for v in interface.variables}.values())
     value_types = tuple(ValueType(t.name, t.scalar, t.scalar.size, t.count, value_field(t.scalar))
                         for t in interface.value_types)
     return Dissector(planned, header, values, tuple(fields.values()), tuple(interface.enums), messages,

@@ -23,7 +23,7 @@ from .plan import TypedPlan
 FIELD_TYPES = {"bool": "FT_BOOLEAN", "int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16",
                "uint16": "FT_UINT16", "int32": "FT_INT32", "uint32": "FT_UINT32", "int64": "FT_INT64",
                "uint64": "FT_UINT64", "float32": "FT_FLOAT", "float64": "FT_DOUBLE", "string": "FT_STRING",
-               "framenum": "FT_FRAMENUM", "bytes": "FT_BYTES"}
+               "framenum": "FT_FRAMENUM", "bytes": "FT_BYTES", "flag": "FT_BOOLEAN"}
 # Scalars the state may read (runtime/epan/typed_messages/rtde_dissect.c reads 1, 2 or 4 bytes as an integer), as
 # the Lua runtime keeps the values it reads with uint() and int().
 INTEGER_SCALARS = ("bool", "int8", "uint8", "int16", "uint16", "int32", "uint32")
@@ -56,11 +56,12 @@ class FieldView:
     ftype: str
     base: str
     strings: str               # VALS(...), UNS(&...) or NULL
+    mask: str = "0x0"
 
     @property
     def line(self) -> str:
         return spread([f"&hf_{self.prefix}[{self.enum}]", "{ " + c.string(self.label),
-                       c.string(self.abbrev), self.ftype, self.base, self.strings, "0x0", "NULL", "HFILL } }"],
+                       c.string(self.abbrev), self.ftype, self.base, self.strings, self.mask, "NULL", "HFILL } }"],
                       "{ ", ",", "        ")
 
 
@@ -82,6 +83,8 @@ class _Units:
 
 def _strings(f: Field, prefix: str, units: _Units) -> tuple[str, str]:
     """A field's base and value string."""
+    if f.type == "flag":
+        return str(f.width), "NULL"
     if not f.is_integer:
         return "BASE_NONE", "NULL"
     if f.unit:
@@ -96,7 +99,7 @@ def _vals(enum: str, prefix: str) -> str:
 
 
 def _hf(name: str, prefix: str) -> str:
-    return f"{prefix.upper()}_HF_{name.upper()}"
+    return f"{prefix.upper()}_HF_{re.sub('[^A-Z0-9]', '_', name.upper())}"
 
 
 def _step(s: Step, prefix: str) -> str:
@@ -129,8 +132,9 @@ def view(d: Dissector, upstream: bool) -> dict:
     fields = []
     for f in d.all_fields:
         base, strings = _strings(f, prefix, units)
-        fields.append(FieldView(prefix, f.name, _hf(f.name, prefix), f.label, f"{prefix}.{f.name}",
-                                FIELD_TYPES[f.type], base, strings))
+        fields.append(FieldView(prefix, f.name, _hf(f.name, prefix), f.label, f"{prefix}.{f.abbrev}",
+                                FIELD_TYPES[f.type], base, strings,
+                                f"0x{f.mask:0{f.width // 4}x}" if f.type == "flag" else "0x0"))
     layouts, steps, layout_of = [], [], {}
     for m in d.messages:
         steps.append({"name": f"{prefix}_steps_{m.message.name}", "rows": [_step(s, prefix) for s in m.steps]})
@@ -160,9 +164,14 @@ def view(d: Dissector, upstream: bool) -> dict:
         "own_units": [{"var": var, "text": c.string(" " + unit)} for unit, var in units.own.items()],
         "value_types": [{"name": c.string(t.name), "size": t.size, "count": t.count, "field": _hf(t.field, prefix)}
                         for t in d.value_types],
-        "variables": [{"name": c.string(v.name), "field": _hf(v.name, prefix),
-                       "unit": c.string(" " + v.unit) if v.unit else "NULL", "type": value_types.index(v.value_type)}
+        "variables": [{"name": c.string(v.name), "field": _hf(v.items[0] if v.items else v.name, prefix),
+                       "unit": c.string(" " + v.unit) if v.unit else "NULL", "type": value_types.index(v.value_type),
+                       "n_flags": _flags_after(v, [f.name for f in d.all_fields]),
+                       "group": c.string(v.group) if v.group else "NULL",
+                       "units": _units_of(v, prefix) if any(v.item_units) else "NULL"}
                       for v in sorted(d.variables, key=lambda v: v.name.encode())],
+        "item_units": [{"var": _units_of(v, prefix), "units": [c.string(" " + u) if u else "NULL" for u in v.item_units]}
+                       for v in d.variables if any(v.item_units)],
         "steps": [s for s in steps if s["rows"]],
         "layouts": layouts, "index": index, "max_protocol": max_protocol,
         "codes": [code for code, _ in d.plan.codes],
@@ -185,6 +194,23 @@ def render(planned: TypedPlan, banner: list[str], upstream: bool = False) -> dic
     text = env.get_template("typed_messages/packet.c.j2").render(
         banner=banner, **merged(view(d, upstream), exchanges_view(d, exchanges_of(planned))))
     return {f"epan/packet-{planned.interface.name.replace('_', '-')}.c": text}
+
+
+def _flags_after(v, names: list[str]) -> int:
+    """How many flag fields follow a variable's own in hf_rtde (the dissector model puts them there);
+    a vector's named items' fields follow one another likewise."""
+    if v.items:
+        at = names.index(v.items[0])
+        assert names[at:at + len(v.items)] == list(v.items), v.name
+        return 0
+    at = names.index(v.name)
+    assert names[at + 1:at + 1 + len(v.flags)] == list(v.flags), v.name
+    return len(v.flags)
+
+
+def _units_of(v, prefix: str) -> str:
+    """The array of a named vector's units, one per item."""
+    return f"{prefix}_units_{v.name}"
 
 
 def _shared(name: str) -> str:

@@ -16,7 +16,8 @@ from .plan import TypedPlan
 # Wireshark field constructors by field type.
 PROTOFIELD = {"bool": "bool", "int8": "int8", "uint8": "uint8", "int16": "int16", "uint16": "uint16",
               "int32": "int32", "uint32": "uint32", "int64": "int64", "uint64": "uint64",
-              "float32": "float", "float64": "double", "string": "string", "framenum": "framenum", "bytes": "bytes"}
+              "float32": "float", "float64": "double", "string": "string", "framenum": "framenum", "bytes": "bytes",
+              "flag": "bool"}
 # How the runtime reads a scalar from a TvbRange (runtime/lua/typed_messages/dissect.lua's READ table).
 READER = {"bool": "uint", "int8": "int", "uint8": "uint", "int16": "int", "uint16": "uint", "int32": "int",
           "uint32": "uint", "int64": "int64", "uint64": "uint64", "float32": "float", "float64": "float"}
@@ -35,11 +36,12 @@ class FieldView:
     label: str
     args: str                # what follows the label: base and value string, or a description
     prefix: str = ""
+    abbrev: str = ""         # the filter name after the prefix
 
     @property
     def line(self) -> str:
         """Its entry of the F table, wrapped under its first argument when long."""
-        return spread([lang.string(f"{self.prefix}.{self.name}"), lang.string(self.label), self.args],
+        return spread([lang.string(f"{self.prefix}.{self.abbrev}"), lang.string(self.label), self.args],
                       f"[{lang.string(self.name)}] = ProtoField.{self.call}(", "),", "    ")
 
 
@@ -48,6 +50,8 @@ def _enum_table(name: str) -> str:
 
 
 def _args(f: Field) -> str:
+    if f.type == "flag":
+        return f"{f.width}, nil, 0x{f.mask:0{f.width // 4}x}"
     if f.is_float:
         return "nil"
     if not f.is_integer:
@@ -58,7 +62,7 @@ def _args(f: Field) -> str:
 
 
 def _field(f: Field, prefix: str) -> FieldView:
-    return FieldView(f.name, PROTOFIELD[f.type], f.label, _args(f), prefix)
+    return FieldView(f.name, PROTOFIELD[f.type], f.label, _args(f), prefix, f.abbrev)
 
 
 def _unit(unit: Optional[str]) -> str:
@@ -96,6 +100,10 @@ def view(d: Dissector) -> dict:
         "value_types": [{"name": t.name, "size": t.size, "count": t.count, "read": READER[t.scalar.name],
                          "field": t.field} for t in d.value_types],
         "variables": [{"name": v.name, "unit": _unit(v.unit), "type": v.value_type} for v in d.variables],
+        "flags": [(v.name, [f"F[{lang.string(f)}]" for f in v.flags]) for v in d.variables if v.flags],
+        "items": [(v.name, lang.string(v.group), [f"{{ F[{lang.string(f)}], {_unit(u)} }}"
+                                                  for f, u in zip(v.items, v.item_units)])
+                  for v in d.variables if v.items],
         "refusals": [r.word for r in interface.refusals],
         "max_pending": interface.max_pending_setups,
         "codes": d.plan.codes,

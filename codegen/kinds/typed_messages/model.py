@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from typing import Optional, Union
 
 from ... import exchanges, ir
+from ...items import Bit, Item
 # A first version the sources do not give (UNKNOWN), and not in that generation at all (NONE): one
 # spelling for every table with a column per series.
 from ...series import NONE, UNKNOWN  # noqa: F401
@@ -54,7 +55,7 @@ BodyField = Union[ir.ScalarField, ir.StringField, NamesField, RecipeValuesField]
 # Every message field and every variable is one filterable field `<protocol>.<name>` in the
 # dissectors. These names are the dissectors' own: the header's fields, those the state adds, and
 # value_<scalar> (a value a setup reply types otherwise than the variable table).
-OWN_FIELDS = ("length", "type", "kind", "direction", "recipe_frame", "protocol", "unknown_variable")
+OWN_FIELDS = ("length", "type", "kind", "direction", "recipe_frame", "protocol", "unknown_variable", "variable")
 # The request/response links' fields are the dissectors' own too (rtde.response_in, rtde.time).
 LINK_FIELDS = exchanges.NAMES
 VALUE_FIELD_PREFIX = "value_"
@@ -142,6 +143,9 @@ class Variable:
     doc: str
     since: dict[str, Union[ir.Version, str]]   # generation -> first version, UNKNOWN or NONE
     where: ir.Where = ir.NOWHERE
+    enum: Optional[ir.Enum] = None      # the names of an integer's codes
+    bits: tuple[Bit, ...] = ()          # the flags an integer carries
+    items: tuple[Item, ...] = ()        # a vector's named items (codegen/items.py)
 
     def since_text(self, generation: str) -> str:
         first = self.since[generation]

@@ -4,7 +4,7 @@ Enums and scalar/string fields go through the primary resolver (codegen.resolve.
 they become the same ir.Enum and ir.Field objects; every problem names its YAML path and line."""
 from __future__ import annotations
 
-from ... import ir, series
+from ... import ir, items, series
 from ...errors import Problem, SpecError
 from ...load import LoadedSpec
 from ...resolve import Resolver
@@ -44,7 +44,9 @@ class _TypedResolver(Resolver):
                                         _COLUMN_FROM.get(g["name"], (0, 0, 0)))
                        for g in data.get("generations", [])]
         follows = ir.parse_version(proto["polyscope_x_follows"]) if "polyscope_x_follows" in proto else None
-        variables = self.variables(data["variables"], {t.name: t for t in value_types}, generations, follows)
+        sets = items.item_sets(self, data.get("item_names"))
+        variables = self.variables(data["variables"], {t.name: t for t in value_types}, generations, follows,
+                                   sets)
         self.check_filter_names(proto["name"], messages, variables)
         exchanges = self.exchanges(data["exchanges"]["pairs"], by_name)
         return model.Interface(
@@ -167,9 +169,10 @@ class _TypedResolver(Resolver):
                                 named(raw["requests"], "requests", "variables", False),
                                 named(raw["replies"], "replies", "types", True), raw["doc"])
 
-    def variables(self, raws, types: dict, generations, follows) -> list[model.Variable]:
+    def variables(self, raws, types: dict, generations, follows, sets: dict) -> list[model.Variable]:
         out: list[model.Variable] = []
         seen: set[tuple[str, str]] = set()
+        meanings: dict[str, tuple] = {}     # a name's enum, bits and items: one field shows both directions
         for i, raw in enumerate(raws):
             parts = ["variables", i]
             vt = types.get(raw["type"])
@@ -188,6 +191,7 @@ class _TypedResolver(Resolver):
                     continue
                 since[g.name] = given if given in (model.UNKNOWN, model.NONE) else \
                     (ir.parse_version(given) if given else g.first)
+            enum, bits, named = self.variable_meanings(raw, parts, vt, sets)
             pattern, indices = raw["name"], raw.get("indices")
             if ("{n}" in pattern) != (indices is not None):
                 self.fail(parts, "a name with {n} needs 'indices: [first, last]', and only such a name")
@@ -198,9 +202,32 @@ class _TypedResolver(Resolver):
                 if (name, raw["direction"]) in seen:
                     self.fail(parts + ["name"], f"variable {name} ({raw['direction']}) is listed twice")
                 seen.add((name, raw["direction"]))
+                meaning = (enum.name if enum else None, bits, named)
+                if meanings.setdefault(name, meaning) != meaning:
+                    self.fail(parts, f"variable {name} names its enum, bits or items otherwise than in its other "
+                                     f"direction, and one field shows both")
                 out.append(model.Variable(name, vt, raw["direction"], label, raw.get("unit"), raw.get("doc", ""),
-                                          since, self.where(parts)))
+                                          since, self.where(parts), enum, bits, named))
         return out
+
+    def variable_meanings(self, raw: dict, parts, vt: model.ValueType, sets: dict) -> tuple:
+        """A variable's enum (its codes fit its scalar), bits (one integer's) and named items."""
+        enum = self.enum_ref(raw["enum"], parts + ["enum"]) if "enum" in raw else None
+        if enum is not None:
+            if vt.scalar.is_float or vt.scalar.is_bool:
+                self.fail(parts + ["enum"], "an enum needs integer values")
+            misfits = [v.name for v in enum.values if not vt.scalar.min <= v.value <= vt.scalar.max]
+            if misfits:
+                self.fail(parts + ["enum"], f"enum '{enum.name}' has codes that do not fit {raw['type']}: "
+                                            f"{', '.join(misfits)}")
+        bits = items.bits_of(raw.get("bits", []))
+        if bits and (vt.count > 1 or not vt.scalar.is_integer or enum is not None or "unit" in raw):
+            self.fail(parts + ["bits"], "bits need one integer with no enum and no unit")
+        elif bits and len(bits) > vt.scalar.bits:
+            self.fail(parts + ["bits"], f"{len(bits)} bit names do not fit in {raw['type']}")
+        named = items.items_of(self, parts, sets, raw.get("item_names"), vt.count, raw.get("unit")) \
+            if vt.count > 1 or "item_names" in raw else ()
+        return enum, bits, named
 
 
 def _runs_to_end(f) -> bool:

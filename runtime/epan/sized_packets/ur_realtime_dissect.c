@@ -87,14 +87,29 @@ static const char *ur_realtime_name_of(double value, const value_string *names)
     return try_val_to_str((guint32)(gint32)value, names);
 }
 
-/* One double (its field's label shows its unit); an enum code's name after it where the form has
- * one. */
-static void ur_realtime_add_value(proto_tree *tree, const ur_realtime_slot *slot, tvbuff_t *tvb, gint at,
+/* The flags of a whole value from 0 up to 2^32 - 1 (none for another): one per named bit. */
+static void ur_realtime_add_flags(proto_item *item, const ur_realtime_slot *slot, tvbuff_t *tvb, gint at, double value)
+{
+    proto_tree *tree;
+    guint i;
+
+    if (!(value >= 0 && value < 4294967296.0) || (double)(guint32)value != value)
+        return;
+    tree = proto_item_add_subtree(item, *slot->flags_ett);
+    for (i = 0; i < slot->n_flags; i++)
+        proto_tree_add_boolean(tree, slot->flags[i], tvb, at, 8, (guint32)value);
+}
+
+/* One double, the k-th of its slot (its field's label shows its unit: a named item's own); an enum
+ * code's name after it where the form has one, and its flags where the field names its bits. */
+static void ur_realtime_add_value(proto_tree *tree, const ur_realtime_slot *slot, guint k, tvbuff_t *tvb, gint at,
                                   const value_string *names)
 {
-    proto_item *item = proto_tree_add_item(tree, *slot->hf, tvb, at, 8, ENC_BIG_ENDIAN);
+    proto_item *item = proto_tree_add_item(tree, slot->hf[slot->named ? k : 0], tvb, at, 8, ENC_BIG_ENDIAN);
     const char *name;
 
+    if (slot->flags != NULL)
+        ur_realtime_add_flags(item, slot, tvb, at, tvb_get_ntohieee_double(tvb, at));
     if (names == NULL)
         return;
     name = ur_realtime_name_of(tvb_get_ntohieee_double(tvb, at), names);
@@ -158,13 +173,13 @@ static void ur_realtime_walk(tvbuff_t *tvb, proto_tree *tree, const ur_realtime_
         const ur_realtime_slot *slot = &layout->slots[i];
         const value_string *names = slot->names >= 0 ? form->names[slot->names] : NULL;
         if (slot->ett == NULL) {
-            ur_realtime_add_value(tree, slot, tvb, slot->offset, names);
+            ur_realtime_add_value(tree, slot, 0, tvb, slot->offset, names);
             continue;
         }
         proto_tree *group = proto_tree_add_subtree(tree, tvb, slot->offset, 8 * slot->count, *slot->ett, NULL,
                                                    slot->group);
         for (k = 0; k < slot->count; k++)
-            ur_realtime_add_value(group, slot, tvb, slot->offset + 8 * k, names);
+            ur_realtime_add_value(group, slot, k, tvb, slot->offset + 8 * k, names);
     }
 }
 

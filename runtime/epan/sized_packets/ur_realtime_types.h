@@ -8,12 +8,16 @@
 /* </standalone> */
 
 typedef struct {
-    int *hf;                    /* the field */
+    int *hf;                    /* the field, or its named items' fields (`named`), one per double */
+    gboolean named;
     gint *ett;                  /* an array's subtree; NULL for one double */
     const char *group;          /* an array's subtree text: the label and its unit */
     guint16 offset;             /* in the packet, size field included */
     guint16 count;              /* doubles */
     gint8 names;                /* the field's enum, an index into a form's names; -1 none */
+    int *flags;                 /* the flags a double's whole value carries, one per named bit; NULL none */
+    guint8 n_flags;
+    gint *flags_ett;            /* their subtree */
 } ur_realtime_slot;
 
 typedef struct {

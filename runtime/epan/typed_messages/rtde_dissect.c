@@ -62,7 +62,7 @@ typedef struct {
     const rtde_notes *notes;
 } rtde_view;
 
-static const rtde_notes rtde_no_notes = { NULL, 0, NULL, 0, NULL, NULL, NULL };
+static const rtde_notes rtde_no_notes = { NULL, 0, NULL, 0, NULL, NULL, NULL, NULL };
 
 static const rtde_layout *
 rtde_layout_for(guint8 code, gboolean from_robot, guint protocol)
@@ -101,7 +101,8 @@ rtde_kept_notes(packet_info *pinfo, rtde_when when)
 static void
 rtde_keep_notes(packet_info *pinfo, rtde_when when, const rtde_notes *notes)
 {
-    if (notes->warning || notes->n_refused || notes->n_retyped || notes->not_kept || notes->protocol_error)
+    if (notes->warning || notes->n_refused || notes->n_retyped || notes->not_kept || notes->protocol_error
+        || notes->request)
         p_add_proto_data(wmem_file_scope(), pinfo, proto_rtde, when.place,
                          wmem_memdup(wmem_file_scope(), notes, sizeof *notes));
 }
@@ -138,6 +139,32 @@ rtde_labels_shown(void)
     return tshark_fields_arguments() == NULL;
 }
 
+/* The flags of a variable's bits, under its item. */
+static void
+rtde_add_flags(proto_item *item, tvbuff_t *tvb, int pos, guint size, const rtde_variable *variable)
+{
+    proto_tree *flags = proto_item_add_subtree(item, ett_rtde_item);
+    guint k;
+    for (k = 0; k < variable->n_flags; k++)
+        proto_tree_add_item(flags, hf_rtde[variable->field + 1 + (int)k], tvb, pos, (int)size, ENC_BIG_ENDIAN);
+}
+
+/* A vector whose items the spec names: a subtree of one field per item, each with its unit. */
+static void
+rtde_add_named_items(proto_tree *tree, tvbuff_t *tvb, int pos, const rtde_value_type *vt, int field,
+                     const rtde_variable *variable, gboolean labels)
+{
+    proto_tree *group = proto_tree_add_subtree(tree, tvb, pos, vt->size * vt->count, ett_rtde_item, NULL,
+                                               variable->group);
+    guint j;
+    for (j = 0; j < vt->count; j++) {
+        proto_item *item = proto_tree_add_item(group, hf_rtde[field + (int)j], tvb, pos + (int)(j * vt->size), vt->size,
+                                               ENC_BIG_ENDIAN);
+        if (labels && variable->units && variable->units[j])
+            proto_item_append_text(item, "%s", variable->units[j]);
+    }
+}
+
 /* A recipe's values, an item per scalar (a vector's items in order, each by the variable's field,
  * with its index). A name the variable table lacks (a newer controller's) shows its value's bytes
  * whole, with the name. A variable the setup reply types otherwise than the table is read by the
@@ -149,7 +176,9 @@ rtde_add_values(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb, int pos, co
     gboolean labels = rtde_labels_shown();
     for (i = 0; i < recipe->n; i++) {
         const rtde_value_type *vt = &rtde_value_types[recipe->type[i]];
-        if (recipe->field[i] < 0) {
+        if (recipe->variable[i] && recipe->variable[i]->group) {
+            rtde_add_named_items(tree, tvb, pos, vt, recipe->field[i], recipe->variable[i], labels);
+        } else if (recipe->field[i] < 0) {
             proto_item_append_text(proto_tree_add_item(tree, hf_rtde[RTDE_HF_UNKNOWN_VARIABLE], tvb, pos,
                                                        vt->size * vt->count, ENC_NA), "%s", recipe->name[i]);
         } else {
@@ -164,6 +193,8 @@ rtde_add_values(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb, int pos, co
                     proto_item_append_text(item, " [%u]", j);
                 if (recipe->retyped[i] && j == 0)
                     expert_add_info_format(pinfo, item, &ei_rtde_retyped, "%s", recipe->retyped[i]);
+                if (recipe->variable[i] && recipe->variable[i]->n_flags)
+                    rtde_add_flags(item, tvb, pos + (int)(j * vt->size), vt->size, recipe->variable[i]);
             }
         }
         pos += vt->size * vt->count;
@@ -182,11 +213,38 @@ rtde_retyped_experts(packet_info *pinfo, const rtde_recipe *recipe)
     }
 }
 
+/* A setup reply's types, each paired with the variable the request named in its place: under the
+ * types' item, on each type's bytes (split at the commas of the bytes, as the state splits them). */
+static void
+rtde_add_pairs(proto_item *item, tvbuff_t *tvb, int pos, int stop, const rtde_request *request)
+{
+    guint n = (guint)(stop > pos ? stop - pos : 0), count, i;
+    guint *start, *length;
+    proto_tree *tree;
+    if (n == 0)
+        return;
+    count = rtde_split(tvb_get_ptr(tvb, pos, (gint)n), n, NULL, NULL);
+    if (count != request->n)
+        return;
+    start = wmem_alloc_array(wmem_packet_scope(), guint, count + 1);
+    length = wmem_alloc_array(wmem_packet_scope(), guint, count + 1);
+    rtde_split(tvb_get_ptr(tvb, pos, (gint)n), n, start, length);
+    tree = proto_item_add_subtree(item, ett_rtde_item);
+    for (i = 0; i < count; i++) {
+        const char *name = wmem_strndup(wmem_packet_scope(), (const char *)request->text + request->start[i],
+                                        request->length[i]);
+        const guint8 *type = rtde_text_of(tvb, pos + (int)start[i], length[i]);
+        const char *text = rtde_pair_text(wmem_packet_scope(), request, i, type, length[i]);
+        proto_item_set_generated(proto_tree_add_string_format(tree, hf_rtde[RTDE_HF_VARIABLE], tvb,
+                                                              pos + (int)start[i], (int)length[i], name, "%s", text));
+    }
+}
+
 /* One step of a layout: adds its items (when there is a tree) and returns the next position, or -1
- * when it does not fit. */
+ * when it does not fit; `added` is the item of a names step. */
 static int
 rtde_step_at(const rtde_step *s, proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb, int pos, int stop,
-             rtde_values *values, const rtde_view *view)
+             rtde_values *values, const rtde_view *view, proto_item **added)
 {
     switch (s->kind) {
     case RTDE_STEP_SCALAR: {
@@ -232,9 +290,9 @@ rtde_step_at(const rtde_step *s, proto_tree *tree, packet_info *pinfo, tvbuff_t 
             values->types_length = n;
         }
         if (n)
-            proto_tree_add_item(tree, hf_rtde[s->field], tvb, pos, n, ENC_ASCII);
+            *added = proto_tree_add_item(tree, hf_rtde[s->field], tvb, pos, n, ENC_ASCII);
         else
-            proto_tree_add_string(tree, hf_rtde[s->field], tvb, pos, 0, "");
+            *added = proto_tree_add_string(tree, hf_rtde[s->field], tvb, pos, 0, "");
         return stop;
     }
     case RTDE_STEP_VALUES: {
@@ -267,7 +325,9 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     rtde_when when = { pinfo->num, (guint32)(tvb_raw_offset(tvb) + offset) };
     gboolean first = !pinfo->fd->visited;
     rtde_view view = { 0, FALSE, NULL, &rtde_no_notes };
-    rtde_notes notes = { NULL, 0, NULL, 0, NULL, NULL, NULL };
+    rtde_notes notes = { NULL, 0, NULL, 0, NULL, NULL, NULL, NULL };
+    proto_item *names_item = NULL;
+    int names_pos = 0;
     guint i;
 
     proto_tree_add_item(msg_tree, hf_rtde[RTDE_HF_LENGTH], tvb, offset, 2, ENC_BIG_ENDIAN);
@@ -312,11 +372,16 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     }
     for (i = 0; i < layout->n_steps; i++) {
         const rtde_step *s = &layout->steps[i];
-        int next = rtde_step_at(s, msg_tree, pinfo, tvb, pos, stop, &values, &view);
+        proto_item *added = NULL;
+        int next = rtde_step_at(s, msg_tree, pinfo, tvb, pos, stop, &values, &view, &added);
         if (next < 0) {
             expert_add_info_format(pinfo, item, &ei_rtde_short, "%s at offset %d: does not fit", s->name,
                                    pos - offset);
             return layout->label;
+        }
+        if (s->kind == RTDE_STEP_NAMES) {
+            names_item = added;
+            names_pos = pos;
         }
         pos = next;
     }
@@ -329,6 +394,8 @@ rtde_dissect_message(tvbuff_t *tvb, packet_info *pinfo, proto_tree *tree, int of
     } else {
         view.notes = rtde_kept_notes(pinfo, when);
     }
+    if (view.notes->request && names_item)
+        rtde_add_pairs(names_item, tvb, names_pos, pos, view.notes->request);
     for (i = 0; i < view.notes->n_refused; i++)
         expert_add_info_format(pinfo, item, &ei_rtde_refused, "%s", view.notes->refused[i]);
     for (i = 0; i < view.notes->n_retyped; i++)

@@ -44,6 +44,7 @@ typedef struct rtde_recipe {
     const char **name;          /* " (name)" after a name the table lacks or one retyped, else NULL */
     const char **retyped;       /* what the expert says of a variable the reply types otherwise, else NULL */
     const char **unit;
+    const rtde_variable **variable;     /* its row of the variable table (its flags); NULL for none or retyped */
     guint8 *type;
     guint size;                 /* the bytes of all its values */
 } rtde_recipe;
@@ -88,7 +89,8 @@ typedef struct {
 
 /* What a message changed that the dissector shows: a warning, the variables a setup refused
  * ("name: WORD" each) or types otherwise than the table, a request not kept or the reply to one,
- * a protocol version accepted that has no layouts. */
+ * a protocol version accepted that has no layouts, and the request whose names a setup reply's
+ * types answer, one for one. */
 typedef struct {
     const char *warning;
     guint n_refused;
@@ -97,6 +99,7 @@ typedef struct {
     const char **retyped;
     const char *not_kept;
     const char *protocol_error;
+    const rtde_request *request;
 } rtde_notes;
 
 static rtde_state *
@@ -254,12 +257,14 @@ rtde_take_request(rtde_state *state, int kind)
     return request;
 }
 
-/* "name: WORD" (a NUL in either ends it, as it ends any C text). */
+/* "name: WORD", of a refusal or of a type paired with its name (a NUL in either ends it, as it ends
+ * any C text, and the Lua dissector's text). */
 static char *
-rtde_refusal_text(const rtde_request *request, guint i, const guint8 *word, guint word_length)
+rtde_pair_text(wmem_allocator_t *scope, const rtde_request *request, guint i, const guint8 *word,
+               guint word_length)
 {
     guint name_length = request->length[i];
-    char *text = (char *)wmem_alloc(wmem_file_scope(), name_length + 2 + word_length + 1);
+    char *text = (char *)wmem_alloc(scope, name_length + 2 + word_length + 1);
     memcpy(text, request->text + request->start[i], name_length);
     memcpy(text + name_length, ": ", 2);
     memcpy(text + name_length + 2, word, word_length);
@@ -325,6 +330,7 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
         rtde_forget_recipe(state, kind, values->recipe_id, when);
         return;
     }
+    notes->request = request;
     start = wmem_alloc_array(wmem_packet_scope(), guint, n + 1);
     length = wmem_alloc_array(wmem_packet_scope(), guint, n + 1);
     type = wmem_alloc_array(wmem_packet_scope(), int, n + 1);
@@ -339,13 +345,15 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
         notes->refused = wmem_alloc_array(wmem_file_scope(), char *, notes->n_refused);
         for (i = 0; i < n; i++)
             if (type[i] < 0)
-                notes->refused[k++] = rtde_refusal_text(request, i, values->types + start[i], length[i]);
+                notes->refused[k++] = rtde_pair_text(wmem_file_scope(), request, i, values->types + start[i],
+                                                     length[i]);
         return;
     }
     recipe = wmem_new0(wmem_file_scope(), rtde_recipe);
     recipe->n = n;
     recipe->field = wmem_alloc_array(wmem_file_scope(), int, n + 1);
     recipe->unit = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
+    recipe->variable = wmem_alloc_array(wmem_file_scope(), const rtde_variable *, n + 1);
     recipe->name = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->retyped = wmem_alloc_array(wmem_file_scope(), const char *, n + 1);
     recipe->type = wmem_alloc_array(wmem_file_scope(), guint8, n + 1);
@@ -357,6 +365,7 @@ rtde_make_recipe(rtde_state *state, int kind, const rtde_values *values, rtde_wh
         gboolean retyped = variable && variable->type != (guint8)type[i];
         recipe->field[i] = !variable ? -1 : retyped ? vt->field : variable->field;
         recipe->unit[i] = variable && !retyped ? variable->unit : NULL;
+        recipe->variable[i] = retyped ? NULL : variable;
         recipe->name[i] = variable && !retyped ? NULL : rtde_name_text(request, i);
         recipe->retyped[i] = retyped ? rtde_retyped_text(request, i, vt, &rtde_value_types[variable->type]) : NULL;
         if (retyped)

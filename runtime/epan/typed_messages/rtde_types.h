@@ -71,6 +71,10 @@ typedef struct {
     int field;
     const char *unit;           /* a double's unit, appended to its items' text; NULL for none */
     guint8 type;                /* its value type in the table (index into rtde_value_types) */
+    guint8 n_flags;             /* its flags' fields, which follow its own in hf_rtde */
+    const char *group;          /* a vector with named items: its subtree's text; its items' fields follow
+                                 * `field`, one per item; NULL for another */
+    const char *const *units;   /* the text after each named item's value, or NULL for none */
 } rtde_variable;
 
 typedef struct {

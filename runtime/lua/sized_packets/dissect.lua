@@ -6,7 +6,8 @@
 -- two clients in one capture cannot share anything.
 local spec, rt = ...
 local proto = spec.proto
-local F, LABELS, UNITS, ENUM_OF = spec.fields, spec.labels, spec.units, spec.enum_of
+local F, ITEMS, FLAGS = spec.fields, spec.items, spec.flags
+local LABELS, UNITS, ENUM_OF = spec.labels, spec.units, spec.enum_of
 local LAYOUTS, FORMS = spec.layouts, spec.forms_by_size
 local fmt, floor = string.format, math.floor
 local SIZE_BYTES, MIN_SIZE, MAX_SIZE = spec.size_field_bytes, spec.min_message_size, spec.max_message_size
@@ -28,6 +29,12 @@ local E = {
 local registered_fields = {}
 for _, f in pairs(F) do registered_fields[#registered_fields + 1] = f end
 for _, f in pairs(X) do registered_fields[#registered_fields + 1] = f end
+for _, items in pairs(ITEMS) do
+    for _, item in ipairs(items) do registered_fields[#registered_fields + 1] = item[1] end
+end
+for _, flags in pairs(FLAGS) do
+    for _, f in ipairs(flags) do registered_fields[#registered_fields + 1] = f end
+end
 proto.fields = registered_fields
 proto.experts = { E.unknown_size, E.bad_size }
 
@@ -58,12 +65,19 @@ local function form_of(size)
     return forms[#forms]
 end
 
--- One double: its value with its unit, and an enum code's name where the form has one.
-local function add_value(tree, name, range, names)
+-- One double: its value with its unit (a named item's own: `i`, from 1), an enum code's name
+-- where the form has one, and the flags a whole value carries where the field names its bits.
+local function add_value(tree, name, range, names, i)
     local v = range:float()
-    local item = tree:add(F[name], range, v)
-    if UNITS[name] then item:append_text(" " .. UNITS[name]) end
+    local named = i and ITEMS[name] and ITEMS[name][i]
+    local item = tree:add(named and named[1] or F[name], range, v)
+    local unit = nil
+    if named then unit = named[2] elseif UNITS[name] then unit = " " .. UNITS[name] end
+    if unit then item:append_text(unit) end
     if names and v == floor(v) and names[v] then item:append_text(" (" .. names[v] .. ")") end
+    if FLAGS[name] and v == floor(v) and v >= 0 and v < 2 ^ 32 then
+        for _, flag in ipairs(FLAGS[name]) do item:add(flag, range, v) end
+    end
     return v
 end
 
@@ -109,7 +123,7 @@ local function dissect_packet(tvb, tree, o, size, detail)
         else
             local unit = UNITS[name] and (" (" .. UNITS[name] .. ")") or ""
             local group = sub:add(tvb(at, 8 * count), LABELS[name] .. unit)
-            for i = 0, count - 1 do add_value(group, name, tvb(at + 8 * i, 8), enum) end
+            for i = 0, count - 1 do add_value(group, name, tvb(at + 8 * i, 8), enum, i + 1) end
         end
     end
     return info_of(tvb, o, form)

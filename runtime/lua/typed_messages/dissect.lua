@@ -41,8 +41,17 @@ proto.experts = { E.bad_header, E.short, E.extra, E.refused, E.unknown_recipe, E
                   E.undocumented, E.unknown_type, E.not_kept, E.protocol_unknown, E.retyped }
 
 do
-    local list = {}
-    for _, f in pairs(F) do list[#list + 1] = f end
+    -- A vector's named items share its filter name, of which tshark -G fields lists the first
+    -- registered: they are registered first, in order, as the native dissector registers them.
+    local list, listed = {}, {}
+    for _, named in pairs(spec.items) do
+        for _, entry in ipairs(named.items) do
+            list[#list + 1], listed[entry[1]] = entry[1], true
+        end
+    end
+    for _, f in pairs(F) do
+        if not listed[f] then list[#list + 1] = f end
+    end
     for _, f in ipairs(rt.exchange_field_list) do list[#list + 1] = f end
     proto.fields = list
 end
@@ -83,18 +92,27 @@ local READ = {
 }
 
 -- One value of a recipe: an item per scalar (a vector's items in order, each filterable by the
--- variable's name, with its index). A name the variable table lacks (a newer controller's) shows
--- its value's bytes whole, with the name. A variable the setup reply types otherwise than the
--- table is read by the reply's type, under the field of that type (rtde.value_float64...), with
--- its name and an expert.
+-- variable's name: under a subtree by their names where the spec names them, else with their
+-- index). A name the variable table lacks (a newer controller's) shows its value's bytes whole,
+-- with the name. A variable the setup reply types otherwise than the table is read by the
+-- reply's type, under the field of that type (rtde.value_float64...), with its name and an expert.
 local function add_value(tree, tvb, pos, name, type_name)
     local vt = spec.value_types[type_name]
     local f, unit = F[name], spec.variable_units[name]
-    if not f then
+    if not spec.variable_types[name] then
         tree:add(F.unknown_variable, tvb(pos, vt.size * vt.count)):append_text(" (" .. name .. ")")
         return
     end
     local retyped = rt.retyped(name, type_name)
+    local named = not retyped and spec.items[name]
+    if named then
+        local group = tree:add(tvb(pos, vt.size * vt.count), named.group)
+        for i, entry in ipairs(named.items) do
+            local item = group:add(entry[1], tvb(pos + (i - 1) * vt.size, vt.size))
+            if entry[2] then item:append_text(entry[2]) end
+        end
+        return
+    end
     if retyped then f, unit = F[vt.field], nil end
     for i = 0, vt.count - 1 do
         local item = tree:add(f, tvb(pos + i * vt.size, vt.size))
@@ -102,6 +120,9 @@ local function add_value(tree, tvb, pos, name, type_name)
         if unit then item:append_text(unit) end
         if vt.count > 1 then item:append_text(" [" .. i .. "]") end
         if retyped and i == 0 then item:add_proto_expert_info(E.retyped, retyped) end
+        if not retyped and spec.flags[name] then
+            for _, flag in ipairs(spec.flags[name]) do item:add(flag, tvb(pos + i * vt.size, vt.size)) end
+        end
     end
 end
 
@@ -128,8 +149,8 @@ end
 local function rest(s, tree, tvb, pos, stop, values)
     local text = stop > pos and tvb(pos, stop - pos):string() or ""
     values[s.name] = text
-    if stop > pos then tree:add(F[s.name], tvb(pos, stop - pos)) else tree:add(F[s.name], tvb(pos, 0), "") end
-    return stop
+    if stop > pos then return stop, tree:add(F[s.name], tvb(pos, stop - pos)) end
+    return stop, tree:add(F[s.name], tvb(pos, 0), "")
 end
 STEP.rest_text = rest
 STEP.names = rest
@@ -159,6 +180,26 @@ local function view_of(pinfo, tvb, state, offset)
     view = { protocol = rt.protocol_of(state), assumed = state.protocol == nil }
     views[key] = view
     return view, true
+end
+
+-- A setup reply's types, each paired with the variable the request named in its place: under the
+-- types' item, on each type's bytes (split at the commas of the bytes, as the state splits them).
+local function add_pairs(item, tvb, raw, pos, stop, names)
+    local starts, at = {}, pos
+    while true do
+        starts[#starts + 1] = at
+        local comma = stop > pos and string.find(raw, ",", at + 1, true)
+        if not comma or comma > stop then break end
+        at = comma
+    end
+    if stop == pos or #starts ~= #names then return end
+    starts[#starts + 1] = stop + 1
+    for i, name in ipairs(names) do
+        local range = tvb(starts[i], starts[i + 1] - 1 - starts[i])
+        local shown = item:add(F.variable, range, name)
+        shown:set_text(name .. ": " .. range:string())
+        shown:set_generated()
+    end
 end
 
 local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state, from_robot)
@@ -200,17 +241,20 @@ local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state,
         return layout.label
     end
     local values, pos = {}, offset + HEADER
+    local names_item, names_pos = nil, nil
     for _, s in ipairs(layout.steps) do
-        local next_pos = STEP[s.kind](s, item, tvb, pos, stop, values, view)
+        local next_pos, added = STEP[s.kind](s, item, tvb, pos, stop, values, view)
         if not next_pos then
             item:add_proto_expert_info(E.short, s.name .. " at offset " .. (pos - offset) .. ": does not fit")
             return layout.label
         end
+        if s.kind == "names" then names_item, names_pos = added, pos end
         pos = next_pos
     end
     if pos < stop then item:add_proto_expert_info(E.extra, (stop - pos) .. " bytes after the layout") end
     if first then view.notes = rt.follow(state, layout.name, values, pinfo.number) end
     local notes = view.notes
+    if notes and notes.names and names_item then add_pairs(names_item, tvb, raw, names_pos, pos, notes.names) end
     if notes and notes.refused then
         for _, pair in ipairs(notes.refused) do
             item:add_proto_expert_info(E.refused, pair[1] .. ": " .. pair[2])

@@ -81,8 +81,9 @@ local function version_reply(state, values)
 end
 
 -- What a message changes. `values` holds the message's fields as read (numbers and texts);
--- `frame` is its frame number. Returns what the dissector should show: { refused = { {name, word} },
--- retyped = { text }, warning = text, not_kept = text, protocol_error = text } or nil.
+-- `frame` is its frame number. Returns what the dissector should show: { names = the variables a
+-- setup reply's types answer, refused = { {name, word} }, retyped = { text }, warning = text,
+-- not_kept = text, protocol_error = text } or nil.
 function rt.follow(state, name, values, frame)
     if name == "request_protocol_version" then
         if not push(state.asked, values.protocol_version) then
@@ -125,11 +126,15 @@ function rt.make_recipe(state, kind, values, frame)
         state.recipes[kind][values.recipe_id or NO_ID] = nil
         return notes
     end
+    local shown = { names = request.names }
     local refused = {}
     for i, t in ipairs(types) do
         if spec.refusals[t] or not spec.value_types[t] then refused[#refused + 1] = { request.names[i], t } end
     end
-    if #refused > 0 then return { refused = refused } end
+    if #refused > 0 then
+        shown.refused = refused
+        return shown
+    end
     local id = values.recipe_id
     state.recipes[kind][id or NO_ID] = { id = id, names = request.names, types = types, frame = frame,
                                          request_frame = request.frame }
@@ -138,8 +143,8 @@ function rt.make_recipe(state, kind, values, frame)
         local text = rt.retyped(request.names[i], t)
         if text then retyped[#retyped + 1] = text end
     end
-    if #retyped > 0 then return { retyped = retyped } end
-    return nil
+    if #retyped > 0 then shown.retyped = retyped end
+    return shown
 end
 
 -- What to say of a variable the reply types otherwise than the variable table, or nil: its value is

@@ -6,7 +6,7 @@ S.wireshark_globals()
 local proto = Proto("ur_realtime", "Real-time")
 local spec = {
     proto = proto, name = "ur_realtime", title = "Real-time", ports = "30003,30013", fields = { message_size = "size" },
-    size_field = "message_size", labels = {}, units = {}, enum_of = {},
+    size_field = "message_size", labels = {}, units = {}, enum_of = {}, items = {}, flags = {},
     layouts = { { name = "old", size = 20, slots = {} }, { name = "new", size = 20, slots = {} } },
     forms_by_size = { [20] = { { 0, 3002999, 1, {} }, { 3003000, 5999999, 2, {} } } },
     size_field_bytes = 4, min_message_size = 12, max_message_size = 100,
