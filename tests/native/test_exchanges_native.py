@@ -13,7 +13,8 @@ import pytest
 
 from tests.lua.test_exchanges import CELL, PORTS, check, dashboard_capture, linked, rtde_capture, shown
 from tests.native import harness
-from tests.native.test_lines_native import assert_same
+from tests.native.lua_twin import as_lua_writes
+from tests.native.test_lines_native import lua_shown, native_run
 
 ROOT = Path(__file__).resolve().parents[2]
 RUNTIME = ROOT / "runtime" / "epan"
@@ -42,13 +43,23 @@ def test_one_pass_shows_replies_links_but_not_yet_requests(tmp_path):
     assert not any(f.response_in for f in frames) and any(f.response_to for f in frames)
 
 
+def same_in_both(pcap: Path, protocol: str, args: tuple, variant: str) -> list:
+    """The -T json layers, Info column and expert infos of the native dissector and the Lua one
+    alike, a native subtree's text keyed as Lua keys it (lua_twin.as_lua_writes)."""
+    native = harness.shown(native_run(variant), pcap, [protocol], *args)
+    lua = lua_shown(pcap, [protocol], *args)
+    layers = [as_lua_writes(layer) for layer in native.layers]
+    assert layers == lua.layers and native.info == lua.info and native.experts == lua.experts
+    return layers
+
+
 # The plain build, and the one built with ASan and UBSan (a `deep` test: tests/native/conftest.py).
 @pytest.mark.parametrize("variant", ["gcc", "asan"])
 @pytest.mark.parametrize("protocol", ["ur_dashboard", "rtde"])
 def test_native_and_lua_show_the_same(tmp_path, protocol, variant):
     made = dashboard_capture(tmp_path) if protocol == "ur_dashboard" else rtde_capture(tmp_path)
     for pcap, args in ((made, ()), (CELL, ("-Y", f"tcp.port == {PORTS[protocol]}"))):
-        layers = assert_same(pcap, [protocol], *args, variant=variant).layers
+        layers = same_in_both(pcap, protocol, args, variant)
         assert any("response_in" in str(layer) for layer in layers), pcap
 
 
