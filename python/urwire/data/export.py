@@ -27,12 +27,12 @@ from typing import BinaryIO, Iterator
 
 from ..arguments import software_version
 from ..canonical import has_error, member_text, shown_text, to_json_line
-from ..cell import ports_of
+from ..cell import PRIMARY
 from ..envelope import Enveloped
-from ..interfaces import INTERFACES
-from ..reading import input_kind, timed_records
+from ..reading import input_kind
 from . import export_dataset
 from .export_cell import CellRows
+from .records import conversation_text, records_of_file
 # pyarrow, an optional extra (urwire[parquet]), is imported where Parquet is written: CSV needs none.
 
 # A switch member that holds an int32 or a float32 (int|f32) fits a float64 column exactly.
@@ -159,22 +159,34 @@ class Tables:
             fh = self._files[table] = open(self._spill / f"{table}.rows", "w+b")
         marshal.dump(self._chunks.pop(table), fh)
 
-    def add_record(self, position: int, record, time=None) -> None:
-        if isinstance(record, Enveloped):      # another interface of the cell (export_cell.py)
-            self.cell.add(position, record, time)
+    def add_record(self, position: int, record) -> None:
+        """One record of a capture (Enveloped, with its capture time) or of a raw stream (as it is)."""
+        if not isinstance(record, Enveloped):
+            self._add_primary(position, record, record, [], None)
+        elif record.interface in (PRIMARY, None):   # None: a fault of the capture file, with the primary's errors
+            self._add_primary(position, record.record, record, [("conversation", "text", conversation_text(record))],
+                              record.capture_time)
+        else:                                       # another interface of the cell (export_cell.py)
+            self.cell.add(position, record, record.capture_time)
+
+    def _add_primary(self, position: int, record, printed, where: list, time) -> None:
+        """A primary record's rows, each opening with `where` (a capture's conversation); one with
+        an error goes to `errors` as decode prints it (`printed`: in a capture, with its envelope)."""
+        if has_error(record):
+            self.add("errors", position, [*where, ("record", "text", to_json_line(printed))], time)
             return
-        if has_error(record) or getattr(record, "TYPE", "unknown") == "unknown":
-            self.add(_apart(record), position, [("record", "text", to_json_line(record))], time)
+        if getattr(record, "TYPE", "unknown") == "unknown":
+            self.add("unknown", position, [*where, ("record", "text", to_json_line(record))], time)
             return
         if hasattr(record, "packages"):
-            self.add(record.TYPE, position, [("packages", "int", len(record.packages))], time)
+            self.add(record.TYPE, position, [*where, ("packages", "int", len(record.packages))], time)
             for pkg in record.packages:
                 if hasattr(pkg, "JSON") and not has_error(pkg):
-                    self.add(pkg.TYPE, position, _columns(pkg), time)
+                    self.add(pkg.TYPE, position, [*where, *_columns(pkg)], time)
                 else:
-                    self.add(_apart(pkg), position, [("record", "text", to_json_line(pkg))], time)
+                    self.add(_apart(pkg), position, [*where, ("record", "text", to_json_line(pkg))], time)
             return
-        self.add(record.TYPE, position, _columns(record), time)
+        self.add(record.TYPE, position, [*where, *_columns(record)], time)
 
     def batches(self, table: str) -> Iterator[tuple[int, list[list]]]:
         """The rows of a table in order, BATCH_ROWS at a time: (rows, one list per column)."""
@@ -202,8 +214,9 @@ class Tables:
 def gather(path: str, tables: Tables, hint=None) -> None:
     """Every record of the file: a raw stream of the primary interface, or every conversation of
     a capture that an interface of the cell reads, each by its port."""
-    for position, (time, record) in enumerate(timed_records(path, hint, by_port=ports_of(INTERFACES.values()))):
-        tables.add_record(position, record, time)
+    with open(path, "rb") as fh:
+        for position, record in enumerate(records_of_file(fh, hint)):
+            tables.add_record(position, record)
     tables.cell.finish()
 
 
