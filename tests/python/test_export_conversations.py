@@ -11,6 +11,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -20,13 +21,14 @@ import urwire
 from urwire.canonical import fails
 from urwire.data import dataset, dataset_c
 
-from tests.python.test_two_robots_capture import ROBOTS, conversation, two_robots  # noqa: F401 (a fixture)
+from tests.python.test_two_robots_capture import ESERIES, ROBOTS, conversation, two_robots  # noqa: F401 (a fixture)
 from tests.tools import capture
 from tests.vectors import golden_cases
 
 pq = pytest.importorskip("pyarrow.parquet")
 
 ROOT = Path(__file__).resolve().parents[2]
+DOC = ROOT / "docs" / "tables.md"
 ENV = {"PYTHONPATH": f"{ROOT / 'python'}:{ROOT / 'generated' / 'python'}"}
 WHERE = ("position", "capture_time", "conversation")     # where a row is, not what it holds
 LEAD = ("capture", "capture_file", *WHERE)
@@ -76,6 +78,20 @@ def test_two_robots_tables_split_by_conversation_into_each_robots_own(two_robots
         assert [r["type"] for r in packets] == [r["type"] for r in realtime.expect]
     # Each row is one robot's: none is left over, none counted twice.
     assert primary_rows == sum(len(rows) for table, rows in both.items() if table != "ur_realtime")
+
+
+def test_the_docs_query_of_one_robot_in_a_capture_of_two_answers_with_its_rows(two_robots, tmp_path, monkeypatch):
+    duckdb = pytest.importorskip("duckdb")
+    statement = re.search(r"-- one robot's joints, in a capture of two\n(.*?);", DOC.read_text(encoding="utf-8"),
+                          re.S).group(1)
+    assert conversation(ESERIES, 30001) in statement
+    export(two_robots, tmp_path / "tables", "parquet")
+    monkeypatch.chdir(tmp_path)
+    got = duckdb.sql(statement).fetchall()
+    expected = [package["joints"][0]["q_actual"] for record in ROBOTS[ESERIES][0].expect
+                for package in record.get("packages", []) if package["type"] == "joint_data"]
+    assert got and [q for _, q in got] == expected and all(time is not None for time, _ in got)
+    assert duckdb.sql("SELECT count(*) FROM 'tables/joint_data.parquet'").fetchall()[0][0] > len(got)  # both robots'
 
 
 def _dataset_rows(parts) -> dict[tuple, list[dict]]:

@@ -2,14 +2,15 @@
 primary interface, and per interface for the cell's other interfaces (export_cell.py).
 
 Each table has one row per occurrence: `position` (the message's place in the input, from 0),
-`capture_time` (for a .pcap or .pcapng: the time of the frame that completed the message, in
-seconds since the epoch), then the fields as typed columns. Per-joint values take one column
+then, for a .pcap or .pcapng, `capture_time` (the time of the frame that completed the message,
+in seconds since the epoch) and `conversation` (its TCP conversation, as decode names it), then
+the fields as typed columns. Per-joint values take one column
 per joint, numbered from the base: `q_actual_0` ... `q_actual_5` (a group's fields, prefixed
 with the group's name when a kind has two groups; a list's items as `dh_a_0` ...).
 Global-variable values and text lists are kept as their canonical JSON text. Records and
 sub-packages with an error go to `errors`, and those of kinds the spec does not lay out (kept
-raw, as sub-package 14) to `unknown`, each with its JSON; only errors make the exit status 1, as
-for `decode`. Parquet needs pyarrow (`pip install urwire[parquet]`); CSV needs nothing.
+raw, as sub-package 14) to `unknown`, each with its JSON (an error of a capture as decode prints
+it, envelope included); only errors make the exit status 1, as for `decode`. Parquet needs pyarrow (`pip install urwire[parquet]`); CSV needs nothing.
 Rows are kept in a temporary file per table until the capture ends (a table's columns are
 known only then), and written BATCH_ROWS rows at a time, so memory stays flat however long the
 capture.
