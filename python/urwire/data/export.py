@@ -10,7 +10,8 @@ with the group's name when a kind has two groups; a list's items as `dh_a_0` ...
 Global-variable values and text lists are kept as their canonical JSON text. Records and
 sub-packages with an error go to `errors`, and those of kinds the spec does not lay out (kept
 raw, as sub-package 14) to `unknown`, each with its JSON (an error of a capture as decode prints
-it, envelope included); only errors make the exit status 1, as for `decode`. Parquet needs pyarrow (`pip install urwire[parquet]`); CSV needs nothing.
+it, envelope included); only errors make the exit status 1, as for `decode`. Parquet needs
+pyarrow (`pip install urwire[parquet]`); CSV needs nothing.
 Rows are kept in a temporary file per table until the capture ends (a table's columns are
 known only then), and written BATCH_ROWS rows at a time, so memory stays flat however long the
 capture.
@@ -133,13 +134,15 @@ class Tables:
         self._chunks: dict[str, dict[str, list]] = {}
         self.cell = CellRows(self.add)
 
-    def add(self, table: str, position: int, columns: list, time=None) -> None:
+    def add(self, table: str, position: int, columns: list, time=None, where: tuple = ()) -> None:
+        """A row: its position, capture time (when given), `where` (a capture's conversation), then
+        its columns."""
         kinds = self.kinds.setdefault(table, {"position": "int"})
         chunk = self._chunks.setdefault(table, {})
         count = self.counts.get(table, 0)
         held = count % SPILL_ROWS  # rows already in the chunk
         columns = [("position", "int", position), *([("capture_time", "f64", time)] if time is not None else []),
-                   *columns]
+                   *where, *columns]
         for name, kind, value in columns:
             values = chunk.get(name)
             if values is None:
@@ -163,31 +166,31 @@ class Tables:
     def add_record(self, position: int, record) -> None:
         """One record of a capture (Enveloped, with its capture time) or of a raw stream (as it is)."""
         if not isinstance(record, Enveloped):
-            self._add_primary(position, record, record, [], None)
+            self._add_primary(position, record, record, (), None)
         elif record.interface in (PRIMARY, None):   # None: a fault of the capture file, with the primary's errors
-            self._add_primary(position, record.record, record, [("conversation", "text", conversation_text(record))],
+            self._add_primary(position, record.record, record, (("conversation", "text", conversation_text(record)),),
                               record.capture_time)
         else:                                       # another interface of the cell (export_cell.py)
             self.cell.add(position, record, record.capture_time)
 
-    def _add_primary(self, position: int, record, printed, where: list, time) -> None:
+    def _add_primary(self, position: int, record, printed, where: tuple, time) -> None:
         """A primary record's rows, each opening with `where` (a capture's conversation); one with
         an error goes to `errors` as decode prints it (`printed`: in a capture, with its envelope)."""
         if has_error(record):
-            self.add("errors", position, [*where, ("record", "text", to_json_line(printed))], time)
+            self.add("errors", position, [("record", "text", to_json_line(printed))], time, where)
             return
         if getattr(record, "TYPE", "unknown") == "unknown":
-            self.add("unknown", position, [*where, ("record", "text", to_json_line(record))], time)
+            self.add("unknown", position, [("record", "text", to_json_line(record))], time, where)
             return
         if hasattr(record, "packages"):
-            self.add(record.TYPE, position, [*where, ("packages", "int", len(record.packages))], time)
+            self.add(record.TYPE, position, [("packages", "int", len(record.packages))], time, where)
             for pkg in record.packages:
                 if hasattr(pkg, "JSON") and not has_error(pkg):
-                    self.add(pkg.TYPE, position, [*where, *_columns(pkg)], time)
+                    self.add(pkg.TYPE, position, _columns(pkg), time, where)
                 else:
-                    self.add(_apart(pkg), position, [*where, ("record", "text", to_json_line(pkg))], time)
+                    self.add(_apart(pkg), position, [("record", "text", to_json_line(pkg))], time, where)
             return
-        self.add(record.TYPE, position, [*where, *_columns(record)], time)
+        self.add(record.TYPE, position, _columns(record), time, where)
 
     def batches(self, table: str) -> Iterator[tuple[int, list[list]]]:
         """The rows of a table in order, BATCH_ROWS at a time: (rows, one list per column)."""

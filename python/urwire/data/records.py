@@ -3,6 +3,7 @@ its interface, direction and conversation, the primary interface's too (cell.cel
 raw primary stream's records as they are, since a raw stream has no conversation."""
 from __future__ import annotations
 
+import functools
 from typing import BinaryIO, Iterator, Optional
 
 from ..arguments import VersionLike
@@ -25,7 +26,13 @@ def records_of_file(fh: BinaryIO, version_hint: VersionLike = None,
 def conversation_text(item: Enveloped) -> Optional[str]:
     """A record's conversation as the tables' `conversation` column holds it: plain text (the spill
     files' marshal takes no str subclass, such as Endpoints), None for a fault of the capture file."""
-    return None if item.conversation is None else str(item.conversation)
+    return None if item.conversation is None else _plain(item.conversation)
+
+
+@functools.lru_cache(maxsize=1 << 10)
+def _plain(conversation: str) -> str:
+    # One text for all the rows of a conversation, which marshal then writes once per chunk.
+    return str(conversation)
 
 
 def robot_address(item: Enveloped) -> Optional[str]:
