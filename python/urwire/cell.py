@@ -4,8 +4,8 @@ the interface, direction and conversation they came from.
 A capture's TCP conversations are told apart by their server-side port (interfaces.py); each gets
 its interface's `Conversation`, fed the bytes of each direction as they are reassembled. Each
 record comes in an `Enveloped` (cell_records), whose JSON opens with "interface", "direction" and
-"conversation" (docs/canonical-json.md#records-of-a-capture); the data tools, which read the
-primary interface's records apart, take those bare (timed_robot_records).
+"conversation" (docs/canonical-json.md#records-of-a-capture), the primary interface's too; only
+decode_file takes the primary interface's records bare (timed_cell_records).
 """
 from __future__ import annotations
 
@@ -29,27 +29,10 @@ def ports_of(interfaces: Iterable[Interface]) -> dict[int, Interface]:
 def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
                        advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
     """(capture time, record) of every conversation of the capture on the ports of `by_port`, as
-    timed_robot_records gives them."""
-    for time, _, record in timed_robot_records(fh, hint, by_port, advance):
-        yield time, record
-
-
-def timed_robot_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
-                        advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
-    """(capture time, robot address, record) of every conversation of the capture on the ports of
-    `by_port`, for the data tools, which read the primary interface's records apart: those as they
-    are, every other interface's Enveloped; a fault of the capture file has neither time nor
-    address (None)."""
-    ends = _EndpointsOf()
-    for time, key, interface, from_robot, record in conversation_records(fh, hint, by_port, advance):
-        if key is None:
-            yield None, None, record
-        elif interface.name == PRIMARY:
-            yield time, key[0], record
-        else:
-            # The conversation as plain text, which the data tools' spill files (marshal) take.
-            yield time, key[0], Enveloped(interface.name, FROM_ROBOT if from_robot else TO_ROBOT,
-                                          str(ends(key, interface)), record, time)
+    decode_file gives them: the primary interface's records (and a fault of the capture file, which
+    has no time) as they are, every other interface's Enveloped."""
+    for item in cell_records(fh, hint, by_port, advance):
+        yield item.capture_time, item.record if item.interface in (PRIMARY, None) else item
 
 
 def cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
@@ -109,7 +92,7 @@ def conversation_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Int
             learn(versions[key[0]])
         at = getattr(conv, "at", None)
         if at is not None:      # a conversation that files its records itself (data/dataset_c_capture.py)
-            at(time, key[0])
+            at(time, key)
         sides: list = []
         if isinstance(piece, Gap):
             # Named first (a conversation that files its records itself numbers what follows after

@@ -28,7 +28,7 @@ from tests.tools import capture, robot_inputs  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 DOC = ROOT / "docs" / "tables.md"
-LEAD = ["capture", "capture_file", "position", "capture_time"]
+LEAD = ["capture", "capture_file", "position", "capture_time", "conversation"]
 PRIMARY_CASES = vectors.all_cases()
 
 
@@ -59,12 +59,13 @@ def _objects(record) -> list:
 def test_every_kind_has_one_schema_of_the_lead_columns_then_its_fields():
     for kind in dataset.kinds("ur"):
         schema = dataset.dataset_schema("ur", kind)
-        assert schema.names[:4] == LEAD and len(set(schema.names)) == len(schema.names), kind
+        assert schema.names[:5] == LEAD and len(set(schema.names)) == len(schema.names), kind
         assert schema.field("capture_time").type == pa.timestamp("us", "UTC")
+        assert schema.field("conversation").type == pa.string()
     joints = dataset.dataset_schema("ur", "joint_data")
-    assert joints.names[4:12] == [f"{name}_0" for name in ("q_actual", "q_target", "qd_actual", "i_actual",
+    assert joints.names[5:13] == [f"{name}_0" for name in ("q_actual", "q_target", "qd_actual", "i_actual",
                                                            "v_actual", "t_motor", "t_micro", "joint_mode")]
-    assert joints.names[-1] == "joint_mode_5" and len(joints) == 4 + 6 * 8
+    assert joints.names[-1] == "joint_mode_5" and len(joints) == 5 + 6 * 8
     mode = dataset.dataset_schema("ur", "robot_mode_data")
     # the union of CB2's, CB3's and the e-Series' layouts, each field at its widest type
     assert mode.field("timestamp").type == pa.uint64() and mode.field("reserved").type == pa.int64()

@@ -105,6 +105,8 @@ def test_same_part_files_as_the_export(exported, captures, tmp_path):
         expected, got = pq.read_table(path), pq.read_table(written[name])
         assert got.schema == expected.schema, name
         assert got.to_pylist() == expected.to_pylist(), name
+        # A capture's rows name their conversation; a raw stream has none.
+        assert (set(got.column("conversation").to_pylist()) == {None}) == (f"robot={RAW_ROBOT}/" in name), name
 
 
 def test_joint_data_row_for_row_through_duckdb(exported, captures, tmp_path):

@@ -11,8 +11,9 @@
   global-variable values take their canonical JSON text.
 - Each row starts with `capture` (the capture id: a hash of the capture's bytes), `capture_file`
   (the name of the file it came from; a robot message has a `source` of its own), `position`
-  (the record's place in the capture, as `urwire export` counts) and `capture_time` (UTC; null
-  in a raw stream).
+  (the record's place in the capture, as `urwire export` counts), `capture_time` (UTC) and
+  `conversation` (the TCP conversation, as `urwire decode` names it); the last two are null in a
+  raw stream. In a capture, an `errors` row holds the record as decode prints it, envelope and all.
 - A robot is its serial number where a capture holds the dashboard server's answer to `get serial
   number` (the primary and real-time streams carry none), else its address in the .pcap or
   .pcapng, or the name given for a raw stream. A row's date is its capture time's (UTC), or, in a
@@ -36,12 +37,11 @@ import os
 from typing import Iterator, Optional, Union
 
 from ..capture import head_of, is_capture
-from ..cell import ports_of, timed_robot_records
-from ..interfaces import INTERFACES
-from ..reading import records_of_raw
+from ..envelope import Enveloped
 from . import dataset_c, dataset_c_capture
 from .dataset_columns import Part
 from .dataset_rows import PartBuilder, serial_numbers
+from .records import records_of_file, robot_address
 # what the module's callers use, from the modules that make it
 from .dataset_columns import columns_of, dataset_schema, kinds  # noqa: F401
 from .dataset_files import write_parts  # noqa: F401
@@ -62,18 +62,20 @@ def file_capture_id(path: Union[str, os.PathLike]) -> str:
 
 
 def _timed(fh, version_hint) -> Iterator[tuple]:
-    """(capture time, robot, record) of a capture, each robot by its serial number where the
-    capture holds it, else its address; or of a raw primary stream (no time, no robot)."""
-    head = head_of(fh)
-    if is_capture(head):
+    """(capture time, robot, record) of a capture, each record Enveloped and each robot by its
+    serial number where the capture holds it, else its address; or of a raw primary stream (no
+    time, no robot, the records as they are)."""
+    serials = {}
+    if is_capture(head_of(fh)):
         start = fh.tell()
         serials = serial_numbers(fh)
         fh.seek(start)
-        for time, address, record in timed_robot_records(fh, version_hint, ports_of(INTERFACES.values())):
-            yield time, serials.get(address, address), record
-        return
-    for record in records_of_raw(fh, version_hint, lambda n: None):
-        yield None, None, record
+    for record in records_of_file(fh, version_hint):
+        if isinstance(record, Enveloped):
+            address = robot_address(record)
+            yield record.capture_time, serials.get(address, address), record
+        else:
+            yield None, None, record
 
 
 def parts_of(fh, capture: str, source: str, version_hint=None, robot: Optional[str] = None,

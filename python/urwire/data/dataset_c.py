@@ -14,11 +14,14 @@ from __future__ import annotations
 
 import datetime
 import functools
+from array import array
 from typing import Iterator, Optional
 
 from ..arguments import parse_version
 from ..backends import ccore
+from ..canonical import to_json_line
 from ..decoding import decode_message
+from ..envelope import FROM_ROBOT, Enveloped
 from .dataset_columns import ERROR_KINDS, LEAD, PRIMARY, ROBOT_STATE, Part, columns_of, dataset_schema, kinds
 from .dataset_rows import PartBuilder
 # pyarrow, an optional extra (urwire[parquet]), is imported by the functions that make columns.
@@ -56,11 +59,53 @@ def available() -> bool:
     return hasattr(ccore(), "PrimaryColumns")
 
 
-class Tables:
-    """C's batches as Parts: each batch of one robot, split by the day of its rows."""
+class Conversations:
+    """The conversation of each record of a capture whose rows C made, by its position: C's rows
+    carry their position, and a robot's rows of all its conversations share its columns."""
 
-    def __init__(self, capture: str, source: str, date: Optional[str]) -> None:
+    def __init__(self) -> None:
+        self._names: list = [None]              # index 0: no conversation (a fault of the capture file)
+        self._index: dict = {None: 0}
+        self._at = array("i")                   # position -> index in _names
+
+    def note(self, start: int, count: int, conversation: Optional[str]) -> None:
+        """The records at positions start ... start + count - 1 came from `conversation`."""
+        index = self._index.get(conversation)
+        if index is None:
+            index = self._index[conversation] = len(self._names)
+            self._names.append(conversation)
+        end = start + count
+        if len(self._at) < end:
+            self._at.frombytes(bytes(self._at.itemsize * (end - len(self._at))))
+        self._at[start:end] = array("i", [index]) * count
+
+    def at(self, position: int) -> Optional[str]:
+        return self._names[self._at[position]] if position < len(self._at) else None
+
+    def of(self, positions):
+        """The conversations of an Arrow array of positions, as a string array (null where none)."""
+        import pyarrow as pa
+        import pyarrow.compute as pc
+        if len(positions) == 0:
+            return pa.array([], pa.string())
+        span = pc.min_max(positions).as_py()
+        low, high = span["min"], min(span["max"] + 1, len(self._at))
+        # A copy of the span: a buffer over _at itself would stop it growing while Arrow holds it.
+        window = self._at[low:high] if low < high else array("i")
+        window.extend(array("i", [0]) * (span["max"] + 1 - low - len(window)))
+        indexes = pa.Array.from_buffers(pa.int32(), len(window), [None, pa.py_buffer(window)])
+        return pc.take(pa.array(self._names, pa.string()), pc.take(indexes, pc.subtract(positions, low)))
+
+
+class Tables:
+    """C's batches as Parts: each batch of one robot, split by the day of its rows. In a capture,
+    `conversations` names each row's conversation, and an `errors` row holds its record as decode
+    prints it, envelope and all; a raw stream's rows have none (null)."""
+
+    def __init__(self, capture: str, source: str, date: Optional[str],
+                 conversations: Optional[Conversations] = None) -> None:
         self.capture, self.source, self.date = capture, source, date
+        self.conversations = conversations
         self.kinds = [kind for kind, _ in layout()]
         self.schemas = [dataset_schema(PRIMARY, kind) for kind in self.kinds]
         self.fault_dates: dict = {}     # (robot, position) -> the day of a row without a time
@@ -72,12 +117,17 @@ class Tables:
             raise ValueError("a raw stream needs the robot's name (--robot)")
         schema = self.schemas[index]
         fields = list(schema)
+        kind, positions = self.kinds[index], _array(fields[2].type, rows, buffers[0])
+        conversations = pa.nulls(rows, pa.string()) if self.conversations is None else \
+            self.conversations.of(positions)
         arrays = [pa.repeat(pa.scalar(self.capture, pa.string()), rows),
                   pa.repeat(pa.scalar(self.source, pa.string()), rows),
-                  _array(fields[2].type, rows, buffers[0]), _array(fields[3].type, rows, buffers[1])]
+                  positions, _array(fields[3].type, rows, buffers[1]), conversations]
         arrays += [_array(f.type, rows, b) for f, b in zip(fields[len(LEAD):], buffers[2:])]
+        if kind == ERROR_KINDS[0] and conversations.null_count < rows:
+            arrays[len(LEAD)] = _enveloped(arrays[len(LEAD)], conversations)
         table = pa.Table.from_arrays(arrays, schema=schema)
-        kind, times = self.kinds[index], arrays[3]
+        times = arrays[3]
         if times.null_count == 0:
             span = pc.min_max(times.cast(pa.int64())).as_py()
             if span["min"] // _DAY_US == span["max"] // _DAY_US:
@@ -101,6 +151,27 @@ class Tables:
 
 
 _DAY_US = 86_400_000_000
+
+
+class _Written:
+    """A record's canonical JSON as C wrote it, for canonical's writer to put in an envelope."""
+
+    __slots__ = ("text",)
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+
+    def canonical_json(self) -> str:
+        return self.text
+
+
+def _enveloped(records, conversations):
+    """The JSON texts of primary error rows, each of a conversation in its envelope, as decode
+    prints the record (errors are few: this is done a row at a time)."""
+    import pyarrow as pa
+    return pa.array([text if conversation is None else
+                     to_json_line(Enveloped(PRIMARY, FROM_ROBOT, conversation, _Written(text)))
+                     for text, conversation in zip(records.to_pylist(), conversations.to_pylist())], pa.string())
 
 
 def _day(days: int) -> str:

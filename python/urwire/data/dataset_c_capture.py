@@ -4,7 +4,8 @@ In a capture Python still reads the file and reassembles the TCP streams, and ma
 the other interfaces; each robot's primary and secondary streams go to C (a PrimaryStream per
 connection, one PrimaryColumns per robot, so that the rows of its connections stay in capture
 order), and the capture reader counts one placeholder per record C made, so that every record
-keeps its position.
+keeps its position. Each position C fills is noted with its conversation (dataset_c.Conversations),
+which names the conversation of C's rows.
 """
 from __future__ import annotations
 
@@ -13,14 +14,15 @@ from typing import Iterator, Optional
 
 from .._runtime import StreamError
 from ..backends import ccore
-from ..canonical import has_error, to_json_line
-from ..cell import ports_of, timed_robot_records
+from ..canonical import to_json_line
+from ..cell import cell_records, ports_of
 from ..decoding import decode_message
-from ..envelope import Enveloped
+from ..envelope import FROM_ROBOT, Endpoints, Enveloped
 from ..interfaces import INTERFACES
-from .dataset_c import Tables, columns, hint_text, micros
+from .dataset_c import Conversations, Tables, columns, hint_text, micros
 from .dataset_columns import PRIMARY, Part
 from .dataset_rows import PartBuilder, serial_numbers
+from .records import conversation_text, robot_address
 
 
 class _MadeInC:
@@ -39,6 +41,7 @@ class _CaptureRows:
         self.next_position = 0          # the position of the next record the reader yields
         self.robots: dict = {}          # robot -> its PrimaryColumns
         self.waiting: list = []         # (robot, capture time, (batches, messages))
+        self.conversations = Conversations()
 
     def robot_of(self, address: str) -> str:
         return self.serials.get(address, address)
@@ -67,10 +70,16 @@ class _PrimaryConversation:
         self.stream = ccore().PrimaryStream(hint_text(version_hint))
         self.time: Optional[float] = None
         self.robot: Optional[str] = None
+        self.conversation: Optional[str] = None
         self.next_position = 0
 
-    def at(self, time: Optional[float], address: str) -> None:
-        self.time, self.robot = time, self.rows.robot_of(address)
+    def at(self, time: Optional[float], key: tuple) -> None:
+        """The capture time of the bytes about to be fed, and their conversation (server address,
+        port, client address, port: the robot is the server)."""
+        if self.conversation is None:
+            self.conversation = str(Endpoints(*key))
+            self.robot = self.rows.robot_of(key[0])
+        self.time = time
 
     def feed(self, data: bytes, from_robot: bool) -> list:
         if not from_robot:
@@ -95,6 +104,7 @@ class _PrimaryConversation:
         return max(self.rows.next_position, self.next_position)
 
     def _made(self, columns, count: int) -> list:
+        self.rows.conversations.note(self._position(), count, self.conversation)
         self.next_position = self._position() + count
         self.rows.waiting.append((self.robot, self.time, columns.take()))
         return [MADE_IN_C] * count
@@ -111,7 +121,7 @@ def capture_parts(fh, capture: str, source: str, version_hint=None, robot: Optio
     start = fh.tell()
     rows = _CaptureRows(version_hint, serial_numbers(fh))
     fh.seek(start)
-    tables = Tables(capture, source, date)
+    tables = Tables(capture, source, date, rows.conversations)
     builder = PartBuilder(capture, source, date, robot)     # the other interfaces, the kinds Python makes
 
     def waiting() -> Iterator[Part]:
@@ -119,25 +129,29 @@ def capture_parts(fh, capture: str, source: str, version_hint=None, robot: Optio
             for index, count, buffers in batches:
                 yield from tables.parts(owner, index, count, buffers)
             for _, position, _, frame, version, known in messages:
-                yield from builder.add(position, time, owner, decode_message(frame, version, known))
+                record = Enveloped(PRIMARY, FROM_ROBOT, rows.conversations.at(position),
+                                   decode_message(frame, version, known), time)
+                yield from builder.add(position, time, owner, record)
         rows.waiting.clear()
 
-    for position, (time, address, record) in enumerate(timed_robot_records(fh, version_hint, rows.interfaces())):
+    for position, item in enumerate(cell_records(fh, version_hint, rows.interfaces())):
         rows.next_position = position + 1
+        record, time, address = item.record, item.capture_time, robot_address(item)
         if record is MADE_IN_C:
             builder.place(time, rows.robot_of(address))
-        elif address is None and not isinstance(record, Enveloped) and has_error(record):
+        elif item.interface is None:
             # A fault of the capture file: a primary error row, among C's rows of the robot before it.
             owner, day = builder.place(None, None)
             tables.fault_dates[(owner, position)] = day
             rows.columns(owner).add_record("errors", position, None, to_json_line(record))
-        elif isinstance(record, StreamError):
+        elif item.interface == PRIMARY and isinstance(record, StreamError):
             # The reader's record of a primary stream's gap or differing retransmission: an error row
-            # among C's rows of its robot.
+            # among C's rows of its robot, in its envelope as C's errors are (dataset_c.Tables).
             owner, _ = builder.place(time, rows.robot_of(address))
+            rows.conversations.note(position, 1, conversation_text(item))
             rows.columns(owner).add_record("errors", position, micros(time), to_json_line(record))
         else:
-            yield from builder.add(position, time, None if address is None else rows.robot_of(address), record)
+            yield from builder.add(position, time, None if address is None else rows.robot_of(address), item)
         yield from waiting()
     for owner, columns in rows.robots.items():
         rows.waiting.append((owner, None, columns.flush()))

@@ -23,7 +23,7 @@ from ..generated import messages, ur_realtime
 PRIMARY = "ur"
 REALTIME = "ur_realtime"
 REALTIME_STATE = "state"
-LEAD = ("capture", "capture_file", "position", "capture_time")
+LEAD = ("capture", "capture_file", "position", "capture_time", "conversation")
 ERROR_KINDS = ("errors", "unknown")
 ROBOT_STATE = "robot_state"
 
@@ -179,5 +179,6 @@ def dataset_schema(interface: str, kind: str):
     """The kind's pyarrow schema, the same for every capture and software version."""
     import pyarrow as pa
     lead = [pa.field("capture", pa.string(), nullable=False), pa.field("capture_file", pa.string()),
-            pa.field("position", pa.int64(), nullable=False), pa.field("capture_time", pa.timestamp("us", "UTC"))]
+            pa.field("position", pa.int64(), nullable=False), pa.field("capture_time", pa.timestamp("us", "UTC")),
+            pa.field("conversation", pa.string())]
     return pa.schema(lead + [pa.field(c.name, getattr(pa, _ARROW[c.kind])()) for c in columns_of(interface, kind)])

@@ -2,14 +2,16 @@
 primary interface, and per interface for the cell's other interfaces (export_cell.py).
 
 Each table has one row per occurrence: `position` (the message's place in the input, from 0),
-`capture_time` (for a .pcap or .pcapng: the time of the frame that completed the message, in
-seconds since the epoch), then the fields as typed columns. Per-joint values take one column
+then, for a .pcap or .pcapng, `capture_time` (the time of the frame that completed the message,
+in seconds since the epoch) and `conversation` (its TCP conversation, as decode names it), then
+the fields as typed columns. Per-joint values take one column
 per joint, numbered from the base: `q_actual_0` ... `q_actual_5` (a group's fields, prefixed
 with the group's name when a kind has two groups; a list's items as `dh_a_0` ...).
 Global-variable values and text lists are kept as their canonical JSON text. Records and
 sub-packages with an error go to `errors`, and those of kinds the spec does not lay out (kept
-raw, as sub-package 14) to `unknown`, each with its JSON; only errors make the exit status 1, as
-for `decode`. Parquet needs pyarrow (`pip install urwire[parquet]`); CSV needs nothing.
+raw, as sub-package 14) to `unknown`, each with its JSON (an error of a capture as decode prints
+it, envelope included); only errors make the exit status 1, as for `decode`. Parquet needs
+pyarrow (`pip install urwire[parquet]`); CSV needs nothing.
 Rows are kept in a temporary file per table until the capture ends (a table's columns are
 known only then), and written BATCH_ROWS rows at a time, so memory stays flat however long the
 capture.
@@ -27,12 +29,12 @@ from typing import BinaryIO, Iterator
 
 from ..arguments import software_version
 from ..canonical import has_error, member_text, shown_text, to_json_line
-from ..cell import ports_of
+from ..cell import PRIMARY
 from ..envelope import Enveloped
-from ..interfaces import INTERFACES
-from ..reading import input_kind, timed_records
+from ..reading import input_kind
 from . import export_dataset
 from .export_cell import CellRows
+from .records import conversation_text, records_of_file
 # pyarrow, an optional extra (urwire[parquet]), is imported where Parquet is written: CSV needs none.
 
 # A switch member that holds an int32 or a float32 (int|f32) fits a float64 column exactly.
@@ -132,13 +134,15 @@ class Tables:
         self._chunks: dict[str, dict[str, list]] = {}
         self.cell = CellRows(self.add)
 
-    def add(self, table: str, position: int, columns: list, time=None) -> None:
+    def add(self, table: str, position: int, columns: list, time=None, where: tuple = ()) -> None:
+        """A row: its position, capture time (when given), `where` (a capture's conversation), then
+        its columns."""
         kinds = self.kinds.setdefault(table, {"position": "int"})
         chunk = self._chunks.setdefault(table, {})
         count = self.counts.get(table, 0)
         held = count % SPILL_ROWS  # rows already in the chunk
         columns = [("position", "int", position), *([("capture_time", "f64", time)] if time is not None else []),
-                   *columns]
+                   *where, *columns]
         for name, kind, value in columns:
             values = chunk.get(name)
             if values is None:
@@ -159,22 +163,34 @@ class Tables:
             fh = self._files[table] = open(self._spill / f"{table}.rows", "w+b")
         marshal.dump(self._chunks.pop(table), fh)
 
-    def add_record(self, position: int, record, time=None) -> None:
-        if isinstance(record, Enveloped):      # another interface of the cell (export_cell.py)
-            self.cell.add(position, record, time)
+    def add_record(self, position: int, record) -> None:
+        """One record of a capture (Enveloped, with its capture time) or of a raw stream (as it is)."""
+        if not isinstance(record, Enveloped):
+            self._add_primary(position, record, record, (), None)
+        elif record.interface in (PRIMARY, None):   # None: a fault of the capture file, with the primary's errors
+            self._add_primary(position, record.record, record, (("conversation", "text", conversation_text(record)),),
+                              record.capture_time)
+        else:                                       # another interface of the cell (export_cell.py)
+            self.cell.add(position, record, record.capture_time)
+
+    def _add_primary(self, position: int, record, printed, where: tuple, time) -> None:
+        """A primary record's rows, each opening with `where` (a capture's conversation); one with
+        an error goes to `errors` as decode prints it (`printed`: in a capture, with its envelope)."""
+        if has_error(record):
+            self.add("errors", position, [("record", "text", to_json_line(printed))], time, where)
             return
-        if has_error(record) or getattr(record, "TYPE", "unknown") == "unknown":
-            self.add(_apart(record), position, [("record", "text", to_json_line(record))], time)
+        if getattr(record, "TYPE", "unknown") == "unknown":
+            self.add("unknown", position, [("record", "text", to_json_line(record))], time, where)
             return
         if hasattr(record, "packages"):
-            self.add(record.TYPE, position, [("packages", "int", len(record.packages))], time)
+            self.add(record.TYPE, position, [("packages", "int", len(record.packages))], time, where)
             for pkg in record.packages:
                 if hasattr(pkg, "JSON") and not has_error(pkg):
-                    self.add(pkg.TYPE, position, _columns(pkg), time)
+                    self.add(pkg.TYPE, position, _columns(pkg), time, where)
                 else:
-                    self.add(_apart(pkg), position, [("record", "text", to_json_line(pkg))], time)
+                    self.add(_apart(pkg), position, [("record", "text", to_json_line(pkg))], time, where)
             return
-        self.add(record.TYPE, position, _columns(record), time)
+        self.add(record.TYPE, position, _columns(record), time, where)
 
     def batches(self, table: str) -> Iterator[tuple[int, list[list]]]:
         """The rows of a table in order, BATCH_ROWS at a time: (rows, one list per column)."""
@@ -202,8 +218,9 @@ class Tables:
 def gather(path: str, tables: Tables, hint=None) -> None:
     """Every record of the file: a raw stream of the primary interface, or every conversation of
     a capture that an interface of the cell reads, each by its port."""
-    for position, (time, record) in enumerate(timed_records(path, hint, by_port=ports_of(INTERFACES.values()))):
-        tables.add_record(position, record, time)
+    with open(path, "rb") as fh:
+        for position, record in enumerate(records_of_file(fh, hint)):
+            tables.add_record(position, record)
     tables.cell.finish()
 
 

@@ -19,7 +19,8 @@ table named by its interface:
 
 Every value is the one `urwire decode` shows: rows are made from the record's canonical JSON,
 lists of numbers one column per item, other lists and objects kept as their JSON text. Error
-records go to `errors` with their JSON: every record that makes `urwire decode` exit 1
+records go to `errors`, with their conversation and their JSON as decode prints it (the envelope
+included): every record that makes `urwire decode` exit 1
 (canonical.fails), among them a message kept raw with its reason (an RTDE data package of a recipe
 the capture did not show being set up) and a reply a full queue could not pair.
 """
@@ -33,6 +34,7 @@ from typing import Callable, Optional
 from ..canonical import fails, to_dict, to_json_line
 from ..envelope import Enveloped
 from ..generated.ur_dashboard import BANNER as _BANNER
+from .records import conversation_text
 
 ENVELOPE = ("interface", "direction", "conversation")
 DASHBOARD = "ur_dashboard"
@@ -88,35 +90,36 @@ class CellRows:
         self._greeted: set = set()               # dashboard conversations past their first reply
 
     def add(self, position: int, item: Enveloped, time=None) -> None:
-        record = item.record
+        record, conversation = item.record, conversation_text(item)
         if fails(record):
-            self._add("errors", position, [("record", "text", to_json_line(item))], time)
+            self._add("errors", position, [("conversation", "text", conversation),
+                                           ("record", "text", to_json_line(item))], time)
             return
         recipe = getattr(record, "notes", {}).get("recipe") if item.interface == RTDE else None
         if recipe is not None:
-            self._rtde_data(position, item, recipe, time)
+            self._rtde_data(position, conversation, record, recipe, time)
             return
         fields = to_dict(item)
         if item.interface == DASHBOARD:
-            self._dashboard(position, item.conversation, fields, time)
+            self._dashboard(position, conversation, fields, time)
         else:
             table = f"{RTDE}_messages" if item.interface == RTDE else item.interface
-            columns = [("conversation", "text", item.conversation), ("direction", "text", item.direction)]
+            columns = [("conversation", "text", conversation), ("direction", "text", item.direction)]
             self._add(table, position, columns + record_columns(fields), time)
 
     # ---- RTDE ----
 
-    def _rtde_data(self, position: int, item: Enveloped, recipe, time) -> None:
+    def _rtde_data(self, position: int, conversation: str, record, recipe, time) -> None:
         table = recipe_table(recipe)
-        key = (item.conversation, recipe.kind, recipe.id, recipe.defined_at)
+        key = (conversation, recipe.kind, recipe.id, recipe.defined_at)
         if key not in self._recipes_seen:
             self._recipes_seen.add(key)
             self._add(f"{RTDE}_recipes", position, [
-                ("conversation", "text", item.conversation), ("kind", "text", recipe.kind),
+                ("conversation", "text", conversation), ("kind", "text", recipe.kind),
                 ("recipe_id", "int", recipe.id), ("table", "text", table),
                 ("variables", "text", ",".join(recipe.names)), ("types", "text", ",".join(recipe.types))], time)
-        values = item.record.values
-        columns = [("conversation", "text", item.conversation), ("recipe_id", "int", recipe.id)]
+        values = record.values
+        columns = [("conversation", "text", conversation), ("recipe_id", "int", recipe.id)]
         seen: dict[str, int] = {}
         for (name, shape), value in zip(recipe.json_kinds(), values.in_order()):
             kind = "uint64" if shape.name == "UINT64" else _RTDE_KINDS[shape.kind]
