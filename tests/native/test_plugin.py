@@ -16,6 +16,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
+import yaml
 
 from tests.native import harness
 
@@ -31,6 +32,9 @@ def protocol_of(packet_file: Path) -> str:
 
 
 GENERATED = sorted(protocol_of(p) for p in harness.EPAN.glob("packet-*.c"))
+# The protocols of the text-line kind: their Lua dissectors guard the runtime with an expert of their own.
+LINES_PROTOCOLS = sorted(path.stem for path in (harness.ROOT / "spec").glob("*.yaml")
+                         if (yaml.safe_load(path.read_text(encoding="utf-8")).get("framing") or {}).get("kind") == "lines")
 NO_GENERATED = pytest.mark.skipif(not GENERATED, reason="no generated/epan/packet-*.c yet (make generate)")
 
 
@@ -179,10 +183,9 @@ KNOWN_DIVERGENCES = {
     "ur": ("Wireshark 4.0's Lua drops the description of ProtoField.string(abbr, name, base.UNICODE, desc) "
            "(the three-argument form ProtoField.string(abbr, name, desc) keeps it): the Lua string fields have "
            "no blurb, the native ones have the spec's", _string_blurb_dropped_by_lua),
-    "ur_dashboard": ("the Lua dissector registers the expert ur_dashboard.internal_error (its guard around the "
-                     "runtime), the native one does not", _lua_internal_error_expert),
-    "ur_script_sender": ("the Lua dissector registers the expert ur_script_sender.internal_error (its guard "
-                         "around the runtime), the native one does not", _lua_internal_error_expert),
+    # Every text-line interface (framing.kind: lines).
+    **{name: (f"the Lua dissector registers the expert {name}.internal_error (its guard around the runtime), "
+              "the native one does not", _lua_internal_error_expert) for name in LINES_PROTOCOLS},
 }
 
 
