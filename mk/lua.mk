@@ -33,9 +33,10 @@ demo-lua:
 		-Y 'ur.robot_mode_data.robot_mode == "RUNNING" && ur.joint_data.q_actual > 1.5' 2>/dev/null | head -n 5
 
 ## screenshots: the pictures of dissector/README.md, taken from the real Wireshark GUI on the bundled
-## capture under Xvfb (dissector/images/*.png; needs wireshark-qt, xvfb, xdotool, imagemagick)
+## captures under Xvfb (dissector/images/*.png; needs wireshark-qt, xvfb, xdotool, imagemagick);
+## SHOTS="gripper.png rtde_output.png" takes only those
 screenshots:
-	xvfb-run -a -s "-screen 0 1600x1000x24" $(PYTHON) scripts/screenshots.py
+	xvfb-run -a -s "-screen 0 1600x1000x24" $(PYTHON) scripts/screenshots.py $(SHOTS)
 
 ## samples: rewrite dissector/samples/ from the conformance bytes (deterministic)
 samples:
