@@ -411,16 +411,22 @@ void proto_register_ur_reverse(void)
 {
     static hf_register_info hf[] = {
         { &hf_ur_reverse_keepalive,
-          { "Keepalive count", "ur_reverse.keepalive", FT_INT32, BASE_DEC, NULL, 0x0, NULL, HFILL } },
+          { "Keepalive count", "ur_reverse.keepalive", FT_INT32, BASE_DEC, NULL, 0x0,
+            "A count the script checks to know the PC is alive.", HFILL } },
         { &hf_ur_reverse_read_timeout,
-          { "Read timeout (ms)", "ur_reverse.read_timeout", FT_INT32, BASE_DEC, NULL, 0x0, NULL, HFILL } },
+          { "Read timeout (ms)", "ur_reverse.read_timeout", FT_INT32, BASE_DEC, NULL, 0x0,
+            "The timeout in milliseconds of the script's next read from this socket. In ms.", HFILL } },
         { &hf_ur_reverse_target,
-          { "Motion target", "ur_reverse.target", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+          { "Motion target", "ur_reverse.target", FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            "Joint positions (rad, SERVOJ), joint velocities (rad/s, SPEEDJ), a pose or its "
+            "velocity, or trajectory and freedrive instructions, as the control mode says.",
+            HFILL } },
         { &hf_ur_reverse_target_raw,
-          { "Motion target (raw int32)", "ur_reverse.target_raw", FT_INT32, BASE_DEC, NULL, 0x0, NULL, HFILL } },
+          { "Motion target (raw int32)", "ur_reverse.target_raw", FT_INT32, BASE_DEC, NULL, 0x0,
+            "Motion target as sent: the int32 before the driver's scale is applied.", HFILL } },
         { &hf_ur_reverse_control_mode,
           { "Control mode", "ur_reverse.control_mode", FT_INT32, BASE_DEC, VALS(ur_reverse_control_mode_vals), 0x0,
-            NULL, HFILL } },
+            "Control mode.", HFILL } },
     };
     static gint *ett[] = {
         &ett_ur_reverse,

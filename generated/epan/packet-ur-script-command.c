@@ -416,11 +416,15 @@ void proto_register_ur_script_command(void)
     static hf_register_info hf[] = {
         { &hf_ur_script_command_command,
           { "Command", "ur_script_command.command", FT_INT32, BASE_DEC, VALS(ur_script_command_command_code_vals), 0x0,
-            NULL, HFILL } },
+            "Command.", HFILL } },
         { &hf_ur_script_command_arguments,
-          { "Arguments", "ur_script_command.arguments", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+          { "Arguments", "ur_script_command.arguments", FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            "The command's data, each scaled by MULT_JOINTSTATE but where the command says "
+            "otherwise.",
+            HFILL } },
         { &hf_ur_script_command_arguments_raw,
-          { "Arguments (raw int32)", "ur_script_command.arguments_raw", FT_INT32, BASE_DEC, NULL, 0x0, NULL, HFILL } },
+          { "Arguments (raw int32)", "ur_script_command.arguments_raw", FT_INT32, BASE_DEC, NULL, 0x0,
+            "Arguments as sent: the int32 before the driver's scale is applied.", HFILL } },
     };
     static gint *ett[] = {
         &ett_ur_script_command,

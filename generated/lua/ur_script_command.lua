@@ -26,8 +26,12 @@ local spec = {
     },
     -- Every field once: its filter name, label, whether it is scaled (a raw int32 beside it), unit, enum.
     fields = {
-        {name = "command", label = "Command", scaled = false, unit = nil, enum = "command_code"},
-        {name = "arguments", label = "Arguments", scaled = true, unit = nil, enum = nil},
+        {name = "command", label = "Command", scaled = false, unit = nil, enum = "command_code",
+         desc = "Command."},
+        {name = "arguments", label = "Arguments", scaled = true, unit = nil, enum = nil,
+         desc = "The command's data, each scaled by MULT_JOINTSTATE but where the command says \z
+         otherwise.",
+         raw_desc = "Arguments as sent: the int32 before the driver's scale is applied."},
     },
     to_robot = {
         label = "Script command",
@@ -143,11 +147,12 @@ for _, f in ipairs(spec.fields) do
     local filter = spec.name .. "." .. f.name
     local shown = f.label .. (f.unit and (" (" .. f.unit .. ")") or "")   -- a unit follows the label
     if f.scaled then
-        F[f.name] = ProtoField.double(filter, shown)
-        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC)
+        F[f.name] = ProtoField.double(filter, shown, f.desc)
+        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC, nil, nil,
+            f.raw_desc)
         fields[#fields + 1] = F[f.name .. "_raw"]
     else
-        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil)
+        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil, nil, f.desc)
     end
     fields[#fields + 1] = F[f.name]
 end

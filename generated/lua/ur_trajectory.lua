@@ -26,13 +26,29 @@ local spec = {
     },
     -- Every field once: its filter name, label, whether it is scaled (a raw int32 beside it), unit, enum.
     fields = {
-        {name = "positions", label = "Positions", scaled = true, unit = nil, enum = nil},
-        {name = "velocities", label = "Velocities", scaled = true, unit = nil, enum = nil},
-        {name = "accelerations", label = "Accelerations", scaled = true, unit = nil, enum = nil},
-        {name = "duration", label = "Segment duration", scaled = true, unit = "s", enum = nil},
-        {name = "blend_radius", label = "Blend radius", scaled = true, unit = "m", enum = nil},
-        {name = "motion_type", label = "Motion type", scaled = false, unit = nil, enum = "motion_type"},
-        {name = "result", label = "Result", scaled = false, unit = nil, enum = "result_code"},
+        {name = "positions", label = "Positions", scaled = true, unit = nil, enum = nil,
+         desc = "Joint positions (rad) or a pose (m, m, m, rad, rad, rad), as the motion type \z
+         says.",
+         raw_desc = "Positions as sent: the int32 before the driver's scale is applied."},
+        {name = "velocities", label = "Velocities", scaled = true, unit = nil, enum = nil,
+         desc = "Joint velocities of a spline point, a via point of a circular move, or a joint \z
+         hint.",
+         raw_desc = "Velocities as sent: the int32 before the driver's scale is applied."},
+        {name = "accelerations", label = "Accelerations", scaled = true, unit = nil, enum = nil,
+         desc = "Joint accelerations of a spline point; else velocity, acceleration and a mode \z
+         or flag first.",
+         raw_desc = "Accelerations as sent: the int32 before the driver's scale is applied."},
+        {name = "duration", label = "Segment duration", scaled = true, unit = "s", enum = nil,
+         desc = "Segment duration. In s.",
+         raw_desc = "Segment duration as sent: the int32 before the driver's scale is applied."},
+        {name = "blend_radius", label = "Blend radius", scaled = true, unit = "m", enum = nil,
+         desc = "The blend radius of a move; for a spline point, the spline type (1 cubic, 2 \z
+         quintic) unscaled. In m.",
+         raw_desc = "Blend radius as sent: the int32 before the driver's scale is applied."},
+        {name = "motion_type", label = "Motion type", scaled = false, unit = nil, enum = "motion_type",
+         desc = "Motion type."},
+        {name = "result", label = "Result", scaled = false, unit = nil, enum = "result_code",
+         desc = "Result."},
     },
     from_robot = {
         label = "Trajectory result",
@@ -168,11 +184,12 @@ for _, f in ipairs(spec.fields) do
     local filter = spec.name .. "." .. f.name
     local shown = f.label .. (f.unit and (" (" .. f.unit .. ")") or "")   -- a unit follows the label
     if f.scaled then
-        F[f.name] = ProtoField.double(filter, shown)
-        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC)
+        F[f.name] = ProtoField.double(filter, shown, f.desc)
+        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC, nil, nil,
+            f.raw_desc)
         fields[#fields + 1] = F[f.name .. "_raw"]
     else
-        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil)
+        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil, nil, f.desc)
     end
     fields[#fields + 1] = F[f.name]
 end

@@ -57,11 +57,12 @@ class FieldView:
     base: str
     strings: str               # VALS(...), UNS(&...) or NULL
     mask: str = "0x0"
+    blurb: str = ""            # its description (codegen/blurbs.py)
 
     @property
     def line(self) -> str:
-        return spread([f"&hf_{self.prefix}[{self.enum}]", "{ " + c.string(self.label),
-                       c.string(self.abbrev), self.ftype, self.base, self.strings, self.mask, "NULL", "HFILL } }"],
+        return spread([f"&hf_{self.prefix}[{self.enum}]", "{ " + c.string(self.label), c.string(self.abbrev),
+                       self.ftype, self.base, self.strings, self.mask, c.string(self.blurb), "HFILL } }"],
                       "{ ", ",", "        ")
 
 
@@ -134,7 +135,7 @@ def view(d: Dissector, upstream: bool) -> dict:
         base, strings = _strings(f, prefix, units)
         fields.append(FieldView(prefix, f.name, _hf(f.name, prefix), f.label, f"{prefix}.{f.abbrev}",
                                 FIELD_TYPES[f.type], base, strings,
-                                f"0x{f.mask:0{f.width // 4}x}" if f.type == "flag" else "0x0"))
+                                f"0x{f.mask:0{f.width // 4}x}" if f.type == "flag" else "0x0", f.doc))
     layouts, steps, layout_of = [], [], {}
     for m in d.messages:
         steps.append({"name": f"{prefix}_steps_{m.message.name}", "rows": [_step(s, prefix) for s in m.steps]})

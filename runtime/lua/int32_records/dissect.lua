@@ -11,11 +11,12 @@ for _, f in ipairs(spec.fields) do
     local filter = spec.name .. "." .. f.name
     local shown = f.label .. (f.unit and (" (" .. f.unit .. ")") or "")   -- a unit follows the label
     if f.scaled then
-        F[f.name] = ProtoField.double(filter, shown)
-        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC)
+        F[f.name] = ProtoField.double(filter, shown, f.desc)
+        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC, nil, nil,
+            f.raw_desc)
         fields[#fields + 1] = F[f.name .. "_raw"]
     else
-        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil)
+        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil, nil, f.desc)
     end
     fields[#fields + 1] = F[f.name]
 end
