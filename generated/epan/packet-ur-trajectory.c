@@ -29,6 +29,7 @@ void proto_reg_handoff_ur_trajectory(void);
 #define INT32_RECORDS_COLUMN "UR trajectory"
 #define INT32_RECORDS_DEFAULT_RELEASE 2014000
 #define INT32_RECORDS_DEFAULT_TEXT "2.14"
+#define INT32_RECORDS_PORTS "50003"
 
 static int proto_ur_trajectory = -1;
 
@@ -114,8 +115,6 @@ typedef struct {
     gint *ett_scaled;           /* a scaled value's subtree, holding its raw int32 */
     const int32_records_record *to_robot;      /* what the control PC sends; NULL: nothing is specified */
     const int32_records_record *from_robot;    /* what the robot sends; NULL: nothing is specified */
-    const guint32 *ports;
-    guint n_ports;
 } int32_records_interface;
 
 /* Trajectory result (from robot): each slot's field, raw int32, first int32, count, scale. */
@@ -173,12 +172,9 @@ static const int32_records_record ur_trajectory_trajectory_point = {
     ur_trajectory_trajectory_point_layouts
 };
 
-static const guint32 ur_trajectory_ports[] = { 50003 };
-
 static const int32_records_interface int32_records_spec = {
     &proto_ur_trajectory, &ett_ur_trajectory, &ett_ur_trajectory_scaled,
-    &ur_trajectory_trajectory_point, &ur_trajectory_trajectory_result,
-    ur_trajectory_ports, array_length(ur_trajectory_ports)
+    &ur_trajectory_trajectory_point, &ur_trajectory_trajectory_result
 };
 
 /* ---- runtime/c/common/macros.h ---- */
@@ -445,14 +441,10 @@ static void int32_records_register_runtime(void)
                                      &int32_records_pref_release);
 }
 
-/* The spec's ports, and Decode As. */
+/* The spec's ports, as the range preference <name>.tcp.port that Decode As also sets. */
 static void int32_records_handoff_runtime(void)
 {
-    guint i;
-
-    for (i = 0; i < int32_records_spec.n_ports; i++)
-        dissector_add_uint("tcp.port", int32_records_spec.ports[i], int32_records_handle);
-    dissector_add_for_decode_as("tcp.port", int32_records_handle);
+    dissector_add_uint_range_with_preference("tcp.port", INT32_RECORDS_PORTS, int32_records_handle);
     int32_records_apply_prefs();
 }
 

@@ -95,5 +95,5 @@ local function dissect(tvb, pinfo, tree)
 end
 
 proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
-rt.register_ports(proto, table.concat(spec.ports, ","))
+rt.register_port_preference(proto, spec.name, table.concat(spec.ports, ","))
 rt.parse_release, rt.layout_of = parse_release, layout_of
