@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import value_text
 from ...emit import environment, runtime_section
+from ...epan_c import development_branch
 from ...lang.c import prose, string, value_key
 from ...naming import column_name
 from .dissector import Dissector, dissector
@@ -100,9 +101,10 @@ def view(d: Dissector) -> dict:
 
 
 def render(p: RecordsPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
-    """`upstream` (the copy for Wireshark's tree) changes nothing: this dissector reads no command line."""
+    """`upstream`: the copy for Wireshark's tree, in its development branch's style (this dissector
+    reads no command line)."""
     context = view(dissector(p))
     env = environment("epan")
     env.filters["c"] = string
     text = env.get_template("int32_records/dissector.c.j2").render(banner=banner, **context)
-    return {f"epan/{context['file']}": text}
+    return {f"epan/{context['file']}": development_branch(text) if upstream else text}

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from ...comments import node_text
 from ...emit import environment, runtime_section
-from ...epan_c import unit_label
+from ...epan_c import development_branch, unit_label
 from ...lang.c import prose, string, value_key
 from .dissector import Dissector, Field, Layout, dissector, item_blurb
 from .plan import SizedPlan
@@ -140,9 +140,10 @@ def view(d: Dissector) -> dict:
 
 
 def render(planned: SizedPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
-    """`upstream` (the copy for Wireshark's tree) changes nothing: this dissector reads no command line."""
+    """`upstream`: the copy for Wireshark's tree, in its development branch's style (this dissector
+    reads no command line)."""
     context = view(dissector(planned))
     env = environment("epan")
     env.filters["c"] = string
     text = env.get_template("sized_packets/dissector.c.j2").render(banner=banner, **context)
-    return {f"epan/{context['file']}": text}
+    return {f"epan/{context['file']}": development_branch(text) if upstream else text}

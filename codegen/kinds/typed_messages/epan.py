@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 from ... import exchanges
 from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_section
+from ...epan_c import development_branch
 from ...lang import c
 from ...wrap import spread
 from .dissector import TYPE_CODES, Dissector, Exchanges, Field, Message, Step, dissector, exchanges_of
@@ -188,13 +189,15 @@ def view(d: Dissector, upstream: bool) -> dict:
 
 
 def render(planned: TypedPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
-    """packet-<name>.c; `upstream`: the copy for Wireshark's tree, which reads no command line."""
+    """packet-<name>.c; `upstream`: the copy for Wireshark's tree, which reads no command line, in its
+    development branch's style."""
     env = environment("epan")
     env.filters["c"] = c.string
     d = dissector(planned)
     text = env.get_template("typed_messages/packet.c.j2").render(
         banner=banner, **merged(view(d, upstream), exchanges_view(d, exchanges_of(planned))))
-    return {f"epan/packet-{planned.interface.name.replace('_', '-')}.c": text}
+    return {f"epan/packet-{planned.interface.name.replace('_', '-')}.c":
+            development_branch(text) if upstream else text}
 
 
 def _flags_after(v, names: list[str]) -> int:
