@@ -865,5 +865,6 @@ void proto_register_robotiq_gripper(void)
 
 void proto_reg_handoff_robotiq_gripper(void)
 {
-    dissector_add_uint("tcp.port", 63352, robotiq_gripper_handle);
+    /* The spec's ports, as the range preference robotiq_gripper.tcp.port that Decode As also sets. */
+    dissector_add_uint_range_with_preference("tcp.port", "63352", robotiq_gripper_handle);
 }

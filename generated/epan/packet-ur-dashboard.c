@@ -1115,5 +1115,6 @@ void proto_register_ur_dashboard(void)
 
 void proto_reg_handoff_ur_dashboard(void)
 {
-    dissector_add_uint("tcp.port", 29999, ur_dashboard_handle);
+    /* The spec's ports, as the range preference ur_dashboard.tcp.port that Decode As also sets. */
+    dissector_add_uint_range_with_preference("tcp.port", "29999", ur_dashboard_handle);
 }

@@ -902,5 +902,6 @@ void proto_register_ur_interpreter(void)
 
 void proto_reg_handoff_ur_interpreter(void)
 {
-    dissector_add_uint("tcp.port", 30020, ur_interpreter_handle);
+    /* The spec's ports, as the range preference ur_interpreter.tcp.port that Decode As also sets. */
+    dissector_add_uint_range_with_preference("tcp.port", "30020", ur_interpreter_handle);
 }

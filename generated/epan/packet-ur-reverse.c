@@ -29,6 +29,7 @@ void proto_reg_handoff_ur_reverse(void);
 #define INT32_RECORDS_COLUMN "UR reverse"
 #define INT32_RECORDS_DEFAULT_RELEASE 2014000
 #define INT32_RECORDS_DEFAULT_TEXT "2.14"
+#define INT32_RECORDS_PORTS "50001"
 
 static int proto_ur_reverse = -1;
 
@@ -93,8 +94,6 @@ typedef struct {
     gint *ett_scaled;           /* a scaled value's subtree, holding its raw int32 */
     const int32_records_record *to_robot;      /* what the control PC sends; NULL: nothing is specified */
     const int32_records_record *from_robot;    /* what the robot sends; NULL: nothing is specified */
-    const guint32 *ports;
-    guint n_ports;
 } int32_records_interface;
 
 /* Reverse interface command (to robot): each slot's field, raw int32, first int32, count, scale. */
@@ -124,12 +123,9 @@ static const int32_records_record ur_reverse_reverse_command = {
     ur_reverse_reverse_command_layouts
 };
 
-static const guint32 ur_reverse_ports[] = { 50001 };
-
 static const int32_records_interface int32_records_spec = {
     &proto_ur_reverse, &ett_ur_reverse, &ett_ur_reverse_scaled,
-    &ur_reverse_reverse_command, NULL,
-    ur_reverse_ports, array_length(ur_reverse_ports)
+    &ur_reverse_reverse_command, NULL
 };
 
 /* ---- runtime/c/common/macros.h ---- */
@@ -396,14 +392,10 @@ static void int32_records_register_runtime(void)
                                      &int32_records_pref_release);
 }
 
-/* The spec's ports, and Decode As. */
+/* The spec's ports, as the range preference <name>.tcp.port that Decode As also sets. */
 static void int32_records_handoff_runtime(void)
 {
-    guint i;
-
-    for (i = 0; i < int32_records_spec.n_ports; i++)
-        dissector_add_uint("tcp.port", int32_records_spec.ports[i], int32_records_handle);
-    dissector_add_for_decode_as("tcp.port", int32_records_handle);
+    dissector_add_uint_range_with_preference("tcp.port", INT32_RECORDS_PORTS, int32_records_handle);
     int32_records_apply_prefs();
 }
 
@@ -411,16 +403,22 @@ void proto_register_ur_reverse(void)
 {
     static hf_register_info hf[] = {
         { &hf_ur_reverse_keepalive,
-          { "Keepalive count", "ur_reverse.keepalive", FT_INT32, BASE_DEC, NULL, 0x0, NULL, HFILL } },
+          { "Keepalive count", "ur_reverse.keepalive", FT_INT32, BASE_DEC, NULL, 0x0,
+            "A count the script checks to know the PC is alive.", HFILL } },
         { &hf_ur_reverse_read_timeout,
-          { "Read timeout (ms)", "ur_reverse.read_timeout", FT_INT32, BASE_DEC, NULL, 0x0, NULL, HFILL } },
+          { "Read timeout (ms)", "ur_reverse.read_timeout", FT_INT32, BASE_DEC, NULL, 0x0,
+            "The timeout in milliseconds of the script's next read from this socket. In ms.", HFILL } },
         { &hf_ur_reverse_target,
-          { "Motion target", "ur_reverse.target", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+          { "Motion target", "ur_reverse.target", FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            "Joint positions (rad, SERVOJ), joint velocities (rad/s, SPEEDJ), a pose or its "
+            "velocity, or trajectory and freedrive instructions, as the control mode says.",
+            HFILL } },
         { &hf_ur_reverse_target_raw,
-          { "Motion target (raw int32)", "ur_reverse.target_raw", FT_INT32, BASE_DEC, NULL, 0x0, NULL, HFILL } },
+          { "Motion target (raw int32)", "ur_reverse.target_raw", FT_INT32, BASE_DEC, NULL, 0x0,
+            "Motion target as sent: the int32 before the driver's scale is applied.", HFILL } },
         { &hf_ur_reverse_control_mode,
           { "Control mode", "ur_reverse.control_mode", FT_INT32, BASE_DEC, VALS(ur_reverse_control_mode_vals), 0x0,
-            NULL, HFILL } },
+            "Control mode.", HFILL } },
     };
     static gint *ett[] = {
         &ett_ur_reverse,

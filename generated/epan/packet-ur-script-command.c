@@ -30,6 +30,7 @@ void proto_reg_handoff_ur_script_command(void);
 #define INT32_RECORDS_COLUMN "UR script command"
 #define INT32_RECORDS_DEFAULT_RELEASE 2014000
 #define INT32_RECORDS_DEFAULT_TEXT "2.14"
+#define INT32_RECORDS_PORTS "50004"
 
 static int proto_ur_script_command = -1;
 
@@ -93,8 +94,6 @@ typedef struct {
     gint *ett_scaled;           /* a scaled value's subtree, holding its raw int32 */
     const int32_records_record *to_robot;      /* what the control PC sends; NULL: nothing is specified */
     const int32_records_record *from_robot;    /* what the robot sends; NULL: nothing is specified */
-    const guint32 *ports;
-    guint n_ports;
 } int32_records_interface;
 
 /* Script command (to robot): each slot's field, raw int32, first int32, count, scale. */
@@ -128,12 +127,9 @@ static const int32_records_record ur_script_command_script_command = {
     ur_script_command_script_command_layouts
 };
 
-static const guint32 ur_script_command_ports[] = { 50004 };
-
 static const int32_records_interface int32_records_spec = {
     &proto_ur_script_command, &ett_ur_script_command, &ett_ur_script_command_scaled,
-    &ur_script_command_script_command, NULL,
-    ur_script_command_ports, array_length(ur_script_command_ports)
+    &ur_script_command_script_command, NULL
 };
 
 /* ---- runtime/c/common/macros.h ---- */
@@ -400,14 +396,10 @@ static void int32_records_register_runtime(void)
                                      &int32_records_pref_release);
 }
 
-/* The spec's ports, and Decode As. */
+/* The spec's ports, as the range preference <name>.tcp.port that Decode As also sets. */
 static void int32_records_handoff_runtime(void)
 {
-    guint i;
-
-    for (i = 0; i < int32_records_spec.n_ports; i++)
-        dissector_add_uint("tcp.port", int32_records_spec.ports[i], int32_records_handle);
-    dissector_add_for_decode_as("tcp.port", int32_records_handle);
+    dissector_add_uint_range_with_preference("tcp.port", INT32_RECORDS_PORTS, int32_records_handle);
     int32_records_apply_prefs();
 }
 
@@ -416,11 +408,15 @@ void proto_register_ur_script_command(void)
     static hf_register_info hf[] = {
         { &hf_ur_script_command_command,
           { "Command", "ur_script_command.command", FT_INT32, BASE_DEC, VALS(ur_script_command_command_code_vals), 0x0,
-            NULL, HFILL } },
+            "Command.", HFILL } },
         { &hf_ur_script_command_arguments,
-          { "Arguments", "ur_script_command.arguments", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+          { "Arguments", "ur_script_command.arguments", FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            "The command's data, each scaled by MULT_JOINTSTATE but where the command says "
+            "otherwise.",
+            HFILL } },
         { &hf_ur_script_command_arguments_raw,
-          { "Arguments (raw int32)", "ur_script_command.arguments_raw", FT_INT32, BASE_DEC, NULL, 0x0, NULL, HFILL } },
+          { "Arguments (raw int32)", "ur_script_command.arguments_raw", FT_INT32, BASE_DEC, NULL, 0x0,
+            "Arguments as sent: the int32 before the driver's scale is applied.", HFILL } },
     };
     static gint *ett[] = {
         &ett_ur_script_command,

@@ -853,5 +853,6 @@ void proto_register_ur_script_sender(void)
 
 void proto_reg_handoff_ur_script_sender(void)
 {
-    dissector_add_uint("tcp.port", 50002, ur_script_sender_handle);
+    /* The spec's ports, as the range preference ur_script_sender.tcp.port that Decode As also sets. */
+    dissector_add_uint_range_with_preference("tcp.port", "50002", ur_script_sender_handle);
 }

@@ -29,6 +29,7 @@ void proto_reg_handoff_ur_trajectory(void);
 #define INT32_RECORDS_COLUMN "UR trajectory"
 #define INT32_RECORDS_DEFAULT_RELEASE 2014000
 #define INT32_RECORDS_DEFAULT_TEXT "2.14"
+#define INT32_RECORDS_PORTS "50003"
 
 static int proto_ur_trajectory = -1;
 
@@ -114,8 +115,6 @@ typedef struct {
     gint *ett_scaled;           /* a scaled value's subtree, holding its raw int32 */
     const int32_records_record *to_robot;      /* what the control PC sends; NULL: nothing is specified */
     const int32_records_record *from_robot;    /* what the robot sends; NULL: nothing is specified */
-    const guint32 *ports;
-    guint n_ports;
 } int32_records_interface;
 
 /* Trajectory result (from robot): each slot's field, raw int32, first int32, count, scale. */
@@ -173,12 +172,9 @@ static const int32_records_record ur_trajectory_trajectory_point = {
     ur_trajectory_trajectory_point_layouts
 };
 
-static const guint32 ur_trajectory_ports[] = { 50003 };
-
 static const int32_records_interface int32_records_spec = {
     &proto_ur_trajectory, &ett_ur_trajectory, &ett_ur_trajectory_scaled,
-    &ur_trajectory_trajectory_point, &ur_trajectory_trajectory_result,
-    ur_trajectory_ports, array_length(ur_trajectory_ports)
+    &ur_trajectory_trajectory_point, &ur_trajectory_trajectory_result
 };
 
 /* ---- runtime/c/common/macros.h ---- */
@@ -445,14 +441,10 @@ static void int32_records_register_runtime(void)
                                      &int32_records_pref_release);
 }
 
-/* The spec's ports, and Decode As. */
+/* The spec's ports, as the range preference <name>.tcp.port that Decode As also sets. */
 static void int32_records_handoff_runtime(void)
 {
-    guint i;
-
-    for (i = 0; i < int32_records_spec.n_ports; i++)
-        dissector_add_uint("tcp.port", int32_records_spec.ports[i], int32_records_handle);
-    dissector_add_for_decode_as("tcp.port", int32_records_handle);
+    dissector_add_uint_range_with_preference("tcp.port", INT32_RECORDS_PORTS, int32_records_handle);
     int32_records_apply_prefs();
 }
 
@@ -460,33 +452,44 @@ void proto_register_ur_trajectory(void)
 {
     static hf_register_info hf[] = {
         { &hf_ur_trajectory_positions,
-          { "Positions", "ur_trajectory.positions", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+          { "Positions", "ur_trajectory.positions", FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            "Joint positions (rad) or a pose (m, m, m, rad, rad, rad), as the motion type says.", HFILL } },
         { &hf_ur_trajectory_positions_raw,
-          { "Positions (raw int32)", "ur_trajectory.positions_raw", FT_INT32, BASE_DEC, NULL, 0x0, NULL, HFILL } },
+          { "Positions (raw int32)", "ur_trajectory.positions_raw", FT_INT32, BASE_DEC, NULL, 0x0,
+            "Positions as sent: the int32 before the driver's scale is applied.", HFILL } },
         { &hf_ur_trajectory_velocities,
-          { "Velocities", "ur_trajectory.velocities", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+          { "Velocities", "ur_trajectory.velocities", FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            "Joint velocities of a spline point, a via point of a circular move, or a joint hint.", HFILL } },
         { &hf_ur_trajectory_velocities_raw,
-          { "Velocities (raw int32)", "ur_trajectory.velocities_raw", FT_INT32, BASE_DEC, NULL, 0x0, NULL, HFILL } },
+          { "Velocities (raw int32)", "ur_trajectory.velocities_raw", FT_INT32, BASE_DEC, NULL, 0x0,
+            "Velocities as sent: the int32 before the driver's scale is applied.", HFILL } },
         { &hf_ur_trajectory_accelerations,
-          { "Accelerations", "ur_trajectory.accelerations", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+          { "Accelerations", "ur_trajectory.accelerations", FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            "Joint accelerations of a spline point; else velocity, acceleration and a mode or "
+            "flag first.",
+            HFILL } },
         { &hf_ur_trajectory_accelerations_raw,
-          { "Accelerations (raw int32)", "ur_trajectory.accelerations_raw", FT_INT32, BASE_DEC, NULL, 0x0, NULL,
-            HFILL } },
+          { "Accelerations (raw int32)", "ur_trajectory.accelerations_raw", FT_INT32, BASE_DEC, NULL, 0x0,
+            "Accelerations as sent: the int32 before the driver's scale is applied.", HFILL } },
         { &hf_ur_trajectory_duration,
-          { "Segment duration (s)", "ur_trajectory.duration", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+          { "Segment duration (s)", "ur_trajectory.duration", FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            "Segment duration. In s.", HFILL } },
         { &hf_ur_trajectory_duration_raw,
-          { "Segment duration (raw int32)", "ur_trajectory.duration_raw", FT_INT32, BASE_DEC, NULL, 0x0, NULL,
-            HFILL } },
+          { "Segment duration (raw int32)", "ur_trajectory.duration_raw", FT_INT32, BASE_DEC, NULL, 0x0,
+            "Segment duration as sent: the int32 before the driver's scale is applied.", HFILL } },
         { &hf_ur_trajectory_blend_radius,
-          { "Blend radius (m)", "ur_trajectory.blend_radius", FT_DOUBLE, BASE_NONE, NULL, 0x0, NULL, HFILL } },
-        { &hf_ur_trajectory_blend_radius_raw,
-          { "Blend radius (raw int32)", "ur_trajectory.blend_radius_raw", FT_INT32, BASE_DEC, NULL, 0x0, NULL,
+          { "Blend radius (m)", "ur_trajectory.blend_radius", FT_DOUBLE, BASE_NONE, NULL, 0x0,
+            "The blend radius of a move; for a spline point, the spline type (1 cubic, 2 quintic) "
+            "unscaled. In m.",
             HFILL } },
+        { &hf_ur_trajectory_blend_radius_raw,
+          { "Blend radius (raw int32)", "ur_trajectory.blend_radius_raw", FT_INT32, BASE_DEC, NULL, 0x0,
+            "Blend radius as sent: the int32 before the driver's scale is applied.", HFILL } },
         { &hf_ur_trajectory_motion_type,
           { "Motion type", "ur_trajectory.motion_type", FT_INT32, BASE_DEC, VALS(ur_trajectory_motion_type_vals), 0x0,
-            NULL, HFILL } },
+            "Motion type.", HFILL } },
         { &hf_ur_trajectory_result,
-          { "Result", "ur_trajectory.result", FT_INT32, BASE_DEC, VALS(ur_trajectory_result_code_vals), 0x0, NULL,
+          { "Result", "ur_trajectory.result", FT_INT32, BASE_DEC, VALS(ur_trajectory_result_code_vals), 0x0, "Result.",
             HFILL } },
     };
     static gint *ett[] = {

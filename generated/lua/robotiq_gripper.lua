@@ -107,7 +107,18 @@ local function register_ports(proto, ports)
     tcp_port:add(registered, proto)
 end
 
-rt.register_ports = register_ports
+-- The ports as the range preference <name>.tcp.port, as the native twin's
+-- dissector_add_uint_range_with_preference names it (tshark -o ur_dashboard.tcp.port:40000),
+-- defaulting to `ports`; taken again when it changes. For a protocol with no prefs_changed of its own.
+local function register_port_preference(proto, name, ports)
+    proto.prefs["tcp.port"] = Pref.range("TCP port(s)", ports, name:upper() .. " TCP port(s)", 65535)
+    function proto.prefs_changed()
+        register_ports(proto, proto.prefs["tcp.port"])
+    end
+    register_ports(proto, ports)
+end
+
+rt.register_ports, rt.register_port_preference = register_ports, register_port_preference
 end)(spec, rt)
 end
 
@@ -674,6 +685,6 @@ function proto.init()
     conversations, decided = {}, {}
 end
 
-rt.register_ports(proto, table.concat(spec.ports, ","))
+rt.register_port_preference(proto, spec.name, table.concat(spec.ports, ","))
 end)(spec, rt)
 end

@@ -18,161 +18,359 @@ local proto = Proto("ur_realtime", "Universal Robots real-time client interface"
 -- vector with named items has one per item instead (ITEMS).
 -- ---------------------------------------------------------------------------------------------
 local F = {
-    message_size = ProtoField.int32("ur_realtime.message_size", "Message size", base.DEC),
-    time = ProtoField.double("ur_realtime.time", "Time"),  -- Time (s). Time elapsed since the controller was started.
-    -- Digital input bits. Current state of the digital inputs, as a double whose integer value
-    -- holds the bits (5.0 is bits 0 and 2).
-    digital_input_bits = ProtoField.double("ur_realtime.digital_input_bits", "Digital input bits"),
-    -- Controller timer. Controller real-time thread execution time; UR's tables give it no unit.
-    controller_timer = ProtoField.double("ur_realtime.controller_timer", "Controller timer"),
-    -- Test value. A value used by Universal Robots software only.
-    test_value = ProtoField.double("ur_realtime.test_value", "Test value"),
-    robot_mode = ProtoField.double("ur_realtime.robot_mode", "Robot mode"),  -- Robot mode.
-    safety_mode = ProtoField.double("ur_realtime.safety_mode", "Safety mode"),  -- Safety mode.
-    -- Speed scaling. Speed scaling of the trajectory limiter.
-    speed_scaling = ProtoField.double("ur_realtime.speed_scaling", "Speed scaling"),
-    -- Linear momentum norm. Norm of Cartesian linear momentum.
-    linear_momentum_norm = ProtoField.double("ur_realtime.linear_momentum_norm", "Linear momentum norm"),
-    v_main = ProtoField.double("ur_realtime.v_main", "Main voltage"),  -- Main voltage (V). Masterboard: main voltage.
-    -- Robot voltage (V). Masterboard: robot voltage (48 V).
-    v_robot = ProtoField.double("ur_realtime.v_robot", "Robot voltage"),
-    -- Robot current (A). Masterboard: robot current.
-    i_robot = ProtoField.double("ur_realtime.i_robot", "Robot current"),
-    -- Digital outputs. Current state of the digital outputs, as a double whose integer value holds
-    -- the bits.
-    digital_outputs = ProtoField.double("ur_realtime.digital_outputs", "Digital outputs"),
-    program_state = ProtoField.double("ur_realtime.program_state", "Program state"),  -- Program state.
-    safety_status = ProtoField.double("ur_realtime.safety_status", "Safety status"),  -- Safety status.
-    payload_mass = ProtoField.double("ur_realtime.payload_mass", "Payload mass"),  -- Payload mass (kg).
-    unused_1 = ProtoField.double("ur_realtime.unused_1", "Unused 1"),  -- Unused 1. Doubles UR marks unused.
-    unused_2 = ProtoField.double("ur_realtime.unused_2", "Unused 2"),  -- Unused 2. Doubles UR marks unused.
-    unused_3 = ProtoField.double("ur_realtime.unused_3", "Unused 3"),  -- Unused 3. Doubles UR marks unused.
-    unused_4 = ProtoField.double("ur_realtime.unused_4", "Unused 4"),  -- Unused 4. Doubles UR marks unused.
-    unused_5 = ProtoField.double("ur_realtime.unused_5", "Unused 5"),  -- Unused 5. Doubles UR marks unused.
+    ["message_size"] = ProtoField.int32("ur_realtime.message_size", "Message size", base.DEC, nil, nil,
+        "Total message length in bytes, this field included."),
+    ["time"] = ProtoField.double("ur_realtime.time", "Time", "Time elapsed since the controller was started. In s."),
+    ["digital_input_bits"] = ProtoField.double("ur_realtime.digital_input_bits", "Digital input bits",
+        "Current state of the digital inputs, as a double whose integer value holds the bits \z
+        (5.0 is bits 0 and 2)."),
+    ["controller_timer"] = ProtoField.double("ur_realtime.controller_timer", "Controller timer",
+        "Controller real-time thread execution time; UR's tables give it no unit."),
+    ["test_value"] = ProtoField.double("ur_realtime.test_value", "Test value",
+        "A value used by Universal Robots software only."),
+    ["robot_mode"] = ProtoField.double("ur_realtime.robot_mode", "Robot mode",
+        "Robot mode. Robot mode (\"Robot Modes\"). The codes changed meaning at 3.0."),
+    ["safety_mode"] = ProtoField.double("ur_realtime.safety_mode", "Safety mode",
+        "Safety mode. Safety mode (\"Safety Mode Types\"); safety_status takes its codes from \z
+        the same table."),
+    ["speed_scaling"] = ProtoField.double("ur_realtime.speed_scaling", "Speed scaling",
+        "Speed scaling of the trajectory limiter."),
+    ["linear_momentum_norm"] = ProtoField.double("ur_realtime.linear_momentum_norm", "Linear momentum norm",
+        "Norm of Cartesian linear momentum."),
+    ["v_main"] = ProtoField.double("ur_realtime.v_main", "Main voltage", "Masterboard: main voltage. In V."),
+    ["v_robot"] = ProtoField.double("ur_realtime.v_robot", "Robot voltage", "Masterboard: robot voltage (48 V). In V."),
+    ["i_robot"] = ProtoField.double("ur_realtime.i_robot", "Robot current", "Masterboard: robot current. In A."),
+    ["digital_outputs"] = ProtoField.double("ur_realtime.digital_outputs", "Digital outputs",
+        "Current state of the digital outputs, as a double whose integer value holds the bits."),
+    ["program_state"] = ProtoField.double("ur_realtime.program_state", "Program state",
+        "Program state. State of the program."),
+    ["safety_status"] = ProtoField.double("ur_realtime.safety_status", "Safety status",
+        "Safety status. Safety mode (\"Safety Mode Types\"); safety_status takes its codes from \z
+        the same table."),
+    ["payload_mass"] = ProtoField.double("ur_realtime.payload_mass", "Payload mass", "Payload mass. In kg."),
+    ["unused_1"] = ProtoField.double("ur_realtime.unused_1", "Unused 1", "Doubles UR marks unused."),
+    ["unused_2"] = ProtoField.double("ur_realtime.unused_2", "Unused 2", "Doubles UR marks unused."),
+    ["unused_3"] = ProtoField.double("ur_realtime.unused_3", "Unused 3", "Doubles UR marks unused."),
+    ["unused_4"] = ProtoField.double("ur_realtime.unused_4", "Unused 4", "Doubles UR marks unused."),
+    ["unused_5"] = ProtoField.double("ur_realtime.unused_5", "Unused 5", "Doubles UR marks unused."),
 }
 
 -- Vectors with named items: each item's field, filtered by the vector's name, and its unit.
 local ITEMS = {
-    q_target = {{ProtoField.double("ur_realtime.q_target", "Base"), " rad"},
-                {ProtoField.double("ur_realtime.q_target", "Shoulder"), " rad"},
-                {ProtoField.double("ur_realtime.q_target", "Elbow"), " rad"},
-                {ProtoField.double("ur_realtime.q_target", "Wrist 1"), " rad"},
-                {ProtoField.double("ur_realtime.q_target", "Wrist 2"), " rad"},
-                {ProtoField.double("ur_realtime.q_target", "Wrist 3"), " rad"}},
-    qd_target = {{ProtoField.double("ur_realtime.qd_target", "Base"), " rad/s"},
-                 {ProtoField.double("ur_realtime.qd_target", "Shoulder"), " rad/s"},
-                 {ProtoField.double("ur_realtime.qd_target", "Elbow"), " rad/s"},
-                 {ProtoField.double("ur_realtime.qd_target", "Wrist 1"), " rad/s"},
-                 {ProtoField.double("ur_realtime.qd_target", "Wrist 2"), " rad/s"},
-                 {ProtoField.double("ur_realtime.qd_target", "Wrist 3"), " rad/s"}},
-    qdd_target = {{ProtoField.double("ur_realtime.qdd_target", "Base"), " rad/s²"},
-                  {ProtoField.double("ur_realtime.qdd_target", "Shoulder"), " rad/s²"},
-                  {ProtoField.double("ur_realtime.qdd_target", "Elbow"), " rad/s²"},
-                  {ProtoField.double("ur_realtime.qdd_target", "Wrist 1"), " rad/s²"},
-                  {ProtoField.double("ur_realtime.qdd_target", "Wrist 2"), " rad/s²"},
-                  {ProtoField.double("ur_realtime.qdd_target", "Wrist 3"), " rad/s²"}},
-    i_target = {{ProtoField.double("ur_realtime.i_target", "Base"), " A"},
-                {ProtoField.double("ur_realtime.i_target", "Shoulder"), " A"},
-                {ProtoField.double("ur_realtime.i_target", "Elbow"), " A"},
-                {ProtoField.double("ur_realtime.i_target", "Wrist 1"), " A"},
-                {ProtoField.double("ur_realtime.i_target", "Wrist 2"), " A"},
-                {ProtoField.double("ur_realtime.i_target", "Wrist 3"), " A"}},
-    m_target = {{ProtoField.double("ur_realtime.m_target", "Base"), " Nm"},
-                {ProtoField.double("ur_realtime.m_target", "Shoulder"), " Nm"},
-                {ProtoField.double("ur_realtime.m_target", "Elbow"), " Nm"},
-                {ProtoField.double("ur_realtime.m_target", "Wrist 1"), " Nm"},
-                {ProtoField.double("ur_realtime.m_target", "Wrist 2"), " Nm"},
-                {ProtoField.double("ur_realtime.m_target", "Wrist 3"), " Nm"}},
-    q_actual = {{ProtoField.double("ur_realtime.q_actual", "Base"), " rad"},
-                {ProtoField.double("ur_realtime.q_actual", "Shoulder"), " rad"},
-                {ProtoField.double("ur_realtime.q_actual", "Elbow"), " rad"},
-                {ProtoField.double("ur_realtime.q_actual", "Wrist 1"), " rad"},
-                {ProtoField.double("ur_realtime.q_actual", "Wrist 2"), " rad"},
-                {ProtoField.double("ur_realtime.q_actual", "Wrist 3"), " rad"}},
-    qd_actual = {{ProtoField.double("ur_realtime.qd_actual", "Base"), " rad/s"},
-                 {ProtoField.double("ur_realtime.qd_actual", "Shoulder"), " rad/s"},
-                 {ProtoField.double("ur_realtime.qd_actual", "Elbow"), " rad/s"},
-                 {ProtoField.double("ur_realtime.qd_actual", "Wrist 1"), " rad/s"},
-                 {ProtoField.double("ur_realtime.qd_actual", "Wrist 2"), " rad/s"},
-                 {ProtoField.double("ur_realtime.qd_actual", "Wrist 3"), " rad/s"}},
-    i_actual = {{ProtoField.double("ur_realtime.i_actual", "Base"), " A"},
-                {ProtoField.double("ur_realtime.i_actual", "Shoulder"), " A"},
-                {ProtoField.double("ur_realtime.i_actual", "Elbow"), " A"},
-                {ProtoField.double("ur_realtime.i_actual", "Wrist 1"), " A"},
-                {ProtoField.double("ur_realtime.i_actual", "Wrist 2"), " A"},
-                {ProtoField.double("ur_realtime.i_actual", "Wrist 3"), " A"}},
-    i_control = {{ProtoField.double("ur_realtime.i_control", "Base"), " A"},
-                 {ProtoField.double("ur_realtime.i_control", "Shoulder"), " A"},
-                 {ProtoField.double("ur_realtime.i_control", "Elbow"), " A"},
-                 {ProtoField.double("ur_realtime.i_control", "Wrist 1"), " A"},
-                 {ProtoField.double("ur_realtime.i_control", "Wrist 2"), " A"},
-                 {ProtoField.double("ur_realtime.i_control", "Wrist 3"), " A"}},
-    tool_vector_actual = {{ProtoField.double("ur_realtime.tool_vector_actual", "X"), " m"},
-                          {ProtoField.double("ur_realtime.tool_vector_actual", "Y"), " m"},
-                          {ProtoField.double("ur_realtime.tool_vector_actual", "Z"), " m"},
-                          {ProtoField.double("ur_realtime.tool_vector_actual", "RX"), " rad"},
-                          {ProtoField.double("ur_realtime.tool_vector_actual", "RY"), " rad"},
-                          {ProtoField.double("ur_realtime.tool_vector_actual", "RZ"), " rad"}},
-    tcp_speed_actual = {{ProtoField.double("ur_realtime.tcp_speed_actual", "X"), " m/s"},
-                        {ProtoField.double("ur_realtime.tcp_speed_actual", "Y"), " m/s"},
-                        {ProtoField.double("ur_realtime.tcp_speed_actual", "Z"), " m/s"},
-                        {ProtoField.double("ur_realtime.tcp_speed_actual", "RX"), " rad/s"},
-                        {ProtoField.double("ur_realtime.tcp_speed_actual", "RY"), " rad/s"},
-                        {ProtoField.double("ur_realtime.tcp_speed_actual", "RZ"), " rad/s"}},
-    tcp_force = {{ProtoField.double("ur_realtime.tcp_force", "Fx"), " N"},
-                 {ProtoField.double("ur_realtime.tcp_force", "Fy"), " N"},
-                 {ProtoField.double("ur_realtime.tcp_force", "Fz"), " N"},
-                 {ProtoField.double("ur_realtime.tcp_force", "Tx"), " Nm"},
-                 {ProtoField.double("ur_realtime.tcp_force", "Ty"), " Nm"},
-                 {ProtoField.double("ur_realtime.tcp_force", "Tz"), " Nm"}},
-    tool_vector_target = {{ProtoField.double("ur_realtime.tool_vector_target", "X"), " m"},
-                          {ProtoField.double("ur_realtime.tool_vector_target", "Y"), " m"},
-                          {ProtoField.double("ur_realtime.tool_vector_target", "Z"), " m"},
-                          {ProtoField.double("ur_realtime.tool_vector_target", "RX"), " rad"},
-                          {ProtoField.double("ur_realtime.tool_vector_target", "RY"), " rad"},
-                          {ProtoField.double("ur_realtime.tool_vector_target", "RZ"), " rad"}},
-    tcp_speed_target = {{ProtoField.double("ur_realtime.tcp_speed_target", "X"), " m/s"},
-                        {ProtoField.double("ur_realtime.tcp_speed_target", "Y"), " m/s"},
-                        {ProtoField.double("ur_realtime.tcp_speed_target", "Z"), " m/s"},
-                        {ProtoField.double("ur_realtime.tcp_speed_target", "RX"), " rad/s"},
-                        {ProtoField.double("ur_realtime.tcp_speed_target", "RY"), " rad/s"},
-                        {ProtoField.double("ur_realtime.tcp_speed_target", "RZ"), " rad/s"}},
-    motor_temperatures = {{ProtoField.double("ur_realtime.motor_temperatures", "Base"), " °C"},
-                          {ProtoField.double("ur_realtime.motor_temperatures", "Shoulder"), " °C"},
-                          {ProtoField.double("ur_realtime.motor_temperatures", "Elbow"), " °C"},
-                          {ProtoField.double("ur_realtime.motor_temperatures", "Wrist 1"), " °C"},
-                          {ProtoField.double("ur_realtime.motor_temperatures", "Wrist 2"), " °C"},
-                          {ProtoField.double("ur_realtime.motor_temperatures", "Wrist 3"), " °C"}},
-    joint_modes = {{ProtoField.double("ur_realtime.joint_modes", "Base"), nil},
-                   {ProtoField.double("ur_realtime.joint_modes", "Shoulder"), nil},
-                   {ProtoField.double("ur_realtime.joint_modes", "Elbow"), nil},
-                   {ProtoField.double("ur_realtime.joint_modes", "Wrist 1"), nil},
-                   {ProtoField.double("ur_realtime.joint_modes", "Wrist 2"), nil},
-                   {ProtoField.double("ur_realtime.joint_modes", "Wrist 3"), nil}},
-    tool_accelerometer_values = {{ProtoField.double("ur_realtime.tool_accelerometer_values", "X"), " m/s²"},
-                                 {ProtoField.double("ur_realtime.tool_accelerometer_values", "Y"), " m/s²"},
-                                 {ProtoField.double("ur_realtime.tool_accelerometer_values", "Z"), " m/s²"}},
-    v_actual = {{ProtoField.double("ur_realtime.v_actual", "Base"), " V"},
-                {ProtoField.double("ur_realtime.v_actual", "Shoulder"), " V"},
-                {ProtoField.double("ur_realtime.v_actual", "Elbow"), " V"},
-                {ProtoField.double("ur_realtime.v_actual", "Wrist 1"), " V"},
-                {ProtoField.double("ur_realtime.v_actual", "Wrist 2"), " V"},
-                {ProtoField.double("ur_realtime.v_actual", "Wrist 3"), " V"}},
-    elbow_position = {{ProtoField.double("ur_realtime.elbow_position", "X"), " m"},
-                      {ProtoField.double("ur_realtime.elbow_position", "Y"), " m"},
-                      {ProtoField.double("ur_realtime.elbow_position", "Z"), " m"}},
-    elbow_velocity = {{ProtoField.double("ur_realtime.elbow_velocity", "X"), " m/s"},
-                      {ProtoField.double("ur_realtime.elbow_velocity", "Y"), " m/s"},
-                      {ProtoField.double("ur_realtime.elbow_velocity", "Z"), " m/s"}},
-    payload_cog = {{ProtoField.double("ur_realtime.payload_cog", "X"), " m"},
-                   {ProtoField.double("ur_realtime.payload_cog", "Y"), " m"},
-                   {ProtoField.double("ur_realtime.payload_cog", "Z"), " m"}},
-    payload_inertia = {{ProtoField.double("ur_realtime.payload_inertia", "Ixx"), " kg·m²"},
-                       {ProtoField.double("ur_realtime.payload_inertia", "Iyy"), " kg·m²"},
-                       {ProtoField.double("ur_realtime.payload_inertia", "Izz"), " kg·m²"},
-                       {ProtoField.double("ur_realtime.payload_inertia", "Ixy"), " kg·m²"},
-                       {ProtoField.double("ur_realtime.payload_inertia", "Ixz"), " kg·m²"},
-                       {ProtoField.double("ur_realtime.payload_inertia", "Iyz"), " kg·m²"}},
+    q_target = {
+        {ProtoField.double("ur_realtime.q_target", "Base",
+            "Base of Target joint position. In rad."), " rad"},
+        {ProtoField.double("ur_realtime.q_target", "Shoulder",
+            "Shoulder of Target joint position. In rad."), " rad"},
+        {ProtoField.double("ur_realtime.q_target", "Elbow",
+            "Elbow of Target joint position. In rad."), " rad"},
+        {ProtoField.double("ur_realtime.q_target", "Wrist 1",
+            "Wrist 1 of Target joint position. In rad."), " rad"},
+        {ProtoField.double("ur_realtime.q_target", "Wrist 2",
+            "Wrist 2 of Target joint position. In rad."), " rad"},
+        {ProtoField.double("ur_realtime.q_target", "Wrist 3",
+            "Wrist 3 of Target joint position. In rad."), " rad"},
+    },
+    qd_target = {
+        {ProtoField.double("ur_realtime.qd_target", "Base",
+            "Base of Target joint velocity. In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.qd_target", "Shoulder",
+            "Shoulder of Target joint velocity. In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.qd_target", "Elbow",
+            "Elbow of Target joint velocity. In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.qd_target", "Wrist 1",
+            "Wrist 1 of Target joint velocity. In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.qd_target", "Wrist 2",
+            "Wrist 2 of Target joint velocity. In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.qd_target", "Wrist 3",
+            "Wrist 3 of Target joint velocity. In rad/s."), " rad/s"},
+    },
+    qdd_target = {
+        {ProtoField.double("ur_realtime.qdd_target", "Base",
+            "Base of Target joint acceleration. In rad/s²."), " rad/s²"},
+        {ProtoField.double("ur_realtime.qdd_target", "Shoulder",
+            "Shoulder of Target joint acceleration. In rad/s²."), " rad/s²"},
+        {ProtoField.double("ur_realtime.qdd_target", "Elbow",
+            "Elbow of Target joint acceleration. In rad/s²."), " rad/s²"},
+        {ProtoField.double("ur_realtime.qdd_target", "Wrist 1",
+            "Wrist 1 of Target joint acceleration. In rad/s²."), " rad/s²"},
+        {ProtoField.double("ur_realtime.qdd_target", "Wrist 2",
+            "Wrist 2 of Target joint acceleration. In rad/s²."), " rad/s²"},
+        {ProtoField.double("ur_realtime.qdd_target", "Wrist 3",
+            "Wrist 3 of Target joint acceleration. In rad/s²."), " rad/s²"},
+    },
+    i_target = {
+        {ProtoField.double("ur_realtime.i_target", "Base",
+            "Base of Target joint current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_target", "Shoulder",
+            "Shoulder of Target joint current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_target", "Elbow",
+            "Elbow of Target joint current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_target", "Wrist 1",
+            "Wrist 1 of Target joint current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_target", "Wrist 2",
+            "Wrist 2 of Target joint current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_target", "Wrist 3",
+            "Wrist 3 of Target joint current. In A."), " A"},
+    },
+    m_target = {
+        {ProtoField.double("ur_realtime.m_target", "Base",
+            "Base of Target joint moment. Target joint torques. In Nm."), " Nm"},
+        {ProtoField.double("ur_realtime.m_target", "Shoulder",
+            "Shoulder of Target joint moment. Target joint torques. In Nm."), " Nm"},
+        {ProtoField.double("ur_realtime.m_target", "Elbow",
+            "Elbow of Target joint moment. Target joint torques. In Nm."), " Nm"},
+        {ProtoField.double("ur_realtime.m_target", "Wrist 1",
+            "Wrist 1 of Target joint moment. Target joint torques. In Nm."), " Nm"},
+        {ProtoField.double("ur_realtime.m_target", "Wrist 2",
+            "Wrist 2 of Target joint moment. Target joint torques. In Nm."), " Nm"},
+        {ProtoField.double("ur_realtime.m_target", "Wrist 3",
+            "Wrist 3 of Target joint moment. Target joint torques. In Nm."), " Nm"},
+    },
+    q_actual = {
+        {ProtoField.double("ur_realtime.q_actual", "Base",
+            "Base of Actual joint position. In rad."), " rad"},
+        {ProtoField.double("ur_realtime.q_actual", "Shoulder",
+            "Shoulder of Actual joint position. In rad."), " rad"},
+        {ProtoField.double("ur_realtime.q_actual", "Elbow",
+            "Elbow of Actual joint position. In rad."), " rad"},
+        {ProtoField.double("ur_realtime.q_actual", "Wrist 1",
+            "Wrist 1 of Actual joint position. In rad."), " rad"},
+        {ProtoField.double("ur_realtime.q_actual", "Wrist 2",
+            "Wrist 2 of Actual joint position. In rad."), " rad"},
+        {ProtoField.double("ur_realtime.q_actual", "Wrist 3",
+            "Wrist 3 of Actual joint position. In rad."), " rad"},
+    },
+    qd_actual = {
+        {ProtoField.double("ur_realtime.qd_actual", "Base",
+            "Base of Actual joint velocity. In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.qd_actual", "Shoulder",
+            "Shoulder of Actual joint velocity. In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.qd_actual", "Elbow",
+            "Elbow of Actual joint velocity. In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.qd_actual", "Wrist 1",
+            "Wrist 1 of Actual joint velocity. In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.qd_actual", "Wrist 2",
+            "Wrist 2 of Actual joint velocity. In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.qd_actual", "Wrist 3",
+            "Wrist 3 of Actual joint velocity. In rad/s."), " rad/s"},
+    },
+    i_actual = {
+        {ProtoField.double("ur_realtime.i_actual", "Base",
+            "Base of Actual joint current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_actual", "Shoulder",
+            "Shoulder of Actual joint current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_actual", "Elbow",
+            "Elbow of Actual joint current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_actual", "Wrist 1",
+            "Wrist 1 of Actual joint current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_actual", "Wrist 2",
+            "Wrist 2 of Actual joint current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_actual", "Wrist 3",
+            "Wrist 3 of Actual joint current. In A."), " A"},
+    },
+    i_control = {
+        {ProtoField.double("ur_realtime.i_control", "Base",
+            "Base of Joint control current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_control", "Shoulder",
+            "Shoulder of Joint control current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_control", "Elbow",
+            "Elbow of Joint control current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_control", "Wrist 1",
+            "Wrist 1 of Joint control current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_control", "Wrist 2",
+            "Wrist 2 of Joint control current. In A."), " A"},
+        {ProtoField.double("ur_realtime.i_control", "Wrist 3",
+            "Wrist 3 of Joint control current. In A."), " A"},
+    },
+    tool_vector_actual = {
+        {ProtoField.double("ur_realtime.tool_vector_actual", "X",
+            "X of Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, \z
+            ry, rz a rotation vector in rad). In m."), " m"},
+        {ProtoField.double("ur_realtime.tool_vector_actual", "Y",
+            "Y of Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, \z
+            ry, rz a rotation vector in rad). In m."), " m"},
+        {ProtoField.double("ur_realtime.tool_vector_actual", "Z",
+            "Z of Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; rx, \z
+            ry, rz a rotation vector in rad). In m."), " m"},
+        {ProtoField.double("ur_realtime.tool_vector_actual", "RX",
+            "RX of Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; \z
+            rx, ry, rz a rotation vector in rad). In rad."), " rad"},
+        {ProtoField.double("ur_realtime.tool_vector_actual", "RY",
+            "RY of Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; \z
+            rx, ry, rz a rotation vector in rad). In rad."), " rad"},
+        {ProtoField.double("ur_realtime.tool_vector_actual", "RZ",
+            "RZ of Actual tool pose. Actual Cartesian coordinates of the tool (x, y, z in m; \z
+            rx, ry, rz a rotation vector in rad). In rad."), " rad"},
+    },
+    tcp_speed_actual = {
+        {ProtoField.double("ur_realtime.tcp_speed_actual", "X",
+            "X of Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In m/s."), " m/s"},
+        {ProtoField.double("ur_realtime.tcp_speed_actual", "Y",
+            "Y of Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In m/s."), " m/s"},
+        {ProtoField.double("ur_realtime.tcp_speed_actual", "Z",
+            "Z of Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In m/s."), " m/s"},
+        {ProtoField.double("ur_realtime.tcp_speed_actual", "RX",
+            "RX of Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.tcp_speed_actual", "RY",
+            "RY of Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.tcp_speed_actual", "RZ",
+            "RZ of Actual TCP speed. Actual speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In rad/s."), " rad/s"},
+    },
+    tcp_force = {
+        {ProtoField.double("ur_realtime.tcp_force", "Fx",
+            "Fx of TCP force. Generalised forces in the TCP (N, then Nm). In N."), " N"},
+        {ProtoField.double("ur_realtime.tcp_force", "Fy",
+            "Fy of TCP force. Generalised forces in the TCP (N, then Nm). In N."), " N"},
+        {ProtoField.double("ur_realtime.tcp_force", "Fz",
+            "Fz of TCP force. Generalised forces in the TCP (N, then Nm). In N."), " N"},
+        {ProtoField.double("ur_realtime.tcp_force", "Tx",
+            "Tx of TCP force. Generalised forces in the TCP (N, then Nm). In Nm."), " Nm"},
+        {ProtoField.double("ur_realtime.tcp_force", "Ty",
+            "Ty of TCP force. Generalised forces in the TCP (N, then Nm). In Nm."), " Nm"},
+        {ProtoField.double("ur_realtime.tcp_force", "Tz",
+            "Tz of TCP force. Generalised forces in the TCP (N, then Nm). In Nm."), " Nm"},
+    },
+    tool_vector_target = {
+        {ProtoField.double("ur_realtime.tool_vector_target", "X",
+            "X of Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; rx, \z
+            ry, rz a rotation vector in rad). In m."), " m"},
+        {ProtoField.double("ur_realtime.tool_vector_target", "Y",
+            "Y of Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; rx, \z
+            ry, rz a rotation vector in rad). In m."), " m"},
+        {ProtoField.double("ur_realtime.tool_vector_target", "Z",
+            "Z of Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; rx, \z
+            ry, rz a rotation vector in rad). In m."), " m"},
+        {ProtoField.double("ur_realtime.tool_vector_target", "RX",
+            "RX of Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; \z
+            rx, ry, rz a rotation vector in rad). In rad."), " rad"},
+        {ProtoField.double("ur_realtime.tool_vector_target", "RY",
+            "RY of Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; \z
+            rx, ry, rz a rotation vector in rad). In rad."), " rad"},
+        {ProtoField.double("ur_realtime.tool_vector_target", "RZ",
+            "RZ of Target tool pose. Target Cartesian coordinates of the tool (x, y, z in m; \z
+            rx, ry, rz a rotation vector in rad). In rad."), " rad"},
+    },
+    tcp_speed_target = {
+        {ProtoField.double("ur_realtime.tcp_speed_target", "X",
+            "X of Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In m/s."), " m/s"},
+        {ProtoField.double("ur_realtime.tcp_speed_target", "Y",
+            "Y of Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In m/s."), " m/s"},
+        {ProtoField.double("ur_realtime.tcp_speed_target", "Z",
+            "Z of Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In m/s."), " m/s"},
+        {ProtoField.double("ur_realtime.tcp_speed_target", "RX",
+            "RX of Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.tcp_speed_target", "RY",
+            "RY of Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In rad/s."), " rad/s"},
+        {ProtoField.double("ur_realtime.tcp_speed_target", "RZ",
+            "RZ of Target TCP speed. Target speed of the tool in Cartesian coordinates (m/s, \z
+            then rad/s). In rad/s."), " rad/s"},
+    },
+    motor_temperatures = {
+        {ProtoField.double("ur_realtime.motor_temperatures", "Base",
+            "Base of Motor temperature. In °C."), " °C"},
+        {ProtoField.double("ur_realtime.motor_temperatures", "Shoulder",
+            "Shoulder of Motor temperature. In °C."), " °C"},
+        {ProtoField.double("ur_realtime.motor_temperatures", "Elbow",
+            "Elbow of Motor temperature. In °C."), " °C"},
+        {ProtoField.double("ur_realtime.motor_temperatures", "Wrist 1",
+            "Wrist 1 of Motor temperature. In °C."), " °C"},
+        {ProtoField.double("ur_realtime.motor_temperatures", "Wrist 2",
+            "Wrist 2 of Motor temperature. In °C."), " °C"},
+        {ProtoField.double("ur_realtime.motor_temperatures", "Wrist 3",
+            "Wrist 3 of Motor temperature. In °C."), " °C"},
+    },
+    joint_modes = {
+        {ProtoField.double("ur_realtime.joint_modes", "Base",
+            "Base of Joint mode."), nil},
+        {ProtoField.double("ur_realtime.joint_modes", "Shoulder",
+            "Shoulder of Joint mode."), nil},
+        {ProtoField.double("ur_realtime.joint_modes", "Elbow",
+            "Elbow of Joint mode."), nil},
+        {ProtoField.double("ur_realtime.joint_modes", "Wrist 1",
+            "Wrist 1 of Joint mode."), nil},
+        {ProtoField.double("ur_realtime.joint_modes", "Wrist 2",
+            "Wrist 2 of Joint mode."), nil},
+        {ProtoField.double("ur_realtime.joint_modes", "Wrist 3",
+            "Wrist 3 of Joint mode."), nil},
+    },
+    tool_accelerometer_values = {
+        {ProtoField.double("ur_realtime.tool_accelerometer_values", "X",
+            "X of Tool accelerometer. Tool x, y and z accelerometer values. In m/s²."), " m/s²"},
+        {ProtoField.double("ur_realtime.tool_accelerometer_values", "Y",
+            "Y of Tool accelerometer. Tool x, y and z accelerometer values. In m/s²."), " m/s²"},
+        {ProtoField.double("ur_realtime.tool_accelerometer_values", "Z",
+            "Z of Tool accelerometer. Tool x, y and z accelerometer values. In m/s²."), " m/s²"},
+    },
+    v_actual = {
+        {ProtoField.double("ur_realtime.v_actual", "Base",
+            "Base of Actual joint voltage. In V."), " V"},
+        {ProtoField.double("ur_realtime.v_actual", "Shoulder",
+            "Shoulder of Actual joint voltage. In V."), " V"},
+        {ProtoField.double("ur_realtime.v_actual", "Elbow",
+            "Elbow of Actual joint voltage. In V."), " V"},
+        {ProtoField.double("ur_realtime.v_actual", "Wrist 1",
+            "Wrist 1 of Actual joint voltage. In V."), " V"},
+        {ProtoField.double("ur_realtime.v_actual", "Wrist 2",
+            "Wrist 2 of Actual joint voltage. In V."), " V"},
+        {ProtoField.double("ur_realtime.v_actual", "Wrist 3",
+            "Wrist 3 of Actual joint voltage. In V."), " V"},
+    },
+    elbow_position = {
+        {ProtoField.double("ur_realtime.elbow_position", "X",
+            "X of Elbow position. In m."), " m"},
+        {ProtoField.double("ur_realtime.elbow_position", "Y",
+            "Y of Elbow position. In m."), " m"},
+        {ProtoField.double("ur_realtime.elbow_position", "Z",
+            "Z of Elbow position. In m."), " m"},
+    },
+    elbow_velocity = {
+        {ProtoField.double("ur_realtime.elbow_velocity", "X",
+            "X of Elbow velocity. In m/s."), " m/s"},
+        {ProtoField.double("ur_realtime.elbow_velocity", "Y",
+            "Y of Elbow velocity. In m/s."), " m/s"},
+        {ProtoField.double("ur_realtime.elbow_velocity", "Z",
+            "Z of Elbow velocity. In m/s."), " m/s"},
+    },
+    payload_cog = {
+        {ProtoField.double("ur_realtime.payload_cog", "X",
+            "X of Payload centre of gravity. In m."), " m"},
+        {ProtoField.double("ur_realtime.payload_cog", "Y",
+            "Y of Payload centre of gravity. In m."), " m"},
+        {ProtoField.double("ur_realtime.payload_cog", "Z",
+            "Z of Payload centre of gravity. In m."), " m"},
+    },
+    payload_inertia = {
+        {ProtoField.double("ur_realtime.payload_inertia", "Ixx",
+            "Ixx of Payload inertia. Payload inertia matrix (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) in \z
+            kg·m². In kg·m²."), " kg·m²"},
+        {ProtoField.double("ur_realtime.payload_inertia", "Iyy",
+            "Iyy of Payload inertia. Payload inertia matrix (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) in \z
+            kg·m². In kg·m²."), " kg·m²"},
+        {ProtoField.double("ur_realtime.payload_inertia", "Izz",
+            "Izz of Payload inertia. Payload inertia matrix (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) in \z
+            kg·m². In kg·m²."), " kg·m²"},
+        {ProtoField.double("ur_realtime.payload_inertia", "Ixy",
+            "Ixy of Payload inertia. Payload inertia matrix (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) in \z
+            kg·m². In kg·m²."), " kg·m²"},
+        {ProtoField.double("ur_realtime.payload_inertia", "Ixz",
+            "Ixz of Payload inertia. Payload inertia matrix (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) in \z
+            kg·m². In kg·m²."), " kg·m²"},
+        {ProtoField.double("ur_realtime.payload_inertia", "Iyz",
+            "Iyz of Payload inertia. Payload inertia matrix (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) in \z
+            kg·m². In kg·m²."), " kg·m²"},
+    },
 }
 
 -- Doubles whose whole value carries bits: a flag field per named bit.
@@ -597,7 +795,18 @@ local function register_ports(proto, ports)
     tcp_port:add(registered, proto)
 end
 
-rt.register_ports = register_ports
+-- The ports as the range preference <name>.tcp.port, as the native twin's
+-- dissector_add_uint_range_with_preference names it (tshark -o ur_dashboard.tcp.port:40000),
+-- defaulting to `ports`; taken again when it changes. For a protocol with no prefs_changed of its own.
+local function register_port_preference(proto, name, ports)
+    proto.prefs["tcp.port"] = Pref.range("TCP port(s)", ports, name:upper() .. " TCP port(s)", 65535)
+    function proto.prefs_changed()
+        register_ports(proto, proto.prefs["tcp.port"])
+    end
+    register_ports(proto, ports)
+end
+
+rt.register_ports, rt.register_port_preference = register_ports, register_port_preference
 end)(spec, rt)
 end
 
@@ -675,9 +884,11 @@ local SIZE_BYTES, MIN_SIZE, MAX_SIZE = spec.size_field_bytes, spec.min_message_s
 
 -- The dissector's own fields and experts, beside the spec's.
 local X = {
-    layout = ProtoField.string(spec.name .. ".layout", "Layout"),
-    urscript = ProtoField.string(spec.name .. ".urscript", "URScript"),
-    raw = ProtoField.bytes(spec.name .. ".raw", "Bytes of a packet of unknown size"),
+    layout = ProtoField.string(spec.name .. ".layout", "Layout",
+        "The packet layout its size names, and the versions that send it."),
+    urscript = ProtoField.string(spec.name .. ".urscript", "URScript", "URScript text the client sends to the robot."),
+    raw = ProtoField.bytes(spec.name .. ".raw", "Bytes of a packet of unknown size", base.NONE,
+        "A packet whose size names no layout of the spec, shown whole."),
 }
 local E = {
     -- Framed, and kept: a layout the spec does not know yet, not a broken stream.

@@ -24,10 +24,16 @@ local spec = {
     },
     -- Every field once: its filter name, label, whether it is scaled (a raw int32 beside it), unit, enum.
     fields = {
-        {name = "keepalive", label = "Keepalive count", scaled = false, unit = nil, enum = nil},
-        {name = "read_timeout", label = "Read timeout", scaled = false, unit = "ms", enum = nil},
-        {name = "target", label = "Motion target", scaled = true, unit = nil, enum = nil},
-        {name = "control_mode", label = "Control mode", scaled = false, unit = nil, enum = "control_mode"},
+        {name = "keepalive", label = "Keepalive count", scaled = false, unit = nil, enum = nil,
+         desc = "A count the script checks to know the PC is alive."},
+        {name = "read_timeout", label = "Read timeout", scaled = false, unit = "ms", enum = nil,
+         desc = "The timeout in milliseconds of the script's next read from this socket. In ms."},
+        {name = "target", label = "Motion target", scaled = true, unit = nil, enum = nil,
+         desc = "Joint positions (rad, SERVOJ), joint velocities (rad/s, SPEEDJ), a pose or its \z
+         velocity, or trajectory and freedrive instructions, as the control mode says.",
+         raw_desc = "Motion target as sent: the int32 before the driver's scale is applied."},
+        {name = "control_mode", label = "Control mode", scaled = false, unit = nil, enum = "control_mode",
+         desc = "Control mode."},
     },
     to_robot = {
         label = "Reverse interface command",
@@ -72,7 +78,18 @@ local function register_ports(proto, ports)
     tcp_port:add(registered, proto)
 end
 
-rt.register_ports = register_ports
+-- The ports as the range preference <name>.tcp.port, as the native twin's
+-- dissector_add_uint_range_with_preference names it (tshark -o ur_dashboard.tcp.port:40000),
+-- defaulting to `ports`; taken again when it changes. For a protocol with no prefs_changed of its own.
+local function register_port_preference(proto, name, ports)
+    proto.prefs["tcp.port"] = Pref.range("TCP port(s)", ports, name:upper() .. " TCP port(s)", 65535)
+    function proto.prefs_changed()
+        register_ports(proto, proto.prefs["tcp.port"])
+    end
+    register_ports(proto, ports)
+end
+
+rt.register_ports, rt.register_port_preference = register_ports, register_port_preference
 end)(spec, rt)
 end
 
@@ -140,11 +157,12 @@ for _, f in ipairs(spec.fields) do
     local filter = spec.name .. "." .. f.name
     local shown = f.label .. (f.unit and (" (" .. f.unit .. ")") or "")   -- a unit follows the label
     if f.scaled then
-        F[f.name] = ProtoField.double(filter, shown)
-        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC)
+        F[f.name] = ProtoField.double(filter, shown, f.desc)
+        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC, nil, nil,
+            f.raw_desc)
         fields[#fields + 1] = F[f.name .. "_raw"]
     else
-        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil)
+        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil, nil, f.desc)
     end
     fields[#fields + 1] = F[f.name]
 end
@@ -223,7 +241,7 @@ local function dissect(tvb, pinfo, tree)
 end
 
 proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
-rt.register_ports(proto, table.concat(spec.ports, ","))
+rt.register_port_preference(proto, spec.name, table.concat(spec.ports, ","))
 rt.parse_release, rt.layout_of = parse_release, layout_of
 end)(spec, rt)
 end

@@ -26,13 +26,29 @@ local spec = {
     },
     -- Every field once: its filter name, label, whether it is scaled (a raw int32 beside it), unit, enum.
     fields = {
-        {name = "positions", label = "Positions", scaled = true, unit = nil, enum = nil},
-        {name = "velocities", label = "Velocities", scaled = true, unit = nil, enum = nil},
-        {name = "accelerations", label = "Accelerations", scaled = true, unit = nil, enum = nil},
-        {name = "duration", label = "Segment duration", scaled = true, unit = "s", enum = nil},
-        {name = "blend_radius", label = "Blend radius", scaled = true, unit = "m", enum = nil},
-        {name = "motion_type", label = "Motion type", scaled = false, unit = nil, enum = "motion_type"},
-        {name = "result", label = "Result", scaled = false, unit = nil, enum = "result_code"},
+        {name = "positions", label = "Positions", scaled = true, unit = nil, enum = nil,
+         desc = "Joint positions (rad) or a pose (m, m, m, rad, rad, rad), as the motion type \z
+         says.",
+         raw_desc = "Positions as sent: the int32 before the driver's scale is applied."},
+        {name = "velocities", label = "Velocities", scaled = true, unit = nil, enum = nil,
+         desc = "Joint velocities of a spline point, a via point of a circular move, or a joint \z
+         hint.",
+         raw_desc = "Velocities as sent: the int32 before the driver's scale is applied."},
+        {name = "accelerations", label = "Accelerations", scaled = true, unit = nil, enum = nil,
+         desc = "Joint accelerations of a spline point; else velocity, acceleration and a mode \z
+         or flag first.",
+         raw_desc = "Accelerations as sent: the int32 before the driver's scale is applied."},
+        {name = "duration", label = "Segment duration", scaled = true, unit = "s", enum = nil,
+         desc = "Segment duration. In s.",
+         raw_desc = "Segment duration as sent: the int32 before the driver's scale is applied."},
+        {name = "blend_radius", label = "Blend radius", scaled = true, unit = "m", enum = nil,
+         desc = "The blend radius of a move; for a spline point, the spline type (1 cubic, 2 \z
+         quintic) unscaled. In m.",
+         raw_desc = "Blend radius as sent: the int32 before the driver's scale is applied."},
+        {name = "motion_type", label = "Motion type", scaled = false, unit = nil, enum = "motion_type",
+         desc = "Motion type."},
+        {name = "result", label = "Result", scaled = false, unit = nil, enum = "result_code",
+         desc = "Result."},
     },
     from_robot = {
         label = "Trajectory result",
@@ -100,7 +116,18 @@ local function register_ports(proto, ports)
     tcp_port:add(registered, proto)
 end
 
-rt.register_ports = register_ports
+-- The ports as the range preference <name>.tcp.port, as the native twin's
+-- dissector_add_uint_range_with_preference names it (tshark -o ur_dashboard.tcp.port:40000),
+-- defaulting to `ports`; taken again when it changes. For a protocol with no prefs_changed of its own.
+local function register_port_preference(proto, name, ports)
+    proto.prefs["tcp.port"] = Pref.range("TCP port(s)", ports, name:upper() .. " TCP port(s)", 65535)
+    function proto.prefs_changed()
+        register_ports(proto, proto.prefs["tcp.port"])
+    end
+    register_ports(proto, ports)
+end
+
+rt.register_ports, rt.register_port_preference = register_ports, register_port_preference
 end)(spec, rt)
 end
 
@@ -168,11 +195,12 @@ for _, f in ipairs(spec.fields) do
     local filter = spec.name .. "." .. f.name
     local shown = f.label .. (f.unit and (" (" .. f.unit .. ")") or "")   -- a unit follows the label
     if f.scaled then
-        F[f.name] = ProtoField.double(filter, shown)
-        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC)
+        F[f.name] = ProtoField.double(filter, shown, f.desc)
+        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC, nil, nil,
+            f.raw_desc)
         fields[#fields + 1] = F[f.name .. "_raw"]
     else
-        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil)
+        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil, nil, f.desc)
     end
     fields[#fields + 1] = F[f.name]
 end
@@ -251,7 +279,7 @@ local function dissect(tvb, pinfo, tree)
 end
 
 proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
-rt.register_ports(proto, table.concat(spec.ports, ","))
+rt.register_port_preference(proto, spec.name, table.concat(spec.ports, ","))
 rt.parse_release, rt.layout_of = parse_release, layout_of
 end)(spec, rt)
 end

@@ -1,11 +1,13 @@
 """python -m codegen --target epan --upstream: the copy of the epan dissectors for Wireshark's own
 tree (docs/wireshark-upstream.md), which reads no command line; tests/native/test_upstream.py
 builds and runs it."""
+import re
 import subprocess
 import sys
 
 import pytest
 
+from codegen.epan_c import development_branch
 from codegen.kinds.packages import epan
 from tests.codegen.test_generated_is_current import ROOT
 
@@ -62,3 +64,28 @@ def test_a_runtime_file_no_copy_joins_is_refused(tmp_path, monkeypatch):
     (folder / "packages" / "ur_stray.c").write_text("")
     with pytest.raises(ValueError, match="ur_stray.c"):
         epan.check_runtime(epan.runtime_code(True))
+
+
+# Wireshark's development branch's style in the upstream copy only (codegen/epan_c.py)
+# Protocol and field handles; subtree handles keep -1 while the copy is also built against 4.0.
+HANDLE_WITH_INIT = re.compile(r"^static (?:int|gint) [^;(]*\b(?:proto|hf)_\w+(?:\[\w+\])? = (?:-1|\{)", re.M)
+
+
+def test_the_upstream_copy_declares_its_handles_as_the_development_branch_does(tmp_path):
+    assert codegen("--target", "epan", "--upstream", "--out", str(tmp_path)).returncode == 0
+    for path in sorted((tmp_path / "epan").glob("packet-*.c")):
+        text = path.read_text()
+        proto = path.name.removeprefix("packet-").removesuffix(".c").replace("-", "_")
+        assert not HANDLE_WITH_INIT.findall(text), path.name
+        assert re.search(rf"^static int proto_({proto}|lines|int32_records)?\w*;", text, re.M), path.name
+        # urwire's own copy keeps the initialisers Wireshark 4.0's plugins are written with.
+        assert HANDLE_WITH_INIT.search((ROOT / "generated" / "epan" / path.name).read_text()), path.name
+
+
+def test_development_branch_drops_only_handle_initialisers():
+    text = ("static int proto_x = -1;\nstatic int hf_a = -1, hf_b = -1;\nstatic gint ett_x = -1;   /* a tree */\n"
+            "static int hf_x[X_COUNT] = {\n    -1, -1,\n    -1,\n};\nstatic int depth = -1;\n    int size = -1;\n"
+            "static expert_field ei_x = EI_INIT;\n")
+    assert development_branch(text) == (
+        "static int proto_x;\nstatic int hf_a, hf_b;\nstatic gint ett_x = -1;   /* a tree */\n"
+        "static int hf_x[X_COUNT];\nstatic int depth = -1;\n    int size = -1;\nstatic expert_field ei_x = EI_INIT;\n")

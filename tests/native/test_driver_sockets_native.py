@@ -136,6 +136,15 @@ def test_decode_as_on_another_port():
     assert any(shown.layers)
 
 
+def test_the_port_preference_moves_the_dissector():
+    """ur_trajectory.tcp.port (dissector_add_uint_range_with_preference; the Lua twin's Pref.range
+    of the same name), set to another port, decodes a session there as Decode As does."""
+    case = next(c for c in CASES["ur_trajectory"] if c.name == "point_and_result_2_14")
+    shown = compare(sessions([_on_the_wire(case.segments)], 40003, "trajectory-40003"), "ur_trajectory",
+                    "-o", "ur_trajectory.tcp.port:40003")
+    assert any(shown.layers)
+
+
 def test_without_a_tree_the_summary_is_the_same():
     path, args = _vectors()[-1]
     native = harness.checked(run_native(path, *args, alone=NAMES))

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 from ... import ir
+from ...blurbs import blurb
 from .model import FROM_ROBOT, TO_ROBOT
 from .plan import RecordsPlan
 
@@ -24,6 +25,16 @@ class Field:
     def shown_label(self) -> str:
         """The label with the unit, as the tree shows the field: "Read timeout (ms)"."""
         return self.label + (f" ({self.unit})" if self.unit else "")
+
+    @property
+    def blurb(self) -> str:
+        """Its description (codegen/blurbs.py)."""
+        return blurb(self.doc, self.label, self.unit)
+
+    @property
+    def raw_blurb(self) -> str:
+        """A scaled field's raw int32's description."""
+        return f"{self.label} as sent: the int32 before the driver's scale is applied."
 
     @property
     def comment(self) -> str:

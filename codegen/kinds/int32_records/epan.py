@@ -11,11 +11,14 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import value_text
 from ...emit import environment, runtime_section
-from ...lang.c import string, value_key
+from ...epan_c import development_branch
+from ...lang.c import prose, string, value_key
 from ...naming import column_name
 from .dissector import Dissector, dissector
 from .model import FROM_ROBOT, TO_ROBOT
 from .plan import RecordsPlan
+
+BLURB_INDENT = " " * 12     # where spread hangs an hf entry's members: a long blurb's lines
 
 RUNTIME_HEAD = [("epan", "int32_records/int32_records_types.h")]    # the table types, before the tables
 # the release's text (the C library's reader); the dissector, after the tables
@@ -53,8 +56,10 @@ class EpanRecord:
     items: list[str]             # the int32_records_record initializer, member by member
 
 
-def _field(hf: str, label: str, abbrev: str, ftype: str, base: str, strings: str, comment: str = "") -> EpanField:
-    return EpanField(hf, [string(label), string(abbrev), ftype, base, strings, "0x0", "NULL", "HFILL"], comment)
+def _field(hf: str, label: str, abbrev: str, ftype: str, base: str, strings: str, blurb: str,
+           comment: str = "") -> EpanField:
+    return EpanField(hf, [string(label), string(abbrev), ftype, base, strings, "0x0", prose(blurb, BLURB_INDENT),
+                          "HFILL"], comment)
 
 
 def view(d: Dissector) -> dict:
@@ -67,11 +72,12 @@ def view(d: Dissector) -> dict:
     for f in d.fields:
         hf, abbrev = f"hf_{name}_{f.name}", f"{name}.{f.name}"
         if f.scaled:
-            fields.append(_field(hf, f.shown_label, abbrev, "FT_DOUBLE", "BASE_NONE", "NULL", f.comment))
-            fields.append(_field(hf + "_raw", f"{f.label} (raw int32)", abbrev + "_raw", "FT_INT32", "BASE_DEC", "NULL"))
+            fields.append(_field(hf, f.shown_label, abbrev, "FT_DOUBLE", "BASE_NONE", "NULL", f.blurb, f.comment))
+            fields.append(_field(hf + "_raw", f"{f.label} (raw int32)", abbrev + "_raw", "FT_INT32", "BASE_DEC", "NULL",
+                                 f.raw_blurb))
         else:
             strings = f"VALS({name}_{f.enum}_vals)" if f.enum else "NULL"
-            fields.append(_field(hf, f.shown_label, abbrev, "FT_INT32", "BASE_DEC", strings, f.comment))
+            fields.append(_field(hf, f.shown_label, abbrev, "FT_INT32", "BASE_DEC", strings, f.blurb, f.comment))
     records = {}
     for r in d.records:
         ident = f"{name}_{r.name}"
@@ -95,9 +101,10 @@ def view(d: Dissector) -> dict:
 
 
 def render(p: RecordsPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
-    """`upstream` (the copy for Wireshark's tree) changes nothing: this dissector reads no command line."""
+    """`upstream`: the copy for Wireshark's tree, in its development branch's style (this dissector
+    reads no command line)."""
     context = view(dissector(p))
     env = environment("epan")
     env.filters["c"] = string
     text = env.get_template("int32_records/dissector.c.j2").render(banner=banner, **context)
-    return {f"epan/{context['file']}": text}
+    return {f"epan/{context['file']}": development_branch(text) if upstream else text}

@@ -5,10 +5,12 @@ from __future__ import annotations
 
 from ... import ir
 from ...emit import environment, runtime_section
-from ...lang.lua import literal
+from ...lang.lua import literal, text
 from ...naming import column_name
 from .dissector import Dissector, dissector
 from .plan import RecordsPlan
+
+DESC_INDENT = " " * 9          # a field's descriptions in the spec table, under its name
 
 # The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
 RUNTIME = ("common/register.lua", "common/guard.lua", "common/dotted_version.lua", "int32_records/dissect.lua")
@@ -17,7 +19,9 @@ RUNTIME = ("common/register.lua", "common/guard.lua", "common/dotted_version.lua
 def view(d: Dissector) -> dict:
     m = d.plan.model
     fields = [dict(name=literal(f.name), label=literal(f.label), scaled=literal(f.scaled), unit=literal(f.unit),
-                   enum=literal(f.enum)) for f in d.fields]
+                   enum=literal(f.enum), desc=text(f.blurb, DESC_INDENT, len(DESC_INDENT) + len("desc = ")),
+                   raw_desc=text(f.raw_blurb, DESC_INDENT, len(DESC_INDENT) + len("raw_desc = ")) if f.scaled else None)
+              for f in d.fields]
     records = {}
     for r in d.records:
         layouts = [dict(describe=lay.describe, size=lay.size,

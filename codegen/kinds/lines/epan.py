@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from ... import exchanges
 from ...emit import environment, runtime_section
+from ...epan_c import development_branch
 from ...lang.c import prose, string
 from ...wrap import lines as wrapped
 from .dissector import Dissector, dissector
@@ -73,8 +74,9 @@ def view(d: Dissector) -> dict:
 
 
 def render(p: LinesPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
-    """`upstream` (the copy for Wireshark's tree) changes nothing: this dissector reads no command line."""
+    """`upstream`: the copy for Wireshark's tree, in its development branch's style (this dissector
+    reads no command line)."""
     env = environment(FOLDER)
     env.filters["c"] = string
     text = env.get_template("lines/packet.c.j2").render(banner=banner, **view(dissector(p)))
-    return {f"{FOLDER}/{file_name(p.model.name)}": text}
+    return {f"{FOLDER}/{file_name(p.model.name)}": development_branch(text) if upstream else text}

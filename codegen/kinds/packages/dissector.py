@@ -17,6 +17,7 @@ from dataclasses import dataclass, field as dc_field
 from typing import ClassVar, Optional, Union
 
 from ... import ir
+from ...blurbs import blurb, one_line
 from ...comments import node_text
 from ...errors import Problem, SpecError
 from ...naming import words
@@ -399,15 +400,10 @@ class Dissector:
 
 # ---- building it ------------------------------------------------------------------------------
 
-def one_line(*texts: str) -> str:
-    return " ".join(t.strip() for t in texts if t and t.strip())
-
-
 def describe(f: ir.Field, sent: str = "") -> str:
-    """A field's description (its blurb: `tshark -G fields`, the display-filter dialog): the
-    spec's doc, else its label; its unit; the versions that send it (`sent`, see sent_by)."""
-    return one_line(f.doc or f.label + ".", f"In {f.unit}." if f.unit else "",
-                    f"Sent by software {sent}." if sent else "")
+    """A field's description (its blurb, codegen/blurbs.py): the spec's doc, else its label; its
+    unit; the versions that send it (`sent`, see sent_by)."""
+    return blurb(f.doc, f.label, f.unit, sent=sent)
 
 
 def sent_by(struct: ir.Struct, owner: str, out: dict) -> None:

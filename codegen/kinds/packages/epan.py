@@ -361,7 +361,8 @@ def check_runtime(code: tuple[str, ...]) -> None:
 
 
 def render(protocol_plan, banner: list[str], upstream: bool = False) -> dict[str, str]:
-    """packet-ur.c; `upstream`: the copy for Wireshark's tree, which reads no command line."""
+    """packet-ur.c; `upstream`: the copy for Wireshark's tree, which reads no command line, in its
+    development branch's style."""
     code = runtime_code(upstream)
     check_runtime(code)
     env = environment(FOLDER)
@@ -371,4 +372,5 @@ def render(protocol_plan, banner: list[str], upstream: bool = False) -> dict[str
     ctx = dict(banner=banner, types=runtime(RUNTIME_TYPES),
                code=[runtime_section("c", name) for name in C_RUNTIME] + runtime(code),
                named_fields_preference=not upstream, any_low=ANY_LOW, any_high=ANY_HIGH, **model)
-    return {OUT: env.get_template("packages/packet-ur.c.j2").render(**ctx)}
+    text = env.get_template("packages/packet-ur.c.j2").render(**ctx)
+    return {OUT: epan_c.development_branch(text) if upstream else text}

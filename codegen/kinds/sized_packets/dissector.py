@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 from ... import ir
+from ...blurbs import blurb, one_line, sentence
 from ...comments import field_text, node_text, value_text
 from ...items import Item, flag_width, titled
 from .plan import SizedPlan
@@ -36,6 +37,8 @@ class Field:
     items: tuple[Item, ...] = ()         # a vector's named items: one field each, none for the vector
     flags: tuple[Flag, ...] = ()
     flag_width: int = 0                  # the bits its flags are shown in
+    doc: str = ""                        # its description (codegen/blurbs.py)
+    spec_doc: str = ""                   # the spec's doc alone, which its items' descriptions repeat
 
     @property
     def group(self) -> str:
@@ -106,7 +109,13 @@ def _field(f: ir.AnyField, items: tuple[Item, ...] = (), bits: tuple = ()) -> Fi
     enum = getattr(f, "enum", None)
     flags = tuple(Flag(b.name, b.label, b.mask, f"Bit {b.position} of {f.label}: {b.label}.") for b in bits)
     return Field(f.name, f.label, f.unit or None, field_text([f], versions=False), enum.name if enum else None,
-                 isinstance(f, ir.ArrayField), items, flags, flag_width(bits) if bits else 0)
+                 isinstance(f, ir.ArrayField), items, flags, flag_width(bits) if bits else 0,
+                 blurb(f.doc, f.label, f.unit, node_text(enum) if enum and not f.doc else ""), f.doc)
+
+
+def item_blurb(f: Field, item: Item) -> str:
+    """A named item's description: which item of which vector, then the vector's."""
+    return blurb(one_line(f"{item.label} of {f.label}.", sentence(f.spec_doc)), f.label, item.unit)
 
 
 def dissector(planned: SizedPlan) -> Dissector:

@@ -11,10 +11,12 @@ from dataclasses import dataclass
 
 from ...comments import node_text
 from ...emit import environment, runtime_section
-from ...epan_c import unit_label
-from ...lang.c import string, value_key
-from .dissector import Dissector, Field, Layout, dissector
+from ...epan_c import development_branch, unit_label
+from ...lang.c import prose, string, value_key
+from .dissector import Dissector, Field, Layout, dissector, item_blurb
 from .plan import SizedPlan
+
+BLURB_INDENT = " " * 12     # where spread hangs an hf entry's members: a long blurb's lines
 
 RUNTIME_HEAD = ["types.h"]      # runtime/epan/sized_packets/<name>_types.h: the table types, before the tables
 RUNTIME_TAIL = ["dissect.c"]    # runtime/epan/sized_packets/<name>_dissect.c: after the tables it walks
@@ -56,25 +58,25 @@ class EpanForm:
     names: list[str]                         # per enum: its value_string or NULL
 
 
-def _double(name: str, hf: str, label: str, abbrev: str, unit) -> tuple[str, list[str]]:
+def _double(name: str, hf: str, label: str, abbrev: str, unit, blurb: str) -> tuple[str, list[str]]:
     """The hf_register_info entry of a double, its unit shown by a label function."""
     return hf, [string(label), string(abbrev), "FT_DOUBLE", "BASE_CUSTOM" if unit else "BASE_NONE",
-                f"CF_FUNC({unit_label(name, unit).ident})" if unit else "NULL", "0x0", "NULL", "HFILL"]
+                f"CF_FUNC({unit_label(name, unit).ident})" if unit else "NULL", "0x0", prose(blurb, BLURB_INDENT), "HFILL"]
 
 
 def _field(name: str, f: Field) -> EpanField:
     """A field's handle: one, or one per named item (filtered by the vector's name)."""
     hf, abbrev = f"hf_{name}_{f.name}", f"{name}.{f.name}"
     if f.items:
-        return EpanField(hf, f.comment, tuple(_double(name, f"{hf}[{k}]", i.label, abbrev, i.unit)
+        return EpanField(hf, f.comment, tuple(_double(name, f"{hf}[{k}]", i.label, abbrev, i.unit, item_blurb(f, i))
                                               for k, i in enumerate(f.items)), len(f.items))
-    return EpanField(hf, f.comment, (_double(name, hf, f.label, abbrev, f.unit),))
+    return EpanField(hf, f.comment, (_double(name, hf, f.label, abbrev, f.unit, f.doc),))
 
 
 def _size_field(name: str, f: Field) -> EpanField:
     hf = f"hf_{name}_{f.name}"
     return EpanField(hf, f.comment, ((hf, [string(f.label), string(f"{name}.{f.name}"), "FT_INT32", "BASE_DEC",
-                                           "NULL", "0x0", "NULL", "HFILL"]),))
+                                           "NULL", "0x0", prose(f.doc, BLURB_INDENT), "HFILL"]),))
 
 
 def _flags(name: str, f: Field) -> EpanField:
@@ -83,7 +85,7 @@ def _flags(name: str, f: Field) -> EpanField:
     width = f.flag_width // 4
     return EpanField(hf, f"The flags of {f.name}.", tuple(
         (f"{hf}[{k}]", [string(g.label), string(f"{name}.{f.name}.{g.name}"), "FT_BOOLEAN", str(f.flag_width),
-                        "NULL", f"0x{g.mask:0{width}x}", string(g.comment), "HFILL"]) for k, g in enumerate(f.flags)),
+                        "NULL", f"0x{g.mask:0{width}x}", prose(g.comment, BLURB_INDENT), "HFILL"]) for k, g in enumerate(f.flags)),
         len(f.flags))
 
 
@@ -138,9 +140,10 @@ def view(d: Dissector) -> dict:
 
 
 def render(planned: SizedPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
-    """`upstream` (the copy for Wireshark's tree) changes nothing: this dissector reads no command line."""
+    """`upstream`: the copy for Wireshark's tree, in its development branch's style (this dissector
+    reads no command line)."""
     context = view(dissector(planned))
     env = environment("epan")
     env.filters["c"] = string
     text = env.get_template("sized_packets/dissector.c.j2").render(banner=banner, **context)
-    return {f"epan/{context['file']}": text}
+    return {f"epan/{context['file']}": development_branch(text) if upstream else text}

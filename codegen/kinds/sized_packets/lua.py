@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from ...comments import node_text
 from ...emit import environment, runtime_section
-from ...lang.lua import literal, string
-from .dissector import Dissector, dissector
+from ...lang.lua import field, literal, string, text
+from .dissector import Dissector, dissector, item_blurb
 from .plan import SizedPlan
 
 # The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
@@ -27,15 +27,17 @@ def view(d: Dissector) -> dict:
                           names=[f"{t.enum} = NAMES.{t.ident}" for t in f.tables if t is not None])
                      for f in row])
              for size, row in d.by_size]
-    items = [(f.name, [f"{{ProtoField.double({string(name + '.' + f.name)}, {string(i.label)}), "
-                       f"{string(' ' + i.unit) if i.unit else 'nil'}}}" for i in f.items])
-             for f in d.fields if f.items]
+    items = [(f.name, [_item(name, f, i) for i in f.items]) for f in d.fields if f.items]
     flags = [(f.name, [[string(f"{name}.{f.name}.{g.name}"), string(g.label), str(f.flag_width), "nil",
                         f"0x{g.mask:0{f.flag_width // 4}x}", string(g.comment)] for g in f.flags])
              for f in d.fields if f.flags]
     return dict(
         protocol=protocol, name=name, doc=node_text(protocol), fields=d.fields, size_field=d.size_field,
-        plain_fields=[f for f in d.fields if not f.items], items=items, flags=flags,
+        size_line=field(f"ProtoField.int32({string(name + '.' + d.size_field.name)}, {string(d.size_field.label)}, "
+                        "base.DEC, nil, nil", string(d.size_field.name), d.size_field.doc),
+        plain_lines=[field(f"ProtoField.double({string(name + '.' + f.name)}, {string(f.label)}", string(f.name), f.doc)
+                     for f in d.fields if not f.items],
+        items=items, flags=flags,
         enum_of=[(f.name, f.enum) for f in d.fields if f.enum is not None],
         layouts=layouts, tables=tables, forms=forms, min_size=protocol.size_field_bytes + 8,
         same_size=protocol.same_size,
@@ -48,3 +50,13 @@ def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
     text = env.get_template("sized_packets/dissector.lua.j2").render(
         banner=banner, **view(dissector(planned)))
     return {f"lua/{planned.protocol.name}.lua": text}
+
+
+ITEM_INDENT = " " * 12          # a named item's description, under its ProtoField
+
+
+def _item(name: str, f, item) -> str:
+    """A named item's entry of ITEMS: its field, its description under it, and its unit."""
+    unit = string(" " + item.unit) if item.unit else "nil"
+    return (f"        {{ProtoField.double({string(name + '.' + f.name)}, {string(item.label)},\n"
+            f"{ITEM_INDENT}{text(item_blurb(f, item), ITEM_INDENT, len(ITEM_INDENT))}), {unit}}},")

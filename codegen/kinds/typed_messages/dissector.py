@@ -11,6 +11,7 @@ from dataclasses import dataclass, replace
 from typing import Optional
 
 from ... import exchanges, ir
+from ...blurbs import blurb, one_line, sentence
 from ...items import titled
 from . import model
 from .plan import MessagePlan, TypedPlan
@@ -26,6 +27,7 @@ class Field:
     width: int = 0                     # a flag's: the bits of the integer it is one of
     mask: int = 0                      # a flag's bit
     filter: str = ""                   # a named item's: its vector's name, which filters every item
+    doc: str = ""                      # its description (codegen/blurbs.py)
 
     @property
     def abbrev(self) -> str:
@@ -110,17 +112,25 @@ def value_field(scalar: ir.Scalar) -> str:
 
 def _header() -> tuple[Field, ...]:
     """model.OWN_FIELDS, labelled and typed."""
-    return (Field("length", "Size", "uint16"), Field("type", "Type", "uint8", enum=TYPE_CODES),
-            Field("kind", "Message", "string"), Field("direction", "Direction", "string"),
-            Field("recipe_frame", "Recipe set up in frame", "framenum"),
-            Field("protocol", "Protocol version in force", "uint8"),
-            Field("unknown_variable", "Variable not in the table", "bytes"),
-            Field("variable", "Variable a setup reply types", "string"))
+    return (Field("length", "Size", "uint16", doc="Size of the message, its 3 header bytes included."),
+            Field("type", "Type", "uint8", enum=TYPE_CODES, doc="Message type: an ASCII letter."),
+            Field("kind", "Message", "string", doc="The message's name, by its type and direction."),
+            Field("direction", "Direction", "string", doc="Whether the robot or the client sent the message."),
+            Field("recipe_frame", "Recipe set up in frame", "framenum",
+                  doc="The frame of the setup reply that laid out this data package's recipe."),
+            Field("protocol", "Protocol version in force", "uint8",
+                  doc="The protocol version the connection agreed on, or the one assumed."),
+            Field("unknown_variable", "Variable not in the table", "bytes",
+                  doc="The bytes of a variable the variable table does not name."),
+            Field("variable", "Variable a setup reply types", "string",
+                  doc="The variable of the setup request that a setup reply's type is for."))
 
 
-def _scalar(name: str, label: str, scalar: ir.Scalar, unit: Optional[str], enum: Optional[ir.Enum]) -> Field:
+def _scalar(name: str, label: str, scalar: ir.Scalar, unit: Optional[str], enum: Optional[ir.Enum],
+            doc: str = "") -> Field:
     integer = not (scalar.is_float or scalar.is_bool)
-    return Field(name, label, scalar.name, unit if integer else None, enum.name if enum and integer else None)
+    return Field(name, label, scalar.name, unit if integer else None, enum.name if enum and integer else None,
+                 doc=blurb(doc, label, unit, enum.doc if enum and not doc else ""))
 
 
 def item_field(variable: str, index: int) -> str:
@@ -132,11 +142,15 @@ def _variable_fields(v: model.Variable) -> list[Field]:
     """A variable's field, then one per flag (a bit of the same bytes); a vector with named items
     one field per item instead, each filtered by the vector's name."""
     scalar = v.value_type.scalar
+    sent = "Written by the client." if v.direction == "input" else "Sent by the robot."
     if v.items:
-        return [replace(_scalar(item_field(v.name, k), i.label, scalar, i.unit, v.enum), filter=v.name)
+        return [replace(_scalar(item_field(v.name, k), i.label, scalar, i.unit, v.enum,
+                                one_line(f"{i.label} of {v.label}.", sentence(v.doc), sent)), filter=v.name)
                 for k, i in enumerate(v.items)]
-    return [_scalar(v.name, v.label, scalar, v.unit, v.enum)] + [
-        Field(f"{v.name}.{b.name}", b.label, "flag", width=scalar.bits, mask=b.mask) for b in v.bits]
+    return [_scalar(v.name, v.label, scalar, v.unit, v.enum, one_line(sentence(v.doc) or sentence(v.label), sent))] + [
+        Field(f"{v.name}.{b.name}", b.label, "flag", width=scalar.bits, mask=b.mask,
+              doc=blurb("", b.label, meaning=f"Bit {b.position} of {v.name}"))
+        for b in v.bits]
 
 
 def _variable(v: model.Variable) -> Variable:
@@ -152,8 +166,8 @@ def _body_field(f) -> Optional[Field]:
     if kind is None:
         return None
     if kind == "string":
-        return Field(f.name, f.label, kind)
-    return _scalar(f.name, f.label, f.scalar, f.unit, f.enum)
+        return Field(f.name, f.label, kind, doc=blurb(f.doc, f.label, f.unit))
+    return _scalar(f.name, f.label, f.scalar, f.unit, f.enum, f.doc)
 
 
 def _step(f) -> Step:
@@ -169,9 +183,11 @@ def _step(f) -> Step:
 def dissector(planned: TypedPlan) -> Dissector:
     interface = planned.interface
     header = _header()
-    values = tuple(Field(value_field(s), f"Value of the setup reply's type ({s.name})", s.name)
+    values = tuple(Field(value_field(s), f"Value of the setup reply's type ({s.name})", s.name,
+                         doc=f"A value of type {s.name}, which the setup reply gives otherwise than the table.")
                    for s in planned.value_scalars)
-    fields: dict[str, Field] = {model.RECIPE_ID[0]: Field(model.RECIPE_ID[0], "Recipe id", model.RECIPE_ID[1])}
+    fields: dict[str, Field] = {model.RECIPE_ID[0]: Field(model.RECIPE_ID[0], "Recipe id", model.RECIPE_ID[1],
+                                                          doc="The recipe a data package or setup reply is for.")}
     for f in [_body_field(f) for m in interface.messages for f in m.fields] \
             + [g for v in interface.variables for g in _variable_fields(v)]:
         if f is not None:

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 from ... import exchanges
 from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_section
+from ...epan_c import development_branch
 from ...lang import c
 from ...wrap import spread
 from .dissector import TYPE_CODES, Dissector, Exchanges, Field, Message, Step, dissector, exchanges_of
@@ -57,11 +58,12 @@ class FieldView:
     base: str
     strings: str               # VALS(...), UNS(&...) or NULL
     mask: str = "0x0"
+    blurb: str = ""            # its description (codegen/blurbs.py)
 
     @property
     def line(self) -> str:
-        return spread([f"&hf_{self.prefix}[{self.enum}]", "{ " + c.string(self.label),
-                       c.string(self.abbrev), self.ftype, self.base, self.strings, self.mask, "NULL", "HFILL } }"],
+        return spread([f"&hf_{self.prefix}[{self.enum}]", "{ " + c.string(self.label), c.string(self.abbrev),
+                       self.ftype, self.base, self.strings, self.mask, c.string(self.blurb), "HFILL } }"],
                       "{ ", ",", "        ")
 
 
@@ -134,7 +136,7 @@ def view(d: Dissector, upstream: bool) -> dict:
         base, strings = _strings(f, prefix, units)
         fields.append(FieldView(prefix, f.name, _hf(f.name, prefix), f.label, f"{prefix}.{f.abbrev}",
                                 FIELD_TYPES[f.type], base, strings,
-                                f"0x{f.mask:0{f.width // 4}x}" if f.type == "flag" else "0x0"))
+                                f"0x{f.mask:0{f.width // 4}x}" if f.type == "flag" else "0x0", f.doc))
     layouts, steps, layout_of = [], [], {}
     for m in d.messages:
         steps.append({"name": f"{prefix}_steps_{m.message.name}", "rows": [_step(s, prefix) for s in m.steps]})
@@ -187,13 +189,15 @@ def view(d: Dissector, upstream: bool) -> dict:
 
 
 def render(planned: TypedPlan, banner: list[str], upstream: bool = False) -> dict[str, str]:
-    """packet-<name>.c; `upstream`: the copy for Wireshark's tree, which reads no command line."""
+    """packet-<name>.c; `upstream`: the copy for Wireshark's tree, which reads no command line, in its
+    development branch's style."""
     env = environment("epan")
     env.filters["c"] = c.string
     d = dissector(planned)
     text = env.get_template("typed_messages/packet.c.j2").render(
         banner=banner, **merged(view(d, upstream), exchanges_view(d, exchanges_of(planned))))
-    return {f"epan/packet-{planned.interface.name.replace('_', '-')}.c": text}
+    return {f"epan/packet-{planned.interface.name.replace('_', '-')}.c":
+            development_branch(text) if upstream else text}
 
 
 def _flags_after(v, names: list[str]) -> int:

@@ -9,7 +9,6 @@ from typing import Optional
 from ... import exchanges
 from ...emit import environment, runtime_section
 from ...lang import lua as lang
-from ...wrap import spread
 from .dissector import TYPE_CODES, Dissector, Exchanges, Field, Step, dissector, exchanges_of
 from .plan import TypedPlan
 
@@ -34,35 +33,40 @@ class FieldView:
     name: str
     call: str                # the ProtoField constructor
     label: str
-    args: str                # what follows the label: base and value string, or a description
+    args: tuple[str, ...]    # what follows the label and comes before the description: base, value string
     prefix: str = ""
     abbrev: str = ""         # the filter name after the prefix
+    doc: str = ""            # its description (codegen/blurbs.py)
 
     @property
     def line(self) -> str:
-        """Its entry of the F table, wrapped under its first argument when long."""
-        return spread([lang.string(f"{self.prefix}.{self.abbrev}"), lang.string(self.label), self.args],
-                      f"[{lang.string(self.name)}] = ProtoField.{self.call}(", "),", "    ")
+        """Its entry of the F table, the description wrapped under it when long."""
+        call = ",\n".join([f"ProtoField.{self.call}({lang.string(f'{self.prefix}.{self.abbrev}')}",
+                           lang.string(self.label), *self.args])
+        return lang.field(call, lang.string(self.name), self.doc)
 
 
 def _enum_table(name: str) -> str:
     return TYPE_NAMES if name == TYPE_CODES else "VS_" + name.upper()
 
 
-def _args(f: Field) -> str:
+def _args(f: Field) -> tuple[str, ...]:
+    """Display, value string and mask as each ProtoField takes them, up to its description."""
     if f.type == "flag":
-        return f"{f.width}, nil, 0x{f.mask:0{f.width // 4}x}"
+        return str(f.width), "nil", f"0x{f.mask:0{f.width // 4}x}"
     if f.is_float:
-        return "nil"
+        return ()
+    if f.type in ("string", "bytes"):
+        return ("base.NONE",)
     if not f.is_integer:
-        return "base.NONE"
+        return "base.NONE", "nil", "nil"
     if f.unit:
-        return f'base.UNIT_STRING, {{ {lang.string(" " + f.unit)} }}'
-    return f"base.DEC, {_enum_table(f.enum)}" if f.enum else "base.DEC"
+        return "base.UNIT_STRING", f'{{ {lang.string(" " + f.unit)} }}', "nil"
+    return "base.DEC", _enum_table(f.enum) if f.enum else "nil", "nil"
 
 
 def _field(f: Field, prefix: str) -> FieldView:
-    return FieldView(f.name, PROTOFIELD[f.type], f.label, _args(f), prefix, f.abbrev)
+    return FieldView(f.name, PROTOFIELD[f.type], f.label, _args(f), prefix, f.abbrev, f.doc)
 
 
 def _unit(unit: Optional[str]) -> str:

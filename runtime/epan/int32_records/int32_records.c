@@ -178,13 +178,9 @@ static void int32_records_register_runtime(void)
                                      &int32_records_pref_release);
 }
 
-/* The spec's ports, and Decode As. */
+/* The spec's ports, as the range preference <name>.tcp.port that Decode As also sets. */
 static void int32_records_handoff_runtime(void)
 {
-    guint i;
-
-    for (i = 0; i < int32_records_spec.n_ports; i++)
-        dissector_add_uint("tcp.port", int32_records_spec.ports[i], int32_records_handle);
-    dissector_add_for_decode_as("tcp.port", int32_records_handle);
+    dissector_add_uint_range_with_preference("tcp.port", INT32_RECORDS_PORTS, int32_records_handle);
     int32_records_apply_prefs();
 }

@@ -34,6 +34,4 @@ typedef struct {
     gint *ett_scaled;           /* a scaled value's subtree, holding its raw int32 */
     const int32_records_record *to_robot;      /* what the control PC sends; NULL: nothing is specified */
     const int32_records_record *from_robot;    /* what the robot sends; NULL: nothing is specified */
-    const guint32 *ports;
-    guint n_ports;
 } int32_records_interface;

@@ -323,11 +323,14 @@ static void ur_realtime_register_runtime(void)
 {
     static hf_register_info hf[] = {
         { &hf_ur_realtime_layout,
-          { "Layout", "ur_realtime.layout", FT_STRING, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+          { "Layout", "ur_realtime.layout", FT_STRING, BASE_NONE, NULL, 0x0,
+            "The packet layout its size names, and the versions that send it.", HFILL } },
         { &hf_ur_realtime_urscript,
-          { "URScript", "ur_realtime.urscript", FT_STRING, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+          { "URScript", "ur_realtime.urscript", FT_STRING, BASE_NONE, NULL, 0x0,
+            "URScript text the client sends to the robot.", HFILL } },
         { &hf_ur_realtime_raw,
-          { "Bytes of a packet of unknown size", "ur_realtime.raw", FT_BYTES, BASE_NONE, NULL, 0x0, NULL, HFILL } },
+          { "Bytes of a packet of unknown size", "ur_realtime.raw", FT_BYTES, BASE_NONE, NULL, 0x0,
+            "A packet whose size names no layout of the spec, shown whole.", HFILL } },
     };
     static ei_register_info ei[] = {
         { &ei_ur_realtime_unknown_size,

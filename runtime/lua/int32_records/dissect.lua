@@ -11,11 +11,12 @@ for _, f in ipairs(spec.fields) do
     local filter = spec.name .. "." .. f.name
     local shown = f.label .. (f.unit and (" (" .. f.unit .. ")") or "")   -- a unit follows the label
     if f.scaled then
-        F[f.name] = ProtoField.double(filter, shown)
-        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC)
+        F[f.name] = ProtoField.double(filter, shown, f.desc)
+        F[f.name .. "_raw"] = ProtoField.int32(filter .. "_raw", f.label .. " (raw int32)", base.DEC, nil, nil,
+            f.raw_desc)
         fields[#fields + 1] = F[f.name .. "_raw"]
     else
-        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil)
+        F[f.name] = ProtoField.int32(filter, shown, base.DEC, f.enum and spec.enums[f.enum] or nil, nil, f.desc)
     end
     fields[#fields + 1] = F[f.name]
 end
@@ -94,5 +95,5 @@ local function dissect(tvb, pinfo, tree)
 end
 
 proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
-rt.register_ports(proto, table.concat(spec.ports, ","))
+rt.register_port_preference(proto, spec.name, table.concat(spec.ports, ","))
 rt.parse_release, rt.layout_of = parse_release, layout_of

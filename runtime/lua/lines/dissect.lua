@@ -236,4 +236,4 @@ function proto.init()
     conversations, decided = {}, {}
 end
 
-rt.register_ports(proto, table.concat(spec.ports, ","))
+rt.register_port_preference(proto, spec.name, table.concat(spec.ports, ","))

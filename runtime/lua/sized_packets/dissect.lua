@@ -14,9 +14,11 @@ local SIZE_BYTES, MIN_SIZE, MAX_SIZE = spec.size_field_bytes, spec.min_message_s
 
 -- The dissector's own fields and experts, beside the spec's.
 local X = {
-    layout = ProtoField.string(spec.name .. ".layout", "Layout"),
-    urscript = ProtoField.string(spec.name .. ".urscript", "URScript"),
-    raw = ProtoField.bytes(spec.name .. ".raw", "Bytes of a packet of unknown size"),
+    layout = ProtoField.string(spec.name .. ".layout", "Layout",
+        "The packet layout its size names, and the versions that send it."),
+    urscript = ProtoField.string(spec.name .. ".urscript", "URScript", "URScript text the client sends to the robot."),
+    raw = ProtoField.bytes(spec.name .. ".raw", "Bytes of a packet of unknown size", base.NONE,
+        "A packet whose size names no layout of the spec, shown whole."),
 }
 local E = {
     -- Framed, and kept: a layout the spec does not know yet, not a broken stream.

@@ -28,4 +28,15 @@ calls = {}
 local other = S.load("common/register.lua")
 other.register_ports(Proto("ur_dashboard", "Dashboard"), "29999")
 S.eq(table.concat(calls, "; "), "add tcp.port 29999 ur_dashboard", "another plugin's copy starts empty")
+-- A port preference: <name>.tcp.port, the spec's ports by default, taken again when it changes.
+calls = {}
+local third = S.load("common/register.lua")
+local gripper = Proto("robotiq_gripper", "Gripper")
+third.register_port_preference(gripper, "robotiq_gripper", "63352")
+S.eq(gripper.prefs["tcp.port"], "63352", "the preference defaults to the spec's ports")
+S.eq(table.concat(calls, "; "), "add tcp.port 63352 robotiq_gripper", "the spec's ports taken")
+rawset(getmetatable(gripper.prefs).__index, "tcp.port", "40000")
+gripper.prefs_changed()
+S.eq(table.concat(calls, "; "), "add tcp.port 63352 robotiq_gripper; remove tcp.port 63352 robotiq_gripper; "
+     .. "add tcp.port 40000 robotiq_gripper", "a changed preference: the old ports given up, the new taken")
 print("ok")
