@@ -100,7 +100,12 @@ def test_the_same_fields_are_registered():
         native = registered(name, lua=False)
         assert any(f"\t{name}." in line for line in native), name
         assert f"defaultprefs: #{name}.release: " in native, name
-        assert native == registered(name, lua=True, loaded=NAMES), name
+        # The ports preference: Wireshark 4.0 keeps the native one among Decode As's preferences, which
+        # -G defaultprefs does not print, and prints the Lua twin's Pref.range of the same name.
+        ports = f"defaultprefs: #{name}.tcp.port: "
+        lua = registered(name, lua=True, loaded=NAMES)
+        assert any(line.startswith(ports) for line in lua), name
+        assert native == [line for line in lua if not line.startswith(ports)], name
 
 
 def test_every_vector_whole_and_in_small_segments():

@@ -7,7 +7,7 @@
  *
  * The twin of runtime/lua/int32_records.lua: the same fields, tree, Info column, expert infos
  * and preference, so that either dissector can stand for the other. The generated part of the
- * file gives INT32_RECORDS_NAME, _COLUMN, _DEFAULT_RELEASE, _DEFAULT_TEXT and int32_records_spec. */
+ * file gives INT32_RECORDS_NAME, _COLUMN, _PORTS, _DEFAULT_RELEASE, _DEFAULT_TEXT and int32_records_spec. */
 /* <standalone> */
 #include <epan/packet.h>
 #include <epan/expert.h>
@@ -17,6 +17,7 @@
 #include "../../c/common/version_text.c"
 #define INT32_RECORDS_NAME "ur_reverse"
 #define INT32_RECORDS_COLUMN "UR reverse"
+#define INT32_RECORDS_PORTS "50001"
 #define INT32_RECORDS_DEFAULT_RELEASE 2014000
 #define INT32_RECORDS_DEFAULT_TEXT "2.14"
 static const int32_records_interface int32_records_spec;
