@@ -234,7 +234,7 @@ URWIRE__PRIVATE bool urwire__read_version(const char *text, const char *end, boo
  *
  * The twin of runtime/lua/int32_records.lua: the same fields, tree, Info column, expert infos
  * and preference, so that either dissector can stand for the other. The generated part of the
- * file gives INT32_RECORDS_NAME, _COLUMN, _DEFAULT_RELEASE, _DEFAULT_TEXT and int32_records_spec. */
+ * file gives INT32_RECORDS_NAME, _COLUMN, _PORTS, _DEFAULT_RELEASE, _DEFAULT_TEXT and int32_records_spec. */
 
 /* Bytes in a direction where the spec has no record; and the Lua twin's guard, registered alike
  * (a record this dissector has framed is read within its bytes and cannot fail). */
