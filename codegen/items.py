@@ -9,7 +9,7 @@ A bit list (`bits:`) names one flag per bit, from bit 0, each read as its name i
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
+from typing import Iterable, Optional
 
 from .naming import words
 from .resolve import Resolver
@@ -27,9 +27,10 @@ class ItemSet:
 
 @dataclass(frozen=True)
 class Item:
-    """One item of a vector: what the tree calls it, and its unit."""
+    """One item of a vector: what the tree calls it, its unit, and the spec's name of its set."""
     label: str
     unit: Optional[str]
+    set_name: str = ""
 
 
 @dataclass(frozen=True)
@@ -51,6 +52,18 @@ def item_sets(r: Resolver, raw: Optional[dict]) -> dict[str, ItemSet]:
             r.fail(["item_names", name, "items"], "names an item twice")
         out[name] = ItemSet(name, entry.get("doc", ""), labels)
     return out
+
+
+def item_set_names(vectors: Iterable[tuple[Item, ...]]) -> dict[str, tuple[str, ...]]:
+    """The item sets the given vectors take, by the spec's name of each: their item names in order."""
+    return {v[0].set_name: tuple(i.label for i in v) for v in vectors if v}
+
+
+def own_units(named: tuple[Item, ...]) -> tuple[Optional[str], ...]:
+    """Each item's unit where a vector's items differ in unit (a pose: m, then rad), else none:
+    each item then has the vector's own unit."""
+    units = tuple(i.unit for i in named)
+    return units if len(set(units)) > 1 else ()
 
 
 def titled(label: str, unit: Optional[str]) -> str:
@@ -82,7 +95,7 @@ def items_of(r: Resolver, parts: list, sets: dict[str, ItemSet], name: Optional[
         r.fail(parts + ["unit"], f"its {len(units)} unit parts cannot share {count} items equally")
         return ()
     run = count // len(units) if units else count
-    return tuple(Item(label, units[i // run] if units else None) for i, label in enumerate(item_set.labels))
+    return tuple(Item(label, units[i // run] if units else None, name) for i, label in enumerate(item_set.labels))
 
 
 def bits_of(names: list[str]) -> tuple[Bit, ...]:

@@ -60,15 +60,17 @@ def trailing(code: str, comment: str, indent: str = "", syntax: str = "c") -> st
     return f"{above}\n{indent}{code}"
 
 
-def spread(items: list[str], open_: str, close: str = "", indent: str = "", width: int = LIMIT) -> str:
+def spread(items: list[str], open_: str, close: str = "", indent: str = "", width: int = LIMIT,
+           hang: bool = False) -> str:
     """`open_` followed by `items` joined with ", " and then `close`: on one line when it fits,
     else as many items per line as fit, continuation lines aligned under the first item (or,
-    when not even the first item fits after `open_`, indented by four under the line)."""
+    when not even the first item fits after `open_`, or `hang` asks for it, indented by four
+    under the line)."""
     one = f"{indent}{open_}{', '.join(items)}{close}"
     if columns(one) <= width or not items:
         return one
     first = indent + open_
-    if columns(first) + columns(items[0]) + 1 > width:
+    if hang or columns(first) + columns(items[0]) + 1 > width:
         out, hang, line = [first.rstrip()], indent + "    ", indent + "    "
     else:
         out, hang, line = [], " " * len(first), first

@@ -1,8 +1,11 @@
-"""Python spelled once: class names and string literals of generated modules."""
+"""Python spelled once: class names, string literals and item metadata of generated modules."""
 from __future__ import annotations
 
 import json
-from typing import Optional
+from typing import Iterable, Optional
+
+from ..items import Item, item_set_names, own_units
+from ..wrap import spread
 
 
 def class_name(name: str) -> str:
@@ -21,3 +24,23 @@ def string(text: str) -> str:
 
 def string_or_none(text: Optional[str]) -> str:
     return "None" if text is None else string(text)
+
+
+def item_set_constant(set_name: str) -> str:
+    """The module constant that holds an item set's names: JOINTS for the spec's "joints"."""
+    return set_name.upper()
+
+
+def item_metadata(named: tuple[Item, ...]) -> list[str]:
+    """A vector's named items in its metadata: its set's names, and each item's unit where they differ."""
+    if not named:
+        return []
+    units = own_units(named)
+    return [f'"items": {item_set_constant(named[0].set_name)}'] + \
+        ([f'"item_units": ({", ".join(string(u) for u in units)})'] if units else [])
+
+
+def item_set_constants(vectors: Iterable[tuple[Item, ...]]) -> list[str]:
+    """One module constant per item set the vectors take: `JOINTS = ("Base", "Shoulder", ...)`."""
+    return [spread([string(label) for label in labels], f"{item_set_constant(name)} = (", ")")
+            for name, labels in sorted(item_set_names(vectors).items())]

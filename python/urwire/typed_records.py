@@ -50,6 +50,9 @@ class Variable:
     unit: Optional[str]
     since: dict                    # generation -> first version, "none" or "unknown"
     columns: tuple                 # (generation, first software version read from its column), in order
+    items: tuple = ()              # a vector's item names, in order: ("Base", "Shoulder", ...)
+    item_units: tuple = ()         # each item's unit where they differ (a pose: m, m, m, rad, ...)
+    items: tuple = ()              # a vector's items as (name, unit) pairs: ("Base", "rad"), ...
 
     def available_in(self, version: tuple) -> Optional[bool]:
         """Whether a controller of this software version (major, minor[, bugfix]) has the variable:

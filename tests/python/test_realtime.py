@@ -40,8 +40,13 @@ def test_fields_sit_where_the_document_puts_them():
 def test_labels_and_units_are_metadata():
     import dataclasses
     meta = {f.name: f.metadata for f in dataclasses.fields(rt.Rt3_10)}
-    assert meta["q_actual"] == {"label": "Actual joint position", "unit": "rad", "count": 6}
+    assert meta["q_actual"] == {"label": "Actual joint position", "unit": "rad", "count": 6,
+                                "items": ("Base", "Shoulder", "Elbow", "Wrist 1", "Wrist 2", "Wrist 3")}
     assert meta["motor_temperatures"]["unit"] == "°C"
+    # a pose names its axes, and each axis its unit, as the Wireshark tree does
+    assert meta["tool_vector_actual"]["items"] == ("X", "Y", "Z", "RX", "RY", "RZ")
+    assert meta["tool_vector_actual"]["item_units"] == ("m", "m", "m", "rad", "rad", "rad")
+    assert "item_units" not in meta["q_actual"] and "items" not in meta["time"]
 
 
 def test_an_unknown_size_is_kept_raw_and_framing_goes_on():

@@ -125,6 +125,15 @@ def test_the_variable_table_has_labels_units_and_versions():
     assert rtde.variable("no_such_thing") is None
 
 
+def test_a_vector_variable_names_its_items_and_their_units():
+    table = rtde.VARIABLES
+    assert table["actual_q"].items == ("Base", "Shoulder", "Elbow", "Wrist 1", "Wrist 2", "Wrist 3")
+    assert table["actual_q"].item_units == () and table["actual_q"].unit == "rad"
+    assert table["actual_TCP_force"].items == ("Fx", "Fy", "Fz", "Tx", "Ty", "Tz")
+    assert table["actual_TCP_force"].item_units == ("N", "N", "N", "Nm", "Nm", "Nm")
+    assert table["timestamp"].items == () and table["robot_mode"].items == ()
+
+
 def test_the_variable_table_is_a_mapping_by_name():
     """VARIABLES["actual_q"] is its row; a name in both directions (the input registers, which the
     robot sends back) is the row the robot sends, its input row being variable(name, "input"); every

@@ -9,7 +9,8 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import field_text, node_text, value_text
 from ...emit import environment
-from ...lang.python import class_name, string
+from ...items import Item
+from ...lang.python import class_name, item_metadata, item_set_constants, string
 from .plan import Form, LayoutPlan, SizedPlan
 
 PACKAGE = "python/urwire/generated"
@@ -21,7 +22,7 @@ class PyAttr:
     annotation: str
     doc: str
     json_kind: str
-    metadata: str
+    metadata: list[str]                   # its entries, "key": value
     start: int                 # index of its first value in the struct's tuple
     stop: int                  # one past its last; None-like for a scalar is start + 1
     is_array: bool
@@ -62,13 +63,15 @@ class PyForm:
     tables: list[str]                      # '"enum name": ITS_TABLE', the items of a dict display
 
 
-def _metadata(f: ir.AnyField, count: int = 0) -> str:
-    """The label and unit, and an array's count, so that a table can give each item a column
-    before any packet is seen (dataset.py)."""
-    return "{" + f'"label": {f.label!r}, "unit": {f.unit!r}' + (f', "count": {count}' if count else "") + "}"
+def _metadata(f: ir.AnyField, count: int = 0, named: tuple[Item, ...] = ()) -> list[str]:
+    """The entries of a field's metadata: the label and unit, and an array's count, so that a table
+    can give each item a column before any packet is seen (dataset.py); a vector of named items
+    names them as the tree does."""
+    return [f'"label": {f.label!r}', f'"unit": {f.unit!r}'] + ([f'"count": {count}'] if count else []) \
+        + item_metadata(named)
 
 
-def _layout(lp: LayoutPlan, size_field: ir.ScalarField) -> PyLayout:
+def _layout(lp: LayoutPlan, size_field: ir.ScalarField, named: dict[str, tuple[Item, ...]]) -> PyLayout:
     layout = lp.layout
     attrs = [PyAttr(size_field.name, "int", field_text([size_field], versions=False), "int",
                     _metadata(size_field), 0, 1, False)]
@@ -76,7 +79,7 @@ def _layout(lp: LayoutPlan, size_field: ir.ScalarField) -> PyLayout:
         start = s.first + 1
         attrs.append(PyAttr(s.field.name, "tuple[float, ...]" if s.is_array else "float",
                             field_text([s.field], versions=False), "list:f64" if s.is_array else "f64",
-                            _metadata(s.field, s.count if s.is_array else 0), start, start + s.count, s.is_array))
+                            _metadata(s.field, s.count if s.is_array else 0, named.get(s.field.name, ())), start, start + s.count, s.is_array))
     doc = f"{layout.label}: sent by software {layout.describe()}."
     if node_text(layout):
         doc += " " + node_text(layout)
@@ -111,7 +114,8 @@ def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
         protocol=protocol,
         size_bytes=protocol.size_field_bytes,
         enums=[_enum(e) for e in planned.enums],
-        layouts=[_layout(lp, protocol.size_field) for lp in planned.layouts],
+        item_sets=item_set_constants(protocol.items.values()),
+        layouts=[_layout(lp, protocol.size_field, protocol.items) for lp in planned.layouts],
         by_size=[(size, [_form(planned, planned.forms[i]) for i in planned.by_size[size]]) for size in planned.sizes],
     )
     return {f"{PACKAGE}/{protocol.name}.py": text}

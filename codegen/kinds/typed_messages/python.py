@@ -12,7 +12,8 @@ from dataclasses import dataclass
 from ... import ir
 from ...comments import field_text, value_text
 from ...emit import environment
-from ...lang.python import class_name, string, string_or_none
+from ...items import Item, own_units
+from ...lang.python import class_name, item_set_constant, item_set_constants, string, string_or_none
 from ...view import one_line
 from ...wrap import spread
 from . import model
@@ -147,7 +148,16 @@ def _enum(e: ir.Enum) -> dict:
 def _variable(v: model.Variable) -> dict:
     since = ", ".join(f"{string(g)}: {string(v.since_text(g))}" for g in v.since)
     return {"args": [string(v.name), string(v.value_type.name), string(v.direction),
-                     string(v.label), string_or_none(v.unit or None), f"{{{since}}}", "COLUMNS"]}
+                     string(v.label), string_or_none(v.unit or None), f"{{{since}}}", "COLUMNS"]
+            + _item_args(v.items)}
+
+
+def _item_args(named: tuple[Item, ...]) -> list[str]:
+    if not named:
+        return []
+    units = own_units(named)
+    args = [f"items={item_set_constant(named[0].set_name)}"]
+    return args + [f"item_units={tuple_text([string(u) for u in units])}"] if units else args
 
 
 def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
@@ -169,6 +179,7 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
         "recipe_kinds": tuple_text([k.name.upper() for k in interface.recipe_kinds]),
         "header_format": ">" + STRUCT_CODES[interface.length.name] + STRUCT_CODES[interface.type.name],
         "enums": [_enum(e) for e in interface.enums],
+        "item_sets": item_set_constants(v.items for v in interface.variables),
         "value_types": [{"name": t.name, "code": STRUCT_CODES[t.scalar.name], "count": t.count,
                          "kind": "bool" if t.scalar.is_bool else "float" if t.scalar.is_float else "int"}
                         for t in interface.value_types],

@@ -20,6 +20,12 @@ MAX_MESSAGE_SIZE = 12200
 SIZE_FIELD = struct.Struct(">i")
 """The message size that opens every packet: Total message length in bytes, this field included."""
 SIZE_FIELD_BYTES = 4
+# The names of a vector's items, as a field's metadata gives them ("items").
+INERTIA = ("Ixx", "Iyy", "Izz", "Ixy", "Ixz", "Iyz")
+JOINTS = ("Base", "Shoulder", "Elbow", "Wrist 1", "Wrist 2", "Wrist 3")
+POSE = ("X", "Y", "Z", "RX", "RY", "RZ")
+WRENCH = ("Fx", "Fy", "Fz", "Tx", "Ty", "Tz")
+XYZ = ("X", "Y", "Z")
 
 
 class RobotMode(enum.IntEnum):
@@ -239,25 +245,32 @@ class Rt540:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
+    q_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
+    qd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(
-        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
+    qdd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6, "items": JOINTS})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
+    i_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
+    m_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint moment', "unit": 'Nm', "count": 6, "items": JOINTS})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
+    q_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
+    qd_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
+    i_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Actual joint current (A)."""
-    tool_accelerometer_values: tuple[float, ...] = field(
-        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
+    tool_accelerometer_values: tuple[float, ...] = field(metadata={
+        "label": 'Tool accelerometer', "unit": 'm/s²', "count": 3, "items": XYZ})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
     unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None, "count": 15})
     """Unused 1. Doubles UR marks unused."""
@@ -333,36 +346,48 @@ class Rt692:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
+    q_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
+    qd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(
-        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
+    qdd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6, "items": JOINTS})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
+    i_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
+    m_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint moment', "unit": 'Nm', "count": 6, "items": JOINTS})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
+    q_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
+    qd_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
+    i_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Actual joint current (A)."""
-    tool_accelerometer_values: tuple[float, ...] = field(
-        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
+    tool_accelerometer_values: tuple[float, ...] = field(metadata={
+        "label": 'Tool accelerometer', "unit": 'm/s²', "count": 3, "items": XYZ})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
     unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None, "count": 15})
     """Unused 1. Doubles UR marks unused."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": 'N, Nm', "count": 6})
+    tcp_force: tuple[float, ...] = field(metadata={
+        "label": 'TCP force', "unit": 'N, Nm', "count": 6, "items": WRENCH,
+        "item_units": ("N", "N", "N", "Nm", "Nm", "Nm")})
     """TCP force (N, Nm). Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Actual tool pose (m, rad). Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(
-        metadata={"label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Actual TCP speed (m/s, rad/s). Actual speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
@@ -453,36 +478,48 @@ class Rt1_5:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
+    q_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
+    qd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(
-        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
+    qdd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6, "items": JOINTS})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
+    i_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
+    m_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint moment', "unit": 'Nm', "count": 6, "items": JOINTS})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
+    q_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
+    qd_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
+    i_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Actual joint current (A)."""
-    tool_accelerometer_values: tuple[float, ...] = field(
-        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
+    tool_accelerometer_values: tuple[float, ...] = field(metadata={
+        "label": 'Tool accelerometer', "unit": 'm/s²', "count": 3, "items": XYZ})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
     unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None, "count": 15})
     """Unused 1. Doubles UR marks unused."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": 'N, Nm', "count": 6})
+    tcp_force: tuple[float, ...] = field(metadata={
+        "label": 'TCP force', "unit": 'N, Nm', "count": 6, "items": WRENCH,
+        "item_units": ("N", "N", "N", "Nm", "Nm", "Nm")})
     """TCP force (N, Nm). Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Actual tool pose (m, rad). Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(
-        metadata={"label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Actual TCP speed (m/s, rad/s). Actual speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
@@ -490,7 +527,8 @@ class Rt1_5:
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
+    motor_temperatures: tuple[float, ...] = field(metadata={
+        "label": 'Motor temperature', "unit": '°C', "count": 6, "items": JOINTS})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time; UR's tables give it no unit."""
@@ -586,36 +624,48 @@ class Rt1_6:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
+    q_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
+    qd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(
-        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
+    qdd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6, "items": JOINTS})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
+    i_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
+    m_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint moment', "unit": 'Nm', "count": 6, "items": JOINTS})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
+    q_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
+    qd_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
+    i_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Actual joint current (A)."""
-    tool_accelerometer_values: tuple[float, ...] = field(
-        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
+    tool_accelerometer_values: tuple[float, ...] = field(metadata={
+        "label": 'Tool accelerometer', "unit": 'm/s²', "count": 3, "items": XYZ})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
     unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None, "count": 15})
     """Unused 1. Doubles UR marks unused."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": 'N, Nm', "count": 6})
+    tcp_force: tuple[float, ...] = field(metadata={
+        "label": 'TCP force', "unit": 'N, Nm', "count": 6, "items": WRENCH,
+        "item_units": ("N", "N", "N", "Nm", "Nm", "Nm")})
     """TCP force (N, Nm). Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Actual tool pose (m, rad). Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(
-        metadata={"label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Actual TCP speed (m/s, rad/s). Actual speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
@@ -623,7 +673,8 @@ class Rt1_6:
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
+    motor_temperatures: tuple[float, ...] = field(metadata={
+        "label": 'Motor temperature', "unit": '°C', "count": 6, "items": JOINTS})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time; UR's tables give it no unit."""
@@ -724,36 +775,48 @@ class Rt1_8:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
+    q_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
+    qd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(
-        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
+    qdd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6, "items": JOINTS})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
+    i_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
+    m_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint moment', "unit": 'Nm', "count": 6, "items": JOINTS})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
+    q_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
+    qd_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
+    i_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Actual joint current (A)."""
-    tool_accelerometer_values: tuple[float, ...] = field(
-        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
+    tool_accelerometer_values: tuple[float, ...] = field(metadata={
+        "label": 'Tool accelerometer', "unit": 'm/s²', "count": 3, "items": XYZ})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
     unused_1: tuple[float, ...] = field(metadata={"label": 'Unused 1', "unit": None, "count": 15})
     """Unused 1. Doubles UR marks unused."""
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": 'N, Nm', "count": 6})
+    tcp_force: tuple[float, ...] = field(metadata={
+        "label": 'TCP force', "unit": 'N, Nm', "count": 6, "items": WRENCH,
+        "item_units": ("N", "N", "N", "Nm", "Nm", "Nm")})
     """TCP force (N, Nm). Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Actual tool pose (m, rad). Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(
-        metadata={"label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Actual TCP speed (m/s, rad/s). Actual speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
@@ -761,7 +824,8 @@ class Rt1_8:
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
+    motor_temperatures: tuple[float, ...] = field(metadata={
+        "label": 'Motor temperature', "unit": '°C', "count": 6, "items": JOINTS})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time; UR's tables give it no unit."""
@@ -769,7 +833,7 @@ class Rt1_8:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6, "items": JOINTS})
     """Joint mode."""
     extra: bytes = b""
     """Always empty: the size chose a layout that fills the packet. Kept for the JSON writer."""
@@ -878,42 +942,58 @@ class Rt3_0:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
+    q_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
+    qd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(
-        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
+    qdd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6, "items": JOINTS})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
+    i_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
+    m_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint moment', "unit": 'Nm', "count": 6, "items": JOINTS})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
+    q_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
+    qd_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
+    i_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Actual joint current (A)."""
-    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A', "count": 6})
+    i_control: tuple[float, ...] = field(metadata={
+        "label": 'Joint control current', "unit": 'A', "count": 6, "items": JOINTS})
     """Joint control current (A)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Actual tool pose (m, rad). Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(
-        metadata={"label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Actual TCP speed (m/s, rad/s). Actual speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": 'N, Nm', "count": 6})
+    tcp_force: tuple[float, ...] = field(metadata={
+        "label": 'TCP force', "unit": 'N, Nm', "count": 6, "items": WRENCH,
+        "item_units": ("N", "N", "N", "Nm", "Nm", "Nm")})
     """TCP force (N, Nm). Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_target: tuple[float, ...] = field(metadata={
+        "label": 'Target tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Target tool pose (m, rad). Target Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_target: tuple[float, ...] = field(
-        metadata={"label": 'Target TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_target: tuple[float, ...] = field(metadata={
+        "label": 'Target TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Target TCP speed (m/s, rad/s). Target speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
@@ -921,7 +1001,8 @@ class Rt3_0:
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
+    motor_temperatures: tuple[float, ...] = field(metadata={
+        "label": 'Motor temperature', "unit": '°C', "count": 6, "items": JOINTS})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time; UR's tables give it no unit."""
@@ -929,14 +1010,14 @@ class Rt3_0:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6, "items": JOINTS})
     """Joint mode."""
     safety_mode: float = field(metadata={"label": 'Safety mode', "unit": None})
     """Safety mode."""
     unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None, "count": 6})
     """Unused 2. Doubles UR marks unused."""
-    tool_accelerometer_values: tuple[float, ...] = field(
-        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
+    tool_accelerometer_values: tuple[float, ...] = field(metadata={
+        "label": 'Tool accelerometer', "unit": 'm/s²', "count": 3, "items": XYZ})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
     unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None, "count": 6})
     """Unused 3. Doubles UR marks unused."""
@@ -952,7 +1033,8 @@ class Rt3_0:
     """Robot voltage (V). Masterboard: robot voltage (48 V)."""
     i_robot: float = field(metadata={"label": 'Robot current', "unit": 'A'})
     """Robot current (A). Masterboard: robot current."""
-    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V', "count": 6})
+    v_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint voltage', "unit": 'V', "count": 6, "items": JOINTS})
     """Actual joint voltage (V)."""
     extra: bytes = b""
     """Always empty: the size chose a layout that fills the packet. Kept for the JSON writer."""
@@ -1087,42 +1169,58 @@ class Rt3_2:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
+    q_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
+    qd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(
-        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
+    qdd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6, "items": JOINTS})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
+    i_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
+    m_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint moment', "unit": 'Nm', "count": 6, "items": JOINTS})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
+    q_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
+    qd_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
+    i_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Actual joint current (A)."""
-    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A', "count": 6})
+    i_control: tuple[float, ...] = field(metadata={
+        "label": 'Joint control current', "unit": 'A', "count": 6, "items": JOINTS})
     """Joint control current (A)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Actual tool pose (m, rad). Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(
-        metadata={"label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Actual TCP speed (m/s, rad/s). Actual speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": 'N, Nm', "count": 6})
+    tcp_force: tuple[float, ...] = field(metadata={
+        "label": 'TCP force', "unit": 'N, Nm', "count": 6, "items": WRENCH,
+        "item_units": ("N", "N", "N", "Nm", "Nm", "Nm")})
     """TCP force (N, Nm). Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_target: tuple[float, ...] = field(metadata={
+        "label": 'Target tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Target tool pose (m, rad). Target Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_target: tuple[float, ...] = field(
-        metadata={"label": 'Target TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_target: tuple[float, ...] = field(metadata={
+        "label": 'Target TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Target TCP speed (m/s, rad/s). Target speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
@@ -1130,7 +1228,8 @@ class Rt3_2:
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
+    motor_temperatures: tuple[float, ...] = field(metadata={
+        "label": 'Motor temperature', "unit": '°C', "count": 6, "items": JOINTS})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time; UR's tables give it no unit."""
@@ -1138,14 +1237,14 @@ class Rt3_2:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6, "items": JOINTS})
     """Joint mode."""
     safety_mode: float = field(metadata={"label": 'Safety mode', "unit": None})
     """Safety mode."""
     unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None, "count": 6})
     """Unused 2. Doubles UR marks unused."""
-    tool_accelerometer_values: tuple[float, ...] = field(
-        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
+    tool_accelerometer_values: tuple[float, ...] = field(metadata={
+        "label": 'Tool accelerometer', "unit": 'm/s²', "count": 3, "items": XYZ})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
     unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None, "count": 6})
     """Unused 3. Doubles UR marks unused."""
@@ -1161,7 +1260,8 @@ class Rt3_2:
     """Robot voltage (V). Masterboard: robot voltage (48 V)."""
     i_robot: float = field(metadata={"label": 'Robot current', "unit": 'A'})
     """Robot current (A). Masterboard: robot current."""
-    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V', "count": 6})
+    v_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint voltage', "unit": 'V', "count": 6, "items": JOINTS})
     """Actual joint voltage (V)."""
     digital_outputs: float = field(metadata={"label": 'Digital outputs', "unit": None})
     """Digital outputs. Current state of the digital outputs, as a double whose integer value holds
@@ -1310,42 +1410,58 @@ class Rt3_5:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
+    q_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
+    qd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(
-        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
+    qdd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6, "items": JOINTS})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
+    i_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
+    m_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint moment', "unit": 'Nm', "count": 6, "items": JOINTS})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
+    q_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
+    qd_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
+    i_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Actual joint current (A)."""
-    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A', "count": 6})
+    i_control: tuple[float, ...] = field(metadata={
+        "label": 'Joint control current', "unit": 'A', "count": 6, "items": JOINTS})
     """Joint control current (A)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Actual tool pose (m, rad). Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(
-        metadata={"label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Actual TCP speed (m/s, rad/s). Actual speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": 'N, Nm', "count": 6})
+    tcp_force: tuple[float, ...] = field(metadata={
+        "label": 'TCP force', "unit": 'N, Nm', "count": 6, "items": WRENCH,
+        "item_units": ("N", "N", "N", "Nm", "Nm", "Nm")})
     """TCP force (N, Nm). Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_target: tuple[float, ...] = field(metadata={
+        "label": 'Target tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Target tool pose (m, rad). Target Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_target: tuple[float, ...] = field(
-        metadata={"label": 'Target TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_target: tuple[float, ...] = field(metadata={
+        "label": 'Target TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Target TCP speed (m/s, rad/s). Target speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
@@ -1353,7 +1469,8 @@ class Rt3_5:
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
+    motor_temperatures: tuple[float, ...] = field(metadata={
+        "label": 'Motor temperature', "unit": '°C', "count": 6, "items": JOINTS})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time; UR's tables give it no unit."""
@@ -1361,14 +1478,14 @@ class Rt3_5:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6, "items": JOINTS})
     """Joint mode."""
     safety_mode: float = field(metadata={"label": 'Safety mode', "unit": None})
     """Safety mode."""
     unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None, "count": 6})
     """Unused 2. Doubles UR marks unused."""
-    tool_accelerometer_values: tuple[float, ...] = field(
-        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
+    tool_accelerometer_values: tuple[float, ...] = field(metadata={
+        "label": 'Tool accelerometer', "unit": 'm/s²', "count": 3, "items": XYZ})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
     unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None, "count": 6})
     """Unused 3. Doubles UR marks unused."""
@@ -1384,7 +1501,8 @@ class Rt3_5:
     """Robot voltage (V). Masterboard: robot voltage (48 V)."""
     i_robot: float = field(metadata={"label": 'Robot current', "unit": 'A'})
     """Robot current (A). Masterboard: robot current."""
-    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V', "count": 6})
+    v_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint voltage', "unit": 'V', "count": 6, "items": JOINTS})
     """Actual joint voltage (V)."""
     digital_outputs: float = field(metadata={"label": 'Digital outputs', "unit": None})
     """Digital outputs. Current state of the digital outputs, as a double whose integer value holds
@@ -1392,9 +1510,11 @@ class Rt3_5:
     """
     program_state: float = field(metadata={"label": 'Program state', "unit": None})
     """Program state."""
-    elbow_position: tuple[float, ...] = field(metadata={"label": 'Elbow position', "unit": 'm', "count": 3})
+    elbow_position: tuple[float, ...] = field(metadata={
+        "label": 'Elbow position', "unit": 'm', "count": 3, "items": XYZ})
     """Elbow position (m)."""
-    elbow_velocity: tuple[float, ...] = field(metadata={"label": 'Elbow velocity', "unit": 'm/s', "count": 3})
+    elbow_velocity: tuple[float, ...] = field(metadata={
+        "label": 'Elbow velocity', "unit": 'm/s', "count": 3, "items": XYZ})
     """Elbow velocity (m/s)."""
     extra: bytes = b""
     """Always empty: the size chose a layout that fills the packet. Kept for the JSON writer."""
@@ -1542,42 +1662,58 @@ class Rt3_10:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
+    q_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
+    qd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(
-        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
+    qdd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6, "items": JOINTS})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
+    i_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
+    m_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint moment', "unit": 'Nm', "count": 6, "items": JOINTS})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
+    q_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
+    qd_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
+    i_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Actual joint current (A)."""
-    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A', "count": 6})
+    i_control: tuple[float, ...] = field(metadata={
+        "label": 'Joint control current', "unit": 'A', "count": 6, "items": JOINTS})
     """Joint control current (A)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Actual tool pose (m, rad). Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(
-        metadata={"label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Actual TCP speed (m/s, rad/s). Actual speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": 'N, Nm', "count": 6})
+    tcp_force: tuple[float, ...] = field(metadata={
+        "label": 'TCP force', "unit": 'N, Nm', "count": 6, "items": WRENCH,
+        "item_units": ("N", "N", "N", "Nm", "Nm", "Nm")})
     """TCP force (N, Nm). Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_target: tuple[float, ...] = field(metadata={
+        "label": 'Target tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Target tool pose (m, rad). Target Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_target: tuple[float, ...] = field(
-        metadata={"label": 'Target TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_target: tuple[float, ...] = field(metadata={
+        "label": 'Target TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Target TCP speed (m/s, rad/s). Target speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
@@ -1585,7 +1721,8 @@ class Rt3_10:
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
+    motor_temperatures: tuple[float, ...] = field(metadata={
+        "label": 'Motor temperature', "unit": '°C', "count": 6, "items": JOINTS})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time; UR's tables give it no unit."""
@@ -1593,14 +1730,14 @@ class Rt3_10:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6, "items": JOINTS})
     """Joint mode."""
     safety_mode: float = field(metadata={"label": 'Safety mode', "unit": None})
     """Safety mode."""
     unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None, "count": 6})
     """Unused 2. Doubles UR marks unused."""
-    tool_accelerometer_values: tuple[float, ...] = field(
-        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
+    tool_accelerometer_values: tuple[float, ...] = field(metadata={
+        "label": 'Tool accelerometer', "unit": 'm/s²', "count": 3, "items": XYZ})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
     unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None, "count": 6})
     """Unused 3. Doubles UR marks unused."""
@@ -1616,7 +1753,8 @@ class Rt3_10:
     """Robot voltage (V). Masterboard: robot voltage (48 V)."""
     i_robot: float = field(metadata={"label": 'Robot current', "unit": 'A'})
     """Robot current (A). Masterboard: robot current."""
-    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V', "count": 6})
+    v_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint voltage', "unit": 'V', "count": 6, "items": JOINTS})
     """Actual joint voltage (V)."""
     digital_outputs: float = field(metadata={"label": 'Digital outputs', "unit": None})
     """Digital outputs. Current state of the digital outputs, as a double whose integer value holds
@@ -1624,9 +1762,11 @@ class Rt3_10:
     """
     program_state: float = field(metadata={"label": 'Program state', "unit": None})
     """Program state."""
-    elbow_position: tuple[float, ...] = field(metadata={"label": 'Elbow position', "unit": 'm', "count": 3})
+    elbow_position: tuple[float, ...] = field(metadata={
+        "label": 'Elbow position', "unit": 'm', "count": 3, "items": XYZ})
     """Elbow position (m)."""
-    elbow_velocity: tuple[float, ...] = field(metadata={"label": 'Elbow velocity', "unit": 'm/s', "count": 3})
+    elbow_velocity: tuple[float, ...] = field(metadata={
+        "label": 'Elbow velocity', "unit": 'm/s', "count": 3, "items": XYZ})
     """Elbow velocity (m/s)."""
     safety_status: float = field(metadata={"label": 'Safety status', "unit": None})
     """Safety status."""
@@ -1780,42 +1920,58 @@ class Rt5_10:
     """Message size. Total message length in bytes, this field included."""
     time: float = field(metadata={"label": 'Time', "unit": 's'})
     """Time (s). Time elapsed since the controller was started."""
-    q_target: tuple[float, ...] = field(metadata={"label": 'Target joint position', "unit": 'rad', "count": 6})
+    q_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Target joint position (rad)."""
-    qd_target: tuple[float, ...] = field(metadata={"label": 'Target joint velocity', "unit": 'rad/s', "count": 6})
+    qd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Target joint velocity (rad/s)."""
-    qdd_target: tuple[float, ...] = field(
-        metadata={"label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6})
+    qdd_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint acceleration', "unit": 'rad/s²', "count": 6, "items": JOINTS})
     """Target joint acceleration (rad/s²)."""
-    i_target: tuple[float, ...] = field(metadata={"label": 'Target joint current', "unit": 'A', "count": 6})
+    i_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Target joint current (A)."""
-    m_target: tuple[float, ...] = field(metadata={"label": 'Target joint moment', "unit": 'Nm', "count": 6})
+    m_target: tuple[float, ...] = field(metadata={
+        "label": 'Target joint moment', "unit": 'Nm', "count": 6, "items": JOINTS})
     """Target joint moment (Nm). Target joint torques."""
-    q_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint position', "unit": 'rad', "count": 6})
+    q_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint position', "unit": 'rad', "count": 6, "items": JOINTS})
     """Actual joint position (rad)."""
-    qd_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint velocity', "unit": 'rad/s', "count": 6})
+    qd_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint velocity', "unit": 'rad/s', "count": 6, "items": JOINTS})
     """Actual joint velocity (rad/s)."""
-    i_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint current', "unit": 'A', "count": 6})
+    i_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint current', "unit": 'A', "count": 6, "items": JOINTS})
     """Actual joint current (A)."""
-    i_control: tuple[float, ...] = field(metadata={"label": 'Joint control current', "unit": 'A', "count": 6})
+    i_control: tuple[float, ...] = field(metadata={
+        "label": 'Joint control current', "unit": 'A', "count": 6, "items": JOINTS})
     """Joint control current (A)."""
-    tool_vector_actual: tuple[float, ...] = field(metadata={"label": 'Actual tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Actual tool pose (m, rad). Actual Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_actual: tuple[float, ...] = field(
-        metadata={"label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Actual TCP speed (m/s, rad/s). Actual speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
-    tcp_force: tuple[float, ...] = field(metadata={"label": 'TCP force', "unit": 'N, Nm', "count": 6})
+    tcp_force: tuple[float, ...] = field(metadata={
+        "label": 'TCP force', "unit": 'N, Nm', "count": 6, "items": WRENCH,
+        "item_units": ("N", "N", "N", "Nm", "Nm", "Nm")})
     """TCP force (N, Nm). Generalised forces in the TCP (N, then Nm)."""
-    tool_vector_target: tuple[float, ...] = field(metadata={"label": 'Target tool pose', "unit": 'm, rad', "count": 6})
+    tool_vector_target: tuple[float, ...] = field(metadata={
+        "label": 'Target tool pose', "unit": 'm, rad', "count": 6, "items": POSE,
+        "item_units": ("m", "m", "m", "rad", "rad", "rad")})
     """Target tool pose (m, rad). Target Cartesian coordinates of the tool (x, y, z in m; rx, ry, rz
     a rotation vector in rad).
     """
-    tcp_speed_target: tuple[float, ...] = field(
-        metadata={"label": 'Target TCP speed', "unit": 'm/s, rad/s', "count": 6})
+    tcp_speed_target: tuple[float, ...] = field(metadata={
+        "label": 'Target TCP speed', "unit": 'm/s, rad/s', "count": 6, "items": POSE,
+        "item_units": ("m/s", "m/s", "m/s", "rad/s", "rad/s", "rad/s")})
     """Target TCP speed (m/s, rad/s). Target speed of the tool in Cartesian coordinates (m/s, then
     rad/s).
     """
@@ -1823,7 +1979,8 @@ class Rt5_10:
     """Digital input bits. Current state of the digital inputs, as a double whose integer value
     holds the bits (5.0 is bits 0 and 2).
     """
-    motor_temperatures: tuple[float, ...] = field(metadata={"label": 'Motor temperature', "unit": '°C', "count": 6})
+    motor_temperatures: tuple[float, ...] = field(metadata={
+        "label": 'Motor temperature', "unit": '°C', "count": 6, "items": JOINTS})
     """Motor temperature (°C)."""
     controller_timer: float = field(metadata={"label": 'Controller timer', "unit": None})
     """Controller timer. Controller real-time thread execution time; UR's tables give it no unit."""
@@ -1831,14 +1988,14 @@ class Rt5_10:
     """Test value. A value used by Universal Robots software only."""
     robot_mode: float = field(metadata={"label": 'Robot mode', "unit": None})
     """Robot mode."""
-    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6})
+    joint_modes: tuple[float, ...] = field(metadata={"label": 'Joint mode', "unit": None, "count": 6, "items": JOINTS})
     """Joint mode."""
     safety_mode: float = field(metadata={"label": 'Safety mode', "unit": None})
     """Safety mode."""
     unused_2: tuple[float, ...] = field(metadata={"label": 'Unused 2', "unit": None, "count": 6})
     """Unused 2. Doubles UR marks unused."""
-    tool_accelerometer_values: tuple[float, ...] = field(
-        metadata={"label": 'Tool accelerometer', "unit": 'm/s²', "count": 3})
+    tool_accelerometer_values: tuple[float, ...] = field(metadata={
+        "label": 'Tool accelerometer', "unit": 'm/s²', "count": 3, "items": XYZ})
     """Tool accelerometer (m/s²). Tool x, y and z accelerometer values."""
     unused_3: tuple[float, ...] = field(metadata={"label": 'Unused 3', "unit": None, "count": 6})
     """Unused 3. Doubles UR marks unused."""
@@ -1854,7 +2011,8 @@ class Rt5_10:
     """Robot voltage (V). Masterboard: robot voltage (48 V)."""
     i_robot: float = field(metadata={"label": 'Robot current', "unit": 'A'})
     """Robot current (A). Masterboard: robot current."""
-    v_actual: tuple[float, ...] = field(metadata={"label": 'Actual joint voltage', "unit": 'V', "count": 6})
+    v_actual: tuple[float, ...] = field(metadata={
+        "label": 'Actual joint voltage', "unit": 'V', "count": 6, "items": JOINTS})
     """Actual joint voltage (V)."""
     digital_outputs: float = field(metadata={"label": 'Digital outputs', "unit": None})
     """Digital outputs. Current state of the digital outputs, as a double whose integer value holds
@@ -1862,9 +2020,11 @@ class Rt5_10:
     """
     program_state: float = field(metadata={"label": 'Program state', "unit": None})
     """Program state."""
-    elbow_position: tuple[float, ...] = field(metadata={"label": 'Elbow position', "unit": 'm', "count": 3})
+    elbow_position: tuple[float, ...] = field(metadata={
+        "label": 'Elbow position', "unit": 'm', "count": 3, "items": XYZ})
     """Elbow position (m)."""
-    elbow_velocity: tuple[float, ...] = field(metadata={"label": 'Elbow velocity', "unit": 'm/s', "count": 3})
+    elbow_velocity: tuple[float, ...] = field(metadata={
+        "label": 'Elbow velocity', "unit": 'm/s', "count": 3, "items": XYZ})
     """Elbow velocity (m/s)."""
     safety_status: float = field(metadata={"label": 'Safety status', "unit": None})
     """Safety status."""
@@ -1872,9 +2032,11 @@ class Rt5_10:
     """Unused 5. Doubles UR marks unused."""
     payload_mass: float = field(metadata={"label": 'Payload mass', "unit": 'kg'})
     """Payload mass (kg)."""
-    payload_cog: tuple[float, ...] = field(metadata={"label": 'Payload centre of gravity', "unit": 'm', "count": 3})
+    payload_cog: tuple[float, ...] = field(metadata={
+        "label": 'Payload centre of gravity', "unit": 'm', "count": 3, "items": XYZ})
     """Payload centre of gravity (m)."""
-    payload_inertia: tuple[float, ...] = field(metadata={"label": 'Payload inertia', "unit": 'kg·m²', "count": 6})
+    payload_inertia: tuple[float, ...] = field(metadata={
+        "label": 'Payload inertia', "unit": 'kg·m²', "count": 6, "items": INERTIA})
     """Payload inertia (kg·m²). Payload inertia matrix (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) in kg·m².
     """
     extra: bytes = b""
