@@ -235,27 +235,43 @@ static rtde_error rtde__end(rtde__reader *r)
 }
 /* ---- the spec's tables ---------------------------------------------------------------------- */
 
-/* Each value type: bytes per item, items, and how an item reads ('u', 'i', 'f', 'b'). */
+/* Each value type: bytes per item, items, how an item reads ('u', 'i', 'f', 'b'), and bytes of a
+ * value (what reading by index steps over). */
 static const struct {
-    const char *name;
     uint8_t size;
     uint8_t count;
     char kind;
+    uint8_t value_size;
 } rtde__value_types[RTDE_VT_COUNT] = {
-    {"BOOL", 1, 1, 'b'},
-    {"UINT8", 1, 1, 'u'},
-    {"UINT32", 4, 1, 'u'},
-    {"UINT64", 8, 1, 'u'},
-    {"INT32", 4, 1, 'i'},
-    {"DOUBLE", 8, 1, 'f'},
-    {"VECTOR3D", 8, 3, 'f'},
-    {"VECTOR6D", 8, 6, 'f'},
-    {"VECTOR6INT32", 4, 6, 'i'},
-    {"VECTOR6UINT32", 4, 6, 'u'},
+    {1, 1, 'b', 1},  /* BOOL */
+    {1, 1, 'u', 1},  /* UINT8 */
+    {4, 1, 'u', 4},  /* UINT32 */
+    {8, 1, 'u', 8},  /* UINT64 */
+    {4, 1, 'i', 4},  /* INT32 */
+    {8, 1, 'f', 8},  /* DOUBLE */
+    {8, 3, 'f', 24},  /* VECTOR3D */
+    {8, 6, 'f', 48},  /* VECTOR6D */
+    {4, 6, 'i', 24},  /* VECTOR6INT32 */
+    {4, 6, 'u', 24},  /* VECTOR6UINT32 */
 };
 
-/* What a setup reply may say in place of a type. */
-static const char *const rtde__refusals[] = {
+/* Their names: arrays, not pointers, so that the decoder links none of the file's string literals
+ * (they share one section, kept whole or dropped whole). */
+static const char rtde__value_type_names[RTDE_VT_COUNT][14] = {
+    "BOOL",
+    "UINT8",
+    "UINT32",
+    "UINT64",
+    "INT32",
+    "DOUBLE",
+    "VECTOR3D",
+    "VECTOR6D",
+    "VECTOR6INT32",
+    "VECTOR6UINT32",
+};
+
+/* What a setup reply may say in place of a type (arrays, as the names above). */
+static const char rtde__refusals[][10] = {
     "NOT_FOUND",
     "IN_USE",
 };
@@ -1788,14 +1804,14 @@ int rtde_value_type_of(const uint8_t *name, size_t length)
 {
     int t;
     for (t = 0; t < RTDE_VT_COUNT; t++)
-        if (strlen(rtde__value_types[t].name) == length && memcmp(rtde__value_types[t].name, name, length) == 0)
+        if (strlen(rtde__value_type_names[t]) == length && memcmp(rtde__value_type_names[t], name, length) == 0)
             return t;
     return -1;
 }
 
 const char *rtde_value_type_name(uint8_t type)
 {
-    return type < RTDE_VT_COUNT ? rtde__value_types[type].name : "";
+    return type < RTDE_VT_COUNT ? rtde__value_type_names[type] : "";
 }
 
 static uint8_t rtde__layout_for(uint8_t code, bool from_robot, uint8_t protocol)
@@ -1942,7 +1958,7 @@ static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text ty
                 recipe->name_length[count] = (uint16_t)n1;
             }
             count++;
-            size += (size_t)rtde__value_types[t].size * rtde__value_types[t].count;
+            size += rtde__value_types[t].value_size;
         }
         if (refused) {
             m->refused = true;
@@ -2146,7 +2162,7 @@ bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
     p = d->bytes;
     for (i = 0; i < index; i++) {
         uint8_t t = d->recipe->types[i];
-        p += (size_t)rtde__value_types[t].size * rtde__value_types[t].count;
+        p += rtde__value_types[t].value_size;
     }
     out->type = d->recipe->types[index];
     out->count = rtde__value_types[out->type].count;

@@ -173,8 +173,9 @@ def test_the_variable_table_reads_as_the_spec_has_it():
 
 def test_a_decoder_alone_links_no_variable_table(tmp_path):
     """A program that decodes and builds messages but never reads the variable table (rtde_api.c),
-    linked with --gc-sections, holds none of the table's rows or texts: the table is objects of its
-    own, sharing no section with what the decoder reads (a firmware's flash)."""
+    linked with --gc-sections, holds none of the table's rows or texts, nor the layouts' labels
+    that only rtde_layout_of reads: each is an object of its own, sharing no section with what the
+    decoder reads (a firmware's flash)."""
     exe = tmp_path / "api"
     cmd = ["gcc", *STRICT, "-Os", "-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections", f"-I{GEN}",
            "-o", str(exe), str(ROOT / "tests" / "c" / "rtde_api.c"), str(GEN / "rtde.c")]
@@ -185,6 +186,7 @@ def test_a_decoder_alone_links_no_variable_table(tmp_path):
     binary = exe.read_bytes()
     assert b"actual_q" in binary                    # rtde_api.c's own recipe names
     assert b"Speed slider fraction" not in binary and b"speed_slider_fraction" not in binary
+    assert b"Setup outputs reply (protocol 1)" not in binary
 
 
 def test_the_fuzz_harness_replays_its_corpus(tmp_path):

@@ -108,11 +108,14 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
                  "const": f"{name.upper()}_LAYOUT_{mp.message.name.upper()}"} for mp, p in planned.dispatch]
     view = {
         "banner": banner, "p": interface, "prefix": name, "PREFIX": name.upper(),
-        "value_types": [{"name": t.name, "size": t.scalar.size, "count": t.count, "kind": VALUE_KIND[t.scalar.name]}
+        "value_types": [{"name": t.name, "size": t.scalar.size, "count": t.count, "kind": VALUE_KIND[t.scalar.name],
+                         "value_size": t.size}
                         for t in interface.value_types],
         "layouts": layouts, "dispatch": dispatch, "codes": planned.codes,
         "variables": _variable_table(interface.variables, name.upper()),
         "refusals": [r.word for r in interface.refusals],
+        "refusal_width": max(len(r.word.encode("utf-8")) for r in interface.refusals) + 1,
+        "value_type_width": max(len(t.name.encode("utf-8")) for t in interface.value_types) + 1,
         "undocumented": interface.undocumented,
         "runtime_h": {n: _joined(n) for n in RUNTIME_H},
         "runtime_c": {part: "\n\n".join(runtime_section("c", n) for n in names) for part, names in RUNTIME_C.items()},
