@@ -235,27 +235,43 @@ static rtde_error rtde__end(rtde__reader *r)
 }
 /* ---- the spec's tables ---------------------------------------------------------------------- */
 
-/* Each value type: bytes per item, items, and how an item reads ('u', 'i', 'f', 'b'). */
+/* Each value type: bytes per item, items, how an item reads ('u', 'i', 'f', 'b'), and bytes of a
+ * value (what reading by index steps over). */
 static const struct {
-    const char *name;
     uint8_t size;
     uint8_t count;
     char kind;
+    uint8_t value_size;
 } rtde__value_types[RTDE_VT_COUNT] = {
-    {"BOOL", 1, 1, 'b'},
-    {"UINT8", 1, 1, 'u'},
-    {"UINT32", 4, 1, 'u'},
-    {"UINT64", 8, 1, 'u'},
-    {"INT32", 4, 1, 'i'},
-    {"DOUBLE", 8, 1, 'f'},
-    {"VECTOR3D", 8, 3, 'f'},
-    {"VECTOR6D", 8, 6, 'f'},
-    {"VECTOR6INT32", 4, 6, 'i'},
-    {"VECTOR6UINT32", 4, 6, 'u'},
+    {1, 1, 'b', 1},  /* BOOL */
+    {1, 1, 'u', 1},  /* UINT8 */
+    {4, 1, 'u', 4},  /* UINT32 */
+    {8, 1, 'u', 8},  /* UINT64 */
+    {4, 1, 'i', 4},  /* INT32 */
+    {8, 1, 'f', 8},  /* DOUBLE */
+    {8, 3, 'f', 24},  /* VECTOR3D */
+    {8, 6, 'f', 48},  /* VECTOR6D */
+    {4, 6, 'i', 24},  /* VECTOR6INT32 */
+    {4, 6, 'u', 24},  /* VECTOR6UINT32 */
 };
 
-/* What a setup reply may say in place of a type. */
-static const char *const rtde__refusals[] = {
+/* Their names: arrays, not pointers, so that the decoder links none of the file's string literals
+ * (they share one section, kept whole or dropped whole). */
+static const char rtde__value_type_names[RTDE_VT_COUNT][14] = {
+    "BOOL",
+    "UINT8",
+    "UINT32",
+    "UINT64",
+    "INT32",
+    "DOUBLE",
+    "VECTOR3D",
+    "VECTOR6D",
+    "VECTOR6INT32",
+    "VECTOR6UINT32",
+};
+
+/* What a setup reply may say in place of a type (arrays, as the names above). */
+static const char rtde__refusals[][10] = {
     "NOT_FOUND",
     "IN_USE",
 };
@@ -470,645 +486,967 @@ static const rtde_layout_info rtde__layouts[RTDE_LAYOUT_COUNT] = {
     {"input_data_package", "Input data package", 2, rtde__members_input_data_package},
 };
 
-const rtde_variable rtde_variables[RTDE_VARIABLE_COUNT] = {
-    {"speed_slider_mask", RTDE_VT_UINT32, false, "Speed slider mask", NULL, "3.3", "5.0", "10.0"},
-    {"speed_slider_fraction", RTDE_VT_DOUBLE, false, "Speed slider fraction", NULL, "3.3", "5.0", "10.0"},
-    {"standard_digital_output_mask", RTDE_VT_UINT8, false, "Standard digital output mask", NULL, "3.3", "5.0", "10.0"},
-    {"standard_digital_output", RTDE_VT_UINT8, false, "Standard digital outputs", NULL, "3.3", "5.0", "10.0"},
-    {"configurable_digital_output_mask", RTDE_VT_UINT8, false, "Configurable digital output mask", NULL, "3.3", "5.0",
-     "10.0"},
-    {"configurable_digital_output", RTDE_VT_UINT8, false, "Configurable digital outputs", NULL, "3.3", "5.0", "10.0"},
-    {"tool_digital_output_mask", RTDE_VT_UINT8, false, "Tool digital output mask", NULL, "unknown", "unknown",
-     "unknown"},
-    {"tool_digital_output", RTDE_VT_UINT8, false, "Tool digital outputs", NULL, "unknown", "unknown", "unknown"},
-    {"standard_analog_output_mask", RTDE_VT_UINT8, false, "Standard analog output mask", NULL, "3.3", "5.0", "10.0"},
-    {"standard_analog_output_type", RTDE_VT_UINT8, false, "Standard analog output type", NULL, "3.3", "5.0", "10.0"},
-    {"standard_analog_output_0", RTDE_VT_DOUBLE, false, "Standard analog output 0", NULL, "3.3", "5.0", "10.0"},
-    {"standard_analog_output_1", RTDE_VT_DOUBLE, false, "Standard analog output 1", NULL, "3.3", "5.0", "10.0"},
-    {"external_force_torque", RTDE_VT_VECTOR6D, false, "External force torque", "N, Nm", "3.3", "5.0", "10.0"},
-    {"input_bit_registers0_to_31", RTDE_VT_UINT32, false, "Input bit registers 0 to 31", NULL, "3.4", "5.0", "10.0"},
-    {"input_bit_registers32_to_63", RTDE_VT_UINT32, false, "Input bit registers 32 to 63", NULL, "3.4", "5.0", "10.0"},
-    {"input_bit_register_64", RTDE_VT_BOOL, false, "Input bit register 64", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_65", RTDE_VT_BOOL, false, "Input bit register 65", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_66", RTDE_VT_BOOL, false, "Input bit register 66", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_67", RTDE_VT_BOOL, false, "Input bit register 67", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_68", RTDE_VT_BOOL, false, "Input bit register 68", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_69", RTDE_VT_BOOL, false, "Input bit register 69", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_70", RTDE_VT_BOOL, false, "Input bit register 70", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_71", RTDE_VT_BOOL, false, "Input bit register 71", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_72", RTDE_VT_BOOL, false, "Input bit register 72", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_73", RTDE_VT_BOOL, false, "Input bit register 73", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_74", RTDE_VT_BOOL, false, "Input bit register 74", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_75", RTDE_VT_BOOL, false, "Input bit register 75", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_76", RTDE_VT_BOOL, false, "Input bit register 76", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_77", RTDE_VT_BOOL, false, "Input bit register 77", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_78", RTDE_VT_BOOL, false, "Input bit register 78", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_79", RTDE_VT_BOOL, false, "Input bit register 79", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_80", RTDE_VT_BOOL, false, "Input bit register 80", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_81", RTDE_VT_BOOL, false, "Input bit register 81", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_82", RTDE_VT_BOOL, false, "Input bit register 82", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_83", RTDE_VT_BOOL, false, "Input bit register 83", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_84", RTDE_VT_BOOL, false, "Input bit register 84", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_85", RTDE_VT_BOOL, false, "Input bit register 85", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_86", RTDE_VT_BOOL, false, "Input bit register 86", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_87", RTDE_VT_BOOL, false, "Input bit register 87", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_88", RTDE_VT_BOOL, false, "Input bit register 88", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_89", RTDE_VT_BOOL, false, "Input bit register 89", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_90", RTDE_VT_BOOL, false, "Input bit register 90", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_91", RTDE_VT_BOOL, false, "Input bit register 91", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_92", RTDE_VT_BOOL, false, "Input bit register 92", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_93", RTDE_VT_BOOL, false, "Input bit register 93", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_94", RTDE_VT_BOOL, false, "Input bit register 94", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_95", RTDE_VT_BOOL, false, "Input bit register 95", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_96", RTDE_VT_BOOL, false, "Input bit register 96", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_97", RTDE_VT_BOOL, false, "Input bit register 97", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_98", RTDE_VT_BOOL, false, "Input bit register 98", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_99", RTDE_VT_BOOL, false, "Input bit register 99", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_100", RTDE_VT_BOOL, false, "Input bit register 100", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_101", RTDE_VT_BOOL, false, "Input bit register 101", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_102", RTDE_VT_BOOL, false, "Input bit register 102", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_103", RTDE_VT_BOOL, false, "Input bit register 103", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_104", RTDE_VT_BOOL, false, "Input bit register 104", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_105", RTDE_VT_BOOL, false, "Input bit register 105", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_106", RTDE_VT_BOOL, false, "Input bit register 106", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_107", RTDE_VT_BOOL, false, "Input bit register 107", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_108", RTDE_VT_BOOL, false, "Input bit register 108", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_109", RTDE_VT_BOOL, false, "Input bit register 109", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_110", RTDE_VT_BOOL, false, "Input bit register 110", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_111", RTDE_VT_BOOL, false, "Input bit register 111", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_112", RTDE_VT_BOOL, false, "Input bit register 112", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_113", RTDE_VT_BOOL, false, "Input bit register 113", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_114", RTDE_VT_BOOL, false, "Input bit register 114", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_115", RTDE_VT_BOOL, false, "Input bit register 115", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_116", RTDE_VT_BOOL, false, "Input bit register 116", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_117", RTDE_VT_BOOL, false, "Input bit register 117", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_118", RTDE_VT_BOOL, false, "Input bit register 118", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_119", RTDE_VT_BOOL, false, "Input bit register 119", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_120", RTDE_VT_BOOL, false, "Input bit register 120", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_121", RTDE_VT_BOOL, false, "Input bit register 121", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_122", RTDE_VT_BOOL, false, "Input bit register 122", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_123", RTDE_VT_BOOL, false, "Input bit register 123", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_124", RTDE_VT_BOOL, false, "Input bit register 124", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_125", RTDE_VT_BOOL, false, "Input bit register 125", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_126", RTDE_VT_BOOL, false, "Input bit register 126", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_127", RTDE_VT_BOOL, false, "Input bit register 127", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_0", RTDE_VT_INT32, false, "Input int register 0", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_1", RTDE_VT_INT32, false, "Input int register 1", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_2", RTDE_VT_INT32, false, "Input int register 2", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_3", RTDE_VT_INT32, false, "Input int register 3", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_4", RTDE_VT_INT32, false, "Input int register 4", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_5", RTDE_VT_INT32, false, "Input int register 5", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_6", RTDE_VT_INT32, false, "Input int register 6", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_7", RTDE_VT_INT32, false, "Input int register 7", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_8", RTDE_VT_INT32, false, "Input int register 8", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_9", RTDE_VT_INT32, false, "Input int register 9", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_10", RTDE_VT_INT32, false, "Input int register 10", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_11", RTDE_VT_INT32, false, "Input int register 11", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_12", RTDE_VT_INT32, false, "Input int register 12", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_13", RTDE_VT_INT32, false, "Input int register 13", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_14", RTDE_VT_INT32, false, "Input int register 14", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_15", RTDE_VT_INT32, false, "Input int register 15", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_16", RTDE_VT_INT32, false, "Input int register 16", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_17", RTDE_VT_INT32, false, "Input int register 17", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_18", RTDE_VT_INT32, false, "Input int register 18", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_19", RTDE_VT_INT32, false, "Input int register 19", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_20", RTDE_VT_INT32, false, "Input int register 20", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_21", RTDE_VT_INT32, false, "Input int register 21", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_22", RTDE_VT_INT32, false, "Input int register 22", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_23", RTDE_VT_INT32, false, "Input int register 23", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_24", RTDE_VT_INT32, false, "Input int register 24", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_25", RTDE_VT_INT32, false, "Input int register 25", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_26", RTDE_VT_INT32, false, "Input int register 26", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_27", RTDE_VT_INT32, false, "Input int register 27", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_28", RTDE_VT_INT32, false, "Input int register 28", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_29", RTDE_VT_INT32, false, "Input int register 29", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_30", RTDE_VT_INT32, false, "Input int register 30", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_31", RTDE_VT_INT32, false, "Input int register 31", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_32", RTDE_VT_INT32, false, "Input int register 32", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_33", RTDE_VT_INT32, false, "Input int register 33", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_34", RTDE_VT_INT32, false, "Input int register 34", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_35", RTDE_VT_INT32, false, "Input int register 35", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_36", RTDE_VT_INT32, false, "Input int register 36", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_37", RTDE_VT_INT32, false, "Input int register 37", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_38", RTDE_VT_INT32, false, "Input int register 38", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_39", RTDE_VT_INT32, false, "Input int register 39", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_40", RTDE_VT_INT32, false, "Input int register 40", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_41", RTDE_VT_INT32, false, "Input int register 41", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_42", RTDE_VT_INT32, false, "Input int register 42", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_43", RTDE_VT_INT32, false, "Input int register 43", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_44", RTDE_VT_INT32, false, "Input int register 44", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_45", RTDE_VT_INT32, false, "Input int register 45", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_46", RTDE_VT_INT32, false, "Input int register 46", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_47", RTDE_VT_INT32, false, "Input int register 47", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_0", RTDE_VT_DOUBLE, false, "Input double register 0", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_1", RTDE_VT_DOUBLE, false, "Input double register 1", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_2", RTDE_VT_DOUBLE, false, "Input double register 2", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_3", RTDE_VT_DOUBLE, false, "Input double register 3", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_4", RTDE_VT_DOUBLE, false, "Input double register 4", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_5", RTDE_VT_DOUBLE, false, "Input double register 5", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_6", RTDE_VT_DOUBLE, false, "Input double register 6", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_7", RTDE_VT_DOUBLE, false, "Input double register 7", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_8", RTDE_VT_DOUBLE, false, "Input double register 8", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_9", RTDE_VT_DOUBLE, false, "Input double register 9", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_10", RTDE_VT_DOUBLE, false, "Input double register 10", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_11", RTDE_VT_DOUBLE, false, "Input double register 11", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_12", RTDE_VT_DOUBLE, false, "Input double register 12", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_13", RTDE_VT_DOUBLE, false, "Input double register 13", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_14", RTDE_VT_DOUBLE, false, "Input double register 14", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_15", RTDE_VT_DOUBLE, false, "Input double register 15", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_16", RTDE_VT_DOUBLE, false, "Input double register 16", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_17", RTDE_VT_DOUBLE, false, "Input double register 17", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_18", RTDE_VT_DOUBLE, false, "Input double register 18", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_19", RTDE_VT_DOUBLE, false, "Input double register 19", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_20", RTDE_VT_DOUBLE, false, "Input double register 20", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_21", RTDE_VT_DOUBLE, false, "Input double register 21", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_22", RTDE_VT_DOUBLE, false, "Input double register 22", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_23", RTDE_VT_DOUBLE, false, "Input double register 23", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_24", RTDE_VT_DOUBLE, false, "Input double register 24", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_25", RTDE_VT_DOUBLE, false, "Input double register 25", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_26", RTDE_VT_DOUBLE, false, "Input double register 26", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_27", RTDE_VT_DOUBLE, false, "Input double register 27", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_28", RTDE_VT_DOUBLE, false, "Input double register 28", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_29", RTDE_VT_DOUBLE, false, "Input double register 29", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_30", RTDE_VT_DOUBLE, false, "Input double register 30", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_31", RTDE_VT_DOUBLE, false, "Input double register 31", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_32", RTDE_VT_DOUBLE, false, "Input double register 32", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_33", RTDE_VT_DOUBLE, false, "Input double register 33", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_34", RTDE_VT_DOUBLE, false, "Input double register 34", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_35", RTDE_VT_DOUBLE, false, "Input double register 35", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_36", RTDE_VT_DOUBLE, false, "Input double register 36", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_37", RTDE_VT_DOUBLE, false, "Input double register 37", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_38", RTDE_VT_DOUBLE, false, "Input double register 38", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_39", RTDE_VT_DOUBLE, false, "Input double register 39", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_40", RTDE_VT_DOUBLE, false, "Input double register 40", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_41", RTDE_VT_DOUBLE, false, "Input double register 41", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_42", RTDE_VT_DOUBLE, false, "Input double register 42", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_43", RTDE_VT_DOUBLE, false, "Input double register 43", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_44", RTDE_VT_DOUBLE, false, "Input double register 44", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_45", RTDE_VT_DOUBLE, false, "Input double register 45", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_46", RTDE_VT_DOUBLE, false, "Input double register 46", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_47", RTDE_VT_DOUBLE, false, "Input double register 47", NULL, "3.9", "5.3", "10.0"},
-    {"timestamp", RTDE_VT_DOUBLE, true, "Time since the controller started", "s", "3.3", "5.0", "10.0"},
-    {"target_q", RTDE_VT_VECTOR6D, true, "Target joint positions", "rad", "3.3", "5.0", "10.0"},
-    {"target_qd", RTDE_VT_VECTOR6D, true, "Target joint velocities", "rad/s", "3.3", "5.0", "10.0"},
-    {"target_qdd", RTDE_VT_VECTOR6D, true, "Target joint accelerations", "rad/s\302\262", "3.3", "5.0", "10.0"},
-    {"target_current", RTDE_VT_VECTOR6D, true, "Target joint currents", "A", "3.3", "5.0", "10.0"},
-    {"target_moment", RTDE_VT_VECTOR6D, true, "Target joint moments", "Nm", "3.3", "5.0", "10.0"},
-    {"actual_q", RTDE_VT_VECTOR6D, true, "Actual joint positions", "rad", "3.3", "5.0", "10.0"},
-    {"actual_qd", RTDE_VT_VECTOR6D, true, "Actual joint velocities", "rad/s", "3.3", "5.0", "10.0"},
-    {"actual_current", RTDE_VT_VECTOR6D, true, "Actual joint currents", "A", "3.3", "5.0", "10.0"},
-    {"actual_current_window", RTDE_VT_VECTOR6D, true, "Actual joint current windows", "A", "unknown", "unknown",
-     "unknown"},
-    {"actual_current_as_torque", RTDE_VT_VECTOR6D, true, "Actual joint currents as torques", "Nm", "none", "5.23",
-     "10.0"},
-    {"joint_control_output", RTDE_VT_VECTOR6D, true, "Joint control currents", "A", "3.3", "5.0", "10.0"},
-    {"actual_TCP_pose", RTDE_VT_VECTOR6D, true, "Actual TCP pose", "m, rad", "3.3", "5.0", "10.0"},
-    {"actual_TCP_speed", RTDE_VT_VECTOR6D, true, "Actual TCP speed", "m/s, rad/s", "3.3", "5.0", "10.0"},
-    {"actual_TCP_force", RTDE_VT_VECTOR6D, true, "Generalised forces in the TCP", "N, Nm", "3.3", "5.0", "10.0"},
-    {"target_TCP_pose", RTDE_VT_VECTOR6D, true, "Target TCP pose", "m, rad", "3.3", "5.0", "10.0"},
-    {"target_TCP_speed", RTDE_VT_VECTOR6D, true, "Target TCP speed", "m/s, rad/s", "3.3", "5.0", "10.0"},
-    {"tcp_offset", RTDE_VT_VECTOR6D, true, "TCP offset", "m, rad", "3.12", "5.5.1", "10.0"},
-    {"actual_TCP_acceleration", RTDE_VT_VECTOR6D, true, "Actual TCP acceleration", "m/s\302\262, rad/s\302\262",
-     "unknown", "unknown", "unknown"},
-    {"target_TCP_acceleration", RTDE_VT_VECTOR6D, true, "Target TCP acceleration", "m/s\302\262, rad/s\302\262",
-     "unknown", "unknown", "unknown"},
-    {"actual_digital_input_bits", RTDE_VT_UINT64, true, "Digital input bits", NULL, "3.3", "5.0", "10.0"},
-    {"actual_configurable_digital_input_bits", RTDE_VT_UINT64, true, "Configurable digital input bits", NULL, "unknown",
-     "unknown", "unknown"},
-    {"joint_temperatures", RTDE_VT_VECTOR6D, true, "Joint temperatures", "\302\260C", "3.3", "5.0", "10.0"},
-    {"actual_execution_time", RTDE_VT_DOUBLE, true, "Controller real-time thread execution time", "ms", "3.3", "5.0",
-     "10.0"},
-    {"target_execution_time", RTDE_VT_DOUBLE, true, "Target real-time thread execution time", "ms", "unknown",
-     "unknown", "unknown"},
-    {"robot_mode", RTDE_VT_INT32, true, "Robot mode", NULL, "3.3", "5.0", "10.0"},
-    {"joint_mode", RTDE_VT_VECTOR6INT32, true, "Joint control modes", NULL, "3.3", "5.0", "10.0"},
-    {"safety_mode", RTDE_VT_INT32, true, "Safety mode", NULL, "3.3", "5.0", "10.0"},
-    {"safety_status", RTDE_VT_INT32, true, "Safety status", NULL, "3.10", "5.4", "10.0"},
-    {"actual_tool_accelerometer", RTDE_VT_VECTOR3D, true, "Tool accelerometer", "m/s\302\262", "3.3", "5.0", "10.0"},
-    {"speed_scaling", RTDE_VT_DOUBLE, true, "Speed scaling of the trajectory limiter", NULL, "3.3", "5.0", "10.0"},
-    {"target_speed_fraction", RTDE_VT_DOUBLE, true, "Target speed fraction", NULL, "3.3", "5.0", "10.0"},
-    {"actual_momentum", RTDE_VT_DOUBLE, true, "Norm of Cartesian linear momentum", NULL, "3.3", "5.0", "10.0"},
-    {"actual_main_voltage", RTDE_VT_DOUBLE, true, "Safety control board main voltage", "V", "3.3", "5.0", "10.0"},
-    {"actual_robot_voltage", RTDE_VT_DOUBLE, true, "Safety control board robot voltage", "V", "3.3", "5.0", "10.0"},
-    {"actual_robot_current", RTDE_VT_DOUBLE, true, "Safety control board robot current", "A", "3.3", "5.0", "10.0"},
-    {"actual_joint_voltage", RTDE_VT_VECTOR6D, true, "Actual joint voltages", "V", "3.3", "5.0", "10.0"},
-    {"actual_digital_output_bits", RTDE_VT_UINT64, true, "Digital output bits", NULL, "3.3", "5.0", "10.0"},
-    {"actual_configurable_digital_output_bits", RTDE_VT_UINT64, true, "Configurable digital output bits", NULL,
-     "unknown", "unknown", "unknown"},
-    {"runtime_state", RTDE_VT_UINT32, true, "Program state", NULL, "3.3", "5.0", "10.0"},
-    {"elbow_position", RTDE_VT_VECTOR3D, true, "Elbow position", "m", "3.5", "5.0", "10.0"},
-    {"elbow_velocity", RTDE_VT_VECTOR3D, true, "Elbow velocity", "m/s", "3.5", "5.0", "10.0"},
-    {"robot_status_bits", RTDE_VT_UINT32, true, "Robot status bits", NULL, "3.3", "5.0", "10.0"},
-    {"safety_status_bits", RTDE_VT_UINT32, true, "Safety status bits", NULL, "3.3", "5.0", "10.0"},
-    {"analog_io_types", RTDE_VT_UINT32, true, "Analog IO types", NULL, "3.3", "5.0", "10.0"},
-    {"standard_analog_input0", RTDE_VT_DOUBLE, true, "Standard analog input 0", NULL, "3.3", "5.0", "10.0"},
-    {"standard_analog_input1", RTDE_VT_DOUBLE, true, "Standard analog input 1", NULL, "3.3", "5.0", "10.0"},
-    {"standard_analog_output0", RTDE_VT_DOUBLE, true, "Standard analog output 0", NULL, "3.3", "5.0", "10.0"},
-    {"standard_analog_output1", RTDE_VT_DOUBLE, true, "Standard analog output 1", NULL, "3.3", "5.0", "10.0"},
-    {"io_current", RTDE_VT_DOUBLE, true, "IO current", "mA", "3.3", "5.0", "10.0"},
-    {"euromap67_input_bits", RTDE_VT_UINT32, true, "Euromap67 input bits", NULL, "3.3", "5.0", "10.0"},
-    {"euromap67_output_bits", RTDE_VT_UINT32, true, "Euromap67 output bits", NULL, "3.3", "5.0", "10.0"},
-    {"euromap67_24V_voltage", RTDE_VT_DOUBLE, true, "Euromap 24V voltage", "V", "3.3", "5.0", "10.0"},
-    {"euromap67_24V_current", RTDE_VT_DOUBLE, true, "Euromap 24V current", "mA", "3.3", "5.0", "10.0"},
-    {"tool_mode", RTDE_VT_UINT32, true, "Tool mode", NULL, "3.3", "5.0", "10.0"},
-    {"tool_analog_input_types", RTDE_VT_UINT32, true, "Tool analog input types", NULL, "3.3", "5.0", "10.0"},
-    {"tool_analog_input0", RTDE_VT_DOUBLE, true, "Tool analog input 0", NULL, "3.3", "5.0", "10.0"},
-    {"tool_analog_input1", RTDE_VT_DOUBLE, true, "Tool analog input 1", NULL, "3.3", "5.0", "10.0"},
-    {"tool_output_voltage", RTDE_VT_INT32, true, "Tool output voltage", "V", "3.3", "5.0", "10.0"},
-    {"tool_output_current", RTDE_VT_DOUBLE, true, "Tool output current", "mA", "3.3", "5.0", "10.0"},
-    {"tool_temperature", RTDE_VT_DOUBLE, true, "Tool temperature", "\302\260C", "3.3", "5.0", "10.0"},
-    {"tcp_force_scalar", RTDE_VT_DOUBLE, true, "TCP force scalar", "N", "3.3", "5.0", "10.0"},
-    {"output_bit_registers0_to_31", RTDE_VT_UINT32, true, "Output bit registers 0 to 31", NULL, "3.4", "5.0", "10.0"},
-    {"output_bit_registers32_to_63", RTDE_VT_UINT32, true, "Output bit registers 32 to 63", NULL, "3.4", "5.0", "10.0"},
-    {"output_bit_register_64", RTDE_VT_BOOL, true, "Output bit register 64", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_65", RTDE_VT_BOOL, true, "Output bit register 65", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_66", RTDE_VT_BOOL, true, "Output bit register 66", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_67", RTDE_VT_BOOL, true, "Output bit register 67", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_68", RTDE_VT_BOOL, true, "Output bit register 68", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_69", RTDE_VT_BOOL, true, "Output bit register 69", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_70", RTDE_VT_BOOL, true, "Output bit register 70", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_71", RTDE_VT_BOOL, true, "Output bit register 71", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_72", RTDE_VT_BOOL, true, "Output bit register 72", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_73", RTDE_VT_BOOL, true, "Output bit register 73", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_74", RTDE_VT_BOOL, true, "Output bit register 74", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_75", RTDE_VT_BOOL, true, "Output bit register 75", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_76", RTDE_VT_BOOL, true, "Output bit register 76", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_77", RTDE_VT_BOOL, true, "Output bit register 77", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_78", RTDE_VT_BOOL, true, "Output bit register 78", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_79", RTDE_VT_BOOL, true, "Output bit register 79", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_80", RTDE_VT_BOOL, true, "Output bit register 80", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_81", RTDE_VT_BOOL, true, "Output bit register 81", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_82", RTDE_VT_BOOL, true, "Output bit register 82", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_83", RTDE_VT_BOOL, true, "Output bit register 83", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_84", RTDE_VT_BOOL, true, "Output bit register 84", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_85", RTDE_VT_BOOL, true, "Output bit register 85", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_86", RTDE_VT_BOOL, true, "Output bit register 86", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_87", RTDE_VT_BOOL, true, "Output bit register 87", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_88", RTDE_VT_BOOL, true, "Output bit register 88", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_89", RTDE_VT_BOOL, true, "Output bit register 89", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_90", RTDE_VT_BOOL, true, "Output bit register 90", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_91", RTDE_VT_BOOL, true, "Output bit register 91", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_92", RTDE_VT_BOOL, true, "Output bit register 92", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_93", RTDE_VT_BOOL, true, "Output bit register 93", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_94", RTDE_VT_BOOL, true, "Output bit register 94", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_95", RTDE_VT_BOOL, true, "Output bit register 95", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_96", RTDE_VT_BOOL, true, "Output bit register 96", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_97", RTDE_VT_BOOL, true, "Output bit register 97", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_98", RTDE_VT_BOOL, true, "Output bit register 98", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_99", RTDE_VT_BOOL, true, "Output bit register 99", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_100", RTDE_VT_BOOL, true, "Output bit register 100", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_101", RTDE_VT_BOOL, true, "Output bit register 101", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_102", RTDE_VT_BOOL, true, "Output bit register 102", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_103", RTDE_VT_BOOL, true, "Output bit register 103", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_104", RTDE_VT_BOOL, true, "Output bit register 104", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_105", RTDE_VT_BOOL, true, "Output bit register 105", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_106", RTDE_VT_BOOL, true, "Output bit register 106", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_107", RTDE_VT_BOOL, true, "Output bit register 107", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_108", RTDE_VT_BOOL, true, "Output bit register 108", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_109", RTDE_VT_BOOL, true, "Output bit register 109", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_110", RTDE_VT_BOOL, true, "Output bit register 110", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_111", RTDE_VT_BOOL, true, "Output bit register 111", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_112", RTDE_VT_BOOL, true, "Output bit register 112", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_113", RTDE_VT_BOOL, true, "Output bit register 113", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_114", RTDE_VT_BOOL, true, "Output bit register 114", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_115", RTDE_VT_BOOL, true, "Output bit register 115", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_116", RTDE_VT_BOOL, true, "Output bit register 116", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_117", RTDE_VT_BOOL, true, "Output bit register 117", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_118", RTDE_VT_BOOL, true, "Output bit register 118", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_119", RTDE_VT_BOOL, true, "Output bit register 119", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_120", RTDE_VT_BOOL, true, "Output bit register 120", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_121", RTDE_VT_BOOL, true, "Output bit register 121", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_122", RTDE_VT_BOOL, true, "Output bit register 122", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_123", RTDE_VT_BOOL, true, "Output bit register 123", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_124", RTDE_VT_BOOL, true, "Output bit register 124", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_125", RTDE_VT_BOOL, true, "Output bit register 125", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_126", RTDE_VT_BOOL, true, "Output bit register 126", NULL, "3.9", "5.3", "10.0"},
-    {"output_bit_register_127", RTDE_VT_BOOL, true, "Output bit register 127", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_0", RTDE_VT_INT32, true, "Output int register 0", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_1", RTDE_VT_INT32, true, "Output int register 1", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_2", RTDE_VT_INT32, true, "Output int register 2", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_3", RTDE_VT_INT32, true, "Output int register 3", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_4", RTDE_VT_INT32, true, "Output int register 4", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_5", RTDE_VT_INT32, true, "Output int register 5", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_6", RTDE_VT_INT32, true, "Output int register 6", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_7", RTDE_VT_INT32, true, "Output int register 7", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_8", RTDE_VT_INT32, true, "Output int register 8", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_9", RTDE_VT_INT32, true, "Output int register 9", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_10", RTDE_VT_INT32, true, "Output int register 10", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_11", RTDE_VT_INT32, true, "Output int register 11", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_12", RTDE_VT_INT32, true, "Output int register 12", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_13", RTDE_VT_INT32, true, "Output int register 13", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_14", RTDE_VT_INT32, true, "Output int register 14", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_15", RTDE_VT_INT32, true, "Output int register 15", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_16", RTDE_VT_INT32, true, "Output int register 16", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_17", RTDE_VT_INT32, true, "Output int register 17", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_18", RTDE_VT_INT32, true, "Output int register 18", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_19", RTDE_VT_INT32, true, "Output int register 19", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_20", RTDE_VT_INT32, true, "Output int register 20", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_21", RTDE_VT_INT32, true, "Output int register 21", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_22", RTDE_VT_INT32, true, "Output int register 22", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_23", RTDE_VT_INT32, true, "Output int register 23", NULL, "3.4", "5.0", "10.0"},
-    {"output_int_register_24", RTDE_VT_INT32, true, "Output int register 24", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_25", RTDE_VT_INT32, true, "Output int register 25", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_26", RTDE_VT_INT32, true, "Output int register 26", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_27", RTDE_VT_INT32, true, "Output int register 27", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_28", RTDE_VT_INT32, true, "Output int register 28", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_29", RTDE_VT_INT32, true, "Output int register 29", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_30", RTDE_VT_INT32, true, "Output int register 30", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_31", RTDE_VT_INT32, true, "Output int register 31", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_32", RTDE_VT_INT32, true, "Output int register 32", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_33", RTDE_VT_INT32, true, "Output int register 33", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_34", RTDE_VT_INT32, true, "Output int register 34", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_35", RTDE_VT_INT32, true, "Output int register 35", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_36", RTDE_VT_INT32, true, "Output int register 36", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_37", RTDE_VT_INT32, true, "Output int register 37", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_38", RTDE_VT_INT32, true, "Output int register 38", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_39", RTDE_VT_INT32, true, "Output int register 39", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_40", RTDE_VT_INT32, true, "Output int register 40", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_41", RTDE_VT_INT32, true, "Output int register 41", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_42", RTDE_VT_INT32, true, "Output int register 42", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_43", RTDE_VT_INT32, true, "Output int register 43", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_44", RTDE_VT_INT32, true, "Output int register 44", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_45", RTDE_VT_INT32, true, "Output int register 45", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_46", RTDE_VT_INT32, true, "Output int register 46", NULL, "3.9", "5.3", "10.0"},
-    {"output_int_register_47", RTDE_VT_INT32, true, "Output int register 47", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_0", RTDE_VT_DOUBLE, true, "Output double register 0", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_1", RTDE_VT_DOUBLE, true, "Output double register 1", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_2", RTDE_VT_DOUBLE, true, "Output double register 2", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_3", RTDE_VT_DOUBLE, true, "Output double register 3", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_4", RTDE_VT_DOUBLE, true, "Output double register 4", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_5", RTDE_VT_DOUBLE, true, "Output double register 5", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_6", RTDE_VT_DOUBLE, true, "Output double register 6", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_7", RTDE_VT_DOUBLE, true, "Output double register 7", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_8", RTDE_VT_DOUBLE, true, "Output double register 8", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_9", RTDE_VT_DOUBLE, true, "Output double register 9", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_10", RTDE_VT_DOUBLE, true, "Output double register 10", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_11", RTDE_VT_DOUBLE, true, "Output double register 11", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_12", RTDE_VT_DOUBLE, true, "Output double register 12", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_13", RTDE_VT_DOUBLE, true, "Output double register 13", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_14", RTDE_VT_DOUBLE, true, "Output double register 14", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_15", RTDE_VT_DOUBLE, true, "Output double register 15", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_16", RTDE_VT_DOUBLE, true, "Output double register 16", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_17", RTDE_VT_DOUBLE, true, "Output double register 17", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_18", RTDE_VT_DOUBLE, true, "Output double register 18", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_19", RTDE_VT_DOUBLE, true, "Output double register 19", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_20", RTDE_VT_DOUBLE, true, "Output double register 20", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_21", RTDE_VT_DOUBLE, true, "Output double register 21", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_22", RTDE_VT_DOUBLE, true, "Output double register 22", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_23", RTDE_VT_DOUBLE, true, "Output double register 23", NULL, "3.4", "5.0", "10.0"},
-    {"output_double_register_24", RTDE_VT_DOUBLE, true, "Output double register 24", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_25", RTDE_VT_DOUBLE, true, "Output double register 25", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_26", RTDE_VT_DOUBLE, true, "Output double register 26", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_27", RTDE_VT_DOUBLE, true, "Output double register 27", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_28", RTDE_VT_DOUBLE, true, "Output double register 28", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_29", RTDE_VT_DOUBLE, true, "Output double register 29", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_30", RTDE_VT_DOUBLE, true, "Output double register 30", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_31", RTDE_VT_DOUBLE, true, "Output double register 31", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_32", RTDE_VT_DOUBLE, true, "Output double register 32", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_33", RTDE_VT_DOUBLE, true, "Output double register 33", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_34", RTDE_VT_DOUBLE, true, "Output double register 34", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_35", RTDE_VT_DOUBLE, true, "Output double register 35", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_36", RTDE_VT_DOUBLE, true, "Output double register 36", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_37", RTDE_VT_DOUBLE, true, "Output double register 37", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_38", RTDE_VT_DOUBLE, true, "Output double register 38", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_39", RTDE_VT_DOUBLE, true, "Output double register 39", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_40", RTDE_VT_DOUBLE, true, "Output double register 40", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_41", RTDE_VT_DOUBLE, true, "Output double register 41", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_42", RTDE_VT_DOUBLE, true, "Output double register 42", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_43", RTDE_VT_DOUBLE, true, "Output double register 43", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_44", RTDE_VT_DOUBLE, true, "Output double register 44", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_45", RTDE_VT_DOUBLE, true, "Output double register 45", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_46", RTDE_VT_DOUBLE, true, "Output double register 46", NULL, "3.9", "5.3", "10.0"},
-    {"output_double_register_47", RTDE_VT_DOUBLE, true, "Output double register 47", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_registers0_to_31", RTDE_VT_UINT32, true, "Input bit registers 0 to 31 read back", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_bit_registers32_to_63", RTDE_VT_UINT32, true, "Input bit registers 32 to 63 read back", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_bit_register_64", RTDE_VT_BOOL, true, "Input bit register read back 64", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_65", RTDE_VT_BOOL, true, "Input bit register read back 65", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_66", RTDE_VT_BOOL, true, "Input bit register read back 66", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_67", RTDE_VT_BOOL, true, "Input bit register read back 67", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_68", RTDE_VT_BOOL, true, "Input bit register read back 68", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_69", RTDE_VT_BOOL, true, "Input bit register read back 69", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_70", RTDE_VT_BOOL, true, "Input bit register read back 70", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_71", RTDE_VT_BOOL, true, "Input bit register read back 71", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_72", RTDE_VT_BOOL, true, "Input bit register read back 72", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_73", RTDE_VT_BOOL, true, "Input bit register read back 73", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_74", RTDE_VT_BOOL, true, "Input bit register read back 74", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_75", RTDE_VT_BOOL, true, "Input bit register read back 75", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_76", RTDE_VT_BOOL, true, "Input bit register read back 76", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_77", RTDE_VT_BOOL, true, "Input bit register read back 77", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_78", RTDE_VT_BOOL, true, "Input bit register read back 78", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_79", RTDE_VT_BOOL, true, "Input bit register read back 79", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_80", RTDE_VT_BOOL, true, "Input bit register read back 80", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_81", RTDE_VT_BOOL, true, "Input bit register read back 81", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_82", RTDE_VT_BOOL, true, "Input bit register read back 82", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_83", RTDE_VT_BOOL, true, "Input bit register read back 83", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_84", RTDE_VT_BOOL, true, "Input bit register read back 84", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_85", RTDE_VT_BOOL, true, "Input bit register read back 85", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_86", RTDE_VT_BOOL, true, "Input bit register read back 86", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_87", RTDE_VT_BOOL, true, "Input bit register read back 87", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_88", RTDE_VT_BOOL, true, "Input bit register read back 88", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_89", RTDE_VT_BOOL, true, "Input bit register read back 89", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_90", RTDE_VT_BOOL, true, "Input bit register read back 90", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_91", RTDE_VT_BOOL, true, "Input bit register read back 91", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_92", RTDE_VT_BOOL, true, "Input bit register read back 92", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_93", RTDE_VT_BOOL, true, "Input bit register read back 93", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_94", RTDE_VT_BOOL, true, "Input bit register read back 94", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_95", RTDE_VT_BOOL, true, "Input bit register read back 95", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_96", RTDE_VT_BOOL, true, "Input bit register read back 96", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_97", RTDE_VT_BOOL, true, "Input bit register read back 97", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_98", RTDE_VT_BOOL, true, "Input bit register read back 98", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_99", RTDE_VT_BOOL, true, "Input bit register read back 99", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_100", RTDE_VT_BOOL, true, "Input bit register read back 100", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_101", RTDE_VT_BOOL, true, "Input bit register read back 101", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_102", RTDE_VT_BOOL, true, "Input bit register read back 102", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_103", RTDE_VT_BOOL, true, "Input bit register read back 103", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_104", RTDE_VT_BOOL, true, "Input bit register read back 104", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_105", RTDE_VT_BOOL, true, "Input bit register read back 105", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_106", RTDE_VT_BOOL, true, "Input bit register read back 106", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_107", RTDE_VT_BOOL, true, "Input bit register read back 107", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_108", RTDE_VT_BOOL, true, "Input bit register read back 108", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_109", RTDE_VT_BOOL, true, "Input bit register read back 109", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_110", RTDE_VT_BOOL, true, "Input bit register read back 110", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_111", RTDE_VT_BOOL, true, "Input bit register read back 111", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_112", RTDE_VT_BOOL, true, "Input bit register read back 112", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_113", RTDE_VT_BOOL, true, "Input bit register read back 113", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_114", RTDE_VT_BOOL, true, "Input bit register read back 114", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_115", RTDE_VT_BOOL, true, "Input bit register read back 115", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_116", RTDE_VT_BOOL, true, "Input bit register read back 116", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_117", RTDE_VT_BOOL, true, "Input bit register read back 117", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_118", RTDE_VT_BOOL, true, "Input bit register read back 118", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_119", RTDE_VT_BOOL, true, "Input bit register read back 119", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_120", RTDE_VT_BOOL, true, "Input bit register read back 120", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_121", RTDE_VT_BOOL, true, "Input bit register read back 121", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_122", RTDE_VT_BOOL, true, "Input bit register read back 122", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_123", RTDE_VT_BOOL, true, "Input bit register read back 123", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_124", RTDE_VT_BOOL, true, "Input bit register read back 124", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_125", RTDE_VT_BOOL, true, "Input bit register read back 125", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_126", RTDE_VT_BOOL, true, "Input bit register read back 126", NULL, "3.9", "5.3", "10.0"},
-    {"input_bit_register_127", RTDE_VT_BOOL, true, "Input bit register read back 127", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_0", RTDE_VT_INT32, true, "Input int register read back 0", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_1", RTDE_VT_INT32, true, "Input int register read back 1", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_2", RTDE_VT_INT32, true, "Input int register read back 2", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_3", RTDE_VT_INT32, true, "Input int register read back 3", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_4", RTDE_VT_INT32, true, "Input int register read back 4", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_5", RTDE_VT_INT32, true, "Input int register read back 5", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_6", RTDE_VT_INT32, true, "Input int register read back 6", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_7", RTDE_VT_INT32, true, "Input int register read back 7", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_8", RTDE_VT_INT32, true, "Input int register read back 8", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_9", RTDE_VT_INT32, true, "Input int register read back 9", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_10", RTDE_VT_INT32, true, "Input int register read back 10", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_11", RTDE_VT_INT32, true, "Input int register read back 11", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_12", RTDE_VT_INT32, true, "Input int register read back 12", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_13", RTDE_VT_INT32, true, "Input int register read back 13", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_14", RTDE_VT_INT32, true, "Input int register read back 14", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_15", RTDE_VT_INT32, true, "Input int register read back 15", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_16", RTDE_VT_INT32, true, "Input int register read back 16", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_17", RTDE_VT_INT32, true, "Input int register read back 17", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_18", RTDE_VT_INT32, true, "Input int register read back 18", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_19", RTDE_VT_INT32, true, "Input int register read back 19", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_20", RTDE_VT_INT32, true, "Input int register read back 20", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_21", RTDE_VT_INT32, true, "Input int register read back 21", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_22", RTDE_VT_INT32, true, "Input int register read back 22", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_23", RTDE_VT_INT32, true, "Input int register read back 23", NULL, "3.4", "5.0", "10.0"},
-    {"input_int_register_24", RTDE_VT_INT32, true, "Input int register read back 24", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_25", RTDE_VT_INT32, true, "Input int register read back 25", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_26", RTDE_VT_INT32, true, "Input int register read back 26", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_27", RTDE_VT_INT32, true, "Input int register read back 27", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_28", RTDE_VT_INT32, true, "Input int register read back 28", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_29", RTDE_VT_INT32, true, "Input int register read back 29", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_30", RTDE_VT_INT32, true, "Input int register read back 30", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_31", RTDE_VT_INT32, true, "Input int register read back 31", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_32", RTDE_VT_INT32, true, "Input int register read back 32", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_33", RTDE_VT_INT32, true, "Input int register read back 33", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_34", RTDE_VT_INT32, true, "Input int register read back 34", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_35", RTDE_VT_INT32, true, "Input int register read back 35", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_36", RTDE_VT_INT32, true, "Input int register read back 36", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_37", RTDE_VT_INT32, true, "Input int register read back 37", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_38", RTDE_VT_INT32, true, "Input int register read back 38", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_39", RTDE_VT_INT32, true, "Input int register read back 39", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_40", RTDE_VT_INT32, true, "Input int register read back 40", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_41", RTDE_VT_INT32, true, "Input int register read back 41", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_42", RTDE_VT_INT32, true, "Input int register read back 42", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_43", RTDE_VT_INT32, true, "Input int register read back 43", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_44", RTDE_VT_INT32, true, "Input int register read back 44", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_45", RTDE_VT_INT32, true, "Input int register read back 45", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_46", RTDE_VT_INT32, true, "Input int register read back 46", NULL, "3.9", "5.3", "10.0"},
-    {"input_int_register_47", RTDE_VT_INT32, true, "Input int register read back 47", NULL, "3.9", "5.3", "10.0"},
-    {"input_double_register_0", RTDE_VT_DOUBLE, true, "Input double register read back 0", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_1", RTDE_VT_DOUBLE, true, "Input double register read back 1", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_2", RTDE_VT_DOUBLE, true, "Input double register read back 2", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_3", RTDE_VT_DOUBLE, true, "Input double register read back 3", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_4", RTDE_VT_DOUBLE, true, "Input double register read back 4", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_5", RTDE_VT_DOUBLE, true, "Input double register read back 5", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_6", RTDE_VT_DOUBLE, true, "Input double register read back 6", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_7", RTDE_VT_DOUBLE, true, "Input double register read back 7", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_8", RTDE_VT_DOUBLE, true, "Input double register read back 8", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_9", RTDE_VT_DOUBLE, true, "Input double register read back 9", NULL, "3.4", "5.0", "10.0"},
-    {"input_double_register_10", RTDE_VT_DOUBLE, true, "Input double register read back 10", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_11", RTDE_VT_DOUBLE, true, "Input double register read back 11", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_12", RTDE_VT_DOUBLE, true, "Input double register read back 12", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_13", RTDE_VT_DOUBLE, true, "Input double register read back 13", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_14", RTDE_VT_DOUBLE, true, "Input double register read back 14", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_15", RTDE_VT_DOUBLE, true, "Input double register read back 15", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_16", RTDE_VT_DOUBLE, true, "Input double register read back 16", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_17", RTDE_VT_DOUBLE, true, "Input double register read back 17", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_18", RTDE_VT_DOUBLE, true, "Input double register read back 18", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_19", RTDE_VT_DOUBLE, true, "Input double register read back 19", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_20", RTDE_VT_DOUBLE, true, "Input double register read back 20", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_21", RTDE_VT_DOUBLE, true, "Input double register read back 21", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_22", RTDE_VT_DOUBLE, true, "Input double register read back 22", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_23", RTDE_VT_DOUBLE, true, "Input double register read back 23", NULL, "3.4", "5.0",
-     "10.0"},
-    {"input_double_register_24", RTDE_VT_DOUBLE, true, "Input double register read back 24", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_25", RTDE_VT_DOUBLE, true, "Input double register read back 25", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_26", RTDE_VT_DOUBLE, true, "Input double register read back 26", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_27", RTDE_VT_DOUBLE, true, "Input double register read back 27", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_28", RTDE_VT_DOUBLE, true, "Input double register read back 28", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_29", RTDE_VT_DOUBLE, true, "Input double register read back 29", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_30", RTDE_VT_DOUBLE, true, "Input double register read back 30", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_31", RTDE_VT_DOUBLE, true, "Input double register read back 31", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_32", RTDE_VT_DOUBLE, true, "Input double register read back 32", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_33", RTDE_VT_DOUBLE, true, "Input double register read back 33", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_34", RTDE_VT_DOUBLE, true, "Input double register read back 34", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_35", RTDE_VT_DOUBLE, true, "Input double register read back 35", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_36", RTDE_VT_DOUBLE, true, "Input double register read back 36", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_37", RTDE_VT_DOUBLE, true, "Input double register read back 37", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_38", RTDE_VT_DOUBLE, true, "Input double register read back 38", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_39", RTDE_VT_DOUBLE, true, "Input double register read back 39", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_40", RTDE_VT_DOUBLE, true, "Input double register read back 40", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_41", RTDE_VT_DOUBLE, true, "Input double register read back 41", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_42", RTDE_VT_DOUBLE, true, "Input double register read back 42", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_43", RTDE_VT_DOUBLE, true, "Input double register read back 43", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_44", RTDE_VT_DOUBLE, true, "Input double register read back 44", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_45", RTDE_VT_DOUBLE, true, "Input double register read back 45", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_46", RTDE_VT_DOUBLE, true, "Input double register read back 46", NULL, "3.9", "5.3",
-     "10.0"},
-    {"input_double_register_47", RTDE_VT_DOUBLE, true, "Input double register read back 47", NULL, "3.9", "5.3",
-     "10.0"},
-    {"tool_output_mode", RTDE_VT_UINT8, true, "Tool output mode", NULL, "none", "5.2", "10.0"},
-    {"tool_digital_output0_mode", RTDE_VT_UINT8, true, "Tool digital output 0 mode", NULL, "none", "5.2", "10.0"},
-    {"tool_digital_output1_mode", RTDE_VT_UINT8, true, "Tool digital output 1 mode", NULL, "none", "5.2", "10.0"},
-    {"joint_position_deviation_ratio", RTDE_VT_DOUBLE, true, "Joint position deviation ratio", NULL, "unknown",
-     "unknown", "unknown"},
-    {"collision_detection_ratio", RTDE_VT_DOUBLE, true, "Collision detection ratio", NULL, "none", "5.15", "10.0"},
-    {"ft_raw_wrench", RTDE_VT_VECTOR6D, true, "Raw force and torque at the tool flange", "N, Nm", "none", "5.9",
-     "10.0"},
-    {"wrench_calc_from_currents", RTDE_VT_VECTOR6D, true, "Wrench computed from joint currents", "N, Nm", "unknown",
-     "unknown", "unknown"},
-    {"payload", RTDE_VT_DOUBLE, true, "Payload mass", "kg", "3.11", "5.5.1", "10.0"},
-    {"payload_cog", RTDE_VT_VECTOR3D, true, "Payload centre of gravity", "m", "3.11", "5.5.1", "10.0"},
-    {"payload_inertia", RTDE_VT_VECTOR6D, true, "Payload inertia", "kg\302\267m\302\262", "3.15", "5.11", "10.0"},
-    {"script_control_line", RTDE_VT_UINT32, true, "Line of the script being executed", NULL, "unknown", "unknown",
-     "unknown"},
-    {"time_scale_source", RTDE_VT_INT32, true, "Source of the speed scaling", NULL, "none", "5.17", "10.0"},
-    {"target_gravity", RTDE_VT_VECTOR3D, true, "Target gravity vector", "m/s\302\262", "none", "5.26", "10.0"},
-    {"target_base_acceleration", RTDE_VT_VECTOR6D, true, "Target base acceleration", "m/s\302\262, rad/s\302\262",
-     "none", "5.26", "10.0"},
-    {"control_step", RTDE_VT_UINT64, true, "Control step counter", NULL, "none", "5.26", "10.0"},
-    {"target_base_wrench", RTDE_VT_VECTOR6D, true, "Target base wrench", "N, Nm", "none", "5.26", "10.0"},
-    {"actual_robot_energy_consumed", RTDE_VT_DOUBLE, true, "Energy consumed by the robot", "J", "none", "5.23", "10.0"},
-    {"actual_robot_braking_energy_dissipated", RTDE_VT_DOUBLE, true, "Braking energy dissipated", "J", "unknown",
-     "unknown", "unknown"},
-    {"encoder0_raw", RTDE_VT_INT32, true, "Raw count of encoder 0", NULL, "unknown", "unknown", "unknown"},
-    {"encoder1_raw", RTDE_VT_INT32, true, "Raw count of encoder 1", NULL, "unknown", "unknown", "unknown"},
+/* The variable table's texts, each once and NUL-terminated: names, labels, then units and versions.
+ * A row finds a text by its offset from the first byte. The parts, laid end to end (char arrays have
+ * no padding), are each one literal of at most 4000 bytes, as C99 promises 4095; each part's last
+ * byte is its literal's own NUL. */
+static const struct {
+    char part0[3999];
+    char part1[3991];
+    char part2[3986];
+    char part3[3997];
+    char part4[3986];
+    char part5[3993];
+    char part6[922];
+} rtde__variable_text = {
+    "speed_slider_mask\0" "Speed slider mask\0" "speed_slider_fraction\0" "Speed slider fraction\0"
+    "standard_digital_output_mask\0" "Standard digital output mask\0" "standard_digital_output\0"
+    "Standard digital outputs\0" "configurable_digital_output_mask\0" "Configurable digital output mask\0"
+    "configurable_digital_output\0" "Configurable digital outputs\0" "tool_digital_output_mask\0"
+    "Tool digital output mask\0" "tool_digital_output\0" "Tool digital outputs\0" "standard_analog_output_mask\0"
+    "Standard analog output mask\0" "standard_analog_output_type\0" "Standard analog output type\0"
+    "standard_analog_output_0\0" "Standard analog output 0\0" "standard_analog_output_1\0" "Standard analog output 1\0"
+    "external_force_torque\0" "External force torque\0" "input_bit_registers0_to_31\0" "Input bit registers 0 to 31\0"
+    "input_bit_registers32_to_63\0" "Input bit registers 32 to 63\0" "input_bit_register_64\0"
+    "Input bit register 64\0" "input_bit_register_65\0" "Input bit register 65\0" "input_bit_register_66\0"
+    "Input bit register 66\0" "input_bit_register_67\0" "Input bit register 67\0" "input_bit_register_68\0"
+    "Input bit register 68\0" "input_bit_register_69\0" "Input bit register 69\0" "input_bit_register_70\0"
+    "Input bit register 70\0" "input_bit_register_71\0" "Input bit register 71\0" "input_bit_register_72\0"
+    "Input bit register 72\0" "input_bit_register_73\0" "Input bit register 73\0" "input_bit_register_74\0"
+    "Input bit register 74\0" "input_bit_register_75\0" "Input bit register 75\0" "input_bit_register_76\0"
+    "Input bit register 76\0" "input_bit_register_77\0" "Input bit register 77\0" "input_bit_register_78\0"
+    "Input bit register 78\0" "input_bit_register_79\0" "Input bit register 79\0" "input_bit_register_80\0"
+    "Input bit register 80\0" "input_bit_register_81\0" "Input bit register 81\0" "input_bit_register_82\0"
+    "Input bit register 82\0" "input_bit_register_83\0" "Input bit register 83\0" "input_bit_register_84\0"
+    "Input bit register 84\0" "input_bit_register_85\0" "Input bit register 85\0" "input_bit_register_86\0"
+    "Input bit register 86\0" "input_bit_register_87\0" "Input bit register 87\0" "input_bit_register_88\0"
+    "Input bit register 88\0" "input_bit_register_89\0" "Input bit register 89\0" "input_bit_register_90\0"
+    "Input bit register 90\0" "input_bit_register_91\0" "Input bit register 91\0" "input_bit_register_92\0"
+    "Input bit register 92\0" "input_bit_register_93\0" "Input bit register 93\0" "input_bit_register_94\0"
+    "Input bit register 94\0" "input_bit_register_95\0" "Input bit register 95\0" "input_bit_register_96\0"
+    "Input bit register 96\0" "input_bit_register_97\0" "Input bit register 97\0" "input_bit_register_98\0"
+    "Input bit register 98\0" "input_bit_register_99\0" "Input bit register 99\0" "input_bit_register_100\0"
+    "Input bit register 100\0" "input_bit_register_101\0" "Input bit register 101\0" "input_bit_register_102\0"
+    "Input bit register 102\0" "input_bit_register_103\0" "Input bit register 103\0" "input_bit_register_104\0"
+    "Input bit register 104\0" "input_bit_register_105\0" "Input bit register 105\0" "input_bit_register_106\0"
+    "Input bit register 106\0" "input_bit_register_107\0" "Input bit register 107\0" "input_bit_register_108\0"
+    "Input bit register 108\0" "input_bit_register_109\0" "Input bit register 109\0" "input_bit_register_110\0"
+    "Input bit register 110\0" "input_bit_register_111\0" "Input bit register 111\0" "input_bit_register_112\0"
+    "Input bit register 112\0" "input_bit_register_113\0" "Input bit register 113\0" "input_bit_register_114\0"
+    "Input bit register 114\0" "input_bit_register_115\0" "Input bit register 115\0" "input_bit_register_116\0"
+    "Input bit register 116\0" "input_bit_register_117\0" "Input bit register 117\0" "input_bit_register_118\0"
+    "Input bit register 118\0" "input_bit_register_119\0" "Input bit register 119\0" "input_bit_register_120\0"
+    "Input bit register 120\0" "input_bit_register_121\0" "Input bit register 121\0" "input_bit_register_122\0"
+    "Input bit register 122\0" "input_bit_register_123\0" "Input bit register 123\0" "input_bit_register_124\0"
+    "Input bit register 124\0" "input_bit_register_125\0" "Input bit register 125\0" "input_bit_register_126\0"
+    "Input bit register 126\0" "input_bit_register_127\0" "Input bit register 127\0" "input_int_register_0\0"
+    "Input int register 0\0" "input_int_register_1\0" "Input int register 1\0" "input_int_register_2\0"
+    "Input int register 2\0" "input_int_register_3\0" "Input int register 3\0" "input_int_register_4\0"
+    "Input int register 4\0" "input_int_register_5\0" "Input int register 5\0" "input_int_register_6\0"
+    "Input int register 6\0" "input_int_register_7\0" "Input int register 7\0" "input_int_register_8\0",
+    "Input int register 8\0" "input_int_register_9\0" "Input int register 9\0" "input_int_register_10\0"
+    "Input int register 10\0" "input_int_register_11\0" "Input int register 11\0" "input_int_register_12\0"
+    "Input int register 12\0" "input_int_register_13\0" "Input int register 13\0" "input_int_register_14\0"
+    "Input int register 14\0" "input_int_register_15\0" "Input int register 15\0" "input_int_register_16\0"
+    "Input int register 16\0" "input_int_register_17\0" "Input int register 17\0" "input_int_register_18\0"
+    "Input int register 18\0" "input_int_register_19\0" "Input int register 19\0" "input_int_register_20\0"
+    "Input int register 20\0" "input_int_register_21\0" "Input int register 21\0" "input_int_register_22\0"
+    "Input int register 22\0" "input_int_register_23\0" "Input int register 23\0" "input_int_register_24\0"
+    "Input int register 24\0" "input_int_register_25\0" "Input int register 25\0" "input_int_register_26\0"
+    "Input int register 26\0" "input_int_register_27\0" "Input int register 27\0" "input_int_register_28\0"
+    "Input int register 28\0" "input_int_register_29\0" "Input int register 29\0" "input_int_register_30\0"
+    "Input int register 30\0" "input_int_register_31\0" "Input int register 31\0" "input_int_register_32\0"
+    "Input int register 32\0" "input_int_register_33\0" "Input int register 33\0" "input_int_register_34\0"
+    "Input int register 34\0" "input_int_register_35\0" "Input int register 35\0" "input_int_register_36\0"
+    "Input int register 36\0" "input_int_register_37\0" "Input int register 37\0" "input_int_register_38\0"
+    "Input int register 38\0" "input_int_register_39\0" "Input int register 39\0" "input_int_register_40\0"
+    "Input int register 40\0" "input_int_register_41\0" "Input int register 41\0" "input_int_register_42\0"
+    "Input int register 42\0" "input_int_register_43\0" "Input int register 43\0" "input_int_register_44\0"
+    "Input int register 44\0" "input_int_register_45\0" "Input int register 45\0" "input_int_register_46\0"
+    "Input int register 46\0" "input_int_register_47\0" "Input int register 47\0" "input_double_register_0\0"
+    "Input double register 0\0" "input_double_register_1\0" "Input double register 1\0" "input_double_register_2\0"
+    "Input double register 2\0" "input_double_register_3\0" "Input double register 3\0" "input_double_register_4\0"
+    "Input double register 4\0" "input_double_register_5\0" "Input double register 5\0" "input_double_register_6\0"
+    "Input double register 6\0" "input_double_register_7\0" "Input double register 7\0" "input_double_register_8\0"
+    "Input double register 8\0" "input_double_register_9\0" "Input double register 9\0" "input_double_register_10\0"
+    "Input double register 10\0" "input_double_register_11\0" "Input double register 11\0" "input_double_register_12\0"
+    "Input double register 12\0" "input_double_register_13\0" "Input double register 13\0" "input_double_register_14\0"
+    "Input double register 14\0" "input_double_register_15\0" "Input double register 15\0" "input_double_register_16\0"
+    "Input double register 16\0" "input_double_register_17\0" "Input double register 17\0" "input_double_register_18\0"
+    "Input double register 18\0" "input_double_register_19\0" "Input double register 19\0" "input_double_register_20\0"
+    "Input double register 20\0" "input_double_register_21\0" "Input double register 21\0" "input_double_register_22\0"
+    "Input double register 22\0" "input_double_register_23\0" "Input double register 23\0" "input_double_register_24\0"
+    "Input double register 24\0" "input_double_register_25\0" "Input double register 25\0" "input_double_register_26\0"
+    "Input double register 26\0" "input_double_register_27\0" "Input double register 27\0" "input_double_register_28\0"
+    "Input double register 28\0" "input_double_register_29\0" "Input double register 29\0" "input_double_register_30\0"
+    "Input double register 30\0" "input_double_register_31\0" "Input double register 31\0" "input_double_register_32\0"
+    "Input double register 32\0" "input_double_register_33\0" "Input double register 33\0" "input_double_register_34\0"
+    "Input double register 34\0" "input_double_register_35\0" "Input double register 35\0" "input_double_register_36\0"
+    "Input double register 36\0" "input_double_register_37\0" "Input double register 37\0" "input_double_register_38\0"
+    "Input double register 38\0" "input_double_register_39\0" "Input double register 39\0" "input_double_register_40\0"
+    "Input double register 40\0" "input_double_register_41\0" "Input double register 41\0" "input_double_register_42\0"
+    "Input double register 42\0" "input_double_register_43\0" "Input double register 43\0" "input_double_register_44\0"
+    "Input double register 44\0" "input_double_register_45\0",
+    "Input double register 45\0" "input_double_register_46\0" "Input double register 46\0" "input_double_register_47\0"
+    "Input double register 47\0" "timestamp\0" "Time since the controller started\0" "target_q\0"
+    "Target joint positions\0" "target_qd\0" "Target joint velocities\0" "target_qdd\0" "Target joint accelerations\0"
+    "target_current\0" "Target joint currents\0" "target_moment\0" "Target joint moments\0" "actual_q\0"
+    "Actual joint positions\0" "actual_qd\0" "Actual joint velocities\0" "actual_current\0" "Actual joint currents\0"
+    "actual_current_window\0" "Actual joint current windows\0" "actual_current_as_torque\0"
+    "Actual joint currents as torques\0" "joint_control_output\0" "Joint control currents\0" "actual_TCP_pose\0"
+    "Actual TCP pose\0" "actual_TCP_speed\0" "Actual TCP speed\0" "actual_TCP_force\0"
+    "Generalised forces in the TCP\0" "target_TCP_pose\0" "Target TCP pose\0" "target_TCP_speed\0" "Target TCP speed\0"
+    "tcp_offset\0" "TCP offset\0" "actual_TCP_acceleration\0" "Actual TCP acceleration\0" "target_TCP_acceleration\0"
+    "Target TCP acceleration\0" "actual_digital_input_bits\0" "Digital input bits\0"
+    "actual_configurable_digital_input_bits\0" "Configurable digital input bits\0" "joint_temperatures\0"
+    "Joint temperatures\0" "actual_execution_time\0" "Controller real-time thread execution time\0"
+    "target_execution_time\0" "Target real-time thread execution time\0" "robot_mode\0" "Robot mode\0" "joint_mode\0"
+    "Joint control modes\0" "safety_mode\0" "Safety mode\0" "safety_status\0" "Safety status\0"
+    "actual_tool_accelerometer\0" "Tool accelerometer\0" "speed_scaling\0" "Speed scaling of the trajectory limiter\0"
+    "target_speed_fraction\0" "Target speed fraction\0" "actual_momentum\0" "Norm of Cartesian linear momentum\0"
+    "actual_main_voltage\0" "Safety control board main voltage\0" "actual_robot_voltage\0"
+    "Safety control board robot voltage\0" "actual_robot_current\0" "Safety control board robot current\0"
+    "actual_joint_voltage\0" "Actual joint voltages\0" "actual_digital_output_bits\0" "Digital output bits\0"
+    "actual_configurable_digital_output_bits\0" "Configurable digital output bits\0" "runtime_state\0"
+    "Program state\0" "elbow_position\0" "Elbow position\0" "elbow_velocity\0" "Elbow velocity\0" "robot_status_bits\0"
+    "Robot status bits\0" "safety_status_bits\0" "Safety status bits\0" "analog_io_types\0" "Analog IO types\0"
+    "standard_analog_input0\0" "Standard analog input 0\0" "standard_analog_input1\0" "Standard analog input 1\0"
+    "standard_analog_output0\0" "standard_analog_output1\0" "io_current\0" "IO current\0" "euromap67_input_bits\0"
+    "Euromap67 input bits\0" "euromap67_output_bits\0" "Euromap67 output bits\0" "euromap67_24V_voltage\0"
+    "Euromap 24V voltage\0" "euromap67_24V_current\0" "Euromap 24V current\0" "tool_mode\0" "Tool mode\0"
+    "tool_analog_input_types\0" "Tool analog input types\0" "tool_analog_input0\0" "Tool analog input 0\0"
+    "tool_analog_input1\0" "Tool analog input 1\0" "tool_output_voltage\0" "Tool output voltage\0"
+    "tool_output_current\0" "Tool output current\0" "tool_temperature\0" "Tool temperature\0" "tcp_force_scalar\0"
+    "TCP force scalar\0" "output_bit_registers0_to_31\0" "Output bit registers 0 to 31\0"
+    "output_bit_registers32_to_63\0" "Output bit registers 32 to 63\0" "output_bit_register_64\0"
+    "Output bit register 64\0" "output_bit_register_65\0" "Output bit register 65\0" "output_bit_register_66\0"
+    "Output bit register 66\0" "output_bit_register_67\0" "Output bit register 67\0" "output_bit_register_68\0"
+    "Output bit register 68\0" "output_bit_register_69\0" "Output bit register 69\0" "output_bit_register_70\0"
+    "Output bit register 70\0" "output_bit_register_71\0" "Output bit register 71\0" "output_bit_register_72\0"
+    "Output bit register 72\0" "output_bit_register_73\0" "Output bit register 73\0" "output_bit_register_74\0"
+    "Output bit register 74\0" "output_bit_register_75\0" "Output bit register 75\0" "output_bit_register_76\0"
+    "Output bit register 76\0" "output_bit_register_77\0" "Output bit register 77\0" "output_bit_register_78\0"
+    "Output bit register 78\0" "output_bit_register_79\0" "Output bit register 79\0" "output_bit_register_80\0"
+    "Output bit register 80\0" "output_bit_register_81\0" "Output bit register 81\0" "output_bit_register_82\0"
+    "Output bit register 82\0" "output_bit_register_83\0" "Output bit register 83\0" "output_bit_register_84\0"
+    "Output bit register 84\0" "output_bit_register_85\0" "Output bit register 85\0" "output_bit_register_86\0"
+    "Output bit register 86\0" "output_bit_register_87\0" "Output bit register 87\0" "output_bit_register_88\0"
+    "Output bit register 88\0" "output_bit_register_89\0" "Output bit register 89\0" "output_bit_register_90\0"
+    "Output bit register 90\0",
+    "output_bit_register_91\0" "Output bit register 91\0" "output_bit_register_92\0" "Output bit register 92\0"
+    "output_bit_register_93\0" "Output bit register 93\0" "output_bit_register_94\0" "Output bit register 94\0"
+    "output_bit_register_95\0" "Output bit register 95\0" "output_bit_register_96\0" "Output bit register 96\0"
+    "output_bit_register_97\0" "Output bit register 97\0" "output_bit_register_98\0" "Output bit register 98\0"
+    "output_bit_register_99\0" "Output bit register 99\0" "output_bit_register_100\0" "Output bit register 100\0"
+    "output_bit_register_101\0" "Output bit register 101\0" "output_bit_register_102\0" "Output bit register 102\0"
+    "output_bit_register_103\0" "Output bit register 103\0" "output_bit_register_104\0" "Output bit register 104\0"
+    "output_bit_register_105\0" "Output bit register 105\0" "output_bit_register_106\0" "Output bit register 106\0"
+    "output_bit_register_107\0" "Output bit register 107\0" "output_bit_register_108\0" "Output bit register 108\0"
+    "output_bit_register_109\0" "Output bit register 109\0" "output_bit_register_110\0" "Output bit register 110\0"
+    "output_bit_register_111\0" "Output bit register 111\0" "output_bit_register_112\0" "Output bit register 112\0"
+    "output_bit_register_113\0" "Output bit register 113\0" "output_bit_register_114\0" "Output bit register 114\0"
+    "output_bit_register_115\0" "Output bit register 115\0" "output_bit_register_116\0" "Output bit register 116\0"
+    "output_bit_register_117\0" "Output bit register 117\0" "output_bit_register_118\0" "Output bit register 118\0"
+    "output_bit_register_119\0" "Output bit register 119\0" "output_bit_register_120\0" "Output bit register 120\0"
+    "output_bit_register_121\0" "Output bit register 121\0" "output_bit_register_122\0" "Output bit register 122\0"
+    "output_bit_register_123\0" "Output bit register 123\0" "output_bit_register_124\0" "Output bit register 124\0"
+    "output_bit_register_125\0" "Output bit register 125\0" "output_bit_register_126\0" "Output bit register 126\0"
+    "output_bit_register_127\0" "Output bit register 127\0" "output_int_register_0\0" "Output int register 0\0"
+    "output_int_register_1\0" "Output int register 1\0" "output_int_register_2\0" "Output int register 2\0"
+    "output_int_register_3\0" "Output int register 3\0" "output_int_register_4\0" "Output int register 4\0"
+    "output_int_register_5\0" "Output int register 5\0" "output_int_register_6\0" "Output int register 6\0"
+    "output_int_register_7\0" "Output int register 7\0" "output_int_register_8\0" "Output int register 8\0"
+    "output_int_register_9\0" "Output int register 9\0" "output_int_register_10\0" "Output int register 10\0"
+    "output_int_register_11\0" "Output int register 11\0" "output_int_register_12\0" "Output int register 12\0"
+    "output_int_register_13\0" "Output int register 13\0" "output_int_register_14\0" "Output int register 14\0"
+    "output_int_register_15\0" "Output int register 15\0" "output_int_register_16\0" "Output int register 16\0"
+    "output_int_register_17\0" "Output int register 17\0" "output_int_register_18\0" "Output int register 18\0"
+    "output_int_register_19\0" "Output int register 19\0" "output_int_register_20\0" "Output int register 20\0"
+    "output_int_register_21\0" "Output int register 21\0" "output_int_register_22\0" "Output int register 22\0"
+    "output_int_register_23\0" "Output int register 23\0" "output_int_register_24\0" "Output int register 24\0"
+    "output_int_register_25\0" "Output int register 25\0" "output_int_register_26\0" "Output int register 26\0"
+    "output_int_register_27\0" "Output int register 27\0" "output_int_register_28\0" "Output int register 28\0"
+    "output_int_register_29\0" "Output int register 29\0" "output_int_register_30\0" "Output int register 30\0"
+    "output_int_register_31\0" "Output int register 31\0" "output_int_register_32\0" "Output int register 32\0"
+    "output_int_register_33\0" "Output int register 33\0" "output_int_register_34\0" "Output int register 34\0"
+    "output_int_register_35\0" "Output int register 35\0" "output_int_register_36\0" "Output int register 36\0"
+    "output_int_register_37\0" "Output int register 37\0" "output_int_register_38\0" "Output int register 38\0"
+    "output_int_register_39\0" "Output int register 39\0" "output_int_register_40\0" "Output int register 40\0"
+    "output_int_register_41\0" "Output int register 41\0" "output_int_register_42\0" "Output int register 42\0"
+    "output_int_register_43\0" "Output int register 43\0" "output_int_register_44\0" "Output int register 44\0"
+    "output_int_register_45\0" "Output int register 45\0" "output_int_register_46\0" "Output int register 46\0"
+    "output_int_register_47\0" "Output int register 47\0" "output_double_register_0\0" "Output double register 0\0",
+    "output_double_register_1\0" "Output double register 1\0" "output_double_register_2\0" "Output double register 2\0"
+    "output_double_register_3\0" "Output double register 3\0" "output_double_register_4\0" "Output double register 4\0"
+    "output_double_register_5\0" "Output double register 5\0" "output_double_register_6\0" "Output double register 6\0"
+    "output_double_register_7\0" "Output double register 7\0" "output_double_register_8\0" "Output double register 8\0"
+    "output_double_register_9\0" "Output double register 9\0" "output_double_register_10\0"
+    "Output double register 10\0" "output_double_register_11\0" "Output double register 11\0"
+    "output_double_register_12\0" "Output double register 12\0" "output_double_register_13\0"
+    "Output double register 13\0" "output_double_register_14\0" "Output double register 14\0"
+    "output_double_register_15\0" "Output double register 15\0" "output_double_register_16\0"
+    "Output double register 16\0" "output_double_register_17\0" "Output double register 17\0"
+    "output_double_register_18\0" "Output double register 18\0" "output_double_register_19\0"
+    "Output double register 19\0" "output_double_register_20\0" "Output double register 20\0"
+    "output_double_register_21\0" "Output double register 21\0" "output_double_register_22\0"
+    "Output double register 22\0" "output_double_register_23\0" "Output double register 23\0"
+    "output_double_register_24\0" "Output double register 24\0" "output_double_register_25\0"
+    "Output double register 25\0" "output_double_register_26\0" "Output double register 26\0"
+    "output_double_register_27\0" "Output double register 27\0" "output_double_register_28\0"
+    "Output double register 28\0" "output_double_register_29\0" "Output double register 29\0"
+    "output_double_register_30\0" "Output double register 30\0" "output_double_register_31\0"
+    "Output double register 31\0" "output_double_register_32\0" "Output double register 32\0"
+    "output_double_register_33\0" "Output double register 33\0" "output_double_register_34\0"
+    "Output double register 34\0" "output_double_register_35\0" "Output double register 35\0"
+    "output_double_register_36\0" "Output double register 36\0" "output_double_register_37\0"
+    "Output double register 37\0" "output_double_register_38\0" "Output double register 38\0"
+    "output_double_register_39\0" "Output double register 39\0" "output_double_register_40\0"
+    "Output double register 40\0" "output_double_register_41\0" "Output double register 41\0"
+    "output_double_register_42\0" "Output double register 42\0" "output_double_register_43\0"
+    "Output double register 43\0" "output_double_register_44\0" "Output double register 44\0"
+    "output_double_register_45\0" "Output double register 45\0" "output_double_register_46\0"
+    "Output double register 46\0" "output_double_register_47\0" "Output double register 47\0"
+    "Input bit registers 0 to 31 read back\0" "Input bit registers 32 to 63 read back\0"
+    "Input bit register read back 64\0" "Input bit register read back 65\0" "Input bit register read back 66\0"
+    "Input bit register read back 67\0" "Input bit register read back 68\0" "Input bit register read back 69\0"
+    "Input bit register read back 70\0" "Input bit register read back 71\0" "Input bit register read back 72\0"
+    "Input bit register read back 73\0" "Input bit register read back 74\0" "Input bit register read back 75\0"
+    "Input bit register read back 76\0" "Input bit register read back 77\0" "Input bit register read back 78\0"
+    "Input bit register read back 79\0" "Input bit register read back 80\0" "Input bit register read back 81\0"
+    "Input bit register read back 82\0" "Input bit register read back 83\0" "Input bit register read back 84\0"
+    "Input bit register read back 85\0" "Input bit register read back 86\0" "Input bit register read back 87\0"
+    "Input bit register read back 88\0" "Input bit register read back 89\0" "Input bit register read back 90\0"
+    "Input bit register read back 91\0" "Input bit register read back 92\0" "Input bit register read back 93\0"
+    "Input bit register read back 94\0" "Input bit register read back 95\0" "Input bit register read back 96\0"
+    "Input bit register read back 97\0" "Input bit register read back 98\0" "Input bit register read back 99\0"
+    "Input bit register read back 100\0" "Input bit register read back 101\0" "Input bit register read back 102\0"
+    "Input bit register read back 103\0" "Input bit register read back 104\0" "Input bit register read back 105\0"
+    "Input bit register read back 106\0" "Input bit register read back 107\0" "Input bit register read back 108\0"
+    "Input bit register read back 109\0",
+    "Input bit register read back 110\0" "Input bit register read back 111\0" "Input bit register read back 112\0"
+    "Input bit register read back 113\0" "Input bit register read back 114\0" "Input bit register read back 115\0"
+    "Input bit register read back 116\0" "Input bit register read back 117\0" "Input bit register read back 118\0"
+    "Input bit register read back 119\0" "Input bit register read back 120\0" "Input bit register read back 121\0"
+    "Input bit register read back 122\0" "Input bit register read back 123\0" "Input bit register read back 124\0"
+    "Input bit register read back 125\0" "Input bit register read back 126\0" "Input bit register read back 127\0"
+    "Input int register read back 0\0" "Input int register read back 1\0" "Input int register read back 2\0"
+    "Input int register read back 3\0" "Input int register read back 4\0" "Input int register read back 5\0"
+    "Input int register read back 6\0" "Input int register read back 7\0" "Input int register read back 8\0"
+    "Input int register read back 9\0" "Input int register read back 10\0" "Input int register read back 11\0"
+    "Input int register read back 12\0" "Input int register read back 13\0" "Input int register read back 14\0"
+    "Input int register read back 15\0" "Input int register read back 16\0" "Input int register read back 17\0"
+    "Input int register read back 18\0" "Input int register read back 19\0" "Input int register read back 20\0"
+    "Input int register read back 21\0" "Input int register read back 22\0" "Input int register read back 23\0"
+    "Input int register read back 24\0" "Input int register read back 25\0" "Input int register read back 26\0"
+    "Input int register read back 27\0" "Input int register read back 28\0" "Input int register read back 29\0"
+    "Input int register read back 30\0" "Input int register read back 31\0" "Input int register read back 32\0"
+    "Input int register read back 33\0" "Input int register read back 34\0" "Input int register read back 35\0"
+    "Input int register read back 36\0" "Input int register read back 37\0" "Input int register read back 38\0"
+    "Input int register read back 39\0" "Input int register read back 40\0" "Input int register read back 41\0"
+    "Input int register read back 42\0" "Input int register read back 43\0" "Input int register read back 44\0"
+    "Input int register read back 45\0" "Input int register read back 46\0" "Input int register read back 47\0"
+    "Input double register read back 0\0" "Input double register read back 1\0" "Input double register read back 2\0"
+    "Input double register read back 3\0" "Input double register read back 4\0" "Input double register read back 5\0"
+    "Input double register read back 6\0" "Input double register read back 7\0" "Input double register read back 8\0"
+    "Input double register read back 9\0" "Input double register read back 10\0" "Input double register read back 11\0"
+    "Input double register read back 12\0" "Input double register read back 13\0"
+    "Input double register read back 14\0" "Input double register read back 15\0"
+    "Input double register read back 16\0" "Input double register read back 17\0"
+    "Input double register read back 18\0" "Input double register read back 19\0"
+    "Input double register read back 20\0" "Input double register read back 21\0"
+    "Input double register read back 22\0" "Input double register read back 23\0"
+    "Input double register read back 24\0" "Input double register read back 25\0"
+    "Input double register read back 26\0" "Input double register read back 27\0"
+    "Input double register read back 28\0" "Input double register read back 29\0"
+    "Input double register read back 30\0" "Input double register read back 31\0"
+    "Input double register read back 32\0" "Input double register read back 33\0"
+    "Input double register read back 34\0" "Input double register read back 35\0"
+    "Input double register read back 36\0" "Input double register read back 37\0"
+    "Input double register read back 38\0" "Input double register read back 39\0"
+    "Input double register read back 40\0" "Input double register read back 41\0"
+    "Input double register read back 42\0" "Input double register read back 43\0"
+    "Input double register read back 44\0" "Input double register read back 45\0"
+    "Input double register read back 46\0" "Input double register read back 47\0" "tool_output_mode\0"
+    "Tool output mode\0" "tool_digital_output0_mode\0" "Tool digital output 0 mode\0" "tool_digital_output1_mode\0"
+    "Tool digital output 1 mode\0" "joint_position_deviation_ratio\0" "Joint position deviation ratio\0",
+    "collision_detection_ratio\0" "Collision detection ratio\0" "ft_raw_wrench\0"
+    "Raw force and torque at the tool flange\0" "wrench_calc_from_currents\0" "Wrench computed from joint currents\0"
+    "payload\0" "Payload mass\0" "payload_cog\0" "Payload centre of gravity\0" "payload_inertia\0" "Payload inertia\0"
+    "script_control_line\0" "Line of the script being executed\0" "time_scale_source\0" "Source of the speed scaling\0"
+    "target_gravity\0" "Target gravity vector\0" "target_base_acceleration\0" "Target base acceleration\0"
+    "control_step\0" "Control step counter\0" "target_base_wrench\0" "Target base wrench\0"
+    "actual_robot_energy_consumed\0" "Energy consumed by the robot\0" "actual_robot_braking_energy_dissipated\0"
+    "Braking energy dissipated\0" "encoder0_raw\0" "Raw count of encoder 0\0" "encoder1_raw\0"
+    "Raw count of encoder 1\0" "N, Nm\0" "s\0" "rad\0" "rad/s\0" "rad/s\302\262\0" "A\0" "Nm\0" "m, rad\0"
+    "m/s, rad/s\0" "m/s\302\262, rad/s\302\262\0" "\302\260C\0" "ms\0" "m/s\302\262\0" "V\0" "m\0" "m/s\0" "mA\0" "N\0"
+    "kg\0" "kg\302\267m\302\262\0" "J\0" "3.3\0" "5.0\0" "10.0\0" "unknown\0" "3.4\0" "3.9\0" "5.3\0" "none\0" "5.23\0"
+    "3.12\0" "5.5.1\0" "3.10\0" "5.4\0" "3.5\0" "5.2\0" "5.15\0" "5.9\0" "3.11\0" "3.15\0" "5.11\0" "5.17\0" "5.26\0",
 };
+
+/* Units and first versions, each an offset in rtde__variable_text; 0 in a row is no unit. */
+static const uint16_t rtde__variable_words[] = {
+    0,  /* no unit */
+    24665,  /* N, Nm */
+    24671,  /* s */
+    24673,  /* rad */
+    24677,  /* rad/s */
+    24683,  /* rad/s² */
+    24691,  /* A */
+    24693,  /* Nm */
+    24696,  /* m, rad */
+    24703,  /* m/s, rad/s */
+    24714,  /* m/s², rad/s² */
+    24729,  /* °C */
+    24733,  /* ms */
+    24736,  /* m/s² */
+    24742,  /* V */
+    24744,  /* m */
+    24746,  /* m/s */
+    24750,  /* mA */
+    24753,  /* N */
+    24755,  /* kg */
+    24758,  /* kg·m² */
+    24766,  /* J */
+    24768,  /* 3.3 */
+    24772,  /* 5.0 */
+    24776,  /* 10.0 */
+    24781,  /* unknown */
+    24789,  /* 3.4 */
+    24793,  /* 3.9 */
+    24797,  /* 5.3 */
+    24801,  /* none */
+    24806,  /* 5.23 */
+    24811,  /* 3.12 */
+    24816,  /* 5.5.1 */
+    24822,  /* 3.10 */
+    24827,  /* 5.4 */
+    24831,  /* 3.5 */
+    24835,  /* 5.2 */
+    24839,  /* 5.15 */
+    24844,  /* 5.9 */
+    24848,  /* 3.11 */
+    24853,  /* 3.15 */
+    24858,  /* 5.11 */
+    24863,  /* 5.17 */
+    24868,  /* 5.26 */
+};
+
+/* The variable table in spec order: name and label as offsets in rtde__variable_text, then type,
+ * output, unit and first versions (cb3, e-series, PolyScope X) as indices in rtde__variable_words. */
+static const struct {
+    uint16_t name;
+    uint16_t label;
+    uint8_t type;
+    bool output;
+    uint8_t unit;
+    uint8_t since[3];
+} rtde__variable_rows[RTDE_VARIABLE_COUNT] = {
+    {0, 18, RTDE_VT_UINT32, false, 0, {22, 23, 24}},  /* speed_slider_mask */
+    {36, 58, RTDE_VT_DOUBLE, false, 0, {22, 23, 24}},  /* speed_slider_fraction */
+    {80, 109, RTDE_VT_UINT8, false, 0, {22, 23, 24}},  /* standard_digital_output_mask */
+    {138, 162, RTDE_VT_UINT8, false, 0, {22, 23, 24}},  /* standard_digital_output */
+    {187, 220, RTDE_VT_UINT8, false, 0, {22, 23, 24}},  /* configurable_digital_output_mask */
+    {253, 281, RTDE_VT_UINT8, false, 0, {22, 23, 24}},  /* configurable_digital_output */
+    {310, 335, RTDE_VT_UINT8, false, 0, {25, 25, 25}},  /* tool_digital_output_mask */
+    {360, 380, RTDE_VT_UINT8, false, 0, {25, 25, 25}},  /* tool_digital_output */
+    {401, 429, RTDE_VT_UINT8, false, 0, {22, 23, 24}},  /* standard_analog_output_mask */
+    {457, 485, RTDE_VT_UINT8, false, 0, {22, 23, 24}},  /* standard_analog_output_type */
+    {513, 538, RTDE_VT_DOUBLE, false, 0, {22, 23, 24}},  /* standard_analog_output_0 */
+    {563, 588, RTDE_VT_DOUBLE, false, 0, {22, 23, 24}},  /* standard_analog_output_1 */
+    {613, 635, RTDE_VT_VECTOR6D, false, 1, {22, 23, 24}},  /* external_force_torque */
+    {657, 684, RTDE_VT_UINT32, false, 0, {26, 23, 24}},  /* input_bit_registers0_to_31 */
+    {712, 740, RTDE_VT_UINT32, false, 0, {26, 23, 24}},  /* input_bit_registers32_to_63 */
+    {769, 791, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_64 */
+    {813, 835, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_65 */
+    {857, 879, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_66 */
+    {901, 923, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_67 */
+    {945, 967, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_68 */
+    {989, 1011, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_69 */
+    {1033, 1055, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_70 */
+    {1077, 1099, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_71 */
+    {1121, 1143, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_72 */
+    {1165, 1187, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_73 */
+    {1209, 1231, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_74 */
+    {1253, 1275, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_75 */
+    {1297, 1319, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_76 */
+    {1341, 1363, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_77 */
+    {1385, 1407, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_78 */
+    {1429, 1451, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_79 */
+    {1473, 1495, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_80 */
+    {1517, 1539, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_81 */
+    {1561, 1583, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_82 */
+    {1605, 1627, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_83 */
+    {1649, 1671, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_84 */
+    {1693, 1715, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_85 */
+    {1737, 1759, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_86 */
+    {1781, 1803, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_87 */
+    {1825, 1847, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_88 */
+    {1869, 1891, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_89 */
+    {1913, 1935, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_90 */
+    {1957, 1979, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_91 */
+    {2001, 2023, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_92 */
+    {2045, 2067, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_93 */
+    {2089, 2111, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_94 */
+    {2133, 2155, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_95 */
+    {2177, 2199, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_96 */
+    {2221, 2243, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_97 */
+    {2265, 2287, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_98 */
+    {2309, 2331, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_99 */
+    {2353, 2376, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_100 */
+    {2399, 2422, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_101 */
+    {2445, 2468, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_102 */
+    {2491, 2514, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_103 */
+    {2537, 2560, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_104 */
+    {2583, 2606, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_105 */
+    {2629, 2652, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_106 */
+    {2675, 2698, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_107 */
+    {2721, 2744, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_108 */
+    {2767, 2790, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_109 */
+    {2813, 2836, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_110 */
+    {2859, 2882, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_111 */
+    {2905, 2928, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_112 */
+    {2951, 2974, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_113 */
+    {2997, 3020, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_114 */
+    {3043, 3066, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_115 */
+    {3089, 3112, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_116 */
+    {3135, 3158, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_117 */
+    {3181, 3204, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_118 */
+    {3227, 3250, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_119 */
+    {3273, 3296, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_120 */
+    {3319, 3342, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_121 */
+    {3365, 3388, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_122 */
+    {3411, 3434, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_123 */
+    {3457, 3480, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_124 */
+    {3503, 3526, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_125 */
+    {3549, 3572, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_126 */
+    {3595, 3618, RTDE_VT_BOOL, false, 0, {27, 28, 24}},  /* input_bit_register_127 */
+    {3641, 3662, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_0 */
+    {3683, 3704, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_1 */
+    {3725, 3746, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_2 */
+    {3767, 3788, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_3 */
+    {3809, 3830, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_4 */
+    {3851, 3872, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_5 */
+    {3893, 3914, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_6 */
+    {3935, 3956, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_7 */
+    {3977, 3999, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_8 */
+    {4020, 4041, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_9 */
+    {4062, 4084, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_10 */
+    {4106, 4128, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_11 */
+    {4150, 4172, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_12 */
+    {4194, 4216, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_13 */
+    {4238, 4260, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_14 */
+    {4282, 4304, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_15 */
+    {4326, 4348, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_16 */
+    {4370, 4392, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_17 */
+    {4414, 4436, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_18 */
+    {4458, 4480, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_19 */
+    {4502, 4524, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_20 */
+    {4546, 4568, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_21 */
+    {4590, 4612, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_22 */
+    {4634, 4656, RTDE_VT_INT32, false, 0, {26, 23, 24}},  /* input_int_register_23 */
+    {4678, 4700, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_24 */
+    {4722, 4744, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_25 */
+    {4766, 4788, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_26 */
+    {4810, 4832, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_27 */
+    {4854, 4876, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_28 */
+    {4898, 4920, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_29 */
+    {4942, 4964, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_30 */
+    {4986, 5008, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_31 */
+    {5030, 5052, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_32 */
+    {5074, 5096, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_33 */
+    {5118, 5140, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_34 */
+    {5162, 5184, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_35 */
+    {5206, 5228, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_36 */
+    {5250, 5272, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_37 */
+    {5294, 5316, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_38 */
+    {5338, 5360, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_39 */
+    {5382, 5404, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_40 */
+    {5426, 5448, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_41 */
+    {5470, 5492, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_42 */
+    {5514, 5536, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_43 */
+    {5558, 5580, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_44 */
+    {5602, 5624, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_45 */
+    {5646, 5668, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_46 */
+    {5690, 5712, RTDE_VT_INT32, false, 0, {27, 28, 24}},  /* input_int_register_47 */
+    {5734, 5758, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_0 */
+    {5782, 5806, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_1 */
+    {5830, 5854, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_2 */
+    {5878, 5902, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_3 */
+    {5926, 5950, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_4 */
+    {5974, 5998, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_5 */
+    {6022, 6046, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_6 */
+    {6070, 6094, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_7 */
+    {6118, 6142, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_8 */
+    {6166, 6190, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_9 */
+    {6214, 6239, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_10 */
+    {6264, 6289, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_11 */
+    {6314, 6339, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_12 */
+    {6364, 6389, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_13 */
+    {6414, 6439, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_14 */
+    {6464, 6489, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_15 */
+    {6514, 6539, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_16 */
+    {6564, 6589, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_17 */
+    {6614, 6639, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_18 */
+    {6664, 6689, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_19 */
+    {6714, 6739, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_20 */
+    {6764, 6789, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_21 */
+    {6814, 6839, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_22 */
+    {6864, 6889, RTDE_VT_DOUBLE, false, 0, {26, 23, 24}},  /* input_double_register_23 */
+    {6914, 6939, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_24 */
+    {6964, 6989, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_25 */
+    {7014, 7039, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_26 */
+    {7064, 7089, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_27 */
+    {7114, 7139, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_28 */
+    {7164, 7189, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_29 */
+    {7214, 7239, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_30 */
+    {7264, 7289, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_31 */
+    {7314, 7339, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_32 */
+    {7364, 7389, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_33 */
+    {7414, 7439, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_34 */
+    {7464, 7489, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_35 */
+    {7514, 7539, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_36 */
+    {7564, 7589, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_37 */
+    {7614, 7639, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_38 */
+    {7664, 7689, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_39 */
+    {7714, 7739, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_40 */
+    {7764, 7789, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_41 */
+    {7814, 7839, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_42 */
+    {7864, 7889, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_43 */
+    {7914, 7939, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_44 */
+    {7964, 7990, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_45 */
+    {8015, 8040, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_46 */
+    {8065, 8090, RTDE_VT_DOUBLE, false, 0, {27, 28, 24}},  /* input_double_register_47 */
+    {8115, 8125, RTDE_VT_DOUBLE, true, 2, {22, 23, 24}},  /* timestamp */
+    {8159, 8168, RTDE_VT_VECTOR6D, true, 3, {22, 23, 24}},  /* target_q */
+    {8191, 8201, RTDE_VT_VECTOR6D, true, 4, {22, 23, 24}},  /* target_qd */
+    {8225, 8236, RTDE_VT_VECTOR6D, true, 5, {22, 23, 24}},  /* target_qdd */
+    {8263, 8278, RTDE_VT_VECTOR6D, true, 6, {22, 23, 24}},  /* target_current */
+    {8300, 8314, RTDE_VT_VECTOR6D, true, 7, {22, 23, 24}},  /* target_moment */
+    {8335, 8344, RTDE_VT_VECTOR6D, true, 3, {22, 23, 24}},  /* actual_q */
+    {8367, 8377, RTDE_VT_VECTOR6D, true, 4, {22, 23, 24}},  /* actual_qd */
+    {8401, 8416, RTDE_VT_VECTOR6D, true, 6, {22, 23, 24}},  /* actual_current */
+    {8438, 8460, RTDE_VT_VECTOR6D, true, 6, {25, 25, 25}},  /* actual_current_window */
+    {8489, 8514, RTDE_VT_VECTOR6D, true, 7, {29, 30, 24}},  /* actual_current_as_torque */
+    {8547, 8568, RTDE_VT_VECTOR6D, true, 6, {22, 23, 24}},  /* joint_control_output */
+    {8591, 8607, RTDE_VT_VECTOR6D, true, 8, {22, 23, 24}},  /* actual_TCP_pose */
+    {8623, 8640, RTDE_VT_VECTOR6D, true, 9, {22, 23, 24}},  /* actual_TCP_speed */
+    {8657, 8674, RTDE_VT_VECTOR6D, true, 1, {22, 23, 24}},  /* actual_TCP_force */
+    {8704, 8720, RTDE_VT_VECTOR6D, true, 8, {22, 23, 24}},  /* target_TCP_pose */
+    {8736, 8753, RTDE_VT_VECTOR6D, true, 9, {22, 23, 24}},  /* target_TCP_speed */
+    {8770, 8781, RTDE_VT_VECTOR6D, true, 8, {31, 32, 24}},  /* tcp_offset */
+    {8792, 8816, RTDE_VT_VECTOR6D, true, 10, {25, 25, 25}},  /* actual_TCP_acceleration */
+    {8840, 8864, RTDE_VT_VECTOR6D, true, 10, {25, 25, 25}},  /* target_TCP_acceleration */
+    {8888, 8914, RTDE_VT_UINT64, true, 0, {22, 23, 24}},  /* actual_digital_input_bits */
+    {8933, 8972, RTDE_VT_UINT64, true, 0, {25, 25, 25}},  /* actual_configurable_digital_input_bits */
+    {9004, 9023, RTDE_VT_VECTOR6D, true, 11, {22, 23, 24}},  /* joint_temperatures */
+    {9042, 9064, RTDE_VT_DOUBLE, true, 12, {22, 23, 24}},  /* actual_execution_time */
+    {9107, 9129, RTDE_VT_DOUBLE, true, 12, {25, 25, 25}},  /* target_execution_time */
+    {9168, 9179, RTDE_VT_INT32, true, 0, {22, 23, 24}},  /* robot_mode */
+    {9190, 9201, RTDE_VT_VECTOR6INT32, true, 0, {22, 23, 24}},  /* joint_mode */
+    {9221, 9233, RTDE_VT_INT32, true, 0, {22, 23, 24}},  /* safety_mode */
+    {9245, 9259, RTDE_VT_INT32, true, 0, {33, 34, 24}},  /* safety_status */
+    {9273, 9299, RTDE_VT_VECTOR3D, true, 13, {22, 23, 24}},  /* actual_tool_accelerometer */
+    {9318, 9332, RTDE_VT_DOUBLE, true, 0, {22, 23, 24}},  /* speed_scaling */
+    {9372, 9394, RTDE_VT_DOUBLE, true, 0, {22, 23, 24}},  /* target_speed_fraction */
+    {9416, 9432, RTDE_VT_DOUBLE, true, 0, {22, 23, 24}},  /* actual_momentum */
+    {9466, 9486, RTDE_VT_DOUBLE, true, 14, {22, 23, 24}},  /* actual_main_voltage */
+    {9520, 9541, RTDE_VT_DOUBLE, true, 14, {22, 23, 24}},  /* actual_robot_voltage */
+    {9576, 9597, RTDE_VT_DOUBLE, true, 6, {22, 23, 24}},  /* actual_robot_current */
+    {9632, 9653, RTDE_VT_VECTOR6D, true, 14, {22, 23, 24}},  /* actual_joint_voltage */
+    {9675, 9702, RTDE_VT_UINT64, true, 0, {22, 23, 24}},  /* actual_digital_output_bits */
+    {9722, 9762, RTDE_VT_UINT64, true, 0, {25, 25, 25}},  /* actual_configurable_digital_output_bits */
+    {9795, 9809, RTDE_VT_UINT32, true, 0, {22, 23, 24}},  /* runtime_state */
+    {9823, 9838, RTDE_VT_VECTOR3D, true, 15, {35, 23, 24}},  /* elbow_position */
+    {9853, 9868, RTDE_VT_VECTOR3D, true, 16, {35, 23, 24}},  /* elbow_velocity */
+    {9883, 9901, RTDE_VT_UINT32, true, 0, {22, 23, 24}},  /* robot_status_bits */
+    {9919, 9938, RTDE_VT_UINT32, true, 0, {22, 23, 24}},  /* safety_status_bits */
+    {9957, 9973, RTDE_VT_UINT32, true, 0, {22, 23, 24}},  /* analog_io_types */
+    {9989, 10012, RTDE_VT_DOUBLE, true, 0, {22, 23, 24}},  /* standard_analog_input0 */
+    {10036, 10059, RTDE_VT_DOUBLE, true, 0, {22, 23, 24}},  /* standard_analog_input1 */
+    {10083, 538, RTDE_VT_DOUBLE, true, 0, {22, 23, 24}},  /* standard_analog_output0 */
+    {10107, 588, RTDE_VT_DOUBLE, true, 0, {22, 23, 24}},  /* standard_analog_output1 */
+    {10131, 10142, RTDE_VT_DOUBLE, true, 17, {22, 23, 24}},  /* io_current */
+    {10153, 10174, RTDE_VT_UINT32, true, 0, {22, 23, 24}},  /* euromap67_input_bits */
+    {10195, 10217, RTDE_VT_UINT32, true, 0, {22, 23, 24}},  /* euromap67_output_bits */
+    {10239, 10261, RTDE_VT_DOUBLE, true, 14, {22, 23, 24}},  /* euromap67_24V_voltage */
+    {10281, 10303, RTDE_VT_DOUBLE, true, 17, {22, 23, 24}},  /* euromap67_24V_current */
+    {10323, 10333, RTDE_VT_UINT32, true, 0, {22, 23, 24}},  /* tool_mode */
+    {10343, 10367, RTDE_VT_UINT32, true, 0, {22, 23, 24}},  /* tool_analog_input_types */
+    {10391, 10410, RTDE_VT_DOUBLE, true, 0, {22, 23, 24}},  /* tool_analog_input0 */
+    {10430, 10449, RTDE_VT_DOUBLE, true, 0, {22, 23, 24}},  /* tool_analog_input1 */
+    {10469, 10489, RTDE_VT_INT32, true, 14, {22, 23, 24}},  /* tool_output_voltage */
+    {10509, 10529, RTDE_VT_DOUBLE, true, 17, {22, 23, 24}},  /* tool_output_current */
+    {10549, 10566, RTDE_VT_DOUBLE, true, 11, {22, 23, 24}},  /* tool_temperature */
+    {10583, 10600, RTDE_VT_DOUBLE, true, 18, {22, 23, 24}},  /* tcp_force_scalar */
+    {10617, 10645, RTDE_VT_UINT32, true, 0, {26, 23, 24}},  /* output_bit_registers0_to_31 */
+    {10674, 10703, RTDE_VT_UINT32, true, 0, {26, 23, 24}},  /* output_bit_registers32_to_63 */
+    {10733, 10756, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_64 */
+    {10779, 10802, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_65 */
+    {10825, 10848, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_66 */
+    {10871, 10894, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_67 */
+    {10917, 10940, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_68 */
+    {10963, 10986, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_69 */
+    {11009, 11032, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_70 */
+    {11055, 11078, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_71 */
+    {11101, 11124, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_72 */
+    {11147, 11170, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_73 */
+    {11193, 11216, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_74 */
+    {11239, 11262, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_75 */
+    {11285, 11308, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_76 */
+    {11331, 11354, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_77 */
+    {11377, 11400, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_78 */
+    {11423, 11446, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_79 */
+    {11469, 11492, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_80 */
+    {11515, 11538, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_81 */
+    {11561, 11584, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_82 */
+    {11607, 11630, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_83 */
+    {11653, 11676, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_84 */
+    {11699, 11722, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_85 */
+    {11745, 11768, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_86 */
+    {11791, 11814, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_87 */
+    {11837, 11860, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_88 */
+    {11883, 11906, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_89 */
+    {11929, 11952, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_90 */
+    {11976, 11999, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_91 */
+    {12022, 12045, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_92 */
+    {12068, 12091, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_93 */
+    {12114, 12137, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_94 */
+    {12160, 12183, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_95 */
+    {12206, 12229, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_96 */
+    {12252, 12275, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_97 */
+    {12298, 12321, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_98 */
+    {12344, 12367, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_99 */
+    {12390, 12414, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_100 */
+    {12438, 12462, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_101 */
+    {12486, 12510, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_102 */
+    {12534, 12558, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_103 */
+    {12582, 12606, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_104 */
+    {12630, 12654, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_105 */
+    {12678, 12702, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_106 */
+    {12726, 12750, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_107 */
+    {12774, 12798, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_108 */
+    {12822, 12846, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_109 */
+    {12870, 12894, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_110 */
+    {12918, 12942, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_111 */
+    {12966, 12990, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_112 */
+    {13014, 13038, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_113 */
+    {13062, 13086, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_114 */
+    {13110, 13134, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_115 */
+    {13158, 13182, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_116 */
+    {13206, 13230, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_117 */
+    {13254, 13278, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_118 */
+    {13302, 13326, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_119 */
+    {13350, 13374, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_120 */
+    {13398, 13422, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_121 */
+    {13446, 13470, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_122 */
+    {13494, 13518, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_123 */
+    {13542, 13566, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_124 */
+    {13590, 13614, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_125 */
+    {13638, 13662, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_126 */
+    {13686, 13710, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* output_bit_register_127 */
+    {13734, 13756, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_0 */
+    {13778, 13800, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_1 */
+    {13822, 13844, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_2 */
+    {13866, 13888, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_3 */
+    {13910, 13932, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_4 */
+    {13954, 13976, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_5 */
+    {13998, 14020, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_6 */
+    {14042, 14064, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_7 */
+    {14086, 14108, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_8 */
+    {14130, 14152, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_9 */
+    {14174, 14197, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_10 */
+    {14220, 14243, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_11 */
+    {14266, 14289, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_12 */
+    {14312, 14335, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_13 */
+    {14358, 14381, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_14 */
+    {14404, 14427, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_15 */
+    {14450, 14473, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_16 */
+    {14496, 14519, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_17 */
+    {14542, 14565, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_18 */
+    {14588, 14611, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_19 */
+    {14634, 14657, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_20 */
+    {14680, 14703, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_21 */
+    {14726, 14749, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_22 */
+    {14772, 14795, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* output_int_register_23 */
+    {14818, 14841, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_24 */
+    {14864, 14887, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_25 */
+    {14910, 14933, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_26 */
+    {14956, 14979, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_27 */
+    {15002, 15025, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_28 */
+    {15048, 15071, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_29 */
+    {15094, 15117, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_30 */
+    {15140, 15163, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_31 */
+    {15186, 15209, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_32 */
+    {15232, 15255, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_33 */
+    {15278, 15301, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_34 */
+    {15324, 15347, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_35 */
+    {15370, 15393, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_36 */
+    {15416, 15439, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_37 */
+    {15462, 15485, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_38 */
+    {15508, 15531, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_39 */
+    {15554, 15577, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_40 */
+    {15600, 15623, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_41 */
+    {15646, 15669, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_42 */
+    {15692, 15715, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_43 */
+    {15738, 15761, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_44 */
+    {15784, 15807, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_45 */
+    {15830, 15853, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_46 */
+    {15876, 15899, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* output_int_register_47 */
+    {15922, 15947, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_0 */
+    {15973, 15998, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_1 */
+    {16023, 16048, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_2 */
+    {16073, 16098, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_3 */
+    {16123, 16148, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_4 */
+    {16173, 16198, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_5 */
+    {16223, 16248, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_6 */
+    {16273, 16298, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_7 */
+    {16323, 16348, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_8 */
+    {16373, 16398, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_9 */
+    {16423, 16449, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_10 */
+    {16475, 16501, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_11 */
+    {16527, 16553, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_12 */
+    {16579, 16605, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_13 */
+    {16631, 16657, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_14 */
+    {16683, 16709, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_15 */
+    {16735, 16761, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_16 */
+    {16787, 16813, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_17 */
+    {16839, 16865, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_18 */
+    {16891, 16917, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_19 */
+    {16943, 16969, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_20 */
+    {16995, 17021, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_21 */
+    {17047, 17073, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_22 */
+    {17099, 17125, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* output_double_register_23 */
+    {17151, 17177, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_24 */
+    {17203, 17229, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_25 */
+    {17255, 17281, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_26 */
+    {17307, 17333, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_27 */
+    {17359, 17385, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_28 */
+    {17411, 17437, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_29 */
+    {17463, 17489, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_30 */
+    {17515, 17541, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_31 */
+    {17567, 17593, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_32 */
+    {17619, 17645, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_33 */
+    {17671, 17697, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_34 */
+    {17723, 17749, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_35 */
+    {17775, 17801, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_36 */
+    {17827, 17853, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_37 */
+    {17879, 17905, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_38 */
+    {17931, 17957, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_39 */
+    {17983, 18009, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_40 */
+    {18035, 18061, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_41 */
+    {18087, 18113, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_42 */
+    {18139, 18165, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_43 */
+    {18191, 18217, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_44 */
+    {18243, 18269, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_45 */
+    {18295, 18321, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_46 */
+    {18347, 18373, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* output_double_register_47 */
+    {657, 18399, RTDE_VT_UINT32, true, 0, {26, 23, 24}},  /* input_bit_registers0_to_31 */
+    {712, 18437, RTDE_VT_UINT32, true, 0, {26, 23, 24}},  /* input_bit_registers32_to_63 */
+    {769, 18476, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_64 */
+    {813, 18508, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_65 */
+    {857, 18540, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_66 */
+    {901, 18572, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_67 */
+    {945, 18604, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_68 */
+    {989, 18636, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_69 */
+    {1033, 18668, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_70 */
+    {1077, 18700, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_71 */
+    {1121, 18732, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_72 */
+    {1165, 18764, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_73 */
+    {1209, 18796, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_74 */
+    {1253, 18828, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_75 */
+    {1297, 18860, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_76 */
+    {1341, 18892, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_77 */
+    {1385, 18924, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_78 */
+    {1429, 18956, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_79 */
+    {1473, 18988, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_80 */
+    {1517, 19020, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_81 */
+    {1561, 19052, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_82 */
+    {1605, 19084, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_83 */
+    {1649, 19116, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_84 */
+    {1693, 19148, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_85 */
+    {1737, 19180, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_86 */
+    {1781, 19212, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_87 */
+    {1825, 19244, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_88 */
+    {1869, 19276, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_89 */
+    {1913, 19308, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_90 */
+    {1957, 19340, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_91 */
+    {2001, 19372, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_92 */
+    {2045, 19404, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_93 */
+    {2089, 19436, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_94 */
+    {2133, 19468, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_95 */
+    {2177, 19500, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_96 */
+    {2221, 19532, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_97 */
+    {2265, 19564, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_98 */
+    {2309, 19596, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_99 */
+    {2353, 19628, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_100 */
+    {2399, 19661, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_101 */
+    {2445, 19694, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_102 */
+    {2491, 19727, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_103 */
+    {2537, 19760, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_104 */
+    {2583, 19793, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_105 */
+    {2629, 19826, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_106 */
+    {2675, 19859, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_107 */
+    {2721, 19892, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_108 */
+    {2767, 19925, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_109 */
+    {2813, 19959, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_110 */
+    {2859, 19992, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_111 */
+    {2905, 20025, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_112 */
+    {2951, 20058, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_113 */
+    {2997, 20091, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_114 */
+    {3043, 20124, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_115 */
+    {3089, 20157, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_116 */
+    {3135, 20190, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_117 */
+    {3181, 20223, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_118 */
+    {3227, 20256, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_119 */
+    {3273, 20289, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_120 */
+    {3319, 20322, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_121 */
+    {3365, 20355, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_122 */
+    {3411, 20388, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_123 */
+    {3457, 20421, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_124 */
+    {3503, 20454, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_125 */
+    {3549, 20487, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_126 */
+    {3595, 20520, RTDE_VT_BOOL, true, 0, {27, 28, 24}},  /* input_bit_register_127 */
+    {3641, 20553, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_0 */
+    {3683, 20584, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_1 */
+    {3725, 20615, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_2 */
+    {3767, 20646, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_3 */
+    {3809, 20677, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_4 */
+    {3851, 20708, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_5 */
+    {3893, 20739, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_6 */
+    {3935, 20770, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_7 */
+    {3977, 20801, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_8 */
+    {4020, 20832, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_9 */
+    {4062, 20863, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_10 */
+    {4106, 20895, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_11 */
+    {4150, 20927, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_12 */
+    {4194, 20959, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_13 */
+    {4238, 20991, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_14 */
+    {4282, 21023, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_15 */
+    {4326, 21055, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_16 */
+    {4370, 21087, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_17 */
+    {4414, 21119, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_18 */
+    {4458, 21151, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_19 */
+    {4502, 21183, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_20 */
+    {4546, 21215, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_21 */
+    {4590, 21247, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_22 */
+    {4634, 21279, RTDE_VT_INT32, true, 0, {26, 23, 24}},  /* input_int_register_23 */
+    {4678, 21311, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_24 */
+    {4722, 21343, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_25 */
+    {4766, 21375, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_26 */
+    {4810, 21407, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_27 */
+    {4854, 21439, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_28 */
+    {4898, 21471, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_29 */
+    {4942, 21503, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_30 */
+    {4986, 21535, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_31 */
+    {5030, 21567, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_32 */
+    {5074, 21599, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_33 */
+    {5118, 21631, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_34 */
+    {5162, 21663, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_35 */
+    {5206, 21695, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_36 */
+    {5250, 21727, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_37 */
+    {5294, 21759, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_38 */
+    {5338, 21791, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_39 */
+    {5382, 21823, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_40 */
+    {5426, 21855, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_41 */
+    {5470, 21887, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_42 */
+    {5514, 21919, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_43 */
+    {5558, 21951, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_44 */
+    {5602, 21983, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_45 */
+    {5646, 22015, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_46 */
+    {5690, 22047, RTDE_VT_INT32, true, 0, {27, 28, 24}},  /* input_int_register_47 */
+    {5734, 22079, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_0 */
+    {5782, 22113, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_1 */
+    {5830, 22147, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_2 */
+    {5878, 22181, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_3 */
+    {5926, 22215, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_4 */
+    {5974, 22249, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_5 */
+    {6022, 22283, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_6 */
+    {6070, 22317, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_7 */
+    {6118, 22351, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_8 */
+    {6166, 22385, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_9 */
+    {6214, 22419, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_10 */
+    {6264, 22454, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_11 */
+    {6314, 22489, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_12 */
+    {6364, 22524, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_13 */
+    {6414, 22559, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_14 */
+    {6464, 22594, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_15 */
+    {6514, 22629, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_16 */
+    {6564, 22664, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_17 */
+    {6614, 22699, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_18 */
+    {6664, 22734, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_19 */
+    {6714, 22769, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_20 */
+    {6764, 22804, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_21 */
+    {6814, 22839, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_22 */
+    {6864, 22874, RTDE_VT_DOUBLE, true, 0, {26, 23, 24}},  /* input_double_register_23 */
+    {6914, 22909, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_24 */
+    {6964, 22944, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_25 */
+    {7014, 22979, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_26 */
+    {7064, 23014, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_27 */
+    {7114, 23049, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_28 */
+    {7164, 23084, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_29 */
+    {7214, 23119, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_30 */
+    {7264, 23154, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_31 */
+    {7314, 23189, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_32 */
+    {7364, 23224, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_33 */
+    {7414, 23259, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_34 */
+    {7464, 23294, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_35 */
+    {7514, 23329, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_36 */
+    {7564, 23364, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_37 */
+    {7614, 23399, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_38 */
+    {7664, 23434, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_39 */
+    {7714, 23469, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_40 */
+    {7764, 23504, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_41 */
+    {7814, 23539, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_42 */
+    {7864, 23574, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_43 */
+    {7914, 23609, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_44 */
+    {7964, 23644, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_45 */
+    {8015, 23679, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_46 */
+    {8065, 23714, RTDE_VT_DOUBLE, true, 0, {27, 28, 24}},  /* input_double_register_47 */
+    {23749, 23766, RTDE_VT_UINT8, true, 0, {29, 36, 24}},  /* tool_output_mode */
+    {23783, 23809, RTDE_VT_UINT8, true, 0, {29, 36, 24}},  /* tool_digital_output0_mode */
+    {23836, 23862, RTDE_VT_UINT8, true, 0, {29, 36, 24}},  /* tool_digital_output1_mode */
+    {23889, 23920, RTDE_VT_DOUBLE, true, 0, {25, 25, 25}},  /* joint_position_deviation_ratio */
+    {23952, 23978, RTDE_VT_DOUBLE, true, 0, {29, 37, 24}},  /* collision_detection_ratio */
+    {24004, 24018, RTDE_VT_VECTOR6D, true, 1, {29, 38, 24}},  /* ft_raw_wrench */
+    {24058, 24084, RTDE_VT_VECTOR6D, true, 1, {25, 25, 25}},  /* wrench_calc_from_currents */
+    {24120, 24128, RTDE_VT_DOUBLE, true, 19, {39, 32, 24}},  /* payload */
+    {24141, 24153, RTDE_VT_VECTOR3D, true, 15, {39, 32, 24}},  /* payload_cog */
+    {24179, 24195, RTDE_VT_VECTOR6D, true, 20, {40, 41, 24}},  /* payload_inertia */
+    {24211, 24231, RTDE_VT_UINT32, true, 0, {25, 25, 25}},  /* script_control_line */
+    {24265, 24283, RTDE_VT_INT32, true, 0, {29, 42, 24}},  /* time_scale_source */
+    {24311, 24326, RTDE_VT_VECTOR3D, true, 13, {29, 43, 24}},  /* target_gravity */
+    {24348, 24373, RTDE_VT_VECTOR6D, true, 10, {29, 43, 24}},  /* target_base_acceleration */
+    {24398, 24411, RTDE_VT_UINT64, true, 0, {29, 43, 24}},  /* control_step */
+    {24432, 24451, RTDE_VT_VECTOR6D, true, 1, {29, 43, 24}},  /* target_base_wrench */
+    {24470, 24499, RTDE_VT_DOUBLE, true, 21, {29, 30, 24}},  /* actual_robot_energy_consumed */
+    {24528, 24567, RTDE_VT_DOUBLE, true, 21, {25, 25, 25}},  /* actual_robot_braking_energy_dissipated */
+    {24593, 24606, RTDE_VT_INT32, true, 0, {25, 25, 25}},  /* encoder0_raw */
+    {24629, 24642, RTDE_VT_INT32, true, 0, {25, 25, 25}},  /* encoder1_raw */
+};
+
+/* ---- runtime/c/typed_messages/rtde_variables.c ---- */
+/* ---- the variable table, read row by row -------------------------------------------------- */
+
+static const char *rtde__variable_word(uint8_t index)
+{
+    return (const char *)&rtde__variable_text + rtde__variable_words[index];
+}
+
+bool rtde_variable_at(size_t index, rtde_variable *out)
+{
+    const char *text = (const char *)&rtde__variable_text;
+    if (index >= RTDE_VARIABLE_COUNT)
+        return false;
+    out->name = text + rtde__variable_rows[index].name;
+    out->type = rtde__variable_rows[index].type;
+    out->output = rtde__variable_rows[index].output;
+    out->label = text + rtde__variable_rows[index].label;
+    out->unit = rtde__variable_rows[index].unit ? rtde__variable_word(rtde__variable_rows[index].unit) : NULL;
+    out->since_cb3 = rtde__variable_word(rtde__variable_rows[index].since[0]);
+    out->since_eseries = rtde__variable_word(rtde__variable_rows[index].since[1]);
+    out->since_polyscope_x = rtde__variable_word(rtde__variable_rows[index].since[2]);
+    return true;
+}
 
 /* ---- the decoder of each layout ------------------------------------------------------------- */
 
@@ -1466,14 +1804,14 @@ int rtde_value_type_of(const uint8_t *name, size_t length)
 {
     int t;
     for (t = 0; t < RTDE_VT_COUNT; t++)
-        if (strlen(rtde__value_types[t].name) == length && memcmp(rtde__value_types[t].name, name, length) == 0)
+        if (strlen(rtde__value_type_names[t]) == length && memcmp(rtde__value_type_names[t], name, length) == 0)
             return t;
     return -1;
 }
 
 const char *rtde_value_type_name(uint8_t type)
 {
-    return type < RTDE_VT_COUNT ? rtde__value_types[type].name : "";
+    return type < RTDE_VT_COUNT ? rtde__value_type_names[type] : "";
 }
 
 static uint8_t rtde__layout_for(uint8_t code, bool from_robot, uint8_t protocol)
@@ -1620,7 +1958,7 @@ static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text ty
                 recipe->name_length[count] = (uint16_t)n1;
             }
             count++;
-            size += (size_t)rtde__value_types[t].size * rtde__value_types[t].count;
+            size += rtde__value_types[t].value_size;
         }
         if (refused) {
             m->refused = true;
@@ -1824,7 +2162,7 @@ bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
     p = d->bytes;
     for (i = 0; i < index; i++) {
         uint8_t t = d->recipe->types[i];
-        p += (size_t)rtde__value_types[t].size * rtde__value_types[t].count;
+        p += rtde__value_types[t].value_size;
     }
     out->type = d->recipe->types[index];
     out->count = rtde__value_types[out->type].count;

@@ -332,7 +332,9 @@ typedef struct rtde_variable {
 } rtde_variable;
 
 #define RTDE_VARIABLE_COUNT 581
-extern const rtde_variable rtde_variables[RTDE_VARIABLE_COUNT];
+/* Row `index` of the variable table, in the spec's order; false past its end. The table is kept as
+ * small integers into one pool of texts, which a firmware that never reads it does not link. */
+bool rtde_variable_at(size_t index, rtde_variable *out);
 /* A value type by its name ("VECTOR6D"), or -1. */
 int rtde_value_type_of(const uint8_t *name, size_t length);
 const char *rtde_value_type_name(uint8_t type);

@@ -157,6 +157,38 @@ def test_the_client_api(tmp_path):
     assert lines[8] == "actual_q 0 -1.5 1.5 -0.5 0.25 3 robot_mode 7 recipe 2"
 
 
+def test_the_variable_table_reads_as_the_spec_has_it():
+    """rtde_variable_at gives every row of the spec's variable table, in its order, from the table's
+    small integers and its pool of texts (tests/c/rtde_variables.c prints them), and no row past it."""
+    from codegen.compile import SPEC_DIR, compile_file
+    exe = build("gcc", ["-O1", "-g", *SANITIZE], [ROOT / "tests" / "c" / "rtde_variables.c", GEN / "rtde.c"],
+                "variables")
+    res = subprocess.run([exe], capture_output=True, timeout=60)
+    assert res.returncode == 0 and res.stderr == b"", res.stderr
+    variables = compile_file(SPEC_DIR / "rtde.yaml").variables
+    expected = ["\t".join([v.name, v.value_type.name, v.direction, v.label, v.unit or "-",
+                           *(v.since_text(g) for g in ("cb3", "eseries", "polyscope_x"))]) for v in variables]
+    assert res.stdout.decode("utf-8").splitlines() == expected + [f"rows: {len(variables)} of {len(variables)}"]
+
+
+def test_a_decoder_alone_links_no_variable_table(tmp_path):
+    """A program that decodes and builds messages but never reads the variable table (rtde_api.c),
+    linked with --gc-sections, holds none of the table's rows or texts, nor the layouts' labels
+    that only rtde_layout_of reads: each is an object of its own, sharing no section with what the
+    decoder reads (a firmware's flash)."""
+    exe = tmp_path / "api"
+    cmd = ["gcc", *STRICT, "-Os", "-ffunction-sections", "-fdata-sections", "-Wl,--gc-sections", f"-I{GEN}",
+           "-o", str(exe), str(ROOT / "tests" / "c" / "rtde_api.c"), str(GEN / "rtde.c")]
+    res = subprocess.run(cmd, capture_output=True, text=True)
+    assert res.returncode == 0 and res.stderr == "", res.stderr
+    symbols = subprocess.run(["nm", str(exe)], capture_output=True, text=True, check=True).stdout
+    assert "rtde_decode" in symbols and "rtde__variable" not in symbols
+    binary = exe.read_bytes()
+    assert b"actual_q" in binary                    # rtde_api.c's own recipe names
+    assert b"Speed slider fraction" not in binary and b"speed_slider_fraction" not in binary
+    assert b"Setup outputs reply (protocol 1)" not in binary
+
+
 def test_the_fuzz_harness_replays_its_corpus(tmp_path):
     """tests/c/fuzz_rtde.c as libFuzzer builds it, run once over the kept corpus and every golden
     exchange as a seed (no fuzzing): no sanitizer report, no failed check."""

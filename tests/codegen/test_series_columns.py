@@ -110,9 +110,14 @@ def test_an_rtde_variable_of_5_27_alone_is_not_offered_on_10x(tmp_path):
     (row,) = [v for v in module.VARIABLES if v.name == "tcp_speed_scaling"]
     assert [row.available_in(v) for v in ((5, 26), (5, 27), (5, 99), (10, 0), (10, 13))] == \
         [False, True, True, False, False]
-    # The C table carries the same column, decided by the generator.
+    # The C table carries the same column, decided by the generator: the row's first versions are
+    # indices in rtde__variable_words, whose lines name their words.
     source = rendered(text, "c")["c/rtde.c"]
-    assert '{"tcp_speed_scaling", RTDE_VT_DOUBLE, true, "TCP speed scaling", NULL, "none", "5.27", "none"}' in source
+    (since,) = re.findall(r"\{\d+, \d+, RTDE_VT_DOUBLE, true, 0, \{(\d+), (\d+), (\d+)\}\},  /\* tcp_speed_scaling \*/",
+                          source)
+    words = source.split("rtde__variable_words[] = {", 1)[1].split("};", 1)[0]
+    words = re.findall(r"^    \d+,  /\* (.*) \*/$", words, re.M)
+    assert [words[int(i)] for i in since] == ["none", "5.27", "none"] and '"TCP speed scaling\\0"' in source
 
 
 def test_an_rtde_variable_may_come_with_a_later_10x(tmp_path):

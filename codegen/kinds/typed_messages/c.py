@@ -10,8 +10,9 @@ from dataclasses import dataclass
 from ... import ir
 from ...emit import environment, runtime_section
 from ...lang import c
-from ...wrap import spread
+from ...wrap import trailing
 from . import model
+from .c_pool import PART, Pool
 from .plan import Step, TypedPlan
 
 FOLDER = "c"
@@ -29,6 +30,7 @@ MEMBER_KINDS = {"bool": "RTDE_MEMBER_BOOL", "uint8": "RTDE_MEMBER_UINT", "uint16
 VALUE_KIND = {"bool": "'b'", "uint8": "'u'", "uint32": "'u'", "uint64": "'u'", "int32": "'i'", "float64": "'f'"}
 RUNTIME_H = ("rtde_types.h", "rtde_api.h")
 RUNTIME_C = {"read": ("common/macros.h", "common/loads.h", "typed_messages/rtde_read.c"),
+             "variables": ("typed_messages/rtde_variables.c",),
              "conversation": ("typed_messages/rtde_conversation.c",)}
 
 
@@ -104,18 +106,16 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
     dispatch = [{"code": mp.message.code, "letter": mp.message.letter,
                  "from_robot": "true" if mp.message.from_robot else "false", "protocol": p,
                  "const": f"{name.upper()}_LAYOUT_{mp.message.name.upper()}"} for mp, p in planned.dispatch]
-    variables = []
-    for v in interface.variables:
-        items = [c.string(v.name), f"{name.upper()}_VT_{v.value_type.name}", "true" if v.direction == "output" else "false",
-                 c.string(v.label), c.string_or_null(v.unit), c.string(v.since_text("cb3")),
-                 c.string(v.since_text("eseries")), c.string(v.since_text("polyscope_x"))]
-        variables.append(spread(items, "{", "},", "    "))
     view = {
         "banner": banner, "p": interface, "prefix": name, "PREFIX": name.upper(),
-        "value_types": [{"name": t.name, "size": t.scalar.size, "count": t.count, "kind": VALUE_KIND[t.scalar.name]}
+        "value_types": [{"name": t.name, "size": t.scalar.size, "count": t.count, "kind": VALUE_KIND[t.scalar.name],
+                         "value_size": t.size}
                         for t in interface.value_types],
-        "layouts": layouts, "dispatch": dispatch, "codes": planned.codes, "variables": variables,
+        "layouts": layouts, "dispatch": dispatch, "codes": planned.codes,
+        "variables": _variable_table(interface.variables, name.upper()),
         "refusals": [r.word for r in interface.refusals],
+        "refusal_width": max(len(r.word.encode("utf-8")) for r in interface.refusals) + 1,
+        "value_type_width": max(len(t.name.encode("utf-8")) for t in interface.value_types) + 1,
         "undocumented": interface.undocumented,
         "runtime_h": {n: _joined(n) for n in RUNTIME_H},
         "runtime_c": {part: "\n\n".join(runtime_section("c", n) for n in names) for part, names in RUNTIME_C.items()},
@@ -124,6 +124,30 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
     env.filters["c"] = c.string
     return {f"{FOLDER}/{name}.h": env.get_template("typed_messages/interface.h.j2").render(**view),
             f"{FOLDER}/{name}.c": env.get_template("typed_messages/interface.c.j2").render(**view)}
+
+
+# The columns of the variable table that few texts fill: each row holds an index in a list of these
+# words (its texts in the pool), a byte where a pool offset takes two. Index 0 is no unit.
+SINCE = ("cb3", "eseries", "polyscope_x")
+
+
+def _variable_table(variables: list[model.Variable], prefix: str) -> dict:
+    """The variable table as small integers: each row's name and label as offsets in one pool of
+    texts, its unit and first versions as indices in a short list of words."""
+    words = list(dict.fromkeys([v.unit for v in variables if v.unit] +
+                               [v.since_text(g) for v in variables for g in SINCE]))
+    if len(words) > 255:
+        raise ValueError(f"{len(words)} units and versions in the variable table: its rows index them with a byte")
+    index = {w: i + 1 for i, w in enumerate(words)}
+    pool = Pool([t for v in variables for t in (v.name, v.label)] + words)
+    rows = []
+    for v in variables:
+        items = [str(pool.offset(v.name)), str(pool.offset(v.label)), f"{prefix}_VT_{v.value_type.name}",
+                 "true" if v.direction == "output" else "false", str(index[v.unit] if v.unit else 0),
+                 "{" + ", ".join(str(index[v.since_text(g)]) for g in SINCE) + "}"]
+        rows.append(trailing("{" + ", ".join(items) + "},", v.name, "    "))
+    return {"pool": pool.parts, "part_limit": PART, "words": [(pool.offset(w), w) for w in words], "rows": rows,
+            "count": len(variables)}
 
 
 def _joined(file: str) -> str:

@@ -137,14 +137,14 @@ int rtde_value_type_of(const uint8_t *name, size_t length)
 {
     int t;
     for (t = 0; t < RTDE_VT_COUNT; t++)
-        if (strlen(rtde__value_types[t].name) == length && memcmp(rtde__value_types[t].name, name, length) == 0)
+        if (strlen(rtde__value_type_names[t]) == length && memcmp(rtde__value_type_names[t], name, length) == 0)
             return t;
     return -1;
 }
 
 const char *rtde_value_type_name(uint8_t type)
 {
-    return type < RTDE_VT_COUNT ? rtde__value_types[type].name : "";
+    return type < RTDE_VT_COUNT ? rtde__value_type_names[type] : "";
 }
 
 static uint8_t rtde__layout_for(uint8_t code, bool from_robot, uint8_t protocol)
@@ -291,7 +291,7 @@ static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text ty
                 recipe->name_length[count] = (uint16_t)n1;
             }
             count++;
-            size += (size_t)rtde__value_types[t].size * rtde__value_types[t].count;
+            size += rtde__value_types[t].value_size;
         }
         if (refused) {
             m->refused = true;
@@ -495,7 +495,7 @@ bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
     p = d->bytes;
     for (i = 0; i < index; i++) {
         uint8_t t = d->recipe->types[i];
-        p += (size_t)rtde__value_types[t].size * rtde__value_types[t].count;
+        p += rtde__value_types[t].value_size;
     }
     out->type = d->recipe->types[index];
     out->count = rtde__value_types[out->type].count;
