@@ -35,8 +35,9 @@ def select(protocol: model.Protocol, picks: tuple[Pick, ...], where: ir.Where) -
         for lay in kept:
             problems += _split_code(m, lay, kept, wanted.get(m.name), picks)
         if isinstance(m, model.PackageListMessage) and not kept and not problems:
-            problems.append(where.problem(f"keep at least one {m.name} sub-package (e.g. {m.name}.{m.packages[0].name}):"
-                                          " the parser is built around the robot state"))
+            example = f"{m.name}.{m.packages[0].name}"
+            problems.append(where.problem(f"keep at least one {m.name} sub-package (e.g. {example}): the parser "
+                                          "is built around the robot state"))
     if problems:
         return protocol, problems
     p = copy.deepcopy(protocol)
