@@ -4,6 +4,9 @@ check that it is current.
 `python -m codegen --target epan --upstream --out DIR` writes the copy of the epan dissectors for
 Wireshark's own tree (docs/wireshark-upstream.md): it reads no command line.
 
+`--pin 5.11` and `--select ur:robot_state.joint_data,robot_state.tool_data` (or a selection file)
+write a smaller build outside generated/ (docs/generator.md#subsets).
+
 Also: `python -m codegen diff 3.15 5.11` prints what changed between two software versions (and
 the C robot-state fast-path loop each takes), and `python -m codegen reference [--check]` writes
 docs/protocol.md, the protocol reference.
@@ -14,7 +17,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from . import ir
+from . import ir, select
 from .compile import DEFAULT_SPEC, compile_file, compile_loaded, kind_of, spec_files
 from .emit import banner_lines
 from .errors import SpecError
@@ -47,6 +50,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--pin", metavar="VERSION",
                         help="only what this software version sends, with no version branches (needs --out "
                              "outside generated/ and the primary spec), e.g. --pin 5.11 --target c --out build/pinned")
+    parser.add_argument("--select", metavar="SELECTION", action="append",
+                        help="only these parts of an interface, the rest framed and kept raw (needs --out outside "
+                             "generated/): interface:name,name or a selection file (.yaml), e.g. --select "
+                             "ur:robot_state.joint_data,robot_state.tool_data --target c --out build/subset "
+                             "(docs/generator.md#subsets)")
     parser.add_argument("--upstream", action="store_true",
                         help="the epan dissectors as Wireshark's own tree carries them, reading no command line "
                              "(needs --target epan and --out outside generated/), e.g. --target epan --upstream "
@@ -58,21 +66,33 @@ def main(argv: list[str] | None = None) -> int:
         parser.error("--upstream renders the epan dissectors only: give --target epan")
     if args.upstream and args.out.resolve().is_relative_to((ROOT / "generated").resolve()):
         parser.error("--upstream writes Wireshark's copy of the dissectors: give --out a folder outside generated/")
-    specs = args.spec or ([DEFAULT_SPEC] if args.pin else spec_files())
+    if args.select and args.out.resolve() == (ROOT / "generated").resolve():
+        parser.error("--select writes a build of some parts only: give --out a folder outside generated/")
     outputs: dict[str, str] = {}
     try:
+        args.selection = select.parse(args.select) if args.select else None
+        specs = args.spec or (select.specs_for(args.selection, spec_files()) if args.selection
+                              else [DEFAULT_SPEC] if args.pin else spec_files())
+        unselectable: list = []                 # every interface's selection problems, not the first's
         for spec in specs:
-            for rel, text in _render_spec(spec, args).items():
+            try:
+                rendered = _render_spec(spec, args)
+            except select.SelectionError as exc:
+                unselectable += exc.problems
+                continue
+            for rel, text in rendered.items():
                 if rel in outputs:
                     print(f"{spec}: writes {rel}, which another spec writes too", file=sys.stderr)
                     return 2
                 outputs[rel] = text
+        if unselectable:
+            raise select.SelectionError(select.OPTION, unselectable)
     except SpecError as exc:
         # A target that cannot render a node reports it like a spec error: path, line, what.
         print(exc, file=sys.stderr)
         return 2
     # Files of the target folders that no spec wrote are stale only when every spec was rendered.
-    every_spec = args.spec is None and not args.pin
+    every_spec = args.spec is None and not args.pin and not args.select
     return _check(args.out, outputs, every_spec) if args.check else _write(args.out, outputs, every_spec)
 
 
@@ -86,7 +106,12 @@ def _render_spec(spec: Path, args) -> dict[str, str]:
         if not isinstance(model, Protocol):
             raise SpecError(str(spec), [loaded.problem("framing", "--pin applies to the primary interface's spec")])
         model = pin(model, ir.parse_version(args.pin))
+    key = args.selection.key_of(select.names_of(spec, loaded.data)) if args.selection else None
+    if key is not None:
+        model = select.apply(kind.name, model, args.selection.picks[key], args.selection.keys[key])
     banner = banner_lines(str(spec_rel), text, upstream=args.upstream)
+    if key is not None:
+        banner += select.banner(args.selection.picks[key])
     return kind.render(model, banner, args.target, _target_options(args))
 
 

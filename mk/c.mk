@@ -34,8 +34,9 @@ DEMO_TARGETS += demo-c
 
 PIN ?= 5.11
 PINNED_C := build/pinned
+SUBSET_C := build/subset
 
-.PHONY: test-c bench-c bench-c-cli demo-c install install-c uninstall-c pinned-c
+.PHONY: test-c bench-c bench-c-cli demo-c install install-c uninstall-c pinned-c subset-c
 
 build/urwire-decode: $(C_LIB) $(C_CLI)
 	@mkdir -p build
@@ -54,6 +55,18 @@ pinned-c:
 	$(PYTHON) -m codegen --pin $(PIN) --target c --out $(PINNED_C)
 	$(CC) $(C_STRICT) -Os -c $(PINNED_C)/c/urwire.c -o $(PINNED_C)/urwire.o
 	@if command -v size >/dev/null; then size $(PINNED_C)/urwire.o; fi
+
+## subset-c: the C parser of some parts only, the rest framed and kept raw (docs/generator.md#subsets):
+## SELECT=ur:robot_state.joint_data,robot_state.tool_data or a selection file, and PIN=5.11 to pin it
+## too; build/subset/c/*.{h,c}, and build/subset/*.o at -Os with their sizes
+subset-c:
+	@test -n "$(SELECT)" || { echo "subset-c: give SELECT=interface:name,name or a selection file" >&2; exit 2; }
+	rm -rf $(SUBSET_C)
+	$(PYTHON) -m codegen --select $(SELECT) $(if $(filter command line environment,$(origin PIN)),--pin $(PIN)) \
+		--target c --out $(SUBSET_C)
+	for src in $(SUBSET_C)/c/*.c; do \
+		$(CC) $(C_STRICT) -Os -c $$src -o $(SUBSET_C)/$$(basename $$src .c).o || exit 1; done
+	@if command -v size >/dev/null; then size $(SUBSET_C)/*.o; fi
 
 ## test-c: the C library and CLI under gcc, clang and the sanitizers: vectors, differential
 ## against Python, the fuzzers' kept corpora through their harnesses, round trips, build checks

@@ -242,10 +242,18 @@ typedef struct urwire__value_table {
 /* ---- the runtime's functions that other files call, file by file ---- */
 /* (A helper that only its own file calls is static there.) */
 
+/* A function that only some layouts call (the global variables' names and values): a subset of the
+ * spec (python -m codegen --select) may call none, and that is no warning. */
+#if defined(__GNUC__)
+#define URWIRE__OPTIONAL URWIRE__PRIVATE __attribute__((unused))
+#else
+#define URWIRE__OPTIONAL URWIRE__PRIVATE
+#endif
+
 /* views.c */
 URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len);
 URWIRE__PRIVATE urwire_seq urwire__seq(const uint8_t *msg, size_t pos, urwire_sw_version version, int terminator);
-URWIRE__PRIVATE urwire_bytes urwire__seq_bytes(const urwire_seq *s);
+URWIRE__OPTIONAL urwire_bytes urwire__seq_bytes(const urwire_seq *s);
 /* version.c */
 URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix);
 URWIRE__PRIVATE bool urwire__in_versions(urwire_sw_version v, const urwire__versions *range);
@@ -265,8 +273,8 @@ URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t i
 /* text.c */
 URWIRE__PRIVATE bool urwire__read_prefixed(const uint8_t *msg, size_t *at, size_t end, size_t size, bool is_signed,
                                            const char *path, urwire_bytes *out, urwire_error *err);
-URWIRE__PRIVATE void urwire__read_texts(const uint8_t *msg, size_t *at, size_t end, uint8_t terminator,
-                                        urwire_seq *out);
+URWIRE__OPTIONAL void urwire__read_texts(const uint8_t *msg, size_t *at, size_t end, uint8_t terminator,
+                                         urwire_seq *out);
 /* put.c */
 URWIRE__PRIVATE bool urwire__put_view(uint8_t *out, size_t cap, size_t *pos, urwire_bytes b, urwire_error *err);
 URWIRE__PRIVATE bool urwire__put_prefixed(uint8_t *out, size_t cap, size_t *pos, size_t size, uint64_t max,
@@ -274,8 +282,8 @@ URWIRE__PRIVATE bool urwire__put_prefixed(uint8_t *out, size_t cap, size_t *pos,
 /* values.c */
 URWIRE__PRIVATE const urwire__value_table *urwire__values_of(urwire_sw_version v);
 URWIRE__PRIVATE const urwire__value_entry *urwire__value_entry_of(const urwire__value_table *t, uint8_t code);
-URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                                         uint8_t terminator, const char *path, urwire_seq *out, urwire_error *err);
+URWIRE__OPTIONAL bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+                                          uint8_t terminator, const char *path, urwire_seq *out, urwire_error *err);
 /* kinds.c */
 URWIRE__PRIVATE const urwire__message_type *urwire__message_type_of(uint8_t code);
 URWIRE__PRIVATE const urwire__message_kind *urwire__message_kind_of(urwire_message_kind kind);
@@ -291,8 +299,8 @@ URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire
 /* decode.c */
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);
 /* visit.c */
-URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);
-URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v);
+URWIRE__OPTIONAL void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);
+URWIRE__OPTIONAL void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v);
 /* <standalone> */
 #endif
 /* </standalone> */
