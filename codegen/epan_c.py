@@ -33,18 +33,18 @@ def unit_label(prefix: str, unit: str, double: bool = True) -> UnitLabel:
 # Wireshark's development branch declares its handles zero-initialised (`static int proto_eti;`,
 # `static int hf_eti_x;`, `static int ett_eti;`, as its generated packet-eti.c does). The in-tree
 # plugin keeps `= -1` for the Wireshark 4.0 it builds against; the upstream copy (`--upstream`)
-# drops it from its protocol and field handles, which 4.0 registers from 0 as well, so that
-# `make upstream-patch` still builds and runs that copy against 4.0. Its subtree handles keep
-# `= -1` until the copy is built in the development branch's tree: 4.0's register_subtree_array
-# refuses a zero one ("subtree item type (ett_...) not -1"). One rule over the rendered file, for
-# the generated part and the joined runtime alike.
-DEVELOPMENT_BRANCH_HANDLES = ("proto", "hf")
+# drops it from its protocol, field and subtree handles. 4.0 registers a zero `proto_` or `hf_`
+# handle but refuses a zero `ett_` one ("subtree item type (ett_...) not -1"): the out-of-tree
+# build of this copy against 4.0 gives them -1 as it registers them (dissector/native/
+# subtrees_from_zero.h). One rule over the rendered file, for the generated part and the joined
+# runtime alike.
+DEVELOPMENT_BRANCH_HANDLES = ("proto", "hf", "ett")
 _HANDLE_INIT = re.compile(rf"\b((?:{'|'.join(DEVELOPMENT_BRANCH_HANDLES)})_\w+) = -1\b")
 _HANDLE_ARRAY = re.compile(r"^(static int hf_\w+\[\w+\]) = \{\n(?:\s*(?:-1,\s*)+\n)*\s*(?:-1,?\s*)*\};", re.M)
 _DECLARATION = re.compile(r"^static (?:int|gint) [^;(]*;", re.M)
 
 
 def development_branch(text: str) -> str:
-    """The rendered file with its protocol and field handles declared without `= -1`."""
+    """The rendered file with its protocol, field and subtree handles declared without `= -1`."""
     text = _HANDLE_ARRAY.sub(r"\1;", text)
     return _DECLARATION.sub(lambda m: _HANDLE_INIT.sub(r"\1", m.group(0)), text)
