@@ -2,8 +2,9 @@
 """upstream-patch.py OUT [EPAN_DIR]: lay out under OUT exactly the files a Wireshark patch adding
 the generated dissectors would carry, as they would sit in a Wireshark source tree:
 
-    epan/dissectors/packet-*.c      the dissectors, as the patch's own tools/urwire2wireshark.py
-                                    renders them (or copied from EPAN_DIR)
+    epan/dissectors/packet-*.[ch]   the dissectors and the helpers they share (packet-ur-common.h
+                                    and .c), as the patch's own tools/urwire2wireshark.py renders
+                                    them (or copied from EPAN_DIR)
     tools/urwire2wireshark.py       regenerates them (dissector/native/urwire2wireshark.py)
     tools/urwire/codegen/           the generator
     tools/urwire/spec/*.yaml        one spec per interface
@@ -51,7 +52,7 @@ def lay_out_tools(out: Path) -> None:
 
 
 def copy_dissectors(epan_dir: Path, dissectors: Path) -> None:
-    sources = sorted(epan_dir.glob("packet-*.c"))
+    sources = sorted(epan_dir.glob("packet-*.[ch]"))
     if not sources:
         sys.exit(f"upstream-patch: no packet-*.c under {epan_dir}")
     for source in sources:
