@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -217,3 +218,51 @@ def test_check_upstream_reports_an_unused_field(tmp_path):
     assert result.returncode != 0
     assert "hf_urwire_fixture_unused" in result.stdout
 
+
+# ---- the patch against a Wireshark source tree (make upstream-build applies it) ----
+WIRESHARK_TREE = Path(__file__).resolve().parent / "fixtures" / "wireshark-tree"
+
+
+def listed(cmakelists: str, name: str) -> list[str]:
+    block = re.search(rf"^set\({name}\n(.*?)^\)", cmakelists, re.M | re.S).group(1)
+    return [line.strip() for line in block.splitlines()]
+
+
+def test_the_patch_applies_to_a_wireshark_tree_and_lists_its_files(tmp_path):
+    """The dissectors' sources in DISSECTOR_SRC and the shared header in the private headers, each in
+    sorted place and spelled as their neighbours; the capture and the test of the cell beside the tree's."""
+    if not (GENERATED and has_epan_target()):
+        pytest.skip("the generator has no epan target yet, or generated/epan no files")
+    tree = tmp_path / "wireshark"
+    shutil.copytree(WIRESHARK_TREE, tree)
+    patch = tmp_path / "upstream.patch"
+    made = subprocess.run([sys.executable, str(ROOT / "scripts" / "upstream-patch.py"), str(tmp_path / "upstream"),
+                           "--against", str(tree), "--patch", str(patch)], capture_output=True, text=True)
+    assert made.returncode == 0, made.stderr
+    subprocess.run(["git", "apply", "--check", str(patch)], cwd=tree, check=True)
+    subprocess.run(["git", "apply", str(patch)], cwd=tree, check=True)
+    cmake = (tree / "epan" / "dissectors" / "CMakeLists.txt").read_text()
+    sources = listed(cmake, "DISSECTOR_SRC")
+    assert sources == sorted(sources, key=str.lower)
+    ours = {f"${{CMAKE_CURRENT_SOURCE_DIR}}/{p.name}" for p in GENERATED if p.suffix == ".c"}
+    assert ours <= set(sources) and "${CMAKE_CURRENT_SOURCE_DIR}/packet-ur-common.c" in ours
+    assert "packet-ur-common.h" in listed(cmake, "DISSECTOR_HEADERS")
+    assert "packet-ur-common.h" not in listed(cmake, "DISSECTOR_PUBLIC_HEADERS")
+    capture = tree / "test" / "captures" / "ur-cell-session.pcapng"
+    assert capture.read_bytes() == (SAMPLES / "cell_session.pcapng").read_bytes()
+    suite = (tree / "test" / "suite_dissection.py").read_text()
+    assert "class TestDissectFixture" in suite and "class TestDissectUniversalRobots" in suite
+    for path in GENERATED:
+        assert (tree / "epan" / "dissectors" / path.name).is_file(), path.name
+    subprocess.run(["git", "apply", "--reverse", "--check", str(patch)], cwd=tree, check=True)
+
+
+def test_the_patch_wants_the_lists_it_adds_to(tmp_path):
+    tree = tmp_path / "wireshark"
+    shutil.copytree(WIRESHARK_TREE, tree)
+    cmakelists = tree / "epan" / "dissectors" / "CMakeLists.txt"
+    cmakelists.write_text(cmakelists.read_text().replace("set(DISSECTOR_SRC", "set(OTHER_SRC"))
+    made = subprocess.run([sys.executable, str(ROOT / "scripts" / "upstream-patch.py"), str(tmp_path / "upstream"),
+                           str(FIXTURE_EPAN), "--against", str(tree), "--patch", str(tmp_path / "p")],
+                          capture_output=True, text=True)
+    assert made.returncode != 0 and "set(DISSECTOR_SRC" in made.stderr
