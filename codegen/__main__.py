@@ -20,6 +20,7 @@ from pathlib import Path
 from . import ir, select
 from .compile import DEFAULT_SPEC, compile_file, compile_loaded, kind_of, spec_files
 from .emit import banner_lines
+from .epan_c import shared_helpers
 from .errors import SpecError
 from .kinds import TARGETS, TargetOptions
 from .kinds.packages.c import fast_path_change
@@ -87,6 +88,8 @@ def main(argv: list[str] | None = None) -> int:
                 outputs[rel] = text
         if unselectable:
             raise select.SelectionError(select.OPTION, unselectable)
+        if args.target is None or "epan" in args.target:    # what the epan dissectors of every kind share
+            outputs.update(shared_helpers(upstream=args.upstream))
     except SpecError as exc:
         # A target that cannot render a node reports it like a spec error: path, line, what.
         print(exc, file=sys.stderr)

@@ -80,4 +80,4 @@ CHECKED_EPAN = $(if $(filter-out file,$(origin URWIRE_EPAN_DIR)),$(URWIRE_EPAN_D
 check-upstream:
 	@[ -n "$(WIRESHARK_SOURCE)" ] || { echo "check-upstream: set WIRESHARK_SOURCE to a Wireshark checkout" >&2; exit 2; }
 	@$(if $(filter-out file,$(origin URWIRE_EPAN_DIR)),:,$(PYTHON) -m codegen --target epan --upstream --out $(UPSTREAM_EPAN))
-	@bash scripts/check-upstream.sh $(WIRESHARK_SOURCE) $(CHECKED_EPAN)/packet-*.c
+	@bash scripts/check-upstream.sh $(WIRESHARK_SOURCE) $(CHECKED_EPAN)/packet-*.[ch]

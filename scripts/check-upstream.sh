@@ -1,14 +1,19 @@
 #!/usr/bin/env bash
 # check-upstream.sh WIRESHARK_SOURCE FILE...: Wireshark's own source checks, from a Wireshark
-# checkout's tools/, on the generated dissectors (Debian ships none of them). Each check that
-# the checkout has runs on every file; a check that reports a problem makes the exit status 1.
+# source tree's tools/, on the generated dissectors (Debian ships none of them). Each check that
+# the tree has runs on every file; a check that reports a problem makes the exit status 1.
 #   checkAPIs.pl               prohibited and deprecated APIs, bad value_string and hf arrays
 #   checkhf.pl                 hf_ handles declared but not registered, or never used
 #   check_typed_item_calls.py  each proto_tree_add_* call against its field's type, masks, labels
 #   check_tfs.py               true_false_strings that tfs.h already has
 #   check_val_to_str.py        val_to_str formats
-# check_static.py needs a whole Wireshark build folder; tests/native/test_plugin.py checks the same
-# thing (each packet file defines only its proto_register_ and proto_reg_handoff_ globally).
+#   check_spelling.py          words of strings and comments against a dictionary and
+#                              tools/wireshark_words.txt; needs the pip package pyspellchecker
+#                              (module spellchecker); skipped, and said, where it is missing
+#   check_static.py            globals that could be static: it reads the objects of a Wireshark
+#                              build, so it runs only with WIRESHARK_BUILD set to the build folder
+#                              of a tree the patch is applied to (make upstream-build makes one);
+#                              tests/native/test_plugin.py checks the same on the plugin's objects
 set -u
 source=${1:?usage: check-upstream.sh WIRESHARK_SOURCE FILE...}
 shift
@@ -49,11 +54,24 @@ if [ -f "$source/tools/checkhf.pl" ]; then
     { [ $rc -ne 0 ] || echo "$out" | grep -qE "Unused entry|NO ARRAY"; } && finding checkhf.pl
 fi
 # One file a run: some releases of these scripts keep only the last --file.
-for check in check_typed_item_calls.py check_tfs.py check_val_to_str.py; do
+for check in check_typed_item_calls.py check_tfs.py check_val_to_str.py check_spelling.py check_static.py; do
     [ -f "$source/tools/$check" ] || continue
-    echo "== $check"; ran=$((ran + 1))
     extra=()
-    [ "$check" = check_typed_item_calls.py ] && extra=(--mask --label --consecutive)
+    case $check in
+        check_typed_item_calls.py) extra=(--mask --label --consecutive) ;;
+        check_spelling.py)
+            if ! python3 -c "import spellchecker" 2>/dev/null; then
+                echo "== $check: skipped, it needs the pip package pyspellchecker"; continue
+            fi
+            # the dictionary only: no download of Wikipedia's list of common misspellings
+            grep -q -- "--no-wikipedia" "$source/tools/$check" && extra=(--no-wikipedia) ;;
+        check_static.py)
+            if [ -z "${WIRESHARK_BUILD:-}" ]; then
+                echo "== $check: skipped, it needs WIRESHARK_BUILD (a build folder of the patched tree)"; continue
+            fi
+            extra=(--build-folder "$(realpath "$WIRESHARK_BUILD")") ;;
+    esac
+    echo "== $check"; ran=$((ran + 1))
     for f in "${files[@]}"; do
         out=$(cd "$source" && python3 "tools/$check" --file "$f" "${extra[@]}" 2>&1); rc=$?
         echo "$out"

@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """urwire2wireshark.py: writes Wireshark's dissectors of the interfaces of a Universal Robots cell
-(epan/dissectors/packet-ur.c, packet-rtde.c, packet-ur-realtime.c, ...) from their specs.
+(epan/dissectors/packet-ur.c, packet-rtde.c, packet-ur-realtime.c, ..., and the helpers they share,
+packet-ur-common.h and packet-ur-common.c) from their specs.
 
 In a Wireshark source tree this file is tools/urwire2wireshark.py, beside the generator it runs
 (tools/urwire/: the codegen package, one YAML spec per interface under spec/, and the hand-written
 C every dissector joins in, runtime/epan/). The generated files say at their top that they are
 generated and must not be edited by hand; change a spec or the generator, then run
 
-    python3 tools/urwire2wireshark.py            # rewrite epan/dissectors/packet-*.c
+    python3 tools/urwire2wireshark.py            # rewrite epan/dissectors/packet-*.[ch]
     python3 tools/urwire2wireshark.py --check    # exit 1 if they are not what the specs give
 
 It runs the generator's epan target with --upstream: the copy of the dissectors for Wireshark's
@@ -35,12 +36,12 @@ def generated(folder: Path) -> dict[str, bytes]:
                             cwd=GENERATOR, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"urwire2wireshark: the generator failed:\n{result.stderr}")
-    return {p.name: p.read_bytes() for p in sorted((folder / "epan").glob("packet-*.c"))}
+    return {p.name: p.read_bytes() for p in sorted((folder / "epan").glob("packet-*.[ch]"))}
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--out", type=Path, default=DISSECTORS, help="where the packet-*.c go (epan/dissectors)")
+    parser.add_argument("--out", type=Path, default=DISSECTORS, help="where the packet-*.[ch] go (epan/dissectors)")
     parser.add_argument("--check", action="store_true", help="write nothing; exit 1 if a file differs")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:

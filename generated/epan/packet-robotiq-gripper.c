@@ -22,6 +22,8 @@
 #include <epan/prefs.h>
 #include <epan/proto_data.h>
 
+#include "packet-ur-common.h"
+
 void proto_register_robotiq_gripper(void);
 void proto_reg_handoff_robotiq_gripper(void);
 
@@ -354,70 +356,6 @@ static const lines_spec_t lines_spec = {
     .polyscope_x_from = 10000000u,
 };
 
-/* ---- runtime/epan/common/exchange.c ---- */
-/* Request/response tracking, as Wireshark's request/response protocols show it (dns.response_in,
- * dns.response_to, dns.time), the twin of runtime/lua/common/exchange.lua. On the first pass a
- * request keeps its frame and time; the reply the dissector pairs with it links both ways: the
- * request gets the frame of its first reply, the reply the request's frame and the time between.
- * Which reply answers which request is the dissector's; these are only the links, kept in
- * wmem_file_scope() with the first pass's decisions, so that later passes (tshark -2, the GUI) show a
- * request's reply too. The fields are the dissector's (codegen/exchanges.py): passed in by handle. */
-
-typedef struct {
-    guint32 frame;              /* the request's */
-    nstime_t at;                /* its capture time */
-    guint32 response_in;        /* the frame of its first reply; 0: none seen */
-} exchange_request_t;
-
-typedef struct {
-    guint32 response_to;        /* the request's frame; 0: no request (the capture starts after it) */
-    nstime_t time;              /* from the request to the reply */
-} exchange_reply_t;
-
-/* A request as this frame holds it. */
-static exchange_request_t *
-exchange_request(packet_info *pinfo)
-{
-    exchange_request_t *request = wmem_new(wmem_file_scope(), exchange_request_t);
-    request->frame = pinfo->num;
-    request->at = pinfo->abs_ts;
-    request->response_in = 0;
-    return request;
-}
-
-/* A reply's link to the request it answers (NULL: none), and the request's to its first reply. */
-static void
-exchange_reply(exchange_request_t *request, packet_info *pinfo, exchange_reply_t *reply)
-{
-    reply->response_to = 0;
-    nstime_set_zero(&reply->time);
-    if (request == NULL)
-        return;
-    if (request->response_in == 0)
-        request->response_in = pinfo->num;
-    reply->response_to = request->frame;
-    nstime_delta(&reply->time, &pinfo->abs_ts, &request->at);
-}
-
-/* The generated items: a request's reply, once one is seen; a reply's request and the time since. */
-static void
-exchange_show_request(proto_tree *tree, tvbuff_t *tvb, int at, int len, const exchange_request_t *request,
-                      int hf_response_in)
-{
-    if (request != NULL && request->response_in != 0)
-        proto_item_set_generated(proto_tree_add_uint(tree, hf_response_in, tvb, at, len, request->response_in));
-}
-
-static void
-exchange_show_reply(proto_tree *tree, tvbuff_t *tvb, int at, int len, const exchange_reply_t *reply,
-                    int hf_response_to, int hf_time)
-{
-    if (reply->response_to == 0)
-        return;
-    proto_item_set_generated(proto_tree_add_uint(tree, hf_response_to, tvb, at, len, reply->response_to));
-    proto_item_set_generated(proto_tree_add_time(tree, hf_time, tvb, at, len, &reply->time));
-}
-
 /* ---- runtime/epan/lines/lines_dissect.c ---- */
 /* A dissector of text lines (the dashboard server, the driver's script sender), the twin of
  * runtime/lua/lines/dissect.lua: lines reassembled across TCP segments, each shown as a request
@@ -437,8 +375,8 @@ typedef struct lines_decision {
     int available;                        /* commands: 1 or 0 when the version is known, else -1 */
     const lines_reply_t *reply;           /* replies: the one it is, or NULL */
     bool not_kept;                        /* a command not kept, or a reply to one */
-    exchange_request_t *request;          /* commands: its frame, time and reply's frame */
-    exchange_reply_t link;                /* replies: the command's frame and the time since */
+    ur_exchange_request_t *request;       /* commands: its frame, time and reply's frame */
+    ur_exchange_reply_t link;             /* replies: the command's frame and the time since */
 } lines_decision_t;
 
 /* What a conversation has seen so far, in the first pass. A command that comes when
@@ -527,14 +465,14 @@ static void lines_count_too_long(lines_conversation_t *c, bool requests, packet_
     if (requests) {
         lines_decision_t *d = wmem_new0(wmem_file_scope(), lines_decision_t);
         d->command = LINES_NONE;
-        d->request = exchange_request(pinfo);
+        d->request = ur_exchange_request(pinfo);
         lines_keep(c, d);
     } else {
         lines_decision_t *request;
-        exchange_reply_t link;
+        ur_exchange_reply_t link;
         c->greeted = true;
         request = lines_answered(c, &not_kept);
-        exchange_reply(request != NULL ? request->request : NULL, pinfo, &link);
+        ur_exchange_reply(request != NULL ? request->request : NULL, pinfo, &link);
     }
 }
 
@@ -543,7 +481,7 @@ static lines_decision_t *lines_decide_command(lines_conversation_t *c, packet_in
 {
     lines_decision_t *d = wmem_new0(wmem_file_scope(), lines_decision_t);
     d->command = lines_find_command(&lines_spec, text, len, &d->argument);
-    d->request = exchange_request(pinfo);
+    d->request = ur_exchange_request(pinfo);
     d->not_kept = !lines_keep(c, d);
     d->available = d->command != LINES_NONE && c->has_version
         ? lines_available(&lines_spec, d->command, c->version) : -1;
@@ -569,7 +507,7 @@ static lines_decision_t *lines_decide_reply(lines_conversation_t *c, packet_info
     }
     request = lines_answered(c, &d->not_kept);
     d->command = request != NULL ? request->command : LINES_NONE;
-    exchange_reply(request != NULL ? request->request : NULL, pinfo, &d->link);
+    ur_exchange_reply(request != NULL ? request->request : NULL, pinfo, &d->link);
     if (d->command != LINES_NONE && d->command == lines_spec.version_command) {
         uint64_t version;
         if (lines_version_in(&lines_spec, text, len, &version)) {
@@ -615,7 +553,7 @@ static void lines_show_command(proto_tree *tree, packet_info *pinfo, tvbuff_t *t
     }
     if (d->not_kept)
         expert_add_info(pinfo, item, &ei_lines_not_kept);
-    exchange_show_request(line, tvb, at, span, d->request, hf_lines_response_in);
+    ur_exchange_show_request(line, tvb, at, span, d->request, hf_lines_response_in);
     proto_item_append_text(item, ": %s", text);
 }
 
@@ -640,7 +578,7 @@ static void lines_show_reply(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb
         expert_add_info(pinfo, error, &ei_lines_error_reply);
     if (d->not_kept)
         expert_add_info(pinfo, item, &ei_lines_reply_not_kept);
-    exchange_show_reply(line, tvb, at, span, &d->link, hf_lines_response_to, hf_lines_time);
+    ur_exchange_show_reply(line, tvb, at, span, &d->link, hf_lines_response_to, hf_lines_time);
     proto_item_append_text(item, ": %s", text);
 }
 

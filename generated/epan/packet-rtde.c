@@ -22,6 +22,8 @@
 #include <epan/proto_data.h>
 #include <epan/unit_strings.h>
 
+#include "packet-ur-common.h"
+
 void proto_register_rtde(void);
 void proto_reg_handoff_rtde(void);
 
@@ -1660,140 +1662,6 @@ static const guint8 rtde_layout_of[256][2][RTDE_MAX_PROTOCOL + 1] = {
     [118] = { { 0, 5, 6 }, { 0, 7, 8 } },   /* 'v' */
 };
 
-/* ---- runtime/epan/common/tshark_fields.c ---- */
-/* Whether this process is a `tshark -T fields` run, from its command line (/proc/self/cmdline, where
- * the system shows it). tshark 4.0 builds the tree visible for -T fields and primes none of the fields
- * it prints, so a dissector cannot tell from the tree that it prints field values only: no item's
- * label, and no field that no argument names. Joined into the dissectors of urwire's own plugin that
- * use it; Wireshark's copy of them reads no command line and joins tshark_fields_upstream.c instead. */
-
-#define TSHARK_CMDLINE_MAX (1 << 16)    /* a longer command line is read as any other program's */
-
-/* The arguments of this process, or NULL where the system does not show them. */
-static GPtrArray *
-tshark_command_line(void)
-{
-    gchar *text = NULL;
-    gsize len = 0;
-    if (!g_file_get_contents("/proc/self/cmdline", &text, &len, NULL) || len == 0 || len > TSHARK_CMDLINE_MAX) {
-        g_free(text);
-        return NULL;
-    }
-    GPtrArray *args = g_ptr_array_new_with_free_func(g_free);
-    for (gsize p = 0; p < len;) {
-        gsize z = p;
-        while (z < len && text[z] != '\0')
-            z++;
-        g_ptr_array_add(args, g_strndup(text + p, z - p));
-        p = z + 1;
-    }
-    g_free(text);
-    return args;
-}
-
-/* Whether args are tshark's with -T fields. */
-static gboolean
-tshark_fields_run(const GPtrArray *args)
-{
-    if (args == NULL || args->len == 0)
-        return FALSE;
-    const char *program = g_ptr_array_index(args, 0);
-    const char *slash = strrchr(program, '/');
-    if (!g_str_has_prefix(slash ? slash + 1 : program, "tshark"))
-        return FALSE;
-    const char *format = NULL;
-    for (guint i = 1; i < args->len; i++) {
-        const char *a = g_ptr_array_index(args, i);
-        if (strcmp(a, "-T") == 0)
-            format = i + 1 < args->len ? g_ptr_array_index(args, i + 1) : NULL;
-        else if (g_str_has_prefix(a, "-T"))
-            format = a + 2;
-    }
-    return format != NULL && strcmp(format, "fields") == 0;
-}
-
-/* The arguments of this process when it is a tshark -T fields run, else NULL: found once, kept for
- * the life of the process. */
-static const GPtrArray *
-tshark_fields_arguments(void)
-{
-    static gboolean found;
-    static GPtrArray *fields_run;
-    if (!found) {
-        GPtrArray *args = tshark_command_line();
-        found = TRUE;
-        if (tshark_fields_run(args))
-            fields_run = args;
-        else if (args != NULL)
-            g_ptr_array_free(args, TRUE);
-    }
-    return fields_run;
-}
-
-/* ---- runtime/epan/common/exchange.c ---- */
-/* Request/response tracking, as Wireshark's request/response protocols show it (dns.response_in,
- * dns.response_to, dns.time), the twin of runtime/lua/common/exchange.lua. On the first pass a
- * request keeps its frame and time; the reply the dissector pairs with it links both ways: the
- * request gets the frame of its first reply, the reply the request's frame and the time between.
- * Which reply answers which request is the dissector's; these are only the links, kept in
- * wmem_file_scope() with the first pass's decisions, so that later passes (tshark -2, the GUI) show a
- * request's reply too. The fields are the dissector's (codegen/exchanges.py): passed in by handle. */
-
-typedef struct {
-    guint32 frame;              /* the request's */
-    nstime_t at;                /* its capture time */
-    guint32 response_in;        /* the frame of its first reply; 0: none seen */
-} exchange_request_t;
-
-typedef struct {
-    guint32 response_to;        /* the request's frame; 0: no request (the capture starts after it) */
-    nstime_t time;              /* from the request to the reply */
-} exchange_reply_t;
-
-/* A request as this frame holds it. */
-static exchange_request_t *
-exchange_request(packet_info *pinfo)
-{
-    exchange_request_t *request = wmem_new(wmem_file_scope(), exchange_request_t);
-    request->frame = pinfo->num;
-    request->at = pinfo->abs_ts;
-    request->response_in = 0;
-    return request;
-}
-
-/* A reply's link to the request it answers (NULL: none), and the request's to its first reply. */
-static void
-exchange_reply(exchange_request_t *request, packet_info *pinfo, exchange_reply_t *reply)
-{
-    reply->response_to = 0;
-    nstime_set_zero(&reply->time);
-    if (request == NULL)
-        return;
-    if (request->response_in == 0)
-        request->response_in = pinfo->num;
-    reply->response_to = request->frame;
-    nstime_delta(&reply->time, &pinfo->abs_ts, &request->at);
-}
-
-/* The generated items: a request's reply, once one is seen; a reply's request and the time since. */
-static void
-exchange_show_request(proto_tree *tree, tvbuff_t *tvb, int at, int len, const exchange_request_t *request,
-                      int hf_response_in)
-{
-    if (request != NULL && request->response_in != 0)
-        proto_item_set_generated(proto_tree_add_uint(tree, hf_response_in, tvb, at, len, request->response_in));
-}
-
-static void
-exchange_show_reply(proto_tree *tree, tvbuff_t *tvb, int at, int len, const exchange_reply_t *reply,
-                    int hf_response_to, int hf_time)
-{
-    if (reply->response_to == 0)
-        return;
-    proto_item_set_generated(proto_tree_add_uint(tree, hf_response_to, tvb, at, len, reply->response_to));
-    proto_item_set_generated(proto_tree_add_time(tree, hf_time, tvb, at, len, &reply->time));
-}
-
 /* ---- runtime/epan/typed_messages/rtde_state.c ---- */
 /* RTDE's state of one conversation: the protocol version negotiated, the setup requests waiting
  * for their replies, and the recipes the replies make, per recipe kind (one kind per direction of
@@ -2249,7 +2117,7 @@ rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *val
 }
 
 /* ---- runtime/epan/typed_messages/rtde_exchanges.c ---- */
-/* RTDE's request/response links (runtime/epan/common/exchange.c keeps the links themselves), the
+/* RTDE's request/response links (runtime/epan/common/exchange.h keeps the links themselves), the
  * twin of runtime/lua/typed_messages/exchanges.lua: a reply answers the oldest request of its pair
  * still awaiting one (rtde_exchange_roles, from the spec's exchanges.pairs), at most
  * RTDE_MAX_PENDING_REQUESTS kept per pair and conversation; one beyond is not linked, nor any
@@ -2257,12 +2125,12 @@ rtde_follow(rtde_state *state, const rtde_layout *layout, const rtde_values *val
  * Only the messages of a pair cost memory: data packages and text messages are in none. */
 
 typedef struct {
-    exchange_request_t *request;            /* a request's, NULL for a reply or a request not kept */
-    exchange_reply_t reply;                 /* a reply's; response_to 0 for a request */
+    ur_exchange_request_t *request;         /* a request's, NULL for a reply or a request not kept */
+    ur_exchange_reply_t reply;              /* a reply's; response_to 0 for a request */
 } rtde_link;
 
 typedef struct rtde_exchanges {
-    exchange_request_t *pending[RTDE_N_EXCHANGES][RTDE_MAX_PENDING_REQUESTS];   /* oldest at first */
+    ur_exchange_request_t *pending[RTDE_N_EXCHANGES][RTDE_MAX_PENDING_REQUESTS];   /* oldest at first */
     guint first[RTDE_N_EXCHANGES], count[RTDE_N_EXCHANGES];
     guint64 lost[RTDE_N_EXCHANGES];         /* requests not kept, awaiting replies */
     wmem_tree_t *links;                     /* rtde_link by frame and place (rtde_when) */
@@ -2279,24 +2147,24 @@ rtde_exchanges_of(rtde_state *state)
 }
 
 /* A request awaits its reply; NULL when it is not kept (counted lost). */
-static exchange_request_t *
+static ur_exchange_request_t *
 rtde_exchange_keep(rtde_exchanges *x, guint pair, packet_info *pinfo)
 {
-    exchange_request_t *request;
+    ur_exchange_request_t *request;
     if (x->lost[pair] > 0 || x->count[pair] == RTDE_MAX_PENDING_REQUESTS) {
         x->lost[pair]++;
         return NULL;
     }
-    request = exchange_request(pinfo);
+    request = ur_exchange_request(pinfo);
     x->pending[pair][(x->first[pair] + x->count[pair]++) % RTDE_MAX_PENDING_REQUESTS] = request;
     return request;
 }
 
 /* The request a reply answers: NULL when none awaits, or when it answers one not kept. */
-static exchange_request_t *
+static ur_exchange_request_t *
 rtde_exchange_answered(rtde_exchanges *x, guint pair)
 {
-    exchange_request_t *request = NULL;
+    ur_exchange_request_t *request = NULL;
     if (x->count[pair] > 0) {
         request = x->pending[pair][x->first[pair]];
         x->first[pair] = (x->first[pair] + 1) % RTDE_MAX_PENDING_REQUESTS;
@@ -2320,7 +2188,7 @@ rtde_follow_exchange(rtde_state *state, const rtde_layout *layout, packet_info *
     x = rtde_exchanges_of(state);
     link = wmem_new0(wmem_file_scope(), rtde_link);
     if (role->reply)
-        exchange_reply(rtde_exchange_answered(x, (guint)role->pair), pinfo, &link->reply);
+        ur_exchange_reply(rtde_exchange_answered(x, (guint)role->pair), pinfo, &link->reply);
     else
         link->request = rtde_exchange_keep(x, (guint)role->pair, pinfo);
     wmem_tree_insert32_array(x->links, key, link);
@@ -2339,8 +2207,8 @@ rtde_show_exchange(const rtde_state *state, const rtde_layout *layout, proto_tre
     link = (const rtde_link *)wmem_tree_lookup32_array(state->exchanges->links, key);
     if (!link)
         return;
-    exchange_show_request(tree, tvb, at, 1, link->request, hf_rtde[RTDE_HF_RESPONSE_IN]);
-    exchange_show_reply(tree, tvb, at, 1, &link->reply, hf_rtde[RTDE_HF_RESPONSE_TO], hf_rtde[RTDE_HF_TIME]);
+    ur_exchange_show_request(tree, tvb, at, 1, link->request, hf_rtde[RTDE_HF_RESPONSE_IN]);
+    ur_exchange_show_reply(tree, tvb, at, 1, &link->reply, hf_rtde[RTDE_HF_RESPONSE_TO], hf_rtde[RTDE_HF_TIME]);
 }
 
 /* ---- runtime/epan/typed_messages/rtde_dissect.c ---- */
@@ -2482,7 +2350,7 @@ rtde_text_of(tvbuff_t *tvb, int pos, guint n)
 static gboolean
 rtde_labels_shown(void)
 {
-    return tshark_fields_arguments() == NULL;
+    return ur_tshark_fields_arguments() == NULL;
 }
 
 /* The flags of a variable's bits, under its item. */

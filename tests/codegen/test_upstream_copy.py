@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from codegen.epan_c import development_branch
+from codegen.epan_c import SHARED_STEM, development_branch, shared_helpers
 from codegen.kinds.packages import epan
 from tests.codegen.test_generated_is_current import ROOT
 
@@ -39,14 +39,14 @@ def test_the_upstream_copy_reads_no_command_line(tmp_path):
         text = path.read_text()
         assert not [w for w in COMMAND_LINE_WORDS if w in text], path.name
     assert "ur_wanted_upstream.c" in (tmp_path / "epan" / "packet-ur.c").read_text()
-    assert "tshark_fields_upstream.c" in (tmp_path / "epan" / "packet-rtde.c").read_text()
+    assert "tshark_fields_upstream.c" in (tmp_path / "epan" / "packet-ur-common.c").read_text()
 
 
 def test_each_copy_joins_its_runtime():
-    assert "tshark_fields.c" in epan.runtime_code(False) and "ur_wanted.c" in epan.runtime_code(False)
+    assert "ur_wanted.c" in epan.runtime_code(False)
     upstream = epan.runtime_code(True)
-    assert "tshark_fields.c" not in upstream and "ur_wanted.c" not in upstream
-    assert upstream.index("ur_wanted_upstream.c") == epan.runtime_code(False).index("ur_wanted.c") - 1
+    assert "ur_wanted.c" not in upstream
+    assert upstream.index("ur_wanted_upstream.c") == epan.runtime_code(False).index("ur_wanted.c")
     epan.check_runtime(upstream)
     epan.check_runtime(epan.runtime_code(False))
 
@@ -67,13 +67,16 @@ def test_a_runtime_file_no_copy_joins_is_refused(tmp_path, monkeypatch):
 
 
 # Wireshark's development branch's style in the upstream copy only (codegen/epan_c.py)
-# Protocol and field handles; subtree handles keep -1 while the copy is also built against 4.0.
-HANDLE_WITH_INIT = re.compile(r"^static (?:int|gint) [^;(]*\b(?:proto|hf)_\w+(?:\[\w+\])? = (?:-1|\{)", re.M)
+# Protocol, field and subtree handles (the out-of-tree build against 4.0 gives subtree handles -1 as it
+# registers them: dissector/native/subtrees_from_zero.h).
+HANDLE_WITH_INIT = re.compile(r"^static (?:int|gint) [^;(]*\b(?:proto|hf|ett)_\w+(?:\[\w+\])? = (?:-1|\{)", re.M)
 
 
 def test_the_upstream_copy_declares_its_handles_as_the_development_branch_does(tmp_path):
     assert codegen("--target", "epan", "--upstream", "--out", str(tmp_path)).returncode == 0
     for path in sorted((tmp_path / "epan").glob("packet-*.c")):
+        if path.stem == SHARED_STEM:
+            continue
         text = path.read_text()
         proto = path.name.removeprefix("packet-").removesuffix(".c").replace("-", "_")
         assert not HANDLE_WITH_INIT.findall(text), path.name
@@ -87,5 +90,21 @@ def test_development_branch_drops_only_handle_initialisers():
             "static int hf_x[X_COUNT] = {\n    -1, -1,\n    -1,\n};\nstatic int depth = -1;\n    int size = -1;\n"
             "static expert_field ei_x = EI_INIT;\n")
     assert development_branch(text) == (
-        "static int proto_x;\nstatic int hf_a, hf_b;\nstatic gint ett_x = -1;   /* a tree */\n"
+        "static int proto_x;\nstatic int hf_a, hf_b;\nstatic gint ett_x;   /* a tree */\n"
         "static int hf_x[X_COUNT];\nstatic int depth = -1;\n    int size = -1;\nstatic expert_field ei_x = EI_INIT;\n")
+
+
+def test_the_shared_helpers_are_defined_once_and_declared_for_every_dissector(tmp_path):
+    """packet-ur-common.c defines the runtime several dissectors call (not static, named ur_*); each
+    dissector that calls one includes packet-ur-common.h and joins none of it."""
+    own, upstream = shared_helpers(), shared_helpers(upstream=True)
+    assert sorted(own) == sorted(upstream) == [f"epan/{SHARED_STEM}.c", f"epan/{SHARED_STEM}.h"]
+    source = own[f"epan/{SHARED_STEM}.c"]
+    assert re.search(r"^ur_exchange_request_t \*\nur_exchange_request\(packet_info \*pinfo\)$", source, re.M)
+    assert "/proc/self/cmdline" in source and "/proc/self/cmdline" not in upstream[f"epan/{SHARED_STEM}.c"]
+    generated = ROOT / "generated" / "epan"
+    for path in sorted(generated.glob("packet-*.c")):
+        text = path.read_text()
+        assert "---- runtime/epan/common/" not in text or path.stem == SHARED_STEM, path.name
+        calls = re.search(r"\bur_(?:exchange|tshark_fields)_\w+\(", text)
+        assert bool(calls) == (f'#include "{SHARED_STEM}.h"' in text) or path.stem == SHARED_STEM, path.name

@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 import yaml
 
+from codegen.epan_c import SHARED_STEM
 from tests.native import harness
 
 ROOT = harness.ROOT
@@ -31,7 +32,7 @@ def protocol_of(packet_file: Path) -> str:
     return packet_file.stem[len("packet-"):].replace("-", "_")
 
 
-GENERATED = sorted(protocol_of(p) for p in harness.EPAN.glob("packet-*.c"))
+GENERATED = sorted(protocol_of(p) for p in harness.EPAN.glob("packet-*.c") if p.stem != SHARED_STEM)
 # The protocols of the text-line kind: their Lua dissectors guard the runtime with an expert of their own.
 LINES_PROTOCOLS = sorted(path.stem for path in (harness.ROOT / "spec").glob("*.yaml")
                          if (yaml.safe_load(path.read_text(encoding="utf-8")).get("framing") or {}).get("kind") == "lines")
@@ -247,7 +248,9 @@ def test_plugin_c_has_no_plugin_describe_on_4_0(tmp_path):
 
 
 # Everything but the two registration functions is static (what Wireshark's tools/check_static.py
-# asks of a dissector in the tree; it needs a whole Wireshark build, so the objects are read here)
+# asks of a dissector in the tree; it needs a whole Wireshark build, so the objects are read here),
+# but in the helpers the dissectors share (packet-ur-common.c), whose globals are all ur_*, each
+# called by a dissector.
 
 def globals_of_packet_objects(built: harness.Plugin) -> dict[str, list[str]]:
     folder = harness.BUILDS / built.home.name.removeprefix("home-")
@@ -262,8 +265,22 @@ def globals_of_packet_objects(built: harness.Plugin) -> dict[str, list[str]]:
 def registration_only(objects: dict[str, list[str]]) -> None:
     assert objects, "no packet-*.c object in the build"
     for stem, names in objects.items():
+        if stem == SHARED_STEM:
+            continue
         protocol = protocol_of(Path(stem + ".c"))
         assert names == sorted([f"proto_register_{protocol}", f"proto_reg_handoff_{protocol}"]), (stem, names)
+
+
+def shared_helpers_used(folder: Path, objects: dict[str, list[str]]) -> list[str]:
+    """The globals of the shared helpers (ur_*), each called by some dissector of the build."""
+    helpers = objects[SHARED_STEM]
+    assert helpers and all(name.startswith("ur_") for name in helpers), helpers
+    called = set()
+    for obj in folder.rglob("packet-*.c.o"):
+        listing = subprocess.run(["nm", "--undefined-only", str(obj)], capture_output=True, text=True, check=True)
+        called |= {line.split()[-1] for line in listing.stdout.splitlines() if line.strip()}
+    assert set(helpers) <= called, sorted(set(helpers) - called)
+    return helpers
 
 
 def test_fixture_defines_only_its_registration_functions_globally():
@@ -279,4 +296,8 @@ def test_static_check_sees_a_global(tmp_path):
 
 @NO_GENERATED
 def test_generated_define_only_their_registration_functions_globally():
-    registration_only(globals_of_packet_objects(harness.plugin("gcc")))
+    built = harness.plugin("gcc")
+    objects = globals_of_packet_objects(built)
+    registration_only(objects)
+    helpers = shared_helpers_used(harness.BUILDS / built.home.name.removeprefix("home-"), objects)
+    assert "ur_exchange_request" in helpers

@@ -2,13 +2,13 @@
 dissector as an upstream epan/dissectors/packet-*.c reads, the twin of the Lua one
 (generated/lua/<name>.lua): the same protocol, fields, expert infos, preference and ports, from
 one dissector model (dissector.py). The spec's tables as C data, with runtime/c/lines/match.{h,c},
-runtime/c/common/version_text.{h,c}, runtime/epan/common/exchange.c (request/response links) and
-runtime/epan/lines/lines_dissect.c joined in, from the plan."""
+runtime/c/common/version_text.{h,c} and runtime/epan/lines/lines_dissect.c joined in, from the plan;
+request/response links from the helpers every dissector shares (packet-ur-common.h)."""
 from __future__ import annotations
 
 from ... import exchanges
 from ...emit import environment, runtime_section
-from ...epan_c import development_branch
+from ...epan_c import SHARED_HEADER, development_branch
 from ...lang.c import prose, string
 from ...wrap import lines as wrapped
 from .dissector import Dissector, dissector
@@ -20,7 +20,7 @@ FOLDER = "epan"
 # C library's own (runtime/c/lines/, runtime/c/common/); after them, the dissector itself.
 RUNTIME_TYPES = (("c", "common/macros.h"), ("c", "common/version_text.h"), ("c", "common/version_text.c"),
                  ("c", "lines/match.h"), ("c", "lines/match.c"))
-RUNTIME_DISSECTOR = ("common/exchange.c", "lines/lines_dissect.c")
+RUNTIME_DISSECTOR = ("lines/lines_dissect.c",)
 FIELD_TYPES = {"string": ("FT_STRING", "BASE_NONE"), "boolean": ("FT_BOOLEAN", "BASE_NONE")}
 
 
@@ -66,7 +66,7 @@ def view(d: Dissector) -> dict:
         lookup=[str(c.index) for c in p.lookup],
         version_command=f"{p.version_command.index},  /* {p.version_command.command.name} */" if p.version_command
         else "LINES_NONE,",
-        version_prefix=string(m.version_prefix), e_series_from=f"{p.e_series_from}u",
+        shared_header=SHARED_HEADER, version_prefix=string(m.version_prefix), e_series_from=f"{p.e_series_from}u",
         polyscope_x_from=f"{p.polyscope_x_from}u",
         runtime_types="\n\n".join(runtime_section(language, name) for language, name in RUNTIME_TYPES),
         runtime_dissector="\n\n".join(runtime_section(FOLDER, name) for name in RUNTIME_DISSECTOR),

@@ -23,15 +23,16 @@ OUT = "epan/packet-ur.c"
 FOLDER = "epan"
 
 # The hand-written runtime, in the order it is joined: types before the generated tables, the
-# rest after them (runtime/epan/packages/ur_*.c, and runtime/epan/common/tshark_fields*.c, which every
-# kind's dissector joins), after the C library's reader of a version's text (runtime/c/common/).
+# rest after them (runtime/epan/packages/ur_*.c), after the C library's reader of a version's text
+# (runtime/c/common/). ur_wanted.c reads tshark's command line through the helpers every dissector
+# shares (packet-ur-common.h: ur_tshark_fields_arguments()).
 RUNTIME_TYPES = ("ur_types.c",)
 C_RUNTIME = ("common/macros.h", "common/version_text.h", "common/version_text.c")
-RUNTIME_CODE = ("ur_versions.c", "tshark_fields.c", "ur_wanted.c", "ur_items.c", "ur_walk.c",
+RUNTIME_CODE = ("ur_versions.c", "ur_wanted.c", "ur_items.c", "ur_walk.c",
                 "ur_values.c", "ur_info.c", "ur_messages.c", "ur_stream.c", "ur_framing.c")
-# The upstream copy (Wireshark's own tree) reads no command line: it joins no tshark_fields.c, and
-# ur_wanted_upstream.c stands in for ur_wanted.c (every package built), with no ur.named_fields_only.
-UPSTREAM_STAND_INS = {"tshark_fields.c": None, "ur_wanted.c": "ur_wanted_upstream.c"}
+# The upstream copy (Wireshark's own tree) reads no command line: ur_wanted_upstream.c stands in for
+# ur_wanted.c (every package built), with no ur.named_fields_only, and it needs no shared helper.
+UPSTREAM_STAND_INS = {"ur_wanted.c": "ur_wanted_upstream.c"}
 
 # The field type of a field: by its scalar (integer, float, bool), else by its shape.
 FT = {"int8": "FT_INT8", "uint8": "FT_UINT8", "int16": "FT_INT16", "uint16": "FT_UINT16", "int32": "FT_INT32",
@@ -332,8 +333,8 @@ KIND_CONST = {name: f"UR_VK_{name.upper()}" for name in VALUE_KINDS}
 
 
 def runtime_file(name: str) -> str:
-    """Where a runtime file of this kind lives under runtime/epan: its own folder, or the shared one."""
-    return f"common/{name}" if name.startswith("tshark_fields") else f"packages/{name}"
+    """Where a runtime file of this kind lives under runtime/epan."""
+    return f"packages/{name}"
 
 
 def runtime(names: tuple[str, ...]) -> list[str]:
@@ -344,8 +345,7 @@ def runtime_code(upstream: bool) -> tuple[str, ...]:
     """The runtime joined after the tables: urwire's own, or the upstream copy's."""
     if not upstream:
         return RUNTIME_CODE
-    joined = (UPSTREAM_STAND_INS.get(name, name) for name in RUNTIME_CODE)
-    return tuple(name for name in joined if name is not None)
+    return tuple(UPSTREAM_STAND_INS.get(name, name) for name in RUNTIME_CODE)
 
 
 def check_runtime(code: tuple[str, ...]) -> None:
@@ -371,6 +371,7 @@ def render(protocol_plan, banner: list[str], upstream: bool = False) -> dict[str
     model = _Builder(dissector.dissector(protocol_plan)).build()
     ctx = dict(banner=banner, types=runtime(RUNTIME_TYPES),
                code=[runtime_section("c", name) for name in C_RUNTIME] + runtime(code),
-               named_fields_preference=not upstream, any_low=ANY_LOW, any_high=ANY_HIGH, **model)
+               named_fields_preference=not upstream, shared_header=None if upstream else epan_c.SHARED_HEADER,
+               any_low=ANY_LOW, any_high=ANY_HIGH, **model)
     text = env.get_template("packages/packet-ur.c.j2").render(**ctx)
     return {OUT: epan_c.development_branch(text) if upstream else text}

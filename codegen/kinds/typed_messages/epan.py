@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from ... import exchanges
 from ...emit import RUNTIME as RUNTIME_FOLDER, environment, runtime_section
-from ...epan_c import development_branch
+from ...epan_c import SHARED_HEADER, development_branch
 from ...lang import c
 from ...wrap import spread
 from .dissector import TYPE_CODES, Dissector, Exchanges, Field, Message, Step, dissector, exchanges_of
@@ -32,11 +32,10 @@ INTEGER_SCALARS = ("bool", "int8", "uint8", "int16", "uint16", "int32", "uint32"
 # field's unit text has: Wireshark 4.0 writes its own (units_volt: "V") right after the value ("24V").
 # A double's unit is appended to its item's text instead (runtime/epan/typed_messages/rtde_dissect.c), as the Lua
 # dissector does: 4.0 shows no unit string for FT_DOUBLE.
-# Runtime files the dissector shares with others, joined before its own: tshark_fields.c tells a
-# tshark -T fields run, where no item's label is printed. The upstream copy (Wireshark's own tree)
-# reads no command line: tshark_fields_upstream.c tells no run, so every label is whole.
-SHARED_CODE = ("tshark_fields.c", "exchange.c")
-UPSTREAM_SHARED_CODE = ("tshark_fields_upstream.c", "exchange.c")
+# The runtime the dissector shares with others is not joined but called, from packet-ur-common.c
+# (codegen/epan_c.py: the links of request/response tracking, and ur_tshark_fields_arguments(), which
+# tells a tshark -T fields run, where no item's label is printed; the upstream copy reads no command
+# line and tells no run, so every label is whole).
 # The messages the state follows, by the names runtime/lua/typed_messages/state.lua follows too.
 ROLE_OF_MESSAGE = {"request_protocol_version": "RTDE_ROLE_VERSION_REQUEST",
                    "request_protocol_version_reply": "RTDE_ROLE_VERSION_REPLY",
@@ -183,8 +182,8 @@ def view(d: Dissector, upstream: bool) -> dict:
         "n_kinds": len(interface.recipe_kinds),
         "refusals": [c.string(r.word) for r in interface.refusals],
         "runtime_types": _joined(prefix, ".h"),
-        "runtime": [_shared(name) for name in (UPSTREAM_SHARED_CODE if upstream else SHARED_CODE)]
-                   + _joined(prefix, ".c"),
+        "shared_header": SHARED_HEADER,
+        "runtime": _joined(prefix, ".c"),
     }
 
 
@@ -215,10 +214,6 @@ def _flags_after(v, names: list[str]) -> int:
 def _units_of(v, prefix: str) -> str:
     """The array of a named vector's units, one per item."""
     return f"{prefix}_units_{v.name}"
-
-
-def _shared(name: str) -> str:
-    return runtime_section("epan", f"common/{name}")
 
 
 def _joined(prefix: str, suffix: str) -> list[str]:

@@ -1,8 +1,11 @@
+/* <standalone> */
+#include "tshark_fields.h"
+/* </standalone> */
 /* Whether this process is a `tshark -T fields` run, from its command line (/proc/self/cmdline, where
  * the system shows it). tshark 4.0 builds the tree visible for -T fields and primes none of the fields
  * it prints, so a dissector cannot tell from the tree that it prints field values only: no item's
- * label, and no field that no argument names. Joined into the dissectors of urwire's own plugin that
- * use it; Wireshark's copy of them reads no command line and joins tshark_fields_upstream.c instead. */
+ * label, and no field that no argument names. Joined into the packet-ur-common.c of urwire's own
+ * plugin; Wireshark's copy reads no command line and joins tshark_fields_upstream.c instead. */
 
 #define TSHARK_CMDLINE_MAX (1 << 16)    /* a longer command line is read as any other program's */
 
@@ -51,8 +54,8 @@ tshark_fields_run(const GPtrArray *args)
 
 /* The arguments of this process when it is a tshark -T fields run, else NULL: found once, kept for
  * the life of the process. */
-static const GPtrArray *
-tshark_fields_arguments(void)
+const GPtrArray *
+ur_tshark_fields_arguments(void)
 {
     static gboolean found;
     static GPtrArray *fields_run;

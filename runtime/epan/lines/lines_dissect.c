@@ -6,7 +6,7 @@
 #include <epan/expert.h>
 #include <epan/proto_data.h>
 #include "match.c"
-#include "../common/exchange.c"
+#include "../common/exchange.h"
 static int proto_lines = -1;
 static int hf_lines_command = -1, hf_lines_command_name = -1, hf_lines_argument = -1, hf_lines_available = -1;
 static int hf_lines_reply = -1, hf_lines_reply_name = -1, hf_lines_error = -1;
@@ -37,8 +37,8 @@ typedef struct lines_decision {
     int available;                        /* commands: 1 or 0 when the version is known, else -1 */
     const lines_reply_t *reply;           /* replies: the one it is, or NULL */
     bool not_kept;                        /* a command not kept, or a reply to one */
-    exchange_request_t *request;          /* commands: its frame, time and reply's frame */
-    exchange_reply_t link;                /* replies: the command's frame and the time since */
+    ur_exchange_request_t *request;       /* commands: its frame, time and reply's frame */
+    ur_exchange_reply_t link;             /* replies: the command's frame and the time since */
 } lines_decision_t;
 
 /* What a conversation has seen so far, in the first pass. A command that comes when
@@ -127,14 +127,14 @@ static void lines_count_too_long(lines_conversation_t *c, bool requests, packet_
     if (requests) {
         lines_decision_t *d = wmem_new0(wmem_file_scope(), lines_decision_t);
         d->command = LINES_NONE;
-        d->request = exchange_request(pinfo);
+        d->request = ur_exchange_request(pinfo);
         lines_keep(c, d);
     } else {
         lines_decision_t *request;
-        exchange_reply_t link;
+        ur_exchange_reply_t link;
         c->greeted = true;
         request = lines_answered(c, &not_kept);
-        exchange_reply(request != NULL ? request->request : NULL, pinfo, &link);
+        ur_exchange_reply(request != NULL ? request->request : NULL, pinfo, &link);
     }
 }
 
@@ -143,7 +143,7 @@ static lines_decision_t *lines_decide_command(lines_conversation_t *c, packet_in
 {
     lines_decision_t *d = wmem_new0(wmem_file_scope(), lines_decision_t);
     d->command = lines_find_command(&lines_spec, text, len, &d->argument);
-    d->request = exchange_request(pinfo);
+    d->request = ur_exchange_request(pinfo);
     d->not_kept = !lines_keep(c, d);
     d->available = d->command != LINES_NONE && c->has_version
         ? lines_available(&lines_spec, d->command, c->version) : -1;
@@ -169,7 +169,7 @@ static lines_decision_t *lines_decide_reply(lines_conversation_t *c, packet_info
     }
     request = lines_answered(c, &d->not_kept);
     d->command = request != NULL ? request->command : LINES_NONE;
-    exchange_reply(request != NULL ? request->request : NULL, pinfo, &d->link);
+    ur_exchange_reply(request != NULL ? request->request : NULL, pinfo, &d->link);
     if (d->command != LINES_NONE && d->command == lines_spec.version_command) {
         uint64_t version;
         if (lines_version_in(&lines_spec, text, len, &version)) {
@@ -215,7 +215,7 @@ static void lines_show_command(proto_tree *tree, packet_info *pinfo, tvbuff_t *t
     }
     if (d->not_kept)
         expert_add_info(pinfo, item, &ei_lines_not_kept);
-    exchange_show_request(line, tvb, at, span, d->request, hf_lines_response_in);
+    ur_exchange_show_request(line, tvb, at, span, d->request, hf_lines_response_in);
     proto_item_append_text(item, ": %s", text);
 }
 
@@ -240,7 +240,7 @@ static void lines_show_reply(proto_tree *tree, packet_info *pinfo, tvbuff_t *tvb
         expert_add_info(pinfo, error, &ei_lines_error_reply);
     if (d->not_kept)
         expert_add_info(pinfo, item, &ei_lines_reply_not_kept);
-    exchange_show_reply(line, tvb, at, span, &d->link, hf_lines_response_to, hf_lines_time);
+    ur_exchange_show_reply(line, tvb, at, span, &d->link, hf_lines_response_to, hf_lines_time);
     proto_item_append_text(item, ": %s", text);
 }
 

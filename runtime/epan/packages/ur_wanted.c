@@ -85,7 +85,7 @@ ur_wanted(void)
     static ur_wanted_names wanted;
     if (!wanted.found) {
         wanted.found = TRUE;
-        wanted.names = ur_named_fields(tshark_fields_arguments());
+        wanted.names = ur_named_fields(ur_tshark_fields_arguments());
         wanted.parts = g_hash_table_new(g_direct_hash, g_direct_equal);
     }
     return &wanted;

@@ -136,7 +136,7 @@ rtde_text_of(tvbuff_t *tvb, int pos, guint n)
 static gboolean
 rtde_labels_shown(void)
 {
-    return tshark_fields_arguments() == NULL;
+    return ur_tshark_fields_arguments() == NULL;
 }
 
 /* The flags of a variable's bits, under its item. */
