@@ -96,6 +96,7 @@ def in_tree(tree: Path, code: str) -> str:
     return done.stdout
 
 
+@pytest.mark.deep          # about a minute: `make test-deep` walks the whole checklist
 def test_the_checklist_with_a_made_up_5_27(tree):
     # 1. The spec: a field for the e-Series only, an RTDE variable, a dashboard command.
     primary = tree / "spec" / "ur_primary.yaml"

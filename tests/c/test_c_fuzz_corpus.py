@@ -24,7 +24,7 @@ def found(harness: str) -> list[bytes]:
     return [p.read_bytes() for p in sorted(folder.iterdir())] if folder.is_dir() else []
 
 
-@pytest.mark.parametrize("harness", ["urwire", "json"])
+@pytest.mark.parametrize("harness", ["urwire", pytest.param("json", marks=pytest.mark.deep)])   # json: test-deep
 def test_the_kept_corpus_and_seeds_pass_their_harness(harness, tmp_path):
     """The harness builds as `make fuzz` builds it, and runs once over every kept input and seed
     (-runs=0: no fuzzing), with the checks it makes on every input."""

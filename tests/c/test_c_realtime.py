@@ -147,6 +147,7 @@ def test_after_a_size_that_cannot_frame_a_packet_both_go_on_at_the_next_one(tmp_
     assert status == 1
 
 
+@pytest.mark.deep          # the whole kept corpus under the sanitizers: `make test-deep`
 def test_the_kept_corpus_passes_the_fuzz_harness():
     if shutil.which("clang") is None:
         pytest.fail("clang is not installed (scripts/setup.sh installs it)")

@@ -195,6 +195,7 @@ def decoded_additional_info(tmp_path, versions: dict, body: bytes, version: str)
         sys.modules.update(saved)
 
 
+@pytest.mark.deep          # generates and builds a whole parser: `make test-deep`
 def test_a_10x_stream_keeps_its_layout_when_the_change_ends_with_the_e_series(tmp_path):
     (layout,) = [lay for lay in compile_text(SPEC_TEXT).all_layouts() if lay.name == "additional_info"]
     today = bytes(layout.struct.at((10, 13, 0)).fixed_size)

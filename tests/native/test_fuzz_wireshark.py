@@ -34,10 +34,11 @@ def fixture_capture(path: Path, kind: int) -> Path:
     return capture.write(path, capture.robot_session(messages, port=40999))
 
 
+@pytest.mark.deep          # every interface's kept corpus through tshark, over a minute: `make test-deep`
 @pytest.mark.parametrize("native", ["gcc", "asan"])
 def test_the_kept_corpora_replay_without_a_failure(native, tmp_path):
     """Every interface's kept mutated captures, read once by each dissector: no crash, dissector
-    bug, Lua error or (asan, in make test-deep) sanitizer report; their malformed packets are
+    bug, Lua error or (asan) sanitizer report; their malformed packets are
     counted, per interface."""
     assert all(len(fuzz_wireshark.kept_captures(name)) >= 2 for name in fuzz_wireshark.INTERFACES)
     result = fuzz("--replay", "--native", native, "--epan-dir", str(EPAN), "--out", str(tmp_path / "out"))

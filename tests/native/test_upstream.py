@@ -170,7 +170,7 @@ def has_epan_target() -> bool:
     return "epan" in TARGETS
 
 
-@pytest.mark.parametrize("name", ["packet-ur.c", "packet-ur-dashboard.c"])
+@pytest.mark.parametrize("name", ["packet-ur.c", pytest.param("packet-ur-dashboard.c", marks=pytest.mark.deep)])
 def test_the_patch_regenerates_its_own_dissectors(tmp_path, name):
     """tools/urwire2wireshark.py --check, in the laid-out tree, finds the dissectors current; after
     an edit of one (an upstream copy that differs from urwire's, or one that does not) it finds it

@@ -28,6 +28,7 @@ def test_bindings_import_nothing_from_outside_the_standard_library():
     subprocess.run([sys.executable, "-c", code], check=True, env=env)
 
 
+@pytest.mark.deep          # a whole pip install, about a minute: `make test-deep`
 def test_pip_install_gives_the_package_its_types_and_command(tmp_path):
     target = tmp_path / "site"
     subprocess.run([sys.executable, "-m", "pip", "install", "-q", "--no-deps",
