@@ -22,6 +22,7 @@ from .reading import CHUNK, capture_records, input_kind, ports_read, records_of_
 from .generated.spec import DEFAULT_VERSION, PORTS
 from .data import export, plot, spark
 from .live import listen, serve
+from . import streams
 
 PROGRESS_MIN_BYTES = 8 << 20
 
@@ -63,7 +64,7 @@ def build_parser() -> argparse.ArgumentParser:
                           f"each interface's own ports, the primary's {' '.join(map(str, PORTS))} among them)")
     dec.add_argument("--no-progress", action="store_true", help="never show a progress bar")
     dec.set_defaults(run=decode_command)
-    for tool in (serve, listen, export, plot, spark):
+    for tool in (serve, listen, export, plot, spark, streams):
         tool.add_parser(sub)
     return parser
 
@@ -126,7 +127,7 @@ def _write_json_lines(fh: BinaryIO, hint, advance: Callable[[int], None], out) -
 UNCLAIMED_NAMED = 10     # conversations named in the line that says what no interface read
 
 
-def _say_unclaimed(unclaimed: Optional[dict]) -> None:
+def say_unclaimed(unclaimed: Optional[dict]) -> None:
     """Once, on stderr: the conversations of a capture that no interface reads."""
     if not unclaimed:
         return
@@ -166,7 +167,7 @@ def decode_command(args: argparse.Namespace) -> int:
                 out.write(render(record))
                 out.write("\n")
         out.flush()
-        _say_unclaimed(getattr(records, "unclaimed", None))
+        say_unclaimed(getattr(records, "unclaimed", None))
     except BrokenPipeError:
         # The reader went away (| head): stop quietly, as command-line tools do.
         devnull = os.open(os.devnull, os.O_WRONLY)

@@ -4,8 +4,9 @@
                                               one fuzz seed per vector (and per message) in DIR
     python3 tests/c/seeds.py --stream FILE    a raw stream: every conformance message, in order
     python3 tests/c/seeds.py --capture PCAP FILE
-                                              the robot->client bytes of the first TCP stream
-                                              of a .pcap/.pcapng (urwire-decode reads raw streams)
+                                              the robot->client bytes of the first primary
+                                              stream of a .pcap/.pcapng (`urwire streams` writes
+                                              every conversation's)
 
 A fuzz input is one control byte (software version and chunking, see fuzz_urwire.c and
 tests/tools/fuzz_inputs.py), then the stream. Besides the vectors, the seeds hold long messages at and around the 1 MiB length
@@ -101,16 +102,18 @@ def stream() -> bytes:
 
 
 def capture_stream(pcap: Path) -> bytes:
-    """The first robot->client stream of a capture, reassembled by the Python bindings."""
-    sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python")]
-    from urwire.capture import robot_streams
-    from urwire.generated.spec import PORTS
+    """The first robot->client stream of the primary interface in a capture, as `urwire streams`
+    writes it."""
+    from urwire.reading import ports_read
+    from urwire.streams import payloads
 
     first, out = None, bytearray()
     with pcap.open("rb") as fh:
-        for key, data, _ in robot_streams(fh, set(PORTS)):
-            first = first or key
-            if key == first and data:
+        for direction, data in payloads(fh, ports_read("ur")):
+            if direction is None or direction.direction != "from_robot" or not isinstance(data, bytes):
+                continue
+            first = first or direction
+            if direction == first:
                 out += data
     return bytes(out)
 

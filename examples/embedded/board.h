@@ -1,0 +1,19 @@
+/* What the firmwares of examples/embedded take from their board: the bytes the network stack
+ * received, a way to send, and somewhere to put what they read. board_target.c is a device's
+ * (no stdio: the bytes are in a buffer that the network or a debugger fills); board_host.c
+ * reads standard input and prints, so that the tests run the same firmwares on the build
+ * machine (tests/c/test_embedded.py). */
+#ifndef BOARD_H
+#define BOARD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* Up to cap received bytes into out; 0 when the stream has ended. */
+size_t board_receive(uint8_t *out, size_t cap);
+/* Bytes for the robot (an RTDE client's requests). */
+void board_send(const uint8_t *bytes, size_t n);
+/* One value the firmware read, by name. */
+void board_report(const char *name, double value);
+
+#endif
