@@ -5,7 +5,7 @@
 # (scripts/bench_embedded.py); tests/c/test_embedded.py checks that the table is the
 # measurement's and that the measurement is of today's code.
 
-EMBEDDED_SUBSET ?= ur:joint_data,tool_data
+EMBEDDED_SUBSET ?= ur:robot_state.joint_data,robot_state.tool_data
 
 .PHONY: bench-embedded embedded-table
 
