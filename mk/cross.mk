@@ -23,10 +23,10 @@ CROSS_FLAGS_rv32imc := -march=rv32imc -mabi=ilp32 --specs=picolibc.specs
 # The programs that run the golden vectors (tests/c/test_cross.py): urwire-decode's main run once
 # per vector in one process (tests/c/decode_driver.c), built statically for Linux on s390x
 # (big-endian) and on 32-bit ARM (no unaligned access emitted), run under qemu-s390x and qemu-arm;
-# and on a Cortex-M4F (QEMU's mps2-an386 board), where newlib's
+# and on a Cortex-M4F (QEMU's mps2-an386 board, every unaligned access trapped), where newlib's
 # semihosting (rdimon) gives the harness its stdin, files and stdout, never the library. The
-# board's 16 MiB PSRAM (at 0x21000000) holds the program and its buffers, with RTDE kept to 64 recipes
-# (RUN_DEFINES: the x86 build it is compared with takes them too).
+# board's 16 MiB PSRAM (at 0x21000000) holds the program and its buffers, with RTDE kept to 64
+# recipes (RUN_DEFINES: the x86 build it is compared with takes them too).
 # RUN_CC_<run>, RUN_FLAGS_<run>, RUN_DEFINES_<run>, RUN_START_<run> (the harness's start code)
 # and RUN_QEMU_<run> (the command line the program follows).
 CROSS_RUNS := s390x armhf mps2-an386
@@ -49,7 +49,8 @@ RUN_QEMU_mps2-an386 := qemu-system-arm -M mps2-an386 -nographic -monitor none -s
 ## cross: every interface's C for Cortex-M0+, M4F, M7 and RV32IMC at each of CROSS_LEVELS
 ## (-Os -O2), -Werror: CROSS_OUT/<cpu>/<level without its dash>/<interface>.o
 CROSS_NAMES := $(patsubst generated/c/%.c,%,$(C_SOURCES))
-cross: $(foreach cpu,$(CROSS_CPUS),$(foreach level,$(CROSS_LEVELS:-%=%),$(CROSS_NAMES:%=$(CROSS_OUT)/$(cpu)/$(level)/%.o)))
+cross: $(foreach cpu,$(CROSS_CPUS),$(foreach level,$(CROSS_LEVELS:-%=%),\
+	$(CROSS_NAMES:%=$(CROSS_OUT)/$(cpu)/$(level)/%.o)))
 
 define CROSS_RULE
 $(CROSS_OUT)/$(1)/$(2:-%=%)/%.o: generated/c/%.c $(wildcard generated/c/*.h)
@@ -62,7 +63,8 @@ $(foreach cpu,$(CROSS_CPUS),$(foreach level,$(CROSS_LEVELS),$(eval $(call CROSS_
 ## `make cross`, "run NAME CC FLAGS | DEFINES | START | QEMU" for the QEMU runs, "common FLAGS"
 cross-table:
 	@$(foreach cpu,$(CROSS_CPUS),echo 'cpu $(cpu) $(CROSS_CC_$(cpu)) $(CROSS_FLAGS_$(cpu))';)
-	@$(foreach run,$(CROSS_RUNS),echo 'run $(run) $(RUN_CC_$(run)) $(RUN_FLAGS_$(run)) | $(RUN_DEFINES_$(run)) | $(RUN_START_$(run)) | $(RUN_QEMU_$(run))';)
+	@$(foreach run,$(CROSS_RUNS),echo 'run $(run) $(RUN_CC_$(run)) $(RUN_FLAGS_$(run)) | $(RUN_DEFINES_$(run)) \
+		| $(RUN_START_$(run)) | $(RUN_QEMU_$(run))';)
 	@echo 'common $(CROSS_COMMON)'
 
 DEEP_TESTS += cross
