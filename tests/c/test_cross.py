@@ -7,11 +7,13 @@ The compilers, flags and QEMU command lines are mk/cross.mk's (`make cross-table
 missing toolchain skips, saying which; in CI (CI=true) it fails. `make test` compiles one object
 per interface and CPU at -Os and runs every vector on each CPU built at -Os (QEMU takes under a
 second for all of them; the builds take the time); `make test-deep` compiles the whole matrix
-(`make cross`) and runs the vectors again built at -O2.
+(`make cross`), runs the vectors again built at -O2, and 530 sessions no vector holds (fuzz
+corpora, their mutants, random robot states) at -Os and -O2.
 """
 from __future__ import annotations
 
 import os
+import random
 import shutil
 import subprocess
 from dataclasses import dataclass
@@ -133,6 +135,36 @@ def vector_requests(folder: Path) -> list[Request]:
     return [r for group in groups for r in group]
 
 
+def hostile_requests(folder: Path) -> list[Request]:
+    """Sessions no vector holds, for `make test-deep`: each interface's kept differential-fuzz
+    corpus and as many seeded mutants of it (tests/fuzz/diff_sessions.py), and random robot
+    states of every software version of the primary interface (tests/tools/valid.py), whole and
+    cut short."""
+    from tests.fuzz.diff_sessions import INTERFACES, Mutator, kept, load
+    from tests.fuzz.fuzz_diff import command_args
+    from tests.tools import valid
+
+    folder.mkdir(parents=True, exist_ok=True)
+    requests = []
+    for interface in INTERFACES:
+        rng = random.Random(interface)
+        pool = [load(interface, raw) for raw in kept(interface)]
+        mutate = Mutator(interface, rng)
+        for i, session in enumerate(pool + [mutate(rng.choice(pool), pool) for _ in pool]):
+            stem = folder / f"{interface}~{i}"
+            robot, client = stem.with_suffix(".robot"), stem.with_suffix(".client")
+            robot.write_bytes(session.stream(True))
+            client.write_bytes(session.stream(False))
+            requests.append(Request(f"hostile/{interface}/{i}", command_args(interface, session, robot, client)))
+    rng = random.Random("ur")
+    for version in valid.versions():
+        data = valid.session(rng, version, 20)
+        for cut in (len(data), rng.randrange(len(data))):
+            name = f"hostile/ur/{'.'.join(map(str, version))}/{cut}"
+            requests.append(Request(name, _files(folder, name, data[:cut], None)))
+    return requests
+
+
 def batch(requests: list[Request]) -> bytes:
     """tests/c/decode_driver.c's input: each request's argument count, then each argument."""
     out = bytearray()
@@ -187,25 +219,23 @@ def vectors(tmp_path_factory) -> Path:
 _X86: dict[tuple, dict[str, bytes]] = {}
 
 
-def x86_answers(run: Run, vectors: Path, folder: Path) -> dict[str, bytes]:
-    """The answers of the x86 build (gcc -O2, with the run's defines) to every vector."""
-    key = tuple(run.defines)
+def x86_answers(run: Run, requests: list[Request], folder: Path) -> dict[str, bytes]:
+    """The answers of the x86 build (gcc -O2, with the run's defines) to these requests."""
+    key = (tuple(run.defines), tuple(r.name for r in requests))
     if key not in _X86:
-        requests = vector_requests(vectors)
         # With no defines, the gcc build of the other C tests, its objects shared with them.
         program = (build_runner(Run("x86", "gcc", [], run.defines, [], []), "-O2", folder / "x86") if run.defines
                    else build_decode_driver("gcc"))
-        _X86[key] = run_batch([str(program)], requests, 120)
+        _X86[key] = run_batch([str(program)], requests, 300)
         refused = [name for name, text in _X86[key].items() if not text.endswith((b"=0\n", b"=1\n"))]
         assert not refused, f"urwire-decode refused these command lines: {refused}"
     return _X86[key]
 
 
-def compare(run: Run, level: str, vectors: Path, folder: Path) -> None:
-    requests = vector_requests(vectors)
+def compare(run: Run, level: str, requests: list[Request], folder: Path) -> None:
     program = build_runner(run, level, folder)
-    expected = x86_answers(run, vectors, folder)
-    got = run_batch([*run.qemu, str(program)], requests, 300)
+    expected = x86_answers(run, requests, folder)
+    got = run_batch([*run.qemu, str(program)], requests, 600)
     differ = [r.name for r in requests if got[r.name] != expected[r.name]]
     assert not differ, (f"{run.name} {level}: {len(differ)} of {len(requests)} differ from x86, first "
                         f"{differ[0]}:\n{got[differ[0]].decode(errors='replace')[:2000]}\nx86:\n"
@@ -215,7 +245,7 @@ def compare(run: Run, level: str, vectors: Path, folder: Path) -> None:
 @pytest.mark.parametrize("run", sorted(RUNS))
 def test_every_vector_gives_x86s_bytes_at_os(run, vectors, tmp_path):
     """Each run takes a second or less under QEMU: its build is most of the test's time."""
-    compare(RUNS[run], "-Os", vectors, tmp_path)
+    compare(RUNS[run], "-Os", vector_requests(vectors), tmp_path)
 
 
 def test_the_cortex_m_board_traps_an_unaligned_load(tmp_path):
@@ -237,6 +267,9 @@ def test_the_cortex_m_board_traps_an_unaligned_load(tmp_path):
 
 
 @pytest.mark.deep
+@pytest.mark.parametrize("level", ["-Os", "-O2"])
 @pytest.mark.parametrize("run", sorted(RUNS))
-def test_every_vector_gives_x86s_bytes_at_o2(run, vectors, tmp_path):
-    compare(RUNS[run], "-O2", vectors, tmp_path)
+def test_hostile_sessions_give_x86s_bytes(run, level, vectors, tmp_path):
+    """The vectors again at -O2, and sessions no vector holds at both levels."""
+    requests = hostile_requests(vectors / "hostile")
+    compare(RUNS[run], level, requests + (vector_requests(vectors) if level == "-O2" else []), tmp_path)
