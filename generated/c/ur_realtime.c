@@ -1145,7 +1145,7 @@ size_t ur_realtime_layout_fields(ur_realtime_layout layout, const ur_realtime_sl
 
 const ur_realtime_field_info *ur_realtime_field_info_of(ur_realtime_field field)
 {
-    return field >= 0 && field < UR_REALTIME_FIELD_COUNT ? &ur_realtime__fields[field] : NULL;
+    return (unsigned)field < UR_REALTIME_FIELD_COUNT ? &ur_realtime__fields[field] : NULL;
 }
 
 bool ur_realtime_has(const ur_realtime_packet *p, ur_realtime_field field)
@@ -1160,7 +1160,7 @@ bool ur_realtime_has(const ur_realtime_packet *p, ur_realtime_field field)
 
 const double *ur_realtime_values(const ur_realtime_packet *p, ur_realtime_field field)
 {
-    if (field < 0 || field >= UR_REALTIME_FIELD_COUNT)
+    if ((unsigned)field >= UR_REALTIME_FIELD_COUNT)
         return NULL;
     return (const double *)(const void *)((const unsigned char *)p + ur_realtime__fields[field].member);
 }
@@ -1170,7 +1170,7 @@ const char *ur_realtime_enum_name(const ur_realtime_packet *p, ur_realtime_field
     const ur_realtime__names *table;
     size_t i;
     int which;
-    if (p->form < 0 || field < 0 || field >= UR_REALTIME_FIELD_COUNT)
+    if (p->form < 0 || (unsigned)field >= UR_REALTIME_FIELD_COUNT)
         return NULL;
     which = ur_realtime__fields[field].enum_id;
     if (which < 0)

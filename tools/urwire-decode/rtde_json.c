@@ -229,7 +229,7 @@ int rtde_json_record(FILE *out, const envelope *env, const rtde_message *m, rtde
 
 /* The protocol's own limits: the command keeps every recipe a connection can make, as the Python
  * decoder does. */
-static const rtde_limits protocol_limits = {RTDE_PROTOCOL_RECIPES, RTDE_PROTOCOL_VARIABLES, RTDE_PROTOCOL_NAMES};
+static const rtde_limits protocol_limits = {RTDE_JSON_RECIPES, RTDE_JSON_VARIABLES, RTDE_JSON_NAMES};
 
 void rtde_json_stream_init(rtde_json_stream *s)
 {

@@ -13,8 +13,14 @@
 #include "rtde_stream.h"
 
 /* The storage of a connection's recipes and pending names at the protocol's own limits (67 MB):
- * every recipe a robot and a client can make is kept, as the Python decoder keeps them. */
-#define RTDE_JSON_STORAGE RTDE_STORAGE_SIZE(RTDE_PROTOCOL_RECIPES, RTDE_PROTOCOL_VARIABLES, RTDE_PROTOCOL_NAMES)
+ * every recipe a robot and a client can make is kept, as the Python decoder keeps them. A test
+ * harness on a board with less RAM defines smaller limits (RTDE_JSON_RECIPES and the others). */
+#ifndef RTDE_JSON_RECIPES
+#define RTDE_JSON_RECIPES RTDE_PROTOCOL_RECIPES
+#define RTDE_JSON_VARIABLES RTDE_PROTOCOL_VARIABLES
+#define RTDE_JSON_NAMES RTDE_PROTOCOL_NAMES
+#endif
+#define RTDE_JSON_STORAGE RTDE_STORAGE_SIZE(RTDE_JSON_RECIPES, RTDE_JSON_VARIABLES, RTDE_JSON_NAMES)
 
 /* One connection: its RTDE state and both directions' framing (runtime/c/typed_messages/rtde_stream.h). Large:
  * static, where only the pages a connection uses are ever touched. */
