@@ -222,10 +222,10 @@ typedef struct urwire__recognised {
 
 /* The forms of one type code, in a table of all the forms of its type byte (count 0: the code
  * has no layout), and the sizes that recognise one of them. */
-typedef struct urwire__forms {
+typedef struct urwire__forms {       /* the pointers first: no padding between the counts */
     const urwire__form *forms;
-    uint8_t count;
     const urwire__recognised *by_length;
+    uint8_t count;
     uint8_t nby_length;
 } urwire__forms;
 
@@ -306,12 +306,12 @@ typedef enum urwire__item {
     URWIRE__ITEM_F32
 } urwire__item;
 
-typedef struct urwire__value_entry {
-    uint8_t code;
-    urwire_value_kind kind;
+typedef struct urwire__value_entry {   /* widest first: no padding between the bytes */
     const char *name;
+    urwire_value_kind kind;
     urwire__layout layout;
     urwire__item item;
+    uint8_t code;
     uint8_t count;                  /* array items */
 } urwire__value_entry;
 
@@ -1690,41 +1690,41 @@ const char *urwire_value_type_name(urwire_sw_version version, int64_t code)
 
 /* Value types of software up to 3.2. */
 static const urwire__value_entry urwire__values_up_to_3_2[] = {
-    {0, URWIRE_VALUE_NONE, "NONE", URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 1},
-    {3, URWIRE_VALUE_STRING, "STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
-    {4, URWIRE_VALUE_LIST, "LIST", URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 1},
-    {9, URWIRE_VALUE_POSE, "POSE", URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 6},
-    {11, URWIRE_VALUE_BOOL, "BOOL", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 1},
-    {12, URWIRE_VALUE_NUM, "NUM", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
-    {13, URWIRE_VALUE_INT, "INT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 1},
-    {14, URWIRE_VALUE_FLOAT, "FLOAT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
+    {"NONE", URWIRE_VALUE_NONE, URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 0, 1},
+    {"STRING", URWIRE_VALUE_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 3, 1},
+    {"LIST", URWIRE_VALUE_LIST, URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 4, 1},
+    {"POSE", URWIRE_VALUE_POSE, URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 9, 6},
+    {"BOOL", URWIRE_VALUE_BOOL, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 11, 1},
+    {"NUM", URWIRE_VALUE_NUM, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 12, 1},
+    {"INT", URWIRE_VALUE_INT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 13, 1},
+    {"FLOAT", URWIRE_VALUE_FLOAT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 14, 1},
 };
 
 /* Value types of software 3.3 to 5.8. */
 static const urwire__value_entry urwire__values_3_3_to_5_8[] = {
-    {0, URWIRE_VALUE_NONE, "NONE", URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 1},
-    {3, URWIRE_VALUE_CONST_STRING, "CONST_STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
-    {4, URWIRE_VALUE_VAR_STRING, "VAR_STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
-    {5, URWIRE_VALUE_LIST, "LIST", URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 1},
-    {10, URWIRE_VALUE_POSE, "POSE", URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 6},
-    {12, URWIRE_VALUE_BOOL, "BOOL", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 1},
-    {13, URWIRE_VALUE_NUM, "NUM", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
-    {14, URWIRE_VALUE_INT, "INT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 1},
-    {15, URWIRE_VALUE_FLOAT, "FLOAT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
+    {"NONE", URWIRE_VALUE_NONE, URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 0, 1},
+    {"CONST_STRING", URWIRE_VALUE_CONST_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 3, 1},
+    {"VAR_STRING", URWIRE_VALUE_VAR_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 4, 1},
+    {"LIST", URWIRE_VALUE_LIST, URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 5, 1},
+    {"POSE", URWIRE_VALUE_POSE, URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 10, 6},
+    {"BOOL", URWIRE_VALUE_BOOL, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 12, 1},
+    {"NUM", URWIRE_VALUE_NUM, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 13, 1},
+    {"INT", URWIRE_VALUE_INT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 14, 1},
+    {"FLOAT", URWIRE_VALUE_FLOAT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 15, 1},
 };
 
 /* Value types of software 5.9 and later. */
 static const urwire__value_entry urwire__values_5_9_on[] = {
-    {0, URWIRE_VALUE_NONE, "NONE", URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 1},
-    {3, URWIRE_VALUE_CONST_STRING, "CONST_STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
-    {4, URWIRE_VALUE_VAR_STRING, "VAR_STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
-    {12, URWIRE_VALUE_POSE, "POSE", URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 6},
-    {13, URWIRE_VALUE_BOOL, "BOOL", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 1},
-    {14, URWIRE_VALUE_NUM, "NUM", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
-    {15, URWIRE_VALUE_INT, "INT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 1},
-    {16, URWIRE_VALUE_FLOAT, "FLOAT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
-    {17, URWIRE_VALUE_LIST, "LIST", URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 1},
-    {18, URWIRE_VALUE_MATRIX, "MATRIX", URWIRE__LAYOUT_MATRIX, URWIRE__ITEM_NONE, 1},
+    {"NONE", URWIRE_VALUE_NONE, URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 0, 1},
+    {"CONST_STRING", URWIRE_VALUE_CONST_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 3, 1},
+    {"VAR_STRING", URWIRE_VALUE_VAR_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 4, 1},
+    {"POSE", URWIRE_VALUE_POSE, URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 12, 6},
+    {"BOOL", URWIRE_VALUE_BOOL, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 13, 1},
+    {"NUM", URWIRE_VALUE_NUM, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 14, 1},
+    {"INT", URWIRE_VALUE_INT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 15, 1},
+    {"FLOAT", URWIRE_VALUE_FLOAT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 16, 1},
+    {"LIST", URWIRE_VALUE_LIST, URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 17, 1},
+    {"MATRIX", URWIRE_VALUE_MATRIX, URWIRE__LAYOUT_MATRIX, URWIRE__ITEM_NONE, 18, 1},
 };
 
 /* Each version's table: the first whose range holds it, else the last. */
@@ -5739,35 +5739,35 @@ static const urwire__recognised urwire__package_by_length[] = {
 /* The forms of each sub-package type with a layout, by code. */
 static const urwire__forms urwire__package_forms[] = {
     [URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA] =
-        {&urwire__package_form_list[0], 4, &urwire__package_by_length[0], 4},
+        {&urwire__package_form_list[0], &urwire__package_by_length[0], 4, 4},
     [URWIRE_PACKAGE_TYPE_JOINT_DATA] =
-        {&urwire__package_form_list[4], 1, &urwire__package_by_length[4], 1},
+        {&urwire__package_form_list[4], &urwire__package_by_length[4], 1, 1},
     [URWIRE_PACKAGE_TYPE_TOOL_DATA] =
-        {&urwire__package_form_list[5], 1, &urwire__package_by_length[5], 1},
+        {&urwire__package_form_list[5], &urwire__package_by_length[5], 1, 1},
     [URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA] =
-        {&urwire__package_form_list[6], 5, &urwire__package_by_length[6], 9},
+        {&urwire__package_form_list[6], &urwire__package_by_length[6], 5, 9},
     [URWIRE_PACKAGE_TYPE_CARTESIAN_INFO] =
-        {&urwire__package_form_list[11], 2, &urwire__package_by_length[15], 2},
+        {&urwire__package_form_list[11], &urwire__package_by_length[15], 2, 2},
     [URWIRE_PACKAGE_TYPE_KINEMATICS_INFO] =
-        {&urwire__package_form_list[13], 2, &urwire__package_by_length[17], 2},
+        {&urwire__package_form_list[13], &urwire__package_by_length[17], 2, 2},
     [URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA] =
-        {&urwire__package_form_list[15], 3, &urwire__package_by_length[19], 3},
+        {&urwire__package_form_list[15], &urwire__package_by_length[19], 3, 3},
     [URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA] =
-        {&urwire__package_form_list[18], 1, &urwire__package_by_length[22], 1},
+        {&urwire__package_form_list[18], &urwire__package_by_length[22], 1, 1},
     [URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO] =
-        {&urwire__package_form_list[19], 4, &urwire__package_by_length[23], 4},
+        {&urwire__package_form_list[19], &urwire__package_by_length[23], 4, 4},
     [URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA] =
-        {&urwire__package_form_list[23], 1, &urwire__package_by_length[27], 1},
+        {&urwire__package_form_list[23], &urwire__package_by_length[27], 1, 1},
     [URWIRE_PACKAGE_TYPE_SAFETY_DATA] =
-        {&urwire__package_form_list[24], 1, &urwire__package_by_length[28], 0},
+        {&urwire__package_form_list[24], &urwire__package_by_length[28], 1, 0},
     [URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO] =
-        {&urwire__package_form_list[25], 1, &urwire__package_by_length[28], 1},
+        {&urwire__package_form_list[25], &urwire__package_by_length[28], 1, 1},
     [URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO] =
-        {&urwire__package_form_list[26], 1, &urwire__package_by_length[29], 1},
+        {&urwire__package_form_list[26], &urwire__package_by_length[29], 1, 1},
     [URWIRE_PACKAGE_TYPE_SINGULARITY_INFO] =
-        {&urwire__package_form_list[27], 1, &urwire__package_by_length[30], 1},
+        {&urwire__package_form_list[27], &urwire__package_by_length[30], 1, 1},
     [URWIRE_PACKAGE_TYPE_PAYLOAD_INFO] =
-        {&urwire__package_form_list[28], 1, &urwire__package_by_length[31], 1},
+        {&urwire__package_form_list[28], &urwire__package_by_length[31], 1, 1},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -5912,31 +5912,31 @@ static const urwire__recognised urwire__robot_message_by_length[] = {
 /* The forms of each robot_message subtype with a layout, by code. */
 static const urwire__forms urwire__robot_message_forms[] = {
     [URWIRE_ROBOT_MESSAGE_TYPE_VERSION] =
-        {&urwire__robot_message_form_list[0], 2, &urwire__robot_message_by_length[0], 0},
+        {&urwire__robot_message_form_list[0], &urwire__robot_message_by_length[0], 2, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE] =
-        {&urwire__robot_message_form_list[2], 2, &urwire__robot_message_by_length[0], 1},
+        {&urwire__robot_message_form_list[2], &urwire__robot_message_by_length[0], 2, 1},
     [URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE] =
-        {&urwire__robot_message_form_list[4], 2, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[4], &urwire__robot_message_by_length[1], 2, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_KEY] =
-        {&urwire__robot_message_form_list[6], 1, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[6], &urwire__robot_message_by_length[1], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS] =
-        {&urwire__robot_message_form_list[7], 1, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[7], &urwire__robot_message_by_length[1], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_POPUP] =
-        {&urwire__robot_message_form_list[8], 2, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[8], &urwire__robot_message_by_length[1], 2, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL] =
-        {&urwire__robot_message_form_list[10], 1, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[10], &urwire__robot_message_by_length[1], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR] =
-        {&urwire__robot_message_form_list[11], 1, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[11], &urwire__robot_message_by_length[1], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO] =
-        {&urwire__robot_message_form_list[12], 1, &urwire__robot_message_by_length[1], 1},
+        {&urwire__robot_message_form_list[12], &urwire__robot_message_by_length[1], 1, 1},
     [URWIRE_ROBOT_MESSAGE_TYPE_UNDOCUMENTED_12] =
-        {&urwire__robot_message_form_list[13], 1, &urwire__robot_message_by_length[2], 0},
+        {&urwire__robot_message_form_list[13], &urwire__robot_message_by_length[2], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE] =
-        {&urwire__robot_message_form_list[14], 1, &urwire__robot_message_by_length[2], 0},
+        {&urwire__robot_message_form_list[14], &urwire__robot_message_by_length[2], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_TEXT] =
-        {&urwire__robot_message_form_list[15], 1, &urwire__robot_message_by_length[2], 0},
+        {&urwire__robot_message_form_list[15], &urwire__robot_message_by_length[2], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION] =
-        {&urwire__robot_message_form_list[16], 1, &urwire__robot_message_by_length[2], 0},
+        {&urwire__robot_message_form_list[16], &urwire__robot_message_by_length[2], 1, 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6018,9 +6018,9 @@ static const urwire__recognised urwire__program_state_by_length[] = {
 /* The forms of each program_state subtype with a layout, by code. */
 static const urwire__forms urwire__program_state_forms[] = {
     [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP] =
-        {&urwire__program_state_form_list[0], 1, &urwire__program_state_by_length[0], 0},
+        {&urwire__program_state_form_list[0], &urwire__program_state_by_length[0], 1, 0},
     [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE] =
-        {&urwire__program_state_form_list[1], 1, &urwire__program_state_by_length[0], 0},
+        {&urwire__program_state_form_list[1], &urwire__program_state_by_length[0], 1, 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6083,7 +6083,7 @@ static const urwire__recognised urwire__modbus_info_by_length[] = {
 /* The forms of each modbus_info message with a layout, by code. */
 static const urwire__forms urwire__modbus_info_forms[] = {
     [URWIRE_MESSAGE_TYPE_MODBUS_INFO_MESSAGE] =
-        {&urwire__modbus_info_form_list[0], 1, &urwire__modbus_info_by_length[0], 0},
+        {&urwire__modbus_info_form_list[0], &urwire__modbus_info_by_length[0], 1, 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6146,7 +6146,7 @@ static const urwire__recognised urwire__hmc_by_length[] = {
 /* The forms of each hmc message with a layout, by code. */
 static const urwire__forms urwire__hmc_forms[] = {
     [URWIRE_MESSAGE_TYPE_HMC_MESSAGE] =
-        {&urwire__hmc_form_list[0], 1, &urwire__hmc_by_length[0], 0},
+        {&urwire__hmc_form_list[0], &urwire__hmc_by_length[0], 1, 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6225,7 +6225,7 @@ static const urwire__recognised urwire__safety_setup_broadcast_by_length[] = {
 /* The forms of each safety_setup_broadcast message with a layout, by code. */
 static const urwire__forms urwire__safety_setup_broadcast_forms[] = {
     [URWIRE_MESSAGE_TYPE_SAFETY_SETUP_BROADCAST_MESSAGE] =
-        {&urwire__safety_setup_broadcast_form_list[0], 1, &urwire__safety_setup_broadcast_by_length[0], 0},
+        {&urwire__safety_setup_broadcast_form_list[0], &urwire__safety_setup_broadcast_by_length[0], 1, 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6305,7 +6305,7 @@ static const urwire__recognised urwire__safety_compliance_tolerances_by_length[]
 /* The forms of each safety_compliance_tolerances message with a layout, by code. */
 static const urwire__forms urwire__safety_compliance_tolerances_forms[] = {
     [URWIRE_MESSAGE_TYPE_SAFETY_COMPLIANCE_TOLERANCES_MESSAGE] =
-        {&urwire__safety_compliance_tolerances_form_list[0], 1, &urwire__safety_compliance_tolerances_by_length[0], 1},
+        {&urwire__safety_compliance_tolerances_form_list[0], &urwire__safety_compliance_tolerances_by_length[0], 1, 1},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
