@@ -329,15 +329,15 @@ size_t ur_reverse_decode_reverse_command(const uint8_t *buf, size_t n, uint32_t 
         size_t i;
         out->layout = 1;
         out->has_read_timeout = true;
-        out->read_timeout = urwire__i32(buf + 4 * 0);
+        out->read_timeout = urwire__i32(buf + 0);
 
         out->target_count = 6;
         for (i = 0; i < 6; i++) {
-            out->target_raw[i] = urwire__i32(buf + 4 * (1 + i));
+            out->target_raw[i] = urwire__i32(buf + 4 + 4 * i);
             out->target[i] = (double)out->target_raw[i] / 1e6;
         }
 
-        out->control_mode = urwire__i32(buf + 4 * 7);
+        out->control_mode = urwire__i32(buf + 28);
 
         return size;
     }
@@ -345,15 +345,15 @@ size_t ur_reverse_decode_reverse_command(const uint8_t *buf, size_t n, uint32_t 
         size_t i;
         out->layout = 0;
         out->has_keepalive = true;
-        out->keepalive = urwire__i32(buf + 4 * 0);
+        out->keepalive = urwire__i32(buf + 0);
 
         out->target_count = 6;
         for (i = 0; i < 6; i++) {
-            out->target_raw[i] = urwire__i32(buf + 4 * (1 + i));
+            out->target_raw[i] = urwire__i32(buf + 4 + 4 * i);
             out->target[i] = (double)out->target_raw[i] / 1e6;
         }
 
-        out->control_mode = urwire__i32(buf + 4 * 7);
+        out->control_mode = urwire__i32(buf + 28);
 
         return size;
     }

@@ -370,31 +370,31 @@ size_t ur_trajectory_decode_trajectory_point(const uint8_t *buf, size_t n, uint3
         out->layout = 2;
         out->positions_count = 6;
         for (i = 0; i < 6; i++) {
-            out->positions_raw[i] = urwire__i32(buf + 4 * (0 + i));
+            out->positions_raw[i] = urwire__i32(buf + 0 + 4 * i);
             out->positions[i] = (double)out->positions_raw[i] / 1e6;
         }
 
         out->has_velocities = true;
         out->velocities_count = 6;
         for (i = 0; i < 6; i++) {
-            out->velocities_raw[i] = urwire__i32(buf + 4 * (6 + i));
+            out->velocities_raw[i] = urwire__i32(buf + 24 + 4 * i);
             out->velocities[i] = (double)out->velocities_raw[i] / 1e6;
         }
 
         out->has_accelerations = true;
         out->accelerations_count = 6;
         for (i = 0; i < 6; i++) {
-            out->accelerations_raw[i] = urwire__i32(buf + 4 * (12 + i));
+            out->accelerations_raw[i] = urwire__i32(buf + 48 + 4 * i);
             out->accelerations[i] = (double)out->accelerations_raw[i] / 1e6;
         }
 
-        out->duration_raw = urwire__i32(buf + 4 * 18);
+        out->duration_raw = urwire__i32(buf + 72);
         out->duration = (double)out->duration_raw / 1e6;
 
-        out->blend_radius_raw = urwire__i32(buf + 4 * 19);
+        out->blend_radius_raw = urwire__i32(buf + 76);
         out->blend_radius = (double)out->blend_radius_raw / 1e6;
 
-        out->motion_type = urwire__i32(buf + 4 * 20);
+        out->motion_type = urwire__i32(buf + 80);
 
         return size;
     }
@@ -403,31 +403,31 @@ size_t ur_trajectory_decode_trajectory_point(const uint8_t *buf, size_t n, uint3
         out->layout = 1;
         out->positions_count = 6;
         for (i = 0; i < 6; i++) {
-            out->positions_raw[i] = urwire__i32(buf + 4 * (0 + i));
+            out->positions_raw[i] = urwire__i32(buf + 0 + 4 * i);
             out->positions[i] = (double)out->positions_raw[i] / 1e6;
         }
 
         out->has_velocities = true;
         out->velocities_count = 6;
         for (i = 0; i < 6; i++) {
-            out->velocities_raw[i] = urwire__i32(buf + 4 * (6 + i));
+            out->velocities_raw[i] = urwire__i32(buf + 24 + 4 * i);
             out->velocities[i] = (double)out->velocities_raw[i] / 1e6;
         }
 
         out->has_accelerations = true;
         out->accelerations_count = 6;
         for (i = 0; i < 6; i++) {
-            out->accelerations_raw[i] = urwire__i32(buf + 4 * (12 + i));
+            out->accelerations_raw[i] = urwire__i32(buf + 48 + 4 * i);
             out->accelerations[i] = (double)out->accelerations_raw[i] / 1e6;
         }
 
-        out->duration_raw = urwire__i32(buf + 4 * 18);
+        out->duration_raw = urwire__i32(buf + 72);
         out->duration = (double)out->duration_raw / 1e3;
 
-        out->blend_radius_raw = urwire__i32(buf + 4 * 19);
+        out->blend_radius_raw = urwire__i32(buf + 76);
         out->blend_radius = (double)out->blend_radius_raw / 1e3;
 
-        out->motion_type = urwire__i32(buf + 4 * 20);
+        out->motion_type = urwire__i32(buf + 80);
 
         return size;
     }
@@ -436,17 +436,17 @@ size_t ur_trajectory_decode_trajectory_point(const uint8_t *buf, size_t n, uint3
         out->layout = 0;
         out->positions_count = 6;
         for (i = 0; i < 6; i++) {
-            out->positions_raw[i] = urwire__i32(buf + 4 * (0 + i));
+            out->positions_raw[i] = urwire__i32(buf + 0 + 4 * i);
             out->positions[i] = (double)out->positions_raw[i] / 1e6;
         }
 
-        out->duration_raw = urwire__i32(buf + 4 * 6);
+        out->duration_raw = urwire__i32(buf + 24);
         out->duration = (double)out->duration_raw / 1e3;
 
-        out->blend_radius_raw = urwire__i32(buf + 4 * 7);
+        out->blend_radius_raw = urwire__i32(buf + 28);
         out->blend_radius = (double)out->blend_radius_raw / 1e3;
 
-        out->motion_type = urwire__i32(buf + 4 * 8);
+        out->motion_type = urwire__i32(buf + 32);
 
         return size;
     }
@@ -530,7 +530,7 @@ size_t ur_trajectory_decode_trajectory_result(const uint8_t *buf, size_t n, uint
     memset(out, 0, sizeof *out);
     {   /* all versions */
         out->layout = 0;
-        out->result = urwire__i32(buf + 4 * 0);
+        out->result = urwire__i32(buf + 0);
 
         return size;
     }

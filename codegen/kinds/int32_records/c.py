@@ -35,7 +35,7 @@ def view(p: RecordsPlan) -> dict:
     for r in p.records:
         layouts = []
         for i, lay in enumerate(r.layouts):
-            reads = [dict(name=s.field.name, kind=_member(s.field)["kind"], index=s.index, count=s.count,
+            reads = [dict(name=s.field.name, kind=_member(s.field)["kind"], offset=4 * s.index, count=s.count,
                           decimals=len(str(s.scale)) - 1 if s.scale else 0, optional=not s.field.always)
                      for s in lay.slots]
             layouts.append(dict(index=i, describe=lay.describe(), size=4 * lay.size, reads=reads,

@@ -20,10 +20,16 @@ static const char digit_pairs[] =
     "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
     "8081828384858687888990919293949596979899";
 
+/* The two digits of v (0 to 99). */
+static const char *digit_pair(uint32_t v)
+{
+    return digit_pairs + (size_t)v * 2;
+}
+
 static void four_digits(char *at, uint32_t v)
 {
-    memcpy(at, digit_pairs + v / 100 * 2, 2);
-    memcpy(at + 2, digit_pairs + v % 100 * 2, 2);
+    memcpy(at, digit_pair(v / 100), 2);
+    memcpy(at + 2, digit_pair(v % 100), 2);
 }
 
 /* The decimal digits of n written to end just before end; returns where they start. */
@@ -40,11 +46,11 @@ static char *digits_before(char *end, uint64_t n)
     }
     for (m = (uint32_t)n; m >= 100; m /= 100) {
         end -= 2;
-        memcpy(end, digit_pairs + m % 100 * 2, 2);
+        memcpy(end, digit_pair(m % 100), 2);
     }
     if (m >= 10) {
         end -= 2;
-        memcpy(end, digit_pairs + m * 2, 2);
+        memcpy(end, digit_pair(m), 2);
     } else {
         *--end = (char)('0' + m);
     }
@@ -76,7 +82,7 @@ static size_t scientific(char *out, const digits *g, int exp10)
     out[at++] = exp10 < 0 ? '-' : '+';
     if (e >= 100)
         out[at++] = (char)('0' + e / 100);
-    memcpy(out + at, digit_pairs + e % 100 * 2, 2);
+    memcpy(out + at, digit_pair(e % 100), 2);
     return at + 2;
 }
 

@@ -42,7 +42,7 @@ static void rtde__place(rtde_conversation *c, const rtde_limits *limits, rtde_re
     for (k = 0; k < 2; k++)
         for (i = 0; i < RTDE_MAX_PENDING; i++)
             c->pending[k][i].names = pending + (k * RTDE_MAX_PENDING + i) * limits->names;
-    c->refused.names = pending + 2 * RTDE_MAX_PENDING * limits->names;
+    c->refused.names = pending + (size_t)(2 * RTDE_MAX_PENDING) * limits->names;
 }
 
 void rtde_conversation_init(rtde_conversation *c)
