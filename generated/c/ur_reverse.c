@@ -273,7 +273,7 @@ URWIRE__PRIVATE void i32r_scaled(urwire__text *o, int32_t raw, unsigned decimals
             text[at++] = '0';
         end = sig > whole ? sig : whole + 1;
         for (i = whole; i < end; i++)
-            text[at++] = i < n ? digits[i] : '0';
+            text[at++] = (char)(i < n ? digits[i] : '0');
     }
     urwire__bytes(o, text, at);
 }
@@ -366,7 +366,6 @@ size_t ur_reverse_json_reverse_command(const ur_reverse_reverse_command *r, char
     o.out = out;
     o.cap = cap;
     o.n = 0;
-    (void)i;
     urwire__str(&o, "{\"type\": \"reverse_command\"");
     if (r->has_keepalive) {
         urwire__str(&o, ", \"keepalive\": ");

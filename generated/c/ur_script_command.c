@@ -273,7 +273,7 @@ URWIRE__PRIVATE void i32r_scaled(urwire__text *o, int32_t raw, unsigned decimals
             text[at++] = '0';
         end = sig > whole ? sig : whole + 1;
         for (i = whole; i < end; i++)
-            text[at++] = i < n ? digits[i] : '0';
+            text[at++] = (char)(i < n ? digits[i] : '0');
     }
     urwire__bytes(o, text, at);
 }
@@ -377,7 +377,6 @@ size_t ur_script_command_json_script_command(const ur_script_command_script_comm
     o.out = out;
     o.cap = cap;
     o.n = 0;
-    (void)i;
     urwire__str(&o, "{\"type\": \"script_command\"");
     {
         urwire__str(&o, ", \"command\": ");
