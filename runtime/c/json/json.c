@@ -299,7 +299,8 @@ void json_write_hex(FILE *out, const unsigned char *p, size_t n)
 void json_write_f64(FILE *out, double x)
 {
     char text[TEXT_ROOM];
-    fwrite(text, 1, f64_text(x, text), out);
+    size_t n = f64_text(x, text);
+    fwrite(text, 1, n, out);
 }
 
 /* A record is written: hand it to out. */
@@ -325,9 +326,11 @@ static char *field(json_writer *w, const char *key, size_t room)
     if (n + room + 5 > sizeof w->buf) {  /* no key is this long; written in pieces if one were */
         if (comma)
             put(w, ", ", 2);
-        put_char(w, '"');
-        put(w, key, n);
-        put(w, "\": ", 3);
+        if (key) {
+            put_char(w, '"');
+            put(w, key, n);
+            put(w, "\": ", 3);
+        }
         return reserve(w, room);
     }
     at = reserve(w, n + room + 5);
