@@ -322,35 +322,34 @@ static const struct {
     {85, false, 2, RTDE_LAYOUT_INPUT_DATA_PACKAGE},  /* 'U' */
 };
 
-/* Per layout: the recipe kind a setup request (or reply) belongs to (0 outputs, 1 inputs, -1
- * none), and whether it is a data package, with a recipe id. */
+/* Per layout: the recipe kind a setup request belongs to (0 outputs, 1 inputs, -1 none), and
+ * whether it is a data package, with a recipe id. */
 static const struct {
     int8_t request_kind;
-    int8_t reply_kind;
     bool is_data;
     bool has_recipe_id;
 } rtde__roles[RTDE_LAYOUT_COUNT] = {
-    {-1, -1, false, false},  /* NONE */
-    {-1, -1, false, false},  /* request_protocol_version */
-    {-1, -1, false, false},  /* request_protocol_version_reply */
-    {-1, -1, false, false},  /* get_urcontrol_version */
-    {-1, -1, false, false},  /* get_urcontrol_version_reply */
-    {-1, -1, false, false},  /* text_message */
-    {-1, -1, false, false},  /* text_message_v1 */
-    {-1, -1, false, false},  /* send_text_message */
-    {0, -1, false, false},  /* setup_outputs */
-    {0, -1, false, false},  /* setup_outputs_v1 */
-    {-1, 0, false, false},  /* setup_outputs_reply */
-    {-1, 0, false, false},  /* setup_outputs_reply_v1 */
-    {1, -1, false, false},  /* setup_inputs */
-    {-1, 1, false, false},  /* setup_inputs_reply */
-    {-1, -1, false, false},  /* start */
-    {-1, -1, false, false},  /* start_reply */
-    {-1, -1, false, false},  /* pause */
-    {-1, -1, false, false},  /* pause_reply */
-    {-1, -1, true, true},  /* data_package */
-    {-1, -1, true, false},  /* data_package_v1 */
-    {-1, -1, true, true},  /* input_data_package */
+    {-1, false, false},  /* NONE */
+    {-1, false, false},  /* request_protocol_version */
+    {-1, false, false},  /* request_protocol_version_reply */
+    {-1, false, false},  /* get_urcontrol_version */
+    {-1, false, false},  /* get_urcontrol_version_reply */
+    {-1, false, false},  /* text_message */
+    {-1, false, false},  /* text_message_v1 */
+    {-1, false, false},  /* send_text_message */
+    {0, false, false},  /* setup_outputs */
+    {0, false, false},  /* setup_outputs_v1 */
+    {-1, false, false},  /* setup_outputs_reply */
+    {-1, false, false},  /* setup_outputs_reply_v1 */
+    {1, false, false},  /* setup_inputs */
+    {-1, false, false},  /* setup_inputs_reply */
+    {-1, false, false},  /* start */
+    {-1, false, false},  /* start_reply */
+    {-1, false, false},  /* pause */
+    {-1, false, false},  /* pause_reply */
+    {-1, true, true},  /* data_package */
+    {-1, true, false},  /* data_package_v1 */
+    {-1, true, true},  /* input_data_package */
 };
 
 static const rtde_member rtde__members_request_protocol_version[] = {

@@ -202,9 +202,9 @@ static const urwire__message_type urwire__message_types[] = {
 };
 
 static const urwire__message_kind urwire__message_kinds[] = {
-    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, 0, NULL, NULL, NULL},
-    [URWIRE_KIND_STATE] = {"state", &urwire__message_types[0], 0, NULL, NULL, NULL},
-    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, 0, NULL, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, NULL, NULL, NULL},
+    [URWIRE_KIND_STATE] = {"state", &urwire__message_types[0], NULL, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, NULL, NULL, NULL},
 };
 
 static const bool urwire__known_message_types[256] = {
