@@ -4714,7 +4714,7 @@ static void urwire__visit_program_threads(const void *from, const urwire__ver *v
     (void)ver;
     {
         urwire_seq seq = in->threads;
-        urwire_program_thread item;
+        urwire_program_thread item = {0};
         v->begin_array(v->ctx, "threads");
         while (urwire_next_program_thread(&seq, &item)) {
             v->begin_object(v->ctx, NULL);
@@ -7916,7 +7916,7 @@ static void urwire__visit_value(const urwire_value *val, const char *key, const 
 URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v)
 {
     urwire_seq seq = *values;
-    urwire_value value;
+    urwire_value value = {0};
     v->begin_array(v->ctx, key);
     while (urwire_next_value(&seq, &value))
         urwire__visit_value(&value, NULL, v);

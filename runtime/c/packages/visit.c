@@ -84,7 +84,7 @@ static void urwire__visit_value(const urwire_value *val, const char *key, const 
 URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v)
 {
     urwire_seq seq = *values;
-    urwire_value value;
+    urwire_value value = {0};
     v->begin_array(v->ctx, key);
     while (urwire_next_value(&seq, &value))
         urwire__visit_value(&value, NULL, v);
