@@ -1004,6 +1004,8 @@ URWIRE__PRIVATE bool urwire__read_prefixed(const uint8_t *msg, size_t *at, size_
         return urwire__short(err, path, pos, size, end);
     raw = urwire__uint(msg + pos, size);
     n = (int64_t)raw;
+    /* size is a prefix's width, 1 to 8 bytes, at every call: the shifts stay below 64. */
+    /* NOLINTNEXTLINE(clang-analyzer-core.UndefinedBinaryOperatorResult) */
     if (is_signed && (raw >> (size * 8 - 1)) & 1u)
         n = (int64_t)(raw | ~(uint64_t)0 << (size * 8 - 1));
     if (n < 0)
@@ -7036,6 +7038,7 @@ static bool urwire__count_fits(const urwire__value_table *t, uint64_t items, siz
 /* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
  * skipped) here, so that iterating them later cannot fail; depth bounds the recursion.
  * Error paths are relative ("", ".type", "[2][0]") and prefixed by the callers. */
+/* NOLINTNEXTLINE(misc-no-recursion): the one recursion, depth at most URWIRE_MAX_VALUE_DEPTH */
 static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
                                const urwire__value_table *t, unsigned depth, urwire_value *out, urwire_error *err)
 {
@@ -7864,6 +7867,8 @@ URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *ke
     v->end_array(v->ctx);
 }
 
+/* A LIST's or MATRIX's items by calling itself, as deep as urwire__read_value let the value be. */
+/* NOLINTNEXTLINE(misc-no-recursion): depth at most URWIRE_MAX_VALUE_DEPTH, checked when read */
 static void urwire__visit_value(const urwire_value *val, const char *key, const urwire_visitor *v)
 {
     const urwire__value_entry *e = urwire__value_entry_of(urwire__values_of(val->items.version), val->code);

@@ -265,6 +265,7 @@ static void write_hex(json_writer *w, const unsigned char *p, size_t n)
     while (i < n) {
         size_t chunk = n - i < sizeof w->buf / 2 ? n - i : sizeof w->buf / 2;
         at = reserve(w, 2 * chunk);
+        /* cppcheck-suppress knownConditionTrueFalse ; cppcheck 2.10 takes sizeof w->buf for 0 */
         for (k = 0; k < chunk; k++, i++) {
             *at++ = hex[p[i] >> 4];
             *at++ = hex[p[i] & 15];
@@ -395,6 +396,7 @@ static void end_array(void *ctx) { close_((json_writer *)ctx, ']'); }
 /* An integer's text at at: v, after a minus sign when negative. */
 static size_t integer_text(char *at, uint64_t v, bool negative)
 {
+    /* cppcheck-suppress unassignedVariable ; digits_before writes buf, from its middle back */
     char buf[2 * DIGIT_COPY], *d = digits_before(buf + DIGIT_COPY, v);
     at[0] = '-';
     memcpy(at + negative, d, DIGIT_COPY);

@@ -34,6 +34,7 @@ static bool urwire__count_fits(const urwire__value_table *t, uint64_t items, siz
 /* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
  * skipped) here, so that iterating them later cannot fail; depth bounds the recursion.
  * Error paths are relative ("", ".type", "[2][0]") and prefixed by the callers. */
+/* NOLINTNEXTLINE(misc-no-recursion): the one recursion, depth at most URWIRE_MAX_VALUE_DEPTH */
 static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
                                const urwire__value_table *t, unsigned depth, urwire_value *out, urwire_error *err)
 {
