@@ -34,7 +34,7 @@ STATIC_C_cli := $(wildcard tools/urwire-decode/*.c)
 # as mk/c.mk builds the command (`=`: read when used, whichever mk file make reads first)
 STATIC_C_cli_I = $(patsubst -I%,%,$(C_INCLUDES))
 
-.PHONY: static-c static-c-cppcheck static-c-tidy
+.PHONY: static-c static-c-cppcheck static-c-tidy static-c-files
 
 ## static-c: cppcheck and clang-tidy over the generated C, the C runtime and urwire-decode (no finding passes)
 static-c: static-c-cppcheck static-c-tidy
@@ -48,3 +48,7 @@ static-c-cppcheck:
 static-c-tidy:
 	@status=0; $(foreach g,$(STATIC_C_GROUPS),$(CLANG_TIDY) --quiet $(STATIC_C_$(g)) -- -std=c99 $(STATIC_C_$(g)_I:%=-I%) \
 		|| status=1;) exit $$status
+
+## static-c-files: the files both tools read, one a line
+static-c-files:
+	@printf '%s\n' $(foreach g,$(STATIC_C_GROUPS),$(STATIC_C_$(g)))
