@@ -12,9 +12,10 @@ cd "$(dirname "$0")/.."
 # built against the installed Wireshark by `make native-dissector`.
 # openjdk-17-jre-headless: the JVM that `urwire spark`'s tests run Spark local[2] on.
 # python3-dev: the headers the C extension urwire._ccore builds against.
+# cppcheck and clang-tidy: the static analysis of the C (make static-c).
 APT_PACKAGES=(tshark clang lua5.2 lua5.3 lua5.4 libclang-rt-14-dev llvm make gcc
               wireshark-qt xvfb xdotool imagemagick cmake wireshark-dev
-              openjdk-17-jre-headless python3-dev)
+              openjdk-17-jre-headless python3-dev cppcheck clang-tidy)
 # The cross compilers and QEMU of `make cross` and tests/c/test_cross.py (mk/cross.mk): installed
 # without their recommends, which would bring qemu-system a desktop.
 CROSS_PACKAGES=(gcc-arm-none-eabi libnewlib-arm-none-eabi gcc-riscv64-unknown-elf picolibc-riscv64-unknown-elf

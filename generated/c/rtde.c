@@ -338,35 +338,34 @@ static const struct {
     {85, false, 2, RTDE_LAYOUT_INPUT_DATA_PACKAGE},  /* 'U' */
 };
 
-/* Per layout: the recipe kind a setup request (or reply) belongs to (0 outputs, 1 inputs, -1
- * none), and whether it is a data package, with a recipe id. */
+/* Per layout: the recipe kind a setup request belongs to (0 outputs, 1 inputs, -1 none), and
+ * whether it is a data package, with a recipe id. */
 static const struct {
     int8_t request_kind;
-    int8_t reply_kind;
     bool is_data;
     bool has_recipe_id;
 } rtde__roles[RTDE_LAYOUT_COUNT] = {
-    {-1, -1, false, false},  /* NONE */
-    {-1, -1, false, false},  /* request_protocol_version */
-    {-1, -1, false, false},  /* request_protocol_version_reply */
-    {-1, -1, false, false},  /* get_urcontrol_version */
-    {-1, -1, false, false},  /* get_urcontrol_version_reply */
-    {-1, -1, false, false},  /* text_message */
-    {-1, -1, false, false},  /* text_message_v1 */
-    {-1, -1, false, false},  /* send_text_message */
-    {0, -1, false, false},  /* setup_outputs */
-    {0, -1, false, false},  /* setup_outputs_v1 */
-    {-1, 0, false, false},  /* setup_outputs_reply */
-    {-1, 0, false, false},  /* setup_outputs_reply_v1 */
-    {1, -1, false, false},  /* setup_inputs */
-    {-1, 1, false, false},  /* setup_inputs_reply */
-    {-1, -1, false, false},  /* start */
-    {-1, -1, false, false},  /* start_reply */
-    {-1, -1, false, false},  /* pause */
-    {-1, -1, false, false},  /* pause_reply */
-    {-1, -1, true, true},  /* data_package */
-    {-1, -1, true, false},  /* data_package_v1 */
-    {-1, -1, true, true},  /* input_data_package */
+    {-1, false, false},  /* NONE */
+    {-1, false, false},  /* request_protocol_version */
+    {-1, false, false},  /* request_protocol_version_reply */
+    {-1, false, false},  /* get_urcontrol_version */
+    {-1, false, false},  /* get_urcontrol_version_reply */
+    {-1, false, false},  /* text_message */
+    {-1, false, false},  /* text_message_v1 */
+    {-1, false, false},  /* send_text_message */
+    {0, false, false},  /* setup_outputs */
+    {0, false, false},  /* setup_outputs_v1 */
+    {-1, false, false},  /* setup_outputs_reply */
+    {-1, false, false},  /* setup_outputs_reply_v1 */
+    {1, false, false},  /* setup_inputs */
+    {-1, false, false},  /* setup_inputs_reply */
+    {-1, false, false},  /* start */
+    {-1, false, false},  /* start_reply */
+    {-1, false, false},  /* pause */
+    {-1, false, false},  /* pause_reply */
+    {-1, true, true},  /* data_package */
+    {-1, true, false},  /* data_package_v1 */
+    {-1, true, true},  /* input_data_package */
 };
 
 static const rtde_member rtde__members_request_protocol_version[] = {
@@ -1709,7 +1708,7 @@ static void rtde__place(rtde_conversation *c, const rtde_limits *limits, rtde_re
     for (k = 0; k < 2; k++)
         for (i = 0; i < RTDE_MAX_PENDING; i++)
             c->pending[k][i].names = pending + (k * RTDE_MAX_PENDING + i) * limits->names;
-    c->refused.names = pending + 2 * RTDE_MAX_PENDING * limits->names;
+    c->refused.names = pending + (size_t)(2 * RTDE_MAX_PENDING) * limits->names;
 }
 
 void rtde_conversation_init(rtde_conversation *c)
@@ -1897,7 +1896,7 @@ static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text ty
 {
     const uint8_t *names;
     rtde_recipe *recipe = NULL;
-    size_t at_names = 0, at_types = 0, s1, n1, s2, n2, count = 0, size = 0, pass;
+    size_t at_names, at_types, s1, n1, s2, n2, count = 0, size = 0, pass;
     bool refused = false, from_robot = kind == 0;
     if (c->pending_count[kind] == 0) {
         if (c->pending_lost[kind] > 0) {    /* its request was not kept: its names are unknown */

@@ -848,24 +848,21 @@ static const ur_realtime_slot ur_realtime__slots_rt_5_10[] = {
 
 typedef struct ur_realtime__layout_info {
     const char *name;
-    int32_t size;
     const ur_realtime_slot *slots;
     size_t count;
 } ur_realtime__layout_info;
 
 static const ur_realtime__layout_info ur_realtime__layouts[UR_REALTIME_LAYOUT_COUNT] = {
-    {"rt_540", 540, ur_realtime__slots_rt_540, sizeof ur_realtime__slots_rt_540 / sizeof ur_realtime__slots_rt_540[0]},
-    {"rt_692", 692, ur_realtime__slots_rt_692, sizeof ur_realtime__slots_rt_692 / sizeof ur_realtime__slots_rt_692[0]},
-    {"rt_1_5", 756, ur_realtime__slots_rt_1_5, sizeof ur_realtime__slots_rt_1_5 / sizeof ur_realtime__slots_rt_1_5[0]},
-    {"rt_1_6", 764, ur_realtime__slots_rt_1_6, sizeof ur_realtime__slots_rt_1_6 / sizeof ur_realtime__slots_rt_1_6[0]},
-    {"rt_1_8", 812, ur_realtime__slots_rt_1_8, sizeof ur_realtime__slots_rt_1_8 / sizeof ur_realtime__slots_rt_1_8[0]},
-    {"rt_3_0", 1044, ur_realtime__slots_rt_3_0, sizeof ur_realtime__slots_rt_3_0 / sizeof ur_realtime__slots_rt_3_0[0]},
-    {"rt_3_2", 1060, ur_realtime__slots_rt_3_2, sizeof ur_realtime__slots_rt_3_2 / sizeof ur_realtime__slots_rt_3_2[0]},
-    {"rt_3_5", 1108, ur_realtime__slots_rt_3_5, sizeof ur_realtime__slots_rt_3_5 / sizeof ur_realtime__slots_rt_3_5[0]},
-    {"rt_3_10", 1116, ur_realtime__slots_rt_3_10,
-     sizeof ur_realtime__slots_rt_3_10 / sizeof ur_realtime__slots_rt_3_10[0]},
-    {"rt_5_10", 1220, ur_realtime__slots_rt_5_10,
-     sizeof ur_realtime__slots_rt_5_10 / sizeof ur_realtime__slots_rt_5_10[0]},
+    {"rt_540", ur_realtime__slots_rt_540, sizeof ur_realtime__slots_rt_540 / sizeof ur_realtime__slots_rt_540[0]},
+    {"rt_692", ur_realtime__slots_rt_692, sizeof ur_realtime__slots_rt_692 / sizeof ur_realtime__slots_rt_692[0]},
+    {"rt_1_5", ur_realtime__slots_rt_1_5, sizeof ur_realtime__slots_rt_1_5 / sizeof ur_realtime__slots_rt_1_5[0]},
+    {"rt_1_6", ur_realtime__slots_rt_1_6, sizeof ur_realtime__slots_rt_1_6 / sizeof ur_realtime__slots_rt_1_6[0]},
+    {"rt_1_8", ur_realtime__slots_rt_1_8, sizeof ur_realtime__slots_rt_1_8 / sizeof ur_realtime__slots_rt_1_8[0]},
+    {"rt_3_0", ur_realtime__slots_rt_3_0, sizeof ur_realtime__slots_rt_3_0 / sizeof ur_realtime__slots_rt_3_0[0]},
+    {"rt_3_2", ur_realtime__slots_rt_3_2, sizeof ur_realtime__slots_rt_3_2 / sizeof ur_realtime__slots_rt_3_2[0]},
+    {"rt_3_5", ur_realtime__slots_rt_3_5, sizeof ur_realtime__slots_rt_3_5 / sizeof ur_realtime__slots_rt_3_5[0]},
+    {"rt_3_10", ur_realtime__slots_rt_3_10, sizeof ur_realtime__slots_rt_3_10 / sizeof ur_realtime__slots_rt_3_10[0]},
+    {"rt_5_10", ur_realtime__slots_rt_5_10, sizeof ur_realtime__slots_rt_5_10 / sizeof ur_realtime__slots_rt_5_10[0]},
 };
 
 /* ---- enum names, and the forms a size can choose ------------------------------------------ */

@@ -273,7 +273,7 @@ URWIRE__PRIVATE void i32r_scaled(urwire__text *o, int32_t raw, unsigned decimals
             text[at++] = '0';
         end = sig > whole ? sig : whole + 1;
         for (i = whole; i < end; i++)
-            text[at++] = i < n ? digits[i] : '0';
+            text[at++] = (char)(i < n ? digits[i] : '0');
     }
     urwire__bytes(o, text, at);
 }
@@ -329,15 +329,15 @@ size_t ur_reverse_decode_reverse_command(const uint8_t *buf, size_t n, uint32_t 
         size_t i;
         out->layout = 1;
         out->has_read_timeout = true;
-        out->read_timeout = urwire__i32(buf + 4 * 0);
+        out->read_timeout = urwire__i32(buf + 0);
 
         out->target_count = 6;
         for (i = 0; i < 6; i++) {
-            out->target_raw[i] = urwire__i32(buf + 4 * (1 + i));
+            out->target_raw[i] = urwire__i32(buf + 4 + 4 * i);
             out->target[i] = (double)out->target_raw[i] / 1e6;
         }
 
-        out->control_mode = urwire__i32(buf + 4 * 7);
+        out->control_mode = urwire__i32(buf + 28);
 
         return size;
     }
@@ -345,15 +345,15 @@ size_t ur_reverse_decode_reverse_command(const uint8_t *buf, size_t n, uint32_t 
         size_t i;
         out->layout = 0;
         out->has_keepalive = true;
-        out->keepalive = urwire__i32(buf + 4 * 0);
+        out->keepalive = urwire__i32(buf + 0);
 
         out->target_count = 6;
         for (i = 0; i < 6; i++) {
-            out->target_raw[i] = urwire__i32(buf + 4 * (1 + i));
+            out->target_raw[i] = urwire__i32(buf + 4 + 4 * i);
             out->target[i] = (double)out->target_raw[i] / 1e6;
         }
 
-        out->control_mode = urwire__i32(buf + 4 * 7);
+        out->control_mode = urwire__i32(buf + 28);
 
         return size;
     }
@@ -366,7 +366,6 @@ size_t ur_reverse_json_reverse_command(const ur_reverse_reverse_command *r, char
     o.out = out;
     o.cap = cap;
     o.n = 0;
-    (void)i;
     urwire__str(&o, "{\"type\": \"reverse_command\"");
     if (r->has_keepalive) {
         urwire__str(&o, ", \"keepalive\": ");

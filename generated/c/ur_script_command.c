@@ -273,7 +273,7 @@ URWIRE__PRIVATE void i32r_scaled(urwire__text *o, int32_t raw, unsigned decimals
             text[at++] = '0';
         end = sig > whole ? sig : whole + 1;
         for (i = whole; i < end; i++)
-            text[at++] = i < n ? digits[i] : '0';
+            text[at++] = (char)(i < n ? digits[i] : '0');
     }
     urwire__bytes(o, text, at);
 }
@@ -332,11 +332,11 @@ size_t ur_script_command_decode_script_command(const uint8_t *buf, size_t n, uin
     if (release >= 1005000u) {   /* 1.5 and later */
         size_t i;
         out->layout = 2;
-        out->command = urwire__i32(buf + 4 * 0);
+        out->command = urwire__i32(buf + 0);
 
         out->arguments_count = 27;
         for (i = 0; i < 27; i++) {
-            out->arguments_raw[i] = urwire__i32(buf + 4 * (1 + i));
+            out->arguments_raw[i] = urwire__i32(buf + 4 + 4 * i);
             out->arguments[i] = (double)out->arguments_raw[i] / 1e6;
         }
 
@@ -345,11 +345,11 @@ size_t ur_script_command_decode_script_command(const uint8_t *buf, size_t n, uin
     if (release >= 1003002u) {   /* 1.3.2 to 1.4 */
         size_t i;
         out->layout = 1;
-        out->command = urwire__i32(buf + 4 * 0);
+        out->command = urwire__i32(buf + 0);
 
         out->arguments_count = 25;
         for (i = 0; i < 25; i++) {
-            out->arguments_raw[i] = urwire__i32(buf + 4 * (1 + i));
+            out->arguments_raw[i] = urwire__i32(buf + 4 + 4 * i);
             out->arguments[i] = (double)out->arguments_raw[i] / 1e6;
         }
 
@@ -358,11 +358,11 @@ size_t ur_script_command_decode_script_command(const uint8_t *buf, size_t n, uin
     {   /* up to 1.3.1 */
         size_t i;
         out->layout = 0;
-        out->command = urwire__i32(buf + 4 * 0);
+        out->command = urwire__i32(buf + 0);
 
         out->arguments_count = 4;
         for (i = 0; i < 4; i++) {
-            out->arguments_raw[i] = urwire__i32(buf + 4 * (1 + i));
+            out->arguments_raw[i] = urwire__i32(buf + 4 + 4 * i);
             out->arguments[i] = (double)out->arguments_raw[i] / 1e6;
         }
 
@@ -377,7 +377,6 @@ size_t ur_script_command_json_script_command(const ur_script_command_script_comm
     o.out = out;
     o.cap = cap;
     o.n = 0;
-    (void)i;
     urwire__str(&o, "{\"type\": \"script_command\"");
     {
         urwire__str(&o, ", \"command\": ");

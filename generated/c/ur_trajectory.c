@@ -273,7 +273,7 @@ URWIRE__PRIVATE void i32r_scaled(urwire__text *o, int32_t raw, unsigned decimals
             text[at++] = '0';
         end = sig > whole ? sig : whole + 1;
         for (i = whole; i < end; i++)
-            text[at++] = i < n ? digits[i] : '0';
+            text[at++] = (char)(i < n ? digits[i] : '0');
     }
     urwire__bytes(o, text, at);
 }
@@ -370,31 +370,31 @@ size_t ur_trajectory_decode_trajectory_point(const uint8_t *buf, size_t n, uint3
         out->layout = 2;
         out->positions_count = 6;
         for (i = 0; i < 6; i++) {
-            out->positions_raw[i] = urwire__i32(buf + 4 * (0 + i));
+            out->positions_raw[i] = urwire__i32(buf + 0 + 4 * i);
             out->positions[i] = (double)out->positions_raw[i] / 1e6;
         }
 
         out->has_velocities = true;
         out->velocities_count = 6;
         for (i = 0; i < 6; i++) {
-            out->velocities_raw[i] = urwire__i32(buf + 4 * (6 + i));
+            out->velocities_raw[i] = urwire__i32(buf + 24 + 4 * i);
             out->velocities[i] = (double)out->velocities_raw[i] / 1e6;
         }
 
         out->has_accelerations = true;
         out->accelerations_count = 6;
         for (i = 0; i < 6; i++) {
-            out->accelerations_raw[i] = urwire__i32(buf + 4 * (12 + i));
+            out->accelerations_raw[i] = urwire__i32(buf + 48 + 4 * i);
             out->accelerations[i] = (double)out->accelerations_raw[i] / 1e6;
         }
 
-        out->duration_raw = urwire__i32(buf + 4 * 18);
+        out->duration_raw = urwire__i32(buf + 72);
         out->duration = (double)out->duration_raw / 1e6;
 
-        out->blend_radius_raw = urwire__i32(buf + 4 * 19);
+        out->blend_radius_raw = urwire__i32(buf + 76);
         out->blend_radius = (double)out->blend_radius_raw / 1e6;
 
-        out->motion_type = urwire__i32(buf + 4 * 20);
+        out->motion_type = urwire__i32(buf + 80);
 
         return size;
     }
@@ -403,31 +403,31 @@ size_t ur_trajectory_decode_trajectory_point(const uint8_t *buf, size_t n, uint3
         out->layout = 1;
         out->positions_count = 6;
         for (i = 0; i < 6; i++) {
-            out->positions_raw[i] = urwire__i32(buf + 4 * (0 + i));
+            out->positions_raw[i] = urwire__i32(buf + 0 + 4 * i);
             out->positions[i] = (double)out->positions_raw[i] / 1e6;
         }
 
         out->has_velocities = true;
         out->velocities_count = 6;
         for (i = 0; i < 6; i++) {
-            out->velocities_raw[i] = urwire__i32(buf + 4 * (6 + i));
+            out->velocities_raw[i] = urwire__i32(buf + 24 + 4 * i);
             out->velocities[i] = (double)out->velocities_raw[i] / 1e6;
         }
 
         out->has_accelerations = true;
         out->accelerations_count = 6;
         for (i = 0; i < 6; i++) {
-            out->accelerations_raw[i] = urwire__i32(buf + 4 * (12 + i));
+            out->accelerations_raw[i] = urwire__i32(buf + 48 + 4 * i);
             out->accelerations[i] = (double)out->accelerations_raw[i] / 1e6;
         }
 
-        out->duration_raw = urwire__i32(buf + 4 * 18);
+        out->duration_raw = urwire__i32(buf + 72);
         out->duration = (double)out->duration_raw / 1e3;
 
-        out->blend_radius_raw = urwire__i32(buf + 4 * 19);
+        out->blend_radius_raw = urwire__i32(buf + 76);
         out->blend_radius = (double)out->blend_radius_raw / 1e3;
 
-        out->motion_type = urwire__i32(buf + 4 * 20);
+        out->motion_type = urwire__i32(buf + 80);
 
         return size;
     }
@@ -436,17 +436,17 @@ size_t ur_trajectory_decode_trajectory_point(const uint8_t *buf, size_t n, uint3
         out->layout = 0;
         out->positions_count = 6;
         for (i = 0; i < 6; i++) {
-            out->positions_raw[i] = urwire__i32(buf + 4 * (0 + i));
+            out->positions_raw[i] = urwire__i32(buf + 0 + 4 * i);
             out->positions[i] = (double)out->positions_raw[i] / 1e6;
         }
 
-        out->duration_raw = urwire__i32(buf + 4 * 6);
+        out->duration_raw = urwire__i32(buf + 24);
         out->duration = (double)out->duration_raw / 1e3;
 
-        out->blend_radius_raw = urwire__i32(buf + 4 * 7);
+        out->blend_radius_raw = urwire__i32(buf + 28);
         out->blend_radius = (double)out->blend_radius_raw / 1e3;
 
-        out->motion_type = urwire__i32(buf + 4 * 8);
+        out->motion_type = urwire__i32(buf + 32);
 
         return size;
     }
@@ -459,7 +459,6 @@ size_t ur_trajectory_json_trajectory_point(const ur_trajectory_trajectory_point 
     o.out = out;
     o.cap = cap;
     o.n = 0;
-    (void)i;
     urwire__str(&o, "{\"type\": \"trajectory_point\"");
     {
         urwire__str(&o, ", \"positions\": ");
@@ -530,7 +529,7 @@ size_t ur_trajectory_decode_trajectory_result(const uint8_t *buf, size_t n, uint
     memset(out, 0, sizeof *out);
     {   /* all versions */
         out->layout = 0;
-        out->result = urwire__i32(buf + 4 * 0);
+        out->result = urwire__i32(buf + 0);
 
         return size;
     }
@@ -539,11 +538,9 @@ size_t ur_trajectory_decode_trajectory_result(const uint8_t *buf, size_t n, uint
 size_t ur_trajectory_json_trajectory_result(const ur_trajectory_trajectory_result *r, char *out, size_t cap)
 {
     urwire__text o;
-    size_t i;
     o.out = out;
     o.cap = cap;
     o.n = 0;
-    (void)i;
     urwire__str(&o, "{\"type\": \"trajectory_result\"");
     {
         urwire__str(&o, ", \"result\": ");
@@ -558,11 +555,7 @@ size_t ur_trajectory_record_size(bool from_robot, uint32_t release)
 {
     if (from_robot)
         return ur_trajectory_trajectory_result_size(release);
-    if (!from_robot)
-        return ur_trajectory_trajectory_point_size(release);
-    (void)from_robot;
-    (void)release;
-    return 0;
+    return ur_trajectory_trajectory_point_size(release);
 }
 
 size_t ur_trajectory_record_json(bool from_robot, const uint8_t *buf, size_t n, uint32_t release,
@@ -574,18 +567,12 @@ size_t ur_trajectory_record_json(bool from_robot, const uint8_t *buf, size_t n, 
             return 0;
         return ur_trajectory_json_trajectory_result(&rec, out, cap);
     }
-    if (!from_robot) {
+    {
         ur_trajectory_trajectory_point rec;
         if (ur_trajectory_decode_trajectory_point(buf, n, release, &rec) == 0)
             return 0;
         return ur_trajectory_json_trajectory_point(&rec, out, cap);
     }
-    (void)buf;
-    (void)n;
-    (void)release;
-    (void)out;
-    (void)cap;
-    return 0;
 }
 
 size_t ur_trajectory_tail_json(bool from_robot, uint64_t offset, size_t left, uint32_t release,

@@ -222,10 +222,10 @@ typedef struct urwire__recognised {
 
 /* The forms of one type code, in a table of all the forms of its type byte (count 0: the code
  * has no layout), and the sizes that recognise one of them. */
-typedef struct urwire__forms {
+typedef struct urwire__forms {       /* the pointers first: no padding between the counts */
     const urwire__form *forms;
-    uint8_t count;
     const urwire__recognised *by_length;
+    uint8_t count;
     uint8_t nby_length;
 } urwire__forms;
 
@@ -281,7 +281,6 @@ typedef struct urwire__message_type {
 typedef struct urwire__message_kind {
     const char *name;                   /* "version", "robot_state", "unknown" */
     const urwire__message_type *type;   /* NULL for the unknown kinds */
-    int64_t subtype;                    /* its code in its type's subtype byte */
     urwire__decode_fn decode;
     urwire__encode_fn encode;
     urwire__visit_fn visit;
@@ -306,12 +305,12 @@ typedef enum urwire__item {
     URWIRE__ITEM_F32
 } urwire__item;
 
-typedef struct urwire__value_entry {
-    uint8_t code;
-    urwire_value_kind kind;
+typedef struct urwire__value_entry {   /* widest first: no padding between the bytes */
     const char *name;
+    urwire_value_kind kind;
     urwire__layout layout;
     urwire__item item;
+    uint8_t code;
     uint8_t count;                  /* array items */
 } urwire__value_entry;
 
@@ -1013,6 +1012,8 @@ URWIRE__PRIVATE bool urwire__read_prefixed(const uint8_t *msg, size_t *at, size_
         return urwire__short(err, path, pos, size, end);
     raw = urwire__uint(msg + pos, size);
     n = (int64_t)raw;
+    /* size is a prefix's width, 1 to 8 bytes, at every call: the shifts stay below 64. */
+    /* NOLINTNEXTLINE(clang-analyzer-core.UndefinedBinaryOperatorResult) */
     if (is_signed && (raw >> (size * 8 - 1)) & 1u)
         n = (int64_t)(raw | ~(uint64_t)0 << (size * 8 - 1));
     if (n < 0)
@@ -1698,41 +1699,41 @@ const char *urwire_value_type_name(urwire_sw_version version, int64_t code)
 
 /* Value types of software up to 3.2. */
 static const urwire__value_entry urwire__values_up_to_3_2[] = {
-    {0, URWIRE_VALUE_NONE, "NONE", URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 1},
-    {3, URWIRE_VALUE_STRING, "STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
-    {4, URWIRE_VALUE_LIST, "LIST", URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 1},
-    {9, URWIRE_VALUE_POSE, "POSE", URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 6},
-    {11, URWIRE_VALUE_BOOL, "BOOL", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 1},
-    {12, URWIRE_VALUE_NUM, "NUM", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
-    {13, URWIRE_VALUE_INT, "INT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 1},
-    {14, URWIRE_VALUE_FLOAT, "FLOAT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
+    {"NONE", URWIRE_VALUE_NONE, URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 0, 1},
+    {"STRING", URWIRE_VALUE_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 3, 1},
+    {"LIST", URWIRE_VALUE_LIST, URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 4, 1},
+    {"POSE", URWIRE_VALUE_POSE, URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 9, 6},
+    {"BOOL", URWIRE_VALUE_BOOL, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 11, 1},
+    {"NUM", URWIRE_VALUE_NUM, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 12, 1},
+    {"INT", URWIRE_VALUE_INT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 13, 1},
+    {"FLOAT", URWIRE_VALUE_FLOAT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 14, 1},
 };
 
 /* Value types of software 3.3 to 5.8. */
 static const urwire__value_entry urwire__values_3_3_to_5_8[] = {
-    {0, URWIRE_VALUE_NONE, "NONE", URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 1},
-    {3, URWIRE_VALUE_CONST_STRING, "CONST_STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
-    {4, URWIRE_VALUE_VAR_STRING, "VAR_STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
-    {5, URWIRE_VALUE_LIST, "LIST", URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 1},
-    {10, URWIRE_VALUE_POSE, "POSE", URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 6},
-    {12, URWIRE_VALUE_BOOL, "BOOL", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 1},
-    {13, URWIRE_VALUE_NUM, "NUM", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
-    {14, URWIRE_VALUE_INT, "INT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 1},
-    {15, URWIRE_VALUE_FLOAT, "FLOAT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
+    {"NONE", URWIRE_VALUE_NONE, URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 0, 1},
+    {"CONST_STRING", URWIRE_VALUE_CONST_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 3, 1},
+    {"VAR_STRING", URWIRE_VALUE_VAR_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 4, 1},
+    {"LIST", URWIRE_VALUE_LIST, URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 5, 1},
+    {"POSE", URWIRE_VALUE_POSE, URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 10, 6},
+    {"BOOL", URWIRE_VALUE_BOOL, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 12, 1},
+    {"NUM", URWIRE_VALUE_NUM, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 13, 1},
+    {"INT", URWIRE_VALUE_INT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 14, 1},
+    {"FLOAT", URWIRE_VALUE_FLOAT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 15, 1},
 };
 
 /* Value types of software 5.9 and later. */
 static const urwire__value_entry urwire__values_5_9_on[] = {
-    {0, URWIRE_VALUE_NONE, "NONE", URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 1},
-    {3, URWIRE_VALUE_CONST_STRING, "CONST_STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
-    {4, URWIRE_VALUE_VAR_STRING, "VAR_STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
-    {12, URWIRE_VALUE_POSE, "POSE", URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 6},
-    {13, URWIRE_VALUE_BOOL, "BOOL", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 1},
-    {14, URWIRE_VALUE_NUM, "NUM", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
-    {15, URWIRE_VALUE_INT, "INT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 1},
-    {16, URWIRE_VALUE_FLOAT, "FLOAT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
-    {17, URWIRE_VALUE_LIST, "LIST", URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 1},
-    {18, URWIRE_VALUE_MATRIX, "MATRIX", URWIRE__LAYOUT_MATRIX, URWIRE__ITEM_NONE, 1},
+    {"NONE", URWIRE_VALUE_NONE, URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 0, 1},
+    {"CONST_STRING", URWIRE_VALUE_CONST_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 3, 1},
+    {"VAR_STRING", URWIRE_VALUE_VAR_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 4, 1},
+    {"POSE", URWIRE_VALUE_POSE, URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 12, 6},
+    {"BOOL", URWIRE_VALUE_BOOL, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 13, 1},
+    {"NUM", URWIRE_VALUE_NUM, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 14, 1},
+    {"INT", URWIRE_VALUE_INT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 15, 1},
+    {"FLOAT", URWIRE_VALUE_FLOAT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 16, 1},
+    {"LIST", URWIRE_VALUE_LIST, URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 17, 1},
+    {"MATRIX", URWIRE_VALUE_MATRIX, URWIRE__LAYOUT_MATRIX, URWIRE__ITEM_NONE, 18, 1},
 };
 
 /* Each version's table: the first whose range holds it, else the last. */
@@ -4723,7 +4724,7 @@ static void urwire__visit_program_threads(const void *from, const urwire__ver *v
     (void)ver;
     {
         urwire_seq seq = in->threads;
-        urwire_program_thread item;
+        urwire_program_thread item = {0};
         v->begin_array(v->ctx, "threads");
         while (urwire_next_program_thread(&seq, &item)) {
             v->begin_object(v->ctx, NULL);
@@ -5747,35 +5748,35 @@ static const urwire__recognised urwire__package_by_length[] = {
 /* The forms of each sub-package type with a layout, by code. */
 static const urwire__forms urwire__package_forms[] = {
     [URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA] =
-        {&urwire__package_form_list[0], 4, &urwire__package_by_length[0], 4},
+        {&urwire__package_form_list[0], &urwire__package_by_length[0], 4, 4},
     [URWIRE_PACKAGE_TYPE_JOINT_DATA] =
-        {&urwire__package_form_list[4], 1, &urwire__package_by_length[4], 1},
+        {&urwire__package_form_list[4], &urwire__package_by_length[4], 1, 1},
     [URWIRE_PACKAGE_TYPE_TOOL_DATA] =
-        {&urwire__package_form_list[5], 1, &urwire__package_by_length[5], 1},
+        {&urwire__package_form_list[5], &urwire__package_by_length[5], 1, 1},
     [URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA] =
-        {&urwire__package_form_list[6], 5, &urwire__package_by_length[6], 9},
+        {&urwire__package_form_list[6], &urwire__package_by_length[6], 5, 9},
     [URWIRE_PACKAGE_TYPE_CARTESIAN_INFO] =
-        {&urwire__package_form_list[11], 2, &urwire__package_by_length[15], 2},
+        {&urwire__package_form_list[11], &urwire__package_by_length[15], 2, 2},
     [URWIRE_PACKAGE_TYPE_KINEMATICS_INFO] =
-        {&urwire__package_form_list[13], 2, &urwire__package_by_length[17], 2},
+        {&urwire__package_form_list[13], &urwire__package_by_length[17], 2, 2},
     [URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA] =
-        {&urwire__package_form_list[15], 3, &urwire__package_by_length[19], 3},
+        {&urwire__package_form_list[15], &urwire__package_by_length[19], 3, 3},
     [URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA] =
-        {&urwire__package_form_list[18], 1, &urwire__package_by_length[22], 1},
+        {&urwire__package_form_list[18], &urwire__package_by_length[22], 1, 1},
     [URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO] =
-        {&urwire__package_form_list[19], 4, &urwire__package_by_length[23], 4},
+        {&urwire__package_form_list[19], &urwire__package_by_length[23], 4, 4},
     [URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA] =
-        {&urwire__package_form_list[23], 1, &urwire__package_by_length[27], 1},
+        {&urwire__package_form_list[23], &urwire__package_by_length[27], 1, 1},
     [URWIRE_PACKAGE_TYPE_SAFETY_DATA] =
-        {&urwire__package_form_list[24], 1, &urwire__package_by_length[28], 0},
+        {&urwire__package_form_list[24], &urwire__package_by_length[28], 1, 0},
     [URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO] =
-        {&urwire__package_form_list[25], 1, &urwire__package_by_length[28], 1},
+        {&urwire__package_form_list[25], &urwire__package_by_length[28], 1, 1},
     [URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO] =
-        {&urwire__package_form_list[26], 1, &urwire__package_by_length[29], 1},
+        {&urwire__package_form_list[26], &urwire__package_by_length[29], 1, 1},
     [URWIRE_PACKAGE_TYPE_SINGULARITY_INFO] =
-        {&urwire__package_form_list[27], 1, &urwire__package_by_length[30], 1},
+        {&urwire__package_form_list[27], &urwire__package_by_length[30], 1, 1},
     [URWIRE_PACKAGE_TYPE_PAYLOAD_INFO] =
-        {&urwire__package_form_list[28], 1, &urwire__package_by_length[31], 1},
+        {&urwire__package_form_list[28], &urwire__package_by_length[31], 1, 1},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -5920,31 +5921,31 @@ static const urwire__recognised urwire__robot_message_by_length[] = {
 /* The forms of each robot_message subtype with a layout, by code. */
 static const urwire__forms urwire__robot_message_forms[] = {
     [URWIRE_ROBOT_MESSAGE_TYPE_VERSION] =
-        {&urwire__robot_message_form_list[0], 2, &urwire__robot_message_by_length[0], 0},
+        {&urwire__robot_message_form_list[0], &urwire__robot_message_by_length[0], 2, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE] =
-        {&urwire__robot_message_form_list[2], 2, &urwire__robot_message_by_length[0], 1},
+        {&urwire__robot_message_form_list[2], &urwire__robot_message_by_length[0], 2, 1},
     [URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE] =
-        {&urwire__robot_message_form_list[4], 2, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[4], &urwire__robot_message_by_length[1], 2, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_KEY] =
-        {&urwire__robot_message_form_list[6], 1, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[6], &urwire__robot_message_by_length[1], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS] =
-        {&urwire__robot_message_form_list[7], 1, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[7], &urwire__robot_message_by_length[1], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_POPUP] =
-        {&urwire__robot_message_form_list[8], 2, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[8], &urwire__robot_message_by_length[1], 2, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL] =
-        {&urwire__robot_message_form_list[10], 1, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[10], &urwire__robot_message_by_length[1], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR] =
-        {&urwire__robot_message_form_list[11], 1, &urwire__robot_message_by_length[1], 0},
+        {&urwire__robot_message_form_list[11], &urwire__robot_message_by_length[1], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO] =
-        {&urwire__robot_message_form_list[12], 1, &urwire__robot_message_by_length[1], 1},
+        {&urwire__robot_message_form_list[12], &urwire__robot_message_by_length[1], 1, 1},
     [URWIRE_ROBOT_MESSAGE_TYPE_UNDOCUMENTED_12] =
-        {&urwire__robot_message_form_list[13], 1, &urwire__robot_message_by_length[2], 0},
+        {&urwire__robot_message_form_list[13], &urwire__robot_message_by_length[2], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE] =
-        {&urwire__robot_message_form_list[14], 1, &urwire__robot_message_by_length[2], 0},
+        {&urwire__robot_message_form_list[14], &urwire__robot_message_by_length[2], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_TEXT] =
-        {&urwire__robot_message_form_list[15], 1, &urwire__robot_message_by_length[2], 0},
+        {&urwire__robot_message_form_list[15], &urwire__robot_message_by_length[2], 1, 0},
     [URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION] =
-        {&urwire__robot_message_form_list[16], 1, &urwire__robot_message_by_length[2], 0},
+        {&urwire__robot_message_form_list[16], &urwire__robot_message_by_length[2], 1, 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6026,9 +6027,9 @@ static const urwire__recognised urwire__program_state_by_length[] = {
 /* The forms of each program_state subtype with a layout, by code. */
 static const urwire__forms urwire__program_state_forms[] = {
     [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP] =
-        {&urwire__program_state_form_list[0], 1, &urwire__program_state_by_length[0], 0},
+        {&urwire__program_state_form_list[0], &urwire__program_state_by_length[0], 1, 0},
     [URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE] =
-        {&urwire__program_state_form_list[1], 1, &urwire__program_state_by_length[0], 0},
+        {&urwire__program_state_form_list[1], &urwire__program_state_by_length[0], 1, 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6091,7 +6092,7 @@ static const urwire__recognised urwire__modbus_info_by_length[] = {
 /* The forms of each modbus_info message with a layout, by code. */
 static const urwire__forms urwire__modbus_info_forms[] = {
     [URWIRE_MESSAGE_TYPE_MODBUS_INFO_MESSAGE] =
-        {&urwire__modbus_info_form_list[0], 1, &urwire__modbus_info_by_length[0], 0},
+        {&urwire__modbus_info_form_list[0], &urwire__modbus_info_by_length[0], 1, 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6154,7 +6155,7 @@ static const urwire__recognised urwire__hmc_by_length[] = {
 /* The forms of each hmc message with a layout, by code. */
 static const urwire__forms urwire__hmc_forms[] = {
     [URWIRE_MESSAGE_TYPE_HMC_MESSAGE] =
-        {&urwire__hmc_form_list[0], 1, &urwire__hmc_by_length[0], 0},
+        {&urwire__hmc_form_list[0], &urwire__hmc_by_length[0], 1, 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6233,7 +6234,7 @@ static const urwire__recognised urwire__safety_setup_broadcast_by_length[] = {
 /* The forms of each safety_setup_broadcast message with a layout, by code. */
 static const urwire__forms urwire__safety_setup_broadcast_forms[] = {
     [URWIRE_MESSAGE_TYPE_SAFETY_SETUP_BROADCAST_MESSAGE] =
-        {&urwire__safety_setup_broadcast_form_list[0], 1, &urwire__safety_setup_broadcast_by_length[0], 0},
+        {&urwire__safety_setup_broadcast_form_list[0], &urwire__safety_setup_broadcast_by_length[0], 1, 0},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6313,7 +6314,7 @@ static const urwire__recognised urwire__safety_compliance_tolerances_by_length[]
 /* The forms of each safety_compliance_tolerances message with a layout, by code. */
 static const urwire__forms urwire__safety_compliance_tolerances_forms[] = {
     [URWIRE_MESSAGE_TYPE_SAFETY_COMPLIANCE_TOLERANCES_MESSAGE] =
-        {&urwire__safety_compliance_tolerances_form_list[0], 1, &urwire__safety_compliance_tolerances_by_length[0], 1},
+        {&urwire__safety_compliance_tolerances_form_list[0], &urwire__safety_compliance_tolerances_by_length[0], 1, 1},
 };
 
 /* Segment by segment (a row each), code by code: the form the segment's versions send, as its
@@ -6943,67 +6944,55 @@ static const urwire__message_type urwire__message_types[] = {
     },
 };
 
-/* Every urwire_message_kind: its record's type, its message type, and for a subtype its code
- * and the functions of its layout. */
+/* Every urwire_message_kind: its record's type, its message type, and for a subtype the
+ * functions of its layout. */
 static const urwire__message_kind urwire__message_kinds[] = {
-    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, 0, NULL, NULL, NULL},
-    [URWIRE_KIND_ROBOT_STATE] = {"robot_state", &urwire__message_types[0], 0, NULL, NULL, NULL},
-    [URWIRE_KIND_VERSION] = {"version", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_VERSION,
-                             urwire__decode_version, urwire__encode_version, urwire__visit_version},
-    [URWIRE_KIND_SAFETY_MODE] = {"safety_mode", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE,
-                                 urwire__decode_safety_mode, urwire__encode_safety_mode, urwire__visit_safety_mode},
-    [URWIRE_KIND_ROBOT_COMM] = {"robot_comm", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE,
-                                urwire__decode_robot_comm, urwire__encode_robot_comm, urwire__visit_robot_comm},
-    [URWIRE_KIND_KEY] = {"key", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_KEY, urwire__decode_key,
-                         urwire__encode_key, urwire__visit_key},
-    [URWIRE_KIND_PROGRAM_THREADS] = {"program_threads", &urwire__message_types[1],
-                                     URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS, urwire__decode_program_threads,
+    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, NULL, NULL, NULL},
+    [URWIRE_KIND_ROBOT_STATE] = {"robot_state", &urwire__message_types[0], NULL, NULL, NULL},
+    [URWIRE_KIND_VERSION] = {"version", &urwire__message_types[1], urwire__decode_version, urwire__encode_version,
+                             urwire__visit_version},
+    [URWIRE_KIND_SAFETY_MODE] = {"safety_mode", &urwire__message_types[1], urwire__decode_safety_mode,
+                                 urwire__encode_safety_mode, urwire__visit_safety_mode},
+    [URWIRE_KIND_ROBOT_COMM] = {"robot_comm", &urwire__message_types[1], urwire__decode_robot_comm,
+                                urwire__encode_robot_comm, urwire__visit_robot_comm},
+    [URWIRE_KIND_KEY] = {"key", &urwire__message_types[1], urwire__decode_key, urwire__encode_key, urwire__visit_key},
+    [URWIRE_KIND_PROGRAM_THREADS] = {"program_threads", &urwire__message_types[1], urwire__decode_program_threads,
                                      urwire__encode_program_threads, urwire__visit_program_threads},
-    [URWIRE_KIND_POPUP] = {"popup", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_POPUP, urwire__decode_popup,
-                           urwire__encode_popup, urwire__visit_popup},
-    [URWIRE_KIND_LABEL] = {"label", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL,
-                           urwire__decode_label, urwire__encode_label, urwire__visit_label},
-    [URWIRE_KIND_VAR] = {"var", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR, urwire__decode_var,
-                         urwire__encode_var, urwire__visit_var},
-    [URWIRE_KIND_HARDWARE_INFO] = {"hardware_info", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO,
-                                   urwire__decode_hardware_info, urwire__encode_hardware_info,
-                                   urwire__visit_hardware_info},
-    [URWIRE_KIND_ROBOT_MESSAGE_12] = {"robot_message_12", &urwire__message_types[1],
-                                      URWIRE_ROBOT_MESSAGE_TYPE_UNDOCUMENTED_12, urwire__decode_robot_message_12,
+    [URWIRE_KIND_POPUP] = {"popup", &urwire__message_types[1], urwire__decode_popup, urwire__encode_popup,
+                           urwire__visit_popup},
+    [URWIRE_KIND_LABEL] = {"label", &urwire__message_types[1], urwire__decode_label, urwire__encode_label,
+                           urwire__visit_label},
+    [URWIRE_KIND_VAR] = {"var", &urwire__message_types[1], urwire__decode_var, urwire__encode_var, urwire__visit_var},
+    [URWIRE_KIND_HARDWARE_INFO] = {"hardware_info", &urwire__message_types[1], urwire__decode_hardware_info,
+                                   urwire__encode_hardware_info, urwire__visit_hardware_info},
+    [URWIRE_KIND_ROBOT_MESSAGE_12] = {"robot_message_12", &urwire__message_types[1], urwire__decode_robot_message_12,
                                       urwire__encode_robot_message_12, urwire__visit_robot_message_12},
-    [URWIRE_KIND_REQUEST_VALUE] = {"request_value", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE,
-                                   urwire__decode_request_value, urwire__encode_request_value,
-                                   urwire__visit_request_value},
-    [URWIRE_KIND_TEXT] = {"text", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_TEXT, urwire__decode_text,
-                          urwire__encode_text, urwire__visit_text},
-    [URWIRE_KIND_RUNTIME_EXCEPTION] = {"runtime_exception", &urwire__message_types[1],
-                                       URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION, urwire__decode_runtime_exception,
+    [URWIRE_KIND_REQUEST_VALUE] = {"request_value", &urwire__message_types[1], urwire__decode_request_value,
+                                   urwire__encode_request_value, urwire__visit_request_value},
+    [URWIRE_KIND_TEXT] = {"text", &urwire__message_types[1], urwire__decode_text, urwire__encode_text,
+                          urwire__visit_text},
+    [URWIRE_KIND_RUNTIME_EXCEPTION] = {"runtime_exception", &urwire__message_types[1], urwire__decode_runtime_exception,
                                        urwire__encode_runtime_exception, urwire__visit_runtime_exception},
     [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {"global_variables_setup", &urwire__message_types[2],
-                                            URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP,
                                             urwire__decode_global_variables_setup,
                                             urwire__encode_global_variables_setup,
                                             urwire__visit_global_variables_setup},
     [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {"global_variables_update", &urwire__message_types[2],
-                                             URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE,
                                              urwire__decode_global_variables_update,
                                              urwire__encode_global_variables_update,
                                              urwire__visit_global_variables_update},
-    [URWIRE_KIND_MODBUS_INFO] = {"modbus_info", &urwire__message_types[3], URWIRE_MESSAGE_TYPE_MODBUS_INFO_MESSAGE,
-                                 urwire__decode_modbus_info, urwire__encode_modbus_info, urwire__visit_modbus_info},
-    [URWIRE_KIND_HMC] = {"hmc", &urwire__message_types[4], URWIRE_MESSAGE_TYPE_HMC_MESSAGE, urwire__decode_hmc,
-                         urwire__encode_hmc, urwire__visit_hmc},
+    [URWIRE_KIND_MODBUS_INFO] = {"modbus_info", &urwire__message_types[3], urwire__decode_modbus_info,
+                                 urwire__encode_modbus_info, urwire__visit_modbus_info},
+    [URWIRE_KIND_HMC] = {"hmc", &urwire__message_types[4], urwire__decode_hmc, urwire__encode_hmc, urwire__visit_hmc},
     [URWIRE_KIND_SAFETY_SETUP_BROADCAST] = {"safety_setup_broadcast", &urwire__message_types[5],
-                                            URWIRE_MESSAGE_TYPE_SAFETY_SETUP_BROADCAST_MESSAGE,
                                             urwire__decode_safety_setup_broadcast,
                                             urwire__encode_safety_setup_broadcast,
                                             urwire__visit_safety_setup_broadcast},
     [URWIRE_KIND_SAFETY_COMPLIANCE_TOLERANCES] = {"safety_compliance_tolerances", &urwire__message_types[6],
-                                                  URWIRE_MESSAGE_TYPE_SAFETY_COMPLIANCE_TOLERANCES_MESSAGE,
                                                   urwire__decode_safety_compliance_tolerances,
                                                   urwire__encode_safety_compliance_tolerances,
                                                   urwire__visit_safety_compliance_tolerances},
-    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, 0, NULL, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, NULL, NULL, NULL},
 };
 
 /* How to reach the numbers of a Version message before its layout is chosen. */
@@ -7057,6 +7046,7 @@ static bool urwire__count_fits(const urwire__value_table *t, uint64_t items, siz
 /* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
  * skipped) here, so that iterating them later cannot fail; depth bounds the recursion.
  * Error paths are relative ("", ".type", "[2][0]") and prefixed by the callers. */
+/* NOLINTNEXTLINE(misc-no-recursion): the one recursion, depth at most URWIRE_MAX_VALUE_DEPTH */
 static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
                                const urwire__value_table *t, unsigned depth, urwire_value *out, urwire_error *err)
 {
@@ -7091,11 +7081,11 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
             out->as.number = urwire__f32(msg + pos), pos += 4;
         break;
     case URWIRE__LAYOUT_ARRAY:
-        if (end - pos < 4u * e->count)
-            return urwire__short(err, "", pos, 4u * e->count, end);
+        if (end - pos < (size_t)e->count * 4u)
+            return urwire__short(err, "", pos, (size_t)e->count * 4u, end);
         for (k = 0; k < e->count; k++)
             out->as.pose[k] = urwire__f32(msg + pos + 4 * k);
-        pos += 4u * e->count;
+        pos += (size_t)e->count * 4u;
         break;
     case URWIRE__LAYOUT_STRING:
         if (!urwire__read_prefixed(msg, &pos, end, 2, true, "", &out->as.text, err))
@@ -7885,6 +7875,8 @@ URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *ke
     v->end_array(v->ctx);
 }
 
+/* A LIST's or MATRIX's items by calling itself, as deep as urwire__read_value let the value be. */
+/* NOLINTNEXTLINE(misc-no-recursion): depth at most URWIRE_MAX_VALUE_DEPTH, checked when read */
 static void urwire__visit_value(const urwire_value *val, const char *key, const urwire_visitor *v)
 {
     const urwire__value_entry *e = urwire__value_entry_of(urwire__values_of(val->items.version), val->code);
@@ -7937,7 +7929,7 @@ static void urwire__visit_value(const urwire_value *val, const char *key, const 
 URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v)
 {
     urwire_seq seq = *values;
-    urwire_value value;
+    urwire_value value = {0};
     v->begin_array(v->ctx, key);
     while (urwire_next_value(&seq, &value))
         urwire__visit_value(&value, NULL, v);

@@ -40,19 +40,19 @@
 /* ---- the tables ---- */
 
 static const urwire__value_entry urwire__values_old[] = {
-    {0, URWIRE_VALUE_NONE, "NONE", URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 1},
-    {3, URWIRE_VALUE_STRING, "STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
+    {"NONE", URWIRE_VALUE_NONE, URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 0, 1},
+    {"STRING", URWIRE_VALUE_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 3, 1},
 };
 
 static const urwire__value_entry urwire__values_new[] = {
-    {0, URWIRE_VALUE_NONE, "NONE", URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 1},
-    {3, URWIRE_VALUE_STRING, "CONST_STRING", URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 1},
-    {12, URWIRE_VALUE_POSE, "POSE", URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 6},
-    {13, URWIRE_VALUE_BOOL, "BOOL", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 1},
-    {14, URWIRE_VALUE_NUM, "NUM", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 1},
-    {15, URWIRE_VALUE_INT, "INT", URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 1},
-    {17, URWIRE_VALUE_LIST, "LIST", URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 1},
-    {18, URWIRE_VALUE_MATRIX, "MATRIX", URWIRE__LAYOUT_MATRIX, URWIRE__ITEM_NONE, 1},
+    {"NONE", URWIRE_VALUE_NONE, URWIRE__LAYOUT_EMPTY, URWIRE__ITEM_NONE, 0, 1},
+    {"CONST_STRING", URWIRE_VALUE_STRING, URWIRE__LAYOUT_STRING, URWIRE__ITEM_NONE, 3, 1},
+    {"POSE", URWIRE_VALUE_POSE, URWIRE__LAYOUT_ARRAY, URWIRE__ITEM_F32, 12, 6},
+    {"BOOL", URWIRE_VALUE_BOOL, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_BOOL, 13, 1},
+    {"NUM", URWIRE_VALUE_NUM, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_F32, 14, 1},
+    {"INT", URWIRE_VALUE_INT, URWIRE__LAYOUT_SCALAR, URWIRE__ITEM_I32, 15, 1},
+    {"LIST", URWIRE_VALUE_LIST, URWIRE__LAYOUT_LIST, URWIRE__ITEM_NONE, 17, 1},
+    {"MATRIX", URWIRE_VALUE_MATRIX, URWIRE__LAYOUT_MATRIX, URWIRE__ITEM_NONE, 18, 1},
 };
 
 static const urwire__versions urwire__value_ranges[] = {
@@ -127,7 +127,7 @@ static const urwire__recognised urwire__package_by_length[] = {
 };
 
 static const urwire__forms urwire__package_forms[] = {
-    [1] = {&urwire__package_form_list[0], 2, urwire__package_by_length, 2},
+    [1] = {&urwire__package_form_list[0], urwire__package_by_length, 2, 2},
 };
 
 static const uint8_t urwire__package_mine[] = {
@@ -202,9 +202,9 @@ static const urwire__message_type urwire__message_types[] = {
 };
 
 static const urwire__message_kind urwire__message_kinds[] = {
-    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, 0, NULL, NULL, NULL},
-    [URWIRE_KIND_STATE] = {"state", &urwire__message_types[0], 0, NULL, NULL, NULL},
-    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, 0, NULL, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, NULL, NULL, NULL},
+    [URWIRE_KIND_STATE] = {"state", &urwire__message_types[0], NULL, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, NULL, NULL, NULL},
 };
 
 static const bool urwire__known_message_types[256] = {

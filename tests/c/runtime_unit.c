@@ -112,7 +112,7 @@ static void forms(void)
         {URWIRE_LAYOUT_COUNTER, 1, {4, 0}, 4u, {5, 9, 0, false}},
     };
     static const urwire__recognised open_by_length[] = {{4u, 1}};   /* the open-ended one: none */
-    static const urwire__forms open_codes[] = {{NULL, 0, NULL, 0}, {open_forms, 2, open_by_length, 1}};
+    static const urwire__forms open_codes[] = {{NULL, NULL, 0, 0}, {open_forms, open_by_length, 2, 1}};
     urwire__form_table open = {open_forms, open_codes, 2, urwire__package_mine};
     const urwire__form_table *t = &urwire__package_form_table;
     urwire_sw_version use;

@@ -237,7 +237,7 @@ int main(int argc, char **argv)
         if (!in.client) {
             int opening = errno;
             if (in.robot != stdin)
-                fclose(in.robot);
+                (void)fclose(in.robot);
             return fail(to_robot, strerror(opening));
         }
         from_robot_envelope.interface = to_robot_envelope.interface = protocol;
@@ -250,12 +250,14 @@ int main(int argc, char **argv)
     }
     status = run(&in, version, hint != NULL);
     if (in.robot != stdin)
-        fclose(in.robot);
+        (void)fclose(in.robot);     /* read only: closing loses nothing */
     if (in.client)
-        fclose(in.client);
+        (void)fclose(in.client);
     if (status == 2)
         return fail(path, "read error");
-    if (fflush(stdout) != 0)
+    /* The records' writes are not checked one by one: a stream's error indicator stays set, and
+     * is checked here, once, with the flush of what is left. */
+    if (fflush(stdout) != 0 || ferror(stdout))
         return fail("write error", strerror(errno));
     return status;
 }

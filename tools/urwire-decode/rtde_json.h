@@ -51,9 +51,9 @@ int rtde_json_feed(rtde_json_stream *s, const uint8_t *data, size_t length, bool
  * its own direction's envelope. Returns how many it wrote. */
 int rtde_json_close(rtde_json_stream *s, FILE *out);
 
-/* One decoded message (or what rtde_decode said of it) as one line, in envelope e if not NULL.
- * Returns 1 when the line carries an "error", else 0. */
-int rtde_json_record(FILE *out, const envelope *e, const rtde_message *m, rtde_error de, size_t at,
+/* One decoded message (or what rtde_decode said of it, e) as one line, in envelope env if not
+ * NULL. Returns 1 when the line carries an "error", else 0. */
+int rtde_json_record(FILE *out, const envelope *env, const rtde_message *m, rtde_error e, size_t at,
                      const uint8_t *msg, size_t size);
 
 #endif

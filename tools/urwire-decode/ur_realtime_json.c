@@ -61,13 +61,14 @@ static bool drain(ur_realtime_stream *s, FILE *out, uint32_t version)
             ur_realtime_write_json(out, &p, (size_t)f.offset);
             break;
         case UR_REALTIME_FRAME_BAD_SIZE:
-            sprintf(what, "size %ld is %s %d", (long)f.size, f.error == UR_REALTIME_E_SIZE_BELOW ? "below" : "above",
-                    f.error == UR_REALTIME_E_SIZE_BELOW ? UR_REALTIME_MIN_MESSAGE_SIZE : UR_REALTIME_MAX_MESSAGE_SIZE);
+            (void)snprintf(what, sizeof what, "size %ld is %s %d", (long)f.size,
+                           f.error == UR_REALTIME_E_SIZE_BELOW ? "below" : "above",
+                           f.error == UR_REALTIME_E_SIZE_BELOW ? UR_REALTIME_MIN_MESSAGE_SIZE : UR_REALTIME_MAX_MESSAGE_SIZE);
             write_error(out, f.offset, what);
             errors = true;
             break;
         case UR_REALTIME_FRAME_TRUNCATED:
-            sprintf(what, "needs %ld bytes, %lu left", (long)f.needed, (unsigned long)f.length);
+            (void)snprintf(what, sizeof what, "needs %ld bytes, %lu left", (long)f.needed, (unsigned long)f.length);
             write_error(out, f.offset, what);
             errors = true;
             break;

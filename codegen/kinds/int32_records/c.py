@@ -35,7 +35,7 @@ def view(p: RecordsPlan) -> dict:
     for r in p.records:
         layouts = []
         for i, lay in enumerate(r.layouts):
-            reads = [dict(name=s.field.name, kind=_member(s.field)["kind"], index=s.index, count=s.count,
+            reads = [dict(name=s.field.name, kind=_member(s.field)["kind"], offset=4 * s.index, count=s.count,
                           decimals=len(str(s.scale)) - 1 if s.scale else 0, optional=not s.field.always)
                      for s in lay.slots]
             layouts.append(dict(index=i, describe=lay.describe(), size=4 * lay.size, reads=reads,
@@ -49,10 +49,17 @@ def view(p: RecordsPlan) -> dict:
         records.append(dict(
             scales=scales, name=r.record.name, type=f"{prefix}_{r.record.name}", doc=f"{r.record.label}: {r.record.doc}",
             from_robot=r.record.direction == FROM_ROBOT, members=[_member(f) for f in r.fields],
-            layouts=layouts, last=len(r.layouts) - 1))
+            lists=any(f.is_list for f in r.fields), layouts=layouts, last=len(r.layouts) - 1))
     directions = {rec["from_robot"]: rec for rec in records}
+    # How the record functions tell the directions apart: the robot's first; when both are
+    # there, the client's is what is left, with no test.
+    order = [rec for rec in (directions.get(True), directions.get(False)) if rec]
+    tests = ["from_robot" if rec["from_robot"] else "!from_robot" for rec in order]
+    if len(order) == 2:
+        tests[1] = None
     return dict(prefix=prefix, upper=upper, title=m.title, doc=m.doc, ports=m.ports, enums=enums, records=records,
                 to_robot=directions.get(False), from_robot=directions.get(True),
+                directions=[dict(record=rec, test=test) for rec, test in zip(order, tests)],
                 default_release=_release(m.default_release), default_text=ir.version_text(m.default_release),
                 runtime="\n\n".join(runtime_section("c", name) for name in RUNTIME))
 

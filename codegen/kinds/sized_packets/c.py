@@ -42,7 +42,6 @@ class CLayout:
     const: str
     label: str
     comment: str
-    size: int
     decoder: str
     slots: list[tuple[str, int, int]]   # field constant, offset, count
     reads: list[CRead]
@@ -88,7 +87,7 @@ def render(planned: SizedPlan, banner: list[str]) -> dict[str, str]:
         comment = f"{layout.label}: sent by software {layout.describe()}."
         if node_text(layout):
             comment += " " + node_text(layout)
-        layouts.append(CLayout(layout.name, f"{upper}_{layout.name.upper()}", layout.label, comment, layout.size,
+        layouts.append(CLayout(layout.name, f"{upper}_{layout.name.upper()}", layout.label, comment,
                                f"{prefix}__decode_{layout.name}",
                                [(const_of[s.field.name], s.offset, s.count) for s in lp.slots],
                                [CRead(s.field.name, s.offset, s.count) for s in lp.slots]))

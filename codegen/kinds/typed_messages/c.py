@@ -99,7 +99,7 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
             "name": m.name, "const": f"{name.upper()}_LAYOUT_{m.name.upper()}", "label": m.label,
             "code": m.code, "letter": m.letter, "from_robot": "true" if m.from_robot else "false",
             "protocols": m.protocols, "members": members, "steps": [_step(s, by_name) for s in mp.steps],
-            "request_kind": _kind(mp.request_kind), "reply_kind": _kind(mp.reply_kind),
+            "request_kind": _kind(mp.request_kind),
             "has_recipe_id": "true" if m.recipe_values and m.field_named("recipe_id") else "false",
             "is_data": "true" if m.recipe_values else "false",
         })

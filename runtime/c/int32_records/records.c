@@ -75,7 +75,7 @@ URWIRE__PRIVATE void i32r_scaled(urwire__text *o, int32_t raw, unsigned decimals
             text[at++] = '0';
         end = sig > whole ? sig : whole + 1;
         for (i = whole; i < end; i++)
-            text[at++] = i < n ? digits[i] : '0';
+            text[at++] = (char)(i < n ? digits[i] : '0');
     }
     urwire__bytes(o, text, at);
 }

@@ -20,10 +20,16 @@ static const char digit_pairs[] =
     "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
     "8081828384858687888990919293949596979899";
 
+/* The two digits of v (0 to 99). */
+static const char *digit_pair(uint32_t v)
+{
+    return digit_pairs + (size_t)v * 2;
+}
+
 static void four_digits(char *at, uint32_t v)
 {
-    memcpy(at, digit_pairs + v / 100 * 2, 2);
-    memcpy(at + 2, digit_pairs + v % 100 * 2, 2);
+    memcpy(at, digit_pair(v / 100), 2);
+    memcpy(at + 2, digit_pair(v % 100), 2);
 }
 
 /* The decimal digits of n written to end just before end; returns where they start. */
@@ -40,11 +46,11 @@ static char *digits_before(char *end, uint64_t n)
     }
     for (m = (uint32_t)n; m >= 100; m /= 100) {
         end -= 2;
-        memcpy(end, digit_pairs + m % 100 * 2, 2);
+        memcpy(end, digit_pair(m % 100), 2);
     }
     if (m >= 10) {
         end -= 2;
-        memcpy(end, digit_pairs + m * 2, 2);
+        memcpy(end, digit_pair(m), 2);
     } else {
         *--end = (char)('0' + m);
     }
@@ -76,7 +82,7 @@ static size_t scientific(char *out, const digits *g, int exp10)
     out[at++] = exp10 < 0 ? '-' : '+';
     if (e >= 100)
         out[at++] = (char)('0' + e / 100);
-    memcpy(out + at, digit_pairs + e % 100 * 2, 2);
+    memcpy(out + at, digit_pair(e % 100), 2);
     return at + 2;
 }
 
@@ -259,6 +265,7 @@ static void write_hex(json_writer *w, const unsigned char *p, size_t n)
     while (i < n) {
         size_t chunk = n - i < sizeof w->buf / 2 ? n - i : sizeof w->buf / 2;
         at = reserve(w, 2 * chunk);
+        /* cppcheck-suppress knownConditionTrueFalse ; cppcheck 2.10 takes sizeof w->buf for 0 */
         for (k = 0; k < chunk; k++, i++) {
             *at++ = hex[p[i] >> 4];
             *at++ = hex[p[i] & 15];
@@ -293,7 +300,8 @@ void json_write_hex(FILE *out, const unsigned char *p, size_t n)
 void json_write_f64(FILE *out, double x)
 {
     char text[TEXT_ROOM];
-    fwrite(text, 1, f64_text(x, text), out);
+    size_t n = f64_text(x, text);
+    fwrite(text, 1, n, out);
 }
 
 /* A record is written: hand it to out. */
@@ -319,9 +327,11 @@ static char *field(json_writer *w, const char *key, size_t room)
     if (n + room + 5 > sizeof w->buf) {  /* no key is this long; written in pieces if one were */
         if (comma)
             put(w, ", ", 2);
-        put_char(w, '"');
-        put(w, key, n);
-        put(w, "\": ", 3);
+        if (key) {
+            put_char(w, '"');
+            put(w, key, n);
+            put(w, "\": ", 3);
+        }
         return reserve(w, room);
     }
     at = reserve(w, n + room + 5);
@@ -386,6 +396,7 @@ static void end_array(void *ctx) { close_((json_writer *)ctx, ']'); }
 /* An integer's text at at: v, after a minus sign when negative. */
 static size_t integer_text(char *at, uint64_t v, bool negative)
 {
+    /* cppcheck-suppress unassignedVariable ; digits_before writes buf, from its middle back */
     char buf[2 * DIGIT_COPY], *d = digits_before(buf + DIGIT_COPY, v);
     at[0] = '-';
     memcpy(at + negative, d, DIGIT_COPY);

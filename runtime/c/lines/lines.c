@@ -1,6 +1,6 @@
 /* <standalone> */
 #include <string.h>
-#include "match.c"
+#include "match.c"  /* NOLINT(bugprone-suspicious-include): one unit, as joined */
 #include "lines.h"
 /* </standalone> */
 /* ---- lines: splitting, pairing, versions ------------------------------------------------------ */

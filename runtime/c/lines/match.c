@@ -1,7 +1,7 @@
 /* <standalone> */
 #include <string.h>
 #include "../common/macros.h"
-#include "../common/version_text.c"
+#include "../common/version_text.c"  /* NOLINT(bugprone-suspicious-include): one unit, as joined */
 #include "match.h"
 /* </standalone> */
 /* ---- lines: which command, which reply, which version ------------------------------------- */

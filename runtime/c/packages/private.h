@@ -139,10 +139,10 @@ typedef struct urwire__recognised {
 
 /* The forms of one type code, in a table of all the forms of its type byte (count 0: the code
  * has no layout), and the sizes that recognise one of them. */
-typedef struct urwire__forms {
+typedef struct urwire__forms {       /* the pointers first: no padding between the counts */
     const urwire__form *forms;
-    uint8_t count;
     const urwire__recognised *by_length;
+    uint8_t count;
     uint8_t nby_length;
 } urwire__forms;
 
@@ -198,7 +198,6 @@ typedef struct urwire__message_type {
 typedef struct urwire__message_kind {
     const char *name;                   /* "version", "robot_state", "unknown" */
     const urwire__message_type *type;   /* NULL for the unknown kinds */
-    int64_t subtype;                    /* its code in its type's subtype byte */
     urwire__decode_fn decode;
     urwire__encode_fn encode;
     urwire__visit_fn visit;
@@ -223,12 +222,12 @@ typedef enum urwire__item {
     URWIRE__ITEM_F32
 } urwire__item;
 
-typedef struct urwire__value_entry {
-    uint8_t code;
-    urwire_value_kind kind;
+typedef struct urwire__value_entry {   /* widest first: no padding between the bytes */
     const char *name;
+    urwire_value_kind kind;
     urwire__layout layout;
     urwire__item item;
+    uint8_t code;
     uint8_t count;                  /* array items */
 } urwire__value_entry;
 

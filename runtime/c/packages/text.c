@@ -14,6 +14,8 @@ URWIRE__PRIVATE bool urwire__read_prefixed(const uint8_t *msg, size_t *at, size_
         return urwire__short(err, path, pos, size, end);
     raw = urwire__uint(msg + pos, size);
     n = (int64_t)raw;
+    /* size is a prefix's width, 1 to 8 bytes, at every call: the shifts stay below 64. */
+    /* NOLINTNEXTLINE(clang-analyzer-core.UndefinedBinaryOperatorResult) */
     if (is_signed && (raw >> (size * 8 - 1)) & 1u)
         n = (int64_t)(raw | ~(uint64_t)0 << (size * 8 - 1));
     if (n < 0)

@@ -34,6 +34,7 @@ static bool urwire__count_fits(const urwire__value_table *t, uint64_t items, siz
 /* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
  * skipped) here, so that iterating them later cannot fail; depth bounds the recursion.
  * Error paths are relative ("", ".type", "[2][0]") and prefixed by the callers. */
+/* NOLINTNEXTLINE(misc-no-recursion): the one recursion, depth at most URWIRE_MAX_VALUE_DEPTH */
 static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
                                const urwire__value_table *t, unsigned depth, urwire_value *out, urwire_error *err)
 {
@@ -68,11 +69,11 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
             out->as.number = urwire__f32(msg + pos), pos += 4;
         break;
     case URWIRE__LAYOUT_ARRAY:
-        if (end - pos < 4u * e->count)
-            return urwire__short(err, "", pos, 4u * e->count, end);
+        if (end - pos < (size_t)e->count * 4u)
+            return urwire__short(err, "", pos, (size_t)e->count * 4u, end);
         for (k = 0; k < e->count; k++)
             out->as.pose[k] = urwire__f32(msg + pos + 4 * k);
-        pos += 4u * e->count;
+        pos += (size_t)e->count * 4u;
         break;
     case URWIRE__LAYOUT_STRING:
         if (!urwire__read_prefixed(msg, &pos, end, 2, true, "", &out->as.text, err))

@@ -32,6 +32,8 @@ URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *ke
     v->end_array(v->ctx);
 }
 
+/* A LIST's or MATRIX's items by calling itself, as deep as urwire__read_value let the value be. */
+/* NOLINTNEXTLINE(misc-no-recursion): depth at most URWIRE_MAX_VALUE_DEPTH, checked when read */
 static void urwire__visit_value(const urwire_value *val, const char *key, const urwire_visitor *v)
 {
     const urwire__value_entry *e = urwire__value_entry_of(urwire__values_of(val->items.version), val->code);
@@ -84,7 +86,7 @@ static void urwire__visit_value(const urwire_value *val, const char *key, const 
 URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v)
 {
     urwire_seq seq = *values;
-    urwire_value value;
+    urwire_value value = {0};
     v->begin_array(v->ctx, key);
     while (urwire_next_value(&seq, &value))
         urwire__visit_value(&value, NULL, v);

@@ -42,7 +42,7 @@ static void rtde__place(rtde_conversation *c, const rtde_limits *limits, rtde_re
     for (k = 0; k < 2; k++)
         for (i = 0; i < RTDE_MAX_PENDING; i++)
             c->pending[k][i].names = pending + (k * RTDE_MAX_PENDING + i) * limits->names;
-    c->refused.names = pending + 2 * RTDE_MAX_PENDING * limits->names;
+    c->refused.names = pending + (size_t)(2 * RTDE_MAX_PENDING) * limits->names;
 }
 
 void rtde_conversation_init(rtde_conversation *c)
@@ -230,7 +230,7 @@ static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text ty
 {
     const uint8_t *names;
     rtde_recipe *recipe = NULL;
-    size_t at_names = 0, at_types = 0, s1, n1, s2, n2, count = 0, size = 0, pass;
+    size_t at_names, at_types, s1, n1, s2, n2, count = 0, size = 0, pass;
     bool refused = false, from_robot = kind == 0;
     if (c->pending_count[kind] == 0) {
         if (c->pending_lost[kind] > 0) {    /* its request was not kept: its names are unknown */
