@@ -32,6 +32,9 @@ from ..reading import input_kind
 from .records import records_of_file, robot_address
 
 LIBRARY = f"urwire {__version__}"
+_VERSION = "{major_version}.{minor_version}.{bugfix_version}.{build_number}"   # the primary's version message
+# The dashboard commands whose reply is a fact of the robot, by the metadata key it goes under.
+_DASHBOARD_FACTS = {"get_serial_number": "serial_number", "get_robot_model": "robot_model"}
 
 
 def nanoseconds(seconds: float) -> int:
@@ -90,11 +93,11 @@ class McapRecording:
         message, RTDE's controller version), or a dashboard reply with its serial number or model."""
         robot = self.robots.setdefault(address, {"address": address})
         if interface == PRIMARY and kind == "version":
-            robot["software_version"] = "{major_version}.{minor_version}.{bugfix_version}.{build_number}".format(**shown)
+            robot["software_version"] = _VERSION.format(**shown)
         elif kind == "get_urcontrol_version_reply":
             robot.setdefault("software_version", "{major}.{minor}.{bugfix}.{build}".format(**shown))
         elif kind == "reply" and interface == "ur_dashboard" and not shown.get("error"):
-            name = {"get_serial_number": "serial_number", "get_robot_model": "robot_model"}.get(shown.get("command_name"))
+            name = _DASHBOARD_FACTS.get(shown.get("command_name"))
             if name:
                 robot[name] = str(shown["reply"])
 

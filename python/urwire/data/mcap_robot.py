@@ -50,7 +50,8 @@ def pose_and_joints(kind: str, record: dict) -> tuple[Optional[list], Optional[l
         return [record[k] for k in ("x", "y", "z", "rx", "ry", "rz")], None
     if kind == "joint_data":
         return None, [joint["q_actual"] for joint in record["joints"]]
-    return _six(record.get("tool_vector_actual", record.get("actual_TCP_pose"))), _six(record.get("q_actual", record.get("actual_q")))
+    pose = record.get("tool_vector_actual", record.get("actual_TCP_pose"))
+    return _six(pose), _six(record.get("q_actual", record.get("actual_q")))
 
 
 def _six(values) -> Optional[list]:
