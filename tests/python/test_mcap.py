@@ -150,3 +150,21 @@ def test_dataset_refuses_mcap(tmp_path):
     done = subprocess.run([sys.executable, "-m", "urwire", "export", "--format", "mcap", "--dataset",
                            str(tmp_path), str(SAMPLE)], capture_output=True, text=True, env=ENV, timeout=120)
     assert done.returncode == 2
+
+
+def test_metadata_takes_the_serial_number_and_model_from_the_dashboard(tmp_path):
+    from tests.tools import capture
+    from tests.tools.capture import Segment
+
+    talk = [Segment(True, b"Connected: Universal Robots Dashboard Server\n"),
+            Segment(False, b"get serial number\n"), Segment(True, b"20185500042\n"),
+            Segment(False, b"get robot model\n"), Segment(True, b"UR5\n")]
+    path = capture.write(tmp_path / "dashboard.pcapng", capture.session_frames(talk, port=29999), pcapng=True)
+    (tmp_path / "out").mkdir()
+    done = subprocess.run([sys.executable, "-m", "urwire", "export", "--format", "mcap", "--out",
+                           str(tmp_path / "out"), str(path)], capture_output=True, text=True, env=ENV, timeout=120)
+    assert done.returncode == 0, done.stderr
+    _, messages, metadata = read_back(tmp_path / "out" / "dashboard.mcap")
+    assert metadata == [("robot", {"address": capture.ROBOT, "serial_number": "20185500042", "robot_model": "UR5"})]
+    assert [json.loads(m.data)["reply"] for topic, _, m in messages if topic.endswith("/reply")] == \
+        ["Connected: Universal Robots Dashboard Server", "20185500042", "UR5"]
