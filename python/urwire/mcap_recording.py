@@ -1,0 +1,125 @@
+"""Records as one MCAP file (docs/mcap.md), the robotics log format that Foxglove,
+PlotJuggler and Rerun open.
+
+A channel per interface, conversation and record kind, topic /<interface>/<conversation>/<kind>
+(a robot state's sub-packages each on the channel of their kind, as `export` gives each its
+table; a raw stream, which has no conversation, /<interface>/<kind>); each message is the record's
+canonical JSON as `decode` prints it, envelope included, and each channel's schema the JSON Schema
+of its class (mcap_schema). Records with an error go to their interface's `error` channel as
+decode prints them. Beside them, per interface and conversation, the TCP pose as
+foxglove.PoseInFrame (/.../tcp_pose) and the joint positions (/.../joint_positions: mcap_robot).
+Log times are the capture's times in nanoseconds since the epoch; a raw stream has none, and its
+records are numbered instead (the n-th at n ns) so that the order stays. A `robot` metadata record
+per robot address holds what the capture says of it: software version, serial number, model.
+Needs the `mcap` package (pip install urwire[mcap]). `urwire export --format mcap` writes a capture
+with it (data/mcap_export.py), `urwire listen --mcap` what it records.
+"""
+from __future__ import annotations
+
+import json
+from decimal import Decimal
+from typing import BinaryIO, Optional
+
+from . import __version__, mcap_robot
+from .canonical import has_error, to_json_line
+from .cell import PRIMARY
+from .envelope import Enveloped
+from .mcap_schema import ANY_RECORD, schema_text
+
+LIBRARY = f"urwire {__version__}"
+_VERSION = "{major_version}.{minor_version}.{bugfix_version}.{build_number}"   # the primary's version message
+# The dashboard commands whose reply is a fact of the robot, by the metadata key it goes under.
+_DASHBOARD_FACTS = {"get_serial_number": "serial_number", "get_robot_model": "robot_model"}
+
+
+def nanoseconds(seconds: float) -> int:
+    """A capture time in whole nanoseconds, from its shortest decimal text: 1700000000.066 gives
+    ...066000000, where seconds * 1e9 would give ...065999872."""
+    return int(Decimal(repr(seconds)).scaleb(9).to_integral_value())
+
+
+class McapRecording:
+    """Records written to an open binary file as they come; finish() writes the summary."""
+
+    def __init__(self, fh: BinaryIO) -> None:
+        from mcap.writer import Writer   # the optional extra, needed only here
+        self._writer = Writer(fh)
+        self._writer.start(profile="", library=LIBRARY)
+        self._schemas: dict[str, int] = {}
+        self._channels: dict[str, int] = {}
+        self._sequence: dict[int, int] = {}
+        self.robots: dict[str, dict[str, str]] = {}
+        self.counts: dict[str, int] = {}
+
+    def add(self, position: int, item) -> None:
+        """One record: Enveloped, from a capture, or a raw primary stream's record as it is."""
+        enveloped = isinstance(item, Enveloped)
+        record = item.record if enveloped else item
+        time = item.capture_time if enveloped else None
+        log_time = position if time is None else nanoseconds(time)
+        interface = (item.interface if enveloped else None) or PRIMARY
+        base = f"/{interface}/{item.conversation}" if enveloped and item.conversation else f"/{interface}"
+        if has_error(record) or not hasattr(record, "packages"):
+            parts = [record]
+        else:
+            parts = record.packages
+        for part in parts:
+            line = to_json_line(Enveloped(item.interface, item.direction, item.conversation, part)
+                                if enveloped and part is not record else item)
+            shown = json.loads(line)
+            kind = "error" if has_error(part) else str(shown.get("type", "unknown"))
+            self._write(f"{base}/{kind}", type(part), f"urwire.{interface}.{kind}", line.encode(), log_time)
+            if kind != "error":
+                self._robot_parts(base, kind, shown, log_time)
+                if enveloped and item.conversation is not None:
+                    self._learn(item.conversation.robot_address, interface, kind, shown)
+
+    def _robot_parts(self, base: str, kind: str, shown: dict, log_time: int) -> None:
+        pose, joints = mcap_robot.pose_and_joints(kind, shown)
+        if pose is not None:
+            self._write_as(f"{base}/tcp_pose", mcap_robot.POSE_SCHEMA_NAME, mcap_robot.POSE_SCHEMA,
+                           mcap_robot.pose_message(pose, log_time), log_time)
+        if joints is not None:
+            self._write_as(f"{base}/joint_positions", mcap_robot.JOINTS_SCHEMA_NAME, mcap_robot.JOINTS_SCHEMA,
+                           mcap_robot.joints_message(joints, log_time), log_time)
+
+    def _learn(self, address: Optional[str], interface: str, kind: str, shown: dict) -> None:
+        """What a record says of its robot: the software version (the primary interface's version
+        message, RTDE's controller version), or a dashboard reply with its serial number or model."""
+        robot = self.robots.setdefault(address, {"address": address})
+        if interface == PRIMARY and kind == "version":
+            robot["software_version"] = _VERSION.format(**shown)
+        elif kind == "get_urcontrol_version_reply":
+            robot.setdefault("software_version", "{major}.{minor}.{bugfix}.{build}".format(**shown))
+        elif kind == "reply" and interface == "ur_dashboard" and not shown.get("error"):
+            name = _DASHBOARD_FACTS.get(shown.get("command_name"))
+            if name:
+                robot[name] = str(shown["reply"])
+
+    def _write(self, topic: str, cls: type, schema_name: str, data: bytes, log_time: int) -> None:
+        """A record kind's message; its schema is made from the class of the first record of the kind."""
+        if schema_name not in self._schemas:
+            text = json.dumps({**ANY_RECORD, "title": schema_name}).encode() if schema_name.endswith(".error") \
+                else schema_text(cls, schema_name)
+            self._schemas[schema_name] = self._writer.register_schema(schema_name, "jsonschema", text)
+        self._message(topic, self._schemas[schema_name], data, log_time)
+
+    def _write_as(self, topic: str, name: str, text: bytes, data: bytes, log_time: int) -> None:
+        if name not in self._schemas:
+            self._schemas[name] = self._writer.register_schema(name, "jsonschema", text)
+        self._message(topic, self._schemas[name], data, log_time)
+
+    def _message(self, topic: str, schema: int, data: bytes, log_time: int) -> None:
+        channel = self._channels.get(topic)
+        if channel is None:
+            channel = self._channels[topic] = self._writer.register_channel(topic, "json", schema)
+        sequence = self._sequence.get(channel, 0)
+        self._sequence[channel] = sequence + 1
+        self._writer.add_message(channel, log_time=log_time, data=data, publish_time=log_time, sequence=sequence)
+        self.counts[topic] = self.counts.get(topic, 0) + 1
+
+    def finish(self) -> None:
+        for address in sorted(self.robots):
+            self._writer.add_metadata("robot", self.robots[address])
+        self._writer.finish()
+
