@@ -17,19 +17,29 @@ with it (data/mcap_export.py), `urwire listen --mcap` what it records.
 from __future__ import annotations
 
 import json
+import time
 from decimal import Decimal
 from typing import BinaryIO, Optional
 
 from . import __version__, mcap_robot
 from .canonical import has_error, to_json_line
 from .cell import PRIMARY
-from .envelope import Enveloped
+from .envelope import FROM_ROBOT, Endpoints, Enveloped
 from .mcap_schema import ANY_RECORD, schema_text
 
 LIBRARY = f"urwire {__version__}"
 _VERSION = "{major_version}.{minor_version}.{bugfix_version}.{build_number}"   # the primary's version message
 # The dashboard commands whose reply is a fact of the robot, by the metadata key it goes under.
 _DASHBOARD_FACTS = {"get_serial_number": "serial_number", "get_robot_model": "robot_model"}
+
+
+def mcap_missing() -> Optional[str]:
+    """Why MCAP cannot be written here, or None when the mcap package is installed."""
+    try:
+        import mcap  # noqa: F401
+    except ImportError:
+        return "MCAP needs the mcap package: pip install urwire[mcap]"
+    return None
 
 
 def nanoseconds(seconds: float) -> int:
@@ -123,3 +133,30 @@ class McapRecording:
             self._writer.add_metadata("robot", self.robots[address])
         self._writer.finish()
 
+
+
+def endpoints_of(sock) -> Endpoints:
+    """The conversation of a connection this side opened: the peer listens."""
+    peer, own = sock.getpeername(), sock.getsockname()
+    return Endpoints(peer[0], peer[1], own[0], own[1])
+
+
+class McapFile:
+    """`urwire listen --mcap FILE`: the records of a live connection as they come, each stamped
+    with the time it was decoded and enveloped with its interface and the current connection's
+    conversation (set by listen on each connection); close() writes the summary."""
+
+    def __init__(self, path: str, interface: str) -> None:
+        self.path, self.interface = path, interface
+        self.conversation: Optional[Endpoints] = None
+        self._fh = open(path, "wb")
+        self._recording = McapRecording(self._fh)
+
+    def add(self, position: int, record) -> None:
+        self._recording.add(position, Enveloped(self.interface, FROM_ROBOT, self.conversation, record, time.time()))
+
+    def close(self) -> None:
+        try:
+            self._recording.finish()
+        finally:
+            self._fh.close()

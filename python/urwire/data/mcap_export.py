@@ -5,7 +5,7 @@ import os
 import sys
 from pathlib import Path
 
-from ..mcap_recording import McapRecording
+from ..mcap_recording import McapRecording, mcap_missing
 from ..reading import input_kind
 from .records import records_of_file
 
@@ -13,10 +13,8 @@ from .records import records_of_file
 def export_mcap(path: str, out: str, hint=None) -> int:
     """`urwire export --format mcap`: the capture at `path` as OUT/<its name>.mcap. Exit status as
     for export: 1 when a record holds an error, 2 when the file cannot be read or written."""
-    try:
-        import mcap  # noqa: F401
-    except ImportError:
-        print("urwire export: MCAP needs the mcap package: pip install urwire[mcap]", file=sys.stderr)
+    if mcap_missing():
+        print(f"urwire export: {mcap_missing()}", file=sys.stderr)
         return 2
     target = Path(out) / (Path(path).stem + ".mcap")
     try:
