@@ -74,8 +74,11 @@ class McapRecording:
         else:
             parts = record.packages
         for part in parts:
-            line = to_json_line(Enveloped(item.interface, item.direction, item.conversation, part)
-                                if enveloped and part is not record else item)
+            if part is record:
+                line = to_json_line(item)       # as decode prints it
+            else:                               # a sub-package, with its record's envelope
+                line = to_json_line(Enveloped(item.interface, item.direction, item.conversation, part)
+                                    if enveloped else part)
             shown = json.loads(line)
             kind = "error" if has_error(part) else str(shown.get("type", "unknown"))
             self._write(f"{base}/{kind}", type(part), f"urwire.{interface}.{kind}", line.encode(), log_time)

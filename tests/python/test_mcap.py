@@ -168,3 +168,27 @@ def test_metadata_takes_the_serial_number_and_model_from_the_dashboard(tmp_path)
     assert metadata == [("robot", {"address": capture.ROBOT, "serial_number": "20185500042", "robot_model": "UR5"})]
     assert [json.loads(m.data)["reply"] for topic, _, m in messages if topic.endswith("/reply")] == \
         ["Connected: Universal Robots Dashboard Server", "20185500042", "UR5"]
+
+
+def test_a_raw_stream_numbers_its_records_in_place_of_times(tmp_path):
+    from tests.vectors import golden_cases
+
+    from urwire.canonical import to_dict
+    from urwire.reading import records_of_raw
+
+    case = next(c for c in golden_cases() if c.name == "generation_eseries_5_11_robot_state")
+    raw = tmp_path / "primary.raw"
+    raw.write_bytes(case.data)
+    (tmp_path / "out").mkdir()
+    done = subprocess.run([sys.executable, "-m", "urwire", "export", "--format", "mcap", "--out",
+                           str(tmp_path / "out"), str(raw)], capture_output=True, text=True, env=ENV, timeout=120)
+    assert done.returncode == 0, done.stderr
+    _, messages, metadata = read_back(tmp_path / "out" / "primary.mcap")
+    with open(raw, "rb") as fh:
+        records = [to_dict(r) for r in records_of_raw(fh, None, lambda n: None)]
+    expected = [(f"/ur/{part['type']}", position, part) for position, record in enumerate(records)
+                for part in record.get("packages") or [record]]
+    assert [(topic, m.log_time, json.loads(m.data)) for topic, _, m in messages
+            if not topic.endswith(("/tcp_pose", "/joint_positions"))] == expected
+    assert {topic for topic, _, _ in messages} >= {"/ur/tcp_pose", "/ur/joint_positions"}
+    assert metadata == []   # a raw stream says no robot address
