@@ -17,6 +17,7 @@ with it (data/mcap_export.py), `urwire listen --mcap` what it records.
 from __future__ import annotations
 
 import json
+import re
 import time
 from decimal import Decimal
 from typing import BinaryIO, Optional
@@ -40,6 +41,18 @@ def mcap_missing() -> Optional[str]:
     except ImportError:
         return "MCAP needs the mcap package: pip install urwire[mcap]"
     return None
+
+
+# A JSON string (kept as it is), or a non-finite number as the canonical JSON writes it.
+_STRING_OR_NONFINITE = re.compile(r'"(?:[^"\\]|\\.)*"|-?Infinity|NaN')
+
+
+def strict_json(line: str) -> str:
+    """A canonical JSON line as strict JSON, which Foxglove's parser demands: NaN and the
+    infinities, bare in the canonical JSON (docs/canonical-json.md), become null; all else stays."""
+    if "NaN" not in line and "Infinity" not in line:
+        return line
+    return _STRING_OR_NONFINITE.sub(lambda m: m.group(0) if m.group(0)[0] == '"' else "null", line)
 
 
 def nanoseconds(seconds: float) -> int:
@@ -79,6 +92,7 @@ class McapRecording:
             else:                               # a sub-package, with its record's envelope
                 line = to_json_line(Enveloped(item.interface, item.direction, item.conversation, part)
                                     if enveloped else part)
+            line = strict_json(line)
             shown = json.loads(line)
             kind = "error" if has_error(part) else str(shown.get("type", "unknown"))
             self._write(f"{base}/{kind}", type(part), f"urwire.{interface}.{kind}", line.encode(), log_time)

@@ -16,7 +16,8 @@ _ENVELOPE = {
     "type": {"type": "string", "description": "The record kind"},
 }
 
-_NUMBER = {"type": "number"}
+# A float field is null where the wire held NaN or an infinity (strict JSON has neither).
+_NUMBER = {"type": ["number", "null"]}
 _TYPES = {"int": {"type": "integer"}, "uint64": {"type": "integer"}, "enum": {"type": "integer"},
           "bool": {"type": "boolean"}, "f32": _NUMBER, "f64": _NUMBER, "float": _NUMBER, "int|f32": _NUMBER,
           "text": {"type": "string"}, "hex": {"type": "string", "description": "bytes as hexadecimal"},

@@ -32,8 +32,10 @@ for await (const m of reader.readMetadata()) {
   out.metadata.push({ name: m.name, metadata: Object.fromEntries(m.metadata) });
 }
 for await (const m of reader.readMessages()) {
+  const data = text.decode(m.data);
+  JSON.parse(data); // strict JSON, as Foxglove parses a json message: throws on NaN
   out.messages.push({ channelId: m.channelId, sequence: m.sequence, logTime: m.logTime,
-    publishTime: m.publishTime, data: text.decode(m.data) });
+    publishTime: m.publishTime, data });
 }
 await handle.close();
 process.stdout.write(JSON.stringify(out, big));

@@ -192,3 +192,43 @@ def test_a_raw_stream_numbers_its_records_in_place_of_times(tmp_path):
             if not topic.endswith(("/tcp_pose", "/joint_positions"))] == expected
     assert {topic for topic, _, _ in messages} >= {"/ur/tcp_pose", "/ur/joint_positions"}
     assert metadata == []   # a raw stream says no robot address
+
+
+def test_non_finite_floats_become_null_for_a_strict_json_parser(tmp_path):
+    from tests.vectors import golden_cases
+
+    jsonschema = pytest.importorskip("jsonschema")
+    from urwire.canonical import to_json_line
+    from urwire.reading import records_of_raw
+
+    case = next(c for c in golden_cases() if c.name == "nonfinite_floats")
+    raw = tmp_path / "nonfinite.raw"
+    raw.write_bytes(case.data)
+    (tmp_path / "out").mkdir()
+    done = subprocess.run([sys.executable, "-m", "urwire", "export", "--format", "mcap", "--out",
+                           str(tmp_path / "out"), str(raw)], capture_output=True, text=True, env=ENV, timeout=120)
+    assert done.returncode == 0, done.stderr
+    summary, messages, _ = read_back(tmp_path / "out" / "nonfinite.mcap")
+    with open(raw, "rb") as fh:
+        canonical = [json.loads(to_json_line(r)) for r in records_of_raw(fh, None, lambda n: None)]
+    parts = [part for record in canonical for part in record.get("packages") or [record]]
+
+    def no_constant(name):
+        raise ValueError(f"{name} is not strict JSON")
+
+    def nulled(value):   # the canonical value with each NaN and infinity as None
+        if isinstance(value, dict):
+            return {k: nulled(v) for k, v in value.items()}
+        if isinstance(value, list):
+            return [nulled(v) for v in value]
+        return None if isinstance(value, float) and not math.isfinite(value) else value
+
+    schemas = {s.name: json.loads(s.data) for s in summary.schemas.values()}
+    got = []
+    for topic, name, m in messages:
+        message = json.loads(m.data, parse_constant=no_constant)
+        jsonschema.validate(message, schemas[name])
+        if not topic.endswith(("/tcp_pose", "/joint_positions")):
+            got.append(message)
+    assert got == [nulled(part) for part in parts]
+    assert any(json.dumps(p) != json.dumps(nulled(p)) for p in parts)   # the vector has some
