@@ -21,12 +21,33 @@ JOINTS = ("base", "shoulder", "elbow", "wrist_1", "wrist_2", "wrist_3")
 pytest.importorskip("mcap")
 
 
-def export(out: Path) -> Path:
-    """The real command on the sample, as a user runs it; the file it writes."""
+def export(out: Path, source: Path = SAMPLE) -> Path:
+    """The real command on a capture or raw stream (the sample by default), as a user runs it; the
+    file it writes."""
     done = subprocess.run([sys.executable, "-m", "urwire", "export", "--format", "mcap", "--out", str(out),
-                           str(SAMPLE)], capture_output=True, text=True, env=ENV, timeout=120)
+                           str(source)], capture_output=True, text=True, env=ENV, timeout=120)
     assert done.returncode == 0, done.stderr
-    return out / "cell_session.mcap"
+    return out / f"{source.stem}.mcap"
+
+
+def raw_vector(folder: Path, name: str) -> Path:
+    """A golden vector's bytes as a raw stream file."""
+    from tests.vectors import golden_cases
+
+    raw = folder / f"{name}.raw"
+    raw.write_bytes(next(c for c in golden_cases() if c.name == name).data)
+    return raw
+
+
+def dashboard_capture(folder: Path) -> Path:
+    """A dashboard conversation that asks the robot's serial number and model."""
+    from tests.tools import capture
+    from tests.tools.capture import Segment
+
+    talk = [Segment(True, b"Connected: Universal Robots Dashboard Server\n"),
+            Segment(False, b"get serial number\n"), Segment(True, b"20185500042\n"),
+            Segment(False, b"get robot model\n"), Segment(True, b"UR5\n")]
+    return capture.write(folder / "dashboard.pcapng", capture.session_frames(talk, port=29999), pcapng=True)
 
 
 @pytest.fixture(scope="module")
@@ -154,36 +175,19 @@ def test_dataset_refuses_mcap(tmp_path):
 
 def test_metadata_takes_the_serial_number_and_model_from_the_dashboard(tmp_path):
     from tests.tools import capture
-    from tests.tools.capture import Segment
 
-    talk = [Segment(True, b"Connected: Universal Robots Dashboard Server\n"),
-            Segment(False, b"get serial number\n"), Segment(True, b"20185500042\n"),
-            Segment(False, b"get robot model\n"), Segment(True, b"UR5\n")]
-    path = capture.write(tmp_path / "dashboard.pcapng", capture.session_frames(talk, port=29999), pcapng=True)
-    (tmp_path / "out").mkdir()
-    done = subprocess.run([sys.executable, "-m", "urwire", "export", "--format", "mcap", "--out",
-                           str(tmp_path / "out"), str(path)], capture_output=True, text=True, env=ENV, timeout=120)
-    assert done.returncode == 0, done.stderr
-    _, messages, metadata = read_back(tmp_path / "out" / "dashboard.mcap")
+    _, messages, metadata = read_back(export(tmp_path, dashboard_capture(tmp_path)))
     assert metadata == [("robot", {"address": capture.ROBOT, "serial_number": "20185500042", "robot_model": "UR5"})]
     assert [json.loads(m.data)["reply"] for topic, _, m in messages if topic.endswith("/reply")] == \
         ["Connected: Universal Robots Dashboard Server", "20185500042", "UR5"]
 
 
 def test_a_raw_stream_numbers_its_records_in_place_of_times(tmp_path):
-    from tests.vectors import golden_cases
-
     from urwire.canonical import to_dict
     from urwire.reading import records_of_raw
 
-    case = next(c for c in golden_cases() if c.name == "generation_eseries_5_11_robot_state")
-    raw = tmp_path / "primary.raw"
-    raw.write_bytes(case.data)
-    (tmp_path / "out").mkdir()
-    done = subprocess.run([sys.executable, "-m", "urwire", "export", "--format", "mcap", "--out",
-                           str(tmp_path / "out"), str(raw)], capture_output=True, text=True, env=ENV, timeout=120)
-    assert done.returncode == 0, done.stderr
-    _, messages, metadata = read_back(tmp_path / "out" / "primary.mcap")
+    raw = raw_vector(tmp_path, "generation_eseries_5_11_robot_state")
+    _, messages, metadata = read_back(export(tmp_path / "out", raw))
     with open(raw, "rb") as fh:
         records = [to_dict(r) for r in records_of_raw(fh, None, lambda n: None)]
     expected = [(f"/ur/{part['type']}", position, part) for position, record in enumerate(records)
@@ -195,20 +199,12 @@ def test_a_raw_stream_numbers_its_records_in_place_of_times(tmp_path):
 
 
 def test_non_finite_floats_become_null_for_a_strict_json_parser(tmp_path):
-    from tests.vectors import golden_cases
-
     jsonschema = pytest.importorskip("jsonschema")
     from urwire.canonical import to_json_line
     from urwire.reading import records_of_raw
 
-    case = next(c for c in golden_cases() if c.name == "nonfinite_floats")
-    raw = tmp_path / "nonfinite.raw"
-    raw.write_bytes(case.data)
-    (tmp_path / "out").mkdir()
-    done = subprocess.run([sys.executable, "-m", "urwire", "export", "--format", "mcap", "--out",
-                           str(tmp_path / "out"), str(raw)], capture_output=True, text=True, env=ENV, timeout=120)
-    assert done.returncode == 0, done.stderr
-    summary, messages, _ = read_back(tmp_path / "out" / "nonfinite.mcap")
+    raw = raw_vector(tmp_path, "nonfinite_floats")
+    summary, messages, _ = read_back(export(tmp_path / "out", raw))
     with open(raw, "rb") as fh:
         canonical = [json.loads(to_json_line(r)) for r in records_of_raw(fh, None, lambda n: None)]
     parts = [part for record in canonical for part in record.get("packages") or [record]]

@@ -1,6 +1,7 @@
 """`urwire listen --mcap FILE` against `urwire serve` on loopback: the MCAP file holds what listen
 wrote as JSON Lines, record for record (a robot state's sub-packages each on their own channel),
-on the connection's conversation, with the robot's pose, joints and metadata (docs/mcap.md)."""
+on the connection's conversation, with the robot's pose, joints and metadata (docs/mcap.md); and
+Foxglove's TypeScript reader reads it as Python's does (test_mcap_node)."""
 from __future__ import annotations
 
 import json
@@ -12,6 +13,7 @@ import pytest
 
 from tests.python.test_live import ENV, start_server, stop
 from tests.python.test_mcap import read_back
+from tests.python.test_mcap_node import assert_both_read_alike
 
 pytest.importorskip("mcap")
 RECORDS = 20
@@ -50,3 +52,15 @@ def test_listen_writes_what_it_records_as_mcap(tmp_path):
     assert summary.statistics.message_count == len(messages)
     (name, robot), = metadata
     assert name == "robot" and robot["address"] == "127.0.0.1" and robot["software_version"].startswith("5.11.")
+
+
+def test_listen_mcap_as_foxglove_reads_it(tmp_path):
+    server, port = start_server("5.11")
+    try:
+        done = subprocess.run([sys.executable, "-m", "urwire", "listen", f"127.0.0.1:{port}", "--out", "/dev/null",
+                               "--mcap", str(tmp_path / "session.mcap"), "--count", "5", "--duration", "20"],
+                              capture_output=True, text=True, env=ENV, timeout=60)
+    finally:
+        assert stop(server) == 0
+    assert done.returncode == 0, done.stderr
+    assert assert_both_read_alike(tmp_path / "session.mcap")["messages"]
