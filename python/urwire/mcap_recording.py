@@ -30,6 +30,7 @@ from .mcap_schema import ANY_RECORD, schema_text
 
 LIBRARY = f"urwire {__version__}"
 _VERSION = "{major_version}.{minor_version}.{bugfix_version}.{build_number}"   # the primary's version message
+_RTDE_VERSION = "{major}.{minor}.{bugfix}.{build}"                             # RTDE's controller version
 # The dashboard commands whose reply is a fact of the robot, by the metadata key it goes under.
 _DASHBOARD_FACTS = {"get_serial_number": "serial_number", "get_robot_model": "robot_model"}
 
@@ -78,8 +79,8 @@ class McapRecording:
         """One record: Enveloped, from a capture, or a raw primary stream's record as it is."""
         enveloped = isinstance(item, Enveloped)
         record = item.record if enveloped else item
-        time = item.capture_time if enveloped else None
-        log_time = position if time is None else nanoseconds(time)
+        seconds = item.capture_time if enveloped else None
+        log_time = position if seconds is None else nanoseconds(seconds)
         interface = (item.interface if enveloped else None) or PRIMARY
         base = f"/{interface}/{item.conversation}" if enveloped and item.conversation else f"/{interface}"
         if has_error(record) or not hasattr(record, "packages"):
@@ -117,7 +118,7 @@ class McapRecording:
         if interface == PRIMARY and kind == "version":
             robot["software_version"] = _VERSION.format(**shown)
         elif kind == "get_urcontrol_version_reply":
-            robot.setdefault("software_version", "{major}.{minor}.{bugfix}.{build}".format(**shown))
+            robot.setdefault("software_version", _RTDE_VERSION.format(**shown))
         elif kind == "reply" and interface == "ur_dashboard" and not shown.get("error"):
             name = _DASHBOARD_FACTS.get(shown.get("command_name"))
             if name:
@@ -149,7 +150,6 @@ class McapRecording:
         for address in sorted(self.robots):
             self._writer.add_metadata("robot", self.robots[address])
         self._writer.finish()
-
 
 
 def endpoints_of(sock) -> Endpoints:
