@@ -32,7 +32,7 @@ from ..canonical import has_error, member_text, shown_text, to_json_line
 from ..cell import PRIMARY
 from ..envelope import Enveloped
 from ..reading import input_kind
-from . import export_dataset
+from . import export_dataset, mcap_export
 from .export_cell import CellRows
 from .records import conversation_text, records_of_file
 # pyarrow, an optional extra (urwire[parquet]), is imported where Parquet is written: CSV needs none.
@@ -51,7 +51,8 @@ def add_parser(sub) -> None:
                                    "RTDE recipe, ur_realtime, ur_dashboard, ...: docs/tables.md).")
     p.add_argument("files", nargs="+", metavar="FILE",
                    help="a raw stream, a .pcap or a .pcapng file (--dataset: any number)")
-    p.add_argument("--format", choices=("parquet", "csv"), default="parquet", help="table format (default: parquet)")
+    p.add_argument("--format", choices=("parquet", "csv", "mcap"), default="parquet",
+                   help="table format (default: parquet); mcap: one OUT/<capture>.mcap for Foxglove (docs/mcap.md)")
     where = p.add_mutually_exclusive_group(required=True)
     where.add_argument("--out", metavar="DIR", help="folder for one capture's tables (made if missing)")
     where.add_argument("--dataset", metavar="ROOT",
@@ -255,6 +256,8 @@ def export_command(args: argparse.Namespace) -> int:
         print("urwire export: --out takes one capture (--dataset takes many)", file=sys.stderr)
         return 2
     args.file = args.files[0]
+    if args.format == "mcap":
+        return mcap_export.export_mcap(args.file, args.out, args.version_hint)
     if args.format == "parquet":
         try:
             import pyarrow  # noqa: F401

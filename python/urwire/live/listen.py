@@ -32,8 +32,10 @@ from typing import Callable, Iterator, Optional
 
 from ..arguments import finite_number, port_of
 from ..canonical import fails, to_json_line
+from ..cell import PRIMARY
 from ..framer import Framer
 from ..human import line as human_line
+from ..mcap_recording import McapFile, endpoints_of, mcap_missing
 from .listen_rtde import PORT as RTDE_PORT
 from .listen_rtde import RtdeRecorder
 from .serve_rtde import MAX_FREQUENCY
@@ -62,6 +64,8 @@ def add_parser(sub) -> None:
                         "then FILE with "
                         ".1, .2, ... before its extension (each readable by decode); with --rtde, what listen "
                         "sent too, in FILE with .to_robot before its extension (decode's --to-robot)")
+    p.add_argument("--mcap", metavar="FILE",
+                   help="also write what is recorded as one MCAP file for Foxglove (docs/mcap.md; urwire[mcap])")
     p.add_argument("--count", type=int, metavar="N", help="stop after N records")
     p.add_argument("--duration", type=finite_number, metavar="S", help="stop after S seconds")
     p.add_argument("--idle-timeout", type=finite_number, default=IDLE_TIMEOUT, metavar="S",
@@ -174,6 +178,10 @@ class Outputs:
         self.count = args.count
         self.records = 0
         self.failed = False
+        self.mcap = None
+        if args.mcap:
+            with self.writing(args.mcap):
+                self.mcap = McapFile(args.mcap, "rtde" if args.rtde is not None else PRIMARY)
         if args.format == "csv":
             self.render = _csv_renderer()
             with self.writing(self.out_name):
@@ -189,9 +197,11 @@ class Outputs:
         except OSError as exc:
             raise OutputError(name, exc) from None
 
-    def new_connection(self) -> None:
+    def new_connection(self, sock: Optional[socket.socket] = None) -> None:
         """Closes the last connection's raw files. This one's are made with its first byte
         received: a connection that got none leaves no files (what listen sent on it is dropped)."""
+        if self.mcap and sock is not None:
+            self.mcap.conversation = endpoints_of(sock)
         self.close_raw()
         self.unsent_kept = bytearray()
 
@@ -226,6 +236,9 @@ class Outputs:
         with self.writing(self.out_name):
             for record in records:
                 self.failed = self.failed or fails(record)
+                if self.mcap:
+                    with self.writing(self.mcap.path):
+                        self.mcap.add(self.records, record)
                 self.out.write(self.render(record))
                 self.out.write("\n")
                 self.records += 1
@@ -252,6 +265,12 @@ class Outputs:
         errors = []
         try:
             self.close_raw()
+        except OutputError as exc:
+            errors.append(exc)
+        try:
+            if self.mcap:
+                with self.writing(self.mcap.path):
+                    self.mcap.close()
         except OutputError as exc:
             errors.append(exc)
         try:
@@ -316,6 +335,9 @@ def listen_command(args: argparse.Namespace) -> int:
     if args.rtde is not None and (not args.rtde.strip(", ") or not 0 < args.frequency <= HIGHEST_FREQUENCY):
         print(f"urwire listen: --rtde needs variable names and --frequency a rate above 0 and at most "
               f"{HIGHEST_FREQUENCY:g}, as a robot runs (CB3: 125)", file=sys.stderr)
+        return 2
+    if args.mcap and mcap_missing():
+        print(f"urwire listen: {mcap_missing()}", file=sys.stderr)
         return 2
     try:
         outputs = Outputs(args)
@@ -391,7 +413,7 @@ class Link:
             else:
                 self.say(f"reconnected to {where} (connection {self.connections}); "
                          f"{self.outputs.records} records so far")
-            self.outputs.new_connection()
+            self.outputs.new_connection(sock)
             reader = self.new_reader(lambda data, sock=sock: self.send(sock, data))
             with sock:
                 try:
