@@ -30,9 +30,11 @@
 #define URWIRE__VERSION_SUBTYPE URWIRE_ROBOT_MESSAGE_TYPE_VERSION
 #define URWIRE__VERSION_BODY 15u
 #define URWIRE__VERSION_KIND URWIRE_KIND_VERSION
-#define URWIRE__VERSION_MAJOR(m) ((m)->as.version.major_version)
-#define URWIRE__VERSION_MINOR(m) ((m)->as.version.minor_version)
-#define URWIRE__VERSION_BUGFIX(m) ((m)->as.version.bugfix_version)
+/* its struct, and the numbers in it */
+#define URWIRE__VERSION_LAYOUT urwire_version_message
+#define URWIRE__VERSION_MAJOR(v) ((v)->major_version)
+#define URWIRE__VERSION_MINOR(v) ((v)->minor_version)
+#define URWIRE__VERSION_BUGFIX(v) ((v)->bugfix_version)
 /* after the last length-prefixed string on the way, the bytes up to the major number */
 #define URWIRE__VERSION_TAIL 0u
 /* exact body sizes a form of a type code can have, at most (its flag-conditioned parts in or out) */
@@ -372,6 +374,9 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
                                                   size_t size, urwire_sw_version *version, bool *by_length);
 URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out);
 /* decode.c */
+URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
+                                           int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
+                                           void *as, urwire_error *err);
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);
 /* visit.c */
 URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);
@@ -769,10 +774,14 @@ static void urwire__set_path(urwire_error *e, const char *path)
     e->path[n] = '\0';
 }
 
-/* Sets *e; returns false, for `return urwire__fail(...)`. */
+/* Sets *e; returns false, for `return urwire__fail(...)`. A NULL e is an error nobody reads
+ * (a robot state's sub-packages, whose failures are bits): the decoders then keep no
+ * urwire_error on the stack for it. */
 URWIRE__PRIVATE bool urwire__fail(urwire_error *e, urwire_status status, size_t offset, const char *path,
                                   int64_t value, int64_t left)
 {
+    if (e == NULL)
+        return false;
     e->status = status;
     e->offset = offset;
     e->value = value;
@@ -801,30 +810,42 @@ URWIRE__PRIVATE bool urwire__no_space(urwire_error *e, size_t pos, size_t need, 
     return urwire__fail(e, URWIRE_E_NO_SPACE, pos, "", (int64_t)need, (int64_t)(cap - pos));
 }
 
+/* text[0..len) into path at `at`, as much of it as falls before max. */
+static void urwire__put_cut(char *path, size_t max, size_t at, const char *text, size_t len)
+{
+    if (at < max)
+        memcpy(path + at, text, len < max - at ? len : max - at);
+}
+
 /* Prefix the error's path with name[index] (name may be empty), or name[index][index2] when
- * two, joined as Python's paths are: threads[1].label_name, variables[2][0].type. */
+ * two, joined as Python's paths are: threads[1].label_name, variables[2][0].type. In place,
+ * cut to URWIRE_PATH_MAX - 1 characters like any path: no second path on the stack. */
 URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t index, size_t index2, bool two)
 {
-    char buf[URWIRE_PATH_MAX * 2];
-    size_t n = strlen(name), rest = strlen(e->path);
-    if (n > URWIRE_PATH_MAX)
-        n = URWIRE_PATH_MAX;
-    memcpy(buf, name, n);
-    buf[n++] = '[';
-    n += urwire__digits(buf + n, (int64_t)index);
-    buf[n++] = ']';
+    char digits[2][24];
+    size_t max = sizeof e->path - 1, nd = urwire__digits(digits[0], (int64_t)index);
+    size_t nd2 = two ? urwire__digits(digits[1], (int64_t)index2) : 0;
+    size_t name_len = strlen(name), rest, n, keep;
+    bool dot;
+    if (e == NULL)
+        return false;
+    rest = strlen(e->path);
+    dot = rest && e->path[0] != '[' && e->path[0] != '.';
+    n = name_len + 2 + nd + (two ? 2 + nd2 : 0) + (dot ? 1 : 0);  /* the prefix's length */
+    keep = n >= max ? 0 : (rest < max - n ? rest : max - n);
+    memmove(e->path + (n < max ? n : max), e->path, keep);
+    e->path[(n < max ? n : max) + keep] = '\0';
+    urwire__put_cut(e->path, max, 0, name, name_len);
+    urwire__put_cut(e->path, max, name_len, "[", 1);
+    urwire__put_cut(e->path, max, name_len + 1, digits[0], nd);
+    urwire__put_cut(e->path, max, name_len + 1 + nd, "]", 1);
     if (two) {
-        buf[n++] = '[';
-        n += urwire__digits(buf + n, (int64_t)index2);
-        buf[n++] = ']';
+        urwire__put_cut(e->path, max, name_len + 2 + nd, "[", 1);
+        urwire__put_cut(e->path, max, name_len + 3 + nd, digits[1], nd2);
+        urwire__put_cut(e->path, max, name_len + 3 + nd + nd2, "]", 1);
     }
-    if (rest && e->path[0] != '[' && e->path[0] != '.')
-        buf[n++] = '.';
-    if (rest > sizeof buf - 1 - n)
-        rest = sizeof buf - 1 - n;
-    memcpy(buf + n, e->path, rest);
-    buf[n + rest] = '\0';
-    urwire__set_path(e, buf);
+    if (dot)
+        urwire__put_cut(e->path, max, n - 1, ".", 1);
     return false;
 }
 
@@ -4650,8 +4671,7 @@ static bool urwire__encode_program_thread(const void *from, const urwire__ver *v
 bool urwire_next_program_thread(urwire_seq *seq, urwire_program_thread *out)
 {
     urwire__ver ver = urwire__ver_of(seq->version);
-    urwire_error ignored;
-    if (seq->count == 0 || !urwire__decode_program_thread(seq->msg, &seq->pos, seq->end, &ver, out, &ignored))
+    if (seq->count == 0 || !urwire__decode_program_thread(seq->msg, &seq->pos, seq->end, &ver, out, NULL))
         return false;
     seq->count--;
     return true;
@@ -7046,15 +7066,15 @@ static bool urwire__count_fits(const urwire__value_table *t, uint64_t items, siz
     return true;
 }
 
-/* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
- * skipped) here, so that iterating them later cannot fail; depth bounds the recursion.
- * Error paths are relative ("", ".type", "[2][0]") and prefixed by the callers. */
-static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                               const urwire__value_table *t, unsigned depth, urwire_value *out, urwire_error *err)
+/* One value at *at, `depth` deep: its type byte and data, and of a LIST or MATRIX its counts,
+ * checked against the bytes left, but not its items (out->items: where they start, and
+ * their count).
+ * Error paths are relative ("", ".type") and prefixed by the callers. */
+static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+                              const urwire__value_table *t, size_t depth, urwire_value *out, urwire_error *err)
 {
-    size_t pos = *at, r, c, k;
+    size_t pos = *at, k;
     const urwire__value_entry *e;
-    urwire_value item;
     if (pos >= end)
         return urwire__short(err, ".type", pos, 1, end);
     if (depth > URWIRE_MAX_VALUE_DEPTH)
@@ -7102,11 +7122,7 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
         if (!urwire__count_fits(t, (uint64_t)out->rows, pos, pos + 2, end, err))
             return false;
         pos += 2;
-        out->items.pos = pos;
-        for (k = 0; k < (size_t)out->rows; k++)
-            if (!urwire__read_value(msg, &pos, end, version, t, depth + 1, &item, err))
-                return urwire__within(err, "", k);
-        out->items.end = pos;
+        out->items.pos = out->items.end = pos;
         out->items.count = (size_t)out->rows;
         break;
     case URWIRE__LAYOUT_MATRIX:
@@ -7124,15 +7140,69 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
         if (!urwire__count_fits(t, (uint64_t)out->rows * (uint64_t)out->cols, pos, pos + 4, end, err))
             return false;
         pos += 4;
-        out->items.pos = pos;
-        for (r = 0; r < (size_t)out->rows; r++)
-            for (c = 0; c < (size_t)out->cols; c++)
-                if (!urwire__read_value(msg, &pos, end, version, t, depth + 1, &item, err))
-                    return urwire__within2(err, "", r, c, true);
-        out->items.end = pos;
+        out->items.pos = out->items.end = pos;
         out->items.count = (size_t)out->rows * (size_t)out->cols;
         break;
     }
+    *at = pos;
+    return true;
+}
+
+/* A LIST or MATRIX whose items are being checked: how many it has, how many are done. */
+typedef struct urwire__open_value {
+    size_t count;
+    size_t done;
+    size_t cols;                    /* a MATRIX's columns (its items go row by row), else 0 */
+} urwire__open_value;
+
+/* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
+ * skipped) here, so that iterating them later cannot fail: in a loop over a stack of the
+ * values still open, at most URWIRE_MAX_VALUE_DEPTH deep, rather than by recursion, so that
+ * the stack this takes is known. Error paths are relative ("", ".type", "[2][0]") and
+ * prefixed by the callers. */
+static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+                               const urwire__value_table *t, urwire_value *out, urwire_error *err)
+{
+    urwire__open_value open[URWIRE_MAX_VALUE_DEPTH + 1];
+    urwire__open_value *top;
+    urwire_value item;
+    size_t pos = *at, n = 0;
+    if (!urwire__read_head(msg, &pos, end, version, t, 1, out, err))
+        return false;
+    if (out->items.count) {
+        open[0].count = out->items.count;
+        open[0].done = 0;
+        open[0].cols = (size_t)out->cols;  /* 0 but in a MATRIX */
+        n = 1;
+    }
+    while (n) {
+        top = &open[n - 1];
+        if (top->done == top->count) {
+            if (--n)
+                open[n - 1].done++;
+            continue;
+        }
+        /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH: n stays within open[] */
+        if (!urwire__read_head(msg, &pos, end, version, t, n + 1, &item, err)) {
+            for (; n; n--, top--) {
+                if (top->cols)
+                    urwire__within2(err, "", top->done / top->cols, top->done % top->cols, true);
+                else
+                    urwire__within(err, "", top->done);
+            }
+            return false;
+        }
+        if (item.items.count) {
+            open[n].count = item.items.count;
+            open[n].done = 0;
+            open[n].cols = (size_t)item.cols;
+            n++;
+        } else {
+            top->done++;
+        }
+    }
+    if (out->items.count)
+        out->items.end = pos;
     *at = pos;
     return true;
 }
@@ -7146,7 +7216,7 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
     urwire_value value;
     *out = urwire__seq(msg, pos, version, terminator);
     while (pos < end) {
-        if (!urwire__read_value(msg, &pos, end, version, t, 1, &value, err))
+        if (!urwire__read_value(msg, &pos, end, version, t, &value, err))
             return urwire__within(err, path, out->count);
         if (pos >= end) {
             urwire__short(err, "", pos, 1, end);
@@ -7166,11 +7236,10 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
 
 bool urwire_next_value(urwire_seq *seq, urwire_value *out)
 {
-    urwire_error ignored;
     if (seq->count == 0)
         return false;
-    if (!urwire__read_value(seq->msg, &seq->pos, seq->end, seq->version, urwire__values_of(seq->version), 1,
-                            out, &ignored)) {
+    if (!urwire__read_value(seq->msg, &seq->pos, seq->end, seq->version, urwire__values_of(seq->version), out,
+                            NULL)) {
         seq->count = 0;  /* not reached for a seq from a decoded message: it was checked whole */
         return false;
     }
@@ -7488,17 +7557,31 @@ static bool urwire__decode_packages(urwire_message *out, urwire_sw_version versi
     return true;
 }
 
-/* A message with a common header and a subtype: the header, then the subtype's layout in the
- * form its version and length choose. The Version message is read in the form of the version
- * it carries. */
-static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t, urwire_sw_version version)
+/* The layout of subtype `subtype` of type t (which has a layout) in the bytes after its header,
+ * in the form its version and length choose (the Version message in that of the version it
+ * carries), into *as: its kind, and false when it is malformed (*err set). *version becomes
+ * the version of the form it was read in. */
+URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
+                                           int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
+                                           void *as, urwire_error *err)
 {
-    const urwire__message_kind *k;
-    const urwire__form *f;
-    urwire__ver ver;
-    int64_t subtype;
     size_t pos = t->body;
     bool by_length;
+    urwire__ver ver;
+    const urwire__form *f;
+    if (t->code == URWIRE__VERSION_TYPE && subtype == URWIRE__VERSION_SUBTYPE)
+        urwire__peek_version(bytes, len, version);
+    f = urwire__choose(t->forms, (size_t)subtype, urwire__segment(urwire__version_key(*version)), len - t->body,
+                       version, &by_length);
+    *kind = (urwire_message_kind)f->layout;
+    ver = urwire__ver_of(*version);
+    return urwire__message_kinds[*kind].decode(bytes, &pos, len, &ver, as, err);
+}
+
+/* A message with a common header and a subtype: the header, then the subtype's layout. */
+static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t, urwire_sw_version version)
+{
+    int64_t subtype;
     if (out->length < t->body) {
         out->kind = URWIRE_KIND_UNKNOWN_MESSAGE;
         urwire__short_in_run(&out->error, t->header, 0, out->length);
@@ -7511,18 +7594,12 @@ static bool urwire__decode_subtype(urwire_message *out, const urwire__message_ty
         out->raw = urwire__view(out->bytes + t->body, out->length - t->body);
         return true;
     }
-    if (t->code == URWIRE__VERSION_TYPE && subtype == URWIRE__VERSION_SUBTYPE)
-        urwire__peek_version(out->bytes, out->length, &version);
-    f = urwire__choose(t->forms, (size_t)subtype, urwire__segment(urwire__version_key(version)),
-                       out->length - t->body, &version, &by_length);
-    out->kind = (urwire_message_kind)f->layout;
-    out->version = version;
-    k = &urwire__message_kinds[out->kind];
-    ver = urwire__ver_of(version);
-    if (!k->decode(out->bytes, &pos, out->length, &ver, &out->as, &out->error)) {
+    if (!urwire__decode_layout(out->bytes, out->length, t, subtype, &version, &out->kind, &out->as, &out->error)) {
+        out->version = version;
         urwire__fail_message(out, t->body);
         return false;
     }
+    out->version = version;
     return true;
 }
 
@@ -7557,7 +7634,6 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
 static size_t urwire__decode_general(const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
                                      urwire_robot_state *out, size_t *count, urwire_error *err)
 {
-    urwire_error ignored;
     urwire__ver other;
     const urwire__ver *use;
     /* The segment's rows, held here: the stores into *out could alias them in r. */
@@ -7586,7 +7662,7 @@ static size_t urwire__decode_general(const uint8_t *msg, size_t pos, size_t end,
             mine = r->mine;
             first_sizes = r->first_sizes;
         }
-        if (urwire__decode_member(type, form, msg, &body, pos + size, use, out, &ignored))
+        if (urwire__decode_member(type, form, msg, &body, pos + size, use, out, NULL))
             out->present |= (uint32_t)URWIRE_BIT(type);
         else
             out->malformed |= (uint32_t)URWIRE_BIT(type);
@@ -7605,7 +7681,6 @@ static size_t urwire__decode_general(const uint8_t *msg, size_t pos, size_t end,
 URWIRE__INLINE size_t urwire__decode_fast(int path, const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
                                           urwire_robot_state *out, size_t *count)
 {
-    urwire_error ignored;
     urwire__fast_bits bits = {0, 0, 0};
     size_t size = 0, at, n = 0, one = 0;
     uint8_t type;
@@ -7617,13 +7692,13 @@ URWIRE__INLINE size_t urwire__decode_fast(int path, const uint8_t *msg, size_t p
         at = pos + URWIRE_PACKAGE_HEADER_SIZE;
         type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
         if (URWIRE__LIKELY(urwire__fast_member(path, type, size - URWIRE_PACKAGE_HEADER_SIZE, msg, &at, pos + size,
-                                               &r->now, out, &bits, &ignored)))
+                                               &r->now, out, &bits, NULL)))
             continue;
         if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
             out->unknown++;  /* no layout in any version */
             continue;
         }
-        urwire__decode_general(msg, pos, pos + size, r, out, &one, &ignored);
+        urwire__decode_general(msg, pos, pos + size, r, out, &one, NULL);
         if (urwire__package_fast_paths[r->segment] != path) {
             pos += size;
             n++;
@@ -7698,7 +7773,6 @@ bool urwire_decode_robot_state(const urwire_message *m, urwire_robot_state *out)
 {
     const urwire_seq *seq = &m->packages;
     urwire__running r;
-    urwire_error ignored;
     size_t count;
     if (m->kind != URWIRE__PACKAGES_KIND) {
         out->present = 0;
@@ -7709,7 +7783,7 @@ bool urwire_decode_robot_state(const urwire_message *m, urwire_robot_state *out)
     }
     /* The frames were checked by urwire_decode_message. */
     urwire__start(&r, seq->version);
-    urwire__decode_into_state(seq->msg, seq->pos, seq->end, &r, out, &count, &ignored);
+    urwire__decode_into_state(seq->msg, seq->pos, seq->end, &r, out, &count, NULL);
     return !m->failed && out->malformed == 0;
 }
 
@@ -7762,10 +7836,9 @@ bool urwire_message_has_error(const urwire_message *m)
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version)
 {
     urwire__running r;
-    urwire_error ignored;
     size_t count, stop;
     urwire__start(&r, *version);
-    if (!urwire__walk_packages(msg, URWIRE_HEADER_SIZE, len, &r, &count, &stop, &ignored) || !r.implied)
+    if (!urwire__walk_packages(msg, URWIRE_HEADER_SIZE, len, &r, &count, &stop, NULL) || !r.implied)
         return false;
     *version = r.now.version;
     return true;
@@ -8095,20 +8168,26 @@ static bool urwire__rescan_stops_at(const urwire_framer *f, size_t at)
            (!f->ended_inside || (uint64_t)length <= f->len - at);
 }
 
-/* What a Version message announces (see urwire__learn_version). */
+/* What a Version message announces (see urwire__learn_version). Its layout alone is decoded,
+ * as urwire_decode_message would read it: a whole urwire_message here would cost the stack
+ * of urwire_framer_next 500 bytes more. Every form of its subtype is that layout. */
 static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size_t len)
 {
-    urwire_message m;
+    URWIRE__VERSION_LAYOUT announced;
+    urwire_sw_version version = f->version;
+    urwire_message_kind kind;
     if (bytes[URWIRE__TYPE_AT] != URWIRE__VERSION_TYPE || len < URWIRE__VERSION_BODY ||
         bytes[URWIRE__VERSION_SUBTYPE_AT] != URWIRE__VERSION_SUBTYPE)
         return;
-    if (urwire_decode_message(bytes, len, f->version, &m) && m.kind == URWIRE__VERSION_KIND) {
-        int bugfix = URWIRE__VERSION_BUGFIX(&m);
+    if (urwire__decode_layout(bytes, len, urwire__message_type_of(URWIRE__VERSION_TYPE), URWIRE__VERSION_SUBTYPE,
+                              &version, &kind, &announced, NULL) &&
+        kind == URWIRE__VERSION_KIND) {
+        int bugfix = URWIRE__VERSION_BUGFIX(&announced);
         /* A bugfix out of range is set aside, as in every target: the stream goes on as
          * major.minor.0, flagged. */
         f->version_out_of_range = bugfix < 0 || bugfix > URWIRE_BUGFIX_ANY;
-        f->version.major = URWIRE__VERSION_MAJOR(&m);
-        f->version.minor = URWIRE__VERSION_MINOR(&m);
+        f->version.major = URWIRE__VERSION_MAJOR(&announced);
+        f->version.minor = URWIRE__VERSION_MINOR(&announced);
         f->version.bugfix = f->version_out_of_range ? 0 : bugfix;
         f->version.assumed = false;
         f->version_seen = true;

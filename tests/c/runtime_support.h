@@ -32,6 +32,7 @@
 #define URWIRE__VERSION_SUBTYPE_AT 5u
 #define URWIRE__VERSION_SUBTYPE 0
 #define URWIRE__VERSION_KIND URWIRE_KIND_UNKNOWN_SUBTYPE
+#define URWIRE__VERSION_LAYOUT urwire_message  /* its struct: never decoded here */
 #define URWIRE__VERSION_MAJOR(m) ((m)->version.major)
 #define URWIRE__VERSION_MINOR(m) ((m)->version.minor)
 #define URWIRE__VERSION_BUGFIX(m) 0

@@ -768,7 +768,7 @@ def framing(p: model.Protocol, packages: dict, vst: CStruct, vmsg: dict, vs: pla
                                     scalar=pl.name, size=pl.size),
                 packages=dict(name=packages["name"], code_const=packages["code_const"],
                               kind_const=packages["kind_const"]),
-                version=dict(name=vst.name, type_const=vmsg["code_const"], subtype_at=subtype["offset"],
+                version=dict(name=vst.name, ctype=vst.ctype, type_const=vmsg["code_const"], subtype_at=subtype["offset"],
                              subtype_const=vst.code_const, body=vmsg["body_offset"], kind_const=vst.kind_const,
                              major=vs.major.name, minor=vs.minor.name, bugfix=vs.bugfix.name if vs.bugfix else None,
                              skips=skips, tail=vs.tail))

@@ -12,10 +12,14 @@ static void urwire__set_path(urwire_error *e, const char *path)
     e->path[n] = '\0';
 }
 
-/* Sets *e; returns false, for `return urwire__fail(...)`. */
+/* Sets *e; returns false, for `return urwire__fail(...)`. A NULL e is an error nobody reads
+ * (a robot state's sub-packages, whose failures are bits): the decoders then keep no
+ * urwire_error on the stack for it. */
 URWIRE__PRIVATE bool urwire__fail(urwire_error *e, urwire_status status, size_t offset, const char *path,
                                   int64_t value, int64_t left)
 {
+    if (e == NULL)
+        return false;
     e->status = status;
     e->offset = offset;
     e->value = value;
@@ -44,30 +48,42 @@ URWIRE__PRIVATE bool urwire__no_space(urwire_error *e, size_t pos, size_t need, 
     return urwire__fail(e, URWIRE_E_NO_SPACE, pos, "", (int64_t)need, (int64_t)(cap - pos));
 }
 
+/* text[0..len) into path at `at`, as much of it as falls before max. */
+static void urwire__put_cut(char *path, size_t max, size_t at, const char *text, size_t len)
+{
+    if (at < max)
+        memcpy(path + at, text, len < max - at ? len : max - at);
+}
+
 /* Prefix the error's path with name[index] (name may be empty), or name[index][index2] when
- * two, joined as Python's paths are: threads[1].label_name, variables[2][0].type. */
+ * two, joined as Python's paths are: threads[1].label_name, variables[2][0].type. In place,
+ * cut to URWIRE_PATH_MAX - 1 characters like any path: no second path on the stack. */
 URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t index, size_t index2, bool two)
 {
-    char buf[URWIRE_PATH_MAX * 2];
-    size_t n = strlen(name), rest = strlen(e->path);
-    if (n > URWIRE_PATH_MAX)
-        n = URWIRE_PATH_MAX;
-    memcpy(buf, name, n);
-    buf[n++] = '[';
-    n += urwire__digits(buf + n, (int64_t)index);
-    buf[n++] = ']';
+    char digits[2][24];
+    size_t max = sizeof e->path - 1, nd = urwire__digits(digits[0], (int64_t)index);
+    size_t nd2 = two ? urwire__digits(digits[1], (int64_t)index2) : 0;
+    size_t name_len = strlen(name), rest, n, keep;
+    bool dot;
+    if (e == NULL)
+        return false;
+    rest = strlen(e->path);
+    dot = rest && e->path[0] != '[' && e->path[0] != '.';
+    n = name_len + 2 + nd + (two ? 2 + nd2 : 0) + (dot ? 1 : 0);  /* the prefix's length */
+    keep = n >= max ? 0 : (rest < max - n ? rest : max - n);
+    memmove(e->path + (n < max ? n : max), e->path, keep);
+    e->path[(n < max ? n : max) + keep] = '\0';
+    urwire__put_cut(e->path, max, 0, name, name_len);
+    urwire__put_cut(e->path, max, name_len, "[", 1);
+    urwire__put_cut(e->path, max, name_len + 1, digits[0], nd);
+    urwire__put_cut(e->path, max, name_len + 1 + nd, "]", 1);
     if (two) {
-        buf[n++] = '[';
-        n += urwire__digits(buf + n, (int64_t)index2);
-        buf[n++] = ']';
+        urwire__put_cut(e->path, max, name_len + 2 + nd, "[", 1);
+        urwire__put_cut(e->path, max, name_len + 3 + nd, digits[1], nd2);
+        urwire__put_cut(e->path, max, name_len + 3 + nd + nd2, "]", 1);
     }
-    if (rest && e->path[0] != '[' && e->path[0] != '.')
-        buf[n++] = '.';
-    if (rest > sizeof buf - 1 - n)
-        rest = sizeof buf - 1 - n;
-    memcpy(buf + n, e->path, rest);
-    buf[n + rest] = '\0';
-    urwire__set_path(e, buf);
+    if (dot)
+        urwire__put_cut(e->path, max, n - 1, ".", 1);
     return false;
 }
 

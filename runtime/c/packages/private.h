@@ -289,6 +289,9 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
                                                   size_t size, urwire_sw_version *version, bool *by_length);
 URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out);
 /* decode.c */
+URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
+                                           int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
+                                           void *as, urwire_error *err);
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);
 /* visit.c */
 URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);
