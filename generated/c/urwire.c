@@ -141,10 +141,12 @@ URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
 /* One field of a fixed run of fields, read after one bounds check of the whole run. A table
  * of them (ended by a NULL path) names the field that a short run stops in. */
 typedef struct urwire__span {
-    const char *path;
-    uint32_t offset;
-    uint32_t size;
+    const char *path;               /* an element's: its index left out, "joints[].q_actual" */
+    uint16_t offset;                /* within a layout: the generator refuses larger ones */
+    uint8_t size;
+    uint8_t index;                  /* the element's, that goes into the path's "[]"; else: */
 } urwire__span;
+#define URWIRE__NO_INDEX 0xffu
 
 /* A software version as the layouts read it: the version, and its key (urwire__version_key),
  * which their version conditions compare. */
@@ -268,23 +270,30 @@ typedef struct urwire__message_type {
     size_t body;                    /* where the subtype's layout starts: the header's size */
     const urwire__form_table *forms; /* its subtypes' */
     const urwire__span *header;     /* the header's fields, for a message too short for them */
-    /* The three header functions are NULL for a body message: one layout right after the
-     * message header, with no header fields and no subtype byte, its subtype code `code`. */
-    /* Reads the header into m->header and returns the subtype code. */
+    /* Reads the header into m->header and returns the subtype code; NULL for a body message:
+     * one layout right after the message header, with no header fields and no subtype byte,
+     * its subtype code `code`. */
     int64_t (*read_header)(urwire_message *m);
-    /* The header's fields, the subtype first when it is not named by a layout. */
-    void (*visit_header)(const urwire_message *m, bool subtype, const urwire_visitor *v);
-    /* Writes m->header into out[0..body). */
-    void (*put_header)(const urwire_message *m, uint8_t *out);
 } urwire__message_type;
 
+/* The other header functions of a message type (NULL for a body message), in a table of their
+ * own indexed as the types (urwire__message_headers): a firmware that only decodes links
+ * neither them nor what they call. */
+typedef struct urwire__message_header {
+    /* The header's fields, the subtype first when it is not named by a layout. */
+    void (*visit)(const urwire_message *m, bool subtype, const urwire_visitor *v);
+    /* Writes m->header into out[0..body). */
+    void (*put)(const urwire_message *m, uint8_t *out);
+} urwire__message_header;
+
 /* An urwire_message_kind, indexed by it: the record's type and the functions of its layout
- * (NULL for the unknown kinds and for a sub-package list, which the runtime walks itself). */
+ * (NULL for the unknown kinds and for a sub-package list, which the runtime walks itself).
+ * Its decoder is in urwire__message_decoders, indexed the same way: decoding links neither the
+ * encoders nor the visitors. */
 typedef struct urwire__message_kind {
     const char *name;                   /* "version", "robot_state", "unknown" */
     const urwire__message_type *type;   /* NULL for the unknown kinds */
     int64_t subtype;                    /* its code in its type's subtype byte */
-    urwire__decode_fn decode;
     urwire__encode_fn encode;
     urwire__visit_fn visit;
 } urwire__message_kind;
@@ -366,6 +375,7 @@ URWIRE__PRIVATE const urwire__message_type *urwire__message_type_of(uint8_t code
 URWIRE__PRIVATE const urwire__message_kind *urwire__message_kind_of(urwire_message_kind kind);
 URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(urwire_package_layout layout);
 URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_message *m);
+URWIRE__PRIVATE const urwire__message_header *urwire__header_of(const urwire__message_type *t);
 /* forms.c */
 URWIRE__PRIVATE size_t urwire__segment(uint64_t key);
 URWIRE__PRIVATE const urwire__form *urwire__mine(const urwire__form_table *t, size_t segment, size_t code,
@@ -725,22 +735,46 @@ bool urwire_parse_version(const char *text, urwire_sw_version *out)
 /* ---- runtime/c/packages/format.c ---- */
 /* ---- number formatting -------------------------------------------------------------------- */
 
+/* u / 10 by shifts and adds (Hacker's Delight, divu10), and its remainder: a 32-bit CPU has
+ * no 64-bit divide, and the library's would cost a firmware 700 bytes of flash for an error's
+ * digits. */
+static uint64_t urwire__div10(uint64_t u, unsigned *rem)
+{
+    uint64_t q = (u >> 1) + (u >> 2), r;
+    q += q >> 4;
+    q += q >> 8;
+    q += q >> 16;
+    q += q >> 32;
+    q >>= 3;
+    r = u - ((q << 2) + q) * 2u;  /* 0..19: q is low by at most one */
+    if (r > 9u) {
+        q++;
+        r -= 10u;
+    }
+    *rem = (unsigned)r;
+    return q;
+}
+
 /* Digits of v into buf (at least 24 bytes, not NUL-terminated); returns their count. */
 URWIRE__PRIVATE size_t urwire__digits(char *buf, int64_t v)
 {
-    char tmp[24];
-    size_t n = 0, k;
+    size_t n = 0, lo, hi;
+    unsigned digit;
+    char c;
     uint64_t u = v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
-    do {
-        tmp[n++] = (char)('0' + (int)(u % 10u));
-        u /= 10u;
-    } while (u);
-    k = 0;
     if (v < 0)
-        buf[k++] = '-';
-    while (n)
-        buf[k++] = tmp[--n];
-    return k;
+        buf[n++] = '-';
+    lo = n;
+    do {  /* lowest digit first, then turned round in place */
+        u = urwire__div10(u, &digit);
+        buf[n++] = (char)('0' + digit);
+    } while (u);
+    for (hi = n - 1; lo < hi; lo++, hi--) {
+        c = buf[lo];
+        buf[lo] = buf[hi];
+        buf[hi] = c;
+    }
+    return n;
 }
 
 URWIRE__PRIVATE void urwire__num(urwire__text *t, int64_t v)
@@ -796,12 +830,23 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
     return urwire__fail(e, URWIRE_E_SHORT, offset, path, (int64_t)need, end > offset ? (int64_t)(end - offset) : 0);
 }
 
-/* The first field of a fixed run (ended by a NULL path) that does not fit names the error. */
+static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
+                                bool two);
+
+/* The first field of a fixed run (ended by a NULL path) that does not fit names the error; an
+ * element's index goes into its path's "[]". */
 URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
 {
-    for (; run->path; run++)
-        if (pos + run->offset + run->size > end)
-            return urwire__short(e, run->path, pos + run->offset, run->size, end);
+    const char *hole;
+    for (; run->path; run++) {
+        if (pos + run->offset + run->size <= end)
+            continue;
+        hole = run->index != URWIRE__NO_INDEX ? strstr(run->path, "[]") : NULL;
+        urwire__short(e, hole ? hole + 2 : run->path, pos + run->offset, run->size, end);
+        if (hole && e != NULL)
+            urwire__prefix_path(e, run->path, (size_t)(hole - run->path), run->index, 0, false);
+        return false;
+    }
     return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
 }
 
@@ -817,20 +862,18 @@ static void urwire__put_cut(char *path, size_t max, size_t at, const char *text,
         memcpy(path + at, text, len < max - at ? len : max - at);
 }
 
-/* Prefix the error's path with name[index] (name may be empty), or name[index][index2] when
- * two, joined as Python's paths are: threads[1].label_name, variables[2][0].type. In place,
- * cut to URWIRE_PATH_MAX - 1 characters like any path: no second path on the stack. */
-URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t index, size_t index2, bool two)
+/* Prefix the error's path with name[index] (name, of name_len characters, may be empty), or
+ * name[index][index2] when two, joined as Python's paths are: threads[1].label_name,
+ * variables[2][0].type. In place, cut to URWIRE_PATH_MAX - 1 characters like any path: no
+ * second path on the stack. */
+static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
+                                bool two)
 {
     char digits[2][24];
     size_t max = sizeof e->path - 1, nd = urwire__digits(digits[0], (int64_t)index);
     size_t nd2 = two ? urwire__digits(digits[1], (int64_t)index2) : 0;
-    size_t name_len = strlen(name), rest, n, keep;
-    bool dot;
-    if (e == NULL)
-        return false;
-    rest = strlen(e->path);
-    dot = rest && e->path[0] != '[' && e->path[0] != '.';
+    size_t rest = strlen(e->path), n, keep;
+    bool dot = rest && e->path[0] != '[' && e->path[0] != '.';
     n = name_len + 2 + nd + (two ? 2 + nd2 : 0) + (dot ? 1 : 0);  /* the prefix's length */
     keep = n >= max ? 0 : (rest < max - n ? rest : max - n);
     memmove(e->path + (n < max ? n : max), e->path, keep);
@@ -846,6 +889,14 @@ URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t i
     }
     if (dot)
         urwire__put_cut(e->path, max, n - 1, ".", 1);
+}
+
+/* urwire__prefix of a NUL-terminated name, for `return urwire__within2(...)`; a NULL e is an
+ * error nobody reads. */
+URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t index, size_t index2, bool two)
+{
+    if (e != NULL)
+        urwire__prefix_path(e, name, strlen(name), index, index2, two);
     return false;
 }
 
@@ -1764,35 +1815,35 @@ static const urwire__value_table urwire__value_tables[] = {
 /* ---- layouts: one decoder, encoder and visitor each (the struct as void *: see the tables) - */
 
 static const urwire__span urwire__robot_mode_data_0_run0[] = {
-    {"timestamp", 0, 8},
-    {"is_real_robot_connected", 8, 1},
-    {"is_real_robot_enabled", 9, 1},
-    {"is_robot_power_on", 10, 1},
-    {"is_emergency_stopped", 11, 1},
-    {"is_protective_stopped", 12, 1},
-    {"is_program_running", 13, 1},
-    {"is_program_paused", 14, 1},
-    {"robot_mode", 15, 1},
-    {"target_speed_fraction", 16, 8},
-    {NULL, 0, 0},
+    {"timestamp", 0, 8, 255},
+    {"is_real_robot_connected", 8, 1, 255},
+    {"is_real_robot_enabled", 9, 1, 255},
+    {"is_robot_power_on", 10, 1, 255},
+    {"is_emergency_stopped", 11, 1, 255},
+    {"is_protective_stopped", 12, 1, 255},
+    {"is_program_running", 13, 1, 255},
+    {"is_program_paused", 14, 1, 255},
+    {"robot_mode", 15, 1, 255},
+    {"target_speed_fraction", 16, 8, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__robot_mode_data_1_run0[] = {
-    {"timestamp", 0, 8},
-    {"is_real_robot_connected", 8, 1},
-    {"is_real_robot_enabled", 9, 1},
-    {"is_robot_power_on", 10, 1},
-    {"is_emergency_stopped", 11, 1},
-    {"is_protective_stopped", 12, 1},
-    {"is_program_running", 13, 1},
-    {"is_program_paused", 14, 1},
-    {"robot_mode", 15, 1},
-    {"control_mode", 16, 1},
-    {"target_speed_fraction", 17, 8},
-    {"speed_scaling", 25, 8},
-    {"target_speed_fraction_limit", 33, 8},
-    {"reserved", 41, 1},
-    {NULL, 0, 0},
+    {"timestamp", 0, 8, 255},
+    {"is_real_robot_connected", 8, 1, 255},
+    {"is_real_robot_enabled", 9, 1, 255},
+    {"is_robot_power_on", 10, 1, 255},
+    {"is_emergency_stopped", 11, 1, 255},
+    {"is_protective_stopped", 12, 1, 255},
+    {"is_program_running", 13, 1, 255},
+    {"is_program_paused", 14, 1, 255},
+    {"robot_mode", 15, 1, 255},
+    {"control_mode", 16, 1, 255},
+    {"target_speed_fraction", 17, 8, 255},
+    {"speed_scaling", 25, 8, 255},
+    {"target_speed_fraction_limit", 33, 8, 255},
+    {"reserved", 41, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* robot_mode_data as up to 1.8 sends it (24 bytes). */
@@ -2059,55 +2110,55 @@ static void urwire__visit_joint(const void *from, const urwire__ver *ver, const 
 }
 
 static const urwire__span urwire__joint_data_run0[] = {
-    {"joints[0].q_actual", 0, 8},
-    {"joints[0].q_target", 8, 8},
-    {"joints[0].qd_actual", 16, 8},
-    {"joints[0].i_actual", 24, 4},
-    {"joints[0].v_actual", 28, 4},
-    {"joints[0].t_motor", 32, 4},
-    {"joints[0].t_micro", 36, 4},
-    {"joints[0].joint_mode", 40, 1},
-    {"joints[1].q_actual", 41, 8},
-    {"joints[1].q_target", 49, 8},
-    {"joints[1].qd_actual", 57, 8},
-    {"joints[1].i_actual", 65, 4},
-    {"joints[1].v_actual", 69, 4},
-    {"joints[1].t_motor", 73, 4},
-    {"joints[1].t_micro", 77, 4},
-    {"joints[1].joint_mode", 81, 1},
-    {"joints[2].q_actual", 82, 8},
-    {"joints[2].q_target", 90, 8},
-    {"joints[2].qd_actual", 98, 8},
-    {"joints[2].i_actual", 106, 4},
-    {"joints[2].v_actual", 110, 4},
-    {"joints[2].t_motor", 114, 4},
-    {"joints[2].t_micro", 118, 4},
-    {"joints[2].joint_mode", 122, 1},
-    {"joints[3].q_actual", 123, 8},
-    {"joints[3].q_target", 131, 8},
-    {"joints[3].qd_actual", 139, 8},
-    {"joints[3].i_actual", 147, 4},
-    {"joints[3].v_actual", 151, 4},
-    {"joints[3].t_motor", 155, 4},
-    {"joints[3].t_micro", 159, 4},
-    {"joints[3].joint_mode", 163, 1},
-    {"joints[4].q_actual", 164, 8},
-    {"joints[4].q_target", 172, 8},
-    {"joints[4].qd_actual", 180, 8},
-    {"joints[4].i_actual", 188, 4},
-    {"joints[4].v_actual", 192, 4},
-    {"joints[4].t_motor", 196, 4},
-    {"joints[4].t_micro", 200, 4},
-    {"joints[4].joint_mode", 204, 1},
-    {"joints[5].q_actual", 205, 8},
-    {"joints[5].q_target", 213, 8},
-    {"joints[5].qd_actual", 221, 8},
-    {"joints[5].i_actual", 229, 4},
-    {"joints[5].v_actual", 233, 4},
-    {"joints[5].t_motor", 237, 4},
-    {"joints[5].t_micro", 241, 4},
-    {"joints[5].joint_mode", 245, 1},
-    {NULL, 0, 0},
+    {"joints[].q_actual", 0, 8, 0},
+    {"joints[].q_target", 8, 8, 0},
+    {"joints[].qd_actual", 16, 8, 0},
+    {"joints[].i_actual", 24, 4, 0},
+    {"joints[].v_actual", 28, 4, 0},
+    {"joints[].t_motor", 32, 4, 0},
+    {"joints[].t_micro", 36, 4, 0},
+    {"joints[].joint_mode", 40, 1, 0},
+    {"joints[].q_actual", 41, 8, 1},
+    {"joints[].q_target", 49, 8, 1},
+    {"joints[].qd_actual", 57, 8, 1},
+    {"joints[].i_actual", 65, 4, 1},
+    {"joints[].v_actual", 69, 4, 1},
+    {"joints[].t_motor", 73, 4, 1},
+    {"joints[].t_micro", 77, 4, 1},
+    {"joints[].joint_mode", 81, 1, 1},
+    {"joints[].q_actual", 82, 8, 2},
+    {"joints[].q_target", 90, 8, 2},
+    {"joints[].qd_actual", 98, 8, 2},
+    {"joints[].i_actual", 106, 4, 2},
+    {"joints[].v_actual", 110, 4, 2},
+    {"joints[].t_motor", 114, 4, 2},
+    {"joints[].t_micro", 118, 4, 2},
+    {"joints[].joint_mode", 122, 1, 2},
+    {"joints[].q_actual", 123, 8, 3},
+    {"joints[].q_target", 131, 8, 3},
+    {"joints[].qd_actual", 139, 8, 3},
+    {"joints[].i_actual", 147, 4, 3},
+    {"joints[].v_actual", 151, 4, 3},
+    {"joints[].t_motor", 155, 4, 3},
+    {"joints[].t_micro", 159, 4, 3},
+    {"joints[].joint_mode", 163, 1, 3},
+    {"joints[].q_actual", 164, 8, 4},
+    {"joints[].q_target", 172, 8, 4},
+    {"joints[].qd_actual", 180, 8, 4},
+    {"joints[].i_actual", 188, 4, 4},
+    {"joints[].v_actual", 192, 4, 4},
+    {"joints[].t_motor", 196, 4, 4},
+    {"joints[].t_micro", 200, 4, 4},
+    {"joints[].joint_mode", 204, 1, 4},
+    {"joints[].q_actual", 205, 8, 5},
+    {"joints[].q_target", 213, 8, 5},
+    {"joints[].qd_actual", 221, 8, 5},
+    {"joints[].i_actual", 229, 4, 5},
+    {"joints[].v_actual", 233, 4, 5},
+    {"joints[].t_motor", 237, 4, 5},
+    {"joints[].t_micro", 241, 4, 5},
+    {"joints[].joint_mode", 245, 1, 5},
+    {NULL, 0, 0, 0},
 };
 
 /* Joint data, one group per joint; 251 bytes in every version. */
@@ -2167,16 +2218,16 @@ static void urwire__visit_joint_data(const void *from, const urwire__ver *ver, c
 }
 
 static const urwire__span urwire__tool_data_run0[] = {
-    {"analog_input_range0", 0, 1},
-    {"analog_input_range1", 1, 1},
-    {"analog_input0", 2, 8},
-    {"analog_input1", 10, 8},
-    {"tool_voltage_48v", 18, 4},
-    {"tool_output_voltage", 22, 1},
-    {"tool_current", 23, 4},
-    {"tool_temperature", 27, 4},
-    {"tool_mode", 31, 1},
-    {NULL, 0, 0},
+    {"analog_input_range0", 0, 1, 255},
+    {"analog_input_range1", 1, 1, 255},
+    {"analog_input0", 2, 8, 255},
+    {"analog_input1", 10, 8, 255},
+    {"tool_voltage_48v", 18, 4, 255},
+    {"tool_output_voltage", 22, 1, 255},
+    {"tool_current", 23, 4, 255},
+    {"tool_temperature", 27, 4, 255},
+    {"tool_mode", 31, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and
@@ -2252,69 +2303,69 @@ static void urwire__visit_tool_data(const void *from, const urwire__ver *ver, co
 }
 
 static const urwire__span urwire__masterboard_data_0_run0[] = {
-    {"digital_input_bits", 0, 2},
-    {"digital_output_bits", 2, 2},
-    {"analog_input_range0", 4, 1},
-    {"analog_input_range1", 5, 1},
-    {"analog_input0", 6, 8},
-    {"analog_input1", 14, 8},
-    {"analog_output_domain0", 22, 1},
-    {"analog_output_domain1", 23, 1},
-    {"analog_output0", 24, 8},
-    {"analog_output1", 32, 8},
-    {"master_board_temperature", 40, 4},
-    {"robot_voltage_48v", 44, 4},
-    {"robot_current", 48, 4},
-    {"master_io_current", 52, 4},
-    {"master_safety_state", 56, 1},
-    {"master_on_off_state", 57, 1},
-    {"euromap67_interface_installed", 58, 1},
-    {NULL, 0, 0},
+    {"digital_input_bits", 0, 2, 255},
+    {"digital_output_bits", 2, 2, 255},
+    {"analog_input_range0", 4, 1, 255},
+    {"analog_input_range1", 5, 1, 255},
+    {"analog_input0", 6, 8, 255},
+    {"analog_input1", 14, 8, 255},
+    {"analog_output_domain0", 22, 1, 255},
+    {"analog_output_domain1", 23, 1, 255},
+    {"analog_output0", 24, 8, 255},
+    {"analog_output1", 32, 8, 255},
+    {"master_board_temperature", 40, 4, 255},
+    {"robot_voltage_48v", 44, 4, 255},
+    {"robot_current", 48, 4, 255},
+    {"master_io_current", 52, 4, 255},
+    {"master_safety_state", 56, 1, 255},
+    {"master_on_off_state", 57, 1, 255},
+    {"euromap67_interface_installed", 58, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__masterboard_data_1_run1[] = {
-    {"euromap_input_bits", 0, 4},
-    {"euromap_output_bits", 4, 4},
-    {"euromap_voltage_cb2", 8, 2},
-    {"euromap_current_cb2", 10, 2},
-    {NULL, 0, 0},
+    {"euromap_input_bits", 0, 4, 255},
+    {"euromap_output_bits", 4, 4, 255},
+    {"euromap_voltage_cb2", 8, 2, 255},
+    {"euromap_current_cb2", 10, 2, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__masterboard_data_2_run0[] = {
-    {"digital_input_bits", 0, 4},
-    {"digital_output_bits", 4, 4},
-    {"analog_input_range0", 8, 1},
-    {"analog_input_range1", 9, 1},
-    {"analog_input0", 10, 8},
-    {"analog_input1", 18, 8},
-    {"analog_output_domain0", 26, 1},
-    {"analog_output_domain1", 27, 1},
-    {"analog_output0", 28, 8},
-    {"analog_output1", 36, 8},
-    {"master_board_temperature", 44, 4},
-    {"robot_voltage_48v", 48, 4},
-    {"robot_current", 52, 4},
-    {"master_io_current", 56, 4},
-    {"safety_mode", 60, 1},
-    {"in_reduced_mode", 61, 1},
-    {"euromap67_interface_installed", 62, 1},
-    {NULL, 0, 0},
+    {"digital_input_bits", 0, 4, 255},
+    {"digital_output_bits", 4, 4, 255},
+    {"analog_input_range0", 8, 1, 255},
+    {"analog_input_range1", 9, 1, 255},
+    {"analog_input0", 10, 8, 255},
+    {"analog_input1", 18, 8, 255},
+    {"analog_output_domain0", 26, 1, 255},
+    {"analog_output_domain1", 27, 1, 255},
+    {"analog_output0", 28, 8, 255},
+    {"analog_output1", 36, 8, 255},
+    {"master_board_temperature", 44, 4, 255},
+    {"robot_voltage_48v", 48, 4, 255},
+    {"robot_current", 52, 4, 255},
+    {"master_io_current", 56, 4, 255},
+    {"safety_mode", 60, 1, 255},
+    {"in_reduced_mode", 61, 1, 255},
+    {"euromap67_interface_installed", 62, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__masterboard_data_2_run1[] = {
-    {"euromap_input_bits", 0, 4},
-    {"euromap_output_bits", 4, 4},
-    {"euromap_voltage_24v", 8, 4},
-    {"euromap_current", 12, 4},
-    {NULL, 0, 0},
+    {"euromap_input_bits", 0, 4, 255},
+    {"euromap_output_bits", 4, 4, 255},
+    {"euromap_voltage_24v", 8, 4, 255},
+    {"euromap_current", 12, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__masterboard_data_2_run2[] = {
-    {"reserved_0", 0, 4},
-    {"operational_mode_selector_input", 4, 1},
-    {"three_position_enabling_device_input", 5, 1},
-    {"reserved_1", 6, 1},
-    {NULL, 0, 0},
+    {"reserved_0", 0, 4, 255},
+    {"operational_mode_selector_input", 4, 1, 255},
+    {"three_position_enabling_device_input", 5, 1, 255},
+    {"reserved_1", 6, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* masterboard_data as up to 1.5 sends it (56 bytes). */
@@ -2818,19 +2869,19 @@ static void urwire__visit_masterboard_data(const void *from, const urwire__ver *
 }
 
 static const urwire__span urwire__cartesian_info_0_run0[] = {
-    {"x", 0, 8},
-    {"y", 8, 8},
-    {"z", 16, 8},
-    {"rx", 24, 8},
-    {"ry", 32, 8},
-    {"rz", 40, 8},
-    {"tcp_offset_x", 48, 8},
-    {"tcp_offset_y", 56, 8},
-    {"tcp_offset_z", 64, 8},
-    {"tcp_offset_rx", 72, 8},
-    {"tcp_offset_ry", 80, 8},
-    {"tcp_offset_rz", 88, 8},
-    {NULL, 0, 0},
+    {"x", 0, 8, 255},
+    {"y", 8, 8, 255},
+    {"z", 16, 8, 255},
+    {"rx", 24, 8, 255},
+    {"ry", 32, 8, 255},
+    {"rz", 40, 8, 255},
+    {"tcp_offset_x", 48, 8, 255},
+    {"tcp_offset_y", 56, 8, 255},
+    {"tcp_offset_z", 64, 8, 255},
+    {"tcp_offset_rx", 72, 8, 255},
+    {"tcp_offset_ry", 80, 8, 255},
+    {"tcp_offset_rz", 88, 8, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* cartesian_info as up to 3.0 sends it (48 bytes). */
@@ -2963,10 +3014,10 @@ static void urwire__visit_cartesian_info(const void *from, const urwire__ver *ve
 }
 
 static const urwire__span urwire__laser_pointer_run0[] = {
-    {"x", 0, 8},
-    {"y", 8, 8},
-    {"z", 16, 8},
-    {NULL, 0, 0},
+    {"x", 0, 8, 255},
+    {"y", 8, 8, 255},
+    {"z", 16, 8, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* The early CB2 package of type 5: three doubles, 29 bytes; kinematics info takes the code from
@@ -3024,38 +3075,38 @@ static void urwire__visit_laser_pointer(const void *from, const urwire__ver *ver
 }
 
 static const urwire__span urwire__kinematics_info_run0[] = {
-    {"checksum[0]", 0, 4},
-    {"checksum[1]", 4, 4},
-    {"checksum[2]", 8, 4},
-    {"checksum[3]", 12, 4},
-    {"checksum[4]", 16, 4},
-    {"checksum[5]", 20, 4},
-    {"dh_theta[0]", 24, 8},
-    {"dh_theta[1]", 32, 8},
-    {"dh_theta[2]", 40, 8},
-    {"dh_theta[3]", 48, 8},
-    {"dh_theta[4]", 56, 8},
-    {"dh_theta[5]", 64, 8},
-    {"dh_a[0]", 72, 8},
-    {"dh_a[1]", 80, 8},
-    {"dh_a[2]", 88, 8},
-    {"dh_a[3]", 96, 8},
-    {"dh_a[4]", 104, 8},
-    {"dh_a[5]", 112, 8},
-    {"dh_d[0]", 120, 8},
-    {"dh_d[1]", 128, 8},
-    {"dh_d[2]", 136, 8},
-    {"dh_d[3]", 144, 8},
-    {"dh_d[4]", 152, 8},
-    {"dh_d[5]", 160, 8},
-    {"dh_alpha[0]", 168, 8},
-    {"dh_alpha[1]", 176, 8},
-    {"dh_alpha[2]", 184, 8},
-    {"dh_alpha[3]", 192, 8},
-    {"dh_alpha[4]", 200, 8},
-    {"dh_alpha[5]", 208, 8},
-    {"calibration_status", 216, 4},
-    {NULL, 0, 0},
+    {"checksum[]", 0, 4, 0},
+    {"checksum[]", 4, 4, 1},
+    {"checksum[]", 8, 4, 2},
+    {"checksum[]", 12, 4, 3},
+    {"checksum[]", 16, 4, 4},
+    {"checksum[]", 20, 4, 5},
+    {"dh_theta[]", 24, 8, 0},
+    {"dh_theta[]", 32, 8, 1},
+    {"dh_theta[]", 40, 8, 2},
+    {"dh_theta[]", 48, 8, 3},
+    {"dh_theta[]", 56, 8, 4},
+    {"dh_theta[]", 64, 8, 5},
+    {"dh_a[]", 72, 8, 0},
+    {"dh_a[]", 80, 8, 1},
+    {"dh_a[]", 88, 8, 2},
+    {"dh_a[]", 96, 8, 3},
+    {"dh_a[]", 104, 8, 4},
+    {"dh_a[]", 112, 8, 5},
+    {"dh_d[]", 120, 8, 0},
+    {"dh_d[]", 128, 8, 1},
+    {"dh_d[]", 136, 8, 2},
+    {"dh_d[]", 144, 8, 3},
+    {"dh_d[]", 152, 8, 4},
+    {"dh_d[]", 160, 8, 5},
+    {"dh_alpha[]", 168, 8, 0},
+    {"dh_alpha[]", 176, 8, 1},
+    {"dh_alpha[]", 184, 8, 2},
+    {"dh_alpha[]", 192, 8, 3},
+    {"dh_alpha[]", 200, 8, 4},
+    {"dh_alpha[]", 208, 8, 5},
+    {"calibration_status", 216, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is
@@ -3188,133 +3239,133 @@ static void urwire__visit_joint_motion_limit(const void *from, const urwire__ver
 }
 
 static const urwire__span urwire__configuration_data_0_run0[] = {
-    {"joint_position_limits[0].joint_min_limit", 0, 8},
-    {"joint_position_limits[0].joint_max_limit", 8, 8},
-    {"joint_position_limits[1].joint_min_limit", 16, 8},
-    {"joint_position_limits[1].joint_max_limit", 24, 8},
-    {"joint_position_limits[2].joint_min_limit", 32, 8},
-    {"joint_position_limits[2].joint_max_limit", 40, 8},
-    {"joint_position_limits[3].joint_min_limit", 48, 8},
-    {"joint_position_limits[3].joint_max_limit", 56, 8},
-    {"joint_position_limits[4].joint_min_limit", 64, 8},
-    {"joint_position_limits[4].joint_max_limit", 72, 8},
-    {"joint_position_limits[5].joint_min_limit", 80, 8},
-    {"joint_position_limits[5].joint_max_limit", 88, 8},
-    {"joint_motion_limits[0].joint_max_speed", 96, 8},
-    {"joint_motion_limits[0].joint_max_acceleration", 104, 8},
-    {"joint_motion_limits[1].joint_max_speed", 112, 8},
-    {"joint_motion_limits[1].joint_max_acceleration", 120, 8},
-    {"joint_motion_limits[2].joint_max_speed", 128, 8},
-    {"joint_motion_limits[2].joint_max_acceleration", 136, 8},
-    {"joint_motion_limits[3].joint_max_speed", 144, 8},
-    {"joint_motion_limits[3].joint_max_acceleration", 152, 8},
-    {"joint_motion_limits[4].joint_max_speed", 160, 8},
-    {"joint_motion_limits[4].joint_max_acceleration", 168, 8},
-    {"joint_motion_limits[5].joint_max_speed", 176, 8},
-    {"joint_motion_limits[5].joint_max_acceleration", 184, 8},
-    {"v_joint_default", 192, 8},
-    {"a_joint_default", 200, 8},
-    {"v_tool_default", 208, 8},
-    {"a_tool_default", 216, 8},
-    {"eq_radius", 224, 8},
-    {"dh_a[0]", 232, 8},
-    {"dh_a[1]", 240, 8},
-    {"dh_a[2]", 248, 8},
-    {"dh_a[3]", 256, 8},
-    {"dh_a[4]", 264, 8},
-    {"dh_a[5]", 272, 8},
-    {"dh_d[0]", 280, 8},
-    {"dh_d[1]", 288, 8},
-    {"dh_d[2]", 296, 8},
-    {"dh_d[3]", 304, 8},
-    {"dh_d[4]", 312, 8},
-    {"dh_d[5]", 320, 8},
-    {"dh_alpha[0]", 328, 8},
-    {"dh_alpha[1]", 336, 8},
-    {"dh_alpha[2]", 344, 8},
-    {"dh_alpha[3]", 352, 8},
-    {"dh_alpha[4]", 360, 8},
-    {"dh_alpha[5]", 368, 8},
-    {"dh_theta[0]", 376, 8},
-    {"dh_theta[1]", 384, 8},
-    {"dh_theta[2]", 392, 8},
-    {"dh_theta[3]", 400, 8},
-    {"dh_theta[4]", 408, 8},
-    {"dh_theta[5]", 416, 8},
-    {"masterboard_version", 424, 4},
-    {"controller_box_type", 428, 4},
-    {"robot_type", 432, 4},
-    {"robot_sub_type", 436, 4},
-    {"motor_type[0]", 440, 4},
-    {"motor_type[1]", 444, 4},
-    {"motor_type[2]", 448, 4},
-    {"motor_type[3]", 452, 4},
-    {"motor_type[4]", 456, 4},
-    {"motor_type[5]", 460, 4},
-    {NULL, 0, 0},
+    {"joint_position_limits[].joint_min_limit", 0, 8, 0},
+    {"joint_position_limits[].joint_max_limit", 8, 8, 0},
+    {"joint_position_limits[].joint_min_limit", 16, 8, 1},
+    {"joint_position_limits[].joint_max_limit", 24, 8, 1},
+    {"joint_position_limits[].joint_min_limit", 32, 8, 2},
+    {"joint_position_limits[].joint_max_limit", 40, 8, 2},
+    {"joint_position_limits[].joint_min_limit", 48, 8, 3},
+    {"joint_position_limits[].joint_max_limit", 56, 8, 3},
+    {"joint_position_limits[].joint_min_limit", 64, 8, 4},
+    {"joint_position_limits[].joint_max_limit", 72, 8, 4},
+    {"joint_position_limits[].joint_min_limit", 80, 8, 5},
+    {"joint_position_limits[].joint_max_limit", 88, 8, 5},
+    {"joint_motion_limits[].joint_max_speed", 96, 8, 0},
+    {"joint_motion_limits[].joint_max_acceleration", 104, 8, 0},
+    {"joint_motion_limits[].joint_max_speed", 112, 8, 1},
+    {"joint_motion_limits[].joint_max_acceleration", 120, 8, 1},
+    {"joint_motion_limits[].joint_max_speed", 128, 8, 2},
+    {"joint_motion_limits[].joint_max_acceleration", 136, 8, 2},
+    {"joint_motion_limits[].joint_max_speed", 144, 8, 3},
+    {"joint_motion_limits[].joint_max_acceleration", 152, 8, 3},
+    {"joint_motion_limits[].joint_max_speed", 160, 8, 4},
+    {"joint_motion_limits[].joint_max_acceleration", 168, 8, 4},
+    {"joint_motion_limits[].joint_max_speed", 176, 8, 5},
+    {"joint_motion_limits[].joint_max_acceleration", 184, 8, 5},
+    {"v_joint_default", 192, 8, 255},
+    {"a_joint_default", 200, 8, 255},
+    {"v_tool_default", 208, 8, 255},
+    {"a_tool_default", 216, 8, 255},
+    {"eq_radius", 224, 8, 255},
+    {"dh_a[]", 232, 8, 0},
+    {"dh_a[]", 240, 8, 1},
+    {"dh_a[]", 248, 8, 2},
+    {"dh_a[]", 256, 8, 3},
+    {"dh_a[]", 264, 8, 4},
+    {"dh_a[]", 272, 8, 5},
+    {"dh_d[]", 280, 8, 0},
+    {"dh_d[]", 288, 8, 1},
+    {"dh_d[]", 296, 8, 2},
+    {"dh_d[]", 304, 8, 3},
+    {"dh_d[]", 312, 8, 4},
+    {"dh_d[]", 320, 8, 5},
+    {"dh_alpha[]", 328, 8, 0},
+    {"dh_alpha[]", 336, 8, 1},
+    {"dh_alpha[]", 344, 8, 2},
+    {"dh_alpha[]", 352, 8, 3},
+    {"dh_alpha[]", 360, 8, 4},
+    {"dh_alpha[]", 368, 8, 5},
+    {"dh_theta[]", 376, 8, 0},
+    {"dh_theta[]", 384, 8, 1},
+    {"dh_theta[]", 392, 8, 2},
+    {"dh_theta[]", 400, 8, 3},
+    {"dh_theta[]", 408, 8, 4},
+    {"dh_theta[]", 416, 8, 5},
+    {"masterboard_version", 424, 4, 255},
+    {"controller_box_type", 428, 4, 255},
+    {"robot_type", 432, 4, 255},
+    {"robot_sub_type", 436, 4, 255},
+    {"motor_type[]", 440, 4, 0},
+    {"motor_type[]", 444, 4, 1},
+    {"motor_type[]", 448, 4, 2},
+    {"motor_type[]", 452, 4, 3},
+    {"motor_type[]", 456, 4, 4},
+    {"motor_type[]", 460, 4, 5},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__configuration_data_2_run0[] = {
-    {"joint_position_limits[0].joint_min_limit", 0, 8},
-    {"joint_position_limits[0].joint_max_limit", 8, 8},
-    {"joint_position_limits[1].joint_min_limit", 16, 8},
-    {"joint_position_limits[1].joint_max_limit", 24, 8},
-    {"joint_position_limits[2].joint_min_limit", 32, 8},
-    {"joint_position_limits[2].joint_max_limit", 40, 8},
-    {"joint_position_limits[3].joint_min_limit", 48, 8},
-    {"joint_position_limits[3].joint_max_limit", 56, 8},
-    {"joint_position_limits[4].joint_min_limit", 64, 8},
-    {"joint_position_limits[4].joint_max_limit", 72, 8},
-    {"joint_position_limits[5].joint_min_limit", 80, 8},
-    {"joint_position_limits[5].joint_max_limit", 88, 8},
-    {"joint_motion_limits[0].joint_max_speed", 96, 8},
-    {"joint_motion_limits[0].joint_max_acceleration", 104, 8},
-    {"joint_motion_limits[1].joint_max_speed", 112, 8},
-    {"joint_motion_limits[1].joint_max_acceleration", 120, 8},
-    {"joint_motion_limits[2].joint_max_speed", 128, 8},
-    {"joint_motion_limits[2].joint_max_acceleration", 136, 8},
-    {"joint_motion_limits[3].joint_max_speed", 144, 8},
-    {"joint_motion_limits[3].joint_max_acceleration", 152, 8},
-    {"joint_motion_limits[4].joint_max_speed", 160, 8},
-    {"joint_motion_limits[4].joint_max_acceleration", 168, 8},
-    {"joint_motion_limits[5].joint_max_speed", 176, 8},
-    {"joint_motion_limits[5].joint_max_acceleration", 184, 8},
-    {"v_joint_default", 192, 8},
-    {"a_joint_default", 200, 8},
-    {"v_tool_default", 208, 8},
-    {"a_tool_default", 216, 8},
-    {"eq_radius", 224, 8},
-    {"dh_a[0]", 232, 8},
-    {"dh_a[1]", 240, 8},
-    {"dh_a[2]", 248, 8},
-    {"dh_a[3]", 256, 8},
-    {"dh_a[4]", 264, 8},
-    {"dh_a[5]", 272, 8},
-    {"dh_d[0]", 280, 8},
-    {"dh_d[1]", 288, 8},
-    {"dh_d[2]", 296, 8},
-    {"dh_d[3]", 304, 8},
-    {"dh_d[4]", 312, 8},
-    {"dh_d[5]", 320, 8},
-    {"dh_alpha[0]", 328, 8},
-    {"dh_alpha[1]", 336, 8},
-    {"dh_alpha[2]", 344, 8},
-    {"dh_alpha[3]", 352, 8},
-    {"dh_alpha[4]", 360, 8},
-    {"dh_alpha[5]", 368, 8},
-    {"dh_theta[0]", 376, 8},
-    {"dh_theta[1]", 384, 8},
-    {"dh_theta[2]", 392, 8},
-    {"dh_theta[3]", 400, 8},
-    {"dh_theta[4]", 408, 8},
-    {"dh_theta[5]", 416, 8},
-    {"masterboard_version", 424, 4},
-    {"controller_box_type", 428, 4},
-    {"robot_type", 432, 4},
-    {"robot_sub_type", 436, 4},
-    {"reserved_1", 440, 2},
-    {"reserved_2", 442, 2},
-    {NULL, 0, 0},
+    {"joint_position_limits[].joint_min_limit", 0, 8, 0},
+    {"joint_position_limits[].joint_max_limit", 8, 8, 0},
+    {"joint_position_limits[].joint_min_limit", 16, 8, 1},
+    {"joint_position_limits[].joint_max_limit", 24, 8, 1},
+    {"joint_position_limits[].joint_min_limit", 32, 8, 2},
+    {"joint_position_limits[].joint_max_limit", 40, 8, 2},
+    {"joint_position_limits[].joint_min_limit", 48, 8, 3},
+    {"joint_position_limits[].joint_max_limit", 56, 8, 3},
+    {"joint_position_limits[].joint_min_limit", 64, 8, 4},
+    {"joint_position_limits[].joint_max_limit", 72, 8, 4},
+    {"joint_position_limits[].joint_min_limit", 80, 8, 5},
+    {"joint_position_limits[].joint_max_limit", 88, 8, 5},
+    {"joint_motion_limits[].joint_max_speed", 96, 8, 0},
+    {"joint_motion_limits[].joint_max_acceleration", 104, 8, 0},
+    {"joint_motion_limits[].joint_max_speed", 112, 8, 1},
+    {"joint_motion_limits[].joint_max_acceleration", 120, 8, 1},
+    {"joint_motion_limits[].joint_max_speed", 128, 8, 2},
+    {"joint_motion_limits[].joint_max_acceleration", 136, 8, 2},
+    {"joint_motion_limits[].joint_max_speed", 144, 8, 3},
+    {"joint_motion_limits[].joint_max_acceleration", 152, 8, 3},
+    {"joint_motion_limits[].joint_max_speed", 160, 8, 4},
+    {"joint_motion_limits[].joint_max_acceleration", 168, 8, 4},
+    {"joint_motion_limits[].joint_max_speed", 176, 8, 5},
+    {"joint_motion_limits[].joint_max_acceleration", 184, 8, 5},
+    {"v_joint_default", 192, 8, 255},
+    {"a_joint_default", 200, 8, 255},
+    {"v_tool_default", 208, 8, 255},
+    {"a_tool_default", 216, 8, 255},
+    {"eq_radius", 224, 8, 255},
+    {"dh_a[]", 232, 8, 0},
+    {"dh_a[]", 240, 8, 1},
+    {"dh_a[]", 248, 8, 2},
+    {"dh_a[]", 256, 8, 3},
+    {"dh_a[]", 264, 8, 4},
+    {"dh_a[]", 272, 8, 5},
+    {"dh_d[]", 280, 8, 0},
+    {"dh_d[]", 288, 8, 1},
+    {"dh_d[]", 296, 8, 2},
+    {"dh_d[]", 304, 8, 3},
+    {"dh_d[]", 312, 8, 4},
+    {"dh_d[]", 320, 8, 5},
+    {"dh_alpha[]", 328, 8, 0},
+    {"dh_alpha[]", 336, 8, 1},
+    {"dh_alpha[]", 344, 8, 2},
+    {"dh_alpha[]", 352, 8, 3},
+    {"dh_alpha[]", 360, 8, 4},
+    {"dh_alpha[]", 368, 8, 5},
+    {"dh_theta[]", 376, 8, 0},
+    {"dh_theta[]", 384, 8, 1},
+    {"dh_theta[]", 392, 8, 2},
+    {"dh_theta[]", 400, 8, 3},
+    {"dh_theta[]", 408, 8, 4},
+    {"dh_theta[]", 416, 8, 5},
+    {"masterboard_version", 424, 4, 255},
+    {"controller_box_type", 428, 4, 255},
+    {"robot_type", 432, 4, 255},
+    {"robot_sub_type", 436, 4, 255},
+    {"reserved_1", 440, 2, 255},
+    {"reserved_2", 442, 2, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* configuration_data as up to 1.8 sends it (464 bytes). */
@@ -3540,14 +3591,14 @@ static void urwire__visit_configuration_data(const void *from, const urwire__ver
 }
 
 static const urwire__span urwire__force_mode_data_run0[] = {
-    {"fx", 0, 8},
-    {"fy", 8, 8},
-    {"fz", 16, 8},
-    {"frx", 24, 8},
-    {"fry", 32, 8},
-    {"frz", 40, 8},
-    {"robot_dexterity", 48, 8},
-    {NULL, 0, 0},
+    {"fx", 0, 8, 255},
+    {"fy", 8, 8, 255},
+    {"fz", 16, 8, 255},
+    {"frx", 24, 8, 255},
+    {"fry", 32, 8, 255},
+    {"frz", 40, 8, 255},
+    {"robot_dexterity", 48, 8, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Force mode data; 61 bytes in every version that sends it. */
@@ -3616,17 +3667,17 @@ static void urwire__visit_force_mode_data(const void *from, const urwire__ver *v
 }
 
 static const urwire__span urwire__additional_info_0_run0[] = {
-    {"ctrl_bits", 0, 4},
-    {"teach_button", 4, 1},
-    {NULL, 0, 0},
+    {"ctrl_bits", 0, 4, 255},
+    {"teach_button", 4, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__additional_info_1_run0[] = {
-    {"tp_button_state", 0, 1},
-    {"freedrive_button_enabled", 1, 1},
-    {"io_enabled_freedrive", 2, 1},
-    {"reserved", 3, 1},
-    {NULL, 0, 0},
+    {"tp_button_state", 0, 1, 255},
+    {"freedrive_button_enabled", 1, 1, 255},
+    {"io_enabled_freedrive", 2, 1, 255},
+    {"reserved", 3, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* additional_info as up to 1.7 sends it (5 bytes). */
@@ -3799,13 +3850,13 @@ static void urwire__visit_additional_info(const void *from, const urwire__ver *v
 }
 
 static const urwire__span urwire__calibration_data_run0[] = {
-    {"fx", 0, 8},
-    {"fy", 8, 8},
-    {"fz", 16, 8},
-    {"frx", 24, 8},
-    {"fry", 32, 8},
-    {"frz", 40, 8},
-    {NULL, 0, 0},
+    {"fx", 0, 8, 255},
+    {"fy", 8, 8, 255},
+    {"fz", 16, 8, 255},
+    {"frx", 24, 8, 255},
+    {"fry", 32, 8, 255},
+    {"frz", 40, 8, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8
@@ -3913,13 +3964,13 @@ static void urwire__visit_safety_data(const void *from, const urwire__ver *ver, 
 }
 
 static const urwire__span urwire__tool_comm_info_run0[] = {
-    {"tool_communication_is_enabled", 0, 1},
-    {"baud_rate", 1, 4},
-    {"parity", 5, 4},
-    {"stop_bits", 9, 4},
-    {"rx_idle_chars", 13, 4},
-    {"tx_idle_chars", 17, 4},
-    {NULL, 0, 0},
+    {"tool_communication_is_enabled", 0, 1, 255},
+    {"baud_rate", 1, 4, 255},
+    {"parity", 5, 4, 255},
+    {"stop_bits", 9, 4, 255},
+    {"rx_idle_chars", 13, 4, 255},
+    {"tx_idle_chars", 17, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Tool communication info. e-Series only; its first version is unknown. */
@@ -3985,10 +4036,10 @@ static void urwire__visit_tool_comm_info(const void *from, const urwire__ver *ve
 }
 
 static const urwire__span urwire__tool_mode_info_run0[] = {
-    {"output_mode", 0, 1},
-    {"digital_output_mode_output_0", 1, 1},
-    {"digital_output_mode_output_1", 2, 1},
-    {NULL, 0, 0},
+    {"output_mode", 0, 1, 255},
+    {"digital_output_mode_output_0", 1, 1, 255},
+    {"digital_output_mode_output_1", 2, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Tool mode info. e-Series only; its first version is unknown. */
@@ -4045,9 +4096,9 @@ static void urwire__visit_tool_mode_info(const void *from, const urwire__ver *ve
 }
 
 static const urwire__span urwire__singularity_info_run0[] = {
-    {"singularity_severity", 0, 1},
-    {"singularity_type", 1, 1},
-    {NULL, 0, 0},
+    {"singularity_severity", 0, 1, 255},
+    {"singularity_type", 1, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Singularity info. Used internally by Universal Robots software only. */
@@ -4101,17 +4152,17 @@ static void urwire__visit_singularity_info(const void *from, const urwire__ver *
 }
 
 static const urwire__span urwire__payload_info_run0[] = {
-    {"mass", 0, 8},
-    {"center_of_gravity[0]", 8, 8},
-    {"center_of_gravity[1]", 16, 8},
-    {"center_of_gravity[2]", 24, 8},
-    {"inertia[0]", 32, 8},
-    {"inertia[1]", 40, 8},
-    {"inertia[2]", 48, 8},
-    {"inertia[3]", 56, 8},
-    {"inertia[4]", 64, 8},
-    {"inertia[5]", 72, 8},
-    {NULL, 0, 0},
+    {"mass", 0, 8, 255},
+    {"center_of_gravity[]", 8, 8, 0},
+    {"center_of_gravity[]", 16, 8, 1},
+    {"center_of_gravity[]", 24, 8, 2},
+    {"inertia[]", 32, 8, 0},
+    {"inertia[]", 40, 8, 1},
+    {"inertia[]", 48, 8, 2},
+    {"inertia[]", 56, 8, 3},
+    {"inertia[]", 64, 8, 4},
+    {"inertia[]", 72, 8, 5},
+    {NULL, 0, 0, 0},
 };
 
 /* Target payload (not in any document; the fields are inferred from real bytes): its mass, centre
@@ -4179,20 +4230,20 @@ static void urwire__visit_payload_info(const void *from, const urwire__ver *ver,
 }
 
 static const urwire__span urwire__version_run0[] = {
-    {"major_version", 0, 1},
-    {"minor_version", 1, 1},
-    {NULL, 0, 0},
+    {"major_version", 0, 1, 255},
+    {"minor_version", 1, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__version_run1[] = {
-    {"svn_revision", 0, 4},
-    {NULL, 0, 0},
+    {"svn_revision", 0, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__version_run2[] = {
-    {"bugfix_version", 0, 4},
-    {"build_number", 4, 4},
-    {NULL, 0, 0},
+    {"bugfix_version", 0, 4, 255},
+    {"build_number", 4, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Version message, the first message on both the primary and secondary interfaces. It is read in
@@ -4302,15 +4353,15 @@ static void urwire__visit_version(const void *from, const urwire__ver *ver, cons
 }
 
 static const urwire__span urwire__safety_mode_run0[] = {
-    {"robot_message_code", 0, 4},
-    {"robot_message_argument", 4, 4},
-    {NULL, 0, 0},
+    {"robot_message_code", 0, 4, 255},
+    {"robot_message_argument", 4, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__safety_mode_run1[] = {
-    {"safety_mode_type", 0, 1},
-    {"report_data_type", 1, 4},
-    {NULL, 0, 0},
+    {"safety_mode_type", 0, 1, 255},
+    {"report_data_type", 1, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Safety mode message; the security message of CB2, which carries a text instead of the safety mode
@@ -4457,16 +4508,16 @@ static void urwire__visit_safety_mode(const void *from, const urwire__ver *ver, 
 }
 
 static const urwire__span urwire__robot_comm_run0[] = {
-    {"robot_message_code", 0, 4},
-    {"robot_message_argument", 4, 4},
-    {NULL, 0, 0},
+    {"robot_message_code", 0, 4, 255},
+    {"robot_message_argument", 4, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__robot_comm_run1[] = {
-    {"robot_message_report_level", 0, 4},
-    {"robot_message_data_type", 4, 4},
-    {"robot_message_data", 8, 4},
-    {NULL, 0, 0},
+    {"robot_message_report_level", 0, 4, 255},
+    {"robot_message_data_type", 4, 4, 255},
+    {"robot_message_data", 8, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Robot comm message (an error code report). On CB2 the code and argument are followed by the text
@@ -4557,9 +4608,9 @@ static void urwire__visit_robot_comm(const void *from, const urwire__ver *ver, c
 }
 
 static const urwire__span urwire__key_run0[] = {
-    {"robot_message_code", 0, 4},
-    {"robot_message_argument", 4, 4},
-    {NULL, 0, 0},
+    {"robot_message_code", 0, 4, 255},
+    {"robot_message_argument", 4, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Key message. */
@@ -4623,8 +4674,8 @@ static void urwire__visit_key(const void *from, const urwire__ver *ver, const ur
 }
 
 static const urwire__span urwire__program_thread_run0[] = {
-    {"label_id", 0, 4},
-    {NULL, 0, 0},
+    {"label_id", 0, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* One entry of threads. */
@@ -4749,20 +4800,20 @@ static void urwire__visit_program_threads(const void *from, const urwire__ver *v
 }
 
 static const urwire__span urwire__popup_run0[] = {
-    {"request_id", 0, 4},
-    {"requested_type", 4, 4},
-    {NULL, 0, 0},
+    {"request_id", 0, 4, 255},
+    {"requested_type", 4, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__popup_run1[] = {
-    {"warning", 0, 1},
-    {"error", 1, 1},
-    {NULL, 0, 0},
+    {"warning", 0, 1, 255},
+    {"error", 1, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__popup_run2[] = {
-    {"blocking", 0, 1},
-    {NULL, 0, 0},
+    {"blocking", 0, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Popup message. On CB2 it has no request id, requested type or blocking flag. */
@@ -4870,8 +4921,8 @@ static void urwire__visit_popup(const void *from, const urwire__ver *ver, const 
 }
 
 static const urwire__span urwire__label_run0[] = {
-    {"id", 0, 4},
-    {NULL, 0, 0},
+    {"id", 0, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Label message (CB2 only). */
@@ -4927,9 +4978,9 @@ static void urwire__visit_label(const void *from, const urwire__ver *ver, const 
 }
 
 static const urwire__span urwire__var_run0[] = {
-    {"robot_message_code", 0, 4},
-    {"robot_message_argument", 4, 4},
-    {NULL, 0, 0},
+    {"robot_message_code", 0, 4, 255},
+    {"robot_message_argument", 4, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Var message (CB2 only). */
@@ -4993,12 +5044,12 @@ static void urwire__visit_var(const void *from, const urwire__ver *ver, const ur
 }
 
 static const urwire__span urwire__hardware_info_run0[] = {
-    {"robot_type", 0, 4},
-    {"reserved_1", 4, 2},
-    {"control_box_type", 6, 2},
-    {"reserved_2", 8, 2},
-    {"tool_flange_type", 10, 2},
-    {NULL, 0, 0},
+    {"robot_type", 0, 4, 255},
+    {"reserved_1", 4, 2, 255},
+    {"control_box_type", 6, 2, 255},
+    {"reserved_2", 8, 2, 255},
+    {"tool_flange_type", 10, 2, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 bytes in
@@ -5103,9 +5154,9 @@ static void urwire__visit_robot_message_12(const void *from, const urwire__ver *
 }
 
 static const urwire__span urwire__request_value_run0[] = {
-    {"request_id", 0, 4},
-    {"requested_type", 4, 4},
-    {NULL, 0, 0},
+    {"request_id", 0, 4, 255},
+    {"requested_type", 4, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Request value message. */
@@ -5204,9 +5255,9 @@ static void urwire__visit_text(const void *from, const urwire__ver *ver, const u
 }
 
 static const urwire__span urwire__runtime_exception_run0[] = {
-    {"script_line_number", 0, 4},
-    {"script_column_number", 4, 4},
-    {NULL, 0, 0},
+    {"script_line_number", 0, 4, 255},
+    {"script_column_number", 4, 4, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Runtime exception message. */
@@ -5265,8 +5316,8 @@ static void urwire__visit_runtime_exception(const void *from, const urwire__ver 
 }
 
 static const urwire__span urwire__global_variables_setup_run0[] = {
-    {"start_index", 0, 2},
-    {NULL, 0, 0},
+    {"start_index", 0, 2, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Global variables setup message. */
@@ -5321,8 +5372,8 @@ static void urwire__visit_global_variables_setup(const void *from, const urwire_
 }
 
 static const urwire__span urwire__global_variables_update_run0[] = {
-    {"start_index", 0, 2},
-    {NULL, 0, 0},
+    {"start_index", 0, 2, 255},
+    {NULL, 0, 0, 0},
 };
 
 /* Global variables update message. */
@@ -5499,29 +5550,29 @@ static void urwire__visit_safety_setup_broadcast(const void *from, const urwire_
 }
 
 static const urwire__span urwire__safety_compliance_tolerances_run0[] = {
-    {"tolerances[0]", 0, 8},
-    {"tolerances[1]", 8, 8},
-    {"tolerances[2]", 16, 8},
-    {"tolerances[3]", 24, 8},
-    {"tolerances[4]", 32, 8},
-    {"tolerances[5]", 40, 8},
-    {"tolerances[6]", 48, 8},
-    {"tolerances[7]", 56, 8},
-    {"tolerances[8]", 64, 8},
-    {"tolerances[9]", 72, 8},
-    {"tolerances[10]", 80, 8},
-    {"tolerances[11]", 88, 8},
-    {"tolerances[12]", 96, 8},
-    {"tolerances[13]", 104, 8},
-    {"tolerances[14]", 112, 8},
-    {"tolerances[15]", 120, 8},
-    {"tolerances[16]", 128, 8},
-    {"tolerances[17]", 136, 8},
-    {"tolerances[18]", 144, 8},
-    {"tolerances[19]", 152, 8},
-    {"tolerances[20]", 160, 8},
-    {"tolerances[21]", 168, 8},
-    {NULL, 0, 0},
+    {"tolerances[]", 0, 8, 0},
+    {"tolerances[]", 8, 8, 1},
+    {"tolerances[]", 16, 8, 2},
+    {"tolerances[]", 24, 8, 3},
+    {"tolerances[]", 32, 8, 4},
+    {"tolerances[]", 40, 8, 5},
+    {"tolerances[]", 48, 8, 6},
+    {"tolerances[]", 56, 8, 7},
+    {"tolerances[]", 64, 8, 8},
+    {"tolerances[]", 72, 8, 9},
+    {"tolerances[]", 80, 8, 10},
+    {"tolerances[]", 88, 8, 11},
+    {"tolerances[]", 96, 8, 12},
+    {"tolerances[]", 104, 8, 13},
+    {"tolerances[]", 112, 8, 14},
+    {"tolerances[]", 120, 8, 15},
+    {"tolerances[]", 128, 8, 16},
+    {"tolerances[]", 136, 8, 17},
+    {"tolerances[]", 144, 8, 18},
+    {"tolerances[]", 152, 8, 19},
+    {"tolerances[]", 160, 8, 20},
+    {"tolerances[]", 168, 8, 21},
+    {NULL, 0, 0, 0},
 };
 
 /* Safety compliance tolerances message (type 24), named by the document without a layout: 181
@@ -5584,10 +5635,10 @@ static void urwire__visit_safety_compliance_tolerances(const void *from, const u
 
 /* Header fields of a robot_message message, in the canonical order. */
 static const urwire__span urwire__robot_message_header[] = {
-    {"timestamp", 5, 8},
-    {"source", 13, 1},
-    {"robot_message_type", 14, 1},
-    {NULL, 0, 0},
+    {"timestamp", 5, 8, 255},
+    {"source", 13, 1, 255},
+    {"robot_message_type", 14, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 static int64_t urwire__read_robot_message_header(urwire_message *m)
@@ -5618,9 +5669,9 @@ static void urwire__put_robot_message_header(const urwire_message *m, uint8_t *o
 
 /* Header fields of a program_state message, in the canonical order. */
 static const urwire__span urwire__program_state_header[] = {
-    {"timestamp", 5, 8},
-    {"robot_message_type", 13, 1},
-    {NULL, 0, 0},
+    {"timestamp", 5, 8, 255},
+    {"robot_message_type", 13, 1, 255},
+    {NULL, 0, 0, 0},
 };
 
 static int64_t urwire__read_program_state_header(urwire_message *m)
@@ -6921,8 +6972,6 @@ static const urwire__message_type urwire__message_types[] = {
         .forms = &urwire__robot_message_form_table,
         .header = urwire__robot_message_header,
         .read_header = urwire__read_robot_message_header,
-        .visit_header = urwire__visit_robot_message_header,
-        .put_header = urwire__put_robot_message_header,
     },
     {
         .code = URWIRE_MESSAGE_TYPE_PROGRAM_STATE_MESSAGE,
@@ -6930,8 +6979,6 @@ static const urwire__message_type urwire__message_types[] = {
         .forms = &urwire__program_state_form_table,
         .header = urwire__program_state_header,
         .read_header = urwire__read_program_state_header,
-        .visit_header = urwire__visit_program_state_header,
-        .put_header = urwire__put_program_state_header,
     },
     {
         .code = URWIRE_MESSAGE_TYPE_MODBUS_INFO_MESSAGE,
@@ -6955,67 +7002,96 @@ static const urwire__message_type urwire__message_types[] = {
     },
 };
 
+/* Their other header functions, type by type. */
+static const urwire__message_header urwire__message_headers[] = {
+    {NULL, NULL},
+    {urwire__visit_robot_message_header, urwire__put_robot_message_header},
+    {urwire__visit_program_state_header, urwire__put_program_state_header},
+    {NULL, NULL},
+    {NULL, NULL},
+    {NULL, NULL},
+    {NULL, NULL},
+};
+
 /* Every urwire_message_kind: its record's type, its message type, and for a subtype its code
  * and the functions of its layout. */
 static const urwire__message_kind urwire__message_kinds[] = {
-    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, 0, NULL, NULL, NULL},
-    [URWIRE_KIND_ROBOT_STATE] = {"robot_state", &urwire__message_types[0], 0, NULL, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, 0, NULL, NULL},
+    [URWIRE_KIND_ROBOT_STATE] = {"robot_state", &urwire__message_types[0], 0, NULL, NULL},
     [URWIRE_KIND_VERSION] = {"version", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_VERSION,
-                             urwire__decode_version, urwire__encode_version, urwire__visit_version},
+                             urwire__encode_version, urwire__visit_version},
     [URWIRE_KIND_SAFETY_MODE] = {"safety_mode", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE,
-                                 urwire__decode_safety_mode, urwire__encode_safety_mode, urwire__visit_safety_mode},
+                                 urwire__encode_safety_mode, urwire__visit_safety_mode},
     [URWIRE_KIND_ROBOT_COMM] = {"robot_comm", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE,
-                                urwire__decode_robot_comm, urwire__encode_robot_comm, urwire__visit_robot_comm},
-    [URWIRE_KIND_KEY] = {"key", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_KEY, urwire__decode_key,
-                         urwire__encode_key, urwire__visit_key},
+                                urwire__encode_robot_comm, urwire__visit_robot_comm},
+    [URWIRE_KIND_KEY] = {"key", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_KEY, urwire__encode_key,
+                         urwire__visit_key},
     [URWIRE_KIND_PROGRAM_THREADS] = {"program_threads", &urwire__message_types[1],
-                                     URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS, urwire__decode_program_threads,
-                                     urwire__encode_program_threads, urwire__visit_program_threads},
-    [URWIRE_KIND_POPUP] = {"popup", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_POPUP, urwire__decode_popup,
-                           urwire__encode_popup, urwire__visit_popup},
+                                     URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS, urwire__encode_program_threads,
+                                     urwire__visit_program_threads},
+    [URWIRE_KIND_POPUP] = {"popup", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_POPUP, urwire__encode_popup,
+                           urwire__visit_popup},
     [URWIRE_KIND_LABEL] = {"label", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL,
-                           urwire__decode_label, urwire__encode_label, urwire__visit_label},
-    [URWIRE_KIND_VAR] = {"var", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR, urwire__decode_var,
-                         urwire__encode_var, urwire__visit_var},
+                           urwire__encode_label, urwire__visit_label},
+    [URWIRE_KIND_VAR] = {"var", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR, urwire__encode_var,
+                         urwire__visit_var},
     [URWIRE_KIND_HARDWARE_INFO] = {"hardware_info", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO,
-                                   urwire__decode_hardware_info, urwire__encode_hardware_info,
-                                   urwire__visit_hardware_info},
+                                   urwire__encode_hardware_info, urwire__visit_hardware_info},
     [URWIRE_KIND_ROBOT_MESSAGE_12] = {"robot_message_12", &urwire__message_types[1],
-                                      URWIRE_ROBOT_MESSAGE_TYPE_UNDOCUMENTED_12, urwire__decode_robot_message_12,
-                                      urwire__encode_robot_message_12, urwire__visit_robot_message_12},
+                                      URWIRE_ROBOT_MESSAGE_TYPE_UNDOCUMENTED_12, urwire__encode_robot_message_12,
+                                      urwire__visit_robot_message_12},
     [URWIRE_KIND_REQUEST_VALUE] = {"request_value", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE,
-                                   urwire__decode_request_value, urwire__encode_request_value,
-                                   urwire__visit_request_value},
-    [URWIRE_KIND_TEXT] = {"text", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_TEXT, urwire__decode_text,
-                          urwire__encode_text, urwire__visit_text},
+                                   urwire__encode_request_value, urwire__visit_request_value},
+    [URWIRE_KIND_TEXT] = {"text", &urwire__message_types[1], URWIRE_ROBOT_MESSAGE_TYPE_TEXT, urwire__encode_text,
+                          urwire__visit_text},
     [URWIRE_KIND_RUNTIME_EXCEPTION] = {"runtime_exception", &urwire__message_types[1],
-                                       URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION, urwire__decode_runtime_exception,
-                                       urwire__encode_runtime_exception, urwire__visit_runtime_exception},
+                                       URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION, urwire__encode_runtime_exception,
+                                       urwire__visit_runtime_exception},
     [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {"global_variables_setup", &urwire__message_types[2],
                                             URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_SETUP,
-                                            urwire__decode_global_variables_setup,
                                             urwire__encode_global_variables_setup,
                                             urwire__visit_global_variables_setup},
     [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {"global_variables_update", &urwire__message_types[2],
                                              URWIRE_PROGRAM_STATE_MESSAGE_TYPE_GLOBAL_VARIABLES_UPDATE,
-                                             urwire__decode_global_variables_update,
                                              urwire__encode_global_variables_update,
                                              urwire__visit_global_variables_update},
     [URWIRE_KIND_MODBUS_INFO] = {"modbus_info", &urwire__message_types[3], URWIRE_MESSAGE_TYPE_MODBUS_INFO_MESSAGE,
-                                 urwire__decode_modbus_info, urwire__encode_modbus_info, urwire__visit_modbus_info},
-    [URWIRE_KIND_HMC] = {"hmc", &urwire__message_types[4], URWIRE_MESSAGE_TYPE_HMC_MESSAGE, urwire__decode_hmc,
-                         urwire__encode_hmc, urwire__visit_hmc},
+                                 urwire__encode_modbus_info, urwire__visit_modbus_info},
+    [URWIRE_KIND_HMC] = {"hmc", &urwire__message_types[4], URWIRE_MESSAGE_TYPE_HMC_MESSAGE, urwire__encode_hmc,
+                         urwire__visit_hmc},
     [URWIRE_KIND_SAFETY_SETUP_BROADCAST] = {"safety_setup_broadcast", &urwire__message_types[5],
                                             URWIRE_MESSAGE_TYPE_SAFETY_SETUP_BROADCAST_MESSAGE,
-                                            urwire__decode_safety_setup_broadcast,
                                             urwire__encode_safety_setup_broadcast,
                                             urwire__visit_safety_setup_broadcast},
     [URWIRE_KIND_SAFETY_COMPLIANCE_TOLERANCES] = {"safety_compliance_tolerances", &urwire__message_types[6],
                                                   URWIRE_MESSAGE_TYPE_SAFETY_COMPLIANCE_TOLERANCES_MESSAGE,
-                                                  urwire__decode_safety_compliance_tolerances,
                                                   urwire__encode_safety_compliance_tolerances,
                                                   urwire__visit_safety_compliance_tolerances},
-    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, 0, NULL, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, 0, NULL, NULL},
+};
+
+/* The decoder of each urwire_message_kind with a layout of its own. */
+static const urwire__decode_fn urwire__message_decoders[] = {
+    [URWIRE_KIND_VERSION] = urwire__decode_version,
+    [URWIRE_KIND_SAFETY_MODE] = urwire__decode_safety_mode,
+    [URWIRE_KIND_ROBOT_COMM] = urwire__decode_robot_comm,
+    [URWIRE_KIND_KEY] = urwire__decode_key,
+    [URWIRE_KIND_PROGRAM_THREADS] = urwire__decode_program_threads,
+    [URWIRE_KIND_POPUP] = urwire__decode_popup,
+    [URWIRE_KIND_LABEL] = urwire__decode_label,
+    [URWIRE_KIND_VAR] = urwire__decode_var,
+    [URWIRE_KIND_HARDWARE_INFO] = urwire__decode_hardware_info,
+    [URWIRE_KIND_ROBOT_MESSAGE_12] = urwire__decode_robot_message_12,
+    [URWIRE_KIND_REQUEST_VALUE] = urwire__decode_request_value,
+    [URWIRE_KIND_TEXT] = urwire__decode_text,
+    [URWIRE_KIND_RUNTIME_EXCEPTION] = urwire__decode_runtime_exception,
+    [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = urwire__decode_global_variables_setup,
+    [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = urwire__decode_global_variables_update,
+    [URWIRE_KIND_MODBUS_INFO] = urwire__decode_modbus_info,
+    [URWIRE_KIND_HMC] = urwire__decode_hmc,
+    [URWIRE_KIND_SAFETY_SETUP_BROADCAST] = urwire__decode_safety_setup_broadcast,
+    [URWIRE_KIND_SAFETY_COMPLIANCE_TOLERANCES] = urwire__decode_safety_compliance_tolerances,
+    [URWIRE_KIND_UNKNOWN_SUBTYPE] = NULL,
 };
 
 /* How to reach the numbers of a Version message before its layout is chosen. */
@@ -7148,31 +7224,34 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, urwire
     return true;
 }
 
-/* A LIST or MATRIX whose items are being checked: how many it has, how many are done. */
+/* A LIST or MATRIX whose items are being checked: how many it has, how many are done (int16
+ * counts: at most 32767 * 32767 items). */
 typedef struct urwire__open_value {
-    size_t count;
-    size_t done;
-    size_t cols;                    /* a MATRIX's columns (its items go row by row), else 0 */
+    uint32_t count;
+    uint32_t done;
+    uint16_t cols;                  /* a MATRIX's columns (its items go row by row), else 0 */
 } urwire__open_value;
 
 /* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
- * skipped) here, so that iterating them later cannot fail: in a loop over a stack of the
- * values still open, at most URWIRE_MAX_VALUE_DEPTH deep, rather than by recursion, so that
- * the stack this takes is known. Error paths are relative ("", ".type", "[2][0]") and
- * prefixed by the callers. */
+ * skipped) here, so that iterating them later cannot fail: read into *item one by one (out
+ * itself when the caller keeps nothing of it), in a loop over a stack of the values still
+ * open, at most URWIRE_MAX_VALUE_DEPTH deep, rather than by recursion, so that the stack this
+ * takes is known. Error paths are relative ("", ".type", "[2][0]") and prefixed by the
+ * callers. */
 static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                               const urwire__value_table *t, urwire_value *out, urwire_error *err)
+                               const urwire__value_table *t, urwire_value *out, urwire_value *item,
+                               urwire_error *err)
 {
-    urwire__open_value open[URWIRE_MAX_VALUE_DEPTH + 1];
+    urwire__open_value open[URWIRE_MAX_VALUE_DEPTH];
     urwire__open_value *top;
-    urwire_value item;
-    size_t pos = *at, n = 0;
+    size_t pos = *at, n = 0, first;
     if (!urwire__read_head(msg, &pos, end, version, t, 1, out, err))
         return false;
+    first = pos;
     if (out->items.count) {
-        open[0].count = out->items.count;
+        open[0].count = (uint32_t)out->items.count;
         open[0].done = 0;
-        open[0].cols = (size_t)out->cols;  /* 0 but in a MATRIX */
+        open[0].cols = (uint16_t)out->cols;  /* 0 but in a MATRIX */
         n = 1;
     }
     while (n) {
@@ -7182,8 +7261,9 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
                 open[n - 1].done++;
             continue;
         }
-        /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH: n stays within open[] */
-        if (!urwire__read_head(msg, &pos, end, version, t, n + 1, &item, err)) {
+        /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH, and this one is n + 1
+         * deep: n stays below it, within open[] */
+        if (!urwire__read_head(msg, &pos, end, version, t, n + 1, item, err)) {
             for (; n; n--, top--) {
                 if (top->cols)
                     urwire__within2(err, "", top->done / top->cols, top->done % top->cols, true);
@@ -7192,16 +7272,16 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
             }
             return false;
         }
-        if (item.items.count) {
-            open[n].count = item.items.count;
+        if (item->items.count) {
+            open[n].count = (uint32_t)item->items.count;
             open[n].done = 0;
-            open[n].cols = (size_t)item.cols;
+            open[n].cols = (uint16_t)item->cols;
             n++;
         } else {
             top->done++;
         }
     }
-    if (out->items.count)
+    if (pos != first)  /* out's items, read; out is item's, else */
         out->items.end = pos;
     *at = pos;
     return true;
@@ -7216,7 +7296,7 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
     urwire_value value;
     *out = urwire__seq(msg, pos, version, terminator);
     while (pos < end) {
-        if (!urwire__read_value(msg, &pos, end, version, t, &value, err))
+        if (!urwire__read_value(msg, &pos, end, version, t, &value, &value, err))
             return urwire__within(err, path, out->count);
         if (pos >= end) {
             urwire__short(err, "", pos, 1, end);
@@ -7236,10 +7316,11 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
 
 bool urwire_next_value(urwire_seq *seq, urwire_value *out)
 {
+    urwire_value item;
     if (seq->count == 0)
         return false;
     if (!urwire__read_value(seq->msg, &seq->pos, seq->end, seq->version, urwire__values_of(seq->version), out,
-                            NULL)) {
+                            &item, NULL)) {
         seq->count = 0;  /* not reached for a seq from a decoded message: it was checked whole */
         return false;
     }
@@ -7275,6 +7356,12 @@ URWIRE__PRIVATE const urwire__message_kind *urwire__message_kind_of(urwire_messa
 URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(urwire_package_layout layout)
 {
     return (size_t)layout < URWIRE__COUNT(urwire__package_kinds) ? &urwire__package_kinds[layout] : NULL;
+}
+
+/* The header functions of a type of urwire__message_types. */
+URWIRE__PRIVATE const urwire__message_header *urwire__header_of(const urwire__message_type *t)
+{
+    return &urwire__message_headers[t - urwire__message_types];
 }
 
 /* The type whose header m carries: its layout's, or for an unknown subtype its message
@@ -7575,7 +7662,7 @@ URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, con
                        version, &by_length);
     *kind = (urwire_message_kind)f->layout;
     ver = urwire__ver_of(*version);
-    return urwire__message_kinds[*kind].decode(bytes, &pos, len, &ver, as, err);
+    return urwire__message_decoders[*kind](bytes, &pos, len, &ver, as, err);
 }
 
 /* A message with a common header and a subtype: the header, then the subtype's layout. */
@@ -7899,8 +7986,8 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
             urwire__no_space(err, pos, t->body - URWIRE_HEADER_SIZE, cap);
             return 0;
         }
-        if (t->put_header != NULL)
-            t->put_header(m, out);
+        if (urwire__header_of(t)->put != NULL)
+            urwire__header_of(t)->put(m, out);
         pos = t->body;
     }
     if (k == NULL)
@@ -8052,8 +8139,8 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
     if (m->kind == URWIRE_KIND_UNKNOWN_MESSAGE || m->kind == URWIRE_KIND_UNKNOWN_SUBTYPE) {
         urwire__name(v, "type", "unknown");
         v->on_uint(v->ctx, "message_type", m->message_type);
-        if (t != NULL && t->visit_header != NULL)
-            t->visit_header(m, true, v);  /* an unknown subtype: its code, then the header */
+        if (t != NULL && urwire__header_of(t)->visit != NULL)
+            urwire__header_of(t)->visit(m, true, v);  /* an unknown subtype: its code, then the header */
         else if (m->failed && m->kind == URWIRE_KIND_UNKNOWN_MESSAGE)
             urwire__visit_error(&m->error, v);
         v->on_hex(v->ctx, "raw", m->raw);
@@ -8062,8 +8149,8 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
         if (k->type->packages) {
             urwire__visit_packages(m, v);
         } else {
-            if (t->visit_header != NULL)
-                t->visit_header(m, false, v);
+            if (urwire__header_of(t)->visit != NULL)
+                urwire__header_of(t)->visit(m, false, v);
             if (m->failed)
                 urwire__visit_failed(&m->error, m->raw, v);
             else

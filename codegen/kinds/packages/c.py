@@ -9,6 +9,8 @@ no stdio: one header and one source, generated/c/urwire.{h,c}.
 """
 from __future__ import annotations
 
+import re
+
 from dataclasses import dataclass, field
 from typing import Optional
 
@@ -122,11 +124,36 @@ class BitSet:
     members: list[dict]
 
 
+# What a span holds (urwire__span: 8 bytes a field on a 32-bit CPU): an offset in a uint16_t, a
+# size and an element's index in a uint8_t each, URWIRE__NO_INDEX (255) for none.
+SPAN_OFFSET_MAX, SPAN_BYTE_MAX, NO_INDEX = 0xffff, 0xff, 0xff
+# A path with one element's index, "joints[3].q_actual": every element's span shares the string
+# "joints[].q_actual" and keeps its index apart.
+ONE_INDEX = re.compile(r"^([^\[\]]*)\[(\d+)\]([^\[\]]*)$")
+
+
 @dataclass
 class Span:
     path: str
     offset: int
     size: int
+
+    def __post_init__(self):
+        if not (0 <= self.offset <= SPAN_OFFSET_MAX and 0 <= self.size <= SPAN_BYTE_MAX):
+            raise SpecError("<spec>", [ir.NOWHERE.problem(f"c target: field {self.path} at offset {self.offset} "
+                                                          f"is beyond the C runtime's span tables")])
+
+    @property
+    def template(self) -> str:
+        """The path as the span table holds it: an element's index left out ("joints[].q_actual")."""
+        m = ONE_INDEX.match(self.path)
+        return f"{m.group(1)}[]{m.group(3)}" if m and int(m.group(2)) < NO_INDEX else self.path
+
+    @property
+    def index(self) -> int:
+        """The element's index that goes into the template's "[]", else NO_INDEX."""
+        m = ONE_INDEX.match(self.path)
+        return int(m.group(2)) if m and int(m.group(2)) < NO_INDEX else NO_INDEX
 
 
 @dataclass

@@ -179,7 +179,7 @@ URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, con
                        version, &by_length);
     *kind = (urwire_message_kind)f->layout;
     ver = urwire__ver_of(*version);
-    return urwire__message_kinds[*kind].decode(bytes, &pos, len, &ver, as, err);
+    return urwire__message_decoders[*kind](bytes, &pos, len, &ver, as, err);
 }
 
 /* A message with a common header and a subtype: the header, then the subtype's layout. */

@@ -34,12 +34,23 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
     return urwire__fail(e, URWIRE_E_SHORT, offset, path, (int64_t)need, end > offset ? (int64_t)(end - offset) : 0);
 }
 
-/* The first field of a fixed run (ended by a NULL path) that does not fit names the error. */
+static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
+                                bool two);
+
+/* The first field of a fixed run (ended by a NULL path) that does not fit names the error; an
+ * element's index goes into its path's "[]". */
 URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
 {
-    for (; run->path; run++)
-        if (pos + run->offset + run->size > end)
-            return urwire__short(e, run->path, pos + run->offset, run->size, end);
+    const char *hole;
+    for (; run->path; run++) {
+        if (pos + run->offset + run->size <= end)
+            continue;
+        hole = run->index != URWIRE__NO_INDEX ? strstr(run->path, "[]") : NULL;
+        urwire__short(e, hole ? hole + 2 : run->path, pos + run->offset, run->size, end);
+        if (hole && e != NULL)
+            urwire__prefix_path(e, run->path, (size_t)(hole - run->path), run->index, 0, false);
+        return false;
+    }
     return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
 }
 
@@ -55,20 +66,18 @@ static void urwire__put_cut(char *path, size_t max, size_t at, const char *text,
         memcpy(path + at, text, len < max - at ? len : max - at);
 }
 
-/* Prefix the error's path with name[index] (name may be empty), or name[index][index2] when
- * two, joined as Python's paths are: threads[1].label_name, variables[2][0].type. In place,
- * cut to URWIRE_PATH_MAX - 1 characters like any path: no second path on the stack. */
-URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t index, size_t index2, bool two)
+/* Prefix the error's path with name[index] (name, of name_len characters, may be empty), or
+ * name[index][index2] when two, joined as Python's paths are: threads[1].label_name,
+ * variables[2][0].type. In place, cut to URWIRE_PATH_MAX - 1 characters like any path: no
+ * second path on the stack. */
+static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
+                                bool two)
 {
     char digits[2][24];
     size_t max = sizeof e->path - 1, nd = urwire__digits(digits[0], (int64_t)index);
     size_t nd2 = two ? urwire__digits(digits[1], (int64_t)index2) : 0;
-    size_t name_len = strlen(name), rest, n, keep;
-    bool dot;
-    if (e == NULL)
-        return false;
-    rest = strlen(e->path);
-    dot = rest && e->path[0] != '[' && e->path[0] != '.';
+    size_t rest = strlen(e->path), n, keep;
+    bool dot = rest && e->path[0] != '[' && e->path[0] != '.';
     n = name_len + 2 + nd + (two ? 2 + nd2 : 0) + (dot ? 1 : 0);  /* the prefix's length */
     keep = n >= max ? 0 : (rest < max - n ? rest : max - n);
     memmove(e->path + (n < max ? n : max), e->path, keep);
@@ -84,6 +93,14 @@ URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t i
     }
     if (dot)
         urwire__put_cut(e->path, max, n - 1, ".", 1);
+}
+
+/* urwire__prefix of a NUL-terminated name, for `return urwire__within2(...)`; a NULL e is an
+ * error nobody reads. */
+URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t index, size_t index2, bool two)
+{
+    if (e != NULL)
+        urwire__prefix_path(e, name, strlen(name), index, index2, two);
     return false;
 }
 

@@ -113,31 +113,34 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, urwire
     return true;
 }
 
-/* A LIST or MATRIX whose items are being checked: how many it has, how many are done. */
+/* A LIST or MATRIX whose items are being checked: how many it has, how many are done (int16
+ * counts: at most 32767 * 32767 items). */
 typedef struct urwire__open_value {
-    size_t count;
-    size_t done;
-    size_t cols;                    /* a MATRIX's columns (its items go row by row), else 0 */
+    uint32_t count;
+    uint32_t done;
+    uint16_t cols;                  /* a MATRIX's columns (its items go row by row), else 0 */
 } urwire__open_value;
 
 /* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
- * skipped) here, so that iterating them later cannot fail: in a loop over a stack of the
- * values still open, at most URWIRE_MAX_VALUE_DEPTH deep, rather than by recursion, so that
- * the stack this takes is known. Error paths are relative ("", ".type", "[2][0]") and
- * prefixed by the callers. */
+ * skipped) here, so that iterating them later cannot fail: read into *item one by one (out
+ * itself when the caller keeps nothing of it), in a loop over a stack of the values still
+ * open, at most URWIRE_MAX_VALUE_DEPTH deep, rather than by recursion, so that the stack this
+ * takes is known. Error paths are relative ("", ".type", "[2][0]") and prefixed by the
+ * callers. */
 static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                               const urwire__value_table *t, urwire_value *out, urwire_error *err)
+                               const urwire__value_table *t, urwire_value *out, urwire_value *item,
+                               urwire_error *err)
 {
-    urwire__open_value open[URWIRE_MAX_VALUE_DEPTH + 1];
+    urwire__open_value open[URWIRE_MAX_VALUE_DEPTH];
     urwire__open_value *top;
-    urwire_value item;
-    size_t pos = *at, n = 0;
+    size_t pos = *at, n = 0, first;
     if (!urwire__read_head(msg, &pos, end, version, t, 1, out, err))
         return false;
+    first = pos;
     if (out->items.count) {
-        open[0].count = out->items.count;
+        open[0].count = (uint32_t)out->items.count;
         open[0].done = 0;
-        open[0].cols = (size_t)out->cols;  /* 0 but in a MATRIX */
+        open[0].cols = (uint16_t)out->cols;  /* 0 but in a MATRIX */
         n = 1;
     }
     while (n) {
@@ -147,8 +150,9 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
                 open[n - 1].done++;
             continue;
         }
-        /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH: n stays within open[] */
-        if (!urwire__read_head(msg, &pos, end, version, t, n + 1, &item, err)) {
+        /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH, and this one is n + 1
+         * deep: n stays below it, within open[] */
+        if (!urwire__read_head(msg, &pos, end, version, t, n + 1, item, err)) {
             for (; n; n--, top--) {
                 if (top->cols)
                     urwire__within2(err, "", top->done / top->cols, top->done % top->cols, true);
@@ -157,16 +161,16 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
             }
             return false;
         }
-        if (item.items.count) {
-            open[n].count = item.items.count;
+        if (item->items.count) {
+            open[n].count = (uint32_t)item->items.count;
             open[n].done = 0;
-            open[n].cols = (size_t)item.cols;
+            open[n].cols = (uint16_t)item->cols;
             n++;
         } else {
             top->done++;
         }
     }
-    if (out->items.count)
+    if (pos != first)  /* out's items, read; out is item's, else */
         out->items.end = pos;
     *at = pos;
     return true;
@@ -181,7 +185,7 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
     urwire_value value;
     *out = urwire__seq(msg, pos, version, terminator);
     while (pos < end) {
-        if (!urwire__read_value(msg, &pos, end, version, t, &value, err))
+        if (!urwire__read_value(msg, &pos, end, version, t, &value, &value, err))
             return urwire__within(err, path, out->count);
         if (pos >= end) {
             urwire__short(err, "", pos, 1, end);
@@ -201,10 +205,11 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
 
 bool urwire_next_value(urwire_seq *seq, urwire_value *out)
 {
+    urwire_value item;
     if (seq->count == 0)
         return false;
     if (!urwire__read_value(seq->msg, &seq->pos, seq->end, seq->version, urwire__values_of(seq->version), out,
-                            NULL)) {
+                            &item, NULL)) {
         seq->count = 0;  /* not reached for a seq from a decoded message: it was checked whole */
         return false;
     }

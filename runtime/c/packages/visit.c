@@ -134,8 +134,8 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
     if (m->kind == URWIRE_KIND_UNKNOWN_MESSAGE || m->kind == URWIRE_KIND_UNKNOWN_SUBTYPE) {
         urwire__name(v, "type", "unknown");
         v->on_uint(v->ctx, "message_type", m->message_type);
-        if (t != NULL && t->visit_header != NULL)
-            t->visit_header(m, true, v);  /* an unknown subtype: its code, then the header */
+        if (t != NULL && urwire__header_of(t)->visit != NULL)
+            urwire__header_of(t)->visit(m, true, v);  /* an unknown subtype: its code, then the header */
         else if (m->failed && m->kind == URWIRE_KIND_UNKNOWN_MESSAGE)
             urwire__visit_error(&m->error, v);
         v->on_hex(v->ctx, "raw", m->raw);
@@ -144,8 +144,8 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
         if (k->type->packages) {
             urwire__visit_packages(m, v);
         } else {
-            if (t->visit_header != NULL)
-                t->visit_header(m, false, v);
+            if (urwire__header_of(t)->visit != NULL)
+                urwire__header_of(t)->visit(m, false, v);
             if (m->failed)
                 urwire__visit_failed(&m->error, m->raw, v);
             else
