@@ -695,10 +695,25 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     vs = protocol_plan.version
     vst = layout_structs[id(vs.layout)]
     vmsg = next(m for m in messages if m["code"] == vs.message_code)
-    return dict(structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
+    buffers = framer_buffers(protocol_plan)
+    return dict(buffers=buffers, structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
                 package_decoders=package_decoders, package_fast=package_fast,
                 segment_bounds=axis.bounds(), form_sizes=axis.size_slots,
                 framing=framing(p, lists[0], vst, vmsg, vs), known_types=known_types(p))
+
+
+def framer_buffers(protocol_plan: plan.ProtocolPlan) -> dict:
+    """The longest robot state any version sends, by the spec's layouts, and the framer buffer
+    the spec gives for what real robots send (protocol.robot_buffer), which must hold it."""
+    p = protocol_plan.protocol
+    (mp,) = [mp for mp in protocol_plan.messages if not mp.is_dispatch]
+    header, package_header = p.message_length.scalar.size + 1, p.package_length.scalar.size + 1
+    largest = header + sum(package_header + max(max(v.sizes) if v.sizes else v.min_size for v in variants)
+                           for variants in mp.variants.values())
+    if p.robot_buffer is not None and p.robot_buffer < largest:
+        raise SpecError(p.source, [ir.NOWHERE.problem(
+            f"protocol.robot_buffer: {p.robot_buffer} bytes cannot hold the longest robot state, {largest} bytes")])
+    return dict(largest_state=largest, robot=p.robot_buffer)
 
 
 # urwire__package_fast_paths holds each segment's fast path in a uint8_t.
