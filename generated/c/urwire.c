@@ -163,6 +163,14 @@ URWIRE__INLINE urwire__ver urwire__ver_of(urwire_sw_version version)
     return v;
 }
 
+/* What must stay out of line so that its locals do not weigh on every path through its caller
+ * (a firmware's stack is the deepest path's frames added up). */
+#if defined(__GNUC__)
+#define URWIRE__NOINLINE __attribute__((noinline))
+#else
+#define URWIRE__NOINLINE
+#endif
+
 /* ---- the tables the generated part fills ---- */
 
 /* What each layout (a sub-package or a message subtype) has: a decoder into its struct, an
@@ -833,6 +841,18 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
 static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
                                 bool two);
 
+/* Where the element's index goes in a span's path ("[]"), or NULL when it has none. */
+static const char *urwire__index_hole(const urwire__span *s)
+{
+    const char *p;
+    if (s->index == URWIRE__NO_INDEX)
+        return NULL;
+    for (p = s->path; *p; p++)  /* a loop, not strstr: that would cost a firmware 1 KB */
+        if (p[0] == '[' && p[1] == ']')
+            return p;
+    return NULL;
+}
+
 /* The first field of a fixed run (ended by a NULL path) that does not fit names the error; an
  * element's index goes into its path's "[]". */
 URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
@@ -841,7 +861,7 @@ URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *r
     for (; run->path; run++) {
         if (pos + run->offset + run->size <= end)
             continue;
-        hole = run->index != URWIRE__NO_INDEX ? strstr(run->path, "[]") : NULL;
+        hole = urwire__index_hole(run);
         urwire__short(e, hole ? hole + 2 : run->path, pos + run->offset, run->size, end);
         if (hole && e != NULL)
             urwire__prefix_path(e, run->path, (size_t)(hole - run->path), run->index, 0, false);
@@ -4786,7 +4806,7 @@ static void urwire__visit_program_threads(const void *from, const urwire__ver *v
     (void)ver;
     {
         urwire_seq seq = in->threads;
-        urwire_program_thread item;
+        urwire_program_thread item = {0};  /* set by urwire_next_program_thread: gcc -O3 cannot tell */
         v->begin_array(v->ctx, "threads");
         while (urwire_next_program_thread(&seq, &item)) {
             v->begin_object(v->ctx, NULL);
@@ -7146,7 +7166,7 @@ static bool urwire__count_fits(const urwire__value_table *t, uint64_t items, siz
  * checked against the bytes left, but not its items (out->items: where they start, and
  * their count).
  * Error paths are relative ("", ".type") and prefixed by the callers. */
-static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                               const urwire__value_table *t, size_t depth, urwire_value *out, urwire_error *err)
 {
     size_t pos = *at, k;
@@ -7163,7 +7183,7 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, urwire
     out->type_name = e->name;
     out->rows = 0;
     out->cols = 0;
-    out->items = urwire__seq(msg, pos + 1, version, -1);
+    out->items = urwire__seq(msg, pos + 1, *version, -1);
     pos++;
     switch (e->layout) {
     case URWIRE__LAYOUT_EMPTY:
@@ -7238,7 +7258,7 @@ typedef struct urwire__open_value {
  * open, at most URWIRE_MAX_VALUE_DEPTH deep, rather than by recursion, so that the stack this
  * takes is known. Error paths are relative ("", ".type", "[2][0]") and prefixed by the
  * callers. */
-static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                                const urwire__value_table *t, urwire_value *out, urwire_value *item,
                                urwire_error *err)
 {
@@ -7296,7 +7316,7 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
     urwire_value value;
     *out = urwire__seq(msg, pos, version, terminator);
     while (pos < end) {
-        if (!urwire__read_value(msg, &pos, end, version, t, &value, &value, err))
+        if (!urwire__read_value(msg, &pos, end, &version, t, &value, &value, err))
             return urwire__within(err, path, out->count);
         if (pos >= end) {
             urwire__short(err, "", pos, 1, end);
@@ -7319,7 +7339,7 @@ bool urwire_next_value(urwire_seq *seq, urwire_value *out)
     urwire_value item;
     if (seq->count == 0)
         return false;
-    if (!urwire__read_value(seq->msg, &seq->pos, seq->end, seq->version, urwire__values_of(seq->version), out,
+    if (!urwire__read_value(seq->msg, &seq->pos, seq->end, &seq->version, urwire__values_of(seq->version), out,
                             &item, NULL)) {
         seq->count = 0;  /* not reached for a seq from a decoded message: it was checked whole */
         return false;
@@ -7625,7 +7645,7 @@ static bool urwire__walk_packages(const uint8_t *msg, size_t pos, size_t end, ur
 }
 
 /* A robot state: frames the sub-packages by their lengths; each is decoded when iterated. */
-static bool urwire__decode_packages(urwire_message *out, urwire_sw_version version)
+URWIRE__NOINLINE static bool urwire__decode_packages(urwire_message *out, urwire_sw_version version)
 {
     urwire__running r;
     size_t end = 0;
@@ -7874,19 +7894,13 @@ bool urwire_decode_robot_state(const urwire_message *m, urwire_robot_state *out)
     return !m->failed && out->malformed == 0;
 }
 
-bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
-                                       urwire_message *m, urwire_robot_state *out)
+/* urwire_decode_robot_state_message of a robot state: out of line, so that a message of any
+ * other type is decoded without its locals on the stack. */
+URWIRE__NOINLINE static bool urwire__decode_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                                          urwire_message *m, urwire_robot_state *out)
 {
     urwire__running r;
     size_t end;
-    if (len < URWIRE_HEADER_SIZE || bytes[URWIRE__TYPE_AT] != URWIRE__PACKAGES_TYPE) {
-        out->present = 0;
-        out->malformed = 0;
-        out->layouts = 0;
-        out->unknown = 0;
-        urwire_decode_message(bytes, len, version, m);
-        return false;
-    }
     urwire__init_message(m, bytes, len, version);
     urwire__start(&r, version);
     m->kind = URWIRE__PACKAGES_KIND;
@@ -7900,6 +7914,20 @@ bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_
         m->implied_version = r.now.version;
     }
     return !m->failed && out->malformed == 0;
+}
+
+bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                       urwire_message *m, urwire_robot_state *out)
+{
+    if (len < URWIRE_HEADER_SIZE || bytes[URWIRE__TYPE_AT] != URWIRE__PACKAGES_TYPE) {
+        out->present = 0;
+        out->malformed = 0;
+        out->layouts = 0;
+        out->unknown = 0;
+        urwire_decode_message(bytes, len, version, m);
+        return false;
+    }
+    return urwire__decode_state_message(bytes, len, version, m, out);
 }
 
 bool urwire_message_has_error(const urwire_message *m)

@@ -142,7 +142,7 @@ static bool urwire__walk_packages(const uint8_t *msg, size_t pos, size_t end, ur
 }
 
 /* A robot state: frames the sub-packages by their lengths; each is decoded when iterated. */
-static bool urwire__decode_packages(urwire_message *out, urwire_sw_version version)
+URWIRE__NOINLINE static bool urwire__decode_packages(urwire_message *out, urwire_sw_version version)
 {
     urwire__running r;
     size_t end = 0;
@@ -391,19 +391,13 @@ bool urwire_decode_robot_state(const urwire_message *m, urwire_robot_state *out)
     return !m->failed && out->malformed == 0;
 }
 
-bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
-                                       urwire_message *m, urwire_robot_state *out)
+/* urwire_decode_robot_state_message of a robot state: out of line, so that a message of any
+ * other type is decoded without its locals on the stack. */
+URWIRE__NOINLINE static bool urwire__decode_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                                          urwire_message *m, urwire_robot_state *out)
 {
     urwire__running r;
     size_t end;
-    if (len < URWIRE_HEADER_SIZE || bytes[URWIRE__TYPE_AT] != URWIRE__PACKAGES_TYPE) {
-        out->present = 0;
-        out->malformed = 0;
-        out->layouts = 0;
-        out->unknown = 0;
-        urwire_decode_message(bytes, len, version, m);
-        return false;
-    }
     urwire__init_message(m, bytes, len, version);
     urwire__start(&r, version);
     m->kind = URWIRE__PACKAGES_KIND;
@@ -417,6 +411,20 @@ bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_
         m->implied_version = r.now.version;
     }
     return !m->failed && out->malformed == 0;
+}
+
+bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                       urwire_message *m, urwire_robot_state *out)
+{
+    if (len < URWIRE_HEADER_SIZE || bytes[URWIRE__TYPE_AT] != URWIRE__PACKAGES_TYPE) {
+        out->present = 0;
+        out->malformed = 0;
+        out->layouts = 0;
+        out->unknown = 0;
+        urwire_decode_message(bytes, len, version, m);
+        return false;
+    }
+    return urwire__decode_state_message(bytes, len, version, m, out);
 }
 
 bool urwire_message_has_error(const urwire_message *m)

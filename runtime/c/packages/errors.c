@@ -37,6 +37,18 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
 static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
                                 bool two);
 
+/* Where the element's index goes in a span's path ("[]"), or NULL when it has none. */
+static const char *urwire__index_hole(const urwire__span *s)
+{
+    const char *p;
+    if (s->index == URWIRE__NO_INDEX)
+        return NULL;
+    for (p = s->path; *p; p++)  /* a loop, not strstr: that would cost a firmware 1 KB */
+        if (p[0] == '[' && p[1] == ']')
+            return p;
+    return NULL;
+}
+
 /* The first field of a fixed run (ended by a NULL path) that does not fit names the error; an
  * element's index goes into its path's "[]". */
 URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
@@ -45,7 +57,7 @@ URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *r
     for (; run->path; run++) {
         if (pos + run->offset + run->size <= end)
             continue;
-        hole = run->index != URWIRE__NO_INDEX ? strstr(run->path, "[]") : NULL;
+        hole = urwire__index_hole(run);
         urwire__short(e, hole ? hole + 2 : run->path, pos + run->offset, run->size, end);
         if (hole && e != NULL)
             urwire__prefix_path(e, run->path, (size_t)(hole - run->path), run->index, 0, false);

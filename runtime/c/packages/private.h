@@ -78,6 +78,14 @@ URWIRE__INLINE urwire__ver urwire__ver_of(urwire_sw_version version)
     return v;
 }
 
+/* What must stay out of line so that its locals do not weigh on every path through its caller
+ * (a firmware's stack is the deepest path's frames added up). */
+#if defined(__GNUC__)
+#define URWIRE__NOINLINE __attribute__((noinline))
+#else
+#define URWIRE__NOINLINE
+#endif
+
 /* ---- the tables the generated part fills ---- */
 
 /* What each layout (a sub-package or a message subtype) has: a decoder into its struct, an

@@ -35,7 +35,7 @@ static bool urwire__count_fits(const urwire__value_table *t, uint64_t items, siz
  * checked against the bytes left, but not its items (out->items: where they start, and
  * their count).
  * Error paths are relative ("", ".type") and prefixed by the callers. */
-static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                               const urwire__value_table *t, size_t depth, urwire_value *out, urwire_error *err)
 {
     size_t pos = *at, k;
@@ -52,7 +52,7 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, urwire
     out->type_name = e->name;
     out->rows = 0;
     out->cols = 0;
-    out->items = urwire__seq(msg, pos + 1, version, -1);
+    out->items = urwire__seq(msg, pos + 1, *version, -1);
     pos++;
     switch (e->layout) {
     case URWIRE__LAYOUT_EMPTY:
@@ -127,7 +127,7 @@ typedef struct urwire__open_value {
  * open, at most URWIRE_MAX_VALUE_DEPTH deep, rather than by recursion, so that the stack this
  * takes is known. Error paths are relative ("", ".type", "[2][0]") and prefixed by the
  * callers. */
-static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                                const urwire__value_table *t, urwire_value *out, urwire_value *item,
                                urwire_error *err)
 {
@@ -185,7 +185,7 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
     urwire_value value;
     *out = urwire__seq(msg, pos, version, terminator);
     while (pos < end) {
-        if (!urwire__read_value(msg, &pos, end, version, t, &value, &value, err))
+        if (!urwire__read_value(msg, &pos, end, &version, t, &value, &value, err))
             return urwire__within(err, path, out->count);
         if (pos >= end) {
             urwire__short(err, "", pos, 1, end);
@@ -208,7 +208,7 @@ bool urwire_next_value(urwire_seq *seq, urwire_value *out)
     urwire_value item;
     if (seq->count == 0)
         return false;
-    if (!urwire__read_value(seq->msg, &seq->pos, seq->end, seq->version, urwire__values_of(seq->version), out,
+    if (!urwire__read_value(seq->msg, &seq->pos, seq->end, &seq->version, urwire__values_of(seq->version), out,
                             &item, NULL)) {
         seq->count = 0;  /* not reached for a seq from a decoded message: it was checked whole */
         return false;
