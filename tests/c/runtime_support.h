@@ -32,6 +32,7 @@
 #define URWIRE__VERSION_SUBTYPE_AT 5u
 #define URWIRE__VERSION_SUBTYPE 0
 #define URWIRE__VERSION_KIND URWIRE_KIND_UNKNOWN_SUBTYPE
+#define URWIRE__VERSION_LAYOUT urwire_message  /* its struct: never decoded here */
 #define URWIRE__VERSION_MAJOR(m) ((m)->version.major)
 #define URWIRE__VERSION_MINOR(m) ((m)->version.minor)
 #define URWIRE__VERSION_BUGFIX(m) 0
@@ -198,13 +199,23 @@ static const urwire__version_skip urwire__version_skips[] = {
 };
 
 static const urwire__message_type urwire__message_types[] = {
-    {URWIRE__PACKAGES_TYPE, true, URWIRE_HEADER_SIZE, NULL, NULL, NULL, NULL, NULL},
+    {URWIRE__PACKAGES_TYPE, true, URWIRE_HEADER_SIZE, NULL, NULL, NULL},
+};
+
+static const urwire__message_header urwire__message_headers[] = {
+    {NULL, NULL},
 };
 
 static const urwire__message_kind urwire__message_kinds[] = {
-    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, NULL, NULL, NULL},
-    [URWIRE_KIND_STATE] = {"state", &urwire__message_types[0], NULL, NULL, NULL},
-    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, NULL, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, 0, NULL, NULL},
+    [URWIRE_KIND_STATE] = {"state", &urwire__message_types[0], 0, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, 0, NULL, NULL},
+};
+
+static const urwire__decode_fn urwire__message_decoders[] = {
+    [URWIRE_KIND_UNKNOWN_MESSAGE] = NULL,
+    [URWIRE_KIND_STATE] = NULL,
+    [URWIRE_KIND_UNKNOWN_SUBTYPE] = NULL,
 };
 
 static const bool urwire__known_message_types[256] = {

@@ -9,6 +9,8 @@ no stdio: one header and one source, generated/c/urwire.{h,c}.
 """
 from __future__ import annotations
 
+import re
+
 from dataclasses import dataclass, field
 from typing import Optional
 
@@ -122,11 +124,36 @@ class BitSet:
     members: list[dict]
 
 
+# What a span holds (urwire__span: 8 bytes a field on a 32-bit CPU): an offset in a uint16_t, a
+# size and an element's index in a uint8_t each, URWIRE__NO_INDEX (255) for none.
+SPAN_OFFSET_MAX, SPAN_BYTE_MAX, NO_INDEX = 0xffff, 0xff, 0xff
+# A path with one element's index, "joints[3].q_actual": every element's span shares the string
+# "joints[].q_actual" and keeps its index apart.
+ONE_INDEX = re.compile(r"^([^\[\]]*)\[(\d+)\]([^\[\]]*)$")
+
+
 @dataclass
 class Span:
     path: str
     offset: int
     size: int
+
+    def __post_init__(self):
+        if not (0 <= self.offset <= SPAN_OFFSET_MAX and 0 <= self.size <= SPAN_BYTE_MAX):
+            raise SpecError("<spec>", [ir.NOWHERE.problem(f"c target: field {self.path} at offset {self.offset} "
+                                                          f"is beyond the C runtime's span tables")])
+
+    @property
+    def template(self) -> str:
+        """The path as the span table holds it: an element's index left out ("joints[].q_actual")."""
+        m = ONE_INDEX.match(self.path)
+        return f"{m.group(1)}[]{m.group(3)}" if m and int(m.group(2)) < NO_INDEX else self.path
+
+    @property
+    def index(self) -> int:
+        """The element's index that goes into the template's "[]", else NO_INDEX."""
+        m = ONE_INDEX.match(self.path)
+        return int(m.group(2)) if m and int(m.group(2)) < NO_INDEX else NO_INDEX
 
 
 @dataclass
@@ -668,10 +695,25 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     vs = protocol_plan.version
     vst = layout_structs[id(vs.layout)]
     vmsg = next(m for m in messages if m["code"] == vs.message_code)
-    return dict(structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
+    buffers = framer_buffers(protocol_plan)
+    return dict(buffers=buffers, structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
                 package_decoders=package_decoders, package_fast=package_fast,
                 segment_bounds=axis.bounds(), form_sizes=axis.size_slots,
                 framing=framing(p, lists[0], vst, vmsg, vs), known_types=known_types(p))
+
+
+def framer_buffers(protocol_plan: plan.ProtocolPlan) -> dict:
+    """The longest robot state any version sends, by the spec's layouts, and the framer buffer
+    the spec gives for what real robots send (protocol.robot_buffer), which must hold it."""
+    p = protocol_plan.protocol
+    (mp,) = [mp for mp in protocol_plan.messages if not mp.is_dispatch]
+    header, package_header = p.message_length.scalar.size + 1, p.package_length.scalar.size + 1
+    largest = header + sum(package_header + max(max(v.sizes) if v.sizes else v.min_size for v in variants)
+                           for variants in mp.variants.values())
+    if p.robot_buffer is not None and p.robot_buffer < largest:
+        raise SpecError(p.source, [ir.NOWHERE.problem(
+            f"protocol.robot_buffer: {p.robot_buffer} bytes cannot hold the longest robot state, {largest} bytes")])
+    return dict(largest_state=largest, robot=p.robot_buffer)
 
 
 # urwire__package_fast_paths holds each segment's fast path in a uint8_t.
@@ -768,7 +810,7 @@ def framing(p: model.Protocol, packages: dict, vst: CStruct, vmsg: dict, vs: pla
                                     scalar=pl.name, size=pl.size),
                 packages=dict(name=packages["name"], code_const=packages["code_const"],
                               kind_const=packages["kind_const"]),
-                version=dict(name=vst.name, type_const=vmsg["code_const"], subtype_at=subtype["offset"],
+                version=dict(name=vst.name, ctype=vst.ctype, type_const=vmsg["code_const"], subtype_at=subtype["offset"],
                              subtype_const=vst.code_const, body=vmsg["body_offset"], kind_const=vst.kind_const,
                              major=vs.major.name, minor=vs.minor.name, bugfix=vs.bugfix.name if vs.bugfix else None,
                              skips=skips, tail=vs.tail))

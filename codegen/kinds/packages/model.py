@@ -154,6 +154,7 @@ class Protocol:
     messages: list[Message]
     source: str = "<spec>"           # the spec file, for problems found after resolving
     generations: list[tuple[str, VersionRange]] = dc_field(default_factory=list)  # released series
+    robot_buffer: Optional[int] = None  # a framer buffer that holds every message real robots send
 
     @property
     def message_type_enum(self) -> Enum:

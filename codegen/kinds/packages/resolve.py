@@ -143,7 +143,7 @@ class _PackagesResolver(Resolver):
             enums=self.enums, value_layouts=value_layouts,
             message_length=mh["length"], message_type=mh["type"],
             package_length=ph["length"], package_type=ph["type"], messages=messages, source=self.spec.source,
-            generations=[(s.name, s.versions) for s in series])
+            generations=[(s.name, s.versions) for s in series], robot_buffer=proto.get("robot_buffer"))
         if self.problems:
             raise SpecError(self.spec.source, self.problems)
         return protocol

@@ -142,7 +142,7 @@ static bool urwire__walk_packages(const uint8_t *msg, size_t pos, size_t end, ur
 }
 
 /* A robot state: frames the sub-packages by their lengths; each is decoded when iterated. */
-static bool urwire__decode_packages(urwire_message *out, urwire_sw_version version)
+URWIRE__NOINLINE static bool urwire__decode_packages(urwire_message *out, urwire_sw_version version)
 {
     urwire__running r;
     size_t end = 0;
@@ -161,17 +161,31 @@ static bool urwire__decode_packages(urwire_message *out, urwire_sw_version versi
     return true;
 }
 
-/* A message with a common header and a subtype: the header, then the subtype's layout in the
- * form its version and length choose. The Version message is read in the form of the version
- * it carries. */
-static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t, urwire_sw_version version)
+/* The layout of subtype `subtype` of type t (which has a layout) in the bytes after its header,
+ * in the form its version and length choose (the Version message in that of the version it
+ * carries), into *as: its kind, and false when it is malformed (*err set). *version becomes
+ * the version of the form it was read in. */
+URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
+                                           int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
+                                           void *as, urwire_error *err)
 {
-    const urwire__message_kind *k;
-    const urwire__form *f;
-    urwire__ver ver;
-    int64_t subtype;
     size_t pos = t->body;
     bool by_length;
+    urwire__ver ver;
+    const urwire__form *f;
+    if (t->code == URWIRE__VERSION_TYPE && subtype == URWIRE__VERSION_SUBTYPE)
+        urwire__peek_version(bytes, len, version);
+    f = urwire__choose(t->forms, (size_t)subtype, urwire__segment(urwire__version_key(*version)), len - t->body,
+                       version, &by_length);
+    *kind = (urwire_message_kind)f->layout;
+    ver = urwire__ver_of(*version);
+    return urwire__message_decoders[*kind](bytes, &pos, len, &ver, as, err);
+}
+
+/* A message with a common header and a subtype: the header, then the subtype's layout. */
+static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t, urwire_sw_version version)
+{
+    int64_t subtype;
     if (out->length < t->body) {
         out->kind = URWIRE_KIND_UNKNOWN_MESSAGE;
         urwire__short_in_run(&out->error, t->header, 0, out->length);
@@ -184,18 +198,12 @@ static bool urwire__decode_subtype(urwire_message *out, const urwire__message_ty
         out->raw = urwire__view(out->bytes + t->body, out->length - t->body);
         return true;
     }
-    if (t->code == URWIRE__VERSION_TYPE && subtype == URWIRE__VERSION_SUBTYPE)
-        urwire__peek_version(out->bytes, out->length, &version);
-    f = urwire__choose(t->forms, (size_t)subtype, urwire__segment(urwire__version_key(version)),
-                       out->length - t->body, &version, &by_length);
-    out->kind = (urwire_message_kind)f->layout;
-    out->version = version;
-    k = &urwire__message_kinds[out->kind];
-    ver = urwire__ver_of(version);
-    if (!k->decode(out->bytes, &pos, out->length, &ver, &out->as, &out->error)) {
+    if (!urwire__decode_layout(out->bytes, out->length, t, subtype, &version, &out->kind, &out->as, &out->error)) {
+        out->version = version;
         urwire__fail_message(out, t->body);
         return false;
     }
+    out->version = version;
     return true;
 }
 
@@ -230,7 +238,6 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
 static size_t urwire__decode_general(const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
                                      urwire_robot_state *out, size_t *count, urwire_error *err)
 {
-    urwire_error ignored;
     urwire__ver other;
     const urwire__ver *use;
     /* The segment's rows, held here: the stores into *out could alias them in r. */
@@ -259,7 +266,7 @@ static size_t urwire__decode_general(const uint8_t *msg, size_t pos, size_t end,
             mine = r->mine;
             first_sizes = r->first_sizes;
         }
-        if (urwire__decode_member(type, form, msg, &body, pos + size, use, out, &ignored))
+        if (urwire__decode_member(type, form, msg, &body, pos + size, use, out, NULL))
             out->present |= (uint32_t)URWIRE_BIT(type);
         else
             out->malformed |= (uint32_t)URWIRE_BIT(type);
@@ -278,7 +285,6 @@ static size_t urwire__decode_general(const uint8_t *msg, size_t pos, size_t end,
 URWIRE__INLINE size_t urwire__decode_fast(int path, const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
                                           urwire_robot_state *out, size_t *count)
 {
-    urwire_error ignored;
     urwire__fast_bits bits = {0, 0, 0};
     size_t size = 0, at, n = 0, one = 0;
     uint8_t type;
@@ -290,13 +296,13 @@ URWIRE__INLINE size_t urwire__decode_fast(int path, const uint8_t *msg, size_t p
         at = pos + URWIRE_PACKAGE_HEADER_SIZE;
         type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
         if (URWIRE__LIKELY(urwire__fast_member(path, type, size - URWIRE_PACKAGE_HEADER_SIZE, msg, &at, pos + size,
-                                               &r->now, out, &bits, &ignored)))
+                                               &r->now, out, &bits, NULL)))
             continue;
         if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0) {
             out->unknown++;  /* no layout in any version */
             continue;
         }
-        urwire__decode_general(msg, pos, pos + size, r, out, &one, &ignored);
+        urwire__decode_general(msg, pos, pos + size, r, out, &one, NULL);
         if (urwire__package_fast_paths[r->segment] != path) {
             pos += size;
             n++;
@@ -371,7 +377,6 @@ bool urwire_decode_robot_state(const urwire_message *m, urwire_robot_state *out)
 {
     const urwire_seq *seq = &m->packages;
     urwire__running r;
-    urwire_error ignored;
     size_t count;
     if (m->kind != URWIRE__PACKAGES_KIND) {
         out->present = 0;
@@ -382,23 +387,17 @@ bool urwire_decode_robot_state(const urwire_message *m, urwire_robot_state *out)
     }
     /* The frames were checked by urwire_decode_message. */
     urwire__start(&r, seq->version);
-    urwire__decode_into_state(seq->msg, seq->pos, seq->end, &r, out, &count, &ignored);
+    urwire__decode_into_state(seq->msg, seq->pos, seq->end, &r, out, &count, NULL);
     return !m->failed && out->malformed == 0;
 }
 
-bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
-                                       urwire_message *m, urwire_robot_state *out)
+/* urwire_decode_robot_state_message of a robot state: out of line, so that a message of any
+ * other type is decoded without its locals on the stack. */
+URWIRE__NOINLINE static bool urwire__decode_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                                          urwire_message *m, urwire_robot_state *out)
 {
     urwire__running r;
     size_t end;
-    if (len < URWIRE_HEADER_SIZE || bytes[URWIRE__TYPE_AT] != URWIRE__PACKAGES_TYPE) {
-        out->present = 0;
-        out->malformed = 0;
-        out->layouts = 0;
-        out->unknown = 0;
-        urwire_decode_message(bytes, len, version, m);
-        return false;
-    }
     urwire__init_message(m, bytes, len, version);
     urwire__start(&r, version);
     m->kind = URWIRE__PACKAGES_KIND;
@@ -412,6 +411,20 @@ bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_
         m->implied_version = r.now.version;
     }
     return !m->failed && out->malformed == 0;
+}
+
+bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                       urwire_message *m, urwire_robot_state *out)
+{
+    if (len < URWIRE_HEADER_SIZE || bytes[URWIRE__TYPE_AT] != URWIRE__PACKAGES_TYPE) {
+        out->present = 0;
+        out->malformed = 0;
+        out->layouts = 0;
+        out->unknown = 0;
+        urwire_decode_message(bytes, len, version, m);
+        return false;
+    }
+    return urwire__decode_state_message(bytes, len, version, m, out);
 }
 
 bool urwire_message_has_error(const urwire_message *m)
@@ -435,10 +448,9 @@ bool urwire_message_has_error(const urwire_message *m)
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version)
 {
     urwire__running r;
-    urwire_error ignored;
     size_t count, stop;
     urwire__start(&r, *version);
-    if (!urwire__walk_packages(msg, URWIRE_HEADER_SIZE, len, &r, &count, &stop, &ignored) || !r.implied)
+    if (!urwire__walk_packages(msg, URWIRE_HEADER_SIZE, len, &r, &count, &stop, NULL) || !r.implied)
         return false;
     *version = r.now.version;
     return true;

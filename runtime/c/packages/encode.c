@@ -55,8 +55,8 @@ size_t urwire_encode_message(const urwire_message *m, uint8_t *out, size_t cap, 
             urwire__no_space(err, pos, t->body - URWIRE_HEADER_SIZE, cap);
             return 0;
         }
-        if (t->put_header != NULL)
-            t->put_header(m, out);
+        if (urwire__header_of(t)->put != NULL)
+            urwire__header_of(t)->put(m, out);
         pos = t->body;
     }
     if (k == NULL)

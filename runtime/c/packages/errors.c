@@ -12,10 +12,14 @@ static void urwire__set_path(urwire_error *e, const char *path)
     e->path[n] = '\0';
 }
 
-/* Sets *e; returns false, for `return urwire__fail(...)`. */
+/* Sets *e; returns false, for `return urwire__fail(...)`. A NULL e is an error nobody reads
+ * (a robot state's sub-packages, whose failures are bits): the decoders then keep no
+ * urwire_error on the stack for it. */
 URWIRE__PRIVATE bool urwire__fail(urwire_error *e, urwire_status status, size_t offset, const char *path,
                                   int64_t value, int64_t left)
 {
+    if (e == NULL)
+        return false;
     e->status = status;
     e->offset = offset;
     e->value = value;
@@ -30,12 +34,35 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
     return urwire__fail(e, URWIRE_E_SHORT, offset, path, (int64_t)need, end > offset ? (int64_t)(end - offset) : 0);
 }
 
-/* The first field of a fixed run (ended by a NULL path) that does not fit names the error. */
+static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
+                                bool two);
+
+/* Where the element's index goes in a span's path ("[]"), or NULL when it has none. */
+static const char *urwire__index_hole(const urwire__span *s)
+{
+    const char *p;
+    if (s->index == URWIRE__NO_INDEX)
+        return NULL;
+    for (p = s->path; *p; p++)  /* a loop, not strstr: that would cost a firmware 1 KB */
+        if (p[0] == '[' && p[1] == ']')
+            return p;
+    return NULL;
+}
+
+/* The first field of a fixed run (ended by a NULL path) that does not fit names the error; an
+ * element's index goes into its path's "[]". */
 URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
 {
-    for (; run->path; run++)
-        if (pos + run->offset + run->size > end)
-            return urwire__short(e, run->path, pos + run->offset, run->size, end);
+    const char *hole;
+    for (; run->path; run++) {
+        if (pos + run->offset + run->size <= end)
+            continue;
+        hole = urwire__index_hole(run);
+        urwire__short(e, hole ? hole + 2 : run->path, pos + run->offset, run->size, end);
+        if (hole && e != NULL)
+            urwire__prefix_path(e, run->path, (size_t)(hole - run->path), run->index, 0, false);
+        return false;
+    }
     return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
 }
 
@@ -44,30 +71,48 @@ URWIRE__PRIVATE bool urwire__no_space(urwire_error *e, size_t pos, size_t need, 
     return urwire__fail(e, URWIRE_E_NO_SPACE, pos, "", (int64_t)need, (int64_t)(cap - pos));
 }
 
-/* Prefix the error's path with name[index] (name may be empty), or name[index][index2] when
- * two, joined as Python's paths are: threads[1].label_name, variables[2][0].type. */
+/* text[0..len) into path at `at`, as much of it as falls before max. */
+static void urwire__put_cut(char *path, size_t max, size_t at, const char *text, size_t len)
+{
+    if (at < max)
+        memcpy(path + at, text, len < max - at ? len : max - at);
+}
+
+/* Prefix the error's path with name[index] (name, of name_len characters, may be empty), or
+ * name[index][index2] when two, joined as Python's paths are: threads[1].label_name,
+ * variables[2][0].type. In place, cut to URWIRE_PATH_MAX - 1 characters like any path: no
+ * second path on the stack. */
+static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
+                                bool two)
+{
+    char digits[2][24];
+    size_t max = sizeof e->path - 1, nd = urwire__digits(digits[0], (int64_t)index);
+    size_t nd2 = two ? urwire__digits(digits[1], (int64_t)index2) : 0;
+    size_t rest = strlen(e->path), n, keep;
+    bool dot = rest && e->path[0] != '[' && e->path[0] != '.';
+    n = name_len + 2 + nd + (two ? 2 + nd2 : 0) + (dot ? 1 : 0);  /* the prefix's length */
+    keep = n >= max ? 0 : (rest < max - n ? rest : max - n);
+    memmove(e->path + (n < max ? n : max), e->path, keep);
+    e->path[(n < max ? n : max) + keep] = '\0';
+    urwire__put_cut(e->path, max, 0, name, name_len);
+    urwire__put_cut(e->path, max, name_len, "[", 1);
+    urwire__put_cut(e->path, max, name_len + 1, digits[0], nd);
+    urwire__put_cut(e->path, max, name_len + 1 + nd, "]", 1);
+    if (two) {
+        urwire__put_cut(e->path, max, name_len + 2 + nd, "[", 1);
+        urwire__put_cut(e->path, max, name_len + 3 + nd, digits[1], nd2);
+        urwire__put_cut(e->path, max, name_len + 3 + nd + nd2, "]", 1);
+    }
+    if (dot)
+        urwire__put_cut(e->path, max, n - 1, ".", 1);
+}
+
+/* urwire__prefix of a NUL-terminated name, for `return urwire__within2(...)`; a NULL e is an
+ * error nobody reads. */
 URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t index, size_t index2, bool two)
 {
-    char buf[URWIRE_PATH_MAX * 2];
-    size_t n = strlen(name), rest = strlen(e->path);
-    if (n > URWIRE_PATH_MAX)
-        n = URWIRE_PATH_MAX;
-    memcpy(buf, name, n);
-    buf[n++] = '[';
-    n += urwire__digits(buf + n, (int64_t)index);
-    buf[n++] = ']';
-    if (two) {
-        buf[n++] = '[';
-        n += urwire__digits(buf + n, (int64_t)index2);
-        buf[n++] = ']';
-    }
-    if (rest && e->path[0] != '[' && e->path[0] != '.')
-        buf[n++] = '.';
-    if (rest > sizeof buf - 1 - n)
-        rest = sizeof buf - 1 - n;
-    memcpy(buf + n, e->path, rest);
-    buf[n + rest] = '\0';
-    urwire__set_path(e, buf);
+    if (e != NULL)
+        urwire__prefix_path(e, name, strlen(name), index, index2, two);
     return false;
 }
 

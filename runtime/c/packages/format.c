@@ -3,22 +3,46 @@
 /* </standalone> */
 /* ---- number formatting -------------------------------------------------------------------- */
 
+/* u / 10 by shifts and adds (Hacker's Delight, divu10), and its remainder: a 32-bit CPU has
+ * no 64-bit divide, and the library's would cost a firmware 700 bytes of flash for an error's
+ * digits. */
+static uint64_t urwire__div10(uint64_t u, unsigned *rem)
+{
+    uint64_t q = (u >> 1) + (u >> 2), r;
+    q += q >> 4;
+    q += q >> 8;
+    q += q >> 16;
+    q += q >> 32;
+    q >>= 3;
+    r = u - ((q << 2) + q) * 2u;  /* 0..19: q is low by at most one */
+    if (r > 9u) {
+        q++;
+        r -= 10u;
+    }
+    *rem = (unsigned)r;
+    return q;
+}
+
 /* Digits of v into buf (at least 24 bytes, not NUL-terminated); returns their count. */
 URWIRE__PRIVATE size_t urwire__digits(char *buf, int64_t v)
 {
-    char tmp[24];
-    size_t n = 0, k;
+    size_t n = 0, lo, hi;
+    unsigned digit;
+    char c;
     uint64_t u = v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
-    do {
-        tmp[n++] = (char)('0' + (int)(u % 10u));
-        u /= 10u;
-    } while (u);
-    k = 0;
     if (v < 0)
-        buf[k++] = '-';
-    while (n)
-        buf[k++] = tmp[--n];
-    return k;
+        buf[n++] = '-';
+    lo = n;
+    do {  /* lowest digit first, then turned round in place */
+        u = urwire__div10(u, &digit);
+        buf[n++] = (char)('0' + digit);
+    } while (u);
+    for (hi = n - 1; lo < hi; lo++, hi--) {
+        c = buf[lo];
+        buf[lo] = buf[hi];
+        buf[hi] = c;
+    }
+    return n;
 }
 
 URWIRE__PRIVATE void urwire__num(urwire__text *t, int64_t v)

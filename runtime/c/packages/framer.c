@@ -86,20 +86,26 @@ static bool urwire__rescan_stops_at(const urwire_framer *f, size_t at)
            (!f->ended_inside || (uint64_t)length <= f->len - at);
 }
 
-/* What a Version message announces (see urwire__learn_version). */
+/* What a Version message announces (see urwire__learn_version). Its layout alone is decoded,
+ * as urwire_decode_message would read it: a whole urwire_message here would cost the stack
+ * of urwire_framer_next 500 bytes more. Every form of its subtype is that layout. */
 static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size_t len)
 {
-    urwire_message m;
+    URWIRE__VERSION_LAYOUT announced;
+    urwire_sw_version version = f->version;
+    urwire_message_kind kind;
     if (bytes[URWIRE__TYPE_AT] != URWIRE__VERSION_TYPE || len < URWIRE__VERSION_BODY ||
         bytes[URWIRE__VERSION_SUBTYPE_AT] != URWIRE__VERSION_SUBTYPE)
         return;
-    if (urwire_decode_message(bytes, len, f->version, &m) && m.kind == URWIRE__VERSION_KIND) {
-        int bugfix = URWIRE__VERSION_BUGFIX(&m);
+    if (urwire__decode_layout(bytes, len, urwire__message_type_of(URWIRE__VERSION_TYPE), URWIRE__VERSION_SUBTYPE,
+                              &version, &kind, &announced, NULL) &&
+        kind == URWIRE__VERSION_KIND) {
+        int bugfix = URWIRE__VERSION_BUGFIX(&announced);
         /* A bugfix out of range is set aside, as in every target: the stream goes on as
          * major.minor.0, flagged. */
         f->version_out_of_range = bugfix < 0 || bugfix > URWIRE_BUGFIX_ANY;
-        f->version.major = URWIRE__VERSION_MAJOR(&m);
-        f->version.minor = URWIRE__VERSION_MINOR(&m);
+        f->version.major = URWIRE__VERSION_MAJOR(&announced);
+        f->version.minor = URWIRE__VERSION_MINOR(&announced);
         f->version.bugfix = f->version_out_of_range ? 0 : bugfix;
         f->version.assumed = false;
         f->version_seen = true;

@@ -28,6 +28,12 @@ URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(urwire_packa
     return (size_t)layout < URWIRE__COUNT(urwire__package_kinds) ? &urwire__package_kinds[layout] : NULL;
 }
 
+/* The header functions of a type of urwire__message_types. */
+URWIRE__PRIVATE const urwire__message_header *urwire__header_of(const urwire__message_type *t)
+{
+    return &urwire__message_headers[t - urwire__message_types];
+}
+
 /* The type whose header m carries: its layout's, or for an unknown subtype its message
  * type's; NULL when there is none. */
 URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_message *m)

@@ -56,10 +56,12 @@ URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
 /* One field of a fixed run of fields, read after one bounds check of the whole run. A table
  * of them (ended by a NULL path) names the field that a short run stops in. */
 typedef struct urwire__span {
-    const char *path;
-    uint32_t offset;
-    uint32_t size;
+    const char *path;               /* an element's: its index left out, "joints[].q_actual" */
+    uint16_t offset;                /* within a layout: the generator refuses larger ones */
+    uint8_t size;
+    uint8_t index;                  /* the element's, that goes into the path's "[]"; else: */
 } urwire__span;
+#define URWIRE__NO_INDEX 0xffu
 
 /* A software version as the layouts read it: the version, and its key (urwire__version_key),
  * which their version conditions compare. */
@@ -75,6 +77,14 @@ URWIRE__INLINE urwire__ver urwire__ver_of(urwire_sw_version version)
     v.key = urwire__version_key(version);
     return v;
 }
+
+/* What must stay out of line so that its locals do not weigh on every path through its caller
+ * (a firmware's stack is the deepest path's frames added up). */
+#if defined(__GNUC__)
+#define URWIRE__NOINLINE __attribute__((noinline))
+#else
+#define URWIRE__NOINLINE
+#endif
 
 /* ---- the tables the generated part fills ---- */
 
@@ -183,22 +193,30 @@ typedef struct urwire__message_type {
     size_t body;                    /* where the subtype's layout starts: the header's size */
     const urwire__form_table *forms; /* its subtypes' */
     const urwire__span *header;     /* the header's fields, for a message too short for them */
-    /* The three header functions are NULL for a body message: one layout right after the
-     * message header, with no header fields and no subtype byte, its subtype code `code`. */
-    /* Reads the header into m->header and returns the subtype code. */
+    /* Reads the header into m->header and returns the subtype code; NULL for a body message:
+     * one layout right after the message header, with no header fields and no subtype byte,
+     * its subtype code `code`. */
     int64_t (*read_header)(urwire_message *m);
-    /* The header's fields, the subtype first when it is not named by a layout. */
-    void (*visit_header)(const urwire_message *m, bool subtype, const urwire_visitor *v);
-    /* Writes m->header into out[0..body). */
-    void (*put_header)(const urwire_message *m, uint8_t *out);
 } urwire__message_type;
 
+/* The other header functions of a message type (NULL for a body message), in a table of their
+ * own indexed as the types (urwire__message_headers): a firmware that only decodes links
+ * neither them nor what they call. */
+typedef struct urwire__message_header {
+    /* The header's fields, the subtype first when it is not named by a layout. */
+    void (*visit)(const urwire_message *m, bool subtype, const urwire_visitor *v);
+    /* Writes m->header into out[0..body). */
+    void (*put)(const urwire_message *m, uint8_t *out);
+} urwire__message_header;
+
 /* An urwire_message_kind, indexed by it: the record's type and the functions of its layout
- * (NULL for the unknown kinds and for a sub-package list, which the runtime walks itself). */
+ * (NULL for the unknown kinds and for a sub-package list, which the runtime walks itself).
+ * Its decoder is in urwire__message_decoders, indexed the same way: decoding links neither the
+ * encoders nor the visitors. */
 typedef struct urwire__message_kind {
     const char *name;                   /* "version", "robot_state", "unknown" */
     const urwire__message_type *type;   /* NULL for the unknown kinds */
-    urwire__decode_fn decode;
+    int64_t subtype;                    /* its code in its type's subtype byte */
     urwire__encode_fn encode;
     urwire__visit_fn visit;
 } urwire__message_kind;
@@ -288,6 +306,7 @@ URWIRE__PRIVATE const urwire__message_type *urwire__message_type_of(uint8_t code
 URWIRE__PRIVATE const urwire__message_kind *urwire__message_kind_of(urwire_message_kind kind);
 URWIRE__PRIVATE const urwire__package_kind *urwire__package_kind_of(urwire_package_layout layout);
 URWIRE__PRIVATE const urwire__message_type *urwire__header_type(const urwire_message *m);
+URWIRE__PRIVATE const urwire__message_header *urwire__header_of(const urwire__message_type *t);
 /* forms.c */
 URWIRE__PRIVATE size_t urwire__segment(uint64_t key);
 URWIRE__PRIVATE const urwire__form *urwire__mine(const urwire__form_table *t, size_t segment, size_t code,
@@ -296,6 +315,9 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
                                                   size_t size, urwire_sw_version *version, bool *by_length);
 URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out);
 /* decode.c */
+URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
+                                           int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
+                                           void *as, urwire_error *err);
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);
 /* visit.c */
 URWIRE__OPTIONAL void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);

@@ -31,16 +31,15 @@ static bool urwire__count_fits(const urwire__value_table *t, uint64_t items, siz
     return true;
 }
 
-/* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
- * skipped) here, so that iterating them later cannot fail; depth bounds the recursion.
- * Error paths are relative ("", ".type", "[2][0]") and prefixed by the callers. */
-/* NOLINTNEXTLINE(misc-no-recursion): the one recursion, depth at most URWIRE_MAX_VALUE_DEPTH */
-static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
-                               const urwire__value_table *t, unsigned depth, urwire_value *out, urwire_error *err)
+/* One value at *at, `depth` deep: its type byte and data, and of a LIST or MATRIX its counts,
+ * checked against the bytes left, but not its items (out->items: where they start, and
+ * their count).
+ * Error paths are relative ("", ".type") and prefixed by the callers. */
+static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
+                              const urwire__value_table *t, size_t depth, urwire_value *out, urwire_error *err)
 {
-    size_t pos = *at, r, c, k;
+    size_t pos = *at, k;
     const urwire__value_entry *e;
-    urwire_value item;
     if (pos >= end)
         return urwire__short(err, ".type", pos, 1, end);
     if (depth > URWIRE_MAX_VALUE_DEPTH)
@@ -53,7 +52,7 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
     out->type_name = e->name;
     out->rows = 0;
     out->cols = 0;
-    out->items = urwire__seq(msg, pos + 1, version, -1);
+    out->items = urwire__seq(msg, pos + 1, *version, -1);
     pos++;
     switch (e->layout) {
     case URWIRE__LAYOUT_EMPTY:
@@ -88,11 +87,7 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
         if (!urwire__count_fits(t, (uint64_t)out->rows, pos, pos + 2, end, err))
             return false;
         pos += 2;
-        out->items.pos = pos;
-        for (k = 0; k < (size_t)out->rows; k++)
-            if (!urwire__read_value(msg, &pos, end, version, t, depth + 1, &item, err))
-                return urwire__within(err, "", k);
-        out->items.end = pos;
+        out->items.pos = out->items.end = pos;
         out->items.count = (size_t)out->rows;
         break;
     case URWIRE__LAYOUT_MATRIX:
@@ -110,15 +105,73 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, urwir
         if (!urwire__count_fits(t, (uint64_t)out->rows * (uint64_t)out->cols, pos, pos + 4, end, err))
             return false;
         pos += 4;
-        out->items.pos = pos;
-        for (r = 0; r < (size_t)out->rows; r++)
-            for (c = 0; c < (size_t)out->cols; c++)
-                if (!urwire__read_value(msg, &pos, end, version, t, depth + 1, &item, err))
-                    return urwire__within2(err, "", r, c, true);
-        out->items.end = pos;
+        out->items.pos = out->items.end = pos;
         out->items.count = (size_t)out->rows * (size_t)out->cols;
         break;
     }
+    *at = pos;
+    return true;
+}
+
+/* A LIST or MATRIX whose items are being checked: how many it has, how many are done (int16
+ * counts: at most 32767 * 32767 items). */
+typedef struct urwire__open_value {
+    uint32_t count;
+    uint32_t done;
+    uint16_t cols;                  /* a MATRIX's columns (its items go row by row), else 0 */
+} urwire__open_value;
+
+/* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
+ * skipped) here, so that iterating them later cannot fail: read into *item one by one (out
+ * itself when the caller keeps nothing of it), in a loop over a stack of the values still
+ * open, at most URWIRE_MAX_VALUE_DEPTH deep, rather than by recursion, so that the stack this
+ * takes is known. Error paths are relative ("", ".type", "[2][0]") and prefixed by the
+ * callers. */
+static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
+                               const urwire__value_table *t, urwire_value *out, urwire_value *item,
+                               urwire_error *err)
+{
+    urwire__open_value open[URWIRE_MAX_VALUE_DEPTH];
+    urwire__open_value *top;
+    size_t pos = *at, n = 0, first;
+    if (!urwire__read_head(msg, &pos, end, version, t, 1, out, err))
+        return false;
+    first = pos;
+    if (out->items.count) {
+        open[0].count = (uint32_t)out->items.count;
+        open[0].done = 0;
+        open[0].cols = (uint16_t)out->cols;  /* 0 but in a MATRIX */
+        n = 1;
+    }
+    while (n) {
+        top = &open[n - 1];
+        if (top->done == top->count) {
+            if (--n)
+                open[n - 1].done++;
+            continue;
+        }
+        /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH, and this one is n + 1
+         * deep: n stays below it, within open[] */
+        if (!urwire__read_head(msg, &pos, end, version, t, n + 1, item, err)) {
+            for (; n; n--, top--) {
+                if (top->cols)
+                    urwire__within2(err, "", top->done / top->cols, top->done % top->cols, true);
+                else
+                    urwire__within(err, "", top->done);
+            }
+            return false;
+        }
+        if (item->items.count) {
+            open[n].count = (uint32_t)item->items.count;
+            open[n].done = 0;
+            open[n].cols = (uint16_t)item->cols;
+            n++;
+        } else {
+            top->done++;
+        }
+    }
+    if (pos != first)  /* out's items, read; out is item's, else */
+        out->items.end = pos;
     *at = pos;
     return true;
 }
@@ -132,7 +185,7 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
     urwire_value value;
     *out = urwire__seq(msg, pos, version, terminator);
     while (pos < end) {
-        if (!urwire__read_value(msg, &pos, end, version, t, 1, &value, err))
+        if (!urwire__read_value(msg, &pos, end, &version, t, &value, &value, err))
             return urwire__within(err, path, out->count);
         if (pos >= end) {
             urwire__short(err, "", pos, 1, end);
@@ -152,11 +205,11 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
 
 bool urwire_next_value(urwire_seq *seq, urwire_value *out)
 {
-    urwire_error ignored;
+    urwire_value item;
     if (seq->count == 0)
         return false;
-    if (!urwire__read_value(seq->msg, &seq->pos, seq->end, seq->version, urwire__values_of(seq->version), 1,
-                            out, &ignored)) {
+    if (!urwire__read_value(seq->msg, &seq->pos, seq->end, &seq->version, urwire__values_of(seq->version), out,
+                            &item, NULL)) {
         seq->count = 0;  /* not reached for a seq from a decoded message: it was checked whole */
         return false;
     }

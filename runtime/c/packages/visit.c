@@ -32,14 +32,12 @@ URWIRE__PRIVATE void urwire__visit_texts(const urwire_seq *names, const char *ke
     v->end_array(v->ctx);
 }
 
-/* A LIST's or MATRIX's items by calling itself, as deep as urwire__read_value let the value be. */
-/* NOLINTNEXTLINE(misc-no-recursion): depth at most URWIRE_MAX_VALUE_DEPTH, checked when read */
-static void urwire__visit_value(const urwire_value *val, const char *key, const urwire_visitor *v)
+/* A value's object up to its items: its type and, but for a LIST or MATRIX, its value, closed.
+ * True when it is a LIST or MATRIX, its "value" array open for its items. */
+static bool urwire__visit_head(const urwire_value *val, const char *key, const urwire_visitor *v)
 {
     const urwire__value_entry *e = urwire__value_entry_of(urwire__values_of(val->items.version), val->code);
-    urwire_seq items = val->items;
-    urwire_value item;
-    size_t k, r, c;
+    size_t k;
     v->begin_object(v->ctx, key);
     urwire__name(v, "type", val->type_name);
     switch (e ? e->layout : URWIRE__LAYOUT_EMPTY) {
@@ -64,23 +62,94 @@ static void urwire__visit_value(const urwire_value *val, const char *key, const 
         v->on_text(v->ctx, "value", val->as.text);
         break;
     case URWIRE__LAYOUT_LIST:
-        v->begin_array(v->ctx, "value");
-        while (urwire_next_value(&items, &item))
-            urwire__visit_value(&item, NULL, v);
-        v->end_array(v->ctx);
-        break;
     case URWIRE__LAYOUT_MATRIX:
         v->begin_array(v->ctx, "value");
-        for (r = 0; r < (size_t)val->rows; r++) {
-            v->begin_array(v->ctx, NULL);
-            for (c = 0; c < (size_t)val->cols && urwire_next_value(&items, &item); c++)
-                urwire__visit_value(&item, NULL, v);
-            v->end_array(v->ctx);
-        }
-        v->end_array(v->ctx);
-        break;
+        return true;
     }
     v->end_object(v->ctx);
+    return false;
+}
+
+/* A LIST or MATRIX whose items are being visited: where its items seq stands, and in a MATRIX
+ * (cols > 0) the row and column of the next item, each row an array of its own. */
+typedef struct urwire__open_items {
+    size_t pos;
+    size_t end;
+    size_t count;
+    int16_t rows;
+    int16_t cols;
+    int16_t r;
+    int16_t c;
+    bool row_open;
+} urwire__open_items;
+
+/* One value, its items visited in a loop over a stack of the values still open (at most
+ * URWIRE_MAX_VALUE_DEPTH deep, as decoding checked) rather than by recursion, so that the
+ * stack this takes is known. */
+static void urwire__visit_value(const urwire_value *val, const char *key, const urwire_visitor *v)
+{
+    urwire__open_items open[URWIRE_MAX_VALUE_DEPTH];
+    urwire__open_items *top;
+    urwire_seq items = val->items;  /* every level's: the same message, version and terminator */
+    urwire_value item;
+    const urwire_value *next = val;
+    size_t n = 0;
+    bool more;
+    for (;;) {
+        if (next != NULL && urwire__visit_head(next, key, v)) {
+            if (n == URWIRE_MAX_VALUE_DEPTH) {  /* not reached for a decoded value */
+                v->end_array(v->ctx);
+                v->end_object(v->ctx);
+            } else {
+                top = &open[n++];
+                top->pos = next->items.pos;
+                top->end = next->items.end;
+                top->count = next->items.count;
+                top->rows = next->rows;
+                top->cols = next->kind == URWIRE_VALUE_MATRIX ? next->cols : 0;
+                top->r = 0;
+                top->c = 0;
+                top->row_open = false;
+            }
+        }
+        next = NULL;
+        key = NULL;
+        if (n == 0)
+            return;
+        top = &open[n - 1];
+        items.pos = top->pos;
+        items.end = top->end;
+        items.count = top->count;
+        if (top->cols == 0) {  /* a LIST */
+            more = urwire_next_value(&items, &item);
+        } else if (top->r >= top->rows) {
+            more = false;
+        } else {
+            if (!top->row_open) {
+                v->begin_array(v->ctx, NULL);
+                top->row_open = true;
+            }
+            more = top->c < top->cols && urwire_next_value(&items, &item);
+            if (!more) {  /* the row ends; the next one starts */
+                v->end_array(v->ctx);
+                top->row_open = false;
+                top->r++;
+                top->c = 0;
+                continue;
+            }
+            top->c++;
+        }
+        if (more) {
+            top->pos = items.pos;
+            top->end = items.end;
+            top->count = items.count;
+            next = &item;
+            continue;
+        }
+        v->end_array(v->ctx);   /* the "value" array */
+        v->end_object(v->ctx);
+        n--;
+    }
 }
 
 URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *key, const urwire_visitor *v)
@@ -136,8 +205,8 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
     if (m->kind == URWIRE_KIND_UNKNOWN_MESSAGE || m->kind == URWIRE_KIND_UNKNOWN_SUBTYPE) {
         urwire__name(v, "type", "unknown");
         v->on_uint(v->ctx, "message_type", m->message_type);
-        if (t != NULL && t->visit_header != NULL)
-            t->visit_header(m, true, v);  /* an unknown subtype: its code, then the header */
+        if (t != NULL && urwire__header_of(t)->visit != NULL)
+            urwire__header_of(t)->visit(m, true, v);  /* an unknown subtype: its code, then the header */
         else if (m->failed && m->kind == URWIRE_KIND_UNKNOWN_MESSAGE)
             urwire__visit_error(&m->error, v);
         v->on_hex(v->ctx, "raw", m->raw);
@@ -146,8 +215,8 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
         if (k->type->packages) {
             urwire__visit_packages(m, v);
         } else {
-            if (t->visit_header != NULL)
-                t->visit_header(m, false, v);
+            if (urwire__header_of(t)->visit != NULL)
+                urwire__header_of(t)->visit(m, false, v);
             if (m->failed)
                 urwire__visit_failed(&m->error, m->raw, v);
             else
