@@ -207,9 +207,9 @@ static const urwire__message_header urwire__message_headers[] = {
 };
 
 static const urwire__message_kind urwire__message_kinds[] = {
-    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, 0, NULL, NULL},
-    [URWIRE_KIND_STATE] = {"state", &urwire__message_types[0], 0, NULL, NULL},
-    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, 0, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, NULL, NULL},
+    [URWIRE_KIND_STATE] = {"state", &urwire__message_types[0], NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, NULL, NULL},
 };
 
 static const urwire__decode_fn urwire__message_decoders[] = {

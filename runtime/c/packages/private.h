@@ -216,7 +216,6 @@ typedef struct urwire__message_header {
 typedef struct urwire__message_kind {
     const char *name;                   /* "version", "robot_state", "unknown" */
     const urwire__message_type *type;   /* NULL for the unknown kinds */
-    int64_t subtype;                    /* its code in its type's subtype byte */
     urwire__encode_fn encode;
     urwire__visit_fn visit;
 } urwire__message_kind;
