@@ -7,9 +7,10 @@
 #   check_typed_item_calls.py  each proto_tree_add_* call against its field's type, masks, labels
 #   check_tfs.py               true_false_strings that tfs.h already has
 #   check_val_to_str.py        val_to_str formats
-#   check_spelling.py          words of strings and comments against a dictionary and
-#                              tools/wireshark_words.txt; needs the pip package pyspellchecker
-#                              (module spellchecker); skipped, and said, where it is missing
+#   check_spelling.py          words of strings against a dictionary and tools/wireshark_words.txt,
+#                              on the .c files only (as the script picks files itself); needs the
+#                              pip package pyspellchecker (module spellchecker); skipped, and
+#                              said, where it is missing
 #   check_static.py            globals that could be static: it reads the objects of a Wireshark
 #                              build, so it runs only with WIRESHARK_BUILD set to the build folder
 #                              of a tree the patch is applied to (make upstream-build makes one);
@@ -73,7 +74,12 @@ for check in check_typed_item_calls.py check_tfs.py check_val_to_str.py check_sp
     esac
     echo "== $check"; ran=$((ran + 1))
     for f in "${files[@]}"; do
+        # check_spelling.py reads a file it is given but a .c as prose, every word of the code
+        # too; of ours it would itself pick (isAppropriateFile) only the .c files
+        [ "$check" = check_spelling.py ] && [ "${f%.c}" = "$f" ] && continue
         out=$(cd "$source" && python3 "tools/$check" --file "$f" "${extra[@]}" 2>&1); rc=$?
+        # check_spelling.py prints its count in bold: the terminal's escapes would hide it
+        out=$(printf '%s\n' "$out" | sed 's/\x1b\[[0-9;]*m//g')
         echo "$out"
         # "3 warnings found", or "3 warnings" in releases of check_typed_item_calls.py
         problems="^[1-9][0-9]* (issues|warnings)( found)?$|^Error|Traceback"
