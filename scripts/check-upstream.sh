@@ -13,7 +13,8 @@
 #                              said, where it is missing
 #   check_static.py            globals that could be static: it reads the objects of a Wireshark
 #                              build, so it runs only with WIRESHARK_BUILD set to the build folder
-#                              of a tree the patch is applied to (make upstream-build makes one);
+#                              of a tree the patch is applied to (make upstream-build makes one),
+#                              and is given the tree's copy of each .c (epan/dissectors/...);
 #                              tests/native/test_plugin.py checks the same on the plugin's objects
 set -u
 source=${1:?usage: check-upstream.sh WIRESHARK_SOURCE FILE...}
@@ -77,7 +78,18 @@ for check in check_typed_item_calls.py check_tfs.py check_val_to_str.py check_sp
         # check_spelling.py reads a file it is given but a .c as prose, every word of the code
         # too; of ours it would itself pick (isAppropriateFile) only the .c files
         [ "$check" = check_spelling.py ] && [ "${f%.c}" = "$f" ] && continue
-        out=$(cd "$source" && python3 "tools/$check" --file "$f" "${extra[@]}" 2>&1); rc=$?
+        target=$f
+        if [ "$check" = check_static.py ]; then
+            # it finds a file's object only by the file's path in the tree (epan/dissectors/...),
+            # and says nothing of any other path: the tree's own copy, where the patch put it
+            [ "${f%.c}" = "$f" ] && continue
+            target=epan/dissectors/$(basename "$f")
+            if [ ! -f "$source/$target" ]; then
+                echo "check_static.py: $source has no $target: apply the patch there (make upstream-apply)"
+                finding "$check on $(basename "$f")"; continue
+            fi
+        fi
+        out=$(cd "$source" && python3 "tools/$check" --file "$target" "${extra[@]}" 2>&1); rc=$?
         # check_spelling.py prints its count in bold: the terminal's escapes would hide it
         out=$(printf '%s\n' "$out" | sed 's/\x1b\[[0-9;]*m//g')
         echo "$out"
