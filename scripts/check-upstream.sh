@@ -6,7 +6,7 @@
 #   checkhf.pl                 hf_ handles declared but not registered, or never used
 #   check_typed_item_calls.py  each proto_tree_add_* call against its field's type, masks, labels
 #   check_tfs.py               true_false_strings that tfs.h already has
-#   check_val_to_str.py        val_to_str formats
+#   check_val_to_str.py        val_to_str formats (asked to read generated files: --generated)
 #   check_spelling.py          words of strings against a dictionary and tools/wireshark_words.txt,
 #                              on the .c files only (as the script picks files itself); needs the
 #                              pip package pyspellchecker (module spellchecker); skipped, and
