@@ -6,13 +6,15 @@
 #   checkhf.pl                 hf_ handles declared but not registered, or never used
 #   check_typed_item_calls.py  each proto_tree_add_* call against its field's type, masks, labels
 #   check_tfs.py               true_false_strings that tfs.h already has
-#   check_val_to_str.py        val_to_str formats
-#   check_spelling.py          words of strings and comments against a dictionary and
-#                              tools/wireshark_words.txt; needs the pip package pyspellchecker
-#                              (module spellchecker); skipped, and said, where it is missing
+#   check_val_to_str.py        val_to_str formats (asked to read generated files: --generated)
+#   check_spelling.py          words of strings against a dictionary and tools/wireshark_words.txt,
+#                              on the .c files only (as the script picks files itself); needs the
+#                              pip package pyspellchecker (module spellchecker); skipped, and
+#                              said, where it is missing
 #   check_static.py            globals that could be static: it reads the objects of a Wireshark
 #                              build, so it runs only with WIRESHARK_BUILD set to the build folder
-#                              of a tree the patch is applied to (make upstream-build makes one);
+#                              of a tree the patch is applied to (make upstream-build makes one),
+#                              and is given the tree's copy of each .c (epan/dissectors/...);
 #                              tests/native/test_plugin.py checks the same on the plugin's objects
 set -u
 source=${1:?usage: check-upstream.sh WIRESHARK_SOURCE FILE...}
@@ -59,6 +61,9 @@ for check in check_typed_item_calls.py check_tfs.py check_val_to_str.py check_sp
     extra=()
     case $check in
         check_typed_item_calls.py) extra=(--mask --label --consecutive) ;;
+        check_val_to_str.py)
+            # it passes over a file that says it was generated, as ours do, unless asked not to
+            grep -q -- "--generated" "$source/tools/$check" && extra=(--generated) ;;
         check_spelling.py)
             if ! python3 -c "import spellchecker" 2>/dev/null; then
                 echo "== $check: skipped, it needs the pip package pyspellchecker"; continue
@@ -73,7 +78,23 @@ for check in check_typed_item_calls.py check_tfs.py check_val_to_str.py check_sp
     esac
     echo "== $check"; ran=$((ran + 1))
     for f in "${files[@]}"; do
-        out=$(cd "$source" && python3 "tools/$check" --file "$f" "${extra[@]}" 2>&1); rc=$?
+        # check_spelling.py reads a file it is given but a .c as prose, every word of the code
+        # too; of ours it would itself pick (isAppropriateFile) only the .c files
+        [ "$check" = check_spelling.py ] && [ "${f%.c}" = "$f" ] && continue
+        target=$f
+        if [ "$check" = check_static.py ]; then
+            # it finds a file's object only by the file's path in the tree (epan/dissectors/...),
+            # and says nothing of any other path: the tree's own copy, where the patch put it
+            [ "${f%.c}" = "$f" ] && continue
+            target=epan/dissectors/$(basename "$f")
+            if [ ! -f "$source/$target" ]; then
+                echo "check_static.py: $source has no $target: apply the patch there (make upstream-apply)"
+                finding "$check on $(basename "$f")"; continue
+            fi
+        fi
+        out=$(cd "$source" && python3 "tools/$check" --file "$target" "${extra[@]}" 2>&1); rc=$?
+        # check_spelling.py prints its count in bold: the terminal's escapes would hide it
+        out=$(printf '%s\n' "$out" | sed 's/\x1b\[[0-9;]*m//g')
         echo "$out"
         # "3 warnings found", or "3 warnings" in releases of check_typed_item_calls.py
         problems="^[1-9][0-9]* (issues|warnings)( found)?$|^Error|Traceback"

@@ -32,13 +32,13 @@ void
 ur_exchange_reply(ur_exchange_request_t *request, packet_info *pinfo, ur_exchange_reply_t *reply)
 {
     reply->response_to = 0;
-    nstime_set_zero(&reply->time);
+    nstime_set_zero(&reply->elapsed);
     if (request == NULL)
         return;
     if (request->response_in == 0)
         request->response_in = pinfo->num;
     reply->response_to = request->frame;
-    nstime_delta(&reply->time, &pinfo->abs_ts, &request->at);
+    nstime_delta(&reply->elapsed, &pinfo->abs_ts, &request->at);
 }
 
 void
@@ -56,7 +56,7 @@ ur_exchange_show_reply(proto_tree *tree, tvbuff_t *tvb, int at, int len, const u
     if (reply->response_to == 0)
         return;
     proto_item_set_generated(proto_tree_add_uint(tree, hf_response_to, tvb, at, len, reply->response_to));
-    proto_item_set_generated(proto_tree_add_time(tree, hf_time, tvb, at, len, &reply->time));
+    proto_item_set_generated(proto_tree_add_time(tree, hf_time, tvb, at, len, &reply->elapsed));
 }
 
 /* ---- runtime/epan/common/tshark_fields.c ---- */

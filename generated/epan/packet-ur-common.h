@@ -33,7 +33,7 @@ typedef struct {
 
 typedef struct {
     guint32 response_to;        /* the request's frame; 0: no request (the capture starts after it) */
-    nstime_t time;              /* from the request to the reply */
+    nstime_t elapsed;           /* from the request to the reply */
 } ur_exchange_reply_t;
 
 /* A request as this frame holds it. */

@@ -219,6 +219,31 @@ def test_check_upstream_reports_an_unused_field(tmp_path):
     assert "hf_urwire_fixture_unused" in result.stdout
 
 
+def test_check_upstream_reads_a_count_printed_in_bold(tmp_path):
+    """check_spelling.py prints its "N issues found" between terminal escapes: still a problem."""
+    (tmp_path / "tools").mkdir()
+    (tmp_path / "tools" / "check_tfs.py").write_text("print('\\033[1m' + '2 warnings found' + '\\033[0m')\n")
+    result = make("check-upstream", f"WIRESHARK_SOURCE={tmp_path}", f"URWIRE_EPAN_DIR={FIXTURE_EPAN}")
+    assert result.returncode != 0, result.stdout
+    assert "check_tfs.py on packet-urwire-fixture.c reports problems" in result.stdout
+
+
+def test_check_upstream_gives_check_static_the_trees_copy(tmp_path, monkeypatch):
+    """check_static.py finds an object only by its file's path in the tree, and passes any other."""
+    (tmp_path / "tools").mkdir()
+    (tmp_path / "tools" / "check_static.py").write_text(
+        "import sys\nf = sys.argv[sys.argv.index('--file') + 1]\n"
+        "print('0 issues found' if f.startswith('epan/dissectors/') else '1 issues found')\n")
+    monkeypatch.setenv("WIRESHARK_BUILD", str(tmp_path))
+    given = (f"WIRESHARK_SOURCE={tmp_path}", f"URWIRE_EPAN_DIR={FIXTURE_EPAN}")
+    result = make("check-upstream", *given)
+    assert result.returncode != 0 and "make upstream-apply" in result.stdout, result.stdout
+    (tmp_path / "epan" / "dissectors").mkdir(parents=True)
+    shutil.copy(FIXTURE_EPAN / "packet-urwire-fixture.c", tmp_path / "epan" / "dissectors")
+    result = make("check-upstream", *given)
+    assert result.returncode == 0, result.stdout
+
+
 # ---- the patch against a Wireshark source tree (make upstream-build applies it) ----
 WIRESHARK_TREE = Path(__file__).resolve().parent / "fixtures" / "wireshark-tree"
 
