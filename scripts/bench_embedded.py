@@ -258,7 +258,7 @@ def main(argv: list[str]) -> int:
     sub = parser.add_subparsers(dest="command", required=True)
     m = sub.add_parser("measure", help="measure, write examples/embedded/measurements.json and the doc's table")
     m.add_argument("--pinned", type=Path, help="the folder of a pinned build's urwire.{h,c} (make pinned-c)")
-    m.add_argument("--subset-selection", default="ur:joint_data,tool_data",
+    m.add_argument("--subset-selection", default="ur:robot_state.joint_data,robot_state.tool_data",
                    help="what the subset firmware's parser holds, as `python -m codegen --select` takes it")
     m.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1))
     sub.add_parser("render", help="write docs/c.md's table from examples/embedded/measurements.json")
