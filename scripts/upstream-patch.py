@@ -21,7 +21,8 @@ OUT is emptied first.
 With --against, the patch itself (git's format, binary capture included) against that Wireshark
 source tree is written to FILE: the files above, the dissectors' sources in epan/dissectors/
 CMakeLists.txt's DISSECTOR_SRC and the shared header in its list of private headers (each in sorted
-place, spelled as the list spells its entries), the cell capture as test/captures/
+place, spelled as the list spells its entries), the protocols' words in tools/wireshark_words.txt
+(dissector/native/wireshark_words.txt), the cell capture as test/captures/
 ur-cell-session.pcapng and its test (dissector/native/suite_dissection_ur.py) at the end of
 test/suite_dissection.py. `make upstream-build` applies it (mk/upstream.mk).
 """
@@ -98,6 +99,8 @@ CAPTURE = ROOT / "dissector" / "samples" / "cell_session.pcapng"
 TREE_CAPTURE = "test/captures/ur-cell-session.pcapng"
 SUITE_PART = ROOT / "dissector" / "native" / "suite_dissection_ur.py"
 SOURCE_LIST = "DISSECTOR_SRC"
+WORDS = "tools/wireshark_words.txt"
+OUR_WORDS = ROOT / "dissector" / "native" / "wireshark_words.txt"
 # A header that exports nothing is private: DISSECTOR_PUBLIC_HEADERS holds only the headers
 # tools/generate-dissector-lists.py finds exporting something (WS_DLL_PUBLIC).
 PRIVATE_HEADER_LISTS = ("DISSECTOR_HEADERS", "DISSECTOR_PRIVATE_HEADERS")
@@ -134,6 +137,21 @@ def into_list(text: str, name: str, files: list[str]) -> str:
     return "\n".join(lines)
 
 
+def our_words() -> list[str]:
+    """The protocols' words Wireshark's spelling check must know (dissector/native/wireshark_words.txt)."""
+    return [w for w in OUR_WORDS.read_text(encoding="utf-8").split("\n") if w and not w.startswith("#")]
+
+
+def with_our_words(words: str) -> str:
+    """A tools/wireshark_words.txt with each of ours it lacks inserted before the first word that
+    sorts after it; its own lines stay as they are."""
+    lines = words.rstrip("\n").split("\n")
+    for word in sorted(set(our_words()) - set(lines)):
+        at = next((i for i, line in enumerate(lines) if line > word), len(lines))
+        lines.insert(at, word)
+    return "\n".join(lines) + "\n"
+
+
 def tree_edits(tree: Path, dissectors: list[str]) -> dict[str, bytes]:
     """The tree's files the patch changes or adds beside the laid-out ones, as it leaves them."""
     cmake = (tree / CMAKELISTS).read_text(encoding="utf-8")
@@ -151,7 +169,10 @@ def tree_edits(tree: Path, dissectors: list[str]) -> dict[str, bytes]:
     part = SUITE_PART.read_text(encoding="utf-8")
     if part.strip() not in suite:
         suite = suite.rstrip("\n") + "\n" + part
-    return {CMAKELISTS: cmake.encode(), SUITE: suite.encode(), TREE_CAPTURE: CAPTURE.read_bytes()}
+    edits = {CMAKELISTS: cmake.encode(), SUITE: suite.encode(), TREE_CAPTURE: CAPTURE.read_bytes()}
+    if (tree / WORDS).is_file():
+        edits[WORDS] = with_our_words((tree / WORDS).read_text(encoding="utf-8")).encode()
+    return edits
 
 
 def write_patch(out: Path, tree: Path, patch: Path) -> None:
@@ -166,7 +187,7 @@ def write_patch(out: Path, tree: Path, patch: Path) -> None:
     with tempfile.TemporaryDirectory() as work:
         repo = Path(work)
         subprocess.run([*git, "init", "-q", str(repo)], check=True)
-        for name in (CMAKELISTS, SUITE):
+        for name in (n for n in (CMAKELISTS, SUITE, WORDS) if (tree / n).is_file()):
             (repo / name).parent.mkdir(parents=True, exist_ok=True)
             shutil.copy(tree / name, repo / name)
         subprocess.run([*git, "-C", str(repo), "add", "-A"], check=True)

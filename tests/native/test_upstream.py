@@ -279,6 +279,12 @@ def test_the_patch_applies_to_a_wireshark_tree_and_lists_its_files(tmp_path):
     assert "class TestDissectFixture" in suite and "class TestDissectUniversalRobots" in suite
     for path in GENERATED:
         assert (tree / "epan" / "dissectors" / path.name).is_file(), path.name
+    # the protocols' words join the spelling check's list, each in sorted place, the tree's kept
+    words = (tree / "tools" / "wireshark_words.txt").read_text().splitlines()
+    theirs = (WIRESHARK_TREE / "tools" / "wireshark_words.txt").read_text().splitlines()
+    ours = [w for w in (ROOT / "dissector" / "native" / "wireshark_words.txt").read_text().splitlines()
+            if w and not w.startswith("#")]
+    assert words == sorted(words) and set(words) == set(theirs) | set(ours) and "robotiq" in words
     subprocess.run(["git", "apply", "--reverse", "--check", str(patch)], cwd=tree, check=True)
 
 
