@@ -304,6 +304,10 @@ static const struct {
     uint8_t protocol;
     uint8_t layout;
 } rtde__dispatch[] = {
+    {85, true, 2, RTDE_LAYOUT_DATA_PACKAGE},  /* 'U' */
+    {85, true, 1, RTDE_LAYOUT_DATA_PACKAGE_V1},  /* 'U' */
+    {85, false, 1, RTDE_LAYOUT_INPUT_DATA_PACKAGE},  /* 'U' */
+    {85, false, 2, RTDE_LAYOUT_INPUT_DATA_PACKAGE},  /* 'U' */
     {86, false, 1, RTDE_LAYOUT_REQUEST_PROTOCOL_VERSION},  /* 'V' */
     {86, false, 2, RTDE_LAYOUT_REQUEST_PROTOCOL_VERSION},  /* 'V' */
     {86, true, 1, RTDE_LAYOUT_REQUEST_PROTOCOL_VERSION_REPLY},  /* 'V' */
@@ -332,10 +336,6 @@ static const struct {
     {80, false, 2, RTDE_LAYOUT_PAUSE},  /* 'P' */
     {80, true, 1, RTDE_LAYOUT_PAUSE_REPLY},  /* 'P' */
     {80, true, 2, RTDE_LAYOUT_PAUSE_REPLY},  /* 'P' */
-    {85, true, 2, RTDE_LAYOUT_DATA_PACKAGE},  /* 'U' */
-    {85, true, 1, RTDE_LAYOUT_DATA_PACKAGE_V1},  /* 'U' */
-    {85, false, 1, RTDE_LAYOUT_INPUT_DATA_PACKAGE},  /* 'U' */
-    {85, false, 2, RTDE_LAYOUT_INPUT_DATA_PACKAGE},  /* 'U' */
 };
 
 /* Per layout: the recipe kind a setup request (or reply) belongs to (0 outputs, 1 inputs, -1
@@ -2159,26 +2159,43 @@ rtde_text rtde_data_name(const rtde_data *d, size_t index)
     return t;
 }
 
-/* A value's items, each a load of the type's fixed size: what the compiler makes one load and a
- * byte swap. */
-static void rtde__items(rtde_value *out, const uint8_t *p, uint8_t size, char kind)
+/* n items of 8, 4 or 1 bytes: with n and the size constants where they are inlined, each item is
+ * one load and a byte swap, and the loop unrolled. */
+URWIRE__INLINE void rtde__f64s(rtde_value *out, const uint8_t *p, size_t n)
 {
     size_t k;
-    if (size == 8 && kind == 'f')
-        for (k = 0; k < out->count; k++)
-            out->item[k].f64 = urwire__f64(p + 8 * k);
-    else if (size == 8)
-        for (k = 0; k < out->count; k++)
-            out->item[k].u64 = urwire__u64(p + 8 * k);
-    else if (size == 4 && kind == 'i')
-        for (k = 0; k < out->count; k++)
-            out->item[k].i64 = rtde__as_i32(urwire__u32(p + 4 * k));
-    else if (size == 4)
-        for (k = 0; k < out->count; k++)
-            out->item[k].u64 = urwire__u32(p + 4 * k);
+    for (k = 0; k < n; k++)
+        out->item[k].f64 = urwire__f64(p + 8 * k);
+}
+
+URWIRE__INLINE void rtde__i32s(rtde_value *out, const uint8_t *p, size_t n)
+{
+    size_t k;
+    for (k = 0; k < n; k++)
+        out->item[k].i64 = rtde__as_i32(urwire__u32(p + 4 * k));
+}
+
+URWIRE__INLINE void rtde__u32s(rtde_value *out, const uint8_t *p, size_t n)
+{
+    size_t k;
+    for (k = 0; k < n; k++)
+        out->item[k].u64 = urwire__u32(p + 4 * k);
+}
+
+/* A value's items, by the way its type reads ('f', 'i', else unsigned) and its bytes, which give
+ * the items' size and count (the value type table's). */
+static void rtde__items(rtde_value *out, const uint8_t *p, char kind, uint8_t value_size)
+{
+    if (kind == 'f')
+        rtde__f64s(out, p, value_size == 8 ? 1 : value_size == 24 ? 3 : 6);
+    else if (kind == 'i')
+        rtde__i32s(out, p, value_size == 4 ? 1 : 6);
+    else if (value_size == 8)
+        out->item[0].u64 = urwire__u64(p);
+    else if (value_size == 1)
+        out->item[0].u64 = p[0];
     else
-        for (k = 0; k < out->count; k++)
-            out->item[k].u64 = p[k];
+        rtde__u32s(out, p, value_size == 4 ? 1 : 6);
 }
 
 bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
@@ -2190,7 +2207,7 @@ bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
     t = recipe->types[index];
     out->type = t;
     out->count = rtde__value_types[t].count;
-    rtde__items(out, d->bytes + recipe->offset[index], rtde__value_types[t].size, rtde__value_types[t].kind);
+    rtde__items(out, d->bytes + recipe->offset[index], rtde__value_types[t].kind, rtde__value_types[t].value_size);
     return true;
 }
 
