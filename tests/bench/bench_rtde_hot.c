@@ -120,13 +120,15 @@ static double by_index(long packages)
 {
     rtde_message m;
     rtde_value v[VALUES];
+    bool ok;
     size_t at, i;
     double sum = 0;
     long p;
     for (p = 0; p < packages; p++) {
         must(rtde_decode(&conversation, package_at, PACKAGE_SIZE, true, &m, &at) == RTDE_OK, "a package");
-        for (i = 0; i < VALUES; i++)
-            must(rtde_data_value(&m.u.data_package.values, i, &v[i]), "a value");
+        for (i = 0, ok = true; i < VALUES; i++)
+            ok &= rtde_data_value(&m.u.data_package.values, i, &v[i]);
+        must(ok, "a value");
         sum += used(v);
     }
     return sum;
@@ -136,6 +138,7 @@ static double by_name(long packages)
 {
     rtde_message m;
     rtde_value v[VALUES];
+    bool ok;
     size_t at, i, index[VALUES];
     double sum = 0;
     long p;
@@ -143,8 +146,9 @@ static double by_name(long packages)
         index[i] = rtde_recipe_index(rtde_recipe_of(&conversation, true, 1), names[i]);
     for (p = 0; p < packages; p++) {
         must(rtde_decode(&conversation, package_at, PACKAGE_SIZE, true, &m, &at) == RTDE_OK, "a package");
-        for (i = 0; i < VALUES; i++)
-            must(rtde_data_value(&m.u.data_package.values, index[i], &v[i]), "a value");
+        for (i = 0, ok = true; i < VALUES; i++)
+            ok &= rtde_data_value(&m.u.data_package.values, index[i], &v[i]);
+        must(ok, "a value");
         sum += used(v);
     }
     return sum;
@@ -154,13 +158,15 @@ static double by_find(long packages)
 {
     rtde_message m;
     rtde_value v[VALUES];
+    bool ok;
     size_t at, i;
     double sum = 0;
     long p;
     for (p = 0; p < packages; p++) {
         must(rtde_decode(&conversation, package_at, PACKAGE_SIZE, true, &m, &at) == RTDE_OK, "a package");
-        for (i = 0; i < VALUES; i++)
-            must(rtde_data_find(&m.u.data_package.values, names[i], &v[i]), "a value");
+        for (i = 0, ok = true; i < VALUES; i++)
+            ok &= rtde_data_find(&m.u.data_package.values, names[i], &v[i]);
+        must(ok, "a value");
         sum += used(v);
     }
     return sum;

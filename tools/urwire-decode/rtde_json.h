@@ -12,7 +12,7 @@
 #include "rtde.h"
 #include "rtde_stream.h"
 
-/* The storage of a connection's recipes and pending names at the protocol's own limits (67 MB):
+/* The storage of a connection's recipes and pending names at the protocol's own limits (82 MB):
  * every recipe a robot and a client can make is kept, as the Python decoder keeps them. */
 #define RTDE_JSON_STORAGE RTDE_STORAGE_SIZE(RTDE_PROTOCOL_RECIPES, RTDE_PROTOCOL_VARIABLES, RTDE_PROTOCOL_NAMES)
 

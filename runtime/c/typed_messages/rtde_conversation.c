@@ -515,20 +515,20 @@ URWIRE__INLINE void rtde__u32s(rtde_value *out, const uint8_t *p, size_t n)
         out->item[k].u64 = urwire__u32(p + 4 * k);
 }
 
-/* A value's items, by the way its type reads ('f', 'i', else unsigned) and its bytes, which give
- * the items' size and count (the value type table's). */
-static void rtde__items(rtde_value *out, const uint8_t *p, char kind, uint8_t value_size)
+/* A value's items, each type's by loads of its fixed size and count (the value type table's). */
+static void rtde__items(rtde_value *out, const uint8_t *p, uint8_t type)
 {
-    if (kind == 'f')
-        rtde__f64s(out, p, value_size == 8 ? 1 : value_size == 24 ? 3 : 6);
-    else if (kind == 'i')
-        rtde__i32s(out, p, value_size == 4 ? 1 : 6);
-    else if (value_size == 8)
-        out->item[0].u64 = urwire__u64(p);
-    else if (value_size == 1)
-        out->item[0].u64 = p[0];
-    else
-        rtde__u32s(out, p, value_size == 4 ? 1 : 6);
+    switch (type) {
+    case RTDE_VT_BOOL: case RTDE_VT_UINT8: out->item[0].u64 = p[0]; break;
+    case RTDE_VT_UINT32: rtde__u32s(out, p, 1); break;
+    case RTDE_VT_UINT64: out->item[0].u64 = urwire__u64(p); break;
+    case RTDE_VT_INT32: rtde__i32s(out, p, 1); break;
+    case RTDE_VT_DOUBLE: rtde__f64s(out, p, 1); break;
+    case RTDE_VT_VECTOR3D: rtde__f64s(out, p, 3); break;
+    case RTDE_VT_VECTOR6D: rtde__f64s(out, p, 6); break;
+    case RTDE_VT_VECTOR6INT32: rtde__i32s(out, p, 6); break;
+    default: rtde__u32s(out, p, 6); break;
+    }
 }
 
 bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
@@ -540,7 +540,7 @@ bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
     t = recipe->types[index];
     out->type = t;
     out->count = rtde__value_types[t].count;
-    rtde__items(out, d->bytes + recipe->offset[index], rtde__value_types[t].kind, rtde__value_types[t].value_size);
+    rtde__items(out, d->bytes + recipe->offset[index], t);
     return true;
 }
 
