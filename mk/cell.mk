@@ -66,7 +66,7 @@ build/bench_rtde_hot_urcl-%: tests/bench/bench_rtde_hot.c tests/bench/bench_rtde
 ## Python (against struct alone) and C (against memcpy, and Python), at BENCH_RTDE_PACKAGES and
 ## BENCH_RTDE_LARGE packages (the cost per package, large against small), and tshark with rtde.lua
 ## against --disable-protocol rtde on BENCH_RTDE_PACKAGES packages; then one 12-variable package
-## L1-hot at -O2, -O3 and -Os, read by index, by name and by rtde_data_find, against a hand-written
+## L1-hot at -O2, -O3 and -Os, read by index, by name, as a list and by rtde_data_find, against a hand-written
 ## reader and URCL (with URCL_SOURCE)
 bench-rtde: build/bench_rtde $(BENCH_RTDE_LEVELS:%=$(BENCH_RTDE_HOT)-%)
 	$(PYTHON) tests/bench/bench_rtde.py --packages $(BENCH_RTDE_PACKAGES) --large $(BENCH_RTDE_LARGE)

@@ -2183,7 +2183,7 @@ URWIRE__INLINE void rtde__u32s(rtde_value *out, const uint8_t *p, size_t n)
 }
 
 /* A value's items, each type's by loads of its fixed size and count (the value type table's). */
-static void rtde__items(rtde_value *out, const uint8_t *p, uint8_t type)
+URWIRE__INLINE void rtde__items(rtde_value *out, const uint8_t *p, uint8_t type)
 {
     switch (type) {
     case RTDE_VT_BOOL: case RTDE_VT_UINT8: out->item[0].u64 = p[0]; break;
@@ -2198,16 +2198,33 @@ static void rtde__items(rtde_value *out, const uint8_t *p, uint8_t type)
     }
 }
 
-bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
+/* The value at an index of a recipe (checked by the caller), its values at bytes. */
+URWIRE__INLINE void rtde__value_at(const rtde_recipe *recipe, const uint8_t *bytes, size_t index, rtde_value *out)
 {
-    const rtde_recipe *recipe = d->recipe;
-    uint8_t t;
-    if (!recipe || !d->bytes || index >= recipe->count)
-        return false;
-    t = recipe->types[index];
+    uint8_t t = recipe->types[index];
     out->type = t;
     out->count = rtde__value_types[t].count;
-    rtde__items(out, d->bytes + recipe->offset[index], t);
+    rtde__items(out, bytes + recipe->offset[index], t);
+}
+
+bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
+{
+    if (!d->recipe || !d->bytes || index >= d->recipe->count)
+        return false;
+    rtde__value_at(d->recipe, d->bytes, index, out);
+    return true;
+}
+
+bool rtde_data_values(const rtde_data *d, const size_t *indexes, size_t count, rtde_value *out)
+{
+    size_t i;
+    if (!d->recipe || !d->bytes)
+        return false;
+    for (i = 0; i < count; i++) {
+        if (indexes[i] >= d->recipe->count)
+            return false;
+        rtde__value_at(d->recipe, d->bytes, indexes[i], &out[i]);
+    }
     return true;
 }
 

@@ -433,6 +433,9 @@ size_t rtde_data_count(const rtde_data *d);
 rtde_text rtde_data_name(const rtde_data *d, size_t index);
 bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out);
 bool rtde_data_find(const rtde_data *d, const char *name, rtde_value *out);
+/* Several values in one call: out[i] is the value at indexes[i] (the indexes a program resolved
+ * once); false at the first index past the recipe, the values before it read. */
+bool rtde_data_values(const rtde_data *d, const size_t *indexes, size_t count, rtde_value *out);
 
 /* The index of a variable in a recipe (a data package's is d->recipe), or RTDE_NO_INDEX when the
  * recipe has no variable of that name. */

@@ -8,6 +8,7 @@
  * driver reads. Each contestant decodes it PACKAGES times and reads all 12 values:
  *   index    rtde_decode, then rtde_data_value by index
  *   name     the same, the names resolved to indexes once (rtde_recipe_index)
+ *   list     the same indexes, all 12 values read by one rtde_data_values call
  *   find     rtde_decode, then rtde_data_find by name for every value
  *   hand     a hand-written reader of this one layout: a size check, memcpy and a byte swap
  *   urcl     URCL's RTDEParser::parse into a preallocated DataPackage, then getData of all 12
@@ -25,6 +26,8 @@
 
 #define VALUES 12
 #define PACKAGE_SIZE 284
+#define HAND 4                  /* the contestants' places */
+#define URCL 5
 
 static const char *const names[VALUES] = {
     "timestamp", "actual_q", "actual_qd", "actual_TCP_pose", "actual_TCP_force", "robot_mode", "safety_mode",
@@ -36,9 +39,9 @@ static const char types[] = "DOUBLE,VECTOR6D,VECTOR6D,VECTOR6D,VECTOR6D,INT32,IN
  * tests/bench/bench_rtde_urcl.cpp, linked in with BENCH_URCL. */
 #ifdef BENCH_URCL
 double urcl_read(const uint8_t *package, size_t size, long packages, const char *const *recipe, size_t count);
-#define CONTESTANTS 5
+#define CONTESTANTS 6
 #else
-#define CONTESTANTS 4
+#define CONTESTANTS 5
 static double urcl_read(const uint8_t *package, size_t size, long packages, const char *const *recipe, size_t count)
 {
     (void)package, (void)size, (void)packages, (void)recipe, (void)count;
@@ -154,6 +157,23 @@ static double by_name(long packages)
     return sum;
 }
 
+static double by_list(long packages)
+{
+    rtde_message m;
+    rtde_value v[VALUES];
+    size_t at, i, index[VALUES];
+    double sum = 0;
+    long p;
+    for (i = 0; i < VALUES; i++)
+        index[i] = rtde_recipe_index(rtde_recipe_of(&conversation, true, 1), names[i]);
+    for (p = 0; p < packages; p++) {
+        must(rtde_decode(&conversation, package_at, PACKAGE_SIZE, true, &m, &at) == RTDE_OK, "a package");
+        must(rtde_data_values(&m.u.data_package.values, index, VALUES, v), "the values");
+        sum += used(v);
+    }
+    return sum;
+}
+
 static double by_find(long packages)
 {
     rtde_message m;
@@ -242,8 +262,8 @@ int main(int argc, char **argv)
 {
     long packages = argc > 1 ? atol(argv[1]) : 200000;
     int turns = argc > 2 ? atoi(argv[2]) : 5, t;
-    contestant all[] = {{"index", by_index, 1e30}, {"name", by_name, 1e30}, {"find", by_find, 1e30},
-                        {"hand", by_hand, 1e30}, {"urcl", by_urcl, 1e30}};
+    contestant all[] = {{"index", by_index, 1e30}, {"name", by_name, 1e30}, {"list", by_list, 1e30},
+                        {"find", by_find, 1e30}, {"hand", by_hand, 1e30}, {"urcl", by_urcl, 1e30}};
     size_t n = CONTESTANTS, i;
     double expected = 0;
     set_up();
@@ -261,12 +281,12 @@ int main(int argc, char **argv)
         }
     for (i = 0; i < n; i++) {
         printf("%-6s %7.1f ns/package  %6.2fx the hand-written reader's time", all[i].name,
-               all[i].best / (double)packages * 1e9, all[i].best / all[3].best);
-        if (n == 5)
-            printf("  URCL takes %.2fx as long", all[4].best / all[i].best);
+               all[i].best / (double)packages * 1e9, all[i].best / all[HAND].best);
+        if (n == URCL + 1)
+            printf("  URCL takes %.2fx as long", all[URCL].best / all[i].best);
         printf("\n");
     }
-    if (n == 4)
+    if (n == URCL)
         printf("urcl   not built: set URCL_SOURCE to a checkout of Universal_Robots_Client_Library\n");
     return 0;
 }

@@ -1,7 +1,7 @@
 /* The RTDE client API a firmware would use, checked from C: builds the messages of a session
  * (printed as hex, one per line, for the test to compare with the golden vectors), then decodes a
  * setup reply and a data package and prints the values it reads by variable name, then the indexes
- * those names resolve to and the values read by them. */
+ * those names resolve to and the values read by them, one by one and as a list. */
 #include <stdio.h>
 #include <string.h>
 
@@ -82,6 +82,15 @@ int main(void)
             printf("index actual_q %lu robot_mode %lu: %g %g %lld, absent names %s\n", (unsigned long)iq,
                    (unsigned long)imode, q.item[1].f64, q.item[5].f64, (long long)mode.item[0].i64,
                    absent ? "none" : "found");
+        {
+            size_t list[3] = {2, 0, 1};
+            rtde_value three[3];
+            bool ok = rtde_data_values(d, list, 3, three);
+            list[1] = 3;
+            printf("values 2 0 1: %lld %g %g, past the recipe %s\n", (long long)three[0].item[0].i64,
+                   three[1].item[0].f64, three[2].item[5].f64, ok && !rtde_data_values(d, list, 3, three) ? "refused"
+                                                                                                     : "read");
+        }
     }
     return 0;
 }
