@@ -36,9 +36,41 @@ build/bench_rtde: tests/bench/bench_rtde.c generated/c/rtde.c generated/c/rtde.h
 	$(CC) -std=c99 -O2 -Wall -Wextra -Werror -pedantic -Wconversion -Igenerated/c -o $@ tests/bench/bench_rtde.c \
 		generated/c/rtde.c
 
+# One package, L1-hot, at each level: urwire's readers against the hand-written one and, when URCL_SOURCE names
+# a checkout of UR's own library (tests/tools/urcl.py), against URCL built from it at the same level.
+BENCH_RTDE_LEVELS := O2 O3 Os
+BENCH_RTDE_HOT_PACKAGES ?= 200000
+CXX ?= c++
+URCL_RTDE_BENCH_SOURCES = $(filter-out %/rtde_client.cpp %/rtde_writer.cpp,$(wildcard $(URCL_SOURCE)/src/rtde/*.cpp)) \
+	$(addprefix $(URCL_SOURCE)/src/,log.cpp default_log_handler.cpp helpers.cpp ur/version_information.cpp)
+BENCH_RTDE_HOT := $(if $(URCL_SOURCE),build/bench_rtde_hot_urcl,build/bench_rtde_hot)
+
+build/urcl/include/ur_client_library/compile_options.h: tests/tools/urcl.py
+	@mkdir -p $(@D)
+	$(PYTHON) -c 'import sys; from tests.tools.urcl import COMPILE_OPTIONS; sys.stdout.write(COMPILE_OPTIONS)' > $@
+
+build/bench_rtde_hot-%: tests/bench/bench_rtde_hot.c generated/c/rtde.c generated/c/rtde.h
+	@mkdir -p build
+	$(CC) -std=c99 -$* -Wall -Wextra -Werror -pedantic -Wconversion -Igenerated/c -o $@ tests/bench/bench_rtde_hot.c \
+		generated/c/rtde.c
+
+build/bench_rtde_hot_urcl-%: tests/bench/bench_rtde_hot.c tests/bench/bench_rtde_urcl.cpp generated/c/rtde.c \
+		generated/c/rtde.h build/urcl/include/ur_client_library/compile_options.h
+	$(CC) -std=c99 -$* -Wall -Wextra -Werror -pedantic -Wconversion -Igenerated/c -DBENCH_URCL -c \
+		-o $@-hot.o tests/bench/bench_rtde_hot.c
+	$(CC) -std=c99 -$* -Igenerated/c -c -o $@-rtde.o generated/c/rtde.c
+	$(CXX) -std=c++17 -$* -I$(URCL_SOURCE)/include -Ibuild/urcl/include -I$(URCL_SOURCE)/3rdparty -o $@ \
+		tests/bench/bench_rtde_urcl.cpp $(URCL_RTDE_BENCH_SOURCES) $@-hot.o $@-rtde.o
+
 ## bench-rtde: RTDE data packages per second by recipe (a driver's 9-variable recipe at 500 Hz) in
 ## Python (against struct alone) and C (against memcpy, and Python), at BENCH_RTDE_PACKAGES and
 ## BENCH_RTDE_LARGE packages (the cost per package, large against small), and tshark with rtde.lua
-## against --disable-protocol rtde on BENCH_RTDE_PACKAGES packages
-bench-rtde: build/bench_rtde
+## against --disable-protocol rtde on BENCH_RTDE_PACKAGES packages; then one 12-variable package
+## L1-hot at -O2, -O3 and -Os, read by index, by name, as a list and by rtde_data_find, against a hand-written
+## reader and URCL (with URCL_SOURCE)
+bench-rtde: build/bench_rtde $(BENCH_RTDE_LEVELS:%=$(BENCH_RTDE_HOT)-%)
 	$(PYTHON) tests/bench/bench_rtde.py --packages $(BENCH_RTDE_PACKAGES) --large $(BENCH_RTDE_LARGE)
+	@for level in $(BENCH_RTDE_LEVELS); do \
+		echo "== RTDE in C, one 284-byte package L1-hot, -$$level ($(BENCH_RTDE_HOT_PACKAGES) packages, best of 5 turns)"; \
+		$(BENCH_RTDE_HOT)-$$level $(BENCH_RTDE_HOT_PACKAGES) 5 || exit 1; \
+	done

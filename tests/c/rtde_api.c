@@ -1,6 +1,7 @@
 /* The RTDE client API a firmware would use, checked from C: builds the messages of a session
  * (printed as hex, one per line, for the test to compare with the golden vectors), then decodes a
- * setup reply and a data package and prints the values it reads by variable name. */
+ * setup reply and a data package and prints the values it reads by variable name, then the indexes
+ * those names resolve to and the values read by them, one by one and as a list. */
 #include <stdio.h>
 #include <string.h>
 
@@ -72,5 +73,24 @@ int main(void)
         printf("actual_q %g %g %g %g %g %g robot_mode %lld recipe %u\n", q.item[0].f64, q.item[1].f64,
                q.item[2].f64, q.item[3].f64, q.item[4].f64, q.item[5].f64, (long long)mode.item[0].i64,
                (unsigned)m.u.data_package.recipe_id);
+    if (m.layout == RTDE_LAYOUT_DATA_PACKAGE) {
+        const rtde_data *d = &m.u.data_package.values;
+        size_t iq = rtde_recipe_index(d->recipe, "actual_q"), imode = rtde_recipe_index(d->recipe, "robot_mode");
+        bool absent = rtde_recipe_index(d->recipe, "actual_qd") == RTDE_NO_INDEX
+                      && rtde_recipe_index(NULL, "actual_q") == RTDE_NO_INDEX && !rtde_data_value(d, 3, &q);
+        if (rtde_data_value(d, iq, &q) && rtde_data_value(d, imode, &mode))
+            printf("index actual_q %lu robot_mode %lu: %g %g %lld, absent names %s\n", (unsigned long)iq,
+                   (unsigned long)imode, q.item[1].f64, q.item[5].f64, (long long)mode.item[0].i64,
+                   absent ? "none" : "found");
+        {
+            size_t list[3] = {2, 0, 1};
+            rtde_value three[3];
+            bool ok = rtde_data_values(d, list, 3, three);
+            list[1] = 3;
+            printf("values 2 0 1: %lld %g %g, past the recipe %s\n", (long long)three[0].item[0].i64,
+                   three[1].item[0].f64, three[2].item[5].f64, ok && !rtde_data_values(d, list, 3, three) ? "refused"
+                                                                                                     : "read");
+        }
+    }
     return 0;
 }

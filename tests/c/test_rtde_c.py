@@ -155,6 +155,8 @@ def test_the_client_api(tmp_path):
     assert lines[6] == sent[7]                                   # an input data package by its recipe
     assert lines[7] == "too small: 0"
     assert lines[8] == "actual_q 0 -1.5 1.5 -0.5 0.25 3 robot_mode 7 recipe 2"
+    assert lines[9] == "index actual_q 1 robot_mode 2: -1.5 3 7, absent names none"   # resolved once
+    assert lines[10] == "values 2 0 1: 7 12.5 3, past the recipe refused"
 
 
 def test_the_variable_table_reads_as_the_spec_has_it():

@@ -12,7 +12,7 @@
 #include "rtde.h"
 #include "rtde_stream.h"
 
-/* The storage of a connection's recipes and pending names at the protocol's own limits (67 MB):
+/* The storage of a connection's recipes and pending names at the protocol's own limits (82 MB):
  * every recipe a robot and a client can make is kept, as the Python decoder keeps them. A test
  * harness on a board with less RAM defines smaller limits (RTDE_JSON_RECIPES and the others). */
 #ifndef RTDE_JSON_RECIPES

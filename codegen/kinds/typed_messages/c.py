@@ -105,7 +105,9 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
         })
     dispatch = [{"code": mp.message.code, "letter": mp.message.letter,
                  "from_robot": "true" if mp.message.from_robot else "false", "protocol": p,
-                 "const": f"{name.upper()}_LAYOUT_{mp.message.name.upper()}"} for mp, p in planned.dispatch]
+                 "const": f"{name.upper()}_LAYOUT_{mp.message.name.upper()}"}
+                # Data packages are nearly every message of a connection: the scan finds them first.
+                for mp, p in sorted(planned.dispatch, key=lambda d: not d[0].message.recipe_values)]
     view = {
         "banner": banner, "p": interface, "prefix": name, "PREFIX": name.upper(),
         "value_types": [{"name": t.name, "size": t.scalar.size, "count": t.count, "kind": VALUE_KIND[t.scalar.name],

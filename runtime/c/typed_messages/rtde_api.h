@@ -1,7 +1,8 @@
 /* ---- the RTDE connection: state, decoding, the client's messages -------------------------- */
 
-/* A recipe of one connection: its variables' names (a copy) and types, in order, in the storage of
- * its connection. */
+/* A recipe of one connection: its variables' names (a copy), types and offsets in a data package's
+ * values, in order, in the storage of its connection. The offsets are computed once, when the
+ * setup reply makes the recipe, so that reading a value is one load at a known place. */
 typedef struct rtde_recipe {
     bool used;
     bool from_robot;                        /* outputs (the robot's data) or inputs (the client's) */
@@ -9,6 +10,7 @@ typedef struct rtde_recipe {
     size_t count;
     size_t size;                            /* bytes of one data package's values */
     uint8_t *types;                         /* rtde_value_type, count of them */
+    uint16_t *offset;                       /* where each value starts in a package's values */
     uint16_t *name_at;
     uint16_t *name_length;
     char *names;
@@ -41,6 +43,7 @@ typedef struct rtde_conversation {
     struct {
         rtde_recipe recipes[RTDE_MAX_RECIPES];
         uint8_t types[RTDE_MAX_RECIPES][RTDE_MAX_VARIABLES];
+        uint16_t offset[RTDE_MAX_RECIPES][RTDE_MAX_VARIABLES];
         uint16_t name_at[RTDE_MAX_RECIPES][RTDE_MAX_VARIABLES];
         uint16_t name_length[RTDE_MAX_RECIPES][RTDE_MAX_VARIABLES];
         char names[RTDE_MAX_RECIPES][RTDE_MAX_NAMES];
@@ -57,7 +60,7 @@ size_t rtde_storage_size(const rtde_limits *limits);
 #define RTDE__ROUND16(n) ((((size_t)(n)) + 15u) & ~(size_t)15u)
 #define RTDE_STORAGE_SIZE(recipes, variables, names)                                                  \
     (RTDE__ROUND16((size_t)(recipes) * sizeof(rtde_recipe))                                           \
-     + 2 * RTDE__ROUND16((size_t)(recipes) * (size_t)(variables) * sizeof(uint16_t))                  \
+     + 3 * RTDE__ROUND16((size_t)(recipes) * (size_t)(variables) * sizeof(uint16_t))                  \
      + RTDE__ROUND16((size_t)(recipes) * (size_t)(variables))                                          \
      + RTDE__ROUND16((size_t)(recipes) * (size_t)(names))                                              \
      + RTDE__ROUND16((size_t)(2 * RTDE_MAX_PENDING + 1) * (size_t)(names)))
@@ -80,11 +83,22 @@ rtde_error rtde_message_size(const uint8_t *buf, size_t length, size_t *size);
 rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, bool from_robot,
                        rtde_message *out, size_t *offset);
 
-/* A data package's values, by index in its recipe or by variable name. */
+/* A data package's values, by index in its recipe or by variable name. Reading by index is a
+ * bounds check and a byte-swapped load at the offset the recipe keeps; reading by name looks the
+ * name up first, so a program reading every package resolves its names once, with
+ * rtde_recipe_index, and reads by index. */
 size_t rtde_data_count(const rtde_data *d);
 rtde_text rtde_data_name(const rtde_data *d, size_t index);
 bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out);
 bool rtde_data_find(const rtde_data *d, const char *name, rtde_value *out);
+/* Several values in one call: out[i] is the value at indexes[i] (the indexes a program resolved
+ * once); false at the first index past the recipe, the values before it read. */
+bool rtde_data_values(const rtde_data *d, const size_t *indexes, size_t count, rtde_value *out);
+
+/* The index of a variable in a recipe (a data package's is d->recipe), or RTDE_NO_INDEX when the
+ * recipe has no variable of that name. */
+#define RTDE_NO_INDEX ((size_t)-1)
+size_t rtde_recipe_index(const rtde_recipe *recipe, const char *name);
 
 /* The recipe of a data package of this direction and id (-1: protocol 1 outputs), if any. */
 const rtde_recipe *rtde_recipe_of(const rtde_conversation *c, bool from_robot, int id);

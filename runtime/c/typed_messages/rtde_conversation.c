@@ -26,7 +26,7 @@ static bool rtde__values(rtde__reader *r, rtde_data *out)
 /* Points the recipe slots and the pending names at their storage: the slots' arrays one after
  * another in each of the given arrays. */
 static void rtde__place(rtde_conversation *c, const rtde_limits *limits, rtde_recipe *recipes, uint8_t *types,
-                        uint16_t *name_at, uint16_t *name_length, char *names, char *pending)
+                        uint16_t *offset, uint16_t *name_at, uint16_t *name_length, char *names, char *pending)
 {
     size_t i, k;
     c->limits = *limits;
@@ -35,6 +35,7 @@ static void rtde__place(rtde_conversation *c, const rtde_limits *limits, rtde_re
     for (i = 0; i < limits->recipes; i++) {
         recipes[i].used = false;
         recipes[i].types = types + i * limits->variables;
+        recipes[i].offset = offset + i * limits->variables;
         recipes[i].name_at = name_at + i * limits->variables;
         recipes[i].name_length = name_length + i * limits->variables;
         recipes[i].names = names + i * limits->names;
@@ -52,8 +53,8 @@ void rtde_conversation_init(rtde_conversation *c)
     limits.variables = RTDE_MAX_VARIABLES;
     limits.names = RTDE_MAX_NAMES;
     memset(c, 0, sizeof *c);
-    rtde__place(c, &limits, c->own.recipes, &c->own.types[0][0], &c->own.name_at[0][0], &c->own.name_length[0][0],
-                &c->own.names[0][0], &c->own.pending[0][0]);
+    rtde__place(c, &limits, c->own.recipes, &c->own.types[0][0], &c->own.offset[0][0], &c->own.name_at[0][0],
+                &c->own.name_length[0][0], &c->own.names[0][0], &c->own.pending[0][0]);
 }
 
 /* The storage's parts, each rounded up to a multiple of 16 bytes so that the next is aligned. */
@@ -75,7 +76,7 @@ bool rtde_conversation_init_in(rtde_conversation *c, const rtde_limits *limits, 
     size_t need = rtde_storage_size(limits), slots = limits->recipes * limits->variables;
     uint8_t *at = (uint8_t *)storage;
     rtde_recipe *recipes;
-    uint16_t *name_at, *name_length;
+    uint16_t *offset, *name_at, *name_length;
     uint8_t *types;
     char *names;
     if (need == 0 || size < need || storage == NULL)
@@ -83,6 +84,8 @@ bool rtde_conversation_init_in(rtde_conversation *c, const rtde_limits *limits, 
     memset(c, 0, offsetof(rtde_conversation, own));
     recipes = (rtde_recipe *)(void *)at;
     at += rtde__round(limits->recipes * sizeof(rtde_recipe));
+    offset = (uint16_t *)(void *)at;
+    at += rtde__round(slots * sizeof(uint16_t));
     name_at = (uint16_t *)(void *)at;
     at += rtde__round(slots * sizeof(uint16_t));
     name_length = (uint16_t *)(void *)at;
@@ -91,7 +94,7 @@ bool rtde_conversation_init_in(rtde_conversation *c, const rtde_limits *limits, 
     at += rtde__round(slots);
     names = (char *)at;
     at += rtde__round(limits->recipes * limits->names);
-    rtde__place(c, limits, recipes, types, name_at, name_length, names, (char *)at);
+    rtde__place(c, limits, recipes, types, offset, name_at, name_length, names, (char *)at);
     return true;
 }
 
@@ -287,6 +290,8 @@ static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text ty
             t = rtde_value_type_of(types.data + s2, n2);
             if (recipe != NULL) {
                 recipe->types[count] = (uint8_t)t;
+                /* Past 65535 bytes no data package fits a message: such a recipe is never read. */
+                recipe->offset[count] = (uint16_t)(size <= 0xffffu ? size : 0xffffu);
                 recipe->name_at[count] = (uint16_t)s1;
                 recipe->name_length[count] = (uint16_t)n1;
             }
@@ -460,6 +465,7 @@ rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, 
             return RTDE_UNKNOWN_RECIPE;
         }
         data->recipe = recipe;
+        data->bytes = NULL;                 /* until its values are there: none are read */
     }
     e = rtde__decode_layout(layout, &r, out);
     if (e != RTDE_OK) {
@@ -486,45 +492,88 @@ rtde_text rtde_data_name(const rtde_data *d, size_t index)
     return t;
 }
 
+/* n items of 8, 4 or 1 bytes: with n and the size constants where they are inlined, each item is
+ * one load and a byte swap, and the loop unrolled. */
+URWIRE__INLINE void rtde__f64s(rtde_value *out, const uint8_t *p, size_t n)
+{
+    size_t k;
+    for (k = 0; k < n; k++)
+        out->item[k].f64 = urwire__f64(p + 8 * k);
+}
+
+URWIRE__INLINE void rtde__i32s(rtde_value *out, const uint8_t *p, size_t n)
+{
+    size_t k;
+    for (k = 0; k < n; k++)
+        out->item[k].i64 = rtde__as_i32(urwire__u32(p + 4 * k));
+}
+
+URWIRE__INLINE void rtde__u32s(rtde_value *out, const uint8_t *p, size_t n)
+{
+    size_t k;
+    for (k = 0; k < n; k++)
+        out->item[k].u64 = urwire__u32(p + 4 * k);
+}
+
+/* A value's items, each type's by loads of its fixed size and count (the value type table's). */
+URWIRE__INLINE void rtde__items(rtde_value *out, const uint8_t *p, uint8_t type)
+{
+    switch (type) {
+    case RTDE_VT_BOOL: case RTDE_VT_UINT8: out->item[0].u64 = p[0]; break;
+    case RTDE_VT_UINT32: rtde__u32s(out, p, 1); break;
+    case RTDE_VT_UINT64: out->item[0].u64 = urwire__u64(p); break;
+    case RTDE_VT_INT32: rtde__i32s(out, p, 1); break;
+    case RTDE_VT_DOUBLE: rtde__f64s(out, p, 1); break;
+    case RTDE_VT_VECTOR3D: rtde__f64s(out, p, 3); break;
+    case RTDE_VT_VECTOR6D: rtde__f64s(out, p, 6); break;
+    case RTDE_VT_VECTOR6INT32: rtde__i32s(out, p, 6); break;
+    default: rtde__u32s(out, p, 6); break;
+    }
+}
+
+/* The value at an index of a recipe (checked by the caller), its values at bytes. */
+URWIRE__INLINE void rtde__value_at(const rtde_recipe *recipe, const uint8_t *bytes, size_t index, rtde_value *out)
+{
+    uint8_t t = recipe->types[index];
+    out->type = t;
+    out->count = rtde__value_types[t].count;
+    rtde__items(out, bytes + recipe->offset[index], t);
+}
+
 bool rtde_data_value(const rtde_data *d, size_t index, rtde_value *out)
 {
-    const uint8_t *p;
-    size_t i, k;
     if (!d->recipe || !d->bytes || index >= d->recipe->count)
         return false;
-    p = d->bytes;
-    for (i = 0; i < index; i++) {
-        uint8_t t = d->recipe->types[i];
-        p += rtde__value_types[t].value_size;
-    }
-    out->type = d->recipe->types[index];
-    out->count = rtde__value_types[out->type].count;
-    for (k = 0; k < out->count; k++) {
-        size_t n = rtde__value_types[out->type].size;
-        uint64_t bits = urwire__uint(p + k * n, n);
-        switch (rtde__value_types[out->type].kind) {
-        case 'f':
-            out->item[k].f64 = urwire__f64_of(bits);
-            break;
-        case 'i':
-            out->item[k].i64 = rtde__as_i32(bits);
-            break;
-        default:
-            out->item[k].u64 = bits;
-        }
+    rtde__value_at(d->recipe, d->bytes, index, out);
+    return true;
+}
+
+bool rtde_data_values(const rtde_data *d, const size_t *indexes, size_t count, rtde_value *out)
+{
+    size_t i;
+    if (!d->recipe || !d->bytes)
+        return false;
+    for (i = 0; i < count; i++) {
+        if (indexes[i] >= d->recipe->count)
+            return false;
+        rtde__value_at(d->recipe, d->bytes, indexes[i], &out[i]);
     }
     return true;
 }
 
-bool rtde_data_find(const rtde_data *d, const char *name, rtde_value *out)
+size_t rtde_recipe_index(const rtde_recipe *recipe, const char *name)
 {
     size_t i, n = strlen(name);
-    for (i = 0; i < rtde_data_count(d); i++) {
-        rtde_text t = rtde_data_name(d, i);
-        if (t.length == n && memcmp(t.data, name, n) == 0)
-            return rtde_data_value(d, i, out);
-    }
-    return false;
+    for (i = 0; recipe && i < recipe->count; i++)
+        if (recipe->name_length[i] == n && memcmp(recipe->names + recipe->name_at[i], name, n) == 0)
+            return i;
+    return RTDE_NO_INDEX;
+}
+
+bool rtde_data_find(const rtde_data *d, const char *name, rtde_value *out)
+{
+    size_t i = rtde_recipe_index(d->recipe, name);
+    return i != RTDE_NO_INDEX && rtde_data_value(d, i, out);
 }
 
 /* ---- what a client sends ---- */
