@@ -18,7 +18,7 @@ from .human import line as human_line
 from .human import tree as human_tree
 from .cell import interface_named, records_of_raw_protocol
 from .interfaces import INTERFACES
-from .reading import CHUNK, capture_records, input_kind, ports_read, records_of_raw
+from .reading import CHUNK, capture_records, input_kind, ports_read, records_of_raw, say_unclaimed
 from .generated.spec import DEFAULT_VERSION, PORTS
 from .data import export, plot, spark
 from .live import listen, serve
@@ -122,19 +122,6 @@ def _write_json_lines(fh: BinaryIO, hint, advance: Callable[[int], None], out) -
     sink(lines.close())
     out.flush()
     return lines.errors
-
-
-UNCLAIMED_NAMED = 10     # conversations named in the line that says what no interface read
-
-
-def say_unclaimed(unclaimed: Optional[dict]) -> None:
-    """Once, on stderr: the conversations of a capture that no interface reads."""
-    if not unclaimed:
-        return
-    named = [f"{ends} ({count} bytes)" for ends, count in list(unclaimed.items())[:UNCLAIMED_NAMED]]
-    more = f" and {len(unclaimed) - len(named)} more" if len(unclaimed) > len(named) else ""
-    print(f"urwire: not decoded, {len(unclaimed)} TCP conversation(s) on ports no interface reads "
-          f"(--protocol NAME --port PORT reads one): {', '.join(named)}{more}", file=sys.stderr)
 
 
 def decode_command(args: argparse.Namespace) -> int:

@@ -8,6 +8,7 @@ conversation and capture time. Captures need dpkt, which is imported only when a
 from __future__ import annotations
 
 import os
+import sys
 from pathlib import Path
 from typing import BinaryIO, Callable, Iterable, Iterator, Optional, Union
 
@@ -167,3 +168,16 @@ def input_kind(path: Union[str, os.PathLike]) -> str:
             return "capture" if is_capture(fh.read(HEAD_BYTES)) else "stream"
     except OSError:
         return "file"
+
+
+UNCLAIMED_NAMED = 10     # conversations named in the line that says what no interface read
+
+
+def say_unclaimed(unclaimed: Optional[dict]) -> None:
+    """Once, on stderr: the conversations of a capture that no interface reads."""
+    if not unclaimed:
+        return
+    named = [f"{ends} ({count} bytes)" for ends, count in list(unclaimed.items())[:UNCLAIMED_NAMED]]
+    more = f" and {len(unclaimed) - len(named)} more" if len(unclaimed) > len(named) else ""
+    print(f"urwire: not decoded, {len(unclaimed)} TCP conversation(s) on ports no interface reads "
+          f"(--protocol NAME --port PORT reads one): {', '.join(named)}{more}", file=sys.stderr)

@@ -18,7 +18,7 @@ from .capture import Differs, Gap, OtherConversations, head_of, is_capture, time
 from .capture_records import CaptureFault
 from .envelope import FROM_ROBOT, TO_ROBOT
 from .interfaces import INTERFACES, Interface
-from .reading import ports_read, unclaimed_of
+from .reading import ports_read, say_unclaimed, unclaimed_of
 
 
 @dataclass(frozen=True)
@@ -103,8 +103,6 @@ def add_parser(sub) -> None:
 
 
 def streams_command(args: argparse.Namespace) -> int:
-    from .cli import say_unclaimed     # the cli imports this module to add its parser
-
     try:
         with open(args.capture, "rb") as fh:
             if not is_capture(head_of(fh)):
