@@ -19,6 +19,7 @@ from ...comments import field_text, node_text, value_text
 from ...emit import environment, runtime_section
 from ...errors import Problem, SpecError
 from ...lang.c import comment, inline
+from ...lang.c_pool import Pool
 from ...view import Step
 from . import model, plan
 from .naming import c_enum_const, c_enum_prefix, c_enum_tag, c_member_const, c_table_suffix
@@ -511,8 +512,15 @@ def enum_views(p: model.Protocol) -> list[dict]:
             tables.append(dict(versions=t.versions.describe(), members=members, cases=cases, range=range_view(t.versions),
                                tag=c_enum_tag(e, t),
                                names=f"urwire__{e.name}_{c_table_suffix(t).lower()}_name" if e.versioned else ""))
+        # Every table's names in one pool of the enum's own, so that a firmware that never names
+        # this enum links none of its texts (literals of a file share one section, kept whole).
+        pool = Pool(c["name"] for t in tables for c in t["cases"])
+        for t in tables:
+            for c in t["cases"]:
+                c["at"] = pool.offset(c["name"])
         views.append(dict(name=e.name, doc=comment(node_text(e)), wire=C_TYPES[e.scalar.name],
-                          versioned=e.versioned, tables=tables, first=tables[-1]["members"][0]["name"]))
+                          versioned=e.versioned, tables=tables, first=tables[-1]["members"][0]["name"],
+                          pool=pool.parts))
     return views
 
 
