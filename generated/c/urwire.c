@@ -6670,32 +6670,49 @@ static const urwire__form_table urwire__safety_compliance_tolerances_form_table 
 
 /* ---- the tables the runtime walks --------------------------------------------------------- */
 
+/* The kinds' names, each once and NUL-terminated; URWIRE__KIND_NAME(at) is the one at offset `at`. */
+static const struct {
+    char part0[510];
+} urwire__kind_text = {
+    "unknown\0" "robot_state\0" "version\0" "safety_mode\0" "robot_comm\0" "key\0" "program_threads\0" "popup\0"
+    "label\0" "var\0" "hardware_info\0" "robot_message_12\0" "request_value\0" "text\0" "runtime_exception\0"
+    "global_variables_setup\0" "global_variables_update\0" "modbus_info\0" "hmc\0" "safety_setup_broadcast\0"
+    "safety_compliance_tolerances\0" "robot_mode_data\0" "joint_data\0" "tool_data\0" "masterboard_data\0"
+    "cartesian_info\0" "laser_pointer\0" "kinematics_info\0" "configuration_data\0" "force_mode_data\0"
+    "additional_info\0" "calibration_data\0" "safety_data\0" "tool_comm_info\0" "tool_mode_info\0" "singularity_info\0"
+    "payload_info\0",
+};
+#define URWIRE__KIND_NAME(at) ((const char *)&urwire__kind_text + (at))
+
 /* Sub-package layouts, by urwire_package_layout. */
 static const urwire__package_kind urwire__package_kinds[] = {
-    [URWIRE_LAYOUT_ROBOT_MODE_DATA] = {"robot_mode_data", urwire__encode_robot_mode_data,
+    [URWIRE_LAYOUT_ROBOT_MODE_DATA] = {URWIRE__KIND_NAME(270), urwire__encode_robot_mode_data,
                                        urwire__visit_robot_mode_data},
-    [URWIRE_LAYOUT_JOINT_DATA] = {"joint_data", urwire__encode_joint_data, urwire__visit_joint_data},
-    [URWIRE_LAYOUT_TOOL_DATA] = {"tool_data", urwire__encode_tool_data, urwire__visit_tool_data},
-    [URWIRE_LAYOUT_MASTERBOARD_DATA] = {"masterboard_data", urwire__encode_masterboard_data,
+    [URWIRE_LAYOUT_JOINT_DATA] = {URWIRE__KIND_NAME(286), urwire__encode_joint_data, urwire__visit_joint_data},
+    [URWIRE_LAYOUT_TOOL_DATA] = {URWIRE__KIND_NAME(297), urwire__encode_tool_data, urwire__visit_tool_data},
+    [URWIRE_LAYOUT_MASTERBOARD_DATA] = {URWIRE__KIND_NAME(307), urwire__encode_masterboard_data,
                                         urwire__visit_masterboard_data},
-    [URWIRE_LAYOUT_CARTESIAN_INFO] = {"cartesian_info", urwire__encode_cartesian_info, urwire__visit_cartesian_info},
-    [URWIRE_LAYOUT_LASER_POINTER] = {"laser_pointer", urwire__encode_laser_pointer, urwire__visit_laser_pointer},
-    [URWIRE_LAYOUT_KINEMATICS_INFO] = {"kinematics_info", urwire__encode_kinematics_info,
+    [URWIRE_LAYOUT_CARTESIAN_INFO] = {URWIRE__KIND_NAME(324), urwire__encode_cartesian_info,
+                                      urwire__visit_cartesian_info},
+    [URWIRE_LAYOUT_LASER_POINTER] = {URWIRE__KIND_NAME(339), urwire__encode_laser_pointer, urwire__visit_laser_pointer},
+    [URWIRE_LAYOUT_KINEMATICS_INFO] = {URWIRE__KIND_NAME(353), urwire__encode_kinematics_info,
                                        urwire__visit_kinematics_info},
-    [URWIRE_LAYOUT_CONFIGURATION_DATA] = {"configuration_data", urwire__encode_configuration_data,
+    [URWIRE_LAYOUT_CONFIGURATION_DATA] = {URWIRE__KIND_NAME(369), urwire__encode_configuration_data,
                                           urwire__visit_configuration_data},
-    [URWIRE_LAYOUT_FORCE_MODE_DATA] = {"force_mode_data", urwire__encode_force_mode_data,
+    [URWIRE_LAYOUT_FORCE_MODE_DATA] = {URWIRE__KIND_NAME(388), urwire__encode_force_mode_data,
                                        urwire__visit_force_mode_data},
-    [URWIRE_LAYOUT_ADDITIONAL_INFO] = {"additional_info", urwire__encode_additional_info,
+    [URWIRE_LAYOUT_ADDITIONAL_INFO] = {URWIRE__KIND_NAME(404), urwire__encode_additional_info,
                                        urwire__visit_additional_info},
-    [URWIRE_LAYOUT_CALIBRATION_DATA] = {"calibration_data", urwire__encode_calibration_data,
+    [URWIRE_LAYOUT_CALIBRATION_DATA] = {URWIRE__KIND_NAME(420), urwire__encode_calibration_data,
                                         urwire__visit_calibration_data},
-    [URWIRE_LAYOUT_SAFETY_DATA] = {"safety_data", urwire__encode_safety_data, urwire__visit_safety_data},
-    [URWIRE_LAYOUT_TOOL_COMM_INFO] = {"tool_comm_info", urwire__encode_tool_comm_info, urwire__visit_tool_comm_info},
-    [URWIRE_LAYOUT_TOOL_MODE_INFO] = {"tool_mode_info", urwire__encode_tool_mode_info, urwire__visit_tool_mode_info},
-    [URWIRE_LAYOUT_SINGULARITY_INFO] = {"singularity_info", urwire__encode_singularity_info,
+    [URWIRE_LAYOUT_SAFETY_DATA] = {URWIRE__KIND_NAME(437), urwire__encode_safety_data, urwire__visit_safety_data},
+    [URWIRE_LAYOUT_TOOL_COMM_INFO] = {URWIRE__KIND_NAME(449), urwire__encode_tool_comm_info,
+                                      urwire__visit_tool_comm_info},
+    [URWIRE_LAYOUT_TOOL_MODE_INFO] = {URWIRE__KIND_NAME(464), urwire__encode_tool_mode_info,
+                                      urwire__visit_tool_mode_info},
+    [URWIRE_LAYOUT_SINGULARITY_INFO] = {URWIRE__KIND_NAME(479), urwire__encode_singularity_info,
                                         urwire__visit_singularity_info},
-    [URWIRE_LAYOUT_PAYLOAD_INFO] = {"payload_info", urwire__encode_payload_info, urwire__visit_payload_info},
+    [URWIRE_LAYOUT_PAYLOAD_INFO] = {URWIRE__KIND_NAME(496), urwire__encode_payload_info, urwire__visit_payload_info},
 };
 
 /* Decoding a sub-package is a switch of direct calls, not a decoder in urwire__package_kinds:
@@ -7245,44 +7262,45 @@ static const urwire__message_header urwire__message_headers[] = {
 /* Every urwire_message_kind: its record's type, its message type, and for a subtype the
  * functions of its layout. */
 static const urwire__message_kind urwire__message_kinds[] = {
-    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, NULL, NULL},
-    [URWIRE_KIND_ROBOT_STATE] = {"robot_state", &urwire__message_types[0], NULL, NULL},
-    [URWIRE_KIND_VERSION] = {"version", &urwire__message_types[1], urwire__encode_version, urwire__visit_version},
-    [URWIRE_KIND_SAFETY_MODE] = {"safety_mode", &urwire__message_types[1], urwire__encode_safety_mode,
+    [URWIRE_KIND_UNKNOWN_MESSAGE] = {URWIRE__KIND_NAME(0), NULL, NULL, NULL},
+    [URWIRE_KIND_ROBOT_STATE] = {URWIRE__KIND_NAME(8), &urwire__message_types[0], NULL, NULL},
+    [URWIRE_KIND_VERSION] = {URWIRE__KIND_NAME(20), &urwire__message_types[1], urwire__encode_version,
+                             urwire__visit_version},
+    [URWIRE_KIND_SAFETY_MODE] = {URWIRE__KIND_NAME(28), &urwire__message_types[1], urwire__encode_safety_mode,
                                  urwire__visit_safety_mode},
-    [URWIRE_KIND_ROBOT_COMM] = {"robot_comm", &urwire__message_types[1], urwire__encode_robot_comm,
+    [URWIRE_KIND_ROBOT_COMM] = {URWIRE__KIND_NAME(40), &urwire__message_types[1], urwire__encode_robot_comm,
                                 urwire__visit_robot_comm},
-    [URWIRE_KIND_KEY] = {"key", &urwire__message_types[1], urwire__encode_key, urwire__visit_key},
-    [URWIRE_KIND_PROGRAM_THREADS] = {"program_threads", &urwire__message_types[1], urwire__encode_program_threads,
+    [URWIRE_KIND_KEY] = {URWIRE__KIND_NAME(51), &urwire__message_types[1], urwire__encode_key, urwire__visit_key},
+    [URWIRE_KIND_PROGRAM_THREADS] = {URWIRE__KIND_NAME(55), &urwire__message_types[1], urwire__encode_program_threads,
                                      urwire__visit_program_threads},
-    [URWIRE_KIND_POPUP] = {"popup", &urwire__message_types[1], urwire__encode_popup, urwire__visit_popup},
-    [URWIRE_KIND_LABEL] = {"label", &urwire__message_types[1], urwire__encode_label, urwire__visit_label},
-    [URWIRE_KIND_VAR] = {"var", &urwire__message_types[1], urwire__encode_var, urwire__visit_var},
-    [URWIRE_KIND_HARDWARE_INFO] = {"hardware_info", &urwire__message_types[1], urwire__encode_hardware_info,
+    [URWIRE_KIND_POPUP] = {URWIRE__KIND_NAME(71), &urwire__message_types[1], urwire__encode_popup, urwire__visit_popup},
+    [URWIRE_KIND_LABEL] = {URWIRE__KIND_NAME(77), &urwire__message_types[1], urwire__encode_label, urwire__visit_label},
+    [URWIRE_KIND_VAR] = {URWIRE__KIND_NAME(83), &urwire__message_types[1], urwire__encode_var, urwire__visit_var},
+    [URWIRE_KIND_HARDWARE_INFO] = {URWIRE__KIND_NAME(87), &urwire__message_types[1], urwire__encode_hardware_info,
                                    urwire__visit_hardware_info},
-    [URWIRE_KIND_ROBOT_MESSAGE_12] = {"robot_message_12", &urwire__message_types[1], urwire__encode_robot_message_12,
-                                      urwire__visit_robot_message_12},
-    [URWIRE_KIND_REQUEST_VALUE] = {"request_value", &urwire__message_types[1], urwire__encode_request_value,
+    [URWIRE_KIND_ROBOT_MESSAGE_12] = {URWIRE__KIND_NAME(101), &urwire__message_types[1],
+                                      urwire__encode_robot_message_12, urwire__visit_robot_message_12},
+    [URWIRE_KIND_REQUEST_VALUE] = {URWIRE__KIND_NAME(118), &urwire__message_types[1], urwire__encode_request_value,
                                    urwire__visit_request_value},
-    [URWIRE_KIND_TEXT] = {"text", &urwire__message_types[1], urwire__encode_text, urwire__visit_text},
-    [URWIRE_KIND_RUNTIME_EXCEPTION] = {"runtime_exception", &urwire__message_types[1], urwire__encode_runtime_exception,
-                                       urwire__visit_runtime_exception},
-    [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {"global_variables_setup", &urwire__message_types[2],
+    [URWIRE_KIND_TEXT] = {URWIRE__KIND_NAME(132), &urwire__message_types[1], urwire__encode_text, urwire__visit_text},
+    [URWIRE_KIND_RUNTIME_EXCEPTION] = {URWIRE__KIND_NAME(137), &urwire__message_types[1],
+                                       urwire__encode_runtime_exception, urwire__visit_runtime_exception},
+    [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {URWIRE__KIND_NAME(155), &urwire__message_types[2],
                                             urwire__encode_global_variables_setup,
                                             urwire__visit_global_variables_setup},
-    [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {"global_variables_update", &urwire__message_types[2],
+    [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {URWIRE__KIND_NAME(178), &urwire__message_types[2],
                                              urwire__encode_global_variables_update,
                                              urwire__visit_global_variables_update},
-    [URWIRE_KIND_MODBUS_INFO] = {"modbus_info", &urwire__message_types[3], urwire__encode_modbus_info,
+    [URWIRE_KIND_MODBUS_INFO] = {URWIRE__KIND_NAME(202), &urwire__message_types[3], urwire__encode_modbus_info,
                                  urwire__visit_modbus_info},
-    [URWIRE_KIND_HMC] = {"hmc", &urwire__message_types[4], urwire__encode_hmc, urwire__visit_hmc},
-    [URWIRE_KIND_SAFETY_SETUP_BROADCAST] = {"safety_setup_broadcast", &urwire__message_types[5],
+    [URWIRE_KIND_HMC] = {URWIRE__KIND_NAME(214), &urwire__message_types[4], urwire__encode_hmc, urwire__visit_hmc},
+    [URWIRE_KIND_SAFETY_SETUP_BROADCAST] = {URWIRE__KIND_NAME(218), &urwire__message_types[5],
                                             urwire__encode_safety_setup_broadcast,
                                             urwire__visit_safety_setup_broadcast},
-    [URWIRE_KIND_SAFETY_COMPLIANCE_TOLERANCES] = {"safety_compliance_tolerances", &urwire__message_types[6],
+    [URWIRE_KIND_SAFETY_COMPLIANCE_TOLERANCES] = {URWIRE__KIND_NAME(241), &urwire__message_types[6],
                                                   urwire__encode_safety_compliance_tolerances,
                                                   urwire__visit_safety_compliance_tolerances},
-    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {URWIRE__KIND_NAME(0), NULL, NULL, NULL},
 };
 
 /* The decoder of each urwire_message_kind with a layout of its own. */

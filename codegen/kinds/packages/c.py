@@ -627,6 +627,16 @@ class _Forms:
         return dict(tag=tag, what=what, codes=codes, ncodes=ncodes, rows=rows, first_sizes=first_sizes)
 
 
+def kind_names(messages: list[dict], packages: list) -> Pool:
+    """The names of urwire__message_kinds and urwire__package_kinds in a pool of their own, which
+    only those tables read: as literals they would share the file's one literal section, which
+    the decoder's run tables keep whole, and be linked by a firmware that only decodes."""
+    names = ["unknown"]
+    for m in messages:
+        names += [m["name"]] if m["kind"] == "packages" else [s.name for s in m["subtypes"]]
+    return Pool(names + [s.name for s in packages])
+
+
 # ---- messages -------------------------------------------------------------------------------
 
 def build(protocol_plan: plan.ProtocolPlan) -> dict:
@@ -704,7 +714,9 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     vst = layout_structs[id(vs.layout)]
     vmsg = next(m for m in messages if m["code"] == vs.message_code)
     buffers = framer_buffers(protocol_plan)
+    kind_text = kind_names(messages, packages)
     return dict(buffers=buffers, structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
+                kind_text=kind_text.parts, kind_at=kind_text.offsets,
                 package_decoders=package_decoders, package_fast=package_fast,
                 segment_bounds=axis.bounds(), form_sizes=axis.size_slots,
                 framing=framing(p, lists[0], vst, vmsg, vs), known_types=known_types(p))
