@@ -1182,40 +1182,61 @@ URWIRE__PRIVATE bool urwire__put_prefixed(uint8_t *out, size_t cap, size_t *pos,
 }
 /* ---- enum names --------------------------------------------------------------------------- */
 
+/* message_type's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[160];
+} urwire__message_type_text = {
+    "DISCONNECT\0" "MODBUS_INFO_MESSAGE\0" "ROBOT_STATE\0" "ROBOT_MESSAGE\0" "HMC_MESSAGE\0"
+    "SAFETY_SETUP_BROADCAST_MESSAGE\0" "SAFETY_COMPLIANCE_TOLERANCES_MESSAGE\0" "PROGRAM_STATE_MESSAGE\0",
+};
+
 const char *urwire_message_type_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__message_type_text;
+
     switch (value) {
-    case 255: return "DISCONNECT";
-    case 5: return "MODBUS_INFO_MESSAGE";
-    case 16: return "ROBOT_STATE";
-    case 20: return "ROBOT_MESSAGE";
-    case 22: return "HMC_MESSAGE";
-    case 23: return "SAFETY_SETUP_BROADCAST_MESSAGE";
-    case 24: return "SAFETY_COMPLIANCE_TOLERANCES_MESSAGE";
-    case 25: return "PROGRAM_STATE_MESSAGE";
+    case 255: return text + 0;
+    case 5: return text + 11;
+    case 16: return text + 31;
+    case 20: return text + 43;
+    case 22: return text + 57;
+    case 23: return text + 69;
+    case 24: return text + 100;
+    case 25: return text + 137;
     default: return NULL;
     }
 }
 
+/* package_type's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[245];
+} urwire__package_type_text = {
+    "ROBOT_MODE_DATA\0" "JOINT_DATA\0" "TOOL_DATA\0" "MASTERBOARD_DATA\0" "CARTESIAN_INFO\0" "LASER_POINTER\0"
+    "CONFIGURATION_DATA\0" "FORCE_MODE_DATA\0" "ADDITIONAL_INFO\0" "NEEDED_FOR_CALIB_DATA\0" "SAFETY_DATA\0"
+    "TOOL_COMM_INFO\0" "TOOL_MODE_INFO\0" "SINGULARITY_INFO\0" "PAYLOAD_INFO\0" "KINEMATICS_INFO\0",
+};
+
 /* package_type, software up to 1.7 */
 static const char *urwire__package_type_up_to_1_7_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__package_type_text;
+
     switch (code) {
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_ROBOT_MODE_DATA: return "ROBOT_MODE_DATA";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_JOINT_DATA: return "JOINT_DATA";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_DATA: return "TOOL_DATA";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_MASTERBOARD_DATA: return "MASTERBOARD_DATA";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_CARTESIAN_INFO: return "CARTESIAN_INFO";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_LASER_POINTER: return "LASER_POINTER";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_CONFIGURATION_DATA: return "CONFIGURATION_DATA";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_FORCE_MODE_DATA: return "FORCE_MODE_DATA";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_ADDITIONAL_INFO: return "ADDITIONAL_INFO";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_NEEDED_FOR_CALIB_DATA: return "NEEDED_FOR_CALIB_DATA";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_SAFETY_DATA: return "SAFETY_DATA";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_COMM_INFO: return "TOOL_COMM_INFO";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_MODE_INFO: return "TOOL_MODE_INFO";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_SINGULARITY_INFO: return "SINGULARITY_INFO";
-    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_PAYLOAD_INFO: return "PAYLOAD_INFO";
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_ROBOT_MODE_DATA: return text + 0;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_JOINT_DATA: return text + 16;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_DATA: return text + 27;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_MASTERBOARD_DATA: return text + 37;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_CARTESIAN_INFO: return text + 54;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_LASER_POINTER: return text + 69;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_CONFIGURATION_DATA: return text + 83;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_FORCE_MODE_DATA: return text + 102;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_ADDITIONAL_INFO: return text + 118;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_NEEDED_FOR_CALIB_DATA: return text + 134;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_SAFETY_DATA: return text + 156;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_COMM_INFO: return text + 168;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_TOOL_MODE_INFO: return text + 183;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_SINGULARITY_INFO: return text + 198;
+    case URWIRE_PACKAGE_TYPE_UP_TO_1_7_PAYLOAD_INFO: return text + 215;
     default: return NULL;
     }
 }
@@ -1223,22 +1244,24 @@ static const char *urwire__package_type_up_to_1_7_name(int64_t code)
 /* package_type, software 1.8 and later */
 static const char *urwire__package_type_1_8_on_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__package_type_text;
+
     switch (code) {
-    case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA: return "ROBOT_MODE_DATA";
-    case URWIRE_PACKAGE_TYPE_JOINT_DATA: return "JOINT_DATA";
-    case URWIRE_PACKAGE_TYPE_TOOL_DATA: return "TOOL_DATA";
-    case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA: return "MASTERBOARD_DATA";
-    case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO: return "CARTESIAN_INFO";
-    case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO: return "KINEMATICS_INFO";
-    case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA: return "CONFIGURATION_DATA";
-    case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA: return "FORCE_MODE_DATA";
-    case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO: return "ADDITIONAL_INFO";
-    case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA: return "NEEDED_FOR_CALIB_DATA";
-    case URWIRE_PACKAGE_TYPE_SAFETY_DATA: return "SAFETY_DATA";
-    case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO: return "TOOL_COMM_INFO";
-    case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO: return "TOOL_MODE_INFO";
-    case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO: return "SINGULARITY_INFO";
-    case URWIRE_PACKAGE_TYPE_PAYLOAD_INFO: return "PAYLOAD_INFO";
+    case URWIRE_PACKAGE_TYPE_ROBOT_MODE_DATA: return text + 0;
+    case URWIRE_PACKAGE_TYPE_JOINT_DATA: return text + 16;
+    case URWIRE_PACKAGE_TYPE_TOOL_DATA: return text + 27;
+    case URWIRE_PACKAGE_TYPE_MASTERBOARD_DATA: return text + 37;
+    case URWIRE_PACKAGE_TYPE_CARTESIAN_INFO: return text + 54;
+    case URWIRE_PACKAGE_TYPE_KINEMATICS_INFO: return text + 228;
+    case URWIRE_PACKAGE_TYPE_CONFIGURATION_DATA: return text + 83;
+    case URWIRE_PACKAGE_TYPE_FORCE_MODE_DATA: return text + 102;
+    case URWIRE_PACKAGE_TYPE_ADDITIONAL_INFO: return text + 118;
+    case URWIRE_PACKAGE_TYPE_NEEDED_FOR_CALIB_DATA: return text + 134;
+    case URWIRE_PACKAGE_TYPE_SAFETY_DATA: return text + 156;
+    case URWIRE_PACKAGE_TYPE_TOOL_COMM_INFO: return text + 168;
+    case URWIRE_PACKAGE_TYPE_TOOL_MODE_INFO: return text + 183;
+    case URWIRE_PACKAGE_TYPE_SINGULARITY_INFO: return text + 198;
+    case URWIRE_PACKAGE_TYPE_PAYLOAD_INFO: return text + 215;
     default: return NULL;
     }
 }
@@ -1260,23 +1283,33 @@ const char *urwire_package_type_name(urwire_sw_version version, int64_t code)
                                                           URWIRE__COUNT(urwire__package_type_ranges))](code);
 }
 
+/* robot_message_type's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[141];
+} urwire__robot_message_type_text = {
+    "TEXT\0" "LABEL\0" "POPUP\0" "VERSION\0" "SAFETY_MODE\0" "ERROR_CODE\0" "KEY\0" "VAR\0" "REQUEST_VALUE\0"
+    "RUNTIME_EXCEPTION\0" "UNDOCUMENTED_12\0" "PROGRAM_LABEL_THREADS\0" "HARDWARE_INFO\0",
+};
+
 /* robot_message_type, software up to 1.8 */
 static const char *urwire__robot_message_type_up_to_1_8_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__robot_message_type_text;
+
     switch (code) {
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_TEXT: return "TEXT";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL: return "LABEL";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_POPUP: return "POPUP";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VERSION: return "VERSION";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_SAFETY_MODE: return "SAFETY_MODE";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_ERROR_CODE: return "ERROR_CODE";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_KEY: return "KEY";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR: return "VAR";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_REQUEST_VALUE: return "REQUEST_VALUE";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_RUNTIME_EXCEPTION: return "RUNTIME_EXCEPTION";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_UNDOCUMENTED_12: return "UNDOCUMENTED_12";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_PROGRAM_LABEL_THREADS: return "PROGRAM_LABEL_THREADS";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_HARDWARE_INFO: return "HARDWARE_INFO";
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_TEXT: return text + 0;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_LABEL: return text + 5;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_POPUP: return text + 11;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VERSION: return text + 17;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_SAFETY_MODE: return text + 25;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_ERROR_CODE: return text + 37;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_KEY: return text + 48;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_VAR: return text + 52;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_REQUEST_VALUE: return text + 56;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_RUNTIME_EXCEPTION: return text + 70;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_UNDOCUMENTED_12: return text + 88;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_PROGRAM_LABEL_THREADS: return text + 104;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UP_TO_1_8_HARDWARE_INFO: return text + 126;
     default: return NULL;
     }
 }
@@ -1284,18 +1317,20 @@ static const char *urwire__robot_message_type_up_to_1_8_name(int64_t code)
 /* robot_message_type, software 1.9 and later */
 static const char *urwire__robot_message_type_1_9_on_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__robot_message_type_text;
+
     switch (code) {
-    case URWIRE_ROBOT_MESSAGE_TYPE_TEXT: return "TEXT";
-    case URWIRE_ROBOT_MESSAGE_TYPE_POPUP: return "POPUP";
-    case URWIRE_ROBOT_MESSAGE_TYPE_VERSION: return "VERSION";
-    case URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE: return "SAFETY_MODE";
-    case URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE: return "ERROR_CODE";
-    case URWIRE_ROBOT_MESSAGE_TYPE_KEY: return "KEY";
-    case URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE: return "REQUEST_VALUE";
-    case URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION: return "RUNTIME_EXCEPTION";
-    case URWIRE_ROBOT_MESSAGE_TYPE_UNDOCUMENTED_12: return "UNDOCUMENTED_12";
-    case URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS: return "PROGRAM_LABEL_THREADS";
-    case URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO: return "HARDWARE_INFO";
+    case URWIRE_ROBOT_MESSAGE_TYPE_TEXT: return text + 0;
+    case URWIRE_ROBOT_MESSAGE_TYPE_POPUP: return text + 11;
+    case URWIRE_ROBOT_MESSAGE_TYPE_VERSION: return text + 17;
+    case URWIRE_ROBOT_MESSAGE_TYPE_SAFETY_MODE: return text + 25;
+    case URWIRE_ROBOT_MESSAGE_TYPE_ERROR_CODE: return text + 37;
+    case URWIRE_ROBOT_MESSAGE_TYPE_KEY: return text + 48;
+    case URWIRE_ROBOT_MESSAGE_TYPE_REQUEST_VALUE: return text + 56;
+    case URWIRE_ROBOT_MESSAGE_TYPE_RUNTIME_EXCEPTION: return text + 70;
+    case URWIRE_ROBOT_MESSAGE_TYPE_UNDOCUMENTED_12: return text + 88;
+    case URWIRE_ROBOT_MESSAGE_TYPE_PROGRAM_LABEL_THREADS: return text + 104;
+    case URWIRE_ROBOT_MESSAGE_TYPE_HARDWARE_INFO: return text + 126;
     default: return NULL;
     }
 }
@@ -1317,42 +1352,71 @@ const char *urwire_robot_message_type_name(urwire_sw_version version, int64_t co
                                                           URWIRE__COUNT(urwire__robot_message_type_ranges))](code);
 }
 
+/* program_state_message_type's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[65];
+} urwire__program_state_message_type_text = {
+    "GLOBAL_VARIABLES_SETUP\0" "GLOBAL_VARIABLES_UPDATE\0" "VARIABLES_UPDATE\0",
+};
+
 const char *urwire_program_state_message_type_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__program_state_message_type_text;
+
     switch (value) {
-    case 0: return "GLOBAL_VARIABLES_SETUP";
-    case 1: return "GLOBAL_VARIABLES_UPDATE";
-    case 2: return "VARIABLES_UPDATE";
+    case 0: return text + 0;
+    case 1: return text + 23;
+    case 2: return text + 47;
     default: return NULL;
     }
 }
 
+/* control_mode's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[29];
+} urwire__control_mode_text = {
+    "POSITION\0" "TEACH\0" "FORCE\0" "TORQUE\0",
+};
+
 const char *urwire_control_mode_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__control_mode_text;
+
     switch (value) {
-    case 0: return "POSITION";
-    case 1: return "TEACH";
-    case 2: return "FORCE";
-    case 3: return "TORQUE";
+    case 0: return text + 0;
+    case 1: return text + 9;
+    case 2: return text + 15;
+    case 3: return text + 21;
     default: return NULL;
     }
 }
+
+/* robot_mode's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[234];
+} urwire__robot_mode_text = {
+    "RUNNING\0" "FREEDRIVE\0" "READY\0" "INITIALIZING\0" "SECURITY_STOPPED\0" "EMERGENCY_STOPPED\0" "FATAL_ERROR\0"
+    "NO_POWER\0" "NOT_CONNECTED\0" "SHUTDOWN\0" "SAFEGUARD_STOP\0" "NO_CONTROLLER\0" "DISCONNECTED\0"
+    "CONFIRM_SAFETY\0" "BOOTING\0" "POWER_OFF\0" "POWER_ON\0" "IDLE\0" "BACKDRIVE\0" "UPDATING_FIRMWARE\0",
+};
 
 /* robot_mode, software up to 1.8 */
 static const char *urwire__robot_mode_up_to_1_8_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__robot_mode_text;
+
     switch (code) {
-    case URWIRE_ROBOT_MODE_UP_TO_1_8_RUNNING: return "RUNNING";
-    case URWIRE_ROBOT_MODE_UP_TO_1_8_FREEDRIVE: return "FREEDRIVE";
-    case URWIRE_ROBOT_MODE_UP_TO_1_8_READY: return "READY";
-    case URWIRE_ROBOT_MODE_UP_TO_1_8_INITIALIZING: return "INITIALIZING";
-    case URWIRE_ROBOT_MODE_UP_TO_1_8_SECURITY_STOPPED: return "SECURITY_STOPPED";
-    case URWIRE_ROBOT_MODE_UP_TO_1_8_EMERGENCY_STOPPED: return "EMERGENCY_STOPPED";
-    case URWIRE_ROBOT_MODE_UP_TO_1_8_FATAL_ERROR: return "FATAL_ERROR";
-    case URWIRE_ROBOT_MODE_UP_TO_1_8_NO_POWER: return "NO_POWER";
-    case URWIRE_ROBOT_MODE_UP_TO_1_8_NOT_CONNECTED: return "NOT_CONNECTED";
-    case URWIRE_ROBOT_MODE_UP_TO_1_8_SHUTDOWN: return "SHUTDOWN";
-    case URWIRE_ROBOT_MODE_UP_TO_1_8_SAFEGUARD_STOP: return "SAFEGUARD_STOP";
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_RUNNING: return text + 0;
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_FREEDRIVE: return text + 8;
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_READY: return text + 18;
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_INITIALIZING: return text + 24;
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_SECURITY_STOPPED: return text + 37;
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_EMERGENCY_STOPPED: return text + 54;
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_FATAL_ERROR: return text + 72;
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_NO_POWER: return text + 84;
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_NOT_CONNECTED: return text + 93;
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_SHUTDOWN: return text + 107;
+    case URWIRE_ROBOT_MODE_UP_TO_1_8_SAFEGUARD_STOP: return text + 116;
     default: return NULL;
     }
 }
@@ -1360,17 +1424,19 @@ static const char *urwire__robot_mode_up_to_1_8_name(int64_t code)
 /* robot_mode, software 3.0 and later */
 static const char *urwire__robot_mode_3_0_on_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__robot_mode_text;
+
     switch (code) {
-    case URWIRE_ROBOT_MODE_NO_CONTROLLER: return "NO_CONTROLLER";
-    case URWIRE_ROBOT_MODE_DISCONNECTED: return "DISCONNECTED";
-    case URWIRE_ROBOT_MODE_CONFIRM_SAFETY: return "CONFIRM_SAFETY";
-    case URWIRE_ROBOT_MODE_BOOTING: return "BOOTING";
-    case URWIRE_ROBOT_MODE_POWER_OFF: return "POWER_OFF";
-    case URWIRE_ROBOT_MODE_POWER_ON: return "POWER_ON";
-    case URWIRE_ROBOT_MODE_IDLE: return "IDLE";
-    case URWIRE_ROBOT_MODE_BACKDRIVE: return "BACKDRIVE";
-    case URWIRE_ROBOT_MODE_RUNNING: return "RUNNING";
-    case URWIRE_ROBOT_MODE_UPDATING_FIRMWARE: return "UPDATING_FIRMWARE";
+    case URWIRE_ROBOT_MODE_NO_CONTROLLER: return text + 131;
+    case URWIRE_ROBOT_MODE_DISCONNECTED: return text + 145;
+    case URWIRE_ROBOT_MODE_CONFIRM_SAFETY: return text + 158;
+    case URWIRE_ROBOT_MODE_BOOTING: return text + 173;
+    case URWIRE_ROBOT_MODE_POWER_OFF: return text + 181;
+    case URWIRE_ROBOT_MODE_POWER_ON: return text + 191;
+    case URWIRE_ROBOT_MODE_IDLE: return text + 200;
+    case URWIRE_ROBOT_MODE_BACKDRIVE: return text + 205;
+    case URWIRE_ROBOT_MODE_RUNNING: return text + 0;
+    case URWIRE_ROBOT_MODE_UPDATING_FIRMWARE: return text + 215;
     default: return NULL;
     }
 }
@@ -1392,29 +1458,41 @@ const char *urwire_robot_mode_name(urwire_sw_version version, int64_t code)
                                                           URWIRE__COUNT(urwire__robot_mode_ranges))](code);
 }
 
+/* joint_mode's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[323];
+} urwire__joint_mode_text = {
+    "PART_D_CALIBRATION\0" "BACKDRIVE\0" "POWER_OFF\0" "EMERGENCY_STOPPED\0" "CALVAL_INITIALIZATION\0" "ERROR\0"
+    "FREEDRIVE\0" "SIMULATED\0" "NOT_RESPONDING\0" "MOTOR_INITIALISATION\0" "ADC_CALIBRATION\0" "DEAD_COMMUTATION\0"
+    "BOOTLOADER\0" "CALIBRATION\0" "STOPPED\0" "FAULT\0" "RUNNING\0" "INITIALIZATION\0" "IDLE\0" "SHUTTING_DOWN\0"
+    "BOOTING\0" "PART_D_CALIBRATION_ERROR\0" "RESET\0" "VIOLATION\0" "READY_FOR_POWER_OFF\0",
+};
+
 /* joint_mode, software up to 1.8 */
 static const char *urwire__joint_mode_up_to_1_8_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__joint_mode_text;
+
     switch (code) {
-    case URWIRE_JOINT_MODE_UP_TO_1_8_PART_D_CALIBRATION: return "PART_D_CALIBRATION";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_BACKDRIVE: return "BACKDRIVE";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_POWER_OFF: return "POWER_OFF";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_EMERGENCY_STOPPED: return "EMERGENCY_STOPPED";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_CALVAL_INITIALIZATION: return "CALVAL_INITIALIZATION";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_ERROR: return "ERROR";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_FREEDRIVE: return "FREEDRIVE";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_SIMULATED: return "SIMULATED";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_NOT_RESPONDING: return "NOT_RESPONDING";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_ADC_CALIBRATION: return "ADC_CALIBRATION";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_DEAD_COMMUTATION: return "DEAD_COMMUTATION";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_BOOTLOADER: return "BOOTLOADER";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_CALIBRATION: return "CALIBRATION";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_STOPPED: return "STOPPED";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_FAULT: return "FAULT";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_RUNNING: return "RUNNING";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_INITIALIZATION: return "INITIALIZATION";
-    case URWIRE_JOINT_MODE_UP_TO_1_8_IDLE: return "IDLE";
+    case URWIRE_JOINT_MODE_UP_TO_1_8_PART_D_CALIBRATION: return text + 0;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_BACKDRIVE: return text + 19;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_POWER_OFF: return text + 29;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_EMERGENCY_STOPPED: return text + 39;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_CALVAL_INITIALIZATION: return text + 57;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_ERROR: return text + 79;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_FREEDRIVE: return text + 85;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_SIMULATED: return text + 95;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_NOT_RESPONDING: return text + 105;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_MOTOR_INITIALISATION: return text + 120;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_ADC_CALIBRATION: return text + 141;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_DEAD_COMMUTATION: return text + 157;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_BOOTLOADER: return text + 174;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_CALIBRATION: return text + 185;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_STOPPED: return text + 197;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_FAULT: return text + 205;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_RUNNING: return text + 211;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_INITIALIZATION: return text + 219;
+    case URWIRE_JOINT_MODE_UP_TO_1_8_IDLE: return text + 234;
     default: return NULL;
     }
 }
@@ -1422,20 +1500,22 @@ static const char *urwire__joint_mode_up_to_1_8_name(int64_t code)
 /* joint_mode, software 3.0 to 3.15 */
 static const char *urwire__joint_mode_3_0_to_3_15_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__joint_mode_text;
+
     switch (code) {
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_SHUTTING_DOWN: return "SHUTTING_DOWN";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_PART_D_CALIBRATION: return "PART_D_CALIBRATION";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_BACKDRIVE: return "BACKDRIVE";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_POWER_OFF: return "POWER_OFF";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_NOT_RESPONDING: return "NOT_RESPONDING";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_BOOTING: return "BOOTING";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_PART_D_CALIBRATION_ERROR: return "PART_D_CALIBRATION_ERROR";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_BOOTLOADER: return "BOOTLOADER";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_CALIBRATION: return "CALIBRATION";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_FAULT: return "FAULT";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_RUNNING: return "RUNNING";
-    case URWIRE_JOINT_MODE_3_0_TO_3_15_IDLE: return "IDLE";
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_SHUTTING_DOWN: return text + 239;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_PART_D_CALIBRATION: return text + 0;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_BACKDRIVE: return text + 19;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_POWER_OFF: return text + 29;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_NOT_RESPONDING: return text + 105;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_MOTOR_INITIALISATION: return text + 120;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_BOOTING: return text + 253;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_PART_D_CALIBRATION_ERROR: return text + 261;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_BOOTLOADER: return text + 174;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_CALIBRATION: return text + 185;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_FAULT: return text + 205;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_RUNNING: return text + 211;
+    case URWIRE_JOINT_MODE_3_0_TO_3_15_IDLE: return text + 234;
     default: return NULL;
     }
 }
@@ -1443,18 +1523,20 @@ static const char *urwire__joint_mode_3_0_to_3_15_name(int64_t code)
 /* joint_mode, software 5.0 */
 static const char *urwire__joint_mode_5_0_to_5_0_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__joint_mode_text;
+
     switch (code) {
-    case URWIRE_JOINT_MODE_5_0_TO_5_0_RESET: return "RESET";
-    case URWIRE_JOINT_MODE_5_0_TO_5_0_SHUTTING_DOWN: return "SHUTTING_DOWN";
-    case URWIRE_JOINT_MODE_5_0_TO_5_0_BACKDRIVE: return "BACKDRIVE";
-    case URWIRE_JOINT_MODE_5_0_TO_5_0_POWER_OFF: return "POWER_OFF";
-    case URWIRE_JOINT_MODE_5_0_TO_5_0_NOT_RESPONDING: return "NOT_RESPONDING";
-    case URWIRE_JOINT_MODE_5_0_TO_5_0_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
-    case URWIRE_JOINT_MODE_5_0_TO_5_0_BOOTING: return "BOOTING";
-    case URWIRE_JOINT_MODE_5_0_TO_5_0_VIOLATION: return "VIOLATION";
-    case URWIRE_JOINT_MODE_5_0_TO_5_0_FAULT: return "FAULT";
-    case URWIRE_JOINT_MODE_5_0_TO_5_0_RUNNING: return "RUNNING";
-    case URWIRE_JOINT_MODE_5_0_TO_5_0_IDLE: return "IDLE";
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_RESET: return text + 286;
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_SHUTTING_DOWN: return text + 239;
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_BACKDRIVE: return text + 19;
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_POWER_OFF: return text + 29;
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_NOT_RESPONDING: return text + 105;
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_MOTOR_INITIALISATION: return text + 120;
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_BOOTING: return text + 253;
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_VIOLATION: return text + 292;
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_FAULT: return text + 205;
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_RUNNING: return text + 211;
+    case URWIRE_JOINT_MODE_5_0_TO_5_0_IDLE: return text + 234;
     default: return NULL;
     }
 }
@@ -1462,19 +1544,21 @@ static const char *urwire__joint_mode_5_0_to_5_0_name(int64_t code)
 /* joint_mode, software 5.1 and later */
 static const char *urwire__joint_mode_5_1_on_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__joint_mode_text;
+
     switch (code) {
-    case URWIRE_JOINT_MODE_RESET: return "RESET";
-    case URWIRE_JOINT_MODE_SHUTTING_DOWN: return "SHUTTING_DOWN";
-    case URWIRE_JOINT_MODE_BACKDRIVE: return "BACKDRIVE";
-    case URWIRE_JOINT_MODE_POWER_OFF: return "POWER_OFF";
-    case URWIRE_JOINT_MODE_READY_FOR_POWER_OFF: return "READY_FOR_POWER_OFF";
-    case URWIRE_JOINT_MODE_NOT_RESPONDING: return "NOT_RESPONDING";
-    case URWIRE_JOINT_MODE_MOTOR_INITIALISATION: return "MOTOR_INITIALISATION";
-    case URWIRE_JOINT_MODE_BOOTING: return "BOOTING";
-    case URWIRE_JOINT_MODE_VIOLATION: return "VIOLATION";
-    case URWIRE_JOINT_MODE_FAULT: return "FAULT";
-    case URWIRE_JOINT_MODE_RUNNING: return "RUNNING";
-    case URWIRE_JOINT_MODE_IDLE: return "IDLE";
+    case URWIRE_JOINT_MODE_RESET: return text + 286;
+    case URWIRE_JOINT_MODE_SHUTTING_DOWN: return text + 239;
+    case URWIRE_JOINT_MODE_BACKDRIVE: return text + 19;
+    case URWIRE_JOINT_MODE_POWER_OFF: return text + 29;
+    case URWIRE_JOINT_MODE_READY_FOR_POWER_OFF: return text + 302;
+    case URWIRE_JOINT_MODE_NOT_RESPONDING: return text + 105;
+    case URWIRE_JOINT_MODE_MOTOR_INITIALISATION: return text + 120;
+    case URWIRE_JOINT_MODE_BOOTING: return text + 253;
+    case URWIRE_JOINT_MODE_VIOLATION: return text + 292;
+    case URWIRE_JOINT_MODE_FAULT: return text + 205;
+    case URWIRE_JOINT_MODE_RUNNING: return text + 211;
+    case URWIRE_JOINT_MODE_IDLE: return text + 234;
     default: return NULL;
     }
 }
@@ -1500,39 +1584,63 @@ const char *urwire_joint_mode_name(urwire_sw_version version, int64_t code)
                                                           URWIRE__COUNT(urwire__joint_mode_ranges))](code);
 }
 
+/* tool_mode's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[84];
+} urwire__tool_mode_text = {
+    "RESET\0" "SHUTTING_DOWN\0" "POWER_OFF\0" "NOT_RESPONDING\0" "BOOTING\0" "BOOTLOADER\0" "FAULT\0" "RUNNING\0"
+    "IDLE\0",
+};
+
 const char *urwire_tool_mode_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__tool_mode_text;
+
     switch (value) {
-    case 235: return "RESET";
-    case 236: return "SHUTTING_DOWN";
-    case 239: return "POWER_OFF";
-    case 245: return "NOT_RESPONDING";
-    case 247: return "BOOTING";
-    case 249: return "BOOTLOADER";
-    case 252: return "FAULT";
-    case 253: return "RUNNING";
-    case 255: return "IDLE";
+    case 235: return text + 0;
+    case 236: return text + 6;
+    case 239: return text + 20;
+    case 245: return text + 30;
+    case 247: return text + 45;
+    case 249: return text + 53;
+    case 252: return text + 64;
+    case 253: return text + 70;
+    case 255: return text + 78;
     default: return NULL;
     }
 }
 
+/* message_source's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[466];
+} urwire__message_source_text = {
+    "BASE\0" "SHOULDER\0" "ELBOW\0" "WRIST1\0" "WRIST2\0" "WRIST3\0" "TOOL\0" "SAFETYSYS\0" "CONTROLLER\0"
+    "RTMACHINE\0" "SIMULATED_ROBOT\0" "GUI\0" "CONTROL_BOX\0" "JOINT_0_FPGA\0" "JOINT_0_A\0" "JOINT_0_B\0"
+    "JOINT_1_FPGA\0" "JOINT_1_A\0" "JOINT_1_B\0" "JOINT_2_FPGA\0" "JOINT_2_A\0" "JOINT_2_B\0" "JOINT_3_FPGA\0"
+    "JOINT_3_A\0" "JOINT_3_B\0" "JOINT_4_FPGA\0" "JOINT_4_A\0" "JOINT_4_B\0" "JOINT_5_FPGA\0" "JOINT_5_A\0"
+    "JOINT_5_B\0" "TOOL_FPGA\0" "TOOL_A\0" "TOOL_B\0" "EUROMAP_FPGA\0" "EUROMAP_A\0" "EUROMAP_B\0" "TEACH_PENDANT_A\0"
+    "TEACH_PENDANT_B\0" "SCB_FPGA\0" "SAFETY_PROCESSOR_UA\0" "SAFETY_PROCESSOR_UB\0" "ROBOTINTERFACE\0" "RTDE\0",
+};
+
 /* message_source, software up to 1.8 */
 static const char *urwire__message_source_up_to_1_8_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__message_source_text;
+
     switch (code) {
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_BASE: return "BASE";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SHOULDER: return "SHOULDER";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_ELBOW: return "ELBOW";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST1: return "WRIST1";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST2: return "WRIST2";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST3: return "WRIST3";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_TOOL: return "TOOL";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SAFETYSYS: return "SAFETYSYS";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_CONTROLLER: return "CONTROLLER";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_RTMACHINE: return "RTMACHINE";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SIMULATED_ROBOT: return "SIMULATED_ROBOT";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_GUI: return "GUI";
-    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_CONTROL_BOX: return "CONTROL_BOX";
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_BASE: return text + 0;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SHOULDER: return text + 5;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_ELBOW: return text + 14;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST1: return text + 20;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST2: return text + 27;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_WRIST3: return text + 34;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_TOOL: return text + 41;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SAFETYSYS: return text + 46;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_CONTROLLER: return text + 56;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_RTMACHINE: return text + 67;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_SIMULATED_ROBOT: return text + 77;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_GUI: return text + 93;
+    case URWIRE_MESSAGE_SOURCE_UP_TO_1_8_CONTROL_BOX: return text + 97;
     default: return NULL;
     }
 }
@@ -1540,42 +1648,44 @@ static const char *urwire__message_source_up_to_1_8_name(int64_t code)
 /* message_source, software 3.0 and later */
 static const char *urwire__message_source_3_0_on_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__message_source_text;
+
     switch (code) {
-    case URWIRE_MESSAGE_SOURCE_JOINT_0_FPGA: return "JOINT_0_FPGA";
-    case URWIRE_MESSAGE_SOURCE_JOINT_0_A: return "JOINT_0_A";
-    case URWIRE_MESSAGE_SOURCE_JOINT_0_B: return "JOINT_0_B";
-    case URWIRE_MESSAGE_SOURCE_JOINT_1_FPGA: return "JOINT_1_FPGA";
-    case URWIRE_MESSAGE_SOURCE_JOINT_1_A: return "JOINT_1_A";
-    case URWIRE_MESSAGE_SOURCE_JOINT_1_B: return "JOINT_1_B";
-    case URWIRE_MESSAGE_SOURCE_JOINT_2_FPGA: return "JOINT_2_FPGA";
-    case URWIRE_MESSAGE_SOURCE_JOINT_2_A: return "JOINT_2_A";
-    case URWIRE_MESSAGE_SOURCE_JOINT_2_B: return "JOINT_2_B";
-    case URWIRE_MESSAGE_SOURCE_JOINT_3_FPGA: return "JOINT_3_FPGA";
-    case URWIRE_MESSAGE_SOURCE_JOINT_3_A: return "JOINT_3_A";
-    case URWIRE_MESSAGE_SOURCE_JOINT_3_B: return "JOINT_3_B";
-    case URWIRE_MESSAGE_SOURCE_JOINT_4_FPGA: return "JOINT_4_FPGA";
-    case URWIRE_MESSAGE_SOURCE_JOINT_4_A: return "JOINT_4_A";
-    case URWIRE_MESSAGE_SOURCE_JOINT_4_B: return "JOINT_4_B";
-    case URWIRE_MESSAGE_SOURCE_JOINT_5_FPGA: return "JOINT_5_FPGA";
-    case URWIRE_MESSAGE_SOURCE_JOINT_5_A: return "JOINT_5_A";
-    case URWIRE_MESSAGE_SOURCE_JOINT_5_B: return "JOINT_5_B";
-    case URWIRE_MESSAGE_SOURCE_TOOL_FPGA: return "TOOL_FPGA";
-    case URWIRE_MESSAGE_SOURCE_TOOL_A: return "TOOL_A";
-    case URWIRE_MESSAGE_SOURCE_TOOL_B: return "TOOL_B";
-    case URWIRE_MESSAGE_SOURCE_EUROMAP_FPGA: return "EUROMAP_FPGA";
-    case URWIRE_MESSAGE_SOURCE_EUROMAP_A: return "EUROMAP_A";
-    case URWIRE_MESSAGE_SOURCE_EUROMAP_B: return "EUROMAP_B";
-    case URWIRE_MESSAGE_SOURCE_TEACH_PENDANT_A: return "TEACH_PENDANT_A";
-    case URWIRE_MESSAGE_SOURCE_TEACH_PENDANT_B: return "TEACH_PENDANT_B";
-    case URWIRE_MESSAGE_SOURCE_SCB_FPGA: return "SCB_FPGA";
-    case URWIRE_MESSAGE_SOURCE_SAFETY_PROCESSOR_UA: return "SAFETY_PROCESSOR_UA";
-    case URWIRE_MESSAGE_SOURCE_SAFETY_PROCESSOR_UB: return "SAFETY_PROCESSOR_UB";
-    case URWIRE_MESSAGE_SOURCE_ROBOTINTERFACE: return "ROBOTINTERFACE";
-    case URWIRE_MESSAGE_SOURCE_RTMACHINE: return "RTMACHINE";
-    case URWIRE_MESSAGE_SOURCE_SIMULATED_ROBOT: return "SIMULATED_ROBOT";
-    case URWIRE_MESSAGE_SOURCE_GUI: return "GUI";
-    case URWIRE_MESSAGE_SOURCE_CONTROLLER: return "CONTROLLER";
-    case URWIRE_MESSAGE_SOURCE_RTDE: return "RTDE";
+    case URWIRE_MESSAGE_SOURCE_JOINT_0_FPGA: return text + 109;
+    case URWIRE_MESSAGE_SOURCE_JOINT_0_A: return text + 122;
+    case URWIRE_MESSAGE_SOURCE_JOINT_0_B: return text + 132;
+    case URWIRE_MESSAGE_SOURCE_JOINT_1_FPGA: return text + 142;
+    case URWIRE_MESSAGE_SOURCE_JOINT_1_A: return text + 155;
+    case URWIRE_MESSAGE_SOURCE_JOINT_1_B: return text + 165;
+    case URWIRE_MESSAGE_SOURCE_JOINT_2_FPGA: return text + 175;
+    case URWIRE_MESSAGE_SOURCE_JOINT_2_A: return text + 188;
+    case URWIRE_MESSAGE_SOURCE_JOINT_2_B: return text + 198;
+    case URWIRE_MESSAGE_SOURCE_JOINT_3_FPGA: return text + 208;
+    case URWIRE_MESSAGE_SOURCE_JOINT_3_A: return text + 221;
+    case URWIRE_MESSAGE_SOURCE_JOINT_3_B: return text + 231;
+    case URWIRE_MESSAGE_SOURCE_JOINT_4_FPGA: return text + 241;
+    case URWIRE_MESSAGE_SOURCE_JOINT_4_A: return text + 254;
+    case URWIRE_MESSAGE_SOURCE_JOINT_4_B: return text + 264;
+    case URWIRE_MESSAGE_SOURCE_JOINT_5_FPGA: return text + 274;
+    case URWIRE_MESSAGE_SOURCE_JOINT_5_A: return text + 287;
+    case URWIRE_MESSAGE_SOURCE_JOINT_5_B: return text + 297;
+    case URWIRE_MESSAGE_SOURCE_TOOL_FPGA: return text + 307;
+    case URWIRE_MESSAGE_SOURCE_TOOL_A: return text + 317;
+    case URWIRE_MESSAGE_SOURCE_TOOL_B: return text + 324;
+    case URWIRE_MESSAGE_SOURCE_EUROMAP_FPGA: return text + 331;
+    case URWIRE_MESSAGE_SOURCE_EUROMAP_A: return text + 344;
+    case URWIRE_MESSAGE_SOURCE_EUROMAP_B: return text + 354;
+    case URWIRE_MESSAGE_SOURCE_TEACH_PENDANT_A: return text + 364;
+    case URWIRE_MESSAGE_SOURCE_TEACH_PENDANT_B: return text + 380;
+    case URWIRE_MESSAGE_SOURCE_SCB_FPGA: return text + 396;
+    case URWIRE_MESSAGE_SOURCE_SAFETY_PROCESSOR_UA: return text + 405;
+    case URWIRE_MESSAGE_SOURCE_SAFETY_PROCESSOR_UB: return text + 425;
+    case URWIRE_MESSAGE_SOURCE_ROBOTINTERFACE: return text + 445;
+    case URWIRE_MESSAGE_SOURCE_RTMACHINE: return text + 67;
+    case URWIRE_MESSAGE_SOURCE_SIMULATED_ROBOT: return text + 77;
+    case URWIRE_MESSAGE_SOURCE_GUI: return text + 93;
+    case URWIRE_MESSAGE_SOURCE_CONTROLLER: return text + 56;
+    case URWIRE_MESSAGE_SOURCE_RTDE: return text + 460;
     default: return NULL;
     }
 }
@@ -1597,138 +1707,224 @@ const char *urwire_message_source_name(urwire_sw_version version, int64_t code)
                                                           URWIRE__COUNT(urwire__message_source_ranges))](code);
 }
 
+/* safety_mode's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[155];
+} urwire__safety_mode_text = {
+    "NORMAL\0" "REDUCED\0" "PROTECTIVE_STOP\0" "RECOVERY\0" "SAFEGUARD_STOP\0" "SYSTEM_EMERGENCY_STOP\0"
+    "ROBOT_EMERGENCY_STOP\0" "VIOLATION\0" "FAULT\0" "VALIDATE_JOINT_ID\0" "UNDEFINED_SAFETY_MODE\0",
+};
+
 const char *urwire_safety_mode_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__safety_mode_text;
+
     switch (value) {
-    case 1: return "NORMAL";
-    case 2: return "REDUCED";
-    case 3: return "PROTECTIVE_STOP";
-    case 4: return "RECOVERY";
-    case 5: return "SAFEGUARD_STOP";
-    case 6: return "SYSTEM_EMERGENCY_STOP";
-    case 7: return "ROBOT_EMERGENCY_STOP";
-    case 8: return "VIOLATION";
-    case 9: return "FAULT";
-    case 10: return "VALIDATE_JOINT_ID";
-    case 11: return "UNDEFINED_SAFETY_MODE";
+    case 1: return text + 0;
+    case 2: return text + 7;
+    case 3: return text + 15;
+    case 4: return text + 31;
+    case 5: return text + 40;
+    case 6: return text + 55;
+    case 7: return text + 77;
+    case 8: return text + 98;
+    case 9: return text + 108;
+    case 10: return text + 114;
+    case 11: return text + 132;
     default: return NULL;
     }
 }
+
+/* master_safety_state's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[112];
+} urwire__master_safety_state_text = {
+    "UNDEFINED\0" "BOOTLOADER\0" "FAULT\0" "BOOTING\0" "INITIALIZING\0" "ROBOT_EMERGENCY_STOP\0"
+    "EXTERNAL_EMERGENCY_STOP\0" "SAFEGUARD_STOP\0" "OK\0",
+};
 
 const char *urwire_master_safety_state_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__master_safety_state_text;
+
     switch (value) {
-    case 0: return "UNDEFINED";
-    case 1: return "BOOTLOADER";
-    case 2: return "FAULT";
-    case 3: return "BOOTING";
-    case 4: return "INITIALIZING";
-    case 5: return "ROBOT_EMERGENCY_STOP";
-    case 6: return "EXTERNAL_EMERGENCY_STOP";
-    case 7: return "SAFEGUARD_STOP";
-    case 8: return "OK";
+    case 0: return text + 0;
+    case 1: return text + 10;
+    case 2: return text + 21;
+    case 3: return text + 27;
+    case 4: return text + 35;
+    case 5: return text + 48;
+    case 6: return text + 69;
+    case 7: return text + 93;
+    case 8: return text + 108;
     default: return NULL;
     }
 }
+
+/* master_on_off_state's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[31];
+} urwire__master_on_off_state_text = {
+    "OFF\0" "TURNING_ON\0" "ON\0" "TURNING_OFF\0",
+};
 
 const char *urwire_master_on_off_state_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__master_on_off_state_text;
+
     switch (value) {
-    case 0: return "OFF";
-    case 1: return "TURNING_ON";
-    case 2: return "ON";
-    case 3: return "TURNING_OFF";
+    case 0: return text + 0;
+    case 1: return text + 4;
+    case 2: return text + 15;
+    case 3: return text + 18;
     default: return NULL;
     }
 }
+
+/* safety_status's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[221];
+} urwire__safety_status_text = {
+    "NORMAL\0" "REDUCED\0" "PROTECTIVE_STOP\0" "RECOVERY\0" "SAFEGUARD_STOP\0" "SYSTEM_EMERGENCY_STOP\0"
+    "ROBOT_EMERGENCY_STOP\0" "VIOLATION\0" "FAULT\0" "VALIDATE_JOINT_ID\0" "UNDEFINED_SAFETY_MODE\0"
+    "AUTOMATIC_MODE_SAFEGUARD_STOP\0" "SYSTEM_THREE_POSITION_ENABLING_STOP\0",
+};
 
 const char *urwire_safety_status_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__safety_status_text;
+
     switch (value) {
-    case 1: return "NORMAL";
-    case 2: return "REDUCED";
-    case 3: return "PROTECTIVE_STOP";
-    case 4: return "RECOVERY";
-    case 5: return "SAFEGUARD_STOP";
-    case 6: return "SYSTEM_EMERGENCY_STOP";
-    case 7: return "ROBOT_EMERGENCY_STOP";
-    case 8: return "VIOLATION";
-    case 9: return "FAULT";
-    case 10: return "VALIDATE_JOINT_ID";
-    case 11: return "UNDEFINED_SAFETY_MODE";
-    case 12: return "AUTOMATIC_MODE_SAFEGUARD_STOP";
-    case 13: return "SYSTEM_THREE_POSITION_ENABLING_STOP";
+    case 1: return text + 0;
+    case 2: return text + 7;
+    case 3: return text + 15;
+    case 4: return text + 31;
+    case 5: return text + 40;
+    case 6: return text + 55;
+    case 7: return text + 77;
+    case 8: return text + 98;
+    case 9: return text + 108;
+    case 10: return text + 114;
+    case 11: return text + 132;
+    case 12: return text + 154;
+    case 13: return text + 184;
     default: return NULL;
     }
 }
+
+/* report_level's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[131];
+} urwire__report_level_text = {
+    "DEBUG\0" "INFO\0" "WARNING\0" "VIOLATION\0" "FAULT\0" "CRITICAL_FAULT\0" "DEVL_DEBUG\0" "DEVL_INFO\0"
+    "DEVL_WARNING\0" "DEVL_VIOLATION\0" "DEVL_FAULT\0" "DEVL_CRITICAL_FAULT\0",
+};
 
 const char *urwire_report_level_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__report_level_text;
+
     switch (value) {
-    case 0: return "DEBUG";
-    case 1: return "INFO";
-    case 2: return "WARNING";
-    case 3: return "VIOLATION";
-    case 4: return "FAULT";
-    case 5: return "CRITICAL_FAULT";
-    case 128: return "DEVL_DEBUG";
-    case 129: return "DEVL_INFO";
-    case 130: return "DEVL_WARNING";
-    case 131: return "DEVL_VIOLATION";
-    case 132: return "DEVL_FAULT";
-    case 133: return "DEVL_CRITICAL_FAULT";
+    case 0: return text + 0;
+    case 1: return text + 6;
+    case 2: return text + 11;
+    case 3: return text + 19;
+    case 4: return text + 29;
+    case 5: return text + 35;
+    case 128: return text + 50;
+    case 129: return text + 61;
+    case 130: return text + 71;
+    case 131: return text + 84;
+    case 132: return text + 99;
+    case 133: return text + 110;
     default: return NULL;
     }
 }
+
+/* requested_type's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[72];
+} urwire__requested_type_text = {
+    "BOOLEAN\0" "INTEGER\0" "FLOAT\0" "STRING\0" "POSE\0" "JOINTVECTOR\0" "WAYPOINT\0" "EXPRESSION\0" "NONE\0",
+};
 
 const char *urwire_requested_type_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__requested_type_text;
+
     switch (value) {
-    case 0: return "BOOLEAN";
-    case 1: return "INTEGER";
-    case 2: return "FLOAT";
-    case 3: return "STRING";
-    case 4: return "POSE";
-    case 5: return "JOINTVECTOR";
-    case 6: return "WAYPOINT";
-    case 7: return "EXPRESSION";
-    case 8: return "NONE";
+    case 0: return text + 0;
+    case 1: return text + 8;
+    case 2: return text + 16;
+    case 3: return text + 22;
+    case 4: return text + 29;
+    case 5: return text + 34;
+    case 6: return text + 46;
+    case 7: return text + 55;
+    case 8: return text + 66;
     default: return NULL;
     }
 }
+
+/* control_box_type's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[49];
+} urwire__control_box_type_text = {
+    "CB5_EARLY_NUMBERING\0" "CB7_EARLY_NUMBERING\0" "CB5\0" "CB7\0",
+};
 
 const char *urwire_control_box_type_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__control_box_type_text;
+
     switch (value) {
-    case 1: return "CB5_EARLY_NUMBERING";
-    case 2: return "CB7_EARLY_NUMBERING";
-    case 5: return "CB5";
-    case 7: return "CB7";
+    case 1: return text + 0;
+    case 2: return text + 20;
+    case 5: return text + 40;
+    case 7: return text + 44;
     default: return NULL;
     }
 }
 
+/* tool_flange_type's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[7];
+} urwire__tool_flange_type_text = {
+    "V1\0" "V2\0",
+};
+
 const char *urwire_tool_flange_type_name(int64_t value)
 {
+    const char *text = (const char *)&urwire__tool_flange_type_text;
+
     switch (value) {
-    case 1: return "V1";
-    case 2: return "V2";
+    case 1: return text + 0;
+    case 2: return text + 3;
     default: return NULL;
     }
 }
+
+/* value_type's names, each once and NUL-terminated, found by their offsets from the first byte */
+static const struct {
+    char part0[73];
+} urwire__value_type_text = {
+    "NONE\0" "STRING\0" "LIST\0" "POSE\0" "BOOL\0" "NUM\0" "INT\0" "FLOAT\0" "CONST_STRING\0" "VAR_STRING\0" "MATRIX\0",
+};
 
 /* value_type, software up to 3.2 */
 static const char *urwire__value_type_up_to_3_2_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__value_type_text;
+
     switch (code) {
-    case URWIRE_VALUE_TYPE_UP_TO_3_2_NONE: return "NONE";
-    case URWIRE_VALUE_TYPE_UP_TO_3_2_STRING: return "STRING";
-    case URWIRE_VALUE_TYPE_UP_TO_3_2_LIST: return "LIST";
-    case URWIRE_VALUE_TYPE_UP_TO_3_2_POSE: return "POSE";
-    case URWIRE_VALUE_TYPE_UP_TO_3_2_BOOL: return "BOOL";
-    case URWIRE_VALUE_TYPE_UP_TO_3_2_NUM: return "NUM";
-    case URWIRE_VALUE_TYPE_UP_TO_3_2_INT: return "INT";
-    case URWIRE_VALUE_TYPE_UP_TO_3_2_FLOAT: return "FLOAT";
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_NONE: return text + 0;
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_STRING: return text + 5;
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_LIST: return text + 12;
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_POSE: return text + 17;
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_BOOL: return text + 22;
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_NUM: return text + 27;
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_INT: return text + 31;
+    case URWIRE_VALUE_TYPE_UP_TO_3_2_FLOAT: return text + 35;
     default: return NULL;
     }
 }
@@ -1736,16 +1932,18 @@ static const char *urwire__value_type_up_to_3_2_name(int64_t code)
 /* value_type, software 3.3 to 5.8 */
 static const char *urwire__value_type_3_3_to_5_8_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__value_type_text;
+
     switch (code) {
-    case URWIRE_VALUE_TYPE_3_3_TO_5_8_NONE: return "NONE";
-    case URWIRE_VALUE_TYPE_3_3_TO_5_8_CONST_STRING: return "CONST_STRING";
-    case URWIRE_VALUE_TYPE_3_3_TO_5_8_VAR_STRING: return "VAR_STRING";
-    case URWIRE_VALUE_TYPE_3_3_TO_5_8_LIST: return "LIST";
-    case URWIRE_VALUE_TYPE_3_3_TO_5_8_POSE: return "POSE";
-    case URWIRE_VALUE_TYPE_3_3_TO_5_8_BOOL: return "BOOL";
-    case URWIRE_VALUE_TYPE_3_3_TO_5_8_NUM: return "NUM";
-    case URWIRE_VALUE_TYPE_3_3_TO_5_8_INT: return "INT";
-    case URWIRE_VALUE_TYPE_3_3_TO_5_8_FLOAT: return "FLOAT";
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_NONE: return text + 0;
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_CONST_STRING: return text + 41;
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_VAR_STRING: return text + 54;
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_LIST: return text + 12;
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_POSE: return text + 17;
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_BOOL: return text + 22;
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_NUM: return text + 27;
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_INT: return text + 31;
+    case URWIRE_VALUE_TYPE_3_3_TO_5_8_FLOAT: return text + 35;
     default: return NULL;
     }
 }
@@ -1753,17 +1951,19 @@ static const char *urwire__value_type_3_3_to_5_8_name(int64_t code)
 /* value_type, software 5.9 and later */
 static const char *urwire__value_type_5_9_on_name(int64_t code)
 {
+    const char *text = (const char *)&urwire__value_type_text;
+
     switch (code) {
-    case URWIRE_VALUE_TYPE_NONE: return "NONE";
-    case URWIRE_VALUE_TYPE_CONST_STRING: return "CONST_STRING";
-    case URWIRE_VALUE_TYPE_VAR_STRING: return "VAR_STRING";
-    case URWIRE_VALUE_TYPE_POSE: return "POSE";
-    case URWIRE_VALUE_TYPE_BOOL: return "BOOL";
-    case URWIRE_VALUE_TYPE_NUM: return "NUM";
-    case URWIRE_VALUE_TYPE_INT: return "INT";
-    case URWIRE_VALUE_TYPE_FLOAT: return "FLOAT";
-    case URWIRE_VALUE_TYPE_LIST: return "LIST";
-    case URWIRE_VALUE_TYPE_MATRIX: return "MATRIX";
+    case URWIRE_VALUE_TYPE_NONE: return text + 0;
+    case URWIRE_VALUE_TYPE_CONST_STRING: return text + 41;
+    case URWIRE_VALUE_TYPE_VAR_STRING: return text + 54;
+    case URWIRE_VALUE_TYPE_POSE: return text + 17;
+    case URWIRE_VALUE_TYPE_BOOL: return text + 22;
+    case URWIRE_VALUE_TYPE_NUM: return text + 27;
+    case URWIRE_VALUE_TYPE_INT: return text + 31;
+    case URWIRE_VALUE_TYPE_FLOAT: return text + 35;
+    case URWIRE_VALUE_TYPE_LIST: return text + 12;
+    case URWIRE_VALUE_TYPE_MATRIX: return text + 65;
     default: return NULL;
     }
 }
@@ -6470,32 +6670,49 @@ static const urwire__form_table urwire__safety_compliance_tolerances_form_table 
 
 /* ---- the tables the runtime walks --------------------------------------------------------- */
 
+/* The kinds' names, each once and NUL-terminated; URWIRE__KIND_NAME(at) is the one at offset `at`. */
+static const struct {
+    char part0[510];
+} urwire__kind_text = {
+    "unknown\0" "robot_state\0" "version\0" "safety_mode\0" "robot_comm\0" "key\0" "program_threads\0" "popup\0"
+    "label\0" "var\0" "hardware_info\0" "robot_message_12\0" "request_value\0" "text\0" "runtime_exception\0"
+    "global_variables_setup\0" "global_variables_update\0" "modbus_info\0" "hmc\0" "safety_setup_broadcast\0"
+    "safety_compliance_tolerances\0" "robot_mode_data\0" "joint_data\0" "tool_data\0" "masterboard_data\0"
+    "cartesian_info\0" "laser_pointer\0" "kinematics_info\0" "configuration_data\0" "force_mode_data\0"
+    "additional_info\0" "calibration_data\0" "safety_data\0" "tool_comm_info\0" "tool_mode_info\0" "singularity_info\0"
+    "payload_info\0",
+};
+#define URWIRE__KIND_NAME(at) ((const char *)&urwire__kind_text + (at))
+
 /* Sub-package layouts, by urwire_package_layout. */
 static const urwire__package_kind urwire__package_kinds[] = {
-    [URWIRE_LAYOUT_ROBOT_MODE_DATA] = {"robot_mode_data", urwire__encode_robot_mode_data,
+    [URWIRE_LAYOUT_ROBOT_MODE_DATA] = {URWIRE__KIND_NAME(270), urwire__encode_robot_mode_data,
                                        urwire__visit_robot_mode_data},
-    [URWIRE_LAYOUT_JOINT_DATA] = {"joint_data", urwire__encode_joint_data, urwire__visit_joint_data},
-    [URWIRE_LAYOUT_TOOL_DATA] = {"tool_data", urwire__encode_tool_data, urwire__visit_tool_data},
-    [URWIRE_LAYOUT_MASTERBOARD_DATA] = {"masterboard_data", urwire__encode_masterboard_data,
+    [URWIRE_LAYOUT_JOINT_DATA] = {URWIRE__KIND_NAME(286), urwire__encode_joint_data, urwire__visit_joint_data},
+    [URWIRE_LAYOUT_TOOL_DATA] = {URWIRE__KIND_NAME(297), urwire__encode_tool_data, urwire__visit_tool_data},
+    [URWIRE_LAYOUT_MASTERBOARD_DATA] = {URWIRE__KIND_NAME(307), urwire__encode_masterboard_data,
                                         urwire__visit_masterboard_data},
-    [URWIRE_LAYOUT_CARTESIAN_INFO] = {"cartesian_info", urwire__encode_cartesian_info, urwire__visit_cartesian_info},
-    [URWIRE_LAYOUT_LASER_POINTER] = {"laser_pointer", urwire__encode_laser_pointer, urwire__visit_laser_pointer},
-    [URWIRE_LAYOUT_KINEMATICS_INFO] = {"kinematics_info", urwire__encode_kinematics_info,
+    [URWIRE_LAYOUT_CARTESIAN_INFO] = {URWIRE__KIND_NAME(324), urwire__encode_cartesian_info,
+                                      urwire__visit_cartesian_info},
+    [URWIRE_LAYOUT_LASER_POINTER] = {URWIRE__KIND_NAME(339), urwire__encode_laser_pointer, urwire__visit_laser_pointer},
+    [URWIRE_LAYOUT_KINEMATICS_INFO] = {URWIRE__KIND_NAME(353), urwire__encode_kinematics_info,
                                        urwire__visit_kinematics_info},
-    [URWIRE_LAYOUT_CONFIGURATION_DATA] = {"configuration_data", urwire__encode_configuration_data,
+    [URWIRE_LAYOUT_CONFIGURATION_DATA] = {URWIRE__KIND_NAME(369), urwire__encode_configuration_data,
                                           urwire__visit_configuration_data},
-    [URWIRE_LAYOUT_FORCE_MODE_DATA] = {"force_mode_data", urwire__encode_force_mode_data,
+    [URWIRE_LAYOUT_FORCE_MODE_DATA] = {URWIRE__KIND_NAME(388), urwire__encode_force_mode_data,
                                        urwire__visit_force_mode_data},
-    [URWIRE_LAYOUT_ADDITIONAL_INFO] = {"additional_info", urwire__encode_additional_info,
+    [URWIRE_LAYOUT_ADDITIONAL_INFO] = {URWIRE__KIND_NAME(404), urwire__encode_additional_info,
                                        urwire__visit_additional_info},
-    [URWIRE_LAYOUT_CALIBRATION_DATA] = {"calibration_data", urwire__encode_calibration_data,
+    [URWIRE_LAYOUT_CALIBRATION_DATA] = {URWIRE__KIND_NAME(420), urwire__encode_calibration_data,
                                         urwire__visit_calibration_data},
-    [URWIRE_LAYOUT_SAFETY_DATA] = {"safety_data", urwire__encode_safety_data, urwire__visit_safety_data},
-    [URWIRE_LAYOUT_TOOL_COMM_INFO] = {"tool_comm_info", urwire__encode_tool_comm_info, urwire__visit_tool_comm_info},
-    [URWIRE_LAYOUT_TOOL_MODE_INFO] = {"tool_mode_info", urwire__encode_tool_mode_info, urwire__visit_tool_mode_info},
-    [URWIRE_LAYOUT_SINGULARITY_INFO] = {"singularity_info", urwire__encode_singularity_info,
+    [URWIRE_LAYOUT_SAFETY_DATA] = {URWIRE__KIND_NAME(437), urwire__encode_safety_data, urwire__visit_safety_data},
+    [URWIRE_LAYOUT_TOOL_COMM_INFO] = {URWIRE__KIND_NAME(449), urwire__encode_tool_comm_info,
+                                      urwire__visit_tool_comm_info},
+    [URWIRE_LAYOUT_TOOL_MODE_INFO] = {URWIRE__KIND_NAME(464), urwire__encode_tool_mode_info,
+                                      urwire__visit_tool_mode_info},
+    [URWIRE_LAYOUT_SINGULARITY_INFO] = {URWIRE__KIND_NAME(479), urwire__encode_singularity_info,
                                         urwire__visit_singularity_info},
-    [URWIRE_LAYOUT_PAYLOAD_INFO] = {"payload_info", urwire__encode_payload_info, urwire__visit_payload_info},
+    [URWIRE_LAYOUT_PAYLOAD_INFO] = {URWIRE__KIND_NAME(496), urwire__encode_payload_info, urwire__visit_payload_info},
 };
 
 /* Decoding a sub-package is a switch of direct calls, not a decoder in urwire__package_kinds:
@@ -7045,44 +7262,45 @@ static const urwire__message_header urwire__message_headers[] = {
 /* Every urwire_message_kind: its record's type, its message type, and for a subtype the
  * functions of its layout. */
 static const urwire__message_kind urwire__message_kinds[] = {
-    [URWIRE_KIND_UNKNOWN_MESSAGE] = {"unknown", NULL, NULL, NULL},
-    [URWIRE_KIND_ROBOT_STATE] = {"robot_state", &urwire__message_types[0], NULL, NULL},
-    [URWIRE_KIND_VERSION] = {"version", &urwire__message_types[1], urwire__encode_version, urwire__visit_version},
-    [URWIRE_KIND_SAFETY_MODE] = {"safety_mode", &urwire__message_types[1], urwire__encode_safety_mode,
+    [URWIRE_KIND_UNKNOWN_MESSAGE] = {URWIRE__KIND_NAME(0), NULL, NULL, NULL},
+    [URWIRE_KIND_ROBOT_STATE] = {URWIRE__KIND_NAME(8), &urwire__message_types[0], NULL, NULL},
+    [URWIRE_KIND_VERSION] = {URWIRE__KIND_NAME(20), &urwire__message_types[1], urwire__encode_version,
+                             urwire__visit_version},
+    [URWIRE_KIND_SAFETY_MODE] = {URWIRE__KIND_NAME(28), &urwire__message_types[1], urwire__encode_safety_mode,
                                  urwire__visit_safety_mode},
-    [URWIRE_KIND_ROBOT_COMM] = {"robot_comm", &urwire__message_types[1], urwire__encode_robot_comm,
+    [URWIRE_KIND_ROBOT_COMM] = {URWIRE__KIND_NAME(40), &urwire__message_types[1], urwire__encode_robot_comm,
                                 urwire__visit_robot_comm},
-    [URWIRE_KIND_KEY] = {"key", &urwire__message_types[1], urwire__encode_key, urwire__visit_key},
-    [URWIRE_KIND_PROGRAM_THREADS] = {"program_threads", &urwire__message_types[1], urwire__encode_program_threads,
+    [URWIRE_KIND_KEY] = {URWIRE__KIND_NAME(51), &urwire__message_types[1], urwire__encode_key, urwire__visit_key},
+    [URWIRE_KIND_PROGRAM_THREADS] = {URWIRE__KIND_NAME(55), &urwire__message_types[1], urwire__encode_program_threads,
                                      urwire__visit_program_threads},
-    [URWIRE_KIND_POPUP] = {"popup", &urwire__message_types[1], urwire__encode_popup, urwire__visit_popup},
-    [URWIRE_KIND_LABEL] = {"label", &urwire__message_types[1], urwire__encode_label, urwire__visit_label},
-    [URWIRE_KIND_VAR] = {"var", &urwire__message_types[1], urwire__encode_var, urwire__visit_var},
-    [URWIRE_KIND_HARDWARE_INFO] = {"hardware_info", &urwire__message_types[1], urwire__encode_hardware_info,
+    [URWIRE_KIND_POPUP] = {URWIRE__KIND_NAME(71), &urwire__message_types[1], urwire__encode_popup, urwire__visit_popup},
+    [URWIRE_KIND_LABEL] = {URWIRE__KIND_NAME(77), &urwire__message_types[1], urwire__encode_label, urwire__visit_label},
+    [URWIRE_KIND_VAR] = {URWIRE__KIND_NAME(83), &urwire__message_types[1], urwire__encode_var, urwire__visit_var},
+    [URWIRE_KIND_HARDWARE_INFO] = {URWIRE__KIND_NAME(87), &urwire__message_types[1], urwire__encode_hardware_info,
                                    urwire__visit_hardware_info},
-    [URWIRE_KIND_ROBOT_MESSAGE_12] = {"robot_message_12", &urwire__message_types[1], urwire__encode_robot_message_12,
-                                      urwire__visit_robot_message_12},
-    [URWIRE_KIND_REQUEST_VALUE] = {"request_value", &urwire__message_types[1], urwire__encode_request_value,
+    [URWIRE_KIND_ROBOT_MESSAGE_12] = {URWIRE__KIND_NAME(101), &urwire__message_types[1],
+                                      urwire__encode_robot_message_12, urwire__visit_robot_message_12},
+    [URWIRE_KIND_REQUEST_VALUE] = {URWIRE__KIND_NAME(118), &urwire__message_types[1], urwire__encode_request_value,
                                    urwire__visit_request_value},
-    [URWIRE_KIND_TEXT] = {"text", &urwire__message_types[1], urwire__encode_text, urwire__visit_text},
-    [URWIRE_KIND_RUNTIME_EXCEPTION] = {"runtime_exception", &urwire__message_types[1], urwire__encode_runtime_exception,
-                                       urwire__visit_runtime_exception},
-    [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {"global_variables_setup", &urwire__message_types[2],
+    [URWIRE_KIND_TEXT] = {URWIRE__KIND_NAME(132), &urwire__message_types[1], urwire__encode_text, urwire__visit_text},
+    [URWIRE_KIND_RUNTIME_EXCEPTION] = {URWIRE__KIND_NAME(137), &urwire__message_types[1],
+                                       urwire__encode_runtime_exception, urwire__visit_runtime_exception},
+    [URWIRE_KIND_GLOBAL_VARIABLES_SETUP] = {URWIRE__KIND_NAME(155), &urwire__message_types[2],
                                             urwire__encode_global_variables_setup,
                                             urwire__visit_global_variables_setup},
-    [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {"global_variables_update", &urwire__message_types[2],
+    [URWIRE_KIND_GLOBAL_VARIABLES_UPDATE] = {URWIRE__KIND_NAME(178), &urwire__message_types[2],
                                              urwire__encode_global_variables_update,
                                              urwire__visit_global_variables_update},
-    [URWIRE_KIND_MODBUS_INFO] = {"modbus_info", &urwire__message_types[3], urwire__encode_modbus_info,
+    [URWIRE_KIND_MODBUS_INFO] = {URWIRE__KIND_NAME(202), &urwire__message_types[3], urwire__encode_modbus_info,
                                  urwire__visit_modbus_info},
-    [URWIRE_KIND_HMC] = {"hmc", &urwire__message_types[4], urwire__encode_hmc, urwire__visit_hmc},
-    [URWIRE_KIND_SAFETY_SETUP_BROADCAST] = {"safety_setup_broadcast", &urwire__message_types[5],
+    [URWIRE_KIND_HMC] = {URWIRE__KIND_NAME(214), &urwire__message_types[4], urwire__encode_hmc, urwire__visit_hmc},
+    [URWIRE_KIND_SAFETY_SETUP_BROADCAST] = {URWIRE__KIND_NAME(218), &urwire__message_types[5],
                                             urwire__encode_safety_setup_broadcast,
                                             urwire__visit_safety_setup_broadcast},
-    [URWIRE_KIND_SAFETY_COMPLIANCE_TOLERANCES] = {"safety_compliance_tolerances", &urwire__message_types[6],
+    [URWIRE_KIND_SAFETY_COMPLIANCE_TOLERANCES] = {URWIRE__KIND_NAME(241), &urwire__message_types[6],
                                                   urwire__encode_safety_compliance_tolerances,
                                                   urwire__visit_safety_compliance_tolerances},
-    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {"unknown", NULL, NULL, NULL},
+    [URWIRE_KIND_UNKNOWN_SUBTYPE] = {URWIRE__KIND_NAME(0), NULL, NULL, NULL},
 };
 
 /* The decoder of each urwire_message_kind with a layout of its own. */

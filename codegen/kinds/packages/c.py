@@ -19,6 +19,7 @@ from ...comments import field_text, node_text, value_text
 from ...emit import environment, runtime_section
 from ...errors import Problem, SpecError
 from ...lang.c import comment, inline
+from ...lang.c_pool import Pool
 from ...view import Step
 from . import model, plan
 from .naming import c_enum_const, c_enum_prefix, c_enum_tag, c_member_const, c_table_suffix
@@ -511,8 +512,15 @@ def enum_views(p: model.Protocol) -> list[dict]:
             tables.append(dict(versions=t.versions.describe(), members=members, cases=cases, range=range_view(t.versions),
                                tag=c_enum_tag(e, t),
                                names=f"urwire__{e.name}_{c_table_suffix(t).lower()}_name" if e.versioned else ""))
+        # Every table's names in one pool of the enum's own, so that a firmware that never names
+        # this enum links none of its texts (literals of a file share one section, kept whole).
+        pool = Pool(c["name"] for t in tables for c in t["cases"])
+        for t in tables:
+            for c in t["cases"]:
+                c["at"] = pool.offset(c["name"])
         views.append(dict(name=e.name, doc=comment(node_text(e)), wire=C_TYPES[e.scalar.name],
-                          versioned=e.versioned, tables=tables, first=tables[-1]["members"][0]["name"]))
+                          versioned=e.versioned, tables=tables, first=tables[-1]["members"][0]["name"],
+                          pool=pool.parts))
     return views
 
 
@@ -619,6 +627,16 @@ class _Forms:
         return dict(tag=tag, what=what, codes=codes, ncodes=ncodes, rows=rows, first_sizes=first_sizes)
 
 
+def kind_names(messages: list[dict], packages: list) -> Pool:
+    """The names of urwire__message_kinds and urwire__package_kinds in a pool of their own, which
+    only those tables read: as literals they would share the file's one literal section, which
+    the decoder's run tables keep whole, and be linked by a firmware that only decodes."""
+    names = ["unknown"]
+    for m in messages:
+        names += [m["name"]] if m["kind"] == "packages" else [s.name for s in m["subtypes"]]
+    return Pool(names + [s.name for s in packages])
+
+
 # ---- messages -------------------------------------------------------------------------------
 
 def build(protocol_plan: plan.ProtocolPlan) -> dict:
@@ -696,7 +714,9 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     vst = layout_structs[id(vs.layout)]
     vmsg = next(m for m in messages if m["code"] == vs.message_code)
     buffers = framer_buffers(protocol_plan)
+    kind_text = kind_names(messages, packages)
     return dict(buffers=buffers, structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
+                kind_text=kind_text.parts, kind_at=kind_text.offsets,
                 package_decoders=package_decoders, package_fast=package_fast,
                 segment_bounds=axis.bounds(), form_sizes=axis.size_slots,
                 framing=framing(p, lists[0], vst, vmsg, vs), known_types=known_types(p))

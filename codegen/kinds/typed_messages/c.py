@@ -12,7 +12,7 @@ from ...emit import environment, runtime_section
 from ...lang import c
 from ...wrap import trailing
 from . import model
-from .c_pool import PART, Pool
+from ...lang.c_pool import PART, Pool
 from .plan import Step, TypedPlan
 
 FOLDER = "c"

@@ -10,8 +10,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Iterable
 
-from ...lang import c
-from ...wrap import LIMIT, columns
+from . import c
+from ..wrap import LIMIT, columns
 
 PART = 4000
 MAX_OFFSET = 0xffff             # offsets are uint16_t
