@@ -24,10 +24,12 @@ static void on_frame(const urwire_frame *frame)
         board_report("tool_voltage", (double)state.tool_data.tool_voltage_48v);
 }
 
+/* The received chunk and the frame in static RAM too: the stack keeps only the parser's calls. */
+static uint8_t chunk[CHUNK];
+static urwire_frame frame;
+
 int main(void)
 {
-    uint8_t chunk[CHUNK];
-    urwire_frame frame;
     urwire_frame_kind kind;
     size_t n, used;
 
