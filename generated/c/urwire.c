@@ -402,6 +402,11 @@ URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire
 URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
                                            int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
                                            void *as, urwire_error *err);
+URWIRE__PRIVATE bool urwire__next_package_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use,
+                                                 void *as, bool *failed);
+/* Room for a sub-package's layout alone, where the rest of a urwire_package is not wanted: in
+ * doubles, aligned for any layout. */
+#define URWIRE__LAYOUT_DOUBLES ((sizeof ((urwire_package *)0)->as + sizeof(double) - 1) / sizeof(double))
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);
 /* visit.c */
 URWIRE__OPTIONAL void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);
@@ -7839,10 +7844,6 @@ static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t e
     return pos < end ? urwire__decode_general(msg, pos, end, r, out, count, err) : pos;
 }
 
-/* Room for a sub-package's layout alone, where the rest of a urwire_package is not wanted: in
- * doubles, aligned for any layout. */
-#define URWIRE__LAYOUT_DOUBLES ((sizeof ((urwire_package *)0)->as + sizeof(double) - 1) / sizeof(double))
-
 /* The next sub-package of seq decoded into *as, and why it could not be (*err, reset first;
  * NULL: no one reads it): its header's offset (*at), its form (*f, NULL: no layout), the version
  * it was read in (*use) and whether it failed. False at the end, seq untouched. */
@@ -7873,6 +7874,13 @@ URWIRE__INLINE bool urwire__next_layout(urwire_seq *seq, size_t *at, const urwir
     seq->pos = stop;
     seq->count--;
     return true;
+}
+
+/* urwire__next_layout out of line, for the encoder of a robot state. */
+URWIRE__PRIVATE bool urwire__next_package_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use,
+                                                 void *as, bool *failed)
+{
+    return urwire__next_layout(seq, at, f, use, as, NULL, failed);
 }
 
 bool urwire_next_package(urwire_seq *seq, urwire_package *out)
@@ -7982,35 +7990,53 @@ URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urw
 /* ---- runtime/c/packages/encode.c ---- */
 /* ---- encoding messages and sub-packages --------------------------------------------------- */
 
-size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err)
+/* A sub-package's header and body: its layout's encoder's (k), else its raw bytes. */
+static size_t urwire__encode_layout(uint8_t type, const urwire__package_kind *k, const void *as,
+                                    urwire_sw_version version, urwire_bytes raw, uint8_t *out, size_t cap,
+                                    urwire_error *err)
 {
-    const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->layout) : NULL;
     size_t pos = URWIRE_PACKAGE_HEADER_SIZE;
-    urwire__ver ver = urwire__ver_of(pkg->version);
+    urwire__ver ver = urwire__ver_of(version);
     bool ok;
     if (cap < pos) {
         urwire__no_space(err, 0, pos, cap);
         return 0;
     }
-    if (!pkg->known || pkg->failed || k == NULL)
-        ok = urwire__put_view(out, cap, &pos, pkg->raw, err);
+    if (k == NULL)
+        ok = urwire__put_view(out, cap, &pos, raw, err);
     else
-        ok = k->encode(&pkg->as, &ver, out, cap, &pos, err);
+        ok = k->encode(as, &ver, out, cap, &pos, err);
     if (!ok)
         return 0;
     URWIRE__PUT_PACKAGE_LENGTH(out, pos);
-    out[URWIRE__PACKAGE_TYPE_AT] = pkg->type;
+    out[URWIRE__PACKAGE_TYPE_AT] = type;
     return pos;
 }
 
-/* A robot state's sub-packages from its seq, then its unframed tail. */
-static bool urwire__put_packages(const urwire_message *m, uint8_t *out, size_t cap, size_t *pos, urwire_error *err)
+size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err)
+{
+    const urwire__package_kind *k = pkg->known && !pkg->failed ? urwire__package_kind_of(pkg->layout) : NULL;
+    return urwire__encode_layout(pkg->type, k, &pkg->as, pkg->version, pkg->raw, out, cap, err);
+}
+
+/* A robot state's sub-packages from its seq, each decoded into its layout alone (not a whole
+ * urwire_package), then its unframed tail. Out of line: its layout is on the stack only here. */
+URWIRE__NOINLINE static bool urwire__put_packages(const urwire_message *m, uint8_t *out, size_t cap, size_t *pos,
+                                                  urwire_error *err)
 {
     urwire_seq seq = m->packages;
-    urwire_package pkg;
-    size_t n;
-    while (urwire_next_package(&seq, &pkg)) {
-        n = urwire_encode_package(&pkg, out + *pos, cap - *pos, err);
+    double as[URWIRE__LAYOUT_DOUBLES];
+    const urwire__form *f;
+    const urwire__package_kind *k;
+    urwire__ver use;
+    size_t at, n;
+    bool failed;
+    while (urwire__next_package_layout(&seq, &at, &f, &use, as, &failed)) {
+        k = f != NULL && !failed ? urwire__package_kind_of((urwire_package_layout)f->layout) : NULL;
+        n = urwire__encode_layout(seq.msg[at + URWIRE__PACKAGE_TYPE_AT], k, as, use.version,
+                                  urwire__view(seq.msg + at + URWIRE_PACKAGE_HEADER_SIZE,
+                                               seq.pos - at - URWIRE_PACKAGE_HEADER_SIZE),
+                                  out + *pos, cap - *pos, err);
         if (n == 0)
             return false;
         *pos += n;

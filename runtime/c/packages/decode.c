@@ -341,10 +341,6 @@ static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t e
     return pos < end ? urwire__decode_general(msg, pos, end, r, out, count, err) : pos;
 }
 
-/* Room for a sub-package's layout alone, where the rest of a urwire_package is not wanted: in
- * doubles, aligned for any layout. */
-#define URWIRE__LAYOUT_DOUBLES ((sizeof ((urwire_package *)0)->as + sizeof(double) - 1) / sizeof(double))
-
 /* The next sub-package of seq decoded into *as, and why it could not be (*err, reset first;
  * NULL: no one reads it): its header's offset (*at), its form (*f, NULL: no layout), the version
  * it was read in (*use) and whether it failed. False at the end, seq untouched. */
@@ -375,6 +371,13 @@ URWIRE__INLINE bool urwire__next_layout(urwire_seq *seq, size_t *at, const urwir
     seq->pos = stop;
     seq->count--;
     return true;
+}
+
+/* urwire__next_layout out of line, for the encoder of a robot state. */
+URWIRE__PRIVATE bool urwire__next_package_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use,
+                                                 void *as, bool *failed)
+{
+    return urwire__next_layout(seq, at, f, use, as, NULL, failed);
 }
 
 bool urwire_next_package(urwire_seq *seq, urwire_package *out)
