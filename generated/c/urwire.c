@@ -8252,10 +8252,6 @@ URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *
     v->end_array(v->ctx);
 }
 
-/* A failed package's layout holds nothing: its storage takes the error's text, which is then
- * not on the stack beside the package. */
-typedef char urwire__text_fits_layout[sizeof ((urwire_package *)0)->as >= URWIRE__ERROR_TEXT ? 1 : -1];
-
 static void urwire__visit_package(urwire_package *pkg, const urwire_visitor *v)
 {
     const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->layout) : NULL;
@@ -8269,9 +8265,13 @@ static void urwire__visit_package(urwire_package *pkg, const urwire_visitor *v)
         v->on_hex(v->ctx, "raw", pkg->raw);
     } else {
         urwire__name(v, "type", k->name);
-        if (pkg->failed) {
+        if (pkg->failed && sizeof pkg->as >= URWIRE__ERROR_TEXT) {
+            /* a failed package's layout holds nothing: its storage takes the error's text, which
+             * is then not on the stack beside the package (where the layouts are that large) */
             urwire__visit_error_in(&pkg->error, (char *)&pkg->as, v);
             v->on_hex(v->ctx, "raw", pkg->raw);
+        } else if (pkg->failed) {
+            urwire__visit_failed(&pkg->error, pkg->raw, v);
         } else {
             k->visit(&pkg->as, &ver, v);
         }
