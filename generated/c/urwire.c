@@ -402,6 +402,11 @@ URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire
 URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
                                            int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
                                            void *as, urwire_error *err);
+URWIRE__PRIVATE bool urwire__next_package_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use,
+                                                 void *as, bool *failed);
+/* Room for a sub-package's layout alone, where the rest of a urwire_package is not wanted: in
+ * doubles, aligned for any layout. */
+#define URWIRE__LAYOUT_DOUBLES ((sizeof ((urwire_package *)0)->as + sizeof(double) - 1) / sizeof(double))
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);
 /* visit.c */
 URWIRE__OPTIONAL void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);
@@ -7822,7 +7827,7 @@ static const urwire__form *urwire__other_form(uint8_t type, size_t size, urwire_
 
 /* The form of the sub-package of type `type` and body `size` (NULL: no layout), and the
  * version to read it with. */
-static const urwire__form *urwire__package_form(uint8_t type, size_t size, urwire__running *r, urwire__ver *use)
+URWIRE__INLINE const urwire__form *urwire__package_form(uint8_t type, size_t size, urwire__running *r, urwire__ver *use)
 {
     if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0)
         return NULL;
@@ -8057,12 +8062,14 @@ static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t e
     return pos < end ? urwire__decode_general(msg, pos, end, r, out, count, err) : pos;
 }
 
-bool urwire_next_package(urwire_seq *seq, urwire_package *out)
+/* The next sub-package of seq decoded into *as, and why it could not be (*err, reset first;
+ * NULL: no one reads it): its header's offset (*at), its form (*f, NULL: no layout), the version
+ * it was read in (*use) and whether it failed. False at the end, seq untouched. */
+URWIRE__INLINE bool urwire__next_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use, void *as,
+                                    urwire_error *err, bool *failed)
 {
     const uint8_t *msg = seq->msg;
-    const urwire__form *f;
     urwire__running r;
-    urwire__ver use;
     size_t pos = seq->pos, body, stop;
     int64_t size;
     if (seq->count == 0 || seq->end - pos < URWIRE_PACKAGE_HEADER_SIZE)
@@ -8072,20 +8079,41 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
         return false;  /* not reached for a seq from urwire_decode_message */
     body = pos + URWIRE_PACKAGE_HEADER_SIZE;
     stop = pos + (size_t)size;
-    out->type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-    out->offset = pos;
-    out->raw = urwire__view(msg + body, stop - body);
-    out->error.status = URWIRE_OK;
+    if (err != NULL)
+        err->status = URWIRE_OK;
     urwire__start(&r, seq->version);
-    f = urwire__package_form(out->type, stop - body, &r, &use);
-    out->version = f != NULL ? use.version : seq->version;
-    out->known = f != NULL;
-    out->layout = f != NULL ? (urwire_package_layout)f->layout : URWIRE_LAYOUT_COUNT;
-    out->failed = f != NULL && !urwire__decode_package((uint8_t)(f - urwire__package_form_list + 1), msg, &body, stop,
-                                                        &use, &out->as, &out->error);
+    *f = urwire__package_form(msg[pos + URWIRE__PACKAGE_TYPE_AT], stop - body, &r, use);
+    if (*f == NULL)
+        use->version = seq->version;
+    *failed = *f != NULL && !urwire__decode_package((uint8_t)(*f - urwire__package_form_list + 1), msg, &body, stop,
+                                                    use, as, err);
+    *at = pos;
     seq->version = r.now.version;  /* the version the layout sizes showed, for the packages after it */
     seq->pos = stop;
     seq->count--;
+    return true;
+}
+
+/* urwire__next_layout out of line, for the encoder of a robot state. */
+URWIRE__PRIVATE bool urwire__next_package_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use,
+                                                 void *as, bool *failed)
+{
+    return urwire__next_layout(seq, at, f, use, as, NULL, failed);
+}
+
+bool urwire_next_package(urwire_seq *seq, urwire_package *out)
+{
+    const urwire__form *f;
+    urwire__ver use;
+    size_t pos;
+    if (!urwire__next_layout(seq, &pos, &f, &use, &out->as, &out->error, &out->failed))
+        return false;
+    out->type = seq->msg[pos + URWIRE__PACKAGE_TYPE_AT];
+    out->offset = pos;
+    out->raw = urwire__view(seq->msg + pos + URWIRE_PACKAGE_HEADER_SIZE, seq->pos - pos - URWIRE_PACKAGE_HEADER_SIZE);
+    out->version = use.version;
+    out->known = f != NULL;
+    out->layout = f != NULL ? (urwire_package_layout)f->layout : URWIRE_LAYOUT_COUNT;
     return true;
 }
 
@@ -8143,17 +8171,22 @@ bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_
     return urwire__decode_state_message(bytes, len, version, m, out);
 }
 
+/* Each sub-package is decoded into its layout alone: the error no one reads is not kept. */
 bool urwire_message_has_error(const urwire_message *m)
 {
     urwire_seq seq;
-    urwire_package pkg;
+    double as[URWIRE__LAYOUT_DOUBLES];
+    const urwire__form *f;
+    urwire__ver use;
+    size_t at;
+    bool failed;
     if (m->failed)
         return true;
     if (m->kind != URWIRE__PACKAGES_KIND)
         return false;
     seq = m->packages;
-    while (urwire_next_package(&seq, &pkg))
-        if (pkg.failed)
+    while (urwire__next_layout(&seq, &at, &f, &use, as, NULL, &failed))
+        if (failed)
             return true;
     return false;
 }
@@ -8175,35 +8208,53 @@ URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urw
 /* ---- runtime/c/packages/encode.c ---- */
 /* ---- encoding messages and sub-packages --------------------------------------------------- */
 
-size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err)
+/* A sub-package's header and body: its layout's encoder's (k), else its raw bytes. */
+static size_t urwire__encode_layout(uint8_t type, const urwire__package_kind *k, const void *as,
+                                    urwire_sw_version version, urwire_bytes raw, uint8_t *out, size_t cap,
+                                    urwire_error *err)
 {
-    const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->layout) : NULL;
     size_t pos = URWIRE_PACKAGE_HEADER_SIZE;
-    urwire__ver ver = urwire__ver_of(pkg->version);
+    urwire__ver ver = urwire__ver_of(version);
     bool ok;
     if (cap < pos) {
         urwire__no_space(err, 0, pos, cap);
         return 0;
     }
-    if (!pkg->known || pkg->failed || k == NULL)
-        ok = urwire__put_view(out, cap, &pos, pkg->raw, err);
+    if (k == NULL)
+        ok = urwire__put_view(out, cap, &pos, raw, err);
     else
-        ok = k->encode(&pkg->as, &ver, out, cap, &pos, err);
+        ok = k->encode(as, &ver, out, cap, &pos, err);
     if (!ok)
         return 0;
     URWIRE__PUT_PACKAGE_LENGTH(out, pos);
-    out[URWIRE__PACKAGE_TYPE_AT] = pkg->type;
+    out[URWIRE__PACKAGE_TYPE_AT] = type;
     return pos;
 }
 
-/* A robot state's sub-packages from its seq, then its unframed tail. */
-static bool urwire__put_packages(const urwire_message *m, uint8_t *out, size_t cap, size_t *pos, urwire_error *err)
+size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err)
+{
+    const urwire__package_kind *k = pkg->known && !pkg->failed ? urwire__package_kind_of(pkg->layout) : NULL;
+    return urwire__encode_layout(pkg->type, k, &pkg->as, pkg->version, pkg->raw, out, cap, err);
+}
+
+/* A robot state's sub-packages from its seq, each decoded into its layout alone (not a whole
+ * urwire_package), then its unframed tail. Out of line: its layout is on the stack only here. */
+URWIRE__NOINLINE static bool urwire__put_packages(const urwire_message *m, uint8_t *out, size_t cap, size_t *pos,
+                                                  urwire_error *err)
 {
     urwire_seq seq = m->packages;
-    urwire_package pkg;
-    size_t n;
-    while (urwire_next_package(&seq, &pkg)) {
-        n = urwire_encode_package(&pkg, out + *pos, cap - *pos, err);
+    double as[URWIRE__LAYOUT_DOUBLES];
+    const urwire__form *f;
+    const urwire__package_kind *k;
+    urwire__ver use;
+    size_t at, n;
+    bool failed;
+    while (urwire__next_package_layout(&seq, &at, &f, &use, as, &failed)) {
+        k = f != NULL && !failed ? urwire__package_kind_of((urwire_package_layout)f->layout) : NULL;
+        n = urwire__encode_layout(seq.msg[at + URWIRE__PACKAGE_TYPE_AT], k, as, use.version,
+                                  urwire__view(seq.msg + at + URWIRE_PACKAGE_HEADER_SIZE,
+                                               seq.pos - at - URWIRE_PACKAGE_HEADER_SIZE),
+                                  out + *pos, cap - *pos, err);
         if (n == 0)
             return false;
         *pos += n;
@@ -8254,11 +8305,22 @@ static void urwire__name(const urwire_visitor *v, const char *key, const char *n
     v->on_text(v->ctx, key, urwire__view((const uint8_t *)name, strlen(name)));
 }
 
-static void urwire__visit_error(const urwire_error *e, const urwire_visitor *v)
+#define URWIRE__ERROR_TEXT (URWIRE_PATH_MAX + 128)  /* an error's text, cut to this */
+
+/* The error's text, written into text[0..URWIRE__ERROR_TEXT), given to the visitor. */
+static void urwire__visit_error_in(const urwire_error *e, char *text, const urwire_visitor *v)
 {
-    char text[URWIRE_PATH_MAX + 128];
-    size_t n = urwire_error_text(e, text, sizeof text);
-    v->on_text(v->ctx, "error", urwire__view((const uint8_t *)text, n < sizeof text ? n : sizeof text - 1));
+    size_t n = urwire_error_text(e, text, URWIRE__ERROR_TEXT);
+    if (n >= URWIRE__ERROR_TEXT)
+        n = URWIRE__ERROR_TEXT - 1;  /* cut */
+    v->on_text(v->ctx, "error", urwire__view((const uint8_t *)text, n));
+}
+
+/* Out of line: its buffer is on the stack only while it runs. */
+URWIRE__NOINLINE static void urwire__visit_error(const urwire_error *e, const urwire_visitor *v)
+{
+    char text[URWIRE__ERROR_TEXT];
+    urwire__visit_error_in(e, text, v);
 }
 
 /* A part that could not be read: why, and its bytes. */
@@ -8408,7 +8470,7 @@ URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *
     v->end_array(v->ctx);
 }
 
-static void urwire__visit_package(const urwire_package *pkg, const urwire_visitor *v)
+static void urwire__visit_package(urwire_package *pkg, const urwire_visitor *v)
 {
     const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->layout) : NULL;
     urwire__ver ver = urwire__ver_of(pkg->version);
@@ -8421,16 +8483,23 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
         v->on_hex(v->ctx, "raw", pkg->raw);
     } else {
         urwire__name(v, "type", k->name);
-        if (pkg->failed)
+        if (pkg->failed && sizeof pkg->as >= URWIRE__ERROR_TEXT) {
+            /* a failed package's layout holds nothing: its storage takes the error's text, which
+             * is then not on the stack beside the package (where the layouts are that large) */
+            urwire__visit_error_in(&pkg->error, (char *)&pkg->as, v);
+            v->on_hex(v->ctx, "raw", pkg->raw);
+        } else if (pkg->failed) {
             urwire__visit_failed(&pkg->error, pkg->raw, v);
-        else
+        } else {
             k->visit(&pkg->as, &ver, v);
+        }
     }
     v->end_object(v->ctx);
 }
 
-/* A robot state's sub-packages in wire order, then what could not be framed. */
-static void urwire__visit_packages(const urwire_message *m, const urwire_visitor *v)
+/* A robot state's sub-packages in wire order; out of line, so that its package is not on the
+ * stack beside the error of what could not be framed. */
+URWIRE__NOINLINE static void urwire__visit_packages(const urwire_message *m, const urwire_visitor *v)
 {
     urwire_seq seq = m->packages;
     urwire_package pkg;
@@ -8438,8 +8507,6 @@ static void urwire__visit_packages(const urwire_message *m, const urwire_visitor
     while (urwire_next_package(&seq, &pkg))
         urwire__visit_package(&pkg, v);
     v->end_array(v->ctx);
-    if (m->failed)
-        urwire__visit_failed(&m->error, m->raw, v);
 }
 
 void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
@@ -8460,6 +8527,8 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
         urwire__name(v, "type", k->name);
         if (k->type->packages) {
             urwire__visit_packages(m, v);
+            if (m->failed)  /* what could not be framed */
+                urwire__visit_failed(&m->error, m->raw, v);
         } else {
             if (urwire__header_of(t)->visit != NULL)
                 urwire__header_of(t)->visit(m, false, v);

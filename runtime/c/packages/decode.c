@@ -106,7 +106,7 @@ static const urwire__form *urwire__other_form(uint8_t type, size_t size, urwire_
 
 /* The form of the sub-package of type `type` and body `size` (NULL: no layout), and the
  * version to read it with. */
-static const urwire__form *urwire__package_form(uint8_t type, size_t size, urwire__running *r, urwire__ver *use)
+URWIRE__INLINE const urwire__form *urwire__package_form(uint8_t type, size_t size, urwire__running *r, urwire__ver *use)
 {
     if (type >= URWIRE__COUNT(urwire__package_forms) || urwire__package_forms[type].count == 0)
         return NULL;
@@ -341,12 +341,14 @@ static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t e
     return pos < end ? urwire__decode_general(msg, pos, end, r, out, count, err) : pos;
 }
 
-bool urwire_next_package(urwire_seq *seq, urwire_package *out)
+/* The next sub-package of seq decoded into *as, and why it could not be (*err, reset first;
+ * NULL: no one reads it): its header's offset (*at), its form (*f, NULL: no layout), the version
+ * it was read in (*use) and whether it failed. False at the end, seq untouched. */
+URWIRE__INLINE bool urwire__next_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use, void *as,
+                                    urwire_error *err, bool *failed)
 {
     const uint8_t *msg = seq->msg;
-    const urwire__form *f;
     urwire__running r;
-    urwire__ver use;
     size_t pos = seq->pos, body, stop;
     int64_t size;
     if (seq->count == 0 || seq->end - pos < URWIRE_PACKAGE_HEADER_SIZE)
@@ -356,20 +358,41 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
         return false;  /* not reached for a seq from urwire_decode_message */
     body = pos + URWIRE_PACKAGE_HEADER_SIZE;
     stop = pos + (size_t)size;
-    out->type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-    out->offset = pos;
-    out->raw = urwire__view(msg + body, stop - body);
-    out->error.status = URWIRE_OK;
+    if (err != NULL)
+        err->status = URWIRE_OK;
     urwire__start(&r, seq->version);
-    f = urwire__package_form(out->type, stop - body, &r, &use);
-    out->version = f != NULL ? use.version : seq->version;
-    out->known = f != NULL;
-    out->layout = f != NULL ? (urwire_package_layout)f->layout : URWIRE_LAYOUT_COUNT;
-    out->failed = f != NULL && !urwire__decode_package((uint8_t)(f - urwire__package_form_list + 1), msg, &body, stop,
-                                                        &use, &out->as, &out->error);
+    *f = urwire__package_form(msg[pos + URWIRE__PACKAGE_TYPE_AT], stop - body, &r, use);
+    if (*f == NULL)
+        use->version = seq->version;
+    *failed = *f != NULL && !urwire__decode_package((uint8_t)(*f - urwire__package_form_list + 1), msg, &body, stop,
+                                                    use, as, err);
+    *at = pos;
     seq->version = r.now.version;  /* the version the layout sizes showed, for the packages after it */
     seq->pos = stop;
     seq->count--;
+    return true;
+}
+
+/* urwire__next_layout out of line, for the encoder of a robot state. */
+URWIRE__PRIVATE bool urwire__next_package_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use,
+                                                 void *as, bool *failed)
+{
+    return urwire__next_layout(seq, at, f, use, as, NULL, failed);
+}
+
+bool urwire_next_package(urwire_seq *seq, urwire_package *out)
+{
+    const urwire__form *f;
+    urwire__ver use;
+    size_t pos;
+    if (!urwire__next_layout(seq, &pos, &f, &use, &out->as, &out->error, &out->failed))
+        return false;
+    out->type = seq->msg[pos + URWIRE__PACKAGE_TYPE_AT];
+    out->offset = pos;
+    out->raw = urwire__view(seq->msg + pos + URWIRE_PACKAGE_HEADER_SIZE, seq->pos - pos - URWIRE_PACKAGE_HEADER_SIZE);
+    out->version = use.version;
+    out->known = f != NULL;
+    out->layout = f != NULL ? (urwire_package_layout)f->layout : URWIRE_LAYOUT_COUNT;
     return true;
 }
 
@@ -427,17 +450,22 @@ bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_
     return urwire__decode_state_message(bytes, len, version, m, out);
 }
 
+/* Each sub-package is decoded into its layout alone: the error no one reads is not kept. */
 bool urwire_message_has_error(const urwire_message *m)
 {
     urwire_seq seq;
-    urwire_package pkg;
+    double as[URWIRE__LAYOUT_DOUBLES];
+    const urwire__form *f;
+    urwire__ver use;
+    size_t at;
+    bool failed;
     if (m->failed)
         return true;
     if (m->kind != URWIRE__PACKAGES_KIND)
         return false;
     seq = m->packages;
-    while (urwire_next_package(&seq, &pkg))
-        if (pkg.failed)
+    while (urwire__next_layout(&seq, &at, &f, &use, as, NULL, &failed))
+        if (failed)
             return true;
     return false;
 }

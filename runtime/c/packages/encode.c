@@ -3,35 +3,53 @@
 /* </standalone> */
 /* ---- encoding messages and sub-packages --------------------------------------------------- */
 
-size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err)
+/* A sub-package's header and body: its layout's encoder's (k), else its raw bytes. */
+static size_t urwire__encode_layout(uint8_t type, const urwire__package_kind *k, const void *as,
+                                    urwire_sw_version version, urwire_bytes raw, uint8_t *out, size_t cap,
+                                    urwire_error *err)
 {
-    const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->layout) : NULL;
     size_t pos = URWIRE_PACKAGE_HEADER_SIZE;
-    urwire__ver ver = urwire__ver_of(pkg->version);
+    urwire__ver ver = urwire__ver_of(version);
     bool ok;
     if (cap < pos) {
         urwire__no_space(err, 0, pos, cap);
         return 0;
     }
-    if (!pkg->known || pkg->failed || k == NULL)
-        ok = urwire__put_view(out, cap, &pos, pkg->raw, err);
+    if (k == NULL)
+        ok = urwire__put_view(out, cap, &pos, raw, err);
     else
-        ok = k->encode(&pkg->as, &ver, out, cap, &pos, err);
+        ok = k->encode(as, &ver, out, cap, &pos, err);
     if (!ok)
         return 0;
     URWIRE__PUT_PACKAGE_LENGTH(out, pos);
-    out[URWIRE__PACKAGE_TYPE_AT] = pkg->type;
+    out[URWIRE__PACKAGE_TYPE_AT] = type;
     return pos;
 }
 
-/* A robot state's sub-packages from its seq, then its unframed tail. */
-static bool urwire__put_packages(const urwire_message *m, uint8_t *out, size_t cap, size_t *pos, urwire_error *err)
+size_t urwire_encode_package(const urwire_package *pkg, uint8_t *out, size_t cap, urwire_error *err)
+{
+    const urwire__package_kind *k = pkg->known && !pkg->failed ? urwire__package_kind_of(pkg->layout) : NULL;
+    return urwire__encode_layout(pkg->type, k, &pkg->as, pkg->version, pkg->raw, out, cap, err);
+}
+
+/* A robot state's sub-packages from its seq, each decoded into its layout alone (not a whole
+ * urwire_package), then its unframed tail. Out of line: its layout is on the stack only here. */
+URWIRE__NOINLINE static bool urwire__put_packages(const urwire_message *m, uint8_t *out, size_t cap, size_t *pos,
+                                                  urwire_error *err)
 {
     urwire_seq seq = m->packages;
-    urwire_package pkg;
-    size_t n;
-    while (urwire_next_package(&seq, &pkg)) {
-        n = urwire_encode_package(&pkg, out + *pos, cap - *pos, err);
+    double as[URWIRE__LAYOUT_DOUBLES];
+    const urwire__form *f;
+    const urwire__package_kind *k;
+    urwire__ver use;
+    size_t at, n;
+    bool failed;
+    while (urwire__next_package_layout(&seq, &at, &f, &use, as, &failed)) {
+        k = f != NULL && !failed ? urwire__package_kind_of((urwire_package_layout)f->layout) : NULL;
+        n = urwire__encode_layout(seq.msg[at + URWIRE__PACKAGE_TYPE_AT], k, as, use.version,
+                                  urwire__view(seq.msg + at + URWIRE_PACKAGE_HEADER_SIZE,
+                                               seq.pos - at - URWIRE_PACKAGE_HEADER_SIZE),
+                                  out + *pos, cap - *pos, err);
         if (n == 0)
             return false;
         *pos += n;

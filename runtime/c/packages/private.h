@@ -317,6 +317,11 @@ URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire
 URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
                                            int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
                                            void *as, urwire_error *err);
+URWIRE__PRIVATE bool urwire__next_package_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use,
+                                                 void *as, bool *failed);
+/* Room for a sub-package's layout alone, where the rest of a urwire_package is not wanted: in
+ * doubles, aligned for any layout. */
+#define URWIRE__LAYOUT_DOUBLES ((sizeof ((urwire_package *)0)->as + sizeof(double) - 1) / sizeof(double))
 URWIRE__PRIVATE bool urwire__implied_version(const uint8_t *msg, size_t len, urwire_sw_version *version);
 /* visit.c */
 URWIRE__OPTIONAL void urwire__visit_texts(const urwire_seq *names, const char *key, const urwire_visitor *v);

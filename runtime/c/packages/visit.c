@@ -8,11 +8,22 @@ static void urwire__name(const urwire_visitor *v, const char *key, const char *n
     v->on_text(v->ctx, key, urwire__view((const uint8_t *)name, strlen(name)));
 }
 
-static void urwire__visit_error(const urwire_error *e, const urwire_visitor *v)
+#define URWIRE__ERROR_TEXT (URWIRE_PATH_MAX + 128)  /* an error's text, cut to this */
+
+/* The error's text, written into text[0..URWIRE__ERROR_TEXT), given to the visitor. */
+static void urwire__visit_error_in(const urwire_error *e, char *text, const urwire_visitor *v)
 {
-    char text[URWIRE_PATH_MAX + 128];
-    size_t n = urwire_error_text(e, text, sizeof text);
-    v->on_text(v->ctx, "error", urwire__view((const uint8_t *)text, n < sizeof text ? n : sizeof text - 1));
+    size_t n = urwire_error_text(e, text, URWIRE__ERROR_TEXT);
+    if (n >= URWIRE__ERROR_TEXT)
+        n = URWIRE__ERROR_TEXT - 1;  /* cut */
+    v->on_text(v->ctx, "error", urwire__view((const uint8_t *)text, n));
+}
+
+/* Out of line: its buffer is on the stack only while it runs. */
+URWIRE__NOINLINE static void urwire__visit_error(const urwire_error *e, const urwire_visitor *v)
+{
+    char text[URWIRE__ERROR_TEXT];
+    urwire__visit_error_in(e, text, v);
 }
 
 /* A part that could not be read: why, and its bytes. */
@@ -162,7 +173,7 @@ URWIRE__PRIVATE void urwire__visit_values(const urwire_seq *values, const char *
     v->end_array(v->ctx);
 }
 
-static void urwire__visit_package(const urwire_package *pkg, const urwire_visitor *v)
+static void urwire__visit_package(urwire_package *pkg, const urwire_visitor *v)
 {
     const urwire__package_kind *k = pkg->known ? urwire__package_kind_of(pkg->layout) : NULL;
     urwire__ver ver = urwire__ver_of(pkg->version);
@@ -175,16 +186,23 @@ static void urwire__visit_package(const urwire_package *pkg, const urwire_visito
         v->on_hex(v->ctx, "raw", pkg->raw);
     } else {
         urwire__name(v, "type", k->name);
-        if (pkg->failed)
+        if (pkg->failed && sizeof pkg->as >= URWIRE__ERROR_TEXT) {
+            /* a failed package's layout holds nothing: its storage takes the error's text, which
+             * is then not on the stack beside the package (where the layouts are that large) */
+            urwire__visit_error_in(&pkg->error, (char *)&pkg->as, v);
+            v->on_hex(v->ctx, "raw", pkg->raw);
+        } else if (pkg->failed) {
             urwire__visit_failed(&pkg->error, pkg->raw, v);
-        else
+        } else {
             k->visit(&pkg->as, &ver, v);
+        }
     }
     v->end_object(v->ctx);
 }
 
-/* A robot state's sub-packages in wire order, then what could not be framed. */
-static void urwire__visit_packages(const urwire_message *m, const urwire_visitor *v)
+/* A robot state's sub-packages in wire order; out of line, so that its package is not on the
+ * stack beside the error of what could not be framed. */
+URWIRE__NOINLINE static void urwire__visit_packages(const urwire_message *m, const urwire_visitor *v)
 {
     urwire_seq seq = m->packages;
     urwire_package pkg;
@@ -192,8 +210,6 @@ static void urwire__visit_packages(const urwire_message *m, const urwire_visitor
     while (urwire_next_package(&seq, &pkg))
         urwire__visit_package(&pkg, v);
     v->end_array(v->ctx);
-    if (m->failed)
-        urwire__visit_failed(&m->error, m->raw, v);
 }
 
 void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
@@ -214,6 +230,8 @@ void urwire_visit_message(const urwire_message *m, const urwire_visitor *v)
         urwire__name(v, "type", k->name);
         if (k->type->packages) {
             urwire__visit_packages(m, v);
+            if (m->failed)  /* what could not be framed */
+                urwire__visit_failed(&m->error, m->raw, v);
         } else {
             if (urwire__header_of(t)->visit != NULL)
                 urwire__header_of(t)->visit(m, false, v);
