@@ -7389,13 +7389,21 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const 
 {
     size_t pos = *at, k;
     const urwire__value_entry *e;
-    if (pos >= end)
-        return urwire__short(err, ".type", pos, 1, end);
-    if (depth > URWIRE_MAX_VALUE_DEPTH)
-        return urwire__fail(err, URWIRE_E_TOO_DEEP, pos, "", URWIRE_MAX_VALUE_DEPTH, 0);
+    /* false said outright, not as the error setters' result: a file analysed on its own (the
+     * runtime's standalone build) cannot see that they return false, and out is unset here */
+    if (pos >= end) {
+        urwire__short(err, ".type", pos, 1, end);
+        return false;
+    }
+    if (depth > URWIRE_MAX_VALUE_DEPTH) {
+        urwire__fail(err, URWIRE_E_TOO_DEEP, pos, "", URWIRE_MAX_VALUE_DEPTH, 0);
+        return false;
+    }
     e = urwire__value_entry_of(t, msg[pos]);
-    if (e == NULL)
-        return urwire__fail(err, URWIRE_E_VALUE_TYPE, pos, ".type", msg[pos], 0);
+    if (e == NULL) {
+        urwire__fail(err, URWIRE_E_VALUE_TYPE, pos, ".type", msg[pos], 0);
+        return false;
+    }
     out->code = e->code;
     out->kind = e->kind;
     out->type_name = e->name;
@@ -7502,7 +7510,8 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, const
         /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH, and this one is n + 1
          * deep: n stays below it, within open[] */
         if (!urwire__read_head(msg, &pos, end, version, t, n + 1, item, err)) {
-            for (; n; n--, top--) {
+            for (; n; n--) {  /* the item's path within each value open, innermost first */
+                top = &open[n - 1];
                 if (top->cols)
                     urwire__within2(err, "", top->done / top->cols, top->done % top->cols, true);
                 else
@@ -8106,6 +8115,8 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
     const urwire__form *f;
     urwire__ver use;
     size_t pos;
+    if (out == NULL)  /* no package to fill: none read */
+        return false;
     if (!urwire__next_layout(seq, &pos, &f, &use, &out->as, &out->error, &out->failed))
         return false;
     out->type = seq->msg[pos + URWIRE__PACKAGE_TYPE_AT];
@@ -8414,7 +8425,9 @@ static void urwire__visit_value(const urwire_value *val, const char *key, const 
                 top->end = next->items.end;
                 top->count = next->items.count;
                 top->rows = next->rows;
-                top->cols = next->kind == URWIRE_VALUE_MATRIX ? next->cols : 0;
+                top->cols = 0;                      /* a LIST's items are one run */
+                if (next->kind == URWIRE_VALUE_MATRIX)
+                    top->cols = next->cols;
                 top->r = 0;
                 top->c = 0;
                 top->row_open = false;

@@ -385,6 +385,8 @@ bool urwire_next_package(urwire_seq *seq, urwire_package *out)
     const urwire__form *f;
     urwire__ver use;
     size_t pos;
+    if (out == NULL)  /* no package to fill: none read */
+        return false;
     if (!urwire__next_layout(seq, &pos, &f, &use, &out->as, &out->error, &out->failed))
         return false;
     out->type = seq->msg[pos + URWIRE__PACKAGE_TYPE_AT];

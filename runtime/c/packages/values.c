@@ -40,13 +40,21 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const 
 {
     size_t pos = *at, k;
     const urwire__value_entry *e;
-    if (pos >= end)
-        return urwire__short(err, ".type", pos, 1, end);
-    if (depth > URWIRE_MAX_VALUE_DEPTH)
-        return urwire__fail(err, URWIRE_E_TOO_DEEP, pos, "", URWIRE_MAX_VALUE_DEPTH, 0);
+    /* false said outright, not as the error setters' result: a file analysed on its own (the
+     * runtime's standalone build) cannot see that they return false, and out is unset here */
+    if (pos >= end) {
+        urwire__short(err, ".type", pos, 1, end);
+        return false;
+    }
+    if (depth > URWIRE_MAX_VALUE_DEPTH) {
+        urwire__fail(err, URWIRE_E_TOO_DEEP, pos, "", URWIRE_MAX_VALUE_DEPTH, 0);
+        return false;
+    }
     e = urwire__value_entry_of(t, msg[pos]);
-    if (e == NULL)
-        return urwire__fail(err, URWIRE_E_VALUE_TYPE, pos, ".type", msg[pos], 0);
+    if (e == NULL) {
+        urwire__fail(err, URWIRE_E_VALUE_TYPE, pos, ".type", msg[pos], 0);
+        return false;
+    }
     out->code = e->code;
     out->kind = e->kind;
     out->type_name = e->name;
@@ -153,7 +161,8 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, const
         /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH, and this one is n + 1
          * deep: n stays below it, within open[] */
         if (!urwire__read_head(msg, &pos, end, version, t, n + 1, item, err)) {
-            for (; n; n--, top--) {
+            for (; n; n--) {  /* the item's path within each value open, innermost first */
+                top = &open[n - 1];
                 if (top->cols)
                     urwire__within2(err, "", top->done / top->cols, top->done % top->cols, true);
                 else

@@ -117,7 +117,9 @@ static void urwire__visit_value(const urwire_value *val, const char *key, const 
                 top->end = next->items.end;
                 top->count = next->items.count;
                 top->rows = next->rows;
-                top->cols = next->kind == URWIRE_VALUE_MATRIX ? next->cols : 0;
+                top->cols = 0;                      /* a LIST's items are one run */
+                if (next->kind == URWIRE_VALUE_MATRIX)
+                    top->cols = next->cols;
                 top->r = 0;
                 top->c = 0;
                 top->row_open = false;
