@@ -11,21 +11,20 @@ foxglove.PoseInFrame (/.../tcp_pose) and the joint positions (/.../joint_positio
 Log times are the capture's times in nanoseconds since the epoch; a raw stream has none, and its
 records are numbered instead (the n-th at n ns) so that the order stays. A `robot` metadata record
 per robot address holds what the capture says of it: software version, serial number, model.
-Needs the `mcap` package (pip install urwire[mcap]). `urwire export --format mcap` writes a capture
-with it (data/mcap_export.py), `urwire listen --mcap` what it records.
+Writing needs the `mcap` package (pip install urwire[mcap]). `urwire export --format mcap` writes a
+capture with it (data/mcap_export.py), `urwire listen --mcap` what it records (live/listen_views.py).
 """
 from __future__ import annotations
 
 import json
 import re
-import time
 from decimal import Decimal
-from typing import BinaryIO, Optional
+from typing import BinaryIO, NamedTuple, Optional
 
 from . import __version__, mcap_robot
 from .canonical import has_error, to_json_line
 from .cell import PRIMARY
-from .envelope import FROM_ROBOT, Endpoints, Enveloped
+from .envelope import Enveloped
 from .mcap_schema import ANY_RECORD, schema_text
 
 LIBRARY = f"urwire {__version__}"
@@ -62,21 +61,25 @@ def nanoseconds(seconds: float) -> int:
     return int(Decimal(repr(seconds)).scaleb(9).to_integral_value())
 
 
-class McapRecording:
-    """Records written to an open binary file as they come; finish() writes the summary."""
+class Message(NamedTuple):
+    """One message for a viewer, on its topic with its schema."""
+    topic: str
+    schema_name: str
+    schema: bytes       # its JSON Schema's text
+    data: bytes         # the message, strict JSON
+    log_time: int       # nanoseconds since the epoch
 
-    def __init__(self, fh: BinaryIO) -> None:
-        from mcap.writer import Writer   # the optional extra, needed only here
-        self._writer = Writer(fh)
-        self._writer.start(profile="", library=LIBRARY)
-        self._schemas: dict[str, int] = {}
-        self._channels: dict[str, int] = {}
-        self._sequence: dict[int, int] = {}
+
+class RecordMessages:
+    """What records are for a viewer: each record's messages, on their topics with their schemas,
+    and what the records say of each robot (`robots`, by address)."""
+
+    def __init__(self) -> None:
+        self._schemas: dict[str, bytes] = {}
         self.robots: dict[str, dict[str, str]] = {}
-        self.counts: dict[str, int] = {}
 
-    def add(self, position: int, item) -> None:
-        """One record: Enveloped, from a capture, or a raw primary stream's record as it is."""
+    def of(self, position: int, item) -> list[Message]:
+        """One record's messages: Enveloped, from a capture, or a raw primary stream's record as it is."""
         enveloped = isinstance(item, Enveloped)
         record = item.record if enveloped else item
         seconds = item.capture_time if enveloped else None
@@ -87,6 +90,7 @@ class McapRecording:
             parts = [record]
         else:
             parts = record.packages
+        out = []
         for part in parts:
             if part is record:
                 line = to_json_line(item)       # as decode prints it
@@ -96,20 +100,32 @@ class McapRecording:
             line = strict_json(line)
             shown = json.loads(line)
             kind = "error" if has_error(part) else str(shown.get("type", "unknown"))
-            self._write(f"{base}/{kind}", type(part), f"urwire.{interface}.{kind}", line.encode(), log_time)
+            name = f"urwire.{interface}.{kind}"
+            out.append(Message(f"{base}/{kind}", name, self._schema(name, type(part)), line.encode(), log_time))
             if kind != "error":
-                self._robot_parts(base, kind, shown, log_time)
+                out.extend(self._robot_parts(base, kind, shown, log_time))
                 if enveloped and item.conversation is not None:
                     self._learn(item.conversation.robot_address, interface, kind, shown)
+        return out
 
-    def _robot_parts(self, base: str, kind: str, shown: dict, log_time: int) -> None:
+    def _schema(self, name: str, cls: type) -> bytes:
+        """A record kind's schema, made from the class of the first record of the kind."""
+        if name not in self._schemas:
+            self._schemas[name] = json.dumps({**ANY_RECORD, "title": name}).encode() if name.endswith(".error") \
+                else schema_text(cls, name)
+        return self._schemas[name]
+
+    @staticmethod
+    def _robot_parts(base: str, kind: str, shown: dict, log_time: int) -> list[Message]:
         pose, joints = mcap_robot.pose_and_joints(kind, shown)
+        out = []
         if pose is not None:
-            self._write_as(f"{base}/tcp_pose", mcap_robot.POSE_SCHEMA_NAME, mcap_robot.POSE_SCHEMA,
-                           mcap_robot.pose_message(pose, log_time), log_time)
+            out.append(Message(f"{base}/tcp_pose", mcap_robot.POSE_SCHEMA_NAME, mcap_robot.POSE_SCHEMA,
+                               mcap_robot.pose_message(pose, log_time), log_time))
         if joints is not None:
-            self._write_as(f"{base}/joint_positions", mcap_robot.JOINTS_SCHEMA_NAME, mcap_robot.JOINTS_SCHEMA,
-                           mcap_robot.joints_message(joints, log_time), log_time)
+            out.append(Message(f"{base}/joint_positions", mcap_robot.JOINTS_SCHEMA_NAME, mcap_robot.JOINTS_SCHEMA,
+                               mcap_robot.joints_message(joints, log_time), log_time))
+        return out
 
     def _learn(self, address: Optional[str], interface: str, kind: str, shown: dict) -> None:
         """What a record says of its robot: the software version (the primary interface's version
@@ -124,56 +140,42 @@ class McapRecording:
             if name:
                 robot[name] = str(shown["reply"])
 
-    def _write(self, topic: str, cls: type, schema_name: str, data: bytes, log_time: int) -> None:
-        """A record kind's message; its schema is made from the class of the first record of the kind."""
-        if schema_name not in self._schemas:
-            text = json.dumps({**ANY_RECORD, "title": schema_name}).encode() if schema_name.endswith(".error") \
-                else schema_text(cls, schema_name)
-            self._schemas[schema_name] = self._writer.register_schema(schema_name, "jsonschema", text)
-        self._message(topic, self._schemas[schema_name], data, log_time)
 
-    def _write_as(self, topic: str, name: str, text: bytes, data: bytes, log_time: int) -> None:
-        if name not in self._schemas:
-            self._schemas[name] = self._writer.register_schema(name, "jsonschema", text)
-        self._message(topic, self._schemas[name], data, log_time)
+class McapRecording:
+    """Records written to an open binary file as they come; finish() writes the summary. `messages`
+    is where they become messages (its robots the metadata), shared when another view takes them too."""
 
-    def _message(self, topic: str, schema: int, data: bytes, log_time: int) -> None:
-        channel = self._channels.get(topic)
+    def __init__(self, fh: BinaryIO, messages: Optional[RecordMessages] = None) -> None:
+        from mcap.writer import Writer   # the optional extra, needed only here
+        self._writer = Writer(fh)
+        self._writer.start(profile="", library=LIBRARY)
+        self.messages = messages or RecordMessages()
+        self._schemas: dict[str, int] = {}
+        self._channels: dict[str, int] = {}
+        self._sequence: dict[int, int] = {}
+        self.counts: dict[str, int] = {}
+
+    def add(self, position: int, item) -> None:
+        """One record: Enveloped, from a capture, or a raw primary stream's record as it is."""
+        for message in self.messages.of(position, item):
+            self.write(message)
+
+    def write(self, message: Message) -> None:
+        schema = self._schemas.get(message.schema_name)
+        if schema is None:
+            schema = self._schemas[message.schema_name] = \
+                self._writer.register_schema(message.schema_name, "jsonschema", message.schema)
+        channel = self._channels.get(message.topic)
         if channel is None:
-            channel = self._channels[topic] = self._writer.register_channel(topic, "json", schema)
+            channel = self._channels[message.topic] = self._writer.register_channel(message.topic, "json", schema)
         sequence = self._sequence.get(channel, 0)
         self._sequence[channel] = sequence + 1
-        self._writer.add_message(channel, log_time=log_time, data=data, publish_time=log_time, sequence=sequence)
-        self.counts[topic] = self.counts.get(topic, 0) + 1
+        self._writer.add_message(channel, log_time=message.log_time, data=message.data,
+                                 publish_time=message.log_time, sequence=sequence)
+        self.counts[message.topic] = self.counts.get(message.topic, 0) + 1
 
     def finish(self) -> None:
-        for address in sorted(self.robots):
-            self._writer.add_metadata("robot", self.robots[address])
+        robots = self.messages.robots
+        for address in sorted(robots):
+            self._writer.add_metadata("robot", robots[address])
         self._writer.finish()
-
-
-def endpoints_of(sock) -> Endpoints:
-    """The conversation of a connection this side opened: the peer listens."""
-    peer, own = sock.getpeername(), sock.getsockname()
-    return Endpoints(peer[0], peer[1], own[0], own[1])
-
-
-class McapFile:
-    """`urwire listen --mcap FILE`: the records of a live connection as they come, each stamped
-    with the time it was decoded and enveloped with its interface and the current connection's
-    conversation (set by listen on each connection); close() writes the summary."""
-
-    def __init__(self, path: str, interface: str) -> None:
-        self.path, self.interface = path, interface
-        self.conversation: Optional[Endpoints] = None
-        self._fh = open(path, "wb")
-        self._recording = McapRecording(self._fh)
-
-    def add(self, position: int, record) -> None:
-        self._recording.add(position, Enveloped(self.interface, FROM_ROBOT, self.conversation, record, time.time()))
-
-    def close(self) -> None:
-        try:
-            self._recording.finish()
-        finally:
-            self._fh.close()

@@ -35,9 +35,10 @@ from ..canonical import fails, to_json_line
 from ..cell import PRIMARY
 from ..framer import Framer
 from ..human import line as human_line
-from ..mcap_recording import McapFile, endpoints_of, mcap_missing
+from ..mcap_recording import mcap_missing
 from .listen_rtde import PORT as RTDE_PORT
 from .listen_rtde import RtdeRecorder
+from .listen_views import Views, endpoints_of
 from .serve_rtde import MAX_FREQUENCY
 
 BACKOFF_FIRST = 0.5
@@ -178,10 +179,11 @@ class Outputs:
         self.count = args.count
         self.records = 0
         self.failed = False
-        self.mcap = None
+        self.views = None
+        self.views_name = args.mcap
         if args.mcap:
-            with self.writing(args.mcap):
-                self.mcap = McapFile(args.mcap, "rtde" if args.rtde is not None else PRIMARY)
+            with self.writing(self.views_name):
+                self.views = Views("rtde" if args.rtde is not None else PRIMARY, args.mcap)
         if args.format == "csv":
             self.render = _csv_renderer()
             with self.writing(self.out_name):
@@ -200,8 +202,8 @@ class Outputs:
     def new_connection(self, sock: Optional[socket.socket] = None) -> None:
         """Closes the last connection's raw files. This one's are made with its first byte
         received: a connection that got none leaves no files (what listen sent on it is dropped)."""
-        if self.mcap and sock is not None:
-            self.mcap.conversation = endpoints_of(sock)
+        if self.views and sock is not None:
+            self.views.conversation = endpoints_of(sock)
         self.close_raw()
         self.unsent_kept = bytearray()
 
@@ -236,9 +238,9 @@ class Outputs:
         with self.writing(self.out_name):
             for record in records:
                 self.failed = self.failed or fails(record)
-                if self.mcap:
-                    with self.writing(self.mcap.path):
-                        self.mcap.add(self.records, record)
+                if self.views:
+                    with self.writing(self.views_name):
+                        self.views.add(self.records, record)
                 self.out.write(self.render(record))
                 self.out.write("\n")
                 self.records += 1
@@ -268,9 +270,9 @@ class Outputs:
         except OutputError as exc:
             errors.append(exc)
         try:
-            if self.mcap:
-                with self.writing(self.mcap.path):
-                    self.mcap.close()
+            if self.views:
+                with self.writing(self.views_name):
+                    self.views.close()
         except OutputError as exc:
             errors.append(exc)
         try:
