@@ -12,7 +12,8 @@ Log times are the capture's times in nanoseconds since the epoch; a raw stream h
 records are numbered instead (the n-th at n ns) so that the order stays. A `robot` metadata record
 per robot address holds what the capture says of it: software version, serial number, model.
 Writing needs the `mcap` package (pip install urwire[mcap]). `urwire export --format mcap` writes a
-capture with it (data/mcap_export.py), `urwire listen --mcap` what it records (live/listen_views.py).
+capture with it (data/mcap_export.py), `urwire listen --mcap` what it records (live/listen_views.py,
+which also sends the same messages to a live viewer with `--foxglove`: RecordMessages).
 """
 from __future__ import annotations
 
@@ -62,7 +63,7 @@ def nanoseconds(seconds: float) -> int:
 
 
 class Message(NamedTuple):
-    """One message for a viewer, on its topic with its schema."""
+    """One message for a viewer: an MCAP message, or a Foxglove WebSocket one (foxglove_server)."""
     topic: str
     schema_name: str
     schema: bytes       # its JSON Schema's text
@@ -72,7 +73,8 @@ class Message(NamedTuple):
 
 class RecordMessages:
     """What records are for a viewer: each record's messages, on their topics with their schemas,
-    and what the records say of each robot (`robots`, by address)."""
+    and what the records say of each robot (`robots`, by address). The MCAP file and the live view
+    (`listen --foxglove`) both take their channels, schemas and messages from here."""
 
     def __init__(self) -> None:
         self._schemas: dict[str, bytes] = {}

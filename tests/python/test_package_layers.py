@@ -32,7 +32,7 @@ MAY_IMPORT = {"core": {"core"}, "live": {"core", "live"}, "data": {"core", "data
               "command": {"core", "live", "data", "command"}}
 # What a function may import when it runs: third-party extras (and a module only some platforms
 # have) that the package must start without.
-OPTIONAL = {"dpkt", "tqdm", "pyarrow", "pyspark", "matplotlib", "mcap", "resource"}
+OPTIONAL = {"dpkt", "tqdm", "pyarrow", "pyspark", "matplotlib", "mcap", "websockets", "resource"}
 
 
 def module_files() -> dict[str, Path]:
