@@ -52,7 +52,7 @@ LIVE_TESTS := tests/python/test_live.py tests/python/test_listen_field.py tests/
 	tests/python/test_listen_rtde.py tests/python/test_cell_capture.py tests/python/test_urcl_rtde_dashboard.py \
 	tests/python/test_serve_hostile.py tests/python/test_serve_refuses.py tests/python/test_serve_dashboard.py \
 	tests/python/test_serve_rtde_table.py tests/python/test_serve_primary_layout.py \
-	tests/python/test_mcap_listen.py
+	tests/python/test_mcap_listen.py tests/python/test_foxglove_listen.py
 TEST_JOBS ?= auto
 test: check-generated $(TEST_BUILDS)
 	@mkdir -p build

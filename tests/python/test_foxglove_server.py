@@ -5,6 +5,9 @@ each message, the messages queued when it closes, and the backlog of a slow clie
 from __future__ import annotations
 
 import json
+import socket
+import subprocess
+import sys
 
 import pytest
 
@@ -12,6 +15,7 @@ pytest.importorskip("websockets")
 from websockets.exceptions import InvalidStatus  # noqa: E402
 
 from tests.python.foxglove_viewer import Viewer  # noqa: E402
+from tests.python.test_live import ENV  # noqa: E402
 from urwire.foxglove_server import BACKLOG, FoxgloveServer, _Client  # noqa: E402
 from urwire.mcap_recording import Message  # noqa: E402
 
@@ -91,3 +95,13 @@ def test_a_slow_client_loses_the_oldest_messages_and_is_told():
         client.send_data(b"%d" % n)
     assert client.dropped == 3 and client.data[0] == b"3" and len(client.data) == BACKLOG
 
+
+def test_listen_says_when_the_port_is_taken():
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        done = subprocess.run([sys.executable, "-m", "urwire", "listen", "127.0.0.1:9", "--foxglove",
+                               "--foxglove-port", str(taken.getsockname()[1]), "--duration", "1"],
+                              capture_output=True, text=True, env=ENV, timeout=60)
+    assert done.returncode == 2
+    assert "cannot serve the live view on 127.0.0.1:" in done.stderr and "in use" in done.stderr

@@ -5,10 +5,12 @@ Connects, frames and decodes the bytes as they arrive and writes each record at 
 so `tail -f` follows it. `--raw FILE` also keeps the exact bytes, one file per connection that
 received any (`FILE`, then `session.1.raw`, `session.2.raw`, ... for `session.raw`), so that each
 file is one controller session that `urwire decode` reads back into exactly the records listen
-wrote. A dropped, refused or silent connection is retried with a pause that doubles up to 10 s,
-said on stderr, and starts again from 0.5 s only after a connection whose data flowed (a robot
-state, an RTDE data package); each new connection gets a new framer, since the controller starts
-it with a Version message.
+wrote. `--mcap FILE` also writes them as MCAP for Foxglove, and `--foxglove` serves the same
+messages live over the Foxglove WebSocket protocol (listen_views, docs/mcap.md).
+A dropped, refused or silent connection is retried with a pause that doubles up to 10 s, said on
+stderr, and starts again from 0.5 s only after a connection whose data flowed (a robot state, an
+RTDE data package); each new connection gets a new framer, since the controller starts it with a
+Version message.
 A peer that sends nothing for the idle timeout (10 Hz robots send ten states a second) is
 dropped; TCP keepalive also finds a dead link where the platform supports it.
 Exit codes as for decode: 0 everything decoded, 1 some records hold errors, 2 usage or I/O error
@@ -30,9 +32,12 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Callable, Iterator, Optional
 
-from ..arguments import finite_number, port_of
+from .. import __version__
+from ..arguments import finite_number, port_number, port_of
 from ..canonical import fails, to_json_line
 from ..cell import PRIMARY
+from ..foxglove_server import DEFAULT_PORT as FOXGLOVE_PORT
+from ..foxglove_server import FoxgloveServer, foxglove_missing
 from ..framer import Framer
 from ..human import line as human_line
 from ..mcap_recording import mcap_missing
@@ -67,6 +72,14 @@ def add_parser(sub) -> None:
                         "sent too, in FILE with .to_robot before its extension (decode's --to-robot)")
     p.add_argument("--mcap", metavar="FILE",
                    help="also write what is recorded as one MCAP file for Foxglove (docs/mcap.md; urwire[mcap])")
+    p.add_argument("--foxglove", action="store_true",
+                   help="also serve what is recorded live over the Foxglove WebSocket protocol: the channels and "
+                        "messages --mcap writes (docs/mcap.md, Live view; urwire[foxglove])")
+    p.add_argument("--foxglove-port", type=port_number, default=FOXGLOVE_PORT, metavar="PORT",
+                   help=f"with --foxglove: the port to serve on (default: {FOXGLOVE_PORT}; 0: one the system picks)")
+    p.add_argument("--foxglove-host", default="127.0.0.1", metavar="HOST",
+                   help="with --foxglove: the address to serve on (default: 127.0.0.1, this machine only; "
+                        "0.0.0.0 for every network)")
     p.add_argument("--count", type=int, metavar="N", help="stop after N records")
     p.add_argument("--duration", type=finite_number, metavar="S", help="stop after S seconds")
     p.add_argument("--idle-timeout", type=finite_number, default=IDLE_TIMEOUT, metavar="S",
@@ -158,7 +171,7 @@ def _stop(signum, frame) -> None:
 class Outputs:
     """The records file (or standard output) and the raw files, each write error an OutputError."""
 
-    def __init__(self, args: argparse.Namespace):
+    def __init__(self, args: argparse.Namespace, live: Optional[FoxgloveServer] = None):
         self.out_name = args.out or "standard output"
         self.out = sys.stdout
         self.owns_out = bool(args.out)
@@ -180,10 +193,10 @@ class Outputs:
         self.records = 0
         self.failed = False
         self.views = None
-        self.views_name = args.mcap
-        if args.mcap:
+        self.views_name = args.mcap or "the live view"
+        if args.mcap or live:
             with self.writing(self.views_name):
-                self.views = Views("rtde" if args.rtde is not None else PRIMARY, args.mcap)
+                self.views = Views("rtde" if args.rtde is not None else PRIMARY, args.mcap, live)
         if args.format == "csv":
             self.render = _csv_renderer()
             with self.writing(self.out_name):
@@ -338,12 +351,23 @@ def listen_command(args: argparse.Namespace) -> int:
         print(f"urwire listen: --rtde needs variable names and --frequency a rate above 0 and at most "
               f"{HIGHEST_FREQUENCY:g}, as a robot runs (CB3: 125)", file=sys.stderr)
         return 2
-    if args.mcap and mcap_missing():
-        print(f"urwire listen: {mcap_missing()}", file=sys.stderr)
+    missing = (args.mcap and mcap_missing()) or (args.foxglove and foxglove_missing())
+    if missing:
+        print(f"urwire listen: {missing}", file=sys.stderr)
         return 2
+    live = None
+    if args.foxglove:
+        try:
+            live = serve_live(args, f"{host}:{port}")
+        except OSError as exc:
+            print(f"urwire listen: cannot serve the live view on {args.foxglove_host}:{args.foxglove_port}: "
+                  f"{exc.strerror or exc}", file=sys.stderr)
+            return 2
     try:
-        outputs = Outputs(args)
+        outputs = Outputs(args, live)
     except OutputError as exc:
+        if live:
+            live.close()
         print(f"urwire listen: {exc}", file=sys.stderr)
         return 2
     deadline = time.monotonic() + args.duration if args.duration is not None else None
@@ -367,6 +391,15 @@ def listen_command(args: argparse.Namespace) -> int:
         print(f"urwire listen: nothing was received from {host}:{port}", file=sys.stderr)
         return 2
     return 1 if outputs.failed else 0
+
+
+def serve_live(args: argparse.Namespace, robot: str) -> FoxgloveServer:
+    """`--foxglove`: the live view, started before the robot is asked for anything, and its address said."""
+    live = FoxgloveServer(args.foxglove_host, args.foxglove_port, f"urwire {__version__} listen {robot}")
+    host = f"[{live.host}]" if ":" in live.host else live.host
+    print(f"urwire listen: live view on ws://{host}:{live.port} (Foxglove: Open connection, Foxglove WebSocket)",
+          file=sys.stderr, flush=True)
+    return live
 
 
 def _left(deadline: Optional[float]) -> Optional[float]:

@@ -1,8 +1,9 @@
-"""`urwire listen --mcap FILE`: what a viewer sees of the records listen writes.
+"""`urwire listen --mcap FILE` and `--foxglove`: what a viewer sees of the records listen writes.
 
 Each record is enveloped with its interface and the current connection's conversation (set by
 listen on each connection), stamped with the time it was decoded, and made into its messages once
-(mcap_recording.RecordMessages), which the MCAP file writes (docs/mcap.md).
+(mcap_recording.RecordMessages); the MCAP file writes them and the live view (foxglove_server)
+sends them, so both hold the same channels, schemas, messages and log times (docs/mcap.md).
 """
 from __future__ import annotations
 
@@ -20,10 +21,11 @@ def endpoints_of(sock) -> Endpoints:
 
 
 class Views:
-    """The MCAP file (when `mcap_path`). An OSError from add() or close() is the MCAP file's."""
+    """The MCAP file (when `mcap_path`) and the live view (when `live`, a started FoxgloveServer).
+    An OSError from add() or close() is the MCAP file's: the live view never raises one."""
 
-    def __init__(self, interface: str, mcap_path: Optional[str] = None) -> None:
-        self.interface, self.mcap_path = interface, mcap_path
+    def __init__(self, interface: str, mcap_path: Optional[str] = None, live=None) -> None:
+        self.interface, self.mcap_path, self.live = interface, mcap_path, live
         self.conversation: Optional[Endpoints] = None
         self._messages = RecordMessages()
         self._fh = open(mcap_path, "wb") if mcap_path else None
@@ -32,13 +34,19 @@ class Views:
     def add(self, position: int, record) -> None:
         item = Enveloped(self.interface, FROM_ROBOT, self.conversation, record, time.time())
         for message in self._messages.of(position, item):
+            if self.live:
+                self.live.publish(message)
             if self._mcap:
                 self._mcap.write(message)
 
     def close(self) -> None:
-        """Writes the MCAP file's summary."""
-        if self._fh:
-            try:
-                self._mcap.finish()
-            finally:
-                self._fh.close()
+        """Ends the live view, then writes the MCAP file's summary."""
+        try:
+            if self.live:
+                self.live.close()
+        finally:
+            if self._fh:
+                try:
+                    self._mcap.finish()
+                finally:
+                    self._fh.close()
