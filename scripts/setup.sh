@@ -47,7 +47,8 @@ fi
 
 python3 -m pip install -q --disable-pip-version-check -r requirements-dev.txt
 python3 -m pip install -q --disable-pip-version-check .
-# Foxglove's TypeScript MCAP reader, pinned by its lock file, for tests/python/test_mcap_node.py (Node.js 20).
+# Foxglove's TypeScript MCAP reader and WebSocket protocol client, pinned by the lock file, for
+# tests/python/test_mcap_node.py and test_foxglove_listen.py (Node.js 20).
 if command -v npm >/dev/null; then npm ci --prefix tests/node --no-audit --no-fund --silent; fi
 # The C extension in place too, for the tree's Python (PYTHONPATH=python:generated/python).
 make --no-print-directory python-ext PYTHON=python3
