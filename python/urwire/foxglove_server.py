@@ -33,7 +33,7 @@ BACKLOG = 1024              # messages kept per client, as Foxglove's SDK server
 DRAIN = 1.0                 # seconds close() gives the clients to receive what is queued for them
 MESSAGE_DATA = struct.Struct("<BIQ")    # opcode 0x01, subscription id, log time (ns since the epoch)
 _OPCODE_MESSAGE_DATA = 0x01
-_INFO, _WARNING, _ERROR = 0, 1, 2       # a status message's levels
+_WARNING, _ERROR = 1, 2                 # status levels (0 is info, which nothing here sends)
 
 
 def foxglove_missing() -> Optional[str]:
