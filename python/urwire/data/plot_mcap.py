@@ -148,7 +148,12 @@ def draw(motion: RecordedMotion, out: str, plt) -> None:
     right.quiver(x[::every], y[::every], z[::every], ax[::every], ay[::every], az[::every],
                  length=AXIS_LENGTH, color="tab:red", linewidth=0.8)
     right.scatter([x[0]], [y[0]], [z[0]], color="black", s=12)
-    right.set_box_aspect([max(c) - min(c) or AXIS_LENGTH for c in (x, y, z)])   # metres alike on every axis
+    spans = []
+    for values, limits in zip((x, y, z), (right.set_xlim, right.set_ylim, right.set_zlim)):
+        middle, half = (max(values) + min(values)) / 2, max((max(values) - min(values)) / 2, AXIS_LENGTH)
+        limits(middle - half, middle + half)   # a TCP standing still still shows its tool's axis
+        spans.append(half)
+    right.set_box_aspect(spans)   # metres alike on every axis
     right.locator_params(nbins=4)
     right.set_xlabel("x (m)")
     right.set_ylabel("y (m)")
