@@ -27,9 +27,10 @@ from .decimate import MAX_BUCKETS, MinMaxLines
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("plot", help="plot one field of a capture over time",
+    p = sub.add_parser("plot", help="plot one field of a capture over time, or the motion an MCAP recording holds",
                        description="Plot a numeric field such as joint_data.q_actual: a line per joint or per "
-                                   "value. Long inputs are decimated in flat memory: each line keeps its "
+                                   "value; or, from an MCAP recording, its joints and its TCP path. Long inputs "
+                                   "are decimated in flat memory: each line keeps its "
                                    f"lowest and highest point in each of at most {MAX_BUCKETS} runs of "
                                    "consecutive points, so every peak and dip is drawn.")
     p.add_argument("file", help="a raw stream, a .pcap or a .pcapng file; or an MCAP recording of urwire's, "
