@@ -207,11 +207,8 @@ def plot_recording(args: argparse.Namespace) -> int:
     try:
         with open(args.file, "rb") as fh:
             motion = plot_mcap.RecordedMotion(fh)
-    except OSError as exc:
-        print(f"urwire plot: cannot read {args.file}: {exc.strerror or exc}", file=sys.stderr)
-        return 2
-    except ValueError as exc:
-        print(f"urwire plot: cannot read the MCAP recording {args.file}: {exc}", file=sys.stderr)
+    except (OSError, ValueError) as exc:   # ValueError: a file cut short, or not of urwire's shape
+        print(f"urwire plot: cannot read {args.file}: {getattr(exc, 'strerror', None) or exc}", file=sys.stderr)
         return 2
     if not motion.joints.points or not motion.path.points:   # a source needs both topics
         print(f"urwire plot: no joint positions and TCP pose in {args.file} (docs/mcap.md)", file=sys.stderr)
