@@ -31,9 +31,9 @@ from ..arguments import software_version
 from ..canonical import has_error, member_text, shown_text, to_json_line
 from ..cell import PRIMARY
 from ..envelope import Enveloped
-from ..reading import input_kind
 from . import export_dataset, mcap_export
 from .export_cell import CellRows
+from .export_failure import export_failed
 from .records import conversation_text, records_of_file
 # pyarrow, an optional extra (urwire[parquet]), is imported where Parquet is written: CSV needs none.
 
@@ -277,12 +277,8 @@ def export_command(args: argparse.Namespace) -> int:
                 (write_parquet if args.format == "parquet" else write_csv)(tables, out)
             finally:
                 tables.close()
-    except OSError as exc:
-        print(f"urwire export: {exc.filename or args.file}: {exc.strerror or exc}", file=sys.stderr)
-        return 2
-    except ValueError as exc:
-        print(f"urwire export: cannot read {input_kind(args.file)} {args.file}: {exc}", file=sys.stderr)
-        return 2
+    except (OSError, ValueError) as exc:
+        return export_failed(args.file, exc)
     for name in sorted(tables.counts):
         print(f"{name}: {tables.counts[name]} rows", file=sys.stderr)
     return 1 if "errors" in tables.counts else 0

@@ -6,8 +6,8 @@ import datetime
 import os
 import sys
 
-from ..reading import input_kind
 from . import dataset
+from .export_failure import export_failed
 
 
 def date_arg(text: str) -> str:
@@ -38,12 +38,8 @@ def dataset_command(args: argparse.Namespace) -> int:
                 parts = dataset.parts_of(fh, capture, os.path.basename(path), args.version_hint, args.robot,
                                          args.date or _mtime_date(path))
                 counts = dataset.write_parts(args.dataset, parts, capture)
-        except OSError as exc:
-            print(f"urwire export: {exc.filename or path}: {exc.strerror or exc}", file=sys.stderr)
-            return 2
-        except ValueError as exc:
-            print(f"urwire export: cannot read {input_kind(path)} {path}: {exc}", file=sys.stderr)
-            return 2
+        except (OSError, ValueError) as exc:
+            return export_failed(path, exc)
         rows = ", ".join(f"{kind} {n}" for kind, n in sorted(counts.items()))
         print(f"{path}: capture {capture}: {rows or 'no rows'}", file=sys.stderr)
         errors = errors or "errors" in counts

@@ -6,7 +6,7 @@ import sys
 from pathlib import Path
 
 from ..mcap_recording import McapRecording, mcap_missing
-from ..reading import input_kind
+from .export_failure import FAILED, export_failed
 from .records import records_of_file
 
 
@@ -15,7 +15,7 @@ def export_mcap(path: str, out: str, hint=None) -> int:
     for export: 1 when a record holds an error, 2 when the file cannot be read or written."""
     if mcap_missing():
         print(f"urwire export: {mcap_missing()}", file=sys.stderr)
-        return 2
+        return FAILED
     target = Path(out) / (Path(path).stem + ".mcap")
     try:
         os.makedirs(out, exist_ok=True)
@@ -24,12 +24,8 @@ def export_mcap(path: str, out: str, hint=None) -> int:
             for position, record in enumerate(records_of_file(fh, hint)):
                 recording.add(position, record)
             recording.finish()
-    except OSError as exc:
-        print(f"urwire export: {exc.filename or path}: {exc.strerror or exc}", file=sys.stderr)
-        return 2
-    except ValueError as exc:
-        print(f"urwire export: cannot read {input_kind(path)} {path}: {exc}", file=sys.stderr)
-        return 2
+    except (OSError, ValueError) as exc:
+        return export_failed(path, exc)
     for topic in sorted(recording.counts):
         print(f"{topic}: {recording.counts[topic]} messages", file=sys.stderr)
     print(f"wrote {target}", file=sys.stderr)

@@ -1,4 +1,5 @@
-"""`urwire plot`: one field of a capture over time, a line per joint (or per value).
+"""`urwire plot`: one field of a capture over time, a line per joint (or per value); or, given an
+MCAP recording of urwire's, the robot's joints and TCP path as a viewer shows them (plot_mcap.py).
 
 The x axis is the robot state's own clock (robot_mode_data's timestamp) when the message has
 one, else the message's position; the y axis shows the field's label and unit from the
@@ -19,19 +20,24 @@ from typing import Callable
 from ..arguments import software_version
 from ..canonical import has_error, to_json_line
 from ..generated import messages as _m
+from ..mcap_recording import mcap_missing
 from ..reading import decode_file
+from . import plot_mcap
 from .decimate import MAX_BUCKETS, MinMaxLines
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("plot", help="plot one field of a capture over time",
+    p = sub.add_parser("plot", help="plot one field of a capture over time, or the motion an MCAP recording holds",
                        description="Plot a numeric field such as joint_data.q_actual: a line per joint or per "
-                                   "value. Long inputs are decimated in flat memory: each line keeps its "
+                                   "value; or, from an MCAP recording, its joints and its TCP path. Long inputs "
+                                   "are decimated in flat memory: each line keeps its "
                                    f"lowest and highest point in each of at most {MAX_BUCKETS} runs of "
                                    "consecutive points, so every peak and dip is drawn.")
-    p.add_argument("file", help="a raw stream, a .pcap or a .pcapng file")
-    p.add_argument("--field", required=True, metavar="KIND.FIELD",
-                   help="a numeric field, e.g. joint_data.q_actual or tool_data.tool_current")
+    p.add_argument("file", help="a raw stream, a .pcap or a .pcapng file; or an MCAP recording of urwire's, "
+                                "drawn whole: its joints over time and its TCP path (docs/recording-view.md)")
+    p.add_argument("--field", metavar="KIND.FIELD",
+                   help="a numeric field, e.g. joint_data.q_actual or tool_data.tool_current (needed for a "
+                        "capture or a stream)")
     p.add_argument("--out", default="plot.png", metavar="FILE", help="image to write (default: plot.png)")
     p.add_argument("--version-hint", type=software_version, metavar="X.Y[.Z]",
                    help="software version to assume until a Version message is seen")
@@ -124,13 +130,8 @@ def _holder(part, name: str):
     return type(part)
 
 
-def plot_command(args: argparse.Namespace) -> int:
-    kind, _, name = args.field.partition(".")
-    if args.field not in plottable_fields():
-        known = plottable_fields(kind) or plottable_fields()
-        print(f"urwire plot: {args.field} is not a numeric field of the spec; fields it can plot: "
-              f"{', '.join(known)}", file=sys.stderr)
-        return 2
+def _pyplot():
+    """matplotlib's pyplot drawing to files, or None (said on stderr) when it is not installed."""
     try:
         import matplotlib  # an optional extra: urwire[plot]
         matplotlib.use("Agg")
@@ -141,6 +142,25 @@ def plot_command(args: argparse.Namespace) -> int:
         import matplotlib.pyplot as plt
     except ImportError:
         print("urwire plot: plotting needs matplotlib: pip install urwire[plot]", file=sys.stderr)
+        return None
+    return plt
+
+
+def plot_command(args: argparse.Namespace) -> int:
+    if plot_mcap.is_mcap(args.file):
+        return plot_recording(args)
+    if args.field is None:
+        print("urwire plot: a capture or a stream needs --field KIND.FIELD (an MCAP recording is drawn whole)",
+              file=sys.stderr)
+        return 2
+    kind, _, name = args.field.partition(".")
+    if args.field not in plottable_fields():
+        known = plottable_fields(kind) or plottable_fields()
+        print(f"urwire plot: {args.field} is not a numeric field of the spec; fields it can plot: "
+              f"{', '.join(known)}", file=sys.stderr)
+        return 2
+    plt = _pyplot()
+    if plt is None:
         return 2
     errors: list = []
     try:
@@ -170,4 +190,34 @@ def plot_command(args: argparse.Namespace) -> int:
         print(f"urwire plot: {len(errors)} error record(s) in {args.file}, the first: {to_json_line(errors[0])}",
               file=sys.stderr)
         return 1
+    return 0
+
+
+def plot_recording(args: argparse.Namespace) -> int:
+    """`urwire plot RECORDING.mcap`: the joints and the TCP path of an MCAP recording (plot_mcap.py)."""
+    if args.field is not None:
+        print("urwire plot: an MCAP recording is drawn whole, its joints and TCP path: no --field", file=sys.stderr)
+        return 2
+    if mcap_missing():
+        print(f"urwire plot: {mcap_missing()}", file=sys.stderr)
+        return 2
+    plt = _pyplot()
+    if plt is None:
+        return 2
+    try:
+        with open(args.file, "rb") as fh:
+            motion = plot_mcap.RecordedMotion(fh)
+    except (OSError, ValueError) as exc:   # ValueError: a file cut short, or not of urwire's shape
+        print(f"urwire plot: cannot read {args.file}: {getattr(exc, 'strerror', None) or exc}", file=sys.stderr)
+        return 2
+    if not motion.joints.points or not motion.path.points:   # a source needs both topics
+        print(f"urwire plot: no joint positions and TCP pose in {args.file} (docs/mcap.md)", file=sys.stderr)
+        return 1
+    try:
+        plot_mcap.draw(motion, args.out, plt)
+    except OSError as exc:
+        print(f"urwire plot: cannot write {args.out}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
+    print(f"urwire plot: {motion.source}: {motion.joints.points} joint positions, {motion.path.seen} TCP poses "
+          f"-> {args.out}", file=sys.stderr)
     return 0
