@@ -8,8 +8,9 @@ Wireshark's own tree (docs/wireshark-upstream.md): it reads no command line.
 write a smaller build outside generated/ (docs/generator.md#subsets).
 
 Also: `python -m codegen diff 3.15 5.11` prints what changed between two software versions (and
-the C robot-state fast-path loop each takes), and `python -m codegen reference [--check]` writes
-docs/protocol.md, the protocol reference.
+the C robot-state fast-path loop each takes; `--spec spec/ur_realtime.yaml` or any other spec for
+that interface), and `python -m codegen reference [--check]` writes docs/protocol.md, the
+protocol reference.
 """
 from __future__ import annotations
 
@@ -26,9 +27,9 @@ from .kinds import TARGETS, TargetOptions
 from .kinds.packages.c import fast_path_change
 from .kinds.packages.model import Protocol
 from .kinds.packages.pin import pin
-from .kinds.packages.plan import plan
-from .kinds.packages.reference import diff, protocol_markdown
-from .load import load_text
+from .kinds.packages.plan import ProtocolPlan, plan
+from .kinds.packages.reference import protocol_markdown
+from .load import load_file, load_text
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -132,7 +133,8 @@ def _planned(spec: Path):
 
 def _diff(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(prog="python -m codegen diff",
-                                     description="What changes in the protocol from one software version to another.")
+                                     description="What changes in an interface from one software version to another "
+                                                 "(for the ROS driver's sockets, from one driver release to another).")
     parser.add_argument("old", help="software version, e.g. 3.15")
     parser.add_argument("new", help="software version, e.g. 5.11 or 5.25.1")
     parser.add_argument("--spec", type=Path, default=DEFAULT_SPEC)
@@ -141,15 +143,20 @@ def _diff(argv: list[str]) -> int:
         old, new = ir.parse_version(args.old), ir.parse_version(args.new)
     except ValueError:
         parser.error("versions are written like 5.9 or 5.25.1")
-    planned = _planned(args.spec)
-    if planned is None:
+    try:
+        loaded = load_file(args.spec)
+        kind = kind_of(loaded)
+        planned = kind.plan(compile_loaded(loaded))
+    except SpecError as exc:
+        print(exc, file=sys.stderr)
         return 2
-    lines = diff(planned, old, new)
+    lines = kind.diff(planned, old, new)
     print(f"{args.old} -> {args.new}: " + (f"{len([x for x in lines if not x.startswith(' ')])} change(s)"
                                            if lines else "no change"))
     for line in lines:
         print(line)
-    print(fast_path_change(planned, old, new))
+    if isinstance(planned, ProtocolPlan):      # the primary interface: which C fast path each takes
+        print(fast_path_change(planned, old, new))
     return 0
 
 

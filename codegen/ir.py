@@ -20,6 +20,11 @@ Version = tuple[int, int, int]   # major, minor, bugfix
 # 5.8.3); bugfix numbers run far below this.
 BUGFIX_ANY = 999
 
+# The last minor release an upper bound names: "until: 5.99" (the e-Series' end) takes in every
+# later 5.x. The version just past such a bound, 5.100, is no release a reader knows: it is said
+# from the bound, "after 5.99".
+LAST_MINOR = 99
+
 
 @dataclass(frozen=True)
 class Where:
@@ -49,6 +54,13 @@ def version_text(version: Version) -> str:
     """(5, 9, 0) -> "5.9"; (5, 25, 1) -> "5.25.1"; an upper bound (5, 8, BUGFIX_ANY) -> "5.8"."""
     major, minor, bugfix = version
     return f"{major}.{minor}" if bugfix in (0, BUGFIX_ANY) else f"{major}.{minor}.{bugfix}"
+
+
+def past_last_minor(version: Version) -> Optional[Version]:
+    """The bound X.99 (every X.99.x) when `version` is the first version past it: (10, 100, 0) ->
+    (10, 99, BUGFIX_ANY); None for a version that reads as itself."""
+    major, minor, bugfix = version
+    return (major, LAST_MINOR, BUGFIX_ANY) if (minor, bugfix) == (LAST_MINOR + 1, 0) else None
 
 
 def version_number(version: Version) -> int:
@@ -83,13 +95,18 @@ class VersionRange:
 
     def describe(self, first: Optional[Version] = None) -> str:
         """The range as a reader says it: "1.5 to 1.8", "5.25.1 and later", "up to 3.1", "5.0"
-        (every 5.0.x). An upper bound keeps an explicit bugfix ("up to 5.25.0": before 5.25.1);
-        a range that starts at `first` (the first release) reads "up to". Every target's comments,
-        docstrings and run-time texts use this: no bound prints as a tuple or a number."""
+        (every 5.0.x), "after 10.99" (past_last_minor). An upper bound keeps an explicit bugfix
+        ("up to 5.25.0": before 5.25.1); a range that starts at `first` (the first release) reads
+        "up to". Every target's comments, docstrings and run-time texts use this: no bound prints
+        as a tuple or a number."""
         if self.low and self.high and self.low[:2] == self.high[:2] and (self.low[2], self.high[2]) == (0, BUGFIX_ANY):
             return version_text(self.low)                            # one minor release: "1.8"
         low = None if self.low is None or (first is not None and self.low <= first) else self.low
         high = self.high and (version_text(self.high) if self.high[2] else "%d.%d.0" % self.high[:2])
+        bound = low and past_last_minor(low)
+        if bound:
+            since = f"after {version_text(bound)}"
+            return f"{since}, up to {high}" if self.high else since
         if low and self.high:
             return f"{version_text(low)} to {high}"
         if low:

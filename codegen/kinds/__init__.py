@@ -1,10 +1,11 @@
 """Interface kinds: what `framing.kind` a spec declares decides which part of the spec language it
 uses. Each kind is a package here with the same modules: its schema (a file under codegen/schema
 that may $ref the shared definitions of spec.schema.json), `resolve.py` (LoadedSpec -> its IR,
-model.py), `plan.py` (the IR -> its plan) and one renderer per target, named after it (`c.py`,
-`epan.py`, `lua.py`, `python.py`: plan -> {path under generated/: text}). The primary interface
-is the kind `packages`: length-framed messages holding sub-packages, and a spec that names no
-kind is one of those. A kind imports nothing from another kind.
+model.py), `plan.py` (the IR -> its plan), one renderer per target, named after it (`c.py`,
+`epan.py`, `lua.py`, `python.py`: plan -> {path under generated/: text}), and what changes from
+one version to another (`python -m codegen diff`, in the terms of codegen/version_diff.py). The
+primary interface is the kind `packages`: length-framed messages holding sub-packages, and a
+spec that names no kind is one of those. A kind imports nothing from another kind.
 
 Adding a kind is adding a package here whose __init__.py defines `KIND = define(...)`."""
 from __future__ import annotations
@@ -15,6 +16,7 @@ from dataclasses import dataclass
 from types import ModuleType
 from typing import Callable, Optional
 
+from ..ir import Version
 from ..load import LoadedSpec
 
 DEFAULT_KIND = "packages"
@@ -33,14 +35,18 @@ class Kind:
     name: str
     schema: str                                          # a file name under codegen/schema
     resolve: Callable[[LoadedSpec], object]              # raises SpecError with every problem
+    plan: Callable[[object], object]                     # model -> plan
+    diff: Callable[[object, Version, Version], list[str]]   # (plan, a, b) -> what changes from a to b
     # (model, banner lines, only these targets or None for all, options or None)
     #   -> {path under generated/: text}
     render: Callable[[object, list[str], Optional[list[str]], Optional[TargetOptions]], dict[str, str]]
 
 
-def define(name: str, schema: str, resolve: ModuleType, plan: ModuleType, renderers: list[ModuleType]) -> Kind:
+def define(name: str, schema: str, resolve: ModuleType, plan: ModuleType, renderers: list[ModuleType],
+           diff: Callable[[object, Version, Version], list[str]]) -> Kind:
     """A kind from its package's modules: resolve.resolve (LoadedSpec -> IR), plan.plan (IR ->
-    plan) and one module per target, named after it, with render(plan, banner, **options)."""
+    plan), one module per target, named after it, with render(plan, banner, **options), and its
+    diff (plan, version a, version b -> the lines that say what changes)."""
     targets = {module.__name__.rpartition(".")[2]: module.render for module in renderers}
     if sorted(targets) != sorted(TARGETS):
         raise ValueError(f"kind {name}: renderers for {sorted(targets)}, every kind has {sorted(TARGETS)}")
@@ -49,7 +55,7 @@ def define(name: str, schema: str, resolve: ModuleType, plan: ModuleType, render
                options: Optional[TargetOptions] = None) -> dict[str, str]:
         return render_targets(targets, plan.plan(model), banner, only, options)
 
-    return Kind(name=name, schema=schema, resolve=resolve.resolve, render=render)
+    return Kind(name=name, schema=schema, resolve=resolve.resolve, plan=plan.plan, diff=diff, render=render)
 
 
 def render_targets(targets: dict[str, Callable[..., dict[str, str]]], model: object, banner: list[str],

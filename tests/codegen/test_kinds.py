@@ -28,14 +28,14 @@ def test_every_spec_names_a_known_kind():
 
 def test_a_kind_is_defined_by_its_modules_and_renders_every_target():
     """kinds.define builds a kind from its package's resolve, plan and renderer modules, one per
-    target and named after it; it refuses a kind that lacks one."""
+    target and named after it, and its diff; it refuses a kind that lacks a renderer."""
     from codegen.kinds import TARGETS, define
-    from codegen.kinds.packages import c, epan, lua, plan, python, resolve
+    from codegen.kinds.packages import c, epan, lua, plan, python, reference, resolve
 
-    kind = define("probe", "spec.schema.json", resolve, plan, [c, epan, lua, python])
-    assert kind.resolve is resolve.resolve
+    kind = define("probe", "spec.schema.json", resolve, plan, [c, epan, lua, python], reference.diff)
+    assert kind.resolve is resolve.resolve and kind.plan is plan.plan and kind.diff is reference.diff
     with pytest.raises(ValueError, match="epan"):
-        define("probe", "spec.schema.json", resolve, plan, [c, lua, python])
+        define("probe", "spec.schema.json", resolve, plan, [c, lua, python], reference.diff)
     assert sorted(TARGETS) == ["c", "epan", "lua", "python"]
 
 

@@ -4,6 +4,7 @@ reverse, trajectory and script command sockets: spec/ur_reverse.yaml and its sib
 from __future__ import annotations
 
 from .. import define
-from . import c, epan, lua, plan, python, resolve
+from . import c, diff, epan, lua, plan, python, resolve
 
-KIND = define("int32_records", "int32_records.schema.json", resolve, plan, [c, epan, lua, python])
+KIND = define("int32_records", "int32_records.schema.json", resolve, plan, [c, epan, lua, python],
+             diff.diff)

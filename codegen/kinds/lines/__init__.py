@@ -6,6 +6,7 @@ software versions that have each command (spec/ur_dashboard.yaml)."""
 from __future__ import annotations
 
 from .. import define
-from . import c, epan, lua, plan, python, resolve
+from . import c, diff, epan, lua, plan, python, resolve
 
-KIND = define("lines", "lines.schema.json", resolve, plan, [c, epan, lua, python])
+KIND = define("lines", "lines.schema.json", resolve, plan, [c, epan, lua, python],
+             diff.diff)

@@ -7,6 +7,7 @@ and reference.py (docs/protocol.md, `codegen diff`) read the plan too."""
 from __future__ import annotations
 
 from .. import DEFAULT_KIND, define
-from . import c, epan, lua, plan, python, resolve
+from . import c, epan, lua, plan, python, reference, resolve
 
-KIND = define(DEFAULT_KIND, "spec.schema.json", resolve, plan, [c, epan, lua, python])
+KIND = define(DEFAULT_KIND, "spec.schema.json", resolve, plan, [c, epan, lua, python],
+             reference.diff)

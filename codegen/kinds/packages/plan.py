@@ -274,12 +274,12 @@ class Segment:
     first: Optional[ir.Version]
     upto: Optional[ir.Version]
     after: Optional[ir.Version] = None
-    """The last version of a range that ends just before `first`, when no range starts at `first`
-    (the segment between two series): it is said as "after 5.99", not as a version of its own."""
+    """The last version of a range that ends just before `first`, when `first` is no version of
+    its own (between two series, or past an X.99: ir.past_last_minor): said as "after 5.99"."""
 
     def describe(self) -> str:
         """"up to 1.5", "1.8", "1.6 to 1.7", "5.4 to 5.25.0", "3.16 to before 5.0",
-        "after 5.99, before 10.0", "10.0 and later"."""
+        "after 5.99, before 10.0", "10.0 and later", "after 10.99"."""
         if self.after is not None:
             since = f"after {ir.version_text(self.after)}"
             return f"{since}, before {ir.version_text(self.upto)}" if self.upto else f"{since}"
@@ -545,7 +545,8 @@ def _after(number: int) -> Optional[ir.Version]:
 
 def _segments(messages: list[MessagePlan], series: list[ir.VersionRange]) -> list[Segment]:
     """The version axis cut wherever any form of any type code starts or ends. A segment that
-    starts outside every released series (between two of them) is said from the end before it."""
+    starts outside every released series (between two of them), or past an X.99 bound, is said
+    from the end before it."""
     starts_of_ranges: set[ir.Version] = set()
     ends: dict[ir.Version, ir.Version] = {}   # the version after a range's end -> that end
     for mp in messages:
@@ -558,10 +559,13 @@ def _segments(messages: list[MessagePlan], series: list[ir.VersionRange]) -> lis
                         ends[_after(hi)] = ir.version_of_number(hi)
     starts: list[Optional[ir.Version]] = [None] + sorted(starts_of_ranges | set(ends))
 
-    def between_series(first: Optional[ir.Version]) -> bool:
-        return first is not None and bool(series) and not any(r.contains(first) for r in series)
+    def said_from_the_end(first: Optional[ir.Version]) -> bool:
+        if first is None:
+            return False
+        between_series = bool(series) and not any(r.contains(first) for r in series)
+        return between_series or ir.past_last_minor(first) is not None
 
-    return [Segment(first, upto, ends.get(first) if between_series(first) else None)
+    return [Segment(first, upto, ends.get(first) if said_from_the_end(first) else None)
             for first, upto in zip(starts, starts[1:] + [None])]
 
 

@@ -5,39 +5,12 @@ show exactly what the decoders do."""
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from typing import Optional
 
 from ... import ir
 from ...naming import words
+from ...version_diff import Form, enum_changes, field_type, form_changes
 from . import model, plan
-
-
-@dataclass
-class Form:
-    """What one type code looks like for one software version."""
-
-    message: str
-    code: int
-    layout: str
-    fields: list[tuple[str, str]]      # (name, wire type) in wire order
-    sizes: str                         # "47", "76 or 88 (with euromap67_interface_installed)", "at least 13"
-
-
-def _field_type(f: ir.AnyField) -> str:
-    if isinstance(f, ir.ScalarField):
-        return f.scalar.name + (f" ({f.enum.name})" if f.enum else "")
-    if isinstance(f, ir.ArrayField):
-        return f"{f.scalar.name}[{f.count}]"
-    if isinstance(f, ir.GroupField):
-        return f"{f.item.name}[{f.count if f.count is not None else '...'}]"
-    if isinstance(f, ir.StringField):
-        return f"string (length {f.length.name})" if f.length else "string (to the end)"
-    if isinstance(f, ir.SwitchField):
-        return f"by {f.selector.name}"
-    if isinstance(f, ir.ValueListField):
-        return "values (to the end)"
-    return "bytes (to the end)" if isinstance(f, ir.BytesField) else "strings (to the end)"
 
 
 def sizes_text(v: plan.Variant, header: int) -> str:
@@ -68,51 +41,15 @@ def forms_at(p: plan.ProtocolPlan, version: ir.Version) -> dict[tuple[str, int],
         for code, variants in mp.variants.items():
             for v in variants:
                 if any(lo <= number <= hi for lo, hi in v.ranges):
-                    fields = [(f.name, _field_type(f)) for f in v.layout.struct.fields if _present(f, v)]
-                    out[(mp.message.name, code)] = Form(mp.message.name, code, v.layout.name, fields,
+                    fields = [(f.name, field_type(f)) for f in v.layout.struct.fields if _present(f, v)]
+                    out[(mp.message.name, code)] = Form(f"{mp.message.name} {code}", v.layout.name, fields,
                                                         sizes_text(v, _header_size(p, mp)))
     return out
 
 
-def _enum_names(e: ir.Enum, version: ir.Version) -> dict[int, str]:
-    return {m.value: m.name for m in e.table_for(version).values}
-
-
 def diff(p: plan.ProtocolPlan, a: ir.Version, b: ir.Version) -> list[str]:
     """What changes from software `a` to software `b`: layouts, fields, sizes, enum members."""
-    old, new = forms_at(p, a), forms_at(p, b)
-    lines = []
-    for key in sorted(set(old) | set(new), key=lambda k: (k[0], k[1])):
-        x, y = old.get(key), new.get(key)
-        where = f"{key[0]} {key[1]}"
-        if x is None:
-            lines.append(f"+ {where}: {y.layout} ({y.sizes} bytes)")
-            continue
-        if y is None:
-            lines.append(f"- {where}: {x.layout} ({x.sizes} bytes)")
-            continue
-        if x.layout != y.layout:
-            lines.append(f"~ {where}: {x.layout} ({x.sizes} bytes) becomes {y.layout} ({y.sizes} bytes)")
-            continue
-        changes = []
-        if x.sizes != y.sizes:
-            changes.append(f"  size {x.sizes} -> {y.sizes}")
-        xf, yf = dict(x.fields), dict(y.fields)
-        changes += [f"  - {n}: {t}" for n, t in x.fields if n not in yf]
-        changes += [f"  + {n}: {t}" for n, t in y.fields if n not in xf]
-        changes += [f"  ~ {n}: {xf[n]} -> {t}" for n, t in y.fields if n in xf and xf[n] != t]
-        if changes:
-            lines.append(f"~ {where}: {y.layout}")
-            lines += changes
-    for e in p.protocol.enums.values():
-        xa, xb = _enum_names(e, a), _enum_names(e, b)
-        if xa == xb:
-            continue
-        lines.append(f"~ enum {e.name}")
-        for code in sorted(set(xa) | set(xb)):
-            if xa.get(code) != xb.get(code):
-                lines.append(f"  {code}: {xa.get(code, '(none)')} -> {xb.get(code, '(none)')}")
-    return lines
+    return form_changes(forms_at(p, a), forms_at(p, b)) + enum_changes(p.protocol.enums.values(), a, b)
 
 
 # A citation of the project's own docs in a spec text: docs/firmware-history.md#masterboard-data.
@@ -177,7 +114,7 @@ def protocol_markdown(p: plan.ProtocolPlan, spec_path: str) -> str:
                 out += [_one_line(lay.doc), ""]
             out += ["| software | size | fields | history |", "|---|---|---|---|"]
             for v in variants:
-                fields = ", ".join(f"`{f.name}` {_field_type(f)}" for f in v.layout.struct.fields if _present(f, v))
+                fields = ", ".join(f"`{f.name}` {field_type(f)}" for f in v.layout.struct.fields if _present(f, v))
                 out.append(f"| {v.describe()} | {sizes_text(v, header)} | {fields} | {_form_sources(v)} |")
             out.append("")
             notes = [row for lay in layouts for row in _notes(lay)]

@@ -8,6 +8,7 @@ one module per target renders them."""
 from __future__ import annotations
 
 from .. import define
-from . import c, epan, lua, plan, python, resolve
+from . import c, diff, epan, lua, plan, python, resolve
 
-KIND = define("sized_packets", "sized_packets.schema.json", resolve, plan, [c, epan, lua, python])
+KIND = define("sized_packets", "sized_packets.schema.json", resolve, plan, [c, epan, lua, python],
+             diff.diff)

@@ -6,6 +6,7 @@ python.py)."""
 from __future__ import annotations
 
 from .. import define
-from . import c, epan, lua, plan, python, resolve
+from . import c, diff, epan, lua, plan, python, resolve
 
-KIND = define("typed_messages", "typed_messages.schema.json", resolve, plan, [c, epan, lua, python])
+KIND = define("typed_messages", "typed_messages.schema.json", resolve, plan, [c, epan, lua, python],
+             diff.diff)
