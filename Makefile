@@ -32,11 +32,13 @@ check-generated:
 	$(PYTHON) -m codegen --check
 	$(PYTHON) -m codegen reference --check
 
-## spec-diff: what changes between two software versions (make spec-diff FROM=3.15 TO=5.11)
+## spec-diff: what changes between two software versions (make spec-diff FROM=3.15 TO=5.11), of
+## any interface (SPEC=spec/ur_realtime.yaml)
 FROM ?= 3.15
 TO ?= 5.11
+SPEC ?= spec/ur_primary.yaml
 spec-diff:
-	@$(PYTHON) -m codegen diff $(FROM) $(TO)
+	@$(PYTHON) -m codegen diff $(FROM) $(TO) --spec $(SPEC)
 
 ## setup: install the system and Python packages that the tests and the demo need
 setup:

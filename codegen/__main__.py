@@ -150,6 +150,9 @@ def _diff(argv: list[str]) -> int:
     except SpecError as exc:
         print(exc, file=sys.stderr)
         return 2
+    except OSError as exc:
+        print(f"{args.spec}: cannot read the spec: {exc.strerror}", file=sys.stderr)
+        return 2
     lines = kind.diff(planned, old, new)
     print(f"{args.old} -> {args.new}: " + (f"{len([x for x in lines if not x.startswith(' ')])} change(s)"
                                            if lines else "no change"))

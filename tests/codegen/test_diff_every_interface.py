@@ -4,6 +4,7 @@ rule the generated Python applies at run time."""
 from __future__ import annotations
 
 import importlib
+import subprocess
 
 import pytest
 
@@ -34,6 +35,18 @@ def available(note):
 def test_diff_runs_on_every_spec_and_a_version_against_itself_is_no_change(spec, capsys):
     assert main(["diff", "5.9", "5.9", "--spec", str(spec)]) == 0
     assert capsys.readouterr().out.startswith("5.9 -> 5.9: no change\n")
+
+
+def test_a_spec_that_cannot_be_read_is_said_in_one_line(tmp_path, capsys):
+    missing = tmp_path / "no_such_spec.yaml"
+    assert main(["diff", "3.1", "3.2", "--spec", str(missing)]) == 2
+    assert capsys.readouterr().err == f"{missing}: cannot read the spec: No such file or directory\n"
+
+
+def test_make_spec_diff_takes_any_interface_spec():
+    out = subprocess.run(["make", "-s", "spec-diff", "FROM=3.1", "TO=3.2", "SPEC=spec/ur_realtime.yaml"],
+                         capture_output=True, text=True, check=True).stdout
+    assert "rt_3_0 (1044 bytes) becomes rt_3_2 (1060 bytes)" in out
 
 
 @pytest.mark.parametrize("stem, a, b, wanted", [
