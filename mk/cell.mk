@@ -36,8 +36,9 @@ build/bench_rtde: tests/bench/bench_rtde.c generated/c/rtde.c generated/c/rtde.h
 	$(CC) -std=c99 -O2 -Wall -Wextra -Werror -pedantic -Wconversion -Igenerated/c -o $@ tests/bench/bench_rtde.c \
 		generated/c/rtde.c
 
-# One package, L1-hot, at each level: urwire's readers against the hand-written one and, when URCL_SOURCE names
-# a checkout of UR's own library (tests/tools/urcl.py), against URCL built from it at the same level.
+# One package, L1-hot, at each level: urwire's readers against the hand-written one and, when a checkout of UR's
+# own library is found (URCL_SOURCE, else ../Universal_Robots_Client_Library: tests/tools/urcl.py), against
+# URCL built from it at the same level. bench-rtde asks urcl.py, which says why when there is none.
 BENCH_RTDE_LEVELS := O2 O3 Os
 BENCH_RTDE_HOT_PACKAGES ?= 200000
 CXX ?= c++
@@ -66,10 +67,15 @@ build/bench_rtde_hot_urcl-%: tests/bench/bench_rtde_hot.c tests/bench/bench_rtde
 ## Python (against struct alone) and C (against memcpy, and Python), at BENCH_RTDE_PACKAGES and
 ## BENCH_RTDE_LARGE packages (the cost per package, large against small), and tshark with rtde.lua
 ## against --disable-protocol rtde on BENCH_RTDE_PACKAGES packages; then one 12-variable package
-## L1-hot at -O2, -O3 and -Os, read by index, by name, as a list and by rtde_data_find, against a hand-written
-## reader and URCL (with URCL_SOURCE)
-bench-rtde: build/bench_rtde $(BENCH_RTDE_LEVELS:%=$(BENCH_RTDE_HOT)-%)
+## L1-hot at -O2, -O3 and -Os, read by index and by name (each type's inline reader), by rtde_data_value, as a
+## list and by rtde_data_find, against a hand-written reader and URCL (built from URCL_SOURCE, else from
+## ../Universal_Robots_Client_Library when it is there; the output says when URCL is not compared, and why)
+bench-rtde: build/bench_rtde
 	$(PYTHON) tests/bench/bench_rtde.py --packages $(BENCH_RTDE_PACKAGES) --large $(BENCH_RTDE_LARGE)
+	@$(MAKE) --no-print-directory bench-rtde-hot URCL_SOURCE="$$($(PYTHON) tests/tools/urcl.py)"
+
+.PHONY: bench-rtde-hot
+bench-rtde-hot: $(BENCH_RTDE_LEVELS:%=$(BENCH_RTDE_HOT)-%)
 	@for level in $(BENCH_RTDE_LEVELS); do \
 		echo "== RTDE in C, one 284-byte package L1-hot, -$$level ($(BENCH_RTDE_HOT_PACKAGES) packages, best of 5 turns)"; \
 		$(BENCH_RTDE_HOT)-$$level $(BENCH_RTDE_HOT_PACKAGES) 5 || exit 1; \

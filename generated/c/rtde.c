@@ -6,167 +6,6 @@
 
 #include <string.h>
 
-/* ---- runtime/c/common/macros.h ---- */
-/* ---- how the runtime declares its own functions ------------------------------------------ */
-
-/* Private functions live in the generated .c file that joins them, a copy in each. */
-#define URWIRE__PRIVATE static
-
-/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
- * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
- * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
- * unused static inline function, clang does in a .c file unless told `unused`). */
-#if defined(__GNUC__)
-#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
-#else
-#define URWIRE__INLINE static inline
-#endif
-
-/* ---- runtime/c/common/loads.h ---- */
-/* ---- big-endian loads and stores ---------------------------------------------------------- */
-
-/* The one set of big-endian loads of the C runtime: every kind's generated C joins it, and the C
- * command includes it. Every field is read with memcpy into an integer (one unaligned load) and
- * a byte swap built of shifts, which compilers fold into one instruction. They must be inlined to
- * be fast (see URWIRE__INLINE in macros.h). The caller has checked that the bytes are there. */
-
-/* The host's byte order, a constant once optimised: 1 on a big-endian machine. */
-URWIRE__INLINE int urwire__host_is_big_endian(void)
-{
-    const uint16_t one = 1u;
-    uint8_t first;
-    memcpy(&first, &one, 1);
-    return first == 0;
-}
-
-URWIRE__INLINE uint16_t urwire__swap16(uint16_t v)
-{
-    return (uint16_t)((unsigned)v << 8 | (unsigned)v >> 8);
-}
-
-URWIRE__INLINE uint32_t urwire__swap32(uint32_t v)
-{
-    return (v & 0x000000ffu) << 24 | (v & 0x0000ff00u) << 8 | (v & 0x00ff0000u) >> 8 | (v & 0xff000000u) >> 24;
-}
-
-URWIRE__INLINE uint64_t urwire__swap64(uint64_t v)
-{
-    return (uint64_t)urwire__swap32((uint32_t)v) << 32 | urwire__swap32((uint32_t)(v >> 32));
-}
-
-/* Big-endian bytes at p as a host integer, and back. */
-URWIRE__INLINE uint16_t urwire__from_be16(uint16_t v) { return urwire__host_is_big_endian() ? v : urwire__swap16(v); }
-URWIRE__INLINE uint32_t urwire__from_be32(uint32_t v) { return urwire__host_is_big_endian() ? v : urwire__swap32(v); }
-URWIRE__INLINE uint64_t urwire__from_be64(uint64_t v) { return urwire__host_is_big_endian() ? v : urwire__swap64(v); }
-
-URWIRE__INLINE uint8_t urwire__u8(const uint8_t *p) { return p[0]; }
-URWIRE__INLINE int8_t urwire__i8(const uint8_t *p) { return (int8_t)p[0]; }
-
-URWIRE__INLINE uint16_t urwire__u16(const uint8_t *p)
-{
-    uint16_t v;
-    memcpy(&v, p, sizeof v);
-    return urwire__from_be16(v);
-}
-
-URWIRE__INLINE uint32_t urwire__u32(const uint8_t *p)
-{
-    uint32_t v;
-    memcpy(&v, p, sizeof v);
-    return urwire__from_be32(v);
-}
-
-URWIRE__INLINE uint64_t urwire__u64(const uint8_t *p)
-{
-    uint64_t v;
-    memcpy(&v, p, sizeof v);
-    return urwire__from_be64(v);
-}
-
-/* n bytes (1 to 8, known when inlined) as an unsigned integer: a length prefix or a value of a
- * width read from a table. */
-URWIRE__INLINE uint64_t urwire__uint(const uint8_t *p, size_t n)
-{
-    uint64_t v = 0;
-    size_t i;
-    for (i = 0; i < n; i++)
-        v = v << 8 | p[i];
-    return v;
-}
-
-URWIRE__INLINE int16_t urwire__i16(const uint8_t *p) { return (int16_t)urwire__u16(p); }
-URWIRE__INLINE int32_t urwire__i32(const uint8_t *p) { return (int32_t)urwire__u32(p); }
-URWIRE__INLINE int64_t urwire__i64(const uint8_t *p) { return (int64_t)urwire__u64(p); }
-
-/* Floats are read as their bit pattern, never byte-swapped as numbers. */
-URWIRE__INLINE float urwire__f32(const uint8_t *p)
-{
-    uint32_t bits = urwire__u32(p);
-    float f;
-    memcpy(&f, &bits, sizeof f);
-    return f;
-}
-
-/* A double from its bit pattern, NaN payloads included. */
-URWIRE__INLINE double urwire__f64_of(uint64_t bits)
-{
-    double d;
-    memcpy(&d, &bits, sizeof d);
-    return d;
-}
-
-URWIRE__INLINE double urwire__f64(const uint8_t *p)
-{
-    return urwire__f64_of(urwire__u64(p));
-}
-
-/* count doubles in a row into out. */
-URWIRE__INLINE void urwire__f64s(double *out, const uint8_t *p, size_t count)
-{
-    size_t i;
-    for (i = 0; i < count; i++)
-        out[i] = urwire__f64(p + 8 * i);
-}
-
-URWIRE__INLINE void urwire__put_u8(uint8_t *p, uint8_t v) { p[0] = v; }
-URWIRE__INLINE void urwire__put_i8(uint8_t *p, int8_t v) { p[0] = (uint8_t)v; }
-
-URWIRE__INLINE void urwire__put_u16(uint8_t *p, uint16_t v)
-{
-    v = urwire__from_be16(v);
-    memcpy(p, &v, sizeof v);
-}
-
-URWIRE__INLINE void urwire__put_u32(uint8_t *p, uint32_t v)
-{
-    v = urwire__from_be32(v);
-    memcpy(p, &v, sizeof v);
-}
-
-URWIRE__INLINE void urwire__put_u64(uint8_t *p, uint64_t v)
-{
-    v = urwire__from_be64(v);
-    memcpy(p, &v, sizeof v);
-}
-
-URWIRE__INLINE void urwire__put_i16(uint8_t *p, int16_t v) { urwire__put_u16(p, (uint16_t)v); }
-URWIRE__INLINE void urwire__put_i32(uint8_t *p, int32_t v) { urwire__put_u32(p, (uint32_t)v); }
-URWIRE__INLINE void urwire__put_i64(uint8_t *p, int64_t v) { urwire__put_u64(p, (uint64_t)v); }
-
-URWIRE__INLINE void urwire__put_f32(uint8_t *p, float v)
-{
-    uint32_t bits;
-    memcpy(&bits, &v, sizeof bits);
-    urwire__put_u32(p, bits);
-}
-
-URWIRE__INLINE void urwire__put_f64(uint8_t *p, double v)
-{
-    uint64_t bits;
-    memcpy(&bits, &v, sizeof bits);
-    urwire__put_u64(p, bits);
-}
-
 /* ---- runtime/c/typed_messages/rtde_read.c ---- */
 /* ---- reading a message: big-endian loads, each after a bounds check ------------------------- */
 
@@ -2084,6 +1923,23 @@ static rtde_error rtde__follow(rtde_conversation *c, rtde_message *m)
     return RTDE_OK;
 }
 
+/* A message's members outside its union, each set to nothing. Not memset of the whole message: a
+ * data package, nearly every message of a connection, writes its own few members of the union, and
+ * at -Os compilers clear 100 bytes with `rep stos`, which takes longer than decoding the package. */
+static void rtde__clear_message(rtde_message *m, bool from_robot)
+{
+    m->layout = RTDE_LAYOUT_NONE;
+    m->code = 0;
+    m->from_robot = from_robot;
+    m->warning = NULL;
+    m->error = NULL;
+    m->refused = false;
+    m->error_field = NULL;
+    m->error_need = 0;
+    m->request_names.data = NULL;
+    m->request_names.length = 0;
+}
+
 rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, bool from_robot,
                        rtde_message *out, size_t *offset)
 {
@@ -2091,15 +1947,18 @@ rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, 
     rtde_error e;
     size_t size;
     uint8_t layout;
-    memset(out, 0, sizeof *out);
+    rtde__clear_message(out, from_robot);
     *offset = 0;
     e = rtde_message_size(msg, length, &size);
-    if (e != RTDE_OK)
+    if (e != RTDE_OK) {
+        memset(&out->u, 0, sizeof out->u);
         return e;
+    }
     out->code = msg[2];
-    out->from_robot = from_robot;
     layout = rtde__layout_for(msg[2], from_robot, rtde_protocol_in_force(c));
     out->layout = layout;
+    if (!rtde__roles[layout].is_data)     /* a data package's members are each written below */
+        memset(&out->u, 0, sizeof out->u);
     if (layout == RTDE_LAYOUT_NONE)
         return RTDE_UNKNOWN_TYPE;
     r.buf = msg;
@@ -2108,13 +1967,20 @@ rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, 
     r.field = "";
     r.need = 0;
     if (rtde__roles[layout].is_data) {
-        /* The data member is the last of its layout, after an optional recipe id. */
+        /* The data member is the last of its layout, after an optional recipe id. Each member is
+         * written here or by the layout's decoder: the union was not cleared. */
         int id = RTDE__NO_ID;
         const rtde_recipe *recipe;
         rtde_data *data = layout == RTDE_LAYOUT_DATA_PACKAGE ? &out->u.data_package.values
                         : layout == RTDE_LAYOUT_DATA_PACKAGE_V1 ? &out->u.data_package_v1.values
                         : &out->u.input_data_package.values;
-        if (rtde__roles[layout].has_recipe_id) {
+        uint8_t *recipe_id = !rtde__roles[layout].has_recipe_id ? NULL
+                           : layout == RTDE_LAYOUT_DATA_PACKAGE ? &out->u.data_package.recipe_id
+                           : &out->u.input_data_package.recipe_id;
+        data->recipe = NULL;
+        data->bytes = NULL;                 /* until its values are there: none are read */
+        if (recipe_id != NULL) {
+            *recipe_id = 0;
             if (size <= RTDE_HEADER_SIZE) {     /* no id to look up: no recipe */
                 *offset = RTDE_HEADER_SIZE;
                 return RTDE_UNKNOWN_RECIPE;
@@ -2123,15 +1989,12 @@ rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, 
         }
         recipe = rtde_recipe_of(c, from_robot, id);
         if (recipe == NULL) {
-            if (layout == RTDE_LAYOUT_DATA_PACKAGE)
-                out->u.data_package.recipe_id = (uint8_t)id;
-            else if (layout == RTDE_LAYOUT_INPUT_DATA_PACKAGE)
-                out->u.input_data_package.recipe_id = (uint8_t)id;
+            if (recipe_id != NULL)
+                *recipe_id = (uint8_t)id;
             *offset = RTDE_HEADER_SIZE;
             return RTDE_UNKNOWN_RECIPE;
         }
         data->recipe = recipe;
-        data->bytes = NULL;                 /* until its values are there: none are read */
     }
     e = rtde__decode_layout(layout, &r, out);
     if (e != RTDE_OK) {

@@ -14,9 +14,12 @@
  *     if (rtde_message_size(buf, len, &size) == RTDE_OK && size <= len
  *         && rtde_decode(&conv, buf, size, true, &m, &at) == RTDE_OK
  *         && m.layout == RTDE_LAYOUT_DATA_PACKAGE) {
- *         rtde_value q;
- *         if (rtde_data_find(&m.u.data_package.values, "actual_q", &q)) ... q.item[0].f64 ...
+ *         double q[6];
+ *         if (rtde_data_vector6d(&m.u.data_package.values, q_at, q)) ... q[0] ...
  *     }
+ *
+ * where q_at = rtde_recipe_index(m.u.data_package.values.recipe, "actual_q"), found once
+ * for the recipe (each of its packages has its values at the same places).
  */
 #ifndef RTDE_H
 #define RTDE_H
@@ -24,6 +27,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -458,6 +462,302 @@ size_t rtde_build_pause(uint8_t *out, size_t cap);
 size_t rtde_build_input_data(uint8_t *out, size_t cap, const rtde_recipe *recipe, const rtde_value *values);
 
 const char *rtde_error_text(rtde_error e);
+
+/* The byte loads of the inline readers below; every generated C file joins the same ones. The
+ * macros are skipped where runtime/c/common/macros.h came first (its standalone build, whose
+ * URWIRE__PRIVATE differs); the loads, where runtime/c/common/loads.h did. */
+#ifndef URWIRE__INLINE
+/* ---- runtime/c/common/macros.h ---- */
+/* ---- how the runtime declares its own functions ------------------------------------------ */
+
+/* Private functions live in the generated .c file that joins them, a copy in each. */
+#define URWIRE__PRIVATE static
+
+/* What must be inlined to be fast (byte loads, version keys): gcc does so on its own at -O2 and
+ * -O3 but, at -Os, takes the shifts of a load for more code than a call and calls them;
+ * always_inline says what `inline` means here. Unused ones never warn (gcc does not warn on an
+ * unused static inline function, clang does in a .c file unless told `unused`). */
+#if defined(__GNUC__)
+#define URWIRE__INLINE static inline __attribute__((always_inline, unused))
+#else
+#define URWIRE__INLINE static inline
+#endif
+#endif
+#ifndef URWIRE_RUNTIME_LOADS_H
+#define URWIRE_RUNTIME_LOADS_H
+/* ---- runtime/c/common/loads.h ---- */
+/* ---- big-endian loads and stores ---------------------------------------------------------- */
+
+/* The one set of big-endian loads of the C runtime: every kind's generated C joins it, and the C
+ * command includes it. Every field is read with memcpy into an integer (one unaligned load) and
+ * a byte swap built of shifts, which compilers fold into one instruction. They must be inlined to
+ * be fast (see URWIRE__INLINE in macros.h). The caller has checked that the bytes are there. */
+
+/* The host's byte order, a constant once optimised: 1 on a big-endian machine. */
+URWIRE__INLINE int urwire__host_is_big_endian(void)
+{
+    const uint16_t one = 1u;
+    uint8_t first;
+    memcpy(&first, &one, 1);
+    return first == 0;
+}
+
+URWIRE__INLINE uint16_t urwire__swap16(uint16_t v)
+{
+    return (uint16_t)((unsigned)v << 8 | (unsigned)v >> 8);
+}
+
+URWIRE__INLINE uint32_t urwire__swap32(uint32_t v)
+{
+    return (v & 0x000000ffu) << 24 | (v & 0x0000ff00u) << 8 | (v & 0x00ff0000u) >> 8 | (v & 0xff000000u) >> 24;
+}
+
+URWIRE__INLINE uint64_t urwire__swap64(uint64_t v)
+{
+    return (uint64_t)urwire__swap32((uint32_t)v) << 32 | urwire__swap32((uint32_t)(v >> 32));
+}
+
+/* Big-endian bytes at p as a host integer, and back. */
+URWIRE__INLINE uint16_t urwire__from_be16(uint16_t v) { return urwire__host_is_big_endian() ? v : urwire__swap16(v); }
+URWIRE__INLINE uint32_t urwire__from_be32(uint32_t v) { return urwire__host_is_big_endian() ? v : urwire__swap32(v); }
+URWIRE__INLINE uint64_t urwire__from_be64(uint64_t v) { return urwire__host_is_big_endian() ? v : urwire__swap64(v); }
+
+URWIRE__INLINE uint8_t urwire__u8(const uint8_t *p) { return p[0]; }
+URWIRE__INLINE int8_t urwire__i8(const uint8_t *p) { return (int8_t)p[0]; }
+
+URWIRE__INLINE uint16_t urwire__u16(const uint8_t *p)
+{
+    uint16_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be16(v);
+}
+
+URWIRE__INLINE uint32_t urwire__u32(const uint8_t *p)
+{
+    uint32_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be32(v);
+}
+
+URWIRE__INLINE uint64_t urwire__u64(const uint8_t *p)
+{
+    uint64_t v;
+    memcpy(&v, p, sizeof v);
+    return urwire__from_be64(v);
+}
+
+/* n bytes (1 to 8, known when inlined) as an unsigned integer: a length prefix or a value of a
+ * width read from a table. */
+URWIRE__INLINE uint64_t urwire__uint(const uint8_t *p, size_t n)
+{
+    uint64_t v = 0;
+    size_t i;
+    for (i = 0; i < n; i++)
+        v = v << 8 | p[i];
+    return v;
+}
+
+URWIRE__INLINE int16_t urwire__i16(const uint8_t *p) { return (int16_t)urwire__u16(p); }
+URWIRE__INLINE int32_t urwire__i32(const uint8_t *p) { return (int32_t)urwire__u32(p); }
+URWIRE__INLINE int64_t urwire__i64(const uint8_t *p) { return (int64_t)urwire__u64(p); }
+
+/* Floats are read as their bit pattern, never byte-swapped as numbers. */
+URWIRE__INLINE float urwire__f32(const uint8_t *p)
+{
+    uint32_t bits = urwire__u32(p);
+    float f;
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
+/* A double from its bit pattern, NaN payloads included. */
+URWIRE__INLINE double urwire__f64_of(uint64_t bits)
+{
+    double d;
+    memcpy(&d, &bits, sizeof d);
+    return d;
+}
+
+URWIRE__INLINE double urwire__f64(const uint8_t *p)
+{
+    return urwire__f64_of(urwire__u64(p));
+}
+
+/* count doubles in a row into out. */
+URWIRE__INLINE void urwire__f64s(double *out, const uint8_t *p, size_t count)
+{
+    size_t i;
+    for (i = 0; i < count; i++)
+        out[i] = urwire__f64(p + 8 * i);
+}
+
+URWIRE__INLINE void urwire__put_u8(uint8_t *p, uint8_t v) { p[0] = v; }
+URWIRE__INLINE void urwire__put_i8(uint8_t *p, int8_t v) { p[0] = (uint8_t)v; }
+
+URWIRE__INLINE void urwire__put_u16(uint8_t *p, uint16_t v)
+{
+    v = urwire__from_be16(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_u32(uint8_t *p, uint32_t v)
+{
+    v = urwire__from_be32(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_u64(uint8_t *p, uint64_t v)
+{
+    v = urwire__from_be64(v);
+    memcpy(p, &v, sizeof v);
+}
+
+URWIRE__INLINE void urwire__put_i16(uint8_t *p, int16_t v) { urwire__put_u16(p, (uint16_t)v); }
+URWIRE__INLINE void urwire__put_i32(uint8_t *p, int32_t v) { urwire__put_u32(p, (uint32_t)v); }
+URWIRE__INLINE void urwire__put_i64(uint8_t *p, int64_t v) { urwire__put_u64(p, (uint64_t)v); }
+
+URWIRE__INLINE void urwire__put_f32(uint8_t *p, float v)
+{
+    uint32_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    urwire__put_u32(p, bits);
+}
+
+URWIRE__INLINE void urwire__put_f64(uint8_t *p, double v)
+{
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    urwire__put_u64(p, bits);
+}
+#endif
+
+/* ---- runtime/c/typed_messages/rtde_values.h ---- */
+/* ---- a data package's values read where the caller reads them: inline, one per value type ---- */
+
+/* A program knows the types its recipe asked for: rtde_data_double(d, i, &x),
+ * rtde_data_vector6d(d, i, q) and one reader per value type after them, inline in the caller, read
+ * value i as that type. Each is a check (a value there, of that type) and byte-swapped loads at the
+ * offset the recipe computed at setup, with the type and its size constants at every call, so a
+ * compiler makes them the loads a hand-written reader of the layout makes. They return false, and
+ * write nothing, when the index is past the recipe or the value is of another type; the names
+ * resolve to indexes once (rtde_recipe_index). rtde_data_value reads any type into an rtde_value. */
+
+/* Where value `index` starts in the package, when it is there and of this type; else NULL. */
+URWIRE__INLINE const uint8_t *rtde__value_bytes(const rtde_data *d, size_t index, uint8_t type)
+{
+    const struct rtde_recipe *recipe = d->recipe;
+    if (recipe == NULL || d->bytes == NULL || index >= recipe->count || recipe->types[index] != type)
+        return NULL;
+    return d->bytes + recipe->offset[index];
+}
+
+/* Value `index` of type BOOL. One byte, 0 or 1. */
+URWIRE__INLINE bool rtde_data_bool(const rtde_data *d, size_t index, bool *out)
+{
+    const uint8_t *p = rtde__value_bytes(d, index, RTDE_VT_BOOL);
+    if (p == NULL)
+        return false;
+    *out = urwire__u8(p) != 0;
+    return true;
+}
+
+/* Value `index` of type UINT8. One unsigned byte. */
+URWIRE__INLINE bool rtde_data_uint8(const rtde_data *d, size_t index, uint8_t *out)
+{
+    const uint8_t *p = rtde__value_bytes(d, index, RTDE_VT_UINT8);
+    if (p == NULL)
+        return false;
+    *out = urwire__u8(p);
+    return true;
+}
+
+/* Value `index` of type UINT32. An unsigned 32-bit integer. */
+URWIRE__INLINE bool rtde_data_uint32(const rtde_data *d, size_t index, uint32_t *out)
+{
+    const uint8_t *p = rtde__value_bytes(d, index, RTDE_VT_UINT32);
+    if (p == NULL)
+        return false;
+    *out = urwire__u32(p);
+    return true;
+}
+
+/* Value `index` of type UINT64. An unsigned 64-bit integer. */
+URWIRE__INLINE bool rtde_data_uint64(const rtde_data *d, size_t index, uint64_t *out)
+{
+    const uint8_t *p = rtde__value_bytes(d, index, RTDE_VT_UINT64);
+    if (p == NULL)
+        return false;
+    *out = urwire__u64(p);
+    return true;
+}
+
+/* Value `index` of type INT32. A signed 32-bit integer. */
+URWIRE__INLINE bool rtde_data_int32(const rtde_data *d, size_t index, int32_t *out)
+{
+    const uint8_t *p = rtde__value_bytes(d, index, RTDE_VT_INT32);
+    if (p == NULL)
+        return false;
+    *out = urwire__i32(p);
+    return true;
+}
+
+/* Value `index` of type DOUBLE. An IEEE 754 double. */
+URWIRE__INLINE bool rtde_data_double(const rtde_data *d, size_t index, double *out)
+{
+    const uint8_t *p = rtde__value_bytes(d, index, RTDE_VT_DOUBLE);
+    if (p == NULL)
+        return false;
+    *out = urwire__f64(p);
+    return true;
+}
+
+/* Value `index` of type VECTOR3D. Three doubles. */
+URWIRE__INLINE bool rtde_data_vector3d(const rtde_data *d, size_t index, double out[3])
+{
+    const uint8_t *p = rtde__value_bytes(d, index, RTDE_VT_VECTOR3D);
+    size_t k;
+    if (p == NULL)
+        return false;
+    for (k = 0; k < 3; k++)
+        out[k] = urwire__f64(p + 8 * k);
+    return true;
+}
+
+/* Value `index` of type VECTOR6D. Six doubles. */
+URWIRE__INLINE bool rtde_data_vector6d(const rtde_data *d, size_t index, double out[6])
+{
+    const uint8_t *p = rtde__value_bytes(d, index, RTDE_VT_VECTOR6D);
+    size_t k;
+    if (p == NULL)
+        return false;
+    for (k = 0; k < 6; k++)
+        out[k] = urwire__f64(p + 8 * k);
+    return true;
+}
+
+/* Value `index` of type VECTOR6INT32. Six signed 32-bit integers. */
+URWIRE__INLINE bool rtde_data_vector6int32(const rtde_data *d, size_t index, int32_t out[6])
+{
+    const uint8_t *p = rtde__value_bytes(d, index, RTDE_VT_VECTOR6INT32);
+    size_t k;
+    if (p == NULL)
+        return false;
+    for (k = 0; k < 6; k++)
+        out[k] = urwire__i32(p + 4 * k);
+    return true;
+}
+
+/* Value `index` of type VECTOR6UINT32. Six unsigned 32-bit integers. */
+URWIRE__INLINE bool rtde_data_vector6uint32(const rtde_data *d, size_t index, uint32_t out[6])
+{
+    const uint8_t *p = rtde__value_bytes(d, index, RTDE_VT_VECTOR6UINT32);
+    size_t k;
+    if (p == NULL)
+        return false;
+    for (k = 0; k < 6; k++)
+        out[k] = urwire__u32(p + 4 * k);
+    return true;
+}
 #ifdef __cplusplus
 }
 #endif

@@ -1,7 +1,8 @@
 /* The RTDE client API a firmware would use, checked from C: builds the messages of a session
  * (printed as hex, one per line, for the test to compare with the golden vectors), then decodes a
  * setup reply and a data package and prints the values it reads by variable name, then the indexes
- * those names resolve to and the values read by them, one by one and as a list. */
+ * those names resolve to and the values read by them, one by one, as a list and by the inline
+ * readers of their types. */
 #include <stdio.h>
 #include <string.h>
 
@@ -90,6 +91,14 @@ int main(void)
             printf("values 2 0 1: %lld %g %g, past the recipe %s\n", (long long)three[0].item[0].i64,
                    three[1].item[0].f64, three[2].item[5].f64, ok && !rtde_data_values(d, list, 3, three) ? "refused"
                                                                                                      : "read");
+        }
+        {
+            double timestamp = 0, six[6] = {0};
+            int32_t robot_mode = 0;
+            bool ok = rtde_data_double(d, 0, &timestamp) && rtde_data_vector6d(d, iq, six)
+                      && rtde_data_int32(d, imode, &robot_mode);
+            printf("typed: %g %g %g %ld, as another type %s\n", timestamp, six[1], six[5], (long)robot_mode,
+                   ok && !rtde_data_double(d, iq, &timestamp) && !rtde_data_vector6d(d, 3, six) ? "refused" : "read");
         }
     }
     return 0;

@@ -42,9 +42,10 @@ def test_common_unit_checks(cc):
 
 
 def test_every_generated_c_file_joins_the_loads_whole():
-    """One header of big-endian loads: every kind's C joins it, and no other file defines them."""
+    """One header of big-endian loads: every kind's C joins it (in the .c, or in its header where the
+    header's inline readers use them: rtde.h), and no other file defines them."""
     loads = runtime_source("c", "common/loads.h").rstrip("\n")
     for path in sorted(GEN.glob("*.c")):
-        text = path.read_text()
+        text = path.read_text() + path.with_suffix(".h").read_text()
         if "urwire__u32(" in text or "urwire__i32(" in text or "urwire__uint(" in text:
             assert text.count("/* ---- runtime/c/common/loads.h ---- */") == 1 and loads in text, path.name

@@ -157,6 +157,18 @@ def test_the_client_api(tmp_path):
     assert lines[8] == "actual_q 0 -1.5 1.5 -0.5 0.25 3 robot_mode 7 recipe 2"
     assert lines[9] == "index actual_q 1 robot_mode 2: -1.5 3 7, absent names none"   # resolved once
     assert lines[10] == "values 2 0 1: 7 12.5 3, past the recipe refused"
+    assert lines[11] == "typed: 12.5 -1.5 3 7, as another type refused"
+
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+def test_the_inline_readers_read_what_rtde_data_value_reads(cc):
+    """Each value type's inline reader (rtde_data_double, rtde_data_vector6d, ...) on a recipe of every
+    type, in packages of random bytes (tests/c/rtde_typed.c): the items rtde_data_value reads, at its
+    own type's indexes only; nothing written for another type, past the recipe or without values."""
+    exe = build(cc, ["-O2", "-g", *SANITIZE], [ROOT / "tests" / "c" / "rtde_typed.c", GEN / "rtde.c"], "typed")
+    res = subprocess.run([exe], capture_output=True, text=True, timeout=60)
+    assert res.returncode == 0 and res.stderr == "", res.stdout[-2000:] + res.stderr
+    assert res.stdout == "4000 reads as rtde_data_value reads, 38000 refusals, 0 failures\n"
 
 
 def test_the_variable_table_reads_as_the_spec_has_it():
@@ -220,7 +232,9 @@ def test_the_fuzz_harness_replays_its_corpus(tmp_path):
 def test_the_header_compiles_as_cpp(tmp_path):
     source = tmp_path / "use.cpp"
     source.write_text('#include "rtde.h"\nint main() { static rtde_conversation c; rtde_conversation_init(&c); '
-                      'return rtde_protocol_in_force(&c) == RTDE_DEFAULT_PROTOCOL ? 0 : 1; }\n')
+                      'rtde_data none = {NULL, NULL}; double q[6];\n'
+                      'return rtde_protocol_in_force(&c) == RTDE_DEFAULT_PROTOCOL && !rtde_data_vector6d(&none, 0, q) '
+                      '? 0 : 1; }\n')
     res = subprocess.run(["g++", "-std=c++11", "-Wall", "-Wextra", "-Werror", "-pedantic", f"-I{GEN}", "-c",
                           str(source), "-o", str(tmp_path / "use.o")], capture_output=True, text=True)
     assert res.returncode == 0 and res.stderr == "", res.stderr

@@ -4,17 +4,23 @@ primary-interface part of a URCL checkout, `rtde_dashboard_client(source, out)` 
 tests/urcl/rtde_dashboard_client.cpp against its RTDE and dashboard parts, each once per checkout
 and program change.
 
-No package registry ships URCL, so the tests that use it take a checkout from URCL_SOURCE.
+No package registry ships URCL (Debian's, PyPI and npm have none of it), so the tests and the benches
+that use it take a checkout: the one URCL_SOURCE names, else one beside this checkout (DEFAULT).
+Run as a script, it prints the checkout for make, or says on stderr why there is none.
 """
 from __future__ import annotations
 
 import hashlib
 import os
 import subprocess
+import sys
 from pathlib import Path
 from typing import Optional
 
 ROOT = Path(__file__).resolve().parents[2]
+# Where a URCL checkout is looked for when URCL_SOURCE is not set:
+#   git clone https://github.com/UniversalRobots/Universal_Robots_Client_Library ../Universal_Robots_Client_Library
+DEFAULT = ROOT.parent / "Universal_Robots_Client_Library"
 PROGRAM = ROOT / "tests" / "urcl" / "primary_client.cpp"
 # What the primary parser and its stream need: the packages, the socket, the log.
 SOURCES = ["src/comm/tcp_socket.cpp", "src/log.cpp", "src/default_log_handler.cpp", "src/helpers.cpp",
@@ -35,10 +41,32 @@ inline constexpr CompileOptions COMPILE_OPTIONS;
 """
 
 
-def source_dir() -> Optional[Path]:
-    """The URCL checkout named by URCL_SOURCE, or None."""
+def _looked_at() -> Path:
     path = os.environ.get("URCL_SOURCE")
-    return Path(path) if path and (Path(path) / "include" / "ur_client_library").is_dir() else None
+    return Path(path) if path else DEFAULT
+
+
+def source_dir() -> Optional[Path]:
+    """The URCL checkout named by URCL_SOURCE, else the one at DEFAULT; None when it is not one."""
+    path = _looked_at()
+    return path if (path / "include" / "ur_client_library").is_dir() else None
+
+
+def why_not() -> str:
+    """Why source_dir() is None, in a sentence."""
+    if os.environ.get("URCL_SOURCE"):
+        return f"URCL_SOURCE={_looked_at()} has no include/ur_client_library: it is not a checkout of URCL"
+    return (f"URCL_SOURCE is not set and {DEFAULT} holds no checkout of URCL (no package registry ships its "
+            "source: clone it there, or name a checkout with URCL_SOURCE)")
+
+
+def describe(source: Path) -> str:
+    """The checkout and, when it is a git work tree of its own, its commit."""
+    if not (source / ".git").exists():
+        return str(source)
+    commit = subprocess.run(["git", "-C", str(source), "rev-parse", "--short=8", "HEAD"], capture_output=True,
+                            text=True)
+    return f"{source}" + (f" at {commit.stdout.strip()}" if commit.returncode == 0 else "")
 
 
 def primary_client(source: Path, out: Path) -> Path:
@@ -72,3 +100,12 @@ def build(program: Path, files: list, source: Path, out: Path) -> Path:
                     f"-I{source / '3rdparty'}", "-o", str(binary), str(program), *map(str, files)],
                    check=True, capture_output=True, text=True)
     return binary
+
+
+if __name__ == "__main__":
+    found = source_dir()
+    if found is None:
+        print(f"URCL not compared: {why_not()}", file=sys.stderr)
+    else:
+        print(f"URCL compared: built from {describe(found)}", file=sys.stderr)
+        print(found)

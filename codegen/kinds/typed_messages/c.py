@@ -28,8 +28,15 @@ MEMBER_KINDS = {"bool": "RTDE_MEMBER_BOOL", "uint8": "RTDE_MEMBER_UINT", "uint16
                 "float64": "RTDE_MEMBER_F64"}
 # A value type's items as the runtime reads them: 'u' unsigned, 'i' signed, 'f' float.
 VALUE_KIND = {"bool": "'b'", "uint8": "'u'", "uint32": "'u'", "uint64": "'u'", "int32": "'i'", "float64": "'f'"}
-RUNTIME_H = ("rtde_types.h", "rtde_api.h")
-RUNTIME_C = {"read": ("common/macros.h", "common/loads.h", "typed_messages/rtde_read.c"),
+# The inline readers' item types and loads (runtime/c/common/loads.h, joined into the header).
+ITEM_TYPES = {"bool": "bool", "uint8": "uint8_t", "uint32": "uint32_t", "uint64": "uint64_t", "int32": "int32_t",
+              "float64": "double"}
+ITEM_LOADS = {"bool": "urwire__u8({}) != 0", "uint8": "urwire__u8({})", "uint32": "urwire__u32({})",
+              "uint64": "urwire__u64({})", "int32": "urwire__i32({})", "float64": "urwire__f64({})"}
+RUNTIME_H = ("rtde_types.h", "rtde_api.h", "rtde_values.h")
+# The loads the inline readers need join the header, and the .c has them from there.
+RUNTIME_H_COMMON = ("common/macros.h", "common/loads.h")
+RUNTIME_C = {"read": ("typed_messages/rtde_read.c",),
              "variables": ("typed_messages/rtde_variables.c",),
              "conversation": ("typed_messages/rtde_conversation.c",)}
 
@@ -83,6 +90,25 @@ def _step(step: Step, members: dict[str, MemberView]) -> StepView:
                     step.size if step.kind == "run" else 0)
 
 
+@dataclass
+class ReaderView:
+    """The inline reader of one value type: rtde_data_<type>(d, index, out)."""
+    name: str                 # vector6d
+    type_const: str           # RTDE_VT_VECTOR6D
+    param: str                # double out[6], or double *out for one item
+    count: int
+    load: str                 # an item's load: from p, or from p + its size * k
+    comment: str
+
+
+def _reader(t: model.ValueType, prefix: str) -> ReaderView:
+    ctype, size = ITEM_TYPES[t.scalar.name], t.scalar.size
+    param = f"{ctype} out[{t.count}]" if t.count > 1 else f"{ctype} *out"
+    load = ITEM_LOADS[t.scalar.name].format(f"p + {size} * k" if t.count > 1 else "p")
+    return ReaderView(t.name.lower(), f"{prefix.upper()}_VT_{t.name}", param, t.count, load,
+                      f"Value `index` of type {t.name}. {t.doc}")
+
+
 def _kind(index) -> int:
     return -1 if index is None else index
 
@@ -119,7 +145,9 @@ def render(planned: TypedPlan, banner: list[str]) -> dict[str, str]:
         "refusal_width": max(len(r.word.encode("utf-8")) for r in interface.refusals) + 1,
         "value_type_width": max(len(t.name.encode("utf-8")) for t in interface.value_types) + 1,
         "undocumented": interface.undocumented,
-        "runtime_h": {n: _joined(n) for n in RUNTIME_H},
+        "readers": [_reader(t, name) for t in interface.value_types],
+        "runtime_h": {**{n: _joined(n) for n in RUNTIME_H},
+                      **{n: runtime_section("c", n) for n in RUNTIME_H_COMMON}},
         "runtime_c": {part: "\n\n".join(runtime_section("c", n) for n in names) for part, names in RUNTIME_C.items()},
     }
     env = environment(FOLDER)

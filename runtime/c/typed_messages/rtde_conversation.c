@@ -418,6 +418,23 @@ static rtde_error rtde__follow(rtde_conversation *c, rtde_message *m)
     return RTDE_OK;
 }
 
+/* A message's members outside its union, each set to nothing. Not memset of the whole message: a
+ * data package, nearly every message of a connection, writes its own few members of the union, and
+ * at -Os compilers clear 100 bytes with `rep stos`, which takes longer than decoding the package. */
+static void rtde__clear_message(rtde_message *m, bool from_robot)
+{
+    m->layout = RTDE_LAYOUT_NONE;
+    m->code = 0;
+    m->from_robot = from_robot;
+    m->warning = NULL;
+    m->error = NULL;
+    m->refused = false;
+    m->error_field = NULL;
+    m->error_need = 0;
+    m->request_names.data = NULL;
+    m->request_names.length = 0;
+}
+
 rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, bool from_robot,
                        rtde_message *out, size_t *offset)
 {
@@ -425,15 +442,18 @@ rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, 
     rtde_error e;
     size_t size;
     uint8_t layout;
-    memset(out, 0, sizeof *out);
+    rtde__clear_message(out, from_robot);
     *offset = 0;
     e = rtde_message_size(msg, length, &size);
-    if (e != RTDE_OK)
+    if (e != RTDE_OK) {
+        memset(&out->u, 0, sizeof out->u);
         return e;
+    }
     out->code = msg[2];
-    out->from_robot = from_robot;
     layout = rtde__layout_for(msg[2], from_robot, rtde_protocol_in_force(c));
     out->layout = layout;
+    if (!rtde__roles[layout].is_data)     /* a data package's members are each written below */
+        memset(&out->u, 0, sizeof out->u);
     if (layout == RTDE_LAYOUT_NONE)
         return RTDE_UNKNOWN_TYPE;
     r.buf = msg;
@@ -442,13 +462,20 @@ rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, 
     r.field = "";
     r.need = 0;
     if (rtde__roles[layout].is_data) {
-        /* The data member is the last of its layout, after an optional recipe id. */
+        /* The data member is the last of its layout, after an optional recipe id. Each member is
+         * written here or by the layout's decoder: the union was not cleared. */
         int id = RTDE__NO_ID;
         const rtde_recipe *recipe;
         rtde_data *data = layout == RTDE_LAYOUT_DATA_PACKAGE ? &out->u.data_package.values
                         : layout == RTDE_LAYOUT_DATA_PACKAGE_V1 ? &out->u.data_package_v1.values
                         : &out->u.input_data_package.values;
-        if (rtde__roles[layout].has_recipe_id) {
+        uint8_t *recipe_id = !rtde__roles[layout].has_recipe_id ? NULL
+                           : layout == RTDE_LAYOUT_DATA_PACKAGE ? &out->u.data_package.recipe_id
+                           : &out->u.input_data_package.recipe_id;
+        data->recipe = NULL;
+        data->bytes = NULL;                 /* until its values are there: none are read */
+        if (recipe_id != NULL) {
+            *recipe_id = 0;
             if (size <= RTDE_HEADER_SIZE) {     /* no id to look up: no recipe */
                 *offset = RTDE_HEADER_SIZE;
                 return RTDE_UNKNOWN_RECIPE;
@@ -457,15 +484,12 @@ rtde_error rtde_decode(rtde_conversation *c, const uint8_t *msg, size_t length, 
         }
         recipe = rtde_recipe_of(c, from_robot, id);
         if (recipe == NULL) {
-            if (layout == RTDE_LAYOUT_DATA_PACKAGE)
-                out->u.data_package.recipe_id = (uint8_t)id;
-            else if (layout == RTDE_LAYOUT_INPUT_DATA_PACKAGE)
-                out->u.input_data_package.recipe_id = (uint8_t)id;
+            if (recipe_id != NULL)
+                *recipe_id = (uint8_t)id;
             *offset = RTDE_HEADER_SIZE;
             return RTDE_UNKNOWN_RECIPE;
         }
         data->recipe = recipe;
-        data->bytes = NULL;                 /* until its values are there: none are read */
     }
     e = rtde__decode_layout(layout, &r, out);
     if (e != RTDE_OK) {
