@@ -262,29 +262,44 @@ def c_figures(path: Path, count: int, python_per_package: float) -> float:
     return decode / count
 
 
-def tshark_figures(count: int) -> None:
+def lua_of(revision: str) -> Path:
+    """generated/lua/rtde.lua of a revision, under build/bench-rtde/base/REV/."""
+    path = OUT / "base" / revision / "rtde.lua"
+    if not path.is_file():
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(subprocess.run(["git", "-C", str(ROOT), "show", f"{revision}:generated/lua/rtde.lua"],
+                                        capture_output=True, check=True).stdout)
+    return path
+
+
+def tshark_figures(count: int, base: str) -> None:
     pieces = [client_bytes(), robot_head(), *packages(count)]
     segments = [capture.Segment(False, pieces[0]), capture.Segment(True, pieces[1]),
                 *(capture.Segment(True, p) for p in pieces[2:])]
     pcap = capture.write(OUT / f"rtde_{count}.pcap", capture.session_frames(segments, port=30004), step=0.001)
+    plugins = {"rtde": PLUGIN, **({"at " + base: lua_of(base)} if base else {})}
 
-    def run(args) -> float:
-        times = []
-        for _ in range(ROUNDS):
-            res, _, seconds, _ = measure.run_cpu(["tshark", "-r", str(pcap), "-X", f"lua_script:{PLUGIN}", *args],
-                                                 output=False)
-            if res.returncode != 0 or "Lua: Error" in res.stderr:
-                sys.exit(f"tshark failed: {res.stderr[:500]}")
-            times.append(seconds)
-        return min(times)
+    def run(plugin: Path, args) -> float:
+        res, _, seconds, _ = measure.run_cpu(["tshark", "-r", str(pcap), "-X", f"lua_script:{plugin}", *args],
+                                             output=False)
+        if res.returncode != 0 or "Lua: Error" in res.stderr:
+            sys.exit(f"tshark failed: {res.stderr[:500]}")
+        return seconds
 
-    print(f"  tshark, {count:,} packages         {'rtde':>12s} {'disabled':>9s} {'ratio':>6s}")
+    heads = "".join(f" {name:>12s}" for name in plugins)
+    print(f"  tshark, {count:,} packages     {heads} {'disabled':>9s} {'ratio':>6s}"
+          + (f" {'base/now':>8s}" if base else ""))
     for name, args in (("no tree (-q -z io,stat,0)", ["-q", "-z", "io,stat,0"]),
                        ("one field (-T fields)", ["-T", "fields", "-e", "rtde.actual_q"]),
                        ("full tree (-V)", ["-V"])):
-        on = run(args)
-        off = run(["--disable-protocol", "rtde", *args])
-        print(f"  {name:32s} {on:10.2f} s {off:7.2f} s {on / off:6.2f}")
+        times = {key: float("inf") for key in [*plugins, "disabled"]}
+        for _ in range(ROUNDS):                        # turns, so that a busy moment falls on all
+            for key, plugin in plugins.items():
+                times[key] = min(times[key], run(plugin, args))
+            times["disabled"] = min(times["disabled"], run(PLUGIN, ["--disable-protocol", "rtde", *args]))
+        cells = "".join(f" {times[key]:10.2f} s" for key in plugins)
+        print(f"  {name:28s}{cells} {times['disabled']:7.2f} s {times['rtde'] / times['disabled']:6.2f}"
+              + (f" {times['at ' + base] / times['rtde']:8.2f}" if base else ""))
 
 
 def main() -> int:
@@ -310,7 +325,7 @@ def main() -> int:
     print(f" per package at {args.large:,} against {args.packages:,}: Python {py_large / py_small:.2f}x"
           + (f", C {c_large / c_small:.2f}x" if c_small else " (build/bench_rtde missing: make bench-rtde builds it)"))
     hot_figures(base)
-    tshark_figures(args.packages)
+    tshark_figures(args.packages, args.base)
     return 0
 
 
