@@ -64,8 +64,10 @@ build/bench_rtde_hot_urcl-%: tests/bench/bench_rtde_hot.c tests/bench/bench_rtde
 
 ## bench-rtde: RTDE data packages per second by recipe (a driver's 9-variable recipe at 500 Hz) in
 ## Python (against struct alone) and C (against memcpy, and Python), at BENCH_RTDE_PACKAGES and
-## BENCH_RTDE_LARGE packages (the cost per package, large against small), and tshark with rtde.lua
-## against --disable-protocol rtde on BENCH_RTDE_PACKAGES packages; then one 12-variable package
+## BENCH_RTDE_LARGE packages (the cost per package, large against small), Python reading one 12-variable
+## package hot (against a hand-written struct reader), and tshark with rtde.lua against
+## --disable-protocol rtde on BENCH_RTDE_PACKAGES packages, Python and rtde.lua also against the tree
+## before their recipes were planned once (bench_rtde.py's BASE); then one 12-variable package
 ## L1-hot at -O2, -O3 and -Os, read by index, by name, as a list and by rtde_data_find, against a hand-written
 ## reader and URCL (with URCL_SOURCE)
 bench-rtde: build/bench_rtde $(BENCH_RTDE_LEVELS:%=$(BENCH_RTDE_HOT)-%)
