@@ -198,7 +198,7 @@ def values_reader(shapes: tuple):
     item (a bool byte False, True or its number, as _runtime.BOOL reads it), a vector the list of
     its items. Written as one list display over fixed positions and compiled once per recipe, as
     dataclasses compile an __init__ per class: reading a package then runs no loop over its shapes
-    (half the time of one, in make bench-rtde)."""
+    (0.35 against 1.0 us for a driver's 9-variable recipe, beyond the unpacking)."""
     items, at = [], 0
     for shape in shapes:
         if shape.count > 1:
@@ -206,7 +206,9 @@ def values_reader(shapes: tuple):
         else:
             items.append(f"B[f[{at}]]" if shape.kind == "bool" else f"f[{at}]")
         at += shape.count
-    return eval(f"lambda f: [{', '.join(items)}]", {"__builtins__": {}, "B": _rt.BOOL})   # noqa: S307 - positions only
+    # The text holds only positions counted from the spec's shapes: no byte of a package or reply
+    # reaches it (a type no shape has makes no Recipe).
+    return eval(f"lambda f: [{', '.join(items)}]", {"__builtins__": {}, "B": _rt.BOOL})
 
 
 # ---- field readers and writers -----------------------------------------------------------------
