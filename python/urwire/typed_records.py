@@ -14,7 +14,7 @@ from typing import Any, Iterator, Optional
 
 from . import _runtime as _rt
 from ._runtime import DecodeError, StreamError
-from .typed_json import message_json, raw_json
+from .typed_json import message_json, raw_json, value_writers
 
 short = _rt.short
 read_prefixed_text = _rt.read_prefixed_text
@@ -153,9 +153,11 @@ class Recipe:
 
     Everything a data package's reading needs is worked out here, once per recipe: the struct of
     its values (`size` bytes, one unpack_from per package), the reader that turns the unpacked
-    items into the values in order, and the position of each name (`index`)."""
+    items into the values in order, the position of each name (`index`), and the writer of each
+    value's JSON with its name's text (`json_writers`, typed_json.value_writers)."""
 
-    __slots__ = ("id", "kind", "names", "types", "defined_at", "size", "index", "_struct", "_shapes", "_read")
+    __slots__ = ("id", "kind", "names", "types", "defined_at", "size", "index", "json_writers", "_struct", "_shapes",
+                 "_read")
 
     def __init__(self, recipe_id: Optional[int], kind: str, names: list, types: list,
                  value_types: dict, defined_at: int = -1):
@@ -167,6 +169,7 @@ class Recipe:
         self.size = self._struct.size
         self.index = first_positions(self.names)
         self._read = values_reader(self._shapes)
+        self.json_writers = value_writers(self.names, self._shapes)
 
     def decode(self, buf, pos: int, end: int) -> tuple[Values, int]:
         if pos + self.size > end:

@@ -10,7 +10,7 @@ the best of a few rounds, and a ratio against a baseline measured in the same ru
   decoded into its values by name, against the least any Python reader does (each package's
   header and values read with the recipe's precompiled `struct`, nothing else) and against the
   package of --base (default: the tree before recipes read by a precompiled reader); then with a
-  canonical JSON line per package.
+  canonical JSON line per package, against decoding alone and the package of --base.
 - Python, one package hot: the C bench's 12-variable, 284-byte package (bench_rtde_hot.c)
   decoded by DataPackage.decode_body again and again and all 12 values read, by index
   (`in_order()`) and by name, against a hand-written reader of the same layout (one
@@ -128,6 +128,7 @@ def urwire_decode(path: Path, json_lines: bool = False, package=None) -> int:
     import urwire
 
     package = package or urwire
+    to_json_line = package.to_json_line
     rtde, spec = package.rtde, package.generated.rtde
     conv = rtde.Conversation()
     conv.feed(client_bytes(), False)
@@ -137,7 +138,7 @@ def urwire_decode(path: Path, json_lines: bool = False, package=None) -> int:
             if type(record) is spec.DataPackage:
                 count += 1
                 if json_lines:
-                    urwire.to_json_line(record)
+                    to_json_line(record)
     if count == 0:
         sys.exit("bench_rtde: no data package decoded")
     return count
@@ -177,6 +178,10 @@ def python_figures(path: Path, count: int, with_json: bool, base) -> float:
         lines, _ = best(lambda: urwire_decode(path, json_lines=True))
         print(f"  Python decode + JSON line       {count / lines:12,.0f} packages/s  {lines / ours:5.2f}x the time "
               "of decoding")
+        if base is not None:
+            before, _ = best(lambda: urwire_decode(path, json_lines=True, package=base))
+            print(f"  Python decode + JSON at {base.__name__[7:]:7s} {count / before:12,.0f} packages/s  "
+                  f"{before / lines:5.2f}x the time of this tree's")
     return ours / count
 
 
