@@ -82,14 +82,16 @@ def cpu() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def best(work, rounds: int = ROUNDS) -> tuple[float, int]:
-    """(least CPU seconds, what the work counted) over the rounds."""
-    times, counted = [], 0
+def in_turns(contenders: dict, rounds: int = ROUNDS) -> dict:
+    """Each contender's (least CPU seconds, what it counted), the contenders taking turns round by
+    round so that a busy stretch of the machine falls on all of them."""
+    found = {name: (float("inf"), 0) for name in contenders}
     for _ in range(rounds):
-        start = cpu()
-        counted = work()
-        times.append(cpu() - start)
-    return min(times), counted
+        for name, work in contenders.items():
+            start = cpu()
+            counted = work()
+            found[name] = (min(found[name][0], cpu() - start), counted)
+    return found
 
 
 def chunks(path: Path):
@@ -164,22 +166,28 @@ def struct_floor(path: Path) -> int:
 
 def python_figures(path: Path, count: int, with_json: bool, base) -> float:
     """Prints Python's rates; returns its seconds per package."""
-    ours, n = best(lambda: urwire_decode(path))
-    floor, m = best(lambda: struct_floor(path))
-    assert n == m == count, (n, m, count)
+    contenders = {"ours": lambda: urwire_decode(path), "floor": lambda: struct_floor(path)}
+    if base is not None:
+        contenders["before"] = lambda: urwire_decode(path, package=base)
+    if with_json:
+        contenders["lines"] = lambda: urwire_decode(path, json_lines=True)
+        if base is not None:
+            contenders["lines before"] = lambda: urwire_decode(path, json_lines=True, package=base)
+    found = in_turns(contenders)
+    assert all(n == count for _, n in found.values()), (found, count)
+    ours, floor = found["ours"][0], found["floor"][0]
     print(f"  Python Conversation             {count / ours:12,.0f} packages/s  {ours / floor:5.2f}x the time of "
           f"struct alone ({count / floor:,.0f}/s)")
     if base is not None:
-        before, k = best(lambda: urwire_decode(path, package=base))
-        assert k == count, (k, count)
+        before = found["before"][0]
         print(f"  Python Conversation at {base.__name__[7:]:8s} {count / before:12,.0f} packages/s  "
               f"{before / ours:5.2f}x the time of this tree's")
     if with_json:
-        lines, _ = best(lambda: urwire_decode(path, json_lines=True))
+        lines = found["lines"][0]
         print(f"  Python decode + JSON line       {count / lines:12,.0f} packages/s  {lines / ours:5.2f}x the time "
               "of decoding")
         if base is not None:
-            before, _ = best(lambda: urwire_decode(path, json_lines=True, package=base))
+            before = found["lines before"][0]
             print(f"  Python decode + JSON at {base.__name__[7:]:7s} {count / before:12,.0f} packages/s  "
                   f"{before / lines:5.2f}x the time of this tree's")
     return ours / count
