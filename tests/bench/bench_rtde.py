@@ -21,8 +21,9 @@ the best of a few rounds, and a ratio against a baseline measured in the same ru
 - Both at PACKAGES and at LARGE packages (a robot-day at 500 Hz is 43 million): the cost per
   package at LARGE against PACKAGES shows whether it stays flat.
 - Wireshark: tshark with generated/lua/rtde.lua on a capture of PACKAGES packages (one per TCP
-  segment, as a robot sends them), against the same tshark with `--disable-protocol rtde`: no
-  tree (`-q -z io,stat,0`), one field (`-T fields -e rtde.actual_q`), the full tree (`-V`).
+  segment, as a robot sends them), against the same tshark with `--disable-protocol rtde` and
+  with the rtde.lua of --base, taking turns: no tree (`-q -z io,stat,0`), one field (`-T fields -e
+  rtde.actual_q`), the full tree (`-V`).
 
 The inputs are built under build/bench-rtde (not committed). `--packages N --large M` set the
 sizes; small ones give a quick look (the machine may be shared: run the full sizes alone).
