@@ -65,8 +65,10 @@ build/bench_rtde_hot_urcl-%: tests/bench/bench_rtde_hot.c tests/bench/bench_rtde
 
 ## bench-rtde: RTDE data packages per second by recipe (a driver's 9-variable recipe at 500 Hz) in
 ## Python (against struct alone) and C (against memcpy, and Python), at BENCH_RTDE_PACKAGES and
-## BENCH_RTDE_LARGE packages (the cost per package, large against small), and tshark with rtde.lua
-## against --disable-protocol rtde on BENCH_RTDE_PACKAGES packages; then one 12-variable package
+## BENCH_RTDE_LARGE packages (the cost per package, large against small), Python reading one 12-variable
+## package hot (against a hand-written struct reader), and tshark with rtde.lua against
+## --disable-protocol rtde on BENCH_RTDE_PACKAGES packages, Python and rtde.lua also against the tree
+## before their recipes were planned once (bench_rtde.py's BASE); then one 12-variable package
 ## L1-hot at -O2, -O3 and -Os, read by index and by name (each type's inline reader), by rtde_data_value, as a
 ## list and by rtde_data_find, against a hand-written reader and URCL (built from URCL_SOURCE, else from
 ## ../Universal_Robots_Client_Library when it is there; the output says when URCL is not compared, and why)

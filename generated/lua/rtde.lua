@@ -3047,8 +3047,9 @@ function rt.make_recipe(state, kind, values, frame)
         return shown
     end
     local id = values.recipe_id
+    local offsets, size = rt.value_offsets(types)
     state.recipes[kind][id or NO_ID] = { id = id, names = request.names, types = types, frame = frame,
-                                         request_frame = request.frame }
+                                         request_frame = request.frame, offsets = offsets, size = size }
     local retyped = {}
     for i, t in ipairs(types) do
         local text = rt.retyped(request.names[i], t)
@@ -3056,6 +3057,18 @@ function rt.make_recipe(state, kind, values, frame)
     end
     if #retyped > 0 then shown.retyped = retyped end
     return shown
+end
+
+-- Where each value of a recipe starts among a data package's values, and their size in all: worked
+-- out once, when the recipe is set up, so that a data package is read at known offsets.
+function rt.value_offsets(types)
+    local offsets, at = {}, 0
+    for i, t in ipairs(types) do
+        local vt = spec.value_types[t]
+        offsets[i] = at
+        at = at + vt.size * vt.count
+    end
+    return offsets, at
 end
 
 -- What to say of a variable the reply types otherwise than the variable table, or nil: its value is
@@ -3180,6 +3193,10 @@ do
 end
 
 local states, views = {}, {}
+-- Whether this call's items are looked at (proto.dissector sets it): a visible tree, or a filter or
+-- column that names the protocol or one of its fields. Without, data packages add no value items,
+-- which are most of the work (make bench-rtde, no tree).
+local showing, handle = true, nil
 
 function proto.init()
     states, views = {}, {}
@@ -3214,37 +3231,72 @@ local READ = {
     float = function(r) return r:float() end,
 }
 
--- One value of a recipe: an item per scalar (a vector's items in order, each filterable by the
--- variable's name: under a subtree by their names where the spec names them, else with their
--- index). A name the variable table lacks (a newer controller's) shows its value's bytes whole,
--- with the name. A variable the setup reply types otherwise than the table is read by the
+-- What each item of a value appends to its label, in one text: the unit (or, retyped, the
+-- variable's name) and a vector's item index (" [0]", " [1]", ...); nil where an item appends nothing.
+local function item_texts(unit, count)
+    if count == 1 then return unit and { [0] = unit } or nil end
+    local texts = {}
+    for i = 0, count - 1 do texts[i] = (unit or "") .. " [" .. i .. "]" end
+    return texts
+end
+
+-- How each value of a recipe shows, worked out once per recipe (the first time one of its data
+-- packages is shown) and kept with it: its offset (state.lua's, from the setup), its item size
+-- and count, and the field, unit, named items, flags or retype the spec's tables give its name
+-- and type. A name the variable table lacks (a newer controller's) shows its value's bytes
+-- whole, with the name. A variable the setup reply types otherwise than the table is read by the
 -- reply's type, under the field of that type (rtde.value_float64...), with its name and an expert.
-local function add_value(tree, tvb, pos, name, type_name)
-    local vt = spec.value_types[type_name]
-    local f, unit = F[name], spec.variable_units[name]
-    if not spec.variable_types[name] then
-        tree:add(F.unknown_variable, tvb(pos, vt.size * vt.count)):append_text(" (" .. name .. ")")
+local function value_items(recipe)
+    local list, retyped = {}, {}
+    for i, name in ipairs(recipe.names) do
+        local type_name = recipe.types[i]
+        local vt = spec.value_types[type_name]
+        local v = { at = recipe.offsets[i], size = vt.size, count = vt.count, len = vt.size * vt.count }
+        if not spec.variable_types[name] then
+            v.unknown = " (" .. name .. ")"
+        else
+            v.retyped = rt.retyped(name, type_name)
+            local unit = nil
+            if v.retyped then
+                v.field, unit = F[vt.field], " (" .. name .. ")"
+                retyped[#retyped + 1] = v.retyped
+            else
+                v.field, unit, v.named, v.flags = F[name], spec.variable_units[name], spec.items[name], spec.flags[name]
+            end
+            v.texts = item_texts(unit, vt.count)
+        end
+        list[i] = v
+    end
+    list.retyped = retyped
+    recipe.items = list
+    return list
+end
+
+-- One value of a recipe, at `base` (where the package's values start): an item per scalar (a
+-- vector's items in order, each filterable by the variable's name: under a subtree by their
+-- names where the spec names them, else with their index).
+local function add_value(tree, tvb, base, v)
+    local pos = base + v.at
+    if v.unknown then
+        tree:add(F.unknown_variable, tvb(pos, v.len)):append_text(v.unknown)
         return
     end
-    local retyped = rt.retyped(name, type_name)
-    local named = not retyped and spec.items[name]
-    if named then
-        local group = tree:add(tvb(pos, vt.size * vt.count), named.group)
-        for i, entry in ipairs(named.items) do
-            local item = group:add(entry[1], tvb(pos + (i - 1) * vt.size, vt.size))
+    if v.named then
+        local group = tree:add(tvb(pos, v.len), v.named.group)
+        for i, entry in ipairs(v.named.items) do
+            local item = group:add(entry[1], tvb(pos + (i - 1) * v.size, v.size))
             if entry[2] then item:append_text(entry[2]) end
         end
         return
     end
-    if retyped then f, unit = F[vt.field], nil end
-    for i = 0, vt.count - 1 do
-        local item = tree:add(f, tvb(pos + i * vt.size, vt.size))
-        if retyped then item:append_text(" (" .. name .. ")") end
-        if unit then item:append_text(unit) end
-        if vt.count > 1 then item:append_text(" [" .. i .. "]") end
-        if retyped and i == 0 then item:add_proto_expert_info(E.retyped, retyped) end
-        if not retyped and spec.flags[name] then
-            for _, flag in ipairs(spec.flags[name]) do item:add(flag, tvb(pos + i * vt.size, vt.size)) end
+    local texts = v.texts
+    for i = 0, v.count - 1 do
+        local range = tvb(pos + i * v.size, v.size)
+        local item = tree:add(v.field, range)
+        if texts then item:append_text(texts[i]) end
+        if v.retyped and i == 0 then item:add_proto_expert_info(E.retyped, v.retyped) end
+        if v.flags then
+            for _, flag in ipairs(v.flags) do item:add(flag, range) end
         end
     end
 end
@@ -3278,18 +3330,20 @@ end
 STEP.rest_text = rest
 STEP.names = rest
 
+-- A data package's values, read at the offsets its recipe worked out once. Only where someone
+-- looks (`showing`: a visible tree, or a filter or column naming the protocol) do they become
+-- items; otherwise only a retyped variable's expert is added, for the expert infos.
 function STEP.values(s, tree, tvb, pos, stop, values, view)
     local recipe = view.recipe
-    local need = 0
-    for _, t in ipairs(recipe.types) do need = need + spec.value_types[t].size * spec.value_types[t].count end
-    if pos + need > stop then return nil end
-    tree:add(F.recipe_frame, tvb(pos, 0), recipe.frame):set_generated()
-    for i, name in ipairs(recipe.names) do
-        local vt = spec.value_types[recipe.types[i]]
-        add_value(tree, tvb, pos, name, recipe.types[i])
-        pos = pos + vt.size * vt.count
+    if pos + recipe.size > stop then return nil end
+    local items = recipe.items or value_items(recipe)
+    if not showing then
+        for _, text in ipairs(items.retyped) do tree:add_proto_expert_info(E.retyped, text) end
+        return pos + recipe.size
     end
-    return pos
+    tree:add(F.recipe_frame, tvb(pos, 0), recipe.frame):set_generated()
+    for i = 1, #items do add_value(tree, tvb, pos, items[i]) end
+    return pos + recipe.size
 end
 
 -- What the state says about one message, worked out on the first pass and kept for the others,
@@ -3395,6 +3449,8 @@ local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state,
 end
 
 function proto.dissector(tvb, pinfo, tree)
+    handle = handle or Dissector.get(spec.name)
+    showing = tree.visible or tree:referenced(handle)
     local len = tvb:len()
     local raw = tvb:raw()
     local from_robot = pinfo.src_port == pinfo.match_uint

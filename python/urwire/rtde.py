@@ -60,6 +60,10 @@ _KNOWN_CODES = frozenset({code for code, _, _ in _g.MESSAGES} | set(_g.UNDOCUMEN
 _KIND_OF_REQUEST = {cls: kind for kind in _g.RECIPE_KINDS for cls in kind.requests}
 _KIND_OF_REPLY = {cls: kind for kind in _g.RECIPE_KINDS for cls in kind.replies}
 _DATA = 85  # 'U'
+# Each data package layout: the kind of recipe it follows, and whether it carries a recipe id.
+_RECIPE_OF_DATA = {cls: ((_g.OUTPUTS if cls.FROM_ROBOT else _g.INPUTS).name, cls.JSON[0][0] == "recipe_id")
+                   for (code, _, _), cls in _g.MESSAGES.items() if code == _DATA}
+_CUT_ID = -1    # a package cut before its recipe id: the key of no recipe
 
 
 def variable(name: str, direction: str = "output") -> Optional[_g._r.Variable]:
@@ -142,11 +146,14 @@ class Conversation:
         if cls is None:
             name = _g.UNDOCUMENTED.get(code, ("unknown",))[0]
             return RawMessage(name, code, raw)
-        recipe = self._recipe_of(cls, raw) if code == _DATA else None
-        if code == _DATA and recipe is None:
-            recipe_id = raw[3] if cls.JSON[0][0] == "recipe_id" and len(raw) > 3 else None
-            return RawMessage(cls.NAME, code, raw, "data package of a recipe this connection did not set up",
-                              recipe_id)
+        recipe = None
+        if code == _DATA:
+            kind, has_id = _RECIPE_OF_DATA[cls]
+            recipe_id = (raw[3] if len(raw) > 3 else _CUT_ID) if has_id else None
+            recipe = self.recipes[kind].get(recipe_id)
+            if recipe is None:
+                return RawMessage(cls.NAME, code, raw, "data package of a recipe this connection did not set up",
+                                  None if recipe_id == _CUT_ID else recipe_id)
         try:
             record = cls.decode_body(raw, _g.HEADER.size, len(raw), recipe)
         except DecodeError as exc:
@@ -155,13 +162,6 @@ class Conversation:
             record.note("recipe", recipe)
         self._follow(record)
         return record
-
-    def _recipe_of(self, cls: type, raw: bytes) -> Optional[Recipe]:
-        kind = _g.OUTPUTS if cls.FROM_ROBOT else _g.INPUTS
-        recipes = self.recipes[kind.name]
-        if cls.JSON[0][0] != "recipe_id":
-            return recipes.get(None)
-        return recipes.get(raw[3]) if len(raw) > 3 else None
 
     def _follow(self, record: Message) -> None:
         """What a message changes in the connection's state."""

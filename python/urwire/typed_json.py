@@ -23,12 +23,28 @@ def _by_python_type(value: Any) -> str:
     return _value(value, kind)
 
 
+_ITEM = {"bool": lambda v: "true" if v else "false", "float": f64_text, "int": lambda v: "%d" % int(v)}
+
+
+def _vector_writer(item):
+    return lambda values: "[" + ", ".join(map(item, values)) + "]"
+
+
+def value_writers(names, shapes) -> tuple:
+    """A recipe's values in JSON, worked out once per recipe: for each value in order, the text
+    before it ('"actual_q": ') and the function that writes it by its type's shape (a vector's
+    items each as its kind). What _value writes of a decoded package, without asking each value."""
+    return tuple((f"{_text(name)}: ", _vector_writer(_ITEM[shape.kind]) if shape.count > 1 else _ITEM[shape.kind])
+                 for name, shape in zip(names, shapes))
+
+
 def _values(values, recipe) -> list[str]:
     """Every value under its variable's name, in recipe order: a name the recipe repeats is printed
     once per value, as the C writer prints it."""
     if recipe is not None:
-        in_order = values.in_order() if getattr(values, "names", None) == recipe.names \
-            else [values[name] for name in recipe.names]            # a dict a caller built
+        if getattr(values, "names", None) == recipe.names:         # decoded, or in the recipe's order
+            return [key + write(value) for (key, write), value in zip(recipe.json_writers, values.in_order())]
+        in_order = [values[name] for name in recipe.names]            # a dict a caller built
         return [f"{_text(name)}: {_value(value, shape.kind)}"
                 for (name, shape), value in zip(recipe.json_kinds(), in_order)]
     pairs = values.pairs() if hasattr(values, "pairs") else values.items()

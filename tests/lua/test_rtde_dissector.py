@@ -178,6 +178,23 @@ def test_filters_and_experts(dissected, tmp_path):
     assert "not_a_variable: NOT_FOUND" in experts and "input_int_register_24: IN_USE" in experts
 
 
+def test_without_a_visible_tree_values_still_filter_and_experts_still_show(dissected, tmp_path):
+    """A data package's values become items only where someone looks (a visible tree, or a filter
+    naming rtde): a filter on a value with no tree printed finds the package, and a retyped
+    variable's expert is counted without a tree, as with one."""
+    pcap = tmp_path / "p2.pcap"
+    capture.write(pcap, frames_of([c for c in CASES if c.name == "protocol2_session"][0], 51000))
+    assert len(tshark(pcap, "-Y", "rtde.actual_q > 2.5 && rtde.recipe_id == 2").splitlines()) == 1
+    assert tshark(pcap, "-Y", "rtde.actual_q > 2.5", "-T", "fields", "-e", "frame.number").split() == ["32"]
+    retyped = tmp_path / "retyped.pcap"
+    capture.write(retyped, frames_of([c for c in CASES if c.name == "retyped_variable"][0], 51000))
+    summary = "timestamp: UINT8 by the setup reply, DOUBLE in the variable table"
+    counted = [line for line in tshark(retyped, "-q", "-z", "expert").splitlines() if summary in line]
+    assert [line.split()[0] for line in counted] == ["2"]      # the setup reply's and the data package's
+    shown = tshark(retyped, "-T", "fields", "-e", "_ws.expert.message").split("\n")
+    assert sum(line.count(summary) for line in shown) == 2
+
+
 def test_hostile_bytes_raise_no_lua_error(tmp_path):
     """Flipped, cut and random bytes and huge sizes in both directions, whole and in small
     segments: tshark finishes with no Lua error (run_tshark's checks) and shows rtde items."""

@@ -258,6 +258,34 @@ def test_values_without_a_repeat_are_a_mapping_by_name():
     assert package.values == dict(package.values) and len(package.values) == len(package.values.names)
 
 
+def test_a_recipes_reader_is_a_loop_over_its_shapes():
+    """Random recipes over random bytes: the reader a recipe compiles once gives what a loop over its
+    types gives (a vector a list of its items, a bool byte 0 or 1 as False or True and 2 to 255 as
+    the number); every package of the recipe finds a name by the recipe's one index."""
+    from urwire._runtime import BOOL
+
+    rng = random.Random(39)
+    types = sorted(generated.VALUE_TYPES)
+    for _ in range(200):
+        chosen = [rng.choice(types) for _ in range(rng.randrange(1, 14))]
+        names = [rng.choice(("a", "b", "c", "d", "e", "f", "g")) for _ in chosen]
+        recipe = rtde.Recipe(1, "outputs", names, chosen, generated.VALUE_TYPES)
+        body = bytes(rng.getrandbits(8) for _ in range(recipe.size + 2))
+        values, end = recipe.decode(body, 1, len(body))
+        expected, at = [], 1
+        for t in chosen:
+            shape = generated.VALUE_TYPES[t]
+            items = list(struct.unpack_from(">" + shape.code * shape.count, body, at))
+            at += shape.size
+            expected.append(items if shape.count > 1 else BOOL[items[0]] if shape.kind == "bool" else items[0])
+        assert values.in_order() == expected and end == at
+        assert [type(v) for v in values.in_order()] == [type(v) for v in expected]
+        assert {n: values[n] for n in names} == {n: expected[names.index(n)] for n in names}
+        assert recipe.decode(body, 1, len(body))[0]._index is values._index is recipe.index
+        with pytest.raises(urwire.DecodeError, match="values"):
+            recipe.decode(body, 3, len(body))
+
+
 def test_input_data_takes_a_dict_or_values_in_order():
     """input_data by name (a dict) or, for a recipe naming a variable twice, a Values in order."""
     recipe = rtde.Recipe(1, "inputs", ["input_double_register_0", "input_double_register_0"], ["DOUBLE", "DOUBLE"],

@@ -136,8 +136,9 @@ function rt.make_recipe(state, kind, values, frame)
         return shown
     end
     local id = values.recipe_id
+    local offsets, size = rt.value_offsets(types)
     state.recipes[kind][id or NO_ID] = { id = id, names = request.names, types = types, frame = frame,
-                                         request_frame = request.frame }
+                                         request_frame = request.frame, offsets = offsets, size = size }
     local retyped = {}
     for i, t in ipairs(types) do
         local text = rt.retyped(request.names[i], t)
@@ -145,6 +146,18 @@ function rt.make_recipe(state, kind, values, frame)
     end
     if #retyped > 0 then shown.retyped = retyped end
     return shown
+end
+
+-- Where each value of a recipe starts among a data package's values, and their size in all: worked
+-- out once, when the recipe is set up, so that a data package is read at known offsets.
+function rt.value_offsets(types)
+    local offsets, at = {}, 0
+    for i, t in ipairs(types) do
+        local vt = spec.value_types[t]
+        offsets[i] = at
+        at = at + vt.size * vt.count
+    end
+    return offsets, at
 end
 
 -- What to say of a variable the reply types otherwise than the variable table, or nil: its value is

@@ -1,7 +1,7 @@
 -- runtime/lua/typed_messages/state.lua: the protocol version negotiated, setup replies matched to
 -- their requests in order, recipes per direction, refusals and a refused start; requests beyond the
 -- bounds not kept and their replies paired with nothing; versions with no layouts; variables
--- retyped.
+-- retyped; a recipe's value offsets worked out at its setup.
 local S = dofile("stubs.lua")
 local spec = {
     default_protocol = 2,
@@ -15,7 +15,8 @@ local spec = {
         { name = "inputs", from_robot = false, requests = { "setup_inputs" }, replies = { "setup_inputs_reply" } },
     },
     refusals = { NOT_FOUND = true, IN_USE = true },
-    value_types = { DOUBLE = {}, VECTOR6D = {}, INT32 = {} },
+    value_types = { DOUBLE = { size = 8, count = 1 }, VECTOR6D = { size = 8, count = 6 },
+                    INT32 = { size = 4, count = 1 } },
 }
 local rt = S.load("common/pending.lua", spec)
 S.load("typed_messages/state.lua", spec, rt)
@@ -42,6 +43,7 @@ S.eq(notes.names[2] .. "/" .. #notes.names, "actual_q/2", "a good reply names th
 S.eq(notes.refused == nil and notes.warning == nil and notes.retyped == nil, true, "and says nothing else")
 local recipe = rt.recipe_for(st, true, 1)
 S.eq(recipe.names[2] .. ":" .. recipe.types[2] .. "@" .. recipe.frame, "actual_q:VECTOR6D@8", "recipe 1 by its reply")
+S.eq(table.concat(recipe.offsets, ",") .. "/" .. recipe.size, "0,8/56", "its values' offsets, worked out at setup")
 S.eq(rt.recipe_for(st, false, 1), nil, "inputs are another direction's recipes")
 S.eq(rt.recipe_for(st, true, 0), nil, "a refused setup makes no recipe")
 
