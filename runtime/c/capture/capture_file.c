@@ -131,6 +131,8 @@ static urwire_capture_step pcapng_header(urwire_capture_file *file, const uint8_
     if (n < length)
         return at_end ? fault(file, record, 0, true, "capture header unreadable (invalid pcapng header): nothing decoded")
                       : URWIRE_CAPTURE_MORE;
+    if (load32(buf + length - 4u, file->little) != length)
+        return fault(file, record, 0, true, "capture header unreadable (length fields do not match): nothing decoded");
     if (load16(buf + 12, file->little) != 1u)
         return fault(file, record, 0, true, "capture header unreadable (unknown pcapng version %u.%u): nothing decoded",
                      (unsigned)load16(buf + 12, file->little), (unsigned)load16(buf + 14, file->little));
@@ -146,7 +148,11 @@ static urwire_capture_step pcapng_header(urwire_capture_file *file, const uint8_
             return fault(file, record, 0, true, "capture header unreadable (pcapng block length %u is not valid): "
                          "nothing decoded", (unsigned)size);
         if (kind == BT_INTERFACE) {
-            urwire_capture_step step = describe_interface(file, buf + o, size, record, 0, true);
+            urwire_capture_step step;
+            if (size >= PCAPNG_INTERFACE_HEADER && load32(buf + o + size - 4u, file->little) != size)
+                return fault(file, record, 0, true, "capture header unreadable (length fields do not match): "
+                             "nothing decoded");
+            step = describe_interface(file, buf + o, size, record, 0, true);
             if (step != URWIRE_CAPTURE_SKIP)
                 return step;
             *taken = o + size;
