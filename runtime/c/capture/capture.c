@@ -446,6 +446,10 @@ urwire_capture *urwire_capture_new(const uint16_t *ports, size_t n_ports, const 
         c->both_ways[both_ways[i]] = true;
     c->count_others = others;
     c->first = c->last = NONE;
+    if (!grow((void **)&c->input, &c->input_capacity, 1, 1)) {     /* never NULL, though nothing is fed */
+        free(c);
+        return NULL;
+    }
     return c;
 }
 
