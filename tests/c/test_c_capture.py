@@ -45,3 +45,43 @@ def test_every_capture_and_damaged_copies_pass_the_harness(tmp_path):
     result = run_once([str(fuzzer)], [inputs], tmp_path / "crashes")
     assert result.returncode == 0, result.stderr[-3000:]
     assert libfuzzer_runs(result.stderr) >= 9 * len(CAPTURES) >= 150
+
+
+def python_lines(path) -> tuple[bytes, int]:
+    """What `urwire decode --protocol ur CAPTURE` prints, and its exit status."""
+    import urwire
+    from urwire.canonical import has_error
+
+    records = list(urwire.decode_capture(path, protocol="ur"))
+    return b"".join(urwire.to_json_line(r).encode() + b"\n" for r in records), int(any(map(has_error, records)))
+
+
+def primary_captures(tmp_path) -> list:
+    """Every capture of the tests, and primary sessions whose segments are reordered, lost,
+    repeated and changed (as tests/python/test_capture_readers.py makes them)."""
+    from tests.python.test_capture_readers import shuffled_session
+    from tests.tools import capture as pcap
+
+    made = [pcap.write(tmp_path / f"primary{seed}.pcapng", shuffled_session(seed, 30001), pcapng=bool(seed % 2))
+            for seed in range(6)]
+    return CAPTURES + made
+
+
+@pytest.mark.parametrize("variant", ["fast", "asan"])
+def test_the_command_reads_a_capture_as_python_does(variant, request, tmp_path):
+    """build/urwire-decode CAPTURE: the primary interface's records, each in its conversation's
+    envelope, gaps and differing retransmissions named, byte for byte `urwire decode --protocol ur`."""
+    import subprocess
+
+    build = request.getfixturevalue(variant)
+    compared = 0
+    for path in primary_captures(tmp_path):
+        result = subprocess.run([str(build.cli), str(path)], capture_output=True)
+        expected, status = python_lines(path)
+        assert result.stdout == expected, path.name
+        assert result.returncode == status, path.name
+        compared += bool(expected)
+    assert compared >= 8
+    with open(ROOT / "dissector" / "samples" / "cell_session.pcapng", "rb") as fh:     # stdin too
+        result = subprocess.run([str(build.cli), "-"], stdin=fh, capture_output=True)
+    assert result.stdout == python_lines(ROOT / "dissector" / "samples" / "cell_session.pcapng")[0] != b""
