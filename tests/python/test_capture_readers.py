@@ -105,3 +105,71 @@ def test_damaged_copies_of_the_captures_read_the_same(path, tmp_path, monkeypatc
         copy = tmp_path / f"damaged{n}{path.suffix}"
         copy.write_bytes(bytes(damaged))
         assert_same(copy, monkeypatch)
+
+
+# ---- the link layers, IPv6 and pcapng's interfaces and sections, in one capture ----
+
+def links(ethernet: bytes) -> dict[int, bytes]:
+    """One Ethernet IPv4 frame in every link type both readers take, by their pcapng link type:
+    (0) null, (1) Ethernet with a VLAN tag, (101) raw IP, (113) Linux cooked, (276) its v2;
+    and an Ethernet frame of QinQ tags, under a link type of its own key (1001)."""
+    macs, ip = ethernet[:12], ethernet[14:]
+    return {0: (2).to_bytes(4, "little") + ip,
+            1: macs + b"\x81\x00\x00\x07\x08\x00" + ip,
+            101: ip,
+            113: b"\x00\x00\x00\x01\x00\x06" + ethernet[6:12] + b"\x00\x00\x08\x00" + ip,
+            276: b"\x08\x00\x00\x00\x00\x00\x00\x02\x00\x01\x00\x06" + ethernet[6:12] + b"\x00\x00" + ip,
+            1001: macs + b"\x88\xa8\x00\x05\x81\x00\x00\x07\x08\x00" + ip}
+
+
+def ipv6_of(ethernet: bytes) -> bytes:
+    """The same segment over IPv6 (the IPv4 addresses mapped), in an Ethernet frame."""
+    ip = ethernet[14:]
+    header = (ip[0] & 15) * 4
+    tcp = ip[header:int.from_bytes(ip[2:4], "big")]
+    src, dst = b"\xfe\x80" + b"\x00" * 10 + ip[12:16], b"\xfe\x80" + b"\x00" * 10 + ip[16:20]
+    return ethernet[:12] + b"\x86\xdd" + b"\x60\x00\x00\x00" + len(tcp).to_bytes(2, "big") + b"\x06\x40" + src + \
+        dst + tcp
+
+
+def block(kind: int, body: bytes, order: str) -> bytes:
+    body += b"\x00" * (-len(body) % 4)
+    length = (12 + len(body)).to_bytes(4, "little" if order == "<" else "big")
+    return kind.to_bytes(4, "little" if order == "<" else "big") + length + body + length
+
+
+def section(order: str, faces: list[tuple[int, int]], packets: list[tuple[int, int, bytes]]) -> bytes:
+    """A pcapng section in byte order `order`: interfaces (link type, if_tsresol or None), then
+    packets (interface, timestamp in its units, frame)."""
+    import struct
+
+    out = block(0x0A0D0D0A, struct.pack(order + "IHHq", 0x1A2B3C4D, 1, 0, -1), order)
+    for linktype, tsresol in faces:
+        options = b"" if tsresol is None else struct.pack(order + "HHB3x", 9, 1, tsresol) + b"\x00" * 4
+        out += block(1, struct.pack(order + "HHI", linktype, 0, 0) + options, order)
+    for face, stamp, frame in packets:
+        out += block(6, struct.pack(order + "IIIII", face, stamp >> 32, stamp & 0xFFFFFFFF, len(frame), len(frame))
+                     + frame, order)
+    return out
+
+
+def test_every_link_type_ipv6_and_pcapng_interfaces_and_sections_read_the_same(tmp_path, monkeypatch):
+    payloads = [bytes([i]) * (100 + i) for i in range(48)]
+    frames = pcap.session_frames([Segment(True, p) for p in payloads], port=30001)
+    faces = [(0, None), (1, 9), (101, 0x86), (113, 3), (276, None), (1, 6)]     # the last: QinQ
+    first = [(i % 6, 1_700_000_000_000 + i, links(f)[1001 if i % 6 == 5 else faces[i % 6][0]])
+             for i, f in enumerate(frames[:len(frames) // 2])]
+    # A second section, in the other byte order: interfaces start again, IPv6 over Ethernet.
+    second = [(0, 1_700_000_100 + i, ipv6_of(f)) for i, f in enumerate(frames[len(frames) // 2:])]
+    path = tmp_path / "links.pcapng"
+    path.write_bytes(section("<", faces, first) + section(">", [(1, 0)], second))
+    read = assert_same(path, monkeypatch)
+    streams = {}
+    for key, from_robot, piece, _, _ in read:
+        streams.setdefault(key, b"")
+        streams[key] += piece if isinstance(piece, bytes) else b""
+    # Every byte read: each link type and both sections parsed, the stream cut between IPv4 and IPv6.
+    assert len(streams) == 2 and sum(map(len, streams.values())) == sum(map(len, payloads))
+    assert any(":" in key[0] for key in streams)
+    times = sorted({item[4] for item in read})
+    assert times[0] < 1_700_000_000.01 and times[-1] >= 1_700_000_100
