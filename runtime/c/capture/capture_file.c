@@ -123,13 +123,15 @@ static urwire_capture_step pcapng_header(urwire_capture_file *file, const uint8_
     if (n < PCAPNG_SECTION_HEADER)
         return at_end ? fault(file, record, 0, true, "capture header unreadable (invalid pcapng header): nothing decoded")
                       : URWIRE_CAPTURE_MORE;
-    file->little = buf[8] == 0x4D;
+    if (load32(buf + 8, true) != 0x1A2B3C4Du && load32(buf + 8, false) != 0x1A2B3C4Du)
+        return fault(file, record, 0, true, "capture header unreadable (unknown endianness): nothing decoded");
+    file->little = load32(buf + 8, true) == 0x1A2B3C4Du;
     length = load32(buf + 4, file->little);
     if (length < PCAPNG_SECTION_HEADER || length % 4u)
         return fault(file, record, 0, true, "capture header unreadable (pcapng block length %u is not valid): "
                      "nothing decoded", (unsigned)length);
-    if (n < length)
-        return at_end ? fault(file, record, 0, true, "capture header unreadable (invalid pcapng header): nothing decoded")
+    if (n < length)     /* dpkt's text: its section header block wants more bytes than there are */
+        return at_end ? fault(file, record, 0, true, "capture header unreadable (NeedData): nothing decoded")
                       : URWIRE_CAPTURE_MORE;
     if (load32(buf + length - 4u, file->little) != length)
         return fault(file, record, 0, true, "capture header unreadable (length fields do not match): nothing decoded");
@@ -141,7 +143,8 @@ static urwire_capture_step pcapng_header(urwire_capture_file *file, const uint8_
         if (n - o < 8u || n - o < (size = load32(buf + o + 4, file->little))) {
             if (!at_end)
                 return URWIRE_CAPTURE_MORE;
-            return fault(file, record, 0, true, "capture header unreadable (IDB not found): nothing decoded");
+            return fault(file, record, 0, true, "capture header unreadable (%s): nothing decoded",
+                         n - o >= 8u && load32(buf + o, file->little) == BT_INTERFACE ? "NeedData" : "IDB not found");
         }
         kind = load32(buf + o, file->little);
         if (size < PCAPNG_BLOCK_MIN || size % 4u)
