@@ -173,3 +173,14 @@ def test_every_link_type_ipv6_and_pcapng_interfaces_and_sections_read_the_same(t
     assert any(":" in key[0] for key in streams)
     times = sorted({item[4] for item in read})
     assert times[0] < 1_700_000_000.01 and times[-1] >= 1_700_000_100
+
+
+@pytest.mark.deep
+def test_the_c_reader_under_asan_and_ubsan(tmp_path):
+    """The same comparisons through an urwire._ccore built with ASan and UBSan
+    (capture_asan_peer.py): no difference, no report."""
+    from tests.tools import ccore_sanitized
+
+    result = ccore_sanitized.run_peer("capture_asan_peer.py", tmp_path)
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert int(result.stdout.split()[-1]) >= 30
