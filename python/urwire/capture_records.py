@@ -5,7 +5,8 @@ so that one bad record costs that record and not the file:
 
 - pcapng: each section (section header block) has its byte order, and each interface
   (interface description block) its link type and timestamp resolution (if_tsresol, if_tsoffset);
-  a packet is read by its interface's. pcapng blocks carry their length at both ends. A block whose body does not parse is skipped
+  a packet is read by its interface's.
+- pcapng blocks carry their length at both ends. A block whose body does not parse is skipped
   (its length says where the next one starts); a block whose two lengths disagree, or that runs
   past the end of the file, leaves no safe place to go on: reading stops there.
 - pcap records have no trailer: a record longer than the snap length, or than what is left of

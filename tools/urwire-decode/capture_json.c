@@ -49,7 +49,7 @@ bool capture_json_is_capture(const uint8_t *head, size_t n)
 
 static void at(char *text, size_t size, const char *address, unsigned port)
 {
-    snprintf(text, size, strchr(address, ':') ? "[%s]:%u" : "%s:%u", address, port);
+    (void)snprintf(text, size, strchr(address, ':') ? "[%s]:%u" : "%s:%u", address, port);
 }
 
 static conversation *conversation_of(urwire_capture_conversation *c, urwire_sw_version hint)
@@ -67,7 +67,7 @@ static conversation *conversation_of(urwire_capture_conversation *c, urwire_sw_v
     conv->visitor = json_visitor(&conv->writer);
     at(robot, sizeof robot, c->robot, c->robot_port);
     at(client, sizeof client, c->client, c->client_port);
-    snprintf(conv->name, sizeof conv->name, "%s-%s", robot, client);
+    (void)snprintf(conv->name, sizeof conv->name, "%s-%s", robot, client);
     conv->from_robot.interface = "ur";
     conv->from_robot.direction = "from_robot";
     conv->from_robot.conversation = conv->name;
@@ -161,18 +161,18 @@ static int on_item(void *context, const urwire_capture_item *item)
         return URWIRE_CAPTURE_NO_MEMORY;
     switch (item->kind) {
     case URWIRE_ITEM_GAP:
-        snprintf(error, sizeof error, "%lld bytes missing from the capture at offset %lld",
-                 (long long)item->missing, (long long)item->offset);
+        (void)snprintf(error, sizeof error, "%lld bytes missing from the capture at offset %lld",
+                       (long long)item->missing, (long long)item->offset);
         print_error(p, &conv->from_robot, item->offset, error);
         return restart(p, conv, (uint64_t)(item->offset + item->missing));
     case URWIRE_ITEM_DIFFERS:
         if (item->differing == 0)
-            snprintf(error, sizeof error, "%lld retransmitted bytes at offset %lld could not be compared: the bytes "
-                     "they repeat are no longer kept", (long long)item->missing, (long long)item->offset);
+            (void)snprintf(error, sizeof error, "%lld retransmitted bytes at offset %lld could not be compared: the "
+                           "bytes they repeat are no longer kept", (long long)item->missing, (long long)item->offset);
         else
-            snprintf(error, sizeof error, "retransmitted bytes at offset %lld differ from those delivered first "
-                     "(%lld of %lld); the first kept", (long long)item->offset, (long long)item->differing,
-                     (long long)item->missing);
+            (void)snprintf(error, sizeof error, "retransmitted bytes at offset %lld differ from those delivered first "
+                           "(%lld of %lld); the first kept", (long long)item->offset, (long long)item->differing,
+                           (long long)item->missing);
         print_error(p, &conv->from_robot, item->offset, error);
         return 0;
     default:

@@ -159,7 +159,7 @@ static way *way_of(urwire_capture *c, const endpoints *key)
     } else {
         conversation = calloc(1, sizeof *conversation);
         if (conversation == NULL || !grow((void **)&c->conversations, &c->conversations_capacity,
-                                          c->n_conversations + 1, sizeof *c->conversations)) {
+                                          c->n_conversations + 1, sizeof(urwire_capture_conversation *))) {
             free(conversation);
             return NULL;
         }

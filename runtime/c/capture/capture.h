@@ -61,12 +61,12 @@ typedef struct urwire_capture_other {
  * `others`: whether to count the conversations on no port. NULL when out of memory. */
 urwire_capture *urwire_capture_new(const uint16_t *ports, size_t n_ports, const uint16_t *both_ways,
                                    size_t n_both_ways, bool others);
-int urwire_capture_feed(urwire_capture *capture, const uint8_t *data, size_t n, urwire_capture_emit emit,
+int urwire_capture_feed(urwire_capture *c, const uint8_t *data, size_t n, urwire_capture_emit emit,
                         void *context);
 /* The end of the file: what it leaves unread is a fault, then every stream ends. */
-int urwire_capture_finish(urwire_capture *capture, urwire_capture_emit emit, void *context);
-size_t urwire_capture_others(const urwire_capture *capture, const urwire_capture_other **others);
+int urwire_capture_finish(urwire_capture *c, urwire_capture_emit emit, void *context);
+size_t urwire_capture_others(const urwire_capture *c, const urwire_capture_other **others);
 /* Each conversation once, for the caller to release what it set in `user`. */
-void urwire_capture_each_conversation(urwire_capture *capture, void (*visit)(urwire_capture_conversation *));
-void urwire_capture_free(urwire_capture *capture);
+void urwire_capture_each_conversation(urwire_capture *c, void (*visit)(urwire_capture_conversation *));
+void urwire_capture_free(urwire_capture *c);
 #endif

@@ -1,7 +1,6 @@
 /* The records of a .pcap or .pcapng file (capture_file.h). */
 #include "capture_file.h"
 
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -43,18 +42,18 @@ void urwire_capture_file_free(urwire_capture_file *file)
     file->n_interfaces = file->capacity = 0;
 }
 
-static urwire_capture_step fault(urwire_capture_file *file, urwire_capture_record *record, uint64_t at, bool stop,
-                                 const char *format, ...)
+/* The fault whose text is in record->fault, at file offset `at`; `stop`: reading stops there. */
+static urwire_capture_step faulted(urwire_capture_file *file, urwire_capture_record *record, uint64_t at, bool stop)
 {
-    va_list args;
-    va_start(args, format);
-    vsnprintf(record->fault, sizeof record->fault, format, args);
-    va_end(args);
     record->fault_offset = at;
     if (stop)
         file->state = URWIRE_CAPTURE_DONE;
     return URWIRE_CAPTURE_FAULTED;
 }
+
+/* FAULT(file, record, at, stop, format, ...): the text written, then faulted. */
+#define FAULT(file, record, at, stop, ...) \
+    ((void)snprintf((record)->fault, sizeof (record)->fault, __VA_ARGS__), faulted(file, record, at, stop))
 
 /* 10^n or 2^n units per second, as if_tsresol says (exact as far as a double holds them). */
 static double resolution(uint8_t tsresol)
@@ -73,9 +72,9 @@ static urwire_capture_step describe_interface(urwire_capture_file *file, const u
     urwire_capture_interface face;
     uint32_t o = PCAPNG_INTERFACE_HEADER - 4u;
     if (length < PCAPNG_INTERFACE_HEADER)
-        return in_header ? fault(file, record, 0, true, "capture header unreadable (got %u, %u needed at least): "
+        return in_header ? FAULT(file, record, 0, true, "capture header unreadable (got %u, %u needed at least): "
                                  "nothing decoded", (unsigned)length, PCAPNG_INTERFACE_HEADER)
-                         : fault(file, record, at, false, "damaged pcapng interface block skipped (got %u, %u "
+                         : FAULT(file, record, at, false, "damaged pcapng interface block skipped (got %u, %u "
                                  "needed at least)", (unsigned)length, PCAPNG_INTERFACE_HEADER);
     face.linktype = load16(block + 8, file->little);
     face.divisor = 1e6;
@@ -101,7 +100,7 @@ static urwire_capture_step describe_interface(urwire_capture_file *file, const u
         size_t capacity = file->capacity ? 2 * file->capacity : 4;
         urwire_capture_interface *grown;
         if (file->n_interfaces >= URWIRE_CAPTURE_MAX_INTERFACES)
-            return fault(file, record, at, false, "pcapng interface block skipped: more than %u interfaces",
+            return FAULT(file, record, at, false, "pcapng interface block skipped: more than %u interfaces",
                          URWIRE_CAPTURE_MAX_INTERFACES);
         grown = realloc(file->interfaces, capacity * sizeof *grown);
         if (grown == NULL)
@@ -121,39 +120,40 @@ static urwire_capture_step pcapng_header(urwire_capture_file *file, const uint8_
     size_t o;
     uint32_t length;
     if (n < PCAPNG_SECTION_HEADER)
-        return at_end ? fault(file, record, 0, true, "capture header unreadable (invalid pcapng header): nothing decoded")
+        return at_end ? FAULT(file, record, 0, true, "capture header unreadable (invalid pcapng header): "
+                              "nothing decoded")
                       : URWIRE_CAPTURE_MORE;
     if (load32(buf + 8, true) != 0x1A2B3C4Du && load32(buf + 8, false) != 0x1A2B3C4Du)
-        return fault(file, record, 0, true, "capture header unreadable (unknown endianness): nothing decoded");
+        return FAULT(file, record, 0, true, "capture header unreadable (unknown endianness): nothing decoded");
     file->little = load32(buf + 8, true) == 0x1A2B3C4Du;
     length = load32(buf + 4, file->little);
     if (length < PCAPNG_SECTION_HEADER || length % 4u)
-        return fault(file, record, 0, true, "capture header unreadable (pcapng block length %u is not valid): "
+        return FAULT(file, record, 0, true, "capture header unreadable (pcapng block length %u is not valid): "
                      "nothing decoded", (unsigned)length);
     if (n < length)     /* dpkt's text: its section header block wants more bytes than there are */
-        return at_end ? fault(file, record, 0, true, "capture header unreadable (NeedData): nothing decoded")
+        return at_end ? FAULT(file, record, 0, true, "capture header unreadable (NeedData): nothing decoded")
                       : URWIRE_CAPTURE_MORE;
     if (load32(buf + length - 4u, file->little) != length)
-        return fault(file, record, 0, true, "capture header unreadable (length fields do not match): nothing decoded");
+        return FAULT(file, record, 0, true, "capture header unreadable (length fields do not match): nothing decoded");
     if (load16(buf + 12, file->little) != 1u)
-        return fault(file, record, 0, true, "capture header unreadable (unknown pcapng version %u.%u): nothing decoded",
+        return FAULT(file, record, 0, true, "capture header unreadable (unknown pcapng version %u.%u): nothing decoded",
                      (unsigned)load16(buf + 12, file->little), (unsigned)load16(buf + 14, file->little));
     for (o = length;;) {
         uint32_t kind, size;
         if (n - o < 8u || n - o < (size = load32(buf + o + 4, file->little))) {
             if (!at_end)
                 return URWIRE_CAPTURE_MORE;
-            return fault(file, record, 0, true, "capture header unreadable (%s): nothing decoded",
+            return FAULT(file, record, 0, true, "capture header unreadable (%s): nothing decoded",
                          n - o >= 8u && load32(buf + o, file->little) == BT_INTERFACE ? "NeedData" : "IDB not found");
         }
         kind = load32(buf + o, file->little);
         if (size < PCAPNG_BLOCK_MIN || size % 4u)
-            return fault(file, record, 0, true, "capture header unreadable (pcapng block length %u is not valid): "
+            return FAULT(file, record, 0, true, "capture header unreadable (pcapng block length %u is not valid): "
                          "nothing decoded", (unsigned)size);
         if (kind == BT_INTERFACE) {
             urwire_capture_step step;
             if (size >= PCAPNG_INTERFACE_HEADER && load32(buf + o + size - 4u, file->little) != size)
-                return fault(file, record, 0, true, "capture header unreadable (length fields do not match): "
+                return FAULT(file, record, 0, true, "capture header unreadable (length fields do not match): "
                              "nothing decoded");
             step = describe_interface(file, buf + o, size, record, 0, true);
             if (step != URWIRE_CAPTURE_SKIP)
@@ -171,12 +171,12 @@ static urwire_capture_step pcap_header(urwire_capture_file *file, const uint8_t 
 {
     uint32_t magic;
     if (n < PCAP_HEADER)
-        return at_end ? fault(file, record, 0, true, "capture header unreadable (got %u, %u needed at least): "
+        return at_end ? FAULT(file, record, 0, true, "capture header unreadable (got %u, %u needed at least): "
                               "nothing decoded", (unsigned)n, PCAP_HEADER)
                       : URWIRE_CAPTURE_MORE;
     magic = load32(buf, false);
     if (magic != 0xA1B2C3D4u && magic != 0xD4C3B2A1u && magic != 0xA1B23C4Du && magic != 0x4D3CB2A1u)
-        return fault(file, record, 0, true, "capture header unreadable (invalid tcpdump header): nothing decoded");
+        return FAULT(file, record, 0, true, "capture header unreadable (invalid tcpdump header): nothing decoded");
     file->little = buf[0] != 0xA1;
     file->nano = magic == 0xA1B23C4Du || magic == 0x4D3CB2A1u;
     file->snaplen = load32(buf + 16, file->little);
@@ -198,14 +198,14 @@ static urwire_capture_step pcap_record(urwire_capture_file *file, const uint8_t 
             file->state = URWIRE_CAPTURE_DONE;
             return URWIRE_CAPTURE_END;
         }
-        return fault(file, record, file->offset, true, "capture cut short in a record header: reading stopped");
+        return FAULT(file, record, file->offset, true, "capture cut short in a record header: reading stopped");
     }
     caplen = load32(buf + 8, file->little);
     if (caplen > limit)
-        return fault(file, record, file->offset, true, "pcap record length %u exceeds the snap length %u: "
+        return FAULT(file, record, file->offset, true, "pcap record length %u exceeds the snap length %u: "
                      "reading stopped", (unsigned)caplen, (unsigned)limit);
     if (n - PCAP_RECORD_HEADER < caplen)
-        return at_end ? fault(file, record, file->offset, true, "capture cut short in a record of %u bytes: "
+        return at_end ? FAULT(file, record, file->offset, true, "capture cut short in a record of %u bytes: "
                               "reading stopped", (unsigned)caplen)
                       : URWIRE_CAPTURE_MORE;
     record->data = buf + PCAP_RECORD_HEADER;
@@ -224,15 +224,15 @@ static urwire_capture_step pcapng_packet(urwire_capture_file *file, const uint8_
     uint64_t stamp;
     const urwire_capture_interface *described;
     if (length < PCAPNG_PACKET_HEADER)
-        return fault(file, record, file->offset, false, "damaged pcapng packet block skipped (got %u, %u needed at "
+        return FAULT(file, record, file->offset, false, "damaged pcapng packet block skipped (got %u, %u needed at "
                      "least)", (unsigned)length, PCAPNG_PACKET_HEADER);
     caplen = load32(block + 20, file->little);
     if (caplen > length - PCAPNG_PACKET_HEADER)
-        return fault(file, record, file->offset, false, "damaged pcapng packet block skipped (captured length %u "
+        return FAULT(file, record, file->offset, false, "damaged pcapng packet block skipped (captured length %u "
                      "exceeds the block)", (unsigned)caplen);
     face = kind == BT_PACKET ? load16(block + 8, file->little) : load32(block + 8, file->little);
     if (face >= file->n_interfaces)
-        return fault(file, record, file->offset, false, "damaged pcapng packet block skipped (interface %u is not "
+        return FAULT(file, record, file->offset, false, "damaged pcapng packet block skipped (interface %u is not "
                      "described)", (unsigned)face);
     described = &file->interfaces[face];
     stamp = (uint64_t)load32(block + 12, file->little) << 32 | load32(block + 16, file->little);
@@ -255,28 +255,28 @@ static urwire_capture_step pcapng_block(urwire_capture_file *file, const uint8_t
             file->state = URWIRE_CAPTURE_DONE;
             return URWIRE_CAPTURE_END;
         }
-        return fault(file, record, file->offset, true, "capture cut short in a block header: reading stopped");
+        return FAULT(file, record, file->offset, true, "capture cut short in a block header: reading stopped");
     }
     kind = load32(buf, little);
     if (kind == BT_SECTION) {      /* a section of its own byte order; its length needs it */
         if (n < 12u)
-            return at_end ? fault(file, record, file->offset, true, "capture cut short in a block header: "
+            return at_end ? FAULT(file, record, file->offset, true, "capture cut short in a block header: "
                                   "reading stopped") : URWIRE_CAPTURE_MORE;
         if (load32(buf + 8, true) == 0x1A2B3C4Du || load32(buf + 8, false) == 0x1A2B3C4Du)
             little = load32(buf + 8, true) == 0x1A2B3C4Du;
     }
     length = load32(buf + 4, little);
     if (length < PCAPNG_BLOCK_MIN || length % 4u)
-        return fault(file, record, file->offset, true, "pcapng block length %u is not valid: reading stopped",
+        return FAULT(file, record, file->offset, true, "pcapng block length %u is not valid: reading stopped",
                      (unsigned)length);
     if (n < length)
-        return at_end ? fault(file, record, file->offset, true, "capture cut short in a block of %u bytes: "
+        return at_end ? FAULT(file, record, file->offset, true, "capture cut short in a block of %u bytes: "
                               "reading stopped", (unsigned)length)
                       : URWIRE_CAPTURE_MORE;
     *taken = length;
     trailer = load32(buf + length - 4u, little);
     if (trailer != length)
-        return fault(file, record, file->offset, true, "pcapng block lengths disagree (%u, %u): reading stopped",
+        return FAULT(file, record, file->offset, true, "pcapng block lengths disagree (%u, %u): reading stopped",
                      (unsigned)length, (unsigned)trailer);
     switch (kind) {
     case BT_SECTION:

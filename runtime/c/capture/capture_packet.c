@@ -193,16 +193,17 @@ unsigned urwire_capture_window_shift(const urwire_capture_segment *segment)
     return 0;
 }
 
-void urwire_capture_address_text(uint8_t family, const uint8_t *a, char text[URWIRE_CAPTURE_ADDRESS_TEXT])
+void urwire_capture_address_text(uint8_t family, const uint8_t *address, char text[URWIRE_CAPTURE_ADDRESS_TEXT])
 {
     unsigned words[8], i, best = 8, best_length = 0, run = 0;
     char *o = text;
     if (family == 4) {
-        snprintf(text, URWIRE_CAPTURE_ADDRESS_TEXT, "%u.%u.%u.%u", a[0], a[1], a[2], a[3]);
+        (void)snprintf(text, URWIRE_CAPTURE_ADDRESS_TEXT, "%u.%u.%u.%u", address[0], address[1], address[2],
+                       address[3]);
         return;
     }
     for (i = 0; i < 8u; i++) {
-        words[i] = (unsigned)a[2 * i] << 8 | a[2 * i + 1];
+        words[i] = (unsigned)address[2 * (size_t)i] << 8 | address[2 * (size_t)i + 1];
         run = words[i] ? 0 : run + 1;
         if (run > best_length) {
             best_length = run;
@@ -223,7 +224,8 @@ void urwire_capture_address_text(uint8_t family, const uint8_t *a, char text[URW
             *o++ = ':';
         if (i == 6u && best == 0 && (best_length == 6u || (best_length == 7u && words[7] != 1u) ||
                                       (best_length == 5u && words[5] == 0xFFFFu))) {
-            snprintf(o, (size_t)(text + URWIRE_CAPTURE_ADDRESS_TEXT - o), "%u.%u.%u.%u", a[12], a[13], a[14], a[15]);
+            (void)snprintf(o, (size_t)(text + URWIRE_CAPTURE_ADDRESS_TEXT - o), "%u.%u.%u.%u", address[12],
+                           address[13], address[14], address[15]);
             return;
         }
         o += snprintf(o, (size_t)(text + URWIRE_CAPTURE_ADDRESS_TEXT - o), "%x", words[i]);

@@ -12,7 +12,9 @@
 #define URWIRE_CAPTURE_SEGMENT_COST 200u        /* what holding a segment costs beyond its bytes */
 #define URWIRE_CAPTURE_HISTORY_KEPT (256u << 10) /* bytes kept after delivery, to compare retransmissions with */
 
-typedef enum urwire_capture_piece_kind { URWIRE_PIECE_BYTES, URWIRE_PIECE_GAP, URWIRE_PIECE_DIFFERS } urwire_capture_piece_kind;
+typedef enum urwire_capture_piece_kind {
+    URWIRE_PIECE_BYTES, URWIRE_PIECE_GAP, URWIRE_PIECE_DIFFERS
+} urwire_capture_piece_kind;
 
 typedef struct urwire_capture_piece {
     urwire_capture_piece_kind kind;
