@@ -118,3 +118,12 @@ BENCH_EXPORT_STATES ?= 864000
 bench-export:
 	PYTHONPATH=python:generated/python $(PYTHON) tests/bench/bench_export.py --base $(BENCH_EXPORT_BASE) \
 		--states $(BENCH_EXPORT_STATES)
+
+## bench-capture: `urwire decode` and `export --dataset` of a BENCH_CAPTURE_MB-megabyte capture of a cell
+## (the bundled capture's primary conversation repeated, built in build/bench-capture) against the same
+## bytes as a raw stream and against the Python capture reader: CPU time ratios
+BENCH_TARGETS += bench-capture
+BENCH_CAPTURE_MB ?= 1024
+.PHONY: bench-capture
+bench-capture: python-ext
+	PYTHONPATH=python:generated/python $(PYTHON) tests/bench/bench_capture.py --mb $(BENCH_CAPTURE_MB)

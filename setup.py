@@ -34,7 +34,7 @@ setup(
     ext_modules=[Extension(
         "urwire._ccore",
         sources=SOURCES,
-        include_dirs=["ext/ccore", "generated/c", "runtime/c/json"],
+        include_dirs=["ext/ccore", "generated/c", "runtime/c/json", "runtime/c/capture"],
         extra_compile_args=["-std=c99", "-O2"],
         optional=True,
     )],

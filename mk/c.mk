@@ -17,12 +17,14 @@ C_LIB := $(C_SOURCES) $(wildcard generated/c/*.h)
 C_STREAMS := runtime/c/typed_messages/rtde_stream runtime/c/sized_packets/ur_realtime_stream
 C_RUNTIME := $(wildcard runtime/c/json/*.c runtime/c/json/*.h) $(C_STREAMS:%=%.c) $(C_STREAMS:%=%.h)
 C_INCLUDES := -Igenerated/c -Iruntime/c/json -Iruntime/c/typed_messages -Iruntime/c/sized_packets \
-	-Itools/urwire-decode
+	-Itools/urwire-decode -Iruntime/c/capture
 C_CLI := $(wildcard tools/urwire-decode/*.c tools/urwire-decode/*.h) $(C_RUNTIME)
 # The command compiles, from what every kind's C runtime shares, the UTF-8 decoder runtime/c/json
 # writes text with (the text-line interfaces join it into their generated C instead).
 C_CLI += runtime/c/common/utf8.c runtime/c/common/utf8.h runtime/c/common/macros.h
 C_CLI += runtime/c/common/held.c runtime/c/common/held.h
+# The capture reader (.pcap, .pcapng, TCP reassembly), which urwire._ccore compiles too.
+C_CLI += $(wildcard runtime/c/capture/*.c runtime/c/capture/*.h)
 PREFIX ?= /usr/local
 BENCH_C_LEVELS ?= -O3 -O2 -Os
 BENCH_C_BASE ?= b8aabfa

@@ -27,10 +27,10 @@ FUZZ_CC := $(CLANG) -std=c99 -g -O1 -fsanitize=fuzzer,address,undefined -fno-san
 	$(C_INCLUDES)
 CLI_LIB := $(filter-out %/main.c,$(filter %.c,$(C_CLI)))
 
-.PHONY: fuzz fuzz-c fuzz-json fuzz-python fuzz-ur-realtime fuzz-rtde fuzz-long fuzz-corpus
+.PHONY: fuzz fuzz-c fuzz-json fuzz-python fuzz-ur-realtime fuzz-rtde fuzz-capture fuzz-long fuzz-corpus
 
 ## fuzz: every fuzzer for FUZZ_SECONDS (60) each; crashes land in build/fuzz/crashes/<harness>/
-fuzz: fuzz-c fuzz-json fuzz-python fuzz-ur-realtime fuzz-rtde
+fuzz: fuzz-c fuzz-json fuzz-python fuzz-ur-realtime fuzz-rtde fuzz-capture
 
 ## fuzz-long: every fuzzer for FUZZ_LONG_SECONDS (an hour) each
 fuzz-long:
@@ -89,6 +89,21 @@ fuzz-rtde: build/fuzz/fuzz_rtde
 	@mkdir -p build/fuzz/corpus/rtde build/fuzz/crashes/rtde
 	build/fuzz/fuzz_rtde -max_len=30000 -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
 		-artifact_prefix=build/fuzz/crashes/rtde/ build/fuzz/corpus/rtde $(FUZZ_CORPUS)/rtde
+
+## fuzz-capture: the C capture reader (runtime/c/capture: pcap, pcapng, the link, IP and TCP
+## layers, reassembly), read whole and in chunks (tests/c/fuzz_capture.c); seeded with every
+## capture under tests/ and dissector/
+CAPTURE_C := $(wildcard runtime/c/capture/*.c runtime/c/capture/*.h)
+build/fuzz/fuzz_capture: tests/c/fuzz_capture.c $(CAPTURE_C)
+	@mkdir -p build/fuzz
+	$(FUZZ_CC) -Iruntime/c/capture -o $@ tests/c/fuzz_capture.c $(filter %.c,$(CAPTURE_C))
+
+fuzz-capture: build/fuzz/fuzz_capture
+	@rm -rf build/fuzz/seeds/capture && mkdir -p build/fuzz/seeds/capture build/fuzz/corpus/capture \
+		build/fuzz/crashes/capture
+	find tests dissector -name '*.pcap' -o -name '*.pcapng' | xargs -I{} cp {} build/fuzz/seeds/capture/
+	build/fuzz/fuzz_capture -max_len=65536 -max_total_time=$(FUZZ_SECONDS) -print_final_stats=1 \
+		-artifact_prefix=build/fuzz/crashes/capture/ build/fuzz/corpus/capture build/fuzz/seeds/capture
 
 ## fuzz-python: the Python decoder, and urwire-decode against it (tests/python/fuzz_decoder.py)
 fuzz-python: build/fuzz/driver

@@ -5,7 +5,7 @@
 
 PYTHON_EXT_SOURCES := setup.py ext/ccore/sources.txt $(shell cat ext/ccore/sources.txt) \
 	$(wildcard ext/ccore/*.h) generated/c/urwire.h $(wildcard runtime/c/json/*.h) \
-	runtime/c/common/utf8.h runtime/c/common/macros.h
+	runtime/c/common/utf8.h runtime/c/common/macros.h $(wildcard runtime/c/capture/*.h)
 PYTHON_EXT_STAMP := build/python-ext.stamp
 
 ALL_TARGETS += python-ext

@@ -13,7 +13,7 @@ CPPCHECK_FLAGS := --enable=warning,style,performance,portability --inconclusive 
 # Each group: its sources (STATIC_C_<group>) and the include folders they compile with (STATIC_C_<group>_I).
 # The runtime files that are fragments of a generated file, with no includes of their own
 # (runtime/c/typed_messages/rtde_read.c, rtde_conversation.c), are analysed inside generated/c/rtde.c.
-STATIC_C_GROUPS := generated common packages lines int32_records realtime json streams cli
+STATIC_C_GROUPS := generated common packages lines int32_records realtime json streams capture cli
 STATIC_C_generated := $(wildcard generated/c/*.c)
 STATIC_C_generated_I := generated/c
 STATIC_C_common := $(wildcard runtime/c/common/*.c)
@@ -30,6 +30,8 @@ STATIC_C_json := $(wildcard runtime/c/json/*.c)
 STATIC_C_json_I := generated/c runtime/c/json
 STATIC_C_streams := runtime/c/typed_messages/rtde_stream.c runtime/c/sized_packets/ur_realtime_stream.c
 STATIC_C_streams_I := generated/c
+STATIC_C_capture := $(wildcard runtime/c/capture/*.c)
+STATIC_C_capture_I := runtime/c/capture
 STATIC_C_cli := $(wildcard tools/urwire-decode/*.c)
 # as mk/c.mk builds the command (`=`: read when used, whichever mk file make reads first)
 STATIC_C_cli_I = $(patsubst -I%,%,$(C_INCLUDES))

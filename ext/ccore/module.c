@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "capture_streams.h"
 #include "ccore_flat.h"
 #include "ccore_framer.h"
 #include "ccore_records.h"
@@ -168,7 +169,8 @@ PyMODINIT_FUNC PyInit__ccore(void)
         Py_DECREF(module);
         return NULL;
     }
-    if (records_add_types(module) < 0 || flat_add_types(module) < 0 || columns_add_types(module) < 0) {
+    if (records_add_types(module) < 0 || flat_add_types(module) < 0 || columns_add_types(module) < 0 ||
+        capture_streams_add_types(module) < 0) {
         Py_DECREF(module);
         return NULL;
     }

@@ -8,6 +8,10 @@ gap is final: the peer acknowledges bytes held beyond it (so it got the gap's, w
 did not), or the bytes held reach further than the peer's largest window lets a sender go
 unacknowledged (the acknowledgements were lost too). As a last bound, when the streams together hold MAX_PENDING bytes,
 the stream holding the most gives up its gap. The capture is read a record at a time.
+
+Under the C backend (extension.py) the same rules run in C (runtime/c/capture, urwire._ccore.CaptureStreams),
+which reads the file in chunks and gives timed_streams' items; the Python reader here is the fallback, and
+URWIRE_BACKEND=python selects it.
 """
 from __future__ import annotations
 
@@ -17,6 +21,7 @@ from dataclasses import dataclass, field
 from typing import BinaryIO, Iterator, Optional, Union
 
 from .capture_records import CaptureFault, CaptureFrames
+from .extension import CCORE
 # dpkt is imported by the functions that read a capture: `import urwire` needs the standard library only.
 
 PCAP_MAGICS = {b"\xa1\xb2\xc3\xd4", b"\xd4\xc3\xb2\xa1", b"\xa1\xb2\x3c\x4d", b"\x4d\x3c\xb2\xa1"}
@@ -256,6 +261,9 @@ def timed_robot_streams(fh: BinaryIO, ports: set[int]) -> Iterator[Union[tuple[S
             yield key, data, ended, ts
 
 
+C_CHUNK = 1 << 20         # the bytes of the file the C reader takes at a time
+
+
 class OtherConversations:
     """The TCP conversations of a capture on none of the ports read, as timed_streams meets them:
     each as (server address, server port, client address, client port) with the bytes it carried.
@@ -278,6 +286,11 @@ class OtherConversations:
             self.bytes[key] = 0
         self.bytes[key] += length
 
+    def counted(self, rows: list) -> None:
+        """The conversations as the C reader counted them: (server address, server port, client
+        address, client port, bytes), first seen first."""
+        self.bytes = {tuple(row[:4]): row[4] for row in rows}
+
 
 def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozenset(),
                   others: Optional[OtherConversations] = None) -> Iterator[
@@ -290,6 +303,26 @@ def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozense
     the reader gave up bytes the capture does not hold and went on after them, or a Differs where
     a retransmission disagrees with the bytes it repeats. CaptureFaults as timed_robot_streams
     says. The TCP conversations on none of `ports` go to `others`, when given."""
+    if CCORE is not None:
+        return _timed_streams_in_c(fh, ports, both_ways, others)
+    return _timed_streams_in_python(fh, ports, both_ways, others)
+
+
+def _timed_streams_in_c(fh: BinaryIO, ports: set[int], both_ways: frozenset,
+                        others: Optional[OtherConversations]) -> Iterator:
+    streams = CCORE.CaptureStreams(ports, both_ways, others is not None, Gap, Differs, CaptureFault)
+    while True:
+        chunk = fh.read(C_CHUNK)
+        items = streams.feed(chunk) if chunk else streams.finish()
+        if others is not None:
+            others.counted(streams.others())
+        yield from items
+        if not chunk:
+            return
+
+
+def _timed_streams_in_python(fh: BinaryIO, ports: set[int], both_ways: frozenset,
+                             others: Optional[OtherConversations]) -> Iterator:
     import dpkt
 
     head = fh.peek(4)[:4] if hasattr(fh, "peek") else b""
@@ -371,7 +404,10 @@ def _window_shift(tcp) -> int:
         options = dpkt.tcp.parse_opts(tcp.opts)
     except (dpkt.UnpackError, ValueError, IndexError):
         return UNKNOWN_SHIFT
-    for kind, value in options:
+    for option in options:
+        if option is None:
+            return 0    # an option cut short ends them (dpkt marks it None)
+        kind, value = option
         if kind == dpkt.tcp.TCP_OPT_WSCALE and len(value) == 1:
             return min(value[0], 14)
     return 0

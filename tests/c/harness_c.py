@@ -28,7 +28,8 @@ JSON_RUNTIME = ROOT / "runtime" / "c" / "json"
 RTDE_STREAM = ROOT / "runtime" / "c" / "typed_messages" / "rtde_stream.c"
 UR_REALTIME_STREAM = ROOT / "runtime" / "c" / "sized_packets" / "ur_realtime_stream.c"
 RUNTIME_SOURCES = sorted(JSON_RUNTIME.glob("*.c")) + [RTDE_STREAM, UR_REALTIME_STREAM]
-INCLUDES = [GEN, JSON_RUNTIME, RTDE_STREAM.parent, UR_REALTIME_STREAM.parent, CLI]    # as mk/c.mk's C_INCLUDES
+CAPTURE = ROOT / "runtime" / "c" / "capture"    # the capture reader, which the command reads captures with
+INCLUDES = [GEN, JSON_RUNTIME, RTDE_STREAM.parent, UR_REALTIME_STREAM.parent, CLI, CAPTURE]  # as mk/c.mk's C_INCLUDES
 # The other interfaces' parsers (generated/c/<interface>.c), which the CLI links beside urwire.c,
 # whichever urwire.c (full or pinned) a test builds.
 INTERFACES_C = [p for p in sorted(GEN.glob("*.c")) if p.name != "urwire.c"]
@@ -39,6 +40,7 @@ RUNTIME_SOURCES.append(UTF8)
 # The bytes the stream framers hold between feeds, one window for both (runtime/c/common/held.c).
 HELD = ROOT / "runtime" / "c" / "common" / "held.c"
 RUNTIME_SOURCES.append(HELD)
+RUNTIME_SOURCES += sorted(CAPTURE.glob("*.c"))
 CLI_SOURCES = sorted(CLI.glob("*.c")) + RUNTIME_SOURCES + INTERFACES_C   # main.c and what it links
 CLI_LIBRARY = [p for p in CLI_SOURCES if p.name != "main.c"]   # the same, for the test driver
 JSON = [JSON_RUNTIME / "json.c", JSON_RUNTIME / "shortest.c", UTF8]  # the JSON writer, its floats, its UTF-8

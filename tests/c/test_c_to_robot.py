@@ -157,10 +157,14 @@ def test_file_names_are_json_texts_as_python_writes_them(tmp_path):
 
 def test_the_commands_decoding_references_no_malloc(tmp_path):
     """What the command links beside main.c (the streams, the envelopes, the JSON writers) reads
-    both files through static state: no malloc, calloc, realloc or free in its objects."""
+    both files through static state: no malloc, calloc, realloc or free in its objects. The capture
+    reader (runtime/c/capture, and the command's capture_json.c over it) is apart: it holds a
+    framer per conversation and out-of-order segments, on the heap, bounded as capture.h says."""
     folder = OUT / "to_robot_nm"
     folder.mkdir(parents=True, exist_ok=True)
     for source in [*sorted(CLI.glob("*.c")), *RUNTIME_SOURCES]:
+        if source.parent.name == "capture" or source.stem == "capture_json":
+            continue
         obj = folder / f"{source.stem}.o"
         subprocess.run(["gcc", *STRICT, "-O2", *(f"-I{d}" for d in INCLUDES), "-c", str(source), "-o", str(obj)],
                        check=True)

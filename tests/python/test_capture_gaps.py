@@ -274,6 +274,7 @@ def held_while_reading(monkeypatch, path) -> list[int]:
             return out
 
     monkeypatch.setattr(reader, "_Reassembly", Watched)
+    monkeypatch.setattr(reader, "CCORE", None)   # the Python reader, whose streams are watched
     with open(path, "rb") as fh:
         for _ in reader.timed_streams(fh, {30003}):
             pass

@@ -175,6 +175,7 @@ def test_the_streams_together_hold_at_most_max_pending(monkeypatch, tmp_path):
 
     held: list = []
     monkeypatch.setattr(capture, "_Reassembly", Watched)
+    monkeypatch.setattr(capture, "CCORE", None)   # the Python reader, whose streams are watched
     payloads = {port: [bytes([port % 256, i]) * 50 for i in range(40)] for port in (50001, 50002)}
     sessions = [pcap.session_frames([pcap.Segment(True, p) for p in payloads[port]], client_port=port)
                 for port in payloads]

@@ -11,7 +11,7 @@ import sysconfig
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-INCLUDES = ["ext/ccore", "generated/c", "runtime/c/json"]   # as setup.py
+INCLUDES = ["ext/ccore", "generated/c", "runtime/c/json", "runtime/c/capture"]   # as setup.py
 
 
 def sources() -> list[str]:

@@ -3,6 +3,9 @@
  *     urwire-decode [--protocol ur|ur_realtime|rtde|ur_dashboard|...] [--version-hint 5.9|5.25.1] FILE|-
  *                   [--to-robot FILE2]
  *
+ * A .pcap or .pcapng FILE (told by its header, as `urwire decode` tells it) is read for the primary
+ * interface's conversations, each record in its conversation's envelope (capture_json.h).
+ *
  * Exit status: 0 all decoded, 1 the output holds error records, 2 usage or I/O error. */
 #include <errno.h>
 #include <stdio.h>
@@ -10,6 +13,7 @@
 #include <string.h>
 
 #include "json.h"
+#include "capture_json.h"
 #include "cell_streams.h"
 #include "envelope.h"
 #include "records.h"
@@ -20,7 +24,9 @@
 static const char usage[] =
     "usage: urwire-decode [--protocol NAME] [--version-hint MAJOR.MINOR[.BUGFIX]] FILE|- [--to-robot FILE2]\n"
     "Decode a raw stream of a Universal Robots interface (FILE, or - for stdin) and print\n"
-    "one canonical JSON record per line.\n"
+    "one canonical JSON record per line. A .pcap or .pcapng FILE gives the records of its primary\n"
+    "interface's conversations (30001, 30002, 30011, 30012), each in its envelope, as\n"
+    "`urwire decode --protocol ur CAPTURE` does.\n"
     "  --protocol NAME   the interface the stream is from: ur (primary/secondary, 30001/30002,\n"
     "                    the default), ur_realtime (real-time, 30003), rtde (RTDE, 30004:\n"
     "                    the robot's stream; its recipes come from the client's: --to-robot),\n"
@@ -39,9 +45,9 @@ static const char usage[] =
 static uint8_t framer_buffer[URWIRE_FRAMER_MIN_BUFFER];
 static uint8_t chunk[1 << 16];
 
-/* The primary/secondary stream: framed and printed record by record. 0, 1 (error records) or 2
- * (read error). */
-static int run_primary(FILE *in, urwire_sw_version version)
+/* The primary/secondary stream, `head` (n_head bytes already read from it) and the rest of `in`:
+ * framed and printed record by record. 0, 1 (error records) or 2 (read error). */
+static int run_primary(const uint8_t *head, size_t n_head, FILE *in, urwire_sw_version version)
 {
     urwire_framer fr;
     urwire_visitor v;
@@ -51,6 +57,12 @@ static int run_primary(FILE *in, urwire_sw_version version)
     w.out = stdout;
     v = json_visitor(&w);
     urwire_framer_init(&fr, framer_buffer, sizeof framer_buffer, version);
+    while (n_head) {
+        size_t took = urwire_framer_feed(&fr, head, n_head);
+        head += took;
+        n_head -= took;
+        errors |= print_ready_records(&fr, &v, &w);
+    }
     for (;;) {
         size_t n = fread(chunk, 1, sizeof chunk, in), off = 0;
         while (off < n) {
@@ -113,7 +125,7 @@ typedef int (*protocol_runner)(const cell_inputs *in, urwire_sw_version version,
 static int run_primary_row(const cell_inputs *in, urwire_sw_version version, bool hinted)
 {
     (void)hinted;
-    return run_primary(in->robot, version);
+    return run_primary(NULL, 0, in->robot, version);
 }
 
 static int run_realtime_row(const cell_inputs *in, urwire_sw_version version, bool hinted)
@@ -248,7 +260,14 @@ int main(int argc, char **argv)
         in.from_robot = &from_robot_envelope;
         in.to_robot = &to_robot_envelope;
     }
-    status = run(&in, version, hint != NULL);
+    if (run == run_primary_row && !to_robot) {
+        uint8_t head[12];
+        size_t got = fread(head, 1, sizeof head, in.robot);
+        status = capture_json_is_capture(head, got) ? capture_json_print(head, got, in.robot, stdout, version)
+                                                    : run_primary(head, got, in.robot, version);
+    } else {
+        status = run(&in, version, hint != NULL);
+    }
     if (in.robot != stdin)
         (void)fclose(in.robot);     /* read only: closing loses nothing */
     if (in.client)
