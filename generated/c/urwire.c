@@ -937,30 +937,25 @@ URWIRE__PRIVATE bool urwire__within(urwire_error *e, const char *name, size_t in
     return urwire__within2(e, name, index, 0, false);
 }
 
+/* The statuses' names in their order, then the name of any other, in an object of their own:
+ * as string literals they shared the one string section of the file, which the linker keeps
+ * whole for any error path a firmware links (430 bytes in every firmware). */
+static const char urwire__status_names[] =
+    "URWIRE_OK\0" "URWIRE_E_SHORT\0" "URWIRE_E_NEGATIVE_LENGTH\0" "URWIRE_E_VALUE_TYPE\0"
+    "URWIRE_E_TERMINATOR\0" "URWIRE_E_TOO_DEEP\0" "URWIRE_E_TOO_MANY_ITEMS\0" "URWIRE_E_EMPTY_ROWS\0"
+    "URWIRE_E_PACKAGE_HEADER_CUT\0" "URWIRE_E_PACKAGE_LENGTH_LOW\0" "URWIRE_E_PACKAGE_LENGTH_HIGH\0"
+    "URWIRE_E_LENGTH_LOW\0" "URWIRE_E_LENGTH_HIGH\0" "URWIRE_E_MESSAGE_TYPE\0"
+    "URWIRE_E_TRUNCATED_MESSAGE\0" "URWIRE_E_TRUNCATED_HEADER\0" "URWIRE_E_TOO_BIG_FOR_BUFFER\0"
+    "URWIRE_E_NO_SPACE\0" "URWIRE_E_TOO_LONG\0" "URWIRE_E_UNKNOWN";
+
 const char *urwire_status_name(urwire_status status)
 {
-    switch (status) {
-    case URWIRE_OK: return "URWIRE_OK";
-    case URWIRE_E_SHORT: return "URWIRE_E_SHORT";
-    case URWIRE_E_NEGATIVE_LENGTH: return "URWIRE_E_NEGATIVE_LENGTH";
-    case URWIRE_E_VALUE_TYPE: return "URWIRE_E_VALUE_TYPE";
-    case URWIRE_E_TERMINATOR: return "URWIRE_E_TERMINATOR";
-    case URWIRE_E_TOO_DEEP: return "URWIRE_E_TOO_DEEP";
-    case URWIRE_E_TOO_MANY_ITEMS: return "URWIRE_E_TOO_MANY_ITEMS";
-    case URWIRE_E_EMPTY_ROWS: return "URWIRE_E_EMPTY_ROWS";
-    case URWIRE_E_PACKAGE_HEADER_CUT: return "URWIRE_E_PACKAGE_HEADER_CUT";
-    case URWIRE_E_PACKAGE_LENGTH_LOW: return "URWIRE_E_PACKAGE_LENGTH_LOW";
-    case URWIRE_E_PACKAGE_LENGTH_HIGH: return "URWIRE_E_PACKAGE_LENGTH_HIGH";
-    case URWIRE_E_LENGTH_LOW: return "URWIRE_E_LENGTH_LOW";
-    case URWIRE_E_LENGTH_HIGH: return "URWIRE_E_LENGTH_HIGH";
-    case URWIRE_E_MESSAGE_TYPE: return "URWIRE_E_MESSAGE_TYPE";
-    case URWIRE_E_TRUNCATED_MESSAGE: return "URWIRE_E_TRUNCATED_MESSAGE";
-    case URWIRE_E_TRUNCATED_HEADER: return "URWIRE_E_TRUNCATED_HEADER";
-    case URWIRE_E_TOO_BIG_FOR_BUFFER: return "URWIRE_E_TOO_BIG_FOR_BUFFER";
-    case URWIRE_E_NO_SPACE: return "URWIRE_E_NO_SPACE";
-    case URWIRE_E_TOO_LONG: return "URWIRE_E_TOO_LONG";
-    }
-    return "URWIRE_E_UNKNOWN";
+    const char *name = urwire__status_names;
+    unsigned k = (unsigned)status, last = (unsigned)URWIRE_E_TOO_LONG;
+    for (k = k <= last ? k : last + 1u; k > 0; k--)
+        while (*name++ != '\0')
+            continue;
+    return name;
 }
 
 /* "<what> at offset <o>: " */

@@ -170,7 +170,9 @@ static void error_texts(void)
     CHECK(text_is(&e, "variables[0] at offset 17: 32767 rows of 0 columns"));
     urwire__fail(&e, URWIRE_E_TOO_LONG, 0, "title", 300, 255);
     CHECK(text_is(&e, "title: 300 bytes do not fit the length prefix (max 255)"));
+    CHECK(strcmp(urwire_status_name(URWIRE_OK), "URWIRE_OK") == 0);
     CHECK(strcmp(urwire_status_name(URWIRE_E_TOO_DEEP), "URWIRE_E_TOO_DEEP") == 0);
+    CHECK(strcmp(urwire_status_name(URWIRE_E_TOO_LONG), "URWIRE_E_TOO_LONG") == 0);  /* the last */
     CHECK(strcmp(urwire_status_name((urwire_status)99), "URWIRE_E_UNKNOWN") == 0);
     /* Paths are joined from the inside out, as the decoders unwind. */
     urwire__fail(&e, URWIRE_E_VALUE_TYPE, 40, ".type", 99, 0);
