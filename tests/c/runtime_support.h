@@ -218,9 +218,7 @@ static const urwire__decode_fn urwire__message_decoders[] = {
     [URWIRE_KIND_UNKNOWN_SUBTYPE] = NULL,
 };
 
-static const bool urwire__known_message_types[256] = {
-    [URWIRE__PACKAGES_TYPE] = true,
-    [20] = true,
-};
+/* Types 16 (URWIRE__PACKAGES_TYPE) and 20, a bit each. */
+static const uint8_t urwire__known_message_types[32] = {[2] = 0x11};
 
 #endif

@@ -836,9 +836,21 @@ def framing(p: model.Protocol, packages: dict, vst: CStruct, vmsg: dict, vs: pla
                              skips=skips, tail=vs.tail))
 
 
-def known_types(p: model.Protocol) -> list[str]:
-    """The message types a plausible header may carry (the framer resynchronises on the others)."""
-    return [c_enum_const(p.message_type_enum, code) for code in sorted({v.value for v in p.message_type_enum.values})]
+@dataclass
+class KnownTypes:
+    """The message types a plausible header may carry (the framer resynchronises on the others):
+    their names, and a bit each in 32 bytes (type >> 3, bit type & 7), rows of 16 bytes."""
+    names: list[str]
+    rows: list[str]
+
+
+def known_types(p: model.Protocol) -> KnownTypes:
+    codes = sorted({v.value for v in p.message_type_enum.values})
+    bits = [0] * 32
+    for code in codes:
+        bits[code >> 3] |= 1 << (code & 7)
+    rows = [", ".join(f"0x{b:02x}" for b in bits[k:k + 16]) + "," for k in range(0, 32, 16)]
+    return KnownTypes([c_enum_const(p.message_type_enum, code) for code in codes], rows)
 
 
 # The hand-written runtime (runtime/c/), in the order each part is joined to the
