@@ -585,11 +585,13 @@ class _Forms:
                 dict(kind="lowest", versions=s.describe()) for s in self.segments]
 
     def table(self, tag: str, what: str, mp: plan.MessagePlan, enum: ir.Enum, layouts: dict[int, str],
-              first_sizes: bool = False) -> dict:
+              first_sizes: bool = False, body: bool = False) -> dict:
         """The forms of every code of one type byte (the sub-package types, or a message's
         subtypes), in one list; the forms of each code; and, segment by segment, the form each
         code takes there (its number in the list plus one, 0 for none, NEAREST_BIT when it is the
-        nearest below's)."""
+        nearest below's). A body message's one code (its own type) is row 0 of its table, which
+        the runtime reads it at: indexed by the type, each row would hold 22 to 24 unused bytes."""
+        base = min(mp.variants) if body else 0
         codes, count, recognised = [], 0, 0
         for code, variants in mp.variants.items():
             forms = []
@@ -598,7 +600,8 @@ class _Forms:
                 forms.append(dict(layout=layouts[id(v.layout)], nsizes=len(sizes),
                                   sizes=sizes + [0] * (self.size_slots - len(sizes)), min_size=v.min_size,
                                   rep=version_view(v.rep), versions=v.describe()))
-            codes.append(dict(code=code, index=c_enum_const(enum, code), first=count, count=len(forms), forms=forms,
+            codes.append(dict(code=code, row=code - base, index="0" if body else c_enum_const(enum, code),
+                              first=count, count=len(forms), forms=forms,
                               names=", ".join(c.layout.name for c in mp.choices[code]),
                               layouts=[dict(name=c.layout.name, const=layouts[id(c.layout)])
                                        for c in mp.choices[code]],
@@ -609,17 +612,17 @@ class _Forms:
         if count >= NEAREST_BIT:
             raise SpecError(self.source, [mp.message.where.problem(
                 "c target: more than 127 forms of one type byte do not fit the form tables")])
-        ncodes = max(mp.variants) + 1
+        ncodes = max(mp.variants) - base + 1
         rows = []
         for k, segment in enumerate(self.segments):
             row = [0] * ncodes
             first = [dict(kind="none")] * ncodes
             for c in codes:
                 sf = mp.by_segment[c["code"]][k]
-                row[c["code"]] = (c["first"] + sf.form + 1) | (NEAREST_BIT if sf.nearest else 0)
+                row[c["row"]] = (c["first"] + sf.form + 1) | (NEAREST_BIT if sf.nearest else 0)
                 if not sf.nearest:
                     f = c["forms"][sf.form]
-                    first[c["code"]] = dict(kind="exact", size=f["sizes"][0]) if f["nsizes"] else \
+                    first[c["row"]] = dict(kind="exact", size=f["sizes"][0]) if f["nsizes"] else \
                         dict(kind="open", size=f["min_size"])
             rows.append(dict(forms=row, first=first, versions=segment.describe(),
                              cells=cell_lines(["0x%02x" % n for n in row]),
@@ -694,7 +697,8 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
             kinds.append(dict(const=cs.kind_const, doc=inline(st.doc)))
         forms = axis.table(f"urwire__{m.name}", f"{m.name} subtype" if m.has_subtype else f"{m.name} message",
                            mp, m.subtype_enum,
-                           {id(c.layout): layout_structs[id(c.layout)].kind_const for c in mp.layouts})
+                           {id(c.layout): layout_structs[id(c.layout)].kind_const for c in mp.layouts},
+                           body=not m.has_subtype)
         messages.append(dict(kind="dispatch" if m.has_subtype else "body", name=m.name, code=m.code.value,
                              type_index=len(messages),
                              code_const=c_member_const(p.message_type_enum, m.code),

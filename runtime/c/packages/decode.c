@@ -192,7 +192,7 @@ static bool urwire__decode_subtype(urwire_message *out, const urwire__message_ty
         urwire__fail_message(out, URWIRE_HEADER_SIZE);
         return false;
     }
-    subtype = t->read_header != NULL ? t->read_header(out) : (int64_t)t->code;
+    subtype = t->read_header != NULL ? t->read_header(out) : 0;  /* a body message's layout: its code 0 */
     if (subtype < 0 || (uint64_t)subtype >= t->forms->ncodes || t->forms->codes[subtype].count == 0) {
         out->kind = URWIRE_KIND_UNKNOWN_SUBTYPE;
         out->raw = urwire__view(out->bytes + t->body, out->length - t->body);

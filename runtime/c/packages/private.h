@@ -195,7 +195,7 @@ typedef struct urwire__message_type {
     const urwire__span *header;     /* the header's fields, for a message too short for them */
     /* Reads the header into m->header and returns the subtype code; NULL for a body message:
      * one layout right after the message header, with no header fields and no subtype byte,
-     * its subtype code `code`. */
+     * code 0 of its form table. */
     int64_t (*read_header)(urwire_message *m);
 } urwire__message_type;
 
