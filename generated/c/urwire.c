@@ -139,7 +139,9 @@ URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
 }
 
 /* One field of a fixed run of fields, read after one bounds check of the whole run. A table
- * of them (ended by a NULL path) names the field that a short run stops in. */
+ * of them (ended by a NULL path) names the field that a short run stops in. A group's
+ * elements after the first are one repeat row: path "", offset the stride, size the number of
+ * elements, index the number of rows of element 0, just before it (urwire__short_in_run). */
 typedef struct urwire__span {
     const char *path;               /* an element's: its index left out, "joints[].q_actual" */
     uint16_t offset;                /* within a layout: the generator refuses larger ones */
@@ -853,31 +855,45 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
 static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
                                 bool two);
 
-/* Where the element's index goes in a span's path ("[]"), or NULL when it has none. */
-static const char *urwire__index_hole(const urwire__span *s)
+/* Where an element's index goes in a span's path ("[]"), or NULL when it has none. */
+static const char *urwire__index_hole(const char *path)
 {
     const char *p;
-    if (s->index == URWIRE__NO_INDEX)
-        return NULL;
-    for (p = s->path; *p; p++)  /* a loop, not strstr: that would cost a firmware 1 KB */
+    for (p = path; *p; p++)  /* a loop, not strstr: that would cost a firmware 1 KB */
         if (p[0] == '[' && p[1] == ']')
             return p;
     return NULL;
 }
 
+/* The error of span s, of element `index` (URWIRE__NO_INDEX: none), found at offset `at`. */
+static bool urwire__short_span(urwire_error *e, const urwire__span *s, size_t index, size_t at, size_t end)
+{
+    const char *hole = index != URWIRE__NO_INDEX ? urwire__index_hole(s->path) : NULL;
+    urwire__short(e, hole ? hole + 2 : s->path, at, s->size, end);
+    if (hole && e != NULL)
+        urwire__prefix_path(e, s->path, (size_t)(hole - s->path), index, 0, false);
+    return false;
+}
+
 /* The first field of a fixed run (ended by a NULL path) that does not fit names the error; an
- * element's index goes into its path's "[]". */
+ * element's index goes into its path's "[]". A repeat row (path "") stands for elements 1 to
+ * size - 1 of a group, `offset` bytes apart, whose element 0 is the `index` rows before it. */
 URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
 {
-    const char *hole;
+    const urwire__span *s;
+    size_t k, at;
     for (; run->path; run++) {
-        if (pos + run->offset + run->size <= end)
+        if (run->path[0] != '\0') {
+            if (pos + run->offset + run->size > end)
+                return urwire__short_span(e, run, run->index, pos + run->offset, end);
             continue;
-        hole = urwire__index_hole(run);
-        urwire__short(e, hole ? hole + 2 : run->path, pos + run->offset, run->size, end);
-        if (hole && e != NULL)
-            urwire__prefix_path(e, run->path, (size_t)(hole - run->path), run->index, 0, false);
-        return false;
+        }
+        for (k = 1; k < run->size; k++)
+            for (s = run - run->index; s < run; s++) {
+                at = pos + k * run->offset + s->offset;
+                if (at + s->size > end)
+                    return urwire__short_span(e, s, k, at, end);
+            }
     }
     return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
 }
@@ -2347,46 +2363,7 @@ static const urwire__span urwire__joint_data_run0[] = {
     {"joints[].t_motor", 32, 4, 0},
     {"joints[].t_micro", 36, 4, 0},
     {"joints[].joint_mode", 40, 1, 0},
-    {"joints[].q_actual", 41, 8, 1},
-    {"joints[].q_target", 49, 8, 1},
-    {"joints[].qd_actual", 57, 8, 1},
-    {"joints[].i_actual", 65, 4, 1},
-    {"joints[].v_actual", 69, 4, 1},
-    {"joints[].t_motor", 73, 4, 1},
-    {"joints[].t_micro", 77, 4, 1},
-    {"joints[].joint_mode", 81, 1, 1},
-    {"joints[].q_actual", 82, 8, 2},
-    {"joints[].q_target", 90, 8, 2},
-    {"joints[].qd_actual", 98, 8, 2},
-    {"joints[].i_actual", 106, 4, 2},
-    {"joints[].v_actual", 110, 4, 2},
-    {"joints[].t_motor", 114, 4, 2},
-    {"joints[].t_micro", 118, 4, 2},
-    {"joints[].joint_mode", 122, 1, 2},
-    {"joints[].q_actual", 123, 8, 3},
-    {"joints[].q_target", 131, 8, 3},
-    {"joints[].qd_actual", 139, 8, 3},
-    {"joints[].i_actual", 147, 4, 3},
-    {"joints[].v_actual", 151, 4, 3},
-    {"joints[].t_motor", 155, 4, 3},
-    {"joints[].t_micro", 159, 4, 3},
-    {"joints[].joint_mode", 163, 1, 3},
-    {"joints[].q_actual", 164, 8, 4},
-    {"joints[].q_target", 172, 8, 4},
-    {"joints[].qd_actual", 180, 8, 4},
-    {"joints[].i_actual", 188, 4, 4},
-    {"joints[].v_actual", 192, 4, 4},
-    {"joints[].t_motor", 196, 4, 4},
-    {"joints[].t_micro", 200, 4, 4},
-    {"joints[].joint_mode", 204, 1, 4},
-    {"joints[].q_actual", 205, 8, 5},
-    {"joints[].q_target", 213, 8, 5},
-    {"joints[].qd_actual", 221, 8, 5},
-    {"joints[].i_actual", 229, 4, 5},
-    {"joints[].v_actual", 233, 4, 5},
-    {"joints[].t_motor", 237, 4, 5},
-    {"joints[].t_micro", 241, 4, 5},
-    {"joints[].joint_mode", 245, 1, 5},
+    {"", 41, 6, 8},
     {NULL, 0, 0, 0},
 };
 
@@ -3305,35 +3282,15 @@ static void urwire__visit_laser_pointer(const void *from, const urwire__ver *ver
 
 static const urwire__span urwire__kinematics_info_run0[] = {
     {"checksum[]", 0, 4, 0},
-    {"checksum[]", 4, 4, 1},
-    {"checksum[]", 8, 4, 2},
-    {"checksum[]", 12, 4, 3},
-    {"checksum[]", 16, 4, 4},
-    {"checksum[]", 20, 4, 5},
+    {"", 4, 6, 1},
     {"dh_theta[]", 24, 8, 0},
-    {"dh_theta[]", 32, 8, 1},
-    {"dh_theta[]", 40, 8, 2},
-    {"dh_theta[]", 48, 8, 3},
-    {"dh_theta[]", 56, 8, 4},
-    {"dh_theta[]", 64, 8, 5},
+    {"", 8, 6, 1},
     {"dh_a[]", 72, 8, 0},
-    {"dh_a[]", 80, 8, 1},
-    {"dh_a[]", 88, 8, 2},
-    {"dh_a[]", 96, 8, 3},
-    {"dh_a[]", 104, 8, 4},
-    {"dh_a[]", 112, 8, 5},
+    {"", 8, 6, 1},
     {"dh_d[]", 120, 8, 0},
-    {"dh_d[]", 128, 8, 1},
-    {"dh_d[]", 136, 8, 2},
-    {"dh_d[]", 144, 8, 3},
-    {"dh_d[]", 152, 8, 4},
-    {"dh_d[]", 160, 8, 5},
+    {"", 8, 6, 1},
     {"dh_alpha[]", 168, 8, 0},
-    {"dh_alpha[]", 176, 8, 1},
-    {"dh_alpha[]", 184, 8, 2},
-    {"dh_alpha[]", 192, 8, 3},
-    {"dh_alpha[]", 200, 8, 4},
-    {"dh_alpha[]", 208, 8, 5},
+    {"", 8, 6, 1},
     {"calibration_status", 216, 4, 255},
     {NULL, 0, 0, 0},
 };
@@ -3470,124 +3427,52 @@ static void urwire__visit_joint_motion_limit(const void *from, const urwire__ver
 static const urwire__span urwire__configuration_data_0_run0[] = {
     {"joint_position_limits[].joint_min_limit", 0, 8, 0},
     {"joint_position_limits[].joint_max_limit", 8, 8, 0},
-    {"joint_position_limits[].joint_min_limit", 16, 8, 1},
-    {"joint_position_limits[].joint_max_limit", 24, 8, 1},
-    {"joint_position_limits[].joint_min_limit", 32, 8, 2},
-    {"joint_position_limits[].joint_max_limit", 40, 8, 2},
-    {"joint_position_limits[].joint_min_limit", 48, 8, 3},
-    {"joint_position_limits[].joint_max_limit", 56, 8, 3},
-    {"joint_position_limits[].joint_min_limit", 64, 8, 4},
-    {"joint_position_limits[].joint_max_limit", 72, 8, 4},
-    {"joint_position_limits[].joint_min_limit", 80, 8, 5},
-    {"joint_position_limits[].joint_max_limit", 88, 8, 5},
+    {"", 16, 6, 2},
     {"joint_motion_limits[].joint_max_speed", 96, 8, 0},
     {"joint_motion_limits[].joint_max_acceleration", 104, 8, 0},
-    {"joint_motion_limits[].joint_max_speed", 112, 8, 1},
-    {"joint_motion_limits[].joint_max_acceleration", 120, 8, 1},
-    {"joint_motion_limits[].joint_max_speed", 128, 8, 2},
-    {"joint_motion_limits[].joint_max_acceleration", 136, 8, 2},
-    {"joint_motion_limits[].joint_max_speed", 144, 8, 3},
-    {"joint_motion_limits[].joint_max_acceleration", 152, 8, 3},
-    {"joint_motion_limits[].joint_max_speed", 160, 8, 4},
-    {"joint_motion_limits[].joint_max_acceleration", 168, 8, 4},
-    {"joint_motion_limits[].joint_max_speed", 176, 8, 5},
-    {"joint_motion_limits[].joint_max_acceleration", 184, 8, 5},
+    {"", 16, 6, 2},
     {"v_joint_default", 192, 8, 255},
     {"a_joint_default", 200, 8, 255},
     {"v_tool_default", 208, 8, 255},
     {"a_tool_default", 216, 8, 255},
     {"eq_radius", 224, 8, 255},
     {"dh_a[]", 232, 8, 0},
-    {"dh_a[]", 240, 8, 1},
-    {"dh_a[]", 248, 8, 2},
-    {"dh_a[]", 256, 8, 3},
-    {"dh_a[]", 264, 8, 4},
-    {"dh_a[]", 272, 8, 5},
+    {"", 8, 6, 1},
     {"dh_d[]", 280, 8, 0},
-    {"dh_d[]", 288, 8, 1},
-    {"dh_d[]", 296, 8, 2},
-    {"dh_d[]", 304, 8, 3},
-    {"dh_d[]", 312, 8, 4},
-    {"dh_d[]", 320, 8, 5},
+    {"", 8, 6, 1},
     {"dh_alpha[]", 328, 8, 0},
-    {"dh_alpha[]", 336, 8, 1},
-    {"dh_alpha[]", 344, 8, 2},
-    {"dh_alpha[]", 352, 8, 3},
-    {"dh_alpha[]", 360, 8, 4},
-    {"dh_alpha[]", 368, 8, 5},
+    {"", 8, 6, 1},
     {"dh_theta[]", 376, 8, 0},
-    {"dh_theta[]", 384, 8, 1},
-    {"dh_theta[]", 392, 8, 2},
-    {"dh_theta[]", 400, 8, 3},
-    {"dh_theta[]", 408, 8, 4},
-    {"dh_theta[]", 416, 8, 5},
+    {"", 8, 6, 1},
     {"masterboard_version", 424, 4, 255},
     {"controller_box_type", 428, 4, 255},
     {"robot_type", 432, 4, 255},
     {"robot_sub_type", 436, 4, 255},
     {"motor_type[]", 440, 4, 0},
-    {"motor_type[]", 444, 4, 1},
-    {"motor_type[]", 448, 4, 2},
-    {"motor_type[]", 452, 4, 3},
-    {"motor_type[]", 456, 4, 4},
-    {"motor_type[]", 460, 4, 5},
+    {"", 4, 6, 1},
     {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__configuration_data_2_run0[] = {
     {"joint_position_limits[].joint_min_limit", 0, 8, 0},
     {"joint_position_limits[].joint_max_limit", 8, 8, 0},
-    {"joint_position_limits[].joint_min_limit", 16, 8, 1},
-    {"joint_position_limits[].joint_max_limit", 24, 8, 1},
-    {"joint_position_limits[].joint_min_limit", 32, 8, 2},
-    {"joint_position_limits[].joint_max_limit", 40, 8, 2},
-    {"joint_position_limits[].joint_min_limit", 48, 8, 3},
-    {"joint_position_limits[].joint_max_limit", 56, 8, 3},
-    {"joint_position_limits[].joint_min_limit", 64, 8, 4},
-    {"joint_position_limits[].joint_max_limit", 72, 8, 4},
-    {"joint_position_limits[].joint_min_limit", 80, 8, 5},
-    {"joint_position_limits[].joint_max_limit", 88, 8, 5},
+    {"", 16, 6, 2},
     {"joint_motion_limits[].joint_max_speed", 96, 8, 0},
     {"joint_motion_limits[].joint_max_acceleration", 104, 8, 0},
-    {"joint_motion_limits[].joint_max_speed", 112, 8, 1},
-    {"joint_motion_limits[].joint_max_acceleration", 120, 8, 1},
-    {"joint_motion_limits[].joint_max_speed", 128, 8, 2},
-    {"joint_motion_limits[].joint_max_acceleration", 136, 8, 2},
-    {"joint_motion_limits[].joint_max_speed", 144, 8, 3},
-    {"joint_motion_limits[].joint_max_acceleration", 152, 8, 3},
-    {"joint_motion_limits[].joint_max_speed", 160, 8, 4},
-    {"joint_motion_limits[].joint_max_acceleration", 168, 8, 4},
-    {"joint_motion_limits[].joint_max_speed", 176, 8, 5},
-    {"joint_motion_limits[].joint_max_acceleration", 184, 8, 5},
+    {"", 16, 6, 2},
     {"v_joint_default", 192, 8, 255},
     {"a_joint_default", 200, 8, 255},
     {"v_tool_default", 208, 8, 255},
     {"a_tool_default", 216, 8, 255},
     {"eq_radius", 224, 8, 255},
     {"dh_a[]", 232, 8, 0},
-    {"dh_a[]", 240, 8, 1},
-    {"dh_a[]", 248, 8, 2},
-    {"dh_a[]", 256, 8, 3},
-    {"dh_a[]", 264, 8, 4},
-    {"dh_a[]", 272, 8, 5},
+    {"", 8, 6, 1},
     {"dh_d[]", 280, 8, 0},
-    {"dh_d[]", 288, 8, 1},
-    {"dh_d[]", 296, 8, 2},
-    {"dh_d[]", 304, 8, 3},
-    {"dh_d[]", 312, 8, 4},
-    {"dh_d[]", 320, 8, 5},
+    {"", 8, 6, 1},
     {"dh_alpha[]", 328, 8, 0},
-    {"dh_alpha[]", 336, 8, 1},
-    {"dh_alpha[]", 344, 8, 2},
-    {"dh_alpha[]", 352, 8, 3},
-    {"dh_alpha[]", 360, 8, 4},
-    {"dh_alpha[]", 368, 8, 5},
+    {"", 8, 6, 1},
     {"dh_theta[]", 376, 8, 0},
-    {"dh_theta[]", 384, 8, 1},
-    {"dh_theta[]", 392, 8, 2},
-    {"dh_theta[]", 400, 8, 3},
-    {"dh_theta[]", 408, 8, 4},
-    {"dh_theta[]", 416, 8, 5},
+    {"", 8, 6, 1},
     {"masterboard_version", 424, 4, 255},
     {"controller_box_type", 428, 4, 255},
     {"robot_type", 432, 4, 255},
@@ -4383,14 +4268,9 @@ static void urwire__visit_singularity_info(const void *from, const urwire__ver *
 static const urwire__span urwire__payload_info_run0[] = {
     {"mass", 0, 8, 255},
     {"center_of_gravity[]", 8, 8, 0},
-    {"center_of_gravity[]", 16, 8, 1},
-    {"center_of_gravity[]", 24, 8, 2},
+    {"", 8, 3, 1},
     {"inertia[]", 32, 8, 0},
-    {"inertia[]", 40, 8, 1},
-    {"inertia[]", 48, 8, 2},
-    {"inertia[]", 56, 8, 3},
-    {"inertia[]", 64, 8, 4},
-    {"inertia[]", 72, 8, 5},
+    {"", 8, 6, 1},
     {NULL, 0, 0, 0},
 };
 
@@ -5780,27 +5660,7 @@ static void urwire__visit_safety_setup_broadcast(const void *from, const urwire_
 
 static const urwire__span urwire__safety_compliance_tolerances_run0[] = {
     {"tolerances[]", 0, 8, 0},
-    {"tolerances[]", 8, 8, 1},
-    {"tolerances[]", 16, 8, 2},
-    {"tolerances[]", 24, 8, 3},
-    {"tolerances[]", 32, 8, 4},
-    {"tolerances[]", 40, 8, 5},
-    {"tolerances[]", 48, 8, 6},
-    {"tolerances[]", 56, 8, 7},
-    {"tolerances[]", 64, 8, 8},
-    {"tolerances[]", 72, 8, 9},
-    {"tolerances[]", 80, 8, 10},
-    {"tolerances[]", 88, 8, 11},
-    {"tolerances[]", 96, 8, 12},
-    {"tolerances[]", 104, 8, 13},
-    {"tolerances[]", 112, 8, 14},
-    {"tolerances[]", 120, 8, 15},
-    {"tolerances[]", 128, 8, 16},
-    {"tolerances[]", 136, 8, 17},
-    {"tolerances[]", 144, 8, 18},
-    {"tolerances[]", 152, 8, 19},
-    {"tolerances[]", 160, 8, 20},
-    {"tolerances[]", 168, 8, 21},
+    {"", 8, 22, 1},
     {NULL, 0, 0, 0},
 };
 

@@ -37,31 +37,45 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
 static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
                                 bool two);
 
-/* Where the element's index goes in a span's path ("[]"), or NULL when it has none. */
-static const char *urwire__index_hole(const urwire__span *s)
+/* Where an element's index goes in a span's path ("[]"), or NULL when it has none. */
+static const char *urwire__index_hole(const char *path)
 {
     const char *p;
-    if (s->index == URWIRE__NO_INDEX)
-        return NULL;
-    for (p = s->path; *p; p++)  /* a loop, not strstr: that would cost a firmware 1 KB */
+    for (p = path; *p; p++)  /* a loop, not strstr: that would cost a firmware 1 KB */
         if (p[0] == '[' && p[1] == ']')
             return p;
     return NULL;
 }
 
+/* The error of span s, of element `index` (URWIRE__NO_INDEX: none), found at offset `at`. */
+static bool urwire__short_span(urwire_error *e, const urwire__span *s, size_t index, size_t at, size_t end)
+{
+    const char *hole = index != URWIRE__NO_INDEX ? urwire__index_hole(s->path) : NULL;
+    urwire__short(e, hole ? hole + 2 : s->path, at, s->size, end);
+    if (hole && e != NULL)
+        urwire__prefix_path(e, s->path, (size_t)(hole - s->path), index, 0, false);
+    return false;
+}
+
 /* The first field of a fixed run (ended by a NULL path) that does not fit names the error; an
- * element's index goes into its path's "[]". */
+ * element's index goes into its path's "[]". A repeat row (path "") stands for elements 1 to
+ * size - 1 of a group, `offset` bytes apart, whose element 0 is the `index` rows before it. */
 URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
 {
-    const char *hole;
+    const urwire__span *s;
+    size_t k, at;
     for (; run->path; run++) {
-        if (pos + run->offset + run->size <= end)
+        if (run->path[0] != '\0') {
+            if (pos + run->offset + run->size > end)
+                return urwire__short_span(e, run, run->index, pos + run->offset, end);
             continue;
-        hole = urwire__index_hole(run);
-        urwire__short(e, hole ? hole + 2 : run->path, pos + run->offset, run->size, end);
-        if (hole && e != NULL)
-            urwire__prefix_path(e, run->path, (size_t)(hole - run->path), run->index, 0, false);
-        return false;
+        }
+        for (k = 1; k < run->size; k++)
+            for (s = run - run->index; s < run; s++) {
+                at = pos + k * run->offset + s->offset;
+                if (at + s->size > end)
+                    return urwire__short_span(e, s, k, at, end);
+            }
     }
     return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
 }

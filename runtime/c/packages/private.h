@@ -54,7 +54,9 @@ URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
 }
 
 /* One field of a fixed run of fields, read after one bounds check of the whole run. A table
- * of them (ended by a NULL path) names the field that a short run stops in. */
+ * of them (ended by a NULL path) names the field that a short run stops in. A group's
+ * elements after the first are one repeat row: path "", offset the stride, size the number of
+ * elements, index the number of rows of element 0, just before it (urwire__short_in_run). */
 typedef struct urwire__span {
     const char *path;               /* an element's: its index left out, "joints[].q_actual" */
     uint16_t offset;                /* within a layout: the generator refuses larger ones */
