@@ -5791,6 +5791,10 @@ static void urwire__put_program_state_header(const urwire_message *m, uint8_t *o
 /* The segment of the default version: every stream whose version is only assumed reads in it. */
 #define URWIRE__DEFAULT_SEGMENT 12u
 
+/* 1 when every type code has one form, which every version reads (a pinned build): no form is
+ * then chosen by its length (urwire__choose). */
+#define URWIRE__ONE_FORM_A_CODE 0
+
 /* Where the segments of the version axis start (as urwire__version_key orders versions):
  * segment k from urwire__segment_bounds[k] up to the next bound; segment 0 from key 0. Within a
  * segment every type code sends one form. */
@@ -7487,7 +7491,9 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
     *by_length = false;
     if (nearest)
         *version = mine->rep;
-    if (mine != NULL && urwire__fits(mine, size))
+    /* The one form of a code that has one (the generator saw that every version reads it) is
+     * chosen whatever the size: no size can recognise another. */
+    if (URWIRE__ONE_FORM_A_CODE || (mine != NULL && urwire__fits(mine, size)))
         return mine;
     /* The sizes the generator found in exactly one fixed-size form (an open-ended one fits too
      * much to be recognised by its length). */
@@ -7638,7 +7644,7 @@ static const urwire__form *urwire__other_form(uint8_t type, size_t size, urwire_
     /* urwire__choose changes the version when a form is chosen by length, or when the version
      * has no form of its own (the nearest form below, read as the version it stands for). */
     *use = urwire__version_key(v) != r->now.key ? urwire__ver_of(v) : r->now;
-    if (by_length && r->now.version.assumed) {
+    if (!URWIRE__ONE_FORM_A_CODE && by_length && r->now.version.assumed) {
         urwire__run_at(r, v);
         r->implied = true;
     }
@@ -7670,8 +7676,9 @@ static bool urwire__walk_packages(const uint8_t *msg, size_t pos, size_t end, ur
     *count = 0;
     while (pos < end && urwire__frame_package(msg, pos, end, &size, err)) {
         type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-        /* Only a body that the version's form does not fit can show another version. */
-        if (type < URWIRE__COUNT(urwire__package_forms) &&
+        /* Only a body that the version's form does not fit can show another version, and only
+         * where a code has several forms. */
+        if (!URWIRE__ONE_FORM_A_CODE && type < URWIRE__COUNT(urwire__package_forms) &&
             !urwire__fits_brief(r->first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE) &&
             urwire__package_forms[type].count != 0)
             urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &use);

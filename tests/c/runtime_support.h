@@ -176,6 +176,7 @@ static inline bool urwire__decode_member(uint8_t type, uint8_t form, const uint8
 /* One fast path: the row from 3.3.0, where type 1 is a counter of 4 bytes; 5.9, the default
  * version, is in that segment. */
 #define URWIRE__DEFAULT_SEGMENT 3u
+#define URWIRE__ONE_FORM_A_CODE 0  /* several forms a code: the runtime chooses */
 #define URWIRE__FAST_PATHS(X) X(1)
 static const uint8_t urwire__package_fast_paths[] = {0, 0, 0, 1, 0};
 

@@ -666,6 +666,14 @@ class _Forms:
         return dict(tag=tag, what=what, codes=codes, ncodes=ncodes, rows=rows, first_sizes=first_sizes)
 
 
+def one_form(table: dict) -> bool:
+    """Whether every code of a form table has one form, which every segment reads (sent there,
+    or the nearest below's): the form of a code is then that one whatever the version and the
+    size, and only the nearest mark is left to look up (a pinned build)."""
+    return all(c["count"] == 1 and all(row["forms"][c["row"]] & ~NEAREST_BIT == c["first"] + 1 for row in table["rows"])
+               for c in table["codes"])
+
+
 def kind_names(messages: list[dict], packages: list) -> Pool:
     """The names of urwire__message_kinds and urwire__package_kinds in a pool of their own, which
     only those tables read: as literals they would share the file's one literal section, which
@@ -755,7 +763,9 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     vmsg = next(m for m in messages if m["code"] == vs.message_code)
     buffers = framer_buffers(protocol_plan)
     kind_text = kind_names(messages, packages)
+    tables = [package_forms] + [m["forms"] for m in messages if m["kind"] != "packages"]
     return dict(buffers=buffers, structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
+                one_form=all(map(one_form, tables)),
                 kind_text=kind_text.parts, kind_at=kind_text.offsets,
                 package_decoders=package_decoders, package_fast=package_fast,
                 segment_bounds=axis.bounds(), form_sizes=axis.size_slots,

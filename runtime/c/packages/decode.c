@@ -97,7 +97,7 @@ static const urwire__form *urwire__other_form(uint8_t type, size_t size, urwire_
     /* urwire__choose changes the version when a form is chosen by length, or when the version
      * has no form of its own (the nearest form below, read as the version it stands for). */
     *use = urwire__version_key(v) != r->now.key ? urwire__ver_of(v) : r->now;
-    if (by_length && r->now.version.assumed) {
+    if (!URWIRE__ONE_FORM_A_CODE && by_length && r->now.version.assumed) {
         urwire__run_at(r, v);
         r->implied = true;
     }
@@ -129,8 +129,9 @@ static bool urwire__walk_packages(const uint8_t *msg, size_t pos, size_t end, ur
     *count = 0;
     while (pos < end && urwire__frame_package(msg, pos, end, &size, err)) {
         type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-        /* Only a body that the version's form does not fit can show another version. */
-        if (type < URWIRE__COUNT(urwire__package_forms) &&
+        /* Only a body that the version's form does not fit can show another version, and only
+         * where a code has several forms. */
+        if (!URWIRE__ONE_FORM_A_CODE && type < URWIRE__COUNT(urwire__package_forms) &&
             !urwire__fits_brief(r->first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE) &&
             urwire__package_forms[type].count != 0)
             urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &use);
