@@ -124,12 +124,21 @@ typedef struct urwire__versions {
 #define URWIRE__V(major, minor, bugfix) \
     (((uint64_t)(major) + 1u) << 42 | ((uint64_t)(minor) + 1u) << 21 | ((uint64_t)(bugfix) + 1u))
 
+/* The version key is inlined where speed is asked for (-O2, -O3); at -Os (__OPTIMIZE_SIZE__) it
+ * is one function: inlined, its 64-bit shifts and compares cost a 32-bit CPU some 100 bytes at
+ * each of the dozen places that key a version. */
+#if defined(__OPTIMIZE_SIZE__) && defined(__GNUC__)
+#define URWIRE__KEY_INLINE static __attribute__((noinline, unused))
+#else
+#define URWIRE__KEY_INLINE URWIRE__INLINE
+#endif
+
 URWIRE__INLINE uint64_t urwire__version_part(int part, int most)
 {
     return part < 0 ? 0u : part > most ? (uint64_t)most + 1u : (uint64_t)part + 1u;
 }
 
-URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
+URWIRE__KEY_INLINE uint64_t urwire__version_key(urwire_sw_version v)
 {
     /* Every real version in one test: no part negative or above 2^20. */
     if (URWIRE__LIKELY(((unsigned)v.major | (unsigned)v.minor | (unsigned)v.bugfix) <= 1u << 20))
@@ -157,7 +166,7 @@ typedef struct urwire__ver {
     uint64_t key;
 } urwire__ver;
 
-URWIRE__INLINE urwire__ver urwire__ver_of(urwire_sw_version version)
+URWIRE__KEY_INLINE urwire__ver urwire__ver_of(urwire_sw_version version)
 {
     urwire__ver v;
     v.version = version;
