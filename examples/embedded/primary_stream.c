@@ -36,13 +36,12 @@ int main(void)
             used += urwire_framer_feed(&framer, chunk + used, n - used);
             while ((kind = urwire_framer_next(&framer, &frame)) == URWIRE_FRAME_MESSAGE ||
                    kind == URWIRE_FRAME_FAULT) {
-                if (kind == URWIRE_FRAME_FAULT) {
+                if (kind == URWIRE_FRAME_MESSAGE) {
+                    urwire_decode_robot_state_message(frame.bytes, frame.length, frame.version, &message, &state);
+                    urwire_framer_learn(&framer, &message);
+                    primary_read(&message, &state);
+                } else
                     board_report_int("fault", (int64_t)frame.fault.status);
-                    continue;
-                }
-                urwire_decode_robot_state_message(frame.bytes, frame.length, frame.version, &message, &state);
-                urwire_framer_learn(&framer, &message);
-                primary_read(&message, &state);
             }
         } while (used < n);
     } while (kind != URWIRE_FRAME_END);

@@ -47,37 +47,48 @@ static const char *urwire__index_hole(const char *path)
     return NULL;
 }
 
-/* The error of span s, of element `index` (URWIRE__NO_INDEX: none), found at offset `at`. */
-static bool urwire__short_span(urwire_error *e, const urwire__span *s, size_t index, size_t at, size_t end)
-{
-    const char *hole = index != URWIRE__NO_INDEX ? urwire__index_hole(s->path) : NULL;
-    urwire__short(e, hole ? hole + 2 : s->path, at, s->size, end);
-    if (hole && e != NULL)
-        urwire__prefix_path(e, s->path, (size_t)(hole - s->path), index, 0, false);
-    return false;
-}
-
-/* The first field of a fixed run (ended by a NULL path) that does not fit names the error; an
- * element's index goes into its path's "[]". A repeat row (path "") stands for elements 1 to
- * size - 1 of a group, `offset` bytes apart, whose element 0 is the `index` rows before it. */
-URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
+/* The first span of a fixed run (ended by a NULL path) that does not fit before end, with its
+ * offset (*at) and its element's index (*index, URWIRE__NO_INDEX: none); NULL when all fit. A
+ * repeat row (path "") stands for elements 1 to size - 1 of a group, `offset` bytes apart,
+ * whose element 0 is the `index` rows before it. */
+static const urwire__span *urwire__first_short(const urwire__span *run, size_t pos, size_t end, size_t *at,
+                                               size_t *index)
 {
     const urwire__span *s;
-    size_t k, at;
+    size_t k;
     for (; run->path; run++) {
         if (run->path[0] != '\0') {
-            if (pos + run->offset + run->size > end)
-                return urwire__short_span(e, run, run->index, pos + run->offset, end);
+            *at = pos + run->offset;
+            *index = run->index;
+            if (*at + run->size > end)
+                return run;
             continue;
         }
         for (k = 1; k < run->size; k++)
             for (s = run - run->index; s < run; s++) {
-                at = pos + k * run->offset + s->offset;
-                if (at + s->size > end)
-                    return urwire__short_span(e, s, k, at, end);
+                *at = pos + k * run->offset + s->offset;
+                *index = k;
+                if (*at + s->size > end)
+                    return s;
             }
     }
-    return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
+    return NULL;
+}
+
+/* The first field of a fixed run that does not fit names the error; an element's index goes
+ * into its path's "[]". */
+URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
+{
+    size_t at, index;
+    const urwire__span *s = urwire__first_short(run, pos, end, &at, &index);
+    const char *hole;
+    if (s == NULL)
+        return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
+    hole = index != URWIRE__NO_INDEX ? urwire__index_hole(s->path) : NULL;
+    urwire__short(e, hole ? hole + 2 : s->path, at, s->size, end);
+    if (hole && e != NULL)
+        urwire__prefix_path(e, s->path, (size_t)(hole - s->path), index, 0, false);
+    return false;
 }
 
 URWIRE__PRIVATE bool urwire__no_space(urwire_error *e, size_t pos, size_t need, size_t cap)
