@@ -162,8 +162,7 @@ const char *urwire_status_name(urwire_status status)
     const char *name = urwire__status_names;
     unsigned k = (unsigned)status, last = (unsigned)URWIRE_E_TOO_LONG;
     for (k = k <= last ? k : last + 1u; k > 0; k--)
-        while (*name++ != '\0')
-            continue;
+        name += strlen(name) + 1;
     return name;
 }
 
