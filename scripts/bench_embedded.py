@@ -79,17 +79,17 @@ RTDE_FIRMWARE_LIMITS = ("-DRTDE_MAX_RECIPES=2", "-DRTDE_MAX_VARIABLES=8", "-DRTD
 @dataclass(frozen=True)
 class Firmware:
     key: str
-    source: str                      # in examples/embedded
+    sources: tuple[str, ...]         # in examples/embedded, beside the board's
     library: str                     # the interface's .c, in `include`
     include: str                     # "generated", "pinned" or "subset": where its parser is
     defines: tuple[str, ...] = ()
 
 
 FIRMWARES = [
-    Firmware("robot_states", "robot_states.c", "urwire.c", "generated"),
-    Firmware("robot_states_pinned", "robot_states.c", "urwire.c", "pinned"),
-    Firmware("rtde_values", "rtde_values.c", "rtde.c", "generated", RTDE_FIRMWARE_LIMITS),
-    Firmware("joint_and_tool_subset", "joint_and_tool.c", "urwire.c", "subset"),
+    Firmware("robot_states", ("robot_states.c", "primary_stream.c"), "urwire.c", "generated"),
+    Firmware("robot_states_pinned", ("robot_states.c", "primary_stream.c"), "urwire.c", "pinned"),
+    Firmware("rtde_values", ("rtde_values.c",), "rtde.c", "generated", RTDE_FIRMWARE_LIMITS),
+    Firmware("joint_and_tool_subset", ("joint_and_tool.c", "primary_stream.c"), "urwire.c", "subset"),
 ]
 
 
@@ -180,7 +180,7 @@ def measure_firmware(target: Target, level: str, firmware: Firmware, parsers: di
     include = parsers.get(firmware.include)
     if include is None:
         return {"skipped": SKIPPED[firmware.include]}
-    sources = [EXAMPLES / firmware.source, EXAMPLES / "board_target.c", include / firmware.library]
+    sources = [*(EXAMPLES / s for s in firmware.sources), EXAMPLES / "board_target.c", include / firmware.library]
     try:
         objects = [compile_c(target, level, src, work / f"{firmware.key}-{src.stem}.o", [include, EXAMPLES],
                              firmware.defines) for src in sources]

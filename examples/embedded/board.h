@@ -13,7 +13,10 @@
 size_t board_receive(uint8_t *out, size_t cap);
 /* Bytes for the robot (an RTDE client's requests). */
 void board_send(const uint8_t *bytes, size_t n);
-/* One value the firmware read, by name. */
-void board_report(const char *name, double value);
+/* One value the firmware read, by name, in the type the parser gives it: a firmware converts
+ * nothing, so that a single-precision FPU pays for no double arithmetic the parser does not do. */
+void board_report_double(const char *name, double value);
+void board_report_float(const char *name, float value);
+void board_report_int(const char *name, int64_t value);
 
 #endif

@@ -14,7 +14,17 @@ void board_send(const uint8_t *bytes, size_t n)
     fprintf(stderr, "sent %lu bytes, type %u\n", (unsigned long)n, n > 2 ? (unsigned)bytes[2] : 0u);
 }
 
-void board_report(const char *name, double value)
+void board_report_double(const char *name, double value)
 {
     printf("%s %.17g\n", name, value);
+}
+
+void board_report_float(const char *name, float value)
+{
+    printf("%s %.17g\n", name, (double)value);
+}
+
+void board_report_int(const char *name, int64_t value)
+{
+    printf("%s %lld\n", name, (long long)value);
 }

@@ -8,8 +8,10 @@ const uint8_t *volatile board_rx;           /* the bytes received so far, and ho
 volatile size_t board_rx_length;
 const uint8_t *volatile board_tx;           /* the last request sent */
 volatile size_t board_tx_length;
-const char *volatile board_name;            /* the last value read */
-volatile double board_value;
+const char *volatile board_name;            /* the last value read, in its own type */
+volatile double board_double;
+volatile float board_float;
+volatile int64_t board_int;
 
 size_t board_receive(uint8_t *out, size_t cap)
 {
@@ -29,8 +31,20 @@ void board_send(const uint8_t *bytes, size_t n)
     board_tx_length = n;
 }
 
-void board_report(const char *name, double value)
+void board_report_double(const char *name, double value)
 {
     board_name = name;
-    board_value = value;
+    board_double = value;
+}
+
+void board_report_float(const char *name, float value)
+{
+    board_name = name;
+    board_float = value;
+}
+
+void board_report_int(const char *name, int64_t value)
+{
+    board_name = name;
+    board_int = value;
 }

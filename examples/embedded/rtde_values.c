@@ -36,11 +36,11 @@ static void read_data(const rtde_data *data)
 
     for (i = 0; i < rtde_data_count(data); i++)         /* by index, in the recipe's order */
         if (rtde_data_value(data, i, &value) && value.type == RTDE_VT_DOUBLE)
-            board_report("double", value.item[0].f64);
+            board_report_double("double", value.item[0].f64);
     if (rtde_data_find(data, "actual_q", &value))       /* by name */
-        board_report("actual_q0", value.item[0].f64);
+        board_report_double("actual_q0", value.item[0].f64);
     if (rtde_data_find(data, "robot_mode", &value))
-        board_report("robot_mode", (double)value.item[0].i64);
+        board_report_int("robot_mode", value.item[0].i64);
 }
 
 static void on_message(const uint8_t *bytes, size_t n)
@@ -49,7 +49,7 @@ static void on_message(const uint8_t *bytes, size_t n)
     rtde_error e = rtde_decode(&conversation, bytes, n, true, &message, &at);
 
     if (e != RTDE_OK)
-        board_report("error", (double)e);
+        board_report_int("error", (int64_t)e);
     else if (message.layout == RTDE_LAYOUT_DATA_PACKAGE)
         read_data(&message.u.data_package.values);
 }
@@ -83,7 +83,7 @@ int main(void)
         if (length == sizeof held) {                    /* a message bigger than the buffer */
             skip = size - length;
             length = 0;
-            board_report("skipped", (double)size);
+            board_report_int("skipped", (int64_t)size);
         }
     }
     return 0;

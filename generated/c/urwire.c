@@ -124,12 +124,21 @@ typedef struct urwire__versions {
 #define URWIRE__V(major, minor, bugfix) \
     (((uint64_t)(major) + 1u) << 42 | ((uint64_t)(minor) + 1u) << 21 | ((uint64_t)(bugfix) + 1u))
 
+/* The version key is inlined where speed is asked for (-O2, -O3); at -Os (__OPTIMIZE_SIZE__) it
+ * is one function: inlined, its 64-bit shifts and compares cost a 32-bit CPU some 100 bytes at
+ * each of the dozen places that key a version. */
+#if defined(__OPTIMIZE_SIZE__) && defined(__GNUC__)
+#define URWIRE__KEY_INLINE static __attribute__((noinline, unused))
+#else
+#define URWIRE__KEY_INLINE URWIRE__INLINE
+#endif
+
 URWIRE__INLINE uint64_t urwire__version_part(int part, int most)
 {
     return part < 0 ? 0u : part > most ? (uint64_t)most + 1u : (uint64_t)part + 1u;
 }
 
-URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
+URWIRE__KEY_INLINE uint64_t urwire__version_key(urwire_sw_version v)
 {
     /* Every real version in one test: no part negative or above 2^20. */
     if (URWIRE__LIKELY(((unsigned)v.major | (unsigned)v.minor | (unsigned)v.bugfix) <= 1u << 20))
@@ -139,7 +148,9 @@ URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
 }
 
 /* One field of a fixed run of fields, read after one bounds check of the whole run. A table
- * of them (ended by a NULL path) names the field that a short run stops in. */
+ * of them (ended by a NULL path) names the field that a short run stops in. A group's
+ * elements after the first are one repeat row: path "", offset the stride, size the number of
+ * elements, index the number of rows of element 0, just before it (urwire__short_in_run). */
 typedef struct urwire__span {
     const char *path;               /* an element's: its index left out, "joints[].q_actual" */
     uint16_t offset;                /* within a layout: the generator refuses larger ones */
@@ -155,7 +166,7 @@ typedef struct urwire__ver {
     uint64_t key;
 } urwire__ver;
 
-URWIRE__INLINE urwire__ver urwire__ver_of(urwire_sw_version version)
+URWIRE__KEY_INLINE urwire__ver urwire__ver_of(urwire_sw_version version)
 {
     urwire__ver v;
     v.version = version;
@@ -280,7 +291,7 @@ typedef struct urwire__message_type {
     const urwire__span *header;     /* the header's fields, for a message too short for them */
     /* Reads the header into m->header and returns the subtype code; NULL for a body message:
      * one layout right after the message header, with no header fields and no subtype byte,
-     * its subtype code `code`. */
+     * code 0 of its form table. */
     int64_t (*read_header)(urwire_message *m);
 } urwire__message_type;
 
@@ -853,33 +864,58 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
 static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
                                 bool two);
 
-/* Where the element's index goes in a span's path ("[]"), or NULL when it has none. */
-static const char *urwire__index_hole(const urwire__span *s)
+/* Where an element's index goes in a span's path ("[]"), or NULL when it has none. */
+static const char *urwire__index_hole(const char *path)
 {
     const char *p;
-    if (s->index == URWIRE__NO_INDEX)
-        return NULL;
-    for (p = s->path; *p; p++)  /* a loop, not strstr: that would cost a firmware 1 KB */
+    for (p = path; *p; p++)  /* a loop, not strstr: that would cost a firmware 1 KB */
         if (p[0] == '[' && p[1] == ']')
             return p;
     return NULL;
 }
 
-/* The first field of a fixed run (ended by a NULL path) that does not fit names the error; an
- * element's index goes into its path's "[]". */
+/* The first span of a fixed run (ended by a NULL path) that does not fit before end, with its
+ * offset (*at) and its element's index (*index, URWIRE__NO_INDEX: none); NULL when all fit. A
+ * repeat row (path "") stands for elements 1 to size - 1 of a group, `offset` bytes apart,
+ * whose element 0 is the `index` rows before it. */
+static const urwire__span *urwire__first_short(const urwire__span *run, size_t pos, size_t end, size_t *at,
+                                               size_t *index)
+{
+    const urwire__span *s;
+    size_t k;
+    for (; run->path; run++) {
+        if (run->path[0] != '\0') {
+            *at = pos + run->offset;
+            *index = run->index;
+            if (*at + run->size > end)
+                return run;
+            continue;
+        }
+        for (k = 1; k < run->size; k++)
+            for (s = run - run->index; s < run; s++) {
+                *at = pos + k * run->offset + s->offset;
+                *index = k;
+                if (*at + s->size > end)
+                    return s;
+            }
+    }
+    return NULL;
+}
+
+/* The first field of a fixed run that does not fit names the error; an element's index goes
+ * into its path's "[]". */
 URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
 {
+    size_t at, index;
+    const urwire__span *s = urwire__first_short(run, pos, end, &at, &index);
     const char *hole;
-    for (; run->path; run++) {
-        if (pos + run->offset + run->size <= end)
-            continue;
-        hole = urwire__index_hole(run);
-        urwire__short(e, hole ? hole + 2 : run->path, pos + run->offset, run->size, end);
-        if (hole && e != NULL)
-            urwire__prefix_path(e, run->path, (size_t)(hole - run->path), run->index, 0, false);
-        return false;
-    }
-    return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
+    if (s == NULL)
+        return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
+    hole = index != URWIRE__NO_INDEX ? urwire__index_hole(s->path) : NULL;
+    urwire__short(e, hole ? hole + 2 : s->path, at, s->size, end);
+    if (hole && e != NULL)
+        urwire__prefix_path(e, s->path, (size_t)(hole - s->path), index, 0, false);
+    return false;
 }
 
 URWIRE__PRIVATE bool urwire__no_space(urwire_error *e, size_t pos, size_t need, size_t cap)
@@ -937,30 +973,24 @@ URWIRE__PRIVATE bool urwire__within(urwire_error *e, const char *name, size_t in
     return urwire__within2(e, name, index, 0, false);
 }
 
+/* The statuses' names in their order, then the name of any other, in an object of their own:
+ * as string literals they shared the one string section of the file, which the linker keeps
+ * whole for any error path a firmware links (430 bytes in every firmware). */
+static const char urwire__status_names[] =
+    "URWIRE_OK\0" "URWIRE_E_SHORT\0" "URWIRE_E_NEGATIVE_LENGTH\0" "URWIRE_E_VALUE_TYPE\0"
+    "URWIRE_E_TERMINATOR\0" "URWIRE_E_TOO_DEEP\0" "URWIRE_E_TOO_MANY_ITEMS\0" "URWIRE_E_EMPTY_ROWS\0"
+    "URWIRE_E_PACKAGE_HEADER_CUT\0" "URWIRE_E_PACKAGE_LENGTH_LOW\0" "URWIRE_E_PACKAGE_LENGTH_HIGH\0"
+    "URWIRE_E_LENGTH_LOW\0" "URWIRE_E_LENGTH_HIGH\0" "URWIRE_E_MESSAGE_TYPE\0"
+    "URWIRE_E_TRUNCATED_MESSAGE\0" "URWIRE_E_TRUNCATED_HEADER\0" "URWIRE_E_TOO_BIG_FOR_BUFFER\0"
+    "URWIRE_E_NO_SPACE\0" "URWIRE_E_TOO_LONG\0" "URWIRE_E_UNKNOWN";
+
 const char *urwire_status_name(urwire_status status)
 {
-    switch (status) {
-    case URWIRE_OK: return "URWIRE_OK";
-    case URWIRE_E_SHORT: return "URWIRE_E_SHORT";
-    case URWIRE_E_NEGATIVE_LENGTH: return "URWIRE_E_NEGATIVE_LENGTH";
-    case URWIRE_E_VALUE_TYPE: return "URWIRE_E_VALUE_TYPE";
-    case URWIRE_E_TERMINATOR: return "URWIRE_E_TERMINATOR";
-    case URWIRE_E_TOO_DEEP: return "URWIRE_E_TOO_DEEP";
-    case URWIRE_E_TOO_MANY_ITEMS: return "URWIRE_E_TOO_MANY_ITEMS";
-    case URWIRE_E_EMPTY_ROWS: return "URWIRE_E_EMPTY_ROWS";
-    case URWIRE_E_PACKAGE_HEADER_CUT: return "URWIRE_E_PACKAGE_HEADER_CUT";
-    case URWIRE_E_PACKAGE_LENGTH_LOW: return "URWIRE_E_PACKAGE_LENGTH_LOW";
-    case URWIRE_E_PACKAGE_LENGTH_HIGH: return "URWIRE_E_PACKAGE_LENGTH_HIGH";
-    case URWIRE_E_LENGTH_LOW: return "URWIRE_E_LENGTH_LOW";
-    case URWIRE_E_LENGTH_HIGH: return "URWIRE_E_LENGTH_HIGH";
-    case URWIRE_E_MESSAGE_TYPE: return "URWIRE_E_MESSAGE_TYPE";
-    case URWIRE_E_TRUNCATED_MESSAGE: return "URWIRE_E_TRUNCATED_MESSAGE";
-    case URWIRE_E_TRUNCATED_HEADER: return "URWIRE_E_TRUNCATED_HEADER";
-    case URWIRE_E_TOO_BIG_FOR_BUFFER: return "URWIRE_E_TOO_BIG_FOR_BUFFER";
-    case URWIRE_E_NO_SPACE: return "URWIRE_E_NO_SPACE";
-    case URWIRE_E_TOO_LONG: return "URWIRE_E_TOO_LONG";
-    }
-    return "URWIRE_E_UNKNOWN";
+    const char *name = urwire__status_names;
+    unsigned k = (unsigned)status, last = (unsigned)URWIRE_E_TOO_LONG;
+    for (k = k <= last ? k : last + 1u; k > 0; k--)
+        name += strlen(name) + 1;
+    return name;
 }
 
 /* "<what> at offset <o>: " */
@@ -2352,46 +2382,7 @@ static const urwire__span urwire__joint_data_run0[] = {
     {"joints[].t_motor", 32, 4, 0},
     {"joints[].t_micro", 36, 4, 0},
     {"joints[].joint_mode", 40, 1, 0},
-    {"joints[].q_actual", 41, 8, 1},
-    {"joints[].q_target", 49, 8, 1},
-    {"joints[].qd_actual", 57, 8, 1},
-    {"joints[].i_actual", 65, 4, 1},
-    {"joints[].v_actual", 69, 4, 1},
-    {"joints[].t_motor", 73, 4, 1},
-    {"joints[].t_micro", 77, 4, 1},
-    {"joints[].joint_mode", 81, 1, 1},
-    {"joints[].q_actual", 82, 8, 2},
-    {"joints[].q_target", 90, 8, 2},
-    {"joints[].qd_actual", 98, 8, 2},
-    {"joints[].i_actual", 106, 4, 2},
-    {"joints[].v_actual", 110, 4, 2},
-    {"joints[].t_motor", 114, 4, 2},
-    {"joints[].t_micro", 118, 4, 2},
-    {"joints[].joint_mode", 122, 1, 2},
-    {"joints[].q_actual", 123, 8, 3},
-    {"joints[].q_target", 131, 8, 3},
-    {"joints[].qd_actual", 139, 8, 3},
-    {"joints[].i_actual", 147, 4, 3},
-    {"joints[].v_actual", 151, 4, 3},
-    {"joints[].t_motor", 155, 4, 3},
-    {"joints[].t_micro", 159, 4, 3},
-    {"joints[].joint_mode", 163, 1, 3},
-    {"joints[].q_actual", 164, 8, 4},
-    {"joints[].q_target", 172, 8, 4},
-    {"joints[].qd_actual", 180, 8, 4},
-    {"joints[].i_actual", 188, 4, 4},
-    {"joints[].v_actual", 192, 4, 4},
-    {"joints[].t_motor", 196, 4, 4},
-    {"joints[].t_micro", 200, 4, 4},
-    {"joints[].joint_mode", 204, 1, 4},
-    {"joints[].q_actual", 205, 8, 5},
-    {"joints[].q_target", 213, 8, 5},
-    {"joints[].qd_actual", 221, 8, 5},
-    {"joints[].i_actual", 229, 4, 5},
-    {"joints[].v_actual", 233, 4, 5},
-    {"joints[].t_motor", 237, 4, 5},
-    {"joints[].t_micro", 241, 4, 5},
-    {"joints[].joint_mode", 245, 1, 5},
+    {"", 41, 6, 8},
     {NULL, 0, 0, 0},
 };
 
@@ -3310,35 +3301,15 @@ static void urwire__visit_laser_pointer(const void *from, const urwire__ver *ver
 
 static const urwire__span urwire__kinematics_info_run0[] = {
     {"checksum[]", 0, 4, 0},
-    {"checksum[]", 4, 4, 1},
-    {"checksum[]", 8, 4, 2},
-    {"checksum[]", 12, 4, 3},
-    {"checksum[]", 16, 4, 4},
-    {"checksum[]", 20, 4, 5},
+    {"", 4, 6, 1},
     {"dh_theta[]", 24, 8, 0},
-    {"dh_theta[]", 32, 8, 1},
-    {"dh_theta[]", 40, 8, 2},
-    {"dh_theta[]", 48, 8, 3},
-    {"dh_theta[]", 56, 8, 4},
-    {"dh_theta[]", 64, 8, 5},
+    {"", 8, 6, 1},
     {"dh_a[]", 72, 8, 0},
-    {"dh_a[]", 80, 8, 1},
-    {"dh_a[]", 88, 8, 2},
-    {"dh_a[]", 96, 8, 3},
-    {"dh_a[]", 104, 8, 4},
-    {"dh_a[]", 112, 8, 5},
+    {"", 8, 6, 1},
     {"dh_d[]", 120, 8, 0},
-    {"dh_d[]", 128, 8, 1},
-    {"dh_d[]", 136, 8, 2},
-    {"dh_d[]", 144, 8, 3},
-    {"dh_d[]", 152, 8, 4},
-    {"dh_d[]", 160, 8, 5},
+    {"", 8, 6, 1},
     {"dh_alpha[]", 168, 8, 0},
-    {"dh_alpha[]", 176, 8, 1},
-    {"dh_alpha[]", 184, 8, 2},
-    {"dh_alpha[]", 192, 8, 3},
-    {"dh_alpha[]", 200, 8, 4},
-    {"dh_alpha[]", 208, 8, 5},
+    {"", 8, 6, 1},
     {"calibration_status", 216, 4, 255},
     {NULL, 0, 0, 0},
 };
@@ -3475,124 +3446,52 @@ static void urwire__visit_joint_motion_limit(const void *from, const urwire__ver
 static const urwire__span urwire__configuration_data_0_run0[] = {
     {"joint_position_limits[].joint_min_limit", 0, 8, 0},
     {"joint_position_limits[].joint_max_limit", 8, 8, 0},
-    {"joint_position_limits[].joint_min_limit", 16, 8, 1},
-    {"joint_position_limits[].joint_max_limit", 24, 8, 1},
-    {"joint_position_limits[].joint_min_limit", 32, 8, 2},
-    {"joint_position_limits[].joint_max_limit", 40, 8, 2},
-    {"joint_position_limits[].joint_min_limit", 48, 8, 3},
-    {"joint_position_limits[].joint_max_limit", 56, 8, 3},
-    {"joint_position_limits[].joint_min_limit", 64, 8, 4},
-    {"joint_position_limits[].joint_max_limit", 72, 8, 4},
-    {"joint_position_limits[].joint_min_limit", 80, 8, 5},
-    {"joint_position_limits[].joint_max_limit", 88, 8, 5},
+    {"", 16, 6, 2},
     {"joint_motion_limits[].joint_max_speed", 96, 8, 0},
     {"joint_motion_limits[].joint_max_acceleration", 104, 8, 0},
-    {"joint_motion_limits[].joint_max_speed", 112, 8, 1},
-    {"joint_motion_limits[].joint_max_acceleration", 120, 8, 1},
-    {"joint_motion_limits[].joint_max_speed", 128, 8, 2},
-    {"joint_motion_limits[].joint_max_acceleration", 136, 8, 2},
-    {"joint_motion_limits[].joint_max_speed", 144, 8, 3},
-    {"joint_motion_limits[].joint_max_acceleration", 152, 8, 3},
-    {"joint_motion_limits[].joint_max_speed", 160, 8, 4},
-    {"joint_motion_limits[].joint_max_acceleration", 168, 8, 4},
-    {"joint_motion_limits[].joint_max_speed", 176, 8, 5},
-    {"joint_motion_limits[].joint_max_acceleration", 184, 8, 5},
+    {"", 16, 6, 2},
     {"v_joint_default", 192, 8, 255},
     {"a_joint_default", 200, 8, 255},
     {"v_tool_default", 208, 8, 255},
     {"a_tool_default", 216, 8, 255},
     {"eq_radius", 224, 8, 255},
     {"dh_a[]", 232, 8, 0},
-    {"dh_a[]", 240, 8, 1},
-    {"dh_a[]", 248, 8, 2},
-    {"dh_a[]", 256, 8, 3},
-    {"dh_a[]", 264, 8, 4},
-    {"dh_a[]", 272, 8, 5},
+    {"", 8, 6, 1},
     {"dh_d[]", 280, 8, 0},
-    {"dh_d[]", 288, 8, 1},
-    {"dh_d[]", 296, 8, 2},
-    {"dh_d[]", 304, 8, 3},
-    {"dh_d[]", 312, 8, 4},
-    {"dh_d[]", 320, 8, 5},
+    {"", 8, 6, 1},
     {"dh_alpha[]", 328, 8, 0},
-    {"dh_alpha[]", 336, 8, 1},
-    {"dh_alpha[]", 344, 8, 2},
-    {"dh_alpha[]", 352, 8, 3},
-    {"dh_alpha[]", 360, 8, 4},
-    {"dh_alpha[]", 368, 8, 5},
+    {"", 8, 6, 1},
     {"dh_theta[]", 376, 8, 0},
-    {"dh_theta[]", 384, 8, 1},
-    {"dh_theta[]", 392, 8, 2},
-    {"dh_theta[]", 400, 8, 3},
-    {"dh_theta[]", 408, 8, 4},
-    {"dh_theta[]", 416, 8, 5},
+    {"", 8, 6, 1},
     {"masterboard_version", 424, 4, 255},
     {"controller_box_type", 428, 4, 255},
     {"robot_type", 432, 4, 255},
     {"robot_sub_type", 436, 4, 255},
     {"motor_type[]", 440, 4, 0},
-    {"motor_type[]", 444, 4, 1},
-    {"motor_type[]", 448, 4, 2},
-    {"motor_type[]", 452, 4, 3},
-    {"motor_type[]", 456, 4, 4},
-    {"motor_type[]", 460, 4, 5},
+    {"", 4, 6, 1},
     {NULL, 0, 0, 0},
 };
 
 static const urwire__span urwire__configuration_data_2_run0[] = {
     {"joint_position_limits[].joint_min_limit", 0, 8, 0},
     {"joint_position_limits[].joint_max_limit", 8, 8, 0},
-    {"joint_position_limits[].joint_min_limit", 16, 8, 1},
-    {"joint_position_limits[].joint_max_limit", 24, 8, 1},
-    {"joint_position_limits[].joint_min_limit", 32, 8, 2},
-    {"joint_position_limits[].joint_max_limit", 40, 8, 2},
-    {"joint_position_limits[].joint_min_limit", 48, 8, 3},
-    {"joint_position_limits[].joint_max_limit", 56, 8, 3},
-    {"joint_position_limits[].joint_min_limit", 64, 8, 4},
-    {"joint_position_limits[].joint_max_limit", 72, 8, 4},
-    {"joint_position_limits[].joint_min_limit", 80, 8, 5},
-    {"joint_position_limits[].joint_max_limit", 88, 8, 5},
+    {"", 16, 6, 2},
     {"joint_motion_limits[].joint_max_speed", 96, 8, 0},
     {"joint_motion_limits[].joint_max_acceleration", 104, 8, 0},
-    {"joint_motion_limits[].joint_max_speed", 112, 8, 1},
-    {"joint_motion_limits[].joint_max_acceleration", 120, 8, 1},
-    {"joint_motion_limits[].joint_max_speed", 128, 8, 2},
-    {"joint_motion_limits[].joint_max_acceleration", 136, 8, 2},
-    {"joint_motion_limits[].joint_max_speed", 144, 8, 3},
-    {"joint_motion_limits[].joint_max_acceleration", 152, 8, 3},
-    {"joint_motion_limits[].joint_max_speed", 160, 8, 4},
-    {"joint_motion_limits[].joint_max_acceleration", 168, 8, 4},
-    {"joint_motion_limits[].joint_max_speed", 176, 8, 5},
-    {"joint_motion_limits[].joint_max_acceleration", 184, 8, 5},
+    {"", 16, 6, 2},
     {"v_joint_default", 192, 8, 255},
     {"a_joint_default", 200, 8, 255},
     {"v_tool_default", 208, 8, 255},
     {"a_tool_default", 216, 8, 255},
     {"eq_radius", 224, 8, 255},
     {"dh_a[]", 232, 8, 0},
-    {"dh_a[]", 240, 8, 1},
-    {"dh_a[]", 248, 8, 2},
-    {"dh_a[]", 256, 8, 3},
-    {"dh_a[]", 264, 8, 4},
-    {"dh_a[]", 272, 8, 5},
+    {"", 8, 6, 1},
     {"dh_d[]", 280, 8, 0},
-    {"dh_d[]", 288, 8, 1},
-    {"dh_d[]", 296, 8, 2},
-    {"dh_d[]", 304, 8, 3},
-    {"dh_d[]", 312, 8, 4},
-    {"dh_d[]", 320, 8, 5},
+    {"", 8, 6, 1},
     {"dh_alpha[]", 328, 8, 0},
-    {"dh_alpha[]", 336, 8, 1},
-    {"dh_alpha[]", 344, 8, 2},
-    {"dh_alpha[]", 352, 8, 3},
-    {"dh_alpha[]", 360, 8, 4},
-    {"dh_alpha[]", 368, 8, 5},
+    {"", 8, 6, 1},
     {"dh_theta[]", 376, 8, 0},
-    {"dh_theta[]", 384, 8, 1},
-    {"dh_theta[]", 392, 8, 2},
-    {"dh_theta[]", 400, 8, 3},
-    {"dh_theta[]", 408, 8, 4},
-    {"dh_theta[]", 416, 8, 5},
+    {"", 8, 6, 1},
     {"masterboard_version", 424, 4, 255},
     {"controller_box_type", 428, 4, 255},
     {"robot_type", 432, 4, 255},
@@ -4388,14 +4287,9 @@ static void urwire__visit_singularity_info(const void *from, const urwire__ver *
 static const urwire__span urwire__payload_info_run0[] = {
     {"mass", 0, 8, 255},
     {"center_of_gravity[]", 8, 8, 0},
-    {"center_of_gravity[]", 16, 8, 1},
-    {"center_of_gravity[]", 24, 8, 2},
+    {"", 8, 3, 1},
     {"inertia[]", 32, 8, 0},
-    {"inertia[]", 40, 8, 1},
-    {"inertia[]", 48, 8, 2},
-    {"inertia[]", 56, 8, 3},
-    {"inertia[]", 64, 8, 4},
-    {"inertia[]", 72, 8, 5},
+    {"", 8, 6, 1},
     {NULL, 0, 0, 0},
 };
 
@@ -5785,27 +5679,7 @@ static void urwire__visit_safety_setup_broadcast(const void *from, const urwire_
 
 static const urwire__span urwire__safety_compliance_tolerances_run0[] = {
     {"tolerances[]", 0, 8, 0},
-    {"tolerances[]", 8, 8, 1},
-    {"tolerances[]", 16, 8, 2},
-    {"tolerances[]", 24, 8, 3},
-    {"tolerances[]", 32, 8, 4},
-    {"tolerances[]", 40, 8, 5},
-    {"tolerances[]", 48, 8, 6},
-    {"tolerances[]", 56, 8, 7},
-    {"tolerances[]", 64, 8, 8},
-    {"tolerances[]", 72, 8, 9},
-    {"tolerances[]", 80, 8, 10},
-    {"tolerances[]", 88, 8, 11},
-    {"tolerances[]", 96, 8, 12},
-    {"tolerances[]", 104, 8, 13},
-    {"tolerances[]", 112, 8, 14},
-    {"tolerances[]", 120, 8, 15},
-    {"tolerances[]", 128, 8, 16},
-    {"tolerances[]", 136, 8, 17},
-    {"tolerances[]", 144, 8, 18},
-    {"tolerances[]", 152, 8, 19},
-    {"tolerances[]", 160, 8, 20},
-    {"tolerances[]", 168, 8, 21},
+    {"", 8, 22, 1},
     {NULL, 0, 0, 0},
 };
 
@@ -5935,6 +5809,10 @@ static void urwire__put_program_state_header(const urwire_message *m, uint8_t *o
 
 /* The segment of the default version: every stream whose version is only assumed reads in it. */
 #define URWIRE__DEFAULT_SEGMENT 12u
+
+/* 1 when every type code has one form, which every version reads (a pinned build): no form is
+ * then chosen by its length (urwire__choose). */
+#define URWIRE__ONE_FORM_A_CODE 0
 
 /* Where the segments of the version axis start (as urwire__version_key orders versions):
  * segment k from urwire__segment_bounds[k] up to the next bound; segment 0 from key 0. Within a
@@ -6387,7 +6265,7 @@ static const urwire__recognised urwire__modbus_info_by_length[] = {
 
 /* The forms of each modbus_info message with a layout, by code. */
 static const urwire__forms urwire__modbus_info_forms[] = {
-    [URWIRE_MESSAGE_TYPE_MODBUS_INFO_MESSAGE] =
+    [0] =
         {&urwire__modbus_info_form_list[0], &urwire__modbus_info_by_length[0], 1, 0},
 };
 
@@ -6396,43 +6274,43 @@ static const urwire__forms urwire__modbus_info_forms[] = {
  * is sent there: the form is the nearest version's below. */
 static const uint8_t urwire__modbus_info_mine[] = {
     /* up to 1.5 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 1.6 to 1.7 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 1.8 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 1.8, before 3.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 3.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.1 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.2 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.3 to 3.4 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.5 to 3.9 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.10 to 3.15 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 3.15, before 5.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 5.0 to 5.3 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 5.4 to 5.25.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 5.25.1 to 5.99 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 5.99, before 10.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 10.0 and later */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
 };
 
 
 static const urwire__form_table urwire__modbus_info_form_table = {
     urwire__modbus_info_form_list, urwire__modbus_info_forms,
-    6, urwire__modbus_info_mine,
+    1, urwire__modbus_info_mine,
 };
 
 /* The forms of every hmc message, code by code. */
@@ -6450,7 +6328,7 @@ static const urwire__recognised urwire__hmc_by_length[] = {
 
 /* The forms of each hmc message with a layout, by code. */
 static const urwire__forms urwire__hmc_forms[] = {
-    [URWIRE_MESSAGE_TYPE_HMC_MESSAGE] =
+    [0] =
         {&urwire__hmc_form_list[0], &urwire__hmc_by_length[0], 1, 0},
 };
 
@@ -6459,59 +6337,43 @@ static const urwire__forms urwire__hmc_forms[] = {
  * is sent there: the form is the nearest version's below. */
 static const uint8_t urwire__hmc_mine[] = {
     /* up to 1.5 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 1.6 to 1.7 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 1.8 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 1.8, before 3.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 3.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.1 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.2 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.3 to 3.4 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.5 to 3.9 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.10 to 3.15 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 3.15, before 5.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 5.0 to 5.3 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 5.4 to 5.25.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 5.25.1 to 5.99 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 5.99, before 10.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 10.0 and later */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
 };
 
 
 static const urwire__form_table urwire__hmc_form_table = {
     urwire__hmc_form_list, urwire__hmc_forms,
-    23, urwire__hmc_mine,
+    1, urwire__hmc_mine,
 };
 
 /* The forms of every safety_setup_broadcast message, code by code. */
@@ -6529,7 +6391,7 @@ static const urwire__recognised urwire__safety_setup_broadcast_by_length[] = {
 
 /* The forms of each safety_setup_broadcast message with a layout, by code. */
 static const urwire__forms urwire__safety_setup_broadcast_forms[] = {
-    [URWIRE_MESSAGE_TYPE_SAFETY_SETUP_BROADCAST_MESSAGE] =
+    [0] =
         {&urwire__safety_setup_broadcast_form_list[0], &urwire__safety_setup_broadcast_by_length[0], 1, 0},
 };
 
@@ -6538,59 +6400,43 @@ static const urwire__forms urwire__safety_setup_broadcast_forms[] = {
  * is sent there: the form is the nearest version's below. */
 static const uint8_t urwire__safety_setup_broadcast_mine[] = {
     /* up to 1.5 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 1.6 to 1.7 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 1.8 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 1.8, before 3.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 3.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.1 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.2 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.3 to 3.4 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.5 to 3.9 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.10 to 3.15 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 3.15, before 5.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 5.0 to 5.3 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 5.4 to 5.25.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 5.25.1 to 5.99 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 5.99, before 10.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 10.0 and later */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
 };
 
 
 static const urwire__form_table urwire__safety_setup_broadcast_form_table = {
     urwire__safety_setup_broadcast_form_list, urwire__safety_setup_broadcast_forms,
-    24, urwire__safety_setup_broadcast_mine,
+    1, urwire__safety_setup_broadcast_mine,
 };
 
 /* The forms of every safety_compliance_tolerances message, code by code. */
@@ -6609,7 +6455,7 @@ static const urwire__recognised urwire__safety_compliance_tolerances_by_length[]
 
 /* The forms of each safety_compliance_tolerances message with a layout, by code. */
 static const urwire__forms urwire__safety_compliance_tolerances_forms[] = {
-    [URWIRE_MESSAGE_TYPE_SAFETY_COMPLIANCE_TOLERANCES_MESSAGE] =
+    [0] =
         {&urwire__safety_compliance_tolerances_form_list[0], &urwire__safety_compliance_tolerances_by_length[0], 1, 1},
 };
 
@@ -6618,59 +6464,43 @@ static const urwire__forms urwire__safety_compliance_tolerances_forms[] = {
  * is sent there: the form is the nearest version's below. */
 static const uint8_t urwire__safety_compliance_tolerances_mine[] = {
     /* up to 1.5 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 1.6 to 1.7 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 1.8 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 1.8, before 3.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 3.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.1 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.2 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.3 to 3.4 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.5 to 3.9 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 3.10 to 3.15 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 3.15, before 5.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 5.0 to 5.3 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 5.4 to 5.25.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* 5.25.1 to 5.99 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
     /* after 5.99, before 10.0 */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x81,
+    0x81,
     /* 10.0 and later */
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
-    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x01,
+    0x01,
 };
 
 
 static const urwire__form_table urwire__safety_compliance_tolerances_form_table = {
     urwire__safety_compliance_tolerances_form_list, urwire__safety_compliance_tolerances_forms,
-    25, urwire__safety_compliance_tolerances_mine,
+    1, urwire__safety_compliance_tolerances_mine,
 };
 
 /* ---- the tables the runtime walks --------------------------------------------------------- */
@@ -7337,16 +7167,20 @@ static const urwire__version_skip urwire__version_skips[] = {
     {0, 1, true},
 };
 
-/* The message types a plausible header carries: the framer resynchronises on any other. */
-static const bool urwire__known_message_types[256] = {
-    [URWIRE_MESSAGE_TYPE_MODBUS_INFO_MESSAGE] = true,
-    [URWIRE_MESSAGE_TYPE_ROBOT_STATE] = true,
-    [URWIRE_MESSAGE_TYPE_ROBOT_MESSAGE] = true,
-    [URWIRE_MESSAGE_TYPE_HMC_MESSAGE] = true,
-    [URWIRE_MESSAGE_TYPE_SAFETY_SETUP_BROADCAST_MESSAGE] = true,
-    [URWIRE_MESSAGE_TYPE_SAFETY_COMPLIANCE_TOLERANCES_MESSAGE] = true,
-    [URWIRE_MESSAGE_TYPE_PROGRAM_STATE_MESSAGE] = true,
-    [URWIRE_MESSAGE_TYPE_DISCONNECT] = true,
+/* The message types a plausible header carries, a bit each (type >> 3, bit type & 7): the framer
+ * resynchronises on any other. 32 bytes, not 256 of bools:
+ *   URWIRE_MESSAGE_TYPE_MODBUS_INFO_MESSAGE
+ *   URWIRE_MESSAGE_TYPE_ROBOT_STATE
+ *   URWIRE_MESSAGE_TYPE_ROBOT_MESSAGE
+ *   URWIRE_MESSAGE_TYPE_HMC_MESSAGE
+ *   URWIRE_MESSAGE_TYPE_SAFETY_SETUP_BROADCAST_MESSAGE
+ *   URWIRE_MESSAGE_TYPE_SAFETY_COMPLIANCE_TOLERANCES_MESSAGE
+ *   URWIRE_MESSAGE_TYPE_PROGRAM_STATE_MESSAGE
+ *   URWIRE_MESSAGE_TYPE_DISCONNECT
+ */
+static const uint8_t urwire__known_message_types[32] = {
+    0x20, 0x00, 0xd1, 0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x80,
 };
 
 /* ---- runtime/c/packages/values.c ---- */
@@ -7676,7 +7510,9 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
     *by_length = false;
     if (nearest)
         *version = mine->rep;
-    if (mine != NULL && urwire__fits(mine, size))
+    /* The one form of a code that has one (the generator saw that every version reads it) is
+     * chosen whatever the size: no size can recognise another. */
+    if (URWIRE__ONE_FORM_A_CODE || (mine != NULL && urwire__fits(mine, size)))
         return mine;
     /* The sizes the generator found in exactly one fixed-size form (an open-ended one fits too
      * much to be recognised by its length). */
@@ -7827,7 +7663,7 @@ static const urwire__form *urwire__other_form(uint8_t type, size_t size, urwire_
     /* urwire__choose changes the version when a form is chosen by length, or when the version
      * has no form of its own (the nearest form below, read as the version it stands for). */
     *use = urwire__version_key(v) != r->now.key ? urwire__ver_of(v) : r->now;
-    if (by_length && r->now.version.assumed) {
+    if (!URWIRE__ONE_FORM_A_CODE && by_length && r->now.version.assumed) {
         urwire__run_at(r, v);
         r->implied = true;
     }
@@ -7859,8 +7695,9 @@ static bool urwire__walk_packages(const uint8_t *msg, size_t pos, size_t end, ur
     *count = 0;
     while (pos < end && urwire__frame_package(msg, pos, end, &size, err)) {
         type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-        /* Only a body that the version's form does not fit can show another version. */
-        if (type < URWIRE__COUNT(urwire__package_forms) &&
+        /* Only a body that the version's form does not fit can show another version, and only
+         * where a code has several forms. */
+        if (!URWIRE__ONE_FORM_A_CODE && type < URWIRE__COUNT(urwire__package_forms) &&
             !urwire__fits_brief(r->first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE) &&
             urwire__package_forms[type].count != 0)
             urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &use);
@@ -7922,7 +7759,7 @@ static bool urwire__decode_subtype(urwire_message *out, const urwire__message_ty
         urwire__fail_message(out, URWIRE_HEADER_SIZE);
         return false;
     }
-    subtype = t->read_header != NULL ? t->read_header(out) : (int64_t)t->code;
+    subtype = t->read_header != NULL ? t->read_header(out) : 0;  /* a body message's layout: its code 0 */
     if (subtype < 0 || (uint64_t)subtype >= t->forms->ncodes || t->forms->codes[subtype].count == 0) {
         out->kind = URWIRE_KIND_UNKNOWN_SUBTYPE;
         out->raw = urwire__view(out->bytes + t->body, out->length - t->body);
@@ -7937,7 +7774,10 @@ static bool urwire__decode_subtype(urwire_message *out, const urwire__message_ty
     return true;
 }
 
-bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version version, urwire_message *out)
+/* The start of urwire_decode_message: *out set for a message with nothing more to decode (too
+ * short for a header: false, or of no known type: true, in *done), else its type. */
+static const urwire__message_type *urwire__message_head(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                                         urwire_message *out, bool *done)
 {
     const urwire__message_type *t;
     urwire__init_message(out, bytes, len, version);
@@ -7947,15 +7787,25 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
         out->message_type = 0;
         out->failed = true;
         out->raw = urwire__view(bytes, len);
-        return urwire__short(&out->error, "length", 0, URWIRE_HEADER_SIZE, len);
+        *done = urwire__short(&out->error, "length", 0, URWIRE_HEADER_SIZE, len);
+        return NULL;
     }
     out->message_type = bytes[URWIRE__TYPE_AT];
     t = urwire__message_type_of(out->message_type);
     if (t == NULL) {
         out->kind = URWIRE_KIND_UNKNOWN_MESSAGE;
         out->raw = urwire__view(bytes + URWIRE_HEADER_SIZE, len - URWIRE_HEADER_SIZE);
-        return true;
+        *done = true;
     }
+    return t;
+}
+
+bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version version, urwire_message *out)
+{
+    bool done;
+    const urwire__message_type *t = urwire__message_head(bytes, len, version, out, &done);
+    if (t == NULL)
+        return done;
     return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t, version);
 }
 
@@ -8168,6 +8018,18 @@ URWIRE__NOINLINE static bool urwire__decode_state_message(const uint8_t *bytes, 
     return !m->failed && out->malformed == 0;
 }
 
+/* urwire_decode_robot_state_message of a message of any other type: as urwire_decode_message,
+ * without its robot-state branch, which a firmware that reads robot states this way then does
+ * not link; out of line, so that a robot state is decoded without its locals on the stack. */
+URWIRE__NOINLINE static void urwire__decode_other_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                                          urwire_message *m)
+{
+    bool done;
+    const urwire__message_type *t = urwire__message_head(bytes, len, version, m, &done);
+    if (t != NULL)
+        urwire__decode_subtype(m, t, version);
+}
+
 bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
                                        urwire_message *m, urwire_robot_state *out)
 {
@@ -8176,7 +8038,7 @@ bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_
         out->malformed = 0;
         out->layouts = 0;
         out->unknown = 0;
-        urwire_decode_message(bytes, len, version, m);
+        urwire__decode_other_message(bytes, len, version, m);
         return false;
     }
     return urwire__decode_state_message(bytes, len, version, m, out);
@@ -8567,14 +8429,16 @@ void urwire_visit_fault(const urwire_error *fault, const urwire_visitor *v)
 /* ---- the framer --------------------------------------------------------------------------- */
 
 /* A header the spec could have sent: a length from the header's size to the maximum, and a
- * type it names (urwire__known_message_types). */
+ * type it names (a bit of urwire__known_message_types). */
 static urwire_status urwire__header_fault(int64_t length, uint8_t type)
 {
+    /* The type's bit, looked up first: so urwire_framer_next keeps Cortex-M0+'s frame at -O2. */
+    unsigned known = (unsigned)urwire__known_message_types[type >> 3] >> (type & 7);
     if (length < (int64_t)URWIRE_HEADER_SIZE)
         return URWIRE_E_LENGTH_LOW;
     if (length > (int64_t)URWIRE_MAX_MESSAGE_LENGTH)
         return URWIRE_E_LENGTH_HIGH;
-    return urwire__known_message_types[type] ? URWIRE_OK : URWIRE_E_MESSAGE_TYPE;
+    return (known & 1u) != 0 ? URWIRE_OK : URWIRE_E_MESSAGE_TYPE;
 }
 
 void urwire_framer_init(urwire_framer *f, uint8_t *buf, size_t cap, urwire_sw_version hint)

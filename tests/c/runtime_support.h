@@ -176,6 +176,7 @@ static inline bool urwire__decode_member(uint8_t type, uint8_t form, const uint8
 /* One fast path: the row from 3.3.0, where type 1 is a counter of 4 bytes; 5.9, the default
  * version, is in that segment. */
 #define URWIRE__DEFAULT_SEGMENT 3u
+#define URWIRE__ONE_FORM_A_CODE 0  /* several forms a code: the runtime chooses */
 #define URWIRE__FAST_PATHS(X) X(1)
 static const uint8_t urwire__package_fast_paths[] = {0, 0, 0, 1, 0};
 
@@ -218,9 +219,7 @@ static const urwire__decode_fn urwire__message_decoders[] = {
     [URWIRE_KIND_UNKNOWN_SUBTYPE] = NULL,
 };
 
-static const bool urwire__known_message_types[256] = {
-    [URWIRE__PACKAGES_TYPE] = true,
-    [20] = true,
-};
+/* Types 16 (URWIRE__PACKAGES_TYPE) and 20, a bit each. */
+static const uint8_t urwire__known_message_types[32] = {[2] = 0x11};
 
 #endif

@@ -170,8 +170,23 @@ static void error_texts(void)
     CHECK(text_is(&e, "variables[0] at offset 17: 32767 rows of 0 columns"));
     urwire__fail(&e, URWIRE_E_TOO_LONG, 0, "title", 300, 255);
     CHECK(text_is(&e, "title: 300 bytes do not fit the length prefix (max 255)"));
+    CHECK(strcmp(urwire_status_name(URWIRE_OK), "URWIRE_OK") == 0);
     CHECK(strcmp(urwire_status_name(URWIRE_E_TOO_DEEP), "URWIRE_E_TOO_DEEP") == 0);
+    CHECK(strcmp(urwire_status_name(URWIRE_E_TOO_LONG), "URWIRE_E_TOO_LONG") == 0);  /* the last */
     CHECK(strcmp(urwire_status_name((urwire_status)99), "URWIRE_E_UNKNOWN") == 0);
+    {
+        /* A run of a field, a group of 3 elements of two fields (one repeat row) and a field. */
+        static const urwire__span run[] = {
+            {"head", 0, 2, URWIRE__NO_INDEX}, {"g[].a", 2, 4, 0}, {"g[].b", 6, 1, 0}, {"", 5, 3, 2},
+            {"tail", 17, 8, URWIRE__NO_INDEX}, {NULL, 0, 0, 0},
+        };
+        CHECK(!urwire__short_in_run(&e, run, 100, 101) && e.offset == 100 && strcmp(e.path, "head") == 0);
+        CHECK(!urwire__short_in_run(&e, run, 100, 106) && e.offset == 106 && strcmp(e.path, "g[0].b") == 0);
+        CHECK(!urwire__short_in_run(&e, run, 100, 111) && e.offset == 111 && strcmp(e.path, "g[1].b") == 0);
+        CHECK(!urwire__short_in_run(&e, run, 100, 115) && e.offset == 112 && strcmp(e.path, "g[2].a") == 0);
+        CHECK(e.value == 4 && e.left == 3);
+        CHECK(!urwire__short_in_run(&e, run, 100, 124) && e.offset == 117 && strcmp(e.path, "tail") == 0);
+    }
     /* Paths are joined from the inside out, as the decoders unwind. */
     urwire__fail(&e, URWIRE_E_VALUE_TYPE, 40, ".type", 99, 0);
     urwire__within2(&e, "", 2, 0, true);

@@ -95,10 +95,11 @@ def test_the_stack_bound_refuses_recursion(tmp_path):
     assert graph.unknown == {"memcpy"}
 
 
-def host_firmware(tmp_path, source: str, library: str) -> str:
-    exe = tmp_path / source.replace(".c", "")
-    build = subprocess.run(["gcc", *STRICT, "-O0", f"-I{GEN}", f"-I{EXAMPLES}", str(EXAMPLES / source),
-                            str(EXAMPLES / "board_host.c"), str(GEN / library), "-o", str(exe)],
+def host_firmware(tmp_path, key: str) -> str:
+    [firmware] = [f for f in bench_embedded.FIRMWARES if f.key == key]
+    exe = tmp_path / key
+    sources = [EXAMPLES / s for s in firmware.sources] + [EXAMPLES / "board_host.c", GEN / firmware.library]
+    build = subprocess.run(["gcc", *STRICT, "-O0", f"-I{GEN}", f"-I{EXAMPLES}", *map(str, sources), "-o", str(exe)],
                            capture_output=True, text=True)
     assert build.returncode == 0 and build.stderr == "", build.stderr
     return str(exe)
@@ -109,7 +110,7 @@ def test_the_robot_state_firmware_reads_every_robot_state_of_a_capture(tmp_path)
     import urwire
 
     data = capture_stream(ROOT / "dissector" / "samples" / "primary_session.pcapng")
-    run = subprocess.run([host_firmware(tmp_path, "robot_states.c", "urwire.c")], input=data,
+    run = subprocess.run([host_firmware(tmp_path, "robot_states")], input=data,
                          capture_output=True, timeout=60)
     assert run.returncode == 0
     values = [line.split() for line in run.stdout.decode().splitlines()]
@@ -129,7 +130,7 @@ def test_the_rtde_firmware_reads_values_by_index_and_by_name(tmp_path):
     robot = (message(ord("V"), b"\x01") + message(ord("O"), b"\x01DOUBLE,VECTOR6D,INT32") + message(ord("S"), b"\x01")
              + b"".join(message(ord("U"), b"\x01" + struct.pack(">d6di", 12.5 + i, 0.5 - i, -1.5, 1.5, -0.5, 0.25,
                                                                  3.0, 7)) for i in range(2)))
-    run = subprocess.run([host_firmware(tmp_path, "rtde_values.c", "rtde.c")], input=robot, capture_output=True,
+    run = subprocess.run([host_firmware(tmp_path, "rtde_values")], input=robot, capture_output=True,
                          timeout=60)
     assert run.returncode == 0
     assert run.stdout.decode().split() == ["double", "12.5", "actual_q0", "0.5", "robot_mode", "7",

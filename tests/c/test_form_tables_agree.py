@@ -104,6 +104,9 @@ def c_choices(planned, versions) -> dict:
         pytest.fail("gcc is not installed (scripts/setup.sh installs it)")
     tables = {mp.message.name: "urwire__package_form_table" if not mp.is_dispatch
               else f"urwire__{mp.message.name}_form_table" for mp in planned.messages}
+    # A body message's one code (its type) is code 0 of its C table.
+    body_codes = {mp.message.name: min(mp.variants) for mp in planned.messages
+                  if mp.is_dispatch and not mp.message.has_subtype}
     show = "".join(f'        show("{name}", &{table}, segment);\n' for name, table in tables.items())
     OUT.mkdir(parents=True, exist_ok=True)
     source, exe = OUT / "form_tables.c", OUT / "form_tables"
@@ -116,7 +119,7 @@ def c_choices(planned, versions) -> dict:
     for v, line in zip(versions, lines):
         for item in line.split():
             name, code, form, nearest = item.split(":")
-            out[(name, int(code), v)] = (int(form), nearest == "1")
+            out[(name, body_codes.get(name, int(code)), v)] = (int(form), nearest == "1")
     return out
 
 

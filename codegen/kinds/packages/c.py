@@ -164,6 +164,42 @@ class Run:
     table: str
     spans: list[Span]
 
+    @property
+    def rows(self) -> list[dict]:
+        """The table's rows: each span, except that a group's elements after the first, when they
+        repeat element 0's spans at one stride, are one repeat row {"", stride, elements, rows of
+        element 0} after element 0's (joint data: 9 rows, not 48)."""
+        rows, i = [], 0
+        while i < len(self.spans):
+            width = 0
+            while i + width < len(self.spans) and self.spans[i + width].index == 0:
+                width += 1
+            count, stride = _repeats(self.spans, i, width)
+            block = self.spans[i:i + max(width, 1)]
+            rows += [dict(path=s.template, offset=s.offset, size=s.size, index=s.index) for s in block]
+            if count > 1:
+                rows.append(dict(path="", offset=stride, size=count, index=width))
+            i += len(block) * count
+        return rows
+
+
+def _repeats(spans: list[Span], at: int, width: int) -> tuple[int, int]:
+    """How many elements repeat the `width` spans of element 0 from `at` (index k, the same
+    paths and sizes, offsets k strides on), and the stride: (1, 0) for none."""
+    if width == 0 or at + width >= len(spans):
+        return 1, 0
+    stride, count = spans[at + width].offset - spans[at].offset, 1
+    while (at + (count + 1) * width <= len(spans) and count < SPAN_BYTE_MAX and 0 < stride * count <= SPAN_OFFSET_MAX
+           and all(_same_field(spans[at + j], spans[at + count * width + j], count, count * stride)
+                   for j in range(width))):
+        count += 1
+    return (count, stride) if count > 1 else (1, 0)
+
+
+def _same_field(first: Span, other: Span, index: int, shift: int) -> bool:
+    return (other.template, other.size, other.index, other.offset) == (first.template, first.size, index,
+                                                                       first.offset + shift)
+
 
 @dataclass
 class Decoder:
@@ -585,11 +621,13 @@ class _Forms:
                 dict(kind="lowest", versions=s.describe()) for s in self.segments]
 
     def table(self, tag: str, what: str, mp: plan.MessagePlan, enum: ir.Enum, layouts: dict[int, str],
-              first_sizes: bool = False) -> dict:
+              first_sizes: bool = False, body: bool = False) -> dict:
         """The forms of every code of one type byte (the sub-package types, or a message's
         subtypes), in one list; the forms of each code; and, segment by segment, the form each
         code takes there (its number in the list plus one, 0 for none, NEAREST_BIT when it is the
-        nearest below's)."""
+        nearest below's). A body message's one code (its own type) is row 0 of its table, which
+        the runtime reads it at: indexed by the type, each row would hold 22 to 24 unused bytes."""
+        base = min(mp.variants) if body else 0
         codes, count, recognised = [], 0, 0
         for code, variants in mp.variants.items():
             forms = []
@@ -598,7 +636,8 @@ class _Forms:
                 forms.append(dict(layout=layouts[id(v.layout)], nsizes=len(sizes),
                                   sizes=sizes + [0] * (self.size_slots - len(sizes)), min_size=v.min_size,
                                   rep=version_view(v.rep), versions=v.describe()))
-            codes.append(dict(code=code, index=c_enum_const(enum, code), first=count, count=len(forms), forms=forms,
+            codes.append(dict(code=code, row=code - base, index="0" if body else c_enum_const(enum, code),
+                              first=count, count=len(forms), forms=forms,
                               names=", ".join(c.layout.name for c in mp.choices[code]),
                               layouts=[dict(name=c.layout.name, const=layouts[id(c.layout)])
                                        for c in mp.choices[code]],
@@ -609,22 +648,30 @@ class _Forms:
         if count >= NEAREST_BIT:
             raise SpecError(self.source, [mp.message.where.problem(
                 "c target: more than 127 forms of one type byte do not fit the form tables")])
-        ncodes = max(mp.variants) + 1
+        ncodes = max(mp.variants) - base + 1
         rows = []
         for k, segment in enumerate(self.segments):
             row = [0] * ncodes
             first = [dict(kind="none")] * ncodes
             for c in codes:
                 sf = mp.by_segment[c["code"]][k]
-                row[c["code"]] = (c["first"] + sf.form + 1) | (NEAREST_BIT if sf.nearest else 0)
+                row[c["row"]] = (c["first"] + sf.form + 1) | (NEAREST_BIT if sf.nearest else 0)
                 if not sf.nearest:
                     f = c["forms"][sf.form]
-                    first[c["code"]] = dict(kind="exact", size=f["sizes"][0]) if f["nsizes"] else \
+                    first[c["row"]] = dict(kind="exact", size=f["sizes"][0]) if f["nsizes"] else \
                         dict(kind="open", size=f["min_size"])
             rows.append(dict(forms=row, first=first, versions=segment.describe(),
                              cells=cell_lines(["0x%02x" % n for n in row]),
                              first_cells=cell_lines([BRIEF[n["kind"]].format(size=n.get("size")) for n in first])))
         return dict(tag=tag, what=what, codes=codes, ncodes=ncodes, rows=rows, first_sizes=first_sizes)
+
+
+def one_form(table: dict) -> bool:
+    """Whether every code of a form table has one form, which every segment reads (sent there,
+    or the nearest below's): the form of a code is then that one whatever the version and the
+    size, and only the nearest mark is left to look up (a pinned build)."""
+    return all(c["count"] == 1 and all(row["forms"][c["row"]] & ~NEAREST_BIT == c["first"] + 1 for row in table["rows"])
+               for c in table["codes"])
 
 
 def kind_names(messages: list[dict], packages: list) -> Pool:
@@ -694,7 +741,8 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
             kinds.append(dict(const=cs.kind_const, doc=inline(st.doc)))
         forms = axis.table(f"urwire__{m.name}", f"{m.name} subtype" if m.has_subtype else f"{m.name} message",
                            mp, m.subtype_enum,
-                           {id(c.layout): layout_structs[id(c.layout)].kind_const for c in mp.layouts})
+                           {id(c.layout): layout_structs[id(c.layout)].kind_const for c in mp.layouts},
+                           body=not m.has_subtype)
         messages.append(dict(kind="dispatch" if m.has_subtype else "body", name=m.name, code=m.code.value,
                              type_index=len(messages),
                              code_const=c_member_const(p.message_type_enum, m.code),
@@ -715,7 +763,9 @@ def build(protocol_plan: plan.ProtocolPlan) -> dict:
     vmsg = next(m for m in messages if m["code"] == vs.message_code)
     buffers = framer_buffers(protocol_plan)
     kind_text = kind_names(messages, packages)
+    tables = [package_forms] + [m["forms"] for m in messages if m["kind"] != "packages"]
     return dict(buffers=buffers, structs=b.structs, messages=messages, kinds=kinds, packages=packages, package_forms=package_forms,
+                one_form=all(map(one_form, tables)),
                 kind_text=kind_text.parts, kind_at=kind_text.offsets,
                 package_decoders=package_decoders, package_fast=package_fast,
                 segment_bounds=axis.bounds(), form_sizes=axis.size_slots,
@@ -836,9 +886,21 @@ def framing(p: model.Protocol, packages: dict, vst: CStruct, vmsg: dict, vs: pla
                              skips=skips, tail=vs.tail))
 
 
-def known_types(p: model.Protocol) -> list[str]:
-    """The message types a plausible header may carry (the framer resynchronises on the others)."""
-    return [c_enum_const(p.message_type_enum, code) for code in sorted({v.value for v in p.message_type_enum.values})]
+@dataclass
+class KnownTypes:
+    """The message types a plausible header may carry (the framer resynchronises on the others):
+    their names, and a bit each in 32 bytes (type >> 3, bit type & 7), rows of 16 bytes."""
+    names: list[str]
+    rows: list[str]
+
+
+def known_types(p: model.Protocol) -> KnownTypes:
+    codes = sorted({v.value for v in p.message_type_enum.values})
+    bits = [0] * 32
+    for code in codes:
+        bits[code >> 3] |= 1 << (code & 7)
+    rows = [", ".join(f"0x{b:02x}" for b in bits[k:k + 16]) + "," for k in range(0, 32, 16)]
+    return KnownTypes([c_enum_const(p.message_type_enum, code) for code in codes], rows)
 
 
 # The hand-written runtime (runtime/c/), in the order each part is joined to the

@@ -97,7 +97,7 @@ static const urwire__form *urwire__other_form(uint8_t type, size_t size, urwire_
     /* urwire__choose changes the version when a form is chosen by length, or when the version
      * has no form of its own (the nearest form below, read as the version it stands for). */
     *use = urwire__version_key(v) != r->now.key ? urwire__ver_of(v) : r->now;
-    if (by_length && r->now.version.assumed) {
+    if (!URWIRE__ONE_FORM_A_CODE && by_length && r->now.version.assumed) {
         urwire__run_at(r, v);
         r->implied = true;
     }
@@ -129,8 +129,9 @@ static bool urwire__walk_packages(const uint8_t *msg, size_t pos, size_t end, ur
     *count = 0;
     while (pos < end && urwire__frame_package(msg, pos, end, &size, err)) {
         type = msg[pos + URWIRE__PACKAGE_TYPE_AT];
-        /* Only a body that the version's form does not fit can show another version. */
-        if (type < URWIRE__COUNT(urwire__package_forms) &&
+        /* Only a body that the version's form does not fit can show another version, and only
+         * where a code has several forms. */
+        if (!URWIRE__ONE_FORM_A_CODE && type < URWIRE__COUNT(urwire__package_forms) &&
             !urwire__fits_brief(r->first_sizes[type], size - URWIRE_PACKAGE_HEADER_SIZE) &&
             urwire__package_forms[type].count != 0)
             urwire__other_form(type, size - URWIRE_PACKAGE_HEADER_SIZE, r, &use);
@@ -192,7 +193,7 @@ static bool urwire__decode_subtype(urwire_message *out, const urwire__message_ty
         urwire__fail_message(out, URWIRE_HEADER_SIZE);
         return false;
     }
-    subtype = t->read_header != NULL ? t->read_header(out) : (int64_t)t->code;
+    subtype = t->read_header != NULL ? t->read_header(out) : 0;  /* a body message's layout: its code 0 */
     if (subtype < 0 || (uint64_t)subtype >= t->forms->ncodes || t->forms->codes[subtype].count == 0) {
         out->kind = URWIRE_KIND_UNKNOWN_SUBTYPE;
         out->raw = urwire__view(out->bytes + t->body, out->length - t->body);
@@ -207,7 +208,10 @@ static bool urwire__decode_subtype(urwire_message *out, const urwire__message_ty
     return true;
 }
 
-bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version version, urwire_message *out)
+/* The start of urwire_decode_message: *out set for a message with nothing more to decode (too
+ * short for a header: false, or of no known type: true, in *done), else its type. */
+static const urwire__message_type *urwire__message_head(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                                         urwire_message *out, bool *done)
 {
     const urwire__message_type *t;
     urwire__init_message(out, bytes, len, version);
@@ -217,15 +221,25 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
         out->message_type = 0;
         out->failed = true;
         out->raw = urwire__view(bytes, len);
-        return urwire__short(&out->error, "length", 0, URWIRE_HEADER_SIZE, len);
+        *done = urwire__short(&out->error, "length", 0, URWIRE_HEADER_SIZE, len);
+        return NULL;
     }
     out->message_type = bytes[URWIRE__TYPE_AT];
     t = urwire__message_type_of(out->message_type);
     if (t == NULL) {
         out->kind = URWIRE_KIND_UNKNOWN_MESSAGE;
         out->raw = urwire__view(bytes + URWIRE_HEADER_SIZE, len - URWIRE_HEADER_SIZE);
-        return true;
+        *done = true;
     }
+    return t;
+}
+
+bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version version, urwire_message *out)
+{
+    bool done;
+    const urwire__message_type *t = urwire__message_head(bytes, len, version, out, &done);
+    if (t == NULL)
+        return done;
     return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t, version);
 }
 
@@ -438,6 +452,18 @@ URWIRE__NOINLINE static bool urwire__decode_state_message(const uint8_t *bytes, 
     return !m->failed && out->malformed == 0;
 }
 
+/* urwire_decode_robot_state_message of a message of any other type: as urwire_decode_message,
+ * without its robot-state branch, which a firmware that reads robot states this way then does
+ * not link; out of line, so that a robot state is decoded without its locals on the stack. */
+URWIRE__NOINLINE static void urwire__decode_other_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
+                                                          urwire_message *m)
+{
+    bool done;
+    const urwire__message_type *t = urwire__message_head(bytes, len, version, m, &done);
+    if (t != NULL)
+        urwire__decode_subtype(m, t, version);
+}
+
 bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
                                        urwire_message *m, urwire_robot_state *out)
 {
@@ -446,7 +472,7 @@ bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_
         out->malformed = 0;
         out->layouts = 0;
         out->unknown = 0;
-        urwire_decode_message(bytes, len, version, m);
+        urwire__decode_other_message(bytes, len, version, m);
         return false;
     }
     return urwire__decode_state_message(bytes, len, version, m, out);

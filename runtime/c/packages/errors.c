@@ -37,33 +37,58 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
 static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
                                 bool two);
 
-/* Where the element's index goes in a span's path ("[]"), or NULL when it has none. */
-static const char *urwire__index_hole(const urwire__span *s)
+/* Where an element's index goes in a span's path ("[]"), or NULL when it has none. */
+static const char *urwire__index_hole(const char *path)
 {
     const char *p;
-    if (s->index == URWIRE__NO_INDEX)
-        return NULL;
-    for (p = s->path; *p; p++)  /* a loop, not strstr: that would cost a firmware 1 KB */
+    for (p = path; *p; p++)  /* a loop, not strstr: that would cost a firmware 1 KB */
         if (p[0] == '[' && p[1] == ']')
             return p;
     return NULL;
 }
 
-/* The first field of a fixed run (ended by a NULL path) that does not fit names the error; an
- * element's index goes into its path's "[]". */
+/* The first span of a fixed run (ended by a NULL path) that does not fit before end, with its
+ * offset (*at) and its element's index (*index, URWIRE__NO_INDEX: none); NULL when all fit. A
+ * repeat row (path "") stands for elements 1 to size - 1 of a group, `offset` bytes apart,
+ * whose element 0 is the `index` rows before it. */
+static const urwire__span *urwire__first_short(const urwire__span *run, size_t pos, size_t end, size_t *at,
+                                               size_t *index)
+{
+    const urwire__span *s;
+    size_t k;
+    for (; run->path; run++) {
+        if (run->path[0] != '\0') {
+            *at = pos + run->offset;
+            *index = run->index;
+            if (*at + run->size > end)
+                return run;
+            continue;
+        }
+        for (k = 1; k < run->size; k++)
+            for (s = run - run->index; s < run; s++) {
+                *at = pos + k * run->offset + s->offset;
+                *index = k;
+                if (*at + s->size > end)
+                    return s;
+            }
+    }
+    return NULL;
+}
+
+/* The first field of a fixed run that does not fit names the error; an element's index goes
+ * into its path's "[]". */
 URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
 {
+    size_t at, index;
+    const urwire__span *s = urwire__first_short(run, pos, end, &at, &index);
     const char *hole;
-    for (; run->path; run++) {
-        if (pos + run->offset + run->size <= end)
-            continue;
-        hole = urwire__index_hole(run);
-        urwire__short(e, hole ? hole + 2 : run->path, pos + run->offset, run->size, end);
-        if (hole && e != NULL)
-            urwire__prefix_path(e, run->path, (size_t)(hole - run->path), run->index, 0, false);
-        return false;
-    }
-    return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
+    if (s == NULL)
+        return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
+    hole = index != URWIRE__NO_INDEX ? urwire__index_hole(s->path) : NULL;
+    urwire__short(e, hole ? hole + 2 : s->path, at, s->size, end);
+    if (hole && e != NULL)
+        urwire__prefix_path(e, s->path, (size_t)(hole - s->path), index, 0, false);
+    return false;
 }
 
 URWIRE__PRIVATE bool urwire__no_space(urwire_error *e, size_t pos, size_t need, size_t cap)
@@ -121,30 +146,24 @@ URWIRE__PRIVATE bool urwire__within(urwire_error *e, const char *name, size_t in
     return urwire__within2(e, name, index, 0, false);
 }
 
+/* The statuses' names in their order, then the name of any other, in an object of their own:
+ * as string literals they shared the one string section of the file, which the linker keeps
+ * whole for any error path a firmware links (430 bytes in every firmware). */
+static const char urwire__status_names[] =
+    "URWIRE_OK\0" "URWIRE_E_SHORT\0" "URWIRE_E_NEGATIVE_LENGTH\0" "URWIRE_E_VALUE_TYPE\0"
+    "URWIRE_E_TERMINATOR\0" "URWIRE_E_TOO_DEEP\0" "URWIRE_E_TOO_MANY_ITEMS\0" "URWIRE_E_EMPTY_ROWS\0"
+    "URWIRE_E_PACKAGE_HEADER_CUT\0" "URWIRE_E_PACKAGE_LENGTH_LOW\0" "URWIRE_E_PACKAGE_LENGTH_HIGH\0"
+    "URWIRE_E_LENGTH_LOW\0" "URWIRE_E_LENGTH_HIGH\0" "URWIRE_E_MESSAGE_TYPE\0"
+    "URWIRE_E_TRUNCATED_MESSAGE\0" "URWIRE_E_TRUNCATED_HEADER\0" "URWIRE_E_TOO_BIG_FOR_BUFFER\0"
+    "URWIRE_E_NO_SPACE\0" "URWIRE_E_TOO_LONG\0" "URWIRE_E_UNKNOWN";
+
 const char *urwire_status_name(urwire_status status)
 {
-    switch (status) {
-    case URWIRE_OK: return "URWIRE_OK";
-    case URWIRE_E_SHORT: return "URWIRE_E_SHORT";
-    case URWIRE_E_NEGATIVE_LENGTH: return "URWIRE_E_NEGATIVE_LENGTH";
-    case URWIRE_E_VALUE_TYPE: return "URWIRE_E_VALUE_TYPE";
-    case URWIRE_E_TERMINATOR: return "URWIRE_E_TERMINATOR";
-    case URWIRE_E_TOO_DEEP: return "URWIRE_E_TOO_DEEP";
-    case URWIRE_E_TOO_MANY_ITEMS: return "URWIRE_E_TOO_MANY_ITEMS";
-    case URWIRE_E_EMPTY_ROWS: return "URWIRE_E_EMPTY_ROWS";
-    case URWIRE_E_PACKAGE_HEADER_CUT: return "URWIRE_E_PACKAGE_HEADER_CUT";
-    case URWIRE_E_PACKAGE_LENGTH_LOW: return "URWIRE_E_PACKAGE_LENGTH_LOW";
-    case URWIRE_E_PACKAGE_LENGTH_HIGH: return "URWIRE_E_PACKAGE_LENGTH_HIGH";
-    case URWIRE_E_LENGTH_LOW: return "URWIRE_E_LENGTH_LOW";
-    case URWIRE_E_LENGTH_HIGH: return "URWIRE_E_LENGTH_HIGH";
-    case URWIRE_E_MESSAGE_TYPE: return "URWIRE_E_MESSAGE_TYPE";
-    case URWIRE_E_TRUNCATED_MESSAGE: return "URWIRE_E_TRUNCATED_MESSAGE";
-    case URWIRE_E_TRUNCATED_HEADER: return "URWIRE_E_TRUNCATED_HEADER";
-    case URWIRE_E_TOO_BIG_FOR_BUFFER: return "URWIRE_E_TOO_BIG_FOR_BUFFER";
-    case URWIRE_E_NO_SPACE: return "URWIRE_E_NO_SPACE";
-    case URWIRE_E_TOO_LONG: return "URWIRE_E_TOO_LONG";
-    }
-    return "URWIRE_E_UNKNOWN";
+    const char *name = urwire__status_names;
+    unsigned k = (unsigned)status, last = (unsigned)URWIRE_E_TOO_LONG;
+    for (k = k <= last ? k : last + 1u; k > 0; k--)
+        name += strlen(name) + 1;
+    return name;
 }
 
 /* "<what> at offset <o>: " */

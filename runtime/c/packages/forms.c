@@ -52,7 +52,9 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
     *by_length = false;
     if (nearest)
         *version = mine->rep;
-    if (mine != NULL && urwire__fits(mine, size))
+    /* The one form of a code that has one (the generator saw that every version reads it) is
+     * chosen whatever the size: no size can recognise another. */
+    if (URWIRE__ONE_FORM_A_CODE || (mine != NULL && urwire__fits(mine, size)))
         return mine;
     /* The sizes the generator found in exactly one fixed-size form (an open-ended one fits too
      * much to be recognised by its length). */

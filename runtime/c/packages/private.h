@@ -39,12 +39,21 @@ typedef struct urwire__versions {
 #define URWIRE__V(major, minor, bugfix) \
     (((uint64_t)(major) + 1u) << 42 | ((uint64_t)(minor) + 1u) << 21 | ((uint64_t)(bugfix) + 1u))
 
+/* The version key is inlined where speed is asked for (-O2, -O3); at -Os (__OPTIMIZE_SIZE__) it
+ * is one function: inlined, its 64-bit shifts and compares cost a 32-bit CPU some 100 bytes at
+ * each of the dozen places that key a version. */
+#if defined(__OPTIMIZE_SIZE__) && defined(__GNUC__)
+#define URWIRE__KEY_INLINE static __attribute__((noinline, unused))
+#else
+#define URWIRE__KEY_INLINE URWIRE__INLINE
+#endif
+
 URWIRE__INLINE uint64_t urwire__version_part(int part, int most)
 {
     return part < 0 ? 0u : part > most ? (uint64_t)most + 1u : (uint64_t)part + 1u;
 }
 
-URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
+URWIRE__KEY_INLINE uint64_t urwire__version_key(urwire_sw_version v)
 {
     /* Every real version in one test: no part negative or above 2^20. */
     if (URWIRE__LIKELY(((unsigned)v.major | (unsigned)v.minor | (unsigned)v.bugfix) <= 1u << 20))
@@ -54,7 +63,9 @@ URWIRE__INLINE uint64_t urwire__version_key(urwire_sw_version v)
 }
 
 /* One field of a fixed run of fields, read after one bounds check of the whole run. A table
- * of them (ended by a NULL path) names the field that a short run stops in. */
+ * of them (ended by a NULL path) names the field that a short run stops in. A group's
+ * elements after the first are one repeat row: path "", offset the stride, size the number of
+ * elements, index the number of rows of element 0, just before it (urwire__short_in_run). */
 typedef struct urwire__span {
     const char *path;               /* an element's: its index left out, "joints[].q_actual" */
     uint16_t offset;                /* within a layout: the generator refuses larger ones */
@@ -70,7 +81,7 @@ typedef struct urwire__ver {
     uint64_t key;
 } urwire__ver;
 
-URWIRE__INLINE urwire__ver urwire__ver_of(urwire_sw_version version)
+URWIRE__KEY_INLINE urwire__ver urwire__ver_of(urwire_sw_version version)
 {
     urwire__ver v;
     v.version = version;
@@ -195,7 +206,7 @@ typedef struct urwire__message_type {
     const urwire__span *header;     /* the header's fields, for a message too short for them */
     /* Reads the header into m->header and returns the subtype code; NULL for a body message:
      * one layout right after the message header, with no header fields and no subtype byte,
-     * its subtype code `code`. */
+     * code 0 of its form table. */
     int64_t (*read_header)(urwire_message *m);
 } urwire__message_type;
 
