@@ -34,8 +34,7 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
     return urwire__fail(e, URWIRE_E_SHORT, offset, path, (int64_t)need, end > offset ? (int64_t)(end - offset) : 0);
 }
 
-static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
-                                bool two);
+static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index);
 
 /* Where the element's index goes in a span's path ("[]"), or NULL when it has none. */
 static const char *urwire__index_hole(const urwire__span *s)
@@ -60,7 +59,7 @@ URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *r
         hole = urwire__index_hole(run);
         urwire__short(e, hole ? hole + 2 : run->path, pos + run->offset, run->size, end);
         if (hole && e != NULL)
-            urwire__prefix_path(e, run->path, (size_t)(hole - run->path), run->index, 0, false);
+            urwire__prefix_path(e, run->path, (size_t)(hole - run->path), run->index);
         return false;
     }
     return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
@@ -78,41 +77,38 @@ static void urwire__put_cut(char *path, size_t max, size_t at, const char *text,
         memcpy(path + at, text, len < max - at ? len : max - at);
 }
 
-/* Prefix the error's path with name[index] (name, of name_len characters, may be empty), or
- * name[index][index2] when two, joined as Python's paths are: threads[1].label_name,
- * variables[2][0].type. In place, cut to URWIRE_PATH_MAX - 1 characters like any path: no
- * second path on the stack. */
-static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
-                                bool two)
+/* Prefix the error's path with name[index] (name, of name_len characters, may be empty),
+ * joined as Python's paths are: threads[1].label_name, [0].type. In place, cut to
+ * URWIRE_PATH_MAX - 1 characters like any path: no second path on the stack, and one number's
+ * digits. */
+static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index)
 {
-    char digits[2][24];
-    size_t max = sizeof e->path - 1, nd = urwire__digits(digits[0], (int64_t)index);
-    size_t nd2 = two ? urwire__digits(digits[1], (int64_t)index2) : 0;
+    char digits[24];
+    size_t max = sizeof e->path - 1, nd = urwire__digits(digits, (int64_t)index);
     size_t rest = strlen(e->path), n, keep;
     bool dot = rest && e->path[0] != '[' && e->path[0] != '.';
-    n = name_len + 2 + nd + (two ? 2 + nd2 : 0) + (dot ? 1 : 0);  /* the prefix's length */
+    n = name_len + 2 + nd + (dot ? 1 : 0);  /* the prefix's length */
     keep = n >= max ? 0 : (rest < max - n ? rest : max - n);
     memmove(e->path + (n < max ? n : max), e->path, keep);
     e->path[(n < max ? n : max) + keep] = '\0';
     urwire__put_cut(e->path, max, 0, name, name_len);
     urwire__put_cut(e->path, max, name_len, "[", 1);
-    urwire__put_cut(e->path, max, name_len + 1, digits[0], nd);
+    urwire__put_cut(e->path, max, name_len + 1, digits, nd);
     urwire__put_cut(e->path, max, name_len + 1 + nd, "]", 1);
-    if (two) {
-        urwire__put_cut(e->path, max, name_len + 2 + nd, "[", 1);
-        urwire__put_cut(e->path, max, name_len + 3 + nd, digits[1], nd2);
-        urwire__put_cut(e->path, max, name_len + 3 + nd + nd2, "]", 1);
-    }
     if (dot)
         urwire__put_cut(e->path, max, n - 1, ".", 1);
 }
 
-/* urwire__prefix of a NUL-terminated name, for `return urwire__within2(...)`; a NULL e is an
- * error nobody reads. */
+/* Prefix the error's path with name[index], or name[index][index2] when two (the second
+ * index first: a path cut at the end is the same either way); for `return
+ * urwire__within2(...)`. A NULL e is an error nobody reads. */
 URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t index, size_t index2, bool two)
 {
-    if (e != NULL)
-        urwire__prefix_path(e, name, strlen(name), index, index2, two);
+    if (e == NULL)
+        return false;
+    if (two)
+        urwire__prefix_path(e, "", 0, index2);
+    urwire__prefix_path(e, name, strlen(name), index);
     return false;
 }
 
