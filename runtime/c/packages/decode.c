@@ -161,25 +161,49 @@ URWIRE__NOINLINE static bool urwire__decode_packages(urwire_message *out, urwire
     return true;
 }
 
-/* The layout of subtype `subtype` of type t (which has a layout) in the bytes after its header,
- * in the form its version and length choose (the Version message in that of the version it
- * carries), into *as: its kind, and false when it is malformed (*err set). *version becomes
- * the version of the form it was read in. */
-URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
-                                           int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
-                                           void *as, urwire_error *err)
+/* The form of subtype `subtype` of type t (which has a layout) for a message of len bytes, by
+ * its version and length (the Version message's by the version it carries): its kind, and the
+ * version it is read in (*version, and *ver as the layouts read it). Out of line, so that its
+ * locals are not on the stack under the layout's decoder. */
+URWIRE__NOINLINE static urwire_message_kind urwire__layout_form(const uint8_t *bytes, size_t len,
+                                                                 const urwire__message_type *t, int64_t subtype,
+                                                                 urwire_sw_version *version, urwire__ver *ver)
 {
-    size_t pos = t->body;
     bool by_length;
-    urwire__ver ver;
     const urwire__form *f;
     if (t->code == URWIRE__VERSION_TYPE && subtype == URWIRE__VERSION_SUBTYPE)
         urwire__peek_version(bytes, len, version);
     f = urwire__choose(t->forms, (size_t)subtype, urwire__segment(urwire__version_key(*version)), len - t->body,
                        version, &by_length);
-    *kind = (urwire_message_kind)f->layout;
-    ver = urwire__ver_of(*version);
+    *ver = urwire__ver_of(*version);
+    return (urwire_message_kind)f->layout;
+}
+
+/* The layout of subtype `subtype` of type t (which has a layout) in the bytes after its header,
+ * in the form its version and length choose (urwire__layout_form), into *as: its kind, and
+ * false when it is malformed (*err set). *version becomes the version of the form it was read
+ * in. */
+static bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t, int64_t subtype,
+                                  urwire_sw_version *version, urwire_message_kind *kind, void *as, urwire_error *err)
+{
+    size_t pos = t->body;
+    urwire__ver ver;
+    *kind = urwire__layout_form(bytes, len, t, subtype, version, &ver);
     return urwire__message_decoders[*kind](bytes, &pos, len, &ver, as, err);
+}
+
+/* A Version message's layout (every form of its subtype is that layout), read as
+ * urwire_decode_message reads it, for the framer: its decoder is called by its kind, a
+ * constant, so that no other layout's decoder is under the framer on the stack. *version
+ * becomes the version it carries; *out is a URWIRE__VERSION_LAYOUT. */
+URWIRE__PRIVATE bool urwire__decode_announced(const uint8_t *bytes, size_t len, urwire_sw_version *version,
+                                              void *out)
+{
+    const urwire__message_type *t = urwire__message_type_of(URWIRE__VERSION_TYPE);
+    size_t pos = t->body;
+    urwire__ver ver;
+    return urwire__layout_form(bytes, len, t, URWIRE__VERSION_SUBTYPE, version, &ver) == URWIRE__VERSION_KIND &&
+           urwire__message_decoders[URWIRE__VERSION_KIND](bytes, &pos, len, &ver, out, NULL);
 }
 
 /* A message with a common header and a subtype: the header, then the subtype's layout. */

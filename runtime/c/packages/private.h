@@ -314,9 +314,8 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
                                                   size_t size, urwire_sw_version *version, bool *by_length);
 URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out);
 /* decode.c */
-URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
-                                           int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
-                                           void *as, urwire_error *err);
+URWIRE__PRIVATE bool urwire__decode_announced(const uint8_t *bytes, size_t len, urwire_sw_version *version,
+                                              void *out);
 URWIRE__PRIVATE bool urwire__next_package_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use,
                                                  void *as, bool *failed);
 /* Room for a sub-package's layout alone, where the rest of a urwire_package is not wanted: in
