@@ -7807,7 +7807,9 @@ typedef struct urwire__running {
 static void urwire__run_at(urwire__running *r, urwire_sw_version version)
 {
     size_t row;
-    r->now = urwire__ver_of(version);
+    /* field by field: a urwire__ver built and copied costs a firmware's stack 50 bytes here */
+    r->now.version = version;
+    r->now.key = urwire__version_key(version);
     r->segment = urwire__segment(r->now.key);
     row = r->segment * urwire__package_form_table.ncodes;
     r->mine = urwire__package_form_table.mine + row;
