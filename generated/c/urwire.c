@@ -353,7 +353,8 @@ typedef struct urwire__value_table {
 
 /* views.c */
 URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len);
-URWIRE__PRIVATE urwire_seq urwire__seq(const uint8_t *msg, size_t pos, urwire_sw_version version, int terminator);
+URWIRE__PRIVATE void urwire__init_seq(urwire_seq *s, const uint8_t *msg, size_t pos, const urwire_sw_version *version,
+                                      int terminator);
 URWIRE__OPTIONAL urwire_bytes urwire__seq_bytes(const urwire_seq *s);
 /* version.c */
 URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix);
@@ -683,17 +684,17 @@ URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len)
     return b;
 }
 
-/* An empty seq at pos; its decoder moves end and count on. */
-URWIRE__PRIVATE urwire_seq urwire__seq(const uint8_t *msg, size_t pos, urwire_sw_version version, int terminator)
+/* *s, an empty seq at pos; its decoder moves end and count on. Set in place, field by field:
+ * a seq returned by value is built on the stack and copied, 36 bytes of a firmware's stack. */
+URWIRE__PRIVATE void urwire__init_seq(urwire_seq *s, const uint8_t *msg, size_t pos, const urwire_sw_version *version,
+                                      int terminator)
 {
-    urwire_seq s;
-    s.msg = msg;
-    s.pos = pos;
-    s.end = pos;
-    s.count = 0;
-    s.version = version;
-    s.terminator = terminator;
-    return s;
+    s->msg = msg;
+    s->pos = pos;
+    s->end = pos;
+    s->count = 0;
+    s->version = *version;
+    s->terminator = terminator;
 }
 
 /* The bytes of a seq's items, as they are encoded back. */
@@ -1123,7 +1124,7 @@ URWIRE__PRIVATE void urwire__read_texts(const uint8_t *msg, size_t *at, size_t e
                                         urwire_seq *out)
 {
     size_t pos = *at, k, last = end;
-    *out = urwire__seq(msg, pos, URWIRE_DEFAULT_VERSION, terminator);
+    urwire__init_seq(out, msg, pos, &URWIRE_DEFAULT_VERSION, terminator);
     for (k = end; k > pos; k--)
         if (msg[k - 1] == terminator) {
             last = k - 1;
@@ -4980,7 +4981,7 @@ static inline bool urwire__decode_program_threads(const uint8_t *msg, size_t *at
     urwire_program_threads_message *out = into;
     size_t pos = *at;
     (void)ver;
-    out->threads = urwire__seq(msg, pos, ver->version, -1);
+    urwire__init_seq(&out->threads, msg, pos, &ver->version, -1);
     while (pos < end) {
         urwire_program_thread item;
         if (!urwire__decode_program_thread(msg, &pos, end, ver, &item, err))
@@ -7419,7 +7420,7 @@ URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end
         out->code = e->code;
         out->kind = e->kind;
         out->type_name = e->name;
-        out->items = urwire__seq(msg, pos + 1, *version, -1);
+        urwire__init_seq(&out->items, msg, pos + 1, version, -1);
     }
     pos++;
     switch (e->layout) {
@@ -7545,7 +7546,7 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
 {
     const urwire__value_table *t = urwire__values_of(version);
     size_t pos = *at;
-    *out = urwire__seq(msg, pos, version, terminator);
+    urwire__init_seq(out, msg, pos, &version, terminator);
     while (pos < end) {
         if (!urwire__read_value(msg, &pos, end, &version, t, NULL, err))
             return urwire__within(err, path, out->count);
@@ -7748,7 +7749,7 @@ static void urwire__init_message(urwire_message *out, const uint8_t *bytes, size
     out->error.status = URWIRE_OK;
     out->error.path[0] = '\0';
     out->raw = urwire__view(bytes, 0);
-    out->packages = urwire__seq(bytes, len, version, -1);
+    urwire__init_seq(&out->packages, bytes, len, &version, -1);
     out->version = version;
     out->implied = false;
     out->implied_version = version;
@@ -7883,7 +7884,7 @@ URWIRE__NOINLINE static bool urwire__decode_packages(urwire_message *out, urwire
     size_t end = 0;
     urwire__start(&r, version);
     out->kind = URWIRE__PACKAGES_KIND;
-    out->packages = urwire__seq(out->bytes, URWIRE_HEADER_SIZE, version, -1);
+    urwire__init_seq(&out->packages, out->bytes, URWIRE_HEADER_SIZE, &version, -1);
     if (!urwire__walk_packages(out->bytes, URWIRE_HEADER_SIZE, out->length, &r, &out->packages.count, &end,
                                &out->error)) {
         out->packages.end = end;
@@ -8185,7 +8186,7 @@ URWIRE__NOINLINE static bool urwire__decode_state_message(const uint8_t *bytes, 
     urwire__init_message(m, bytes, len, version);
     urwire__start(&r, version);
     m->kind = URWIRE__PACKAGES_KIND;
-    m->packages = urwire__seq(bytes, URWIRE_HEADER_SIZE, version, -1);
+    urwire__init_seq(&m->packages, bytes, URWIRE_HEADER_SIZE, &version, -1);
     end = urwire__decode_into_state(bytes, URWIRE_HEADER_SIZE, len, &r, out, &m->packages.count, &m->error);
     m->packages.end = end;
     if (end < len) {

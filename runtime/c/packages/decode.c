@@ -15,7 +15,7 @@ static void urwire__init_message(urwire_message *out, const uint8_t *bytes, size
     out->error.status = URWIRE_OK;
     out->error.path[0] = '\0';
     out->raw = urwire__view(bytes, 0);
-    out->packages = urwire__seq(bytes, len, version, -1);
+    urwire__init_seq(&out->packages, bytes, len, &version, -1);
     out->version = version;
     out->implied = false;
     out->implied_version = version;
@@ -150,7 +150,7 @@ URWIRE__NOINLINE static bool urwire__decode_packages(urwire_message *out, urwire
     size_t end = 0;
     urwire__start(&r, version);
     out->kind = URWIRE__PACKAGES_KIND;
-    out->packages = urwire__seq(out->bytes, URWIRE_HEADER_SIZE, version, -1);
+    urwire__init_seq(&out->packages, out->bytes, URWIRE_HEADER_SIZE, &version, -1);
     if (!urwire__walk_packages(out->bytes, URWIRE_HEADER_SIZE, out->length, &r, &out->packages.count, &end,
                                &out->error)) {
         out->packages.end = end;
@@ -452,7 +452,7 @@ URWIRE__NOINLINE static bool urwire__decode_state_message(const uint8_t *bytes, 
     urwire__init_message(m, bytes, len, version);
     urwire__start(&r, version);
     m->kind = URWIRE__PACKAGES_KIND;
-    m->packages = urwire__seq(bytes, URWIRE_HEADER_SIZE, version, -1);
+    urwire__init_seq(&m->packages, bytes, URWIRE_HEADER_SIZE, &version, -1);
     end = urwire__decode_into_state(bytes, URWIRE_HEADER_SIZE, len, &r, out, &m->packages.count, &m->error);
     m->packages.end = end;
     if (end < len) {

@@ -268,7 +268,8 @@ typedef struct urwire__value_table {
 
 /* views.c */
 URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len);
-URWIRE__PRIVATE urwire_seq urwire__seq(const uint8_t *msg, size_t pos, urwire_sw_version version, int terminator);
+URWIRE__PRIVATE void urwire__init_seq(urwire_seq *s, const uint8_t *msg, size_t pos, const urwire_sw_version *version,
+                                      int terminator);
 URWIRE__OPTIONAL urwire_bytes urwire__seq_bytes(const urwire_seq *s);
 /* version.c */
 URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix);

@@ -75,7 +75,7 @@ URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end
         out->code = e->code;
         out->kind = e->kind;
         out->type_name = e->name;
-        out->items = urwire__seq(msg, pos + 1, *version, -1);
+        urwire__init_seq(&out->items, msg, pos + 1, version, -1);
     }
     pos++;
     switch (e->layout) {
@@ -201,7 +201,7 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
 {
     const urwire__value_table *t = urwire__values_of(version);
     size_t pos = *at;
-    *out = urwire__seq(msg, pos, version, terminator);
+    urwire__init_seq(out, msg, pos, &version, terminator);
     while (pos < end) {
         if (!urwire__read_value(msg, &pos, end, &version, t, NULL, err))
             return urwire__within(err, path, out->count);
