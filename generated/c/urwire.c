@@ -7942,8 +7942,10 @@ URWIRE__PRIVATE bool urwire__decode_announced(const uint8_t *bytes, size_t len, 
            urwire__message_decoders[URWIRE__VERSION_KIND](bytes, &pos, len, &ver, out, NULL);
 }
 
-/* A message with a common header and a subtype: the header, then the subtype's layout. */
-static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t, urwire_sw_version version)
+/* A message with a common header and a subtype: the header, then the subtype's layout, read in
+ * the version in out->version, which becomes that of its form (kept there: a copy would cost
+ * every decoder's stack 16 bytes). */
+static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t)
 {
     int64_t subtype;
     if (out->length < t->body) {
@@ -7958,12 +7960,11 @@ static bool urwire__decode_subtype(urwire_message *out, const urwire__message_ty
         out->raw = urwire__view(out->bytes + t->body, out->length - t->body);
         return true;
     }
-    if (!urwire__decode_layout(out->bytes, out->length, t, subtype, &version, &out->kind, &out->as, &out->error)) {
-        out->version = version;
+    if (!urwire__decode_layout(out->bytes, out->length, t, subtype, &out->version, &out->kind, &out->as,
+                               &out->error)) {
         urwire__fail_message(out, t->body);
         return false;
     }
-    out->version = version;
     return true;
 }
 
@@ -7986,7 +7987,7 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
         out->raw = urwire__view(bytes + URWIRE_HEADER_SIZE, len - URWIRE_HEADER_SIZE);
         return true;
     }
-    return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t, version);
+    return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t);
 }
 
 /* The sub-packages of a robot state from pos by the general rule (the version's form when its
