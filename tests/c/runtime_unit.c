@@ -152,7 +152,8 @@ static void forms(void)
 static void error_texts(void)
 {
     urwire_error e;
-    char small[8], digits[24];
+    char small[8], digits[24], field[URWIRE_PATH_MAX + 8], want[URWIRE_PATH_MAX + 64];
+    size_t k;
     CHECK(urwire__digits(digits, INT64_MIN) == 20 && memcmp(digits, "-9223372036854775808", 20) == 0);
     CHECK(!urwire__short(&e, "speed", 27, 8, 34));
     CHECK(e.status == URWIRE_E_SHORT && text_is(&e, "speed at offset 27: needs 8 bytes, 7 left"));
@@ -176,14 +177,24 @@ static void error_texts(void)
     urwire__fail(&e, URWIRE_E_VALUE_TYPE, 40, ".type", 99, 0);
     urwire__within2(&e, "", 2, 0, true);
     urwire__within(&e, "variables", 1);
-    CHECK(strcmp(e.path, "variables[1][2][0].type") == 0);
+    CHECK(text_is(&e, "variables[1][2][0].type at offset 40: unknown value type 99"));
     urwire__short(&e, "label_name", 12, 2, 13);
     urwire__within(&e, "threads", 3);
-    CHECK(strcmp(e.path, "threads[3].label_name") == 0);
-    memset(e.path, 'x', sizeof e.path - 1);  /* a path at its limit stays cut, never overflows */
-    e.path[sizeof e.path - 1] = '\0';
+    CHECK(text_is(&e, "threads[3].label_name at offset 12: needs 2 bytes, 1 left"));
+    /* A path at its limit is cut in the text, never overflows. */
+    memset(field, 'x', sizeof field - 1);
+    field[sizeof field - 1] = '\0';
+    urwire__short(&e, field, 0, 1, 0);
     urwire__within(&e, "variables", 1);
-    CHECK(strlen(e.path) == URWIRE_PATH_MAX - 1 && memcmp(e.path, "variables[1].xxx", 16) == 0);
+    memcpy(want, "variables[1].", 13);
+    memset(want + 13, 'x', URWIRE_PATH_MAX - 1 - 13);
+    strcpy(want + URWIRE_PATH_MAX - 1, " at offset 0: needs 1 bytes, 0 left");
+    CHECK(text_is(&e, want));
+    /* A path deeper than URWIRE_PATH_STEPS keeps its innermost steps. */
+    urwire__fail(&e, URWIRE_E_VALUE_TYPE, 40, ".type", 99, 0);
+    for (k = 0; k <= URWIRE_PATH_STEPS; k++)
+        urwire__within(&e, "", k);
+    CHECK(text_is(&e, "[3][2][1][0].type at offset 40: unknown value type 99"));
 }
 
 static void texts(void)

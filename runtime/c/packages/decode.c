@@ -13,7 +13,8 @@ static void urwire__init_message(urwire_message *out, const uint8_t *bytes, size
     out->message_type = len > URWIRE__TYPE_AT ? bytes[URWIRE__TYPE_AT] : 0;
     out->failed = false;
     out->error.status = URWIRE_OK;
-    out->error.path[0] = '\0';
+    out->error.field = "";
+    out->error.steps = 0;
     out->raw = urwire__view(bytes, 0);
     urwire__init_seq(&out->packages, bytes, len, &version, -1);
     out->version = version;
