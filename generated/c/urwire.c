@@ -7849,7 +7849,12 @@ static const urwire__form *urwire__other_form(uint8_t type, size_t size, urwire_
     const urwire__form *f = urwire__choose(&urwire__package_form_table, type, r->segment, size, &v, &by_length);
     /* urwire__choose changes the version when a form is chosen by length, or when the version
      * has no form of its own (the nearest form below, read as the version it stands for). */
-    *use = urwire__version_key(v) != r->now.key ? urwire__ver_of(v) : r->now;
+    if (urwire__version_key(v) != r->now.key) {  /* field by field, as in urwire__run_at */
+        use->version = v;
+        use->key = urwire__version_key(v);
+    } else {
+        *use = r->now;
+    }
     if (by_length && r->now.version.assumed) {
         urwire__run_at(r, v);
         r->implied = true;
