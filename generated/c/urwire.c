@@ -7417,8 +7417,13 @@ URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end
     const urwire__value_entry *e;
     int16_t rows = 0, cols = 0;
     urwire_bytes text;
-    /* false said outright, not as the error setters' result: a file analysed on its own (the
-     * runtime's standalone build) cannot see that they return false, and out is unset here */
+    /* *open set first: a file analysed on its own (the runtime's standalone build) cannot see
+     * that the error setters below return false */
+    open->done = 0;
+    open->rows = 0;
+    open->cols = 0;
+    /* false said outright, not as the error setters' result, for the same reason: out is
+     * unset here */
     if (pos >= end) {
         urwire__short(err, ".type", pos, 1, end);
         return false;
@@ -7494,7 +7499,6 @@ URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end
         pos += 4;
         break;
     }
-    open->done = 0;
     open->rows = (uint16_t)rows;
     open->cols = (uint16_t)cols;
     if (out != NULL) {
@@ -7958,10 +7962,12 @@ URWIRE__PRIVATE bool urwire__decode_announced(const uint8_t *bytes, size_t len, 
                                               void *out)
 {
     const urwire__message_type *t = urwire__message_type_of(URWIRE__VERSION_TYPE);
+    const urwire__decode_fn decode = urwire__message_decoders[URWIRE__VERSION_KIND];  /* NULL: no such layout */
     size_t pos = t->body;
     urwire__ver ver;
-    return urwire__layout_form(bytes, len, t, URWIRE__VERSION_SUBTYPE, version, &ver) == URWIRE__VERSION_KIND &&
-           urwire__message_decoders[URWIRE__VERSION_KIND](bytes, &pos, len, &ver, out, NULL);
+    return decode != NULL &&
+           urwire__layout_form(bytes, len, t, URWIRE__VERSION_SUBTYPE, version, &ver) == URWIRE__VERSION_KIND &&
+           decode(bytes, &pos, len, &ver, out, NULL);
 }
 
 /* A message with a common header and a subtype: the header, then the subtype's layout, read in

@@ -208,10 +208,12 @@ URWIRE__PRIVATE bool urwire__decode_announced(const uint8_t *bytes, size_t len, 
                                               void *out)
 {
     const urwire__message_type *t = urwire__message_type_of(URWIRE__VERSION_TYPE);
+    const urwire__decode_fn decode = urwire__message_decoders[URWIRE__VERSION_KIND];  /* NULL: no such layout */
     size_t pos = t->body;
     urwire__ver ver;
-    return urwire__layout_form(bytes, len, t, URWIRE__VERSION_SUBTYPE, version, &ver) == URWIRE__VERSION_KIND &&
-           urwire__message_decoders[URWIRE__VERSION_KIND](bytes, &pos, len, &ver, out, NULL);
+    return decode != NULL &&
+           urwire__layout_form(bytes, len, t, URWIRE__VERSION_SUBTYPE, version, &ver) == URWIRE__VERSION_KIND &&
+           decode(bytes, &pos, len, &ver, out, NULL);
 }
 
 /* A message with a common header and a subtype: the header, then the subtype's layout, read in

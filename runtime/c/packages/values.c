@@ -56,8 +56,13 @@ URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end
     const urwire__value_entry *e;
     int16_t rows = 0, cols = 0;
     urwire_bytes text;
-    /* false said outright, not as the error setters' result: a file analysed on its own (the
-     * runtime's standalone build) cannot see that they return false, and out is unset here */
+    /* *open set first: a file analysed on its own (the runtime's standalone build) cannot see
+     * that the error setters below return false */
+    open->done = 0;
+    open->rows = 0;
+    open->cols = 0;
+    /* false said outright, not as the error setters' result, for the same reason: out is
+     * unset here */
     if (pos >= end) {
         urwire__short(err, ".type", pos, 1, end);
         return false;
@@ -133,7 +138,6 @@ URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end
         pos += 4;
         break;
     }
-    open->done = 0;
     open->rows = (uint16_t)rows;
     open->cols = (uint16_t)cols;
     if (out != NULL) {
