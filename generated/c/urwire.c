@@ -384,7 +384,7 @@ URWIRE__PRIVATE bool urwire__put_prefixed(uint8_t *out, size_t cap, size_t *pos,
 /* values.c */
 URWIRE__PRIVATE const urwire__value_table *urwire__values_of(urwire_sw_version v);
 URWIRE__PRIVATE const urwire__value_entry *urwire__value_entry_of(const urwire__value_table *t, uint8_t code);
-URWIRE__OPTIONAL bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+URWIRE__OPTIONAL bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                                           uint8_t terminator, const char *path, urwire_seq *out, urwire_error *err);
 /* kinds.c */
 URWIRE__PRIVATE const urwire__message_type *urwire__message_type_of(uint8_t code);
@@ -5635,7 +5635,7 @@ static inline bool urwire__decode_global_variables_update(const uint8_t *msg, si
     p = msg + pos;
     out->start_index = urwire__u16(p);
     pos += 2u;
-    if (!urwire__read_values(msg, &pos, end, ver->version, 0x0a, "variables", &out->variables, err))
+    if (!urwire__read_values(msg, &pos, end, &ver->version, 0x0a, "variables", &out->variables, err))
         return false;
     out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
@@ -7561,14 +7561,14 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, const
 }
 
 /* Top-level values: each a value and the terminator, until the end of the layout. */
-URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                                          uint8_t terminator, const char *path, urwire_seq *out, urwire_error *err)
 {
-    const urwire__value_table *t = urwire__values_of(version);
+    const urwire__value_table *t = urwire__values_of(*version);
     size_t pos = *at;
-    urwire__init_seq(out, msg, pos, &version, terminator);
+    urwire__init_seq(out, msg, pos, version, terminator);
     while (pos < end) {
-        if (!urwire__read_value(msg, &pos, end, &version, t, NULL, err))
+        if (!urwire__read_value(msg, &pos, end, version, t, NULL, err))
             return urwire__within(err, path, out->count);
         if (pos >= end) {
             urwire__short(err, "", pos, 1, end);

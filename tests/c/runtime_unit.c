@@ -240,7 +240,7 @@ static void values(void)
     urwire_error e;
     size_t at = 0;
     CHECK(urwire__values_of(v32)->count == 2 && urwire__values_of(v59)->count == 8);
-    CHECK(urwire__read_values(good, &at, sizeof good, v59, '\n', "values", &seq, &e));
+    CHECK(urwire__read_values(good, &at, sizeof good, &v59, '\n', "values", &seq, &e));
     CHECK(at == sizeof good && seq.count == 3);
     CHECK(urwire_next_value(&seq, &val) && val.kind == URWIRE_VALUE_INT && val.as.integer == 7);
     CHECK(urwire_next_value(&seq, &val) && val.kind == URWIRE_VALUE_LIST && val.rows == 2);
@@ -250,31 +250,31 @@ static void values(void)
     CHECK(!urwire_next_value(&items, &item));
     CHECK(urwire_next_value(&seq, &val) && val.kind == URWIRE_VALUE_NONE && !urwire_next_value(&seq, &val));
     at = 0;
-    CHECK(!urwire__read_values(deep, &at, sizeof deep, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(deep, &at, sizeof deep, &v59, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0][0][0][0] at offset 9: nesting deeper than 3"));
     at = 0;
-    CHECK(!urwire__read_values(old_list, &at, sizeof old_list, v32, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(old_list, &at, sizeof old_list, &v32, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0].type at offset 0: unknown value type 17"));
     at = 0;
-    CHECK(!urwire__read_values(good, &at, 4, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(good, &at, 4, &v59, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0] at offset 1: needs 4 bytes, 3 left"));
     /* Counts are weighed against the bytes left, one byte a value at the least (NONE). */
     at = 0;
-    CHECK(!urwire__read_values(long_list, &at, sizeof long_list, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(long_list, &at, sizeof long_list, &v59, '\n', "values", &seq, &e));
     CHECK(e.status == URWIRE_E_TOO_MANY_ITEMS);
     CHECK(text_is(&e, "values[0] at offset 1: 4 items need more than the 3 bytes left"));
     at = 0;
-    CHECK(!urwire__read_values(empty_rows, &at, sizeof empty_rows, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(empty_rows, &at, sizeof empty_rows, &v59, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0] at offset 1: 32767 rows of 0 columns"));
     at = 0;
-    CHECK(urwire__read_values(no_rows, &at, sizeof no_rows, v59, '\n', "values", &seq, &e));
+    CHECK(urwire__read_values(no_rows, &at, sizeof no_rows, &v59, '\n', "values", &seq, &e));
     CHECK(urwire_next_value(&seq, &val) && val.rows == 0 && val.cols == 32767 && val.items.count == 0);
     at = 0;
-    CHECK(!urwire__read_values(big_matrix, &at, sizeof big_matrix, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(big_matrix, &at, sizeof big_matrix, &v59, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0] at offset 1: 6 items need more than the 4 bytes left"));
     /* Exactly as many bytes as items is not refused by the count: the items then decide. */
     at = 0;
-    CHECK(!urwire__read_values(fitting, &at, sizeof fitting, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(fitting, &at, sizeof fitting, &v59, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0][2].type at offset 5: unknown value type 10"));
 }
 

@@ -299,7 +299,7 @@ URWIRE__PRIVATE bool urwire__put_prefixed(uint8_t *out, size_t cap, size_t *pos,
 /* values.c */
 URWIRE__PRIVATE const urwire__value_table *urwire__values_of(urwire_sw_version v);
 URWIRE__PRIVATE const urwire__value_entry *urwire__value_entry_of(const urwire__value_table *t, uint8_t code);
-URWIRE__OPTIONAL bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+URWIRE__OPTIONAL bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                                           uint8_t terminator, const char *path, urwire_seq *out, urwire_error *err);
 /* kinds.c */
 URWIRE__PRIVATE const urwire__message_type *urwire__message_type_of(uint8_t code);

@@ -200,14 +200,14 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, const
 }
 
 /* Top-level values: each a value and the terminator, until the end of the layout. */
-URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                                          uint8_t terminator, const char *path, urwire_seq *out, urwire_error *err)
 {
-    const urwire__value_table *t = urwire__values_of(version);
+    const urwire__value_table *t = urwire__values_of(*version);
     size_t pos = *at;
-    urwire__init_seq(out, msg, pos, &version, terminator);
+    urwire__init_seq(out, msg, pos, version, terminator);
     while (pos < end) {
-        if (!urwire__read_value(msg, &pos, end, &version, t, NULL, err))
+        if (!urwire__read_value(msg, &pos, end, version, t, NULL, err))
             return urwire__within(err, path, out->count);
         if (pos >= end) {
             urwire__short(err, "", pos, 1, end);
