@@ -7417,13 +7417,8 @@ URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end
     const urwire__value_entry *e;
     int16_t rows = 0, cols = 0;
     urwire_bytes text;
-    /* *open set first: a file analysed on its own (the runtime's standalone build) cannot see
-     * that the error setters below return false */
-    open->done = 0;
-    open->rows = 0;
-    open->cols = 0;
-    /* false said outright, not as the error setters' result, for the same reason: out is
-     * unset here */
+    /* false said outright, not as the error setters' result: a file analysed on its own (the
+     * runtime's standalone build) cannot see that they return false, and out is unset here */
     if (pos >= end) {
         urwire__short(err, ".type", pos, 1, end);
         return false;
@@ -7432,6 +7427,11 @@ URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end
         urwire__fail(err, URWIRE_E_TOO_DEEP, pos, "", URWIRE_MAX_VALUE_DEPTH, 0);
         return false;
     }
+    /* *open (within open[] now that depth is) set before the returns below, for the same
+     * reason */
+    open->done = 0;
+    open->rows = 0;
+    open->cols = 0;
     e = urwire__value_entry_of(t, msg[pos]);
     if (e == NULL) {
         urwire__fail(err, URWIRE_E_VALUE_TYPE, pos, ".type", msg[pos], 0);
