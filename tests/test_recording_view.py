@@ -1,6 +1,7 @@
 """docs/recording-view.md shows the commands `make docs-pictures` runs, word for word, and the picture
 they made (docs/img/recording-view.png): small, and drawn by the urwire and Matplotlib the page
 names, as the PNG's own texts say; its figures of plot's memory bounds are the code's."""
+import os
 import re
 import struct
 import subprocess
@@ -38,7 +39,10 @@ def test_the_page_shows_the_commands_the_target_runs():
     block = page().split("## The commands that made it", 1)[1].split("```sh\n", 1)[1].split("```", 1)[0]
     script = SCRIPT.read_text(encoding="utf-8").split(MARKER + "\n", 1)[1]
     assert block == script
-    dry = subprocess.run(["make", "-n", "docs-pictures"], cwd=ROOT, capture_output=True, text=True, timeout=60)
+    # Run under `make test` too, whose MAKEFLAGS would have the inner make name its directory.
+    env = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MAKELEVEL", "MFLAGS")}
+    dry = subprocess.run(["make", "-n", "--no-print-directory", "docs-pictures"], cwd=ROOT, env=env,
+                         capture_output=True, text=True, timeout=60)
     assert dry.returncode == 0 and dry.stdout.split("\n") == ["bash scripts/recording-view.sh", ""], dry.stderr
     assert "--out docs/img/recording-view.png" in block and "--mcap build/recording-view.mcap" in block
 

@@ -364,7 +364,8 @@ typedef struct urwire__value_table {
 
 /* views.c */
 URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len);
-URWIRE__PRIVATE urwire_seq urwire__seq(const uint8_t *msg, size_t pos, urwire_sw_version version, int terminator);
+URWIRE__PRIVATE void urwire__init_seq(urwire_seq *s, const uint8_t *msg, size_t pos, const urwire_sw_version *version,
+                                      int terminator);
 URWIRE__OPTIONAL urwire_bytes urwire__seq_bytes(const urwire_seq *s);
 /* version.c */
 URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix);
@@ -394,7 +395,7 @@ URWIRE__PRIVATE bool urwire__put_prefixed(uint8_t *out, size_t cap, size_t *pos,
 /* values.c */
 URWIRE__PRIVATE const urwire__value_table *urwire__values_of(urwire_sw_version v);
 URWIRE__PRIVATE const urwire__value_entry *urwire__value_entry_of(const urwire__value_table *t, uint8_t code);
-URWIRE__OPTIONAL bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+URWIRE__OPTIONAL bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                                           uint8_t terminator, const char *path, urwire_seq *out, urwire_error *err);
 /* kinds.c */
 URWIRE__PRIVATE const urwire__message_type *urwire__message_type_of(uint8_t code);
@@ -410,9 +411,8 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
                                                   size_t size, urwire_sw_version *version, bool *by_length);
 URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out);
 /* decode.c */
-URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
-                                           int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
-                                           void *as, urwire_error *err);
+URWIRE__PRIVATE bool urwire__decode_announced(const uint8_t *bytes, size_t len, urwire_sw_version *version,
+                                              void *out);
 URWIRE__PRIVATE bool urwire__next_package_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use,
                                                  void *as, bool *failed);
 /* Room for a sub-package's layout alone, where the rest of a urwire_package is not wanted: in
@@ -695,17 +695,17 @@ URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len)
     return b;
 }
 
-/* An empty seq at pos; its decoder moves end and count on. */
-URWIRE__PRIVATE urwire_seq urwire__seq(const uint8_t *msg, size_t pos, urwire_sw_version version, int terminator)
+/* *s, an empty seq at pos; its decoder moves end and count on. Set in place, field by field:
+ * a seq returned by value is built on the stack and copied, 36 bytes of a firmware's stack. */
+URWIRE__PRIVATE void urwire__init_seq(urwire_seq *s, const uint8_t *msg, size_t pos, const urwire_sw_version *version,
+                                      int terminator)
 {
-    urwire_seq s;
-    s.msg = msg;
-    s.pos = pos;
-    s.end = pos;
-    s.count = 0;
-    s.version = version;
-    s.terminator = terminator;
-    return s;
+    s->msg = msg;
+    s->pos = pos;
+    s->end = pos;
+    s->count = 0;
+    s->version = *version;
+    s->terminator = terminator;
 }
 
 /* The bytes of a seq's items, as they are encoded back. */
@@ -830,18 +830,10 @@ URWIRE__PRIVATE void urwire__hex2(urwire__text *t, int64_t v)
 /* ---- runtime/c/packages/errors.c ---- */
 /* ---- errors ------------------------------------------------------------------------------- */
 
-static void urwire__set_path(urwire_error *e, const char *path)
-{
-    size_t n = strlen(path);
-    if (n >= sizeof e->path)
-        n = sizeof e->path - 1;
-    memcpy(e->path, path, n);
-    e->path[n] = '\0';
-}
-
-/* Sets *e; returns false, for `return urwire__fail(...)`. A NULL e is an error nobody reads
- * (a robot state's sub-packages, whose failures are bits): the decoders then keep no
- * urwire_error on the stack for it. */
+/* Sets *e; returns false, for `return urwire__fail(...)`. path is the parser's own text (a
+ * literal or a table's), kept, not copied. A NULL e is an error nobody reads (a robot
+ * state's sub-packages, whose failures are bits): the decoders then keep no urwire_error on
+ * the stack for it. */
 URWIRE__PRIVATE bool urwire__fail(urwire_error *e, urwire_status status, size_t offset, const char *path,
                                   int64_t value, int64_t left)
 {
@@ -851,7 +843,8 @@ URWIRE__PRIVATE bool urwire__fail(urwire_error *e, urwire_status status, size_t 
     e->offset = offset;
     e->value = value;
     e->left = left;
-    urwire__set_path(e, path);
+    e->field = path;
+    e->steps = 0;
     return false;
 }
 
@@ -861,8 +854,22 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
     return urwire__fail(e, URWIRE_E_SHORT, offset, path, (int64_t)need, end > offset ? (int64_t)(end - offset) : 0);
 }
 
-static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
-                                bool two);
+/* Puts name[index] (name, of name_len characters, may be empty), or name[index][index2] when
+ * two, before the error's path: one step more. Indexes are counts within one message, far
+ * below 2^32; a MATRIX's columns are int16. A path of more steps than URWIRE_PATH_STEPS (no
+ * layout of the spec nests that deep) keeps its innermost. */
+static void urwire__add_step(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
+                                bool two)
+{
+    urwire_path_step *s;
+    if (e->steps == URWIRE_PATH_STEPS)
+        return;
+    s = &e->step[e->steps++];
+    s->name = name;
+    s->name_len = (uint16_t)name_len;
+    s->index = (uint32_t)index;
+    s->index2 = two ? (uint16_t)(index2 + 1) : 0;
+}
 
 /* Where an element's index goes in a span's path ("[]"), or NULL when it has none. */
 static const char *urwire__index_hole(const char *path)
@@ -914,7 +921,7 @@ URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *r
     hole = index != URWIRE__NO_INDEX ? urwire__index_hole(s->path) : NULL;
     urwire__short(e, hole ? hole + 2 : s->path, at, s->size, end);
     if (hole && e != NULL)
-        urwire__prefix_path(e, s->path, (size_t)(hole - s->path), index, 0, false);
+        urwire__add_step(e, s->path, (size_t)(hole - s->path), index, 0, false);
     return false;
 }
 
@@ -923,48 +930,12 @@ URWIRE__PRIVATE bool urwire__no_space(urwire_error *e, size_t pos, size_t need, 
     return urwire__fail(e, URWIRE_E_NO_SPACE, pos, "", (int64_t)need, (int64_t)(cap - pos));
 }
 
-/* text[0..len) into path at `at`, as much of it as falls before max. */
-static void urwire__put_cut(char *path, size_t max, size_t at, const char *text, size_t len)
-{
-    if (at < max)
-        memcpy(path + at, text, len < max - at ? len : max - at);
-}
-
-/* Prefix the error's path with name[index] (name, of name_len characters, may be empty), or
- * name[index][index2] when two, joined as Python's paths are: threads[1].label_name,
- * variables[2][0].type. In place, cut to URWIRE_PATH_MAX - 1 characters like any path: no
- * second path on the stack. */
-static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
-                                bool two)
-{
-    char digits[2][24];
-    size_t max = sizeof e->path - 1, nd = urwire__digits(digits[0], (int64_t)index);
-    size_t nd2 = two ? urwire__digits(digits[1], (int64_t)index2) : 0;
-    size_t rest = strlen(e->path), n, keep;
-    bool dot = rest && e->path[0] != '[' && e->path[0] != '.';
-    n = name_len + 2 + nd + (two ? 2 + nd2 : 0) + (dot ? 1 : 0);  /* the prefix's length */
-    keep = n >= max ? 0 : (rest < max - n ? rest : max - n);
-    memmove(e->path + (n < max ? n : max), e->path, keep);
-    e->path[(n < max ? n : max) + keep] = '\0';
-    urwire__put_cut(e->path, max, 0, name, name_len);
-    urwire__put_cut(e->path, max, name_len, "[", 1);
-    urwire__put_cut(e->path, max, name_len + 1, digits[0], nd);
-    urwire__put_cut(e->path, max, name_len + 1 + nd, "]", 1);
-    if (two) {
-        urwire__put_cut(e->path, max, name_len + 2 + nd, "[", 1);
-        urwire__put_cut(e->path, max, name_len + 3 + nd, digits[1], nd2);
-        urwire__put_cut(e->path, max, name_len + 3 + nd + nd2, "]", 1);
-    }
-    if (dot)
-        urwire__put_cut(e->path, max, n - 1, ".", 1);
-}
-
-/* urwire__prefix of a NUL-terminated name, for `return urwire__within2(...)`; a NULL e is an
- * error nobody reads. */
+/* Prefix the error's path with name[index], or name[index][index2] when two, for `return
+ * urwire__within2(...)`; a NULL e is an error nobody reads. */
 URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t index, size_t index2, bool two)
 {
     if (e != NULL)
-        urwire__prefix_path(e, name, strlen(name), index, index2, two);
+        urwire__add_step(e, name, strlen(name), index, index2, two);
     return false;
 }
 
@@ -993,10 +964,51 @@ const char *urwire_status_name(urwire_status status)
     return name;
 }
 
-/* "<what> at offset <o>: " */
+/* p[0..n) of the path, as much as the room left for it holds. */
+static void urwire__path_part(urwire__text *t, const char *p, size_t n, size_t *room)
+{
+    n = n < *room ? n : *room;
+    urwire__bytes(t, p, n);
+    *room -= n;
+}
+
+/* "[<index>]" of the path. */
+static void urwire__path_index(urwire__text *t, size_t index, size_t *room)
+{
+    char digits[24];
+    urwire__path_part(t, "[", 1, room);
+    urwire__path_part(t, digits, urwire__digits(digits, (int64_t)index), room);
+    urwire__path_part(t, "]", 1, room);
+}
+
+/* The error's path: its steps, outermost first, then its field, joined as Python's paths are
+ * (a dot before a part that starts with neither '[' nor '.'): threads[1].label_name,
+ * variables[2][0].type. Cut to URWIRE_PATH_MAX - 1 characters. */
+static void urwire__path(urwire__text *t, const urwire_error *e)
+{
+    size_t room = URWIRE_PATH_MAX - 1, k = e->steps;
+    const urwire_path_step *s;
+    const char *next;
+    while (k--) {
+        s = &e->step[k];
+        urwire__path_part(t, s->name, s->name_len, &room);
+        urwire__path_index(t, s->index, &room);
+        if (s->index2)
+            urwire__path_index(t, (size_t)s->index2 - 1, &room);
+        next = k == 0 ? e->field : e->step[k - 1].name_len ? e->step[k - 1].name : "[";
+        if (*next && *next != '[' && *next != '.')
+            urwire__path_part(t, ".", 1, &room);
+    }
+    urwire__path_part(t, e->field, strlen(e->field), &room);
+}
+
+/* "<path> at offset <o>: ", the error's path, or what when it is not NULL. */
 static void urwire__at(urwire__text *t, const urwire_error *e, const char *what)
 {
-    urwire__str(t, what);
+    if (what != NULL)
+        urwire__str(t, what);
+    else
+        urwire__path(t, e);
     urwire__str(t, " at offset ");
     urwire__num(t, (int64_t)e->offset);
     urwire__str(t, ": ");
@@ -1014,7 +1026,7 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         break;
     case URWIRE_E_SHORT:
     case URWIRE_E_PACKAGE_HEADER_CUT:
-        urwire__at(&t, e, e->status == URWIRE_E_SHORT ? e->path : "package");
+        urwire__at(&t, e, e->status == URWIRE_E_SHORT ? NULL : "package");
         urwire__str(&t, "needs ");
         urwire__num(&t, e->value);
         urwire__str(&t, " bytes, ");
@@ -1022,36 +1034,36 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         urwire__str(&t, " left");
         break;
     case URWIRE_E_NEGATIVE_LENGTH:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__str(&t, "negative length ");
         urwire__num(&t, e->value);
         break;
     case URWIRE_E_VALUE_TYPE:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__str(&t, "unknown value type ");
         urwire__num(&t, e->value);
         break;
     case URWIRE_E_TERMINATOR:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__str(&t, "expected terminator 0x");
         urwire__hex2(&t, e->left);
         urwire__str(&t, ", found 0x");
         urwire__hex2(&t, e->value);
         break;
     case URWIRE_E_TOO_DEEP:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__str(&t, "nesting deeper than ");
         urwire__num(&t, e->value);
         break;
     case URWIRE_E_TOO_MANY_ITEMS:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__num(&t, e->value);
         urwire__str(&t, " items need more than the ");
         urwire__num(&t, e->left);
         urwire__str(&t, " bytes left");
         break;
     case URWIRE_E_EMPTY_ROWS:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__num(&t, e->value);
         urwire__str(&t, " rows of 0 columns");
         break;
@@ -1106,7 +1118,7 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         urwire__str(&t, " bytes");
         break;
     case URWIRE_E_NO_SPACE:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__str(&t, "needs ");
         urwire__num(&t, e->value);
         urwire__str(&t, " bytes, ");
@@ -1114,7 +1126,7 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         urwire__str(&t, " left in the output");
         break;
     case URWIRE_E_TOO_LONG:
-        urwire__str(&t, e->path);
+        urwire__path(&t, e);
         urwire__str(&t, ": ");
         urwire__num(&t, e->value);
         urwire__str(&t, " bytes do not fit the length prefix (max ");
@@ -1158,7 +1170,7 @@ URWIRE__PRIVATE void urwire__read_texts(const uint8_t *msg, size_t *at, size_t e
                                         urwire_seq *out)
 {
     size_t pos = *at, k, last = end;
-    *out = urwire__seq(msg, pos, URWIRE_DEFAULT_VERSION, terminator);
+    urwire__init_seq(out, msg, pos, &URWIRE_DEFAULT_VERSION, terminator);
     for (k = end; k > pos; k--)
         if (msg[k - 1] == terminator) {
             last = k - 1;
@@ -4879,7 +4891,7 @@ static inline bool urwire__decode_program_threads(const uint8_t *msg, size_t *at
     urwire_program_threads_message *out = into;
     size_t pos = *at;
     (void)ver;
-    out->threads = urwire__seq(msg, pos, ver->version, -1);
+    urwire__init_seq(&out->threads, msg, pos, &ver->version, -1);
     while (pos < end) {
         urwire_program_thread item;
         if (!urwire__decode_program_thread(msg, &pos, end, ver, &item, err))
@@ -5517,7 +5529,7 @@ static inline bool urwire__decode_global_variables_update(const uint8_t *msg, si
     p = msg + pos;
     out->start_index = urwire__u16(p);
     pos += 2u;
-    if (!urwire__read_values(msg, &pos, end, ver->version, 0x0a, "variables", &out->variables, err))
+    if (!urwire__read_values(msg, &pos, end, &ver->version, 0x0a, "variables", &out->variables, err))
         return false;
     out->version = ver->version;
     out->extra = urwire__view(msg + pos, end - pos);
@@ -7214,15 +7226,31 @@ static bool urwire__count_fits(const urwire__value_table *t, uint64_t items, siz
     return true;
 }
 
-/* One value at *at, `depth` deep: its type byte and data, and of a LIST or MATRIX its counts,
- * checked against the bytes left, but not its items (out->items: where they start, and
- * their count).
+/* A value whose items are being checked, LIST or MATRIX: its rows and columns (int16 counts:
+ * at most 32767 * 32767 items), how many items are done. 8 bytes: the stack holds nine. */
+typedef struct urwire__open_value {
+    uint32_t done;
+    uint16_t rows;
+    uint16_t cols;                  /* a MATRIX's columns (its items go row by row), else 0 */
+} urwire__open_value;
+
+URWIRE__INLINE uint32_t urwire__items_of(const urwire__open_value *v)
+{
+    return v->cols ? (uint32_t)v->rows * v->cols : v->rows;
+}
+
+/* One value at *at, `depth` deep: its type byte and data, and of a LIST or MATRIX its counts
+ * (into *open, done 0), checked against the bytes left, but not its items. Into *out as well
+ * when it is not NULL (out->items: where the items start, and their count).
  * Error paths are relative ("", ".type") and prefixed by the callers. */
-static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
-                              const urwire__value_table *t, size_t depth, urwire_value *out, urwire_error *err)
+URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
+                                      const urwire__value_table *t, size_t depth, urwire__open_value *open,
+                                      urwire_value *out, urwire_error *err)
 {
     size_t pos = *at, k;
     const urwire__value_entry *e;
+    int16_t rows = 0, cols = 0;
+    urwire_bytes text;
     /* false said outright, not as the error setters' result: a file analysed on its own (the
      * runtime's standalone build) cannot see that they return false, and out is unset here */
     if (pos >= end) {
@@ -7233,17 +7261,22 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const 
         urwire__fail(err, URWIRE_E_TOO_DEEP, pos, "", URWIRE_MAX_VALUE_DEPTH, 0);
         return false;
     }
+    /* *open (within open[] now that depth is) set before the returns below, for the same
+     * reason */
+    open->done = 0;
+    open->rows = 0;
+    open->cols = 0;
     e = urwire__value_entry_of(t, msg[pos]);
     if (e == NULL) {
         urwire__fail(err, URWIRE_E_VALUE_TYPE, pos, ".type", msg[pos], 0);
         return false;
     }
-    out->code = e->code;
-    out->kind = e->kind;
-    out->type_name = e->name;
-    out->rows = 0;
-    out->cols = 0;
-    out->items = urwire__seq(msg, pos + 1, *version, -1);
+    if (out != NULL) {
+        out->code = e->code;
+        out->kind = e->kind;
+        out->type_name = e->name;
+        urwire__init_seq(&out->items, msg, pos + 1, version, -1);
+    }
     pos++;
     switch (e->layout) {
     case URWIRE__LAYOUT_EMPTY:
@@ -7251,7 +7284,9 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const 
     case URWIRE__LAYOUT_SCALAR:
         if (end - pos < (e->item == URWIRE__ITEM_BOOL ? 1u : 4u))
             return urwire__short(err, "", pos, e->item == URWIRE__ITEM_BOOL ? 1u : 4u, end);
-        if (e->item == URWIRE__ITEM_BOOL)
+        if (out == NULL)
+            pos += e->item == URWIRE__ITEM_BOOL ? 1u : 4u;
+        else if (e->item == URWIRE__ITEM_BOOL)
             out->as.boolean = msg[pos++];
         else if (e->item == URWIRE__ITEM_I32)
             out->as.integer = urwire__i32(msg + pos), pos += 4;
@@ -7261,90 +7296,83 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const 
     case URWIRE__LAYOUT_ARRAY:
         if (end - pos < (size_t)e->count * 4u)
             return urwire__short(err, "", pos, (size_t)e->count * 4u, end);
-        for (k = 0; k < e->count; k++)
+        for (k = 0; out != NULL && k < e->count; k++)
             out->as.pose[k] = urwire__f32(msg + pos + 4 * k);
         pos += (size_t)e->count * 4u;
         break;
     case URWIRE__LAYOUT_STRING:
-        if (!urwire__read_prefixed(msg, &pos, end, 2, true, "", &out->as.text, err))
+        if (!urwire__read_prefixed(msg, &pos, end, 2, true, "", &text, err))
             return false;
+        if (out != NULL)
+            out->as.text = text;
         break;
     case URWIRE__LAYOUT_LIST:
         if (end - pos < 2)
             return urwire__short(err, "", pos, 2, end);
-        out->rows = urwire__i16(msg + pos);
-        if (out->rows < 0)
-            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", out->rows, 0);
-        if (!urwire__count_fits(t, (uint64_t)out->rows, pos, pos + 2, end, err))
+        rows = urwire__i16(msg + pos);
+        if (rows < 0)
+            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", rows, 0);
+        if (!urwire__count_fits(t, (uint64_t)rows, pos, pos + 2, end, err))
             return false;
         pos += 2;
-        out->items.pos = out->items.end = pos;
-        out->items.count = (size_t)out->rows;
         break;
     case URWIRE__LAYOUT_MATRIX:
         if (end - pos < 4)
             return urwire__short(err, "", pos, 4, end);
-        out->rows = urwire__i16(msg + pos);
-        out->cols = urwire__i16(msg + pos + 2);
-        if (out->rows < 0)
-            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", out->rows, 0);
-        if (out->cols < 0)
-            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos + 2, "", out->cols, 0);
+        rows = urwire__i16(msg + pos);
+        cols = urwire__i16(msg + pos + 2);
+        if (rows < 0)
+            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", rows, 0);
+        if (cols < 0)
+            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos + 2, "", cols, 0);
         /* Rows of no items would take no bytes at all: any number of them fits in none. */
-        if (out->rows > 0 && out->cols == 0)
-            return urwire__fail(err, URWIRE_E_EMPTY_ROWS, pos, "", out->rows, 0);
-        if (!urwire__count_fits(t, (uint64_t)out->rows * (uint64_t)out->cols, pos, pos + 4, end, err))
+        if (rows > 0 && cols == 0)
+            return urwire__fail(err, URWIRE_E_EMPTY_ROWS, pos, "", rows, 0);
+        if (!urwire__count_fits(t, (uint64_t)rows * (uint64_t)cols, pos, pos + 4, end, err))
             return false;
         pos += 4;
-        out->items.pos = out->items.end = pos;
-        out->items.count = (size_t)out->rows * (size_t)out->cols;
         break;
+    }
+    open->rows = (uint16_t)rows;
+    open->cols = (uint16_t)cols;
+    if (out != NULL) {
+        out->rows = rows;
+        out->cols = cols;
+        if (e->layout == URWIRE__LAYOUT_LIST || e->layout == URWIRE__LAYOUT_MATRIX) {
+            out->items.pos = out->items.end = pos;
+            out->items.count = urwire__items_of(open);
+        }
     }
     *at = pos;
     return true;
 }
 
-/* A LIST or MATRIX whose items are being checked: how many it has, how many are done (int16
- * counts: at most 32767 * 32767 items). */
-typedef struct urwire__open_value {
-    uint32_t count;
-    uint32_t done;
-    uint16_t cols;                  /* a MATRIX's columns (its items go row by row), else 0 */
-} urwire__open_value;
-
-/* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
- * skipped) here, so that iterating them later cannot fail: read into *item one by one (out
- * itself when the caller keeps nothing of it), in a loop over a stack of the values still
- * open, at most URWIRE_MAX_VALUE_DEPTH deep, rather than by recursion, so that the stack this
- * takes is known. Error paths are relative ("", ".type", "[2][0]") and prefixed by the
- * callers. */
+/* One value at *at: its type byte and data, into *out unless it is NULL (the caller keeps
+ * nothing of it). The items of a LIST or MATRIX are checked (and skipped) here, so that
+ * iterating them later cannot fail, in a loop over a stack of the values still open (the
+ * first is the value itself, as the one item of none), at most URWIRE_MAX_VALUE_DEPTH deep,
+ * rather than by recursion, so that the stack this takes is known and small. Error paths are
+ * relative ("", ".type", "[2][0]") and prefixed by the callers. */
 static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
-                               const urwire__value_table *t, urwire_value *out, urwire_value *item,
-                               urwire_error *err)
+                               const urwire__value_table *t, urwire_value *out, urwire_error *err)
 {
-    urwire__open_value open[URWIRE_MAX_VALUE_DEPTH];
+    urwire__open_value open[URWIRE_MAX_VALUE_DEPTH + 1];
     urwire__open_value *top;
-    size_t pos = *at, n = 0, first;
-    if (!urwire__read_head(msg, &pos, end, version, t, 1, out, err))
-        return false;
-    first = pos;
-    if (out->items.count) {
-        open[0].count = (uint32_t)out->items.count;
-        open[0].done = 0;
-        open[0].cols = (uint16_t)out->cols;  /* 0 but in a MATRIX */
-        n = 1;
-    }
+    size_t pos = *at, n = 1, first = 0;
+    open[0].done = 0;
+    open[0].rows = 1;
+    open[0].cols = 0;
     while (n) {
         top = &open[n - 1];
-        if (top->done == top->count) {
+        if (top->done == urwire__items_of(top)) {
             if (--n)
                 open[n - 1].done++;
             continue;
         }
-        /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH, and this one is n + 1
-         * deep: n stays below it, within open[] */
-        if (!urwire__read_head(msg, &pos, end, version, t, n + 1, item, err)) {
-            for (; n; n--) {  /* the item's path within each value open, innermost first */
+        /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH, and this one is n
+         * deep: the value it opens goes to open[n], within open[] */
+        if (!urwire__read_head(msg, &pos, end, version, t, n, &open[n], n == 1 ? out : NULL, err)) {
+            for (; n > 1; n--) {  /* the item's path within each value open, innermost first */
                 top = &open[n - 1];
                 if (top->cols)
                     urwire__within2(err, "", top->done / top->cols, top->done % top->cols, true);
@@ -7353,31 +7381,28 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, const
             }
             return false;
         }
-        if (item->items.count) {
-            open[n].count = (uint32_t)item->items.count;
-            open[n].done = 0;
-            open[n].cols = (uint16_t)item->cols;
+        if (n == 1)
+            first = pos;
+        if (urwire__items_of(&open[n]))
             n++;
-        } else {
+        else
             top->done++;
-        }
     }
-    if (pos != first)  /* out's items, read; out is item's, else */
+    if (out != NULL && pos != first)  /* its items, read */
         out->items.end = pos;
     *at = pos;
     return true;
 }
 
 /* Top-level values: each a value and the terminator, until the end of the layout. */
-URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                                          uint8_t terminator, const char *path, urwire_seq *out, urwire_error *err)
 {
-    const urwire__value_table *t = urwire__values_of(version);
+    const urwire__value_table *t = urwire__values_of(*version);
     size_t pos = *at;
-    urwire_value value;
-    *out = urwire__seq(msg, pos, version, terminator);
+    urwire__init_seq(out, msg, pos, version, terminator);
     while (pos < end) {
-        if (!urwire__read_value(msg, &pos, end, &version, t, &value, &value, err))
+        if (!urwire__read_value(msg, &pos, end, version, t, NULL, err))
             return urwire__within(err, path, out->count);
         if (pos >= end) {
             urwire__short(err, "", pos, 1, end);
@@ -7397,11 +7422,10 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
 
 bool urwire_next_value(urwire_seq *seq, urwire_value *out)
 {
-    urwire_value item;
     if (seq->count == 0)
         return false;
     if (!urwire__read_value(seq->msg, &seq->pos, seq->end, &seq->version, urwire__values_of(seq->version), out,
-                            &item, NULL)) {
+                            NULL)) {
         seq->count = 0;  /* not reached for a seq from a decoded message: it was checked whole */
         return false;
     }
@@ -7579,9 +7603,10 @@ static void urwire__init_message(urwire_message *out, const uint8_t *bytes, size
     out->message_type = len > URWIRE__TYPE_AT ? bytes[URWIRE__TYPE_AT] : 0;
     out->failed = false;
     out->error.status = URWIRE_OK;
-    out->error.path[0] = '\0';
+    out->error.field = "";
+    out->error.steps = 0;
     out->raw = urwire__view(bytes, 0);
-    out->packages = urwire__seq(bytes, len, version, -1);
+    urwire__init_seq(&out->packages, bytes, len, &version, -1);
     out->version = version;
     out->implied = false;
     out->implied_version = version;
@@ -7640,7 +7665,9 @@ typedef struct urwire__running {
 static void urwire__run_at(urwire__running *r, urwire_sw_version version)
 {
     size_t row;
-    r->now = urwire__ver_of(version);
+    /* field by field: a urwire__ver built and copied costs a firmware's stack 50 bytes here */
+    r->now.version = version;
+    r->now.key = urwire__version_key(version);
     r->segment = urwire__segment(r->now.key);
     row = r->segment * urwire__package_form_table.ncodes;
     r->mine = urwire__package_form_table.mine + row;
@@ -7662,7 +7689,12 @@ static const urwire__form *urwire__other_form(uint8_t type, size_t size, urwire_
     const urwire__form *f = urwire__choose(&urwire__package_form_table, type, r->segment, size, &v, &by_length);
     /* urwire__choose changes the version when a form is chosen by length, or when the version
      * has no form of its own (the nearest form below, read as the version it stands for). */
-    *use = urwire__version_key(v) != r->now.key ? urwire__ver_of(v) : r->now;
+    if (urwire__version_key(v) != r->now.key) {  /* field by field, as in urwire__run_at */
+        use->version = v;
+        use->key = urwire__version_key(v);
+    } else {
+        *use = r->now;
+    }
     if (!URWIRE__ONE_FORM_A_CODE && by_length && r->now.version.assumed) {
         urwire__run_at(r, v);
         r->implied = true;
@@ -7715,7 +7747,7 @@ URWIRE__NOINLINE static bool urwire__decode_packages(urwire_message *out, urwire
     size_t end = 0;
     urwire__start(&r, version);
     out->kind = URWIRE__PACKAGES_KIND;
-    out->packages = urwire__seq(out->bytes, URWIRE_HEADER_SIZE, version, -1);
+    urwire__init_seq(&out->packages, out->bytes, URWIRE_HEADER_SIZE, &version, -1);
     if (!urwire__walk_packages(out->bytes, URWIRE_HEADER_SIZE, out->length, &r, &out->packages.count, &end,
                                &out->error)) {
         out->packages.end = end;
@@ -7728,29 +7760,57 @@ URWIRE__NOINLINE static bool urwire__decode_packages(urwire_message *out, urwire
     return true;
 }
 
-/* The layout of subtype `subtype` of type t (which has a layout) in the bytes after its header,
- * in the form its version and length choose (the Version message in that of the version it
- * carries), into *as: its kind, and false when it is malformed (*err set). *version becomes
- * the version of the form it was read in. */
-URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
-                                           int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
-                                           void *as, urwire_error *err)
+/* The form of subtype `subtype` of type t (which has a layout) for a message of len bytes, by
+ * its version and length (the Version message's by the version it carries): its kind, and the
+ * version it is read in (*version, and *ver as the layouts read it). Out of line, so that its
+ * locals are not on the stack under the layout's decoder. */
+URWIRE__NOINLINE static urwire_message_kind urwire__layout_form(const uint8_t *bytes, size_t len,
+                                                                 const urwire__message_type *t, int64_t subtype,
+                                                                 urwire_sw_version *version, urwire__ver *ver)
 {
-    size_t pos = t->body;
     bool by_length;
-    urwire__ver ver;
     const urwire__form *f;
     if (t->code == URWIRE__VERSION_TYPE && subtype == URWIRE__VERSION_SUBTYPE)
         urwire__peek_version(bytes, len, version);
     f = urwire__choose(t->forms, (size_t)subtype, urwire__segment(urwire__version_key(*version)), len - t->body,
                        version, &by_length);
-    *kind = (urwire_message_kind)f->layout;
-    ver = urwire__ver_of(*version);
+    *ver = urwire__ver_of(*version);
+    return (urwire_message_kind)f->layout;
+}
+
+/* The layout of subtype `subtype` of type t (which has a layout) in the bytes after its header,
+ * in the form its version and length choose (urwire__layout_form), into *as: its kind, and
+ * false when it is malformed (*err set). *version becomes the version of the form it was read
+ * in. */
+static bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t, int64_t subtype,
+                                  urwire_sw_version *version, urwire_message_kind *kind, void *as, urwire_error *err)
+{
+    size_t pos = t->body;
+    urwire__ver ver;
+    *kind = urwire__layout_form(bytes, len, t, subtype, version, &ver);
     return urwire__message_decoders[*kind](bytes, &pos, len, &ver, as, err);
 }
 
-/* A message with a common header and a subtype: the header, then the subtype's layout. */
-static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t, urwire_sw_version version)
+/* A Version message's layout (every form of its subtype is that layout), read as
+ * urwire_decode_message reads it, for the framer: its decoder is called by its kind, a
+ * constant, so that no other layout's decoder is under the framer on the stack. *version
+ * becomes the version it carries; *out is a URWIRE__VERSION_LAYOUT. */
+URWIRE__PRIVATE bool urwire__decode_announced(const uint8_t *bytes, size_t len, urwire_sw_version *version,
+                                              void *out)
+{
+    const urwire__message_type *t = urwire__message_type_of(URWIRE__VERSION_TYPE);
+    const urwire__decode_fn decode = urwire__message_decoders[URWIRE__VERSION_KIND];  /* NULL: no such layout */
+    size_t pos = t->body;
+    urwire__ver ver;
+    return decode != NULL &&
+           urwire__layout_form(bytes, len, t, URWIRE__VERSION_SUBTYPE, version, &ver) == URWIRE__VERSION_KIND &&
+           decode(bytes, &pos, len, &ver, out, NULL);
+}
+
+/* A message with a common header and a subtype: the header, then the subtype's layout, read in
+ * the version in out->version, which becomes that of its form (kept there: a copy would cost
+ * every decoder's stack 16 bytes). */
+static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t)
 {
     int64_t subtype;
     if (out->length < t->body) {
@@ -7765,12 +7825,11 @@ static bool urwire__decode_subtype(urwire_message *out, const urwire__message_ty
         out->raw = urwire__view(out->bytes + t->body, out->length - t->body);
         return true;
     }
-    if (!urwire__decode_layout(out->bytes, out->length, t, subtype, &version, &out->kind, &out->as, &out->error)) {
-        out->version = version;
+    if (!urwire__decode_layout(out->bytes, out->length, t, subtype, &out->version, &out->kind, &out->as,
+                               &out->error)) {
         urwire__fail_message(out, t->body);
         return false;
     }
-    out->version = version;
     return true;
 }
 
@@ -7806,7 +7865,7 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
     const urwire__message_type *t = urwire__message_head(bytes, len, version, out, &done);
     if (t == NULL)
         return done;
-    return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t, version);
+    return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t);
 }
 
 /* The sub-packages of a robot state from pos by the general rule (the version's form when its
@@ -8006,7 +8065,7 @@ URWIRE__NOINLINE static bool urwire__decode_state_message(const uint8_t *bytes, 
     urwire__init_message(m, bytes, len, version);
     urwire__start(&r, version);
     m->kind = URWIRE__PACKAGES_KIND;
-    m->packages = urwire__seq(bytes, URWIRE_HEADER_SIZE, version, -1);
+    urwire__init_seq(&m->packages, bytes, URWIRE_HEADER_SIZE, &version, -1);
     end = urwire__decode_into_state(bytes, URWIRE_HEADER_SIZE, len, &r, out, &m->packages.count, &m->error);
     m->packages.end = end;
     if (end < len) {
@@ -8027,7 +8086,7 @@ URWIRE__NOINLINE static void urwire__decode_other_message(const uint8_t *bytes, 
     bool done;
     const urwire__message_type *t = urwire__message_head(bytes, len, version, m, &done);
     if (t != NULL)
-        urwire__decode_subtype(m, t, version);
+        urwire__decode_subtype(m, t);
 }
 
 bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
@@ -8520,13 +8579,10 @@ static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size
 {
     URWIRE__VERSION_LAYOUT announced;
     urwire_sw_version version = f->version;
-    urwire_message_kind kind;
     if (bytes[URWIRE__TYPE_AT] != URWIRE__VERSION_TYPE || len < URWIRE__VERSION_BODY ||
         bytes[URWIRE__VERSION_SUBTYPE_AT] != URWIRE__VERSION_SUBTYPE)
         return;
-    if (urwire__decode_layout(bytes, len, urwire__message_type_of(URWIRE__VERSION_TYPE), URWIRE__VERSION_SUBTYPE,
-                              &version, &kind, &announced, NULL) &&
-        kind == URWIRE__VERSION_KIND) {
+    if (urwire__decode_announced(bytes, len, &version, &announced)) {
         int bugfix = URWIRE__VERSION_BUGFIX(&announced);
         /* A bugfix out of range is set aside, as in every target: the stream goes on as
          * major.minor.0, flagged. */

@@ -14,6 +14,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#define URWIRE_MAX_VALUE_DEPTH 3         /* before errors.h, which sizes a path by it */
+
 #include "version.h"
 #include "views.h"
 #include "errors.h"
@@ -21,7 +23,6 @@
 #define URWIRE_MAX_MESSAGE_LENGTH 1048576u
 #define URWIRE_HEADER_SIZE 5u
 #define URWIRE_PACKAGE_HEADER_SIZE 5u
-#define URWIRE_MAX_VALUE_DEPTH 3
 #define URWIRE_DEFAULT_VERSION_INIT {5, 9, 0, true}
 #define URWIRE_BUGFIX_ANY 999
 #define URWIRE_VALUE_ARRAY_MAX 6

@@ -25,6 +25,15 @@ static int text_is(const urwire_error *e, const char *want)
     return strcmp(buf, want) == 0;
 }
 
+/* Whether the error's text names `want` as its field: the text starts "want at offset". */
+static int path_is(const urwire_error *e, const char *want)
+{
+    char buf[URWIRE_PATH_MAX + 128];
+    size_t n = strlen(want);
+    urwire_error_text(e, buf, sizeof buf);
+    return strncmp(buf, want, n) == 0 && strncmp(buf + n, " at offset", 10) == 0;
+}
+
 static void loads_and_stores(void)
 {
     uint8_t b[17];
@@ -152,7 +161,8 @@ static void forms(void)
 static void error_texts(void)
 {
     urwire_error e;
-    char small[8], digits[24];
+    char small[8], digits[24], field[URWIRE_PATH_MAX + 8], want[URWIRE_PATH_MAX + 64];
+    size_t k;
     CHECK(urwire__digits(digits, INT64_MIN) == 20 && memcmp(digits, "-9223372036854775808", 20) == 0);
     CHECK(!urwire__short(&e, "speed", 27, 8, 34));
     CHECK(e.status == URWIRE_E_SHORT && text_is(&e, "speed at offset 27: needs 8 bytes, 7 left"));
@@ -180,25 +190,35 @@ static void error_texts(void)
             {"head", 0, 2, URWIRE__NO_INDEX}, {"g[].a", 2, 4, 0}, {"g[].b", 6, 1, 0}, {"", 5, 3, 2},
             {"tail", 17, 8, URWIRE__NO_INDEX}, {NULL, 0, 0, 0},
         };
-        CHECK(!urwire__short_in_run(&e, run, 100, 101) && e.offset == 100 && strcmp(e.path, "head") == 0);
-        CHECK(!urwire__short_in_run(&e, run, 100, 106) && e.offset == 106 && strcmp(e.path, "g[0].b") == 0);
-        CHECK(!urwire__short_in_run(&e, run, 100, 111) && e.offset == 111 && strcmp(e.path, "g[1].b") == 0);
-        CHECK(!urwire__short_in_run(&e, run, 100, 115) && e.offset == 112 && strcmp(e.path, "g[2].a") == 0);
+        CHECK(!urwire__short_in_run(&e, run, 100, 101) && e.offset == 100 && path_is(&e, "head"));
+        CHECK(!urwire__short_in_run(&e, run, 100, 106) && e.offset == 106 && path_is(&e, "g[0].b"));
+        CHECK(!urwire__short_in_run(&e, run, 100, 111) && e.offset == 111 && path_is(&e, "g[1].b"));
+        CHECK(!urwire__short_in_run(&e, run, 100, 115) && e.offset == 112 && path_is(&e, "g[2].a"));
         CHECK(e.value == 4 && e.left == 3);
-        CHECK(!urwire__short_in_run(&e, run, 100, 124) && e.offset == 117 && strcmp(e.path, "tail") == 0);
+        CHECK(!urwire__short_in_run(&e, run, 100, 124) && e.offset == 117 && path_is(&e, "tail"));
     }
     /* Paths are joined from the inside out, as the decoders unwind. */
     urwire__fail(&e, URWIRE_E_VALUE_TYPE, 40, ".type", 99, 0);
     urwire__within2(&e, "", 2, 0, true);
     urwire__within(&e, "variables", 1);
-    CHECK(strcmp(e.path, "variables[1][2][0].type") == 0);
+    CHECK(text_is(&e, "variables[1][2][0].type at offset 40: unknown value type 99"));
     urwire__short(&e, "label_name", 12, 2, 13);
     urwire__within(&e, "threads", 3);
-    CHECK(strcmp(e.path, "threads[3].label_name") == 0);
-    memset(e.path, 'x', sizeof e.path - 1);  /* a path at its limit stays cut, never overflows */
-    e.path[sizeof e.path - 1] = '\0';
+    CHECK(text_is(&e, "threads[3].label_name at offset 12: needs 2 bytes, 1 left"));
+    /* A path at its limit is cut in the text, never overflows. */
+    memset(field, 'x', sizeof field - 1);
+    field[sizeof field - 1] = '\0';
+    urwire__short(&e, field, 0, 1, 0);
     urwire__within(&e, "variables", 1);
-    CHECK(strlen(e.path) == URWIRE_PATH_MAX - 1 && memcmp(e.path, "variables[1].xxx", 16) == 0);
+    memcpy(want, "variables[1].", 13);
+    memset(want + 13, 'x', URWIRE_PATH_MAX - 1 - 13);
+    strcpy(want + URWIRE_PATH_MAX - 1, " at offset 0: needs 1 bytes, 0 left");
+    CHECK(text_is(&e, want));
+    /* A path deeper than URWIRE_PATH_STEPS keeps its innermost steps. */
+    urwire__fail(&e, URWIRE_E_VALUE_TYPE, 40, ".type", 99, 0);
+    for (k = 0; k <= URWIRE_PATH_STEPS; k++)
+        urwire__within(&e, "", k);
+    CHECK(text_is(&e, "[3][2][1][0].type at offset 40: unknown value type 99"));
 }
 
 static void texts(void)
@@ -244,7 +264,7 @@ static void values(void)
     urwire_error e;
     size_t at = 0;
     CHECK(urwire__values_of(v32)->count == 2 && urwire__values_of(v59)->count == 8);
-    CHECK(urwire__read_values(good, &at, sizeof good, v59, '\n', "values", &seq, &e));
+    CHECK(urwire__read_values(good, &at, sizeof good, &v59, '\n', "values", &seq, &e));
     CHECK(at == sizeof good && seq.count == 3);
     CHECK(urwire_next_value(&seq, &val) && val.kind == URWIRE_VALUE_INT && val.as.integer == 7);
     CHECK(urwire_next_value(&seq, &val) && val.kind == URWIRE_VALUE_LIST && val.rows == 2);
@@ -254,31 +274,31 @@ static void values(void)
     CHECK(!urwire_next_value(&items, &item));
     CHECK(urwire_next_value(&seq, &val) && val.kind == URWIRE_VALUE_NONE && !urwire_next_value(&seq, &val));
     at = 0;
-    CHECK(!urwire__read_values(deep, &at, sizeof deep, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(deep, &at, sizeof deep, &v59, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0][0][0][0] at offset 9: nesting deeper than 3"));
     at = 0;
-    CHECK(!urwire__read_values(old_list, &at, sizeof old_list, v32, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(old_list, &at, sizeof old_list, &v32, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0].type at offset 0: unknown value type 17"));
     at = 0;
-    CHECK(!urwire__read_values(good, &at, 4, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(good, &at, 4, &v59, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0] at offset 1: needs 4 bytes, 3 left"));
     /* Counts are weighed against the bytes left, one byte a value at the least (NONE). */
     at = 0;
-    CHECK(!urwire__read_values(long_list, &at, sizeof long_list, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(long_list, &at, sizeof long_list, &v59, '\n', "values", &seq, &e));
     CHECK(e.status == URWIRE_E_TOO_MANY_ITEMS);
     CHECK(text_is(&e, "values[0] at offset 1: 4 items need more than the 3 bytes left"));
     at = 0;
-    CHECK(!urwire__read_values(empty_rows, &at, sizeof empty_rows, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(empty_rows, &at, sizeof empty_rows, &v59, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0] at offset 1: 32767 rows of 0 columns"));
     at = 0;
-    CHECK(urwire__read_values(no_rows, &at, sizeof no_rows, v59, '\n', "values", &seq, &e));
+    CHECK(urwire__read_values(no_rows, &at, sizeof no_rows, &v59, '\n', "values", &seq, &e));
     CHECK(urwire_next_value(&seq, &val) && val.rows == 0 && val.cols == 32767 && val.items.count == 0);
     at = 0;
-    CHECK(!urwire__read_values(big_matrix, &at, sizeof big_matrix, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(big_matrix, &at, sizeof big_matrix, &v59, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0] at offset 1: 6 items need more than the 4 bytes left"));
     /* Exactly as many bytes as items is not refused by the count: the items then decide. */
     at = 0;
-    CHECK(!urwire__read_values(fitting, &at, sizeof fitting, v59, '\n', "values", &seq, &e));
+    CHECK(!urwire__read_values(fitting, &at, sizeof fitting, &v59, '\n', "values", &seq, &e));
     CHECK(text_is(&e, "values[0][2].type at offset 5: unknown value type 10"));
 }
 

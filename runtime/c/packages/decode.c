@@ -13,9 +13,10 @@ static void urwire__init_message(urwire_message *out, const uint8_t *bytes, size
     out->message_type = len > URWIRE__TYPE_AT ? bytes[URWIRE__TYPE_AT] : 0;
     out->failed = false;
     out->error.status = URWIRE_OK;
-    out->error.path[0] = '\0';
+    out->error.field = "";
+    out->error.steps = 0;
     out->raw = urwire__view(bytes, 0);
-    out->packages = urwire__seq(bytes, len, version, -1);
+    urwire__init_seq(&out->packages, bytes, len, &version, -1);
     out->version = version;
     out->implied = false;
     out->implied_version = version;
@@ -74,7 +75,9 @@ typedef struct urwire__running {
 static void urwire__run_at(urwire__running *r, urwire_sw_version version)
 {
     size_t row;
-    r->now = urwire__ver_of(version);
+    /* field by field: a urwire__ver built and copied costs a firmware's stack 50 bytes here */
+    r->now.version = version;
+    r->now.key = urwire__version_key(version);
     r->segment = urwire__segment(r->now.key);
     row = r->segment * urwire__package_form_table.ncodes;
     r->mine = urwire__package_form_table.mine + row;
@@ -96,7 +99,12 @@ static const urwire__form *urwire__other_form(uint8_t type, size_t size, urwire_
     const urwire__form *f = urwire__choose(&urwire__package_form_table, type, r->segment, size, &v, &by_length);
     /* urwire__choose changes the version when a form is chosen by length, or when the version
      * has no form of its own (the nearest form below, read as the version it stands for). */
-    *use = urwire__version_key(v) != r->now.key ? urwire__ver_of(v) : r->now;
+    if (urwire__version_key(v) != r->now.key) {  /* field by field, as in urwire__run_at */
+        use->version = v;
+        use->key = urwire__version_key(v);
+    } else {
+        *use = r->now;
+    }
     if (!URWIRE__ONE_FORM_A_CODE && by_length && r->now.version.assumed) {
         urwire__run_at(r, v);
         r->implied = true;
@@ -149,7 +157,7 @@ URWIRE__NOINLINE static bool urwire__decode_packages(urwire_message *out, urwire
     size_t end = 0;
     urwire__start(&r, version);
     out->kind = URWIRE__PACKAGES_KIND;
-    out->packages = urwire__seq(out->bytes, URWIRE_HEADER_SIZE, version, -1);
+    urwire__init_seq(&out->packages, out->bytes, URWIRE_HEADER_SIZE, &version, -1);
     if (!urwire__walk_packages(out->bytes, URWIRE_HEADER_SIZE, out->length, &r, &out->packages.count, &end,
                                &out->error)) {
         out->packages.end = end;
@@ -162,29 +170,57 @@ URWIRE__NOINLINE static bool urwire__decode_packages(urwire_message *out, urwire
     return true;
 }
 
-/* The layout of subtype `subtype` of type t (which has a layout) in the bytes after its header,
- * in the form its version and length choose (the Version message in that of the version it
- * carries), into *as: its kind, and false when it is malformed (*err set). *version becomes
- * the version of the form it was read in. */
-URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
-                                           int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
-                                           void *as, urwire_error *err)
+/* The form of subtype `subtype` of type t (which has a layout) for a message of len bytes, by
+ * its version and length (the Version message's by the version it carries): its kind, and the
+ * version it is read in (*version, and *ver as the layouts read it). Out of line, so that its
+ * locals are not on the stack under the layout's decoder. */
+URWIRE__NOINLINE static urwire_message_kind urwire__layout_form(const uint8_t *bytes, size_t len,
+                                                                 const urwire__message_type *t, int64_t subtype,
+                                                                 urwire_sw_version *version, urwire__ver *ver)
 {
-    size_t pos = t->body;
     bool by_length;
-    urwire__ver ver;
     const urwire__form *f;
     if (t->code == URWIRE__VERSION_TYPE && subtype == URWIRE__VERSION_SUBTYPE)
         urwire__peek_version(bytes, len, version);
     f = urwire__choose(t->forms, (size_t)subtype, urwire__segment(urwire__version_key(*version)), len - t->body,
                        version, &by_length);
-    *kind = (urwire_message_kind)f->layout;
-    ver = urwire__ver_of(*version);
+    *ver = urwire__ver_of(*version);
+    return (urwire_message_kind)f->layout;
+}
+
+/* The layout of subtype `subtype` of type t (which has a layout) in the bytes after its header,
+ * in the form its version and length choose (urwire__layout_form), into *as: its kind, and
+ * false when it is malformed (*err set). *version becomes the version of the form it was read
+ * in. */
+static bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t, int64_t subtype,
+                                  urwire_sw_version *version, urwire_message_kind *kind, void *as, urwire_error *err)
+{
+    size_t pos = t->body;
+    urwire__ver ver;
+    *kind = urwire__layout_form(bytes, len, t, subtype, version, &ver);
     return urwire__message_decoders[*kind](bytes, &pos, len, &ver, as, err);
 }
 
-/* A message with a common header and a subtype: the header, then the subtype's layout. */
-static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t, urwire_sw_version version)
+/* A Version message's layout (every form of its subtype is that layout), read as
+ * urwire_decode_message reads it, for the framer: its decoder is called by its kind, a
+ * constant, so that no other layout's decoder is under the framer on the stack. *version
+ * becomes the version it carries; *out is a URWIRE__VERSION_LAYOUT. */
+URWIRE__PRIVATE bool urwire__decode_announced(const uint8_t *bytes, size_t len, urwire_sw_version *version,
+                                              void *out)
+{
+    const urwire__message_type *t = urwire__message_type_of(URWIRE__VERSION_TYPE);
+    const urwire__decode_fn decode = urwire__message_decoders[URWIRE__VERSION_KIND];  /* NULL: no such layout */
+    size_t pos = t->body;
+    urwire__ver ver;
+    return decode != NULL &&
+           urwire__layout_form(bytes, len, t, URWIRE__VERSION_SUBTYPE, version, &ver) == URWIRE__VERSION_KIND &&
+           decode(bytes, &pos, len, &ver, out, NULL);
+}
+
+/* A message with a common header and a subtype: the header, then the subtype's layout, read in
+ * the version in out->version, which becomes that of its form (kept there: a copy would cost
+ * every decoder's stack 16 bytes). */
+static bool urwire__decode_subtype(urwire_message *out, const urwire__message_type *t)
 {
     int64_t subtype;
     if (out->length < t->body) {
@@ -199,12 +235,11 @@ static bool urwire__decode_subtype(urwire_message *out, const urwire__message_ty
         out->raw = urwire__view(out->bytes + t->body, out->length - t->body);
         return true;
     }
-    if (!urwire__decode_layout(out->bytes, out->length, t, subtype, &version, &out->kind, &out->as, &out->error)) {
-        out->version = version;
+    if (!urwire__decode_layout(out->bytes, out->length, t, subtype, &out->version, &out->kind, &out->as,
+                               &out->error)) {
         urwire__fail_message(out, t->body);
         return false;
     }
-    out->version = version;
     return true;
 }
 
@@ -240,7 +275,7 @@ bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version v
     const urwire__message_type *t = urwire__message_head(bytes, len, version, out, &done);
     if (t == NULL)
         return done;
-    return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t, version);
+    return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t);
 }
 
 /* The sub-packages of a robot state from pos by the general rule (the version's form when its
@@ -440,7 +475,7 @@ URWIRE__NOINLINE static bool urwire__decode_state_message(const uint8_t *bytes, 
     urwire__init_message(m, bytes, len, version);
     urwire__start(&r, version);
     m->kind = URWIRE__PACKAGES_KIND;
-    m->packages = urwire__seq(bytes, URWIRE_HEADER_SIZE, version, -1);
+    urwire__init_seq(&m->packages, bytes, URWIRE_HEADER_SIZE, &version, -1);
     end = urwire__decode_into_state(bytes, URWIRE_HEADER_SIZE, len, &r, out, &m->packages.count, &m->error);
     m->packages.end = end;
     if (end < len) {
@@ -461,7 +496,7 @@ URWIRE__NOINLINE static void urwire__decode_other_message(const uint8_t *bytes, 
     bool done;
     const urwire__message_type *t = urwire__message_head(bytes, len, version, m, &done);
     if (t != NULL)
-        urwire__decode_subtype(m, t, version);
+        urwire__decode_subtype(m, t);
 }
 
 bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_sw_version version,

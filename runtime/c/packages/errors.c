@@ -3,18 +3,10 @@
 /* </standalone> */
 /* ---- errors ------------------------------------------------------------------------------- */
 
-static void urwire__set_path(urwire_error *e, const char *path)
-{
-    size_t n = strlen(path);
-    if (n >= sizeof e->path)
-        n = sizeof e->path - 1;
-    memcpy(e->path, path, n);
-    e->path[n] = '\0';
-}
-
-/* Sets *e; returns false, for `return urwire__fail(...)`. A NULL e is an error nobody reads
- * (a robot state's sub-packages, whose failures are bits): the decoders then keep no
- * urwire_error on the stack for it. */
+/* Sets *e; returns false, for `return urwire__fail(...)`. path is the parser's own text (a
+ * literal or a table's), kept, not copied. A NULL e is an error nobody reads (a robot
+ * state's sub-packages, whose failures are bits): the decoders then keep no urwire_error on
+ * the stack for it. */
 URWIRE__PRIVATE bool urwire__fail(urwire_error *e, urwire_status status, size_t offset, const char *path,
                                   int64_t value, int64_t left)
 {
@@ -24,7 +16,8 @@ URWIRE__PRIVATE bool urwire__fail(urwire_error *e, urwire_status status, size_t 
     e->offset = offset;
     e->value = value;
     e->left = left;
-    urwire__set_path(e, path);
+    e->field = path;
+    e->steps = 0;
     return false;
 }
 
@@ -34,8 +27,22 @@ URWIRE__PRIVATE bool urwire__short(urwire_error *e, const char *path, size_t off
     return urwire__fail(e, URWIRE_E_SHORT, offset, path, (int64_t)need, end > offset ? (int64_t)(end - offset) : 0);
 }
 
-static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
-                                bool two);
+/* Puts name[index] (name, of name_len characters, may be empty), or name[index][index2] when
+ * two, before the error's path: one step more. Indexes are counts within one message, far
+ * below 2^32; a MATRIX's columns are int16. A path of more steps than URWIRE_PATH_STEPS (no
+ * layout of the spec nests that deep) keeps its innermost. */
+static void urwire__add_step(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
+                                bool two)
+{
+    urwire_path_step *s;
+    if (e->steps == URWIRE_PATH_STEPS)
+        return;
+    s = &e->step[e->steps++];
+    s->name = name;
+    s->name_len = (uint16_t)name_len;
+    s->index = (uint32_t)index;
+    s->index2 = two ? (uint16_t)(index2 + 1) : 0;
+}
 
 /* Where an element's index goes in a span's path ("[]"), or NULL when it has none. */
 static const char *urwire__index_hole(const char *path)
@@ -87,7 +94,7 @@ URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *r
     hole = index != URWIRE__NO_INDEX ? urwire__index_hole(s->path) : NULL;
     urwire__short(e, hole ? hole + 2 : s->path, at, s->size, end);
     if (hole && e != NULL)
-        urwire__prefix_path(e, s->path, (size_t)(hole - s->path), index, 0, false);
+        urwire__add_step(e, s->path, (size_t)(hole - s->path), index, 0, false);
     return false;
 }
 
@@ -96,48 +103,12 @@ URWIRE__PRIVATE bool urwire__no_space(urwire_error *e, size_t pos, size_t need, 
     return urwire__fail(e, URWIRE_E_NO_SPACE, pos, "", (int64_t)need, (int64_t)(cap - pos));
 }
 
-/* text[0..len) into path at `at`, as much of it as falls before max. */
-static void urwire__put_cut(char *path, size_t max, size_t at, const char *text, size_t len)
-{
-    if (at < max)
-        memcpy(path + at, text, len < max - at ? len : max - at);
-}
-
-/* Prefix the error's path with name[index] (name, of name_len characters, may be empty), or
- * name[index][index2] when two, joined as Python's paths are: threads[1].label_name,
- * variables[2][0].type. In place, cut to URWIRE_PATH_MAX - 1 characters like any path: no
- * second path on the stack. */
-static void urwire__prefix_path(urwire_error *e, const char *name, size_t name_len, size_t index, size_t index2,
-                                bool two)
-{
-    char digits[2][24];
-    size_t max = sizeof e->path - 1, nd = urwire__digits(digits[0], (int64_t)index);
-    size_t nd2 = two ? urwire__digits(digits[1], (int64_t)index2) : 0;
-    size_t rest = strlen(e->path), n, keep;
-    bool dot = rest && e->path[0] != '[' && e->path[0] != '.';
-    n = name_len + 2 + nd + (two ? 2 + nd2 : 0) + (dot ? 1 : 0);  /* the prefix's length */
-    keep = n >= max ? 0 : (rest < max - n ? rest : max - n);
-    memmove(e->path + (n < max ? n : max), e->path, keep);
-    e->path[(n < max ? n : max) + keep] = '\0';
-    urwire__put_cut(e->path, max, 0, name, name_len);
-    urwire__put_cut(e->path, max, name_len, "[", 1);
-    urwire__put_cut(e->path, max, name_len + 1, digits[0], nd);
-    urwire__put_cut(e->path, max, name_len + 1 + nd, "]", 1);
-    if (two) {
-        urwire__put_cut(e->path, max, name_len + 2 + nd, "[", 1);
-        urwire__put_cut(e->path, max, name_len + 3 + nd, digits[1], nd2);
-        urwire__put_cut(e->path, max, name_len + 3 + nd + nd2, "]", 1);
-    }
-    if (dot)
-        urwire__put_cut(e->path, max, n - 1, ".", 1);
-}
-
-/* urwire__prefix of a NUL-terminated name, for `return urwire__within2(...)`; a NULL e is an
- * error nobody reads. */
+/* Prefix the error's path with name[index], or name[index][index2] when two, for `return
+ * urwire__within2(...)`; a NULL e is an error nobody reads. */
 URWIRE__PRIVATE bool urwire__within2(urwire_error *e, const char *name, size_t index, size_t index2, bool two)
 {
     if (e != NULL)
-        urwire__prefix_path(e, name, strlen(name), index, index2, two);
+        urwire__add_step(e, name, strlen(name), index, index2, two);
     return false;
 }
 
@@ -166,10 +137,51 @@ const char *urwire_status_name(urwire_status status)
     return name;
 }
 
-/* "<what> at offset <o>: " */
+/* p[0..n) of the path, as much as the room left for it holds. */
+static void urwire__path_part(urwire__text *t, const char *p, size_t n, size_t *room)
+{
+    n = n < *room ? n : *room;
+    urwire__bytes(t, p, n);
+    *room -= n;
+}
+
+/* "[<index>]" of the path. */
+static void urwire__path_index(urwire__text *t, size_t index, size_t *room)
+{
+    char digits[24];
+    urwire__path_part(t, "[", 1, room);
+    urwire__path_part(t, digits, urwire__digits(digits, (int64_t)index), room);
+    urwire__path_part(t, "]", 1, room);
+}
+
+/* The error's path: its steps, outermost first, then its field, joined as Python's paths are
+ * (a dot before a part that starts with neither '[' nor '.'): threads[1].label_name,
+ * variables[2][0].type. Cut to URWIRE_PATH_MAX - 1 characters. */
+static void urwire__path(urwire__text *t, const urwire_error *e)
+{
+    size_t room = URWIRE_PATH_MAX - 1, k = e->steps;
+    const urwire_path_step *s;
+    const char *next;
+    while (k--) {
+        s = &e->step[k];
+        urwire__path_part(t, s->name, s->name_len, &room);
+        urwire__path_index(t, s->index, &room);
+        if (s->index2)
+            urwire__path_index(t, (size_t)s->index2 - 1, &room);
+        next = k == 0 ? e->field : e->step[k - 1].name_len ? e->step[k - 1].name : "[";
+        if (*next && *next != '[' && *next != '.')
+            urwire__path_part(t, ".", 1, &room);
+    }
+    urwire__path_part(t, e->field, strlen(e->field), &room);
+}
+
+/* "<path> at offset <o>: ", the error's path, or what when it is not NULL. */
 static void urwire__at(urwire__text *t, const urwire_error *e, const char *what)
 {
-    urwire__str(t, what);
+    if (what != NULL)
+        urwire__str(t, what);
+    else
+        urwire__path(t, e);
     urwire__str(t, " at offset ");
     urwire__num(t, (int64_t)e->offset);
     urwire__str(t, ": ");
@@ -187,7 +199,7 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         break;
     case URWIRE_E_SHORT:
     case URWIRE_E_PACKAGE_HEADER_CUT:
-        urwire__at(&t, e, e->status == URWIRE_E_SHORT ? e->path : "package");
+        urwire__at(&t, e, e->status == URWIRE_E_SHORT ? NULL : "package");
         urwire__str(&t, "needs ");
         urwire__num(&t, e->value);
         urwire__str(&t, " bytes, ");
@@ -195,36 +207,36 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         urwire__str(&t, " left");
         break;
     case URWIRE_E_NEGATIVE_LENGTH:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__str(&t, "negative length ");
         urwire__num(&t, e->value);
         break;
     case URWIRE_E_VALUE_TYPE:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__str(&t, "unknown value type ");
         urwire__num(&t, e->value);
         break;
     case URWIRE_E_TERMINATOR:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__str(&t, "expected terminator 0x");
         urwire__hex2(&t, e->left);
         urwire__str(&t, ", found 0x");
         urwire__hex2(&t, e->value);
         break;
     case URWIRE_E_TOO_DEEP:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__str(&t, "nesting deeper than ");
         urwire__num(&t, e->value);
         break;
     case URWIRE_E_TOO_MANY_ITEMS:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__num(&t, e->value);
         urwire__str(&t, " items need more than the ");
         urwire__num(&t, e->left);
         urwire__str(&t, " bytes left");
         break;
     case URWIRE_E_EMPTY_ROWS:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__num(&t, e->value);
         urwire__str(&t, " rows of 0 columns");
         break;
@@ -279,7 +291,7 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         urwire__str(&t, " bytes");
         break;
     case URWIRE_E_NO_SPACE:
-        urwire__at(&t, e, e->path);
+        urwire__at(&t, e, NULL);
         urwire__str(&t, "needs ");
         urwire__num(&t, e->value);
         urwire__str(&t, " bytes, ");
@@ -287,7 +299,7 @@ size_t urwire_error_text(const urwire_error *e, char *out, size_t cap)
         urwire__str(&t, " left in the output");
         break;
     case URWIRE_E_TOO_LONG:
-        urwire__str(&t, e->path);
+        urwire__path(&t, e);
         urwire__str(&t, ": ");
         urwire__num(&t, e->value);
         urwire__str(&t, " bytes do not fit the length prefix (max ");

@@ -95,13 +95,10 @@ static void urwire__learn_announced(urwire_framer *f, const uint8_t *bytes, size
 {
     URWIRE__VERSION_LAYOUT announced;
     urwire_sw_version version = f->version;
-    urwire_message_kind kind;
     if (bytes[URWIRE__TYPE_AT] != URWIRE__VERSION_TYPE || len < URWIRE__VERSION_BODY ||
         bytes[URWIRE__VERSION_SUBTYPE_AT] != URWIRE__VERSION_SUBTYPE)
         return;
-    if (urwire__decode_layout(bytes, len, urwire__message_type_of(URWIRE__VERSION_TYPE), URWIRE__VERSION_SUBTYPE,
-                              &version, &kind, &announced, NULL) &&
-        kind == URWIRE__VERSION_KIND) {
+    if (urwire__decode_announced(bytes, len, &version, &announced)) {
         int bugfix = URWIRE__VERSION_BUGFIX(&announced);
         /* A bugfix out of range is set aside, as in every target: the stream goes on as
          * major.minor.0, flagged. */

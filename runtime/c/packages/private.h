@@ -279,7 +279,8 @@ typedef struct urwire__value_table {
 
 /* views.c */
 URWIRE__PRIVATE urwire_bytes urwire__view(const uint8_t *ptr, size_t len);
-URWIRE__PRIVATE urwire_seq urwire__seq(const uint8_t *msg, size_t pos, urwire_sw_version version, int terminator);
+URWIRE__PRIVATE void urwire__init_seq(urwire_seq *s, const uint8_t *msg, size_t pos, const urwire_sw_version *version,
+                                      int terminator);
 URWIRE__OPTIONAL urwire_bytes urwire__seq_bytes(const urwire_seq *s);
 /* version.c */
 URWIRE__PRIVATE int urwire__version_cmp(urwire_sw_version v, int major, int minor, int bugfix);
@@ -309,7 +310,7 @@ URWIRE__PRIVATE bool urwire__put_prefixed(uint8_t *out, size_t cap, size_t *pos,
 /* values.c */
 URWIRE__PRIVATE const urwire__value_table *urwire__values_of(urwire_sw_version v);
 URWIRE__PRIVATE const urwire__value_entry *urwire__value_entry_of(const urwire__value_table *t, uint8_t code);
-URWIRE__OPTIONAL bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+URWIRE__OPTIONAL bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                                           uint8_t terminator, const char *path, urwire_seq *out, urwire_error *err);
 /* kinds.c */
 URWIRE__PRIVATE const urwire__message_type *urwire__message_type_of(uint8_t code);
@@ -325,9 +326,8 @@ URWIRE__PRIVATE const urwire__form *urwire__choose(const urwire__form_table *t, 
                                                   size_t size, urwire_sw_version *version, bool *by_length);
 URWIRE__PRIVATE bool urwire__peek_version(const uint8_t *msg, size_t len, urwire_sw_version *out);
 /* decode.c */
-URWIRE__PRIVATE bool urwire__decode_layout(const uint8_t *bytes, size_t len, const urwire__message_type *t,
-                                           int64_t subtype, urwire_sw_version *version, urwire_message_kind *kind,
-                                           void *as, urwire_error *err);
+URWIRE__PRIVATE bool urwire__decode_announced(const uint8_t *bytes, size_t len, urwire_sw_version *version,
+                                              void *out);
 URWIRE__PRIVATE bool urwire__next_package_layout(urwire_seq *seq, size_t *at, const urwire__form **f, urwire__ver *use,
                                                  void *as, bool *failed);
 /* Room for a sub-package's layout alone, where the rest of a urwire_package is not wanted: in

@@ -33,7 +33,7 @@ URWIRE__PRIVATE void urwire__read_texts(const uint8_t *msg, size_t *at, size_t e
                                         urwire_seq *out)
 {
     size_t pos = *at, k, last = end;
-    *out = urwire__seq(msg, pos, URWIRE_DEFAULT_VERSION, terminator);
+    urwire__init_seq(out, msg, pos, &URWIRE_DEFAULT_VERSION, terminator);
     for (k = end; k > pos; k--)
         if (msg[k - 1] == terminator) {
             last = k - 1;

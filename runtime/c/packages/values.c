@@ -31,15 +31,31 @@ static bool urwire__count_fits(const urwire__value_table *t, uint64_t items, siz
     return true;
 }
 
-/* One value at *at, `depth` deep: its type byte and data, and of a LIST or MATRIX its counts,
- * checked against the bytes left, but not its items (out->items: where they start, and
- * their count).
+/* A value whose items are being checked, LIST or MATRIX: its rows and columns (int16 counts:
+ * at most 32767 * 32767 items), how many items are done. 8 bytes: the stack holds nine. */
+typedef struct urwire__open_value {
+    uint32_t done;
+    uint16_t rows;
+    uint16_t cols;                  /* a MATRIX's columns (its items go row by row), else 0 */
+} urwire__open_value;
+
+URWIRE__INLINE uint32_t urwire__items_of(const urwire__open_value *v)
+{
+    return v->cols ? (uint32_t)v->rows * v->cols : v->rows;
+}
+
+/* One value at *at, `depth` deep: its type byte and data, and of a LIST or MATRIX its counts
+ * (into *open, done 0), checked against the bytes left, but not its items. Into *out as well
+ * when it is not NULL (out->items: where the items start, and their count).
  * Error paths are relative ("", ".type") and prefixed by the callers. */
-static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
-                              const urwire__value_table *t, size_t depth, urwire_value *out, urwire_error *err)
+URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
+                                      const urwire__value_table *t, size_t depth, urwire__open_value *open,
+                                      urwire_value *out, urwire_error *err)
 {
     size_t pos = *at, k;
     const urwire__value_entry *e;
+    int16_t rows = 0, cols = 0;
+    urwire_bytes text;
     /* false said outright, not as the error setters' result: a file analysed on its own (the
      * runtime's standalone build) cannot see that they return false, and out is unset here */
     if (pos >= end) {
@@ -50,17 +66,22 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const 
         urwire__fail(err, URWIRE_E_TOO_DEEP, pos, "", URWIRE_MAX_VALUE_DEPTH, 0);
         return false;
     }
+    /* *open (within open[] now that depth is) set before the returns below, for the same
+     * reason */
+    open->done = 0;
+    open->rows = 0;
+    open->cols = 0;
     e = urwire__value_entry_of(t, msg[pos]);
     if (e == NULL) {
         urwire__fail(err, URWIRE_E_VALUE_TYPE, pos, ".type", msg[pos], 0);
         return false;
     }
-    out->code = e->code;
-    out->kind = e->kind;
-    out->type_name = e->name;
-    out->rows = 0;
-    out->cols = 0;
-    out->items = urwire__seq(msg, pos + 1, *version, -1);
+    if (out != NULL) {
+        out->code = e->code;
+        out->kind = e->kind;
+        out->type_name = e->name;
+        urwire__init_seq(&out->items, msg, pos + 1, version, -1);
+    }
     pos++;
     switch (e->layout) {
     case URWIRE__LAYOUT_EMPTY:
@@ -68,7 +89,9 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const 
     case URWIRE__LAYOUT_SCALAR:
         if (end - pos < (e->item == URWIRE__ITEM_BOOL ? 1u : 4u))
             return urwire__short(err, "", pos, e->item == URWIRE__ITEM_BOOL ? 1u : 4u, end);
-        if (e->item == URWIRE__ITEM_BOOL)
+        if (out == NULL)
+            pos += e->item == URWIRE__ITEM_BOOL ? 1u : 4u;
+        else if (e->item == URWIRE__ITEM_BOOL)
             out->as.boolean = msg[pos++];
         else if (e->item == URWIRE__ITEM_I32)
             out->as.integer = urwire__i32(msg + pos), pos += 4;
@@ -78,90 +101,83 @@ static bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end, const 
     case URWIRE__LAYOUT_ARRAY:
         if (end - pos < (size_t)e->count * 4u)
             return urwire__short(err, "", pos, (size_t)e->count * 4u, end);
-        for (k = 0; k < e->count; k++)
+        for (k = 0; out != NULL && k < e->count; k++)
             out->as.pose[k] = urwire__f32(msg + pos + 4 * k);
         pos += (size_t)e->count * 4u;
         break;
     case URWIRE__LAYOUT_STRING:
-        if (!urwire__read_prefixed(msg, &pos, end, 2, true, "", &out->as.text, err))
+        if (!urwire__read_prefixed(msg, &pos, end, 2, true, "", &text, err))
             return false;
+        if (out != NULL)
+            out->as.text = text;
         break;
     case URWIRE__LAYOUT_LIST:
         if (end - pos < 2)
             return urwire__short(err, "", pos, 2, end);
-        out->rows = urwire__i16(msg + pos);
-        if (out->rows < 0)
-            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", out->rows, 0);
-        if (!urwire__count_fits(t, (uint64_t)out->rows, pos, pos + 2, end, err))
+        rows = urwire__i16(msg + pos);
+        if (rows < 0)
+            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", rows, 0);
+        if (!urwire__count_fits(t, (uint64_t)rows, pos, pos + 2, end, err))
             return false;
         pos += 2;
-        out->items.pos = out->items.end = pos;
-        out->items.count = (size_t)out->rows;
         break;
     case URWIRE__LAYOUT_MATRIX:
         if (end - pos < 4)
             return urwire__short(err, "", pos, 4, end);
-        out->rows = urwire__i16(msg + pos);
-        out->cols = urwire__i16(msg + pos + 2);
-        if (out->rows < 0)
-            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", out->rows, 0);
-        if (out->cols < 0)
-            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos + 2, "", out->cols, 0);
+        rows = urwire__i16(msg + pos);
+        cols = urwire__i16(msg + pos + 2);
+        if (rows < 0)
+            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos, "", rows, 0);
+        if (cols < 0)
+            return urwire__fail(err, URWIRE_E_NEGATIVE_LENGTH, pos + 2, "", cols, 0);
         /* Rows of no items would take no bytes at all: any number of them fits in none. */
-        if (out->rows > 0 && out->cols == 0)
-            return urwire__fail(err, URWIRE_E_EMPTY_ROWS, pos, "", out->rows, 0);
-        if (!urwire__count_fits(t, (uint64_t)out->rows * (uint64_t)out->cols, pos, pos + 4, end, err))
+        if (rows > 0 && cols == 0)
+            return urwire__fail(err, URWIRE_E_EMPTY_ROWS, pos, "", rows, 0);
+        if (!urwire__count_fits(t, (uint64_t)rows * (uint64_t)cols, pos, pos + 4, end, err))
             return false;
         pos += 4;
-        out->items.pos = out->items.end = pos;
-        out->items.count = (size_t)out->rows * (size_t)out->cols;
         break;
+    }
+    open->rows = (uint16_t)rows;
+    open->cols = (uint16_t)cols;
+    if (out != NULL) {
+        out->rows = rows;
+        out->cols = cols;
+        if (e->layout == URWIRE__LAYOUT_LIST || e->layout == URWIRE__LAYOUT_MATRIX) {
+            out->items.pos = out->items.end = pos;
+            out->items.count = urwire__items_of(open);
+        }
     }
     *at = pos;
     return true;
 }
 
-/* A LIST or MATRIX whose items are being checked: how many it has, how many are done (int16
- * counts: at most 32767 * 32767 items). */
-typedef struct urwire__open_value {
-    uint32_t count;
-    uint32_t done;
-    uint16_t cols;                  /* a MATRIX's columns (its items go row by row), else 0 */
-} urwire__open_value;
-
-/* One value at *at: its type byte and data. The items of a LIST or MATRIX are checked (and
- * skipped) here, so that iterating them later cannot fail: read into *item one by one (out
- * itself when the caller keeps nothing of it), in a loop over a stack of the values still
- * open, at most URWIRE_MAX_VALUE_DEPTH deep, rather than by recursion, so that the stack this
- * takes is known. Error paths are relative ("", ".type", "[2][0]") and prefixed by the
- * callers. */
+/* One value at *at: its type byte and data, into *out unless it is NULL (the caller keeps
+ * nothing of it). The items of a LIST or MATRIX are checked (and skipped) here, so that
+ * iterating them later cannot fail, in a loop over a stack of the values still open (the
+ * first is the value itself, as the one item of none), at most URWIRE_MAX_VALUE_DEPTH deep,
+ * rather than by recursion, so that the stack this takes is known and small. Error paths are
+ * relative ("", ".type", "[2][0]") and prefixed by the callers. */
 static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
-                               const urwire__value_table *t, urwire_value *out, urwire_value *item,
-                               urwire_error *err)
+                               const urwire__value_table *t, urwire_value *out, urwire_error *err)
 {
-    urwire__open_value open[URWIRE_MAX_VALUE_DEPTH];
+    urwire__open_value open[URWIRE_MAX_VALUE_DEPTH + 1];
     urwire__open_value *top;
-    size_t pos = *at, n = 0, first;
-    if (!urwire__read_head(msg, &pos, end, version, t, 1, out, err))
-        return false;
-    first = pos;
-    if (out->items.count) {
-        open[0].count = (uint32_t)out->items.count;
-        open[0].done = 0;
-        open[0].cols = (uint16_t)out->cols;  /* 0 but in a MATRIX */
-        n = 1;
-    }
+    size_t pos = *at, n = 1, first = 0;
+    open[0].done = 0;
+    open[0].rows = 1;
+    open[0].cols = 0;
     while (n) {
         top = &open[n - 1];
-        if (top->done == top->count) {
+        if (top->done == urwire__items_of(top)) {
             if (--n)
                 open[n - 1].done++;
             continue;
         }
-        /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH, and this one is n + 1
-         * deep: n stays below it, within open[] */
-        if (!urwire__read_head(msg, &pos, end, version, t, n + 1, item, err)) {
-            for (; n; n--) {  /* the item's path within each value open, innermost first */
+        /* read_head refuses a value deeper than URWIRE_MAX_VALUE_DEPTH, and this one is n
+         * deep: the value it opens goes to open[n], within open[] */
+        if (!urwire__read_head(msg, &pos, end, version, t, n, &open[n], n == 1 ? out : NULL, err)) {
+            for (; n > 1; n--) {  /* the item's path within each value open, innermost first */
                 top = &open[n - 1];
                 if (top->cols)
                     urwire__within2(err, "", top->done / top->cols, top->done % top->cols, true);
@@ -170,31 +186,28 @@ static bool urwire__read_value(const uint8_t *msg, size_t *at, size_t end, const
             }
             return false;
         }
-        if (item->items.count) {
-            open[n].count = (uint32_t)item->items.count;
-            open[n].done = 0;
-            open[n].cols = (uint16_t)item->cols;
+        if (n == 1)
+            first = pos;
+        if (urwire__items_of(&open[n]))
             n++;
-        } else {
+        else
             top->done++;
-        }
     }
-    if (pos != first)  /* out's items, read; out is item's, else */
+    if (out != NULL && pos != first)  /* its items, read */
         out->items.end = pos;
     *at = pos;
     return true;
 }
 
 /* Top-level values: each a value and the terminator, until the end of the layout. */
-URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, urwire_sw_version version,
+URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t end, const urwire_sw_version *version,
                                          uint8_t terminator, const char *path, urwire_seq *out, urwire_error *err)
 {
-    const urwire__value_table *t = urwire__values_of(version);
+    const urwire__value_table *t = urwire__values_of(*version);
     size_t pos = *at;
-    urwire_value value;
-    *out = urwire__seq(msg, pos, version, terminator);
+    urwire__init_seq(out, msg, pos, version, terminator);
     while (pos < end) {
-        if (!urwire__read_value(msg, &pos, end, &version, t, &value, &value, err))
+        if (!urwire__read_value(msg, &pos, end, version, t, NULL, err))
             return urwire__within(err, path, out->count);
         if (pos >= end) {
             urwire__short(err, "", pos, 1, end);
@@ -214,11 +227,10 @@ URWIRE__PRIVATE bool urwire__read_values(const uint8_t *msg, size_t *at, size_t 
 
 bool urwire_next_value(urwire_seq *seq, urwire_value *out)
 {
-    urwire_value item;
     if (seq->count == 0)
         return false;
     if (!urwire__read_value(seq->msg, &seq->pos, seq->end, &seq->version, urwire__values_of(seq->version), out,
-                            &item, NULL)) {
+                            NULL)) {
         seq->count = 0;  /* not reached for a seq from a decoded message: it was checked whole */
         return false;
     }
