@@ -244,19 +244,21 @@ static bool urwire__decode_subtype(urwire_message *out, const urwire__message_ty
 }
 
 /* The start of urwire_decode_message: *out set for a message with nothing more to decode (too
- * short for a header: false, or of no known type: true, in *done), else its type. */
-static const urwire__message_type *urwire__message_head(const uint8_t *bytes, size_t len, urwire_sw_version version,
-                                                         urwire_message *out, bool *done)
+ * short for a header: failed, or of no known type), else its type. No flag goes out by address, so
+ * its callers' calls after it can be tail calls, and the robot-state path keeps one frame less. */
+static const urwire__message_type *urwire__message_head(const uint8_t *bytes, size_t len,
+                                                         const urwire_sw_version *version,
+                                                         urwire_message *out)
 {
     const urwire__message_type *t;
-    urwire__init_message(out, bytes, len, version);
+    urwire__init_message(out, bytes, len, *version);
     if (len < URWIRE_HEADER_SIZE) {
         /* The framer never hands out such a message; a direct caller may. */
         out->kind = URWIRE_KIND_UNKNOWN_MESSAGE;
         out->message_type = 0;
         out->failed = true;
         out->raw = urwire__view(bytes, len);
-        *done = urwire__short(&out->error, "length", 0, URWIRE_HEADER_SIZE, len);
+        urwire__short(&out->error, "length", 0, URWIRE_HEADER_SIZE, len);
         return NULL;
     }
     out->message_type = bytes[URWIRE__TYPE_AT];
@@ -264,17 +266,15 @@ static const urwire__message_type *urwire__message_head(const uint8_t *bytes, si
     if (t == NULL) {
         out->kind = URWIRE_KIND_UNKNOWN_MESSAGE;
         out->raw = urwire__view(bytes + URWIRE_HEADER_SIZE, len - URWIRE_HEADER_SIZE);
-        *done = true;
     }
     return t;
 }
 
 bool urwire_decode_message(const uint8_t *bytes, size_t len, urwire_sw_version version, urwire_message *out)
 {
-    bool done;
-    const urwire__message_type *t = urwire__message_head(bytes, len, version, out, &done);
+    const urwire__message_type *t = urwire__message_head(bytes, len, &version, out);
     if (t == NULL)
-        return done;
+        return !out->failed;
     return t->packages ? urwire__decode_packages(out, version) : urwire__decode_subtype(out, t);
 }
 
@@ -490,11 +490,11 @@ URWIRE__NOINLINE static bool urwire__decode_state_message(const uint8_t *bytes, 
 /* urwire_decode_robot_state_message of a message of any other type: as urwire_decode_message,
  * without its robot-state branch, which a firmware that reads robot states this way then does
  * not link; out of line, so that a robot state is decoded without its locals on the stack. */
-URWIRE__NOINLINE static void urwire__decode_other_message(const uint8_t *bytes, size_t len, urwire_sw_version version,
+URWIRE__NOINLINE static void urwire__decode_other_message(const uint8_t *bytes, size_t len,
+                                                          const urwire_sw_version *version,
                                                           urwire_message *m)
 {
-    bool done;
-    const urwire__message_type *t = urwire__message_head(bytes, len, version, m, &done);
+    const urwire__message_type *t = urwire__message_head(bytes, len, version, m);
     if (t != NULL)
         urwire__decode_subtype(m, t);
 }
@@ -507,7 +507,7 @@ bool urwire_decode_robot_state_message(const uint8_t *bytes, size_t len, urwire_
         out->malformed = 0;
         out->layouts = 0;
         out->unknown = 0;
-        urwire__decode_other_message(bytes, len, version, m);
+        urwire__decode_other_message(bytes, len, &version, m);
         return false;
     }
     return urwire__decode_state_message(bytes, len, version, m, out);
