@@ -4,7 +4,8 @@
  * PrimaryJsonLines frames a primary/secondary stream fed in chunks of any size and gives back the
  * canonical JSON Lines of its records, the same bytes as `urwire.to_json_line` of each record the
  * pure-Python Framer makes, with the C parser and writer doing the work. The Python side that
- * picks it over pure Python is urwire/backends.py. */
+ * picks it over pure Python is urwire/backends.py; a capture's primary conversations take one each
+ * (urwire/capture_json.py), which restart() and announced serve. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 
@@ -117,6 +118,37 @@ static PyObject *lines_close(PrimaryJsonLines *self, PyObject *Py_UNUSED(ignored
     return print_records(self, NULL, 0);
 }
 
+/* restart(offset): the stream lost bytes; what is held is given up (close()'s lines) and framing
+ * starts afresh at stream offset `offset`, the version learnt kept (framer.py's Framer.restart,
+ * tools/urwire-decode/capture_json.c's restart). */
+static PyObject *lines_restart(PrimaryJsonLines *self, PyObject *arg)
+{
+    unsigned long long offset = PyLong_AsUnsignedLongLong(arg);
+    urwire_framer *f = &self->framer;
+    PyObject *lines;
+    if (offset == (unsigned long long)-1 && PyErr_Occurred())
+        return NULL;
+    if (!(lines = print_records(self, NULL, 0)))
+        return NULL;
+    f->head = f->len = 0;
+    f->base = offset;
+    f->skip = 0;
+    f->resyncing = f->finished = f->ended_inside = false;
+    f->unlearnt = 0;
+    self->finished = 0;
+    return lines;
+}
+
+/* The version the stream's last Version message set, as (major, minor, bugfix), else None
+ * (framer.py's Framer.announced). */
+static PyObject *lines_announced(PrimaryJsonLines *self, void *Py_UNUSED(closure))
+{
+    const urwire_sw_version *v = &self->framer.version;
+    if (!self->writer || !self->framer.version_seen)
+        Py_RETURN_NONE;
+    return Py_BuildValue("(iii)", v->major, v->minor, v->bugfix);
+}
+
 static PyObject *lines_errors(PrimaryJsonLines *self, void *Py_UNUSED(closure))
 {
     return PyBool_FromLong(self->errors);
@@ -127,11 +159,15 @@ static PyMethodDef lines_methods[] = {
      "feed(data) -> bytes: the JSON Lines of the records the bytes so far complete"},
     {"close", (PyCFunction)lines_close, METH_NOARGS,
      "close() -> bytes: the JSON Lines of what the end of the stream completes (a cut tail's fault)"},
+    {"restart", (PyCFunction)lines_restart, METH_O,
+     "restart(offset) -> bytes: close()'s lines, then framing afresh at stream offset `offset`, the version kept"},
     {NULL, NULL, 0, NULL},
 };
 
 static PyGetSetDef lines_getset[] = {
     {"errors", (getter)lines_errors, NULL, "whether a record written so far held an error", NULL},
+    {"announced", (getter)lines_announced, NULL,
+     "the version the last Version message set, (major, minor, bugfix), else None", NULL},
     {NULL, NULL, NULL, NULL, NULL},
 };
 
