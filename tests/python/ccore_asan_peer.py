@@ -1,6 +1,6 @@
 """Run by tests/python/test_c_backend.py: the differentials of that file (JSON lines, and robot
 states' records) over every vector and kept fuzz input, and the hostile robot states, and those
-of test_c_backend_flat.py (real-time packets, RTDE values by name), against an
+of test_c_backend_flat.py (real-time packets), against an
 urwire._ccore built with ASan and UBSan (its path: argv[1]), loaded in place of the in-tree one.
 A sanitizer's report ends the process with an error. Prints the inputs of each differential."""
 import random
@@ -42,7 +42,6 @@ def main(path: str) -> int:
         records += 1
     for cls in flat.FLAT_LAYOUTS:
         flat.test_every_realtime_layout_made_in_c_is_its_decoders_record(ccore, cls)
-    flat.test_values_by_name_are_the_python_loops(ccore)
     print(count, records)
     return 0
 
