@@ -21,10 +21,13 @@ from .reading import CaptureRecords
 @dataclasses.dataclass(frozen=True)
 class Written:
     """JSON Lines that C wrote (bytes, each line ending in a newline), and whether a line the
-    conversation wrote so far held an error."""
+    conversation wrote so far held an error; `enveloped` once the conversation's lines start
+    with their envelope (set_head), else each starts with its record's "{"."""
 
     text: bytes
     errors: bool
+    enveloped: bool
+    conversation: "PrimaryJsonConversation"
 
 
 class PrimaryJsonConversation:
@@ -33,6 +36,7 @@ class PrimaryJsonConversation:
     def __init__(self, version_hint: VersionLike = None):
         hint = parse_version(version_hint)
         self._c = CCORE.PrimaryJsonLines(None if hint is None else "%d.%d.%d" % hint)
+        self._enveloped = False
 
     def feed(self, data: bytes, from_robot: bool) -> list:
         return self._written(self._c.feed(data)) if from_robot else []
@@ -48,8 +52,13 @@ class PrimaryJsonConversation:
         """The version the robot's Version message announced, else None (as PrimaryConversation's)."""
         return self._c.announced
 
+    def set_head(self, head: bytes) -> None:
+        """Each line from now on starts with `head` (its envelope's) in place of its "{"."""
+        self._c.set_head(head)
+        self._enveloped = True
+
     def _written(self, text: bytes) -> list:
-        return [Written(text, self._c.errors)] if text else []
+        return [Written(text, self._c.errors, self._enveloped, self)] if text else []
 
 
 def written_in_c(by_port: dict[int, Interface]) -> dict[int, Interface]:
@@ -65,11 +74,9 @@ class CaptureJsonLines:
     def __init__(self, fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
                  advance: Callable[[int], None] = lambda n: None):
         self._records = CaptureRecords(lambda others: cell_records(fh, hint, written_in_c(by_port), advance, others))
-        self._heads: dict = {}      # (conversation, direction) -> its envelope's head, as bytes
         self.errors = False
 
     def __iter__(self) -> Iterator[bytes]:
-        heads = self._heads
         for item in self._records:
             written = item.record
             if type(written) is not Written:
@@ -77,9 +84,12 @@ class CaptureJsonLines:
                 yield (to_json_line(item) + "\n").encode()
                 continue
             self.errors = self.errors or written.errors
-            head = heads.get((item.conversation, item.direction))
-            if head is None:
-                head = heads[item.conversation, item.direction] = envelope_head(item).encode()
+            if written.enveloped:
+                yield written.text
+                continue
+            # The conversation's first lines: enveloped here, its next ones by C.
+            head = envelope_head(item).encode()
+            written.conversation.set_head(head)
             # Each line's "{" becomes the envelope's head; a newline inside a JSON text is escaped.
             yield head + written.text[1:].replace(b"\n{", b"\n" + head)
 
