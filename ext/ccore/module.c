@@ -146,17 +146,12 @@ static PyObject *lines_close(PrimaryJsonLines *self, PyObject *Py_UNUSED(ignored
 static PyObject *lines_restart(PrimaryJsonLines *self, PyObject *arg)
 {
     unsigned long long offset = PyLong_AsUnsignedLongLong(arg);
-    urwire_framer *f = &self->framer;
     PyObject *lines;
     if (offset == (unsigned long long)-1 && PyErr_Occurred())
         return NULL;
     if (!(lines = print_records(self, NULL, 0)))
         return NULL;
-    f->head = f->len = 0;
-    f->base = offset;
-    f->skip = 0;
-    f->resyncing = f->finished = f->ended_inside = false;
-    f->unlearnt = 0;
+    ccore_framer_restart(&self->framer, offset);
     self->finished = 0;
     return lines;
 }

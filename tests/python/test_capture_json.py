@@ -95,3 +95,30 @@ def test_the_announced_version_and_a_restart_are_the_framers():
     lines = b"".join(w.text for w in in_c.lost(True, 9000) + in_c.feed(stream[9000:], True) + in_c.close(True))
     records = in_python.lost(True, 9000) + in_python.feed(stream[9000:], True) + in_python.close(True)
     assert lines.decode() == "".join(cli.to_json_line(r) + "\n" for r in records)
+
+
+def assert_heads_replace_braces(ccore) -> None:
+    """PrimaryJsonLines with a head, fed in pieces and restarted: each line as without one, its
+    "{" replaced by the head. Also run under ASan and UBSan (ccore_asan_peer.py)."""
+    stream = primary_stream() * 4
+    head = b'{"interface": "ur", "direction": "from_robot", "conversation": "\xc3\xa9", '
+    plain, headed = ccore.PrimaryJsonLines(), ccore.PrimaryJsonLines()
+    headed.set_head(head)
+    want, got = b"", b""
+    for n, at in enumerate(range(0, len(stream), 700)):
+        for lines in (plain, headed):
+            text = lines.restart(at + 333) if n % 3 == 2 else lines.feed(stream[at:at + 700])
+            if lines is plain:
+                want += text
+            else:
+                got += text
+    want, got = want + plain.close(), got + headed.close()
+    lines = want.split(b"\n")[:-1]
+    assert len(lines) > 10 and got == b"".join(head + line[1:] + b"\n" for line in lines)
+    assert plain.errors and headed.errors         # the restarts cut messages
+    with pytest.raises(TypeError):
+        headed.set_head("{")
+
+
+def test_a_head_replaces_each_lines_brace():
+    assert_heads_replace_braces(CCORE)
