@@ -152,8 +152,8 @@ def decode_command(args: argparse.Namespace) -> int:
         return 2
     advance = _progress(size, args.no_progress)
     render = {"json": to_json_line, "text": human_line, "tree": human_tree}[args.format]
-    c_lines = _c_json_lines(fh, args)
     try:
+        c_lines = _c_json_lines(fh, args)
         records = None if c_lines else _records(fh, args, advance)
     except OSError as exc:
         print(f"urwire: cannot read {args.to_robot}: {exc.strerror or exc}", file=sys.stderr)
