@@ -3,7 +3,7 @@
 #define URWIRE_CCORE_FLAT_H
 #include <Python.h>
 
-/* Adds FlatRecords and values_by_name to the module; -1 with an exception set. */
+/* Adds FlatRecords to the module; -1 with an exception set. */
 int flat_add_types(PyObject *module);
 
 #endif

@@ -1138,11 +1138,7 @@ static PyObject *columns_restart_stream(PrimaryColumns *self, PyObject *args)
     urwire_framer_finish(f);
     rc = add_ready(self);
     self->framer = &self->own;
-    f->head = f->len = 0;
-    f->base = (uint64_t)offset;
-    f->skip = 0;
-    f->resyncing = f->finished = f->ended_inside = false;
-    f->unlearnt = 0;
+    ccore_framer_restart(f, (uint64_t)offset);
     return rc == 0 ? PyLong_FromLongLong(self->position - start) : NULL;
 }
 

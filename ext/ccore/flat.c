@@ -4,9 +4,7 @@
  * FlatRecords(layouts) takes the generated FLAT_LAYOUTS of a sized-packets interface ({class:
  * (struct, ((name, first, stop or None), ...))}) and makes a packet's record as its decoder does,
  * cls(v[0], v[1], v[2:8], ...) with v = struct.unpack_from(packet, offset), past __init__:
- * the same values, tuples for the slices, `extra` b"". values_by_name(flat, plan) makes an RTDE
- * data package's values as typed_records.Recipe.decode does: {name: value, or a list of them,
- * a bool variable's byte as True/False or its number}. */
+ * the same values, tuples for the slices, `extra` b"". */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 #include <structmember.h>
@@ -211,76 +209,6 @@ static PyTypeObject FlatRecordsType = {
     .tp_methods = flat_methods,
 };
 
-/* values_by_name(flat, plan): plan is ((name, first, count, is_bool), ...) over the tuple flat;
- * the dict typed_records.Recipe.decode makes, or None when a bool's value is not a byte (the
- * Python loop then reads it as it always has). */
-static PyObject *values_by_name(PyObject *Py_UNUSED(module), PyObject *const *args, Py_ssize_t nargs)
-{
-    PyObject *flat, *plan, *values;
-    Py_ssize_t i, n;
-    if (nargs != 2 || !PyTuple_Check(args[0]) || !PyTuple_Check(args[1])) {
-        PyErr_SetString(PyExc_TypeError, "values_by_name(flat: tuple, plan: tuple)");
-        return NULL;
-    }
-    flat = args[0];
-    plan = args[1];
-    n = PyTuple_GET_SIZE(flat);
-    values = PyDict_New();
-    if (values == NULL)
-        return NULL;
-    for (i = 0; i < PyTuple_GET_SIZE(plan); i++) {
-        PyObject *entry = PyTuple_GET_ITEM(plan, i), *value;
-        Py_ssize_t first, count;
-        int is_bool, stored;
-        if (!PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 4)
-            goto not_here;
-        first = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, 1));
-        count = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, 2));
-        is_bool = PyObject_IsTrue(PyTuple_GET_ITEM(entry, 3));
-        if (PyErr_Occurred() || is_bool < 0)
-            goto failed;
-        if (first < 0 || count < 1 || first + count > n)
-            goto not_here;
-        if (count == 1) {
-            value = PyTuple_GET_ITEM(flat, first);
-            if (is_bool && !PyBool_Check(value)) {
-                long byte = PyLong_Check(value) ? PyLong_AsLong(value) : -1;
-                if (byte < 0 || byte > 255) {
-                    if (PyErr_Occurred())
-                        goto failed;
-                    goto not_here;           /* BOOL[v] has its own answer: Python's loop gives it */
-                }
-                value = byte <= 1 ? PyBool_FromLong(byte) : Py_NewRef(value);   /* _rt.BOOL[v] */
-            } else {
-                Py_INCREF(value);
-            }
-        } else {
-            Py_ssize_t k;
-            if ((value = PyList_New(count)) == NULL)
-                goto failed;
-            for (k = 0; k < count; k++)
-                PyList_SET_ITEM(value, k, Py_NewRef(PyTuple_GET_ITEM(flat, first + k)));
-        }
-        stored = PyDict_SetItem(values, PyTuple_GET_ITEM(entry, 0), value);
-        Py_DECREF(value);
-        if (stored < 0)
-            goto failed;
-    }
-    return values;
-not_here:
-    Py_DECREF(values);
-    Py_RETURN_NONE;
-failed:
-    Py_DECREF(values);
-    return NULL;
-}
-
-static PyMethodDef flat_functions[] = {
-    {"values_by_name", (PyCFunction)(void (*)(void))values_by_name, METH_FASTCALL,
-     "values_by_name(flat, plan) -> dict or None: an RTDE data package's values by variable name"},
-    {NULL, NULL, 0, NULL},
-};
-
 int flat_add_types(PyObject *module)
 {
     if (PyType_Ready(&FlatRecordsType) < 0)
@@ -290,5 +218,5 @@ int flat_add_types(PyObject *module)
         Py_DECREF(&FlatRecordsType);
         return -1;
     }
-    return PyModule_AddFunctions(module, flat_functions);
+    return 0;
 }

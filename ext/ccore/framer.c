@@ -1,4 +1,4 @@
-/* A primary stream's framer as PrimaryJsonLines and PrimaryStream open it (ccore_framer.h). */
+/* A primary stream's framer as PrimaryJsonLines and PrimaryStream open and restart it (ccore_framer.h). */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 
@@ -22,4 +22,13 @@ int ccore_framer_open(urwire_framer *framer, uint8_t **buffer, PyObject *args, P
     }
     urwire_framer_init(framer, *buffer, URWIRE_FRAMER_MIN_BUFFER, version);
     return 0;
+}
+
+void ccore_framer_restart(urwire_framer *f, uint64_t offset)
+{
+    f->head = f->len = 0;
+    f->base = offset;
+    f->skip = 0;
+    f->resyncing = f->finished = f->ended_inside = false;
+    f->unlearnt = 0;
 }

@@ -4,7 +4,8 @@
  * PrimaryJsonLines frames a primary/secondary stream fed in chunks of any size and gives back the
  * canonical JSON Lines of its records, the same bytes as `urwire.to_json_line` of each record the
  * pure-Python Framer makes, with the C parser and writer doing the work. The Python side that
- * picks it over pure Python is urwire/backends.py. */
+ * picks it over pure Python is urwire/backends.py; a capture's primary conversations take one each
+ * (urwire/capture_json.py), which restart() and announced serve. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 
@@ -29,12 +30,14 @@ typedef struct {
     urwire_visitor visitor;
     int errors;                     /* a record written so far held an error */
     int finished;
+    PyObject *head;                 /* bytes each line starts with in place of its "{", else NULL */
 } PrimaryJsonLines;
 
 static void lines_dealloc(PrimaryJsonLines *self)
 {
     PyMem_Free(self->framer_buffer);
     PyMem_Free(self->writer);
+    Py_XDECREF(self->head);
     Py_TYPE(self)->tp_free((PyObject *)self);
 }
 
@@ -54,16 +57,36 @@ static int lines_init(PrimaryJsonLines *self, PyObject *args, PyObject *kwargs)
     return 0;
 }
 
-/* The lines the writer printed into a memory stream, as bytes; NULL with an exception set.
+/* The lines the writer printed into a memory stream, as bytes, each line's "{" replaced by `head`
+ * when it is not NULL (copied as the bytes are made: no second pass); NULL with an exception set.
  * *text and *size are the stream's, final once it is closed. */
-static PyObject *take_lines(FILE *out, char **text, size_t *size)
+static PyObject *take_lines(FILE *out, char **text, size_t *size, PyObject *head)
 {
     PyObject *lines;
+    const char *from, *end, *eol;
+    char *to;
+    size_t n = 0, h;
     if (fclose(out) != 0) {
         free(*text);
         return PyErr_SetFromErrno(PyExc_OSError);
     }
-    lines = PyBytes_FromStringAndSize(*text ? *text : "", (Py_ssize_t)*size);
+    if (head == NULL || *size == 0) {
+        lines = PyBytes_FromStringAndSize(*text ? *text : "", (Py_ssize_t)*size);
+        free(*text);
+        return lines;
+    }
+    h = (size_t)PyBytes_GET_SIZE(head);
+    for (from = *text, end = *text + *size; (eol = memchr(from, '\n', (size_t)(end - from))) != NULL; from = eol + 1)
+        n++;
+    lines = PyBytes_FromStringAndSize(NULL, (Py_ssize_t)(*size + n * h - n));
+    if (lines != NULL) {
+        to = PyBytes_AS_STRING(lines);
+        for (from = *text; (eol = memchr(from, '\n', (size_t)(end - from))) != NULL; from = eol + 1) {
+            memcpy(to, PyBytes_AS_STRING(head), h);
+            memcpy(to + h, from + 1, (size_t)(eol - from));     /* after the line's "{", its newline too */
+            to += h + (size_t)(eol - from);
+        }
+    }
     free(*text);
     return lines;
 }
@@ -98,7 +121,7 @@ static PyObject *print_records(PrimaryJsonLines *self, const uint8_t *data, size
         self->finished = 1;
     }
     self->writer->out = NULL;
-    return take_lines(out, &text, &size);
+    return take_lines(out, &text, &size, self->head);
 }
 
 static PyObject *lines_feed(PrimaryJsonLines *self, PyObject *arg)
@@ -117,6 +140,45 @@ static PyObject *lines_close(PrimaryJsonLines *self, PyObject *Py_UNUSED(ignored
     return print_records(self, NULL, 0);
 }
 
+/* restart(offset): the stream lost bytes; what is held is given up (close()'s lines) and framing
+ * starts afresh at stream offset `offset`, the version learnt kept (framer.py's Framer.restart,
+ * tools/urwire-decode/capture_json.c's restart). */
+static PyObject *lines_restart(PrimaryJsonLines *self, PyObject *arg)
+{
+    unsigned long long offset = PyLong_AsUnsignedLongLong(arg);
+    PyObject *lines;
+    if (offset == (unsigned long long)-1 && PyErr_Occurred())
+        return NULL;
+    if (!(lines = print_records(self, NULL, 0)))
+        return NULL;
+    ccore_framer_restart(&self->framer, offset);
+    self->finished = 0;
+    return lines;
+}
+
+/* set_head(head): each line from now on starts with the bytes `head` in place of its "{" (the
+ * envelope of a capture's record: "{" and its keys, the record's own to follow). */
+static PyObject *lines_set_head(PrimaryJsonLines *self, PyObject *head)
+{
+    if (!PyBytes_Check(head) || PyBytes_GET_SIZE(head) < 1) {
+        PyErr_SetString(PyExc_TypeError, "set_head(head): bytes, not empty");
+        return NULL;
+    }
+    Py_INCREF(head);
+    Py_XSETREF(self->head, head);
+    Py_RETURN_NONE;
+}
+
+/* The version the stream's last Version message set, as (major, minor, bugfix), else None
+ * (framer.py's Framer.announced). */
+static PyObject *lines_announced(PrimaryJsonLines *self, void *Py_UNUSED(closure))
+{
+    const urwire_sw_version *v = &self->framer.version;
+    if (!self->writer || !self->framer.version_seen)
+        Py_RETURN_NONE;
+    return Py_BuildValue("(iii)", v->major, v->minor, v->bugfix);
+}
+
 static PyObject *lines_errors(PrimaryJsonLines *self, void *Py_UNUSED(closure))
 {
     return PyBool_FromLong(self->errors);
@@ -127,11 +189,17 @@ static PyMethodDef lines_methods[] = {
      "feed(data) -> bytes: the JSON Lines of the records the bytes so far complete"},
     {"close", (PyCFunction)lines_close, METH_NOARGS,
      "close() -> bytes: the JSON Lines of what the end of the stream completes (a cut tail's fault)"},
+    {"set_head", (PyCFunction)lines_set_head, METH_O,
+     "set_head(head): each line from now on starts with the bytes head in place of its '{'"},
+    {"restart", (PyCFunction)lines_restart, METH_O,
+     "restart(offset) -> bytes: close()'s lines, then framing afresh at stream offset `offset`, the version kept"},
     {NULL, NULL, 0, NULL},
 };
 
 static PyGetSetDef lines_getset[] = {
     {"errors", (getter)lines_errors, NULL, "whether a record written so far held an error", NULL},
+    {"announced", (getter)lines_announced, NULL,
+     "the version the last Version message set, (major, minor, bugfix), else None", NULL},
     {NULL, NULL, NULL, NULL, NULL},
 };
 

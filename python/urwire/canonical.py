@@ -463,8 +463,13 @@ def _enveloped(obj: Enveloped) -> str:
     inner = _write(obj.record)
     if obj.interface is None:
         return inner
-    return '{"interface": %s, "direction": %s, "conversation": %s, %s' % (
-        _text(obj.interface), _text(obj.direction), _text(obj.conversation), inner[1:])
+    return envelope_head(obj) + inner[1:]
+
+
+def envelope_head(obj: Enveloped) -> str:
+    """The start of an enveloped record's JSON: "{" and the envelope's keys, the record's own to follow."""
+    return '{"interface": %s, "direction": %s, "conversation": %s, ' % (
+        _text(obj.interface), _text(obj.direction), _text(obj.conversation))
 
 
 _RUNTIME_WRITERS = ((Enveloped, _enveloped), (StreamError, _stream_error), (UnknownMessage, _unknown_message),

@@ -69,10 +69,11 @@ def conversation_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Int
     error record). A conversation closes when its listening side ends (or the capture does). The
     software version a robot's primary stream announces is passed on to its other conversations
     (the real-time one chooses among layouts of one size with it)."""
-    conversations: dict = {}
+    conversations: dict = {}     # key -> (conversation, its learn_version or None, its at or None)
     versions: dict = {}      # robot address -> the software version one of its conversations learnt
     both_ways = {port for port, i in by_port.items() if i.both_directions}
     last = 0
+    seekable = fh.seekable()
     for item in timed_streams(fh, set(by_port), both_ways, others):
         if isinstance(item, CaptureFault):  # its offset is the capture file's, not a stream's
             yield None, None, None, None, StreamError(item.offset, item.error)
@@ -82,18 +83,18 @@ def conversation_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Int
         # The side that listens on the port is the robot, except on the ROS driver's sockets,
         # where the robot connects to the control PC.
         from_robot = from_port != interface.robot_is_client
-        conv = conversations.get(key)
-        if conv is None:
+        entry = conversations.get(key)
+        if entry is None:
             if not piece:                       # the end of a conversation already closed
                 continue
-            conv = conversations[key] = interface.conversation(hint)
-        learn = getattr(conv, "learn_version", None)
+            conv = interface.conversation(hint)
+            # Its optional methods, looked up once: a capture has many items per conversation.
+            entry = conversations[key] = conv, getattr(conv, "learn_version", None), getattr(conv, "at", None)
+        conv, learn, at = entry
         if learn is not None and key[0] in versions:
             learn(versions[key[0]])
-        at = getattr(conv, "at", None)
         if at is not None:      # a conversation that files its records itself (data/dataset_c_capture.py)
             at(time, key)
-        sides: list = []
         if isinstance(piece, Gap):
             # Named first (a conversation that files its records itself numbers what follows after
             # it), then what the direction held before it given up, and its decoding started afresh.
@@ -106,18 +107,21 @@ def conversation_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Int
         learnt = getattr(conv, "software_version", None)
         if learnt is not None:
             versions[key[0]] = learnt
-        sides.append((from_robot, records))
+        tails: tuple = ()
         if ended and from_port:
             # Each direction's tail is its own: to_robot's first, then the robot's.
-            sides += [(False, conv.close(False)), (True, conv.close(True))]
+            tails = ((False, conv.close(False)), (True, conv.close(True)))
             del conversations[key]
-        for side_from_robot, side in sides:
-            for record in side:
+        for record in records:
+            yield time, key, interface, from_robot, record
+        for side_from_robot, tail in tails:
+            for record in tail:
                 yield time, key, interface, side_from_robot, record
-        if fh.seekable():
+        if seekable:
             pos = fh.tell()
-            advance(pos - last)
-            last = pos
+            if pos != last:
+                advance(pos - last)
+                last = pos
 
 
 def records_of_raw_protocol(fh: BinaryIO, interface: Interface, hint: VersionLike, chunk: int,

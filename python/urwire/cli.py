@@ -13,6 +13,7 @@ from . import __version__
 from .arguments import port_number, software_version
 from .backends import JsonLines, backend
 from .capture import head_of, is_capture
+from .capture_json import CaptureJsonLines
 from .canonical import fails, to_json_line
 from .human import line as human_line
 from .human import tree as human_tree
@@ -99,27 +100,40 @@ def _records(fh: BinaryIO, args: argparse.Namespace, advance: Callable[[int], No
                                    (args.file, args.to_robot or ""))
 
 
-def _is_c_json_lines(fh: BinaryIO, args: argparse.Namespace) -> bool:
-    """Whether the C backend prints this input: JSON Lines of a raw primary/secondary stream."""
-    if backend() != "c" or args.format != "json" or args.to_robot is not None:
-        return False
-    if (args.protocol or "ur") != "ur" or not hasattr(fh, "peek"):
-        return False
-    return not is_capture(head_of(fh))
+def _c_json_lines(fh: BinaryIO, args: argparse.Namespace) -> Optional[str]:
+    """What the C backend prints, as JSON Lines: "stream", a raw primary/secondary stream; "capture",
+    a capture's primary conversations (capture_json.py); else None."""
+    if backend() != "c" or args.format != "json" or args.to_robot is not None or not hasattr(fh, "peek"):
+        return None
+    if is_capture(head_of(fh)):
+        return "capture"
+    return "stream" if (args.protocol or "ur") == "ur" else None
+
+
+def _bytes_sink(out) -> Callable[[bytes], object]:
+    """Where UTF-8 lines go: stdout's bytes underneath, else (an io.StringIO put in its place) as text."""
+    out.flush()
+    return out.buffer.write if hasattr(out, "buffer") else lambda data: out.write(data.decode())
 
 
 def _write_json_lines(fh: BinaryIO, hint, advance: Callable[[int], None], out) -> bool:
     """The C backend's JSON Lines of a raw primary/secondary stream, written as they come; True
     when one of the records held an error."""
     lines = JsonLines(hint)
-    out.flush()
-    # The lines are UTF-8 bytes: they go to stdout's bytes underneath, else (an io.StringIO put in
-    # its place) as text.
-    sink = out.buffer.write if hasattr(out, "buffer") else lambda data: out.write(data.decode())
+    sink = _bytes_sink(out)
     while chunk := fh.read(CHUNK):
         advance(len(chunk))
         sink(lines.feed(chunk))
     sink(lines.close())
+    out.flush()
+    return lines.errors
+
+
+def _write_capture_lines(lines: CaptureJsonLines, out) -> bool:
+    """A capture's JSON Lines, written as they come; True when one of the records held an error."""
+    sink = _bytes_sink(out)
+    for piece in lines:
+        sink(piece)
     out.flush()
     return lines.errors
 
@@ -139,15 +153,19 @@ def decode_command(args: argparse.Namespace) -> int:
     advance = _progress(size, args.no_progress)
     render = {"json": to_json_line, "text": human_line, "tree": human_tree}[args.format]
     try:
-        records = None if _is_c_json_lines(fh, args) else _records(fh, args, advance)
+        c_lines = _c_json_lines(fh, args)
+        records = None if c_lines else _records(fh, args, advance)
     except OSError as exc:
         print(f"urwire: cannot read {args.to_robot}: {exc.strerror or exc}", file=sys.stderr)
         return 2
     failed = False
     out = sys.stdout
     try:
-        if records is None:
+        if c_lines == "stream":
             failed = _write_json_lines(fh, args.version_hint, advance, out)
+        elif c_lines == "capture":
+            records = CaptureJsonLines(fh, args.version_hint, ports_read(args.protocol, args.port), advance)
+            failed = _write_capture_lines(records, out)
         else:
             for record in records:
                 failed = failed or fails(record)

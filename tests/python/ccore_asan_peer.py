@@ -1,8 +1,9 @@
 """Run by tests/python/test_c_backend.py: the differentials of that file (JSON lines, and robot
 states' records) over every vector and kept fuzz input, and the hostile robot states, and those
-of test_c_backend_flat.py (real-time packets, RTDE values by name), against an
-urwire._ccore built with ASan and UBSan (its path: argv[1]), loaded in place of the in-tree one.
-A sanitizer's report ends the process with an error. Prints the inputs of each differential."""
+of test_c_backend_flat.py (real-time packets) and test_capture_json.py (lines with an envelope),
+against an urwire._ccore built with ASan and UBSan (its path: argv[1]), loaded in place of the
+in-tree one. A sanitizer's report ends the process with an error. Prints the inputs of each
+differential."""
 import random
 import sys
 from pathlib import Path
@@ -12,6 +13,7 @@ sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python"), str(RO
 
 from tests.python import test_c_backend as differential  # noqa: E402
 from tests.python import test_c_backend_flat as flat  # noqa: E402
+from tests.python import test_capture_json as capture_json  # noqa: E402
 from tests.tools import ccore_sanitized  # noqa: E402
 from tests.tools.fuzz_inputs import HARNESSES, decodable  # noqa: E402
 from tests.vectors import all_cases  # noqa: E402
@@ -42,7 +44,7 @@ def main(path: str) -> int:
         records += 1
     for cls in flat.FLAT_LAYOUTS:
         flat.test_every_realtime_layout_made_in_c_is_its_decoders_record(ccore, cls)
-    flat.test_values_by_name_are_the_python_loops(ccore)
+    capture_json.assert_heads_replace_braces(ccore)
     print(count, records)
     return 0
 

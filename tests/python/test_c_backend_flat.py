@@ -1,10 +1,8 @@
 """The C backend's records of the one-run layouts against pure Python: real-time packets
-(urwire._ccore.FlatRecords over the generated FLAT_LAYOUTS) and the extension's RTDE values by
-name (urwire._ccore.values_by_name, which decoding no longer calls: a recipe's reader in Python,
-typed_records.values_reader, is faster). Every real-time golden vector, fed whole and byte by
-byte, gives the same records (==, repr, JSON line, bytes again); every real-time layout made in C
-from random bytes (NaNs among them) is its decoder's record, a packet cut short raises as the
-decoder does; random recipes' values, bools of any byte among them, are the Python loop's.
+(urwire._ccore.FlatRecords over the generated FLAT_LAYOUTS). Every real-time golden vector, fed
+whole and byte by byte, gives the same records (==, repr, JSON line, bytes again); every real-time
+layout made in C from random bytes (NaNs among them) is its decoder's record, a packet cut short
+raises as the decoder does.
 
 The extension is built by `make python-ext`; without it these tests fail."""
 from __future__ import annotations
@@ -98,42 +96,3 @@ def test_every_realtime_layout_made_in_c_is_its_decoders_record(ccore, cls):
             cls.decode(bytes(st.size - 1), 0)
         assert str(from_c.value) == str(from_python.value)
     assert packets.decode(realtime.UnknownPacket, bytes(8), 0) is None     # no layout: the decoder's
-
-
-def python_values(flat: tuple, plan: tuple) -> dict:
-    """typed_records.Recipe.decode's loop, over a plan of (name, first, count, is a bool)."""
-    from urwire._runtime import BOOL
-
-    values = {}
-    for name, first, count, is_bool in plan:
-        if count == 1:
-            values[name] = BOOL[flat[first]] if is_bool else flat[first]
-        else:
-            values[name] = list(flat[first:first + count])
-    return values
-
-
-def test_values_by_name_are_the_python_loops(ccore):
-    """Random plans over random values: the same dict, in the same order, with the same types;
-    a bool's byte 0 and 1 as False and True, 2 to 255 as the number; a bool that is not a byte
-    (a signed code's -1) gives None, for the Python loop to answer."""
-    rng = random.Random(25)
-    for _ in range(300):
-        plan, flat = [], []
-        for k in range(rng.randrange(1, 12)):
-            count = rng.choice((1, 1, 3, 6))
-            is_bool = count == 1 and rng.random() < 0.3
-            plan.append((f"v{k}", len(flat), count, is_bool))
-            if is_bool:
-                flat.append(rng.choice((0, 1, 2, 255, True, False)))
-            else:
-                flat += [rng.choice((rng.random(), rng.getrandbits(31), -rng.getrandbits(63)))
-                         for _ in range(count)]
-        plan, flat = tuple(plan), tuple(flat)
-        got = ccore.values_by_name(flat, plan)
-        expected = python_values(flat, plan)
-        assert list(got.items()) == list(expected.items())
-        assert [type(v) for v in got.values()] == [type(v) for v in expected.values()]
-    assert ccore.values_by_name((-1,), (("flag", 0, 1, True),)) is None
-    with pytest.raises(TypeError):
-        ccore.values_by_name([1], (("x", 0, 1, False),))
