@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "capture_file.h"
+#include "growing.h"
 #include "reassembly.h"
 
 /* Two endpoints, and a flag (the direction, for a way): the key of every table here. */
@@ -51,22 +52,6 @@ struct urwire_capture {
     size_t n_others, others_capacity;
     bool finished;
 };
-
-static bool grow(void **buf, size_t *capacity, size_t need, size_t size)
-{
-    size_t c = *capacity ? *capacity : 16;
-    void *grown;
-    if (need <= *capacity)
-        return true;
-    while (c < need)
-        c *= 2;
-    grown = realloc(*buf, c * size);
-    if (grown == NULL)
-        return false;
-    *buf = grown;
-    *capacity = c;
-    return true;
-}
 
 static size_t hash(const endpoints *k)
 {
@@ -158,7 +143,7 @@ static way *way_of(urwire_capture *c, const endpoints *key)
         conversation = other->conversation;
     } else {
         conversation = calloc(1, sizeof *conversation);
-        if (conversation == NULL || !grow((void **)&c->conversations, &c->conversations_capacity,
+        if (conversation == NULL || !urwire_capture_grow((void **)&c->conversations, &c->conversations_capacity,
                                           c->n_conversations + 1, sizeof(urwire_capture_conversation *))) {
             free(conversation);
             return NULL;
@@ -170,7 +155,7 @@ static way *way_of(urwire_capture *c, const endpoints *key)
         conversation->client_port = key->port_b;
     }
     if (!table_room(&c->way_table, way_key, c) ||
-        !grow((void **)&c->ways, &c->ways_capacity, c->n_ways + 1, sizeof *c->ways))
+        !urwire_capture_grow((void **)&c->ways, &c->ways_capacity, c->n_ways + 1, sizeof *c->ways))
         return NULL;
     w = &c->ways[c->n_ways];
     memset(w, 0, sizeof *w);
@@ -287,8 +272,8 @@ static int count_other(urwire_capture *c, const urwire_capture_segment *s)
         c->others[c->other_keys[*slot - 1].other].bytes += s->length;
         return 0;
     }
-    if (!grow((void **)&c->others, &c->others_capacity, c->n_others + 1, sizeof *c->others) ||
-        !grow((void **)&c->other_keys, &c->other_keys_capacity, c->n_other_keys + 2, sizeof *c->other_keys) ||
+    if (!urwire_capture_grow((void **)&c->others, &c->others_capacity, c->n_others + 1, sizeof *c->others) ||
+        !urwire_capture_grow((void **)&c->other_keys, &c->other_keys_capacity, c->n_other_keys + 2, sizeof *c->other_keys) ||
         !table_room(&c->other_table, other_key, c))
         return URWIRE_CAPTURE_NO_MEMORY;
     /* The client sent the first SYN, when the capture holds it; else it is on the higher port. */
@@ -446,7 +431,7 @@ urwire_capture *urwire_capture_new(const uint16_t *ports, size_t n_ports, const 
         c->both_ways[both_ways[i]] = true;
     c->count_others = others;
     c->first = c->last = NONE;
-    if (!grow((void **)&c->input, &c->input_capacity, 1, 1)) {     /* never NULL, though nothing is fed */
+    if (!urwire_capture_grow((void **)&c->input, &c->input_capacity, 1, 1)) {     /* never NULL, though nothing is fed */
         free(c);
         return NULL;
     }
@@ -457,7 +442,7 @@ int urwire_capture_feed(urwire_capture *c, const uint8_t *data, size_t n, urwire
 {
     if (c->file.state == URWIRE_CAPTURE_DONE || c->finished)
         return 0;
-    if (!grow((void **)&c->input, &c->input_capacity, c->input_length + n, 1))
+    if (!urwire_capture_grow((void **)&c->input, &c->input_capacity, c->input_length + n, 1))
         return URWIRE_CAPTURE_NO_MEMORY;
     memcpy(c->input + c->input_length, data, n);
     c->input_length += n;

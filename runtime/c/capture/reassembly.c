@@ -5,33 +5,19 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "growing.h"
+
 static int64_t delta(uint32_t seq, uint32_t ref)
 {
     uint32_t d = seq - ref;
     return d >= 0x80000000u ? (int64_t)d - ((int64_t)1 << 32) : (int64_t)d;
 }
 
-static bool grow(void **buf, size_t *capacity, size_t need, size_t size)
-{
-    size_t c = *capacity ? *capacity : 16;
-    void *grown;
-    if (need <= *capacity)
-        return true;
-    while (c < need)
-        c *= 2;
-    grown = realloc(*buf, c * size);
-    if (grown == NULL)
-        return false;
-    *buf = grown;
-    *capacity = c;
-    return true;
-}
-
 static void put(urwire_capture_pieces *out, urwire_capture_piece_kind kind, int64_t offset, int64_t length,
                 int64_t differing)
 {
     urwire_capture_piece *p;
-    if (!grow((void **)&out->pieces, &out->capacity, out->n + 1, sizeof *out->pieces)) {
+    if (!urwire_capture_grow((void **)&out->pieces, &out->capacity, out->n + 1, sizeof *out->pieces)) {
         out->no_memory = true;
         return;
     }
@@ -44,7 +30,7 @@ static void put(urwire_capture_pieces *out, urwire_capture_piece_kind kind, int6
 
 static void put_bytes(urwire_capture_pieces *out, const uint8_t *data, size_t n)
 {
-    if (!grow((void **)&out->bytes, &out->bytes_capacity, out->n_bytes + n, 1)) {
+    if (!urwire_capture_grow((void **)&out->bytes, &out->bytes_capacity, out->n_bytes + n, 1)) {
         out->no_memory = true;
         return;
     }
@@ -121,7 +107,7 @@ static void deliver(urwire_capture_reassembly *r, const uint8_t *piece, size_t n
     put_bytes(out, piece, n);
     advance(r, (int64_t)n);
     if (r->history_length + n <= 2 * kept) {
-        if (!grow((void **)&r->history, &r->history_capacity, r->history_length + n, 1)) {
+        if (!urwire_capture_grow((void **)&r->history, &r->history_capacity, r->history_length + n, 1)) {
             out->no_memory = true;
             return;
         }
@@ -129,7 +115,7 @@ static void deliver(urwire_capture_reassembly *r, const uint8_t *piece, size_t n
         r->history_length += n;
         return;
     }
-    if (!grow((void **)&r->history, &r->history_capacity, kept, 1)) {
+    if (!urwire_capture_grow((void **)&r->history, &r->history_capacity, kept, 1)) {
         out->no_memory = true;
         return;
     }
@@ -176,7 +162,7 @@ static void hold(urwire_capture_reassembly *r, int64_t at, const uint8_t *data, 
         kept->length = n;
     } else {
         uint8_t *copy = malloc(n);
-        if (copy == NULL || !grow((void **)&r->held, &r->held_capacity, r->n_held + 1, sizeof *r->held)) {
+        if (copy == NULL || !urwire_capture_grow((void **)&r->held, &r->held_capacity, r->n_held + 1, sizeof *r->held)) {
             free(copy);
             out->no_memory = true;
             return;
