@@ -29,6 +29,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python"), str(ROOT)]
 
 from tests.tools import measure, robot_inputs  # noqa: E402
+from tests.tools.revision_package import unpack_package  # noqa: E402
 
 BASE = "a8e2eb2"        # main before `urwire export --dataset`
 ROBOT_DAY = 864_000      # robot states a day at 10 Hz
@@ -37,15 +38,7 @@ MIB = 1 << 20
 
 def package_of(revision: str) -> Path:
     """The whole urwire package of a revision (python/urwire with its generated subpackage)."""
-    root = ROOT / "build" / "bench-export" / revision
-    if not (root / "urwire" / "generated" / "__init__.py").is_file():
-        root.mkdir(parents=True, exist_ok=True)
-        for folder, strip in (("python/urwire", 1), ("generated/python/urwire/generated", 2)):
-            archive = subprocess.run(["git", "-C", str(ROOT), "archive", revision, folder], capture_output=True,
-                                     check=True)
-            subprocess.run(["tar", "-x", f"--strip-components={strip}", "-C", str(root)], input=archive.stdout,
-                           check=True)
-    return root
+    return unpack_package(revision, ROOT / "build" / "bench-export" / revision)
 
 
 def robot_day(count: int) -> Path:

@@ -43,6 +43,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path[:0] = [str(ROOT), str(ROOT / "python"), str(ROOT / "generated" / "python")]
 from tests.tools import capture, measure  # noqa: E402
+from tests.tools.revision_package import unpack_package  # noqa: E402
 from tests.tools.rtde_inputs import (HZ, PACKAGE_SIZE, RECIPE, client_bytes, packages, robot_head,  # noqa: E402
                                      values_struct)
 
@@ -106,12 +107,7 @@ def package_of(revision: str):
     urwire_REV beside this tree's, with this tree's C extension where ext/ccore is unchanged."""
     root = OUT / "base" / revision
     if not (root / "urwire" / "generated" / "__init__.py").is_file():
-        root.mkdir(parents=True, exist_ok=True)
-        for folder, strip in (("python/urwire", 1), ("generated/python/urwire/generated", 2)):
-            archive = subprocess.run(["git", "-C", str(ROOT), "archive", revision, folder], capture_output=True,
-                                     check=True)
-            subprocess.run(["tar", "-x", f"--strip-components={strip}", "-C", str(root)], input=archive.stdout,
-                           check=True)
+        unpack_package(revision, root)
         if subprocess.run(["git", "-C", str(ROOT), "diff", "--quiet", revision, "--", "ext/ccore"]).returncode == 0:
             for built in (ROOT / "python" / "urwire").glob("_ccore*.so"):
                 shutil.copy(built, root / "urwire")
