@@ -18,7 +18,7 @@ from ... import ir
 from ...comments import field_text, node_text, value_text
 from ...emit import environment, runtime_section
 from ...errors import Problem, SpecError
-from ...lang.c import comment, inline
+from ...lang.c import comment, inline, string
 from ...lang.c_pool import Pool
 from ...view import Step
 from . import model, plan
@@ -128,6 +128,14 @@ class BitSet:
 # What a span holds (urwire__span: 8 bytes a field on a 32-bit CPU): an offset in a uint16_t, a
 # size and an element's index in a uint8_t each, URWIRE__NO_INDEX (255) for none.
 SPAN_OFFSET_MAX, SPAN_BYTE_MAX, NO_INDEX = 0xffff, 0xff, 0xff
+
+
+def name_text(path: str) -> str:
+    """A field's path where an error names it: through URWIRE__NAME, which a build with
+    URWIRE_NO_NAMES turns into "", so that a firmware links no field name."""
+    return f"URWIRE__NAME({string(path)})"
+
+
 # A path with one element's index, "joints[3].q_actual": every element's span shares the string
 # "joints[].q_actual" and keeps its index apart.
 ONE_INDEX = re.compile(r"^([^\[\]]*)\[(\d+)\]([^\[\]]*)$")
@@ -151,6 +159,11 @@ class Span:
         return f"{m.group(1)}[]{m.group(3)}" if m and int(m.group(2)) < NO_INDEX else self.path
 
     @property
+    def name(self) -> str:
+        """The template as the C table spells it (name_text)."""
+        return name_text(self.template)
+
+    @property
     def index(self) -> int:
         """The element's index that goes into the template's "[]", else NO_INDEX."""
         m = ONE_INDEX.match(self.path)
@@ -167,8 +180,9 @@ class Run:
     @property
     def rows(self) -> list[dict]:
         """The table's rows: each span, except that a group's elements after the first, when they
-        repeat element 0's spans at one stride, are one repeat row {"", stride, elements, rows of
-        element 0} after element 0's (joint data: 9 rows, not 48)."""
+        repeat element 0's spans at one stride, are one repeat row {NULL, stride, elements, rows of
+        element 0} after element 0's (joint data: 9 rows, not 48). `name` is the path as C spells
+        it."""
         rows, i = [], 0
         while i < len(self.spans):
             width = 0
@@ -176,9 +190,9 @@ class Run:
                 width += 1
             count, stride = _repeats(self.spans, i, width)
             block = self.spans[i:i + max(width, 1)]
-            rows += [dict(path=s.template, offset=s.offset, size=s.size, index=s.index) for s in block]
+            rows += [dict(path=s.template, name=s.name, offset=s.offset, size=s.size, index=s.index) for s in block]
             if count > 1:
-                rows.append(dict(path="", offset=stride, size=count, index=width))
+                rows.append(dict(path=None, name="NULL", offset=stride, size=count, index=width))
             i += len(block) * count
         return rows
 
@@ -446,7 +460,7 @@ class _Builder:
     def dynamic(self, cs: CStruct, f: ir.AnyField, path: str) -> tuple[Step, Step]:
         if isinstance(f, ir.StringField) and f.length is not None:
             s = f.length
-            data = dict(name=f.name, path=path, size=s.size, max=s.max, signed=s.signed)
+            data = dict(name=f.name, path=name_text(path), size=s.size, max=s.max, signed=s.signed)
             return Step("prefixed_text", data), Step("prefixed_text", data)
         if isinstance(f, (ir.StringField, ir.BytesField)):
             return Step("rest", dict(name=f.name)), Step("bytes", dict(name=f.name))
@@ -454,18 +468,18 @@ class _Builder:
             return (Step("texts", dict(name=f.name, terminator=f.terminator)),
                     Step("seq", dict(name=f.name)))
         if isinstance(f, ir.ValueListField):
-            return (Step("values", dict(name=f.name, terminator=f.terminator, path=path)),
+            return (Step("values", dict(name=f.name, terminator=f.terminator, path=name_text(path))),
                     Step("seq", dict(name=f.name)))
         if isinstance(f, ir.SwitchField):
             cases = [dict(value=k, size=s.size, reader=READERS[s.name], writer=WRITERS[s.name], member=s.name)
                      for k, s in f.cases.items()]
             d = f.default
-            data = dict(name=f.name, selector=f.selector.name, path=path, cases=cases,
+            data = dict(name=f.name, selector=f.selector.name, path=name_text(path), cases=cases,
                         default=dict(size=d.size, reader=READERS[d.name], writer=WRITERS[d.name], member=d.name))
             return Step("switch", data), Step("switch", data)
         assert isinstance(f, ir.GroupField)
         item = self.item_of(f)
-        return (Step("group_to_end", dict(name=f.name, item=item.name, ctype=item.ctype)),
+        return (Step("group_to_end", dict(name=f.name, path=name_text(f.name), item=item.name, ctype=item.ctype)),
                 Step("seq", dict(name=f.name)))
 
     # ---- visiting (the canonical JSON order: one entry per name, in first-seen order) ----
@@ -489,7 +503,8 @@ class _Builder:
             item = self.items[id(f)]
             if f.count is not None:
                 return Step("group", dict(name=f.name, item=item.name, count=f.count, when=when))
-            return Step("group_to_end", dict(name=f.name, item=item.name, ctype=item.ctype, when=when))
+            return Step("group_to_end", dict(name=f.name, path=name_text(f.name), item=item.name, ctype=item.ctype,
+                                             when=when))
         if isinstance(f, ir.StringField):
             return Step("text", dict(name=f.name, when=when))
         if isinstance(f, ir.BytesField):

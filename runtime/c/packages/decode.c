@@ -34,13 +34,14 @@ static bool urwire__frame_package(const uint8_t *msg, size_t pos, size_t end, si
     size_t left = end - pos;
     int64_t declared;
     if (left < URWIRE_PACKAGE_HEADER_SIZE)
-        return urwire__fail(err, URWIRE_E_PACKAGE_HEADER_CUT, pos, "package", URWIRE_PACKAGE_HEADER_SIZE,
-                            (int64_t)left);
+        return urwire__fail(err, URWIRE_E_PACKAGE_HEADER_CUT, pos, URWIRE__NAME("package"),
+                            URWIRE_PACKAGE_HEADER_SIZE, (int64_t)left);
     declared = URWIRE__PACKAGE_LENGTH(msg + pos);
     if (declared < (int64_t)URWIRE_PACKAGE_HEADER_SIZE)
-        return urwire__fail(err, URWIRE_E_PACKAGE_LENGTH_LOW, pos, "package", declared, 0);
+        return urwire__fail(err, URWIRE_E_PACKAGE_LENGTH_LOW, pos, URWIRE__NAME("package"), declared, 0);
     if ((uint64_t)declared > left)
-        return urwire__fail(err, URWIRE_E_PACKAGE_LENGTH_HIGH, pos, "package", declared, (int64_t)left);
+        return urwire__fail(err, URWIRE_E_PACKAGE_LENGTH_HIGH, pos, URWIRE__NAME("package"), declared,
+                            (int64_t)left);
     *size = (size_t)declared;
     return true;
 }
@@ -258,7 +259,7 @@ static const urwire__message_type *urwire__message_head(const uint8_t *bytes, si
         out->message_type = 0;
         out->failed = true;
         out->raw = urwire__view(bytes, len);
-        urwire__short(&out->error, "length", 0, URWIRE_HEADER_SIZE, len);
+        urwire__short(&out->error, URWIRE__NAME("length"), 0, URWIRE_HEADER_SIZE, len);
         return NULL;
     }
     out->message_type = bytes[URWIRE__TYPE_AT];

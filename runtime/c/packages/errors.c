@@ -54,17 +54,17 @@ static const char *urwire__index_hole(const char *path)
     return NULL;
 }
 
-/* The first span of a fixed run (ended by a NULL path) that does not fit before end, with its
- * offset (*at) and its element's index (*index, URWIRE__NO_INDEX: none); NULL when all fit. A
- * repeat row (path "") stands for elements 1 to size - 1 of a group, `offset` bytes apart,
- * whose element 0 is the `index` rows before it. */
+/* The first span of a fixed run (ended by a row of NULL path and size 0) that does not fit
+ * before end, with its offset (*at) and its element's index (*index, URWIRE__NO_INDEX: none);
+ * NULL when all fit. A repeat row (path NULL) stands for elements 1 to size - 1 of a group,
+ * `offset` bytes apart, whose element 0 is the `index` rows before it. */
 static const urwire__span *urwire__first_short(const urwire__span *run, size_t pos, size_t end, size_t *at,
                                                size_t *index)
 {
     const urwire__span *s;
     size_t k;
-    for (; run->path; run++) {
-        if (run->path[0] != '\0') {
+    for (; run->path != NULL || run->size != 0; run++) {
+        if (run->path != NULL) {
             *at = pos + run->offset;
             *index = run->index;
             if (*at + run->size > end)
@@ -83,7 +83,7 @@ static const urwire__span *urwire__first_short(const urwire__span *run, size_t p
 }
 
 /* The first field of a fixed run that does not fit names the error; an element's index goes
- * into its path's "[]". */
+ * into its path's "[]" (with URWIRE_NO_NAMES, a path of no name and no "[]": the index alone). */
 URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *run, size_t pos, size_t end)
 {
     size_t at, index;
@@ -93,8 +93,8 @@ URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *r
         return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
     hole = index != URWIRE__NO_INDEX ? urwire__index_hole(s->path) : NULL;
     urwire__short(e, hole ? hole + 2 : s->path, at, s->size, end);
-    if (hole && e != NULL)
-        urwire__add_step(e, s->path, (size_t)(hole - s->path), index, 0, false);
+    if (index != URWIRE__NO_INDEX && e != NULL)
+        urwire__add_step(e, s->path, hole ? (size_t)(hole - s->path) : 0, index, 0, false);
     return false;
 }
 

@@ -59,7 +59,7 @@ URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end
     /* false said outright, not as the error setters' result: a file analysed on its own (the
      * runtime's standalone build) cannot see that they return false, and out is unset here */
     if (pos >= end) {
-        urwire__short(err, ".type", pos, 1, end);
+        urwire__short(err, URWIRE__NAME(".type"), pos, 1, end);
         return false;
     }
     if (depth > URWIRE_MAX_VALUE_DEPTH) {
@@ -73,7 +73,7 @@ URWIRE__INLINE bool urwire__read_head(const uint8_t *msg, size_t *at, size_t end
     open->cols = 0;
     e = urwire__value_entry_of(t, msg[pos]);
     if (e == NULL) {
-        urwire__fail(err, URWIRE_E_VALUE_TYPE, pos, ".type", msg[pos], 0);
+        urwire__fail(err, URWIRE_E_VALUE_TYPE, pos, URWIRE__NAME(".type"), msg[pos], 0);
         return false;
     }
     if (out != NULL) {
