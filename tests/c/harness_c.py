@@ -54,6 +54,10 @@ VARIANTS = {
     "asan-gcc": ("gcc", ["-Os", "-g"] + SANITIZE),   # -Os: the paths written out for size (__OPTIMIZE_SIZE__)
     "asan-clang": ("clang", ["-O1", "-g"] + SANITIZE),
 }
+# Builds with the library's compile-time options (docs/c.md), which only their own tests take.
+OPTION_VARIANTS = {
+    "small-gcc": ("gcc", ["-Os", "-DURWIRE_NO_NAMES", "-DURWIRE_NO_FAST_PATHS"]),
+}
 
 sys.path[:0] = [str(ROOT / "python"), str(ROOT / "generated" / "python")]
 sys.path.insert(0, str(ROOT / "tests"))
@@ -83,7 +87,7 @@ SHARED = ROOT / "build" / "c-tests" / "variants"
 
 
 def _sources_stamp(name: str) -> str:
-    digest = hashlib.sha256(repr(VARIANTS[name]).encode())
+    digest = hashlib.sha256(repr({**VARIANTS, **OPTION_VARIANTS}[name]).encode())
     inputs = [*GEN.iterdir(), *CLI.iterdir(), *JSON_RUNTIME.iterdir(), RTDE_STREAM, RTDE_STREAM.with_suffix(".h"),
               ROOT / "tests" / "c" / "driver.c", Path(state_members.__file__)]
     inputs += [UTF8, UTF8.with_suffix(".h"), UTF8.with_name("macros.h")]
@@ -93,7 +97,7 @@ def _sources_stamp(name: str) -> str:
 
 
 def build_variant(name: str) -> Build:
-    cc, flags = VARIANTS[name]
+    cc, flags = {**VARIANTS, **OPTION_VARIANTS}[name]
     if shutil.which(cc) is None:
         pytest.fail(f"{cc} is not installed (scripts/setup.sh installs it)")
     folder = SHARED / name

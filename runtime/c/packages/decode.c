@@ -369,7 +369,9 @@ URWIRE__INLINE size_t urwire__decode_fast(int path, const uint8_t *msg, size_t p
 /* Frames the sub-packages of a robot state from pos and decodes each straight into its member
  * of *out, until end or a header that cannot be framed (*err): where it stopped. The fast path
  * of the version's segment, if it has one, goes as far as it can; the general rule does the
- * rest. */
+ * rest. A build with URWIRE_NO_FAST_PATHS (-DURWIRE_NO_FAST_PATHS) has no fast path, and the
+ * general rule does it all, to the same result: a firmware then links one copy of the switch
+ * over sub-package types, not two (1 KB of flash on Cortex-M4 for the robot-state firmware). */
 static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t end, urwire__running *r,
                                         urwire_robot_state *out, size_t *count, urwire_error *err)
 {
@@ -378,6 +380,9 @@ static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t e
     out->layouts = 0;
     out->unknown = 0;
     *count = 0;
+#if defined(URWIRE_NO_FAST_PATHS)
+    (void)urwire__package_fast_paths;  /* no fast path reads it */
+#else
 #define URWIRE__FAST_CASE(k)                                         \
     case k:                                                          \
         pos = urwire__decode_fast(k, msg, pos, end, r, out, count); \
@@ -388,6 +393,7 @@ static size_t urwire__decode_into_state(const uint8_t *msg, size_t pos, size_t e
         break;
     }
 #undef URWIRE__FAST_CASE
+#endif
     return pos < end ? urwire__decode_general(msg, pos, end, r, out, count, err) : pos;
 }
 
