@@ -37,7 +37,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "scripts"))
 
 from embedded_stack import CallGraph, Recursion, Unbounded  # noqa: E402
-from embedded_table import DOC, replace_table, render  # noqa: E402
+from embedded_table import DOC, FIRMWARE_OPTIONS, replace_table, render  # noqa: E402
 
 GENERATED = ROOT / "generated" / "c"
 EXAMPLES = ROOT / "examples" / "embedded"
@@ -86,10 +86,11 @@ class Firmware:
 
 
 FIRMWARES = [
-    Firmware("robot_states", ("robot_states.c", "primary_stream.c"), "urwire.c", "generated"),
-    Firmware("robot_states_pinned", ("robot_states.c", "primary_stream.c"), "urwire.c", "pinned"),
+    Firmware("robot_states", ("robot_states.c", "primary_stream.c"), "urwire.c", "generated", FIRMWARE_OPTIONS),
+    Firmware("robot_states_pinned", ("robot_states.c", "primary_stream.c"), "urwire.c", "pinned", FIRMWARE_OPTIONS),
     Firmware("rtde_values", ("rtde_values.c",), "rtde.c", "generated", RTDE_FIRMWARE_LIMITS),
-    Firmware("joint_and_tool_subset", ("joint_and_tool.c", "primary_stream.c"), "urwire.c", "subset"),
+    Firmware("joint_and_tool_subset", ("joint_and_tool.c", "primary_stream.c"), "urwire.c", "subset",
+             FIRMWARE_OPTIONS),
 ]
 
 

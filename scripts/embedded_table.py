@@ -19,6 +19,9 @@ FIRMWARE_TITLES = {
     "rtde_values": "(3) RTDE: data packages of a recipe, values by index and by name",
     "joint_and_tool_subset": "(4) joint data and tool data alone, from a subset build",
 }
+# The compile-time options the primary stream's firmwares are built with (docs/c.md, "Options for a
+# firmware"): no field names in errors, no robot-state fast path.
+FIRMWARE_OPTIONS = ("-DURWIRE_NO_NAMES", "-DURWIRE_NO_FAST_PATHS")
 # (firmware, figure, goal in bytes, what the goal says)
 GOALS = [
     ("robot_states", "flash", 32 * 1024, "firmware (1) flash"),
@@ -132,7 +135,8 @@ def render(m: dict) -> str:
         "",
         "The firmwares of `examples/embedded/`, each a complete `main()` over bytes in a buffer, linked "
         "with `-Wl,--gc-sections`, startup code and C library included (newlib-nano and nosys on ARM, "
-        "picolibc on RISC-V); flash / RAM / stack of `main`:",
+        "picolibc on RISC-V), the primary stream's built with `" + " ".join(FIRMWARE_OPTIONS) + "` "
+        "(see Options for a firmware); flash / RAM / stack of `main`:",
         "",
         *_firmwares(m, targets),
     ]

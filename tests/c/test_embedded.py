@@ -99,8 +99,8 @@ def host_firmware(tmp_path, key: str) -> str:
     [firmware] = [f for f in bench_embedded.FIRMWARES if f.key == key]
     exe = tmp_path / key
     sources = [EXAMPLES / s for s in firmware.sources] + [EXAMPLES / "board_host.c", GEN / firmware.library]
-    build = subprocess.run(["gcc", *STRICT, "-O0", f"-I{GEN}", f"-I{EXAMPLES}", *map(str, sources), "-o", str(exe)],
-                           capture_output=True, text=True)
+    build = subprocess.run(["gcc", *STRICT, "-O0", *firmware.defines, f"-I{GEN}", f"-I{EXAMPLES}", *map(str, sources),
+                            "-o", str(exe)], capture_output=True, text=True)
     assert build.returncode == 0 and build.stderr == "", build.stderr
     return str(exe)
 
