@@ -150,7 +150,8 @@ URWIRE__KEY_INLINE uint64_t urwire__version_key(urwire_sw_version v)
 /* A field's path where an error names it, as the generated part spells it. A build with
  * URWIRE_NO_NAMES (-DURWIRE_NO_NAMES) names no field: its errors keep their status, offset,
  * numbers and the indexes of their path, with every name empty, and a firmware then links none
- * of the names (2.7 KB of flash on Cortex-M4 -Os for the pinned robot-state firmware). */
+ * of the names (with the smaller span rows below, 3.5 KB of flash on Cortex-M4 -Os for the
+ * pinned robot-state firmware). */
 #if defined(URWIRE_NO_NAMES)
 #define URWIRE__NAME(text) ""
 #else
@@ -158,17 +159,28 @@ URWIRE__KEY_INLINE uint64_t urwire__version_key(urwire_sw_version v)
 #endif
 
 /* One field of a fixed run of fields, read after one bounds check of the whole run. A table
- * of them (ended by a row of NULL path and size 0) names the field that a short run stops in.
- * A group's elements after the first are one repeat row: path NULL, offset the stride, size
- * the number of elements, index the number of rows of element 0, just before it
- * (urwire__short_in_run). */
+ * of them (ended by a row of size 0) names the field that a short run stops in. A group's
+ * elements after the first are one repeat row: size URWIRE__REPEAT | the number of elements,
+ * offset the stride, index the number of rows of element 0, just before it
+ * (urwire__short_in_run). Built with URWIRE_NO_NAMES, a span has no path: 4 bytes, not 8, on a
+ * 32-bit CPU. The generated tables spell each row URWIRE__SPAN(path, offset, size, index). */
 typedef struct urwire__span {
+#if !defined(URWIRE_NO_NAMES)
     const char *path;               /* an element's: its index left out, "joints[].q_actual" */
+#endif
     uint16_t offset;                /* within a layout: the generator refuses larger ones */
     uint8_t size;
     uint8_t index;                  /* the element's, that goes into the path's "[]"; else: */
 } urwire__span;
 #define URWIRE__NO_INDEX 0xffu
+#define URWIRE__REPEAT 0x80u
+#if defined(URWIRE_NO_NAMES)
+#define URWIRE__SPAN(path, offset, size, index) {offset, size, index}
+#define URWIRE__SPAN_PATH(s) ""
+#else
+#define URWIRE__SPAN(path, offset, size, index) {path, offset, size, index}
+#define URWIRE__SPAN_PATH(s) ((s)->path)
+#endif
 
 /* A software version as the layouts read it: the version, and its key (urwire__version_key),
  * which their version conditions compare. */
@@ -892,24 +904,24 @@ static const char *urwire__index_hole(const char *path)
     return NULL;
 }
 
-/* The first span of a fixed run (ended by a row of NULL path and size 0) that does not fit
- * before end, with its offset (*at) and its element's index (*index, URWIRE__NO_INDEX: none);
- * NULL when all fit. A repeat row (path NULL) stands for elements 1 to size - 1 of a group,
- * `offset` bytes apart, whose element 0 is the `index` rows before it. */
+/* The first span of a fixed run (ended by a row of size 0) that does not fit before end, with
+ * its offset (*at) and its element's index (*index, URWIRE__NO_INDEX: none); NULL when all fit.
+ * A repeat row (size URWIRE__REPEAT | n) stands for elements 1 to n - 1 of a group, `offset`
+ * bytes apart, whose element 0 is the `index` rows before it. */
 static const urwire__span *urwire__first_short(const urwire__span *run, size_t pos, size_t end, size_t *at,
                                                size_t *index)
 {
     const urwire__span *s;
     size_t k;
-    for (; run->path != NULL || run->size != 0; run++) {
-        if (run->path != NULL) {
+    for (; run->size != 0; run++) {
+        if (!(run->size & URWIRE__REPEAT)) {
             *at = pos + run->offset;
             *index = run->index;
             if (*at + run->size > end)
                 return run;
             continue;
         }
-        for (k = 1; k < run->size; k++)
+        for (k = 1; k < (run->size & ~URWIRE__REPEAT); k++)
             for (s = run - run->index; s < run; s++) {
                 *at = pos + k * run->offset + s->offset;
                 *index = k;
@@ -926,13 +938,14 @@ URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *r
 {
     size_t at, index;
     const urwire__span *s = urwire__first_short(run, pos, end, &at, &index);
-    const char *hole;
+    const char *path, *hole;
     if (s == NULL)
         return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
-    hole = index != URWIRE__NO_INDEX ? urwire__index_hole(s->path) : NULL;
-    urwire__short(e, hole ? hole + 2 : s->path, at, s->size, end);
+    path = URWIRE__SPAN_PATH(s);
+    hole = index != URWIRE__NO_INDEX ? urwire__index_hole(path) : NULL;
+    urwire__short(e, hole ? hole + 2 : path, at, s->size, end);
     if (index != URWIRE__NO_INDEX && e != NULL)
-        urwire__add_step(e, s->path, hole ? (size_t)(hole - s->path) : 0, index, 0, false);
+        urwire__add_step(e, path, hole ? (size_t)(hole - path) : 0, index, 0, false);
     return false;
 }
 
@@ -2102,35 +2115,35 @@ static const urwire__value_table urwire__value_tables[] = {
 /* ---- layouts: one decoder, encoder and visitor each (the struct as void *: see the tables) - */
 
 static const urwire__span urwire__robot_mode_data_0_run0[] = {
-    {URWIRE__NAME("timestamp"), 0, 8, 255},
-    {URWIRE__NAME("is_real_robot_connected"), 8, 1, 255},
-    {URWIRE__NAME("is_real_robot_enabled"), 9, 1, 255},
-    {URWIRE__NAME("is_robot_power_on"), 10, 1, 255},
-    {URWIRE__NAME("is_emergency_stopped"), 11, 1, 255},
-    {URWIRE__NAME("is_protective_stopped"), 12, 1, 255},
-    {URWIRE__NAME("is_program_running"), 13, 1, 255},
-    {URWIRE__NAME("is_program_paused"), 14, 1, 255},
-    {URWIRE__NAME("robot_mode"), 15, 1, 255},
-    {URWIRE__NAME("target_speed_fraction"), 16, 8, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("timestamp", 0, 8, 255),
+    URWIRE__SPAN("is_real_robot_connected", 8, 1, 255),
+    URWIRE__SPAN("is_real_robot_enabled", 9, 1, 255),
+    URWIRE__SPAN("is_robot_power_on", 10, 1, 255),
+    URWIRE__SPAN("is_emergency_stopped", 11, 1, 255),
+    URWIRE__SPAN("is_protective_stopped", 12, 1, 255),
+    URWIRE__SPAN("is_program_running", 13, 1, 255),
+    URWIRE__SPAN("is_program_paused", 14, 1, 255),
+    URWIRE__SPAN("robot_mode", 15, 1, 255),
+    URWIRE__SPAN("target_speed_fraction", 16, 8, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__robot_mode_data_1_run0[] = {
-    {URWIRE__NAME("timestamp"), 0, 8, 255},
-    {URWIRE__NAME("is_real_robot_connected"), 8, 1, 255},
-    {URWIRE__NAME("is_real_robot_enabled"), 9, 1, 255},
-    {URWIRE__NAME("is_robot_power_on"), 10, 1, 255},
-    {URWIRE__NAME("is_emergency_stopped"), 11, 1, 255},
-    {URWIRE__NAME("is_protective_stopped"), 12, 1, 255},
-    {URWIRE__NAME("is_program_running"), 13, 1, 255},
-    {URWIRE__NAME("is_program_paused"), 14, 1, 255},
-    {URWIRE__NAME("robot_mode"), 15, 1, 255},
-    {URWIRE__NAME("control_mode"), 16, 1, 255},
-    {URWIRE__NAME("target_speed_fraction"), 17, 8, 255},
-    {URWIRE__NAME("speed_scaling"), 25, 8, 255},
-    {URWIRE__NAME("target_speed_fraction_limit"), 33, 8, 255},
-    {URWIRE__NAME("reserved"), 41, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("timestamp", 0, 8, 255),
+    URWIRE__SPAN("is_real_robot_connected", 8, 1, 255),
+    URWIRE__SPAN("is_real_robot_enabled", 9, 1, 255),
+    URWIRE__SPAN("is_robot_power_on", 10, 1, 255),
+    URWIRE__SPAN("is_emergency_stopped", 11, 1, 255),
+    URWIRE__SPAN("is_protective_stopped", 12, 1, 255),
+    URWIRE__SPAN("is_program_running", 13, 1, 255),
+    URWIRE__SPAN("is_program_paused", 14, 1, 255),
+    URWIRE__SPAN("robot_mode", 15, 1, 255),
+    URWIRE__SPAN("control_mode", 16, 1, 255),
+    URWIRE__SPAN("target_speed_fraction", 17, 8, 255),
+    URWIRE__SPAN("speed_scaling", 25, 8, 255),
+    URWIRE__SPAN("target_speed_fraction_limit", 33, 8, 255),
+    URWIRE__SPAN("reserved", 41, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* robot_mode_data as up to 1.8 sends it (24 bytes). */
@@ -2397,16 +2410,16 @@ static void urwire__visit_joint(const void *from, const urwire__ver *ver, const 
 }
 
 static const urwire__span urwire__joint_data_run0[] = {
-    {URWIRE__NAME("joints[].q_actual"), 0, 8, 0},
-    {URWIRE__NAME("joints[].q_target"), 8, 8, 0},
-    {URWIRE__NAME("joints[].qd_actual"), 16, 8, 0},
-    {URWIRE__NAME("joints[].i_actual"), 24, 4, 0},
-    {URWIRE__NAME("joints[].v_actual"), 28, 4, 0},
-    {URWIRE__NAME("joints[].t_motor"), 32, 4, 0},
-    {URWIRE__NAME("joints[].t_micro"), 36, 4, 0},
-    {URWIRE__NAME("joints[].joint_mode"), 40, 1, 0},
-    {NULL, 41, 6, 8},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("joints[].q_actual", 0, 8, 0),
+    URWIRE__SPAN("joints[].q_target", 8, 8, 0),
+    URWIRE__SPAN("joints[].qd_actual", 16, 8, 0),
+    URWIRE__SPAN("joints[].i_actual", 24, 4, 0),
+    URWIRE__SPAN("joints[].v_actual", 28, 4, 0),
+    URWIRE__SPAN("joints[].t_motor", 32, 4, 0),
+    URWIRE__SPAN("joints[].t_micro", 36, 4, 0),
+    URWIRE__SPAN("joints[].joint_mode", 40, 1, 0),
+    URWIRE__SPAN(NULL, 41, URWIRE__REPEAT | 6, 8),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Joint data, one group per joint; 251 bytes in every version. */
@@ -2466,16 +2479,16 @@ static void urwire__visit_joint_data(const void *from, const urwire__ver *ver, c
 }
 
 static const urwire__span urwire__tool_data_run0[] = {
-    {URWIRE__NAME("analog_input_range0"), 0, 1, 255},
-    {URWIRE__NAME("analog_input_range1"), 1, 1, 255},
-    {URWIRE__NAME("analog_input0"), 2, 8, 255},
-    {URWIRE__NAME("analog_input1"), 10, 8, 255},
-    {URWIRE__NAME("tool_voltage_48v"), 18, 4, 255},
-    {URWIRE__NAME("tool_output_voltage"), 22, 1, 255},
-    {URWIRE__NAME("tool_current"), 23, 4, 255},
-    {URWIRE__NAME("tool_temperature"), 27, 4, 255},
-    {URWIRE__NAME("tool_mode"), 31, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("analog_input_range0", 0, 1, 255),
+    URWIRE__SPAN("analog_input_range1", 1, 1, 255),
+    URWIRE__SPAN("analog_input0", 2, 8, 255),
+    URWIRE__SPAN("analog_input1", 10, 8, 255),
+    URWIRE__SPAN("tool_voltage_48v", 18, 4, 255),
+    URWIRE__SPAN("tool_output_voltage", 22, 1, 255),
+    URWIRE__SPAN("tool_current", 23, 4, 255),
+    URWIRE__SPAN("tool_temperature", 27, 4, 255),
+    URWIRE__SPAN("tool_mode", 31, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Tool data; 37 bytes in every version. The CB2 and CB3 documents number the analog ranges and
@@ -2551,69 +2564,69 @@ static void urwire__visit_tool_data(const void *from, const urwire__ver *ver, co
 }
 
 static const urwire__span urwire__masterboard_data_0_run0[] = {
-    {URWIRE__NAME("digital_input_bits"), 0, 2, 255},
-    {URWIRE__NAME("digital_output_bits"), 2, 2, 255},
-    {URWIRE__NAME("analog_input_range0"), 4, 1, 255},
-    {URWIRE__NAME("analog_input_range1"), 5, 1, 255},
-    {URWIRE__NAME("analog_input0"), 6, 8, 255},
-    {URWIRE__NAME("analog_input1"), 14, 8, 255},
-    {URWIRE__NAME("analog_output_domain0"), 22, 1, 255},
-    {URWIRE__NAME("analog_output_domain1"), 23, 1, 255},
-    {URWIRE__NAME("analog_output0"), 24, 8, 255},
-    {URWIRE__NAME("analog_output1"), 32, 8, 255},
-    {URWIRE__NAME("master_board_temperature"), 40, 4, 255},
-    {URWIRE__NAME("robot_voltage_48v"), 44, 4, 255},
-    {URWIRE__NAME("robot_current"), 48, 4, 255},
-    {URWIRE__NAME("master_io_current"), 52, 4, 255},
-    {URWIRE__NAME("master_safety_state"), 56, 1, 255},
-    {URWIRE__NAME("master_on_off_state"), 57, 1, 255},
-    {URWIRE__NAME("euromap67_interface_installed"), 58, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("digital_input_bits", 0, 2, 255),
+    URWIRE__SPAN("digital_output_bits", 2, 2, 255),
+    URWIRE__SPAN("analog_input_range0", 4, 1, 255),
+    URWIRE__SPAN("analog_input_range1", 5, 1, 255),
+    URWIRE__SPAN("analog_input0", 6, 8, 255),
+    URWIRE__SPAN("analog_input1", 14, 8, 255),
+    URWIRE__SPAN("analog_output_domain0", 22, 1, 255),
+    URWIRE__SPAN("analog_output_domain1", 23, 1, 255),
+    URWIRE__SPAN("analog_output0", 24, 8, 255),
+    URWIRE__SPAN("analog_output1", 32, 8, 255),
+    URWIRE__SPAN("master_board_temperature", 40, 4, 255),
+    URWIRE__SPAN("robot_voltage_48v", 44, 4, 255),
+    URWIRE__SPAN("robot_current", 48, 4, 255),
+    URWIRE__SPAN("master_io_current", 52, 4, 255),
+    URWIRE__SPAN("master_safety_state", 56, 1, 255),
+    URWIRE__SPAN("master_on_off_state", 57, 1, 255),
+    URWIRE__SPAN("euromap67_interface_installed", 58, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__masterboard_data_1_run1[] = {
-    {URWIRE__NAME("euromap_input_bits"), 0, 4, 255},
-    {URWIRE__NAME("euromap_output_bits"), 4, 4, 255},
-    {URWIRE__NAME("euromap_voltage_cb2"), 8, 2, 255},
-    {URWIRE__NAME("euromap_current_cb2"), 10, 2, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("euromap_input_bits", 0, 4, 255),
+    URWIRE__SPAN("euromap_output_bits", 4, 4, 255),
+    URWIRE__SPAN("euromap_voltage_cb2", 8, 2, 255),
+    URWIRE__SPAN("euromap_current_cb2", 10, 2, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__masterboard_data_2_run0[] = {
-    {URWIRE__NAME("digital_input_bits"), 0, 4, 255},
-    {URWIRE__NAME("digital_output_bits"), 4, 4, 255},
-    {URWIRE__NAME("analog_input_range0"), 8, 1, 255},
-    {URWIRE__NAME("analog_input_range1"), 9, 1, 255},
-    {URWIRE__NAME("analog_input0"), 10, 8, 255},
-    {URWIRE__NAME("analog_input1"), 18, 8, 255},
-    {URWIRE__NAME("analog_output_domain0"), 26, 1, 255},
-    {URWIRE__NAME("analog_output_domain1"), 27, 1, 255},
-    {URWIRE__NAME("analog_output0"), 28, 8, 255},
-    {URWIRE__NAME("analog_output1"), 36, 8, 255},
-    {URWIRE__NAME("master_board_temperature"), 44, 4, 255},
-    {URWIRE__NAME("robot_voltage_48v"), 48, 4, 255},
-    {URWIRE__NAME("robot_current"), 52, 4, 255},
-    {URWIRE__NAME("master_io_current"), 56, 4, 255},
-    {URWIRE__NAME("safety_mode"), 60, 1, 255},
-    {URWIRE__NAME("in_reduced_mode"), 61, 1, 255},
-    {URWIRE__NAME("euromap67_interface_installed"), 62, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("digital_input_bits", 0, 4, 255),
+    URWIRE__SPAN("digital_output_bits", 4, 4, 255),
+    URWIRE__SPAN("analog_input_range0", 8, 1, 255),
+    URWIRE__SPAN("analog_input_range1", 9, 1, 255),
+    URWIRE__SPAN("analog_input0", 10, 8, 255),
+    URWIRE__SPAN("analog_input1", 18, 8, 255),
+    URWIRE__SPAN("analog_output_domain0", 26, 1, 255),
+    URWIRE__SPAN("analog_output_domain1", 27, 1, 255),
+    URWIRE__SPAN("analog_output0", 28, 8, 255),
+    URWIRE__SPAN("analog_output1", 36, 8, 255),
+    URWIRE__SPAN("master_board_temperature", 44, 4, 255),
+    URWIRE__SPAN("robot_voltage_48v", 48, 4, 255),
+    URWIRE__SPAN("robot_current", 52, 4, 255),
+    URWIRE__SPAN("master_io_current", 56, 4, 255),
+    URWIRE__SPAN("safety_mode", 60, 1, 255),
+    URWIRE__SPAN("in_reduced_mode", 61, 1, 255),
+    URWIRE__SPAN("euromap67_interface_installed", 62, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__masterboard_data_2_run1[] = {
-    {URWIRE__NAME("euromap_input_bits"), 0, 4, 255},
-    {URWIRE__NAME("euromap_output_bits"), 4, 4, 255},
-    {URWIRE__NAME("euromap_voltage_24v"), 8, 4, 255},
-    {URWIRE__NAME("euromap_current"), 12, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("euromap_input_bits", 0, 4, 255),
+    URWIRE__SPAN("euromap_output_bits", 4, 4, 255),
+    URWIRE__SPAN("euromap_voltage_24v", 8, 4, 255),
+    URWIRE__SPAN("euromap_current", 12, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__masterboard_data_2_run2[] = {
-    {URWIRE__NAME("reserved_0"), 0, 4, 255},
-    {URWIRE__NAME("operational_mode_selector_input"), 4, 1, 255},
-    {URWIRE__NAME("three_position_enabling_device_input"), 5, 1, 255},
-    {URWIRE__NAME("reserved_1"), 6, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("reserved_0", 0, 4, 255),
+    URWIRE__SPAN("operational_mode_selector_input", 4, 1, 255),
+    URWIRE__SPAN("three_position_enabling_device_input", 5, 1, 255),
+    URWIRE__SPAN("reserved_1", 6, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* masterboard_data as up to 1.5 sends it (56 bytes). */
@@ -3117,19 +3130,19 @@ static void urwire__visit_masterboard_data(const void *from, const urwire__ver *
 }
 
 static const urwire__span urwire__cartesian_info_0_run0[] = {
-    {URWIRE__NAME("x"), 0, 8, 255},
-    {URWIRE__NAME("y"), 8, 8, 255},
-    {URWIRE__NAME("z"), 16, 8, 255},
-    {URWIRE__NAME("rx"), 24, 8, 255},
-    {URWIRE__NAME("ry"), 32, 8, 255},
-    {URWIRE__NAME("rz"), 40, 8, 255},
-    {URWIRE__NAME("tcp_offset_x"), 48, 8, 255},
-    {URWIRE__NAME("tcp_offset_y"), 56, 8, 255},
-    {URWIRE__NAME("tcp_offset_z"), 64, 8, 255},
-    {URWIRE__NAME("tcp_offset_rx"), 72, 8, 255},
-    {URWIRE__NAME("tcp_offset_ry"), 80, 8, 255},
-    {URWIRE__NAME("tcp_offset_rz"), 88, 8, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("x", 0, 8, 255),
+    URWIRE__SPAN("y", 8, 8, 255),
+    URWIRE__SPAN("z", 16, 8, 255),
+    URWIRE__SPAN("rx", 24, 8, 255),
+    URWIRE__SPAN("ry", 32, 8, 255),
+    URWIRE__SPAN("rz", 40, 8, 255),
+    URWIRE__SPAN("tcp_offset_x", 48, 8, 255),
+    URWIRE__SPAN("tcp_offset_y", 56, 8, 255),
+    URWIRE__SPAN("tcp_offset_z", 64, 8, 255),
+    URWIRE__SPAN("tcp_offset_rx", 72, 8, 255),
+    URWIRE__SPAN("tcp_offset_ry", 80, 8, 255),
+    URWIRE__SPAN("tcp_offset_rz", 88, 8, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* cartesian_info as up to 3.0 sends it (48 bytes). */
@@ -3262,10 +3275,10 @@ static void urwire__visit_cartesian_info(const void *from, const urwire__ver *ve
 }
 
 static const urwire__span urwire__laser_pointer_run0[] = {
-    {URWIRE__NAME("x"), 0, 8, 255},
-    {URWIRE__NAME("y"), 8, 8, 255},
-    {URWIRE__NAME("z"), 16, 8, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("x", 0, 8, 255),
+    URWIRE__SPAN("y", 8, 8, 255),
+    URWIRE__SPAN("z", 16, 8, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* The early CB2 package of type 5: three doubles, 29 bytes; kinematics info takes the code from
@@ -3323,18 +3336,18 @@ static void urwire__visit_laser_pointer(const void *from, const urwire__ver *ver
 }
 
 static const urwire__span urwire__kinematics_info_run0[] = {
-    {URWIRE__NAME("checksum[]"), 0, 4, 0},
-    {NULL, 4, 6, 1},
-    {URWIRE__NAME("dh_theta[]"), 24, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("dh_a[]"), 72, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("dh_d[]"), 120, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("dh_alpha[]"), 168, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("calibration_status"), 216, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("checksum[]", 0, 4, 0),
+    URWIRE__SPAN(NULL, 4, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("dh_theta[]", 24, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("dh_a[]", 72, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("dh_d[]", 120, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("dh_alpha[]", 168, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("calibration_status", 216, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Kinematics info. Sent when leaving initializing mode and/or if the kinematics configuration is
@@ -3467,61 +3480,61 @@ static void urwire__visit_joint_motion_limit(const void *from, const urwire__ver
 }
 
 static const urwire__span urwire__configuration_data_0_run0[] = {
-    {URWIRE__NAME("joint_position_limits[].joint_min_limit"), 0, 8, 0},
-    {URWIRE__NAME("joint_position_limits[].joint_max_limit"), 8, 8, 0},
-    {NULL, 16, 6, 2},
-    {URWIRE__NAME("joint_motion_limits[].joint_max_speed"), 96, 8, 0},
-    {URWIRE__NAME("joint_motion_limits[].joint_max_acceleration"), 104, 8, 0},
-    {NULL, 16, 6, 2},
-    {URWIRE__NAME("v_joint_default"), 192, 8, 255},
-    {URWIRE__NAME("a_joint_default"), 200, 8, 255},
-    {URWIRE__NAME("v_tool_default"), 208, 8, 255},
-    {URWIRE__NAME("a_tool_default"), 216, 8, 255},
-    {URWIRE__NAME("eq_radius"), 224, 8, 255},
-    {URWIRE__NAME("dh_a[]"), 232, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("dh_d[]"), 280, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("dh_alpha[]"), 328, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("dh_theta[]"), 376, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("masterboard_version"), 424, 4, 255},
-    {URWIRE__NAME("controller_box_type"), 428, 4, 255},
-    {URWIRE__NAME("robot_type"), 432, 4, 255},
-    {URWIRE__NAME("robot_sub_type"), 436, 4, 255},
-    {URWIRE__NAME("motor_type[]"), 440, 4, 0},
-    {NULL, 4, 6, 1},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("joint_position_limits[].joint_min_limit", 0, 8, 0),
+    URWIRE__SPAN("joint_position_limits[].joint_max_limit", 8, 8, 0),
+    URWIRE__SPAN(NULL, 16, URWIRE__REPEAT | 6, 2),
+    URWIRE__SPAN("joint_motion_limits[].joint_max_speed", 96, 8, 0),
+    URWIRE__SPAN("joint_motion_limits[].joint_max_acceleration", 104, 8, 0),
+    URWIRE__SPAN(NULL, 16, URWIRE__REPEAT | 6, 2),
+    URWIRE__SPAN("v_joint_default", 192, 8, 255),
+    URWIRE__SPAN("a_joint_default", 200, 8, 255),
+    URWIRE__SPAN("v_tool_default", 208, 8, 255),
+    URWIRE__SPAN("a_tool_default", 216, 8, 255),
+    URWIRE__SPAN("eq_radius", 224, 8, 255),
+    URWIRE__SPAN("dh_a[]", 232, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("dh_d[]", 280, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("dh_alpha[]", 328, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("dh_theta[]", 376, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("masterboard_version", 424, 4, 255),
+    URWIRE__SPAN("controller_box_type", 428, 4, 255),
+    URWIRE__SPAN("robot_type", 432, 4, 255),
+    URWIRE__SPAN("robot_sub_type", 436, 4, 255),
+    URWIRE__SPAN("motor_type[]", 440, 4, 0),
+    URWIRE__SPAN(NULL, 4, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__configuration_data_2_run0[] = {
-    {URWIRE__NAME("joint_position_limits[].joint_min_limit"), 0, 8, 0},
-    {URWIRE__NAME("joint_position_limits[].joint_max_limit"), 8, 8, 0},
-    {NULL, 16, 6, 2},
-    {URWIRE__NAME("joint_motion_limits[].joint_max_speed"), 96, 8, 0},
-    {URWIRE__NAME("joint_motion_limits[].joint_max_acceleration"), 104, 8, 0},
-    {NULL, 16, 6, 2},
-    {URWIRE__NAME("v_joint_default"), 192, 8, 255},
-    {URWIRE__NAME("a_joint_default"), 200, 8, 255},
-    {URWIRE__NAME("v_tool_default"), 208, 8, 255},
-    {URWIRE__NAME("a_tool_default"), 216, 8, 255},
-    {URWIRE__NAME("eq_radius"), 224, 8, 255},
-    {URWIRE__NAME("dh_a[]"), 232, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("dh_d[]"), 280, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("dh_alpha[]"), 328, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("dh_theta[]"), 376, 8, 0},
-    {NULL, 8, 6, 1},
-    {URWIRE__NAME("masterboard_version"), 424, 4, 255},
-    {URWIRE__NAME("controller_box_type"), 428, 4, 255},
-    {URWIRE__NAME("robot_type"), 432, 4, 255},
-    {URWIRE__NAME("robot_sub_type"), 436, 4, 255},
-    {URWIRE__NAME("reserved_1"), 440, 2, 255},
-    {URWIRE__NAME("reserved_2"), 442, 2, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("joint_position_limits[].joint_min_limit", 0, 8, 0),
+    URWIRE__SPAN("joint_position_limits[].joint_max_limit", 8, 8, 0),
+    URWIRE__SPAN(NULL, 16, URWIRE__REPEAT | 6, 2),
+    URWIRE__SPAN("joint_motion_limits[].joint_max_speed", 96, 8, 0),
+    URWIRE__SPAN("joint_motion_limits[].joint_max_acceleration", 104, 8, 0),
+    URWIRE__SPAN(NULL, 16, URWIRE__REPEAT | 6, 2),
+    URWIRE__SPAN("v_joint_default", 192, 8, 255),
+    URWIRE__SPAN("a_joint_default", 200, 8, 255),
+    URWIRE__SPAN("v_tool_default", 208, 8, 255),
+    URWIRE__SPAN("a_tool_default", 216, 8, 255),
+    URWIRE__SPAN("eq_radius", 224, 8, 255),
+    URWIRE__SPAN("dh_a[]", 232, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("dh_d[]", 280, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("dh_alpha[]", 328, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("dh_theta[]", 376, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN("masterboard_version", 424, 4, 255),
+    URWIRE__SPAN("controller_box_type", 428, 4, 255),
+    URWIRE__SPAN("robot_type", 432, 4, 255),
+    URWIRE__SPAN("robot_sub_type", 436, 4, 255),
+    URWIRE__SPAN("reserved_1", 440, 2, 255),
+    URWIRE__SPAN("reserved_2", 442, 2, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* configuration_data as up to 1.8 sends it (464 bytes). */
@@ -3747,14 +3760,14 @@ static void urwire__visit_configuration_data(const void *from, const urwire__ver
 }
 
 static const urwire__span urwire__force_mode_data_run0[] = {
-    {URWIRE__NAME("fx"), 0, 8, 255},
-    {URWIRE__NAME("fy"), 8, 8, 255},
-    {URWIRE__NAME("fz"), 16, 8, 255},
-    {URWIRE__NAME("frx"), 24, 8, 255},
-    {URWIRE__NAME("fry"), 32, 8, 255},
-    {URWIRE__NAME("frz"), 40, 8, 255},
-    {URWIRE__NAME("robot_dexterity"), 48, 8, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("fx", 0, 8, 255),
+    URWIRE__SPAN("fy", 8, 8, 255),
+    URWIRE__SPAN("fz", 16, 8, 255),
+    URWIRE__SPAN("frx", 24, 8, 255),
+    URWIRE__SPAN("fry", 32, 8, 255),
+    URWIRE__SPAN("frz", 40, 8, 255),
+    URWIRE__SPAN("robot_dexterity", 48, 8, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Force mode data; 61 bytes in every version that sends it. */
@@ -3823,17 +3836,17 @@ static void urwire__visit_force_mode_data(const void *from, const urwire__ver *v
 }
 
 static const urwire__span urwire__additional_info_0_run0[] = {
-    {URWIRE__NAME("ctrl_bits"), 0, 4, 255},
-    {URWIRE__NAME("teach_button"), 4, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("ctrl_bits", 0, 4, 255),
+    URWIRE__SPAN("teach_button", 4, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__additional_info_1_run0[] = {
-    {URWIRE__NAME("tp_button_state"), 0, 1, 255},
-    {URWIRE__NAME("freedrive_button_enabled"), 1, 1, 255},
-    {URWIRE__NAME("io_enabled_freedrive"), 2, 1, 255},
-    {URWIRE__NAME("reserved"), 3, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("tp_button_state", 0, 1, 255),
+    URWIRE__SPAN("freedrive_button_enabled", 1, 1, 255),
+    URWIRE__SPAN("io_enabled_freedrive", 2, 1, 255),
+    URWIRE__SPAN("reserved", 3, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* additional_info as up to 1.7 sends it (5 bytes). */
@@ -4006,13 +4019,13 @@ static void urwire__visit_additional_info(const void *from, const urwire__ver *v
 }
 
 static const urwire__span urwire__calibration_data_run0[] = {
-    {URWIRE__NAME("fx"), 0, 8, 255},
-    {URWIRE__NAME("fy"), 8, 8, 255},
-    {URWIRE__NAME("fz"), 16, 8, 255},
-    {URWIRE__NAME("frx"), 24, 8, 255},
-    {URWIRE__NAME("fry"), 32, 8, 255},
-    {URWIRE__NAME("frz"), 40, 8, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("fx", 0, 8, 255),
+    URWIRE__SPAN("fy", 8, 8, 255),
+    URWIRE__SPAN("fz", 16, 8, 255),
+    URWIRE__SPAN("frx", 24, 8, 255),
+    URWIRE__SPAN("fry", 32, 8, 255),
+    URWIRE__SPAN("frz", 40, 8, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Calibration data. Used internally by Universal Robots software only. 53 bytes from late 1.8
@@ -4120,13 +4133,13 @@ static void urwire__visit_safety_data(const void *from, const urwire__ver *ver, 
 }
 
 static const urwire__span urwire__tool_comm_info_run0[] = {
-    {URWIRE__NAME("tool_communication_is_enabled"), 0, 1, 255},
-    {URWIRE__NAME("baud_rate"), 1, 4, 255},
-    {URWIRE__NAME("parity"), 5, 4, 255},
-    {URWIRE__NAME("stop_bits"), 9, 4, 255},
-    {URWIRE__NAME("rx_idle_chars"), 13, 4, 255},
-    {URWIRE__NAME("tx_idle_chars"), 17, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("tool_communication_is_enabled", 0, 1, 255),
+    URWIRE__SPAN("baud_rate", 1, 4, 255),
+    URWIRE__SPAN("parity", 5, 4, 255),
+    URWIRE__SPAN("stop_bits", 9, 4, 255),
+    URWIRE__SPAN("rx_idle_chars", 13, 4, 255),
+    URWIRE__SPAN("tx_idle_chars", 17, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Tool communication info. e-Series only; its first version is unknown. */
@@ -4192,10 +4205,10 @@ static void urwire__visit_tool_comm_info(const void *from, const urwire__ver *ve
 }
 
 static const urwire__span urwire__tool_mode_info_run0[] = {
-    {URWIRE__NAME("output_mode"), 0, 1, 255},
-    {URWIRE__NAME("digital_output_mode_output_0"), 1, 1, 255},
-    {URWIRE__NAME("digital_output_mode_output_1"), 2, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("output_mode", 0, 1, 255),
+    URWIRE__SPAN("digital_output_mode_output_0", 1, 1, 255),
+    URWIRE__SPAN("digital_output_mode_output_1", 2, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Tool mode info. e-Series only; its first version is unknown. */
@@ -4252,9 +4265,9 @@ static void urwire__visit_tool_mode_info(const void *from, const urwire__ver *ve
 }
 
 static const urwire__span urwire__singularity_info_run0[] = {
-    {URWIRE__NAME("singularity_severity"), 0, 1, 255},
-    {URWIRE__NAME("singularity_type"), 1, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("singularity_severity", 0, 1, 255),
+    URWIRE__SPAN("singularity_type", 1, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Singularity info. Used internally by Universal Robots software only. */
@@ -4308,12 +4321,12 @@ static void urwire__visit_singularity_info(const void *from, const urwire__ver *
 }
 
 static const urwire__span urwire__payload_info_run0[] = {
-    {URWIRE__NAME("mass"), 0, 8, 255},
-    {URWIRE__NAME("center_of_gravity[]"), 8, 8, 0},
-    {NULL, 8, 3, 1},
-    {URWIRE__NAME("inertia[]"), 32, 8, 0},
-    {NULL, 8, 6, 1},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("mass", 0, 8, 255),
+    URWIRE__SPAN("center_of_gravity[]", 8, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 3, 1),
+    URWIRE__SPAN("inertia[]", 32, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 6, 1),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Target payload (not in any document; the fields are inferred from real bytes): its mass, centre
@@ -4381,20 +4394,20 @@ static void urwire__visit_payload_info(const void *from, const urwire__ver *ver,
 }
 
 static const urwire__span urwire__version_run0[] = {
-    {URWIRE__NAME("major_version"), 0, 1, 255},
-    {URWIRE__NAME("minor_version"), 1, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("major_version", 0, 1, 255),
+    URWIRE__SPAN("minor_version", 1, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__version_run1[] = {
-    {URWIRE__NAME("svn_revision"), 0, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("svn_revision", 0, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__version_run2[] = {
-    {URWIRE__NAME("bugfix_version"), 0, 4, 255},
-    {URWIRE__NAME("build_number"), 4, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("bugfix_version", 0, 4, 255),
+    URWIRE__SPAN("build_number", 4, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Version message, the first message on both the primary and secondary interfaces. It is read in
@@ -4504,15 +4517,15 @@ static void urwire__visit_version(const void *from, const urwire__ver *ver, cons
 }
 
 static const urwire__span urwire__safety_mode_run0[] = {
-    {URWIRE__NAME("robot_message_code"), 0, 4, 255},
-    {URWIRE__NAME("robot_message_argument"), 4, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("robot_message_code", 0, 4, 255),
+    URWIRE__SPAN("robot_message_argument", 4, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__safety_mode_run1[] = {
-    {URWIRE__NAME("safety_mode_type"), 0, 1, 255},
-    {URWIRE__NAME("report_data_type"), 1, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("safety_mode_type", 0, 1, 255),
+    URWIRE__SPAN("report_data_type", 1, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Safety mode message; the security message of CB2, which carries a text instead of the safety mode
@@ -4659,16 +4672,16 @@ static void urwire__visit_safety_mode(const void *from, const urwire__ver *ver, 
 }
 
 static const urwire__span urwire__robot_comm_run0[] = {
-    {URWIRE__NAME("robot_message_code"), 0, 4, 255},
-    {URWIRE__NAME("robot_message_argument"), 4, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("robot_message_code", 0, 4, 255),
+    URWIRE__SPAN("robot_message_argument", 4, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__robot_comm_run1[] = {
-    {URWIRE__NAME("robot_message_report_level"), 0, 4, 255},
-    {URWIRE__NAME("robot_message_data_type"), 4, 4, 255},
-    {URWIRE__NAME("robot_message_data"), 8, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("robot_message_report_level", 0, 4, 255),
+    URWIRE__SPAN("robot_message_data_type", 4, 4, 255),
+    URWIRE__SPAN("robot_message_data", 8, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Robot comm message (an error code report). On CB2 the code and argument are followed by the text
@@ -4759,9 +4772,9 @@ static void urwire__visit_robot_comm(const void *from, const urwire__ver *ver, c
 }
 
 static const urwire__span urwire__key_run0[] = {
-    {URWIRE__NAME("robot_message_code"), 0, 4, 255},
-    {URWIRE__NAME("robot_message_argument"), 4, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("robot_message_code", 0, 4, 255),
+    URWIRE__SPAN("robot_message_argument", 4, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Key message. */
@@ -4825,8 +4838,8 @@ static void urwire__visit_key(const void *from, const urwire__ver *ver, const ur
 }
 
 static const urwire__span urwire__program_thread_run0[] = {
-    {URWIRE__NAME("label_id"), 0, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("label_id", 0, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* One entry of threads. */
@@ -4951,20 +4964,20 @@ static void urwire__visit_program_threads(const void *from, const urwire__ver *v
 }
 
 static const urwire__span urwire__popup_run0[] = {
-    {URWIRE__NAME("request_id"), 0, 4, 255},
-    {URWIRE__NAME("requested_type"), 4, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("request_id", 0, 4, 255),
+    URWIRE__SPAN("requested_type", 4, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__popup_run1[] = {
-    {URWIRE__NAME("warning"), 0, 1, 255},
-    {URWIRE__NAME("error"), 1, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("warning", 0, 1, 255),
+    URWIRE__SPAN("error", 1, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static const urwire__span urwire__popup_run2[] = {
-    {URWIRE__NAME("blocking"), 0, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("blocking", 0, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Popup message. On CB2 it has no request id, requested type or blocking flag. */
@@ -5072,8 +5085,8 @@ static void urwire__visit_popup(const void *from, const urwire__ver *ver, const 
 }
 
 static const urwire__span urwire__label_run0[] = {
-    {URWIRE__NAME("id"), 0, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("id", 0, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Label message (CB2 only). */
@@ -5129,9 +5142,9 @@ static void urwire__visit_label(const void *from, const urwire__ver *ver, const 
 }
 
 static const urwire__span urwire__var_run0[] = {
-    {URWIRE__NAME("robot_message_code"), 0, 4, 255},
-    {URWIRE__NAME("robot_message_argument"), 4, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("robot_message_code", 0, 4, 255),
+    URWIRE__SPAN("robot_message_argument", 4, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Var message (CB2 only). */
@@ -5195,12 +5208,12 @@ static void urwire__visit_var(const void *from, const urwire__ver *ver, const ur
 }
 
 static const urwire__span urwire__hardware_info_run0[] = {
-    {URWIRE__NAME("robot_type"), 0, 4, 255},
-    {URWIRE__NAME("reserved_1"), 4, 2, 255},
-    {URWIRE__NAME("control_box_type"), 6, 2, 255},
-    {URWIRE__NAME("reserved_2"), 8, 2, 255},
-    {URWIRE__NAME("tool_flange_type"), 10, 2, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("robot_type", 0, 4, 255),
+    URWIRE__SPAN("reserved_1", 4, 2, 255),
+    URWIRE__SPAN("control_box_type", 6, 2, 255),
+    URWIRE__SPAN("reserved_2", 8, 2, 255),
+    URWIRE__SPAN("tool_flange_type", 10, 2, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Hardware info message, not in the 5.9 document: sent from PolyScope 5.26 and 10.13. 27 bytes in
@@ -5305,9 +5318,9 @@ static void urwire__visit_robot_message_12(const void *from, const urwire__ver *
 }
 
 static const urwire__span urwire__request_value_run0[] = {
-    {URWIRE__NAME("request_id"), 0, 4, 255},
-    {URWIRE__NAME("requested_type"), 4, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("request_id", 0, 4, 255),
+    URWIRE__SPAN("requested_type", 4, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Request value message. */
@@ -5406,9 +5419,9 @@ static void urwire__visit_text(const void *from, const urwire__ver *ver, const u
 }
 
 static const urwire__span urwire__runtime_exception_run0[] = {
-    {URWIRE__NAME("script_line_number"), 0, 4, 255},
-    {URWIRE__NAME("script_column_number"), 4, 4, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("script_line_number", 0, 4, 255),
+    URWIRE__SPAN("script_column_number", 4, 4, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Runtime exception message. */
@@ -5467,8 +5480,8 @@ static void urwire__visit_runtime_exception(const void *from, const urwire__ver 
 }
 
 static const urwire__span urwire__global_variables_setup_run0[] = {
-    {URWIRE__NAME("start_index"), 0, 2, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("start_index", 0, 2, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Global variables setup message. */
@@ -5523,8 +5536,8 @@ static void urwire__visit_global_variables_setup(const void *from, const urwire_
 }
 
 static const urwire__span urwire__global_variables_update_run0[] = {
-    {URWIRE__NAME("start_index"), 0, 2, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("start_index", 0, 2, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Global variables update message. */
@@ -5701,9 +5714,9 @@ static void urwire__visit_safety_setup_broadcast(const void *from, const urwire_
 }
 
 static const urwire__span urwire__safety_compliance_tolerances_run0[] = {
-    {URWIRE__NAME("tolerances[]"), 0, 8, 0},
-    {NULL, 8, 22, 1},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("tolerances[]", 0, 8, 0),
+    URWIRE__SPAN(NULL, 8, URWIRE__REPEAT | 22, 1),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 /* Safety compliance tolerances message (type 24), named by the document without a layout: 181
@@ -5766,10 +5779,10 @@ static void urwire__visit_safety_compliance_tolerances(const void *from, const u
 
 /* Header fields of a robot_message message, in the canonical order. */
 static const urwire__span urwire__robot_message_header[] = {
-    {URWIRE__NAME("timestamp"), 5, 8, 255},
-    {URWIRE__NAME("source"), 13, 1, 255},
-    {URWIRE__NAME("robot_message_type"), 14, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("timestamp", 5, 8, 255),
+    URWIRE__SPAN("source", 13, 1, 255),
+    URWIRE__SPAN("robot_message_type", 14, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static int64_t urwire__read_robot_message_header(urwire_message *m)
@@ -5800,9 +5813,9 @@ static void urwire__put_robot_message_header(const urwire_message *m, uint8_t *o
 
 /* Header fields of a program_state message, in the canonical order. */
 static const urwire__span urwire__program_state_header[] = {
-    {URWIRE__NAME("timestamp"), 5, 8, 255},
-    {URWIRE__NAME("robot_message_type"), 13, 1, 255},
-    {NULL, 0, 0, 0},
+    URWIRE__SPAN("timestamp", 5, 8, 255),
+    URWIRE__SPAN("robot_message_type", 13, 1, 255),
+    URWIRE__SPAN(NULL, 0, 0, 0),
 };
 
 static int64_t urwire__read_program_state_header(urwire_message *m)

@@ -187,8 +187,9 @@ static void error_texts(void)
     {
         /* A run of a field, a group of 3 elements of two fields (one repeat row) and a field. */
         static const urwire__span run[] = {
-            {"head", 0, 2, URWIRE__NO_INDEX}, {"g[].a", 2, 4, 0}, {"g[].b", 6, 1, 0}, {NULL, 5, 3, 2},
-            {"tail", 17, 8, URWIRE__NO_INDEX}, {NULL, 0, 0, 0},
+            URWIRE__SPAN("head", 0, 2, URWIRE__NO_INDEX), URWIRE__SPAN("g[].a", 2, 4, 0),
+            URWIRE__SPAN("g[].b", 6, 1, 0), URWIRE__SPAN(NULL, 5, URWIRE__REPEAT | 3, 2),
+            URWIRE__SPAN("tail", 17, 8, URWIRE__NO_INDEX), URWIRE__SPAN(NULL, 0, 0, 0),
         };
         CHECK(!urwire__short_in_run(&e, run, 100, 101) && e.offset == 100 && path_is(&e, "head"));
         CHECK(!urwire__short_in_run(&e, run, 100, 106) && e.offset == 106 && path_is(&e, "g[0].b"));

@@ -9,7 +9,7 @@ import json
 
 import pytest
 
-from tests.c.harness_c import CommandPeer, get_build, parse_lines, run_cli
+from tests.c.harness_c import GEN, OPTION_VARIANTS, OUT, CommandPeer, compile_c, get_build, parse_lines, run_cli
 from tests.c.seeds import messages
 from tests.vectors import all_cases
 
@@ -20,6 +20,13 @@ AT = " at offset "
 @pytest.fixture(scope="module")
 def small():
     return get_build("small-gcc")
+
+
+@pytest.mark.parametrize("cc", ["gcc", "clang"])
+def test_the_options_compile_clean(cc):
+    """Under the strict flags, as the default build does (compile_c fails on any warning)."""
+    _, flags = OPTION_VARIANTS["small-gcc"]
+    compile_c(cc, [*flags, "-c"], [GEN / "urwire.c"], OUT / "options" / f"urwire-{cc}.o")
 
 
 def without_paths(value):

@@ -15,7 +15,7 @@ def expand(rows: list[dict]) -> list[tuple]:
     urwire__short_in_run tries them."""
     out: list[tuple] = []
     for k, row in enumerate(rows):
-        if row["path"] is not None:
+        if not row["repeat"]:
             out.append((row["path"], row["offset"], row["size"], row["index"]))
             continue
         block = rows[k - row["index"]:k]
@@ -36,7 +36,8 @@ def test_every_table_gives_back_its_spans(runs):
 def test_groups_are_folded(runs):
     joints = runs["urwire__joint_data_run0"]
     assert len(joints.spans) == 48 and len(joints.rows) == 9
-    assert joints.rows[-1] == dict(path=None, name="NULL", offset=41, size=6, index=8)
+    assert joints.rows[-1] == dict(path=None, path_c="NULL", offset=41, size=6, size_c="URWIRE__REPEAT | 6", index=8,
+                                   repeat=True)
     assert len(runs["urwire__kinematics_info_run0"].rows) == 11       # five arrays of 6, and a field
     assert sum(len(r.rows) for r in runs.values()) < 0.7 * sum(len(r.spans) for r in runs.values())
 

@@ -125,9 +125,11 @@ class BitSet:
     members: list[dict]
 
 
-# What a span holds (urwire__span: 8 bytes a field on a 32-bit CPU): an offset in a uint16_t, a
-# size and an element's index in a uint8_t each, URWIRE__NO_INDEX (255) for none.
-SPAN_OFFSET_MAX, SPAN_BYTE_MAX, NO_INDEX = 0xffff, 0xff, 0xff
+# What a span holds (urwire__span: 8 bytes a field on a 32-bit CPU, 4 without names): an offset
+# in a uint16_t, a size and an element's index in a uint8_t each, URWIRE__NO_INDEX (255) for none.
+# A repeat row's size is URWIRE__REPEAT (0x80) | its number of elements: a field's size and that
+# number stay below 0x80.
+SPAN_OFFSET_MAX, NO_INDEX, SPAN_SIZE_MAX = 0xffff, 0xff, 0x7f
 
 
 def name_text(path: str) -> str:
@@ -148,7 +150,7 @@ class Span:
     size: int
 
     def __post_init__(self):
-        if not (0 <= self.offset <= SPAN_OFFSET_MAX and 0 <= self.size <= SPAN_BYTE_MAX):
+        if not (0 <= self.offset <= SPAN_OFFSET_MAX and 0 < self.size <= SPAN_SIZE_MAX):
             raise SpecError("<spec>", [ir.NOWHERE.problem(f"c target: field {self.path} at offset {self.offset} "
                                                           f"is beyond the C runtime's span tables")])
 
@@ -159,9 +161,10 @@ class Span:
         return f"{m.group(1)}[]{m.group(3)}" if m and int(m.group(2)) < NO_INDEX else self.path
 
     @property
-    def name(self) -> str:
-        """The template as the C table spells it (name_text)."""
-        return name_text(self.template)
+    def row(self) -> dict:
+        """The span as a table row (Run.rows)."""
+        return dict(path=self.template, path_c=string(self.template), offset=self.offset, size=self.size,
+                    size_c=str(self.size), index=self.index, repeat=False)
 
     @property
     def index(self) -> int:
@@ -180,9 +183,9 @@ class Run:
     @property
     def rows(self) -> list[dict]:
         """The table's rows: each span, except that a group's elements after the first, when they
-        repeat element 0's spans at one stride, are one repeat row {NULL, stride, elements, rows of
-        element 0} after element 0's (joint data: 9 rows, not 48). `name` is the path as C spells
-        it."""
+        repeat element 0's spans at one stride, are one repeat row {NULL, stride, URWIRE__REPEAT |
+        elements, rows of element 0} after element 0's (joint data: 9 rows, not 48). `path_c` and
+        `size_c` are the row's path and size as C spells them."""
         rows, i = [], 0
         while i < len(self.spans):
             width = 0
@@ -190,9 +193,10 @@ class Run:
                 width += 1
             count, stride = _repeats(self.spans, i, width)
             block = self.spans[i:i + max(width, 1)]
-            rows += [dict(path=s.template, name=s.name, offset=s.offset, size=s.size, index=s.index) for s in block]
+            rows += [s.row for s in block]
             if count > 1:
-                rows.append(dict(path=None, name="NULL", offset=stride, size=count, index=width))
+                rows.append(dict(path=None, path_c="NULL", offset=stride, size=count,
+                                 size_c=f"URWIRE__REPEAT | {count}", index=width, repeat=True))
             i += len(block) * count
         return rows
 
@@ -203,7 +207,7 @@ def _repeats(spans: list[Span], at: int, width: int) -> tuple[int, int]:
     if width == 0 or at + width >= len(spans):
         return 1, 0
     stride, count = spans[at + width].offset - spans[at].offset, 1
-    while (at + (count + 1) * width <= len(spans) and count < SPAN_BYTE_MAX and 0 < stride * count <= SPAN_OFFSET_MAX
+    while (at + (count + 1) * width <= len(spans) and count < SPAN_SIZE_MAX and 0 < stride * count <= SPAN_OFFSET_MAX
            and all(_same_field(spans[at + j], spans[at + count * width + j], count, count * stride)
                    for j in range(width))):
         count += 1

@@ -54,24 +54,24 @@ static const char *urwire__index_hole(const char *path)
     return NULL;
 }
 
-/* The first span of a fixed run (ended by a row of NULL path and size 0) that does not fit
- * before end, with its offset (*at) and its element's index (*index, URWIRE__NO_INDEX: none);
- * NULL when all fit. A repeat row (path NULL) stands for elements 1 to size - 1 of a group,
- * `offset` bytes apart, whose element 0 is the `index` rows before it. */
+/* The first span of a fixed run (ended by a row of size 0) that does not fit before end, with
+ * its offset (*at) and its element's index (*index, URWIRE__NO_INDEX: none); NULL when all fit.
+ * A repeat row (size URWIRE__REPEAT | n) stands for elements 1 to n - 1 of a group, `offset`
+ * bytes apart, whose element 0 is the `index` rows before it. */
 static const urwire__span *urwire__first_short(const urwire__span *run, size_t pos, size_t end, size_t *at,
                                                size_t *index)
 {
     const urwire__span *s;
     size_t k;
-    for (; run->path != NULL || run->size != 0; run++) {
-        if (run->path != NULL) {
+    for (; run->size != 0; run++) {
+        if (!(run->size & URWIRE__REPEAT)) {
             *at = pos + run->offset;
             *index = run->index;
             if (*at + run->size > end)
                 return run;
             continue;
         }
-        for (k = 1; k < run->size; k++)
+        for (k = 1; k < (run->size & ~URWIRE__REPEAT); k++)
             for (s = run - run->index; s < run; s++) {
                 *at = pos + k * run->offset + s->offset;
                 *index = k;
@@ -88,13 +88,14 @@ URWIRE__PRIVATE bool urwire__short_in_run(urwire_error *e, const urwire__span *r
 {
     size_t at, index;
     const urwire__span *s = urwire__first_short(run, pos, end, &at, &index);
-    const char *hole;
+    const char *path, *hole;
     if (s == NULL)
         return urwire__short(e, "?", pos, 0, end);  /* not reached: the caller saw the run not fit */
-    hole = index != URWIRE__NO_INDEX ? urwire__index_hole(s->path) : NULL;
-    urwire__short(e, hole ? hole + 2 : s->path, at, s->size, end);
+    path = URWIRE__SPAN_PATH(s);
+    hole = index != URWIRE__NO_INDEX ? urwire__index_hole(path) : NULL;
+    urwire__short(e, hole ? hole + 2 : path, at, s->size, end);
     if (index != URWIRE__NO_INDEX && e != NULL)
-        urwire__add_step(e, s->path, hole ? (size_t)(hole - s->path) : 0, index, 0, false);
+        urwire__add_step(e, path, hole ? (size_t)(hole - path) : 0, index, 0, false);
     return false;
 }
 
