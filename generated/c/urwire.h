@@ -65,6 +65,10 @@
  * Errors: urwire_error holds a status, the byte offset from the message's first byte (the
  * stream's, for stream faults), the field path and the numbers of the problem;
  * urwire_error_text() writes the canonical English text (docs/canonical-json.md).
+ *
+ * Options for a firmware, defined when urwire.c is compiled (docs/c.md): URWIRE_NO_NAMES (errors
+ * name no field, and no field name is linked), URWIRE_NO_FAST_PATHS (robot states decoded by the
+ * general rule alone: less code, slower). Either decodes every message as the default build does.
  */
 #ifndef URWIRE_H
 #define URWIRE_H
