@@ -124,17 +124,13 @@ typedef struct robot {
     urwire_sw_version version;
 } robot;
 
-/* An open conversation: its interface, its robot, its envelopes, then its interface's state. */
+/* An open conversation: its interface and its state, its robot, its envelopes. */
 typedef struct open_conversation {
     const cell_interface *kind;
+    void *state;
     size_t robot;
     char name[2 * URWIRE_CAPTURE_ADDRESS_TEXT + 16];
     envelope envelope[2];
-    union {
-        long double d;
-        uint64_t u;
-        void *p;
-    } state[];                      /* aligned as malloc aligns */
 } open_conversation;
 
 typedef struct reader {
@@ -193,8 +189,10 @@ static open_conversation *conversation_of(reader *r, urwire_capture_conversation
     int k;
     if (conv != NULL)
         return conv;
-    conv = calloc(1, sizeof *conv + kind->size);
-    if (conv == NULL || !robot_of(r, c->robot, &conv->robot)) {
+    conv = calloc(1, sizeof *conv);
+    if (conv == NULL || (conv->state = calloc(1, kind->size)) == NULL || !robot_of(r, c->robot, &conv->robot)) {
+        if (conv != NULL)
+            free(conv->state);
         free(conv);
         return NULL;
     }
@@ -214,8 +212,12 @@ static open_conversation *conversation_of(reader *r, urwire_capture_conversation
 
 static void forget(urwire_capture_conversation *c)
 {
-    free(c->user);
-    c->user = NULL;
+    open_conversation *conv = c->user;
+    if (conv != NULL) {
+        free(conv->state);
+        free(conv);
+        c->user = NULL;
+    }
 }
 
 static void print_error(reader *r, const envelope *e, int64_t offset, const char *error)

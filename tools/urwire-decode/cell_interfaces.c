@@ -24,21 +24,20 @@ const cell_interface *cell_interface_named(const char *name)
     return NULL;
 }
 
-/* A raw stream's one conversation, of whichever interface: static, so that only the pages its
- * interface uses are ever touched (RTDE's recipes take the most). */
-static union {
-    rtde_json_stream rtde;
-    ur_realtime_conversation ur_realtime;
-    cell_lines_state lines;
-    cell_records_state records;
-} raw_state;
+/* A raw stream's one conversation, of whichever interface but the primary (whose raw stream main.c
+ * frames with a loop of its own): static, so that only the pages its interface uses are ever
+ * touched (RTDE's recipes take the most), in 8-byte words, every state's alignment. */
+#define LARGER(a, b) ((a) > (b) ? (a) : (b))
+#define RAW_STATE LARGER(LARGER(sizeof(rtde_json_stream), sizeof(ur_realtime_conversation)), \
+                         LARGER(sizeof(cell_lines_state), sizeof(cell_records_state)))
+static uint64_t raw_state[(RAW_STATE + 7) / 8];
 
 /* The commands a raw file's client sends all await their replies at once. */
 static int16_t raw_queue[UR_DASHBOARD_PENDING_RAW];
 
 void *cell_raw_state(void)
 {
-    return &raw_state;
+    return raw_state;
 }
 
 int16_t *cell_raw_queue(size_t *n)
