@@ -12,84 +12,107 @@
 #include "ur_script_sender.h"
 #include "ur_trajectory.h"
 
-#define HELD (1u << 16)
+static char line[6 * CELL_HELD + 256];     /* one record's JSON, written out before the next */
 
-static unsigned char held[2 * HELD];
-static char line[6 * HELD + 256];
-
-/* The direction's envelope: the client's stream is read first, then the robot's. */
-static const envelope *envelope_of(const cell_inputs *in, bool from_robot)
+/* The next bytes of `data` the held bytes take (all of them, or what fits); how many. */
+static size_t hold(cell_held *h, const uint8_t *data, size_t n)
 {
-    return from_robot ? in->from_robot : in->to_robot;
+    size_t room = sizeof h->bytes - h->length, take = n < CELL_HELD ? n : CELL_HELD;
+    take = take < room ? take : room;
+    memcpy(h->bytes + h->length, data, take);
+    h->length += take;
+    return take;
 }
 
-/* A text-line interface: lines split in the held bytes, one JSON line per record. The two
- * interfaces of this kind have the same API under their own prefixes. P##_read_stream reads one
- * direction to its end and leaves in *tail the bytes of an unended line, which P##_finish reports
- * once both streams are read (the client's first, as the Python decoder closes them), each in its
- * own direction's envelope. */
-#define LINES_PRINT_STREAMS(P, UPPER)                                                                 \
-    static int P##_read_stream(P##_conversation *c, const cell_inputs *in, bool from_robot, FILE *out, \
-                               size_t *tail)                                                       \
+/* The bytes before `at` read: the rest moves to the front. */
+static void drop(cell_held *h, size_t at)
+{
+    memmove(h->bytes, h->bytes + at, h->length - at);
+    h->length -= at;
+}
+
+static void write_line(cell_output *out, bool from_robot)
+{
+    envelope_line(out->out, out->envelope[from_robot ? 1 : 0], line);
+}
+
+/* A text-line interface: lines split in the held bytes of their direction, one JSON line per
+ * record. The four interfaces of this kind have the same API under their own prefixes. What a
+ * direction leaves without a newline is a fault record when it ends (P##_finish); bytes lost
+ * give up the line they cut and split lines afresh after them (text_lines.py's restart). */
+#define LINES_INTERFACE(P, UPPER, ROBOT_IS_CLIENT)                                                                  \
+    static void P##_init_state(void *state, urwire_sw_version v, bool hinted)                     \
     {                                                                                              \
+        cell_lines_state *s = state;                                                               \
+        P##_init(&s->lines, hinted ? P##_version((uint32_t)v.major, (uint32_t)v.minor, (uint32_t)v.bugfix) : 0u); \
+        s->held[0].length = s->held[1].length = 0;                                                 \
+    }                                                                                              \
+                                                                                                   \
+    static int P##_feed_state(void *state, const uint8_t *data, size_t n, bool from_robot, cell_output *out) \
+    {                                                                                              \
+        cell_lines_state *s = state;                                                               \
+        cell_held *h = &s->held[from_robot ? 1 : 0];                                               \
         P##_record rec;                                                                            \
-        FILE *stream = from_robot ? in->robot : in->client;                                        \
-        size_t len = 0, used, at;                                                                  \
-        bool got, errors = false;                                                                  \
-        for (;;) {                                                                                 \
-            size_t n = fread(held + len, 1, HELD, stream);                                         \
-            len += n;                                                                              \
+        size_t used, at;                                                                           \
+        bool got;                                                                                  \
+        while (n > 0) {                                                                            \
+            size_t took = hold(h, data, n);                                                        \
+            data += took;                                                                          \
+            n -= took;                                                                             \
             at = 0;                                                                                \
-            while ((used = P##_decode(c, from_robot, held + at, len - at, &rec, &got)) > 0 || got) { \
+            while ((used = P##_decode(&s->lines, from_robot, h->bytes + at, h->length - at, &rec, &got)) > 0 \
+                   || got) {                                                                       \
                 if (got) {                                                                         \
                     P##_json(&rec, line, sizeof line);                                             \
-                    envelope_line(out, envelope_of(in, from_robot), line);                         \
-                    errors |= rec.type == UPPER##_FAULT || rec.not_kept;                           \
+                    write_line(out, from_robot);                                                   \
+                    out->errors |= rec.type == UPPER##_FAULT || rec.not_kept;                      \
                 }                                                                                  \
                 at += used;                                                                        \
             }                                                                                      \
-            memmove(held, held + at, len - at);                                                    \
-            len -= at;                                                                             \
-            if (n == 0) {                                                                          \
-                if (ferror(stream))                                                                \
-                    return 2;                                                                      \
-                break;                                                                             \
-            }                                                                                      \
+            drop(h, at);                                                                           \
         }                                                                                          \
-        *tail = len;                                                                               \
-        return errors ? 1 : 0;                                                                     \
+        return 0;                                                                                  \
     }                                                                                              \
                                                                                                    \
-    int P##_print_streams(const cell_inputs *in, FILE *out, unsigned major, unsigned minor,      \
-                          unsigned bugfix, bool given)                                             \
+    static int P##_close_state(void *state, bool from_robot, cell_output *out)                    \
     {                                                                                              \
-        P##_conversation c;                                                                        \
+        cell_lines_state *s = state;                                                               \
+        cell_held *h = &s->held[from_robot ? 1 : 0];                                               \
         P##_record rec;                                                                            \
-        size_t tail[2] = {0, 0};                                                                   \
-        int status = 0, k;                                                                         \
-        static int16_t queue[UPPER##_PENDING_RAW]; /* the client's file is read first */           \
-        P##_init(&c, given ? P##_version(major, minor, bugfix) : 0u);                              \
-        P##_keep_pending(&c, queue, UPPER##_PENDING_RAW);                                          \
-        for (k = in->client ? 0 : 1; k < 2; k++) {                                                 \
-            int read = P##_read_stream(&c, in, k == 1, out, &tail[k]);                             \
-            if (read == 2)                                                                         \
-                return 2;                                                                          \
-            status |= read;                                                                        \
+        if (P##_finish(&s->lines, from_robot, h->length, &rec)) {                                  \
+            P##_json(&rec, line, sizeof line);                                                     \
+            write_line(out, from_robot);                                                           \
+            out->errors = true;                                                                    \
         }                                                                                          \
-        for (k = in->client ? 0 : 1; k < 2; k++) {                                                 \
-            if (P##_finish(&c, k == 1, tail[k], &rec)) {                                           \
-                P##_json(&rec, line, sizeof line);                                                 \
-                envelope_line(out, envelope_of(in, k == 1), line);                                 \
-                status = 1;                                                                        \
-            }                                                                                      \
-        }                                                                                          \
-        return status;                                                                             \
-    }
+        h->length = 0;                                                                             \
+        return 0;                                                                                  \
+    }                                                                                              \
+                                                                                                   \
+    static int P##_lost_state(void *state, bool from_robot, uint64_t offset, cell_output *out)    \
+    {                                                                                              \
+        cell_lines_state *s = state;                                                               \
+        lines_direction *d = from_robot == UPPER##_REQUESTS_FROM_ROBOT ? &s->lines.commands : &s->lines.replies; \
+        (void)P##_close_state(state, from_robot, out);                                             \
+        d->offset = offset;                                                                        \
+        d->skipping = false;                                                                       \
+        return 0;                                                                                  \
+    }                                                                                              \
+                                                                                                   \
+    static void P##_keep(void *state, int16_t *queue, size_t n)                                    \
+    {                                                                                              \
+        P##_keep_pending(&((cell_lines_state *)state)->lines, queue, n);                           \
+    }                                                                                              \
+                                                                                                   \
+    static const uint16_t P##_ports[] = {UPPER##_PORT};                                            \
+    const cell_interface cell_##P = {#P, P##_ports, 1, true, ROBOT_IS_CLIENT, sizeof(cell_lines_state), \
+                                     P##_init_state, P##_feed_state, P##_close_state, P##_lost_state, NULL, NULL, \
+                                     P##_keep};
 
-LINES_PRINT_STREAMS(ur_dashboard, UR_DASHBOARD)
-LINES_PRINT_STREAMS(ur_script_sender, UR_SCRIPT_SENDER)
-LINES_PRINT_STREAMS(ur_interpreter, UR_INTERPRETER)
-LINES_PRINT_STREAMS(robotiq_gripper, ROBOTIQ_GRIPPER)
+/* The script sender is a driver's socket: the robot connects to it. */
+LINES_INTERFACE(ur_dashboard, UR_DASHBOARD, false)
+LINES_INTERFACE(ur_script_sender, UR_SCRIPT_SENDER, true)
+LINES_INTERFACE(ur_interpreter, UR_INTERPRETER, false)
+LINES_INTERFACE(robotiq_gripper, ROBOTIQ_GRIPPER, false)
 
 /* An int32-record interface, through the three functions every one of them has. */
 typedef struct records_api {
@@ -99,74 +122,119 @@ typedef struct records_api {
     uint32_t default_release;
 } records_api;
 
-/* What one direction's stream leaves at its end: bytes short of a record, or, where nothing is
- * specified that way, every byte (counted, not decoded). */
-typedef struct records_tail {
-    uint64_t offset;
-    size_t left;
-} records_tail;
-
-static int records_read_stream(const records_api *api, const cell_inputs *in, bool from_robot, uint32_t release,
-                               FILE *out, records_tail *tail)
+static void records_init(const records_api *api, void *state, urwire_sw_version v, bool hinted)
 {
-    FILE *stream = from_robot ? in->robot : in->client;
-    size_t len = 0, size = api->record_size(from_robot, release), at;
-    uint64_t offset = 0;
-    for (;;) {
-        size_t n = fread(held + len, 1, HELD, stream);
-        len += n;
-        at = 0;
-        if (size == 0) {        /* nothing is specified this way: the bytes are only counted */
-            offset += len;
-            len = 0;
-        }
-        while (size > 0 && len - at >= size) {
-            api->record_json(from_robot, held + at, size, release, line, sizeof line);
-            envelope_line(out, envelope_of(in, from_robot), line);
-            at += size;
-        }
-        memmove(held, held + at, len - at);
-        len -= at;
-        offset += at;
-        if (n == 0) {
-            if (ferror(stream))
-                return 2;
-            break;
-        }
+    cell_records_state *s = state;
+    memset(s->way, 0, sizeof s->way);
+    s->release = hinted ? ((uint32_t)v.major * 1000u + (uint32_t)v.minor) * 1000u + (uint32_t)v.bugfix
+                        : api->default_release;
+}
+
+/* After bytes lost: the bytes dropped up to the next record's start, named once it is reached
+ * (or the stream ends): they end a record whose start is lost (int32_records.py's _realigned). */
+static void realigned(cell_records_state *s, bool from_robot, cell_output *out)
+{
+    char error[128];
+    int k = from_robot ? 1 : 0;
+    (void)snprintf(error, sizeof error, "%llu bytes after bytes lost from the capture: the end of a record whose "
+                   "start is lost", (unsigned long long)s->way[k].skipped);
+    envelope_error(out->out, out->envelope[k], (int64_t)(s->way[k].offset - s->way[k].skipped), error);
+    out->errors = true;
+    s->way[k].skip = s->way[k].skipped = 0;
+}
+
+/* Whole records out of the held bytes, one JSON line each; where nothing is specified this way,
+ * the bytes are only counted (held.length stays 0, skipped counts them), to be named at the end. */
+static int records_feed(const records_api *api, void *state, const uint8_t *data, size_t n, bool from_robot,
+                        cell_output *out)
+{
+    cell_records_state *s = state;
+    int k = from_robot ? 1 : 0;
+    cell_held *h = &s->way[k].held;
+    size_t size = api->record_size(from_robot, s->release), at;
+    if (size == 0) {
+        s->way[k].skipped += n;
+        return 0;
     }
-    tail->offset = size == 0 ? 0 : offset;
-    tail->left = size == 0 ? (size_t)offset : len;
+    while (n > 0 && s->way[k].skip > 0) {
+        size_t drop_n = s->way[k].skip < n ? (size_t)s->way[k].skip : n;
+        data += drop_n;
+        n -= drop_n;
+        s->way[k].skip -= drop_n;
+        s->way[k].skipped += drop_n;
+        s->way[k].offset += drop_n;
+        if (s->way[k].skip == 0)
+            realigned(s, from_robot, out);
+    }
+    while (n > 0) {
+        size_t took = hold(h, data, n);
+        data += took;
+        n -= took;
+        for (at = 0; h->length - at >= size; at += size) {
+            api->record_json(from_robot, h->bytes + at, size, s->release, line, sizeof line);
+            write_line(out, from_robot);
+        }
+        drop(h, at);
+        s->way[k].offset += at;
+    }
     return 0;
 }
 
-static int records_print_streams(const records_api *api, const cell_inputs *in, FILE *out, unsigned major,
-                                 unsigned minor, unsigned bugfix, bool given)
+static int records_close(const records_api *api, void *state, bool from_robot, cell_output *out)
 {
-    uint32_t release = given ? (major * 1000u + minor) * 1000u + bugfix : api->default_release;
-    records_tail tail[2] = {{0, 0}, {0, 0}};
-    int status = 0, k;
-    for (k = in->client ? 0 : 1; k < 2; k++)
-        if (records_read_stream(api, in, k == 1, release, out, &tail[k]) == 2)
-            return 2;
-    for (k = in->client ? 0 : 1; k < 2; k++) {
-        if (tail[k].left > 0) {
-            api->tail_json(k == 1, tail[k].offset, tail[k].left, release, line, sizeof line);
-            envelope_line(out, envelope_of(in, k == 1), line);
-            status = 1;
-        }
+    cell_records_state *s = state;
+    int k = from_robot ? 1 : 0;
+    size_t size = api->record_size(from_robot, s->release);
+    size_t left = size == 0 ? (size_t)s->way[k].skipped : s->way[k].held.length;
+    if (size > 0 && s->way[k].skipped > 0) {     /* the stream ended before the next record's start */
+        realigned(s, from_robot, out);
+        return 0;
     }
-    return status;
+    if (left == 0)
+        return 0;
+    api->tail_json(from_robot, s->way[k].offset, left, s->release, line, sizeof line);
+    write_line(out, from_robot);
+    out->errors = true;
+    s->way[k].offset += left;
+    s->way[k].held.length = 0;
+    s->way[k].skipped = 0;
+    return 0;
 }
 
-#define RECORDS_PRINT_STREAMS(P, UPPER)                                                           \
-    int P##_print_streams(const cell_inputs *in, FILE *out, unsigned major, unsigned minor,      \
-                          unsigned bugfix, bool given)                                             \
-    {                                                                                              \
-        static const records_api api = {P##_record_size, P##_record_json, P##_tail_json,          \
-                                         UPPER##_DEFAULT_RELEASE};                                 \
-        return records_print_streams(&api, in, out, major, minor, bugfix, given);                  \
-    }
+static int records_lost(const records_api *api, void *state, bool from_robot, uint64_t offset, cell_output *out)
+{
+    cell_records_state *s = state;
+    int k = from_robot ? 1 : 0;
+    size_t size = api->record_size(from_robot, s->release);
+    (void)records_close(api, state, from_robot, out);
+    s->way[k].offset = offset;
+    s->way[k].skip = size == 0 ? 0 : (size - offset % size) % size;
+    return 0;
+}
 
-RECORDS_PRINT_STREAMS(ur_reverse, UR_REVERSE)
-RECORDS_PRINT_STREAMS(ur_trajectory, UR_TRAJECTORY)
-RECORDS_PRINT_STREAMS(ur_script_command, UR_SCRIPT_COMMAND)
+#define RECORDS_INTERFACE(P, UPPER)                                                                \
+    static const records_api P##_api = {P##_record_size, P##_record_json, P##_tail_json,          \
+                                        UPPER##_DEFAULT_RELEASE};                                  \
+    static void P##_init_state(void *state, urwire_sw_version v, bool hinted)                     \
+    {                                                                                              \
+        records_init(&P##_api, state, v, hinted);                                                  \
+    }                                                                                              \
+    static int P##_feed_state(void *state, const uint8_t *data, size_t n, bool from_robot, cell_output *out) \
+    {                                                                                              \
+        return records_feed(&P##_api, state, data, n, from_robot, out);                            \
+    }                                                                                              \
+    static int P##_close_state(void *state, bool from_robot, cell_output *out)                    \
+    {                                                                                              \
+        return records_close(&P##_api, state, from_robot, out);                                    \
+    }                                                                                              \
+    static int P##_lost_state(void *state, bool from_robot, uint64_t offset, cell_output *out)    \
+    {                                                                                              \
+        return records_lost(&P##_api, state, from_robot, offset, out);                             \
+    }                                                                                              \
+    static const uint16_t P##_ports[] = {UPPER##_PORT};                                            \
+    const cell_interface cell_##P = {#P, P##_ports, 1, true, true, sizeof(cell_records_state), P##_init_state, \
+                                     P##_feed_state, P##_close_state, P##_lost_state, NULL, NULL, NULL};
+
+RECORDS_INTERFACE(ur_reverse, UR_REVERSE)
+RECORDS_INTERFACE(ur_trajectory, UR_TRAJECTORY)
+RECORDS_INTERFACE(ur_script_command, UR_SCRIPT_COMMAND)

@@ -1,4 +1,4 @@
-/* The envelope of a record read with --to-robot. See envelope.h. */
+/* The envelope of a record of a capture or read with --to-robot. See envelope.h. */
 #include "envelope.h"
 
 #include <string.h>
@@ -29,4 +29,12 @@ void envelope_line(FILE *out, const envelope *e, const char *record)
     envelope_open(out, e);
     fputs(record + 1, out);     /* the record's keys, after its own "{" */
     fputc('\n', out);
+}
+
+void envelope_error(FILE *out, const envelope *e, int64_t offset, const char *error)
+{
+    envelope_open(out, e);
+    fprintf(out, "\"type\": \"error\", \"offset\": %lld, \"error\": ", (long long)offset);
+    put_text(out, error);
+    fputs("}\n", out);
 }

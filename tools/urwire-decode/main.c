@@ -1,10 +1,13 @@
-/* urwire-decode: a raw stream of one UR interface in, canonical JSON Lines out.
+/* urwire-decode: a raw stream of one UR interface, or a capture of a cell, in; canonical JSON
+ * Lines out.
  *
  *     urwire-decode [--protocol ur|ur_realtime|rtde|ur_dashboard|...] [--version-hint 5.9|5.25.1] FILE|-
  *                   [--to-robot FILE2]
  *
- * A .pcap or .pcapng FILE (told by its header, as `urwire decode` tells it) is read for the primary
- * interface's conversations, each record in its conversation's envelope (capture_json.h).
+ * A .pcap or .pcapng FILE (told by its header, as `urwire decode` tells it) is read for every
+ * interface's conversations (--protocol's only, when given), each record in its conversation's
+ * envelope (capture_json.h). Every interface reads a raw stream and a capture's conversation
+ * through the same conversation (cell_interface.h).
  *
  * Exit status: 0 all decoded, 1 the output holds error records, 2 usage or I/O error. */
 #include <errno.h>
@@ -12,22 +15,21 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "json.h"
 #include "capture_json.h"
-#include "cell_streams.h"
+#include "cell_interface.h"
 #include "envelope.h"
+#include "json.h"
 #include "records.h"
-#include "rtde_json.h"
-#include "ur_realtime_json.h"
 #include "urwire.h"
 
 static const char usage[] =
     "usage: urwire-decode [--protocol NAME] [--version-hint MAJOR.MINOR[.BUGFIX]] FILE|- [--to-robot FILE2]\n"
     "Decode a raw stream of a Universal Robots interface (FILE, or - for stdin) and print\n"
-    "one canonical JSON record per line. A .pcap or .pcapng FILE gives the records of its primary\n"
-    "interface's conversations (30001, 30002, 30011, 30012), each in its envelope, as\n"
-    "`urwire decode --protocol ur CAPTURE` does.\n"
-    "  --protocol NAME   the interface the stream is from: ur (primary/secondary, 30001/30002,\n"
+    "one canonical JSON record per line. A .pcap or .pcapng FILE gives the records of every TCP\n"
+    "conversation an interface of the cell reads, by its port, each in its envelope (interface,\n"
+    "direction, conversation), as `urwire decode CAPTURE` does.\n"
+    "  --protocol NAME   the interface the stream is from (of a capture: read only its\n"
+    "                    conversations): ur (primary/secondary, 30001/30002,\n"
     "                    the default), ur_realtime (real-time, 30003), rtde (RTDE, 30004:\n"
     "                    the robot's stream; its recipes come from the client's: --to-robot),\n"
     "                    ur_dashboard (29999), ur_interpreter (30020), robotiq_gripper (63352),\n"
@@ -80,94 +82,51 @@ static int run_primary(const uint8_t *head, size_t n_head, FILE *in, urwire_sw_v
     return errors ? 1 : 0;
 }
 
-static int run_realtime(FILE *in, urwire_sw_version version, bool hinted)
+/* A file's bytes (after `head`, n_head bytes already read from it) into the conversation, as one
+ * direction's. 0, or 2 on a read error. */
+static int feed_file(const cell_interface *kind, void *state, const uint8_t *head, size_t n_head, FILE *in,
+                     bool from_robot, cell_output *out)
 {
-    uint32_t number = hinted ? ur_realtime_version((unsigned)version.major, (unsigned)version.minor,
-                                                   (unsigned)version.bugfix) : 0u;
-    return ur_realtime_print_stream(in, stdout, number);
-}
-
-/* RTDE: the client's stream (when given) and then the robot's, through one connection's state, so
- * that a data package is read with the recipe the client set up. With the robot's stream alone,
- * data packages come out whole, with an error, as in `urwire decode --protocol rtde`. */
-static rtde_json_stream rtde_connection;
-
-static int feed_rtde(FILE *in, bool from_robot, int *faults)
-{
+    if (n_head)
+        (void)kind->feed(state, head, n_head, from_robot, out);
     for (;;) {
         size_t n = fread(chunk, 1, sizeof chunk, in);
-        *faults += rtde_json_feed(&rtde_connection, chunk, n, from_robot, stdout);
+        if (n)
+            (void)kind->feed(state, chunk, n, from_robot, out);
         if (n < sizeof chunk)
             return ferror(in) ? 2 : 0;
     }
 }
 
-static int run_rtde(const cell_inputs *in, urwire_sw_version version, bool hinted)
+/* The raw streams of one connection through its interface's conversation, as cell.py's
+ * records_of_raw_protocol reads them: the client's file first (what a client asks, an RTDE recipe,
+ * comes before what the robot sends for it), then the robot's, then each one's end, the client's
+ * first. With the client's file, each record comes in its direction's envelope. */
+static int run_streams(const cell_interface *kind, const uint8_t *head, size_t n_head, FILE *robot, FILE *client,
+                       const envelope *envelopes, urwire_sw_version version, bool hinted)
 {
-    int faults = 0;
-    (void)version;
-    (void)hinted;
-    rtde_json_stream_init(&rtde_connection);
-    rtde_connection.envelope[0] = in->to_robot;
-    rtde_connection.envelope[1] = in->from_robot;
-    if (in->client && feed_rtde(in->client, false, &faults) == 2)
-        return 2;
-    if (feed_rtde(in->robot, true, &faults) == 2)
-        return 2;
-    faults += rtde_json_close(&rtde_connection, stdout);
-    return faults ? 1 : 0;
-}
-
-/* The interfaces this command reads, by the name --protocol takes (the Wireshark protocol's). An
- * interface adds its row: its runner gets the open inputs, the version and whether it was given. */
-typedef int (*protocol_runner)(const cell_inputs *in, urwire_sw_version version, bool hinted);
-
-static int run_primary_row(const cell_inputs *in, urwire_sw_version version, bool hinted)
-{
-    (void)hinted;
-    return run_primary(NULL, 0, in->robot, version);
-}
-
-static int run_realtime_row(const cell_inputs *in, urwire_sw_version version, bool hinted)
-{
-    return run_realtime(in->robot, version, hinted);
-}
-
-/* The dashboard server and the driver's sockets: the client's stream, when given, and the
- * robot's; the hint is the software version of the dashboard and the driver release of the
- * sockets. */
-#define CELL_ROW(P)                                                                               \
-    static int run_##P(const cell_inputs *in, urwire_sw_version version, bool hinted)            \
-    {                                                                                              \
-        return P##_print_streams(in, stdout, (unsigned)version.major, (unsigned)version.minor,    \
-                                 (unsigned)version.bugfix, hinted);                                \
+    void *state = cell_raw_state();
+    cell_output out;
+    memset(&out, 0, sizeof out);
+    out.out = stdout;
+    if (client) {
+        out.envelope[0] = &envelopes[0];
+        out.envelope[1] = &envelopes[1];
     }
-CELL_ROW(ur_dashboard)
-CELL_ROW(ur_script_sender)
-CELL_ROW(ur_interpreter)
-CELL_ROW(robotiq_gripper)
-CELL_ROW(ur_reverse)
-CELL_ROW(ur_trajectory)
-CELL_ROW(ur_script_command)
-
-/* both_directions: the interface decodes what the client sends too (--to-robot), as in the
- * Python `Interface.both_directions` (python/urwire/interfaces.py). */
-static const struct {
-    const char *name;
-    protocol_runner run;
-    bool both_directions;
-} protocols[] = {
-    {"ur", run_primary_row, false},
-    {"ur_realtime", run_realtime_row, false},
-    {"rtde", run_rtde, true},
-    {"ur_dashboard", run_ur_dashboard, true},
-    {"ur_script_sender", run_ur_script_sender, true},
-    {"ur_interpreter", run_ur_interpreter, true},
-    {"robotiq_gripper", run_robotiq_gripper, true},
-    {"ur_reverse", run_ur_reverse, true},
-    {"ur_trajectory", run_ur_trajectory, true},
-    {"ur_script_command", run_ur_script_command, true},
-};
+    kind->init(state, version, hinted);
+    if (kind->keep_pending) {
+        size_t n;
+        int16_t *queue = cell_raw_queue(&n);
+        kind->keep_pending(state, queue, n);
+    }
+    if (client && feed_file(kind, state, NULL, 0, client, false, &out) == 2)
+        return 2;
+    if (feed_file(kind, state, head, n_head, robot, true, &out) == 2)
+        return 2;
+    (void)kind->close(state, false, &out);
+    (void)kind->close(state, true, &out);
+    return out.errors ? 1 : 0;
+}
 
 static int fail(const char *what, const char *detail)
 {
@@ -177,13 +136,13 @@ static int fail(const char *what, const char *detail)
 
 int main(int argc, char **argv)
 {
-    const char *path = NULL, *to_robot = NULL, *hint = NULL, *protocol = "ur";
+    const char *path = NULL, *to_robot = NULL, *hint = NULL, *protocol = NULL;
     urwire_sw_version version = URWIRE_DEFAULT_VERSION;
-    protocol_runner run = NULL;
-    bool both_directions = false;
-    envelope from_robot_envelope, to_robot_envelope;
-    cell_inputs in = {NULL, NULL, NULL, NULL};
-    size_t p;
+    const cell_interface *kind;
+    envelope envelopes[2];          /* [1]: from the robot */
+    FILE *robot, *client = NULL;
+    uint8_t head[12];
+    size_t p, got = 0;
     int i, status;
     for (i = 1; i < argc; i++) {
         if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
@@ -215,15 +174,11 @@ int main(int argc, char **argv)
             path = argv[i];
         }
     }
-    for (p = 0; p < sizeof protocols / sizeof protocols[0]; p++)
-        if (strcmp(protocols[p].name, protocol) == 0) {
-            run = protocols[p].run;
-            both_directions = protocols[p].both_directions;
-        }
-    if (!run) {
+    kind = cell_interface_named(protocol ? protocol : "ur");
+    if (!kind) {
         fprintf(stderr, "urwire-decode: unknown protocol: %s (known:", protocol);
-        for (p = 0; p < sizeof protocols / sizeof protocols[0]; p++)
-            fprintf(stderr, " %s", protocols[p].name);
+        for (p = 0; p < cell_interface_count; p++)
+            fprintf(stderr, " %s", cell_interfaces[p]->name);
         fputs(")\n", stderr);
         return 2;
     }
@@ -231,47 +186,45 @@ int main(int argc, char **argv)
         return fail("no input: give a FILE or - for stdin; try --help", NULL);
     if (hint && !urwire_parse_version(hint, &version))
         return fail("not a software version (expected e.g. 5.9 or 5.25.1)", hint);
-    if (to_robot && !both_directions) {
+    if (to_robot && !kind->both_directions) {
         fprintf(stderr, "urwire-decode: --to-robot: %s reads the robot's stream only; the protocols that read "
-                "both directions:", protocol);
-        for (p = 0; p < sizeof protocols / sizeof protocols[0]; p++)
-            if (protocols[p].both_directions)
-                fprintf(stderr, " %s", protocols[p].name);
+                "both directions:", kind->name);
+        for (p = 0; p < cell_interface_count; p++)
+            if (cell_interfaces[p]->both_directions)
+                fprintf(stderr, " %s", cell_interfaces[p]->name);
         fputs("\n", stderr);
         return 2;
     }
-    in.robot = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
-    if (!in.robot)
+    robot = strcmp(path, "-") == 0 ? stdin : fopen(path, "rb");
+    if (!robot)
         return fail(path, strerror(errno));
     if (to_robot) {
         /* As `urwire decode` names them: the interface, the direction, the file as given. */
-        in.client = fopen(to_robot, "rb");
-        if (!in.client) {
+        client = fopen(to_robot, "rb");
+        if (!client) {
             int opening = errno;
-            if (in.robot != stdin)
-                (void)fclose(in.robot);
+            if (robot != stdin)
+                (void)fclose(robot);
             return fail(to_robot, strerror(opening));
         }
-        from_robot_envelope.interface = to_robot_envelope.interface = protocol;
-        from_robot_envelope.direction = "from_robot";
-        to_robot_envelope.direction = "to_robot";
-        from_robot_envelope.conversation = path;
-        to_robot_envelope.conversation = to_robot;
-        in.from_robot = &from_robot_envelope;
-        in.to_robot = &to_robot_envelope;
-    }
-    if (run == run_primary_row && !to_robot) {
-        uint8_t head[12];
-        size_t got = fread(head, 1, sizeof head, in.robot);
-        status = capture_json_is_capture(head, got) ? capture_json_print(head, got, in.robot, stdout, version)
-                                                    : run_primary(head, got, in.robot, version);
+        envelopes[0].interface = envelopes[1].interface = kind->name;
+        envelopes[1].direction = "from_robot";
+        envelopes[0].direction = "to_robot";
+        envelopes[1].conversation = path;
+        envelopes[0].conversation = to_robot;
     } else {
-        status = run(&in, version, hint != NULL);
+        got = fread(head, 1, sizeof head, robot);
     }
-    if (in.robot != stdin)
-        (void)fclose(in.robot);     /* read only: closing loses nothing */
-    if (in.client)
-        (void)fclose(in.client);
+    if (!to_robot && capture_json_is_capture(head, got))
+        status = capture_json_print(head, got, robot, stdout, protocol ? kind : NULL, version, hint != NULL);
+    else if (kind == &cell_primary && !to_robot)
+        status = run_primary(head, got, robot, version);
+    else
+        status = run_streams(kind, head, got, robot, client, envelopes, version, hint != NULL);
+    if (robot != stdin)
+        (void)fclose(robot);     /* read only: closing loses nothing */
+    if (client)
+        (void)fclose(client);
     if (status == 2)
         return fail(path, "read error");
     /* The records' writes are not checked one by one: a stream's error indicator stays set, and

@@ -287,12 +287,60 @@ int rtde_json_feed(rtde_json_stream *s, const uint8_t *data, size_t length, bool
     return errors;
 }
 
+int rtde_json_close_direction(rtde_json_stream *s, bool from_robot, FILE *out)
+{
+    rtde_stream_finish(&s->direction[from_robot ? 1 : 0]);
+    return drain(s, from_robot, out);
+}
+
 int rtde_json_close(rtde_json_stream *s, FILE *out)
 {
-    int errors = 0, k;
-    for (k = 0; k < 2; k++) {       /* the client's tail first, each in its own direction's envelope */
-        rtde_stream_finish(&s->direction[k]);
-        errors += drain(s, k == 1, out);
-    }
-    return errors;
+    /* the client's tail first, each in its own direction's envelope */
+    int errors = rtde_json_close_direction(s, false, out);
+    return errors + rtde_json_close_direction(s, true, out);
 }
+
+/* ---- a conversation of cell_interface.h ------------------------------------------------------ */
+
+/* The output's envelopes are the connection's. */
+static rtde_json_stream *enveloped(void *state, const cell_output *out)
+{
+    rtde_json_stream *s = state;
+    s->envelope[0] = out->envelope[0];
+    s->envelope[1] = out->envelope[1];
+    return s;
+}
+
+static void init(void *state, urwire_sw_version version, bool hinted)
+{
+    (void)version;          /* RTDE negotiates its protocol: no software version chooses a layout */
+    (void)hinted;
+    rtde_json_stream_init(state);
+}
+
+static int feed(void *state, const uint8_t *data, size_t n, bool from_robot, cell_output *out)
+{
+    out->errors |= rtde_json_feed(enveloped(state, out), data, n, from_robot, out->out) > 0;
+    return 0;
+}
+
+static int close_way(void *state, bool from_robot, cell_output *out)
+{
+    out->errors |= rtde_json_close_direction(enveloped(state, out), from_robot, out->out) > 0;
+    return 0;
+}
+
+/* The message the lost bytes cut short given up, and the direction framed afresh after them, the
+ * protocol and the recipes kept (rtde.py's Conversation.lost). */
+static int lost(void *state, bool from_robot, uint64_t offset, cell_output *out)
+{
+    rtde_json_stream *s = state;
+    (void)close_way(state, from_robot, out);
+    rtde_stream_init(&s->direction[from_robot ? 1 : 0]);
+    s->direction[from_robot ? 1 : 0].base = offset;
+    return 0;
+}
+
+static const uint16_t ports[] = {30004};       /* as python/urwire/interfaces.py: the spec's */
+const cell_interface cell_rtde = {"rtde", ports, 1, true, false, sizeof(rtde_json_stream), init, feed, close_way,
+                                  lost, NULL, NULL, NULL};

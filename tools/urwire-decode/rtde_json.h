@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "cell_interface.h"
 #include "envelope.h"
 #include "rtde.h"
 #include "rtde_stream.h"
@@ -50,6 +51,8 @@ int rtde_json_feed(rtde_json_stream *s, const uint8_t *data, size_t length, bool
 /* The ends of both streams (the client's first): a truncated tail becomes an error record, in
  * its own direction's envelope. Returns how many it wrote. */
 int rtde_json_close(rtde_json_stream *s, FILE *out);
+/* The end of one direction's stream alone. */
+int rtde_json_close_direction(rtde_json_stream *s, bool from_robot, FILE *out);
 
 /* One decoded message (or what rtde_decode said of it, e) as one line, in envelope env if not
  * NULL. Returns 1 when the line carries an "error", else 0. */
