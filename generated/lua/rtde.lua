@@ -2740,6 +2740,31 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/guard.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The error guard every dissector runs behind: a Lua error while dissecting never reaches the
+-- user as a Lua error, but shows as an expert info on the packet, and the packet's bytes count
+-- as dissected.
+local spec, rt = ...
+
+-- A dissector function for proto that runs dissect(tvb, pinfo, tree) behind pcall; an error
+-- becomes the expert `internal`, its text after `label` ("urwire: ...").
+local function guard(proto, dissect, internal, label)
+    return function(tvb, pinfo, tree)
+        local ok, result = pcall(dissect, tvb, pinfo, tree)
+        if ok then return result end
+        tree:add(proto, tvb()):add_proto_expert_info(internal, label .. ": " .. tostring(result))
+        return tvb:len()
+    end
+end
+
+rt.guard = guard
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/common/tcp_stream.lua ----
 -- =============================================================================================
 do
@@ -3283,9 +3308,11 @@ local E = {
         expert.group.PROTOCOL, expert.severity.ERROR),
     retyped = ProtoExpert.new(spec.name .. ".retyped", "Setup reply types a variable otherwise than the table",
         expert.group.PROTOCOL, expert.severity.WARN),
+    internal = ProtoExpert.new(spec.name .. ".internal_error", "Dissector error",
+        expert.group.MALFORMED, expert.severity.ERROR),
 }
 proto.experts = { E.bad_header, E.short, E.extra, E.refused, E.unknown_recipe, E.start_refused, E.warning,
-                  E.undocumented, E.unknown_type, E.not_kept, E.protocol_unknown, E.retyped }
+                  E.undocumented, E.unknown_type, E.not_kept, E.protocol_unknown, E.retyped, E.internal }
 
 do
     -- A vector's named items share its filter name, of which tshark -G fields lists the first
@@ -3304,8 +3331,8 @@ do
 end
 
 local states, views = {}, {}
--- Whether this call's items are looked at (proto.dissector sets it): a visible tree, or a filter
--- or column that names the protocol or one of its fields. Without, data packages add no value
+-- Whether this call's items are looked at (dissect sets it): a visible tree, or a filter or
+-- column that names the protocol or one of its fields. Without, data packages add no value
 -- items, which are most of the work (make bench-rtde, no tree). With a visible tree, `names` are
 -- the rtde names of a tshark -T fields run (runtime/lua/common/wanted.lua; nil: every field): a
 -- data package shows only the values they name.
@@ -3570,7 +3597,7 @@ local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state,
     return layout.label
 end
 
-function proto.dissector(tvb, pinfo, tree)
+local function dissect(tvb, pinfo, tree)
     handle = handle or Dissector.get(spec.name)
     showing = tree.visible or tree:referenced(handle)
     names = tree.visible and wanted_names(PREFIX) or nil
@@ -3615,6 +3642,9 @@ function proto.dissector(tvb, pinfo, tree)
     if #labels > 0 then pinfo.cols.info = table.concat(labels, ", ") end
     return len
 end
+
+-- A Lua error while dissecting shows as the expert rtde.internal_error (runtime/lua/common/guard.lua).
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 
 proto.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of " .. spec.title, 65535)
 

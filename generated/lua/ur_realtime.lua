@@ -811,6 +811,31 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/guard.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The error guard every dissector runs behind: a Lua error while dissecting never reaches the
+-- user as a Lua error, but shows as an expert info on the packet, and the packet's bytes count
+-- as dissected.
+local spec, rt = ...
+
+-- A dissector function for proto that runs dissect(tvb, pinfo, tree) behind pcall; an error
+-- becomes the expert `internal`, its text after `label` ("urwire: ...").
+local function guard(proto, dissect, internal, label)
+    return function(tvb, pinfo, tree)
+        local ok, result = pcall(dissect, tvb, pinfo, tree)
+        if ok then return result end
+        tree:add(proto, tvb()):add_proto_expert_info(internal, label .. ": " .. tostring(result))
+        return tvb:len()
+    end
+end
+
+rt.guard = guard
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/common/dotted_version.lua ----
 -- =============================================================================================
 do
@@ -1007,6 +1032,8 @@ local E = {
         expert.group.PROTOCOL, expert.severity.WARN),
     bad_size = ProtoExpert.new(spec.name .. ".bad_size", "Packet size cannot frame a packet",
         expert.group.MALFORMED, expert.severity.ERROR),
+    internal = ProtoExpert.new(spec.name .. ".internal_error", "Dissector error",
+        expert.group.MALFORMED, expert.severity.ERROR),
 }
 
 local registered_fields = {}
@@ -1019,7 +1046,7 @@ for _, flags in pairs(FLAGS) do
     for _, f in ipairs(flags) do registered_fields[#registered_fields + 1] = f end
 end
 proto.fields = registered_fields
-proto.experts = { E.unknown_size, E.bad_size }
+proto.experts = { E.unknown_size, E.bad_size, E.internal }
 
 proto.prefs.ports = Pref.range("Ports", spec.ports, "TCP ports of the real-time interface", 65535)
 proto.prefs.version = Pref.string("Software version", "",
@@ -1138,7 +1165,7 @@ end
 
 local handle = nil
 
-function proto.dissector(tvb, pinfo, tree)
+local function dissect(tvb, pinfo, tree)
     local len = tvb:len()
     -- Field work only when someone looks: a visible tree, or a filter or column naming the protocol.
     handle = handle or Dissector.get(spec.name)
@@ -1187,6 +1214,9 @@ function proto.dissector(tvb, pinfo, tree)
     end
     return len
 end
+
+-- A Lua error while dissecting shows as the expert ur_realtime.internal_error (runtime/lua/common/guard.lua).
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 
 function proto.prefs_changed()
     version = version_number(proto.prefs.version)

@@ -28,6 +28,8 @@ local E = {
         expert.group.PROTOCOL, expert.severity.WARN),
     bad_size = ProtoExpert.new(spec.name .. ".bad_size", "Packet size cannot frame a packet",
         expert.group.MALFORMED, expert.severity.ERROR),
+    internal = ProtoExpert.new(spec.name .. ".internal_error", "Dissector error",
+        expert.group.MALFORMED, expert.severity.ERROR),
 }
 
 local registered_fields = {}
@@ -40,7 +42,7 @@ for _, flags in pairs(FLAGS) do
     for _, f in ipairs(flags) do registered_fields[#registered_fields + 1] = f end
 end
 proto.fields = registered_fields
-proto.experts = { E.unknown_size, E.bad_size }
+proto.experts = { E.unknown_size, E.bad_size, E.internal }
 
 proto.prefs.ports = Pref.range("Ports", spec.ports, "TCP ports of the real-time interface", 65535)
 proto.prefs.version = Pref.string("Software version", "",
@@ -159,7 +161,7 @@ end
 
 local handle = nil
 
-function proto.dissector(tvb, pinfo, tree)
+local function dissect(tvb, pinfo, tree)
     local len = tvb:len()
     -- Field work only when someone looks: a visible tree, or a filter or column naming the protocol.
     handle = handle or Dissector.get(spec.name)
@@ -208,6 +210,9 @@ function proto.dissector(tvb, pinfo, tree)
     end
     return len
 end
+
+-- A Lua error while dissecting shows as the expert ur_realtime.internal_error (runtime/lua/common/guard.lua).
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 
 function proto.prefs_changed()
     version = version_number(proto.prefs.version)

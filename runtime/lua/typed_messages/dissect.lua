@@ -38,9 +38,11 @@ local E = {
         expert.group.PROTOCOL, expert.severity.ERROR),
     retyped = ProtoExpert.new(spec.name .. ".retyped", "Setup reply types a variable otherwise than the table",
         expert.group.PROTOCOL, expert.severity.WARN),
+    internal = ProtoExpert.new(spec.name .. ".internal_error", "Dissector error",
+        expert.group.MALFORMED, expert.severity.ERROR),
 }
 proto.experts = { E.bad_header, E.short, E.extra, E.refused, E.unknown_recipe, E.start_refused, E.warning,
-                  E.undocumented, E.unknown_type, E.not_kept, E.protocol_unknown, E.retyped }
+                  E.undocumented, E.unknown_type, E.not_kept, E.protocol_unknown, E.retyped, E.internal }
 
 do
     -- A vector's named items share its filter name, of which tshark -G fields lists the first
@@ -59,8 +61,8 @@ do
 end
 
 local states, views = {}, {}
--- Whether this call's items are looked at (proto.dissector sets it): a visible tree, or a filter
--- or column that names the protocol or one of its fields. Without, data packages add no value
+-- Whether this call's items are looked at (dissect sets it): a visible tree, or a filter or
+-- column that names the protocol or one of its fields. Without, data packages add no value
 -- items, which are most of the work (make bench-rtde, no tree). With a visible tree, `names` are
 -- the rtde names of a tshark -T fields run (runtime/lua/common/wanted.lua; nil: every field): a
 -- data package shows only the values they name.
@@ -325,7 +327,7 @@ local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state,
     return layout.label
 end
 
-function proto.dissector(tvb, pinfo, tree)
+local function dissect(tvb, pinfo, tree)
     handle = handle or Dissector.get(spec.name)
     showing = tree.visible or tree:referenced(handle)
     names = tree.visible and wanted_names(PREFIX) or nil
@@ -370,6 +372,9 @@ function proto.dissector(tvb, pinfo, tree)
     if #labels > 0 then pinfo.cols.info = table.concat(labels, ", ") end
     return len
 end
+
+-- A Lua error while dissecting shows as the expert rtde.internal_error (runtime/lua/common/guard.lua).
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 
 proto.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of " .. spec.title, 65535)
 

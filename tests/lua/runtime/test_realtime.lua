@@ -14,6 +14,7 @@ local spec = {
 local rt = S.load("common/register.lua", spec)
 S.load("common/dotted_version.lua", spec, rt)
 S.load("common/info_column.lua", spec, rt)
+S.load("common/guard.lua", spec, rt)
 S.load("common/wanted.lua", spec, rt)
 S.load("sized_packets/dissect.lua", spec, rt)
 
