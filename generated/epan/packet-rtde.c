@@ -2236,6 +2236,9 @@ static expert_field ei_rtde_unknown_type = EI_INIT;
 static expert_field ei_rtde_not_kept = EI_INIT;
 static expert_field ei_rtde_protocol_unknown = EI_INIT;
 static expert_field ei_rtde_retyped = EI_INIT;
+/* The Lua twin's guard, registered alike (a message this dissector has framed is read within its
+ * bytes and cannot fail). */
+static expert_field ei_rtde_internal_error = EI_INIT;
 
 static void
 rtde_register_experts(int proto)
@@ -2262,6 +2265,7 @@ rtde_register_experts(int proto)
             "Accepted protocol version with no layouts", EXPFILL } },
         { &ei_rtde_retyped, { "rtde.retyped", PI_PROTOCOL, PI_WARN,
             "Setup reply types a variable otherwise than the table", EXPFILL } },
+        { &ei_rtde_internal_error, { "rtde.internal_error", PI_MALFORMED, PI_ERROR, "Dissector error", EXPFILL } },
     };
     expert_register_field_array(expert_register_protocol(proto), ei, array_length(ei));
 }

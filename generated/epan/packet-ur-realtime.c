@@ -987,9 +987,11 @@ static int hf_ur_realtime_urscript = -1;
 static int hf_ur_realtime_raw = -1;
 
 /* A size no layout has (framed and kept: a layout the spec does not know yet, not a broken
- * stream), and a size that cannot frame a packet. */
+ * stream), and a size that cannot frame a packet; and the Lua twin's guard, registered alike (a
+ * packet this dissector has framed is read within its bytes and cannot fail). */
 static expert_field ei_ur_realtime_unknown_size = EI_INIT;
 static expert_field ei_ur_realtime_bad_size = EI_INIT;
+static expert_field ei_ur_realtime_internal_error = EI_INIT;
 
 static dissector_handle_t ur_realtime_handle;
 
@@ -1291,6 +1293,8 @@ static void ur_realtime_register_runtime(void)
           { "ur_realtime.unknown_size", PI_PROTOCOL, PI_WARN, "Packet size matches no layout", EXPFILL } },
         { &ei_ur_realtime_bad_size,
           { "ur_realtime.bad_size", PI_MALFORMED, PI_ERROR, "Packet size cannot frame a packet", EXPFILL } },
+        { &ei_ur_realtime_internal_error,
+          { "ur_realtime.internal_error", PI_MALFORMED, PI_ERROR, "Dissector error", EXPFILL } },
     };
     module_t *module;
 

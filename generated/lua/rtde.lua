@@ -2740,6 +2740,31 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/guard.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The error guard every dissector runs behind: a Lua error while dissecting never reaches the
+-- user as a Lua error, but shows as an expert info on the packet, and the packet's bytes count
+-- as dissected.
+local spec, rt = ...
+
+-- A dissector function for proto that runs dissect(tvb, pinfo, tree) behind pcall; an error
+-- becomes the expert `internal`, its text after `label` ("urwire: ...").
+local function guard(proto, dissect, internal, label)
+    return function(tvb, pinfo, tree)
+        local ok, result = pcall(dissect, tvb, pinfo, tree)
+        if ok then return result end
+        tree:add(proto, tvb()):add_proto_expert_info(internal, label .. ": " .. tostring(result))
+        return tvb:len()
+    end
+end
+
+rt.guard = guard
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/common/tcp_stream.lua ----
 -- =============================================================================================
 do
@@ -2901,6 +2926,115 @@ end
 rt.exchange_request, rt.exchange_reply = exchange_request, exchange_reply
 rt.show_exchange_request, rt.show_exchange_reply = show_request, show_reply
 rt.exchange_field_list = { F.response_in, F.response_to, F.time }
+end)(spec, rt)
+end
+
+-- =============================================================================================
+-- ---- runtime/lua/common/wanted.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Which of a protocol's fields a `tshark -T fields` run needs. tshark builds the tree visible for
+-- -T fields, and TreeItem:referenced() then answers true for every field (Wireshark 4.0 gives a
+-- Lua dissector no other way to ask), so without this every item would be built to print one
+-- field. The fields are named on tshark's command line (-e, -Y, -R, -z, -o), where the system
+-- shows it (/proc/self/cmdline). Every field is wanted when the command line may need any: not
+-- tshark, or not -T fields; a display filter macro or field reference ("$"), or expert infos
+-- ("expert"). A part of a message (a robot-state package, an RTDE variable, a real-time slot) is
+-- wanted when its item or a field under it is named: "ur.joint_data" or "ur.joint_data.q_actual"
+-- wants the package joint_data. What else a name wants is the dissector's to say.
+local spec, rt = ...
+local find, sub, match, gmatch, gsub = string.find, string.sub, string.match, string.gmatch, string.gsub
+
+-- The arguments of this process, or nil where the system does not show them.
+local function command_line()
+    local file = io and io.open and io.open("/proc/self/cmdline", "rb")
+    if not file then return nil end
+    local text = file:read("*a")
+    file:close()
+    if not text or text == "" then return nil end
+    local args, p = {}, 1
+    while p <= #text do
+        local z = find(text, "\0", p, true) or #text + 1
+        args[#args + 1] = sub(text, p, z - 1)
+        p = z + 1
+    end
+    return args
+end
+
+-- The names under `prefix` ("ur.", "rtde.") in a tshark -T fields command line, as a set; nil
+-- when it may need any field.
+local function named_fields(args, prefix)
+    if not args or not args[1] then return nil end
+    local program = match(args[1], "([^/\\]*)$")
+    if not find(program, "^tshark") then return nil end
+    local format
+    for i = 2, #args do
+        local a = args[i]
+        if a == "-T" then format = args[i + 1]
+        elseif sub(a, 1, 2) == "-T" then format = sub(a, 3) end
+    end
+    if format ~= "fields" then return nil end
+    local pattern = gsub(prefix, "%p", "%%%0") .. "[%w_%.]*[%w_]"
+    local names = {}
+    for i = 2, #args do
+        local a = args[i]
+        if find(a, "$", 1, true) or find(a, "expert", 1, true) then return nil end
+        for name in gmatch(a, pattern) do names[name] = true end
+    end
+    return names
+end
+
+-- Whether a name is the item filtered as `own` or a field under it.
+local function within(name, own)
+    return name == own or (sub(name, 1, #own + 1) == own .. ".")
+end
+
+-- Whether the names want the part whose item is filtered as `own`: it, or a field under it.
+local function part_named(names, own)
+    if names[own] then return true end
+    for name in pairs(names) do
+        if within(name, own) then return true end
+    end
+    return false
+end
+
+-- This run's names under a prefix, found once (the same set every time), or nil for every field.
+local found, off = {}, false
+local function wanted_names(prefix)
+    if off then return nil end
+    local names = found[prefix]
+    if names == nil then
+        names = named_fields(command_line(), prefix) or false
+        found[prefix] = names
+    end
+    return names or nil
+end
+
+-- A preference that turns the rule off (the primary interface's ur.named_fields_only): every
+-- field is wanted, as another Lua script reading fields with Field.new needs.
+local function named_only(on)
+    off = not on
+end
+
+-- The entries of `list` the names want, worked out once per list and names (nil names: the list
+-- itself). part_of(entry) gives the filter name of an entry's item, or nil where it is always built.
+local kept = setmetatable({}, { __mode = "k" })
+local function wanted_entries(list, names, part_of)
+    if not names then return list end
+    local k = kept[list]
+    if k and k.names == names then return k.list end
+    local out = {}
+    for _, entry in ipairs(list) do
+        local own = part_of(entry)
+        if not own or part_named(names, own) then out[#out + 1] = entry end
+    end
+    kept[list] = { names = names, list = out }
+    return out
+end
+
+rt.named_fields, rt.part_named, rt.wanted_names, rt.named_only = named_fields, part_named, wanted_names, named_only
+rt.within, rt.wanted_entries = within, wanted_entries
 end)(spec, rt)
 end
 
@@ -3145,6 +3279,8 @@ local spec, rt = ...
 local proto, F = spec.proto, spec.F
 local HEADER = spec.header_size
 local be_uint = rt.be_uint
+local PREFIX = spec.name .. "."             -- every field's filter name starts so: rtde.actual_q
+local wanted_names, wanted_entries = rt.wanted_names, rt.wanted_entries
 
 -- Expert names are the protocol's filter name and the expert's (rtde.refused), as the fields' are.
 local E = {
@@ -3172,9 +3308,11 @@ local E = {
         expert.group.PROTOCOL, expert.severity.ERROR),
     retyped = ProtoExpert.new(spec.name .. ".retyped", "Setup reply types a variable otherwise than the table",
         expert.group.PROTOCOL, expert.severity.WARN),
+    internal = ProtoExpert.new(spec.name .. ".internal_error", "Dissector error",
+        expert.group.MALFORMED, expert.severity.ERROR),
 }
 proto.experts = { E.bad_header, E.short, E.extra, E.refused, E.unknown_recipe, E.start_refused, E.warning,
-                  E.undocumented, E.unknown_type, E.not_kept, E.protocol_unknown, E.retyped }
+                  E.undocumented, E.unknown_type, E.not_kept, E.protocol_unknown, E.retyped, E.internal }
 
 do
     -- A vector's named items share its filter name, of which tshark -G fields lists the first
@@ -3193,10 +3331,12 @@ do
 end
 
 local states, views = {}, {}
--- Whether this call's items are looked at (proto.dissector sets it): a visible tree, or a filter or
--- column that names the protocol or one of its fields. Without, data packages add no value items,
--- which are most of the work (make bench-rtde, no tree).
-local showing, handle = true, nil
+-- Whether this call's items are looked at (dissect sets it): a visible tree, or a filter or
+-- column that names the protocol or one of its fields. Without, data packages add no value
+-- items, which are most of the work (make bench-rtde, no tree). With a visible tree, `names` are
+-- the rtde names of a tshark -T fields run (runtime/lua/common/wanted.lua; nil: every field): a
+-- data package shows only the values they name.
+local showing, names, handle = true, nil, nil
 
 function proto.init()
     states, views = {}, {}
@@ -3242,8 +3382,9 @@ end
 
 -- How each value of a recipe shows, worked out once per recipe (the first time one of its data
 -- packages is shown) and kept with it: its offset (state.lua's, from the setup), its item size
--- and count, and the field, unit, named items, flags or retype the spec's tables give its name
--- and type. A name the variable table lacks (a newer controller's) shows its value's bytes
+-- and count, the filter name of its item (`part`: its name's, under which its named items and
+-- flags filter too), and the field, unit, named items, flags or retype the spec's tables give its
+-- name and type. A name the variable table lacks (a newer controller's) shows its value's bytes
 -- whole, with the name. A variable the setup reply types otherwise than the table is read by the
 -- reply's type, under the field of that type (rtde.value_float64...), with its name and an expert.
 local function value_items(recipe)
@@ -3253,7 +3394,7 @@ local function value_items(recipe)
         local vt = spec.value_types[type_name]
         local v = { at = recipe.offsets[i], size = vt.size, count = vt.count, len = vt.size * vt.count }
         if not spec.variable_types[name] then
-            v.unknown = " (" .. name .. ")"
+            v.unknown, v.part = " (" .. name .. ")", PREFIX .. "unknown_variable"
         else
             v.retyped = rt.retyped(name, type_name)
             local unit = nil
@@ -3262,6 +3403,7 @@ local function value_items(recipe)
                 retyped[#retyped + 1] = v.retyped
             else
                 v.field, unit, v.named, v.flags = F[name], spec.variable_units[name], spec.items[name], spec.flags[name]
+                v.part = PREFIX .. name
             end
             v.texts = item_texts(unit, vt.count)
         end
@@ -3330,9 +3472,15 @@ end
 STEP.rest_text = rest
 STEP.names = rest
 
+-- The filter name of a value's item; nil for a retyped value, always shown (for its expert).
+local function part_of(v)
+    return v.part
+end
+
 -- A data package's values, read at the offsets its recipe worked out once. Only where someone
 -- looks (`showing`: a visible tree, or a filter or column naming the protocol) do they become
--- items; otherwise only a retyped variable's expert is added, for the expert infos.
+-- items, and only those the command line names (`names`); otherwise only a retyped variable's
+-- expert is added, for the expert infos.
 function STEP.values(s, tree, tvb, pos, stop, values, view)
     local recipe = view.recipe
     if pos + recipe.size > stop then return nil end
@@ -3342,7 +3490,8 @@ function STEP.values(s, tree, tvb, pos, stop, values, view)
         return pos + recipe.size
     end
     tree:add(F.recipe_frame, tvb(pos, 0), recipe.frame):set_generated()
-    for i = 1, #items do add_value(tree, tvb, pos, items[i]) end
+    local shown = wanted_entries(items, names, part_of)
+    for i = 1, #shown do add_value(tree, tvb, pos, shown[i]) end
     return pos + recipe.size
 end
 
@@ -3448,9 +3597,10 @@ local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state,
     return layout.label
 end
 
-function proto.dissector(tvb, pinfo, tree)
+local function dissect(tvb, pinfo, tree)
     handle = handle or Dissector.get(spec.name)
     showing = tree.visible or tree:referenced(handle)
+    names = tree.visible and wanted_names(PREFIX) or nil
     local len = tvb:len()
     local raw = tvb:raw()
     local from_robot = pinfo.src_port == pinfo.match_uint
@@ -3492,6 +3642,9 @@ function proto.dissector(tvb, pinfo, tree)
     if #labels > 0 then pinfo.cols.info = table.concat(labels, ", ") end
     return len
 end
+
+-- A Lua error while dissecting shows as the expert rtde.internal_error (runtime/lua/common/guard.lua).
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 
 proto.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of " .. spec.title, 65535)
 

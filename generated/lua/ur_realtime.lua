@@ -811,6 +811,31 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/guard.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- The error guard every dissector runs behind: a Lua error while dissecting never reaches the
+-- user as a Lua error, but shows as an expert info on the packet, and the packet's bytes count
+-- as dissected.
+local spec, rt = ...
+
+-- A dissector function for proto that runs dissect(tvb, pinfo, tree) behind pcall; an error
+-- becomes the expert `internal`, its text after `label` ("urwire: ...").
+local function guard(proto, dissect, internal, label)
+    return function(tvb, pinfo, tree)
+        local ok, result = pcall(dissect, tvb, pinfo, tree)
+        if ok then return result end
+        tree:add(proto, tvb()):add_proto_expert_info(internal, label .. ": " .. tostring(result))
+        return tvb:len()
+    end
+end
+
+rt.guard = guard
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/common/dotted_version.lua ----
 -- =============================================================================================
 do
@@ -864,6 +889,115 @@ end)(spec, rt)
 end
 
 -- =============================================================================================
+-- ---- runtime/lua/common/wanted.lua ----
+-- =============================================================================================
+do
+(function(...)
+-- Which of a protocol's fields a `tshark -T fields` run needs. tshark builds the tree visible for
+-- -T fields, and TreeItem:referenced() then answers true for every field (Wireshark 4.0 gives a
+-- Lua dissector no other way to ask), so without this every item would be built to print one
+-- field. The fields are named on tshark's command line (-e, -Y, -R, -z, -o), where the system
+-- shows it (/proc/self/cmdline). Every field is wanted when the command line may need any: not
+-- tshark, or not -T fields; a display filter macro or field reference ("$"), or expert infos
+-- ("expert"). A part of a message (a robot-state package, an RTDE variable, a real-time slot) is
+-- wanted when its item or a field under it is named: "ur.joint_data" or "ur.joint_data.q_actual"
+-- wants the package joint_data. What else a name wants is the dissector's to say.
+local spec, rt = ...
+local find, sub, match, gmatch, gsub = string.find, string.sub, string.match, string.gmatch, string.gsub
+
+-- The arguments of this process, or nil where the system does not show them.
+local function command_line()
+    local file = io and io.open and io.open("/proc/self/cmdline", "rb")
+    if not file then return nil end
+    local text = file:read("*a")
+    file:close()
+    if not text or text == "" then return nil end
+    local args, p = {}, 1
+    while p <= #text do
+        local z = find(text, "\0", p, true) or #text + 1
+        args[#args + 1] = sub(text, p, z - 1)
+        p = z + 1
+    end
+    return args
+end
+
+-- The names under `prefix` ("ur.", "rtde.") in a tshark -T fields command line, as a set; nil
+-- when it may need any field.
+local function named_fields(args, prefix)
+    if not args or not args[1] then return nil end
+    local program = match(args[1], "([^/\\]*)$")
+    if not find(program, "^tshark") then return nil end
+    local format
+    for i = 2, #args do
+        local a = args[i]
+        if a == "-T" then format = args[i + 1]
+        elseif sub(a, 1, 2) == "-T" then format = sub(a, 3) end
+    end
+    if format ~= "fields" then return nil end
+    local pattern = gsub(prefix, "%p", "%%%0") .. "[%w_%.]*[%w_]"
+    local names = {}
+    for i = 2, #args do
+        local a = args[i]
+        if find(a, "$", 1, true) or find(a, "expert", 1, true) then return nil end
+        for name in gmatch(a, pattern) do names[name] = true end
+    end
+    return names
+end
+
+-- Whether a name is the item filtered as `own` or a field under it.
+local function within(name, own)
+    return name == own or (sub(name, 1, #own + 1) == own .. ".")
+end
+
+-- Whether the names want the part whose item is filtered as `own`: it, or a field under it.
+local function part_named(names, own)
+    if names[own] then return true end
+    for name in pairs(names) do
+        if within(name, own) then return true end
+    end
+    return false
+end
+
+-- This run's names under a prefix, found once (the same set every time), or nil for every field.
+local found, off = {}, false
+local function wanted_names(prefix)
+    if off then return nil end
+    local names = found[prefix]
+    if names == nil then
+        names = named_fields(command_line(), prefix) or false
+        found[prefix] = names
+    end
+    return names or nil
+end
+
+-- A preference that turns the rule off (the primary interface's ur.named_fields_only): every
+-- field is wanted, as another Lua script reading fields with Field.new needs.
+local function named_only(on)
+    off = not on
+end
+
+-- The entries of `list` the names want, worked out once per list and names (nil names: the list
+-- itself). part_of(entry) gives the filter name of an entry's item, or nil where it is always built.
+local kept = setmetatable({}, { __mode = "k" })
+local function wanted_entries(list, names, part_of)
+    if not names then return list end
+    local k = kept[list]
+    if k and k.names == names then return k.list end
+    local out = {}
+    for _, entry in ipairs(list) do
+        local own = part_of(entry)
+        if not own or part_named(names, own) then out[#out + 1] = entry end
+    end
+    kept[list] = { names = names, list = out }
+    return out
+end
+
+rt.named_fields, rt.part_named, rt.wanted_names, rt.named_only = named_fields, part_named, wanted_names, named_only
+rt.within, rt.wanted_entries = within, wanted_entries
+end)(spec, rt)
+end
+
+-- =============================================================================================
 -- ---- runtime/lua/sized_packets/dissect.lua ----
 -- =============================================================================================
 do
@@ -881,6 +1015,8 @@ local LABELS, UNITS, ENUM_OF = spec.labels, spec.units, spec.enum_of
 local LAYOUTS, FORMS = spec.layouts, spec.forms_by_size
 local fmt, floor = string.format, math.floor
 local SIZE_BYTES, MIN_SIZE, MAX_SIZE = spec.size_field_bytes, spec.min_message_size, spec.max_message_size
+local PREFIX = spec.name .. "."     -- every field's filter name starts so: ur_realtime.q_actual
+local wanted_names, wanted_entries = rt.wanted_names, rt.wanted_entries
 
 -- The dissector's own fields and experts, beside the spec's.
 local X = {
@@ -896,6 +1032,8 @@ local E = {
         expert.group.PROTOCOL, expert.severity.WARN),
     bad_size = ProtoExpert.new(spec.name .. ".bad_size", "Packet size cannot frame a packet",
         expert.group.MALFORMED, expert.severity.ERROR),
+    internal = ProtoExpert.new(spec.name .. ".internal_error", "Dissector error",
+        expert.group.MALFORMED, expert.severity.ERROR),
 }
 
 local registered_fields = {}
@@ -908,7 +1046,7 @@ for _, flags in pairs(FLAGS) do
     for _, f in ipairs(flags) do registered_fields[#registered_fields + 1] = f end
 end
 proto.fields = registered_fields
-proto.experts = { E.unknown_size, E.bad_size }
+proto.experts = { E.unknown_size, E.bad_size, E.internal }
 
 proto.prefs.ports = Pref.range("Ports", spec.ports, "TCP ports of the real-time interface", 65535)
 proto.prefs.version = Pref.string("Software version", "",
@@ -971,9 +1109,15 @@ local function info_of(tvb, o, form)
     return mode and (layout.name .. ", " .. mode) or layout.name
 end
 
--- One whole packet at offset o: its subtree when someone looks (`detail`), else only what the
--- Info column and the experts need; returns the Info column's words for it.
-local function dissect_packet(tvb, tree, o, size, detail)
+-- The filter name of a slot's items: its field's, under which its named items and flags filter too.
+local function slot_part(slot)
+    return PREFIX .. slot[1]
+end
+
+-- One whole packet at offset o: its subtree when someone looks (`detail`), with only the slots
+-- a tshark -T fields run names (`wanted`, runtime/lua/common/wanted.lua; nil: every slot), else
+-- only what the Info column and the experts need; returns the Info column's words for it.
+local function dissect_packet(tvb, tree, o, size, detail, wanted)
     local form = form_of(size)
     if form and not detail then return info_of(tvb, o, form) end
     local sub = tree:add(proto, tvb(o, size))
@@ -987,7 +1131,7 @@ local function dissect_packet(tvb, tree, o, size, detail)
     local layout, names = LAYOUTS[form[3]], form[4]
     sub:append_text(", " .. layout.name)
     sub:add(X.layout, layout.name):set_generated()
-    for _, slot in ipairs(layout.slots) do
+    for _, slot in ipairs(wanted_entries(layout.slots, wanted, slot_part)) do
         local name, at, count = slot[1], o + slot[2], slot[3]
         local enum = ENUM_OF[name] and names[ENUM_OF[name]]
         if count == 1 then
@@ -1021,11 +1165,12 @@ end
 
 local handle = nil
 
-function proto.dissector(tvb, pinfo, tree)
+local function dissect(tvb, pinfo, tree)
     local len = tvb:len()
     -- Field work only when someone looks: a visible tree, or a filter or column naming the protocol.
     handle = handle or Dissector.get(spec.name)
     local detail = tree.visible or tree:referenced(handle)
+    local wanted = tree.visible and wanted_names(PREFIX) or nil
     pinfo.cols.protocol = "UR real-time"
     if pinfo.src_port ~= pinfo.match_uint then
         -- Client to robot: URScript text, not decoded.
@@ -1060,7 +1205,7 @@ function proto.dissector(tvb, pinfo, tree)
             pinfo.desegment_offset, pinfo.desegment_len = o, size - left
             break
         else
-            infos[#infos + 1] = dissect_packet(tvb, tree, o, size, detail)
+            infos[#infos + 1] = dissect_packet(tvb, tree, o, size, detail, wanted)
             o = o + size
         end
     end
@@ -1069,6 +1214,9 @@ function proto.dissector(tvb, pinfo, tree)
     end
     return len
 end
+
+-- A Lua error while dissecting shows as the expert ur_realtime.internal_error (runtime/lua/common/guard.lua).
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 
 function proto.prefs_changed()
     version = version_number(proto.prefs.version)

@@ -32,6 +32,8 @@ PROTOCOL = compile_file()
 # How a Lua error caught by the dissector's pcall guard shows: an expert, in JSON and in text.
 INTERNAL_JSON = '"ur.internal_error"'
 INTERNAL_TEXT = "(Error/Malformed): urwire: "
+# The same for the RTDE and real-time dissectors, whose label is their protocol's name.
+GUARDED = ("rtde", "ur_realtime")
 
 
 class TsharkError(AssertionError):
@@ -57,7 +59,8 @@ def _checked(res: subprocess.CompletedProcess) -> str:
         raise TsharkError(f"Lua error: {res.stderr[:2000]}")
     if "_ws.lua.error" in res.stdout:
         raise TsharkError("_ws.lua.error in the output")
-    if INTERNAL_JSON in res.stdout or INTERNAL_TEXT in res.stdout:
+    if INTERNAL_JSON in res.stdout or INTERNAL_TEXT in res.stdout or any(
+            f'"{name}.internal_error"' in res.stdout or f"(Error/Malformed): {name}: " in res.stdout for name in GUARDED):
         raise TsharkError("the dissector caught an internal Lua error: " + res.stdout[:2000])
     if res.returncode != 0:
         raise TsharkError(f"tshark exited {res.returncode}: {res.stderr[:2000]}")

@@ -221,6 +221,7 @@ def test_hostile_bytes_raise_no_lua_error(tmp_path):
     capture.write(pcap, capture.session_frames(segments, port=PORT, client_port=51009))
     out = tshark(pcap, "-Y", "rtde", "-T", "fields", "-e", "rtde.kind")
     assert len(out.splitlines()) > 50 and "setup_outputs" in out
+    assert not tshark(pcap, "-Y", "rtde.internal_error").strip(), "a Lua error caught by the guard"
 
 
 def test_decode_as_on_another_port(tmp_path):

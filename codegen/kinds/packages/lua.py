@@ -22,7 +22,7 @@ OUT = "lua/urwire.lua"
 # The hand-written runtime, in the order it is joined: the files every kind's dissector shares
 # (runtime/lua/common), then this kind's own (runtime/lua/packages). Each file is a chunk that
 # receives (spec, rt): `spec` is the generated data, `rt` what earlier runtime files export.
-COMMON = ("register.lua", "guard.lua", "tcp_stream.lua", "bytes.lua", "info_column.lua")
+COMMON = ("register.lua", "guard.lua", "tcp_stream.lua", "bytes.lua", "info_column.lua", "wanted.lua")
 RUNTIME = ("declare.lua", "read_faults.lua", "versions.lua", "items.lua", "collector.lua", "walk.lua", "values.lua",
            "info.lua", "messages.lua", "wanted.lua", "carry.lua", "stream.lua", "framing.lua", "preferences.lua")
 

@@ -12,7 +12,8 @@ from .dissector import Dissector, dissector, item_blurb
 from .plan import SizedPlan
 
 # The runtime joined after the tables, in order (runtime/lua/common, then this kind's own).
-RUNTIME = ("common/register.lua", "common/dotted_version.lua", "common/info_column.lua", "sized_packets/dissect.lua")
+RUNTIME = ("common/register.lua", "common/guard.lua", "common/dotted_version.lua", "common/info_column.lua",
+           "common/wanted.lua", "sized_packets/dissect.lua")
 
 
 def view(d: Dissector) -> dict:

@@ -22,9 +22,9 @@ READER = {"bool": "uint", "int8": "int", "uint8": "uint", "int16": "int", "uint1
           "uint32": "uint", "int64": "int64", "uint64": "uint64", "float32": "float", "float64": "float"}
 # The runtime joined after the tables, in order (runtime/lua/common, then this kind's own: the
 # state first, then the dissector).
-RUNTIME = ("common/register.lua", "common/tcp_stream.lua", "common/bytes.lua", "common/pending.lua",
-           "common/exchange.lua", "typed_messages/state.lua", "typed_messages/exchanges.lua",
-           "typed_messages/dissect.lua")
+RUNTIME = ("common/register.lua", "common/guard.lua", "common/tcp_stream.lua", "common/bytes.lua",
+           "common/pending.lua", "common/exchange.lua", "common/wanted.lua", "typed_messages/state.lua",
+           "typed_messages/exchanges.lua", "typed_messages/dissect.lua")
 TYPE_NAMES = "TYPE_NAMES"               # the Lua table of the type codes' letters
 
 

@@ -1,7 +1,7 @@
 -- Preferences and registration: the robot-side ports (taken over from MRCPv2, which claims
 -- TCP 30000-30200 in Wireshark 4.0; "Decode As" works on others), the software version assumed
 -- until a Version message is seen (empty: none), whether tshark -T fields builds only the
--- packages its command line names (runtime/lua/packages/wanted.lua), and the longest plausible message.
+-- packages its command line names (runtime/lua/{common,packages}/wanted.lua), and the longest plausible message.
 local spec, rt = ...
 local ur = spec.proto
 local parse_version, assume_version, named_only = rt.parse_version, rt.assume_version, rt.named_only

@@ -11,6 +11,8 @@ local LABELS, UNITS, ENUM_OF = spec.labels, spec.units, spec.enum_of
 local LAYOUTS, FORMS = spec.layouts, spec.forms_by_size
 local fmt, floor = string.format, math.floor
 local SIZE_BYTES, MIN_SIZE, MAX_SIZE = spec.size_field_bytes, spec.min_message_size, spec.max_message_size
+local PREFIX = spec.name .. "."     -- every field's filter name starts so: ur_realtime.q_actual
+local wanted_names, wanted_entries = rt.wanted_names, rt.wanted_entries
 
 -- The dissector's own fields and experts, beside the spec's.
 local X = {
@@ -26,6 +28,8 @@ local E = {
         expert.group.PROTOCOL, expert.severity.WARN),
     bad_size = ProtoExpert.new(spec.name .. ".bad_size", "Packet size cannot frame a packet",
         expert.group.MALFORMED, expert.severity.ERROR),
+    internal = ProtoExpert.new(spec.name .. ".internal_error", "Dissector error",
+        expert.group.MALFORMED, expert.severity.ERROR),
 }
 
 local registered_fields = {}
@@ -38,7 +42,7 @@ for _, flags in pairs(FLAGS) do
     for _, f in ipairs(flags) do registered_fields[#registered_fields + 1] = f end
 end
 proto.fields = registered_fields
-proto.experts = { E.unknown_size, E.bad_size }
+proto.experts = { E.unknown_size, E.bad_size, E.internal }
 
 proto.prefs.ports = Pref.range("Ports", spec.ports, "TCP ports of the real-time interface", 65535)
 proto.prefs.version = Pref.string("Software version", "",
@@ -101,9 +105,15 @@ local function info_of(tvb, o, form)
     return mode and (layout.name .. ", " .. mode) or layout.name
 end
 
--- One whole packet at offset o: its subtree when someone looks (`detail`), else only what the
--- Info column and the experts need; returns the Info column's words for it.
-local function dissect_packet(tvb, tree, o, size, detail)
+-- The filter name of a slot's items: its field's, under which its named items and flags filter too.
+local function slot_part(slot)
+    return PREFIX .. slot[1]
+end
+
+-- One whole packet at offset o: its subtree when someone looks (`detail`), with only the slots
+-- a tshark -T fields run names (`wanted`, runtime/lua/common/wanted.lua; nil: every slot), else
+-- only what the Info column and the experts need; returns the Info column's words for it.
+local function dissect_packet(tvb, tree, o, size, detail, wanted)
     local form = form_of(size)
     if form and not detail then return info_of(tvb, o, form) end
     local sub = tree:add(proto, tvb(o, size))
@@ -117,7 +127,7 @@ local function dissect_packet(tvb, tree, o, size, detail)
     local layout, names = LAYOUTS[form[3]], form[4]
     sub:append_text(", " .. layout.name)
     sub:add(X.layout, layout.name):set_generated()
-    for _, slot in ipairs(layout.slots) do
+    for _, slot in ipairs(wanted_entries(layout.slots, wanted, slot_part)) do
         local name, at, count = slot[1], o + slot[2], slot[3]
         local enum = ENUM_OF[name] and names[ENUM_OF[name]]
         if count == 1 then
@@ -151,11 +161,12 @@ end
 
 local handle = nil
 
-function proto.dissector(tvb, pinfo, tree)
+local function dissect(tvb, pinfo, tree)
     local len = tvb:len()
     -- Field work only when someone looks: a visible tree, or a filter or column naming the protocol.
     handle = handle or Dissector.get(spec.name)
     local detail = tree.visible or tree:referenced(handle)
+    local wanted = tree.visible and wanted_names(PREFIX) or nil
     pinfo.cols.protocol = "UR real-time"
     if pinfo.src_port ~= pinfo.match_uint then
         -- Client to robot: URScript text, not decoded.
@@ -190,7 +201,7 @@ function proto.dissector(tvb, pinfo, tree)
             pinfo.desegment_offset, pinfo.desegment_len = o, size - left
             break
         else
-            infos[#infos + 1] = dissect_packet(tvb, tree, o, size, detail)
+            infos[#infos + 1] = dissect_packet(tvb, tree, o, size, detail, wanted)
             o = o + size
         end
     end
@@ -199,6 +210,9 @@ function proto.dissector(tvb, pinfo, tree)
     end
     return len
 end
+
+-- A Lua error while dissecting shows as the expert ur_realtime.internal_error (runtime/lua/common/guard.lua).
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 
 function proto.prefs_changed()
     version = version_number(proto.prefs.version)

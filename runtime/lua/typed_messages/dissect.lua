@@ -9,6 +9,8 @@ local spec, rt = ...
 local proto, F = spec.proto, spec.F
 local HEADER = spec.header_size
 local be_uint = rt.be_uint
+local PREFIX = spec.name .. "."             -- every field's filter name starts so: rtde.actual_q
+local wanted_names, wanted_entries = rt.wanted_names, rt.wanted_entries
 
 -- Expert names are the protocol's filter name and the expert's (rtde.refused), as the fields' are.
 local E = {
@@ -36,9 +38,11 @@ local E = {
         expert.group.PROTOCOL, expert.severity.ERROR),
     retyped = ProtoExpert.new(spec.name .. ".retyped", "Setup reply types a variable otherwise than the table",
         expert.group.PROTOCOL, expert.severity.WARN),
+    internal = ProtoExpert.new(spec.name .. ".internal_error", "Dissector error",
+        expert.group.MALFORMED, expert.severity.ERROR),
 }
 proto.experts = { E.bad_header, E.short, E.extra, E.refused, E.unknown_recipe, E.start_refused, E.warning,
-                  E.undocumented, E.unknown_type, E.not_kept, E.protocol_unknown, E.retyped }
+                  E.undocumented, E.unknown_type, E.not_kept, E.protocol_unknown, E.retyped, E.internal }
 
 do
     -- A vector's named items share its filter name, of which tshark -G fields lists the first
@@ -57,10 +61,12 @@ do
 end
 
 local states, views = {}, {}
--- Whether this call's items are looked at (proto.dissector sets it): a visible tree, or a filter or
--- column that names the protocol or one of its fields. Without, data packages add no value items,
--- which are most of the work (make bench-rtde, no tree).
-local showing, handle = true, nil
+-- Whether this call's items are looked at (dissect sets it): a visible tree, or a filter or
+-- column that names the protocol or one of its fields. Without, data packages add no value
+-- items, which are most of the work (make bench-rtde, no tree). With a visible tree, `names` are
+-- the rtde names of a tshark -T fields run (runtime/lua/common/wanted.lua; nil: every field): a
+-- data package shows only the values they name.
+local showing, names, handle = true, nil, nil
 
 function proto.init()
     states, views = {}, {}
@@ -106,8 +112,9 @@ end
 
 -- How each value of a recipe shows, worked out once per recipe (the first time one of its data
 -- packages is shown) and kept with it: its offset (state.lua's, from the setup), its item size
--- and count, and the field, unit, named items, flags or retype the spec's tables give its name
--- and type. A name the variable table lacks (a newer controller's) shows its value's bytes
+-- and count, the filter name of its item (`part`: its name's, under which its named items and
+-- flags filter too), and the field, unit, named items, flags or retype the spec's tables give its
+-- name and type. A name the variable table lacks (a newer controller's) shows its value's bytes
 -- whole, with the name. A variable the setup reply types otherwise than the table is read by the
 -- reply's type, under the field of that type (rtde.value_float64...), with its name and an expert.
 local function value_items(recipe)
@@ -117,7 +124,7 @@ local function value_items(recipe)
         local vt = spec.value_types[type_name]
         local v = { at = recipe.offsets[i], size = vt.size, count = vt.count, len = vt.size * vt.count }
         if not spec.variable_types[name] then
-            v.unknown = " (" .. name .. ")"
+            v.unknown, v.part = " (" .. name .. ")", PREFIX .. "unknown_variable"
         else
             v.retyped = rt.retyped(name, type_name)
             local unit = nil
@@ -126,6 +133,7 @@ local function value_items(recipe)
                 retyped[#retyped + 1] = v.retyped
             else
                 v.field, unit, v.named, v.flags = F[name], spec.variable_units[name], spec.items[name], spec.flags[name]
+                v.part = PREFIX .. name
             end
             v.texts = item_texts(unit, vt.count)
         end
@@ -194,9 +202,15 @@ end
 STEP.rest_text = rest
 STEP.names = rest
 
+-- The filter name of a value's item; nil for a retyped value, always shown (for its expert).
+local function part_of(v)
+    return v.part
+end
+
 -- A data package's values, read at the offsets its recipe worked out once. Only where someone
 -- looks (`showing`: a visible tree, or a filter or column naming the protocol) do they become
--- items; otherwise only a retyped variable's expert is added, for the expert infos.
+-- items, and only those the command line names (`names`); otherwise only a retyped variable's
+-- expert is added, for the expert infos.
 function STEP.values(s, tree, tvb, pos, stop, values, view)
     local recipe = view.recipe
     if pos + recipe.size > stop then return nil end
@@ -206,7 +220,8 @@ function STEP.values(s, tree, tvb, pos, stop, values, view)
         return pos + recipe.size
     end
     tree:add(F.recipe_frame, tvb(pos, 0), recipe.frame):set_generated()
-    for i = 1, #items do add_value(tree, tvb, pos, items[i]) end
+    local shown = wanted_entries(items, names, part_of)
+    for i = 1, #shown do add_value(tree, tvb, pos, shown[i]) end
     return pos + recipe.size
 end
 
@@ -312,9 +327,10 @@ local function dissect_message(tvb, raw, offset, size, code, pinfo, tree, state,
     return layout.label
 end
 
-function proto.dissector(tvb, pinfo, tree)
+local function dissect(tvb, pinfo, tree)
     handle = handle or Dissector.get(spec.name)
     showing = tree.visible or tree:referenced(handle)
+    names = tree.visible and wanted_names(PREFIX) or nil
     local len = tvb:len()
     local raw = tvb:raw()
     local from_robot = pinfo.src_port == pinfo.match_uint
@@ -356,6 +372,9 @@ function proto.dissector(tvb, pinfo, tree)
     if #labels > 0 then pinfo.cols.info = table.concat(labels, ", ") end
     return len
 end
+
+-- A Lua error while dissecting shows as the expert rtde.internal_error (runtime/lua/common/guard.lua).
+proto.dissector = rt.guard(proto, dissect, E.internal, spec.name)
 
 proto.prefs.ports = Pref.range("TCP ports", spec.default_ports, "Robot-side TCP ports of " .. spec.title, 65535)
 

@@ -14,6 +14,8 @@ local spec = {
 local rt = S.load("common/register.lua", spec)
 S.load("common/dotted_version.lua", spec, rt)
 S.load("common/info_column.lua", spec, rt)
+S.load("common/guard.lua", spec, rt)
+S.load("common/wanted.lua", spec, rt)
 S.load("sized_packets/dissect.lua", spec, rt)
 
 S.eq(rt.version_number("5.9"), 5009000, "major.minor")
