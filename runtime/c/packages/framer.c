@@ -67,6 +67,15 @@ void urwire_framer_finish(urwire_framer *f)
     f->finished = true;
 }
 
+void urwire_framer_restart(urwire_framer *f, uint64_t offset)
+{
+    urwire__learn_unlearnt(f);  /* before its bytes are dropped */
+    f->head = f->len = 0;
+    f->base = offset;
+    f->skip = 0;
+    f->resyncing = f->finished = f->ended_inside = false;
+}
+
 static urwire_frame_kind urwire__fault(urwire_framer *f, urwire_frame *out, urwire_status status, int64_t value,
                                        int64_t left)
 {
