@@ -1797,7 +1797,8 @@ typedef struct urwire_framer {
     size_t head;                    /* first byte not yet framed */
     size_t len;                     /* bytes held */
     uint64_t base;                  /* stream offset of buf[0] */
-    uint64_t skip;                  /* bytes still to drop of a message bigger than buf */
+    size_t skip;                    /* bytes still to drop of a message bigger than buf (at most
+                                       URWIRE_MAX_MESSAGE_LENGTH) */
     bool resyncing;
     bool finished;
     bool ended_inside;              /* the stream ended inside a message: rescans stop only at
