@@ -12,8 +12,9 @@ RV32IMC with riscv64-unknown-elf-gcc and picolibc) and level (-Os, -O2):
   values of data) and static RAM (data and bss), and the worst-case stack of each public entry
   point (embedded_stack.py, over the call graph gcc writes with -fcallgraph-info=su);
 - the firmwares of examples/embedded, linked whole with -Wl,--gc-sections against the C
-  library, startup code included: flash, RAM (the .stack and .heap reservations of the linker
-  script left out) and the stack of main.
+  library, with the device's own startup code (examples/embedded/startup.c: vector table and
+  reset, no C library start code: -nostartfiles) and memory map (firmware.ld): flash, RAM (the
+  linker script's .stack reservation left out) and the stack of main.
 
 The warnings are the project's (C_STRICT), without -Werror: a warning does not change a size, and
 the cross builds that fail on one are make cross-c's. The measurement records the SHA-256 of
@@ -45,7 +46,7 @@ MEASUREMENTS = EXAMPLES / "measurements.json"
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-pedantic", "-Wconversion", "-Wshadow"]
 SECTIONS = ["-ffunction-sections", "-fdata-sections", "-fstack-usage", "-fcallgraph-info=su"]
 LEVELS = ["-Os", "-O2"]
-RESERVED = {".stack", ".heap"}       # linker-script reservations, not the program's RAM
+RESERVED = {".stack"}                # firmware.ld's reservation, not the program's RAM
 
 
 @dataclass(frozen=True)
@@ -54,13 +55,13 @@ class Target:
     prefix: str                      # the toolchain's: arm-none-eabi-
     flags: tuple[str, ...]           # compiling and linking
     libc: tuple[str, ...]            # the C library's specs
-    link: tuple[str, ...] = ()       # the linker script's memory, large enough for any build
 
     def tool(self, name: str) -> str:
         return self.prefix + name
 
 
-ARM_LIBC = ("--specs=nano.specs", "--specs=nosys.specs")
+# newlib-nano's functions; no system calls (nosys): nothing the firmwares link makes one.
+ARM_LIBC = ("--specs=nano.specs",)
 TARGETS = [
     Target("Cortex-M0+", "arm-none-eabi-", ("-mthumb", "-mcpu=cortex-m0plus", "-mfloat-abi=soft"), ARM_LIBC),
     Target("Cortex-M4F", "arm-none-eabi-", ("-mthumb", "-mcpu=cortex-m4", "-mfpu=fpv4-sp-d16", "-mfloat-abi=hard"),
@@ -68,9 +69,11 @@ TARGETS = [
     Target("Cortex-M7", "arm-none-eabi-", ("-mthumb", "-mcpu=cortex-m7", "-mfpu=fpv5-d16", "-mfloat-abi=hard"),
            ARM_LIBC),
     # picolibc has no rv32imc library: gcc links its rv32im one, the firmware's own code is rv32imc.
-    Target("RV32IMC", "riscv64-unknown-elf-", ("-march=rv32imc", "-mabi=ilp32"), ("--specs=picolibc.specs",),
-           ("-Wl,--defsym=__flash_size=0x100000", "-Wl,--defsym=__ram_size=0x40000")),
+    Target("RV32IMC", "riscv64-unknown-elf-", ("-march=rv32imc", "-mabi=ilp32"), ("--specs=picolibc.specs",)),
 ]
+# How every firmware is linked: the device's start (startup.c, a source of every firmware) in
+# place of the C library's, and the memory map it starts from.
+FIRMWARE_LINK = ("-nostartfiles", "-T", str(EXAMPLES / "firmware.ld"), "-Wl,--gc-sections")
 
 # What the RTDE firmware's connection keeps: its one recipe (and the robot's reply's), its names.
 RTDE_FIRMWARE_LIMITS = ("-DRTDE_MAX_RECIPES=2", "-DRTDE_MAX_VARIABLES=8", "-DRTDE_MAX_NAMES=64")
@@ -181,7 +184,8 @@ def measure_firmware(target: Target, level: str, firmware: Firmware, parsers: di
     include = parsers.get(firmware.include)
     if include is None:
         return {"skipped": SKIPPED[firmware.include]}
-    sources = [*(EXAMPLES / s for s in firmware.sources), EXAMPLES / "board_target.c", include / firmware.library]
+    sources = [*(EXAMPLES / s for s in firmware.sources), EXAMPLES / "board_target.c", EXAMPLES / "startup.c",
+               include / firmware.library]
     try:
         objects = [compile_c(target, level, src, work / f"{firmware.key}-{src.stem}.o", [include, EXAMPLES],
                              firmware.defines) for src in sources]
@@ -189,8 +193,7 @@ def measure_firmware(target: Target, level: str, firmware: Firmware, parsers: di
         return {"skipped": "does not build: " + first_error(str(exc))}
     elf = work / f"{firmware.key}.elf"
     try:
-        run(target.tool("gcc"), *target.flags, *target.libc, *target.link, level, "-Wl,--gc-sections",
-            *map(str, objects), "-o", str(elf))
+        run(target.tool("gcc"), *target.flags, *target.libc, level, *FIRMWARE_LINK, *map(str, objects), "-o", str(elf))
     except RuntimeError as exc:
         return {"skipped": "does not link: " + first_error(str(exc))}
     graph = graph_of(target, objects)
@@ -222,7 +225,7 @@ def subset_build(selection: str, out: Path) -> Path | None:
 
 def digests() -> dict[str, str]:
     """The SHA-256 of every file the measurement reads from generated/c and examples/embedded."""
-    files = sorted([*GENERATED.glob("*.[ch]"), *EXAMPLES.glob("*.[ch]")])
+    files = sorted([*GENERATED.glob("*.[ch]"), *EXAMPLES.glob("*.[ch]"), *EXAMPLES.glob("*.ld")])
     return {str(p.relative_to(ROOT)): hashlib.sha256(p.read_bytes()).hexdigest() for p in files}
 
 

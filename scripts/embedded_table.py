@@ -122,8 +122,8 @@ def render(m: dict) -> str:
         BEGIN,
         "",
         f"Measured by `make bench-embedded` with {tools}. Bytes. **Flash**: code, constants and the "
-        "initial values of data; **RAM**: data and bss (the linker script's stack and heap reservations "
-        "left out); **stack**: the deepest chain of calls, each function's frame from `-fstack-usage` "
+        "initial values of data; **RAM**: data and bss (the stack reservation of `firmware.ld` left "
+        "out); **stack**: the deepest chain of calls, each function's frame from `-fstack-usage` "
         "summed along gcc's call graph (`-fcallgraph-info=su`), where an indirect call counts as the "
         "deepest function its caller points at, itself or through its tables "
         "(`scripts/embedded_stack.py`); a cycle (recursion) has no bound, and the script refuses a "
@@ -134,9 +134,10 @@ def render(m: dict) -> str:
         *_goals(m),
         "",
         "The firmwares of `examples/embedded/`, each a complete `main()` over bytes in a buffer, linked "
-        "with `-Wl,--gc-sections`, startup code and C library included (newlib-nano and nosys on ARM, "
-        "picolibc on RISC-V), the primary stream's built with `" + " ".join(FIRMWARE_OPTIONS) + "` "
-        "(see Options for a firmware); flash / RAM / stack of `main`:",
+        "with `-Wl,--gc-sections`, their startup code included (`startup.c`, in place of the C library's) "
+        "and the C library's functions they call (newlib-nano on ARM, picolibc on RISC-V), the primary "
+        "stream's built with `" + " ".join(FIRMWARE_OPTIONS) + "` (see Options for a firmware); flash / RAM / "
+        "stack of `main`:",
         "",
         *_firmwares(m, targets),
     ]

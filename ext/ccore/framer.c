@@ -26,9 +26,5 @@ int ccore_framer_open(urwire_framer *framer, uint8_t **buffer, PyObject *args, P
 
 void ccore_framer_restart(urwire_framer *f, uint64_t offset)
 {
-    f->head = f->len = 0;
-    f->base = offset;
-    f->skip = 0;
-    f->resyncing = f->finished = f->ended_inside = false;
-    f->unlearnt = 0;
+    urwire_framer_restart(f, offset);
 }

@@ -1801,7 +1801,8 @@ typedef struct urwire_framer {
     size_t head;                    /* first byte not yet framed */
     size_t len;                     /* bytes held */
     uint64_t base;                  /* stream offset of buf[0] */
-    uint64_t skip;                  /* bytes still to drop of a message bigger than buf */
+    size_t skip;                    /* bytes still to drop of a message bigger than buf (at most
+                                       URWIRE_MAX_MESSAGE_LENGTH) */
     bool resyncing;
     bool finished;
     bool ended_inside;              /* the stream ended inside a message: rescans stop only at
@@ -1826,6 +1827,11 @@ size_t urwire_framer_feed(urwire_framer *f, const uint8_t *data, size_t n);
  * and the whole messages inside a truncated message's span are framed after it. */
 void urwire_framer_finish(urwire_framer *f);
 urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out);
+/* The stream lost bytes (a capture's gap, a reconnection): what is held is dropped and framing
+ * starts afresh, its next byte at stream offset `offset`, the version in force kept. Drain the
+ * framer first (urwire_framer_finish, then urwire_framer_next until URWIRE_FRAME_END) for the
+ * faults and messages it still holds. */
+void urwire_framer_restart(urwire_framer *f, uint64_t offset);
 /* Optional, after decoding the message of the last frame with its frame.version: takes the
  * version its layout sizes show from your decoding (m->implied, m->implied_version), so that
  * the framer does not walk a robot state's sub-packages a second time. The versions it tracks

@@ -162,6 +162,16 @@ static void held(void)
     CHECK(taken == 2 && length == 2 && base == 12 && memcmp(buf, "mn", 2) == 0);
     taken = urwire__hold(buf, sizeof buf, &head, &length, &base, NULL, 0);
     CHECK(taken == 0 && length == 2 && base == 12);
+    /* More held than framed: the seven bytes after "m" move to the front in pieces, unharmed. */
+    head = 0;
+    taken = urwire__hold(buf, sizeof buf, &head, &length, &base, (const uint8_t *)"opqrst", 6);
+    CHECK(taken == 6 && length == 8 && memcmp(buf, "mnopqrst", 8) == 0);
+    head = 1;
+    taken = urwire__hold(buf, sizeof buf, &head, &length, &base, (const uint8_t *)"u", 1);
+    CHECK(taken == 1 && length == 8 && base == 13 && memcmp(buf, "nopqrstu", 8) == 0);
+    head = 3;
+    taken = urwire__hold(buf, sizeof buf, &head, &length, &base, NULL, 0);
+    CHECK(taken == 0 && length == 5 && base == 16 && memcmp(buf, "qrstu", 5) == 0);
 }
 
 static void version_text(void)

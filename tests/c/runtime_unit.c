@@ -444,6 +444,16 @@ static void framer(void)
     CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.offset == 5 && fr.length == sizeof state);
     CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.offset == 5 + sizeof state);
     CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_END);
+
+    /* Restarted after a gap: no longer finished, the part of a message before the gap dropped,
+     * the offsets the caller's. */
+    urwire_framer_restart(&f, 1000);
+    CHECK(urwire_framer_feed(&f, state, 7) == 7);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_NEED_MORE);
+    urwire_framer_restart(&f, 2000);
+    CHECK(urwire_framer_feed(&f, state, sizeof state) == sizeof state);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_MESSAGE && fr.offset == 2000 && fr.length == sizeof state);
+    CHECK(urwire_framer_next(&f, &fr) == URWIRE_FRAME_NEED_MORE);
 }
 
 /* The version a stream's layout sizes show carries on to its next messages, while it is only

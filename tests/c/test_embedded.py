@@ -5,6 +5,7 @@ measurement itself, on the cross compilers, is in `make test-deep`."""
 from __future__ import annotations
 
 import json
+import shutil
 import struct
 import subprocess
 import sys
@@ -93,6 +94,45 @@ def test_the_stack_bound_refuses_recursion(tmp_path):
     graph.add_ci(ci)
     assert graph.deepest("a") == (16 + 8 + 32, ["a", "c", "b"])
     assert graph.unknown == {"memcpy"}
+
+
+# What a C library's start code (newlib's crt0 on ARM, picolibc's on RISC-V) links, and a
+# firmware started by examples/embedded/startup.c does not.
+LIBC_START = {"_mainCRTStartup", "_cstart", "__libc_init_array", "exit", "atexit", "__call_exitprocs", "_set_tls"}
+
+
+def symbols(target, elf) -> dict[str, int]:
+    return {line.split()[2]: int(line.split()[0], 16)
+            for line in bench_embedded.run(target.tool("nm"), str(elf)).splitlines() if len(line.split()) == 3}
+
+
+def first_words(target, elf, n: int) -> list[int]:
+    """The first n 32-bit words of flash (address 0), as the CPU reads them at reset."""
+    out = elf.with_suffix(".bin")
+    bench_embedded.run(target.tool("objcopy"), "-O", "binary", "-j", ".text", str(elf), str(out))
+    data = out.read_bytes()[:4 * n]
+    return list(struct.unpack(f"<{n}I", data))
+
+
+@pytest.mark.parametrize("name", ["Cortex-M4F", "RV32IMC"])
+def test_the_firmwares_start_from_their_own_reset_not_the_c_librarys(tmp_path, name):
+    """bench-embedded's firmwares are linked as a device's: startup.c's vector table (ARM) or
+    entry (RISC-V) at address 0, firmware.ld's stack, and none of the C library's start code."""
+    [target] = [t for t in bench_embedded.TARGETS if t.name == name]
+    if shutil.which(target.tool("gcc")) is None:
+        pytest.skip(f"{target.tool('gcc')} not installed (scripts/setup.sh installs it)")
+    [firmware] = [f for f in bench_embedded.FIRMWARES if f.key == "rtde_values"]
+    figures = bench_embedded.measure_firmware(target, "-Os", firmware, {"generated": GEN}, tmp_path)
+    assert "skipped" not in figures, figures
+    elf = tmp_path / f"{firmware.key}.elf"
+    names = symbols(target, elf)
+    assert not LIBC_START & set(names), sorted(LIBC_START & set(names))
+    if name == "RV32IMC":
+        assert names["_start"] == 0
+        return
+    stack_pointer, reset = first_words(target, elf, 2)
+    assert stack_pointer == names["__stack_top"] and stack_pointer % 8 == 0
+    assert reset == names["Reset_Handler"] | 1  # a Thumb address
 
 
 def host_firmware(tmp_path, key: str) -> str:

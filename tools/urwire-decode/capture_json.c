@@ -55,11 +55,7 @@ static int restart(printer *p, conversation *conv, uint64_t offset)
     urwire_framer_finish(f);
     if ((stop = print_ready(p, conv)) != 0)
         return stop;
-    f->head = f->len = 0;
-    f->base = offset;
-    f->skip = 0;
-    f->resyncing = f->finished = f->ended_inside = false;
-    f->unlearnt = 0;
+    urwire_framer_restart(f, offset);
     return 0;
 }
 

@@ -67,8 +67,18 @@ void urwire_framer_finish(urwire_framer *f)
     f->finished = true;
 }
 
-static urwire_frame_kind urwire__fault(urwire_framer *f, urwire_frame *out, urwire_status status, int64_t value,
-                                       int64_t left)
+void urwire_framer_restart(urwire_framer *f, uint64_t offset)
+{
+    urwire__learn_unlearnt(f);  /* before its bytes are dropped */
+    f->head = f->len = 0;
+    f->base = offset;
+    f->skip = 0;
+    f->resyncing = f->finished = f->ended_inside = false;
+}
+
+/* A fault at head; out of line, so that urwire_framer_next keeps one copy for its four. */
+URWIRE__NOINLINE static urwire_frame_kind urwire__fault(urwire_framer *f, urwire_frame *out, urwire_status status,
+                                                        int64_t value, int64_t left)
 {
     out->kind = URWIRE_FRAME_FAULT;
     out->bytes = NULL;
@@ -77,6 +87,16 @@ static urwire_frame_kind urwire__fault(urwire_framer *f, urwire_frame *out, urwi
     out->version = f->version;
     urwire__fail(&out->fault, status, (size_t)out->offset, "", value, left);
     return URWIRE_FRAME_FAULT;
+}
+
+/* Nothing whole to hand out: the end once the stream has finished (the bytes left, if any,
+ * belong to a fault already reported), else a wait for more bytes. */
+static urwire_frame_kind urwire__wait(urwire_framer *f, urwire_frame *out)
+{
+    if (f->finished)
+        f->head = f->len;
+    out->kind = f->finished ? URWIRE_FRAME_END : URWIRE_FRAME_NEED_MORE;
+    return out->kind;
 }
 
 /* Where a rescan stops: a plausible header, and once the stream has ended inside a message,
@@ -127,86 +147,67 @@ URWIRE__INLINE void urwire__learn_version(urwire_framer *f, const uint8_t *bytes
     urwire__learn_announced(f, bytes, len);
 }
 
+/* One straight pass: the rest of a message too big for the buffer is dropped, or the bytes after
+ * a fault are scanned for a header (never both: a message is skipped only after a good header),
+ * then the header at head is checked and its message handed out. */
 urwire_frame_kind urwire_framer_next(urwire_framer *f, urwire_frame *out)
 {
     size_t left, drop;
     int64_t length;
     urwire_status status;
     urwire__learn_unlearnt(f);
-    for (;;) {
+    if (f->skip) {
         left = f->len - f->head;
-        if (f->skip) {
-            drop = f->skip < left ? (size_t)f->skip : left;
-            f->head += drop;
-            f->skip -= drop;
-            if (f->skip) {
-                if (f->finished) {
-                    f->head = f->len;
-                    out->kind = URWIRE_FRAME_END;
-                    return URWIRE_FRAME_END;
-                }
-                out->kind = URWIRE_FRAME_NEED_MORE;
-                return URWIRE_FRAME_NEED_MORE;
-            }
-            continue;
-        }
-        if (f->resyncing) {
-            while (f->len - f->head >= URWIRE_HEADER_SIZE && !urwire__rescan_stops_at(f, f->head))
-                f->head++;
-            if (f->len - f->head < URWIRE_HEADER_SIZE) {
-                if (f->finished) {
-                    f->head = f->len;  /* the last few bytes belong to the fault already reported */
-                    out->kind = URWIRE_FRAME_END;
-                    return URWIRE_FRAME_END;
-                }
-                out->kind = URWIRE_FRAME_NEED_MORE;
-                return URWIRE_FRAME_NEED_MORE;
-            }
-            f->resyncing = false;
-            left = f->len - f->head;
-        }
-        if (left < URWIRE_HEADER_SIZE) {
-            if (f->finished && left) {
-                urwire__fault(f, out, URWIRE_E_TRUNCATED_HEADER, 0, (int64_t)left);
-                f->head = f->len;
-                return URWIRE_FRAME_FAULT;
-            }
-            out->kind = f->finished ? URWIRE_FRAME_END : URWIRE_FRAME_NEED_MORE;
-            return out->kind;
-        }
-        length = URWIRE__LENGTH(f->buf + f->head);
-        status = urwire__header_fault(length, f->buf[f->head + URWIRE__TYPE_AT]);
-        if (status != URWIRE_OK) {
-            urwire__fault(f, out, status, status == URWIRE_E_MESSAGE_TYPE ? f->buf[f->head + URWIRE__TYPE_AT] : length,
-                          0);
-            f->resyncing = true;
-            f->head++;
-            return URWIRE_FRAME_FAULT;
-        }
-        if ((size_t)length > f->cap) {
-            urwire__fault(f, out, URWIRE_E_TOO_BIG_FOR_BUFFER, length, (int64_t)f->cap);
-            f->skip = (uint64_t)length;
-            return URWIRE_FRAME_FAULT;
-        }
-        if ((size_t)length > left) {
-            if (f->finished) {
-                /* Every byte of the stream is here: the rest of the span is rescanned for the
-                 * whole messages it holds, one check per byte however the lengths nest. */
-                urwire__fault(f, out, URWIRE_E_TRUNCATED_MESSAGE, length, (int64_t)left);
-                f->ended_inside = f->resyncing = true;
-                f->head++;
-                return URWIRE_FRAME_FAULT;
-            }
-            out->kind = URWIRE_FRAME_NEED_MORE;
-            return URWIRE_FRAME_NEED_MORE;
-        }
-        out->kind = URWIRE_FRAME_MESSAGE;
-        out->bytes = f->buf + f->head;
-        out->length = (size_t)length;
-        out->offset = f->base + f->head;
-        out->version = f->version;
-        urwire__learn_version(f, out->bytes, out->length);
-        f->head += (size_t)length;
-        return URWIRE_FRAME_MESSAGE;
+        drop = f->skip < left ? f->skip : left;
+        f->head += drop;
+        f->skip -= drop;
+        if (f->skip)
+            return urwire__wait(f, out);
     }
+    if (f->resyncing) {
+        while (f->len - f->head >= URWIRE_HEADER_SIZE && !urwire__rescan_stops_at(f, f->head))
+            f->head++;
+        if (f->len - f->head < URWIRE_HEADER_SIZE)
+            return urwire__wait(f, out);
+        f->resyncing = false;
+    }
+    left = f->len - f->head;
+    if (left < URWIRE_HEADER_SIZE) {
+        if (f->finished && left) {
+            urwire__fault(f, out, URWIRE_E_TRUNCATED_HEADER, 0, (int64_t)left);
+            f->head = f->len;
+            return URWIRE_FRAME_FAULT;
+        }
+        return urwire__wait(f, out);
+    }
+    length = URWIRE__LENGTH(f->buf + f->head);
+    status = urwire__header_fault(length, f->buf[f->head + URWIRE__TYPE_AT]);
+    if (status != URWIRE_OK) {
+        urwire__fault(f, out, status, status == URWIRE_E_MESSAGE_TYPE ? f->buf[f->head + URWIRE__TYPE_AT] : length, 0);
+        f->resyncing = true;
+        f->head++;
+        return URWIRE_FRAME_FAULT;
+    }
+    if ((size_t)length > f->cap) {
+        f->skip = (size_t)length;
+        return urwire__fault(f, out, URWIRE_E_TOO_BIG_FOR_BUFFER, length, (int64_t)f->cap);
+    }
+    if ((size_t)length > left) {
+        if (!f->finished)
+            return urwire__wait(f, out);
+        /* Every byte of the stream is here: the rest of the span is rescanned for the whole
+         * messages it holds, one check per byte however the lengths nest. */
+        urwire__fault(f, out, URWIRE_E_TRUNCATED_MESSAGE, length, (int64_t)left);
+        f->ended_inside = f->resyncing = true;
+        f->head++;
+        return URWIRE_FRAME_FAULT;
+    }
+    out->kind = URWIRE_FRAME_MESSAGE;
+    out->bytes = f->buf + f->head;
+    out->length = (size_t)length;
+    out->offset = f->base + f->head;
+    out->version = f->version;
+    urwire__learn_version(f, out->bytes, out->length);
+    f->head += (size_t)length;
+    return URWIRE_FRAME_MESSAGE;
 }
