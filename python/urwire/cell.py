@@ -26,6 +26,12 @@ def ports_of(interfaces: Iterable[Interface]) -> dict[int, Interface]:
     return {port: i for i in interfaces for port in i.ports}
 
 
+def primary_ports(by_port: dict[int, Interface]) -> frozenset:
+    """The ports of `by_port` of the primary interface: those whose segments a reader of large
+    captures has joined (cell_records' `joined`)."""
+    return frozenset(port for port, i in by_port.items() if i.name == PRIMARY)
+
+
 def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
                        advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
     """(capture time, record) of every conversation of the capture on the ports of `by_port`, as

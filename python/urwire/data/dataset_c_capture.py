@@ -18,7 +18,7 @@ from .._runtime import StreamError
 from ..backends import ccore
 from ..canonical import to_json_line
 from ..capture import Segments
-from ..cell import cell_records, ports_of
+from ..cell import cell_records, ports_of, primary_ports
 from ..decoding import decode_message
 from ..envelope import FROM_ROBOT, Endpoints, Enveloped
 from ..interfaces import INTERFACES
@@ -64,11 +64,6 @@ class _CaptureRows:
         by_port = ports_of(INTERFACES.values())
         primary = dataclasses.replace(INTERFACES[PRIMARY], conversation=self.conversation)
         return {port: primary if i.name == PRIMARY else i for port, i in by_port.items()}
-
-    @staticmethod
-    def joined() -> frozenset:
-        """The ports whose conversations take capture.Segments: the primary interface's."""
-        return frozenset(INTERFACES[PRIMARY].ports)
 
 
 class _PrimaryConversation:
@@ -149,7 +144,8 @@ def capture_parts(fh, capture: str, source: str, version_hint=None, robot: Optio
         rows.waiting.clear()
 
     position = 0
-    for item in cell_records(fh, version_hint, rows.interfaces(), joined=rows.joined()):
+    by_port = rows.interfaces()
+    for item in cell_records(fh, version_hint, by_port, joined=primary_ports(by_port)):
         record, time, address = item.record, item.capture_time, robot_address(item)
         in_c = type(record) is MadeInC
         count = record.count if in_c else 1
