@@ -4,7 +4,7 @@ conversations (the bulk of a cell's bytes) framed, decoded and written by C
 every other interface's records written by canonical.py. cell.py orders and envelopes both, so
 the lines are the same bytes as to_json_line of each record of capture_records. The C capture
 reader joins the primary streams' segments that come in a row (capture.Segments): a line has no
-capture time, so C is fed each run's bytes at once.
+capture time, so C is fed each run's bytes, FEED_BYTES at a time.
 """
 from __future__ import annotations
 
@@ -19,6 +19,11 @@ from .envelope import Endpoints
 from .extension import CCORE
 from .interfaces import Interface
 from .reading import CaptureRecords
+
+# C hands a feed's lines over as one bytes object, about 3.5 times the bytes fed. Fed a run of 1 MB
+# at once, each would be a fresh block of megabytes whose pages the kernel fills on first touch:
+# at 200 MB, 251k page faults and 0.51 s of system time, against 43k and 0.14 s in slices of 64 KiB.
+FEED_BYTES = 64 << 10
 
 
 @dataclasses.dataclass(frozen=True)
@@ -44,7 +49,11 @@ class PrimaryJsonConversation:
     def feed(self, data, from_robot: bool) -> list:
         if not from_robot:
             return []
-        return self._written(self._c.feed(data.data if type(data) is Segments else data))
+        if type(data) is not Segments:
+            return self._written(self._c.feed(data))
+        run = memoryview(data.data)
+        return [block for at in range(0, len(run), FEED_BYTES)
+                for block in self._written(self._c.feed(run[at:at + FEED_BYTES]))]
 
     def close(self, from_robot: Optional[bool] = None) -> list:
         return [] if from_robot is False else self._written(self._c.close())
