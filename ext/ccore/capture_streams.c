@@ -1,16 +1,37 @@
 /* urwire._ccore.CaptureStreams: the items of python/urwire/capture.py's timed_streams, made by
  * the C capture reader (runtime/c/capture/capture.h). capture.py gives the classes of its faults
- * (Gap, Differs, CaptureFault), so that both readers hand out the same objects. */
+ * (Gap, Differs, CaptureFault), so that both readers hand out the same objects.
+ *
+ * On the `joined` ports, the bytes of one direction that come in a row within one feed (no other
+ * item between them) are one item, a Segments (ccore_segments.h) that keeps each segment's end
+ * and time: a reader of a large capture then takes a Python step per run, not per segment. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 
+#include <string.h>
+
 #include "capture.h"
 #include "capture_streams.h"
+#include "ccore_segments.h"
+#include "growing.h"
+
+/* The bytes being joined: one direction of one conversation. */
+typedef struct {
+    urwire_capture_conversation *conversation;  /* NULL: none */
+    bool from_robot, ended;
+    double time;                                /* the last segment's */
+    uint8_t *data;
+    size_t length, capacity;
+    ccore_segment_stamp *stamps;
+    size_t n_stamps, stamps_capacity;
+} run;
 
 typedef struct {
     PyObject_HEAD
     urwire_capture *capture;
-    PyObject *gap, *differs, *fault;    /* the classes */
+    PyObject *gap, *differs, *fault, *segments;     /* the classes */
+    uint8_t joined[65536 / 8];          /* a bit per robot port whose bytes are joined */
+    run run;
     PyObject *items;                    /* the list being filled by a feed or finish */
 } CaptureStreams;
 
@@ -28,7 +49,10 @@ static void streams_dealloc(CaptureStreams *self)
     Py_XDECREF(self->gap);
     Py_XDECREF(self->differs);
     Py_XDECREF(self->fault);
+    Py_XDECREF(self->segments);
     Py_XDECREF(self->items);
+    free(self->run.data);
+    free(self->run.stamps);
     Py_TYPE(self)->tp_free((PyObject *)self);
 }
 
@@ -55,16 +79,16 @@ static Py_ssize_t ports_of(PyObject *iterable, uint16_t *ports)
     return PyErr_Occurred() ? -1 : n;
 }
 
-/* CaptureStreams(ports, both_ways, others, Gap, Differs, CaptureFault) */
+/* CaptureStreams(ports, both_ways, others, Gap, Differs, CaptureFault, joined=(), Segments=None) */
 static int streams_init(CaptureStreams *self, PyObject *args, PyObject *kwargs)
 {
-    static char *names[] = {"ports", "both_ways", "others", "gap", "differs", "fault", NULL};
-    PyObject *ports, *both_ways, *gap, *differs, *fault;
+    static char *names[] = {"ports", "both_ways", "others", "gap", "differs", "fault", "joined", "segments", NULL};
+    PyObject *ports, *both_ways, *gap, *differs, *fault, *joined = NULL, *segments = Py_None;
     int others;
     uint16_t *read = NULL, *both = NULL;
-    Py_ssize_t n_read, n_both;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOpOOO", names, &ports, &both_ways, &others, &gap, &differs,
-                                     &fault))
+    Py_ssize_t n_read, n_both, n_joined = 0, i;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOpOOO|OO", names, &ports, &both_ways, &others, &gap, &differs,
+                                     &fault, &joined, &segments))
         return -1;
     if (self->capture != NULL) {
         PyErr_SetString(PyExc_RuntimeError, "CaptureStreams is made once");
@@ -78,7 +102,16 @@ static int streams_init(CaptureStreams *self, PyObject *args, PyObject *kwargs)
         PyErr_NoMemory();
         return -1;
     }
-    n_read = ports_of(ports, read);
+    if (joined != NULL) {       /* read into `both` first, which is free until both_ways is read */
+        n_joined = ports_of(joined, both);
+        if (n_joined > 0 && segments == Py_None) {
+            PyErr_SetString(PyExc_TypeError, "CaptureStreams: joined ports need the Segments class");
+            n_joined = -1;
+        }
+        for (i = 0; i < n_joined; i++)
+            self->joined[both[i] >> 3] |= (uint8_t)(1u << (both[i] & 7));
+    }
+    n_read = n_joined < 0 ? -1 : ports_of(ports, read);
     n_both = n_read < 0 ? -1 : ports_of(both_ways, both);
     if (n_both >= 0 && (self->capture = urwire_capture_new(read, (size_t)n_read, both, (size_t)n_both,
                                                            others != 0)) == NULL)
@@ -93,6 +126,8 @@ static int streams_init(CaptureStreams *self, PyObject *args, PyObject *kwargs)
     self->gap = gap;
     self->differs = differs;
     self->fault = fault;
+    Py_INCREF(segments);
+    self->segments = segments;
     return 0;
 }
 
@@ -105,14 +140,92 @@ static PyObject *key_of(urwire_capture_conversation *conversation)
     return conversation->user;
 }
 
+/* Appends the item (key, from robot, piece, ended, time) to the list; -2 with an exception set. */
+static int append(CaptureStreams *self, urwire_capture_conversation *conversation, bool from_robot, PyObject *piece,
+                  bool ended, double time)
+{
+    PyObject *key = key_of(conversation), *entry;
+    int rc;
+    if (key == NULL) {
+        Py_DECREF(piece);
+        return -2;
+    }
+    entry = Py_BuildValue("(OONOd)", key, from_robot ? Py_True : Py_False, piece, ended ? Py_True : Py_False, time);
+    if (entry == NULL)
+        return -2;
+    rc = PyList_Append(self->items, entry);
+    Py_DECREF(entry);
+    return rc < 0 ? -2 : 0;
+}
+
+/* The run, if any, as one item: Segments(data, stamps). 0, or -2 with an exception set. */
+static int close_run(CaptureStreams *self)
+{
+    run *r = &self->run;
+    urwire_capture_conversation *conversation = r->conversation;
+    PyObject *piece;
+    if (conversation == NULL)
+        return 0;
+    piece = PyObject_CallFunction(self->segments, "y#y#", (const char *)r->data, (Py_ssize_t)r->length,
+                                  (const char *)r->stamps, (Py_ssize_t)(r->n_stamps * sizeof *r->stamps));
+    r->conversation = NULL;
+    r->length = r->n_stamps = 0;
+    return piece == NULL ? -2 : append(self, conversation, r->from_robot, piece, r->ended, r->time);
+}
+
+static bool joins(const CaptureStreams *self, const urwire_capture_item *item)
+{
+    uint16_t port = item->conversation->robot_port;
+    const run *r = &self->run;
+    if (item->kind != URWIRE_ITEM_BYTES || !(self->joined[port >> 3] & (1u << (port & 7))))
+        return false;
+    /* The empty item that ends a stream closes the run it ends, else it goes as it is. */
+    return item->length > 0 || (r->conversation == item->conversation && r->from_robot == item->from_robot);
+}
+
+/* The item's bytes added to the run (a run of another direction closed first). 0, -2 with an
+ * exception set, or URWIRE_CAPTURE_NO_MEMORY. */
+static int join(CaptureStreams *self, const urwire_capture_item *item)
+{
+    run *r = &self->run;
+    if ((r->conversation != item->conversation || r->from_robot != item->from_robot) && close_run(self) < 0)
+        return -2;
+    if (item->length > 0) {
+        if (item->length > SIZE_MAX - r->length
+            || !urwire_capture_grow((void **)&r->data, &r->capacity, r->length + item->length, 1)
+            || !urwire_capture_grow((void **)&r->stamps, &r->stamps_capacity, r->n_stamps + 1, sizeof *r->stamps))
+            return URWIRE_CAPTURE_NO_MEMORY;
+        memcpy(r->data + r->length, item->data, item->length);
+        r->length += item->length;
+        r->stamps[r->n_stamps].end = (int64_t)r->length;
+        r->stamps[r->n_stamps++].time = item->time;
+    }
+    r->conversation = item->conversation;
+    r->from_robot = item->from_robot;
+    r->ended = item->ended;
+    r->time = item->time;
+    return item->ended ? close_run(self) : 0;
+}
+
 static int collect(void *context, const urwire_capture_item *item)
 {
     CaptureStreams *self = context;
-    PyObject *piece, *entry, *key;
+    PyObject *piece;
+    if (item->kind != URWIRE_ITEM_FAULT && joins(self, item))
+        return join(self, item);
+    if (close_run(self) < 0)
+        return -2;
     switch (item->kind) {
     case URWIRE_ITEM_FAULT:
-        entry = PyObject_CallFunction(self->fault, "Ls", (long long)item->offset, item->error);
-        goto append;
+        piece = PyObject_CallFunction(self->fault, "Ls", (long long)item->offset, item->error);
+        if (piece == NULL)
+            return -2;
+        if (PyList_Append(self->items, piece) < 0) {
+            Py_DECREF(piece);
+            return -2;
+        }
+        Py_DECREF(piece);
+        return 0;
     case URWIRE_ITEM_GAP:
         piece = PyObject_CallFunction(self->gap, "LL", (long long)item->offset, (long long)item->missing);
         break;
@@ -123,27 +236,18 @@ static int collect(void *context, const urwire_capture_item *item)
     default:
         piece = PyBytes_FromStringAndSize((const char *)item->data, (Py_ssize_t)item->length);
     }
-    if (piece == NULL || (key = key_of(item->conversation)) == NULL) {
-        Py_XDECREF(piece);
-        return -2;
-    }
-    entry = Py_BuildValue("(OONOd)", key, item->from_robot ? Py_True : Py_False, piece,
-                          item->ended ? Py_True : Py_False, item->time);
-append:
-    if (entry == NULL)
-        return -2;
-    if (PyList_Append(self->items, entry) < 0) {
-        Py_DECREF(entry);
-        return -2;
-    }
-    Py_DECREF(entry);
-    return 0;
+    return piece == NULL ? -2 : append(self, item->conversation, item->from_robot, piece, item->ended, item->time);
 }
 
 /* The list of items, or NULL with an exception set, from a feed or finish that returned `stop`. */
 static PyObject *items_after(CaptureStreams *self, int stop)
 {
-    PyObject *items = self->items;
+    PyObject *items;
+    if (stop == 0 && close_run(self) < 0)    /* a run ends with the feed: its items are all out */
+        stop = -2;
+    self->run.conversation = NULL;
+    self->run.length = self->run.n_stamps = 0;
+    items = self->items;
     self->items = NULL;
     if (stop == URWIRE_CAPTURE_NO_MEMORY)
         PyErr_NoMemory();

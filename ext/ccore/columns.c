@@ -19,11 +19,13 @@
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "ccore_framer.h"
+#include "ccore_segments.h"
 #include "columns.h"
 #include "json.h"
 #include "urwire.h"
@@ -1006,12 +1008,12 @@ static int usable(PrimaryColumns *self)
 }
 
 /* Feeds data to the stream being read (self->framer) and adds every record it completes. */
-static int feed_framer(PrimaryColumns *self, Py_buffer *view)
+static int feed_framer(PrimaryColumns *self, const uint8_t *data, size_t length)
 {
     size_t off = 0;
     int rc = 0;
-    while (off < (size_t)view->len && rc == 0) {
-        off += urwire_framer_feed(self->framer, (const uint8_t *)view->buf + off, (size_t)view->len - off);
+    while (off < length && rc == 0) {
+        off += urwire_framer_feed(self->framer, data + off, length - off);
         rc = add_ready(self);
     }
     return rc;
@@ -1027,7 +1029,7 @@ static PyObject *columns_feed(PrimaryColumns *self, PyObject *arg)
         return NULL;
     self->framer = &self->own;
     self->has_time = 0;
-    rc = feed_framer(self, &view);
+    rc = feed_framer(self, view.buf, (size_t)view.len);
     PyBuffer_Release(&view);
     return rc == 0 ? take_output(self) : NULL;
 }
@@ -1065,6 +1067,18 @@ static int place(PrimaryColumns *self, long long position, PyObject *time)
 
 static PyTypeObject PrimaryStreamType;
 
+/* Whether a capture's stream can be fed; 0 with an exception set. */
+static int stream_open(PrimaryColumns *self, PrimaryStream *stream)
+{
+    if (!usable(self))
+        return 0;
+    if (!stream->buffer || stream->finished) {
+        PyErr_SetString(PyExc_ValueError, "the stream has ended, or was not initialised");
+        return 0;
+    }
+    return 1;
+}
+
 /* feed_stream(stream, data, position, time) -> the records the bytes complete in that stream of a
  * capture, numbered from position, dated time (UTC microseconds); their rows wait for take(). */
 static PyObject *columns_feed_stream(PrimaryColumns *self, PyObject *args)
@@ -1076,18 +1090,61 @@ static PyObject *columns_feed_stream(PrimaryColumns *self, PyObject *args)
     int rc;
     if (!PyArg_ParseTuple(args, "O!y*LO", &PrimaryStreamType, &stream, &view, &position, &time))
         return NULL;
-    if (!usable(self) || !stream->buffer || stream->finished || place(self, position, time) < 0) {
-        if (!PyErr_Occurred())
-            PyErr_SetString(PyExc_ValueError, "the stream has ended, or was not initialised");
+    if (!stream_open(self, stream) || place(self, position, time) < 0) {
         PyBuffer_Release(&view);
         return NULL;
     }
     start = self->position;
     self->framer = &stream->framer;
-    rc = feed_framer(self, &view);
+    rc = feed_framer(self, view.buf, (size_t)view.len);
     self->framer = &self->own;
     PyBuffer_Release(&view);
     return rc == 0 ? PyLong_FromLongLong(self->position - start) : NULL;
+}
+
+/* A capture time in seconds as the dataset's column holds it: in microseconds, rounded half to
+ * even (python/urwire/data/dataset_c.py's micros, Python's round). */
+static long long micros(double time)
+{
+    return (long long)nearbyint(time * 1e6);
+}
+
+/* feed_segments(stream, data, stamps, position) -> records: feed_stream of a run of segments
+ * joined (ccore_segments.h: capture.py's Segments), a segment at a time, so that each record is
+ * dated by the segment that completes it, as if each had been fed alone. */
+static PyObject *columns_feed_segments(PrimaryColumns *self, PyObject *args)
+{
+    PrimaryStream *stream;
+    Py_buffer view, stamps;
+    long long position;
+    ccore_segment_stamp stamp;
+    size_t n, i, from = 0;
+    int rc = 0;
+    if (!PyArg_ParseTuple(args, "O!y*y*L", &PrimaryStreamType, &stream, &view, &stamps, &position))
+        return NULL;
+    n = (size_t)stamps.len / sizeof stamp;
+    for (i = 0; i < n && rc == 0; i++) {
+        memcpy(&stamp, (const char *)stamps.buf + i * sizeof stamp, sizeof stamp);
+        rc = stamp.end >= (int64_t)from && stamp.end <= (int64_t)view.len ? 0 : -1;
+        from = (size_t)stamp.end;
+    }
+    if (rc < 0 || from != (size_t)view.len || (size_t)stamps.len % sizeof stamp) {
+        PyErr_SetString(PyExc_ValueError, "feed_segments: the stamps do not cut the bytes in order");
+    } else if (stream_open(self, stream)) {
+        self->position = position;
+        self->has_time = 1;
+        self->framer = &stream->framer;
+        for (i = 0, from = 0; i < n && rc == 0; i++) {
+            memcpy(&stamp, (const char *)stamps.buf + i * sizeof stamp, sizeof stamp);
+            self->time_us = micros(stamp.time);
+            rc = feed_framer(self, (const uint8_t *)view.buf + from, (size_t)stamp.end - from);
+            from = (size_t)stamp.end;
+        }
+        self->framer = &self->own;
+    }
+    PyBuffer_Release(&view);
+    PyBuffer_Release(&stamps);
+    return PyErr_Occurred() ? NULL : PyLong_FromLongLong(self->position - position);
 }
 
 /* close_stream(stream, position, time) -> the records the end of that stream completes. */
@@ -1185,6 +1242,9 @@ static PyMethodDef columns_methods[] = {
      "close() -> (batches, messages): what the end of the stream completes, and every kind's last batch"},
     {"feed_stream", (PyCFunction)columns_feed_stream, METH_VARARGS,
      "feed_stream(stream, data, position, time) -> records: a capture's stream, its rows kept for take()"},
+    {"feed_segments", (PyCFunction)columns_feed_segments, METH_VARARGS,
+     "feed_segments(stream, data, stamps, position) -> records: feed_stream of segments joined, each dated "
+     "by its own time (capture.Segments)"},
     {"close_stream", (PyCFunction)columns_close_stream, METH_VARARGS,
      "close_stream(stream, position, time) -> records: what the end of a capture's stream completes"},
     {"restart_stream", (PyCFunction)columns_restart_stream, METH_VARARGS,

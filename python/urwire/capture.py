@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import heapq
 import socket
+import struct
 from dataclasses import dataclass, field
 from typing import BinaryIO, Iterator, Optional, Union
 
@@ -84,7 +85,28 @@ class Differs:
                 f"({self.differing} of {self.length}); the first kept")
 
 
-Piece = Union[bytes, Gap, Differs]
+@dataclass(frozen=True)
+class Segments:
+    """Bytes of one direction that came in several segments in a row, joined by the C reader on the
+    ports a reader asks it to join (timed_streams' `joined`), so that a large capture takes a Python
+    step per run of segments, not per segment: `stamps` packs, per segment, where it ends in `data`
+    and the capture time of its frame (ext/ccore/ccore_segments.h), for PrimaryColumns.feed_segments;
+    `pieces` unpacks them."""
+
+    data: bytes
+    stamps: bytes
+
+    def pieces(self) -> list[tuple[bytes, float]]:
+        """Each segment's bytes and capture time, as the reader would have given them one by one."""
+        out, start = [], 0
+        for end, time in _STAMP.iter_unpack(self.stamps):
+            out.append((self.data[start:end], time))
+            start = end
+        return out
+
+
+_STAMP = struct.Struct("=qd")     # ccore_segment_stamp: the end (int64_t), the time (double)
+Piece = Union[bytes, Gap, Differs, Segments]
 
 
 @dataclass
@@ -293,7 +315,7 @@ class OtherConversations:
 
 
 def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozenset(),
-                  others: Optional[OtherConversations] = None) -> Iterator[
+                  others: Optional[OtherConversations] = None, joined: frozenset = frozenset()) -> Iterator[
         Union[tuple[StreamKey, bool, Piece, bool, float], CaptureFault]]:
     """(conversation, from robot, piece, stream ended, capture time) for the TCP streams whose
     robot side is on `ports`: robot->client always, client->robot too for the ports in `both_ways`
@@ -302,15 +324,18 @@ def timed_streams(fh: BinaryIO, ports: set[int], both_ways: frozenset = frozense
     piece is the bytes that came next (b"" when a stream ends with nothing more), or a Gap where
     the reader gave up bytes the capture does not hold and went on after them, or a Differs where
     a retransmission disagrees with the bytes it repeats. CaptureFaults as timed_robot_streams
-    says. The TCP conversations on none of `ports` go to `others`, when given."""
+    says. The TCP conversations on none of `ports` go to `others`, when given. On the ports in
+    `joined`, the C reader may give a run of segments as one piece, a Segments (dated by its last
+    segment's time); the Python reader gives every segment alone."""
     if CCORE is not None:
-        return _timed_streams_in_c(fh, ports, both_ways, others)
+        return _timed_streams_in_c(fh, ports, both_ways, others, joined)
     return _timed_streams_in_python(fh, ports, both_ways, others)
 
 
 def _timed_streams_in_c(fh: BinaryIO, ports: set[int], both_ways: frozenset,
-                        others: Optional[OtherConversations]) -> Iterator:
-    streams = CCORE.CaptureStreams(ports, both_ways, others is not None, Gap, Differs, CaptureFault)
+                        others: Optional[OtherConversations], joined: frozenset) -> Iterator:
+    streams = CCORE.CaptureStreams(ports, both_ways, others is not None, Gap, Differs, CaptureFault, joined,
+                                   Segments)
     while True:
         chunk = fh.read(C_CHUNK)
         items = streams.feed(chunk) if chunk else streams.finish()

@@ -26,6 +26,12 @@ def ports_of(interfaces: Iterable[Interface]) -> dict[int, Interface]:
     return {port: i for i in interfaces for port in i.ports}
 
 
+def primary_ports(by_port: dict[int, Interface]) -> frozenset:
+    """The ports of `by_port` of the primary interface: those whose segments a reader of large
+    captures has joined (cell_records' `joined`)."""
+    return frozenset(port for port, i in by_port.items() if i.name == PRIMARY)
+
+
 def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
                        advance: Callable[[int], None] = lambda n: None) -> Iterator[tuple]:
     """(capture time, record) of every conversation of the capture on the ports of `by_port`, as
@@ -37,13 +43,15 @@ def timed_cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Inter
 
 def cell_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
                  advance: Callable[[int], None] = lambda n: None,
-                 others: Optional[OtherConversations] = None) -> Iterator[Enveloped]:
+                 others: Optional[OtherConversations] = None,
+                 joined: frozenset = frozenset()) -> Iterator[Enveloped]:
     """Every record of the capture's conversations on the ports of `by_port`, each Enveloped with
     its interface, direction, conversation and capture time, the primary interface's too; a
     fault of the capture file with none of them. The conversations on other ports go to
-    `others`, when given."""
+    `others`, when given; those on the ports in `joined` may be fed capture.Segments."""
     ends = _EndpointsOf()
-    for time, key, interface, from_robot, record in conversation_records(fh, hint, by_port, advance, others):
+    for time, key, interface, from_robot, record in conversation_records(fh, hint, by_port, advance, others,
+                                                                         joined):
         if key is None:
             yield Enveloped(None, None, None, record)
         else:
@@ -62,7 +70,8 @@ class _EndpointsOf(dict):
 
 def conversation_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Interface],
                          advance: Callable[[int], None] = lambda n: None,
-                         others: Optional[OtherConversations] = None) -> Iterator[tuple]:
+                         others: Optional[OtherConversations] = None,
+                         joined: frozenset = frozenset()) -> Iterator[tuple]:
     """(capture time, conversation, interface, from robot, record) of every conversation of the
     capture on the ports of `by_port`, the conversation being (server address, server port,
     client address, client port); a fault of the capture file comes as (None, None, None, None,
@@ -74,7 +83,7 @@ def conversation_records(fh: BinaryIO, hint: VersionLike, by_port: dict[int, Int
     both_ways = {port for port, i in by_port.items() if i.both_directions}
     last = 0
     seekable = fh.seekable()
-    for item in timed_streams(fh, set(by_port), both_ways, others):
+    for item in timed_streams(fh, set(by_port), both_ways, others, joined):
         if isinstance(item, CaptureFault):  # its offset is the capture file's, not a stream's
             yield None, None, None, None, StreamError(item.offset, item.error)
             continue

@@ -1,7 +1,8 @@
 """Run by tests/python/test_capture_readers.py: the C capture reader through urwire._ccore built
-with ASan and UBSan (its path: argv[1]) against the Python reader, over every capture the tests
-have, damaged copies of them and sessions of reordered, lost and changed segments. A difference
-or a sanitizer's report ends the process with an error."""
+with ASan and UBSan (its path: argv[1]) against the Python reader, and against itself with runs of
+segments joined (capture.Segments), over every capture the tests have, damaged copies of them and
+sessions of reordered, lost and changed segments. A difference or a sanitizer's report ends the
+process with an error."""
 import random
 import sys
 import tempfile
@@ -42,7 +43,8 @@ def main(path: str) -> int:
             copy.write_bytes(bytes(damaged[:rng.randrange(len(damaged) // 2, len(damaged) + 1)]))
             inputs.append(copy)
         for item in inputs:
-            readers.assert_same(item, Patch)
+            readers.assert_same(item, Patch)      # leaves capture.CCORE the sanitized build
+            readers.assert_joined_the_same(item)
             count += 1
     capture.CCORE = readers.CCORE
     print(count)

@@ -72,6 +72,25 @@ def test_lost_segments_of_two_robots_print_the_same(tmp_path, monkeypatch, capsy
     assert '"conversation": "192.168.56.102:30002-' in out
 
 
+def test_runs_of_segments_fed_in_slices_print_the_same(tmp_path, monkeypatch, capsys):
+    """One primary conversation of many segments in a row: the C reader joins them into runs, fed
+    to C in slices (FEED_BYTES) that cut its messages; the first slices come before the conversation's
+    lines have their envelope from C."""
+    from urwire import capture_json
+
+    stream = primary_stream() * 8
+    frames = pcap.robot_session([stream[at:at + 300] for at in range(0, len(stream), 300)], port=30001)
+    path = str(pcap.write(tmp_path / "long.pcapng", frames, pcapng=True))
+    monkeypatch.setattr(capture_json, "FEED_BYTES", 1000)
+    fed = []
+    feed = capture_json.PrimaryJsonConversation.feed
+    monkeypatch.setattr(capture_json.PrimaryJsonConversation, "feed",
+                        lambda self, data, from_robot: fed.append(data) or feed(self, data, from_robot))
+    out = assert_same([path], monkeypatch, capsys)
+    assert any(isinstance(data, capture.Segments) and len(data.data) > 3000 for data in fed)
+    assert out.count('"conversation": "192.168.56.101:30001-') == out.count("\n") >= 16
+
+
 def test_a_hint_and_one_protocol_print_the_same(tmp_path, monkeypatch, capsys):
     path = str(lossy(tmp_path / "lossy.pcapng"))
     assert_same([path, "--version-hint", "3.2"], monkeypatch, capsys)

@@ -107,6 +107,49 @@ def test_damaged_copies_of_the_captures_read_the_same(path, tmp_path, monkeypatc
         assert_same(copy, monkeypatch)
 
 
+# ---- runs of segments joined (capture.Segments), as a reader of large captures asks for ----
+
+def events(read: list) -> list:
+    """The items as events, a run of segments as its segments: (bytes, time) each, then the
+    stream's end with the time of the item that ended it."""
+    out = []
+    for item in read:
+        if type(item) is not tuple:
+            out.append(item)
+            continue
+        key, from_robot, piece, ended, time = item
+        if isinstance(piece, (bytes, capture.Segments)):
+            pieces = piece.pieces() if isinstance(piece, capture.Segments) else [(piece, time)] if piece else []
+            out += [("bytes", key, from_robot, data, at) for data, at in pieces]
+            out += [("end", key, from_robot, time)] if ended else []
+        else:
+            out.append((key, from_robot, piece, ended, time))
+    return out
+
+
+def assert_joined_the_same(path: Path) -> list:
+    with open(path, "rb") as fh:
+        alone = list(capture.timed_streams(fh, set(BY_PORT), BOTH_WAYS))
+    with open(path, "rb") as fh:
+        joined = list(capture.timed_streams(fh, set(BY_PORT), BOTH_WAYS, joined=frozenset(BY_PORT)))
+    assert events(joined) == events(alone), path.name
+    return joined
+
+
+@pytest.mark.parametrize("path", CAPTURES, ids=lambda p: str(p.relative_to(ROOT)))
+def test_runs_of_segments_joined_hold_each_segment_and_its_time(path):
+    assert_joined_the_same(path)
+
+
+def test_runs_are_joined_between_faults_and_other_conversations(tmp_path):
+    one, other = shuffled_session(3, 30003), shuffled_session(104, 30001)
+    frames = [frame for at in range(0, max(len(one), len(other)), 6) for frame in one[at:at + 6] + other[at:at + 6]]
+    joined = assert_joined_the_same(pcap.write(tmp_path / "shuffled.pcap", frames))
+    runs = [item[2] for item in joined if type(item) is tuple and isinstance(item[2], capture.Segments)]
+    assert max(len(run.pieces()) for run in runs) > 3
+    assert any(isinstance(item[2], (capture.Gap, capture.Differs)) for item in joined if type(item) is tuple)
+
+
 # ---- the link layers, IPv6 and pcapng's interfaces and sections, in one capture ----
 
 def links(ethernet: bytes) -> dict[int, bytes]:

@@ -243,6 +243,9 @@ def test_row_groups_take_a_kinds_share_of_the_bound_and_carry_statistics(tmp_pat
     assert [meta.row_group(i).num_rows for i in range(meta.num_row_groups - 1)] == [100] * (meta.num_row_groups - 1)
     stats = meta.row_group(0).column(schema.names.index("t_motor_0")).statistics
     assert stats.has_min_max and stats.min <= stats.max
+    dictionary = {name for name in schema.names
+                  if "RLE_DICTIONARY" in meta.row_group(0).column(schema.names.index(name)).encodings}
+    assert dictionary == set(schema.names) - set(files.UNIQUE_COLUMNS)     # unique per row: written plainly
 
 
 # ---- the fleet queries of docs/tables.md ------------------------------------------------------

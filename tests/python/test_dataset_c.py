@@ -227,6 +227,21 @@ def test_the_extension_refuses_a_layout_without_its_routing_kinds_and_a_closed_s
         stream.feed(b"\0\0\0\5\x14")
 
 
+def test_segments_whose_stamps_do_not_cut_their_bytes_in_order_are_refused():
+    import struct
+
+    columns = dataset_c.columns(None)
+    stream = urwire.backends.ccore().PrimaryStream(None)
+    data = robot_inputs.real_states()[0]
+    for ends in ([len(data) - 1], [len(data), len(data) - 1, len(data)], [-1, len(data)], [len(data) + 1]):
+        stamps = b"".join(struct.pack("=qd", end, 1.7e9) for end in ends)
+        with pytest.raises(ValueError, match="stamps"):
+            columns.feed_segments(stream, data, stamps, 0)
+    with pytest.raises(ValueError, match="stamps"):
+        columns.feed_segments(stream, data, struct.pack("=qd", len(data), 1.7e9) + b"\0", 0)
+    assert columns.feed_segments(stream, data, struct.pack("=qd", len(data), 1.7e9), 0) == 1
+
+
 def test_the_command_writes_the_same_dataset_under_both_backends(tmp_path):
     stream = tmp_path / "stream.bin"
     stream.write_bytes(b"".join(case.data for case in all_cases() if case.version is None)

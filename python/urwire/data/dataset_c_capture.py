@@ -1,11 +1,13 @@
 """The dataset's rows of a .pcap or .pcapng under the C backend (dataset.py, dataset_c.py).
 
-In a capture Python still reads the file and reassembles the TCP streams, and makes the rows of
-the other interfaces; each robot's primary and secondary streams go to C (a PrimaryStream per
-connection, one PrimaryColumns per robot, so that the rows of its connections stay in capture
-order), and the capture reader counts one placeholder per record C made, so that every record
-keeps its position. Each position C fills is noted with its conversation (dataset_c.Conversations),
-which names the conversation of C's rows.
+The capture reader (C's, else capture.py's) reads the file and reassembles the TCP streams, and
+Python makes the rows of the other interfaces; each robot's primary and secondary streams go to C
+(a PrimaryStream per connection, one PrimaryColumns per robot, so that the rows of its connections
+stay in capture order), and the capture reader counts a placeholder per block of records C made,
+so that every record keeps its position. Each position C fills is noted with its conversation
+(dataset_c.Conversations), which names the conversation of C's rows. The C reader joins the
+segments of a primary stream that come in a row (capture.Segments), which C reads a segment at a
+time: Python takes a step per run of segments and per batch of rows, not per segment or record.
 """
 from __future__ import annotations
 
@@ -15,7 +17,8 @@ from typing import Iterator, Optional
 from .._runtime import StreamError
 from ..backends import ccore
 from ..canonical import to_json_line
-from ..cell import cell_records, ports_of
+from ..capture import Segments
+from ..cell import cell_records, ports_of, primary_ports
 from ..decoding import decode_message
 from ..envelope import FROM_ROBOT, Endpoints, Enveloped
 from ..interfaces import INTERFACES
@@ -25,11 +28,13 @@ from .dataset_rows import PartBuilder, serial_numbers
 from .records import conversation_text, robot_address
 
 
-class _MadeInC:
-    """What the capture reader yields for a record whose rows C made: it counts as one record."""
+class MadeInC:
+    """What the capture reader yields for `count` records in a row whose rows C made."""
 
+    __slots__ = ("count",)
 
-MADE_IN_C = _MadeInC()
+    def __init__(self, count: int) -> None:
+        self.count = count
 
 
 class _CaptureRows:
@@ -62,8 +67,9 @@ class _CaptureRows:
 
 
 class _PrimaryConversation:
-    """interfaces.PrimaryConversation with C's framer: it gives a placeholder per record, whose rows
-    C has made, numbered from the reader's next position and dated by the bytes' capture time."""
+    """interfaces.PrimaryConversation with C's framer: it gives a placeholder for the records whose
+    rows C has made, numbered from the reader's next position and dated by the capture time of the
+    segment that completes each."""
 
     def __init__(self, rows: _CaptureRows, version_hint) -> None:
         self.rows = rows
@@ -81,10 +87,12 @@ class _PrimaryConversation:
             self.robot = self.rows.robot_of(key[0])
         self.time = time
 
-    def feed(self, data: bytes, from_robot: bool) -> list:
+    def feed(self, data, from_robot: bool) -> list:
         if not from_robot:
             return []
         columns = self.rows.columns(self.robot)
+        if type(data) is Segments:
+            return self._made(columns, columns.feed_segments(self.stream, data.data, data.stamps, self._position()))
         return self._made(columns, columns.feed_stream(self.stream, data, self._position(), micros(self.time)))
 
     def close(self, from_robot: Optional[bool] = None) -> list:
@@ -106,8 +114,8 @@ class _PrimaryConversation:
     def _made(self, columns, count: int) -> list:
         self.rows.conversations.note(self._position(), count, self.conversation)
         self.next_position = self._position() + count
-        self.rows.waiting.append((self.robot, self.time, columns.take()))
-        return [MADE_IN_C] * count
+        self.rows.waiting.append((self.robot, columns.take()))
+        return [MadeInC(count)] if count else []
 
     @property
     def software_version(self):
@@ -125,20 +133,25 @@ def capture_parts(fh, capture: str, source: str, version_hint=None, robot: Optio
     builder = PartBuilder(capture, source, date, robot)     # the other interfaces, the kinds Python makes
 
     def waiting() -> Iterator[Part]:
-        for owner, time, (batches, messages) in rows.waiting:
+        for owner, (batches, messages) in rows.waiting:
             for index, count, buffers in batches:
                 yield from tables.parts(owner, index, count, buffers)
-            for _, position, _, frame, version, known in messages:
+            for _, position, us, frame, version, known in messages:
+                time = None if us is None else us / 1e6     # the time of the segment that completed it
                 record = Enveloped(PRIMARY, FROM_ROBOT, rows.conversations.at(position),
                                    decode_message(frame, version, known), time)
                 yield from builder.add(position, time, owner, record)
         rows.waiting.clear()
 
-    for position, item in enumerate(cell_records(fh, version_hint, rows.interfaces())):
-        rows.next_position = position + 1
+    position = 0
+    by_port = rows.interfaces()
+    for item in cell_records(fh, version_hint, by_port, joined=primary_ports(by_port)):
         record, time, address = item.record, item.capture_time, robot_address(item)
-        if record is MADE_IN_C:
-            builder.place(time, rows.robot_of(address))
+        in_c = type(record) is MadeInC
+        count = record.count if in_c else 1
+        rows.next_position = position + count
+        if in_c:
+            builder.place(time, rows.robot_of(address))     # the last of C's records places what follows
         elif item.interface is None:
             # A fault of the capture file: a primary error row, among C's rows of the robot before it.
             owner, day = builder.place(None, None)
@@ -152,8 +165,10 @@ def capture_parts(fh, capture: str, source: str, version_hint=None, robot: Optio
             rows.columns(owner).add_record("errors", position, micros(time), to_json_line(record))
         else:
             yield from builder.add(position, time, None if address is None else rows.robot_of(address), item)
-        yield from waiting()
+        position += count
+        if rows.waiting:
+            yield from waiting()
     for owner, columns in rows.robots.items():
-        rows.waiting.append((owner, None, columns.flush()))
+        rows.waiting.append((owner, columns.flush()))
     yield from waiting()
     yield from builder.finish()

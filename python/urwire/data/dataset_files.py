@@ -19,6 +19,9 @@ from .dataset_columns import Part
 # 128 MiB at about 365k rows).
 ROW_GROUP_ROWS = 1 << 20
 ROW_GROUP_BYTES = 128 << 20
+# Columns whose values differ from row to row, so that a dictionary of them never pays: Parquet's
+# writer would build one per column chunk until it outgrew its page and then write them plainly.
+UNIQUE_COLUMNS = ("position", "capture_time")
 
 
 def part_folder(root: Union[str, os.PathLike], interface: str, kind: str, robot: str, date: str) -> Path:
@@ -67,7 +70,8 @@ class _File:
         self._sink.close()
         group_rows = _row_group_rows(self.schema)
         with pa.OSFile(str(self.spill), "rb") as source, \
-                pq.ParquetWriter(self.tmp, self.schema, compression="zstd", write_statistics=True) as writer:
+                pq.ParquetWriter(self.tmp, self.schema, compression="zstd", write_statistics=True,
+                                 use_dictionary=[n for n in self.schema.names if n not in UNIQUE_COLUMNS]) as writer:
             waiting, rows = [], 0
             for batch in pa.ipc.open_stream(source):
                 waiting.append(batch)
