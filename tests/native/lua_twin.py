@@ -187,6 +187,11 @@ def _report(report: str, lua_of: tuple[str, ...]) -> tuple[str, ...]:
     return tuple(out.stdout.decode().splitlines())
 
 
+def native_report(report: str) -> tuple[str, ...]:
+    """The lines of `tshark -G <report>` with the native plugin, once per test process."""
+    return _report(report, ())
+
+
 def registered(protocol: str, lua: bool, loaded: Protocols = ()) -> list[str]:
     """What the protocol registers, as tshark -G reports it: its fields (`fields`), its names
     (`protocols`) and its preferences with their defaults (`defaultprefs`), sorted (Lua registers
