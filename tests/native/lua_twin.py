@@ -198,6 +198,8 @@ def registered(protocol: str, lua: bool, loaded: Protocols = ()) -> list[str]:
     its fields in table order). With `lua`, the Lua dissectors of `loaded` (default: the protocol
     alone) are those tshark loads."""
     def ours(line: str) -> bool:
+        if protocol not in line:      # most of Wireshark's lines: no need to split them
+            return False
         words = line.lstrip("#").split("\t")
         return any(w == protocol or w.startswith(protocol + ".") for w in words)
 
