@@ -71,6 +71,10 @@ class Build:
     cli: Path
     driver: Path
 
+    def object(self, source: Path) -> Path:
+        """The object this build compiled a library source into (strict flags, no diagnostic)."""
+        return self.cli.parent / f"{source.stem}.o"
+
 
 def compile_c(cc: str, flags: list[str], sources: list[Path], output: Path, extra: list[str] = ()) -> None:
     output.parent.mkdir(parents=True, exist_ok=True)
@@ -102,6 +106,7 @@ def build_variant(name: str) -> Build:
         pytest.fail(f"{cc} is not installed (scripts/setup.sh installs it)")
     folder = SHARED / name
     cli, driver = folder / "urwire-decode", folder / "driver"
+    built = Build(name, cli, driver)
     folder.mkdir(parents=True, exist_ok=True)
     with open(SHARED / f"{name}.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
@@ -111,14 +116,14 @@ def build_variant(name: str) -> Build:
             # The library once as objects, linked into the CLI and into the test driver.
             objects = []
             for source in [*CLI_LIBRARY, GEN / "urwire.c"]:
-                objects.append(folder / f"{source.stem}.o")
+                objects.append(built.object(source))
                 compile_c(cc, flags + ["-c"], [source], objects[-1])
             compile_c(cc, flags, [CLI / "main.c", *objects], cli, ["-lm"])
             # The driver is test code: strict too, except that it uses malloc and stdio freely.
             compile_c(cc, flags + [f"-I{state_members.write(GEN / 'urwire.h', folder)}"],
                       [ROOT / "tests" / "c" / "driver.c", *objects], driver, ["-lm"])
             stamp.write_text(want)
-    return Build(name, cli, driver)
+    return built
 
 
 def build_decode_driver(name: str = "asan-gcc") -> Path:
@@ -127,13 +132,12 @@ def build_decode_driver(name: str = "asan-gcc") -> Path:
     mk/cell_fuzz.mk builds it; rebuilt by each test process that asks, under the variant's lock."""
     build = get_build(name)
     cc, flags = VARIANTS[name]
-    folder = build.cli.parent
     out = OUT / name / "decode_driver"
     with open(SHARED / f"{name}.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         main = OUT / name / "urwire_decode_main.o"
         compile_c(cc, flags + ["-c", "-Dmain=urwire_decode_main"], [CLI / "main.c"], main)
-        objects = [folder / f"{source.stem}.o" for source in [*CLI_LIBRARY, GEN / "urwire.c"]]
+        objects = [build.object(source) for source in [*CLI_LIBRARY, GEN / "urwire.c"]]
         compile_c(cc, flags, [ROOT / "tests" / "c" / "decode_driver.c", main, *objects], out, ["-lm"])
     return out
 

@@ -1,7 +1,8 @@
 """The C runtime's JSON writer (runtime/c/json/json.c, shortest.c): its unit checks in C
 (tests/c/json_unit.c: hard float cases, string escapes, the record buffer) under gcc, clang and the sanitizers,
-then the float texts against Python: millions of random bit patterns through the test driver
-in one run each, compared with repr() for float64 and canonical.f32_text for float32."""
+then the float texts against Python: random bit patterns and every exponent's edges through the
+test driver in one run each, compared with repr() for float64 and canonical.f32_text for float32
+(a few hundred thousand in `make test`, millions in `make test-deep`)."""
 from __future__ import annotations
 
 import math
@@ -54,9 +55,13 @@ def nonfinite(x: float) -> str:
     return "NaN" if math.isnan(x) else ("Infinity" if x > 0 else "-Infinity")
 
 
-def test_millions_of_float64_texts_are_pythons_repr(fast):
+# The random patterns: a sample beside the edges below in `make test`, ten times as many in test-deep.
+RANDOM_COUNTS = [pytest.param(200_000, id="sample"), pytest.param(2_000_000, id="millions", marks=pytest.mark.deep)]
+
+
+@pytest.mark.parametrize("count", RANDOM_COUNTS)
+def test_float64_texts_are_pythons_repr(fast, count):
     rng = random.Random(64)
-    count = 2_000_000
     raw = rng.randbytes(8 * count)
     # Powers of two (lopsided intervals) and their neighbours, every exponent, both signs.
     specials = []
@@ -77,9 +82,10 @@ def float32_near_midpoints() -> list[int]:
     return [int(word, 16) for line in lines if not line.startswith("#") for word in line.split()]
 
 
-def test_millions_of_float32_texts_are_pythons(fast):
+@pytest.mark.parametrize("count", RANDOM_COUNTS)
+def test_float32_texts_are_pythons(fast, count):
     rng = random.Random(32)
-    count = 1_000_000
+    count //= 2     # 4 bytes each: half as many patterns (test-deep's 1,000,000 as before)
     raw = rng.randbytes(4 * count)
     near = float32_near_midpoints()
     assert 0x15AE43FD in near and len(near) > 300
@@ -87,7 +93,7 @@ def test_millions_of_float32_texts_are_pythons(fast):
     specials += [0x8000_0000 | b for b in specials]
     raw += b"".join(b.to_bytes(4, "big") for b in specials)
     # Robot-state ranges: currents, voltages, temperatures.
-    raw += b"".join(struct.pack(">f", rng.uniform(-100, 100)) for _ in range(100_000))
+    raw += b"".join(struct.pack(">f", rng.uniform(-100, 100)) for _ in range(count // 10))
     texts = c_texts(fast, "f32", raw)
     values = struct.unpack(f">{len(raw) // 4}f", raw)
     assert len(texts) == len(values)

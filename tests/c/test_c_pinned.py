@@ -35,8 +35,10 @@ def pinned(request):
     return request.param, pinned_source(request.param)
 
 
+# -O2: test_pinned_cli_decodes_its_generation_as_the_full_decoder compiles the pinned urwire.c so, with
+# both compilers under the same strict flags, and fails on any diagnostic.
 @pytest.mark.parametrize("cc", ["gcc", "clang"])
-@pytest.mark.parametrize("opt", ["-O0", "-O2", "-Os"])
+@pytest.mark.parametrize("opt", ["-O0", "-Os"])
 def test_pinned_library_compiles_clean(pinned, cc, opt):
     version, src = pinned
     obj = OUT / "pinned" / f"urwire-{version}-{cc}{opt}.o"

@@ -1,6 +1,8 @@
 """A broken spec fails with the YAML path (and line) of what is wrong, and every problem at once."""
 from __future__ import annotations
 
+import copy
+
 import pytest
 import yaml
 
@@ -8,10 +10,11 @@ from codegen.compile import DEFAULT_SPEC, compile_text
 from codegen.errors import SpecError
 
 SPEC_TEXT = DEFAULT_SPEC.read_text(encoding="utf-8")
+SPEC_DATA = yaml.safe_load(SPEC_TEXT)   # read once: each test edits a copy
 
 
 def spec_with(edit) -> str:
-    data = yaml.safe_load(SPEC_TEXT)
+    data = copy.deepcopy(SPEC_DATA)
     edit(data)
     return yaml.safe_dump(data, sort_keys=False)
 

@@ -36,7 +36,9 @@ def test_random_and_mutated_streams_agree_with_python(tmp_path, seed, max_len):
     assert not failures, f"{len(failures)} of {COUNT} streams differ:\n" + "\n".join(failures[:10])
 
 
-def test_mutated_and_truncated_pcaps_never_raise_a_lua_error(tmp_path):
+# Rounds of mutation per sample: one in `make test`, the three of the long version in test-deep.
+@pytest.mark.parametrize("rounds", [1, pytest.param(3, marks=pytest.mark.deep)])
+def test_mutated_and_truncated_pcaps_never_raise_a_lua_error(tmp_path, rounds):
     import dpkt
     rng = random.Random(5)
     for sample in ("primary_session.pcapng", "secondary_session.pcap"):
@@ -44,7 +46,7 @@ def test_mutated_and_truncated_pcaps_never_raise_a_lua_error(tmp_path):
         with path.open("rb") as fh:
             reader = dpkt.pcapng.Reader(fh) if sample.endswith("ng") else dpkt.pcap.Reader(fh)
             frames = [bytes(buf) for _, buf in reader]
-        for k in range(3):
+        for k in range(rounds):
             out = []
             for fr in frames[: rng.randrange(len(frames) // 2, len(frames))]:   # truncated capture
                 b = bytearray(fr)

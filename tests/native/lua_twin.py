@@ -187,12 +187,19 @@ def _report(report: str, lua_of: tuple[str, ...]) -> tuple[str, ...]:
     return tuple(out.stdout.decode().splitlines())
 
 
+def native_report(report: str) -> tuple[str, ...]:
+    """The lines of `tshark -G <report>` with the native plugin, once per test process."""
+    return _report(report, ())
+
+
 def registered(protocol: str, lua: bool, loaded: Protocols = ()) -> list[str]:
     """What the protocol registers, as tshark -G reports it: its fields (`fields`), its names
     (`protocols`) and its preferences with their defaults (`defaultprefs`), sorted (Lua registers
     its fields in table order). With `lua`, the Lua dissectors of `loaded` (default: the protocol
     alone) are those tshark loads."""
     def ours(line: str) -> bool:
+        if protocol not in line:      # most of Wireshark's lines: no need to split them
+            return False
         words = line.lstrip("#").split("\t")
         return any(w == protocol or w.startswith(protocol + ".") for w in words)
 

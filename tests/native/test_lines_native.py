@@ -26,6 +26,7 @@ import pytest
 
 from tests.interface_vectors import Segment, conversation_cases
 from tests.native import harness
+from tests.native.lua_twin import native_report
 from tests.tools import capture
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -166,9 +167,7 @@ def test_the_same_fields_experts_and_ports_are_registered(interface):
     lua = harness.lua_plugin(interface)
     empty = {"HOME": str(harness._empty_home()), "PATH": "/usr/bin:/bin"}
     for report in ("fields", "protocols", "decodes"):
-        native = harness.native_tshark(["-G", report])
-        assert native.returncode == 0, native.stderr
-        mine = sorted(line for line in native.stdout.decode().splitlines() if f"\t{interface}" in line)
+        mine = sorted(line for line in native_report(report) if f"\t{interface}" in line)
         theirs = subprocess.run(["tshark", "-G", report, "-X", f"lua_script:{lua}"], capture_output=True,
                                 env=empty, timeout=120).stdout.decode().splitlines()
         theirs = sorted(line for line in theirs if f"\t{interface}" in line

@@ -14,6 +14,7 @@ import os
 import shutil
 import subprocess
 from pathlib import Path
+from typing import Callable
 
 import pytest
 import yaml
@@ -129,27 +130,51 @@ def native_glossary(built: harness.Plugin, what: str) -> str:
     return glossary(harness.tshark_with(built, ["-G", what]))
 
 
-def lua_glossary(what: str, script: Path) -> str:
-    env = {**os.environ, "HOME": str(lua_home([script], script.stem))}
+def lua_glossary(what: str, scripts: list[Path], name: str) -> str:
+    env = {**os.environ, "HOME": str(lua_home(scripts, name))}
     env.pop("XDG_CONFIG_HOME", None)
     return glossary(subprocess.run(["tshark", "-G", what], capture_output=True, env=env, timeout=300))
+
+
+def twin_glossary(script: Path) -> Callable[[str], str]:
+    """`tshark -G <what>` with this Lua script alone."""
+    return lambda what: lua_glossary(what, [script], script.stem)
+
+
+@functools.lru_cache(maxsize=None)
+def generated_lua_glossary(what: str) -> str:
+    """`tshark -G <what>` with every generated Lua dissector installed together, as dissector/
+    installs them: one tshark run per test process, not one per protocol. Each protocol's rows
+    (of_protocol) are those it registers with its script alone."""
+    return lua_glossary(what, [harness.lua_plugin(protocol) for protocol in GENERATED], "generated")
 
 
 def of_protocol(glossary: str, what: str, protocol: str) -> list[str]:
     """The lines of one protocol: `-G fields` P and F lines (F's fifth column is the protocol),
     `-G protocols` the line whose filter name it is."""
-    rows = [line.split("\t") for line in glossary.splitlines()]
-    if what == "fields":
-        keep = [r for r in rows if (r[0] == "P" and r[2] == protocol) or (r[0] == "F" and r[4] == protocol)]
-    else:
-        keep = [r for r in rows if len(r) == 3 and r[2] == protocol]
-    return sorted("\t".join(r) for r in keep)
+    return sorted(_by_protocol(glossary, what).get(protocol, []))
 
 
-def assert_same_glossary(built: harness.Plugin, protocol: str, script: Path):
+@functools.lru_cache(maxsize=None)
+def _by_protocol(glossary: str, what: str) -> dict[str, list[str]]:
+    """The lines of a glossary by protocol, read once: Wireshark 4.0's -G fields is some 236,000
+    lines, and each protocol's test reads the same one."""
+    out: dict[str, list[str]] = {}
+    for line in glossary.splitlines():
+        r = line.split("\t")
+        if what == "fields":
+            key = r[2] if r[0] == "P" else r[4] if r[0] == "F" else None
+        else:
+            key = r[2] if len(r) == 3 else None
+        if key is not None:
+            out.setdefault(key, []).append(line)
+    return out
+
+
+def assert_same_glossary(built: harness.Plugin, protocol: str, lua_of: Callable[[str], str]):
     for what in ("fields", "protocols"):
         native = of_protocol(native_glossary(built, what), what, protocol)
-        lua = of_protocol(lua_glossary(what, script), what, protocol)
+        lua = of_protocol(lua_of(what), what, protocol)
         assert native, f"the native plugin registers no {what} of {protocol}"
         missing = sorted(set(lua) - set(native))
         extra = sorted(set(native) - set(lua))
@@ -158,7 +183,7 @@ def assert_same_glossary(built: harness.Plugin, protocol: str, script: Path):
 
 def test_fixture_glossary_matches_its_lua_twin():
     assert_same_glossary(harness.build_plugin("gcc", FIXTURE_EPAN), "urwire_fixture",
-                         FIXTURES / "lua" / "urwire_fixture.lua")
+                         twin_glossary(FIXTURES / "lua" / "urwire_fixture.lua"))
 
 
 def test_glossary_comparison_sees_a_difference(tmp_path):
@@ -166,7 +191,7 @@ def test_glossary_comparison_sees_a_difference(tmp_path):
     twin = tmp_path / "urwire_fixture.lua"
     twin.write_text((FIXTURES / "lua" / "urwire_fixture.lua").read_text().replace('"Kind"', '"Sort"'))
     with pytest.raises(AssertionError, match="only Lua has"):
-        assert_same_glossary(harness.build_plugin("gcc", FIXTURE_EPAN), "urwire_fixture", twin)
+        assert_same_glossary(harness.build_plugin("gcc", FIXTURE_EPAN), "urwire_fixture", twin_glossary(twin))
 
 
 def _string_blurb_dropped_by_lua(lua: list[str] | None, native: list[str] | None) -> bool:
@@ -194,15 +219,15 @@ KNOWN_DIVERGENCES = {
 @NO_GENERATED
 def test_generated_glossary_matches_lua(protocol):
     if protocol not in KNOWN_DIVERGENCES:
-        assert_same_glossary(harness.plugin("gcc"), protocol, harness.lua_plugin(protocol))
+        assert_same_glossary(harness.plugin("gcc"), protocol, generated_lua_glossary)
         return
     reason, known = KNOWN_DIVERGENCES[protocol]
-    built, script = harness.plugin("gcc"), harness.lua_plugin(protocol)
+    built = harness.plugin("gcc")
     open_known = []
     for what in ("fields", "protocols"):
         native = {r.split("\t")[2]: r.split("\t")
                   for r in of_protocol(native_glossary(built, what), what, protocol)}
-        lua = {r.split("\t")[2]: r.split("\t") for r in of_protocol(lua_glossary(what, script), what, protocol)}
+        lua = {r.split("\t")[2]: r.split("\t") for r in of_protocol(generated_lua_glossary(what), what, protocol)}
         for abbrev in sorted(set(native) | set(lua)):
             if native.get(abbrev) == lua.get(abbrev):
                 continue

@@ -6,7 +6,7 @@ f32_text counts the digits a float32 needs with double arithmetic and a margin
 which is the definition itself. The text lays those digits out as repr() lays out a double, and
 repr() of the double the %g text reads as is that layout: the double has no shorter text (that
 text would read back as the same float32 too), so repr() prints the same digits. The C command's
-texts are checked against f32_text over millions of values in tests/c/test_c_json.py.
+texts are checked against f32_text in tests/c/test_c_json.py (millions of values in `make test-deep`).
 """
 from __future__ import annotations
 
