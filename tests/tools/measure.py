@@ -1,10 +1,9 @@
 """Run a command and measure it: its output, wall time, CPU time and peak resident memory (of
-that child alone, from wait4), optionally with its address space limited; or, through a small
-watcher process, its peak memory and CPU time whatever the size of the caller."""
+that command alone, from wait4 in a small watcher process, whatever the size of the caller),
+optionally with its address space limited."""
 from __future__ import annotations
 
 import os
-import resource
 import subprocess
 import sys
 import tempfile
@@ -23,35 +22,57 @@ def run(cmd: list[str], limit: Optional[int] = None) -> tuple[subprocess.Complet
 def run_cpu(cmd: list[str], limit: Optional[int] = None,
             output: bool = True) -> tuple[subprocess.CompletedProcess, float, float, int]:
     """run(), with the child's CPU seconds (user + system) too: on a shared machine its wall
-    time also counts the other jobs. With `output` false, its standard output is dropped: read
-    into this process, a large one would count in the peak RSS of every later child (a child
-    starts as a copy of its parent)."""
-
-    def limit_memory():
-        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
-
+    time also counts the other jobs. With `output` false, its standard output is dropped. The
+    command is started by the watcher (below), so its peak is its own, not the caller's."""
     with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
         start = time.perf_counter()
-        proc = subprocess.Popen(cmd, stdout=out if output else subprocess.DEVNULL, stderr=err, text=True,
-                                preexec_fn=limit_memory if limit else None)
-        _, status, usage = os.wait4(proc.pid, 0)
+        proc, report = _watched(cmd, limit, out if output else subprocess.DEVNULL, err)
+        proc.wait()
         elapsed = time.perf_counter() - start
-        proc.returncode = os.waitstatus_to_exitcode(status)
         out.seek(0)
         err.seek(0)
-        res = subprocess.CompletedProcess(cmd, proc.returncode, out.read(), err.read())
-    return res, elapsed, usage.ru_utime + usage.ru_stime, usage.ru_maxrss * 1024   # ru_maxrss is in KiB on Linux
+        code, peak, cpu = _report(report, err.read())
+        err.seek(0)
+        res = subprocess.CompletedProcess(cmd, code, out.read(), err.read())
+    return res, elapsed, cpu, peak
 
 
 # Linux counts into a child's peak RSS the peak of the process it was started from (the copy or
-# the shared memory it runs on until exec), so a large parent such as pytest would show through.
-# The command is started by this small watcher instead, which reports on the pipe it is given.
-_WATCHER = """import os, sys
-pid = os.posix_spawnp(sys.argv[2], sys.argv[2:], os.environ)
+# the shared memory it runs on until exec), so a large parent such as a pytest worker would show
+# through. The command is started by this small watcher instead, which caps the address space
+# it inherits (argv[2] bytes, 0 for none) and reports on the pipe it is given (argv[1]).
+_WATCHER = """import os, resource, sys
+limit = int(sys.argv[2])
+if limit:
+    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+pid = os.posix_spawnp(sys.argv[3], sys.argv[3:], os.environ)
 _, status, usage = os.wait4(pid, 0)
 os.write(int(sys.argv[1]), b"%d %d %r" % (os.waitstatus_to_exitcode(status), usage.ru_maxrss,
                                           usage.ru_utime + usage.ru_stime))
 """
+
+
+def _watched(cmd: list[str], limit: Optional[int], stdout, stderr=None,
+             env: Optional[dict] = None) -> tuple[subprocess.Popen, int]:
+    """The watcher running cmd, and the read end of its report's pipe."""
+    report, writer = os.pipe()
+    try:
+        proc = subprocess.Popen([sys.executable, "-c", _WATCHER, str(writer), str(limit or 0), *cmd],
+                                stdout=stdout, stderr=stderr, env=env, pass_fds=(writer,))
+    finally:
+        os.close(writer)
+    return proc, report
+
+
+def _report(report: int, stderr: str = "") -> tuple[int, int, float]:
+    """The exit status, peak RSS in bytes and CPU seconds the watcher reported (it reports
+    nothing when the command could not be started: its error is then in `stderr`)."""
+    with os.fdopen(report, "rb") as fh:
+        text = fh.read()
+    if not text:
+        raise OSError(f"the command did not start: {stderr[-2000:]}")
+    code, peak_kib, cpu = text.split()
+    return int(code), int(peak_kib) * 1024, float(cpu)   # ru_maxrss is in KiB on Linux
 
 
 @dataclass
@@ -65,17 +86,11 @@ class Usage:
 
 def watch(cmd: list[str], env: Optional[dict] = None) -> Usage:
     """Run a command through the watcher: its peak RSS and CPU time, its output counted."""
-    report, writer = os.pipe()
-    try:
-        proc = subprocess.Popen([sys.executable, "-c", _WATCHER, str(writer), *cmd], stdout=subprocess.PIPE,
-                                env=env, pass_fds=(writer,))
-    finally:
-        os.close(writer)
+    proc, report = _watched(cmd, None, subprocess.PIPE, env=env)
     lines, last = 0, b""
     while chunk := proc.stdout.read(1 << 20):
         lines += chunk.count(b"\n")
         last = chunk
     proc.wait()
-    with os.fdopen(report, "rb") as fh:
-        code, peak_kib, cpu = fh.read().split()
-    return Usage(int(code), int(peak_kib) * 1024, float(cpu), lines, last)
+    code, peak, cpu = _report(report)
+    return Usage(code, peak, cpu, lines, last)
