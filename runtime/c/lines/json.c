@@ -70,9 +70,17 @@ static void out_number(urwire__text *o, uint64_t n)
     urwire__bytes(o, digits + at, sizeof digits - at);
 }
 
-/* The first line after bytes lost in its direction, and a reply whose command they leave unknown. */
+/* The first line after bytes lost in its direction, and a reply whose command they leave unknown:
+ * each text once in the object code, where `"error": "` opens it. */
 #define LINES__AFTER_GAP "line after bytes lost from the capture: its start may be lost"
 #define LINES__UNKNOWN "reply after bytes lost from the capture: its command is unknown"
+
+static void out_error(urwire__text *o, const char *text)
+{
+    urwire__str(o, ", \"error\": \"");
+    urwire__str(o, text);
+    urwire__str(o, "\"");
+}
 
 /* Whether the record's JSON carries an error text (a fault, or a line the conversation could not
  * pair or take whole): what makes a command exit 1. A reply that says an error is the robot's word. */
@@ -113,7 +121,7 @@ URWIRE__PRIVATE size_t lines_json(const lines_spec_t *spec, const lines_record *
         if (rec->available >= 0)
             urwire__str(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
         if (rec->cut) {
-            urwire__str(&o, ", \"error\": \"" LINES__AFTER_GAP "\"");
+            out_error(&o, LINES__AFTER_GAP);
         } else if (rec->not_kept) {
             urwire__str(&o, ", \"error\": \"command not kept: more than ");
             out_number(&o, rec->kept);
@@ -131,10 +139,9 @@ URWIRE__PRIVATE size_t lines_json(const lines_spec_t *spec, const lines_record *
             urwire__str(&o, ", \"error\": \"reply to a command that was not kept: more than ");
             out_number(&o, rec->kept);
             urwire__str(&o, " commands awaited replies\"}");
-        } else if (rec->unknown) {
-            urwire__str(&o, ", \"error\": \"" LINES__UNKNOWN "\"}");
-        } else if (rec->cut) {
-            urwire__str(&o, ", \"error\": \"" LINES__AFTER_GAP "\"}");
+        } else if (rec->unknown || rec->cut) {
+            out_error(&o, rec->unknown ? LINES__UNKNOWN : LINES__AFTER_GAP);
+            urwire__str(&o, "}");
         } else {
             urwire__str(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
         }
