@@ -1611,11 +1611,11 @@ uint8_t rtde_protocol_in_force(const rtde_conversation *c)
 
 /* One queue of requests after bytes lost (text_lines.py's Pending, for the Python decoder): its
  * count of requests kept and not kept, and whether its pairing is unknown from here on. */
-static void rtde__queue_lost(bool from_robot, uint8_t *count, uint64_t *lost, bool *unknown)
+static void rtde__queue_lost(bool from_robot, uint8_t *count, uint64_t lost, bool *unknown)
 {
     if (!from_robot) {
         *unknown = true;
-    } else if (*count > 0 || *lost > 0) {
+    } else if (*count > 0 || lost > 0) {
         *count = 0;
         *unknown = true;
     }
@@ -1624,9 +1624,9 @@ static void rtde__queue_lost(bool from_robot, uint8_t *count, uint64_t *lost, bo
 void rtde_conversation_lost(rtde_conversation *c, bool from_robot)
 {
     int kind;
-    rtde__queue_lost(from_robot, &c->asked_count, &c->asked_lost, &c->asked_unknown);
+    rtde__queue_lost(from_robot, &c->asked_count, c->asked_lost, &c->asked_unknown);
     for (kind = 0; kind < 2; kind++)
-        rtde__queue_lost(from_robot, &c->pending_count[kind], &c->pending_lost[kind], &c->pending_unknown[kind]);
+        rtde__queue_lost(from_robot, &c->pending_count[kind], c->pending_lost[kind], &c->pending_unknown[kind]);
 }
 
 static bool rtde__known_code(uint8_t code)
