@@ -1527,6 +1527,7 @@ static bool rtde__values(rtde__reader *r, rtde_data *out)
 #define RTDE__SETUPS_OVERFLOW "more than " RTDE__NUMBER(RTDE_MAX_PENDING) " setups awaited replies"
 #define RTDE__VERSIONS_OVERFLOW "more than " RTDE__NUMBER(RTDE_MAX_PENDING_VERSIONS) \
     " protocol version requests awaited replies"
+#define RTDE__UNKNOWN(request) "reply after bytes lost from the capture: its " request " is unknown"
 
 /* Points the recipe slots and the pending names at their storage: the slots' arrays one after
  * another in each of the given arrays. */
@@ -1606,6 +1607,26 @@ bool rtde_conversation_init_in(rtde_conversation *c, const rtde_limits *limits, 
 uint8_t rtde_protocol_in_force(const rtde_conversation *c)
 {
     return c->protocol ? c->protocol : RTDE_DEFAULT_PROTOCOL;
+}
+
+/* One queue of requests after bytes lost (text_lines.py's Pending, for the Python decoder): its
+ * count of requests kept and not kept, and whether its pairing is unknown from here on. */
+static void rtde__queue_lost(bool from_robot, uint8_t *count, uint64_t lost, bool *unknown)
+{
+    if (!from_robot) {
+        *unknown = true;
+    } else if (*count > 0 || lost > 0) {
+        *count = 0;
+        *unknown = true;
+    }
+}
+
+void rtde_conversation_lost(rtde_conversation *c, bool from_robot)
+{
+    int kind;
+    rtde__queue_lost(from_robot, &c->asked_count, c->asked_lost, &c->asked_unknown);
+    for (kind = 0; kind < 2; kind++)
+        rtde__queue_lost(from_robot, &c->pending_count[kind], c->pending_lost[kind], &c->pending_unknown[kind]);
 }
 
 static bool rtde__known_code(uint8_t code)
@@ -1741,6 +1762,11 @@ static rtde_error rtde__make_recipe(rtde_conversation *c, int kind, rtde_text ty
     size_t at_names, at_types, s1, n1, s2, n2, count = 0, size = 0, pass;
     bool refused = false, from_robot = kind == 0;
     if (c->pending_count[kind] == 0) {
+        if (c->pending_unknown[kind]) {     /* bytes lost may have held its request, or answered it */
+            m->error = RTDE__UNKNOWN("setup");
+            rtde__forget_recipe(c, from_robot, id);
+            return RTDE_OK;
+        }
         if (c->pending_lost[kind] > 0) {    /* its request was not kept: its names are unknown */
             c->pending_lost[kind]--;
             m->error = "reply to a setup that was not kept: " RTDE__SETUPS_OVERFLOW;
@@ -1859,6 +1885,8 @@ static void rtde__version_reply(rtde_conversation *c, rtde_message *m)
     if (any) {
         memmove(c->asked, c->asked + 1, sizeof c->asked - sizeof c->asked[0]);
         c->asked_count--;
+    } else if (c->asked_unknown) {
+        m->error = RTDE__UNKNOWN("protocol version request");
     } else if (c->asked_lost > 0) {
         c->asked_lost--;
         m->error = "reply to a protocol version request that was not kept: " RTDE__VERSIONS_OVERFLOW;
@@ -1885,6 +1913,8 @@ static rtde_error rtde__follow(rtde_conversation *c, rtde_message *m)
 {
     uint8_t layout = m->layout;
     if (layout == RTDE_LAYOUT_REQUEST_PROTOCOL_VERSION) {
+        if (c->asked_unknown)               /* kept by none after bytes lost: its reply says why */
+            return RTDE_OK;
         if (c->asked_lost > 0 || c->asked_count == RTDE_MAX_PENDING_VERSIONS) {
             c->asked_lost++;                /* not kept: its reply will say so */
             m->error = "protocol version request not kept: " RTDE__VERSIONS_OVERFLOW;
@@ -1899,6 +1929,8 @@ static rtde_error rtde__follow(rtde_conversation *c, rtde_message *m)
                                : layout == RTDE_LAYOUT_SETUP_OUTPUTS_V1 ? &m->u.setup_outputs_v1.variables
                                : &m->u.setup_inputs.variables;
         rtde_pending *slot;
+        if (c->pending_unknown[kind])       /* kept by none after bytes lost: its reply says why */
+            return RTDE_OK;
         if (c->pending_lost[kind] > 0 || c->pending_count[kind] == RTDE_MAX_PENDING) {
             c->pending_lost[kind]++;        /* not kept: its reply will say so */
             m->error = "setup not kept: " RTDE__SETUPS_OVERFLOW;

@@ -731,12 +731,16 @@ URWIRE__PRIVATE int lines_command_of(const lines_spec_t *spec, lines_view line, 
     return command;
 }
 
-/* A request awaits its reply; false when it is not kept (see lines_conversation). */
+/* A request awaits its reply; false when it is not kept for want of room, which its record says
+ * (see lines_conversation). After bytes lost none is kept: its reply's record says why. */
 static bool keep(const lines_spec_t *spec, lines_conversation *c, int command)
 {
     if (!spec->one_reply_per_request) {          /* only the latest request counts */
         queue_of(c)[0] = (int16_t)command;
         c->count = 1;
+        c->unknown = false;                      /* the lines after it answer it */
+    } else if (c->unknown) {
+        return true;
     } else if (c->lost > 0 || c->count == c->kept) {
         c->lost++;
         return false;
@@ -747,15 +751,19 @@ static bool keep(const lines_spec_t *spec, lines_conversation *c, int command)
     return true;
 }
 
-/* The request a reply answers (LINES_NONE: none), *not_kept when it answers one not kept. */
-static int answered(const lines_spec_t *spec, lines_conversation *c, bool *not_kept)
+/* The request a reply answers (LINES_NONE: none), *not_kept when it answers one not kept,
+ * *unknown when bytes lost leave it unknown. */
+static int answered(const lines_spec_t *spec, lines_conversation *c, bool *not_kept, bool *unknown)
 {
     int command = LINES_NONE;
     *not_kept = false;
+    *unknown = false;
     if (c->count > 0 && spec->one_reply_per_request) {
         command = queue_of(c)[c->head];
         c->head = (c->head + 1) % c->kept;
         c->count--;
+    } else if (c->unknown) {
+        *unknown = true;
     } else if (c->count > 0) {    /* every answering line belongs to the latest request */
         command = queue_of(c)[(c->head + c->count - 1) % c->kept];
     } else if (c->lost > 0) {     /* it answers a command that was not kept */
@@ -765,17 +773,18 @@ static int answered(const lines_spec_t *spec, lines_conversation *c, bool *not_k
     return command;
 }
 
-static void read_command(const lines_spec_t *spec, lines_conversation *c, lines_record *rec)
+static void read_command(const lines_spec_t *spec, lines_conversation *c, bool cut, lines_record *rec)
 {
     int command = lines_command_of(spec, rec->text, &rec->argument, &rec->has_argument);
     rec->type = LINES_COMMAND;
+    rec->cut = cut;
     rec->command_name = command;
     rec->available = command == LINES_NONE || c->version == 0 ? -1 : lines_available(spec, command, c->version);
     rec->not_kept = !keep(spec, c, command);
     rec->kept = c->kept;
 }
 
-static void read_reply(const lines_spec_t *spec, lines_conversation *c, lines_record *rec)
+static void read_reply(const lines_spec_t *spec, lines_conversation *c, bool cut, lines_record *rec)
 {
     int command;
     rec->type = LINES_REPLY;
@@ -787,7 +796,9 @@ static void read_reply(const lines_spec_t *spec, lines_conversation *c, lines_re
             return;
         }
     }
-    command = answered(spec, c, &rec->not_kept);
+    /* The end of a line begun in the lost bytes answers none of the commands seen since. */
+    rec->cut = cut;
+    command = cut ? LINES_NONE : answered(spec, c, &rec->not_kept, &rec->unknown);
     rec->kept = c->kept;
     rec->command_name = command;
     rec->reply_name = lines_classify(spec, command, rec->text.ptr, rec->text.len);
@@ -809,6 +820,7 @@ URWIRE__PRIVATE size_t lines_decode(const lines_spec_t *spec, lines_conversation
     size_t window = n < spec->max_line + 2 ? n : spec->max_line + 2;
     const uint8_t *newline;
     size_t used, len;
+    bool cut = d->cut;
     *got = false;
     memset(rec, 0, sizeof *rec);
     rec->command_name = LINES_NONE;
@@ -835,15 +847,16 @@ URWIRE__PRIVATE size_t lines_decode(const lines_spec_t *spec, lines_conversation
         len--;
     *got = true;
     d->offset += used;
+    d->cut = false;
     if (newline == NULL || len > spec->max_line) {
         /* Still a line: a command the server answers, or the reply to one, so that the pairing
          * of the lines after it holds. */
-        bool not_kept;
+        bool not_kept, unknown;
         if (requests) {
             keep(spec, c, LINES_NONE);
         } else {
             c->greeted = true;
-            answered(spec, c, &not_kept);
+            answered(spec, c, &not_kept, &unknown);
         }
         rec->type = LINES_FAULT;
         rec->fault = LINES_LINE_TOO_LONG;
@@ -852,10 +865,29 @@ URWIRE__PRIVATE size_t lines_decode(const lines_spec_t *spec, lines_conversation
     rec->text.ptr = buf;
     rec->text.len = len;
     if (requests)
-        read_command(spec, c, rec);
+        read_command(spec, c, cut, rec);
     else
-        read_reply(spec, c, rec);
+        read_reply(spec, c, cut, rec);
     return used;
+}
+
+/* Bytes of one direction are lost before its stream offset `offset` (the caller has given up the
+ * line they cut with lines_finish): its lines are split afresh from there, the first one marked
+ * cut. Lost commands leave every later reply's unknown (those kept came before them, and their
+ * replies first); lost replies may have answered those awaiting, unless none awaited. */
+URWIRE__PRIVATE void lines_lost(const lines_spec_t *spec, lines_conversation *c, bool from_robot, uint64_t offset)
+{
+    bool requests = from_robot == spec->requests_from_robot;
+    lines_direction *d = requests ? &c->commands : &c->replies;
+    d->offset = offset;
+    d->skipping = false;
+    d->cut = true;
+    if (requests) {
+        c->unknown = true;
+    } else if (spec->one_reply_per_request && (c->count > 0 || c->lost > 0)) {
+        c->head = c->count = 0;
+        c->unknown = true;
+    }
 }
 
 /* At the end of a direction: its n bytes left without a newline as a fault record (true). */
@@ -941,6 +973,25 @@ static void out_number(urwire__text *o, uint64_t n)
     urwire__bytes(o, digits + at, sizeof digits - at);
 }
 
+/* The first line after bytes lost in its direction, and a reply whose command they leave unknown:
+ * each text once in the object code, where `"error": "` opens it. */
+#define LINES__AFTER_GAP "line after bytes lost from the capture: its start may be lost"
+#define LINES__UNKNOWN "reply after bytes lost from the capture: its command is unknown"
+
+static void out_error(urwire__text *o, const char *text)
+{
+    urwire__str(o, ", \"error\": \"");
+    urwire__str(o, text);
+    urwire__str(o, "\"");
+}
+
+/* Whether the record's JSON carries an error text (a fault, or a line the conversation could not
+ * pair or take whole): what makes a command exit 1. A reply that says an error is the robot's word. */
+URWIRE__PRIVATE bool lines_failed(const lines_record *rec)
+{
+    return rec->type == LINES_FAULT || rec->not_kept || rec->cut || rec->unknown;
+}
+
 /* The record as a line of canonical JSON (no newline) in out, NUL-terminated when cap > 0.
  * Returns its length; when that is cap or more, out holds its first cap - 1 bytes. */
 URWIRE__PRIVATE size_t lines_json(const lines_spec_t *spec, const lines_record *rec, char *out, size_t cap)
@@ -972,7 +1023,9 @@ URWIRE__PRIVATE size_t lines_json(const lines_spec_t *spec, const lines_record *
         }
         if (rec->available >= 0)
             urwire__str(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
-        if (rec->not_kept) {
+        if (rec->cut) {
+            out_error(&o, LINES__AFTER_GAP);
+        } else if (rec->not_kept) {
             urwire__str(&o, ", \"error\": \"command not kept: more than ");
             out_number(&o, rec->kept);
             urwire__str(&o, " commands awaited replies\"");
@@ -989,8 +1042,12 @@ URWIRE__PRIVATE size_t lines_json(const lines_spec_t *spec, const lines_record *
             urwire__str(&o, ", \"error\": \"reply to a command that was not kept: more than ");
             out_number(&o, rec->kept);
             urwire__str(&o, " commands awaited replies\"}");
-        } else
+        } else if (rec->unknown || rec->cut) {
+            out_error(&o, rec->unknown ? LINES__UNKNOWN : LINES__AFTER_GAP);
+            urwire__str(&o, "}");
+        } else {
             urwire__str(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
+        }
     }
     return urwire__end(&o);
 }
@@ -1023,6 +1080,11 @@ bool ur_dashboard_finish(ur_dashboard_conversation *c, bool from_robot, size_t n
     return lines_finish(&ur_dashboard__spec, c, from_robot, n, rec);
 }
 
+void ur_dashboard_lost(ur_dashboard_conversation *c, bool from_robot, uint64_t offset)
+{
+    lines_lost(&ur_dashboard__spec, c, from_robot, offset);
+}
+
 int ur_dashboard_find_command(ur_dashboard_view line, ur_dashboard_view *argument, bool *has_argument)
 {
     return lines_command_of(&ur_dashboard__spec, line, argument, has_argument);
@@ -1046,4 +1108,9 @@ bool ur_dashboard_available(int command, uint32_t version)
 size_t ur_dashboard_json(const ur_dashboard_record *rec, char *out, size_t cap)
 {
     return lines_json(&ur_dashboard__spec, rec, out, cap);
+}
+
+bool ur_dashboard_failed(const ur_dashboard_record *rec)
+{
+    return lines_failed(rec);
 }

@@ -130,6 +130,9 @@ typedef struct lines_record {
     bool error;                        /* replies: reply_name says an error */
     bool not_kept;                     /* commands: not kept to pair; replies: answers such a
                                           command ("more than <kept> commands awaited replies") */
+    bool cut;                          /* the first line after bytes lost in its direction: its
+                                          start may be lost (a reply so pairs with none) */
+    bool unknown;                      /* replies: after bytes lost, the command it answers is unknown */
     size_t kept;                       /* the conversation's bound, when not_kept */
     lines_fault fault;                 /* faults: what, where (the direction's offset), how many bytes */
     uint64_t offset;
@@ -139,11 +142,15 @@ typedef struct lines_record {
 typedef struct lines_direction {
     uint64_t offset;                   /* of the next byte to decode */
     bool skipping;                     /* inside a line too long, dropped up to its newline */
+    bool cut;                          /* bytes were lost before the next line (lines_lost) */
 } lines_direction;
 
 /* One TCP connection: both directions and the commands awaiting their replies. Caller-owned.
  * A command that comes when LINES_PENDING await is not kept but counted lost, and so is every
- * command behind a lost one (replies come in order); a reply with none kept answers a lost one. */
+ * command behind a lost one (replies come in order); a reply with none kept answers a lost one.
+ * Bytes lost from a capture (lines_lost) may have held commands or answered them: from then on,
+ * a reply with none kept answers one unknown (`unknown`; one reply per request: for good, as no
+ * later byte tells how many the gap held; else until the next command). */
 typedef struct lines_conversation {
     lines_direction commands, replies;
     int16_t pending[LINES_PENDING];
@@ -151,6 +158,7 @@ typedef struct lines_conversation {
     size_t head, count, lost, kept;
     uint32_t version;                  /* lines_version(...), 0 while unknown */
     bool greeted;
+    bool unknown;
 } lines_conversation;
 
 #endif
@@ -191,6 +199,10 @@ size_t ur_script_sender_decode(ur_script_sender_conversation *c, bool from_robot
 /* At the end of a direction: the n bytes left without a newline, as a fault record (true), or
  * nothing to report (false). */
 bool ur_script_sender_finish(ur_script_sender_conversation *c, bool from_robot, size_t n, ur_script_sender_record *rec);
+/* Bytes of one direction were lost before its stream offset `offset` (a gap in a capture), the
+ * line they cut given up with ur_script_sender_finish: its lines are split afresh from there, the first
+ * one marked cut (its start may be lost), and replies whose command the gap leaves unknown say so. */
+void ur_script_sender_lost(ur_script_sender_conversation *c, bool from_robot, uint64_t offset);
 /* The command a line is (an index, or UR_SCRIPT_SENDER_NONE), and its argument. */
 int ur_script_sender_find_command(ur_script_sender_view line, ur_script_sender_view *argument, bool *has_argument);
 /* The reply a line is: a common reply, else one of the command's (command may be UR_SCRIPT_SENDER_NONE). */
@@ -200,6 +212,9 @@ bool ur_script_sender_available(int command, uint32_t version);
 /* The record as a line of canonical JSON (no newline) in out, NUL-terminated when cap > 0.
  * Returns its length; when that is cap or more, out holds its first cap - 1 bytes. */
 size_t ur_script_sender_json(const ur_script_sender_record *rec, char *out, size_t cap);
+/* Whether the record's JSON carries an error text (a fault, a line not kept, cut or unpaired after
+ * bytes lost): what makes a command exit 1. A reply that says an error is the robot's word. */
+bool ur_script_sender_failed(const ur_script_sender_record *rec);
 
 /* ---- the spec's tables ----------------------------------------------------------------------- */
 

@@ -39,7 +39,8 @@ static void write_line(cell_output *out, bool from_robot)
 /* A text-line interface: lines split in the held bytes of their direction, one JSON line per
  * record. The four interfaces of this kind have the same API under their own prefixes. What a
  * direction leaves without a newline is a fault record when it ends (P##_finish); bytes lost
- * give up the line they cut and split lines afresh after them (text_lines.py's restart). */
+ * give up the line they cut, and the conversation splits lines afresh after them and marks what
+ * the gap leaves unsure (P##_lost: text_lines.py's LinesConversation.lost). */
 #define LINES_INTERFACE(P, UPPER, ROBOT_IS_CLIENT)                                                                  \
     static void P##_init_state(void *state, urwire_sw_version v, bool hinted)                     \
     {                                                                                              \
@@ -65,7 +66,7 @@ static void write_line(cell_output *out, bool from_robot)
                 if (got) {                                                                         \
                     P##_json(&rec, line, sizeof line);                                             \
                     write_line(out, from_robot);                                                   \
-                    out->errors |= rec.type == UPPER##_FAULT || rec.not_kept;                      \
+                    out->errors |= P##_failed(&rec);                                               \
                 }                                                                                  \
                 at += used;                                                                        \
             }                                                                                      \
@@ -90,11 +91,8 @@ static void write_line(cell_output *out, bool from_robot)
                                                                                                    \
     static int P##_lost_state(void *state, bool from_robot, uint64_t offset, cell_output *out)    \
     {                                                                                              \
-        cell_lines_state *s = state;                                                               \
-        lines_direction *d = from_robot == UPPER##_REQUESTS_FROM_ROBOT ? &s->lines.commands : &s->lines.replies; \
         (void)P##_close_state(state, from_robot, out);                                             \
-        d->offset = offset;                                                                        \
-        d->skipping = false;                                                                       \
+        P##_lost(&((cell_lines_state *)state)->lines, from_robot, offset);                         \
         return 0;                                                                                  \
     }                                                                                              \
                                                                                                    \

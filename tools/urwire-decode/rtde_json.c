@@ -331,11 +331,12 @@ static int close_way(void *state, bool from_robot, cell_output *out)
 }
 
 /* The message the lost bytes cut short given up, and the direction framed afresh after them, the
- * protocol and the recipes kept (rtde.py's Conversation.lost). */
+ * protocol and the recipes kept, the pairing of replies unknown (rtde.py's Conversation.lost). */
 static int lost(void *state, bool from_robot, uint64_t offset, cell_output *out)
 {
     rtde_json_stream *s = state;
     (void)close_way(state, from_robot, out);
+    rtde_conversation_lost(&s->conversation, from_robot);
     rtde_stream_init(&s->direction[from_robot ? 1 : 0]);
     s->direction[from_robot ? 1 : 0].base = offset;
     return 0;

@@ -70,6 +70,25 @@ static void out_number(urwire__text *o, uint64_t n)
     urwire__bytes(o, digits + at, sizeof digits - at);
 }
 
+/* The first line after bytes lost in its direction, and a reply whose command they leave unknown:
+ * each text once in the object code, where `"error": "` opens it. */
+#define LINES__AFTER_GAP "line after bytes lost from the capture: its start may be lost"
+#define LINES__UNKNOWN "reply after bytes lost from the capture: its command is unknown"
+
+static void out_error(urwire__text *o, const char *text)
+{
+    urwire__str(o, ", \"error\": \"");
+    urwire__str(o, text);
+    urwire__str(o, "\"");
+}
+
+/* Whether the record's JSON carries an error text (a fault, or a line the conversation could not
+ * pair or take whole): what makes a command exit 1. A reply that says an error is the robot's word. */
+URWIRE__PRIVATE bool lines_failed(const lines_record *rec)
+{
+    return rec->type == LINES_FAULT || rec->not_kept || rec->cut || rec->unknown;
+}
+
 /* The record as a line of canonical JSON (no newline) in out, NUL-terminated when cap > 0.
  * Returns its length; when that is cap or more, out holds its first cap - 1 bytes. */
 URWIRE__PRIVATE size_t lines_json(const lines_spec_t *spec, const lines_record *rec, char *out, size_t cap)
@@ -101,7 +120,9 @@ URWIRE__PRIVATE size_t lines_json(const lines_spec_t *spec, const lines_record *
         }
         if (rec->available >= 0)
             urwire__str(&o, rec->available ? ", \"available\": true" : ", \"available\": false");
-        if (rec->not_kept) {
+        if (rec->cut) {
+            out_error(&o, LINES__AFTER_GAP);
+        } else if (rec->not_kept) {
             urwire__str(&o, ", \"error\": \"command not kept: more than ");
             out_number(&o, rec->kept);
             urwire__str(&o, " commands awaited replies\"");
@@ -118,8 +139,12 @@ URWIRE__PRIVATE size_t lines_json(const lines_spec_t *spec, const lines_record *
             urwire__str(&o, ", \"error\": \"reply to a command that was not kept: more than ");
             out_number(&o, rec->kept);
             urwire__str(&o, " commands awaited replies\"}");
-        } else
+        } else if (rec->unknown || rec->cut) {
+            out_error(&o, rec->unknown ? LINES__UNKNOWN : LINES__AFTER_GAP);
+            urwire__str(&o, "}");
+        } else {
             urwire__str(&o, rec->error ? ", \"error\": true}" : ", \"error\": false}");
+        }
     }
     return urwire__end(&o);
 }

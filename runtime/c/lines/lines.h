@@ -44,6 +44,9 @@ typedef struct lines_record {
     bool error;                        /* replies: reply_name says an error */
     bool not_kept;                     /* commands: not kept to pair; replies: answers such a
                                           command ("more than <kept> commands awaited replies") */
+    bool cut;                          /* the first line after bytes lost in its direction: its
+                                          start may be lost (a reply so pairs with none) */
+    bool unknown;                      /* replies: after bytes lost, the command it answers is unknown */
     size_t kept;                       /* the conversation's bound, when not_kept */
     lines_fault fault;                 /* faults: what, where (the direction's offset), how many bytes */
     uint64_t offset;
@@ -53,11 +56,15 @@ typedef struct lines_record {
 typedef struct lines_direction {
     uint64_t offset;                   /* of the next byte to decode */
     bool skipping;                     /* inside a line too long, dropped up to its newline */
+    bool cut;                          /* bytes were lost before the next line (lines_lost) */
 } lines_direction;
 
 /* One TCP connection: both directions and the commands awaiting their replies. Caller-owned.
  * A command that comes when LINES_PENDING await is not kept but counted lost, and so is every
- * command behind a lost one (replies come in order); a reply with none kept answers a lost one. */
+ * command behind a lost one (replies come in order); a reply with none kept answers a lost one.
+ * Bytes lost from a capture (lines_lost) may have held commands or answered them: from then on,
+ * a reply with none kept answers one unknown (`unknown`; one reply per request: for good, as no
+ * later byte tells how many the gap held; else until the next command). */
 typedef struct lines_conversation {
     lines_direction commands, replies;
     int16_t pending[LINES_PENDING];
@@ -65,6 +72,7 @@ typedef struct lines_conversation {
     size_t head, count, lost, kept;
     uint32_t version;                  /* lines_version(...), 0 while unknown */
     bool greeted;
+    bool unknown;
 } lines_conversation;
 
 #endif

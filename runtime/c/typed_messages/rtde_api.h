@@ -35,6 +35,9 @@ typedef struct rtde_conversation {
     rtde_pending pending[2][RTDE_MAX_PENDING];  /* [0] outputs, [1] inputs: setups awaiting replies */
     uint8_t pending_count[2];
     uint64_t pending_lost[2];
+    /* After bytes lost (rtde_conversation_lost), for good: a reply with no request kept answers
+     * one the gap may have held or answered, unknown, and no later request is kept. */
+    bool asked_unknown, pending_unknown[2];
     rtde_pending refused;                   /* the names of the last reply's request (a view's home) */
     char said[112];                         /* the text of the last message's error (a view's home) */
     rtde_limits limits;
@@ -70,6 +73,12 @@ size_t rtde_storage_size(const rtde_limits *limits);
  * firmware to what it needs. */
 bool rtde_conversation_init_in(rtde_conversation *c, const rtde_limits *limits, void *storage, size_t size);
 uint8_t rtde_protocol_in_force(const rtde_conversation *c);
+/* Bytes of one direction were lost (a gap in a capture; the caller frames that direction afresh
+ * after them): the protocol and the recipes are kept, but lost requests leave every later reply's
+ * request unknown (those kept came before them, and their replies first), and lost replies may
+ * have answered the requests awaiting, unless none awaited. Such a reply pairs with none and says
+ * so; a setup reply then makes no recipe and removes its id's old one. */
+void rtde_conversation_lost(rtde_conversation *c, bool from_robot);
 
 /* The size of the message that starts buf (header included), once its header is there:
  * RTDE_NEED_MORE with fewer than 3 bytes, RTDE_BAD_HEADER for a size below 3 or a type code
