@@ -94,6 +94,9 @@ FIRMWARES = [
     Firmware("rtde_values", ("rtde_values.c",), "rtde.c", "generated", RTDE_FIRMWARE_LIMITS),
     Firmware("joint_and_tool_subset", ("joint_and_tool.c", "primary_stream.c"), "urwire.c", "subset",
              FIRMWARE_OPTIONS),
+    # (1) and (2) as the tests build them, without the options: what the options save
+    Firmware("robot_states_default", ("robot_states.c", "primary_stream.c"), "urwire.c", "generated"),
+    Firmware("robot_states_pinned_default", ("robot_states.c", "primary_stream.c"), "urwire.c", "pinned"),
 ]
 
 

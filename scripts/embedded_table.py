@@ -18,6 +18,8 @@ FIRMWARE_TITLES = {
     "robot_states_pinned": "(2) the same, pinned to one version (`make pinned-c`)",
     "rtde_values": "(3) RTDE: data packages of a recipe, values by index and by name",
     "joint_and_tool_subset": "(4) joint data and tool data alone, from a subset build",
+    "robot_states_default": "(1) without the size options",
+    "robot_states_pinned_default": "(2) without the size options",
 }
 # The compile-time options the primary stream's firmwares are built with (docs/c.md, "Options for a
 # firmware"): no field names in errors, no robot-state fast path.
@@ -136,8 +138,8 @@ def render(m: dict) -> str:
         "The firmwares of `examples/embedded/`, each a complete `main()` over bytes in a buffer, linked "
         "with `-Wl,--gc-sections`, their startup code included (`startup.c`, in place of the C library's) "
         "and the C library's functions they call (newlib-nano on ARM, picolibc on RISC-V), the primary "
-        "stream's built with `" + " ".join(FIRMWARE_OPTIONS) + "` (see Options for a firmware); flash / RAM / "
-        "stack of `main`:",
+        "stream's built with `" + " ".join(FIRMWARE_OPTIONS) + "` (see Options for a firmware; the last two "
+        "rows are (1) and (2) without them); flash / RAM / stack of `main`:",
         "",
         *_firmwares(m, targets),
     ]
