@@ -74,7 +74,9 @@ def shuffled_captures(tmp_path) -> list:
 AFTER_GAP = ("line after bytes lost from the capture", "its command is unknown", "its setup is unknown")
 
 
-@pytest.mark.parametrize("variant", ["fast", "asan"])
+# Under ASan and UBSan in test-deep; make test runs the capture reader's harness and the
+# interfaces' fuzz corpora under them.
+@pytest.mark.parametrize("variant", ["fast", pytest.param("asan", marks=pytest.mark.deep)])
 def test_the_command_reads_a_capture_as_python_does(variant, request, tmp_path):
     """build/urwire-decode CAPTURE: every interface's records, each in its conversation's envelope,
     gaps and differing retransmissions named, and the lines and replies after a gap marked, byte

@@ -74,7 +74,9 @@ def need(*programs: str) -> None:
 
 # ---- cross builds ----
 
-@pytest.mark.parametrize("cpu", sorted(CPUS))
+# One ARM and the RISC-V CPU in make test; the other two Cortex-Ms (the same compiler) in test-deep.
+@pytest.mark.parametrize("cpu", [cpu if cpu in ("cortex-m4f", "rv32imc") else pytest.param(cpu, marks=pytest.mark.deep)
+                                 for cpu in sorted(CPUS)])
 def test_every_interface_compiles_clean_at_os(cpu, tmp_path):
     """`make cross` at -Os for one CPU: an object per interface, not one warning (-Werror)."""
     need(CPUS[cpu][0])
